@@ -1,0 +1,71 @@
+"""The modal-bridge interface every bridge model implements.
+
+A bridge enters the coupled solve (paper Eq. 9) only through its modal data: natural
+circular frequencies ``omega`` [rad/s], modal damping ratios ``damping_ratios`` [-] and
+*mass-normalised* mode shapes (Φᵀ M Φ = I), evaluated at deck points (x, y).  Any model
+that can supply these — the Euler–Bernoulli beam here, a 3D slab-on-girder FE model or
+modes imported from another program — plugs into the solver unchanged.
+"""
+from __future__ import annotations
+
+import abc
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+
+class ModalBridge(abc.ABC):
+    """Abstract modal bridge.
+
+    Deck points are (x, y): ``x`` [m] from the entry support along the span, ``y`` [m]
+    from the deck centreline (positive left).  Mode shapes are mass-normalised, so the
+    modal equations read ξ̈ᵢ + 2ζᵢωᵢ ξ̇ᵢ + ωᵢ² ξᵢ = Σ_p φᵢ(x_p, y_p) f_p with f_p the
+    vertical point forces [N] (z up).  Outside the deck (x < 0 or x > span) every mode
+    shape is zero, so wheels on the approach do not load the bridge.
+    """
+
+    #: span length [m]
+    span: float
+
+    @property
+    @abc.abstractmethod
+    def omega(self) -> NDArray[np.float64]:
+        """Natural circular frequencies ωᵢ [rad/s], ascending, shape (n_modes,)."""
+
+    @property
+    @abc.abstractmethod
+    def damping_ratios(self) -> NDArray[np.float64]:
+        """Modal damping ratios ζᵢ [-], shape (n_modes,)."""
+
+    @abc.abstractmethod
+    def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        """Mass-normalised vertical mode-shape values φᵢ(x, y) [kg^-1/2], shape (n_points, n_modes)."""
+
+    @abc.abstractmethod
+    def mode_slopes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        """Longitudinal derivatives ∂φᵢ/∂x [kg^-1/2 m^-1], shape (n_points, n_modes)."""
+
+    @abc.abstractmethod
+    def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        """Bottom-fibre longitudinal strain per unit modal coordinate, shape (n_points, n_modes).
+
+        Tension positive: for a beam ε_bottom = c · ∂²w/∂x² with c the distance from the
+        neutral axis down to the bottom fibre (z up, so sagging curvature is positive).
+        """
+
+    # ------------------------------------------------------------------ derived
+    @property
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies fᵢ = ωᵢ / 2π [Hz]."""
+        return self.omega / (2.0 * np.pi)
+
+    def static_modal_coordinates(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NDArray[np.float64]:
+        """Static modal coordinates ξᵢ = Σ_p φᵢ(x_p, y_p) f_p / ωᵢ² for point forces f_p [N] (z up).
+
+        ``x``, ``y``, ``forces`` broadcast to shape (..., n_points); the result has shape
+        (..., n_modes).  This is the bridge's static solution within the retained modes.
+        """
+        x, y, f = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float), np.asarray(forces, float))
+        lead = x.shape[:-1]
+        phi = self.mode_shapes(x.ravel(), y.ravel()).reshape(*x.shape, self.omega.size)
+        return np.einsum("...p,...pm->...m", f, phi).reshape(*lead, self.omega.size) / self.omega**2

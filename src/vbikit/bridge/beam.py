@@ -1,0 +1,103 @@
+"""Simply supported Euler–Bernoulli beam, reduced to its exact modes.
+
+Equations (e.g. Frýba, *Vibration of Solids and Structures under Moving Loads*, 1972, ch. 1):
+
+* mode shapes, mass-normalised:  φₙ(x) = √(2 / (m L)) · sin(nπx / L),   0 ≤ x ≤ L
+* circular frequencies:          ωₙ = (nπ / L)² · √(EI / m)
+* bottom-fibre strain:           ε = c · ∂²w/∂x²,  ∂²φₙ/∂x² = −(nπ/L)² φₙ
+
+with m the mass per length [kg/m], EI the bending stiffness [N·m²] and c the distance from the
+neutral axis to the bottom fibre [m].  z is up, so a downward load gives negative ξ₁, negative
+deflection and positive (tensile) bottom strain.  The beam has no transverse extent: mode
+shapes do not depend on y.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from vbikit.bridge.base import ModalBridge
+
+
+def _positive(name: str, value: float) -> None:
+    if not np.isfinite(value) or value <= 0:
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+
+
+@dataclass(frozen=True)
+class EulerBernoulliBeam(ModalBridge):
+    """Simply supported Euler–Bernoulli beam.
+
+    Parameters
+    ----------
+    span : float
+        Span length L [m].
+    EI : float
+        Bending stiffness [N·m²].
+    mass_per_length : float
+        Mass per unit length m [kg/m].
+    damping_ratio : float
+        Modal damping ratio ζ [-], the same for every mode (0 ≤ ζ < 1).
+    n_modes : int
+        Number of retained bending modes.
+    neutral_axis_depth : float
+        Distance c [m] from the neutral axis down to the bottom fibre, used for strain.
+    """
+
+    span: float
+    EI: float
+    mass_per_length: float
+    damping_ratio: float = 0.0
+    n_modes: int = 10
+    neutral_axis_depth: float = 0.5
+
+    def __post_init__(self) -> None:
+        _positive("span", self.span)
+        _positive("EI", self.EI)
+        _positive("mass_per_length", self.mass_per_length)
+        _positive("neutral_axis_depth", self.neutral_axis_depth)
+        if not 0.0 <= self.damping_ratio < 1.0:
+            raise ValueError(f"damping_ratio must be in [0, 1), got {self.damping_ratio!r}")
+        if int(self.n_modes) != self.n_modes or self.n_modes < 1:
+            raise ValueError(f"n_modes must be an integer >= 1, got {self.n_modes!r}")
+
+    # ---------------------------------------------------------------- modal data
+    @property
+    def wavenumbers(self) -> NDArray[np.float64]:
+        """nπ/L [1/m] for n = 1..n_modes."""
+        return np.arange(1, self.n_modes + 1) * np.pi / self.span
+
+    @property
+    def omega(self) -> NDArray[np.float64]:
+        return self.wavenumbers**2 * np.sqrt(self.EI / self.mass_per_length)
+
+    @property
+    def damping_ratios(self) -> NDArray[np.float64]:
+        return np.full(self.n_modes, self.damping_ratio)
+
+    def _arg(self, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        on = (x >= 0.0) & (x <= self.span)
+        return np.outer(x, self.wavenumbers), on[:, None]
+
+    @property
+    def _amplitude(self) -> float:
+        return float(np.sqrt(2.0 / (self.mass_per_length * self.span)))
+
+    def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        arg, on = self._arg(x)
+        return np.where(on, self._amplitude * np.sin(arg), 0.0)
+
+    def mode_slopes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        arg, on = self._arg(x)
+        return np.where(on, self._amplitude * self.wavenumbers * np.cos(arg), 0.0)
+
+    def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        return -self.neutral_axis_depth * self.wavenumbers**2 * self.mode_shapes(x, y)
+
+    # ---------------------------------------------------------------- closed forms
+    def static_midspan_deflection(self, load: float) -> float:
+        """Exact static midspan deflection P L³ / (48 EI) [m] (positive number) under a point load [N] at midspan."""
+        return load * self.span**3 / (48.0 * self.EI)

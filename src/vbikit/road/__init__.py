@@ -1,0 +1,16 @@
+"""Road profiles: sampled profiles, random profiles from a PSD (Eq. 7, ISO 8608), measured CSV files."""
+from vbikit.road.measured import RoadFileError, read_profile_csv
+from vbikit.road.profile import RoadProfile
+from vbikit.road.psd import ISO_CLASSES, ISO_N0, PAPER_CLASSES, RoadPSD, phase_angles, random_profile
+
+__all__ = [
+    "ISO_CLASSES",
+    "ISO_N0",
+    "PAPER_CLASSES",
+    "RoadFileError",
+    "RoadPSD",
+    "RoadProfile",
+    "phase_angles",
+    "random_profile",
+    "read_profile_csv",
+]

@@ -1,0 +1,51 @@
+"""Measured road profiles from CSV files: two columns, x [m from the bridge entry], elevation [m]."""
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+
+from vbikit.road.profile import RoadProfile
+
+
+class RoadFileError(ValueError):
+    """A road profile file that cannot be used; the message names the file and line."""
+
+
+def read_profile_csv(path: str | Path) -> RoadProfile:
+    """Read a measured profile: optional header row, then ``x, elevation`` rows (SI: m, m).
+
+    Stations must be finite and strictly increasing; comments start with ``#``.  Any bad
+    row raises :class:`RoadFileError` naming the line.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise RoadFileError(f"{path}: road profile file not found")
+    xs: list[float] = []
+    zs: list[float] = []
+    header_seen = False
+    with path.open(newline="") as fh:
+        for lineno, row in enumerate(csv.reader(fh), start=1):
+            cells = [c.strip() for c in row]
+            if not cells or not any(cells) or cells[0].startswith("#"):
+                continue
+            if len(cells) < 2:
+                raise RoadFileError(f"{path}:{lineno}: expected 2 columns (x, elevation), got {len(cells)}")
+            first_row = not header_seen and not xs
+            header_seen = True
+            try:
+                x, z = float(cells[0]), float(cells[1])
+            except ValueError:
+                if first_row:
+                    continue  # header row
+                raise RoadFileError(f"{path}:{lineno}: not a number: {','.join(cells[:2])!r}") from None
+            if not (np.isfinite(x) and np.isfinite(z)):
+                raise RoadFileError(f"{path}:{lineno}: non-finite value")
+            if xs and x <= xs[-1]:
+                raise RoadFileError(f"{path}:{lineno}: x = {x} m is not greater than the previous x = {xs[-1]} m")
+            xs.append(x)
+            zs.append(z)
+    if len(xs) < 2:
+        raise RoadFileError(f"{path}: needs at least 2 data rows, found {len(xs)}")
+    return RoadProfile(np.array(xs), np.array(zs), f"measured {path.name}")

@@ -1,0 +1,72 @@
+"""Road surface profiles: sampled elevations with linear interpolation.
+
+Every profile — flat, random from a PSD (paper Eq. 7), or measured — is a
+:class:`RoadProfile`: elevations z_j [m] at increasing stations x_j [m] (x from the bridge
+entry, negative on the approach), linearly interpolated in between.  Evaluating outside the
+sampled range is an error: the crossing checks coverage before it starts.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+
+@dataclass(frozen=True)
+class RoadProfile:
+    """Road elevation r(x) [m] (z up) sampled at stations ``x`` [m], linear in between.
+
+    ``label`` describes the origin (e.g. "ISO C, seed 3"); ``spacing`` [m] is the finest
+    sample spacing (0 for an analytically flat road), used by the time-step rule.
+    """
+
+    x: NDArray[np.float64]
+    z: NDArray[np.float64]
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        x, z = np.asarray(self.x, float), np.asarray(self.z, float)
+        if x.ndim != 1 or x.shape != z.shape or x.size < 2:
+            raise ValueError("road profile needs matching 1-D x and z arrays with at least 2 samples")
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(z))):
+            raise ValueError("road profile contains non-finite values")
+        if np.any(np.diff(x) <= 0):
+            raise ValueError("road profile stations x must be strictly increasing")
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "z", z)
+
+    @classmethod
+    def flat(cls, x_min: float = -1e4, x_max: float = 1e4) -> "RoadProfile":
+        """A perfectly smooth road (r ≡ 0) over [x_min, x_max] [m]."""
+        return cls(np.array([x_min, x_max], float), np.zeros(2), "smooth")
+
+    @property
+    def spacing(self) -> float:
+        """Finest sample spacing [m]; 0 if the profile is flat (no features to resolve)."""
+        if not np.any(self.z):
+            return 0.0
+        return float(np.min(np.diff(self.x)))
+
+    def covers(self, x_min: float, x_max: float) -> bool:
+        return bool(self.x[0] <= x_min and x_max <= self.x[-1])
+
+    def _check(self, x: NDArray[np.float64]) -> None:
+        if x.size and (x.min() < self.x[0] - 1e-9 or x.max() > self.x[-1] + 1e-9):
+            raise ValueError(
+                f"road profile '{self.label}' covers x = {self.x[0]:.3f} … {self.x[-1]:.3f} m, "
+                f"but x = {x.min():.3f} … {x.max():.3f} m was requested"
+            )
+
+    def elevation(self, x: ArrayLike) -> NDArray[np.float64]:
+        """r(x) [m]."""
+        x = np.asarray(x, float)
+        self._check(x)
+        return np.interp(x, self.x, self.z)
+
+    def slope(self, x: ArrayLike) -> NDArray[np.float64]:
+        """dr/dx [-] of the piecewise-linear profile (right-hand slope at a station)."""
+        x = np.asarray(x, float)
+        self._check(x)
+        seg = np.clip(np.searchsorted(self.x, x, side="right") - 1, 0, self.x.size - 2)
+        return (self.z[seg + 1] - self.z[seg]) / (self.x[seg + 1] - self.x[seg])

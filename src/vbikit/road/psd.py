@@ -1,0 +1,122 @@
+"""Random road profiles from a power spectral density (paper Eq. 7; ISO 8608 classes).
+
+    r(X) = Σ_k √(2 φ(n_k) Δn) · cos(2π n_k X + θ_k),   θ_k ~ U[0, 2π)          (Eq. 7)
+    φ(n) = φ(n₀) · (n / n₀)^(−w)                                                 (ISO 8608)
+
+with n the wavenumber [cycle/m], φ the displacement PSD [m³/cycle].  The wavenumbers are
+n_k = k·Δn inside the band [n_min, n_max], Δn = 1/P, and the profile is sampled at spacing Δx
+over one period P = N·Δx (N a power of two), so the sum is evaluated exactly by one inverse
+FFT.  P, Δx and the band do not depend on the vehicle or speed, so the same seed gives the
+same road at the same x in every crossing of a study.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.road.profile import RoadProfile
+
+#: [public] ISO 8608 reference wavenumber n₀ [cycle/m]
+ISO_N0 = 0.1
+#: [public] ISO 8608 class geometric means Gd(n₀) [m³/cycle]
+ISO_CLASSES: dict[str, float] = {c: 16e-6 * 4.0**i for i, c in enumerate("ABCDEFGH")}
+#: [substitute] the paper's good / average / poor road surface conditions mapped to ISO B / C / D
+PAPER_CLASSES: dict[str, str] = {"good": "B", "average": "C", "poor": "D"}
+
+
+@dataclass(frozen=True)
+class RoadPSD:
+    """Power-law displacement PSD φ(n) = phi0 · (n / n0)^(−exponent).
+
+    phi0 [m³/cycle] at n0 [cycle/m]; band n_min–n_max [cycle/m] ([substitute] default
+    0.01–4 cycle/m, domain-data §4).
+    """
+
+    phi0: float
+    n0: float = ISO_N0
+    exponent: float = 2.0
+    n_min: float = 0.01
+    n_max: float = 4.0
+
+    def __post_init__(self) -> None:
+        if not self.phi0 >= 0:
+            raise ValueError(f"phi0 must be >= 0 m³/cycle, got {self.phi0!r}")
+        if not (0 < self.n_min < self.n_max):
+            raise ValueError(f"need 0 < n_min < n_max (cycle/m), got {self.n_min!r}, {self.n_max!r}")
+        if not self.n0 > 0:
+            raise ValueError(f"n0 must be > 0 cycle/m, got {self.n0!r}")
+
+    @classmethod
+    def iso(cls, road_class: str, **band: float) -> "RoadPSD":
+        """ISO 8608 class A–H at its geometric mean (or the paper's good/average/poor)."""
+        key = PAPER_CLASSES.get(road_class.lower(), road_class.upper())
+        if key not in ISO_CLASSES:
+            allowed = ", ".join(list(ISO_CLASSES) + list(PAPER_CLASSES))
+            raise ValueError(f"unknown road class {road_class!r}; allowed: {allowed}")
+        return cls(ISO_CLASSES[key], ISO_N0, 2.0, **band)
+
+    def __call__(self, n: NDArray[np.float64]) -> NDArray[np.float64]:
+        return self.phi0 * (np.asarray(n, float) / self.n0) ** (-self.exponent)
+
+    def band_variance(self) -> float:
+        """∫ φ(n) dn over the band [m²] (closed form)."""
+        w, a, b = self.exponent, self.n_min, self.n_max
+        if abs(w - 1.0) < 1e-12:
+            return self.phi0 * self.n0 * np.log(b / a)
+        return self.phi0 * self.n0**w * (b ** (1 - w) - a ** (1 - w)) / (1 - w)
+
+
+def random_profile(
+    psd: RoadPSD,
+    seed: int,
+    spacing: float = 0.01,
+    length: float = 300.0,
+    x_start: float | None = None,
+    label: str = "",
+) -> RoadProfile:
+    """One random profile realisation by Eq. 7, reproducible from ``seed``.
+
+    Parameters
+    ----------
+    psd : RoadPSD
+        Target spectrum and band.
+    seed : int
+        Seed of the phase angles θ_k (numpy ``default_rng``).
+    spacing : float
+        Sample spacing Δx [m] ([substitute] 0.01 m: several samples inside a 0.254 m patch).
+    length : float
+        Minimum profile length [m]; the period P is the next power-of-two multiple of Δx not
+        shorter than max(length, 1/n_min).
+    x_start : float, optional
+        Station of the first sample [m]; default −P/2 (centred on the bridge entry).
+    """
+    if spacing <= 0:
+        raise ValueError(f"road spacing must be > 0 m, got {spacing!r}")
+    if psd.n_max > 0.5 / spacing:
+        raise ValueError(f"n_max = {psd.n_max} cycle/m is above the Nyquist wavenumber 1/(2Δx) = {0.5 / spacing} cycle/m")
+    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
+    period = n_samples * spacing
+    x0 = -period / 2 if x_start is None else float(x_start)
+    k = np.arange(n_samples // 2 + 1)
+    n_k = k / period
+    in_band = (n_k >= psd.n_min) & (n_k <= psd.n_max)
+    rng = np.random.default_rng(seed)
+    theta = rng.uniform(0.0, 2.0 * np.pi, int(in_band.sum()))
+    amp = np.sqrt(2.0 * psd(n_k[in_band]) / period)
+    coef = np.zeros(n_samples, complex)
+    coef[k[in_band]] = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k[in_band] * x0))
+    z = np.real(np.fft.ifft(coef)) * n_samples
+    x = x0 + spacing * np.arange(n_samples)
+    return RoadProfile(x, z, label or f"PSD phi0={psd.phi0:g}, seed {seed}")
+
+
+def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 300.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The (n_k, θ_k) pairs a profile with these settings uses (for direct evaluation of Eq. 7)."""
+    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
+    period = n_samples * spacing
+    n_k = np.arange(n_samples // 2 + 1) / period
+    n_k = n_k[(n_k >= psd.n_min) & (n_k <= psd.n_max)]
+    theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
+    return n_k, theta

@@ -1,0 +1,132 @@
+"""A crossing: one vehicle with one tire model driving over one bridge on one road.
+
+The vehicle drives in +x.  At t = 0 its front axle is at x = −approach (on the approach
+road) and it is in static equilibrium on the road (and deck, if any contact point is already
+on it).  The crossing ends ``free_vibration`` seconds after the last contact point has left
+the bridge (x = span).  Speed: v(t) = speed + acceleration · t (acceleration < 0 brakes).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.bridge.base import ModalBridge
+from vbikit.contact.points import ContactPoints, contact_points
+from vbikit.contact.tires import PointTire, TireModel
+from vbikit.road.profile import RoadProfile
+from vbikit.vehicle.model import Vehicle
+
+Integrator = Literal["rk4", "newmark"]
+INTEGRATORS: tuple[str, ...] = ("rk4", "newmark")
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """Everything one coupled simulation needs.
+
+    Parameters
+    ----------
+    bridge, vehicle, tire, road
+        The composed models; ``road=None`` is a smooth road.
+    speed : float
+        Speed at t = 0 [m/s], > 0.
+    acceleration : float
+        Constant longitudinal acceleration [m/s²] (negative = braking); the vehicle must
+        still move when its last axle leaves the bridge.
+    approach : float
+        Distance [m] the front axle travels before it reaches the bridge (≥ 0).
+    free_vibration : float, optional
+        Time [s] simulated after the last axle leaves; default one period of the first
+        bridge mode.
+    lateral_offset : float
+        y [m] of the vehicle centreline from the deck centreline (irrelevant for a beam).
+    dt : float, optional
+        Time step [s]; default chosen by :func:`vbikit.solve.timestep.auto_time_step`.
+    integrator : {"rk4", "newmark"}
+        The paper's classical Runge–Kutta or Newmark average acceleration.
+    """
+
+    bridge: ModalBridge
+    vehicle: Vehicle
+    tire: TireModel = PointTire()
+    road: RoadProfile | None = None
+    speed: float = 20.0
+    acceleration: float = 0.0
+    approach: float = 10.0
+    free_vibration: float | None = None
+    lateral_offset: float = 0.0
+    dt: float | None = None
+    integrator: Integrator = "rk4"
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.speed) and self.speed > 0):
+            raise ValueError(f"crossing.speed must be > 0 m/s, got {self.speed!r}")
+        if not np.isfinite(self.acceleration):
+            raise ValueError("crossing.acceleration must be finite")
+        if not self.approach >= 0:
+            raise ValueError(f"crossing.approach must be >= 0 m, got {self.approach!r}")
+        if self.free_vibration is not None and not self.free_vibration >= 0:
+            raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
+        if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):
+            raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
+        if self.integrator not in INTEGRATORS:
+            raise ValueError(f"crossing.integrator must be one of {INTEGRATORS}, got {self.integrator!r}")
+        if self.road is not None:
+            lo, hi = self.road_extent()
+            if not self.road.covers(lo, hi):
+                raise ValueError(
+                    f"road profile '{self.road.label}' covers x = {self.road.x[0]:.2f} … {self.road.x[-1]:.2f} m "
+                    f"but this crossing needs x = {lo:.2f} … {hi:.2f} m (approach, vehicle length, span, free vibration)"
+                )
+
+    # ------------------------------------------------------------ geometry & time
+    @property
+    def contact(self) -> ContactPoints:
+        return contact_points(self.vehicle, self.tire)
+
+    @property
+    def free_vibration_time(self) -> float:
+        if self.free_vibration is not None:
+            return float(self.free_vibration)
+        return float(2 * np.pi / self.bridge.omega[0])
+
+    def front_position(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """x of the front axle [m] at time t [s]."""
+        t = np.asarray(t, float)
+        return -self.approach + self.speed * t + 0.5 * self.acceleration * t**2
+
+    def velocity(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """Vehicle speed [m/s] at time t [s]."""
+        return self.speed + self.acceleration * np.asarray(t, float)
+
+    def exit_time(self) -> float:
+        """Time [s] when the rearmost contact point passes x = span."""
+        distance = self.approach + self.bridge.span + float(self.contact.setback.max())
+        a, v = self.acceleration, self.speed
+        if abs(a) < 1e-12:
+            return distance / v
+        disc = v * v + 2 * a * distance
+        if disc <= 0:
+            stop = -v * v / (2 * a)
+            raise ValueError(
+                f"with crossing.acceleration = {a} m/s² the vehicle stops after {stop:.1f} m, before its last axle "
+                f"leaves the bridge ({distance:.1f} m); use a smaller braking rate or a higher speed"
+            )
+        return (-v + math.sqrt(disc)) / a
+
+    @property
+    def duration(self) -> float:
+        return self.exit_time() + self.free_vibration_time
+
+    def road_extent(self) -> tuple[float, float]:
+        """Range of x [m] the contact points touch during the crossing."""
+        cp = self.contact
+        t_end = self.duration
+        x_end = float(self.front_position(t_end))
+        if self.acceleration < 0:  # the front may be farthest before t_end only if it reversed; it does not
+            x_end = max(x_end, float(self.front_position(t_end)))
+        return -self.approach - float(cp.setback.max()), x_end - float(cp.setback.min())

@@ -1,0 +1,63 @@
+"""Time histories of one crossing and the responses derived from them."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.solve.crossing import Crossing
+
+
+@dataclass(frozen=True)
+class CrossingResult:
+    """Histories at the n_t = n_steps + 1 time points ``time`` [s].
+
+    ``xi``, ``xi_dot``, ``xi_ddot`` (n_t, n_modes): bridge modal coordinates and rates;
+    ``q``, ``q_dot``, ``q_ddot`` (n_t, n_dof): vehicle coordinates (absolute, z up);
+    ``point_forces`` (n_t, n_cp): contact-point forces [N], compression positive;
+    ``front_position`` [m], ``speed`` [m/s] of the vehicle.
+    """
+
+    crossing: Crossing
+    time: NDArray[np.float64]
+    dt: float
+    front_position: NDArray[np.float64]
+    speed: NDArray[np.float64]
+    xi: NDArray[np.float64]
+    xi_dot: NDArray[np.float64]
+    xi_ddot: NDArray[np.float64]
+    q: NDArray[np.float64]
+    q_dot: NDArray[np.float64]
+    q_ddot: NDArray[np.float64]
+    point_forces: NDArray[np.float64]
+
+    @property
+    def n_steps(self) -> int:
+        return int(self.time.size - 1)
+
+    def _shapes(self, x: float | None, y: float) -> NDArray[np.float64]:
+        b = self.crossing.bridge
+        return b.mode_shapes([b.span / 2 if x is None else x], [y])[0]
+
+    def displacement(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+        """Deck vertical displacement [m] at (x, y) (z up: negative under load); x default midspan."""
+        return self.xi @ self._shapes(x, y)
+
+    def velocity(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+        """Deck vertical velocity [m/s] at (x, y)."""
+        return self.xi_dot @ self._shapes(x, y)
+
+    def acceleration(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+        """Deck vertical acceleration [m/s²] at (x, y)."""
+        return self.xi_ddot @ self._shapes(x, y)
+
+    def strain(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+        """Bottom-fibre longitudinal strain [-] at (x, y), tension positive."""
+        b = self.crossing.bridge
+        return self.xi @ b.strain_shapes([b.span / 2 if x is None else x], [y])[0]
+
+    @property
+    def wheel_forces(self) -> NDArray[np.float64]:
+        """Tire force of every wheel [N] (n_t, n_wheels), compression positive."""
+        return self.crossing.contact.wheel_sum(self.point_forces, len(self.crossing.vehicle.wheels))

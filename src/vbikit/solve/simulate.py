@@ -1,0 +1,74 @@
+"""Run one crossing: set up the arrays, find the static start, call the compiled integrator."""
+from __future__ import annotations
+
+import logging
+import math
+
+import numpy as np
+
+from vbikit.solve import kernels
+from vbikit.solve.crossing import Crossing
+from vbikit.solve.result import CrossingResult
+from vbikit.solve.tabulate import tabulate_tracks
+from vbikit.solve.timestep import choose_time_step
+
+log = logging.getLogger(__name__)
+
+
+def simulate(crossing: Crossing) -> CrossingResult:
+    """Integrate the coupled equations (paper Eq. 9) over the whole crossing."""
+    bridge, vehicle = crossing.bridge, crossing.vehicle
+    cp = crossing.contact
+    dt = choose_time_step(crossing)
+    n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))
+    t_half = 0.5 * dt * np.arange(2 * n_steps + 1)
+    xf = crossing.front_position(t_half)
+    vel = crossing.velocity(t_half)
+    x_cp = xf[:, None] - cp.setback[None, :]
+    if crossing.road is None:
+        road = np.zeros_like(x_cp)
+        road_rate = np.zeros_like(x_cp)
+    else:
+        road = crossing.road.elevation(x_cp)
+        road_rate = crossing.road.slope(x_cp) * vel[:, None]
+    tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
+    table = tabulate_tracks(bridge, tracks)
+    track_idx = track_idx.astype(np.int64)
+
+    n_m, n_d = bridge.omega.size, vehicle.n_dof
+    n_t = n_steps + 1
+    xi, dxi, ddxi = (np.zeros((n_t, n_m)) for _ in range(3))
+    q, dq, ddq = (np.zeros((n_t, n_d)) for _ in range(3))
+    force = np.zeros((n_t, cp.n))
+    xi[0], q[0] = static_start(crossing, table, track_idx, road[0])
+
+    log.info("crossing: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
+             n_steps, dt, crossing.integrator, n_m, n_d, cp.n)
+    common = (bridge.omega, bridge.damping_ratios)
+    veh = (vehicle.damping, vehicle.stiffness, vehicle.gravity)
+    tail = (cp.setback, track_idx, cp.stiffness, cp.damping, cp.fixed_load, cp.rows, bridge.span, table.spacing,
+            table.values, table.slopes, xi, dxi, q, dq, ddxi, ddq, force)
+    if crossing.integrator == "rk4":
+        m_inv = np.linalg.inv(vehicle.mass) if n_d else np.zeros((0, 0))
+        kernels.rk4(dt, xf, vel, road, road_rate, *common, m_inv, *veh, *tail)
+    else:
+        kernels.newmark(dt, xf, vel, road, road_rate, *common, vehicle.mass, *veh, *tail)
+    return CrossingResult(crossing, t_half[::2].copy(), dt, xf[::2].copy(), vel[::2].copy(), xi, dxi, ddxi, q, dq,
+                          ddq, force)
+
+
+def static_start(crossing: Crossing, table, track_idx, road0) -> tuple[np.ndarray, np.ndarray]:
+    """Static equilibrium (ξ, q) of the coupled system at t = 0 on the road under the wheels."""
+    bridge, vehicle = crossing.bridge, crossing.vehicle
+    cp = crossing.contact
+    n_m, n_d = bridge.omega.size, vehicle.n_dof
+    n = n_m + n_d
+    phi = np.zeros((cp.n, n_m)); dphi = np.zeros_like(phi); on = np.zeros(cp.n, bool)
+    kernels.shapes_at(float(crossing.front_position(0.0)), cp.setback, track_idx, bridge.span, table.spacing,
+                      table.values, table.slopes, phi, dphi, on)
+    mass = np.zeros((n, n)); damp = np.zeros_like(mass); stiff = np.zeros_like(mass); load = np.zeros(n)
+    kernels.assemble(0.0, phi, dphi, on, np.asarray(road0, float), np.zeros(cp.n), bridge.omega, bridge.damping_ratios,
+                     vehicle.mass, vehicle.damping, vehicle.stiffness, vehicle.gravity, cp.stiffness, cp.damping,
+                     cp.fixed_load, cp.rows, mass, damp, stiff, load)
+    u = np.linalg.solve(stiff, load)
+    return u[:n_m], u[n_m:]

@@ -1,0 +1,96 @@
+"""Time-step selection and the RK4 stability limit.
+
+Automatic step (both integrators), the smallest of
+  * T_bridge,min / 5   — at least 5 steps per period of the highest retained bridge mode,
+  * T_vehicle,min / 20 — 20 steps per period of the highest vehicle mode (tires on ground),
+  * Δx_road / v_max    — at most one road sample passed per step,
+  * span / (100 v_max) — at least 100 steps while a point crosses the span.
+For RK4 it is also capped at 0.9 × the stability limit of the coupled system, computed
+from the eigenvalues λ of its first-order matrix at several vehicle positions as the largest
+dt with |R(λ dt)| ≤ 1, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24.  A user step above that limit is
+refused (Newmark average acceleration is unconditionally stable and takes any step).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from vbikit.solve import kernels
+from vbikit.solve.crossing import Crossing
+from vbikit.solve.tabulate import tabulate_tracks
+
+
+class UnstableTimeStepError(ValueError):
+    """A user-given time step that the chosen explicit integrator cannot run stably."""
+
+
+def _rk4_growth(z: np.ndarray) -> np.ndarray:
+    return np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
+
+
+def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
+    """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
+    bridge, vehicle = crossing.bridge, crossing.vehicle
+    cp = crossing.contact
+    n_m, n_d = bridge.omega.size, vehicle.n_dof
+    n = n_m + n_d
+    tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
+    table = tabulate_tracks(bridge, tracks, points_per_mode=10)
+    positions = np.linspace(-1.0, bridge.span + cp.setback.max() + 1.0, n_positions)
+    eig = []
+    vmax = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    for xf in positions:
+        phi = np.zeros((cp.n, n_m)); dphi = np.zeros_like(phi); on = np.zeros(cp.n, bool)
+        kernels.shapes_at(float(xf), cp.setback, track_idx.astype(np.int64), bridge.span, table.spacing,
+                          table.values, table.slopes, phi, dphi, on)
+        mass = np.zeros((n, n)); damp = np.zeros_like(mass); stiff = np.zeros_like(mass); load = np.zeros(n)
+        kernels.assemble(vmax, phi, dphi, on, np.zeros(cp.n), np.zeros(cp.n), bridge.omega, bridge.damping_ratios,
+                         vehicle.mass, vehicle.damping, vehicle.stiffness, vehicle.gravity, cp.stiffness, cp.damping,
+                         cp.fixed_load, cp.rows, mass, damp, stiff, load)
+        m_inv = np.linalg.inv(mass)
+        a = np.block([[np.zeros((n, n)), np.eye(n)], [-m_inv @ stiff, -m_inv @ damp]])
+        eig.append(np.linalg.eigvals(a))
+    return np.concatenate(eig)
+
+
+def rk4_stability_limit(crossing: Crossing) -> float:
+    """Largest stable RK4 step [s] for this crossing's coupled system."""
+    lam = system_eigenvalues(crossing)
+    lam = lam[np.abs(lam) > 1e-9]
+    if lam.size == 0:
+        return np.inf
+    lo, hi = 0.0, 4.0 / np.abs(lam).max()
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if np.all(_rk4_growth(lam * mid) <= 1 + 1e-12):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def accuracy_time_step(crossing: Crossing) -> float:
+    """The accuracy-based automatic step [s] (see module docstring)."""
+    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    candidates = [2 * np.pi / crossing.bridge.omega.max() / 5.0, crossing.bridge.span / (100.0 * v_max)]
+    f_veh = crossing.vehicle.natural_frequencies()
+    if f_veh.size and f_veh.max() > 0:
+        candidates.append(1.0 / f_veh.max() / 20.0)
+    if crossing.road is not None and crossing.road.spacing > 0:
+        candidates.append(crossing.road.spacing / v_max)
+    return float(min(candidates))
+
+
+def choose_time_step(crossing: Crossing) -> float:
+    """The step the crossing runs with: the user's (checked) or the automatic one [s]."""
+    if crossing.integrator == "rk4":
+        limit = rk4_stability_limit(crossing)
+        if crossing.dt is not None:
+            if crossing.dt > limit:
+                raise UnstableTimeStepError(
+                    f"crossing.dt = {crossing.dt:.3g} s is above the RK4 stability limit {limit:.3g} s of this system "
+                    f"(highest bridge mode {crossing.bridge.frequencies_hz.max():.1f} Hz); use dt <= {limit:.3g} s, "
+                    "leave dt out for an automatic step, fewer bridge modes, or integrator = \"newmark\""
+                )
+            return float(crossing.dt)
+        return min(accuracy_time_step(crossing), 0.9 * limit)
+    return float(crossing.dt) if crossing.dt is not None else accuracy_time_step(crossing)

@@ -1,0 +1,127 @@
+"""Assemble a multibody vehicle from rigid bodies, spring–dampers and wheels.
+
+Each body's heave z (at its centre of gravity), pitch θ and roll φ are linear functions of
+the generalised coordinates (a body may own them, or — like a semitrailer hinged at the
+fifth wheel — inherit its heave from another body).  Mass and gravity follow from the
+kinetic and potential energy: M = Σ_b (m h hᵀ + J_θ p pᵀ + J_φ r rᵀ), F_G = −g Σ_b m h; a
+spring k between points with displacement rows a and b adds k (a−b)(a−b)ᵀ to K.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from vbikit.vehicle.model import GRAVITY, Vehicle, Wheel
+
+Row = dict[int, float]
+
+
+def _combine(*terms: tuple[float, Row]) -> Row:
+    out: Row = {}
+    for coef, row in terms:
+        for i, c in row.items():
+            out[i] = out.get(i, 0.0) + coef * c
+    return out
+
+
+@dataclass
+class Body:
+    """A rigid body: mass [kg], pitch/roll inertias [kg·m²] about its CG at s_cg [m]."""
+
+    name: str
+    mass: float
+    s_cg: float
+    pitch_inertia: float
+    roll_inertia: float
+    heave: Row
+    pitch: Row = field(default_factory=dict)
+    roll: Row = field(default_factory=dict)
+
+    def point(self, s: float, y: float = 0.0) -> Row:
+        """Vertical displacement row of the body point at (s, y)."""
+        return _combine((1.0, self.heave), (self.s_cg - s, self.pitch), (y, self.roll))
+
+
+class VehicleBuilder:
+    """Incremental assembly of a :class:`~vbikit.vehicle.model.Vehicle`."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.dofs: list[str] = []
+        self.bodies: list[Body] = []
+        self.springs: list[tuple[Row, Row, float, float]] = []
+        self.wheels: list[tuple[str, float, float, float, float, Row, float]] = []
+
+    def _dof(self, name: str) -> Row:
+        self.dofs.append(name)
+        return {len(self.dofs) - 1: 1.0}
+
+    def body(
+        self,
+        name: str,
+        mass: float,
+        s_cg: float,
+        *,
+        pitch_inertia: float = 0.0,
+        roll_inertia: float = 0.0,
+        heave: Row | None = None,
+        pitch: bool = False,
+        roll: bool = False,
+    ) -> Body:
+        """Add a body; it owns a heave DOF unless ``heave`` (a row) ties it to another body."""
+        b = Body(
+            name,
+            mass,
+            s_cg,
+            pitch_inertia,
+            roll_inertia,
+            heave=self._dof(f"{name}_heave") if heave is None else heave,
+        )
+        if pitch:
+            b.pitch = self._dof(f"{name}_pitch")
+        if roll:
+            b.roll = self._dof(f"{name}_roll")
+        self.bodies.append(b)
+        return b
+
+    def hinged_body(
+        self, name: str, mass: float, s_cg: float, parent: Body, s_hinge: float, *, pitch_inertia: float, roll_inertia: float = 0.0, roll: bool = False
+    ) -> Body:
+        """A body pinned (vertically) to ``parent`` at s_hinge, pitching about the pin (a semitrailer)."""
+        b = self.body(name, mass, s_cg, pitch_inertia=pitch_inertia, roll_inertia=roll_inertia, heave={}, pitch=True, roll=roll)
+        # z_cg = z_hinge − (s_cg − s_hinge)·θ
+        b.heave = _combine((1.0, parent.point(s_hinge)), (-(s_cg - s_hinge), b.pitch))
+        return b
+
+    def spring(self, a: Row, b: Row | None, stiffness: float, damping: float = 0.0) -> None:
+        """A vertical spring–damper between two points (``b=None`` is the ground)."""
+        self.springs.append((a, b or {}, stiffness, damping))
+
+    def wheel(self, name: str, at: Row, s: float, y: float, stiffness: float, damping: float, fixed_load: float = 0.0) -> None:
+        """A wheel whose centre moves as row ``at``, at (s, y) on the vehicle, with its tire k, c."""
+        self.wheels.append((name, s, y, stiffness, damping, at, fixed_load))
+
+    def build(self, description: str = "", parameters: dict[str, float] | None = None) -> Vehicle:
+        n = len(self.dofs)
+
+        def dense(row: Row) -> np.ndarray:
+            v = np.zeros(n)
+            for i, c in row.items():
+                v[i] += c
+            return v
+
+        m = np.zeros((n, n))
+        fg = np.zeros(n)
+        for b in self.bodies:
+            h, p, r = dense(b.heave), dense(b.pitch), dense(b.roll)
+            m += b.mass * np.outer(h, h) + b.pitch_inertia * np.outer(p, p) + b.roll_inertia * np.outer(r, r)
+            fg -= GRAVITY * b.mass * h
+        k = np.zeros((n, n))
+        c = np.zeros((n, n))
+        for a, b_, ks, cs in self.springs:
+            d = dense(a) - dense(b_)
+            k += ks * np.outer(d, d)
+            c += cs * np.outer(d, d)
+        wheels = tuple(Wheel(nm, s, y, kt, ct, dense(row), fl) for nm, s, y, kt, ct, row, fl in self.wheels)
+        return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}))

@@ -1,0 +1,118 @@
+"""Linear multibody vehicle models: M q̈ + C q̇ + K q = F_G + Σ_w r_wᵀ F_w (paper Eq. 2).
+
+Conventions
+-----------
+* Generalised coordinates ``q`` are absolute displacements/rotations from the unstretched
+  springs, z up, so gravity ``F_G`` is part of the load and the static state has q < 0.
+* Longitudinal positions on the vehicle, ``s`` [m], are measured *rearward* from the front
+  axle (the vehicle drives towards −s, i.e. in the bridge's +x direction).
+* Pitch θ is positive nose-up, roll φ positive raising the left side (y > 0), so a point at
+  (s, y) of a rigid body with centre of gravity at s_cg moves by z + (s_cg − s)·θ + y·φ.
+* Tire springs are *not* in K: they are the contact with the road/deck and belong to the
+  coupling (``vbikit.contact``).  Each :class:`Wheel` carries its tire's stiffness and
+  damping and the row r_w with z_wheel = r_w · q.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: gravitational acceleration [m/s²]
+GRAVITY = 9.81
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """One wheel (or one wheel line of a planar model) and its tire.
+
+    Parameters
+    ----------
+    name : str
+        Label used in outputs (``contact_force_<name>``).
+    offset : float
+        Distance s [m] of the wheel centre behind the front axle (≥ 0).
+    lateral : float
+        Transverse position y [m] relative to the vehicle centreline (positive left).
+    stiffness, damping : float
+        Tire spring [N/m] and dashpot [N·s/m] of the single-point model.
+    row : ndarray
+        z_wheel = row · q [m]; empty for a vehicle without DOFs (moving force).
+    fixed_load : float
+        Constant downward force [N] transmitted in addition to the tire spring; used by the
+        moving-force model, zero otherwise.
+    """
+
+    name: str
+    offset: float
+    lateral: float
+    stiffness: float
+    damping: float
+    row: NDArray[np.float64]
+    fixed_load: float = 0.0
+
+
+@dataclass(frozen=True)
+class Vehicle:
+    """A linear vehicle model with its wheels.
+
+    ``mass``, ``damping``, ``stiffness`` are the (n_dof × n_dof) matrices without tires,
+    ``gravity`` the gravity load vector F_G [N, N·m].
+    """
+
+    name: str
+    dof_names: tuple[str, ...]
+    mass: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    gravity: NDArray[np.float64]
+    wheels: tuple[Wheel, ...]
+    description: str = ""
+    parameters: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def n_dof(self) -> int:
+        return len(self.dof_names)
+
+    @property
+    def length(self) -> float:
+        """Distance from the front to the rearmost wheel [m]."""
+        return max(w.offset for w in self.wheels)
+
+    @property
+    def total_weight(self) -> float:
+        """Weight carried by the wheels [N]: −Σ F_G heave components plus fixed loads."""
+        return float(sum(self.static_wheel_loads()))
+
+    def tire_stiffness_matrix(self) -> NDArray[np.float64]:
+        """Σ_w k_w r_w r_wᵀ: the tires as springs to a rigid, flat ground."""
+        k = np.zeros((self.n_dof, self.n_dof))
+        for w in self.wheels:
+            k += w.stiffness * np.outer(w.row, w.row)
+        return k
+
+    def static_state(self, ground: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+        """Static displacement q_s [m, rad] with each wheel on rigid ground at elevation ``ground`` [m].
+
+        Solves (K + Σ k_w r_w r_wᵀ) q = F_G + Σ k_w r_w g_w.
+        """
+        if self.n_dof == 0:
+            return np.zeros(0)
+        g = np.zeros(len(self.wheels)) if ground is None else np.asarray(ground, float)
+        rhs = self.gravity + sum(w.stiffness * w.row * gw for w, gw in zip(self.wheels, g))
+        return np.linalg.solve(self.stiffness + self.tire_stiffness_matrix(), rhs)
+
+    def static_wheel_loads(self) -> NDArray[np.float64]:
+        """Static wheel loads [N] (positive = pressing down) on flat rigid ground, from equilibrium."""
+        q = self.static_state()
+        return np.array([w.fixed_load - w.stiffness * (w.row @ q if self.n_dof else 0.0) for w in self.wheels])
+
+    def natural_frequencies(self) -> NDArray[np.float64]:
+        """Undamped natural frequencies [Hz] on rigid ground (tires as springs)."""
+        if self.n_dof == 0:
+            return np.zeros(0)
+        from scipy.linalg import eigh
+
+        lam = eigh(self.stiffness + self.tire_stiffness_matrix(), self.mass, eigvals_only=True)
+        return np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)

@@ -1,0 +1,148 @@
+"""Vehicle presets.  Each function returns a :class:`~vbikit.vehicle.model.Vehicle`; every
+number is labelled [paper] (printed in the paper), [public] (standard or published benchmark)
+or [substitute] (our documented engineering choice, see ``shared/reference/domain-data.md``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+from vbikit.vehicle.builder import VehicleBuilder
+from vbikit.vehicle.model import Vehicle
+
+
+def moving_force(force: float = 100e3) -> Vehicle:
+    """A constant vertical force P [N] moving over the bridge (no DOFs, no tire dynamics).
+
+    The classical moving-load problem (Frýba 1972, ch. 1).  ``force`` default 100 kN is
+    arbitrary [substitute]: dynamic amplification does not depend on it.
+    """
+    vb = VehicleBuilder("moving-force")
+    vb.wheel("P", {}, 0.0, 0.0, 0.0, 0.0, fixed_load=force)
+    return vb.build("moving constant force", {"force": force})
+
+
+def sprung_mass(mass: float = 5750.0, stiffness: float = 1595e3, damping: float = 0.0) -> Vehicle:
+    """A single mass on a spring–dashpot in contact with the surface (1 DOF).
+
+    Defaults are Yang & Yau's benchmark vehicle [public] (Yang, Y.B. & Yau, J.D. 1997,
+    *J. Eng. Mech.* 123(11), 1120–1128): M_v = 5750 kg, k_v = 1595 kN/m, undamped.
+    The spring is the contact element, so tire models act on it.
+    """
+    vb = VehicleBuilder("sprung-mass")
+    body = vb.body("body", mass, 0.0)
+    vb.wheel("w1", body.heave, 0.0, 0.0, stiffness, damping)
+    return vb.build("sprung mass (1 DOF)", {"mass": mass, "stiffness": stiffness, "damping": damping})
+
+
+def quarter_car(
+    sprung_mass: float = 10_000.0,
+    unsprung_mass: float = 1_000.0,
+    suspension_stiffness: float = 400e3,
+    suspension_damping: float = 10e3,
+    tire_stiffness: float = 1_750e3,
+    tire_damping: float = 3e3,
+) -> Vehicle:
+    """Two-mass quarter car: body on a suspension over an axle on a tire (2 DOF; Biggs 1964 §8.5 type).
+
+    Defaults are [substitute] heavy-vehicle values (body bounce ≈ 0.9 Hz, axle hop ≈ 7.4 Hz).
+    """
+    vb = VehicleBuilder("quarter-car")
+    body = vb.body("body", sprung_mass, 0.0)
+    axle = vb.body("axle", unsprung_mass, 0.0)
+    vb.spring(body.heave, axle.heave, suspension_stiffness, suspension_damping)
+    vb.wheel("w1", axle.heave, 0.0, 0.0, tire_stiffness, tire_damping)
+    return vb.build(
+        "quarter car (2 DOF)",
+        {
+            "sprung_mass": sprung_mass,
+            "unsprung_mass": unsprung_mass,
+            "suspension_stiffness": suspension_stiffness,
+            "suspension_damping": suspension_damping,
+            "tire_stiffness": tire_stiffness,
+            "tire_damping": tire_damping,
+        },
+    )
+
+
+def _axle_with_wheels(vb: VehicleBuilder, name: str, mass: float, s: float, b: float, carrier, k_susp, c_susp, k_tire, c_tire):
+    """Axle with bounce and roll ([substitute] roll inertia m·b²), suspension and tires at ±b."""
+    axle = vb.body(name, mass, s, roll_inertia=mass * b**2, roll=True)
+    for side, y in (("left", b), ("right", -b)):
+        vb.spring(carrier.point(s, y), axle.point(s, y), k_susp, c_susp)
+        vb.wheel(f"{name}_{side}", axle.point(s, y), s, y, k_tire, c_tire)
+    return axle
+
+
+def hs20_44() -> Vehicle:
+    """The paper's 11-DOF HS20-44 tractor–semitrailer (Table 1 of the paper).
+
+    DOFs: tractor bounce, pitch, roll; trailer pitch and roll (its bounce tied to the tractor
+    at the fifth wheel); bounce and roll of each of three axles.  Upper (suspension) and lower
+    (tire) spring–dampers per side at ±b.  All masses, inertias, stiffnesses, dampings and
+    L1–L6, b are [paper] Table 1; spring and damper values are taken per side.
+
+    Geometry [computed] from Table 1 (domain-data §2), s rearward from axle 1: axle 1 at 0;
+    tractor CG at L1 = 1.698; fifth wheel at L1 + L5 = 3.913; axle 2 at L1 + L2 = 4.267;
+    trailer CG at 6.251; axle 3 at 8.534 m.  Static axle loads then are ≈ 30.7 / 134.2 /
+    136.0 kN (nominal HS20-44: 35.6 / 142.3 / 142.3 kN).  Axle roll inertia m_axle·b²
+    [substitute] (not printed).  As printed, the pitch inertias (2022, 33153 kg·m²) are
+    smaller than the roll inertias (8544, 181216 kg·m²), unusual for a long trailer; we use
+    Table 1 as printed.
+    """
+    L1, L2, L3, L5, b = 1.698, 2.569, 1.984, 2.215, 1.1
+    s_axle = (0.0, L1 + L2, L1 + L2 + L3 + 2.283)  # L4 = 2.283
+    s5 = L1 + L5
+    vb = VehicleBuilder("hs20-44")
+    tractor = vb.body("tractor", 2612.0, L1, pitch_inertia=2022.0, roll_inertia=8544.0, pitch=True, roll=True)
+    trailer = vb.hinged_body("trailer", 26113.0, L1 + L2 + L3, tractor, s5, pitch_inertia=33153.0, roll_inertia=181216.0, roll=True)
+    for i, (m, carrier, ks, kt, cs) in enumerate(
+        (
+            (490.0, tractor, 242604.0, 875082.0, 2190.0),
+            (808.0, tractor, 1903172.0, 3503307.0, 7882.0),
+            (653.0, trailer, 1969034.0, 3507429.0, 7182.0),
+        )
+    ):
+        _axle_with_wheels(vb, f"axle{i + 1}", m, s_axle[i], b, carrier, ks, cs, kt, 2000.0)
+    return vb.build("HS20-44 tractor-semitrailer, 11 DOF (paper Table 1)")
+
+
+def two_axle_truck() -> Vehicle:
+    """Two-axle truck (H20-44 loads) [substitute] (domain-data §2).
+
+    HS20 tractor hardware with a rigid body of 16,837 kg, CG 3.471 m behind the front axle,
+    pitch / roll inertia 8.52e4 / 1.49e4 kg·m²; axle masses 490 / 808 kg; suspension k
+    242,604 / 1,903,172 N/m, c 2190 / 7882 N·s/m; tire k 875,082 / 3,503,307 N/m, c 2000 N·s/m;
+    b = 1.1 m; wheelbase 4.267 m.  Axle loads ≈ 35.6 / 142.3 kN.  7 DOF: body bounce, pitch,
+    roll; bounce and roll of both axles.
+    """
+    b = 1.1
+    vb = VehicleBuilder("two-axle")
+    body = vb.body("body", 16837.0, 3.471, pitch_inertia=8.52e4, roll_inertia=1.49e4, pitch=True, roll=True)
+    _axle_with_wheels(vb, "axle1", 490.0, 0.0, b, body, 242604.0, 2190.0, 875082.0, 2000.0)
+    _axle_with_wheels(vb, "axle2", 808.0, 4.267, b, body, 1903172.0, 7882.0, 3503307.0, 2000.0)
+    return vb.build("two-axle truck, H20-44 loads (substitute parameters)")
+
+
+@dataclass(frozen=True)
+class VehiclePreset:
+    name: str
+    build: Callable[..., Vehicle]
+    #: parameters the scenario may set for this preset
+    parameters: tuple[str, ...] = ()
+
+
+VEHICLE_PRESETS: dict[str, VehiclePreset] = {
+    p.name: p
+    for p in (
+        VehiclePreset("moving-force", moving_force, ("force",)),
+        VehiclePreset("sprung-mass", sprung_mass, ("mass", "stiffness", "damping")),
+        VehiclePreset(
+            "quarter-car",
+            quarter_car,
+            ("sprung_mass", "unsprung_mass", "suspension_stiffness", "suspension_damping", "tire_stiffness", "tire_damping"),
+        ),
+        VehiclePreset("hs20-44", hs20_44),
+        VehiclePreset("two-axle", two_axle_truck),
+    )
+}
