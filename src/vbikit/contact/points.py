@@ -16,13 +16,14 @@ class ContactPoints:
 
     ``setback`` [m]: distance of the point behind the front axle (x_p = x_front − setback);
     ``lateral`` [m]: y of the point relative to the vehicle centreline; ``wheel`` index of its
-    wheel; ``stiffness`` [N/m], ``damping`` [N·s/m] and ``fixed_load`` [N] already multiplied
+    wheel; ``weight`` its share β_p of the wheel's tire; ``stiffness`` [N/m], ``damping`` [N·s/m] and ``fixed_load`` [N] already multiplied
     by the point's weight β_p; ``rows`` (n_cp, n_dof) wheel-centre displacement rows.
     """
 
     setback: NDArray[np.float64]
     lateral: NDArray[np.float64]
     wheel: NDArray[np.int64]
+    weight: NDArray[np.float64]
     stiffness: NDArray[np.float64]
     damping: NDArray[np.float64]
     fixed_load: NDArray[np.float64]
@@ -44,12 +45,13 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
     """Lay the tire model's contact points under every wheel of ``vehicle``."""
     offsets, weights = tire.layout()
     n_dof = vehicle.n_dof
-    setback, lateral, wheel, k, c, f0, rows = [], [], [], [], [], [], []
+    setback, lateral, wheel, weight, k, c, f0, rows = [], [], [], [], [], [], [], []
     for i, w in enumerate(vehicle.wheels):
         for xi, beta in zip(offsets, weights):
             setback.append(w.offset - xi)
             lateral.append(w.lateral)
             wheel.append(i)
+            weight.append(beta)
             k.append(beta * w.stiffness)
             c.append(beta * w.damping)
             f0.append(beta * w.fixed_load)
@@ -58,6 +60,7 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
         np.array(setback, float),
         np.array(lateral, float),
         np.array(wheel, np.int64),
+        np.array(weight, float),
         np.array(k, float),
         np.array(c, float),
         np.array(f0, float),

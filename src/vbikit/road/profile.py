@@ -58,15 +58,21 @@ class RoadProfile:
                 f"but x = {x.min():.3f} … {x.max():.3f} m was requested"
             )
 
-    def elevation(self, x: ArrayLike) -> NDArray[np.float64]:
-        """r(x) [m]."""
-        x = np.asarray(x, float)
-        self._check(x)
-        return np.interp(x, self.x, self.z)
+    def evaluate(self, x: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Elevation r(x) [m] and slope dr/dx [-] (right-hand slope at a station) in one pass.
 
-    def slope(self, x: ArrayLike) -> NDArray[np.float64]:
-        """dr/dx [-] of the piecewise-linear profile (right-hand slope at a station)."""
+        Searching is fastest when the last axis of ``x`` is sorted (one contact point's path).
+        """
         x = np.asarray(x, float)
         self._check(x)
         seg = np.clip(np.searchsorted(self.x, x, side="right") - 1, 0, self.x.size - 2)
-        return (self.z[seg + 1] - self.z[seg]) / (self.x[seg + 1] - self.x[seg])
+        slope = (self.z[seg + 1] - self.z[seg]) / (self.x[seg + 1] - self.x[seg])
+        return self.z[seg] + slope * (x - self.x[seg]), slope
+
+    def elevation(self, x: ArrayLike) -> NDArray[np.float64]:
+        """r(x) [m]."""
+        return self.evaluate(x)[0]
+
+    def slope(self, x: ArrayLike) -> NDArray[np.float64]:
+        """dr/dx [-] of the piecewise-linear profile."""
+        return self.evaluate(x)[1]

@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
     """Mode-shape rows φ_p, φ'_p of every contact point for front-axle position ``xf``."""
     n_grid = V.shape[1]
@@ -54,11 +54,21 @@ def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
             dphi[p, m] = d00 * a0 + d10 * b0 + d01 * a1 + d11 * b1
 
 
-@njit(cache=True)
-def contact_forces(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, cp_k, cp_c, cp_f0, cp_rows, force):
-    """Contact force F_p [N] of every point (compression positive) into ``force``."""
+@njit(cache=True, fastmath=True)
+def contact_forces(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, cp_k, cp_c, cp_f0, cp_wheel, wheel_rows, force,
+                   wheel_force):
+    """Contact force F_p [N] of every point (compression positive) into ``force``; per-wheel sums into
+    ``wheel_force``."""
     n_m = xi.size
     n_d = q.size
+    n_w = wheel_rows.shape[0]
+    zw = np.zeros(n_w)
+    dzw = np.zeros(n_w)
+    for w in range(n_w):
+        wheel_force[w] = 0.0
+        for j in range(n_d):
+            zw[w] += wheel_rows[w, j] * q[j]
+            dzw[w] += wheel_rows[w, j] * dq[j]
     for p in range(cp_k.size):
         ub = 0.0
         dub = 0.0
@@ -66,19 +76,17 @@ def contact_forces(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, cp_k, cp_c, cp_f
             for m in range(n_m):
                 ub += phi[p, m] * xi[m]
                 dub += phi[p, m] * dxi[m] + vel * dphi[p, m] * xi[m]
-        zw = 0.0
-        dzw = 0.0
-        for j in range(n_d):
-            zw += cp_rows[p, j] * q[j]
-            dzw += cp_rows[p, j] * dq[j]
-        force[p] = cp_k[p] * (ub + r[p] - zw) + cp_c[p] * (dub + rdot[p] - dzw) + cp_f0[p]
+        w = cp_wheel[p]
+        force[p] = cp_k[p] * (ub + r[p] - zw[w]) + cp_c[p] * (dub + rdot[p] - dzw[w]) + cp_f0[p]
+        wheel_force[w] += force[p]
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def accelerations(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, omega, zeta, m_inv, c_v, k_v, f_g,
-                  cp_k, cp_c, cp_f0, cp_rows, ddxi, ddq, force):
+                  cp_k, cp_c, cp_f0, cp_wheel, wheel_rows, ddxi, ddq, force, wheel_force, rhs):
     """ξ̈, q̈ and contact forces for a given state (the right-hand side of Eq. 9)."""
-    contact_forces(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, cp_k, cp_c, cp_f0, cp_rows, force)
+    contact_forces(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, cp_k, cp_c, cp_f0, cp_wheel, wheel_rows, force,
+                   wheel_force)
     n_m = xi.size
     n_d = q.size
     for m in range(n_m):
@@ -89,13 +97,13 @@ def accelerations(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, omega, zeta, m_in
                 ddxi[m] -= phi[p, m] * force[p]
     if n_d == 0:
         return
-    rhs = f_g.copy()
     for i in range(n_d):
+        acc = f_g[i]
         for j in range(n_d):
-            rhs[i] -= c_v[i, j] * dq[j] + k_v[i, j] * q[j]
-    for p in range(cp_k.size):
-        for i in range(n_d):
-            rhs[i] += cp_rows[p, i] * force[p]
+            acc -= c_v[i, j] * dq[j] + k_v[i, j] * q[j]
+        for w in range(wheel_rows.shape[0]):
+            acc += wheel_rows[w, i] * wheel_force[w]
+        rhs[i] = acc
     for i in range(n_d):
         acc = 0.0
         for j in range(n_d):
@@ -103,9 +111,9 @@ def accelerations(xi, dxi, q, dq, vel, phi, dphi, on, r, rdot, omega, zeta, m_in
         ddq[i] = acc
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def rk4(dt, xf, vel, road, road_rate, omega, zeta, m_inv, c_v, k_v, f_g, cp_setback, cp_track, cp_k, cp_c,
-        cp_f0, cp_rows, span, grid_h, V, S, xi, dxi, q, dq, ddxi, ddq, force):
+        cp_f0, cp_wheel, wheel_rows, span, grid_h, V, S, xi, dxi, q, dq, ddxi, ddq, force):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
 
     ``xf``, ``vel``, ``road``, ``road_rate`` are given at half steps (index 2n = t_n); the
@@ -118,11 +126,15 @@ def rk4(dt, xf, vel, road, road_rate, omega, zeta, m_inv, c_v, k_v, f_g, cp_setb
     phi = np.zeros((3, n_cp, n_m))
     dphi = np.zeros((3, n_cp, n_m))
     on = np.zeros((3, n_cp), dtype=np.bool_)
-    a1x = np.zeros(n_m); a2x = np.zeros(n_m); a3x = np.zeros(n_m); a4x = np.zeros(n_m)
-    a1q = np.zeros(n_d); a2q = np.zeros(n_d); a3q = np.zeros(n_d); a4q = np.zeros(n_d)
+    ax = np.zeros((4, n_m))
+    aq = np.zeros((4, n_d))
+    sx = np.zeros(n_m); sv = np.zeros(n_m); sq = np.zeros(n_d); sw = np.zeros(n_d)
     f_tmp = np.zeros(n_cp)
+    wf = np.zeros(wheel_rows.shape[0])
+    rhs = np.zeros(n_d)
     shapes_at(xf[0], cp_setback, cp_track, span, grid_h, V, S, phi[0], dphi[0], on[0])
     cur = 0
+    h = 0.5 * dt
     for n in range(n_steps):
         mid = (cur + 1) % 3
         end = (cur + 2) % 3
@@ -130,33 +142,45 @@ def rk4(dt, xf, vel, road, road_rate, omega, zeta, m_inv, c_v, k_v, f_g, cp_setb
         shapes_at(xf[2 * n + 2], cp_setback, cp_track, span, grid_h, V, S, phi[end], dphi[end], on[end])
         x0 = xi[n]; v0 = dxi[n]; y0 = q[n]; w0 = dq[n]
         accelerations(x0, v0, y0, w0, vel[2 * n], phi[cur], dphi[cur], on[cur], road[2 * n], road_rate[2 * n],
-                      omega, zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_rows, a1x, a1q, force[n])
-        ddxi[n] = a1x
-        ddq[n] = a1q
-        h = 0.5 * dt
-        accelerations(x0 + h * v0, v0 + h * a1x, y0 + h * w0, w0 + h * a1q, vel[2 * n + 1], phi[mid], dphi[mid],
-                      on[mid], road[2 * n + 1], road_rate[2 * n + 1], omega, zeta, m_inv, c_v, k_v, f_g, cp_k,
-                      cp_c, cp_f0, cp_rows, a2x, a2q, f_tmp)
-        accelerations(x0 + h * (v0 + h * a1x), v0 + h * a2x, y0 + h * (w0 + h * a1q), w0 + h * a2q,
-                      vel[2 * n + 1], phi[mid], dphi[mid], on[mid], road[2 * n + 1], road_rate[2 * n + 1], omega,
-                      zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_rows, a3x, a3q, f_tmp)
-        accelerations(x0 + dt * (v0 + h * a2x), v0 + dt * a3x, y0 + dt * (w0 + h * a2q), w0 + dt * a3q,
-                      vel[2 * n + 2], phi[end], dphi[end], on[end], road[2 * n + 2], road_rate[2 * n + 2], omega,
-                      zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_rows, a4x, a4q, f_tmp)
+                      omega, zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_wheel, wheel_rows, ax[0], aq[0],
+                      force[n], wf, rhs)
+        # stages 2-4: state = start + c1 * velocity-part + c2 * previous stage acceleration
+        for stage in range(1, 4):
+            tau = h if stage < 3 else dt
+            ih = 2 * n + (1 if stage < 3 else 2)
+            slot = mid if stage < 3 else end
+            prev = stage - 1
+            for m in range(n_m):
+                if stage == 1:
+                    sx[m] = x0[m] + h * v0[m]
+                else:
+                    sx[m] = x0[m] + tau * (v0[m] + h * ax[prev - 1, m])
+                sv[m] = v0[m] + tau * ax[prev, m]
+            for j in range(n_d):
+                if stage == 1:
+                    sq[j] = y0[j] + h * w0[j]
+                else:
+                    sq[j] = y0[j] + tau * (w0[j] + h * aq[prev - 1, j])
+                sw[j] = w0[j] + tau * aq[prev, j]
+            accelerations(sx, sv, sq, sw, vel[ih], phi[slot], dphi[slot], on[slot], road[ih], road_rate[ih], omega,
+                          zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_wheel, wheel_rows, ax[stage], aq[stage],
+                          f_tmp, wf, rhs)
+        ddxi[n] = ax[0]
+        ddq[n] = aq[0]
         for m in range(n_m):
-            xi[n + 1, m] = x0[m] + dt * (v0[m] + dt / 6.0 * (a1x[m] + a2x[m] + a3x[m]))
-            dxi[n + 1, m] = v0[m] + dt / 6.0 * (a1x[m] + 2 * a2x[m] + 2 * a3x[m] + a4x[m])
+            xi[n + 1, m] = x0[m] + dt * (v0[m] + dt / 6.0 * (ax[0, m] + ax[1, m] + ax[2, m]))
+            dxi[n + 1, m] = v0[m] + dt / 6.0 * (ax[0, m] + 2 * ax[1, m] + 2 * ax[2, m] + ax[3, m])
         for j in range(n_d):
-            q[n + 1, j] = y0[j] + dt * (w0[j] + dt / 6.0 * (a1q[j] + a2q[j] + a3q[j]))
-            dq[n + 1, j] = w0[j] + dt / 6.0 * (a1q[j] + 2 * a2q[j] + 2 * a3q[j] + a4q[j])
+            q[n + 1, j] = y0[j] + dt * (w0[j] + dt / 6.0 * (aq[0, j] + aq[1, j] + aq[2, j]))
+            dq[n + 1, j] = w0[j] + dt / 6.0 * (aq[0, j] + 2 * aq[1, j] + 2 * aq[2, j] + aq[3, j])
         cur = end
     n = n_steps
     accelerations(xi[n], dxi[n], q[n], dq[n], vel[2 * n], phi[cur], dphi[cur], on[cur], road[2 * n],
-                  road_rate[2 * n], omega, zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_rows, ddxi[n], ddq[n],
-                  force[n])
+                  road_rate[2 * n], omega, zeta, m_inv, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_wheel, wheel_rows,
+                  ddxi[n], ddq[n], force[n], wf, rhs)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def assemble(vel, phi, dphi, on, r, rdot, omega, zeta, m_v, c_v, k_v, f_g, cp_k, cp_c, cp_f0, cp_rows,
              mass, damp, stiff, load):
     """Coupled system matrices of Eq. 9 at one instant: M ü + C u̇ + K u = F with u = [ξ; q]."""
@@ -202,13 +226,16 @@ def assemble(vel, phi, dphi, on, r, rdot, omega, zeta, m_v, c_v, k_v, f_g, cp_k,
                 damp[n_m + j, a] -= c * h[j] * f[a]
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def newmark(dt, xf, vel, road, road_rate, omega, zeta, m_v, c_v, k_v, f_g, cp_setback, cp_track, cp_k, cp_c,
-            cp_f0, cp_rows, span, grid_h, V, S, xi, dxi, q, dq, ddxi, ddq, force):
+            cp_f0, cp_wheel, wheel_rows, span, grid_h, V, S, xi, dxi, q, dq, ddxi, ddq, force):
     """Newmark average-acceleration (γ = 1/2, β = 1/4), unconditionally stable, on Eq. 9.
 
     Same array conventions as :func:`rk4` (inputs at half steps; only full steps are used).
     """
+    cp_rows = np.empty((cp_k.size, wheel_rows.shape[1]))
+    for p in range(cp_k.size):
+        cp_rows[p] = wheel_rows[cp_wheel[p]]
     n_steps = xi.shape[0] - 1
     n_m = xi.shape[1]
     n_d = q.shape[1]
@@ -224,8 +251,9 @@ def newmark(dt, xf, vel, road, road_rate, omega, zeta, m_v, c_v, k_v, f_g, cp_se
     assemble(vel[0], phi, dphi, on, road[0], road_rate[0], omega, zeta, m_v, c_v, k_v, f_g, cp_k, cp_c, cp_f0,
              cp_rows, mass, damp, stiff, load)
     a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
+    wf = np.zeros(wheel_rows.shape[0])
     contact_forces(xi[0], dxi[0], q[0], dq[0], vel[0], phi, dphi, on, road[0], road_rate[0], cp_k, cp_c, cp_f0,
-                   cp_rows, force[0])
+                   cp_wheel, wheel_rows, force[0], wf)
     ddxi[0] = a[:n_m]; ddq[0] = a[n_m:]
     for s in range(1, n_steps + 1):
         i2 = 2 * s
@@ -241,4 +269,24 @@ def newmark(dt, xf, vel, road, road_rate, omega, zeta, m_v, c_v, k_v, f_g, cp_se
         xi[s] = u[:n_m]; q[s] = u[n_m:]; dxi[s] = v[:n_m]; dq[s] = v[n_m:]
         ddxi[s] = a[:n_m]; ddq[s] = a[n_m:]
         contact_forces(xi[s], dxi[s], q[s], dq[s], vel[i2], phi, dphi, on, road[i2], road_rate[i2], cp_k, cp_c,
-                       cp_f0, cp_rows, force[s])
+                       cp_f0, cp_wheel, wheel_rows, force[s], wf)
+
+
+@njit(cache=True)
+def sample_paths(stations, elevations, paths, rates, road, road_rate):
+    """Road elevation and rate along non-decreasing paths (one column per contact point).
+
+    ``paths`` (n_t, n_cp) positions [m], ``rates`` (n_t,) speeds [m/s]; fills ``road`` [m]
+    and ``road_rate`` = v · dr/dx [m/s] by linear interpolation of (stations, elevations),
+    walking a pointer along each path (O(n) instead of a binary search per sample).
+    """
+    n_s = stations.size
+    for p in range(paths.shape[1]):
+        i = 0
+        for t in range(paths.shape[0]):
+            x = paths[t, p]
+            while i < n_s - 2 and stations[i + 1] <= x:
+                i += 1
+            slope = (elevations[i + 1] - elevations[i]) / (stations[i + 1] - stations[i])
+            road[t, p] = elevations[i] + slope * (x - stations[i])
+            road_rate[t, p] = slope * rates[t]

@@ -29,8 +29,10 @@ def simulate(crossing: Crossing) -> CrossingResult:
         road = np.zeros_like(x_cp)
         road_rate = np.zeros_like(x_cp)
     else:
-        road = crossing.road.elevation(x_cp)
-        road_rate = crossing.road.slope(x_cp) * vel[:, None]
+        crossing.road.evaluate(np.array([x_cp.min(), x_cp.max()]))  # range check with a clear message
+        road = np.empty_like(x_cp)
+        road_rate = np.empty_like(x_cp)
+        kernels.sample_paths(crossing.road.x, crossing.road.z, x_cp, vel, road, road_rate)
     tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
     table = tabulate_tracks(bridge, tracks)
     track_idx = track_idx.astype(np.int64)
@@ -46,7 +48,8 @@ def simulate(crossing: Crossing) -> CrossingResult:
              n_steps, dt, crossing.integrator, n_m, n_d, cp.n)
     common = (bridge.omega, bridge.damping_ratios)
     veh = (vehicle.damping, vehicle.stiffness, vehicle.gravity)
-    tail = (cp.setback, track_idx, cp.stiffness, cp.damping, cp.fixed_load, cp.rows, bridge.span, table.spacing,
+    wheel_rows = np.array([w.row for w in vehicle.wheels], float).reshape(len(vehicle.wheels), n_d)
+    tail = (cp.setback, track_idx, cp.stiffness, cp.damping, cp.fixed_load, cp.wheel, wheel_rows, bridge.span, table.spacing,
             table.values, table.slopes, xi, dxi, q, dq, ddxi, ddq, force)
     if crossing.integrator == "rk4":
         m_inv = np.linalg.inv(vehicle.mass) if n_d else np.zeros((0, 0))

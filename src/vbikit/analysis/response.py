@@ -1,0 +1,105 @@
+"""Response extraction at a deck point and the crossing summary."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
+from vbikit.solve.result import CrossingResult
+
+
+@dataclass(frozen=True)
+class PointResponse:
+    """Dynamic and static histories at one deck point (x, y) [m]: SI units, z up, tension positive."""
+
+    x: float
+    y: float
+    time: NDArray[np.float64]
+    displacement: NDArray[np.float64]
+    static_displacement: NDArray[np.float64]
+    strain: NDArray[np.float64]
+    static_strain: NDArray[np.float64]
+    velocity: NDArray[np.float64]
+    acceleration: NDArray[np.float64]
+
+    @property
+    def displacement_impact(self) -> ImpactFactor:
+        return impact_factor(self.time, self.displacement, self.static_displacement)
+
+    @property
+    def strain_impact(self) -> ImpactFactor:
+        return impact_factor(self.time, self.strain, self.static_strain)
+
+
+def point_response(result: CrossingResult, x: float | None = None, y: float = 0.0) -> PointResponse:
+    """Dynamic and static responses at (x, y); x defaults to midspan."""
+    bridge = result.crossing.bridge
+    x = bridge.span / 2 if x is None else float(x)
+    if not 0.0 <= x <= bridge.span:
+        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m, got {x}")
+    phi = bridge.mode_shapes([x], [y])[0]
+    eps = bridge.strain_shapes([x], [y])[0]
+    xi_st = static_modal_history(result)
+    return PointResponse(
+        x, y, result.time,
+        displacement=result.xi @ phi,
+        static_displacement=xi_st @ phi,
+        strain=result.xi @ eps,
+        static_strain=xi_st @ eps,
+        velocity=result.xi_dot @ phi,
+        acceleration=result.xi_ddot @ phi,
+    )
+
+
+def summary(result: CrossingResult, response: PointResponse) -> dict[str, object]:
+    """The JSON-ready summary of a crossing: impact factors, peaks, bridge frequencies, step data."""
+    crossing = result.crossing
+    disp = response.displacement_impact
+    strain = response.strain_impact
+    wheel_forces = result.wheel_forces
+    return {
+        "impact_factor": disp.impact_factor,
+        "max_dynamic_displacement": disp.dynamic_peak,
+        "max_static_displacement": disp.static_peak,
+        "time_of_max_dynamic_displacement": disp.time_dynamic_peak,
+        "strain_impact_factor": strain.impact_factor,
+        "max_dynamic_strain": strain.dynamic_peak,
+        "max_static_strain": strain.static_peak,
+        "max_abs_acceleration": float(np.max(np.abs(response.acceleration))),
+        "max_abs_velocity": float(np.max(np.abs(response.velocity))),
+        "response_x": response.x,
+        "response_y": response.y,
+        "frequencies_hz": [float(f) for f in crossing.bridge.frequencies_hz],
+        "vehicle_frequencies_hz": [float(f) for f in crossing.vehicle.natural_frequencies()],
+        "static_wheel_loads": {w.name: float(p) for w, p in zip(crossing.vehicle.wheels, crossing.vehicle.static_wheel_loads())},
+        "min_wheel_force": {w.name: float(f) for w, f in zip(crossing.vehicle.wheels, wheel_forces.min(axis=0))},
+        "max_wheel_force": {w.name: float(f) for w, f in zip(crossing.vehicle.wheels, wheel_forces.max(axis=0))},
+        "n_steps": result.n_steps,
+        "dt": result.dt,
+        "duration": float(result.time[-1]),
+        "integrator": crossing.integrator,
+        "speed": crossing.speed,
+        "n_contact_points_per_wheel": crossing.tire.n_points,
+    }
+
+
+def histories(result: CrossingResult, response: PointResponse) -> dict[str, NDArray[np.float64]]:
+    """Named time histories for CSV output (SI units)."""
+    out: dict[str, NDArray[np.float64]] = {
+        "time": result.time,
+        "front_axle_x": result.front_position,
+        "displacement": response.displacement,
+        "static_displacement": response.static_displacement,
+        "strain": response.strain,
+        "static_strain": response.static_strain,
+        "velocity": response.velocity,
+        "acceleration": response.acceleration,
+    }
+    for w, f in zip(result.crossing.vehicle.wheels, result.wheel_forces.T):
+        out[f"contact_force_{w.name}"] = f
+    for j, name in enumerate(result.crossing.vehicle.dof_names):
+        out[name] = result.q[:, j]
+        out[f"{name}_acceleration"] = result.q_ddot[:, j]
+    return out
