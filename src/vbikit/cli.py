@@ -1,0 +1,187 @@
+"""The ``vbikit`` command line.  Only this module prints; the library logs."""
+from __future__ import annotations
+
+import csv
+import json
+import logging
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Optional
+
+import numpy as np
+import typer
+
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    help="vbikit — vehicle–bridge coupled vibration: run scenarios, list presets, run the demo.",
+)
+
+_STATE = {"debug": False}
+
+
+@app.callback()
+def _main(debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs.")) -> None:
+    _STATE["debug"] = debug
+    logging.basicConfig(level=logging.DEBUG if debug else logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+
+
+def _json_default(obj: object) -> object:
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    raise TypeError(type(obj).__name__)
+
+
+@dataclass
+class _Run:
+    name: str
+    result: Any
+    response: Any
+    summary: dict[str, Any]
+
+
+def _execute(load: Any) -> _Run:
+    """Validate (``load()`` returns a Scenario), build and simulate; user errors exit with code 2."""
+    from vbikit.analysis import point_response, summary
+    from vbikit.scenario import build
+    from vbikit.solve import simulate
+
+    try:
+        scenario = load()
+        built = build(scenario)
+        result = simulate(built.crossing)
+        response = point_response(result, built.response_x, built.response_y)
+    except (ValueError, OSError) as err:  # ScenarioError, RoadFileError, UnstableTimeStepError are ValueErrors
+        if _STATE["debug"]:
+            raise
+        typer.echo(f"error: {err}", err=True)
+        raise typer.Exit(code=2) from None
+    return _Run(scenario.name, result, response, summary(result, response))
+
+
+def _write_csv(run: _Run, path: Path) -> None:
+    from vbikit.analysis import histories
+
+    cols = histories(run.result, run.response)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with path.open("w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(list(cols))
+        writer.writerows(np.column_stack(list(cols.values())).tolist())
+
+
+def _print_summary(run: _Run) -> None:
+    s = run.summary
+    if run.name:
+        typer.echo(run.name)
+    typer.echo(f"  bridge f1..f3        {', '.join(f'{f:.2f}' for f in s['frequencies_hz'][:3])} Hz")
+    typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m")
+    typer.echo(f"  max displacement     dynamic {s['max_dynamic_displacement'] * 1e3:+.4f} mm, "
+               f"static {s['max_static_displacement'] * 1e3:+.4f} mm")
+    typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
+    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
+    typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
+    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}  (strain IM = {s['strain_impact_factor']:.4f})")
+
+
+def _outputs(run: _Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:
+    if out is not None:
+        _write_csv(run, out)
+    if plot is not None:
+        from vbikit.plot import plot_crossing
+
+        plot_crossing(run.result, run.response, plot)
+    if summary_path is not None:
+        summary_path.parent.mkdir(parents=True, exist_ok=True)
+        summary_path.write_text(json.dumps(run.summary, indent=2, default=_json_default) + "\n")
+    if as_json:
+        typer.echo(json.dumps(run.summary, default=_json_default))
+    else:
+        _print_summary(run)
+        for label, path in (("time histories", out), ("figure", plot), ("summary", summary_path)):
+            if path is not None:
+                typer.echo(f"  {label:<20} {path}")
+
+
+@app.command()
+def run(
+    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (the summary) on stdout."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write time histories to this CSV file."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG) of the response."),
+    summary_path: Optional[Path] = typer.Option(None, "--summary", help="Write the JSON summary to this file."),
+) -> None:
+    """Simulate one crossing described by a scenario file."""
+    from vbikit.scenario import load_scenario
+
+    _outputs(_execute(lambda: load_scenario(scenario)), as_json, out, plot, summary_path)
+
+
+@app.command()
+def validate(scenario: Path = typer.Argument(..., help="TOML scenario file.")) -> None:
+    """Check a scenario file without running it."""
+    from vbikit.scenario import build, load_scenario
+
+    try:
+        build(load_scenario(scenario))
+    except (ValueError, OSError) as err:
+        if _STATE["debug"]:
+            raise
+        typer.echo(f"error: {err}", err=True)
+        raise typer.Exit(code=2) from None
+    typer.echo(f"{scenario}: ok")
+
+
+@app.command()
+def demo(
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the JSON summary."),
+    as_json: bool = typer.Option(False, "--json", help="Print the JSON summary instead of the text report."),
+) -> None:
+    """HS20-44 truck over the 16.76 m beam (Bridge 2 stand-in), ISO class C road, multipoint tires, 75 km/h."""
+    from vbikit.scenario import demo_scenario_text, scenario_from_toml
+
+    run_ = _execute(lambda: scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    _outputs(run_, as_json, out_dir / "demo.csv", out_dir / "demo.png", out_dir / "demo.json")
+
+
+@app.command()
+def presets() -> None:
+    """List the bridge, vehicle, tire and road presets with their parameters."""
+    from vbikit.bridge import BRIDGE_PRESETS
+    from vbikit.road import ISO_CLASSES, PAPER_CLASSES
+    from vbikit.vehicle import VEHICLE_PRESETS
+
+    typer.echo("Bridges ([bridge] model = ...):")
+    typer.echo("  beam                  Euler–Bernoulli beam: span, EI, mass_per_length, damping_ratio, n_modes, neutral_axis_depth")
+    for p in BRIDGE_PRESETS.values():
+        b = p.build()
+        typer.echo(f"  {p.name:<21} {p.description}")
+        typer.echo(f"  {'':<21} span {b.span} m, EI {b.EI:.4g} N·m², m {b.mass_per_length:.1f} kg/m, "
+                   f"c {b.neutral_axis_depth:.3f} m, f1 {b.frequencies_hz[0]:.2f} Hz")
+    typer.echo("Vehicles ([vehicle] model = ...):")
+    for p in VEHICLE_PRESETS.values():
+        v = p.build()
+        loads = ", ".join(f"{x / 1e3:.1f}" for x in v.static_wheel_loads())
+        params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
+        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; wheel loads [kN]: {loads}")
+        typer.echo(f"  {'':<14} {params}")
+    typer.echo("Tires ([tire] model = ...):")
+    typer.echo("  point          single-point contact")
+    typer.echo("  multipoint     n_points (default 6), contact_length (default 0.254 m), layout = ends | cells (paper Eq. 6)")
+    typer.echo("Roads ([road] class = ...):")
+    classes = ", ".join(f"{c} {v:.4g}" for c, v in ISO_CLASSES.items())
+    typer.echo(f"  ISO 8608 Gd(n0 = 0.1 cycle/m) [m³/cycle]: {classes}")
+    typer.echo(f"  paper names: {', '.join(f'{k} = {v}' for k, v in PAPER_CLASSES.items())}; none = smooth; "
+               "psd = explicit phi0, n0, exponent; profile_file = measured CSV (x, elevation)")
+
+
+def main() -> None:
+    """Console-script entry point."""
+    app()
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,72 @@
+"""Turn a validated :class:`~vbikit.scenario.schema.Scenario` into model objects and a Crossing."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.beam import EulerBernoulliBeam
+from vbikit.bridge.presets import BRIDGE_PRESETS
+from vbikit.contact.tires import MultiPointTire, PointTire, TireModel
+from vbikit.road.measured import read_profile_csv
+from vbikit.road.profile import RoadProfile
+from vbikit.road.psd import RoadPSD, random_profile
+from vbikit.scenario.schema import BridgeSpec, RoadSpec, Scenario, ScenarioError, TireSpec
+from vbikit.solve.crossing import Crossing
+from vbikit.vehicle.model import Vehicle
+from vbikit.vehicle.presets import VEHICLE_PRESETS
+
+
+def build_bridge(spec: BridgeSpec) -> ModalBridge:
+    if spec.model == "beam":
+        return EulerBernoulliBeam(
+            span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
+            n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
+        )
+    return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio)
+
+
+def build_tire(spec: TireSpec) -> TireModel:
+    if spec.model == "point":
+        return PointTire()
+    return MultiPointTire(spec.n_points, spec.contact_length, spec.layout)
+
+
+def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
+    if spec.profile_file:
+        path = scenario.base_dir / spec.profile_file
+        return read_profile_csv(path)
+    if spec.road_class == "none":
+        return None
+    band = {"n_min": spec.n_min, "n_max": spec.n_max}
+    if spec.road_class == "psd":
+        psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, **band)
+    else:
+        psd = RoadPSD.iso(spec.road_class, **band)
+    label = f"class {spec.road_class}, seed {spec.seed}"
+    return random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label)
+
+
+@dataclass(frozen=True)
+class BuiltScenario:
+    crossing: Crossing
+    response_x: float | None
+    response_y: float
+
+
+def build(scenario: Scenario) -> BuiltScenario:
+    """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad combinations)."""
+    try:
+        bridge = build_bridge(scenario.bridge)
+        vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
+        c = scenario.crossing
+        crossing = Crossing(
+            bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=build_road(scenario.road, scenario),
+            speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
+            lateral_offset=c.lateral_offset, dt=c.dt, integrator=c.integrator,
+        )
+    except ValueError as err:
+        raise ScenarioError(str(err)) from None
+    x = scenario.response.x
+    if x is not None and x > bridge.span:
+        raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m (got {x})")
+    return BuiltScenario(crossing, x, scenario.response.y)

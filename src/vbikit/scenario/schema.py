@@ -1,0 +1,240 @@
+"""The TOML scenario schema (pydantic), validated before any computation.
+
+Key names are a stable interface; see ``docs/scenario.md`` for the reference.  Every
+section rejects unknown keys, every number is checked against its physical range, and
+:func:`load_scenario` turns any problem into one :class:`ScenarioError` that names the key
+and the allowed values.
+"""
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+from typing import Any, Literal, Optional
+
+from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from vbikit.bridge.presets import BRIDGE_PRESETS
+from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
+from vbikit.vehicle.presets import VEHICLE_PRESETS
+
+ROAD_CLASSES = ("none", *ISO_CLASSES, *PAPER_CLASSES, "psd")
+
+
+class ScenarioError(ValueError):
+    """An invalid scenario; the message names the offending key(s)."""
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+
+
+class BridgeSpec(_Section):
+    """[bridge]: model = "beam" with its properties, or a preset name (properties optional overrides)."""
+
+    model: str = "beam"
+    span: Optional[float] = Field(None, gt=0, description="span length [m]")
+    EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
+    mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
+    damping_ratio: float = Field(0.02, ge=0, lt=1, description="modal damping ratio [-]")
+    n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
+    neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
+
+    @field_validator("model")
+    @classmethod
+    def _known_model(cls, v: str) -> str:
+        allowed = ("beam", *BRIDGE_PRESETS)
+        if v not in allowed:
+            raise ValueError(f"unknown bridge model {v!r}; allowed: {', '.join(allowed)}")
+        return v
+
+    @model_validator(mode="after")
+    def _beam_needs_properties(self) -> "BridgeSpec":
+        if self.model == "beam":
+            missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
+            if missing:
+                raise ValueError(f"model = \"beam\" needs {', '.join(missing)} (span [m], EI [N m^2], mass_per_length [kg/m])")
+        else:
+            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"preset {self.model!r} fixes {', '.join(given)}; only damping_ratio and n_modes may be set")
+        return self
+
+
+class VehicleSpec(_Section):
+    """[vehicle]: a preset name and that preset's own parameters (SI units)."""
+
+    model_config = ConfigDict(extra="allow")
+    model: str
+
+    @field_validator("model")
+    @classmethod
+    def _known_model(cls, v: str) -> str:
+        if v not in VEHICLE_PRESETS:
+            raise ValueError(f"unknown vehicle model {v!r}; allowed: {', '.join(VEHICLE_PRESETS)}")
+        return v
+
+    @model_validator(mode="after")
+    def _preset_parameters(self) -> "VehicleSpec":
+        allowed = VEHICLE_PRESETS[self.model].parameters
+        for key, value in (self.model_extra or {}).items():
+            if key not in allowed:
+                hint = f"allowed: {', '.join(allowed)}" if allowed else "this preset takes no parameters"
+                raise ValueError(f"unknown key {key!r} for vehicle {self.model!r}; {hint}")
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+                raise ValueError(f"{key} must be a number, got {value!r}")
+            if value < 0 or (value == 0 and "damping" not in key):
+                raise ValueError(f"{key} must be {'>= 0' if 'damping' in key else '> 0'}, got {value!r}")
+        return self
+
+    @property
+    def parameters(self) -> dict[str, float]:
+        return {k: float(v) for k, v in (self.model_extra or {}).items()}
+
+
+class TireSpec(_Section):
+    """[tire]: "point" or the paper's "multipoint" (Eq. 6)."""
+
+    model: Literal["point", "multipoint"] = "point"
+    n_points: int = Field(6, ge=1, le=100, description="contact points per tire")
+    contact_length: float = Field(0.254, gt=0, le=2.0, description="patch length [m]")
+    layout: Literal["ends", "cells"] = "ends"
+
+
+class RoadSpec(_Section):
+    """[road]: class letter (ISO 8608 A–H, good/average/poor, none), explicit PSD, or a CSV profile."""
+
+    road_class: str = Field("none", alias="class")
+    seed: int = Field(0, ge=0)
+    profile_file: Optional[str] = None
+    spacing: float = Field(0.01, gt=0, le=1.0, description="profile sample spacing [m]")
+    n_min: float = Field(0.01, gt=0, description="lowest wavenumber [cycle/m]")
+    n_max: float = Field(4.0, gt=0, description="highest wavenumber [cycle/m]")
+    phi0: Optional[float] = Field(None, ge=0, description="PSD at n0 [m^3/cycle] (class = \"psd\")")
+    n0: float = Field(0.1, gt=0, description="PSD reference wavenumber [cycle/m]")
+    exponent: float = Field(2.0, gt=0, description="PSD exponent w [-]")
+    length: float = Field(300.0, gt=0, description="minimum profile length [m]")
+
+    @field_validator("road_class")
+    @classmethod
+    def _known_class(cls, v: str) -> str:
+        key = v if v in ("none", "psd") else PAPER_CLASSES.get(v.lower(), v.upper())
+        if key not in ISO_CLASSES and key not in ("none", "psd"):
+            raise ValueError(f"unknown road class {v!r}; allowed: {', '.join(ROAD_CLASSES)}")
+        return key
+
+    @model_validator(mode="after")
+    def _consistent(self) -> "RoadSpec":
+        if self.n_min >= self.n_max:
+            raise ValueError(f"n_min ({self.n_min}) must be below n_max ({self.n_max}) [cycle/m]")
+        if self.road_class == "psd" and self.phi0 is None:
+            raise ValueError("class = \"psd\" needs phi0 [m^3/cycle] (and optionally n0, exponent)")
+        if self.n_max > 0.5 / self.spacing:
+            raise ValueError(f"n_max = {self.n_max} cycle/m exceeds the Nyquist wavenumber 1/(2*spacing) = {0.5 / self.spacing}")
+        return self
+
+
+class CrossingSpec(_Section):
+    """[crossing]: speed (m/s) or speed_kmh, acceleration, approach, free vibration, dt, integrator."""
+
+    speed: Optional[float] = Field(None, gt=0, description="speed at t = 0 [m/s]")
+    speed_kmh: Optional[float] = Field(None, gt=0, description="speed at t = 0 [km/h]")
+    acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
+    approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
+    free_vibration: Optional[float] = Field(None, ge=0, description="time after the last axle leaves [s]")
+    dt: Optional[float] = Field(None, gt=0, description="time step [s]; default automatic")
+    integrator: Literal["rk4", "newmark"] = "rk4"
+    lateral_offset: float = Field(0.0, description="vehicle centreline from deck centreline [m]")
+
+    @model_validator(mode="after")
+    def _one_speed(self) -> "CrossingSpec":
+        if (self.speed is None) == (self.speed_kmh is None):
+            raise ValueError("give exactly one of speed [m/s] or speed_kmh [km/h]")
+        return self
+
+    @property
+    def speed_ms(self) -> float:
+        return float(self.speed if self.speed is not None else self.speed_kmh / 3.6)
+
+
+class ResponseSpec(_Section):
+    """[response]: the deck point for histories and impact factors (x default midspan)."""
+
+    x: Optional[float] = Field(None, ge=0, description="m from the bridge entry")
+    y: float = Field(0.0, description="m from the deck centreline")
+
+
+class Scenario(_Section):
+    """A whole scenario file."""
+
+    bridge: BridgeSpec
+    vehicle: VehicleSpec
+    tire: TireSpec = TireSpec()
+    road: RoadSpec = RoadSpec()
+    crossing: CrossingSpec
+    response: ResponseSpec = ResponseSpec()
+    name: str = ""
+
+    #: directory relative paths (road.profile_file) are resolved against
+    _base_dir: Path = PrivateAttr(default=Path("."))
+
+    @property
+    def base_dir(self) -> Path:
+        return self._base_dir
+
+
+def _format(err: ValidationError, data: dict[str, Any]) -> str:
+    lines = []
+    for e in err.errors():
+        loc = ".".join(str(p) for p in e["loc"] if p != "__root__")
+        msg = e["msg"].removeprefix("Value error, ")
+        if e["type"] == "extra_forbidden":
+            section = e["loc"][0] if len(e["loc"]) > 1 else None
+            model = Scenario.model_fields[section].annotation if section in Scenario.model_fields else Scenario
+            names = [f.alias or n for n, f in model.model_fields.items()]
+            msg = f"unknown key; allowed keys: {', '.join(names)}"
+        elif e["type"] == "missing":
+            msg = "missing required key"
+        elif "input" in e and e["type"] not in ("value_error",):
+            msg = f"{msg} (got {e['input']!r})"
+        lines.append(f"{loc}: {msg}" if loc else msg)
+    return "invalid scenario:\n  " + "\n  ".join(lines)
+
+
+def parse_scenario(data: dict[str, Any], base_dir: Path | str = ".") -> Scenario:
+    """Validate a scenario given as a dict (the parsed TOML)."""
+    try:
+        scenario = Scenario.model_validate(data)
+    except ValidationError as err:
+        raise ScenarioError(_format(err, data)) from None
+    scenario._base_dir = Path(base_dir)
+    return scenario
+
+
+def scenario_from_toml(text: str, base_dir: Path | str = ".", source: str = "scenario") -> Scenario:
+    """Validate a scenario given as TOML text."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise ScenarioError(f"{source}: not valid TOML: {err}") from None
+    return parse_scenario(data, base_dir)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and validate a TOML scenario file."""
+    path = Path(path)
+    if not path.is_file():
+        raise ScenarioError(f"scenario file not found: {path}")
+    return scenario_from_toml(path.read_text(), path.parent, str(path))
+
+
+def demo_scenario_text() -> str:
+    """The TOML text of the demo scenario shipped with the package."""
+    from importlib import resources
+
+    return resources.files("vbikit.scenario").joinpath("demo.toml").read_text()
