@@ -1,0 +1,92 @@
+"""Bad scenarios: one clear message naming the key and allowed values, exit code 2, no traceback."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from vbikit.cli import app
+
+runner = CliRunner()
+
+GOOD = """
+[bridge]
+model = "beam"
+span = 20.0
+EI = 1e10
+mass_per_length = 5000.0
+n_modes = 5
+[vehicle]
+model = "sprung-mass"
+[crossing]
+speed = 20.0
+"""
+
+
+def run_text(tmp_path: Path, text: str, *args: str):
+    path = tmp_path / "s.toml"
+    path.write_text(text)
+    return runner.invoke(app, ["run", str(path), *args])
+
+
+def test_good_scenario_runs(tmp_path):
+    res = run_text(tmp_path, GOOD, "--json")
+    assert res.exit_code == 0, res.output
+
+
+@pytest.mark.parametrize(
+    "old,new,expect",
+    [
+        ('mass_per_length = 5000.0', 'mass_per_length = -5000.0', ["bridge.mass_per_length", "greater than 0"]),
+        ('speed = 20.0', 'speed = 0.0', ["crossing.speed", "greater than 0"]),
+        ('model = "sprung-mass"', 'model = "sprung-mass"\nmass = -3.0', ["mass", "> 0"]),
+        ('model = "sprung-mass"', 'model = "truck"', ["vehicle.model", "hs20-44", "quarter-car"]),
+        ('[crossing]', '[tire]\nmodel = "multipoint"\nn_points = 0\n[crossing]', ["tire.n_points", "greater than or equal to 1"]),
+        ('speed = 20.0', 'speed = 20.0\ndt = 0.0', ["crossing.dt", "greater than 0"]),
+        ('speed = 20.0', 'speed = 20.0\ndt = 0.01', ["crossing.dt", "stability limit", "newmark"]),
+        ('[crossing]', '[road]\nclass = "Q"\n[crossing]', ["road.class", "A, B, C, D, E, F, G, H"]),
+        ('[crossing]', '[road]\nprofile_file = "missing.csv"\n[crossing]', ["missing.csv", "not found"]),
+        ('n_modes = 5', 'n_modes = 5\nspan_length = 3', ["bridge.span_length", "unknown key", "allowed keys"]),
+        ('EI = 1e10\n', '', ["bridge", "needs EI"]),
+        ('[vehicle]\nmodel = "sprung-mass"\n', '', ["vehicle", "missing required key"]),
+        ('speed = 20.0', 'speed = 20.0\nintegrator = "euler"', ["crossing.integrator", "'rk4'", "'newmark'"]),
+        ('speed = 20.0', 'speed = 20.0\nacceleration = -9.0', ["acceleration", "stops"]),
+    ],
+)
+def test_bad_scenarios(tmp_path, old, new, expect):
+    assert old in GOOD
+    res = run_text(tmp_path, GOOD.replace(old, new), "--json")
+    assert res.exit_code == 2, res.output
+    msg = res.stderr
+    assert "Traceback" not in res.output and "Traceback" not in msg
+    assert msg.startswith("error:")
+    for fragment in expect:
+        assert fragment in msg, msg
+
+
+def test_invalid_toml(tmp_path):
+    res = run_text(tmp_path, "[bridge\nmodel = 1")
+    assert res.exit_code == 2 and "not valid TOML" in res.stderr
+
+
+def test_debug_shows_traceback(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(GOOD.replace("speed = 20.0", "speed = 0.0"))
+    res = runner.invoke(app, ["--debug", "run", str(path)])
+    assert res.exit_code != 0 and res.exception is not None
+
+
+def test_bad_road_csv_names_line(tmp_path):
+    (tmp_path / "road.csv").write_text("x,z\n-50,0\n0,0.001\nabc,0\n")
+    res = run_text(tmp_path, GOOD.replace("[crossing]", '[road]\nprofile_file = "road.csv"\n[crossing]'))
+    assert res.exit_code == 2 and "road.csv:4" in res.stderr
+
+
+def test_presets_and_demo(tmp_path):
+    res = runner.invoke(app, ["presets"])
+    assert res.exit_code == 0 and "hs20-44" in res.stdout and "paper-bridge-2-beam" in res.stdout
+    res = runner.invoke(app, ["demo", "--out-dir", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    assert "IM =" in res.stdout
+    assert (tmp_path / "demo.png").stat().st_size > 10_000 and (tmp_path / "demo.json").exists()
