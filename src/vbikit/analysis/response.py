@@ -81,7 +81,7 @@ def summary(result: CrossingResult, response: PointResponse) -> dict[str, object
         "duration": float(result.time[-1]),
         "integrator": crossing.integrator,
         "speed": crossing.speed,
-        "n_contact_points_per_wheel": crossing.tire.n_points,
+        "n_contact_points_per_wheel": crossing.tire.point_count,
     }
 
 

@@ -32,7 +32,8 @@ class TireModel(abc.ABC):
         """Return (offsets ξ_p [m], weights β_p [-]) of the contact points."""
 
     @property
-    def n_points(self) -> int:
+    def point_count(self) -> int:
+        """Number of contact points per tire."""
         return int(self.layout()[0].size)
 
 
@@ -60,20 +61,20 @@ class MultiPointTire(TireModel):
         of one of n equal cells (spacing a/n).  n = 1 is the centre in both.
     """
 
-    n_points_: int = 6
+    n_points: int = 6
     contact_length: float = AASHTO_CONTACT_LENGTH
     layout_rule: Literal["ends", "cells"] = "ends"
 
     def __post_init__(self) -> None:
-        if int(self.n_points_) != self.n_points_ or self.n_points_ < 1:
-            raise ValueError(f"n_points must be an integer >= 1, got {self.n_points_!r}")
+        if int(self.n_points) != self.n_points or self.n_points < 1:
+            raise ValueError(f"n_points must be an integer >= 1, got {self.n_points!r}")
         if not self.contact_length > 0:
             raise ValueError(f"contact_length must be > 0 m, got {self.contact_length!r}")
         if self.layout_rule not in ("ends", "cells"):
             raise ValueError(f"layout_rule must be 'ends' or 'cells', got {self.layout_rule!r}")
 
     def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        n, a = int(self.n_points_), self.contact_length
+        n, a = int(self.n_points), self.contact_length
         if n == 1:
             offsets = np.zeros(1)
         elif self.layout_rule == "ends":
@@ -84,7 +85,7 @@ class MultiPointTire(TireModel):
 
     def spacing(self) -> float:
         """Spacing between neighbouring points [m] (0 for n = 1)."""
-        n = int(self.n_points_)
+        n = int(self.n_points)
         if n == 1:
             return 0.0
         return self.contact_length / (n - 1 if self.layout_rule == "ends" else n)
@@ -92,7 +93,7 @@ class MultiPointTire(TireModel):
     def transfer(self, wavenumber: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """|H(ν)| = |sin(πνsn) / (n sin(πνs))|: how the n points average a road harmonic of ν [cycle/m]."""
         nu = np.asarray(wavenumber, dtype=float)
-        n, s = int(self.n_points_), self.spacing()
+        n, s = int(self.n_points), self.spacing()
         if n == 1:
             return np.ones_like(nu)
         num = np.sin(np.pi * nu * s * n)

@@ -3,12 +3,14 @@
 The vehicle drives in +x.  At t = 0 its front axle is at x = −approach (on the approach
 road) and it is in static equilibrium on the road (and deck, if any contact point is already
 on it).  The crossing ends ``free_vibration`` seconds after the last contact point has left
-the bridge (x = span).  Speed: v(t) = speed + acceleration · t (acceleration < 0 brakes).
+the bridge (x = span).  Speed: v(t) = speed + acceleration · t (acceleration < 0 brakes); a
+vehicle that comes to rest during the free vibration stays at rest.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -45,7 +47,7 @@ class Crossing:
     lateral_offset : float
         y [m] of the vehicle centreline from the deck centreline (irrelevant for a beam).
     dt : float, optional
-        Time step [s]; default chosen by :func:`vbikit.solve.timestep.auto_time_step`.
+        Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
     integrator : {"rk4", "newmark"}
         The paper's classical Runge–Kutta or Newmark average acceleration.
     """
@@ -84,8 +86,9 @@ class Crossing:
                 )
 
     # ------------------------------------------------------------ geometry & time
-    @property
+    @cached_property
     def contact(self) -> ContactPoints:
+        """The tire model's contact points under every wheel."""
         return contact_points(self.vehicle, self.tire)
 
     @property
@@ -94,14 +97,20 @@ class Crossing:
             return float(self.free_vibration)
         return float(2 * np.pi / self.bridge.omega[0])
 
+    @property
+    def stop_time(self) -> float:
+        """Time [s] at which a braking vehicle comes to rest (inf if it does not brake)."""
+        return -self.speed / self.acceleration if self.acceleration < 0 else math.inf
+
     def front_position(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """x of the front axle [m] at time t [s]."""
-        t = np.asarray(t, float)
+        """x of the front axle [m] at time t [s] (a braking vehicle stays where it stopped)."""
+        t = np.minimum(np.asarray(t, float), self.stop_time)
         return -self.approach + self.speed * t + 0.5 * self.acceleration * t**2
 
     def velocity(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """Vehicle speed [m/s] at time t [s]."""
-        return self.speed + self.acceleration * np.asarray(t, float)
+        """Vehicle speed [m/s] at time t [s] (zero once a braking vehicle has stopped)."""
+        t = np.minimum(np.asarray(t, float), self.stop_time)
+        return self.speed + self.acceleration * t
 
     def exit_time(self) -> float:
         """Time [s] when the rearmost contact point passes x = span."""
@@ -126,7 +135,5 @@ class Crossing:
         """Range of x [m] the contact points touch during the crossing."""
         cp = self.contact
         t_end = self.duration
-        x_end = float(self.front_position(t_end))
-        if self.acceleration < 0:  # the front may be farthest before t_end only if it reversed; it does not
-            x_end = max(x_end, float(self.front_position(t_end)))
+        x_end = float(self.front_position(t_end))  # motion is monotone: speed stays > 0 until t_end
         return -self.approach - float(cp.setback.max()), x_end - float(cp.setback.min())
