@@ -91,12 +91,11 @@ class MultiPointTire(TireModel):
         return self.contact_length / (n - 1 if self.layout_rule == "ends" else n)
 
     def transfer(self, wavenumber: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """|H(ν)| = |sin(πνsn) / (n sin(πνs))|: how the n points average a road harmonic of ν [cycle/m]."""
+        """|H(ν)| = |Σ_p β_p exp(2πiνξ_p)|: how the points average a road harmonic of ν [cycle/m].
+
+        For n equal weights at spacing s this is |sin(πνsn) / (n sin(πνs))| (domain-data §3),
+        evaluated here without the 0/0 at νs = integer.
+        """
         nu = np.asarray(wavenumber, dtype=float)
-        n, s = int(self.n_points), self.spacing()
-        if n == 1:
-            return np.ones_like(nu)
-        num = np.sin(np.pi * nu * s * n)
-        den = n * np.sin(np.pi * nu * s)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            return np.abs(np.where(np.abs(den) < 1e-300, 1.0, num / den))
+        offsets, weights = self.layout()
+        return np.abs(np.exp(2j * np.pi * nu[..., None] * offsets) @ weights)

@@ -9,12 +9,20 @@ import numpy as np
 from vbikit.road.profile import RoadProfile
 
 
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 class RoadFileError(ValueError):
     """A road profile file that cannot be used; the message names the file and line."""
 
 
 def read_profile_csv(path: str | Path) -> RoadProfile:
-    """Read a measured profile: optional header row, then ``x, elevation`` rows (SI: m, m).
+    """Read a measured profile: optional header row (first cell not a number), then ``x, elevation`` rows (SI: m, m).
 
     Stations must be finite and strictly increasing; comments start with ``#``.  Any bad
     row raises :class:`RoadFileError` naming the line.
@@ -32,13 +40,13 @@ def read_profile_csv(path: str | Path) -> RoadProfile:
                 continue
             if len(cells) < 2:
                 raise RoadFileError(f"{path}:{lineno}: expected 2 columns (x, elevation), got {len(cells)}")
-            first_row = not header_seen and not xs
+            first_row = not header_seen
             header_seen = True
+            if first_row and not _is_number(cells[0]):
+                continue  # header row: only a first row whose first cell is not a number
             try:
                 x, z = float(cells[0]), float(cells[1])
             except ValueError:
-                if first_row:
-                    continue  # header row
                 raise RoadFileError(f"{path}:{lineno}: not a number: {','.join(cells[:2])!r}") from None
             if not (np.isfinite(x) and np.isfinite(z)):
                 raise RoadFileError(f"{path}:{lineno}: non-finite value")

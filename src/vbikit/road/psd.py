@@ -72,7 +72,7 @@ def random_profile(
     psd: RoadPSD,
     seed: int,
     spacing: float = 0.01,
-    length: float = 300.0,
+    length: float = 1000.0,
     x_start: float | None = None,
     label: str = "",
 ) -> RoadProfile:
@@ -88,7 +88,9 @@ def random_profile(
         Sample spacing Δx [m] ([substitute] 0.01 m: several samples inside a 0.254 m patch).
     length : float
         Minimum profile length [m]; the period P is the next power-of-two multiple of Δx not
-        shorter than max(length, 1/n_min).
+        shorter than max(length, 1/n_min).  Δn = 1/P also sets how finely the band is
+        resolved: the default (P = 1310.72 m at Δx = 0.01 m) keeps the part of the band below
+        the first grid wavenumber under 1 % of the variance for ISO spectra.
     x_start : float, optional
         Station of the first sample [m]; default −P/2 (centred on the bridge entry).
     """
@@ -112,7 +114,7 @@ def random_profile(
     return RoadProfile(x, z, label or f"PSD phi0={psd.phi0:g}, seed {seed}")
 
 
-def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 300.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The (n_k, θ_k) pairs a profile with these settings uses (for direct evaluation of Eq. 7)."""
     n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
     period = n_samples * spacing

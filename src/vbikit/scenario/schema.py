@@ -118,7 +118,7 @@ class RoadSpec(_Section):
     phi0: Optional[float] = Field(None, ge=0, description="PSD at n0 [m^3/cycle] (class = \"psd\")")
     n0: float = Field(0.1, gt=0, description="PSD reference wavenumber [cycle/m]")
     exponent: float = Field(2.0, gt=0, description="PSD exponent w [-]")
-    length: float = Field(300.0, gt=0, description="minimum profile length [m]")
+    length: float = Field(1000.0, gt=0, description="minimum profile length [m]")
 
     @field_validator("road_class")
     @classmethod

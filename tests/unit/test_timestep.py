@@ -1,0 +1,150 @@
+"""Unit tests for time-step selection (vbikit.solve.timestep) and Crossing validation."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from vbikit.bridge import EulerBernoulliBeam, paper_beam
+from vbikit.contact import MultiPointTire
+from vbikit.road import RoadPSD, random_profile
+from vbikit.solve import (
+    Crossing,
+    UnstableTimeStepError,
+    accuracy_time_step,
+    choose_time_step,
+    rk4_stability_limit,
+    simulate,
+)
+from vbikit.vehicle import hs20_44, moving_force, sprung_mass
+
+SPEED = 75 / 3.6
+
+
+@pytest.fixture(scope="module")
+def road():
+    return random_profile(RoadPSD.iso("C"), seed=1)
+
+
+def _rk4_growth(z):
+    return np.abs(1 + z + z**2 / 2 + z**3 / 6 + z**4 / 24)
+
+
+def test_auto_dt_resolves_highest_bridge_mode(road):
+    beam = paper_beam(16.76, "II", n_modes=20)
+    c = Crossing(beam, hs20_44(), MultiPointTire(n_points=6), road, speed=SPEED)
+    dt = choose_time_step(c)
+    t_min = 2 * np.pi / beam.omega.max()
+    assert dt <= t_min / 5 * (1 + 1e-12)
+    assert dt <= road.spacing / SPEED
+    assert dt <= 0.9 * rk4_stability_limit(c)
+    assert dt == pytest.approx(t_min / 5, rel=1e-12)  # the bridge rule governs here
+
+
+def test_auto_dt_limited_by_road_spacing(road):
+    beam = paper_beam(16.76, "II", n_modes=3)  # f3 ≈ 66 Hz: T/5 ≈ 3 ms, longer than 0.01 m / v ≈ 0.48 ms
+    c = Crossing(beam, hs20_44(), road=road, speed=SPEED)
+    dt = choose_time_step(c)
+    assert dt <= 2 * np.pi / beam.omega.max() / 5
+    assert dt == pytest.approx(road.spacing / SPEED, rel=1e-12)
+    assert simulate(c).dt == dt
+
+
+def test_auto_dt_uses_highest_speed_when_accelerating(road):
+    beam = paper_beam(16.76, "II", n_modes=3)
+    c = Crossing(beam, hs20_44(), road=road, speed=15.0, acceleration=2.0)
+    v_max = float(c.velocity(c.duration))
+    assert v_max > 15.0
+    assert accuracy_time_step(c) <= road.spacing / v_max * (1 + 1e-12)
+
+
+def test_auto_dt_resolves_vehicle_modes():
+    beam = paper_beam(16.76, "II", n_modes=2)
+    v = sprung_mass(mass=100.0, stiffness=4e6)  # 31.8 Hz
+    c = Crossing(beam, v, speed=SPEED)
+    assert accuracy_time_step(c) <= 1.0 / v.natural_frequencies().max() / 20 * (1 + 1e-12)
+
+
+def test_rk4_limit_undamped_beam_under_moving_force():
+    # bare beam + moving force: eigenvalues ±iωₙ, on the imaginary axis; RK4 is stable there for
+    # |ω dt| ≤ 2√2 ≈ 2.828 (the real-axis limit 2.785 applies to real negative eigenvalues, not here)
+    beam = paper_beam(16.76, "II", n_modes=20, damping_ratio=0.0)
+    c = Crossing(beam, moving_force(), speed=SPEED)
+    limit = rk4_stability_limit(c) * beam.omega.max()
+    assert limit == pytest.approx(2 * np.sqrt(2), rel=0.01)
+    assert abs(limit - 2.785) / 2.785 > 0.01  # and distinguishably not the real-axis value
+
+
+def test_rk4_limit_damped_beam_under_moving_force():
+    zeta = 0.02
+    beam = paper_beam(16.76, "II", n_modes=20, damping_ratio=zeta)
+    c = Crossing(beam, moving_force(), speed=SPEED)
+    w = beam.omega.max()
+    lam = w * (-zeta + 1j * np.sqrt(1 - zeta**2))  # least stable eigenvalue: the highest mode
+    expected = brentq(lambda dt: _rk4_growth(lam * dt) - 1.0, 2.0 / w, 3.5 / w, xtol=1e-16)
+    assert rk4_stability_limit(c) == pytest.approx(expected, rel=0.01)
+    assert rk4_stability_limit(c) * w > 2 * np.sqrt(2)  # damping enlarges the limit slightly
+
+
+def test_user_dt_above_rk4_limit_is_refused():
+    beam = paper_beam(16.76, "II", n_modes=20)
+    limit = rk4_stability_limit(Crossing(beam, moving_force(), speed=SPEED))
+    with pytest.raises(UnstableTimeStepError, match="stability limit"):
+        choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=1.1 * limit))
+    assert choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=0.5 * limit)) == 0.5 * limit
+    # Newmark takes any step
+    assert choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=1.1 * limit, integrator="newmark")) == 1.1 * limit
+
+
+def test_braking_to_a_stop_before_leaving_raises(road):
+    beam = paper_beam(16.76, "II", n_modes=5)
+    # 10 m/s at −2 m/s² stops after 25 m; the last axle needs 10 + 16.76 + 8.53 m
+    c = Crossing(beam, hs20_44(), speed=10.0, acceleration=-2.0)
+    with pytest.raises(ValueError, match="stops"):
+        c.exit_time()
+    with pytest.raises(ValueError, match="stops"):
+        simulate(c)
+    with pytest.raises(ValueError, match="stops"):
+        Crossing(beam, hs20_44(), road=road, speed=10.0, acceleration=-2.0)  # road coverage check runs it
+
+
+def test_gentle_braking_is_accepted():
+    beam = paper_beam(16.76, "II", n_modes=5)
+    c = Crossing(beam, hs20_44(), speed=20.0, acceleration=-2.0)  # stops after 100 m
+    distance = c.approach + beam.span + hs20_44().length
+    t = c.exit_time()
+    assert float(c.front_position(t)) + c.approach == pytest.approx(distance)
+    assert float(c.velocity(t)) > 0.0
+
+
+BEAM = EulerBernoulliBeam(span=20.0, EI=1e10, mass_per_length=5000.0, n_modes=3)
+
+
+@pytest.mark.parametrize("speed", [0.0, -5.0, np.nan, np.inf])
+def test_crossing_rejects_bad_speed(speed):
+    with pytest.raises(ValueError, match="speed"):
+        Crossing(BEAM, moving_force(), speed=speed)
+
+
+@pytest.mark.parametrize("dt", [0.0, -1e-4, np.nan])
+def test_crossing_rejects_bad_dt(dt):
+    with pytest.raises(ValueError, match="dt"):
+        Crossing(BEAM, moving_force(), speed=10.0, dt=dt)
+
+
+@pytest.mark.parametrize("integrator", ["euler", "RK4", ""])
+def test_crossing_rejects_unknown_integrator(integrator):
+    with pytest.raises(ValueError, match="integrator"):
+        Crossing(BEAM, moving_force(), speed=10.0, integrator=integrator)
+
+
+def test_crossing_rejects_other_bad_inputs():
+    with pytest.raises(ValueError, match="approach"):
+        Crossing(BEAM, moving_force(), approach=-1.0)
+    with pytest.raises(ValueError, match="free_vibration"):
+        Crossing(BEAM, moving_force(), free_vibration=-0.1)
+    with pytest.raises(ValueError, match="acceleration"):
+        Crossing(BEAM, moving_force(), acceleration=np.nan)
+    short = random_profile(RoadPSD.iso("A"), seed=1, length=20.0, x_start=-5.0)
+    with pytest.raises(ValueError, match="covers"):
+        Crossing(BEAM, hs20_44(), road=short, approach=10.0)
