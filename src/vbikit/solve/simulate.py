@@ -9,7 +9,7 @@ import numpy as np
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.tabulate import tabulate_tracks
+from vbikit.solve.system import static_state, track_table
 from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
@@ -33,16 +33,14 @@ def simulate(crossing: Crossing) -> CrossingResult:
         road = np.empty_like(x_cp)
         road_rate = np.empty_like(x_cp)
         kernels.sample_paths(crossing.road.x, crossing.road.z, x_cp, vel, road, road_rate)
-    tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
-    table = tabulate_tracks(bridge, tracks)
-    track_idx = track_idx.astype(np.int64)
+    table, track_idx = track_table(crossing)
 
     n_m, n_d = bridge.omega.size, vehicle.n_dof
     n_t = n_steps + 1
     xi, dxi, ddxi = (np.zeros((n_t, n_m)) for _ in range(3))
     q, dq, ddq = (np.zeros((n_t, n_d)) for _ in range(3))
     force = np.zeros((n_t, cp.n))
-    xi[0], q[0] = static_start(crossing, table, track_idx, road[0])
+    xi[0], q[0] = static_state(crossing, table, track_idx, road[0])
 
     log.info("crossing: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_steps, dt, crossing.integrator, n_m, n_d, cp.n)
@@ -58,20 +56,3 @@ def simulate(crossing: Crossing) -> CrossingResult:
         kernels.newmark(dt, xf, vel, road, road_rate, *common, vehicle.mass, *veh, *tail)
     return CrossingResult(crossing, t_half[::2].copy(), dt, xf[::2].copy(), vel[::2].copy(), xi, dxi, ddxi, q, dq,
                           ddq, force)
-
-
-def static_start(crossing: Crossing, table, track_idx, road0) -> tuple[np.ndarray, np.ndarray]:
-    """Static equilibrium (ξ, q) of the coupled system at t = 0 on the road under the wheels."""
-    bridge, vehicle = crossing.bridge, crossing.vehicle
-    cp = crossing.contact
-    n_m, n_d = bridge.omega.size, vehicle.n_dof
-    n = n_m + n_d
-    phi = np.zeros((cp.n, n_m)); dphi = np.zeros_like(phi); on = np.zeros(cp.n, bool)
-    kernels.shapes_at(float(crossing.front_position(0.0)), cp.setback, track_idx, bridge.span, table.spacing,
-                      table.values, table.slopes, phi, dphi, on)
-    mass = np.zeros((n, n)); damp = np.zeros_like(mass); stiff = np.zeros_like(mass); load = np.zeros(n)
-    kernels.assemble(0.0, phi, dphi, on, np.asarray(road0, float), np.zeros(cp.n), bridge.omega, bridge.damping_ratios,
-                     vehicle.mass, vehicle.damping, vehicle.stiffness, vehicle.gravity, cp.stiffness, cp.damping,
-                     cp.fixed_load, cp.rows, mass, damp, stiff, load)
-    u = np.linalg.solve(stiff, load)
-    return u[:n_m], u[n_m:]

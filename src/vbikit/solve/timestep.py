@@ -14,9 +14,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
-from vbikit.solve.tabulate import tabulate_tracks
+from vbikit.solve.system import coupled_matrices, track_table
 
 
 class UnstableTimeStepError(ValueError):
@@ -29,24 +28,14 @@ def _rk4_growth(z: np.ndarray) -> np.ndarray:
 
 def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
     """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
-    bridge, vehicle = crossing.bridge, crossing.vehicle
-    cp = crossing.contact
-    n_m, n_d = bridge.omega.size, vehicle.n_dof
-    n = n_m + n_d
-    tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
-    table = tabulate_tracks(bridge, tracks, points_per_mode=10)
-    positions = np.linspace(-1.0, bridge.span + cp.setback.max() + 1.0, n_positions)
+    table, track_idx = track_table(crossing, points_per_mode=10)
+    positions = np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions)
+    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
     eig = []
-    vmax = max(crossing.speed, float(crossing.velocity(crossing.duration)))
     for xf in positions:
-        phi = np.zeros((cp.n, n_m)); dphi = np.zeros_like(phi); on = np.zeros(cp.n, bool)
-        kernels.shapes_at(float(xf), cp.setback, track_idx.astype(np.int64), bridge.span, table.spacing,
-                          table.values, table.slopes, phi, dphi, on)
-        mass = np.zeros((n, n)); damp = np.zeros_like(mass); stiff = np.zeros_like(mass); load = np.zeros(n)
-        kernels.assemble(vmax, phi, dphi, on, np.zeros(cp.n), np.zeros(cp.n), bridge.omega, bridge.damping_ratios,
-                         vehicle.mass, vehicle.damping, vehicle.stiffness, vehicle.gravity, cp.stiffness, cp.damping,
-                         cp.fixed_load, cp.rows, mass, damp, stiff, load)
+        mass, damp, stiff, _ = coupled_matrices(crossing, table, track_idx, xf, v_max)
         m_inv = np.linalg.inv(mass)
+        n = mass.shape[0]
         a = np.block([[np.zeros((n, n)), np.eye(n)], [-m_inv @ stiff, -m_inv @ damp]])
         eig.append(np.linalg.eigvals(a))
     return np.concatenate(eig)
