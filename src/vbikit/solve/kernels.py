@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, inline="always")
 def shape_point(x, track, grid_h, V, S, phi_row, dphi_row):
     """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` (cubic Hermite)."""
     n_grid = V.shape[1]
@@ -376,15 +376,40 @@ def sample_paths(stations, elevations, paths, rates, road, road_rate):
 
     ``paths`` (n_t, n_cp) positions [m], ``rates`` (n_t,) speeds [m/s]; fills ``road`` [m]
     and ``road_rate`` = v · dr/dx [m/s] by linear interpolation of (stations, elevations),
-    walking a pointer along each path (O(n) instead of a binary search per sample).
+    walking one pointer per path (O(n) instead of a binary search per sample).
     """
     n_s = stations.size
-    for p in range(paths.shape[1]):
-        i = 0
-        for t in range(paths.shape[0]):
+    n_cp = paths.shape[1]
+    idx = np.zeros(n_cp, dtype=np.int64)
+    for p in range(n_cp):
+        idx[p] = max(0, min(n_s - 2, np.searchsorted(stations, paths[0, p], side="right") - 1))
+    for t in range(paths.shape[0]):
+        for p in range(n_cp):
             x = paths[t, p]
+            i = idx[p]
             while i < n_s - 2 and stations[i + 1] <= x:
                 i += 1
+            idx[p] = i
             slope = (elevations[i + 1] - elevations[i]) / (stations[i + 1] - stations[i])
             road[t, p] = elevations[i] + slope * (x - stations[i])
             road_rate[t, p] = slope * rates[t]
+
+
+@njit(cache=True, fastmath=True)
+def static_modal_history(xf, setback, track, loads, span, grid_h, V, S):
+    """ξ_st(t) = −Σ_p φ(x_p(t)) P_p / ω² numerator: returns Σ_p φ(x_p(t)) P_p (n_t, n_m) for
+    downward point loads P_p [N] at x_p = xf(t) − setback_p (tabulated shapes, as the solver)."""
+    n_m = V.shape[2]
+    out = np.zeros((xf.size, n_m))
+    phi = np.zeros(n_m)
+    dphi = np.zeros(n_m)
+    for t in range(xf.size):
+        for p in range(setback.size):
+            if loads[p] == 0.0:
+                continue
+            x = xf[t] - setback[p]
+            if 0.0 <= x <= span:
+                shape_point(x, track[p], grid_h, V, S, phi, dphi)
+                for m in range(n_m):
+                    out[t, m] += phi[m] * loads[p]
+    return out

@@ -95,3 +95,17 @@ def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64]
             return u[:n_m], u[n_m:], active
         active = new_active.copy()
     raise RuntimeError("the static start did not settle on a set of contact points; check the road under the vehicle")
+
+
+def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Static modal coordinates ξ_st(t) (n_t, n_modes) under the vehicle's static wheel loads,
+    each spread over its contact points by their static shares, at the given front-axle
+    positions [m] (same tabulated mode shapes as the dynamic solution)."""
+    cp = crossing.contact
+    loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    data = kernel_data(crossing)
+    setback, track = data.points[0], data.points[1]
+    span, grid_h, values, slopes = data.bridge[2:6]
+    force = kernels.static_modal_history(np.ascontiguousarray(front_positions, float), setback, track, loads, span,
+                                         grid_h, values, slopes)
+    return -force / crossing.bridge.omega**2
