@@ -232,6 +232,15 @@ def presets() -> None:
     typer.echo("Tires ([tire] model = ...):")
     typer.echo("  point          single-point contact")
     typer.echo("  multipoint     n_points (default 6), contact_length (default 0.254 m), layout = ends | cells (paper Eq. 6)")
+    typer.echo("  disk           deformable disk of radial springs, radius (default 0.5 m), disk_spacing (default 0.01 m)")
+    typer.echo("  rigid-disk     rigid disk following the surface envelope, radius, disk_spacing")
+    typer.echo("  all tires: loss_of_contact = true (default; tires cannot pull) | false")
+    typer.echo("Deck defects ([[road.defects]] kind = ...):")
+    from vbikit.road import DEFECT_DEFAULTS
+
+    for kind, (amp, length, ramp, shape) in DEFECT_DEFAULTS.items():
+        size = "depth" if amp < 0 else "height"
+        typer.echo(f"  {kind:<14} {size} {abs(amp):g} m, length {length:g} m, ramp {ramp:g} m, shape {shape}")
     typer.echo("Roads ([road] class = ...):")
     classes = ", ".join(f"{c} {v:.4g}" for c, v in ISO_CLASSES.items())
     typer.echo(f"  ISO 8608 Gd(n0 = 0.1 cycle/m) [m³/cycle]: {classes}")
