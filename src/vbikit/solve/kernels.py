@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def shape_point(x, track, grid_h, V, S, phi_row, dphi_row):
     """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` (cubic Hermite)."""
     n_grid = V.shape[1]
@@ -57,7 +57,7 @@ def shape_point(x, track, grid_h, V, S, phi_row, dphi_row):
         dphi_row[m] = d00 * a0 + d10 * b0 + d01 * a1 + d11 * b1
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
     """Mode-shape rows φ_p, φ'_p of every contact point for front-axle position ``xf`` (eager)."""
     for p in range(cp_setback.size):
@@ -67,7 +67,7 @@ def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
             shape_point(x, cp_track[p], grid_h, V, S, phi[p], dphi[p])
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def contact_forces(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, unilateral, phi, dphi, have,
                    force, wheel_force, wheel_len, active):
     """Contact forces F_p [N] (compression > 0), per-wheel sums, patch lengths [m] and active flags.
@@ -145,7 +145,7 @@ def contact_forces(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, un
                 wheel_force[w] = f
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def accelerations(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, unilateral, phi, dphi, have,
                   ddxi, ddq, force, wheel_force, wheel_len, active, rhs):
     """ξ̈, q̈ and contact forces for a given state (the right-hand side of Eq. 9)."""
@@ -180,7 +180,7 @@ def accelerations(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, uni
         ddq[i] = acc
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def rk4(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, xi, dxi, q, dq, ddxi, ddq,
         wheel_force, wheel_len):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
@@ -251,7 +251,7 @@ def rk4(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, xi, d
                   wheel_len[n], active, rhs)
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load):
     """Coupled system matrices of Eq. 9 at one instant, M ü + C u̇ + K u = F with u = [ξ; q],
     for the contact points flagged ``active`` (their linear law F_p = k δ + c δ̇ + f0 holds)."""
@@ -306,7 +306,7 @@ def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active,
                 damp[n_m + j, a] -= c * h[j] * f[a]
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def newmark(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, xi, dxi, q, dq, ddxi, ddq,
             wheel_force, wheel_len, active0, max_iterations):
     """Newmark average acceleration (γ = 1/2, β = 1/4), unconditionally stable for the linear system.
@@ -395,7 +395,7 @@ def sample_paths(stations, elevations, paths, rates, road, road_rate):
             road_rate[t, p] = slope * rates[t]
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, error_model="numpy")
 def static_modal_history(xf, setback, track, loads, span, grid_h, V, S):
     """ξ_st(t) = −Σ_p φ(x_p(t)) P_p / ω² numerator: returns Σ_p φ(x_p(t)) P_p (n_t, n_m) for
     downward point loads P_p [N] at x_p = xf(t) − setback_p (tabulated shapes, as the solver)."""
