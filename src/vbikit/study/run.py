@@ -1,0 +1,240 @@
+"""Run a study: batches on local processes or a Dask cluster, stored as they finish, resumable.
+
+Storage (``out`` = e.g. ``results.nc``):
+
+* while running, every finished batch is written to ``<out>.parts/batch-NNNNNN.npz`` by the
+  coordinating process, atomically (written to a temporary name, then ``os.replace``), next to
+  ``<out>.parts/study.json`` (the canonical study);
+* when every batch is there, the parts are assembled into one xarray Dataset (one dimension
+  per axis) and written to ``out`` (NetCDF-4, again through a temporary file and a rename);
+  the parts directory is then removed unless ``keep_parts``.
+
+A study killed at any moment (SIGKILL, Ctrl-C, a lost machine) loses at most the batches that
+were running; started again with the same ``out`` it skips the finished batches.  Every
+crossing's result depends only on the study (seeds derive from the study seed and the sample
+index), so the final dataset is identical to that of an unbroken run.
+"""
+from __future__ import annotations
+
+import json
+import logging
+import os
+import shutil
+import tempfile
+import time
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from pathlib import Path
+from typing import Callable, Optional
+
+import numpy as np
+
+from vbikit.study.compute import OUTPUTS, run_batch
+from vbikit.study.spec import Study, StudyError
+
+log = logging.getLogger(__name__)
+
+Progress = Callable[[int, int], None]  # (crossings done, crossings total)
+
+
+def parts_dir(out: Path) -> Path:
+    """Directory of the finished-batch files of the study written to ``out``."""
+    return out.with_name(out.name + ".parts")
+
+
+def _atomic_write(path: Path, write: Callable[[Path], None]) -> None:
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        write(Path(tmp))
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _part_path(parts: Path, k: int) -> Path:
+    return parts / f"batch-{k:06d}.npz"
+
+
+def _save_part(parts: Path, k: int, arrays: dict) -> None:
+    def write(tmp: Path) -> None:
+        with open(tmp, "wb") as fh:
+            np.savez(fh, **arrays)
+
+    _atomic_write(_part_path(parts, k), write)
+
+
+def _prepare_parts(study: Study, out: Path) -> Path:
+    parts = parts_dir(out)
+    spec = study.to_json()
+    if parts.exists():
+        marker = parts / "study.json"
+        if not marker.is_file() or marker.read_text() != spec:
+            raise StudyError(f"{parts} holds partial results of a different study; delete it or choose another --out")
+    else:
+        parts.mkdir(parents=True)
+        _atomic_write(parts / "study.json", lambda tmp: tmp.write_text(spec))
+    return parts
+
+
+def _pending(parts: Path, n_batches: int) -> list[int]:
+    return [k for k in range(n_batches) if not _part_path(parts, k).is_file()]
+
+
+def run_study(
+    study: Study,
+    out: str | Path,
+    workers: Optional[int] = None,
+    scheduler: Optional[str] = None,
+    progress: Optional[Progress] = None,
+    threads: int = 1,
+    keep_parts: bool = False,
+):
+    """Run (or resume) ``study`` and write its dataset to ``out`` (NetCDF); returns the Dataset.
+
+    ``workers``: local worker processes (default: all cores; 1 runs in this process);
+    ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
+    batches run on that cluster instead; ``progress(done, total)`` is called after every
+    finished batch (crossings); ``threads``: crossings run at once inside one worker.
+    """
+    out = Path(out)
+    if out.suffix not in (".nc", ".nc4", ".netcdf"):
+        raise StudyError(f"--out must be a NetCDF file name ending in .nc, got {out}")
+    if not out.parent.exists():
+        out.parent.mkdir(parents=True)
+    if out.exists():
+        ds = _open_complete(out, study)
+        if ds is not None:
+            log.info("%s already holds this finished study", out)
+            if progress:
+                progress(study.size, study.size)
+            return ds
+        raise StudyError(f"{out} exists and is not this study's finished dataset; delete it or choose another --out")
+    parts = _prepare_parts(study, out)
+    batches = study.batches()
+    todo = _pending(parts, len(batches))
+    total = study.size
+    done = total - sum(len(batches[k]) for k in todo)
+    log.info("study %r: %d crossings in %d batches, %d batches to run", study.name, total, len(batches), len(todo))
+    if progress:
+        progress(done, total)
+    t0 = time.perf_counter()
+
+    def finished(k: int, arrays: dict) -> None:
+        nonlocal done
+        _save_part(parts, k, arrays)
+        done += len(batches[k])
+        if progress:
+            progress(done, total)
+
+    if todo:
+        if scheduler is not None:
+            _run_dask(study, batches, todo, scheduler, threads, finished)
+        elif (workers or os.cpu_count() or 1) <= 1:
+            for k in todo:
+                finished(k, run_batch(study, batches[k], threads))
+        else:
+            _run_local(study, batches, todo, workers or os.cpu_count() or 1, threads, finished)
+    log.info("study %r: ran %d batches in %.1f s", study.name, len(todo), time.perf_counter() - t0)
+    ds = assemble(study, parts)
+    _atomic_write(out, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4"))
+    if not keep_parts:
+        shutil.rmtree(parts, ignore_errors=True)
+    return ds
+
+
+def _run_local(study, batches, todo, workers, threads, finished) -> None:
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(todo)))
+    try:
+        futures = {pool.submit(run_batch, study, batches[k], threads): k for k in todo}
+        pending = set(futures)
+        while pending:
+            ready, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in ready:
+                finished(futures[fut], fut.result())
+    except BaseException:  # Ctrl-C or a failed batch: keep what is written, stop the rest
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown()
+
+
+def _run_dask(study, batches, todo, scheduler, threads, finished) -> None:
+    try:
+        from dask.distributed import Client, as_completed
+    except ImportError:  # pragma: no cover - depends on the install
+        raise StudyError("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
+    try:
+        client = Client(scheduler, timeout="10s")
+    except OSError as err:
+        raise StudyError(f"--scheduler {scheduler}: cannot connect ({err})") from None
+    try:
+        [study_f] = client.scatter([study], broadcast=True)
+        futures = [client.submit(run_batch, study_f, batches[k], threads, key=f"vbikit-batch-{k}-{os.getpid()}",
+                                 pure=False) for k in todo]
+        keys = {f.key: k for f, k in zip(futures, todo)}
+        for fut in as_completed(futures):
+            finished(keys[fut.key], fut.result())
+    finally:
+        client.close()
+
+
+def _open_complete(out: Path, study: Study):
+    import xarray as xr
+
+    try:
+        with xr.open_dataset(out, engine="netcdf4") as ds:
+            if ds.attrs.get("study") == study.to_json():
+                return ds.load()
+    except (OSError, ValueError):
+        return None
+    return None
+
+
+def assemble(study: Study, parts: Path):
+    """The study Dataset from the finished-batch files in ``parts`` (all must be present)."""
+    import xarray as xr
+
+    from vbikit import __version__
+
+    dims = [a.name for a in study.axes]
+    shape = study.shape
+    batches = study.batches()
+    data = {k: np.full(shape, np.nan) for k in OUTPUTS}
+    hist_parts = []
+    for k in range(len(batches)):
+        path = _part_path(parts, k)
+        if not path.is_file():
+            raise StudyError(f"batch {k} has not finished ({path} missing)")
+        with np.load(path) as part:
+            idx = tuple(part["index"].T)
+            for name in OUTPUTS:
+                data[name][idx] = part[name]
+            if study.histories:
+                hist_parts.append((idx, part["displacement_history"]))
+    variables = {}
+    for name, (units, desc) in OUTPUTS.items():
+        arr = data[name].astype(np.int64) if name == "n_steps" else data[name]
+        variables[name] = (dims, arr, {"units": units, "long_name": desc})
+    if study.histories:
+        n_t = max(h.shape[1] for _, h in hist_parts)
+        hist = np.full(shape + (n_t,), np.nan)
+        for idx, h in hist_parts:
+            hist[idx + (slice(0, h.shape[1]),)] = h
+        variables["displacement_history"] = ([*dims, "step"], hist, {
+            "units": "m", "long_name": "response-point deflection at t = step * dt (NaN after the crossing ended)"})
+    coords = {}
+    for a in study.axes:
+        values = list(a.values)
+        coords[a.name] = (a.name, np.array(values) if not isinstance(values[0], str) else np.array(values, dtype=object),
+                          {"scenario_key": a.key})
+        if a.is_samples:
+            coords[a.key.replace(".", "_")] = (a.name, np.array(a.seeds, np.int64),
+                                               {"long_name": f"{a.key} derived from the study seed and the sample index"})
+    attrs = {
+        "title": study.name or "vbikit study",
+        "study": study.to_json(),
+        "vbikit_version": __version__,
+        "axes": json.dumps({a.name: a.key for a in study.axes}),
+        "Conventions": "CF-1.8",
+    }
+    return xr.Dataset(variables, coords=coords, attrs=attrs)

@@ -1,0 +1,287 @@
+"""The study specification (TOML): a base scenario plus axes to sweep.
+
+A study file::
+
+    name = "my study"
+    seed = 2026                      # study seed: road seeds derive from it and the sample index
+    batch_size = 20                  # crossings per batch (one prepared system per batch)
+
+    [base]                           # a whole scenario inline (same keys as a scenario file) ...
+    # scenario = "bridge.toml"       # ... or a path to a scenario file, relative to the study file
+
+    [axes]                           # dotted scenario keys -> list of values, or {samples = N}
+    "tire.n_points" = [1, 3, 6, 9]
+    "crossing.speed_kmh" = [45, 75, 105]
+    "road.class" = ["B", "C", "D"]
+    "road.seed" = { samples = 20 }
+
+``{samples = N}`` is allowed only for seed keys (``road.seed``): sample i gets the seed
+``derive_seed(study_seed, i)`` — a function of the study seed and the sample index only, never
+of execution order, so the same sample index drives the same road in every crossing of the
+study (same x, same elevation), and re-running or resuming gives identical roads.
+
+Every combination of the axis values is validated as a scenario before anything runs; errors
+name the study key (``axes."tire.n_points"``) and the scenario key.
+"""
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Optional, Union
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
+
+#: scenario keys that only change the road: crossings differing only in these share dt, contact
+#: points, tabulated shapes and the static reference (one prepared batch)
+ROAD_ONLY_KEYS = ("road.seed", "road.class", "road.phi0", "road.n0", "road.exponent")
+#: axes that may be given as {samples = N}
+SAMPLE_KEYS = ("road.seed",)
+
+
+class StudyError(ValueError):
+    """An invalid study; the message names the offending key."""
+
+
+class SamplesAxis(BaseModel):
+    """``{samples = N}``: N sample indices 0 … N−1 with seeds derived from the study seed."""
+
+    model_config = ConfigDict(extra="forbid")
+    samples: int = Field(..., ge=1, le=100000, description="number of samples")
+
+
+class StudyFile(BaseModel):
+    """The raw study file (before the axes are checked against the scenario schema)."""
+
+    model_config = ConfigDict(extra="forbid")
+    name: str = ""
+    seed: int = Field(0, ge=0, description="study seed; road seeds derive from it and the sample index")
+    batch_size: int = Field(20, ge=1, le=10000, description="crossings per batch")
+    histories: bool = Field(False, description="also store midspan displacement histories")
+    base: dict[str, Any] = Field(..., description="scenario (inline tables) or {scenario = \"path.toml\"}")
+    axes: dict[str, Union[SamplesAxis, list[Any]]] = Field(default_factory=dict)
+
+    @field_validator("axes")
+    @classmethod
+    def _axes(cls, axes: dict[str, Any]) -> dict[str, Any]:
+        for key, values in axes.items():
+            if isinstance(values, list):
+                if not values:
+                    raise ValueError(f"axis {key!r} has no values")
+                if not all(isinstance(v, (str, int, float, bool)) for v in values):
+                    raise ValueError(f"axis {key!r}: values must be numbers, strings or booleans, got {values}")
+                if len({json.dumps(v, sort_keys=True) for v in values}) != len(values):
+                    raise ValueError(f"axis {key!r} repeats a value: {values}")
+            elif key not in SAMPLE_KEYS:
+                raise ValueError(f"axis {key!r}: {{samples = N}} is allowed only for {', '.join(SAMPLE_KEYS)}")
+        return axes
+
+
+def derive_seed(study_seed: int, sample: int) -> int:
+    """Road seed [0, 2³²) of sample ``sample``: numpy SeedSequence entropy (study_seed, sample).
+
+    Depends only on the two integers, so it is the same on every machine, in every process and
+    whatever order the crossings run in."""
+    return int(np.random.SeedSequence([int(study_seed), int(sample)]).generate_state(1, np.uint32)[0])
+
+
+def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
+    """Set ``data["a"]["b"] = value`` for key "a.b" (creating the table if needed)."""
+    parts = key.split(".")
+    node = data
+    for p in parts[:-1]:
+        node = node.setdefault(p, {})
+        if not isinstance(node, dict):
+            raise StudyError(f"axes.{key!r}: {p!r} is not a table in the base scenario")
+    node[parts[-1]] = value
+
+
+def _check_key(key: str, base: dict[str, Any]) -> None:
+    parts = key.split(".")
+    if len(parts) == 1:
+        if key not in Scenario.model_fields:
+            raise StudyError(f"axes.{key!r}: unknown scenario key; allowed top-level keys: "
+                             f"{', '.join(Scenario.model_fields)} (use dotted keys like \"tire.n_points\")")
+        return
+    section = parts[0]
+    if section not in Scenario.model_fields or section == "name":
+        raise StudyError(f"axes.{key!r}: unknown scenario section {section!r}; allowed: "
+                         f"{', '.join(k for k in Scenario.model_fields if k != 'name')}")
+    if len(parts) != 2:
+        raise StudyError(f"axes.{key!r}: only section.key axes are supported (e.g. \"tire.n_points\")")
+    if section == "vehicle":  # preset parameters are checked by the scenario validation
+        return
+    model = Scenario.model_fields[section].annotation
+    names = [f.alias or n for n, f in model.model_fields.items()]
+    if parts[1] not in names:
+        raise StudyError(f"axes.{key!r}: unknown key {parts[1]!r} in [{section}]; allowed: {', '.join(names)}")
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One study dimension: scenario ``key``, dimension ``name`` in the dataset, ``values``
+    (for a samples axis the sample indices) and, for a samples axis, the derived ``seeds``."""
+
+    key: str
+    name: str
+    values: tuple
+    seeds: Optional[tuple] = None
+
+    @property
+    def is_samples(self) -> bool:
+        return self.seeds is not None
+
+    def scenario_value(self, i: int) -> Any:
+        return self.seeds[i] if self.seeds is not None else self.values[i]
+
+
+def dim_name(key: str) -> str:
+    """Dataset dimension name of an axis key ("tire.n_points" -> "tire_n_points"; road.seed samples -> "sample")."""
+    return key.replace(".", "_").replace("-", "_")
+
+
+@dataclass(frozen=True)
+class Study:
+    """A validated study: base scenario dict, axes, seed, batch size and the source text."""
+
+    name: str
+    seed: int
+    batch_size: int
+    histories: bool
+    base: dict[str, Any]
+    axes: tuple[Axis, ...]
+    base_dir: Path
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(a.values) for a in self.axes)
+
+    @property
+    def size(self) -> int:
+        return int(np.prod(self.shape, dtype=np.int64)) if self.axes else 1
+
+    def to_json(self) -> str:
+        """Canonical JSON of the resolved study (stored in the dataset attributes and used to
+        recognise the same study on restart)."""
+        return json.dumps({
+            "name": self.name, "seed": self.seed, "batch_size": self.batch_size, "histories": self.histories,
+            "base": self.base,
+            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else list(a.values)) for a in self.axes},
+        }, sort_keys=True)
+
+    def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
+        """The scenario (dict) of the crossing at grid ``index``."""
+        data = copy.deepcopy(self.base)
+        for axis, i in zip(self.axes, index):
+            set_dotted(data, axis.key, axis.scenario_value(i))
+        return data
+
+    def batches(self) -> list[tuple[tuple[int, ...], ...]]:
+        """Grid indices grouped into batches: crossings in one batch differ only in road-only
+        keys (``ROAD_ONLY_KEYS``), at most ``batch_size`` each, in a fixed order."""
+        outer = [k for k, a in enumerate(self.axes) if a.key not in ROAD_ONLY_KEYS]
+        inner = [k for k, a in enumerate(self.axes) if a.key in ROAD_ONLY_KEYS]
+        out: list[tuple[tuple[int, ...], ...]] = []
+        for o in itertools.product(*(range(len(self.axes[k].values)) for k in outer)):
+            group = []
+            for i in itertools.product(*(range(len(self.axes[k].values)) for k in inner)):
+                idx = [0] * len(self.axes)
+                for k, v in zip(outer, o):
+                    idx[k] = v
+                for k, v in zip(inner, i):
+                    idx[k] = v
+                group.append(tuple(idx))
+            for s in range(0, len(group), self.batch_size):
+                out.append(tuple(group[s:s + self.batch_size]))
+        return out
+
+
+def _format(err: ValidationError) -> str:
+    lines = []
+    for e in err.errors():
+        loc = ".".join(str(p) for p in e["loc"])
+        msg = e["msg"].removeprefix("Value error, ")
+        if e["type"] == "extra_forbidden":
+            msg = f"unknown key; allowed keys: {', '.join(StudyFile.model_fields)}"
+        elif e["type"] == "missing":
+            msg = "missing required key"
+        lines.append(f"{loc}: {msg}" if loc else msg)
+    return "invalid study:\n  " + "\n  ".join(lines)
+
+
+def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
+    """Validate a study given as a dict (the parsed TOML): the study keys, every axis key, and
+    every combination of axis values as a scenario."""
+    base_dir = Path(base_dir)
+    try:
+        raw = StudyFile.model_validate(data)
+    except ValidationError as err:
+        raise StudyError(_format(err)) from None
+    base = copy.deepcopy(raw.base)
+    if "scenario" in base:
+        if len(base) != 1:
+            raise StudyError("base: give either scenario = \"path.toml\" or the scenario tables inline, not both")
+        path = base_dir / str(base["scenario"])
+        if not path.is_file():
+            raise StudyError(f"base.scenario: file not found: {path}")
+        try:
+            base = tomllib.loads(path.read_text())
+        except tomllib.TOMLDecodeError as err:
+            raise StudyError(f"base.scenario: {path} is not valid TOML: {err}") from None
+    axes: list[Axis] = []
+    for key, values in raw.axes.items():
+        _check_key(key, base)
+        if isinstance(values, SamplesAxis):
+            n = values.samples
+            axes.append(Axis(key, "sample", tuple(range(n)), tuple(derive_seed(raw.seed, i) for i in range(n))))
+        else:
+            axes.append(Axis(key, dim_name(key), tuple(values)))
+    if len({a.name for a in axes}) != len(axes):
+        raise StudyError("axes: two axes map to the same dataset dimension name")
+    study = Study(raw.name, raw.seed, raw.batch_size, raw.histories, base, tuple(axes), base_dir)
+    # validate the base alone (clear message for base errors) and every combination of the
+    # non-sample axes (sample axes only change the seed, which is always valid)
+    try:
+        parse_scenario(base, base_dir)
+    except ScenarioError as err:
+        if not axes:
+            raise StudyError(f"base: {err}") from None
+    value_axes = [k for k, a in enumerate(axes) if not a.is_samples]
+    for combo in itertools.product(*(range(len(axes[k].values)) for k in value_axes)):
+        idx = [0] * len(axes)
+        for k, v in zip(value_axes, combo):
+            idx[k] = v
+        try:
+            parse_scenario(study.scenario_dict(tuple(idx)), base_dir)
+        except ScenarioError as err:
+            where = ", ".join(f"{axes[k].key} = {axes[k].values[v]!r}" for k, v in zip(value_axes, combo))
+            raise StudyError(f"base + axes ({where or 'no axes'}): {err}") from None
+    return study
+
+
+def study_from_toml(text: str, base_dir: Path | str = ".", source: str = "study") -> Study:
+    """Validate a study given as TOML text."""
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise StudyError(f"{source}: not valid TOML: {err}") from None
+    return parse_study(data, base_dir)
+
+
+def load_study(path: str | Path) -> Study:
+    """Read and validate a TOML study file."""
+    path = Path(path)
+    if not path.is_file():
+        raise StudyError(f"study file not found: {path}")
+    return study_from_toml(path.read_text(), path.parent, str(path))
