@@ -20,6 +20,10 @@ app = typer.Typer(
 
 _STATE = {"debug": False}
 
+from vbikit.study.commands import app as study_app  # noqa: E402
+
+app.add_typer(study_app, name="study")
+
 
 @app.callback()
 def _main(debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs.")) -> None:

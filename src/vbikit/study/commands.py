@@ -1,0 +1,128 @@
+"""``vbikit study …`` commands (registered in :mod:`vbikit.cli`).  Only this module prints."""
+from __future__ import annotations
+
+import logging
+import time
+from pathlib import Path
+from typing import Any, Callable, Optional
+
+import typer
+
+app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False,
+                  help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
+
+log = logging.getLogger(__name__)
+
+
+def _guard(action: Callable[[], Any]) -> Any:
+    try:
+        return action()
+    except (ValueError, OSError) as err:  # StudyError / ScenarioError are ValueErrors
+        if logging.getLogger().isEnabledFor(logging.DEBUG):
+            raise
+        typer.echo(f"error: {err}", err=True)
+        raise typer.Exit(code=2) from None
+
+
+class _Bar:
+    """tqdm progress bar over crossings (done / total, rate, ETA)."""
+
+    def __init__(self, label: str, enabled: bool = True) -> None:
+        self.label, self.enabled, self.bar = label, enabled, None
+
+    def __call__(self, done: int, total: int) -> None:
+        if not self.enabled:
+            return
+        if self.bar is None:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=total, initial=done, desc=self.label, unit="crossing", dynamic_ncols=True)
+        else:
+            self.bar.update(done - self.bar.n)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool):
+    from vbikit.study.run import run_study
+
+    bar = _Bar(study.name or out.stem, progress)
+    t0 = time.perf_counter()
+    try:
+        ds = _guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
+    except KeyboardInterrupt:
+        bar.close()
+        typer.echo(f"\ninterrupted: finished batches are kept in {out}.parts; run the same command again to resume",
+                   err=True)
+        raise typer.Exit(code=130) from None
+    bar.close()
+    elapsed = time.perf_counter() - t0
+    typer.echo(f"{study.size} crossings -> {out} ({elapsed:.1f} s)")
+    return ds
+
+
+_WORKERS = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process).")
+_SCHEDULER = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port) to run on.")
+_PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progress bar.")
+
+
+@app.command("run")
+def run_cmd(
+    study_file: Path = typer.Argument(..., help="TOML study file."),
+    out: Path = typer.Option(..., "--out", help="Result dataset (NetCDF, .nc)."),
+    workers: Optional[int] = _WORKERS,
+    scheduler: Optional[str] = _SCHEDULER,
+    progress: bool = _PROGRESS,
+) -> None:
+    """Run (or resume) a study and write its dataset."""
+    from vbikit.study.spec import load_study
+
+    study = _guard(lambda: load_study(study_file))
+    ds = _run(study, out, workers, scheduler, progress)
+    im = ds["impact_factor"]
+    typer.echo(f"impact factor over all crossings: mean {float(im.mean()):.4f}, min {float(im.min()):.4f}, "
+               f"max {float(im.max()):.4f}")
+
+
+@app.command("validate")
+def validate_cmd(study_file: Path = typer.Argument(..., help="TOML study file.")) -> None:
+    """Check a study file (every axis combination as a scenario) without running it."""
+    from vbikit.study.spec import load_study
+
+    study = _guard(lambda: load_study(study_file))
+    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes)
+    typer.echo(f"{study_file}: ok — {study.size} crossings ({dims}) in {len(study.batches())} batches")
+
+
+def _paper(fig: str):
+    def command(
+        out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the dataset and figure."),
+        samples: int = typer.Option(20, "--samples", min=1, help="Road profiles per point (the paper: 20)."),
+        workers: Optional[int] = _WORKERS,
+        scheduler: Optional[str] = _SCHEDULER,
+        progress: bool = _PROGRESS,
+        dump: bool = typer.Option(False, "--print-spec", help="Print the study as TOML-equivalent JSON and exit."),
+    ) -> None:
+        from vbikit.study.figures import plot_paper_figure
+        from vbikit.study.paper import paper_study
+
+        study = _guard(lambda: paper_study(fig, samples))
+        if dump:
+            typer.echo(study.to_json())
+            return
+        suffix = "" if samples == 20 else f"-{samples}samples"
+        out = out_dir / f"paper-{fig}{suffix}.nc"
+        ds = _run(study, out, workers, scheduler, progress)
+        png = _guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
+        typer.echo(f"figure {png}")
+
+    from vbikit.study.paper import FIGURES
+
+    command.__doc__ = f"{FIGURES[fig]['title']} (dataset + figure)."
+    return command
+
+
+for _fig in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11"):
+    app.command(f"paper-{_fig}")(_paper(_fig))
