@@ -89,13 +89,15 @@ def run_study(
     progress: Optional[Progress] = None,
     threads: int = 1,
     keep_parts: bool = False,
+    connect_timeout: float = 10.0,
 ):
     """Run (or resume) ``study`` and write its dataset to ``out`` (NetCDF); returns the Dataset.
 
     ``workers``: local worker processes (default: all cores; 1 runs in this process);
     ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
     batches run on that cluster instead; ``progress(done, total)`` is called after every
-    finished batch (crossings); ``threads``: crossings run at once inside one worker.
+    finished batch (crossings); ``threads``: crossings run at once inside one worker;
+    ``connect_timeout`` [s]: how long to try to reach the scheduler.
     """
     out = Path(out)
     if out.suffix not in (".nc", ".nc4", ".netcdf"):
@@ -129,7 +131,7 @@ def run_study(
 
     if todo:
         if scheduler is not None:
-            _run_dask(study, batches, todo, scheduler, threads, finished)
+            _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
         elif (workers or os.cpu_count() or 1) <= 1:
             for k in todo:
                 finished(k, run_batch(study, batches[k], threads))
@@ -158,13 +160,13 @@ def _run_local(study, batches, todo, workers, threads, finished) -> None:
     pool.shutdown()
 
 
-def _run_dask(study, batches, todo, scheduler, threads, finished) -> None:
+def _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout) -> None:
     try:
         from dask.distributed import Client, as_completed
     except ImportError:  # pragma: no cover - depends on the install
         raise StudyError("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
     try:
-        client = Client(scheduler, timeout="10s")
+        client = Client(scheduler, timeout=f"{connect_timeout}s")
     except OSError as err:
         raise StudyError(f"--scheduler {scheduler}: cannot connect ({err})") from None
     try:
