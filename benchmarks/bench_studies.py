@@ -1,0 +1,97 @@
+"""The paper's whole numerical program (Figs. 5–8, 10, 11: 6 × 1440 = 8640 crossings) and the
+speed-up of the batched solver over one-at-a-time crossings, measured in the same run.
+
+    python benchmarks/bench_studies.py                    # whole program, 20 profiles, all cores
+    python benchmarks/bench_studies.py --samples 5        # a quarter of it (extrapolated × 20/5)
+    python benchmarks/bench_studies.py --baseline-samples 2 --workers 2
+
+1. warm-up: one small study (numba compilation / cache load, reported separately);
+2. the program with ``vbikit.study.run_study`` (batches of crossings sharing their set-up,
+   ``--workers`` processes), total time and crossings per second;
+3. the same program reduced to ``--baseline-samples`` profiles per point, run twice on the same
+   ``--workers`` processes: batched (run_study) and one-at-a-time (per crossing: build the
+   scenario, ``simulate``, ``point_response`` and both impact factors — what a user loop over
+   ``vbikit run`` does in Python), and the ratio of their times.
+
+Writes nothing but temporary datasets (deleted) and numba's cache.
+"""
+from __future__ import annotations
+
+import argparse
+import itertools
+import os
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+FIGS = ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11")
+
+
+def _one_crossing(args):
+    """One crossing the one-at-a-time way; returns its displacement IM."""
+    from vbikit.analysis import point_response
+    from vbikit.scenario import build, parse_scenario
+    from vbikit.solve import simulate
+
+    study, idx = args
+    built = build(parse_scenario(study.scenario_dict(idx)))
+    resp = point_response(simulate(built.crossing), built.response_x, built.response_y)
+    return resp.displacement_impact.impact_factor, resp.strain_impact.impact_factor
+
+
+def _batched(studies, workers, tmp):
+    from vbikit.study import run_study
+
+    t0 = time.perf_counter()
+    for k, study in enumerate(studies):
+        run_study(study, Path(tmp) / f"{k}-{time.time_ns()}.nc", workers=workers)
+    return time.perf_counter() - t0
+
+
+def _one_at_a_time(studies, workers):
+    jobs = [(s, idx) for s in studies for idx in itertools.product(*(range(n) for n in s.shape))]
+    t0 = time.perf_counter()
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        list(pool.map(_one_crossing, jobs, chunksize=8))
+    return time.perf_counter() - t0, len(jobs)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--samples", type=int, default=20, help="road profiles per point in the program (paper: 20)")
+    ap.add_argument("--baseline-samples", type=int, default=2, help="profiles per point for the speed-up comparison")
+    ap.add_argument("--workers", type=int, default=os.cpu_count(), help="worker processes")
+    args = ap.parse_args()
+
+    from vbikit.study.paper import paper_study
+
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        _batched([paper_study("fig11", 1)], 1, tmp)  # compiles / loads every kernel incl. disk tires
+        print(f"warm-up (numba compile or cache load, 1 small study): {time.perf_counter() - t0:.1f} s")
+
+        studies = [paper_study(f, args.samples) for f in FIGS]
+        n = sum(s.size for s in studies)
+        per_fig = {}
+        t_all = time.perf_counter()
+        for f, s in zip(FIGS, studies):
+            per_fig[f] = _batched([s], args.workers, tmp)
+        total = time.perf_counter() - t_all
+        scale = 20 / args.samples
+        print(f"paper program, {args.samples} profiles per point: {n} crossings on {args.workers} workers "
+              f"in {total:.1f} s = {n / total:.1f} crossings/s")
+        print("  per figure: " + ", ".join(f"{f} {t:.1f} s" for f, t in per_fig.items()))
+        if args.samples != 20:
+            print(f"  extrapolated to the whole program (8640 crossings): {total * scale:.0f} s")
+
+        small = [paper_study(f, args.baseline_samples) for f in FIGS]
+        t_batch = _batched(small, args.workers, tmp)
+        t_single, m = _one_at_a_time(small, args.workers)
+        print(f"speed-up check, {args.baseline_samples} profiles per point ({m} crossings, {args.workers} workers): "
+              f"batched {t_batch:.1f} s ({m / t_batch:.1f}/s), one-at-a-time {t_single:.1f} s ({m / t_single:.1f}/s), "
+              f"speed-up {t_single / t_batch:.2f}x")
+
+
+if __name__ == "__main__":
+    main()
