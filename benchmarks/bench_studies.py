@@ -8,10 +8,13 @@ speed-up of the batched solver over one-at-a-time crossings, measured in the sam
 1. warm-up: one small study (numba compilation / cache load, reported separately);
 2. the program with ``vbikit.study.run_study`` (batches of crossings sharing their set-up,
    ``--workers`` processes), total time and crossings per second;
-3. the same program reduced to ``--baseline-samples`` profiles per point, run twice on the same
-   ``--workers`` processes: batched (run_study) and one-at-a-time (per crossing: build the
-   scenario, ``simulate``, ``point_response`` and both impact factors — what a user loop over
-   ``vbikit run`` does in Python), and the ratio of their times.
+3. one-at-a-time on the same ``--workers`` processes: the program's first
+   ``--baseline-samples`` profiles of every point (the same mix of bridges, tires and speeds),
+   each crossing on its own (build the scenario, ``simulate``, ``point_response``, both impact
+   factors — what a user loop over ``vbikit run`` does), one process pool for all; its
+   crossings/s against the batched program's crossings/s is the program-level speed-up;
+4. solver level, one process, no pools: one batch of 20 roads (Fig. 6, n = 6, 75 km/h, class C)
+   through ``run_batch`` (shared set-up) against the same 20 crossings one at a time.
 
 Writes nothing but temporary datasets (deleted) and numba's cache.
 """
@@ -86,11 +89,30 @@ def main() -> None:
             print(f"  extrapolated to the whole program (8640 crossings): {total * scale:.0f} s")
 
         small = [paper_study(f, args.baseline_samples) for f in FIGS]
-        t_batch = _batched(small, args.workers, tmp)
         t_single, m = _one_at_a_time(small, args.workers)
-        print(f"speed-up check, {args.baseline_samples} profiles per point ({m} crossings, {args.workers} workers): "
-              f"batched {t_batch:.1f} s ({m / t_batch:.1f}/s), one-at-a-time {t_single:.1f} s ({m / t_single:.1f}/s), "
-              f"speed-up {t_single / t_batch:.2f}x")
+        print(f"one-at-a-time, first {args.baseline_samples} profiles of every point ({m} crossings, "
+              f"{args.workers} workers): {t_single:.1f} s = {m / t_single:.1f} crossings/s; "
+              f"program-level speed-up of the batched runner: {(n / total) / (m / t_single):.2f}x")
+
+        from vbikit.study.compute import run_batch
+
+        s6 = paper_study("fig6", 20)
+        batch = next(b for b in s6.batches() if s6.scenario_dict(b[0])["tire"]["n_points"] == 6
+                     and s6.scenario_dict(b[0])["crossing"]["speed_kmh"] == 75
+                     and s6.scenario_dict(b[0])["road"]["class"] == "C")
+        run_batch(s6, batch[:2])
+        t0 = time.perf_counter()
+        run_batch(s6, batch)
+        t_b = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        for idx in batch:
+            _one_crossing((s6, idx))
+        t_s = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        run_batch(s6, batch, threads=2)
+        t_t = time.perf_counter() - t0
+        print(f"solver level, one process, {len(batch)} roads (Fig. 6, n = 6, 75 km/h, class C): batched "
+              f"{t_b:.2f} s, one-at-a-time {t_s:.2f} s, speed-up {t_s / t_b:.2f}x; batched on 2 threads {t_t:.2f} s")
 
 
 if __name__ == "__main__":

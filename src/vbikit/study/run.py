@@ -20,6 +20,7 @@ import json
 import logging
 import os
 import shutil
+import signal
 import tempfile
 import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
@@ -145,8 +146,13 @@ def run_study(
     return ds
 
 
+def _ignore_sigint() -> None:
+    """Worker initializer: Ctrl-C is handled by the coordinating process alone."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(todo)))
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(todo)), initializer=_ignore_sigint)
     try:
         futures = {pool.submit(run_batch, study, batches[k], threads): k for k in todo}
         pending = set(futures)
@@ -154,8 +160,11 @@ def _run_local(study, batches, todo, workers, threads, finished) -> None:
             ready, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in ready:
                 finished(futures[fut], fut.result())
-    except BaseException:  # Ctrl-C or a failed batch: keep what is written, stop the rest
+    except BaseException:  # Ctrl-C or a failed batch: keep what is written, stop the rest now
+        processes = list((getattr(pool, "_processes", None) or {}).values())
         pool.shutdown(wait=False, cancel_futures=True)
+        for proc in processes:  # the running batches are lost anyway; do not wait for them
+            proc.terminate()
         raise
     pool.shutdown()
 
