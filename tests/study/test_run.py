@@ -122,8 +122,6 @@ CLI_SCRIPT = "from vbikit.cli import main; main()"
 
 def test_ctrl_c_keeps_finished_batches_and_resume_is_identical(tmp_path, small_study_dict):
     """SIGINT (Ctrl-C) to `vbikit study run`: exit code 130, finished batches kept, resume identical."""
-    import tomllib  # noqa: F401  (py >= 3.11 in CI; the study is written as TOML below)
-
     small_study_dict["batch_size"] = 1
     small_study_dict["axes"]["road.seed"] = {"samples": 6}
     small_study_dict["base"]["crossing"]["speed_kmh"] = 40
