@@ -156,3 +156,11 @@ def _to_toml(d: dict) -> str:
     for k, v in d["axes"].items():
         lines.append(f'"{k}" = ' + (f"{{ samples = {v['samples']} }}" if isinstance(v, dict) else json.dumps(v)))
     return "\n".join(lines) + "\n"
+
+
+def test_study_without_axes_is_one_crossing(tmp_path, small_study_dict):
+    small_study_dict["axes"] = {}
+    small_study_dict["histories"] = True
+    ds = run_study(parse_study(small_study_dict), tmp_path / "one.nc", workers=1)
+    assert ds["impact_factor"].dims == () and np.isfinite(float(ds["impact_factor"]))
+    assert ds["displacement_history"].dims == ("step",)

@@ -11,8 +11,9 @@ the same order) to ``simulate(dataclasses.replace(template, road=road))``;
 Roads with a different sample spacing get the time step ``simulate`` would choose for them
 (it depends on the road's spacing); that step is cached per spacing.
 
-``run_many(roads, threads=k)`` runs k roads at a time on threads: the kernel entry points in
-:mod:`vbikit.solve.batch_kernels` are compiled ``nogil`` wrappers of the existing kernels.
+``run_many(roads, threads=k)`` runs k roads at a time on threads: then the kernels are called
+through the ``nogil`` wrappers of :mod:`vbikit.solve.batch_kernels` (compiled on first use);
+with one thread they are called directly, exactly as ``simulate`` does.
 """
 from __future__ import annotations
 
@@ -94,8 +95,9 @@ class BatchSolver:
         return self._static[dt]
 
     # ------------------------------------------------------------------ running
-    def run(self, road: RoadProfile | None) -> CrossingResult:
-        """One crossing on ``road``; equal to ``simulate(replace(template, road=road))``."""
+    def run(self, road: RoadProfile | None, nogil: bool = False) -> CrossingResult:
+        """One crossing on ``road``; equal to ``simulate(replace(template, road=road))``.
+        ``nogil``: integrate through the GIL-free wrappers (for threads; compiled on first use)."""
         crossing = self.crossing(road)
         dt = self.time_step(crossing)
         n_steps, t_half, xf, vel, x_cp = self._grid(dt)
@@ -117,11 +119,12 @@ class BatchSolver:
         xi[0], q[0], active0 = static_state(crossing, data, r[0])
         outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
         if crossing.integrator == "rk4":
-            batch_kernels.rk4_nogil(dt, xf, vel, r, r_rate, data.bridge, data.vehicle, data.points, data.unilateral,
-                                    *outputs)
+            rk4 = batch_kernels.rk4_nogil if nogil else kernels.rk4
+            rk4(dt, xf, vel, r, r_rate, data.bridge, data.vehicle, data.points, data.unilateral, *outputs)
         else:
-            unsettled = batch_kernels.newmark_nogil(dt, xf, vel, r, r_rate, data.bridge, data.vehicle_mass,
-                                                    data.points, data.unilateral, *outputs, active0, 50)
+            newmark = batch_kernels.newmark_nogil if nogil else kernels.newmark
+            unsettled = newmark(dt, xf, vel, r, r_rate, data.bridge, data.vehicle_mass, data.points, data.unilateral,
+                                *outputs, active0, 50)
             if unsettled:
                 log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",
                             unsettled, n_steps)
@@ -133,9 +136,14 @@ class BatchSolver:
         """Run every road; ``reduce(result)`` (default: keep the result) is applied as each
         finishes so that only the reduced values are held.  ``threads`` > 1 runs that many
         roads at once (the compiled kernels release the GIL)."""
-        fn = (lambda road: reduce(self.run(road))) if reduce is not None else self.run
         roads = list(roads)
-        if threads <= 1 or len(roads) <= 1:
+        nogil = threads > 1 and len(roads) > 1
+        keep = reduce if reduce is not None else (lambda result: result)
+
+        def fn(road):
+            return keep(self.run(road, nogil))
+
+        if not nogil:
             return [fn(road) for road in roads]
         if self._limit is None and self.template.integrator == "rk4":
             self._limit = rk4_stability_limit(self.template)

@@ -219,7 +219,10 @@ def assemble(study: Study, parts: Path):
         with np.load(path) as part:
             idx = tuple(part["index"].T)
             for name in OUTPUTS:
-                data[name][idx] = part[name]
+                if shape:
+                    data[name][idx] = part[name]
+                else:  # a study without axes: one crossing, 0-d variables
+                    data[name][()] = part[name][0]
             if study.histories:
                 hist_parts.append((idx, part["displacement_history"]))
     variables = {}
@@ -230,7 +233,10 @@ def assemble(study: Study, parts: Path):
         n_t = max(h.shape[1] for _, h in hist_parts)
         hist = np.full(shape + (n_t,), np.nan)
         for idx, h in hist_parts:
-            hist[idx + (slice(0, h.shape[1]),)] = h
+            if shape:
+                hist[idx + (slice(0, h.shape[1]),)] = h
+            else:
+                hist[: h.shape[1]] = h[0]
         variables["displacement_history"] = ([*dims, "step"], hist, {
             "units": "m", "long_name": "response-point deflection at t = step * dt (NaN after the crossing ended)"})
     coords = {}
