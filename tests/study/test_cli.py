@@ -62,3 +62,15 @@ def test_paper_spec_printout():
     assert spec["axes"]["crossing.speed_kmh"] == [15, 30, 45, 60, 75, 90, 105, 120]
     assert spec["base"]["road"]["defects"] == [{"kind": "depression", "position": 0.0}]
     assert spec["base"]["bridge"]["model"] == "paper-bridge-2-beam"
+
+
+def test_paper_study_end_to_end_small(tmp_path):
+    """One paper study from one command (1 profile per point): dataset and figure."""
+    res = runner.invoke(app, ["study", "paper-fig8", "--samples", "1", "--workers", "1", "--no-progress",
+                              "--out-dir", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "paper-fig8-1samples.png").stat().st_size > 10_000
+    ds = xr.open_dataset(tmp_path / "paper-fig8-1samples.nc")
+    assert ds.sizes == {"tire_n_points": 8, "crossing_speed_kmh": 3, "road_class": 3, "sample": 1}
+    assert "two-axle" in ds.attrs["study"]
+    ds.close()
