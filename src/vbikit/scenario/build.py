@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
@@ -16,7 +17,12 @@ from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 
-def build_bridge(spec: BridgeSpec) -> ModalBridge:
+def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
+    if spec.model == "modes-file":
+        from vbikit.bridge.modefile import modes_from_file
+
+        n_modes = spec.n_modes if "n_modes" in spec.model_fields_set else None
+        return modes_from_file(Path(base_dir) / spec.modes_file, damping_ratio=spec.damping_ratio, n_modes=n_modes)
     if spec.model == "beam":
         return EulerBernoulliBeam(
             span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
@@ -51,22 +57,36 @@ class BuiltScenario:
     crossing: Crossing
     response_x: float | None
     response_y: float
+    #: 1-based girder of the response point (slab-on-girder bridges), else None
+    response_girder: int | None = None
 
 
 def build(scenario: Scenario) -> BuiltScenario:
     """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad combinations)."""
     try:
-        bridge = build_bridge(scenario.bridge)
+        bridge = build_bridge(scenario.bridge, scenario.base_dir)
         vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
         c = scenario.crossing
         crossing = Crossing(
             bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=build_road(scenario.road, scenario),
             speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
-            lateral_offset=c.lateral_offset, dt=c.dt, integrator=c.integrator,
+            lateral_offset=c.lateral_offset if c.lateral_offset is not None else float(getattr(bridge, "default_lateral_offset", 0.0)),
+            dt=c.dt, integrator=c.integrator,
         )
     except ValueError as err:
         raise ScenarioError(str(err)) from None
     x = scenario.response.x
     if x is not None and x > bridge.span:
         raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m (got {x})")
-    return BuiltScenario(crossing, x, scenario.response.y)
+    r = scenario.response
+    girder_y = getattr(bridge, "girder_y", None)
+    if girder_y is None:
+        if r.girder is not None:
+            raise ScenarioError(f"response.girder: bridge model {scenario.bridge.model!r} has no girders; use response.y")
+        return BuiltScenario(crossing, x, r.y)
+    girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
+    if girder is None:
+        return BuiltScenario(crossing, x, r.y)
+    if not 1 <= girder <= len(girder_y):
+        raise ScenarioError(f"response.girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
+    return BuiltScenario(crossing, x, float(girder_y[girder - 1]), girder)

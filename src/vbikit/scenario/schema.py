@@ -44,18 +44,25 @@ class BridgeSpec(_Section):
     damping_ratio: float = Field(0.02, ge=0, lt=1, description="modal damping ratio [-]")
     n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
     neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
+    modes_file: Optional[str] = Field(None, description="model = \"modes-file\": a vbikit-modes file (docs/bridges.md)")
 
     @field_validator("model")
     @classmethod
     def _known_model(cls, v: str) -> str:
-        allowed = ("beam", *BRIDGE_PRESETS)
+        allowed = ("beam", "modes-file", *BRIDGE_PRESETS)
         if v not in allowed:
             raise ValueError(f"unknown bridge model {v!r}; allowed: {', '.join(allowed)}")
         return v
 
     @model_validator(mode="after")
     def _beam_needs_properties(self) -> "BridgeSpec":
-        if self.model == "beam":
+        if (self.model == "modes-file") != (self.modes_file is not None):
+            raise ValueError("modes_file is needed by, and only allowed with, model = \"modes-file\"")
+        if self.model == "modes-file":
+            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"model = \"modes-file\" takes its data from the file; remove {', '.join(given)}")
+        elif self.model == "beam":
             missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
             if missing:
                 raise ValueError(f"model = \"beam\" needs {', '.join(missing)} (span [m], EI [N m^2], mass_per_length [kg/m])")
@@ -149,7 +156,8 @@ class CrossingSpec(_Section):
     free_vibration: Optional[float] = Field(None, ge=0, description="time after the last axle leaves [s]")
     dt: Optional[float] = Field(None, gt=0, description="time step [s]; default automatic")
     integrator: Literal["rk4", "newmark"] = "rk4"
-    lateral_offset: float = Field(0.0, description="vehicle centreline from deck centreline [m]")
+    lateral_offset: Optional[float] = Field(
+        None, description="vehicle centreline from deck centreline [m]; default the bridge's (0 for a beam)")
 
     @model_validator(mode="after")
     def _one_speed(self) -> "CrossingSpec":
@@ -163,10 +171,22 @@ class CrossingSpec(_Section):
 
 
 class ResponseSpec(_Section):
-    """[response]: the deck point for histories and impact factors (x default midspan)."""
+    """[response]: the deck point for histories and impact factors (x default midspan).
+
+    On a slab-on-girder bridge ``girder`` (1-based, Girder 1 at the most negative y) puts the
+    point on that girder's line; give ``girder`` or ``y``, not both.  With neither, a
+    slab-on-girder bridge reports its default girder (Girder 4 on the paper's bridges).
+    """
 
     x: Optional[float] = Field(None, ge=0, description="m from the bridge entry")
     y: float = Field(0.0, description="m from the deck centreline")
+    girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
+
+    @model_validator(mode="after")
+    def _girder_or_y(self) -> "ResponseSpec":
+        if self.girder is not None and "y" in self.model_fields_set:
+            raise ValueError("give response.girder or response.y, not both")
+        return self
 
 
 class Scenario(_Section):
