@@ -1,0 +1,98 @@
+"""CLI with slab-on-girder bridges: `vbikit run` reports Girder 4 of paper Bridge 2 under the HS20-44
+(issue 4, "done when"), every preset runs, `vbikit bridge` lists modes and draws them, and the
+scenario keys response.girder / crossing.lateral_offset / model = "modes-file" behave."""
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from vbikit.bridge import BRIDGE_PRESETS
+from vbikit.bridge.modefile import write_modes
+from vbikit.cli import app
+
+runner = CliRunner()
+
+SCENARIO = """
+[bridge]
+model = "{bridge}"
+{extra_bridge}
+[vehicle]
+model = "hs20-44"
+[road]
+class = "good"
+seed = 2
+[crossing]
+speed_kmh = 75
+{extra_crossing}
+[response]
+{response}
+"""
+
+
+def run(tmp_path, bridge="paper-bridge-2", response="", extra_bridge="", extra_crossing="", args=("--json",)):
+    path = tmp_path / "s.toml"
+    path.write_text(SCENARIO.format(bridge=bridge, response=response, extra_bridge=extra_bridge, extra_crossing=extra_crossing))
+    return runner.invoke(app, ["run", str(path), *args])
+
+
+def test_bridge2_hs20_girder4(tmp_path):
+    res = run(tmp_path, response="girder = 4", args=("--json", "--out", str(tmp_path / "h.csv")))
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)
+    assert s["response_girder"] == 4 and s["response_y"] == pytest.approx(2.13)
+    assert s["response_x"] == pytest.approx(16.76 / 2)
+    assert s["governing_girder"] == 4 and s["lateral_offset"] == pytest.approx(1.4)
+    assert s["impact_factor"] == s["girder_impact_factors"][3]
+    assert s["max_dynamic_displacement"] < 0 and s["max_dynamic_strain"] > 0 and s["max_abs_acceleration"] > 0
+    assert len(s["girder_impact_factors"]) == 5
+    header = (tmp_path / "h.csv").read_text().splitlines()[0].split(",")
+    for g in range(1, 6):
+        assert {f"girder{g}_displacement", f"girder{g}_strain", f"girder{g}_acceleration"} <= set(header)
+    data = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(data[:, header.index("girder4_displacement")], data[:, header.index("displacement")])
+
+
+@pytest.mark.parametrize("name", ["paper-bridge-1", "paper-bridge-3", "cypress-bayou"])
+def test_every_preset_runs(tmp_path, name):
+    res = run(tmp_path, bridge=name)
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)
+    assert s["response_girder"] == BRIDGE_PRESETS[name].build().default_girder
+    assert s["governing_girder"] == s["response_girder"]
+
+
+def test_text_report_and_lateral_offset(tmp_path):
+    res = run(tmp_path, response="y = 0.0", extra_crossing="lateral_offset = 0.0", args=())
+    assert res.exit_code == 0, res.output
+    assert "governing girder     3" in res.stdout and "y = 0.000 m" in res.stdout
+
+
+@pytest.mark.parametrize("response, bridge, message", [
+    ("girder = 4\ny = 1.0", "paper-bridge-2", "not both"),
+    ("girder = 6", "paper-bridge-2", "1 … 5"),
+    ("girder = 1", "paper-bridge-2-beam", "no girders"),
+])
+def test_response_girder_errors(tmp_path, response, bridge, message):
+    res = run(tmp_path, bridge=bridge, response=response)
+    assert res.exit_code == 2 and message in res.stderr
+
+
+def test_modes_file_scenario(tmp_path):
+    write_modes(BRIDGE_PRESETS["paper-bridge-2"].build(), tmp_path / "modes.csv")
+    a = json.loads(run(tmp_path, response="girder = 4").stdout)
+    res = run(tmp_path, bridge="modes-file", extra_bridge='modes_file = "modes.csv"', response="girder = 4")
+    assert res.exit_code == 0, res.output
+    b = json.loads(res.stdout)
+    assert b["impact_factor"] == a["impact_factor"] and b["girder_impact_factors"] == a["girder_impact_factors"]
+
+
+def test_bridge_command(tmp_path):
+    res = runner.invoke(app, ["bridge", "paper-bridge-2", "--plot", str(tmp_path / "m.png")])
+    assert res.exit_code == 0, res.output
+    assert "mode  1      7.3" in res.stdout and "bending" in res.stdout and "torsion" in res.stdout
+    assert (tmp_path / "m.png").stat().st_size > 10_000
+    res = runner.invoke(app, ["bridge", "nope"])
+    assert res.exit_code == 2
