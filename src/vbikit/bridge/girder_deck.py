@@ -19,15 +19,18 @@ linear torsion on ∂w/∂y):
   outer girders.  Interior b_j = s (girder spacing), outer b_j = s/2 + overhang.
 * GJ_j = G_girder J_girder + G_deck t³/6 · b_j (the slab's torsion split equally between the
   two grillage directions, Hambly, *Bridge Deck Behaviour*, 2nd ed., 1991, §5).
-* Mass: girder ρA plus the tributary deck (and wearing surface, parapet) moving rigidly with
-  the line's section: per length m = Σ μ, first moment S = Σ μ d, second moment
-  J = Σ μ d² + ρ I_girder (d = lateral distance from the girder line); consistent (Hermite ×
-  Hermite for m, Hermite × linear for S, linear × linear for J).
+* Mass: girder ρA (rotary inertia ρ I_girder about the line) plus, on the outer girders, the
+  deck overhang (and parapet) moving rigidly with the girder's section — the same kinematics
+  as the mode-shape extrapolation over the overhang: per length m = Σ μ, first moment
+  S = Σ μ d, second moment J = Σ μ d² (d = lateral distance from the girder line); consistent
+  (Hermite × Hermite for m, Hermite × linear for S, linear × linear for J).
 
 Transverse member at station i (cubic Hermite bending on (w, ∂w/∂y), linear torsion on ∂w/∂x):
 slab strip of width l_i (the station's tributary length) with EI = E_deck t³ l_i / (12 (1 − ν²)),
-GJ = G_deck t³ l_i / 6; diaphragms (rectangle b_d × h_d of deck concrete) add
-E b_d h_d³ / 12, G β h_d b_d³ and their mass ρ b_d h_d (consistent Hermite in y).
+GJ = G_deck t³ l_i / 6 and the slab's mass (ρ t + wearing surface) l_i per length as a consistent
+Hermite mass in y — the same cubic that interpolates the mode shapes between girder lines;
+diaphragms (rectangle b_d × h_d of deck concrete) add E b_d h_d³ / 12, G β h_d b_d³ and their
+mass ρ b_d h_d.  (Along x the deck mass is thus lumped at the stations: O(h²) convergence.)
 
 Supports: every girder bearing restrains w at x = 0 and x = span (rigid, or a vertical spring
 of ``bearing_stiffness`` [N/m] per bearing).  A single-girder model is also restrained in twist
@@ -64,7 +67,7 @@ from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection, composite_beam
 log = logging.getLogger(__name__)
 
 #: bumped whenever the model changes in a way that changes its modes (invalidates caches)
-MODEL_VERSION = "girder_deck-1"
+MODEL_VERSION = "girder_deck-2"
 
 
 def default_cache_dir() -> Path:
@@ -256,7 +259,10 @@ class SlabOnGirderBridge(ModalBridge):
 
     @cached_property
     def line_properties(self) -> dict[str, NDArray[np.float64]]:
-        """Per girder line: EI [N·m²], GJ [N·m²], m [kg/m], S [kg], J [kg·m], lever arm c [m], tributary width b [m]."""
+        """Per girder line: EI [N·m²], GJ [N·m²], m [kg/m], S [kg], J [kg·m], lever arm c [m], tributary width b [m].
+
+        EI, GJ and c use the whole tributary deck width b; m, S, J hold the girder and the rigid
+        overhang strip only (the deck between girder lines is carried by the transverse members)."""
         g, t = self.section, self.deck_thickness
         lo, hi = self._tributary()
         y = self.girder_y
@@ -269,12 +275,13 @@ class SlabOnGirderBridge(ModalBridge):
         for j in range(n):
             b = hi[j] - lo[j]
             comp = composite_beam_properties(g, 1, b, t, self.E_girder, self.E_deck, self.density)
-            a0, a1 = lo[j] - y[j], hi[j] - y[j]
+            a0 = lo[j] - y[j] if j == 0 else 0.0  # rigid overhang strips only
+            a1 = hi[j] - y[j] if j == n - 1 else 0.0
             out["b"][j] = b
             out["c"][j] = comp.neutral_axis_depth
             out["EI"][j] = comp.EI
             out["GJ"][j] = G_g * J_g + G_d * t**3 / 6.0 * b
-            out["m"][j] = self.density * g.area + mu * b
+            out["m"][j] = self.density * g.area + mu * (a1 - a0)
             out["S"][j] = mu * (a1**2 - a0**2) / 2.0
             out["J"][j] = mu * (a1**3 - a0**3) / 3.0 + self.density * g.inertia
         for j, d in ((0, -self.overhang), (n - 1, self.overhang)):
@@ -342,6 +349,7 @@ class SlabOnGirderBridge(ModalBridge):
         EI_d = self.E_deck * bd * hd**3 / 12.0
         GJ_d = G_d * (1.0 - 0.63 * ratio) / 3.0 * max(bd, hd) * min(bd, hd) ** 3  # Roark Table 10.7 case 4 (approx.)
         m_d = self.density * bd * hd
+        mu = self.density * t + self.extra_mass_per_area
         y = self.girder_y
         for i in range(nx + 1):
             EI = self.E_deck * t**3 * trib[i] / (12.0 * (1.0 - self.poisson**2)) + diaph[i] * EI_d
@@ -354,8 +362,7 @@ class SlabOnGirderBridge(ModalBridge):
                 me = np.zeros((6, 6))
                 ke[:4, :4] = _beam_stiffness(EI, b)
                 ke[4:, 4:] = _bar(GJ / b)
-                if diaph[i]:
-                    me[:4, :4] = _beam_mass(diaph[i] * m_d, b)
+                me[:4, :4] = _beam_mass(mu * trib[i] + diaph[i] * m_d, b)
                 add(d, ke, me)
         fixed: list[int] = []
         for j in range(n_lines):

@@ -60,8 +60,8 @@ E_GIRDER_3D = 36e9
 
 #: [substitute] default vehicle centreline y [m] of each paper bridge: the centre (rounded to 0.05 m)
 #: of the range of offsets for which Girder 4 has the largest static midspan deflection under the
-#: HS20-44's two wheel lines (track 2.2 m) in this model — the range is 1.1–2.8 m (Bridge 1),
-#: 0.9–1.9 m (Bridge 2) and 0.3–0.6 m (Bridge 3); ``tests/verification/test_girder_deck.py`` checks it.
+#: HS20-44's two wheel lines (track 2.2 m) in this model — the range is 1.05–2.8 m (Bridge 1),
+#: 0.9–1.95 m (Bridge 2) and 0.3–0.6 m (Bridge 3); ``tests/verification/test_girder_deck.py`` checks it.
 PAPER_LATERAL_OFFSET = {1: 1.95, 2: 1.4, 3: 0.45}
 
 
@@ -100,7 +100,7 @@ def cypress_bayou(n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPING, **o
       2 % damping).  The paper's updated ANSYS model also had shoulders, railings and rubber bearings:
       use ``parapet_EI``, ``parapet_mass`` and ``bearing_stiffness`` to add them.
     * [substitute] default lateral offset +2.0 m (case 1: wheel lines straddling Girder 5, which is then
-      the most loaded; −2.0 m is case 2 with Girder 3); default response girder 5.
+      the most loaded for offsets 1.1–2.95 m; −2.0 m is case 2 with Girder 3); default response girder 5.
     """
     params: dict[str, Any] = dict(
         span=16.76, n_girders=7, girder_spacing=2.13, overhang=0.615, girder="II", deck_thickness=0.20,
