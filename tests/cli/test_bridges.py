@@ -96,3 +96,19 @@ def test_bridge_command(tmp_path):
     assert (tmp_path / "m.png").stat().st_size > 10_000
     res = runner.invoke(app, ["bridge", "nope"])
     assert res.exit_code == 2
+
+
+def test_partially_correlated_wheel_lines(tmp_path):
+    same = json.loads(run(tmp_path, response="girder = 4").stdout)
+    path = tmp_path / "s.toml"
+    path.write_text(SCENARIO.format(bridge="paper-bridge-2", extra_bridge="", extra_crossing="", response="girder = 4")
+                    .replace('seed = 2', 'seed = 2\nright_coherence = 0.5'))
+    res = runner.invoke(app, ["run", str(path), "--json"])
+    assert res.exit_code == 0, res.output
+    half = json.loads(res.stdout)
+    assert half["impact_factor"] != same["impact_factor"]
+    assert half["max_static_displacement"] == same["max_static_displacement"]  # static reference: no road
+    path.write_text(SCENARIO.format(bridge="paper-bridge-2", extra_bridge="", extra_crossing="", response="")
+                    .replace('class = "good"', 'class = "none"\nright_coherence = 0.5'))
+    res = runner.invoke(app, ["run", str(path)])
+    assert res.exit_code == 2 and "right_coherence" in res.stderr

@@ -10,7 +10,7 @@ from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.contact.tires import MultiPointTire, PointTire, TireModel
 from vbikit.road.measured import read_profile_csv
 from vbikit.road.profile import RoadProfile
-from vbikit.road.psd import RoadPSD, random_profile
+from vbikit.road.psd import RoadPSD, correlated_profile, random_profile
 from vbikit.scenario.schema import BridgeSpec, RoadSpec, Scenario, ScenarioError, TireSpec
 from vbikit.solve.crossing import Crossing
 from vbikit.vehicle.model import Vehicle
@@ -35,6 +35,17 @@ def build_tire(spec: TireSpec) -> TireModel:
     if spec.model == "point":
         return PointTire()
     return MultiPointTire(spec.n_points, spec.contact_length, spec.layout)
+
+
+def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:
+    """The right wheel line's own profile, or None when both lines share ``left`` (the default)."""
+    if spec.profile_file_right:
+        return read_profile_csv(scenario.base_dir / spec.profile_file_right)
+    if left is None or spec.right_coherence >= 1.0:
+        return None
+    psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, n_min=spec.n_min, n_max=spec.n_max) if spec.road_class == "psd" \
+        else RoadPSD.iso(spec.road_class, n_min=spec.n_min, n_max=spec.n_max)
+    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length)
 
 
 def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
@@ -68,7 +79,8 @@ def build(scenario: Scenario) -> BuiltScenario:
         vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
         c = scenario.crossing
         crossing = Crossing(
-            bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=build_road(scenario.road, scenario),
+            bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=(road := build_road(scenario.road, scenario)),
+            road_right=build_right_road(scenario.road, scenario, road),
             speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
             lateral_offset=c.lateral_offset if c.lateral_offset is not None else float(getattr(bridge, "default_lateral_offset", 0.0)),
             dt=c.dt, integrator=c.integrator,

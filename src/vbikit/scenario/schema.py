@@ -126,6 +126,8 @@ class RoadSpec(_Section):
     n0: float = Field(0.1, gt=0, description="PSD reference wavenumber [cycle/m]")
     exponent: float = Field(2.0, gt=0, description="PSD exponent w [-]")
     length: float = Field(1000.0, gt=0, description="minimum profile length [m]")
+    right_coherence: float = Field(1.0, ge=0, le=1, description="random roads: correlation c of the right wheel line's profile with the left's (1 = identical)")
+    profile_file_right: Optional[str] = None
 
     @field_validator("road_class")
     @classmethod
@@ -137,6 +139,10 @@ class RoadSpec(_Section):
 
     @model_validator(mode="after")
     def _consistent(self) -> "RoadSpec":
+        if self.profile_file_right is not None and self.profile_file is None:
+            raise ValueError("profile_file_right needs profile_file (the left wheel line)")
+        if self.right_coherence < 1.0 and (self.profile_file or self.road_class == "none"):
+            raise ValueError("right_coherence applies to random roads only (class A…H or psd; use profile_file_right for measured ones)")
         if self.n_min >= self.n_max:
             raise ValueError(f"n_min ({self.n_min}) must be below n_max ({self.n_max}) [cycle/m]")
         if self.road_class == "psd" and self.phi0 is None:

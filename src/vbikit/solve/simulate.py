@@ -33,6 +33,11 @@ def simulate(crossing: Crossing) -> CrossingResult:
         road = np.empty_like(x_cp)
         road_rate = np.empty_like(x_cp)
         kernels.sample_paths(crossing.road.x, crossing.road.z, x_cp, vel, road, road_rate)
+        right = cp.lateral < 0.0
+        if crossing.road_right is not None and right.any():  # the right wheel line on its own profile
+            r, rr = np.empty((x_cp.shape[0], int(right.sum()))), np.empty((x_cp.shape[0], int(right.sum())))
+            kernels.sample_paths(crossing.road_right.x, crossing.road_right.z, np.ascontiguousarray(x_cp[:, right]), vel, r, rr)
+            road[:, right], road_rate[:, right] = r, rr
     table, track_idx = track_table(crossing)
 
     n_m, n_d = bridge.omega.size, vehicle.n_dof

@@ -64,8 +64,9 @@ def accuracy_time_step(crossing: Crossing) -> float:
     f_veh = crossing.vehicle.natural_frequencies()
     if f_veh.size and f_veh.max() > 0:
         candidates.append(1.0 / f_veh.max() / 20.0)
-    if crossing.road is not None and crossing.road.spacing > 0:
-        candidates.append(crossing.road.spacing / v_max)
+    for road in (crossing.road, crossing.road_right):
+        if road is not None and road.spacing > 0:
+            candidates.append(road.spacing / v_max)
     return float(min(candidates))
 
 
