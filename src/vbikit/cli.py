@@ -180,7 +180,7 @@ def compare_tires(
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
         t0 = time.perf_counter()
-        run_ = _execute(lambda: spec)
+        run_ = _execute(lambda spec=spec: spec)
         s = run_.summary
         responses[label] = run_.response
         table[label] = {

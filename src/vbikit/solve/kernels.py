@@ -343,7 +343,7 @@ def newmark(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, x
         u_p = u + dt * v + 0.25 * dt * dt * a
         v_p = v + 0.5 * dt * a
         settled = False
-        for it in range(max_iterations):
+        for _ in range(max_iterations):
             assemble(vel[i2], xf[i2], road[i2], road_rate[i2], bridge, vehicle, points, phi, dphi, have, active,
                      mass, damp, stiff, load)
             lhs = mass + 0.5 * dt * damp + 0.25 * dt * dt * stiff

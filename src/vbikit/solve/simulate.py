@@ -17,7 +17,6 @@ log = logging.getLogger(__name__)
 
 def simulate(crossing: Crossing) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing."""
-    bridge, vehicle = crossing.bridge, crossing.vehicle
     cp = crossing.contact
     dt = choose_time_step(crossing)
     n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))

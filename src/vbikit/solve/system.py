@@ -76,7 +76,7 @@ def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64]
     xf = float(crossing.front_position(0.0))
     n_m, n_p = data.n_modes, data.n_points
     active = np.ones(n_p, bool)
-    setback, gap = data.points[0], data.points[5]
+    gap = data.points[5]
     for first, count, env in zip(*data.vehicle[5:8]):
         if env:
             sl = slice(first, first + count)
