@@ -44,24 +44,37 @@ class _Run:
     girders: Any = None
 
 
+def _guard(action: Any) -> Any:
+    """Run ``action``; a user error (bad input, unwritable output) exits with code 2 and one message."""
+    try:
+        return action()
+    except (ValueError, OSError) as err:  # ScenarioError, RoadFileError, UnstableTimeStepError are ValueErrors
+        if _STATE["debug"]:
+            raise
+        typer.echo(f"error: {err}", err=True)
+        raise typer.Exit(code=2) from None
+
+
+def _write_text(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(text)
+
+
 def _execute(load: Any) -> _Run:
     """Validate (``load()`` returns a Scenario), build and simulate; user errors exit with code 2."""
     from vbikit.analysis import girder_responses, point_response, summary
     from vbikit.scenario import build
     from vbikit.solve import simulate
 
-    try:
+    def work() -> _Run:
         scenario = load()
         built = build(scenario)
         result = simulate(built.crossing)
         response = point_response(result, built.response_x, built.response_y)
         girders = girder_responses(result, built.response_x)
-    except (ValueError, OSError) as err:  # ScenarioError, RoadFileError, UnstableTimeStepError are ValueErrors
-        if _STATE["debug"]:
-            raise
-        typer.echo(f"error: {err}", err=True)
-        raise typer.Exit(code=2) from None
-    return _Run(scenario.name, result, response, summary(result, response, girders, built.response_girder), girders)
+        return _Run(scenario.name, result, response, summary(result, response, girders, built.response_girder), girders)
+
+    return _guard(work)
 
 
 def _write_csv(run: _Run, path: Path) -> None:
@@ -72,7 +85,8 @@ def _write_csv(run: _Run, path: Path) -> None:
     with path.open("w", newline="") as fh:
         writer = csv.writer(fh)
         writer.writerow(list(cols))
-        writer.writerows(np.column_stack(list(cols.values())).tolist())
+        for row in np.column_stack(list(cols.values())):
+            writer.writerow([f"{v:.9g}" for v in row])
 
 
 def _print_summary(run: _Run) -> None:
@@ -98,14 +112,13 @@ def _print_summary(run: _Run) -> None:
 
 def _outputs(run: _Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:
     if out is not None:
-        _write_csv(run, out)
+        _guard(lambda: _write_csv(run, out))
     if plot is not None:
         from vbikit.plot import plot_crossing
 
-        plot_crossing(run.result, run.response, plot)
+        _guard(lambda: plot_crossing(run.result, run.response, plot))
     if summary_path is not None:
-        summary_path.parent.mkdir(parents=True, exist_ok=True)
-        summary_path.write_text(json.dumps(run.summary, indent=2, default=_json_default) + "\n")
+        _guard(lambda: _write_text(summary_path, json.dumps(run.summary, indent=2, default=_json_default) + "\n"))
     if as_json:
         typer.echo(json.dumps(run.summary, default=_json_default))
     else:
@@ -134,13 +147,7 @@ def validate(scenario: Path = typer.Argument(..., help="TOML scenario file.")) -
     """Check a scenario file without running it."""
     from vbikit.scenario import build, load_scenario
 
-    try:
-        build(load_scenario(scenario))
-    except (ValueError, OSError) as err:
-        if _STATE["debug"]:
-            raise
-        typer.echo(f"error: {err}", err=True)
-        raise typer.Exit(code=2) from None
+    _guard(lambda: build(load_scenario(scenario)))
     typer.echo(f"{scenario}: ok")
 
 
@@ -153,7 +160,61 @@ def demo(
     from vbikit.scenario import demo_scenario_text, scenario_from_toml
 
     run_ = _execute(lambda: scenario_from_toml(demo_scenario_text(), source="demo.toml"))
-    _outputs(run_, as_json, out_dir / "demo.csv", out_dir / "demo.png", out_dir / "demo.json")
+    _outputs(run_, as_json, None, out_dir / "demo.png", out_dir / "demo.json")
+
+
+@app.command("compare-tires")
+def compare_tires(
+    scenario: Path = typer.Argument(..., help="TOML scenario file (its [tire] section is replaced by each model)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the table."),
+    n_points: int = typer.Option(6, "--n-points", min=1, help="Points of the multi-point tire."),
+    as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),
+) -> None:
+    """Run one crossing with each tire model (point, multipoint, disk, rigid disk); figure like the
+    paper's Fig. 9 and a table of peaks and impact factors."""
+    import time
+
+    from vbikit.plot import plot_tire_comparison
+    from vbikit.scenario import load_scenario
+
+    base = _guard(lambda: load_scenario(scenario))
+    models = {
+        "point": {"model": "point"},
+        f"multipoint (n = {n_points})": {"model": "multipoint", "n_points": n_points},
+        "disk": {"model": "disk"},
+        "rigid disk": {"model": "rigid-disk"},
+    }
+    responses, table = {}, {}
+    for label, tire in models.items():
+        spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
+        spec._base_dir = base.base_dir
+        t0 = time.perf_counter()
+        run_ = _execute(lambda spec=spec: spec)
+        s = run_.summary
+        responses[label] = run_.response
+        table[label] = {
+            "max_dynamic_displacement": s["max_dynamic_displacement"],
+            "impact_factor": s["impact_factor"],
+            "max_dynamic_strain": s["max_dynamic_strain"],
+            "strain_impact_factor": s["strain_impact_factor"],
+            "max_abs_acceleration": s["max_abs_acceleration"],
+            "min_tire_force": min(s["min_wheel_force"].values()),
+            "contact_lost": any(v["lost"] for v in s["contact_loss"].values()),
+            "seconds": time.perf_counter() - t0,
+        }
+    fig = _guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
+    _guard(lambda: _write_text(out_dir / "compare-tires.json", json.dumps(table, indent=2, default=_json_default) + "\n"))
+    if as_json:
+        typer.echo(json.dumps(table, default=_json_default))
+        return
+    if base.name:
+        typer.echo(base.name)
+    typer.echo(f"  {'tire model':<20} {'u_max [mm]':>10} {'IM':>7} {'ε_max [µε]':>11} {'IM_ε':>7} {'|a|max':>8} {'F_min [kN]':>10} {'time [s]':>8}")
+    for label, row in table.items():
+        typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * 1e3:10.4f} {row['impact_factor']:7.4f} "
+                   f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:7.4f} "
+                   f"{row['max_abs_acceleration']:8.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
+    typer.echo(f"  figure {fig}; table {out_dir / 'compare-tires.json'}")
 
 
 @app.command()
@@ -185,6 +246,15 @@ def presets() -> None:
     typer.echo("Tires ([tire] model = ...):")
     typer.echo("  point          single-point contact")
     typer.echo("  multipoint     n_points (default 6), contact_length (default 0.254 m), layout = ends | cells (paper Eq. 6)")
+    typer.echo("  disk           deformable disk of radial springs, radius (default 0.5 m), disk_spacing (default 0.01 m)")
+    typer.echo("  rigid-disk     rigid disk following the surface envelope, radius, disk_spacing")
+    typer.echo("  all tires: loss_of_contact = true (default; tires cannot pull) | false")
+    typer.echo("Deck defects ([[road.defects]] kind = ...):")
+    from vbikit.road import DEFECT_DEFAULTS
+
+    for kind, (amp, length, ramp, shape) in DEFECT_DEFAULTS.items():
+        size = "depth" if amp < 0 else "height"
+        typer.echo(f"  {kind:<14} {size} {abs(amp):g} m, length {length:g} m, ramp {ramp:g} m, shape {shape}")
     typer.echo("Roads ([road] class = ...):")
     classes = ", ".join(f"{c} {v:.4g}" for c, v in ISO_CLASSES.items())
     typer.echo(f"  ISO 8608 Gd(n0 = 0.1 cycle/m) [m³/cycle]: {classes}")

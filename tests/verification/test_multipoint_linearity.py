@@ -48,6 +48,6 @@ def test_one_point_multipoint_is_point_tire_bit_for_bit():
     road = random_profile(RoadPSD.iso("C"), seed=3)
     runs = [simulate(Crossing(beam, hs20_44(), tire=tire, road=road, speed=20.0, approach=10.0))
             for tire in (PointTire(), MultiPointTire(n_points=1))]
-    for field in ("time", "xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "point_forces"):
+    for field in ("time", "xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "wheel_forces", "contact_lengths"):
         assert np.array_equal(getattr(runs[0], field), getattr(runs[1], field)), field
     assert runs[0].dt == runs[1].dt

@@ -80,7 +80,7 @@ def test_zero_roughness_road_equals_smooth(tire):
     smooth = simulate(Crossing(beam, hs20_44(), tire=tire, road=None, speed=20.0, approach=10.0))
     zero = simulate(Crossing(beam, hs20_44(), tire=tire, road=RoadProfile(x, np.zeros_like(x)), speed=20.0,
                              approach=10.0))
-    for field in ("time", "xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "point_forces"):
+    for field in ("time", "xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "wheel_forces", "contact_lengths"):
         assert np.array_equal(getattr(smooth, field), getattr(zero, field)), field
 
 

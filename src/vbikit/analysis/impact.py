@@ -16,17 +16,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.solve import system
 from vbikit.solve.result import CrossingResult
 
 
 def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
     """ξ_st(t) (n_t, n_modes): static modal coordinates under the moving static wheel loads."""
-    crossing = result.crossing
-    cp = crossing.contact
-    point_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    x = result.front_position[:, None] - cp.setback[None, :]
-    y = np.broadcast_to(cp.lateral + crossing.lateral_offset, x.shape)
-    return crossing.bridge.static_modal_coordinates(x, y, -point_loads[None, :])
+    return system.static_modal_history(result.crossing, result.front_position)
 
 
 @dataclass(frozen=True)

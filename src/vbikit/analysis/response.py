@@ -53,6 +53,23 @@ def point_response(result: CrossingResult, x: float | None = None, y: float = 0.
     )
 
 
+def contact_loss(result: CrossingResult) -> dict[str, dict[str, float | bool]]:
+    """Per wheel: whether its tire lost contact (zero force), where first (wheel x [m]) and for how long [s]."""
+    out: dict[str, dict[str, float | bool]] = {}
+    for w, wheel in enumerate(result.crossing.vehicle.wheels):
+        if wheel.stiffness <= 0:
+            continue
+        off = result.wheel_forces[:, w] <= 0.0
+        entry: dict[str, float | bool] = {"lost": bool(off.any())}
+        if off.any():
+            i = int(np.argmax(off))
+            entry["first_x"] = float(result.front_position[i] - wheel.offset)
+            entry["first_time"] = float(result.time[i])
+            entry["duration"] = float(off.sum() * result.dt)
+        out[wheel.name] = entry
+    return out
+
+
 def girder_responses(result: CrossingResult, x: float | None = None) -> list[PointResponse]:
     """Responses at x (default midspan) on every girder line of a bridge with ``girder_y``
     (Girder 1 first); an empty list for bridges without girders (a beam)."""
@@ -106,6 +123,12 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "static_wheel_loads": {w.name: float(p) for w, p in zip(crossing.vehicle.wheels, crossing.vehicle.static_wheel_loads())},
         "min_wheel_force": {w.name: float(f) for w, f in zip(crossing.vehicle.wheels, wheel_forces.min(axis=0))},
         "max_wheel_force": {w.name: float(f) for w, f in zip(crossing.vehicle.wheels, wheel_forces.max(axis=0))},
+        "contact_loss": contact_loss(result),
+        "contact_length_range": {
+            w.name: [float(lo), float(hi)]
+            for w, lo, hi in zip(crossing.vehicle.wheels, result.contact_lengths.min(axis=0), result.contact_lengths.max(axis=0))
+        },
+        "tire_model": crossing.tire.name,
         "n_steps": result.n_steps,
         "dt": result.dt,
         "duration": float(result.time[-1]),
@@ -138,6 +161,9 @@ def histories(result: CrossingResult, response: PointResponse,
         out[f"girder{g}_acceleration"] = r.acceleration
     for w, f in zip(result.crossing.vehicle.wheels, result.wheel_forces.T):
         out[f"contact_force_{w.name}"] = f
+    if np.any(result.contact_lengths):
+        for w, length in zip(result.crossing.vehicle.wheels, result.contact_lengths.T):
+            out[f"contact_length_{w.name}"] = length
     for j, name in enumerate(result.crossing.vehicle.dof_names):
         out[name] = result.q[:, j]
         out[f"{name}_acceleration"] = result.q_ddot[:, j]

@@ -6,18 +6,21 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.contact.tires import TireModel
+from vbikit.contact.tires import ContactLayout, TireModel
 from vbikit.vehicle.model import Vehicle
 
 
 @dataclass(frozen=True)
 class ContactPoints:
-    """Every contact point of every wheel (n_cp points).
+    """Every contact point of every wheel (n_cp points; each wheel's points are contiguous).
 
-    ``setback`` [m]: distance of the point behind the front axle (x_p = x_front − setback);
-    ``lateral`` [m]: y of the point relative to the vehicle centreline; ``wheel`` index of its
-    wheel; ``weight`` its share β_p of the wheel's tire; ``stiffness`` [N/m], ``damping`` [N·s/m] and ``fixed_load`` [N] already multiplied
-    by the point's weight β_p; ``rows`` (n_cp, n_dof) wheel-centre displacement rows.
+    Per point: ``setback`` [m] behind the front axle (x_p = x_front − setback); ``lateral`` [m]
+    y relative to the vehicle centreline; ``wheel`` index; ``weight`` β_p, the point's share of
+    the static wheel load; ``stiffness`` [N/m], ``damping`` [N·s/m]; ``fixed_load`` [N] (moving
+    forces, already × β_p); ``gap`` g_p [m] (tire surface above its lowest point); ``width`` [m]
+    of patch it stands for; ``gated`` (contact only while penetrating); ``rows`` (n_cp, n_dof).
+    Per wheel: ``wheel_first``, ``wheel_count`` (point index range) and ``wheel_envelope``
+    (acts through its highest point only: rigid disk).
     """
 
     setback: NDArray[np.float64]
@@ -27,7 +30,13 @@ class ContactPoints:
     stiffness: NDArray[np.float64]
     damping: NDArray[np.float64]
     fixed_load: NDArray[np.float64]
+    gap: NDArray[np.float64]
+    width: NDArray[np.float64]
+    gated: NDArray[np.bool_]
     rows: NDArray[np.float64]
+    wheel_first: NDArray[np.int64]
+    wheel_count: NDArray[np.int64]
+    wheel_envelope: NDArray[np.bool_]
 
     @property
     def n(self) -> int:
@@ -42,27 +51,52 @@ class ContactPoints:
 
 
 def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
-    """Lay the tire model's contact points under every wheel of ``vehicle``."""
-    offsets, weights = tire.layout()
+    """Lay the tire model's contact points under every wheel of ``vehicle``.
+
+    Tires are calibrated per wheel from its single-point stiffness, damping and static load
+    (the disk's radial stiffness depends on the load).  Wheels without a tire spring (moving
+    forces) spread their fixed load by the layout's static shares.
+    """
+    loads = vehicle.static_wheel_loads()
+    parts: dict[str, list] = {k: [] for k in ("setback", "lateral", "wheel", "weight", "k", "c", "f0", "gap", "width", "gated", "rows")}
+    first, count, envelope = [], [], []
     n_dof = vehicle.n_dof
-    setback, lateral, wheel, weight, k, c, f0, rows = [], [], [], [], [], [], [], []
-    for i, w in enumerate(vehicle.wheels):
-        for xi, beta in zip(offsets, weights):
-            setback.append(w.offset - xi)
-            lateral.append(w.lateral)
-            wheel.append(i)
-            weight.append(beta)
-            k.append(beta * w.stiffness)
-            c.append(beta * w.damping)
-            f0.append(beta * w.fixed_load)
-            rows.append(w.row if n_dof else np.zeros(0))
+    for i, (w, load) in enumerate(zip(vehicle.wheels, loads)):
+        if w.stiffness > 0:
+            lay = tire.contact_layout(w.stiffness, w.damping, load - w.fixed_load)
+        else:
+            offsets, share = tire.layout()
+            lay = ContactLayout(offsets, np.zeros_like(offsets), np.zeros_like(offsets), np.zeros_like(offsets), share,
+                                np.zeros_like(offsets))
+        n = lay.offsets.size
+        first.append(len(parts["setback"]))
+        count.append(n)
+        envelope.append(lay.envelope)
+        parts["setback"] += list(w.offset - lay.offsets)
+        parts["lateral"] += [w.lateral] * n
+        parts["wheel"] += [i] * n
+        parts["weight"] += list(lay.static_share)
+        parts["k"] += list(lay.stiffness)
+        parts["c"] += list(lay.damping)
+        parts["f0"] += list(lay.static_share * w.fixed_load)
+        parts["gap"] += list(lay.gaps)
+        parts["width"] += list(lay.widths)
+        parts["gated"] += [lay.gated] * n
+        parts["rows"] += [w.row if n_dof else np.zeros(0)] * n
+    n_cp = len(parts["setback"])
     return ContactPoints(
-        np.array(setback, float),
-        np.array(lateral, float),
-        np.array(wheel, np.int64),
-        np.array(weight, float),
-        np.array(k, float),
-        np.array(c, float),
-        np.array(f0, float),
-        np.array(rows, float).reshape(len(setback), n_dof),
+        np.array(parts["setback"], float),
+        np.array(parts["lateral"], float),
+        np.array(parts["wheel"], np.int64),
+        np.array(parts["weight"], float),
+        np.array(parts["k"], float),
+        np.array(parts["c"], float),
+        np.array(parts["f0"], float),
+        np.array(parts["gap"], float),
+        np.array(parts["width"], float),
+        np.array(parts["gated"], bool),
+        np.array(parts["rows"], float).reshape(n_cp, n_dof),
+        np.array(first, np.int64),
+        np.array(count, np.int64),
+        np.array(envelope, bool),
     )

@@ -1,15 +1,26 @@
-"""Tire contact models: where a wheel touches the surface and how its tire spring is shared.
+"""Tire contact models: where a wheel touches the surface and how its tire force is built.
 
-A tire model maps one wheel to n contact points, each with a longitudinal offset ξ_p [m]
-from the wheel centre (positive forward, i.e. towards +x on the bridge) and a weight β_p
-(Σ β_p = 1).  Point p carries a spring β_p·k and dashpot β_p·c, so the tire force is
-(paper Eq. 6, β_p = 1/n):
+Every tire model maps one wheel to contact points p, each at a longitudinal offset ξ_p [m]
+from the wheel centre (positive forward, towards +x on the bridge), with a spring k_p, a
+dashpot c_p and a geometric gap g_p ≥ 0 (height of the tire's surface above its lowest point
+at ξ_p; 0 for point and multi-point tires).  With s = deck displacement + road elevation
+under the point and z_w the displacement of the wheel's lowest point (z up), the penetration
+is δ_p = s(x_p) − g_p − z_w and
 
-    F = Σ_p β_p [ k (s(x_p) − z_w) + c (ṡ(x_p) − ż_w) ]
+    F_p = k_p δ_p + c_p δ̇_p                                   (paper Eqs. 3–6)
 
-with s = deck displacement + road elevation at x_p and z_w the wheel-centre displacement
-(z up; F > 0 is compression).  The single-point model is the multi-point model with n = 1,
-and both run through the same code, so n = 1 reproduces the point model exactly.
+F > 0 is compression.  A tire cannot pull: with loss of contact enabled (the default) a point
+carries F_p = max(0, k_p δ_p + c_p δ̇_p) while δ_p > 0 and nothing otherwise; disk points are
+always gated so (the disk's contact patch is where it penetrates).  The wheel force is the sum
+over its points, except for the rigid disk, which acts through its single highest point (the
+envelope).  All four models run through this one mechanism (``vbikit.solve.kernels``).
+
+* :class:`PointTire` — one point under the wheel centre.
+* :class:`MultiPointTire` — the paper's n points of k/n, c/n over 0.254 m (Eq. 6); n = 1 is the
+  point tire, through the same code, so it reproduces it exactly.
+* :class:`DiskTire` — deformable disk of radial springs (after Yin et al.; our formulation,
+  domain-data §3).
+* :class:`RigidDiskTire` — rigid disk following the surface envelope (after Chang et al.).
 """
 from __future__ import annotations
 
@@ -24,12 +35,49 @@ from numpy.typing import NDArray
 AASHTO_CONTACT_LENGTH = 0.254
 
 
+@dataclass(frozen=True)
+class ContactLayout:
+    """The contact points of one tire on one wheel.
+
+    ``offsets`` ξ_p [m], ``stiffness`` k_p [N/m], ``damping`` c_p [N·s/m], ``gaps`` g_p [m],
+    ``static_share`` β_p (share of the static wheel load carried by the point on flat ground,
+    Σ β_p = 1; used for moving-force wheels and the static reference), ``widths`` [m] (length
+    of patch each point stands for, summed over points in contact to report the patch
+    length), ``gated`` (points whose contact is geometric: disk tires), ``envelope`` (the wheel
+    acts through its highest point only: rigid disk).
+    """
+
+    offsets: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    gaps: NDArray[np.float64]
+    static_share: NDArray[np.float64]
+    widths: NDArray[np.float64]
+    gated: bool = False
+    envelope: bool = False
+
+
 class TireModel(abc.ABC):
-    """A contact layout: offsets [m] and weights [-] of the contact points of one tire."""
+    """A tire model: lays contact points under a wheel."""
+
+    #: scenario name of the model
+    name: str = ""
 
     @abc.abstractmethod
     def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Return (offsets ξ_p [m], weights β_p [-]) of the contact points."""
+        """Return (offsets ξ_p [m], static shares β_p [-]) of the contact points."""
+
+    def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
+        """Contact points for a wheel whose single-point tire has ``stiffness`` [N/m], ``damping``
+        [N·s/m] and carries ``static_load`` [N].  Default: linear springs shared by β_p."""
+        offsets, weights = self.layout()
+        widths = np.zeros_like(offsets) if offsets.size == 1 else np.full_like(offsets, self.patch_length / offsets.size)
+        return ContactLayout(offsets, weights * stiffness, weights * damping, np.zeros_like(offsets), weights, widths)
+
+    @property
+    def patch_length(self) -> float:
+        """Nominal contact-patch length [m] (0 for a point)."""
+        return 0.0
 
     @property
     def point_count(self) -> int:
@@ -40,6 +88,8 @@ class TireModel(abc.ABC):
 @dataclass(frozen=True)
 class PointTire(TireModel):
     """Single-point contact: one spring–dashpot under the wheel centre."""
+
+    name = "point"
 
     def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return np.zeros(1), np.ones(1)
@@ -64,6 +114,11 @@ class MultiPointTire(TireModel):
     n_points: int = 6
     contact_length: float = AASHTO_CONTACT_LENGTH
     layout_rule: Literal["ends", "cells"] = "ends"
+    name = "multipoint"
+
+    @property
+    def patch_length(self) -> float:
+        return self.contact_length if self.n_points > 1 else 0.0
 
     def __post_init__(self) -> None:
         if int(self.n_points) != self.n_points or self.n_points < 1:
@@ -99,3 +154,122 @@ class MultiPointTire(TireModel):
         nu = np.asarray(wavenumber, dtype=float)
         offsets, weights = self.layout()
         return np.abs(np.exp(2j * np.pi * nu[..., None] * offsets) @ weights)
+
+
+#: [substitute] truck tire radius R [m] (domain-data §3)
+DEFAULT_TIRE_RADIUS = 0.5
+
+
+def _disk_offsets(radius: float, spacing: float, max_gap: float) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """Offsets ξ_p (symmetric, spacing Δξ) over |ξ| ≤ ξ_max where the disk rises at most max_gap, and gaps g_p."""
+    xi_max = float(np.sqrt(radius**2 - (radius - max_gap) ** 2))
+    half = int(np.ceil(xi_max / spacing))
+    offsets = np.arange(-half, half + 1) * spacing
+    gaps = radius - np.sqrt(np.clip(radius**2 - offsets**2, 0.0, None))
+    return offsets, gaps, spacing
+
+
+def _check_disk(radius: float, spacing: float, max_gap: float) -> None:
+    if not radius > 0:
+        raise ValueError(f"tire radius must be > 0 m, got {radius!r}")
+    if not 0 < spacing <= radius / 5:
+        raise ValueError(f"disk point spacing must be in (0, radius/5] = (0, {radius / 5:g}] m, got {spacing!r}")
+    if not 0 < max_gap < radius:
+        raise ValueError(f"disk max_gap must be in (0, radius) m, got {max_gap!r}")
+
+
+@dataclass(frozen=True)
+class DiskTire(TireModel):
+    """Deformable disk of radial springs (after Yin et al.; [substitute] formulation of domain-data §3).
+
+    A disk of radius R whose lowest point moves with the wheel; penetration
+    δ(ξ) = max(0, s(x_c + ξ) − z_w − g(ξ)), g(ξ) = R − √(R² − ξ²); wheel force
+    F = k_ξ ∫ δ dξ + c_ξ ∫_{δ>0} δ̇ dξ, evaluated by the midpoint rule on points at spacing
+    Δξ over the part of the disk within ``max_gap`` of its bottom, and applied to the deck
+    where δ > 0 (the contact patch).  On a flat surface F = (4/3) k_ξ √(2R) d^{3/2} at
+    compression d, with patch length 2√(2Rd).
+
+    Calibration (per wheel, stated in domain-data §3): static load F_s and tangent stiffness
+    at static equal the single-point tire's k_t: d_s = 1.5 F_s / k_t,
+    k_ξ = F_s / ((4/3) √(2R) d_s^{3/2}); the damping per length c_ξ is chosen so that the
+    tangent damping at static equals the tire's c: c_ξ = c / (2√(2R d_s)).  For an HS20 rear
+    wheel (R = 0.5 m) the static patch is ≈ 0.34 m long.
+
+    Parameters
+    ----------
+    radius : float
+        R [m], default 0.5 m [substitute].
+    spacing : float
+        Δξ [m] between radial springs (default 0.01 m, the road sampling).
+    max_gap : float
+        Height [m] of the disk arc represented (default R/5 = 0.1 m: obstacles up to 0.1 m).
+    """
+
+    radius: float = DEFAULT_TIRE_RADIUS
+    spacing: float = 0.01
+    max_gap: float = 0.1
+    name = "disk"
+
+    def __post_init__(self) -> None:
+        _check_disk(self.radius, self.spacing, self.max_gap)
+
+    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        share = np.where(gaps == 0.0, 1.0, 0.0)
+        return offsets, share / share.sum()
+
+    def static_compression(self, stiffness: float, static_load: float) -> float:
+        """d_s = 1.5 F_s / k_t [m]."""
+        return 1.5 * static_load / stiffness
+
+    def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
+        offsets, gaps, dxi = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        if stiffness <= 0 or static_load <= 0:
+            raise ValueError("a disk tire needs a wheel with tire stiffness > 0 and a positive static load")
+        d_s = self.static_compression(stiffness, static_load)
+        if d_s >= self.max_gap:
+            raise ValueError(f"static tire compression {d_s:.3f} m exceeds the disk's max_gap {self.max_gap} m")
+        k_xi = static_load / (4.0 / 3.0 * np.sqrt(2 * self.radius) * d_s**1.5)
+        c_xi = damping / (2.0 * np.sqrt(2 * self.radius * d_s))
+        static_force = k_xi * dxi * np.clip(d_s - gaps, 0.0, None)
+        return ContactLayout(offsets, np.full_like(offsets, k_xi * dxi), np.full_like(offsets, c_xi * dxi), gaps,
+                             static_force / static_force.sum(), np.full_like(offsets, dxi), gated=True)
+
+    def static_patch_length(self, stiffness: float, static_load: float) -> float:
+        """2√(2R d_s) [m]: contact length at the static load on a flat surface."""
+        return float(2.0 * np.sqrt(2.0 * self.radius * self.static_compression(stiffness, static_load)))
+
+    @property
+    def patch_length(self) -> float:
+        return 0.0
+
+
+@dataclass(frozen=True)
+class RigidDiskTire(TireModel):
+    """Rigid disk (after Chang et al.): the tire spring sits under the envelope of the surface.
+
+    The contact height is e(x_c) = max_{|ξ| ≤ ξ_max} [ s(x_c + ξ) − (R − √(R² − ξ²)) ], the top
+    of the surface as seen by a rigid circle of radius R; one spring k and dashpot c (the
+    single-point tire's) act between e and the wheel, at the point that attains the maximum.
+    The maximum is taken over points at spacing Δξ (default 0.01 m) within ``max_gap`` of the
+    bottom of the circle.
+    """
+
+    radius: float = DEFAULT_TIRE_RADIUS
+    spacing: float = 0.01
+    max_gap: float = 0.1
+    name = "rigid-disk"
+
+    def __post_init__(self) -> None:
+        _check_disk(self.radius, self.spacing, self.max_gap)
+
+    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        share = np.where(gaps == 0.0, 1.0, 0.0)
+        return offsets, share / share.sum()
+
+    def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
+        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        share = np.where(gaps == 0.0, 1.0, 0.0)
+        return ContactLayout(offsets, np.full_like(offsets, stiffness), np.full_like(offsets, damping), gaps, share,
+                             np.zeros_like(offsets), gated=True, envelope=True)

@@ -17,13 +17,15 @@ from numpy.typing import ArrayLike, NDArray
 class RoadProfile:
     """Road elevation r(x) [m] (z up) sampled at stations ``x`` [m], linear in between.
 
-    ``label`` describes the origin (e.g. "ISO C, seed 3"); ``spacing`` [m] is the finest
-    sample spacing (0 for an analytically flat road), used by the time-step rule.
+    ``label`` describes the origin (e.g. "ISO C, seed 3"); ``resolution`` [m], optional, is the
+    length of the shortest feature the time step must resolve (default: the finest sample
+    spacing; see :attr:`spacing`).
     """
 
     x: NDArray[np.float64]
     z: NDArray[np.float64]
     label: str = ""
+    resolution: float | None = None
 
     def __post_init__(self) -> None:
         x, z = np.asarray(self.x, float), np.asarray(self.z, float)
@@ -43,9 +45,12 @@ class RoadProfile:
 
     @property
     def spacing(self) -> float:
-        """Finest sample spacing [m]; 0 if the profile is flat (no features to resolve)."""
+        """Shortest feature [m] the time step must resolve: ``resolution`` if given, else the finest
+        sample spacing; 0 if the profile is flat (nothing to resolve)."""
         if not np.any(self.z):
             return 0.0
+        if self.resolution is not None:
+            return float(self.resolution)
         return float(np.min(np.diff(self.x)))
 
     def covers(self, x_min: float, x_max: float) -> bool:

@@ -7,7 +7,8 @@ from pathlib import Path
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.presets import BRIDGE_PRESETS
-from vbikit.contact.tires import MultiPointTire, PointTire, TireModel
+from vbikit.contact.tires import DiskTire, MultiPointTire, PointTire, RigidDiskTire, TireModel
+from vbikit.road.defects import Defect, with_defects
 from vbikit.road.measured import read_profile_csv
 from vbikit.road.profile import RoadProfile
 from vbikit.road.psd import RoadPSD, correlated_profile, random_profile
@@ -34,7 +35,18 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
 def build_tire(spec: TireSpec) -> TireModel:
     if spec.model == "point":
         return PointTire()
-    return MultiPointTire(spec.n_points, spec.contact_length, spec.layout)
+    if spec.model == "multipoint":
+        return MultiPointTire(spec.n_points, spec.contact_length, spec.layout)
+    disk = DiskTire if spec.model == "disk" else RigidDiskTire
+    return disk(radius=spec.radius, spacing=spec.disk_spacing, max_gap=spec.radius / 5)
+
+
+def build_defects(spec: RoadSpec) -> list[Defect]:
+    return [
+        Defect.of_kind(d.kind, start=d.position, size=d.depth if d.depth is not None else d.height, length=d.length,
+                       ramp=d.ramp, shape=d.shape)
+        for d in spec.defects
+    ]
 
 
 def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:
@@ -49,18 +61,18 @@ def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | Non
 
 
 def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
+    defects = build_defects(spec)
     if spec.profile_file:
-        path = scenario.base_dir / spec.profile_file
-        return read_profile_csv(path)
+        return with_defects(read_profile_csv(scenario.base_dir / spec.profile_file), defects)
     if spec.road_class == "none":
-        return None
+        return with_defects(RoadProfile.flat(), defects) if defects else None
     band = {"n_min": spec.n_min, "n_max": spec.n_max}
     if spec.road_class == "psd":
         psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, **band)
     else:
         psd = RoadPSD.iso(spec.road_class, **band)
     label = f"class {spec.road_class}, seed {spec.seed}"
-    return random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label)
+    return with_defects(random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label), defects)
 
 
 @dataclass(frozen=True)
@@ -84,6 +96,7 @@ def build(scenario: Scenario) -> BuiltScenario:
             speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
             lateral_offset=c.lateral_offset if c.lateral_offset is not None else float(getattr(bridge, "default_lateral_offset", 0.0)),
             dt=c.dt, integrator=c.integrator,
+            loss_of_contact=scenario.tire.loss_of_contact,
         )
     except ValueError as err:
         raise ScenarioError(str(err)) from None

@@ -105,12 +105,37 @@ class VehicleSpec(_Section):
 
 
 class TireSpec(_Section):
-    """[tire]: "point" or the paper's "multipoint" (Eq. 6)."""
+    """[tire]: "point", the paper's "multipoint" (Eq. 6), deformable "disk" or "rigid-disk"."""
 
-    model: Literal["point", "multipoint"] = "point"
-    n_points: int = Field(6, ge=1, le=100, description="contact points per tire")
-    contact_length: float = Field(0.254, gt=0, le=2.0, description="patch length [m]")
+    model: Literal["point", "multipoint", "disk", "rigid-disk"] = "point"
+    n_points: int = Field(6, ge=1, le=100, description="multipoint: contact points per tire")
+    contact_length: float = Field(0.254, gt=0, le=2.0, description="multipoint: patch length [m]")
     layout: Literal["ends", "cells"] = "ends"
+    radius: float = Field(0.5, gt=0.05, le=2.0, description="disk / rigid-disk: tire radius [m]")
+    disk_spacing: float = Field(0.01, gt=0, le=0.1, description="disk / rigid-disk: spacing of the radial springs [m]")
+    loss_of_contact: bool = Field(True, description="tires cannot pull (a point in tension carries no force)")
+
+
+class DefectSpec(_Section):
+    """[[road.defects]]: a deck defect added to the road (vbikit.road.defects)."""
+
+    kind: Literal["depression", "bump", "step", "pothole"]
+    position: float = Field(0.0, description="start of the defect [m from the bridge entry]")
+    depth: Optional[float] = Field(None, gt=0, le=0.5, description="depression / pothole depth [m]")
+    height: Optional[float] = Field(None, ge=-0.5, le=0.5, description="bump height (> 0) or step height (signed) [m]")
+    length: Optional[float] = Field(None, gt=0, le=50, description="defect length [m]")
+    ramp: Optional[float] = Field(None, gt=0, le=25, description="ramp length of trapezoid/step shapes [m]")
+    shape: Optional[Literal["trapezoid", "cosine", "step"]] = None
+
+    @model_validator(mode="after")
+    def _size_key(self) -> "DefectSpec":
+        wants = "depth" if self.kind in ("depression", "pothole") else "height"
+        other = "height" if wants == "depth" else "depth"
+        if getattr(self, other) is not None:
+            raise ValueError(f"a {self.kind} takes {wants} [m], not {other}")
+        if self.kind == "bump" and self.height is not None and self.height <= 0:
+            raise ValueError(f"bump height must be > 0 m, got {self.height}")
+        return self
 
 
 class RoadSpec(_Section):
@@ -128,6 +153,7 @@ class RoadSpec(_Section):
     length: float = Field(1000.0, gt=0, description="minimum profile length [m]")
     right_coherence: float = Field(1.0, ge=0, le=1, description="random roads: correlation c of the right wheel line's profile with the left's (1 = identical)")
     profile_file_right: Optional[str] = None
+    defects: list[DefectSpec] = Field(default_factory=list, description="deck defects ([[road.defects]])")
 
     @field_validator("road_class")
     @classmethod
@@ -145,6 +171,8 @@ class RoadSpec(_Section):
             raise ValueError("right_coherence applies to random roads only (class A…H or psd; use profile_file_right for measured ones)")
         if self.n_min >= self.n_max:
             raise ValueError(f"n_min ({self.n_min}) must be below n_max ({self.n_max}) [cycle/m]")
+        if self.profile_file is not None and self.road_class != "none":
+            raise ValueError("give either class or profile_file, not both")
         if self.road_class == "psd" and self.phi0 is None:
             raise ValueError("class = \"psd\" needs phi0 [m^3/cycle] (and optionally n0, exponent)")
         if self.n_max > 0.5 / self.spacing:

@@ -53,6 +53,10 @@ class Crossing:
         Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
     integrator : {"rk4", "newmark"}
         The paper's classical Runge–Kutta or Newmark average acceleration.
+    loss_of_contact : bool
+        Tires cannot pull (default True, as real tires): a contact point whose spring would be
+        in tension carries no force.  False gives the classical bilateral linear tire.  Disk
+        tires are always unilateral (their patch is where they penetrate).
     """
 
     bridge: ModalBridge
@@ -66,6 +70,7 @@ class Crossing:
     lateral_offset: float = 0.0
     dt: float | None = None
     integrator: Integrator = "rk4"
+    loss_of_contact: bool = True
     road_right: RoadProfile | None = None
 
     def __post_init__(self) -> None:

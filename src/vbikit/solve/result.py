@@ -15,7 +15,8 @@ class CrossingResult:
 
     ``xi``, ``xi_dot``, ``xi_ddot`` (n_t, n_modes): bridge modal coordinates and rates;
     ``q``, ``q_dot``, ``q_ddot`` (n_t, n_dof): vehicle coordinates (absolute, z up);
-    ``point_forces`` (n_t, n_cp): contact-point forces [N], compression positive;
+    ``wheel_forces`` (n_t, n_wheels): tire forces [N], compression positive (0 = no contact);
+    ``contact_lengths`` (n_t, n_wheels): length [m] of the patch in contact (0 for point tires);
     ``front_position`` [m], ``speed`` [m/s] of the vehicle.
     """
 
@@ -30,7 +31,8 @@ class CrossingResult:
     q: NDArray[np.float64]
     q_dot: NDArray[np.float64]
     q_ddot: NDArray[np.float64]
-    point_forces: NDArray[np.float64]
+    wheel_forces: NDArray[np.float64]
+    contact_lengths: NDArray[np.float64]
 
     @property
     def n_steps(self) -> int:
@@ -56,8 +58,3 @@ class CrossingResult:
         """Bottom-fibre longitudinal strain [-] at (x, y), tension positive."""
         b = self.crossing.bridge
         return self.xi @ b.strain_shapes([b.span / 2 if x is None else x], [y])[0]
-
-    @property
-    def wheel_forces(self) -> NDArray[np.float64]:
-        """Tire force of every wheel [N] (n_t, n_wheels), compression positive."""
-        return self.crossing.contact.wheel_sum(self.point_forces, len(self.crossing.vehicle.wheels))

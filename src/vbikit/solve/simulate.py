@@ -9,7 +9,7 @@ import numpy as np
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.system import static_state, track_table
+from vbikit.solve.system import kernel_data, static_state
 from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
@@ -17,7 +17,6 @@ log = logging.getLogger(__name__)
 
 def simulate(crossing: Crossing) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing."""
-    bridge, vehicle = crossing.bridge, crossing.vehicle
     cp = crossing.contact
     dt = choose_time_step(crossing)
     n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))
@@ -38,26 +37,25 @@ def simulate(crossing: Crossing) -> CrossingResult:
             r, rr = np.empty((x_cp.shape[0], int(right.sum()))), np.empty((x_cp.shape[0], int(right.sum())))
             kernels.sample_paths(crossing.road_right.x, crossing.road_right.z, np.ascontiguousarray(x_cp[:, right]), vel, r, rr)
             road[:, right], road_rate[:, right] = r, rr
-    table, track_idx = track_table(crossing)
-
-    n_m, n_d = bridge.omega.size, vehicle.n_dof
+    data = kernel_data(crossing)
+    n_m, n_d, n_w = data.n_modes, data.n_dof, data.n_wheels
     n_t = n_steps + 1
     xi, dxi, ddxi = (np.zeros((n_t, n_m)) for _ in range(3))
     q, dq, ddq = (np.zeros((n_t, n_d)) for _ in range(3))
-    force = np.zeros((n_t, cp.n))
-    xi[0], q[0] = static_state(crossing, table, track_idx, road[0])
+    wheel_force = np.zeros((n_t, n_w))
+    wheel_len = np.zeros((n_t, n_w))
+    xi[0], q[0], active0 = static_state(crossing, data, road[0])
 
     log.info("crossing: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_steps, dt, crossing.integrator, n_m, n_d, cp.n)
-    common = (bridge.omega, bridge.damping_ratios)
-    veh = (vehicle.damping, vehicle.stiffness, vehicle.gravity)
-    wheel_rows = np.array([w.row for w in vehicle.wheels], float).reshape(len(vehicle.wheels), n_d)
-    tail = (cp.setback, track_idx, cp.stiffness, cp.damping, cp.fixed_load, cp.wheel, wheel_rows, bridge.span, table.spacing,
-            table.values, table.slopes, xi, dxi, q, dq, ddxi, ddq, force)
+    outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
     if crossing.integrator == "rk4":
-        m_inv = np.linalg.inv(vehicle.mass) if n_d else np.zeros((0, 0))
-        kernels.rk4(dt, xf, vel, road, road_rate, *common, m_inv, *veh, *tail)
+        kernels.rk4(dt, xf, vel, road, road_rate, data.bridge, data.vehicle, data.points, data.unilateral, *outputs)
     else:
-        kernels.newmark(dt, xf, vel, road, road_rate, *common, vehicle.mass, *veh, *tail)
+        unsettled = kernels.newmark(dt, xf, vel, road, road_rate, data.bridge, data.vehicle_mass, data.points,
+                                    data.unilateral, *outputs, active0, 50)
+        if unsettled:
+            log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",
+                        unsettled, n_steps)
     return CrossingResult(crossing, t_half[::2].copy(), dt, xf[::2].copy(), vel[::2].copy(), xi, dxi, ddxi, q, dq,
-                          ddq, force)
+                          ddq, wheel_force, wheel_len)

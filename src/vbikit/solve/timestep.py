@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from vbikit.solve.crossing import Crossing
-from vbikit.solve.system import coupled_matrices, track_table
+from vbikit.solve.system import coupled_matrices, kernel_data
 
 
 class UnstableTimeStepError(ValueError):
@@ -28,12 +28,12 @@ def _rk4_growth(z: np.ndarray) -> np.ndarray:
 
 def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
     """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
-    table, track_idx = track_table(crossing, points_per_mode=10)
+    data = kernel_data(crossing, points_per_mode=10)
     positions = np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions)
     v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
     eig = []
     for xf in positions:
-        mass, damp, stiff, _ = coupled_matrices(crossing, table, track_idx, xf, v_max)
+        mass, damp, stiff, _ = coupled_matrices(crossing, data, xf, v_max)
         m_inv = np.linalg.inv(mass)
         n = mass.shape[0]
         a = np.block([[np.zeros((n, n)), np.eye(n)], [-m_inv @ stiff, -m_inv @ damp]])
