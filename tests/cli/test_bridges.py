@@ -112,3 +112,29 @@ def test_partially_correlated_wheel_lines(tmp_path):
                     .replace('class = "good"', 'class = "none"\nright_coherence = 0.5'))
     res = runner.invoke(app, ["run", str(path)])
     assert res.exit_code == 2 and "right_coherence" in res.stderr
+
+
+def test_deck_parameters_from_the_scenario(tmp_path):
+    base = json.loads(run(tmp_path, response="girder = 4").stdout)
+    soft = run(tmp_path, extra_bridge="[bridge.deck]\nbearing_stiffness = 5e8\nn_elements = 20", response="girder = 4")
+    assert soft.exit_code == 0, soft.output
+    assert json.loads(soft.stdout)["frequencies_hz"][0] < base["frequencies_hz"][0]  # elastic bearings soften the deck
+    custom = run(tmp_path, bridge="slab-on-girder", response="girder = 2",
+                 extra_bridge="[bridge.deck]\nspan = 12.0\nn_girders = 3\ngirder_spacing = 2.5\noverhang = 0.8\n"
+                              "girder = {area = 0.3, inertia = 0.04, y_bottom = 0.45, depth = 1.0}\ndiaphragms = [0.0, 6.0, 12.0]")
+    assert custom.exit_code == 0, custom.output
+    s = json.loads(custom.stdout)
+    assert s["response_y"] == 0.0 and len(s["girder_y"]) == 3 and s["lateral_offset"] == 0.0
+
+
+@pytest.mark.parametrize("bridge, extra, message", [
+    ("paper-bridge-2", "[bridge.deck]\nspan_length = 3.0", "unknown [bridge.deck] key"),
+    ("paper-bridge-2-beam", "[bridge.deck]\nn_girders = 3", "not 'paper-bridge-2-beam'"),
+    ("slab-on-girder", "[bridge.deck]\nn_girders = 3", "at least span"),
+    ("paper-bridge-2", "[bridge.deck]\ngirder = \"VII\"", "unknown girder type"),
+    ("paper-bridge-2", "[bridge.deck]\ndeck_thickness = -0.2", "deck_thickness must be a positive"),
+    ("paper-bridge-2", "[bridge.deck]\ngirder = {area = 0.3}", "custom section needs"),
+])
+def test_deck_parameter_errors(tmp_path, bridge, extra, message):
+    res = run(tmp_path, bridge=bridge, extra_bridge=extra)
+    assert res.exit_code == 2 and message in res.stderr, res.stderr

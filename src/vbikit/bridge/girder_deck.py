@@ -582,3 +582,32 @@ def describe_modes(modes: NodalModes) -> list[str]:
             kind = f"transverse ({changes} nodal lines)"
         out.append(f"{kind}, {half_waves} half-wave{'s' if half_waves > 1 else ''} along the span")
     return out
+
+
+#: the parameters a scenario may set in ``[bridge.deck]`` (n_modes and damping_ratio are ``[bridge]`` keys)
+SCENARIO_PARAMETERS: tuple[str, ...] = tuple(
+    f.name for f in fields(SlabOnGirderBridge) if f.name not in ("n_modes", "damping_ratio", "use_cache", "cache_dir", "name")
+)
+
+
+def deck_parameters(table: dict[str, object]) -> dict[str, object]:
+    """Keyword arguments of :class:`SlabOnGirderBridge` from a scenario's ``[bridge.deck]`` table:
+    ``girder`` is an AASHTO type ("I" … "VI") or a table {area, inertia, y_bottom, depth} [m², m⁴, m, m];
+    ``diaphragms`` a list of x [m]; numbers as given (the constructor checks their ranges)."""
+    out: dict[str, object] = {}
+    for key, value in table.items():
+        if key not in SCENARIO_PARAMETERS:
+            raise ValueError(f"unknown [bridge.deck] key {key!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        if key == "girder" and isinstance(value, dict):
+            need = ("area", "inertia", "y_bottom", "depth")
+            if sorted(value) != sorted(need):
+                raise ValueError(f"bridge.deck.girder: a custom section needs exactly {', '.join(need)} [m², m⁴, m, m]")
+            value = GirderSection(**{k: float(v) for k, v in value.items()})
+        elif key == "diaphragms":
+            if not isinstance(value, (list, tuple)):
+                raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")
+            value = tuple(float(v) for v in value)
+        elif key not in ("girder", "name") and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            raise ValueError(f"bridge.deck.{key}: must be a number, got {value!r}")
+        out[key] = value
+    return out

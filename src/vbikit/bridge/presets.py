@@ -119,6 +119,9 @@ class BridgePreset:
     name: str
     description: str
     build: Callable[..., ModalBridge]
+    #: "beam" (build(n_modes=, damping_ratio=)) or "slab-on-girder" (build also takes any
+    #: :class:`SlabOnGirderBridge` parameter as a keyword override)
+    kind: str = "beam"
 
 
 BRIDGE_PRESETS: dict[str, BridgePreset] = {
@@ -128,21 +131,25 @@ BRIDGE_PRESETS: dict[str, BridgePreset] = {
             "paper-bridge-1",
             "Bridge 1 of the paper: 9.16 m, five Type II girders at 2.13 m, 9.75 m deck (3D grillage)",
             lambda **kw: paper_deck(1, **kw),
+            "slab-on-girder",
         ),
         BridgePreset(
             "paper-bridge-2",
             "Bridge 2 of the paper: 16.76 m, five Type II girders at 2.13 m, 9.75 m deck (3D grillage)",
             lambda **kw: paper_deck(2, **kw),
+            "slab-on-girder",
         ),
         BridgePreset(
             "paper-bridge-3",
             "Bridge 3 of the paper: 39.62 m, five Type VI girders at 2.13 m, 9.75 m deck (3D grillage)",
             lambda **kw: paper_deck(3, **kw),
+            "slab-on-girder",
         ),
         BridgePreset(
             "cypress-bayou",
             "Field bridge: 16.76 m, seven Type II girders at 2.13 m, 14.01 m deck (3D grillage)",
             lambda **kw: cypress_bayou(**kw),
+            "slab-on-girder",
         ),
         BridgePreset(
             "paper-bridge-1-beam",

@@ -45,11 +45,13 @@ class BridgeSpec(_Section):
     n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
     neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
     modes_file: Optional[str] = Field(None, description="model = \"modes-file\": a vbikit-modes file (docs/bridges.md)")
+    deck: Optional[dict[str, Any]] = Field(
+        None, description="[bridge.deck]: slab-on-girder parameters (model = \"slab-on-girder\", or overrides of a 3D preset)")
 
     @field_validator("model")
     @classmethod
     def _known_model(cls, v: str) -> str:
-        allowed = ("beam", "modes-file", *BRIDGE_PRESETS)
+        allowed = ("beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)
         if v not in allowed:
             raise ValueError(f"unknown bridge model {v!r}; allowed: {', '.join(allowed)}")
         return v
@@ -58,7 +60,22 @@ class BridgeSpec(_Section):
     def _beam_needs_properties(self) -> "BridgeSpec":
         if (self.model == "modes-file") != (self.modes_file is not None):
             raise ValueError("modes_file is needed by, and only allowed with, model = \"modes-file\"")
-        if self.model == "modes-file":
+        slab = self.model == "slab-on-girder" or (self.model in BRIDGE_PRESETS and BRIDGE_PRESETS[self.model].kind == "slab-on-girder")
+        if self.deck is not None and not slab:
+            raise ValueError(f"[bridge.deck] applies to model = \"slab-on-girder\" and the slab-on-girder presets, not {self.model!r}")
+        if self.deck is not None:
+            from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS
+
+            unknown = [k for k in self.deck if k not in SCENARIO_PARAMETERS]
+            if unknown:
+                raise ValueError(f"unknown [bridge.deck] key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        if self.model == "slab-on-girder" and (self.deck is None or "span" not in self.deck):
+            raise ValueError("model = \"slab-on-girder\" needs [bridge.deck] with at least span [m] (docs/bridges.md)")
+        if self.model == "slab-on-girder":
+            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"model = \"slab-on-girder\" takes its parameters from [bridge.deck]; remove {', '.join(given)}")
+        elif self.model == "modes-file":
             given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
             if given:
                 raise ValueError(f"model = \"modes-file\" takes its data from the file; remove {', '.join(given)}")
