@@ -61,7 +61,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import ModalBridge
-from vbikit.bridge.nodal import NodalModes
+from vbikit.bridge.nodal import NodalModes, _hermite
 from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection, composite_beam_properties
 
 log = logging.getLogger(__name__)
@@ -491,8 +491,6 @@ class SlabOnGirderBridge(ModalBridge):
         Hermite along x and across y (linear along x for the transverse-slope DOFs); a force at
         a node loads only that node's w.
         """
-        from vbikit.bridge.nodal import _hermite
-
         x, y, f = (np.atleast_1d(np.asarray(a, float)).ravel() for a in np.broadcast_arrays(x, y, forces))
         nx = self.element_count
         xs, ys = self.stations, self.girder_y
