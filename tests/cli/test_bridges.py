@@ -138,3 +138,13 @@ def test_deck_parameters_from_the_scenario(tmp_path):
 def test_deck_parameter_errors(tmp_path, bridge, extra, message):
     res = run(tmp_path, bridge=bridge, extra_bridge=extra)
     assert res.exit_code == 2 and message in res.stderr, res.stderr
+
+
+def test_paper_example_runs():
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[2] / "examples" / "paper" / "bridge2_hs20_girder4.toml"
+    res = runner.invoke(app, ["run", str(path), "--json"])
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)
+    assert s["response_girder"] == 4 and s["governing_girder"] == 4 and len(s["frequencies_hz"]) == 20
