@@ -55,6 +55,8 @@ class ContactLayout:
     widths: NDArray[np.float64]
     gated: bool = False
     envelope: bool = False
+    #: envelope tires: range of the tire-surface slope g'(ξ) over each point's cell [ξ_p ∓ Δξ/2]
+    slope_range: NDArray[np.float64] | None = None
 
 
 class TireModel(abc.ABC):
@@ -252,7 +254,11 @@ class RigidDiskTire(TireModel):
     of the surface as seen by a rigid circle of radius R; one spring k and dashpot c (the
     single-point tire's) act between e and the wheel, at the point that attains the maximum.
     The maximum is taken over points at spacing Δξ (default 0.01 m) within ``max_gap`` of the
-    bottom of the circle.
+    bottom of the circle.  The contact height's rate is the deck velocity under the contact
+    point plus v·e'(x_c), where the envelope slope e' equals the circle's slope g'(ξ*) at the
+    continuous contact point (tangency; at a corner of the surface the circle rolls over it):
+    the surface slope at the grid point is clamped to the range of g' over the point's cell
+    [ξ_p − Δξ/2, ξ_p + Δξ/2], exact on smooth surfaces and the rolling rate at corners.
     """
 
     radius: float = DEFAULT_TIRE_RADIUS
@@ -271,5 +277,11 @@ class RigidDiskTire(TireModel):
     def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
         offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
         share = np.where(gaps == 0.0, 1.0, 0.0)
+        def slope(xi: NDArray[np.float64]) -> NDArray[np.float64]:
+            xi = np.clip(xi, -0.999 * self.radius, 0.999 * self.radius)
+            return xi / np.sqrt(self.radius**2 - xi**2)
+
+        half = 0.5 * self.spacing
         return ContactLayout(offsets, np.full_like(offsets, stiffness), np.full_like(offsets, damping), gaps, share,
-                             np.zeros_like(offsets), gated=True, envelope=True)
+                             np.zeros_like(offsets), gated=True, envelope=True,
+                             slope_range=np.column_stack([slope(offsets - half), slope(offsets + half)]))

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import sys
 from pathlib import Path
-from typing import Any, Literal, Optional
+from typing import Any, Literal, Optional, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
 
@@ -259,15 +259,31 @@ class Scenario(_Section):
         return self._base_dir
 
 
+def _model_at(path: tuple[Any, ...]) -> type[BaseModel] | None:
+    """The section model that holds the key at ``path`` (walks fields, list items and Optionals)."""
+    model: Any = Scenario
+    for part in path:
+        if isinstance(part, int):
+            continue
+        if not (isinstance(model, type) and issubclass(model, BaseModel)):
+            return None
+        field = next((f for n, f in model.model_fields.items() if part in (n, f.alias)), None)
+        if field is None:
+            return None
+        model = field.annotation
+        while get_args(model) and not (isinstance(model, type) and issubclass(model, BaseModel)):
+            model = next((a for a in get_args(model) if a is not type(None)), None)
+    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
+
+
 def _format(err: ValidationError, data: dict[str, Any]) -> str:
     lines = []
     for e in err.errors():
         loc = ".".join(str(p) for p in e["loc"] if p != "__root__")
         msg = e["msg"].removeprefix("Value error, ")
         if e["type"] == "extra_forbidden":
-            section = e["loc"][0] if len(e["loc"]) > 1 else None
-            model = Scenario.model_fields[section].annotation if section in Scenario.model_fields else Scenario
-            names = [f.alias or n for n, f in model.model_fields.items()]
+            model = _model_at(tuple(e["loc"][:-1]))
+            names = [f.alias or n for n, f in model.model_fields.items()] if model else []
             msg = f"unknown key; allowed keys: {', '.join(names)}"
         elif e["type"] == "missing":
             msg = "missing required key"
