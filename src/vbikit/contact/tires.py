@@ -191,11 +191,13 @@ class DiskTire(TireModel):
     where δ > 0 (the contact patch).  On a flat surface F = (4/3) k_ξ √(2R) d^{3/2} at
     compression d, with patch length 2√(2Rd).
 
-    Calibration (per wheel, stated in domain-data §3): static load F_s and tangent stiffness
-    at static equal the single-point tire's k_t: d_s = 1.5 F_s / k_t,
-    k_ξ = F_s / ((4/3) √(2R) d_s^{3/2}); the damping per length c_ξ is chosen so that the
-    tangent damping at static equals the tire's c: c_ξ = c / (2√(2R d_s)).  For an HS20 rear
-    wheel (R = 0.5 m) the static patch is ≈ 0.34 m long.
+    Calibration (per wheel, after domain-data §3): static load F_s and tangent stiffness at
+    static equal to the single-point tire's k_t in the parabolic closed form: d_s = 1.5 F_s / k_t,
+    k_ξ = F_s / ((4/3) √(2R) d_s^{3/2}); k_ξ is then scaled (by ≈ 1 %) so that the discrete
+    circular disk carries exactly F_s at d_s.  The discrete tangent stiffness counts the springs
+    in contact, so it matches k_t only to about one spring in the patch (≈ 2–3 % at Δξ = 1 cm).
+    The damping per length c_ξ = c / (2√(2R d_s)) gives the tire's c at static.  For an HS20
+    rear wheel (R = 0.5 m) the static patch is ≈ 0.34 m long.
 
     Parameters
     ----------
@@ -204,7 +206,8 @@ class DiskTire(TireModel):
     spacing : float
         Δξ [m] between radial springs (default 0.01 m, the road sampling).
     max_gap : float
-        Height [m] of the disk arc represented (default R/5 = 0.1 m: obstacles up to 0.1 m).
+        Height [m] of the disk arc represented (default R/5 = 0.1 m): obstacles up to
+        max_gap minus the tire's compression (≈ 0.09 m for a loaded truck wheel) are seen whole.
     """
 
     radius: float = DEFAULT_TIRE_RADIUS
@@ -232,6 +235,9 @@ class DiskTire(TireModel):
         if d_s >= self.max_gap:
             raise ValueError(f"static tire compression {d_s:.3f} m exceeds the disk's max_gap {self.max_gap} m")
         k_xi = static_load / (4.0 / 3.0 * np.sqrt(2 * self.radius) * d_s**1.5)
+        # the discrete circular disk is ≈ 1 % softer than the parabolic closed form: rescale so
+        # that the static wheel load is carried exactly at d_s
+        k_xi *= static_load / (k_xi * dxi * np.clip(d_s - gaps, 0.0, None).sum())
         c_xi = damping / (2.0 * np.sqrt(2 * self.radius * d_s))
         static_force = k_xi * dxi * np.clip(d_s - gaps, 0.0, None)
         return ContactLayout(offsets, np.full_like(offsets, k_xi * dxi), np.full_like(offsets, c_xi * dxi), gaps,

@@ -49,11 +49,14 @@ def build_tire(spec: TireSpec) -> TireModel:
 
 
 def build_defects(spec: RoadSpec) -> list[Defect]:
-    return [
-        Defect.of_kind(d.kind, start=d.position, size=d.depth if d.depth is not None else d.height, length=d.length,
-                       ramp=d.ramp, shape=d.shape)
-        for d in spec.defects
-    ]
+    defects = []
+    for i, d in enumerate(spec.defects):
+        try:
+            defects.append(Defect.of_kind(d.kind, start=d.position, size=d.depth if d.depth is not None else d.height,
+                                          length=d.length, ramp=d.ramp, shape=d.shape))
+        except ValueError as err:
+            raise ScenarioError(f"road.defects.{i} ({d.kind}): {err}") from None
+    return defects
 
 
 def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:

@@ -29,11 +29,14 @@ def _rk4_growth(z: np.ndarray) -> np.ndarray:
 def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
     """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
     data = kernel_data(crossing, points_per_mode=10)
+    # contact as at rest: the points that carry static load (a disk's static patch, a rigid
+    # disk's lowest point, every point of point and multipoint tires)
+    active = crossing.contact.weight > 0
     positions = np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions)
     v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
     eig = []
     for xf in positions:
-        mass, damp, stiff, _ = coupled_matrices(crossing, data, xf, v_max)
+        mass, damp, stiff, _ = coupled_matrices(crossing, data, xf, v_max, active=active)
         m_inv = np.linalg.inv(mass)
         n = mass.shape[0]
         a = np.block([[np.zeros((n, n)), np.eye(n)], [-m_inv @ stiff, -m_inv @ damp]])
