@@ -181,7 +181,27 @@ def _check_disk(radius: float, spacing: float, max_gap: float) -> None:
 
 
 @dataclass(frozen=True)
-class DiskTire(TireModel):
+class _DiskGeometry(TireModel):
+    """Shared geometry of the disk tires: radius R [m], point spacing Δξ [m], arc height max_gap [m]."""
+
+    radius: float = DEFAULT_TIRE_RADIUS
+    spacing: float = 0.01
+    max_gap: float = 0.1
+
+    def __post_init__(self) -> None:
+        _check_disk(self.radius, self.spacing, self.max_gap)
+
+    def _points(self) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+        return _disk_offsets(self.radius, self.spacing, self.max_gap)
+
+    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        offsets, gaps, _ = self._points()
+        share = np.where(gaps == 0.0, 1.0, 0.0)
+        return offsets, share / share.sum()
+
+
+@dataclass(frozen=True)
+class DiskTire(_DiskGeometry):
     """Deformable disk of radial springs (after Yin et al.; [substitute] formulation of domain-data §3).
 
     A disk of radius R whose lowest point moves with the wheel; penetration
@@ -210,25 +230,14 @@ class DiskTire(TireModel):
         max_gap minus the tire's compression (≈ 0.09 m for a loaded truck wheel) are seen whole.
     """
 
-    radius: float = DEFAULT_TIRE_RADIUS
-    spacing: float = 0.01
-    max_gap: float = 0.1
     name = "disk"
-
-    def __post_init__(self) -> None:
-        _check_disk(self.radius, self.spacing, self.max_gap)
-
-    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
-        share = np.where(gaps == 0.0, 1.0, 0.0)
-        return offsets, share / share.sum()
 
     def static_compression(self, stiffness: float, static_load: float) -> float:
         """d_s = 1.5 F_s / k_t [m]."""
         return 1.5 * static_load / stiffness
 
     def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
-        offsets, gaps, dxi = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        offsets, gaps, dxi = self._points()
         if stiffness <= 0 or static_load <= 0:
             raise ValueError("a disk tire needs a wheel with tire stiffness > 0 and a positive static load")
         d_s = self.static_compression(stiffness, static_load)
@@ -253,7 +262,7 @@ class DiskTire(TireModel):
 
 
 @dataclass(frozen=True)
-class RigidDiskTire(TireModel):
+class RigidDiskTire(_DiskGeometry):
     """Rigid disk (after Chang et al.): the tire spring sits under the envelope of the surface.
 
     The contact height is e(x_c) = max_{|ξ| ≤ ξ_max} [ s(x_c + ξ) − (R − √(R² − ξ²)) ], the top
@@ -267,22 +276,12 @@ class RigidDiskTire(TireModel):
     [ξ_p − Δξ/2, ξ_p + Δξ/2], exact on smooth surfaces and the rolling rate at corners.
     """
 
-    radius: float = DEFAULT_TIRE_RADIUS
-    spacing: float = 0.01
-    max_gap: float = 0.1
     name = "rigid-disk"
 
-    def __post_init__(self) -> None:
-        _check_disk(self.radius, self.spacing, self.max_gap)
-
-    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
-        share = np.where(gaps == 0.0, 1.0, 0.0)
-        return offsets, share / share.sum()
-
     def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
-        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        offsets, gaps, _ = self._points()
         share = np.where(gaps == 0.0, 1.0, 0.0)
+
         def slope(xi: NDArray[np.float64]) -> NDArray[np.float64]:
             xi = np.clip(xi, -0.999 * self.radius, 0.999 * self.radius)
             return xi / np.sqrt(self.radius**2 - xi**2)
