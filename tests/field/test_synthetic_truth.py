@@ -66,3 +66,13 @@ def test_calibration_recovers_stiffness_factor(synthetic):
     assert 0 < cal.stiffness_factor_std < 5e-3
     # damping: close to the truth, but the 1-σ from s²(JᵀJ)⁻¹ is optimistic for it (see docs/field.md)
     assert cal.damping_ratio == pytest.approx(truth.damping_ratio, abs=1e-3)
+
+
+def test_model_based_drift_removal(synthetic):
+    """drift = "model": the line through measured − simulated recovers the offset and drift too."""
+    spec, truth = _spec(synthetic, stiffness_factor=synthetic[1].stiffness_factor,
+                        damping_ratio=synthetic[1].damping_ratio, drift="model")
+    d = compare_case(spec, spec.cases[0], ["multipoint"]).drift["G5_acc"]
+    assert d.method == "model"
+    assert d.offset == pytest.approx(truth.acc_offset, abs=1e-3)
+    assert d.drift == pytest.approx(truth.acc_drift, abs=3e-4)

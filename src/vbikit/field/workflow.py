@@ -20,7 +20,8 @@ Pipeline per loading case (:func:`compare_case`):
 scaling of E) and one modal damping ratio ζ by ``scipy.optimize.least_squares``.  Residuals are
 taken at the *measured* sample instants (the simulation, interpolated there), each channel
 divided by its measured RMS; the covariance is s² (JᵀJ)⁻¹ with s² = Σr² / (m − n) (Gauss–Newton
-linearisation at the optimum, independent residuals assumed).
+linearisation at the optimum), multiplied by f_s / (2 f_c) when a low-pass at f_c was applied to a
+record sampled at f_s (the residuals are then correlated; see docs/field.md).
 """
 from __future__ import annotations
 
@@ -217,6 +218,10 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
     t_meas = record.time + shift
     fs = record.sampling_rate
     cut = spec.lowpass_hz
+    if fs > 0.8 * fs_sim and (cut is None or cut > 0.4 * fs_sim):
+        cut = 0.4 * fs_sim  # anti-aliasing before the record is resampled onto the coarser simulation base
+        log.warning("case %s: record sampled at %.4g Hz, faster than the simulation (%.4g Hz): low-pass at %.4g Hz",
+                    case.name, fs, fs_sim, cut)
     meas = {k: _lp(v, fs, cut) for k, v in record.channels.items()}
     sims = {tn: {k: _lp(v, fs_sim, cut) for k, v in s.items()} for tn, s in sims.items()}
     drift: dict[str, DriftFit] = {}
@@ -312,6 +317,11 @@ def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "m
     m, n = sol.fun.size, sol.x.size
     s2 = 2.0 * sol.cost / (m - n)
     cov = s2 * np.linalg.pinv(sol.jac.T @ sol.jac)
+    # low-passed residuals are correlated: band-limited white noise of bandwidth f_c sampled at f_s has
+    # about 2 f_c / f_s independent values per sample, so the covariance grows by f_s / (2 f_c)
+    inflation = max((max(1.0, c.record.sampling_rate / (2.0 * c.lowpass_hz)) if c.lowpass_hz else 1.0)
+                    for c in comparisons)
+    cov *= inflation
     std = np.sqrt(np.diag(cov))
     corr = float(cov[0, 1] / (std[0] * std[1])) if std.all() else float("nan")
     return Calibration(float(sol.x[0]), float(std[0]), float(sol.x[1]), float(std[1]), corr,
