@@ -10,7 +10,7 @@ from vbikit.field.signal import lowpass, quiet_drift, resample, xcorr_shift
 
 def test_xcorr_recovers_a_known_shift():
     t_sim = np.arange(0, 6, 1e-3)
-    pulse = lambda t: np.exp(-((t - 3.0) / 0.3) ** 2) * np.sin(2 * np.pi * 2 * t)  # noqa: E731
+    pulse = lambda t: np.exp(-((t - 3.0) / 0.3) ** 2) * np.sin(2 * np.pi * 2 * t)
     t_meas = np.arange(0, 5, 1 / 200)
     true_shift = 0.8473  # t_sim = t_meas + shift
     s = xcorr_shift(t_sim, pulse(t_sim), t_meas, pulse(t_meas + true_shift), 3.0)

@@ -40,7 +40,7 @@ def plot_case(cmp: CaseComparison, path: str | Path, title: str = "") -> Path:
         ax.set_title(f"{ch.name}: girder {ch.girder}, x = {ch.x:g} m", fontsize="small")
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize="small")
-    axes[-1, 0].set_xlabel("time on the simulation clock [s] (front axle at the span entry at %.3f s)" % cmp.t_entry)
+    axes[-1, 0].set_xlabel(f"time on the simulation clock [s] (front axle at the span entry at {cmp.t_entry:.3f} s)")
     note = f"low-pass {cmp.lowpass_hz:g} Hz" if cmp.lowpass_hz else "no low-pass"
     fig.suptitle(f"{title} — {cmp.case.name} ({note})" if title else f"{cmp.case.name} ({note})", fontsize="medium")
     path = Path(path)

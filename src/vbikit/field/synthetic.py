@@ -72,7 +72,7 @@ def write_synthetic_case(out_dir: str | Path, stiffness_factor: float = 1.10, da
         keep = (p.x >= x0) & (p.x <= x1)
         path = out / f"profile_{side}.csv"
         with path.open("w") as fh:
-            fh.write("# synthetic measured profile (ISO class A, seed %d) + 38.1 mm wood bump; x from the span entry\n" % s)
+            fh.write(f"# synthetic measured profile (ISO class A, seed {s}) + 38.1 mm wood bump; x from the span entry\n")
             fh.write("x [m],elevation [m]\n")
             for x, z in zip(p.x[keep], p.z[keep]):
                 fh.write(f"{x:.4f},{z:.6f}\n")
@@ -85,7 +85,7 @@ def write_synthetic_case(out_dir: str | Path, stiffness_factor: float = 1.10, da
     triggers, t_refs = {}, {}
     toml = [
         "# Synthetic field test written by vbikit.field.synthetic (examples/field/make_synthetic.py).",
-        "# Truth: stiffness factor %.4g, damping ratio %.4g; this file describes the NOMINAL model." % (stiffness_factor, damping_ratio),
+        f"# Truth: stiffness factor {stiffness_factor:.4g}, damping ratio {damping_ratio:.4g}; this file describes the NOMINAL model.",
         'name = "synthetic Cypress Bayou test"', 'bridge = "cypress-bayou"', 'truck = "dump-truck"',
         f"speed_kmh = {FIELD_SPEED_KMH}", f"approach = {APPROACH}", f"free_vibration = {free_vibration}",
         "n_modes = 10", "damping_ratio = 0.02", "stiffness_factor = 1.0", "",

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import logging
 import time as _time
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -38,9 +38,23 @@ from scipy.optimize import least_squares
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.contact.tires import MultiPointTire, PointTire, TireModel
-from vbikit.field.io import CaseSpec, FieldFileError, FieldSpec, MeasuredRecord, check_case_record, read_response_csv
+from vbikit.field.io import (
+    CaseSpec,
+    FieldFileError,
+    FieldSpec,
+    MeasuredRecord,
+    check_case_record,
+    read_response_csv,
+)
 from vbikit.field.metrics import channel_metrics
-from vbikit.field.signal import DriftFit, lowpass, model_drift, quiet_drift, resample, xcorr_shift
+from vbikit.field.signal import (
+    DriftFit,
+    lowpass,
+    model_drift,
+    quiet_drift,
+    resample,
+    xcorr_shift,
+)
 from vbikit.road.measured import read_profile_csv
 from vbikit.solve import Crossing, CrossingResult, simulate
 from vbikit.vehicle.presets import VEHICLE_PRESETS
