@@ -186,6 +186,7 @@ class CaseComparison:
             "drift": {k: {"offset": d.offset, "drift_per_s": d.drift, "t_ref_s": d.t_ref, "method": d.method,
                           "samples": d.samples} for k, d in self.drift.items()},
             "metrics": self.metrics,
+            "seconds": self.timings,
         }
 
 
