@@ -45,6 +45,7 @@ class _Run:
     result: Any
     response: Any
     summary: dict[str, Any]
+    girders: Any = None
 
 
 def _guard(action: Any) -> Any:
@@ -65,7 +66,7 @@ def _write_text(path: Path, text: str) -> None:
 
 def _execute(load: Any) -> _Run:
     """Validate (``load()`` returns a Scenario), build and simulate; user errors exit with code 2."""
-    from vbikit.analysis import point_response, summary
+    from vbikit.analysis import girder_responses, point_response, summary
     from vbikit.scenario import build
     from vbikit.solve import simulate
 
@@ -74,7 +75,8 @@ def _execute(load: Any) -> _Run:
         built = build(scenario)
         result = simulate(built.crossing)
         response = point_response(result, built.response_x, built.response_y)
-        return _Run(scenario.name, result, response, summary(result, response))
+        girders = girder_responses(result, built.response_x)
+        return _Run(scenario.name, result, response, summary(result, response, girders, built.response_girder), girders)
 
     return _guard(work)
 
@@ -82,7 +84,7 @@ def _execute(load: Any) -> _Run:
 def _write_csv(run: _Run, path: Path) -> None:
     from vbikit.analysis import histories
 
-    cols = histories(run.result, run.response)
+    cols = histories(run.result, run.response, run.girders)
     path.parent.mkdir(parents=True, exist_ok=True)
     with path.open("w", newline="") as fh:
         writer = csv.writer(fh)
@@ -96,13 +98,20 @@ def _print_summary(run: _Run) -> None:
     if run.name:
         typer.echo(run.name)
     typer.echo(f"  bridge f1..f3        {', '.join(f'{f:.2f}' for f in s['frequencies_hz'][:3])} Hz")
-    typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m")
+    girder = f" (Girder {s['response_girder']})" if s.get("response_girder") else ""
+    typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m{girder}")
     typer.echo(f"  max displacement     dynamic {s['max_dynamic_displacement'] * 1e3:+.4f} mm, "
                f"static {s['max_static_displacement'] * 1e3:+.4f} mm")
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
     typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}  (strain IM = {s['strain_impact_factor']:.4f})")
+    if "governing_girder" in s:
+        typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
+        typer.echo("  girder               " + "  ".join(f"{g:>7d}" for g in range(1, len(s["girder_y"]) + 1)))
+        typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
+        typer.echo("  IM                   " + "  ".join(f"{v:7.4f}" for v in s["girder_impact_factors"]))
+        typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f})")
 
 
 def _outputs(run: _Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:
@@ -184,7 +193,7 @@ def compare_tires(
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
         t0 = time.perf_counter()
-        run_ = _execute(lambda: spec)
+        run_ = _execute(lambda spec=spec: spec)
         s = run_.summary
         responses[label] = run_.response
         table[label] = {
@@ -221,11 +230,16 @@ def presets() -> None:
 
     typer.echo("Bridges ([bridge] model = ...):")
     typer.echo("  beam                  Euler–Bernoulli beam: span, EI, mass_per_length, damping_ratio, n_modes, neutral_axis_depth")
+    typer.echo("  modes-file            modes imported from a vbikit-modes file (modes_file = ...; docs/bridges.md)")
     for p in BRIDGE_PRESETS.values():
         b = p.build()
         typer.echo(f"  {p.name:<21} {p.description}")
-        typer.echo(f"  {'':<21} span {b.span} m, EI {b.EI:.4g} N·m², m {b.mass_per_length:.1f} kg/m, "
-                   f"c {b.neutral_axis_depth:.3f} m, f1 {b.frequencies_hz[0]:.2f} Hz")
+        if hasattr(b, "EI"):
+            typer.echo(f"  {'':<21} span {b.span} m, EI {b.EI:.4g} N·m², m {b.mass_per_length:.1f} kg/m, "
+                       f"c {b.neutral_axis_depth:.3f} m, f1 {b.frequencies_hz[0]:.2f} Hz")
+        else:  # slab-on-girder deck: geometry only (its modes are solved by `vbikit bridge NAME`)
+            typer.echo(f"  {'':<21} span {b.span} m, deck {b.deck_width:.2f} m, default lateral_offset "
+                       f"{b.default_lateral_offset} m, default response girder {b.default_girder}")
     typer.echo("Vehicles ([vehicle] model = ...):")
     for p in VEHICLE_PRESETS.values():
         v = p.build()
@@ -250,6 +264,74 @@ def presets() -> None:
     typer.echo(f"  ISO 8608 Gd(n0 = 0.1 cycle/m) [m³/cycle]: {classes}")
     typer.echo(f"  paper names: {', '.join(f'{k} = {v}' for k, v in PAPER_CLASSES.items())}; none = smooth; "
                "psd = explicit phi0, n0, exponent; profile_file = measured CSV (x, elevation)")
+
+
+@app.command()
+def bridge(
+    name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`)."),
+    n_modes: int = typer.Option(10, "--modes", min=1, help="Number of modes to solve and list."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Figure of the first mode shapes (default NAME-modes.png)."),
+    no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
+) -> None:
+    """Frequencies and mode descriptions of a bridge preset, and a figure of its first mode shapes."""
+    import time
+
+    from vbikit.bridge import BRIDGE_PRESETS
+
+    if name not in BRIDGE_PRESETS:
+        typer.echo(f"error: unknown bridge preset {name!r}; allowed: {', '.join(BRIDGE_PRESETS)}", err=True)
+        raise typer.Exit(code=2)
+    b = BRIDGE_PRESETS[name].build(n_modes=n_modes)
+    t0 = time.perf_counter()
+    freqs = b.frequencies_hz
+    elapsed = time.perf_counter() - t0
+    describe = getattr(b, "mode_descriptions", None)
+    labels = describe() if describe else [f"bending, {k + 1} half-wave{'s' if k else ''} along the span" for k in range(freqs.size)]
+    typer.echo(f"{name}: {BRIDGE_PRESETS[name].description}")
+    if hasattr(b, "girder_y"):
+        ys = ", ".join(f"{y:+.3f}" for y in b.girder_y)
+        typer.echo(f"  girders (1 … {b.n_girders}) at y = {ys} m; {b.element_count} elements along the span")
+    typer.echo(f"  modes solved (or read from cache) in {elapsed:.3f} s")
+    for k, (f, label) in enumerate(zip(freqs, labels), start=1):
+        typer.echo(f"  mode {k:>2}  {f:9.3f} Hz  {label}")
+    if not no_plot:
+        from vbikit.plot.bridge import plot_mode_shapes
+
+        path = plot_mode_shapes(b, plot or Path(f"{name}-modes.png"), title=name)
+        typer.echo(f"  figure              {path}")
+
+
+@app.command("field")
+def field_(
+    field_file: Path = typer.Argument(..., help="FIELD.toml describing the measured crossings (docs/field.md)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figures and the metrics tables."),
+    tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint."),
+    calibrate: bool = typer.Option(False, "--calibrate", help="Fit a stiffness factor and damping ratio (least squares)."),
+) -> None:
+    """Compare measured bridge responses with the simulated crossing per tire model; optionally calibrate."""
+    from vbikit.field.report import run_field
+    from vbikit.field.workflow import parse_tires
+
+    names = _guard(lambda: parse_tires(tires))
+    run_ = _guard(lambda: run_field(field_file, out_dir, names, calibrate))
+    typer.echo(run_.spec.name)
+    for label, cmps in (("nominal model", run_.comparisons), ("calibrated model", run_.calibrated or [])):
+        for c in cmps:
+            typer.echo(f"  [{label}] {c.case.name}: time shift {c.shift:+.4f} s (trigger {c.t_entry - c.shift:.4f} s), "
+                       f"low-pass {c.lowpass_hz or 'none'} Hz")
+            for ch, d in c.drift.items():
+                typer.echo(f"    {ch}: removed offset {d.offset:+.4g}, drift {d.drift:+.4g} /s ({d.method})")
+            typer.echo(f"    {'tire':<11} {'channel':<16} {'peak err':>9} {'RMS err':>11} {'nRMS':>7} {'corr':>7}")
+            for tire, chans in c.metrics.items():
+                for name, m in chans.items():
+                    typer.echo(f"    {tire:<11} {name:<16} {m['peak_error']:+9.3%} {m['rms_error']:11.4g} "
+                               f"{m['normalised_rms_error']:7.4f} {m['correlation']:7.4f}")
+    cal = run_.calibration
+    if cal is not None:
+        typer.echo(f"  calibration ({cal.tire} tire, {cal.evaluations} runs, {cal.seconds:.1f} s): stiffness factor "
+                   f"{cal.stiffness_factor:.5f} ± {cal.stiffness_factor_std:.2g}, damping ratio {cal.damping_ratio:.5f} "
+                   f"± {cal.damping_ratio_std:.2g} (1σ, correlation {cal.correlation:+.2f})")
+    typer.echo(f"  figures {', '.join(str(f) for f in run_.figures)}; tables {run_.json_path}, {run_.csv_path}")
 
 
 def main() -> None:

@@ -53,3 +53,18 @@ def test_static_reference_is_shared_and_equal():
     solver = BatchSolver(template)
     res = solver.run(template.road)
     np.testing.assert_array_equal(solver.static_modal(res.dt), static_modal_history(simulate(template)))
+
+
+def test_right_wheel_line_profile_equals_simulate():
+    from vbikit.road.psd import correlated_profile
+
+    left = _roads(2)
+    rights = [correlated_profile(road, RoadPSD.iso("C"), seed, 0.5, spacing=0.01, length=200)
+              for seed, road in enumerate(left)]
+    template = Crossing(paper_beam(16.76, "II", n_modes=4), hs20_44(), PointTire(), left[0], speed=25.0,
+                        road_right=rights[0])
+    solver = BatchSolver(template)
+    for road, right, got in zip(left, rights, solver.run_many(list(zip(left, rights)))):
+        ref = simulate(dataclasses.replace(template, road=road, road_right=right))
+        np.testing.assert_array_equal(got.xi, ref.xi)
+        np.testing.assert_array_equal(got.wheel_forces, ref.wheel_forces)

@@ -13,6 +13,7 @@ TOTAL_MASS = {
     "quarter-car": 11_000.0,
     "hs20-44": 2612.0 + 26113.0 + 490.0 + 808.0 + 653.0,
     "two-axle": 16837.0 + 490.0 + 808.0,
+    "dump-truck": (80.0e3 + 2 * 95.6e3) / GRAVITY,  # paper §4.2 axle loads; sprung 24,745 kg (+0.26) + axles 2,900 kg
 }
 
 

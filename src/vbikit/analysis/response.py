@@ -70,8 +70,38 @@ def contact_loss(result: CrossingResult) -> dict[str, dict[str, float | bool]]:
     return out
 
 
-def summary(result: CrossingResult, response: PointResponse) -> dict[str, object]:
-    """The JSON-ready summary of a crossing: impact factors, peaks, bridge frequencies, step data."""
+def girder_responses(result: CrossingResult, x: float | None = None) -> list[PointResponse]:
+    """Responses at x (default midspan) on every girder line of a bridge with ``girder_y``
+    (Girder 1 first); an empty list for bridges without girders (a beam)."""
+    girder_y = getattr(result.crossing.bridge, "girder_y", None)
+    if girder_y is None:
+        return []
+    return [point_response(result, x, float(y)) for y in girder_y]
+
+
+def girder_summary(girders: list[PointResponse]) -> dict[str, object]:
+    """Per-girder peaks and impact factors, and the governing girder: the one with the largest
+    static peak displacement (the most loaded), whose IM is the design value (paper §3)."""
+    disp = [g.displacement_impact for g in girders]
+    strain = [g.strain_impact for g in girders]
+    governing = int(np.argmax([abs(d.static_peak) for d in disp])) + 1
+    return {
+        "girder_y": [g.y for g in girders],
+        "girder_impact_factors": [d.impact_factor for d in disp],
+        "girder_strain_impact_factors": [e.impact_factor for e in strain],
+        "girder_max_dynamic_displacement": [d.dynamic_peak for d in disp],
+        "girder_max_static_displacement": [d.static_peak for d in disp],
+        "girder_max_dynamic_strain": [e.dynamic_peak for e in strain],
+        "girder_max_abs_acceleration": [float(np.max(np.abs(g.acceleration))) for g in girders],
+        "governing_girder": governing,
+        "governing_girder_impact_factor": disp[governing - 1].impact_factor,
+    }
+
+
+def summary(result: CrossingResult, response: PointResponse, girders: list[PointResponse] | None = None,
+            response_girder: int | None = None) -> dict[str, object]:
+    """The JSON-ready summary of a crossing: impact factors, peaks, bridge frequencies, step data;
+    with ``girders`` (from :func:`girder_responses`) also the per-girder values and the governing girder."""
     crossing = result.crossing
     disp = response.displacement_impact
     strain = response.strain_impact
@@ -105,11 +135,14 @@ def summary(result: CrossingResult, response: PointResponse) -> dict[str, object
         "integrator": crossing.integrator,
         "speed": crossing.speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
-    }
+    } | ({"response_girder": response_girder, "lateral_offset": crossing.lateral_offset, **girder_summary(girders)}
+         if girders else {})
 
 
-def histories(result: CrossingResult, response: PointResponse) -> dict[str, NDArray[np.float64]]:
-    """Named time histories for CSV output (SI units)."""
+def histories(result: CrossingResult, response: PointResponse,
+              girders: list[PointResponse] | None = None) -> dict[str, NDArray[np.float64]]:
+    """Named time histories for CSV output (SI units); with ``girders`` also ``girder{g}_*`` columns
+    (displacement, static displacement, strain, static strain, acceleration) for every girder."""
     out: dict[str, NDArray[np.float64]] = {
         "time": result.time,
         "front_axle_x": result.front_position,
@@ -120,6 +153,12 @@ def histories(result: CrossingResult, response: PointResponse) -> dict[str, NDAr
         "velocity": response.velocity,
         "acceleration": response.acceleration,
     }
+    for g, r in enumerate(girders or [], start=1):
+        out[f"girder{g}_displacement"] = r.displacement
+        out[f"girder{g}_static_displacement"] = r.static_displacement
+        out[f"girder{g}_strain"] = r.strain
+        out[f"girder{g}_static_strain"] = r.static_strain
+        out[f"girder{g}_acceleration"] = r.acceleration
     for w, f in zip(result.crossing.vehicle.wheels, result.wheel_forces.T):
         out[f"contact_force_{w.name}"] = f
     if np.any(result.contact_lengths):

@@ -1,7 +1,9 @@
-"""Bridge models reduced to modes (the modal-bridge interface, the Euler–Bernoulli beam, presets)."""
+"""Bridge models reduced to modes (the modal-bridge interface, the Euler–Bernoulli beam,
+the slab-on-girder grillage deck, imported modes, presets)."""
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
-from vbikit.bridge.presets import BRIDGE_PRESETS, paper_beam
+from vbikit.bridge.girder_deck import SlabOnGirderBridge
+from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
 from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection, composite_beam_properties
 
 __all__ = [
@@ -10,6 +12,9 @@ __all__ = [
     "EulerBernoulliBeam",
     "GirderSection",
     "ModalBridge",
+    "SlabOnGirderBridge",
     "composite_beam_properties",
+    "cypress_bayou",
     "paper_beam",
+    "paper_deck",
 ]

@@ -1,7 +1,9 @@
-"""Bridge presets: parameter sets from the paper, as beam stand-ins.
+"""Bridge presets: the paper's bridges as 3D slab-on-girder decks, and as beam stand-ins.
 
-Until the 3D slab-on-girder model exists, the paper's bridges are available as single
-Euler–Bernoulli beams with the whole cross-section lumped (full composite action).  Labels:
+``paper-bridge-1/2/3`` and ``cypress-bayou`` are :class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge`
+grillage models (see :func:`paper_deck`, :func:`cypress_bayou`).  The ``*-beam`` presets are
+single Euler–Bernoulli beams with the whole cross-section lumped (full composite action).
+Labels of the beam presets:
 
 * [paper] span 9.16 / 16.76 / 39.62 m; roadway 9.75 m; deck 0.20 m; five girders at 2.13 m.
 * [substitute] girder types (II for Bridges 1–2, VI for Bridge 3), E = 33 GPa for deck and
@@ -13,9 +15,11 @@ Euler–Bernoulli beams with the whole cross-section lumped (full composite acti
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import Any, Callable
 
+from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
+from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.sections import AASHTO_GIRDERS, composite_beam_properties
 
 #: [substitute] concrete modulus used for the lumped composite beams [Pa]
@@ -51,16 +55,102 @@ def paper_beam(span: float, girder_type: str, n_modes: int = 10, damping_ratio: 
     )
 
 
+#: [substitute] girder concrete modulus of the 3D decks [Pa] (domain-data §1: ≈ 36 GPa girders, ≈ 33 GPa deck)
+E_GIRDER_3D = 36e9
+
+#: [substitute] default vehicle centreline y [m] of each paper bridge: the centre (rounded to 0.05 m)
+#: of the range of offsets for which Girder 4 has the largest static midspan deflection under the
+#: HS20-44's two wheel lines (track 2.2 m) in this model — the range is 1.05–2.8 m (Bridge 1),
+#: 0.9–1.95 m (Bridge 2) and 0.3–0.6 m (Bridge 3); ``tests/verification/test_girder_deck.py`` checks it.
+PAPER_LATERAL_OFFSET = {1: 1.95, 2: 1.4, 3: 0.45}
+
+
+def paper_deck(bridge: int, n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPING, **overrides: Any) -> SlabOnGirderBridge:
+    """Bridge 1, 2 or 3 of the paper as a 3D slab-on-girder deck (grillage).
+
+    * [paper] span 9.16 / 16.76 / 39.62 m; five prestressed girders at 2.13 m; roadway 9.75 m;
+      deck 0.20 m; the impact factor is read at the midspan of Girder 4 (``default_girder`` = 4).
+    * [substitute] (domain-data §1) AASHTO Type II girders (Bridges 1, 2), Type VI (Bridge 3);
+      E = 36 GPa girders, 33 GPa deck, ν = 0.2, ρ = 2400 kg/m³; overhang 0.615 m each side (deck
+      = roadway, 9.75 m); end diaphragms, plus a midspan diaphragm on Bridges 2 and 3 (0.25 m thick,
+      0.75 × girder depth deep); rigid bearings; no haunch, parapet or wearing surface; 2 % modal
+      damping; girder St Venant J from :func:`~vbikit.bridge.girder_deck.approximate_torsion_constant`.
+    * [substitute] default lateral offset :data:`PAPER_LATERAL_OFFSET` (Girder 4 most loaded).
+    * Girder 1 is at the most negative y (right-hand edge for a driver in +x), Girder 4 at y = +2.13 m.
+    """
+    span, girder = {1: (9.16, "II"), 2: (16.76, "II"), 3: (39.62, "VI")}[bridge]
+    diaphragms = (0.0, span) if bridge == 1 else (0.0, span / 2, span)
+    params: dict[str, Any] = dict(
+        span=span, n_girders=5, girder_spacing=2.13, overhang=0.615, girder=girder, deck_thickness=0.20,
+        E_girder=E_GIRDER_3D, E_deck=E_CONCRETE, poisson=0.2, density=RHO_CONCRETE, diaphragms=diaphragms,
+        damping_ratio=damping_ratio, n_modes=n_modes, default_lateral_offset=PAPER_LATERAL_OFFSET[bridge],
+        default_girder=4, name=f"paper-bridge-{bridge}",
+    )
+    params.update(overrides)
+    return SlabOnGirderBridge(**params)
+
+
+def cypress_bayou(n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPING, **overrides: Any) -> SlabOnGirderBridge:
+    """The field-test span (Cypress Bayou, Louisiana) as a 3D slab-on-girder deck.
+
+    * [paper] 16.76 m simple span; seven AASHTO Type II girders at 2.13 m; midspan sensors on every girder;
+      Girder 5 (loading case 1) and Girder 3 (case 2) are the most loaded.
+    * [substitute] deck 14.01 m wide = 6 × 2.13 m + 2 × 0.615 m overhangs, 0.20 m thick; other data as
+      Bridge 2 (E 36 / 33 GPa, ν = 0.2, ρ = 2400 kg/m³, end and midspan diaphragms, rigid bearings,
+      2 % damping).  The paper's updated ANSYS model also had shoulders, railings and rubber bearings:
+      use ``parapet_EI``, ``parapet_mass`` and ``bearing_stiffness`` to add them.
+    * [substitute] default lateral offset +2.0 m (case 1: wheel lines straddling Girder 5, which is then
+      the most loaded for offsets 1.1–2.95 m; −2.0 m is case 2 with Girder 3); default response girder 5.
+    """
+    params: dict[str, Any] = dict(
+        span=16.76, n_girders=7, girder_spacing=2.13, overhang=0.615, girder="II", deck_thickness=0.20,
+        E_girder=E_GIRDER_3D, E_deck=E_CONCRETE, poisson=0.2, density=RHO_CONCRETE, diaphragms=(0.0, 8.38, 16.76),
+        damping_ratio=damping_ratio, n_modes=n_modes, default_lateral_offset=2.0, default_girder=5,
+        name="cypress-bayou",
+    )
+    params.update(overrides)
+    return SlabOnGirderBridge(**params)
+
+
 @dataclass(frozen=True)
 class BridgePreset:
+    """A named bridge; ``build(n_modes=, damping_ratio=)`` returns the model."""
+
     name: str
     description: str
-    build: Callable[..., EulerBernoulliBeam]
+    build: Callable[..., ModalBridge]
+    #: "beam" (build(n_modes=, damping_ratio=)) or "slab-on-girder" (build also takes any
+    #: :class:`SlabOnGirderBridge` parameter as a keyword override)
+    kind: str = "beam"
 
 
 BRIDGE_PRESETS: dict[str, BridgePreset] = {
     p.name: p
     for p in (
+        BridgePreset(
+            "paper-bridge-1",
+            "Bridge 1 of the paper: 9.16 m, five Type II girders at 2.13 m, 9.75 m deck (3D grillage)",
+            lambda **kw: paper_deck(1, **kw),
+            "slab-on-girder",
+        ),
+        BridgePreset(
+            "paper-bridge-2",
+            "Bridge 2 of the paper: 16.76 m, five Type II girders at 2.13 m, 9.75 m deck (3D grillage)",
+            lambda **kw: paper_deck(2, **kw),
+            "slab-on-girder",
+        ),
+        BridgePreset(
+            "paper-bridge-3",
+            "Bridge 3 of the paper: 39.62 m, five Type VI girders at 2.13 m, 9.75 m deck (3D grillage)",
+            lambda **kw: paper_deck(3, **kw),
+            "slab-on-girder",
+        ),
+        BridgePreset(
+            "cypress-bayou",
+            "Field bridge: 16.76 m, seven Type II girders at 2.13 m, 14.01 m deck (3D grillage)",
+            lambda **kw: cypress_bayou(**kw),
+            "slab-on-girder",
+        ),
         BridgePreset(
             "paper-bridge-1-beam",
             "Bridge 1 of the paper (9.16 m [paper]) as one composite beam, Type II girders [substitute]",

@@ -18,7 +18,8 @@ class ContactPoints:
     y relative to the vehicle centreline; ``wheel`` index; ``weight`` β_p, the point's share of
     the static wheel load; ``stiffness`` [N/m], ``damping`` [N·s/m]; ``fixed_load`` [N] (moving
     forces, already × β_p); ``gap`` g_p [m] (tire surface above its lowest point); ``width`` [m]
-    of patch it stands for; ``gated`` (contact only while penetrating); ``rows`` (n_cp, n_dof).
+    of patch it stands for; ``gated`` (contact only while penetrating); ``slope_range`` (n_cp, 2)
+    bounds of the tire-surface slope over the point's cell (envelope tires); ``rows`` (n_cp, n_dof).
     Per wheel: ``wheel_first``, ``wheel_count`` (point index range) and ``wheel_envelope``
     (acts through its highest point only: rigid disk).
     """
@@ -33,6 +34,7 @@ class ContactPoints:
     gap: NDArray[np.float64]
     width: NDArray[np.float64]
     gated: NDArray[np.bool_]
+    slope_range: NDArray[np.float64]
     rows: NDArray[np.float64]
     wheel_first: NDArray[np.int64]
     wheel_count: NDArray[np.int64]
@@ -58,7 +60,7 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
     forces) spread their fixed load by the layout's static shares.
     """
     loads = vehicle.static_wheel_loads()
-    parts: dict[str, list] = {k: [] for k in ("setback", "lateral", "wheel", "weight", "k", "c", "f0", "gap", "width", "gated", "rows")}
+    parts: dict[str, list] = {k: [] for k in ("setback", "lateral", "wheel", "weight", "k", "c", "f0", "gap", "width", "gated", "slope", "rows")}
     first, count, envelope = [], [], []
     n_dof = vehicle.n_dof
     for i, (w, load) in enumerate(zip(vehicle.wheels, loads)):
@@ -82,6 +84,7 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
         parts["gap"] += list(lay.gaps)
         parts["width"] += list(lay.widths)
         parts["gated"] += [lay.gated] * n
+        parts["slope"] += list(np.zeros((n, 2)) if lay.slope_range is None else lay.slope_range)
         parts["rows"] += [w.row if n_dof else np.zeros(0)] * n
     n_cp = len(parts["setback"])
     return ContactPoints(
@@ -95,6 +98,7 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
         np.array(parts["gap"], float),
         np.array(parts["width"], float),
         np.array(parts["gated"], bool),
+        np.array(parts["slope"], float).reshape(n_cp, 2),
         np.array(parts["rows"], float).reshape(n_cp, n_dof),
         np.array(first, np.int64),
         np.array(count, np.int64),

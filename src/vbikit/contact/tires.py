@@ -55,6 +55,8 @@ class ContactLayout:
     widths: NDArray[np.float64]
     gated: bool = False
     envelope: bool = False
+    #: envelope tires: range of the tire-surface slope g'(ξ) over each point's cell [ξ_p ∓ Δξ/2]
+    slope_range: NDArray[np.float64] | None = None
 
 
 class TireModel(abc.ABC):
@@ -179,7 +181,27 @@ def _check_disk(radius: float, spacing: float, max_gap: float) -> None:
 
 
 @dataclass(frozen=True)
-class DiskTire(TireModel):
+class _DiskGeometry(TireModel):
+    """Shared geometry of the disk tires: radius R [m], point spacing Δξ [m], arc height max_gap [m]."""
+
+    radius: float = DEFAULT_TIRE_RADIUS
+    spacing: float = 0.01
+    max_gap: float = 0.1
+
+    def __post_init__(self) -> None:
+        _check_disk(self.radius, self.spacing, self.max_gap)
+
+    def _points(self) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+        return _disk_offsets(self.radius, self.spacing, self.max_gap)
+
+    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        offsets, gaps, _ = self._points()
+        share = np.where(gaps == 0.0, 1.0, 0.0)
+        return offsets, share / share.sum()
+
+
+@dataclass(frozen=True)
+class DiskTire(_DiskGeometry):
     """Deformable disk of radial springs (after Yin et al.; [substitute] formulation of domain-data §3).
 
     A disk of radius R whose lowest point moves with the wheel; penetration
@@ -189,11 +211,13 @@ class DiskTire(TireModel):
     where δ > 0 (the contact patch).  On a flat surface F = (4/3) k_ξ √(2R) d^{3/2} at
     compression d, with patch length 2√(2Rd).
 
-    Calibration (per wheel, stated in domain-data §3): static load F_s and tangent stiffness
-    at static equal the single-point tire's k_t: d_s = 1.5 F_s / k_t,
-    k_ξ = F_s / ((4/3) √(2R) d_s^{3/2}); the damping per length c_ξ is chosen so that the
-    tangent damping at static equals the tire's c: c_ξ = c / (2√(2R d_s)).  For an HS20 rear
-    wheel (R = 0.5 m) the static patch is ≈ 0.34 m long.
+    Calibration (per wheel, after domain-data §3): static load F_s and tangent stiffness at
+    static equal to the single-point tire's k_t in the parabolic closed form: d_s = 1.5 F_s / k_t,
+    k_ξ = F_s / ((4/3) √(2R) d_s^{3/2}); k_ξ is then scaled (by ≈ 1 %) so that the discrete
+    circular disk carries exactly F_s at d_s.  The discrete tangent stiffness counts the springs
+    in contact, so it matches k_t only to about one spring in the patch (≈ 2–3 % at Δξ = 1 cm).
+    The damping per length c_ξ = c / (2√(2R d_s)) gives the tire's c at static.  For an HS20
+    rear wheel (R = 0.5 m) the static patch is ≈ 0.34 m long.
 
     Parameters
     ----------
@@ -202,34 +226,27 @@ class DiskTire(TireModel):
     spacing : float
         Δξ [m] between radial springs (default 0.01 m, the road sampling).
     max_gap : float
-        Height [m] of the disk arc represented (default R/5 = 0.1 m: obstacles up to 0.1 m).
+        Height [m] of the disk arc represented (default R/5 = 0.1 m): obstacles up to
+        max_gap minus the tire's compression (≈ 0.09 m for a loaded truck wheel) are seen whole.
     """
 
-    radius: float = DEFAULT_TIRE_RADIUS
-    spacing: float = 0.01
-    max_gap: float = 0.1
     name = "disk"
-
-    def __post_init__(self) -> None:
-        _check_disk(self.radius, self.spacing, self.max_gap)
-
-    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
-        share = np.where(gaps == 0.0, 1.0, 0.0)
-        return offsets, share / share.sum()
 
     def static_compression(self, stiffness: float, static_load: float) -> float:
         """d_s = 1.5 F_s / k_t [m]."""
         return 1.5 * static_load / stiffness
 
     def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
-        offsets, gaps, dxi = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        offsets, gaps, dxi = self._points()
         if stiffness <= 0 or static_load <= 0:
             raise ValueError("a disk tire needs a wheel with tire stiffness > 0 and a positive static load")
         d_s = self.static_compression(stiffness, static_load)
         if d_s >= self.max_gap:
             raise ValueError(f"static tire compression {d_s:.3f} m exceeds the disk's max_gap {self.max_gap} m")
         k_xi = static_load / (4.0 / 3.0 * np.sqrt(2 * self.radius) * d_s**1.5)
+        # the discrete circular disk is ≈ 1 % softer than the parabolic closed form: rescale so
+        # that the static wheel load is carried exactly at d_s
+        k_xi *= static_load / (k_xi * dxi * np.clip(d_s - gaps, 0.0, None).sum())
         c_xi = damping / (2.0 * np.sqrt(2 * self.radius * d_s))
         static_force = k_xi * dxi * np.clip(d_s - gaps, 0.0, None)
         return ContactLayout(offsets, np.full_like(offsets, k_xi * dxi), np.full_like(offsets, c_xi * dxi), gaps,
@@ -245,31 +262,31 @@ class DiskTire(TireModel):
 
 
 @dataclass(frozen=True)
-class RigidDiskTire(TireModel):
+class RigidDiskTire(_DiskGeometry):
     """Rigid disk (after Chang et al.): the tire spring sits under the envelope of the surface.
 
     The contact height is e(x_c) = max_{|ξ| ≤ ξ_max} [ s(x_c + ξ) − (R − √(R² − ξ²)) ], the top
     of the surface as seen by a rigid circle of radius R; one spring k and dashpot c (the
     single-point tire's) act between e and the wheel, at the point that attains the maximum.
     The maximum is taken over points at spacing Δξ (default 0.01 m) within ``max_gap`` of the
-    bottom of the circle.
+    bottom of the circle.  The contact height's rate is the deck velocity under the contact
+    point plus v·e'(x_c), where the envelope slope e' equals the circle's slope g'(ξ*) at the
+    continuous contact point (tangency; at a corner of the surface the circle rolls over it):
+    the surface slope at the grid point is clamped to the range of g' over the point's cell
+    [ξ_p − Δξ/2, ξ_p + Δξ/2], exact on smooth surfaces and the rolling rate at corners.
     """
 
-    radius: float = DEFAULT_TIRE_RADIUS
-    spacing: float = 0.01
-    max_gap: float = 0.1
     name = "rigid-disk"
 
-    def __post_init__(self) -> None:
-        _check_disk(self.radius, self.spacing, self.max_gap)
-
-    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
-        share = np.where(gaps == 0.0, 1.0, 0.0)
-        return offsets, share / share.sum()
-
     def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
-        offsets, gaps, _ = _disk_offsets(self.radius, self.spacing, self.max_gap)
+        offsets, gaps, _ = self._points()
         share = np.where(gaps == 0.0, 1.0, 0.0)
+
+        def slope(xi: NDArray[np.float64]) -> NDArray[np.float64]:
+            xi = np.clip(xi, -0.999 * self.radius, 0.999 * self.radius)
+            return xi / np.sqrt(self.radius**2 - xi**2)
+
+        half = 0.5 * self.spacing
         return ContactLayout(offsets, np.full_like(offsets, stiffness), np.full_like(offsets, damping), gaps, share,
-                             np.zeros_like(offsets), gated=True, envelope=True)
+                             np.zeros_like(offsets), gated=True, envelope=True,
+                             slope_range=np.column_stack([slope(offsets - half), slope(offsets + half)]))

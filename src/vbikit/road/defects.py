@@ -72,7 +72,12 @@ class Defect:
         shape = shape or dshape
         length = dlen if length is None else length
         if ramp is None:
-            ramp = length if shape == "step" else min(dramp, length / 2)
+            if shape == "step":
+                ramp = length
+            elif shape == "trapezoid":
+                ramp = min(dramp if dramp > 0 else 0.05, length / 4 if dramp <= 0 else length / 2)
+            else:
+                ramp = dramp
         return cls(kind, float(start), float(amp), float(length), float(ramp), shape)
 
     @property

@@ -122,3 +122,34 @@ def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float =
     n_k = n_k[(n_k >= psd.n_min) & (n_k <= psd.n_max)]
     theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
     return n_k, theta
+
+
+def correlated_profile(
+    left: RoadProfile,
+    psd: RoadPSD,
+    seed: int,
+    coherence: float,
+    spacing: float = 0.01,
+    length: float = 1000.0,
+    x_start: float | None = None,
+    label: str = "",
+) -> RoadProfile:
+    """The right wheel line's profile, partially correlated with ``left`` (same PSD).
+
+    r_R(x) = c · r_L(x) + √(1 − c²) · r_I(x), with r_I an independent realisation of the same
+    PSD (phases from a child seed of ``seed``, ``numpy.random.SeedSequence(seed).spawn``) on the
+    same stations.  r_R then has the PSD of ``psd`` and the cross-spectral density c · G(n): the
+    ordinary coherence between the two lines is c², the same at every wavenumber.  c = 1 gives
+    the paper's identical lines, c = 0 independent ones.  [substitute] Measured roads are more
+    coherent at long than at short wavelengths; a constant c is the simplest model that keeps
+    both PSDs exact.  ``left`` must come from :func:`random_profile` with the same ``psd``,
+    ``spacing``, ``length`` and ``x_start``.
+    """
+    if not 0.0 <= coherence <= 1.0:
+        raise ValueError(f"left/right coherence must be in [0, 1], got {coherence!r}")
+    child = int(np.random.SeedSequence(seed).spawn(1)[0].generate_state(1)[0])
+    other = random_profile(psd, child, spacing=spacing, length=length, x_start=x_start)
+    if other.x.shape != left.x.shape or not np.array_equal(other.x, left.x):
+        raise ValueError("the left profile was not generated with the same spacing, length and x_start")
+    z = coherence * left.z + np.sqrt(1.0 - coherence**2) * other.z
+    return RoadProfile(left.x, z, label or f"{left.label}, right line (coherence {coherence:g})")

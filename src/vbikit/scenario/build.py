@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from pathlib import Path
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
@@ -10,19 +11,31 @@ from vbikit.contact.tires import DiskTire, MultiPointTire, PointTire, RigidDiskT
 from vbikit.road.defects import Defect, with_defects
 from vbikit.road.measured import read_profile_csv
 from vbikit.road.profile import RoadProfile
-from vbikit.road.psd import RoadPSD, random_profile
+from vbikit.road.psd import RoadPSD, correlated_profile, random_profile
 from vbikit.scenario.schema import BridgeSpec, RoadSpec, Scenario, ScenarioError, TireSpec
 from vbikit.solve.crossing import Crossing
 from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 
-def build_bridge(spec: BridgeSpec) -> ModalBridge:
+def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
+    if spec.model == "modes-file":
+        from vbikit.bridge.modefile import modes_from_file
+
+        n_modes = spec.n_modes if "n_modes" in spec.model_fields_set else None
+        return modes_from_file(Path(base_dir) / spec.modes_file, damping_ratio=spec.damping_ratio, n_modes=n_modes)
     if spec.model == "beam":
         return EulerBernoulliBeam(
             span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
             n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
         )
+    if spec.model == "slab-on-girder" or spec.deck is not None:
+        from vbikit.bridge.girder_deck import SlabOnGirderBridge, deck_parameters
+
+        overrides = deck_parameters(spec.deck or {})
+        if spec.model == "slab-on-girder":
+            return SlabOnGirderBridge(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
+        return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
     return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio)
 
 
@@ -36,11 +49,25 @@ def build_tire(spec: TireSpec) -> TireModel:
 
 
 def build_defects(spec: RoadSpec) -> list[Defect]:
-    return [
-        Defect.of_kind(d.kind, start=d.position, size=d.depth if d.depth is not None else d.height, length=d.length,
-                       ramp=d.ramp, shape=d.shape)
-        for d in spec.defects
-    ]
+    defects = []
+    for i, d in enumerate(spec.defects):
+        try:
+            defects.append(Defect.of_kind(d.kind, start=d.position, size=d.depth if d.depth is not None else d.height,
+                                          length=d.length, ramp=d.ramp, shape=d.shape))
+        except ValueError as err:
+            raise ScenarioError(f"road.defects.{i} ({d.kind}): {err}") from None
+    return defects
+
+
+def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:
+    """The right wheel line's own profile, or None when both lines share ``left`` (the default)."""
+    if spec.profile_file_right:
+        return read_profile_csv(scenario.base_dir / spec.profile_file_right)
+    if left is None or spec.right_coherence >= 1.0:
+        return None
+    psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, n_min=spec.n_min, n_max=spec.n_max) if spec.road_class == "psd" \
+        else RoadPSD.iso(spec.road_class, n_min=spec.n_min, n_max=spec.n_max)
+    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length)
 
 
 def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
@@ -63,18 +90,22 @@ class BuiltScenario:
     crossing: Crossing
     response_x: float | None
     response_y: float
+    #: 1-based girder of the response point (slab-on-girder bridges), else None
+    response_girder: int | None = None
 
 
 def build(scenario: Scenario) -> BuiltScenario:
     """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad combinations)."""
     try:
-        bridge = build_bridge(scenario.bridge)
+        bridge = build_bridge(scenario.bridge, scenario.base_dir)
         vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
         c = scenario.crossing
         crossing = Crossing(
-            bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=build_road(scenario.road, scenario),
+            bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=(road := build_road(scenario.road, scenario)),
+            road_right=build_right_road(scenario.road, scenario, road),
             speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
-            lateral_offset=c.lateral_offset, dt=c.dt, integrator=c.integrator,
+            lateral_offset=c.lateral_offset if c.lateral_offset is not None else float(getattr(bridge, "default_lateral_offset", 0.0)),
+            dt=c.dt, integrator=c.integrator,
             loss_of_contact=scenario.tire.loss_of_contact,
         )
     except ValueError as err:
@@ -82,4 +113,15 @@ def build(scenario: Scenario) -> BuiltScenario:
     x = scenario.response.x
     if x is not None and x > bridge.span:
         raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m (got {x})")
-    return BuiltScenario(crossing, x, scenario.response.y)
+    r = scenario.response
+    girder_y = getattr(bridge, "girder_y", None)
+    if girder_y is None:
+        if r.girder is not None:
+            raise ScenarioError(f"response.girder: bridge model {scenario.bridge.model!r} has no girders; use response.y")
+        return BuiltScenario(crossing, x, r.y)
+    girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
+    if girder is None:
+        return BuiltScenario(crossing, x, r.y)
+    if not 1 <= girder <= len(girder_y):
+        raise ScenarioError(f"response.girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
+    return BuiltScenario(crossing, x, float(girder_y[girder - 1]), girder)

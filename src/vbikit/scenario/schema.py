@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import sys
 from pathlib import Path
-from typing import Any, Literal, Optional
+from typing import Any, Literal, Optional, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
 
@@ -44,18 +44,42 @@ class BridgeSpec(_Section):
     damping_ratio: float = Field(0.02, ge=0, lt=1, description="modal damping ratio [-]")
     n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
     neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
+    modes_file: Optional[str] = Field(None, description="model = \"modes-file\": a vbikit-modes file (docs/bridges.md)")
+    deck: Optional[dict[str, Any]] = Field(
+        None, description="[bridge.deck]: slab-on-girder parameters (model = \"slab-on-girder\", or overrides of a 3D preset)")
 
     @field_validator("model")
     @classmethod
     def _known_model(cls, v: str) -> str:
-        allowed = ("beam", *BRIDGE_PRESETS)
+        allowed = ("beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)
         if v not in allowed:
             raise ValueError(f"unknown bridge model {v!r}; allowed: {', '.join(allowed)}")
         return v
 
     @model_validator(mode="after")
     def _beam_needs_properties(self) -> "BridgeSpec":
-        if self.model == "beam":
+        if (self.model == "modes-file") != (self.modes_file is not None):
+            raise ValueError("modes_file is needed by, and only allowed with, model = \"modes-file\"")
+        slab = self.model == "slab-on-girder" or (self.model in BRIDGE_PRESETS and BRIDGE_PRESETS[self.model].kind == "slab-on-girder")
+        if self.deck is not None and not slab:
+            raise ValueError(f"[bridge.deck] applies to model = \"slab-on-girder\" and the slab-on-girder presets, not {self.model!r}")
+        if self.deck is not None:
+            from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS
+
+            unknown = [k for k in self.deck if k not in SCENARIO_PARAMETERS]
+            if unknown:
+                raise ValueError(f"unknown [bridge.deck] key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        if self.model == "slab-on-girder" and (self.deck is None or "span" not in self.deck):
+            raise ValueError("model = \"slab-on-girder\" needs [bridge.deck] with at least span [m] (docs/bridges.md)")
+        if self.model == "slab-on-girder":
+            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"model = \"slab-on-girder\" takes its parameters from [bridge.deck]; remove {', '.join(given)}")
+        elif self.model == "modes-file":
+            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
+            if given:
+                raise ValueError(f"model = \"modes-file\" takes its data from the file; remove {', '.join(given)}")
+        elif self.model == "beam":
             missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
             if missing:
                 raise ValueError(f"model = \"beam\" needs {', '.join(missing)} (span [m], EI [N m^2], mass_per_length [kg/m])")
@@ -144,6 +168,8 @@ class RoadSpec(_Section):
     n0: float = Field(0.1, gt=0, description="PSD reference wavenumber [cycle/m]")
     exponent: float = Field(2.0, gt=0, description="PSD exponent w [-]")
     length: float = Field(1000.0, gt=0, description="minimum profile length [m]")
+    right_coherence: float = Field(1.0, ge=0, le=1, description="random roads: correlation c of the right wheel line's profile with the left's (1 = identical)")
+    profile_file_right: Optional[str] = None
     defects: list[DefectSpec] = Field(default_factory=list, description="deck defects ([[road.defects]])")
 
     @field_validator("road_class")
@@ -156,6 +182,10 @@ class RoadSpec(_Section):
 
     @model_validator(mode="after")
     def _consistent(self) -> "RoadSpec":
+        if self.profile_file_right is not None and self.profile_file is None:
+            raise ValueError("profile_file_right needs profile_file (the left wheel line)")
+        if self.right_coherence < 1.0 and (self.profile_file or self.road_class == "none"):
+            raise ValueError("right_coherence applies to random roads only (class A…H or psd; use profile_file_right for measured ones)")
         if self.n_min >= self.n_max:
             raise ValueError(f"n_min ({self.n_min}) must be below n_max ({self.n_max}) [cycle/m]")
         if self.profile_file is not None and self.road_class != "none":
@@ -177,7 +207,8 @@ class CrossingSpec(_Section):
     free_vibration: Optional[float] = Field(None, ge=0, description="time after the last axle leaves [s]")
     dt: Optional[float] = Field(None, gt=0, description="time step [s]; default automatic")
     integrator: Literal["rk4", "newmark"] = "rk4"
-    lateral_offset: float = Field(0.0, description="vehicle centreline from deck centreline [m]")
+    lateral_offset: Optional[float] = Field(
+        None, description="vehicle centreline from deck centreline [m]; default the bridge's (0 for a beam)")
 
     @model_validator(mode="after")
     def _one_speed(self) -> "CrossingSpec":
@@ -191,10 +222,22 @@ class CrossingSpec(_Section):
 
 
 class ResponseSpec(_Section):
-    """[response]: the deck point for histories and impact factors (x default midspan)."""
+    """[response]: the deck point for histories and impact factors (x default midspan).
+
+    On a slab-on-girder bridge ``girder`` (1-based, Girder 1 at the most negative y) puts the
+    point on that girder's line; give ``girder`` or ``y``, not both.  With neither, a
+    slab-on-girder bridge reports its default girder (Girder 4 on the paper's bridges).
+    """
 
     x: Optional[float] = Field(None, ge=0, description="m from the bridge entry")
     y: float = Field(0.0, description="m from the deck centreline")
+    girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
+
+    @model_validator(mode="after")
+    def _girder_or_y(self) -> "ResponseSpec":
+        if self.girder is not None and "y" in self.model_fields_set:
+            raise ValueError("give response.girder or response.y, not both")
+        return self
 
 
 class Scenario(_Section):
@@ -216,15 +259,31 @@ class Scenario(_Section):
         return self._base_dir
 
 
+def _model_at(path: tuple[Any, ...]) -> type[BaseModel] | None:
+    """The section model that holds the key at ``path`` (walks fields, list items and Optionals)."""
+    model: Any = Scenario
+    for part in path:
+        if isinstance(part, int):
+            continue
+        if not (isinstance(model, type) and issubclass(model, BaseModel)):
+            return None
+        field = next((f for n, f in model.model_fields.items() if part in (n, f.alias)), None)
+        if field is None:
+            return None
+        model = field.annotation
+        while get_args(model) and not (isinstance(model, type) and issubclass(model, BaseModel)):
+            model = next((a for a in get_args(model) if a is not type(None)), None)
+    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
+
+
 def _format(err: ValidationError, data: dict[str, Any]) -> str:
     lines = []
     for e in err.errors():
         loc = ".".join(str(p) for p in e["loc"] if p != "__root__")
         msg = e["msg"].removeprefix("Value error, ")
         if e["type"] == "extra_forbidden":
-            section = e["loc"][0] if len(e["loc"]) > 1 else None
-            model = Scenario.model_fields[section].annotation if section in Scenario.model_fields else Scenario
-            names = [f.alias or n for n, f in model.model_fields.items()]
+            model = _model_at(tuple(e["loc"][:-1]))
+            names = [f.alias or n for n, f in model.model_fields.items()] if model else []
             msg = f"unknown key; allowed keys: {', '.join(names)}"
         elif e["type"] == "missing":
             msg = "missing required key"

@@ -57,9 +57,9 @@ class BatchSolver:
         self._static: dict[float, NDArray[np.float64]] = {}
 
     # ------------------------------------------------------------------ shared data
-    def crossing(self, road: RoadProfile | None) -> Crossing:
-        """The template with ``road`` (checks that the road covers the crossing)."""
-        return dataclasses.replace(self.template, road=road)
+    def crossing(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> Crossing:
+        """The template with ``road`` (and the right wheel line's ``road_right``; checks coverage)."""
+        return dataclasses.replace(self.template, road=road, road_right=road_right)
 
     def time_step(self, crossing: Crossing) -> float:
         """The step [s] ``simulate`` would choose for ``crossing`` (same rule, cached limit)."""
@@ -95,10 +95,11 @@ class BatchSolver:
         return self._static[dt]
 
     # ------------------------------------------------------------------ running
-    def run(self, road: RoadProfile | None, nogil: bool = False) -> CrossingResult:
-        """One crossing on ``road``; equal to ``simulate(replace(template, road=road))``.
+    def run(self, road: RoadProfile | None, road_right: RoadProfile | None = None, nogil: bool = False) -> CrossingResult:
+        """One crossing on ``road`` (right wheel line on ``road_right`` if given); equal to
+        ``simulate(replace(template, road=road, road_right=road_right))``.
         ``nogil``: integrate through the GIL-free wrappers (for threads; compiled on first use)."""
-        crossing = self.crossing(road)
+        crossing = self.crossing(road, road_right)
         dt = self.time_step(crossing)
         n_steps, t_half, xf, vel, x_cp = self._grid(dt)
         if road is None:
@@ -109,6 +110,11 @@ class BatchSolver:
             r = np.empty_like(x_cp)
             r_rate = np.empty_like(x_cp)
             kernels.sample_paths(road.x, road.z, x_cp, vel, r, r_rate)
+            right = self.contact.lateral < 0.0
+            if road_right is not None and right.any():  # the right wheel line on its own profile (as simulate)
+                rl, rlr = np.empty((x_cp.shape[0], int(right.sum()))), np.empty((x_cp.shape[0], int(right.sum())))
+                kernels.sample_paths(road_right.x, road_right.z, np.ascontiguousarray(x_cp[:, right]), vel, rl, rlr)
+                r[:, right], r_rate[:, right] = rl, rlr
         data = self.data
         n_m, n_d, n_w = data.n_modes, data.n_dof, data.n_wheels
         n_t = n_steps + 1
@@ -131,9 +137,9 @@ class BatchSolver:
         return CrossingResult(crossing, t_half[::2].copy(), dt, xf[::2].copy(), vel[::2].copy(), xi, dxi, ddxi, q,
                               dq, ddq, wheel_force, wheel_len)
 
-    def run_many(self, roads: Iterable[RoadProfile | None], reduce: Callable[[CrossingResult], T] | None = None,
+    def run_many(self, roads: Iterable, reduce: Callable[[CrossingResult], T] | None = None,
                  threads: int = 1) -> list:
-        """Run every road; ``reduce(result)`` (default: keep the result) is applied as each
+        """Run every road (a RoadProfile, None, or a pair (road, road_right)); ``reduce(result)`` (default: keep the result) is applied as each
         finishes so that only the reduced values are held.  ``threads`` > 1 runs that many
         roads at once (the compiled kernels release the GIL)."""
         roads = list(roads)
@@ -141,7 +147,8 @@ class BatchSolver:
         keep = reduce if reduce is not None else (lambda result: result)
 
         def fn(road):
-            return keep(self.run(road, nogil))
+            left, right = road if isinstance(road, tuple) else (road, None)
+            return keep(self.run(left, right, nogil))
 
         if not nogil:
             return [fn(road) for road in roads]

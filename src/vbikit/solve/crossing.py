@@ -34,6 +34,9 @@ class Crossing:
     ----------
     bridge, vehicle, tire, road
         The composed models; ``road=None`` is a smooth road.
+    road_right : RoadProfile, optional
+        Profile under the contact points right of the vehicle centreline (lateral y < 0, the
+        right wheel line); None = ``road`` under every wheel (the paper's assumption).
     speed : float
         Speed at t = 0 [m/s], > 0.
     acceleration : float
@@ -68,6 +71,7 @@ class Crossing:
     dt: float | None = None
     integrator: Integrator = "rk4"
     loss_of_contact: bool = True
+    road_right: RoadProfile | None = None
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.speed) and self.speed > 0):
@@ -82,11 +86,15 @@ class Crossing:
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
         if self.integrator not in INTEGRATORS:
             raise ValueError(f"crossing.integrator must be one of {INTEGRATORS}, got {self.integrator!r}")
-        if self.road is not None:
+        if self.road_right is not None and self.road is None:
+            raise ValueError("a right wheel-line profile (road_right) needs a road profile for the left line")
+        for road in (self.road, self.road_right):
+            if road is None:
+                continue
             lo, hi = self.road_extent()
-            if not self.road.covers(lo, hi):
+            if not road.covers(lo, hi):
                 raise ValueError(
-                    f"road profile '{self.road.label}' covers x = {self.road.x[0]:.2f} … {self.road.x[-1]:.2f} m "
+                    f"road profile '{road.label}' covers x = {road.x[0]:.2f} … {road.x[-1]:.2f} m "
                     f"but this crossing needs x = {lo:.2f} … {hi:.2f} m (approach, vehicle length, span, free vibration)"
                 )
 

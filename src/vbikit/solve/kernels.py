@@ -21,7 +21,7 @@ possible deck displacement) needs no mode shapes.
 Argument bundles (tuples, to keep signatures short):
   bridge = (omega, zeta, span, grid_h, V, S, amp)
   vehicle = (m_inv or mass, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope)
-  points = (setback, track, k, c, f0, gap, gated, wheel, width)
+  points = (setback, track, k, c, f0, gap, gated, wheel, width, slope_range)
 """
 from __future__ import annotations
 
@@ -77,7 +77,7 @@ def contact_forces(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, un
     """
     omega, zeta, span, grid_h, V, S, amp = bridge
     m_x, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
-    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width = points
+    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
     n_m = xi.size
     n_d = q.size
     bound = 0.0
@@ -113,20 +113,24 @@ def contact_forces(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, un
             elif gate and r[p] - gap[p] - zw + reach <= 0.0:
                 continue  # cannot touch the surface
             s = r[p]
-            sd = rdot[p]
+            sd = rdot[p]  # v · r'(x_p)
+            deck_rate = 0.0  # ∂u_b/∂t at the fixed point x_p
             if onb:
                 if not have[p]:
                     shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
                     have[p] = True
                 for m in range(n_m):
                     s += phi[p, m] * xi[m]
-                    sd += phi[p, m] * dxi[m] + vel * dphi[p, m] * xi[m]
+                    deck_rate += phi[p, m] * dxi[m]
+                    sd += vel * dphi[p, m] * xi[m]
             if wheel_envelope[w]:
                 if s - gap[p] > s_env:
                     s_env = s - gap[p]
-                    sd_env = sd
+                    # envelope rate: deck velocity + v·e', e' = surface slope clamped to the circle's slopes
+                    sd_env = deck_rate + min(max(sd, vel * slope_range[p, 0]), vel * slope_range[p, 1])
                     p_env = p
                 continue
+            sd += deck_rate
             pen = s - gap[p] - zw
             f = cp_k[p] * pen + cp_c[p] * (sd - dzw) + cp_f0[p]
             if gate:
@@ -257,7 +261,7 @@ def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active,
     for the contact points flagged ``active`` (their linear law F_p = k δ + c δ̇ + f0 holds)."""
     omega, zeta, span, grid_h, V, S, amp = bridge
     m_v, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
-    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width = points
+    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
     n_m = omega.size
     n_d = f_g.size
     mass[:, :] = 0.0
@@ -343,7 +347,7 @@ def newmark(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, x
         u_p = u + dt * v + 0.25 * dt * dt * a
         v_p = v + 0.5 * dt * a
         settled = False
-        for it in range(max_iterations):
+        for _ in range(max_iterations):
             assemble(vel[i2], xf[i2], road[i2], road_rate[i2], bridge, vehicle, points, phi, dphi, have, active,
                      mass, damp, stiff, load)
             lhs = mass + 0.5 * dt * damp + 0.25 * dt * dt * stiff

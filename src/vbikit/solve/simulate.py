@@ -17,7 +17,6 @@ log = logging.getLogger(__name__)
 
 def simulate(crossing: Crossing) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing."""
-    bridge, vehicle = crossing.bridge, crossing.vehicle
     cp = crossing.contact
     dt = choose_time_step(crossing)
     n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))
@@ -33,6 +32,11 @@ def simulate(crossing: Crossing) -> CrossingResult:
         road = np.empty_like(x_cp)
         road_rate = np.empty_like(x_cp)
         kernels.sample_paths(crossing.road.x, crossing.road.z, x_cp, vel, road, road_rate)
+        right = cp.lateral < 0.0
+        if crossing.road_right is not None and right.any():  # the right wheel line on its own profile
+            r, rr = np.empty((x_cp.shape[0], int(right.sum()))), np.empty((x_cp.shape[0], int(right.sum())))
+            kernels.sample_paths(crossing.road_right.x, crossing.road_right.z, np.ascontiguousarray(x_cp[:, right]), vel, r, rr)
+            road[:, right], road_rate[:, right] = r, rr
     data = kernel_data(crossing)
     n_m, n_d, n_w = data.n_modes, data.n_dof, data.n_wheels
     n_t = n_steps + 1

@@ -39,7 +39,7 @@ def kernel_data(crossing: Crossing, points_per_mode: int = 100) -> KernelData:
     m_inv = np.linalg.inv(vehicle.mass) if n_d else np.zeros((0, 0))
     tail = (vehicle.damping, vehicle.stiffness, vehicle.gravity, rows, cp.wheel_first, cp.wheel_count, cp.wheel_envelope)
     pts = (cp.setback, track_idx.astype(np.int64), cp.stiffness, cp.damping, cp.fixed_load, cp.gap, cp.gated, cp.wheel,
-           cp.width)
+           cp.width, np.ascontiguousarray(cp.slope_range))
     return KernelData(b, (m_inv, *tail), (vehicle.mass, *tail), pts, bool(crossing.loss_of_contact),
                       bridge.omega.size, n_d, cp.n, len(vehicle.wheels))
 
@@ -76,7 +76,7 @@ def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64]
     xf = float(crossing.front_position(0.0))
     n_m, n_p = data.n_modes, data.n_points
     active = np.ones(n_p, bool)
-    setback, gap = data.points[0], data.points[5]
+    gap = data.points[5]
     for first, count, env in zip(*data.vehicle[5:8]):
         if env:
             sl = slice(first, first + count)

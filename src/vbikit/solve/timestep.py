@@ -29,11 +29,14 @@ def _rk4_growth(z: np.ndarray) -> np.ndarray:
 def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
     """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
     data = kernel_data(crossing, points_per_mode=10)
+    # contact as at rest: the points that carry static load (a disk's static patch, a rigid
+    # disk's lowest point, every point of point and multipoint tires)
+    active = crossing.contact.weight > 0
     positions = np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions)
     v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
     eig = []
     for xf in positions:
-        mass, damp, stiff, _ = coupled_matrices(crossing, data, xf, v_max)
+        mass, damp, stiff, _ = coupled_matrices(crossing, data, xf, v_max, active=active)
         m_inv = np.linalg.inv(mass)
         n = mass.shape[0]
         a = np.block([[np.zeros((n, n)), np.eye(n)], [-m_inv @ stiff, -m_inv @ damp]])
@@ -64,8 +67,9 @@ def accuracy_time_step(crossing: Crossing) -> float:
     f_veh = crossing.vehicle.natural_frequencies()
     if f_veh.size and f_veh.max() > 0:
         candidates.append(1.0 / f_veh.max() / 20.0)
-    if crossing.road is not None and crossing.road.spacing > 0:
-        candidates.append(crossing.road.spacing / v_max)
+    for road in (crossing.road, crossing.road_right):
+        if road is not None and road.spacing > 0:
+            candidates.append(road.spacing / v_max)
     return float(min(candidates))
 
 

@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.impact import impact_factor
 from vbikit.road.profile import RoadProfile
-from vbikit.scenario.build import build, build_road
+from vbikit.scenario.build import build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve.batch import BatchSolver
 from vbikit.study.spec import Study
@@ -33,18 +33,20 @@ OUTPUTS: dict[str, tuple[str, str]] = {
 
 #: roads built in this process, by their scenario [road] table (a study reuses the same seeds
 #: for every n, speed and tire; 64 profiles of 2^17 samples ≈ 130 MB)
-_ROADS: "OrderedDict[str, RoadProfile | None]" = OrderedDict()
+_ROADS: "OrderedDict[str, tuple[RoadProfile | None, RoadProfile | None]]" = OrderedDict()
 _ROAD_CACHE_SIZE = 64
 
 
-def _road(scenario: Scenario, data: dict) -> RoadProfile | None:
-    """The scenario's road, built once per process (same function as ``build``, so identical)."""
+def _road(scenario: Scenario, data: dict) -> tuple[RoadProfile | None, RoadProfile | None]:
+    """The scenario's roads (left, right wheel line or None), built once per process (same
+    functions as ``build``, so identical)."""
     key = json.dumps([data.get("road", {}), str(scenario.base_dir)], sort_keys=True)
     if key in _ROADS:
         _ROADS.move_to_end(key)
         return _ROADS[key]
     try:
-        road = build_road(scenario.road, scenario)
+        left = build_road(scenario.road, scenario)
+        road = (left, build_right_road(scenario.road, scenario, left))
     except ValueError as err:
         raise ScenarioError(str(err)) from None
     _ROADS[key] = road

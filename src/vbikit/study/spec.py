@@ -45,7 +45,7 @@ from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 
 #: scenario keys that only change the road: crossings differing only in these share dt, contact
 #: points, tabulated shapes and the static reference (one prepared batch)
-ROAD_ONLY_KEYS = ("road.seed", "road.class", "road.phi0", "road.n0", "road.exponent")
+ROAD_ONLY_KEYS = ("road.seed", "road.class", "road.phi0", "road.n0", "road.exponent", "road.right_coherence")
 #: axes that may be given as {samples = N}
 SAMPLE_KEYS = ("road.seed",)
 

@@ -94,6 +94,23 @@ class VehicleBuilder:
         b.heave = _combine((1.0, parent.point(s_hinge)), (-(s_cg - s_hinge), b.pitch))
         return b
 
+    def pivoted_beam(
+        self, name: str, parent: Body, s_pivot: float, y_pivot: float = 0.0, *, mass: float, pitch_inertia: float
+    ) -> Body:
+        """A rigid beam pinned at its centre (s_pivot, y_pivot) to ``parent``, free to pitch (a walking beam).
+
+        Its CG is at the pivot and it moves with the parent's point there (no heave DOF of its own,
+        no roll); it owns one pitch DOF.  Two loads on the beam at equal arms ±a from the pivot are
+        equal in static equilibrium (moment balance about the pin: F₁ a = F₂ a), so a tandem axle
+        group hung from its ends is load-equalising whatever the spring stiffnesses.  Mass [kg] and
+        pitch inertia [kg·m²] must be > 0 for a regular mass matrix.
+        """
+        if not (mass > 0 and pitch_inertia > 0):
+            raise ValueError(f"pivoted beam '{name}': mass and pitch_inertia must be > 0, got {mass!r}, {pitch_inertia!r}")
+        b = self.body(name, mass, s_pivot, pitch_inertia=pitch_inertia, heave={}, pitch=True)
+        b.heave = dict(parent.point(s_pivot, y_pivot))  # z_cg = z of the parent's pin point
+        return b
+
     def spring(self, a: Row, b: Row | None, stiffness: float, damping: float = 0.0) -> None:
         """A vertical spring–damper between two points (``b=None`` is the ground)."""
         self.springs.append((a, b or {}, stiffness, damping))

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 from vbikit.vehicle.builder import VehicleBuilder
-from vbikit.vehicle.model import Vehicle
+from vbikit.vehicle.model import GRAVITY, Vehicle
 
 
 def moving_force(force: float = 100e3) -> Vehicle:
@@ -124,6 +124,56 @@ def two_axle_truck() -> Vehicle:
     return vb.build("two-axle truck, H20-44 loads (substitute parameters)")
 
 
+#: [paper] static axle loads of the field-test dump truck [N] (paper §4.2)
+DUMP_TRUCK_AXLE_LOADS = (80.0e3, 95.6e3, 95.6e3)
+
+
+def dump_truck() -> Vehicle:
+    """The field-test three-axle dump truck (paper §4.2) with a load-equalising rear tandem.
+
+    * [paper] static axle loads 80.0 / 95.6 / 95.6 kN; middle axle 6.25 m behind the front axle
+      and 1.2 m ahead of the rear axle (axles at s = 0, 6.25, 7.45 m).
+    * [substitute] (domain-data §2) axle masses 700 / 1100 / 1100 kg; suspension k 0.3e6 / 1.0e6 /
+      1.0e6 N/m and c 10e3 / 20e3 / 20e3 N·s/m per side; tire k 0.875e6 / 1.75e6 / 1.75e6 N/m and
+      c 2e3 / 4e3 / 4e3 N·s/m per side; half-track b = 0.9 m; axle roll inertia m·b².
+    * [substitute] rear tandem: one walking beam per side (mass 250 kg, pitch inertia
+      250 · 1.2²/12 = 30 kg·m²), pinned at its centre (s = 6.85 m, y = ±b) to the body, the two
+      rear axles hung from its ends by the suspension springs
+      (:meth:`~vbikit.vehicle.builder.VehicleBuilder.pivoted_beam`).  A rigid body on three
+      spring-supported axles is statically indeterminate (plain springs give ≈ 78 / 107 / 86 kN);
+      with the beams the body rests on two supports (front suspension, tandem pivots) and the
+      beams split their load equally, so the static axle loads are exactly the paper's.
+    * [substitute] sprung mass 24,745 kg (domain-data §2) = body + both beams, with the body
+      mass set so that the total weight is exactly 271.2 kN with g = 9.81 m/s² (body 24,245.26 kg,
+      +0.26 kg); body CG from moment balance on its two supports (≈ 4.74 m behind axle 1);
+      body pitch / roll inertia 1.5e5 / 2.5e4 kg·m² (≈ m(L² + h²)/12 for an 8.5 m × 2.5 m body).
+
+    11 DOF: body bounce, pitch, roll; pitch of each walking beam; bounce and roll of each axle.
+    """
+    b = 0.9
+    s1, s2, s3 = 0.0, 6.25, 7.45
+    s_pivot = 0.5 * (s2 + s3)
+    m_axle = (700.0, 1100.0, 1100.0)
+    m_beam, j_beam = 250.0, 250.0 * 1.2**2 / 12.0
+    g = GRAVITY
+    total_mass = sum(DUMP_TRUCK_AXLE_LOADS) / g
+    m_body = total_mass - sum(m_axle) - 2 * m_beam
+    r_front = DUMP_TRUCK_AXLE_LOADS[0] - m_axle[0] * g  # body load on the front suspension [N]
+    s_cg = s_pivot * (m_body * g - r_front) / (m_body * g)
+    vb = VehicleBuilder("dump-truck")
+    body = vb.body("body", m_body, s_cg, pitch_inertia=1.5e5, roll_inertia=2.5e4, pitch=True, roll=True)
+    _axle_with_wheels(vb, "axle1", m_axle[0], s1, b, body, 0.3e6, 10e3, 0.875e6, 2e3)
+    beams = {y: vb.pivoted_beam(f"beam_{side}", body, s_pivot, y, mass=m_beam, pitch_inertia=j_beam)
+             for side, y in (("left", b), ("right", -b))}
+    for i, s in ((2, s2), (3, s3)):
+        axle = vb.body(f"axle{i}", m_axle[i - 1], s, roll_inertia=m_axle[i - 1] * b**2, roll=True)
+        for side, y in (("left", b), ("right", -b)):
+            vb.spring(beams[y].point(s), axle.point(s, y), 1.0e6, 20e3)
+            vb.wheel(f"axle{i}_{side}", axle.point(s, y), s, y, 1.75e6, 4e3)
+    return vb.build("three-axle dump truck of the field test, walking-beam rear tandem (paper §4.2; substitute parameters)",
+                    {"body_mass": m_body, "body_cg": s_cg})
+
+
 @dataclass(frozen=True)
 class VehiclePreset:
     name: str
@@ -144,5 +194,6 @@ VEHICLE_PRESETS: dict[str, VehiclePreset] = {
         ),
         VehiclePreset("hs20-44", hs20_44),
         VehiclePreset("two-axle", two_axle_truck),
+        VehiclePreset("dump-truck", dump_truck),
     )
 }

@@ -1,0 +1,611 @@
+"""Simply supported slab-on-girder deck: a grillage FE model reduced to its modes.
+
+Model (argued in ``docs/bridges.md``)
+-------------------------------------
+Longitudinal members along every girder line y_g, cut into ``n_elements`` equal elements,
+transverse members (deck slab strips, plus diaphragms where there are diaphragms) joining
+neighbouring girder lines at every station.  Every node has three DOFs:
+
+* w = vertical displacement [m] (z up),
+* ∂w/∂x = longitudinal slope (rotation about y) [-],
+* ∂w/∂y = transverse slope (rotation about x, the girder's twist) [-].
+
+Longitudinal member j (Euler–Bernoulli + St Venant torsion, cubic Hermite bending on (w, ∂w/∂x),
+linear torsion on ∂w/∂y):
+
+* EI_j: composite transformed section of the girder and its tributary deck width b_j (deck
+  mid-plane t/2 above the girder top, no haunch, full composite action; n = E_deck / E_girder)
+  — :func:`vbikit.bridge.sections.composite_beam_properties` — plus a parapet's EI on the
+  outer girders.  Interior b_j = s (girder spacing), outer b_j = s/2 + overhang.
+* GJ_j = G_girder J_girder + G_deck t³/6 · b_j (the slab's torsion split equally between the
+  two grillage directions, Hambly, *Bridge Deck Behaviour*, 2nd ed., 1991, §5).
+* Mass: girder ρA (rotary inertia ρ I_girder about the line) plus, on the outer girders, the
+  deck overhang (and parapet) moving rigidly with the girder's section — the same kinematics
+  as the mode-shape extrapolation over the overhang: per length m = Σ μ, first moment
+  S = Σ μ d, second moment J = Σ μ d² (d = lateral distance from the girder line); consistent
+  (Hermite × Hermite for m, Hermite × linear for S, linear × linear for J).
+
+Transverse member at station i (cubic Hermite bending on (w, ∂w/∂y), linear torsion on ∂w/∂x):
+slab strip of width l_i (the station's tributary length) with EI = E_deck t³ l_i / (12 (1 − ν²)),
+GJ = G_deck t³ l_i / 6 and the slab's mass (ρ t + wearing surface) l_i per length as a consistent
+Hermite mass in y — the same cubic that interpolates the mode shapes between girder lines;
+diaphragms (rectangle b_d × h_d of deck concrete) add E b_d h_d³ / 12, G β h_d b_d³ and their
+mass ρ b_d h_d.  (Along x the deck mass is thus lumped at the stations: O(h²) convergence.)
+
+Supports: every girder bearing restrains w at x = 0 and x = span (rigid, or a vertical spring
+of ``bearing_stiffness`` [N/m] per bearing).  A single-girder model is also restrained in twist
+at its supports (a fork support), otherwise it could roll freely.
+
+The generalised eigenproblem K φ = ω² M φ is assembled with scipy.sparse and solved by
+``scipy.sparse.linalg.eigsh`` in shift-invert mode (σ = 0) for the lowest modes; the modes are
+mass-normalised (φᵀ M φ = 1) and evaluated anywhere by :class:`vbikit.bridge.nodal.NodalModes`.
+
+Girder numbering: Girder 1 is the girder at the most negative y (the right-hand girder for a
+driver travelling in +x, since y is positive to the left); Girder n is at the most positive y.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import os
+from dataclasses import asdict, dataclass, field, fields
+from functools import cached_property
+from pathlib import Path
+from typing import Optional
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.nodal import NodalModes, _hermite
+from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection, composite_beam_properties
+
+log = logging.getLogger(__name__)
+
+#: bumped whenever the model changes in a way that changes its modes (invalidates caches)
+MODEL_VERSION = "girder_deck-2"
+
+
+def default_cache_dir() -> Path:
+    """``$VBIKIT_CACHE_DIR`` if set, else ``~/.cache/vbikit``."""
+    env = os.environ.get("VBIKIT_CACHE_DIR")
+    return Path(env) if env else Path.home() / ".cache" / "vbikit"
+
+
+def approximate_torsion_constant(section: GirderSection) -> float:
+    """St Venant torsion constant estimate J ≈ A⁴ / (4π² I_p) [m⁴] of a compact solid section
+    (Saint-Venant's approximation; Roark's *Formulas for Stress and Strain*, 7th ed., Table 10.7
+    note), with the polar moment I_p replaced by the strong-axis I (so J is overestimated by
+    at most I_p/I − 1, ≈ 10 % for AASHTO girders).  [substitute] for the unpublished J."""
+    return section.area**4 / (4.0 * np.pi**2 * section.inertia)
+
+
+def _beam_stiffness(EI: float, h: float) -> NDArray[np.float64]:
+    return EI / h**3 * np.array(
+        [[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h], [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]]
+    )
+
+
+def _beam_mass(m: float, h: float) -> NDArray[np.float64]:
+    return m * h / 420.0 * np.array(
+        [[156, 22 * h, 54, -13 * h], [22 * h, 4 * h * h, 13 * h, -3 * h * h], [54, 13 * h, 156, -22 * h], [-13 * h, -3 * h * h, -22 * h, 4 * h * h]]
+    )
+
+
+def _hermite_linear_coupling(h: float) -> NDArray[np.float64]:
+    """∫₀ʰ N_hermite(x)ᵀ N_linear(x) dx, shape (4, 2) (closed form, checked by Gauss quadrature in tests)."""
+    return np.array([[7 * h / 20, 3 * h / 20], [h * h / 20, h * h / 30], [3 * h / 20, 7 * h / 20], [-h * h / 30, -h * h / 20]])
+
+
+def _bar(k: float) -> NDArray[np.float64]:
+    return k * np.array([[1.0, -1.0], [-1.0, 1.0]])
+
+
+@dataclass(frozen=True)
+class SlabOnGirderBridge(ModalBridge):
+    """Simply supported slab-on-girder bridge (grillage FE model, see the module docstring).
+
+    Parameters (SI units)
+    ---------------------
+    span : float
+        Span between bearings [m].
+    n_girders : int
+        Number of girders (≥ 1).
+    girder_spacing : float
+        Centre-to-centre girder spacing s [m].
+    overhang : float
+        Deck overhang beyond the outer girders' centre lines [m]; deck width = (n − 1) s + 2 overhang.
+    girder : GirderSection or str
+        Girder section, or an AASHTO type "I" … "VI" (:data:`vbikit.bridge.sections.AASHTO_GIRDERS`).
+    deck_thickness : float
+        Slab thickness t [m].
+    E_girder, E_deck : float
+        Young's moduli [Pa].
+    poisson : float
+        Poisson's ratio ν of the concrete [-] (G = E / (2 (1 + ν))).
+    density : float
+        Concrete density ρ [kg/m³] (girders, deck and diaphragms).
+    girder_torsion_constant : float, optional
+        St Venant J of one girder [m⁴]; default :func:`approximate_torsion_constant`.
+    diaphragms : tuple of float
+        x positions [m] of the diaphragms (snapped to the nearest station); default the two ends.
+    diaphragm_width : float
+        Diaphragm thickness b_d along x [m].
+    diaphragm_depth : float, optional
+        Diaphragm depth h_d [m]; default 0.75 × girder depth.
+    bearing_stiffness : float, optional
+        Vertical stiffness per bearing [N/m]; None = rigid bearings.
+    parapet_EI, parapet_mass : float
+        Bending stiffness [N·m²] and mass per length [kg/m] of each edge parapet/railing, carried
+        by the outer girder lines (mass at the deck edge).
+    extra_mass_per_area : float
+        Wearing surface and other superimposed mass [kg/m²] over the whole deck.
+    damping_ratio : float
+        Modal damping ratio ζ, all modes [-].
+    n_modes : int
+        Number of modes kept (if ``max_frequency`` is None).
+    max_frequency : float, optional
+        Keep every mode up to this frequency [Hz] instead of a fixed number.
+    n_elements : int, optional
+        Elements along the span; default the even number giving elements ≤ 0.5 m, at least 20.
+    default_lateral_offset : float
+        Vehicle centreline y [m] a scenario uses when it does not set ``crossing.lateral_offset``.
+    default_girder : int
+        Girder (1-based) a scenario reports when it sets neither ``response.girder`` nor ``response.y``.
+    name : str
+        Label only.
+    use_cache, cache_dir
+        On-disk mode cache (keyed by a hash of every parameter that changes the modes); never
+        needed for correctness.  ``cache_dir`` None = :func:`default_cache_dir`.
+    """
+
+    span: float
+    n_girders: int = 5
+    girder_spacing: float = 2.13
+    overhang: float = 0.615
+    girder: GirderSection | str = "II"
+    deck_thickness: float = 0.20
+    E_girder: float = 36e9
+    E_deck: float = 33e9
+    poisson: float = 0.2
+    density: float = 2400.0
+    girder_torsion_constant: Optional[float] = None
+    diaphragms: tuple[float, ...] | None = None
+    diaphragm_width: float = 0.25
+    diaphragm_depth: Optional[float] = None
+    bearing_stiffness: Optional[float] = None
+    parapet_EI: float = 0.0
+    parapet_mass: float = 0.0
+    extra_mass_per_area: float = 0.0
+    damping_ratio: float = 0.02
+    n_modes: int = 10
+    max_frequency: Optional[float] = None
+    n_elements: Optional[int] = None
+    default_lateral_offset: float = 0.0
+    default_girder: int = 1
+    name: str = ""
+    use_cache: bool = field(default=True, compare=False)
+    cache_dir: Optional[str] = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        if isinstance(self.girder, str):
+            if self.girder not in AASHTO_GIRDERS:
+                raise ValueError(f"unknown girder type {self.girder!r}; allowed: {', '.join(AASHTO_GIRDERS)}")
+            object.__setattr__(self, "girder", AASHTO_GIRDERS[self.girder])
+        for k in ("span", "girder_spacing", "deck_thickness", "E_girder", "E_deck", "density", "diaphragm_width"):
+            v = getattr(self, k)
+            if not (np.isfinite(v) and v > 0):
+                raise ValueError(f"{k} must be a positive finite number, got {v!r}")
+        for k in ("overhang", "parapet_EI", "parapet_mass", "extra_mass_per_area"):
+            v = getattr(self, k)
+            if not (np.isfinite(v) and v >= 0):
+                raise ValueError(f"{k} must be >= 0, got {v!r}")
+        if int(self.n_girders) != self.n_girders or self.n_girders < 1:
+            raise ValueError(f"n_girders must be an integer >= 1, got {self.n_girders!r}")
+        if not -1.0 < self.poisson < 0.5:
+            raise ValueError(f"poisson must be in (-1, 0.5), got {self.poisson!r}")
+        if not 0.0 <= self.damping_ratio < 1.0:
+            raise ValueError(f"damping_ratio must be in [0, 1), got {self.damping_ratio!r}")
+        if int(self.n_modes) != self.n_modes or self.n_modes < 1:
+            raise ValueError(f"n_modes must be an integer >= 1, got {self.n_modes!r}")
+        if self.max_frequency is not None and not self.max_frequency > 0:
+            raise ValueError(f"max_frequency must be > 0 Hz, got {self.max_frequency!r}")
+        if self.n_elements is not None and (int(self.n_elements) != self.n_elements or self.n_elements < 2):
+            raise ValueError(f"n_elements must be an integer >= 2, got {self.n_elements!r}")
+        if self.bearing_stiffness is not None and not self.bearing_stiffness > 0:
+            raise ValueError(f"bearing_stiffness must be > 0 N/m (or None for rigid), got {self.bearing_stiffness!r}")
+        if not 1 <= self.default_girder <= self.n_girders:
+            raise ValueError(f"default_girder must be 1 … {self.n_girders}, got {self.default_girder!r}")
+        d = (0.0, self.span) if self.diaphragms is None else tuple(float(v) for v in self.diaphragms)
+        if any(not 0.0 <= v <= self.span for v in d):
+            raise ValueError(f"diaphragm positions must lie in 0 … {self.span} m, got {d}")
+        object.__setattr__(self, "diaphragms", d)
+
+    # ------------------------------------------------------------------ geometry
+    @property
+    def section(self) -> GirderSection:
+        assert isinstance(self.girder, GirderSection)
+        return self.girder
+
+    @property
+    def girder_y(self) -> NDArray[np.float64]:
+        """y [m] of the girder centre lines, Girder 1 first (most negative y)."""
+        return (np.arange(self.n_girders) - (self.n_girders - 1) / 2.0) * self.girder_spacing
+
+    @property
+    def deck_width(self) -> float:
+        """Total deck width (n − 1) s + 2 · overhang [m]."""
+        return (self.n_girders - 1) * self.girder_spacing + 2.0 * self.overhang
+
+    @property
+    def element_count(self) -> int:
+        if self.n_elements is not None:
+            return int(self.n_elements)
+        return max(20, 2 * int(np.ceil(self.span / (2 * 0.5))))
+
+    @property
+    def stations(self) -> NDArray[np.float64]:
+        return np.linspace(0.0, self.span, self.element_count + 1)
+
+    def _tributary(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Lower and upper y of each girder line's tributary deck strip."""
+        y = self.girder_y
+        edges = np.concatenate(([y[0] - self.overhang], 0.5 * (y[1:] + y[:-1]), [y[-1] + self.overhang]))
+        return edges[:-1], edges[1:]
+
+    @cached_property
+    def line_properties(self) -> dict[str, NDArray[np.float64]]:
+        """Per girder line: EI [N·m²], GJ [N·m²], m [kg/m], S [kg], J [kg·m], lever arm c [m], tributary width b [m].
+
+        EI, GJ and c use the whole tributary deck width b; m, S, J hold the girder and the rigid
+        overhang strip only (the deck between girder lines is carried by the transverse members)."""
+        g, t = self.section, self.deck_thickness
+        lo, hi = self._tributary()
+        y = self.girder_y
+        G_g = self.E_girder / (2 * (1 + self.poisson))
+        G_d = self.E_deck / (2 * (1 + self.poisson))
+        J_g = self.girder_torsion_constant if self.girder_torsion_constant is not None else approximate_torsion_constant(g)
+        mu = self.density * t + self.extra_mass_per_area  # deck mass per area
+        n = self.n_girders
+        out = {k: np.zeros(n) for k in ("EI", "GJ", "m", "S", "J", "c", "b")}
+        for j in range(n):
+            b = hi[j] - lo[j]
+            comp = composite_beam_properties(g, 1, b, t, self.E_girder, self.E_deck, self.density)
+            a0 = lo[j] - y[j] if j == 0 else 0.0  # rigid overhang strips only
+            a1 = hi[j] - y[j] if j == n - 1 else 0.0
+            out["b"][j] = b
+            out["c"][j] = comp.neutral_axis_depth
+            out["EI"][j] = comp.EI
+            out["GJ"][j] = G_g * J_g + G_d * t**3 / 6.0 * b
+            out["m"][j] = self.density * g.area + mu * (a1 - a0)
+            out["S"][j] = mu * (a1**2 - a0**2) / 2.0
+            out["J"][j] = mu * (a1**3 - a0**3) / 3.0 + self.density * g.inertia
+        for j, d in ((0, -self.overhang), (n - 1, self.overhang)):
+            if self.parapet_EI or self.parapet_mass:
+                out["EI"][j] += self.parapet_EI
+                out["m"][j] += self.parapet_mass
+                out["S"][j] += self.parapet_mass * d
+                out["J"][j] += self.parapet_mass * d * d
+        return out
+
+    # ------------------------------------------------------------------ FE model
+    def _dof(self, line: int, station: int, k: int) -> int:
+        return 3 * (line * (self.element_count + 1) + station) + k
+
+    def assemble(self) -> tuple[sp.csr_matrix, sp.csr_matrix, NDArray[np.intp]]:
+        """Global stiffness K [N/m …], mass M [kg …] (all DOFs) and the indices of the free DOFs.
+
+        DOF order: node (line j, station i) → 3 (j (n_el + 1) + i) + (0: w, 1: ∂w/∂x, 2: ∂w/∂y).
+        """
+        nx = self.element_count
+        xs = self.stations
+        n_lines = self.n_girders
+        ndof = 3 * n_lines * (nx + 1)
+        rows: list[NDArray[np.intp]] = []
+        cols: list[NDArray[np.intp]] = []
+        kv: list[NDArray[np.float64]] = []
+        mv: list[NDArray[np.float64]] = []
+
+        def add(dofs: list[int], ke: NDArray[np.float64] | None, me: NDArray[np.float64] | None) -> None:
+            d = np.asarray(dofs)
+            r, c = np.meshgrid(d, d, indexing="ij")
+            rows.append(r.ravel())
+            cols.append(c.ravel())
+            kv.append(np.zeros(d.size**2) if ke is None else ke.ravel())
+            mv.append(np.zeros(d.size**2) if me is None else me.ravel())
+
+        p = self.line_properties
+        for j in range(n_lines):
+            for i in range(nx):
+                h = xs[i + 1] - xs[i]
+                d = [self._dof(j, i, 0), self._dof(j, i, 1), self._dof(j, i + 1, 0), self._dof(j, i + 1, 1),
+                     self._dof(j, i, 2), self._dof(j, i + 1, 2)]
+                ke = np.zeros((6, 6))
+                me = np.zeros((6, 6))
+                ke[:4, :4] = _beam_stiffness(p["EI"][j], h)
+                ke[4:, 4:] = _bar(p["GJ"][j] / h)
+                me[:4, :4] = _beam_mass(p["m"][j], h)
+                me[4:, 4:] = p["J"][j] * h / 6.0 * np.array([[2.0, 1.0], [1.0, 2.0]])
+                cpl = p["S"][j] * _hermite_linear_coupling(h)
+                me[:4, 4:] = cpl
+                me[4:, :4] = cpl.T
+                add(d, ke, me)
+        # transverse members at every station
+        G_d = self.E_deck / (2 * (1 + self.poisson))
+        t = self.deck_thickness
+        trib = np.empty(nx + 1)
+        trib[1:-1] = 0.5 * (xs[2:] - xs[:-2])
+        trib[0], trib[-1] = 0.5 * (xs[1] - xs[0]), 0.5 * (xs[-1] - xs[-2])
+        diaph = np.zeros(nx + 1, dtype=int)
+        for xd in self.diaphragms:  # type: ignore[union-attr]
+            diaph[int(np.argmin(np.abs(xs - xd)))] += 1
+        hd = self.diaphragm_depth if self.diaphragm_depth is not None else 0.75 * self.section.depth
+        bd = self.diaphragm_width
+        ratio = min(bd, hd) / max(bd, hd)
+        EI_d = self.E_deck * bd * hd**3 / 12.0
+        GJ_d = G_d * (1.0 - 0.63 * ratio) / 3.0 * max(bd, hd) * min(bd, hd) ** 3  # Roark Table 10.7 case 4 (approx.)
+        m_d = self.density * bd * hd
+        mu = self.density * t + self.extra_mass_per_area
+        y = self.girder_y
+        for i in range(nx + 1):
+            EI = self.E_deck * t**3 * trib[i] / (12.0 * (1.0 - self.poisson**2)) + diaph[i] * EI_d
+            GJ = G_d * t**3 / 6.0 * trib[i] + diaph[i] * GJ_d
+            for j in range(n_lines - 1):
+                b = y[j + 1] - y[j]
+                d = [self._dof(j, i, 0), self._dof(j, i, 2), self._dof(j + 1, i, 0), self._dof(j + 1, i, 2),
+                     self._dof(j, i, 1), self._dof(j + 1, i, 1)]
+                ke = np.zeros((6, 6))
+                me = np.zeros((6, 6))
+                ke[:4, :4] = _beam_stiffness(EI, b)
+                ke[4:, 4:] = _bar(GJ / b)
+                me[:4, :4] = _beam_mass(mu * trib[i] + diaph[i] * m_d, b)
+                add(d, ke, me)
+        fixed: list[int] = []
+        for j in range(n_lines):
+            for i in (0, nx):
+                if self.bearing_stiffness is None:
+                    fixed.append(self._dof(j, i, 0))
+                else:
+                    add([self._dof(j, i, 0)], np.array([[self.bearing_stiffness]]), None)
+                if n_lines == 1:
+                    fixed.append(self._dof(j, i, 2))
+        r, c = np.concatenate(rows), np.concatenate(cols)
+        K = sp.coo_matrix((np.concatenate(kv), (r, c)), shape=(ndof, ndof)).tocsr()
+        M = sp.coo_matrix((np.concatenate(mv), (r, c)), shape=(ndof, ndof)).tocsr()
+        free = np.setdiff1d(np.arange(ndof), fixed)
+        return K, M, free
+
+    # ------------------------------------------------------------------ modes
+    def cache_key(self) -> str:
+        """sha256 of every parameter that changes the modes (not damping, labels or cache settings)."""
+        params = {f.name: getattr(self, f.name) for f in fields(self)
+                  if f.name not in ("damping_ratio", "name", "use_cache", "cache_dir", "default_lateral_offset", "default_girder")}
+        params["girder"] = asdict(self.section)
+        params["n_elements"] = self.element_count
+        text = json.dumps({"version": MODEL_VERSION, **params}, sort_keys=True, default=float)
+        return hashlib.sha256(text.encode()).hexdigest()[:32]
+
+    def _cache_path(self) -> Path:
+        base = Path(self.cache_dir) if self.cache_dir else default_cache_dir()
+        return base / "modes" / f"slab-on-girder-{self.cache_key()}.npz"
+
+    def _solve(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """(ω [rad/s], nodal mode matrix over all DOFs (ndof, n_modes)) from the sparse eigenproblem."""
+        K, M, free = self.assemble()
+        Kf = K[free][:, free].tocsc()
+        Mf = M[free][:, free].tocsc()
+        n = free.size
+        want = self.n_modes if self.max_frequency is None else max(self.n_modes, 10)
+        while True:
+            k = min(want, n)
+            if k >= n - 1 or n < 60:
+                lam, vec = scipy.linalg.eigh(Kf.toarray(), Mf.toarray(), subset_by_index=[0, k - 1])
+            else:
+                v0 = np.random.default_rng(0).standard_normal(n)  # fixed start vector: reproducible to the bit
+                lam, vec = spla.eigsh(Kf, k=k, M=Mf, sigma=0.0, which="LM", v0=v0)
+            order = np.argsort(lam)
+            lam, vec = lam[order], vec[:, order]
+            if self.max_frequency is None or k == n or np.sqrt(max(lam[-1], 0.0)) / (2 * np.pi) > self.max_frequency:
+                break
+            want *= 2
+        if self.max_frequency is not None:
+            keep = np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi) <= self.max_frequency
+            keep[0] = True
+            lam, vec = lam[keep], vec[:, keep]
+        if np.any(lam <= 0):
+            raise ValueError("the deck model has a mechanism (zero-frequency mode); check supports and parameters")
+        norms = np.sqrt(np.einsum("im,im->m", vec, Mf @ vec))
+        vec = vec / norms
+        full = np.zeros((K.shape[0], vec.shape[1]))
+        full[free] = vec
+        w = full[0::3]
+        sign = np.sign(w[np.argmax(np.abs(w), axis=0), np.arange(w.shape[1])])
+        return np.sqrt(lam), full * sign
+
+    @cached_property
+    def nodal_modes(self) -> NodalModes:
+        """The mode shapes at the grid nodes (:class:`~vbikit.bridge.nodal.NodalModes`) — solved or read from the cache."""
+        path = self._cache_path() if self.use_cache else None
+        omega = full = None
+        if path is not None and path.is_file():
+            try:
+                with np.load(path) as data:
+                    omega, full = data["omega"], data["modes"]
+                log.debug("modes read from cache %s", path)
+            except Exception as err:  # noqa: BLE001 - a broken cache is only a lost speed-up
+                log.warning("ignoring unreadable mode cache %s: %s", path, err)
+                omega = full = None
+        if omega is None:
+            omega, full = self._solve()
+            if path is not None:
+                try:
+                    path.parent.mkdir(parents=True, exist_ok=True)
+                    tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
+                    np.savez(tmp, omega=omega, modes=full)
+                    os.replace(tmp, path)
+                except OSError as err:
+                    log.warning("could not write mode cache %s: %s", path, err)
+        object.__setattr__(self, "_omega", np.asarray(omega))
+        shape = (self.n_girders, self.element_count + 1, full.shape[1])
+        return NodalModes(self.stations, self.girder_y, full[0::3].reshape(shape), full[1::3].reshape(shape), full[2::3].reshape(shape))
+
+    # ------------------------------------------------------------------ ModalBridge
+    @property
+    def omega(self) -> NDArray[np.float64]:
+        self.nodal_modes  # noqa: B018 - solves (or reads) the modes
+        return self._omega  # type: ignore[attr-defined]
+
+    @property
+    def damping_ratios(self) -> NDArray[np.float64]:
+        return np.full(self.omega.size, self.damping_ratio)
+
+    def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        return self.nodal_modes.evaluate(x, y, 0)
+
+    def mode_slopes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        return self.nodal_modes.evaluate(x, y, 1)
+
+    def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
+        """Girder bottom-fibre strain ε = c_g ∂²w_g/∂x² per unit modal coordinate (tension positive).
+
+        c_g is the height of girder g's composite neutral axis above its bottom fibre.  On a
+        girder line this is that girder's strain; between girder lines it is interpolated
+        linearly between the two girders; beyond the outer girders it is the outer girder's.
+        """
+        return girder_line_strain(self.nodal_modes, self.line_properties["c"], x, y)
+
+    # ------------------------------------------------------------------ extras
+    def girder_index(self, girder: int) -> int:
+        """0-based line index of 1-based girder number ``girder`` (checked)."""
+        if not 1 <= int(girder) <= self.n_girders:
+            raise ValueError(f"girder must be 1 … {self.n_girders}, got {girder!r}")
+        return int(girder) - 1
+
+    def load_vector(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NDArray[np.float64]:
+        """Consistent nodal load vector (all DOFs) of vertical point forces [N] (z up) at (x, y).
+
+        Hermite along x and across y (linear along x for the transverse-slope DOFs); a force at
+        a node loads only that node's w.
+        """
+        x, y, f = (np.atleast_1d(np.asarray(a, float)).ravel() for a in np.broadcast_arrays(x, y, forces))
+        nx = self.element_count
+        xs, ys = self.stations, self.girder_y
+        F = np.zeros(3 * self.n_girders * (nx + 1))
+        for xp, yp, fp in zip(x, y, f):
+            if not 0.0 <= xp <= self.span:
+                continue
+            e = int(np.clip(np.searchsorted(xs, xp, side="right") - 1, 0, nx - 1))
+            h = xs[e + 1] - xs[e]
+            t = (xp - xs[e]) / h
+            nxh = _hermite(np.array(t), h, 0)
+            nxl = (1 - t, t)
+            if ys.size == 1:
+                lines = [(0, 1.0, yp - ys[0])]
+            else:
+                j = int(np.clip(np.searchsorted(ys, yp, side="right") - 1, 0, ys.size - 2))
+                if yp < ys[0] or yp > ys[-1]:
+                    jj = 0 if yp < ys[0] else ys.size - 1
+                    lines = [(jj, 1.0, yp - ys[jj])]
+                else:
+                    b = ys[j + 1] - ys[j]
+                    ny = _hermite(np.array((yp - ys[j]) / b), b, 0)
+                    lines = [(j, float(ny[0]), float(ny[1])), (j + 1, float(ny[2]), float(ny[3]))]
+            for jj, cw, cs in lines:
+                for a, s in ((0, e), (1, e + 1)):
+                    F[self._dof(jj, s, 0)] += fp * cw * float(nxh[2 * a])
+                    F[self._dof(jj, s, 1)] += fp * cw * float(nxh[2 * a + 1])
+                    F[self._dof(jj, s, 2)] += fp * cs * nxl[a]
+        return F
+
+    def static_solution(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NodalModes:
+        """Full-stiffness static solution K u = F for point forces [N] (z up) at (x, y), as a one-column
+        :class:`NodalModes` (evaluate deflections [m] with ``.evaluate`` and curvatures with ``.curvatures``)."""
+        K, _, free = self.assemble()
+        F = self.load_vector(x, y, forces)
+        u = np.zeros(K.shape[0])
+        u[free] = spla.spsolve(K[free][:, free].tocsc(), F[free])
+        shape = (self.n_girders, self.element_count + 1, 1)
+        return NodalModes(self.stations, self.girder_y, u[0::3].reshape(shape), u[1::3].reshape(shape), u[2::3].reshape(shape))
+
+    def mode_descriptions(self) -> list[str]:
+        """Short descriptions of the modes, e.g. "1st bending", "1st torsion", "transverse (2 nodal lines)"."""
+        return describe_modes(self.nodal_modes)
+
+
+def girder_line_strain(modes: NodalModes, lever_arm: NDArray[np.float64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+    """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes)."""
+    x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
+    x, y = x.ravel(), y.ravel()
+    ly = modes.y
+    if ly.size == 1:
+        return lever_arm[0] * modes.curvatures(x, 0)
+    yc = np.clip(y, ly[0], ly[-1])
+    j = np.clip(np.searchsorted(ly, yc, side="right") - 1, 0, ly.size - 2)
+    t = ((yc - ly[j]) / (ly[j + 1] - ly[j]))[:, None]
+    return (1 - t) * lever_arm[j][:, None] * modes.curvatures(x, j) + t * lever_arm[j + 1][:, None] * modes.curvatures(x, j + 1)
+
+
+def describe_modes(modes: NodalModes) -> list[str]:
+    """Classify each mode from its nodal deflections: longitudinal half-waves m (sign changes along
+    the most-deflected line + 1) and the transverse pattern at the most-deflected station —
+    symmetric one-signed → "bending", antisymmetric with one sign change → "torsion", otherwise
+    "transverse" with its number of nodal lines."""
+    out = []
+    for k in range(modes.n_modes):
+        w = modes.w[:, :, k]
+        if modes.y.size == 1 and np.abs(w).max() < np.abs(modes.wy[:, :, k]).max():  # twist of a single line
+            line = modes.wy[0, 1:-1, k]
+            s = np.sign(line[np.abs(line) > 1e-6 * np.abs(line).max()])
+            m = int(np.sum(s[1:] != s[:-1])) + 1
+            out.append(f"torsion, {m} half-wave{'s' if m > 1 else ''} along the span")
+            continue
+        j, i = np.unravel_index(np.argmax(np.abs(w)), w.shape)
+        line = w[j, 1:-1] if w.shape[1] > 2 else w[j]
+        tol = 1e-6 * np.abs(w).max()
+        s = np.sign(line[np.abs(line) > tol])
+        half_waves = int(np.sum(s[1:] != s[:-1])) + 1 if s.size else 1
+        sec = w[:, i]
+        sym, anti = 0.5 * (sec + sec[::-1]), 0.5 * (sec - sec[::-1])
+        ss = np.sign(sec[np.abs(sec) > 1e-3 * np.abs(sec).max()])
+        changes = int(np.sum(ss[1:] != ss[:-1])) if ss.size else 0
+        if sec.size == 1 or (changes == 0 and np.linalg.norm(anti) < np.linalg.norm(sym)):
+            kind = "bending"
+        elif changes == 1 and np.linalg.norm(anti) > np.linalg.norm(sym):
+            kind = "torsion"
+        else:
+            kind = f"transverse ({changes} nodal lines)"
+        out.append(f"{kind}, {half_waves} half-wave{'s' if half_waves > 1 else ''} along the span")
+    return out
+
+
+#: the parameters a scenario may set in ``[bridge.deck]`` (n_modes and damping_ratio are ``[bridge]`` keys)
+SCENARIO_PARAMETERS: tuple[str, ...] = tuple(
+    f.name for f in fields(SlabOnGirderBridge) if f.name not in ("n_modes", "damping_ratio", "use_cache", "cache_dir", "name")
+)
+
+
+def deck_parameters(table: dict[str, object]) -> dict[str, object]:
+    """Keyword arguments of :class:`SlabOnGirderBridge` from a scenario's ``[bridge.deck]`` table:
+    ``girder`` is an AASHTO type ("I" … "VI") or a table {area, inertia, y_bottom, depth} [m², m⁴, m, m];
+    ``diaphragms`` a list of x [m]; numbers as given (the constructor checks their ranges)."""
+    out: dict[str, object] = {}
+    for key, value in table.items():
+        if key not in SCENARIO_PARAMETERS:
+            raise ValueError(f"unknown [bridge.deck] key {key!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        if key == "girder" and isinstance(value, dict):
+            need = ("area", "inertia", "y_bottom", "depth")
+            if sorted(value) != sorted(need):
+                raise ValueError(f"bridge.deck.girder: a custom section needs exactly {', '.join(need)} [m², m⁴, m, m]")
+            value = GirderSection(**{k: float(v) for k, v in value.items()})
+        elif key == "diaphragms":
+            if not isinstance(value, (list, tuple)):
+                raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")
+            value = tuple(float(v) for v in value)
+        elif key not in ("girder", "name") and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            raise ValueError(f"bridge.deck.{key}: must be a number, got {value!r}")
+        out[key] = value
+    return out

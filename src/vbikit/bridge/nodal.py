@@ -1,0 +1,146 @@
+"""Mode shapes given at the nodes of a rectangular deck grid, evaluated anywhere on the deck.
+
+Both the slab-on-girder FE model (:mod:`vbikit.bridge.girder_deck`) and modes imported from
+other programs (:mod:`vbikit.bridge.modefile`) store their modes the same way: on ``n_lines``
+longitudinal lines y = y_j (girder lines, ascending y) at ``n_st`` stations x = x_i (ascending,
+x_0 = 0, x_last = span), every mode has the nodal values
+
+* ``w``   vertical displacement [kg^-1/2] (mass-normalised, z up),
+* ``wx``  longitudinal slope ∂w/∂x [kg^-1/2 m^-1],
+* ``wy``  transverse slope ∂w/∂y [kg^-1/2 m^-1] (rotation of the line about the x axis),
+
+arrays of shape (n_lines, n_st, n_modes).  Interpolation rule (the FE model's own shape
+functions along the girders, documented in ``docs/bridges.md``):
+
+* along a line, w(x) is the cubic Hermite polynomial of (w, ∂w/∂x) of the element containing x
+  (Euler–Bernoulli beam element); it is C¹ in x and its second derivative is the girder curvature;
+* the transverse slope along a line, ∂w/∂y(x), is the C² cubic spline through its nodal values;
+* across y between two lines, w is the cubic Hermite polynomial of (w, ∂w/∂y) at the two lines
+  (the transverse beam element); outside the outermost lines (deck overhangs) the deck section
+  is extrapolated rigidly: w = w_j + ∂w/∂y|_j · (y − y_j).
+
+φ(x, y) is therefore C¹ in x at every y, as the solver's Hermite track tables assume, and it
+reproduces w exactly on every line.  Outside 0 ≤ x ≤ span every shape is zero.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import CubicSpline
+
+
+def _hermite(t: NDArray[np.float64], h: NDArray[np.float64] | float, order: int) -> tuple[NDArray[np.float64], ...]:
+    """Cubic Hermite basis (N1, N2, N3, N4) for (value₀, slope₀, value₁, slope₁) at local t ∈ [0, 1]
+    on an interval of length h, or its ``order``-th derivative with respect to the physical coordinate."""
+    if order == 0:
+        return (1 - 3 * t**2 + 2 * t**3, h * (t - 2 * t**2 + t**3), 3 * t**2 - 2 * t**3, h * (t**3 - t**2))
+    if order == 1:
+        return ((-6 * t + 6 * t**2) / h, 1 - 4 * t + 3 * t**2, (6 * t - 6 * t**2) / h, 3 * t**2 - 2 * t)
+    if order == 2:
+        return ((-6 + 12 * t) / h**2, (-4 + 6 * t) / h, (6 - 12 * t) / h**2, (6 * t - 2) / h)
+    raise ValueError(order)
+
+
+@dataclass(frozen=True)
+class NodalModes:
+    """Nodal mode shapes on a rectangular grid and their interpolation (see module docstring)."""
+
+    x: NDArray[np.float64]  # stations (n_st,), ascending, x[0] = 0, x[-1] = span
+    y: NDArray[np.float64]  # line positions (n_lines,), ascending
+    w: NDArray[np.float64]  # (n_lines, n_st, n_modes)
+    wx: NDArray[np.float64]
+    wy: NDArray[np.float64]
+    _wy_spline: CubicSpline = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        x, y = np.asarray(self.x, float), np.asarray(self.y, float)
+        if x.ndim != 1 or x.size < 2 or np.any(np.diff(x) <= 0):
+            raise ValueError("stations x must be at least two strictly ascending values")
+        if y.ndim != 1 or y.size < 1 or np.any(np.diff(y) <= 0):
+            raise ValueError("line positions y must be strictly ascending")
+        shape = (y.size, x.size)
+        for name in ("w", "wx", "wy"):
+            a = np.asarray(getattr(self, name), float)
+            if a.ndim != 3 or a.shape[:2] != shape:
+                raise ValueError(f"{name} must have shape (n_lines, n_stations, n_modes) = {shape + ('n',)}, got {a.shape}")
+            object.__setattr__(self, name, a)
+        object.__setattr__(self, "x", x)
+        object.__setattr__(self, "y", y)
+        # spline along x (axis 1) of the transverse slopes; not-a-knot ends
+        spline = CubicSpline(x, self.wy, axis=1) if x.size > 2 else None
+        object.__setattr__(self, "_wy_spline", spline)
+
+    @property
+    def n_modes(self) -> int:
+        return self.w.shape[2]
+
+    @property
+    def span(self) -> float:
+        return float(self.x[-1])
+
+    # ------------------------------------------------------------ along the lines
+    def _locate_x(self, x: NDArray[np.float64]) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
+        e = np.clip(np.searchsorted(self.x, x, side="right") - 1, 0, self.x.size - 2)
+        h = self.x[e + 1] - self.x[e]
+        return e, (x - self.x[e]) / h, h
+
+    def line_values(self, x: NDArray[np.float64], order: int = 0) -> NDArray[np.float64]:
+        """∂^order w / ∂x^order on every line at stations x: shape (n_lines, n_points, n_modes)."""
+        e, t, h = self._locate_x(x)
+        n = _hermite(t, h, order)
+        w, wx = self.w, self.wx
+        return (n[0][None, :, None] * w[:, e] + n[1][None, :, None] * wx[:, e]
+                + n[2][None, :, None] * w[:, e + 1] + n[3][None, :, None] * wx[:, e + 1])
+
+    def line_transverse_slopes(self, x: NDArray[np.float64], order: int = 0) -> NDArray[np.float64]:
+        """∂/∂x^order of ∂w/∂y on every line at x: shape (n_lines, n_points, n_modes)."""
+        if self._wy_spline is None:  # two stations: linear
+            e, t, h = self._locate_x(x)
+            if order == 0:
+                return self.wy[:, e] * (1 - t)[None, :, None] + self.wy[:, e + 1] * t[None, :, None]
+            return np.broadcast_to(((self.wy[:, 1] - self.wy[:, 0]) / h[0])[:, None, :], (self.y.size, x.size, self.n_modes))
+        return self._wy_spline(x, nu=order)
+
+    # ------------------------------------------------------------ anywhere
+    def evaluate(self, x: ArrayLike, y: ArrayLike, order_x: int = 0) -> NDArray[np.float64]:
+        """∂^order_x φ / ∂x^order_x at the points (x, y) (broadcast): shape (n_points, n_modes).
+
+        ``order_x`` is 0 (values) or 1 (longitudinal slopes).  Zero outside 0 ≤ x ≤ span.
+        """
+        x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
+        x, y = x.ravel(), y.ravel()
+        out = np.zeros((x.size, self.n_modes))
+        on = (x >= 0.0) & (x <= self.span)
+        if not np.any(on):
+            return out
+        xo, yo = x[on], y[on]
+        w = self.line_values(xo, order_x)  # (n_lines, p, m)
+        s = self.line_transverse_slopes(xo, order_x)
+        p = np.arange(xo.size)
+        ly = self.y
+        if ly.size == 1:
+            res = w[0] + s[0] * (yo - ly[0])[:, None]
+        else:
+            j = np.clip(np.searchsorted(ly, yo, side="right") - 1, 0, ly.size - 2)
+            b = ly[j + 1] - ly[j]
+            t = (yo - ly[j]) / b
+            n = _hermite(t, b, 0)
+            res = (n[0][:, None] * w[j, p] + n[1][:, None] * s[j, p] + n[2][:, None] * w[j + 1, p] + n[3][:, None] * s[j + 1, p])
+            lo, hi = yo < ly[0], yo > ly[-1]  # overhangs: rigid extrapolation of the outer line
+            res[lo] = w[0, p[lo]] + s[0, p[lo]] * (yo[lo] - ly[0])[:, None]
+            res[hi] = w[-1, p[hi]] + s[-1, p[hi]] * (yo[hi] - ly[-1])[:, None]
+        out[on] = res
+        return out
+
+    def curvatures(self, x: ArrayLike, line_index: ArrayLike) -> NDArray[np.float64]:
+        """∂²w/∂x² [kg^-1/2 m^-2] of line ``line_index`` at x (broadcast), shape (n_points, n_modes); zero off the span."""
+        x, j = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(line_index, int)))
+        x, j = x.ravel(), j.ravel()
+        out = np.zeros((x.size, self.n_modes))
+        on = (x >= 0.0) & (x <= self.span)
+        if np.any(on):
+            k = self.line_values(x[on], 2)
+            out[on] = k[j[on], np.arange(k.shape[1])]
+        return out

@@ -1,0 +1,364 @@
+"""Measured field data: the response CSV and the ``FIELD.toml`` that describes a field test.
+
+Response CSV (one file per loading case)::
+
+    # comment lines start with '#'
+    time [s], G5_disp [mm], G5_acc [m/s^2], G5_strain [microstrain]
+    0.000, 0.012, 0.031, 0.4
+    ...
+
+The first non-comment row is the header: every cell is ``name [unit]``; the first column is
+time.  Time must be finite, strictly increasing and uniform (relative deviation of each step
+from the median step ≤ ``TIME_TOLERANCE``); every value finite (no NaN, no empty cell).
+Units are converted to SI (m, m/s², strain [-], s) with :data:`UNITS`.  See docs/field.md for
+``FIELD.toml``.  Every error is a :class:`FieldFileError` naming the file, line and column or
+the TOML key.
+"""
+from __future__ import annotations
+
+import csv
+import logging
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover
+    import tomli as tomllib
+
+log = logging.getLogger(__name__)
+
+#: unit → (quantity, factor to SI)
+UNITS: dict[str, tuple[str, float]] = {
+    "s": ("time", 1.0),
+    "ms": ("time", 1e-3),
+    "m": ("displacement", 1.0),
+    "mm": ("displacement", 1e-3),
+    "in": ("displacement", 0.0254),
+    "m/s^2": ("acceleration", 1.0),
+    "m/s2": ("acceleration", 1.0),
+    "g": ("acceleration", 9.80665),
+    "-": ("strain", 1.0),
+    "strain": ("strain", 1.0),
+    "microstrain": ("strain", 1e-6),
+    "ue": ("strain", 1e-6),
+    "µε": ("strain", 1e-6),
+}
+QUANTITIES = ("displacement", "acceleration", "strain")
+#: allowed relative deviation of a time step from the median step
+TIME_TOLERANCE = 0.01
+
+_HEADER = re.compile(r"^\s*(?P<name>[^\[\]]+?)\s*\[(?P<unit>[^\]]*)\]\s*$")
+
+
+class FieldFileError(ValueError):
+    """A field-data file (CSV or FIELD.toml) that cannot be used; the message names the place."""
+
+
+@dataclass(frozen=True)
+class MeasuredRecord:
+    """A response CSV in SI units: ``time`` [s], ``channels[name]`` [m, m/s² or -], ``units[name]`` as written."""
+
+    path: Path
+    time: NDArray[np.float64]
+    channels: dict[str, NDArray[np.float64]]
+    units: dict[str, str]
+    quantities: dict[str, str]
+
+    @property
+    def sampling_rate(self) -> float:
+        """1 / median time step [Hz]."""
+        return float(1.0 / np.median(np.diff(self.time)))
+
+
+def read_response_csv(path: str | Path) -> MeasuredRecord:
+    """Read a response CSV (format in the module docstring); values are returned in SI units."""
+    path = Path(path)
+    if not path.is_file():
+        raise FieldFileError(f"{path}: response file not found")
+    names: list[str] = []
+    units: list[str] = []
+    rows: list[list[float]] = []
+    lines: list[int] = []
+    with path.open(newline="", encoding="utf-8") as fh:
+        for lineno, row in enumerate(csv.reader(fh), start=1):
+            cells = [c.strip() for c in row]
+            if not cells or not any(cells) or cells[0].startswith("#"):
+                continue
+            if not names:
+                for col, cell in enumerate(cells, start=1):
+                    m = _HEADER.match(cell)
+                    if not m:
+                        raise FieldFileError(f"{path}:{lineno}: header column {col} {cell!r} is not 'name [unit]'")
+                    unit = m["unit"].strip()
+                    if unit not in UNITS:
+                        raise FieldFileError(f"{path}:{lineno}: column {m['name']!r}: unknown unit [{unit}]; "
+                                             f"allowed: {', '.join(UNITS)}")
+                    names.append(m["name"])
+                    units.append(unit)
+                if UNITS[units[0]][0] != "time":
+                    raise FieldFileError(f"{path}:{lineno}: the first column must be time in [s] or [ms], got [{units[0]}]")
+                if len(set(names)) != len(names):
+                    raise FieldFileError(f"{path}:{lineno}: duplicate channel names in the header")
+                continue
+            if len(cells) != len(names):
+                raise FieldFileError(f"{path}:{lineno}: expected {len(names)} columns, got {len(cells)}")
+            values = []
+            for col, (cell, name) in enumerate(zip(cells, names), start=1):
+                try:
+                    v = float(cell)
+                except ValueError:
+                    raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): not a number: {cell!r}") from None
+                if not np.isfinite(v):
+                    raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): {cell!r} is not finite (NaN/inf)")
+                values.append(v)
+            rows.append(values)
+            lines.append(lineno)
+    if not names:
+        raise FieldFileError(f"{path}: no header row")
+    if len(rows) < 4:
+        raise FieldFileError(f"{path}: needs at least 4 data rows, found {len(rows)}")
+    data = np.array(rows)
+    t = data[:, 0] * UNITS[units[0]][1]
+    dt = np.diff(t)
+    bad = np.flatnonzero(dt <= 0)
+    if bad.size:
+        i = int(bad[0]) + 1
+        raise FieldFileError(f"{path}:{lines[i]}: time {t[i]:.6g} s is not greater than the previous {t[i - 1]:.6g} s "
+                             "(time must be strictly increasing)")
+    step = float(np.median(dt))
+    bad = np.flatnonzero(np.abs(dt - step) > TIME_TOLERANCE * step)
+    if bad.size:
+        i = int(bad[0]) + 1
+        raise FieldFileError(f"{path}:{lines[i]}: non-uniform time step {dt[i - 1]:.6g} s (median {step:.6g} s); "
+                             "resample the record to a uniform rate first")
+    channels, quantities = {}, {}
+    for j in range(1, len(names)):
+        q, f = UNITS[units[j]]
+        if q == "time":
+            raise FieldFileError(f"{path}: column {names[j]!r} has a time unit [{units[j]}]; only the first column is time")
+        channels[names[j]] = data[:, j] * f
+        quantities[names[j]] = q
+    log.info("read %s: %d samples at %.4g Hz, channels %s", path.name, t.size, 1 / step, ", ".join(channels))
+    return MeasuredRecord(path, t, channels, dict(zip(names[1:], units[1:])), quantities)
+
+
+# ---------------------------------------------------------------------------------------- FIELD.toml
+@dataclass(frozen=True)
+class ChannelSpec:
+    """One sensor: CSV column ``name``, ``quantity``, location (``girder`` 1-based, ``x`` [m]), ``unit`` as in the CSV."""
+
+    name: str
+    quantity: str
+    girder: int
+    x: float
+    unit: str
+
+
+@dataclass(frozen=True)
+class CaseSpec:
+    """One loading case (one crossing) of a field test; paths are resolved against the TOML's folder."""
+
+    name: str
+    responses: Path
+    lateral_offset: float
+    channels: tuple[ChannelSpec, ...]
+    sampling_rate: float | None = None
+    trigger_time: float | None = None
+    align: str = "trigger"
+    profile_left: Path | None = None
+    profile_right: Path | None = None
+    speed: float | None = None
+
+
+@dataclass(frozen=True)
+class FieldSpec:
+    """A field test: bridge and truck presets, speed [m/s], signal-processing options, loading cases."""
+
+    path: Path
+    name: str
+    bridge: str
+    truck: str
+    speed: float
+    approach: float
+    free_vibration: float
+    n_modes: int
+    damping_ratio: float
+    stiffness_factor: float
+    lowpass_hz: float | None
+    drift: str
+    quiet_tail: float
+    bands: tuple[tuple[float, float], ...]
+    cases: tuple[CaseSpec, ...]
+    dt: float | None = None
+    bridge_overrides: dict[str, Any] = field(default_factory=dict)
+
+
+_TOP = {"name", "bridge", "truck", "speed_kmh", "approach", "free_vibration", "n_modes", "damping_ratio",
+        "stiffness_factor", "signal", "case", "dt", "bridge_parameters"}
+_SIGNAL = {"lowpass_hz", "drift", "quiet_tail", "bands_hz"}
+_CASE = {"name", "responses", "lateral_offset", "sampling_rate", "trigger_time", "align", "profile_left",
+         "profile_right", "speed_kmh", "channel"}
+_CHANNEL = {"name", "quantity", "girder", "x", "unit"}
+
+
+def _keys(table: dict[str, Any], allowed: set[str], where: str, path: Path) -> None:
+    extra = sorted(set(table) - allowed)
+    if extra:
+        raise FieldFileError(f"{path}: unknown key {where}{extra[0]!r}; allowed: {', '.join(sorted(allowed))}")
+
+
+def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any = ..., positive: bool = False,
+         nonneg: bool = False) -> Any:
+    if key not in table:
+        if default is ...:
+            raise FieldFileError(f"{path}: missing key {where}{key}")
+        return default
+    v = table[key]
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
+        raise FieldFileError(f"{path}: {where}{key} must be a finite number, got {v!r}")
+    if positive and not v > 0:
+        raise FieldFileError(f"{path}: {where}{key} must be > 0, got {v!r}")
+    if nonneg and not v >= 0:
+        raise FieldFileError(f"{path}: {where}{key} must be >= 0, got {v!r}")
+    return float(v)
+
+
+def _file(table: dict[str, Any], key: str, where: str, base: Path, path: Path, required: bool) -> Path | None:
+    if key not in table:
+        if required:
+            raise FieldFileError(f"{path}: missing key {where}{key}")
+        return None
+    v = table[key]
+    if not isinstance(v, str):
+        raise FieldFileError(f"{path}: {where}{key} must be a file name, got {v!r}")
+    p = (base / v).resolve()
+    if not p.is_file():
+        raise FieldFileError(f"{path}: {where}{key}: file not found: {p}")
+    return p
+
+
+def load_field_toml(path: str | Path) -> FieldSpec:
+    """Read and check a ``FIELD.toml`` (format in docs/field.md); errors name the key."""
+    path = Path(path)
+    if not path.is_file():
+        raise FieldFileError(f"{path}: field file not found")
+    try:
+        doc = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as err:
+        raise FieldFileError(f"{path}: not valid TOML: {err}") from None
+    base = path.parent
+    _keys(doc, _TOP, "", path)
+    for key in ("bridge", "truck"):
+        if not isinstance(doc.get(key), str):
+            raise FieldFileError(f"{path}: missing key {key} (a preset name)")
+    sig = doc.get("signal", {})
+    if not isinstance(sig, dict):
+        raise FieldFileError(f"{path}: [signal] must be a table")
+    _keys(sig, _SIGNAL, "signal.", path)
+    lowpass = _num(sig, "lowpass_hz", "signal.", path, None, positive=True)
+    drift = sig.get("drift", "quiet")
+    if drift not in ("quiet", "model", "none"):
+        raise FieldFileError(f"{path}: signal.drift must be 'quiet', 'model' or 'none', got {drift!r}")
+    bands_raw = sig.get("bands_hz", [[0.0, 5.0], [5.0, 15.0], [15.0, 30.0], [30.0, 60.0]])
+    try:
+        bands = tuple((float(a), float(b)) for a, b in bands_raw)
+    except (TypeError, ValueError):
+        raise FieldFileError(f"{path}: signal.bands_hz must be a list of [low, high] pairs in Hz") from None
+    if any(not 0 <= a < b for a, b in bands):
+        raise FieldFileError(f"{path}: signal.bands_hz: every band needs 0 <= low < high, got {bands_raw!r}")
+    speed = _num(doc, "speed_kmh", "", path, positive=True) / 3.6
+    cases_raw = doc.get("case")
+    if not isinstance(cases_raw, list) or not cases_raw:
+        raise FieldFileError(f"{path}: needs at least one [[case]] table")
+    cases = []
+    for i, c in enumerate(cases_raw, start=1):
+        where = f"case.{i}."
+        if not isinstance(c, dict):
+            raise FieldFileError(f"{path}: [[case]] {i} must be a table")
+        _keys(c, _CASE, where, path)
+        chans_raw = c.get("channel")
+        if not isinstance(chans_raw, list) or not chans_raw:
+            raise FieldFileError(f"{path}: {where}channel: needs at least one [[case.channel]] table")
+        chans = []
+        for j, ch in enumerate(chans_raw, start=1):
+            w2 = f"{where}channel.{j}."
+            _keys(ch, _CHANNEL, w2, path)
+            for key in ("name", "quantity", "unit"):
+                if not isinstance(ch.get(key), str):
+                    raise FieldFileError(f"{path}: missing key {w2}{key} (a string)")
+            if ch["quantity"] not in QUANTITIES:
+                raise FieldFileError(f"{path}: {w2}quantity must be one of {QUANTITIES}, got {ch['quantity']!r}")
+            if ch["unit"] not in UNITS or UNITS[ch["unit"]][0] != ch["quantity"]:
+                ok = [u for u, (q, _) in UNITS.items() if q == ch["quantity"]]
+                raise FieldFileError(f"{path}: {w2}unit [{ch['unit']}] is not a {ch['quantity']} unit; allowed: {', '.join(ok)}")
+            g = ch.get("girder")
+            if isinstance(g, bool) or not isinstance(g, int) or g < 1:
+                raise FieldFileError(f"{path}: {w2}girder must be an integer >= 1, got {g!r}")
+            chans.append(ChannelSpec(ch["name"], ch["quantity"], g, _num(ch, "x", w2, path, nonneg=True), ch["unit"]))
+        align = c.get("align", "trigger")
+        if align not in ("trigger", "xcorr"):
+            raise FieldFileError(f"{path}: {where}align must be 'trigger' or 'xcorr', got {align!r}")
+        trigger = _num(c, "trigger_time", where, path, None)
+        if align == "trigger" and trigger is None:
+            raise FieldFileError(f"{path}: {where}trigger_time is required with align = 'trigger' (or use align = 'xcorr')")
+        name = c.get("name", f"case{i}")
+        cs = CaseSpec(
+            name=str(name),
+            responses=_file(c, "responses", where, base, path, True),
+            lateral_offset=_num(c, "lateral_offset", where, path),
+            channels=tuple(chans),
+            sampling_rate=_num(c, "sampling_rate", where, path, None, positive=True),
+            trigger_time=trigger,
+            align=align,
+            profile_left=_file(c, "profile_left", where, base, path, False),
+            profile_right=_file(c, "profile_right", where, base, path, False),
+            speed=None if "speed_kmh" not in c else _num(c, "speed_kmh", where, path, positive=True) / 3.6,
+        )
+        if cs.profile_right is not None and cs.profile_left is None:
+            raise FieldFileError(f"{path}: {where}profile_right needs profile_left")
+        cases.append(cs)
+    bp = doc.get("bridge_parameters", {})
+    if not isinstance(bp, dict):
+        raise FieldFileError(f"{path}: [bridge_parameters] must be a table")
+    return FieldSpec(
+        path=path,
+        name=str(doc.get("name", path.stem)),
+        bridge=doc["bridge"],
+        truck=doc["truck"],
+        speed=speed,
+        approach=_num(doc, "approach", "", path, 33.52, nonneg=True),
+        free_vibration=_num(doc, "free_vibration", "", path, 3.0, nonneg=True),
+        n_modes=int(_num(doc, "n_modes", "", path, 10, positive=True)),
+        damping_ratio=_num(doc, "damping_ratio", "", path, 0.02, nonneg=True),
+        stiffness_factor=_num(doc, "stiffness_factor", "", path, 1.0, positive=True),
+        lowpass_hz=lowpass,
+        drift=drift,
+        quiet_tail=_num(sig, "quiet_tail", "signal.", path, 1.0, nonneg=True),
+        bands=bands,
+        cases=tuple(cases),
+        dt=_num(doc, "dt", "", path, None, positive=True),
+        bridge_overrides=dict(bp),
+    )
+
+
+def check_case_record(case: CaseSpec, record: MeasuredRecord, spec_path: Path) -> None:
+    """Cross-check a case's channel table against its CSV: missing channels, unit mismatches, sampling rate."""
+    for ch in case.channels:
+        if ch.name not in record.channels:
+            raise FieldFileError(f"{record.path}: channel {ch.name!r} (listed in {spec_path.name}, case {case.name!r}) "
+                                 f"is missing; the file has: {', '.join(record.channels)}")
+        if record.units[ch.name] != ch.unit:
+            raise FieldFileError(f"{record.path}: channel {ch.name!r} is in [{record.units[ch.name]}] but "
+                                 f"{spec_path.name} (case {case.name!r}) says [{ch.unit}]: unit mismatch")
+    if case.sampling_rate is not None:
+        fs = record.sampling_rate
+        if abs(fs - case.sampling_rate) > TIME_TOLERANCE * case.sampling_rate:
+            raise FieldFileError(f"{record.path}: sampled at {fs:.6g} Hz but {spec_path.name} case {case.name!r} "
+                                 f"says sampling_rate = {case.sampling_rate:g} Hz")

@@ -1,0 +1,148 @@
+"""`vbikit compare-tires`, disk / rigid-disk scenarios with [[road.defects]], and bad defect keys."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from vbikit.cli import app
+
+runner = CliRunner()
+
+# small and fast: 10 m beam, 3 modes, sprung mass (Yang & Yau's vehicle, 56 kN: disk compression
+# d_s = 1.5 F/k = 53 mm < the disk's 100 mm arc), 20 m/s, 2 m run-up
+SMALL = """
+name = "small tire comparison"
+[bridge]
+model = "beam"
+span = 10.0
+EI = 1e10
+mass_per_length = 5000.0
+n_modes = 3
+[vehicle]
+model = "sprung-mass"
+damping = 2000.0
+[crossing]
+speed = 20.0
+approach = 2.0
+"""
+
+DEFECTS = """
+[road]
+class = "A"
+seed = 2
+length = 200.0
+[[road.defects]]
+kind = "depression"
+position = 0.0
+[[road.defects]]
+kind = "bump"
+position = 5.0
+height = 0.02
+"""
+
+MODELS = ("point", "multipoint (n = 6)", "disk", "rigid disk")
+
+
+def write(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "scenario.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.mark.parametrize("with_defects", [False, True])
+def test_compare_tires_writes_figure_and_table(tmp_path, with_defects):
+    path = write(tmp_path, SMALL + (DEFECTS if with_defects else ""))
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(out), "--json"])
+    assert res.exit_code == 0, res.output
+    table = json.loads(res.stdout)
+    assert tuple(table) == MODELS
+    assert json.loads((out / "compare-tires.json").read_text()) == table
+    assert (out / "compare-tires.png").stat().st_size > 10_000
+    for label, row in table.items():
+        for key in ("max_dynamic_displacement", "impact_factor", "max_dynamic_strain", "strain_impact_factor",
+                    "max_abs_acceleration", "min_tire_force", "contact_lost", "seconds"):
+            assert key in row, (label, key)
+        assert row["max_dynamic_displacement"] < 0  # z up: the deck deflects downward
+        assert row["min_tire_force"] >= 0.0  # loss of contact is on by default: no tire pulls
+        # at least the static deflection P L³/(48 EI) = 56.4 kN × 10³ m³/(48e10 N m²) = 0.1175 mm
+        # minus the 3-mode truncation (< 0.3 %): at α = v/(2 f1 L) = 20/(2 × 22.2 × 10) = 0.045 the
+        # moving-force amplification is ≈ 1.04 > 1 (Frýba; domain-data §5)
+        assert -row["max_dynamic_displacement"] > 0.997 * 5750 * 9.81 * 10.0**3 / (48 * 1e10)
+    if not with_defects:
+        # smooth road: the rigid disk acts through its centre point like the point tire
+        assert table["rigid disk"]["max_dynamic_displacement"] == pytest.approx(table["point"]["max_dynamic_displacement"],
+                                                                                rel=1e-9)
+
+
+def test_compare_tires_text_output(tmp_path):
+    path = write(tmp_path, SMALL)
+    res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path), "--n-points", "4"])
+    assert res.exit_code == 0, res.output
+    assert "small tire comparison" in res.stdout
+    for label in ("point", "multipoint (n = 4)", "disk", "rigid disk", "compare-tires.png"):
+        assert label in res.stdout
+
+
+@pytest.mark.parametrize("model,points", [("disk", 61), ("rigid-disk", 61)])
+def test_disk_scenarios_with_defects_run(tmp_path, model, points):
+    text = SMALL + f'[tire]\nmodel = "{model}"\nradius = 0.5\ndisk_spacing = 0.01\n' + DEFECTS
+    res = runner.invoke(app, ["run", str(write(tmp_path, text)), "--json"])
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)
+    assert s["tire_model"] == model
+    # |ξ| ≤ √(R² − (R − R/5)²) = 0.3 m at 0.01 m spacing: 61 points per wheel
+    assert s["n_contact_points_per_wheel"] == points
+    assert s["min_wheel_force"]["w1"] >= 0.0
+    assert set(s["contact_loss"]) == {"w1"}
+    lo, hi = s["contact_length_range"]["w1"]
+    if model == "disk":
+        # static patch 2√(2R d_s), d_s = 1.5 × 5750 × 9.81 / 1.595e6 = 53 mm → 0.46 m; it varies with load
+        assert 0.0 <= lo < hi and hi > 0.4
+    else:
+        assert lo == hi == 0.0  # a rigid disk touches at one point
+
+
+def test_loss_of_contact_key_is_accepted(tmp_path):
+    text = SMALL + '[tire]\nmodel = "multipoint"\nloss_of_contact = false\n' + DEFECTS
+    res = runner.invoke(app, ["run", str(write(tmp_path, text)), "--json"])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["tire_model"] == "multipoint"
+
+
+@pytest.mark.parametrize(
+    "defect,expect",
+    [
+        ('kind = "bump"\ndepth = 0.02', ["road.defects.0", "depth", "height"]),
+        ('kind = "crack"', ["road.defects.0.kind", "depression", "pothole"]),
+        ('kind = "depression"\ndepth = -0.02', ["road.defects.0.depth", "greater than 0"]),
+        ('kind = "depression"\nheight = 0.02', ["road.defects.0", "depth", "not height"]),
+        ('kind = "bump"\nheight = -0.01', ["road.defects.0", "height", "> 0"]),
+        ('kind = "step"\nheight = 0.01\nramp = 0.0', ["road.defects.0.ramp", "greater than 0"]),
+        ('kind = "pothole"\nwidth = 0.3', ["road.defects.0.width", "unknown key"]),
+    ],
+)
+def test_bad_defect_keys_exit_2_naming_the_key(tmp_path, defect, expect):
+    text = SMALL + "[road]\n[[road.defects]]\n" + defect + "\n"
+    for command in (["run", "--json"], ["compare-tires", "--out-dir", str(tmp_path / "out")]):
+        res = runner.invoke(app, [command[0], str(write(tmp_path, text)), *command[1:]])
+        assert res.exit_code == 2, res.output
+        assert "Traceback" not in res.output
+        msg = res.stderr
+        assert msg.startswith("error:")
+        for fragment in expect:
+            assert fragment in msg, msg
+    assert not (tmp_path / "out").exists()
+
+
+def test_unknown_defect_key_lists_the_defect_keys(tmp_path):
+    text = SMALL + '[road]\n[[road.defects]]\nkind = "pothole"\nwidth = 0.3\n'
+    res = runner.invoke(app, ["run", str(write(tmp_path, text)), "--json"])
+    assert res.exit_code == 2
+    allowed = res.stderr.split("allowed keys:")[1]
+    for key in ("kind", "position", "depth", "height", "length", "ramp", "shape"):
+        assert key in allowed, res.stderr
+    assert "seed" not in allowed  # not the keys of [road]

@@ -1,0 +1,123 @@
+"""Malformed field files: each kind of fault gives an error naming the file and line or key."""
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+from vbikit.field import FieldFileError, load_field_toml, read_response_csv
+from vbikit.field.io import check_case_record
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "field"
+
+GOOD = """# comment
+time [s],G5_disp [mm],G5_acc [m/s^2]
+0.000,0.0,0.0
+0.005,0.1,0.2
+0.010,0.2,0.1
+0.015,0.3,0.0
+0.020,0.2,-0.1
+"""
+
+
+def write(tmp_path: Path, text: str, name: str = "r.csv") -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+def test_good_file_in_si(tmp_path):
+    rec = read_response_csv(write(tmp_path, GOOD))
+    assert rec.sampling_rate == pytest.approx(200.0)
+    assert rec.channels["G5_disp"][1] == pytest.approx(1e-4)  # mm → m
+    assert rec.units["G5_acc"] == "m/s^2"
+
+
+@pytest.mark.parametrize(
+    "bad, message",
+    [
+        (GOOD.replace("0.010,0.2,0.1", "0.010,nan,0.1"), r"r\.csv:5: column 2 \(G5_disp\): 'nan' is not finite"),
+        (GOOD.replace("0.010,0.2,0.1", "0.010,,0.1"), r"r\.csv:5: column 2 \(G5_disp\): not a number"),
+        (GOOD.replace("0.010,0.2,0.1", "0.004,0.2,0.1"), r"r\.csv:5: time 0\.004 s is not greater than the previous"),
+        (GOOD.replace("0.015,0.3,0.0", "0.016,0.3,0.0"), r"r\.csv:6: non-uniform time step"),
+        (GOOD.replace("G5_acc [m/s^2]", "G5_acc [furlong]"), r"r\.csv:2: column 'G5_acc': unknown unit \[furlong\]"),
+        (GOOD.replace("G5_acc [m/s^2]", "G5_acc"), r"r\.csv:2: header column 3 'G5_acc' is not 'name \[unit\]'"),
+        (GOOD.replace("time [s]", "time [mm]"), r"r\.csv:2: the first column must be time"),
+        (GOOD.replace("0.010,0.2,0.1", "0.010,0.2"), r"r\.csv:5: expected 3 columns, got 2"),
+    ],
+    ids=["nan", "empty", "unsorted", "non-uniform", "unit", "header", "time-unit", "columns"],
+)
+def test_bad_csv(tmp_path, bad, message):
+    with pytest.raises(FieldFileError, match=message):
+        read_response_csv(write(tmp_path, bad))
+
+
+@pytest.fixture
+def example(tmp_path):
+    for f in EXAMPLE.glob("*"):
+        if f.suffix in (".csv", ".toml"):
+            shutil.copy(f, tmp_path / f.name)
+    return tmp_path
+
+
+def test_example_loads(example):
+    spec = load_field_toml(example / "FIELD.toml")
+    assert [c.name for c in spec.cases] == ["case1", "case2"]
+    for case in spec.cases:
+        check_case_record(case, read_response_csv(case.responses), spec.path)
+
+
+def edit(example: Path, old: str, new: str, count: int = 1) -> Path:
+    p = example / "FIELD.toml"
+    text = p.read_text()
+    assert old in text
+    p.write_text(text.replace(old, new, count))
+    return p
+
+
+def test_missing_channel(example):
+    spec = load_field_toml(edit(example, 'name = "G5_acc"', 'name = "G5_accel"'))
+    case = spec.cases[0]
+    with pytest.raises(FieldFileError, match=r"case1_responses\.csv: channel 'G5_accel' .* is missing; the file has: G5_disp"):
+        check_case_record(case, read_response_csv(case.responses), spec.path)
+
+
+def test_unit_mismatch(example):
+    spec = load_field_toml(edit(example, 'unit = "mm"', 'unit = "m"'))
+    case = spec.cases[0]
+    with pytest.raises(FieldFileError, match=r"'G5_disp' is in \[mm\] but FIELD\.toml .* says \[m\]: unit mismatch"):
+        check_case_record(case, read_response_csv(case.responses), spec.path)
+
+
+def test_sampling_rate_mismatch(example):
+    spec = load_field_toml(edit(example, "sampling_rate = 200.0", "sampling_rate = 100.0"))
+    case = spec.cases[0]
+    with pytest.raises(FieldFileError, match=r"sampled at 200 Hz but FIELD\.toml case 'case1' says sampling_rate = 100 Hz"):
+        check_case_record(case, read_response_csv(case.responses), spec.path)
+
+
+@pytest.mark.parametrize(
+    "old, new, message",
+    [
+        ('truck = "dump-truck"\n', "", r"missing key truck"),
+        ("speed_kmh = 64.4", "speed_kmh = -1", r"speed_kmh must be > 0"),
+        ("speed_kmh = 64.4", "speed_kmh = 64.4\nspeed = 3", r"unknown key 'speed'"),
+        ('quantity = "strain"', 'quantity = "stress"', r"case\.1\.channel\.3\.quantity must be one of"),
+        ('unit = "microstrain"', 'unit = "mm"', r"case\.1\.channel\.3\.unit \[mm\] is not a strain unit"),
+        ("girder = 5", "girder = 0", r"case\.1\.channel\.1\.girder must be an integer >= 1"),
+        ("trigger_time = 1.237\n", "", r"case\.1\.trigger_time is required with align = 'trigger'"),
+        ('responses = "case1_responses.csv"', 'responses = "nope.csv"', r"case\.1\.responses: file not found"),
+        ('drift = "quiet"', 'drift = "magic"', r"signal\.drift must be"),
+        ("x = 8.38", "x = 'mid'", r"case\.1\.channel\.1\.x must be a finite number"),
+    ],
+    ids=["missing", "negative", "unknown", "quantity", "unit", "girder", "trigger", "file", "drift", "x"],
+)
+def test_bad_toml(example, old, new, message):
+    with pytest.raises(FieldFileError, match=message):
+        load_field_toml(edit(example, old, new))
+
+
+def test_not_toml(tmp_path):
+    with pytest.raises(FieldFileError, match="not valid TOML"):
+        load_field_toml(write(tmp_path, "bridge = ", "FIELD.toml"))
