@@ -65,16 +65,17 @@ def main() -> None:
     ap.add_argument("--samples", type=int, default=20, help="road profiles per point in the program (paper: 20)")
     ap.add_argument("--baseline-samples", type=int, default=2, help="profiles per point for the speed-up comparison")
     ap.add_argument("--workers", type=int, default=os.cpu_count(), help="worker processes")
+    ap.add_argument("--beam", action="store_true", help="beam stand-ins instead of the 3D bridges (Girder 4)")
     args = ap.parse_args()
 
     from vbikit.study.paper import paper_study
 
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
-        _batched([paper_study("fig11", 1)], 1, tmp)  # compiles / loads every kernel incl. disk tires
+        _batched([paper_study("fig11", 1, args.beam)], 1, tmp)  # compiles / loads every kernel incl. disk tires
         print(f"warm-up (numba compile or cache load, 1 small study): {time.perf_counter() - t0:.1f} s")
 
-        studies = [paper_study(f, args.samples) for f in FIGS]
+        studies = [paper_study(f, args.samples, args.beam) for f in FIGS]
         n = sum(s.size for s in studies)
         per_fig = {}
         t_all = time.perf_counter()
@@ -88,7 +89,7 @@ def main() -> None:
         if args.samples != 20:
             print(f"  extrapolated to the whole program (8640 crossings): {total * scale:.0f} s")
 
-        small = [paper_study(f, args.baseline_samples) for f in FIGS]
+        small = [paper_study(f, args.baseline_samples, args.beam) for f in FIGS]
         t_single, m = _one_at_a_time(small, args.workers)
         print(f"one-at-a-time, first {args.baseline_samples} profiles of every point ({m} crossings, "
               f"{args.workers} workers): {t_single:.1f} s = {m / t_single:.1f} crossings/s; "
@@ -96,7 +97,7 @@ def main() -> None:
 
         from vbikit.study.compute import run_batch
 
-        s6 = paper_study("fig6", 20)
+        s6 = paper_study("fig6", 20, args.beam)
         batch = next(b for b in s6.batches() if s6.scenario_dict(b[0])["tire"]["n_points"] == 6
                      and s6.scenario_dict(b[0])["crossing"]["speed_kmh"] == 75
                      and s6.scenario_dict(b[0])["road"]["class"] == "C")

@@ -61,7 +61,11 @@ def test_paper_spec_printout():
     assert spec["axes"]["tire.model"] == ["point", "multipoint", "disk"]
     assert spec["axes"]["crossing.speed_kmh"] == [15, 30, 45, 60, 75, 90, 105, 120]
     assert spec["base"]["road"]["defects"] == [{"kind": "depression", "position": 0.0}]
-    assert spec["base"]["bridge"]["model"] == "paper-bridge-2-beam"
+    assert spec["base"]["bridge"]["model"] == "paper-bridge-2"  # the 3D deck, response at Girder 4
+    assert spec["base"]["response"] == {"girder": 4}
+    res = runner.invoke(app, ["study", "paper-fig11", "--samples", "2", "--print-spec", "--beam"])
+    spec = json.loads(res.output)
+    assert spec["base"]["bridge"]["model"] == "paper-bridge-2-beam" and "response" not in spec["base"]
 
 
 def test_paper_study_end_to_end_small(tmp_path):

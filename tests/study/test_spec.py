@@ -87,5 +87,7 @@ def test_paper_studies_are_valid(fig):
     study = paper_study(fig)
     assert study.size == 1440  # (8 n x 3 speeds, or 3 tires x 8 speeds) x 3 classes x 20 profiles
     assert study.axes[-1].key == "road.seed" and len(study.axes[-1].values) == 20
+    assert study.base["bridge"]["model"] == FIGURES[fig]["bridge"] and study.base["response"]["girder"] == 4
+    assert paper_study(fig, 2, beam=True).base["bridge"]["model"] == FIGURES[fig]["bridge"] + "-beam"
     if fig == "fig11":
         assert study.base["road"]["defects"][0]["kind"] == "depression"

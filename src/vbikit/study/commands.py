@@ -104,15 +104,17 @@ def _paper(fig: str):
         scheduler: Optional[str] = _SCHEDULER,
         progress: bool = _PROGRESS,
         dump: bool = typer.Option(False, "--print-spec", help="Print the study as TOML-equivalent JSON and exit."),
+        beam: bool = typer.Option(False, "--beam", help="Use the beam stand-ins (whole section) instead of the 3D "
+                                                        "bridges at Girder 4."),
     ) -> None:
         from vbikit.study.figures import plot_paper_figure
         from vbikit.study.paper import paper_study
 
-        study = _guard(lambda: paper_study(fig, samples))
+        study = _guard(lambda: paper_study(fig, samples, beam))
         if dump:
             typer.echo(study.to_json())
             return
-        suffix = "" if samples == 20 else f"-{samples}samples"
+        suffix = ("-beam" if beam else "") + ("" if samples == 20 else f"-{samples}samples")
         out = out_dir / f"paper-{fig}{suffix}.nc"
         ds = _run(study, out, workers, scheduler, progress)
         png = _guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))

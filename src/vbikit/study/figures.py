@@ -9,6 +9,8 @@ from vbikit.study.paper import AASHTO_LRFD_IM, AASHTO_STANDARD_IM, CLASS_NAMES, 
 
 BEAM_NOTE = ("vbikit beam stand-in for the paper's slab-on-girder bridge: impact factors of the whole "
              "cross-section's midspan deflection, not of Girder 4")
+GIRDER_NOTE = "vbikit 3D slab-on-girder grillage (10 modes): impact factors of the midspan deflection of Girder 4"
+
 
 
 def _reference_lines(ax, bridge: str) -> None:
@@ -27,7 +29,11 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    import json
+
     spec = FIGURES[fig]
+    bridge = json.loads(ds.attrs["study"])["base"]["bridge"]["model"]
+    note = BEAM_NOTE if bridge.endswith("-beam") else GIRDER_NOTE
     mean = ds[variable].mean("sample")
     std = ds[variable].std("sample", ddof=1) if ds.sizes["sample"] > 1 else 0 * mean
     classes = [str(c) for c in ds["road_class"].values]
@@ -46,14 +52,14 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
             s = np.asarray(std.sel({"road_class": cls, line_dim: value}).values)
             line, = ax.plot(x, m, "o-", ms=4, label=labels.get(value, str(value)))
             ax.fill_between(x, m - s, m + s, color=line.get_color(), alpha=0.12, lw=0)
-        _reference_lines(ax, spec["bridge"])
+        _reference_lines(ax, bridge)
         ax.set_title(f"{CLASS_NAMES.get(cls, cls)} road", fontsize="medium")
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("impact factor IM (mean ± 1 s.d. over samples)" if variable == "impact_factor" else variable)
     axes[0].legend(fontsize="small")
     n = ds.sizes["sample"]
-    figure.suptitle(f"{spec['title']} — vbikit, {n} road profiles per point\n{BEAM_NOTE}", fontsize="small")
+    figure.suptitle(f"{spec['title']} — vbikit, {n} road profiles per point\n{note}", fontsize="small")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     figure.savefig(path, dpi=120)

@@ -10,12 +10,13 @@ Settings ([paper] unless marked):
   every 15, B / C / D, 20 profiles, Bridge 2, without (Fig. 10) / with (Fig. 11) the 20 mm
   depression at the bridge entry ([substitute] vbikit's default depression geometry).
 
-[substitute] Bridges are the beam stand-ins ``paper-bridge-N-beam`` (whole cross-section: the
-impact factor is that of the section, not of Girder 4), 6 bending modes (midspan deflection of
-a simply supported beam is converged to < 0.1 % with modes 1, 3, 5; more modes only shorten
-the RK4 step, which is set by the highest mode), 2 % damping, RK4 with the automatic step,
-tires that cannot pull.  The same 20 road seeds (derived from study seed 2024) are used for
-every n, tire model and speed, so differences are not sampling noise.
+Bridges (default): the 3D slab-on-girder grillage presets ``paper-bridge-N`` (10 modes, the
+truck at the preset's loading position), response = midspan deflection of Girder 4 as in the
+paper.  With ``beam=True``: the beam stand-ins ``paper-bridge-N-beam`` (whole cross-section, not
+Girder 4; 6 bending modes — midspan deflection converged to < 0.1 % with modes 1, 3, 5; more
+modes only shorten the RK4 step, which is set by the highest mode).  Both: 2 % damping, RK4
+with the automatic step, tires that cannot pull.  The same 20 road seeds (derived from study
+seed 2024) are used for every n, tire model and speed, so differences are not sampling noise.
 """
 from __future__ import annotations
 
@@ -25,7 +26,8 @@ from vbikit.study.spec import Study, parse_study
 
 #: AASHTO reference lines (domain-data §6): LRFD IM and Standard Specifications 50/(L+125) ≤ 0.3
 AASHTO_LRFD_IM = 0.33
-AASHTO_STANDARD_IM = {"paper-bridge-1-beam": 0.30, "paper-bridge-2-beam": 0.278, "paper-bridge-3-beam": 0.196}
+AASHTO_STANDARD_IM = {"paper-bridge-1-beam": 0.30, "paper-bridge-2-beam": 0.278, "paper-bridge-3-beam": 0.196,
+                      "paper-bridge-1": 0.30, "paper-bridge-2": 0.278, "paper-bridge-3": 0.196}
 
 PAPER_SEED = 2024
 N_POINTS = [1, 3, 4, 5, 6, 7, 8, 9]
@@ -36,39 +38,50 @@ CLASS_NAMES = {"B": "good (ISO B)", "C": "average (ISO C)", "D": "poor (ISO D)"}
 N_MODES = 6
 
 
-def _base(bridge: str, vehicle: str, name: str) -> dict[str, Any]:
-    return {
+def bridge_model(fig: str, beam: bool = False) -> str:
+    """The bridge preset of paper figure ``fig``: 3D ``paper-bridge-N`` or the beam stand-in."""
+    return FIGURES[fig]["bridge"] + ("-beam" if beam else "")
+
+
+def _base(bridge: str, vehicle: str, name: str, beam: bool) -> dict[str, Any]:
+    base: dict[str, Any] = {
         "name": name,
-        "bridge": {"model": bridge, "n_modes": N_MODES, "damping_ratio": 0.02},
+        "bridge": {"model": bridge, "damping_ratio": 0.02},
         "vehicle": {"model": vehicle},
         "tire": {"model": "multipoint", "n_points": 6, "contact_length": 0.254},
         "road": {"class": "C", "seed": 0},
         "crossing": {"speed_kmh": 75, "approach": 10, "integrator": "rk4"},
     }
+    if beam:
+        base["bridge"]["n_modes"] = N_MODES
+    else:
+        base["response"] = {"girder": 4}
+    return base
 
 
 FIGURES: dict[str, dict[str, Any]] = {
-    "fig5": {"bridge": "paper-bridge-1-beam", "vehicle": "hs20-44", "kind": "points",
+    "fig5": {"bridge": "paper-bridge-1", "vehicle": "hs20-44", "kind": "points",
              "title": "Fig. 5: IM vs number of points, HS20-44, Bridge 1 (9.16 m)"},
-    "fig6": {"bridge": "paper-bridge-2-beam", "vehicle": "hs20-44", "kind": "points",
+    "fig6": {"bridge": "paper-bridge-2", "vehicle": "hs20-44", "kind": "points",
              "title": "Fig. 6: IM vs number of points, HS20-44, Bridge 2 (16.76 m)"},
-    "fig7": {"bridge": "paper-bridge-3-beam", "vehicle": "hs20-44", "kind": "points",
+    "fig7": {"bridge": "paper-bridge-3", "vehicle": "hs20-44", "kind": "points",
              "title": "Fig. 7: IM vs number of points, HS20-44, Bridge 3 (39.62 m)"},
-    "fig8": {"bridge": "paper-bridge-2-beam", "vehicle": "two-axle", "kind": "points",
+    "fig8": {"bridge": "paper-bridge-2", "vehicle": "two-axle", "kind": "points",
              "title": "Fig. 8: IM vs number of points, two-axle truck, Bridge 2 (16.76 m)"},
-    "fig10": {"bridge": "paper-bridge-2-beam", "vehicle": "hs20-44", "kind": "tires", "depression": False,
+    "fig10": {"bridge": "paper-bridge-2", "vehicle": "hs20-44", "kind": "tires", "depression": False,
               "title": "Fig. 10: IM vs speed per tire model, Bridge 2, no depression"},
-    "fig11": {"bridge": "paper-bridge-2-beam", "vehicle": "hs20-44", "kind": "tires", "depression": True,
+    "fig11": {"bridge": "paper-bridge-2", "vehicle": "hs20-44", "kind": "tires", "depression": True,
               "title": "Fig. 11: IM vs speed per tire model, Bridge 2, 20 mm depression at the entry"},
 }
 
 
-def paper_study_dict(fig: str, samples: int = 20) -> dict[str, Any]:
-    """The study (as the dict of its TOML) of paper figure ``fig`` ("fig5" … "fig11")."""
+def paper_study_dict(fig: str, samples: int = 20, beam: bool = False) -> dict[str, Any]:
+    """The study (as the dict of its TOML) of paper figure ``fig`` ("fig5" … "fig11") on the 3D
+    bridges at Girder 4, or on the beam stand-ins with ``beam=True``."""
     if fig not in FIGURES:
         raise ValueError(f"unknown paper study {fig!r}; allowed: {', '.join(FIGURES)}")
     f = FIGURES[fig]
-    base = _base(f["bridge"], f["vehicle"], f["title"])
+    base = _base(bridge_model(fig, beam), f["vehicle"], f["title"], beam)
     if f["kind"] == "points":
         axes: dict[str, Any] = {"tire.n_points": N_POINTS, "crossing.speed_kmh": SPEEDS_5_8}
     else:
@@ -77,9 +90,9 @@ def paper_study_dict(fig: str, samples: int = 20) -> dict[str, Any]:
             base["road"]["defects"] = [{"kind": "depression", "position": 0.0}]
     axes["road.class"] = CLASSES
     axes["road.seed"] = {"samples": samples}
-    return {"name": f"paper-{fig}", "seed": PAPER_SEED, "batch_size": 20, "base": base, "axes": axes}
+    return {"name": f"paper-{fig}" + ("-beam" if beam else ""), "seed": PAPER_SEED, "batch_size": 20, "base": base, "axes": axes}
 
 
-def paper_study(fig: str, samples: int = 20) -> Study:
-    """The validated :class:`Study` of paper figure ``fig``."""
-    return parse_study(paper_study_dict(fig, samples))
+def paper_study(fig: str, samples: int = 20, beam: bool = False) -> Study:
+    """The validated :class:`Study` of paper figure ``fig`` (see :func:`paper_study_dict`)."""
+    return parse_study(paper_study_dict(fig, samples, beam))
