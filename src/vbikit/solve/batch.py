@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import dataclasses
 import logging
-import math
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Iterable, Optional, TypeVar
 
@@ -27,10 +26,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.road.profile import RoadProfile
-from vbikit.solve import batch_kernels, kernels
+from vbikit.solve import batch_kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.system import kernel_data, static_modal_history, static_state
+from vbikit.solve.simulate import TimeGrid, integrate, road_along_paths, time_grid
+from vbikit.solve.system import kernel_data, static_modal_history
 from vbikit.solve.timestep import accuracy_time_step, rk4_stability_limit
 
 log = logging.getLogger(__name__)
@@ -53,7 +53,7 @@ class BatchSolver:
         self.contact = template.contact
         self.data = kernel_data(template)
         self._limit: Optional[float] = None
-        self._grids: dict[float, tuple] = {}
+        self._grids: dict[float, TimeGrid] = {}
         self._static: dict[float, NDArray[np.float64]] = {}
 
     # ------------------------------------------------------------------ shared data
@@ -75,23 +75,16 @@ class BatchSolver:
             return min(accuracy_time_step(crossing), 0.9 * self._limit)
         return float(crossing.dt) if crossing.dt is not None else accuracy_time_step(crossing)
 
-    def _grid(self, dt: float) -> tuple:
+    def _grid(self, dt: float) -> TimeGrid:
         if dt not in self._grids:
-            c = self.template
-            n_steps = max(1, math.ceil(c.duration / dt - 1e-9))
-            t_half = 0.5 * dt * np.arange(2 * n_steps + 1)
-            xf = c.front_position(t_half)
-            vel = c.velocity(t_half)
-            x_cp = xf[:, None] - self.contact.setback[None, :]
-            self._grids[dt] = (n_steps, t_half, xf, vel, x_cp)
+            self._grids[dt] = time_grid(self.template, dt)
         return self._grids[dt]
 
     def static_modal(self, dt: float) -> NDArray[np.float64]:
         """ξ_st(t) (n_t, n_modes) under the moving static wheel loads on the time grid of step
         ``dt`` [s] — the same for every road of the batch (computed once per step)."""
         if dt not in self._static:
-            n_steps, t_half, xf, vel, x_cp = self._grid(dt)
-            self._static[dt] = static_modal_history(self.template, xf[::2].copy())
+            self._static[dt] = static_modal_history(self.template, self._grid(dt).xf[::2].copy())
         return self._static[dt]
 
     # ------------------------------------------------------------------ running
@@ -100,42 +93,11 @@ class BatchSolver:
         ``simulate(replace(template, road=road, road_right=road_right))``.
         ``nogil``: integrate through the GIL-free wrappers (for threads; compiled on first use)."""
         crossing = self.crossing(road, road_right)
-        dt = self.time_step(crossing)
-        n_steps, t_half, xf, vel, x_cp = self._grid(dt)
-        if road is None:
-            r = np.zeros_like(x_cp)
-            r_rate = np.zeros_like(x_cp)
-        else:
-            road.evaluate(np.array([x_cp.min(), x_cp.max()]))
-            r = np.empty_like(x_cp)
-            r_rate = np.empty_like(x_cp)
-            kernels.sample_paths(road.x, road.z, x_cp, vel, r, r_rate)
-            right = self.contact.lateral < 0.0
-            if road_right is not None and right.any():  # the right wheel line on its own profile (as simulate)
-                rl, rlr = np.empty((x_cp.shape[0], int(right.sum()))), np.empty((x_cp.shape[0], int(right.sum())))
-                kernels.sample_paths(road_right.x, road_right.z, np.ascontiguousarray(x_cp[:, right]), vel, rl, rlr)
-                r[:, right], r_rate[:, right] = rl, rlr
-        data = self.data
-        n_m, n_d, n_w = data.n_modes, data.n_dof, data.n_wheels
-        n_t = n_steps + 1
-        xi, dxi, ddxi = (np.zeros((n_t, n_m)) for _ in range(3))
-        q, dq, ddq = (np.zeros((n_t, n_d)) for _ in range(3))
-        wheel_force = np.zeros((n_t, n_w))
-        wheel_len = np.zeros((n_t, n_w))
-        xi[0], q[0], active0 = static_state(crossing, data, r[0])
-        outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
-        if crossing.integrator == "rk4":
-            rk4 = batch_kernels.rk4_nogil if nogil else kernels.rk4
-            rk4(dt, xf, vel, r, r_rate, data.bridge, data.vehicle, data.points, data.unilateral, *outputs)
-        else:
-            newmark = batch_kernels.newmark_nogil if nogil else kernels.newmark
-            unsettled = newmark(dt, xf, vel, r, r_rate, data.bridge, data.vehicle_mass, data.points, data.unilateral,
-                                *outputs, active0, 50)
-            if unsettled:
-                log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",
-                            unsettled, n_steps)
-        return CrossingResult(crossing, t_half[::2].copy(), dt, xf[::2].copy(), vel[::2].copy(), xi, dxi, ddxi, q,
-                              dq, ddq, wheel_force, wheel_len)
+        grid = self._grid(self.time_step(crossing))
+        r, r_rate = road_along_paths(crossing, grid)
+        if nogil:
+            return integrate(crossing, self.data, grid, r, r_rate, batch_kernels.rk4_nogil, batch_kernels.newmark_nogil)
+        return integrate(crossing, self.data, grid, r, r_rate)
 
     def run_many(self, roads: Iterable, reduce: Callable[[CrossingResult], T] | None = None,
                  threads: int = 1) -> list:
