@@ -4,7 +4,11 @@ from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
-from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection, composite_beam_properties
+from vbikit.bridge.sections import (
+    AASHTO_GIRDERS,
+    GirderSection,
+    composite_beam_properties,
+)
 
 __all__ = [
     "AASHTO_GIRDERS",

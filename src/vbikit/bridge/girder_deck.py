@@ -62,7 +62,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.nodal import NodalModes, _hermite
-from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection, composite_beam_properties
+from vbikit.bridge.sections import (
+    AASHTO_GIRDERS,
+    GirderSection,
+    composite_beam_properties,
+)
 
 log = logging.getLogger(__name__)
 

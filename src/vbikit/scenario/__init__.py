@@ -1,6 +1,13 @@
 """TOML scenario schema, validation and assembly into model objects."""
 from vbikit.scenario.build import BuiltScenario, build
-from vbikit.scenario.schema import Scenario, ScenarioError, demo_scenario_text, load_scenario, parse_scenario, scenario_from_toml
+from vbikit.scenario.schema import (
+    Scenario,
+    ScenarioError,
+    demo_scenario_text,
+    load_scenario,
+    parse_scenario,
+    scenario_from_toml,
+)
 
 __all__ = [
     "BuiltScenario",

@@ -7,12 +7,24 @@ from pathlib import Path
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.presets import BRIDGE_PRESETS
-from vbikit.contact.tires import DiskTire, MultiPointTire, PointTire, RigidDiskTire, TireModel
+from vbikit.contact.tires import (
+    DiskTire,
+    MultiPointTire,
+    PointTire,
+    RigidDiskTire,
+    TireModel,
+)
 from vbikit.road.defects import Defect, with_defects
 from vbikit.road.measured import read_profile_csv
 from vbikit.road.profile import RoadProfile
 from vbikit.road.psd import RoadPSD, correlated_profile, random_profile
-from vbikit.scenario.schema import BridgeSpec, RoadSpec, Scenario, ScenarioError, TireSpec
+from vbikit.scenario.schema import (
+    BridgeSpec,
+    RoadSpec,
+    Scenario,
+    ScenarioError,
+    TireSpec,
+)
 from vbikit.solve.crossing import Crossing
 from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS

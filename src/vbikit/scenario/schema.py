@@ -8,17 +8,20 @@ and the allowed values.
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 from typing import Any, Literal, Optional, get_args
 
-from pydantic import BaseModel, ConfigDict, Field, PrivateAttr, ValidationError, field_validator, model_validator
+from pydantic import (
+    BaseModel,
+    ConfigDict,
+    Field,
+    PrivateAttr,
+    ValidationError,
+    field_validator,
+    model_validator,
+)
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
+from vbikit._toml import parse_toml, read_toml
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -305,19 +308,12 @@ def parse_scenario(data: dict[str, Any], base_dir: Path | str = ".") -> Scenario
 
 def scenario_from_toml(text: str, base_dir: Path | str = ".", source: str = "scenario") -> Scenario:
     """Validate a scenario given as TOML text."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ScenarioError(f"{source}: not valid TOML: {err}") from None
-    return parse_scenario(data, base_dir)
+    return parse_scenario(parse_toml(text, source, ScenarioError), base_dir)
 
 
 def load_scenario(path: str | Path) -> Scenario:
     """Read and validate a TOML scenario file."""
-    path = Path(path)
-    if not path.is_file():
-        raise ScenarioError(f"scenario file not found: {path}")
-    return scenario_from_toml(path.read_text(), path.parent, str(path))
+    return parse_scenario(read_toml(path, ScenarioError, "scenario file"), Path(path).parent)
 
 
 def demo_scenario_text() -> str:

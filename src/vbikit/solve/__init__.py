@@ -2,7 +2,12 @@
 from vbikit.solve.crossing import INTEGRATORS, Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.simulate import simulate
-from vbikit.solve.timestep import UnstableTimeStepError, accuracy_time_step, choose_time_step, rk4_stability_limit
+from vbikit.solve.timestep import (
+    UnstableTimeStepError,
+    accuracy_time_step,
+    choose_time_step,
+    rk4_stability_limit,
+)
 
 __all__ = [
     "INTEGRATORS",

@@ -1,7 +1,14 @@
 """Parameter studies: a base scenario swept over axes, run in batches, stored as xarray/NetCDF,
 resumable and parallel (local processes or Dask).  See ``docs/studies.md``."""
-from vbikit.study.spec import Study, StudyError, derive_seed, load_study, parse_study, study_from_toml
 from vbikit.study.run import assemble, run_study
+from vbikit.study.spec import (
+           Study,
+           StudyError,
+           derive_seed,
+           load_study,
+           parse_study,
+           study_from_toml,
+)
 
 __all__ = ["Study", "StudyError", "assemble", "derive_seed", "load_study", "parse_study", "run_study",
            "study_from_toml"]

@@ -27,9 +27,9 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     import json
+
+    import matplotlib.pyplot as plt
 
     spec = FIGURES[fig]
     bridge = json.loads(ds.attrs["study"])["base"]["bridge"]["model"]

@@ -28,7 +28,6 @@ from __future__ import annotations
 import copy
 import itertools
 import json
-import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Optional, Union
@@ -36,11 +35,7 @@ from typing import Any, Optional, Union
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
-
+from vbikit._toml import parse_toml, read_toml
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 
 #: scenario keys that only change the road: crossings differing only in these share dt, contact
@@ -232,13 +227,10 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
     if "scenario" in base:
         if len(base) != 1:
             raise StudyError("base: give either scenario = \"path.toml\" or the scenario tables inline, not both")
-        path = base_dir / str(base["scenario"])
-        if not path.is_file():
-            raise StudyError(f"base.scenario: file not found: {path}")
         try:
-            base = tomllib.loads(path.read_text())
-        except tomllib.TOMLDecodeError as err:
-            raise StudyError(f"base.scenario: {path} is not valid TOML: {err}") from None
+            base = read_toml(base_dir / str(base["scenario"]), StudyError)
+        except StudyError as err:
+            raise StudyError(f"base.scenario: {err}") from None
     axes: list[Axis] = []
     for key, values in raw.axes.items():
         _check_key(key, base)
@@ -272,16 +264,9 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
 
 def study_from_toml(text: str, base_dir: Path | str = ".", source: str = "study") -> Study:
     """Validate a study given as TOML text."""
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise StudyError(f"{source}: not valid TOML: {err}") from None
-    return parse_study(data, base_dir)
+    return parse_study(parse_toml(text, source, StudyError), base_dir)
 
 
 def load_study(path: str | Path) -> Study:
     """Read and validate a TOML study file."""
-    path = Path(path)
-    if not path.is_file():
-        raise StudyError(f"study file not found: {path}")
-    return study_from_toml(path.read_text(), path.parent, str(path))
+    return parse_study(read_toml(path, StudyError, "study file"), Path(path).parent)
