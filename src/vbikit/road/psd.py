@@ -68,6 +68,17 @@ class RoadPSD:
         return self.phi0 * self.n0**w * (b ** (1 - w) - a ** (1 - w)) / (1 - w)
 
 
+def _wavenumber_grid(psd: RoadPSD, spacing: float, length: float) -> tuple[int, float, NDArray[np.int64], NDArray[np.float64]]:
+    """The DFT grid of Eq. 7: number of samples N (a power of two, N·Δx ≥ max(length, 1/n_min)),
+    period P = N·Δx [m], and the indices k and wavenumbers n_k = k/P [cycle/m] inside the band."""
+    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
+    period = n_samples * spacing
+    k = np.arange(n_samples // 2 + 1)
+    n_k = k / period
+    in_band = (n_k >= psd.n_min) & (n_k <= psd.n_max)
+    return n_samples, period, k[in_band], n_k[in_band]
+
+
 def random_profile(
     psd: RoadPSD,
     seed: int,
@@ -98,17 +109,12 @@ def random_profile(
         raise ValueError(f"road spacing must be > 0 m, got {spacing!r}")
     if psd.n_max > 0.5 / spacing:
         raise ValueError(f"n_max = {psd.n_max} cycle/m is above the Nyquist wavenumber 1/(2Δx) = {0.5 / spacing} cycle/m")
-    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
-    period = n_samples * spacing
+    n_samples, period, k, n_k = _wavenumber_grid(psd, spacing, length)
     x0 = -period / 2 if x_start is None else float(x_start)
-    k = np.arange(n_samples // 2 + 1)
-    n_k = k / period
-    in_band = (n_k >= psd.n_min) & (n_k <= psd.n_max)
-    rng = np.random.default_rng(seed)
-    theta = rng.uniform(0.0, 2.0 * np.pi, int(in_band.sum()))
-    amp = np.sqrt(2.0 * psd(n_k[in_band]) / period)
+    theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
+    amp = np.sqrt(2.0 * psd(n_k) / period)
     coef = np.zeros(n_samples, complex)
-    coef[k[in_band]] = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k[in_band] * x0))
+    coef[k] = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
     z = np.real(np.fft.ifft(coef)) * n_samples
     x = x0 + spacing * np.arange(n_samples)
     return RoadProfile(x, z, label or f"PSD phi0={psd.phi0:g}, seed {seed}")
@@ -116,10 +122,7 @@ def random_profile(
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The (n_k, θ_k) pairs a profile with these settings uses (for direct evaluation of Eq. 7)."""
-    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
-    period = n_samples * spacing
-    n_k = np.arange(n_samples // 2 + 1) / period
-    n_k = n_k[(n_k >= psd.n_min) & (n_k <= psd.n_max)]
+    n_k = _wavenumber_grid(psd, spacing, length)[3]
     theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
     return n_k, theta
 
