@@ -30,22 +30,18 @@ import argparse
 import os
 import statistics
 import sys
-import tempfile
 import time
+
+from _args import benchmark_args
 
 
 def parse_args() -> argparse.Namespace:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--repeat", type=int, default=5, help="timed vbikit runs after the warm-up (default 5, min 1)")
-    p.add_argument("--cold", action="store_true", help="use a fresh, empty numba cache so the warm-up includes compilation")
     p.add_argument("--no-baseline", action="store_true", help="skip the (slow, ~1-2 min) solve_ivp baseline")
-    return p.parse_args()
+    return benchmark_args(__doc__, "timed vbikit runs after the warm-up (default 5, min 1)", p)
 
 
-ARGS = parse_args()
-if ARGS.cold:  # must happen before numba is imported
-    _cold_cache = tempfile.TemporaryDirectory(prefix="vbikit-numba-cache-")
-    os.environ["NUMBA_CACHE_DIR"] = _cold_cache.name
+ARGS = parse_args()  # before numba is imported (--cold)
 
 import numpy as np  # noqa: E402
 from scipy.integrate import solve_ivp  # noqa: E402

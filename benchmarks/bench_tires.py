@@ -27,25 +27,15 @@ The library is not modified; nothing is written except numba's cache.
 """
 from __future__ import annotations
 
-import argparse
 import os
 import statistics
 import sys
-import tempfile
 import time
 
-
-def parse_args() -> argparse.Namespace:
-    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    p.add_argument("--repeat", type=int, default=5, help="timed rounds after the warm-up (default 5, min 3)")
-    p.add_argument("--cold", action="store_true", help="use a fresh, empty numba cache (warm-up includes compilation)")
-    return p.parse_args()
+from _args import benchmark_args
 
 
-ARGS = parse_args()
-if ARGS.cold:  # must happen before numba is imported
-    _cold_cache = tempfile.TemporaryDirectory(prefix="vbikit-numba-cache-")
-    os.environ["NUMBA_CACHE_DIR"] = _cold_cache.name
+ARGS = benchmark_args(__doc__, "timed rounds after the warm-up (default 5, min 3)")  # before numba is imported (--cold)
 
 import numpy as np  # noqa: E402
 

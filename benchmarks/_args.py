@@ -1,0 +1,25 @@
+"""Command-line options shared by the benchmark scripts (``--repeat``, ``--cold``).
+
+Import and call :func:`benchmark_args` before numpy/numba/vbikit are imported: ``--cold`` points
+numba at a fresh, empty cache directory, which must happen before numba loads.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import tempfile
+
+_COLD_CACHE: tempfile.TemporaryDirectory | None = None
+
+
+def benchmark_args(doc: str, repeat_help: str, parser: argparse.ArgumentParser | None = None) -> argparse.Namespace:
+    """Parse ``--repeat N`` and ``--cold`` (plus whatever ``parser`` already defines)."""
+    global _COLD_CACHE
+    p = parser or argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    p.add_argument("--repeat", type=int, default=5, help=repeat_help)
+    p.add_argument("--cold", action="store_true", help="use a fresh, empty numba cache so the warm-up includes compilation")
+    args = p.parse_args()
+    if args.cold:
+        _COLD_CACHE = tempfile.TemporaryDirectory(prefix="vbikit-numba-cache-")  # removed at exit
+        os.environ["NUMBA_CACHE_DIR"] = _COLD_CACHE.name
+    return args
