@@ -1,19 +1,19 @@
-"""Many crossings that differ only in the road: prepare once, run many roads.
+"""Many crossings that differ only in the road: prepare once, run many roads together.
 
 Crossings with the same bridge, vehicle, tire, speed profile, approach and integrator share
 the time grid, the contact points, the tabulated mode shapes, the kernel argument bundles,
 the RK4 stability limit and the static reference.  :class:`BatchSolver` computes those once
-from a template crossing and then integrates each road with the same compiled kernels as
-:func:`vbikit.solve.simulate`, so every result is identical (bit for bit, same operations in
-the same order) to ``simulate(dataclasses.replace(template, road=road))``;
-``tests/study/test_batch.py`` checks that.
+from a template crossing and integrates the roads as *lanes* of one call of the same compiled
+RK4 kernel that :func:`vbikit.solve.simulate` calls with one lane: the mode shapes at the
+contact points are evaluated once per step for all lanes and the per-lane arithmetic is
+vectorised.  Each lane's arithmetic is that of its own crossing, so every result equals
+``simulate(dataclasses.replace(template, road=road))`` to round-off (``tests/study/test_batch.py``).
 
 Roads with a different sample spacing get the time step ``simulate`` would choose for them
-(it depends on the road's spacing); that step is cached per spacing.
+(it depends on the road's spacing); such roads run in their own group of lanes.
 
-``run_many(roads, threads=k)`` runs k roads at a time on threads: then the kernels are called
-through the ``nogil`` wrappers of :mod:`vbikit.solve.batch_kernels` (compiled on first use);
-with one thread they are called directly, exactly as ``simulate`` does.
+``run_many(roads, threads=k)`` splits the lanes into k calls running at once on threads (the
+kernels release the GIL).
 """
 from __future__ import annotations
 
@@ -26,10 +26,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.road.profile import RoadProfile
-from vbikit.solve import batch_kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.simulate import TimeGrid, integrate, road_along_paths, time_grid
+from vbikit.solve.simulate import TimeGrid, integrate, time_grid
 from vbikit.solve.system import kernel_data, static_modal_history
 from vbikit.solve.timestep import accuracy_time_step, rk4_stability_limit
 
@@ -55,6 +54,7 @@ class BatchSolver:
         self._limit: Optional[float] = None
         self._grids: dict[float, TimeGrid] = {}
         self._static: dict[float, NDArray[np.float64]] = {}
+        self._accuracy: dict[tuple, float] = {}
 
     # ------------------------------------------------------------------ shared data
     def crossing(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> Crossing:
@@ -72,8 +72,15 @@ class BatchSolver:
 
                     return choose_time_step(crossing)  # raises the standard UnstableTimeStepError
                 return float(crossing.dt)
-            return min(accuracy_time_step(crossing), 0.9 * self._limit)
-        return float(crossing.dt) if crossing.dt is not None else accuracy_time_step(crossing)
+            return min(self._accuracy_step(crossing), 0.9 * self._limit)
+        return float(crossing.dt) if crossing.dt is not None else self._accuracy_step(crossing)
+
+    def _accuracy_step(self, crossing: Crossing) -> float:
+        # within a batch the accuracy step depends only on the roads' spacings
+        key = tuple(r.spacing if r is not None else None for r in (crossing.road, crossing.road_right))
+        if key not in self._accuracy:
+            self._accuracy[key] = accuracy_time_step(crossing)
+        return self._accuracy[key]
 
     def _grid(self, dt: float) -> TimeGrid:
         if dt not in self._grids:
@@ -88,33 +95,40 @@ class BatchSolver:
         return self._static[dt]
 
     # ------------------------------------------------------------------ running
-    def run(self, road: RoadProfile | None, road_right: RoadProfile | None = None, nogil: bool = False) -> CrossingResult:
+    def run(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> CrossingResult:
         """One crossing on ``road`` (right wheel line on ``road_right`` if given); equal to
-        ``simulate(replace(template, road=road, road_right=road_right))``.
-        ``nogil``: integrate through the GIL-free wrappers (for threads; compiled on first use)."""
-        crossing = self.crossing(road, road_right)
-        grid = self._grid(self.time_step(crossing))
-        r, r_rate = road_along_paths(crossing, grid)
-        if nogil:
-            return integrate(crossing, self.data, grid, r, r_rate, batch_kernels.rk4_nogil, batch_kernels.newmark_nogil)
-        return integrate(crossing, self.data, grid, r, r_rate)
+        ``simulate(replace(template, road=road, road_right=road_right))``."""
+        return self.run_many([(road, road_right)])[0]
 
     def run_many(self, roads: Iterable, reduce: Callable[[CrossingResult], T] | None = None,
-                 threads: int = 1) -> list:
-        """Run every road (a RoadProfile, None, or a pair (road, road_right)); ``reduce(result)`` (default: keep the result) is applied as each
-        finishes so that only the reduced values are held.  ``threads`` > 1 runs that many
-        roads at once (the compiled kernels release the GIL)."""
-        roads = list(roads)
-        nogil = threads > 1 and len(roads) > 1
+                 threads: int = 1, lanes: int = 32) -> list:
+        """Run every road (a RoadProfile, None, or a pair (road, road_right)); ``reduce(result)``
+        (default: keep the result) is applied as each group of lanes finishes so that only the
+        reduced values are held.  At most ``lanes`` roads per kernel call; ``threads`` > 1 runs
+        that many calls at once."""
+        pairs = [road if isinstance(road, tuple) else (road, None) for road in roads]
+        crossings = [self.crossing(left, right) for left, right in pairs]
         keep = reduce if reduce is not None else (lambda result: result)
+        groups: dict[float, list[int]] = {}
+        for k, crossing in enumerate(crossings):
+            groups.setdefault(self.time_step(crossing), []).append(k)
+        chunks = []
+        for dt, members in groups.items():
+            size = max(1, min(lanes, -(-len(members) // max(1, threads))))
+            chunks += [(dt, members[i:i + size]) for i in range(0, len(members), size)]
 
-        def fn(road):
-            left, right = road if isinstance(road, tuple) else (road, None)
-            return keep(self.run(left, right, nogil))
+        def fn(chunk):
+            dt, members = chunk
+            results = integrate([crossings[k] for k in members], self.data, self._grid(dt))
+            return [keep(result) for result in results]
 
-        if not nogil:
-            return [fn(road) for road in roads]
-        if self._limit is None and self.template.integrator == "rk4":
-            self._limit = rk4_stability_limit(self.template)
-        with ThreadPoolExecutor(max_workers=threads) as pool:
-            return list(pool.map(fn, roads))
+        out: list = [None] * len(crossings)
+        if threads > 1 and len(chunks) > 1:
+            with ThreadPoolExecutor(max_workers=threads) as pool:
+                done = list(pool.map(fn, chunks))
+        else:
+            done = [fn(chunk) for chunk in chunks]
+        for (_, members), values in zip(chunks, done):
+            for k, value in zip(members, values):
+                out[k] = value
+        return out

@@ -13,15 +13,24 @@ lowest point moves as z_w = h_w·q.  Surface s_p = φ_p·ξ + r_p, ṡ_p = φ_p�
     ξ̈ + 2ζω ξ̇ + ω² ξ = −Σ_p φ_pᵀ F_p
     M_v q̈ + C_v q̇ + K_v q = F_G + Σ_w h_wᵀ Σ_{p∈w} F_p
 
+Lanes.  The state carries a last axis of L *lanes*: L crossings that share everything but the
+road (a batch of a study), integrated together.  Everything that does not depend on the road
+(positions, mode shapes at the contact points, the step) is computed once for all lanes, and
+the per-lane arithmetic runs in contiguous inner loops that the compiler vectorises.  Each
+lane's arithmetic is that of a single crossing (L = 1 is ``simulate``).
+
 Mode shapes along each wheel track are tabulated on a uniform grid with values and slopes and
-evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``), lazily: a gated point
-that cannot touch the surface (r_p − g_p − z_w + B ≤ 0 with B = Σ_m max|φ_m|·|ξ_m| the largest
-possible deck displacement) needs no mode shapes.
+evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``).  Road elevations are
+interpolated linearly in the road's stations inside the kernels.  Both lazily: a gated point
+that no lane can bring into contact (r_max − g_p − min z_w + B ≤ 0, with r_max the highest
+road elevation and B = max_lanes Σ_m max|φ_m|·|ξ_m| the largest possible deck displacement)
+needs neither.
 
 Argument bundles (tuples, to keep signatures short):
   bridge = (omega, zeta, span, grid_h, V, S, amp)
   vehicle = (m_inv or mass, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope)
   points = (setback, track, k, c, f0, gap, gated, wheel, width, slope_range)
+  road = (stations (n_s,), elevations (n_lines, n_s, L), line (n_cp,) wheel line of each point, r_max)
 """
 from __future__ import annotations
 
@@ -67,158 +76,252 @@ def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
             shape_point(x, cp_track[p], grid_h, V, S, phi[p], dphi[p])
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
-def contact_forces(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, unilateral, phi, dphi, have,
-                   force, wheel_force, wheel_len, active):
-    """Contact forces F_p [N] (compression > 0), per-wheel sums, patch lengths [m] and active flags.
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def road_point(x, vel, p, road, idx, rv, rr):
+    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = v·dr/dx [m/s] of every lane at
+    position ``x`` [m] of point ``p`` (linear interpolation; ``idx[p]`` is the point's station
+    pointer, −1 before its first use; positions of a point never decrease)."""
+    stations, elev, line, r_max = road
+    n_s = stations.size
+    i = idx[p]
+    if i < 0:
+        i = max(0, min(n_s - 2, np.searchsorted(stations, x, side="right") - 1))
+    while i < n_s - 2 and stations[i + 1] <= x:
+        i += 1
+    idx[p] = i
+    z = elev[line[p]]
+    dx = x - stations[i]
+    inv = 1.0 / (stations[i + 1] - stations[i])
+    for lane in range(z.shape[1]):
+        slope = (z[i + 1, lane] - z[i, lane]) * inv
+        rv[p, lane] = z[i, lane] + slope * dx
+        rr[p, lane] = slope * vel
 
-    ``phi``/``dphi``/``have`` cache the mode shapes of the points at front position ``xf``;
-    shapes are computed on first use.
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def road_at(xf, vel, setback, road, rv, rr):
+    """Road elevation and rate (n_cp, L) under every contact point at front position ``xf``."""
+    idx = np.full(setback.size, -1, dtype=np.int64)
+    for p in range(setback.size):
+        road_point(xf - setback[p], vel, p, road, idx, rv, rr)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, wheel_force,
+                   wheel_len):
+    """Contact forces F_p [N] (``force`` (n_cp, L), compression > 0), per-wheel sums ``wheel_force``
+    and patch lengths ``wheel_len`` [m] (n_w, L), ``active`` flags, and ``used[p]``: the point's
+    force was evaluated (else it is 0 in every lane).
+
+    ``cache`` = (phi, dphi, have, rv, rr, have_r): mode shapes and road (elevation, rate) of the
+    points at front position ``xf``, filled on first use.  ``work`` = (idx, force, active, used,
+    scratch (6, L), rhs (n_d, L)): station pointers, outputs and scratch space.
     """
+    phi, dphi, have, rv, rr, have_r = cache
+    idx, force, active, used, scratch, rhs = work
     omega, zeta, span, grid_h, V, S, amp = bridge
     m_x, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
     setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
-    n_m = xi.size
-    n_d = q.size
-    bound = 0.0
+    r_max = road[3]
+    n_m = xi.shape[0]
+    n_d = q.shape[0]
+    n_l = xi.shape[1]
+    bound, zw, dzw, s, sd, dr = scratch[0], scratch[1], scratch[2], scratch[3], scratch[4], scratch[5]
+    bound[:] = 0.0
     for m in range(n_m):
-        bound += amp[m] * abs(xi[m])
+        for lane in range(n_l):
+            bound[lane] += amp[m] * abs(xi[m, lane])
+    b_max = bound.max()
     for w in range(wheel_rows.shape[0]):
-        zw = 0.0
-        dzw = 0.0
+        zw[:] = 0.0
+        dzw[:] = 0.0
         for j in range(n_d):
-            zw += wheel_rows[w, j] * q[j]
-            dzw += wheel_rows[w, j] * dq[j]
-        wheel_force[w] = 0.0
-        wheel_len[w] = 0.0
+            h = wheel_rows[w, j]
+            if h != 0.0:
+                for lane in range(n_l):
+                    zw[lane] += h * q[j, lane]
+                    dzw[lane] += h * dq[j, lane]
+        zw_min = zw.min()
+        wheel_force[w, :] = 0.0
+        wheel_len[w, :] = 0.0
         first = wheel_first[w]
         last = first + wheel_count[w]
-        best = -1e300
-        if wheel_envelope[w]:
-            for p in range(first, last):
-                best = max(best, r[p] - gap[p])
-        p_env = -1
-        s_env = -1e300
-        sd_env = 0.0
         for p in range(first, last):
-            force[p] = 0.0
-            active[p] = False
-            gate = gated[p] or (unilateral and cp_k[p] > 0.0)
+            force[p, :] = 0.0
+            active[p, :] = False
+            used[p] = False
             x = xf - setback[p]
             onb = 0.0 <= x <= span
-            reach = bound if onb else 0.0
-            if wheel_envelope[w]:
-                if r[p] - gap[p] + reach < best - bound:
-                    continue  # cannot be the highest point of the envelope
-            elif gate and r[p] - gap[p] - zw + reach <= 0.0:
-                continue  # cannot touch the surface
-            s = r[p]
-            sd = rdot[p]  # v · r'(x_p)
-            deck_rate = 0.0  # ∂u_b/∂t at the fixed point x_p
+            gate = gated[p] or (unilateral and cp_k[p] > 0.0)
+            if gate and not wheel_envelope[w] and r_max - gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
+                continue  # no lane can touch the surface here
+            if not have_r[p]:
+                road_point(x, vel, p, road, idx, rv, rr)
+                have_r[p] = True
+            for lane in range(n_l):
+                s[lane] = rv[p, lane]
+                sd[lane] = rr[p, lane]  # v · r'(x_p)
+                dr[lane] = 0.0  # ∂u_b/∂t at the fixed point x_p
             if onb:
                 if not have[p]:
                     shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
                     have[p] = True
                 for m in range(n_m):
-                    s += phi[p, m] * xi[m]
-                    deck_rate += phi[p, m] * dxi[m]
-                    sd += vel * dphi[p, m] * xi[m]
+                    a = phi[p, m]
+                    b = vel * dphi[p, m]
+                    for lane in range(n_l):
+                        s[lane] += a * xi[m, lane]
+                        dr[lane] += a * dxi[m, lane]
+                        sd[lane] += b * xi[m, lane]
+            used[p] = True
             if wheel_envelope[w]:
-                if s - gap[p] > s_env:
-                    s_env = s - gap[p]
-                    # envelope rate: deck velocity + v·e', e' = surface slope clamped to the circle's slopes
-                    sd_env = deck_rate + min(max(sd, vel * slope_range[p, 0]), vel * slope_range[p, 1])
-                    p_env = p
-                continue
-            sd += deck_rate
-            pen = s - gap[p] - zw
-            f = cp_k[p] * pen + cp_c[p] * (sd - dzw) + cp_f0[p]
-            if gate:
-                if pen <= 0.0 or f <= 0.0:
-                    continue
-            force[p] = f
-            active[p] = True
-            wheel_force[w] += f
-            wheel_len[w] += width[p]
-        if wheel_envelope[w] and p_env >= 0:
-            pen = s_env - zw
-            f = cp_k[p_env] * pen + cp_c[p_env] * (sd_env - dzw) + cp_f0[p_env]
-            if pen > 0.0 and f > 0.0:
-                force[p_env] = f
-                active[p_env] = True
-                wheel_force[w] = f
+                continue  # the rigid disk's contact point is chosen below, per lane
+            k = cp_k[p]
+            c = cp_c[p]
+            f0 = cp_f0[p]
+            g = gap[p]
+            wd = width[p]
+            for lane in range(n_l):
+                pen = s[lane] - g - zw[lane]
+                f = k * pen + c * (sd[lane] + dr[lane] - dzw[lane]) + f0
+                on = not gate or (pen > 0.0 and f > 0.0)
+                f = f if on else 0.0
+                force[p, lane] = f
+                active[p, lane] = on
+                wheel_force[w, lane] += f
+                wheel_len[w, lane] += wd if on else 0.0
+        if wheel_envelope[w]:
+            _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force,
+                      wheel_force, active)
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
-def accelerations(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, unilateral, phi, dphi, have,
-                  ddxi, ddq, force, wheel_force, wheel_len, active, rhs):
-    """ξ̈, q̈ and contact forces for a given state (the right-hand side of Eq. 9)."""
-    contact_forces(xi, dxi, q, dq, vel, xf, r, rdot, bridge, vehicle, points, unilateral, phi, dphi, have, force,
-                   wheel_force, wheel_len, active)
-    omega, zeta, span, grid_h, V, S, amp = bridge
-    m_inv, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
-    setback = points[0]
-    n_m = xi.size
-    n_d = q.size
-    for m in range(n_m):
-        ddxi[m] = -2.0 * zeta[m] * omega[m] * dxi[m] - omega[m] * omega[m] * xi[m]
-    for p in range(force.size):
-        if force[p] != 0.0:
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force, wheel_force,
+              active):
+    """Rigid-disk wheel ``w``: per lane, only the point of highest surface s_p − g_p acts; its rate
+    is the deck velocity + v·e', e' the surface slope clamped to the circle's slopes."""
+    span = bridge[2]
+    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
+    n_m = xi.shape[0]
+    for lane in range(xi.shape[1]):
+        p_env = -1
+        s_env = -1e300
+        sd_env = 0.0
+        for p in range(first, last):
+            s = rv[p, lane]
+            sd = rr[p, lane]
+            deck_rate = 0.0
             x = xf - setback[p]
             if 0.0 <= x <= span:
                 for m in range(n_m):
-                    ddxi[m] -= phi[p, m] * force[p]
+                    s += phi[p, m] * xi[m, lane]
+                    deck_rate += phi[p, m] * dxi[m, lane]
+                    sd += vel * dphi[p, m] * xi[m, lane]
+            if s - gap[p] > s_env:
+                s_env = s - gap[p]
+                sd_env = deck_rate + min(max(sd, vel * slope_range[p, 0]), vel * slope_range[p, 1])
+                p_env = p
+        if p_env >= 0:
+            pen = s_env - zw[lane]
+            f = cp_k[p_env] * pen + cp_c[p_env] * (sd_env - dzw[lane]) + cp_f0[p_env]
+            if pen > 0.0 and f > 0.0:
+                force[p_env, lane] = f
+                active[p_env, lane] = True
+                wheel_force[w, lane] = f
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, ddxi, ddq,
+                  wheel_force, wheel_len):
+    """ξ̈ (n_m, L), q̈ (n_d, L) and contact forces for a given state (the right-hand side of Eq. 9)."""
+    contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, wheel_force,
+                   wheel_len)
+    phi = cache[0]
+    force, used, rhs = work[1], work[3], work[5]
+    omega, zeta, span, grid_h, V, S, amp = bridge
+    m_inv, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
+    setback = points[0]
+    n_m = xi.shape[0]
+    n_d = q.shape[0]
+    n_l = xi.shape[1]
+    for m in range(n_m):
+        a = 2.0 * zeta[m] * omega[m]
+        b = omega[m] * omega[m]
+        for lane in range(n_l):
+            ddxi[m, lane] = -a * dxi[m, lane] - b * xi[m, lane]
+    for p in range(force.shape[0]):
+        if used[p]:
+            x = xf - setback[p]
+            if 0.0 <= x <= span:
+                for m in range(n_m):
+                    a = phi[p, m]
+                    for lane in range(n_l):
+                        ddxi[m, lane] -= a * force[p, lane]
     if n_d == 0:
         return
     for i in range(n_d):
-        acc = f_g[i]
+        for lane in range(n_l):
+            rhs[i, lane] = f_g[i]
         for j in range(n_d):
-            acc -= c_v[i, j] * dq[j] + k_v[i, j] * q[j]
+            c = c_v[i, j]
+            k = k_v[i, j]
+            if c != 0.0 or k != 0.0:
+                for lane in range(n_l):
+                    rhs[i, lane] -= c * dq[j, lane] + k * q[j, lane]
         for w in range(wheel_rows.shape[0]):
-            acc += wheel_rows[w, i] * wheel_force[w]
-        rhs[i] = acc
+            h = wheel_rows[w, i]
+            if h != 0.0:
+                for lane in range(n_l):
+                    rhs[i, lane] += h * wheel_force[w, lane]
     for i in range(n_d):
-        acc = 0.0
+        for lane in range(n_l):
+            ddq[i, lane] = 0.0
         for j in range(n_d):
-            acc += m_inv[i, j] * rhs[j]
-        ddq[i] = acc
+            a = m_inv[i, j]
+            if a != 0.0:
+                for lane in range(n_l):
+                    ddq[i, lane] += a * rhs[j, lane]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
-def rk4(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, xi, dxi, q, dq, ddxi, ddq,
-        wheel_force, wheel_len):
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
 
-    ``xf``, ``vel``, ``road``, ``road_rate`` are given at half steps (index 2n = t_n); the output
-    arrays (n_steps + 1, ·) hold row 0 = the initial state on entry and are filled.
+    ``xf``, ``vel`` are given at half steps (index 2n = t_n); the output arrays (n_steps + 1, ·, L)
+    hold row 0 = the initial state on entry and are filled.
     """
     n_steps = xi.shape[0] - 1
     n_m = xi.shape[1]
     n_d = q.shape[1]
+    n_l = xi.shape[2]
     n_cp = points[0].size
     n_w = wheel_force.shape[1]
     phi = np.zeros((3, n_cp, n_m))
     dphi = np.zeros((3, n_cp, n_m))
     have = np.zeros((3, n_cp), dtype=np.bool_)
-    ax = np.zeros((4, n_m))
-    aq = np.zeros((4, n_d))
-    sx = np.zeros(n_m); sv = np.zeros(n_m); sq = np.zeros(n_d); sw = np.zeros(n_d)
-    force = np.zeros(n_cp)
-    active = np.zeros(n_cp, dtype=np.bool_)
-    wf = np.zeros(n_w)
-    wl = np.zeros(n_w)
-    rhs = np.zeros(n_d)
+    rv = np.zeros((3, n_cp, n_l))
+    rr = np.zeros((3, n_cp, n_l))
+    have_r = np.zeros((3, n_cp), dtype=np.bool_)
+    idx = np.full(n_cp, -1, dtype=np.int64)
+    ax = np.zeros((4, n_m, n_l))
+    aq = np.zeros((4, n_d, n_l))
+    sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
+    work = (idx, np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_), np.zeros(n_cp, dtype=np.bool_),
+            np.zeros((6, n_l)), np.zeros((n_d, n_l)))
+    wf = np.zeros((n_w, n_l))
+    wl = np.zeros((n_w, n_l))
     cur = 0
     h = 0.5 * dt
     for n in range(n_steps):
         mid = (cur + 1) % 3
         end = (cur + 2) % 3
-        have[mid, :] = False
-        have[end, :] = False
+        for slot in (mid, end):
+            have[slot, :] = False
+            have_r[slot, :] = False
         x0 = xi[n]; v0 = dxi[n]; y0 = q[n]; w0 = dq[n]
-        accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], road[2 * n], road_rate[2 * n], bridge, vehicle, points,
-                      unilateral, phi[cur], dphi[cur], have[cur], ax[0], aq[0], force, wheel_force[n], wheel_len[n],
-                      active, rhs)
+        accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
+                      (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ax[0], aq[0],
+                      wheel_force[n], wheel_len[n])
         # stages 2-4: state = start + tau * (velocity + h * previous-but-one stage acceleration)
         for stage in range(1, 4):
             tau = h if stage < 3 else dt
@@ -226,33 +329,41 @@ def rk4(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, xi, d
             slot = mid if stage < 3 else end
             prev = stage - 1
             for m in range(n_m):
-                if stage == 1:
-                    sx[m] = x0[m] + h * v0[m]
-                else:
-                    sx[m] = x0[m] + tau * (v0[m] + h * ax[prev - 1, m])
-                sv[m] = v0[m] + tau * ax[prev, m]
+                for lane in range(n_l):
+                    if stage == 1:
+                        sx[m, lane] = x0[m, lane] + h * v0[m, lane]
+                    else:
+                        sx[m, lane] = x0[m, lane] + tau * (v0[m, lane] + h * ax[prev - 1, m, lane])
+                    sv[m, lane] = v0[m, lane] + tau * ax[prev, m, lane]
             for j in range(n_d):
-                if stage == 1:
-                    sq[j] = y0[j] + h * w0[j]
-                else:
-                    sq[j] = y0[j] + tau * (w0[j] + h * aq[prev - 1, j])
-                sw[j] = w0[j] + tau * aq[prev, j]
-            accelerations(sx, sv, sq, sw, vel[ih], xf[ih], road[ih], road_rate[ih], bridge, vehicle, points,
-                          unilateral, phi[slot], dphi[slot], have[slot], ax[stage], aq[stage], force, wf, wl,
-                          active, rhs)
+                for lane in range(n_l):
+                    if stage == 1:
+                        sq[j, lane] = y0[j, lane] + h * w0[j, lane]
+                    else:
+                        sq[j, lane] = y0[j, lane] + tau * (w0[j, lane] + h * aq[prev - 1, j, lane])
+                    sw[j, lane] = w0[j, lane] + tau * aq[prev, j, lane]
+            accelerations(sx, sv, sq, sw, vel[ih], xf[ih], bridge, vehicle, points, road, unilateral,
+                          (phi[slot], dphi[slot], have[slot], rv[slot], rr[slot], have_r[slot]), work, ax[stage],
+                          aq[stage], wf, wl)
         ddxi[n] = ax[0]
         ddq[n] = aq[0]
         for m in range(n_m):
-            xi[n + 1, m] = x0[m] + dt * (v0[m] + dt / 6.0 * (ax[0, m] + ax[1, m] + ax[2, m]))
-            dxi[n + 1, m] = v0[m] + dt / 6.0 * (ax[0, m] + 2 * ax[1, m] + 2 * ax[2, m] + ax[3, m])
+            for lane in range(n_l):
+                xi[n + 1, m, lane] = x0[m, lane] + dt * (v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + ax[1, m, lane]
+                                                                                    + ax[2, m, lane]))
+                dxi[n + 1, m, lane] = v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + 2 * ax[1, m, lane]
+                                                                 + 2 * ax[2, m, lane] + ax[3, m, lane])
         for j in range(n_d):
-            q[n + 1, j] = y0[j] + dt * (w0[j] + dt / 6.0 * (aq[0, j] + aq[1, j] + aq[2, j]))
-            dq[n + 1, j] = w0[j] + dt / 6.0 * (aq[0, j] + 2 * aq[1, j] + 2 * aq[2, j] + aq[3, j])
+            for lane in range(n_l):
+                q[n + 1, j, lane] = y0[j, lane] + dt * (w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + aq[1, j, lane]
+                                                                                   + aq[2, j, lane]))
+                dq[n + 1, j, lane] = w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + 2 * aq[1, j, lane]
+                                                                + 2 * aq[2, j, lane] + aq[3, j, lane])
         cur = end
     n = n_steps
-    accelerations(xi[n], dxi[n], q[n], dq[n], vel[2 * n], xf[2 * n], road[2 * n], road_rate[2 * n], bridge, vehicle,
-                  points, unilateral, phi[cur], dphi[cur], have[cur], ddxi[n], ddq[n], force, wheel_force[n],
-                  wheel_len[n], active, rhs)
+    accelerations(xi[n], dxi[n], q[n], dq[n], vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
+                  (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ddxi[n], ddq[n],
+                  wheel_force[n], wheel_len[n])
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
@@ -310,93 +421,84 @@ def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active,
                 damp[n_m + j, a] -= c * h[j] * f[a]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
-def newmark(dt, xf, vel, road, road_rate, bridge, vehicle, points, unilateral, xi, dxi, q, dq, ddxi, ddq,
-            wheel_force, wheel_len, active0, max_iterations):
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
+            active0, max_iterations):
     """Newmark average acceleration (γ = 1/2, β = 1/4), unconditionally stable for the linear system.
 
     Contact is piecewise linear (points enter and leave contact), so each step iterates on the
     set of active points: assemble with the current set, solve, re-evaluate the contact forces,
     repeat until the set is unchanged.  Returns the number of steps whose active set did not
-    settle within ``max_iterations``.  Same array conventions as :func:`rk4`.
+    settle within ``max_iterations``.  Same array conventions as :func:`rk4`, one lane (L = 1);
+    ``vehicle`` carries the mass matrix M in slot 0.
     """
     n_steps = xi.shape[0] - 1
     n_m = xi.shape[1]
     n_d = q.shape[1]
     n_cp = points[0].size
+    n_w = wheel_force.shape[1]
+    setback = points[0]
     n = n_m + n_d
     phi = np.zeros((n_cp, n_m))
     dphi = np.zeros((n_cp, n_m))
     have = np.zeros(n_cp, dtype=np.bool_)
+    rv = np.zeros((n_cp, 1)); rr = np.zeros((n_cp, 1))
+    have_r = np.ones(n_cp, dtype=np.bool_)
+    idx = np.full(n_cp, -1, dtype=np.int64)
+    r1 = rv.reshape(n_cp); rr1 = rr.reshape(n_cp)
     mass = np.zeros((n, n)); damp = np.zeros((n, n)); stiff = np.zeros((n, n)); load = np.zeros(n)
     u = np.zeros(n); v = np.zeros(n); a = np.zeros(n)
-    force = np.zeros(n_cp)
+    sx = np.zeros((n_m, 1)); sv = np.zeros((n_m, 1)); sq = np.zeros((n_d, 1)); sw = np.zeros((n_d, 1))
+    wf = np.zeros((n_w, 1)); wl = np.zeros((n_w, 1))
     active = active0.copy()
-    new_active = np.zeros(n_cp, dtype=np.bool_)
-    u[:n_m] = xi[0]; u[n_m:] = q[0]; v[:n_m] = dxi[0]; v[n_m:] = dq[0]
-    assemble(vel[0], xf[0], road[0], road_rate[0], bridge, vehicle, points, phi, dphi, have, active, mass, damp,
-             stiff, load)
+    new_active = np.zeros((n_cp, 1), dtype=np.bool_)
+    cache = (phi, dphi, have, rv, rr, have_r)
+    work = (idx, np.zeros((n_cp, 1)), new_active, np.zeros(n_cp, dtype=np.bool_), np.zeros((6, 1)), np.zeros((n_d, 1)))
+    u[:n_m] = xi[0, :, 0]; u[n_m:] = q[0, :, 0]; v[:n_m] = dxi[0, :, 0]; v[n_m:] = dq[0, :, 0]
+    for p in range(n_cp):
+        road_point(xf[0] - setback[p], vel[0], p, road, idx, rv, rr)
+    assemble(vel[0], xf[0], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load)
     a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
-    contact_forces(xi[0], dxi[0], q[0], dq[0], vel[0], xf[0], road[0], road_rate[0], bridge, vehicle, points,
-                   unilateral, phi, dphi, have, force, wheel_force[0], wheel_len[0], new_active)
-    ddxi[0] = a[:n_m]; ddq[0] = a[n_m:]
+    sx[:, 0] = u[:n_m]; sv[:, 0] = v[:n_m]; sq[:, 0] = u[n_m:]; sw[:, 0] = v[n_m:]
+    contact_forces(sx, sv, sq, sw, vel[0], xf[0], bridge, vehicle, points, road, unilateral, cache, work,
+                   wheel_force[0], wheel_len[0])
+    ddxi[0, :, 0] = a[:n_m]; ddq[0, :, 0] = a[n_m:]
     unsettled = 0
     for s in range(1, n_steps + 1):
         i2 = 2 * s
         have[:] = False
+        for p in range(n_cp):
+            road_point(xf[i2] - setback[p], vel[i2], p, road, idx, rv, rr)
         u_p = u + dt * v + 0.25 * dt * dt * a
         v_p = v + 0.5 * dt * a
         settled = False
         for _ in range(max_iterations):
-            assemble(vel[i2], xf[i2], road[i2], road_rate[i2], bridge, vehicle, points, phi, dphi, have, active,
-                     mass, damp, stiff, load)
+            assemble(vel[i2], xf[i2], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff,
+                     load)
             lhs = mass + 0.5 * dt * damp + 0.25 * dt * dt * stiff
             a_new = np.linalg.solve(lhs, load - damp @ v_p - stiff @ u_p)
             u_new = u_p + 0.25 * dt * dt * a_new
             v_new = v_p + 0.5 * dt * a_new
-            contact_forces(u_new[:n_m], v_new[:n_m], u_new[n_m:], v_new[n_m:], vel[i2], xf[i2], road[i2],
-                           road_rate[i2], bridge, vehicle, points, unilateral, phi, dphi, have, force,
-                           wheel_force[s], wheel_len[s], new_active)
+            sx[:, 0] = u_new[:n_m]; sv[:, 0] = v_new[:n_m]; sq[:, 0] = u_new[n_m:]; sw[:, 0] = v_new[n_m:]
+            contact_forces(sx, sv, sq, sw, vel[i2], xf[i2], bridge, vehicle, points, road, unilateral, cache, work,
+                           wf, wl)
             same = True
             for p in range(n_cp):
-                if new_active[p] != active[p]:
+                if new_active[p, 0] != active[p]:
                     same = False
                     break
-            active[:] = new_active
+            active[:] = new_active[:, 0]
             if same:
                 settled = True
                 break
         if not settled:
             unsettled += 1
+        wheel_force[s] = wf
+        wheel_len[s] = wl
         u = u_new; v = v_new; a = a_new
-        xi[s] = u[:n_m]; q[s] = u[n_m:]; dxi[s] = v[:n_m]; dq[s] = v[n_m:]
-        ddxi[s] = a[:n_m]; ddq[s] = a[n_m:]
+        xi[s, :, 0] = u[:n_m]; q[s, :, 0] = u[n_m:]; dxi[s, :, 0] = v[:n_m]; dq[s, :, 0] = v[n_m:]
+        ddxi[s, :, 0] = a[:n_m]; ddq[s, :, 0] = a[n_m:]
     return unsettled
-
-
-@njit(cache=True)
-def sample_paths(stations, elevations, paths, rates, road, road_rate):
-    """Road elevation and rate along non-decreasing paths (one column per contact point).
-
-    ``paths`` (n_t, n_cp) positions [m], ``rates`` (n_t,) speeds [m/s]; fills ``road`` [m]
-    and ``road_rate`` = v · dr/dx [m/s] by linear interpolation of (stations, elevations),
-    walking one pointer per path (O(n) instead of a binary search per sample).
-    """
-    n_s = stations.size
-    n_cp = paths.shape[1]
-    idx = np.zeros(n_cp, dtype=np.int64)
-    for p in range(n_cp):
-        idx[p] = max(0, min(n_s - 2, np.searchsorted(stations, paths[0, p], side="right") - 1))
-    for t in range(paths.shape[0]):
-        for p in range(n_cp):
-            x = paths[t, p]
-            i = idx[p]
-            while i < n_s - 2 and stations[i + 1] <= x:
-                i += 1
-            idx[p] = i
-            slope = (elevations[i + 1] - elevations[i]) / (stations[i + 1] - stations[i])
-            road[t, p] = elevations[i] + slope * (x - stations[i])
-            road_rate[t, p] = slope * rates[t]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")

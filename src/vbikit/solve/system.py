@@ -3,11 +3,13 @@ stability limit)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.solve import kernels
+from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.tabulate import TrackTable, tabulate_tracks
 
@@ -82,19 +84,66 @@ def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64]
             sl = slice(first, first + count)
             active[sl] = False
             active[first + int(np.argmax(road[sl] - gap[sl]))] = True
-    phi = np.zeros((n_p, n_m)); dphi = np.zeros_like(phi); have = np.zeros(n_p, bool)
-    force = np.zeros(n_p); new_active = np.zeros(n_p, bool)
-    wf = np.zeros(data.n_wheels); wl = np.zeros(data.n_wheels)
+    cache = (np.zeros((n_p, n_m)), np.zeros((n_p, n_m)), np.zeros(n_p, bool),
+             np.ascontiguousarray(road, float).reshape(n_p, 1), np.zeros((n_p, 1)), np.ones(n_p, bool))
+    work = (np.zeros(n_p, np.int64), np.zeros((n_p, 1)), np.zeros((n_p, 1), bool), np.zeros(n_p, bool),
+            np.zeros((6, 1)), np.zeros((data.n_dof, 1)))
+    wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
+    # the road values are given (have_r all True): the bundle only carries r_max
+    bundle = (np.array([0.0, 1.0]), np.zeros((1, 2, 1)), np.zeros(n_p, np.int64), float(np.max(road, initial=0.0)))
     for _ in range(max_iterations):
         _, _, stiff, load = coupled_matrices(crossing, data, xf, 0.0, road, None, active)
         u = np.linalg.solve(stiff, load)
-        kernels.contact_forces(u[:n_m], np.zeros(n_m), u[n_m:], np.zeros(data.n_dof), 0.0, xf, road, np.zeros(n_p),
-                               data.bridge, data.vehicle, data.points, data.unilateral, phi, dphi, have, force, wf, wl,
-                               new_active)
+        cache[2][:] = False
+        kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
+                               np.zeros((data.n_dof, 1)), 0.0, xf, data.bridge, data.vehicle, data.points, bundle,
+                               data.unilateral, cache, work, wf, wl)
+        new_active = work[2][:, 0]
         if np.array_equal(new_active, active):
             return u[:n_m], u[n_m:], active
         active = new_active.copy()
     raise RuntimeError("the static start did not settle on a set of contact points; check the road under the vehicle")
+
+
+def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], lateral: NDArray[np.float64],
+              x_min: float, x_max: float) -> tuple:
+    """The kernels' road bundle (stations, elevations (n_lines, n_s, L), line per point, r_max) of
+    L lanes with (left, right) wheel-line profiles each (None: smooth; right None: as the left).
+
+    Lanes share one station array: the union of all profiles' stations, on which every profile
+    is exactly the same piecewise-linear function (random profiles of one study share their
+    stations, so the union is just those).  Points with ``lateral`` < 0 [m] follow the right
+    line when any lane has one.  Checks that every profile covers ``x_min`` … ``x_max`` [m].
+    """
+    profiles = [p for pair in roads for p in pair if p is not None]
+    for p in profiles:
+        p.evaluate(np.array([x_min, x_max]))  # range check with a clear message
+
+    def window(p: RoadProfile) -> slice:  # the stations that matter for x_min … x_max
+        lo, hi = np.searchsorted(p.x, [x_min, x_max], side="right")
+        return slice(max(0, lo - 2), min(p.x.size, hi + 2))
+
+    cut = [(p.x[window(p)], p.z[window(p)]) for p in profiles]
+    if not profiles:
+        stations = np.array([x_min - 1.0, x_max + 1.0])
+    elif all(np.array_equal(x, cut[0][0]) for x, _ in cut):
+        stations = np.ascontiguousarray(cut[0][0], float)
+    else:
+        stations = np.unique(np.concatenate([x for x, _ in cut]))
+    two = any(right is not None for _, right in roads)
+    elev = np.zeros((2 if two else 1, stations.size, len(roads)))
+
+    def on_stations(p: RoadProfile) -> NDArray[np.float64]:
+        x, z = p.x[window(p)], p.z[window(p)]
+        return z if np.array_equal(x, stations) else np.interp(stations, x, z)
+
+    for lane, (left, right) in enumerate(roads):
+        if left is not None:
+            elev[0, :, lane] = on_stations(left)
+        if two:
+            elev[1, :, lane] = on_stations(right) if right is not None else elev[0, :, lane]
+    line = ((np.asarray(lateral) < 0.0) & two).astype(np.int64)
+    return stations, elev, line, float(elev.max())
 
 
 def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64]) -> NDArray[np.float64]:
