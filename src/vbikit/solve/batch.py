@@ -59,7 +59,7 @@ class BatchSolver:
     # ------------------------------------------------------------------ shared data
     def crossing(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> Crossing:
         """The template with ``road`` (and the right wheel line's ``road_right``; checks coverage)."""
-        return dataclasses.replace(self.template, road=road, road_right=road_right)
+        return self.template.with_road(road, road_right)
 
     def time_step(self, crossing: Crossing) -> float:
         """The step [s] ``simulate`` would choose for ``crossing`` (same rule, cached limit)."""
@@ -91,7 +91,7 @@ class BatchSolver:
         """ξ_st(t) (n_t, n_modes) under the moving static wheel loads on the time grid of step
         ``dt`` [s] — the same for every road of the batch (computed once per step)."""
         if dt not in self._static:
-            self._static[dt] = static_modal_history(self.template, self._grid(dt).xf[::2].copy())
+            self._static[dt] = static_modal_history(self.template, self._grid(dt).xf[::2].copy(), self.data)
         return self._static[dt]
 
     # ------------------------------------------------------------------ running

@@ -8,6 +8,7 @@ vehicle that comes to rest during the free vibration stays at rest.
 """
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import dataclass
 from functools import cached_property
@@ -86,6 +87,9 @@ class Crossing:
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
         if self.integrator not in INTEGRATORS:
             raise ValueError(f"crossing.integrator must be one of {INTEGRATORS}, got {self.integrator!r}")
+        self._check_roads()
+
+    def _check_roads(self) -> None:
         if self.road_right is not None and self.road is None:
             raise ValueError("a right wheel-line profile (road_right) needs a road profile for the left line")
         for road in (self.road, self.road_right):
@@ -97,6 +101,15 @@ class Crossing:
                     f"road profile '{road.label}' covers x = {road.x[0]:.2f} … {road.x[-1]:.2f} m "
                     f"but this crossing needs x = {lo:.2f} … {hi:.2f} m (approach, vehicle length, span, free vibration)"
                 )
+
+    def with_road(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> "Crossing":
+        """This crossing on other road profiles (checked like the constructor's; the contact
+        points already computed are kept, which makes it cheap for a batch of roads)."""
+        new = copy.copy(self)
+        object.__setattr__(new, "road", road)
+        object.__setattr__(new, "road_right", road_right)
+        new._check_roads()
+        return new
 
     # ------------------------------------------------------------ geometry & time
     @cached_property

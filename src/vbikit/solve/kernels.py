@@ -283,19 +283,28 @@ def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilat
                     ddq[i, lane] += a * rhs[j, lane]
 
 
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _store(out, n, state):
+    """out[lane, n, i] = state[i, lane]: a lane-major output row from the lane-minor state."""
+    for i in range(state.shape[0]):
+        for lane in range(state.shape[1]):
+            out[lane, n, i] = state[i, lane]
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
 
-    ``xf``, ``vel`` are given at half steps (index 2n = t_n); the output arrays (n_steps + 1, ·, L)
-    hold row 0 = the initial state on entry and are filled.
+    ``xf``, ``vel`` are given at half steps (index 2n = t_n).  The output arrays (L, n_steps + 1, ·)
+    are lane-major (each lane's history is contiguous) and hold the initial state at [:, 0] on
+    entry; the state itself is kept lane-minor, (·, L), so that the lane loops vectorise.
     """
-    n_steps = xi.shape[0] - 1
-    n_m = xi.shape[1]
-    n_d = q.shape[1]
-    n_l = xi.shape[2]
+    n_l = xi.shape[0]
+    n_steps = xi.shape[1] - 1
+    n_m = xi.shape[2]
+    n_d = q.shape[2]
     n_cp = points[0].size
-    n_w = wheel_force.shape[1]
+    n_w = wheel_force.shape[2]
     phi = np.zeros((3, n_cp, n_m))
     dphi = np.zeros((3, n_cp, n_m))
     have = np.zeros((3, n_cp), dtype=np.bool_)
@@ -305,6 +314,10 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
     idx = np.full(n_cp, -1, dtype=np.int64)
     ax = np.zeros((4, n_m, n_l))
     aq = np.zeros((4, n_d, n_l))
+    x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); y0 = np.empty((n_d, n_l)); w0 = np.empty((n_d, n_l))
+    x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l)); y1 = np.empty((n_d, n_l)); w1 = np.empty((n_d, n_l))
+    for lane in range(n_l):
+        x0[:, lane] = xi[lane, 0]; v0[:, lane] = dxi[lane, 0]; y0[:, lane] = q[lane, 0]; w0[:, lane] = dq[lane, 0]
     sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
     work = (idx, np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_), np.zeros(n_cp, dtype=np.bool_),
             np.zeros((6, n_l)), np.zeros((n_d, n_l)))
@@ -312,16 +325,17 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
     wl = np.zeros((n_w, n_l))
     cur = 0
     h = 0.5 * dt
-    for n in range(n_steps):
+    for n in range(n_steps + 1):
+        accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
+                      (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ax[0], aq[0], wf, wl)
+        _store(ddxi, n, ax[0]); _store(ddq, n, aq[0]); _store(wheel_force, n, wf); _store(wheel_len, n, wl)
+        if n == n_steps:
+            break
         mid = (cur + 1) % 3
         end = (cur + 2) % 3
         for slot in (mid, end):
             have[slot, :] = False
             have_r[slot, :] = False
-        x0 = xi[n]; v0 = dxi[n]; y0 = q[n]; w0 = dq[n]
-        accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
-                      (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ax[0], aq[0],
-                      wheel_force[n], wheel_len[n])
         # stages 2-4: state = start + tau * (velocity + h * previous-but-one stage acceleration)
         for stage in range(1, 4):
             tau = h if stage < 3 else dt
@@ -345,25 +359,24 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
             accelerations(sx, sv, sq, sw, vel[ih], xf[ih], bridge, vehicle, points, road, unilateral,
                           (phi[slot], dphi[slot], have[slot], rv[slot], rr[slot], have_r[slot]), work, ax[stage],
                           aq[stage], wf, wl)
-        ddxi[n] = ax[0]
-        ddq[n] = aq[0]
         for m in range(n_m):
             for lane in range(n_l):
-                xi[n + 1, m, lane] = x0[m, lane] + dt * (v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + ax[1, m, lane]
-                                                                                    + ax[2, m, lane]))
-                dxi[n + 1, m, lane] = v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + 2 * ax[1, m, lane]
-                                                                 + 2 * ax[2, m, lane] + ax[3, m, lane])
+                x1[m, lane] = x0[m, lane] + dt * (v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + ax[1, m, lane]
+                                                                            + ax[2, m, lane]))
+                v1[m, lane] = v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + 2 * ax[1, m, lane] + 2 * ax[2, m, lane]
+                                                        + ax[3, m, lane])
         for j in range(n_d):
             for lane in range(n_l):
-                q[n + 1, j, lane] = y0[j, lane] + dt * (w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + aq[1, j, lane]
-                                                                                   + aq[2, j, lane]))
-                dq[n + 1, j, lane] = w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + 2 * aq[1, j, lane]
-                                                                + 2 * aq[2, j, lane] + aq[3, j, lane])
+                y1[j, lane] = y0[j, lane] + dt * (w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + aq[1, j, lane]
+                                                                            + aq[2, j, lane]))
+                w1[j, lane] = w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + 2 * aq[1, j, lane] + 2 * aq[2, j, lane]
+                                                        + aq[3, j, lane])
+        x0, x1 = x1, x0
+        v0, v1 = v1, v0
+        y0, y1 = y1, y0
+        w0, w1 = w1, w0
+        _store(xi, n + 1, x0); _store(dxi, n + 1, v0); _store(q, n + 1, y0); _store(dq, n + 1, w0)
         cur = end
-    n = n_steps
-    accelerations(xi[n], dxi[n], q[n], dq[n], vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
-                  (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ddxi[n], ddq[n],
-                  wheel_force[n], wheel_len[n])
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
@@ -432,11 +445,11 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
     settle within ``max_iterations``.  Same array conventions as :func:`rk4`, one lane (L = 1);
     ``vehicle`` carries the mass matrix M in slot 0.
     """
-    n_steps = xi.shape[0] - 1
-    n_m = xi.shape[1]
-    n_d = q.shape[1]
+    n_steps = xi.shape[1] - 1
+    n_m = xi.shape[2]
+    n_d = q.shape[2]
     n_cp = points[0].size
-    n_w = wheel_force.shape[1]
+    n_w = wheel_force.shape[2]
     setback = points[0]
     n = n_m + n_d
     phi = np.zeros((n_cp, n_m))
@@ -454,15 +467,16 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
     new_active = np.zeros((n_cp, 1), dtype=np.bool_)
     cache = (phi, dphi, have, rv, rr, have_r)
     work = (idx, np.zeros((n_cp, 1)), new_active, np.zeros(n_cp, dtype=np.bool_), np.zeros((6, 1)), np.zeros((n_d, 1)))
-    u[:n_m] = xi[0, :, 0]; u[n_m:] = q[0, :, 0]; v[:n_m] = dxi[0, :, 0]; v[n_m:] = dq[0, :, 0]
+    u[:n_m] = xi[0, 0]; u[n_m:] = q[0, 0]; v[:n_m] = dxi[0, 0]; v[n_m:] = dq[0, 0]
     for p in range(n_cp):
         road_point(xf[0] - setback[p], vel[0], p, road, idx, rv, rr)
     assemble(vel[0], xf[0], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load)
     a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
     sx[:, 0] = u[:n_m]; sv[:, 0] = v[:n_m]; sq[:, 0] = u[n_m:]; sw[:, 0] = v[n_m:]
     contact_forces(sx, sv, sq, sw, vel[0], xf[0], bridge, vehicle, points, road, unilateral, cache, work,
-                   wheel_force[0], wheel_len[0])
-    ddxi[0, :, 0] = a[:n_m]; ddq[0, :, 0] = a[n_m:]
+                   wf, wl)
+    _store(wheel_force, 0, wf); _store(wheel_len, 0, wl)
+    ddxi[0, 0] = a[:n_m]; ddq[0, 0] = a[n_m:]
     unsettled = 0
     for s in range(1, n_steps + 1):
         i2 = 2 * s
@@ -493,11 +507,10 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
                 break
         if not settled:
             unsettled += 1
-        wheel_force[s] = wf
-        wheel_len[s] = wl
+        _store(wheel_force, s, wf); _store(wheel_len, s, wl)
         u = u_new; v = v_new; a = a_new
-        xi[s, :, 0] = u[:n_m]; q[s, :, 0] = u[n_m:]; dxi[s, :, 0] = v[:n_m]; dq[s, :, 0] = v[n_m:]
-        ddxi[s, :, 0] = a[:n_m]; ddq[s, :, 0] = a[n_m:]
+        xi[0, s] = u[:n_m]; q[0, s] = u[n_m:]; dxi[0, s] = v[:n_m]; dq[0, s] = v[n_m:]
+        ddxi[0, s] = a[:n_m]; ddq[0, s] = a[n_m:]
     return unsettled
 
 

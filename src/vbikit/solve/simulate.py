@@ -60,14 +60,14 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     road = road_data([(c.road, c.road_right) for c in crossings], first.contact.lateral,
                      float(xf.min() - setback.max()), float(xf.max() - setback.min()))
     n_t = n_steps + 1
-    xi, dxi, ddxi = (np.zeros((n_t, n_m, n_l)) for _ in range(3))
-    q, dq, ddq = (np.zeros((n_t, n_d, n_l)) for _ in range(3))
-    wheel_force = np.zeros((n_t, n_w, n_l))
-    wheel_len = np.zeros((n_t, n_w, n_l))
+    xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
+    q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
+    wheel_force = np.zeros((n_l, n_t, n_w))
+    wheel_len = np.zeros((n_l, n_t, n_w))
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
     kernels.road_at(float(xf[0]), float(vel[0]), setback, road, road0, rate0)
     for lane, crossing in enumerate(crossings):
-        xi[0, :, lane], q[0, :, lane], active0 = static_state(crossing, data, road0[:, lane])
+        xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane])
 
     log.info("%d crossing(s): %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
@@ -81,7 +81,6 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
             log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",
                         unsettled, n_steps)
     time, front, speed = grid.t_half[::2].copy(), xf[::2].copy(), vel[::2].copy()
-    # each result holds views of its lane (no copies; contiguous when there is one lane)
-    return [CrossingResult(c, time, dt, front, speed, *(a[:, :, lane] for a in
+    return [CrossingResult(c, time, dt, front, speed, *(a[lane] for a in
                                                          (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)))
             for lane, c in enumerate(crossings)]

@@ -146,13 +146,15 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], la
     return stations, elev, line, float(elev.max())
 
 
-def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64]) -> NDArray[np.float64]:
+def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64],
+                         data: KernelData | None = None) -> NDArray[np.float64]:
     """Static modal coordinates ξ_st(t) (n_t, n_modes) under the vehicle's static wheel loads,
     each spread over its contact points by their static shares, at the given front-axle
-    positions [m] (same tabulated mode shapes as the dynamic solution)."""
+    positions [m] (same tabulated mode shapes as the dynamic solution; ``data``: the crossing's
+    kernel data if already computed)."""
     cp = crossing.contact
     loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    data = kernel_data(crossing)
+    data = kernel_data(crossing) if data is None else data
     setback, track = data.points[0], data.points[1]
     span, grid_h, values, slopes = data.bridge[2:6]
     force = kernels.static_modal_history(np.ascontiguousarray(front_positions, float), setback, track, loads, span,
