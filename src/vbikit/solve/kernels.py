@@ -76,11 +76,20 @@ def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
             shape_point(x, cp_track[p], grid_h, V, S, phi[p], dphi[p])
 
 
+@njit(cache=True, inline="always")
+def _width(lanes, a):
+    """The lane count L: a compile-time 1 when ``lanes`` is a 1-tuple (one crossing: every lane
+    loop disappears), else the last dimension of ``a`` (a runtime count, which the compiler's
+    loop vectoriser handles best; widths that are multiples of 32 fill its vector loops)."""
+    return 1 if len(lanes) == 1 else a.shape[-1]
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def road_point(x, vel, p, road, idx, rv, rr):
+def road_point(x, vel, p, road, idx, rv, rr, lanes):
     """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = v·dr/dx [m/s] of every lane at
     position ``x`` [m] of point ``p`` (linear interpolation; ``idx[p]`` is the point's station
     pointer, −1 before its first use; positions of a point never decrease)."""
+    n_l = _width(lanes, rv)
     stations, elev, line, r_max = road
     n_s = stations.size
     i = idx[p]
@@ -92,30 +101,57 @@ def road_point(x, vel, p, road, idx, rv, rr):
     z = elev[line[p]]
     dx = x - stations[i]
     inv = 1.0 / (stations[i + 1] - stations[i])
-    for lane in range(z.shape[1]):
+    for lane in range(n_l):
         slope = (z[i + 1, lane] - z[i, lane]) * inv
         rv[p, lane] = z[i, lane] + slope * dx
         rr[p, lane] = slope * vel
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def road_at(xf, vel, setback, road, rv, rr):
+def road_at(xf, vel, setback, road, rv, rr, lanes):
     """Road elevation and rate (n_cp, L) under every contact point at front position ``xf``."""
     idx = np.full(setback.size, -1, dtype=np.int64)
     for p in range(setback.size):
-        road_point(xf - setback[p], vel, p, road, idx, rv, rr)
+        road_point(xf - setback[p], vel, p, road, idx, rv, rr, lanes)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _deck(phi, dphi, vel, xi, dxi, s, dr, sd, lanes):
+    """Add the deck's displacement φ·ξ to ``s``, its velocity φ·ξ̇ to ``dr`` and the convective
+    rate v φ'·ξ to ``sd``, per lane."""
+    if len(lanes) == 1:  # one lane: the mode sums in registers
+        a = s[0]
+        b = dr[0]
+        c = sd[0]
+        for m in range(xi.shape[0]):
+            a += phi[m] * xi[m, 0]
+            b += phi[m] * dxi[m, 0]
+            c += vel * dphi[m] * xi[m, 0]
+        s[0] = a
+        dr[0] = b
+        sd[0] = c
+        return
+    for m in range(xi.shape[0]):  # many lanes: one array per loop, so that they vectorise
+        _axpy(phi[m], xi[m], s, lanes)
+    for m in range(xi.shape[0]):
+        _axpy(phi[m], dxi[m], dr, lanes)
+    for m in range(xi.shape[0]):
+        _axpy(vel * dphi[m], xi[m], sd, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, wheel_force,
-                   wheel_len):
+                   wheel_len, lanes):
     """Contact forces F_p [N] (``force`` (n_cp, L), compression > 0), per-wheel sums ``wheel_force``
     and patch lengths ``wheel_len`` [m] (n_w, L), ``active`` flags, and ``used[p]``: the point's
     force was evaluated (else it is 0 in every lane).
 
     ``cache`` = (phi, dphi, have, rv, rr, have_r): mode shapes and road (elevation, rate) of the
     points at front position ``xf``, filled on first use.  ``work`` = (idx, force, active, used,
-    scratch (6, L), rhs (n_d, L)): station pointers, outputs and scratch space.
+    scratch (6, L), rhs (n_d, L)): station pointers, outputs and scratch space.  ``lanes`` is a
+    tuple of length L: its length is part of its type, so L is a compile-time constant (one
+    specialisation per L) and every lane loop has a known trip count — no loop at all for one
+    lane, whole vector registers for 8, 16, 32.
     """
     phi, dphi, have, rv, rr, have_r = cache
     idx, force, active, used, scratch, rhs = work
@@ -125,39 +161,45 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
     r_max = road[3]
     n_m = xi.shape[0]
     n_d = q.shape[0]
-    n_l = xi.shape[1]
-    bound, zw, dzw, s, sd, dr = scratch[0], scratch[1], scratch[2], scratch[3], scratch[4], scratch[5]
-    bound[:] = 0.0
-    for m in range(n_m):
-        for lane in range(n_l):
-            bound[lane] += amp[m] * abs(xi[m, lane])
-    b_max = bound.max()
+    n_l = _width(lanes, xi)
+    zw, dzw, s, sd, dr = scratch[1], scratch[2], scratch[3], scratch[4], scratch[5]
+    b_max = 0.0
+    for lane in range(n_l):
+        b = 0.0
+        for m in range(n_m):
+            b += amp[m] * abs(xi[m, lane])
+        b_max = max(b_max, b)
     for w in range(wheel_rows.shape[0]):
-        zw[:] = 0.0
-        dzw[:] = 0.0
+        for lane in range(n_l):
+            zw[lane] = 0.0
+            dzw[lane] = 0.0
         for j in range(n_d):
             h = wheel_rows[w, j]
             if h != 0.0:
                 for lane in range(n_l):
                     zw[lane] += h * q[j, lane]
                     dzw[lane] += h * dq[j, lane]
-        zw_min = zw.min()
-        wheel_force[w, :] = 0.0
-        wheel_len[w, :] = 0.0
+        zw_min = zw[0]
+        for lane in range(n_l):
+            zw_min = min(zw_min, zw[lane])
+            wheel_force[w, lane] = 0.0
+            wheel_len[w, lane] = 0.0
         first = wheel_first[w]
         last = first + wheel_count[w]
         for p in range(first, last):
-            force[p, :] = 0.0
-            active[p, :] = False
             used[p] = False
             x = xf - setback[p]
             onb = 0.0 <= x <= span
             gate = gated[p] or (unilateral and cp_k[p] > 0.0)
             if gate and not wheel_envelope[w] and r_max - gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
+                for lane in range(n_l):
+                    force[p, lane] = 0.0
+                    active[p, lane] = False
                 continue  # no lane can touch the surface here
             if not have_r[p]:
-                road_point(x, vel, p, road, idx, rv, rr)
+                road_point(x, vel, p, road, idx, rv, rr, lanes)
                 have_r[p] = True
+            # one store per lane loop, so that the compiler vectorises them (aliasing checks)
             for lane in range(n_l):
                 s[lane] = rv[p, lane]
                 sd[lane] = rr[p, lane]  # v · r'(x_p)
@@ -166,44 +208,45 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
                 if not have[p]:
                     shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
                     have[p] = True
-                for m in range(n_m):
-                    a = phi[p, m]
-                    b = vel * dphi[p, m]
-                    for lane in range(n_l):
-                        s[lane] += a * xi[m, lane]
-                        dr[lane] += a * dxi[m, lane]
-                        sd[lane] += b * xi[m, lane]
+                _deck(phi[p], dphi[p], vel, xi, dxi, s, dr, sd, lanes)
             used[p] = True
             if wheel_envelope[w]:
+                for lane in range(n_l):
+                    force[p, lane] = 0.0
+                    active[p, lane] = False
                 continue  # the rigid disk's contact point is chosen below, per lane
             k = cp_k[p]
             c = cp_c[p]
             f0 = cp_f0[p]
             g = gap[p]
             wd = width[p]
+            fp = force[p]
             for lane in range(n_l):
                 pen = s[lane] - g - zw[lane]
                 f = k * pen + c * (sd[lane] + dr[lane] - dzw[lane]) + f0
-                on = not gate or (pen > 0.0 and f > 0.0)
-                f = f if on else 0.0
-                force[p, lane] = f
-                active[p, lane] = on
-                wheel_force[w, lane] += f
-                wheel_len[w, lane] += wd if on else 0.0
+                fp[lane] = f if not gate or (pen > 0.0 and f > 0.0) else 0.0
+            ap = active[p]
+            for lane in range(n_l):
+                ap[lane] = not gate or fp[lane] > 0.0  # a gated point acts iff it presses
+            _axpy(1.0, fp, wheel_force[w], lanes)
+            lw = wheel_len[w]
+            for lane in range(n_l):
+                lw[lane] += wd if ap[lane] else 0.0
         if wheel_envelope[w]:
             _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force,
-                      wheel_force, active)
+                      wheel_force, active, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force, wheel_force,
-              active):
+              active, lanes):
     """Rigid-disk wheel ``w``: per lane, only the point of highest surface s_p − g_p acts; its rate
     is the deck velocity + v·e', e' the surface slope clamped to the circle's slopes."""
+    n_l = _width(lanes, xi)
     span = bridge[2]
     setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
     n_m = xi.shape[0]
-    for lane in range(xi.shape[1]):
+    for lane in range(n_l):
         p_env = -1
         s_env = -1e300
         sd_env = 0.0
@@ -232,10 +275,10 @@ def _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, r
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, ddxi, ddq,
-                  wheel_force, wheel_len):
+                  wheel_force, wheel_len, lanes):
     """ξ̈ (n_m, L), q̈ (n_d, L) and contact forces for a given state (the right-hand side of Eq. 9)."""
     contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, wheel_force,
-                   wheel_len)
+                   wheel_len, lanes)
     phi = cache[0]
     force, used, rhs = work[1], work[3], work[5]
     omega, zeta, span, grid_h, V, S, amp = bridge
@@ -243,7 +286,7 @@ def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilat
     setback = points[0]
     n_m = xi.shape[0]
     n_d = q.shape[0]
-    n_l = xi.shape[1]
+    n_l = _width(lanes, xi)
     for m in range(n_m):
         a = 2.0 * zeta[m] * omega[m]
         b = omega[m] * omega[m]
@@ -262,44 +305,95 @@ def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilat
     for i in range(n_d):
         for lane in range(n_l):
             rhs[i, lane] = f_g[i]
-        for j in range(n_d):
-            c = c_v[i, j]
-            k = k_v[i, j]
-            if c != 0.0 or k != 0.0:
-                for lane in range(n_l):
-                    rhs[i, lane] -= c * dq[j, lane] + k * q[j, lane]
-        for w in range(wheel_rows.shape[0]):
-            h = wheel_rows[w, i]
-            if h != 0.0:
-                for lane in range(n_l):
-                    rhs[i, lane] += h * wheel_force[w, lane]
-    for i in range(n_d):
-        for lane in range(n_l):
-            ddq[i, lane] = 0.0
-        for j in range(n_d):
-            a = m_inv[i, j]
-            if a != 0.0:
-                for lane in range(n_l):
-                    ddq[i, lane] += a * rhs[j, lane]
+    _gemv(-1.0, c_v, dq, rhs, lanes, False)
+    _gemv(-1.0, k_v, q, rhs, lanes, False)
+    _gemv(1.0, wheel_rows, wheel_force, rhs, lanes, True)
+    ddq[:, :] = 0.0
+    _gemv(1.0, m_inv, rhs, ddq, lanes, False)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _store(out, n, state):
+def _gemv(alpha, a, x, y, lanes, transpose):
+    """y += α·A·x (or α·Aᵀ·x) for every lane (x, y: (·, L)); zero entries of A are skipped."""
+    n_i = a.shape[1] if transpose else a.shape[0]
+    n_j = a.shape[0] if transpose else a.shape[1]
+    if len(lanes) == 1:  # one lane: accumulate in a register
+        for i in range(n_i):
+            acc = y[i, 0]
+            for j in range(n_j):
+                aij = a[j, i] if transpose else a[i, j]
+                if aij != 0.0:
+                    acc += alpha * aij * x[j, 0]
+            y[i, 0] = acc
+        return
+    for i in range(n_i):  # many lanes: the lanes innermost, vectorised
+        yi = y[i]
+        for j in range(n_j):
+            aij = a[j, i] if transpose else a[i, j]
+            if aij != 0.0:
+                c = alpha * aij
+                xj = x[j]
+                for lane in range(yi.size):
+                    yi[lane] += c * xj[lane]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _axpy(a, x, y, lanes):
+    """y += a·x over the lanes (1-D rows)."""
+    for lane in range(_width(lanes, y)):
+        y[lane] += a * x[lane]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _stage(stage, h, tau, x0, v0, a_prev2, a_prev, sx, sv, lanes):
+    """RK4 stage state: sx = x0 + τ(v0 + h·a_{stage−2}) (x0 + h·v0 at stage 1), sv = v0 + τ·a_{stage−1}."""
+    n_l = _width(lanes, x0)
+    for i in range(x0.shape[0]):
+        xr, vr, pr, sr = x0[i], v0[i], a_prev2[i], sx[i]
+        if stage == 1:
+            for lane in range(n_l):
+                sr[lane] = xr[lane] + h * vr[lane]
+        else:
+            for lane in range(n_l):
+                sr[lane] = xr[lane] + tau * (vr[lane] + h * pr[lane])
+        ar, tr = a_prev[i], sv[i]
+        for lane in range(n_l):
+            tr[lane] = vr[lane] + tau * ar[lane]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _update(dt, x0, v0, a, x1, v1, lanes):
+    """RK4 step for ẍ = a: x1 = x0 + dt(v0 + dt/6 (a1 + a2 + a3)), v1 = v0 + dt/6 (a1 + 2a2 + 2a3 + a4)."""
+    n_l = _width(lanes, x0)
+    for i in range(x0.shape[0]):
+        xr, vr, a0, a1, a2, a3, o = x0[i], v0[i], a[0, i], a[1, i], a[2, i], a[3, i], x1[i]
+        for lane in range(n_l):
+            o[lane] = xr[lane] + dt * (vr[lane] + dt / 6.0 * (a0[lane] + a1[lane] + a2[lane]))
+        o = v1[i]
+        for lane in range(n_l):
+            o[lane] = vr[lane] + dt / 6.0 * (a0[lane] + 2 * a1[lane] + 2 * a2[lane] + a3[lane])
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _store(out, n, state, lanes):
     """out[lane, n, i] = state[i, lane]: a lane-major output row from the lane-minor state."""
+    n_l = _width(lanes, state)
     for i in range(state.shape[0]):
-        for lane in range(state.shape[1]):
+        for lane in range(n_l):
             out[lane, n, i] = state[i, lane]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len):
+def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
+        lanes):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
 
     ``xf``, ``vel`` are given at half steps (index 2n = t_n).  The output arrays (L, n_steps + 1, ·)
     are lane-major (each lane's history is contiguous) and hold the initial state at [:, 0] on
     entry; the state itself is kept lane-minor, (·, L), so that the lane loops vectorise.
+    ``lanes``: a tuple of length L, the compile-time lane count (see :func:`contact_forces`).
     """
-    n_l = xi.shape[0]
+    n_l = 1 if len(lanes) == 1 else xi.shape[0]
     n_steps = xi.shape[1] - 1
     n_m = xi.shape[2]
     n_d = q.shape[2]
@@ -327,8 +421,9 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
     h = 0.5 * dt
     for n in range(n_steps + 1):
         accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
-                      (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ax[0], aq[0], wf, wl)
-        _store(ddxi, n, ax[0]); _store(ddq, n, aq[0]); _store(wheel_force, n, wf); _store(wheel_len, n, wl)
+                      (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ax[0], aq[0], wf, wl, lanes)
+        _store(ddxi, n, ax[0], lanes); _store(ddq, n, aq[0], lanes)
+        _store(wheel_force, n, wf, lanes); _store(wheel_len, n, wl, lanes)
         if n == n_steps:
             break
         mid = (cur + 1) % 3
@@ -342,40 +437,19 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
             ih = 2 * n + (1 if stage < 3 else 2)
             slot = mid if stage < 3 else end
             prev = stage - 1
-            for m in range(n_m):
-                for lane in range(n_l):
-                    if stage == 1:
-                        sx[m, lane] = x0[m, lane] + h * v0[m, lane]
-                    else:
-                        sx[m, lane] = x0[m, lane] + tau * (v0[m, lane] + h * ax[prev - 1, m, lane])
-                    sv[m, lane] = v0[m, lane] + tau * ax[prev, m, lane]
-            for j in range(n_d):
-                for lane in range(n_l):
-                    if stage == 1:
-                        sq[j, lane] = y0[j, lane] + h * w0[j, lane]
-                    else:
-                        sq[j, lane] = y0[j, lane] + tau * (w0[j, lane] + h * aq[prev - 1, j, lane])
-                    sw[j, lane] = w0[j, lane] + tau * aq[prev, j, lane]
+            _stage(stage, h, tau, x0, v0, ax[prev - 1], ax[prev], sx, sv, lanes)
+            _stage(stage, h, tau, y0, w0, aq[prev - 1], aq[prev], sq, sw, lanes)
             accelerations(sx, sv, sq, sw, vel[ih], xf[ih], bridge, vehicle, points, road, unilateral,
                           (phi[slot], dphi[slot], have[slot], rv[slot], rr[slot], have_r[slot]), work, ax[stage],
-                          aq[stage], wf, wl)
-        for m in range(n_m):
-            for lane in range(n_l):
-                x1[m, lane] = x0[m, lane] + dt * (v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + ax[1, m, lane]
-                                                                            + ax[2, m, lane]))
-                v1[m, lane] = v0[m, lane] + dt / 6.0 * (ax[0, m, lane] + 2 * ax[1, m, lane] + 2 * ax[2, m, lane]
-                                                        + ax[3, m, lane])
-        for j in range(n_d):
-            for lane in range(n_l):
-                y1[j, lane] = y0[j, lane] + dt * (w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + aq[1, j, lane]
-                                                                            + aq[2, j, lane]))
-                w1[j, lane] = w0[j, lane] + dt / 6.0 * (aq[0, j, lane] + 2 * aq[1, j, lane] + 2 * aq[2, j, lane]
-                                                        + aq[3, j, lane])
+                          aq[stage], wf, wl, lanes)
+        _update(dt, x0, v0, ax, x1, v1, lanes)
+        _update(dt, y0, w0, aq, y1, w1, lanes)
         x0, x1 = x1, x0
         v0, v1 = v1, v0
         y0, y1 = y1, y0
         w0, w1 = w1, w0
-        _store(xi, n + 1, x0); _store(dxi, n + 1, v0); _store(q, n + 1, y0); _store(dq, n + 1, w0)
+        _store(xi, n + 1, x0, lanes); _store(dxi, n + 1, v0, lanes)
+        _store(q, n + 1, y0, lanes); _store(dq, n + 1, w0, lanes)
         cur = end
 
 
@@ -469,20 +543,20 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
     work = (idx, np.zeros((n_cp, 1)), new_active, np.zeros(n_cp, dtype=np.bool_), np.zeros((6, 1)), np.zeros((n_d, 1)))
     u[:n_m] = xi[0, 0]; u[n_m:] = q[0, 0]; v[:n_m] = dxi[0, 0]; v[n_m:] = dq[0, 0]
     for p in range(n_cp):
-        road_point(xf[0] - setback[p], vel[0], p, road, idx, rv, rr)
+        road_point(xf[0] - setback[p], vel[0], p, road, idx, rv, rr, (0,))
     assemble(vel[0], xf[0], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load)
     a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
     sx[:, 0] = u[:n_m]; sv[:, 0] = v[:n_m]; sq[:, 0] = u[n_m:]; sw[:, 0] = v[n_m:]
     contact_forces(sx, sv, sq, sw, vel[0], xf[0], bridge, vehicle, points, road, unilateral, cache, work,
-                   wf, wl)
-    _store(wheel_force, 0, wf); _store(wheel_len, 0, wl)
+                   wf, wl, (0,))
+    _store(wheel_force, 0, wf, (0,)); _store(wheel_len, 0, wl, (0,))
     ddxi[0, 0] = a[:n_m]; ddq[0, 0] = a[n_m:]
     unsettled = 0
     for s in range(1, n_steps + 1):
         i2 = 2 * s
         have[:] = False
         for p in range(n_cp):
-            road_point(xf[i2] - setback[p], vel[i2], p, road, idx, rv, rr)
+            road_point(xf[i2] - setback[p], vel[i2], p, road, idx, rv, rr, (0,))
         u_p = u + dt * v + 0.25 * dt * dt * a
         v_p = v + 0.5 * dt * a
         settled = False
@@ -495,7 +569,7 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
             v_new = v_p + 0.5 * dt * a_new
             sx[:, 0] = u_new[:n_m]; sv[:, 0] = v_new[:n_m]; sq[:, 0] = u_new[n_m:]; sw[:, 0] = v_new[n_m:]
             contact_forces(sx, sv, sq, sw, vel[i2], xf[i2], bridge, vehicle, points, road, unilateral, cache, work,
-                           wf, wl)
+                           wf, wl, (0,))
             same = True
             for p in range(n_cp):
                 if new_active[p, 0] != active[p]:
@@ -507,7 +581,7 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
                 break
         if not settled:
             unsettled += 1
-        _store(wheel_force, s, wf); _store(wheel_len, s, wl)
+        _store(wheel_force, s, wf, (0,)); _store(wheel_len, s, wl, (0,))
         u = u_new; v = v_new; a = a_new
         xi[0, s] = u[:n_m]; q[0, s] = u[n_m:]; dxi[0, s] = v[:n_m]; dq[0, s] = v[n_m:]
         ddxi[0, s] = a[:n_m]; ddq[0, s] = a[n_m:]

@@ -47,15 +47,27 @@ def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
     return TimeGrid(dt, n_steps, t_half, crossing.front_position(t_half), crossing.velocity(t_half))
 
 
+#: lanes per RK4 kernel call: a batch runs in calls of up to MAX_LANES lanes, each padded to a
+#: multiple of LANE_PAD (padding lanes repeat the last road and are dropped): the compiler's
+#: vector loops over the lanes take 32 doubles at a time, so 32 lanes cost little more than
+#: 20 (benchmarks/bench_studies.py).  One crossing is one lane (its own compiled variant).
+MAX_LANES = 32
+LANE_PAD = 8
+
+
 def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -> list[CrossingResult]:
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
-    and ``grid`` are those of the first) with their integrator: RK4 runs them as lanes of one
-    kernel call, Newmark (implicit, an active-set iteration per crossing) one after another."""
-    first = crossings[0]
-    if first.integrator != "rk4" and len(crossings) > 1:
-        return [res for c in crossings for res in integrate([c], data, grid)]
+    and ``grid`` are those of the first) with their integrator: RK4 runs them as lanes of kernel
+    calls (:data:`MAX_LANES`), Newmark (implicit, an active-set iteration per crossing) one
+    after another."""
+    first, n_real = crossings[0], len(crossings)
+    if (first.integrator != "rk4" and n_real > 1) or n_real > MAX_LANES:
+        size = 1 if first.integrator != "rk4" else MAX_LANES
+        return [res for k in range(0, n_real, size) for res in integrate(crossings[k:k + size], data, grid)]
+    n_l = 1 if n_real == 1 else -(-n_real // LANE_PAD) * LANE_PAD
+    crossings = list(crossings) + [crossings[-1]] * (n_l - n_real)
     dt, n_steps, xf, vel = grid.dt, grid.n_steps, grid.xf, grid.vel
-    n_m, n_d, n_w, n_p, n_l = data.n_modes, data.n_dof, data.n_wheels, data.n_points, len(crossings)
+    n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
     setback = first.contact.setback
     road = road_data([(c.road, c.road_right) for c in crossings], first.contact.lateral,
                      float(xf.min() - setback.max()), float(xf.max() - setback.min()))
@@ -65,15 +77,18 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     wheel_force = np.zeros((n_l, n_t, n_w))
     wheel_len = np.zeros((n_l, n_t, n_w))
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
-    kernels.road_at(float(xf[0]), float(vel[0]), setback, road, road0, rate0)
-    for lane, crossing in enumerate(crossings):
+    kernels.road_at(float(xf[0]), float(vel[0]), setback, road, road0, rate0, (0,) if n_l == 1 else (0, 0))
+    for lane, crossing in enumerate(crossings[:n_real]):
         xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane])
+    for lane in range(n_real, n_l):  # padding: a copy of the last real lane
+        xi[lane, 0], q[lane, 0] = xi[n_real - 1, 0], q[n_real - 1, 0]
 
-    log.info("%d crossing(s): %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
-             n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
+    log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
+             n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
     if first.integrator == "rk4":
-        kernels.rk4(dt, xf, vel, data.bridge, data.vehicle, data.points, road, data.unilateral, *outputs)
+        kernels.rk4(dt, xf, vel, data.bridge, data.vehicle, data.points, road, data.unilateral, *outputs,
+                    (0,) if n_l == 1 else (0, 0))
     else:
         unsettled = kernels.newmark(dt, xf, vel, data.bridge, data.vehicle_mass, data.points, road, data.unilateral,
                                     *outputs, active0, 50)
@@ -83,4 +98,4 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     time, front, speed = grid.t_half[::2].copy(), xf[::2].copy(), vel[::2].copy()
     return [CrossingResult(c, time, dt, front, speed, *(a[lane] for a in
                                                          (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)))
-            for lane, c in enumerate(crossings)]
+            for lane, c in enumerate(crossings[:n_real])]

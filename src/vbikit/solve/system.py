@@ -97,7 +97,7 @@ def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64]
         cache[2][:] = False
         kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
                                np.zeros((data.n_dof, 1)), 0.0, xf, data.bridge, data.vehicle, data.points, bundle,
-                               data.unilateral, cache, work, wf, wl)
+                               data.unilateral, cache, work, wf, wl, (0,))
         new_active = work[2][:, 0]
         if np.array_equal(new_active, active):
             return u[:n_m], u[n_m:], active

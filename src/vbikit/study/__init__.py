@@ -1,6 +1,6 @@
 """Parameter studies: a base scenario swept over axes, run in batches, stored as xarray/NetCDF,
 resumable and parallel (local processes or Dask).  See ``docs/studies.md``."""
-from vbikit.study.run import assemble, run_study
+from vbikit.study.run import assemble, run_study, shutdown_workers
 from vbikit.study.spec import (
            Study,
            StudyError,
@@ -11,4 +11,4 @@ from vbikit.study.spec import (
 )
 
 __all__ = ["Study", "StudyError", "assemble", "derive_seed", "load_study", "parse_study", "run_study",
-           "study_from_toml"]
+           "shutdown_workers", "study_from_toml"]

@@ -16,6 +16,7 @@ index), so the final dataset is identical to that of an unbroken run.
 """
 from __future__ import annotations
 
+import atexit
 import json
 import logging
 import os
@@ -94,7 +95,8 @@ def run_study(
 ):
     """Run (or resume) ``study`` and write its dataset to ``out`` (NetCDF); returns the Dataset.
 
-    ``workers``: local worker processes (default: all cores; 1 runs in this process);
+    ``workers``: local worker processes (default: all cores; 1 runs in this process; kept for
+    the next study of this session, see :func:`shutdown_workers`);
     ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
     batches run on that cluster instead; ``progress(done, total)`` is called after every
     finished batch (crossings); ``threads``: crossings run at once inside one worker;
@@ -151,8 +153,42 @@ def _ignore_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
+#: the local worker processes, kept between studies of one session so that consecutive studies
+#: (e.g. the paper's six) pay the start-up (imports, compiled-kernel cache, bridge modes, road
+#: profiles of the same seeds) once; ended at exit or by :func:`shutdown_workers`
+_POOL: Optional[ProcessPoolExecutor] = None
+_POOL_WORKERS = 0
+
+
+def _local_pool(workers: int) -> ProcessPoolExecutor:
+    global _POOL, _POOL_WORKERS
+    if _POOL is None or _POOL_WORKERS != workers or getattr(_POOL, "_broken", False):
+        shutdown_workers()
+        _POOL = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint)
+        _POOL_WORKERS = workers
+    return _POOL
+
+
+def shutdown_workers(kill: bool = False) -> None:
+    """End the local worker processes kept between studies (``kill``: at once, dropping running work)."""
+    global _POOL
+    pool, _POOL = _POOL, None
+    if pool is None:
+        return
+    if kill:
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for proc in processes:  # the running batches are lost anyway; do not wait for them
+            proc.terminate()
+    else:
+        pool.shutdown()
+
+
+atexit.register(shutdown_workers)
+
+
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(todo)), initializer=_ignore_sigint)
+    pool = _local_pool(workers)
     try:
         futures = {pool.submit(run_batch, study, batches[k], threads): k for k in todo}
         pending = set(futures)
@@ -161,12 +197,8 @@ def _run_local(study, batches, todo, workers, threads, finished) -> None:
             for fut in ready:
                 finished(futures[fut], fut.result())
     except BaseException:  # Ctrl-C or a failed batch: keep what is written, stop the rest now
-        processes = list((getattr(pool, "_processes", None) or {}).values())
-        pool.shutdown(wait=False, cancel_futures=True)
-        for proc in processes:  # the running batches are lost anyway; do not wait for them
-            proc.terminate()
+        shutdown_workers(kill=True)
         raise
-    pool.shutdown()
 
 
 def _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout) -> None:
