@@ -78,7 +78,7 @@ def time_runs(crossing: Crossing, repeat: int):
 
 def cache_state() -> str:
     hits = misses = 0
-    for name in ("rk4", "newmark", "shapes_at", "assemble", "sample_paths", "accelerations", "contact_forces"):
+    for name in ("rk4", "newmark", "shapes_at", "assemble", "road_at", "accelerations", "contact_forces"):
         stats = getattr(kernels, name).stats
         hits += sum(stats.cache_hits.values())
         misses += sum(stats.cache_misses.values())

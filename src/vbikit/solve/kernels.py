@@ -116,27 +116,27 @@ def road_at(xf, vel, setback, road, rv, rr, lanes):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _deck(phi, dphi, vel, xi, dxi, s, dr, sd, lanes):
-    """Add the deck's displacement φ·ξ to ``s``, its velocity φ·ξ̇ to ``dr`` and the convective
-    rate v φ'·ξ to ``sd``, per lane."""
+def _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes):
+    """Add the deck's displacement φ_p·ξ to ``s``, its velocity φ_p·ξ̇ to ``dr`` and the convective
+    rate v φ'_p·ξ to ``sd`` (rows (1, L)) of point ``p``, per lane."""
     if len(lanes) == 1:  # one lane: the mode sums in registers
-        a = s[0]
-        b = dr[0]
-        c = sd[0]
+        a = s[0, 0]
+        b = dr[0, 0]
+        c = sd[0, 0]
         for m in range(xi.shape[0]):
-            a += phi[m] * xi[m, 0]
-            b += phi[m] * dxi[m, 0]
-            c += vel * dphi[m] * xi[m, 0]
-        s[0] = a
-        dr[0] = b
-        sd[0] = c
+            a += phi[p, m] * xi[m, 0]
+            b += phi[p, m] * dxi[m, 0]
+            c += vel * dphi[p, m] * xi[m, 0]
+        s[0, 0] = a
+        dr[0, 0] = b
+        sd[0, 0] = c
         return
     for m in range(xi.shape[0]):  # many lanes: one array per loop, so that they vectorise
-        _axpy(phi[m], xi[m], s, lanes)
+        _axpy(phi[p, m], xi, m, s, 0, lanes)
     for m in range(xi.shape[0]):
-        _axpy(phi[m], dxi[m], dr, lanes)
+        _axpy(phi[p, m], dxi, m, dr, 0, lanes)
     for m in range(xi.shape[0]):
-        _axpy(vel * dphi[m], xi[m], sd, lanes)
+        _axpy(vel * dphi[p, m], xi, m, sd, 0, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
@@ -162,7 +162,8 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
     n_m = xi.shape[0]
     n_d = q.shape[0]
     n_l = _width(lanes, xi)
-    zw, dzw, s, sd, dr = scratch[1], scratch[2], scratch[3], scratch[4], scratch[5]
+    zw, dzw = scratch[1], scratch[2]
+    s, sd, dr = scratch[3:4], scratch[4:5], scratch[5:6]  # (1, L) rows for 2-D indexing
     b_max = 0.0
     for lane in range(n_l):
         b = 0.0
@@ -201,14 +202,14 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
                 have_r[p] = True
             # one store per lane loop, so that the compiler vectorises them (aliasing checks)
             for lane in range(n_l):
-                s[lane] = rv[p, lane]
-                sd[lane] = rr[p, lane]  # v · r'(x_p)
-                dr[lane] = 0.0  # ∂u_b/∂t at the fixed point x_p
+                s[0, lane] = rv[p, lane]
+                sd[0, lane] = rr[p, lane]  # v · r'(x_p)
+                dr[0, lane] = 0.0  # ∂u_b/∂t at the fixed point x_p
             if onb:
                 if not have[p]:
                     shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
                     have[p] = True
-                _deck(phi[p], dphi[p], vel, xi, dxi, s, dr, sd, lanes)
+                _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes)
             used[p] = True
             if wheel_envelope[w]:
                 for lane in range(n_l):
@@ -220,18 +221,15 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
             f0 = cp_f0[p]
             g = gap[p]
             wd = width[p]
-            fp = force[p]
             for lane in range(n_l):
-                pen = s[lane] - g - zw[lane]
-                f = k * pen + c * (sd[lane] + dr[lane] - dzw[lane]) + f0
-                fp[lane] = f if not gate or (pen > 0.0 and f > 0.0) else 0.0
-            ap = active[p]
+                pen = s[0, lane] - g - zw[lane]
+                f = k * pen + c * (sd[0, lane] + dr[0, lane] - dzw[lane]) + f0
+                force[p, lane] = f if not gate or (pen > 0.0 and f > 0.0) else 0.0
             for lane in range(n_l):
-                ap[lane] = not gate or fp[lane] > 0.0  # a gated point acts iff it presses
-            _axpy(1.0, fp, wheel_force[w], lanes)
-            lw = wheel_len[w]
+                active[p, lane] = not gate or force[p, lane] > 0.0  # a gated point acts iff it presses
+            _axpy(1.0, force, p, wheel_force, w, lanes)
             for lane in range(n_l):
-                lw[lane] += wd if ap[lane] else 0.0
+                wheel_len[w, lane] += wd if active[p, lane] else 0.0
         if wheel_envelope[w]:
             _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force,
                       wheel_force, active, lanes)
@@ -308,7 +306,9 @@ def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilat
     _gemv(-1.0, c_v, dq, rhs, lanes, False)
     _gemv(-1.0, k_v, q, rhs, lanes, False)
     _gemv(1.0, wheel_rows, wheel_force, rhs, lanes, True)
-    ddq[:, :] = 0.0
+    for i in range(n_d):
+        for lane in range(n_l):
+            ddq[i, lane] = 0.0
     _gemv(1.0, m_inv, rhs, ddq, lanes, False)
 
 
@@ -327,21 +327,18 @@ def _gemv(alpha, a, x, y, lanes, transpose):
             y[i, 0] = acc
         return
     for i in range(n_i):  # many lanes: the lanes innermost, vectorised
-        yi = y[i]
         for j in range(n_j):
             aij = a[j, i] if transpose else a[i, j]
             if aij != 0.0:
-                c = alpha * aij
-                xj = x[j]
-                for lane in range(yi.size):
-                    yi[lane] += c * xj[lane]
+                _axpy(alpha * aij, x, j, y, i, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _axpy(a, x, y, lanes):
-    """y += a·x over the lanes (1-D rows)."""
+def _axpy(a, x, i, y, k, lanes):
+    """y[k, :] += a·x[i, :] over the lanes (2-D indexing: no row views, which cost a reference
+    count each in compiled code)."""
     for lane in range(_width(lanes, y)):
-        y[lane] += a * x[lane]
+        y[k, lane] += a * x[i, lane]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -349,16 +346,14 @@ def _stage(stage, h, tau, x0, v0, a_prev2, a_prev, sx, sv, lanes):
     """RK4 stage state: sx = x0 + τ(v0 + h·a_{stage−2}) (x0 + h·v0 at stage 1), sv = v0 + τ·a_{stage−1}."""
     n_l = _width(lanes, x0)
     for i in range(x0.shape[0]):
-        xr, vr, pr, sr = x0[i], v0[i], a_prev2[i], sx[i]
         if stage == 1:
             for lane in range(n_l):
-                sr[lane] = xr[lane] + h * vr[lane]
+                sx[i, lane] = x0[i, lane] + h * v0[i, lane]
         else:
             for lane in range(n_l):
-                sr[lane] = xr[lane] + tau * (vr[lane] + h * pr[lane])
-        ar, tr = a_prev[i], sv[i]
+                sx[i, lane] = x0[i, lane] + tau * (v0[i, lane] + h * a_prev2[i, lane])
         for lane in range(n_l):
-            tr[lane] = vr[lane] + tau * ar[lane]
+            sv[i, lane] = v0[i, lane] + tau * a_prev[i, lane]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -366,12 +361,11 @@ def _update(dt, x0, v0, a, x1, v1, lanes):
     """RK4 step for ẍ = a: x1 = x0 + dt(v0 + dt/6 (a1 + a2 + a3)), v1 = v0 + dt/6 (a1 + 2a2 + 2a3 + a4)."""
     n_l = _width(lanes, x0)
     for i in range(x0.shape[0]):
-        xr, vr, a0, a1, a2, a3, o = x0[i], v0[i], a[0, i], a[1, i], a[2, i], a[3, i], x1[i]
         for lane in range(n_l):
-            o[lane] = xr[lane] + dt * (vr[lane] + dt / 6.0 * (a0[lane] + a1[lane] + a2[lane]))
-        o = v1[i]
+            x1[i, lane] = x0[i, lane] + dt * (v0[i, lane] + dt / 6.0 * (a[0, i, lane] + a[1, i, lane] + a[2, i, lane]))
         for lane in range(n_l):
-            o[lane] = vr[lane] + dt / 6.0 * (a0[lane] + 2 * a1[lane] + 2 * a2[lane] + a3[lane])
+            v1[i, lane] = v0[i, lane] + dt / 6.0 * (a[0, i, lane] + 2 * a[1, i, lane] + 2 * a[2, i, lane]
+                                                    + a[3, i, lane])
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -417,31 +411,37 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
             np.zeros((6, n_l)), np.zeros((n_d, n_l)))
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
+    # the three position slots' caches, built once (array views cost a reference count each)
+    caches = ((phi[0], dphi[0], have[0], rv[0], rr[0], have_r[0]), (phi[1], dphi[1], have[1], rv[1], rr[1], have_r[1]),
+              (phi[2], dphi[2], have[2], rv[2], rr[2], have_r[2]))
+    stage_x = (ax[0], ax[1], ax[2], ax[3])
+    stage_q = (aq[0], aq[1], aq[2], aq[3])
     cur = 0
     h = 0.5 * dt
     for n in range(n_steps + 1):
         accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
-                      (phi[cur], dphi[cur], have[cur], rv[cur], rr[cur], have_r[cur]), work, ax[0], aq[0], wf, wl, lanes)
-        _store(ddxi, n, ax[0], lanes); _store(ddq, n, aq[0], lanes)
+                      caches[cur], work, stage_x[0], stage_q[0], wf, wl, lanes)
+        _store(ddxi, n, stage_x[0], lanes); _store(ddq, n, stage_q[0], lanes)
         _store(wheel_force, n, wf, lanes); _store(wheel_len, n, wl, lanes)
         if n == n_steps:
             break
         mid = (cur + 1) % 3
         end = (cur + 2) % 3
-        for slot in (mid, end):
-            have[slot, :] = False
-            have_r[slot, :] = False
+        for p in range(n_cp):
+            have[mid, p] = False
+            have[end, p] = False
+            have_r[mid, p] = False
+            have_r[end, p] = False
         # stages 2-4: state = start + tau * (velocity + h * previous-but-one stage acceleration)
         for stage in range(1, 4):
             tau = h if stage < 3 else dt
             ih = 2 * n + (1 if stage < 3 else 2)
             slot = mid if stage < 3 else end
             prev = stage - 1
-            _stage(stage, h, tau, x0, v0, ax[prev - 1], ax[prev], sx, sv, lanes)
-            _stage(stage, h, tau, y0, w0, aq[prev - 1], aq[prev], sq, sw, lanes)
+            _stage(stage, h, tau, x0, v0, stage_x[max(prev - 1, 0)], stage_x[prev], sx, sv, lanes)
+            _stage(stage, h, tau, y0, w0, stage_q[max(prev - 1, 0)], stage_q[prev], sq, sw, lanes)
             accelerations(sx, sv, sq, sw, vel[ih], xf[ih], bridge, vehicle, points, road, unilateral,
-                          (phi[slot], dphi[slot], have[slot], rv[slot], rr[slot], have_r[slot]), work, ax[stage],
-                          aq[stage], wf, wl, lanes)
+                          caches[slot], work, stage_x[stage], stage_q[stage], wf, wl, lanes)
         _update(dt, x0, v0, ax, x1, v1, lanes)
         _update(dt, y0, w0, aq, y1, w1, lanes)
         x0, x1 = x1, x0

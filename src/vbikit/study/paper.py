@@ -90,7 +90,7 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False) -> dict[st
             base["road"]["defects"] = [{"kind": "depression", "position": 0.0}]
     axes["road.class"] = CLASSES
     axes["road.seed"] = {"samples": samples}
-    return {"name": f"paper-{fig}" + ("-beam" if beam else ""), "seed": PAPER_SEED, "batch_size": 20, "base": base, "axes": axes}
+    return {"name": f"paper-{fig}" + ("-beam" if beam else ""), "seed": PAPER_SEED, "batch_size": 32, "base": base, "axes": axes}
 
 
 def paper_study(fig: str, samples: int = 20, beam: bool = False) -> Study:

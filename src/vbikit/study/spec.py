@@ -4,7 +4,7 @@ A study file::
 
     name = "my study"
     seed = 2026                      # study seed: road seeds derive from it and the sample index
-    batch_size = 20                  # crossings per batch (one prepared system per batch)
+    batch_size = 32                  # crossings per batch (one prepared system, roads run as lanes)
 
     [base]                           # a whole scenario inline (same keys as a scenario file) ...
     # scenario = "bridge.toml"       # ... or a path to a scenario file, relative to the study file
@@ -62,7 +62,7 @@ class StudyFile(BaseModel):
     model_config = ConfigDict(extra="forbid")
     name: str = ""
     seed: int = Field(0, ge=0, description="study seed; road seeds derive from it and the sample index")
-    batch_size: int = Field(20, ge=1, le=10000, description="crossings per batch")
+    batch_size: int = Field(32, ge=1, le=10000, description="crossings per batch")
     histories: bool = Field(False, description="also store midspan displacement histories")
     base: dict[str, Any] = Field(..., description="scenario (inline tables) or {scenario = \"path.toml\"}")
     axes: dict[str, Union[SamplesAxis, list[Any]]] = Field(default_factory=dict)
