@@ -165,3 +165,17 @@ def test_study_without_axes_is_one_crossing(tmp_path, small_study_dict):
     ds = run_study(parse_study(small_study_dict), tmp_path / "one.nc", workers=1)
     assert ds["impact_factor"].dims == () and np.isfinite(float(ds["impact_factor"]))
     assert ds["displacement_history"].dims == ("step",)
+
+
+def test_second_writer_on_the_same_output_is_refused(tmp_path, small_study_dict):
+    """While one run holds <out>.lock, another run on the same --out stops with a clear error
+    before computing anything; once the lock is released the study runs."""
+    from filelock import FileLock
+
+    study = parse_study(small_study_dict)
+    out = tmp_path / "r.nc"
+    with FileLock(str(out) + ".lock"):
+        with pytest.raises(StudyError, match="another vbikit study is writing to"):
+            run_study(study, out, workers=1)
+        assert not parts_dir(out).exists()
+    assert run_study(study, out, workers=1)["impact_factor"].size == study.size

@@ -17,7 +17,12 @@ Lanes.  The state carries a last axis of L *lanes*: L crossings that share every
 road (a batch of a study), integrated together.  Everything that does not depend on the road
 (positions, mode shapes at the contact points, the step) is computed once for all lanes, and
 the per-lane arithmetic runs in contiguous inner loops that the compiler vectorises.  Each
-lane's arithmetic is that of a single crossing (L = 1 is ``simulate``).
+lane's arithmetic is that of a single crossing (L = 1 is ``simulate``).  The argument
+``lanes`` selects one of two compiled variants: a 1-tuple = one lane, a compile-time constant,
+so that every lane loop disappears (and sums stay in registers); a 2-tuple = many lanes, L
+read from the arrays at run time (the form the loop vectoriser handles; its vector loops take
+32 doubles at a time, hence the callers' 32-lane calls padded to multiples of 8).  Hot loops
+index 2-D arrays directly instead of taking row views: every view costs a reference count.
 
 Mode shapes along each wheel track are tabulated on a uniform grid with values and slopes and
 evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``).  Road elevations are
@@ -148,10 +153,8 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
 
     ``cache`` = (phi, dphi, have, rv, rr, have_r): mode shapes and road (elevation, rate) of the
     points at front position ``xf``, filled on first use.  ``work`` = (idx, force, active, used,
-    scratch (6, L), rhs (n_d, L)): station pointers, outputs and scratch space.  ``lanes`` is a
-    tuple of length L: its length is part of its type, so L is a compile-time constant (one
-    specialisation per L) and every lane loop has a known trip count — no loop at all for one
-    lane, whole vector registers for 8, 16, 32.
+    scratch (6, L), rhs (n_d, L)): station pointers, outputs and scratch space.  ``lanes``: (0,)
+    for one lane, (0, 0) for many (see the module docstring).
     """
     phi, dphi, have, rv, rr, have_r = cache
     idx, force, active, used, scratch, rhs = work
@@ -385,7 +388,7 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
     ``xf``, ``vel`` are given at half steps (index 2n = t_n).  The output arrays (L, n_steps + 1, ·)
     are lane-major (each lane's history is contiguous) and hold the initial state at [:, 0] on
     entry; the state itself is kept lane-minor, (·, L), so that the lane loops vectorise.
-    ``lanes``: a tuple of length L, the compile-time lane count (see :func:`contact_forces`).
+    ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).
     """
     n_l = 1 if len(lanes) == 1 else xi.shape[0]
     n_steps = xi.shape[1] - 1

@@ -9,8 +9,9 @@ Storage (``out`` = e.g. ``results.nc``):
   per axis) and written to ``out`` (NetCDF-4, again through a temporary file and a rename);
   the parts directory is then removed unless ``keep_parts``.
 
-A study killed at any moment (SIGKILL, Ctrl-C, a lost machine) loses at most the batches that
-were running; started again with the same ``out`` it skips the finished batches.  Every
+While a study runs, ``<out>.lock`` is held (``filelock``): a second run on the same ``out`` is
+refused with a message instead of mixing two writers' parts.  A study killed at any moment
+(SIGKILL, Ctrl-C, a lost machine) loses at most the batches that were running; started again with the same ``out`` it skips the finished batches.  Every
 crossing's result depends only on the study (seeds derive from the study seed and the sample
 index), so the final dataset is identical to that of an unbroken run.
 """
@@ -29,6 +30,7 @@ from pathlib import Path
 from typing import Callable, Optional
 
 import numpy as np
+from filelock import FileLock, Timeout
 
 from vbikit.study.compute import OUTPUTS, run_batch
 from vbikit.study.spec import Study, StudyError
@@ -107,6 +109,20 @@ def run_study(
         raise StudyError(f"--out must be a NetCDF file name ending in .nc, got {out}")
     if not out.parent.exists():
         out.parent.mkdir(parents=True)
+    # one writer per output: the OS releases the lock when its process ends, even by SIGKILL
+    lock = FileLock(str(out) + ".lock")
+    try:
+        lock.acquire(timeout=0)
+    except Timeout:
+        raise StudyError(f"another vbikit study is writing to {out} (lock {lock.lock_file}); wait for it to "
+                         "finish or choose another --out") from None
+    try:
+        return _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout)
+    finally:
+        lock.release()
+
+
+def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout):
     if out.exists():
         ds = _open_complete(out, study)
         if ds is not None:
