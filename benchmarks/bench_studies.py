@@ -13,8 +13,14 @@ speed-up of the batched solver over one-at-a-time crossings, measured in the sam
    each crossing on its own (build the scenario, ``simulate``, ``point_response``, both impact
    factors — what a user loop over ``vbikit run`` does), one process pool for all; its
    crossings/s against the batched program's crossings/s is the program-level speed-up;
-4. solver level, one process, no pools: one batch of 20 roads (Fig. 6, n = 6, 75 km/h, class C)
-   through ``run_batch`` (shared set-up) against the same 20 crossings one at a time.
+4. solver level, one process, no pools: the batch of Fig. 6 (n = 6, 75 km/h) that starts with a
+   class C road (28 roads: batches hold 32 crossings, classes B–D × 20 seeds) through
+   ``run_batch`` (shared set-up, roads as lanes of one kernel call) against the same crossings
+   one at a time, and the batch split over 2 threads.
+
+The studies of step 2 run one after another in this process, so they share the worker
+processes (``run_study`` keeps them for the session), as the six paper commands do when run
+from one Python session; step 3 uses its own pool.
 
 Writes nothing but temporary datasets (deleted) and numba's cache.
 """
@@ -102,7 +108,7 @@ def main() -> None:
                      and s6.scenario_dict(b[0])["crossing"]["speed_kmh"] == 75
                      and s6.scenario_dict(b[0])["road"]["class"] == "C")
         run_batch(s6, batch[:2])
-        run_batch(s6, batch[:2], threads=2)  # compiles the nogil wrappers (not cached on disk)
+        run_batch(s6, batch[:2], threads=2)
         t0 = time.perf_counter()
         run_batch(s6, batch)
         t_b = time.perf_counter() - t0

@@ -17,7 +17,6 @@ kernels release the GIL).
 """
 from __future__ import annotations
 
-import dataclasses
 import logging
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable, Iterable, Optional, TypeVar
@@ -28,7 +27,7 @@ from numpy.typing import NDArray
 from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.simulate import TimeGrid, integrate, time_grid
+from vbikit.solve.simulate import MAX_LANES, TimeGrid, integrate, time_grid
 from vbikit.solve.system import kernel_data, static_modal_history
 from vbikit.solve.timestep import accuracy_time_step, rk4_stability_limit
 
@@ -101,7 +100,7 @@ class BatchSolver:
         return self.run_many([(road, road_right)])[0]
 
     def run_many(self, roads: Iterable, reduce: Callable[[CrossingResult], T] | None = None,
-                 threads: int = 1, lanes: int = 32) -> list:
+                 threads: int = 1, lanes: int = MAX_LANES) -> list:
         """Run every road (a RoadProfile, None, or a pair (road, road_right)); ``reduce(result)``
         (default: keep the result) is applied as each group of lanes finishes so that only the
         reduced values are held.  At most ``lanes`` roads per kernel call; ``threads`` > 1 runs

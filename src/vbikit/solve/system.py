@@ -8,8 +8,8 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.solve import kernels
 from vbikit.road.profile import RoadProfile
+from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.tabulate import TrackTable, tabulate_tracks
 
