@@ -148,3 +148,18 @@ def test_crossing_rejects_other_bad_inputs():
     short = random_profile(RoadPSD.iso("A"), seed=1, length=20.0, x_start=-5.0)
     with pytest.raises(ValueError, match="covers"):
         Crossing(BEAM, hs20_44(), road=short, approach=10.0)
+
+
+def test_with_road_checks_like_the_constructor_and_keeps_the_contact_points():
+    """Crossing.with_road (the batch path's cheap copy) refuses a road that does not cover the
+    crossing, or a right line without a left one, exactly as the constructor does."""
+    good = random_profile(RoadPSD.iso("A"), seed=1)
+    short = random_profile(RoadPSD.iso("A"), seed=1, length=20.0, x_start=-5.0)
+    base = Crossing(BEAM, hs20_44(), road=good, approach=10.0)
+    contact = base.contact
+    other = base.with_road(random_profile(RoadPSD.iso("B"), seed=2))
+    assert other.contact is contact and other.road is not base.road and base.road is good
+    with pytest.raises(ValueError, match="covers"):
+        base.with_road(short)
+    with pytest.raises(ValueError, match="needs a road profile for the left line"):
+        base.with_road(None, good)
