@@ -203,22 +203,22 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
             if not have_r[p]:
                 road_point(x, vel, p, road, idx, rv, rr, lanes)
                 have_r[p] = True
-            # one store per lane loop, so that the compiler vectorises them (aliasing checks)
-            for lane in range(n_l):
-                s[0, lane] = rv[p, lane]
-                sd[0, lane] = rr[p, lane]  # v · r'(x_p)
-                dr[0, lane] = 0.0  # ∂u_b/∂t at the fixed point x_p
-            if onb:
-                if not have[p]:
-                    shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
-                    have[p] = True
-                _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes)
+            if onb and not have[p]:
+                shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
+                have[p] = True
             used[p] = True
             if wheel_envelope[w]:
                 for lane in range(n_l):
                     force[p, lane] = 0.0
                     active[p, lane] = False
                 continue  # the rigid disk's contact point is chosen below, per lane
+            # one store per lane loop, so that the compiler vectorises them (aliasing checks)
+            for lane in range(n_l):
+                s[0, lane] = rv[p, lane]
+                sd[0, lane] = rr[p, lane]  # v · r'(x_p)
+                dr[0, lane] = 0.0  # ∂u_b/∂t at the fixed point x_p
+            if onb:
+                _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes)
             k = cp_k[p]
             c = cp_c[p]
             f0 = cp_f0[p]
