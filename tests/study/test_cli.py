@@ -78,3 +78,19 @@ def test_paper_study_end_to_end_small(tmp_path):
     assert ds.sizes == {"tire_n_points": 8, "crossing_speed_kmh": 3, "road_class": 3, "sample": 1}
     assert "two-axle" in ds.attrs["study"]
     ds.close()
+
+
+def test_paper_all_runs_every_figure(tmp_path):
+    """`vbikit study paper-all`: the six paper studies one after another, each with its dataset
+    and figure (1 profile per point to keep it short)."""
+    res = runner.invoke(app, ["study", "paper-all", "--print-spec"])
+    assert res.exit_code == 0
+    names = [json.loads(line)["name"] for line in res.output.splitlines() if line.strip()]
+    assert names == [f"paper-{f}" for f in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11")]
+    res = runner.invoke(app, ["study", "paper-all", "--samples", "1", "--workers", "2", "--no-progress",
+                              "--out-dir", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    for f in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11"):
+        assert (tmp_path / f"paper-{f}-1samples.png").stat().st_size > 10_000
+        with xr.open_dataset(tmp_path / f"paper-{f}-1samples.nc") as ds:
+            assert ds.sizes["sample"] == 1 and ds["impact_factor"].notnull().all()

@@ -96,7 +96,9 @@ def validate_cmd(study_file: Path = typer.Argument(..., help="TOML study file.")
     typer.echo(f"{study_file}: ok — {study.size} crossings ({dims}) in {len(study.batches())} batches")
 
 
-def _paper(fig: str):
+def _paper(*figs: str):
+    """The command that runs the paper studies ``figs`` one after another (the local worker
+    processes are shared between them)."""
     def command(
         out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the dataset and figure."),
         samples: int = typer.Option(20, "--samples", min=1, help="Road profiles per point (the paper: 20)."),
@@ -110,21 +112,26 @@ def _paper(fig: str):
         from vbikit.study.figures import plot_paper_figure
         from vbikit.study.paper import paper_study
 
-        study = _guard(lambda: paper_study(fig, samples, beam))
+        studies = [_guard(lambda fig=fig: paper_study(fig, samples, beam)) for fig in figs]
         if dump:
-            typer.echo(study.to_json())
+            for study in studies:
+                typer.echo(study.to_json())
             return
         suffix = ("-beam" if beam else "") + ("" if samples == 20 else f"-{samples}samples")
-        out = out_dir / f"paper-{fig}{suffix}.nc"
-        ds = _run(study, out, workers, scheduler, progress)
-        png = _guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
-        typer.echo(f"figure {png}")
+        for fig, study in zip(figs, studies):
+            out = out_dir / f"paper-{fig}{suffix}.nc"
+            ds = _run(study, out, workers, scheduler, progress)
+            png = _guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
+            typer.echo(f"figure {png}")
 
     from vbikit.study.paper import FIGURES
 
-    command.__doc__ = f"{FIGURES[fig]['title']} (dataset + figure)."
+    command.__doc__ = (f"{FIGURES[figs[0]]['title']} (dataset + figure)." if len(figs) == 1 else
+                       "All the paper's studies (Figs. 5-8, 10, 11), one after another: datasets + figures.")
     return command
 
 
-for _fig in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11"):
+PAPER_FIGS = ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11")
+for _fig in PAPER_FIGS:
     app.command(f"paper-{_fig}")(_paper(_fig))
+app.command("paper-all")(_paper(*PAPER_FIGS))
