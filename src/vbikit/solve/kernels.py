@@ -113,9 +113,9 @@ def road_point(x, vel, p, road, idx, rv, rr, lanes):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def road_at(xf, vel, setback, road, rv, rr, lanes):
-    """Road elevation and rate (n_cp, L) under every contact point at front position ``xf``."""
-    idx = np.full(setback.size, -1, dtype=np.int64)
+def road_at(xf, vel, setback, road, idx, rv, rr, lanes):
+    """Road elevation and rate (n_cp, L) under every contact point at front position ``xf``
+    (``idx``: the points' station pointers, see :func:`road_point`)."""
     for p in range(setback.size):
         road_point(xf - setback[p], vel, p, road, idx, rv, rr, lanes)
 
@@ -153,7 +153,7 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
 
     ``cache`` = (phi, dphi, have, rv, rr, have_r): mode shapes and road (elevation, rate) of the
     points at front position ``xf``, filled on first use.  ``work`` = (idx, force, active, used,
-    scratch (6, L), rhs (n_d, L)): station pointers, outputs and scratch space.  ``lanes``: (0,)
+    scratch (5, L), rhs (n_d, L)): station pointers, outputs and scratch space.  ``lanes``: (0,)
     for one lane, (0, 0) for many (see the module docstring).
     """
     phi, dphi, have, rv, rr, have_r = cache
@@ -165,8 +165,8 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
     n_m = xi.shape[0]
     n_d = q.shape[0]
     n_l = _width(lanes, xi)
-    zw, dzw = scratch[1], scratch[2]
-    s, sd, dr = scratch[3:4], scratch[4:5], scratch[5:6]  # (1, L) rows for 2-D indexing
+    zw, dzw = scratch[0], scratch[1]
+    s, sd, dr = scratch[2:3], scratch[3:4], scratch[4:5]  # (1, L) rows for 2-D indexing
     b_max = 0.0
     for lane in range(n_l):
         b = 0.0
@@ -298,9 +298,7 @@ def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilat
             x = xf - setback[p]
             if 0.0 <= x <= span:
                 for m in range(n_m):
-                    a = phi[p, m]
-                    for lane in range(n_l):
-                        ddxi[m, lane] -= a * force[p, lane]
+                    _axpy(-phi[p, m], force, p, ddxi, m, lanes)
     if n_d == 0:
         return
     for i in range(n_d):
@@ -410,7 +408,7 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
         x0[:, lane] = xi[lane, 0]; v0[:, lane] = dxi[lane, 0]; y0[:, lane] = q[lane, 0]; w0[:, lane] = dq[lane, 0]
     sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
     work = (idx, np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_), np.zeros(n_cp, dtype=np.bool_),
-            np.zeros((6, n_l)), np.zeros((n_d, n_l)))
+            np.zeros((5, n_l)), np.zeros((n_d, n_l)))
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
     # the three position slots' caches, built once
@@ -542,10 +540,9 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
     active = active0.copy()
     new_active = np.zeros((n_cp, 1), dtype=np.bool_)
     cache = (phi, dphi, have, rv, rr, have_r)
-    work = (idx, np.zeros((n_cp, 1)), new_active, np.zeros(n_cp, dtype=np.bool_), np.zeros((6, 1)), np.zeros((n_d, 1)))
+    work = (idx, np.zeros((n_cp, 1)), new_active, np.zeros(n_cp, dtype=np.bool_), np.zeros((5, 1)), np.zeros((n_d, 1)))
     u[:n_m] = xi[0, 0]; u[n_m:] = q[0, 0]; v[:n_m] = dxi[0, 0]; v[n_m:] = dq[0, 0]
-    for p in range(n_cp):
-        road_point(xf[0] - setback[p], vel[0], p, road, idx, rv, rr, (0,))
+    road_at(xf[0], vel[0], setback, road, idx, rv, rr, (0,))
     assemble(vel[0], xf[0], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load)
     a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
     sx[:, 0] = u[:n_m]; sv[:, 0] = v[:n_m]; sq[:, 0] = u[n_m:]; sw[:, 0] = v[n_m:]
@@ -557,8 +554,7 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
     for s in range(1, n_steps + 1):
         i2 = 2 * s
         have[:] = False
-        for p in range(n_cp):
-            road_point(xf[i2] - setback[p], vel[i2], p, road, idx, rv, rr, (0,))
+        road_at(xf[i2], vel[i2], setback, road, idx, rv, rr, (0,))
         u_p = u + dt * v + 0.25 * dt * dt * a
         v_p = v + 0.5 * dt * a
         settled = False

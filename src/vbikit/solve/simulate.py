@@ -77,7 +77,8 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     wheel_force = np.zeros((n_l, n_t, n_w))
     wheel_len = np.zeros((n_l, n_t, n_w))
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
-    kernels.road_at(float(xf[0]), float(vel[0]), setback, road, road0, rate0, (0,) if n_l == 1 else (0, 0))
+    kernels.road_at(float(xf[0]), float(vel[0]), setback, road, np.full(n_p, -1, np.int64), road0, rate0,
+                    (0,) if n_l == 1 else (0, 0))
     for lane, crossing in enumerate(crossings[:n_real]):
         xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane])
     for lane in range(n_real, n_l):  # padding: a copy of the last real lane

@@ -87,14 +87,13 @@ def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64]
     cache = (np.zeros((n_p, n_m)), np.zeros((n_p, n_m)), np.zeros(n_p, bool),
              np.ascontiguousarray(road, float).reshape(n_p, 1), np.zeros((n_p, 1)), np.ones(n_p, bool))
     work = (np.zeros(n_p, np.int64), np.zeros((n_p, 1)), np.zeros((n_p, 1), bool), np.zeros(n_p, bool),
-            np.zeros((6, 1)), np.zeros((data.n_dof, 1)))
+            np.zeros((5, 1)), np.zeros((data.n_dof, 1)))
     wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
     # the road values are given (have_r all True): the bundle only carries r_max
     bundle = (np.array([0.0, 1.0]), np.zeros((1, 2, 1)), np.zeros(n_p, np.int64), float(np.max(road, initial=0.0)))
     for _ in range(max_iterations):
         _, _, stiff, load = coupled_matrices(crossing, data, xf, 0.0, road, None, active)
         u = np.linalg.solve(stiff, load)
-        cache[2][:] = False
         kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
                                np.zeros((data.n_dof, 1)), 0.0, xf, data.bridge, data.vehicle, data.points, bundle,
                                data.unilateral, cache, work, wf, wl, (0,))
