@@ -6,17 +6,18 @@ import pytest
 
 from vbikit.bridge import EulerBernoulliBeam, paper_beam
 from vbikit.solve import kernels
+from vbikit.solve.system import modes_data
 from vbikit.solve.tabulate import tabulate_tracks
 
 
 def _evaluate(beam, table, x, track=0):
-    """φ, φ' and the on-deck flags from the compiled kernel at deck stations x (front axle at 0, setback −x)."""
+    """φ, φ' and the on-deck flags from the compiled kernel at deck stations x."""
     n_m = beam.omega.size
     phi = np.zeros((x.size, n_m))
     dphi = np.zeros_like(phi)
     on = np.zeros(x.size, np.bool_)
-    kernels.shapes_at(0.0, -x, np.full(x.size, track, np.int64), beam.span, table.spacing, table.values, table.slopes,
-                      phi, dphi, on)
+    modes = modes_data(beam, table)
+    kernels.shapes_at(np.ascontiguousarray(x, float), np.full(x.size, track, np.int64), modes, phi, dphi, on)
     return phi, dphi, on
 
 

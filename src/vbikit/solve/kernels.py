@@ -1,17 +1,49 @@
 """Compiled (numba) kernels of the coupled vehicle–bridge equations (paper Eq. 9, modal form).
 
-State: bridge modal coordinates ξ (n_m) and vehicle coordinates q (n_d).  Contact point p of
-wheel w sits at x_p = x_front − setback_p with mode-shape row φ_p, slope row φ'_p, spring k_p,
-dashpot c_p, gap g_p, fixed load f0_p, road elevation r_p and rate ṙ_p = v·r'(x_p); the wheel's
-lowest point moves as z_w = h_w·q.  Surface s_p = φ_p·ξ + r_p, ṡ_p = φ_p·ξ̇ + v φ'_p·ξ + ṙ_p
-(v φ'_p·ξ: the convective part of the deck velocity under a moving point), penetration
-δ_p = s_p − g_p − z_w, and
+State: bridge modal coordinates ξ (n_m) and vehicle coordinates q (n_d).
 
-    F_p = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p                        (compression > 0)
+Contact-point kinematics (every point on its own).  Point p belongs to vehicle ``vehicle[p]``
+and sits at
+
+    x_p(t) = origin_p + dir_p · s_v(t),      dx_p/dt = dir_p · v_v(t)
+
+where s_v(t) [m] and v_v(t) = ds_v/dt [m/s] ≥ 0 are the travel and speed of its vehicle v
+(columns of :class:`Motion`, given on the half-step time grid, so each vehicle has its own
+speed, acceleration, stop time and start), ``origin`` [m] is x_p at s_v = 0 and ``direction``
+dir_p = +1 (driving towards +x) or −1 (towards −x).  One vehicle driving +x (a
+:class:`vbikit.solve.Crossing`) has s_v = x_front(t), origin_p = −setback_p, dir_p = +1.
+
+The contact law, written once (:func:`contact_forces`, called by every integrator and by the
+static start).  With mode-shape rows φ_p, φ'_p = ∂φ/∂x on the point's wheel track
+``track[p]``, road elevation r_p on road line ``line[p]`` and the wheel's lowest point
+z_w = h_w·q (row ``wheel_rows[wheel[p]]``):
+
+    s_p  = φ_p·ξ + r_p                                   surface under the point
+    ṡ_p  = φ_p·ξ̇ + dir_p v (φ'_p·ξ + r'(x_p))            (dir_p v φ'_p·ξ: convective deck rate)
+    δ_p  = s_p − g_p − z_w                               penetration (gap g_p ≥ 0)
+    F_p  = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p              (compression > 0)
     gated points (disk tires, or all points with loss of contact): F_p = max(0, F_p) if δ_p > 0 else 0
-    envelope wheels (rigid disk): only the point of largest s_p − g_p acts
+    envelope wheels (rigid disk): only the point of largest s_p − g_p acts, with the surface
+    rate along the travel direction clamped to the circle's slopes there (``slope_range``)
     ξ̈ + 2ζω ξ̇ + ω² ξ = −Σ_p φ_pᵀ F_p
     M_v q̈ + C_v q̇ + K_v q = F_G + Σ_w h_wᵀ Σ_{p∈w} F_p
+
+A point is on the deck while 0 ≤ x_p ≤ span; off it, φ_p = 0 (the road only).  Nothing in the
+kernels assumes φ = 0 at the deck ends or a single span: the mode-shape tables may be any mode
+set (continuous beams, grillages), tabulated over [0, span] on each wheel track.
+
+Several vehicles.  The kernels only see contact points, wheels and vehicle DOFs; a traffic
+event is one system whose vehicle matrices are block-diagonal (one block per vehicle), whose
+wheels index rows of the stacked DOF vector and whose points carry their vehicle index,
+origin and direction.  Wheels of one vehicle must be contiguous in points (``wheel_first``,
+``wheel_count``), as for one vehicle.
+
+Argument bundles (NamedTuples of arrays, built by ``vbikit.solve.system``):
+  :class:`Modes`     the bridge's mode set and its tables along the wheel tracks
+  :class:`Vehicles`  vehicle matrices, wheel rows and wheel → point ranges
+  :class:`Points`    per contact point: kinematics, track, road line, tire law
+  :class:`Road`      road stations and elevations of every road line and lane
+  :class:`Motion`    travel s_v and speed v_v of every vehicle on the half-step grid
 
 Lanes.  The state carries a last axis of L *lanes*: L crossings that share everything but the
 road (a batch of a study), integrated together.  Everything that does not depend on the road
@@ -26,21 +58,132 @@ index 2-D arrays directly rather than through row views (measured faster here, �
 
 Mode shapes along each wheel track are tabulated on a uniform grid with values and slopes and
 evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``).  Road elevations are
-interpolated linearly in the road's stations inside the kernels.  Both lazily: a gated point
-that no lane can bring into contact (r_max − g_p − min z_w + B ≤ 0, with r_max the highest
-road elevation and B = max_lanes Σ_m max|φ_m|·|ξ_m| the largest possible deck displacement)
-needs neither.
-
-Argument bundles (tuples, to keep signatures short):
-  bridge = (omega, zeta, span, grid_h, V, S, amp)
-  vehicle = (m_inv or mass, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope)
-  points = (setback, track, k, c, f0, gap, gated, wheel, width, slope_range)
-  road = (stations (n_s,), elevations (n_lines, n_s, L), line (n_cp,) wheel line of each point, r_max)
+interpolated linearly in the road's stations inside the kernels (station pointers move both
+ways, so points may drive towards −x).  Both lazily: a gated point that no lane can bring into
+contact (r_max − g_p − min z_w + B ≤ 0, with r_max the highest road elevation and
+B = max_lanes Σ_m max|φ_m|·|ξ_m| the largest possible deck displacement) needs neither.
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numba import njit
+
+
+class Modes(NamedTuple):
+    """The bridge's modes: ``omega`` ω_m [rad/s], ``zeta`` ζ_m [-] (n_m,); ``span`` [m] (points with
+    0 ≤ x ≤ span are on the deck); mode-shape tables ``values`` φ and ``slopes`` ∂φ/∂x
+    (n_tracks, n_grid, n_m) on the uniform grid of spacing ``grid_h`` [m] from x = 0; ``amp``
+    (n_m,) bound on |φ_m| (the lazy-contact test)."""
+
+    omega: np.ndarray
+    zeta: np.ndarray
+    span: float
+    grid_h: float
+    values: np.ndarray
+    slopes: np.ndarray
+    amp: np.ndarray
+
+
+class Vehicles(NamedTuple):
+    """Vehicle matrices (n_d, n_d): ``mass`` M, ``mass_inv`` M⁻¹, ``damping`` C_v, ``stiffness``
+    K_v, ``gravity`` F_G (n_d,) [N] (block-diagonal for several vehicles); ``wheel_rows`` h_w
+    (n_w, n_d); per wheel ``wheel_first``, ``wheel_count`` (its contact points' index range),
+    ``wheel_envelope`` (acts through its highest point only: rigid disk), ``wheel_stiffness``
+    [N/m] and ``wheel_damping`` [N·s/m] of its tire at rest (the implicit integrators' nominal
+    tire, Σ of its points' k, c in static contact)."""
+
+    mass: np.ndarray
+    mass_inv: np.ndarray
+    damping: np.ndarray
+    stiffness: np.ndarray
+    gravity: np.ndarray
+    wheel_rows: np.ndarray
+    wheel_first: np.ndarray
+    wheel_count: np.ndarray
+    wheel_envelope: np.ndarray
+    wheel_stiffness: np.ndarray
+    wheel_damping: np.ndarray
+
+
+class Points(NamedTuple):
+    """Per contact point (n_cp,): kinematics ``origin`` [m], ``direction`` (±1.0), ``vehicle``
+    (column of :class:`Motion`); ``track`` (table of :class:`Modes`), ``line`` (road line of
+    :class:`Road`, clamped to the lines present); tire law ``stiffness`` k [N/m], ``damping``
+    c [N·s/m], ``fixed_load`` f0 [N], ``gap`` g [m], ``gated``; ``wheel`` index; ``width`` [m]
+    of patch it stands for; ``slope_range`` (n_cp, 2) tire-surface slopes over its cell
+    (envelope wheels)."""
+
+    origin: np.ndarray
+    direction: np.ndarray
+    vehicle: np.ndarray
+    track: np.ndarray
+    line: np.ndarray
+    stiffness: np.ndarray
+    damping: np.ndarray
+    fixed_load: np.ndarray
+    gap: np.ndarray
+    gated: np.ndarray
+    wheel: np.ndarray
+    width: np.ndarray
+    slope_range: np.ndarray
+
+
+class Road(NamedTuple):
+    """Road lines: ``stations`` (n_s,) increasing [m], ``elevations`` (n_lines, n_s, L) [m] per
+    lane, ``r_max`` the highest elevation [m]."""
+
+    stations: np.ndarray
+    elevations: np.ndarray
+    r_max: float
+
+
+class Motion(NamedTuple):
+    """``travel`` s_v [m] and ``speed`` v_v [m/s] (n_half, n_vehicles) on the half-step grid
+    (row 2n = t_n)."""
+
+    travel: np.ndarray
+    speed: np.ndarray
+
+
+class Cache(NamedTuple):
+    """One position slot: point positions ``x`` [m] and x-rates ``vx`` = dir·v [m/s] (n_cp,); mode
+    shapes ``phi``, ``dphi`` (n_cp, n_m) and road ``rv``, ``rr`` (n_cp, L) filled on first use
+    (``have``, ``have_r``)."""
+
+    x: np.ndarray
+    vx: np.ndarray
+    phi: np.ndarray
+    dphi: np.ndarray
+    have: np.ndarray
+    rv: np.ndarray
+    rr: np.ndarray
+    have_r: np.ndarray
+
+
+class Work(NamedTuple):
+    """Station pointers ``idx`` (n_cp,); outputs ``force`` (n_cp, L), ``active`` (n_cp, L),
+    ``used`` (n_cp,); ``scratch`` (5, L); ``rhs`` (n_d, L)."""
+
+    idx: np.ndarray
+    force: np.ndarray
+    active: np.ndarray
+    used: np.ndarray
+    scratch: np.ndarray
+    rhs: np.ndarray
+
+
+def new_cache(n_cp: int, n_m: int, n_l: int) -> Cache:
+    """An empty position slot."""
+    return Cache(np.zeros(n_cp), np.zeros(n_cp), np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m)),
+                 np.zeros(n_cp, np.bool_), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l)), np.zeros(n_cp, np.bool_))
+
+
+def new_work(n_cp: int, n_d: int, n_l: int) -> Work:
+    """Work space of :func:`contact_forces`."""
+    return Work(np.full(n_cp, -1, np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), np.bool_),
+                np.zeros(n_cp, np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -72,13 +215,24 @@ def shape_point(x, track, grid_h, V, S, phi_row, dphi_row):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def shapes_at(xf, cp_setback, cp_track, span, grid_h, V, S, phi, dphi, on):
-    """Mode-shape rows φ_p, φ'_p of every contact point for front-axle position ``xf`` (eager)."""
-    for p in range(cp_setback.size):
-        x = xf - cp_setback[p]
-        on[p] = 0.0 <= x <= span
+def shapes_at(x, track, modes, phi, dphi, on):
+    """Mode-shape rows φ_p, φ'_p of points at positions ``x`` [m] on tracks ``track`` (eager);
+    ``on[p]``: the point is on the deck (else its rows are left as they are)."""
+    for p in range(x.size):
+        on[p] = 0.0 <= x[p] <= modes.span
         if on[p]:
-            shape_point(x, cp_track[p], grid_h, V, S, phi[p], dphi[p])
+            shape_point(x[p], track[p], modes.grid_h, modes.values, modes.slopes, phi[p], dphi[p])
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def point_kinematics(motion, row, points, x, vx):
+    """Positions x_p = origin_p + dir_p·s_v and x-rates dir_p·v_v [m/s] of every point at
+    half-step ``row`` of ``motion``."""
+    for p in range(points.origin.size):
+        v = points.vehicle[p]
+        d = points.direction[p]
+        x[p] = points.origin[p] + d * motion.travel[row, v]
+        vx[p] = d * motion.speed[row, v]
 
 
 @njit(cache=True, inline="always")
@@ -90,40 +244,51 @@ def _width(lanes, a):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def road_point(x, vel, p, road, idx, rv, rr, lanes):
-    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = v·dr/dx [m/s] of every lane at
-    position ``x`` [m] of point ``p`` (linear interpolation; ``idx[p]`` is the point's station
-    pointer, −1 before its first use; positions of a point never decrease)."""
+def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
+    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = vx·dr/dx [m/s] of every lane at
+    position ``x`` [m] of point ``p`` on road line ``line`` (linear interpolation; ``idx[p]`` is
+    the point's station pointer, −1 before its first use; it moves either way)."""
     n_l = _width(lanes, rv)
-    stations, elev, line, r_max = road
+    stations = road.stations
     n_s = stations.size
     i = idx[p]
     if i < 0:
         i = max(0, min(n_s - 2, np.searchsorted(stations, x, side="right") - 1))
     while i < n_s - 2 and stations[i + 1] <= x:
         i += 1
+    while i > 0 and stations[i] > x:
+        i -= 1
     idx[p] = i
-    z = elev[line[p]]
+    z = road.elevations[min(line, road.elevations.shape[0] - 1)]
     dx = x - stations[i]
     inv = 1.0 / (stations[i + 1] - stations[i])
     for lane in range(n_l):
         slope = (z[i + 1, lane] - z[i, lane]) * inv
         rv[p, lane] = z[i, lane] + slope * dx
-        rr[p, lane] = slope * vel
+        rr[p, lane] = slope * vx
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def road_at(xf, vel, setback, road, idx, rv, rr, lanes):
-    """Road elevation and rate (n_cp, L) under every contact point at front position ``xf``
-    (``idx``: the points' station pointers, see :func:`road_point`)."""
-    for p in range(setback.size):
-        road_point(xf - setback[p], vel, p, road, idx, rv, rr, lanes)
+def road_at(x, vx, points, road, idx, rv, rr, lanes):
+    """Road elevation and rate (n_cp, L) under every contact point at positions ``x`` [m] moving
+    at x-rates ``vx`` [m/s] (``idx``: the points' station pointers, see :func:`road_point`)."""
+    for p in range(x.size):
+        road_point(x[p], vx[p], p, points.line[p], road, idx, rv, rr, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes):
+def point_law(k, c, f0, pen, rate, gate):
+    """The tire law of one point: F = k δ + c δ̇ + f0 [N] (compression > 0) for penetration δ =
+    ``pen`` [m] and rate δ̇ = ``rate`` [m/s]; a ``gate``-d point carries it only while it
+    penetrates and presses (else 0)."""
+    f = k * pen + c * rate + f0
+    return f if not gate or (pen > 0.0 and f > 0.0) else 0.0
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _deck(phi, dphi, p, vx, xi, dxi, s, dr, sd, lanes):
     """Add the deck's displacement φ_p·ξ to ``s``, its velocity φ_p·ξ̇ to ``dr`` and the convective
-    rate v φ'_p·ξ to ``sd`` (rows (1, L)) of point ``p``, per lane."""
+    rate vx φ'_p·ξ to ``sd`` (rows (1, L)) of point ``p``, per lane."""
     if len(lanes) == 1:  # one lane: the mode sums in registers
         a = s[0, 0]
         b = dr[0, 0]
@@ -131,7 +296,7 @@ def _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes):
         for m in range(xi.shape[0]):
             a += phi[p, m] * xi[m, 0]
             b += phi[p, m] * dxi[m, 0]
-            c += vel * dphi[p, m] * xi[m, 0]
+            c += vx * dphi[p, m] * xi[m, 0]
         s[0, 0] = a
         dr[0, 0] = b
         sd[0, 0] = c
@@ -141,27 +306,26 @@ def _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes):
     for m in range(xi.shape[0]):
         _axpy(phi[p, m], dxi, m, dr, 0, lanes)
     for m in range(xi.shape[0]):
-        _axpy(vel * dphi[p, m], xi, m, sd, 0, lanes)
+        _axpy(vx * dphi[p, m], xi, m, sd, 0, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, wheel_force,
-                   wheel_len, lanes):
-    """Contact forces F_p [N] (``force`` (n_cp, L), compression > 0), per-wheel sums ``wheel_force``
-    and patch lengths ``wheel_len`` [m] (n_w, L), ``active`` flags, and ``used[p]``: the point's
-    force was evaluated (else it is 0 in every lane).
+def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, wheel_force, wheel_len,
+                   lanes):
+    """The contact law (module docstring) at the positions of ``cache``: forces F_p [N]
+    (``work.force`` (n_cp, L), compression > 0), per-wheel sums ``wheel_force`` and patch lengths
+    ``wheel_len`` [m] (n_w, L), ``work.active`` flags, and ``work.used[p]``: the point's force was
+    evaluated (else it is 0 in every lane).
 
-    ``cache`` = (phi, dphi, have, rv, rr, have_r): mode shapes and road (elevation, rate) of the
-    points at front position ``xf``, filled on first use.  ``work`` = (idx, force, active, used,
-    scratch (5, L), rhs (n_d, L)): station pointers, outputs and scratch space.  ``lanes``: (0,)
-    for one lane, (0, 0) for many (see the module docstring).
+    ``cache``: the position slot (:class:`Cache`; its mode shapes and road values are filled
+    on first use).  ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).
     """
-    phi, dphi, have, rv, rr, have_r = cache
-    idx, force, active, used, scratch, rhs = work
-    omega, zeta, span, grid_h, V, S, amp = bridge
-    m_x, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
-    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
-    r_max = road[3]
+    phi, dphi, have, rv, rr, have_r = cache.phi, cache.dphi, cache.have, cache.rv, cache.rr, cache.have_r
+    xs, vxs = cache.x, cache.vx
+    idx, force, active, used, scratch = work.idx, work.force, work.active, work.used, work.scratch
+    wheel_rows = vehicles.wheel_rows
+    span = modes.span
+    r_max = road.r_max
     n_m = xi.shape[0]
     n_d = q.shape[0]
     n_l = _width(lanes, xi)
@@ -171,7 +335,7 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
     for lane in range(n_l):
         b = 0.0
         for m in range(n_m):
-            b += amp[m] * abs(xi[m, lane])
+            b += modes.amp[m] * abs(xi[m, lane])
         b_max = max(b_max, b)
     for w in range(wheel_rows.shape[0]):
         for lane in range(n_l):
@@ -188,26 +352,27 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
             zw_min = min(zw_min, zw[lane])
             wheel_force[w, lane] = 0.0
             wheel_len[w, lane] = 0.0
-        first = wheel_first[w]
-        last = first + wheel_count[w]
+        first = vehicles.wheel_first[w]
+        last = first + vehicles.wheel_count[w]
+        envelope = vehicles.wheel_envelope[w]
         for p in range(first, last):
             used[p] = False
-            x = xf - setback[p]
+            x = xs[p]
             onb = 0.0 <= x <= span
-            gate = gated[p] or (unilateral and cp_k[p] > 0.0)
-            if gate and not wheel_envelope[w] and r_max - gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
+            gate = points.gated[p] or (unilateral and points.stiffness[p] > 0.0)
+            if gate and not envelope and r_max - points.gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
                 for lane in range(n_l):
                     force[p, lane] = 0.0
                     active[p, lane] = False
                 continue  # no lane can touch the surface here
             if not have_r[p]:
-                road_point(x, vel, p, road, idx, rv, rr, lanes)
+                road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes)
                 have_r[p] = True
             if onb and not have[p]:
-                shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
+                shape_point(x, points.track[p], modes.grid_h, modes.values, modes.slopes, phi[p], dphi[p])
                 have[p] = True
             used[p] = True
-            if wheel_envelope[w]:
+            if envelope:
                 for lane in range(n_l):
                     force[p, lane] = 0.0
                     active[p, lane] = False
@@ -215,37 +380,34 @@ def contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unila
             # one store per lane loop, so that the compiler vectorises them (aliasing checks)
             for lane in range(n_l):
                 s[0, lane] = rv[p, lane]
-                sd[0, lane] = rr[p, lane]  # v · r'(x_p)
+                sd[0, lane] = rr[p, lane]  # dir·v · r'(x_p)
                 dr[0, lane] = 0.0  # ∂u_b/∂t at the fixed point x_p
             if onb:
-                _deck(phi, dphi, p, vel, xi, dxi, s, dr, sd, lanes)
-            k = cp_k[p]
-            c = cp_c[p]
-            f0 = cp_f0[p]
-            g = gap[p]
-            wd = width[p]
+                _deck(phi, dphi, p, vxs[p], xi, dxi, s, dr, sd, lanes)
+            k = points.stiffness[p]
+            c = points.damping[p]
+            f0 = points.fixed_load[p]
+            g = points.gap[p]
+            wd = points.width[p]
             for lane in range(n_l):
-                pen = s[0, lane] - g - zw[lane]
-                f = k * pen + c * (sd[0, lane] + dr[0, lane] - dzw[lane]) + f0
-                force[p, lane] = f if not gate or (pen > 0.0 and f > 0.0) else 0.0
+                force[p, lane] = point_law(k, c, f0, s[0, lane] - g - zw[lane], sd[0, lane] + dr[0, lane] - dzw[lane],
+                                           gate)
             for lane in range(n_l):
                 active[p, lane] = not gate or force[p, lane] > 0.0  # a gated point acts iff it presses
             _axpy(1.0, force, p, wheel_force, w, lanes)
             for lane in range(n_l):
                 wheel_len[w, lane] += wd if active[p, lane] else 0.0
-        if wheel_envelope[w]:
-            _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force,
-                      wheel_force, active, lanes)
+        if envelope:
+            _envelope(w, first, last, xi, dxi, span, points, cache, zw, dzw, force, wheel_force, active, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, rr, zw, dzw, force, wheel_force,
-              active, lanes):
+def _envelope(w, first, last, xi, dxi, span, points, cache, zw, dzw, force, wheel_force, active, lanes):
     """Rigid-disk wheel ``w``: per lane, only the point of highest surface s_p − g_p acts; its rate
-    is the deck velocity + v·e', e' the surface slope clamped to the circle's slopes."""
+    is the deck velocity + v·e', e' the surface slope along the travel direction clamped to the
+    circle's slopes over the point's cell."""
     n_l = _width(lanes, xi)
-    span = bridge[2]
-    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
+    phi, dphi, rv, rr = cache.phi, cache.dphi, cache.rv, cache.rr
     n_m = xi.shape[0]
     for lane in range(n_l):
         p_env = -1
@@ -255,36 +417,36 @@ def _envelope(w, first, last, xi, dxi, vel, xf, bridge, points, phi, dphi, rv, r
             s = rv[p, lane]
             sd = rr[p, lane]
             deck_rate = 0.0
-            x = xf - setback[p]
-            if 0.0 <= x <= span:
+            vx = cache.vx[p]
+            if 0.0 <= cache.x[p] <= span:
                 for m in range(n_m):
                     s += phi[p, m] * xi[m, lane]
                     deck_rate += phi[p, m] * dxi[m, lane]
-                    sd += vel * dphi[p, m] * xi[m, lane]
-            if s - gap[p] > s_env:
-                s_env = s - gap[p]
-                sd_env = deck_rate + min(max(sd, vel * slope_range[p, 0]), vel * slope_range[p, 1])
+                    sd += vx * dphi[p, m] * xi[m, lane]
+            if s - points.gap[p] > s_env:
+                s_env = s - points.gap[p]
+                v = points.direction[p] * vx  # the speed, ≥ 0; sd = v × slope along the travel
+                sd_env = deck_rate + min(max(sd, v * points.slope_range[p, 0]), v * points.slope_range[p, 1])
                 p_env = p
         if p_env >= 0:
-            pen = s_env - zw[lane]
-            f = cp_k[p_env] * pen + cp_c[p_env] * (sd_env - dzw[lane]) + cp_f0[p_env]
-            if pen > 0.0 and f > 0.0:
+            f = point_law(points.stiffness[p_env], points.damping[p_env], points.fixed_load[p_env], s_env - zw[lane],
+                          sd_env - dzw[lane], True)
+            if f > 0.0:
                 force[p_env, lane] = f
                 active[p_env, lane] = True
                 wheel_force[w, lane] = f
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, ddxi, ddq,
+def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, ddxi, ddq,
                   wheel_force, wheel_len, lanes):
-    """ξ̈ (n_m, L), q̈ (n_d, L) and contact forces for a given state (the right-hand side of Eq. 9)."""
-    contact_forces(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilateral, cache, work, wheel_force,
+    """ξ̈ (n_m, L), q̈ (n_d, L) and contact forces for a given state (the right-hand side of Eq. 9)
+    at the positions of ``cache``."""
+    contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, wheel_force,
                    wheel_len, lanes)
-    phi = cache[0]
-    force, used, rhs = work[1], work[3], work[5]
-    omega, zeta, span, grid_h, V, S, amp = bridge
-    m_inv, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
-    setback = points[0]
+    phi = cache.phi
+    force, used, rhs = work.force, work.used, work.rhs
+    omega, zeta = modes.omega, modes.zeta
     n_m = xi.shape[0]
     n_d = q.shape[0]
     n_l = _width(lanes, xi)
@@ -293,24 +455,28 @@ def accelerations(xi, dxi, q, dq, vel, xf, bridge, vehicle, points, road, unilat
         b = omega[m] * omega[m]
         for lane in range(n_l):
             ddxi[m, lane] = -a * dxi[m, lane] - b * xi[m, lane]
-    for p in range(force.shape[0]):
-        if used[p]:
-            x = xf - setback[p]
-            if 0.0 <= x <= span:
-                for m in range(n_m):
-                    _axpy(-phi[p, m], force, p, ddxi, m, lanes)
+    _modal_load(-1.0, phi, force, used, cache.x, modes.span, ddxi, lanes)
     if n_d == 0:
         return
     for i in range(n_d):
         for lane in range(n_l):
-            rhs[i, lane] = f_g[i]
-    _gemv(-1.0, c_v, dq, rhs, lanes, False)
-    _gemv(-1.0, k_v, q, rhs, lanes, False)
-    _gemv(1.0, wheel_rows, wheel_force, rhs, lanes, True)
+            rhs[i, lane] = vehicles.gravity[i]
+    _gemv(-1.0, vehicles.damping, dq, rhs, lanes, False)
+    _gemv(-1.0, vehicles.stiffness, q, rhs, lanes, False)
+    _gemv(1.0, vehicles.wheel_rows, wheel_force, rhs, lanes, True)
     for i in range(n_d):
         for lane in range(n_l):
             ddq[i, lane] = 0.0
-    _gemv(1.0, m_inv, rhs, ddq, lanes, False)
+    _gemv(1.0, vehicles.mass_inv, rhs, ddq, lanes, False)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _modal_load(alpha, phi, force, used, x, span, out, lanes):
+    """out[m, :] += α Σ_p φ_pm F_p over the used points on the deck."""
+    for p in range(force.shape[0]):
+        if used[p] and 0.0 <= x[p] <= span:
+            for m in range(out.shape[0]):
+                _axpy(alpha * phi[p, m], force, p, out, m, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -377,12 +543,21 @@ def _store(out, n, state, lanes):
             out[lane, n, i] = state[i, lane]
 
 
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _refresh(cache, motion, row, points):
+    """Point positions of half-step ``row`` into slot ``cache``; its shapes and road to be refilled."""
+    point_kinematics(motion, row, points, cache.x, cache.vx)
+    for p in range(cache.have.size):
+        cache.have[p] = False
+        cache.have_r[p] = False
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
+def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
         lanes):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
 
-    ``xf``, ``vel`` are given at half steps (index 2n = t_n).  The output arrays (L, n_steps + 1, ·)
+    ``motion`` is given at half steps (row 2n = t_n).  The output arrays (L, n_steps + 1, ·)
     are lane-major (each lane's history is contiguous) and hold the initial state at [:, 0] on
     entry; the state itself is kept lane-minor, (·, L), so that the lane loops vectorise.
     ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).
@@ -391,15 +566,8 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
     n_steps = xi.shape[1] - 1
     n_m = xi.shape[2]
     n_d = q.shape[2]
-    n_cp = points[0].size
+    n_cp = points.origin.size
     n_w = wheel_force.shape[2]
-    phi = np.zeros((3, n_cp, n_m))
-    dphi = np.zeros((3, n_cp, n_m))
-    have = np.zeros((3, n_cp), dtype=np.bool_)
-    rv = np.zeros((3, n_cp, n_l))
-    rr = np.zeros((3, n_cp, n_l))
-    have_r = np.zeros((3, n_cp), dtype=np.bool_)
-    idx = np.full(n_cp, -1, dtype=np.int64)
     ax = np.zeros((4, n_m, n_l))
     aq = np.zeros((4, n_d, n_l))
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); y0 = np.empty((n_d, n_l)); w0 = np.empty((n_d, n_l))
@@ -407,41 +575,37 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
     for lane in range(n_l):
         x0[:, lane] = xi[lane, 0]; v0[:, lane] = dxi[lane, 0]; y0[:, lane] = q[lane, 0]; w0[:, lane] = dq[lane, 0]
     sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
-    work = (idx, np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_), np.zeros(n_cp, dtype=np.bool_),
-            np.zeros((5, n_l)), np.zeros((n_d, n_l)))
+    work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
+                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
-    # the three position slots' caches, built once
-    caches = ((phi[0], dphi[0], have[0], rv[0], rr[0], have_r[0]), (phi[1], dphi[1], have[1], rv[1], rr[1], have_r[1]),
-              (phi[2], dphi[2], have[2], rv[2], rr[2], have_r[2]))
+    # the three position slots (start, middle, end of a step), built once
+    caches = (_slot(n_cp, n_m, n_l), _slot(n_cp, n_m, n_l), _slot(n_cp, n_m, n_l))
     stage_x = (ax[0], ax[1], ax[2], ax[3])
     stage_q = (aq[0], aq[1], aq[2], aq[3])
     cur = 0
+    _refresh(caches[0], motion, 0, points)
     h = 0.5 * dt
     for n in range(n_steps + 1):
-        accelerations(x0, v0, y0, w0, vel[2 * n], xf[2 * n], bridge, vehicle, points, road, unilateral,
-                      caches[cur], work, stage_x[0], stage_q[0], wf, wl, lanes)
+        accelerations(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, caches[cur], work, stage_x[0],
+                      stage_q[0], wf, wl, lanes)
         _store(ddxi, n, stage_x[0], lanes); _store(ddq, n, stage_q[0], lanes)
         _store(wheel_force, n, wf, lanes); _store(wheel_len, n, wl, lanes)
         if n == n_steps:
             break
         mid = (cur + 1) % 3
         end = (cur + 2) % 3
-        for p in range(n_cp):
-            have[mid, p] = False
-            have[end, p] = False
-            have_r[mid, p] = False
-            have_r[end, p] = False
+        _refresh(caches[mid], motion, 2 * n + 1, points)
+        _refresh(caches[end], motion, 2 * n + 2, points)
         # stages 2-4: state = start + tau * (velocity + h * previous-but-one stage acceleration)
         for stage in range(1, 4):
             tau = h if stage < 3 else dt
-            ih = 2 * n + (1 if stage < 3 else 2)
             slot = mid if stage < 3 else end
             prev = stage - 1
             _stage(stage, h, tau, x0, v0, stage_x[max(prev - 1, 0)], stage_x[prev], sx, sv, lanes)
             _stage(stage, h, tau, y0, w0, stage_q[max(prev - 1, 0)], stage_q[prev], sq, sw, lanes)
-            accelerations(sx, sv, sq, sw, vel[ih], xf[ih], bridge, vehicle, points, road, unilateral,
-                          caches[slot], work, stage_x[stage], stage_q[stage], wf, wl, lanes)
+            accelerations(sx, sv, sq, sw, modes, vehicles, points, road, unilateral, caches[slot], work,
+                          stage_x[stage], stage_q[stage], wf, wl, lanes)
         _update(dt, x0, v0, ax, x1, v1, lanes)
         _update(dt, y0, w0, aq, y1, w1, lanes)
         x0, x1 = x1, x0
@@ -453,13 +617,22 @@ def rk4(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, 
         cur = end
 
 
+@njit(cache=True, inline="always")
+def _slot(n_cp, n_m, n_l):
+    return Cache(np.zeros(n_cp), np.zeros(n_cp), np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m)),
+                 np.zeros(n_cp, dtype=np.bool_), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l)),
+                 np.zeros(n_cp, dtype=np.bool_))
+
+
 @njit(cache=True, fastmath=True, error_model="numpy")
-def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load):
-    """Coupled system matrices of Eq. 9 at one instant, M ü + C u̇ + K u = F with u = [ξ; q],
-    for the contact points flagged ``active`` (their linear law F_p = k δ + c δ̇ + f0 holds)."""
-    omega, zeta, span, grid_h, V, S, amp = bridge
-    m_v, c_v, k_v, f_g, wheel_rows, wheel_first, wheel_count, wheel_envelope = vehicle
-    setback, track, cp_k, cp_c, cp_f0, gap, gated, cp_wheel, width, slope_range = points
+def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, mass, damp, stiff, load):
+    """Coupled system matrices of Eq. 9 at one instant, M ü + C u̇ + K u = F with u = [ξ; q], for
+    the contact points at positions ``x`` [m] with x-rates ``vx`` [m/s] flagged ``active``: the
+    linearisation of the contact law (module docstring) about contact, where F_p = k δ + c δ̇ +
+    f0 (road ``r`` [m] and its rate ``rdot`` [m/s] under each point given)."""
+    omega, zeta = modes.omega, modes.zeta
+    m_v, c_v, k_v, f_g, wheel_rows = vehicles.mass, vehicles.damping, vehicles.stiffness, vehicles.gravity, \
+        vehicles.wheel_rows
     n_m = omega.size
     n_d = f_g.size
     mass[:, :] = 0.0
@@ -476,26 +649,26 @@ def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active,
             mass[n_m + i, n_m + j] = m_v[i, j]
             damp[n_m + i, n_m + j] = c_v[i, j]
             stiff[n_m + i, n_m + j] = k_v[i, j]
-    for p in range(cp_k.size):
+    for p in range(points.stiffness.size):
         if not active[p]:
             continue
-        k = cp_k[p]
-        c = cp_c[p]
-        ext = k * (r[p] - gap[p]) + c * rdot[p] + cp_f0[p]
-        h = wheel_rows[cp_wheel[p]]
+        k = points.stiffness[p]
+        c = points.damping[p]
+        ext = k * (r[p] - points.gap[p]) + c * rdot[p] + points.fixed_load[p]
+        h = wheel_rows[points.wheel[p]]
         for i in range(n_d):
             load[n_m + i] += h[i] * ext
             for j in range(n_d):
                 stiff[n_m + i, n_m + j] += k * h[i] * h[j]
                 damp[n_m + i, n_m + j] += c * h[i] * h[j]
-        x = xf - setback[p]
-        if not 0.0 <= x <= span:
+        if not 0.0 <= x[p] <= modes.span:
             continue
         if not have[p]:
-            shape_point(x, track[p], grid_h, V, S, phi[p], dphi[p])
+            shape_point(x[p], points.track[p], modes.grid_h, modes.values, modes.slopes, phi[p], dphi[p])
             have[p] = True
         f = phi[p]
         g = dphi[p]
+        vel = vx[p]
         for a in range(n_m):
             load[a] -= f[a] * ext
             for b in range(n_m):
@@ -509,65 +682,60 @@ def assemble(vel, xf, r, rdot, bridge, vehicle, points, phi, dphi, have, active,
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
+def newmark(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
             active0, max_iterations):
     """Newmark average acceleration (γ = 1/2, β = 1/4), unconditionally stable for the linear system.
 
     Contact is piecewise linear (points enter and leave contact), so each step iterates on the
     set of active points: assemble with the current set, solve, re-evaluate the contact forces,
     repeat until the set is unchanged.  Returns the number of steps whose active set did not
-    settle within ``max_iterations``.  Same array conventions as :func:`rk4`, one lane (L = 1);
-    ``vehicle`` carries the mass matrix M in slot 0.
+    settle within ``max_iterations``.  Same array conventions as :func:`rk4`, one lane (L = 1).
     """
     n_steps = xi.shape[1] - 1
     n_m = xi.shape[2]
     n_d = q.shape[2]
-    n_cp = points[0].size
+    n_cp = points.origin.size
     n_w = wheel_force.shape[2]
-    setback = points[0]
     n = n_m + n_d
-    phi = np.zeros((n_cp, n_m))
-    dphi = np.zeros((n_cp, n_m))
-    have = np.zeros(n_cp, dtype=np.bool_)
-    rv = np.zeros((n_cp, 1)); rr = np.zeros((n_cp, 1))
-    have_r = np.ones(n_cp, dtype=np.bool_)
-    idx = np.full(n_cp, -1, dtype=np.int64)
+    cache = _slot(n_cp, n_m, 1)
+    phi, have, rv, rr = cache.phi, cache.have, cache.rv, cache.rr
     r1 = rv.reshape(n_cp); rr1 = rr.reshape(n_cp)
     mass = np.zeros((n, n)); damp = np.zeros((n, n)); stiff = np.zeros((n, n)); load = np.zeros(n)
     u = np.zeros(n); v = np.zeros(n); a = np.zeros(n)
     sx = np.zeros((n_m, 1)); sv = np.zeros((n_m, 1)); sq = np.zeros((n_d, 1)); sw = np.zeros((n_d, 1))
     wf = np.zeros((n_w, 1)); wl = np.zeros((n_w, 1))
     active = active0.copy()
-    new_active = np.zeros((n_cp, 1), dtype=np.bool_)
-    cache = (phi, dphi, have, rv, rr, have_r)
-    work = (idx, np.zeros((n_cp, 1)), new_active, np.zeros(n_cp, dtype=np.bool_), np.zeros((5, 1)), np.zeros((n_d, 1)))
+    work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, 1)), np.zeros((n_cp, 1), dtype=np.bool_),
+                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, 1)), np.zeros((n_d, 1)))
+    new_active = work.active
     u[:n_m] = xi[0, 0]; u[n_m:] = q[0, 0]; v[:n_m] = dxi[0, 0]; v[n_m:] = dq[0, 0]
-    road_at(xf[0], vel[0], setback, road, idx, rv, rr, (0,))
-    assemble(vel[0], xf[0], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff, load)
+    _refresh(cache, motion, 0, points)
+    road_at(cache.x, cache.vx, points, road, work.idx, rv, rr, (0,))
+    cache.have_r[:] = True
+    assemble(cache.x, cache.vx, r1, rr1, modes, vehicles, points, phi, cache.dphi, have, active, mass, damp, stiff,
+             load)
     a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
     sx[:, 0] = u[:n_m]; sv[:, 0] = v[:n_m]; sq[:, 0] = u[n_m:]; sw[:, 0] = v[n_m:]
-    contact_forces(sx, sv, sq, sw, vel[0], xf[0], bridge, vehicle, points, road, unilateral, cache, work,
-                   wf, wl, (0,))
+    contact_forces(sx, sv, sq, sw, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,))
     _store(wheel_force, 0, wf, (0,)); _store(wheel_len, 0, wl, (0,))
     ddxi[0, 0] = a[:n_m]; ddq[0, 0] = a[n_m:]
     unsettled = 0
     for s in range(1, n_steps + 1):
-        i2 = 2 * s
-        have[:] = False
-        road_at(xf[i2], vel[i2], setback, road, idx, rv, rr, (0,))
+        _refresh(cache, motion, 2 * s, points)
+        road_at(cache.x, cache.vx, points, road, work.idx, rv, rr, (0,))
+        cache.have_r[:] = True
         u_p = u + dt * v + 0.25 * dt * dt * a
         v_p = v + 0.5 * dt * a
         settled = False
         for _ in range(max_iterations):
-            assemble(vel[i2], xf[i2], r1, rr1, bridge, vehicle, points, phi, dphi, have, active, mass, damp, stiff,
-                     load)
+            assemble(cache.x, cache.vx, r1, rr1, modes, vehicles, points, phi, cache.dphi, have, active, mass, damp,
+                     stiff, load)
             lhs = mass + 0.5 * dt * damp + 0.25 * dt * dt * stiff
             a_new = np.linalg.solve(lhs, load - damp @ v_p - stiff @ u_p)
             u_new = u_p + 0.25 * dt * dt * a_new
             v_new = v_p + 0.5 * dt * a_new
             sx[:, 0] = u_new[:n_m]; sv[:, 0] = v_new[:n_m]; sq[:, 0] = u_new[n_m:]; sw[:, 0] = v_new[n_m:]
-            contact_forces(sx, sv, sq, sw, vel[i2], xf[i2], bridge, vehicle, points, road, unilateral, cache, work,
-                           wf, wl, (0,))
+            contact_forces(sx, sv, sq, sw, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,))
             same = True
             for p in range(n_cp):
                 if new_active[p, 0] != active[p]:
@@ -587,20 +755,20 @@ def newmark(dt, xf, vel, bridge, vehicle, points, road, unilateral, xi, dxi, q, 
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def static_modal_history(xf, setback, track, loads, span, grid_h, V, S):
-    """ξ_st(t) = −Σ_p φ(x_p(t)) P_p / ω² numerator: returns Σ_p φ(x_p(t)) P_p (n_t, n_m) for
-    downward point loads P_p [N] at x_p = xf(t) − setback_p (tabulated shapes, as the solver)."""
-    n_m = V.shape[2]
-    out = np.zeros((xf.size, n_m))
+def static_modal_history(travel, points, loads, modes):
+    """Σ_p φ(x_p(t)) P_p (n_t, n_m) for downward point loads P_p [N] at x_p = origin_p + dir_p·s_v(t),
+    ``travel`` (n_t, n_vehicles) [m] (tabulated shapes, as the solver); ξ_st = −that / ω²."""
+    n_m = modes.values.shape[2]
+    out = np.zeros((travel.shape[0], n_m))
     phi = np.zeros(n_m)
     dphi = np.zeros(n_m)
-    for t in range(xf.size):
-        for p in range(setback.size):
+    for t in range(travel.shape[0]):
+        for p in range(points.origin.size):
             if loads[p] == 0.0:
                 continue
-            x = xf[t] - setback[p]
-            if 0.0 <= x <= span:
-                shape_point(x, track[p], grid_h, V, S, phi, dphi)
+            x = points.origin[p] + points.direction[p] * travel[t, points.vehicle[p]]
+            if 0.0 <= x <= modes.span:
+                shape_point(x, points.track[p], modes.grid_h, modes.values, modes.slopes, phi, dphi)
                 for m in range(n_m):
                     out[t, m] += phi[m] * loads[p]
     return out

@@ -16,7 +16,8 @@ from numpy.typing import NDArray
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.system import KernelData, kernel_data, road_data, static_state
+from vbikit.solve.kernels import Motion
+from vbikit.solve.system import KernelData, kernel_data, point_positions, road_data, static_state
 from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
@@ -69,15 +70,17 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     dt, n_steps, xf, vel = grid.dt, grid.n_steps, grid.xf, grid.vel
     n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
     setback = first.contact.setback
-    road = road_data([(c.road, c.road_right) for c in crossings], first.contact.lateral,
+    road = road_data([(c.road, c.road_right) for c in crossings],
                      float(xf.min() - setback.max()), float(xf.max() - setback.min()))
+    mot = Motion(np.ascontiguousarray(xf, float).reshape(-1, 1), np.ascontiguousarray(vel, float).reshape(-1, 1))
     n_t = n_steps + 1
     xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
     q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
     wheel_force = np.zeros((n_l, n_t, n_w))
     wheel_len = np.zeros((n_l, n_t, n_w))
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
-    kernels.road_at(float(xf[0]), float(vel[0]), setback, road, np.full(n_p, -1, np.int64), road0, rate0,
+    x0, vx0 = point_positions(data, mot.travel[0], mot.speed[0])
+    kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
                     (0,) if n_l == 1 else (0, 0))
     for lane, crossing in enumerate(crossings[:n_real]):
         xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane])
@@ -88,10 +91,10 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
     if first.integrator == "rk4":
-        kernels.rk4(dt, xf, vel, data.bridge, data.vehicle, data.points, road, data.unilateral, *outputs,
+        kernels.rk4(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, *outputs,
                     (0,) if n_l == 1 else (0, 0))
     else:
-        unsettled = kernels.newmark(dt, xf, vel, data.bridge, data.vehicle_mass, data.points, road, data.unilateral,
+        unsettled = kernels.newmark(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral,
                                     *outputs, active0, 50)
         if unsettled:
             log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",

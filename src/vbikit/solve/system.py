@@ -1,5 +1,13 @@
 """The coupled system's data for the kernels, and the system at one instant (static start,
-stability limit)."""
+stability limit).
+
+:func:`kernel_data` turns a :class:`~vbikit.solve.Crossing` into the kernels' argument bundles
+(:mod:`vbikit.solve.kernels`: ``Modes``, ``Vehicles``, ``Points``); :func:`motion` gives the
+vehicles' travel on a time grid and :func:`road_data` the road lines of a set of lanes.  A
+several-vehicle system is the same bundles with block-diagonal vehicle matrices, stacked
+wheels and points that carry their own vehicle index, origin and direction (see the kernels'
+module docstring); the functions below that take a ``KernelData`` work on such a system too.
+"""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -11,108 +19,168 @@ from numpy.typing import NDArray
 from vbikit.road.profile import RoadProfile
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
+from vbikit.solve.kernels import Modes, Motion, Points, Road, Vehicles
 from vbikit.solve.tabulate import TrackTable, tabulate_tracks
 
 
 @dataclass(frozen=True)
 class KernelData:
-    """Argument bundles for ``vbikit.solve.kernels`` (see its docstring)."""
+    """Argument bundles for ``vbikit.solve.kernels`` (see its docstring) and their sizes."""
 
-    bridge: tuple
-    vehicle: tuple  # with M⁻¹ (RK4) in slot 0
-    vehicle_mass: tuple  # with M (Newmark, assembly) in slot 0
-    points: tuple
+    modes: Modes
+    vehicles: Vehicles
+    points: Points
     unilateral: bool
-    n_modes: int
-    n_dof: int
-    n_points: int
-    n_wheels: int
+
+    @property
+    def n_modes(self) -> int:
+        return int(self.modes.omega.size)
+
+    @property
+    def n_dof(self) -> int:
+        return int(self.vehicles.gravity.size)
+
+    @property
+    def n_points(self) -> int:
+        return int(self.points.origin.size)
+
+    @property
+    def n_wheels(self) -> int:
+        return int(self.vehicles.wheel_rows.shape[0])
+
+
+def modes_data(bridge, table: TrackTable) -> Modes:
+    """The ``Modes`` bundle of ``bridge`` with its mode-shape ``table``."""
+    amp = 1.01 * np.abs(table.values).max(axis=(0, 1))  # bound on |φ_m| incl. Hermite overshoot
+    return Modes(np.ascontiguousarray(bridge.omega, float), np.ascontiguousarray(bridge.damping_ratios, float),
+                 float(bridge.span), float(table.spacing), table.values, table.slopes, amp)
+
+
+def vehicles_data(vehicle, contact) -> Vehicles:
+    """The ``Vehicles`` bundle of one vehicle and its contact points."""
+    n_d = vehicle.n_dof
+    n_w = len(vehicle.wheels)
+    rows = np.array([w.row for w in vehicle.wheels], float).reshape(n_w, n_d)
+    m_inv = np.linalg.inv(vehicle.mass) if n_d else np.zeros((0, 0))
+    k_w = np.array([w.stiffness for w in vehicle.wheels], float)
+    c_w = np.array([w.damping for w in vehicle.wheels], float)
+    return Vehicles(np.ascontiguousarray(vehicle.mass, float).reshape(n_d, n_d), m_inv.reshape(n_d, n_d),
+                    np.ascontiguousarray(vehicle.damping, float).reshape(n_d, n_d),
+                    np.ascontiguousarray(vehicle.stiffness, float).reshape(n_d, n_d),
+                    np.ascontiguousarray(vehicle.gravity, float).reshape(n_d), rows, contact.wheel_first,
+                    contact.wheel_count, contact.wheel_envelope, k_w, c_w)
+
+
+def points_data(contact, track: NDArray[np.int64], origin: NDArray[np.float64] | None = None, direction: float = 1.0,
+                vehicle: int = 0) -> Points:
+    """The ``Points`` bundle of one vehicle's ``contact`` points on mode-shape tables ``track``:
+    x_p = ``origin`` + ``direction``·s (default origin −setback: s is the front-axle x), road
+    line 1 for points right of the centreline (lateral < 0), else 0."""
+    n = contact.n
+    origin = -contact.setback if origin is None else np.asarray(origin, float)
+    return Points(np.ascontiguousarray(origin, float), np.full(n, float(direction)), np.full(n, vehicle, np.int64),
+                  np.asarray(track, np.int64), (contact.lateral < 0.0).astype(np.int64), contact.stiffness,
+                  contact.damping, contact.fixed_load, contact.gap, contact.gated, contact.wheel, contact.width,
+                  np.ascontiguousarray(contact.slope_range))
 
 
 def kernel_data(crossing: Crossing, points_per_mode: int = 100) -> KernelData:
     """Tabulate mode shapes along every wheel track and bundle all arrays for the kernels."""
-    bridge, vehicle, cp = crossing.bridge, crossing.vehicle, crossing.contact
+    cp = crossing.contact
     tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
-    table: TrackTable = tabulate_tracks(bridge, tracks, points_per_mode)
-    amp = 1.01 * np.abs(table.values).max(axis=(0, 1))  # bound on |φ_m| incl. Hermite overshoot
-    b = (bridge.omega, bridge.damping_ratios, float(bridge.span), float(table.spacing), table.values, table.slopes, amp)
-    n_d = vehicle.n_dof
-    rows = np.array([w.row for w in vehicle.wheels], float).reshape(len(vehicle.wheels), n_d)
-    m_inv = np.linalg.inv(vehicle.mass) if n_d else np.zeros((0, 0))
-    tail = (vehicle.damping, vehicle.stiffness, vehicle.gravity, rows, cp.wheel_first, cp.wheel_count, cp.wheel_envelope)
-    pts = (cp.setback, track_idx.astype(np.int64), cp.stiffness, cp.damping, cp.fixed_load, cp.gap, cp.gated, cp.wheel,
-           cp.width, np.ascontiguousarray(cp.slope_range))
-    return KernelData(b, (m_inv, *tail), (vehicle.mass, *tail), pts, bool(crossing.loss_of_contact),
-                      bridge.omega.size, n_d, cp.n, len(vehicle.wheels))
+    table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
+    return KernelData(modes_data(crossing.bridge, table), vehicles_data(crossing.vehicle, cp),
+                      points_data(cp, track_idx.ravel()), bool(crossing.loss_of_contact))
+
+
+def motion(crossing: Crossing, t: NDArray[np.float64]) -> Motion:
+    """Travel s = front-axle x [m] and speed [m/s] of the crossing's vehicle at times ``t`` [s]."""
+    return Motion(np.ascontiguousarray(crossing.front_position(t), float).reshape(-1, 1),
+                  np.ascontiguousarray(crossing.velocity(t), float).reshape(-1, 1))
+
+
+def point_positions(data: KernelData, travel: NDArray[np.float64] | float,
+                    speed: NDArray[np.float64] | float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Positions x_p [m] and x-rates dir_p·v [m/s] of every point for the vehicles' ``travel``
+    (n_vehicles,) [m] and ``speed`` [m/s] (scalars: every vehicle)."""
+    pts = data.points
+    s = np.broadcast_to(np.asarray(travel, float), (int(pts.vehicle.max(initial=0)) + 1,))
+    v = np.broadcast_to(np.asarray(speed, float), s.shape)
+    return pts.origin + pts.direction * s[pts.vehicle], pts.direction * v[pts.vehicle]
 
 
 def coupled_matrices(
-    crossing: Crossing,
+    crossing: Crossing | None,
     data: KernelData,
-    front_position: float,
-    speed: float,
+    front_position: float | NDArray[np.float64],
+    speed: float | NDArray[np.float64],
     road: NDArray[np.float64] | None = None,
     road_rate: NDArray[np.float64] | None = None,
     active: NDArray[np.bool_] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """M, C, K, F of Eq. 9 (u = [ξ; q]) with the front axle at ``front_position`` [m] moving at
-    ``speed`` [m/s], the given contact points ``active`` (default: every point in linear contact)."""
+    """M, C, K, F of Eq. 9 (u = [ξ; q]) with the vehicles' travel ``front_position`` [m] (the
+    front-axle x for a crossing) moving at ``speed`` [m/s], the given contact points ``active``
+    (default: every point in linear contact)."""
     n = data.n_modes + data.n_dof
     zero = np.zeros(data.n_points)
     act = np.ones(data.n_points, bool) if active is None else np.asarray(active, bool)
     mass, damp, stiff = (np.zeros((n, n)) for _ in range(3))
     load = np.zeros(n)
     phi = np.zeros((data.n_points, data.n_modes))
-    kernels.assemble(float(speed), float(front_position), zero if road is None else np.asarray(road, float),
-                     zero if road_rate is None else np.asarray(road_rate, float), data.bridge, data.vehicle_mass,
+    x, vx = point_positions(data, front_position, speed)
+    kernels.assemble(x, vx, zero if road is None else np.asarray(road, float),
+                     zero if road_rate is None else np.asarray(road_rate, float), data.modes, data.vehicles,
                      data.points, phi, np.zeros_like(phi), np.zeros(data.n_points, bool), act, mass, damp, stiff, load)
     return mass, damp, stiff, load
 
 
-def static_state(crossing: Crossing, data: KernelData, road: NDArray[np.float64],
+def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel=None,
                  max_iterations: int = 100) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
     """Static equilibrium (ξ, q) at t = 0 on the road elevations ``road`` under the points, and the
-    active contact points.  Contact is piecewise linear, so the active set is iterated: start
+    active contact points (``travel``: the vehicles' travel at t = 0, default the crossing's
+    front-axle position).  Contact is piecewise linear, so the active set is iterated: start
     with every point in contact (for a rigid disk, each wheel's highest point), solve, drop
-    points that do not press, repeat until the set is unchanged."""
-    xf = float(crossing.front_position(0.0))
+    points that do not press (by the kernels' contact law), repeat until the set is unchanged."""
+    travel = float(crossing.front_position(0.0)) if travel is None else travel
     n_m, n_p = data.n_modes, data.n_points
     active = np.ones(n_p, bool)
-    gap = data.points[5]
-    for first, count, env in zip(*data.vehicle[5:8]):
+    gap = data.points.gap
+    veh = data.vehicles
+    for first, count, env in zip(veh.wheel_first, veh.wheel_count, veh.wheel_envelope):
         if env:
             sl = slice(first, first + count)
             active[sl] = False
             active[first + int(np.argmax(road[sl] - gap[sl]))] = True
-    cache = (np.zeros((n_p, n_m)), np.zeros((n_p, n_m)), np.zeros(n_p, bool),
-             np.ascontiguousarray(road, float).reshape(n_p, 1), np.zeros((n_p, 1)), np.ones(n_p, bool))
-    work = (np.zeros(n_p, np.int64), np.zeros((n_p, 1)), np.zeros((n_p, 1), bool), np.zeros(n_p, bool),
-            np.zeros((5, 1)), np.zeros((data.n_dof, 1)))
+    x, _ = point_positions(data, travel)
+    cache = kernels.new_cache(n_p, n_m, 1)._replace(x=x, vx=np.zeros(n_p),
+                                                    rv=np.ascontiguousarray(road, float).reshape(n_p, 1),
+                                                    have_r=np.ones(n_p, bool))
+    work = kernels.new_work(n_p, data.n_dof, 1)
     wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
     # the road values are given (have_r all True): the bundle only carries r_max
-    bundle = (np.array([0.0, 1.0]), np.zeros((1, 2, 1)), np.zeros(n_p, np.int64), float(np.max(road, initial=0.0)))
+    bundle = Road(np.array([0.0, 1.0]), np.zeros((1, 2, 1)), float(np.max(road, initial=0.0)))
     for _ in range(max_iterations):
-        _, _, stiff, load = coupled_matrices(crossing, data, xf, 0.0, road, None, active)
+        _, _, stiff, load = coupled_matrices(crossing, data, travel, 0.0, road, None, active)
         u = np.linalg.solve(stiff, load)
         kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
-                               np.zeros((data.n_dof, 1)), 0.0, xf, data.bridge, data.vehicle, data.points, bundle,
+                               np.zeros((data.n_dof, 1)), data.modes, data.vehicles, data.points, bundle,
                                data.unilateral, cache, work, wf, wl, (0,))
-        new_active = work[2][:, 0]
+        new_active = work.active[:, 0]
         if np.array_equal(new_active, active):
             return u[:n_m], u[n_m:], active
         active = new_active.copy()
     raise RuntimeError("the static start did not settle on a set of contact points; check the road under the vehicle")
 
 
-def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], lateral: NDArray[np.float64],
-              x_min: float, x_max: float) -> tuple:
-    """The kernels' road bundle (stations, elevations (n_lines, n_s, L), line per point, r_max) of
-    L lanes with (left, right) wheel-line profiles each (None: smooth; right None: as the left).
+def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_min: float, x_max: float) -> Road:
+    """The kernels' road bundle (stations, elevations (n_lines, n_s, L), r_max) of L lanes with
+    (left, right) wheel-line profiles each (None: smooth; right None: as the left).
 
     Lanes share one station array: the union of all profiles' stations, on which every profile
     is exactly the same piecewise-linear function (random profiles of one study share their
-    stations, so the union is just those).  Points with ``lateral`` < 0 [m] follow the right
-    line when any lane has one.  Checks that every profile covers ``x_min`` … ``x_max`` [m].
+    stations, so the union is just those).  Line 1 (the points with ``Points.line`` = 1, right
+    of the centreline) exists when any lane has a right profile; otherwise every point reads
+    line 0.  Checks that every profile covers ``x_min`` … ``x_max`` [m].
     """
     profiles = [p for pair in roads for p in pair if p is not None]
     for p in profiles:
@@ -141,8 +209,7 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], la
             elev[0, :, lane] = on_stations(left)
         if two:
             elev[1, :, lane] = on_stations(right) if right is not None else elev[0, :, lane]
-    line = ((np.asarray(lateral) < 0.0) & two).astype(np.int64)
-    return stations, elev, line, float(elev.max())
+    return Road(stations, elev, float(elev.max()))
 
 
 def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64],
@@ -154,8 +221,6 @@ def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64
     cp = crossing.contact
     loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     data = kernel_data(crossing) if data is None else data
-    setback, track = data.points[0], data.points[1]
-    span, grid_h, values, slopes = data.bridge[2:6]
-    force = kernels.static_modal_history(np.ascontiguousarray(front_positions, float), setback, track, loads, span,
-                                         grid_h, values, slopes)
+    travel = np.ascontiguousarray(front_positions, float).reshape(-1, 1)
+    force = kernels.static_modal_history(travel, data.points, np.ascontiguousarray(loads, float), data.modes)
     return -force / crossing.bridge.omega**2
