@@ -242,10 +242,16 @@ def presets() -> None:
                        f"{b.default_lateral_offset} m, default response girder {b.default_girder}")
     typer.echo("Vehicles ([vehicle] model = ...):")
     for p in VEHICLE_PRESETS.values():
-        v = p.build()
+        v = p.example_vehicle()
         loads = ", ".join(f"{x / 1e3:.1f}" for x in v.static_wheel_loads())
-        params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
-        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; wheel loads [kN]: {loads}")
+        if p.required:
+            params = (f"parameters: {', '.join(p.parameters)} (required: {', '.join(p.required)}); example "
+                      + ", ".join(f"{k} = {val}" for k, val in p.example.items()))
+        else:
+            params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
+        f = v.natural_frequencies()
+        freq = f"; frequencies {f.min():.2f} … {f.max():.2f} Hz" if f.size else ""
+        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; wheel loads [kN]: {loads}{freq}")
         typer.echo(f"  {'':<14} {params}")
     typer.echo("Tires ([tire] model = ...):")
     typer.echo("  point          single-point contact")

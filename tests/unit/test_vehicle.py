@@ -14,12 +14,14 @@ TOTAL_MASS = {
     "hs20-44": 2612.0 + 26113.0 + 490.0 + 808.0 + 653.0,
     "two-axle": 16837.0 + 490.0 + 808.0,
     "dump-truck": (80.0e3 + 2 * 95.6e3) / GRAVITY,  # paper §4.2 axle loads; sprung 24,745 kg (+0.26) + axles 2,900 kg
+    "3s2": 3100.0 + 20000.0 + 3 * 750.0 + 2 * 1100.0,  # VBI-2D's five-axle vehicle (E01_Example.m)
+    "axles": (53.4e3 + 4 * 75.6e3) / GRAVITY,  # the preset's example: axle loads given
 }
 
 
 @pytest.fixture(params=sorted(VEHICLE_PRESETS))
 def preset(request) -> tuple[str, Vehicle]:
-    return request.param, VEHICLE_PRESETS[request.param].build()
+    return request.param, VEHICLE_PRESETS[request.param].example_vehicle()
 
 
 #: presets with degrees of freedom (all but the moving force)
@@ -28,7 +30,7 @@ DOF_PRESETS = sorted(set(VEHICLE_PRESETS) - {"moving-force"})
 
 @pytest.fixture(params=DOF_PRESETS)
 def dof_preset(request) -> tuple[str, Vehicle]:
-    return request.param, VEHICLE_PRESETS[request.param].build()
+    return request.param, VEHICLE_PRESETS[request.param].example_vehicle()
 
 
 def test_every_preset_builds_consistently(preset):

@@ -108,9 +108,17 @@ class BuiltScenario:
 
 def build(scenario: Scenario) -> BuiltScenario:
     """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad combinations)."""
+    spec = scenario.vehicle
+    if scenario.vehicles is not None:
+        entry = scenario.vehicles[0]
+        if len(scenario.vehicles) > 1 or entry.direction != "+x" or entry.entry_time != 0 or entry.acceleration != 0 \
+                or entry.tire is not None or entry.lateral_offset is not None or entry.speed_ms is not None:
+            raise ScenarioError("vehicles: several vehicles, or one with its own motion, need the multi-vehicle "
+                                "solver, which this version does not have yet; use one [vehicle] table")
+        spec = entry
     try:
         bridge = build_bridge(scenario.bridge, scenario.base_dir)
-        vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
+        vehicle: Vehicle = VEHICLE_PRESETS[spec.model].build(**spec.parameters)
         c = scenario.crossing
         crossing = Crossing(
             bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=(road := build_road(scenario.road, scenario)),

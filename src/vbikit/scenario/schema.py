@@ -8,6 +8,7 @@ and the allowed values.
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 from typing import Any, Literal, Optional, get_args
 
@@ -108,20 +109,58 @@ class VehicleSpec(_Section):
 
     @model_validator(mode="after")
     def _preset_parameters(self) -> "VehicleSpec":
-        allowed = VEHICLE_PRESETS[self.model].parameters
-        for key, value in (self.model_extra or {}).items():
+        preset = VEHICLE_PRESETS[self.model]
+        allowed = preset.parameters
+        extra = self.model_extra or {}
+        for key, value in extra.items():
             if key not in allowed:
-                hint = f"allowed: {', '.join(allowed)}" if allowed else "this preset takes no parameters"
+                own = [k for k in type(self).model_fields if k != "model"]
+                hint = f"allowed: {', '.join([*own, *allowed])}" if own or allowed else "this preset takes no parameters"
                 raise ValueError(f"unknown key {key!r} for vehicle {self.model!r}; {hint}")
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-                raise ValueError(f"{key} must be a number, got {value!r}")
-            if value < 0 or (value == 0 and "damping" not in key):
-                raise ValueError(f"{key} must be {'>= 0' if 'damping' in key else '> 0'}, got {value!r}")
+            _check_parameter(key, value, preset.kind(key))
+        missing = [k for k in preset.required if k not in extra]
+        if missing:
+            raise ValueError(f"vehicle {self.model!r} needs {', '.join(missing)}")
+        if preset.required:  # models built from data (axles): build once to check the combination
+            try:
+                preset.build(**self.parameters)
+            except ValueError as err:
+                msg = str(err)
+                first = msg.split(" ", 1)[0].rstrip(":")
+                raise ValueError(f"{first}: {msg[len(first):].lstrip(': ')}" if first in allowed else msg) from None
         return self
 
     @property
-    def parameters(self) -> dict[str, float]:
-        return {k: float(v) for k, v in (self.model_extra or {}).items()}
+    def parameters(self) -> dict[str, Any]:
+        preset = VEHICLE_PRESETS[self.model]
+        out: dict[str, Any] = {}
+        for k, v in (self.model_extra or {}).items():
+            kind = preset.kind(k)
+            out[k] = [float(x) for x in v] if kind == "numbers" else list(v) if kind == "names" \
+                else int(v) if kind == "integer" else float(v)
+        return out
+
+
+def _is_number(value: Any) -> bool:
+    return not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
+
+
+def _check_parameter(key: str, value: Any, kind: str) -> None:
+    """Type and sign of one vehicle parameter (the model checks the rest); messages start "key: "."""
+    if kind == "numbers":
+        if not (isinstance(value, list) and value and all(_is_number(v) and v > 0 for v in value)):
+            raise ValueError(f"{key}: must be a list of numbers > 0, got {value!r}")
+    elif kind == "names":
+        if not (isinstance(value, list) and all(isinstance(v, str) for v in value)):
+            raise ValueError(f"{key}: must be a list of names, got {value!r}")
+    elif kind == "integer":
+        if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+            raise ValueError(f"{key}: must be an integer >= 0, got {value!r}")
+    else:
+        if not _is_number(value):
+            raise ValueError(f"{key}: must be a number, got {value!r}")
+        if value < 0 or (value == 0 and "damping" not in key):
+            raise ValueError(f"{key}: must be {'>= 0' if 'damping' in key else '> 0'}, got {value!r}")
 
 
 class TireSpec(_Section):
@@ -134,6 +173,36 @@ class TireSpec(_Section):
     radius: float = Field(0.5, gt=0.05, le=2.0, description="disk / rigid-disk: tire radius [m]")
     disk_spacing: float = Field(0.01, gt=0, le=0.1, description="disk / rigid-disk: spacing of the radial springs [m]")
     loss_of_contact: bool = Field(True, description="tires cannot pull (a point in tension carries no force)")
+
+
+class VehicleEntry(VehicleSpec):
+    """One table of [[vehicles]]: a vehicle (model and its parameters), its tire and its motion.
+
+    It drives in ``direction`` ("+x" or "-x") along ``lateral_offset`` [m] (centreline from
+    the deck centreline; default the bridge's), at ``speed`` [m/s] or ``speed_kmh`` (default:
+    the [crossing] speed) with ``acceleration`` [m/s²]; its front axle passes its entry
+    support (x = 0 driving +x, x = span driving −x) at ``entry_time`` [s].  ``[vehicles.tire]``
+    defaults to the scenario's [tire].
+    """
+
+    tire: Optional[TireSpec] = None
+    lateral_offset: Optional[float] = Field(None, description="vehicle centreline from the deck centreline [m]")
+    direction: Literal["+x", "-x"] = "+x"
+    speed: Optional[float] = Field(None, gt=0, description="speed at t = 0 [m/s]")
+    speed_kmh: Optional[float] = Field(None, gt=0, description="speed at t = 0 [km/h]")
+    acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
+    entry_time: float = Field(0.0, ge=0, description="time the front axle passes its entry support [s]")
+
+    @model_validator(mode="after")
+    def _at_most_one_speed(self) -> "VehicleEntry":
+        if self.speed is not None and self.speed_kmh is not None:
+            raise ValueError("give speed [m/s] or speed_kmh [km/h], not both")
+        return self
+
+    @property
+    def speed_ms(self) -> Optional[float]:
+        return None if self.speed is None and self.speed_kmh is None else \
+            float(self.speed if self.speed is not None else self.speed_kmh / 3.6)
 
 
 class DefectSpec(_Section):
@@ -215,13 +284,15 @@ class CrossingSpec(_Section):
 
     @model_validator(mode="after")
     def _one_speed(self) -> "CrossingSpec":
-        if (self.speed is None) == (self.speed_kmh is None):
+        if self.speed is not None and self.speed_kmh is not None:
             raise ValueError("give exactly one of speed [m/s] or speed_kmh [km/h]")
         return self
 
     @property
-    def speed_ms(self) -> float:
-        return float(self.speed if self.speed is not None else self.speed_kmh / 3.6)
+    def speed_ms(self) -> Optional[float]:
+        """The speed [m/s] (None if not given: [[vehicles]] with their own speeds)."""
+        return None if self.speed is None and self.speed_kmh is None else \
+            float(self.speed if self.speed is not None else self.speed_kmh / 3.6)
 
 
 class ResponseSpec(_Section):
@@ -247,7 +318,8 @@ class Scenario(_Section):
     """A whole scenario file."""
 
     bridge: BridgeSpec
-    vehicle: VehicleSpec
+    vehicle: Optional[VehicleSpec] = None
+    vehicles: Optional[list[VehicleEntry]] = Field(None, description="[[vehicles]]: several vehicles with their own motion")
     tire: TireSpec = TireSpec()
     road: RoadSpec = RoadSpec()
     crossing: CrossingSpec
@@ -256,6 +328,31 @@ class Scenario(_Section):
 
     #: directory relative paths (road.profile_file) are resolved against
     _base_dir: Path = PrivateAttr(default=Path("."))
+
+    @model_validator(mode="after")
+    def _vehicle_or_vehicles(self) -> "Scenario":
+        if self.vehicle is None and self.vehicles is None:
+            raise ValueError("vehicle: missing required key (a [vehicle] table, or [[vehicles]] tables for several vehicles)")
+        if self.vehicle is not None and self.vehicles is not None:
+            raise ValueError("give one [vehicle] table or an array of [[vehicles]] tables, not both")
+        c = self.crossing
+        if self.vehicle is not None:
+            if c.speed_ms is None:
+                raise ValueError("crossing: give exactly one of speed [m/s] or speed_kmh [km/h]")
+            return self
+        if not self.vehicles:
+            raise ValueError("vehicles: the array of [[vehicles]] tables is empty")
+        given = [k for k in ("lateral_offset", "acceleration") if k in c.model_fields_set]
+        if given:
+            raise ValueError(f"crossing.{given[0]}: with [[vehicles]] give it per vehicle (vehicles.N.{given[0]})")
+        for i, v in enumerate(self.vehicles):
+            if v.speed_ms is None and c.speed_ms is None:
+                raise ValueError(f"vehicles.{i}.speed: give speed [m/s] or speed_kmh [km/h] (or crossing.speed for every vehicle)")
+        return self
+
+    @property
+    def is_multi_vehicle(self) -> bool:
+        return self.vehicles is not None
 
     @property
     def base_dir(self) -> Path:
@@ -292,6 +389,9 @@ def _format(err: ValidationError, data: dict[str, Any]) -> str:
             msg = "missing required key"
         elif "input" in e and e["type"] not in ("value_error",):
             msg = f"{msg} (got {e['input']!r})"
+        key = re.match(r"^([a-z_]+): ", msg) if loc and e["type"] == "value_error" else None
+        if key:  # a section's validator named one of its keys: "loc.key: …"
+            loc, msg = f"{loc}.{key.group(1)}", msg[key.end():]
         lines.append(f"{loc}: {msg}" if loc else msg)
     return "invalid scenario:\n  " + "\n  ".join(lines)
 

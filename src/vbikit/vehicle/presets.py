@@ -4,9 +4,10 @@ or [substitute] (our documented engineering choice, see ``shared/reference/domai
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Callable
+from dataclasses import dataclass, field
+from typing import Any, Callable
 
+from vbikit.vehicle.axles import axle_truck, semitrailer_3s2
 from vbikit.vehicle.builder import VehicleBuilder
 from vbikit.vehicle.model import GRAVITY, Vehicle
 
@@ -180,6 +181,20 @@ class VehiclePreset:
     build: Callable[..., Vehicle]
     #: parameters the scenario may set for this preset
     parameters: tuple[str, ...] = ()
+    #: parameters that are not a single number: name -> "numbers" (list of numbers), "names"
+    #: (list of strings) or "integer"
+    kinds: dict[str, str] = field(default_factory=dict)
+    #: parameters without a default (the scenario must give them)
+    required: tuple[str, ...] = ()
+    #: parameters of an example vehicle (``vbikit presets`` builds it), when some are required
+    example: dict[str, Any] = field(default_factory=dict)
+
+    def kind(self, parameter: str) -> str:
+        """"number", "numbers", "names" or "integer"."""
+        return self.kinds.get(parameter, "number")
+
+    def example_vehicle(self) -> Vehicle:
+        return self.build(**self.example)
 
 
 VEHICLE_PRESETS: dict[str, VehiclePreset] = {
@@ -195,5 +210,17 @@ VEHICLE_PRESETS: dict[str, VehiclePreset] = {
         VehiclePreset("hs20-44", hs20_44),
         VehiclePreset("two-axle", two_axle_truck),
         VehiclePreset("dump-truck", dump_truck),
+        VehiclePreset("3s2", semitrailer_3s2),
+        VehiclePreset(
+            "axles",
+            axle_truck,
+            ("axle_loads", "axle_spacings", "groups", "tractor_groups", "unsprung_masses", "half_track",
+             "tire_deflection", "suspension_deflection", "suspension_damping_ratio", "tire_damping_ratio"),
+            kinds={"axle_loads": "numbers", "axle_spacings": "numbers", "groups": "names", "tractor_groups": "integer",
+                   "unsprung_masses": "numbers"},
+            required=("axle_loads", "axle_spacings"),
+            # a 3-S2 at US legal group loads: 12 / 34 / 34 kip (53.4 / 151.2 / 151.2 kN)
+            example={"axle_loads": [53.4e3, 75.6e3, 75.6e3, 75.6e3, 75.6e3], "axle_spacings": [5.5, 1.3, 9.5, 1.3]},
+        ),
     )
 }

@@ -1,0 +1,20 @@
+"""Traffic: vehicle records (WIM-like CSV), events of overlapping vehicles, synthetic streams."""
+from vbikit.traffic.events import Event, on_bridge_intervals, partition
+from vbikit.traffic.records import RecordsError, VehicleRecord, format_records, parse_records, read_records, write_records
+from vbikit.traffic.stream import TRUCK_MIX, LaneTraffic, TruckClass, synthetic_stream
+
+__all__ = [
+    "Event",
+    "LaneTraffic",
+    "RecordsError",
+    "TRUCK_MIX",
+    "TruckClass",
+    "VehicleRecord",
+    "format_records",
+    "on_bridge_intervals",
+    "parse_records",
+    "partition",
+    "read_records",
+    "synthetic_stream",
+    "write_records",
+]

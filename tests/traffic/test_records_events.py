@@ -1,0 +1,133 @@
+"""Vehicle records (CSV), events of overlapping vehicles, synthetic streams."""
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+
+from vbikit.traffic import (
+    LaneTraffic,
+    RecordsError,
+    format_records,
+    parse_records,
+    partition,
+    read_records,
+    synthetic_stream,
+    write_records,
+)
+
+GOOD = """# two trucks
+time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]
+0.0,1,+x,80,53.4 75.6 75.6 75.6 75.6,5.5 1.3 9.5 1.3
+1.5,2,-x,72,45 90,5.0
+"""
+
+
+def test_records_read_in_si_units():
+    a, b = parse_records(GOOD)
+    assert a.axle_loads == pytest.approx((53.4e3, 75.6e3, 75.6e3, 75.6e3, 75.6e3))
+    assert a.speed == pytest.approx(80 / 3.6) and a.direction == "+x" and a.lane == 1
+    assert b.axle_spacings == (5.0,) and b.direction == "-x" and b.line == 4
+    assert a.length == pytest.approx(17.6)
+
+
+@pytest.mark.parametrize("text, match", [
+    ("time [s],lane,direction,speed [mph],axle_loads [kN],axle_spacings [m]\n", r"records:1: column 'speed' takes \[km/h\] or \[m/s\]"),
+    ("time [s],lane,direction,speed [km/h]\n0,1,+x,80\n", "records:2: model axles needs the column axle_loads"),
+    ("time [s],direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n", "missing column.*lane or lateral_offset"),
+    (GOOD.replace("1.5,2,-x", "1.5,2,west"), r"records:4: direction: must be \+x or -x"),
+    (GOOD.replace("45 90,5.0", "45 90,5.0 3"), r"records:4: axle_spacings \[m\]: needs 1 spacing"),
+    (GOOD.replace(",72,", ",fast,"), r"records:4: speed \[km/h\]: not a number"),
+    (GOOD.replace("0.0,1,", "-1,1,"), r"records:3: time \[s\]: must be >= 0"),
+    (GOOD.replace("0.0,1,+x", "0.0,0,+x"), r"records:3: lane: must be >= 1"),
+    (GOOD + "2.0,1,+x,80\n", r"records:5: 4 cells, the header has 6"),
+    ("time [s],lane,weight [kN]\n", r"records:1: unknown column 'weight \[kN\]'"),
+])
+def test_bad_records_name_the_line_and_column(text, match):
+    with pytest.raises(RecordsError, match=match):
+        parse_records(text)
+
+
+def test_model_column_and_gross_weight_check():
+    text = ("time [s],lateral_offset [m],direction,speed [m/s],model,axle_loads [N],axle_spacings [m],gross_weight [kN]\n"
+            "0,1.8,+x,20,hs20-44,,,\n"
+            "3,-1.8,-x,20,,40000 90000,4.5,130\n")
+    a, b = parse_records(text)
+    assert a.model == "hs20-44" and a.lateral_offset == 1.8 and a.axle_loads == ()
+    assert b.model == "axles" and b.gross_weight == 130e3
+    with pytest.raises(RecordsError, match=r":3: gross_weight \[kN\]: .* differs"):
+        parse_records(text.replace(",130\n", ",140\n"))
+    with pytest.raises(RecordsError, match=r":2: model: unknown vehicle preset 'truck'"):
+        parse_records(text.replace("hs20-44", "truck"))
+
+
+def test_written_stream_reads_back_identical(tmp_path):
+    lanes = [LaneTraffic(1, "+x", 600, 80), LaneTraffic(2, "-x", 400, 70)]
+    stream = synthetic_stream(lanes, 300, seed=3)
+    write_records(stream, tmp_path / "s.csv")
+    assert read_records(tmp_path / "s.csv") == stream
+    assert synthetic_stream(lanes, 300, seed=3) == stream  # same seed, same stream
+    assert synthetic_stream(lanes, 300, seed=4) != stream
+
+
+def test_poisson_arrivals_per_lane():
+    """Headways h_min + Exp: mean 3600/flow (here 6 s and 12 s) and coefficient of variation
+    (1 − h_min/mean) for a shifted exponential (0.67, 0.83); 4000 trucks: ±4 % (≈ 3 σ)."""
+    lanes = [LaneTraffic(1, "+x", 600, 80), LaneTraffic(2, "-x", 300, 70)]
+    stream = synthetic_stream(lanes, 4000, seed=11)
+    for lane, flow in ((1, 600), (2, 300)):
+        t = np.array([r.time for r in stream if r.lane == lane])
+        h = np.diff(t)
+        mean = 3600 / flow
+        assert h.min() >= 2.0 - 1e-3
+        assert h.mean() == pytest.approx(mean, rel=0.04)
+        assert h.std() / h.mean() == pytest.approx(1 - 2.0 / mean, rel=0.06)
+    assert all(r.direction == ("+x" if r.lane == 1 else "-x") for r in stream)
+    share9 = np.mean([len(r.axle_loads) == 5 for r in stream])
+    assert share9 == pytest.approx(0.60, abs=0.03)  # class 9 share of TRUCK_MIX
+
+
+def _components(start, end):
+    """Connected components of the interval-overlap graph, by brute force (union–find)."""
+    parent = list(range(len(start)))
+
+    def find(i):
+        while parent[i] != i:
+            i = parent[i]
+        return i
+
+    for i, j in itertools.combinations(range(len(start)), 2):
+        if start[i] < end[j] and start[j] < end[i]:
+            parent[find(i)] = find(j)
+    groups: dict[int, set] = {}
+    for i in range(len(start)):
+        groups.setdefault(find(i), set()).add(i)
+    return sorted(map(frozenset, groups.values()), key=min)
+
+
+def test_events_partition_the_stream():
+    lanes = [LaneTraffic(1, "+x", 900, 80), LaneTraffic(2, "-x", 900, 60, 15)]
+    stream = synthetic_stream(lanes, 400, seed=5)
+    span = 39.62
+    t = [r.time for r in stream]
+    v = [r.speed for r in stream]
+    length = [r.length for r in stream]
+    events = partition(t, v, length, span)
+    members = [i for e in events for i in e.vehicles]
+    assert sorted(members) == list(range(len(stream)))  # each vehicle in exactly one event
+    start = np.array(t)
+    end = start + (span + np.array(length)) / np.array(v)
+    assert sorted(map(frozenset, (e.vehicles for e in events)), key=min) == _components(start, end)
+    assert any(e.multiple_presence for e in events) and any(not e.multiple_presence for e in events)
+    for a, b in zip(events, events[1:]):
+        assert a.end <= b.start  # events do not overlap
+    for e in events:
+        assert e.start == pytest.approx(start[list(e.vehicles)].min())
+        assert e.end == pytest.approx(end[list(e.vehicles)].max())
+
+
+def test_partition_by_hand():
+    # span 10 m, 10 m/s, length 0: on the bridge for 1 s each (touching intervals do not overlap)
+    events = partition([0.0, 0.5, 3.0, 3.99, 4.98, 7.0], [10.0] * 6, [0.0] * 6, 10.0)
+    assert [e.vehicles for e in events] == [(0, 1), (2, 3, 4), (5,)]

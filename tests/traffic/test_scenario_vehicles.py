@@ -1,0 +1,83 @@
+"""The scenario's [[vehicles]] array: validation names vehicles.N.key; [vehicle] unchanged."""
+from __future__ import annotations
+
+import pytest
+
+from vbikit.scenario.schema import ScenarioError, scenario_from_toml
+
+BASE = """
+[bridge]
+model = "paper-bridge-2-beam"
+[crossing]
+approach = 10
+"""
+
+TWO = BASE + """
+[[vehicles]]
+model = "3s2"
+speed_kmh = 80
+lateral_offset = -1.8
+[[vehicles]]
+model = "axles"
+axle_loads = [50e3, 80e3, 80e3]
+axle_spacings = [5.0, 1.3]
+groups = ["single", "walking-beam"]
+direction = "-x"
+speed = 20
+entry_time = 0.5
+lateral_offset = 1.8
+[vehicles.tire]
+model = "multipoint"
+n_points = 4
+"""
+
+
+def test_two_vehicles_validate():
+    s = scenario_from_toml(TWO)
+    a, b = s.vehicles
+    assert s.is_multi_vehicle and s.vehicle is None
+    assert a.model == "3s2" and a.speed_ms == pytest.approx(80 / 3.6) and a.tire is None
+    assert b.parameters == {"axle_loads": [50e3, 80e3, 80e3], "axle_spacings": [5.0, 1.3], "groups": ["single", "walking-beam"]}
+    assert b.direction == "-x" and b.entry_time == 0.5 and b.tire.n_points == 4
+
+
+@pytest.mark.parametrize("old, new, match", [
+    ('direction = "-x"', 'direction = "west"', r"vehicles\.1\.direction"),
+    ("entry_time = 0.5", "entry_time = -1", r"vehicles\.1\.entry_time"),
+    ("axle_spacings = [5.0, 1.3]", "axle_spacings = [5.0]", r"vehicles\.1\.axle_spacings: needs 2 value"),
+    ('groups = ["single", "walking-beam"]', 'groups = ["single", "bogie"]', r"vehicles\.1\.groups: .*unknown axle group 'bogie'"),
+    ("axle_loads = [50e3, 80e3, 80e3]", "axle_loads = [50e3, 80e3, -1]", r"vehicles\.1\.axle_loads: must be a list of numbers > 0"),
+    ("n_points = 4", "n_points = 0", r"vehicles\.1\.tire\.n_points"),
+    ("lateral_offset = -1.8", "lateral_ofset = -1.8", r"vehicles\.0: unknown key 'lateral_ofset'.*allowed: tire, lateral_offset"),
+    ("speed_kmh = 80\n", "", r"vehicles\.0\.speed: give speed"),
+    ("speed = 20\n", "speed = 20\nspeed_kmh = 72\n", r"vehicles\.1: give speed \[m/s\] or speed_kmh \[km/h\], not both"),
+    ('model = "3s2"', 'model = "truck"', r"vehicles\.0\.model: .*unknown vehicle model 'truck'"),
+])
+def test_bad_vehicle_entries_name_the_key(old, new, match):
+    assert old in TWO
+    with pytest.raises(ScenarioError, match=match):
+        scenario_from_toml(TWO.replace(old, new, 1))
+
+
+def test_axles_needs_its_data():
+    with pytest.raises(ScenarioError, match=r"vehicles\.0: vehicle 'axles' needs axle_loads, axle_spacings"):
+        scenario_from_toml(BASE + '[[vehicles]]\nmodel = "axles"\nspeed = 20\n')
+
+
+def test_vehicle_or_vehicles():
+    one = BASE.replace("approach = 10", "approach = 10\nspeed = 20") + '[vehicle]\nmodel = "hs20-44"\n'
+    assert scenario_from_toml(one).vehicle.model == "hs20-44"  # the single table keeps working
+    with pytest.raises(ScenarioError, match="not both"):
+        scenario_from_toml(one + '[[vehicles]]\nmodel = "3s2"\n')
+    with pytest.raises(ScenarioError, match=r"vehicle: missing required key \(a \[vehicle\] table, or \[\[vehicles\]\]"):
+        scenario_from_toml(BASE)
+    with pytest.raises(ScenarioError, match="crossing: give exactly one of speed"):
+        scenario_from_toml(BASE + '[vehicle]\nmodel = "hs20-44"\n')
+    with pytest.raises(ScenarioError, match=r"crossing\.lateral_offset: with \[\[vehicles\]\] give it per vehicle"):
+        scenario_from_toml(TWO.replace("approach = 10", "approach = 10\nlateral_offset = 1"))
+
+
+def test_single_vehicle_axles_table():
+    s = scenario_from_toml(BASE.replace("approach = 10", "approach = 10\nspeed_kmh = 70")
+                           + '[vehicle]\nmodel = "axles"\naxle_loads = [40e3, 90e3]\naxle_spacings = [4.5]\n')
+    assert s.vehicle.parameters["axle_loads"] == [40e3, 90e3]
