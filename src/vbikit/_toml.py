@@ -5,6 +5,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from vbikit._files import read_text
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
@@ -12,16 +14,15 @@ else:  # pragma: no cover
 
 
 def parse_toml(text: str, source: str, error: type[Exception]) -> dict[str, Any]:
-    """Parse TOML ``text``; a syntax error raises ``error("<source>: not valid TOML: …")``."""
+    """Parse TOML ``text``; any problem (syntax, nesting too deep) raises ``error("<source>: not valid TOML: …")``."""
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
         raise error(f"{source}: not valid TOML: {err}") from None
+    except RecursionError:
+        raise error(f"{source}: not valid TOML: tables or arrays nested too deeply") from None
 
 
 def read_toml(path: str | Path, error: type[Exception], what: str = "file") -> dict[str, Any]:
-    """Read and parse a TOML file; a missing file raises ``error("<what> not found: <path>")``."""
-    path = Path(path)
-    if not path.is_file():
-        raise error(f"{what} not found: {path}")
-    return parse_toml(path.read_text(), str(path), error)
+    """Read and parse a TOML file; a missing or non-text file raises ``error`` naming the file."""
+    return parse_toml(read_text(path, error, what), str(path), error)

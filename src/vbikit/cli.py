@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import csv
-import json
 import logging
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,12 +30,32 @@ def _main(debug: bool = typer.Option(False, "--debug", help="Show full traceback
     logging.basicConfig(level=logging.DEBUG if debug else logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
 
 
-def _json_default(obj: object) -> object:
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    raise TypeError(type(obj).__name__)
+def _json(obj: object, indent: int | None = None) -> str:
+    """Strict JSON (no NaN/Infinity: those are null, see vbikit._files.json_safe)."""
+    from vbikit._files import json_text
+
+    return json_text(obj, indent)
+
+
+def _limits(max_memory: Optional[str], max_steps: Optional[float]) -> Any:
+    from vbikit.solve.budget import Limits, parse_size
+
+    kw: dict[str, Any] = {}
+    if max_memory is not None:
+        kw["max_memory"] = _guard(lambda: parse_size(max_memory))
+    if max_steps is not None:
+        kw["max_steps"] = int(max_steps)
+    return Limits(**kw)
+
+
+def _warn(warnings: list[str]) -> None:
+    for text in warnings:
+        typer.echo(f"warning: {text}", err=True)
+
+
+_MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
+                                                      "estimated before it starts, refused above.")
+_MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")
 
 
 @dataclass
@@ -57,46 +76,82 @@ def _guard(action: Any) -> Any:
             raise
         typer.echo(f"error: {err}", err=True)
         raise typer.Exit(code=2) from None
+    except MemoryError:
+        if _STATE["debug"]:
+            raise
+        typer.echo("error: out of memory; lower --max-memory to be refused before starting, or reduce the inputs "
+                   "named in the budget message of `vbikit validate`", err=True)
+        raise typer.Exit(code=2) from None
 
 
 def _write_text(path: Path, text: str) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(text)
+    from vbikit._files import write_text
+
+    write_text(path, text)
 
 
-def _execute(load: Any) -> _Run:
-    """Validate (``load()`` returns a Scenario), build and simulate; user errors exit with code 2."""
+def _execute(load: Any, limits: Any = None) -> _Run:
+    """Check (``load()`` returns a Scenario; every check of :func:`vbikit.scenario.preflight.preflight`),
+    simulate and summarise; user errors exit with code 2."""
+    from vbikit._files import json_safe
     from vbikit.analysis import girder_responses, point_response, summary
-    from vbikit.scenario import build
+    from vbikit.scenario.preflight import preflight, scenario_inputs
     from vbikit.solve import simulate
 
     def work() -> _Run:
         scenario = load()
-        built = build(scenario)
+        plan = preflight(scenario, limits)
+        built = plan.built
         result = simulate(built.crossing)
         response = point_response(result, built.response_x, built.response_y)
         girders = girder_responses(result, built.response_x)
-        return _Run(scenario.name, result, response, summary(result, response, girders, built.response_girder), girders)
+        s = summary(result, response, girders, built.response_girder)
+        s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
+        s["inputs"] = scenario_inputs(scenario, plan)
+        s, nonfinite = json_safe(s)
+        s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
+        return _Run(scenario.name, result, response, s, girders)
 
-    return _guard(work)
+    run_ = _guard(work)
+    _warn(run_.summary["warnings"])
+    return run_
 
 
 def _write_csv(run: _Run, path: Path) -> None:
+    from vbikit._files import atomic_write
     from vbikit.analysis import histories
 
     cols = histories(run.result, run.response, run.girders)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with path.open("w", newline="") as fh:
-        writer = csv.writer(fh)
-        writer.writerow(list(cols))
-        for row in np.column_stack(list(cols.values())):
-            writer.writerow([f"{v:.9g}" for v in row])
+
+    def write(tmp: Path) -> None:
+        with tmp.open("w", newline="") as fh:
+            writer = csv.writer(fh)
+            writer.writerow(list(cols))
+            for row in np.column_stack(list(cols.values())):
+                writer.writerow([f"{v:.9g}" for v in row])
+
+    atomic_write(path, write)
 
 
 def _print_summary(run: _Run) -> None:
     s = run.summary
     if run.name:
         typer.echo(run.name)
+    inp = s.get("inputs")
+    if inp:
+        road = inp["road"]
+        road_text = (f"class {road['class']} (phi0 {road['phi0']:.4g} m³/cycle at n0 {road['n0']:g} cycle/m, "
+                     f"exponent {road['exponent']:g}), seed {road['seed']}" if "seed" in road else
+                     f"measured {road['profile_file']}" if "profile_file" in road else "smooth")
+        if road.get("defects"):
+            road_text += f"; defects: {', '.join(road['defects'])}"
+        typer.echo(f"  bridge               {inp['bridge']} (span {inp['span']:g} m, {inp['n_modes']} modes, "
+                   f"damping {inp['damping_ratio']:.3g})")
+        typer.echo(f"  vehicle, tire        {inp['vehicle']}, {inp['tire']} tire")
+        typer.echo(f"  road                 {road_text}")
+        typer.echo(f"  speed                {inp['speed_kmh']:.4g} km/h = {inp['speed_m_s']:.4g} m/s"
+                   + (f", acceleration {inp['acceleration']:g} m/s²" if inp["acceleration"] else ""))
+        typer.echo(f"  vbikit               {inp['vbikit_version']}")
     typer.echo(f"  bridge f1..f3        {', '.join(f'{f:.2f}' for f in s['frequencies_hz'][:3])} Hz")
     girder = f" (Girder {s['response_girder']})" if s.get("response_girder") else ""
     typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m{girder}")
@@ -122,9 +177,9 @@ def _outputs(run: _Run, as_json: bool, out: Optional[Path], plot: Optional[Path]
 
         _guard(lambda: plot_crossing(run.result, run.response, plot))
     if summary_path is not None:
-        _guard(lambda: _write_text(summary_path, json.dumps(run.summary, indent=2, default=_json_default) + "\n"))
+        _guard(lambda: _write_text(summary_path, _json(run.summary, indent=2) + "\n"))
     if as_json:
-        typer.echo(json.dumps(run.summary, default=_json_default))
+        typer.echo(_json(run.summary))
     else:
         _print_summary(run)
         for label, path in (("time histories", out), ("figure", plot), ("summary", summary_path)):
@@ -139,20 +194,34 @@ def run(
     out: Optional[Path] = typer.Option(None, "--out", help="Write time histories to this CSV file."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG) of the response."),
     summary_path: Optional[Path] = typer.Option(None, "--summary", help="Write the JSON summary to this file."),
+    max_memory: Optional[str] = _MAX_MEMORY,
+    max_steps: Optional[float] = _MAX_STEPS,
 ) -> None:
     """Simulate one crossing described by a scenario file."""
     from vbikit.scenario import load_scenario
 
-    _outputs(_execute(lambda: load_scenario(scenario)), as_json, out, plot, summary_path)
+    limits = _limits(max_memory, max_steps)
+    _outputs(_execute(lambda: load_scenario(scenario), limits), as_json, out, plot, summary_path)
 
 
 @app.command()
-def validate(scenario: Path = typer.Argument(..., help="TOML scenario file.")) -> None:
-    """Check a scenario file without running it."""
-    from vbikit.scenario import build, load_scenario
+def validate(
+    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    max_memory: Optional[str] = _MAX_MEMORY,
+    max_steps: Optional[float] = _MAX_STEPS,
+) -> None:
+    """Check a scenario file without running it: every check `vbikit run` makes before it
+    integrates (files, parameters, time step and stability limit, memory and step budgets)."""
+    from vbikit.scenario import load_scenario
+    from vbikit.scenario.preflight import preflight
+    from vbikit.solve.budget import human
 
-    _guard(lambda: build(load_scenario(scenario)))
-    typer.echo(f"{scenario}: ok")
+    limits = _limits(max_memory, max_steps)
+    plan = _guard(lambda: preflight(load_scenario(scenario), limits))
+    _warn(plan.warnings)
+    est = plan.estimate
+    typer.echo(f"{scenario}: ok — {est.n_steps} steps of {est.dt:.3e} s ({plan.built.crossing.integrator}), "
+               f"≈ {human(est.memory)}")
 
 
 @app.command()
@@ -207,9 +276,9 @@ def compare_tires(
             "seconds": time.perf_counter() - t0,
         }
     fig = _guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
-    _guard(lambda: _write_text(out_dir / "compare-tires.json", json.dumps(table, indent=2, default=_json_default) + "\n"))
+    _guard(lambda: _write_text(out_dir / "compare-tires.json", _json(table, indent=2) + "\n"))
     if as_json:
-        typer.echo(json.dumps(table, default=_json_default))
+        typer.echo(_json(table))
         return
     if base.name:
         typer.echo(base.name)

@@ -1,11 +1,13 @@
 """Response extraction at a deck point and the crossing summary."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.solve.result import CrossingResult
 
@@ -33,12 +35,13 @@ class PointResponse:
         return impact_factor(self.time, self.strain, self.static_strain)
 
 
-def point_response(result: CrossingResult, x: float | None = None, y: float = 0.0) -> PointResponse:
-    """Dynamic and static responses at (x, y); x defaults to midspan."""
+def point_response(result: CrossingResult, x: float | None = None, y: float | None = None) -> PointResponse:
+    """Dynamic and static responses at (x, y) [m]; x defaults to midspan, y to the bridge's
+    ``default_response_y`` (its default girder on a slab-on-girder deck, as in scenarios)."""
     bridge = result.crossing.bridge
-    x = bridge.span / 2 if x is None else float(x)
-    if not 0.0 <= x <= bridge.span:
-        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m, got {x}")
+    x, y = result.point(x, y)
+    if not (math.isfinite(y) and 0.0 <= x <= bridge.span):
+        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
     phi = bridge.mode_shapes([x], [y])[0]
     eps = bridge.strain_shapes([x], [y])[0]
     xi_st = static_modal_history(result)
@@ -135,6 +138,7 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "integrator": crossing.integrator,
         "speed": crossing.speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
+        "warnings": run_warnings(result, response.x),
     } | ({"response_girder": response_girder, "lateral_offset": crossing.lateral_offset, **girder_summary(girders)}
          if girders else {})
 

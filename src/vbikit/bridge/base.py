@@ -14,6 +14,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
+#: modal damping ratio [-] of every bridge model and scenario unless given (2 %, the paper's value)
+DEFAULT_DAMPING_RATIO = 0.02
+
+
 class ModalBridge(abc.ABC):
     """Abstract modal bridge.
 
@@ -26,6 +30,14 @@ class ModalBridge(abc.ABC):
 
     #: span length [m]
     span: float
+    #: vehicle centreline y [m] a crossing uses when it is not given (models override it)
+    default_lateral_offset: float = 0.0
+
+    @property
+    def default_response_y(self) -> float:
+        """y [m] of the deck point responses and impact factors are read at when no y is given
+        (the deck centreline; a slab-on-girder deck: its default girder's line)."""
+        return 0.0
 
     @property
     @abc.abstractmethod

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 
 
 def _positive(name: str, value: float) -> None:
@@ -39,7 +39,8 @@ class EulerBernoulliBeam(ModalBridge):
     mass_per_length : float
         Mass per unit length m [kg/m].
     damping_ratio : float
-        Modal damping ratio ζ [-], the same for every mode (0 ≤ ζ < 1).
+        Modal damping ratio ζ [-], the same for every mode (0 ≤ ζ < 1); default
+        :data:`~vbikit.bridge.base.DEFAULT_DAMPING_RATIO` (2 %, as scenarios).
     n_modes : int
         Number of retained bending modes.
     neutral_axis_depth : float
@@ -49,7 +50,7 @@ class EulerBernoulliBeam(ModalBridge):
     span: float
     EI: float
     mass_per_length: float
-    damping_ratio: float = 0.0
+    damping_ratio: float = DEFAULT_DAMPING_RATIO
     n_modes: int = 10
     neutral_axis_depth: float = 0.5
 

@@ -60,7 +60,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.nodal import NodalModes, _hermite
 from vbikit.bridge.sections import (
     AASHTO_GIRDERS,
@@ -185,7 +185,7 @@ class SlabOnGirderBridge(ModalBridge):
     parapet_EI: float = 0.0
     parapet_mass: float = 0.0
     extra_mass_per_area: float = 0.0
-    damping_ratio: float = 0.02
+    damping_ratio: float = DEFAULT_DAMPING_RATIO
     n_modes: int = 10
     max_frequency: Optional[float] = None
     n_elements: Optional[int] = None
@@ -239,6 +239,11 @@ class SlabOnGirderBridge(ModalBridge):
     def girder_y(self) -> NDArray[np.float64]:
         """y [m] of the girder centre lines, Girder 1 first (most negative y)."""
         return (np.arange(self.n_girders) - (self.n_girders - 1) / 2.0) * self.girder_spacing
+
+    @property
+    def default_response_y(self) -> float:
+        """y [m] of the default girder's line (responses are read there unless y is given)."""
+        return float(self.girder_y[self.default_girder - 1])
 
     @property
     def deck_width(self) -> float:

@@ -38,6 +38,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
+from vbikit._files import read_text
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.girder_deck import girder_line_strain
 from vbikit.bridge.nodal import NodalModes
@@ -100,6 +101,11 @@ class ImportedModalBridge(ModalBridge):
     @property
     def n_girders(self) -> int:
         return int(self.girder_y.size)
+
+    @property
+    def default_response_y(self) -> float:
+        """y [m] of the default girder's line (responses are read there unless y is given)."""
+        return float(self.girder_y[self.girder_index(self.default_girder)])
 
     def girder_index(self, girder: int) -> int:
         if not 1 <= int(girder) <= self.n_girders:
@@ -164,27 +170,24 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
     ``damping_ratio`` applies when the file has no ``damping_ratios``; ``n_modes`` keeps only the first modes.
     """
     path = Path(path)
-    if not path.is_file():
-        raise ModeFileError(f"mode file not found: {path}")
+    lines = read_text(path, ModeFileError, "mode file").splitlines()
     header: dict[str, str] = {}
     columns: list[str] | None = None
     data_start = 0
-    with path.open() as fh:
-        first = fh.readline().strip()
-        if first.lstrip("#").strip() != MAGIC:
-            raise ModeFileError(f"{path}: first line must be '# {MAGIC}', got {first!r}")
-        for i, line in enumerate(fh, start=1):
-            s = line.strip()
-            if not s:
-                continue
-            if s.startswith("#"):
-                if "=" in s:
-                    k, v = s.lstrip("#").split("=", 1)
-                    header[k.strip()] = v.strip()
-                continue
-            columns = [c.strip() for c in s.split(",")]
-            data_start = i + 1
-            break
+    if not lines or lines[0].strip().lstrip("#").strip() != MAGIC:  # no echo: the file may be anything
+        raise ModeFileError(f"{path}: not a vbikit mode file (its first line must be '# {MAGIC}')")
+    for i, line in enumerate(lines[1:], start=1):
+        s = line.strip()
+        if not s:
+            continue
+        if s.startswith("#"):
+            if "=" in s:
+                k, v = s.lstrip("#").split("=", 1)
+                header[k.strip()] = v.strip()
+            continue
+        columns = [c.strip() for c in s.split(",")]
+        data_start = i + 1
+        break
     if columns is None:
         raise ModeFileError(f"{path}: no column header line")
     for key in ("span", "frequencies_hz"):
@@ -199,14 +202,17 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
     slopes = [*(f"dwdx_{k + 1}" for k in range(n)), *(f"dwdy_{k + 1}" for k in range(n))]
     if columns[: 2 + n] != want or columns[2 + n:] not in ([], slopes):
         raise ModeFileError(f"{path}: columns must be x, y, w_1 … w_{n} [, dwdx_1 … dwdx_{n}, dwdy_1 … dwdy_{n}]; got {columns[:6]}…")
-    table = np.loadtxt(path, delimiter=",", skiprows=data_start, ndmin=2)
+    try:
+        table = np.loadtxt(lines[data_start:], delimiter=",", ndmin=2)
+    except ValueError:
+        raise ModeFileError(f"{path}: every row needs {len(columns)} finite numbers") from None
     if table.shape[1] != len(columns) or not np.all(np.isfinite(table)):
         raise ModeFileError(f"{path}: every row needs {len(columns)} finite numbers")
     xs, ys = np.unique(table[:, 0]), np.unique(table[:, 1])
     if table.shape[0] != xs.size * ys.size:
         raise ModeFileError(f"{path}: nodes must form a full rectangular grid ({ys.size} lines × {xs.size} stations "
                             f"= {xs.size * ys.size} nodes, found {table.shape[0]} rows)")
-    span = float(header["span"])
+    span = float(_floats(header["span"], "span")[0])
     if xs[0] != 0.0 or not np.isclose(xs[-1], span, rtol=1e-12, atol=0):
         raise ModeFileError(f"{path}: stations must run from x = 0 to the span {span} m (found {xs[0]} … {xs[-1]})")
     order = np.lexsort((table[:, 0], table[:, 1]))  # by line, then station

@@ -17,7 +17,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.sections import AASHTO_GIRDERS, composite_beam_properties
@@ -27,7 +27,7 @@ E_CONCRETE = 33e9
 #: [substitute] concrete density [kg/m³]
 RHO_CONCRETE = 2400.0
 #: [substitute] default modal damping ratio [-]
-DEFAULT_DAMPING = 0.02
+DEFAULT_DAMPING = DEFAULT_DAMPING_RATIO
 
 
 def paper_beam(span: float, girder_type: str, n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPING) -> EulerBernoulliBeam:

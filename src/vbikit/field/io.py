@@ -19,7 +19,6 @@ from __future__ import annotations
 import csv
 import logging
 import re
-import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -27,10 +26,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
+from vbikit._files import check_name, read_text
+from vbikit._toml import read_toml
+from vbikit.bridge.girder_deck import deck_parameters
+
 
 log = logging.getLogger(__name__)
 
@@ -80,46 +79,44 @@ class MeasuredRecord:
 def read_response_csv(path: str | Path) -> MeasuredRecord:
     """Read a response CSV (format in the module docstring); values are returned in SI units."""
     path = Path(path)
-    if not path.is_file():
-        raise FieldFileError(f"{path}: response file not found")
+    text = read_text(path, FieldFileError, "response file (CSV)")
     names: list[str] = []
     units: list[str] = []
     rows: list[list[float]] = []
     lines: list[int] = []
-    with path.open(newline="", encoding="utf-8") as fh:
-        for lineno, row in enumerate(csv.reader(fh), start=1):
-            cells = [c.strip() for c in row]
-            if not cells or not any(cells) or cells[0].startswith("#"):
-                continue
-            if not names:
-                for col, cell in enumerate(cells, start=1):
-                    m = _HEADER.match(cell)
-                    if not m:
-                        raise FieldFileError(f"{path}:{lineno}: header column {col} {cell!r} is not 'name [unit]'")
-                    unit = m["unit"].strip()
-                    if unit not in UNITS:
-                        raise FieldFileError(f"{path}:{lineno}: column {m['name']!r}: unknown unit [{unit}]; "
-                                             f"allowed: {', '.join(UNITS)}")
-                    names.append(m["name"])
-                    units.append(unit)
-                if UNITS[units[0]][0] != "time":
-                    raise FieldFileError(f"{path}:{lineno}: the first column must be time in [s] or [ms], got [{units[0]}]")
-                if len(set(names)) != len(names):
-                    raise FieldFileError(f"{path}:{lineno}: duplicate channel names in the header")
-                continue
-            if len(cells) != len(names):
-                raise FieldFileError(f"{path}:{lineno}: expected {len(names)} columns, got {len(cells)}")
-            values = []
-            for col, (cell, name) in enumerate(zip(cells, names), start=1):
-                try:
-                    v = float(cell)
-                except ValueError:
-                    raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): not a number: {cell!r}") from None
-                if not np.isfinite(v):
-                    raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): {cell!r} is not finite (NaN/inf)")
-                values.append(v)
-            rows.append(values)
-            lines.append(lineno)
+    for lineno, row in enumerate(csv.reader(text.splitlines()), start=1):
+        cells = [c.strip() for c in row]
+        if not cells or not any(cells) or cells[0].startswith("#"):
+            continue
+        if not names:
+            for col, cell in enumerate(cells, start=1):
+                m = _HEADER.match(cell)
+                if not m:
+                    raise FieldFileError(f"{path}:{lineno}: header column {col} is not 'name [unit]' (e.g. 'G5_disp [mm]')")
+                unit = m["unit"].strip()
+                if unit not in UNITS:
+                    raise FieldFileError(f"{path}:{lineno}: column {m['name']!r}: unknown unit [{unit}]; "
+                                         f"allowed: {', '.join(UNITS)}")
+                names.append(m["name"])
+                units.append(unit)
+            if UNITS[units[0]][0] != "time":
+                raise FieldFileError(f"{path}:{lineno}: the first column must be time in [s] or [ms], got [{units[0]}]")
+            if len(set(names)) != len(names):
+                raise FieldFileError(f"{path}:{lineno}: duplicate channel names in the header")
+            continue
+        if len(cells) != len(names):
+            raise FieldFileError(f"{path}:{lineno}: expected {len(names)} columns, got {len(cells)}")
+        values = []
+        for col, (cell, name) in enumerate(zip(cells, names), start=1):
+            try:
+                v = float(cell)
+            except ValueError:
+                raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): not a number") from None
+            if not np.isfinite(v):
+                raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): {cell!r} is not finite (NaN/inf)")
+            values.append(v)
+        rows.append(values)
+        lines.append(lineno)
     if not names:
         raise FieldFileError(f"{path}: no header row")
     if len(rows) < 4:
@@ -247,12 +244,7 @@ def _file(table: dict[str, Any], key: str, where: str, base: Path, path: Path, r
 def load_field_toml(path: str | Path) -> FieldSpec:
     """Read and check a ``FIELD.toml`` (format in docs/field.md); errors name the key."""
     path = Path(path)
-    if not path.is_file():
-        raise FieldFileError(f"{path}: field file not found")
-    try:
-        doc = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as err:
-        raise FieldFileError(f"{path}: not valid TOML: {err}") from None
+    doc = read_toml(path, FieldFileError, "field file")
     base = path.parent
     _keys(doc, _TOP, "", path)
     for key in ("bridge", "truck"):
@@ -309,6 +301,12 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         if align == "trigger" and trigger is None:
             raise FieldFileError(f"{path}: {where}trigger_time is required with align = 'trigger' (or use align = 'xcorr')")
         name = c.get("name", f"case{i}")
+        if not isinstance(name, str):
+            raise FieldFileError(f"{path}: {where}name must be a string, got {name!r}")
+        try:
+            check_name(name, f"{where}name")  # it names the case's output files
+        except ValueError as err:
+            raise FieldFileError(f"{path}: {err}") from None
         cs = CaseSpec(
             name=str(name),
             responses=_file(c, "responses", where, base, path, True),
@@ -327,6 +325,10 @@ def load_field_toml(path: str | Path) -> FieldSpec:
     bp = doc.get("bridge_parameters", {})
     if not isinstance(bp, dict):
         raise FieldFileError(f"{path}: [bridge_parameters] must be a table")
+    try:
+        bp = deck_parameters(bp)
+    except (ValueError, TypeError) as err:
+        raise FieldFileError(f"{path}: [bridge_parameters]: {err}") from None
     return FieldSpec(
         path=path,
         name=str(doc.get("name", path.stem)),

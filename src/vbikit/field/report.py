@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import csv
-import json
 import logging
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -11,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from vbikit._files import atomic_write, inside, json_safe, json_text, save_figure, write_text
 from vbikit.field.io import FieldSpec, load_field_toml
 from vbikit.field.workflow import Calibration, CaseComparison, calibrate, compare_case
 
@@ -45,7 +45,7 @@ def plot_case(cmp: CaseComparison, path: str | Path, title: str = "") -> Path:
     fig.suptitle(f"{title} — {cmp.case.name} ({note})" if title else f"{cmp.case.name} ({note})", fontsize="medium")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -85,7 +85,7 @@ def run_field(path: str | Path, out_dir: str | Path, tires: list[str], do_calibr
     spec = load_field_toml(path)
     out = Path(out_dir)
     cmps = [compare_case(spec, case, tires) for case in spec.cases]
-    figures = [plot_case(c, out / f"field-{c.case.name}.png", spec.name) for c in cmps]
+    figures = [plot_case(c, inside(out, f"field-{c.case.name}.png"), spec.name) for c in cmps]
     table: dict[str, Any] = {"name": spec.name, "field_file": str(spec.path), "bridge": spec.bridge, "truck": spec.truck,
                              "speed_m_s": spec.speed, "stiffness_factor": spec.stiffness_factor,
                              "damping_ratio": spec.damping_ratio, "tires": tires,
@@ -97,29 +97,30 @@ def run_field(path: str | Path, out_dir: str | Path, tires: list[str], do_calibr
         cal = calibrate(spec, [replace(c) for c in cmps], tire=tire)
         table["calibration"] = cal.as_dict()
         calibrated = [compare_case(spec, case, tires, cal.stiffness_factor, cal.damping_ratio) for case in spec.cases]
-        figures += [plot_case(c, out / f"field-{c.case.name}-calibrated.png",
+        figures += [plot_case(c, inside(out, f"field-{c.case.name}-calibrated.png"),
                               f"{spec.name}, calibrated f = {cal.stiffness_factor:.4f}, ζ = {cal.damping_ratio:.4f}")
                     for c in calibrated]
         table["calibrated_cases"] = [c.table() for c in calibrated]
         rows += metrics_rows(calibrated, "calibrated")
     out.mkdir(parents=True, exist_ok=True)
     json_path = out / "field-metrics.json"
-    json_path.write_text(json.dumps(table, indent=2, default=_default) + "\n")
+    table, nonfinite = json_safe(table)
+    if nonfinite:
+        table["warnings"] = [f"{key} is not a finite number (written as null)" for key in nonfinite]
+        for text in table["warnings"]:
+            log.warning(text)
+    write_text(json_path, json_text(table, indent=2) + "\n")
     csv_path = out / "field-metrics.csv"
     keys: list[str] = []
     for r in rows:
         keys += [k for k in r if k not in keys]
-    with csv_path.open("w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=keys)
-        w.writeheader()
-        w.writerows(rows)
+
+    def write_csv(tmp: Path) -> None:
+        with tmp.open("w", newline="") as fh:
+            w = csv.DictWriter(fh, fieldnames=keys)
+            w.writeheader()
+            w.writerows(rows)
+
+    atomic_write(csv_path, write_csv)
     log.info("field comparison written to %s", out)
     return FieldRun(spec, cmps, figures, json_path, csv_path, cal, calibrated, table)
-
-
-def _default(obj: object) -> object:
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, (Path,)):
-        return str(obj)
-    raise TypeError(type(obj).__name__)

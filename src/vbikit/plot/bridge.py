@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
+from vbikit._files import save_figure
 from vbikit.bridge.base import ModalBridge
 
 
@@ -47,6 +48,6 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
         fig.suptitle(title)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from vbikit._files import save_figure
 from vbikit.analysis.response import PointResponse
 
 
@@ -29,6 +30,6 @@ def plot_tire_comparison(responses: dict[str, PointResponse], path: str | Path, 
         axes[0].set_title(title, fontsize="medium")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return path

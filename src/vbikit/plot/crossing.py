@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from vbikit._files import save_figure
 from vbikit.analysis.response import PointResponse
 from vbikit.solve.result import CrossingResult
 
@@ -38,6 +39,6 @@ def plot_crossing(result: CrossingResult, response: PointResponse, path: str | P
         ax.grid(alpha=0.3)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, dpi=120)
     plt.close(fig)
     return path

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from vbikit._files import read_text
 from vbikit.road.profile import RoadProfile
 
 
@@ -28,32 +29,30 @@ def read_profile_csv(path: str | Path) -> RoadProfile:
     row raises :class:`RoadFileError` naming the line.
     """
     path = Path(path)
-    if not path.is_file():
-        raise RoadFileError(f"{path}: road profile file not found")
+    text = read_text(path, RoadFileError, "road profile (CSV: x, elevation)")
     xs: list[float] = []
     zs: list[float] = []
     header_seen = False
-    with path.open(newline="") as fh:
-        for lineno, row in enumerate(csv.reader(fh), start=1):
-            cells = [c.strip() for c in row]
-            if not cells or not any(cells) or cells[0].startswith("#"):
-                continue
-            if len(cells) < 2:
-                raise RoadFileError(f"{path}:{lineno}: expected 2 columns (x, elevation), got {len(cells)}")
-            first_row = not header_seen
-            header_seen = True
-            if first_row and not _is_number(cells[0]):
-                continue  # header row: only a first row whose first cell is not a number
-            try:
-                x, z = float(cells[0]), float(cells[1])
-            except ValueError:
-                raise RoadFileError(f"{path}:{lineno}: not a number: {','.join(cells[:2])!r}") from None
-            if not (np.isfinite(x) and np.isfinite(z)):
-                raise RoadFileError(f"{path}:{lineno}: non-finite value")
-            if xs and x <= xs[-1]:
-                raise RoadFileError(f"{path}:{lineno}: x = {x} m is not greater than the previous x = {xs[-1]} m")
-            xs.append(x)
-            zs.append(z)
+    for lineno, row in enumerate(csv.reader(text.splitlines()), start=1):
+        cells = [c.strip() for c in row]
+        if not cells or not any(cells) or cells[0].startswith("#"):
+            continue
+        if len(cells) < 2:
+            raise RoadFileError(f"{path}:{lineno}: expected 2 columns (x, elevation), got {len(cells)}")
+        first_row = not header_seen
+        header_seen = True
+        if first_row and not _is_number(cells[0]):
+            continue  # header row: only a first row whose first cell is not a number
+        try:
+            x, z = float(cells[0]), float(cells[1])
+        except ValueError:
+            raise RoadFileError(f"{path}:{lineno}: not a number (x and elevation [m] expected)") from None
+        if not (np.isfinite(x) and np.isfinite(z)):
+            raise RoadFileError(f"{path}:{lineno}: non-finite value")
+        if xs and x <= xs[-1]:
+            raise RoadFileError(f"{path}:{lineno}: x = {x} m is not greater than the previous x = {xs[-1]} m")
+        xs.append(x)
+        zs.append(z)
     if len(xs) < 2:
         raise RoadFileError(f"{path}: needs at least 2 data rows, found {len(xs)}")
     return RoadProfile(np.array(xs), np.array(zs), f"measured {path.name}")

@@ -25,6 +25,7 @@ from vbikit.scenario.schema import (
     ScenarioError,
     TireSpec,
 )
+from vbikit.solve.budget import BudgetError, Limits, check_bridge, check_road
 from vbikit.solve.crossing import Crossing
 from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -82,6 +83,12 @@ def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | Non
     return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length)
 
 
+def check_road_budget(spec: RoadSpec, limits: Limits | None = None) -> None:
+    """Refuse a random road whose profile would not fit the memory budget (before generating it)."""
+    if spec.road_class != "none" and not spec.profile_file:
+        check_road(spec.length, spec.spacing, spec.n_min, limits, "road")
+
+
 def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
     defects = build_defects(spec)
     if spec.profile_file:
@@ -106,8 +113,9 @@ class BuiltScenario:
     response_girder: int | None = None
 
 
-def build(scenario: Scenario) -> BuiltScenario:
-    """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad combinations)."""
+def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
+    """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad
+    combinations, :class:`~vbikit.solve.budget.BudgetError` on a bridge or road above ``limits``)."""
     spec = scenario.vehicle
     if scenario.vehicles is not None:
         entry = scenario.vehicles[0]
@@ -118,16 +126,20 @@ def build(scenario: Scenario) -> BuiltScenario:
         spec = entry
     try:
         bridge = build_bridge(scenario.bridge, scenario.base_dir)
+        check_bridge(bridge, limits)
+        check_road_budget(scenario.road, limits)
         vehicle: Vehicle = VEHICLE_PRESETS[spec.model].build(**spec.parameters)
         c = scenario.crossing
         crossing = Crossing(
             bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=(road := build_road(scenario.road, scenario)),
             road_right=build_right_road(scenario.road, scenario, road),
             speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
-            lateral_offset=c.lateral_offset if c.lateral_offset is not None else float(getattr(bridge, "default_lateral_offset", 0.0)),
+            lateral_offset=c.lateral_offset,  # None: the bridge's default
             dt=c.dt, integrator=c.integrator,
             loss_of_contact=scenario.tire.loss_of_contact,
         )
+    except BudgetError:
+        raise
     except ValueError as err:
         raise ScenarioError(str(err)) from None
     x = scenario.response.x
@@ -138,7 +150,7 @@ def build(scenario: Scenario) -> BuiltScenario:
     if girder_y is None:
         if r.girder is not None:
             raise ScenarioError(f"response.girder: bridge model {scenario.bridge.model!r} has no girders; use response.y")
-        return BuiltScenario(crossing, x, r.y)
+        return BuiltScenario(crossing, x, bridge.default_response_y if r.y is None else r.y)
     girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
     if girder is None:
         return BuiltScenario(crossing, x, r.y)

@@ -23,6 +23,7 @@ from pydantic import (
 )
 
 from vbikit._toml import parse_toml, read_toml
+from vbikit.bridge.base import DEFAULT_DAMPING_RATIO
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -35,7 +36,8 @@ class ScenarioError(ValueError):
 
 
 class _Section(BaseModel):
-    model_config = ConfigDict(extra="forbid", populate_by_name=True)
+    # strict: no coercion ("12" or true are not numbers, 1.5 is not an integer); finite numbers only
+    model_config = ConfigDict(extra="forbid", populate_by_name=True, strict=True, allow_inf_nan=False)
 
 
 class BridgeSpec(_Section):
@@ -45,7 +47,7 @@ class BridgeSpec(_Section):
     span: Optional[float] = Field(None, gt=0, description="span length [m]")
     EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
     mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
-    damping_ratio: float = Field(0.02, ge=0, lt=1, description="modal damping ratio [-]")
+    damping_ratio: float = Field(DEFAULT_DAMPING_RATIO, ge=0, lt=1, description="modal damping ratio [-]")
     n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
     neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
     modes_file: Optional[str] = Field(None, description="model = \"modes-file\": a vbikit-modes file (docs/bridges.md)")
@@ -304,7 +306,7 @@ class ResponseSpec(_Section):
     """
 
     x: Optional[float] = Field(None, ge=0, description="m from the bridge entry")
-    y: float = Field(0.0, description="m from the deck centreline")
+    y: Optional[float] = Field(None, description="m from the deck centreline; default the bridge's response line")
     girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
 
     @model_validator(mode="after")

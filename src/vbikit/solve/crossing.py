@@ -48,8 +48,9 @@ class Crossing:
     free_vibration : float, optional
         Time [s] simulated after the last axle leaves; default one period of the first
         bridge mode.
-    lateral_offset : float
-        y [m] of the vehicle centreline from the deck centreline (irrelevant for a beam).
+    lateral_offset : float, optional
+        y [m] of the vehicle centreline from the deck centreline (irrelevant for a beam); default
+        the bridge's ``default_lateral_offset`` (as in scenarios; 0 for a beam).
     dt : float, optional
         Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
     integrator : {"rk4", "newmark"}
@@ -68,20 +69,24 @@ class Crossing:
     acceleration: float = 0.0
     approach: float = 10.0
     free_vibration: float | None = None
-    lateral_offset: float = 0.0
+    lateral_offset: float | None = None
     dt: float | None = None
     integrator: Integrator = "rk4"
     loss_of_contact: bool = True
     road_right: RoadProfile | None = None
 
     def __post_init__(self) -> None:
+        if self.lateral_offset is None:
+            object.__setattr__(self, "lateral_offset", float(getattr(self.bridge, "default_lateral_offset", 0.0)))
+        if not np.isfinite(self.lateral_offset):
+            raise ValueError(f"crossing.lateral_offset must be finite, got {self.lateral_offset!r}")
         if not (np.isfinite(self.speed) and self.speed > 0):
             raise ValueError(f"crossing.speed must be > 0 m/s, got {self.speed!r}")
         if not np.isfinite(self.acceleration):
             raise ValueError("crossing.acceleration must be finite")
-        if not self.approach >= 0:
+        if not (np.isfinite(self.approach) and self.approach >= 0):
             raise ValueError(f"crossing.approach must be >= 0 m, got {self.approach!r}")
-        if self.free_vibration is not None and not self.free_vibration >= 0:
+        if self.free_vibration is not None and not (np.isfinite(self.free_vibration) and self.free_vibration >= 0):
             raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
         if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")

@@ -38,23 +38,28 @@ class CrossingResult:
     def n_steps(self) -> int:
         return int(self.time.size - 1)
 
-    def _shapes(self, x: float | None, y: float) -> NDArray[np.float64]:
+    def point(self, x: float | None = None, y: float | None = None) -> tuple[float, float]:
+        """The deck point (x, y) [m] responses are read at: x default midspan, y default the
+        bridge's ``default_response_y`` (its default girder on a slab-on-girder deck)."""
         b = self.crossing.bridge
-        return b.mode_shapes([b.span / 2 if x is None else x], [y])[0]
+        return (b.span / 2 if x is None else float(x),
+                float(getattr(b, "default_response_y", 0.0)) if y is None else float(y))
 
-    def displacement(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
-        """Deck vertical displacement [m] at (x, y) (z up: negative under load); x default midspan."""
+    def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:
+        return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
+
+    def displacement(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
+        """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: :meth:`point`."""
         return self.xi @ self._shapes(x, y)
 
-    def velocity(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+    def velocity(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
         """Deck vertical velocity [m/s] at (x, y)."""
         return self.xi_dot @ self._shapes(x, y)
 
-    def acceleration(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+    def acceleration(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
         """Deck vertical acceleration [m/s²] at (x, y)."""
         return self.xi_ddot @ self._shapes(x, y)
 
-    def strain(self, x: float | None = None, y: float = 0.0) -> NDArray[np.float64]:
+    def strain(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
         """Bottom-fibre longitudinal strain [-] at (x, y), tension positive."""
-        b = self.crossing.bridge
-        return self.xi @ b.strain_shapes([b.span / 2 if x is None else x], [y])[0]
+        return self.xi @ self.crossing.bridge.strain_shapes(*([v] for v in self.point(x, y)))[0]

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 
+from vbikit._files import save_figure
 from vbikit.study.paper import AASHTO_LRFD_IM, AASHTO_STANDARD_IM, CLASS_NAMES, FIGURES
 
 BEAM_NOTE = ("vbikit beam stand-in for the paper's slab-on-girder bridge: impact factors of the whole "
@@ -62,6 +63,6 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
     figure.suptitle(f"{spec['title']} — vbikit, {n} road profiles per point\n{note}", fontsize="small")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    figure.savefig(path, dpi=120)
+    save_figure(figure, path, dpi=120)
     plt.close(figure)
     return path

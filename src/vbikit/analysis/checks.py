@@ -1,0 +1,92 @@
+"""Warnings about runs that may not mean what the user thinks: inputs outside the usual range of the
+models and results that carry a caveat.  Each check returns plain sentences (the CLI prints them
+on stderr and lists them under ``warnings`` in the JSON summary); none stops a run.
+
+Thresholds (documented in docs/scenario.md):
+
+* speed outside 5–150 km/h (a speed in km/h typed as ``speed`` [m/s] reads 3.6 times too fast);
+* road elevation (profile plus defects) over 0.1 m anywhere the wheels go (a profile in mm read as m);
+* a response point within 2 % of the span from a support (static response near zero, IM meaningless);
+* bridge modes above what the step resolves: fewer than 5 steps per period (f·dt > 0.2), the
+  accuracy rule of :func:`vbikit.solve.timestep.accuracy_time_step`;
+* an implicit (Newmark) step given by the user that is coarser than the accuracy step;
+* wheels that lost contact (which, where first, for how long).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from vbikit.solve.crossing import Crossing
+from vbikit.solve.result import CrossingResult
+from vbikit.solve.timestep import accuracy_time_step
+
+#: usual range of vehicle speeds [km/h]
+SPEED_RANGE_KMH = (5.0, 150.0)
+#: largest usual road elevation [m] (profile plus defects)
+MAX_ROAD_FEATURE = 0.1
+#: a response point closer than this fraction of the span to a support is flagged
+SUPPORT_MARGIN = 0.02
+#: fewest steps per period of a bridge mode the step should give
+STEPS_PER_PERIOD = 5.0
+
+
+def input_warnings(crossing: Crossing, dt: float, response_x: float | None = None) -> list[str]:
+    """Warnings about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
+    out: list[str] = []
+    lo, hi = SPEED_RANGE_KMH
+    v0 = crossing.speed * 3.6
+    v1 = float(crossing.velocity(crossing.exit_time())) * 3.6
+    for label, v in (("speed", v0), ("speed when the last axle leaves the bridge", v1)):
+        if not lo <= v <= hi:
+            out.append(f"crossing.{label.split()[0]}: {label} {v:.4g} km/h ({v / 3.6:.4g} m/s) is outside the usual "
+                       f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)")
+            break
+    x_lo, x_hi = crossing.road_extent()
+    for side, road in (("", crossing.road), ("right wheel line ", crossing.road_right)):
+        if road is None:
+            continue
+        sel = (road.x >= x_lo) & (road.x <= x_hi)
+        z = road.z[sel] if sel.any() else road.z
+        peak = float(np.max(np.abs(z))) if z.size else 0.0
+        if peak > MAX_ROAD_FEATURE:
+            out.append(f"road: the {side}profile reaches {peak:.3g} m where the wheels go (more than {MAX_ROAD_FEATURE} m); "
+                       "road elevations are in metres — check the profile's unit or the defect sizes")
+    span = crossing.bridge.span
+    x = span / 2 if response_x is None else float(response_x)
+    if min(x, span - x) < SUPPORT_MARGIN * span:
+        out.append(f"response.x = {x:g} m is at or next to a support (span {span:g} m): the static response there is "
+                   "near zero and the impact factor is not meaningful")
+    f = crossing.bridge.frequencies_hz
+    unresolved = f[f * dt > 1.0 / STEPS_PER_PERIOD]
+    if unresolved.size:
+        out.append(f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
+                   f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes "
+                   f"({unresolved.min():.4g}–{unresolved.max():.4g} Hz) are not resolved; use a smaller dt or fewer modes")
+    if crossing.integrator == "newmark" and crossing.dt is not None:
+        acc = accuracy_time_step(crossing)
+        if crossing.dt > acc * (1 + 1e-9):
+            out.append(f"crossing.dt = {crossing.dt:.3g} s is coarser than the accuracy step {acc:.3g} s of this "
+                       "crossing (Newmark is stable with any step but loses accuracy); leave dt out for the automatic step")
+    return out
+
+
+def contact_warnings(result: CrossingResult) -> list[str]:
+    """One warning per wheel whose tire lost contact: where first (wheel x [m]), when, for how long."""
+    out = []
+    forces, dt = result.wheel_forces, result.dt
+    for w, wheel in enumerate(result.crossing.vehicle.wheels):
+        if wheel.stiffness <= 0:
+            continue
+        off = forces[:, w] <= 0.0
+        if not off.any():
+            continue
+        i = int(np.argmax(off))
+        out.append(f"wheel {wheel.name} lost contact with the road: first at x = "
+                   f"{float(result.front_position[i] - wheel.offset):.3f} m (t = {float(result.time[i]):.4f} s), "
+                   f"for {float(off.sum() * dt):.4f} s in all")
+    return out
+
+
+def run_warnings(result: CrossingResult, response_x: float | None = None) -> list[str]:
+    """Every warning about a finished crossing: its inputs and its contact losses."""
+    return input_warnings(result.crossing, result.dt, response_x) + contact_warnings(result)

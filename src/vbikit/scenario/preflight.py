@@ -1,0 +1,96 @@
+"""Every check a run makes, before it integrates: the one function ``vbikit validate`` and
+``vbikit run`` share (so that no scenario passes the one and fails the other for an input reason).
+
+:func:`preflight` builds the scenario (files read, model parameters checked, bridge and road
+budgets), chooses the time step exactly as the run will (``choose_time_step``: the integrator's
+step rule and, for explicit integrators, its stability limit), estimates memory and steps against
+the :class:`~vbikit.solve.budget.Limits`, and collects the input warnings.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from vbikit.analysis.checks import input_warnings
+from vbikit.scenario.build import BuiltScenario, build
+from vbikit.scenario.schema import Scenario
+from vbikit.solve.budget import Limits, RunEstimate, check_run
+from vbikit.solve.timestep import accuracy_time_step, choose_time_step
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings."""
+
+    scenario: Scenario
+    built: BuiltScenario
+    dt: float
+    estimate: RunEstimate
+    warnings: list[str] = field(default_factory=list)
+
+
+def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
+    """Defects that lie (partly) outside the bridge and its approach, where no wheel meets them."""
+    crossing = built.crossing
+    lo, hi = -crossing.approach, crossing.bridge.span
+    out = []
+    for i, d in enumerate(scenario.road.defects):
+        start = d.position
+        length = d.length if d.length is not None else 0.0
+        if start < lo or start + length > hi:
+            out.append(f"road.defects.{i}: the {d.kind} at x = {start:g} … {start + length:g} m lies outside the "
+                       f"approach and the bridge (x = {lo:g} … {hi:g} m)")
+    return out
+
+
+def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
+    """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
+    UnstableTimeStepError or BudgetError, all ``ValueError``)."""
+    built = build(scenario, limits)
+    crossing = built.crossing
+    # the step is at most the accuracy step (or the user's): refuse an oversized run before the
+    # stability limit (eigenvalues of the coupled system) is computed
+    check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
+    dt = choose_time_step(crossing)
+    estimate = check_run(crossing, dt, limits)
+    warnings = input_warnings(crossing, dt, built.response_x) + defect_warnings(scenario, built)
+    return Plan(scenario, built, dt, estimate, warnings)
+
+
+def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
+    """The inputs a report states: bridge, vehicle, tire, road, speed, integrator, step, steps, modes."""
+    from vbikit import __version__
+
+    c, r = plan.built.crossing, scenario.road
+    vehicle = scenario.vehicle if scenario.vehicle is not None else scenario.vehicles[0]
+    road: dict[str, Any] = {"class": r.road_class}
+    if r.profile_file:
+        road = {"profile_file": r.profile_file, **({"profile_file_right": r.profile_file_right} if r.profile_file_right else {})}
+    elif r.road_class != "none":
+        psd = {"phi0": r.phi0, "n0": r.n0, "exponent": r.exponent} if r.road_class == "psd" else {}
+        if not psd:
+            from vbikit.road.psd import ISO_CLASSES
+
+            psd = {"phi0": ISO_CLASSES[r.road_class], "n0": 0.1, "exponent": 2.0}
+        road |= psd | {"seed": r.seed, "spacing": r.spacing, "n_min": r.n_min, "n_max": r.n_max}
+    if r.defects:
+        road["defects"] = [d.kind for d in r.defects]
+    return {
+        "bridge": scenario.bridge.model,
+        "span": float(c.bridge.span),
+        "n_modes": int(c.bridge.omega.size),
+        "damping_ratio": scenario.bridge.damping_ratio,
+        "vehicle": vehicle.model,
+        "vehicle_parameters": vehicle.parameters,
+        "tire": scenario.tire.model,
+        "road": road,
+        "speed_kmh": c.speed * 3.6,
+        "speed_m_s": c.speed,
+        "acceleration": c.acceleration,
+        "lateral_offset": c.lateral_offset,
+        "integrator": c.integrator,
+        "dt": plan.dt,
+        "dt_given": scenario.crossing.dt is not None,
+        "n_steps": plan.estimate.n_steps,
+        "vbikit_version": __version__,
+    }

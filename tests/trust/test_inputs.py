@@ -1,0 +1,140 @@
+"""Inputs that used to pass ``validate`` and then crash, hang or give NaN in ``run``, and inputs that
+were coerced or echoed: each gives exit 2 and one message naming the key or file, in ``validate``
+and in ``run`` alike, before any integration."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from vbikit.cli import app
+
+runner = CliRunner()
+
+BEAM = """
+[bridge]
+model = "paper-bridge-2-beam"
+[vehicle]
+model = "hs20-44"
+[crossing]
+speed_kmh = 75
+"""
+
+
+def _write(tmp_path: Path, text: str, name: str = "s.toml") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def _both(path: Path, *args: str):
+    return [runner.invoke(app, [cmd, str(path), *args]) for cmd in ("validate", "run")]
+
+
+CASES = {
+    # (section to append or replace, words the message must contain)
+    "dt-above-rk4-limit": (BEAM + "dt = 0.01\n", ["crossing.dt", "stability limit"]),
+    "speed-too-slow": (BEAM.replace("speed_kmh = 75", "speed_kmh = 0.01"), ["time steps", "speed 0.01 km/h", "--max-steps"]),
+    "approach-huge": (BEAM + "approach = 1e7\n", ["time steps", "approach 1e+07 m"]),
+    "road-spacing-tiny": (BEAM + "[road]\nclass = \"C\"\nspacing = 1e-9\nn_max = 0.1\n", ["road", "spacing", "--max-memory"]),
+    "deck-elements-huge": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2"\n[bridge.deck]\nn_elements = 1000000000'),
+                           ["bridge.deck", "n_elements"]),
+    "modes-memory": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2-beam"\nn_modes = 200'), ["memory", "200 modes", "--max-memory"]),
+    "response-y-nan": (BEAM + "[response]\ny = nan\n", ["response.y", "finite"]),
+    "response-y-inf": (BEAM + "[response]\ny = inf\n", ["response.y", "finite"]),
+    "lateral-offset-nan": (BEAM + "lateral_offset = nan\n", ["crossing.lateral_offset", "finite"]),
+    "road-length-inf": (BEAM + "[road]\nclass = \"C\"\nlength = inf\n", ["road.length", "finite"]),
+    "approach-inf": (BEAM + "approach = inf\n", ["crossing.approach", "finite"]),
+    "defect-position-inf": (BEAM + "[road]\n[[road.defects]]\nkind = \"bump\"\nposition = inf\n", ["road.defects.0.position"]),
+    "string-as-number": (BEAM + "approach = \"12\"\n", ["crossing.approach", "valid number"]),
+    "bool-as-number": (BEAM + "approach = true\n", ["crossing.approach", "valid number"]),
+    "float-as-integer": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2-beam"\nn_modes = 10.5'), ["bridge.n_modes"]),
+    "deep-nesting": ("a = " + "[" * 5000 + "]" * 5000 + "\n", ["s.toml", "not valid TOML"]),
+    "unknown-key": (BEAM + "spead = 3\n", ["crossing.spead", "unknown key"]),
+}
+
+
+@pytest.mark.parametrize("case", sorted(CASES))
+def test_validate_refuses_what_run_refuses(tmp_path, case):
+    text, words = CASES[case]
+    for res in _both(_write(tmp_path, text)):
+        assert res.exit_code == 2, res.output
+        assert res.exception is None or isinstance(res.exception, SystemExit)
+        for w in words:
+            assert w in res.output, (w, res.output)
+
+
+def test_budget_can_be_raised(tmp_path):
+    path = _write(tmp_path, BEAM.replace("speed_kmh = 75", "speed_kmh = 5") + "approach = 1\n")
+    assert runner.invoke(app, ["validate", str(path), "--max-steps", "1000"]).exit_code == 2
+    res = runner.invoke(app, ["validate", str(path), "--max-steps", "1e6"])
+    assert res.exit_code == 0, res.output
+    res = runner.invoke(app, ["validate", str(path), "--max-memory", "1kB"])
+    assert res.exit_code == 2 and "memory" in res.output
+
+
+def test_encoding_error_names_the_file(tmp_path):
+    path = tmp_path / "latin.toml"
+    path.write_bytes(BEAM.encode() + b"name = \"caf\xe9\"\n")
+    for res in _both(path):
+        assert res.exit_code == 2 and "latin.toml" in res.output and "UTF-8" in res.output
+
+
+def test_modes_file_of_another_kind_is_not_echoed(tmp_path):
+    secret = tmp_path / "secret.txt"
+    secret.write_text("root:x:0:0:SECRET-LINE\n")
+    path = _write(tmp_path, f'[bridge]\nmodel = "modes-file"\nmodes_file = "{secret}"\n[vehicle]\nmodel = "hs20-44"\n'
+                            "[crossing]\nspeed_kmh = 75\n")
+    for res in _both(path):
+        assert res.exit_code == 2 and "not a vbikit mode file" in res.output
+        assert "SECRET" not in res.output
+
+
+def test_speed_in_kmh_typed_as_ms_is_flagged(tmp_path):
+    """speed = 75 (meant km/h, read as 270 km/h) gave IM 0.83 without a word."""
+    path = _write(tmp_path, BEAM.replace("speed_kmh = 75", "speed = 75"))
+    res = runner.invoke(app, ["run", str(path), "--json"])
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)
+    assert any("270 km/h" in w for w in summary["warnings"])
+    assert "warning: crossing.speed" in res.stderr
+    assert summary["inputs"]["speed_kmh"] == pytest.approx(270) and summary["inputs"]["speed_m_s"] == 75
+
+
+def test_profile_in_mm_read_as_m_is_flagged(tmp_path):
+    """A profile typed in mm but read as m: every wheel leaves the road; the report said nothing."""
+    profile = tmp_path / "mm.csv"
+    profile.write_text("x,z\n" + "".join(f"{x},{5.0 * ((x // 2) % 2)}\n" for x in range(-60, 80)))
+    path = _write(tmp_path, BEAM + f'[road]\nprofile_file = "{profile.name}"\n')
+    res = runner.invoke(app, ["run", str(path)])
+    assert res.exit_code == 0, res.output
+    assert "warning: road: the profile reaches 5 m" in res.stderr
+    assert "lost contact" in res.stderr
+
+
+def test_report_states_its_inputs(tmp_path):
+    path = _write(tmp_path, BEAM + "[road]\nclass = \"C\"\nseed = 7\n")
+    res = runner.invoke(app, ["run", str(path), "--json"])
+    inputs = json.loads(res.stdout)["inputs"]
+    assert inputs["road"] == {"class": "C", "phi0": 256e-6, "n0": 0.1, "exponent": 2.0, "seed": 7, "spacing": 0.01,
+                              "n_min": 0.01, "n_max": 4.0}
+    assert {"bridge", "vehicle", "tire", "speed_kmh", "speed_m_s", "integrator", "dt", "n_steps", "n_modes",
+            "vbikit_version"} <= set(inputs)
+    text = runner.invoke(app, ["run", str(path)]).stdout
+    for words in ("paper-bridge-2-beam", "hs20-44, point tire", "class C", "seed 7", "75 km/h = 20.83 m/s", "vbikit"):
+        assert words in text
+
+
+def test_response_on_a_support_is_flagged(tmp_path):
+    path = _write(tmp_path, BEAM + "[response]\nx = 0.1\n")
+    res = runner.invoke(app, ["run", str(path), "--json"])
+    assert res.exit_code == 0 and "next to a support" in res.stderr
+
+
+def test_coarse_newmark_step_and_unresolved_modes_are_flagged(tmp_path):
+    path = _write(tmp_path, BEAM + "integrator = \"newmark\"\ndt = 0.002\n")
+    res = runner.invoke(app, ["validate", str(path)])
+    assert res.exit_code == 0, res.output
+    assert "coarser than the accuracy step" in res.stderr and "are not resolved" in res.stderr

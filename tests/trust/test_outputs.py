@@ -1,0 +1,85 @@
+"""Outputs are written atomically (temporary file + rename): a failure mid-write or a full disk
+leaves the previous file (or none), never a partial one, and exits 2 with a message; JSON never
+holds NaN or Infinity; names from input files cannot form paths outside the output folder."""
+from __future__ import annotations
+
+import csv
+import errno
+import json
+import math
+import shutil
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from vbikit._files import OutputError, atomic_write, inside, json_text
+from vbikit.cli import app
+
+ROOT = Path(__file__).resolve().parents[2]
+SCENARIO = ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml"
+runner = CliRunner()
+_CSV_WRITER = csv.writer
+
+
+class _FullDisk:
+    """A csv writer whose 4th row fails as a full disk does."""
+
+    def __init__(self, fh, *args, **kwargs) -> None:
+        self.inner, self.rows = _CSV_WRITER(fh), 0
+
+    def writerow(self, row):
+        self.rows += 1
+        if self.rows > 3:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return self.inner.writerow(row)
+
+
+def test_full_disk_keeps_the_previous_csv(tmp_path, monkeypatch):
+    out = tmp_path / "h.csv"
+    out.write_text("previous good file\n")
+    monkeypatch.setattr("vbikit.cli.csv.writer", _FullDisk)
+    res = runner.invoke(app, ["run", str(SCENARIO), "--out", str(out)])
+    assert res.exit_code == 2
+    assert f"cannot write {out}: no space left on the device" in res.output
+    assert out.read_text() == "previous good file\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["h.csv"]  # no temporary file left behind
+
+
+def test_interrupted_write_leaves_no_partial_file(tmp_path):
+    target = tmp_path / "x.json"
+
+    def write(tmp: Path) -> None:
+        tmp.write_text('{"half": ')
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        atomic_write(target, write)
+    assert not target.exists() and list(tmp_path.iterdir()) == []
+    with pytest.raises(OutputError, match="cannot write"):
+        atomic_write(tmp_path / "y", lambda tmp: (_ for _ in ()).throw(OSError(errno.ENOSPC, "full")))
+
+
+def test_json_never_holds_nan_or_infinity():
+    text = json_text({"a": math.nan, "b": [1.0, math.inf], "c": {"d": -math.inf}})
+    assert json.loads(text) == {"a": None, "b": [1.0, None], "c": {"d": None}}
+
+
+def test_names_cannot_leave_the_output_folder(tmp_path):
+    assert inside(tmp_path, "field-case1.png") == tmp_path / "field-case1.png"
+    for name in ("x/../../../escaped.png", "/etc/x.png", "..", "a/../../b"):
+        with pytest.raises(ValueError, match="leaves the output folder"):
+            inside(tmp_path, name)
+
+
+def test_field_case_name_cannot_escape(tmp_path):
+    field = tmp_path / "field"
+    shutil.copytree(ROOT / "examples" / "field", field)
+    toml = field / "FIELD.toml"
+    text = toml.read_text()
+    assert 'name = "case1"' in text
+    toml.write_text(text.replace('name = "case1"', 'name = "x/../../../escaped"', 1))
+    res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
+    assert res.exit_code == 2, res.output
+    assert "case.1.name" in res.output and "cannot be used in a file name" in res.output
+    assert not list(tmp_path.rglob("*escaped*"))
