@@ -83,7 +83,8 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
                     (0,) if n_l == 1 else (0, 0))
     for lane, crossing in enumerate(crossings[:n_real]):
-        xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane])
+        xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane], road_rate=rate0[:, lane],
+                                                         speed=mot.speed[0])
     for lane in range(n_real, n_l):  # padding: a copy of the last real lane
         xi[lane, 0], q[lane, 0] = xi[n_real - 1, 0], q[n_real - 1, 0]
 

@@ -135,14 +135,20 @@ def coupled_matrices(
 
 
 def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel=None,
+                 road_rate: NDArray[np.float64] | None = None, speed: float | NDArray[np.float64] = 0.0,
                  max_iterations: int = 100) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    """Static equilibrium (ξ, q) at t = 0 on the road elevations ``road`` under the points, and the
-    active contact points (``travel``: the vehicles' travel at t = 0, default the crossing's
-    front-axle position).  Contact is piecewise linear, so the active set is iterated: start
-    with every point in contact (for a rigid disk, each wheel's highest point), solve, drop
-    points that do not press (by the kernels' contact law), repeat until the set is unchanged."""
+    """The state (ξ, q) at t = 0 with zero velocities and zero accelerations, and the active
+    contact points: the equilibrium of Eq. 9 on the road elevations ``road`` [m] under the points,
+    with the tire dashpots' forces c_p·ṙ_p from the road rates ``road_rate`` [m/s] = dir·v·r'(x_p)
+    and the convective deck rate dir·v·φ'_p·ξ at the vehicles' ``speed`` v [m/s] (both 0 by
+    default: rest).  ``travel``: the vehicles' travel at t = 0, default the crossing's front-axle
+    position.  Contact is piecewise linear, so the active set is iterated: start with every
+    point in contact (for a rigid disk, each wheel's highest point), solve, drop points that do
+    not press (by the kernels' contact law), repeat until the set is unchanged."""
     travel = float(crossing.front_position(0.0)) if travel is None else travel
     n_m, n_p = data.n_modes, data.n_points
+    x, vx = point_positions(data, travel, speed)
+    rate = np.zeros(n_p) if road_rate is None else np.array(road_rate, float)
     active = np.ones(n_p, bool)
     gap = data.points.gap
     veh = data.vehicles
@@ -151,16 +157,18 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
             sl = slice(first, first + count)
             active[sl] = False
             active[first + int(np.argmax(road[sl] - gap[sl]))] = True
-    x, _ = point_positions(data, travel)
-    cache = kernels.new_cache(n_p, n_m, 1)._replace(x=x, vx=np.zeros(n_p),
-                                                    rv=np.ascontiguousarray(road, float).reshape(n_p, 1),
+            # the rigid disk's contact rate: the surface rate clamped to the circle's slopes (as the kernels)
+            v = data.points.direction[sl] * vx[sl]
+            rate[sl] = np.clip(rate[sl], v * data.points.slope_range[sl, 0], v * data.points.slope_range[sl, 1])
+    cache = kernels.new_cache(n_p, n_m, 1)._replace(x=x, vx=vx, rv=np.ascontiguousarray(road, float).reshape(n_p, 1),
+                                                    rr=np.ascontiguousarray(rate).reshape(n_p, 1),
                                                     have_r=np.ones(n_p, bool))
     work = kernels.new_work(n_p, data.n_dof, 1)
     wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
     # the road values are given (have_r all True): the bundle only carries r_max
     bundle = Road(np.array([0.0, 1.0]), np.zeros((1, 2, 1)), float(np.max(road, initial=0.0)))
     for _ in range(max_iterations):
-        _, _, stiff, load = coupled_matrices(crossing, data, travel, 0.0, road, None, active)
+        _, _, stiff, load = coupled_matrices(crossing, data, travel, speed, road, rate, active)
         u = np.linalg.solve(stiff, load)
         kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
                                np.zeros((data.n_dof, 1)), data.modes, data.vehicles, data.points, bundle,

@@ -1,0 +1,215 @@
+# Independent checks for errors that would be made consistently in every integrator (and so
+# escape the consistency tests RK4 vs Newmark, batch vs simulate): damping, wheel-line mapping,
+# the static start and the convective deck rate.  Every reference below is derived in this file
+# from textbook results, never from vbikit output:
+# * free vibration of a viscously damped oscillator, x'' + 2ζωx' + ω²x = 0: the amplitude
+#   A(t) = √(x² + ((x' + ζωx)/ω_d)²), ω_d = ω√(1 − ζ²), is exactly A(t₀) e^(−ζω(t − t₀))
+#   (any vibrations text, e.g. Clough & Penzien, *Dynamics of Structures*, ch. 2);
+# * the damped moving-force response of a simply supported beam, mode by mode (Frýba 1972,
+#   ch. 1, with modal damping): harmonic particular solution plus damped homogeneous part;
+# * the static state of a linear system: zero velocity and zero acceleration at t = 0;
+# * the coupled equations of the docs (docs/theory.md) written again here and integrated with
+#   scipy.integrate.solve_ivp, with and without the convective deck rate v·φ'·ξ.
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from vbikit.bridge import EulerBernoulliBeam, paper_beam
+from vbikit.contact import DiskTire, MultiPointTire, PointTire, RigidDiskTire
+from vbikit.road import RoadProfile, RoadPSD, random_profile
+from vbikit.solve import INTEGRATORS, Crossing, simulate
+from vbikit.vehicle import GRAVITY, hs20_44, moving_force, sprung_mass
+
+ROUGH = random_profile(RoadPSD.iso("C"), seed=1, length=300.0)  # ISO 8608 class C (average)
+
+
+# ============================================================== damping: free decay of every mode
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_free_decay_of_every_mode_after_the_vehicle_leaves(integrator):
+    """After the last axle has left, each mode of the bridge vibrates freely: its amplitude
+    decays as e^(−ζωt) (within 1 %, the brief), whatever the integrator."""
+    beam = EulerBernoulliBeam(span=15.0, EI=8.0e9, mass_per_length=8000.0, damping_ratio=0.03, n_modes=4)
+    crossing = Crossing(beam, hs20_44(), road=ROUGH, speed=20.0, approach=5.0, free_vibration=1.0, dt=1e-4,
+                        integrator=integrator)
+    r = simulate(crossing)
+    t0 = crossing.exit_time()
+    free = r.time >= t0 + r.dt  # first sample after every contact point has left x = span
+    t = r.time[free] - r.time[free][0]
+    zeta, omega = beam.damping_ratios, beam.omega
+    omega_d = omega * np.sqrt(1 - zeta**2)
+    checked = 0
+    for m in range(beam.n_modes):
+        x, v = r.xi[free, m], r.xi_dot[free, m]
+        amp = np.sqrt(x**2 + ((v + zeta[m] * omega[m] * x) / omega_d[m]) ** 2)
+        decay = np.exp(-zeta[m] * omega[m] * t)
+        keep = decay >= 0.05  # while the mode is still well above round-off
+        assert amp[0] > 1e-9 * np.abs(r.xi).max()  # the mode was excited
+        ratio = amp[keep] / (amp[0] * decay[keep])
+        # measured (dt = 1e-4 s, ω₄dt = 0.07): max |ratio − 1| = 1.8e-6 (RK4), 3.7e-3 (Newmark: the
+        # trapezoidal rule errs on the decay rate by O((ω dt)²), mode 5 would reach 9e-3)
+        assert np.abs(ratio - 1.0).max() <= 0.01, f"mode {m + 1}"
+        checked += decay[keep][-1] < 0.5  # the window shows real decay (halved damping: e^(+…) off)
+    assert checked == beam.n_modes
+
+
+# ============================================================== damping: damped moving-force closed form
+def damped_moving_force_midspan(beam: EulerBernoulliBeam, force: float, speed: float, t: np.ndarray) -> np.ndarray:
+    """Midspan deflection [m] (z up) of the modal beam under a downward force crossing at ``speed``,
+    zero initial state: per mode ξ'' + 2ζωξ' + ω²ξ = −P a sin(Ωt), a = √(2/mL), Ω = jπv/L, then
+    free damped vibration once the force has left (t > L/v)."""
+    span, a = beam.span, math.sqrt(2.0 / (beam.mass_per_length * beam.span))
+    tc = span / speed
+    out = np.zeros_like(t)
+    for j in range(1, beam.n_modes + 1):
+        w, z = beam.omega[j - 1], beam.damping_ratios[j - 1]
+        wd = w * math.sqrt(1 - z * z)
+        big = j * math.pi * speed / span
+        h = -force * a / complex(w * w - big * big, 2 * z * w * big)  # x_p = Im(h e^{iΩt})
+
+        def forced(s):
+            xp, vp = np.imag(h * np.exp(1j * big * s)), np.real(h * big * np.exp(1j * big * s))
+            amp_a = -float(np.imag(h))  # x_h(0) = −x_p(0)
+            amp_b = (z * w * amp_a - float(np.real(h * big))) / wd  # x_h'(0) = −x_p'(0)
+            e, c, sn = np.exp(-z * w * s), np.cos(wd * s), np.sin(wd * s)
+            x = xp + e * (amp_a * c + amp_b * sn)
+            v = vp + e * (-z * w * (amp_a * c + amp_b * sn) + wd * (-amp_a * sn + amp_b * c))
+            return x, v
+
+        x_end, v_end = forced(np.array(tc))
+        s = np.maximum(t - tc, 0.0)
+        e, c, sn = np.exp(-z * w * s), np.cos(wd * s), np.sin(wd * s)
+        free = e * (x_end * c + (v_end + z * w * x_end) / wd * sn)
+        xi = np.where(t <= tc, forced(np.minimum(t, tc))[0], free)
+        out += xi * a * math.sin(j * math.pi / 2)
+    return out
+
+
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_damped_moving_force_against_closed_form(integrator):
+    beam = EulerBernoulliBeam(span=20.0, EI=1.0e10, mass_per_length=1.0e4, damping_ratio=0.05, n_modes=5)
+    f1 = beam.frequencies_hz[0]
+    speed = 2 * 0.3 * f1 * beam.span  # speed parameter α = 0.3
+    r = simulate(Crossing(beam, moving_force(1e5), speed=speed, approach=0.0, free_vibration=2.0 / f1,
+                          dt=1.0 / f1 / 4000, integrator=integrator))
+    ref = damped_moving_force_midspan(beam, 1e5, speed, r.time)
+    err = np.abs(r.displacement() - ref).max() / np.abs(ref).max()
+    # measured: 2.7e-11 (RK4), 5.1e-7 (Newmark: its period error (ω dt)²/12 for mode 5); the same
+    # history with ζ halved differs by 5.1e-2.  Other integrators: Newmark's bound.
+    assert err <= {"rk4": 1e-9, "newmark": 2e-6}.get(integrator, 2e-6)
+    undamped = EulerBernoulliBeam(20.0, 1.0e10, 1.0e4, damping_ratio=0.025, n_modes=5)
+    assert np.abs(damped_moving_force_midspan(undamped, 1e5, speed, r.time) - ref).max() / np.abs(ref).max() > 1e-3
+
+
+# ============================================================== static start on a rough road
+@pytest.mark.parametrize("tire", [PointTire(), MultiPointTire(6), DiskTire(), RigidDiskTire()], ids=lambda t: t.name)
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_static_start_on_rough_road_is_at_rest(integrator, tire):
+    """At t = 0 the coupled system is in equilibrium on the road under every contact point
+    (docs/theory.md): zero velocities and zero accelerations, to round-off."""
+    # approach 0: the front patch already on the deck (multipoint, disk), so the deck is deflected
+    r = simulate(Crossing(paper_beam(16.76, "II"), hs20_44(), tire=tire, road=ROUGH, speed=20.0, approach=0.0,
+                          free_vibration=0.0, integrator=integrator))
+    assert np.all(r.q_dot[0] == 0.0) and np.all(r.xi_dot[0] == 0.0)
+    # accelerations ~ g = 9.81 m/s² and ω²ξ up to 1 m/s² would be wrong; measured ≤ 3e-13
+    assert np.abs(r.q_ddot[0]).max() <= 1e-10
+    scale = float(np.abs(r.crossing.bridge.omega**2 * r.xi[0]).max())  # modal spring term ω²ξ
+    assert np.abs(r.xi_ddot[0]).max() <= 1e-12 * scale + 1e-15
+    if tire.name in ("multipoint", "disk"):
+        assert scale > 0.0  # part of the patch on the deck: the deck equilibrium is checked too
+    # the start sits on the road: the wheels are not at the flat-ground static state
+    flat = hs20_44().static_state()
+    assert np.abs(r.q[0] - flat).max() > 1e-3
+    # and the tires carry the vehicle: Σ wheel forces = weight (vertical equilibrium; the deck and
+    # road carry it, nothing accelerates)
+    assert r.wheel_forces[0].sum() == pytest.approx(hs20_44().total_weight, rel=1e-10)
+
+
+# ============================================================== wheel lines
+def test_bump_on_the_right_wheel_line_loads_only_the_right_wheels():
+    """y is positive to the driver's left (docs/theory.md, vbikit.vehicle.model): the right wheel
+    line is at y < 0.  A bump under the right line only must raise the right wheels' forces
+    while the left ones barely notice."""
+    veh = hs20_44()
+    right = [w for w, wheel in enumerate(veh.wheels) if wheel.name.endswith("_right")]
+    left = [w for w, wheel in enumerate(veh.wheels) if wheel.name.endswith("_left")]
+    assert len(right) == len(left) == 3
+    assert all(veh.wheels[w].lateral < 0 for w in right) and all(veh.wheels[w].lateral > 0 for w in left)
+    x = np.arange(-40.0, 80.0, 0.005)
+    h, start, length = 0.01, -3.0, 0.3
+    bump = RoadProfile(x, np.where((x >= start) & (x <= start + length), h, 0.0), "10 mm bump")
+    flat = RoadProfile.flat(-40.0, 80.0)
+    r = simulate(Crossing(paper_beam(16.76, "II"), veh, road=flat, road_right=bump, speed=10.0, approach=8.0,
+                          free_vibration=0.0))
+    f0 = r.wheel_forces[0]
+    # while axle 1 crosses the bump and axle 2 has not reached it (axle 2 is 4.27 m behind)
+    xw = r.front_position
+    window = (xw >= start) & (xw <= start + length + 0.5)
+    rise = r.wheel_forces[window] - f0
+    k_front = veh.wheels[right[0]].stiffness
+    assert rise[:, right[0]].max() > 0.5 * k_front * h  # the right front wheel is pushed up
+    # measured: right front +15.4 kN; the left wheels change by 0.8 / 1.4 / 0.1 kN (axles 1 / 2 / 3:
+    # through the body's roll; the axle's roll inertia m·b² puts the centre of percussion of a
+    # push under the right wheel at the left wheel, so axle 1's left wheel hardly moves)
+    assert np.abs(rise[:, left]).max() < 0.15 * rise[:, right[0]].max()
+    assert np.abs(rise[:, left[0]]).max() < 0.1 * rise[:, right[0]].max()
+
+
+# ============================================================== the convective deck rate v·φ'·ξ
+CONV_L, CONV_M, CONV_EI, CONV_MODES, CONV_ZETA = 5.0, 2000.0, 2.03e8, 3, 0.02  # f1 ≈ 20 Hz
+CONV_MV, CONV_K, CONV_C, CONV_V = 2000.0, 2.0e6, 1.0e5, 40.0  # heavily damped tire, 144 km/h (α ≈ 0.2)
+
+
+def coupled_reference(convective: bool, t_eval: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """solve_ivp of the docs' equations for a sprung mass (mass M, tire k, c) on the modal beam:
+        ξ̈ₙ + 2ζωₙξ̇ₙ + ωₙ²ξₙ = −φₙ(vt) F,   M z̈ = −M g + F,
+        F = k (φ·ξ − z) + c (φ·ξ̇ + [v φ'·ξ] − ż),
+    φₙ(x) = √(2/mL) sin(nπx/L); the bracket is the convective term.  Start: z = −Mg/k at rest,
+    beam at rest (the wheel at the support, x = 0).  Returns midspan deflection and z̈."""
+    n = np.arange(1, CONV_MODES + 1)
+    kn = n * np.pi / CONV_L
+    omega = kn**2 * np.sqrt(CONV_EI / CONV_M)
+    amp = np.sqrt(2.0 / (CONV_M * CONV_L))
+
+    def force(t, y):
+        x = CONV_V * t
+        phi, dphi = amp * np.sin(kn * x), amp * kn * np.cos(kn * x)
+        xi, dxi, z, dz = y[:CONV_MODES], y[CONV_MODES:2 * CONV_MODES], y[-2], y[-1]
+        rate = phi @ dxi + (CONV_V * dphi @ xi if convective else 0.0)
+        return phi, CONV_K * (phi @ xi - z) + CONV_C * (rate - dz)
+
+    def rhs(t, y):
+        phi, f = force(t, y)
+        xi, dxi = y[:CONV_MODES], y[CONV_MODES:2 * CONV_MODES]
+        return np.concatenate([dxi, -2 * CONV_ZETA * omega * dxi - omega**2 * xi - phi * f, [y[-1], -GRAVITY + f / CONV_MV]])
+
+    y0 = np.zeros(2 * CONV_MODES + 2)
+    y0[-2] = -CONV_MV * GRAVITY / CONV_K
+    sol = solve_ivp(rhs, (0.0, t_eval[-1]), y0, method="DOP853", rtol=1e-11, atol=1e-14, t_eval=t_eval)
+    assert sol.success
+    forces = np.array([force(tk, sol.y[:, k])[1] for k, tk in enumerate(sol.t)])
+    assert forces.min() > 0.0  # always in contact: no loss-of-contact nonlinearity in the comparison
+    return amp * np.sin(n * np.pi / 2) @ sol.y[:CONV_MODES], -GRAVITY + forces / CONV_MV
+
+
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_convective_deck_rate_against_independent_solver(integrator):
+    beam = EulerBernoulliBeam(CONV_L, CONV_EI, CONV_M, damping_ratio=CONV_ZETA, n_modes=CONV_MODES)
+    r = simulate(Crossing(beam, sprung_mass(CONV_MV, CONV_K, CONV_C), speed=CONV_V, approach=0.0,
+                          free_vibration=0.0, dt=2e-5, integrator=integrator))
+    on = r.time <= CONV_L / CONV_V
+    t = r.time[on]
+    w_ref, a_ref = coupled_reference(True, t)
+    w_wrong, a_wrong = coupled_reference(False, t)
+    err_w = np.abs(r.displacement()[on] - w_ref).max() / np.abs(w_ref).max()
+    err_a = np.abs(r.q_ddot[on, 0] - a_ref).max() / np.abs(a_ref).max()
+    # the term matters here: leaving it out changes the deflection by 2.1 % and z̈ by 37 %
+    effect_w = np.abs(w_wrong - w_ref).max() / np.abs(w_ref).max()
+    effect_a = np.abs(a_wrong - a_ref).max() / np.abs(a_ref).max()
+    assert effect_w > 1e-2 and effect_a > 0.2
+    # measured (deflection, z̈): RK4 5.7e-11, 1.8e-8; Newmark 9.8e-7, 2.3e-5 (2nd order at dt = 2e-5 s)
+    tol_w, tol_a = {"rk4": (1e-9, 1e-7), "newmark": (5e-6, 1e-4)}.get(integrator, (5e-6, 1e-4))
+    assert err_w <= tol_w and err_a <= tol_a
