@@ -10,6 +10,8 @@ module docstring); the functions below that take a ``KernelData`` work on such a
 """
 from __future__ import annotations
 
+import logging
+
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -22,6 +24,8 @@ from vbikit.solve.crossing import Crossing
 from vbikit.solve.kernels import Modes, Motion, Points, Road, Vehicles
 from vbikit.solve.tabulate import TrackTable, tabulate_tracks
 
+
+log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class KernelData:
@@ -144,8 +148,27 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     default: rest).  ``travel``: the vehicles' travel at t = 0, default the crossing's front-axle
     position.  Contact is piecewise linear, so the active set is iterated: start with every
     point in contact (for a rigid disk, each wheel's highest point), solve, drop points that do
-    not press (by the kernels' contact law), repeat until the set is unchanged."""
+    not press (by the kernels' contact law), repeat until the set is unchanged.
+
+    When the dashpot forces are so large that no such state exists (a tire would have to pull:
+    the vehicle is not supported, e.g. a profile in mm read as m), the start falls back to the
+    equilibrium at rest (no rates), with a warning."""
     travel = float(crossing.front_position(0.0)) if travel is None else travel
+    moving = road_rate is not None and bool(np.any(np.asarray(road_rate) != 0.0)) or bool(np.any(np.asarray(speed) != 0.0))
+    try:
+        return _equilibrium(crossing, data, road, travel, road_rate, speed, max_iterations)
+    except (np.linalg.LinAlgError, RuntimeError):
+        if not moving:
+            raise
+    log.warning("no equilibrium with the tire dashpots' forces from the road rate at t = 0 (a tire would pull); "
+                "starting from the equilibrium at rest instead")
+    return _equilibrium(crossing, data, road, travel, None, 0.0, max_iterations)
+
+
+def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel,
+                 road_rate: NDArray[np.float64] | None, speed: float | NDArray[np.float64],
+                 max_iterations: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """:func:`static_state` for given rates (raises LinAlgError / RuntimeError if there is none)."""
     n_m, n_p = data.n_modes, data.n_points
     x, vx = point_positions(data, travel, speed)
     rate = np.zeros(n_p) if road_rate is None else np.array(road_rate, float)
