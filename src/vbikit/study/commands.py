@@ -63,6 +63,32 @@ def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], pro
     return ds
 
 
+_YES = typer.Option(False, "--yes", help="Run a study of more than 1e6 crossings (refused without it).")
+_MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batch (e.g. 8GiB; default 4GiB).")
+_MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of one crossing (default 5e6).")
+
+
+def _check(study, yes: bool, max_memory: Optional[str], max_steps: Optional[float], label: str = ""):
+    """Every check the run makes before it starts (vbikit.study.check); prints the size and warnings."""
+    from vbikit.solve.budget import Limits, parse_size
+    from vbikit.study.check import check_study
+
+    kw: dict[str, Any] = {}
+    if max_memory is not None:
+        kw["max_memory"] = _guard(lambda: parse_size(max_memory))
+    if max_steps is not None:
+        kw["max_steps"] = int(max_steps)
+    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
+    typer.echo(f"{label or study.name or 'study'}: {study.size} crossings ({dims}) in {study.n_batches} batches",
+               err=True)
+    result = _guard(lambda: check_study(study, Limits(**kw), confirmed=yes))
+    for text in result.warnings[:10]:
+        typer.echo(f"warning: {text}", err=True)
+    if len(result.warnings) > 10:
+        typer.echo(f"warning: … and {len(result.warnings) - 10} more warnings", err=True)
+    return result
+
+
 _WORKERS = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process).")
 _SCHEDULER = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port) to run on.")
 _PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progress bar.")
@@ -75,11 +101,15 @@ def run_cmd(
     workers: Optional[int] = _WORKERS,
     scheduler: Optional[str] = _SCHEDULER,
     progress: bool = _PROGRESS,
+    yes: bool = _YES,
+    max_memory: Optional[str] = _MAX_MEMORY,
+    max_steps: Optional[float] = _MAX_STEPS,
 ) -> None:
     """Run (or resume) a study and write its dataset."""
     from vbikit.study.spec import load_study
 
     study = _guard(lambda: load_study(study_file))
+    _check(study, yes, max_memory, max_steps)
     ds = _run(study, out, workers, scheduler, progress)
     im = ds["impact_factor"]
     typer.echo(f"impact factor over all crossings: mean {float(im.mean()):.4f}, min {float(im.min()):.4f}, "
@@ -87,13 +117,22 @@ def run_cmd(
 
 
 @app.command("validate")
-def validate_cmd(study_file: Path = typer.Argument(..., help="TOML study file.")) -> None:
-    """Check a study file (every axis combination as a scenario) without running it."""
+def validate_cmd(
+    study_file: Path = typer.Argument(..., help="TOML study file."),
+    yes: bool = _YES,
+    max_memory: Optional[str] = _MAX_MEMORY,
+    max_steps: Optional[float] = _MAX_STEPS,
+) -> None:
+    """Check a study file without running it: every check `vbikit study run` makes before it starts
+    (every axis value in the schema, the size, and each distinct set-up's time step, stability and budgets)."""
+    from vbikit.solve.budget import human
     from vbikit.study.spec import load_study
 
     study = _guard(lambda: load_study(study_file))
+    result = _check(study, yes, max_memory, max_steps)
     dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes)
-    typer.echo(f"{study_file}: ok — {study.size} crossings ({dims}) in {len(study.batches())} batches")
+    typer.echo(f"{study_file}: ok — {study.size} crossings ({dims}) in {study.n_batches} batches; "
+               f"{result.checked} set-ups checked, up to {result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
 
 
 def _paper(*figs: str):
@@ -108,6 +147,7 @@ def _paper(*figs: str):
         dump: bool = typer.Option(False, "--print-spec", help="Print the study as TOML-equivalent JSON and exit."),
         beam: bool = typer.Option(False, "--beam", help="Use the beam stand-ins (whole section) instead of the 3D "
                                                         "bridges at Girder 4."),
+        yes: bool = _YES,
     ) -> None:
         from vbikit.study.figures import plot_paper_figure
         from vbikit.study.paper import paper_study
@@ -117,6 +157,8 @@ def _paper(*figs: str):
             for study in studies:
                 typer.echo(study.to_json())
             return
+        for study in studies:
+            _check(study, yes, None, None)
         suffix = ("-beam" if beam else "") + ("" if samples == 20 else f"-{samples}samples")
         for fig, study in zip(figs, studies):
             out = out_dir / f"paper-{fig}{suffix}.nc"

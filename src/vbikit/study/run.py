@@ -18,13 +18,14 @@ index), so the final dataset is identical to that of an unbroken run.
 from __future__ import annotations
 
 import atexit
+import hashlib
 import json
 import logging
 import os
 import shutil
 import signal
-import tempfile
 import time
+import zipfile
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import Callable, Optional
@@ -32,6 +33,7 @@ from typing import Callable, Optional
 import numpy as np
 from filelock import FileLock, Timeout
 
+from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.study.compute import OUTPUTS, run_batch
 from vbikit.study.spec import Study, StudyError
 
@@ -45,27 +47,67 @@ def parts_dir(out: Path) -> Path:
     return out.with_name(out.name + ".parts")
 
 
-def _atomic_write(path: Path, write: Callable[[Path], None]) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        write(Path(tmp))
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def _part_path(parts: Path, k: int) -> Path:
     return parts / f"batch-{k:06d}.npz"
 
 
-def _save_part(parts: Path, k: int, arrays: dict) -> None:
+def spec_checksum(study: Study) -> str:
+    """SHA-256 of the study's canonical JSON: every part carries it (a part of another study is refused)."""
+    return hashlib.sha256(study.to_json().encode()).hexdigest()
+
+
+def _save_part(parts: Path, k: int, arrays: dict, checksum: str) -> None:
     def write(tmp: Path) -> None:
         with open(tmp, "wb") as fh:
-            np.savez(fh, **arrays)
+            np.savez(fh, **arrays, batch_index=np.int64(k), spec_checksum=np.str_(checksum))
 
-    _atomic_write(_part_path(parts, k), write)
+    atomic_write(_part_path(parts, k), write)
+
+
+def _part_problem(path: Path, k: int, batch: tuple, checksum: str, n_axes: int) -> Optional[str]:
+    """Why the part file of batch ``k`` cannot be used (None if it can): unreadable, of another
+    batch or study, or with missing or non-finite values."""
+    try:
+        with np.load(path, allow_pickle=False) as part:
+            if "batch_index" not in part or "spec_checksum" not in part:
+                return "it carries no batch index or study checksum"
+            if str(part["spec_checksum"]) != checksum:
+                return "it belongs to another study (checksum differs)"
+            if int(part["batch_index"]) != k:
+                return f"it holds batch {int(part['batch_index'])}, not batch {k}"
+            index = part["index"]
+            if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
+                return "its grid indices are not those of this batch"
+            for name in OUTPUTS:
+                if part[name].shape != (len(batch),):
+                    return f"{name} has the wrong shape"
+            if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
+                return "its step counts are not valid"
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as err:
+        return f"it cannot be read ({type(err).__name__})"
+    return None
+
+
+def _check_parts(parts: Path, batches: list, checksum: str, n_axes: int) -> list[str]:
+    """Move every damaged or foreign part aside (into ``<parts>/damaged/``, to be recomputed) and
+    return one message per part moved."""
+    notes = []
+    for path in sorted(parts.glob("batch-*.npz")):
+        try:
+            k = int(path.stem.split("-")[1])
+        except (IndexError, ValueError):
+            k = -1
+        problem = "its name is not batch-NNNNNN.npz of this study" if not 0 <= k < len(batches) else \
+            _part_problem(path, k, batches[k], checksum, n_axes)
+        if problem is None:
+            continue
+        aside = parts / "damaged"
+        aside.mkdir(exist_ok=True)
+        target = aside / f"{path.name}.{int(time.time())}"
+        os.replace(path, target)
+        notes.append(f"study part {path} is unusable: {problem}; moved to {target}, batch recomputed")
+        log.warning(notes[-1])
+    return notes
 
 
 def _prepare_parts(study: Study, out: Path) -> Path:
@@ -77,7 +119,7 @@ def _prepare_parts(study: Study, out: Path) -> Path:
             raise StudyError(f"{parts} holds partial results of a different study; delete it or choose another --out")
     else:
         parts.mkdir(parents=True)
-        _atomic_write(parts / "study.json", lambda tmp: tmp.write_text(spec))
+        write_text(parts / "study.json", spec)
     return parts
 
 
@@ -107,8 +149,15 @@ def run_study(
     out = Path(out)
     if out.suffix not in (".nc", ".nc4", ".netcdf"):
         raise StudyError(f"--out must be a NetCDF file name ending in .nc, got {out}")
-    if not out.parent.exists():
-        out.parent.mkdir(parents=True)
+    try:
+        out.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise OutputError(err.errno, f"--out {out}: cannot create the folder {out.parent}: {err.strerror}") from None
+    try:  # a folder where no file can be created (read-only, /proc) is not "locked by another study"
+        with open(str(out) + ".lock", "a"):
+            pass
+    except OSError as err:
+        raise OutputError(err.errno, f"--out {out}: cannot create files in {out.parent}: {err.strerror}") from None
     # one writer per output: the OS releases the lock when its process ends, even by SIGKILL
     lock = FileLock(str(out) + ".lock")
     try:
@@ -133,6 +182,8 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
         raise StudyError(f"{out} exists and is not this study's finished dataset; delete it or choose another --out")
     parts = _prepare_parts(study, out)
     batches = study.batches()
+    checksum = spec_checksum(study)
+    _check_parts(parts, batches, checksum, len(study.axes))
     todo = _pending(parts, len(batches))
     total = study.size
     done = total - sum(len(batches[k]) for k in todo)
@@ -143,7 +194,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
 
     def finished(k: int, arrays: dict) -> None:
         nonlocal done
-        _save_part(parts, k, arrays)
+        _save_part(parts, k, arrays, checksum)
         done += len(batches[k])
         if progress:
             progress(done, total)
@@ -158,7 +209,11 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             _run_local(study, batches, todo, workers or os.cpu_count() or 1, threads, finished)
     log.info("study %r: ran %d batches in %.1f s", study.name, len(todo), time.perf_counter() - t0)
     ds = assemble(study, parts)
-    _atomic_write(out, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4"))
+    try:
+        atomic_write(out, lambda tmp: _to_netcdf(ds, tmp))
+    except OutputError as err:
+        raise OutputError(err.errno, f"{err}; the finished batches are kept in {parts}: run the same command again "
+                                     "to resume") from None
     if not keep_parts:
         shutil.rmtree(parts, ignore_errors=True)
     return ds
@@ -235,6 +290,15 @@ def _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeou
             finished(keys[fut.key], fut.result())
     finally:
         client.close()
+
+
+def _to_netcdf(ds, path: Path) -> None:
+    """Write ``ds`` as NetCDF-4; the library's errors on a full disk ("NetCDF: HDF error") become OSError."""
+    try:
+        ds.to_netcdf(path, engine="netcdf4")
+    except RuntimeError as err:
+        free = shutil.disk_usage(path.parent).free
+        raise OSError(28 if free < 1 << 20 else 5, f"{err} ({free} bytes free)") from None
 
 
 def _open_complete(out: Path, study: Study):

@@ -28,6 +28,7 @@ from __future__ import annotations
 import copy
 import itertools
 import json
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Optional, Union
@@ -49,17 +50,33 @@ class StudyError(ValueError):
     """An invalid study; the message names the offending key."""
 
 
+#: a study with more crossings is refused unless the user confirms it (``--yes``)
+MAX_CROSSINGS_UNCONFIRMED = 1_000_000
+#: largest product of one section's axis values validated combination by combination; above it
+#: every pair of that section's axes is validated with all its value pairs (the schema's
+#: cross-key rules relate two keys of a section at a time)
+MAX_COMBINATIONS = 4096
+
+
+def _value_key(v: Any) -> str:
+    """Identity of an axis value for the duplicate check: numbers by value (1 == 1.0), booleans
+    and strings by themselves."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return json.dumps(v, sort_keys=True)
+    return f"number:{float(v)!r}"
+
+
 class SamplesAxis(BaseModel):
     """``{samples = N}``: N sample indices 0 … N−1 with seeds derived from the study seed."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True)
     samples: int = Field(..., ge=1, le=100000, description="number of samples")
 
 
 class StudyFile(BaseModel):
     """The raw study file (before the axes are checked against the scenario schema)."""
 
-    model_config = ConfigDict(extra="forbid")
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False)
     name: str = ""
     seed: int = Field(0, ge=0, description="study seed; road seeds derive from it and the sample index")
     batch_size: int = Field(32, ge=1, le=10000, description="crossings per batch")
@@ -76,8 +93,13 @@ class StudyFile(BaseModel):
                     raise ValueError(f"axis {key!r} has no values")
                 if not all(isinstance(v, (str, int, float, bool)) for v in values):
                     raise ValueError(f"axis {key!r}: values must be numbers, strings or booleans, got {values}")
-                if len({json.dumps(v, sort_keys=True) for v in values}) != len(values):
-                    raise ValueError(f"axis {key!r} repeats a value: {values}")
+                if any(isinstance(v, float) and not math.isfinite(v) for v in values):
+                    raise ValueError(f"axis {key!r}: values must be finite numbers, got {values}")
+                seen: dict[str, Any] = {}
+                for v in values:
+                    if _value_key(v) in seen:
+                        raise ValueError(f"axis {key!r} repeats a value: {seen[_value_key(v)]!r} and {v!r}")
+                    seen[_value_key(v)] = v
             elif key not in SAMPLE_KEYS:
                 raise ValueError(f"axis {key!r}: {{samples = N}} is allowed only for {', '.join(SAMPLE_KEYS)}")
         return axes
@@ -182,6 +204,13 @@ class Study:
             set_dotted(data, axis.key, axis.scenario_value(i))
         return data
 
+    @property
+    def n_batches(self) -> int:
+        """len(:meth:`batches`), without listing them."""
+        outer = math.prod(len(a.values) for a in self.axes if a.key not in ROAD_ONLY_KEYS)
+        inner = math.prod(len(a.values) for a in self.axes if a.key in ROAD_ONLY_KEYS)
+        return outer * -(-inner // self.batch_size)
+
     def batches(self) -> list[tuple[tuple[int, ...], ...]]:
         """Grid indices grouped into batches: crossings in one batch differ only in road-only
         keys (``ROAD_ONLY_KEYS``), at most ``batch_size`` each, in a fixed order."""
@@ -249,17 +278,39 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
     except ScenarioError as err:
         if not axes:
             raise StudyError(f"base: {err}") from None
-    value_axes = [k for k, a in enumerate(axes) if not a.is_samples]
-    for combo in itertools.product(*(range(len(axes[k].values)) for k in value_axes)):
-        idx = [0] * len(axes)
-        for k, v in zip(value_axes, combo):
-            idx[k] = v
+    for combo in schema_combinations(axes):
         try:
-            parse_scenario(study.scenario_dict(tuple(idx)), base_dir)
+            parse_scenario(study.scenario_dict(tuple(combo)), base_dir)
         except ScenarioError as err:
-            where = ", ".join(f"{axes[k].key} = {axes[k].values[v]!r}" for k, v in zip(value_axes, combo))
-            raise StudyError(f"base + axes ({where or 'no axes'}): {err}") from None
+            where = ", ".join(f"{a.key} = {a.values[v]!r}" for a, v in zip(axes, combo) if not a.is_samples and
+                              len(a.values) > 1) or "no axes"
+            raise StudyError(f"base + axes ({where}): {err}") from None
     return study
+
+
+def schema_combinations(axes: "tuple[Axis, ...] | list[Axis]") -> list[list[int]]:
+    """Grid indices whose scenarios, once valid, make every crossing's scenario valid.
+
+    The scenario schema checks each section on its own, so axes of different sections never
+    invalidate each other: per section, every combination of that section's value axes (the
+    others at their first value) — or, when that product exceeds :data:`MAX_COMBINATIONS`, every
+    pair of its axes with all their value pairs.  Sample axes only change a seed (always valid).
+    The count grows with the sum, not the product, of the axes' lengths, so no study hangs here."""
+    sections: dict[str, list[int]] = {}
+    for k, a in enumerate(axes):
+        if not a.is_samples:
+            sections.setdefault(a.key.split(".")[0], []).append(k)
+    combos: list[list[int]] = [[0] * len(axes)]
+    for members in sections.values():
+        sizes = [len(axes[k].values) for k in members]
+        groups = [members] if math.prod(sizes) <= MAX_COMBINATIONS else list(itertools.combinations(members, 2))
+        for group in groups:
+            for values in itertools.product(*(range(len(axes[k].values)) for k in group)):
+                idx = [0] * len(axes)
+                for k, v in zip(group, values):
+                    idx[k] = v
+                combos.append(idx)
+    return combos
 
 
 def study_from_toml(text: str, base_dir: Path | str = ".", source: str = "study") -> Study:

@@ -1,0 +1,86 @@
+"""Every check a study run makes before it starts, shared by ``vbikit study validate`` and
+``vbikit study run``: the study's size against the confirmation limit, and the preflight of a
+scenario run (files, parameters, time step and stability, memory and step budgets, see
+:func:`vbikit.scenario.preflight.preflight`) for the crossings that differ in more than the road.
+
+Crossings of one batch differ only in road-only keys and share the first crossing's set-up, so
+the preflight runs once per distinct combination of the other axes — all of them when there are
+at most :data:`MAX_PREFLIGHTS`, else every value of every axis with the other axes at their first
+value (the budgets grow monotonically with speed, span, modes and duration, so a study's extremes
+are among those).  Budgets count the lanes one kernel call runs at once.
+"""
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+
+from vbikit.scenario.preflight import preflight
+from vbikit.scenario.schema import ScenarioError, parse_scenario
+from vbikit.solve.budget import BudgetError, Limits, check_run
+from vbikit.solve.simulate import MAX_LANES
+from vbikit.study.spec import MAX_CROSSINGS_UNCONFIRMED, ROAD_ONLY_KEYS, Study, StudyError
+
+#: distinct non-road combinations preflighted one by one (above: each axis value once)
+MAX_PREFLIGHTS = 48
+
+
+@dataclass(frozen=True)
+class StudyCheck:
+    """What :func:`check_study` looked at: ``checked`` scenario preflights, the largest step count
+    and memory estimate of a batch, and warnings (once each)."""
+
+    checked: int
+    max_steps: int
+    max_memory: float
+    warnings: list[str] = field(default_factory=list)
+
+
+def check_size(study: Study, confirmed: bool) -> None:
+    """Refuse a study above :data:`MAX_CROSSINGS_UNCONFIRMED` crossings unless ``confirmed``."""
+    if study.size > MAX_CROSSINGS_UNCONFIRMED and not confirmed:
+        dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes)
+        raise StudyError(f"this study has {study.size:.4g} crossings ({dims}), more than {MAX_CROSSINGS_UNCONFIRMED:.0e}: "
+                         "pass --yes to run it anyway, or use fewer axis values")
+
+
+def _combinations(study: Study) -> list[tuple[int, ...]]:
+    outer = [k for k, a in enumerate(study.axes) if a.key not in ROAD_ONLY_KEYS]
+    n_outer = 1
+    for k in outer:
+        n_outer *= len(study.axes[k].values)
+    base = [0] * len(study.axes)
+    if n_outer <= MAX_PREFLIGHTS:
+        out = []
+        for values in itertools.product(*(range(len(study.axes[k].values)) for k in outer)):
+            idx = list(base)
+            for k, v in zip(outer, values):
+                idx[k] = v
+            out.append(tuple(idx))
+        return out
+    out = [tuple(base)]
+    for k in outer:
+        for v in range(1, len(study.axes[k].values)):
+            idx = list(base)
+            idx[k] = v
+            out.append(tuple(idx))
+    return out
+
+
+def check_study(study: Study, limits: Limits | None = None, confirmed: bool = False) -> StudyCheck:
+    """Size, then the preflight of the study's distinct set-ups (module docstring); raises
+    StudyError naming the axis values of the first failing crossing."""
+    check_size(study, confirmed)
+    lanes = min(study.batch_size, MAX_LANES)
+    warnings: list[str] = []
+    max_steps, max_memory = 0, 0.0
+    combos = _combinations(study)
+    for idx in combos:
+        where = ", ".join(f"{a.key} = {a.values[i]!r}" for a, i in zip(study.axes, idx) if len(a.values) > 1) or "base"
+        try:
+            plan = preflight(parse_scenario(study.scenario_dict(idx), study.base_dir), limits)
+            est = check_run(plan.built.crossing, plan.dt, limits, lanes=lanes)
+        except (ScenarioError, BudgetError, ValueError) as err:
+            raise StudyError(f"base + axes ({where}): {err}") from None
+        max_steps, max_memory = max(max_steps, est.n_steps), max(max_memory, est.memory)
+        warnings += [f"{where}: {w}" for w in plan.warnings]
+    return StudyCheck(len(combos), max_steps, max_memory, warnings)
