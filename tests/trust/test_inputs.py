@@ -36,12 +36,12 @@ def _both(path: Path, *args: str):
 CASES = {
     # (section to append or replace, words the message must contain)
     "dt-above-rk4-limit": (BEAM + "dt = 0.01\n", ["crossing.dt", "stability limit"]),
-    "speed-too-slow": (BEAM.replace("speed_kmh = 75", "speed_kmh = 0.01"), ["time steps", "speed 0.01 km/h", "--max-steps"]),
-    "approach-huge": (BEAM + "approach = 1e7\n", ["time steps", "approach 1e+07 m"]),
+    "speed-too-slow": (BEAM.replace("speed_kmh = 75", "speed_kmh = 0.01"), ["time steps", "crossing.speed 0.002778 m/s = 0.01 km/h", "--max-steps"]),
+    "approach-huge": (BEAM + "approach = 1e7\n", ["time steps", "crossing.approach 1e+07 m"]),
     "road-spacing-tiny": (BEAM + "[road]\nclass = \"C\"\nspacing = 1e-9\nn_max = 0.1\n", ["road", "spacing", "--max-memory"]),
     "deck-elements-huge": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2"\n[bridge.deck]\nn_elements = 1000000000'),
                            ["bridge.deck", "n_elements"]),
-    "modes-memory": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2-beam"\nn_modes = 200'), ["memory", "200 modes", "--max-memory"]),
+    "modes-memory": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2-beam"\nn_modes = 200'), ["memory", "bridge.n_modes = 200", "--max-memory"]),
     "response-y-nan": (BEAM + "[response]\ny = nan\n", ["response.y", "finite"]),
     "response-y-inf": (BEAM + "[response]\ny = inf\n", ["response.y", "finite"]),
     "lateral-offset-nan": (BEAM + "lateral_offset = nan\n", ["crossing.lateral_offset", "finite"]),

@@ -83,3 +83,21 @@ def test_field_case_name_cannot_escape(tmp_path):
     assert res.exit_code == 2, res.output
     assert "case.1.name" in res.output and "cannot be used in a file name" in res.output
     assert not list(tmp_path.rglob("*escaped*"))
+
+
+def test_divergence_is_reported_with_step_and_time():
+    """Integrator states are checked: a non-finite state is an error naming the step and time."""
+    import dataclasses
+
+    import numpy as np
+
+    from vbikit.bridge.presets import paper_beam
+    from vbikit.solve import Crossing, simulate
+    from vbikit.solve.result import DivergenceError, check_finite
+    from vbikit.vehicle.presets import sprung_mass
+
+    result = simulate(Crossing(paper_beam(16.76, "II", n_modes=2), sprung_mass(), speed=20.0))
+    xi = result.xi.copy()
+    xi[123:, 0] = np.inf
+    with pytest.raises(DivergenceError, match=rf"diverged at step 123 of {result.n_steps} \(t = {result.time[123]:.6g} s"):
+        check_finite(dataclasses.replace(result, xi=xi))

@@ -142,6 +142,9 @@ def read_response_csv(path: str | Path) -> MeasuredRecord:
             raise FieldFileError(f"{path}: column {names[j]!r} has a time unit [{units[j]}]; only the first column is time")
         channels[names[j]] = data[:, j] * f
         quantities[names[j]] = q
+        if np.ptp(data[:, j]) == 0.0:
+            raise FieldFileError(f"{path}: column {names[j]!r} is constant ({data[0, j]:g} [{units[j]}] in every row): "
+                                 "no signal to compare")
     log.info("read %s: %d samples at %.4g Hz, channels %s", path.name, t.size, 1 / step, ", ".join(channels))
     return MeasuredRecord(path, t, channels, dict(zip(names[1:], units[1:])), quantities)
 
@@ -225,6 +228,13 @@ def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any =
     if nonneg and not v >= 0:
         raise FieldFileError(f"{path}: {where}{key} must be >= 0, got {v!r}")
     return float(v)
+
+
+def _int(table: dict[str, Any], key: str, path: Path, default: int, lo: int, hi: int) -> int:
+    v = table.get(key, default)
+    if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
+        raise FieldFileError(f"{path}: {key} must be an integer {lo} … {hi}, got {v!r}")
+    return v
 
 
 def _file(table: dict[str, Any], key: str, where: str, base: Path, path: Path, required: bool) -> Path | None:
@@ -337,7 +347,7 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         speed=speed,
         approach=_num(doc, "approach", "", path, 33.52, nonneg=True),
         free_vibration=_num(doc, "free_vibration", "", path, 3.0, nonneg=True),
-        n_modes=int(_num(doc, "n_modes", "", path, 10, positive=True)),
+        n_modes=_int(doc, "n_modes", path, 10, 1, 500),
         damping_ratio=_num(doc, "damping_ratio", "", path, 0.02, nonneg=True),
         stiffness_factor=_num(doc, "stiffness_factor", "", path, 1.0, positive=True),
         lowpass_hz=lowpass,

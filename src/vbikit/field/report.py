@@ -12,7 +12,7 @@ import numpy as np
 
 from vbikit._files import atomic_write, inside, json_safe, json_text, save_figure, write_text
 from vbikit.field.io import FieldSpec, load_field_toml
-from vbikit.field.workflow import Calibration, CaseComparison, calibrate, compare_case
+from vbikit.field.workflow import Calibration, CaseComparison, calibrate, check_field, compare_case
 
 log = logging.getLogger(__name__)
 
@@ -83,6 +83,7 @@ def run_field(path: str | Path, out_dir: str | Path, tires: list[str], do_calibr
               calibration_tire: str | None = None) -> FieldRun:
     """Load FIELD.toml, compare every case with every tire model, optionally calibrate, write outputs."""
     spec = load_field_toml(path)
+    check_field(spec, tires)
     out = Path(out_dir)
     cmps = [compare_case(spec, case, tires) for case in spec.cases]
     figures = [plot_case(c, inside(out, f"field-{c.case.name}.png"), spec.name) for c in cmps]

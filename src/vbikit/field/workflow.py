@@ -56,7 +56,8 @@ from vbikit.field.signal import (
     xcorr_shift,
 )
 from vbikit.road.measured import read_profile_csv
-from vbikit.solve import Crossing, CrossingResult, simulate
+from vbikit.solve import Crossing, CrossingResult, choose_time_step, simulate
+from vbikit.solve.budget import Limits, check_bridge, check_run
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 log = logging.getLogger(__name__)
@@ -118,7 +119,11 @@ def base_bridge(spec: FieldSpec) -> ModalBridge:
     preset = BRIDGE_PRESETS[spec.bridge]
     if spec.bridge_overrides and preset.kind != "slab-on-girder":
         raise FieldFileError(f"{spec.path}: [bridge_parameters] only apply to slab-on-girder presets, not {spec.bridge!r}")
-    return preset.build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **spec.bridge_overrides)
+    try:
+        return preset.build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **spec.bridge_overrides)
+    except (TypeError, ValueError) as err:
+        raise FieldFileError(f"{spec.path}: bridge {spec.bridge!r} with damping_ratio, n_modes and "
+                             f"[bridge_parameters]: {err}") from None
 
 
 def sensor_y(bridge: ModalBridge, girder: int, where: str) -> float:
@@ -206,6 +211,20 @@ def align_shift(spec: FieldSpec, case: CaseSpec, record: MeasuredRecord, t_sim: 
     s = xcorr_shift(t_sim, sim[ref.name], record.time, record.channels[ref.name], max_shift)
     log.info("case %s: cross-correlation on %s gives a shift of %.4f s", case.name, ref.name, s)
     return s
+
+
+def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None) -> None:
+    """Every check a field comparison makes before it simulates: the bridge's size, and per case and
+    tire model the time step (stability) and the memory and step budgets of the crossing."""
+    bridge = base_bridge(spec)
+    check_bridge(bridge, limits)
+    for case in spec.cases:
+        for name in tires:
+            crossing = case_crossing(spec, case, FIELD_TIRES[name](), bridge, spec.dt)
+            try:
+                check_run(crossing, choose_time_step(crossing), limits)
+            except ValueError as err:
+                raise FieldFileError(f"{spec.path}: case {case.name!r}, {name} tire: {err}") from None
 
 
 def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_factor: float | None = None,

@@ -9,6 +9,27 @@ from numpy.typing import NDArray
 from vbikit.solve.crossing import Crossing
 
 
+class DivergenceError(ValueError):
+    """An integration whose states became non-finite; the message gives the step and time."""
+
+
+def check_finite(result: "CrossingResult") -> "CrossingResult":
+    """``result`` if every state history is finite, else :class:`DivergenceError` naming the
+    first step (and its time) with a non-finite bridge, vehicle or tire value."""
+    ok = np.ones(result.time.size, bool)
+    for a in (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.q_ddot, result.wheel_forces):
+        if a.size:
+            ok &= np.isfinite(a).reshape(a.shape[0], -1).all(axis=1)
+    if not ok.all():
+        i = int(np.argmin(ok))
+        c = result.crossing
+        raise DivergenceError(
+            f"the integration diverged at step {i} of {result.n_steps} (t = {result.time[i]:.6g} s, front axle at "
+            f"x = {result.front_position[i]:.3f} m): non-finite states with {c.integrator} at dt = {result.dt:.3g} s; "
+            "use a smaller crossing.dt (or leave it out), fewer bridge modes, or integrator = \"newmark\"")
+    return result
+
+
 @dataclass(frozen=True)
 class CrossingResult:
     """Histories at the n_t = n_steps + 1 time points ``time`` [s].

@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
-from vbikit.solve.result import CrossingResult
+from vbikit.solve.result import CrossingResult, check_finite
 from vbikit.solve.kernels import Motion
 from vbikit.solve.system import KernelData, kernel_data, point_positions, road_data, static_state
 from vbikit.solve.timestep import choose_time_step
@@ -26,7 +26,7 @@ log = logging.getLogger(__name__)
 def simulate(crossing: Crossing) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing."""
     grid = time_grid(crossing, choose_time_step(crossing))
-    return integrate([crossing], kernel_data(crossing), grid)[0]
+    return check_finite(integrate([crossing], kernel_data(crossing), grid)[0])
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from vbikit.road.profile import RoadProfile
 from vbikit.scenario.build import build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve.batch import BatchSolver
+from vbikit.solve.result import check_finite
 from vbikit.study.spec import Study
 
 #: per-crossing outputs: name -> (units, description)
@@ -77,6 +78,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     static: dict[float, tuple[NDArray, NDArray]] = {}  # static deflection and strain, per step
 
     def reduce(result):
+        check_finite(result)
         if result.dt not in static:
             xi_st = solver.static_modal(result.dt)
             static[result.dt] = (xi_st @ phi, xi_st @ eps)
