@@ -31,6 +31,10 @@ DEFAULT_MAX_MEMORY = 4 * GIB
 DEFAULT_MAX_STEPS = 5_000_000
 #: limit on the degrees of freedom of a grillage solved for its modes (sparse eigensolver)
 MAX_BRIDGE_DOF = 60_000
+#: contact points per step the step limit allows on average: the work of a step grows with the
+#: points (a deformable disk has hundreds per wheel), so ``n_steps × n_points`` is limited to
+#: ``POINTS_PER_STEP × max_steps``
+POINTS_PER_STEP = 200
 #: bytes per road-profile sample while a random profile is generated
 _ROAD_BYTES = 40
 
@@ -111,6 +115,7 @@ class RunEstimate:
     n_steps: int
     memory: float
     lanes: int = 1
+    n_points: int = 1
 
 
 def estimate_run(crossing: Crossing, dt: float, lanes: int = 1) -> RunEstimate:
@@ -122,7 +127,7 @@ def estimate_run(crossing: Crossing, dt: float, lanes: int = 1) -> RunEstimate:
     n_d = int(crossing.vehicle.n_dof)
     n_w = len(crossing.vehicle.wheels)
     per_point = lanes * (3 * n_m + 3 * n_d + 2 * n_w) + n_m + 48 + 3 * 2
-    return RunEstimate(float(dt), int(n_steps), 8.0 * n_t * per_point, lanes)
+    return RunEstimate(float(dt), int(n_steps), 8.0 * n_t * per_point, lanes, int(crossing.contact.n))
 
 
 def check_run(crossing: Crossing, dt: float, limits: Limits | None = None, lanes: int = 1) -> RunEstimate:
@@ -137,6 +142,11 @@ def check_run(crossing: Crossing, dt: float, limits: Limits | None = None, lanes
     if est.n_steps > limits.max_steps:
         raise BudgetError(f"this run needs {est.n_steps:.3g} time steps, above the limit {limits.max_steps:.3g}: "
                           f"{drivers}; raise --max-steps, or change those inputs")
+    if est.n_steps * est.n_points > POINTS_PER_STEP * limits.max_steps:
+        raise BudgetError(f"this run needs {est.n_steps:.3g} time steps × {est.n_points} contact points, above the limit "
+                          f"{POINTS_PER_STEP} × {limits.max_steps:.3g} (--max-steps): the tire model has many points "
+                          f"(tire.model = {crossing.tire.name!r}; a disk has one per tire.disk_spacing along its rim); "
+                          f"{drivers}; raise --max-steps, or use a coarser tire.disk_spacing")
     if est.memory > limits.max_memory:
         raise BudgetError(f"this run needs ≈ {human(est.memory)} of memory, above the limit {human(limits.max_memory)}: "
                           f"{est.n_steps} steps × {crossing.bridge.omega.size} modes × {lanes} lane(s); {drivers}; raise --max-memory, "

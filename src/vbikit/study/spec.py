@@ -82,12 +82,26 @@ class StudyFile(BaseModel):
     batch_size: int = Field(32, ge=1, le=10000, description="crossings per batch")
     histories: bool = Field(False, description="also store midspan displacement histories")
     base: dict[str, Any] = Field(..., description="scenario (inline tables) or {scenario = \"path.toml\"}")
-    axes: dict[str, Union[SamplesAxis, list[Any]]] = Field(default_factory=dict)
+    axes: dict[str, Any] = Field(default_factory=dict, description="key -> list of values, or {samples = N}")
 
     @field_validator("axes")
     @classmethod
-    def _axes(cls, axes: dict[str, Any]) -> dict[str, Any]:
+    def _axes(cls, axes: dict[str, Any]) -> dict[str, Union[SamplesAxis, list[Any]]]:
+        out: dict[str, Union[SamplesAxis, list[Any]]] = {}
         for key, values in axes.items():
+            if isinstance(values, dict):
+                if key not in SAMPLE_KEYS:
+                    raise ValueError(f"axis {key!r}: {{samples = N}} is allowed only for {', '.join(SAMPLE_KEYS)}")
+                try:
+                    out[key] = SamplesAxis.model_validate(values)
+                except ValidationError as err:
+                    e = err.errors()[0]
+                    raise ValueError(f"axis {key!r}: {{samples = N}} needs exactly one key, samples, an integer "
+                                     f"1 … 100000 (got {values!r}: {e['msg']})") from None
+                continue
+            if not isinstance(values, list):
+                raise ValueError(f"axis {key!r}: give a list of values or {{samples = N}}, got {values!r}")
+            out[key] = values
             if isinstance(values, list):
                 if not values:
                     raise ValueError(f"axis {key!r} has no values")
@@ -100,9 +114,7 @@ class StudyFile(BaseModel):
                     if _value_key(v) in seen:
                         raise ValueError(f"axis {key!r} repeats a value: {seen[_value_key(v)]!r} and {v!r}")
                     seen[_value_key(v)] = v
-            elif key not in SAMPLE_KEYS:
-                raise ValueError(f"axis {key!r}: {{samples = N}} is allowed only for {', '.join(SAMPLE_KEYS)}")
-        return axes
+        return out
 
 
 def derive_seed(study_seed: int, sample: int) -> int:

@@ -1,0 +1,131 @@
+"""Fuzz tests (hypothesis): generated scenarios, studies and field files (see ``fuzzing.py``).
+
+Every run ends in exit 0 with finite outputs, or exit 2 with one message naming a key or the file;
+never a traceback, a hang, NaN/Infinity in an output, or a scenario that ``validate`` accepts and
+``run`` then refuses.  The default run tries 200 inputs (derandomised, the same every time); the
+``slow`` variants try ten times as many, randomly.  With ``VBIKIT_FUZZ_LOG=path`` every outcome is
+appended to that file (JSON lines) instead of asserted — that is how the counts in
+docs/changelog.md were measured.
+"""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from typer.testing import CliRunner
+
+from fuzzing import RUN_LIMITS, field_files, judge, scenarios, studies, time_limit
+from vbikit.cli import app
+
+runner = CliRunner()
+LOG = os.environ.get("VBIKIT_FUZZ_LOG")
+
+
+def _record(kind: str, outcome: str, result, text: bytes) -> None:
+    if LOG:
+        with open(LOG, "a") as fh:
+            fh.write(json.dumps({"kind": kind, "outcome": outcome, "output": result.output[-400:],
+                                 "input": text.decode("utf-8", "replace")[:1500]}) + "\n")
+        return
+    assert outcome in ("ok", "clean"), f"{kind}: {outcome}\n--- input ---\n{text[:2000]!r}\n--- output ---\n{result.output}"
+
+
+def _invoke(args: list[str]):
+    with time_limit():
+        return runner.invoke(app, args)
+
+
+def _settings(n: int, slow: bool):
+    return settings(max_examples=10 * n if slow else n, deadline=None, database=None, derandomize=not slow,
+                    suppress_health_check=list(HealthCheck), print_blob=True)
+
+
+def check_scenario(text: bytes) -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "fuzz.toml"
+        path.write_bytes(text)
+        summary = Path(tmp) / "summary.json"
+        validated = _invoke(["validate", str(path), *RUN_LIMITS])
+        outcome = judge(validated, ("fuzz.toml",))
+        if outcome != "ok":
+            return _record("scenario-validate", outcome, validated, text)
+        ran = _invoke(["run", str(path), "--json", "--summary", str(summary), *RUN_LIMITS])
+        outcome = judge(ran, ("fuzz.toml",), (summary,))
+        if outcome == "clean":
+            outcome = "validate ok, run refused"
+        _record("scenario", outcome, ran, text)
+
+
+def check_study(text: bytes) -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "fuzz-study.toml"
+        path.write_bytes(text)
+        validated = _invoke(["study", "validate", str(path), *RUN_LIMITS])
+        outcome = judge(validated, ("fuzz-study.toml",))
+        if outcome != "ok" or b"samples" not in text or len(text) > 3000:
+            return _record("study-validate", outcome, validated, text)
+        ran = _invoke(["study", "run", str(path), "--out", str(Path(tmp) / "r.nc"), "--workers", "1", "--no-progress",
+                       *RUN_LIMITS])
+        outcome = judge(ran, ("fuzz-study.toml",))
+        if outcome == "clean":
+            outcome = "validate ok, run refused"
+        _record("study", outcome, ran, text)
+
+
+def check_field(files: tuple[bytes, bytes]) -> None:
+    toml, csv_text = files
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "FIELD.toml"
+        path.write_bytes(toml)
+        (Path(tmp) / "resp.csv").write_bytes(csv_text)
+        out = Path(tmp) / "out"
+        ran = _invoke(["field", str(path), "--out-dir", str(out), "--tires", "point"])
+        outcome = judge(ran, ("FIELD.toml", "resp.csv"), (out / "field-metrics.json",))
+        escaped = [p for p in Path(tmp).rglob("*") if p.is_file() and out not in p.parents
+                   and p.name not in ("FIELD.toml", "resp.csv")]
+        if escaped:
+            outcome = f"wrote outside --out-dir: {escaped}"
+        _record("field", outcome, ran, toml)
+
+
+@_settings(120, slow=False)
+@given(scenarios())
+def test_fuzz_scenarios(text):
+    check_scenario(text)
+
+
+@_settings(50, slow=False)
+@given(studies())
+def test_fuzz_studies(text):
+    check_study(text)
+
+
+@_settings(30, slow=False)
+@given(field_files())
+def test_fuzz_field_files(files):
+    check_field(files)
+
+
+@pytest.mark.slow
+@_settings(120, slow=True)
+@given(scenarios())
+def test_fuzz_scenarios_more(text):
+    check_scenario(text)
+
+
+@pytest.mark.slow
+@_settings(50, slow=True)
+@given(studies())
+def test_fuzz_studies_more(text):
+    check_study(text)
+
+
+@pytest.mark.slow
+@_settings(30, slow=True)
+@given(field_files())
+def test_fuzz_field_files_more(files):
+    check_field(files)
