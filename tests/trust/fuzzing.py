@@ -172,7 +172,7 @@ def mutated(draw, bases: list[dict], keys: dict[tuple[str, ...], Any]) -> dict:
 @st.composite
 def damaged_text(draw, text: str) -> bytes:
     """``text`` as bytes, sometimes damaged (most inputs are left intact)."""
-    kind = draw(st.sampled_from(["intact"] * 6 + ["truncate", "insert", "nest", "bytes", "duplicate"]))
+    kind = draw(st.sampled_from(["intact"] * 15 + ["truncate", "insert", "nest", "bytes", "duplicate"]))
     raw = text.encode()
     if kind == "truncate":
         return raw[: draw(st.integers(0, max(0, len(raw) - 1)))]
@@ -253,7 +253,7 @@ def field_files(draw) -> tuple[bytes, bytes]:
                                                                     CHANNEL_KEYS)
         key = draw(st.sampled_from(sorted(keys)))
         table[key] = draw(st.one_of(keys[key], ANY_VALUE))
-    n = draw(st.sampled_from([0, 3, 200]))
+    n = draw(st.sampled_from([200, 200, 200, 3]))
     rate = 200.0
     rows = [f"{i / rate:.4f},{-1.0 * math.sin(math.pi * i / max(n, 1)):.5f}" for i in range(n)]
     csv_text = "time [s], D [mm]\n" + "\n".join(rows) + "\n"

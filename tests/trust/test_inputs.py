@@ -138,3 +138,9 @@ def test_coarse_newmark_step_and_unresolved_modes_are_flagged(tmp_path):
     res = runner.invoke(app, ["validate", str(path)])
     assert res.exit_code == 0, res.output
     assert "coarser than the accuracy step" in res.stderr and "are not resolved" in res.stderr
+
+
+def test_response_point_on_a_support_is_refused_by_validate(tmp_path):
+    """Found by the fuzz test: response.x = 0 passed validate, then run failed (no static response)."""
+    for res in _both(_write(tmp_path, BEAM + "[response]\nx = 0\n")):
+        assert res.exit_code == 2 and "response.x = 0 m" in res.output and "every mode shape is zero" in res.output

@@ -101,3 +101,29 @@ def test_divergence_is_reported_with_step_and_time():
     xi[123:, 0] = np.inf
     with pytest.raises(DivergenceError, match=rf"diverged at step 123 of {result.n_steps} \(t = {result.time[123]:.6g} s"):
         check_finite(dataclasses.replace(result, xi=xi))
+
+
+def _field_copy(tmp_path: Path) -> Path:
+    field = tmp_path / "field"
+    shutil.copytree(ROOT / "examples" / "field", field)
+    return field / "FIELD.toml"
+
+
+def test_field_unknown_bridge_parameter_is_exit_2(tmp_path):
+    """An unknown key in [bridge_parameters] used to end in a TypeError traceback."""
+    toml = _field_copy(tmp_path)
+    toml.write_text(toml.read_text() + "\n[bridge_parameters]\nspan_x = 3.0\n")
+    res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
+    assert res.exit_code == 2 and "bridge_parameters" in res.output and "span_x" in res.output, res.output
+
+
+def test_field_all_zero_record_is_refused(tmp_path):
+    """An all-zero field record gave NaN metrics at exit 0."""
+    toml = _field_copy(tmp_path)
+    csv_path = toml.parent / "case1_responses.csv"
+    lines = csv_path.read_text().splitlines()
+    head = [ln for ln in lines if ln.startswith("#") or "[" in ln]
+    rows = [ln for ln in lines if ln not in head]
+    csv_path.write_text("\n".join(head + [r.split(",")[0] + ",0,0,0" for r in rows]) + "\n")
+    res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
+    assert res.exit_code == 2 and "case1_responses.csv" in res.output and "constant" in res.output, res.output

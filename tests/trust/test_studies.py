@@ -94,6 +94,15 @@ def test_damaged_and_foreign_parts_are_moved_aside_and_recomputed(tmp_path, capl
     text = caplog.text
     assert f"{parts[0]} is unusable: it cannot be read" in text
     assert f"{parts[1]} is unusable: it belongs to another study" in text
+    # a valid part of this study copied over another batch (used to be merged: NaN cells, n_steps = -9.2e18)
+    out.unlink()
+    run_study(study, out, workers=1, keep_parts=True)
+    out.unlink()
+    shutil.copy(parts[0], parts[1])
+    caplog.clear()
+    with caplog.at_level("WARNING"):
+        xr.testing.assert_identical(clean, run_study(study, out, workers=1))
+    assert f"{parts[1]} is unusable: it holds batch 0, not batch 1" in caplog.text
 
 
 def test_full_disk_exits_2_and_resumes(tmp_path, monkeypatch):

@@ -11,9 +11,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from vbikit.analysis.checks import input_warnings
 from vbikit.scenario.build import BuiltScenario, build
-from vbikit.scenario.schema import Scenario
+from vbikit.scenario.schema import Scenario, ScenarioError
 from vbikit.solve.budget import Limits, RunEstimate, check_run
 from vbikit.solve.timestep import accuracy_time_step, choose_time_step
 
@@ -43,6 +45,18 @@ def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
     return out
 
 
+def check_response_point(built: BuiltScenario) -> None:
+    """Refuse a response point where every mode shape vanishes (on a support, off the deck): no
+    static response there, hence no impact factor."""
+    bridge = built.crossing.bridge
+    x = bridge.span / 2 if built.response_x is None else built.response_x
+    phi = bridge.mode_shapes([x], [built.response_y])[0]
+    if not np.any(phi):
+        raise ScenarioError(f"response.x = {x:g} m, y = {built.response_y:g} m: every mode shape is zero there (a "
+                            "support or off the deck), so there is no static response and no impact factor; choose "
+                            f"a point inside the span 0 … {bridge.span:g} m")
+
+
 def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
     UnstableTimeStepError or BudgetError, all ``ValueError``)."""
@@ -53,6 +67,7 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
     dt = choose_time_step(crossing)
     estimate = check_run(crossing, dt, limits)
+    check_response_point(built)
     warnings = input_warnings(crossing, dt, built.response_x) + defect_warnings(scenario, built)
     return Plan(scenario, built, dt, estimate, warnings)
 
