@@ -161,8 +161,14 @@ def _print_summary(run: _Run) -> None:
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
     typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}  (strain IM = {s['strain_impact_factor']:.4f})")
+    for i, v in enumerate(s.get("vehicles", []), start=1):
+        loads = " / ".join(f"{f / 1e3:.1f}" for f in v["static_wheel_loads"].values())
+        typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
+                   f"t = {v['entry_time']:.3f} s, y = {v['lateral_offset']:+.3f} m; wheel loads [kN] {loads}"
+                   f"{'; lost contact' if v['contact_loss'] else ''}")
     if "governing_girder" in s:
-        typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
+        if "vehicles" not in s:
+            typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
         typer.echo("  girder               " + "  ".join(f"{g:>7d}" for g in range(1, len(s["girder_y"]) + 1)))
         typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
         typer.echo("  IM                   " + "  ".join(f"{v:7.4f}" for v in s["girder_impact_factors"]))

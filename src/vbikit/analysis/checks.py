@@ -34,13 +34,18 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     """Warnings about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
     out: list[str] = []
     lo, hi = SPEED_RANGE_KMH
-    v0 = crossing.speed * 3.6
-    v1 = float(crossing.velocity(crossing.exit_time())) * 3.6
-    for label, v in (("speed", v0), ("speed when the last axle leaves the bridge", v1)):
-        if not lo <= v <= hi:
-            out.append(f"crossing.{label.split()[0]}: {label} {v:.4g} km/h ({v / 3.6:.4g} m/s) is outside the usual "
-                       f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)")
-            break
+    if crossing.vehicles:  # each vehicle at its entry and when the last one has left
+        t_end = crossing.exit_time()
+        speeds = [(f"vehicles.{i}.speed", f"vehicle {i + 1}'s speed", (m.speed, float(m.velocity(t_end))))
+                  for i, m in enumerate(crossing.vehicles)]
+    else:
+        speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.velocity(crossing.exit_time()))))]
+    for key, label, (v0, v1) in speeds:
+        for what, v in ((label, v0 * 3.6), (f"{label} when the last axle leaves the bridge", v1 * 3.6)):
+            if not lo <= v <= hi:
+                out.append(f"{key}: {what} {v:.4g} km/h ({v / 3.6:.4g} m/s) is outside the usual "
+                           f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)")
+                break
     x_lo, x_hi = crossing.road_extent()
     for side, road in (("", crossing.road), ("right wheel line ", crossing.road_right)):
         if road is None:
@@ -74,6 +79,7 @@ def contact_warnings(result: CrossingResult) -> list[str]:
     """One warning per wheel whose tire lost contact: where first (wheel x [m]), when, for how long."""
     out = []
     forces, dt = result.wheel_forces, result.dt
+    x_wheel = result.wheel_positions()
     for w, wheel in enumerate(result.crossing.vehicle.wheels):
         if wheel.stiffness <= 0:
             continue
@@ -82,7 +88,7 @@ def contact_warnings(result: CrossingResult) -> list[str]:
             continue
         i = int(np.argmax(off))
         out.append(f"wheel {wheel.name} lost contact with the road: first at x = "
-                   f"{float(result.front_position[i] - wheel.offset):.3f} m (t = {float(result.time[i]):.4f} s), "
+                   f"{float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
                    f"for {float(off.sum() * dt):.4f} s in all")
     return out
 

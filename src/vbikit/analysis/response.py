@@ -59,6 +59,7 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
 def contact_loss(result: CrossingResult) -> dict[str, dict[str, float | bool]]:
     """Per wheel: whether its tire lost contact (zero force), where first (wheel x [m]) and for how long [s]."""
     out: dict[str, dict[str, float | bool]] = {}
+    x_wheel = result.wheel_positions()
     for w, wheel in enumerate(result.crossing.vehicle.wheels):
         if wheel.stiffness <= 0:
             continue
@@ -66,7 +67,7 @@ def contact_loss(result: CrossingResult) -> dict[str, dict[str, float | bool]]:
         entry: dict[str, float | bool] = {"lost": bool(off.any())}
         if off.any():
             i = int(np.argmax(off))
-            entry["first_x"] = float(result.front_position[i] - wheel.offset)
+            entry["first_x"] = float(x_wheel[i, w])
             entry["first_time"] = float(result.time[i])
             entry["duration"] = float(off.sum() * result.dt)
         out[wheel.name] = entry
@@ -136,11 +137,42 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "dt": result.dt,
         "duration": float(result.time[-1]),
         "integrator": crossing.integrator,
-        "speed": crossing.speed,
+        "speed": crossing.speed if not crossing.vehicles else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         "warnings": run_warnings(result, response.x),
-    } | ({"response_girder": response_girder, "lateral_offset": crossing.lateral_offset, **girder_summary(girders)}
-         if girders else {})
+    } | ({"response_girder": response_girder,
+          "lateral_offset": crossing.lateral_offset if not crossing.vehicles else [m.lateral_offset for m in crossing.vehicles],
+          **girder_summary(girders)} if girders else {}) | ({"vehicles": vehicle_summaries(result)} if crossing.vehicles else {})
+
+
+def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:
+    """Per vehicle of a several-vehicle crossing: its model, motion, static wheel loads, min / max
+    wheel forces [N] and whether any of its tires lost contact (wheel names without the ``vN_`` prefix)."""
+    crossing = result.crossing
+    combined = crossing.vehicle
+    loss = contact_loss(result)
+    out = []
+    for i, (m, vehicle) in enumerate(zip(crossing.vehicles, combined.parts)):
+        sl = slice(combined.wheel_offsets[i], combined.wheel_offsets[i + 1])
+        names = [w.name for w in vehicle.wheels]
+        forces = result.wheel_forces[:, sl]
+        tire = m.tire or crossing.tire
+        out.append({
+            "model": vehicle.name,
+            "description": vehicle.description,
+            "direction": m.direction,
+            "speed": m.speed,
+            "acceleration": m.acceleration,
+            "entry_time": m.entry_time,
+            "lateral_offset": m.lateral_offset,
+            "tire_model": tire.name,
+            "gross_weight": float(vehicle.total_weight),
+            "static_wheel_loads": dict(zip(names, map(float, vehicle.static_wheel_loads()))),
+            "min_wheel_force": dict(zip(names, map(float, forces.min(axis=0)))),
+            "max_wheel_force": dict(zip(names, map(float, forces.max(axis=0)))),
+            "contact_loss": any(bool(loss[w.name]["lost"]) for w in combined.wheels[sl] if w.name in loss),
+        })
+    return out
 
 
 def histories(result: CrossingResult, response: PointResponse,
@@ -149,7 +181,6 @@ def histories(result: CrossingResult, response: PointResponse,
     (displacement, static displacement, strain, static strain, acceleration) for every girder."""
     out: dict[str, NDArray[np.float64]] = {
         "time": result.time,
-        "front_axle_x": result.front_position,
         "displacement": response.displacement,
         "static_displacement": response.static_displacement,
         "strain": response.strain,
@@ -157,6 +188,11 @@ def histories(result: CrossingResult, response: PointResponse,
         "velocity": response.velocity,
         "acceleration": response.acceleration,
     }
+    if result.front_position.ndim == 1:
+        out["front_axle_x"] = result.front_position
+    else:  # several vehicles: out = {time, v1_front_axle_x, …, displacement, …}
+        fronts = {f"v{i + 1}_front_axle_x": result.front_position[:, i] for i in range(result.front_position.shape[1])}
+        out = {"time": out.pop("time"), **fronts, **out}
     for g, r in enumerate(girders or [], start=1):
         out[f"girder{g}_displacement"] = r.displacement
         out[f"girder{g}_static_displacement"] = r.static_displacement

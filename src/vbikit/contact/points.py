@@ -104,3 +104,27 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
         np.array(count, np.int64),
         np.array(envelope, bool),
     )
+
+
+def stack_contact_points(parts: "list[ContactPoints]", dof_offsets: "tuple[int, ...]") -> ContactPoints:
+    """The contact points of several vehicles (``parts``, each from :func:`contact_points` of its
+    own vehicle and tire) as one set: points and wheels concatenated in vehicle order, wheel
+    indices and point ranges shifted, rows padded into the stacked DOF vector (vehicle i owns
+    DOFs ``dof_offsets[i]`` … ``dof_offsets[i + 1]``).  Setbacks stay relative to each
+    vehicle's own front axle."""
+    n_dof = int(dof_offsets[-1])
+    wheel_shift = np.concatenate([[0], np.cumsum([p.wheel_first.size for p in parts])])
+    point_shift = np.concatenate([[0], np.cumsum([p.n for p in parts])])
+    rows = np.zeros((int(point_shift[-1]), n_dof))
+    for i, p in enumerate(parts):
+        rows[point_shift[i]:point_shift[i + 1], dof_offsets[i]:dof_offsets[i + 1]] = p.rows
+    cat = np.concatenate
+    return ContactPoints(
+        cat([p.setback for p in parts]), cat([p.lateral for p in parts]),
+        cat([p.wheel + wheel_shift[i] for i, p in enumerate(parts)]).astype(np.int64),
+        cat([p.weight for p in parts]), cat([p.stiffness for p in parts]), cat([p.damping for p in parts]),
+        cat([p.fixed_load for p in parts]), cat([p.gap for p in parts]), cat([p.width for p in parts]),
+        cat([p.gated for p in parts]).astype(bool), cat([p.slope_range for p in parts]).reshape(-1, 2), rows,
+        cat([p.wheel_first + point_shift[i] for i, p in enumerate(parts)]).astype(np.int64),
+        cat([p.wheel_count for p in parts]).astype(np.int64), cat([p.wheel_envelope for p in parts]).astype(bool),
+    )

@@ -24,9 +24,10 @@ from vbikit.scenario.schema import (
     Scenario,
     ScenarioError,
     TireSpec,
+    VehicleEntry,
 )
 from vbikit.solve.budget import BudgetError, Limits, check_bridge, check_road
-from vbikit.solve.crossing import Crossing
+from vbikit.solve.crossing import Crossing, VehicleMotion
 from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -59,6 +60,17 @@ def build_tire(spec: TireSpec) -> TireModel:
         return MultiPointTire(spec.n_points, spec.contact_length, spec.layout)
     disk = DiskTire if spec.model == "disk" else RigidDiskTire
     return disk(radius=spec.radius, spacing=spec.disk_spacing, max_gap=spec.radius / 5)
+
+
+def vehicle_motion(entry: VehicleEntry, default_speed: float | None) -> VehicleMotion:
+    """One [[vehicles]] table as a :class:`VehicleMotion` (speed default: the [crossing] one;
+    lateral offset default: the bridge's)."""
+    vehicle = VEHICLE_PRESETS[entry.model].build(**entry.parameters)
+    speed = entry.speed_ms if entry.speed_ms is not None else default_speed
+    return VehicleMotion(vehicle, speed=float(speed), acceleration=entry.acceleration, direction=entry.direction,
+                         entry_time=entry.entry_time,
+                         lateral_offset=entry.lateral_offset,
+                         tire=build_tire(entry.tire) if entry.tire is not None else None)
 
 
 def build_defects(spec: RoadSpec) -> list[Defect]:
@@ -114,30 +126,26 @@ class BuiltScenario:
 
 
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
-    """Compose bridge, vehicle, tire and road into a Crossing (raises ScenarioError on bad
+    """Compose bridge, vehicle(s), tire and road into a Crossing (raises ScenarioError on bad
     combinations, :class:`~vbikit.solve.budget.BudgetError` on a bridge or road above ``limits``)."""
-    spec = scenario.vehicle
-    if scenario.vehicles is not None:
-        entry = scenario.vehicles[0]
-        if len(scenario.vehicles) > 1 or entry.direction != "+x" or entry.entry_time != 0 or entry.acceleration != 0 \
-                or entry.tire is not None or entry.lateral_offset is not None or entry.speed_ms is not None:
-            raise ScenarioError("vehicles: several vehicles, or one with its own motion, need the multi-vehicle "
-                                "solver, which this version does not have yet; use one [vehicle] table")
-        spec = entry
     try:
         bridge = build_bridge(scenario.bridge, scenario.base_dir)
         check_bridge(bridge, limits)
         check_road_budget(scenario.road, limits)
-        vehicle: Vehicle = VEHICLE_PRESETS[spec.model].build(**spec.parameters)
         c = scenario.crossing
-        crossing = Crossing(
-            bridge=bridge, vehicle=vehicle, tire=build_tire(scenario.tire), road=(road := build_road(scenario.road, scenario)),
-            road_right=build_right_road(scenario.road, scenario, road),
-            speed=c.speed_ms, acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
-            lateral_offset=c.lateral_offset,  # None: the bridge's default
-            dt=c.dt, integrator=c.integrator,
-            loss_of_contact=scenario.tire.loss_of_contact,
-        )
+        road = build_road(scenario.road, scenario)
+        common = dict(bridge=bridge, tire=build_tire(scenario.tire), road=road,
+                      road_right=build_right_road(scenario.road, scenario, road), approach=c.approach,
+                      free_vibration=c.free_vibration, dt=c.dt, integrator=c.integrator,
+                      loss_of_contact=scenario.tire.loss_of_contact)
+        if scenario.vehicles is None:
+            vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
+            crossing = Crossing(vehicle=vehicle, speed=c.speed_ms, acceleration=c.acceleration,
+                                lateral_offset=c.lateral_offset,  # None: the bridge's default
+                                **common)
+        else:
+            motions = tuple(vehicle_motion(v, c.speed_ms) for v in scenario.vehicles)
+            crossing = Crossing(vehicles=motions, speed=max(m.speed for m in motions), **common)
     except BudgetError:
         raise
     except ValueError as err:

@@ -90,7 +90,7 @@ class BatchSolver:
         """ξ_st(t) (n_t, n_modes) under the moving static wheel loads on the time grid of step
         ``dt`` [s] — the same for every road of the batch (computed once per step)."""
         if dt not in self._static:
-            self._static[dt] = static_modal_history(self.template, self._grid(dt).xf[::2].copy(), self.data)
+            self._static[dt] = static_modal_history(self.template, self._grid(dt).travel[::2].copy(), self.data)
         return self._static[dt]
 
     # ------------------------------------------------------------------ running

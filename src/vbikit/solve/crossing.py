@@ -1,30 +1,106 @@
-"""A crossing: one vehicle with one tire model driving over one bridge on one road.
+"""A crossing: one vehicle (or several) with its tire model driving over one bridge on one road.
 
-The vehicle drives in +x.  At t = 0 its front axle is at x = −approach (on the approach
-road) and it is in static equilibrium on the road (and deck, if any contact point is already
-on it).  The crossing ends ``free_vibration`` seconds after the last contact point has left
-the bridge (x = span).  Speed: v(t) = speed + acceleration · t (acceleration < 0 brakes); a
-vehicle that comes to rest during the free vibration stays at rest.
+One vehicle (``Crossing(bridge, vehicle, …)``) drives in +x.  At t = 0 its front axle is at
+x = −approach (on the approach road) and it is in static equilibrium on the road (and deck,
+if any contact point is already on it).  The crossing ends ``free_vibration`` seconds after
+the last contact point has left the bridge (x = span).  Speed: v(t) = speed + acceleration · t
+(acceleration < 0 brakes); a vehicle that comes to rest during the free vibration stays at rest.
+
+Several vehicles (``Crossing(bridge, vehicles=(VehicleMotion(…), …), …)``): each has its own
+tire, lateral offset, direction (+x or −x), speed, acceleration and entry time T_v, the time
+its front axle passes its entry support (x = 0 driving +x, x = span driving −x).  Its travel
+s_v(t) [m] is the distance its front axle has driven past that support,
+s_v = v_v τ + a_v τ²/2 with τ = t − T_v (v_v: its speed at entry), so a contact point at
+``setback`` behind its front axle is at x = s_v − setback (+x) or x = span − s_v + setback
+(−x).  The run starts at the latest time every vehicle is at least ``approach`` before its
+entry (each in static equilibrium there) and ends ``free_vibration`` after the last one has
+left; times are on the vehicles' clock (t = 0 when ``entry_time`` = 0), so the run may start
+at t < 0.  The vehicles' degrees of freedom sit side by side (``vbikit.vehicle.CombinedVehicle``):
+they interact only through the bridge.
 """
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal
+from typing import Literal, Optional
 
 import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.bridge.base import ModalBridge
-from vbikit.contact.points import ContactPoints, contact_points
+from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
 from vbikit.road.profile import RoadProfile
-from vbikit.vehicle.model import Vehicle
+from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
 Integrator = Literal["rk4", "newmark"]
 INTEGRATORS: tuple[str, ...] = ("rk4", "newmark")
+DIRECTIONS: tuple[str, ...] = ("+x", "-x")
+
+
+@dataclass(frozen=True)
+class VehicleMotion:
+    """One vehicle of a several-vehicle crossing and its motion (module docstring).
+
+    Parameters
+    ----------
+    vehicle : Vehicle
+    speed : float
+        Speed [m/s] when its front axle passes its entry support, > 0.
+    acceleration : float
+        Constant acceleration [m/s²] (negative brakes); it must still move when its last axle
+        leaves the bridge, and have moved from the start of the run.
+    direction : {"+x", "-x"}
+    entry_time : float
+        Time [s] its front axle passes its entry support (x = 0 for +x, x = span for −x).
+    lateral_offset : float, optional
+        y [m] of its centreline from the deck centreline (positive left of +x); default the
+        bridge's ``default_lateral_offset`` (0 for a beam).  A vehicle driving −x has its own
+        left wheels at y = lateral_offset − (their y on the vehicle).
+    tire : TireModel, optional
+        Its tire model (default: the crossing's ``tire``).
+    """
+
+    vehicle: Vehicle
+    speed: float = 20.0
+    acceleration: float = 0.0
+    direction: str = "+x"
+    entry_time: float = 0.0
+    lateral_offset: Optional[float] = None
+    tire: Optional[TireModel] = None
+
+    @property
+    def sign(self) -> float:
+        """+1 driving +x, −1 driving −x."""
+        return 1.0 if self.direction == "+x" else -1.0
+
+    @property
+    def stop_time(self) -> float:
+        """τ [s] after entry at which a braking vehicle comes to rest (inf if it does not brake)."""
+        return -self.speed / self.acceleration if self.acceleration < 0 else math.inf
+
+    def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """s_v [m]: distance of the front axle past its entry support at time t [s]."""
+        tau = np.minimum(np.asarray(t, float) - self.entry_time, self.stop_time)
+        return self.speed * tau + 0.5 * self.acceleration * tau**2
+
+    def velocity(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """Speed [m/s] at time t [s] (zero once a braking vehicle has stopped)."""
+        tau = np.minimum(np.asarray(t, float) - self.entry_time, self.stop_time)
+        return self.speed + self.acceleration * tau
+
+    def time_at(self, travel: float) -> float:
+        """Time [s] its front axle has travel ``travel`` [m] (NaN if it never gets there)."""
+        v, a = self.speed, self.acceleration
+        if abs(a) < 1e-12:
+            return self.entry_time + travel / v
+        disc = v * v + 2 * a * travel
+        if disc < 0:
+            return math.nan
+        return self.entry_time + (-v + math.sqrt(disc)) / a
 
 
 @dataclass(frozen=True)
@@ -62,7 +138,7 @@ class Crossing:
     """
 
     bridge: ModalBridge
-    vehicle: Vehicle
+    vehicle: Optional[Vehicle] = None
     tire: TireModel = PointTire()
     road: RoadProfile | None = None
     speed: float = 20.0
@@ -74,12 +150,15 @@ class Crossing:
     integrator: Integrator = "rk4"
     loss_of_contact: bool = True
     road_right: RoadProfile | None = None
+    vehicles: tuple[VehicleMotion, ...] = ()
 
     def __post_init__(self) -> None:
         if self.lateral_offset is None:
             object.__setattr__(self, "lateral_offset", float(getattr(self.bridge, "default_lateral_offset", 0.0)))
         if not np.isfinite(self.lateral_offset):
             raise ValueError(f"crossing.lateral_offset must be finite, got {self.lateral_offset!r}")
+        if not self.vehicles and self.vehicle is None:
+            raise ValueError("a crossing needs a vehicle (or vehicles=(VehicleMotion(…), …))")
         if not (np.isfinite(self.speed) and self.speed > 0):
             raise ValueError(f"crossing.speed must be > 0 m/s, got {self.speed!r}")
         if not np.isfinite(self.acceleration):
@@ -92,7 +171,56 @@ class Crossing:
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
         if self.integrator not in INTEGRATORS:
             raise ValueError(f"crossing.integrator must be one of {INTEGRATORS}, got {self.integrator!r}")
+        if self.vehicles:
+            self._init_vehicles()
         self._check_roads()
+
+    def _init_vehicles(self) -> None:
+        default = float(getattr(self.bridge, "default_lateral_offset", 0.0))
+        object.__setattr__(self, "vehicles", tuple(
+            dataclasses.replace(m, lateral_offset=default) if isinstance(m, VehicleMotion) and m.lateral_offset is None
+            else m for m in self.vehicles))
+        if self.vehicle is not None and not isinstance(self.vehicle, CombinedVehicle):
+            raise ValueError("give vehicle (one vehicle) or vehicles (several, with their motion), not both")
+        for i, m in enumerate(self.vehicles):
+            if not isinstance(m, VehicleMotion):
+                raise ValueError(f"vehicles.{i}: expected a VehicleMotion, got {type(m).__name__}")
+            if not (np.isfinite(m.speed) and m.speed > 0):
+                raise ValueError(f"vehicles.{i}.speed must be > 0 m/s, got {m.speed!r}")
+            if not np.isfinite(m.acceleration):
+                raise ValueError(f"vehicles.{i}.acceleration must be finite")
+            if m.direction not in DIRECTIONS:
+                raise ValueError(f"vehicles.{i}.direction must be +x or -x, got {m.direction!r}")
+            if not np.isfinite(m.entry_time) or not np.isfinite(m.lateral_offset):
+                raise ValueError(f"vehicles.{i}: entry_time and lateral_offset must be finite")
+        object.__setattr__(self, "vehicle", combine_vehicles([m.vehicle for m in self.vehicles]))
+        start = self.start_time
+        for i, m in enumerate(self.vehicles):
+            if math.isnan(m.time_at(-self.approach)) or float(m.velocity(start)) <= 0:
+                raise ValueError(f"vehicles.{i}.acceleration: accelerating at {m.acceleration} m/s² to "
+                                 f"{m.speed} m/s at its entry, the vehicle would not be moving {self.approach} m "
+                                 "before its entry at the start of the run; use a smaller acceleration or entry speed")
+        self.exit_time()  # raises for a vehicle that stops on the bridge
+
+    @property
+    def n_vehicles(self) -> int:
+        return len(self.vehicles) if self.vehicles else 1
+
+    @property
+    def motions(self) -> tuple[VehicleMotion, ...]:
+        """The vehicles and their motion (one vehicle: its +x motion from ``speed``, entering at
+        t = approach/speed for constant speed)."""
+        if self.vehicles:
+            return self.vehicles
+        return (VehicleMotion(self.vehicle, float(self.velocity(self._entry_time_single())), self.acceleration, "+x",
+                              self._entry_time_single(), self.lateral_offset, self.tire),)
+
+    def _entry_time_single(self) -> float:
+        a, v, d = self.acceleration, self.speed, self.approach
+        if abs(a) < 1e-12:
+            return d / v
+        disc = v * v + 2 * a * d
+        return (-v + math.sqrt(max(disc, 0.0))) / a
 
     def _check_roads(self) -> None:
         if self.road_right is not None and self.road is None:
@@ -119,8 +247,68 @@ class Crossing:
     # ------------------------------------------------------------ geometry & time
     @cached_property
     def contact(self) -> ContactPoints:
-        """The tire model's contact points under every wheel."""
-        return contact_points(self.vehicle, self.tire)
+        """The tire model's contact points under every wheel (several vehicles: each with its
+        own tire, stacked in vehicle order)."""
+        if not self.vehicles:
+            return contact_points(self.vehicle, self.tire)
+        parts = [contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
+        return stack_contact_points(parts, self.vehicle.dof_offsets)
+
+    @cached_property
+    def point_vehicle(self) -> NDArray[np.int64]:
+        """Index of the vehicle of every contact point."""
+        if not self.vehicles:
+            return np.zeros(self.contact.n, np.int64)
+        wheel_vehicle = np.repeat(np.arange(len(self.vehicles)), np.diff(self.vehicle.wheel_offsets))
+        return wheel_vehicle[self.contact.wheel].astype(np.int64)
+
+    def point_kinematics(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Per contact point: ``origin`` [m] and ``direction`` (±1) of x_p = origin + direction·s_v,
+        and its deck y [m] (the vehicle's lateral offset plus its own y, mirrored driving −x)."""
+        cp = self.contact
+        if not self.vehicles:
+            return -cp.setback, np.ones(cp.n), cp.lateral + self.lateral_offset
+        veh = self.point_vehicle
+        sign = np.array([m.sign for m in self.vehicles])[veh]
+        offset = np.array([m.lateral_offset for m in self.vehicles])[veh]
+        origin = np.where(sign > 0, -cp.setback, self.bridge.span + cp.setback)
+        return origin, sign, offset + sign * cp.lateral
+
+    def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """s_v(t) [m] of every vehicle, shape (n_t, n_vehicles) (one vehicle: its front-axle x)."""
+        t = np.atleast_1d(np.asarray(t, float))
+        if not self.vehicles:
+            return self.front_position(t).reshape(-1, 1)
+        return np.stack([m.travel(t) for m in self.vehicles], axis=1)
+
+    def travel_speed(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """ds_v/dt [m/s] of every vehicle, shape (n_t, n_vehicles)."""
+        t = np.atleast_1d(np.asarray(t, float))
+        if not self.vehicles:
+            return self.velocity(t).reshape(-1, 1)
+        return np.stack([m.velocity(t) for m in self.vehicles], axis=1)
+
+    def front_positions(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        """x [m] of every vehicle's front axle, shape (n_t, n_vehicles)."""
+        s = self.travel(t)
+        if not self.vehicles:
+            return s
+        sign = np.array([m.sign for m in self.vehicles])
+        return np.where(sign > 0, s, self.bridge.span - s)
+
+    @property
+    def start_time(self) -> float:
+        """Time [s] the run starts: 0 for one vehicle; several: the latest time every vehicle is
+        at least ``approach`` before its entry support."""
+        if not self.vehicles:
+            return 0.0
+        return float(min(m.time_at(-self.approach) for m in self.vehicles))
+
+    @property
+    def max_speed(self) -> float:
+        """Highest speed [m/s] of any vehicle during the run."""
+        t = np.array([self.start_time, self.start_time + self.duration])
+        return float(self.travel_speed(t).max())
 
     @property
     def free_vibration_time(self) -> float:
@@ -144,7 +332,10 @@ class Crossing:
         return self.speed + self.acceleration * t
 
     def exit_time(self) -> float:
-        """Time [s] when the rearmost contact point passes x = span."""
+        """Time [s] when the rearmost contact point passes x = span (several vehicles: the last
+        one's last point leaves the bridge)."""
+        if self.vehicles:
+            return self._exit_time_vehicles()
         distance = self.approach + self.bridge.span + float(self.contact.setback.max())
         a, v = self.acceleration, self.speed
         if abs(a) < 1e-12:
@@ -158,12 +349,33 @@ class Crossing:
             )
         return (-v + math.sqrt(disc)) / a
 
+    def _exit_time_vehicles(self) -> float:
+        cp = self.contact
+        last = -math.inf
+        for i, m in enumerate(self.vehicles):
+            distance = self.bridge.span + float(cp.setback[self.point_vehicle == i].max())
+            t = m.time_at(distance)
+            if math.isnan(t) or (m.acceleration < 0 and t - m.entry_time > m.stop_time):
+                stop = m.speed**2 / (-2 * m.acceleration)
+                raise ValueError(
+                    f"vehicles.{i}.acceleration: with {m.acceleration} m/s² the vehicle stops {stop:.1f} m after its "
+                    f"entry, before its last axle leaves the bridge ({distance:.1f} m); use a smaller braking rate "
+                    "or a higher speed")
+            last = max(last, t)
+        return last
+
     @property
     def duration(self) -> float:
-        return self.exit_time() + self.free_vibration_time
+        """Length [s] of the run (from ``start_time``)."""
+        return self.exit_time() + self.free_vibration_time - self.start_time
 
     def road_extent(self) -> tuple[float, float]:
         """Range of x [m] the contact points touch during the crossing."""
+        if self.vehicles:
+            origin, sign, _ = self.point_kinematics()
+            s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
+            x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
+            return float(x.min()), float(x.max())
         cp = self.contact
         t_end = self.duration
         x_end = float(self.front_position(t_end))  # motion is monotone: speed stays > 0 until t_end

@@ -38,7 +38,8 @@ class CrossingResult:
     ``q``, ``q_dot``, ``q_ddot`` (n_t, n_dof): vehicle coordinates (absolute, z up);
     ``wheel_forces`` (n_t, n_wheels): tire forces [N], compression positive (0 = no contact);
     ``contact_lengths`` (n_t, n_wheels): length [m] of the patch in contact (0 for point tires);
-    ``front_position`` [m], ``speed`` [m/s] of the vehicle.
+    ``front_position`` [m], ``speed`` [m/s] of the vehicle (several vehicles: (n_t, n_vehicles),
+    x of each front axle and its speed).
     """
 
     crossing: Crossing
@@ -54,6 +55,25 @@ class CrossingResult:
     q_ddot: NDArray[np.float64]
     wheel_forces: NDArray[np.float64]
     contact_lengths: NDArray[np.float64]
+
+    @property
+    def travel(self) -> NDArray[np.float64]:
+        """The vehicles' travel s_v [m] at ``time`` ((n_t,) for one vehicle: its front-axle x;
+        else (n_t, n_vehicles))."""
+        if not self.crossing.vehicles:
+            return self.front_position
+        return self.crossing.travel(self.time)
+
+    def wheel_positions(self) -> NDArray[np.float64]:
+        """x [m] of every wheel centre at every time (n_t, n_wheels), each vehicle on its own path."""
+        crossing = self.crossing
+        offsets = np.array([w.offset for w in crossing.vehicle.wheels])
+        if not crossing.vehicles:
+            return self.front_position[:, None] - offsets[None, :]
+        n_per = np.diff(crossing.vehicle.wheel_offsets)
+        veh = np.repeat(np.arange(len(crossing.vehicles)), n_per)
+        sign = np.array([m.sign for m in crossing.vehicles])[veh]
+        return self.front_position[:, veh] - sign[None, :] * offsets[None, :]
 
     @property
     def n_steps(self) -> int:

@@ -31,21 +31,34 @@ def simulate(crossing: Crossing) -> CrossingResult:
 
 @dataclass(frozen=True)
 class TimeGrid:
-    """Half-step time grid of a crossing: ``t_half`` [s] (index 2n = t_n), front-axle positions
-    ``xf`` [m] and speeds ``vel`` [m/s]."""
+    """Half-step time grid of a crossing: ``t_half`` [s] (index 2n = t_n, from the crossing's
+    start time), the vehicles' ``travel`` [m] and ``speed`` [m/s] there (n_half, n_vehicles;
+    one vehicle: its front-axle x)."""
 
     dt: float
     n_steps: int
     t_half: NDArray[np.float64]
-    xf: NDArray[np.float64]
-    vel: NDArray[np.float64]
+    travel: NDArray[np.float64]
+    speed: NDArray[np.float64]
+
+    @property
+    def xf(self) -> NDArray[np.float64]:
+        """The first vehicle's travel [m] (one vehicle: its front-axle x)."""
+        return self.travel[:, 0]
+
+    @property
+    def vel(self) -> NDArray[np.float64]:
+        return self.speed[:, 0]
 
 
 def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
     """The half-step grid of ``crossing`` for step ``dt`` [s] (it ends at or after ``crossing.duration``)."""
     n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))
     t_half = 0.5 * dt * np.arange(2 * n_steps + 1)
-    return TimeGrid(dt, n_steps, t_half, crossing.front_position(t_half), crossing.velocity(t_half))
+    if crossing.vehicles:
+        t_half = crossing.start_time + t_half
+    return TimeGrid(dt, n_steps, t_half, np.ascontiguousarray(crossing.travel(t_half)),
+                    np.ascontiguousarray(crossing.travel_speed(t_half)))
 
 
 #: lanes per RK4 kernel call: a batch runs in calls of up to MAX_LANES lanes, each padded to a
@@ -67,12 +80,13 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
         return [res for k in range(0, n_real, size) for res in integrate(crossings[k:k + size], data, grid)]
     n_l = 1 if n_real == 1 else -(-n_real // LANE_PAD) * LANE_PAD
     crossings = list(crossings) + [crossings[-1]] * (n_l - n_real)
-    dt, n_steps, xf, vel = grid.dt, grid.n_steps, grid.xf, grid.vel
+    dt, n_steps = grid.dt, grid.n_steps
     n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
-    setback = first.contact.setback
-    road = road_data([(c.road, c.road_right) for c in crossings],
-                     float(xf.min() - setback.max()), float(xf.max() - setback.min()))
-    mot = Motion(np.ascontiguousarray(xf, float).reshape(-1, 1), np.ascontiguousarray(vel, float).reshape(-1, 1))
+    mot = Motion(grid.travel, grid.speed)
+    x_first, _ = point_positions(data, mot.travel[0])
+    x_last, _ = point_positions(data, mot.travel[-1])  # travel is monotone: extremes at the ends
+    road = road_data([(c.road, c.road_right) for c in crossings], float(min(x_first.min(), x_last.min())),
+                     float(max(x_first.max(), x_last.max())))
     n_t = n_steps + 1
     xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
     q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
@@ -83,8 +97,8 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
                     (0,) if n_l == 1 else (0, 0))
     for lane, crossing in enumerate(crossings[:n_real]):
-        xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane], road_rate=rate0[:, lane],
-                                                         speed=mot.speed[0])
+        xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane], mot.travel[0],
+                                                         road_rate=rate0[:, lane], speed=mot.speed[0])
     for lane in range(n_real, n_l):  # padding: a copy of the last real lane
         xi[lane, 0], q[lane, 0] = xi[n_real - 1, 0], q[n_real - 1, 0]
 
@@ -100,7 +114,11 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
         if unsettled:
             log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",
                         unsettled, n_steps)
-    time, front, speed = grid.t_half[::2].copy(), xf[::2].copy(), vel[::2].copy()
+    time = grid.t_half[::2].copy()
+    if first.vehicles:
+        front, speed = first.front_positions(time), grid.speed[::2].copy()
+    else:
+        front, speed = grid.xf[::2].copy(), grid.vel[::2].copy()
     return [CrossingResult(c, time, dt, front, speed, *(a[lane] for a in
                                                          (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)))
             for lane, c in enumerate(crossings[:n_real])]

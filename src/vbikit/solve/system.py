@@ -89,18 +89,24 @@ def points_data(contact, track: NDArray[np.int64], origin: NDArray[np.float64] |
 
 
 def kernel_data(crossing: Crossing, points_per_mode: int = 100) -> KernelData:
-    """Tabulate mode shapes along every wheel track and bundle all arrays for the kernels."""
+    """Tabulate mode shapes along every wheel track and bundle all arrays for the kernels (several
+    vehicles: their stacked DOFs and wheels, each point with its vehicle, origin and direction)."""
     cp = crossing.contact
-    tracks, track_idx = np.unique(cp.lateral + crossing.lateral_offset, return_inverse=True)
+    origin, direction, y = crossing.point_kinematics()
+    tracks, track_idx = np.unique(y, return_inverse=True)
     table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
-    return KernelData(modes_data(crossing.bridge, table), vehicles_data(crossing.vehicle, cp),
-                      points_data(cp, track_idx.ravel()), bool(crossing.loss_of_contact))
+    points = points_data(cp, track_idx.ravel())
+    if crossing.vehicles:
+        points = points._replace(origin=np.ascontiguousarray(origin, float), direction=np.ascontiguousarray(direction, float),
+                                 vehicle=np.ascontiguousarray(crossing.point_vehicle, np.int64))
+    return KernelData(modes_data(crossing.bridge, table), vehicles_data(crossing.vehicle, cp), points,
+                      bool(crossing.loss_of_contact))
 
 
 def motion(crossing: Crossing, t: NDArray[np.float64]) -> Motion:
-    """Travel s = front-axle x [m] and speed [m/s] of the crossing's vehicle at times ``t`` [s]."""
-    return Motion(np.ascontiguousarray(crossing.front_position(t), float).reshape(-1, 1),
-                  np.ascontiguousarray(crossing.velocity(t), float).reshape(-1, 1))
+    """Travel s_v [m] and speed [m/s] of the crossing's vehicles at times ``t`` [s], (n_t, n_vehicles)
+    (one vehicle: s = its front-axle x)."""
+    return Motion(np.ascontiguousarray(crossing.travel(t), float), np.ascontiguousarray(crossing.travel_speed(t), float))
 
 
 def point_positions(data: KernelData, travel: NDArray[np.float64] | float,
@@ -153,7 +159,7 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     When the dashpot forces are so large that no such state exists (a tire would have to pull:
     the vehicle is not supported, e.g. a profile in mm read as m), the start falls back to the
     equilibrium at rest (no rates), with a warning."""
-    travel = float(crossing.front_position(0.0)) if travel is None else travel
+    travel = crossing.travel(crossing.start_time)[0] if travel is None else travel
     moving = road_rate is not None and bool(np.any(np.asarray(road_rate) != 0.0)) or bool(np.any(np.asarray(speed) != 0.0))
     try:
         return _equilibrium(crossing, data, road, travel, road_rate, speed, max_iterations)
@@ -243,15 +249,17 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_
     return Road(stations, elev, float(elev.max()))
 
 
-def static_modal_history(crossing: Crossing, front_positions: NDArray[np.float64],
+def static_modal_history(crossing: Crossing, travel: NDArray[np.float64],
                          data: KernelData | None = None) -> NDArray[np.float64]:
-    """Static modal coordinates ξ_st(t) (n_t, n_modes) under the vehicle's static wheel loads,
-    each spread over its contact points by their static shares, at the given front-axle
-    positions [m] (same tabulated mode shapes as the dynamic solution; ``data``: the crossing's
-    kernel data if already computed)."""
+    """Static modal coordinates ξ_st(t) (n_t, n_modes) under the vehicles' static wheel loads,
+    each spread over its contact points by their static shares, at the vehicles' ``travel``
+    [m] (n_t,) for one vehicle (its front-axle x) or (n_t, n_vehicles) (same tabulated mode
+    shapes as the dynamic solution; ``data``: the crossing's kernel data if already computed).
+    Several vehicles: every vehicle's static loads along its own path, superposed."""
     cp = crossing.contact
     loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     data = kernel_data(crossing) if data is None else data
-    travel = np.ascontiguousarray(front_positions, float).reshape(-1, 1)
+    travel = np.asarray(travel, float)
+    travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
     force = kernels.static_modal_history(travel, data.points, np.ascontiguousarray(loads, float), data.modes)
     return -force / crossing.bridge.omega**2

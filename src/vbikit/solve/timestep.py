@@ -32,8 +32,11 @@ def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
     # contact as at rest: the points that carry static load (a disk's static patch, a rigid
     # disk's lowest point, every point of point and multipoint tires)
     active = crossing.contact.weight > 0
-    positions = np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions)
-    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    if crossing.vehicles:  # the vehicles' travel at times spread over the run until the last one leaves
+        positions = list(crossing.travel(np.linspace(crossing.start_time, crossing.exit_time(), n_positions + 2)))
+    else:
+        positions = list(np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions))
+    v_max = crossing.max_speed
     eig = []
     for xf in positions:
         mass, damp, stiff, _ = coupled_matrices(crossing, data, xf, v_max, active=active)
@@ -62,7 +65,7 @@ def rk4_stability_limit(crossing: Crossing) -> float:
 
 def accuracy_time_step(crossing: Crossing) -> float:
     """The accuracy-based automatic step [s] (see module docstring)."""
-    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    v_max = crossing.max_speed
     candidates = [2 * np.pi / crossing.bridge.omega.max() / 5.0, crossing.bridge.span / (100.0 * v_max)]
     f_veh = crossing.vehicle.natural_frequencies()
     if f_veh.size and f_veh.max() > 0:

@@ -116,3 +116,46 @@ class Vehicle:
 
         lam = eigh(self.stiffness + self.tire_stiffness_matrix(), self.mass, eigvals_only=True)
         return np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
+
+
+@dataclass(frozen=True)
+class CombinedVehicle(Vehicle):
+    """Several vehicles as one system: block-diagonal M, C, K, stacked F_G and wheels (each
+    wheel's row padded with zeros outside its own vehicle's DOFs).  DOF and wheel names are
+    prefixed ``v1_``, ``v2_``, … ; ``dof_offsets[i]`` / ``wheel_offsets[i]`` is the first DOF /
+    wheel of vehicle i (a last entry holds the totals).  The vehicles do not interact: on
+    rigid ground each keeps its own static state, loads and frequencies."""
+
+    parts: tuple[Vehicle, ...] = ()
+    dof_offsets: tuple[int, ...] = ()
+    wheel_offsets: tuple[int, ...] = ()
+
+
+def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> CombinedVehicle:
+    """Stack ``vehicles`` into one :class:`CombinedVehicle` (see there)."""
+    from scipy.linalg import block_diag
+
+    vehicles = tuple(vehicles)
+    if not vehicles:
+        raise ValueError("combine_vehicles needs at least one vehicle")
+    dof_off = np.concatenate([[0], np.cumsum([v.n_dof for v in vehicles])]).astype(int)
+    wheel_off = np.concatenate([[0], np.cumsum([len(v.wheels) for v in vehicles])]).astype(int)
+    n = int(dof_off[-1])
+
+    def blocks(attr: str) -> NDArray[np.float64]:
+        mats = [getattr(v, attr) for v in vehicles if v.n_dof]
+        return block_diag(*mats) if mats else np.zeros((0, 0))
+
+    wheels = []
+    names: list[str] = []
+    for i, v in enumerate(vehicles):
+        names += [f"v{i + 1}_{d}" for d in v.dof_names]
+        for w in v.wheels:
+            row = np.zeros(n)
+            row[dof_off[i]:dof_off[i + 1]] = w.row
+            wheels.append(Wheel(f"v{i + 1}_{w.name}", w.offset, w.lateral, w.stiffness, w.damping, row, w.fixed_load))
+    gravity = np.concatenate([v.gravity for v in vehicles]) if n else np.zeros(0)
+    return CombinedVehicle(
+        "+".join(v.name for v in vehicles), tuple(names), blocks("mass"), blocks("damping"), blocks("stiffness"),
+        gravity, tuple(wheels), f"{len(vehicles)} vehicles: " + ", ".join(v.name for v in vehicles), {},
+        vehicles, tuple(int(k) for k in dof_off), tuple(int(k) for k in wheel_off))
