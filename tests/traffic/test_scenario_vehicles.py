@@ -81,3 +81,35 @@ def test_single_vehicle_axles_table():
     s = scenario_from_toml(BASE.replace("approach = 10", "approach = 10\nspeed_kmh = 70")
                            + '[vehicle]\nmodel = "axles"\naxle_loads = [40e3, 90e3]\naxle_spacings = [4.5]\n')
     assert s.vehicle.parameters["axle_loads"] == [40e3, 90e3]
+
+
+def test_run_two_vehicles_from_the_cli(tmp_path):
+    """`vbikit run --json` keeps the event keys and adds `vehicles`; `--out` has every vehicle's
+    wheel forces; the static wheel loads are those of each vehicle alone (independent numbers:
+    the axles truck's given loads)."""
+    import csv
+    import json
+
+    from typer.testing import CliRunner
+
+    from vbikit.cli import app
+
+    path = tmp_path / "two.toml"
+    path.write_text(TWO.replace("[crossing]\napproach = 10", "[crossing]\napproach = 10\nfree_vibration = 0.1"))
+    out = tmp_path / "h.csv"
+    res = CliRunner().invoke(app, ["run", str(path), "--json", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)
+    for key in ("impact_factor", "max_dynamic_displacement", "max_static_displacement", "static_wheel_loads"):
+        assert key in s
+    a, b = s["vehicles"]
+    assert a["model"] == "3s2" and a["direction"] == "+x" and b["direction"] == "-x"
+    assert b["entry_time"] == 0.5 and b["lateral_offset"] == 1.8 and b["tire_model"] == "multipoint" and a["tire_model"] == "point"
+    loads = list(b["static_wheel_loads"].values())
+    assert [loads[0] + loads[1], loads[2] + loads[3], loads[4] + loads[5]] == pytest.approx([50e3, 80e3, 80e3], rel=1e-12)
+    assert set(b["min_wheel_force"]) == set(b["static_wheel_loads"]) and isinstance(b["contact_loss"], bool)
+    with out.open() as fh:
+        header = next(csv.reader(fh))
+    assert "v1_front_axle_x" in header and "v2_front_axle_x" in header
+    assert sum(h.startswith("contact_force_v1_") for h in header) == 10
+    assert sum(h.startswith("contact_force_v2_") for h in header) == 6

@@ -181,8 +181,8 @@ class VehicleEntry(VehicleSpec):
     """One table of [[vehicles]]: a vehicle (model and its parameters), its tire and its motion.
 
     It drives in ``direction`` ("+x" or "-x") along ``lateral_offset`` [m] (centreline from
-    the deck centreline; default the bridge's), at ``speed`` [m/s] or ``speed_kmh`` (default:
-    the [crossing] speed) with ``acceleration`` [m/s²]; its front axle passes its entry
+    the deck centreline; default the bridge's), at ``speed`` [m/s] or ``speed_kmh`` when it
+    enters (default: the [crossing] speed) with ``acceleration`` [m/s²]; its front axle passes its entry
     support (x = 0 driving +x, x = span driving −x) at ``entry_time`` [s].  ``[vehicles.tire]``
     defaults to the scenario's [tire].
     """
@@ -190,8 +190,8 @@ class VehicleEntry(VehicleSpec):
     tire: Optional[TireSpec] = None
     lateral_offset: Optional[float] = Field(None, description="vehicle centreline from the deck centreline [m]")
     direction: Literal["+x", "-x"] = "+x"
-    speed: Optional[float] = Field(None, gt=0, description="speed at t = 0 [m/s]")
-    speed_kmh: Optional[float] = Field(None, gt=0, description="speed at t = 0 [km/h]")
+    speed: Optional[float] = Field(None, gt=0, description="speed when the front axle passes its entry support [m/s]")
+    speed_kmh: Optional[float] = Field(None, gt=0, description="speed when the front axle passes its entry support [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
     entry_time: float = Field(0.0, ge=0, description="time the front axle passes its entry support [s]")
 
