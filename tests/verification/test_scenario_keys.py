@@ -25,7 +25,6 @@ from vbikit.analysis import girder_responses, point_response, summary
 from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS, SlabOnGirderBridge
 from vbikit.bridge.modefile import write_modes
 from vbikit.scenario import build, parse_scenario
-from vbikit.scenario import ScenarioError
 from vbikit.scenario.schema import DefectSpec, Scenario, VehicleEntry
 from vbikit.solve import simulate
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -34,13 +33,6 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 OUTPUT_ONLY = {
     "name": "a label printed with the results and written to the summary; no model reads it",
 }
-#: keys a single crossing refuses with a ScenarioError (so they cannot be silently ignored): the
-#: motion of each vehicle of [[vehicles]] needs the multi-vehicle solver.  When that solver comes,
-#: move each key to a case in _cases (the test below then fails until it is done).
-REFUSED = {f"vehicles.{k}": v for k, v in {
-    "tire": {"model": "multipoint"}, "lateral_offset": 1.0, "direction": "-x", "speed": 15.0, "speed_kmh": 50.0,
-    "acceleration": 1.0, "entry_time": 0.5}.items()}
-
 # small, fast crossings: a 10 m beam with 3 modes, a quarter car at 20 m/s on an ISO C road
 BEAM = {"model": "beam", "span": 10.0, "EI": 5.0e9, "mass_per_length": 5000.0, "n_modes": 3}
 DECK = {"span": 8.0, "n_girders": 3, "n_elements": 10}
@@ -182,6 +174,14 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
     cases["vehicles.model"] = (listed, "quarter-car", "sprung-mass")
     cases["vehicles.<parameters>"] = (listed, None, 2.0e6)  # preset parameters, here tire_stiffness
     slab = _merge(BASE, SLAB)
+    # the motion of each [[vehicles]] entry (several-vehicle solver)
+    for key, (a, b) in {"tire": ({"model": "point"}, {"model": "multipoint"}), "direction": ("+x", "-x"),
+                        "speed": (20.0, 15.0), "speed_kmh": (None, 50.0), "acceleration": (0.0, 1.0)}.items():
+        cases[f"vehicles.{key}"] = (listed, a, b)
+    # one vehicle's entry time only shifts the clock: two vehicles, the first one's entry moves
+    two = _merge(BASE, {"vehicle": None, "vehicles": [{"model": "quarter-car"}, {"model": "quarter-car", "entry_time": 0.3}]})
+    cases["vehicles.entry_time"] = (two, 0.0, 0.6)
+    cases["vehicles.lateral_offset"] = (_merge(slab, {"vehicle": None, "vehicles": [{"model": "two-axle"}]}), 0.0, 0.5)
     deck_values = {
         "span": (8.0, 9.0), "n_girders": (3, 4), "girder_spacing": (2.13, 2.5), "overhang": (0.615, 1.0),
         "girder": ("II", "III"), "deck_thickness": (0.2, 0.25), "E_girder": (36e9, 30e9), "E_deck": (33e9, 28e9),
@@ -259,7 +259,7 @@ def _run(data: dict) -> tuple[float, ...]:
 
 
 def test_every_schema_key_has_a_case(files):
-    covered = {_key_of(c) for c in _cases(files)} | set(OUTPUT_ONLY) | set(REFUSED)
+    covered = {_key_of(c) for c in _cases(files)} | set(OUTPUT_ONLY)
     assert schema_keys() - covered == set(), "schema keys without a case here (add one, or list as output-only)"
     assert covered - schema_keys() == set(), "cases for keys that are no longer in the schema"
 
@@ -282,10 +282,3 @@ def test_key_changes_the_result(case, files):
     out_a, out_b = _run(run_a), _run(run_b)
     assert len(out_a) != len(out_b) or not np.allclose(out_a, out_b, rtol=1e-9, atol=0), \
         f"{case}: {a!r} and {b!r} give the same results"
-
-
-@pytest.mark.parametrize("key", sorted(REFUSED))
-def test_key_is_refused_rather_than_ignored(key):
-    scenario = _set(_merge(BASE, {"vehicle": None, "vehicles": [{"model": "quarter-car"}]}), key, REFUSED[key])
-    with pytest.raises(ScenarioError, match="vehicles"):
-        _run(scenario)
