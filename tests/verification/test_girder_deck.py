@@ -42,7 +42,7 @@ def test_single_girder_is_the_composite_beam():
     bending = [k for k, d in enumerate(b.mode_descriptions()) if d.startswith("bending")]
     f = b.frequencies_hz[bending][:3]
     f_beam = (np.arange(1, 4) * np.pi / L) ** 2 * np.sqrt(EI / m) / (2 * np.pi)
-    assert f == pytest.approx(f_beam, rel=0.01)  # issue 4: within 1 % (actual ≈ 1e-6 … 1e-4)
+    assert f == pytest.approx(f_beam, rel=2e-5)  # measured 5e-8 / 8e-7 / 4.1e-6 (grillage vs beam)
     P = 100e3
     exact = -P * L**3 / (48 * EI)
     full = b.static_solution(L / 2, 0.0, -P).evaluate(L / 2, 0.0)[0, 0]
@@ -55,7 +55,8 @@ def test_single_girder_is_the_composite_beam():
     x = np.linspace(0.1, L - 0.1, 9)
     k1 = np.pi / L
     eps = b.strain_shapes(x, 0.0)[:, bending[0]]
-    assert eps == pytest.approx(-c * k1**2 * np.sqrt(2 / (m * L)) * np.sin(k1 * x), rel=0.01, abs=1e-3 * np.abs(eps).max())
+    # measured 7.1e-4 (the Hermite curvature of the 34-element mode, O(h²))
+    assert eps == pytest.approx(-c * k1**2 * np.sqrt(2 / (m * L)) * np.sin(k1 * x), rel=2e-3, abs=1e-3 * np.abs(eps).max())
 
 
 def test_mass_normalisation_and_total_mass():

@@ -23,9 +23,10 @@ def test_rk4_and_newmark_agree_on_hs20():
             for i in ("rk4", "newmark")}
     a, b = (runs[i].displacement() for i in ("rk4", "newmark"))
     # at dt = 1e-4 s Newmark's period error (ω dt)²/12 is 2e-6 for the first mode (46 rad/s) and
-    # its accumulated phase error over the 1.7 s run ~1e-4; RK4's is far smaller.  Brief: < 1e-3.
-    assert abs(a.min() - b.min()) / abs(a.min()) < 1e-3
-    assert np.abs(a - b).max() / np.abs(a).max() < 1e-3
+    # its accumulated phase error over the 1.7 s run ≲ 1e-4 (a bound; the 2 % damping keeps the
+    # drift much smaller); RK4's is far smaller.  Measured: peak 1.7e-7, history 1.2e-6.
+    assert abs(a.min() - b.min()) / abs(a.min()) < 1e-6
+    assert np.abs(a - b).max() / np.abs(a).max() < 5e-6
 
 
 def _errors(integrator: str, dt0: float) -> np.ndarray:

@@ -70,7 +70,7 @@ def test_very_slow_crossing_is_quasi_static():
     # dynamic at 0.5 m/s: α = v/(2 f1 L) ≈ 2e-3 → DAF − 1 ≈ α; 5 % damping kills the entry
     # transient.  Brief: within 1 % (plus the truncation bound, because exact_static has all modes)
     assert np.abs(r.displacement() - exact_static).max() <= (0.01 + trunc_rel) * peak
-    assert abs(pr.displacement_impact.impact_factor) < 0.01
+    assert abs(pr.displacement_impact.impact_factor) < 2e-3  # ≤ α (a priori); measured 3.7e-6
 
 
 @pytest.mark.parametrize("tire", [PointTire(), MultiPointTire(n_points=6)])

@@ -92,17 +92,19 @@ def test_midspan_peak_against_published(vbikit_result):
 def test_midspan_history_against_independent_solver(vbikit_result, reference):
     t, ref_w, _ = reference
     w = vbikit_result.displacement(L / 2)[: t.size]
-    # 1e-3 of the peak: RK4 at vbikit's automatic step (T_10/5) is accurate to ~1e-5 for the
-    # modes that matter at midspan (1, 3, 5); the even modes vanish there and mode 9 contributes
-    # < 1/9⁴ of the static value.  solve_ivp at rtol 1e-10 is exact at this level.
-    assert np.abs(w - ref_w).max() / np.abs(ref_w).max() <= 1e-3
+    # RK4 at vbikit's automatic step (T_10/5) is accurate to ~1e-5 for the modes that matter at
+    # midspan (1, 3, 5); the even modes vanish there and mode 9 contributes < 1/9⁴ of the static
+    # value.  solve_ivp at rtol 1e-10 is exact at this level.  Measured 9.4e-6 (RK4); 1e-4 leaves
+    # room for whichever integrator is the default.
+    assert np.abs(w - ref_w).max() / np.abs(ref_w).max() <= 1e-4
     assert -ref_w.min() == pytest.approx(2.41e-3, rel=5e-3)  # the reference agrees with the paper
 
 
 def test_vehicle_acceleration(vbikit_result, reference):
     t, _, ref_a = reference
     a = vbikit_result.q_ddot[: t.size, 0]
-    assert np.abs(a - ref_a).max() / np.abs(ref_a).max() <= 1e-3
+    # measured 6.3e-5 (RK4 at the automatic step); 5e-4 leaves room for the default integrator
+    assert np.abs(a - ref_a).max() / np.abs(ref_a).max() <= 5e-4
     # published ≈ 0.15 m/s² (two significant figures: ±0.005 m/s²)
     assert np.abs(a).max() == pytest.approx(0.15, abs=0.005)
     assert np.abs(ref_a).max() == pytest.approx(0.15, abs=0.005)
