@@ -1,0 +1,183 @@
+# Paths of the kernels and models that the other verification tests leave out (found by the
+# NUMBA_DISABLE_JIT coverage job, tests/verification/test_kernel_coverage.py): the implicit
+# integrators with disk and rigid-disk tires and with loss of contact, the batch solver with a
+# user step, parapets, the eigen solver's widening search for max_frequency, contact-length
+# outputs.  The crossings are small (they also run, in pure Python, in the coverage job).
+# References, none from vbikit output:
+# * a vehicle at rest on flat ground carries its static wheel loads (statics), whatever the
+#   tire model, and stays at rest;
+# * a launched wheel carries no force, a tire never pulls (the contact law of docs/theory.md);
+# * two integrators of the same equations agree to their discretisation error;
+# * a girder line with a parapet: the simply supported beam with EI + EI_p, m + m_p
+#   (ωₙ = (nπ/L)²√(EI/m), Frýba 1972 ch. 1), the composite section worked out by hand;
+# * the deformable disk's static patch 2√(2R d_s) (domain-data §3 of the project's sources:
+#   docs/tires.md); the multipoint patch = the contact length (paper Eq. 6).
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from vbikit.analysis import histories, point_response, summary
+from vbikit.bridge import EulerBernoulliBeam, SlabOnGirderBridge
+from vbikit.contact import DiskTire, MultiPointTire, PointTire, RigidDiskTire
+from vbikit.road import Defect, RoadProfile, RoadPSD, random_profile, with_defects
+from vbikit.solve import INTEGRATORS, Crossing, simulate
+from vbikit.solve.batch import BatchSolver
+from vbikit.vehicle import GRAVITY, quarter_car
+
+TIRES = [PointTire(), MultiPointTire(4), DiskTire(spacing=0.02), RigidDiskTire(spacing=0.02)]
+CAR = quarter_car(sprung_mass=400.0, unsprung_mass=50.0, suspension_stiffness=40e3, suspension_damping=2e3,
+                  tire_stiffness=400e3, tire_damping=500.0)
+SHORT = EulerBernoulliBeam(span=2.0, EI=1e8, mass_per_length=1000.0, damping_ratio=0.02, n_modes=2)
+
+
+@pytest.mark.parametrize("tire", TIRES, ids=lambda t: t.name)
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_at_rest_on_flat_ground_every_tire_and_integrator(integrator, tire):
+    r = simulate(Crossing(SHORT, CAR, tire=tire, speed=5.0, approach=1.5, free_vibration=0.0, dt=5e-4,
+                          integrator=integrator))
+    before = r.front_position < -0.4  # the whole tire (|ξ| ≤ 0.3 m) still on the approach
+    loads = CAR.static_wheel_loads()
+    assert loads[0] == pytest.approx(450.0 * GRAVITY, rel=1e-12)  # statics: both masses on one tire
+    np.testing.assert_allclose(r.wheel_forces[before, 0], loads[0], rtol=1e-9)  # measured ≤ 1e-12
+    assert np.abs(r.q[before] - r.q[0]).max() <= 1e-12 and np.abs(r.q_dot[before]).max() <= 1e-12
+
+
+BUMP_ROAD = with_defects(RoadProfile.flat(-20.0, 20.0), [Defect.of_kind("bump", start=-1.5, size=0.08)])
+
+
+@pytest.fixture(scope="module")
+def bump_runs():
+    runs = {}
+    for tire in TIRES:
+        for integrator in INTEGRATORS:
+            runs[tire.name, integrator] = simulate(Crossing(SHORT, CAR, tire=tire, road=BUMP_ROAD, speed=10.0,
+                                                            approach=2.0, free_vibration=0.0, dt=2e-4,
+                                                            integrator=integrator))
+    return runs
+
+
+@pytest.mark.parametrize("tire", TIRES, ids=lambda t: t.name)
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_loss_of_contact_every_tire_and_integrator(bump_runs, integrator, tire):
+    """An 80 mm bump at 10 m/s launches the light quarter car's wheel: no force while airborne,
+    never a pull, and the integrators agree on when and for how long."""
+    r = bump_runs[tire.name, integrator]
+    force = r.wheel_forces[:, 0]
+    assert force.min() >= 0.0
+    off = force == 0.0
+    assert off.sum() * r.dt >= 0.010  # ≥ 10 ms airborne (≥ 27 ms for a point tire, see test_tire_models)
+    ref = bump_runs[tire.name, "rk4"]
+    ref_off = ref.wheel_forces[:, 0] == 0.0
+    # the same bump, the same flight.  Measured Newmark vs RK4 at dt = 0.2 ms: first loss at the
+    # same step (point, multipoint), 5 / 7 steps apart (disk, rigid disk: their patch leaves the
+    # bump's edge gradually); airborne time within 2.2 %; peak force within 5.6 % (rigid disk,
+    # whose envelope has kinks that the 2nd-order Newmark resolves less well)
+    assert abs(int(np.argmax(off)) - int(np.argmax(ref_off))) <= 10
+    assert off.sum() == pytest.approx(ref_off.sum(), rel=0.05)
+    assert force.max() == pytest.approx(ref.wheel_forces[:, 0].max(), rel=0.1)
+
+
+def test_batch_solver_with_a_user_time_step_equals_simulate():
+    template = Crossing(SHORT, CAR, tire=MultiPointTire(3), speed=10.0, approach=1.0, free_vibration=0.05, dt=4e-4)
+    roads = [random_profile(RoadPSD.iso("C"), seed=s, length=100.0) for s in (1, 2, 3)]
+    batch = BatchSolver(template)
+    assert batch.time_step(template.with_road(roads[0])) == 4e-4  # the user's step, not the automatic one
+    results = batch.run_many(roads)
+    for road, res in zip(roads, results):
+        alone = simulate(template.with_road(road))
+        assert res.dt == alone.dt == 4e-4
+        # lanes = the single-crossing arithmetic: round-off (measured ≤ 1e-15 of the peak)
+        for field in ("xi", "q", "wheel_forces"):
+            a, b = getattr(res, field), getattr(alone, field)
+            assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max(), field
+
+
+def test_parapets_add_to_the_edge_girder_lines():
+    """One girder line (both edges at once) with a parapet of EI_p, m_p on each edge: its bending
+    modes are those of the beam with EI + 2 EI_p and m + 2 m_p."""
+    span, t, b, E = 16.76, 0.20, 2.13, 33e9
+    IN = 0.0254  # AASHTO Type II (PCI tables): A 369 in², y_b 15.83 in, h 36 in, I 50 979 in⁴
+    A, yb, h, Ig = 369 * IN**2, 15.83 * IN, 36 * IN, 50979 * IN**4
+    yna = (A * yb + b * t * (h + t / 2)) / (A + b * t)
+    EI = E * (Ig + A * (yna - yb) ** 2 + b * t**3 / 12 + b * t * (h + t / 2 - yna) ** 2)
+    m = 2400.0 * (A + b * t)
+    EIp, mp = 2.0e9, 300.0
+    deck = SlabOnGirderBridge(span=span, n_girders=1, overhang=b / 2, E_girder=E, E_deck=E, n_modes=8,
+                              parapet_EI=EIp, parapet_mass=mp, use_cache=False)
+    bending = [k for k, d in enumerate(deck.mode_descriptions()) if d.startswith("bending")][:2]
+    f = deck.frequencies_hz[bending]
+    closed = (np.arange(1, 3) * np.pi / span) ** 2 * np.sqrt((EI + 2 * EIp) / (m + 2 * mp)) / (2 * np.pi)
+    assert f == pytest.approx(closed, rel=2e-5)  # as the grillage without parapets (measured 1e-6)
+    bare = (np.arange(1, 3) * np.pi / span) ** 2 * np.sqrt(EI / m) / (2 * np.pi)
+    assert np.all(np.abs(f / bare - 1) > 0.05)  # the parapets matter here
+
+
+def test_max_frequency_widens_the_eigen_search():
+    """max_frequency above what the first n_modes reach: the solver asks for more modes until
+    it passes the limit; the result is every mode below it (the same as a large fixed count)."""
+    kw = dict(span=9.16, n_girders=3, n_elements=12, use_cache=False)
+    ref = SlabOnGirderBridge(n_modes=40, **kw).frequencies_hz
+    limit = 0.5 * (ref[24] + ref[25])  # 25 modes below: more than the first request of 10
+    b = SlabOnGirderBridge(n_modes=4, max_frequency=limit, **kw)
+    assert b.frequencies_hz.size == 25
+    assert b.frequencies_hz == pytest.approx(ref[:25], rel=1e-9)
+
+
+@pytest.mark.parametrize("tire", [MultiPointTire(4), DiskTire(spacing=0.02)], ids=lambda t: t.name)
+def test_contact_length_outputs(tire):
+    r = simulate(Crossing(SHORT, CAR, tire=tire, speed=5.0, approach=1.5, free_vibration=0.0))
+    s = summary(r, point_response(r))
+    cols = histories(r, point_response(r))
+    before = r.front_position < -0.4
+    length = r.contact_lengths[before, 0]
+    if isinstance(tire, MultiPointTire):
+        expected = tire.contact_length  # n points of width a/n
+        assert length == pytest.approx(expected, rel=1e-12)
+    else:
+        load, k = float(CAR.static_wheel_loads()[0]), CAR.wheels[0].stiffness
+        expected = 2 * math.sqrt(2 * tire.radius * tire.static_compression(k, load))  # 2√(2R d_s)
+        assert abs(length[0] - expected) <= tire.spacing + 0.02 * expected
+    name = CAR.wheels[0].name
+    assert np.array_equal(cols[f"contact_length_{name}"], r.contact_lengths[:, 0])
+    lo, hi = s["contact_length_range"][name]
+    assert lo == r.contact_lengths[:, 0].min() and hi == r.contact_lengths[:, 0].max() and hi >= length[0]
+    point = simulate(Crossing(SHORT, CAR, speed=5.0, approach=1.5, free_vibration=0.0))
+    assert not any(k.startswith("contact_length") for k in histories(point, point_response(point)))
+
+
+@pytest.mark.parametrize("integrator", INTEGRATORS)
+def test_moving_force_on_one_mode_against_closed_form(integrator):
+    """A vehicle without DOFs (a moving force) on one mode: ξ'' + ω²ξ = −P a sin(Ωt), zero start,
+    q(t) = −P a [sin Ωt − S sin ωt] / (ω² − Ω²), S = Ω/ω (Biggs 1964 §8.5)."""
+    from vbikit.vehicle import moving_force
+
+    beam = EulerBernoulliBeam(span=10.0, EI=1e9, mass_per_length=2000.0, damping_ratio=0.0, n_modes=1)
+    P, v = 5e4, 20.0
+    r = simulate(Crossing(beam, moving_force(P), speed=v, approach=0.0, free_vibration=0.0, dt=2e-4,
+                          integrator=integrator))
+    on = r.time <= beam.span / v
+    t = r.time[on]
+    w, big, a = beam.omega[0], math.pi * v / beam.span, math.sqrt(2 / (2000.0 * 10.0))
+    ref = -P * a * (np.sin(big * t) - big / w * np.sin(w * t)) / (w * w - big * big)
+    err = np.abs(r.xi[on, 0] - ref).max() / np.abs(ref).max()
+    # measured: RK4 9.1e-10, Newmark 4.6e-5 (its period error (ω dt)²/12 accumulated over 0.5 s)
+    assert err <= {"rk4": 5e-9, "newmark": 2e-4}.get(integrator, 2e-4)
+
+
+def test_static_start_falls_back_to_rest_when_a_tire_would_pull(caplog):
+    """A profile with 5 m steps (millimetres read as metres): the dashpot forces c·v·r' at t = 0
+    would pull, so no equilibrium at speed exists; the start is the one at rest, with a warning."""
+    x = np.arange(-20.0, 20.0, 1.0)
+    road = RoadProfile(x, 5.0 * ((x // 2) % 2), "steps")
+    # at x = −3 m the road rises 5 m over 1 m: the dashpot (c = 500 N·s/m) would push with
+    # c·v·r' = 25 kN against a weight of 4.4 kN, so the spring would have to pull
+    assert road.slope(-3.0) == 5.0
+    with caplog.at_level("WARNING", logger="vbikit.solve.system"):
+        r = simulate(Crossing(SHORT, CAR, road=road, speed=10.0, approach=3.0, free_vibration=0.0))
+    assert "equilibrium at rest" in caplog.text
+    assert np.all(r.q_dot[0] == 0.0)
+    on_rest = CAR.static_state(ground=[road.elevation(-3.0)])  # the rest equilibrium on the road there
+    np.testing.assert_allclose(r.q[0], on_rest, rtol=1e-12, atol=1e-12)
