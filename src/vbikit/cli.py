@@ -350,7 +350,7 @@ def presets() -> None:
 @app.command()
 def bridge(
     name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`)."),
-    n_modes: int = typer.Option(10, "--modes", min=1, help="Number of modes to solve and list."),
+    n_modes: int = typer.Option(10, "--modes", min=1, max=500, help="Number of modes to solve and list (1 … 500)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Figure of the first mode shapes (default NAME-modes.png)."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
 ) -> None:

@@ -51,6 +51,10 @@ CASES = {
     "string-as-number": (BEAM + "approach = \"12\"\n", ["crossing.approach", "valid number"]),
     "bool-as-number": (BEAM + "approach = true\n", ["crossing.approach", "valid number"]),
     "float-as-integer": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2-beam"\nn_modes = 10.5'), ["bridge.n_modes"]),
+    "deck-string-number": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2"\n[bridge.deck]\ndiaphragms = ["0", 16.76]'),
+                           ["bridge.deck.diaphragms", "finite number"]),
+    "deck-float-integer": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2"\n[bridge.deck]\nn_girders = 5.0'),
+                           ["bridge.deck.n_girders", "integer"]),
     "deep-nesting": ("a = " + "[" * 5000 + "]" * 5000 + "\n", ["s.toml", "not valid TOML"]),
     "unknown-key": (BEAM + "spead = 3\n", ["crossing.spead", "unknown key"]),
 }

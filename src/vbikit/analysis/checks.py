@@ -9,7 +9,8 @@ Thresholds (documented in docs/scenario.md):
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
 * bridge modes above what the step resolves: fewer than 5 steps per period (f·dt > 0.2), the
   accuracy rule of :func:`vbikit.solve.timestep.accuracy_time_step`;
-* an implicit (Newmark) step given by the user that is coarser than the accuracy step;
+* a step given by the user for an unconditionally stable integrator (Newmark) that is coarser
+  than the accuracy step;
 * wheels that lost contact (which, where first, for how long).
 """
 from __future__ import annotations
@@ -67,11 +68,12 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
         out.append(f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
                    f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes "
                    f"({unresolved.min():.4g}–{unresolved.max():.4g} Hz) are not resolved; use a smaller dt or fewer modes")
-    if crossing.integrator == "newmark" and crossing.dt is not None:
+    if crossing.integrator != "rk4" and crossing.dt is not None:  # unconditionally stable integrators
         acc = accuracy_time_step(crossing)
         if crossing.dt > acc * (1 + 1e-9):
             out.append(f"crossing.dt = {crossing.dt:.3g} s is coarser than the accuracy step {acc:.3g} s of this "
-                       "crossing (Newmark is stable with any step but loses accuracy); leave dt out for the automatic step")
+                       f"crossing ({crossing.integrator} is stable with any step but loses accuracy); leave dt out for "
+                       "the automatic step")
     return out
 
 

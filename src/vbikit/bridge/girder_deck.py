@@ -601,6 +601,11 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
     """Keyword arguments of :class:`SlabOnGirderBridge` from a scenario's ``[bridge.deck]`` table:
     ``girder`` is an AASHTO type ("I" … "VI") or a table {area, inertia, y_bottom, depth} [m², m⁴, m, m];
     ``diaphragms`` a list of x [m]; numbers as given (the constructor checks their ranges)."""
+    def number(v: object, where: str) -> float:  # strict: no "12", no true, finite
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
+            raise ValueError(f"bridge.deck.{where}: must be a finite number, got {v!r}")
+        return float(v)
+
     out: dict[str, object] = {}
     for key, value in table.items():
         if key not in SCENARIO_PARAMETERS:
@@ -609,12 +614,14 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
             need = ("area", "inertia", "y_bottom", "depth")
             if sorted(value) != sorted(need):
                 raise ValueError(f"bridge.deck.girder: a custom section needs exactly {', '.join(need)} [m², m⁴, m, m]")
-            value = GirderSection(**{k: float(v) for k, v in value.items()})
+            value = GirderSection(**{k: number(v, f"girder.{k}") for k, v in value.items()})
         elif key == "diaphragms":
             if not isinstance(value, (list, tuple)):
                 raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")
-            value = tuple(float(v) for v in value)
-        elif key not in ("girder", "name") and (isinstance(value, bool) or not isinstance(value, (int, float))):
-            raise ValueError(f"bridge.deck.{key}: must be a number, got {value!r}")
+            value = tuple(number(v, "diaphragms") for v in value)
+        elif key not in ("girder", "name"):
+            value = number(value, key) if not isinstance(value, int) or isinstance(value, bool) else value
+            if key in ("n_girders", "n_elements", "default_girder") and not isinstance(value, int):
+                raise ValueError(f"bridge.deck.{key}: must be an integer, got {value!r}")
         out[key] = value
     return out

@@ -269,10 +269,15 @@ def load_field_toml(path: str | Path) -> FieldSpec:
     if drift not in ("quiet", "model", "none"):
         raise FieldFileError(f"{path}: signal.drift must be 'quiet', 'model' or 'none', got {drift!r}")
     bands_raw = sig.get("bands_hz", [[0.0, 5.0], [5.0, 15.0], [15.0, 30.0], [30.0, 60.0]])
+    def _hz(v: Any) -> float:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
+            raise ValueError
+        return float(v)
+
     try:
-        bands = tuple((float(a), float(b)) for a, b in bands_raw)
+        bands = tuple((_hz(a), _hz(b)) for a, b in bands_raw)
     except (TypeError, ValueError):
-        raise FieldFileError(f"{path}: signal.bands_hz must be a list of [low, high] pairs in Hz") from None
+        raise FieldFileError(f"{path}: signal.bands_hz must be a list of [low, high] pairs of finite numbers [Hz]") from None
     if any(not 0 <= a < b for a, b in bands):
         raise FieldFileError(f"{path}: signal.bands_hz: every band needs 0 <= low < high, got {bands_raw!r}")
     speed = _num(doc, "speed_kmh", "", path, positive=True) / 3.6

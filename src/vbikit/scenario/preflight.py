@@ -62,9 +62,10 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     UnstableTimeStepError or BudgetError, all ``ValueError``)."""
     built = build(scenario, limits)
     crossing = built.crossing
-    # the step is at most the accuracy step (or the user's): refuse an oversized run before the
-    # stability limit (eigenvalues of the coupled system) is computed
-    check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
+    if crossing.integrator == "rk4":
+        # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
+        # its stability limit (eigenvalues of the coupled system) is computed
+        check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
     dt = choose_time_step(crossing)
     estimate = check_run(crossing, dt, limits)
     check_response_point(built)
