@@ -134,3 +134,27 @@ def test_unwritable_out_is_not_reported_as_a_lock(tmp_path):
     path.write_text(_toml(SMALL))
     res = runner.invoke(app, ["study", "run", str(path), "--out", "/proc/x.nc", "--workers", "1"])
     assert res.exit_code == 2 and "another vbikit study" not in res.output and "/proc" in res.output, res.output
+
+
+def test_full_disk_while_writing_a_part_exits_2_and_resumes(tmp_path, monkeypatch):
+    path = tmp_path / "s.toml"
+    path.write_text(_toml(SMALL))
+    out = tmp_path / "r.nc"
+    import vbikit.study.run as run_mod
+
+    real, calls = run_mod.np.savez, []
+
+    def savez(fh, **arrays):
+        calls.append(1)
+        if len(calls) == 2:  # the second batch hits a full disk
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return real(fh, **arrays)
+
+    monkeypatch.setattr(run_mod.np, "savez", savez)
+    res = runner.invoke(app, ["study", "run", str(path), "--out", str(out), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 2, res.output
+    assert "no space left on the device" in res.output and "run the same command again to resume" in res.output
+    assert len(list(parts_dir(out).glob("batch-*.npz"))) == 1 and not list(parts_dir(out).glob("*.tmp"))
+    monkeypatch.setattr(run_mod.np, "savez", real)
+    res = runner.invoke(app, ["study", "run", str(path), "--out", str(out), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output

@@ -194,7 +194,11 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
 
     def finished(k: int, arrays: dict) -> None:
         nonlocal done
-        _save_part(parts, k, arrays, checksum)
+        try:
+            _save_part(parts, k, arrays, checksum)
+        except OutputError as err:
+            raise OutputError(err.errno, f"{err}; the finished batches are kept in {parts}: run the same command "
+                                         "again to resume") from None
         done += len(batches[k])
         if progress:
             progress(done, total)
