@@ -37,7 +37,10 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
         from vbikit.bridge.modefile import modes_from_file
 
         n_modes = spec.n_modes if "n_modes" in spec.model_fields_set else None
-        return modes_from_file(Path(base_dir) / spec.modes_file, damping_ratio=spec.damping_ratio, n_modes=n_modes)
+        try:
+            return modes_from_file(Path(base_dir) / spec.modes_file, damping_ratio=spec.damping_ratio, n_modes=n_modes)
+        except ValueError as err:
+            raise ScenarioError(f"bridge.modes_file: {err}") from None
     if spec.model == "beam":
         return EulerBernoulliBeam(
             span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
@@ -87,7 +90,7 @@ def build_defects(spec: RoadSpec) -> list[Defect]:
 def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:
     """The right wheel line's own profile, or None when both lines share ``left`` (the default)."""
     if spec.profile_file_right:
-        return read_profile_csv(scenario.base_dir / spec.profile_file_right)
+        return _profile(scenario, spec.profile_file_right, "road.profile_file_right")
     if left is None or spec.right_coherence >= 1.0:
         return None
     psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, n_min=spec.n_min, n_max=spec.n_max) if spec.road_class == "psd" \
@@ -101,10 +104,18 @@ def check_road_budget(spec: RoadSpec, limits: Limits | None = None) -> None:
         check_road(spec.length, spec.spacing, spec.n_min, limits, "road")
 
 
+def _profile(scenario: Scenario, name: str, key: str) -> RoadProfile:
+    """A measured profile file; its errors name the scenario key and the file."""
+    try:
+        return read_profile_csv(scenario.base_dir / name)
+    except ValueError as err:
+        raise ScenarioError(f"{key}: {err}") from None
+
+
 def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
     defects = build_defects(spec)
     if spec.profile_file:
-        return with_defects(read_profile_csv(scenario.base_dir / spec.profile_file), defects)
+        return with_defects(_profile(scenario, spec.profile_file, "road.profile_file"), defects)
     if spec.road_class == "none":
         return with_defects(RoadProfile.flat(), defects) if defects else None
     band = {"n_min": spec.n_min, "n_max": spec.n_max}
