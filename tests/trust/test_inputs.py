@@ -141,7 +141,7 @@ def test_coarse_newmark_step_and_unresolved_modes_are_flagged(tmp_path):
     path = _write(tmp_path, BEAM + "integrator = \"newmark\"\ndt = 0.002\n")
     res = runner.invoke(app, ["validate", str(path)])
     assert res.exit_code == 0, res.output
-    assert "coarser than the accuracy step" in res.stderr and "are not resolved" in res.stderr
+    assert "coarser than the automatic step" in res.stderr and "are not resolved" in res.stderr
 
 
 def test_response_point_on_a_support_is_refused_by_validate(tmp_path):

@@ -7,19 +7,20 @@ Thresholds (documented in docs/scenario.md):
 * speed outside 5–150 km/h (a speed in km/h typed as ``speed`` [m/s] reads 3.6 times too fast);
 * road elevation (profile plus defects) over 0.1 m anywhere the wheels go (a profile in mm read as m);
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
-* bridge modes above what the step resolves: fewer than 5 steps per period (f·dt > 0.2), the
-  accuracy rule of :func:`vbikit.solve.timestep.accuracy_time_step`;
-* a step given by the user for an unconditionally stable integrator (Newmark) that is coarser
-  than the accuracy step;
+* a step given by the user that is coarser than the integrator's automatic step, and bridge
+  modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
+  step does not (:func:`step_warnings`);
 * wheels that lost contact (which, where first, for how long).
 """
 from __future__ import annotations
+
+from dataclasses import replace
 
 import numpy as np
 
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.timestep import accuracy_time_step
+from vbikit.solve.timestep import choose_time_step
 
 #: usual range of vehicle speeds [km/h]
 SPEED_RANGE_KMH = (5.0, 150.0)
@@ -62,18 +63,28 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     if min(x, span - x) < SUPPORT_MARGIN * span:
         out.append(f"response.x = {x:g} m is at or next to a support (span {span:g} m): the static response there is "
                    "near zero and the impact factor is not meaningful")
+    if crossing.dt is not None:
+        out += step_warnings(crossing, float(crossing.dt))
+    return out
+
+
+def step_warnings(crossing: Crossing, dt: float) -> list[str]:
+    """Warnings about a user's step ``dt`` [s], judged against the integrator's own automatic step
+    (:func:`vbikit.solve.timestep.choose_time_step` without a dt — the one rule per integrator):
+    a coarser step, and bridge modes the automatic step resolves (≥ 5 steps a period) but ``dt``
+    does not.  An integrator whose automatic step leaves modes unresolved (one that integrates
+    the modes exactly) gets no mode warning."""
+    auto = choose_time_step(replace(crossing, dt=None))
+    out = []
+    if dt > auto * (1 + 1e-9):
+        out.append(f"crossing.dt = {dt:.3g} s is coarser than the automatic step {auto:.3g} s of this crossing "
+                   f"({crossing.integrator}); results lose accuracy — leave dt out for the automatic step")
     f = crossing.bridge.frequencies_hz
-    unresolved = f[f * dt > 1.0 / STEPS_PER_PERIOD]
+    unresolved = f[(f * dt > 1.0 / STEPS_PER_PERIOD) & (f * auto <= 1.0 / STEPS_PER_PERIOD)]
     if unresolved.size:
         out.append(f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
                    f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes "
                    f"({unresolved.min():.4g}–{unresolved.max():.4g} Hz) are not resolved; use a smaller dt or fewer modes")
-    if crossing.integrator != "rk4" and crossing.dt is not None:  # unconditionally stable integrators
-        acc = accuracy_time_step(crossing)
-        if crossing.dt > acc * (1 + 1e-9):
-            out.append(f"crossing.dt = {crossing.dt:.3g} s is coarser than the accuracy step {acc:.3g} s of this "
-                       f"crossing ({crossing.integrator} is stable with any step but loses accuracy); leave dt out for "
-                       "the automatic step")
     return out
 
 
