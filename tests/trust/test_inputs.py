@@ -148,3 +148,15 @@ def test_response_point_on_a_support_is_refused_by_validate(tmp_path):
     """Found by the fuzz test: response.x = 0 passed validate, then run failed (no static response)."""
     for res in _both(_write(tmp_path, BEAM + "[response]\nx = 0\n")):
         assert res.exit_code == 2 and "response.x = 0 m" in res.output and "every mode shape is zero" in res.output
+
+
+def test_python_simulate_has_the_same_budget_and_it_can_be_raised():
+    from vbikit.bridge.presets import paper_beam
+    from vbikit.solve import Crossing, simulate
+    from vbikit.solve.budget import BudgetError, Limits
+    from vbikit.vehicle.presets import sprung_mass
+
+    crossing = Crossing(paper_beam(16.76, "II", n_modes=2), sprung_mass(), speed=20.0, approach=0.0)
+    with pytest.raises(BudgetError, match="time steps, above the limit 100"):
+        simulate(crossing, Limits(max_steps=100))
+    assert simulate(crossing, Limits(max_steps=10**5)).n_steps > 100

@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.solve import kernels
+from vbikit.solve.budget import Limits, check_run
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult, check_finite
 from vbikit.solve.kernels import Motion
@@ -23,9 +24,15 @@ from vbikit.solve.timestep import choose_time_step
 log = logging.getLogger(__name__)
 
 
-def simulate(crossing: Crossing) -> CrossingResult:
-    """Integrate the coupled equations (paper Eq. 9) over the whole crossing."""
-    grid = time_grid(crossing, choose_time_step(crossing))
+def simulate(crossing: Crossing, limits: Limits | None = None) -> CrossingResult:
+    """Integrate the coupled equations (paper Eq. 9) over the whole crossing.
+
+    The run's memory and steps are estimated first and refused (:class:`~vbikit.solve.budget.BudgetError`)
+    above ``limits`` (default :class:`~vbikit.solve.budget.Limits`: 4 GiB, 5 × 10⁶ steps; raise
+    them for bigger runs)."""
+    dt = choose_time_step(crossing)
+    check_run(crossing, dt, limits)
+    grid = time_grid(crossing, dt)
     return check_finite(integrate([crossing], kernel_data(crossing), grid)[0])
 
 
