@@ -65,6 +65,7 @@ class _Run:
     response: Any
     summary: dict[str, Any]
     girders: Any = None
+    effects: Any = ()
 
 
 def _guard(action: Any) -> Any:
@@ -108,20 +109,32 @@ def _execute(load: Any, limits: Any = None) -> _Run:
         s = summary(result, response, girders, built.response_girder)
         s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
         s["inputs"] = scenario_inputs(scenario, plan)
+        effects = _load_effects(result, built, s)
         s, nonfinite = json_safe(s)
         s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
-        return _Run(scenario.name, result, response, s, girders)
+        return _Run(scenario.name, result, response, s, girders, effects)
 
     run_ = _guard(work)
     _warn(run_.summary["warnings"])
     return run_
 
 
+def _load_effects(result: Any, built: Any, s: dict[str, Any]) -> list[Any]:
+    """Moment / shear / reaction blocks and design-code allowances added to the summary ``s``;
+    returns the load-effect responses (for the histories)."""
+    from vbikit.analysis.effects import load_effect_report
+
+    report, responses = load_effect_report(result, built.load_effects, built.load_effect_method, s["response_x"])
+    s.update(report)
+    return responses
+
+
 def _write_csv(run: _Run, path: Path) -> None:
     from vbikit._files import atomic_write
     from vbikit.analysis import histories
+    from vbikit.analysis.effects import load_effect_histories
 
-    cols = histories(run.result, run.response, run.girders)
+    cols = histories(run.result, run.response, run.girders) | load_effect_histories(run.effects)
 
     def write(tmp: Path) -> None:
         with tmp.open("w", newline="") as fh:
@@ -173,6 +186,36 @@ def _print_summary(run: _Run) -> None:
         typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
         typer.echo("  IM                   " + "  ".join(f"{v:7.4f}" for v in s["girder_impact_factors"]))
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f})")
+    _print_codes(s["design_code_allowances"], "deflection IM beside")
+    _print_load_effects(s)
+
+
+_CODE_LABELS = {"aashto_lrfd": "AASHTO LRFD", "aashto_standard": "AASHTO Std", "csa_s6": "CSA S6",
+                "ohbdc_1983": "OHBDC 1983", "jtg_d60_2015": "JTG D60-2015"}
+
+
+def _print_codes(c: dict[str, Any], title: str) -> None:
+    values = "  ".join(f"{label} {c[k]:.3f}" for k, label in _CODE_LABELS.items() if k in c)
+    typer.echo(f"  {title:<20} {values}")
+    typer.echo(f"  {'':<20} (loaded length {c['loaded_length']:.2f} m, f1 = {c['first_frequency']:.2f} Hz, "
+               f"{c['n_axles']} axles)")
+
+
+def _print_load_effects(s: dict[str, Any]) -> None:
+    rows = [(kind, e) for kind in ("moment", "shear", "reaction") if kind in s for e in s[kind]["sections"]]
+    if not rows:
+        return
+    method = next(s[k]["method"] for k in ("moment", "shear", "reaction") if k in s)
+    typer.echo(f"  load effects ({method}; kN m / kN; IM beside AASHTO Std / JTG D60 / OHBDC)")
+    for kind, e in rows:
+        unit = 1e-3
+        where = f"support {e['support']}" if kind == "reaction" else f"x = {e['x']:.2f} m"
+        if e.get("girder"):
+            where += f", girder {e['girder']}"
+        c = e.get("code_allowances", {})
+        typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
+                   f"  IM {e['impact_factor']:7.4f}   codes {c.get('aashto_standard', float('nan')):.3f} / "
+                   f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
 
 
 def _outputs(run: _Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:

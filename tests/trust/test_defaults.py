@@ -10,6 +10,7 @@ from typer.testing import CliRunner
 
 from vbikit.analysis import point_response
 from vbikit.bridge import EulerBernoulliBeam
+from vbikit.bridge.continuous import ContinuousBeam
 from vbikit.bridge.presets import paper_beam, paper_deck
 from vbikit.cli import app
 from vbikit.contact import MultiPointTire, PointTire
@@ -46,6 +47,9 @@ PYTHON = {
     "examples/verification/yang_yau_sprung_mass.toml": lambda: (Crossing(
         EulerBernoulliBeam(25.0, 8.323e9, 2303.0, damping_ratio=0.0, n_modes=10), sprung_mass(5750.0, 1595e3, 0.0),
         PointTire(), speed=100 / 3.6, approach=0.0, free_vibration=0.5), 12.5),
+    "examples/bridges/three_span_continuous_hs20.toml": lambda: (Crossing(
+        ContinuousBeam((20.0, 25.0, 20.0), 1.286e10, 7537.0, n_modes=12, neutral_axis_depth=0.78), hs20_44(),
+        MultiPointTire(6), random_profile(RoadPSD.iso("C"), seed=1), speed=75 / 3.6), None),
     "src/vbikit/scenario/demo.toml": lambda: (Crossing(
         paper_beam(16.76, "II", n_modes=20), hs20_44(), MultiPointTire(6), random_profile(RoadPSD.iso("C"), seed=1),
         speed=75 / 3.6), None),

@@ -22,6 +22,7 @@ import pytest
 from pydantic import BaseModel
 
 from vbikit.analysis import girder_responses, point_response, summary
+from vbikit.analysis.effects import load_effect_report
 from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS, SlabOnGirderBridge
 from vbikit.bridge.modefile import write_modes
 from vbikit.scenario import build, parse_scenario
@@ -47,6 +48,8 @@ BASE: dict = {
 SLAB = {"bridge": {"model": "slab-on-girder", "n_modes": 4, "deck": DECK, "span": None, "EI": None, "mass_per_length": None},
         "vehicle": {"model": "two-axle"}}
 BUMP = {"road": {"class": "none", "defects": [{"kind": "bump", "position": -1.0, "height": 0.08}]}}
+CONT = {**BASE, "bridge": {"model": "continuous-beam", "spans": [5.0, 5.0], "EI": 5.0e9, "mass_per_length": 5000.0,
+                           "n_modes": 3}}
 
 
 def _merge(base: dict, patch: dict) -> dict:
@@ -144,6 +147,16 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "response.x": (BASE, 5.0, 3.0),
         "response.y": (_merge(BASE, SLAB), 0.0, 1.0),
         "response.girder": (_merge(BASE, SLAB), 1, 2),
+        # continuous beams and load effects (moment / shear / reaction blocks are outputs)
+        "bridge.spans": (CONT, [5.0, 5.0], [4.0, 6.0]),
+        "bridge.support_stiffness": (CONT, None, [1e8, 1e8, 1e8]),
+        "bridge.rotational_stiffness": (CONT, None, [1e9, 0.0]),
+        "bridge.elements_per_span": (CONT, 10, 20),
+        "bridge.damage": (CONT, [], [{"position": 2.0, "length": 1.0, "severity": 0.3}]),
+        "response.moment": (CONT, [2.5], [5.0]),
+        "response.shear": (CONT, [0.0], [5.0]),
+        "response.reaction": (CONT, [0], [1]),
+        "response.load_effect_method": (CONT, "mode-acceleration", "mode-superposition"),
     }
     for integrator in typing.get_args(Scenario.model_fields["crossing"].annotation.model_fields["integrator"].annotation)[1:]:
         cases[f"crossing.integrator={integrator}"] = (BASE, "rk4", integrator)
@@ -236,7 +249,8 @@ def files(tmp_path_factory) -> dict[str, str]:
 OUTPUTS = ("impact_factor", "max_dynamic_displacement", "max_static_displacement", "strain_impact_factor",
            "max_dynamic_strain", "max_static_strain", "max_abs_acceleration", "max_abs_velocity", "frequencies_hz",
            "vehicle_frequencies_hz", "static_wheel_loads", "min_wheel_force", "max_wheel_force",
-           "contact_length_range", "duration", "n_steps", "girder_impact_factors", "girder_max_dynamic_displacement")
+           "contact_length_range", "duration", "n_steps", "girder_impact_factors", "girder_max_dynamic_displacement",
+           "moment", "shear", "reaction")
 
 
 @lru_cache(maxsize=None)
@@ -246,9 +260,12 @@ def _outputs(text: str) -> tuple[float, ...]:
     result = simulate(built.crossing)
     response = point_response(result, built.response_x, built.response_y)
     s = summary(result, response, girder_responses(result, built.response_x), built.response_girder)
+    s |= load_effect_report(result, built.load_effects, built.load_effect_method, s["response_x"])[0]
     values: list[float] = []
     for key in OUTPUTS:
         v = s.get(key, [])
+        if key in ("moment", "shear", "reaction"):  # load-effect blocks: peaks and IM of every section
+            v = [e[k] for e in (v["sections"] if v else []) for k in ("static_peak", "dynamic_peak", "impact_factor")]
         v = list(v.values()) if isinstance(v, dict) else v
         values += list(np.ravel(np.asarray(v, float)))
     return tuple(values)

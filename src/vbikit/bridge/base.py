@@ -34,6 +34,12 @@ class ModalBridge(abc.ABC):
     default_lateral_offset: float = 0.0
 
     @property
+    def default_response_x(self) -> float:
+        """x [m] of the deck point responses are read at when no x is given: midspan (a
+        continuous beam: the middle of its first span)."""
+        return 0.5 * self.span
+
+    @property
     def default_response_y(self) -> float:
         """y [m] of the deck point responses and impact factors are read at when no y is given
         (the deck centreline; a slab-on-girder deck: its default girder's line)."""

@@ -10,6 +10,10 @@ with m the mass per length [kg/m], EI the bending stiffness [N·m²] and c the d
 neutral axis to the bottom fibre [m].  z is up, so a downward load gives negative ξ₁, negative
 deflection and positive (tensile) bottom strain.  The beam has no transverse extent: mode
 shapes do not depend on y.
+
+Load effects (:mod:`vbikit.bridge.effects`), closed forms: reactions of a unit upward force at x,
+R₀ = −(1 − x/L), R_L = −x/L; M(s) = R₀ s + (s − x)·[x < s], V(s) = R₀ + [x ≤ s]; per unit modal
+coordinate M = EI ∂²φ/∂x², V = EI ∂³φ/∂x³, R₀ = V(0), R_L = −V(L).
 """
 from __future__ import annotations
 
@@ -19,6 +23,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
 
 
 def _positive(name: str, value: float) -> None:
@@ -102,3 +107,37 @@ class EulerBernoulliBeam(ModalBridge):
     def static_midspan_deflection(self, load: float) -> float:
         """Exact static midspan deflection P L³ / (48 EI) [m] (positive number) under a point load [N] at midspan."""
         return load * self.span**3 / (48.0 * self.EI)
+
+    # ---------------------------------------------------------------- load effects
+    def load_effect(self, kind: str, x: float | None = None, support: int | None = None,
+                    girder: int | None = None) -> LoadEffect:
+        """Moment or shear at section x [m], or the reaction of support 0 (entry) or 1 (exit); closed forms."""
+        if girder is not None:
+            raise ValueError("a beam has no girders: leave girder unset")
+        if kind not in EFFECT_KINDS:
+            raise ValueError(f"load effect must be one of {', '.join(EFFECT_KINDS)}, got {kind!r}")
+        L, k = self.span, self.wavenumbers
+        amp = self._amplitude
+        shear_modal = lambda s: -self.EI * k**3 * amp * np.cos(k * s)  # noqa: E731
+
+        def r0(xp):
+            return -(1.0 - np.asarray(xp, float) / L)
+
+        if kind == "reaction":
+            if support not in (0, 1):
+                raise ValueError(f"reaction: support must be 0 or 1 on a simply supported beam, got {support!r}")
+            if support == 0:
+                return LoadEffect("reaction", 0.0, shear_modal(0.0), lambda xp, yp=None: r0(xp), L, support=0)
+            return LoadEffect("reaction", L, -shear_modal(L), lambda xp, yp=None: -np.asarray(xp, float) / L, L, support=1)
+        if x is None or not 0.0 <= x <= L:
+            raise ValueError(f"{kind}: section x must be within 0 … {L:g} m, got {x!r}")
+        s = float(x)
+        if kind == "moment":
+            modal = -self.EI * k**2 * amp * np.sin(k * s)
+            return LoadEffect("moment", s, modal, lambda xp, yp=None: r0(xp) * s + np.where(np.asarray(xp) < s, s - np.asarray(xp), 0.0), L)
+        return LoadEffect("shear", s, shear_modal(s), lambda xp, yp=None: r0(xp) + np.where(np.asarray(xp) <= s, 1.0, 0.0), L)
+
+    def default_load_effects(self) -> list[LoadEffect]:
+        """Midspan moment, shear just right of the entry support, both reactions."""
+        return [self.load_effect("moment", self.span / 2), self.load_effect("shear", 0.0),
+                self.load_effect("reaction", support=0), self.load_effect("reaction", support=1)]

@@ -6,6 +6,8 @@ from pathlib import Path
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
+from vbikit.bridge.damage import Damage
+from vbikit.bridge.effects import LoadEffect
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.contact.tires import (
     DiskTire,
@@ -41,6 +43,15 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
             return modes_from_file(Path(base_dir) / spec.modes_file, damping_ratio=spec.damping_ratio, n_modes=n_modes)
         except ValueError as err:
             raise ScenarioError(f"bridge.modes_file: {err}") from None
+    if spec.model == "continuous-beam":
+        from vbikit.bridge.continuous import ContinuousBeam
+
+        return ContinuousBeam(
+            spans=tuple(spec.spans), EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
+            n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
+            support_stiffness=spec.support_stiffness, rotational_stiffness=tuple(spec.rotational_stiffness or (0.0, 0.0)),
+            elements_per_span=spec.elements_per_span, damage=build_damage(spec),
+        )
     if spec.model == "beam":
         return EulerBernoulliBeam(
             span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
@@ -54,6 +65,11 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
             return SlabOnGirderBridge(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
         return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
     return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio)
+
+
+def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
+    """The [[bridge.damage]] regions as :class:`~vbikit.bridge.damage.Damage` (checked)."""
+    return tuple(Damage(d.position, d.length, d.severity, d.girder) for d in spec.damage)
 
 
 def build_tire(spec: TireSpec) -> TireModel:
@@ -134,6 +150,37 @@ class BuiltScenario:
     response_y: float
     #: 1-based girder of the response point (slab-on-girder bridges), else None
     response_girder: int | None = None
+    #: moments, shears and reactions to report (empty if the bridge model offers none)
+    load_effects: tuple[LoadEffect, ...] = ()
+    #: "mode-acceleration" or "mode-superposition"
+    load_effect_method: str = "mode-acceleration"
+
+
+def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | None) -> tuple[LoadEffect, ...]:
+    """The moments, shears and reactions of ``[response]`` (moment / shear sections [m], reaction
+    support indices), on ``girder`` for a deck; the bridge's defaults where a list is not given.
+    Empty for bridge models without load effects (unless some were asked for: an error)."""
+    r = scenario.response
+    asked = [k for k in ("moment", "shear", "reaction") if getattr(r, k) is not None]
+    if not callable(getattr(bridge, "load_effect", None)):
+        if asked:
+            raise ScenarioError(f"response.{asked[0]}: bridge model {scenario.bridge.model!r} does not offer load effects")
+        return ()
+    kw = {} if girder is None else {"girder": girder}
+    try:
+        defaults = bridge.default_load_effects(**kw)  # type: ignore[attr-defined]
+        out = []
+        for kind in ("moment", "shear", "reaction"):
+            wanted = getattr(r, kind)
+            if wanted is None:
+                out += [e for e in defaults if e.kind == kind]
+            elif kind == "reaction":
+                out += [bridge.load_effect("reaction", support=j, **kw) for j in wanted]  # type: ignore[attr-defined]
+            else:
+                out += [bridge.load_effect(kind, x=float(x), **kw) for x in wanted]  # type: ignore[attr-defined]
+    except ValueError as err:
+        raise ScenarioError(f"response: {err}") from None
+    return tuple(out)
 
 
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
@@ -165,14 +212,16 @@ def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
     if x is not None and x > bridge.span:
         raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m (got {x})")
     r = scenario.response
+    method = r.load_effect_method
     girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
         if r.girder is not None:
             raise ScenarioError(f"response.girder: bridge model {scenario.bridge.model!r} has no girders; use response.y")
-        return BuiltScenario(crossing, x, bridge.default_response_y if r.y is None else r.y)
+        return BuiltScenario(crossing, x, bridge.default_response_y if r.y is None else r.y, None,
+                             build_load_effects(scenario, bridge, None), method)
     girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
     if girder is None:
-        return BuiltScenario(crossing, x, r.y)
+        return BuiltScenario(crossing, x, r.y, None, build_load_effects(scenario, bridge, None), method)
     if not 1 <= girder <= len(girder_y):
         raise ScenarioError(f"response.girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
-    return BuiltScenario(crossing, x, float(girder_y[girder - 1]), girder)
+    return BuiltScenario(crossing, x, float(girder_y[girder - 1]), girder, build_load_effects(scenario, bridge, girder), method)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 from pathlib import Path
-from typing import Any, Literal, Optional, get_args
+from typing import Annotated, Any, Literal, Optional, Union, get_args
 
 from pydantic import (
     BaseModel,
@@ -40,13 +40,32 @@ class _Section(BaseModel):
     model_config = ConfigDict(extra="forbid", populate_by_name=True, strict=True, allow_inf_nan=False)
 
 
+class DamageSpec(_Section):
+    """[[bridge.damage]]: a bending-stiffness loss over a region (vbikit.bridge.damage)."""
+
+    position: float = Field(..., ge=0, description="start of the damaged region [m from the bridge entry]")
+    length: float = Field(..., gt=0, description="length of the region [m]")
+    severity: float = Field(..., ge=0, lt=1, description="relative loss of EI [-]")
+    girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
+
+
+_POSITIVE_OR_LIST = Union[Annotated[float, Field(gt=0)], list[Annotated[float, Field(gt=0)]]]
+
+
 class BridgeSpec(_Section):
-    """[bridge]: model = "beam" with its properties, or a preset name (properties optional overrides)."""
+    """[bridge]: model = "beam" or "continuous-beam" with its properties, or a preset name (properties optional overrides)."""
 
     model: str = "beam"
     span: Optional[float] = Field(None, gt=0, description="span length [m]")
-    EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
-    mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
+    EI: Optional[_POSITIVE_OR_LIST] = Field(None, description="bending stiffness [N m^2] (continuous-beam: one or one per span)")
+    mass_per_length: Optional[_POSITIVE_OR_LIST] = Field(None, description="mass per length [kg/m] (continuous-beam: one or one per span)")
+    spans: Optional[list[Annotated[float, Field(gt=0)]]] = Field(None, description="continuous-beam: span lengths [m]")
+    support_stiffness: Optional[Union[Annotated[float, Field(ge=0, allow_inf_nan=True)], list[Annotated[float, Field(ge=0, allow_inf_nan=True)]]]] = Field(
+        None, description="continuous-beam: vertical support springs [N/m], one or one per support (inf = rigid); default rigid")
+    rotational_stiffness: Optional[list[Annotated[float, Field(ge=0, allow_inf_nan=True)]]] = Field(
+        None, min_length=2, max_length=2, description="continuous-beam: end rotational springs [N m/rad] (entry, exit)")
+    elements_per_span: int = Field(40, ge=2, le=1000, description="continuous-beam: Hermite elements per span")
+    damage: list[DamageSpec] = Field(default_factory=list, description="[[bridge.damage]] local stiffness losses")
     damping_ratio: float = Field(DEFAULT_DAMPING_RATIO, ge=0, lt=1, description="modal damping ratio [-]")
     n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
     neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
@@ -57,13 +76,42 @@ class BridgeSpec(_Section):
     @field_validator("model")
     @classmethod
     def _known_model(cls, v: str) -> str:
-        allowed = ("beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)
+        allowed = ("beam", "continuous-beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)
         if v not in allowed:
             raise ValueError(f"unknown bridge model {v!r}; allowed: {', '.join(allowed)}")
         return v
 
     @model_validator(mode="after")
+    def _continuous_beam_keys(self) -> "BridgeSpec":
+        only = [k for k in ("spans", "support_stiffness", "rotational_stiffness") if getattr(self, k) is not None]
+        if "elements_per_span" in self.model_fields_set:
+            only.append("elements_per_span")
+        if self.model != "continuous-beam" and only:
+            raise ValueError(f"{', '.join(only)}: only with model = \"continuous-beam\"")
+        if self.model != "continuous-beam" and any(isinstance(getattr(self, k), list) for k in ("EI", "mass_per_length")):
+            raise ValueError("EI and mass_per_length per span (lists) need model = \"continuous-beam\"")
+        if self.model == "continuous-beam":
+            missing = [k for k in ("spans", "EI", "mass_per_length") if getattr(self, k) is None]
+            if missing:
+                raise ValueError(f"model = \"continuous-beam\" needs {', '.join(missing)} (spans [m], EI [N m^2], mass_per_length [kg/m])")
+            if self.span is not None:
+                raise ValueError("model = \"continuous-beam\" takes spans (a list), not span")
+        if self.damage:
+            slab = self.model == "slab-on-girder" or (self.model in BRIDGE_PRESETS and BRIDGE_PRESETS[self.model].kind == "slab-on-girder")
+            if not slab and self.model != "continuous-beam":
+                raise ValueError("[[bridge.damage]] applies to model = \"continuous-beam\" (one span = a simply supported beam) "
+                                 "and to slab-on-girder decks")
+            for i, d in enumerate(self.damage):
+                if slab and d.girder is None:
+                    raise ValueError(f"damage.{i}: a slab-on-girder deck needs girder (the damaged girder's number)")
+                if not slab and d.girder is not None:
+                    raise ValueError(f"damage.{i}: a beam has no girders; remove girder")
+        return self
+
+    @model_validator(mode="after")
     def _beam_needs_properties(self) -> "BridgeSpec":
+        if self.model == "continuous-beam":
+            return self
         if (self.model == "modes-file") != (self.modes_file is not None):
             raise ValueError("modes_file is needed by, and only allowed with, model = \"modes-file\"")
         slab = self.model == "slab-on-girder" or (self.model in BRIDGE_PRESETS and BRIDGE_PRESETS[self.model].kind == "slab-on-girder")
@@ -308,6 +356,13 @@ class ResponseSpec(_Section):
     x: Optional[float] = Field(None, ge=0, description="m from the bridge entry")
     y: Optional[float] = Field(None, description="m from the deck centreline; default the bridge's response line")
     girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
+    moment: Optional[list[Annotated[float, Field(ge=0)]]] = Field(
+        None, description="sections x [m] for bending moment (default: every midspan and interior support)")
+    shear: Optional[list[Annotated[float, Field(ge=0)]]] = Field(
+        None, description="sections x [m] for shear, taken just right of x (default: right of every support but the last)")
+    reaction: Optional[list[Annotated[int, Field(ge=0)]]] = Field(None, description="support indices, 0 = entry (default: all)")
+    load_effect_method: Literal["mode-acceleration", "mode-superposition"] = Field(
+        "mode-acceleration", description="moments, shears and reactions from the mode-acceleration method or plain mode superposition")
 
     @model_validator(mode="after")
     def _girder_or_y(self) -> "ResponseSpec":

@@ -80,10 +80,11 @@ class CrossingResult:
         return int(self.time.size - 1)
 
     def point(self, x: float | None = None, y: float | None = None) -> tuple[float, float]:
-        """The deck point (x, y) [m] responses are read at: x default midspan, y default the
-        bridge's ``default_response_y`` (its default girder on a slab-on-girder deck)."""
+        """The deck point (x, y) [m] responses are read at: x default the bridge's
+        ``default_response_x`` (midspan; a continuous beam: the middle of its first span), y default
+        the bridge's ``default_response_y`` (its default girder on a slab-on-girder deck)."""
         b = self.crossing.bridge
-        return (b.span / 2 if x is None else float(x),
+        return (float(getattr(b, "default_response_x", b.span / 2)) if x is None else float(x),
                 float(getattr(b, "default_response_y", 0.0)) if y is None else float(y))
 
     def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:

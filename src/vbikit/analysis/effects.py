@@ -1,0 +1,170 @@
+"""Load-effect histories (bending moment, shear, reactions) of a crossing and their impact factors.
+
+The bridge supplies each effect's static influence function I(x, y) and modal values r_i
+(:mod:`vbikit.bridge.effects`).  With the contact points at x_p(t) (each vehicle on its own path, :func:`contact_positions`) and
+y_p, each wheel's force f_w(t) (from the coupled solve; compression
+positive) spread over its points by their static shares β_p:
+
+* static reference: R_st(t) = −Σ_p I(x_p, y_p) β_p P_w  (static wheel loads P_w, full stiffness);
+* ``method = "mode-acceleration"`` (default):
+  R(t) = −Σ_p I(x_p, y_p) β_p f_w(t) − Σ_i r_i (ξ̈_i + 2 ζ_i ω_i ξ̇_i) / ω_i²;
+* ``method = "mode-superposition"``: R(t) = Σ_i r_i ξ_i(t), static R_st = Σ_i r_i ξ_st,i(t)
+  (the retained modes only, like the deflection).
+
+Spreading each wheel force by the static shares is exact for point tires and changes a load
+effect of a multi-point patch (0.254 m long) by far less than its dynamic part.  The impact
+factor is that of :func:`vbikit.analysis.impact.impact_factor`: peaks in the direction of the
+static peak (hogging over a pier, where the static peak moment is negative).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Literal, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
+from vbikit.bridge.effects import LoadEffect
+from vbikit.solve.result import CrossingResult
+
+Method = Literal["mode-acceleration", "mode-superposition"]
+METHODS: tuple[str, ...] = ("mode-acceleration", "mode-superposition")
+
+
+@dataclass(frozen=True)
+class LoadEffectResponse:
+    """Dynamic and static histories of one load effect (SI units, conventions of :mod:`vbikit.bridge.effects`)."""
+
+    effect: LoadEffect
+    method: str
+    time: NDArray[np.float64]
+    dynamic: NDArray[np.float64]
+    static: NDArray[np.float64]
+
+    @property
+    def impact(self) -> ImpactFactor:
+        return impact_factor(self.time, self.dynamic, self.static)
+
+    @property
+    def name(self) -> str:
+        """Column stem for histories, e.g. ``moment_x12.5``, ``shear_x0_g4``, ``reaction_s1``."""
+        e = self.effect
+        stem = f"reaction_s{e.support}" if e.kind == "reaction" else f"{e.kind}_x{e.x:g}"
+        return stem + (f"_g{e.girder}" if e.girder is not None else "")
+
+
+def supports_load_effects(bridge: object) -> bool:
+    """True if the bridge model offers load effects (a ``load_effect`` method)."""
+    return callable(getattr(bridge, "load_effect", None))
+
+
+def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """x_p(t) and y_p [m] of every contact point at every time, shape (n_t, n_cp) each (every
+    vehicle on its own path: x_p = origin_p + direction_p · s_v(t))."""
+    crossing = result.crossing
+    origin, direction, y = crossing.point_kinematics()
+    s = np.asarray(result.travel, float)
+    s = s.reshape(-1, 1) if s.ndim == 1 else s
+    x = origin[None, :] + direction[None, :] * s[:, crossing.point_vehicle]
+    return x, np.broadcast_to(y, x.shape)
+
+
+def _contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
+    """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
+    x, y = contact_positions(result)
+    on = (x >= 0.0) & (x <= result.crossing.bridge.span)
+    out = np.zeros(x.shape)
+    if np.any(on):
+        out[on] = effect.influence(x[on], y[on])
+    return out
+
+
+def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str = "mode-acceleration",
+                         xi_static: NDArray[np.float64] | None = None) -> LoadEffectResponse:
+    """Histories of ``effect`` over the crossing (see the module docstring); ``xi_static``: the
+    static modal history if already computed (mode superposition)."""
+    if method not in METHODS:
+        raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
+    bridge = result.crossing.bridge
+    r = effect.modal
+    if method == "mode-superposition":
+        xi_st = static_modal_history(result) if xi_static is None else xi_static
+        return LoadEffectResponse(effect, method, result.time, result.xi @ r, xi_st @ r)
+    cp = result.crossing.contact
+    infl = _contact_influence(result, effect)
+    share = cp.weight
+    static_loads = share * result.crossing.vehicle.static_wheel_loads()[cp.wheel]
+    static = -(infl @ static_loads)
+    dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
+    omega, zeta = bridge.omega, bridge.damping_ratios
+    correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ (r / omega**2)
+    dynamic = -np.einsum("tp,tp->t", infl, dyn_forces) - correction
+    return LoadEffectResponse(effect, method, result.time, dynamic, static)
+
+
+def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
+                          method: str = "mode-acceleration") -> list[LoadEffectResponse]:
+    """:func:`load_effect_response` for several effects (one static modal history shared)."""
+    xi_st = static_modal_history(result) if method == "mode-superposition" and effects else None
+    return [load_effect_response(result, e, method, xi_st) for e in effects]
+
+
+def _entry(resp: LoadEffectResponse, allowances: dict[str, Any] | None) -> dict[str, Any]:
+    e, im = resp.effect, resp.impact
+    entry: dict[str, Any] = {
+        "x": e.x, "girder": e.girder, "support": e.support, "units": e.units,
+        "static_peak": im.static_peak, "dynamic_peak": im.dynamic_peak, "impact_factor": im.impact_factor,
+        "time_static_peak": im.time_static_peak, "time_dynamic_peak": im.time_dynamic_peak,
+        "loaded_length": e.loaded_length, "hogging_region": e.hogging_region,
+    }
+    if allowances is not None:
+        entry["code_allowances"] = allowances
+    return entry
+
+
+def load_effect_summary(responses: Sequence[LoadEffectResponse], allowances: Any = None) -> dict[str, Any]:
+    """JSON blocks ``moment``, ``shear``, ``reaction``: each the first requested effect of its kind
+    (``static_peak``, ``dynamic_peak``, ``impact_factor``, position …) with every effect of that
+    kind under ``sections``; ``allowances(effect)`` (optional) adds the design-code values."""
+    out: dict[str, Any] = {}
+    for kind in ("moment", "shear", "reaction"):
+        entries = [_entry(r, allowances(r.effect) if allowances else None) for r in responses if r.effect.kind == kind]
+        if entries:
+            out[kind] = {**entries[0], "method": responses[0].method, "sections": entries}
+    return out
+
+
+def load_effect_histories(responses: Sequence[LoadEffectResponse]) -> dict[str, NDArray[np.float64]]:
+    """CSV columns ``<name>`` and ``<name>_static`` for each effect (see :attr:`LoadEffectResponse.name`)."""
+    out: dict[str, NDArray[np.float64]] = {}
+    for r in responses:
+        out[r.name] = r.dynamic
+        out[f"{r.name}_static"] = r.static
+    return out
+
+
+def vehicle_axle_count(vehicle: Any) -> int:
+    """Number of axles of a vehicle: its distinct wheel positions along x."""
+    return len({round(float(w.offset), 3) for w in vehicle.wheels})
+
+
+def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
+                       response_x: float | None = None) -> tuple[dict[str, Any], list[LoadEffectResponse]]:
+    """The summary entries of a crossing's load effects and design-code allowances, and the
+    responses themselves (for histories): ``design_code_allowances`` for the deflection at
+    ``response_x`` (loaded length: its span) and the ``moment`` / ``shear`` / ``reaction`` blocks of
+    :func:`load_effect_summary` with each effect's code values."""
+    from vbikit.analysis.codes import code_allowances
+
+    bridge, vehicle = result.crossing.bridge, result.crossing.vehicle
+    f1 = float(bridge.frequencies_hz[0])
+    axles = vehicle_axle_count(vehicle)
+    x = float(getattr(bridge, "default_response_x", bridge.span / 2)) if response_x is None else float(response_x)
+    spans = getattr(bridge, "spans", None)
+    loaded = float(spans[bridge.span_index(x)]) if spans is not None else float(bridge.span)
+    out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1, "n_axles": axles,
+                                                       **code_allowances(loaded, f1, axles)}}
+    responses = load_effect_responses(result, effects, method)
+    out |= load_effect_summary(responses, lambda e: code_allowances(e.loaded_length, f1, axles))
+    return out, responses

@@ -1,0 +1,66 @@
+"""Load effects (bending moment, shear, support reaction) of a modal bridge.
+
+A load effect R is a linear function of the loads.  A model that offers load effects gives,
+for each effect, the two ingredients of the mode-acceleration method (e.g. Clough & Penzien,
+*Dynamics of Structures*, 2nd ed., 1993, §13-5; Craig & Kurdila, *Fundamentals of Structural
+Dynamics*, 2006, §14.4):
+
+* ``influence(x, y)``: its static value under a unit upward point force at (x, y) [per N],
+  from the *full* stiffness of the model (not from the retained modes);
+* ``modal``: its value r_i per unit modal coordinate of each retained mode.
+
+With wheel forces f_p(t) (z up) at (x_p, y_p) the two estimates of R(t) are
+
+* mode superposition:  R(t) = Σ_i r_i ξ_i(t);
+* mode acceleration:   R(t) = Σ_p I(x_p, y_p) f_p(t) − Σ_i r_i (ξ̈_i + 2 ζ_i ω_i ξ̇_i) / ω_i²,
+
+which are the same with all modes; the second converges much faster with few modes because
+the quasi-static part (the part that bending moments and shears need many modes for) is exact.
+
+Sign conventions (SI units): moment [N·m] sagging positive (bottom fibre in tension); shear
+[N] V = dM/dx, the sum of the upward forces left of the section (taken just right of it,
+x = s⁺: a point load or support at x = s counts as left); reaction [N] the upward force of
+the support on the bridge (positive under downward loads).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Literal, Optional
+
+import numpy as np
+from numpy.typing import NDArray
+
+EffectKind = Literal["moment", "shear", "reaction"]
+EFFECT_KINDS: tuple[str, ...] = ("moment", "shear", "reaction")
+EFFECT_UNITS = {"moment": "N m", "shear": "N", "reaction": "N"}
+
+
+@dataclass(frozen=True)
+class LoadEffect:
+    """One load effect of a bridge (see the module docstring).
+
+    ``x`` [m] the section (moment, shear) or the support position (reaction); ``girder`` the
+    girder (1-based) on a slab-on-girder deck, None on a beam; ``support`` the support index
+    (0 = entry support) for a reaction; ``loaded_length`` [m] the span length that design codes
+    use for this effect (AASHTO Standard 3.8.2.2: the span for sagging moment and shear, the
+    mean of the two adjacent spans at an interior support); ``hogging_region``: the section is
+    at an interior support, where the moment of interest is negative.
+    """
+
+    kind: EffectKind
+    x: float
+    modal: NDArray[np.float64]
+    influence: Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]] = field(repr=False)
+    loaded_length: float
+    girder: Optional[int] = None
+    support: Optional[int] = None
+    hogging_region: bool = False
+
+    @property
+    def units(self) -> str:
+        return EFFECT_UNITS[self.kind]
+
+    @property
+    def label(self) -> str:
+        where = f"support {self.support} (x = {self.x:g} m)" if self.kind == "reaction" else f"x = {self.x:g} m"
+        return f"{self.kind} at {where}" + (f", girder {self.girder}" if self.girder is not None else "")
