@@ -35,6 +35,7 @@ KERNELS = "src/vbikit/solve/kernels.py"
 DEFAULT_TESTS = ["tests/verification/test_independent_checks.py", "tests/verification/test_kernel_paths.py",
                  "tests/verification", "tests/unit", "tests/study/test_batch.py"]
 SYSTEM = "src/vbikit/solve/system.py"
+CROSSING = "src/vbikit/solve/crossing.py"
 
 
 @dataclass(frozen=True)
@@ -142,7 +143,8 @@ MUTATIONS: list[Mutation] = [
     M("loss-of-contact-ignored-kernel", "loss of contact ignored for point / multipoint tires (kernel)",
       K("gate = points.gated[p] or (unilateral and points.stiffness[p] > 0.0)", "gate = points.gated[p]")),
     M("loss-of-contact-ignored-scenario", "the scenario's tire.loss_of_contact ignored (always true)",
-      Edit("src/vbikit/scenario/build.py", "loss_of_contact=scenario.tire.loss_of_contact,", "loss_of_contact=True,")),
+      Edit("src/vbikit/scenario/build.py", "loss_of_contact=scenario.tire.loss_of_contact", "loss_of_contact=True",
+           count=None)),
     M("multipoint-weights", "multipoint: each point carries k/(n+1) instead of k/n",
       Edit("src/vbikit/contact/tires.py", "return offsets, np.full(n, 1.0 / n)", "return offsets, np.full(n, 1.0 / (n + 1))")),
     M("multipoint-layout", "multipoint: points over twice the contact length",
@@ -172,9 +174,11 @@ MUTATIONS: list[Mutation] = [
     M("wheel-lines-swapped", "left and right wheel lines swapped (y > 0 follows the right profile)",
       Edit(SYSTEM, "(contact.lateral < 0.0).astype(np.int64)", "(contact.lateral > 0.0).astype(np.int64)")),
     M("lateral-mirrored", "wheel tracks mirrored on the deck (y → −y)",
-      Edit(SYSTEM, "np.unique(cp.lateral + crossing.lateral_offset", "np.unique(-cp.lateral - crossing.lateral_offset")),
-    M("lateral-offset-ignored", "the vehicle's lateral offset ignored on the deck",
-      Edit(SYSTEM, "np.unique(cp.lateral + crossing.lateral_offset", "np.unique(cp.lateral + 0.0 * crossing.lateral_offset")),
+      Edit(CROSSING, "np.ones(cp.n), cp.lateral + self.lateral_offset", "np.ones(cp.n), -(cp.lateral + self.lateral_offset)"),
+      Edit(CROSSING, "return origin, sign, offset + sign * cp.lateral", "return origin, sign, -(offset + sign * cp.lateral)")),
+    M("lateral-offset-ignored", "the vehicles' lateral offsets ignored on the deck",
+      Edit(CROSSING, "np.ones(cp.n), cp.lateral + self.lateral_offset", "np.ones(cp.n), cp.lateral + 0.0 * self.lateral_offset"),
+      Edit(CROSSING, "return origin, sign, offset + sign * cp.lateral", "return origin, sign, 0.0 * offset + sign * cp.lateral")),
     # ---------------------------------------------------------------- initial state
     M("static-start-flat", "static start ignores the road under the wheels",
       Edit("src/vbikit/solve/simulate.py", "static_state(crossing, data, road0[:, lane],",
