@@ -158,3 +158,14 @@ def test_full_disk_while_writing_a_part_exits_2_and_resumes(tmp_path, monkeypatc
     monkeypatch.setattr(run_mod.np, "savez", real)
     res = runner.invoke(app, ["study", "run", str(path), "--out", str(out), "--workers", "1", "--no-progress"])
     assert res.exit_code == 0, res.output
+
+
+def test_histories_must_fit_the_memory_budget(tmp_path):
+    path = tmp_path / "s.toml"
+    d = copy.deepcopy(SMALL)
+    d["axes"]["road.seed"] = {"samples": 1000}
+    path.write_text(_toml(d))
+    assert runner.invoke(app, ["study", "validate", str(path), "--max-memory", "8MB"]).exit_code == 0
+    path.write_text(_toml(d).replace('batch_size = 2', 'batch_size = 2\nhistories = true'))
+    res = runner.invoke(app, ["study", "validate", str(path), "--max-memory", "8MB"])
+    assert res.exit_code == 2 and "histories = true" in res.output, res.output

@@ -120,8 +120,8 @@ class RunEstimate:
 
 def estimate_run(crossing: Crossing, dt: float, lanes: int = 1) -> RunEstimate:
     """Steps and memory of ``lanes`` crossings like ``crossing`` at step ``dt`` [s] (module docstring)."""
-    duration = crossing.duration
-    n_steps = max(1, math.ceil(duration / dt - 1e-9))
+    ratio = crossing.duration / dt
+    n_steps = max(1, math.ceil(ratio - 1e-9)) if math.isfinite(ratio) and ratio < 1e18 else 10**18
     n_t = n_steps + 1
     n_m = int(crossing.bridge.omega.size)
     n_d = int(crossing.vehicle.n_dof)

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 
 from vbikit.scenario.preflight import preflight
 from vbikit.scenario.schema import ScenarioError, parse_scenario
-from vbikit.solve.budget import BudgetError, Limits, check_run
+from vbikit.solve.budget import BudgetError, Limits, check_run, human
 from vbikit.solve.simulate import MAX_LANES
 from vbikit.study.spec import MAX_CROSSINGS_UNCONFIRMED, ROAD_ONLY_KEYS, Study, StudyError
 
@@ -83,4 +83,11 @@ def check_study(study: Study, limits: Limits | None = None, confirmed: bool = Fa
             raise StudyError(f"base + axes ({where}): {err}") from None
         max_steps, max_memory = max(max_steps, est.n_steps), max(max_memory, est.memory)
         warnings += [f"{where}: {w}" for w in plan.warnings]
+    if study.histories:  # the dataset holds one deflection history per crossing
+        need = 8.0 * study.size * (max_steps + 1)
+        limit = (limits or Limits()).max_memory
+        if need > limit:
+            raise StudyError(f"histories = true: {study.size} crossings × up to {max_steps + 1} time points need "
+                             f"≈ {human(need)} in the dataset, above the memory limit {human(limit)}; raise "
+                             "--max-memory, or store no histories")
     return StudyCheck(len(combos), max_steps, max_memory, warnings)
