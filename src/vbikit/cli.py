@@ -22,6 +22,9 @@ _STATE = {"debug": False}
 from vbikit.study.commands import app as study_app  # noqa: E402
 
 app.add_typer(study_app, name="study")
+from vbikit.traffic.commands import traffic_cmd  # noqa: E402
+
+app.command("traffic")(traffic_cmd)
 
 
 @app.callback()

@@ -8,6 +8,7 @@ for beam modes; ``tests/unit/test_tabulate.py`` checks it.
 """
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,14 +25,35 @@ class TrackTable:
     slopes: NDArray[np.float64]  # (n_tracks, n_grid, n_modes)
 
 
+#: tracks already tabulated, per bridge (by identity, dropped when the bridge is collected): the
+#: events of a traffic stream run on the same few wheel tracks of one bridge
+_TRACKS: dict[int, dict[tuple[float, int], tuple[NDArray[np.float64], NDArray[np.float64]]]] = {}
+_TRACKS_PER_BRIDGE = 64
+
+
+def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mode: int):
+    key = id(bridge)
+    if key not in _TRACKS:
+        _TRACKS[key] = {}
+        weakref.finalize(bridge, _TRACKS.pop, key, None)
+    cache = _TRACKS[key]
+    entry = cache.get((float(y), points_per_mode))
+    if entry is None:
+        entry = (bridge.mode_shapes(x, np.full_like(x, y)), bridge.mode_slopes(x, np.full_like(x, y)))
+        if len(cache) >= _TRACKS_PER_BRIDGE:
+            cache.pop(next(iter(cache)))
+        cache[(float(y), points_per_mode)] = entry
+    return entry
+
+
 def tabulate_tracks(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode: int = 100) -> TrackTable:
-    """Tabulate φ and ∂φ/∂x along each track y in ``tracks``."""
+    """Tabulate φ and ∂φ/∂x along each track y in ``tracks`` (each track of a bridge once: the
+    tables are kept while the bridge lives; bridges are immutable)."""
     n_modes = bridge.omega.size
     n_grid = max(points_per_mode * n_modes, 200) + 1
     x = np.linspace(0.0, bridge.span, n_grid)
     values = np.empty((tracks.size, n_grid, n_modes))
     slopes = np.empty_like(values)
     for k, y in enumerate(tracks):
-        values[k] = bridge.mode_shapes(x, np.full_like(x, y))
-        slopes[k] = bridge.mode_slopes(x, np.full_like(x, y))
+        values[k], slopes[k] = _track(bridge, float(y), x, points_per_mode)
     return TrackTable(np.asarray(tracks, float), bridge.span / (n_grid - 1), values, slopes)

@@ -27,8 +27,8 @@ def _guard(action: Callable[[], Any]) -> Any:
 class _Bar:
     """tqdm progress bar over crossings (done / total, rate, ETA)."""
 
-    def __init__(self, label: str, enabled: bool = True) -> None:
-        self.label, self.enabled, self.bar = label, enabled, None
+    def __init__(self, label: str, enabled: bool = True, unit: str = "crossing") -> None:
+        self.label, self.enabled, self.bar, self.unit = label, enabled, None, unit
 
     def __call__(self, done: int, total: int) -> None:
         if not self.enabled:
@@ -36,7 +36,7 @@ class _Bar:
         if self.bar is None:
             from tqdm import tqdm
 
-            self.bar = tqdm(total=total, initial=done, desc=self.label, unit="crossing", dynamic_ncols=True)
+            self.bar = tqdm(total=total, initial=done, desc=self.label, unit=self.unit, dynamic_ncols=True)
         else:
             self.bar.update(done - self.bar.n)
 
@@ -45,10 +45,11 @@ class _Bar:
             self.bar.close()
 
 
-def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool):
+def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool, unit: str = "crossing"):
+    """Run (or resume) ``study`` (or another job of :func:`~vbikit.study.run.run_study`) with a progress bar."""
     from vbikit.study.run import run_study
 
-    bar = _Bar(study.name or out.stem, progress)
+    bar = _Bar(study.name or out.stem, progress, unit)
     t0 = time.perf_counter()
     try:
         ds = _guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
@@ -59,7 +60,7 @@ def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], pro
         raise typer.Exit(code=130) from None
     bar.close()
     elapsed = time.perf_counter() - t0
-    typer.echo(f"{study.size} crossings -> {out} ({elapsed:.1f} s)")
+    typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
     return ds
 
 

@@ -14,6 +14,13 @@ refused with a message instead of mixing two writers' parts.  A study killed at 
 (SIGKILL, Ctrl-C, a lost machine) loses at most the batches that were running; started again with the same ``out`` it skips the finished batches.  Every
 crossing's result depends only on the study (seeds derive from the study seed and the sample
 index), so the final dataset is identical to that of an unbroken run.
+
+The same machinery runs any *job* that has what a :class:`~vbikit.study.spec.Study` has for it —
+``name``, ``size`` (work items), ``batches()`` (a tuple of work items per batch) and
+``to_json()`` (its canonical text: the resume check) — and its own ``run_batch(batch, threads)``
+(arrays of the batch, in a worker), ``part_problem(part, batch)`` (why a stored part is not
+usable, or None) and ``assemble(parts)`` (the Dataset from the parts directory, see
+:func:`load_part`): e.g. a traffic stream (``vbikit.traffic.study``).
 """
 from __future__ import annotations
 
@@ -64,7 +71,22 @@ def _save_part(parts: Path, k: int, arrays: dict, checksum: str) -> None:
     atomic_write(_part_path(parts, k), write)
 
 
-def _part_problem(path: Path, k: int, batch: tuple, checksum: str, n_axes: int) -> Optional[str]:
+def load_part(parts: Path, k: int) -> dict[str, np.ndarray]:
+    """The arrays of the finished batch ``k`` in the parts directory ``parts``."""
+    path = _part_path(parts, k)
+    if not path.is_file():
+        raise StudyError(f"batch {k} has not finished ({path} missing)")
+    with np.load(path, allow_pickle=False) as part:
+        return {name: part[name] for name in part.files}
+
+
+def _compute(job, batch: tuple, threads: int) -> dict:
+    """One batch of ``job`` (run in a worker): a study's crossings, or the job's own ``run_batch``."""
+    own = getattr(job, "run_batch", None)
+    return own(batch, threads) if own is not None else run_batch(job, batch, threads)
+
+
+def _part_problem(path: Path, k: int, batch: tuple, checksum: str, job) -> Optional[str]:
     """Why the part file of batch ``k`` cannot be used (None if it can): unreadable, of another
     batch or study, or with missing or non-finite values."""
     try:
@@ -75,6 +97,9 @@ def _part_problem(path: Path, k: int, batch: tuple, checksum: str, n_axes: int) 
                 return "it belongs to another study (checksum differs)"
             if int(part["batch_index"]) != k:
                 return f"it holds batch {int(part['batch_index'])}, not batch {k}"
+            if hasattr(job, "part_problem"):
+                return job.part_problem(part, batch)
+            n_axes = len(job.axes)
             index = part["index"]
             if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
                 return "its grid indices are not those of this batch"
@@ -88,7 +113,7 @@ def _part_problem(path: Path, k: int, batch: tuple, checksum: str, n_axes: int) 
     return None
 
 
-def _check_parts(parts: Path, batches: list, checksum: str, n_axes: int) -> list[str]:
+def _check_parts(parts: Path, batches: list, checksum: str, job) -> list[str]:
     """Move every damaged or foreign part aside (into ``<parts>/damaged/``, to be recomputed) and
     return one message per part moved."""
     notes = []
@@ -98,7 +123,7 @@ def _check_parts(parts: Path, batches: list, checksum: str, n_axes: int) -> list
         except (IndexError, ValueError):
             k = -1
         problem = "its name is not batch-NNNNNN.npz of this study" if not 0 <= k < len(batches) else \
-            _part_problem(path, k, batches[k], checksum, n_axes)
+            _part_problem(path, k, batches[k], checksum, job)
         if problem is None:
             continue
         aside = parts / "damaged"
@@ -183,7 +208,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     parts = _prepare_parts(study, out)
     batches = study.batches()
     checksum = spec_checksum(study)
-    _check_parts(parts, batches, checksum, len(study.axes))
+    _check_parts(parts, batches, checksum, study)
     todo = _pending(parts, len(batches))
     total = study.size
     done = total - sum(len(batches[k]) for k in todo)
@@ -208,11 +233,11 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
         elif (workers or os.cpu_count() or 1) <= 1:
             for k in todo:
-                finished(k, run_batch(study, batches[k], threads))
+                finished(k, _compute(study, batches[k], threads))
         else:
             _run_local(study, batches, todo, workers or os.cpu_count() or 1, threads, finished)
     log.info("study %r: ran %d batches in %.1f s", study.name, len(todo), time.perf_counter() - t0)
-    ds = assemble(study, parts)
+    ds = study.assemble(parts) if hasattr(study, "assemble") else assemble(study, parts)
     try:
         atomic_write(out, lambda tmp: _to_netcdf(ds, tmp))
     except OutputError as err:
@@ -265,7 +290,7 @@ atexit.register(shutdown_workers)
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
     pool = _local_pool(workers)
     try:
-        futures = {pool.submit(run_batch, study, batches[k], threads): k for k in todo}
+        futures = {pool.submit(_compute, study, batches[k], threads): k for k in todo}
         pending = set(futures)
         while pending:
             ready, pending = wait(pending, return_when=FIRST_COMPLETED)
@@ -287,7 +312,7 @@ def _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeou
         raise StudyError(f"--scheduler {scheduler}: cannot connect ({err})") from None
     try:
         [study_f] = client.scatter([study], broadcast=True)
-        futures = [client.submit(run_batch, study_f, batches[k], threads, key=f"vbikit-batch-{k}-{os.getpid()}",
+        futures = [client.submit(_compute, study_f, batches[k], threads, key=f"vbikit-batch-{k}-{os.getpid()}",
                                  pure=False) for k in todo]
         keys = {f.key: k for f, k in zip(futures, todo)}
         for fut in as_completed(futures):

@@ -20,8 +20,8 @@ exact: every tire compresses by the same static deflection δ_t and every suspen
 (k = F/δ, the way real axles are sized to their rated loads).  Then every body rests level, the
 equilibrium of each body fixes its mass and centre of gravity (the load centroid of its
 supports), a bogie's pivot is the load centroid of its axles, and the tandem loads come out as
-given whatever their ratio.  The articulation carries a fixed share of the tractor's
-suspension loads (:data:`FIFTH_WHEEL_SHARE`).
+given whatever their ratio.  The fifth-wheel load is the one that puts the tractor body's
+centre of gravity at :data:`TRACTOR_CG_FRACTION` of its wheelbase.
 
 Default properties [substitute], sources:
 
@@ -59,9 +59,10 @@ from vbikit.vehicle.model import GRAVITY, Vehicle
 GROUP_KINDS: dict[str, int] = {"single": 1, "tandem": 2, "tridem": 3, "walking-beam": 2}
 #: [substitute] consecutive axles at most this far apart [m] form a group (tandem, tridem)
 GROUP_SPACING = 2.0
-#: [substitute] share of the tractor's suspension loads that comes from the semitrailer at the
-#: fifth wheel (the 3-S2 preset's value, 0.72, rounded)
-FIFTH_WHEEL_SHARE = 0.7
+#: [substitute] the tractor body's centre of gravity sits this fraction of the wheelbase (first
+#: axle to the centre of the tractor's last group) behind the first axle: 1 m of 4.5 m in VBI-2D's
+#: five-axle vehicle (:func:`semitrailer_3s2`); it fixes the fifth-wheel load
+TRACTOR_CG_FRACTION = 1.0 / 4.5
 #: [substitute] the fifth wheel sits this far [m] ahead of the centre of the tractor's last group
 FIFTH_WHEEL_LEAD = 0.5
 
@@ -294,12 +295,18 @@ def axle_truck(
         bodies = [body_from(supports[0], [])]
     else:
         last = group_specs[tractor_groups - 1].axles
-        s5 = 0.5 * (last[0].s + last[-1].s) - FIFTH_WHEEL_LEAD
-        r = FIFTH_WHEEL_SHARE * sum(f for _, f in supports[0])  # kingpin load [N]
+        wheelbase = 0.5 * (last[0].s + last[-1].s)
+        s5 = wheelbase - FIFTH_WHEEL_LEAD
+        # kingpin load R [N] that puts the tractor body's CG at c: (ΣP − R)·c = Σ P s − R·s5
+        p_sum = sum(f for _, f in supports[0])
+        moment = sum(s * f for s, f in supports[0])
+        c = TRACTOR_CG_FRACTION * wheelbase
+        r = (moment - p_sum * c) / (s5 - c)
+        if not 0 < r < p_sum:
+            raise ValueError(f"tractor_groups: with these axle loads the tractor's first {tractor_groups} group(s) cannot "
+                             "carry a semitrailer (its centre of gravity would leave the wheelbase); give "
+                             "tractor_groups = 0 (a rigid truck) or check the loads")
         bodies = [body_from(supports[0], [(s5, -r)]), body_from(supports[1], [(s5, r)], hinge=s5)]
-        if not 0 < bodies[0].s_cg < s_axle[-1]:
-            raise ValueError("these axle loads put the tractor's centre of gravity outside the truck; "
-                             "give tractor_groups = 0 (a rigid truck) or check the loads")
     params = {"gross_weight": float(loads.sum()), "n_axles": float(n_ax)}
     return build_truck("axles", bodies, group_specs, half_track,
                        f"{n_ax}-axle truck from axle loads ({', '.join(kinds)}"

@@ -1,0 +1,57 @@
+"""``vbikit traffic`` (registered in :mod:`vbikit.cli`).  Only this module prints."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+
+def traffic_cmd(
+    records: Path = typer.Argument(..., help="Vehicle records CSV (docs/traffic.md)."),
+    bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
+    out: Path = typer.Option(..., "--out", help="Result dataset (NetCDF, .nc)."),
+    lanes: Optional[str] = typer.Option(None, "--lanes", help="Lane centres y [m], comma-separated (lane 1 first); "
+                                        "default: two lanes at ∓ deck width/4 (y = 0 on a beam)."),
+    road: Optional[str] = typer.Option(None, "--road", help="Road class (A…H, good/average/poor, none) instead of the scenario's."),
+    seed: int = typer.Option(0, "--seed", min=0, help="Seed of the events' random roads."),
+    batch_size: int = typer.Option(16, "--batch-size", min=1, help="Events per stored batch."),
+    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure of the IM distribution and the peaks."),
+    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+) -> None:
+    """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
+    resumable and parallel like a study."""
+    from vbikit.study.commands import _guard, _run
+    from vbikit.traffic.records import read_records
+    from vbikit.traffic.study import base_scenario, traffic_study
+
+    recs = _guard(lambda: read_records(records))
+    base, base_dir = _guard(lambda: base_scenario(bridge))
+    if road is not None:
+        base = {**base, "road": {**base.get("road", {}), "class": road}}
+    lane_y = None
+    if lanes is not None:
+        try:
+            lane_y = [float(v) for v in lanes.split(",")]
+        except ValueError:
+            typer.echo(f"error: --lanes: not a comma-separated list of numbers: {lanes!r}", err=True)
+            raise typer.Exit(code=2) from None
+    job = _guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
+                                       source=records.name))
+    n_mp = sum(len(e) > 1 for e in job.events)
+    typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
+               f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
+    ds = _run(job, out, workers, scheduler, progress, unit="event")
+    a = ds.attrs
+    typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f} (one vehicle {a['im_mean_single']:.4f}, "
+               f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(ds['impact_factor'].max()):.4f}")
+    typer.echo(f"largest static effect: event {a['governing_static_event']}, dynamic amplification "
+               f"{a['governing_static_amplification']:.4f}; largest dynamic effect: event {a['governing_dynamic_event']}, "
+               f"{a['governing_dynamic_amplification']:.4f} × the largest static effect")
+    if plot is not None:
+        from vbikit.plot.traffic import plot_stream
+
+        _guard(lambda: plot_stream(ds, plot))
+        typer.echo(f"figure {plot}")

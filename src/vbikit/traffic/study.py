@@ -1,0 +1,416 @@
+"""A traffic stream over a bridge: every event simulated, stored and resumable like a study.
+
+:func:`traffic_study` cuts the stream of :class:`~vbikit.traffic.records.VehicleRecord` into
+events (:func:`~vbikit.traffic.events.partition`) and returns a :class:`TrafficStudy`, a job of
+the study machinery (:func:`vbikit.study.run.run_study`: batches of events on local processes or
+a Dask cluster, each finished batch stored at once, a killed run resumed where it stopped).
+
+Each event is one several-vehicle crossing (:class:`~vbikit.solve.crossing.Crossing` with its
+vehicles): the bridge, tire, road class, crossing options and response point of a base
+scenario; vehicle i enters at its record's time minus the event's first entry; its lateral
+offset is the record's, or the centre of its lane.  Every event gets its own random road,
+seeded by ``derive_seed(seed, event index)`` (a measured road is the same for every event), so
+a result depends only on the stream, the base scenario and the seed.  The bridge starts every
+event at rest.
+
+The dataset (xarray, NetCDF): per event (dimension ``event``) its first vehicle, vehicle count,
+multiple presence, gross weight, static and dynamic peaks and impact factors at the response
+point; per vehicle (dimension ``vehicle``) its record and event, gross weight, smallest wheel
+force and contact loss; the stream's statistics as attributes (:func:`stream_statistics`).
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import logging
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.analysis.impact import impact_factor
+from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
+from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario
+from vbikit.solve import Crossing, VehicleMotion, simulate
+from vbikit.study.spec import StudyError, derive_seed
+from vbikit.traffic.events import Event, partition
+from vbikit.traffic.records import VehicleRecord
+from vbikit.vehicle.axles import axle_truck
+from vbikit.vehicle.model import Vehicle
+from vbikit.vehicle.presets import VEHICLE_PRESETS
+
+log = logging.getLogger(__name__)
+
+#: scenario sections a traffic base scenario may hold (the vehicles come from the records)
+BASE_SECTIONS = ("name", "bridge", "tire", "road", "crossing", "response")
+
+#: per-event outputs: name -> (units, description)
+EVENT_OUTPUTS: dict[str, tuple[str, str]] = {
+    "impact_factor": ("1", "IM of the response-point deflection, (R_dyn,max - R_st,max) / R_st,max, of the event"),
+    "strain_impact_factor": ("1", "IM of the response-point bottom-fibre strain"),
+    "max_dynamic_displacement": ("m", "peak deflection in the static peak's direction (z up: negative)"),
+    "max_static_displacement": ("m", "peak static deflection under every vehicle's static wheel loads"),
+    "max_dynamic_strain": ("1", "peak bottom-fibre strain (tension positive)"),
+    "max_static_strain": ("1", "peak static bottom-fibre strain"),
+    "max_abs_acceleration": ("m s-2", "peak |deck acceleration| at the response point"),
+    "min_tire_force": ("N", "smallest wheel force of the event (0 = a tire lost contact)"),
+    "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road"),
+    "dt": ("s", "time step"),
+    "n_steps": ("1", "number of time steps"),
+}
+#: per-vehicle outputs
+VEHICLE_OUTPUTS: dict[str, tuple[str, str]] = {
+    "vehicle_min_wheel_force": ("N", "the vehicle's smallest wheel force in its event"),
+    "vehicle_contact_loss": ("1", "1 if a tire of the vehicle lost contact in its event"),
+}
+
+
+def default_lanes(bridge) -> tuple[float, ...]:
+    """Lane centres y [m] when the records give lane numbers: [substitute] two lanes at ∓ deck
+    width / 4 (lane 1 at y < 0: on the right of +x traffic) on a deck; one line at y = 0 on a
+    beam (no width)."""
+    width = getattr(bridge, "deck_width", None)
+    if width is None:
+        return (0.0,)
+    return (-float(width) / 4.0, float(width) / 4.0)
+
+
+def _vehicle(record: VehicleRecord) -> Vehicle:
+    if record.model == "axles":
+        return axle_truck(record.axle_loads, record.axle_spacings)
+    return VEHICLE_PRESETS[record.model].build()
+
+
+@dataclass(frozen=True)
+class TrafficStudy:
+    """A stream and what to run it on (build with :func:`traffic_study`).
+
+    ``records``: the stream; ``base``: the base scenario's sections (:data:`BASE_SECTIONS`);
+    ``base_dir``: where its relative paths point; ``lanes``: lane centres y [m] (lane n at
+    ``lanes[n - 1]``); ``seed``: the road seeds' source; ``batch_size``: events per batch;
+    ``events``: the vehicles of each event (indices into ``records``), ``event_start`` [s] their
+    first entries; ``source``: the records' name (reports).
+    """
+
+    records: tuple[VehicleRecord, ...]
+    base: dict
+    base_dir: str
+    lanes: tuple[float, ...]
+    seed: int
+    batch_size: int
+    events: tuple[tuple[int, ...], ...]
+    event_start: tuple[float, ...]
+    name: str = ""
+    source: str = ""
+    _digest: str = field(default="", repr=False)
+
+    # ------------------------------------------------------------ the job protocol of run_study
+    @property
+    def size(self) -> int:
+        """Number of events."""
+        return len(self.events)
+
+    def batches(self) -> list[tuple[int, ...]]:
+        """Event indices of each batch."""
+        return [tuple(range(k, min(k + self.batch_size, self.size))) for k in range(0, self.size, self.batch_size)]
+
+    def to_json(self) -> str:
+        """Canonical text of the job (the resume check): base scenario, lanes, seed, batch size and
+        the SHA-256 of the records."""
+        return json.dumps({"kind": "vbikit traffic", "name": self.name, "base": self.base, "base_dir": self.base_dir,
+                           "lanes": list(self.lanes), "seed": self.seed, "batch_size": self.batch_size,
+                           "records_sha256": self._digest, "n_records": len(self.records)}, sort_keys=True)
+
+    def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
+        """Simulate the events ``batch``; arrays per event (:data:`EVENT_OUTPUTS`, ``event``) and per
+        vehicle of those events (:data:`VEHICLE_OUTPUTS`, ``vehicle``)."""
+        rows, vehicle_rows = [], []
+        for e in batch:
+            row, per_vehicle = self.run_event(e)
+            rows.append(row)
+            vehicle_rows += per_vehicle
+        out = {k: np.array([r[k] for r in rows], float) for k in EVENT_OUTPUTS}
+        out["event"] = np.array(batch, np.int64)
+        out["vehicle"] = np.array([i for e in batch for i in self.events[e]], np.int64)
+        for k in VEHICLE_OUTPUTS:
+            out[k] = np.array([r[k] for r in vehicle_rows], float)
+        return out
+
+    def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
+        """Why a stored part cannot be used for ``batch`` (None if it can)."""
+        if not np.array_equal(part["event"], np.array(batch, np.int64)):
+            return "its events are not those of this batch"
+        members = [i for e in batch for i in self.events[e]]
+        if not np.array_equal(part["vehicle"], np.array(members, np.int64)):
+            return "its vehicles are not those of its events"
+        for name in EVENT_OUTPUTS:
+            if part[name].shape != (len(batch),):
+                return f"{name} has the wrong shape"
+        for name in VEHICLE_OUTPUTS:
+            if part[name].shape != (len(members),):
+                return f"{name} has the wrong shape"
+        if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
+            return "its step counts are not valid"
+        return None
+
+    def assemble(self, parts: Path):
+        """The stream's Dataset from the finished parts."""
+        from vbikit.study.run import load_part
+
+        n_e, n_v = self.size, len(self.records)
+        ev = {k: np.full(n_e, np.nan) for k in EVENT_OUTPUTS}
+        veh = {k: np.full(n_v, np.nan) for k in VEHICLE_OUTPUTS}
+        for k in range(len(self.batches())):
+            part = load_part(parts, k)
+            for name in EVENT_OUTPUTS:
+                ev[name][part["event"]] = part[name]
+            for name in VEHICLE_OUTPUTS:
+                veh[name][part["vehicle"]] = part[name]
+        return self.dataset(ev, veh)
+
+    # ------------------------------------------------------------ one event
+    def context(self) -> "_Context":
+        """Bridge, tire, roads and response point of the base scenario (built once per process)."""
+        key = json.dumps([self.base, self.base_dir], sort_keys=True)
+        if key not in _CONTEXTS:
+            _CONTEXTS.clear()
+            _CONTEXTS[key] = _Context.of(self.base, self.base_dir)
+        return _CONTEXTS[key]
+
+    def crossing(self, e: int) -> Crossing:
+        """The several-vehicle crossing of event ``e``."""
+        ctx = self.context()
+        road, road_right = ctx.road(self.road_seed(e))
+        motions = []
+        t0 = self.event_start[e]
+        for i in self.events[e]:
+            r = self.records[i]
+            y = r.lateral_offset if r.lateral_offset is not None else self.lanes[r.lane - 1]
+            motions.append(VehicleMotion(_vehicle(r), speed=r.speed, direction=r.direction, entry_time=r.time - t0,
+                                         lateral_offset=y))
+        return ctx.template.with_vehicles(tuple(motions), road, road_right)
+
+    def road_seed(self, e: int) -> int:
+        """Seed of event ``e``'s random road (−1 if the base road is not random)."""
+        return derive_seed(self.seed, e) if self.context().random_road else -1
+
+    def run_event(self, e: int) -> tuple[dict[str, float], list[dict[str, float]]]:
+        """Simulate event ``e``: its outputs and those of each of its vehicles."""
+        ctx = self.context()
+        result = simulate(self.crossing(e))
+        disp = result.xi @ ctx.phi
+        strain = result.xi @ ctx.eps
+        xi_st = _static(result)
+        d = impact_factor(result.time, disp, xi_st @ ctx.phi)
+        s = impact_factor(result.time, strain, xi_st @ ctx.eps)
+        forces = result.wheel_forces
+        row = {
+            "impact_factor": d.impact_factor, "strain_impact_factor": s.impact_factor,
+            "max_dynamic_displacement": d.dynamic_peak, "max_static_displacement": d.static_peak,
+            "max_dynamic_strain": s.dynamic_peak, "max_static_strain": s.static_peak,
+            "max_abs_acceleration": float(np.abs(result.xi_ddot @ ctx.phi).max()),
+            "min_tire_force": float(forces.min()), "road_seed": float(self.road_seed(e)),
+            "dt": result.dt, "n_steps": float(result.n_steps),
+        }
+        offsets = result.crossing.vehicle.wheel_offsets
+        per_vehicle = []
+        for j in range(len(self.events[e])):
+            f = forces[:, offsets[j]:offsets[j + 1]]
+            per_vehicle.append({"vehicle_min_wheel_force": float(f.min()), "vehicle_contact_loss": float(np.any(f <= 0.0))})
+        return row, per_vehicle
+
+    # ------------------------------------------------------------ the dataset
+    def dataset(self, ev: dict[str, NDArray], veh: dict[str, NDArray]):
+        import xarray as xr
+
+        from vbikit import __version__
+
+        recs = self.records
+        n_veh = np.array([len(m) for m in self.events], np.int64)
+        vehicle_event = np.empty(len(recs), np.int64)
+        for e, members in enumerate(self.events):
+            vehicle_event[list(members)] = e
+        gross = np.array([_gross(r) for r in recs])
+        event_gross = np.array([gross[list(m)].sum() for m in self.events])
+        variables: dict[str, Any] = {}
+        for name, (units, desc) in EVENT_OUTPUTS.items():
+            arr = ev[name].astype(np.int64) if name in ("n_steps", "road_seed") else ev[name]
+            variables[name] = ("event", arr, {"units": units, "long_name": desc})
+        variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time)"})
+        variables["n_vehicles"] = ("event", n_veh, {"units": "1", "long_name": "vehicles in the event"})
+        variables["multiple_presence"] = ("event", (n_veh > 1).astype(np.int8), {"units": "1", "long_name": "1 if several vehicles were on the bridge together"})
+        variables["event_gross_weight"] = ("event", event_gross, {"units": "N", "long_name": "sum of the event's vehicles' weights"})
+        variables["first_vehicle"] = ("event", np.array([m[0] for m in self.events], np.int64), {"long_name": "index of the event's first vehicle"})
+        vehicle_vars = {
+            "vehicle_event": (vehicle_event, "1", "the vehicle's event"),
+            "vehicle_time": (np.array([r.time for r in recs]), "s", "record time (front axle at its entry support)"),
+            "vehicle_lane": (np.array([r.lane if r.lane is not None else 0 for r in recs], np.int64), "1", "lane (0: lateral offset given)"),
+            "vehicle_lateral_offset": (np.array([r.lateral_offset if r.lateral_offset is not None else self.lanes[r.lane - 1]
+                                                 for r in recs]), "m", "centreline y from the deck centreline"),
+            "vehicle_direction": (np.array([1 if r.direction == "+x" else -1 for r in recs], np.int8), "1", "+1 drives +x, -1 drives -x"),
+            "vehicle_speed": (np.array([r.speed for r in recs]), "m s-1", "speed"),
+            "vehicle_gross_weight": (gross, "N", "gross weight (sum of the static axle loads)"),
+            "vehicle_n_axles": (np.array([len(r.axle_loads) for r in recs], np.int64), "1", "number of axles (0: a preset vehicle)"),
+        }
+        for name, (arr, units, desc) in vehicle_vars.items():
+            variables[name] = ("vehicle", arr, {"units": units, "long_name": desc})
+        for name, (units, desc) in VEHICLE_OUTPUTS.items():
+            arr = veh[name].astype(np.int8) if name == "vehicle_contact_loss" else veh[name]
+            variables[name] = ("vehicle", arr, {"units": units, "long_name": desc})
+        coords = {"event": np.arange(self.size), "vehicle": np.arange(len(recs)),
+                  "vehicle_id": ("vehicle", np.array([r.id or f"line{r.line}" for r in recs], dtype=object))}
+        ds = xr.Dataset(variables, coords=coords)
+        stats = stream_statistics(ds)
+        ds.attrs = {
+            "title": self.name or "vbikit traffic stream",
+            "study": self.to_json(),
+            "records": self.source,
+            "vbikit_version": __version__,
+            "Conventions": "CF-1.8",
+            **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
+        }
+        return ds
+
+
+def _gross(record: VehicleRecord) -> float:
+    return record.gross_weight if record.model == "axles" else float(_vehicle(record).total_weight)
+
+
+def _static(result):
+    from vbikit.analysis.impact import static_modal_history
+
+    return static_modal_history(result)
+
+
+def stream_statistics(ds) -> dict[str, Any]:
+    """The stream's statistics from its dataset: event counts, the IM distribution (mean,
+    standard deviation, 5/50/95/99 % quantiles, histogram), and the dynamic amplification of the
+    event with the largest static effect (its R_dyn / R_st) and of the largest dynamic effect
+    (the largest R_dyn of the stream over the largest R_st of the stream: the ratio of the
+    governing total to the governing static load effect)."""
+    im = np.asarray(ds["impact_factor"].values, float)
+    dyn = np.abs(np.asarray(ds["max_dynamic_displacement"].values, float))
+    st = np.abs(np.asarray(ds["max_static_displacement"].values, float))
+    mp = np.asarray(ds["multiple_presence"].values, bool)
+    i_st, i_dyn = int(np.argmax(st)), int(np.argmax(dyn))
+    edges = np.linspace(min(-0.1, float(np.floor(im.min() * 20) / 20)), max(1.0, float(np.ceil(im.max() * 20) / 20)), 23)
+    counts, _ = np.histogram(im, edges)
+    q = np.quantile(im, [0.05, 0.5, 0.95, 0.99])
+    return {
+        "n_events": int(im.size), "n_vehicles_total": int(ds.sizes["vehicle"]),
+        "n_multiple_presence_events": int(mp.sum()),
+        "im_mean": float(im.mean()), "im_std": float(im.std()),
+        "im_q05": float(q[0]), "im_q50": float(q[1]), "im_q95": float(q[2]), "im_q99": float(q[3]),
+        "im_mean_single": float(im[~mp].mean()) if (~mp).any() else math.nan,
+        "im_mean_multiple": float(im[mp].mean()) if mp.any() else math.nan,
+        "im_histogram_edges": [float(x) for x in edges], "im_histogram_counts": [int(c) for c in counts],
+        "governing_static_event": i_st,
+        "governing_static_amplification": float(dyn[i_st] / st[i_st]),
+        "governing_dynamic_event": i_dyn,
+        "governing_dynamic_amplification": float(dyn[i_dyn] / st[i_st]),
+    }
+
+
+@dataclass
+class _Context:
+    """What every event of a stream shares (built once per process)."""
+
+    template: "_Template"
+    scenario: Scenario
+    phi: NDArray[np.float64]
+    eps: NDArray[np.float64]
+    random_road: bool
+    _fixed_road: tuple = (None, None)
+
+    @classmethod
+    def of(cls, base: dict, base_dir: str) -> "_Context":
+        data = dict(base)
+        data["vehicle"] = {"model": "moving-force"}  # a stand-in: the records give the vehicles
+        crossing = {k: v for k, v in base.get("crossing", {}).items() if k not in ("speed", "speed_kmh")}
+        data["crossing"] = {**crossing, "speed": 20.0}
+        scenario = parse_scenario(data, base_dir)
+        built: BuiltScenario = build(scenario)
+        bridge = built.crossing.bridge
+        x = bridge.span / 2 if built.response_x is None else float(built.response_x)
+        phi = bridge.mode_shapes([x], [built.response_y])[0]
+        eps = bridge.strain_shapes([x], [built.response_y])[0]
+        random_road = scenario.road.profile_file is None and scenario.road.road_class != "none"
+        ctx = cls(_Template(built.crossing), scenario, phi, eps, random_road)
+        if not random_road:
+            ctx._fixed_road = (built.crossing.road, built.crossing.road_right)
+        return ctx
+
+    def road(self, seed: int) -> tuple:
+        if not self.random_road:
+            return self._fixed_road
+        spec = self.scenario.road.model_copy(update={"seed": int(seed)})
+        left = build_road(spec, self.scenario)
+        return left, build_right_road(spec, self.scenario, left)
+
+
+@dataclass(frozen=True)
+class _Template:
+    """The base scenario's crossing (its bridge, tire and options) to put vehicles on."""
+
+    crossing: Crossing
+
+    def with_vehicles(self, motions: tuple[VehicleMotion, ...], road, road_right) -> Crossing:
+        c = self.crossing
+        return Crossing(c.bridge, vehicles=motions, tire=c.tire, road=road, road_right=road_right,
+                        speed=max(m.speed for m in motions), approach=c.approach, free_vibration=c.free_vibration,
+                        dt=c.dt, integrator=c.integrator, loss_of_contact=c.loss_of_contact)
+
+
+_CONTEXTS: dict[str, _Context] = {}
+
+
+def base_scenario(bridge: str, base_dir: Path | str = ".") -> tuple[dict, str]:
+    """The base sections from ``bridge``: a bridge preset name, or a scenario file (its
+    :data:`BASE_SECTIONS`; a [vehicle] or [[vehicles]] there is refused: the records give them)."""
+    path = Path(bridge)
+    if path.suffix == ".toml" or path.is_file():
+        from vbikit._toml import read_toml
+
+        data = read_toml(path, ScenarioError, "scenario file")
+        extra = [k for k in data if k not in BASE_SECTIONS]
+        if extra:
+            raise ScenarioError(f"{path}: a traffic base scenario takes {', '.join(BASE_SECTIONS)}; remove "
+                                f"{', '.join(extra)} (the vehicles come from the records)")
+        return data, str(path.parent)
+    from vbikit.bridge.presets import BRIDGE_PRESETS
+
+    if bridge not in BRIDGE_PRESETS:
+        raise ScenarioError(f"--bridge {bridge!r} is neither a scenario file nor a bridge preset; presets: "
+                            f"{', '.join(BRIDGE_PRESETS)}")
+    return {"bridge": {"model": bridge}}, str(Path(base_dir))
+
+
+def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = ".", lanes: Optional[Sequence[float]] = None,
+                  seed: int = 0, batch_size: int = 16, name: str = "", source: str = "") -> TrafficStudy:
+    """Validate the stream against the base scenario and cut it into events (see the module
+    docstring).  Errors name the record's line."""
+    if not records:
+        raise StudyError(f"{source or 'records'}: the stream holds no vehicles")
+    if batch_size < 1:
+        raise StudyError(f"batch_size must be >= 1, got {batch_size}")
+    ctx = _Context.of(base, base_dir)
+    bridge = ctx.template.crossing.bridge
+    lanes = tuple(float(y) for y in (lanes if lanes is not None else default_lanes(bridge)))
+    lengths = []
+    for r in records:
+        where = f"{source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
+        if r.lateral_offset is None and not 1 <= (r.lane or 0) <= len(lanes):
+            raise StudyError(f"{where}: lane {r.lane} has no centre (lanes at y = {', '.join(f'{y:g}' for y in lanes)} m; "
+                             "give --lanes or a lateral_offset column)")
+        try:
+            lengths.append(_vehicle(r).length)
+        except ValueError as err:
+            raise StudyError(f"{where}: {err}") from None
+    events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span)
+    digest = hashlib.sha256(json.dumps([[r.id, r.time, r.lane, r.lateral_offset, r.direction, r.speed, r.model,
+                                         list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
+    return TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
+                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest)
