@@ -1,0 +1,124 @@
+"""A synthetic stream of 5,000 trucks over Bridge 2 (3D deck, two lanes, both directions) with
+``vbikit traffic``'s machinery, against the same trucks simulated one at a time, in one run.
+
+    python benchmarks/bench_traffic.py                       # 5000 trucks, 2 workers
+    python benchmarks/bench_traffic.py --trucks 1000 --baseline 100
+    python benchmarks/bench_traffic.py --spacing 0.05        # road sampled every 0.05 m
+
+1. the stream: ``synthetic_stream`` (seed 2026), lane 1 +x and lane 2 −x, ``--flow`` trucks/h
+   per lane, speeds 80 ± 8 and 75 ± 8 km/h, the documented truck mix (docs/traffic.md);
+2. warm-up: a 20-truck stream through the same path (numba cache load, worker start-up),
+   reported separately;
+3. the stream with ``traffic_study`` + ``run_study`` (``--workers`` processes, batches of 16
+   events): events (vehicles on the bridge together, simulated as one coupled run each), wall
+   time, events/s and trucks/s;
+4. one-at-a-time: the first ``--baseline`` trucks, each alone on the bridge (one Crossing with
+   one vehicle on the same bridge object, ``simulate``, the displacement IM), on the same number
+   of processes: trucks/s, and the time the whole stream would take that way.
+
+Base scenario: ``paper-bridge-2`` (10 modes, 2 % damping), point tires, ISO class B road with a
+new seed per event, ``--spacing`` m road samples (the scenario default is 0.01 m), response at
+Girder 4 midspan.  Writes only temporary datasets (deleted) and numba's cache.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import tempfile
+import time
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+from _args import benchmark_args  # noqa: E402
+
+
+def _base(spacing: float) -> dict:
+    return {"bridge": {"model": "paper-bridge-2", "n_modes": 10}, "tire": {"model": "point"},
+            "road": {"class": "B", "spacing": spacing}}
+
+
+def _stream(n: int, flow: float, seed: int = 2026):
+    from vbikit.traffic import LaneTraffic, synthetic_stream
+
+    return synthetic_stream([LaneTraffic(1, "+x", flow, 80, 8), LaneTraffic(2, "-x", flow, 75, 8)], n, seed=seed)
+
+
+def _alone(args):
+    """Trucks ``indices`` of the stream, each alone on the bridge (its own single-vehicle event)."""
+    job, indices = args
+    from vbikit.analysis import point_response
+    from vbikit.solve import simulate
+    from vbikit.traffic.study import _Context  # noqa: F401  (the job's cached base: bridge built once)
+
+    ctx = job.context()
+    out = []
+    for i in indices:
+        r = job.records[i]
+        from vbikit.solve import VehicleMotion
+        from vbikit.traffic.study import _vehicle
+
+        road, road_right = ctx.road(job.road_seed(0))
+        crossing = ctx.template.with_vehicles(
+            (VehicleMotion(_vehicle(r), r.speed, direction=r.direction, lateral_offset=job.lanes[r.lane - 1]),),
+            road, road_right)
+        result = simulate(crossing)
+        out.append(point_response(result, None, float(crossing.bridge.girder_y[3])).displacement_impact.impact_factor)
+    return out
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--trucks", type=int, default=5000)
+    p.add_argument("--flow", type=float, default=600.0, help="trucks per hour and lane (default 600)")
+    p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--baseline", type=int, default=200, help="trucks run one at a time (default 200)")
+    p.add_argument("--spacing", type=float, default=0.01, help="road sample spacing [m] (default 0.01, the scenario default)")
+    args = benchmark_args(__doc__, "unused (one timed run)", p)
+
+    from vbikit.study.run import run_study, shutdown_workers
+    from vbikit.traffic.study import traffic_study
+
+    base = _base(args.spacing)
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        warm = traffic_study(_stream(20, args.flow, seed=1), base, batch_size=4)
+        run_study(warm, Path(tmp) / "warm.nc", workers=args.workers)
+        t_warm = time.perf_counter() - t0
+
+        records = _stream(args.trucks, args.flow)
+        t0 = time.perf_counter()
+        job = traffic_study(records, base, batch_size=16)
+        t_setup = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        ds = run_study(job, Path(tmp) / "stream.nc", workers=args.workers)
+        t_stream = time.perf_counter() - t0
+        shutdown_workers()
+
+    n_b = min(args.baseline, len(records))
+    chunks = [list(range(k, n_b, args.workers)) for k in range(args.workers)]
+    with ProcessPoolExecutor(args.workers) as pool:
+        list(pool.map(_alone, [(job, c[:2]) for c in chunks]))  # warm the pool (imports, numba cache)
+        t0 = time.perf_counter()
+        list(pool.map(_alone, [(job, c) for c in chunks]))
+        t_alone = time.perf_counter() - t0
+
+    n_ev = job.size
+    n_mp = int(ds["multiple_presence"].sum())
+    a = ds.attrs
+    print(f"stream: {len(records)} trucks, flow {args.flow:g} /h per lane, road spacing {args.spacing} m, "
+          f"{args.workers} workers, {os.cpu_count()} cores")
+    print(f"  warm-up (numba cache, workers) {t_warm:.1f} s; stream set-up (validation, events) {t_setup:.1f} s")
+    print(f"  {n_ev} events ({n_mp} with several trucks, up to {int(ds['n_vehicles'].max())}), "
+          f"{int(ds['n_steps'].mean())} steps a event on average")
+    print(f"  stream: {t_stream:.1f} s = {n_ev / t_stream:.1f} events/s = {len(records) / t_stream:.1f} trucks/s "
+          f"(target: under 180 s)")
+    print(f"  one at a time ({n_b} trucks): {t_alone:.1f} s = {n_b / t_alone:.1f} trucks/s -> the whole stream "
+          f"{len(records) / (n_b / t_alone):.0f} s")
+    print(f"  IM: mean {a['im_mean']:.4f} (one truck {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), "
+          f"95 % {a['im_q95']:.4f}; governing static event amplification {a['governing_static_amplification']:.4f}")
+
+
+if __name__ == "__main__":
+    main()
