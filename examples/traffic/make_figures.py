@@ -15,7 +15,7 @@ from vbikit.traffic.study import base_scenario, traffic_study
 
 here = Path(__file__).parent
 figures = here.parent.parent / "docs" / "figures"
-base, base_dir = base_scenario(str(here / "bridge2.toml"))
+base, base_dir = base_scenario(str(here / "base" / "bridge2.toml"))
 job = traffic_study(read_records(here / "stream.csv"), base, base_dir, seed=1, name="example stream")
 ds = run_study(job, here / "stream.nc", workers=2)
 plot_stream(ds, figures / "traffic-stream.png")

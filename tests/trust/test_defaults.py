@@ -57,7 +57,8 @@ PYTHON = {
 
 
 SCENARIO_EXAMPLES = sorted({str(p.relative_to(ROOT)) for p in (ROOT / "examples").rglob("*.toml")
-                            if p.parts[-2] not in ("studies", "field")} | {"src/vbikit/scenario/demo.toml"})
+                            if p.parts[-2] not in ("studies", "field", "base")}  # base: traffic base scenarios
+                           | {"src/vbikit/scenario/demo.toml"})
 
 
 def _from_scenario(example: str) -> tuple[Crossing, float | None]:
