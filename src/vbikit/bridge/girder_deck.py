@@ -61,6 +61,8 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
+from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
+from vbikit.bridge.effects import LoadEffect
 from vbikit.bridge.nodal import NodalModes, _hermite
 from vbikit.bridge.sections import (
     AASHTO_GIRDERS,
@@ -158,6 +160,9 @@ class SlabOnGirderBridge(ModalBridge):
         Elements along the span; default the even number giving elements ≤ 0.5 m, at least 20.
     default_lateral_offset : float
         Vehicle centreline y [m] a scenario uses when it does not set ``crossing.lateral_offset``.
+    damage : tuple of Damage
+        Local stiffness losses of single girders (:class:`vbikit.bridge.damage.Damage` with ``girder``):
+        the girder elements' EI × (1 − severity × the fraction of the element inside the region).
     default_girder : int
         Girder (1-based) a scenario reports when it sets neither ``response.girder`` nor ``response.y``.
     name : str
@@ -191,6 +196,7 @@ class SlabOnGirderBridge(ModalBridge):
     n_elements: Optional[int] = None
     default_lateral_offset: float = 0.0
     default_girder: int = 1
+    damage: tuple[Damage, ...] = ()
     name: str = ""
     use_cache: bool = field(default=True, compare=False)
     cache_dir: Optional[str] = field(default=None, compare=False)
@@ -208,6 +214,12 @@ class SlabOnGirderBridge(ModalBridge):
             v = getattr(self, k)
             if not (np.isfinite(v) and v >= 0):
                 raise ValueError(f"{k} must be >= 0, got {v!r}")
+        object.__setattr__(self, "damage", tuple(self.damage))
+        for i, d in enumerate(self.damage):
+            if d.girder is None or not 1 <= d.girder <= self.n_girders:
+                raise ValueError(f"bridge.damage.{i}: girder must be 1 … {self.n_girders}, got {d.girder!r}")
+            if d.end > self.span + 1e-9:
+                raise ValueError(f"bridge.damage.{i}: the region {d.position:g} … {d.end:g} m ends beyond the span ({self.span:g} m)")
         if int(self.n_girders) != self.n_girders or self.n_girders < 1:
             raise ValueError(f"n_girders must be an integer >= 1, got {self.n_girders!r}")
         if not -1.0 < self.poisson < 0.5:
@@ -302,6 +314,15 @@ class SlabOnGirderBridge(ModalBridge):
         return out
 
     # ------------------------------------------------------------------ FE model
+    def girder_element_EI(self, line: int, element: int) -> float:
+        """EI [N·m²] of girder line ``line`` (0-based) in element ``element``, damage included."""
+        EI = float(self.line_properties["EI"][line])
+        damage = active_damage(self.damage)
+        if not damage:
+            return EI
+        xs = self.stations
+        return EI * stiffness_factor(damage, float(xs[element]), float(xs[element + 1]), girder=line + 1)
+
     def _dof(self, line: int, station: int, k: int) -> int:
         return 3 * (line * (self.element_count + 1) + station) + k
 
@@ -335,7 +356,7 @@ class SlabOnGirderBridge(ModalBridge):
                      self._dof(j, i, 2), self._dof(j, i + 1, 2)]
                 ke = np.zeros((6, 6))
                 me = np.zeros((6, 6))
-                ke[:4, :4] = _beam_stiffness(p["EI"][j], h)
+                ke[:4, :4] = _beam_stiffness(self.girder_element_EI(j, i), h)
                 ke[4:, 4:] = _bar(p["GJ"][j] / h)
                 me[:4, :4] = _beam_mass(p["m"][j], h)
                 me[4:, 4:] = p["J"][j] * h / 6.0 * np.array([[2.0, 1.0], [1.0, 2.0]])
@@ -394,6 +415,10 @@ class SlabOnGirderBridge(ModalBridge):
         params = {f.name: getattr(self, f.name) for f in fields(self)
                   if f.name not in ("damping_ratio", "name", "use_cache", "cache_dir", "default_lateral_offset", "default_girder")}
         params["girder"] = asdict(self.section)
+        damage = active_damage(self.damage)
+        params.pop("damage", None)
+        if damage:  # no key without damage: an intact deck keeps its cache file
+            params["damage"] = [asdict(d) for d in damage]
         params["n_elements"] = self.element_count
         text = json.dumps({"version": MODEL_VERSION, **params}, sort_keys=True, default=float)
         return hashlib.sha256(text.encode()).hexdigest()[:32]
@@ -540,6 +565,19 @@ class SlabOnGirderBridge(ModalBridge):
         shape = (self.n_girders, self.element_count + 1, 1)
         return NodalModes(self.stations, self.girder_y, u[0::3].reshape(shape), u[1::3].reshape(shape), u[2::3].reshape(shape))
 
+    def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
+                    girder: Optional[int] = None) -> LoadEffect:
+        """Moment or shear of ``girder`` (default: the default girder) at section x [m], or the reaction
+        of its bearing at support 0 (x = 0) or 1 (x = span) (:mod:`vbikit.bridge.deck_effects`)."""
+        from vbikit.bridge.deck_effects import deck_load_effect
+
+        return deck_load_effect(self, kind, x, girder, support)
+
+    def default_load_effects(self, girder: Optional[int] = None) -> list[LoadEffect]:
+        """Midspan moment, shear just right of the entry bearing and both bearing reactions of ``girder``."""
+        return [self.load_effect("moment", self.span / 2, girder=girder), self.load_effect("shear", 0.0, girder=girder),
+                self.load_effect("reaction", support=0, girder=girder), self.load_effect("reaction", support=1, girder=girder)]
+
     def mode_descriptions(self) -> list[str]:
         """Short descriptions of the modes, e.g. "1st bending", "1st torsion", "transverse (2 nodal lines)"."""
         return describe_modes(self.nodal_modes)
@@ -593,7 +631,8 @@ def describe_modes(modes: NodalModes) -> list[str]:
 
 #: the parameters a scenario may set in ``[bridge.deck]`` (n_modes and damping_ratio are ``[bridge]`` keys)
 SCENARIO_PARAMETERS: tuple[str, ...] = tuple(
-    f.name for f in fields(SlabOnGirderBridge) if f.name not in ("n_modes", "damping_ratio", "use_cache", "cache_dir", "name")
+    f.name for f in fields(SlabOnGirderBridge)
+    if f.name not in ("n_modes", "damping_ratio", "use_cache", "cache_dir", "name", "damage")
 )
 
 

@@ -57,10 +57,12 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
             span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
             n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
         )
-    if spec.model == "slab-on-girder" or spec.deck is not None:
+    if spec.model == "slab-on-girder" or spec.deck is not None or spec.damage:
         from vbikit.bridge.girder_deck import SlabOnGirderBridge, deck_parameters
 
         overrides = deck_parameters(spec.deck or {})
+        if spec.damage:
+            overrides["damage"] = build_damage(spec)
         if spec.model == "slab-on-girder":
             return SlabOnGirderBridge(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
         return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
