@@ -113,7 +113,7 @@ def _execute(load: Any, limits: Any = None) -> _Run:
         s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
         s["inputs"] = scenario_inputs(scenario, plan)
         effects = _load_effects(result, built, s)
-        s, nonfinite = json_safe(s)
+        nonfinite = json_safe(s)[1]  # the JSON outputs write these as null (_json), the text report as nan
         s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
         return _Run(scenario.name, result, response, s, girders, effects)
 

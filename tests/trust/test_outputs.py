@@ -127,3 +127,30 @@ def test_field_all_zero_record_is_refused(tmp_path):
     csv_path.write_text("\n".join(head + [r.split(",")[0] + ",0,0,0" for r in rows]) + "\n")
     res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
     assert res.exit_code == 2 and "case1_responses.csv" in res.output and "constant" in res.output, res.output
+
+
+def test_a_non_finite_summary_value_is_null_with_a_warning(tmp_path, monkeypatch):
+    """y = inf on a beam used to write Infinity into --json (not valid JSON)."""
+    import vbikit.analysis
+
+    real = vbikit.analysis.summary
+
+    def summary(*args, **kwargs):
+        s = real(*args, **kwargs)
+        s["max_abs_acceleration"] = math.inf
+        return s
+
+    monkeypatch.setattr(vbikit.analysis, "summary", summary)
+    summ = tmp_path / "s.json"
+    res = runner.invoke(app, ["run", str(SCENARIO), "--json", "--summary", str(summ)])
+    assert res.exit_code == 0, res.output
+
+    def refuse(name):
+        raise AssertionError(f"{name} in JSON")
+
+    for text in (res.stdout, summ.read_text()):
+        data = json.loads(text, parse_constant=refuse)
+        assert data["max_abs_acceleration"] is None
+        assert "max_abs_acceleration is not a finite number (written as null)" in data["warnings"]
+    text = runner.invoke(app, ["run", str(SCENARIO)])
+    assert text.exit_code == 0 and "inf m/s²" in text.stdout
