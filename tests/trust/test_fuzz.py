@@ -15,10 +15,10 @@ import tempfile
 from pathlib import Path
 
 import pytest
+from fuzzing import RUN_LIMITS, field_files, judge, scenarios, studies, time_limit
 from hypothesis import HealthCheck, given, settings
 from typer.testing import CliRunner
 
-from fuzzing import RUN_LIMITS, field_files, judge, scenarios, studies, time_limit
 from vbikit.cli import app
 
 runner = CliRunner()

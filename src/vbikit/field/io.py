@@ -30,7 +30,6 @@ from vbikit._files import check_name, read_text
 from vbikit._toml import read_toml
 from vbikit.bridge.girder_deck import deck_parameters
 
-
 log = logging.getLogger(__name__)
 
 #: unit → (quantity, factor to SI)

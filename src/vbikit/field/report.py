@@ -8,8 +8,6 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from vbikit._files import atomic_write, inside, json_safe, json_text, save_figure, write_text
 from vbikit.field.io import FieldSpec, load_field_toml
 from vbikit.field.workflow import Calibration, CaseComparison, calibrate, check_field, compare_case
