@@ -50,6 +50,9 @@ PYTHON = {
     "examples/bridges/three_span_continuous_hs20.toml": lambda: (Crossing(
         ContinuousBeam((20.0, 25.0, 20.0), 1.286e10, 7537.0, n_modes=12, neutral_axis_depth=0.78), hs20_44(),
         MultiPointTire(6), random_profile(RoadPSD.iso("C"), seed=1), speed=75 / 3.6), None),
+    "examples/bridges/three_span_grillage_hs20.toml": lambda: (Crossing(
+        paper_deck(2, n_modes=20, spans=(16.76, 20.0, 16.76)), hs20_44(), MultiPointTire(6),
+        random_profile(RoadPSD.iso("C"), seed=1), speed=75 / 3.6), None),
     "src/vbikit/scenario/demo.toml": lambda: (Crossing(
         paper_beam(16.76, "II", n_modes=20), hs20_44(), MultiPointTire(6), random_profile(RoadPSD.iso("C"), seed=1),
         speed=75 / 3.6), None),

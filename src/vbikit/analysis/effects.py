@@ -70,7 +70,7 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
     return x, np.broadcast_to(y, x.shape)
 
 
-def _contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
+def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
     """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
     x, y = contact_positions(result)
     on = (x >= 0.0) & (x <= result.crossing.bridge.span)
@@ -81,9 +81,11 @@ def _contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np
 
 
 def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str = "mode-acceleration",
-                         xi_static: NDArray[np.float64] | None = None) -> LoadEffectResponse:
+                         xi_static: NDArray[np.float64] | None = None,
+                         influence: NDArray[np.float64] | None = None) -> LoadEffectResponse:
     """Histories of ``effect`` over the crossing (see the module docstring); ``xi_static``: the
-    static modal history if already computed (mode superposition)."""
+    static modal history if already computed (mode superposition); ``influence``: the
+    :func:`contact_influence` matrix if already computed (crossings on the same time grid share it)."""
     if method not in METHODS:
         raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
     bridge = result.crossing.bridge
@@ -92,7 +94,7 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
         xi_st = static_modal_history(result) if xi_static is None else xi_static
         return LoadEffectResponse(effect, method, result.time, result.xi @ r, xi_st @ r)
     cp = result.crossing.contact
-    infl = _contact_influence(result, effect)
+    infl = contact_influence(result, effect) if influence is None else influence
     share = cp.weight
     static_loads = share * result.crossing.vehicle.static_wheel_loads()[cp.wheel]
     static = -(infl @ static_loads)

@@ -107,7 +107,7 @@ def _field(bridge: "SlabOnGirderBridge", g: NDArray[np.float64], fixed_dof: Opti
 def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float] = None,
                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
     """Moment or shear of ``girder`` at section x [m], or the reaction of its bearing at support
-    0 (x = 0) or 1 (x = span)."""
+    ``support`` (0 = entry, then the interior supports, the last = exit)."""
     if kind not in EFFECT_KINDS:
         raise ValueError(f"load effect must be one of {', '.join(EFFECT_KINDS)}, got {kind!r}")
     if girder is None:
@@ -121,10 +121,14 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
     full[0::3] = modes.w.reshape(-1, omega.size)
     full[1::3] = modes.wx.reshape(-1, omega.size)
     full[2::3] = modes.wy.reshape(-1, omega.size)
+    supports = bridge.support_stations
+    sx = bridge.support_x
+    spans = np.diff(sx)
     if kind == "reaction":
-        if support not in (0, 1):
-            raise ValueError(f"reaction: support must be 0 (entry) or 1 (exit) on a simply supported deck, got {support!r}")
-        d = bridge._dof(j, 0 if support == 0 else nx, 0)
+        if support is None or not 0 <= int(support) < len(supports):
+            raise ValueError(f"reaction: support must be 0 … {len(supports) - 1}, got {support!r}")
+        support = int(support)
+        d = bridge._dof(j, supports[support], 0)
         if bridge.bearing_stiffness is None:
             v = _field(bridge, np.zeros(K.shape[0]), fixed_dof=d)
             modal = (K @ full)[d] - omega**2 * (M @ full)[d]
@@ -138,8 +142,8 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
             idx, coef, _, _ = load_weights(bridge, xp, yp)
             return (v[idx] * coef).sum(axis=1)
 
-        return LoadEffect("reaction", 0.0 if support == 0 else bridge.span, modal, influence, bridge.span,
-                          girder=girder, support=support)
+        length = spans[0] if support == 0 else spans[-1] if support == spans.size else 0.5 * (spans[support - 1] + spans[support])
+        return LoadEffect("reaction", float(sx[support]), modal, influence, float(length), girder=girder, support=support)
     if x is None or not 0.0 <= x <= bridge.span:
         raise ValueError(f"{kind}: section x must be within 0 … {bridge.span:g} m, got {x!r}")
     s = float(x)
@@ -178,4 +182,10 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
                 out[inside] += c * (-n[0] + np.where(xi <= s, 1.0, 0.0))
         return out
 
-    return LoadEffect(kind, s, modal, influence, bridge.span, girder=girder)
+    k = int(np.argmin(np.abs(sx - s)))
+    interior = abs(sx[k] - s) <= 1e-9 * bridge.span and 0 < k < spans.size
+    if kind == "moment" and interior:
+        length = 0.5 * (spans[k - 1] + spans[k])
+    else:
+        length = spans[bridge.span_index(s)]
+    return LoadEffect(kind, s, modal, influence, float(length), girder=girder, hogging_region=bool(kind == "moment" and interior))

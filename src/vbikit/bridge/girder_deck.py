@@ -160,6 +160,9 @@ class SlabOnGirderBridge(ModalBridge):
         Elements along the span; default the even number giving elements ≤ 0.5 m, at least 20.
     default_lateral_offset : float
         Vehicle centreline y [m] a scenario uses when it does not set ``crossing.lateral_offset``.
+    spans : tuple of float, optional
+        Several spans [m] (adding up to ``span``) with the girders continuous over the interior
+        supports: bearings under every girder at every support, diaphragms there by default.
     damage : tuple of Damage
         Local stiffness losses of single girders (:class:`vbikit.bridge.damage.Damage` with ``girder``):
         the girder elements' EI × (1 − severity × the fraction of the element inside the region).
@@ -197,6 +200,7 @@ class SlabOnGirderBridge(ModalBridge):
     default_lateral_offset: float = 0.0
     default_girder: int = 1
     damage: tuple[Damage, ...] = ()
+    spans: Optional[tuple[float, ...]] = None
     name: str = ""
     use_cache: bool = field(default=True, compare=False)
     cache_dir: Optional[str] = field(default=None, compare=False)
@@ -236,7 +240,15 @@ class SlabOnGirderBridge(ModalBridge):
             raise ValueError(f"bearing_stiffness must be > 0 N/m (or None for rigid), got {self.bearing_stiffness!r}")
         if not 1 <= self.default_girder <= self.n_girders:
             raise ValueError(f"default_girder must be 1 … {self.n_girders}, got {self.default_girder!r}")
-        d = (0.0, self.span) if self.diaphragms is None else tuple(float(v) for v in self.diaphragms)
+        if self.spans is not None:
+            spans = tuple(float(v) for v in self.spans)
+            if not spans or any(not (np.isfinite(v) and v > 0) for v in spans):
+                raise ValueError(f"spans must be positive span lengths [m], got {self.spans!r}")
+            if abs(sum(spans) - self.span) > 1e-9 * self.span:
+                raise ValueError(f"spans {spans} add up to {sum(spans):g} m, not to span = {self.span:g} m")
+            object.__setattr__(self, "spans", spans)
+        supports = tuple(float(v) for v in self.support_x)
+        d = supports if self.diaphragms is None else tuple(float(v) for v in self.diaphragms)
         if any(not 0.0 <= v <= self.span for v in d):
             raise ValueError(f"diaphragm positions must lie in 0 … {self.span} m, got {d}")
         object.__setattr__(self, "diaphragms", d)
@@ -264,13 +276,47 @@ class SlabOnGirderBridge(ModalBridge):
 
     @property
     def element_count(self) -> int:
+        return int(sum(self._span_elements()))
+
+    def _span_elements(self) -> list[int]:
+        """Elements per span: ``n_elements`` (shared in proportion to the span lengths on several
+        spans), else 2 per metre rounded up to an even number, at least 20 per span."""
+        spans = (self.span,) if self.spans is None else self.spans
         if self.n_elements is not None:
-            return int(self.n_elements)
-        return max(20, 2 * int(np.ceil(self.span / (2 * 0.5))))
+            if len(spans) == 1:
+                return [int(self.n_elements)]
+            return [max(2, int(round(self.n_elements * L / self.span))) for L in spans]
+        return [max(20, 2 * int(np.ceil(L / (2 * 0.5)))) for L in spans]
 
     @property
     def stations(self) -> NDArray[np.float64]:
-        return np.linspace(0.0, self.span, self.element_count + 1)
+        if self.spans is None:
+            return np.linspace(0.0, self.span, self.element_count + 1)
+        edges = np.concatenate([[0.0], np.cumsum(self.spans)])
+        parts = [np.linspace(a, b, n + 1)[:-1] for a, b, n in zip(edges[:-1], edges[1:], self._span_elements())]
+        return np.concatenate(parts + [[self.span]])
+
+    @property
+    def support_stations(self) -> tuple[int, ...]:
+        """Station indices of the supports (entry, interior supports, exit)."""
+        return tuple(int(v) for v in np.concatenate([[0], np.cumsum(self._span_elements())]))
+
+    @property
+    def support_x(self) -> NDArray[np.float64]:
+        """Support positions [m] (entry, interior supports, exit)."""
+        if self.spans is None:
+            return np.array([0.0, self.span])
+        return np.concatenate([[0.0], np.cumsum(self.spans)])
+
+    @property
+    def default_response_x(self) -> float:  # type: ignore[override]
+        """Midpoint [m] of the first span (midspan of a single span)."""
+        return 0.5 * float(self.support_x[1])
+
+    def span_index(self, x: float) -> int:
+        """0-based span containing x [m] (an interior support belongs to the span on its right)."""
+        xs = self.support_x
+        return int(np.clip(np.searchsorted(xs, x, side="right") - 1, 0, xs.size - 2))
 
     def _tributary(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Lower and upper y of each girder line's tributary deck strip."""
@@ -396,7 +442,7 @@ class SlabOnGirderBridge(ModalBridge):
                 add(d, ke, me)
         fixed: list[int] = []
         for j in range(n_lines):
-            for i in (0, nx):
+            for i in self.support_stations:
                 if self.bearing_stiffness is None:
                     fixed.append(self._dof(j, i, 0))
                 else:
@@ -574,9 +620,14 @@ class SlabOnGirderBridge(ModalBridge):
         return deck_load_effect(self, kind, x, girder, support)
 
     def default_load_effects(self, girder: Optional[int] = None) -> list[LoadEffect]:
-        """Midspan moment, shear just right of the entry bearing and both bearing reactions of ``girder``."""
-        return [self.load_effect("moment", self.span / 2, girder=girder), self.load_effect("shear", 0.0, girder=girder),
-                self.load_effect("reaction", support=0, girder=girder), self.load_effect("reaction", support=1, girder=girder)]
+        """Of ``girder``: the moment at the middle of every span and over every interior support, the
+        shear just right of every support but the last, and the reaction of every bearing."""
+        xs = self.support_x
+        n = xs.size - 1
+        out = [self.load_effect("moment", 0.5 * (xs[k] + xs[k + 1]), girder=girder) for k in range(n)]
+        out += [self.load_effect("moment", float(xs[k]), girder=girder) for k in range(1, n)]
+        out += [self.load_effect("shear", float(xs[k]), girder=girder) for k in range(n)]
+        return out + [self.load_effect("reaction", support=k, girder=girder) for k in range(n + 1)]
 
     def mode_descriptions(self) -> list[str]:
         """Short descriptions of the modes, e.g. "1st bending", "1st torsion", "transverse (2 nodal lines)"."""
@@ -654,6 +705,10 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
             if sorted(value) != sorted(need):
                 raise ValueError(f"bridge.deck.girder: a custom section needs exactly {', '.join(need)} [m², m⁴, m, m]")
             value = GirderSection(**{k: number(v, f"girder.{k}") for k, v in value.items()})
+        elif key == "spans":
+            if not isinstance(value, (list, tuple)) or not value:
+                raise ValueError("bridge.deck.spans: a list of span lengths [m]")
+            value = tuple(float(v) for v in value)
         elif key == "diaphragms":
             if not isinstance(value, (list, tuple)):
                 raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")
@@ -663,4 +718,6 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
             if key in ("n_girders", "n_elements", "default_girder") and not isinstance(value, int):
                 raise ValueError(f"bridge.deck.{key}: must be an integer, got {value!r}")
         out[key] = value
+    if "spans" in out and "span" not in out:  # the total length follows from the spans
+        out["span"] = float(sum(out["spans"]))  # type: ignore[arg-type]
     return out

@@ -17,6 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Callable
 
+import numpy as np
+
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
@@ -80,6 +82,11 @@ def paper_deck(bridge: int, n_modes: int = 10, damping_ratio: float = DEFAULT_DA
     """
     span, girder = {1: (9.16, "II"), 2: (16.76, "II"), 3: (39.62, "VI")}[bridge]
     diaphragms = (0.0, span) if bridge == 1 else (0.0, span / 2, span)
+    if overrides.get("spans") is not None:  # several spans: diaphragms at every support (and midspan on Bridges 2, 3)
+        edges = np.concatenate([[0.0], np.cumsum(overrides["spans"])])
+        mids = [] if bridge == 1 else list(0.5 * (edges[1:] + edges[:-1]))
+        diaphragms = tuple(sorted([float(v) for v in edges] + [float(v) for v in mids]))
+        overrides.setdefault("span", float(edges[-1]))
     params: dict[str, Any] = dict(
         span=span, n_girders=5, girder_spacing=2.13, overhang=0.615, girder=girder, deck_thickness=0.20,
         E_girder=E_GIRDER_3D, E_deck=E_CONCRETE, poisson=0.2, density=RHO_CONCRETE, diaphragms=diaphragms,

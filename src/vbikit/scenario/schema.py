@@ -123,8 +123,8 @@ class BridgeSpec(_Section):
             unknown = [k for k in self.deck if k not in SCENARIO_PARAMETERS]
             if unknown:
                 raise ValueError(f"unknown [bridge.deck] key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
-        if self.model == "slab-on-girder" and (self.deck is None or "span" not in self.deck):
-            raise ValueError("model = \"slab-on-girder\" needs [bridge.deck] with at least span [m] (docs/bridges.md)")
+        if self.model == "slab-on-girder" and (self.deck is None or not {"span", "spans"} & set(self.deck)):
+            raise ValueError("model = \"slab-on-girder\" needs [bridge.deck] with at least span [m] or spans (docs/bridges.md)")
         if self.model == "slab-on-girder":
             given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
             if given:

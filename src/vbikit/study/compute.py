@@ -8,6 +8,7 @@ from collections import OrderedDict
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.effects import contact_influence, load_effect_response
 from vbikit.analysis.impact import impact_factor
 from vbikit.road.profile import RoadProfile
 from vbikit.scenario.build import build, build_right_road, build_road
@@ -27,6 +28,11 @@ OUTPUTS: dict[str, tuple[str, str]] = {
     "max_abs_velocity": ("m s-1", "peak |deck velocity| at the response point"),
     "max_abs_acceleration": ("m s-2", "peak |deck acceleration| at the response point"),
     "min_tire_force": ("N", "smallest wheel force over the crossing (0 = a tire lost contact)"),
+    **{f"{kind}_{name}": (units, f"{kind} ({what}): {desc}; the first [response] {kind} of the base scenario "
+                                  "(default: the bridge's first), NaN if the bridge has none")
+       for kind, what, units in (("moment", "sagging positive", "N m"), ("shear", "dM/dx", "N"), ("reaction", "upward", "N"))
+       for name, desc in (("impact_factor", "IM in the static peak's direction"), ("static_peak", "static peak"),
+                          ("dynamic_peak", "dynamic peak in the static peak's direction"))},
     "dt": ("s", "time step"),
     "n_steps": ("1", "number of time steps"),
 }
@@ -76,6 +82,23 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     eps = bridge.strain_shapes([x], [y])[0]
 
     static: dict[float, tuple[NDArray, NDArray]] = {}  # static deflection and strain, per step
+    effects = {kind: next((e for e in built[0].load_effects if e.kind == kind), None) for kind in ("moment", "shear", "reaction")}
+    method = built[0].load_effect_method
+    influence: dict[tuple[str, float], NDArray] = {}  # contact influence matrices, per effect and step
+
+    def effect_row(result) -> dict[str, float]:
+        row: dict[str, float] = {}
+        for kind, effect in effects.items():
+            if effect is None:
+                row |= {f"{kind}_impact_factor": np.nan, f"{kind}_static_peak": np.nan, f"{kind}_dynamic_peak": np.nan}
+                continue
+            key = (kind, result.dt)
+            if method == "mode-acceleration" and key not in influence:
+                influence[key] = contact_influence(result, effect)
+            im = load_effect_response(result, effect, method, influence=influence.get(key)).impact
+            row |= {f"{kind}_impact_factor": im.impact_factor, f"{kind}_static_peak": im.static_peak,
+                    f"{kind}_dynamic_peak": im.dynamic_peak}
+        return row
 
     def reduce(result):
         check_finite(result)
@@ -93,7 +116,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
             "max_abs_acceleration": float(np.abs(result.xi_ddot @ phi).max()),
             "min_tire_force": float(result.wheel_forces.min()) if result.wheel_forces.size else np.nan,
             "dt": result.dt, "n_steps": float(result.n_steps),
-        }
+        } | effect_row(result)
         return row, (disp if study.histories else None)
 
     rows = solver.run_many(roads, reduce=reduce, threads=threads)
