@@ -163,10 +163,14 @@ def _print_summary(run: _Run) -> None:
             road_text += f"; defects: {', '.join(road['defects'])}"
         typer.echo(f"  bridge               {inp['bridge']} (span {inp['span']:g} m, {inp['n_modes']} modes, "
                    f"damping {inp['damping_ratio']:.3g})")
-        typer.echo(f"  vehicle, tire        {inp['vehicle']}, {inp['tire']} tire")
+        several = "vehicles" in inp
+        for i, v in enumerate(inp["vehicles"] if several else [inp], start=1):
+            motion = f", {v['direction']}, entering at {v['entry_time']:g} s, y = {v['lateral_offset']:g} m" if several else ""
+            typer.echo(f"  {f'vehicle {i}' if several else 'vehicle':<20} {v['vehicle']}, {v['speed_kmh']:.4g} km/h = "
+                       f"{v['speed_m_s']:.4g} m/s" + (f", acceleration {v['acceleration']:g} m/s²" if v["acceleration"] else "")
+                       + motion)
+        typer.echo(f"  tire                 {inp['tire']}")
         typer.echo(f"  road                 {road_text}")
-        typer.echo(f"  speed                {inp['speed_kmh']:.4g} km/h = {inp['speed_m_s']:.4g} m/s"
-                   + (f", acceleration {inp['acceleration']:g} m/s²" if inp["acceleration"] else ""))
         typer.echo(f"  vbikit               {inp['vbikit_version']}")
     typer.echo(f"  bridge f1..f3        {', '.join(f'{f:.2f}' for f in s['frequencies_hz'][:3])} Hz")
     girder = f" (Girder {s['response_girder']})" if s.get("response_girder") else ""

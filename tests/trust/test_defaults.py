@@ -102,7 +102,10 @@ def test_cli_and_python_api_agree(example):
     assert cli["strain_impact_factor"] == response.strain_impact.impact_factor
     assert cli["response_y"] == response.y
     assert cli["n_steps"] == result.n_steps and cli["dt"] == result.dt
-    assert cli["inputs"]["lateral_offset"] == crossing.lateral_offset
+    if crossing.vehicles:
+        assert [v["lateral_offset"] for v in cli["inputs"]["vehicles"]] == [m.lateral_offset for m in crossing.vehicles]
+    else:
+        assert cli["inputs"]["lateral_offset"] == crossing.lateral_offset
 
 
 def test_paper_deck_defaults_are_the_scenario_defaults():

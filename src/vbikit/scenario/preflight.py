@@ -73,12 +73,24 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     return Plan(scenario, built, dt, estimate, warnings)
 
 
+def _vehicle_inputs(scenario: Scenario, c: Any) -> dict[str, Any]:
+    """The vehicle(s) and their motion: one [vehicle] with the crossing's speed, or every [[vehicles]] entry."""
+    if not c.vehicles:
+        return {"vehicle": scenario.vehicle.model, "vehicle_parameters": scenario.vehicle.parameters,
+                "speed_kmh": c.speed * 3.6, "speed_m_s": c.speed, "acceleration": c.acceleration,
+                "lateral_offset": c.lateral_offset}
+    return {"vehicles": [
+        {"vehicle": spec.model, "vehicle_parameters": spec.parameters, "speed_kmh": m.speed * 3.6, "speed_m_s": m.speed,
+         "acceleration": m.acceleration, "direction": m.direction, "entry_time": m.entry_time,
+         "lateral_offset": m.lateral_offset}
+        for spec, m in zip(scenario.vehicles, c.vehicles)]}
+
+
 def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
     """The inputs a report states: bridge, vehicle, tire, road, speed, integrator, step, steps, modes."""
     from vbikit import __version__
 
     c, r = plan.built.crossing, scenario.road
-    vehicle = scenario.vehicle if scenario.vehicle is not None else scenario.vehicles[0]
     road: dict[str, Any] = {"class": r.road_class}
     if r.profile_file:
         road = {"profile_file": r.profile_file, **({"profile_file_right": r.profile_file_right} if r.profile_file_right else {})}
@@ -96,14 +108,9 @@ def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
         "span": float(c.bridge.span),
         "n_modes": int(c.bridge.omega.size),
         "damping_ratio": scenario.bridge.damping_ratio,
-        "vehicle": vehicle.model,
-        "vehicle_parameters": vehicle.parameters,
+        **_vehicle_inputs(scenario, c),
         "tire": scenario.tire.model,
         "road": road,
-        "speed_kmh": c.speed * 3.6,
-        "speed_m_s": c.speed,
-        "acceleration": c.acceleration,
-        "lateral_offset": c.lateral_offset,
         "integrator": c.integrator,
         "dt": plan.dt,
         "dt_given": scenario.crossing.dt is not None,
