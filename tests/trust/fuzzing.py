@@ -121,6 +121,12 @@ SCENARIO_KEYS: dict[tuple[str, ...], Any] = {
     ("crossing", "integrator"): st.sampled_from(["rk4", "newmark", "euler"]), ("crossing", "lateral_offset"): NUMBERS,
     ("response", "x"): NUMBERS, ("response", "y"): NUMBERS, ("response", "girder"): st.integers(-1, 9),
     ("name",): WEIRD,
+    ("bridge", "spans"): st.lists(st.one_of(st.floats(1, 60), NUMBERS), max_size=4),
+    ("vehicles",): st.lists(st.fixed_dictionaries(
+        {"model": st.sampled_from(["sprung-mass", "moving-force", "two-axle", "axles", "zz"])},
+        optional={"speed": NUMBERS, "speed_kmh": st.one_of(st.floats(1, 200), NUMBERS),
+                  "direction": st.sampled_from(["+x", "-x", "up"]), "entry_time": NUMBERS,
+                  "lateral_offset": NUMBERS, "acceleration": NUMBERS}), max_size=3),
 }
 
 BASE_SCENARIOS = [
@@ -131,6 +137,10 @@ BASE_SCENARIOS = [
      "crossing": {"speed_kmh": 80, "approach": 2.0, "free_vibration": 0.05}},
     {"bridge": {"model": "paper-bridge-1", "n_modes": 4}, "vehicle": {"model": "hs20-44"},
      "crossing": {"speed_kmh": 60, "approach": 1.0, "free_vibration": 0.05}, "response": {"girder": 4}},
+    {"bridge": {"model": "continuous-beam", "spans": [10.0, 12.0], "EI": 5e9, "mass_per_length": 5000.0, "n_modes": 4},
+     "crossing": {"approach": 1.0, "free_vibration": 0.05},
+     "vehicles": [{"model": "sprung-mass", "speed": 20.0},
+                  {"model": "moving-force", "speed_kmh": 50.0, "direction": "-x", "entry_time": 0.1}]},
 ]
 
 
