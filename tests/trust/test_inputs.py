@@ -176,3 +176,11 @@ def test_report_states_every_vehicle(tmp_path):
     assert any(w.startswith("vehicles.1.speed: speed 270 km/h") or "vehicles.1.speed" in w for w in summary["warnings"])
     text = runner.invoke(app, ["run", str(path)]).stdout
     assert "vehicle 2            sprung-mass, 270 km/h = 75 m/s, -x, entering at 0.2 s" in text
+
+
+def test_a_bridge_that_cannot_be_solved_is_exit_2(tmp_path):
+    """Found by the fuzz test: a continuous beam with a span of 1e300 m ended in a RuntimeError traceback."""
+    text = BEAM.replace('model = "paper-bridge-2-beam"', 'model = "continuous-beam"\nspans = [55.0, 1e300]\n'
+                                                         'EI = 5e9\nmass_per_length = 5000.0')
+    for res in _both(_write(tmp_path, text)):
+        assert res.exit_code == 2 and "bridge (model = 'continuous-beam')" in res.output, res.output

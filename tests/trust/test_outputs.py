@@ -154,3 +154,13 @@ def test_a_non_finite_summary_value_is_null_with_a_warning(tmp_path, monkeypatch
         assert "max_abs_acceleration is not a finite number (written as null)" in data["warnings"]
     text = runner.invoke(app, ["run", str(SCENARIO)])
     assert text.exit_code == 0 and "inf m/s²" in text.stdout
+
+
+def test_field_channel_that_is_not_a_table_is_exit_2(tmp_path):
+    """Found by the fuzz test: channel = [3] ended in a TypeError traceback."""
+    toml = _field_copy(tmp_path)
+    text = toml.read_text()
+    cut = text.index("[[case.channel]]")
+    toml.write_text(text[:cut] + "channel = [3]\n")
+    res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
+    assert res.exit_code == 2 and "case.1.channel.1" in res.output and "must be tables" in res.output, res.output

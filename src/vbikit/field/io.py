@@ -295,6 +295,8 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         chans = []
         for j, ch in enumerate(chans_raw, start=1):
             w2 = f"{where}channel.{j}."
+            if not isinstance(ch, dict):
+                raise FieldFileError(f"{path}: {w2.rstrip('.')}: [[case.channel]] entries must be tables (name, quantity, girder, x, unit)")
             _keys(ch, _CHANNEL, w2, path)
             for key in ("name", "quantity", "unit"):
                 if not isinstance(ch.get(key), str):

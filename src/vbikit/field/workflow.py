@@ -220,10 +220,12 @@ def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None)
     check_bridge(bridge, limits)
     for case in spec.cases:
         for name in tires:
-            crossing = case_crossing(spec, case, FIELD_TIRES[name](), bridge, spec.dt)
             try:
+                crossing = case_crossing(spec, case, FIELD_TIRES[name](), bridge, spec.dt)
                 check_run(crossing, choose_time_step(crossing), limits)
-            except ValueError as err:
+            except FieldFileError:
+                raise
+            except (ValueError, RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
                 raise FieldFileError(f"{spec.path}: case {case.name!r}, {name} tire: {err}") from None
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.damage import Damage
@@ -188,6 +190,14 @@ def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | No
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
     """Compose bridge, vehicle(s), tire and road into a Crossing (raises ScenarioError on bad
     combinations, :class:`~vbikit.solve.budget.BudgetError` on a bridge or road above ``limits``)."""
+    try:
+        return _build(scenario, limits)
+    except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:  # a model that cannot be solved
+        raise ScenarioError(f"bridge (model = {scenario.bridge.model!r}): the model could not be solved "
+                            f"({type(err).__name__}: {err}); check the bridge's dimensions and properties") from None
+
+
+def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
     try:
         bridge = build_bridge(scenario.bridge, scenario.base_dir)
         check_bridge(bridge, limits)

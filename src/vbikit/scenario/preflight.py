@@ -66,7 +66,11 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
         # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
         # its stability limit (eigenvalues of the coupled system) is computed
         check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
-    dt = choose_time_step(crossing)
+    try:
+        dt = choose_time_step(crossing)
+    except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
+        raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
+                            "bridge, vehicle and tire parameters") from None
     estimate = check_run(crossing, dt, limits)
     check_response_point(built)
     warnings = input_warnings(crossing, dt, built.response_x) + defect_warnings(scenario, built)
