@@ -241,3 +241,55 @@ def test_slow_crossing_off_centre_loads_the_girders_on_its_side():
     assert girders[0] < 0 < girders[-1]
     # measured: Σ left / Σ right = 29 (Girder 4 at y = +2.13 m carries most); mirrored tracks: 1/29
     assert g_max[girders > 0].sum() > 10 * g_max[girders < 0].sum()
+
+
+# ============================================================== static reference and impact factor
+def _influence(a: np.ndarray, span: float, EI: float) -> np.ndarray:
+    """Midspan deflection [m, positive down] per newton at x = a (Roark: P a (3L² − 4a²)/(48 EI), a ≤ L/2)."""
+    b = np.where(a <= span / 2, a, span - a)
+    return np.where((a >= 0) & (a <= span), b * (3 * span**2 - 4 * b**2) / (48 * EI), 0.0)
+
+
+@pytest.mark.parametrize("tire", [PointTire(), MultiPointTire(6), DiskTire(), RigidDiskTire()], ids=lambda t: t.name)
+def test_static_reference_is_the_static_wheel_loads_on_the_influence_line(tire):
+    """The static reference of the impact factor (docs/theory.md) is the vehicle's static wheel
+    loads moved along the path: whatever the tire model, the midspan history equals Σ_w P_w δ(x_w)
+    with the exact influence line, up to the modal truncation and the spreading of each load over
+    its patch."""
+    from vbikit.analysis import point_response
+
+    beam = paper_beam(16.76, "II", n_modes=10)
+    veh = hs20_44()
+    r = simulate(Crossing(beam, veh, tire=tire, road=ROUGH, speed=20.0, approach=2.0, free_vibration=0.0))
+    xw = r.front_position[:, None] - np.array([w.offset for w in veh.wheels])[None, :]
+    exact = -(_influence(xw, beam.span, beam.EI) * veh.static_wheel_loads()).sum(axis=1)
+    static = point_response(r).static_displacement
+    peak = np.abs(exact).max()
+    # modal truncation (10 modes): measured 5.5e-5 of the peak for point loads (point, rigid disk);
+    # spreading a wheel load by shares β_p over offsets ξ_p moves δ_mid by ≤ (3/L)·E_β|ξ|·P L³/(48EI)
+    # (δ_mid is Lipschitz with 3L²/(48EI) per newton, test_tire_models); measured 3.5e-3
+    # (multipoint, n = 6) and 2.9e-3 (disk) against bounds of 2.2e-2 and 2.0e-2
+    cp = r.crossing.contact
+    spread = max(float(np.sum(cp.weight[cp.wheel == w] * np.abs(cp.setback[cp.wheel == w] - veh.wheels[w].offset)))
+                 for w in range(len(veh.wheels)))
+    bound = 3.0 / beam.span * spread * veh.static_wheel_loads().sum() * beam.span**3 / (48 * beam.EI)
+    assert np.abs(static - exact).max() <= 1e-4 * peak + bound
+
+
+def test_impact_factor_of_a_moving_force_is_frybas_daf_minus_one():
+    """IM = (R_dyn,max − R_st,max)/R_st,max (paper §3).  For a constant force on an undamped beam
+    R_st,max = PL³/48EI (within the modal truncation) and R_dyn,max/(PL³/48EI) is Frýba's DAF:
+    α = 0.5 → 1.705, α = 1.0 → 1.548 (Frýba 1972; docs/verification.md)."""
+    from vbikit.analysis import point_response
+
+    beam = EulerBernoulliBeam(span=20.0, EI=1.0e10, mass_per_length=1.0e4, damping_ratio=0.0, n_modes=20)
+    f1 = beam.frequencies_hz[0]
+    for alpha, daf in ((0.5, 1.705), (1.0, 1.548)):
+        r = simulate(Crossing(beam, moving_force(1e5), speed=2 * alpha * f1 * beam.span, approach=0.0,
+                              free_vibration=1.0 / f1, dt=1.0 / f1 / 4000))
+        im = point_response(r).displacement_impact
+        # 20 modes: static peak 2.0e-5 below PL³/48EI (the series (96/π⁴)Σ 1/j⁴); the table has 3
+        # decimals (and is 5.5e-4 off the series at α = 0.1, test_fryba_moving_force); measured
+        # |IM − (DAF − 1)| = 4.8e-4 (α = 0.5), 1.1e-4 (α = 1.0)
+        assert im.static_peak == pytest.approx(-1e5 * 20.0**3 / (48 * 1.0e10), rel=1e-4)
+        assert im.impact_factor == pytest.approx(daf - 1.0, abs=1.5e-3)
