@@ -55,6 +55,11 @@ CASES = {
                            ["bridge.deck.diaphragms", "finite number"]),
     "deck-float-integer": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2"\n[bridge.deck]\nn_girders = 5.0'),
                            ["bridge.deck.n_girders", "integer"]),
+    # found by the fuzz run: a mass of 1e-300 kg/m gave a zero step (ZeroDivisionError); a Newmark step
+    # of 1e9 s passed validate and then asked the road for x up to 2e10 m
+    "mass-tiny": (BEAM.replace('"paper-bridge-2-beam"', '"beam"\nspan = 20.0\nEI = 1e10\nmass_per_length = 1e-300'),
+                  ["time steps", "crossing.dt"]),
+    "dt-longer-than-crossing": (BEAM + "integrator = \"newmark\"\ndt = 1e9\n", ["crossing.dt = 1e+09 s", "fewer than 10 steps"]),
     "deep-nesting": ("a = " + "[" * 5000 + "]" * 5000 + "\n", ["s.toml", "not valid TOML"]),
     "unknown-key": (BEAM + "spead = 3\n", ["crossing.spead", "unknown key"]),
 }

@@ -20,6 +20,10 @@ from vbikit.solve.budget import Limits, RunEstimate, check_run
 from vbikit.solve.timestep import accuracy_time_step, choose_time_step
 
 
+#: fewest time steps a crossing may have (a user step longer than the crossing's tenth is refused)
+MIN_STEPS = 10
+
+
 @dataclass(frozen=True)
 class Plan:
     """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings."""
@@ -62,6 +66,9 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     UnstableTimeStepError or BudgetError, all ``ValueError``)."""
     built = build(scenario, limits)
     crossing = built.crossing
+    if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
+        raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
+                            f"({crossing.duration:.4g} s); leave dt out for the automatic step")
     if crossing.integrator == "rk4":
         # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
         # its stability limit (eigenvalues of the coupled system) is computed

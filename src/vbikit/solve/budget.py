@@ -120,7 +120,7 @@ class RunEstimate:
 
 def estimate_run(crossing: Crossing, dt: float, lanes: int = 1) -> RunEstimate:
     """Steps and memory of ``lanes`` crossings like ``crossing`` at step ``dt`` [s] (module docstring)."""
-    ratio = crossing.duration / dt
+    ratio = crossing.duration / dt if dt > 0 else math.inf
     n_steps = max(1, math.ceil(ratio - 1e-9)) if math.isfinite(ratio) and ratio < 1e18 else 10**18
     n_t = n_steps + 1
     n_m = int(crossing.bridge.omega.size)
