@@ -7,8 +7,11 @@ Run from the repository root::
     python benchmarks/bench_crossing.py --repeat 9 --no-baseline
 
 The case: ``paper_beam(16.76, "II", n_modes=20)``, ``hs20_44()``, ``MultiPointTire(n_points=6)``
-(36 contact points), ISO 8608 class C random road (seed 1), 75 km/h, RK4 with the automatic
-time step, ``vbikit.solve.simulate(Crossing(...))``.
+(36 contact points), ISO 8608 class C random road (seed 1), 75 km/h, the default integrator
+(exact modal stepping) with its automatic time step, ``vbikit.solve.simulate(Crossing(...))``,
+against RK4 at its automatic step in the same run (the ratio is the figure to read); the same
+pair on the 3D ``paper-bridge-2`` deck (20 modes, Girder 4); and the cost of the default against
+the number of modes (5 … 80) at a fixed step.
 
 Measured (wall clock, ``time.perf_counter``):
 
@@ -20,7 +23,9 @@ Measured (wall clock, ``time.perf_counter``):
   written independently here in numpy, from the same initial state (vbikit's row 0);
 * agreement: max |midspan displacement difference| / |peak midspan displacement| and the
   impact factor from each history;
-* context: the same crossing with Newmark (average acceleration) and with the point tire (n = 1).
+* ratios: RK4 / default on the beam and on the 3D deck (same run);
+* context: the same crossing with Newmark (average acceleration) and with the point tire (n = 1);
+* modes: the default at dt = 0.96 ms with 5, 10, 20, 40, 80 modes (time per crossing and per mode).
 
 The library is not modified; nothing is written except numba's cache.
 """
@@ -78,7 +83,7 @@ def time_runs(crossing: Crossing, repeat: int):
 
 def cache_state() -> str:
     hits = misses = 0
-    for name in ("rk4", "newmark", "shapes_at", "assemble", "road_at", "accelerations", "contact_forces"):
+    for name in ("rk4", "implicit", "shapes_at", "assemble", "road_at", "accelerations", "contact_forces"):
         stats = getattr(kernels, name).stats
         hits += sum(stats.cache_hits.values())
         misses += sum(stats.cache_misses.values())
@@ -199,7 +204,7 @@ def main() -> int:
     truck = hs20_44()
     road = random_profile(RoadPSD.iso("C"), seed=1)
     tire = MultiPointTire(n_points=N_POINTS)
-    crossing = Crossing(beam, truck, tire, road, speed=SPEED, integrator="rk4")
+    crossing = Crossing(beam, truck, tire, road, speed=SPEED)
 
     print("vbikit crossing benchmark: Bridge 2 beam (16.76 m, Type II, 20 modes), HS20-44, "
           f"{N_POINTS}-point tire, ISO C road seed 1, {SPEED * 3.6:.0f} km/h")
@@ -209,28 +214,62 @@ def main() -> int:
     warm, runs, res = time_runs(crossing, repeat)
     pr = point_response(res)
     im_vbikit = pr.displacement_impact.impact_factor
-    print(f"\nRK4, n = {N_POINTS}: dt = {res.dt:.3e} s (auto), {res.n_steps} steps, "
+    print(f"\n{crossing.integrator} (default), n = {N_POINTS}: dt = {res.dt:.3e} s (auto), {res.n_steps} steps, "
           f"{crossing.contact.n} contact points, {res.q.shape[1]} vehicle DOFs")
     print(f"  warm-up (first call): {warm:.3f} s  [{cache_state()}]")
     print(f"  timed:                {fmt_runs(runs)}")
     print(f"  midspan peak {pr.displacement.min() * 1e3:.4f} mm, static {pr.static_displacement.min() * 1e3:.4f} mm, "
-          f"IM = {im_vbikit:.4f}")
+          f"IM = {im_vbikit:.5f}")
     t_vbikit = statistics.median(runs)
+
+    rk4 = Crossing(beam, truck, tire, road, speed=SPEED, integrator="rk4")
+    w4, r4, res4 = time_runs(rk4, repeat)
+    im4 = point_response(res4).displacement_impact.impact_factor
+    print(f"RK4, same crossing: dt = {res4.dt:.3e} s (auto), {res4.n_steps} steps, warm-up {w4:.3f} s, {fmt_runs(r4)}, "
+          f"IM = {im4:.5f}")
+    print(f"  ratio RK4 / default: {statistics.median(r4) / t_vbikit:.1f}x ({res4.n_steps / res.n_steps:.1f}x fewer steps), "
+          f"IM difference {im_vbikit - im4:+.1e}")
+
+    # the 3D deck: paper-bridge-2, 20 modes, Girder 4
+    from vbikit.bridge import paper_deck
+
+    deck = paper_deck(2, n_modes=N_MODES)
+    girder_y = float(deck.girder_y[3])
+    pairs = {}
+    for integ in ("exact", "rk4"):
+        cr = Crossing(deck, truck, tire, road, speed=SPEED, integrator=integ,
+                      lateral_offset=float(getattr(deck, "default_lateral_offset", 0.0)))
+        w, rs, rr = time_runs(cr, repeat)
+        pairs[integ] = (statistics.median(rs), rr, point_response(rr, None, girder_y).displacement_impact.impact_factor)
+        print(f"paper-bridge-2 (3D, {N_MODES} modes, Girder 4), {integ}: {rr.n_steps} steps, {fmt_runs(rs)}, "
+              f"IM = {pairs[integ][2]:.5f}")
+    print(f"  ratio RK4 / default: {pairs['rk4'][0] / pairs['exact'][0]:.1f}x, IM difference "
+          f"{pairs['exact'][2] - pairs['rk4'][2]:+.1e}")
 
     # context: Newmark and the point tire
     context = [("Newmark, n = 6", Crossing(beam, truck, tire, road, speed=SPEED, integrator="newmark")),
-               ("RK4, point tire (n = 1)", Crossing(beam, truck, PointTire(), road, speed=SPEED, integrator="rk4")),
-               ("Newmark, point tire (n = 1)", Crossing(beam, truck, PointTire(), road, speed=SPEED, integrator="newmark"))]
+               ("default, point tire (n = 1)", Crossing(beam, truck, PointTire(), road, speed=SPEED)),
+               ("RK4, point tire (n = 1)", Crossing(beam, truck, PointTire(), road, speed=SPEED, integrator="rk4"))]
     print("\ncontext (same truck, road, speed, automatic dt):")
     for name, cr in context:
         w, rs, rr = time_runs(cr, repeat)
         prr = point_response(rr)
         extra = ""
         if cr.tire == tire:
-            diff = np.max(np.abs(prr.displacement - pr.displacement)) / np.max(np.abs(pr.displacement))
-            extra = f", max |Δu_mid| vs RK4 = {diff:.2e} of peak"
+            diff = np.max(np.abs(prr.displacement - np.interp(rr.time, res4.time, point_response(res4).displacement)))
+            extra = f", max |Δu_mid| vs RK4 = {diff / np.max(np.abs(pr.displacement)):.2e} of peak"
         print(f"  {name:28s} warm-up {w:.3f} s, {fmt_runs(rs)}; {rr.n_steps} steps, "
-              f"IM = {prr.displacement_impact.impact_factor:.4f}{extra}")
+              f"IM = {prr.displacement_impact.impact_factor:.5f}{extra}")
+
+    print("\ncost against the number of modes (default integrator, dt = 0.96 ms fixed):")
+    base_t = None
+    for n_modes in (5, 10, 20, 40, 80):
+        cr = Crossing(paper_beam(16.76, "II", n_modes=n_modes), truck, tire, road, speed=SPEED, dt=9.6e-4)
+        w, rs, rr = time_runs(cr, repeat)
+        t = statistics.median(rs)
+        base_t = base_t or t / 5
+        print(f"  {n_modes:3d} modes: {t * 1e3:7.1f} ms per crossing ({t / n_modes * 1e3:.2f} ms per mode), "
+              f"{rr.n_steps} steps, IM = {point_response(rr).displacement_impact.impact_factor:.5f}")
 
     if ARGS.no_baseline:
         print(f"\n(baseline skipped)  total {time.perf_counter() - t_start:.1f} s")

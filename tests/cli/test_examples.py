@@ -53,5 +53,9 @@ def test_csv_and_plot_outputs(tmp_path: Path):
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     s = json.loads(summ.read_text())
     assert data.shape[0] == s["n_steps"] + 1
-    assert data[:, header.index("displacement")].min() == pytest.approx(s["max_dynamic_displacement"])
+    # the summary's peak is refined between the samples (cubic Hermite with the velocity, so at
+    # least the sampled one and above it by less than a mode-1 peak can fall between samples:
+    # 1 − cos(ω₁ dt/2) = 2.2e-3 at f₁ = 5.55 Hz, dt = 4 ms)
+    sampled, refined = -data[:, header.index("displacement")].min(), -s["max_dynamic_displacement"]
+    assert 0.0 <= refined - sampled <= 2.2e-3 * refined
     assert fig.stat().st_size > 10_000

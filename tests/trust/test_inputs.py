@@ -35,7 +35,7 @@ def _both(path: Path, *args: str):
 
 CASES = {
     # (section to append or replace, words the message must contain)
-    "dt-above-rk4-limit": (BEAM + "dt = 0.01\n", ["crossing.dt", "stability limit"]),
+    "dt-above-rk4-limit": (BEAM + "dt = 0.01\nintegrator = \"rk4\"\n", ["crossing.dt", "stability limit"]),
     "speed-too-slow": (BEAM.replace("speed_kmh = 75", "speed_kmh = 0.01"), ["time steps", "crossing.speed 0.002778 m/s = 0.01 km/h", "--max-steps"]),
     "approach-huge": (BEAM + "approach = 1e7\n", ["time steps", "crossing.approach 1e+07 m"]),
     "road-spacing-tiny": (BEAM + "[road]\nclass = \"C\"\nspacing = 1e-9\nn_max = 0.1\n", ["road", "spacing", "--max-memory"]),

@@ -32,7 +32,7 @@ def _rk4_growth(z):
 
 def test_auto_dt_resolves_highest_bridge_mode(road):
     beam = paper_beam(16.76, "II", n_modes=20)
-    c = Crossing(beam, hs20_44(), MultiPointTire(n_points=6), road, speed=SPEED)
+    c = Crossing(beam, hs20_44(), MultiPointTire(n_points=6), road, speed=SPEED, integrator="rk4")
     dt = choose_time_step(c)
     t_min = 2 * np.pi / beam.omega.max()
     assert dt <= t_min / 5 * (1 + 1e-12)
@@ -43,7 +43,7 @@ def test_auto_dt_resolves_highest_bridge_mode(road):
 
 def test_auto_dt_limited_by_road_spacing(road):
     beam = paper_beam(16.76, "II", n_modes=3)  # f3 ≈ 66 Hz: T/5 ≈ 3 ms, longer than 0.01 m / v ≈ 0.48 ms
-    c = Crossing(beam, hs20_44(), road=road, speed=SPEED)
+    c = Crossing(beam, hs20_44(), road=road, speed=SPEED, integrator="rk4")
     dt = choose_time_step(c)
     assert dt <= 2 * np.pi / beam.omega.max() / 5
     assert dt == pytest.approx(road.spacing / SPEED, rel=1e-12)
@@ -90,10 +90,12 @@ def test_user_dt_above_rk4_limit_is_refused():
     beam = paper_beam(16.76, "II", n_modes=20)
     limit = rk4_stability_limit(Crossing(beam, moving_force(), speed=SPEED))
     with pytest.raises(UnstableTimeStepError, match="stability limit"):
-        choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=1.1 * limit))
-    assert choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=0.5 * limit)) == 0.5 * limit
-    # Newmark takes any step
-    assert choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=1.1 * limit, integrator="newmark")) == 1.1 * limit
+        choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=1.1 * limit, integrator="rk4"))
+    assert choose_time_step(Crossing(beam, moving_force(), speed=SPEED, dt=0.5 * limit, integrator="rk4")) == 0.5 * limit
+    # Newmark and exact modal stepping take any step
+    for integrator in ("newmark", "exact"):
+        crossing = Crossing(beam, moving_force(), speed=SPEED, dt=1.1 * limit, integrator=integrator)
+        assert choose_time_step(crossing) == 1.1 * limit
 
 
 def test_braking_to_a_stop_before_leaving_raises(road):

@@ -1,6 +1,8 @@
 # References: textbook properties of the integrators and of the modal series, no vbikit output:
 # * classical Runge–Kutta is 4th order, Newmark average acceleration (γ = 1/2, β = 1/4) 2nd
-#   order (Hairer, Nørsett & Wanner, *Solving ODEs I*; Newmark 1959, J. Eng. Mech. Div. 85(3)).
+#   order (Hairer, Nørsett & Wanner, *Solving ODEs I*; Newmark 1959, J. Eng. Mech. Div. 85(3));
+#   exact modal stepping is exact for each subsystem and 2nd order through the first-order
+#   hold of the coupling loads (the trapezoidal rule's order; docs/theory.md).
 #   With errors e_k = C (dt/2^k)^p measured against a reference at dt/8, the ratios e_0/e_1,
 #   e_1/e_2 are exactly (1 − 8^-p)/(2^-p − 8^-p) and (2^-p − 8^-p)/(4^-p − 8^-p):
 #   16.06 and 17.0 for p = 4, 4.2 and 5.0 for p = 2;
@@ -56,7 +58,7 @@ def _expected_ratios(p: int) -> tuple[float, float]:
     return (1 - 8.0**-p) / (2.0**-p - 8.0**-p), (2.0**-p - 8.0**-p) / (4.0**-p - 8.0**-p)
 
 
-@pytest.mark.parametrize("integrator, order", [("rk4", 4), ("newmark", 2)])
+@pytest.mark.parametrize("integrator, order", [("rk4", 4), ("newmark", 2), ("exact", 2)])
 def test_convergence_order(integrator, order):
     e = _errors(integrator, 5e-4)
     ratios = e[:-1] / e[1:]
@@ -85,15 +87,18 @@ def test_modal_convergence_of_static_midspan_deflection():
 
 def test_user_time_step_above_rk4_limit_is_refused():
     beam = paper_beam(16.76, "II")
-    crossing = Crossing(beam, hs20_44(), speed=20.0, approach=5.0)
+    crossing = Crossing(beam, hs20_44(), speed=20.0, approach=5.0, integrator="rk4")
     limit = rk4_stability_limit(crossing)
     # the highest bridge mode alone bounds it: |ω_max dt| ≤ 2√2 on the imaginary axis (the light
     # 2 % damping moves the eigenvalue slightly left, where the region is a little wider)
     assert limit == pytest.approx(2 * np.sqrt(2) / beam.omega.max(), rel=0.05)
     with pytest.raises(UnstableTimeStepError):
-        simulate(Crossing(beam, hs20_44(), speed=20.0, approach=5.0, dt=1.05 * limit))
-    # below the limit RK4 runs and stays bounded; Newmark accepts any step
-    ok = simulate(Crossing(beam, hs20_44(), speed=20.0, approach=5.0, dt=0.95 * limit, free_vibration=0.1))
+        simulate(Crossing(beam, hs20_44(), speed=20.0, approach=5.0, dt=1.05 * limit, integrator="rk4"))
+    # below the limit RK4 runs and stays bounded; Newmark and exact modal stepping accept any step
+    ok = simulate(Crossing(beam, hs20_44(), speed=20.0, approach=5.0, dt=0.95 * limit, free_vibration=0.1,
+                           integrator="rk4"))
     assert np.all(np.isfinite(ok.xi)) and np.abs(ok.displacement()).max() < 0.01
-    simulate(Crossing(beam, hs20_44(), speed=20.0, approach=5.0, dt=1.05 * limit, integrator="newmark",
-                      free_vibration=0.1))
+    for integrator in ("newmark", "exact"):
+        big = simulate(Crossing(beam, hs20_44(), speed=20.0, approach=5.0, dt=1.05 * limit, integrator=integrator,
+                                free_vibration=0.1))
+        assert np.all(np.isfinite(big.xi)) and np.abs(big.displacement()).max() < 0.01

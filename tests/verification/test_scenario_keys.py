@@ -158,8 +158,9 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "response.reaction": (CONT, [0], [1]),
         "response.load_effect_method": (CONT, "mode-acceleration", "mode-superposition"),
     }
-    for integrator in typing.get_args(Scenario.model_fields["crossing"].annotation.model_fields["integrator"].annotation)[1:]:
-        cases[f"crossing.integrator={integrator}"] = (BASE, "rk4", integrator)
+    default, *others = typing.get_args(Scenario.model_fields["crossing"].annotation.model_fields["integrator"].annotation)
+    for integrator in others:
+        cases[f"crossing.integrator={integrator}"] = (BASE, default, integrator)
     defect = _merge(BASE, {"road": {"defects": [{"kind": "depression", "position": 2.0}]}})
     cases |= {
         "road.defects.kind": (_merge(defect, {"road": {"defects": [{"kind": "pothole", "position": 2.0}]}}),

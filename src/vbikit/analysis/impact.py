@@ -8,6 +8,12 @@ and ξ_st(t) = −Σ_p φ(x_p(t)) β_p P_w / ω² (downward loads, z up).
 Impact factor (paper, §3):  IM = (R_dyn,max − R_st,max) / R_st,max, where R is the response
 measured in the direction of the static peak (downward for deflection, tension for
 bottom-fibre strain), so R_max = max_t(s·R(t)) with s the sign of the static peak.
+
+Peaks between time samples: when the response's rate is given (the dynamic displacement and
+strain, from ξ̇), the dynamic peak is the maximum of the cubic Hermite interpolant of (R, Ṙ)
+on the two steps around the largest sample — fourth-order accurate, so the peak does not
+depend on the output step (a sampled peak misses up to 1 − cos(ω₁Δt/2) of a mode-1 peak:
+1e-3 at Δt = 2 ms on a 7 Hz bridge).
 """
 from __future__ import annotations
 
@@ -36,12 +42,45 @@ class ImpactFactor:
     time_static_peak: float
 
 
-def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64]) -> ImpactFactor:
-    """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction."""
+def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: NDArray[np.float64],
+                 i: int) -> tuple[float, float]:
+    """Largest value (and its time) of the cubic Hermite interpolant of ``values`` with
+    derivatives ``rates`` on the steps either side of sample ``i`` (which must be the largest
+    sample)."""
+    best, t_best = float(values[i]), float(time[i])
+    for j in (i - 1, i):
+        if j < 0 or j + 1 >= values.size:
+            continue
+        h = float(time[j + 1] - time[j])
+        y0, y1, d0, d1 = float(values[j]), float(values[j + 1]), h * float(rates[j]), h * float(rates[j + 1])
+        # y(s) = y0 h00 + d0 h10 + y1 h01 + d1 h11; y'(s) = A s² + B s + C
+        a = 6 * y0 + 3 * d0 - 6 * y1 + 3 * d1
+        b = -6 * y0 - 4 * d0 + 6 * y1 - 2 * d1
+        c = d0
+        roots = np.roots([a, b, c]) if abs(a) > 0 or abs(b) > 0 else np.array([])
+        for s in roots:
+            if abs(s.imag) > 1e-12 or not 0.0 < s.real < 1.0:
+                continue
+            s = s.real
+            y = (y0 * (2 * s**3 - 3 * s**2 + 1) + d0 * (s**3 - 2 * s**2 + s) + y1 * (-2 * s**3 + 3 * s**2)
+                 + d1 * (s**3 - s**2))
+            if y > best:
+                best, t_best = float(y), float(time[j] + s * h)
+    return best, t_best
+
+
+def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
+                  dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
+    """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction;
+    with ``dynamic_rate`` (dR/dt) the dynamic peak is refined between samples (module docstring)."""
     i_st = int(np.argmax(np.abs(static)))
     sign = np.sign(static[i_st]) or 1.0
     if static[i_st] == 0.0:
         raise ValueError("the static response is zero everywhere: no impact factor at this response point")
     i_dyn = int(np.argmax(sign * dynamic))
-    r_dyn, r_st = float(dynamic[i_dyn]), float(static[i_st])
-    return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), float(time[i_dyn]), float(time[i_st]))
+    r_dyn, t_dyn = float(dynamic[i_dyn]), float(time[i_dyn])
+    if dynamic_rate is not None:
+        peak, t_dyn = hermite_peak(time, sign * dynamic, sign * dynamic_rate, i_dyn)
+        r_dyn = sign * peak
+    r_st = float(static[i_st])
+    return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))

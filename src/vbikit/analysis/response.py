@@ -25,14 +25,15 @@ class PointResponse:
     static_strain: NDArray[np.float64]
     velocity: NDArray[np.float64]
     acceleration: NDArray[np.float64]
+    strain_rate: NDArray[np.float64] | None = None
 
     @property
     def displacement_impact(self) -> ImpactFactor:
-        return impact_factor(self.time, self.displacement, self.static_displacement)
+        return impact_factor(self.time, self.displacement, self.static_displacement, self.velocity)
 
     @property
     def strain_impact(self) -> ImpactFactor:
-        return impact_factor(self.time, self.strain, self.static_strain)
+        return impact_factor(self.time, self.strain, self.static_strain, self.strain_rate)
 
 
 def point_response(result: CrossingResult, x: float | None = None, y: float | None = None) -> PointResponse:
@@ -53,6 +54,7 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
         static_strain=xi_st @ eps,
         velocity=result.xi_dot @ phi,
         acceleration=result.xi_ddot @ phi,
+        strain_rate=result.xi_dot @ eps,
     )
 
 

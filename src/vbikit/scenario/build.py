@@ -206,7 +206,8 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         road = build_road(scenario.road, scenario)
         common = dict(bridge=bridge, tire=build_tire(scenario.tire), road=road,
                       road_right=build_right_road(scenario.road, scenario, road), approach=c.approach,
-                      free_vibration=c.free_vibration, dt=c.dt, integrator=c.integrator,
+                      free_vibration=c.free_vibration, dt=c.dt,
+                      integrator=c.integrator,
                       loss_of_contact=scenario.tire.loss_of_contact)
         if scenario.vehicles is None:
             vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)

@@ -25,6 +25,7 @@ from pydantic import (
 from vbikit._toml import parse_toml, read_toml
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO
 from vbikit.bridge.presets import BRIDGE_PRESETS
+from vbikit.solve.crossing import DEFAULT_INTEGRATOR
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -328,7 +329,8 @@ class CrossingSpec(_Section):
     approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
     free_vibration: Optional[float] = Field(None, ge=0, description="time after the last axle leaves [s]")
     dt: Optional[float] = Field(None, gt=0, description="time step [s]; default automatic")
-    integrator: Literal["rk4", "newmark"] = "rk4"
+    integrator: Literal["exact", "rk4", "newmark"] = Field(
+        DEFAULT_INTEGRATOR, description="exact (exact modal stepping, default), rk4 or newmark")
     lateral_offset: Optional[float] = Field(
         None, description="vehicle centreline from deck centreline [m]; default the bridge's (0 for a beam)")
 

@@ -4,7 +4,7 @@ Crossings with the same bridge, vehicle, tire, speed profile, approach and integ
 the time grid, the contact points, the tabulated mode shapes, the kernel argument bundles,
 the RK4 stability limit and the static reference.  :class:`BatchSolver` computes those once
 from a template crossing and integrates the roads as *lanes* of one call of the same compiled
-RK4 kernel that :func:`vbikit.solve.simulate` calls with one lane: the mode shapes at the
+kernel that :func:`vbikit.solve.simulate` calls with one lane (any integrator): the mode shapes at the
 contact points are evaluated once per step for all lanes and the per-lane arithmetic is
 vectorised.  Each lane's arithmetic is that of its own crossing, so every result equals
 ``simulate(dataclasses.replace(template, road=road))`` to round-off (``tests/study/test_batch.py``).
@@ -29,7 +29,7 @@ from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.simulate import MAX_LANES, TimeGrid, integrate, time_grid
 from vbikit.solve.system import kernel_data, static_modal_history
-from vbikit.solve.timestep import accuracy_time_step, rk4_stability_limit
+from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
@@ -75,10 +75,11 @@ class BatchSolver:
         return float(crossing.dt) if crossing.dt is not None else self._accuracy_step(crossing)
 
     def _accuracy_step(self, crossing: Crossing) -> float:
-        # within a batch the accuracy step depends only on the roads' spacings
+        # within a batch the automatic step depends only on the roads' spacings
         key = tuple(r.spacing if r is not None else None for r in (crossing.road, crossing.road_right))
         if key not in self._accuracy:
-            self._accuracy[key] = accuracy_time_step(crossing)
+            rule = implicit_time_step if crossing.integrator == "exact" else accuracy_time_step
+            self._accuracy[key] = rule(crossing)
         return self._accuracy[key]
 
     def _grid(self, dt: float) -> TimeGrid:

@@ -36,8 +36,10 @@ from vbikit.contact.tires import PointTire, TireModel
 from vbikit.road.profile import RoadProfile
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
-Integrator = Literal["rk4", "newmark"]
-INTEGRATORS: tuple[str, ...] = ("rk4", "newmark")
+Integrator = Literal["exact", "rk4", "newmark"]
+INTEGRATORS: tuple[str, ...] = ("exact", "rk4", "newmark")
+#: the integrator a crossing (and a scenario) uses unless told otherwise
+DEFAULT_INTEGRATOR: Integrator = "exact"
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
 
 
@@ -129,8 +131,11 @@ class Crossing:
         the bridge's ``default_lateral_offset`` (as in scenarios; 0 for a beam).
     dt : float, optional
         Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
-    integrator : {"rk4", "newmark"}
-        The paper's classical Runge–Kutta or Newmark average acceleration.
+    integrator : {"exact", "rk4", "newmark"}
+        "exact" (default): every bridge mode stepped by its exact transition with the modal load
+        linear over the step, the vehicle by Newmark average acceleration, coupled through the
+        contact forces at the end of each step (docs/theory.md); "rk4": the paper's classical
+        Runge–Kutta; "newmark": Newmark average acceleration for bridge and vehicle alike.
     loss_of_contact : bool
         Tires cannot pull (default True, as real tires): a contact point whose spring would be
         in tension carries no force.  False gives the classical bilateral linear tire.  Disk
@@ -147,7 +152,7 @@ class Crossing:
     free_vibration: float | None = None
     lateral_offset: float | None = None
     dt: float | None = None
-    integrator: Integrator = "rk4"
+    integrator: Integrator = DEFAULT_INTEGRATOR
     loss_of_contact: bool = True
     road_right: RoadProfile | None = None
     vehicles: tuple[VehicleMotion, ...] = ()

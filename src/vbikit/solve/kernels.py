@@ -681,79 +681,6 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
                 damp[n_m + j, a] -= c * h[j] * f[a]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def newmark(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
-            active0, max_iterations):
-    """Newmark average acceleration (γ = 1/2, β = 1/4), unconditionally stable for the linear system.
-
-    Contact is piecewise linear (points enter and leave contact), so each step iterates on the
-    set of active points: assemble with the current set, solve, re-evaluate the contact forces,
-    repeat until the set is unchanged.  Returns the number of steps whose active set did not
-    settle within ``max_iterations``.  Same array conventions as :func:`rk4`, one lane (L = 1).
-    """
-    n_steps = xi.shape[1] - 1
-    n_m = xi.shape[2]
-    n_d = q.shape[2]
-    n_cp = points.origin.size
-    n_w = wheel_force.shape[2]
-    n = n_m + n_d
-    cache = _slot(n_cp, n_m, 1)
-    phi, have, rv, rr = cache.phi, cache.have, cache.rv, cache.rr
-    r1 = rv.reshape(n_cp); rr1 = rr.reshape(n_cp)
-    mass = np.zeros((n, n)); damp = np.zeros((n, n)); stiff = np.zeros((n, n)); load = np.zeros(n)
-    u = np.zeros(n); v = np.zeros(n); a = np.zeros(n)
-    sx = np.zeros((n_m, 1)); sv = np.zeros((n_m, 1)); sq = np.zeros((n_d, 1)); sw = np.zeros((n_d, 1))
-    wf = np.zeros((n_w, 1)); wl = np.zeros((n_w, 1))
-    active = active0.copy()
-    work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, 1)), np.zeros((n_cp, 1), dtype=np.bool_),
-                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, 1)), np.zeros((n_d, 1)))
-    new_active = work.active
-    u[:n_m] = xi[0, 0]; u[n_m:] = q[0, 0]; v[:n_m] = dxi[0, 0]; v[n_m:] = dq[0, 0]
-    _refresh(cache, motion, 0, points)
-    road_at(cache.x, cache.vx, points, road, work.idx, rv, rr, (0,))
-    cache.have_r[:] = True
-    assemble(cache.x, cache.vx, r1, rr1, modes, vehicles, points, phi, cache.dphi, have, active, mass, damp, stiff,
-             load)
-    a[:] = np.linalg.solve(mass, load - damp @ v - stiff @ u)
-    sx[:, 0] = u[:n_m]; sv[:, 0] = v[:n_m]; sq[:, 0] = u[n_m:]; sw[:, 0] = v[n_m:]
-    contact_forces(sx, sv, sq, sw, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,))
-    _store(wheel_force, 0, wf, (0,)); _store(wheel_len, 0, wl, (0,))
-    ddxi[0, 0] = a[:n_m]; ddq[0, 0] = a[n_m:]
-    unsettled = 0
-    for s in range(1, n_steps + 1):
-        _refresh(cache, motion, 2 * s, points)
-        road_at(cache.x, cache.vx, points, road, work.idx, rv, rr, (0,))
-        cache.have_r[:] = True
-        u_p = u + dt * v + 0.25 * dt * dt * a
-        v_p = v + 0.5 * dt * a
-        settled = False
-        for _ in range(max_iterations):
-            assemble(cache.x, cache.vx, r1, rr1, modes, vehicles, points, phi, cache.dphi, have, active, mass, damp,
-                     stiff, load)
-            lhs = mass + 0.5 * dt * damp + 0.25 * dt * dt * stiff
-            a_new = np.linalg.solve(lhs, load - damp @ v_p - stiff @ u_p)
-            u_new = u_p + 0.25 * dt * dt * a_new
-            v_new = v_p + 0.5 * dt * a_new
-            sx[:, 0] = u_new[:n_m]; sv[:, 0] = v_new[:n_m]; sq[:, 0] = u_new[n_m:]; sw[:, 0] = v_new[n_m:]
-            contact_forces(sx, sv, sq, sw, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,))
-            same = True
-            for p in range(n_cp):
-                if new_active[p, 0] != active[p]:
-                    same = False
-                    break
-            active[:] = new_active[:, 0]
-            if same:
-                settled = True
-                break
-        if not settled:
-            unsettled += 1
-        _store(wheel_force, s, wf, (0,)); _store(wheel_len, s, wl, (0,))
-        u = u_new; v = v_new; a = a_new
-        xi[0, s] = u[:n_m]; q[0, s] = u[n_m:]; dxi[0, s] = v[:n_m]; dq[0, s] = v[n_m:]
-        ddxi[0, s] = a[:n_m]; ddq[0, s] = a[n_m:]
-    return unsettled
-
-
 @njit(cache=True, fastmath=True, error_model="numpy")
 def static_modal_history(travel, points, loads, modes):
     """Σ_p φ(x_p(t)) P_p (n_t, n_m) for downward point loads P_p [N] at x_p = origin_p + dir_p·s_v(t),
@@ -772,3 +699,223 @@ def static_modal_history(travel, points, loads, modes):
                 for m in range(n_m):
                     out[t, m] += phi[m] * loads[p]
     return out
+
+
+class ModalStep(NamedTuple):
+    """One step h of every mode ξ̈ + 2ζωξ̇ + ω²ξ = p as a linear map of its start state and of the
+    modal load at both ends (load linear in time over the step):
+    ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1},  ξ̇_{n+1} = a21 ξ_n + a22 ξ̇_n + b2 p_n + c2 p_{n+1}
+    (each (n_m,); ``vbikit.solve.modal_step``: exact, or Newmark's average acceleration)."""
+
+    a11: np.ndarray
+    a12: np.ndarray
+    a21: np.ndarray
+    a22: np.ndarray
+    b1: np.ndarray
+    b2: np.ndarray
+    c1: np.ndarray
+    c2: np.ndarray
+
+
+class VehicleStep(NamedTuple):
+    """One step h of the vehicles with their nominal tires (k_w, c_w per wheel) on the contact
+    surface, as a linear map of the stacked state z = (q, q̇) (2n_d) and of the wheel loads G at
+    both ends of the step (linear in time over it):
+    z_{n+1} = ``transition`` z_n + ``load0`` G_n + ``load1`` G_{n+1} + ``constant`` (gravity);
+    ``c_hat`` Ĉ = C_v + Hᵀ diag(c_w) H and ``k_hat`` K̂ = K_v + Hᵀ diag(k_w) H give q̈ from the
+    equation of motion (``vbikit.solve.modal_step``: exact, or Newmark's average acceleration)."""
+
+    transition: np.ndarray
+    load0: np.ndarray
+    load1: np.ndarray
+    constant: np.ndarray
+    c_hat: np.ndarray
+    k_hat: np.ndarray
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _combine(a, x, b, y, c, z, out, lanes):
+    """out[m, :] = a_m x[m, :] + b_m y[m, :] + c_m z[m, :] (per-row coefficients)."""
+    n_l = _width(lanes, x)
+    for m in range(x.shape[0]):
+        am = a[m]
+        bm = b[m]
+        cm = c[m]
+        for lane in range(n_l):
+            out[m, lane] = am * x[m, lane] + bm * y[m, lane] + cm * z[m, lane]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _tire_load(vehicles, wheel_force, q, dq, out, lanes):
+    """G_w = F_w + k_w z_w + c_w ż_w per wheel (n_w, L): the wheel force with the nominal tire's
+    own linear part added back (the implicit vehicle carries k_w, c_w itself)."""
+    n_l = _width(lanes, q)
+    rows = vehicles.wheel_rows
+    for w in range(rows.shape[0]):
+        kw = vehicles.wheel_stiffness[w]
+        cw = vehicles.wheel_damping[w]
+        for lane in range(n_l):
+            out[w, lane] = wheel_force[w, lane]
+        for j in range(rows.shape[1]):
+            h = rows[w, j]
+            if h != 0.0:
+                for lane in range(n_l):
+                    out[w, lane] += h * (kw * q[j, lane] + cw * dq[j, lane])
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
+             wheel_force, wheel_len, tol_force, max_iterations, lanes):
+    """Partitioned implicit step: every mode by its transition ``step`` (:class:`ModalStep`, the
+    modal load linear over the step), the vehicles by theirs (:class:`VehicleStep`, the wheel
+    loads linear over the step), coupled through the contact forces at the end of the step.
+
+    The end-of-step forces are found by fixed-point iteration on the modal loads p_{n+1} and
+    the wheel loads G_w = F_w + k_w z_w + c_w ż_w (k_w, c_w the nominal tire, carried by the
+    vehicle map): deck and vehicles at t_{n+1} from the current (p, G), then the contact law
+    (:func:`contact_forces`, gating and envelope included) gives new forces, until no point
+    force and no G_w changes by more than ``tol_force`` [N] in any lane.  The first guess is the
+    linear extrapolation of the last two steps.  The iteration contracts by about the tire
+    stiffness over the deck's stiffness under the wheel (and, for points whose contact differs
+    from the nominal tire, k h²/(4 m) of the wheel), a few per cent for road vehicles.
+
+    Same array conventions as :func:`rk4` (lanes too).  Returns the number of steps that did
+    not converge within ``max_iterations`` (their last iterate is kept) and the number of
+    contact-law evaluations.
+    """
+    n_l = 1 if len(lanes) == 1 else xi.shape[0]
+    n_steps = xi.shape[1] - 1
+    n_m = xi.shape[2]
+    n_d = q.shape[2]
+    n_cp = points.origin.size
+    n_w = wheel_force.shape[2]
+    omega, zeta = modes.omega, modes.zeta
+    x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
+    z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
+    a1 = np.zeros((n_d, n_l))
+    for lane in range(n_l):
+        x0[:, lane] = xi[lane, 0]; v0[:, lane] = dxi[lane, 0]; z0[:n_d, lane] = q[lane, 0]; z0[n_d:, lane] = dq[lane, 0]
+    xf = np.zeros((n_m, n_l)); vf = np.zeros((n_m, n_l))  # free deck response (load p_{n+1} = 0)
+    p0 = np.zeros((n_m, n_l)); pm = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); pn = np.zeros((n_m, n_l))
+    g0 = np.zeros((n_w, n_l)); gm = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l)); gn = np.zeros((n_w, n_l))
+    f_prev = np.zeros((n_cp, n_l))
+    acc = np.zeros((n_m, n_l))
+    work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
+                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
+    force = work.force
+    wf = np.zeros((n_w, n_l))
+    wl = np.zeros((n_w, n_l))
+    cache = _slot(n_cp, n_m, n_l)
+    # t = 0: forces, modal load, wheel loads and accelerations of the initial state
+    _refresh(cache, motion, 0, points)
+    y0, w0 = z0[:n_d], z0[n_d:]
+    contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
+    _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.span, p0, lanes)
+    _tire_load(vehicles, wf, y0, w0, g0, lanes)
+    _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
+    _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
+    _store(ddxi, 0, acc, lanes); _store(ddq, 0, a1, lanes)
+    _store(wheel_force, 0, wf, lanes); _store(wheel_len, 0, wl, lanes)
+    pm[:, :] = p0
+    gm[:, :] = g0
+    unsettled = 0
+    evaluations = 0
+    for n in range(n_steps):
+        _refresh(cache, motion, 2 * n + 2, points)
+        # free responses: deck with p_{n+1} = 0, vehicles with G_{n+1} = 0
+        _combine(step.a11, x0, step.a12, v0, step.b1, p0, xf, lanes)
+        _combine(step.a21, x0, step.a22, v0, step.b2, p0, vf, lanes)
+        for i in range(2 * n_d):
+            for lane in range(n_l):
+                zf[i, lane] = vstep.constant[i]
+        _gemv(1.0, vstep.transition, z0, zf, lanes, False)
+        _gemv(1.0, vstep.load0, g0, zf, lanes, False)
+        # first guess: linear extrapolation of the loads
+        for m in range(n_m):
+            for lane in range(n_l):
+                p[m, lane] = 2.0 * p0[m, lane] - pm[m, lane]
+        for w in range(n_w):
+            for lane in range(n_l):
+                g[w, lane] = 2.0 * g0[w, lane] - gm[w, lane]
+        converged = False
+        y1, w1 = z1[:n_d], z1[n_d:]
+        for it in range(max_iterations):
+            evaluations += 1
+            _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes)
+            contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
+            for m in range(n_m):
+                for lane in range(n_l):
+                    pn[m, lane] = 0.0
+            _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.span, pn, lanes)
+            _tire_load(vehicles, wf, y1, w1, gn, lanes)
+            err = 0.0
+            for w in range(n_w):
+                for lane in range(n_l):
+                    err = max(err, abs(gn[w, lane] - g[w, lane]))
+            for k in range(n_cp):
+                for lane in range(n_l):
+                    err = max(err, abs(force[k, lane] - f_prev[k, lane]))
+                    f_prev[k, lane] = force[k, lane]
+            p, pn = pn, p
+            g, gn = gn, g
+            if err <= tol_force and it > 0:
+                converged = True
+                break
+        if not converged:
+            unsettled += 1
+        _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes)
+        _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
+        _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
+        _store(xi, n + 1, x1, lanes); _store(dxi, n + 1, v1, lanes); _store(ddxi, n + 1, acc, lanes)
+        _store(q, n + 1, y1, lanes); _store(dq, n + 1, w1, lanes); _store(ddq, n + 1, a1, lanes)
+        _store(wheel_force, n + 1, wf, lanes); _store(wheel_len, n + 1, wl, lanes)
+        x0, x1 = x1, x0
+        v0, v1 = v1, v0
+        z0, z1 = z1, z0
+        pm, p0, p = p0, p, pm
+        gm, g0, g = g0, g, gm
+    return unsettled, evaluations
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes):
+    """Deck and vehicles at t_{n+1} for end loads p (modal) and G (wheels)."""
+    n_l = _width(lanes, xf)
+    for m in range(xf.shape[0]):
+        c1 = step.c1[m]
+        c2 = step.c2[m]
+        for lane in range(n_l):
+            x1[m, lane] = xf[m, lane] + c1 * p[m, lane]
+            v1[m, lane] = vf[m, lane] + c2 * p[m, lane]
+    for i in range(zf.shape[0]):
+        for lane in range(n_l):
+            z1[i, lane] = zf[i, lane]
+    _gemv(1.0, vstep.load1, g, z1, lanes, False)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _vehicle_acceleration(vehicles, vstep, z, g, rhs, out, lanes):
+    """q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) for the stacked state z = (q, q̇)."""
+    n_d = out.shape[0]
+    if n_d == 0:
+        return
+    n_l = _width(lanes, z)
+    for i in range(n_d):
+        for lane in range(n_l):
+            rhs[i, lane] = vehicles.gravity[i]
+            out[i, lane] = 0.0
+    _gemv(-1.0, vstep.c_hat, z[n_d:], rhs, lanes, False)
+    _gemv(-1.0, vstep.k_hat, z[:n_d], rhs, lanes, False)
+    _gemv(1.0, vehicles.wheel_rows, g, rhs, lanes, True)
+    _gemv(1.0, vehicles.mass_inv, rhs, out, lanes, False)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _modal_acceleration(omega, zeta, x, v, p, out, lanes):
+    """ξ̈ = p − 2ζω ξ̇ − ω² ξ."""
+    n_l = _width(lanes, x)
+    for m in range(x.shape[0]):
+        a = 2.0 * zeta[m] * omega[m]
+        b = omega[m] * omega[m]
+        for lane in range(n_l):
+            out[m, lane] = p[m, lane] - a * v[m, lane] - b * x[m, lane]

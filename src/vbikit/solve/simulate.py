@@ -18,6 +18,7 @@ from vbikit.solve.budget import Limits, check_run
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult, check_finite
 from vbikit.solve.kernels import Motion
+from vbikit.solve.modal_step import exact_step, newmark_step, vehicle_step
 from vbikit.solve.system import KernelData, kernel_data, point_positions, road_data, static_state
 from vbikit.solve.timestep import choose_time_step
 
@@ -74,17 +75,20 @@ def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
 #: 20 (benchmarks/bench_studies.py).  One crossing is one lane (its own compiled variant).
 MAX_LANES = 32
 LANE_PAD = 8
+#: the implicit integrators' iteration on the end-of-step contact forces stops when no point force
+#: and no wheel load changes by more than this fraction of the largest static wheel load
+IMPLICIT_TOLERANCE = 1e-9
+IMPLICIT_MAX_ITERATIONS = 50
 
 
 def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -> list[CrossingResult]:
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
-    and ``grid`` are those of the first) with their integrator: RK4 runs them as lanes of kernel
-    calls (:data:`MAX_LANES`), Newmark (implicit, an active-set iteration per crossing) one
-    after another."""
+    and ``grid`` are those of the first) with their integrator, as lanes of kernel calls
+    (:data:`MAX_LANES`): ``kernels.rk4`` for RK4, ``kernels.implicit`` with the modes' exact
+    transition ("exact") or Newmark's ("newmark")."""
     first, n_real = crossings[0], len(crossings)
-    if (first.integrator != "rk4" and n_real > 1) or n_real > MAX_LANES:
-        size = 1 if first.integrator != "rk4" else MAX_LANES
-        return [res for k in range(0, n_real, size) for res in integrate(crossings[k:k + size], data, grid)]
+    if n_real > MAX_LANES:
+        return [res for k in range(0, n_real, MAX_LANES) for res in integrate(crossings[k:k + MAX_LANES], data, grid)]
     n_l = 1 if n_real == 1 else -(-n_real // LANE_PAD) * LANE_PAD
     crossings = list(crossings) + [crossings[-1]] * (n_l - n_real)
     dt, n_steps = grid.dt, grid.n_steps
@@ -116,11 +120,17 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
         kernels.rk4(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, *outputs,
                     (0,) if n_l == 1 else (0, 0))
     else:
-        unsettled = kernels.newmark(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral,
-                                    *outputs, active0, 50)
+        make = exact_step if first.integrator == "exact" else newmark_step
+        step = make(data.modes.omega, data.modes.zeta, dt)
+        loads = np.abs(first.vehicle.static_wheel_loads())
+        tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
+        unsettled, evaluations = kernels.implicit(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, step,
+                                     vehicle_step(data.vehicles, dt, first.integrator), *outputs, tol, IMPLICIT_MAX_ITERATIONS,
+                                     (0,) if n_l == 1 else (0, 0))
+        log.debug("%s: %.2f contact-law evaluations per step", first.integrator, evaluations / max(n_steps, 1))
         if unsettled:
-            log.warning("Newmark: the contact set did not settle within 50 iterations in %d of %d steps",
-                        unsettled, n_steps)
+            log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
+                        first.integrator, IMPLICIT_MAX_ITERATIONS, unsettled, n_steps)
     time = grid.t_half[::2].copy()
     if first.vehicles:
         front, speed = first.front_positions(time), grid.speed[::2].copy()

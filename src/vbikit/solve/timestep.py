@@ -89,4 +89,29 @@ def choose_time_step(crossing: Crossing) -> float:
                 )
             return float(crossing.dt)
         return min(accuracy_time_step(crossing), 0.9 * limit)
-    return float(crossing.dt) if crossing.dt is not None else accuracy_time_step(crossing)
+    if crossing.dt is not None:
+        return float(crossing.dt)
+    return implicit_time_step(crossing) if crossing.integrator == "exact" else accuracy_time_step(crossing)
+
+
+#: steps per period of the highest vehicle mode, per shortest road wavelength and per span passage
+#: for the exact modal integrator (docs/verification.md, convergence study)
+EXACT_STEPS_PER_VEHICLE_PERIOD = 20.0
+EXACT_ROAD_LENGTH_PER_STEP = 0.02
+EXACT_STEPS_PER_SPAN = 100.0
+EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 50.0
+EXACT_ROAD_FEATURES_PER_STEP = 2.0
+
+
+def implicit_time_step(crossing: Crossing) -> float:
+    """The automatic step [s] of the exact modal integrator (no bridge-mode term)."""
+    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
+                  2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
+    f_veh = crossing.vehicle.natural_frequencies()
+    if f_veh.size and f_veh.max() > 0:
+        candidates.append(1.0 / f_veh.max() / EXACT_STEPS_PER_VEHICLE_PERIOD)
+    for road in (crossing.road, crossing.road_right):
+        if road is not None and road.spacing > 0:
+            candidates.append(min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v_max)
+    return float(min(candidates))

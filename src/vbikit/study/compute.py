@@ -106,8 +106,8 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
             xi_st = solver.static_modal(result.dt)
             static[result.dt] = (xi_st @ phi, xi_st @ eps)
         disp, strain = result.xi @ phi, result.xi @ eps
-        d = impact_factor(result.time, disp, static[result.dt][0])
-        s = impact_factor(result.time, strain, static[result.dt][1])
+        d = impact_factor(result.time, disp, static[result.dt][0], result.xi_dot @ phi)
+        s = impact_factor(result.time, strain, static[result.dt][1], result.xi_dot @ eps)
         row = {
             "impact_factor": d.impact_factor, "strain_impact_factor": s.impact_factor,
             "max_dynamic_displacement": d.dynamic_peak, "max_static_displacement": d.static_peak,

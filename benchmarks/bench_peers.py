@@ -1,0 +1,218 @@
+"""Benchmark: vbikit's default integrator against a partitioned vehicle–bridge analysis in OpenSeesPy.
+
+Run from the repository root (openseespy is a test dependency)::
+
+    python benchmarks/bench_peers.py              # 5 timed runs of each
+    python benchmarks/bench_peers.py --repeat 9
+
+The case: the Yang & Yau (1997) sprung mass crossing a simply supported beam (L = 25 m,
+EI = 2.87e9 × 2.9 N·m², m = 2303 kg/m, undamped; M_v = 5750 kg, k_v = 1595 kN/m, undamped;
+100 km/h, smooth road; published midspan peak ≈ 2.41 mm), from entry to exit (0.9 s).
+
+* **vbikit**: ``simulate(Crossing(...))`` with the default integrator and automatic step, 20 modes
+  (everything a crossing costs: step choice, mode tabulation, static start, integration).
+* **OpenSeesPy, partitioned** (written here, the usual way a VBI is coupled to a general FE
+  code): 20 ``elasticBeamColumn`` elements with lumped masses, Newmark average acceleration,
+  dt = 1 ms, linear algorithm; the sprung mass integrated beside it by the same Newmark rule;
+  the contact force F = k_v (u_b(x_c) − z) applied as consistent nodal loads (Hermite shape
+  functions) of the element under the mass, and the deck displacement u_b(x_c) read back with
+  the same shape functions.  Two couplings:
+
+  - *iterative*: per step, analyse, update F from the new deck and vehicle states, restore the
+    beam's committed state (``setNodeDisp/Vel/Accel … -commit``, ``domainChange``) and analyse
+    again, until F changes by < 1e-8 of the weight;
+  - *staggered*: one analysis per step with F from the predicted vehicle position (explicit
+    in the coupling, the common cheap variant).
+
+Reported: the time per crossing (median of ``--repeat`` runs after a warm-up; numba's compile or
+cache load is in the warm-up only), the midspan peaks and the ratios, measured in the same run.
+The machine is shared: absolute times move with its load, the ratios much less.
+"""
+from __future__ import annotations
+
+import argparse
+import ctypes
+import importlib.util
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+
+L, E, I, M_BEAM = 25.0, 2.87e9, 2.9, 2303.0
+MV, KV, V = 5750.0, 1595e3, 100 / 3.6
+G = 9.80665
+N_ELEMENTS = 20
+DT_OPENSEES = 1e-3
+N_MODES = 20
+
+
+def load_opensees():
+    spec = importlib.util.find_spec("openseespylinux")
+    if spec is not None and spec.submodule_search_locations:
+        lib = os.path.join(spec.submodule_search_locations[0], "lib", "libblas.so.3")
+        if os.path.exists(lib):  # the wheel's LAPACK needs libblas.so.3
+            ctypes.CDLL(lib, mode=ctypes.RTLD_GLOBAL)
+    import openseespy.opensees as ops
+
+    return ops
+
+
+def hermite(s: float, le: float) -> np.ndarray:
+    """Cubic Hermite shape functions of a beam element at s = ξ/le (v_i, θ_i, v_j, θ_j)."""
+    return np.array([1 - 3 * s**2 + 2 * s**3, le * (s - 2 * s**2 + s**3), 3 * s**2 - 2 * s**3, le * (-s**2 + s**3)])
+
+
+class OpenSeesVBI:
+    """The partitioned vehicle–bridge analysis (module docstring)."""
+
+    def __init__(self, ops, coupling: str):
+        self.ops, self.coupling = ops, coupling
+        self.le = L / N_ELEMENTS
+
+    def build(self) -> None:
+        ops, le = self.ops, self.le
+        ops.wipe()
+        ops.model("basic", "-ndm", 2, "-ndf", 3)
+        for i in range(N_ELEMENTS + 1):
+            ops.node(i + 1, i * le, 0.0)
+            m = M_BEAM * le * (0.5 if i in (0, N_ELEMENTS) else 1.0)
+            ops.mass(i + 1, m, m, 0.0)
+        ops.fix(1, 1, 1, 0)
+        ops.fix(N_ELEMENTS + 1, 0, 1, 0)
+        ops.geomTransf("Linear", 1)
+        for e in range(N_ELEMENTS):
+            ops.element("elasticBeamColumn", e + 1, e + 1, e + 2, 1.0, E, I, 1)
+        ops.timeSeries("Constant", 1)
+        ops.constraints("Plain")
+        ops.numberer("RCM")
+        ops.system("BandGeneral")
+        ops.test("NormDispIncr", 1e-12, 10)
+        ops.algorithm("Linear")
+        ops.integrator("Newmark", 0.5, 0.25)
+        ops.analysis("Transient")
+
+    def _apply(self, x: float, force: float) -> None:
+        """The contact force (compression > 0, acting down on the deck) as nodal loads."""
+        ops = self.ops
+        ops.remove("loadPattern", 1)
+        ops.pattern("Plain", 1, 1)
+        e = min(int(x / self.le), N_ELEMENTS - 1)
+        n = hermite((x - e * self.le) / self.le, self.le)
+        ops.load(e + 1, 0.0, -force * n[0], -force * n[1])
+        ops.load(e + 2, 0.0, -force * n[2], -force * n[3])
+
+    def _deck(self, x: float) -> float:
+        ops = self.ops
+        e = min(int(x / self.le), N_ELEMENTS - 1)
+        n = hermite((x - e * self.le) / self.le, self.le)
+        d = [ops.nodeDisp(e + 1, 2), ops.nodeDisp(e + 1, 3), ops.nodeDisp(e + 2, 2), ops.nodeDisp(e + 2, 3)]
+        return float(n @ d)
+
+    def _snapshot(self):
+        ops = self.ops
+        nodes = range(1, N_ELEMENTS + 2)
+        return [(k, [ops.nodeDisp(k, d) for d in (1, 2, 3)], [ops.nodeVel(k, d) for d in (1, 2, 3)],
+                 [ops.nodeAccel(k, d) for d in (1, 2, 3)]) for k in nodes]
+
+    def _restore(self, snap, t: float) -> None:
+        ops = self.ops
+        for k, u, v, a in snap:
+            for d in (1, 2, 3):
+                ops.setNodeDisp(k, d, u[d - 1], "-commit")
+                ops.setNodeVel(k, d, v[d - 1], "-commit")
+                ops.setNodeAccel(k, d, a[d - 1], "-commit")
+        ops.setTime(t)
+        ops.domainChange()  # the integrator re-reads the committed state from the domain
+
+    def run(self) -> tuple[float, int]:
+        """Midspan peak deflection [m] (z up: negative) and the number of beam analyses."""
+        ops, h = self.ops, DT_OPENSEES
+        self.build()
+        ops.pattern("Plain", 1, 1)
+        n_steps = int(round(L / V / h))
+        z, dz = -MV * G / KV, 0.0  # the unstretched spring carries the weight on the undeflected deck at entry
+        ddz = 0.0
+        force = MV * G
+        mid, peak, analyses = N_ELEMENTS // 2 + 1, 0.0, 0
+        for n in range(n_steps):
+            t1 = (n + 1) * h
+            x1 = min(V * t1, L * (1 - 1e-12))
+
+            def vehicle(u_deck):  # Newmark average acceleration of the mass, given the deck at t_{n+1}
+                a1 = (-MV * G + KV * (u_deck - (z + h * dz + 0.25 * h * h * ddz))) / (MV + 0.25 * h * h * KV)
+                z1 = z + h * dz + 0.25 * h * h * (ddz + a1)
+                return z1, dz + 0.5 * h * (ddz + a1), a1
+
+            if self.coupling == "staggered":
+                z_pred = z + h * dz + 0.5 * h * h * ddz
+                self._apply(x1, KV * (self._deck(x1) - z_pred))
+                ops.analyze(1, h)
+                analyses += 1
+                z, dz, ddz = vehicle(self._deck(x1))
+                force = KV * (self._deck(x1) - z)
+            else:
+                snap = self._snapshot()
+                t0 = ops.getTime()
+                for it in range(50):
+                    if it:
+                        self._restore(snap, t0)
+                    self._apply(x1, force)
+                    ops.analyze(1, h)
+                    analyses += 1
+                    z1, dz1, a1 = vehicle(self._deck(x1))
+                    new = KV * (self._deck(x1) - z1)
+                    done = abs(new - force) < 1e-8 * MV * G
+                    force = new
+                    if done:
+                        break
+                z, dz, ddz = z1, dz1, a1
+            peak = min(peak, ops.nodeDisp(mid, 2))
+        return peak, analyses
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--repeat", type=int, default=5, help="timed runs of each (default 5)")
+    args = ap.parse_args()
+
+    from vbikit.analysis import point_response
+    from vbikit.bridge import EulerBernoulliBeam
+    from vbikit.solve import Crossing, simulate
+    from vbikit.vehicle import sprung_mass
+
+    crossing = Crossing(EulerBernoulliBeam(L, E * I, M_BEAM, 0.0, n_modes=N_MODES), sprung_mass(MV, KV, 0.0),
+                        speed=V, approach=0.0, free_vibration=0.0)
+
+    def vbikit_run():
+        res = simulate(crossing)
+        return point_response(res, L / 2).displacement_impact.dynamic_peak, res
+
+    def timed(fn):
+        fn()  # warm-up (numba cache load / compile for vbikit)
+        times, out = [], None
+        for _ in range(max(1, args.repeat)):
+            t0 = time.perf_counter()
+            out = fn()
+            times.append(time.perf_counter() - t0)
+        return statistics.median(times), out
+
+    print(f"Yang & Yau sprung mass, {V * 3.6:.0f} km/h, entry to exit; python {sys.version.split()[0]}, "
+          f"{os.cpu_count()} CPUs (shared machine: absolute times are noisy, ratios less so)")
+    t_v, (peak_v, res) = timed(vbikit_run)
+    print(f"vbikit {crossing.integrator}, {N_MODES} modes: {res.n_steps} steps of {res.dt * 1e3:.2f} ms, "
+          f"peak {-peak_v * 1e3:.4f} mm, {t_v * 1e3:.1f} ms per crossing")
+    ops = load_opensees()
+    ops.logFile(os.devnull, "-noEcho")
+    for coupling in ("iterative", "staggered"):
+        runner = OpenSeesVBI(ops, coupling)
+        t_o, (peak_o, analyses) = timed(runner.run)
+        print(f"OpenSeesPy {coupling}: {N_ELEMENTS} elements, Newmark, dt {DT_OPENSEES * 1e3:g} ms, {analyses} analyses, "
+              f"peak {-peak_o * 1e3:.4f} mm ({peak_o / peak_v - 1:+.2%} vs vbikit), {t_o * 1e3:.1f} ms "
+              f"-> vbikit {t_o / t_v:.1f}x faster")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

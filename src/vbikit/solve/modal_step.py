@@ -1,0 +1,167 @@
+"""Step maps of the implicit integrators: each bridge mode over one step, and the vehicle step.
+
+A mode ξ̈ + 2ζωξ̇ + ω²ξ = p(t) whose load p is linear over the step [t_n, t_n + h] moves by
+
+    ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1}
+    ξ̇_{n+1} = a21 ξ_n + a22 ξ̇_n + b2 p_n + c2 p_{n+1}
+
+:func:`exact_step` gives the exact coefficients — the "piecewise exact" recurrence of Nigam &
+Jennings (1969), *Bull. Seismol. Soc. Am.* 59(2), 909–922 (Chopra, *Dynamics of Structures*,
+§5.2): exact for any h, so no mode limits the step.  The coefficients are Chopra's closed form
+(Table 5.2.1) for ζ < 1 and ωh ≥ 0.5; below that (where the closed form's load terms cancel to
+O((ωh)²)) and for ζ ≥ 1 the load part is read from the exponential of the augmented linear
+system (ξ, ξ̇/ω, p/ω², ṗ/ω³) in the dimensionless time ωt, and the free part is e^{−ζωh}(cos,
+sin of ω_D h) (``tests/unit/test_modal_step.py`` checks them against the closed form).  :func:`newmark_step` gives
+the same map for Newmark's average-acceleration rule (γ = 1/2, β = 1/4), so that Newmark runs
+through the same partitioned kernel.  :func:`vehicle_step` is the vehicles' map over the step
+with their nominal tires on the contact surface, exact (exponential of the augmented
+first-order system, the wheel loads linear over the step) or Newmark's
+(``vbikit.solve.kernels.implicit``).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
+
+
+def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Matrix exponential of a (..., n, n) stack: scaling and squaring with an 18-term Taylor
+    series (‖A‖₁/2^s ≤ 1/2, truncation below 1e-17 relative; Moler & Van Loan 2003, method 3).
+    For the small matrices here it is much cheaper than a general routine."""
+    a = np.asarray(a, float)
+    norm = float(np.abs(a).sum(axis=-2).max(initial=0.0))
+    squarings = max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
+    x = a / 2.0**squarings
+    eye = np.broadcast_to(np.eye(a.shape[-1]), a.shape)
+    result, term = eye.copy(), eye.copy()
+    for k in range(1, 19):
+        term = term @ x / k
+        result = result + term
+    for _ in range(squarings):
+        result = result @ result
+    return result
+
+
+def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
+    """Exact transition of modes ω [rad/s] > 0, ζ [-] ≥ 0 over ``h`` [s] with first-order-hold load."""
+    omega = np.asarray(omega, float)
+    zeta = np.asarray(zeta, float)
+    if np.any(omega <= 0):
+        raise ValueError("exact modal stepping needs natural frequencies > 0")
+    w, theta = omega, omega * h
+    out = {k: np.empty_like(omega) for k in ModalStep._fields}
+    closed = (zeta < 1.0) & (theta >= 0.5)  # Chopra's closed form: no cancellation at ωh ≥ 0.5
+    if np.any(closed):
+        z, wc = zeta[closed], w[closed]
+        r = np.sqrt(1.0 - z**2)
+        wd = wc * r
+        e = np.exp(-z * wc * h)
+        sn, cs = np.sin(wd * h), np.cos(wd * h)
+        k = wc**2
+        wh = wc * h
+        values = {
+            "a11": e * (z / r * sn + cs), "a12": e * sn / wd, "a21": -e * wc / r * sn, "a22": e * (cs - z / r * sn),
+            "b1": (2 * z / wh + e * (((1 - 2 * z**2) / (wd * h) - z / r) * sn - (1 + 2 * z / wh) * cs)) / k,
+            "c1": (1 - 2 * z / wh + e * ((2 * z**2 - 1) / (wd * h) * sn + 2 * z / wh * cs)) / k,
+            "b2": (-1 / h + e * ((wc / r + z / (h * r)) * sn + cs / h)) / k,
+            "c2": (1 - e * (z / r * sn + cs)) / (k * h),
+        }
+        for key, val in values.items():
+            out[key][closed] = val
+    rest = ~closed
+    if np.any(rest):  # the exponential of the augmented system, scaled by ωh ≤ 0.5 (or ζ ≥ 1)
+        z, wr, th = zeta[rest], w[rest], theta[rest]
+        a = np.zeros((wr.size, 4, 4))
+        a[:, 0, 1] = 1.0
+        a[:, 1, 0] = -1.0
+        a[:, 1, 1] = -2.0 * z
+        a[:, 1, 2] = 1.0
+        a[:, 2, 3] = 1.0
+        e = expm(a * th[:, None, None])
+        out["a11"][rest], out["a12"][rest] = e[:, 0, 0], e[:, 0, 1] / wr
+        out["a21"][rest], out["a22"][rest] = wr * e[:, 1, 0], e[:, 1, 1]
+        out["b1"][rest] = e[:, 0, 2] / wr**2 - e[:, 0, 3] / (wr**3 * h)
+        out["c1"][rest] = e[:, 0, 3] / (wr**3 * h)
+        out["b2"][rest] = e[:, 1, 2] / wr - e[:, 1, 3] / (wr**2 * h)
+        out["c2"][rest] = e[:, 1, 3] / (wr**2 * h)
+        under = z < 1.0  # the free part in closed form (round-off exact)
+        if np.any(under):
+            idx = np.flatnonzero(rest)[under]
+            zz, wu, tu = z[under], wr[under], th[under]
+            r = np.sqrt(1.0 - zz**2)
+            decay, sn, cs = np.exp(-zz * tu), np.sin(r * tu), np.cos(r * tu)
+            out["a11"][idx] = decay * (cs + zz / r * sn)
+            out["a12"][idx] = decay * sn / (r * wu)
+            out["a21"][idx] = -decay * wu * sn / r
+            out["a22"][idx] = decay * (cs - zz / r * sn)
+    return ModalStep(**out)
+
+
+def newmark_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
+    """The same map for Newmark's average acceleration (γ = 1/2, β = 1/4) on each mode."""
+    omega = np.asarray(omega, float)
+    c, k = 2.0 * np.asarray(zeta, float) * omega, omega**2
+
+    def advance(u, v, p0, p1):
+        a0 = p0 - c * v - k * u
+        a1 = (p1 - c * (v + 0.5 * h * a0) - k * (u + h * v + 0.25 * h * h * a0)) / (1.0 + 0.5 * h * c + 0.25 * h * h * k)
+        return u + h * v + 0.25 * h * h * (a0 + a1), v + 0.5 * h * (a0 + a1)
+
+    one, zero = np.ones_like(omega), np.zeros_like(omega)
+    (a11, a21), (a12, a22) = advance(one, zero, zero, zero), advance(zero, one, zero, zero)
+    (b1, b2), (c1, c2) = advance(zero, zero, one, zero), advance(zero, zero, zero, one)
+    return ModalStep(a11, a12, a21, a22, b1, b2, c1, c2)
+
+
+def _nominal(vehicles: Vehicles) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Ĉ, K̂: the vehicles' damping and stiffness with each wheel's nominal tire on the ground."""
+    rows = vehicles.wheel_rows
+    c_hat = vehicles.damping + rows.T @ (vehicles.wheel_damping[:, None] * rows)
+    k_hat = vehicles.stiffness + rows.T @ (vehicles.wheel_stiffness[:, None] * rows)
+    return np.ascontiguousarray(c_hat), np.ascontiguousarray(k_hat)
+
+
+def vehicle_step(vehicles: Vehicles, h: float, rule: str = "exact") -> VehicleStep:
+    """The vehicles' step map over ``h`` [s] with their nominal tires (k_w, c_w of each wheel) on the
+    contact surface and the wheel loads G linear over the step: ``rule`` "exact" (exponential
+    of the augmented first-order system (q, q̇, G, Ġ, 1), exact for any h) or "newmark"
+    (average acceleration)."""
+    n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
+    c_hat, k_hat = _nominal(vehicles)
+    if n_d == 0:
+        return VehicleStep(np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
+    m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows
+    if rule == "exact":
+        n = 2 * n_d + 2 * n_w + 1
+        a = np.zeros((n, n))
+        a[:n_d, n_d:2 * n_d] = np.eye(n_d)
+        a[n_d:2 * n_d, :n_d] = -m_inv @ k_hat
+        a[n_d:2 * n_d, n_d:2 * n_d] = -m_inv @ c_hat
+        a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T
+        a[n_d:2 * n_d, -1] = m_inv @ vehicles.gravity
+        a[2 * n_d:2 * n_d + n_w, 2 * n_d + n_w:2 * n_d + 2 * n_w] = np.eye(n_w)
+        e = expm(a * h)
+        z = slice(0, 2 * n_d)
+        e_g, e_dg = e[z, 2 * n_d:2 * n_d + n_w], e[z, 2 * n_d + n_w:2 * n_d + 2 * n_w]
+        return VehicleStep(np.ascontiguousarray(e[z, z]), np.ascontiguousarray(e_g - e_dg / h),
+                           np.ascontiguousarray(e_dg / h), np.ascontiguousarray(e[z, -1]), c_hat, k_hat)
+    if rule != "newmark":
+        raise ValueError(f"unknown vehicle step rule {rule!r}")
+    s_inv = np.linalg.inv(vehicles.mass + 0.5 * h * c_hat + 0.25 * h * h * k_hat)
+
+    def advance(u, v, g0, g1, fg):  # columns are independent inputs
+        a0 = m_inv @ (fg + rows.T @ g0 - c_hat @ v - k_hat @ u)
+        a1 = s_inv @ (fg + rows.T @ g1 - c_hat @ (v + 0.5 * h * a0) - k_hat @ (u + h * v + 0.25 * h * h * a0))
+        return np.vstack([u + h * v + 0.25 * h * h * (a0 + a1), v + 0.5 * h * (a0 + a1)])
+
+    eye, zd, zw = np.eye(n_d), np.zeros((n_d, n_d)), np.zeros((n_w, n_d))
+    transition = np.hstack([advance(eye, zd, zw, zw, zd), advance(zd, eye, zw, zw, zd)])
+    ew, zdw, zww = np.eye(n_w), np.zeros((n_d, n_w)), np.zeros((n_w, n_w))
+    load0 = advance(zdw, zdw, ew, zww, zdw)
+    load1 = advance(zdw, zdw, zww, ew, zdw)
+    col = np.zeros((n_d, 1))
+    constant = advance(col, col, np.zeros((n_w, 1)), np.zeros((n_w, 1)), vehicles.gravity.reshape(n_d, 1))[:, 0]
+    return VehicleStep(np.ascontiguousarray(transition), np.ascontiguousarray(load0), np.ascontiguousarray(load1),
+                       np.ascontiguousarray(constant), c_hat, k_hat)

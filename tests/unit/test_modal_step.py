@@ -1,0 +1,138 @@
+"""Exact modal stepping (vbikit.solve.modal_step, kernels.implicit) against closed forms.
+
+References (no vbikit output):
+* Chopra, *Dynamics of Structures* (4th ed.), §5.2, Table 5.2.1: the recurrence coefficients
+  A, B, C, D, A′, B′, C′, D′ of the "piecewise exact" method (Nigam & Jennings 1969) for an
+  underdamped SDOF system with a load linear over each step, written out below;
+* free vibration of a damped oscillator released from u0 at rest:
+  u(t) = u0 e^{−ζωt} (cos ω_D t + ζ/√(1−ζ²) sin ω_D t);
+* an undamped oscillator from rest under a ramp p = αt: u(t) = (α/ω²)(t − sin(ωt)/ω).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vbikit.solve import kernels
+from vbikit.solve.kernels import Modes, Motion, Points, Road, Vehicles
+from vbikit.solve.modal_step import exact_step, newmark_step, vehicle_step
+
+
+def chopra(omega, zeta, h):
+    """Chopra Table 5.2.1 (k = ω², unit mass): u_{i+1} = A u + B u̇ + C p_i + D p_{i+1}, u̇ likewise."""
+    k = omega**2
+    s1 = np.sqrt(1 - zeta**2)
+    wd = omega * s1
+    e = np.exp(-zeta * omega * h)
+    sn, cs = np.sin(wd * h), np.cos(wd * h)
+    A = e * (zeta / s1 * sn + cs)
+    B = e * sn / wd
+    C = (2 * zeta / (omega * h) + e * (((1 - 2 * zeta**2) / (wd * h) - zeta / s1) * sn
+                                       - (1 + 2 * zeta / (omega * h)) * cs)) / k
+    D = (1 - 2 * zeta / (omega * h) + e * ((2 * zeta**2 - 1) / (wd * h) * sn + 2 * zeta / (omega * h) * cs)) / k
+    Ap = -e * omega / s1 * sn
+    Bp = e * (cs - zeta / s1 * sn)
+    Cp = (-1 / h + e * ((omega / s1 + zeta / (h * s1)) * sn + cs / h)) / k
+    Dp = (1 - e * (zeta / s1 * sn + cs)) / (k * h)
+    return A, B, C, D, Ap, Bp, Cp, Dp
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.02, 0.3])
+def test_exact_step_is_chopras_recurrence(zeta):
+    omega = np.array([3.0, 46.0, 700.0, 1.8e4])
+    for h in (1e-3, 2e-3, 0.01):
+        s = exact_step(omega, np.full(omega.size, zeta), h)
+        A, B, C, D, Ap, Bp, Cp, Dp = chopra(omega, zeta, h)
+        theta = omega * h
+        # Chopra's C, D, C', D' cancel to O((ωh)²) of their terms: compare where they do not (ωh ≥ 0.1)
+        ok = theta >= 0.1
+        np.testing.assert_allclose(s.a11, A, rtol=1e-12, atol=1e-14)
+        np.testing.assert_allclose(s.a12, B, rtol=1e-11, atol=1e-18)
+        np.testing.assert_allclose(s.a21, Ap, rtol=1e-11, atol=1e-12)
+        np.testing.assert_allclose(s.a22, Bp, rtol=1e-12, atol=1e-14)
+        for ours, ref in ((s.b1, C), (s.c1, D), (s.b2, Cp), (s.c2, Dp)):
+            np.testing.assert_allclose(ours[ok], ref[ok], rtol=1e-8, atol=0)
+
+
+def _single_mode_run(omega, zeta, dt, n_steps, xi0, dxi0=0.0):
+    """One mode released from (ξ0, ξ̇0) through the coupled kernel (kernels.implicit), with one
+    unloaded contact point standing on the deck (no vehicle DOFs)."""
+    span = 10.0
+    grid = np.linspace(0.0, span, 11)
+    values = np.full((1, grid.size, 1), -1.0)
+    modes = Modes(np.array([omega]), np.array([zeta]), span, 1.0, values, np.zeros_like(values), np.ones(1))
+    z = np.zeros((0, 0))
+    vehicles = Vehicles(z, z, z, z, np.zeros(0), np.zeros((1, 0)), np.zeros(1, np.int64), np.ones(1, np.int64),
+                        np.zeros(1, bool), np.zeros(1), np.zeros(1))
+    points = Points(np.array([5.0]), np.ones(1), np.zeros(1, np.int64), np.zeros(1, np.int64), np.zeros(1, np.int64),
+                    np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1), np.zeros(1, bool), np.zeros(1, np.int64),
+                    np.zeros(1), np.zeros((1, 2)))
+    road = Road(np.array([-100.0, 100.0]), np.zeros((1, 2, 1)), 0.0)
+    motion = Motion(np.zeros((2 * n_steps + 1, 1)), np.zeros((2 * n_steps + 1, 1)))
+    xi, dxi, ddxi = (np.zeros((1, n_steps + 1, 1)) for _ in range(3))
+    q, dq, ddq = (np.zeros((1, n_steps + 1, 0)) for _ in range(3))
+    wf, wl = np.zeros((1, n_steps + 1, 1)), np.zeros((1, n_steps + 1, 1))
+    xi[0, 0, 0], dxi[0, 0, 0] = xi0, dxi0
+    step = exact_step(np.array([omega]), np.array([zeta]), dt)
+    kernels.implicit(dt, motion, modes, vehicles, points, road, True, step, vehicle_step(vehicles, dt), xi, dxi, q,
+                     dq, ddxi, ddq, wf, wl, 1e-9, 50, (0,))
+    return xi[0, :, 0], dxi[0, :, 0], ddxi[0, :, 0]
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.05])
+@pytest.mark.parametrize("steps_per_period", [0.37, 3.0, 40.0])
+def test_single_mode_free_vibration_is_exact_at_any_step(zeta, steps_per_period):
+    omega, u0 = 2 * np.pi * 7.3, 1e-3
+    dt = 2 * np.pi / omega / steps_per_period
+    n = 200
+    xi, dxi, ddxi = _single_mode_run(omega, zeta, dt, n, u0)
+    t = dt * np.arange(n + 1)
+    wd = omega * np.sqrt(1 - zeta**2)
+    exact = u0 * np.exp(-zeta * omega * t) * (np.cos(wd * t) + zeta / np.sqrt(1 - zeta**2) * np.sin(wd * t))
+    # round-off: 200 products of a 2×2 map with entries ≤ 1, and the reference's cos(ω_D t)
+    # at ω_D t up to 1.2e3 rad (≈ 3e-13)
+    assert np.abs(xi - exact).max() <= 1e-12 * u0
+    assert np.abs(ddxi + 2 * zeta * omega * dxi + omega**2 * xi).max() <= 1e-12 * omega**2 * u0
+
+
+def test_ramp_load_is_exact_with_first_order_hold():
+    omega, alpha, h = 2 * np.pi * 4.0, 3.0, 0.013
+    s = exact_step(np.array([omega]), np.zeros(1), h)
+    u = v = 0.0
+    for n in range(300):
+        p0, p1 = alpha * n * h, alpha * (n + 1) * h
+        u, v = (s.a11[0] * u + s.a12[0] * v + s.b1[0] * p0 + s.c1[0] * p1,
+                s.a21[0] * u + s.a22[0] * v + s.b2[0] * p0 + s.c2[0] * p1)
+    t = 300 * h
+    exact_u = alpha / omega**2 * (t - np.sin(omega * t) / omega)
+    exact_v = alpha / omega**2 * (1 - np.cos(omega * t))
+    assert u == pytest.approx(exact_u, rel=1e-12)
+    assert v == pytest.approx(exact_v, rel=1e-12, abs=1e-15)
+
+
+def test_newmark_step_is_the_average_acceleration_rule():
+    # undamped: the average-acceleration rule conserves energy and elongates the period by
+    # T̄/T = (ωh/2)/atan(ωh/2) (Newmark 1959; Chopra §5.4): check both on the map's eigenvalues
+    omega, h = 50.0, 0.01
+    s = newmark_step(np.array([omega]), np.zeros(1), h)
+    lam = np.linalg.eigvals(np.array([[s.a11[0], s.a12[0]], [s.a21[0], s.a22[0]]]))
+    assert np.abs(lam) == pytest.approx([1.0, 1.0], rel=1e-14)
+    assert np.abs(np.angle(lam[0])) == pytest.approx(2 * np.arctan(omega * h / 2), rel=1e-13)
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.02, 1.5])
+def test_exact_step_is_the_exponential_of_the_augmented_system(zeta):
+    # independent of the library's branches (closed form for ωh ≥ 0.5, scaled exponential below):
+    # the dimensional 4×4 system (ξ, ξ̇, p, ṗ) with ṗ constant over the step
+    from scipy.linalg import expm
+
+    for omega in (3.0, 46.0, 700.0):
+        for h in (1e-3, 4e-3, 0.01):
+            a = np.array([[0, 1, 0, 0], [-omega**2, -2 * zeta * omega, 1, 0], [0, 0, 0, 1], [0, 0, 0, 0]], float)
+            e = expm(a * h)
+            s = exact_step(np.array([omega]), np.array([zeta]), h)
+            ref = (e[0, 0], e[0, 1], e[1, 0], e[1, 1], e[0, 2] - e[0, 3] / h, e[1, 2] - e[1, 3] / h, e[0, 3] / h,
+                   e[1, 3] / h)
+            ours = (s.a11, s.a12, s.a21, s.a22, s.b1, s.b2, s.c1, s.c2)
+            for o, r in zip(ours, ref):
+                assert o[0] == pytest.approx(r, rel=1e-9, abs=1e-13 * max(abs(r), 1e-12))
