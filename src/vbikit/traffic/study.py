@@ -204,8 +204,8 @@ class TrafficStudy:
         disp = result.xi @ ctx.phi
         strain = result.xi @ ctx.eps
         xi_st = _static(result)
-        d = impact_factor(result.time, disp, xi_st @ ctx.phi)
-        s = impact_factor(result.time, strain, xi_st @ ctx.eps)
+        d = impact_factor(result.time, disp, xi_st @ ctx.phi, result.xi_dot @ ctx.phi)
+        s = impact_factor(result.time, strain, xi_st @ ctx.eps, result.xi_dot @ ctx.eps)
         forces = result.wheel_forces
         row = {
             "impact_factor": d.impact_factor, "strain_impact_factor": s.impact_factor,
