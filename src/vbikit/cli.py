@@ -31,6 +31,7 @@ app.command("traffic")(traffic_cmd)
 def _main(debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs.")) -> None:
     _STATE["debug"] = debug
     logging.basicConfig(level=logging.DEBUG if debug else logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
+    logging.getLogger("vbikit.solve.compile").setLevel(logging.INFO)  # "compiling kernels, first run only"
 
 
 def _json(obj: object, indent: int | None = None) -> str:

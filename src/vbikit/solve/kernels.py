@@ -544,6 +544,13 @@ def _store(out, n, state, lanes):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _keep(out, n, stride, state, lanes):
+    """Store the state of step ``n`` in row n / stride when ``stride`` divides n (thinned histories)."""
+    if n % stride == 0:
+        _store(out, n // stride, state, lanes)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _refresh(cache, motion, row, points):
     """Point positions of half-step ``row`` into slot ``cache``; its shapes and road to be refilled."""
     point_kinematics(motion, row, points, cache.x, cache.vx)
@@ -554,16 +561,18 @@ def _refresh(cache, motion, row, points):
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len,
-        lanes):
+        lanes, stride=1):
     """Classical 4th-order Runge–Kutta (the paper's integrator) on the first-order form of Eq. 9.
 
     ``motion`` is given at half steps (row 2n = t_n).  The output arrays (L, n_steps + 1, ·)
     are lane-major (each lane's history is contiguous) and hold the initial state at [:, 0] on
     entry; the state itself is kept lane-minor, (·, L), so that the lane loops vectorise.
-    ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).
+    ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).  ``stride``: keep every
+    stride-th step in the outputs (their second axis has n_steps / stride + 1 rows;
+    ``motion`` covers all n_steps).
     """
     n_l = 1 if len(lanes) == 1 else xi.shape[0]
-    n_steps = xi.shape[1] - 1
+    n_steps = (motion.travel.shape[0] - 1) // 2
     n_m = xi.shape[2]
     n_d = q.shape[2]
     n_cp = points.origin.size
@@ -589,8 +598,8 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
     for n in range(n_steps + 1):
         accelerations(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, caches[cur], work, stage_x[0],
                       stage_q[0], wf, wl, lanes)
-        _store(ddxi, n, stage_x[0], lanes); _store(ddq, n, stage_q[0], lanes)
-        _store(wheel_force, n, wf, lanes); _store(wheel_len, n, wl, lanes)
+        _keep(ddxi, n, stride, stage_x[0], lanes); _keep(ddq, n, stride, stage_q[0], lanes)
+        _keep(wheel_force, n, stride, wf, lanes); _keep(wheel_len, n, stride, wl, lanes)
         if n == n_steps:
             break
         mid = (cur + 1) % 3
@@ -612,8 +621,8 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
         v0, v1 = v1, v0
         y0, y1 = y1, y0
         w0, w1 = w1, w0
-        _store(xi, n + 1, x0, lanes); _store(dxi, n + 1, v0, lanes)
-        _store(q, n + 1, y0, lanes); _store(dq, n + 1, w0, lanes)
+        _keep(xi, n + 1, stride, x0, lanes); _keep(dxi, n + 1, stride, v0, lanes)
+        _keep(q, n + 1, stride, y0, lanes); _keep(dq, n + 1, stride, w0, lanes)
         cur = end
 
 
@@ -765,7 +774,7 @@ def _tire_load(vehicles, wheel_force, q, dq, out, lanes):
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
-             wheel_force, wheel_len, tol_force, max_iterations, lanes):
+             wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1):
     """Partitioned implicit step: every mode by its transition ``step`` (:class:`ModalStep`, the
     modal load linear over the step), the vehicles by theirs (:class:`VehicleStep`, the wheel
     loads linear over the step), coupled through the contact forces at the end of the step.
@@ -779,12 +788,12 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     stiffness over the deck's stiffness under the wheel (and, for points whose contact differs
     from the nominal tire, k h²/(4 m) of the wheel), a few per cent for road vehicles.
 
-    Same array conventions as :func:`rk4` (lanes too).  Returns the number of steps that did
+    Same array conventions as :func:`rk4` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
     contact-law evaluations.
     """
     n_l = 1 if len(lanes) == 1 else xi.shape[0]
-    n_steps = xi.shape[1] - 1
+    n_steps = (motion.travel.shape[0] - 1) // 2
     n_m = xi.shape[2]
     n_d = q.shape[2]
     n_cp = points.origin.size
@@ -866,9 +875,10 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
-        _store(xi, n + 1, x1, lanes); _store(dxi, n + 1, v1, lanes); _store(ddxi, n + 1, acc, lanes)
-        _store(q, n + 1, y1, lanes); _store(dq, n + 1, w1, lanes); _store(ddq, n + 1, a1, lanes)
-        _store(wheel_force, n + 1, wf, lanes); _store(wheel_len, n + 1, wl, lanes)
+        _keep(xi, n + 1, stride, x1, lanes); _keep(dxi, n + 1, stride, v1, lanes)
+        _keep(ddxi, n + 1, stride, acc, lanes)
+        _keep(q, n + 1, stride, y1, lanes); _keep(dq, n + 1, stride, w1, lanes); _keep(ddq, n + 1, stride, a1, lanes)
+        _keep(wheel_force, n + 1, stride, wf, lanes); _keep(wheel_len, n + 1, stride, wl, lanes)
         x0, x1 = x1, x0
         v0, v1 = v1, v0
         z0, z1 = z1, z0

@@ -39,7 +39,9 @@ class CrossingResult:
     ``wheel_forces`` (n_t, n_wheels): tire forces [N], compression positive (0 = no contact);
     ``contact_lengths`` (n_t, n_wheels): length [m] of the patch in contact (0 for point tires);
     ``front_position`` [m], ``speed`` [m/s] of the vehicle (several vehicles: (n_t, n_vehicles),
-    x of each front axle and its speed).
+    x of each front axle and its speed).  ``dt`` [s] is the spacing of the stored time points;
+    ``integration_dt`` [s] the integrator's step (larger ``dt`` when the histories were thinned,
+    ``simulate(..., output_every=k)``).
     """
 
     crossing: Crossing
@@ -55,6 +57,7 @@ class CrossingResult:
     q_ddot: NDArray[np.float64]
     wheel_forces: NDArray[np.float64]
     contact_lengths: NDArray[np.float64]
+    integration_dt: float | None = None
 
     @property
     def travel(self) -> NDArray[np.float64]:

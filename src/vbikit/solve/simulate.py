@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import logging
 import math
+import os
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -23,18 +24,54 @@ from vbikit.solve.system import KernelData, kernel_data, point_positions, road_d
 from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
+#: says when numba compiles the kernels (the first run on a machine, ≈ 10 s); the CLI shows it
+compile_log = logging.getLogger("vbikit.solve.compile")
 
 
-def simulate(crossing: Crossing, limits: Limits | None = None) -> CrossingResult:
+def announce_compile(kernel) -> None:
+    """Log "compiling kernels, first run only" when ``kernel`` (a numba dispatcher) has nothing
+    compiled in this process and nothing in numba's on-disk cache (its index file is missing)."""
+    if kernel.signatures:
+        return
+    index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
+    if index is None or not os.path.exists(index):
+        compile_log.info("compiling kernels, first run only (about 10 s; later runs load them from numba's cache)")
+
+
+#: memory [bytes] the stored histories of one ``simulate`` may take before they are thinned
+HISTORY_BUDGET = 1 << 30
+
+
+def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int | None = None,
+             history_budget: float = HISTORY_BUDGET) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing.
 
     The run's memory and steps are estimated first and refused (:class:`~vbikit.solve.budget.BudgetError`)
     above ``limits`` (default :class:`~vbikit.solve.budget.Limits`: 4 GiB, 5 × 10⁶ steps; raise
-    them for bigger runs)."""
+    them for bigger runs).  ``output_every``: store every k-th step only (default 1, or the
+    smallest k that keeps the histories within ``history_budget`` [bytes], logged); the
+    integration step is unchanged, ``result.dt`` is then the spacing of the stored samples and
+    ``result.integration_dt`` the step."""
     dt = choose_time_step(crossing)
     check_run(crossing, dt, limits)
     grid = time_grid(crossing, dt)
-    return check_finite(integrate([crossing], kernel_data(crossing), grid)[0])
+    data = kernel_data(crossing)
+    if output_every is None:
+        output_every = history_stride(grid.n_steps, data, history_budget)
+        if output_every > 1:
+            log.warning("the histories of %d steps would take more than %.3g GB: every %d-th step is stored "
+                        "(simulate(..., output_every=k) or history_budget= to choose)", grid.n_steps,
+                        history_budget / 1e9, output_every)
+    elif int(output_every) != output_every or output_every < 1:
+        raise ValueError(f"output_every must be an integer >= 1, got {output_every!r}")
+    return check_finite(integrate([crossing], data, grid, int(output_every))[0])
+
+
+def history_stride(n_steps: int, data: KernelData, budget: float = HISTORY_BUDGET) -> int:
+    """The smallest k such that every k-th of ``n_steps`` + 1 states fits in ``budget`` [bytes]
+    (ξ, ξ̇, ξ̈, q, q̇, q̈ and two per wheel, 8 bytes each)."""
+    per_row = 8.0 * (3 * data.n_modes + 3 * data.n_dof + 2 * data.n_wheels)
+    return max(1, math.ceil((n_steps + 1) * per_row / max(budget, per_row)))
 
 
 @dataclass(frozen=True)
@@ -81,14 +118,15 @@ IMPLICIT_TOLERANCE = 1e-9
 IMPLICIT_MAX_ITERATIONS = 50
 
 
-def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -> list[CrossingResult]:
+def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid, stride: int = 1) -> list[CrossingResult]:
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
     and ``grid`` are those of the first) with their integrator, as lanes of kernel calls
     (:data:`MAX_LANES`): ``kernels.rk4`` for RK4, ``kernels.implicit`` with the modes' exact
     transition ("exact") or Newmark's ("newmark")."""
     first, n_real = crossings[0], len(crossings)
     if n_real > MAX_LANES:
-        return [res for k in range(0, n_real, MAX_LANES) for res in integrate(crossings[k:k + MAX_LANES], data, grid)]
+        return [res for k in range(0, n_real, MAX_LANES)
+                for res in integrate(crossings[k:k + MAX_LANES], data, grid, stride)]
     n_l = 1 if n_real == 1 else -(-n_real // LANE_PAD) * LANE_PAD
     crossings = list(crossings) + [crossings[-1]] * (n_l - n_real)
     dt, n_steps = grid.dt, grid.n_steps
@@ -98,7 +136,7 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     x_last, _ = point_positions(data, mot.travel[-1])  # travel is monotone: extremes at the ends
     road = road_data([(c.road, c.road_right) for c in crossings], float(min(x_first.min(), x_last.min())),
                      float(max(x_first.max(), x_last.max())))
-    n_t = n_steps + 1
+    n_t = n_steps // stride + 1  # stored rows (every stride-th step)
     xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
     q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
     wheel_force = np.zeros((n_l, n_t, n_w))
@@ -116,9 +154,10 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
+    announce_compile(kernels.rk4 if first.integrator == "rk4" else kernels.implicit)
     if first.integrator == "rk4":
         kernels.rk4(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, *outputs,
-                    (0,) if n_l == 1 else (0, 0))
+                    (0,) if n_l == 1 else (0, 0), stride)
     else:
         make = exact_step if first.integrator == "exact" else newmark_step
         step = make(data.modes.omega, data.modes.zeta, dt)
@@ -126,16 +165,17 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid) -
         tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
         unsettled, evaluations = kernels.implicit(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, step,
                                      vehicle_step(data.vehicles, dt, first.integrator), *outputs, tol, IMPLICIT_MAX_ITERATIONS,
-                                     (0,) if n_l == 1 else (0, 0))
+                                     (0,) if n_l == 1 else (0, 0), stride)
         log.debug("%s: %.2f contact-law evaluations per step", first.integrator, evaluations / max(n_steps, 1))
         if unsettled:
             log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
                         first.integrator, IMPLICIT_MAX_ITERATIONS, unsettled, n_steps)
-    time = grid.t_half[::2].copy()
+    rows = slice(0, None, 2 * stride)
+    time = grid.t_half[rows].copy()
     if first.vehicles:
-        front, speed = first.front_positions(time), grid.speed[::2].copy()
+        front, speed = first.front_positions(time), grid.speed[rows].copy()
     else:
-        front, speed = grid.xf[::2].copy(), grid.vel[::2].copy()
-    return [CrossingResult(c, time, dt, front, speed, *(a[lane] for a in
-                                                         (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)))
+        front, speed = grid.xf[rows].copy(), grid.vel[rows].copy()
+    return [CrossingResult(c, time, dt * stride, front, speed,
+                           *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt)
             for lane, c in enumerate(crossings[:n_real])]
