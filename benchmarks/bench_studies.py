@@ -7,7 +7,9 @@ speed-up of the batched solver over one-at-a-time crossings, measured in the sam
 
 1. warm-up: one small study (numba compilation / cache load, reported separately);
 2. the program with ``vbikit.study.run_study`` (batches of crossings sharing their set-up,
-   ``--workers`` processes), total time and crossings per second;
+   ``--workers`` processes), total time and crossings per second, with the default integrator
+   (exact modal stepping) and again with RK4 (``--no-rk4`` skips it): the ratio and the largest
+   IM difference, per crossing and in the figures' means over the profiles;
 3. one-at-a-time on the same ``--workers`` processes: the program's first
    ``--baseline-samples`` profiles of every point (the same mix of bridges, tires and speeds),
    each crossing on its own (build the scenario, ``simulate``, ``point_response``, both impact
@@ -49,12 +51,14 @@ def _one_crossing(args):
     return resp.displacement_impact.impact_factor, resp.strain_impact.impact_factor
 
 
-def _batched(studies, workers, tmp):
+def _batched(studies, workers, tmp, keep=None):
     from vbikit.study import run_study
 
     t0 = time.perf_counter()
     for k, study in enumerate(studies):
-        run_study(study, Path(tmp) / f"{k}-{time.time_ns()}.nc", workers=workers)
+        ds = run_study(study, Path(tmp) / f"{k}-{time.time_ns()}.nc", workers=workers)
+        if keep is not None:
+            keep.append(ds["impact_factor"].load())
     return time.perf_counter() - t0
 
 
@@ -72,6 +76,7 @@ def main() -> None:
     ap.add_argument("--baseline-samples", type=int, default=2, help="profiles per point for the speed-up comparison")
     ap.add_argument("--workers", type=int, default=os.cpu_count(), help="worker processes")
     ap.add_argument("--beam", action="store_true", help="beam stand-ins instead of the 3D bridges (Girder 4)")
+    ap.add_argument("--no-rk4", action="store_true", help="skip the same program with RK4 (the ratio)")
     args = ap.parse_args()
 
     from vbikit.study.paper import paper_study
@@ -84,9 +89,10 @@ def main() -> None:
         studies = [paper_study(f, args.samples, args.beam) for f in FIGS]
         n = sum(s.size for s in studies)
         per_fig = {}
+        ims: list = []
         t_all = time.perf_counter()
         for f, s in zip(FIGS, studies):
-            per_fig[f] = _batched([s], args.workers, tmp)
+            per_fig[f] = _batched([s], args.workers, tmp, ims)
         total = time.perf_counter() - t_all
         scale = 20 / args.samples
         print(f"paper program, {args.samples} profiles per point: {n} crossings on {args.workers} workers "
@@ -94,6 +100,18 @@ def main() -> None:
         print("  per figure: " + ", ".join(f"{f} {t:.1f} s" for f, t in per_fig.items()))
         if args.samples != 20:
             print(f"  extrapolated to the whole program (8640 crossings): {total * scale:.0f} s")
+        print(f"  integrator: {studies[0].scenario_dict(tuple(0 for _ in studies[0].shape)).get('crossing', {}).get('integrator', 'default (exact)')}")
+
+        if not args.no_rk4:
+            rk4 = [paper_study(f, args.samples, args.beam, integrator="rk4") for f in FIGS]
+            ims_rk4: list = []
+            t_rk4 = sum(_batched([s], args.workers, tmp, ims_rk4) for s in rk4)
+            diff = max(float(abs(a - b).max()) for a, b in zip(ims, ims_rk4))
+            seed_axis = "sample"  # the road.seed axis of the datasets
+            fig_diff = max(float(abs(a.mean(seed_axis) - b.mean(seed_axis)).max()) for a, b in zip(ims, ims_rk4))
+            print(f"the same program with RK4: {t_rk4:.1f} s = {n / t_rk4:.1f} crossings/s -> default {t_rk4 / total:.1f}x "
+                  f"faster; IM differences: largest {diff:.1e} per crossing, {fig_diff:.1e} in the figures' means "
+                  f"over the {args.samples} profiles")
 
         small = [paper_study(f, args.baseline_samples, args.beam) for f in FIGS]
         t_single, m = _one_at_a_time(small, args.workers)
