@@ -772,6 +772,10 @@ def _tire_load(vehicles, wheel_force, q, dq, out, lanes):
                     out[w, lane] += h * (kw * q[j, lane] + cw * dq[j, lane])
 
 
+#: iterations of the plain fixed point before the implicit kernel halves its updates
+RELAX_AFTER = 8
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
              wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1):
@@ -786,7 +790,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     force and no G_w changes by more than ``tol_force`` [N] in any lane.  The first guess is the
     linear extrapolation of the last two steps.  The iteration contracts by about the tire
     stiffness over the deck's stiffness under the wheel (and, for points whose contact differs
-    from the nominal tire, k h²/(4 m) of the wheel), a few per cent for road vehicles.
+    from the nominal tire, k h²/(4 m) of the wheel), a few per cent for road vehicles.  Points
+    entering and leaving contact make the map non-smooth, and it can cycle between two contact
+    sets; after :data:`RELAX_AFTER` iterations the updates are halved (under-relaxation).
 
     Same array conventions as :func:`rk4` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
@@ -865,6 +871,13 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 for lane in range(n_l):
                     err = max(err, abs(force[k, lane] - f_prev[k, lane]))
                     f_prev[k, lane] = force[k, lane]
+            if it >= RELAX_AFTER:  # gated contact can make the plain iteration cycle: damp it
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        pn[m, lane] = 0.5 * (pn[m, lane] + p[m, lane])
+                for w in range(n_w):
+                    for lane in range(n_l):
+                        gn[w, lane] = 0.5 * (gn[w, lane] + g[w, lane])
             p, pn = pn, p
             g, gn = gn, g
             if err <= tol_force and it > 0:
