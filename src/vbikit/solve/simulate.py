@@ -113,8 +113,9 @@ def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
 MAX_LANES = 32
 LANE_PAD = 8
 #: the implicit integrators' iteration on the end-of-step contact forces stops when no point force
-#: and no wheel load changes by more than this fraction of the largest static wheel load
-IMPLICIT_TOLERANCE = 1e-9
+#: and no wheel load changes by more than this fraction of the largest static wheel load (tight
+#: enough that lanes, which iterate until all have converged, equal single crossings to round-off)
+IMPLICIT_TOLERANCE = 1e-12
 IMPLICIT_MAX_ITERATIONS = 50
 
 
