@@ -334,7 +334,7 @@ class _Context:
         scenario = parse_scenario(data, base_dir)
         built: BuiltScenario = build(scenario)
         bridge = built.crossing.bridge
-        x = bridge.span / 2 if built.response_x is None else float(built.response_x)
+        x = float(bridge.default_response_x) if built.response_x is None else float(built.response_x)
         phi = bridge.mode_shapes([x], [built.response_y])[0]
         eps = bridge.strain_shapes([x], [built.response_y])[0]
         random_road = scenario.road.profile_file is None and scenario.road.road_class != "none"
