@@ -119,6 +119,26 @@ def cypress_bayou(n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPING, **o
     return SlabOnGirderBridge(**params)
 
 
+def cypress_bayou_series(n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPING_RATIO, rigid_approach_spans: bool = False,
+                         **overrides: Any) -> ModalBridge:
+    """The whole Cypress Bayou bridge: three simply supported 16.76 m spans in a row, span 3 tested.
+
+    * [paper] the tested span is the third of three simple spans; the truck crosses spans 1–2 first.
+    * [substitute] spans 1 and 2 are copies of the tested span's model (:func:`cypress_bayou`, same
+      ``overrides``), each with its own bearings and nothing connecting the spans
+      (:class:`~vbikit.bridge.series.SpanSeries`); ``n_modes`` per span.  With
+      ``rigid_approach_spans`` spans 1–2 are rigid road: the approach model of :func:`cypress_bayou`.
+    * Responses, the default girder (5) and lateral offset (+2.0 m) are those of span 3.
+    """
+    from vbikit.bridge.series import SpanSeries
+
+    if overrides.get("damage"):
+        raise ValueError("bridge.damage: give the damage to a single-span deck; the span series does not place it")
+    deck = cypress_bayou(n_modes=n_modes, damping_ratio=damping_ratio, **overrides)
+    spans = (None, None, deck) if rigid_approach_spans else (deck, deck, deck)
+    return SpanSeries(spans, (deck.span,) * 3, instrumented=2, name="cypress-bayou-3span")
+
+
 @dataclass(frozen=True)
 class BridgePreset:
     """A named bridge; ``build(n_modes=, damping_ratio=)`` returns the model."""
@@ -156,6 +176,12 @@ BRIDGE_PRESETS: dict[str, BridgePreset] = {
             "cypress-bayou",
             "Field bridge: 16.76 m, seven Type II girders at 2.13 m, 14.01 m deck (3D grillage)",
             lambda **kw: cypress_bayou(**kw),
+            "slab-on-girder",
+        ),
+        BridgePreset(
+            "cypress-bayou-3span",
+            "Field bridge, all three 16.76 m simple spans in a row, span 3 tested (3D grillages)",
+            lambda **kw: cypress_bayou_series(**kw),
             "slab-on-girder",
         ),
         BridgePreset(

@@ -56,6 +56,7 @@ from vbikit.field.signal import (
     xcorr_shift,
 )
 from vbikit.road.measured import read_profile_csv
+from vbikit.road.profile import RoadProfile
 from vbikit.solve import Crossing, CrossingResult, choose_time_step, simulate
 from vbikit.solve.budget import Limits, check_bridge, check_run
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -143,21 +144,37 @@ def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: Moda
         raise FieldFileError(f"{spec.path}: truck {spec.truck!r} is not a preset; allowed: {', '.join(VEHICLE_PRESETS)}")
     left = read_profile_csv(case.profile_left) if case.profile_left else None
     right = read_profile_csv(case.profile_right) if case.profile_right else None
+    offset = tested_span_offset(bridge)
+    if offset:  # a series of spans: x of the files is from the tested span's entry, the crossing's from the first span's
+        if spec.approach < offset:
+            raise FieldFileError(f"{spec.path}: approach = {spec.approach} m is shorter than the spans before the tested "
+                                 f"one ({offset} m): the truck must start before the first span")
+        left, right = (None if p is None else RoadProfile(p.x + offset, p.z, p.label, p.resolution) for p in (left, right))
     return Crossing(bridge, VEHICLE_PRESETS[spec.truck].build(), tire, left, speed=case.speed or spec.speed,
-                    approach=spec.approach, free_vibration=spec.free_vibration, lateral_offset=case.lateral_offset,
+                    approach=spec.approach - offset, free_vibration=spec.free_vibration, lateral_offset=case.lateral_offset,
                     dt=dt if dt is not None else spec.dt, road_right=right)
+
+
+def tested_span_offset(bridge: ModalBridge) -> float:
+    """x [m] of the tested span's entry in the bridge model: 0, or the spans before it in a
+    :class:`~vbikit.bridge.series.SpanSeries` (channel x, ``approach`` and profiles are measured from
+    the tested span's entry, as in the field)."""
+    base = bridge.base if isinstance(bridge, ScaledBridge) else bridge
+    return float(getattr(base, "instrumented_offset", 0.0))
 
 
 def simulated_channels(result: CrossingResult, case: CaseSpec, where: str) -> dict[str, NDArray[np.float64]]:
     """Simulated history of each channel of ``case`` (SI units) at its (x, girder)."""
     br = result.crossing.bridge
+    offset = tested_span_offset(br)
+    length = br.span - offset
     out = {}
     for ch in case.channels:
-        if not 0.0 <= ch.x <= br.span:
-            raise FieldFileError(f"{where}: channel {ch.name!r}: x = {ch.x} m is outside the span 0 … {br.span} m")
+        if not 0.0 <= ch.x <= length:
+            raise FieldFileError(f"{where}: channel {ch.name!r}: x = {ch.x} m is outside the span 0 … {length} m")
         y = sensor_y(br, ch.girder, where)
         out[ch.name] = {"displacement": result.displacement, "acceleration": result.acceleration,
-                        "strain": result.strain}[ch.quantity](ch.x, y)
+                        "strain": result.strain}[ch.quantity](ch.x + offset, y)
     return out
 
 

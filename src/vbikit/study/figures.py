@@ -1,4 +1,6 @@
-"""Figures of study datasets laid out like the paper's Figs. 5–8 and 10–11."""
+"""Figures of study datasets laid out like the paper's Figs. 5–8 and 10–11, with the design-code
+allowances of the study's bridge and vehicle as reference lines (AASHTO LRFD and Standard, CSA S6,
+OHBDC 1983, JTG D60-2015; :mod:`vbikit.analysis.codes`)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -6,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from vbikit._files import save_figure
-from vbikit.study.paper import AASHTO_LRFD_IM, AASHTO_STANDARD_IM, CLASS_NAMES, FIGURES
+from vbikit.study.paper import CLASS_NAMES, FIGURES
 
 BEAM_NOTE = ("vbikit beam stand-in for the paper's slab-on-girder bridge: impact factors of the whole "
              "cross-section's midspan deflection, not of Girder 4")
@@ -14,11 +16,36 @@ GIRDER_NOTE = "vbikit 3D slab-on-girder grillage (10 modes): impact factors of t
 
 
 
-def _reference_lines(ax, bridge: str) -> None:
-    ax.axhline(AASHTO_LRFD_IM, color="k", ls="--", lw=0.8, label=f"AASHTO LRFD IM = {AASHTO_LRFD_IM}")
-    std = AASHTO_STANDARD_IM.get(bridge)
-    if std is not None:
-        ax.axhline(std, color="k", ls=":", lw=0.8, label=f"AASHTO Standard 50/(L+125) = {std}")
+#: line styles of the design-code reference lines
+_CODE_STYLES = {"aashto_lrfd": ("--", "AASHTO LRFD"), "aashto_standard": (":", "AASHTO Standard 50/(L+125)"),
+                "csa_s6": ("-.", "CSA S6"), "ohbdc_1983": ((0, (5, 1, 1, 1)), "OHBDC 1983"),
+                "jtg_d60_2015": ((0, (1, 2)), "JTG D60-2015")}
+
+
+def design_code_lines(base: dict) -> dict[str, float]:
+    """The design-code allowances (:func:`vbikit.analysis.codes.code_allowances`) of a study's base
+    scenario: loaded length = the span of the response point, f₁ of the bridge model, the axles of
+    the vehicle (the first of ``[[vehicles]]``)."""
+    from vbikit.analysis.codes import code_allowances
+    from vbikit.analysis.effects import vehicle_axle_count
+    from vbikit.scenario import parse_scenario
+    from vbikit.scenario.build import build_bridge
+    from vbikit.vehicle.presets import VEHICLE_PRESETS
+
+    scenario = parse_scenario(base)
+    bridge = build_bridge(scenario.bridge)
+    spec = scenario.vehicle if scenario.vehicle is not None else scenario.vehicles[0]
+    vehicle = VEHICLE_PRESETS[spec.model].build(**spec.parameters)
+    x = scenario.response.x if scenario.response.x is not None else float(bridge.default_response_x)
+    spans = getattr(bridge, "spans", None)
+    loaded = float(spans[bridge.span_index(x)]) if spans is not None else float(bridge.span)
+    return code_allowances(loaded, float(bridge.frequencies_hz[0]), vehicle_axle_count(vehicle))
+
+
+def _reference_lines(ax, codes: dict[str, float]) -> None:
+    for key, value in codes.items():
+        ls, label = _CODE_STYLES[key]
+        ax.axhline(value, color="k", ls=ls, lw=0.8, label=f"{label} = {value:.3f}")
 
 
 def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_factor") -> Path:
@@ -33,8 +60,10 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
     import matplotlib.pyplot as plt
 
     spec = FIGURES[fig]
-    bridge = json.loads(ds.attrs["study"])["base"]["bridge"]["model"]
+    base = json.loads(ds.attrs["study"])["base"]
+    bridge = base["bridge"]["model"]
     note = BEAM_NOTE if bridge.endswith("-beam") else GIRDER_NOTE
+    codes = design_code_lines(base)
     mean = ds[variable].mean("sample")
     std = ds[variable].std("sample", ddof=1) if ds.sizes["sample"] > 1 else 0 * mean
     classes = [str(c) for c in ds["road_class"].values]
@@ -53,7 +82,7 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
             s = np.asarray(std.sel({"road_class": cls, line_dim: value}).values)
             line, = ax.plot(x, m, "o-", ms=4, label=labels.get(value, str(value)))
             ax.fill_between(x, m - s, m + s, color=line.get_color(), alpha=0.12, lw=0)
-        _reference_lines(ax, bridge)
+        _reference_lines(ax, codes)
         ax.set_title(f"{CLASS_NAMES.get(cls, cls)} road", fontsize="medium")
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3)
