@@ -356,6 +356,8 @@ def presets() -> None:
 
     typer.echo("Bridges ([bridge] model = ...):")
     typer.echo("  beam                  Euler–Bernoulli beam: span, EI, mass_per_length, damping_ratio, n_modes, neutral_axis_depth")
+    typer.echo("  continuous-beam       beam over several spans: spans (list), EI and mass_per_length (one or per span), "
+               "support_stiffness, rotational_stiffness, [[bridge.damage]]")
     typer.echo("  modes-file            modes imported from a vbikit-modes file (modes_file = ...; docs/bridges.md)")
     for p in BRIDGE_PRESETS.values():
         b = p.build()

@@ -158,6 +158,11 @@ class SpanSeries(ModalBridge):
         return getattr(self._main, "girder_y", None)
 
     @property
+    def deck_width(self) -> float:
+        """Deck width [m] of the instrumented span."""
+        return float(getattr(self._main, "deck_width", 0.0))
+
+    @property
     def n_girders(self) -> int:
         return int(getattr(self._main, "n_girders", 1))
 
