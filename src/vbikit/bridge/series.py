@@ -158,6 +158,16 @@ class SpanSeries(ModalBridge):
         return getattr(self._main, "girder_y", None)
 
     @property
+    def n_modes(self) -> int:
+        """Number of modes of the series (the spans' modes added)."""
+        return int(self.omega.size)
+
+    @property
+    def n_vibrating_spans(self) -> int:
+        """Number of spans with a bridge model (not rigid)."""
+        return sum(b is not None for b in self.spans)
+
+    @property
     def deck_width(self) -> float:
         """Deck width [m] of the instrumented span."""
         return float(getattr(self._main, "deck_width", 0.0))
