@@ -36,6 +36,11 @@ DEFAULT_TESTS = ["tests/verification/test_independent_checks.py", "tests/verific
                  "tests/verification", "tests/unit", "tests/study/test_batch.py"]
 SYSTEM = "src/vbikit/solve/system.py"
 CROSSING = "src/vbikit/solve/crossing.py"
+MODAL_STEP = "src/vbikit/solve/modal_step.py"
+#: the exact modal step and Newmark's step map of each mode (modal_step.exact_step, newmark_step)
+EXACT_ZETA = ("    zeta = np.asarray(zeta, float)\n    if np.any(omega <= 0)",
+              "    zeta = 0.5 * np.asarray(zeta, float)\n    if np.any(omega <= 0)")
+NEWMARK_ZETA = ("c, k = 2.0 * np.asarray(zeta, float) * omega", "c, k = 1.0 * np.asarray(zeta, float) * omega")
 
 
 @dataclass(frozen=True)
@@ -76,25 +81,31 @@ def K(pattern: str, replacement: str, count: int | None = 1) -> Edit:
 
 MUTATIONS: list[Mutation] = [
     # ---------------------------------------------------------------- damping
-    M("damping-halved-everywhere", "modal damping 2ζω → ζω in every integrator",
-      K("a = 2.0 * zeta[m] * omega[m]", "a = zeta[m] * omega[m]"),
-      K("damp[m, m] = 2.0 * zeta[m] * omega[m]", "damp[m, m] = zeta[m] * omega[m]")),
+    M("damping-halved-everywhere", "modal damping 2ζω → ζω in every integrator (and the assembled matrices)",
+      K("a = 2.0 * zeta[m] * omega[m]", "a = zeta[m] * omega[m]", count=None),
+      K("damp[m, m] = 2.0 * zeta[m] * omega[m]", "damp[m, m] = zeta[m] * omega[m]"),
+      Edit(MODAL_STEP, *EXACT_ZETA), Edit(MODAL_STEP, *NEWMARK_ZETA)),
     M("damping-halved-rk4", "modal damping halved in the RK4 right-hand side only",
-      K("a = 2.0 * zeta[m] * omega[m]", "a = zeta[m] * omega[m]")),
-    M("damping-halved-newmark", "modal damping halved in the assembled matrices (Newmark) only",
-      K("damp[m, m] = 2.0 * zeta[m] * omega[m]", "damp[m, m] = zeta[m] * omega[m]")),
+      K("ddxi[m, lane] = -a * dxi[m, lane] - b * xi[m, lane]", "ddxi[m, lane] = -0.5 * a * dxi[m, lane] - b * xi[m, lane]")),
+    M("damping-halved-exact", "modal damping halved in the exact modal step (the default integrator) only",
+      Edit(MODAL_STEP, *EXACT_ZETA)),
+    M("damping-halved-newmark", "modal damping halved in Newmark's step map only", Edit(MODAL_STEP, *NEWMARK_ZETA)),
     M("damping-ratios-ignored", "the bridge's damping ratios replaced by 0 in the kernel data",
       Edit(SYSTEM, "np.ascontiguousarray(bridge.damping_ratios, float)", "0.0 * np.ascontiguousarray(bridge.damping_ratios, float)")),
     # ---------------------------------------------------------------- coupled equations: bridge side
-    M("modal-stiffness-omega", "modal stiffness ω² → ω·ω₁ (RK4 and assembly)",
-      K("b = omega[m] * omega[m]", "b = omega[m] * omega[0]"),
+    M("modal-stiffness-omega", "modal stiffness ω² → ω·ω₁ (RK4, accelerations, assembly)",
+      K("b = omega[m] * omega[m]", "b = omega[m] * omega[0]", count=None),
       K("stiff[m, m] = omega[m] * omega[m]", "stiff[m, m] = omega[m] * omega[0]")),
+    M("modal-frequency-exact", "the exact step of every mode at 1.01 ω (the default integrator)",
+      Edit(MODAL_STEP, "w, theta = omega, omega * h", "w, theta = 1.01 * omega, 1.01 * omega * h")),
     M("modal-load-sign", "sign of the contact forces on the bridge, −Σφ F → +Σφ F (everywhere)",
-      K("_modal_load(-1.0, phi, force, used", "_modal_load(1.0, phi, force, used"),
+      K("_modal_load(-1.0,", "_modal_load(1.0,", count=None),
       K("load[a] -= f[a] * ext", "load[a] += f[a] * ext")),
     M("modal-load-factor", "contact forces on the bridge × 0.9 (everywhere)",
-      K("_modal_load(-1.0, phi, force, used", "_modal_load(-0.9, phi, force, used"),
+      K("_modal_load(-1.0,", "_modal_load(-0.9,", count=None),
       K("load[a] -= f[a] * ext", "load[a] -= 0.9 * f[a] * ext")),
+    M("end-state-load-sign", "implicit step: the end-of-step modal load enters the deck state with the wrong sign",
+      K("x1[m, lane] = xf[m, lane] + c1 * p[m, lane]", "x1[m, lane] = xf[m, lane] - c1 * p[m, lane]")),
     M("deck-displacement-sign", "deck displacement under a point enters with the wrong sign (one lane)",
       K("a += phi[p, m] * xi[m, 0]", "a -= phi[p, m] * xi[m, 0]")),
     M("deck-displacement-lanes", "deck displacement under a point left out (many lanes: a study batch)",
@@ -115,16 +126,26 @@ MUTATIONS: list[Mutation] = [
       K("stiff[a, b] += k * f[a] * f[b] + c * vel * f[a] * g[b]", "stiff[a, b] += k * f[a] * f[b]"),
       K("stiff[n_m + j, a] -= k * h[j] * f[a] + c * vel * h[j] * g[a]", "stiff[n_m + j, a] -= k * h[j] * f[a]")),
     # ---------------------------------------------------------------- coupled equations: vehicle side
-    M("wheel-force-sign", "tire forces on the vehicle with the wrong sign (RK4)",
-      K("_gemv(1.0, vehicles.wheel_rows, wheel_force, rhs, lanes, True)", "_gemv(-1.0, vehicles.wheel_rows, wheel_force, rhs, lanes, True)")),
-    M("vehicle-damping-sign", "vehicle damping C_v enters with the wrong sign (RK4)",
-      K("_gemv(-1.0, vehicles.damping, dq, rhs, lanes, False)", "_gemv(1.0, vehicles.damping, dq, rhs, lanes, False)")),
-    M("vehicle-stiffness-factor", "vehicle stiffness K_v × 0.9 (RK4)",
-      K("_gemv(-1.0, vehicles.stiffness, q, rhs, lanes, False)", "_gemv(-0.9, vehicles.stiffness, q, rhs, lanes, False)")),
-    M("gravity-factor", "gravity load F_G × 0.99 (RK4)",
-      K("rhs[i, lane] = vehicles.gravity[i]", "rhs[i, lane] = 0.99 * vehicles.gravity[i]")),
-    M("vehicle-mass-newmark", "vehicle mass × 1.05 in the assembled matrices (Newmark)",
-      K("mass[n_m + i, n_m + j] = m_v[i, j]", "mass[n_m + i, n_m + j] = 1.05 * m_v[i, j]")),
+    M("wheel-force-sign", "tire forces on the vehicle with the wrong sign (every integrator)",
+      K("_gemv(1.0, vehicles.wheel_rows, wheel_force, rhs, lanes, True)", "_gemv(-1.0, vehicles.wheel_rows, wheel_force, rhs, lanes, True)"),
+      K("_gemv(1.0, vehicles.wheel_rows, g, rhs, lanes, True)", "_gemv(-1.0, vehicles.wheel_rows, g, rhs, lanes, True)"),
+      Edit(MODAL_STEP, "a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T", "a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = -m_inv @ rows.T")),
+    M("tire-load-sign", "implicit step: the nominal tire's part of the wheel load added with the wrong sign",
+      K("out[w, lane] += h * (kw * q[j, lane] + cw * dq[j, lane])", "out[w, lane] -= h * (kw * q[j, lane] + cw * dq[j, lane])")),
+    M("vehicle-damping-sign", "vehicle damping C_v with the wrong sign (every integrator)",
+      K("_gemv(-1.0, vehicles.damping, dq, rhs, lanes, False)", "_gemv(1.0, vehicles.damping, dq, rhs, lanes, False)"),
+      Edit(MODAL_STEP, "c_hat = vehicles.damping + rows.T", "c_hat = -vehicles.damping + rows.T")),
+    M("vehicle-stiffness-factor", "vehicle stiffness K_v × 0.9 (every integrator)",
+      K("_gemv(-1.0, vehicles.stiffness, q, rhs, lanes, False)", "_gemv(-0.9, vehicles.stiffness, q, rhs, lanes, False)"),
+      Edit(MODAL_STEP, "k_hat = vehicles.stiffness + rows.T", "k_hat = 0.9 * vehicles.stiffness + rows.T")),
+    M("gravity-factor", "gravity load F_G × 0.99 in the time stepping (every integrator; the static start keeps it)",
+      K("rhs[i, lane] = vehicles.gravity[i]", "rhs[i, lane] = 0.99 * vehicles.gravity[i]", count=None),
+      Edit(MODAL_STEP, "a[n_d:2 * n_d, -1] = m_inv @ vehicles.gravity", "a[n_d:2 * n_d, -1] = 0.99 * m_inv @ vehicles.gravity"),
+      Edit(MODAL_STEP, "vehicles.gravity.reshape(n_d, 1))[:, 0]", "0.99 * vehicles.gravity.reshape(n_d, 1))[:, 0]")),
+    M("vehicle-mass-factor", "vehicle mass 5 % off in the time stepping (every integrator)",
+      K("_gemv(1.0, vehicles.mass_inv, rhs, ddq, lanes, False)", "_gemv(0.95, vehicles.mass_inv, rhs, ddq, lanes, False)"),
+      Edit(MODAL_STEP, "m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows", "m_inv, rows = 0.95 * vehicles.mass_inv, vehicles.wheel_rows"),
+      Edit(MODAL_STEP, "s_inv = np.linalg.inv(vehicles.mass + ", "s_inv = np.linalg.inv(1.05 * vehicles.mass + ")),
     M("coupling-stiffness-sign", "bridge–vehicle stiffness coupling K_bv with the wrong sign (Newmark)",
       K("stiff[a, n_m + j] -= k * f[a] * h[j]", "stiff[a, n_m + j] += k * f[a] * h[j]")),
     # ---------------------------------------------------------------- tire force law
