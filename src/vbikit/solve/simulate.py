@@ -31,7 +31,8 @@ compile_log = logging.getLogger("vbikit.solve.compile")
 def announce_compile(kernel) -> None:
     """Log "compiling kernels, first run only" when ``kernel`` (a numba dispatcher) has nothing
     compiled in this process and nothing in numba's on-disk cache (its index file is missing)."""
-    if kernel.signatures:
+    signatures = getattr(kernel, "signatures", None)
+    if signatures is None or signatures:  # a plain function (NUMBA_DISABLE_JIT=1), or compiled already
         return
     index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
     if index is None or not os.path.exists(index):
