@@ -62,6 +62,9 @@ CASES = {
     "mass-tiny": (BEAM.replace('"paper-bridge-2-beam"', '"beam"\nspan = 20.0\nEI = 1e10\nmass_per_length = 1e-300'),
                   ["time steps", "crossing.dt"]),
     "dt-longer-than-crossing": (BEAM + "integrator = \"newmark\"\ndt = 1e9\n", ["crossing.dt = 1e+09 s", "fewer than 10 steps"]),
+    # found by the fuzz run with exact modal stepping: wheels 7e16 m off the deck diverged after validate
+    "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7e16\n",
+                            ["crossing.lateral_offset", "off the 9.75 m wide deck"]),
     "deep-nesting": ("a = " + "[" * 5000 + "]" * 5000 + "\n", ["s.toml", "not valid TOML"]),
     "unknown-key": (BEAM + "spead = 3\n", ["crossing.spead", "unknown key"]),
 }

@@ -239,6 +239,9 @@ def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None)
         for name in tires:
             try:
                 crossing = case_crossing(spec, case, FIELD_TIRES[name](), bridge, spec.dt)
+                if spec.dt is not None and spec.dt > crossing.duration / 10:
+                    raise FieldFileError(f"{spec.path}: dt = {spec.dt:g} s gives fewer than 10 steps over the crossing "
+                                         f"({crossing.duration:.4g} s); leave dt out for the automatic step")
                 check_run(crossing, choose_time_step(crossing), limits)
             except FieldFileError:
                 raise

@@ -66,6 +66,12 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     UnstableTimeStepError or BudgetError, all ``ValueError``)."""
     built = build(scenario, limits)
     crossing = built.crossing
+    width = getattr(crossing.bridge, "deck_width", None)
+    if width is not None:
+        track = crossing.contact.lateral + crossing.lateral_offset if not getattr(crossing, "vehicles", ()) else None
+        if track is not None and np.any(np.abs(track) > width / 2):
+            raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
+                                f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
     if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
         raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
                             f"({crossing.duration:.4g} s); leave dt out for the automatic step")
