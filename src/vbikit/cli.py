@@ -11,13 +11,14 @@ import numpy as np
 import typer
 
 app = typer.Typer(
-    add_completion=False,
-    no_args_is_help=True,
     pretty_exceptions_enable=False,
-    help="vbikit — vehicle–bridge coupled vibration: run scenarios, list presets, run the demo.",
+    rich_markup_mode=None,  # plain help texts: "[tire]" or "[m]" stay as written
+    help="vbikit — vehicle–bridge coupled vibration: run scenarios, list presets, run the demo.\n\n"
+         "Commands that write files write them into --out-dir (default vbikit-out/); options that name "
+         "one file (--out, --plot, --summary) take that path as given.",
 )
 
-_STATE = {"debug": False}
+_STATE = {"debug": False, "quiet": False}
 
 from vbikit.study.commands import app as study_app  # noqa: E402
 
@@ -27,11 +28,34 @@ from vbikit.traffic.commands import traffic_cmd  # noqa: E402
 app.command("traffic")(traffic_cmd)
 
 
-@app.callback()
-def _main(debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs.")) -> None:
-    _STATE["debug"] = debug
-    logging.basicConfig(level=logging.DEBUG if debug else logging.WARNING, format="%(levelname)s %(name)s: %(message)s")
-    logging.getLogger("vbikit.solve.compile").setLevel(logging.INFO)  # "compiling kernels, first run only"
+def _version(value: bool) -> None:
+    if value:
+        from vbikit import __version__
+
+        typer.echo(f"vbikit {__version__}")
+        raise typer.Exit()
+
+
+@app.callback(invoke_without_command=True)
+def _main(
+    ctx: typer.Context,
+    verbose: int = typer.Option(0, "--verbose", "-v", count=True, help="More log messages (-v info, -vv debug)."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors: no warnings, no progress bars."),
+    debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs."),
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
+) -> None:
+    _STATE["debug"], _STATE["quiet"] = debug, quiet
+    level = logging.DEBUG if debug or verbose > 1 else logging.INFO if verbose else logging.ERROR if quiet else logging.WARNING
+    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s", force=True)
+    if not quiet:
+        logging.getLogger("vbikit.solve.compile").setLevel(logging.INFO)  # "compiling kernels, first run only"
+    if quiet:
+        import warnings
+
+        warnings.simplefilter("ignore")
+    if ctx.invoked_subcommand is None:  # bare `vbikit`: the help, exit code 0
+        typer.echo(ctx.get_help())
+        raise typer.Exit()
 
 
 def _json(obj: object, indent: int | None = None) -> str:
@@ -53,6 +77,8 @@ def _limits(max_memory: Optional[str], max_steps: Optional[float]) -> Any:
 
 
 def _warn(warnings: list[str]) -> None:
+    if _STATE["quiet"]:
+        return
     for text in warnings:
         typer.echo(f"warning: {text}", err=True)
 
@@ -116,7 +142,7 @@ def _execute(load: Any, limits: Any = None) -> _Run:
         effects = _load_effects(result, built, s)
         nonfinite = json_safe(s)[1]  # the JSON outputs write these as null (_json), the text report as nan
         s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
-        return _Run(scenario.name, result, response, s, girders, effects)
+        return _Run(scenario.name, result, response, s | _labels(scenario, s), girders, effects)
 
     run_ = _guard(work)
     _warn(run_.summary["warnings"])
@@ -133,17 +159,27 @@ def _load_effects(result: Any, built: Any, s: dict[str, Any]) -> list[Any]:
     return responses
 
 
+def _labels(scenario: Any, summary_: dict[str, Any]) -> dict[str, Any]:
+    """The ``units`` map of a summary's keys and the ``references`` of the scenario's models."""
+    from vbikit.analysis import summary_units
+    from vbikit.scenario.cite import scenario_references
+
+    refs = [{"key": r.key, "citation": r.text(), **({"doi": r.doi} if r.doi else {})} for r in scenario_references(scenario)]
+    return {"units": summary_units(summary_), "references": refs}
+
+
 def _write_csv(run: _Run, path: Path) -> None:
     from vbikit._files import atomic_write
-    from vbikit.analysis import histories
+    from vbikit.analysis import histories, history_units
     from vbikit.analysis.effects import load_effect_histories
 
     cols = histories(run.result, run.response, run.girders) | load_effect_histories(run.effects)
+    units = history_units(run.result, cols)
 
     def write(tmp: Path) -> None:
         with tmp.open("w", newline="") as fh:
             writer = csv.writer(fh)
-            writer.writerow(list(cols))
+            writer.writerow([f"{name} [{units[name]}]" for name in cols])
             for row in np.column_stack(list(cols.values())):
                 writer.writerow([f"{v:.9g}" for v in row])
 
@@ -253,10 +289,16 @@ def run(
     summary_path: Optional[Path] = typer.Option(None, "--summary", help="Write the JSON summary to this file."),
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,
+    out_dir: Optional[Path] = typer.Option(None, "--out-dir", help="Write all three (SCENARIO.csv, SCENARIO.png, "
+                                           "SCENARIO.json) into this folder."),
 ) -> None:
-    """Simulate one crossing described by a scenario file."""
+    """Simulate one crossing described by a scenario file (writes files only when asked)."""
     from vbikit.scenario import load_scenario
 
+    if out_dir is not None:
+        stem = scenario.stem
+        out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
+                                   summary_path or out_dir / f"{stem}.json")
     limits = _limits(max_memory, max_steps)
     _outputs(_execute(lambda: load_scenario(scenario), limits), as_json, out, plot, summary_path)
 
@@ -279,6 +321,26 @@ def validate(
     est = plan.estimate
     typer.echo(f"{scenario}: ok — {est.n_steps} steps of {est.dt:.3e} s ({plan.built.crossing.integrator}), "
                f"≈ {human(est.memory)}")
+
+
+@app.command()
+def cite(
+    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    bibtex: bool = typer.Option(False, "--bibtex", help="Print BibTeX entries instead of citations."),
+) -> None:
+    """Print the publications behind the models a scenario uses (docs/references.md has them all)."""
+    from vbikit.references import bibtex as to_bibtex
+    from vbikit.scenario import load_scenario
+    from vbikit.scenario.cite import scenario_models, scenario_references
+
+    spec = _guard(lambda: load_scenario(scenario))
+    refs = scenario_references(spec)
+    if bibtex:
+        typer.echo(to_bibtex(refs), nl=False)
+        return
+    typer.echo(f"{scenario}: models {', '.join(scenario_models(spec))}")
+    for r in refs:
+        typer.echo(f"  [{r.key}] {r.text()}")
 
 
 @app.command()
@@ -404,7 +466,8 @@ def presets() -> None:
 def bridge(
     name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`)."),
     n_modes: int = typer.Option(10, "--modes", min=1, max=500, help="Number of modes to solve and list (1 … 500)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Figure of the first mode shapes (default NAME-modes.png)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure NAME-modes.png."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the figure to this file instead."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
 ) -> None:
     """Frequencies and mode descriptions of a bridge preset, and a figure of its first mode shapes."""
@@ -431,7 +494,7 @@ def bridge(
     if not no_plot:
         from vbikit.plot.bridge import plot_mode_shapes
 
-        path = plot_mode_shapes(b, plot or Path(f"{name}-modes.png"), title=name)
+        path = _guard(lambda: plot_mode_shapes(b, plot or out_dir / f"{name}-modes.png", title=name))
         typer.echo(f"  figure              {path}")
 
 
@@ -439,7 +502,7 @@ def bridge(
 def field_(
     field_file: Path = typer.Argument(..., help="FIELD.toml describing the measured crossings (docs/field.md)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figures and the metrics tables."),
-    tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint."),
+    tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint, disk, rigid-disk."),
     calibrate: bool = typer.Option(False, "--calibrate", help="Fit a stiffness factor and damping ratio (least squares)."),
 ) -> None:
     """Compare measured bridge responses with the simulated crossing per tire model; optionally calibrate."""

@@ -50,9 +50,9 @@ def test_bridge2_hs20_girder4(tmp_path):
     assert len(s["girder_impact_factors"]) == 5
     header = (tmp_path / "h.csv").read_text().splitlines()[0].split(",")
     for g in range(1, 6):
-        assert {f"girder{g}_displacement", f"girder{g}_strain", f"girder{g}_acceleration"} <= set(header)
+        assert {f"girder{g}_displacement [m]", f"girder{g}_strain [-]", f"girder{g}_acceleration [m/s^2]"} <= set(header)
     data = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1)
-    assert np.array_equal(data[:, header.index("girder4_displacement")], data[:, header.index("displacement")])
+    assert np.array_equal(data[:, header.index("girder4_displacement [m]")], data[:, header.index("displacement [m]")])
 
 
 @pytest.mark.parametrize("name", ["paper-bridge-1", "paper-bridge-3", "cypress-bayou"])

@@ -70,7 +70,7 @@ def test_compare_tires_writes_figure_and_table(tmp_path, with_defects):
         assert row["min_tire_force"] >= 0.0  # loss of contact is on by default: no tire pulls
         # at least the static deflection P L³/(48 EI) = 56.4 kN × 10³ m³/(48e10 N m²) = 0.1175 mm
         # minus the 3-mode truncation (< 0.3 %): at α = v/(2 f1 L) = 20/(2 × 22.2 × 10) = 0.045 the
-        # moving-force amplification is ≈ 1.04 > 1 (Frýba; domain-data §5)
+        # moving-force amplification is ≈ 1.04 > 1 (Frýba; model data §5)
         assert -row["max_dynamic_displacement"] > 0.997 * 5750 * 9.81 * 10.0**3 / (48 * 1e10)
     if not with_defects:
         # smooth road: the rigid disk acts through its centre point like the point tire
@@ -116,13 +116,13 @@ def test_loss_of_contact_key_is_accepted(tmp_path):
 @pytest.mark.parametrize(
     "defect,expect",
     [
-        ('kind = "bump"\ndepth = 0.02', ["road.defects.0", "depth", "height"]),
-        ('kind = "crack"', ["road.defects.0.kind", "depression", "pothole"]),
-        ('kind = "depression"\ndepth = -0.02', ["road.defects.0.depth", "greater than 0"]),
-        ('kind = "depression"\nheight = 0.02', ["road.defects.0", "depth", "not height"]),
-        ('kind = "bump"\nheight = -0.01', ["road.defects.0", "height", "> 0"]),
-        ('kind = "step"\nheight = 0.01\nramp = 0.0', ["road.defects.0.ramp", "greater than 0"]),
-        ('kind = "pothole"\nwidth = 0.3', ["road.defects.0.width", "unknown key"]),
+        ('kind = "bump"\ndepth = 0.02', ["road.defects[1]", "depth", "height"]),
+        ('kind = "crack"', ["road.defects[1].kind", "depression", "pothole"]),
+        ('kind = "depression"\ndepth = -0.02', ["road.defects[1].depth", "greater than 0"]),
+        ('kind = "depression"\nheight = 0.02', ["road.defects[1]", "depth", "not height"]),
+        ('kind = "bump"\nheight = -0.01', ["road.defects[1]", "height", "> 0"]),
+        ('kind = "step"\nheight = 0.01\nramp = 0.0', ["road.defects[1].ramp", "greater than 0"]),
+        ('kind = "pothole"\nwidth = 0.3', ["road.defects[1].width", "unknown key"]),
     ],
 )
 def test_bad_defect_keys_exit_2_naming_the_key(tmp_path, defect, expect):

@@ -1,8 +1,8 @@
 """`vbikit run` reproduces the verification scenarios in examples/verification/.
 
 References (independent of vbikit): Yang & Yau 1997 midspan peak 2.41 mm, static
-P L³/48EI = 2.206 mm, vehicle peak acceleration ≈ 0.15 m/s² (domain-data.md §5);
-Frýba 1972 DAF(α = 0.5) = 1.705 (domain-data.md §5, 50 modes).
+P L³/48EI = 2.206 mm, vehicle peak acceleration ≈ 0.15 m/s² (docs/model-data.md §5);
+Frýba 1972 DAF(α = 0.5) = 1.705 (docs/model-data.md §5, 50 modes).
 """
 from __future__ import annotations
 
@@ -48,7 +48,8 @@ def test_csv_and_plot_outputs(tmp_path: Path):
                               "--summary", str(summ)])
     assert res.exit_code == 0, res.output
     header = out.read_text().splitlines()[0].split(",")
-    for col in ("time", "displacement", "strain", "acceleration", "contact_force_w1", "body_heave", "body_heave_acceleration"):
+    for col in ("time [s]", "displacement [m]", "strain [-]", "acceleration [m/s^2]", "contact_force_w1 [N]",
+                "body_heave [m]", "body_heave_acceleration [m/s^2]"):
         assert col in header
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     s = json.loads(summ.read_text())
@@ -56,6 +57,12 @@ def test_csv_and_plot_outputs(tmp_path: Path):
     # the summary's peak is refined between the samples (cubic Hermite with the velocity, so at
     # least the sampled one and above it by less than a mode-1 peak can fall between samples:
     # 1 − cos(ω₁ dt/2) = 2.2e-3 at f₁ = 5.55 Hz, dt = 4 ms)
-    sampled, refined = -data[:, header.index("displacement")].min(), -s["max_dynamic_displacement"]
+    sampled, refined = -data[:, header.index("displacement [m]")].min(), -s["max_dynamic_displacement"]
     assert 0.0 <= refined - sampled <= 2.2e-3 * refined
+    # every summary key has a unit; the references name the models' sources
+    assert s["units"]["max_dynamic_displacement"] == "m" and s["units"]["impact_factor"] == "-"
+    assert set(s["units"]) == set(s) - {"units", "references"}
+    keys = [r["key"] for r in s["references"]]
+    assert keys[:3] == ["MultiPointTire", "Fryba1999", "YangYau1997"]   # paper, beam, sprung mass
+    assert {"AASHTO-LRFD", "JTG-D60-2015"} <= set(keys)                  # the code allowances reported beside the IM
     assert fig.stat().st_size > 10_000

@@ -65,7 +65,7 @@ def test_json_blocks_and_code_values(tmp_path):
     assert len(s["reaction"]["sections"]) == 3
     with open(tmp_path / "h.csv") as fh:
         header = next(csv.reader(fh))
-    assert {"moment_x12", "moment_x12_static", "shear_x0", "reaction_s1", "reaction_s1_static"} <= set(header)
+    assert {"moment_x12 [N m]", "moment_x12_static [N m]", "shear_x0 [N]", "reaction_s1 [N]", "reaction_s1_static [N]"} <= set(header)
 
 
 def test_selected_sections_and_method(tmp_path):

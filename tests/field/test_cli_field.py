@@ -30,9 +30,15 @@ def test_field_command_writes_figures_and_tables(tmp_path):
 
 
 def test_field_bad_tires(tmp_path):
-    res = runner.invoke(app, ["field", str(EXAMPLE), "--out-dir", str(tmp_path), "--tires", "point,disk"])
+    res = runner.invoke(app, ["field", str(EXAMPLE), "--out-dir", str(tmp_path), "--tires", "point,tyre"])
     assert res.exit_code == 2
-    assert "--tires: unknown tire model 'disk'" in res.output
+    assert "--tires: unknown tire model 'tyre'" in res.output
+
+
+def test_field_takes_every_tire_model():
+    from vbikit.field.workflow import parse_tires
+
+    assert parse_tires("point,multipoint,disk,rigid-disk") == ["point", "multipoint", "disk", "rigid-disk"]
 
 
 def test_field_missing_file(tmp_path):

@@ -100,16 +100,16 @@ def test_sampling_rate_mismatch(example):
 @pytest.mark.parametrize(
     "old, new, message",
     [
-        ('truck = "dump-truck"\n', "", r"missing key truck"),
-        ("speed_kmh = 64.4", "speed_kmh = -1", r"speed_kmh must be > 0"),
-        ("speed_kmh = 64.4", "speed_kmh = 64.4\nspeed = 3", r"unknown key 'speed'"),
-        ('quantity = "strain"', 'quantity = "stress"', r"case\.1\.channel\.3\.quantity must be one of"),
-        ('unit = "microstrain"', 'unit = "mm"', r"case\.1\.channel\.3\.unit \[mm\] is not a strain unit"),
-        ("girder = 5", "girder = 0", r"case\.1\.channel\.1\.girder must be an integer >= 1"),
-        ("trigger_time = 1.237\n", "", r"case\.1\.trigger_time is required with align = 'trigger'"),
-        ('responses = "case1_responses.csv"', 'responses = "nope.csv"', r"case\.1\.responses: file not found"),
+        ('model = "dump-truck"\n', "", r"missing key vehicle\.model"),
+        ("speed_kmh = 64.4", "speed_kmh = -1", r"crossing\.speed_kmh must be > 0"),
+        ("speed_kmh = 64.4", "speed_kmh = 64.4\nspeed = 3", r"unknown key 'crossing\.speed'"),
+        ('quantity = "strain"', 'quantity = "stress"', r"case\[1\]\.channel\[3\]\.quantity must be one of"),
+        ('unit = "microstrain"', 'unit = "mm"', r"case\[1\]\.channel\[3\]\.unit \[mm\] is not a strain unit"),
+        ("girder = 5", "girder = 0", r"case\[1\]\.channel\[1\]\.girder must be an integer >= 1"),
+        ("trigger_time = 1.237\n", "", r"case\[1\]\.trigger_time is required with align = 'trigger'"),
+        ('responses = "case1_responses.csv"', 'responses = "nope.csv"', r"case\[1\]\.responses: file not found"),
         ('drift = "quiet"', 'drift = "magic"', r"signal\.drift must be"),
-        ("x = 8.38", "x = 'mid'", r"case\.1\.channel\.1\.x must be a finite number"),
+        ("x = 8.38", "x = 'mid'", r"case\[1\]\.channel\[1\]\.x must be a finite number"),
     ],
     ids=["missing", "negative", "unknown", "quantity", "unit", "girder", "trigger", "file", "drift", "x"],
 )
@@ -121,3 +121,18 @@ def test_bad_toml(example, old, new, message):
 def test_not_toml(tmp_path):
     with pytest.raises(FieldFileError, match="not valid TOML"):
         load_field_toml(write(tmp_path, "bridge = ", "FIELD.toml"))
+
+
+def test_flat_layout_is_read_with_a_deprecation_message(example):
+    """The earlier flat FIELD.toml keys (bridge = "…", truck = "…", speed_kmh … at the top) give
+    the same test as the sectioned layout, with a FutureWarning naming the new keys."""
+    new = load_field_toml(example / "FIELD.toml")
+    text = (example / "FIELD.toml").read_text()
+    flat = text.replace('[bridge]\nmodel = "cypress-bayou"', 'bridge = "cypress-bayou"').replace(
+        '[vehicle]\nmodel = "dump-truck"', 'truck = "dump-truck"').replace("[crossing]\n", "")
+    (example / "OLD.toml").write_text(flat)
+    with pytest.warns(FutureWarning, match=r"bridge → bridge\.model, truck → vehicle\.model"):
+        old = load_field_toml(example / "OLD.toml")
+    assert (old.bridge, old.truck, old.speed, old.approach, old.free_vibration, old.n_modes, old.damping_ratio) == \
+        (new.bridge, new.truck, new.speed, new.approach, new.free_vibration, new.n_modes, new.damping_ratio)
+    assert old.cases == new.cases

@@ -42,16 +42,16 @@ def test_two_vehicles_validate():
 
 
 @pytest.mark.parametrize("old, new, match", [
-    ('direction = "-x"', 'direction = "west"', r"vehicles\.1\.direction"),
-    ("entry_time = 0.5", "entry_time = -1", r"vehicles\.1\.entry_time"),
-    ("axle_spacings = [5.0, 1.3]", "axle_spacings = [5.0]", r"vehicles\.1\.axle_spacings: needs 2 value"),
-    ('groups = ["single", "walking-beam"]', 'groups = ["single", "bogie"]', r"vehicles\.1\.groups: .*unknown axle group 'bogie'"),
-    ("axle_loads = [50e3, 80e3, 80e3]", "axle_loads = [50e3, 80e3, -1]", r"vehicles\.1\.axle_loads: must be a list of numbers > 0"),
-    ("n_points = 4", "n_points = 0", r"vehicles\.1\.tire\.n_points"),
-    ("lateral_offset = -1.8", "lateral_ofset = -1.8", r"vehicles\.0: unknown key 'lateral_ofset'.*allowed: tire, lateral_offset"),
-    ("speed_kmh = 80\n", "", r"vehicles\.0\.speed: give speed"),
-    ("speed = 20\n", "speed = 20\nspeed_kmh = 72\n", r"vehicles\.1: give speed \[m/s\] or speed_kmh \[km/h\], not both"),
-    ('model = "3s2"', 'model = "truck"', r"vehicles\.0\.model: .*unknown vehicle model 'truck'"),
+    ('direction = "-x"', 'direction = "west"', r"vehicles\[2\]\.direction"),
+    ("entry_time = 0.5", "entry_time = -1", r"vehicles\[2\]\.entry_time"),
+    ("axle_spacings = [5.0, 1.3]", "axle_spacings = [5.0]", r"vehicles\[2\]\.axle_spacings: needs 2 value"),
+    ('groups = ["single", "walking-beam"]', 'groups = ["single", "bogie"]', r"vehicles\[2\]\.groups: .*unknown axle group 'bogie'"),
+    ("axle_loads = [50e3, 80e3, 80e3]", "axle_loads = [50e3, 80e3, -1]", r"vehicles\[2\]\.axle_loads: must be a list of numbers > 0"),
+    ("n_points = 4", "n_points = 0", r"vehicles\[2\]\.tire\.n_points"),
+    ("lateral_offset = -1.8", "lateral_ofset = -1.8", r"vehicles\[1\]: unknown key 'lateral_ofset'.*allowed: tire, lateral_offset"),
+    ("speed_kmh = 80\n", "", r"vehicles\[1\]\.speed: give speed"),
+    ("speed = 20\n", "speed = 20\nspeed_kmh = 72\n", r"vehicles\[2\]: give speed \[m/s\] or speed_kmh \[km/h\], not both"),
+    ('model = "3s2"', 'model = "truck"', r"vehicles\[1\]\.model: .*unknown vehicle model 'truck'"),
 ])
 def test_bad_vehicle_entries_name_the_key(old, new, match):
     assert old in TWO
@@ -60,7 +60,7 @@ def test_bad_vehicle_entries_name_the_key(old, new, match):
 
 
 def test_axles_needs_its_data():
-    with pytest.raises(ScenarioError, match=r"vehicles\.0: vehicle 'axles' needs axle_loads, axle_spacings"):
+    with pytest.raises(ScenarioError, match=r"vehicles\[1\]: vehicle 'axles' needs axle_loads, axle_spacings"):
         scenario_from_toml(BASE + '[[vehicles]]\nmodel = "axles"\nspeed = 20\n')
 
 
@@ -110,6 +110,6 @@ def test_run_two_vehicles_from_the_cli(tmp_path):
     assert set(b["min_wheel_force"]) == set(b["static_wheel_loads"]) and isinstance(b["contact_loss"], bool)
     with out.open() as fh:
         header = next(csv.reader(fh))
-    assert "v1_front_axle_x" in header and "v2_front_axle_x" in header
+    assert "v1_front_axle_x [m]" in header and "v2_front_axle_x [m]" in header
     assert sum(h.startswith("contact_force_v1_") for h in header) == 10
     assert sum(h.startswith("contact_force_v2_") for h in header) == 6

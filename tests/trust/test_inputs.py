@@ -49,7 +49,7 @@ CASES = {
     "lateral-offset-nan": (BEAM + "lateral_offset = nan\n", ["crossing.lateral_offset", "finite"]),
     "road-length-inf": (BEAM + "[road]\nclass = \"C\"\nlength = inf\n", ["road.length", "finite"]),
     "approach-inf": (BEAM + "approach = inf\n", ["crossing.approach", "finite"]),
-    "defect-position-inf": (BEAM + "[road]\n[[road.defects]]\nkind = \"bump\"\nposition = inf\n", ["road.defects.0.position"]),
+    "defect-position-inf": (BEAM + "[road]\n[[road.defects]]\nkind = \"bump\"\nposition = inf\n", ["road.defects[1].position"]),
     "string-as-number": (BEAM + "approach = \"12\"\n", ["crossing.approach", "valid number"]),
     "bool-as-number": (BEAM + "approach = true\n", ["crossing.approach", "valid number"]),
     "float-as-integer": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-2-beam"\nn_modes = 10.5'), ["bridge.n_modes"]),
@@ -183,7 +183,7 @@ def test_report_states_every_vehicle(tmp_path):
     assert [v["vehicle"] for v in vehicles] == ["two-axle", "sprung-mass"]
     assert vehicles[0]["speed_kmh"] == pytest.approx(60) and vehicles[1]["speed_m_s"] == 75
     assert vehicles[1]["direction"] == "-x" and vehicles[1]["entry_time"] == 0.2
-    assert any(w.startswith("vehicles.1.speed: speed 270 km/h") or "vehicles.1.speed" in w for w in summary["warnings"])
+    assert any(w.startswith("vehicles[2].speed: speed 270 km/h") or "vehicles[2].speed" in w for w in summary["warnings"])
     text = runner.invoke(app, ["run", str(path)]).stdout
     assert "vehicle 2            sprung-mass, 270 km/h = 75 m/s, -x, entering at 0.2 s" in text
 

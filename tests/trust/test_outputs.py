@@ -81,7 +81,7 @@ def test_field_case_name_cannot_escape(tmp_path):
     toml.write_text(text.replace('name = "case1"', 'name = "x/../../../escaped"', 1))
     res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
     assert res.exit_code == 2, res.output
-    assert "case.1.name" in res.output and "cannot be used in a file name" in res.output
+    assert "case[1].name" in res.output and "cannot be used in a file name" in res.output
     assert not list(tmp_path.rglob("*escaped*"))
 
 
@@ -110,11 +110,11 @@ def _field_copy(tmp_path: Path) -> Path:
 
 
 def test_field_unknown_bridge_parameter_is_exit_2(tmp_path):
-    """An unknown key in [bridge_parameters] used to end in a TypeError traceback."""
+    """An unknown key in [bridge.deck] (formerly [bridge_parameters]) used to end in a TypeError traceback."""
     toml = _field_copy(tmp_path)
-    toml.write_text(toml.read_text() + "\n[bridge_parameters]\nspan_x = 3.0\n")
+    toml.write_text(toml.read_text() + "\n[bridge.deck]\nspan_x = 3.0\n")
     res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
-    assert res.exit_code == 2 and "bridge_parameters" in res.output and "span_x" in res.output, res.output
+    assert res.exit_code == 2 and "bridge.deck" in res.output and "span_x" in res.output, res.output
 
 
 def test_field_all_zero_record_is_refused(tmp_path):

@@ -87,7 +87,7 @@ def test_mode_shapes_vanish_at_supports(beam):
 
 @pytest.mark.parametrize(
     ("span", "girder", "f1"),
-    [(9.16, "II", 24.6), (16.76, "II", 7.3), (39.62, "VI", 2.7)],  # domain-data §1 [computed]
+    [(9.16, "II", 24.6), (16.76, "II", 7.3), (39.62, "VI", 2.7)],  # model data §1 [computed]
 )
 def test_paper_beam_first_frequency(span, girder, f1):
     assert paper_beam(span, girder).frequencies_hz[0] == pytest.approx(f1, rel=0.03)

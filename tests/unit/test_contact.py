@@ -72,7 +72,7 @@ def test_transfer_equals_discrete_average_of_the_layout(rule, n):
 
 
 def test_cells_transfer_tends_to_sinc():
-    # domain-data §3 [computed]: |sinc(νa)| = 0.97, 0.90, 0.63, 0.28 at ν = 0.5, 1, 2, 3 cycle/m
+    # model data §3 [computed]: |sinc(νa)| = 0.97, 0.90, 0.63, 0.28 at ν = 0.5, 1, 2, 3 cycle/m
     nu = np.array([0.5, 1.0, 2.0, 3.0])
     h = MultiPointTire(n_points=400, layout_rule="cells").transfer(nu)
     np.testing.assert_allclose(h, np.abs(np.sinc(nu * A)), atol=1e-4)
@@ -80,7 +80,7 @@ def test_cells_transfer_tends_to_sinc():
 
 
 def test_ends_transfer_six_points_at_three_cycles_per_metre():
-    # domain-data §3 [computed]: end-to-end layout, n = 6, s = 0.0508 m: H(3 cycle/m) = 0.10
+    # model data §3 [computed]: end-to-end layout, n = 6, s = 0.0508 m: H(3 cycle/m) = 0.10
     h = float(MultiPointTire(n_points=6, layout_rule="ends").transfer(3.0))
     assert h == pytest.approx(0.10, abs=0.005)
     s = A / 5

@@ -95,7 +95,7 @@ def _axle_loads_kN(v: Vehicle) -> list[float]:
 
 
 def test_hs20_44_axle_loads():
-    # domain-data §2 [computed]: 30.7 / 134.2 / 136.0 kN
+    # model data §2 [computed]: 30.7 / 134.2 / 136.0 kN
     np.testing.assert_allclose(_axle_loads_kN(hs20_44()), [30.7, 134.2, 136.0], atol=0.2)
 
 
@@ -111,7 +111,7 @@ def test_hs20_44_layout():
 
 
 def test_two_axle_truck_axle_loads():
-    # domain-data §2 [substitute]: H20-44 loads 35.6 / 142.3 kN
+    # model data §2 [substitute]: H20-44 loads 35.6 / 142.3 kN
     np.testing.assert_allclose(_axle_loads_kN(two_axle_truck()), [35.6, 142.3], atol=0.2)
 
 
@@ -131,7 +131,7 @@ def test_quarter_car_default_frequencies_as_documented():
 
 def test_sprung_mass_frequency():
     v = VEHICLE_PRESETS["sprung-mass"].build()
-    # Yang & Yau: f_v = 2.65 Hz (domain-data §5)
+    # Yang & Yau: f_v = 2.65 Hz (model data §5)
     assert v.natural_frequencies()[0] == pytest.approx(np.sqrt(1595e3 / 5750) / (2 * np.pi), rel=1e-12)
     assert v.natural_frequencies()[0] == pytest.approx(2.65, abs=0.01)
 

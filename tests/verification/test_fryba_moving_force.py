@@ -1,6 +1,6 @@
 # Reference numbers: Frýba, L. (1972/1999), *Vibration of Solids and Structures under Moving
 # Loads*, ch. 1 (moving constant force on a simply supported beam): the DAF table for the speed
-# parameter α = v / (2 f1 L), as collected in shared/reference/domain-data.md §5 ("public").
+# parameter α = v / (2 f1 L), as collected in docs/model-data.md §5 ("public").
 # The time histories are compared with the closed-form modal series derived below (Frýba ch. 1,
 # re-derived here), never with numbers produced by vbikit.
 #
@@ -28,7 +28,7 @@ N_MODES = 50
 # Any beam will do: with α fixed the problem is dimensionless (steps per first-mode period and
 # DAF do not depend on L, EI, m).  These values only fix the units.
 SPAN, EI, MASS, FORCE = 20.0, 1.0e10, 1.0e4, 1.0e5
-# Frýba's table (domain-data §5).
+# Frýba's table (model data §5).
 FRYBA = {0.05: 1.048, 0.10: 1.097, 0.25: 1.258, 0.30: 1.411, 0.50: 1.705, 0.615: 1.732, 1.00: 1.548, 2.00: 0.949}
 # Tolerance against the table: 0.1 %.  The table is printed to 3 decimals (rounding ≤ 0.05 %);
 # measured: ≤ 5.0e-4 (α = 0.10: the printed 1.097 is 0.00055 above the series maximum 1.09645,

@@ -118,7 +118,7 @@ def test_default_lateral_offset_loads_the_paper_girder_most(name):
 
 
 def test_first_modes_are_bending_then_torsion_and_near_the_beam_estimate():
-    # domain-data §1 [computed]: whole-bridge composite-beam f1 ≈ 24.6 / 7.3 / 2.7 Hz ("a 3D deck model
+    # model data §1 [computed]: whole-bridge composite-beam f1 ≈ 24.6 / 7.3 / 2.7 Hz ("a 3D deck model
     # will differ, but not by a factor"); with 36 GPa girders the 3D f1 should be within ±15 % of these.
     for name, f_beam in (("paper-bridge-1", 24.6), ("paper-bridge-2", 7.3), ("paper-bridge-3", 2.7)):
         b = BRIDGE_PRESETS[name].build()

@@ -10,7 +10,7 @@
 # * two integrators of the same equations agree to their discretisation error;
 # * a girder line with a parapet: the simply supported beam with EI + EI_p, m + m_p
 #   (ωₙ = (nπ/L)²√(EI/m), Frýba 1972 ch. 1), the composite section worked out by hand;
-# * the deformable disk's static patch 2√(2R d_s) (domain-data §3 of the project's sources:
+# * the deformable disk's static patch 2√(2R d_s) (docs/model-data.md §3:
 #   docs/tires.md); the multipoint patch = the contact length (paper Eq. 6).
 from __future__ import annotations
 

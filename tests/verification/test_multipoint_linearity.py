@@ -1,6 +1,6 @@
 # Reference: superposition (linearity of the modal bridge equations, Frýba 1972 ch. 1) and the
 # paper's Eq. 6 ("A Multi-Point Tire Model for Studying Bridge–Vehicle Coupled Vibration"):
-# n points of weight 1/n at offsets ξ_p; n = 1 is the single-point model (domain-data.md §3).
+# n points of weight 1/n at offsets ξ_p; n = 1 is the single-point model (docs/model-data.md §3).
 # For a moving force the multi-point bridge response is therefore exactly the average of n
 # single-point responses whose paths are shifted by ξ_p; no number here comes from vbikit.
 from __future__ import annotations

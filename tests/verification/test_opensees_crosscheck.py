@@ -2,7 +2,7 @@
 
 OpenSees (McKenna et al., opensees.berkeley.edu) is the field's standard open FE program.  The
 grillage here is built directly in openseespy (ospgrillage was not used: its member masses came
-out 1000× too large in our trial, see /work/shared/reference/ecosystem-notes.md):
+out 1000× too large in our trial, A·ρ·1e3, and slab strips given a unit width had their stiffness scaled but not their mass):
 ``elasticBeamColumn`` members on the same node grid as vbikit's Bridge 2 model — girder lines
 along x, slab strips (and diaphragms) along y — with in-plane DOFs (ux, uy, rz) fixed and the
 bearings fixed in uz.  Masses follow docs/bridges.md: the deck slab as a distributed mass on the

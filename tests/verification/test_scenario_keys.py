@@ -117,7 +117,7 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "tire.layout": (_merge(BASE, {"tire": {"model": "multipoint", "n_points": 3}}), "ends", "cells"),
         "tire.radius": (_merge(BASE, {"tire": {"model": "disk"}}), 0.5, 0.6),
         "tire.disk_spacing": (_merge(BASE, {"tire": {"model": "disk"}}), 0.01, 0.005),
-        # a tire that would pull over an 80 mm bump (domain-data: tires cannot pull)
+        # a tire that would pull over an 80 mm bump (model data §3: tires cannot pull)
         "tire.loss_of_contact": (_merge(BASE, BUMP), True, False),
         "road.class": (BASE, "C", "D"),
         "road.seed": (BASE, 1, 2),

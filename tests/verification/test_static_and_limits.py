@@ -1,8 +1,8 @@
 # References: (1) statics of the paper's HS20-44 (Table 1 of "A Multi-Point Tire Model for
 # Studying Bridge–Vehicle Coupled Vibration": masses 2612 + 26113 + 490 + 808 + 653 kg) with the
-# geometry of shared/reference/domain-data.md §2 (axle 1 at 0, tractor CG 1.698, fifth wheel
+# geometry of docs/model-data.md §2 (axle 1 at 0, tractor CG 1.698, fifth wheel
 # 3.913, axle 2 4.267, trailer CG 6.251, axle 3 8.534 m) — solved by hand below (both bodies are
-# statically determinate); domain-data §2 quotes ≈ 30.7 / 134.2 / 136.0 kN.  (2) The exact
+# statically determinate); model data §2 quotes ≈ 30.7 / 134.2 / 136.0 kN.  (2) The exact
 # Euler–Bernoulli influence line of midspan deflection, w = P a (3L² − 4a²) / (48 EI) for a load
 # at a ≤ L/2 (any strength-of-materials text, e.g. Roark's Formulas, simply supported beam).
 # (3) Trivial identities: a zero road is no road; a vehicle at rest on flat ground stays at rest.
@@ -42,7 +42,7 @@ def test_hs20_static_wheel_loads():
     axle = loads.reshape(3, 2).sum(axis=1)  # wheels are (left, right) per axle
     assert np.allclose(loads[0::2], loads[1::2], rtol=1e-12)  # symmetric: no roll load
     assert np.allclose(axle, hand_axle_loads(), rtol=1e-10)  # statically determinate: exact
-    assert np.allclose(axle / 1e3, [30.7, 134.2, 136.0], atol=0.05)  # domain-data, rounded to 0.1 kN
+    assert np.allclose(axle / 1e3, [30.7, 134.2, 136.0], atol=0.05)  # model data §2, rounded to 0.1 kN
     assert [w.offset for w in veh.wheels[::2]] == pytest.approx([0.0, S_AXLE2, S_AXLE3], abs=1e-12)
 
 

@@ -2,24 +2,24 @@
 # averaging, loss of contact, deck defects.
 #
 # References (none of the numbers below comes from vbikit itself):
-# * Deformable disk (domain-data.md §3, [substitute] after Yin et al.): radial springs k_ξ per
+# * Deformable disk (docs/model-data.md §3, [substitute] after Yin et al.): radial springs k_ξ per
 #   length under a circle of radius R; on a flat rigid surface pressed by d the force is
 #   k_ξ·(area of the circular segment of height d) = k_ξ [R² acos(1 − d/R) − (R − d)√(2Rd − d²)]
 #   (elementary geometry), which for d ≪ R is the closed form (4/3) k_ξ √(2R) d^{3/2} of
-#   domain-data §3; calibration d_s = 1.5 F_s/k_t, k_ξ = F_s / ((4/3)√(2R) d_s^{3/2}), static
+#   model data §3; calibration d_s = 1.5 F_s/k_t, k_ξ = F_s / ((4/3)√(2R) d_s^{3/2}), static
 #   patch 2√(2R d_s) ≈ 0.34 m for an HS20 rear wheel (R = 0.5 m).
-# * Rigid disk (domain-data §3, after Chang et al.): the wheel follows the envelope
+# * Rigid disk (model data §3, after Chang et al.): the wheel follows the envelope
 #   e(x) = max_ξ [s(x + ξ) − (R − √(R² − ξ²))]; over a step of height h at x0 this is the
 #   closed form e = 0 (x < x0 − ℓ_h), h − (R − √(R² − (x0 − x)²)) (x0 − ℓ_h ≤ x ≤ x0),
 #   h (x > x0), ℓ_h = √(2Rh − h²) (circle touching the step's corner).
-# * Multi-point averaging (paper Eq. 6; domain-data §3 [computed]): n equal springs at spacing s
+# * Multi-point averaging (paper Eq. 6; model data §3 [computed]): n equal springs at spacing s
 #   pass a road harmonic of wavenumber ν scaled by |H(ν)| = |sin(πνsn) / (n sin(πνs))|; we
 #   evaluate that formula here, independently of MultiPointTire.transfer.
-# * Load spreading (domain-data §3): spreading a wheel load over a 0.25–0.35 m patch changes a
+# * Load spreading (model data §3): spreading a wheel load over a 0.25–0.35 m patch changes a
 #   midspan static deflection by < 0.1 %; influence line of a simply supported beam (Euler–
 #   Bernoulli, e.g. Timoshenko & Gere): δ_mid(x) = P x (3L² − 4x²) / (48 EI), x ≤ L/2.
 # * Moving-force dynamic increment for small speed parameter α = v/(2 f1 L): DAF − 1 ≈ α
-#   (Frýba 1972; domain-data §5 table: α = 0.05 → 1.048, 0.10 → 1.097).
+#   (Frýba 1972; model data §5 table: α = 0.05 → 1.048, 0.10 → 1.097).
 # * Linear base excitation of a damped oscillator (any vibrations text): steady amplitude ∝ the
 #   amplitude of the (averaged) input, transient decays as exp(−ζωt).
 from __future__ import annotations
@@ -44,7 +44,7 @@ from vbikit.road import (
 from vbikit.solve import Crossing, simulate
 from vbikit.vehicle import GRAVITY, hs20_44, quarter_car, sprung_mass
 
-R = 0.5  # tire radius [m], domain-data §3 [substitute]
+R = 0.5  # tire radius [m], model data §3 [substitute]
 
 
 def segment_area(d: float, radius: float = R) -> float:
@@ -53,7 +53,7 @@ def segment_area(d: float, radius: float = R) -> float:
 
 
 def closed_form_area(d: float, radius: float = R) -> float:
-    """(4/3)√(2R) d^{3/2}: the segment area for d ≪ R (parabolic disk), domain-data §3."""
+    """(4/3)√(2R) d^{3/2}: the segment area for d ≪ R (parabolic disk), model data §3."""
     return 4.0 / 3.0 * math.sqrt(2 * radius) * d**1.5
 
 
@@ -77,7 +77,7 @@ def wheel_z(result, wheel: int = 0) -> np.ndarray:
 
 # ============================================================== deformable disk on flat ground
 HS20 = hs20_44()
-HS20_REAR_LOAD = float(HS20.static_wheel_loads()[2])  # axle 2 wheel, ≈ 67.1 kN (domain-data §2)
+HS20_REAR_LOAD = float(HS20.static_wheel_loads()[2])  # axle 2 wheel, ≈ 67.1 kN (model data §2)
 HS20_REAR_K = HS20.wheels[2].stiffness  # 3,503,307 N/m [paper Table 1]
 
 
@@ -111,14 +111,14 @@ def test_disk_calibration_hs20_rear_wheel():
     k_t, f_s = HS20_REAR_K, HS20_REAR_LOAD
     lay = tire.contact_layout(k_t, 2000.0, f_s)
     d_s = tire.static_compression(k_t, f_s)
-    assert d_s == pytest.approx(1.5 * f_s / k_t, rel=1e-14)  # domain-data §3
+    assert d_s == pytest.approx(1.5 * f_s / k_t, rel=1e-14)  # model data §3
     k_xi = lay.stiffness[0] / tire.spacing
     # k_ξ = the closed form's F_s / ((4/3)√(2R) d_s^{3/2}), rescaled so that the discrete circular
     # disk carries exactly F_s at d_s; the factor is the discrete-vs-parabolic force ratio
     scale = k_xi / (f_s / closed_form_area(d_s))
     quad = trapezoid_error_bound(d_s, tire.spacing) / closed_form_area(d_s)
     assert 1.0 - quad <= scale <= 1.0 / (math.sqrt(1 - d_s / (2 * R)) - quad)
-    # static patch 2√(2R d_s) ≈ 0.34 m for an HS20 rear wheel (domain-data §3)
+    # static patch 2√(2R d_s) ≈ 0.34 m for an HS20 rear wheel (model data §3)
     assert tire.static_patch_length(k_t, f_s) == pytest.approx(2 * math.sqrt(2 * R * d_s), rel=1e-14)
     assert tire.static_patch_length(k_t, f_s) == pytest.approx(0.34, abs=0.005)
     # load at d_s: exactly F_s (the calibration)
@@ -302,7 +302,7 @@ def test_spread_tires_converge_to_point_tire_at_low_speed(tire):
     n = min(base.time.size, res.time.size)  # same dt; the spread tires leave the span later
     u0, u = base_pr.displacement[:n], pr.displacement[:n]
     peak = np.abs(base_pr.displacement).max()
-    # peaks: spreading changes the static midspan deflection by < 0.1 % (domain-data §3); the
+    # peaks: spreading changes the static midspan deflection by < 0.1 % (model data §3); the
     # dynamic increment (≈ α = v/(2 f1 L) = 0.8 % here, Frýba) is common to all tires to first order
     assert pr.displacement.min() / base_pr.displacement.min() == pytest.approx(1.0, abs=1e-3)
     # histories, whole crossing: static spreading + dynamic parts.  Static: δ_mid is Lipschitz with
@@ -411,7 +411,7 @@ def harmonic_amplitude(tire, nu: float) -> float:
 def test_multipoint_response_ratio_follows_discrete_sinc(layout_rule, nu):
     n, a = 6, 0.254
     s = a / (n - 1) if layout_rule == "ends" else a / n
-    expected = abs(math.sin(math.pi * nu * s * n) / (n * math.sin(math.pi * nu * s)))  # domain-data §3
+    expected = abs(math.sin(math.pi * nu * s * n) / (n * math.sin(math.pi * nu * s)))  # model data §3
     tire = MultiPointTire(n, a, layout_rule)
     assert float(tire.transfer(nu)) == pytest.approx(expected, rel=1e-12)
     ratio = harmonic_amplitude(tire, nu) / harmonic_amplitude(PointTire(), nu)

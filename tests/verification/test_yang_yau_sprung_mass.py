@@ -3,7 +3,7 @@
 # L = 25 m, E = 2.87e9 Pa, I = 2.9 m⁴, m = 2303 kg/m, M_v = 5750 kg, k_v = 1595 kN/m,
 # v = 100 km/h, undamped, smooth road; published f1 = 4.78 Hz, f_v = 2.65 Hz, midspan peak
 # ≈ 2.41 mm against 2.21 mm static, sprung-mass peak acceleration ≈ 0.15 m/s² (as collected in
-# shared/reference/domain-data.md §5).  Closed forms: f1 = (π/2L²)√(EI/m), f_v = √(k_v/M_v)/2π,
+# docs/model-data.md §5).  Closed forms: f1 = (π/2L²)√(EI/m), f_v = √(k_v/M_v)/2π,
 # static midspan deflection PL³/48EI with P = M_v g.  Second method: an independent modal
 # solution of the same coupled equations with scipy.integrate.solve_ivp (written below, no
 # vbikit code in it).

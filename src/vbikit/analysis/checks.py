@@ -38,7 +38,7 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     lo, hi = SPEED_RANGE_KMH
     if crossing.vehicles:  # each vehicle at its entry and when the last one has left
         t_end = crossing.exit_time()
-        speeds = [(f"vehicles.{i}.speed", f"vehicle {i + 1}'s speed", (m.speed, float(m.velocity(t_end))))
+        speeds = [(f"vehicles[{i + 1}].speed", f"vehicle {i + 1}'s speed", (m.speed, float(m.velocity(t_end))))
                   for i, m in enumerate(crossing.vehicles)]
     else:
         speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.velocity(crossing.exit_time()))))]

@@ -210,3 +210,90 @@ def histories(result: CrossingResult, response: PointResponse,
         out[name] = result.q[:, j]
         out[f"{name}_acceleration"] = result.q_ddot[:, j]
     return out
+
+
+def history_units(result: CrossingResult, names: list[str] | dict[str, object]) -> dict[str, str]:
+    """Unit of each column of :func:`histories` (``girder3_strain`` → ``-``, ``tractor_pitch`` →
+    ``rad``, ``contact_force_axle1_left`` → ``N``); the CSV header is ``name [unit]``."""
+    from vbikit.solve.result import HISTORY_UNITS, dof_unit
+
+    dofs = set(result.crossing.vehicle.dof_names)
+    out = {}
+    for name in names:
+        base = name.split("_", 1)[1] if name.startswith("girder") and name[6:7].isdigit() else name
+        if base in HISTORY_UNITS:
+            out[name] = HISTORY_UNITS[base]
+        elif name.endswith("_front_axle_x"):  # several vehicles: v1_front_axle_x, …
+            out[name] = "m"
+        elif name.startswith("moment_"):  # load effects (vbikit.analysis.effects): moment_x12.5[_static]
+            out[name] = "N m"
+        elif name.startswith(("shear_", "reaction_")):
+            out[name] = "N"
+        elif name.startswith("contact_force_"):
+            out[name] = "N"
+        elif name.startswith("contact_length_"):
+            out[name] = "m"
+        elif name in dofs:
+            out[name] = dof_unit(name)
+        elif name.endswith("_acceleration") and name.removesuffix("_acceleration") in dofs:
+            out[name] = dof_unit(name.removesuffix("_acceleration")) + "/s^2"
+        else:
+            raise KeyError(f"no unit known for history {name!r}")
+    return out
+
+
+#: every key of the crossing summary (:func:`summary`, ``vbikit run --json``): unit and meaning;
+#: per-wheel maps are keyed by wheel name, per-girder lists ordered Girder 1 first
+SUMMARY_KEYS: dict[str, tuple[str, str]] = {
+    "impact_factor": ("-", "displacement impact factor IM = (R_dyn,max − R_st,max)/R_st,max at the response point"),
+    "max_dynamic_displacement": ("m", "dynamic peak displacement in the static peak's direction (negative: downward)"),
+    "max_static_displacement": ("m", "static reference peak displacement"),
+    "time_of_max_dynamic_displacement": ("s", "time of the dynamic peak"),
+    "strain_impact_factor": ("-", "strain impact factor"),
+    "max_dynamic_strain": ("-", "dynamic peak bottom-fibre strain (tension positive)"),
+    "max_static_strain": ("-", "static reference peak strain"),
+    "max_abs_acceleration": ("m/s^2", "largest absolute deck acceleration at the response point"),
+    "max_abs_velocity": ("m/s", "largest absolute deck velocity at the response point"),
+    "response_x": ("m", "response point from the entry support"),
+    "response_y": ("m", "response point from the deck centreline"),
+    "frequencies_hz": ("Hz", "bridge natural frequencies of the retained modes"),
+    "vehicle_frequencies_hz": ("Hz", "vehicle natural frequencies on rigid ground"),
+    "static_wheel_loads": ("N", "static load of each wheel"),
+    "min_wheel_force": ("N", "smallest tire force of each wheel (0: contact lost)"),
+    "max_wheel_force": ("N", "largest tire force of each wheel"),
+    "contact_loss": ("-", "per wheel: lost (true/false), first_x [m] and first_time [s] where contact was first lost, duration [s]"),
+    "contact_length_range": ("m", "per wheel: [smallest, largest] length of the patch in contact (0 for point tires)"),
+    "tire_model": ("-", "tire model name"),
+    "n_steps": ("-", "number of time steps"),
+    "dt": ("s", "time step"),
+    "duration": ("s", "simulated time"),
+    "integrator": ("-", "time integrator"),
+    "speed": ("m/s", "vehicle speed at t = 0"),
+    "n_contact_points_per_wheel": ("-", "contact points per wheel"),
+    "response_girder": ("-", "girder of the response point (slab-on-girder bridges)"),
+    "lateral_offset": ("m", "vehicle centreline from the deck centreline"),
+    "girder_y": ("m", "girder lines from the deck centreline"),
+    "girder_impact_factors": ("-", "displacement impact factor of every girder at response_x"),
+    "girder_strain_impact_factors": ("-", "strain impact factor of every girder"),
+    "girder_max_dynamic_displacement": ("m", "dynamic peak displacement of every girder"),
+    "girder_max_static_displacement": ("m", "static peak displacement of every girder"),
+    "girder_max_dynamic_strain": ("-", "dynamic peak strain of every girder"),
+    "girder_max_abs_acceleration": ("m/s^2", "largest absolute acceleration of every girder"),
+    "governing_girder": ("-", "the girder with the largest static peak displacement (the most loaded)"),
+    "governing_girder_impact_factor": ("-", "impact factor of the governing girder"),
+    "vehicles": ("-", "several vehicles: per vehicle its model, direction, entry_time [s], lateral_offset [m], "
+                      "speed [m/s], tire_model, static_wheel_loads [N], min_wheel_force [N] and contact_loss"),
+    "design_code_allowances": ("-", "loaded_length [m], first_frequency [Hz], n_axles and each design code's "
+                                    "dynamic allowance [-] for the deflection at response_x"),
+    "moment": ("N m", "bending moments: static_peak, dynamic_peak [N m], impact_factor [-], position x [m] of the "
+                      "first requested section, every section under sections, with the code allowances"),
+    "shear": ("N", "shear forces (just right of x), as moment"),
+    "reaction": ("N", "support reactions, as moment"),
+    "warnings": ("-", "messages about the inputs or the run (also printed on standard error)"),
+    "inputs": ("-", "the inputs as run, every default filled in (units as in the scenario reference)"),
+}
+
+
+def summary_units(summary_: dict[str, object]) -> dict[str, str]:
+    """The ``units`` map of a summary: unit of every key present ("-" for dimensionless)."""
+    return {k: SUMMARY_KEYS[k][0] for k in summary_ if k in SUMMARY_KEYS}

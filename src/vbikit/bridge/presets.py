@@ -7,10 +7,10 @@ Labels of the beam presets:
 
 * [paper] span 9.16 / 16.76 / 39.62 m; roadway 9.75 m; deck 0.20 m; five girders at 2.13 m.
 * [substitute] girder types (II for Bridges 1–2, VI for Bridge 3), E = 33 GPa for deck and
-  girders (the composite estimate of domain-data §1), ρ = 2400 kg/m³, 2 % damping,
+  girders (the composite estimate of model data §1), ρ = 2400 kg/m³, 2 % damping,
   no haunch, no diaphragms.  A beam cannot carry load to one girder: IM here is for the
   whole cross-section, not for Girder 4.
-* [computed] f₁ ≈ 24.6 / 7.3 / 2.7 Hz (domain-data §1); tests check these.
+* [computed] f₁ ≈ 24.6 / 7.3 / 2.7 Hz (model data §1); tests check these.
 """
 from __future__ import annotations
 
@@ -57,7 +57,7 @@ def paper_beam(span: float, girder_type: str, n_modes: int = 10, damping_ratio: 
     )
 
 
-#: [substitute] girder concrete modulus of the 3D decks [Pa] (domain-data §1: ≈ 36 GPa girders, ≈ 33 GPa deck)
+#: [substitute] girder concrete modulus of the 3D decks [Pa] (model data §1: ≈ 36 GPa girders, ≈ 33 GPa deck)
 E_GIRDER_3D = 36e9
 
 #: [substitute] default vehicle centreline y [m] of each paper bridge: the centre (rounded to 0.05 m)
@@ -72,7 +72,7 @@ def paper_deck(bridge: int, n_modes: int = 10, damping_ratio: float = DEFAULT_DA
 
     * [paper] span 9.16 / 16.76 / 39.62 m; five prestressed girders at 2.13 m; roadway 9.75 m;
       deck 0.20 m; the impact factor is read at the midspan of Girder 4 (``default_girder`` = 4).
-    * [substitute] (domain-data §1) AASHTO Type II girders (Bridges 1, 2), Type VI (Bridge 3);
+    * [substitute] (model data §1) AASHTO Type II girders (Bridges 1, 2), Type VI (Bridge 3);
       E = 36 GPa girders, 33 GPa deck, ν = 0.2, ρ = 2400 kg/m³; overhang 0.615 m each side (deck
       = roadway, 9.75 m); end diaphragms, plus a midspan diaphragm on Bridges 2 and 3 (0.25 m thick,
       0.75 × girder depth deep); rigid bearings; no haunch, parapet or wearing surface; 2 % modal

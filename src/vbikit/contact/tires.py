@@ -19,7 +19,7 @@ envelope).  All four models run through this one mechanism (``vbikit.solve.kerne
 * :class:`MultiPointTire` — the paper's n points of k/n, c/n over 0.254 m (Eq. 6); n = 1 is the
   point tire, through the same code, so it reproduces it exactly.
 * :class:`DiskTire` — deformable disk of radial springs (after Yin et al.; our formulation,
-  domain-data §3).
+  model data §3).
 * :class:`RigidDiskTire` — rigid disk following the surface envelope (after Chang et al.).
 """
 from __future__ import annotations
@@ -150,7 +150,7 @@ class MultiPointTire(TireModel):
     def transfer(self, wavenumber: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """|H(ν)| = |Σ_p β_p exp(2πiνξ_p)|: how the points average a road harmonic of ν [cycle/m].
 
-        For n equal weights at spacing s this is |sin(πνsn) / (n sin(πνs))| (domain-data §3),
+        For n equal weights at spacing s this is |sin(πνsn) / (n sin(πνs))| (model data §3),
         evaluated here without the 0/0 at νs = integer.
         """
         nu = np.asarray(wavenumber, dtype=float)
@@ -158,7 +158,7 @@ class MultiPointTire(TireModel):
         return np.abs(np.exp(2j * np.pi * nu[..., None] * offsets) @ weights)
 
 
-#: [substitute] truck tire radius R [m] (domain-data §3)
+#: [substitute] truck tire radius R [m] (model data §3)
 DEFAULT_TIRE_RADIUS = 0.5
 
 
@@ -202,7 +202,7 @@ class _DiskGeometry(TireModel):
 
 @dataclass(frozen=True)
 class DiskTire(_DiskGeometry):
-    """Deformable disk of radial springs (after Yin et al.; [substitute] formulation of domain-data §3).
+    """Deformable disk of radial springs (after Yin et al.; [substitute] formulation of model data §3).
 
     A disk of radius R whose lowest point moves with the wheel; penetration
     δ(ξ) = max(0, s(x_c + ξ) − z_w − g(ξ)), g(ξ) = R − √(R² − ξ²); wheel force
@@ -211,7 +211,7 @@ class DiskTire(_DiskGeometry):
     where δ > 0 (the contact patch).  On a flat surface F = (4/3) k_ξ √(2R) d^{3/2} at
     compression d, with patch length 2√(2Rd).
 
-    Calibration (per wheel, after domain-data §3): static load F_s and tangent stiffness at
+    Calibration (per wheel, after model data §3): static load F_s and tangent stiffness at
     static equal to the single-point tire's k_t in the parabolic closed form: d_s = 1.5 F_s / k_t,
     k_ξ = F_s / ((4/3) √(2R) d_s^{3/2}); k_ξ is then scaled (by ≈ 1 %) so that the discrete
     circular disk carries exactly F_s at d_s.  The discrete tangent stiffness counts the springs

@@ -19,6 +19,7 @@ from __future__ import annotations
 import csv
 import logging
 import re
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -199,18 +200,102 @@ class FieldSpec:
     bridge_overrides: dict[str, Any] = field(default_factory=dict)
 
 
-_TOP = {"name", "bridge", "truck", "speed_kmh", "approach", "free_vibration", "n_modes", "damping_ratio",
-        "stiffness_factor", "signal", "case", "dt", "bridge_parameters"}
-_SIGNAL = {"lowpass_hz", "drift", "quiet_tail", "bands_hz"}
-_CASE = {"name", "responses", "lateral_offset", "sampling_rate", "trigger_time", "align", "profile_left",
-         "profile_right", "speed_kmh", "channel"}
-_CHANNEL = {"name", "quantity", "girder", "x", "unit"}
+#: Every key of a FIELD.toml: section → key → (type, range, default, unit, meaning).  The loader
+#: takes its allowed keys and defaults from here and docs/reference/field-keys.md is generated
+#: from it.  Sections as in a scenario file: [bridge], [vehicle], [crossing]; then [signal] and
+#: the loading cases [[case]] with their sensors [[case.channel]].
+FIELD_KEYS: dict[str, dict[str, tuple[str, str, Any, str, str]]] = {
+    "": {
+        "name": ("text", "", None, "", "label of the test; default the file name"),
+    },
+    "bridge": {
+        "model": ("text", "a bridge preset", ..., "", "bridge preset (`vbikit presets`)"),
+        "n_modes": ("integer", "≥ 1", 10, "-", "retained modes"),
+        "damping_ratio": ("number", "≥ 0", 0.02, "-", "modal damping ratio of the model, every mode"),
+        "stiffness_factor": ("number", "> 0", 1.0, "-", "every stiffness × f, i.e. every ω × √f; the calibration fits it"),
+        "deck": ("table", "", None, "", "overrides of a slab-on-girder preset, keys as [bridge.deck] of a scenario"),
+    },
+    "vehicle": {
+        "model": ("text", "a vehicle preset", ..., "", "the test truck (`vbikit presets`)"),
+    },
+    "crossing": {
+        "speed_kmh": ("number", "> 0", ..., "km/h", "truck speed (a case may set its own)"),
+        "approach": ("number", "≥ 0", 33.52, "m", "distance driven before the span entry (two 16.76 m spans)"),
+        "free_vibration": ("number", "≥ 0", 3.0, "s", "time simulated after the last axle leaves"),
+        "dt": ("number", "> 0", None, "s", "fixed time step; default automatic"),
+    },
+    "signal": {
+        "lowpass_hz": ("number", "> 0", None, "Hz", "zero-phase low-pass of record and simulation; default none"),
+        "drift": ("text", "quiet, model, none", "quiet", "", "how accelerometer offset and drift are removed"),
+        "quiet_tail": ("number", "≥ 0", 1.0, "s", "time at the end of the record where the bridge is at rest"),
+        "bands_hz": ("array of [low, high]", "0 ≤ low < high", [[0.0, 5.0], [5.0, 15.0], [15.0, 30.0], [30.0, 60.0]],
+                     "Hz", "frequency bands of the PSD comparison"),
+    },
+    "case": {
+        "name": ("text", "", None, "", "label of the loading case; default case1, case2, …"),
+        "responses": ("text", "an existing file", ..., "", "response CSV, relative to the FIELD.toml"),
+        "lateral_offset": ("number", "", ..., "m", "vehicle centreline from the deck centreline, positive left"),
+        "sampling_rate": ("number", "> 0", None, "Hz", "checked against the file's time column (1 %)"),
+        "trigger_time": ("number", "", None, "s", "time on the record's clock when the front axle reaches the span entry; required with align = trigger"),
+        "align": ("text", "trigger, xcorr", "trigger", "", "time alignment of record and simulation"),
+        "profile_left": ("text", "an existing file", None, "", "measured profile under the left wheel line (y > 0); default a smooth road"),
+        "profile_right": ("text", "an existing file", None, "", "measured profile under the right wheel line (needs profile_left)"),
+        "speed_kmh": ("number", "> 0", None, "km/h", "speed of this case; default crossing.speed_kmh"),
+        "channel": ("array of tables", "", ..., "", "the sensors [[case.channel]] used"),
+    },
+    "case.channel": {
+        "name": ("text", "", ..., "", "the CSV column name"),
+        "quantity": ("text", "displacement, acceleration, strain", ..., "", "what the sensor measures"),
+        "girder": ("integer", "≥ 1", ..., "-", "girder (Girder 1 at the most negative y)"),
+        "x": ("number", "≥ 0", ..., "m", "sensor station from the entry support"),
+        "unit": ("text", "a unit of the quantity", ..., "", "must equal the unit in the CSV header"),
+    },
+}
+
+#: flat keys of the earlier FIELD.toml layout → their section key (still read, with a warning)
+DEPRECATED_KEYS = {"bridge": "bridge.model", "truck": "vehicle.model", "n_modes": "bridge.n_modes",
+                   "damping_ratio": "bridge.damping_ratio", "stiffness_factor": "bridge.stiffness_factor",
+                   "bridge_parameters": "bridge.deck", "speed_kmh": "crossing.speed_kmh",
+                   "approach": "crossing.approach", "free_vibration": "crossing.free_vibration", "dt": "crossing.dt"}
 
 
-def _keys(table: dict[str, Any], allowed: set[str], where: str, path: Path) -> None:
+def _upgrade(doc: dict[str, Any], path: Path) -> dict[str, Any]:
+    """A FIELD.toml in the earlier flat layout (``bridge = "…"``, ``truck = "…"``, ``speed_kmh`` …
+    at the top) rewritten into sections, with a FutureWarning naming the new keys."""
+    old = [k for k in DEPRECATED_KEYS if k in doc and not (k == "bridge" and isinstance(doc[k], dict))]
+    if not old:
+        return doc
+    new = {k: v for k, v in doc.items() if k not in old}
+    for key in old:
+        section, name = DEPRECATED_KEYS[key].split(".")
+        table = new.setdefault(section, {})
+        if not isinstance(table, dict) or name in table:
+            raise FieldFileError(f"{path}: {key} and {DEPRECATED_KEYS[key]} both given; keep {DEPRECATED_KEYS[key]}")
+        table[name] = doc[key]
+    moved = ", ".join(f"{k} → {DEPRECATED_KEYS[k]}" for k in old)
+    warnings.warn(f"{path}: the flat FIELD.toml keys are deprecated; use sections as in a scenario file ({moved})",
+                  FutureWarning, stacklevel=3)
+    return new
+
+
+def _keys(table: dict[str, Any], section: str, where: str, path: Path) -> None:
+    allowed = set(FIELD_KEYS[section]) | ({"bridge", "vehicle", "crossing", "signal", "case"} if section == "" else set())
     extra = sorted(set(table) - allowed)
     if extra:
-        raise FieldFileError(f"{path}: unknown key {where}{extra[0]!r}; allowed: {', '.join(sorted(allowed))}")
+        raise FieldFileError(f"{path}: unknown key '{where}{extra[0]}'; allowed: {', '.join(sorted(allowed))}")
+
+
+def _default(section: str, key: str) -> Any:
+    return FIELD_KEYS[section][key][2]
+
+
+def _table(doc: dict[str, Any], key: str, path: Path, required: bool = True) -> dict[str, Any]:
+    table = doc.get(key, {} if not required else None)
+    if table is None:
+        raise FieldFileError(f"{path}: missing section [{key}]")
+    if not isinstance(table, dict):
+        raise FieldFileError(f"{path}: [{key}] must be a table")
+    return table
 
 
 def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any = ..., positive: bool = False,
@@ -229,10 +314,10 @@ def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any =
     return float(v)
 
 
-def _int(table: dict[str, Any], key: str, path: Path, default: int, lo: int, hi: int) -> int:
+def _int(table: dict[str, Any], key: str, path: Path, default: int, lo: int, hi: int, where: str = "") -> int:
     v = table.get(key, default)
     if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-        raise FieldFileError(f"{path}: {key} must be an integer {lo} … {hi}, got {v!r}")
+        raise FieldFileError(f"{path}: {where}{key} must be an integer {lo} … {hi}, got {v!r}")
     return v
 
 
@@ -255,19 +340,22 @@ def load_field_toml(path: str | Path) -> FieldSpec:
     path = Path(path)
     doc = read_toml(path, FieldFileError, "field file")
     base = path.parent
-    _keys(doc, _TOP, "", path)
-    for key in ("bridge", "truck"):
-        if not isinstance(doc.get(key), str):
-            raise FieldFileError(f"{path}: missing key {key} (a preset name)")
-    sig = doc.get("signal", {})
-    if not isinstance(sig, dict):
-        raise FieldFileError(f"{path}: [signal] must be a table")
-    _keys(sig, _SIGNAL, "signal.", path)
-    lowpass = _num(sig, "lowpass_hz", "signal.", path, None, positive=True)
-    drift = sig.get("drift", "quiet")
+    doc = _upgrade(doc, path)
+    _keys(doc, "", "", path)
+    bridge_t, vehicle_t, crossing_t = _table(doc, "bridge", path), _table(doc, "vehicle", path), _table(doc, "crossing", path)
+    _keys(bridge_t, "bridge", "bridge.", path)
+    _keys(vehicle_t, "vehicle", "vehicle.", path)
+    _keys(crossing_t, "crossing", "crossing.", path)
+    for table, section in ((bridge_t, "bridge"), (vehicle_t, "vehicle")):
+        if not isinstance(table.get("model"), str):
+            raise FieldFileError(f"{path}: missing key {section}.model (a preset name)")
+    sig = _table(doc, "signal", path, required=False)
+    _keys(sig, "signal", "signal.", path)
+    lowpass = _num(sig, "lowpass_hz", "signal.", path, _default("signal", "lowpass_hz"), positive=True)
+    drift = sig.get("drift", _default("signal", "drift"))
     if drift not in ("quiet", "model", "none"):
         raise FieldFileError(f"{path}: signal.drift must be 'quiet', 'model' or 'none', got {drift!r}")
-    bands_raw = sig.get("bands_hz", [[0.0, 5.0], [5.0, 15.0], [15.0, 30.0], [30.0, 60.0]])
+    bands_raw = sig.get("bands_hz", _default("signal", "bands_hz"))
     def _hz(v: Any) -> float:
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
             raise ValueError
@@ -279,25 +367,25 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         raise FieldFileError(f"{path}: signal.bands_hz must be a list of [low, high] pairs of finite numbers [Hz]") from None
     if any(not 0 <= a < b for a, b in bands):
         raise FieldFileError(f"{path}: signal.bands_hz: every band needs 0 <= low < high, got {bands_raw!r}")
-    speed = _num(doc, "speed_kmh", "", path, positive=True) / 3.6
+    speed = _num(crossing_t, "speed_kmh", "crossing.", path, positive=True) / 3.6
     cases_raw = doc.get("case")
     if not isinstance(cases_raw, list) or not cases_raw:
         raise FieldFileError(f"{path}: needs at least one [[case]] table")
     cases = []
     for i, c in enumerate(cases_raw, start=1):
-        where = f"case.{i}."
+        where = f"case[{i}]."
         if not isinstance(c, dict):
             raise FieldFileError(f"{path}: [[case]] {i} must be a table")
-        _keys(c, _CASE, where, path)
+        _keys(c, "case", where, path)
         chans_raw = c.get("channel")
         if not isinstance(chans_raw, list) or not chans_raw:
             raise FieldFileError(f"{path}: {where}channel: needs at least one [[case.channel]] table")
         chans = []
         for j, ch in enumerate(chans_raw, start=1):
-            w2 = f"{where}channel.{j}."
+            w2 = f"{where}channel[{j}]."
             if not isinstance(ch, dict):
                 raise FieldFileError(f"{path}: {w2.rstrip('.')}: [[case.channel]] entries must be tables (name, quantity, girder, x, unit)")
-            _keys(ch, _CHANNEL, w2, path)
+            _keys(ch, "case.channel", w2, path)
             for key in ("name", "quantity", "unit"):
                 if not isinstance(ch.get(key), str):
                     raise FieldFileError(f"{path}: missing key {w2}{key} (a string)")
@@ -310,7 +398,7 @@ def load_field_toml(path: str | Path) -> FieldSpec:
             if isinstance(g, bool) or not isinstance(g, int) or g < 1:
                 raise FieldFileError(f"{path}: {w2}girder must be an integer >= 1, got {g!r}")
             chans.append(ChannelSpec(ch["name"], ch["quantity"], g, _num(ch, "x", w2, path, nonneg=True), ch["unit"]))
-        align = c.get("align", "trigger")
+        align = c.get("align", _default("case", "align"))
         if align not in ("trigger", "xcorr"):
             raise FieldFileError(f"{path}: {where}align must be 'trigger' or 'xcorr', got {align!r}")
         trigger = _num(c, "trigger_time", where, path, None)
@@ -338,30 +426,26 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         if cs.profile_right is not None and cs.profile_left is None:
             raise FieldFileError(f"{path}: {where}profile_right needs profile_left")
         cases.append(cs)
-    bp = doc.get("bridge_parameters", {})
+    bp = bridge_t.get("deck", {})
     if not isinstance(bp, dict):
-        raise FieldFileError(f"{path}: [bridge_parameters] must be a table")
-    try:
-        bp = deck_parameters(bp)
-    except (ValueError, TypeError) as err:
-        raise FieldFileError(f"{path}: [bridge_parameters]: {err}") from None
+        raise FieldFileError(f"{path}: [bridge.deck] must be a table")
     return FieldSpec(
         path=path,
         name=str(doc.get("name", path.stem)),
-        bridge=doc["bridge"],
-        truck=doc["truck"],
+        bridge=bridge_t["model"],
+        truck=vehicle_t["model"],
         speed=speed,
-        approach=_num(doc, "approach", "", path, 33.52, nonneg=True),
-        free_vibration=_num(doc, "free_vibration", "", path, 3.0, nonneg=True),
-        n_modes=_int(doc, "n_modes", path, 10, 1, 500),
-        damping_ratio=_num(doc, "damping_ratio", "", path, 0.02, nonneg=True),
-        stiffness_factor=_num(doc, "stiffness_factor", "", path, 1.0, positive=True),
+        approach=_num(crossing_t, "approach", "crossing.", path, _default("crossing", "approach"), nonneg=True),
+        free_vibration=_num(crossing_t, "free_vibration", "crossing.", path, _default("crossing", "free_vibration"), nonneg=True),
+        n_modes=_int(bridge_t, "n_modes", path, _default("bridge", "n_modes"), 1, 500, "bridge."),
+        damping_ratio=_num(bridge_t, "damping_ratio", "bridge.", path, _default("bridge", "damping_ratio"), nonneg=True),
+        stiffness_factor=_num(bridge_t, "stiffness_factor", "bridge.", path, _default("bridge", "stiffness_factor"), positive=True),
         lowpass_hz=lowpass,
         drift=drift,
-        quiet_tail=_num(sig, "quiet_tail", "signal.", path, 1.0, nonneg=True),
+        quiet_tail=_num(sig, "quiet_tail", "signal.", path, _default("signal", "quiet_tail"), nonneg=True),
         bands=bands,
         cases=tuple(cases),
-        dt=_num(doc, "dt", "", path, None, positive=True),
+        dt=_num(crossing_t, "dt", "crossing.", path, _default("crossing", "dt"), positive=True),
         bridge_overrides=dict(bp),
     )
 

@@ -27,7 +27,7 @@ log = logging.getLogger(__name__)
 
 #: [paper] truck speed of the field test, 40 mph [km/h]
 FIELD_SPEED_KMH = 64.4
-#: [substitute] two spans of approach (spans 1–2 of the bridge, domain-data §4c) [m]
+#: [substitute] two spans of approach (spans 1–2 of the bridge, model data §4c) [m]
 APPROACH = 2 * 16.76
 
 
@@ -45,7 +45,7 @@ class SyntheticTruth:
     sampling_rate: float
 
 
-CASES = {"case1": (2.0, 5), "case2": (-2.0, 3)}  # [substitute] lateral offset [m], most loaded girder (domain-data §4c)
+CASES = {"case1": (2.0, 5), "case2": (-2.0, 3)}  # [substitute] lateral offset [m], most loaded girder (model data §4c)
 
 
 def write_synthetic_case(out_dir: str | Path, stiffness_factor: float = 1.10, damping_ratio: float = 0.025,
@@ -86,9 +86,10 @@ def write_synthetic_case(out_dir: str | Path, stiffness_factor: float = 1.10, da
     toml = [
         "# Synthetic field test written by vbikit.field.synthetic (examples/field/make_synthetic.py).",
         f"# Truth: stiffness factor {stiffness_factor:.4g}, damping ratio {damping_ratio:.4g}; this file describes the NOMINAL model.",
-        'name = "synthetic Cypress Bayou test"', 'bridge = "cypress-bayou"', 'truck = "dump-truck"',
-        f"speed_kmh = {FIELD_SPEED_KMH}", f"approach = {APPROACH}", f"free_vibration = {free_vibration}",
-        "n_modes = 10", "damping_ratio = 0.02", "stiffness_factor = 1.0", "",
+        'name = "synthetic Cypress Bayou test"', "",
+        "[bridge]", 'model = "cypress-bayou"', "n_modes = 10", "damping_ratio = 0.02", "stiffness_factor = 1.0", "",
+        "[vehicle]", 'model = "dump-truck"', "",
+        "[crossing]", f"speed_kmh = {FIELD_SPEED_KMH}", f"approach = {APPROACH}", f"free_vibration = {free_vibration}", "",
         "[signal]", "lowpass_hz = 40.0", 'drift = "quiet"', "quiet_tail = 1.0",
         "bands_hz = [[0.0, 5.0], [5.0, 15.0], [15.0, 30.0], [30.0, 40.0]]", "",
     ]

@@ -37,7 +37,7 @@ from scipy.optimize import least_squares
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS
-from vbikit.contact.tires import MultiPointTire, PointTire, TireModel
+from vbikit.contact.tires import DiskTire, MultiPointTire, PointTire, RigidDiskTire, TireModel
 from vbikit.field.io import (
     CaseSpec,
     FieldFileError,
@@ -64,7 +64,8 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 log = logging.getLogger(__name__)
 
 #: tire models selectable by name in the field workflow
-FIELD_TIRES = {"point": PointTire, "multipoint": MultiPointTire}
+#: the tire models a field comparison can use (every model of vbikit.contact)
+FIELD_TIRES = {"point": PointTire, "multipoint": MultiPointTire, "disk": DiskTire, "rigid-disk": RigidDiskTire}
 
 
 class ScaledBridge(ModalBridge):
@@ -114,17 +115,17 @@ def parse_tires(text: str) -> list[str]:
 
 
 def base_bridge(spec: FieldSpec) -> ModalBridge:
-    """The bridge preset of a field test (with ``[bridge_parameters]`` overrides on slab-on-girder presets)."""
+    """The bridge preset of a field test (with ``[bridge.deck]`` overrides on slab-on-girder presets)."""
     if spec.bridge not in BRIDGE_PRESETS:
         raise FieldFileError(f"{spec.path}: bridge {spec.bridge!r} is not a preset; allowed: {', '.join(BRIDGE_PRESETS)}")
     preset = BRIDGE_PRESETS[spec.bridge]
     if spec.bridge_overrides and preset.kind != "slab-on-girder":
-        raise FieldFileError(f"{spec.path}: [bridge_parameters] only apply to slab-on-girder presets, not {spec.bridge!r}")
+        raise FieldFileError(f"{spec.path}: [bridge.deck] overrides only apply to slab-on-girder presets, not {spec.bridge!r}")
     try:
         return preset.build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **spec.bridge_overrides)
     except (TypeError, ValueError) as err:
         raise FieldFileError(f"{spec.path}: bridge {spec.bridge!r} with damping_ratio, n_modes and "
-                             f"[bridge_parameters]: {err}") from None
+                             f"[bridge.deck]: {err}") from None
 
 
 def sensor_y(bridge: ModalBridge, girder: int, where: str) -> float:

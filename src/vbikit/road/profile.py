@@ -40,7 +40,7 @@ class RoadProfile:
 
     @classmethod
     def flat(cls, x_min: float = -1e4, x_max: float = 1e4) -> "RoadProfile":
-        """A perfectly smooth road (r ≡ 0) over [x_min, x_max] [m]."""
+        """A perfectly smooth road (r ≡ 0) from x_min to x_max [m]."""
         return cls(np.array([x_min, x_max], float), np.zeros(2), "smooth")
 
     @property

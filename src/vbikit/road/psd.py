@@ -31,7 +31,7 @@ class RoadPSD:
     """Power-law displacement PSD φ(n) = phi0 · (n / n0)^(−exponent).
 
     phi0 [m³/cycle] at n0 [cycle/m]; band n_min–n_max [cycle/m] ([substitute] default
-    0.01–4 cycle/m, domain-data §4).
+    0.01–4 cycle/m, model data §4).
     """
 
     phi0: float

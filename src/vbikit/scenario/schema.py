@@ -56,8 +56,8 @@ _POSITIVE_OR_LIST = Union[Annotated[float, Field(gt=0)], list[Annotated[float, F
 class BridgeSpec(_Section):
     """[bridge]: model = "beam" or "continuous-beam" with its properties, or a preset name (properties optional overrides)."""
 
-    model: str = "beam"
-    span: Optional[float] = Field(None, gt=0, description="span length [m]")
+    model: str = Field("beam", description="\"beam\" (Euler–Bernoulli beam: span, EI, mass_per_length), \"continuous-beam\" (spans, EI, mass_per_length), \"slab-on-girder\" (3D grillage deck from [bridge.deck]), \"modes-file\" (imported modes) or a preset name (`vbikit presets`)")
+    span: Optional[float] = Field(None, gt=0, description="model = \"beam\": span length [m]")
     EI: Optional[_POSITIVE_OR_LIST] = Field(None, description="bending stiffness [N m^2] (continuous-beam: one or one per span)")
     mass_per_length: Optional[_POSITIVE_OR_LIST] = Field(None, description="mass per length [kg/m] (continuous-beam: one or one per span)")
     spans: Optional[list[Annotated[float, Field(gt=0)]]] = Field(None, description="continuous-beam: span lengths [m]")
@@ -67,12 +67,12 @@ class BridgeSpec(_Section):
         None, min_length=2, max_length=2, description="continuous-beam: end rotational springs [N m/rad] (entry, exit)")
     elements_per_span: int = Field(40, ge=2, le=1000, description="continuous-beam: Hermite elements per span")
     damage: list[DamageSpec] = Field(default_factory=list, description="[[bridge.damage]] local stiffness losses")
-    damping_ratio: float = Field(DEFAULT_DAMPING_RATIO, ge=0, lt=1, description="modal damping ratio [-]")
-    n_modes: int = Field(10, ge=1, le=500, description="number of bending modes")
-    neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre [m]")
-    modes_file: Optional[str] = Field(None, description="model = \"modes-file\": a vbikit-modes file (docs/bridges.md)")
+    damping_ratio: float = Field(DEFAULT_DAMPING_RATIO, ge=0, lt=1, description="modal damping ratio, every mode [-]")
+    n_modes: int = Field(10, ge=1, le=500, description="retained modes (the lowest n) [-]")
+    neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre, the strain lever arm; default 0.5 m for a beam, the composite section's for presets [m]")
+    modes_file: Optional[str] = Field(None, description="model = \"modes-file\": path of a `vbikit-modes 1` file, relative to the scenario; n_modes, if given, keeps the first modes")
     deck: Optional[dict[str, Any]] = Field(
-        None, description="[bridge.deck]: slab-on-girder parameters (model = \"slab-on-girder\", or overrides of a 3D preset)")
+        None, description="table [bridge.deck]: SlabOnGirderBridge parameters for model = \"slab-on-girder\" (needs at least span) or overrides of a slab-on-girder preset; keys and units in the bridges guide")
 
     @field_validator("model")
     @classmethod
@@ -149,7 +149,7 @@ class VehicleSpec(_Section):
     """[vehicle]: a preset name and that preset's own parameters (SI units)."""
 
     model_config = ConfigDict(extra="allow")
-    model: str
+    model: str = Field(..., description="vehicle preset (`vbikit presets`); the preset's own parameters are further keys of the same table")
 
     @field_validator("model")
     @classmethod
@@ -217,13 +217,15 @@ def _check_parameter(key: str, value: Any, kind: str) -> None:
 class TireSpec(_Section):
     """[tire]: "point", the paper's "multipoint" (Eq. 6), deformable "disk" or "rigid-disk"."""
 
-    model: Literal["point", "multipoint", "disk", "rigid-disk"] = "point"
-    n_points: int = Field(6, ge=1, le=100, description="multipoint: contact points per tire")
-    contact_length: float = Field(0.254, gt=0, le=2.0, description="multipoint: patch length [m]")
-    layout: Literal["ends", "cells"] = "ends"
+    model: Literal["point", "multipoint", "disk", "rigid-disk"] = Field(
+        "point", description="contact model: single point, the paper's multi-point (Eq. 6), deformable disk (after Yin et al.) or rigid disk (after Chang et al.)")
+    n_points: int = Field(6, ge=1, le=100, description="multipoint: contact points per tire, each with k/n and c/n [-]")
+    contact_length: float = Field(0.254, gt=0, le=2.0, description="multipoint: patch length, AASHTO's 10 in [m]")
+    layout: Literal["ends", "cells"] = Field(
+        "ends", description="multipoint: points from −a/2 to a/2 (ends) or at the centres of n equal cells (cells)")
     radius: float = Field(0.5, gt=0.05, le=2.0, description="disk / rigid-disk: tire radius [m]")
     disk_spacing: float = Field(0.01, gt=0, le=0.1, description="disk / rigid-disk: spacing of the radial springs [m]")
-    loss_of_contact: bool = Field(True, description="tires cannot pull (a point in tension carries no force)")
+    loss_of_contact: bool = Field(True, description="true: tires cannot pull (a contact point in tension carries no force); false: linear springs that may pull")
 
 
 class VehicleEntry(VehicleSpec):
@@ -236,13 +238,13 @@ class VehicleEntry(VehicleSpec):
     defaults to the scenario's [tire].
     """
 
-    tire: Optional[TireSpec] = None
-    lateral_offset: Optional[float] = Field(None, description="vehicle centreline from the deck centreline [m]")
-    direction: Literal["+x", "-x"] = "+x"
+    tire: Optional[TireSpec] = Field(None, description="table [vehicles.tire] with the [tire] keys; default the scenario's [tire]")
+    lateral_offset: Optional[float] = Field(None, description="vehicle centreline from the deck centreline, positive left; default the bridge's [m]")
+    direction: Literal["+x", "-x"] = Field("+x", description="driving direction")
     speed: Optional[float] = Field(None, gt=0, description="speed when the front axle passes its entry support [m/s]")
     speed_kmh: Optional[float] = Field(None, gt=0, description="speed when the front axle passes its entry support [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
-    entry_time: float = Field(0.0, ge=0, description="time the front axle passes its entry support [s]")
+    entry_time: float = Field(0.0, ge=0, description="time the front axle passes its entry support (x = 0 driving +x, x = span driving −x) [s]")
 
     @model_validator(mode="after")
     def _at_most_one_speed(self) -> "VehicleEntry":
@@ -259,13 +261,13 @@ class VehicleEntry(VehicleSpec):
 class DefectSpec(_Section):
     """[[road.defects]]: a deck defect added to the road (vbikit.road.defects)."""
 
-    kind: Literal["depression", "bump", "step", "pothole"]
-    position: float = Field(0.0, description="start of the defect [m from the bridge entry]")
+    kind: Literal["depression", "bump", "step", "pothole"] = Field(..., description="defect type; defaults of each kind in `vbikit presets`")
+    position: float = Field(0.0, description="start of the defect, from the bridge entry [m]")
     depth: Optional[float] = Field(None, gt=0, le=0.5, description="depression / pothole depth [m]")
     height: Optional[float] = Field(None, ge=-0.5, le=0.5, description="bump height (> 0) or step height (signed) [m]")
     length: Optional[float] = Field(None, gt=0, le=50, description="defect length [m]")
     ramp: Optional[float] = Field(None, gt=0, le=25, description="ramp length of trapezoid/step shapes [m]")
-    shape: Optional[Literal["trapezoid", "cosine", "step"]] = None
+    shape: Optional[Literal["trapezoid", "cosine", "step"]] = Field(None, description="profile of the defect; default the kind's")
 
     @model_validator(mode="after")
     def _size_key(self) -> "DefectSpec":
@@ -281,19 +283,19 @@ class DefectSpec(_Section):
 class RoadSpec(_Section):
     """[road]: class letter (ISO 8608 A–H, good/average/poor, none), explicit PSD, or a CSV profile."""
 
-    road_class: str = Field("none", alias="class")
-    seed: int = Field(0, ge=0)
-    profile_file: Optional[str] = None
+    road_class: str = Field("none", alias="class", description="roughness: none (smooth), ISO 8608 class A…H (geometric mean of the class), good / average / poor (= B / C / D) or psd (explicit phi0, n0, exponent)")
+    seed: int = Field(0, ge=0, description="random phases of Eq. 7 (one seed, one road) [-]")
+    profile_file: Optional[str] = Field(None, description="measured profile CSV (x, elevation) [m, m], relative to the scenario; instead of class")
     spacing: float = Field(0.01, gt=0, le=1.0, description="profile sample spacing [m]")
     n_min: float = Field(0.01, gt=0, description="lowest wavenumber [cycle/m]")
     n_max: float = Field(4.0, gt=0, description="highest wavenumber [cycle/m]")
-    phi0: Optional[float] = Field(None, ge=0, description="PSD at n0 [m^3/cycle] (class = \"psd\")")
+    phi0: Optional[float] = Field(None, ge=0, description="class = \"psd\": PSD at n0 [m^3/cycle]")
     n0: float = Field(0.1, gt=0, description="PSD reference wavenumber [cycle/m]")
-    exponent: float = Field(2.0, gt=0, description="PSD exponent w [-]")
-    length: float = Field(1000.0, gt=0, description="minimum profile length [m]")
-    right_coherence: float = Field(1.0, ge=0, le=1, description="random roads: correlation c of the right wheel line's profile with the left's (1 = identical)")
-    profile_file_right: Optional[str] = None
-    defects: list[DefectSpec] = Field(default_factory=list, description="deck defects ([[road.defects]])")
+    exponent: float = Field(2.0, gt=0, description="PSD exponent w in φ(n) = phi0 (n/n0)^−w [-]")
+    length: float = Field(1000.0, gt=0, description="minimum profile length (period of the random road) [m]")
+    right_coherence: float = Field(1.0, ge=0, le=1, description="random roads: the right wheel line runs on c·r_L + √(1 − c²)·r_I, r_I an independent road of the same PSD; 1 = identical lines (the paper), 0 = independent [-]")
+    profile_file_right: Optional[str] = Field(None, description="measured profile of the right wheel line (needs profile_file for the left)")
+    defects: list[DefectSpec] = Field(default_factory=list, description="array of tables [[road.defects]]: deck defects added to the road")
 
     @field_validator("road_class")
     @classmethod
@@ -325,14 +327,14 @@ class CrossingSpec(_Section):
 
     speed: Optional[float] = Field(None, gt=0, description="speed at t = 0 [m/s]")
     speed_kmh: Optional[float] = Field(None, gt=0, description="speed at t = 0 [km/h]")
-    acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
+    acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration, negative brakes [m/s^2]")
     approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
-    free_vibration: Optional[float] = Field(None, ge=0, description="time after the last axle leaves [s]")
-    dt: Optional[float] = Field(None, gt=0, description="time step [s]; default automatic")
+    free_vibration: Optional[float] = Field(None, ge=0, description="time simulated after the last axle leaves; default one first-mode period [s]")
+    dt: Optional[float] = Field(None, gt=0, description="time step, default automatic; RK4 refuses a step above its stability limit [s]")
     integrator: Literal["exact", "rk4", "newmark"] = Field(
-        DEFAULT_INTEGRATOR, description="exact (exact modal stepping, default), rk4 or newmark")
+        DEFAULT_INTEGRATOR, description="exact modal stepping (default; the step is not limited by the highest mode), the paper's classical Runge–Kutta, or Newmark average acceleration")
     lateral_offset: Optional[float] = Field(
-        None, description="vehicle centreline from deck centreline [m]; default the bridge's (0 for a beam)")
+        None, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
 
     @model_validator(mode="after")
     def _one_speed(self) -> "CrossingSpec":
@@ -355,9 +357,9 @@ class ResponseSpec(_Section):
     slab-on-girder bridge reports its default girder (Girder 4 on the paper's bridges).
     """
 
-    x: Optional[float] = Field(None, ge=0, description="m from the bridge entry")
-    y: Optional[float] = Field(None, description="m from the deck centreline; default the bridge's response line")
-    girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
+    x: Optional[float] = Field(None, ge=0, description="response point along the bridge from the entry support; default midspan (of the first span) [m]")
+    y: Optional[float] = Field(None, description="response point from the deck centreline; default the bridge's response line (0 for a beam, the default girder's line on slab-on-girder bridges) [m]")
+    girder: Optional[int] = Field(None, ge=1, description="slab-on-girder bridges: respond on this girder's line (Girder 1 at the most negative y; default the bridge's, 4 on the paper bridges); give girder or y, not both [-]")
     moment: Optional[list[Annotated[float, Field(ge=0)]]] = Field(
         None, description="sections x [m] for bending moment (default: every midspan and interior support)")
     shear: Optional[list[Annotated[float, Field(ge=0)]]] = Field(
@@ -383,7 +385,7 @@ class Scenario(_Section):
     road: RoadSpec = RoadSpec()
     crossing: CrossingSpec
     response: ResponseSpec = ResponseSpec()
-    name: str = ""
+    name: str = Field("", description="label printed in reports")
 
     #: directory relative paths (road.profile_file) are resolved against
     _base_dir: Path = PrivateAttr(default=Path("."))
@@ -403,10 +405,10 @@ class Scenario(_Section):
             raise ValueError("vehicles: the array of [[vehicles]] tables is empty")
         given = [k for k in ("lateral_offset", "acceleration") if k in c.model_fields_set]
         if given:
-            raise ValueError(f"crossing.{given[0]}: with [[vehicles]] give it per vehicle (vehicles.N.{given[0]})")
+            raise ValueError(f"crossing.{given[0]}: with [[vehicles]] give it per vehicle (vehicles[i].{given[0]})")
         for i, v in enumerate(self.vehicles):
             if v.speed_ms is None and c.speed_ms is None:
-                raise ValueError(f"vehicles.{i}.speed: give speed [m/s] or speed_kmh [km/h] (or crossing.speed for every vehicle)")
+                raise ValueError(f"vehicles[{i + 1}].speed: give speed [m/s] or speed_kmh [km/h] (or crossing.speed for every vehicle)")
         return self
 
     @property
@@ -416,6 +418,24 @@ class Scenario(_Section):
     @property
     def base_dir(self) -> Path:
         return self._base_dir
+
+
+def key_unit(key: str) -> str:
+    """Unit of the scenario key ``"section.key"`` as written in its description (``"km/h"`` for
+    ``crossing.speed_kmh``, ``"m"`` for ``tire.contact_length``; ``"-"`` for dimensionless numbers,
+    ``""`` for text and unknown keys)."""
+    model: Any = Scenario
+    *sections, name = key.split(".")
+    for part in sections:
+        field = model.model_fields.get(part)
+        model = field.annotation if field is not None else None
+        if not (isinstance(model, type) and issubclass(model, BaseModel)):
+            return ""
+    field = next((f for n, f in model.model_fields.items() if name in (n, f.alias)), None)
+    if field is None:
+        return ""
+    m = re.search(r"\[([^\[\]]+)\]\s*$", field.description or "")
+    return m.group(1) if m else ""
 
 
 def _model_at(path: tuple[Any, ...]) -> type[BaseModel] | None:
@@ -435,10 +455,21 @@ def _model_at(path: tuple[Any, ...]) -> type[BaseModel] | None:
     return model if isinstance(model, type) and issubclass(model, BaseModel) else None
 
 
+def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
+    """A key's location as users read it: ``road.defects[1].depth`` for the first
+    ``[[road.defects]]`` table (arrays of tables counted from 1, in scenario, study and field files)."""
+    out = ""
+    for part in loc:
+        if part == "__root__":
+            continue
+        out += f"[{part + 1}]" if isinstance(part, int) else (f".{part}" if out else str(part))
+    return out
+
+
 def _format(err: ValidationError, data: dict[str, Any]) -> str:
     lines = []
     for e in err.errors():
-        loc = ".".join(str(p) for p in e["loc"] if p != "__root__")
+        loc = error_path(e["loc"])
         msg = e["msg"].removeprefix("Value error, ")
         if e["type"] == "extra_forbidden":
             model = _model_at(tuple(e["loc"][:-1]))

@@ -189,20 +189,20 @@ class Crossing:
             raise ValueError("give vehicle (one vehicle) or vehicles (several, with their motion), not both")
         for i, m in enumerate(self.vehicles):
             if not isinstance(m, VehicleMotion):
-                raise ValueError(f"vehicles.{i}: expected a VehicleMotion, got {type(m).__name__}")
+                raise ValueError(f"vehicles[{i + 1}]: expected a VehicleMotion, got {type(m).__name__}")
             if not (np.isfinite(m.speed) and m.speed > 0):
-                raise ValueError(f"vehicles.{i}.speed must be > 0 m/s, got {m.speed!r}")
+                raise ValueError(f"vehicles[{i + 1}].speed must be > 0 m/s, got {m.speed!r}")
             if not np.isfinite(m.acceleration):
-                raise ValueError(f"vehicles.{i}.acceleration must be finite")
+                raise ValueError(f"vehicles[{i + 1}].acceleration must be finite")
             if m.direction not in DIRECTIONS:
-                raise ValueError(f"vehicles.{i}.direction must be +x or -x, got {m.direction!r}")
+                raise ValueError(f"vehicles[{i + 1}].direction must be +x or -x, got {m.direction!r}")
             if not np.isfinite(m.entry_time) or not np.isfinite(m.lateral_offset):
-                raise ValueError(f"vehicles.{i}: entry_time and lateral_offset must be finite")
+                raise ValueError(f"vehicles[{i + 1}]: entry_time and lateral_offset must be finite")
         object.__setattr__(self, "vehicle", combine_vehicles([m.vehicle for m in self.vehicles]))
         start = self.start_time
         for i, m in enumerate(self.vehicles):
             if math.isnan(m.time_at(-self.approach)) or float(m.velocity(start)) <= 0:
-                raise ValueError(f"vehicles.{i}.acceleration: accelerating at {m.acceleration} m/s² to "
+                raise ValueError(f"vehicles[{i + 1}].acceleration: accelerating at {m.acceleration} m/s² to "
                                  f"{m.speed} m/s at its entry, the vehicle would not be moving {self.approach} m "
                                  "before its entry at the start of the run; use a smaller acceleration or entry speed")
         self.exit_time()  # raises for a vehicle that stops on the bridge
@@ -363,7 +363,7 @@ class Crossing:
             if math.isnan(t) or (m.acceleration < 0 and t - m.entry_time > m.stop_time):
                 stop = m.speed**2 / (-2 * m.acceleration)
                 raise ValueError(
-                    f"vehicles.{i}.acceleration: with {m.acceleration} m/s² the vehicle stops {stop:.1f} m after its "
+                    f"vehicles[{i + 1}].acceleration: with {m.acceleration} m/s² the vehicle stops {stop:.1f} m after its "
                     f"entry, before its last axle leaves the bridge ({distance:.1f} m); use a smaller braking rate "
                     "or a higher speed")
             last = max(last, t)

@@ -2,11 +2,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.solve.crossing import Crossing
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+    import xarray as xr
 
 
 class DivergenceError(ValueError):
@@ -108,3 +113,154 @@ class CrossingResult:
     def strain(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
         """Bottom-fibre longitudinal strain [-] at (x, y), tension positive."""
         return self.xi @ self.crossing.bridge.strain_shapes(*([v] for v in self.point(x, y)))[0]
+
+    # ------------------------------------------------------------------ labelled results
+    def to_xarray(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
+                  static: bool = True) -> "xr.Dataset":
+        """The crossing as a labelled :class:`xarray.Dataset` with units.
+
+        Parameters
+        ----------
+        points : sequence of (x, y), optional
+            Deck points [m] (x from the entry support, y from the deck centreline); default
+            :meth:`point` (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
+        girder_x : float, optional
+            Station [m] of the per-girder responses (dimension ``girder``, Girder 1 first) on a
+            bridge with girders; default midspan.  Ignored for bridges without girders.
+        static : bool
+            Also the static reference responses (``static_displacement``, ``static_strain``).
+
+        Returns
+        -------
+        xarray.Dataset
+            Coordinate ``time`` [s]; variables with ``units`` and ``long_name`` attributes:
+            deck ``displacement`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2], ``strain``
+            [-] (tension positive) per point and, with girders, ``girder_*`` per girder;
+            ``wheel_force`` [N] and ``contact_length`` [m] per wheel; ``vehicle_displacement``
+            and ``vehicle_acceleration`` per vehicle DOF (units per DOF in the ``dof_units``
+            coordinate: m for heave, rad for pitch and roll); ``modal_displacement`` per mode;
+            ``front_axle_x`` [m] and ``speed`` [m/s].  Sign conventions in the dataset's attributes.
+        """
+        import xarray as xr
+
+        from vbikit.solve.system import static_modal_history
+
+        bridge = self.crossing.bridge
+        vehicle = self.crossing.vehicle
+        pts = [self.point()] if points is None else [(float(x), float(y)) for x, y in points]
+        xs, ys = [p[0] for p in pts], [p[1] for p in pts]
+        xi_st = static_modal_history(self.crossing, self.front_position) if static else None
+        data: dict[str, tuple[tuple[str, ...], Any, dict[str, str]]] = {}
+
+        def deck(prefix: str, dim: str, px: list[float], py: list[float], label: str) -> None:
+            phi = np.stack([bridge.mode_shapes([x], [y])[0] for x, y in zip(px, py)], axis=1)
+            eps = np.stack([bridge.strain_shapes([x], [y])[0] for x, y in zip(px, py)], axis=1)
+            rows = [("displacement", self.xi @ phi, "deck vertical displacement (z up)"),
+                    ("velocity", self.xi_dot @ phi, "deck vertical velocity"),
+                    ("acceleration", self.xi_ddot @ phi, "deck vertical acceleration"),
+                    ("strain", self.xi @ eps, "bottom-fibre longitudinal strain (tension positive)")]
+            if xi_st is not None:
+                rows += [("static_displacement", xi_st @ phi, "static reference displacement"),
+                         ("static_strain", xi_st @ eps, "static reference strain")]
+            for name, values, long_name in rows:
+                data[prefix + name] = (("time", dim), values,
+                                       {"units": CF_UNITS.get(HISTORY_UNITS[name], HISTORY_UNITS[name]),
+                                        "long_name": f"{long_name}{label}"})
+
+        deck("", "point", xs, ys, "")
+        girder_y = getattr(bridge, "girder_y", None)
+        coords: dict[str, Any] = {
+            "time": ("time", self.time, {"units": "s", "long_name": "time"}),
+            "point": ("point", np.arange(len(pts))),
+            "x": ("point", np.array(xs), {"units": "m", "long_name": "response point from the entry support"}),
+            "y": ("point", np.array(ys), {"units": "m", "long_name": "response point from the deck centreline"}),
+            "wheel": ("wheel", [w.name for w in vehicle.wheels]),
+            "dof": ("dof", list(vehicle.dof_names)),
+            "dof_units": ("dof", [dof_unit(n) for n in vehicle.dof_names]),
+            "mode": ("mode", np.arange(1, bridge.frequencies_hz.size + 1)),
+            "frequency": ("mode", np.asarray(bridge.frequencies_hz), {"units": "Hz", "long_name": "natural frequency"}),
+        }
+        if girder_y is not None:
+            gx = bridge.span / 2 if girder_x is None else float(girder_x)
+            deck("girder_", "girder", [gx] * len(girder_y), [float(y) for y in girder_y], f" on the girder line at x = {gx:g} m")
+            coords["girder"] = ("girder", np.arange(1, len(girder_y) + 1))
+            coords["girder_y"] = ("girder", np.asarray(girder_y, float), {"units": "m", "long_name": "girder line from the deck centreline"})
+        motion = ("time",) if self.front_position.ndim == 1 else ("time", "vehicle")
+        if self.front_position.ndim == 2:  # several vehicles: one column each
+            coords["vehicle"] = ("vehicle", np.arange(1, self.front_position.shape[1] + 1))
+        data["front_axle_x"] = (motion, self.front_position, {"units": "m", "long_name": "front axle position from the entry support"})
+        data["speed"] = (motion, self.speed, {"units": "m s-1", "long_name": "vehicle speed"})
+        data["wheel_force"] = (("time", "wheel"), self.wheel_forces, {"units": "N", "long_name": "tire force, compression positive"})
+        data["contact_length"] = (("time", "wheel"), self.contact_lengths, {"units": "m", "long_name": "length of the tire patch in contact"})
+        data["vehicle_displacement"] = (("time", "dof"), self.q, {"units": "m or rad (dof_units)", "long_name": "vehicle DOF, absolute, z up"})
+        data["vehicle_acceleration"] = (("time", "dof"), self.q_ddot, {"units": "m s-2 or rad s-2 (dof_units)", "long_name": "vehicle DOF acceleration"})
+        data["modal_displacement"] = (("time", "mode"), self.xi, {"units": "kg^0.5 m", "long_name": "bridge modal coordinate (mass-normalised modes)"})
+        attrs = {
+            "title": "vbikit crossing",
+            "conventions": "SI units; x along the bridge from the entry support, y from the deck centreline "
+                           "(positive left), z up: deflection under load is negative; strain positive in tension",
+            "dt": self.dt,
+            "integrator": self.crossing.integrator,
+            "tire_model": self.crossing.tire.name,
+            "vehicle": getattr(vehicle, "description", ""),
+            "bridge": getattr(bridge, "name", "") or type(bridge).__name__,
+        }
+        return xr.Dataset({k: xr.Variable(*v) for k, v in data.items()}, coords=coords, attrs=attrs)
+
+    def to_dataframe(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
+                     static: bool = True) -> "pd.DataFrame":
+        """The histories as a wide :class:`pandas.DataFrame`, index ``time [s]``, one column per
+        quantity, point, girder, wheel and DOF, each header naming its unit (``displacement [m]``;
+        more than one point: ``displacement_p2 [m]``; ``girder3_strain [-]``,
+        ``wheel_force_axle1_left [N]``, ``tractor_pitch [rad]``).  Arguments as :meth:`to_xarray`."""
+        import pandas as pd
+
+        ds = self.to_xarray(points, girder_x, static)
+        plain = {cf: unit for unit, cf in CF_UNITS.items()}
+        cols: dict[str, NDArray[np.float64]] = {}
+        for name, var in ds.data_vars.items():
+            units = plain.get(var.attrs["units"], var.attrs["units"])
+            if var.dims == ("time",):
+                cols[f"{name} [{units}]"] = var.values
+                continue
+            dim = var.dims[1]
+            for i, label in enumerate(ds[dim].values):
+                if dim == "point":
+                    col = name if ds.sizes["point"] == 1 else f"{name}_p{i + 1}"
+                    unit = units
+                elif dim == "girder":
+                    col, unit = name.replace("girder_", f"girder{label}_"), units
+                elif dim == "dof":
+                    unit = ds["dof_units"].values[i] + ("/s^2" if name == "vehicle_acceleration" else "")
+                    col = f"{label}" if name == "vehicle_displacement" else f"{label}_acceleration"
+                elif dim == "mode":
+                    col, unit = f"mode{label}", units
+                else:
+                    col, unit = f"{name}_{label}", units
+                cols[f"{col} [{unit}]"] = var.values[:, i]
+        frame = pd.DataFrame(cols, index=pd.Index(self.time, name="time [s]"))
+        return frame
+
+
+#: the CSV spelling of a unit → its CF/UDUNITS spelling in datasets (as in the study datasets)
+CF_UNITS: dict[str, str] = {"m/s": "m s-1", "m/s^2": "m s-2", "-": "1", "rad/s^2": "rad s-2"}
+
+#: units of the named deck and vehicle histories, CSV spelling (headers ``name [unit]``, as the
+#: field-data reader expects); datasets use :data:`CF_UNITS`
+HISTORY_UNITS: dict[str, str] = {
+    "time": "s",
+    "front_axle_x": "m",
+    "displacement": "m",
+    "static_displacement": "m",
+    "velocity": "m/s",
+    "acceleration": "m/s^2",
+    "strain": "-",
+    "static_strain": "-",
+    "contact_force": "N",
+    "contact_length": "m",
+}
+
+
+def dof_unit(name: str) -> str:
+    """Unit of a vehicle DOF by its name: rotations (``*_pitch``, ``*_roll``) in rad, else m."""
+    return "rad" if name.endswith(("_pitch", "_roll")) else "m"

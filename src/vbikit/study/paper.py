@@ -24,7 +24,7 @@ from typing import Any
 
 from vbikit.study.spec import Study, parse_study
 
-#: AASHTO reference lines (domain-data §6): LRFD IM and Standard Specifications 50/(L+125) ≤ 0.3
+#: AASHTO reference lines (model data §6): LRFD IM and Standard Specifications 50/(L+125) ≤ 0.3
 AASHTO_LRFD_IM = 0.33
 AASHTO_STANDARD_IM = {"paper-bridge-1-beam": 0.30, "paper-bridge-2-beam": 0.278, "paper-bridge-3-beam": 0.196,
                       "paper-bridge-1": 0.30, "paper-bridge-2": 0.278, "paper-bridge-3": 0.196}

@@ -10,7 +10,8 @@ Storage (``out`` = e.g. ``results.nc``):
   the parts directory is then removed unless ``keep_parts``.
 
 While a study runs, ``<out>.lock`` is held (``filelock``): a second run on the same ``out`` is
-refused with a message instead of mixing two writers' parts.  A study killed at any moment
+refused with a message instead of mixing two writers' parts; the lock file is removed when the
+run ends.  A study killed at any moment
 (SIGKILL, Ctrl-C, a lost machine) loses at most the batches that were running; started again with the same ``out`` it skips the finished batches.  Every
 crossing's result depends only on the study (seeds derive from the study seed and the sample
 index), so the final dataset is identical to that of an unbroken run.
@@ -41,6 +42,7 @@ import numpy as np
 from filelock import FileLock, Timeout
 
 from vbikit._files import OutputError, atomic_write, write_text
+from vbikit.scenario.schema import key_unit
 from vbikit.study.compute import OUTPUTS, run_batch
 from vbikit.study.spec import Study, StudyError
 
@@ -193,6 +195,10 @@ def run_study(
     try:
         return _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout)
     finally:
+        # no lock file beside a finished (or stopped) dataset: removed while still held, so a run
+        # waiting on the old file cannot take it over; only a killed run leaves one (and the OS
+        # has released it, so the next run simply takes it)
+        Path(lock.lock_file).unlink(missing_ok=True)
         lock.release()
 
 
@@ -342,6 +348,15 @@ def _open_complete(out: Path, study: Study):
     return None
 
 
+def _cf_unit(unit: str, text: bool) -> str:
+    """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
+    "" for text-valued coordinates (categories have no unit)."""
+    if text:
+        return ""
+    return {"": "1", "-": "1", "m/s": "m s-1", "m/s^2": "m s-2", "km/h": "km h-1", "cycle/m": "m-1",
+            "m^3/cycle": "m3", "N m^2": "N m2"}.get(unit, unit)
+
+
 def assemble(study: Study, parts: Path):
     """The study Dataset from the finished-batch files in ``parts`` (all must be present)."""
     import xarray as xr
@@ -383,11 +398,15 @@ def assemble(study: Study, parts: Path):
     coords = {}
     for a in study.axes:
         values = list(a.values)
-        coords[a.name] = (a.name, np.array(values) if not isinstance(values[0], str) else np.array(values, dtype=object),
-                          {"scenario_key": a.key})
+        text = isinstance(values[0], str)
+        unit = "1" if a.is_samples else _cf_unit(key_unit(a.key), text)
+        coords[a.name] = (a.name, np.array(values) if not text else np.array(values, dtype=object),
+                          {"scenario_key": a.key, "units": unit,
+                           "long_name": "sample index" if a.is_samples else f"scenario key {a.key}"})
         if a.is_samples:
             coords[a.key.replace(".", "_")] = (a.name, np.array(a.seeds, np.int64),
-                                               {"long_name": f"{a.key} derived from the study seed and the sample index"})
+                                               {"long_name": f"{a.key} derived from the study seed and the sample index",
+                                                "units": "1"})
     attrs = {
         "title": study.name or "vbikit study",
         "study": study.to_json(),

@@ -1,6 +1,6 @@
 """Vehicle presets.  Each function returns a :class:`~vbikit.vehicle.model.Vehicle`; every
 number is labelled [paper] (printed in the paper), [public] (standard or published benchmark)
-or [substitute] (our documented engineering choice, see ``shared/reference/domain-data.md``).
+or [substitute] (our documented engineering choice, see ``docs/model-data.md``).
 """
 from __future__ import annotations
 
@@ -83,7 +83,7 @@ def hs20_44() -> Vehicle:
     (tire) spring–dampers per side at ±b.  All masses, inertias, stiffnesses, dampings and
     L1–L6, b are [paper] Table 1; spring and damper values are taken per side.
 
-    Geometry [computed] from Table 1 (domain-data §2), s rearward from axle 1: axle 1 at 0;
+    Geometry [computed] from Table 1 (model data §2), s rearward from axle 1: axle 1 at 0;
     tractor CG at L1 = 1.698; fifth wheel at L1 + L5 = 3.913; axle 2 at L1 + L2 = 4.267;
     trailer CG at 6.251; axle 3 at 8.534 m.  Static axle loads then are ≈ 30.7 / 134.2 /
     136.0 kN (nominal HS20-44: 35.6 / 142.3 / 142.3 kN).  Axle roll inertia m_axle·b²
@@ -109,7 +109,7 @@ def hs20_44() -> Vehicle:
 
 
 def two_axle_truck() -> Vehicle:
-    """Two-axle truck (H20-44 loads) [substitute] (domain-data §2).
+    """Two-axle truck (H20-44 loads) [substitute] (model data §2).
 
     HS20 tractor hardware with a rigid body of 16,837 kg, CG 3.471 m behind the front axle,
     pitch / roll inertia 8.52e4 / 1.49e4 kg·m²; axle masses 490 / 808 kg; suspension k
@@ -134,7 +134,7 @@ def dump_truck() -> Vehicle:
 
     * [paper] static axle loads 80.0 / 95.6 / 95.6 kN; middle axle 6.25 m behind the front axle
       and 1.2 m ahead of the rear axle (axles at s = 0, 6.25, 7.45 m).
-    * [substitute] (domain-data §2) axle masses 700 / 1100 / 1100 kg; suspension k 0.3e6 / 1.0e6 /
+    * [substitute] (model data §2) axle masses 700 / 1100 / 1100 kg; suspension k 0.3e6 / 1.0e6 /
       1.0e6 N/m and c 10e3 / 20e3 / 20e3 N·s/m per side; tire k 0.875e6 / 1.75e6 / 1.75e6 N/m and
       c 2e3 / 4e3 / 4e3 N·s/m per side; half-track b = 0.9 m; axle roll inertia m·b².
     * [substitute] rear tandem: one walking beam per side (mass 250 kg, pitch inertia
@@ -144,7 +144,7 @@ def dump_truck() -> Vehicle:
       spring-supported axles is statically indeterminate (plain springs give ≈ 78 / 107 / 86 kN);
       with the beams the body rests on two supports (front suspension, tandem pivots) and the
       beams split their load equally, so the static axle loads are exactly the paper's.
-    * [substitute] sprung mass 24,745 kg (domain-data §2) = body + both beams, with the body
+    * [substitute] sprung mass 24,745 kg (model data §2) = body + both beams, with the body
       mass set so that the total weight is exactly 271.2 kN with g = 9.81 m/s² (body 24,245.26 kg,
       +0.26 kg); body CG from moment balance on its two supports (≈ 4.74 m behind axle 1);
       body pitch / roll inertia 1.5e5 / 2.5e4 kg·m² (≈ m(L² + h²)/12 for an 8.5 m × 2.5 m body).

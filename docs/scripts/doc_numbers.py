@@ -1,0 +1,92 @@
+"""Recompute the numbers the docs quote and store them in docs/figures/numbers.json.
+
+    python docs/scripts/doc_numbers.py        # recompute (≈ 10 s), then: python docs/scripts/generate.py
+
+The pages show these numbers through generated blocks (docs/scripts/generate.py renders them
+from the JSON), and tests/docs/test_numbers.py recomputes them and fails when the code no longer
+reproduces what the docs say, so a quoted number cannot go stale.
+
+* ``fig9``: the paper's Fig. 9 case (examples/paper/fig9_tire_models.toml) with each tire model,
+  as ``vbikit compare-tires`` runs it (docs/tires.md); its figure is docs/figures/fig9-tire-models.png.
+* ``roughness``: the two readings of the paper's "poor" road (docs/model-data.md §4): mean IM
+  over five seeds with ISO D and with φ(n0) = 64e-6 m³/cycle at n0 = 1/(2π) cycle/m.
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+NUMBERS = ROOT / "docs" / "figures" / "numbers.json"
+FIG9 = ROOT / "examples" / "paper" / "fig9_tire_models.toml"
+TIRES = {"point": {"model": "point"}, "multipoint (n = 6)": {"model": "multipoint", "n_points": 6},
+         "disk": {"model": "disk"}, "rigid disk": {"model": "rigid-disk"}}
+
+
+def _crossing(scenario):
+    from vbikit.analysis import point_response
+    from vbikit.scenario import build
+    from vbikit.solve import simulate
+
+    built = build(scenario)
+    result = simulate(built.crossing)
+    return result, point_response(result, built.response_x, built.response_y)
+
+
+def fig9(plot: Path | None = None) -> dict[str, dict[str, float]]:
+    """Peaks and impact factors of the Fig. 9 case per tire model (SI units)."""
+    from vbikit.scenario import load_scenario
+
+    base = load_scenario(FIG9)
+    table, responses = {}, {}
+    for label, tire in TIRES.items():
+        spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
+        spec._base_dir = base.base_dir
+        result, r = _crossing(spec)
+        responses[label] = r
+        table[label] = {
+            "max_dynamic_displacement": r.displacement_impact.dynamic_peak,
+            "impact_factor": r.displacement_impact.impact_factor,
+            "strain_impact_factor": r.strain_impact.impact_factor,
+            "max_abs_acceleration": float(abs(r.acceleration).max()),
+            "min_tire_force": float(result.wheel_forces.min()),
+        }
+    if plot is not None:
+        from vbikit.plot import plot_tire_comparison
+
+        plot_tire_comparison(responses, plot, base.name)
+    return table
+
+
+def roughness(seeds: int = 5) -> dict[str, float]:
+    """Mean displacement IM at Girder 4 of paper-bridge-2 (HS20-44, n = 6, 75 km/h) over ``seeds``
+    roads: ISO class D against φ(n0) = 64e-6 m³/cycle at n0 = 1/(2π) cycle/m."""
+    from vbikit.scenario import parse_scenario
+
+    out = {}
+    for label, road in (("iso_d", {"class": "D"}),
+                        ("phi64_n0_1_over_2pi", {"class": "psd", "phi0": 64e-6, "n0": 1 / (2 * math.pi)})):
+        ims = []
+        for seed in range(1, seeds + 1):
+            spec = parse_scenario({"bridge": {"model": "paper-bridge-2"}, "vehicle": {"model": "hs20-44"},
+                                   "tire": {"model": "multipoint", "n_points": 6}, "road": {**road, "seed": seed},
+                                   "crossing": {"speed_kmh": 75}, "response": {"girder": 4}})
+            ims.append(_crossing(spec)[1].displacement_impact.impact_factor)
+        out[label] = sum(ims) / len(ims)
+    return out
+
+
+def compute(plot: bool = False) -> dict[str, object]:
+    return {"fig9": fig9(ROOT / "docs" / "figures" / "fig9-tire-models.png" if plot else None),
+            "roughness": roughness()}
+
+
+if __name__ == "__main__":
+    import matplotlib
+
+    matplotlib.use("Agg")
+    NUMBERS.write_text(json.dumps(compute(plot=True), indent=2) + "\n")
+    print(f"wrote {NUMBERS.relative_to(ROOT)}; now run python docs/scripts/generate.py")
+    sys.exit(0)

@@ -1,0 +1,244 @@
+"""Bibliography of vbikit: every model, preset, parameter source and verification reference.
+
+One registry, :data:`REFERENCES`, keyed by a short citation key.  ``docs/references.md`` and
+``docs/references.bib`` are generated from it (``python docs/scripts/generate.py``; a test
+fails when they differ), and :data:`MODEL_REFERENCES` says which entries a model relies on,
+so that ``vbikit cite SCENARIO`` and ``vbikit run --json`` can list them.
+
+To add a source: add a :class:`Reference` to :data:`REFERENCES`, name its key in
+:data:`MODEL_REFERENCES` for the models that use it, and regenerate the docs.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class Reference:
+    """One bibliographic entry (the fields of a BibTeX entry).
+
+    ``kind`` is the BibTeX entry type (article, book, manual, software, misc); ``authors`` are
+    "Family, Given" strings; ``used_for`` says in a sentence what vbikit takes from it.
+    """
+
+    key: str
+    kind: str
+    title: str
+    year: str
+    used_for: str
+    authors: tuple[str, ...] = ()
+    journal: str = ""
+    volume: str = ""
+    number: str = ""
+    pages: str = ""
+    publisher: str = ""
+    address: str = ""
+    edition: str = ""
+    doi: str = ""
+    isbn: str = ""
+    url: str = ""
+    note: str = ""
+    organization: str = ""
+    #: False while a DOI (or other locator) is written from secondary citation data and not yet
+    #: checked against the publisher; docs/references.md marks such entries
+    checked: bool = True
+    extra: dict[str, str] = field(default_factory=dict)
+
+    def text(self) -> str:
+        """A one-line citation: authors (year) title. Journal volume(number), pages. DOI."""
+        who = "; ".join(self.authors) or self.organization
+        parts = [f"{who} ({self.year}). {self.title}." if who else f"{self.title} ({self.year})."]
+        if self.journal:
+            vol = self.volume + (f"({self.number})" if self.number else "")
+            venue = ", ".join(p for p in (self.journal, vol, self.pages) if p)
+        else:
+            venue = ", ".join(p for p in (f"{self.edition} ed." if self.edition else "", self.publisher, self.address) if p)
+        if venue:
+            parts.append(venue + ".")
+        if self.doi:
+            parts.append(f"doi:{self.doi}" + ("" if self.checked else " (not yet checked against the publisher)"))
+        if self.isbn:
+            parts.append(f"ISBN {self.isbn}.")
+        if self.url:
+            parts.append(self.url)
+        if self.note:
+            parts.append(f"({self.note}.)")
+        return " ".join(parts)
+
+    def bibtex(self) -> str:
+        """The entry as BibTeX."""
+        fields = {
+            "author": " and ".join(self.authors),
+            "title": "{" + self.title + "}",
+            "journal": self.journal,
+            "year": self.year,
+            "volume": self.volume,
+            "number": self.number,
+            "pages": self.pages.replace("–", "--"),
+            "publisher": self.publisher,
+            "address": self.address,
+            "edition": self.edition,
+            "organization": self.organization,
+            "doi": self.doi,
+            "isbn": self.isbn,
+            "url": self.url,
+            "note": self.note,
+            **self.extra,
+        }
+        body = ",\n".join(f"  {k} = {{{v}}}" for k, v in fields.items() if v)
+        return f"@{self.kind}{{{self.key},\n{body}\n}}"
+
+
+_R = Reference
+
+#: Every source vbikit relies on, by citation key.
+REFERENCES: dict[str, Reference] = {r.key: r for r in (
+    _R("MultiPointTire", "article", "A Multi-Point Tire Model for Studying Bridge–Vehicle Coupled Vibration", "n.d.",
+       "the programme vbikit implements: the coupled equations (Eqs. 1–9), the multi-point tire (Eq. 6), "
+       "the random road (Eq. 7), the HS20-44 truck (Table 1), the three paper bridges, the studies of "
+       "Figs. 5–11 and the Cypress Bayou field test; equation, table and figure numbers in the docs refer to it",
+       note="The copy vbikit follows prints neither authors, journal nor year; complete this entry from the "
+            "published article"),
+    _R("Fryba1999", "book", "Vibration of Solids and Structures under Moving Loads", "1999",
+       "moving-force solution of the simply supported beam and its dynamic amplification table "
+       "(verification: docs/verification.md)",
+       authors=("Frýba, Ladislav",), publisher="Thomas Telford", address="London", edition="3rd",
+       isbn="0-7277-2741-9", checked=False, doi="10.1680/vosasuml.35393", note="First edition Noordhoff, Groningen, 1972"),
+    _R("YangYau1997", "article", "Vehicle-bridge interaction element for dynamic analysis", "1997",
+       "sprung mass on a simply supported beam: midspan and vehicle peaks (verification)",
+       authors=("Yang, Yeong-Bin", "Yau, Jong-Dar"), journal="Journal of Structural Engineering (ASCE)",
+       volume="123", number="11", pages="1512–1518", doi="10.1061/(ASCE)0733-9445(1997)123:11(1512)"),
+    _R("Biggs1964", "book", "Introduction to Structural Dynamics", "1964",
+       "sprung + unsprung mass on a beam, first mode (closed-form verification of a two-mass vehicle, §8.5)",
+       authors=("Biggs, John M.",), publisher="McGraw-Hill", address="New York", isbn="0-07-005255-7"),
+    _R("ISO8608", "manual", "Mechanical vibration — Road surface profiles — Reporting of measured data (ISO 8608)", "2016",
+       "road roughness classes A–H as displacement PSD Gd(n0) at n0 = 0.1 cycle/m, exponent 2",
+       organization="International Organization for Standardization", address="Geneva", edition="2nd"),
+    _R("HuangWangShahawy1992", "article", "Impact analysis of continuous multigirder bridges due to moving vehicles", "1992",
+       "the road PSD form φ(n) = φ(n0)(n/n0)^−2 that the paper adopts ('the PSD function used by Huang and Wang')",
+       authors=("Huang, Dongzhou", "Wang, Ton-Lo", "Shahawy, Mohsen"),
+       journal="Journal of Structural Engineering (ASCE)", volume="118", number="12", pages="3427–3443",
+       doi="10.1061/(ASCE)0733-9445(1992)118:12(3427)"),
+    _R("WangHuang1992", "article", "Cable-stayed bridge vibration due to road surface roughness", "1992",
+       "the random-road representation as a sum of cosines with random phases (the form of the paper's Eq. 7)",
+       authors=("Wang, Ton-Lo", "Huang, Dongzhou"), journal="Journal of Structural Engineering (ASCE)",
+       volume="118", number="5", pages="1354–1374", doi="10.1061/(ASCE)0733-9445(1992)118:5(1354)"),
+    _R("Yin2010", "article", "Bridge vibration under vehicular loads: tire patch contact versus point contact", "2010",
+       "the deformable-disk tire the paper compares with (vbikit's disk tire is a documented substitute after it)",
+       authors=("Yin, Xinfeng", "Cai, C. S.", "Fang, Zhi", "Deng, Lu"),
+       journal="International Journal of Structural Stability and Dynamics", volume="10", number="3",
+       pages="529–554", checked=False, doi="10.1142/S0219455410003609"),
+    _R("Chang2011", "article", "Disk model for wheels moving over highway bridges with rough surfaces", "2011",
+       "the rigid-disk tire (the wheel follows the envelope of the surface)",
+       authors=("Chang, K. C.", "Wu, F. B.", "Yang, Y. B."), journal="Journal of Sound and Vibration",
+       volume="330", number="20", pages="4930–4944", checked=False, doi="10.1016/j.jsv.2011.05.012"),
+    _R("AASHTO-LRFD", "manual", "AASHTO LRFD Bridge Design Specifications", "2020",
+       "dynamic load allowance IM = 0.33 / 0.15 fatigue / 0.75 deck joints (Table 3.6.2.1-1); tire contact "
+       "area 0.508 m × 0.254 m (3.6.1.2.5), the multi-point tire's default contact length",
+       organization="American Association of State Highway and Transportation Officials", address="Washington, DC",
+       edition="9th"),
+    _R("AASHTO-Standard2002", "manual", "Standard Specifications for Highway Bridges", "2002",
+       "the HS20-44 design truck (3.7) and the impact fraction I = 50/(L + 125) ≤ 0.30, L in ft (3.8.2.1)",
+       organization="American Association of State Highway and Transportation Officials", address="Washington, DC",
+       edition="17th"),
+    _R("PCI-BDM", "manual", "PCI Bridge Design Manual", "2011",
+       "section properties of the AASHTO Type I–VI prestressed I-girders (the girders of the slab-on-girder presets)",
+       organization="Precast/Prestressed Concrete Institute", address="Chicago", edition="3rd"),
+    _R("JTG-D60-2015", "manual", "General Specifications for Design of Highway Bridges and Culverts (JTG D60-2015)", "2015",
+       "impact coefficient μ as a function of the first bending frequency (§4.3.2), a reference line on IM plots",
+       organization="Ministry of Transport of the People's Republic of China", address="Beijing"),
+    _R("CSA-S6-2019", "manual", "Canadian Highway Bridge Design Code (CSA S6:19)", "2019",
+       "dynamic load allowance by the number of axles governing (3.8.4.5.3), a design-code line beside the IM",
+       organization="CSA Group", address="Toronto"),
+    _R("OHBDC1983", "manual", "Ontario Highway Bridge Design Code", "1983",
+       "dynamic amplification as a function of the first flexural frequency, a design-code line beside the IM",
+       organization="Ontario Ministry of Transportation and Communications", address="Downsview, Ontario", edition="2nd"),
+    _R("Newmark1959", "article", "A method of computation for structural dynamics", "1959",
+       "the Newmark average-acceleration integrator (crossing.integrator = \"newmark\")",
+       authors=("Newmark, Nathan M.",), journal="Journal of the Engineering Mechanics Division (ASCE)", volume="85",
+       number="EM3", pages="67–94", checked=False, doi="10.1061/JMCEA3.0000098"),
+    _R("NigamJennings1969", "article", "Calculation of response spectra from strong-motion earthquake records", "1969",
+       "the exact step of a damped modal oscillator under a load linear over the step (exact modal stepping)",
+       authors=("Nigam, Navin C.", "Jennings, Paul C."), journal="Bulletin of the Seismological Society of America",
+       volume="59", number="2", pages="909–922", doi="10.1785/BSSA0590020909"),
+    _R("Chopra2017", "book", "Dynamics of Structures: Theory and Applications to Earthquake Engineering", "2017",
+       "modal superposition, Rayleigh/modal damping and the piecewise-exact step (§5.2)",
+       authors=("Chopra, Anil K.",), publisher="Pearson", address="Hoboken, NJ", edition="5th", isbn="978-0-13-455512-6"),
+    _R("Blevins1979", "book", "Formulas for Natural Frequency and Mode Shape", "1979",
+       "natural frequencies of simply supported and continuous beams (verification)",
+       authors=("Blevins, Robert D.",), publisher="Van Nostrand Reinhold", address="New York",
+       isbn="0-442-20710-7", note="Reprinted by Krieger, Malabar, FL, 2001"),
+    _R("Cantero2024", "article", "VBI-2D – Road vehicle-bridge interaction simulation tool and verification framework for Matlab",
+       "2024", "independent vehicle–bridge code the beam crossings are checked against (verification)",
+       authors=("Cantero, Daniel",), journal="SoftwareX", volume="26", pages="101725",
+       checked=False, doi="10.1016/j.softx.2024.101725", url="https://github.com/DanielCanteroNTNU/VBI-2D"),
+    _R("McKenna2010", "article", "Nonlinear finite-element analysis software architecture using object composition", "2010",
+       "OpenSees, the independent grillage and moving-load cross-check of the slab-on-girder deck (verification)",
+       authors=("McKenna, Frank", "Scott, Michael H.", "Fenves, Gregory L."),
+       journal="Journal of Computing in Civil Engineering", volume="24", number="1", pages="95–107",
+       doi="10.1061/(ASCE)CP.1943-5487.0000002"),
+    _R("Zhu2018", "article", "OpenSeesPy: Python library for the OpenSees finite element framework", "2018",
+       "the Python interface to OpenSees used by the cross-check tests",
+       authors=("Zhu, Minjie", "McKenna, Frank", "Scott, Michael H."), journal="SoftwareX", volume="7",
+       pages="6–11", doi="10.1016/j.softx.2017.10.009"),
+    _R("pycba", "software", "pycba: Python Continuous Beam Analysis", "2024",
+       "independent static moments, shears and reactions of beams (verification of the static reference)",
+       authors=("Caprani, Colin C.",), url="https://github.com/ccaprani/pycba"),
+    _R("AdvCivEng2022", "article", "Table 7: road roughness coefficients very good / good / average / poor", "2022",
+       "supports reading the paper's good / average / poor as ISO 8608 classes B / C / D "
+       "(its limits 2–8, 8–32, 32–128 × 1e-6 m³ are ISO's Φ(Ω0) class limits)",
+       journal="Advances in Civil Engineering", volume="2022", pages="9946957", doi="10.1155/2022/9946957",
+       note="Cited for its Table 7 only; article title and authors to be completed from the publisher's page"),
+)}
+
+#: Which entries each model relies on, by the names used in scenario files
+#: (``"<section>:<model>"``; ``"*"`` entries apply to every crossing).
+MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
+    "*": ("MultiPointTire",),
+    "bridge:beam": ("Fryba1999",),
+    "bridge:slab-on-girder": ("PCI-BDM",),
+    "bridge:paper-bridge-1": ("MultiPointTire", "PCI-BDM"),
+    "bridge:paper-bridge-2": ("MultiPointTire", "PCI-BDM"),
+    "bridge:paper-bridge-3": ("MultiPointTire", "PCI-BDM"),
+    "bridge:cypress-bayou": ("MultiPointTire", "PCI-BDM"),
+    "bridge:paper-bridge-1-beam": ("PCI-BDM",),
+    "bridge:paper-bridge-2-beam": ("PCI-BDM",),
+    "bridge:paper-bridge-3-beam": ("PCI-BDM",),
+    "vehicle:moving-force": ("Fryba1999",),
+    "vehicle:sprung-mass": ("YangYau1997",),
+    "vehicle:quarter-car": ("Biggs1964",),
+    "vehicle:hs20-44": ("MultiPointTire", "AASHTO-Standard2002"),
+    "vehicle:two-axle": ("AASHTO-Standard2002",),
+    "vehicle:dump-truck": ("MultiPointTire",),
+    "tire:point": (),
+    "tire:multipoint": ("MultiPointTire", "AASHTO-LRFD"),
+    "tire:disk": ("Yin2010",),
+    "tire:rigid-disk": ("Chang2011",),
+    "road:iso": ("ISO8608", "HuangWangShahawy1992", "WangHuang1992"),
+    "road:paper-class": ("ISO8608", "AdvCivEng2022"),
+    "road:psd": ("HuangWangShahawy1992", "WangHuang1992"),
+    "integrator:rk4": ("MultiPointTire",),
+    "integrator:newmark": ("Newmark1959",),
+    "integrator:exact": ("NigamJennings1969", "Chopra2017"),
+    "impact:code-lines": ("AASHTO-LRFD", "AASHTO-Standard2002", "CSA-S6-2019", "OHBDC1983", "JTG-D60-2015"),
+    "bridge:continuous-beam": ("Blevins1979", "pycba"),
+    "vehicle:3s2": ("Cantero2024",),
+    "vehicle:axles": ("AASHTO-Standard2002",),
+}
+
+
+def references_for(models: list[str]) -> list[Reference]:
+    """The entries for ``models`` (``"<section>:<model>"`` names of :data:`MODEL_REFERENCES`) in
+    first-use order, without repeats; unknown names contribute nothing."""
+    keys: list[str] = []
+    for name in ("*", *models):
+        for key in MODEL_REFERENCES.get(name, ()):
+            if key not in keys:
+                keys.append(key)
+    return [REFERENCES[k] for k in keys]
+
+
+def bibtex(entries: list[Reference] | None = None) -> str:
+    """BibTeX of ``entries`` (default: all of :data:`REFERENCES`)."""
+    entries = list(REFERENCES.values()) if entries is None else entries
+    return "\n\n".join(r.bibtex() for r in entries) + "\n"

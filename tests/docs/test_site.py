@@ -1,0 +1,84 @@
+"""The documentation: the site builds strictly, generated pages match the code, and no file in
+the repository points outside it."""
+from __future__ import annotations
+
+import importlib.util
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _generate_module():
+    spec = importlib.util.spec_from_file_location("vbikit_docs_generate", ROOT / "docs" / "scripts" / "generate.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_generated_pages_match_the_code():
+    stale = _generate_module().stale(write=False)
+    assert not stale, f"regenerate with `python docs/scripts/generate.py`: {', '.join(stale)} differ from the code"
+
+
+def test_site_builds_strictly(tmp_path):
+    # --strict turns every warning (broken link or anchor, page missing from the nav's files,
+    # docstring cross-reference that does not resolve) into a failure
+    res = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-d", str(tmp_path / "site")],
+                         cwd=ROOT, capture_output=True, text=True, env={"NO_MKDOCS_2_WARNING": "1", **_env()})
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert (tmp_path / "site" / "api" / "solve" / "index.html").is_file()
+    assert "CrossingResult" in (tmp_path / "site" / "api" / "solve" / "index.html").read_text()
+
+
+def _env() -> dict[str, str]:
+    import os
+
+    return dict(os.environ)
+
+
+def _repo_files() -> list[Path]:
+    out = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"], cwd=ROOT,
+                         capture_output=True, text=True, check=True).stdout.split()
+    return [ROOT / f for f in out if (ROOT / f).is_file()]
+
+
+# the pointers are assembled from parts so that this file does not match itself
+_OUTSIDE = re.compile("|".join([r"\.\./" + "shared", "shared/" + "reference", "shared/" + "paper", "/" + "work/",
+                                "domain" + "-data", "ecosystem" + "-notes", "beyond" + "-the-paper", "style" + "-anchors"]))
+_TEXT = {".py", ".md", ".toml", ".txt", ".yml", ".yaml", ".cfg", ".json", ".bib", ".csv", ".sh", ""}
+
+
+def test_no_file_points_outside_the_repository():
+    hits = []
+    for path in _repo_files():
+        if path.suffix not in _TEXT or path.stat().st_size > 2_000_000:
+            continue
+        try:
+            text = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError:
+            continue
+        for n, line in enumerate(text.splitlines(), start=1):
+            if _OUTSIDE.search(line):
+                hits.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()[:100]}")
+    assert not hits, "write the fact into the project's docs with its source instead:\n" + "\n".join(hits)
+
+
+_LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
+
+
+def test_markdown_links_resolve_inside_the_repository():
+    # mkdocs checks the site's pages; this also covers README.md, benchmarks/ and examples/
+    bad = []
+    for path in _repo_files():
+        if path.suffix != ".md":
+            continue
+        for target in _LINK.findall(path.read_text(encoding="utf-8")):
+            if re.match(r"^[a-z]+:", target) or target.startswith("#"):
+                continue
+            dest = (path.parent / target.split("#")[0]).resolve()
+            if not dest.is_relative_to(ROOT) or not dest.exists():
+                bad.append(f"{path.relative_to(ROOT)}: {target}")
+    assert not bad, "links that leave the repository or do not resolve:\n" + "\n".join(bad)
