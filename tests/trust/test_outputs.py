@@ -163,4 +163,4 @@ def test_field_channel_that_is_not_a_table_is_exit_2(tmp_path):
     cut = text.index("[[case.channel]]")
     toml.write_text(text[:cut] + "channel = [3]\n")
     res = runner.invoke(app, ["field", str(toml), "--out-dir", str(tmp_path / "out")])
-    assert res.exit_code == 2 and "case.1.channel.1" in res.output and "must be tables" in res.output, res.output
+    assert res.exit_code == 2 and "case[1].channel[1]" in res.output and "must be tables" in res.output, res.output
