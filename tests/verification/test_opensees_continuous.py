@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_opensees_crosscheck import build_grillage, ops  # noqa: F401 - the ops fixture
+from test_opensees_crosscheck import build_grillage, ops, static_truck  # noqa: F401 - the ops fixture
 
 from vbikit.bridge import paper_deck
 
@@ -43,18 +43,7 @@ def test_frequencies_of_the_continuous_deck(two_span):
 def test_static_girder_moments_and_pier_reactions(two_span):
     ops, bridge, tag, xs, ys, pier = two_span
     axles = [(12.5, 35.6e3), (12.5 - 4.27, 142.3e3), (12.5 - 8.54, 142.3e3)]
-    pts = [(int(np.argmin(np.abs(xs - x))), j, P / 2) for x, P in axles for j in (2, 3)]
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    for i, j, P in pts:
-        ops.load(tag[j, i], 0.0, 0.0, -P, 0.0, 0.0, 0.0)
-    ops.system("UmfPack")
-    ops.numberer("RCM")
-    ops.constraints("Plain")
-    ops.integrator("LoadControl", 1.0)
-    ops.algorithm("Linear")
-    ops.analysis("Static")
-    assert ops.analyze(1) == 0
+    pts = static_truck(ops, tag, xs, axles)
     ops.reactions()
     n_el = xs.size - 1
     px, py = np.array([xs[i] for i, _, _ in pts]), np.array([ys[j] for _, j, _ in pts])

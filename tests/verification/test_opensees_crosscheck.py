@@ -122,11 +122,10 @@ def test_first_five_frequencies_agree(models):
         assert mac > 0.99
 
 
-def test_static_girder_deflections_under_a_truck_agree(models):
-    ops, bridge, tag, xs, ys = models
-    # HS20-44 axle loads 35.6 / 142.3 / 142.3 kN (AASHTO), axles 4.27 m apart, front axle near
-    # 12.5 m; wheel lines over Girders 3 and 4 (y = 0, 2.13 m); loads at the nearest stations.
-    axles = [(12.5, 35.6e3), (12.5 - 4.27, 142.3e3), (12.5 - 8.54, 142.3e3)]
+def static_truck(ops, tag, xs, axles):
+    """Static OpenSees analysis under ``axles`` [(x [m], axle load [N])], each axle's load split
+    over the wheel lines above Girders 3 and 4 at the nearest stations; returns the loads as
+    (station index, girder line index, wheel load [N])."""
     pts = [(int(np.argmin(np.abs(xs - x))), j, P / 2) for x, P in axles for j in (2, 3)]
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
@@ -139,6 +138,15 @@ def test_static_girder_deflections_under_a_truck_agree(models):
     ops.algorithm("Linear")
     ops.analysis("Static")
     assert ops.analyze(1) == 0
+    return pts
+
+
+def test_static_girder_deflections_under_a_truck_agree(models):
+    ops, bridge, tag, xs, ys = models
+    # HS20-44 axle loads 35.6 / 142.3 / 142.3 kN (AASHTO), axles 4.27 m apart, front axle near
+    # 12.5 m; wheel lines over Girders 3 and 4 (y = 0, 2.13 m); loads at the nearest stations.
+    axles = [(12.5, 35.6e3), (12.5 - 4.27, 142.3e3), (12.5 - 8.54, 142.3e3)]
+    pts = static_truck(ops, tag, xs, axles)
     mid = xs.size // 2
     w_ops = np.array([ops.nodeDisp(tag[j, mid], 3) for j in range(5)])
     s = bridge.static_solution([xs[i] for i, _, _ in pts], [ys[j] for _, j, _ in pts], [-P for _, _, P in pts])

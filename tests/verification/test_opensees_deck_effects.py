@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_opensees_crosscheck import build_grillage, ops  # noqa: F401 - the ops fixture
+from test_opensees_crosscheck import build_grillage, ops, static_truck  # noqa: F401 - the ops fixture
 
 from vbikit.bridge import paper_deck
 
@@ -26,18 +26,7 @@ AXLES = [(12.5, 35.6e3), (12.5 - 4.27, 142.3e3), (12.5 - 8.54, 142.3e3)]  # HS20
 def static_model(ops, tmp_path_factory):  # noqa: F811
     bridge = paper_deck(2, n_modes=8, overhang=0.0)
     tag, xs, ys = build_grillage(ops, bridge, tmp_path_factory.mktemp("ops") / "ops.log")
-    pts = [(int(np.argmin(np.abs(xs - x))), j, P / 2) for x, P in AXLES for j in (2, 3)]
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    for i, j, P in pts:
-        ops.load(tag[j, i], 0.0, 0.0, -P, 0.0, 0.0, 0.0)
-    ops.system("UmfPack")
-    ops.numberer("RCM")
-    ops.constraints("Plain")
-    ops.integrator("LoadControl", 1.0)
-    ops.algorithm("Linear")
-    ops.analysis("Static")
-    assert ops.analyze(1) == 0
+    pts = static_truck(ops, tag, xs, AXLES)
     ops.reactions()
     return ops, bridge, tag, xs, ys, pts
 

@@ -61,6 +61,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
+from vbikit.bridge.continuous import beam_element_mass, beam_element_stiffness
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
 from vbikit.bridge.effects import LoadEffect
 from vbikit.bridge.nodal import NodalModes, _hermite
@@ -88,18 +89,6 @@ def approximate_torsion_constant(section: GirderSection) -> float:
     note), with the polar moment I_p replaced by the strong-axis I (so J is overestimated by
     at most I_p/I − 1, ≈ 10 % for AASHTO girders).  [substitute] for the unpublished J."""
     return section.area**4 / (4.0 * np.pi**2 * section.inertia)
-
-
-def _beam_stiffness(EI: float, h: float) -> NDArray[np.float64]:
-    return EI / h**3 * np.array(
-        [[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h], [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]]
-    )
-
-
-def _beam_mass(m: float, h: float) -> NDArray[np.float64]:
-    return m * h / 420.0 * np.array(
-        [[156, 22 * h, 54, -13 * h], [22 * h, 4 * h * h, 13 * h, -3 * h * h], [54, 13 * h, 156, -22 * h], [-13 * h, -3 * h * h, -22 * h, 4 * h * h]]
-    )
 
 
 def _hermite_linear_coupling(h: float) -> NDArray[np.float64]:
@@ -402,9 +391,9 @@ class SlabOnGirderBridge(ModalBridge):
                      self._dof(j, i, 2), self._dof(j, i + 1, 2)]
                 ke = np.zeros((6, 6))
                 me = np.zeros((6, 6))
-                ke[:4, :4] = _beam_stiffness(self.girder_element_EI(j, i), h)
+                ke[:4, :4] = beam_element_stiffness(self.girder_element_EI(j, i), h)
                 ke[4:, 4:] = _bar(p["GJ"][j] / h)
-                me[:4, :4] = _beam_mass(p["m"][j], h)
+                me[:4, :4] = beam_element_mass(p["m"][j], h)
                 me[4:, 4:] = p["J"][j] * h / 6.0 * np.array([[2.0, 1.0], [1.0, 2.0]])
                 cpl = p["S"][j] * _hermite_linear_coupling(h)
                 me[:4, 4:] = cpl
@@ -436,9 +425,9 @@ class SlabOnGirderBridge(ModalBridge):
                      self._dof(j, i, 1), self._dof(j + 1, i, 1)]
                 ke = np.zeros((6, 6))
                 me = np.zeros((6, 6))
-                ke[:4, :4] = _beam_stiffness(EI, b)
+                ke[:4, :4] = beam_element_stiffness(EI, b)
                 ke[4:, 4:] = _bar(GJ / b)
-                me[:4, :4] = _beam_mass(mu * trib[i] + diaph[i] * m_d, b)
+                me[:4, :4] = beam_element_mass(mu * trib[i] + diaph[i] * m_d, b)
                 add(d, ke, me)
         fixed: list[int] = []
         for j in range(n_lines):
