@@ -36,7 +36,7 @@ def announce_compile(kernel) -> None:
         return
     index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
     if index is None or not os.path.exists(index):
-        compile_log.info("compiling kernels, first run only (about 10 s; later runs load them from numba's cache)")
+        compile_log.info("compiling kernels, first run only (about half a minute; later runs load them from numba's cache in under a second)")
 
 
 #: memory [bytes] the stored histories of one ``simulate`` may take before they are thinned
