@@ -20,6 +20,7 @@ app = typer.Typer(
 
 _STATE = {"debug": False, "quiet": False}
 
+from vbikit.study import commands as study_commands  # noqa: E402
 from vbikit.study.commands import app as study_app  # noqa: E402
 
 app.add_typer(study_app, name="study")
@@ -45,6 +46,7 @@ def _main(
     version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
 ) -> None:
     _STATE["debug"], _STATE["quiet"] = debug, quiet
+    study_commands.QUIET["on"] = quiet
     level = logging.DEBUG if debug or verbose > 1 else logging.INFO if verbose else logging.ERROR if quiet else logging.WARNING
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s", force=True)
     if not quiet:

@@ -6,13 +6,15 @@ import time
 from pathlib import Path
 from typing import Any, Callable, Optional
 
-import click
 import typer
 
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
 
 log = logging.getLogger(__name__)
+
+#: ``vbikit -q …``: set by the root command (:mod:`vbikit.cli`) before a study or traffic command runs
+QUIET = {"on": False}
 
 
 def _guard(action: Callable[[], Any]) -> Any:
@@ -50,9 +52,7 @@ def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], pro
     """Run (or resume) ``study`` (or another job of :func:`~vbikit.study.run.run_study`) with a progress bar."""
     from vbikit.study.run import run_study
 
-    ctx = click.get_current_context(silent=True)
-    quiet = bool(ctx and ctx.find_root().params.get("quiet"))  # `vbikit -q study …`
-    bar = _Bar(study.name or out.stem, progress and not quiet, unit)
+    bar = _Bar(study.name or out.stem, progress and not QUIET["on"], unit)  # `vbikit -q study …`: no bar
     t0 = time.perf_counter()
     try:
         ds = _guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
