@@ -39,7 +39,6 @@ from functools import cached_property
 from typing import Optional, Sequence, Union
 
 import numpy as np
-import scipy.linalg
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
@@ -47,6 +46,7 @@ from numpy.typing import ArrayLike, NDArray
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
 from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
+from vbikit.bridge.eigen import lowest_modes
 from vbikit.bridge.nodal import NodalModes
 
 Numbers = Union[float, Sequence[float]]
@@ -247,15 +247,8 @@ class ContinuousBeam(ModalBridge):
     def _solve(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         K, M, free = self.assemble()
         Kf, Mf = K[free][:, free].tocsc(), M[free][:, free].tocsc()
-        n = free.size
-        k = min(self.n_modes, n)
-        if k >= n - 1 or n < 60:
-            lam, vec = scipy.linalg.eigh(Kf.toarray(), Mf.toarray(), subset_by_index=[0, k - 1])
-        else:
-            v0 = np.random.default_rng(0).standard_normal(n)  # fixed start vector: reproducible to the bit
-            lam, vec = spla.eigsh(Kf, k=k, M=Mf, sigma=0.0, which="LM", v0=v0)
-        order = np.argsort(lam)
-        lam, vec = lam[order], vec[:, order]
+        k = min(self.n_modes, free.size)
+        lam, vec = lowest_modes(Kf, Mf, k)
         if np.any(lam <= 1e-9 * lam.max()):
             raise ValueError("the continuous beam has a mechanism (zero-frequency mode): check support_stiffness")
         vec = vec / np.sqrt(np.einsum("im,im->m", vec, Mf @ vec))

@@ -55,7 +55,6 @@ from pathlib import Path
 from typing import Optional
 
 import numpy as np
-import scipy.linalg
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
@@ -64,6 +63,7 @@ from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.continuous import beam_element_mass, beam_element_stiffness
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
 from vbikit.bridge.effects import LoadEffect
+from vbikit.bridge.eigen import lowest_modes
 from vbikit.bridge.nodal import NodalModes, _hermite
 from vbikit.bridge.sections import (
     AASHTO_GIRDERS,
@@ -471,13 +471,7 @@ class SlabOnGirderBridge(ModalBridge):
         want = self.n_modes if self.max_frequency is None else max(self.n_modes, 10)
         while True:
             k = min(want, n)
-            if k >= n - 1 or n < 60:
-                lam, vec = scipy.linalg.eigh(Kf.toarray(), Mf.toarray(), subset_by_index=[0, k - 1])
-            else:
-                v0 = np.random.default_rng(0).standard_normal(n)  # fixed start vector: reproducible to the bit
-                lam, vec = spla.eigsh(Kf, k=k, M=Mf, sigma=0.0, which="LM", v0=v0)
-            order = np.argsort(lam)
-            lam, vec = lam[order], vec[:, order]
+            lam, vec = lowest_modes(Kf, Mf, k)
             if self.max_frequency is None or k == n or np.sqrt(max(lam[-1], 0.0)) / (2 * np.pi) > self.max_frequency:
                 break
             want *= 2
