@@ -3,9 +3,12 @@ never read modes cached by an earlier version of the code and never write to the
 from __future__ import annotations
 
 import atexit
+import json
 import os
 import shutil
 import tempfile
+
+import pytest
 
 _CACHE = tempfile.mkdtemp(prefix="vbikit-test-cache-")
 os.environ["VBIKIT_CACHE_DIR"] = _CACHE
@@ -28,3 +31,21 @@ def pytest_unconfigure(config) -> None:
         sys.stdout.flush()
         sys.stderr.flush()
         atexit.register(_silence_process_exit)
+
+
+def _study_toml(d: dict) -> str:
+    """A study file's text from its dict form (name, seed, batch_size, base sections, axes)."""
+    lines = [f"name = {json.dumps(d['name'])}", f"seed = {d['seed']}", f"batch_size = {d['batch_size']}"]
+    for section, table in d["base"].items():
+        lines.append(f"[base.{section}]")
+        lines += [f"{k} = {json.dumps(v)}" for k, v in table.items()]
+    lines.append("[axes]")
+    for k, v in d["axes"].items():
+        lines.append(f'"{k}" = ' + (f"{{samples = {v['samples']}}}" if isinstance(v, dict) else json.dumps(v)))
+    return "\n".join(lines) + "\n"
+
+
+@pytest.fixture
+def study_toml():
+    """The function writing a study dict as study-file text (shared by the study and trust tests)."""
+    return _study_toml

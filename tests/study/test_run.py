@@ -121,12 +121,12 @@ def test_sigkill_mid_run_then_restart_gives_identical_dataset(tmp_path, small_st
 CLI_SCRIPT = "from vbikit.cli import main; main()"
 
 
-def test_ctrl_c_keeps_finished_batches_and_resume_is_identical(tmp_path, small_study_dict):
+def test_ctrl_c_keeps_finished_batches_and_resume_is_identical(tmp_path, small_study_dict, study_toml):
     """SIGINT (Ctrl-C) to `vbikit study run`: exit code 130, finished batches kept, resume identical."""
     small_study_dict["batch_size"] = 1
     small_study_dict["axes"]["road.seed"] = {"samples": 6}
     small_study_dict["base"]["crossing"]["speed_kmh"] = 40
-    toml = _to_toml(small_study_dict)
+    toml = study_toml(small_study_dict)
     (tmp_path / "s.toml").write_text(toml)
     out = tmp_path / "int.nc"
     proc = subprocess.Popen([sys.executable, "-c", CLI_SCRIPT, "study", "run", str(tmp_path / "s.toml"), "--out",
@@ -145,18 +145,6 @@ def test_ctrl_c_keeps_finished_batches_and_resume_is_identical(tmp_path, small_s
     assert 3 <= n_done < len(study.batches())
     resumed = run_study(study, out, workers=2)
     xr.testing.assert_identical(run_study(study, tmp_path / "ref.nc", workers=1), resumed)
-
-
-def _to_toml(d: dict) -> str:
-    base = d["base"]
-    lines = [f'name = "{d["name"]}"', f'seed = {d["seed"]}', f'batch_size = {d["batch_size"]}']
-    for section, table in base.items():
-        lines.append(f"[base.{section}]")
-        lines += [f"{k} = {json.dumps(v)}" for k, v in table.items()]
-    lines.append("[axes]")
-    for k, v in d["axes"].items():
-        lines.append(f'"{k}" = ' + (f"{{ samples = {v['samples']} }}" if isinstance(v, dict) else json.dumps(v)))
-    return "\n".join(lines) + "\n"
 
 
 def test_study_without_axes_is_one_crossing(tmp_path, small_study_dict):

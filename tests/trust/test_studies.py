@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import copy
 import errno
-import json
 import shutil
 import time
 
@@ -28,25 +27,14 @@ SMALL = {
 }
 
 
-def _toml(d: dict) -> str:
-    lines = [f"name = {json.dumps(d['name'])}", f"seed = {d['seed']}", f"batch_size = {d['batch_size']}"]
-    for section, table in d["base"].items():
-        lines.append(f"[base.{section}]")
-        lines += [f"{k} = {json.dumps(v)}" for k, v in table.items()]
-    lines.append("[axes]")
-    for k, v in d["axes"].items():
-        lines.append(f'"{k}" = ' + (f"{{samples = {v['samples']}}}" if isinstance(v, dict) else json.dumps(v)))
-    return "\n".join(lines) + "\n"
-
-
-def test_ten_million_crossings_refused_quickly_without_yes(tmp_path):
+def test_ten_million_crossings_refused_quickly_without_yes(tmp_path, study_toml):
     d = copy.deepcopy(SMALL)
     d["axes"] = {"crossing.speed_kmh": list(range(40, 140, 10)), "crossing.approach": list(range(1, 11)),
                  "crossing.free_vibration": [0.1 * i for i in range(1, 11)], "tire.n_points": list(range(1, 11)),
                  "tire.contact_length": [0.1 + 0.01 * i for i in range(10)], "road.n_max": [1.0 + i for i in range(10)],
                  "road.seed": list(range(10))}
     path = tmp_path / "big.toml"
-    path.write_text(_toml(d))
+    path.write_text(study_toml(d))
     t0 = time.perf_counter()
     for cmd in (["study", "validate", str(path)], ["study", "run", str(path), "--out", str(tmp_path / "b.nc")]):
         res = runner.invoke(app, cmd)
@@ -105,9 +93,9 @@ def test_damaged_and_foreign_parts_are_moved_aside_and_recomputed(tmp_path, capl
     assert f"{parts[1]} is unusable: it holds batch 0, not batch 1" in caplog.text
 
 
-def test_full_disk_exits_2_and_resumes(tmp_path, monkeypatch):
+def test_full_disk_exits_2_and_resumes(tmp_path, monkeypatch, study_toml):
     path = tmp_path / "s.toml"
-    path.write_text(_toml(SMALL))
+    path.write_text(study_toml(SMALL))
     out = tmp_path / "r.nc"
     import vbikit.study.run as run_mod
 
@@ -129,16 +117,16 @@ def test_full_disk_exits_2_and_resumes(tmp_path, monkeypatch):
     assert out.exists() and not parts_dir(out).exists()
 
 
-def test_unwritable_out_is_not_reported_as_a_lock(tmp_path):
+def test_unwritable_out_is_not_reported_as_a_lock(tmp_path, study_toml):
     path = tmp_path / "s.toml"
-    path.write_text(_toml(SMALL))
+    path.write_text(study_toml(SMALL))
     res = runner.invoke(app, ["study", "run", str(path), "--out", "/proc/x.nc", "--workers", "1"])
     assert res.exit_code == 2 and "another vbikit study" not in res.output and "/proc" in res.output, res.output
 
 
-def test_full_disk_while_writing_a_part_exits_2_and_resumes(tmp_path, monkeypatch):
+def test_full_disk_while_writing_a_part_exits_2_and_resumes(tmp_path, monkeypatch, study_toml):
     path = tmp_path / "s.toml"
-    path.write_text(_toml(SMALL))
+    path.write_text(study_toml(SMALL))
     out = tmp_path / "r.nc"
     import vbikit.study.run as run_mod
 
@@ -160,12 +148,12 @@ def test_full_disk_while_writing_a_part_exits_2_and_resumes(tmp_path, monkeypatc
     assert res.exit_code == 0, res.output
 
 
-def test_histories_must_fit_the_memory_budget(tmp_path):
+def test_histories_must_fit_the_memory_budget(tmp_path, study_toml):
     path = tmp_path / "s.toml"
     d = copy.deepcopy(SMALL)
     d["axes"]["road.seed"] = {"samples": 1000}
-    path.write_text(_toml(d))
+    path.write_text(study_toml(d))
     assert runner.invoke(app, ["study", "validate", str(path), "--max-memory", "8MB"]).exit_code == 0
-    path.write_text(_toml(d).replace('batch_size = 2', 'batch_size = 2\nhistories = true'))
+    path.write_text(study_toml(d).replace('batch_size = 2', 'batch_size = 2\nhistories = true'))
     res = runner.invoke(app, ["study", "validate", str(path), "--max-memory", "8MB"])
     assert res.exit_code == 2 and "histories = true" in res.output, res.output
