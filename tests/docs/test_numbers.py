@@ -2,7 +2,6 @@
 docs/figures/numbers.json; the pages render it through generated blocks)."""
 from __future__ import annotations
 
-import importlib.util
 import json
 from pathlib import Path
 
@@ -11,26 +10,19 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _numbers_module():
-    spec = importlib.util.spec_from_file_location("vbikit_docs_numbers", ROOT / "docs" / "scripts" / "doc_numbers.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
 STORED = json.loads((ROOT / "docs" / "figures" / "numbers.json").read_text())
 HINT = "the code no longer gives the numbers the docs quote: run python docs/scripts/doc_numbers.py, then generate.py"
 
 
-def test_fig9_table_is_reproduced():
+def test_fig9_table_is_reproduced(docs_script):
     # the same four crossings again; the solver is deterministic (measured: equal to the last digit)
-    now = _numbers_module().fig9()
+    now = docs_script("doc_numbers").fig9()
     for label, row in STORED["fig9"].items():
         for key, value in row.items():
             assert now[label][key] == pytest.approx(value, rel=1e-9, abs=1e-9), f"{label} {key}: {HINT}"
 
 
-def test_roughness_readings_are_reproduced():
-    now = _numbers_module().roughness()
+def test_roughness_readings_are_reproduced(docs_script):
+    now = docs_script("doc_numbers").roughness()
     for key, value in STORED["roughness"].items():
         assert now[key] == pytest.approx(value, rel=1e-9), f"{key}: {HINT}"

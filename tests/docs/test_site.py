@@ -2,7 +2,6 @@
 the repository points outside it."""
 from __future__ import annotations
 
-import importlib.util
 import re
 import subprocess
 import sys
@@ -11,15 +10,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _generate_module():
-    spec = importlib.util.spec_from_file_location("vbikit_docs_generate", ROOT / "docs" / "scripts" / "generate.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_generated_pages_match_the_code():
-    stale = _generate_module().stale(write=False)
+def test_generated_pages_match_the_code(docs_script):
+    stale = docs_script("generate").stale(write=False)
     assert not stale, f"regenerate with `python docs/scripts/generate.py`: {', '.join(stale)} differ from the code"
 
 
