@@ -1,0 +1,143 @@
+"""Independent cross-check of the skewed slab-on-girder deck against a skewed grillage built in
+OpenSeesPy, and the point symmetry of a skewed deck's modes.
+
+The OpenSees model is the "oblique mesh" grillage (Hambly, *Bridge Deck Behaviour*, 2nd ed. 1991,
+§5; ospgrillage's oblique mesh) built directly in openseespy, like the straight deck's cross-check
+(``test_opensees_crosscheck.py``): girder lines along x at y_j, nodes at the stations ξ_i along each
+girder placed at global (ξ_i + y_j tan θ, y_j), so that every station lies on a line parallel to the
+skewed support lines (x − y tan θ = const).  Girder members join consecutive nodes of a line
+(same composite section, lumped girder mass and rotary inertia as the straight check); slab strips
+(and diaphragms) join neighbouring lines along the skew direction, length s / cos θ, with the slab
+width measured perpendicular to the member, l_i cos θ (l_i the station's tributary length along
+the girders), so EI = E t³ l_i cos θ / (12 (1 − ν²)), GJ = G t³ l_i cos θ / 6 and the consistent
+slab mass μ l_i cos θ per member length; a diaphragm keeps its section on the longer member.
+OpenSees' ``geomTransf`` does the rotation of each member's stiffness into the global DOFs: the
+transverse members' local z axis is the in-plane normal (cos θ, −sin θ, 0), so their strong-axis
+I_z gives vertical bending.  Section properties are worked out again here from the documented
+formulas (docs/bridges.md), not taken from vbikit.  Bearings restrain u_z at every girder node on
+the two support lines.  In-plane DOFs are fixed (a grillage); overhang zero, as in the straight check.
+
+Expected agreement: frequencies as the straight check (lumped vs consistent girder mass); static
+deflections and reactions under the same nodal loads to solver round-off.
+
+Runs when the optional ``opensees`` extra is installed (it is in the ``test`` extra on Linux).
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from test_opensees_crosscheck import build_grillage, ops  # noqa: F401 - the ops fixture
+
+from vbikit.bridge import paper_deck
+
+IN = 0.0254
+L = 16.76  # Bridge 2 span [m]
+
+
+def build_skew_grillage(ops, span, n_el, skew_deg, log_path, diaphragm_xi=None):  # noqa: F811
+    """Bridge-2 grillage (five Type II girders at 2.13 m, no overhang) with support lines skewed by
+    ``skew_deg`` [°]; returns node tags [line, station], the stations ξ [m], the lines' y [m] and
+    the node coordinates x[line, station] [m]."""
+    ops.wipe()
+    ops.logFile(str(log_path), "-noEcho")
+    ops.model("basic", "-ndm", 3, "-ndf", 6)
+    s, t = 2.13, 0.20
+    Eg, Ed, nu, rho = 36e9, 33e9, 0.2, 2400.0
+    Gg, Gd = Eg / (2 * (1 + nu)), Ed / (2 * (1 + nu))
+    A, yb, h, I = 369 * IN**2, 15.83 * IN, 36 * IN, 50979 * IN**4  # AASHTO Type II (PCI)
+    Jg = A**4 / (4 * np.pi**2 * I)  # Saint-Venant estimate, as documented
+    th = np.radians(skew_deg)
+    c, sn, tn = np.cos(th), np.sin(th), np.tan(th)
+    xi = np.linspace(0, span, n_el + 1)
+    ys = (np.arange(5) - 2) * s
+    xg = xi[None, :] + ys[:, None] * tn
+    trib_y = np.array([s / 2, s, s, s, s / 2])
+    tag = {}
+    for j, y in enumerate(ys):
+        for i in range(xi.size):
+            tag[j, i] = 1000 * j + i + 1
+            ops.node(tag[j, i], float(xg[j, i]), float(y), 0.0)
+            ops.fix(tag[j, i], 1, 1, 0, 0, 0, 1)  # grillage: in-plane DOFs fixed
+    for j in range(5):
+        for i in (0, n_el):
+            ops.fix(tag[j, i], 0, 0, 1, 0, 0, 0)  # bearings on the two skewed support lines
+    ops.geomTransf("Linear", 1, 0.0, 1.0, 0.0)  # girders along x: local z = global y
+    ops.geomTransf("Linear", 2, float(c), float(-sn), 0.0)  # strips along (sin θ, cos θ): local z = in-plane normal
+    ele = 1
+    hx = xi[1] - xi[0]
+    for j in range(5):
+        b = trib_y[j]
+        n = Ed / Eg
+        Ad, yd = n * b * t, h + t / 2
+        yna = (A * yb + Ad * yd) / (A + Ad)
+        Ic = I + A * (yna - yb) ** 2 + n * b * t**3 / 12 + Ad * (yd - yna) ** 2
+        GJ = Gg * Jg + Gd * t**3 / 6 * b
+        for i in range(n_el):
+            ops.element("elasticBeamColumn", ele, tag[j, i], tag[j, i + 1], A + Ad, Eg, Gg, GJ / Gg, 1.0, Ic, 1)
+            ele += 1
+        for i in range(n_el + 1):
+            lx = hx / 2 if i in (0, n_el) else hx
+            ops.mass(tag[j, i], 0.0, 0.0, rho * A * lx, rho * I * lx, 0.0, 0.0)
+    Dd, bd = 0.75 * h, 0.25
+    GJd = Gd * (1 - 0.63 * bd / Dd) / 3 * Dd * bd**3
+    dxi = (0.0, span / 2, span) if diaphragm_xi is None else diaphragm_xi
+    for i, x in enumerate(xi):
+        w = (hx / 2 if i in (0, n_el) else hx) * c  # strip width perpendicular to the member
+        n_d = sum(abs(x - d) < 1e-9 for d in dxi)
+        Iz = t**3 * w / (12 * (1 - nu**2)) + n_d * bd * Dd**3 / 12
+        J = t**3 / 6 * w + n_d * GJd / Gd
+        m = rho * t * w + n_d * rho * bd * Dd
+        for j in range(4):
+            ops.element("elasticBeamColumn", ele, tag[j, i], tag[j + 1, i], t * w, Ed, Gd, J, 1.0, Iz, 2, "-mass", m, "-cMass")
+            ele += 1
+    return tag, xi, ys, xg
+
+
+def static_nodal(ops, tag, pts):  # noqa: F811
+    """Linear static OpenSees analysis under downward nodal forces pts [(line j, station i, P [N])]."""
+    ops.timeSeries("Constant", 1)
+    ops.pattern("Plain", 1, 1)
+    for j, i, P in pts:
+        ops.load(tag[j, i], 0.0, 0.0, -P, 0.0, 0.0, 0.0)
+    ops.system("UmfPack")
+    ops.numberer("RCM")
+    ops.constraints("Plain")
+    ops.integrator("LoadControl", 1.0)
+    ops.algorithm("Linear")
+    ops.analysis("Static")
+    assert ops.analyze(1) == 0
+    ops.reactions()
+
+
+def truck_nodes(xg, axles, lines=(2, 3)):
+    """HS20-44 axles [(x [m], axle load [N])] perpendicular to the girders, each split over the
+    wheel lines above ``lines``, at the node of each line nearest to the axle: [(j, i, P)]."""
+    return [(j, int(np.argmin(np.abs(xg[j] - x))), P / 2) for x, P in axles for j in lines]
+
+
+AXLES = [(12.5, 35.6e3), (12.5 - 4.27, 142.3e3), (12.5 - 8.54, 142.3e3)]  # HS20-44 [m, N] (AASHTO)
+
+
+def frequencies(ops, k):  # noqa: F811
+    return np.sqrt(np.array(ops.eigen("-fullGenLapack", k))) / (2 * np.pi)
+
+
+# ---------------------------------------------------------------- the OpenSees model on its own
+def test_skew_zero_is_the_straight_opensees_grillage(ops, tmp_path):  # noqa: F811
+    bridge = paper_deck(2, n_modes=8, overhang=0.0)
+    build_grillage(ops, bridge, tmp_path / "a.log")
+    f_straight = frequencies(ops, 6)
+    build_skew_grillage(ops, L, bridge.element_count, 0.0, tmp_path / "b.log")
+    f_skew0 = frequencies(ops, 6)
+    assert np.array_equal(f_skew0, f_straight)
+
+
+@pytest.mark.parametrize("skew", [20.0, 40.0])
+def test_opensees_skew_reactions_balance_the_load(ops, tmp_path, skew):  # noqa: F811
+    n_el = 34
+    tag, xi, ys, xg = build_skew_grillage(ops, L, n_el, skew, tmp_path / "ops.log")
+    pts = truck_nodes(xg, AXLES)
+    static_nodal(ops, tag, pts)
+    R = sum(ops.nodeReaction(tag[j, i], 3) for j in range(5) for i in (0, n_el))
+    total = sum(P for _, _, P in pts)
+    assert R == pytest.approx(total, rel=1e-10)
