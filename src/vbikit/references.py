@@ -153,6 +153,28 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("OHBDC1983", "manual", "Ontario Highway Bridge Design Code", "1983",
        "dynamic amplification as a function of the first flexural frequency, a design-code line beside the IM",
        organization="Ontario Ministry of Transportation and Communications", address="Downsview, Ontario", edition="2nd"),
+    _R("LLAnalyzer", "software", "LL Analyzer: live load analysis of continuous beams under the CL-625 truck", "n.d.",
+       "second source for the CSA S6 dynamic load allowance by the axles that govern (0.40 one axle, 0.30 two "
+       "axles or axles 1–3, 0.25 other groups of three or more), as it implements them for the CL-625 truck",
+       organization="GitHub user sumonrh", url="https://github.com/sumonrh/ll-analyzer",
+       note="README, section 'Analysis Rules and Accuracy', and src/beam-engine.ts, function truckGroupDla, read "
+            "at commit 04e7d3c; the same rule (an automatic DLA of 40, 30 or 25 per cent by the selected axles) in the "
+            "release notes of OpenSees Studio 1.0.14 (github.com/sumonrh/OpenSeesStudio). Neither names the CSA S6 "
+            "edition or clause"),
+    _R("IxiawenJTG", "misc", "Worked answer: impact coefficient of a 30 m simply supported T-girder highway bridge "
+       "with a fundamental frequency of 4.5 Hz (question 26692305)", "n.d.",
+       "second source for the JTG D60 impact coefficient μ = 0.1767 ln f − 0.0157 (1.5 ≤ f ≤ 14 Hz); "
+       "worked value μ(4.5 Hz) = 0.25",
+       organization="app.ixiawen.com question bank",
+       url="https://app.ixiawen.com/question/26692305/4ee8f276ad20abb8d4b8c099ae5a33d2.html",
+       note="In Chinese; the answer cites JTG D60-2004 §4.3.2 item 5, p. 26. The same question and answer at "
+            "ti.zuoweng.com/ti/eVANKKKQ (2019-12-17); other answers of the bank (e.g. question 1579277) quote the "
+            "formula with the same clause"),
+    _R("Ngan2022", "article", "ospgrillage: A bridge deck grillage analysis preprocessor for OpenSeesPy", "2022",
+       "ospgrillage, whose live OpenSees models the mode import is tested on (tests/verification/test_ospgrillage_import.py)",
+       authors=("Ngan, J. W.", "Caprani, Colin C."), journal="Journal of Open Source Software", volume="7",
+       number="77", pages="4404", doi="10.21105/joss.04404", checked=False,
+       url="https://pypi.org/project/ospgrillage/"),
     _R("Newmark1959", "article", "A method of computation for structural dynamics", "1959",
        "the Newmark average-acceleration integrator (crossing.integrator = \"newmark\")",
        authors=("Newmark, Nathan M.",), journal="Journal of the Engineering Mechanics Division (ASCE)", volume="85",
@@ -220,7 +242,8 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "integrator:rk4": ("MultiPointTire",),
     "integrator:newmark": ("Newmark1959",),
     "integrator:exact": ("NigamJennings1969", "Chopra2017"),
-    "impact:code-lines": ("AASHTO-LRFD", "AASHTO-Standard2002", "CSA-S6-2019", "OHBDC1983", "JTG-D60-2015"),
+    "impact:code-lines": ("AASHTO-LRFD", "AASHTO-Standard2002", "CSA-S6-2019", "OHBDC1983", "JTG-D60-2015",
+                          "LLAnalyzer", "IxiawenJTG"),
     "bridge:continuous-beam": ("Blevins1979", "pycba"),
     "vehicle:3s2": ("Cantero2024",),
     "vehicle:axles": ("AASHTO-Standard2002",),

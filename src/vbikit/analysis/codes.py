@@ -3,7 +3,7 @@
 Each function returns the code's allowance as a fraction of the static load effect (IM, DLA,
 μ — all "the dynamic increment over the static effect", comparable with vbikit's IM).  Sources
 and the second source each value was checked against are listed in ``docs/bridges.md``
-("Design-code allowances").
+("Design-code allowances"); for the OHBDC curve none has been found.
 
 * AASHTO LRFD Bridge Design Specifications, Table 3.6.2.1-1: IM = 0.33 for all limit states
   but fatigue (0.15) and deck joints (0.75), applied to the design truck or tandem.
@@ -11,7 +11,8 @@ and the second source each value was checked against are listed in ``docs/bridge
   I = 50 / (L + 125) ≤ 0.30 with L [ft] the loaded length (3.8.2.2: the span for sagging
   moment and shear, the mean of the two adjacent spans for hogging moment over a support).
 * CSA S6 (Canadian Highway Bridge Design Code), 3.8.4.5.3: DLA = 0.40 when one axle of the
-  CL-W truck governs, 0.30 for two axles, 0.25 for three or more.
+  CL-W truck governs, 0.30 for two axles or for axles Nos. 1–3 (the steering axle and the tandem),
+  0.25 for any other three or more.
 * Ontario Highway Bridge Design Code (OHBDC), 1983: DAF from the first flexural frequency,
   0.40 for 2.5–4.5 Hz, linear to 0.20 at 1 Hz and at 6 Hz, 0.20 below 1 Hz and above 6 Hz.
 * China JTG D60-2015, §4.3.2: μ = 0.05 for f < 1.5 Hz, 0.1767 ln f − 0.0157 for
@@ -40,11 +41,14 @@ def aashto_standard(loaded_length: float) -> float:
     return min(50.0 / (loaded_length * FT_PER_M + 125.0), 0.30)
 
 
-def csa_s6(n_axles: int) -> float:
-    """CSA S6 DLA [-] by the number of axles of the truck that govern: 1 → 0.40, 2 → 0.30, ≥ 3 → 0.25."""
+def csa_s6(n_axles: int, cl_w_front_axles: bool = False) -> float:
+    """CSA S6 DLA [-] by the number of axles that govern: 1 → 0.40, 2 → 0.30, ≥ 3 → 0.25, except
+    0.30 for three axles that are Nos. 1–3 of the CL-W truck (``cl_w_front_axles``)."""
     if int(n_axles) != n_axles or n_axles < 1:
         raise ValueError(f"n_axles must be an integer >= 1, got {n_axles!r}")
-    return 0.40 if n_axles == 1 else 0.30 if n_axles == 2 else 0.25
+    if cl_w_front_axles and n_axles != 3:
+        raise ValueError(f"cl_w_front_axles applies to three axles (Nos. 1–3 of the CL-W truck), got n_axles={n_axles!r}")
+    return 0.40 if n_axles == 1 else 0.30 if n_axles == 2 or cl_w_front_axles else 0.25
 
 
 def ohbdc_1983(first_frequency: float) -> float:
