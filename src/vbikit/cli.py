@@ -137,7 +137,7 @@ def _execute(load: Any, limits: Any = None) -> _Run:
         built = plan.built
         result = simulate(built.crossing, limits)
         response = point_response(result, built.response_x, built.response_y)
-        girders = girder_responses(result, built.response_x)
+        girders = girder_responses(result, built.response_x, built.response_y)
         s = summary(result, response, girders, built.response_girder)
         s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
         s["inputs"] = scenario_inputs(scenario, plan)
@@ -200,8 +200,9 @@ def _print_summary(run: _Run) -> None:
                      f"measured {road['profile_file']}" if "profile_file" in road else "smooth")
         if road.get("defects"):
             road_text += f"; defects: {', '.join(road['defects'])}"
+        deck = "".join(f", {k} {v}" for k, v in inp.get("bridge_deck", {}).items())
         typer.echo(f"  bridge               {inp['bridge']} (span {inp['span']:g} m, {inp['n_modes']} modes, "
-                   f"damping {inp['damping_ratio']:.3g})")
+                   f"damping {inp['damping_ratio']:.3g}{deck})")
         several = "vehicles" in inp
         for i, v in enumerate(inp["vehicles"] if several else [inp], start=1):
             motion = f", {v['direction']}, entering at {v['entry_time']:g} s, y = {v['lateral_offset']:g} m" if several else ""

@@ -203,7 +203,7 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "diaphragms": (None, [4.0]), "diaphragm_width": (0.25, 0.5), "diaphragm_depth": (None, 0.8),
         "bearing_stiffness": (None, 1e8), "parapet_EI": (0.0, 1e9), "parapet_mass": (0.0, 500.0),
         "extra_mass_per_area": (0.0, 200.0), "max_frequency": (None, 60.0), "n_elements": (10, 12),
-        "default_lateral_offset": (0.0, 0.5), "default_girder": (1, 2), "spans": (None, [4.0, 4.0]),
+        "default_lateral_offset": (0.0, 0.5), "default_girder": (1, 2), "spans": (None, [4.0, 4.0]), "skew": (0.0, 15.0),
     }
     for key, (a, b) in deck_values.items():
         base = slab if key not in ("diaphragm_width", "diaphragm_depth") else _set(slab, "bridge.deck.diaphragms", [4.0])

@@ -18,6 +18,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.timestep import choose_time_step
@@ -32,7 +33,8 @@ SUPPORT_MARGIN = 0.02
 STEPS_PER_PERIOD = 5.0
 
 
-def input_warnings(crossing: Crossing, dt: float, response_x: float | None = None) -> list[str]:
+def input_warnings(crossing: Crossing, dt: float, response_x: float | None = None,
+                   response_y: float | None = None) -> list[str]:
     """Warnings about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
     out: list[str] = []
     lo, hi = SPEED_RANGE_KMH
@@ -58,9 +60,17 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
         if peak > MAX_ROAD_FEATURE:
             out.append(f"road: the {side}profile reaches {peak:.3g} m where the wheels go (more than {MAX_ROAD_FEATURE} m); "
                        "road elevations are in metres — check the profile's unit or the defect sizes")
-    span = crossing.bridge.span
-    x = span / 2 if response_x is None else float(response_x)
-    if min(x, span - x) < SUPPORT_MARGIN * span:
+    bridge = crossing.bridge
+    span = bridge.span
+    y = bridge.default_response_y if response_y is None else float(response_y)
+    x = bridge.default_x_at(y) if response_x is None else float(response_x)
+    xi = float(bridge.span_coordinate(x, y))  # along the span from the support line (skew decks)
+    skew = float(getattr(bridge, "skew", 0.0) or 0.0)
+    if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
+        out.append(f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the skew (oblique mesh), "
+                   f"which grillage practice keeps to skews up to {OBLIQUE_MESH_ADVISED_SKEW:g}° (ospgrillage's meshing rules); expect "
+                   "transverse load sharing near the obtuse corners to be less accurate")
+    if min(xi, span - xi) < SUPPORT_MARGIN * span:
         out.append(f"response.x = {x:g} m is at or next to a support (span {span:g} m): the static response there is "
                    "near zero and the impact factor is not meaningful")
     if crossing.dt is not None:
@@ -106,6 +116,6 @@ def contact_warnings(result: CrossingResult) -> list[str]:
     return out
 
 
-def run_warnings(result: CrossingResult, response_x: float | None = None) -> list[str]:
+def run_warnings(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[str]:
     """Every warning about a finished crossing: its inputs and its contact losses."""
-    return input_warnings(result.crossing, result.dt, response_x) + contact_warnings(result)
+    return input_warnings(result.crossing, result.dt, response_x, response_y) + contact_warnings(result)

@@ -41,7 +41,7 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
     ``default_response_y`` (its default girder on a slab-on-girder deck, as in scenarios)."""
     bridge = result.crossing.bridge
     x, y = result.point(x, y)
-    if not (math.isfinite(y) and 0.0 <= x <= bridge.span):
+    if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
         raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
     phi = bridge.mode_shapes([x], [y])[0]
     eps = bridge.strain_shapes([x], [y])[0]
@@ -76,13 +76,20 @@ def contact_loss(result: CrossingResult) -> dict[str, dict[str, float | bool]]:
     return out
 
 
-def girder_responses(result: CrossingResult, x: float | None = None) -> list[PointResponse]:
-    """Responses at x (default midspan) on every girder line of a bridge with ``girder_y``
-    (Girder 1 first); an empty list for bridges without girders (a beam)."""
-    girder_y = getattr(result.crossing.bridge, "girder_y", None)
+def girder_responses(result: CrossingResult, x: float | None = None, y: float | None = None) -> list[PointResponse]:
+    """Responses on every girder line of a bridge with ``girder_y`` (Girder 1 first) at the section of
+    the response point (x, y) (default: the bridge's; x default midspan) — the same x on a square
+    deck, the same station ξ = x − y tan θ along the girders on a skew deck; an empty list for
+    bridges without girders (a beam)."""
+    bridge = result.crossing.bridge
+    girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
         return []
-    return [point_response(result, x, float(y)) for y in girder_y]
+    if x is None:
+        return [point_response(result, bridge.default_x_at(float(g)), float(g)) for g in girder_y]
+    y0 = bridge.default_response_y if y is None else float(y)
+    xi = float(bridge.span_coordinate(x, y0))
+    return [point_response(result, x + (xi - float(bridge.span_coordinate(x, float(g)))), float(g)) for g in girder_y]
 
 
 def girder_summary(girders: list[PointResponse]) -> dict[str, object]:
@@ -141,7 +148,7 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "integrator": crossing.integrator,
         "speed": crossing.speed if not crossing.vehicles else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
-        "warnings": run_warnings(result, response.x),
+        "warnings": run_warnings(result, response.x, response.y),
     } | ({"response_girder": response_girder,
           "lateral_offset": crossing.lateral_offset if not crossing.vehicles else [m.lateral_offset for m in crossing.vehicles],
           **girder_summary(girders)} if girders else {}) | ({"vehicles": vehicle_summaries(result)} if crossing.vehicles else {})

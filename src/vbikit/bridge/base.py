@@ -39,6 +39,25 @@ class ModalBridge(abc.ABC):
         continuous beam: the middle of its first span)."""
         return 0.5 * self.span
 
+    def default_x_at(self, y: float) -> float:
+        """x [m] of the default response section on the line at lateral position y [m]:
+        ``default_response_x`` (a skew deck: shifted with its support lines)."""
+        return self.default_response_x
+
+    @property
+    def deck_extent(self) -> tuple[float, float]:
+        """(x_first, x_last) [m]: the x range of the deck over its whole width — the mode shapes
+        vanish outside it.  0 … span; a skew deck reaches beyond both (its support lines are
+        oblique)."""
+        return 0.0, float(self.span)
+
+    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+        """ξ [m] of deck points (x, y): the distance along the span from the entry support line at
+        the point's y — x itself; on a skew deck x − y·tan(skew).  A point is on the deck while
+        0 ≤ ξ ≤ span."""
+        x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+        return np.array(x, float)
+
     @property
     def default_response_y(self) -> float:
         """y [m] of the deck point responses and impact factors are read at when no y is given

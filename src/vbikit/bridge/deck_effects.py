@@ -35,16 +35,24 @@ if TYPE_CHECKING:
 
 def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArray[np.float64]
                  ) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.intp], NDArray[np.float64]]:
-    """Consistent load of unit upward forces at (x, y), vectorised (as ``load_vector``): DOF indices
-    and coefficients (n, 12), the element index e of each point and its line shares c (n, n_lines)."""
+    """Consistent load of unit upward forces at (x, y): DOF indices and coefficients (n, 12), the
+    element index e of each point and its line shares c (n, n_lines).  Along the lines: Hermite in
+    ξ = x − y tan θ on (w, ∂w/∂x), linear on ∂w/∂y; across them (along the transverse members):
+    Hermite on w and on the slope along the members, ∂w/∂y + tan θ ∂w/∂x — the interpolation of
+    :class:`~vbikit.bridge.nodal.NodalModes` with the FE model's linear transverse slopes.  Points
+    off the deck (ξ outside 0 … span) get zero coefficients."""
     xs, ys = bridge.stations, bridge.girder_y
     nx = bridge.element_count
+    tan = bridge.skew_tan
     x = np.asarray(x, float).ravel()
     y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+    if tan:
+        x = x - y * tan  # ξ
     e = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, nx - 1)
     h = xs[e + 1] - xs[e]
     t = (x - xs[e]) / h
     nxh = _hermite(t, h, 0)
+    nxh1 = _hermite(t, h, 1) if tan else None
     nxl = (1 - t, t)
     n = x.size
     if ys.size == 1:
@@ -75,10 +83,16 @@ def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArra
             idx[:, k], coef[:, k] = node, cw * nxh[2 * a]
             idx[:, k + 1], coef[:, k + 1] = node + 1, cw * nxh[2 * a + 1]
             idx[:, k + 2], coef[:, k + 2] = node + 2, cs * nxl[a]
+            if nxh1 is not None:  # the slope along an oblique member holds tan θ ∂w/∂x
+                coef[:, k] += cs * tan * nxh1[2 * a]
+                coef[:, k + 1] += cs * tan * nxh1[2 * a + 1]
             k += 3
+    off = (x < 0.0) | (x > xs[-1])
+    coef[off] = 0.0
     shares = np.zeros((n, ys.size))
     np.add.at(shares, (np.arange(n), j0), cw0)
     np.add.at(shares, (np.arange(n), j1), cw1)
+    shares[off] = 0.0
     return idx, coef, e, shares
 
 
@@ -143,10 +157,14 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
             return (v[idx] * coef).sum(axis=1)
 
         length = spans[0] if support == 0 else spans[-1] if support == spans.size else 0.5 * (spans[support - 1] + spans[support])
-        return LoadEffect("reaction", float(sx[support]), modal, influence, float(length), girder=girder, support=support)
-    if x is None or not 0.0 <= x <= bridge.span:
-        raise ValueError(f"{kind}: section x must be within 0 … {bridge.span:g} m, got {x!r}")
-    s = float(x)
+        return LoadEffect("reaction", float(bridge.girder_x(girder, sx[support])), modal, influence, float(length),
+                          girder=girder, support=support)
+    y_line = float(bridge.girder_y[j])
+    xi_s = None if x is None else float(bridge.span_coordinate(x, y_line))
+    if xi_s is None or not 0.0 <= xi_s <= bridge.span:
+        where = "" if not bridge.skew else f" (girder {girder}'s bearings are at x = {bridge.girder_x(girder, 0.0):.6g} and {bridge.girder_x(girder, bridge.span):.6g} m)"
+        raise ValueError(f"{kind}: section x must be within the span 0 … {bridge.span:g} m{where}, got {x!r}")
+    s = xi_s  # the section's ξ (= x without skew)
     e = int(np.clip(np.searchsorted(xs, s, side="right") - 1, 0, nx - 1))
     a, b = xs[e], xs[e + 1]
     h = b - a
@@ -160,7 +178,7 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
     g[dofs] = row
     v = _field(bridge, g)
     if kind == "moment":
-        modal = EI * modes.curvatures([s], j)[0]
+        modal = EI * modes.line_values(np.array([s]), 2)[j, 0]
     else:
         k2 = modes.line_values(np.array([a, b]), 2)[j]  # curvatures at the element ends
         m_line = float(bridge.line_properties["m"][j])
@@ -174,7 +192,7 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
         inside = el == e
         if np.any(inside):
             c = shares[inside, j]
-            xi = xp[inside]
+            xi = bridge.span_coordinate(xp[inside], np.broadcast_to(np.asarray(yp, float), xp.shape)[inside])
             n = _hermite((xi - a) / h, h, 0)
             if kind == "moment":
                 out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))
@@ -188,4 +206,5 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
         length = 0.5 * (spans[k - 1] + spans[k])
     else:
         length = spans[bridge.span_index(s)]
-    return LoadEffect(kind, s, modal, influence, float(length), girder=girder, hogging_region=bool(kind == "moment" and interior))
+    return LoadEffect(kind, float(x), modal, influence, float(length), girder=girder,
+                      hogging_region=bool(kind == "moment" and interior))

@@ -33,7 +33,22 @@ diaphragms (rectangle b_d × h_d of deck concrete) add E b_d h_d³ / 12, G β h_
 mass ρ b_d h_d.  (Along x the deck mass is thus lumped at the stations: O(h²) convergence.)
 
 Supports: every girder bearing restrains w at x = 0 and x = span (rigid, or a vertical spring
-of ``bearing_stiffness`` [N/m] per bearing).  A single-girder model is also restrained in twist
+of ``bearing_stiffness`` [N/m] per bearing).
+
+Skew supports (``skew`` = θ [°], |θ| ≤ 45°; the oblique ("skew") grillage mesh of Hambly, *Bridge
+Deck Behaviour*, 2nd ed., 1991, ch. 5, and ospgrillage's ``Oblique`` mesh).  The support lines pass through (x_k, 0) on the deck centreline (x_k = 0,
+the interior supports, span) at θ to the y axis: a point (x, y) lies on support line k when
+ξ = x − y tan θ = x_k; θ > 0 puts the left (y > 0) end of a support line further along +x.  ξ is
+the distance along a girder from its entry bearing: the stations are stations of ξ, girder line j's
+node i lies at x = ξ_i + y_j tan θ, and diaphragm and damage positions are ξ.  The transverse
+members run along the skew, between the nodes of one station: length s / cos θ, slab strip width
+l_i cos θ (so each strip still carries the deck area l_i s), bending on the slope along the member
+and torsion on the slope across it, transformed to the nodes' (∂w/∂x, ∂w/∂y).  The overhang strips
+move with the girder's section normal to x, as without skew (a second-order difference from the
+oblique section the mode shapes are extrapolated along).  θ = 0 is exactly the rectangular deck.
+Grillage practice keeps the oblique mesh to moderate skew: ospgrillage's meshing rules (its
+documentation, "Meshing types and rules", "based on common industrial practice of grillage
+analysis") allow it up to 30° and an orthogonal mesh above 11°; ``vbikit run`` warns above 30°.  A single-girder model is also restrained in twist
 at its supports (a fork support), otherwise it could roll freely.
 
 The generalised eigenproblem K φ = ω² M φ is assembled with scipy.sparse and solved by
@@ -73,6 +88,12 @@ from vbikit.bridge.sections import (
 
 log = logging.getLogger(__name__)
 
+#: largest skew angle [°] of the support lines the oblique-mesh grillage takes
+MAX_SKEW = 45.0
+#: above this skew [°] grillage practice uses an orthogonal mesh (ospgrillage's meshing rules allow
+#: the oblique mesh up to 30°): a warning
+OBLIQUE_MESH_ADVISED_SKEW = 30.0
+
 #: bumped whenever the model changes in a way that changes its modes (invalidates caches)
 MODEL_VERSION = "girder_deck-2"
 
@@ -98,6 +119,23 @@ def _hermite_linear_coupling(h: float) -> NDArray[np.float64]:
 
 def _bar(k: float) -> NDArray[np.float64]:
     return k * np.array([[1.0, -1.0], [-1.0, 1.0]])
+
+
+def _oblique_member_rotation(skew: float) -> Optional[NDArray[np.float64]]:
+    """T (6, 6) with u_local = T u_nodes for a transverse member along the support lines' skew θ [°]:
+    local (w_a, r_a, w_b, r_b, n_a, n_b) — r the slope along the member e = (sin θ, cos θ),
+    n = ∂w/∂x cos θ − ∂w/∂y sin θ the slope across it (its twist) — from the nodes'
+    (w, ∂w/∂x, ∂w/∂y) at a then b.  None for θ = 0 (r = ∂w/∂y, n = ∂w/∂x: no transformation)."""
+    if not skew:
+        return None
+    c, s = np.cos(np.radians(skew)), np.sin(np.radians(skew))
+    T = np.zeros((6, 6))
+    for end, (row_w, row_r, row_n) in enumerate(((0, 1, 4), (2, 3, 5))):
+        col = 3 * end
+        T[row_w, col] = 1.0
+        T[row_r, col + 1], T[row_r, col + 2] = s, c
+        T[row_n, col + 1], T[row_n, col + 2] = c, -s
+    return T
 
 
 @dataclass(frozen=True)
@@ -152,6 +190,8 @@ class SlabOnGirderBridge(ModalBridge):
     spans : tuple of float, optional
         Several spans [m] (adding up to ``span``) with the girders continuous over the interior
         supports: bearings under every girder at every support, diaphragms there by default.
+    skew : float
+        Skew angle θ of every support line [degrees], −45 … 45 (module docstring); 0 = square.
     damage : tuple of Damage
         Local stiffness losses of single girders (:class:`vbikit.bridge.damage.Damage` with ``girder``):
         the girder elements' EI × (1 − severity × the fraction of the element inside the region).
@@ -190,6 +230,7 @@ class SlabOnGirderBridge(ModalBridge):
     default_girder: int = 1
     damage: tuple[Damage, ...] = ()
     spans: Optional[tuple[float, ...]] = None
+    skew: float = 0.0
     name: str = ""
     use_cache: bool = field(default=True, compare=False)
     cache_dir: Optional[str] = field(default=None, compare=False)
@@ -213,6 +254,9 @@ class SlabOnGirderBridge(ModalBridge):
                 raise ValueError(f"bridge.damage.{i}: girder must be 1 … {self.n_girders}, got {d.girder!r}")
             if d.end > self.span + 1e-9:
                 raise ValueError(f"bridge.damage.{i}: the region {d.position:g} … {d.end:g} m ends beyond the span ({self.span:g} m)")
+        if isinstance(self.skew, bool) or not (np.isfinite(self.skew) and abs(self.skew) <= MAX_SKEW):
+            raise ValueError(f"skew must be an angle in degrees within -{MAX_SKEW:g} … {MAX_SKEW:g}, got {self.skew!r}")
+        object.__setattr__(self, "skew", float(self.skew))
         if int(self.n_girders) != self.n_girders or self.n_girders < 1:
             raise ValueError(f"n_girders must be an integer >= 1, got {self.n_girders!r}")
         if not -1.0 < self.poisson < 0.5:
@@ -299,8 +343,33 @@ class SlabOnGirderBridge(ModalBridge):
 
     @property
     def default_response_x(self) -> float:  # type: ignore[override]
-        """Midpoint [m] of the first span (midspan of a single span)."""
-        return 0.5 * float(self.support_x[1])
+        """Midpoint [m] of the first span (midspan of a single span) on the default girder's line."""
+        return self.default_x_at(self.default_response_y)
+
+    def default_x_at(self, y: float) -> float:
+        """x [m] of the first span's midpoint on the line at lateral position y [m] (a skew deck's
+        support lines are oblique: ξ = x − y tan θ is the same on every line)."""
+        return 0.5 * float(self.support_x[1]) + float(y) * self.skew_tan
+
+    @property
+    def skew_tan(self) -> float:
+        """tan θ of the support lines' skew [-]."""
+        return float(np.tan(np.radians(self.skew))) if self.skew else 0.0
+
+    @property
+    def deck_extent(self) -> tuple[float, float]:
+        """(x_first, x_last) [m] of the deck over its width: 0 … span, widened by (width/2)·|tan θ| at a skew."""
+        reach = 0.5 * self.deck_width * abs(self.skew_tan)
+        return -reach, float(self.span) + reach
+
+    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+        """ξ = x − y tan θ [m]: distance along the girders from the entry support line."""
+        x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+        return x - y * self.skew_tan if self.skew else np.array(x, float)
+
+    def girder_x(self, girder: int, xi: ArrayLike) -> NDArray[np.float64]:
+        """x [m] of the points at ξ [m] along girder ``girder`` (1-based): ξ + y_g tan θ."""
+        return np.asarray(xi, float) + float(self.girder_y[self.girder_index(girder)]) * self.skew_tan
 
     def span_index(self, x: float) -> int:
         """0-based span containing x [m] (an interior support belongs to the span on its right)."""
@@ -416,18 +485,26 @@ class SlabOnGirderBridge(ModalBridge):
         m_d = self.density * bd * hd
         mu = self.density * t + self.extra_mass_per_area
         y = self.girder_y
+        cos = float(np.cos(np.radians(self.skew)))
+        rotation = _oblique_member_rotation(self.skew)
         for i in range(nx + 1):
-            EI = self.E_deck * t**3 * trib[i] / (12.0 * (1.0 - self.poisson**2)) + diaph[i] * EI_d
-            GJ = G_d * t**3 / 6.0 * trib[i] + diaph[i] * GJ_d
+            width = trib[i] * cos if self.skew else trib[i]  # slab strip width normal to the member
+            EI = self.E_deck * t**3 * width / (12.0 * (1.0 - self.poisson**2)) + diaph[i] * EI_d
+            GJ = G_d * t**3 / 6.0 * width + diaph[i] * GJ_d
             for j in range(n_lines - 1):
-                b = y[j + 1] - y[j]
-                d = [self._dof(j, i, 0), self._dof(j, i, 2), self._dof(j + 1, i, 0), self._dof(j + 1, i, 2),
-                     self._dof(j, i, 1), self._dof(j + 1, i, 1)]
+                b = (y[j + 1] - y[j]) / cos if self.skew else y[j + 1] - y[j]  # member length
                 ke = np.zeros((6, 6))
                 me = np.zeros((6, 6))
                 ke[:4, :4] = beam_element_stiffness(EI, b)
                 ke[4:, 4:] = _bar(GJ / b)
-                me[:4, :4] = beam_element_mass(mu * trib[i] + diaph[i] * m_d, b)
+                me[:4, :4] = beam_element_mass(mu * width + diaph[i] * m_d, b)
+                if rotation is None:  # local (w_a, ∂w/∂y_a, w_b, ∂w/∂y_b, ∂w/∂x_a, ∂w/∂x_b)
+                    d = [self._dof(j, i, 0), self._dof(j, i, 2), self._dof(j + 1, i, 0), self._dof(j + 1, i, 2),
+                         self._dof(j, i, 1), self._dof(j + 1, i, 1)]
+                else:  # to the nodes' (w, ∂w/∂x, ∂w/∂y) at both ends
+                    d = [self._dof(j, i, k) for k in range(3)] + [self._dof(j + 1, i, k) for k in range(3)]
+                    ke = rotation.T @ ke @ rotation
+                    me = rotation.T @ me @ rotation
                 add(d, ke, me)
         fixed: list[int] = []
         for j in range(n_lines):
@@ -454,6 +531,8 @@ class SlabOnGirderBridge(ModalBridge):
         params.pop("damage", None)
         if damage:  # no key without damage: an intact deck keeps its cache file
             params["damage"] = [asdict(d) for d in damage]
+        if not self.skew:  # nor without skew: a square deck keeps its cache file
+            params.pop("skew")
         params["n_elements"] = self.element_count
         text = json.dumps({"version": MODEL_VERSION, **params}, sort_keys=True, default=float)
         return hashlib.sha256(text.encode()).hexdigest()[:32]
@@ -514,7 +593,8 @@ class SlabOnGirderBridge(ModalBridge):
                     log.warning("could not write mode cache %s: %s", path, err)
         object.__setattr__(self, "_omega", np.asarray(omega))
         shape = (self.n_girders, self.element_count + 1, full.shape[1])
-        return NodalModes(self.stations, self.girder_y, full[0::3].reshape(shape), full[1::3].reshape(shape), full[2::3].reshape(shape))
+        return NodalModes(self.stations, self.girder_y, full[0::3].reshape(shape), full[1::3].reshape(shape),
+                          full[2::3].reshape(shape), self.skew_tan)
 
     # ------------------------------------------------------------------ ModalBridge
     @property
@@ -549,39 +629,16 @@ class SlabOnGirderBridge(ModalBridge):
         return int(girder) - 1
 
     def load_vector(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NDArray[np.float64]:
-        """Consistent nodal load vector (all DOFs) of vertical point forces [N] (z up) at (x, y).
+        """Consistent nodal load vector (all DOFs) of vertical point forces [N] (z up) at (x, y)
+        (:func:`vbikit.bridge.deck_effects.load_weights`: Hermite along the lines and across them,
+        linear along the lines for the transverse slopes); a force at a node loads only that
+        node's w; forces off the deck load nothing."""
+        from vbikit.bridge.deck_effects import load_weights
 
-        Hermite along x and across y (linear along x for the transverse-slope DOFs); a force at
-        a node loads only that node's w.
-        """
         x, y, f = (np.atleast_1d(np.asarray(a, float)).ravel() for a in np.broadcast_arrays(x, y, forces))
-        nx = self.element_count
-        xs, ys = self.stations, self.girder_y
-        F = np.zeros(3 * self.n_girders * (nx + 1))
-        for xp, yp, fp in zip(x, y, f):
-            if not 0.0 <= xp <= self.span:
-                continue
-            e = int(np.clip(np.searchsorted(xs, xp, side="right") - 1, 0, nx - 1))
-            h = xs[e + 1] - xs[e]
-            t = (xp - xs[e]) / h
-            nxh = _hermite(np.array(t), h, 0)
-            nxl = (1 - t, t)
-            if ys.size == 1:
-                lines = [(0, 1.0, yp - ys[0])]
-            else:
-                j = int(np.clip(np.searchsorted(ys, yp, side="right") - 1, 0, ys.size - 2))
-                if yp < ys[0] or yp > ys[-1]:
-                    jj = 0 if yp < ys[0] else ys.size - 1
-                    lines = [(jj, 1.0, yp - ys[jj])]
-                else:
-                    b = ys[j + 1] - ys[j]
-                    ny = _hermite(np.array((yp - ys[j]) / b), b, 0)
-                    lines = [(j, float(ny[0]), float(ny[1])), (j + 1, float(ny[2]), float(ny[3]))]
-            for jj, cw, cs in lines:
-                for a, s in ((0, e), (1, e + 1)):
-                    F[self._dof(jj, s, 0)] += fp * cw * float(nxh[2 * a])
-                    F[self._dof(jj, s, 1)] += fp * cw * float(nxh[2 * a + 1])
-                    F[self._dof(jj, s, 2)] += fp * cs * nxl[a]
+        idx, coef, _, _ = load_weights(self, x, y)
+        F = np.zeros(3 * self.n_girders * (self.element_count + 1))
+        np.add.at(F, idx.ravel(), (coef * f[:, None]).ravel())
         return F
 
     def static_solution(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NodalModes:
@@ -592,12 +649,14 @@ class SlabOnGirderBridge(ModalBridge):
         u = np.zeros(K.shape[0])
         u[free] = spla.spsolve(K[free][:, free].tocsc(), F[free])
         shape = (self.n_girders, self.element_count + 1, 1)
-        return NodalModes(self.stations, self.girder_y, u[0::3].reshape(shape), u[1::3].reshape(shape), u[2::3].reshape(shape))
+        return NodalModes(self.stations, self.girder_y, u[0::3].reshape(shape), u[1::3].reshape(shape), u[2::3].reshape(shape),
+                          self.skew_tan)
 
     def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
                     girder: Optional[int] = None) -> LoadEffect:
-        """Moment or shear of ``girder`` (default: the default girder) at section x [m], or the reaction
-        of its bearing at support 0 (x = 0) or 1 (x = span) (:mod:`vbikit.bridge.deck_effects`)."""
+        """Moment or shear of ``girder`` (default: the default girder) at section x [m] (the deck's x; on
+        a skew deck the girder's span runs from x = y_g tan θ), or the reaction of its bearing at
+        support 0 (entry), 1, … (:mod:`vbikit.bridge.deck_effects`)."""
         from vbikit.bridge.deck_effects import deck_load_effect
 
         return deck_load_effect(self, kind, x, girder, support)
@@ -605,7 +664,8 @@ class SlabOnGirderBridge(ModalBridge):
     def default_load_effects(self, girder: Optional[int] = None) -> list[LoadEffect]:
         """Of ``girder``: the moment at the middle of every span and over every interior support, the
         shear just right of every support but the last, and the reaction of every bearing."""
-        xs = self.support_x
+        g = int(self.default_girder) if girder is None else int(girder)
+        xs = self.girder_x(g, self.support_x)  # the girder's supports (oblique support lines: shifted)
         n = xs.size - 1
         out = [self.load_effect("moment", 0.5 * (xs[k] + xs[k + 1]), girder=girder) for k in range(n)]
         out += [self.load_effect("moment", float(xs[k]), girder=girder) for k in range(1, n)]
@@ -618,16 +678,26 @@ class SlabOnGirderBridge(ModalBridge):
 
 
 def girder_line_strain(modes: NodalModes, lever_arm: NDArray[np.float64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
-    """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes)."""
+    """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes);
+    on a skew deck the lines are read at the point's own ξ = x − y tan θ (along the oblique members)."""
     x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
     x, y = x.ravel(), y.ravel()
+    xi = x - y * modes.skew_tan if modes.skew_tan else x
+    out = np.zeros((x.size, modes.n_modes))
+    on = (xi >= 0.0) & (xi <= modes.span)
+    if not np.any(on):
+        return out
+    k = modes.line_values(xi[on], 2)  # (n_lines, p, m)
+    p = np.arange(k.shape[1])
     ly = modes.y
     if ly.size == 1:
-        return lever_arm[0] * modes.curvatures(x, 0)
-    yc = np.clip(y, ly[0], ly[-1])
+        out[on] = lever_arm[0] * k[0]
+        return out
+    yc = np.clip(y[on], ly[0], ly[-1])
     j = np.clip(np.searchsorted(ly, yc, side="right") - 1, 0, ly.size - 2)
     t = ((yc - ly[j]) / (ly[j + 1] - ly[j]))[:, None]
-    return (1 - t) * lever_arm[j][:, None] * modes.curvatures(x, j) + t * lever_arm[j + 1][:, None] * modes.curvatures(x, j + 1)
+    out[on] = (1 - t) * lever_arm[j][:, None] * k[j, p] + t * lever_arm[j + 1][:, None] * k[j + 1, p]
+    return out
 
 
 def describe_modes(modes: NodalModes) -> list[str]:

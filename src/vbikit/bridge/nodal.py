@@ -21,6 +21,14 @@ functions along the girders, documented in ``docs/bridges.md``):
 
 φ(x, y) is therefore C¹ in x at every y, as the solver's Hermite track tables assume, and it
 reproduces w exactly on every line.  Outside 0 ≤ x ≤ span every shape is zero.
+
+Skew decks (``skew_tan`` = tan θ ≠ 0).  The support lines are oblique: line j's stations lie at
+x = ξ_i + y_j tan θ, so ``x`` holds the stations ξ_i along the lines (the distance from each line's
+entry support) and a deck point (x, y) has ξ = x − y tan θ.  Between lines w is interpolated along
+the oblique transverse members (constant ξ) — the cubic Hermite polynomial in y of w and of the
+slope along them per unit y, ∂w/∂y + tan θ ∂w/∂x — and over the overhangs the section along that
+direction moves rigidly; ∂φ/∂x at fixed y is ∂/∂ξ of that.  A point is on the deck while
+0 ≤ ξ ≤ span.  ``wx`` and ``wy`` stay the Cartesian slopes; tan θ = 0 is the rectangular grid.
 """
 from __future__ import annotations
 
@@ -52,6 +60,7 @@ class NodalModes:
     w: NDArray[np.float64]  # (n_lines, n_st, n_modes)
     wx: NDArray[np.float64]
     wy: NDArray[np.float64]
+    skew_tan: float = 0.0  # tan θ of the support lines' skew (module docstring)
     _wy_spline: CubicSpline = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -68,6 +77,9 @@ class NodalModes:
             object.__setattr__(self, name, a)
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "y", y)
+        if not np.isfinite(self.skew_tan):
+            raise ValueError(f"skew_tan must be finite, got {self.skew_tan!r}")
+        object.__setattr__(self, "skew_tan", float(self.skew_tan))
         # spline along x (axis 1) of the transverse slopes; not-a-knot ends
         spline = CubicSpline(x, self.wy, axis=1) if x.size > 2 else None
         object.__setattr__(self, "_wy_spline", spline)
@@ -112,12 +124,16 @@ class NodalModes:
         x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
         x, y = x.ravel(), y.ravel()
         out = np.zeros((x.size, self.n_modes))
+        if self.skew_tan:
+            x = x - y * self.skew_tan  # ξ; ∂/∂x at fixed y is ∂/∂ξ
         on = (x >= 0.0) & (x <= self.span)
         if not np.any(on):
             return out
         xo, yo = x[on], y[on]
         w = self.line_values(xo, order_x)  # (n_lines, p, m)
         s = self.line_transverse_slopes(xo, order_x)
+        if self.skew_tan:  # slope along the oblique transverse members, per unit y
+            s = s + self.skew_tan * self.line_values(xo, order_x + 1)
         p = np.arange(xo.size)
         ly = self.y
         if ly.size == 1:
@@ -135,10 +151,13 @@ class NodalModes:
         return out
 
     def curvatures(self, x: ArrayLike, line_index: ArrayLike) -> NDArray[np.float64]:
-        """∂²w/∂x² [kg^-1/2 m^-2] of line ``line_index`` at x (broadcast), shape (n_points, n_modes); zero off the span."""
+        """∂²w/∂x² [kg^-1/2 m^-2] of line ``line_index`` at x (broadcast), shape (n_points, n_modes); zero off the span
+        (x is the deck's x: on a skew deck line j's ξ is x − y_j tan θ)."""
         x, j = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(line_index, int)))
         x, j = x.ravel(), j.ravel()
         out = np.zeros((x.size, self.n_modes))
+        if self.skew_tan:
+            x = x - self.y[j] * self.skew_tan  # ξ on line j
         on = (x >= 0.0) & (x <= self.span)
         if np.any(on):
             k = self.line_values(x[on], 2)

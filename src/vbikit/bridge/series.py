@@ -60,6 +60,9 @@ class SpanSeries(ModalBridge):
         for k, (b, L) in enumerate(zip(spans, lengths)):
             if b is not None and abs(b.span - L) > 1e-9 * L:
                 raise ValueError(f"span {k}: its bridge is {b.span:g} m long, not {L:g} m")
+            if b is not None and b.deck_extent != (0.0, float(b.span)):
+                raise ValueError(f"span {k}: a skew deck cannot be part of a span series (its ends are not at "
+                                 "x = 0 and its span); give its spans to one deck with [bridge.deck] spans")
         k = self.instrumented % len(spans)
         if spans[k] is None:
             raise ValueError(f"instrumented span {k} is rigid: choose a span with a bridge model")

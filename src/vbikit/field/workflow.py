@@ -104,6 +104,21 @@ class ScaledBridge(ModalBridge):
     def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         return self.base.strain_shapes(x, y)
 
+    # the base model's geometry (a skew deck's oblique supports) is unchanged by the scaling
+    @property
+    def deck_extent(self) -> tuple[float, float]:
+        return self.base.deck_extent
+
+    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+        return self.base.span_coordinate(x, y)
+
+    def default_x_at(self, y: float) -> float:
+        return self.base.default_x_at(y)
+
+    @property
+    def default_response_x(self) -> float:
+        return self.base.default_response_x
+
 
 def parse_tires(text: str) -> list[str]:
     """``"point,multipoint"`` → ["point", "multipoint"]; unknown names raise a ValueError naming --tires."""

@@ -11,7 +11,8 @@ from vbikit.bridge.base import ModalBridge
 
 def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, title: str = "") -> Path:
     """Filled contours of the first ``n_modes`` mass-normalised mode shapes φ(x, y) over the deck plan
-    (x along the span, y across; girder lines dashed), one panel per mode with its frequency."""
+    (x along the span, y across; girder lines dashed; a skew deck drawn as its parallelogram), one
+    panel per mode with its frequency."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -20,10 +21,12 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
     girder_y = getattr(bridge, "girder_y", None)
     half = getattr(bridge, "deck_width", None)
     half = 0.5 * half if half is not None else (np.abs(girder_y).max() + 0.5 if girder_y is not None else 1.0)
-    x = np.linspace(0.0, bridge.span, 121)
+    x = np.linspace(*bridge.deck_extent, 121)
     y = np.linspace(-half, half, 41)
     X, Y = np.meshgrid(x, y)
     phi = bridge.mode_shapes(X.ravel(), Y.ravel())
+    xi = bridge.span_coordinate(X.ravel(), Y.ravel())
+    phi[(xi < 0.0) | (xi > bridge.span)] = np.nan  # beyond a skew deck's oblique ends: not drawn
     n = min(n_modes, phi.shape[1])
     describe = getattr(bridge, "mode_descriptions", None)
     labels = describe() if describe else [""] * n
@@ -35,7 +38,7 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
             ax.axis("off")
             continue
         z = phi[:, k].reshape(X.shape)
-        lim = np.abs(z).max() or 1.0
+        lim = np.nanmax(np.abs(z)) or 1.0
         ax.contourf(X, Y, z / lim, levels=np.linspace(-1, 1, 21), cmap="RdBu_r")
         ax.contour(X, Y, z, levels=[0.0], colors="k", linewidths=0.6)
         for yg in (girder_y if girder_y is not None else []):
@@ -43,7 +46,7 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
         ax.set_title(f"mode {k + 1}: {bridge.frequencies_hz[k]:.2f} Hz  {labels[k].split(',')[0]}", fontsize="small")
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
-        ax.set_aspect("equal" if bridge.span < 6 * half else "auto")
+        ax.set_aspect("equal" if x[-1] - x[0] < 6 * half else "auto")
     if title:
         fig.suptitle(title)
     path = Path(path)

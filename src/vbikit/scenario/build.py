@@ -221,20 +221,31 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         raise
     except ValueError as err:
         raise ScenarioError(str(err)) from None
-    x = scenario.response.x
-    if x is not None and x > bridge.span:
-        raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m (got {x})")
     r = scenario.response
     method = r.load_effect_method
     girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
         if r.girder is not None:
             raise ScenarioError(f"response.girder: bridge model {scenario.bridge.model!r} has no girders; use response.y")
-        return BuiltScenario(crossing, x, bridge.default_response_y if r.y is None else r.y, None,
-                             build_load_effects(scenario, bridge, None), method)
-    girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
-    if girder is None:
-        return BuiltScenario(crossing, x, r.y, None, build_load_effects(scenario, bridge, None), method)
-    if not 1 <= girder <= len(girder_y):
-        raise ScenarioError(f"response.girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
-    return BuiltScenario(crossing, x, float(girder_y[girder - 1]), girder, build_load_effects(scenario, bridge, girder), method)
+        girder, y = None, bridge.default_response_y if r.y is None else r.y
+    else:
+        girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
+        if girder is not None and not 1 <= girder <= len(girder_y):
+            raise ScenarioError(f"response.girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
+        y = r.y if girder is None else float(girder_y[girder - 1])
+    x = response_x(bridge, scenario.response.x, y)
+    return BuiltScenario(crossing, x, y, girder, build_load_effects(scenario, bridge, girder), method)
+
+
+def response_x(bridge: ModalBridge, x: float | None, y: float) -> float | None:
+    """The response section's x [m]: as given (checked: within the span on the line y), or None for
+    the bridge's default — on a skew deck the default section of the line y itself (the support
+    lines are oblique, so the default girder's midspan x is not that of the others)."""
+    if x is None:
+        own = bridge.default_x_at(y)
+        return None if own == bridge.default_response_x else own
+    xi = float(bridge.span_coordinate(x, y))
+    if not 0.0 <= xi <= bridge.span:
+        extra = "" if xi == x else f" along the line y = {y:g} m (x − y·tan(skew) = {xi:.6g} m)"
+        raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m{extra} (got {x})")
+    return x

@@ -53,7 +53,7 @@ def check_response_point(built: BuiltScenario) -> None:
     """Refuse a response point where every mode shape vanishes (on a support, off the deck): no
     static response there, hence no impact factor."""
     bridge = built.crossing.bridge
-    x = bridge.span / 2 if built.response_x is None else built.response_x
+    x = bridge.default_x_at(built.response_y) if built.response_x is None else built.response_x
     phi = bridge.mode_shapes([x], [built.response_y])[0]
     if not np.any(phi):
         raise ScenarioError(f"response.x = {x:g} m, y = {built.response_y:g} m: every mode shape is zero there (a "
@@ -86,7 +86,7 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
                             "bridge, vehicle and tire parameters") from None
     estimate = check_run(crossing, dt, limits)
     check_response_point(built)
-    warnings = input_warnings(crossing, dt, built.response_x) + defect_warnings(scenario, built)
+    warnings = input_warnings(crossing, dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
     return Plan(scenario, built, dt, estimate, warnings)
 
 
@@ -123,6 +123,8 @@ def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
     return {
         "bridge": scenario.bridge.model,
         "span": float(c.bridge.span),
+        **({"bridge_deck": dict(scenario.bridge.deck)} if scenario.bridge.deck else {}),
+        **({"skew_degrees": float(c.bridge.skew)} if getattr(c.bridge, "skew", 0.0) else {}),
         "n_modes": int(c.bridge.omega.size),
         "damping_ratio": scenario.bridge.damping_ratio,
         **_vehicle_inputs(scenario, c),

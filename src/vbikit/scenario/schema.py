@@ -357,12 +357,12 @@ class ResponseSpec(_Section):
     slab-on-girder bridge reports its default girder (Girder 4 on the paper's bridges).
     """
 
-    x: Optional[float] = Field(None, ge=0, description="response point along the bridge from the entry support; default midspan (of the first span) [m]")
+    x: Optional[float] = Field(None, description="response point along the bridge from the entry support (on a skew deck the support lines are oblique: line y's span starts at x = y·tan(skew)); default midspan (of the first span) [m]")
     y: Optional[float] = Field(None, description="response point from the deck centreline; default the bridge's response line (0 for a beam, the default girder's line on slab-on-girder bridges) [m]")
     girder: Optional[int] = Field(None, ge=1, description="slab-on-girder bridges: respond on this girder's line (Girder 1 at the most negative y; default the bridge's, 4 on the paper bridges); give girder or y, not both [-]")
-    moment: Optional[list[Annotated[float, Field(ge=0)]]] = Field(
+    moment: Optional[list[float]] = Field(
         None, description="sections x [m] for bending moment (default: every midspan and interior support)")
-    shear: Optional[list[Annotated[float, Field(ge=0)]]] = Field(
+    shear: Optional[list[float]] = Field(
         None, description="sections x [m] for shear, taken just right of x (default: right of every support but the last)")
     reaction: Optional[list[Annotated[int, Field(ge=0)]]] = Field(None, description="support indices, 0 = entry (default: all)")
     load_effect_method: Literal["mode-acceleration", "mode-superposition"] = Field(

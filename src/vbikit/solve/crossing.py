@@ -337,11 +337,11 @@ class Crossing:
         return self.speed + self.acceleration * t
 
     def exit_time(self) -> float:
-        """Time [s] when the rearmost contact point passes x = span (several vehicles: the last
+        """Time [s] when the rearmost contact point leaves the deck (x = span; a skew deck: its far end; several vehicles: the last
         one's last point leaves the bridge)."""
         if self.vehicles:
             return self._exit_time_vehicles()
-        distance = self.approach + self.bridge.span + float(self.contact.setback.max())
+        distance = self.approach + self.bridge.deck_extent[1] + float(self.contact.setback.max())
         a, v = self.acceleration, self.speed
         if abs(a) < 1e-12:
             return distance / v
@@ -358,7 +358,8 @@ class Crossing:
         cp = self.contact
         last = -math.inf
         for i, m in enumerate(self.vehicles):
-            distance = self.bridge.span + float(cp.setback[self.point_vehicle == i].max())
+            near, far = self.bridge.deck_extent  # +x: to the deck's far end; −x: from x = span to its near end
+            distance = (far if m.sign > 0 else self.bridge.span - near) + float(cp.setback[self.point_vehicle == i].max())
             t = m.time_at(distance)
             if math.isnan(t) or (m.acceleration < 0 and t - m.entry_time > m.stop_time):
                 stop = m.speed**2 / (-2 * m.acceleration)

@@ -28,9 +28,11 @@ z_w = h_w·q (row ``wheel_rows[wheel[p]]``):
     ξ̈ + 2ζω ξ̇ + ω² ξ = −Σ_p φ_pᵀ F_p
     M_v q̈ + C_v q̇ + K_v q = F_G + Σ_w h_wᵀ Σ_{p∈w} F_p
 
-A point is on the deck while 0 ≤ x_p ≤ span; off it, φ_p = 0 (the road only).  Nothing in the
-kernels assumes φ = 0 at the deck ends or a single span: the mode-shape tables may be any mode
-set (continuous beams, grillages), tabulated over [0, span] on each wheel track.
+A point is on the deck while start ≤ x_p ≤ end (the deck's x extent: 0 … span, wider on a skew
+deck); off it, φ_p = 0 (the road only).  Nothing in the kernels assumes φ = 0 at the deck ends or
+a single span: the mode-shape tables may be any mode set (continuous beams, grillages, skew
+decks, whose shapes vanish before each track's own support line), tabulated over [start, end]
+on each wheel track.
 
 Several vehicles.  The kernels only see contact points, wheels and vehicle DOFs; a traffic
 event is one system whose vehicle matrices are block-diagonal (one block per vehicle), whose
@@ -72,14 +74,15 @@ from numba import njit
 
 
 class Modes(NamedTuple):
-    """The bridge's modes: ``omega`` ω_m [rad/s], ``zeta`` ζ_m [-] (n_m,); ``span`` [m] (points with
-    0 ≤ x ≤ span are on the deck); mode-shape tables ``values`` φ and ``slopes`` ∂φ/∂x
-    (n_tracks, n_grid, n_m) on the uniform grid of spacing ``grid_h`` [m] from x = 0; ``amp``
+    """The bridge's modes: ``omega`` ω_m [rad/s], ``zeta`` ζ_m [-] (n_m,); ``start``, ``end`` [m]
+    (points with start ≤ x ≤ end are on the deck); mode-shape tables ``values`` φ and ``slopes``
+    ∂φ/∂x (n_tracks, n_grid, n_m) on the uniform grid of spacing ``grid_h`` [m] from x = start; ``amp``
     (n_m,) bound on |φ_m| (the lazy-contact test)."""
 
     omega: np.ndarray
     zeta: np.ndarray
-    span: float
+    start: float
+    end: float
     grid_h: float
     values: np.ndarray
     slopes: np.ndarray
@@ -187,10 +190,11 @@ def new_work(n_cp: int, n_d: int, n_l: int) -> Work:
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def shape_point(x, track, grid_h, V, S, phi_row, dphi_row):
-    """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` (cubic Hermite)."""
+def shape_point(x, track, modes, phi_row, dphi_row):
+    """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` of ``modes`` (cubic Hermite)."""
+    V, S, grid_h = modes.values, modes.slopes, modes.grid_h
     n_grid = V.shape[1]
-    u = x / grid_h
+    u = (x - modes.start) / grid_h
     i = int(u)
     if i > n_grid - 2:
         i = n_grid - 2
@@ -219,9 +223,9 @@ def shapes_at(x, track, modes, phi, dphi, on):
     """Mode-shape rows φ_p, φ'_p of points at positions ``x`` [m] on tracks ``track`` (eager);
     ``on[p]``: the point is on the deck (else its rows are left as they are)."""
     for p in range(x.size):
-        on[p] = 0.0 <= x[p] <= modes.span
+        on[p] = modes.start <= x[p] <= modes.end
         if on[p]:
-            shape_point(x[p], track[p], modes.grid_h, modes.values, modes.slopes, phi[p], dphi[p])
+            shape_point(x[p], track[p], modes, phi[p], dphi[p])
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -324,7 +328,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
     xs, vxs = cache.x, cache.vx
     idx, force, active, used, scratch = work.idx, work.force, work.active, work.used, work.scratch
     wheel_rows = vehicles.wheel_rows
-    span = modes.span
+    start, end = modes.start, modes.end
     r_max = road.r_max
     n_m = xi.shape[0]
     n_d = q.shape[0]
@@ -358,7 +362,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
         for p in range(first, last):
             used[p] = False
             x = xs[p]
-            onb = 0.0 <= x <= span
+            onb = start <= x <= end
             gate = points.gated[p] or (unilateral and points.stiffness[p] > 0.0)
             if gate and not envelope and r_max - points.gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
                 for lane in range(n_l):
@@ -369,7 +373,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
                 road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes)
                 have_r[p] = True
             if onb and not have[p]:
-                shape_point(x, points.track[p], modes.grid_h, modes.values, modes.slopes, phi[p], dphi[p])
+                shape_point(x, points.track[p], modes, phi[p], dphi[p])
                 have[p] = True
             used[p] = True
             if envelope:
@@ -398,11 +402,11 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
             for lane in range(n_l):
                 wheel_len[w, lane] += wd if active[p, lane] else 0.0
         if envelope:
-            _envelope(w, first, last, xi, dxi, span, points, cache, zw, dzw, force, wheel_force, active, lanes)
+            _envelope(w, first, last, xi, dxi, start, end, points, cache, zw, dzw, force, wheel_force, active, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _envelope(w, first, last, xi, dxi, span, points, cache, zw, dzw, force, wheel_force, active, lanes):
+def _envelope(w, first, last, xi, dxi, start, end, points, cache, zw, dzw, force, wheel_force, active, lanes):
     """Rigid-disk wheel ``w``: per lane, only the point of highest surface s_p − g_p acts; its rate
     is the deck velocity + v·e', e' the surface slope along the travel direction clamped to the
     circle's slopes over the point's cell."""
@@ -418,7 +422,7 @@ def _envelope(w, first, last, xi, dxi, span, points, cache, zw, dzw, force, whee
             sd = rr[p, lane]
             deck_rate = 0.0
             vx = cache.vx[p]
-            if 0.0 <= cache.x[p] <= span:
+            if start <= cache.x[p] <= end:
                 for m in range(n_m):
                     s += phi[p, m] * xi[m, lane]
                     deck_rate += phi[p, m] * dxi[m, lane]
@@ -455,7 +459,7 @@ def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cac
         b = omega[m] * omega[m]
         for lane in range(n_l):
             ddxi[m, lane] = -a * dxi[m, lane] - b * xi[m, lane]
-    _modal_load(-1.0, phi, force, used, cache.x, modes.span, ddxi, lanes)
+    _modal_load(-1.0, phi, force, used, cache.x, modes.start, modes.end, ddxi, lanes)
     if n_d == 0:
         return
     for i in range(n_d):
@@ -471,10 +475,10 @@ def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cac
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _modal_load(alpha, phi, force, used, x, span, out, lanes):
+def _modal_load(alpha, phi, force, used, x, start, end, out, lanes):
     """out[m, :] += α Σ_p φ_pm F_p over the used points on the deck."""
     for p in range(force.shape[0]):
-        if used[p] and 0.0 <= x[p] <= span:
+        if used[p] and start <= x[p] <= end:
             for m in range(out.shape[0]):
                 _axpy(alpha * phi[p, m], force, p, out, m, lanes)
 
@@ -670,10 +674,10 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
             for j in range(n_d):
                 stiff[n_m + i, n_m + j] += k * h[i] * h[j]
                 damp[n_m + i, n_m + j] += c * h[i] * h[j]
-        if not 0.0 <= x[p] <= modes.span:
+        if not modes.start <= x[p] <= modes.end:
             continue
         if not have[p]:
-            shape_point(x[p], points.track[p], modes.grid_h, modes.values, modes.slopes, phi[p], dphi[p])
+            shape_point(x[p], points.track[p], modes, phi[p], dphi[p])
             have[p] = True
         f = phi[p]
         g = dphi[p]
@@ -703,8 +707,8 @@ def static_modal_history(travel, points, loads, modes):
             if loads[p] == 0.0:
                 continue
             x = points.origin[p] + points.direction[p] * travel[t, points.vehicle[p]]
-            if 0.0 <= x <= modes.span:
-                shape_point(x, points.track[p], modes.grid_h, modes.values, modes.slopes, phi, dphi)
+            if modes.start <= x <= modes.end:
+                shape_point(x, points.track[p], modes, phi, dphi)
                 for m in range(n_m):
                     out[t, m] += phi[m] * loads[p]
     return out
@@ -825,7 +829,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     _refresh(cache, motion, 0, points)
     y0, w0 = z0[:n_d], z0[n_d:]
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
-    _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.span, p0, lanes)
+    _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.start, modes.end, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
     _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
@@ -861,7 +865,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
             for m in range(n_m):
                 for lane in range(n_l):
                     pn[m, lane] = 0.0
-            _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.span, pn, lanes)
+            _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.start, modes.end, pn, lanes)
             _tire_load(vehicles, wf, y1, w1, gn, lanes)
             err = 0.0
             for w in range(n_w):

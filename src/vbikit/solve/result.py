@@ -92,8 +92,10 @@ class CrossingResult:
         ``default_response_x`` (midspan; a continuous beam: the middle of its first span), y default
         the bridge's ``default_response_y`` (its default girder on a slab-on-girder deck)."""
         b = self.crossing.bridge
-        return (float(getattr(b, "default_response_x", b.span / 2)) if x is None else float(x),
-                float(getattr(b, "default_response_y", 0.0)) if y is None else float(y))
+        y = float(getattr(b, "default_response_y", 0.0)) if y is None else float(y)
+        if x is None:  # a skew deck's default section depends on the line (oblique supports)
+            x = b.default_x_at(y) if hasattr(b, "default_x_at") else getattr(b, "default_response_x", b.span / 2)
+        return float(x), y
 
     def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:
         return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
@@ -125,8 +127,10 @@ class CrossingResult:
             Deck points [m] (x from the entry support, y from the deck centreline); default
             :meth:`point` (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
         girder_x : float, optional
-            Station [m] of the per-girder responses (dimension ``girder``, Girder 1 first) on a
-            bridge with girders; default midspan.  Ignored for bridges without girders.
+            Station ξ [m] along the girders of the per-girder responses (dimension ``girder``,
+            Girder 1 first) on a bridge with girders, from each girder's entry bearing (x itself
+            on a square deck; on a skew deck girder g's point is at x = ξ + y_g tan θ); default
+            midspan.  Ignored for bridges without girders.
         static : bool
             Also the static reference responses (``static_displacement``, ``static_strain``).
 
@@ -182,7 +186,9 @@ class CrossingResult:
         }
         if girder_y is not None:
             gx = bridge.span / 2 if girder_x is None else float(girder_x)
-            deck("girder_", "girder", [gx] * len(girder_y), [float(y) for y in girder_y], f" on the girder line at x = {gx:g} m")
+            gy = [float(y) for y in girder_y]
+            shift = bridge.span_coordinate(0.0, 0.0) - bridge.span_coordinate(0.0, np.asarray(gy))  # y_g tan θ
+            deck("girder_", "girder", list(gx + shift), gy, f" on the girder line at station {gx:g} m from its entry bearing")
             coords["girder"] = ("girder", np.arange(1, len(girder_y) + 1))
             coords["girder_y"] = ("girder", np.asarray(girder_y, float), {"units": "m", "long_name": "girder line from the deck centreline"})
         motion = ("time",) if self.front_position.ndim == 1 else ("time", "vehicle")

@@ -1,7 +1,8 @@
 """Mode shapes tabulated along wheel tracks for the compiled kernels.
 
 For each distinct track y, φ(x, y) and ∂φ/∂x(x, y) are evaluated exactly by the bridge at
-``grid_points`` equally spaced stations over the span; the kernel interpolates them with
+``grid_points`` equally spaced stations over the deck's x extent (``bridge.deck_extent``: the
+span, wider on a skew deck); the kernel interpolates them with
 cubic Hermite polynomials, whose error is ≤ (k h)⁴/384 relative for a mode of wavenumber k
 and grid spacing h.  The default grid (100 points per retained mode) keeps this below 1e-8
 for beam modes; ``tests/unit/test_tabulate.py`` checks it.
@@ -20,6 +21,8 @@ from vbikit.bridge.base import ModalBridge
 @dataclass(frozen=True)
 class TrackTable:
     tracks: NDArray[np.float64]  # y of each track [m]
+    start: float  # x of the first grid point [m]
+    end: float  # x of the last grid point [m]
     spacing: float  # grid spacing h [m]
     values: NDArray[np.float64]  # (n_tracks, n_grid, n_modes)
     slopes: NDArray[np.float64]  # (n_tracks, n_grid, n_modes)
@@ -51,9 +54,10 @@ def tabulate_tracks(bridge: ModalBridge, tracks: NDArray[np.float64], points_per
     tables are kept while the bridge lives; bridges are immutable)."""
     n_modes = bridge.omega.size
     n_grid = max(points_per_mode * n_modes, 200) + 1
-    x = np.linspace(0.0, bridge.span, n_grid)
+    start, end = (float(v) for v in bridge.deck_extent)
+    x = np.linspace(start, end, n_grid)
     values = np.empty((tracks.size, n_grid, n_modes))
     slopes = np.empty_like(values)
     for k, y in enumerate(tracks):
         values[k], slopes[k] = _track(bridge, float(y), x, points_per_mode)
-    return TrackTable(np.asarray(tracks, float), bridge.span / (n_grid - 1), values, slopes)
+    return TrackTable(np.asarray(tracks, float), start, end, (end - start) / (n_grid - 1), values, slopes)
