@@ -147,39 +147,19 @@ def vehicle_table() -> str:
     return "\n".join(rows) + "\n"
 
 
-def _numpy_parameters(doc: str) -> dict[str, str]:
-    """``name -> description`` from a numpy-style Parameters section (``a, b : type`` lines)."""
-    out: dict[str, str] = {}
-    names: list[str] = []
-    for line in doc.splitlines():
-        m = re.match(r"^    (\w[\w, ]*?)\s*:\s*.+$", line) or re.match(r"^    (\w[\w, ]*)$", line)
-        if m and not line.startswith("     "):
-            names = [n.strip() for n in m.group(1).split(",")]
-            for i, n in enumerate(names):
-                out[n] = ""
-                out[f"{n}#"] = str(i)
-        elif line.startswith("        ") and names:
-            for n in names:
-                out[n] = (out[n] + " " + line.strip()).strip()
-    return out
-
-
 def deck_table() -> str:
     """[bridge.deck] keys: the SlabOnGirderBridge parameters a scenario may set."""
     import dataclasses
 
-    from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS, SlabOnGirderBridge
+    from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS, SlabOnGirderBridge, deck_parameter_docs
 
-    docs = _numpy_parameters(SlabOnGirderBridge.__doc__ or "")
+    docs = deck_parameter_docs()
     rows = ["| key | default | unit | meaning |", "|---|---|---|---|"]
     for f in dataclasses.fields(SlabOnGirderBridge):
         if f.name not in SCENARIO_PARAMETERS:
             continue
-        text = re.sub(r":\w+:`~?([^`]+)`", r"`\1`", docs.get(f.name, ""))
-        units = re.findall(r"\[([^\[\]]+)\]", text)
-        i = int(docs.get(f"{f.name}#", "0"))
-        unit = units[i] if i < len(units) else (units[0] if units else "")
-        unit = "" if unit == "-" else unit
+        description, unit = docs.get(f.name, ("", ""))
+        text = re.sub(r":\w+:`~?([^`]+)`", r"`\1`", description)
         if f.default is dataclasses.MISSING:
             default = "required" if f.default_factory is dataclasses.MISSING else "—"
         else:

@@ -740,6 +740,32 @@ SCENARIO_PARAMETERS: tuple[str, ...] = tuple(
 )
 
 
+def deck_parameter_docs() -> dict[str, tuple[str, str]]:
+    """``name -> (description, unit)`` of the :class:`SlabOnGirderBridge` parameters, read from its
+    numpy-style docstring (``a, b : type`` lines; the unit is the description's bracketed text,
+    the i-th one for the i-th name of a shared line, "" when dimensionless or not given)."""
+    import re
+
+    text: dict[str, str] = {}
+    position: dict[str, int] = {}
+    names: list[str] = []
+    for line in (SlabOnGirderBridge.__doc__ or "").splitlines():
+        m = re.match(r"^    (\w[\w, ]*?)\s*:\s*.+$", line) or re.match(r"^    (\w[\w, ]*)$", line)
+        if m and not line.startswith("     "):
+            names = [n.strip() for n in m.group(1).split(",")]
+            for i, n in enumerate(names):
+                text[n], position[n] = "", i
+        elif line.startswith("        ") and names:
+            for n in names:
+                text[n] = (text[n] + " " + line.strip()).strip()
+    out = {}
+    for n, t in text.items():
+        units = re.findall(r"\[([^\[\]]+)\]", t)
+        unit = units[position[n]] if position[n] < len(units) else (units[0] if units else "")
+        out[n] = (t, "" if unit == "-" else unit)
+    return out
+
+
 def deck_parameters(table: dict[str, object]) -> dict[str, object]:
     """Keyword arguments of :class:`SlabOnGirderBridge` from a scenario's ``[bridge.deck]`` table:
     ``girder`` is an AASHTO type ("I" … "VI") or a table {area, inertia, y_bottom, depth} [m², m⁴, m, m];

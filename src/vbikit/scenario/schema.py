@@ -423,9 +423,13 @@ class Scenario(_Section):
 def key_unit(key: str) -> str:
     """Unit of the scenario key ``"section.key"`` as written in its description (``"km/h"`` for
     ``crossing.speed_kmh``, ``"m"`` for ``tire.contact_length``; ``"-"`` for dimensionless numbers,
-    ``""`` for text and unknown keys)."""
+    ``""`` for text and unknown keys; ``bridge.deck.*`` keys from the deck model's parameters)."""
     model: Any = Scenario
     *sections, name = key.split(".")
+    if sections == ["bridge", "deck"]:
+        from vbikit.bridge.girder_deck import deck_parameter_docs
+
+        return deck_parameter_docs().get(name, ("", ""))[1]
     for part in sections:
         field = model.model_fields.get(part)
         model = field.annotation if field is not None else None

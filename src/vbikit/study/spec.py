@@ -147,8 +147,15 @@ def _check_key(key: str, base: dict[str, Any]) -> None:
     if section not in Scenario.model_fields or section == "name":
         raise StudyError(f"axes.{key!r}: unknown scenario section {section!r}; allowed: "
                          f"{', '.join(k for k in Scenario.model_fields if k != 'name')}")
+    if parts[:2] == ["bridge", "deck"] and len(parts) == 3:  # a slab-on-girder deck parameter
+        from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS
+
+        if parts[2] not in SCENARIO_PARAMETERS:
+            raise StudyError(f"axes.{key!r}: unknown [bridge.deck] key {parts[2]!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        return
     if len(parts) != 2:
-        raise StudyError(f"axes.{key!r}: only section.key axes are supported (e.g. \"tire.n_points\")")
+        raise StudyError(f"axes.{key!r}: only section.key axes (e.g. \"tire.n_points\") and bridge.deck.key axes "
+                         "are supported")
     if section == "vehicle":  # preset parameters are checked by the scenario validation
         return
     model = Scenario.model_fields[section].annotation
