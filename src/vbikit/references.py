@@ -148,10 +148,6 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "grillage idealisation of slab-on-girder decks (member properties, slab torsion split between the two "
        "directions) and the oblique (skew) mesh of skew decks",
        authors=("Hambly, Edmund C.",), publisher="E & FN Spon", address="London", edition="2nd"),
-    _R("ospgrillage", "software", "ospgrillage: grillage models of bridge decks for OpenSeesPy", "2021",
-       "its meshing rules for skew decks (oblique mesh up to 30°, orthogonal above 11°), the limit above which "
-       "vbikit warns",
-       organization="Monash Smart Structures group", url="https://github.com/MonashSmartStructures/ospgrillage"),
     _R("JTG-D60-2015", "manual", "General Specifications for Design of Highway Bridges and Culverts (JTG D60-2015)", "2015",
        "impact coefficient μ as a function of the first bending frequency (§4.3.2), a reference line on IM plots",
        organization="Ministry of Transport of the People's Republic of China", address="Beijing"),
@@ -179,7 +175,9 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
             "ti.zuoweng.com/ti/eVANKKKQ (2019-12-17); other answers of the bank (e.g. question 1579277) quote the "
             "formula with the same clause"),
     _R("Ngan2022", "article", "ospgrillage: A bridge deck grillage analysis preprocessor for OpenSeesPy", "2022",
-       "ospgrillage, whose live OpenSees models the mode import is tested on (tests/verification/test_ospgrillage_import.py)",
+       "ospgrillage, whose live OpenSees models the mode import is tested on (tests/verification/test_ospgrillage_import.py), "
+       "and its meshing rules for skew decks (oblique mesh up to 30°, orthogonal above 11°; the skew above which "
+       "vbikit warns)",
        authors=("Ngan, J. W.", "Caprani, Colin C."), journal="Journal of Open Source Software", volume="7",
        number="77", pages="4404", doi="10.21105/joss.04404", checked=False,
        url="https://pypi.org/project/ospgrillage/"),

@@ -36,7 +36,7 @@ Supports: every girder bearing restrains w at x = 0 and x = span (rigid, or a ve
 of ``bearing_stiffness`` [N/m] per bearing).
 
 Skew supports (``skew`` = θ [°], |θ| ≤ 45°; the oblique ("skew") grillage mesh of Hambly, *Bridge
-Deck Behaviour*, 2nd ed., 1991, ch. 5, and ospgrillage's ``Oblique`` mesh).  The support lines pass through (x_k, 0) on the deck centreline (x_k = 0,
+Deck Behaviour*, 2nd ed., 1991, ch. 5, and the ``Oblique`` mesh of ospgrillage, Ngan & Caprani 2022).  The support lines pass through (x_k, 0) on the deck centreline (x_k = 0,
 the interior supports, span) at θ to the y axis: a point (x, y) lies on support line k when
 ξ = x − y tan θ = x_k; θ > 0 puts the left (y > 0) end of a support line further along +x.  ξ is
 the distance along a girder from its entry bearing: the stations are stations of ξ, girder line j's
