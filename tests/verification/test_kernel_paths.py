@@ -181,3 +181,21 @@ def test_static_start_falls_back_to_rest_when_a_tire_would_pull(caplog):
     assert np.all(r.q_dot[0] == 0.0)
     on_rest = CAR.static_state(ground=[road.elevation(-3.0)])  # the rest equilibrium on the road there
     np.testing.assert_allclose(r.q[0], on_rest, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize("vx, cell", [(20.0, 1), (-20.0, 0), (0.0, 1)])
+def test_road_rate_on_a_station_is_that_of_the_cell_entered(vx, cell):
+    """A point exactly on a road station (a kink of the piecewise-linear profile) takes the slope of
+    the cell it moves into — +x side driving +x (or at rest), −x side driving −x — so a vehicle
+    driving −x sees the mirror image of one driving +x; the elevation is the station's either way."""
+    from vbikit.solve.kernels import Road, road_point
+
+    stations = np.array([0.0, 1.0, 2.0])
+    z = np.array([0.0, 0.01, -0.02])  # slopes +0.01 then −0.03
+    road = Road(stations, z.reshape(1, 3, 1), float(z.max()))
+    idx = np.full(1, -1, np.int64)
+    rv, rr = np.zeros((1, 1)), np.zeros((1, 1))
+    road_point(1.0, vx, 0, 0, road, idx, rv, rr, (0,))
+    slope = np.diff(z)[cell]
+    assert rv[0, 0] == pytest.approx(0.01, abs=1e-15)
+    assert rr[0, 0] == pytest.approx(vx * slope, abs=1e-15)

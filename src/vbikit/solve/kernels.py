@@ -251,7 +251,9 @@ def _width(lanes, a):
 def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
     """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = vx·dr/dx [m/s] of every lane at
     position ``x`` [m] of point ``p`` on road line ``line`` (linear interpolation; ``idx[p]`` is
-    the point's station pointer, −1 before its first use; it moves either way)."""
+    the point's station pointer, −1 before its first use; it moves either way).  On a station the
+    slope is that of the cell the point moves into: the one on its +x side, or on its −x side
+    when vx < 0 (a vehicle driving −x sees the mirror of what one driving +x sees)."""
     n_l = _width(lanes, rv)
     stations = road.stations
     n_s = stations.size
@@ -263,6 +265,8 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
     while i > 0 and stations[i] > x:
         i -= 1
     idx[p] = i
+    if vx < 0.0 and i > 0 and stations[i] == x:  # on a station, driving −x: the cell behind it
+        i -= 1
     z = road.elevations[min(line, road.elevations.shape[0] - 1)]
     dx = x - stations[i]
     inv = 1.0 / (stations[i + 1] - stations[i])
