@@ -10,7 +10,9 @@ transverse members (OpenSees' consistent ``-cMass`` matrix), the girders' own ma
 inertia lumped at their nodes.  The overhang is set to zero: OpenSees' diagonal nodal masses
 cannot carry the mass–twist coupling of vbikit's rigid overhang strips.  Section properties are
 worked out again in this file from the documented formulas, not taken from vbikit.  Expected
-differences: lumped vs consistent girder mass (O(h²), ≈ 1e-4 at 34 elements); tolerance 0.5 %.
+differences: the twist inertia m J / A that OpenSees' ``-cMass`` gives the slab strips (vbikit's
+strips have none; 0.12 % on mode 5) and lumped vs consistent girder mass (≤ 3e-5, measured in
+``test_opensees_skew.py``, which removes the strips' twist inertia); tolerance 0.5 %.
 Statics use the same nodal loads, so the static girder deflections must agree to solver
 round-off (1e-6).
 
