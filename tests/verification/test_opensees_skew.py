@@ -224,3 +224,20 @@ def test_skewed_deck_modes_are_point_symmetric(skew):
         slope = max(np.abs(wx).max(), np.abs(wy).max())
         assert np.abs(wx + sign * wx[::-1, ::-1]).max() < 1e-8 * slope
         assert np.abs(wy + sign * wy[::-1, ::-1]).max() < 1e-8 * slope
+
+
+def test_opposite_skews_are_mirror_images():
+    """Skew −θ is the mirror image y → −y of skew θ: node (j, i) of one is node (n − 1 − j, i) of the
+    other, the frequencies are equal and each mode is the mirrored one (up to its sign), with
+    ∂w/∂x kept and ∂w/∂y reversed."""
+    a = paper_deck(2, n_modes=8, skew=20.0, use_cache=False)
+    b = paper_deck(2, n_modes=8, skew=-20.0, use_cache=False)
+    assert b.frequencies_hz == pytest.approx(a.frequencies_hz, rel=1e-10)  # measured 2e-12
+    ma, mb = a.nodal_modes, b.nodal_modes
+    for k in range(ma.n_modes):
+        w, wm = ma.w[:, :, k], mb.w[::-1, :, k]
+        sign = 1.0 if np.abs(w - wm).max() < np.abs(w + wm).max() else -1.0
+        assert np.abs(w - sign * wm).max() < 1e-8 * np.abs(w).max()  # measured ≤ 2e-11
+        slope = max(np.abs(ma.wx[:, :, k]).max(), np.abs(ma.wy[:, :, k]).max())
+        assert np.abs(ma.wx[:, :, k] - sign * mb.wx[::-1, :, k]).max() < 1e-8 * slope
+        assert np.abs(ma.wy[:, :, k] + sign * mb.wy[::-1, :, k]).max() < 1e-8 * slope
