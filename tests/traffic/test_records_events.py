@@ -131,3 +131,14 @@ def test_partition_by_hand():
     # span 10 m, 10 m/s, length 0: on the bridge for 1 s each (touching intervals do not overlap)
     events = partition([0.0, 0.5, 3.0, 3.99, 4.98, 7.0], [10.0] * 6, [0.0] * 6, 10.0)
     assert [e.vehicles for e in events] == [(0, 1), (2, 3, 4), (5,)]
+
+
+def test_partition_counts_a_skew_decks_oblique_ends():
+    """A skew deck reaches ``reach`` beyond its supports along x: a vehicle is on it reach / v
+    before its entry support and reach / v after the span (by hand: span 10 m, 10 m/s, reach
+    1.5 m: on the deck from t − 0.15 s to t + 1.15 s), so two vehicles 1.2 s apart share it."""
+    assert [e.vehicles for e in partition([0.0, 1.2], [10.0] * 2, [0.0] * 2, 10.0)] == [(0,), (1,)]
+    events = partition([0.0, 1.2], [10.0] * 2, [0.0] * 2, 10.0, reach=1.5)
+    assert [e.vehicles for e in events] == [(0, 1)]
+    assert events[0].start == pytest.approx(-0.15, abs=1e-15)
+    assert events[0].end == pytest.approx(1.2 + 1.15, abs=1e-15)

@@ -73,7 +73,8 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
 def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
     """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
     x, y = contact_positions(result)
-    on = (x >= 0.0) & (x <= result.crossing.bridge.span)
+    first, last = result.crossing.bridge.deck_extent  # 0 … span; beyond on a skew deck's oblique ends
+    on = (x >= first) & (x <= last)
     out = np.zeros(x.shape)
     if np.any(on):
         out[on] = effect.influence(x[on], y[on])

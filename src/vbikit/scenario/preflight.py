@@ -38,7 +38,7 @@ class Plan:
 def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
     """Defects that lie (partly) outside the bridge and its approach, where no wheel meets them."""
     crossing = built.crossing
-    lo, hi = -crossing.approach, crossing.bridge.span
+    lo, hi = -crossing.approach, crossing.bridge.deck_extent[1]  # a skew deck ends beyond its span
     out = []
     for i, d in enumerate(scenario.road.defects):
         start = d.position

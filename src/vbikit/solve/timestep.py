@@ -35,7 +35,7 @@ def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
     if crossing.vehicles:  # the vehicles' travel at times spread over the run until the last one leaves
         positions = list(crossing.travel(np.linspace(crossing.start_time, crossing.exit_time(), n_positions + 2)))
     else:
-        positions = list(np.linspace(-1.0, crossing.bridge.span + crossing.contact.setback.max() + 1.0, n_positions))
+        positions = list(np.linspace(-1.0, crossing.bridge.deck_extent[1] + crossing.contact.setback.max() + 1.0, n_positions))
     v_max = crossing.max_speed
     eig = []
     for xf in positions:

@@ -30,15 +30,20 @@ class Event:
 
 
 def on_bridge_intervals(times: Sequence[float], speeds: Sequence[float], lengths: Sequence[float],
-                        span: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Entry and exit time [s] of every vehicle (entry time [s], speed [m/s], length [m])."""
+                        span: float, reach: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Entry and exit time [s] of every vehicle (entry time [s] at its entry support, speed [m/s],
+    length [m]); ``reach`` [m]: how far the deck extends beyond its supports along x (a skew deck's
+    oblique ends: (width/2)·|tan θ|), on the vehicle before and after."""
     t = np.asarray(times, float)
-    return t, t + (float(span) + np.asarray(lengths, float)) / np.asarray(speeds, float)
+    v = np.asarray(speeds, float)
+    return t - float(reach) / v, t + (float(span) + float(reach) + np.asarray(lengths, float)) / v
 
 
-def partition(times: Sequence[float], speeds: Sequence[float], lengths: Sequence[float], span: float) -> list[Event]:
-    """The events of a stream (see the module docstring), in time order."""
-    start, end = on_bridge_intervals(times, speeds, lengths, span)
+def partition(times: Sequence[float], speeds: Sequence[float], lengths: Sequence[float], span: float,
+              reach: float = 0.0) -> list[Event]:
+    """The events of a stream (see the module docstring), in time order (``reach``: see
+    :func:`on_bridge_intervals`)."""
+    start, end = on_bridge_intervals(times, speeds, lengths, span, reach)
     order = np.argsort(start, kind="stable")
     events: list[Event] = []
     members: list[int] = []

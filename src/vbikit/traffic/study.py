@@ -409,7 +409,9 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
             lengths.append(_vehicle(r).length)
         except ValueError as err:
             raise StudyError(f"{where}: {err}") from None
-    events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span)
+    first, last = bridge.deck_extent
+    reach = max(-first, last - bridge.span, 0.0)  # a skew deck's ends reach beyond its supports
+    events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span, reach)
     digest = hashlib.sha256(json.dumps([[r.id, r.time, r.lane, r.lateral_offset, r.direction, r.speed, r.model,
                                          list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
     return TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
