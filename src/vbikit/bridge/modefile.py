@@ -12,11 +12,17 @@ File format ``vbikit-modes 1`` (a CSV file with ``#`` header lines; full referen
     # strain_lever_arm = 0.747, ...        [m], optional: bottom fibre to neutral axis, one per node line
     # default_lateral_offset = 1.4         [m], optional
     # default_girder = 4                   optional, 1-based
+    # deck_width = 10.3                    [m], optional: total width (the x extent of a skew deck)
+    # skew = 20.0                          [°], optional: skew of the support lines (default 0)
     x,y,w_1,w_2,...,dwdx_1,...,dwdy_1,...
     0,-4.26,0,0,...
 
 * Nodes lie on a rectangular grid: every distinct y (a longitudinal line, e.g. a girder) has a
   node at every distinct x (a station); x runs from 0 to the span.  Row order is free.
+* Skew supports (``skew`` = θ, −90 < θ < 90): line j's node i lies at x = ξ_i + y_j tan θ (the
+  oblique mesh).  The first column is then either ``x``, the node's plan x (as FE programs export
+  it; ξ = x − y tan θ must give every line the same stations within 1e-6 of the span), or ``xi``,
+  the station ξ itself (what :func:`write_modes` writes: an exact round trip).
 * ``w_k`` is the vertical (z up) component of mode k, **mass-normalised** (φᵀ M φ = 1, units
   kg^-1/2), as OpenSees, ANSYS and SAP2000 export them by default.
 * ``dwdx_k`` and ``dwdy_k`` (optional, both or neither) are the slopes ∂w/∂x and ∂w/∂y.  From
@@ -59,7 +65,17 @@ class ImportedModalBridge(ModalBridge):
     """A bridge given by nodal modes (:class:`NodalModes`), e.g. read by :func:`modes_from_file`.
 
     ``strain_lever_arm`` [m] per node line (distance from the neutral axis down to the bottom
-    fibre); ``girder_y`` [m] the girder lines (Girder 1 first) for per-girder responses.
+    fibre); ``girder_y`` [m] the girder lines (Girder 1 first) for per-girder responses;
+    ``deck_width`` [m] the deck's total width, centred on y = 0, when known (it only sets the deck's
+    x extent on a skew deck).
+
+    Skew support lines (``modes.skew_tan`` = tan θ ≠ 0): line j's stations lie at x = ξ_i + y_j tan θ
+    (:mod:`vbikit.bridge.nodal`), the deck point (x, y) has ξ = x − y tan θ (:meth:`span_coordinate`),
+    responses default to the midspan of the line at y (:meth:`default_x_at`), and strains are read on
+    the lines at the point's own ξ.  The deck's x extent runs from the entry support line's x at the
+    deck's lateral edges to the exit line's: the edges are ±deck_width/2, or — without a deck width —
+    the outermost node lines (a wheel outside them then sees the rigidly extrapolated overhang only
+    within that extent).
     """
 
     modes: NodalModes
@@ -70,6 +86,7 @@ class ImportedModalBridge(ModalBridge):
     default_lateral_offset: float = 0.0
     default_girder: int = 1
     name: str = ""
+    deck_width: Optional[float] = None
     span: float = field(init=False)
 
     def __post_init__(self) -> None:
@@ -85,6 +102,42 @@ class ImportedModalBridge(ModalBridge):
         object.__setattr__(self, "strain_lever_arm", c)
         if self.girder_lines is not None:
             object.__setattr__(self, "girder_lines", np.asarray(self.girder_lines, float))
+        if self.deck_width is not None:
+            if isinstance(self.deck_width, bool) or not (np.isfinite(self.deck_width) and self.deck_width > 0):
+                raise ModeFileError(f"deck_width must be a positive width [m], got {self.deck_width!r}")
+            object.__setattr__(self, "deck_width", float(self.deck_width))
+
+    @property
+    def skew_tan(self) -> float:
+        """tan θ of the support lines' skew [-] (0: square supports)."""
+        return self.modes.skew_tan
+
+    @property
+    def deck_extent(self) -> tuple[float, float]:
+        """(x_first, x_last) [m]: 0 … span, widened on a skew deck to where its support lines meet the
+        deck's lateral edges — ±deck_width/2, or the outermost node lines when no width is known."""
+        t = self.skew_tan
+        if not t:
+            return 0.0, float(self.span)
+        edges = [float(self.modes.y[0]), float(self.modes.y[-1])]
+        if self.deck_width is not None:
+            edges += [-0.5 * self.deck_width, 0.5 * self.deck_width]
+        shifts = [e * t for e in edges]
+        return min(min(shifts), 0.0), float(self.span) + max(max(shifts), 0.0)
+
+    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+        """ξ = x − y tan θ [m]: distance along the lines from the entry support line."""
+        x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
+        return x - y * self.skew_tan if self.skew_tan else np.array(x, float)
+
+    def default_x_at(self, y: float) -> float:
+        """x [m] of the midspan of the line at lateral position y [m]: span/2 + y tan θ."""
+        return 0.5 * float(self.span) + float(y) * self.skew_tan if self.skew_tan else 0.5 * float(self.span)
+
+    @property
+    def default_response_x(self) -> float:  # type: ignore[override]
+        """Midspan [m] on the default girder's line."""
+        return self.default_x_at(self.default_response_y)
 
     @property
     def omega(self) -> NDArray[np.float64]:
@@ -119,7 +172,8 @@ class ImportedModalBridge(ModalBridge):
         return self.modes.evaluate(x, y, 1)
 
     def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
-        """c ∂²w/∂x² on the node line(s) at y (linear between lines, clamped beyond)."""
+        """c ∂²w/∂x² on the node line(s) at y (linear between lines, clamped beyond; on a skew deck
+        at the point's ξ)."""
         return girder_line_strain(self.modes, self.strain_lever_arm, x, y)
 
 
@@ -130,8 +184,69 @@ def _floats(text: str, key: str) -> NDArray[np.float64]:
         raise ModeFileError(f"header {key!r}: not a list of numbers: {text!r}") from None
 
 
+def _one_float(header: dict[str, str], key: str, path: Path) -> Optional[float]:
+    """The single number of header ``key``, or None when the file has no such header."""
+    if key not in header:
+        return None
+    v = _floats(header[key], key)
+    if v.size != 1:
+        raise ModeFileError(f"{path}: header {key!r} must be one number, got {header[key]!r}")
+    return float(v[0])
+
+
+def _skew_tan(skew: float) -> float:
+    """tan θ [-] of a skew angle θ [°] (the slab-on-girder deck's formula: a file's skew reads back exactly)."""
+    return float(np.tan(np.radians(skew))) if skew else 0.0
+
+
+def _skew_degrees(skew_tan: float, skew: Optional[float] = None) -> float:
+    """θ [°] that :func:`_skew_tan` maps to exactly ``skew_tan``: the bridge's own ``skew`` when it has
+    one, else arctan, moved by a few ulps if needed (tan θ is steeper than one ulp of θ below 90°)."""
+    if skew is not None and _skew_tan(float(skew)) == skew_tan:
+        return float(skew)
+    theta = float(np.degrees(np.arctan(skew_tan)))
+    for direction in (np.inf, -np.inf):
+        candidate = theta
+        for _ in range(64):
+            if _skew_tan(candidate) == skew_tan:
+                return candidate
+            candidate = float(np.nextafter(candidate, direction))
+    log.warning("skew tan θ = %r has no exact angle in degrees; writing %r", skew_tan, theta)
+    return theta
+
+
+def _stations_from_plan(xi: NDArray[np.float64], y: NDArray[np.float64], span: float, path: Path) -> NDArray[np.float64]:
+    """The common station of every node from its ξ = x − y tan θ: the mean over the lines, with the first
+    and last stations set to 0 and the span when that close; every node within 1e-6 of the span of its station."""
+    ys = np.unique(y)
+    rows = [np.flatnonzero(y == v) for v in ys]
+    if len({r.size for r in rows}) != 1:
+        raise ModeFileError(f"{path}: every node line needs the same number of nodes "
+                            f"(found {sorted({r.size for r in rows})}) to form an oblique grid")
+    order = [r[np.argsort(xi[r], kind="stable")] for r in rows]
+    grid = np.array([xi[r] for r in order])  # (n_lines, n_st)
+    stations = grid.mean(axis=0)
+    tol = 1e-6 * span
+    if abs(stations[0]) <= tol:
+        stations[0] = 0.0
+    if abs(stations[-1] - span) <= tol:
+        stations[-1] = span
+    off = np.abs(grid - stations[None, :])
+    if off.max() > tol:
+        j, i = np.unravel_index(np.argmax(off), off.shape)
+        raise ModeFileError(f"{path}: the node at x - y tan(skew) = {float(grid[j, i])!r} on line y = {float(ys[j])!r} is "
+                            f"{off[j, i]:.3g} m from station {i} ({float(stations[i])!r}, the mean over the lines; allowed "
+                            f"1e-6 of the span = {tol:.3g} m): "
+                            "with a skew, every line needs a node at every station x = xi + y tan(skew)")
+    out = np.empty_like(xi)
+    for r in order:
+        out[r] = stations
+    return out
+
+
 def write_modes(bridge: ModalBridge, path: str | Path, modes: NodalModes | None = None) -> Path:
-    """Write a bridge's nodal modes in the ``vbikit-modes 1`` format (full float precision).
+    """Write a bridge's nodal modes in the ``vbikit-modes 1`` format (full float precision; a skew
+    deck with its ``skew`` header and its stations in an ``xi`` column, so that it reads back exactly).
 
     ``modes`` defaults to ``bridge.nodal_modes`` (the slab-on-girder model's grid).  The lever arms
     are the bridge's ``line_properties["c"]`` or ``strain_lever_arm`` when it has them.
@@ -152,9 +267,13 @@ def write_modes(bridge: ModalBridge, path: str | Path, modes: NodalModes | None 
     for key in ("default_lateral_offset", "default_girder"):
         if hasattr(bridge, key):
             lines.append(f"# {key} = {getattr(bridge, key)!r}")
+    if getattr(bridge, "deck_width", None) is not None:
+        lines.append(f"# deck_width = {float(bridge.deck_width)!r}")
+    if modes.skew_tan:
+        lines.append(f"# skew = {_skew_degrees(modes.skew_tan, getattr(bridge, 'skew', None))!r}")
     n = modes.n_modes
-    lines.append(",".join(["x", "y", *(f"w_{k + 1}" for k in range(n)), *(f"dwdx_{k + 1}" for k in range(n)),
-                           *(f"dwdy_{k + 1}" for k in range(n))]))
+    lines.append(",".join(["xi" if modes.skew_tan else "x", "y", *(f"w_{k + 1}" for k in range(n)),
+                           *(f"dwdx_{k + 1}" for k in range(n)), *(f"dwdy_{k + 1}" for k in range(n))]))
     yy, xx = np.meshgrid(modes.y, modes.x, indexing="ij")
     table = np.column_stack([xx.ravel(), yy.ravel(), modes.w.reshape(-1, n), modes.wx.reshape(-1, n), modes.wy.reshape(-1, n)])
     path.parent.mkdir(parents=True, exist_ok=True)
@@ -198,21 +317,28 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
     omega = _floats(header["omega"], "omega") if "omega" in header else 2.0 * np.pi * freqs
     if omega.size != n:
         raise ModeFileError(f"{path}: omega has {omega.size} values but frequencies_hz has {n}")
-    want = ["x", "y", *(f"w_{k + 1}" for k in range(n))]
+    skew = _floats(header["skew"], "skew") if "skew" in header else np.zeros(1)
+    if skew.size != 1 or not (np.isfinite(skew[0]) and abs(skew[0]) < 90.0):
+        raise ModeFileError(f"{path}: header 'skew' must be one angle in degrees, -90 < skew < 90, got {header['skew']!r}")
+    skew_tan = _skew_tan(float(skew[0]))
+    want = ["y", *(f"w_{k + 1}" for k in range(n))]
     slopes = [*(f"dwdx_{k + 1}" for k in range(n)), *(f"dwdy_{k + 1}" for k in range(n))]
-    if columns[: 2 + n] != want or columns[2 + n:] not in ([], slopes):
-        raise ModeFileError(f"{path}: columns must be x, y, w_1 … w_{n} [, dwdx_1 … dwdx_{n}, dwdy_1 … dwdy_{n}]; got {columns[:6]}…")
+    if columns[:1] not in (["x"], ["xi"]) or columns[1: 2 + n] != want or columns[2 + n:] not in ([], slopes):
+        raise ModeFileError(f"{path}: columns must be x (or xi), y, w_1 … w_{n} [, dwdx_1 … dwdx_{n}, dwdy_1 … dwdy_{n}]; "
+                            f"got {columns[:6]}…")
     try:
         table = np.loadtxt(lines[data_start:], delimiter=",", ndmin=2)
     except ValueError:
         raise ModeFileError(f"{path}: every row needs {len(columns)} finite numbers") from None
     if table.shape[1] != len(columns) or not np.all(np.isfinite(table)):
         raise ModeFileError(f"{path}: every row needs {len(columns)} finite numbers")
+    span = float(_floats(header["span"], "span")[0])
+    if columns[0] == "x" and skew_tan:  # plan x of an oblique mesh: the stations along the lines
+        table[:, 0] = _stations_from_plan(table[:, 0] - table[:, 1] * skew_tan, table[:, 1], span, path)
     xs, ys = np.unique(table[:, 0]), np.unique(table[:, 1])
     if table.shape[0] != xs.size * ys.size:
         raise ModeFileError(f"{path}: nodes must form a full rectangular grid ({ys.size} lines × {xs.size} stations "
                             f"= {xs.size * ys.size} nodes, found {table.shape[0]} rows)")
-    span = float(_floats(header["span"], "span")[0])
     if xs[0] != 0.0 or not np.isclose(xs[-1], span, rtol=1e-12, atol=0):
         raise ModeFileError(f"{path}: stations must run from x = 0 to the span {span} m (found {xs[0]} … {xs[-1]})")
     order = np.lexsort((table[:, 0], table[:, 1]))  # by line, then station
@@ -231,8 +357,10 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
             wy = np.repeat((w[1:] - w[:1]) / (ys[1] - ys[0]), 2, axis=0)
         else:
             wy = np.zeros_like(w)
+        if skew_tan:  # across the lines the spline runs along the oblique members (constant ξ): d/dy = ∂/∂y + tan θ ∂/∂x
+            wy = wy - skew_tan * wx
     keep = n if n_modes is None else min(int(n_modes), n)
-    modes = NodalModes(xs, ys, w[:, :, :keep], wx[:, :, :keep], wy[:, :, :keep])
+    modes = NodalModes(xs, ys, w[:, :, :keep], wx[:, :, :keep], wy[:, :, :keep], skew_tan)
     damping = _floats(header["damping_ratios"], "damping_ratios")[:keep] if "damping_ratios" in header else damping_ratio
     if "strain_lever_arm" in header:
         lever = _floats(header["strain_lever_arm"], "strain_lever_arm")
@@ -246,4 +374,5 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
         modes, omega[:keep], damping, lever, girders,
         default_lateral_offset=float(header.get("default_lateral_offset", 0.0)),
         default_girder=int(float(header.get("default_girder", 1))), name=path.stem,
+        deck_width=_one_float(header, "deck_width", path),
     )
