@@ -134,7 +134,7 @@ def test_the_skew_is_the_one_given_to_ospgrillage(oblique):
     bridge, lam, tags, X, Y = oblique
     # ospgrillage 0.6 rounds node coordinates to 4 decimals (osp_grillage.py, ``round(…, 4)``), so the
     # skew fitted from the nodes is tan 20° to about 5e-5 m over the 8 m between the outer lines
-    # (measured 3.6e-6); every node within that rounding of its grid point (measured 4.4e-5 m)
+    # (measured 3.6e-6); every node within that rounding of its grid point (measured 4.1e-5 m)
     assert bridge.skew_tan == pytest.approx(np.tan(np.radians(SKEW)), rel=0, abs=1e-5)
     assert np.abs(_grid_x(bridge, Y) - X).max() < 1e-4
     # the deck's x extent: where the oblique support lines meet the deck edges y = ±4 m (measured 1.5e-5 m)
@@ -194,7 +194,7 @@ def test_eigenvectors_are_normalised_to_the_opensees_mass_matrix(imported, ops):
         for d, eq in enumerate(ops.nodeDOFs(node)):
             if eq >= 0:
                 phi[eq] = [ops.nodeEigenvector(node, k + 1, d + 1) for k in range(N_MODES)]
-    # φᵀMφ = I: what modes_from_opensees assumes (measured largest deviation 9e-11 straight, 9e-11
+    # φᵀMφ = I: what modes_from_opensees assumes (measured largest deviation 9e-11 straight, 8e-12
     # skewed).  M is singular (no rotary mass), so analyze() reports a failed solve, but GimmeMCK has
     # assembled M by then
     np.testing.assert_allclose(phi.T @ M @ phi, np.eye(N_MODES), atol=1e-9)

@@ -28,7 +28,8 @@ File format ``vbikit-modes 1`` (a CSV file with ``#`` header lines; full referen
 * ``dwdx_k`` and ``dwdy_k`` (optional, both or neither) are the slopes ∂w/∂x and ∂w/∂y.  From
   nodal rotations with x along the span, y to the left and z up: ∂w/∂y = θ_x and ∂w/∂x = −θ_y.
   Without them, slopes are taken from cubic splines through the nodal w (not-a-knot) along each
-  line and across each station.
+  line and across each station (on a skew deck across the lines at constant ξ, the derivative
+  along the oblique members, ∂w/∂y + tan θ ∂w/∂x, from which ∂w/∂y follows).
 * Between nodes, :class:`~vbikit.bridge.nodal.NodalModes` interpolates (Hermite along x and
   across y), so a file written by :func:`write_modes` from a vbikit model reproduces that model
   exactly.
@@ -337,8 +338,9 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
         table[:, 0] = _stations_from_plan(table[:, 0] - table[:, 1] * skew_tan, table[:, 1], span, path)
     xs, ys = np.unique(table[:, 0]), np.unique(table[:, 1])
     if table.shape[0] != xs.size * ys.size:
-        raise ModeFileError(f"{path}: nodes must form a full rectangular grid ({ys.size} lines × {xs.size} stations "
-                            f"= {xs.size * ys.size} nodes, found {table.shape[0]} rows)")
+        along = " along the lines" if skew_tan else ""
+        raise ModeFileError(f"{path}: nodes must form a full rectangular grid of lines × stations{along} ({ys.size} lines × "
+                            f"{xs.size} stations = {xs.size * ys.size} nodes, found {table.shape[0]} rows)")
     if xs[0] != 0.0 or not np.isclose(xs[-1], span, rtol=1e-12, atol=0):
         raise ModeFileError(f"{path}: stations must run from x = 0 to the span {span} m (found {xs[0]} … {xs[-1]})")
     order = np.lexsort((table[:, 0], table[:, 1]))  # by line, then station
@@ -357,7 +359,7 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
             wy = np.repeat((w[1:] - w[:1]) / (ys[1] - ys[0]), 2, axis=0)
         else:
             wy = np.zeros_like(w)
-        if skew_tan:  # across the lines the spline runs along the oblique members (constant ξ): d/dy = ∂/∂y + tan θ ∂/∂x
+        if skew_tan:  # the spline across the lines runs at constant ξ: d/dy = ∂/∂y + tan θ ∂/∂x
             wy = wy - skew_tan * wx
     keep = n if n_modes is None else min(int(n_modes), n)
     modes = NodalModes(xs, ys, w[:, :, :keep], wx[:, :, :keep], wy[:, :, :keep], skew_tan)
