@@ -22,6 +22,8 @@ CHECKS = {
     and abs(g["cal"].damping_ratio - g["truth"].damping_ratio) < 0.001,
     # the study has one dimension per axis: 2 tire settings × 5 speeds × 8 samples
     "parameter_study": lambda g: dict(g["ds"]["impact_factor"].sizes) == {"tire_n_points": 2, "crossing_speed_kmh": 5, "sample": 8},
+    # the oblique mesh softens the transverse modes with skew (docs/bridges.md, "Skew supports")
+    "skew_deck": lambda g: all(b[2] < a[2] for a, b in zip(g["frequencies"], g["frequencies"][1:])),
     # two vehicles in one run (one front-axle history each)
     "two_trucks": lambda g: g["result"].front_position.shape[1] == 2,
 }
