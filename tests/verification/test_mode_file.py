@@ -93,6 +93,7 @@ def test_skew_round_trip_is_exact(tmp_path, skewed):
     path = write_modes(native, tmp_path / "skew25.csv")
     text = path.read_text()
     assert "# skew = 25.0\n" in text and "\nxi,y,w_1," in text and "# deck_width = 9.75\n" in text
+    assert "skew_tan" not in text  # 25° gives the deck's tan θ exactly
     imported = modes_from_file(path)
     assert imported.skew_tan == native.skew_tan == np.tan(np.radians(25.0))
     assert np.array_equal(imported.omega, native.omega)
@@ -167,4 +168,24 @@ def test_bad_skew_header_is_named(tmp_path, value):
     path = write_modes(BRIDGE_PRESETS["paper-bridge-1"].build(n_modes=3), tmp_path / "m.csv")
     path.write_text(path.read_text().replace("# default_girder", f"# skew = {value}\n# default_girder"))
     with pytest.raises(ModeFileError, match=r"header 'skew' must be one angle in degrees, -90 < skew < 90"):
+        modes_from_file(path)
+
+
+def test_skew_without_an_exact_angle_gets_its_tan(tmp_path, skewed):
+    """tan θ = 0.7 has no angle in degrees whose tan(radians(θ)) is 0.7 to the last bit: the file
+    carries it as skew_tan too and reads back exactly; a skew_tan that is not tan(skew) is refused."""
+    import dataclasses
+
+    m = skewed.nodal_modes
+    bridge = modes_from_file(write_modes(skewed, tmp_path / "s.csv"))
+    bridge = dataclasses.replace(bridge, modes=dataclasses.replace(m, skew_tan=0.7))
+    path = write_modes(bridge, tmp_path / "t.csv")
+    text = path.read_text()
+    assert "# skew_tan = 0.7\n" in text and f"# skew = {float(np.degrees(np.arctan(0.7)))!r}"[:16] in text  # 34.99202…°
+    again = modes_from_file(path)
+    assert again.skew_tan == 0.7
+    x, y = _deck_points(skewed)
+    assert np.array_equal(again.mode_shapes(x, y), bridge.mode_shapes(x, y))
+    path.write_text(text.replace("# skew_tan = 0.7", "# skew_tan = 0.71"))
+    with pytest.raises(ModeFileError, match=r"header 'skew_tan' = '0.71' must be tan\(skew\)"):
         modes_from_file(path)

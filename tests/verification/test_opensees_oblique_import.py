@@ -93,3 +93,17 @@ def test_shapes_and_slopes_are_the_eigenvectors(model):
     along = m.wy[:, :, 0] + t * m.wx[:, :, 0]
     fd_y = (m.w[1:, :, 0] - m.w[:-1, :, 0]) / np.diff(LINES)[:, None]
     assert np.abs(0.5 * (along[1:] + along[:-1]) - fd_y).max() < 0.03 * max(np.abs(m.wx[:, :, 0]).max(), np.abs(m.wy[:, :, 0]).max())
+
+
+def test_written_and_read_back_exactly(model, tmp_path):
+    """The imported skew bridge saved as a vbikit-modes file (its skew in degrees) reads back with the
+    same tan θ to the last bit, and so the same shapes anywhere (the reference: the bridge written)."""
+    from vbikit.bridge.modefile import modes_from_file, write_modes
+
+    bridge = model[1]
+    again = modes_from_file(write_modes(bridge, tmp_path / "oblique.csv"))
+    assert again.skew_tan == bridge.skew_tan and again.deck_extent == bridge.deck_extent
+    rng = np.random.default_rng(3)
+    x, y = rng.uniform(-1.5, SPAN + 1.5, 300), rng.uniform(-2.0, 2.0, 300)
+    for f in ("mode_shapes", "mode_slopes", "strain_shapes"):
+        assert np.array_equal(getattr(again, f)(x, y), getattr(bridge, f)(x, y)), f

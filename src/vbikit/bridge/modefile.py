@@ -14,6 +14,7 @@ File format ``vbikit-modes 1`` (a CSV file with ``#`` header lines; full referen
     # default_girder = 4                   optional, 1-based
     # deck_width = 10.3                    [m], optional: total width (the x extent of a skew deck)
     # skew = 20.0                          [°], optional: skew of the support lines (default 0)
+    # skew_tan = 0.36397...                optional: overrides tan(skew) (exact round trip)
     x,y,w_1,w_2,...,dwdx_1,...,dwdy_1,...
     0,-4.26,0,0,...
 
@@ -201,8 +202,9 @@ def _skew_tan(skew: float) -> float:
 
 
 def _skew_degrees(skew_tan: float, skew: Optional[float] = None) -> float:
-    """θ [°] that :func:`_skew_tan` maps to exactly ``skew_tan``: the bridge's own ``skew`` when it has
-    one, else arctan, moved by a few ulps if needed (tan θ is steeper than one ulp of θ below 90°)."""
+    """θ [°] for ``skew_tan``: the bridge's own ``skew`` when it has one and it gives that tan θ, else
+    arctan, moved by up to 64 ulps to an angle that :func:`_skew_tan` maps exactly to ``skew_tan`` if
+    there is one (else the file also gets a ``skew_tan`` header)."""
     if skew is not None and _skew_tan(float(skew)) == skew_tan:
         return float(skew)
     theta = float(np.degrees(np.arctan(skew_tan)))
@@ -212,7 +214,6 @@ def _skew_degrees(skew_tan: float, skew: Optional[float] = None) -> float:
             if _skew_tan(candidate) == skew_tan:
                 return candidate
             candidate = float(np.nextafter(candidate, direction))
-    log.warning("skew tan θ = %r has no exact angle in degrees; writing %r", skew_tan, theta)
     return theta
 
 
@@ -271,7 +272,10 @@ def write_modes(bridge: ModalBridge, path: str | Path, modes: NodalModes | None 
     if getattr(bridge, "deck_width", None) is not None:
         lines.append(f"# deck_width = {float(bridge.deck_width)!r}")
     if modes.skew_tan:
-        lines.append(f"# skew = {_skew_degrees(modes.skew_tan, getattr(bridge, 'skew', None))!r}")
+        theta = _skew_degrees(modes.skew_tan, getattr(bridge, "skew", None))
+        lines.append(f"# skew = {theta!r}")
+        if _skew_tan(theta) != modes.skew_tan:  # no angle in degrees gives this tan θ exactly
+            lines.append(f"# skew_tan = {modes.skew_tan!r}")
     n = modes.n_modes
     lines.append(",".join(["xi" if modes.skew_tan else "x", "y", *(f"w_{k + 1}" for k in range(n)),
                            *(f"dwdx_{k + 1}" for k in range(n)), *(f"dwdy_{k + 1}" for k in range(n))]))
@@ -322,6 +326,12 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
     if skew.size != 1 or not (np.isfinite(skew[0]) and abs(skew[0]) < 90.0):
         raise ModeFileError(f"{path}: header 'skew' must be one angle in degrees, -90 < skew < 90, got {header['skew']!r}")
     skew_tan = _skew_tan(float(skew[0]))
+    if "skew_tan" in header:  # exact tan θ (written when no angle in degrees gives it exactly)
+        t = _one_float(header, "skew_tan", path)
+        if not (np.isfinite(t) and abs(float(np.degrees(np.arctan(t))) - float(skew[0])) <= 1e-6):
+            raise ModeFileError(f"{path}: header 'skew_tan' = {header['skew_tan']!r} must be tan(skew) of the header "
+                                f"'skew' = {float(skew[0])!r}° (within 1e-6°)")
+        skew_tan = float(t)
     want = ["y", *(f"w_{k + 1}" for k in range(n))]
     slopes = [*(f"dwdx_{k + 1}" for k in range(n)), *(f"dwdy_{k + 1}" for k in range(n))]
     if columns[:1] not in (["x"], ["xi"]) or columns[1: 2 + n] != want or columns[2 + n:] not in ([], slopes):
