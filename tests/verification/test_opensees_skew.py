@@ -38,10 +38,16 @@ IN = 0.0254
 L = 16.76  # Bridge 2 span [m]
 
 
-def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia=True):  # noqa: F811
+def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia=True, spans=None):  # noqa: F811
     """Bridge-2 grillage (five Type II girders at 2.13 m, no overhang) with support lines skewed by
     ``skew_deg`` [°]; returns node tags [line, station], the stations ξ [m], the lines' y [m] and
     the node coordinates x[line, station] [m].
+
+    ``spans`` [m] (adding up to ``span``; default one span): the girders run continuous over
+    interior lines of bearings at ξ = x_k (the cumulative span lengths), skewed like the end lines
+    through (x_k, 0); the ``n_el`` elements are shared among the spans in proportion to their
+    lengths, equal within a span.  Diaphragms at every support line and at the middle of every
+    span (Bridge 2's, ``paper_deck(2)``).
 
     OpenSees' consistent beam mass (``-cMass``) gives a member the torsional inertia m J / A per
     length besides its translational mass m; the documented deck model has none on its slab strips.
@@ -58,7 +64,15 @@ def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia
     Jg = A**4 / (4 * np.pi**2 * I)  # Saint-Venant estimate, as documented
     th = np.radians(skew_deg)
     c, sn, tn = np.cos(th), np.sin(th), np.tan(th)
-    xi = np.linspace(0, span, n_el + 1)
+    spans = (span,) if spans is None else tuple(spans)
+    edges = np.concatenate([[0.0], np.cumsum(spans)])
+    n_span = [int(round(n_el * length / span)) for length in spans]
+    assert sum(n_span) == n_el and abs(edges[-1] - span) < 1e-9 * span
+    xi = np.concatenate([np.linspace(a, b, n + 1)[:-1] for a, b, n in zip(edges[:-1], edges[1:], n_span)] + [[span]])
+    bearings = np.concatenate([[0], np.cumsum(n_span)])  # station indices of the support lines
+    first = bearings[:-1]
+    h_el = np.repeat(xi[first + 1] - xi[first], n_span)  # element lengths (equal within a span)
+    trib_x = np.concatenate([h_el / 2, [0.0]]) + np.concatenate([[0.0], h_el / 2])  # station tributary length
     ys = (np.arange(5) - 2) * s
     xg = xi[None, :] + ys[:, None] * tn
     trib_y = np.array([s / 2, s, s, s, s / 2])
@@ -69,12 +83,11 @@ def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia
             ops.node(tag[j, i], float(xg[j, i]), float(y), 0.0)
             ops.fix(tag[j, i], 1, 1, 0, 0, 0, 1)  # grillage: in-plane DOFs fixed
     for j in range(5):
-        for i in (0, n_el):
-            ops.fix(tag[j, i], 0, 0, 1, 0, 0, 0)  # bearings on the two skewed support lines
+        for i in bearings:
+            ops.fix(tag[j, int(i)], 0, 0, 1, 0, 0, 0)  # bearings on the skewed support lines
     ops.geomTransf("Linear", 1, 0.0, 1.0, 0.0)  # girders along x: local z = global y
     ops.geomTransf("Linear", 2, float(c), float(-sn), 0.0)  # strips along (sin θ, cos θ): local z = in-plane normal
     ele = 1
-    hx = xi[1] - xi[0]
     for j in range(5):
         b = trib_y[j]
         n = Ed / Eg
@@ -86,14 +99,13 @@ def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia
             ops.element("elasticBeamColumn", ele, tag[j, i], tag[j, i + 1], A + Ad, Eg, Gg, GJ / Gg, 1.0, Ic, 1)
             ele += 1
         for i in range(n_el + 1):
-            lx = hx / 2 if i in (0, n_el) else hx
-            ops.mass(tag[j, i], 0.0, 0.0, rho * A * lx, rho * I * lx, 0.0, 0.0)
+            ops.mass(tag[j, i], 0.0, 0.0, rho * A * trib_x[i], rho * I * trib_x[i], 0.0, 0.0)
     Dd, bd = 0.75 * h, 0.25
     GJd = Gd * (1 - 0.63 * bd / Dd) / 3 * Dd * bd**3
-    dxi = (0.0, span / 2, span)  # end and midspan diaphragms (paper_deck(2))
+    dxi = tuple(edges) + tuple(0.5 * (edges[1:] + edges[:-1]))  # support and midspan diaphragms (paper_deck(2))
     area_factor = 1.0 if strip_twist_inertia else 1e6
     for i, x in enumerate(xi):
-        w = (hx / 2 if i in (0, n_el) else hx) * c  # strip width perpendicular to the member
+        w = trib_x[i] * c  # strip width perpendicular to the member
         n_d = sum(abs(x - d) < 1e-9 for d in dxi)
         Iz = t**3 * w / (12 * (1 - nu**2)) + n_d * bd * Dd**3 / 12
         J = t**3 / 6 * w + n_d * GJd / Gd
@@ -129,8 +141,10 @@ def truck_nodes(xg, axles, lines=(2, 3)):
 AXLES = [(12.5, 35.6e3), (12.5 - 4.27, 142.3e3), (12.5 - 8.54, 142.3e3)]  # HS20-44 [m, N] (AASHTO)
 
 
-def frequencies(ops, k):  # noqa: F811
-    return np.sqrt(np.array(ops.eigen("-fullGenLapack", k))) / (2 * np.pi)
+def frequencies(ops, k, solver="-fullGenLapack"):  # noqa: F811
+    """The k lowest frequencies [Hz]; ``"-genBandArpack"`` (shift-invert Lanczos) is 50× faster than the
+    dense solver on the two-span model and agrees with it to 2e-11 (frequencies) and 1e-15 (1 − MAC)."""
+    return np.sqrt(np.array(ops.eigen(solver, k))) / (2 * np.pi)
 
 
 # ---------------------------------------------------------------- the OpenSees model on its own
