@@ -93,12 +93,19 @@ _R = Reference
 
 #: Every source vbikit relies on, by citation key.
 REFERENCES: dict[str, Reference] = {r.key: r for r in (
+    # Title only: searched in public repositories (README/bib citations), indexed web pages, issue
+    # trackers and documentation for the exact title, the DOI-less phrase "multi-point tire model" and
+    # the field test (HS20-44, Cypress Bayou, LSU/Southern University authors); no record of the
+    # article was found, so authors, journal, year and DOI stay empty until read from the publisher.
     _R("MultiPointTire", "article", "A Multi-Point Tire Model for Studying Bridge–Vehicle Coupled Vibration", "n.d.",
        "the programme vbikit implements: the coupled equations (Eqs. 1–9), the multi-point tire (Eq. 6), "
        "the random road (Eq. 7), the HS20-44 truck (Table 1), the three paper bridges, the studies of "
        "Figs. 5–11 and the Cypress Bayou field test; equation, table and figure numbers in the docs refer to it",
        note="The copy vbikit follows prints neither authors, journal nor year; complete this entry from the "
             "published article"),
+    # DOI 10.1680/vosasuml.35393 (ICE Virtual Library) not found in any publisher or indexing record
+    # searched; the book data (3rd ed., Thomas Telford 1999; 1st ed. Noordhoff 1972) agree with
+    # reference lists of citing papers (secondary).  Stays unchecked.
     _R("Fryba1999", "book", "Vibration of Solids and Structures under Moving Loads", "1999",
        "moving-force solution of the simply supported beam and its dynamic amplification table "
        "(verification: docs/verification.md)",
@@ -123,11 +130,15 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "the random-road representation as a sum of cosines with random phases (the form of the paper's Eq. 7)",
        authors=("Wang, Ton-Lo", "Huang, Dongzhou"), journal="Journal of Structural Engineering (ASCE)",
        volume="118", number="5", pages="1354–1374", doi="10.1061/(ASCE)0733-9445(1992)118:5(1354)"),
+    # No publisher (World Scientific) or indexing record of this article was found in the searched
+    # corpora; volume, issue, pages and DOI 10.1142/S0219455410003609 stay as written, unchecked.
     _R("Yin2010", "article", "Bridge vibration under vehicular loads: tire patch contact versus point contact", "2010",
        "the deformable-disk tire the paper compares with (vbikit's disk tire is a documented substitute after it)",
        authors=("Yin, Xinfeng", "Cai, C. S.", "Fang, Zhi", "Deng, Lu"),
        journal="International Journal of Structural Stability and Dynamics", volume="10", number="3",
        pages="529–554", checked=False, doi="10.1142/S0219455410003609"),
+    # No publisher (Elsevier) or indexing record of this article was found in the searched corpora;
+    # volume, issue, pages and DOI 10.1016/j.jsv.2011.05.012 stay as written, unchecked.
     _R("Chang2011", "article", "Disk model for wheels moving over highway bridges with rough surfaces", "2011",
        "the rigid-disk tire (the wheel follows the envelope of the surface)",
        authors=("Chang, K. C.", "Wu, F. B.", "Yang, Y. B."), journal="Journal of Sound and Vibration",
@@ -174,13 +185,26 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        note="In Chinese; the answer cites JTG D60-2004 §4.3.2 item 5, p. 26. The same question and answer at "
             "ti.zuoweng.com/ti/eVANKKKQ (2019-12-17); other answers of the bank (e.g. question 1579277) quote the "
             "formula with the same clause"),
+    # Checked against the publisher's Crossref deposit, openjournals/joss-papers
+    # joss.04404/10.21105.joss.04404.crossref.xml (commit 3ba445ae): title, authors J. W. Ngan and
+    # C. C. Caprani, JOSS volume 7, issue 76, article 4404, published 2022-08-30,
+    # DOI 10.21105/joss.04404.  Sources disagree on the issue only: the ospgrillage README/PyPI
+    # "please cite" text and one stored version of the paper's JATS file give 7(77), another JATS
+    # version gives 76.  Issue 76 is the deposit's, and JOSS's monthly numbering agrees (its deposit
+    # for joss.04405 has issue 85 = May 2023, so issue 76 = August 2022).
     _R("Ngan2022", "article", "ospgrillage: A bridge deck grillage analysis preprocessor for OpenSeesPy", "2022",
        "ospgrillage, whose live OpenSees models the mode import is tested on (tests/verification/test_ospgrillage_import.py), "
        "and its meshing rules for skew decks (oblique mesh up to 30°, orthogonal above 11°; the skew above which "
        "vbikit warns)",
        authors=("Ngan, J. W.", "Caprani, Colin C."), journal="Journal of Open Source Software", volume="7",
-       number="77", pages="4404", doi="10.21105/joss.04404", checked=False,
-       url="https://pypi.org/project/ospgrillage/"),
+       number="76", pages="4404", doi="10.21105/joss.04404",
+       url="https://pypi.org/project/ospgrillage/",
+       note="Issue 76 as in the publisher's Crossref deposit, published 30 August 2022; the package's "
+            "README cites it as 7(77)"),
+    # Journal, volume 85, issue EM3 (July 1959) and pages 67–94 agree with a scan of the article itself
+    # (library copy with its cover sheet, scribd document 489002686).  The DOI 10.1061/JMCEA3.0000098
+    # appears only in secondary sources (many public repositories, links to ascelibrary.org/doi/...),
+    # not in a publisher record read here: stays unchecked.
     _R("Newmark1959", "article", "A method of computation for structural dynamics", "1959",
        "the Newmark average-acceleration integrator (crossing.integrator = \"newmark\")",
        authors=("Newmark, Nathan M.",), journal="Journal of the Engineering Mechanics Division (ASCE)", volume="85",
@@ -196,6 +220,10 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "natural frequencies of simply supported and continuous beams (verification)",
        authors=("Blevins, Robert D.",), publisher="Van Nostrand Reinhold", address="New York",
        isbn="0-442-20710-7", note="Reprinted by Krieger, Malabar, FL, 2001"),
+    # Title, SoftwareX, volume 26, article 101725 (2024) agree with a citation in a public repository's
+    # README (secondary); the VBI-2D repository's README and user guide (version of 3 February 2026,
+    # read at commit 1d36c83) do not cite the article.  No publisher record of the DOI was found:
+    # stays unchecked.
     _R("Cantero2024", "article", "VBI-2D – Road vehicle-bridge interaction simulation tool and verification framework for Matlab",
        "2024", "independent vehicle–bridge code the beam crossings are checked against (verification)",
        authors=("Cantero, Daniel",), journal="SoftwareX", volume="26", pages="101725",
@@ -212,11 +240,18 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("pycba", "software", "pycba: Python Continuous Beam Analysis", "2024",
        "independent static moments, shears and reactions of beams (verification of the static reference)",
        authors=("Caprani, Colin C.",), url="https://github.com/ccaprani/pycba"),
-    _R("AdvCivEng2022", "article", "Table 7: road roughness coefficients very good / good / average / poor", "2022",
+    # Title and Table 7 ("Roughness coefficient for different surface conditions": very good 0–2,
+    # good 2–8, average 8–32, poor 32–128 × 1e-6) read on the publisher's page
+    # preview.hindawi.com/journals/ace/2022/9946957/tab7.  The DOI is formed from that article number
+    # and not shown on the page read: unchecked.  Authors not found.
+    _R("AdvCivEng2022", "article",
+       "Study on the Technical Status of Old Concrete Truss-Arch Bridge Based on Vehicle-Bridge Interaction", "2022",
        "supports reading the paper's good / average / poor as ISO 8608 classes B / C / D "
        "(its limits 2–8, 8–32, 32–128 × 1e-6 m³ are ISO's Φ(Ω0) class limits)",
        journal="Advances in Civil Engineering", volume="2022", pages="9946957", doi="10.1155/2022/9946957",
-       note="Cited for its Table 7 only; article title and authors to be completed from the publisher's page"),
+       checked=False,
+       note="Cited only for its Table 7, 'Roughness coefficient for different surface conditions'; "
+            "authors to be completed from the publisher's page"),
 )}
 
 #: Which entries each model relies on, by the names used in scenario files
