@@ -217,3 +217,21 @@ def test_a_section_at_the_exit_bearing_of_a_skew_girder_is_on_the_span(skewed):
         for xi in (0.0, skewed.span):
             skewed.load_effect("moment", float(skewed.girder_x(g, xi)), girder=g)
             skewed.load_effect("moment", float(skewed.girder_x(g, xi)) + (1e-12 if xi else -1e-12), girder=g)
+
+
+def test_girder_strain_at_a_station_is_read_just_right_of_it(skewed):
+    """The modal girder curvature (hence strain) of the Hermite elements jumps at a node; as for the
+    moment, a station of girder g given as x = ξ_i + y_g tan θ is read on the element right of it
+    whatever the round-off of x − y_g tan θ."""
+    bridge = skewed
+    d = 1e-6  # [m]
+    jumps = []
+    for g in range(1, bridge.n_girders + 1):
+        y = float(bridge.girder_y[g - 1])
+        for xi in bridge.stations[1:-1]:
+            x = float(bridge.girder_x(g, xi))
+            at, right, left = (bridge.strain_shapes(v, y)[0] for v in (x, x + d, x - d))
+            scale = np.abs(right).max()
+            assert np.abs(at - right).max() < 1e-4 * scale, (g, xi)  # the curvature's slope over d: measured ≤ 2e-6
+            jumps.append(np.abs(left - right).max() / scale)
+    assert max(jumps) > 1e-2  # measured up to 0.3 (the highest kept mode)

@@ -21,8 +21,9 @@ element length (4e-3 for the first bending mode of Bridge 2 with 34 elements).
 At a station the girder moment jumps by the couple the transverse members apply to the node
 (their torsion, and on a skew deck their bending, act on ∂w/∂x): a moment or shear at a station
 is the one just right of it, M(s⁺) and V(s⁺), from the element that starts there.  A section
-within ``STATION_TOLERANCE`` × span of a station is that station, so a skew girder's station
-asked for at x = ξ_i + y_g tan θ is read there whatever the round-off of x − y_g tan θ.
+within :data:`~vbikit.bridge.girder_deck.STATION_TOLERANCE` × span of a station is that station,
+so a skew girder's station asked for at x = ξ_i + y_g tan θ is read there whatever the round-off
+of x − y_g tan θ.
 """
 from __future__ import annotations
 
@@ -33,14 +34,12 @@ import scipy.sparse.linalg as spla
 from numpy.typing import NDArray
 
 from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
+from vbikit.bridge.girder_deck import snap_to_stations
 from vbikit.bridge.nodal import _hermite
 
 if TYPE_CHECKING:
     from vbikit.bridge.girder_deck import SlabOnGirderBridge
 
-#: a section within this fraction of the span of a station is taken at the station (x = ξ + y tan θ
-#: on a skew deck comes back from ξ = x − y tan θ with round-off, either side of the node)
-STATION_TOLERANCE = 1e-9
 
 
 def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArray[np.float64]
@@ -172,9 +171,7 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
     y_line = float(bridge.girder_y[j])
     xi_s = None if x is None else float(bridge.span_coordinate(x, y_line))
     if xi_s is not None:  # a section within round-off of a station is that station (read just right of it)
-        near = int(np.argmin(np.abs(xs - xi_s)))
-        if abs(xs[near] - xi_s) <= STATION_TOLERANCE * bridge.span:
-            xi_s = float(xs[near])
+        xi_s = float(snap_to_stations(xi_s, xs))
     if xi_s is None or not 0.0 <= xi_s <= bridge.span:
         where = "" if not bridge.skew else f" (girder {girder}'s bearings are at x = {bridge.girder_x(girder, 0.0):.6g} and {bridge.girder_x(girder, bridge.span):.6g} m)"
         raise ValueError(f"{kind}: section x must be within the span 0 … {bridge.span:g} m{where}, got {x!r}")

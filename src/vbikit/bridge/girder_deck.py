@@ -94,6 +94,11 @@ MAX_SKEW = 45.0
 #: the oblique mesh up to 30°): a warning
 OBLIQUE_MESH_ADVISED_SKEW = 30.0
 
+#: a section within this fraction of the span of a station is at the station: on a skew deck
+#: x = ξ_i + y tan θ comes back as ξ = x − y tan θ with round-off either side of the node, where the
+#: girders' curvatures and moments jump (a section at a station is read just right of it)
+STATION_TOLERANCE = 1e-9
+
 #: bumped whenever the model changes in a way that changes its modes (invalidates caches)
 MODEL_VERSION = "girder_deck-2"
 
@@ -677,12 +682,23 @@ class SlabOnGirderBridge(ModalBridge):
         return describe_modes(self.nodal_modes)
 
 
+def snap_to_stations(xi: ArrayLike, stations: NDArray[np.float64]) -> NDArray[np.float64]:
+    """ξ [m] with every value within :data:`STATION_TOLERANCE` × the span (the stations' extent) of a
+    station replaced by that station (read on the element right of it, whatever its round-off)."""
+    xi = np.asarray(xi, float)
+    k = np.clip(np.searchsorted(stations, xi), 1, stations.size - 1)
+    near = np.where(np.abs(stations[k] - xi) < np.abs(stations[k - 1] - xi), k, k - 1)
+    close = np.abs(stations[near] - xi) <= STATION_TOLERANCE * (stations[-1] - stations[0])
+    return np.where(close, stations[near], xi)
+
+
 def girder_line_strain(modes: NodalModes, lever_arm: NDArray[np.float64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
     """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes);
-    on a skew deck the lines are read at the point's own ξ = x − y tan θ (along the oblique members)."""
+    on a skew deck the lines are read at the point's own ξ = x − y tan θ (along the oblique members);
+    at a station (within round-off, :func:`snap_to_stations`) on the element right of it."""
     x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
     x, y = x.ravel(), y.ravel()
-    xi = x - y * modes.skew_tan if modes.skew_tan else x
+    xi = snap_to_stations(x - y * modes.skew_tan if modes.skew_tan else x, modes.x)
     out = np.zeros((x.size, modes.n_modes))
     on = (xi >= 0.0) & (xi <= modes.span)
     if not np.any(on):
