@@ -45,18 +45,34 @@ class ModalBridge(abc.ABC):
         return self.default_response_x
 
     @property
+    def skew_tan(self) -> float:
+        """tan θ [-] of the support lines' skew: 0 (square supports) unless a skew deck says otherwise
+        (its support lines pass through (x_k, 0) with ξ = x − y tan θ = x_k on them)."""
+        return 0.0
+
+    @property
+    def lateral_edges(self) -> tuple[float, float]:
+        """y [m] of the deck's two lateral edges (only a skew deck's x extent depends on them)."""
+        return 0.0, 0.0
+
+    @property
     def deck_extent(self) -> tuple[float, float]:
         """(x_first, x_last) [m]: the x range of the deck over its whole width — the mode shapes
-        vanish outside it.  0 … span; a skew deck reaches beyond both (its support lines are
-        oblique)."""
-        return 0.0, float(self.span)
+        vanish outside it.  0 … span; a skew deck reaches beyond both, to where its oblique support
+        lines meet the lateral edges."""
+        t = self.skew_tan
+        if not t:
+            return 0.0, float(self.span)
+        shifts = [e * t for e in self.lateral_edges]
+        return min(min(shifts), 0.0), float(self.span) + max(max(shifts), 0.0)
 
     def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
         """ξ [m] of deck points (x, y): the distance along the span from the entry support line at
-        the point's y — x itself; on a skew deck x − y·tan(skew).  A point is on the deck while
+        the point's y — x itself; on a skew deck x − y·tan θ.  A point is on the deck while
         0 ≤ ξ ≤ span."""
         x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
-        return np.array(x, float)
+        t = self.skew_tan
+        return x - y * t if t else np.array(x, float)
 
     @property
     def default_response_y(self) -> float:

@@ -362,15 +362,9 @@ class SlabOnGirderBridge(ModalBridge):
         return float(np.tan(np.radians(self.skew))) if self.skew else 0.0
 
     @property
-    def deck_extent(self) -> tuple[float, float]:
-        """(x_first, x_last) [m] of the deck over its width: 0 … span, widened by (width/2)·|tan θ| at a skew."""
-        reach = 0.5 * self.deck_width * abs(self.skew_tan)
-        return -reach, float(self.span) + reach
-
-    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
-        """ξ = x − y tan θ [m]: distance along the girders from the entry support line."""
-        x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
-        return x - y * self.skew_tan if self.skew else np.array(x, float)
+    def lateral_edges(self) -> tuple[float, float]:
+        """y [m] of the deck edges, ±width/2 (the deck's x extent reaches (width/2)·|tan θ| beyond 0 and span)."""
+        return -0.5 * self.deck_width, 0.5 * self.deck_width
 
     def girder_x(self, girder: int, xi: ArrayLike) -> NDArray[np.float64]:
         """x [m] of the points at ξ [m] along girder ``girder`` (1-based): ξ + y_g tan θ."""

@@ -115,22 +115,13 @@ class ImportedModalBridge(ModalBridge):
         return self.modes.skew_tan
 
     @property
-    def deck_extent(self) -> tuple[float, float]:
-        """(x_first, x_last) [m]: 0 … span, widened on a skew deck to where its support lines meet the
-        deck's lateral edges — ±deck_width/2, or the outermost node lines when no width is known."""
-        t = self.skew_tan
-        if not t:
-            return 0.0, float(self.span)
-        edges = [float(self.modes.y[0]), float(self.modes.y[-1])]
-        if self.deck_width is not None:
-            edges += [-0.5 * self.deck_width, 0.5 * self.deck_width]
-        shifts = [e * t for e in edges]
-        return min(min(shifts), 0.0), float(self.span) + max(max(shifts), 0.0)
-
-    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
-        """ξ = x − y tan θ [m]: distance along the lines from the entry support line."""
-        x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
-        return x - y * self.skew_tan if self.skew_tan else np.array(x, float)
+    def lateral_edges(self) -> tuple[float, float]:
+        """y [m] of the deck's edges (they set a skew deck's x extent): ±deck_width/2, or the outermost
+        node lines when no width is known (whichever reach further)."""
+        lo, hi = float(self.modes.y[0]), float(self.modes.y[-1])
+        if self.deck_width is None:
+            return lo, hi
+        return min(lo, -0.5 * self.deck_width), max(hi, 0.5 * self.deck_width)
 
     def default_x_at(self, y: float) -> float:
         """x [m] of the midspan of the line at lateral position y [m]: span/2 + y tan θ."""
