@@ -15,7 +15,8 @@ OpenSees' ``geomTransf`` does the rotation of each member's stiffness into the g
 transverse members' local z axis is the in-plane normal (cos θ, −sin θ, 0), so their strong-axis
 I_z gives vertical bending.  Section properties are worked out again here from the documented
 formulas (docs/bridges.md), not taken from vbikit.  Bearings restrain u_z at every girder node on
-the two support lines.  In-plane DOFs are fixed (a grillage); overhang zero, as in the straight check.
+the support lines (the two ends, and the interior lines of a continuous deck).  In-plane DOFs are
+fixed (a grillage); overhang zero, as in the straight check.
 
 Expected agreement.  The two models differ only in the girders' mass, lumped at the nodes here and
 consistent in vbikit (frequencies within ≈ 3e-5), once OpenSees' consistent member mass is kept
