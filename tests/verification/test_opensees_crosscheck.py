@@ -44,6 +44,21 @@ def ops():
     return ops
 
 
+def composite_line(b, t=0.20, Eg=36e9, Ed=33e9, nu=0.2):
+    """Girder line of Bridge 2 with deck width b [m] (AASHTO Type II, full composite action, deck
+    mid-plane t/2 above the girder, n = E_deck / E_girder; GJ = G_g J_g + G_d t³ b / 6 with the
+    Saint-Venant J_g estimate — the documented formulas): (area [m²], I [m⁴] about the composite
+    axis, GJ [N m²])."""
+    A, yb, h, I = 369 * IN**2, 15.83 * IN, 36 * IN, 50979 * IN**4  # AASHTO Type II (PCI)
+    Gg, Gd = Eg / (2 * (1 + nu)), Ed / (2 * (1 + nu))
+    Jg = A**4 / (4 * np.pi**2 * I)
+    n = Ed / Eg
+    Ad, yd = n * b * t, h + t / 2
+    yna = (A * yb + Ad * yd) / (A + Ad)
+    Ic = I + A * (yna - yb) ** 2 + n * b * t**3 / 12 + Ad * (yd - yna) ** 2
+    return A + Ad, Ic, Gg * Jg + Gd * t**3 / 6 * b
+
+
 def build_grillage(ops, bridge, log_path):
     """Bridge-2 grillage in OpenSees; returns node tags [line][station]."""
     ops.wipe()
@@ -52,8 +67,7 @@ def build_grillage(ops, bridge, log_path):
     L, n_el, s, t = bridge.span, bridge.element_count, 2.13, 0.20
     Eg, Ed, nu, rho = 36e9, 33e9, 0.2, 2400.0
     Gg, Gd = Eg / (2 * (1 + nu)), Ed / (2 * (1 + nu))
-    A, yb, h, I = 369 * IN**2, 15.83 * IN, 36 * IN, 50979 * IN**4  # AASHTO Type II (PCI)
-    Jg = A**4 / (4 * np.pi**2 * I)  # Saint-Venant estimate, as documented
+    A, h, I = 369 * IN**2, 36 * IN, 50979 * IN**4  # AASHTO Type II (PCI); girder lines: composite_line
     xs = np.linspace(0, L, n_el + 1)
     ys = (np.arange(5) - 2) * s
     ov = bridge.overhang
@@ -73,14 +87,9 @@ def build_grillage(ops, bridge, log_path):
     hx = xs[1] - xs[0]
     mu = rho * t
     for j in range(5):
-        b = trib_y[j]
-        n = Ed / Eg
-        Ad, yd = n * b * t, h + t / 2
-        yna = (A * yb + Ad * yd) / (A + Ad)
-        Ic = I + A * (yna - yb) ** 2 + n * b * t**3 / 12 + Ad * (yd - yna) ** 2
-        GJ = Gg * Jg + Gd * t**3 / 6 * b
+        area, Ic, GJ = composite_line(trib_y[j])
         for i in range(n_el):
-            ops.element("elasticBeamColumn", ele, tag[j, i], tag[j, i + 1], A + Ad, Eg, Gg, GJ / Gg, 1.0, Ic, 1)
+            ops.element("elasticBeamColumn", ele, tag[j, i], tag[j, i + 1], area, Eg, Gg, GJ / Gg, 1.0, Ic, 1)
             ele += 1
         m_line = rho * A  # the deck's mass is on the transverse members
         J_line = rho * I
@@ -129,9 +138,16 @@ def static_truck(ops, tag, xs, axles):
     over the wheel lines above Girders 3 and 4 at the nearest stations; returns the loads as
     (station index, girder line index, wheel load [N])."""
     pts = [(int(np.argmin(np.abs(xs - x))), j, P / 2) for x, P in axles for j in (2, 3)]
+    static_nodal(ops, tag, [(j, i, P) for i, j, P in pts])
+    return pts
+
+
+def static_nodal(ops, tag, pts):
+    """Linear static OpenSees analysis under downward nodal forces pts [(line j, station i, P [N])]
+    (reactions computed)."""
     ops.timeSeries("Constant", 1)
     ops.pattern("Plain", 1, 1)
-    for i, j, P in pts:
+    for j, i, P in pts:
         ops.load(tag[j, i], 0.0, 0.0, -P, 0.0, 0.0, 0.0)
     ops.system("UmfPack")
     ops.numberer("RCM")
@@ -140,7 +156,7 @@ def static_truck(ops, tag, xs, axles):
     ops.algorithm("Linear")
     ops.analysis("Static")
     assert ops.analyze(1) == 0
-    return pts
+    ops.reactions()
 
 
 def test_static_girder_deflections_under_a_truck_agree(models):

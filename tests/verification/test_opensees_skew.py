@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_opensees_crosscheck import build_grillage, ops  # noqa: F401 - the ops fixture
+from test_opensees_crosscheck import build_grillage, composite_line, ops, static_nodal  # noqa: F401 - the ops fixture, static_nodal for the effects test
 
 from vbikit.bridge import paper_deck
 
@@ -61,8 +61,7 @@ def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia
     s, t = 2.13, 0.20
     Eg, Ed, nu, rho = 36e9, 33e9, 0.2, 2400.0
     Gg, Gd = Eg / (2 * (1 + nu)), Ed / (2 * (1 + nu))
-    A, yb, h, I = 369 * IN**2, 15.83 * IN, 36 * IN, 50979 * IN**4  # AASHTO Type II (PCI)
-    Jg = A**4 / (4 * np.pi**2 * I)  # Saint-Venant estimate, as documented
+    A, h, I = 369 * IN**2, 36 * IN, 50979 * IN**4  # AASHTO Type II (PCI); girder lines: composite_line
     th = np.radians(skew_deg)
     c, sn, tn = np.cos(th), np.sin(th), np.tan(th)
     spans = (span,) if spans is None else tuple(spans)
@@ -90,14 +89,9 @@ def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia
     ops.geomTransf("Linear", 2, float(c), float(-sn), 0.0)  # strips along (sin θ, cos θ): local z = in-plane normal
     ele = 1
     for j in range(5):
-        b = trib_y[j]
-        n = Ed / Eg
-        Ad, yd = n * b * t, h + t / 2
-        yna = (A * yb + Ad * yd) / (A + Ad)
-        Ic = I + A * (yna - yb) ** 2 + n * b * t**3 / 12 + Ad * (yd - yna) ** 2
-        GJ = Gg * Jg + Gd * t**3 / 6 * b
+        area, Ic, GJ = composite_line(trib_y[j])
         for i in range(n_el):
-            ops.element("elasticBeamColumn", ele, tag[j, i], tag[j, i + 1], A + Ad, Eg, Gg, GJ / Gg, 1.0, Ic, 1)
+            ops.element("elasticBeamColumn", ele, tag[j, i], tag[j, i + 1], area, Eg, Gg, GJ / Gg, 1.0, Ic, 1)
             ele += 1
         for i in range(n_el + 1):
             ops.mass(tag[j, i], 0.0, 0.0, rho * A * trib_x[i], rho * I * trib_x[i], 0.0, 0.0)
@@ -115,22 +109,6 @@ def build_skew_grillage(ops, span, n_el, skew_deg, log_path, strip_twist_inertia
             ops.element("elasticBeamColumn", ele, tag[j, i], tag[j + 1, i], t * w * area_factor, Ed, Gd, J, 1.0, Iz, 2, "-mass", m, "-cMass")
             ele += 1
     return tag, xi, ys, xg
-
-
-def static_nodal(ops, tag, pts):  # noqa: F811
-    """Linear static OpenSees analysis under downward nodal forces pts [(line j, station i, P [N])]."""
-    ops.timeSeries("Constant", 1)
-    ops.pattern("Plain", 1, 1)
-    for j, i, P in pts:
-        ops.load(tag[j, i], 0.0, 0.0, -P, 0.0, 0.0, 0.0)
-    ops.system("UmfPack")
-    ops.numberer("RCM")
-    ops.constraints("Plain")
-    ops.integrator("LoadControl", 1.0)
-    ops.algorithm("Linear")
-    ops.analysis("Static")
-    assert ops.analyze(1) == 0
-    ops.reactions()
 
 
 def truck_nodes(xg, axles, lines=(2, 3)):
