@@ -467,27 +467,46 @@ def presets() -> None:
 
 @app.command()
 def bridge(
-    name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`)."),
-    n_modes: int = typer.Option(10, "--modes", min=1, max=500, help="Number of modes to solve and list (1 … 500)."),
+    name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
+                               "is shown (its [bridge.deck] overrides and n_modes included, unless --modes is given)."),
+    n_modes: Optional[int] = typer.Option(None, "--modes", min=1, max=500,
+                                          help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure NAME-modes.png."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the figure to this file instead."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
 ) -> None:
-    """Frequencies and mode descriptions of a bridge preset, and a figure of its first mode shapes."""
+    """Frequencies and mode descriptions of a bridge preset or of a scenario's bridge, and a figure of its
+    first mode shapes."""
     import time
 
     from vbikit.bridge import BRIDGE_PRESETS
 
-    if name not in BRIDGE_PRESETS:
-        typer.echo(f"error: unknown bridge preset {name!r}; allowed: {', '.join(BRIDGE_PRESETS)}", err=True)
+    if name.endswith(".toml"):
+        from vbikit.scenario import load_scenario
+        from vbikit.scenario.build import build_bridge
+
+        def scenario_bridge():
+            scenario = load_scenario(name)
+            spec = scenario.bridge if n_modes is None else scenario.bridge.model_copy(update={"n_modes": n_modes})
+            return build_bridge(spec, scenario.base_dir), scenario.bridge.model, scenario.name or Path(name).stem
+
+        b, model, label = _guard(scenario_bridge)
+        skew = float(getattr(b, "skew", 0.0))
+        description = f"[bridge] of {name} (model {model!r}{f', skew {skew:g}°' if skew else ''})"
+        name = Path(name).stem
+    elif name not in BRIDGE_PRESETS:
+        typer.echo(f"error: unknown bridge preset {name!r}; allowed: {', '.join(BRIDGE_PRESETS)} (or a scenario .toml file)",
+                   err=True)
         raise typer.Exit(code=2)
-    b = BRIDGE_PRESETS[name].build(n_modes=n_modes)
+    else:
+        b = BRIDGE_PRESETS[name].build(n_modes=10 if n_modes is None else n_modes)
+        description = BRIDGE_PRESETS[name].description
     t0 = time.perf_counter()
     freqs = b.frequencies_hz
     elapsed = time.perf_counter() - t0
     describe = getattr(b, "mode_descriptions", None)
     labels = describe() if describe else [f"bending, {k + 1} half-wave{'s' if k else ''} along the span" for k in range(freqs.size)]
-    typer.echo(f"{name}: {BRIDGE_PRESETS[name].description}")
+    typer.echo(f"{name}: {description}")
     if hasattr(b, "girder_y"):
         ys = ", ".join(f"{y:+.3f}" for y in b.girder_y)
         typer.echo(f"  girders (1 … {b.n_girders}) at y = {ys} m; {b.element_count} elements along the span")

@@ -148,3 +148,21 @@ def test_paper_example_runs():
     assert res.exit_code == 0, res.output
     s = json.loads(res.stdout)
     assert s["response_girder"] == 4 and s["governing_girder"] == 4 and len(s["frequencies_hz"]) == 20
+
+
+def test_bridge_command_shows_a_scenarios_deck(tmp_path):
+    """`vbikit bridge SCENARIO.toml` lists the modes of the scenario's bridge with its [bridge.deck]
+    overrides (here a 20° skew): the frequencies are those of the deck built in Python."""
+    from vbikit.bridge import paper_deck
+
+    path = tmp_path / "skew.toml"
+    path.write_text('[bridge]\nmodel = "paper-bridge-2"\nn_modes = 4\n[bridge.deck]\nskew = 20.0\n'
+                    '[vehicle]\nmodel = "hs20-44"\n[crossing]\nspeed_kmh = 75\n')
+    res = runner.invoke(app, ["bridge", str(path), "--no-plot"])
+    assert res.exit_code == 0, res.output
+    assert "skew 20°" in res.output
+    expected = paper_deck(2, n_modes=4, skew=20.0).frequencies_hz
+    listed = [float(line.split()[2]) for line in res.output.splitlines() if line.strip().startswith("mode ")]
+    assert listed == pytest.approx(expected, abs=5e-4)  # printed with 3 decimals
+    res = runner.invoke(app, ["bridge", str(tmp_path / "missing.toml")])
+    assert res.exit_code == 2 and "not found" in res.output
