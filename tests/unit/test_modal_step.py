@@ -60,7 +60,7 @@ def _single_mode_run(omega, zeta, dt, n_steps, xi0, dxi0=0.0):
     span = 10.0
     grid = np.linspace(0.0, span, 11)
     values = np.full((1, grid.size, 1), -1.0)
-    modes = Modes(np.array([omega]), np.array([zeta]), 0.0, span, 1.0, values, np.zeros_like(values), np.ones(1))
+    modes = Modes(np.array([omega]), np.array([zeta]), np.zeros(1), np.full(1, span), 1.0, values, np.zeros_like(values), np.ones(1))
     z = np.zeros((0, 0))
     vehicles = Vehicles(z, z, z, z, np.zeros(0), np.zeros((1, 0)), np.zeros(1, np.int64), np.ones(1, np.int64),
                         np.zeros(1, bool), np.zeros(1), np.zeros(1))

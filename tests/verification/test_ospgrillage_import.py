@@ -212,17 +212,13 @@ def test_no_response_before_the_oblique_entry_support(oblique):
                                free_vibration=0.0, dt=1e-3))
     support = e * np.tan(np.radians(SKEW))
     wheel = result.wheel_positions()[:, 0]
-    # the solver reads the shapes from cubic Hermite tables along the track, 601 points over the deck's
-    # x extent (100 per mode, vbikit.solve.tabulate): h = (12 + 8 tan 20°) / 600 = 0.0249 m.  The support
-    # line falls inside a table cell, whose cubic is not exactly zero before it: one cell's margin
-    h = (L + WIDTH * np.tan(np.radians(SKEW))) / 600
-    before, cell, after = wheel < support - h, np.abs(wheel - support + 0.5 * h) < 0.5 * h, wheel > support + 0.05
-    assert np.count_nonzero(before & (wheel > 0.0)) > 30 and after.any()  # x = 0 … 0.70 m: on the deck if unskewed
+    # the solver's mode-shape tables start each track at its own entry support line (vbikit.solve.tabulate),
+    # so nothing moves until the force is on it
+    before, after = wheel < support, wheel > support + 0.05
+    assert np.count_nonzero(before & (wheel > 0.0)) > 30 and after.any()  # x = 0 … 0.73 m: on the deck if unskewed
     assert np.all(result.xi[before] == 0.0)
     d = result.displacement(bridge.default_x_at(e), e)
     assert np.all(d[before] == 0.0)
-    # within that last cell the response starts early, small: measured 3.4e-4 of the peak deflection
-    assert 0 < np.abs(d[cell]).max() < 1e-3 * np.abs(d).max()
     # once on the deck it deflects it (down, at the line's midspan by the time the force gets there)
     assert np.all(np.abs(result.xi[after]).max(axis=1) > 0)
     assert d[np.argmin(np.abs(wheel - bridge.default_x_at(e)))] < 0

@@ -29,6 +29,9 @@ the oblique transverse members (constant ξ) — the cubic Hermite polynomial in
 slope along them per unit y, ∂w/∂y + tan θ ∂w/∂x — and over the overhangs the section along that
 direction moves rigidly; ∂φ/∂x at fixed y is ∂/∂ξ of that.  A point is on the deck while
 0 ≤ ξ ≤ span.  ``wx`` and ``wy`` stay the Cartesian slopes; tan θ = 0 is the rectangular grid.
+Between the lines of a skew deck φ is only C⁰ in x: its slope jumps at the stations by
+tan θ · N(y) · Δ(∂²w/∂ξ²) of the lines (N the Hermite weight of the slope across), which the
+solver's track tables, sampled on one side of a station, smooth over one table cell.
 """
 from __future__ import annotations
 

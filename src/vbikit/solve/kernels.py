@@ -28,11 +28,11 @@ z_w = h_w·q (row ``wheel_rows[wheel[p]]``):
     ξ̈ + 2ζω ξ̇ + ω² ξ = −Σ_p φ_pᵀ F_p
     M_v q̈ + C_v q̇ + K_v q = F_G + Σ_w h_wᵀ Σ_{p∈w} F_p
 
-A point is on the deck while start ≤ x_p ≤ end (the deck's x extent: 0 … span, wider on a skew
-deck); off it, φ_p = 0 (the road only).  Nothing in the kernels assumes φ = 0 at the deck ends or
-a single span: the mode-shape tables may be any mode set (continuous beams, grillages, skew
-decks, whose shapes vanish before each track's own support line), tabulated over [start, end]
-on each wheel track.
+A point on track k is on the deck while start_k ≤ x_p ≤ end_k (the track's own span: 0 … span,
+shifted by y tan θ on a skew deck, whose oblique support lines cross each track elsewhere); off
+it, φ_p = 0 (the road only).  Nothing in the kernels assumes φ = 0 at the deck ends or a single
+span: the mode-shape tables may be any mode set (continuous beams, grillages, skew decks),
+tabulated over [start_k, end_k] on each wheel track k.
 
 Several vehicles.  The kernels only see contact points, wheels and vehicle DOFs; a traffic
 event is one system whose vehicle matrices are block-diagonal (one block per vehicle), whose
@@ -74,9 +74,10 @@ from numba import njit
 
 
 class Modes(NamedTuple):
-    """The bridge's modes: ``omega`` ω_m [rad/s], ``zeta`` ζ_m [-] (n_m,); ``start``, ``end`` [m]
-    (points with start ≤ x ≤ end are on the deck); mode-shape tables ``values`` φ and ``slopes``
-    ∂φ/∂x (n_tracks, n_grid, n_m) on the uniform grid of spacing ``grid_h`` [m] from x = start; ``amp``
+    """The bridge's modes: ``omega`` ω_m [rad/s], ``zeta`` ζ_m [-] (n_m,); per track ``start``,
+    ``end`` [m] (n_tracks,) (a point on track k with start_k ≤ x ≤ end_k is on the deck); mode-shape
+    tables ``values`` φ and ``slopes`` ∂φ/∂x (n_tracks, n_grid, n_m), track k's on the uniform grid
+    of spacing ``grid_h`` [m] from x = start_k; ``amp``
     (n_m,) bound on |φ_m| (the lazy-contact test)."""
 
     omega: np.ndarray
@@ -194,7 +195,7 @@ def shape_point(x, track, modes, phi_row, dphi_row):
     """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` of ``modes`` (cubic Hermite)."""
     V, S, grid_h = modes.values, modes.slopes, modes.grid_h
     n_grid = V.shape[1]
-    u = (x - modes.start) / grid_h
+    u = (x - modes.start[track]) / grid_h
     i = int(u)
     if i > n_grid - 2:
         i = n_grid - 2
@@ -223,7 +224,7 @@ def shapes_at(x, track, modes, phi, dphi, on):
     """Mode-shape rows φ_p, φ'_p of points at positions ``x`` [m] on tracks ``track`` (eager);
     ``on[p]``: the point is on the deck (else its rows are left as they are)."""
     for p in range(x.size):
-        on[p] = modes.start <= x[p] <= modes.end
+        on[p] = modes.start[track[p]] <= x[p] <= modes.end[track[p]]
         if on[p]:
             shape_point(x[p], track[p], modes, phi[p], dphi[p])
 
@@ -332,7 +333,6 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
     xs, vxs = cache.x, cache.vx
     idx, force, active, used, scratch = work.idx, work.force, work.active, work.used, work.scratch
     wheel_rows = vehicles.wheel_rows
-    start, end = modes.start, modes.end
     r_max = road.r_max
     n_m = xi.shape[0]
     n_d = q.shape[0]
@@ -366,7 +366,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
         for p in range(first, last):
             used[p] = False
             x = xs[p]
-            onb = start <= x <= end
+            onb = modes.start[points.track[p]] <= x <= modes.end[points.track[p]]
             gate = points.gated[p] or (unilateral and points.stiffness[p] > 0.0)
             if gate and not envelope and r_max - points.gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
                 for lane in range(n_l):
@@ -406,11 +406,11 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
             for lane in range(n_l):
                 wheel_len[w, lane] += wd if active[p, lane] else 0.0
         if envelope:
-            _envelope(w, first, last, xi, dxi, start, end, points, cache, zw, dzw, force, wheel_force, active, lanes)
+            _envelope(w, first, last, xi, dxi, modes, points, cache, zw, dzw, force, wheel_force, active, lanes)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _envelope(w, first, last, xi, dxi, start, end, points, cache, zw, dzw, force, wheel_force, active, lanes):
+def _envelope(w, first, last, xi, dxi, modes, points, cache, zw, dzw, force, wheel_force, active, lanes):
     """Rigid-disk wheel ``w``: per lane, only the point of highest surface s_p − g_p acts; its rate
     is the deck velocity + v·e', e' the surface slope along the travel direction clamped to the
     circle's slopes over the point's cell."""
@@ -426,7 +426,7 @@ def _envelope(w, first, last, xi, dxi, start, end, points, cache, zw, dzw, force
             sd = rr[p, lane]
             deck_rate = 0.0
             vx = cache.vx[p]
-            if start <= cache.x[p] <= end:
+            if modes.start[points.track[p]] <= cache.x[p] <= modes.end[points.track[p]]:
                 for m in range(n_m):
                     s += phi[p, m] * xi[m, lane]
                     deck_rate += phi[p, m] * dxi[m, lane]
@@ -463,7 +463,7 @@ def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cac
         b = omega[m] * omega[m]
         for lane in range(n_l):
             ddxi[m, lane] = -a * dxi[m, lane] - b * xi[m, lane]
-    _modal_load(-1.0, phi, force, used, cache.x, modes.start, modes.end, ddxi, lanes)
+    _modal_load(-1.0, phi, force, used, cache.x, points.track, modes, ddxi, lanes)
     if n_d == 0:
         return
     for i in range(n_d):
@@ -479,10 +479,10 @@ def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cac
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _modal_load(alpha, phi, force, used, x, start, end, out, lanes):
+def _modal_load(alpha, phi, force, used, x, track, modes, out, lanes):
     """out[m, :] += α Σ_p φ_pm F_p over the used points on the deck."""
     for p in range(force.shape[0]):
-        if used[p] and start <= x[p] <= end:
+        if used[p] and modes.start[track[p]] <= x[p] <= modes.end[track[p]]:
             for m in range(out.shape[0]):
                 _axpy(alpha * phi[p, m], force, p, out, m, lanes)
 
@@ -678,7 +678,7 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
             for j in range(n_d):
                 stiff[n_m + i, n_m + j] += k * h[i] * h[j]
                 damp[n_m + i, n_m + j] += c * h[i] * h[j]
-        if not modes.start <= x[p] <= modes.end:
+        if not modes.start[points.track[p]] <= x[p] <= modes.end[points.track[p]]:
             continue
         if not have[p]:
             shape_point(x[p], points.track[p], modes, phi[p], dphi[p])
@@ -711,7 +711,7 @@ def static_modal_history(travel, points, loads, modes):
             if loads[p] == 0.0:
                 continue
             x = points.origin[p] + points.direction[p] * travel[t, points.vehicle[p]]
-            if modes.start <= x <= modes.end:
+            if modes.start[points.track[p]] <= x <= modes.end[points.track[p]]:
                 shape_point(x, points.track[p], modes, phi, dphi)
                 for m in range(n_m):
                     out[t, m] += phi[m] * loads[p]
@@ -833,7 +833,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     _refresh(cache, motion, 0, points)
     y0, w0 = z0[:n_d], z0[n_d:]
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
-    _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.start, modes.end, p0, lanes)
+    _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
     _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
@@ -869,7 +869,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
             for m in range(n_m):
                 for lane in range(n_l):
                     pn[m, lane] = 0.0
-            _modal_load(-1.0, cache.phi, force, work.used, cache.x, modes.start, modes.end, pn, lanes)
+            _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, pn, lanes)
             _tire_load(vehicles, wf, y1, w1, gn, lanes)
             err = 0.0
             for w in range(n_w):

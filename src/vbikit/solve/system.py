@@ -57,7 +57,8 @@ def modes_data(bridge, table: TrackTable) -> Modes:
     """The ``Modes`` bundle of ``bridge`` with its mode-shape ``table``."""
     amp = 1.01 * np.abs(table.values).max(axis=(0, 1))  # bound on |φ_m| incl. Hermite overshoot
     return Modes(np.ascontiguousarray(bridge.omega, float), np.ascontiguousarray(bridge.damping_ratios, float),
-                 float(table.start), float(table.end), float(table.spacing), table.values, table.slopes, amp)
+                 np.ascontiguousarray(table.start, float), np.ascontiguousarray(table.end, float),
+                 float(table.spacing), table.values, table.slopes, amp)
 
 
 def vehicles_data(vehicle, contact) -> Vehicles:

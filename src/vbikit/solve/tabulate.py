@@ -1,8 +1,9 @@
 """Mode shapes tabulated along wheel tracks for the compiled kernels.
 
 For each distinct track y, φ(x, y) and ∂φ/∂x(x, y) are evaluated exactly by the bridge at
-``grid_points`` equally spaced stations over the deck's x extent (``bridge.deck_extent``: the
-span, wider on a skew deck); the kernel interpolates them with
+``grid_points`` equally spaced stations over the track's own span — from x = y tan θ where the
+entry support line crosses it to span + y tan θ (0 … span unless the deck is skew), so that a
+skew deck's oblique supports lie on grid points (no kink of φ inside a cell); the kernel interpolates them with
 cubic Hermite polynomials, whose error is ≤ (k h)⁴/384 relative for a mode of wavenumber k
 and grid spacing h.  The default grid (100 points per retained mode) keeps this below 1e-8
 for beam modes; ``tests/unit/test_tabulate.py`` checks it.
@@ -21,8 +22,8 @@ from vbikit.bridge.base import ModalBridge
 @dataclass(frozen=True)
 class TrackTable:
     tracks: NDArray[np.float64]  # y of each track [m]
-    start: float  # x of the first grid point [m]
-    end: float  # x of the last grid point [m]
+    start: NDArray[np.float64]  # x of each track's first grid point (its entry support) [m]
+    end: NDArray[np.float64]  # x of each track's last grid point (its exit support) [m]
     spacing: float  # grid spacing h [m]
     values: NDArray[np.float64]  # (n_tracks, n_grid, n_modes)
     slopes: NDArray[np.float64]  # (n_tracks, n_grid, n_modes)
@@ -35,6 +36,7 @@ _TRACKS_PER_BRIDGE = 64
 
 
 def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mode: int):
+    """φ and ∂φ/∂x on track y at the stations x (kept per bridge and track)."""
     key = id(bridge)
     if key not in _TRACKS:
         _TRACKS[key] = {}
@@ -54,10 +56,13 @@ def tabulate_tracks(bridge: ModalBridge, tracks: NDArray[np.float64], points_per
     tables are kept while the bridge lives; bridges are immutable)."""
     n_modes = bridge.omega.size
     n_grid = max(points_per_mode * n_modes, 200) + 1
-    start, end = (float(v) for v in bridge.deck_extent)
-    x = np.linspace(start, end, n_grid)
+    tracks = np.asarray(tracks, float)
+    grid = np.linspace(0.0, float(bridge.span), n_grid)  # ξ along every track
+    start = -bridge.span_coordinate(np.zeros(tracks.size), tracks)  # x of ξ = 0 on each track (0 if square)
     values = np.empty((tracks.size, n_grid, n_modes))
     slopes = np.empty_like(values)
     for k, y in enumerate(tracks):
+        x = grid + start[k] if start[k] else grid
         values[k], slopes[k] = _track(bridge, float(y), x, points_per_mode)
-    return TrackTable(np.asarray(tracks, float), start, end, (end - start) / (n_grid - 1), values, slopes)
+    return TrackTable(tracks, np.ascontiguousarray(start + 0.0), start + float(bridge.span),
+                      float(bridge.span) / (n_grid - 1), values, slopes)
