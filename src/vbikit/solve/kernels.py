@@ -178,6 +178,11 @@ class Work(NamedTuple):
     rhs: np.ndarray
 
 
+#: the kernels' compiled helpers: called only from other kernels, so numba builds them without
+#: the wrappers that make a function callable from Python (compile time only, no run time)
+_internal = njit(cache=True, fastmath=True, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True)
+
+
 def new_cache(n_cp: int, n_m: int, n_l: int) -> Cache:
     """An empty position slot."""
     return Cache(np.zeros(n_cp), np.zeros(n_cp), np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m)),
@@ -489,10 +494,12 @@ def _modal_load(alpha, phi, force, used, x, track, modes, out, lanes):
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _gemv(alpha, a, x, y, lanes, transpose):
-    """y += α·A·x (or α·Aᵀ·x) for every lane (x, y: (·, L)); zero entries of A are skipped."""
-    n_i = a.shape[1] if transpose else a.shape[0]
-    n_j = a.shape[0] if transpose else a.shape[1]
+    """y += α·A·x (or α·Aᵀ·x) for every lane (x, y: (·, L)); zero entries of A are skipped.  The
+    one-lane loop is inlined into the caller (small vehicle matrices, every step: a call costs
+    more than the product); the many-lane loops are one compiled function, :func:`_gemv_lanes`."""
     if len(lanes) == 1:  # one lane: accumulate in a register
+        n_i = a.shape[1] if transpose else a.shape[0]
+        n_j = a.shape[0] if transpose else a.shape[1]
         for i in range(n_i):
             acc = y[i, 0]
             for j in range(n_j):
@@ -500,8 +507,16 @@ def _gemv(alpha, a, x, y, lanes, transpose):
                 if aij != 0.0:
                     acc += alpha * aij * x[j, 0]
             y[i, 0] = acc
-        return
-    for i in range(n_i):  # many lanes: the lanes innermost, vectorised
+    else:
+        _gemv_lanes(alpha, a, x, y, lanes, transpose)
+
+
+@_internal
+def _gemv_lanes(alpha, a, x, y, lanes, transpose):
+    """:func:`_gemv` for many lanes: the lanes innermost, vectorised."""
+    n_i = a.shape[1] if transpose else a.shape[0]
+    n_j = a.shape[0] if transpose else a.shape[1]
+    for i in range(n_i):
         for j in range(n_j):
             aij = a[j, i] if transpose else a[i, j]
             if aij != 0.0:
@@ -552,6 +567,25 @@ def _store(out, n, state, lanes):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _fetch(src, n, state, lanes):
+    """state[i, lane] = src[lane, n, i]: the inverse of :func:`_store` (explicit loops: slice
+    assignments would compile numba's shape-mismatch error path, seconds of compile time)."""
+    n_l = _width(lanes, state)
+    for i in range(state.shape[0]):
+        for lane in range(n_l):
+            state[i, lane] = src[lane, n, i]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _copy(src, dst, lanes):
+    """dst[i, :] = src[i, :] (explicit loops, see :func:`_fetch`)."""
+    n_l = _width(lanes, src)
+    for i in range(src.shape[0]):
+        for lane in range(n_l):
+            dst[i, lane] = src[i, lane]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _keep(out, n, stride, state, lanes):
     """Store the state of step ``n`` in row n / stride when ``stride`` divides n (thinned histories)."""
     if n % stride == 0:
@@ -589,8 +623,7 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
     aq = np.zeros((4, n_d, n_l))
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); y0 = np.empty((n_d, n_l)); w0 = np.empty((n_d, n_l))
     x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l)); y1 = np.empty((n_d, n_l)); w1 = np.empty((n_d, n_l))
-    for lane in range(n_l):
-        x0[:, lane] = xi[lane, 0]; v0[:, lane] = dxi[lane, 0]; y0[:, lane] = q[lane, 0]; w0[:, lane] = dq[lane, 0]
+    _fetch(xi, 0, x0, lanes); _fetch(dxi, 0, v0, lanes); _fetch(q, 0, y0, lanes); _fetch(dq, 0, w0, lanes)
     sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
     work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
                 np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
@@ -634,7 +667,7 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
         cur = end
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _slot(n_cp, n_m, n_l):
     return Cache(np.zeros(n_cp), np.zeros(n_cp), np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m)),
                  np.zeros(n_cp, dtype=np.bool_), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l)),
@@ -816,8 +849,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
-    for lane in range(n_l):
-        x0[:, lane] = xi[lane, 0]; v0[:, lane] = dxi[lane, 0]; z0[:n_d, lane] = q[lane, 0]; z0[n_d:, lane] = dq[lane, 0]
+    _fetch(xi, 0, x0, lanes); _fetch(dxi, 0, v0, lanes); _fetch(q, 0, z0[:n_d], lanes); _fetch(dq, 0, z0[n_d:], lanes)
     xf = np.zeros((n_m, n_l)); vf = np.zeros((n_m, n_l))  # free deck response (load p_{n+1} = 0)
     p0 = np.zeros((n_m, n_l)); pm = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); pn = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); gm = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l)); gn = np.zeros((n_w, n_l))
@@ -839,8 +871,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
     _store(ddxi, 0, acc, lanes); _store(ddq, 0, a1, lanes)
     _store(wheel_force, 0, wf, lanes); _store(wheel_len, 0, wl, lanes)
-    pm[:, :] = p0
-    gm[:, :] = g0
+    _copy(p0, pm, lanes)
+    _copy(g0, gm, lanes)
     unsettled = 0
     evaluations = 0
     for n in range(n_steps):

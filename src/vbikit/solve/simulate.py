@@ -24,7 +24,8 @@ from vbikit.solve.system import KernelData, kernel_data, point_positions, road_d
 from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
-#: says when numba compiles the kernels (the first run on a machine, ≈ 10 s); the CLI shows it
+#: says when numba compiles the kernels (the first run on a machine, ≈ 15 s; benchmarks/bench_compile.py)
+#: and where its cache goes; the CLI shows it
 compile_log = logging.getLogger("vbikit.solve.compile")
 
 
@@ -36,7 +37,9 @@ def announce_compile(kernel) -> None:
         return
     index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
     if index is None or not os.path.exists(index):
-        compile_log.info("compiling kernels, first run only (about half a minute; later runs load them from numba's cache in under a second)")
+        where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
+        compile_log.info("compiling kernels, first run only (about 15 s; later runs load them from numba's cache%s "
+                         "in under a second)", f" in {where}" if where else "")
 
 
 #: memory [bytes] the stored histories of one ``simulate`` may take before they are thinned
