@@ -67,10 +67,53 @@ B = max_lanes Σ_m max|φ_m|·|ξ_m| the largest possible deck displacement) nee
 """
 from __future__ import annotations
 
+import getpass
+import logging
+import os
+import tempfile
 from typing import NamedTuple
 
+import numba
 import numpy as np
 from numba import njit
+
+log = logging.getLogger(__name__)
+
+
+def _cache_probe() -> None:
+    """A function of this file, for :func:`ensure_cache_location`."""
+
+
+def ensure_cache_location() -> str | None:
+    """Make sure numba can cache the kernels (``cache=True``): numba writes them beside this file
+    (``__pycache__``) or, when the package directory is read-only, in the user's cache directory
+    (``~/.cache/numba``); when neither is writable (and ``NUMBA_CACHE_DIR`` is not set) numba
+    would refuse to define the kernels.  Then the cache goes to a per-user directory in the
+    system's temporary directory (logged).  Returns the directory chosen, or None."""
+    from numba.core.caching import FunctionCache
+
+    try:
+        FunctionCache(_cache_probe)
+        return None
+    except RuntimeError:
+        pass
+    try:
+        user = getpass.getuser()
+    except Exception:  # no user name (some containers): one directory per process
+        user = None
+    path = os.path.join(tempfile.gettempdir(), f"vbikit-numba-cache-{user}") if user else tempfile.mkdtemp(
+        prefix="vbikit-numba-cache-")
+    numba.config.CACHE_DIR = path
+    try:
+        FunctionCache(_cache_probe)
+    except RuntimeError:
+        numba.config.CACHE_DIR = path = tempfile.mkdtemp(prefix="vbikit-numba-cache-")
+    log.warning("numba cannot write its cache beside vbikit or in the user's cache directory: compiled kernels "
+                "go to %s (set NUMBA_CACHE_DIR to choose a directory)", path)
+    return path
+
+
+ensure_cache_location()
 
 
 class Modes(NamedTuple):
