@@ -156,7 +156,8 @@ def _load_effects(result: Any, built: Any, s: dict[str, Any]) -> list[Any]:
     returns the load-effect responses (for the histories)."""
     from vbikit.analysis.effects import load_effect_report
 
-    report, responses = load_effect_report(result, built.load_effects, built.load_effect_method, s["response_x"])
+    report, responses = load_effect_report(result, built.load_effects, built.load_effect_method, s["response_x"],
+                                           s["response_y"])
     s.update(report)
     return responses
 

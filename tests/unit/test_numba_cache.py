@@ -35,3 +35,19 @@ def test_read_only_install_and_home_fall_back_to_a_temporary_cache(tmp_path):
     assert res.returncode == 0, res.stderr[-2000:]
     assert "vbikit-numba-cache" in res.stdout
     assert "numba cannot write its cache" in res.stderr  # the user is told where it goes
+
+
+def test_the_temporary_cache_directory_must_be_private(tmp_path):
+    """numba's cache files are pickles: a directory someone else can write (mode 0o777 here) is not
+    used, a fresh private one instead; one of this user's own with mode 0o700 is kept."""
+    import os
+
+    from vbikit.solve.kernels import _private_dir
+
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    os.chmod(shared, 0o777)
+    got = _private_dir(str(shared))
+    assert got != str(shared) and os.stat(got).st_mode & 0o077 == 0
+    own = tmp_path / "own"
+    assert _private_dir(str(own)) == str(own) and os.stat(own).st_mode & 0o777 == 0o700

@@ -216,11 +216,18 @@ def test_a_section_at_a_station_is_read_just_right_of_it_on_every_girder(skewed)
 
 
 def test_a_section_at_the_exit_bearing_of_a_skew_girder_is_on_the_span(skewed):
-    """x = span + y_g tan θ is on girder g's span whatever its round-off."""
+    """x = y_g tan θ and span + y_g tan θ are on girder g's span whatever their round-off: a section
+    1e-12 m beyond the bearing is the bearing's section (same influence at a few deck points, to
+    1e-12 of the midspan moment's), not an error and not the neighbouring element's."""
+    xs = np.array([3.0, 8.0, 12.0])
+    ys = np.array([-2.0, 0.5, 3.0])
+    pts = (xs + ys * skewed.skew_tan, ys)
     for g in range(1, skewed.n_girders + 1):
-        for xi in (0.0, skewed.span):
-            skewed.load_effect("moment", float(skewed.girder_x(g, xi)), girder=g)
-            skewed.load_effect("moment", float(skewed.girder_x(g, xi)) + (1e-12 if xi else -1e-12), girder=g)
+        scale = np.abs(skewed.load_effect("moment", float(skewed.girder_x(g, 0.5 * skewed.span)), girder=g).influence(*pts)).max()
+        for xi, nudge in ((0.0, -1e-12), (skewed.span, 1e-12)):
+            at = skewed.load_effect("moment", float(skewed.girder_x(g, xi)), girder=g).influence(*pts)
+            beyond = skewed.load_effect("moment", float(skewed.girder_x(g, xi)) + nudge, girder=g).influence(*pts)
+            assert np.abs(beyond - at).max() < 1e-12 * scale
 
 
 def test_girder_strain_at_a_station_is_read_just_right_of_it(skewed):
@@ -239,3 +246,14 @@ def test_girder_strain_at_a_station_is_read_just_right_of_it(skewed):
             assert np.abs(at - right).max() < 1e-4 * scale, (g, xi)  # the curvature's slope over d: measured ≤ 2e-6
             jumps.append(np.abs(left - right).max() / scale)
     assert max(jumps) > 1e-2  # measured up to 0.3 (the highest kept mode)
+
+
+def test_loaded_length_is_the_span_of_the_section_along_its_girder():
+    """On a continuous skew deck the design-code loaded length is the span holding the response
+    section along its girder: Girder 5 (y = 4.26 m) of a 40° deck with spans 16 + 24 m at x = 19 m is
+    at ξ = 19 − 4.26 tan 40° = 15.43 m, in the 16 m span (the deck's x alone would say the 24 m one)."""
+    from vbikit.analysis.effects import loaded_length
+
+    bridge = paper_deck(2, n_modes=2, spans=(16.0, 24.0), skew=40.0, use_cache=False)
+    assert loaded_length(bridge, 19.0, 4.26) == 16.0
+    assert loaded_length(bridge, 19.0, -4.26) == 24.0

@@ -73,8 +73,9 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
 def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
     """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
     x, y = contact_positions(result)
-    first, last = result.crossing.bridge.deck_extent  # 0 … span; beyond on a skew deck's oblique ends
-    on = (x >= first) & (x <= last)
+    bridge = result.crossing.bridge
+    xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
+    on = (xi >= 0.0) & (xi <= bridge.span)
     out = np.zeros(x.shape)
     if np.any(on):
         out[on] = effect.influence(x[on], y[on])
@@ -152,8 +153,21 @@ def vehicle_axle_count(vehicle: Any) -> int:
     return len({round(float(w.offset), 3) for w in vehicle.wheels})
 
 
+def loaded_length(bridge: object, x: float | None = None, y: float | None = None) -> float:
+    """The AASHTO Standard loaded length [m] of a deflection read at (x, y): the span containing the
+    section (x default the bridge's default section on the line y; on a skew deck the span is found
+    from ξ = x − y tan θ along the girders), the whole length of a single span."""
+    spans = getattr(bridge, "spans", None)
+    if spans is None:
+        return float(bridge.span)  # type: ignore[attr-defined]
+    y = float(getattr(bridge, "default_response_y", 0.0)) if y is None else float(y)
+    x = float(bridge.default_x_at(y)) if x is None else float(x)  # type: ignore[attr-defined]
+    return float(spans[bridge.span_index(float(bridge.span_coordinate(x, y)))])  # type: ignore[attr-defined]
+
+
 def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
-                       response_x: float | None = None) -> tuple[dict[str, Any], list[LoadEffectResponse]]:
+                       response_x: float | None = None,
+                       response_y: float | None = None) -> tuple[dict[str, Any], list[LoadEffectResponse]]:
     """The summary entries of a crossing's load effects and design-code allowances, and the
     responses themselves (for histories): ``design_code_allowances`` for the deflection at
     ``response_x`` (loaded length: its span) and the ``moment`` / ``shear`` / ``reaction`` blocks of
@@ -163,9 +177,7 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     bridge, vehicle = result.crossing.bridge, result.crossing.vehicle
     f1 = float(bridge.frequencies_hz[0])
     axles = vehicle_axle_count(vehicle)
-    x = float(getattr(bridge, "default_response_x", bridge.span / 2)) if response_x is None else float(response_x)
-    spans = getattr(bridge, "spans", None)
-    loaded = float(spans[bridge.span_index(x)]) if spans is not None else float(bridge.span)
+    loaded = loaded_length(bridge, response_x, result.point(response_x, response_y)[1])
     out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1, "n_axles": axles,
                                                        **code_allowances(loaded, f1, axles)}}
     responses = load_effect_responses(result, effects, method)

@@ -85,11 +85,9 @@ def girder_responses(result: CrossingResult, x: float | None = None, y: float | 
     girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
         return []
-    if x is None:
-        return [point_response(result, bridge.default_x_at(float(g)), float(g)) for g in girder_y]
-    y0 = bridge.default_response_y if y is None else float(y)
-    xi = float(bridge.span_coordinate(x, y0))
-    return [point_response(result, x + (xi - float(bridge.span_coordinate(x, float(g)))), float(g)) for g in girder_y]
+    if x is not None and y is not None:  # the response line's section, as x on the default line
+        x = float(x) + float(bridge.span_coordinate(x, y)) - float(bridge.span_coordinate(x, bridge.default_response_y))
+    return [point_response(result, gx, float(g)) for gx, g in zip(result.girder_sections(x), girder_y)]
 
 
 def girder_summary(girders: list[PointResponse]) -> dict[str, object]:

@@ -196,7 +196,9 @@ class SlabOnGirderBridge(ModalBridge):
         Several spans [m] (adding up to ``span``) with the girders continuous over the interior
         supports: bearings under every girder at every support, diaphragms there by default.
     skew : float
-        Skew angle θ of every support line [degrees], −45 … 45 (module docstring); 0 = square.
+        Skew angle θ of every support line [degrees], −45 … 45, positive when the left (y > 0) end
+        of a support line lies further along +x (the oblique mesh of the bridges guide, "Skew
+        supports"); 0 = square.
     damage : tuple of Damage
         Local stiffness losses of single girders (:class:`vbikit.bridge.damage.Damage` with ``girder``):
         the girder elements' EI × (1 − severity × the fraction of the element inside the region).
@@ -341,10 +343,12 @@ class SlabOnGirderBridge(ModalBridge):
 
     @property
     def support_x(self) -> NDArray[np.float64]:
-        """Support positions [m] (entry, interior supports, exit)."""
+        """Support positions [m] (entry, interior supports, exit) along the girders (ξ; x on a square deck)."""
         if self.spans is None:
             return np.array([0.0, self.span])
-        return np.concatenate([[0.0], np.cumsum(self.spans)])
+        xs = np.concatenate([[0.0], np.cumsum(self.spans)])
+        xs[-1] = self.span  # the sum of the spans may differ from span by round-off
+        return xs
 
     @property
     def default_response_x(self) -> float:  # type: ignore[override]

@@ -84,6 +84,8 @@ def paper_deck(bridge: int, n_modes: int = 10, damping_ratio: float = DEFAULT_DA
     diaphragms = (0.0, span) if bridge == 1 else (0.0, span / 2, span)
     if overrides.get("spans") is not None:  # several spans: diaphragms at every support (and midspan on Bridges 2, 3)
         edges = np.concatenate([[0.0], np.cumsum(overrides["spans"])])
+        if overrides.get("span") is not None:
+            edges[-1] = float(overrides["span"])  # the spans' sum may differ from the given span by round-off
         mids = [] if bridge == 1 else list(0.5 * (edges[1:] + edges[:-1]))
         diaphragms = tuple(sorted([float(v) for v in edges] + [float(v) for v in mids]))
         overrides.setdefault("span", float(edges[-1]))

@@ -106,6 +106,18 @@ class ScaledBridge(ModalBridge):
 
     # the base model's geometry (a skew deck's oblique supports) is unchanged by the scaling
     @property
+    def skew(self) -> float:
+        return float(getattr(self.base, "skew", 0.0))
+
+    @property
+    def skew_tan(self) -> float:
+        return self.base.skew_tan
+
+    @property
+    def lateral_edges(self) -> tuple[float, float]:
+        return self.base.lateral_edges
+
+    @property
     def deck_extent(self) -> tuple[float, float]:
         return self.base.deck_extent
 
@@ -186,9 +198,11 @@ def simulated_channels(result: CrossingResult, case: CaseSpec, where: str) -> di
     length = br.span - offset
     out = {}
     for ch in case.channels:
-        if not 0.0 <= ch.x <= length:
-            raise FieldFileError(f"{where}: channel {ch.name!r}: x = {ch.x} m is outside the span 0 … {length} m")
         y = sensor_y(br, ch.girder, where)
+        xi = float(br.span_coordinate(ch.x + offset, y)) - offset  # along its girder (a skew deck's lines are shifted)
+        if not 0.0 <= xi <= length:
+            extra = "" if xi == ch.x else f" (x − y tan θ = {xi:.6g} m along its girder)"
+            raise FieldFileError(f"{where}: channel {ch.name!r}: x = {ch.x} m is outside the span 0 … {length} m{extra}")
         out[ch.name] = {"displacement": result.displacement, "acceleration": result.acceleration,
                         "strain": result.strain}[ch.quantity](ch.x + offset, y)
     return out

@@ -65,9 +65,13 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
         overrides = deck_parameters(spec.deck or {})
         if spec.damage:
             overrides["damage"] = build_damage(spec)
-        if spec.model == "slab-on-girder":
-            return SlabOnGirderBridge(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
-        return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
+        try:
+            if spec.model == "slab-on-girder":
+                return SlabOnGirderBridge(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
+            return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
+        except ValueError as err:  # the deck model names its parameter: give it the scenario key
+            key = str(err).split(" ", 1)[0]
+            raise ScenarioError(f"bridge.deck.{err}" if key in (spec.deck or {}) else str(err)) from None
     return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio)
 
 

@@ -3,7 +3,8 @@
 One vehicle (``Crossing(bridge, vehicle, …)``) drives in +x.  At t = 0 its front axle is at
 x = −approach (on the approach road) and it is in static equilibrium on the road (and deck,
 if any contact point is already on it).  The crossing ends ``free_vibration`` seconds after
-the last contact point has left the bridge (x = span).  Speed: v(t) = speed + acceleration · t
+the last contact point has left the bridge (x = span; on a skew deck the far end of its own
+wheel track, span + y tan θ).  Speed: v(t) = speed + acceleration · t
 (acceleration < 0 brakes); a vehicle that comes to rest during the free vibration stays at rest.
 
 Several vehicles (``Crossing(bridge, vehicles=(VehicleMotion(…), …), …)``): each has its own
@@ -337,11 +338,11 @@ class Crossing:
         return self.speed + self.acceleration * t
 
     def exit_time(self) -> float:
-        """Time [s] when the rearmost contact point leaves the deck (x = span; a skew deck: its far end; several vehicles: the last
-        one's last point leaves the bridge)."""
+        """Time [s] when the last contact point leaves the deck: passes x = span (on a skew deck the far
+        end of its own wheel track, at most the deck's far corner); several vehicles: the last one's."""
         if self.vehicles:
             return self._exit_time_vehicles()
-        distance = self.approach + self.bridge.deck_extent[1] + float(self.contact.setback.max())
+        distance = self.approach + self._leaving_distance(np.arange(self.contact.n), 1.0)
         a, v = self.acceleration, self.speed
         if abs(a) < 1e-12:
             return distance / v
@@ -358,8 +359,7 @@ class Crossing:
         cp = self.contact
         last = -math.inf
         for i, m in enumerate(self.vehicles):
-            near, far = self.bridge.deck_extent  # +x: to the deck's far end; −x: from x = span to its near end
-            distance = (far if m.sign > 0 else self.bridge.span - near) + float(cp.setback[self.point_vehicle == i].max())
+            distance = self._leaving_distance(np.flatnonzero(self.point_vehicle == i), m.sign)
             t = m.time_at(distance)
             if math.isnan(t) or (m.acceleration < 0 and t - m.entry_time > m.stop_time):
                 stop = m.speed**2 / (-2 * m.acceleration)
@@ -369,6 +369,21 @@ class Crossing:
                     "or a higher speed")
             last = max(last, t)
         return last
+
+    def _leaving_distance(self, points: NDArray[np.int64], sign: float) -> float:
+        """Travel [m] from the entry support (x = 0 driving +x, x = span driving −x) until the contact
+        points ``points`` of a vehicle have all left the deck: each its own track's far end (span +
+        y tan θ driving +x, y tan θ driving −x, y its deck y), and at least the deck's far corner
+        (``deck_extent``), plus its setback."""
+        _, _, y = self.point_kinematics()
+        cp = self.contact
+        start = -self.bridge.span_coordinate(np.zeros(len(points)), y[points])  # x of each track's entry support
+        near, far = self.bridge.deck_extent
+        if sign > 0:
+            reach = np.maximum(start + self.bridge.span, far)
+        else:
+            reach = np.maximum(self.bridge.span - start, self.bridge.span - near)
+        return float(np.max(reach + cp.setback[points]))
 
     @property
     def duration(self) -> float:

@@ -70,6 +70,7 @@ from __future__ import annotations
 import getpass
 import logging
 import os
+import stat
 import tempfile
 from typing import NamedTuple
 
@@ -82,6 +83,23 @@ log = logging.getLogger(__name__)
 
 def _cache_probe() -> None:
     """A function of this file, for :func:`ensure_cache_location`."""
+
+
+def _private_dir(path: str) -> str:
+    """``path`` if it is (or can be made) a directory of this user only (mode 0o700), else a fresh
+    ``mkdtemp`` directory: numba's cache files are pickles, so a shared temporary directory that
+    someone else created (or can write) must not be used."""
+    try:
+        os.mkdir(path, 0o700)
+    except FileExistsError:
+        pass
+    except OSError:
+        return tempfile.mkdtemp(prefix="vbikit-numba-cache-")
+    st = os.lstat(path)
+    owner_ok = not hasattr(os, "getuid") or st.st_uid == os.getuid()
+    if not stat.S_ISDIR(st.st_mode) or not owner_ok or st.st_mode & 0o077:
+        return tempfile.mkdtemp(prefix="vbikit-numba-cache-")
+    return path
 
 
 def ensure_cache_location() -> str | None:
@@ -101,7 +119,7 @@ def ensure_cache_location() -> str | None:
         user = getpass.getuser()
     except Exception:  # no user name (some containers): one directory per process
         user = None
-    path = os.path.join(tempfile.gettempdir(), f"vbikit-numba-cache-{user}") if user else tempfile.mkdtemp(
+    path = _private_dir(os.path.join(tempfile.gettempdir(), f"vbikit-numba-cache-{user}")) if user else tempfile.mkdtemp(
         prefix="vbikit-numba-cache-")
     numba.config.CACHE_DIR = path
     try:
@@ -125,8 +143,8 @@ class Modes(NamedTuple):
 
     omega: np.ndarray
     zeta: np.ndarray
-    start: float
-    end: float
+    start: np.ndarray
+    end: np.ndarray
     grid_h: float
     values: np.ndarray
     slopes: np.ndarray

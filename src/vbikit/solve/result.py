@@ -97,6 +97,18 @@ class CrossingResult:
             x = b.default_x_at(y) if hasattr(b, "default_x_at") else getattr(b, "default_response_x", b.span / 2)
         return float(x), y
 
+    def girder_sections(self, x: float | None = None) -> list[float]:
+        """x [m] on every girder line (Girder 1 first) of the section through the response line's
+        x (default: each girder's own default section, the middle of its first span): the same x on
+        a square deck, the same distance ξ = x − y tan θ from the support line on a skew deck."""
+        b = self.crossing.bridge
+        ys = [float(y) for y in getattr(b, "girder_y", [])]
+        if x is None:
+            return [float(b.default_x_at(y)) for y in ys]
+        y0 = float(getattr(b, "default_response_y", 0.0))
+        xi = float(b.span_coordinate(x, y0))
+        return [float(x) + (xi - float(b.span_coordinate(x, y))) for y in ys]
+
     def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:
         return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
 
@@ -127,10 +139,9 @@ class CrossingResult:
             Deck points [m] (x from the entry support, y from the deck centreline); default
             :meth:`point` (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
         girder_x : float, optional
-            Station ξ [m] along the girders of the per-girder responses (dimension ``girder``,
-            Girder 1 first) on a bridge with girders, from each girder's entry bearing (x itself
-            on a square deck; on a skew deck girder g's point is at x = ξ + y_g tan θ); default
-            midspan.  Ignored for bridges without girders.
+            Section x [m] (on the response line) of the per-girder responses (dimension ``girder``,
+            Girder 1 first) on a bridge with girders: :meth:`girder_sections`.  Ignored for bridges
+            without girders.
         static : bool
             Also the static reference responses (``static_displacement``, ``static_strain``).
 
@@ -185,10 +196,10 @@ class CrossingResult:
             "frequency": ("mode", np.asarray(bridge.frequencies_hz), {"units": "Hz", "long_name": "natural frequency"}),
         }
         if girder_y is not None:
-            gx = bridge.span / 2 if girder_x is None else float(girder_x)
             gy = [float(y) for y in girder_y]
-            shift = bridge.span_coordinate(0.0, 0.0) - bridge.span_coordinate(0.0, np.asarray(gy))  # y_g tan θ
-            deck("girder_", "girder", list(gx + shift), gy, f" on the girder line at station {gx:g} m from its entry bearing")
+            deck("girder_", "girder", self.girder_sections(girder_x), gy,
+                 " on the girder line at its default section" if girder_x is None else
+                 f" on the girder line at the section of x = {float(girder_x):g} m")
             coords["girder"] = ("girder", np.arange(1, len(girder_y) + 1))
             coords["girder_y"] = ("girder", np.asarray(girder_y, float), {"units": "m", "long_name": "girder line from the deck centreline"})
         motion = ("time",) if self.front_position.ndim == 1 else ("time", "vehicle")

@@ -27,18 +27,13 @@ def design_code_lines(base: dict) -> dict[str, float]:
     scenario: loaded length = the span of the response point, f₁ of the bridge model, the axles of
     the vehicle (the first of ``[[vehicles]]``)."""
     from vbikit.analysis.codes import code_allowances
-    from vbikit.analysis.effects import vehicle_axle_count
-    from vbikit.scenario import parse_scenario
-    from vbikit.scenario.build import build_bridge
-    from vbikit.vehicle.presets import VEHICLE_PRESETS
+    from vbikit.analysis.effects import loaded_length, vehicle_axle_count
+    from vbikit.scenario import build, parse_scenario
 
-    scenario = parse_scenario(base)
-    bridge = build_bridge(scenario.bridge)
-    spec = scenario.vehicle if scenario.vehicle is not None else scenario.vehicles[0]
-    vehicle = VEHICLE_PRESETS[spec.model].build(**spec.parameters)
-    x = scenario.response.x if scenario.response.x is not None else float(bridge.default_response_x)
-    spans = getattr(bridge, "spans", None)
-    loaded = float(spans[bridge.span_index(x)]) if spans is not None else float(bridge.span)
+    built = build(parse_scenario(base))
+    bridge = built.crossing.bridge
+    vehicle = built.crossing.vehicles[0].vehicle if built.crossing.vehicles else built.crossing.vehicle
+    loaded = loaded_length(bridge, built.response_x, built.response_y)
     return code_allowances(loaded, float(bridge.frequencies_hz[0]), vehicle_axle_count(vehicle))
 
 
