@@ -4,7 +4,7 @@ numba caches ``cache=True`` functions in the package's ``__pycache__`` or, when 
 read-only, in the user's cache directory; with neither writable it refuses to define them
 (``RuntimeError: cannot cache function ...``), which would make ``import vbikit`` fail on a
 read-only install with no writable home.  The kernels then fall back to a directory in the
-system's temporary directory (``vbikit.solve.kernels.ensure_cache_location``).  Simulated here
+system's temporary directory (``vbikit.solve.numba_cache.ensure_cache_location``).  Simulated here
 in a fresh interpreter by making numba's two locators fail the way a read-only directory does
 (no compilation: only the import and the cache location are checked).
 """
@@ -42,7 +42,7 @@ def test_the_temporary_cache_directory_must_be_private(tmp_path):
     used, a fresh private one instead; one of this user's own with mode 0o700 is kept."""
     import os
 
-    from vbikit.solve.kernels import _private_dir
+    from vbikit.solve.numba_cache import _private_dir
 
     shared = tmp_path / "shared"
     shared.mkdir()

@@ -67,71 +67,15 @@ B = max_lanes Σ_m max|φ_m|·|ξ_m| the largest possible deck displacement) nee
 """
 from __future__ import annotations
 
-import getpass
-import logging
-import os
-import stat
-import tempfile
 from typing import NamedTuple
 
-import numba
 import numpy as np
 from numba import njit
 
-log = logging.getLogger(__name__)
+from vbikit.solve.numba_cache import ensure_cache_location
 
 
-def _cache_probe() -> None:
-    """A function of this file, for :func:`ensure_cache_location`."""
-
-
-def _private_dir(path: str) -> str:
-    """``path`` if it is (or can be made) a directory of this user only (mode 0o700), else a fresh
-    ``mkdtemp`` directory: numba's cache files are pickles, so a shared temporary directory that
-    someone else created (or can write) must not be used."""
-    try:
-        os.mkdir(path, 0o700)
-    except FileExistsError:
-        pass
-    except OSError:
-        return tempfile.mkdtemp(prefix="vbikit-numba-cache-")
-    st = os.lstat(path)
-    owner_ok = not hasattr(os, "getuid") or st.st_uid == os.getuid()
-    if not stat.S_ISDIR(st.st_mode) or not owner_ok or st.st_mode & 0o077:
-        return tempfile.mkdtemp(prefix="vbikit-numba-cache-")
-    return path
-
-
-def ensure_cache_location() -> str | None:
-    """Make sure numba can cache the kernels (``cache=True``): numba writes them beside this file
-    (``__pycache__``) or, when the package directory is read-only, in the user's cache directory
-    (``~/.cache/numba``); when neither is writable (and ``NUMBA_CACHE_DIR`` is not set) numba
-    would refuse to define the kernels.  Then the cache goes to a per-user directory in the
-    system's temporary directory (logged).  Returns the directory chosen, or None."""
-    from numba.core.caching import FunctionCache
-
-    try:
-        FunctionCache(_cache_probe)
-        return None
-    except RuntimeError:
-        pass
-    try:
-        user = getpass.getuser()
-    except Exception:  # no user name (some containers): one directory per process
-        user = None
-    path = _private_dir(os.path.join(tempfile.gettempdir(), f"vbikit-numba-cache-{user}")) if user else tempfile.mkdtemp(
-        prefix="vbikit-numba-cache-")
-    numba.config.CACHE_DIR = path
-    try:
-        FunctionCache(_cache_probe)
-    except RuntimeError:
-        numba.config.CACHE_DIR = path = tempfile.mkdtemp(prefix="vbikit-numba-cache-")
-    log.warning("numba cannot write its cache beside vbikit or in the user's cache directory: compiled kernels "
-                "go to %s (set NUMBA_CACHE_DIR to choose a directory)", path)
-    return path
-
-
-ensure_cache_location()
+ensure_cache_location()  # before the first @njit(cache=True) below
 
 
 class Modes(NamedTuple):
