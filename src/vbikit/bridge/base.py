@@ -34,15 +34,22 @@ class ModalBridge(abc.ABC):
     default_lateral_offset: float = 0.0
 
     @property
-    def default_response_x(self) -> float:
-        """x [m] of the deck point responses are read at when no x is given: midspan (a
-        continuous beam: the middle of its first span)."""
+    def default_section(self) -> float:
+        """ξ [m] along the span (from the entry support line) of the section responses are read at
+        when no x is given: midspan (a continuous beam or deck: the middle of its first span)."""
         return 0.5 * self.span
 
+    @property
+    def default_response_x(self) -> float:
+        """x [m] of the deck point responses are read at when no x is given: the default section
+        on the default response line."""
+        return self.default_x_at(self.default_response_y)
+
     def default_x_at(self, y: float) -> float:
-        """x [m] of the default response section on the line at lateral position y [m]:
-        ``default_response_x`` (a skew deck: shifted with its support lines)."""
-        return self.default_response_x
+        """x [m] of the default section on the line at lateral position y [m]: ``default_section``,
+        shifted by y tan θ on a skew deck (its support lines are oblique)."""
+        t = self.skew_tan
+        return self.default_section + float(y) * t if t else self.default_section
 
     @property
     def skew_tan(self) -> float:

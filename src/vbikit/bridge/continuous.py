@@ -176,7 +176,7 @@ class ContinuousBeam(ModalBridge):
         return np.concatenate([[0.0], np.cumsum(self.spans)])
 
     @property
-    def default_response_x(self) -> float:  # type: ignore[override]
+    def default_section(self) -> float:  # type: ignore[override]
         """Midpoint of the first span [m] (where deflection and sagging moment are read by default)."""
         return 0.5 * self.spans[0]
 

@@ -351,14 +351,9 @@ class SlabOnGirderBridge(ModalBridge):
         return xs
 
     @property
-    def default_response_x(self) -> float:  # type: ignore[override]
-        """Midpoint [m] of the first span (midspan of a single span) on the default girder's line."""
-        return self.default_x_at(self.default_response_y)
-
-    def default_x_at(self, y: float) -> float:
-        """x [m] of the first span's midpoint on the line at lateral position y [m] (a skew deck's
-        support lines are oblique: ξ = x − y tan θ is the same on every line)."""
-        return 0.5 * float(self.support_x[1]) + float(y) * self.skew_tan
+    def default_section(self) -> float:  # type: ignore[override]
+        """ξ [m] of the first span's midpoint (midspan of a single span), the same on every girder line."""
+        return 0.5 * float(self.support_x[1])
 
     @property
     def skew_tan(self) -> float:

@@ -123,15 +123,6 @@ class ImportedModalBridge(ModalBridge):
             return lo, hi
         return min(lo, -0.5 * self.deck_width), max(hi, 0.5 * self.deck_width)
 
-    def default_x_at(self, y: float) -> float:
-        """x [m] of the midspan of the line at lateral position y [m]: span/2 + y tan θ."""
-        return 0.5 * float(self.span) + float(y) * self.skew_tan if self.skew_tan else 0.5 * float(self.span)
-
-    @property
-    def default_response_x(self) -> float:  # type: ignore[override]
-        """Midspan [m] on the default girder's line."""
-        return self.default_x_at(self.default_response_y)
-
     @property
     def omega(self) -> NDArray[np.float64]:
         return self.circular_frequencies

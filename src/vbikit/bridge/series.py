@@ -145,7 +145,8 @@ class SpanSeries(ModalBridge):
         return float(getattr(self._main, "default_lateral_offset", 0.0))
 
     @property
-    def default_response_x(self) -> float:  # type: ignore[override]
+    def default_section(self) -> float:  # type: ignore[override]
+        """Midspan [m] of the instrumented span."""
         return self.instrumented_offset + 0.5 * self.lengths[self.instrumented]
 
     @property

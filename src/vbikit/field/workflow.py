@@ -117,13 +117,6 @@ class ScaledBridge(ModalBridge):
     def lateral_edges(self) -> tuple[float, float]:
         return self.base.lateral_edges
 
-    @property
-    def deck_extent(self) -> tuple[float, float]:
-        return self.base.deck_extent
-
-    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
-        return self.base.span_coordinate(x, y)
-
     def default_x_at(self, y: float) -> float:
         return self.base.default_x_at(y)
 
