@@ -85,9 +85,7 @@ def girder_responses(result: CrossingResult, x: float | None = None, y: float | 
     girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
         return []
-    if x is not None and y is not None:  # the response line's section, as x on the default line
-        x = float(x) + float(bridge.span_coordinate(x, y)) - float(bridge.span_coordinate(x, bridge.default_response_y))
-    return [point_response(result, gx, float(g)) for gx, g in zip(result.girder_sections(x), girder_y)]
+    return [point_response(result, gx, float(g)) for gx, g in zip(result.girder_sections(x, y), girder_y)]
 
 
 def girder_summary(girders: list[PointResponse]) -> dict[str, object]:

@@ -97,17 +97,18 @@ class CrossingResult:
             x = b.default_x_at(y) if hasattr(b, "default_x_at") else getattr(b, "default_response_x", b.span / 2)
         return float(x), y
 
-    def girder_sections(self, x: float | None = None) -> list[float]:
-        """x [m] on every girder line (Girder 1 first) of the section through the response line's
-        x (default: each girder's own default section, the middle of its first span): the same x on
-        a square deck, the same distance ξ = x − y tan θ from the support line on a skew deck."""
+    def girder_sections(self, x: float | None = None, y: float | None = None) -> list[float]:
+        """x [m] on every girder line (Girder 1 first) of the section through the point (x, y) (y
+        default the response line; x default: each girder's own default section, the middle of its
+        first span): the same x on a square deck, the same distance ξ = x − y tan θ from the
+        support line on a skew deck."""
         b = self.crossing.bridge
-        ys = [float(y) for y in getattr(b, "girder_y", [])]
+        ys = [float(g) for g in getattr(b, "girder_y", [])]
         if x is None:
-            return [float(b.default_x_at(y)) for y in ys]
-        y0 = float(getattr(b, "default_response_y", 0.0))
+            return [float(b.default_x_at(g)) for g in ys]
+        y0 = float(getattr(b, "default_response_y", 0.0)) if y is None else float(y)
         xi = float(b.span_coordinate(x, y0))
-        return [float(x) + (xi - float(b.span_coordinate(x, y))) for y in ys]
+        return [float(x) + (xi - float(b.span_coordinate(x, g))) for g in ys]
 
     def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:
         return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
