@@ -317,12 +317,13 @@ def summary_keys() -> str:
 
 
 def study_outputs() -> str:
-    from vbikit.study.compute import OUTPUTS
+    from vbikit.outputs import outputs
 
-    rows = ["| variable | units | meaning |", "|---|---|---|"]
-    rows += [f"| `{k}` | {u} | {d} |" for k, (u, d) in OUTPUTS.items()]
-    rows.append("| `displacement_history` (with `histories = true`; extra dimension `step`) | m | "
-                "response-point deflection at t = step · dt (NaN after the crossing ended) |")
+    rows = ["| variable | units | per | meaning |", "|---|---|---|---|"]
+    rows += [f"| `{o.name}` | {o.cf_unit} | {'response point' if o.scope == 'point' else 'crossing'} | {o.long_name} |"
+             for o in outputs()]
+    rows.append("| `displacement_history` (with `histories = true`; extra dimension `step`) | m | crossing | "
+                "deflection at the first response point at t = step · dt (NaN after the crossing ended) |")
     return "\n".join(rows) + "\n"
 
 

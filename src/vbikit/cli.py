@@ -1,9 +1,7 @@
 """The ``vbikit`` command line.  Only this module prints; the library logs."""
 from __future__ import annotations
 
-import csv
 import logging
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Optional
 
@@ -90,16 +88,6 @@ _MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run 
 _MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")
 
 
-@dataclass
-class _Run:
-    name: str
-    result: Any
-    response: Any
-    summary: dict[str, Any]
-    girders: Any = None
-    effects: Any = ()
-
-
 def _guard(action: Any) -> Any:
     """Run ``action``; a user error (bad input, unwritable output) exits with code 2 and one message."""
     try:
@@ -123,73 +111,18 @@ def _write_text(path: Path, text: str) -> None:
     write_text(path, text)
 
 
-def _execute(load: Any, limits: Any = None) -> _Run:
-    """Check (``load()`` returns a Scenario; every check of :func:`vbikit.scenario.preflight.preflight`),
-    simulate and summarise; user errors exit with code 2."""
-    from vbikit._files import json_safe
-    from vbikit.analysis import girder_responses, point_response, summary
-    from vbikit.scenario.preflight import preflight, scenario_inputs
-    from vbikit.solve import simulate
+def _execute(load: Any, limits: Any = None) -> Any:
+    """Check and run the scenario ``load()`` returns (:func:`vbikit.scenario.run.run_planned`, every
+    check of the preflight first); user errors exit with code 2.  Returns the Report."""
+    from vbikit.scenario.preflight import preflight
+    from vbikit.scenario.run import run_planned
 
-    def work() -> _Run:
-        scenario = load()
-        plan = preflight(scenario, limits)
-        built = plan.built
-        result = simulate(built.crossing, limits)
-        response = point_response(result, built.response_x, built.response_y)
-        girders = girder_responses(result, built.response_x, built.response_y)
-        s = summary(result, response, girders, built.response_girder)
-        s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
-        s["inputs"] = scenario_inputs(scenario, plan)
-        effects = _load_effects(result, built, s)
-        nonfinite = json_safe(s)[1]  # the JSON outputs write these as null (_json), the text report as nan
-        s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
-        return _Run(scenario.name, result, response, s | _labels(scenario, s), girders, effects)
-
-    run_ = _guard(work)
-    _warn(run_.summary["warnings"])
-    return run_
+    report = _guard(lambda: run_planned(preflight(load(), limits), limits))
+    _warn(report.summary["warnings"])
+    return report
 
 
-def _load_effects(result: Any, built: Any, s: dict[str, Any]) -> list[Any]:
-    """Moment / shear / reaction blocks and design-code allowances added to the summary ``s``;
-    returns the load-effect responses (for the histories)."""
-    from vbikit.analysis.effects import load_effect_report
-
-    report, responses = load_effect_report(result, built.load_effects, built.load_effect_method, s["response_x"],
-                                           s["response_y"])
-    s.update(report)
-    return responses
-
-
-def _labels(scenario: Any, summary_: dict[str, Any]) -> dict[str, Any]:
-    """The ``units`` map of a summary's keys and the ``references`` of the scenario's models."""
-    from vbikit.analysis import summary_units
-    from vbikit.scenario.cite import scenario_references
-
-    refs = [{"key": r.key, "citation": r.text(), **({"doi": r.doi} if r.doi else {})} for r in scenario_references(scenario)]
-    return {"units": summary_units(summary_), "references": refs}
-
-
-def _write_csv(run: _Run, path: Path) -> None:
-    from vbikit._files import atomic_write
-    from vbikit.analysis import histories, history_units
-    from vbikit.analysis.effects import load_effect_histories
-
-    cols = histories(run.result, run.response, run.girders) | load_effect_histories(run.effects)
-    units = history_units(run.result, cols)
-
-    def write(tmp: Path) -> None:
-        with tmp.open("w", newline="") as fh:
-            writer = csv.writer(fh)
-            writer.writerow([f"{name} [{units[name]}]" for name in cols])
-            for row in np.column_stack(list(cols.values())):
-                writer.writerow([f"{v:.9g}" for v in row])
-
-    atomic_write(path, write)
-
-
-def _print_summary(run: _Run) -> None:
+def _print_summary(run: Any) -> None:
     s = run.summary
     if run.name:
         typer.echo(run.name)
@@ -266,13 +199,11 @@ def _print_load_effects(s: dict[str, Any]) -> None:
                    f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
 
 
-def _outputs(run: _Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:
+def _outputs(run: Any, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:
     if out is not None:
-        _guard(lambda: _write_csv(run, out))
+        _guard(lambda: run.write_csv(out))
     if plot is not None:
-        from vbikit.plot import plot_crossing
-
-        _guard(lambda: plot_crossing(run.result, run.response, plot))
+        _guard(lambda: run.plot(plot))
     if summary_path is not None:
         _guard(lambda: _write_text(summary_path, _json(run.summary, indent=2) + "\n"))
     if as_json:

@@ -1,5 +1,6 @@
-"""Impact factor, static reference, response extraction."""
+"""Impact factor, static reference, response extraction, response plans."""
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
+from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.analysis.response import (
     SUMMARY_KEYS,
     PointResponse,
@@ -7,11 +8,14 @@ from vbikit.analysis.response import (
     girder_responses,
     girder_summary,
     histories,
-    history_units,
+    history_table,
+    plan_responses,
+    point_entries,
     point_response,
     summary,
     summary_units,
 )
 
-__all__ = ["SUMMARY_KEYS", "ImpactFactor", "PointResponse", "contact_loss", "girder_responses", "girder_summary", "histories", "history_units", "impact_factor",
-           "point_response", "static_modal_history", "summary", "summary_units"]
+__all__ = ["SUMMARY_KEYS", "ImpactFactor", "PointResponse", "ResponsePlan", "ResponsePoint", "contact_loss",
+           "girder_responses", "girder_summary", "histories", "history_table", "impact_factor", "plan_responses",
+           "point_entries", "point_response", "static_modal_history", "summary", "summary_units"]

@@ -60,22 +60,29 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
         if peak > MAX_ROAD_FEATURE:
             out.append(f"road: the {side}profile reaches {peak:.3g} m where the wheels go (more than {MAX_ROAD_FEATURE} m); "
                        "road elevations are in metres — check the profile's unit or the defect sizes")
-    bridge = crossing.bridge
-    span = bridge.span
-    y = bridge.default_response_y if response_y is None else float(response_y)
-    x = bridge.default_x_at(y) if response_x is None else float(response_x)
-    xi = float(bridge.span_coordinate(x, y))  # along the span from the support line (skew decks)
-    skew = float(getattr(bridge, "skew", 0.0) or 0.0)
+    skew = float(getattr(crossing.bridge, "skew", 0.0) or 0.0)
     if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
         out.append(f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the skew (oblique mesh), "
                    f"which grillage practice keeps to skews up to {OBLIQUE_MESH_ADVISED_SKEW:g}° (ospgrillage's meshing rules); expect "
                    "transverse load sharing near the obtuse corners to be less accurate")
-    if min(xi, span - xi) < SUPPORT_MARGIN * span:
-        out.append(f"response.x = {x:g} m is at or next to a support (span {span:g} m): the static response there is "
-                   "near zero and the impact factor is not meaningful")
+    out += point_warnings(crossing, response_x, response_y)
     if crossing.dt is not None:
         out += step_warnings(crossing, float(crossing.dt))
     return out
+
+
+def point_warnings(crossing: Crossing, x: float | None = None, y: float | None = None) -> list[str]:
+    """A response point (x, y) [m] at or next to a support (within :data:`SUPPORT_MARGIN` of the
+    span, along the span from the point's own support line on a skew deck)."""
+    bridge = crossing.bridge
+    span = bridge.span
+    y = bridge.default_response_y if y is None else float(y)
+    x = bridge.default_x_at(y) if x is None else float(x)
+    xi = float(bridge.span_coordinate(x, y))
+    if min(xi, span - xi) < SUPPORT_MARGIN * span:
+        return [f"response.x = {x:g} m is at or next to a support (span {span:g} m): the static response there is "
+                "near zero and the impact factor is not meaningful"]
+    return []
 
 
 def step_warnings(crossing: Crossing, dt: float) -> list[str]:

@@ -3,12 +3,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
+from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
+from vbikit.analysis.plan import ResponsePlan
+from vbikit.outputs import QUANTITIES, Reduction, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
 
 
@@ -27,25 +31,31 @@ class PointResponse:
     acceleration: NDArray[np.float64]
     strain_rate: NDArray[np.float64] | None = None
 
-    @property
+    @cached_property
     def displacement_impact(self) -> ImpactFactor:
         return impact_factor(self.time, self.displacement, self.static_displacement, self.velocity)
 
-    @property
+    @cached_property
     def strain_impact(self) -> ImpactFactor:
         return impact_factor(self.time, self.strain, self.static_strain, self.strain_rate)
 
+    def outputs(self, result: CrossingResult) -> dict[str, float | None]:
+        """Every per-point output of the catalogue (:mod:`vbikit.outputs`) at this point."""
+        return reduce_outputs(Reduction(result, self), "point")
 
-def point_response(result: CrossingResult, x: float | None = None, y: float | None = None) -> PointResponse:
+
+def point_response(result: CrossingResult, x: float | None = None, y: float | None = None,
+                   xi_static: NDArray[np.float64] | None = None) -> PointResponse:
     """Dynamic and static responses at (x, y) [m]; x defaults to midspan, y to the bridge's
-    ``default_response_y`` (its default girder on a slab-on-girder deck, as in scenarios)."""
+    ``default_response_y`` (its default girder on a slab-on-girder deck, as in scenarios);
+    ``xi_static``: the static modal history if already computed (:func:`static_modal_history`)."""
     bridge = result.crossing.bridge
     x, y = result.point(x, y)
     if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
         raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
     phi = bridge.mode_shapes([x], [y])[0]
     eps = bridge.strain_shapes([x], [y])[0]
-    xi_st = static_modal_history(result)
+    xi_st = static_modal_history(result) if xi_static is None else xi_static
     return PointResponse(
         x, y, result.time,
         displacement=result.xi @ phi,
@@ -76,7 +86,8 @@ def contact_loss(result: CrossingResult) -> dict[str, dict[str, float | bool]]:
     return out
 
 
-def girder_responses(result: CrossingResult, x: float | None = None, y: float | None = None) -> list[PointResponse]:
+def girder_responses(result: CrossingResult, x: float | None = None, y: float | None = None,
+                     xi_static: NDArray[np.float64] | None = None) -> list[PointResponse]:
     """Responses on every girder line of a bridge with ``girder_y`` (Girder 1 first) at the section of
     the response point (x, y) (default: the bridge's; x default midspan) — the same x on a square
     deck, the same station ξ = x − y tan θ along the girders on a skew deck; an empty list for
@@ -85,7 +96,44 @@ def girder_responses(result: CrossingResult, x: float | None = None, y: float | 
     girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
         return []
-    return [point_response(result, gx, float(g)) for gx, g in zip(result.girder_sections(x, y), girder_y)]
+    xi_st = static_modal_history(result) if xi_static is None else xi_static
+    return [point_response(result, gx, float(g), xi_st) for gx, g in zip(result.girder_sections(x, y), girder_y)]
+
+
+def plan_responses(result: CrossingResult, plan: ResponsePlan,
+                   xi_static: NDArray[np.float64] | None = None) -> list[PointResponse]:
+    """The responses at every point of ``plan`` (its order), one static modal history shared."""
+    xi_st = static_modal_history(result) if xi_static is None else xi_static
+    return [point_response(result, p.x, p.y, xi_st) for p in plan.points]
+
+
+def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,
+                    effects: dict[str, Any] | None = None) -> tuple[list[dict[str, float | None]], dict[str, float | None]]:
+    """The catalogue's outputs (:mod:`vbikit.outputs`) of a crossing: per-point outputs at every
+    point of ``plan`` (a list in its order) and the per-crossing outputs.  ``xi_static``: the
+    static modal history if already computed; ``effects``: the load-effect responses by kind if
+    already computed (default: the first of each kind in ``plan``)."""
+    from vbikit.analysis.effects import load_effect_response
+
+    if effects is None:
+        effects = {}
+        for e in plan.load_effects:
+            if e.kind not in effects:
+                effects[e.kind] = load_effect_response(result, e, plan.load_effect_method)
+    points = [r.outputs(result) for r in plan_responses(result, plan, xi_static)]
+    return points, reduce_outputs(Reduction(result, None, effects), "crossing")
+
+
+def point_entries(result: CrossingResult, plan: ResponsePlan, responses: list[PointResponse]) -> list[dict[str, object]]:
+    """The ``points`` list of the summary: per response point its ``name``, ``x``, ``y`` [m],
+    ``girder`` (slab-on-girder decks) and every per-point output of the catalogue."""
+    out = []
+    for name, p, r in zip(plan.point_names, plan.points, responses):
+        entry: dict[str, object] = {"name": name, "x": r.x, "y": r.y}
+        if p.girder is not None:
+            entry["girder"] = p.girder
+        out.append(entry | r.outputs(result))
+    return out
 
 
 def girder_summary(girders: list[PointResponse]) -> dict[str, object]:
@@ -108,25 +156,23 @@ def girder_summary(girders: list[PointResponse]) -> dict[str, object]:
 
 
 def summary(result: CrossingResult, response: PointResponse, girders: list[PointResponse] | None = None,
-            response_girder: int | None = None) -> dict[str, object]:
-    """The JSON-ready summary of a crossing: impact factors, peaks, bridge frequencies, step data;
-    with ``girders`` (from :func:`girder_responses`) also the per-girder values and the governing girder."""
+            response_girder: int | None = None, points: list[dict[str, object]] | None = None,
+            effects: dict[str, object] | None = None) -> dict[str, object]:
+    """The JSON-ready summary of a crossing: every per-point output of the catalogue
+    (:mod:`vbikit.outputs`) at the headline ``response`` point, bridge frequencies, wheel forces,
+    step data and the per-crossing outputs (those of load effects given in ``effects``, first of
+    each kind); with ``girders`` (from :func:`girder_responses`) also the per-girder values and
+    the governing girder; ``points``: the entries of :func:`point_entries` (default: the headline
+    point alone)."""
     crossing = result.crossing
-    disp = response.displacement_impact
-    strain = response.strain_impact
     wheel_forces = result.wheel_forces
-    return {
-        "impact_factor": disp.impact_factor,
-        "max_dynamic_displacement": disp.dynamic_peak,
-        "max_static_displacement": disp.static_peak,
-        "time_of_max_dynamic_displacement": disp.time_dynamic_peak,
-        "strain_impact_factor": strain.impact_factor,
-        "max_dynamic_strain": strain.dynamic_peak,
-        "max_static_strain": strain.static_peak,
-        "max_abs_acceleration": float(np.max(np.abs(response.acceleration))),
-        "max_abs_velocity": float(np.max(np.abs(response.velocity))),
+    crossing_outputs = {k: v for k, v in reduce_outputs(Reduction(result, None, effects or {}), "crossing").items()
+                        if v is not None and k not in ("dt", "n_steps")}
+    return response.outputs(result) | {
         "response_x": response.x,
         "response_y": response.y,
+        "points": points if points is not None else [{"name": "p1", "x": response.x, "y": response.y}
+                                                     | response.outputs(result)],
         "frequencies_hz": [float(f) for f in crossing.bridge.frequencies_hz],
         "vehicle_frequencies_hz": [float(f) for f in crossing.vehicle.natural_frequencies()],
         "static_wheel_loads": {w.name: float(p) for w, p in zip(crossing.vehicle.wheels, crossing.vehicle.static_wheel_loads())},
@@ -144,6 +190,7 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "integrator": crossing.integrator,
         "speed": crossing.speed if not crossing.vehicles else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
+        **crossing_outputs,
         "warnings": run_warnings(result, response.x, response.y),
     } | ({"response_girder": response_girder,
           "lateral_offset": crossing.lateral_offset if not crossing.vehicles else [m.lateral_offset for m in crossing.vehicles],
@@ -180,85 +227,67 @@ def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:
     return out
 
 
+#: the deck histories written for every girder line (CSV ``girder{g}_<name>``)
+GIRDER_QUANTITIES = ("displacement", "static_displacement", "strain", "static_strain", "acceleration")
+
+
+def history_table(result: CrossingResult, responses: list[PointResponse], girders: list[PointResponse] | None = None,
+                  effects: Sequence[Any] = (), names: Sequence[str] | None = None) -> dict[str, tuple[NDArray[np.float64], str]]:
+    """Named time histories and their units (CSV spelling, :mod:`vbikit.outputs`) for CSV output:
+    time, front-axle positions, the deck quantities at every response point (one point: plain
+    ``displacement``, …; several: ``displacement_<name>`` with the point ``names``), ``girder{g}_*``
+    for every girder, tire forces and patch lengths, vehicle DOFs and their accelerations, and
+    ``<effect>`` / ``<effect>_static`` for every load-effect response in ``effects``."""
+    from vbikit.solve.result import dof_unit
+
+    out: dict[str, tuple[NDArray[np.float64], str]] = {"time": (result.time, "s")}
+    if result.front_position.ndim == 1:
+        fronts = {"front_axle_x": result.front_position}
+    else:
+        fronts = {f"v{i + 1}_front_axle_x": result.front_position[:, i] for i in range(result.front_position.shape[1])}
+    deck: dict[str, tuple[NDArray[np.float64], str]] = {}
+    several = len(responses) > 1
+    labels = list(names) if names is not None else [f"p{i}" for i in range(1, len(responses) + 1)]
+    for label, r in zip(labels, responses):
+        for q in QUANTITIES.values():
+            deck[f"{q.name}_{label}" if several else q.name] = (getattr(r, q.name), q.unit)
+    if result.front_position.ndim == 1:  # one vehicle: {time, displacement, …, front_axle_x}
+        out |= deck | {k: (v, "m") for k, v in fronts.items()}
+    else:  # several vehicles: {time, v1_front_axle_x, …, displacement, …}
+        out |= {k: (v, "m") for k, v in fronts.items()} | deck
+    for g, r in enumerate(girders or [], start=1):
+        for name in GIRDER_QUANTITIES:
+            out[f"girder{g}_{name}"] = (getattr(r, name), QUANTITIES[name].unit)
+    wheels = result.crossing.vehicle.wheels
+    for w, f in zip(wheels, result.wheel_forces.T):
+        out[f"contact_force_{w.name}"] = (f, "N")
+    if np.any(result.contact_lengths):
+        for w, length in zip(wheels, result.contact_lengths.T):
+            out[f"contact_length_{w.name}"] = (length, "m")
+    for j, name in enumerate(result.crossing.vehicle.dof_names):
+        out[name] = (result.q[:, j], dof_unit(name))
+        out[f"{name}_acceleration"] = (result.q_ddot[:, j], dof_unit(name) + "/s^2")
+    for e in effects:
+        out[e.name] = (e.dynamic, e.effect.units)
+        out[f"{e.name}_static"] = (e.static, e.effect.units)
+    return out
+
+
 def histories(result: CrossingResult, response: PointResponse,
               girders: list[PointResponse] | None = None) -> dict[str, NDArray[np.float64]]:
-    """Named time histories for CSV output (SI units); with ``girders`` also ``girder{g}_*`` columns
-    (displacement, static displacement, strain, static strain, acceleration) for every girder."""
-    out: dict[str, NDArray[np.float64]] = {
-        "time": result.time,
-        "displacement": response.displacement,
-        "static_displacement": response.static_displacement,
-        "strain": response.strain,
-        "static_strain": response.static_strain,
-        "velocity": response.velocity,
-        "acceleration": response.acceleration,
-    }
-    if result.front_position.ndim == 1:
-        out["front_axle_x"] = result.front_position
-    else:  # several vehicles: out = {time, v1_front_axle_x, …, displacement, …}
-        fronts = {f"v{i + 1}_front_axle_x": result.front_position[:, i] for i in range(result.front_position.shape[1])}
-        out = {"time": out.pop("time"), **fronts, **out}
-    for g, r in enumerate(girders or [], start=1):
-        out[f"girder{g}_displacement"] = r.displacement
-        out[f"girder{g}_static_displacement"] = r.static_displacement
-        out[f"girder{g}_strain"] = r.strain
-        out[f"girder{g}_static_strain"] = r.static_strain
-        out[f"girder{g}_acceleration"] = r.acceleration
-    for w, f in zip(result.crossing.vehicle.wheels, result.wheel_forces.T):
-        out[f"contact_force_{w.name}"] = f
-    if np.any(result.contact_lengths):
-        for w, length in zip(result.crossing.vehicle.wheels, result.contact_lengths.T):
-            out[f"contact_length_{w.name}"] = length
-    for j, name in enumerate(result.crossing.vehicle.dof_names):
-        out[name] = result.q[:, j]
-        out[f"{name}_acceleration"] = result.q_ddot[:, j]
-    return out
-
-
-def history_units(result: CrossingResult, names: list[str] | dict[str, object]) -> dict[str, str]:
-    """Unit of each column of :func:`histories` (``girder3_strain`` → ``-``, ``tractor_pitch`` →
-    ``rad``, ``contact_force_axle1_left`` → ``N``); the CSV header is ``name [unit]``."""
-    from vbikit.solve.result import HISTORY_UNITS, dof_unit
-
-    dofs = set(result.crossing.vehicle.dof_names)
-    out = {}
-    for name in names:
-        base = name.split("_", 1)[1] if name.startswith("girder") and name[6:7].isdigit() else name
-        if base in HISTORY_UNITS:
-            out[name] = HISTORY_UNITS[base]
-        elif name.endswith("_front_axle_x"):  # several vehicles: v1_front_axle_x, …
-            out[name] = "m"
-        elif name.startswith("moment_"):  # load effects (vbikit.analysis.effects): moment_x12.5[_static]
-            out[name] = "N m"
-        elif name.startswith(("shear_", "reaction_")):
-            out[name] = "N"
-        elif name.startswith("contact_force_"):
-            out[name] = "N"
-        elif name.startswith("contact_length_"):
-            out[name] = "m"
-        elif name in dofs:
-            out[name] = dof_unit(name)
-        elif name.endswith("_acceleration") and name.removesuffix("_acceleration") in dofs:
-            out[name] = dof_unit(name.removesuffix("_acceleration")) + "/s^2"
-        else:
-            raise KeyError(f"no unit known for history {name!r}")
-    return out
+    """Named time histories (SI units) of :func:`history_table` at one response point."""
+    return {k: v for k, (v, _) in history_table(result, [response], girders).items()}
 
 
 #: every key of the crossing summary (:func:`summary`, ``vbikit run --json``): unit and meaning;
 #: per-wheel maps are keyed by wheel name, per-girder lists ordered Girder 1 first
 SUMMARY_KEYS: dict[str, tuple[str, str]] = {
-    "impact_factor": ("-", "displacement impact factor IM = (R_dyn,max − R_st,max)/R_st,max at the response point"),
-    "max_dynamic_displacement": ("m", "dynamic peak displacement in the static peak's direction (negative: downward)"),
-    "max_static_displacement": ("m", "static reference peak displacement"),
-    "time_of_max_dynamic_displacement": ("s", "time of the dynamic peak"),
-    "strain_impact_factor": ("-", "strain impact factor"),
-    "max_dynamic_strain": ("-", "dynamic peak bottom-fibre strain (tension positive)"),
-    "max_static_strain": ("-", "static reference peak strain"),
-    "max_abs_acceleration": ("m/s^2", "largest absolute deck acceleration at the response point"),
-    "max_abs_velocity": ("m/s", "largest absolute deck velocity at the response point"),
+    # the headline point's outputs and the crossing's outputs come from the catalogue (vbikit.outputs)
+    **{o.name: (o.unit, o.long_name) for o in outputs("point")},
     "response_x": ("m", "response point from the entry support"),
     "response_y": ("m", "response point from the deck centreline"),
+    "points": ("-", "every response point in order ([[response.points]], or the [response] point alone): name, "
+                    "x [m], y [m], girder (slab-on-girder decks) and the per-point outputs above, each in its unit"),
     "frequencies_hz": ("Hz", "bridge natural frequencies of the retained modes"),
     "vehicle_frequencies_hz": ("Hz", "vehicle natural frequencies on rigid ground"),
     "static_wheel_loads": ("N", "static load of each wheel"),
@@ -267,8 +296,6 @@ SUMMARY_KEYS: dict[str, tuple[str, str]] = {
     "contact_loss": ("-", "per wheel: lost (true/false), first_x [m] and first_time [s] where contact was first lost, duration [s]"),
     "contact_length_range": ("m", "per wheel: [smallest, largest] length of the patch in contact (0 for point tires)"),
     "tire_model": ("-", "tire model name"),
-    "n_steps": ("-", "number of time steps"),
-    "dt": ("s", "time step"),
     "duration": ("s", "simulated time"),
     "integrator": ("-", "time integrator"),
     "speed": ("m/s", "vehicle speed at t = 0"),
@@ -292,6 +319,7 @@ SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                       "first requested section, every section under sections, with the code allowances"),
     "shear": ("N", "shear forces (just right of x), as moment"),
     "reaction": ("N", "support reactions, as moment"),
+    **{o.name: (o.unit, o.long_name) for o in outputs("crossing")},
     "warnings": ("-", "messages about the inputs or the run (also printed on standard error)"),
     "inputs": ("-", "the inputs as run, every default filled in (units as in the scenario reference)"),
 }

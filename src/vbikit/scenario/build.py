@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.damage import Damage
@@ -24,6 +25,7 @@ from vbikit.road.profile import RoadProfile
 from vbikit.road.psd import RoadPSD, correlated_profile, random_profile
 from vbikit.scenario.schema import (
     BridgeSpec,
+    ResponsePointSpec,
     RoadSpec,
     Scenario,
     ScenarioError,
@@ -153,15 +155,34 @@ def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
 
 @dataclass(frozen=True)
 class BuiltScenario:
+    """A scenario as models: the crossing (the physics) and its response plan (what to read)."""
+
     crossing: Crossing
-    response_x: float | None
-    response_y: float
-    #: 1-based girder of the response point (slab-on-girder bridges), else None
-    response_girder: int | None = None
-    #: moments, shears and reactions to report (empty if the bridge model offers none)
-    load_effects: tuple[LoadEffect, ...] = ()
-    #: "mode-acceleration" or "mode-superposition"
-    load_effect_method: str = "mode-acceleration"
+    plan: ResponsePlan
+
+    @property
+    def response_x(self) -> float | None:
+        """x [m] of the headline (first) response point; None: the bridge's default section."""
+        return self.plan.first.x
+
+    @property
+    def response_y(self) -> float:
+        """y [m] of the headline response point."""
+        return float(self.plan.first.y)
+
+    @property
+    def response_girder(self) -> int | None:
+        """1-based girder of the headline response point (slab-on-girder bridges), else None."""
+        return self.plan.first.girder
+
+    @property
+    def load_effects(self) -> tuple[LoadEffect, ...]:
+        """Moments, shears and reactions to report (empty if the bridge model offers none)."""
+        return self.plan.load_effects
+
+    @property
+    def load_effect_method(self) -> str:
+        return self.plan.load_effect_method
 
 
 def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | None) -> tuple[LoadEffect, ...]:
@@ -226,22 +247,29 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
     except ValueError as err:
         raise ScenarioError(str(err)) from None
     r = scenario.response
-    method = r.load_effect_method
+    points = tuple(response_point(scenario, bridge, spec, f"response.points[{i}]." if r.points is not None else "response.")
+                   for i, spec in enumerate(r.point_specs, start=1))
+    effects = build_load_effects(scenario, bridge, points[0].girder)
+    return BuiltScenario(crossing, ResponsePlan(points, effects, r.load_effect_method))
+
+
+def response_point(scenario: Scenario, bridge: ModalBridge, spec: ResponsePointSpec, key: str) -> ResponsePoint:
+    """One response point of the scenario, checked: its line y (a girder's, the bridge's default girder
+    on a slab-on-girder deck, or as given) and its section x (:func:`response_x`); ``key`` prefixes errors."""
     girder_y = getattr(bridge, "girder_y", None)
     if girder_y is None:
-        if r.girder is not None:
-            raise ScenarioError(f"response.girder: bridge model {scenario.bridge.model!r} has no girders; use response.y")
-        girder, y = None, bridge.default_response_y if r.y is None else r.y
+        if spec.girder is not None:
+            raise ScenarioError(f"{key}girder: bridge model {scenario.bridge.model!r} has no girders; use {key}y")
+        girder, y = None, bridge.default_response_y if spec.y is None else spec.y
     else:
-        girder = r.girder if r.girder is not None else (None if "y" in r.model_fields_set else int(getattr(bridge, "default_girder", 1)))
+        girder = spec.girder if spec.girder is not None else (None if "y" in spec.model_fields_set else int(getattr(bridge, "default_girder", 1)))
         if girder is not None and not 1 <= girder <= len(girder_y):
-            raise ScenarioError(f"response.girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
-        y = r.y if girder is None else float(girder_y[girder - 1])
-    x = response_x(bridge, scenario.response.x, y)
-    return BuiltScenario(crossing, x, y, girder, build_load_effects(scenario, bridge, girder), method)
+            raise ScenarioError(f"{key}girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
+        y = spec.y if girder is None else float(girder_y[girder - 1])
+    return ResponsePoint(response_x(bridge, spec.x, y, key), float(y), girder, spec.name)
 
 
-def response_x(bridge: ModalBridge, x: float | None, y: float) -> float | None:
+def response_x(bridge: ModalBridge, x: float | None, y: float, key: str = "response.") -> float | None:
     """The response section's x [m]: as given (checked: within the span on the line y), or None for
     the bridge's default — on a skew deck the default section of the line y itself (the support
     lines are oblique, so the default girder's midspan x is not that of the others)."""
@@ -251,5 +279,5 @@ def response_x(bridge: ModalBridge, x: float | None, y: float) -> float | None:
     xi = float(bridge.span_coordinate(x, y))
     if not 0.0 <= xi <= bridge.span:
         extra = "" if xi == x else f" along the line y = {y:g} m (x − y·tan(skew) = {xi:.6g} m)"
-        raise ScenarioError(f"response.x: must be within the span 0 … {bridge.span} m{extra} (got {x})")
+        raise ScenarioError(f"{key}x: must be within the span 0 … {bridge.span} m{extra} (got {x})")
     return x

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from vbikit.analysis.checks import input_warnings
+from vbikit.analysis.checks import input_warnings, point_warnings
 from vbikit.scenario.build import BuiltScenario, build
 from vbikit.scenario.schema import Scenario, ScenarioError
 from vbikit.solve.budget import Limits, RunEstimate, check_run
@@ -49,16 +49,19 @@ def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
     return out
 
 
-def check_response_point(built: BuiltScenario) -> None:
+def check_response_points(built: BuiltScenario) -> None:
     """Refuse a response point where every mode shape vanishes (on a support, off the deck): no
     static response there, hence no impact factor."""
     bridge = built.crossing.bridge
-    x = bridge.default_x_at(built.response_y) if built.response_x is None else built.response_x
-    phi = bridge.mode_shapes([x], [built.response_y])[0]
-    if not np.any(phi):
-        raise ScenarioError(f"response.x = {x:g} m, y = {built.response_y:g} m: every mode shape is zero there (a "
-                            "support or off the deck), so there is no static response and no impact factor; choose "
-                            f"a point inside the span 0 … {bridge.span:g} m")
+    several = len(built.plan.points) > 1
+    for i, p in enumerate(built.plan.points, start=1):
+        x = bridge.default_x_at(p.y) if p.x is None else p.x
+        phi = bridge.mode_shapes([x], [p.y])[0]
+        if not np.any(phi):
+            key = f"response.points[{i}]" if several else "response"
+            raise ScenarioError(f"{key}.x = {x:g} m, y = {p.y:g} m: every mode shape is zero there (a support or off "
+                                "the deck), so there is no static response and no impact factor; choose a point "
+                                f"inside the span 0 … {bridge.span:g} m")
 
 
 def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
@@ -85,8 +88,10 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
         raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
                             "bridge, vehicle and tire parameters") from None
     estimate = check_run(crossing, dt, limits)
-    check_response_point(built)
+    check_response_points(built)
     warnings = input_warnings(crossing, dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
+    for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)
+        warnings += [w for w in point_warnings(crossing, p.x, p.y) if w not in warnings]
     return Plan(scenario, built, dt, estimate, warnings)
 
 

@@ -349,12 +349,30 @@ class CrossingSpec(_Section):
             float(self.speed if self.speed is not None else self.speed_kmh / 3.6)
 
 
+class ResponsePointSpec(_Section):
+    """[[response.points]]: one response point (x default midspan; girder or y, not both)."""
+
+    name: str = Field("", pattern=r"^([A-Za-z][A-Za-z0-9_]*)?$", max_length=40,
+                      description="label in reports, CSV columns (displacement_<name>) and datasets; letters, digits and _, starting with a letter; default p1, p2, … by position")
+    x: Optional[float] = Field(None, description="along the bridge from the entry support; default midspan (of the first span) [m]")
+    y: Optional[float] = Field(None, description="from the deck centreline; default the bridge's response line [m]")
+    girder: Optional[int] = Field(None, ge=1, description="slab-on-girder bridges: on this girder's line; give girder or y, not both [-]")
+
+    @model_validator(mode="after")
+    def _girder_or_y(self) -> "ResponsePointSpec":
+        if self.girder is not None and "y" in self.model_fields_set:
+            raise ValueError("give girder or y, not both")
+        return self
+
+
 class ResponseSpec(_Section):
     """[response]: the deck point for histories and impact factors (x default midspan).
 
     On a slab-on-girder bridge ``girder`` (1-based, Girder 1 at the most negative y) puts the
     point on that girder's line; give ``girder`` or ``y``, not both.  With neither, a
     slab-on-girder bridge reports its default girder (Girder 4 on the paper's bridges).
+    Several points: ``[[response.points]]`` tables instead of ``x`` / ``y`` / ``girder``; the
+    first is the headline point (the summary's top-level keys).
     """
 
     x: Optional[float] = Field(None, description="response point along the bridge from the entry support (on a skew deck the support lines are oblique: line y's span starts at x = y·tan(skew)); default midspan (of the first span) [m]")
@@ -367,12 +385,30 @@ class ResponseSpec(_Section):
     reaction: Optional[list[Annotated[int, Field(ge=0)]]] = Field(None, description="support indices, 0 = entry (default: all)")
     load_effect_method: Literal["mode-acceleration", "mode-superposition"] = Field(
         "mode-acceleration", description="moments, shears and reactions from the mode-acceleration method or plain mode superposition")
+    points: Optional[list[ResponsePointSpec]] = Field(
+        None, min_length=1, max_length=1000, description="[[response.points]]: several response points (x, y or girder, name), the first the headline point")
 
     @model_validator(mode="after")
     def _girder_or_y(self) -> "ResponseSpec":
         if self.girder is not None and "y" in self.model_fields_set:
             raise ValueError("give response.girder or response.y, not both")
+        if self.points is not None:
+            given = [k for k in ("x", "y", "girder") if k in self.model_fields_set]
+            if given:
+                raise ValueError(f"{given[0]}: give the point in [response] or in [[response.points]] tables, not both")
+            names = [p.name or f"p{i}" for i, p in enumerate(self.points, start=1)]
+            dup = sorted({n for n in names if names.count(n) > 1})
+            if dup:
+                raise ValueError(f"points: names must be unique; repeated: {', '.join(dup)}")
         return self
+
+    @property
+    def point_specs(self) -> list["ResponsePointSpec"]:
+        """The response points: the [[response.points]] tables, or the [response] point alone."""
+        if self.points is not None:
+            return list(self.points)
+        return [ResponsePointSpec.model_construct(name="", x=self.x, y=self.y, girder=self.girder,
+                                                  _fields_set={k for k in ("x", "y", "girder") if k in self.model_fields_set})]
 
 
 class Scenario(_Section):

@@ -9,7 +9,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.effects import contact_influence, load_effect_response
-from vbikit.analysis.impact import impact_factor
+from vbikit.analysis.response import reduce_crossing
+from vbikit.outputs import as_number, outputs
 from vbikit.road.profile import RoadProfile
 from vbikit.scenario.build import build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
@@ -17,25 +18,13 @@ from vbikit.solve.batch import BatchSolver
 from vbikit.solve.result import check_finite
 from vbikit.study.spec import Study
 
-#: per-crossing outputs: name -> (units, description)
-OUTPUTS: dict[str, tuple[str, str]] = {
-    "impact_factor": ("1", "IM of the response-point deflection, (R_dyn,max - R_st,max) / R_st,max"),
-    "strain_impact_factor": ("1", "IM of the response-point bottom-fibre strain"),
-    "max_dynamic_displacement": ("m", "peak deflection in the static peak's direction (z up: negative)"),
-    "max_static_displacement": ("m", "peak static deflection under the moving static wheel loads"),
-    "max_dynamic_strain": ("1", "peak bottom-fibre strain (tension positive)"),
-    "max_static_strain": ("1", "peak static bottom-fibre strain"),
-    "max_abs_velocity": ("m s-1", "peak |deck velocity| at the response point"),
-    "max_abs_acceleration": ("m s-2", "peak |deck acceleration| at the response point"),
-    "min_tire_force": ("N", "smallest wheel force over the crossing (0 = a tire lost contact)"),
-    **{f"{kind}_{name}": (units, f"{kind} ({what}): {desc}; the first [response] {kind} of the base scenario "
-                                  "(default: the bridge's first), NaN if the bridge has none")
-       for kind, what, units in (("moment", "sagging positive", "N m"), ("shear", "dM/dx", "N"), ("reaction", "upward", "N"))
-       for name, desc in (("impact_factor", "IM in the static peak's direction"), ("static_peak", "static peak"),
-                          ("dynamic_peak", "dynamic peak in the static peak's direction"))},
-    "dt": ("s", "time step"),
-    "n_steps": ("1", "number of time steps"),
-}
+def point_names(base: dict) -> list[str] | None:
+    """The names of a base scenario's [[response.points]] (None for the [response] shorthand: the
+    dataset then has no ``point`` dimension)."""
+    points = (base.get("response") or {}).get("points")
+    if not isinstance(points, list):
+        return None
+    return [(p.get("name") if isinstance(p, dict) else None) or f"p{i}" for i, p in enumerate(points, start=1)]
 
 
 #: roads built in this process, by their scenario [road] table (a study reuses the same seeds
@@ -62,70 +51,62 @@ def _road(scenario: Scenario, data: dict) -> tuple[RoadProfile | None, RoadProfi
     return road
 
 
+def solver_point(built) -> tuple[float, float]:
+    """(x, y) [m] of a built scenario's first response point (x resolved to the bridge's default)."""
+    p = built.plan.first
+    return (built.crossing.bridge.default_x_at(p.y) if p.x is None else float(p.x)), float(p.y)
+
+
 def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1) -> dict[str, NDArray]:
     """Run the crossings at grid indices ``batch`` (they differ only in road-only keys).
 
-    Returns arrays of length len(batch) for every name in :data:`OUTPUTS`, plus ``index``
-    (len(batch), n_axes) and, if the study stores histories, ``displacement_history``
-    (len(batch), n_t) [m] (rows padded with NaN to the longest)."""
+    Returns, for every output of the catalogue (:mod:`vbikit.outputs`), an array of length
+    len(batch) (per-crossing outputs) or (len(batch), n_points) (per-point outputs, the base
+    scenario's response points in order); ``index`` (len(batch), n_axes) and, if the study
+    stores histories, ``displacement_history`` (len(batch), n_t) [m] at the first point (rows
+    padded with NaN to the longest)."""
     dicts = [study.scenario_dict(idx) for idx in batch]
     scenarios = [parse_scenario(d, study.base_dir) for d in dicts]
     roads = [_road(sc, d) for sc, d in zip(scenarios, dicts)]
     # the crossings differ only in the road: build the first one, the others are its road swapped
-    built = [build(scenarios[0])]
-    template = built[0].crossing
-    solver = BatchSolver(template)
-    bridge = template.bridge
-    x = float(getattr(bridge, "default_response_x", bridge.span / 2)) if built[0].response_x is None else float(built[0].response_x)
-    y = built[0].response_y
-    phi = bridge.mode_shapes([x], [y])[0]
-    eps = bridge.strain_shapes([x], [y])[0]
+    built = build(scenarios[0])
+    solver = BatchSolver(built.crossing)
+    plan = built.plan
+    phi_first = built.crossing.bridge.mode_shapes(*([v] for v in solver_point(built)))[0]
 
-    static: dict[float, tuple[NDArray, NDArray]] = {}  # static deflection and strain, per step
-    effects = {kind: next((e for e in built[0].load_effects if e.kind == kind), None) for kind in ("moment", "shear", "reaction")}
-    method = built[0].load_effect_method
+    static: dict[float, NDArray] = {}  # static modal history, per step
+    effects = {kind: next((e for e in plan.load_effects if e.kind == kind), None) for kind in ("moment", "shear", "reaction")}
     influence: dict[tuple[str, float], NDArray] = {}  # contact influence matrices, per effect and step
 
-    def effect_row(result) -> dict[str, float]:
-        row: dict[str, float] = {}
+    def effect_responses(result) -> dict[str, object]:
+        out = {}
         for kind, effect in effects.items():
             if effect is None:
-                row |= {f"{kind}_impact_factor": np.nan, f"{kind}_static_peak": np.nan, f"{kind}_dynamic_peak": np.nan}
                 continue
             key = (kind, result.dt)
-            if method == "mode-acceleration" and key not in influence:
+            if plan.load_effect_method == "mode-acceleration" and key not in influence:
                 influence[key] = contact_influence(result, effect)
-            im = load_effect_response(result, effect, method, influence=influence.get(key)).impact
-            row |= {f"{kind}_impact_factor": im.impact_factor, f"{kind}_static_peak": im.static_peak,
-                    f"{kind}_dynamic_peak": im.dynamic_peak}
-        return row
+            out[kind] = load_effect_response(result, effect, plan.load_effect_method, influence=influence.get(key))
+        return out
 
     def reduce(result):
         check_finite(result)
         if result.dt not in static:
-            xi_st = solver.static_modal(result.dt)
-            static[result.dt] = (xi_st @ phi, xi_st @ eps)
-        disp, strain = result.xi @ phi, result.xi @ eps
-        d = impact_factor(result.time, disp, static[result.dt][0], result.xi_dot @ phi)
-        s = impact_factor(result.time, strain, static[result.dt][1], result.xi_dot @ eps)
-        row = {
-            "impact_factor": d.impact_factor, "strain_impact_factor": s.impact_factor,
-            "max_dynamic_displacement": d.dynamic_peak, "max_static_displacement": d.static_peak,
-            "max_dynamic_strain": s.dynamic_peak, "max_static_strain": s.static_peak,
-            "max_abs_velocity": float(np.abs(result.xi_dot @ phi).max()),
-            "max_abs_acceleration": float(np.abs(result.xi_ddot @ phi).max()),
-            "min_tire_force": float(result.wheel_forces.min()) if result.wheel_forces.size else np.nan,
-            "dt": result.dt, "n_steps": float(result.n_steps),
-        } | effect_row(result)
-        return row, (disp if study.histories else None)
+            static[result.dt] = solver.static_modal(result.dt)
+        points, row = reduce_crossing(result, plan, static[result.dt], effect_responses(result))
+        return points, row, (result.xi @ phi_first if study.histories else None)
 
     rows = solver.run_many(roads, reduce=reduce, threads=threads)
-    out: dict[str, NDArray] = {k: np.array([r[0][k] for r in rows], float) for k in OUTPUTS}
+    out: dict[str, NDArray] = {}
+    for o in outputs("point"):
+        out[o.name] = np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float)
+    for o in outputs("crossing"):
+        out[o.name] = np.array([as_number(r[1][o.name]) for r in rows], float)
     out["index"] = np.array(batch, np.int64).reshape(len(batch), len(study.axes))
     if study.histories:
-        n_t = max(r[1].size for r in rows)
+        n_t = max(r[2].size for r in rows)
         hist = np.full((len(rows), n_t), np.nan)
         for k, r in enumerate(rows):
-            hist[k, : r[1].size] = r[1]
+            hist[k, : r[2].size] = r[2]
         out["displacement_history"] = hist
     return out

@@ -43,7 +43,8 @@ from filelock import FileLock, Timeout
 
 from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.scenario.schema import key_unit
-from vbikit.study.compute import OUTPUTS, run_batch
+from vbikit.outputs import outputs
+from vbikit.study.compute import point_names, run_batch
 from vbikit.study.spec import Study, StudyError
 
 log = logging.getLogger(__name__)
@@ -105,9 +106,10 @@ def _part_problem(path: Path, k: int, batch: tuple, checksum: str, job) -> Optio
             index = part["index"]
             if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
                 return "its grid indices are not those of this batch"
-            for name in OUTPUTS:
-                if part[name].shape != (len(batch),):
-                    return f"{name} has the wrong shape"
+            n_points = len(point_names(job.base) or [None])
+            for o in outputs():
+                if part[o.name].shape != ((len(batch), n_points) if o.scope == "point" else (len(batch),)):
+                    return f"{o.name} has the wrong shape"
             if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
                 return "its step counts are not valid"
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as err:
@@ -366,7 +368,9 @@ def assemble(study: Study, parts: Path):
     dims = [a.name for a in study.axes]
     shape = study.shape
     batches = study.batches()
-    data = {k: np.full(shape, np.nan) for k in OUTPUTS}
+    names = point_names(study.base)
+    n_points = len(names or [None])
+    data = {o.name: np.full(shape + ((n_points,) if o.scope == "point" else ()), np.nan) for o in outputs()}
     hist_parts = []
     for k in range(len(batches)):
         path = _part_path(parts, k)
@@ -374,7 +378,7 @@ def assemble(study: Study, parts: Path):
             raise StudyError(f"batch {k} has not finished ({path} missing)")
         with np.load(path) as part:
             idx = tuple(part["index"].T)
-            for name in OUTPUTS:
+            for name in data:
                 if shape:
                     data[name][idx] = part[name]
                 else:  # a study without axes: one crossing, 0-d variables
@@ -382,9 +386,12 @@ def assemble(study: Study, parts: Path):
             if study.histories:
                 hist_parts.append((idx, part["displacement_history"]))
     variables = {}
-    for name, (units, desc) in OUTPUTS.items():
-        arr = data[name].astype(np.int64) if name == "n_steps" else data[name]
-        variables[name] = (dims, arr, {"units": units, "long_name": desc})
+    for o in outputs():
+        arr = data[o.name].astype(np.int64) if o.name == "n_steps" else data[o.name]
+        if o.scope == "point" and names is None:  # the [response] shorthand: no point dimension
+            arr = arr[..., 0]
+        point_dim = ["point"] if o.scope == "point" and names is not None else []
+        variables[o.name] = ([*dims, *point_dim], arr, {"units": o.cf_unit, "long_name": o.long_name})
     if study.histories:
         n_t = max(h.shape[1] for _, h in hist_parts)
         hist = np.full(shape + (n_t,), np.nan)
@@ -396,6 +403,8 @@ def assemble(study: Study, parts: Path):
         variables["displacement_history"] = ([*dims, "step"], hist, {
             "units": "m", "long_name": "response-point deflection at t = step * dt (NaN after the crossing ended)"})
     coords = {}
+    if names is not None:
+        coords["point"] = ("point", np.array(names, dtype=object), {"long_name": "response point ([[response.points]] name)"})
     for a in study.axes:
         values = list(a.values)
         text = isinstance(values[0], str)

@@ -31,10 +31,13 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.impact import impact_factor
+from vbikit.analysis.plan import ResponsePlan
+from vbikit.analysis.response import reduce_crossing
+from vbikit.outputs import as_number, outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
+from vbikit.study.compute import point_names
 from vbikit.study.spec import StudyError, derive_seed
 from vbikit.traffic.events import Event, partition
 from vbikit.traffic.records import VehicleRecord
@@ -47,19 +50,9 @@ log = logging.getLogger(__name__)
 #: scenario sections a traffic base scenario may hold (the vehicles come from the records)
 BASE_SECTIONS = ("name", "bridge", "tire", "road", "crossing", "response")
 
-#: per-event outputs: name -> (units, description)
-EVENT_OUTPUTS: dict[str, tuple[str, str]] = {
-    "impact_factor": ("1", "IM of the response-point deflection, (R_dyn,max - R_st,max) / R_st,max, of the event"),
-    "strain_impact_factor": ("1", "IM of the response-point bottom-fibre strain"),
-    "max_dynamic_displacement": ("m", "peak deflection in the static peak's direction (z up: negative)"),
-    "max_static_displacement": ("m", "peak static deflection under every vehicle's static wheel loads"),
-    "max_dynamic_strain": ("1", "peak bottom-fibre strain (tension positive)"),
-    "max_static_strain": ("1", "peak static bottom-fibre strain"),
-    "max_abs_acceleration": ("m s-2", "peak |deck acceleration| at the response point"),
-    "min_tire_force": ("N", "smallest wheel force of the event (0 = a tire lost contact)"),
+#: per-event outputs beside the catalogue's (vbikit.outputs): name -> (units, description)
+EVENT_EXTRAS: dict[str, tuple[str, str]] = {
     "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road"),
-    "dt": ("s", "time step"),
-    "n_steps": ("1", "number of time steps"),
 }
 #: per-vehicle outputs
 VEHICLE_OUTPUTS: dict[str, tuple[str, str]] = {
@@ -125,14 +118,17 @@ class TrafficStudy:
                            "records_sha256": self._digest, "n_records": len(self.records)}, sort_keys=True)
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
-        """Simulate the events ``batch``; arrays per event (:data:`EVENT_OUTPUTS`, ``event``) and per
+        """Simulate the events ``batch``; arrays per event (the catalogue's outputs, :mod:`vbikit.outputs`,
+        per response point where they are per point; :data:`EVENT_EXTRAS`; ``event``) and per
         vehicle of those events (:data:`VEHICLE_OUTPUTS`, ``vehicle``)."""
         rows, vehicle_rows = [], []
         for e in batch:
             row, per_vehicle = self.run_event(e)
             rows.append(row)
             vehicle_rows += per_vehicle
-        out = {k: np.array([r[k] for r in rows], float) for k in EVENT_OUTPUTS}
+        out = {o.name: np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float) for o in outputs("point")}
+        out |= {o.name: np.array([as_number(r[1][o.name]) for r in rows], float) for o in outputs("crossing")}
+        out |= {k: np.array([r[1][k] for r in rows], float) for k in EVENT_EXTRAS}
         out["event"] = np.array(batch, np.int64)
         out["vehicle"] = np.array([i for e in batch for i in self.events[e]], np.int64)
         for k in VEHICLE_OUTPUTS:
@@ -146,7 +142,11 @@ class TrafficStudy:
         members = [i for e in batch for i in self.events[e]]
         if not np.array_equal(part["vehicle"], np.array(members, np.int64)):
             return "its vehicles are not those of its events"
-        for name in EVENT_OUTPUTS:
+        n_points = len(self.point_names or [None])
+        for o in outputs():
+            if part[o.name].shape != ((len(batch), n_points) if o.scope == "point" else (len(batch),)):
+                return f"{o.name} has the wrong shape"
+        for name in EVENT_EXTRAS:
             if part[name].shape != (len(batch),):
                 return f"{name} has the wrong shape"
         for name in VEHICLE_OUTPUTS:
@@ -161,11 +161,13 @@ class TrafficStudy:
         from vbikit.study.run import load_part
 
         n_e, n_v = self.size, len(self.records)
-        ev = {k: np.full(n_e, np.nan) for k in EVENT_OUTPUTS}
+        n_points = len(self.point_names or [None])
+        ev = {o.name: np.full((n_e, n_points) if o.scope == "point" else n_e, np.nan) for o in outputs()}
+        ev |= {k: np.full(n_e, np.nan) for k in EVENT_EXTRAS}
         veh = {k: np.full(n_v, np.nan) for k in VEHICLE_OUTPUTS}
         for k in range(len(self.batches())):
             part = load_part(parts, k)
-            for name in EVENT_OUTPUTS:
+            for name in ev:
                 ev[name][part["event"]] = part[name]
             for name in VEHICLE_OUTPUTS:
                 veh[name][part["vehicle"]] = part[name]
@@ -197,30 +199,23 @@ class TrafficStudy:
         """Seed of event ``e``'s random road (−1 if the base road is not random)."""
         return derive_seed(self.seed, e) if self.context().random_road else -1
 
-    def run_event(self, e: int) -> tuple[dict[str, float], list[dict[str, float]]]:
-        """Simulate event ``e``: its outputs and those of each of its vehicles."""
-        ctx = self.context()
+    @property
+    def point_names(self) -> list[str] | None:
+        """Names of the base scenario's [[response.points]] (None for the [response] shorthand)."""
+        return point_names(self.base)
+
+    def run_event(self, e: int) -> tuple[tuple[list[dict], dict], list[dict[str, float]]]:
+        """Simulate event ``e``: its outputs (per response point, per event) and those of each of its vehicles."""
         result = simulate(self.crossing(e))
-        disp = result.xi @ ctx.phi
-        strain = result.xi @ ctx.eps
-        xi_st = _static(result)
-        d = impact_factor(result.time, disp, xi_st @ ctx.phi, result.xi_dot @ ctx.phi)
-        s = impact_factor(result.time, strain, xi_st @ ctx.eps, result.xi_dot @ ctx.eps)
+        points, row = reduce_crossing(result, self.context().plan)
+        row["road_seed"] = float(self.road_seed(e))
         forces = result.wheel_forces
-        row = {
-            "impact_factor": d.impact_factor, "strain_impact_factor": s.impact_factor,
-            "max_dynamic_displacement": d.dynamic_peak, "max_static_displacement": d.static_peak,
-            "max_dynamic_strain": s.dynamic_peak, "max_static_strain": s.static_peak,
-            "max_abs_acceleration": float(np.abs(result.xi_ddot @ ctx.phi).max()),
-            "min_tire_force": float(forces.min()), "road_seed": float(self.road_seed(e)),
-            "dt": result.dt, "n_steps": float(result.n_steps),
-        }
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
         for j in range(len(self.events[e])):
             f = forces[:, offsets[j]:offsets[j + 1]]
             per_vehicle.append({"vehicle_min_wheel_force": float(f.min()), "vehicle_contact_loss": float(np.any(f <= 0.0))})
-        return row, per_vehicle
+        return (points, row), per_vehicle
 
     # ------------------------------------------------------------ the dataset
     def dataset(self, ev: dict[str, NDArray], veh: dict[str, NDArray]):
@@ -236,9 +231,15 @@ class TrafficStudy:
         gross = np.array([_gross(r) for r in recs])
         event_gross = np.array([gross[list(m)].sum() for m in self.events])
         variables: dict[str, Any] = {}
-        for name, (units, desc) in EVENT_OUTPUTS.items():
-            arr = ev[name].astype(np.int64) if name in ("n_steps", "road_seed") else ev[name]
-            variables[name] = ("event", arr, {"units": units, "long_name": desc})
+        names = self.point_names
+        for o in outputs():
+            arr = ev[o.name].astype(np.int64) if o.name == "n_steps" else ev[o.name]
+            if o.scope == "point" and names is None:  # the [response] shorthand: no point dimension
+                arr = arr[:, 0]
+            dims = ("event", "point") if o.scope == "point" and names is not None else "event"
+            variables[o.name] = (dims, arr, {"units": o.cf_unit, "long_name": o.long_name})
+        for name, (units, desc) in EVENT_EXTRAS.items():
+            variables[name] = ("event", ev[name].astype(np.int64), {"units": units, "long_name": desc})
         variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time)"})
         variables["n_vehicles"] = ("event", n_veh, {"units": "1", "long_name": "vehicles in the event"})
         variables["multiple_presence"] = ("event", (n_veh > 1).astype(np.int8), {"units": "1", "long_name": "1 if several vehicles were on the bridge together"})
@@ -261,6 +262,7 @@ class TrafficStudy:
             arr = veh[name].astype(np.int8) if name == "vehicle_contact_loss" else veh[name]
             variables[name] = ("vehicle", arr, {"units": units, "long_name": desc})
         coords = {"event": np.arange(self.size), "vehicle": np.arange(len(recs)),
+                  **({"point": np.array(names, dtype=object)} if names is not None else {}),
                   "vehicle_id": ("vehicle", np.array([r.id or f"line{r.line}" for r in recs], dtype=object))}
         ds = xr.Dataset(variables, coords=coords)
         stats = stream_statistics(ds)
@@ -279,18 +281,14 @@ def _gross(record: VehicleRecord) -> float:
     return record.gross_weight if record.model == "axles" else float(_vehicle(record).total_weight)
 
 
-def _static(result):
-    from vbikit.analysis.impact import static_modal_history
-
-    return static_modal_history(result)
-
-
 def stream_statistics(ds) -> dict[str, Any]:
     """The stream's statistics from its dataset: event counts, the IM distribution (mean,
     standard deviation, 5/50/95/99 % quantiles, histogram), and the dynamic amplification of the
     event with the largest static effect (its R_dyn / R_st) and of the largest dynamic effect
     (the largest R_dyn of the stream over the largest R_st of the stream: the ratio of the
-    governing total to the governing static load effect)."""
+    governing total to the governing static load effect); at the first response point."""
+    if "point" in ds.dims:
+        ds = ds.isel(point=0)
     im = np.asarray(ds["impact_factor"].values, float)
     dyn = np.abs(np.asarray(ds["max_dynamic_displacement"].values, float))
     st = np.abs(np.asarray(ds["max_static_displacement"].values, float))
@@ -320,8 +318,7 @@ class _Context:
 
     template: "_Template"
     scenario: Scenario
-    phi: NDArray[np.float64]
-    eps: NDArray[np.float64]
+    plan: ResponsePlan
     random_road: bool
     _fixed_road: tuple = (None, None)
 
@@ -333,12 +330,8 @@ class _Context:
         data["crossing"] = {**crossing, "speed": 20.0}
         scenario = parse_scenario(data, base_dir)
         built: BuiltScenario = build(scenario)
-        bridge = built.crossing.bridge
-        x = float(bridge.default_response_x) if built.response_x is None else float(built.response_x)
-        phi = bridge.mode_shapes([x], [built.response_y])[0]
-        eps = bridge.strain_shapes([x], [built.response_y])[0]
         random_road = scenario.road.profile_file is None and scenario.road.road_class != "none"
-        ctx = cls(_Template(built.crossing), scenario, phi, eps, random_road)
+        ctx = cls(_Template(built.crossing), scenario, built.plan, random_road)
         if not random_road:
             ctx._fixed_road = (built.crossing.road, built.crossing.road_right)
         return ctx

@@ -1,0 +1,63 @@
+"""What to read from a crossing: the response points and the load effects (a response plan).
+
+A :class:`ResponsePlan` is the part of a scenario that says where and what to report, kept
+apart from the crossing (the physics): ``[response]`` / ``[[response.points]]`` in a scenario
+file, or built directly from Python and passed to :func:`vbikit.run` beside a crossing.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from vbikit.bridge.effects import LoadEffect
+
+#: how moments, shears and reactions are computed (vbikit.analysis.effects)
+DEFAULT_LOAD_EFFECT_METHOD = "mode-acceleration"
+
+
+@dataclass(frozen=True)
+class ResponsePoint:
+    """One deck point responses are read at.
+
+    Parameters
+    ----------
+    x : float or None
+        Distance [m] from the entry support; None: the bridge's default section on the line y
+        (midspan of the first span; on a skew deck that line's own).
+    y : float or None
+        Distance [m] from the deck centreline, positive left; None: the bridge's response line.
+    girder : int, optional
+        1-based girder whose line y is (slab-on-girder decks; reports only).
+    name : str
+        Label of the point in reports, CSV columns and datasets (default ``p1``, ``p2``, … by position).
+    """
+
+    x: float | None = None
+    y: float | None = None
+    girder: int | None = None
+    name: str = ""
+
+
+@dataclass(frozen=True)
+class ResponsePlan:
+    """Response points (at least one; the first is the headline point) and load effects."""
+
+    points: tuple[ResponsePoint, ...] = (ResponsePoint(),)
+    load_effects: tuple[LoadEffect, ...] = ()
+    load_effect_method: str = DEFAULT_LOAD_EFFECT_METHOD
+
+    def __post_init__(self) -> None:
+        if not self.points:
+            raise ValueError("a response plan needs at least one response point")
+        names = self.point_names
+        dup = sorted({n for n in names if names.count(n) > 1})
+        if dup:
+            raise ValueError(f"response point names must be unique; repeated: {', '.join(dup)}")
+
+    @property
+    def point_names(self) -> list[str]:
+        """Every point's name (``p{i}`` for an unnamed i-th point)."""
+        return [p.name or f"p{i}" for i, p in enumerate(self.points, start=1)]
+
+    @property
+    def first(self) -> ResponsePoint:
+        return self.points[0]

@@ -1,0 +1,177 @@
+"""The output catalogue: every named result of a crossing, defined once.
+
+Two kinds of entries:
+
+* :class:`Quantity` — a time history at a deck point (``displacement``, ``strain``, …): name,
+  unit and long name.  CSV headers (``name [unit]``), ``to_xarray`` / ``to_dataframe``
+  variables and the docs' results table read them from here.
+* :class:`Output` — a number reduced from a crossing: name, unit, long name, its ``scope``
+  (``"point"``: one value per response point, from that point's histories; ``"crossing"``: one
+  value per crossing) and its ``reduce`` function.  The JSON summary (``vbikit run --json``,
+  :attr:`vbikit.Report.summary`), study datasets and traffic datasets are filled from here, so a
+  name or a unit cannot disagree between them.
+
+A reducer receives a :class:`Reduction`: the point's histories (``point``, an object with
+``displacement_impact`` / ``strain_impact`` (:class:`~vbikit.analysis.impact.ImpactFactor`),
+``velocity``, ``acceleration`` … as :class:`~vbikit.analysis.response.PointResponse`), the
+crossing result (``result``) and its load-effect responses by kind (``effects``; the first of
+each kind).  It returns a float, or ``None`` when the output does not apply (no load effect of
+that kind): the summary leaves it out and datasets store NaN.
+
+Adding an output is one :func:`register_output` call (docs/extending.md).  Units are written as
+in CSV headers and JSON (``m/s^2``, ``-`` for dimensionless); :func:`cf_unit` gives the CF /
+UDUNITS spelling datasets use (``m s-2``, ``1``).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Literal, Mapping, Optional
+
+import numpy as np
+
+Scope = Literal["point", "crossing"]
+
+#: CSV / JSON spelling of a unit → its CF (UDUNITS) spelling in NetCDF datasets
+CF_UNITS: dict[str, str] = {"m/s": "m s-1", "m/s^2": "m s-2", "-": "1", "rad/s^2": "rad s-2"}
+
+
+def cf_unit(unit: str) -> str:
+    """The CF/UDUNITS spelling of ``unit`` (``"m/s^2"`` → ``"m s-2"``, ``"-"`` → ``"1"``)."""
+    return CF_UNITS.get(unit, unit)
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A time history at a deck point: ``name``, ``unit`` (CSV spelling), ``long_name``."""
+
+    name: str
+    unit: str
+    long_name: str
+
+
+@dataclass(frozen=True)
+class Reduction:
+    """What a reducer reads: one response point's histories, the crossing result and its
+    load-effect responses (first of each kind: ``"moment"``, ``"shear"``, ``"reaction"``)."""
+
+    result: Any
+    point: Any = None
+    effects: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Output:
+    """A number reduced from a crossing (see the module docstring)."""
+
+    name: str
+    unit: str
+    long_name: str
+    scope: Scope
+    reduce: Callable[[Reduction], Optional[float]]
+
+    @property
+    def cf_unit(self) -> str:
+        return cf_unit(self.unit)
+
+
+#: deck histories at a response point, in CSV column order
+QUANTITIES: dict[str, Quantity] = {q.name: q for q in (
+    Quantity("displacement", "m", "deck vertical displacement (z up)"),
+    Quantity("static_displacement", "m", "static reference displacement"),
+    Quantity("strain", "-", "bottom-fibre longitudinal strain (tension positive)"),
+    Quantity("static_strain", "-", "static reference strain"),
+    Quantity("velocity", "m/s", "deck vertical velocity"),
+    Quantity("acceleration", "m/s^2", "deck vertical acceleration"),
+)}
+
+#: every registered output, by name, in registration order
+OUTPUTS: dict[str, Output] = {}
+
+
+def register_output(output: Output) -> Output:
+    """Add ``output`` to the catalogue (a name registered twice is an error)."""
+    if output.name in OUTPUTS:
+        raise ValueError(f"output {output.name!r} is already registered")
+    if output.scope not in ("point", "crossing"):
+        raise ValueError(f"output {output.name!r}: scope must be 'point' or 'crossing', got {output.scope!r}")
+    OUTPUTS[output.name] = output
+    return output
+
+
+def outputs(scope: Scope | None = None) -> list[Output]:
+    """The registered outputs (of one ``scope``), in registration order."""
+    return [o for o in OUTPUTS.values() if scope is None or o.scope == scope]
+
+
+def reduce_outputs(reduction: Reduction, scope: Scope) -> dict[str, Optional[float]]:
+    """Every output of ``scope`` for ``reduction``: name → value (None where it does not apply)."""
+    out: dict[str, Optional[float]] = {}
+    for o in outputs(scope):
+        value = o.reduce(reduction)
+        out[o.name] = None if value is None else float(value)
+    return out
+
+
+def as_number(value: Optional[float]) -> float:
+    """A reduced value for a dataset: None (does not apply) → NaN."""
+    return math.nan if value is None else float(value)
+
+
+def _peak_abs(values: Any) -> float:
+    return float(np.max(np.abs(values)))
+
+
+# ---------------------------------------------------------------- per response point
+for _name, _unit, _long, _fn in (
+    ("impact_factor", "-", "displacement impact factor IM = (R_dyn,max − R_st,max)/R_st,max at the response point",
+     lambda r: r.point.displacement_impact.impact_factor),
+    ("max_dynamic_displacement", "m", "dynamic peak displacement in the static peak's direction (z up: negative)",
+     lambda r: r.point.displacement_impact.dynamic_peak),
+    ("max_static_displacement", "m", "static reference peak displacement under the moving static wheel loads",
+     lambda r: r.point.displacement_impact.static_peak),
+    ("time_of_max_dynamic_displacement", "s", "time of the dynamic peak displacement",
+     lambda r: r.point.displacement_impact.time_dynamic_peak),
+    ("strain_impact_factor", "-", "bottom-fibre strain impact factor at the response point",
+     lambda r: r.point.strain_impact.impact_factor),
+    ("max_dynamic_strain", "-", "dynamic peak bottom-fibre strain (tension positive)",
+     lambda r: r.point.strain_impact.dynamic_peak),
+    ("max_static_strain", "-", "static reference peak bottom-fibre strain",
+     lambda r: r.point.strain_impact.static_peak),
+    ("max_abs_acceleration", "m/s^2", "largest absolute deck acceleration at the response point",
+     lambda r: _peak_abs(r.point.acceleration)),
+    ("max_abs_velocity", "m/s", "largest absolute deck velocity at the response point",
+     lambda r: _peak_abs(r.point.velocity)),
+):
+    register_output(Output(_name, _unit, _long, "point", _fn))
+
+
+# ---------------------------------------------------------------- per crossing
+def _min_tire_force(r: Reduction) -> Optional[float]:
+    forces = r.result.wheel_forces
+    return float(forces.min()) if forces.size else None
+
+
+register_output(Output("min_tire_force", "N", "smallest tire force over the crossing (0: a tire lost contact)",
+                       "crossing", _min_tire_force))
+
+
+def _effect(kind: str, attribute: str) -> Callable[[Reduction], Optional[float]]:
+    def reduce(r: Reduction) -> Optional[float]:
+        response = r.effects.get(kind)
+        return None if response is None else getattr(response.impact, attribute)
+    return reduce
+
+
+for _kind, _what, _unit in (("moment", "sagging positive", "N m"), ("shear", "dM/dx, just right of the section", "N"),
+                            ("reaction", "upward", "N")):
+    for _attr, _suffix, _desc, _u in (
+            ("impact_factor", "impact_factor", "impact factor in the static peak's direction", "-"),
+            ("static_peak", "static_peak", "static peak", _unit),
+            ("dynamic_peak", "dynamic_peak", "dynamic peak in the static peak's direction", _unit)):
+        register_output(Output(f"{_kind}_{_suffix}", _u, f"{_kind} ({_what}) {_desc}: the first requested {_kind} "
+                               f"(default the bridge's first); absent (NaN) if the bridge has none",
+                               "crossing", _effect(_kind, _attr)))
+
+register_output(Output("dt", "s", "time step of the stored histories", "crossing", lambda r: r.result.dt))
+register_output(Output("n_steps", "-", "number of time steps", "crossing", lambda r: r.result.n_steps))

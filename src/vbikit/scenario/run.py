@@ -1,0 +1,137 @@
+"""The run pipeline: plan → run → report, the one path from a scenario to its report.
+
+``vbikit run``, ``vbikit demo``, ``vbikit compare-tires`` and Python users call :func:`run`;
+studies and traffic streams, which batch many crossings, use the same build
+(:func:`vbikit.scenario.build.build`), checks (:func:`vbikit.scenario.preflight.preflight`) and
+reductions (the output catalogue :mod:`vbikit.outputs`, :mod:`vbikit.analysis.response`).
+
+* **plan**: build the scenario's models and check everything before integrating
+  (:func:`~vbikit.scenario.preflight.preflight`: files, parameters, time step, budgets,
+  warnings);
+* **run**: integrate the coupled equations once (:func:`vbikit.solve.simulate`);
+* **report**: read every response point, girder and load effect from the histories and
+  summarise them (:func:`report_crossing`): a :class:`~vbikit.scenario.report.Report` whose
+  ``summary`` is exactly the JSON ``vbikit run --json`` prints.
+"""
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+from typing import Any, Mapping
+
+from vbikit.analysis.effects import load_effect_report
+from vbikit.analysis.impact import static_modal_history
+from vbikit.analysis.plan import ResponsePlan
+from vbikit.analysis.response import girder_responses, plan_responses, point_entries, summary, summary_units
+from vbikit.scenario.preflight import Plan, preflight, scenario_inputs
+from vbikit.scenario.report import Report
+from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario, scenario_from_toml
+from vbikit.solve.budget import Limits
+from vbikit.solve.crossing import Crossing
+from vbikit.solve.result import CrossingResult
+
+log = logging.getLogger(__name__)
+
+ScenarioSource = Scenario | Mapping[str, Any] | str | Path
+
+
+def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> Scenario:
+    """A validated :class:`Scenario` from a path, a TOML string, a dict (the parsed TOML) or a
+    Scenario; relative file names resolve against ``base_dir`` (default: the file's folder, else
+    the working directory)."""
+    if isinstance(source, Scenario):
+        return source
+    if isinstance(source, Mapping):
+        return parse_scenario(dict(source), base_dir if base_dir is not None else ".")
+    if isinstance(source, Path) or ("\n" not in source and "=" not in source):
+        path = Path(source)
+        if not path.is_file():
+            raise ScenarioError(f"{path}: no such scenario file")
+        scenario = load_scenario(path)
+        if base_dir is not None:
+            scenario._base_dir = Path(base_dir)
+        return scenario
+    return scenario_from_toml(source, base_dir if base_dir is not None else ".")
+
+
+def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None, *, limits: Limits | None = None,
+        base_dir: str | Path | None = None, name: str = "") -> Report:
+    """Run one crossing and return its :class:`~vbikit.scenario.report.Report`.
+
+    Parameters
+    ----------
+    source
+        A scenario: a file path, TOML text, a dict of the parsed TOML, or a
+        :class:`~vbikit.scenario.Scenario` — or a built :class:`~vbikit.solve.Crossing`.
+    response : ResponsePlan, optional
+        With a Crossing: the response points and load effects to read (default the bridge's
+        default point, no load effects).  Scenarios carry their own ([response]).
+    limits : Limits, optional
+        Memory and step budgets (default 4 GiB, 5e6 steps); the run is refused above them before
+        it starts.
+    base_dir
+        Folder relative file names in the scenario resolve against.
+    name
+        Label of a Crossing's report (a scenario's is its ``name``).
+
+    Raises
+    ------
+    ScenarioError, BudgetError, UnstableTimeStepError
+        Bad input, found before any computation.
+    """
+    if isinstance(source, Crossing):
+        return run_crossing(source, response or ResponsePlan(), limits=limits, name=name)
+    if response is not None:
+        raise ScenarioError("a scenario carries its own response plan ([response]); pass response= only with a Crossing")
+    return run_planned(preflight(scenario_of(source, base_dir), limits), limits)
+
+
+def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
+    """Integrate a checked scenario (:func:`~vbikit.scenario.preflight.preflight`) and report it,
+    with the scenario's inputs, warnings, units and references in the summary."""
+    from vbikit._files import json_safe
+
+    scenario = plan.scenario
+    report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name)
+    s = report.summary
+    s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
+    s["inputs"] = scenario_inputs(scenario, plan)
+    nonfinite = json_safe(s)[1]  # JSON outputs write these as null, the text report as nan
+    s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
+    s |= {"units": summary_units(s), "references": _references(scenario)}
+    return report
+
+
+def _references(scenario: Scenario) -> list[dict[str, str]]:
+    from vbikit.scenario.cite import scenario_references
+
+    return [{"key": r.key, "citation": r.text(), **({"doi": r.doi} if r.doi else {})} for r in scenario_references(scenario)]
+
+
+def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "") -> Report:
+    """Simulate ``crossing`` and reduce it by ``plan`` (:func:`report_crossing`)."""
+    from vbikit.solve import simulate
+
+    return report_crossing(simulate(crossing, limits), plan, name)
+
+
+def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") -> Report:
+    """Read every response point, the girders at the headline point's section and the load
+    effects from ``result``; the summary holds the catalogue's outputs (:mod:`vbikit.outputs`) of
+    the headline point at the top level and of every point under ``points``, the per-girder
+    values, the load-effect blocks with the design-code allowances and the run's warnings."""
+    first = plan.first
+    xi_static = static_modal_history(result)
+    points = plan_responses(result, plan, xi_static)
+    girders = girder_responses(result, first.x, first.y, xi_static)
+    effects_summary, effects = load_effect_report(result, plan.load_effects, plan.load_effect_method,
+                                                  points[0].x, points[0].y)
+    first_of_kind = {kind: next((e for e in effects if e.effect.kind == kind), None) for kind in ("moment", "shear", "reaction")}
+    s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points),
+                {k: v for k, v in first_of_kind.items() if v is not None})
+    s.update(effects_summary)
+    from vbikit.analysis.checks import point_warnings
+
+    for p in points[1:]:
+        s["warnings"] += [w for w in point_warnings(result.crossing, p.x, p.y) if w not in s["warnings"]]
+    return Report(name, result, plan, points, girders, effects, s)
