@@ -12,7 +12,9 @@ Conventions used everywhere (SI units inside: m, kg, s, N, Pa):
 The library is composed from separate pieces: a :class:`~vbikit.bridge.ModalBridge`,
 a :class:`~vbikit.vehicle.Vehicle`, a :class:`~vbikit.contact.TireModel`, a
 :class:`~vbikit.road.RoadProfile`, combined in a :class:`~vbikit.solve.Crossing` and solved
-by :func:`~vbikit.solve.simulate`.
+by :func:`~vbikit.solve.simulate`; :func:`vbikit.run` runs a whole scenario (a file, TOML text, a
+dict, or a crossing with a response plan) and returns its :class:`~vbikit.scenario.report.Report`,
+whose ``summary`` is exactly what ``vbikit run --json`` prints.
 """
 from importlib.metadata import PackageNotFoundError, version
 
@@ -26,13 +28,23 @@ from vbikit.contact import MultiPointTire, PointTire, TireModel
 from vbikit.road import RoadProfile
 from vbikit.vehicle import Vehicle
 
+def __getattr__(name: str):
+    if name in ("run", "Report"):  # the run pipeline, imported on first use
+        from vbikit.scenario import pipeline, report
+
+        return pipeline.run if name == "run" else report.Report
+    raise AttributeError(f"module 'vbikit' has no attribute {name!r}")
+
+
 __all__ = [
     "EulerBernoulliBeam",
     "ModalBridge",
     "MultiPointTire",
     "PointTire",
+    "Report",
     "RoadProfile",
     "TireModel",
     "Vehicle",
     "__version__",
+    "run",
 ]

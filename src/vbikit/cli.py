@@ -112,10 +112,10 @@ def _write_text(path: Path, text: str) -> None:
 
 
 def _execute(load: Any, limits: Any = None) -> Any:
-    """Check and run the scenario ``load()`` returns (:func:`vbikit.scenario.run.run_planned`, every
+    """Check and run the scenario ``load()`` returns (:func:`vbikit.scenario.pipeline.run_planned`, every
     check of the preflight first); user errors exit with code 2.  Returns the Report."""
     from vbikit.scenario.preflight import preflight
-    from vbikit.scenario.run import run_planned
+    from vbikit.scenario.pipeline import run_planned
 
     report = _guard(lambda: run_planned(preflight(load(), limits), limits))
     _warn(report.summary["warnings"])

@@ -1,0 +1,82 @@
+"""Study and traffic datasets: several response points (a ``point`` dimension) and units from the
+one output catalogue (the impact factors of moments, shears and reactions are dimensionless)."""
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+
+from vbikit.outputs import OUTPUTS
+from vbikit.study import parse_study, run_study
+from vbikit.traffic import LaneTraffic, synthetic_stream
+from vbikit.traffic.study import traffic_study
+
+BASE = {
+    "bridge": {"model": "paper-bridge-2-beam", "n_modes": 4},
+    "vehicle": {"model": "two-axle"},
+    "road": {"class": "C", "length": 200},
+    "crossing": {"speed_kmh": 90},
+}
+POINTS = [{"name": "quarter", "x": 4.19}, {"name": "mid", "x": 8.38}]
+
+
+def study(base: dict) -> dict:
+    return {"name": "points", "seed": 3, "batch_size": 2, "base": base,
+            "axes": {"crossing.speed_kmh": [60, 90], "road.seed": {"samples": 2}}}
+
+
+def test_study_points_equal_single_point_studies(tmp_path):
+    several = copy.deepcopy(BASE) | {"response": {"points": POINTS}}
+    ds = run_study(parse_study(study(several)), tmp_path / "both.nc", workers=1)
+    assert ds["impact_factor"].dims == ("crossing_speed_kmh", "sample", "point")
+    assert list(ds["point"].values) == ["quarter", "mid"]
+    assert ds["min_tire_force"].dims == ("crossing_speed_kmh", "sample")  # per crossing, not per point
+    for k, p in enumerate(POINTS):
+        alone = run_study(parse_study(study(copy.deepcopy(BASE) | {"response": {"x": p["x"]}})), tmp_path / f"{k}.nc", workers=1)
+        assert "point" not in alone.dims
+        for name in ("impact_factor", "max_static_displacement", "strain_impact_factor", "max_abs_acceleration"):
+            np.testing.assert_array_equal(ds[name].isel(point=k).values, alone[name].values, err_msg=name)
+    # the quarter point deflects less than midspan under the same crossings
+    assert np.all(np.abs(ds["max_static_displacement"].sel(point="quarter")) < np.abs(ds["max_static_displacement"].sel(point="mid")))
+
+
+def test_dataset_units_come_from_the_catalogue(tmp_path):
+    ds = run_study(parse_study(study(copy.deepcopy(BASE))), tmp_path / "s.nc", workers=1)
+    for kind in ("moment", "shear", "reaction"):
+        assert ds[f"{kind}_impact_factor"].attrs["units"] == "1"
+        assert np.all(np.isfinite(ds[f"{kind}_impact_factor"].values))
+    assert ds["moment_static_peak"].attrs["units"] == "N m" and ds["shear_static_peak"].attrs["units"] == "N"
+    assert ds["max_abs_acceleration"].attrs["units"] == "m s-2"
+    for name, output in OUTPUTS.items():
+        assert ds[name].attrs["units"] == output.cf_unit and ds[name].attrs["long_name"] == output.long_name
+    assert all(o.unit == "-" for name, o in OUTPUTS.items() if name.endswith("impact_factor"))
+
+
+def test_traffic_dataset_has_the_points():
+    stream = synthetic_stream([LaneTraffic(1, "+x", 900, 80, 5)], 4, seed=2)
+    base = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "road": {"class": "B", "length": 200.0},
+            "crossing": {"approach": 5.0, "free_vibration": 0.1}}
+    several = traffic_study(stream, base | {"response": {"points": POINTS}}, seed=5, batch_size=2)
+    one = traffic_study(stream, base | {"response": {"x": POINTS[1]["x"]}}, seed=5, batch_size=2)
+    events = tuple(range(several.size))
+    rows = several.run_batch(events)
+    single = one.run_batch(events)
+    assert rows["impact_factor"].shape == (several.size, 2) and single["impact_factor"].shape == (several.size, 1)
+    np.testing.assert_array_equal(rows["impact_factor"][:, 1], single["impact_factor"][:, 0])
+    np.testing.assert_array_equal(rows["moment_impact_factor"], single["moment_impact_factor"])
+    ds = several.dataset(*_assembled(several, rows))
+    assert ds["impact_factor"].dims == ("event", "point") and list(ds["point"].values) == ["quarter", "mid"]
+    assert ds["impact_factor"].attrs["units"] == "1"
+
+
+def _assembled(job, rows):
+    ev = {k: v for k, v in rows.items() if k not in ("event", "vehicle") and not k.startswith("vehicle_")}
+    veh = {k: v for k, v in rows.items() if k.startswith("vehicle_")}
+    return ev, veh
+
+
+@pytest.mark.parametrize("name", ["impact_factor", "moment_impact_factor", "min_tire_force", "n_steps"])
+def test_every_catalogue_output_has_one_unit_and_name(name):
+    o = OUTPUTS[name]
+    assert o.name == name and o.unit and o.long_name and o.scope in ("point", "crossing")
