@@ -309,10 +309,29 @@ def references_bib() -> str:
 
 # ------------------------------------------------------------------------------ result keys
 def summary_keys() -> str:
-    from vbikit.analysis import SUMMARY_KEYS
+    from vbikit.analysis import summary_keys
 
     rows = ["| key | unit | meaning |", "|---|---|---|"]
-    rows += [f"| `{k}` | {u} | {d} |" for k, (u, d) in SUMMARY_KEYS.items()]
+    rows += [f"| `{k}` | {u} | {d} |" for k, (u, d) in summary_keys().items()]
+    return "\n".join(rows) + "\n"
+
+
+def history_columns() -> str:
+    from vbikit.analysis.response import GIRDER_QUANTITIES
+    from vbikit.outputs import QUANTITIES
+
+    rows = ["| column | unit | meaning |", "|---|---|---|", "| `time` | s | time |",
+            "| `front_axle_x` (several vehicles: `v{i}_front_axle_x`) | m | front-axle position from the entry support |"]
+    rows += [f"| `{q.name}` (several points: `{q.name}_{{point}}`) | {q.unit} | {q.long_name} at the response point |"
+             for q in QUANTITIES.values()]
+    girder = ", ".join(f"`girder{{g}}_{n}`" for n in GIRDER_QUANTITIES)
+    rows += [f"| {girder} | {', '.join(QUANTITIES[n].unit for n in GIRDER_QUANTITIES)} | every girder at the headline "
+             "point's section (bridges with girders) |",
+             "| `contact_force_{wheel}` | N | tire force of each wheel |",
+             "| `contact_length_{wheel}` | m | patch length in contact (disk tires) |",
+             "| `{dof}`, `{dof}_acceleration` | m or rad, m/s^2 or rad/s^2 | vehicle DOFs |",
+             "| `moment_x{x}`, `shear_x{x}`, `reaction_s{j}` (`_g{g}` on a girder; `_static` for the static "
+             "reference) | N m, N | load effects |"]
     return "\n".join(rows) + "\n"
 
 
@@ -423,6 +442,7 @@ PAGES: dict[str, Callable[[], str]] = {
 BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("results.md", "summary-keys"): summary_keys,
     ("results.md", "study-outputs"): study_outputs,
+    ("results.md", "history-columns"): history_columns,
     ("gallery/index.md", "gallery-index"): gallery_index,
     ("tires.md", "fig9-table"): fig9_table,
     ("model-data.md", "roughness"): roughness,

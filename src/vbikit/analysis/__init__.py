@@ -2,7 +2,6 @@
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.analysis.response import (
-    SUMMARY_KEYS,
     PointResponse,
     contact_loss,
     girder_responses,
@@ -13,9 +12,10 @@ from vbikit.analysis.response import (
     point_entries,
     point_response,
     summary,
+    summary_keys,
     summary_units,
 )
 
-__all__ = ["SUMMARY_KEYS", "ImpactFactor", "PointResponse", "ResponsePlan", "ResponsePoint", "contact_loss",
+__all__ = ["ImpactFactor", "PointResponse", "ResponsePlan", "ResponsePoint", "contact_loss",
            "girder_responses", "girder_summary", "histories", "history_table", "impact_factor", "plan_responses",
-           "point_entries", "point_response", "static_modal_history", "summary", "summary_units"]
+           "point_entries", "point_response", "static_modal_history", "summary", "summary_keys", "summary_units"]

@@ -279,11 +279,10 @@ def histories(result: CrossingResult, response: PointResponse,
     return {k: v for k, (v, _) in history_table(result, [response], girders).items()}
 
 
-#: every key of the crossing summary (:func:`summary`, ``vbikit run --json``): unit and meaning;
-#: per-wheel maps are keyed by wheel name, per-girder lists ordered Girder 1 first
-SUMMARY_KEYS: dict[str, tuple[str, str]] = {
-    # the headline point's outputs and the crossing's outputs come from the catalogue (vbikit.outputs)
-    **{o.name: (o.unit, o.long_name) for o in outputs("point")},
+#: the keys of the crossing summary (:func:`summary`, ``vbikit run --json``) beside the catalogue's
+#: outputs: unit and meaning; per-wheel maps are keyed by wheel name, per-girder lists ordered
+#: Girder 1 first (:func:`summary_keys` gives them all)
+_SUMMARY_KEYS: dict[str, tuple[str, str]] = {
     "response_x": ("m", "response point from the entry support"),
     "response_y": ("m", "response point from the deck centreline"),
     "points": ("-", "every response point in order ([[response.points]], or the [response] point alone): name, "
@@ -319,12 +318,23 @@ SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                       "first requested section, every section under sections, with the code allowances"),
     "shear": ("N", "shear forces (just right of x), as moment"),
     "reaction": ("N", "support reactions, as moment"),
-    **{o.name: (o.unit, o.long_name) for o in outputs("crossing")},
     "warnings": ("-", "messages about the inputs or the run (also printed on standard error)"),
     "inputs": ("-", "the inputs as run, every default filled in (units as in the scenario reference)"),
 }
 
 
+def summary_keys() -> dict[str, tuple[str, str]]:
+    """Every key of the crossing summary with its unit and meaning: the headline point's outputs
+    of the catalogue (:mod:`vbikit.outputs`, registered ones included), then the other keys, with
+    the per-crossing outputs before ``warnings``."""
+    point = {o.name: (o.unit, o.long_name) for o in outputs("point")}
+    crossing = {o.name: (o.unit, o.long_name) for o in outputs("crossing")}
+    keys = list(_SUMMARY_KEYS)
+    at = keys.index("warnings")
+    return point | {k: _SUMMARY_KEYS[k] for k in keys[:at]} | crossing | {k: _SUMMARY_KEYS[k] for k in keys[at:]}
+
+
 def summary_units(summary_: dict[str, object]) -> dict[str, str]:
     """The ``units`` map of a summary: unit of every key present ("-" for dimensionless)."""
-    return {k: SUMMARY_KEYS[k][0] for k in summary_ if k in SUMMARY_KEYS}
+    keys = summary_keys()
+    return {k: keys[k][0] for k in summary_ if k in keys}
