@@ -21,10 +21,16 @@ try:
 except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0.0.0+unknown"
 
-from vbikit.bridge import EulerBernoulliBeam, ModalBridge
-from vbikit.contact import MultiPointTire, PointTire, TireModel
-from vbikit.road import RoadProfile
-from vbikit.vehicle import Vehicle
+from typing import TYPE_CHECKING
+
+from vbikit._lazy import lazy_exports
+
+if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
+    from vbikit.bridge import EulerBernoulliBeam, ModalBridge
+    from vbikit.contact import MultiPointTire, PointTire, TireModel
+    from vbikit.errors import VbikitError
+    from vbikit.road import RoadProfile
+    from vbikit.vehicle import Vehicle
 
 __all__ = [
     "EulerBernoulliBeam",
@@ -33,6 +39,15 @@ __all__ = [
     "PointTire",
     "RoadProfile",
     "TireModel",
+    "VbikitError",
     "Vehicle",
     "__version__",
 ]
+
+__getattr__, __dir__ = lazy_exports(globals(), {
+    "vbikit.bridge": ["EulerBernoulliBeam", "ModalBridge"],
+    "vbikit.contact": ["MultiPointTire", "PointTire", "TireModel"],
+    "vbikit.errors": ["VbikitError"],
+    "vbikit.road": ["RoadProfile"],
+    "vbikit.vehicle": ["Vehicle"],
+})

@@ -38,7 +38,7 @@ class _FullDisk:
 def test_full_disk_keeps_the_previous_csv(tmp_path, monkeypatch):
     out = tmp_path / "h.csv"
     out.write_text("previous good file\n")
-    monkeypatch.setattr("vbikit.cli.csv.writer", _FullDisk)
+    monkeypatch.setattr("vbikit.cli.render.csv.writer", _FullDisk)
     res = runner.invoke(app, ["run", str(SCENARIO), "--out", str(out)])
     assert res.exit_code == 2
     assert f"cannot write {out}: no space left on the device" in res.output
