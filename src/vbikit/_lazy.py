@@ -12,7 +12,23 @@ A package lists its names once per module and keeps ``__all__`` and the static i
 from __future__ import annotations
 
 import importlib
+import sys
+import types
 from typing import Any, Callable
+
+
+class _Package(types.ModuleType):
+    """A package module whose exported function may share its name with the submodule that defines
+    it (``vbikit.solve.simulate``): importing that submodule binds the function, not the module,
+    as the package's attribute — what an eager ``from .simulate import simulate`` did."""
+
+    _vbikit_shadowed: frozenset[str] = frozenset()
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if (name in self._vbikit_shadowed and isinstance(value, types.ModuleType)
+                and value.__name__ == f"{self.__name__}.{name}" and hasattr(value, name)):
+            value = getattr(value, name)
+        super().__setattr__(name, value)
 
 
 def lazy_exports(namespace: dict[str, Any], modules: dict[str, list[str]]) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
@@ -33,6 +49,12 @@ def lazy_exports(namespace: dict[str, Any], modules: dict[str, list[str]]) -> tu
     differ = (set(where) - public) | (public - set(where) - set(namespace))
     if differ:
         raise ValueError(f"{package}: __all__ and the lazy exports differ in {sorted(differ)}")
+
+    shadowed = frozenset(n for n, module in where.items() if module == f"{package}.{n}")
+    if shadowed:
+        module_object = sys.modules[package]
+        module_object.__class__ = _Package
+        object.__setattr__(module_object, "_vbikit_shadowed", shadowed)
 
     def __getattr__(name: str) -> Any:
         module = where.get(name)
