@@ -13,7 +13,9 @@ from typing import Any
 
 #: a message that starts with the key it is about: ``bridge.deck.span: …``, ``road.defects[2].depth = …``,
 #: or after a heading line (``invalid scenario:\n  crossing.speed: …``)
-_LEADING_KEY = re.compile(r"^(?:[^\n]*:\n\s*)?([A-Za-z_][\w\-]*(?:\[\d+\])*(?:\.[A-Za-z_][\w\-]*(?:\[\d+\])*)*)(?::\s| = )")
+_LEADING_KEY = re.compile(r"^(?:[^\n]*:\n\s*)?([A-Za-z_][\w\-]*(?:\[\d+\])*(?:\.[\w\-]+(?:\[\d+\])*)*)(?::\s| = )")
+#: a leading ``name.toml: …`` is the file, not a key
+_FILE_SUFFIXES = {"toml", "csv", "json", "nc", "txt"}
 
 
 class VbikitError(ValueError):
@@ -36,7 +38,7 @@ class VbikitError(ValueError):
         super().__init__(*args)
         if key is None and self.message_names_key and args and isinstance(args[0], str):
             match = _LEADING_KEY.match(args[0])
-            key = match.group(1) if match else None
+            key = match.group(1) if match and match.group(1).rsplit(".", 1)[-1] not in _FILE_SUFFIXES else None
         self.key = key
 
     def __reduce__(self) -> tuple[Any, ...]:  # keep ``key`` through pickling (study worker processes)

@@ -56,6 +56,8 @@ def test_scenario_errors_carry_their_key_through_pickling():
     again = pickle.loads(pickle.dumps(info.value))  # study workers send errors between processes
     assert again.key == "crossing.speed" and str(again) == str(info.value)
     assert VbikitError("no key here").key is None and VbikitError("x", key="road.seed").key == "road.seed"
+    assert ScenarioError("bridge.damage.0: the region ends beyond the bridge").key == "bridge.damage.0"
+    assert ScenarioError("s.toml: not valid TOML: …").key is None  # a file, not a key
 
 
 def test_quiet_after_the_subcommand(tmp_path):
@@ -114,3 +116,12 @@ def test_option_values_are_user_errors(tmp_path):
     assert res.exit_code == 2 and res.stderr.startswith("error: --max-memory")
     res = runner.invoke(app, ["field", str(tmp_path / "f.toml"), "--tires", "balloon"])
     assert res.exit_code == 2 and res.stderr.startswith("error: --tires: unknown tire model 'balloon'")
+
+
+def test_a_bridge_models_own_check_is_a_user_error(tmp_path):
+    """`vbikit bridge FILE.toml` builds the bridge alone: its model's ValueError is the scenario's error."""
+    text = FAST.replace('model = "beam"\nspan = 20.0', 'model = "continuous-beam"\nspans = [20.0, 20.0]').replace(
+        "n_modes = 3", "n_modes = 3\n[[bridge.damage]]\nposition = 39.0\nlength = 5.0\nseverity = 0.3")
+    res = runner.invoke(app, ["bridge", str(_scenario(tmp_path, text)), "--no-plot"])
+    assert res.exit_code == 2, res.output
+    assert res.stderr.startswith("error:") and "beyond" in res.stderr and "Traceback" not in res.output

@@ -77,13 +77,20 @@ def bridge(
     from vbikit.bridge import BRIDGE_PRESETS
 
     if name.endswith(".toml"):
-        from vbikit.scenario import load_scenario
+        from vbikit.errors import VbikitError
+        from vbikit.scenario import ScenarioError, load_scenario
         from vbikit.scenario.build import build_bridge
 
         def scenario_bridge():
             scenario = load_scenario(name)
             spec = scenario.bridge if n_modes is None else scenario.bridge.model_copy(update={"n_modes": n_modes})
-            return build_bridge(spec, scenario.base_dir), scenario.bridge.model, scenario.name or Path(name).stem
+            try:
+                bridge_ = build_bridge(spec, scenario.base_dir)
+            except VbikitError:
+                raise
+            except ValueError as err:  # the bridge model's own check of the [bridge] inputs (as in scenario.build)
+                raise ScenarioError(str(err)) from None
+            return bridge_, scenario.bridge.model, scenario.name or Path(name).stem
 
         b, model, label = guard(scenario_bridge)
         skew = float(getattr(b, "skew", 0.0))
