@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
 import typer
 
@@ -35,7 +35,8 @@ class _Bar:
             self.bar.close()
 
 
-def run_job(study, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool, unit: str = "crossing"):
+def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool,
+            unit: str = "crossing") -> Any:
     """Run (or resume) ``study`` (or another job of :func:`~vbikit.study.run.run_study`) with a progress bar."""
     from vbikit.study.run import run_study
 
@@ -121,7 +122,7 @@ def validate_cmd(
                f"{result.checked} set-ups checked, up to {result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
 
 
-def _paper(*figs: str):
+def _paper(*figs: str) -> Callable[..., None]:
     """The command that runs the paper studies ``figs`` one after another (the local worker
     processes are shared between them)."""
     def command(
