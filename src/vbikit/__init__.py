@@ -23,18 +23,18 @@ try:
 except PackageNotFoundError:  # pragma: no cover - running from a source tree
     __version__ = "0.0.0+unknown"
 
-from vbikit.bridge import EulerBernoulliBeam, ModalBridge
-from vbikit.contact import MultiPointTire, PointTire, TireModel
-from vbikit.road import RoadProfile
-from vbikit.vehicle import Vehicle
+from typing import TYPE_CHECKING
 
-def __getattr__(name: str):
-    if name in ("run", "Report"):  # the run pipeline, imported on first use
-        from vbikit.scenario import pipeline, report
+from vbikit._lazy import lazy_exports
 
-        return pipeline.run if name == "run" else report.Report
-    raise AttributeError(f"module 'vbikit' has no attribute {name!r}")
-
+if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
+    from vbikit.bridge import EulerBernoulliBeam, ModalBridge
+    from vbikit.contact import MultiPointTire, PointTire, TireModel
+    from vbikit.errors import VbikitError
+    from vbikit.road import RoadProfile
+    from vbikit.scenario.pipeline import run
+    from vbikit.scenario.report import Report
+    from vbikit.vehicle import Vehicle
 
 __all__ = [
     "EulerBernoulliBeam",
@@ -44,7 +44,18 @@ __all__ = [
     "Report",
     "RoadProfile",
     "TireModel",
+    "VbikitError",
     "Vehicle",
     "__version__",
     "run",
 ]
+
+__getattr__, __dir__ = lazy_exports(globals(), {
+    "vbikit.bridge": ["EulerBernoulliBeam", "ModalBridge"],
+    "vbikit.contact": ["MultiPointTire", "PointTire", "TireModel"],
+    "vbikit.errors": ["VbikitError"],
+    "vbikit.road": ["RoadProfile"],
+    "vbikit.scenario.pipeline": ["run"],
+    "vbikit.scenario.report": ["Report"],
+    "vbikit.vehicle": ["Vehicle"],
+})

@@ -38,7 +38,7 @@ class _FullDisk:
 def test_full_disk_keeps_the_previous_csv(tmp_path, monkeypatch):
     out = tmp_path / "h.csv"
     out.write_text("previous good file\n")
-    monkeypatch.setattr("vbikit.cli.csv.writer", _FullDisk)
+    monkeypatch.setattr("vbikit.scenario.report.csv.writer", _FullDisk)
     res = runner.invoke(app, ["run", str(SCENARIO), "--out", str(out)])
     assert res.exit_code == 2
     assert f"cannot write {out}: no space left on the device" in res.output
@@ -131,16 +131,16 @@ def test_field_all_zero_record_is_refused(tmp_path):
 
 def test_a_non_finite_summary_value_is_null_with_a_warning(tmp_path, monkeypatch):
     """y = inf on a beam used to write Infinity into --json (not valid JSON)."""
-    import vbikit.analysis
+    import vbikit.scenario.pipeline
 
-    real = vbikit.analysis.summary
+    real = vbikit.scenario.pipeline.summary
 
     def summary(*args, **kwargs):
         s = real(*args, **kwargs)
         s["max_abs_acceleration"] = math.inf
         return s
 
-    monkeypatch.setattr(vbikit.analysis, "summary", summary)
+    monkeypatch.setattr(vbikit.scenario.pipeline, "summary", summary)
     summ = tmp_path / "s.json"
     res = runner.invoke(app, ["run", str(SCENARIO), "--json", "--summary", str(summ)])
     assert res.exit_code == 0, res.output

@@ -1,14 +1,19 @@
 """Bridge models reduced to modes (the modal-bridge interface, the Euler–Bernoulli beam,
 the slab-on-girder grillage deck, imported modes, presets)."""
-from vbikit.bridge.base import ModalBridge
-from vbikit.bridge.beam import EulerBernoulliBeam
-from vbikit.bridge.girder_deck import SlabOnGirderBridge
-from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
-from vbikit.bridge.sections import (
-    AASHTO_GIRDERS,
-    GirderSection,
-    composite_beam_properties,
-)
+from typing import TYPE_CHECKING
+
+from vbikit._lazy import lazy_exports
+
+if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
+    from vbikit.bridge.base import ModalBridge
+    from vbikit.bridge.beam import EulerBernoulliBeam
+    from vbikit.bridge.girder_deck import SlabOnGirderBridge
+    from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
+    from vbikit.bridge.sections import (
+        AASHTO_GIRDERS,
+        GirderSection,
+        composite_beam_properties,
+    )
 
 __all__ = [
     "AASHTO_GIRDERS",
@@ -22,3 +27,11 @@ __all__ = [
     "paper_beam",
     "paper_deck",
 ]
+
+__getattr__, __dir__ = lazy_exports(globals(), {
+    "vbikit.bridge.base": ["ModalBridge"],
+    "vbikit.bridge.beam": ["EulerBernoulliBeam"],
+    "vbikit.bridge.girder_deck": ["SlabOnGirderBridge"],
+    "vbikit.bridge.presets": ["BRIDGE_PRESETS", "cypress_bayou", "paper_beam", "paper_deck"],
+    "vbikit.bridge.sections": ["AASHTO_GIRDERS", "GirderSection", "composite_beam_properties"],
+})

@@ -50,6 +50,7 @@ from vbikit._files import read_text
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.girder_deck import girder_line_strain
 from vbikit.bridge.nodal import NodalModes
+from vbikit.errors import VbikitError
 
 log = logging.getLogger(__name__)
 
@@ -58,7 +59,7 @@ MAGIC = "vbikit-modes 1"
 DEFAULT_LEVER_ARM = 0.5
 
 
-class ModeFileError(ValueError):
+class ModeFileError(VbikitError):
     """A mode file that does not follow the format; the message names the problem."""
 
 

@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 from vbikit._files import check_name, read_text
 from vbikit._toml import read_toml
 from vbikit.bridge.girder_deck import deck_parameters
+from vbikit.errors import VbikitError
 
 log = logging.getLogger(__name__)
 
@@ -56,7 +57,7 @@ TIME_TOLERANCE = 0.01
 _HEADER = re.compile(r"^\s*(?P<name>[^\[\]]+?)\s*\[(?P<unit>[^\]]*)\]\s*$")
 
 
-class FieldFileError(ValueError):
+class FieldFileError(VbikitError):
     """A field-data file (CSV or FIELD.toml) that cannot be used; the message names the place."""
 
 

@@ -317,7 +317,7 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
         log.info("case %s: %s offset %.4g, drift %.4g /s (%s)", case.name, ch.name, fit.offset, fit.drift, fit.method)
     inside = (t_sim >= t_meas[0]) & (t_sim <= t_meas[-1])
     if inside.sum() < 16:
-        raise ValueError(f"case {case.name!r}: the aligned record (t = {t_meas[0]:.3f} … {t_meas[-1]:.3f} s on the "
+        raise FieldFileError(f"case {case.name!r}: the aligned record (t = {t_meas[0]:.3f} … {t_meas[-1]:.3f} s on the "
                          f"simulation clock) hardly overlaps the simulation (0 … {t_sim[-1]:.3f} s); check trigger_time")
     t = t_sim[inside]
     measured = {ch.name: resample(t_meas, meas[ch.name], t) for ch in case.channels}

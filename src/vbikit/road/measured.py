@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from vbikit._files import read_text
+from vbikit.errors import VbikitError
 from vbikit.road.profile import RoadProfile
 
 
@@ -18,7 +19,7 @@ def _is_number(text: str) -> bool:
     return True
 
 
-class RoadFileError(ValueError):
+class RoadFileError(VbikitError):
     """A road profile file that cannot be used; the message names the file and line."""
 
 

@@ -1,15 +1,20 @@
 """TOML scenario schema, validation and assembly into model objects."""
-from vbikit.scenario.build import BuiltScenario, build
-from vbikit.scenario.pipeline import run
-from vbikit.scenario.report import Report
-from vbikit.scenario.schema import (
-    Scenario,
-    ScenarioError,
-    demo_scenario_text,
-    load_scenario,
-    parse_scenario,
-    scenario_from_toml,
-)
+from typing import TYPE_CHECKING
+
+from vbikit._lazy import lazy_exports
+
+if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
+    from vbikit.scenario.build import BuiltScenario, build
+    from vbikit.scenario.pipeline import run
+    from vbikit.scenario.report import Report
+    from vbikit.scenario.schema import (
+        Scenario,
+        ScenarioError,
+        demo_scenario_text,
+        load_scenario,
+        parse_scenario,
+        scenario_from_toml,
+    )
 
 __all__ = [
     "BuiltScenario",
@@ -23,3 +28,10 @@ __all__ = [
     "run",
     "scenario_from_toml",
 ]
+
+__getattr__, __dir__ = lazy_exports(globals(), {
+    "vbikit.scenario.build": ["BuiltScenario", "build"],
+    "vbikit.scenario.pipeline": ["run"],
+    "vbikit.scenario.report": ["Report"],
+    "vbikit.scenario.schema": ["Scenario", "ScenarioError", "demo_scenario_text", "load_scenario", "parse_scenario", "scenario_from_toml"],
+})

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from vbikit.analysis.checks import input_warnings, point_warnings
+from vbikit.errors import VbikitError
 from vbikit.scenario.build import BuiltScenario, build
 from vbikit.scenario.schema import Scenario, ScenarioError
 from vbikit.solve.budget import Limits, RunEstimate, check_run
@@ -66,7 +67,16 @@ def check_response_points(built: BuiltScenario) -> None:
 
 def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
-    UnstableTimeStepError or BudgetError, all ``ValueError``)."""
+    UnstableTimeStepError or BudgetError, all :class:`~vbikit.errors.VbikitError`)."""
+    try:
+        return _preflight(scenario, limits)
+    except VbikitError:
+        raise
+    except ValueError as err:  # a model's own check of the inputs (e.g. a vehicle that stops on the bridge)
+        raise ScenarioError(str(err)) from None
+
+
+def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     built = build(scenario, limits)
     crossing = built.crossing
     width = getattr(crossing.bridge, "deck_width", None)

@@ -25,6 +25,7 @@ from pydantic import (
 from vbikit._toml import parse_toml, read_toml
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO
 from vbikit.bridge.presets import BRIDGE_PRESETS
+from vbikit.errors import VbikitError
 from vbikit.solve.crossing import DEFAULT_INTEGRATOR
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -32,8 +33,10 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 ROAD_CLASSES = ("none", *ISO_CLASSES, *PAPER_CLASSES, "psd")
 
 
-class ScenarioError(ValueError):
+class ScenarioError(VbikitError):
     """An invalid scenario; the message names the offending key(s)."""
+
+    message_names_key = True
 
 
 class _Section(BaseModel):

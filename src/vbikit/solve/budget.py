@@ -22,6 +22,7 @@ import math
 import re
 from dataclasses import dataclass
 
+from vbikit.errors import VbikitError
 from vbikit.solve.crossing import Crossing
 
 GIB = 1024**3
@@ -39,7 +40,7 @@ POINTS_PER_STEP = 200
 _ROAD_BYTES = 40
 
 
-class BudgetError(ValueError):
+class BudgetError(VbikitError):
     """A run whose estimated memory or step count is above the limit; the message names the inputs."""
 
 

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.errors import VbikitError
 from vbikit.solve.crossing import Crossing
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -14,7 +15,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 
-class DivergenceError(ValueError):
+class DivergenceError(VbikitError):
     """An integration whose states became non-finite; the message gives the step and time."""
 
 

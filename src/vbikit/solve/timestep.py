@@ -14,11 +14,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from vbikit.errors import VbikitError
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.system import coupled_matrices, kernel_data
 
 
-class UnstableTimeStepError(ValueError):
+class UnstableTimeStepError(VbikitError):
     """A user-given time step that the chosen explicit integrator cannot run stably."""
 
 

@@ -20,9 +20,10 @@ seed 2024) are used for every n, tire model and speed, so differences are not sa
 """
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from vbikit.study.spec import Study, parse_study
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.study.spec import Study
 
 #: AASHTO reference lines (model data §6): LRFD IM and Standard Specifications 50/(L+125) ≤ 0.3
 AASHTO_LRFD_IM = 0.33
@@ -102,4 +103,6 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator
 
 def paper_study(fig: str, samples: int = 20, beam: bool = False, integrator: str = PAPER_INTEGRATOR) -> Study:
     """The validated :class:`Study` of paper figure ``fig`` (see :func:`paper_study_dict`)."""
+    from vbikit.study.spec import parse_study
+
     return parse_study(paper_study_dict(fig, samples, beam, integrator))

@@ -37,6 +37,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from vbikit._toml import parse_toml, read_toml
+from vbikit.errors import VbikitError
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 
 #: scenario keys that only change the road: crossings differing only in these share dt, contact
@@ -46,8 +47,10 @@ ROAD_ONLY_KEYS = ("road.seed", "road.class", "road.phi0", "road.n0", "road.expon
 SAMPLE_KEYS = ("road.seed",)
 
 
-class StudyError(ValueError):
+class StudyError(VbikitError):
     """An invalid study; the message names the offending key."""
+
+    message_names_key = True
 
 
 #: a study with more crossings is refused unless the user confirms it (``--yes``)

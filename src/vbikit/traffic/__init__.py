@@ -1,7 +1,12 @@
 """Traffic: vehicle records (WIM-like CSV), events of overlapping vehicles, synthetic streams."""
-from vbikit.traffic.events import Event, on_bridge_intervals, partition
-from vbikit.traffic.records import RecordsError, VehicleRecord, format_records, parse_records, read_records, write_records
-from vbikit.traffic.stream import TRUCK_MIX, LaneTraffic, TruckClass, synthetic_stream
+from typing import TYPE_CHECKING
+
+from vbikit._lazy import lazy_exports
+
+if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
+    from vbikit.traffic.events import Event, on_bridge_intervals, partition
+    from vbikit.traffic.records import RecordsError, VehicleRecord, format_records, parse_records, read_records, write_records
+    from vbikit.traffic.stream import TRUCK_MIX, LaneTraffic, TruckClass, synthetic_stream
 
 __all__ = [
     "Event",
@@ -18,3 +23,9 @@ __all__ = [
     "synthetic_stream",
     "write_records",
 ]
+
+__getattr__, __dir__ = lazy_exports(globals(), {
+    "vbikit.traffic.events": ["Event", "on_bridge_intervals", "partition"],
+    "vbikit.traffic.records": ["RecordsError", "VehicleRecord", "format_records", "parse_records", "read_records", "write_records"],
+    "vbikit.traffic.stream": ["TRUCK_MIX", "LaneTraffic", "TruckClass", "synthetic_stream"],
+})

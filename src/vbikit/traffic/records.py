@@ -31,6 +31,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional, Sequence
 
+from vbikit.errors import VbikitError
+
 #: the columns, their allowed units and the factor to SI
 UNITS: dict[str, dict[str, float]] = {
     "time": {"s": 1.0},
@@ -48,7 +50,7 @@ REQUIRED = ("time", "direction", "speed")
 DIRECTIONS = ("+x", "-x")
 
 
-class RecordsError(ValueError):
+class RecordsError(VbikitError):
     """An invalid records file; the message names the line and the column."""
 
 

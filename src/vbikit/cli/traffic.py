@@ -1,10 +1,22 @@
-"""``vbikit traffic`` (registered in :mod:`vbikit.cli`).  Only this module prints."""
+"""``vbikit traffic``: a stream of vehicle records over a bridge, run like a study."""
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Optional
 
 import typer
+
+from vbikit.cli.guard import guard
+from vbikit.cli.study import run_job
+from vbikit.errors import OptionError
+
+
+def _lanes(text: str) -> list[float]:
+    """``--lanes 1.8,-1.8`` → [1.8, -1.8] [m]."""
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        raise OptionError(f"--lanes: not a comma-separated list of numbers: {text!r}") from None
 
 
 def traffic_cmd(
@@ -23,27 +35,20 @@ def traffic_cmd(
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""
-    from vbikit.study.commands import _guard, _run
     from vbikit.traffic.records import read_records
     from vbikit.traffic.study import base_scenario, traffic_study
 
-    recs = _guard(lambda: read_records(records))
-    base, base_dir = _guard(lambda: base_scenario(bridge))
+    recs = guard(lambda: read_records(records))
+    base, base_dir = guard(lambda: base_scenario(bridge))
     if road is not None:
         base = {**base, "road": {**base.get("road", {}), "class": road}}
-    lane_y = None
-    if lanes is not None:
-        try:
-            lane_y = [float(v) for v in lanes.split(",")]
-        except ValueError:
-            typer.echo(f"error: --lanes: not a comma-separated list of numbers: {lanes!r}", err=True)
-            raise typer.Exit(code=2) from None
-    job = _guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
-                                       source=records.name))
+    lane_y = None if lanes is None else guard(lambda: _lanes(lanes))
+    job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
+                                      source=records.name))
     n_mp = sum(len(e) > 1 for e in job.events)
     typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
-    ds = _run(job, out, workers, scheduler, progress, unit="event")
+    ds = run_job(job, out, workers, scheduler, progress, unit="event")
     a = ds.attrs
     typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f} (one vehicle {a['im_mean_single']:.4f}, "
                f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(ds['impact_factor'].max()):.4f}")
@@ -53,5 +58,5 @@ def traffic_cmd(
     if plot is not None:
         from vbikit.plot.traffic import plot_stream
 
-        _guard(lambda: plot_stream(ds, plot))
+        guard(lambda: plot_stream(ds, plot))
         typer.echo(f"figure {plot}")

@@ -1,30 +1,17 @@
-"""``vbikit study …`` commands (registered in :mod:`vbikit.cli`).  Only this module prints."""
+"""``vbikit study …``: run or check a study file, or the paper's studies.  Heavy modules are
+imported inside the commands (start-up stays fast)."""
 from __future__ import annotations
 
-import logging
 import time
 from pathlib import Path
 from typing import Any, Callable, Optional
 
 import typer
 
+from vbikit.cli.guard import STATE, guard, limits
+
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
-
-log = logging.getLogger(__name__)
-
-#: ``vbikit -q …``: set by the root command (:mod:`vbikit.cli`) before a study or traffic command runs
-QUIET = {"on": False}
-
-
-def _guard(action: Callable[[], Any]) -> Any:
-    try:
-        return action()
-    except (ValueError, OSError) as err:  # StudyError / ScenarioError are ValueErrors
-        if logging.getLogger().isEnabledFor(logging.DEBUG):
-            raise
-        typer.echo(f"error: {err}", err=True)
-        raise typer.Exit(code=2) from None
 
 
 class _Bar:
@@ -48,14 +35,15 @@ class _Bar:
             self.bar.close()
 
 
-def _run(study, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool, unit: str = "crossing"):
+def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool,
+            unit: str = "crossing") -> Any:
     """Run (or resume) ``study`` (or another job of :func:`~vbikit.study.run.run_study`) with a progress bar."""
     from vbikit.study.run import run_study
 
-    bar = _Bar(study.name or out.stem, progress and not QUIET["on"], unit)  # `vbikit -q study …`: no bar
+    bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
     t0 = time.perf_counter()
     try:
-        ds = _guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
+        ds = guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
     except KeyboardInterrupt:
         bar.close()
         typer.echo(f"\ninterrupted: finished batches are kept in {out}.parts; run the same command again to resume",
@@ -72,20 +60,15 @@ _MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batc
 _MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of one crossing (default 5e6).")
 
 
-def _check(study, yes: bool, max_memory: Optional[str], max_steps: Optional[float], label: str = ""):
+def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional[float], label: str = "") -> Any:
     """Every check the run makes before it starts (vbikit.study.check); prints the size and warnings."""
-    from vbikit.solve.budget import Limits, parse_size
     from vbikit.study.check import check_study
 
-    kw: dict[str, Any] = {}
-    if max_memory is not None:
-        kw["max_memory"] = _guard(lambda: parse_size(max_memory))
-    if max_steps is not None:
-        kw["max_steps"] = int(max_steps)
+    budget = limits(max_memory, max_steps)
     dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
     typer.echo(f"{label or study.name or 'study'}: {study.size} crossings ({dims}) in {study.n_batches} batches",
                err=True)
-    result = _guard(lambda: check_study(study, Limits(**kw), confirmed=yes))
+    result = guard(lambda: check_study(study, budget, confirmed=yes))
     for text in result.warnings[:10]:
         typer.echo(f"warning: {text}", err=True)
     if len(result.warnings) > 10:
@@ -112,9 +95,9 @@ def run_cmd(
     """Run (or resume) a study and write its dataset."""
     from vbikit.study.spec import load_study
 
-    study = _guard(lambda: load_study(study_file))
+    study = guard(lambda: load_study(study_file))
     _check(study, yes, max_memory, max_steps)
-    ds = _run(study, out, workers, scheduler, progress)
+    ds = run_job(study, out, workers, scheduler, progress)
     im = ds["impact_factor"]
     typer.echo(f"impact factor over all crossings: mean {float(im.mean()):.4f}, min {float(im.min()):.4f}, "
                f"max {float(im.max()):.4f}")
@@ -132,14 +115,14 @@ def validate_cmd(
     from vbikit.solve.budget import human
     from vbikit.study.spec import load_study
 
-    study = _guard(lambda: load_study(study_file))
+    study = guard(lambda: load_study(study_file))
     result = _check(study, yes, max_memory, max_steps)
     dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes)
     typer.echo(f"{study_file}: ok — {study.size} crossings ({dims}) in {study.n_batches} batches; "
                f"{result.checked} set-ups checked, up to {result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
 
 
-def _paper(*figs: str):
+def _paper(*figs: str) -> Callable[..., None]:
     """The command that runs the paper studies ``figs`` one after another (the local worker
     processes are shared between them)."""
     def command(
@@ -156,7 +139,7 @@ def _paper(*figs: str):
         from vbikit.study.figures import plot_paper_figure
         from vbikit.study.paper import paper_study
 
-        studies = [_guard(lambda fig=fig: paper_study(fig, samples, beam)) for fig in figs]
+        studies = [guard(lambda fig=fig: paper_study(fig, samples, beam)) for fig in figs]
         if dump:
             for study in studies:
                 typer.echo(study.to_json())
@@ -166,8 +149,8 @@ def _paper(*figs: str):
         suffix = ("-beam" if beam else "") + ("" if samples == 20 else f"-{samples}samples")
         for fig, study in zip(figs, studies):
             out = out_dir / f"paper-{fig}{suffix}.nc"
-            ds = _run(study, out, workers, scheduler, progress)
-            png = _guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
+            ds = run_job(study, out, workers, scheduler, progress)
+            png = guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
             typer.echo(f"figure {png}")
 
     from vbikit.study.paper import FIGURES

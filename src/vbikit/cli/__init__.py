@@ -1,0 +1,101 @@
+"""The ``vbikit`` command line.  Only this package prints; the library logs.
+
+Modules by job: this one holds the app, its global options and the list of commands;
+:mod:`~vbikit.cli.guard` the one error guard; :mod:`~vbikit.cli.render` the text report, JSON
+and CSV outputs; :mod:`~vbikit.cli.execute` the one function that runs a scenario; the command
+groups :mod:`~vbikit.cli.scenarios` (run, validate, cite, demo, compare-tires),
+:mod:`~vbikit.cli.models` (presets, bridge), :mod:`~vbikit.cli.field`, :mod:`~vbikit.cli.study`
+and :mod:`~vbikit.cli.traffic`.  Command modules import numpy, scipy, numba, xarray and
+matplotlib only inside the commands, so ``--version``, ``--help`` and shell completion start
+fast.
+"""
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+import typer
+from typer.core import TyperGroup
+
+from vbikit.cli import field, models, scenarios, study, traffic
+from vbikit.cli.guard import STATE
+
+#: the global options, accepted after the subcommand as well (``vbikit run X.toml -q``)
+GLOBAL_FLAGS = ("-q", "--quiet", "--debug", "-v", "--verbose")
+
+
+def _is_global_flag(arg: str) -> bool:
+    return arg in GLOBAL_FLAGS or (len(arg) > 2 and arg[0] == "-" and arg[1] != "-" and set(arg[1:]) == {"v"})
+
+
+class _Group(TyperGroup):
+    """The root command: global flags given after a subcommand (``-q``, ``-v``/``-vv``, ``--verbose``,
+    ``--quiet``, ``--debug``; not after ``--``) are moved before it, where the root's options take them."""
+
+    def parse_args(self, ctx: Any, args: list[str]) -> list[str]:
+        end = args.index("--") if "--" in args else len(args)
+        first = next((i for i, a in enumerate(args[:end]) if not a.startswith("-")), end)  # the subcommand
+        moved = [a for a in args[first + 1:end] if _is_global_flag(a)]
+        if moved:
+            args = moved + args[:first + 1] + [a for a in args[first + 1:end] if not _is_global_flag(a)] + args[end:]
+        return super().parse_args(ctx, args)
+
+
+app = typer.Typer(
+    cls=_Group,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,  # plain help texts: "[tire]" or "[m]" stay as written
+    help="vbikit — vehicle–bridge coupled vibration: run scenarios, list presets, run the demo.\n\n"
+         "Commands that write files write them into --out-dir (default vbikit-out/); options that name "
+         "one file (--out, --plot, --summary) take that path as given.",
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        from vbikit import __version__
+
+        typer.echo(f"vbikit {__version__}")
+        raise typer.Exit()
+
+
+@app.callback(invoke_without_command=True)
+def _main(
+    ctx: typer.Context,
+    verbose: int = typer.Option(0, "--verbose", "-v", count=True, help="More log messages (-v info, -vv debug)."),
+    quiet: bool = typer.Option(False, "--quiet", "-q", help="Only errors: no warnings, no progress bars."),
+    debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs."),
+    version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
+) -> None:
+    STATE["debug"], STATE["quiet"] = debug, quiet
+    level = logging.DEBUG if debug or verbose > 1 else logging.INFO if verbose else logging.ERROR if quiet else logging.WARNING
+    logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s", force=True)
+    if not quiet:
+        logging.getLogger("vbikit.solve.compile").setLevel(logging.INFO)  # "compiling kernels, first run only"
+    if quiet:
+        import warnings
+
+        warnings.simplefilter("ignore")
+    if ctx.invoked_subcommand is None:  # bare `vbikit`: the help, exit code 0
+        typer.echo(ctx.get_help())
+        raise typer.Exit()
+
+
+app.add_typer(study.app, name="study")
+app.command("traffic")(traffic.traffic_cmd)
+app.command()(scenarios.run)
+app.command()(scenarios.validate)
+app.command()(scenarios.cite)
+app.command()(scenarios.demo)
+app.command("compare-tires")(scenarios.compare_tires)
+app.command()(models.presets)
+app.command()(models.bridge)
+app.command("field")(field.field_)
+
+
+def main() -> None:
+    """Console-script entry point."""
+    app()
+
+
+__all__ = ["app", "main"]

@@ -1,0 +1,27 @@
+"""Running one scenario for the command line: :func:`execute` is the only place that does.
+
+``execute(load, limits) -> Report`` checks, runs and reports one scenario through the library's
+run pipeline (:mod:`vbikit.scenario.pipeline`, the same path as :func:`vbikit.run`); its
+``summary`` is the dict ``vbikit run --json`` prints.  Every scenario command (run, demo,
+compare-tires) calls it.
+"""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Callable
+
+from vbikit.cli.guard import guard, warn
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.scenario.report import Report
+
+
+def execute(load: Callable[[], Any], limits: Any = None) -> "Report":
+    """Check (``load()`` returns a Scenario; every check of :func:`vbikit.scenario.preflight.preflight`),
+    run and report it (:func:`vbikit.scenario.pipeline.run_planned`); user errors exit with code 2,
+    the summary's warnings go to stderr."""
+    from vbikit.scenario.pipeline import run_planned
+    from vbikit.scenario.preflight import preflight
+
+    report = guard(lambda: run_planned(preflight(load(), limits), limits))
+    warn(report.summary["warnings"])
+    return report

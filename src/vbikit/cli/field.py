@@ -1,0 +1,40 @@
+"""``vbikit field``: measured crossings against the simulated ones (docs/field.md)."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+
+from vbikit.cli.guard import guard, option
+
+
+def field_(
+    field_file: Path = typer.Argument(..., help="FIELD.toml describing the measured crossings (docs/field.md)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figures and the metrics tables."),
+    tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint, disk, rigid-disk."),
+    calibrate: bool = typer.Option(False, "--calibrate", help="Fit a stiffness factor and damping ratio (least squares)."),
+) -> None:
+    """Compare measured bridge responses with the simulated crossing per tire model; optionally calibrate."""
+    from vbikit.field.report import run_field
+    from vbikit.field.workflow import parse_tires
+
+    names = guard(lambda: option(parse_tires, tires))
+    run_ = guard(lambda: run_field(field_file, out_dir, names, calibrate))
+    typer.echo(run_.spec.name)
+    for label, cmps in (("nominal model", run_.comparisons), ("calibrated model", run_.calibrated or [])):
+        for c in cmps:
+            typer.echo(f"  [{label}] {c.case.name}: time shift {c.shift:+.4f} s (trigger {c.t_entry - c.shift:.4f} s), "
+                       f"low-pass {c.lowpass_hz or 'none'} Hz")
+            for ch, d in c.drift.items():
+                typer.echo(f"    {ch}: removed offset {d.offset:+.4g}, drift {d.drift:+.4g} /s ({d.method})")
+            typer.echo(f"    {'tire':<11} {'channel':<16} {'peak err':>9} {'RMS err':>11} {'nRMS':>7} {'corr':>7}")
+            for tire, chans in c.metrics.items():
+                for name, m in chans.items():
+                    typer.echo(f"    {tire:<11} {name:<16} {m['peak_error']:+9.3%} {m['rms_error']:11.4g} "
+                               f"{m['normalised_rms_error']:7.4f} {m['correlation']:7.4f}")
+    cal = run_.calibration
+    if cal is not None:
+        typer.echo(f"  calibration ({cal.tire} tire, {cal.evaluations} runs, {cal.seconds:.1f} s): stiffness factor "
+                   f"{cal.stiffness_factor:.5f} ± {cal.stiffness_factor_std:.2g}, damping ratio {cal.damping_ratio:.5f} "
+                   f"± {cal.damping_ratio_std:.2g} (1σ, correlation {cal.correlation:+.2f})")
+    typer.echo(f"  figures {', '.join(str(f) for f in run_.figures)}; tables {run_.json_path}, {run_.csv_path}")

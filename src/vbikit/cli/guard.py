@@ -1,0 +1,75 @@
+"""The one error guard of the command line, and the run-wide options it reads.
+
+A user error (:class:`~vbikit.errors.VbikitError`: bad input, a refused budget or time step),
+an ``OSError`` (an input that cannot be read, an output that cannot be written) and a
+``MemoryError`` exit with code 2 and one line ``error: …`` on stderr.  Any other exception is a
+programming error and shows its traceback, as does every error with ``--debug``.
+"""
+from __future__ import annotations
+
+from typing import Any, Callable, Optional, TypeVar
+
+import typer
+
+from vbikit.errors import OptionError, VbikitError
+
+T = TypeVar("T")
+
+#: the global options of this invocation (set by the root command before a subcommand runs)
+STATE = {"debug": False, "quiet": False}
+
+_OUT_OF_MEMORY = ("error: out of memory; lower --max-memory to be refused before starting, or reduce the inputs "
+                  "named in the budget message of `vbikit validate`")
+
+
+def guard(action: Callable[[], T]) -> T:
+    """Run ``action``; a user error, an unreadable input or unwritable output, or running out of
+    memory exits with code 2 and one message (``--debug``: the traceback instead)."""
+    try:
+        return action()
+    except (VbikitError, OSError) as err:
+        if STATE["debug"]:
+            raise
+        typer.echo(f"error: {err}", err=True)
+        raise typer.Exit(code=2) from None
+    except MemoryError:
+        if STATE["debug"]:
+            raise
+        typer.echo(_OUT_OF_MEMORY, err=True)
+        raise typer.Exit(code=2) from None
+
+
+def warn(warnings: list[str]) -> None:
+    """Print the input warnings of a run on stderr (not with ``-q``)."""
+    if STATE["quiet"]:
+        return
+    for text in warnings:
+        typer.echo(f"warning: {text}", err=True)
+
+
+def option(parse: Callable[[str], T], text: str) -> T:
+    """``parse(text)`` for a command-line option value; its ``ValueError`` (the message names the
+    option) becomes an :class:`~vbikit.errors.OptionError`."""
+    try:
+        return parse(text)
+    except VbikitError:
+        raise
+    except ValueError as err:
+        raise OptionError(str(err)) from None
+
+
+def limits(max_memory: Optional[str], max_steps: Optional[float]) -> Any:
+    """The :class:`~vbikit.solve.budget.Limits` of ``--max-memory`` and ``--max-steps``."""
+    from vbikit.solve.budget import Limits, parse_size
+
+    kw: dict[str, Any] = {}
+    if max_memory is not None:
+        kw["max_memory"] = guard(lambda: option(parse_size, max_memory))
+    if max_steps is not None:
+        kw["max_steps"] = int(max_steps)
+    return Limits(**kw)
+
+
+MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
+                                                     "estimated before it starts, refused above.")
+MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")

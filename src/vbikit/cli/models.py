@@ -1,0 +1,122 @@
+"""``vbikit presets`` and ``vbikit bridge``: the models a scenario can name."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from vbikit.cli.guard import guard
+
+
+def presets() -> None:
+    """List the bridge, vehicle, tire and road presets with their parameters."""
+    from vbikit.bridge import BRIDGE_PRESETS
+    from vbikit.road import ISO_CLASSES, PAPER_CLASSES
+    from vbikit.vehicle import VEHICLE_PRESETS
+
+    typer.echo("Bridges ([bridge] model = ...):")
+    typer.echo("  beam                  Euler–Bernoulli beam: span, EI, mass_per_length, damping_ratio, n_modes, neutral_axis_depth")
+    typer.echo("  continuous-beam       beam over several spans: spans (list), EI and mass_per_length (one or per span), "
+               "support_stiffness, rotational_stiffness, [[bridge.damage]]")
+    typer.echo("  modes-file            modes imported from a vbikit-modes file (modes_file = ...; docs/bridges.md)")
+    for p in BRIDGE_PRESETS.values():
+        b = p.build()
+        typer.echo(f"  {p.name:<21} {p.description}")
+        if hasattr(b, "EI"):
+            typer.echo(f"  {'':<21} span {b.span} m, EI {b.EI:.4g} N·m², m {b.mass_per_length:.1f} kg/m, "
+                       f"c {b.neutral_axis_depth:.3f} m, f1 {b.frequencies_hz[0]:.2f} Hz")
+        else:  # slab-on-girder deck: geometry only (its modes are solved by `vbikit bridge NAME`)
+            typer.echo(f"  {'':<21} span {b.span} m, deck {b.deck_width:.2f} m, default lateral_offset "
+                       f"{b.default_lateral_offset} m, default response girder {b.default_girder}")
+    typer.echo("Vehicles ([vehicle] model = ...):")
+    for p in VEHICLE_PRESETS.values():
+        v = p.example_vehicle()
+        loads = ", ".join(f"{x / 1e3:.1f}" for x in v.static_wheel_loads())
+        if p.required:
+            params = (f"parameters: {', '.join(p.parameters)} (required: {', '.join(p.required)}); example "
+                      + ", ".join(f"{k} = {val}" for k, val in p.example.items()))
+        else:
+            params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
+        f = v.natural_frequencies()
+        freq = f"; frequencies {f.min():.2f} … {f.max():.2f} Hz" if f.size else ""
+        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; wheel loads [kN]: {loads}{freq}")
+        typer.echo(f"  {'':<14} {params}")
+    typer.echo("Tires ([tire] model = ...):")
+    typer.echo("  point          single-point contact")
+    typer.echo("  multipoint     n_points (default 6), contact_length (default 0.254 m), layout = ends | cells (paper Eq. 6)")
+    typer.echo("  disk           deformable disk of radial springs, radius (default 0.5 m), disk_spacing (default 0.01 m)")
+    typer.echo("  rigid-disk     rigid disk following the surface envelope, radius, disk_spacing")
+    typer.echo("  all tires: loss_of_contact = true (default; tires cannot pull) | false")
+    typer.echo("Deck defects ([[road.defects]] kind = ...):")
+    from vbikit.road import DEFECT_DEFAULTS
+
+    for kind, (amp, length, ramp, shape) in DEFECT_DEFAULTS.items():
+        size = "depth" if amp < 0 else "height"
+        typer.echo(f"  {kind:<14} {size} {abs(amp):g} m, length {length:g} m, ramp {ramp:g} m, shape {shape}")
+    typer.echo("Roads ([road] class = ...):")
+    classes = ", ".join(f"{c} {v:.4g}" for c, v in ISO_CLASSES.items())
+    typer.echo(f"  ISO 8608 Gd(n0 = 0.1 cycle/m) [m³/cycle]: {classes}")
+    typer.echo(f"  paper names: {', '.join(f'{k} = {v}' for k, v in PAPER_CLASSES.items())}; none = smooth; "
+               "psd = explicit phi0, n0, exponent; profile_file = measured CSV (x, elevation)")
+
+
+def bridge(
+    name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
+                               "is shown (its [bridge.deck] overrides and n_modes included, unless --modes is given)."),
+    n_modes: Optional[int] = typer.Option(None, "--modes", min=1, max=500,
+                                          help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure NAME-modes.png."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write the figure to this file instead."),
+    no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
+) -> None:
+    """Frequencies and mode descriptions of a bridge preset or of a scenario's bridge, and a figure of its
+    first mode shapes."""
+    import time
+
+    from vbikit.bridge import BRIDGE_PRESETS
+
+    if name.endswith(".toml"):
+        from vbikit.errors import VbikitError
+        from vbikit.scenario import ScenarioError, load_scenario
+        from vbikit.scenario.build import build_bridge
+
+        def scenario_bridge():
+            scenario = load_scenario(name)
+            spec = scenario.bridge if n_modes is None else scenario.bridge.model_copy(update={"n_modes": n_modes})
+            try:
+                bridge_ = build_bridge(spec, scenario.base_dir)
+            except VbikitError:
+                raise
+            except ValueError as err:  # the bridge model's own check of the [bridge] inputs (as in scenario.build)
+                raise ScenarioError(str(err)) from None
+            return bridge_, scenario.bridge.model, scenario.name or Path(name).stem
+
+        b, model, label = guard(scenario_bridge)
+        skew = float(getattr(b, "skew", 0.0))
+        description = f"[bridge] of {name} (model {model!r}{f', skew {skew:g}°' if skew else ''})"
+        name = Path(name).stem
+    elif name not in BRIDGE_PRESETS:
+        typer.echo(f"error: unknown bridge preset {name!r}; allowed: {', '.join(BRIDGE_PRESETS)} (or a scenario .toml file)",
+                   err=True)
+        raise typer.Exit(code=2)
+    else:
+        b = BRIDGE_PRESETS[name].build(n_modes=10 if n_modes is None else n_modes)
+        description = BRIDGE_PRESETS[name].description
+    t0 = time.perf_counter()
+    freqs = b.frequencies_hz
+    elapsed = time.perf_counter() - t0
+    describe = getattr(b, "mode_descriptions", None)
+    labels = describe() if describe else [f"bending, {k + 1} half-wave{'s' if k else ''} along the span" for k in range(freqs.size)]
+    typer.echo(f"{name}: {description}")
+    if hasattr(b, "girder_y"):
+        ys = ", ".join(f"{y:+.3f}" for y in b.girder_y)
+        typer.echo(f"  girders (1 … {b.n_girders}) at y = {ys} m; {b.element_count} elements along the span")
+    typer.echo(f"  modes solved (or read from cache) in {elapsed:.3f} s")
+    for k, (f, label) in enumerate(zip(freqs, labels), start=1):
+        typer.echo(f"  mode {k:>2}  {f:9.3f} Hz  {label}")
+    if not no_plot:
+        from vbikit.plot.bridge import plot_mode_shapes
+
+        path = guard(lambda: plot_mode_shapes(b, plot or out_dir / f"{name}-modes.png", title=name))
+        typer.echo(f"  figure              {path}")

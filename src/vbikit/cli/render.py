@@ -1,0 +1,136 @@
+"""Output of the scenario commands: the text report, JSON, the CSV of time histories and the
+files ``--out``, ``--plot`` and ``--summary`` ask for."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, Optional
+
+import typer
+
+from vbikit.cli.guard import guard
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.scenario.report import Report as Run
+
+#: design codes of the text report, in the order printed
+CODE_LABELS = {"aashto_lrfd": "AASHTO LRFD", "aashto_standard": "AASHTO Std", "csa_s6": "CSA S6",
+               "ohbdc_1983": "OHBDC 1983", "jtg_d60_2015": "JTG D60-2015"}
+
+
+def json_text(obj: object, indent: int | None = None) -> str:
+    """Strict JSON (no NaN/Infinity: those are null, see vbikit._files.json_safe)."""
+    from vbikit._files import json_text as strict_json
+
+    return strict_json(obj, indent)
+
+
+def write_text(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` atomically."""
+    from vbikit._files import write_text as atomic_text
+
+    atomic_text(path, text)
+
+
+def print_summary(run: Run) -> None:
+    """The text report of one crossing (``vbikit run`` without ``--json``)."""
+    s = run.summary
+    if run.name:
+        typer.echo(run.name)
+    inp = s.get("inputs")
+    if inp:
+        road = inp["road"]
+        road_text = (f"class {road['class']} (phi0 {road['phi0']:.4g} m³/cycle at n0 {road['n0']:g} cycle/m, "
+                     f"exponent {road['exponent']:g}), seed {road['seed']}" if "seed" in road else
+                     f"measured {road['profile_file']}" if "profile_file" in road else "smooth")
+        if road.get("defects"):
+            road_text += f"; defects: {', '.join(road['defects'])}"
+        deck = "".join(f", {k} {v}" for k, v in inp.get("bridge_deck", {}).items())
+        typer.echo(f"  bridge               {inp['bridge']} (span {inp['span']:g} m, {inp['n_modes']} modes, "
+                   f"damping {inp['damping_ratio']:.3g}{deck})")
+        several = "vehicles" in inp
+        for i, v in enumerate(inp["vehicles"] if several else [inp], start=1):
+            motion = f", {v['direction']}, entering at {v['entry_time']:g} s, y = {v['lateral_offset']:g} m" if several else ""
+            typer.echo(f"  {f'vehicle {i}' if several else 'vehicle':<20} {v['vehicle']}, {v['speed_kmh']:.4g} km/h = "
+                       f"{v['speed_m_s']:.4g} m/s" + (f", acceleration {v['acceleration']:g} m/s²" if v["acceleration"] else "")
+                       + motion)
+        typer.echo(f"  tire                 {inp['tire']}")
+        typer.echo(f"  road                 {road_text}")
+        typer.echo(f"  vbikit               {inp['vbikit_version']}")
+    typer.echo(f"  bridge f1..f3        {', '.join(f'{f:.2f}' for f in s['frequencies_hz'][:3])} Hz")
+    girder = f" (Girder {s['response_girder']})" if s.get("response_girder") else ""
+    typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m{girder}")
+    typer.echo(f"  max displacement     dynamic {s['max_dynamic_displacement'] * 1e3:+.4f} mm, "
+               f"static {s['max_static_displacement'] * 1e3:+.4f} mm")
+    typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
+    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
+    typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
+    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}  (strain IM = {s['strain_impact_factor']:.4f})")
+    if len(s["points"]) > 1:
+        print_points(s["points"])
+    for i, v in enumerate(s.get("vehicles", []), start=1):
+        loads = " / ".join(f"{f / 1e3:.1f}" for f in v["static_wheel_loads"].values())
+        typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
+                   f"t = {v['entry_time']:.3f} s, y = {v['lateral_offset']:+.3f} m; wheel loads [kN] {loads}"
+                   f"{'; lost contact' if v['contact_loss'] else ''}")
+    if "governing_girder" in s:
+        if "vehicles" not in s:
+            typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
+        typer.echo("  girder               " + "  ".join(f"{g:>7d}" for g in range(1, len(s["girder_y"]) + 1)))
+        typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
+        typer.echo("  IM                   " + "  ".join(f"{v:7.4f}" for v in s["girder_impact_factors"]))
+        typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f})")
+    print_codes(s["design_code_allowances"], "deflection IM beside")
+    print_load_effects(s)
+
+
+def print_codes(c: dict[str, Any], title: str) -> None:
+    """One line of design-code dynamic allowances and one of the inputs they were computed from."""
+    values = "  ".join(f"{label} {c[k]:.3f}" for k, label in CODE_LABELS.items() if k in c)
+    typer.echo(f"  {title:<20} {values}")
+    typer.echo(f"  {'':<20} (loaded length {c['loaded_length']:.2f} m, f1 = {c['first_frequency']:.2f} Hz, "
+               f"{c['n_axles']} axles)")
+
+
+def print_load_effects(s: dict[str, Any]) -> None:
+    """The moment / shear / reaction table of a summary (nothing when it has none)."""
+    rows = [(kind, e) for kind in ("moment", "shear", "reaction") if kind in s for e in s[kind]["sections"]]
+    if not rows:
+        return
+    method = next(s[k]["method"] for k in ("moment", "shear", "reaction") if k in s)
+    typer.echo(f"  load effects ({method}; kN m / kN; IM beside AASHTO Std / JTG D60 / OHBDC)")
+    for kind, e in rows:
+        unit = 1e-3
+        where = f"support {e['support']}" if kind == "reaction" else f"x = {e['x']:.2f} m"
+        if e.get("girder"):
+            where += f", girder {e['girder']}"
+        c = e.get("code_allowances", {})
+        typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
+                   f"  IM {e['impact_factor']:7.4f}   codes {c.get('aashto_standard', float('nan')):.3f} / "
+                   f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
+
+
+def print_points(points: list[dict[str, Any]]) -> None:
+    """One line per response point ([[response.points]]): where, static and dynamic peaks, IMs."""
+    typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {'static [mm]':>12} {'dynamic [mm]':>13} {'IM':>8} "
+               f"{'strain IM':>9} {'|a|max [m/s²]':>14}")
+    for p in points:
+        typer.echo(f"  {p['name']:<20} {p['x']:8.3f} {p['y']:8.3f} {p['max_static_displacement'] * 1e3:+12.4f} "
+                   f"{p['max_dynamic_displacement'] * 1e3:+13.4f} {p['impact_factor']:8.4f} "
+                   f"{p['strain_impact_factor']:9.4f} {p['max_abs_acceleration']:14.4f}")
+
+
+def outputs(run: Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:
+    """Write the files asked for (CSV, figure, JSON summary), then print the JSON or the text report."""
+    if out is not None:
+        guard(lambda: run.write_csv(out))
+    if plot is not None:
+        guard(lambda: run.plot(plot))
+    if summary_path is not None:
+        guard(lambda: write_text(summary_path, json_text(run.summary, indent=2) + "\n"))
+    if as_json:
+        typer.echo(json_text(run.summary))
+    else:
+        print_summary(run)
+        for label, path in (("time histories", out), ("figure", plot), ("summary", summary_path)):
+            if path is not None:
+                typer.echo(f"  {label:<20} {path}")

@@ -1,0 +1,136 @@
+"""``vbikit run``, ``validate``, ``cite``, ``demo`` and ``compare-tires``: the commands on one
+scenario file.  Heavy modules are imported inside the commands (start-up stays fast)."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from vbikit.cli.execute import execute
+from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, warn
+from vbikit.cli.render import json_text, outputs, write_text
+
+
+def run(
+    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    as_json: bool = typer.Option(False, "--json", help="Print one JSON object (the summary) on stdout."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write time histories to this CSV file."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG) of the response."),
+    summary_path: Optional[Path] = typer.Option(None, "--summary", help="Write the JSON summary to this file."),
+    max_memory: Optional[str] = MAX_MEMORY,
+    max_steps: Optional[float] = MAX_STEPS,
+    out_dir: Optional[Path] = typer.Option(None, "--out-dir", help="Write all three (SCENARIO.csv, SCENARIO.png, "
+                                           "SCENARIO.json) into this folder."),
+) -> None:
+    """Simulate one crossing described by a scenario file (writes files only when asked)."""
+    from vbikit.scenario import load_scenario
+
+    if out_dir is not None:
+        stem = scenario.stem
+        out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
+                                   summary_path or out_dir / f"{stem}.json")
+    budget = limits(max_memory, max_steps)
+    outputs(execute(lambda: load_scenario(scenario), budget), as_json, out, plot, summary_path)
+
+
+def validate(
+    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    max_memory: Optional[str] = MAX_MEMORY,
+    max_steps: Optional[float] = MAX_STEPS,
+) -> None:
+    """Check a scenario file without running it: every check `vbikit run` makes before it
+    integrates (files, parameters, time step and stability limit, memory and step budgets)."""
+    from vbikit.scenario import load_scenario
+    from vbikit.scenario.preflight import preflight
+    from vbikit.solve.budget import human
+
+    budget = limits(max_memory, max_steps)
+    plan = guard(lambda: preflight(load_scenario(scenario), budget))
+    warn(plan.warnings)
+    est = plan.estimate
+    typer.echo(f"{scenario}: ok — {est.n_steps} steps of {est.dt:.3e} s ({plan.built.crossing.integrator}), "
+               f"≈ {human(est.memory)}")
+
+
+def cite(
+    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    bibtex: bool = typer.Option(False, "--bibtex", help="Print BibTeX entries instead of citations."),
+) -> None:
+    """Print the publications behind the models a scenario uses (docs/references.md has them all)."""
+    from vbikit.references import bibtex as to_bibtex
+    from vbikit.scenario import load_scenario
+    from vbikit.scenario.cite import scenario_models, scenario_references
+
+    spec = guard(lambda: load_scenario(scenario))
+    refs = scenario_references(spec)
+    if bibtex:
+        typer.echo(to_bibtex(refs), nl=False)
+        return
+    typer.echo(f"{scenario}: models {', '.join(scenario_models(spec))}")
+    for r in refs:
+        typer.echo(f"  [{r.key}] {r.text()}")
+
+
+def demo(
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the JSON summary."),
+    as_json: bool = typer.Option(False, "--json", help="Print the JSON summary instead of the text report."),
+) -> None:
+    """HS20-44 truck over the 16.76 m beam (Bridge 2 stand-in), ISO class C road, multipoint tires, 75 km/h."""
+    from vbikit.scenario import demo_scenario_text, scenario_from_toml
+
+    run_ = execute(lambda: scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    outputs(run_, as_json, None, out_dir / "demo.png", out_dir / "demo.json")
+
+
+def compare_tires(
+    scenario: Path = typer.Argument(..., help="TOML scenario file (its [tire] section is replaced by each model)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the table."),
+    n_points: int = typer.Option(6, "--n-points", min=1, help="Points of the multi-point tire."),
+    as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),
+) -> None:
+    """Run one crossing with each tire model (point, multipoint, disk, rigid disk); figure like the
+    paper's Fig. 9 and a table of peaks and impact factors."""
+    import time
+
+    from vbikit.plot import plot_tire_comparison
+    from vbikit.scenario import load_scenario
+
+    base = guard(lambda: load_scenario(scenario))
+    models = {
+        "point": {"model": "point"},
+        f"multipoint (n = {n_points})": {"model": "multipoint", "n_points": n_points},
+        "disk": {"model": "disk"},
+        "rigid disk": {"model": "rigid-disk"},
+    }
+    responses, table = {}, {}
+    for label, tire in models.items():
+        spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
+        spec._base_dir = base.base_dir
+        t0 = time.perf_counter()
+        run_ = execute(lambda spec=spec: spec)
+        s = run_.summary
+        responses[label] = run_.response
+        table[label] = {
+            "max_dynamic_displacement": s["max_dynamic_displacement"],
+            "impact_factor": s["impact_factor"],
+            "max_dynamic_strain": s["max_dynamic_strain"],
+            "strain_impact_factor": s["strain_impact_factor"],
+            "max_abs_acceleration": s["max_abs_acceleration"],
+            "min_tire_force": min(s["min_wheel_force"].values()),
+            "contact_lost": any(v["lost"] for v in s["contact_loss"].values()),
+            "seconds": time.perf_counter() - t0,
+        }
+    fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
+    guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
+    if as_json:
+        typer.echo(json_text(table))
+        return
+    if base.name:
+        typer.echo(base.name)
+    typer.echo(f"  {'tire model':<20} {'u_max [mm]':>10} {'IM':>7} {'ε_max [µε]':>11} {'IM_ε':>7} {'|a|max':>8} {'F_min [kN]':>10} {'time [s]':>8}")
+    for label, row in table.items():
+        typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * 1e3:10.4f} {row['impact_factor']:7.4f} "
+                   f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:7.4f} "
+                   f"{row['max_abs_acceleration']:8.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
+    typer.echo(f"  figure {fig}; table {out_dir / 'compare-tires.json'}")
