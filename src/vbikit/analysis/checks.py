@@ -65,7 +65,7 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     y = bridge.default_response_y if response_y is None else float(response_y)
     x = bridge.default_x_at(y) if response_x is None else float(response_x)
     xi = float(bridge.span_coordinate(x, y))  # along the span from the support line (skew decks)
-    skew = float(getattr(bridge, "skew", 0.0) or 0.0)
+    skew = float(bridge.skew)
     if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
         out.append(f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the skew (oblique mesh), "
                    f"which grillage practice keeps to skews up to {OBLIQUE_MESH_ADVISED_SKEW:g}° (ospgrillage's meshing rules); expect "

@@ -45,6 +45,9 @@ class ModalBridge(abc.ABC):
     default_lateral_offset: float = 0.0
     #: label only (models override it)
     name: str = ""
+    #: skew angle θ [°] of a model built with oblique support lines (the slab-on-girder grillage's
+    #: oblique mesh); 0 for every other model — the geometry of any model is :attr:`skew_tan`
+    skew: float = 0.0
 
     @property
     def default_section(self) -> float:
@@ -69,13 +72,6 @@ class ModalBridge(abc.ABC):
         """tan θ [-] of the support lines' skew: 0 (square supports) unless a skew deck says otherwise
         (its support lines pass through (x_k, 0) with ξ = x − y tan θ = x_k on them)."""
         return 0.0
-
-    @property
-    def skew(self) -> float:
-        """Skew angle θ [°] of the support lines, arctan of :attr:`skew_tan` (0: square supports; a
-        slab-on-girder deck gives its own ``skew``)."""
-        t = self.skew_tan
-        return float(np.degrees(np.arctan(t))) if t else 0.0
 
     @property
     def support_x(self) -> NDArray[np.float64]:
