@@ -1,7 +1,8 @@
-"""Bridge models reduced to modes (the modal-bridge interface, the Euler–Bernoulli beam,
-the slab-on-girder grillage deck, imported modes, presets)."""
-from vbikit.bridge.base import ModalBridge
+"""Bridge models reduced to modes (the modal-bridge interface and its optional capabilities, the
+Euler–Bernoulli beam, the continuous beam, the slab-on-girder grillage deck, imported modes, presets)."""
+from vbikit.bridge.base import DescribesModes, GirderDeck, HasLoadEffects, ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
+from vbikit.bridge.continuous import ContinuousBeam
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
 from vbikit.bridge.sections import (
@@ -13,8 +14,12 @@ from vbikit.bridge.sections import (
 __all__ = [
     "AASHTO_GIRDERS",
     "BRIDGE_PRESETS",
+    "ContinuousBeam",
+    "DescribesModes",
     "EulerBernoulliBeam",
+    "GirderDeck",
     "GirderSection",
+    "HasLoadEffects",
     "ModalBridge",
     "SlabOnGirderBridge",
     "composite_beam_properties",
