@@ -60,7 +60,6 @@ driver travelling in +x, since y is positive to the left); Girder n is at the mo
 """
 from __future__ import annotations
 
-import logging
 from dataclasses import asdict, dataclass, field, fields
 from functools import cached_property
 from typing import Optional
@@ -70,8 +69,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
-from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge import mode_cache
+from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
 from vbikit.bridge.deck_effects import deck_load_effect, load_weights
 from vbikit.bridge.effects import LoadEffect
@@ -90,8 +89,6 @@ from vbikit.bridge.sections import (
     GirderSection,
     composite_beam_properties,
 )
-
-log = logging.getLogger(__name__)
 
 #: largest skew angle [°] of the support lines the oblique-mesh grillage takes
 MAX_SKEW = 45.0
