@@ -151,7 +151,8 @@ def deck_table() -> str:
     """[bridge.deck] keys: the SlabOnGirderBridge parameters a scenario may set."""
     import dataclasses
 
-    from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS, SlabOnGirderBridge, deck_parameter_docs
+    from vbikit.bridge.girder_deck import SlabOnGirderBridge
+    from vbikit.scenario.deck import SCENARIO_PARAMETERS, deck_parameter_docs
 
     docs = deck_parameter_docs()
     rows = ["| key | default | unit | meaning |", "|---|---|---|---|"]

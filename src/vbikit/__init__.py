@@ -16,12 +16,7 @@ by :func:`~vbikit.solve.simulate`; :func:`vbikit.run` runs a whole scenario (a f
 dict, or a crossing with a response plan) and returns its :class:`~vbikit.scenario.report.Report`,
 whose ``summary`` is exactly what ``vbikit run --json`` prints.
 """
-from importlib.metadata import PackageNotFoundError, version
-
-try:
-    __version__ = version("vbikit")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0.0.0+unknown"
+from vbikit._version import __version__
 
 from typing import TYPE_CHECKING
 

@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from vbikit.bridge import BRIDGE_PRESETS, SlabOnGirderBridge
-from vbikit.bridge.girder_deck import _hermite_linear_coupling
-from vbikit.bridge.nodal import _hermite
+from vbikit.bridge.elements import hermite_linear_coupling
+from vbikit.bridge.nodal import hermite_basis
 from vbikit.bridge.sections import AASHTO_GIRDERS
 
 IN = 0.0254
@@ -162,10 +162,10 @@ def test_hermite_linear_coupling_matches_quadrature():
     h = 0.73
     xg, wg = np.polynomial.legendre.leggauss(6)
     t = 0.5 * (xg + 1)
-    nh = np.array(_hermite(t, h, 0))
+    nh = np.array(hermite_basis(t, h, 0))
     nl = np.array([1 - t, t])
     quad = (nh * wg) @ nl.T * h / 2
-    assert _hermite_linear_coupling(h) == pytest.approx(quad, rel=1e-13)
+    assert hermite_linear_coupling(h) == pytest.approx(quad, rel=1e-13)
 
 
 def test_cache_round_trip(tmp_path):

@@ -23,9 +23,10 @@ from pydantic import BaseModel
 
 from vbikit.analysis import girder_responses, point_response, summary
 from vbikit.analysis.effects import load_effect_report
-from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS, SlabOnGirderBridge
+from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.modefile import write_modes
 from vbikit.scenario import build, parse_scenario
+from vbikit.scenario.deck import SCENARIO_PARAMETERS
 from vbikit.scenario.schema import DefectSpec, Scenario, VehicleEntry
 from vbikit.solve import simulate
 from vbikit.vehicle.presets import VEHICLE_PRESETS

@@ -45,9 +45,9 @@ def _rigid_plane(bridge, a: float, b: float, c: float) -> np.ndarray:
     for j, y in enumerate(bridge.girder_y):
         x = bridge.stations + y * bridge.skew_tan
         for i, xi in enumerate(x):
-            u[bridge._dof(j, i, 0)] = a + b * xi + c * y
-            u[bridge._dof(j, i, 1)] = b
-            u[bridge._dof(j, i, 2)] = c
+            u[bridge.dof_map.dof(j, i, 0)] = a + b * xi + c * y
+            u[bridge.dof_map.dof(j, i, 1)] = b
+            u[bridge.dof_map.dof(j, i, 2)] = c
     return u
 
 

@@ -60,7 +60,7 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
         if peak > MAX_ROAD_FEATURE:
             out.append(f"road: the {side}profile reaches {peak:.3g} m where the wheels go (more than {MAX_ROAD_FEATURE} m); "
                        "road elevations are in metres — check the profile's unit or the defect sizes")
-    skew = float(getattr(crossing.bridge, "skew", 0.0) or 0.0)
+    skew = float(crossing.bridge.skew)
     if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
         out.append(f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the skew (oblique mesh), "
                    f"which grillage practice keeps to skews up to {OBLIQUE_MESH_ADVISED_SKEW:g}° (ospgrillage's meshing rules); expect "

@@ -25,6 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
+from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.solve.result import CrossingResult
 
@@ -55,8 +56,8 @@ class LoadEffectResponse:
 
 
 def supports_load_effects(bridge: object) -> bool:
-    """True if the bridge model offers load effects (a ``load_effect`` method)."""
-    return callable(getattr(bridge, "load_effect", None))
+    """True if the bridge model offers load effects (:class:`~vbikit.bridge.base.HasLoadEffects`)."""
+    return isinstance(bridge, HasLoadEffects)
 
 
 def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -153,16 +154,16 @@ def vehicle_axle_count(vehicle: Any) -> int:
     return len({round(float(w.offset), 3) for w in vehicle.wheels})
 
 
-def loaded_length(bridge: object, x: float | None = None, y: float | None = None) -> float:
+def loaded_length(bridge: ModalBridge, x: float | None = None, y: float | None = None) -> float:
     """The AASHTO Standard loaded length [m] of a deflection read at (x, y): the span containing the
     section (x default the bridge's default section on the line y; on a skew deck the span is found
     from ξ = x − y tan θ along the girders), the whole length of a single span."""
-    spans = getattr(bridge, "spans", None)
-    if spans is None:
-        return float(bridge.span)  # type: ignore[attr-defined]
-    y = float(getattr(bridge, "default_response_y", 0.0)) if y is None else float(y)
-    x = float(bridge.default_x_at(y)) if x is None else float(x)  # type: ignore[attr-defined]
-    return float(spans[bridge.span_index(float(bridge.span_coordinate(x, y)))])  # type: ignore[attr-defined]
+    spans = bridge.span_lengths
+    if len(spans) == 1:
+        return float(spans[0])
+    y = float(bridge.default_response_y) if y is None else float(y)
+    x = float(bridge.default_x_at(y)) if x is None else float(x)
+    return float(spans[bridge.span_index(float(bridge.span_coordinate(x, y)))])
 
 
 def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",

@@ -5,13 +5,24 @@ circular frequencies ``omega`` [rad/s], modal damping ratios ``damping_ratios`` 
 *mass-normalised* mode shapes (Φᵀ M Φ = I), evaluated at deck points (x, y).  Any model
 that can supply these — the Euler–Bernoulli beam here, a 3D slab-on-girder FE model or
 modes imported from another program — plugs into the solver unchanged.
+
+Optional capabilities are :class:`typing.Protocol` classes, checked with ``isinstance``:
+:class:`GirderDeck` (girder lines: per-girder responses, deck width), :class:`HasLoadEffects`
+(moments, shears, reactions) and :class:`DescribesModes` (a name for every mode).  Everything
+every bridge can answer — the default vehicle offset, response point and section, the skew, the
+supports and spans — is a :class:`ModalBridge` attribute with a default, so callers need no
+attribute probes.
 """
 from __future__ import annotations
 
 import abc
+from typing import TYPE_CHECKING, Optional, Protocol, runtime_checkable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:
+    from vbikit.bridge.effects import LoadEffect
 
 
 #: modal damping ratio [-] of every bridge model and scenario unless given (2 %, the paper's value)
@@ -32,6 +43,11 @@ class ModalBridge(abc.ABC):
     span: float
     #: vehicle centreline y [m] a crossing uses when it is not given (models override it)
     default_lateral_offset: float = 0.0
+    #: label only (models override it)
+    name: str = ""
+    #: skew angle θ [°] of a model built with oblique support lines (the slab-on-girder grillage's
+    #: oblique mesh); 0 for every other model — the geometry of any model is :attr:`skew_tan`
+    skew: float = 0.0
 
     @property
     def default_section(self) -> float:
@@ -56,6 +72,21 @@ class ModalBridge(abc.ABC):
         """tan θ [-] of the support lines' skew: 0 (square supports) unless a skew deck says otherwise
         (its support lines pass through (x_k, 0) with ξ = x − y tan θ = x_k on them)."""
         return 0.0
+
+    @property
+    def support_x(self) -> NDArray[np.float64]:
+        """ξ [m] of the support lines, entry first: 0 and the span (models on several spans override it)."""
+        return np.array([0.0, float(self.span)])
+
+    @property
+    def span_lengths(self) -> tuple[float, ...]:
+        """Length [m] of every span between supports, entry first: (span,) for a single span."""
+        return (float(self.span),)
+
+    def span_index(self, x: float) -> int:
+        """0-based span containing ξ = x [m] (an interior support belongs to the span on its right)."""
+        xs = self.support_x
+        return int(np.clip(np.searchsorted(xs, x, side="right") - 1, 0, xs.size - 2))
 
     @property
     def lateral_edges(self) -> tuple[float, float]:
@@ -129,3 +160,44 @@ class ModalBridge(abc.ABC):
         lead = x.shape[:-1]
         phi = self.mode_shapes(x.ravel(), y.ravel()).reshape(*x.shape, self.omega.size)
         return np.einsum("...p,...pm->...m", f, phi).reshape(*lead, self.omega.size) / self.omega**2
+
+
+@runtime_checkable
+class GirderDeck(Protocol):
+    """A deck with girder lines (Girder 1 at the most negative y): per-girder responses and sections."""
+
+    @property
+    def girder_y(self) -> NDArray[np.float64]:
+        """y [m] of the girder lines, Girder 1 first (ascending)."""
+    @property
+    def n_girders(self) -> int:
+        """Number of girders."""
+    @property
+    def default_girder(self) -> int:
+        """Girder (1-based) responses are reported for when neither a girder nor a y is given."""
+    @property
+    def deck_width(self) -> Optional[float]:
+        """Total deck width [m], centred on y = 0 (None when unknown)."""
+    def girder_index(self, girder: int) -> int:
+        """0-based line index of the 1-based ``girder`` (checked: ValueError outside 1 … n_girders)."""
+
+
+@runtime_checkable
+class HasLoadEffects(Protocol):
+    """A bridge with load effects (:mod:`vbikit.bridge.effects`): moments, shears and reactions."""
+
+    def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
+                    girder: Optional[int] = None) -> "LoadEffect":
+        """``kind`` "moment" or "shear" at section x [m], or "reaction" of support index ``support``
+        (0 = entry); ``girder`` on a girder deck (None: the default girder)."""
+    def default_load_effects(self) -> "list[LoadEffect]":
+        """The effects reported when none are asked for (moments at midspan and over supports, shears,
+        reactions)."""
+
+
+@runtime_checkable
+class DescribesModes(Protocol):
+    """A bridge that names its modes (e.g. "bending, 1 half-wave along the span")."""
+
+    def mode_descriptions(self) -> list[str]:
+        """One short description per mode, in the order of ``omega``."""

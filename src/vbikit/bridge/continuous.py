@@ -10,7 +10,7 @@ rotational springs k_θ [N·m/rad] (0 = pinned, inf = clamped).  Local damage
 
 Discretisation: cubic Hermite Euler–Bernoulli elements (two DOFs per node, w and ∂w/∂x),
 ``elements_per_span`` equal elements per span, with extra nodes at the ends of damaged regions
-so that each element has one EI; consistent mass.  Element matrices (e.g. Przemieniecki,
+so that each element has one EI; consistent mass.  Element matrices (:mod:`vbikit.bridge.elements`; Przemieniecki,
 *Theory of Matrix Structural Analysis*, 1968, §5.3 and §11.3):
 
     K_e = EI/h³ [[12, 6h, −12, 6h], [6h, 4h², −6h, 2h²], …],   M_e = m h/420 [[156, 22h, 54, −13h], …]
@@ -47,27 +47,14 @@ from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
 from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
 from vbikit.bridge.eigen import lowest_modes
-from vbikit.bridge.nodal import NodalModes
+from vbikit.bridge.elements import beam_element_mass, beam_element_stiffness
+from vbikit.bridge.nodal import NodalModes, hermite_basis
 
 Numbers = Union[float, Sequence[float]]
 
 #: Gauss–Legendre points and weights on [0, 1] (3 points: exact for the degree-4 integrands here)
 _GAUSS_T = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]) + 1.0) / 2.0
 _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
-
-
-def beam_element_stiffness(EI: float, h: float) -> NDArray[np.float64]:
-    """Euler–Bernoulli element stiffness [N/m …] for DOFs (w₁, θ₁, w₂, θ₂), length h [m]."""
-    return EI / h**3 * np.array(
-        [[12, 6 * h, -12, 6 * h], [6 * h, 4 * h * h, -6 * h, 2 * h * h], [-12, -6 * h, 12, -6 * h], [6 * h, 2 * h * h, -6 * h, 4 * h * h]]
-    )
-
-
-def beam_element_mass(m: float, h: float) -> NDArray[np.float64]:
-    """Consistent element mass [kg …] of a beam with m [kg/m] for DOFs (w₁, θ₁, w₂, θ₂)."""
-    return m * h / 420.0 * np.array(
-        [[156, 22 * h, 54, -13 * h], [22 * h, 4 * h * h, 13 * h, -3 * h * h], [54, 13 * h, 156, -22 * h], [-13 * h, -3 * h * h, -22 * h, 4 * h * h]]
-    )
 
 
 def _per_span(name: str, value: Numbers, n: int) -> tuple[float, ...]:
@@ -180,9 +167,10 @@ class ContinuousBeam(ModalBridge):
         """Midpoint of the first span [m] (where deflection and sagging moment are read by default)."""
         return 0.5 * self.spans[0]
 
-    def span_index(self, x: float) -> int:
-        """0-based span containing x [m] (an interior support belongs to the span on its right)."""
-        return int(np.clip(np.searchsorted(self.support_x, x, side="right") - 1, 0, len(self.spans) - 1))
+    @property
+    def span_lengths(self) -> tuple[float, ...]:
+        """Length [m] of every span (``spans``)."""
+        return self.spans
 
     @cached_property
     def nodes(self) -> NDArray[np.float64]:
@@ -306,8 +294,6 @@ class ContinuousBeam(ModalBridge):
         return self._nodal(u[:, None]).evaluate(x, np.zeros_like(x))[:, 0]
 
     def _load_vector(self, xp: NDArray[np.float64], fp: NDArray[np.float64]) -> NDArray[np.float64]:
-        from vbikit.bridge.nodal import _hermite
-
         x = self.nodes
         F = np.zeros(2 * x.size)
         for xx, f in zip(xp, fp):
@@ -315,7 +301,7 @@ class ContinuousBeam(ModalBridge):
                 continue
             e = int(np.clip(np.searchsorted(x, xx, side="right") - 1, 0, x.size - 2))
             h = x[e + 1] - x[e]
-            n = _hermite(np.array((xx - x[e]) / h), h, 0)
+            n = hermite_basis(np.array((xx - x[e]) / h), h, 0)
             F[2 * e:2 * e + 4] += f * np.array([float(v) for v in n])
         return F
 

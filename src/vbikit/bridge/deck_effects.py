@@ -21,38 +21,66 @@ element length (4e-3 for the first bending mode of Bridge 2 with 34 elements).
 At a station the girder moment jumps by the couple the transverse members apply to the node
 (their torsion, and on a skew deck their bending, act on ∂w/∂x): a moment or shear at a station
 is the one just right of it, M(s⁺) and V(s⁺), from the element that starts there.  A section
-within :data:`~vbikit.bridge.girder_deck.STATION_TOLERANCE` × span of a station is that station,
+within :data:`~vbikit.bridge.nodal.STATION_TOLERANCE` × span of a station is that station,
 so a skew girder's station asked for at x = ξ_i + y_g tan θ is read there whatever the round-off
 of x − y_g tan θ.
+
+The grillage enters through the public attributes of :class:`DeckModel` — among them its DOF
+numbering :class:`~vbikit.bridge.nodal.DofMap` (``dof_map``) — so this module does not import the
+grillage's module.
 """
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Optional
+from typing import Optional, Protocol
 
 import numpy as np
+import scipy.sparse as sp
 import scipy.sparse.linalg as spla
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
+from vbikit.bridge.base import GirderDeck
 from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
-from vbikit.bridge.girder_deck import snap_to_stations
-from vbikit.bridge.nodal import _hermite
-
-if TYPE_CHECKING:
-    from vbikit.bridge.girder_deck import SlabOnGirderBridge
+from vbikit.bridge.elements import beam_element_stiffness
+from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stations
 
 
+class DeckModel(GirderDeck, Protocol):
+    """What the load effects read of a grillage deck (:class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge`)."""
 
-def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArray[np.float64]
+    span: float
+    skew: float
+    bearing_stiffness: Optional[float]
+
+    @property
+    def dof_map(self) -> DofMap: ...
+    @property
+    def nodal_modes(self) -> NodalModes: ...
+    @property
+    def omega(self) -> NDArray[np.float64]: ...
+    @property
+    def support_stations(self) -> tuple[int, ...]: ...
+    @property
+    def support_x(self) -> NDArray[np.float64]: ...
+    @property
+    def line_properties(self) -> dict[str, NDArray[np.float64]]: ...
+    def assemble(self) -> tuple[sp.csr_matrix, sp.csr_matrix, NDArray[np.intp]]: ...
+    def girder_element_EI(self, line: int, element: int) -> float: ...
+    def girder_x(self, girder: int, xi: ArrayLike) -> NDArray[np.float64]: ...
+    def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]: ...
+    def span_index(self, x: float) -> int: ...
+
+
+def load_weights(dofs: DofMap, x: ArrayLike, y: ArrayLike
                  ) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.intp], NDArray[np.float64]]:
     """Consistent load of unit upward forces at (x, y): DOF indices and coefficients (n, 12), the
     element index e of each point and its line shares c (n, n_lines).  Along the lines: Hermite in
     ξ = x − y tan θ on (w, ∂w/∂x), linear on ∂w/∂y; across them (along the transverse members):
     Hermite on w and on the slope along the members, ∂w/∂y + tan θ ∂w/∂x — the interpolation of
     :class:`~vbikit.bridge.nodal.NodalModes` with the FE model's linear transverse slopes.  Points
-    off the deck (ξ outside 0 … span) get zero coefficients."""
-    xs, ys = bridge.stations, bridge.girder_y
-    nx = bridge.element_count
-    tan = bridge.skew_tan
+    off the deck (ξ outside 0 … span) get zero coefficients.  ``dofs`` is the grillage's DOF map."""
+    xs, ys = dofs.stations, dofs.line_y
+    nx = dofs.n_elements
+    tan = dofs.skew_tan
     x = np.asarray(x, float).ravel()
     y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
     if tan:
@@ -60,8 +88,8 @@ def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArra
     e = np.clip(np.searchsorted(xs, x, side="right") - 1, 0, nx - 1)
     h = xs[e + 1] - xs[e]
     t = (x - xs[e]) / h
-    nxh = _hermite(t, h, 0)
-    nxh1 = _hermite(t, h, 1) if tan else None
+    nxh = hermite_basis(t, h, 0)
+    nxh1 = hermite_basis(t, h, 1) if tan else None
     nxl = (1 - t, t)
     n = x.size
     if ys.size == 1:
@@ -72,7 +100,7 @@ def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArra
     else:
         j = np.clip(np.searchsorted(ys, y, side="right") - 1, 0, ys.size - 2)
         b = ys[j + 1] - ys[j]
-        ny = _hermite((y - ys[j]) / b, b, 0)
+        ny = hermite_basis((y - ys[j]) / b, b, 0)
         j0, j1 = j, j + 1
         cw0, cs0, cw1, cs1 = (np.array(v, float) * np.ones(n) for v in ny)
         lo, hi = y < ys[0], y > ys[-1]
@@ -88,7 +116,7 @@ def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArra
     k = 0
     for jj, cw, cs in ((j0, cw0, cs0), (j1, cw1, cs1)):
         for a in (0, 1):
-            node = 3 * (jj * (nx + 1) + e + a)
+            node = dofs.dof(jj, e + a, 0)
             idx[:, k], coef[:, k] = node, cw * nxh[2 * a]
             idx[:, k + 1], coef[:, k + 1] = node + 1, cw * nxh[2 * a + 1]
             idx[:, k + 2], coef[:, k + 2] = node + 2, cs * nxl[a]
@@ -105,7 +133,7 @@ def load_weights(bridge: "SlabOnGirderBridge", x: NDArray[np.float64], y: NDArra
     return idx, coef, e, shares
 
 
-def _factor(bridge: "SlabOnGirderBridge"):
+def _factor(bridge: DeckModel):
     """K, M, free DOFs and the LU factors of the free stiffness, kept on the bridge object."""
     cache = bridge.__dict__.setdefault("_load_effect_cache", {})
     if "factor" not in cache:
@@ -114,7 +142,7 @@ def _factor(bridge: "SlabOnGirderBridge"):
     return cache["factor"]
 
 
-def _field(bridge: "SlabOnGirderBridge", g: NDArray[np.float64], fixed_dof: Optional[int] = None) -> NDArray[np.float64]:
+def _field(bridge: DeckModel, g: NDArray[np.float64], fixed_dof: Optional[int] = None) -> NDArray[np.float64]:
     """v with gᵀu = vᵀF for every load F (u = K⁻¹F on the free DOFs); a reaction at a fixed DOF d
     adds K_{d,f} u − F_d (``g`` then unused)."""
     K, _, free, lu = _factor(bridge)
@@ -127,7 +155,7 @@ def _field(bridge: "SlabOnGirderBridge", g: NDArray[np.float64], fixed_dof: Opti
     return v
 
 
-def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float] = None,
+def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
     """Moment or shear of ``girder`` at section x [m], or the reaction of its bearing at support
     ``support`` (0 = entry, then the interior supports, the last = exit)."""
@@ -136,14 +164,12 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
     if girder is None:
         girder = int(bridge.default_girder or 1)
     j = bridge.girder_index(girder)
-    nx, xs = bridge.element_count, bridge.stations
+    dofs = bridge.dof_map
+    nx, xs = dofs.n_elements, dofs.stations
     K, M, free, _ = _factor(bridge)
     omega = bridge.omega
     modes = bridge.nodal_modes
-    full = np.zeros((K.shape[0], omega.size))
-    full[0::3] = modes.w.reshape(-1, omega.size)
-    full[1::3] = modes.wx.reshape(-1, omega.size)
-    full[2::3] = modes.wy.reshape(-1, omega.size)
+    full = dofs.vector(modes)
     supports = bridge.support_stations
     sx = bridge.support_x
     spans = np.diff(sx)
@@ -151,7 +177,7 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
         if support is None or not 0 <= int(support) < len(supports):
             raise ValueError(f"reaction: support must be 0 … {len(supports) - 1}, got {support!r}")
         support = int(support)
-        d = bridge._dof(j, supports[support], 0)
+        d = dofs.dof(j, supports[support], 0)
         if bridge.bearing_stiffness is None:
             v = _field(bridge, np.zeros(K.shape[0]), fixed_dof=d)
             modal = (K @ full)[d] - omega**2 * (M @ full)[d]
@@ -162,7 +188,7 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
             modal = -bridge.bearing_stiffness * full[d]
 
         def influence(xp, yp, v=v):
-            idx, coef, _, _ = load_weights(bridge, xp, yp)
+            idx, coef, _, _ = load_weights(dofs, xp, yp)
             return (v[idx] * coef).sum(axis=1)
 
         length = spans[0] if support == 0 else spans[-1] if support == spans.size else 0.5 * (spans[support - 1] + spans[support])
@@ -179,14 +205,12 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
     e = int(np.clip(np.searchsorted(xs, s, side="right") - 1, 0, nx - 1))
     a, b = xs[e], xs[e + 1]
     h = b - a
-    from vbikit.bridge.continuous import beam_element_stiffness
-
     EI = bridge.girder_element_EI(j, e)
     ke = beam_element_stiffness(EI, h)
-    dofs = [bridge._dof(j, e, 0), bridge._dof(j, e, 1), bridge._dof(j, e + 1, 0), bridge._dof(j, e + 1, 1)]
+    element_dofs = [dofs.dof(j, e, 0), dofs.dof(j, e, 1), dofs.dof(j, e + 1, 0), dofs.dof(j, e + 1, 1)]
     g = np.zeros(K.shape[0])
     row = (s - a) * ke[0] - ke[1] if kind == "moment" else ke[0]
-    g[dofs] = row
+    g[element_dofs] = row
     v = _field(bridge, g)
     if kind == "moment":
         modal = EI * modes.line_values(np.array([s]), 2)[j, 0]
@@ -198,13 +222,13 @@ def deck_load_effect(bridge: "SlabOnGirderBridge", kind: str, x: Optional[float]
 
     def influence(xp, yp, v=v, kind=kind):
         xp = np.asarray(xp, float).ravel()
-        idx, coef, el, shares = load_weights(bridge, xp, yp)
+        idx, coef, el, shares = load_weights(dofs, xp, yp)
         out = (v[idx] * coef).sum(axis=1)
         inside = el == e
         if np.any(inside):
             c = shares[inside, j]
             xi = bridge.span_coordinate(xp[inside], np.broadcast_to(np.asarray(yp, float), xp.shape)[inside])
-            n = _hermite((xi - a) / h, h, 0)
+            n = hermite_basis((xi - a) / h, h, 0)
             if kind == "moment":
                 out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))
             else:

@@ -60,13 +60,8 @@ driver travelling in +x, since y is positive to the left); Girder n is at the mo
 """
 from __future__ import annotations
 
-import hashlib
-import json
-import logging
-import os
 from dataclasses import asdict, dataclass, field, fields
 from functools import cached_property
-from pathlib import Path
 from typing import Optional
 
 import numpy as np
@@ -74,19 +69,26 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from vbikit.bridge import mode_cache
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
-from vbikit.bridge.continuous import beam_element_mass, beam_element_stiffness
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
+from vbikit.bridge.deck_effects import deck_load_effect, load_weights
 from vbikit.bridge.effects import LoadEffect
 from vbikit.bridge.eigen import lowest_modes
-from vbikit.bridge.nodal import NodalModes, _hermite
+from vbikit.bridge.elements import (
+    bar_element_mass,
+    bar_element_stiffness,
+    beam_element_mass,
+    beam_element_stiffness,
+    hermite_linear_coupling,
+    oblique_member_rotation,
+)
+from vbikit.bridge.nodal import DofMap, NodalModes, girder_line_strain
 from vbikit.bridge.sections import (
     AASHTO_GIRDERS,
     GirderSection,
     composite_beam_properties,
 )
-
-log = logging.getLogger(__name__)
 
 #: largest skew angle [°] of the support lines the oblique-mesh grillage takes
 MAX_SKEW = 45.0
@@ -94,19 +96,8 @@ MAX_SKEW = 45.0
 #: the oblique mesh up to 30°): a warning
 OBLIQUE_MESH_ADVISED_SKEW = 30.0
 
-#: a section within this fraction of the span of a station is at the station: on a skew deck
-#: x = ξ_i + y tan θ comes back as ξ = x − y tan θ with round-off either side of the node, where the
-#: girders' curvatures and moments jump (a section at a station is read just right of it)
-STATION_TOLERANCE = 1e-9
-
 #: bumped whenever the model changes in a way that changes its modes (invalidates caches)
 MODEL_VERSION = "girder_deck-2"
-
-
-def default_cache_dir() -> Path:
-    """``$VBIKIT_CACHE_DIR`` if set, else ``~/.cache/vbikit``."""
-    env = os.environ.get("VBIKIT_CACHE_DIR")
-    return Path(env) if env else Path.home() / ".cache" / "vbikit"
 
 
 def approximate_torsion_constant(section: GirderSection) -> float:
@@ -115,32 +106,6 @@ def approximate_torsion_constant(section: GirderSection) -> float:
     note), with the polar moment I_p replaced by the strong-axis I (so J is overestimated by
     at most I_p/I − 1, ≈ 10 % for AASHTO girders).  [substitute] for the unpublished J."""
     return section.area**4 / (4.0 * np.pi**2 * section.inertia)
-
-
-def _hermite_linear_coupling(h: float) -> NDArray[np.float64]:
-    """∫₀ʰ N_hermite(x)ᵀ N_linear(x) dx, shape (4, 2) (closed form, checked by Gauss quadrature in tests)."""
-    return np.array([[7 * h / 20, 3 * h / 20], [h * h / 20, h * h / 30], [3 * h / 20, 7 * h / 20], [-h * h / 30, -h * h / 20]])
-
-
-def _bar(k: float) -> NDArray[np.float64]:
-    return k * np.array([[1.0, -1.0], [-1.0, 1.0]])
-
-
-def _oblique_member_rotation(skew: float) -> Optional[NDArray[np.float64]]:
-    """T (6, 6) with u_local = T u_nodes for a transverse member along the support lines' skew θ [°]:
-    local (w_a, r_a, w_b, r_b, n_a, n_b) — r the slope along the member e = (sin θ, cos θ),
-    n = ∂w/∂x cos θ − ∂w/∂y sin θ the slope across it (its twist) — from the nodes'
-    (w, ∂w/∂x, ∂w/∂y) at a then b.  None for θ = 0 (r = ∂w/∂y, n = ∂w/∂x: no transformation)."""
-    if not skew:
-        return None
-    c, s = np.cos(np.radians(skew)), np.sin(np.radians(skew))
-    T = np.zeros((6, 6))
-    for end, (row_w, row_r, row_n) in enumerate(((0, 1, 4), (2, 3, 5))):
-        col = 3 * end
-        T[row_w, col] = 1.0
-        T[row_r, col + 1], T[row_r, col + 2] = s, c
-        T[row_n, col + 1], T[row_n, col + 2] = c, -s
-    return T
 
 
 @dataclass(frozen=True)
@@ -208,7 +173,7 @@ class SlabOnGirderBridge(ModalBridge):
         Label only.
     use_cache, cache_dir
         On-disk mode cache (keyed by a hash of every parameter that changes the modes); never
-        needed for correctness.  ``cache_dir`` None = :func:`default_cache_dir`.
+        needed for correctness.  ``cache_dir`` None = :func:`vbikit.bridge.mode_cache.default_cache_dir`.
     """
 
     span: float
@@ -369,10 +334,10 @@ class SlabOnGirderBridge(ModalBridge):
         """x [m] of the points at ξ [m] along girder ``girder`` (1-based): ξ + y_g tan θ."""
         return np.asarray(xi, float) + float(self.girder_y[self.girder_index(girder)]) * self.skew_tan
 
-    def span_index(self, x: float) -> int:
-        """0-based span containing x [m] (an interior support belongs to the span on its right)."""
-        xs = self.support_x
-        return int(np.clip(np.searchsorted(xs, x, side="right") - 1, 0, xs.size - 2))
+    @property
+    def span_lengths(self) -> tuple[float, ...]:
+        """Length [m] of every span (``spans``, or the single span)."""
+        return (float(self.span),) if self.spans is None else self.spans
 
     def _tributary(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Lower and upper y of each girder line's tributary deck strip."""
@@ -415,6 +380,11 @@ class SlabOnGirderBridge(ModalBridge):
                 out["J"][j] += self.parapet_mass * d * d
         return out
 
+    @property
+    def strain_lever_arm(self) -> NDArray[np.float64]:
+        """Height c [m] of each girder line's composite neutral axis above its bottom fibre (``line_properties["c"]``)."""
+        return self.line_properties["c"]
+
     # ------------------------------------------------------------------ FE model
     def girder_element_EI(self, line: int, element: int) -> float:
         """EI [N·m²] of girder line ``line`` (0-based) in element ``element``, damage included."""
@@ -425,8 +395,11 @@ class SlabOnGirderBridge(ModalBridge):
         xs = self.stations
         return EI * stiffness_factor(damage, float(xs[element]), float(xs[element + 1]), girder=line + 1)
 
-    def _dof(self, line: int, station: int, k: int) -> int:
-        return 3 * (line * (self.element_count + 1) + station) + k
+    @cached_property
+    def dof_map(self) -> DofMap:
+        """The grid's DOF numbering (:class:`~vbikit.bridge.nodal.DofMap`): node (line j, station i) →
+        3 (j (n_el + 1) + i) + (0: w, 1: ∂w/∂x, 2: ∂w/∂y), with the stations ξ, the girder lines' y and tan θ."""
+        return DofMap(self.stations, self.girder_y, self.skew_tan)
 
     def assemble(self) -> tuple[sp.csr_matrix, sp.csr_matrix, NDArray[np.intp]]:
         """Global stiffness K [N/m …], mass M [kg …] (all DOFs) and the indices of the free DOFs.
@@ -436,7 +409,8 @@ class SlabOnGirderBridge(ModalBridge):
         nx = self.element_count
         xs = self.stations
         n_lines = self.n_girders
-        ndof = 3 * n_lines * (nx + 1)
+        dof = self.dof_map.dof
+        ndof = self.dof_map.n_dof
         rows: list[NDArray[np.intp]] = []
         cols: list[NDArray[np.intp]] = []
         kv: list[NDArray[np.float64]] = []
@@ -454,15 +428,15 @@ class SlabOnGirderBridge(ModalBridge):
         for j in range(n_lines):
             for i in range(nx):
                 h = xs[i + 1] - xs[i]
-                d = [self._dof(j, i, 0), self._dof(j, i, 1), self._dof(j, i + 1, 0), self._dof(j, i + 1, 1),
-                     self._dof(j, i, 2), self._dof(j, i + 1, 2)]
+                d = [dof(j, i, 0), dof(j, i, 1), dof(j, i + 1, 0), dof(j, i + 1, 1),
+                     dof(j, i, 2), dof(j, i + 1, 2)]
                 ke = np.zeros((6, 6))
                 me = np.zeros((6, 6))
                 ke[:4, :4] = beam_element_stiffness(self.girder_element_EI(j, i), h)
-                ke[4:, 4:] = _bar(p["GJ"][j] / h)
+                ke[4:, 4:] = bar_element_stiffness(p["GJ"][j] / h)
                 me[:4, :4] = beam_element_mass(p["m"][j], h)
-                me[4:, 4:] = p["J"][j] * h / 6.0 * np.array([[2.0, 1.0], [1.0, 2.0]])
-                cpl = p["S"][j] * _hermite_linear_coupling(h)
+                me[4:, 4:] = bar_element_mass(p["J"][j], h)
+                cpl = p["S"][j] * hermite_linear_coupling(h)
                 me[:4, 4:] = cpl
                 me[4:, :4] = cpl.T
                 add(d, ke, me)
@@ -484,7 +458,7 @@ class SlabOnGirderBridge(ModalBridge):
         mu = self.density * t + self.extra_mass_per_area
         y = self.girder_y
         cos = float(np.cos(np.radians(self.skew)))
-        rotation = _oblique_member_rotation(self.skew)
+        rotation = oblique_member_rotation(self.skew)
         for i in range(nx + 1):
             width = trib[i] * cos if self.skew else trib[i]  # slab strip width normal to the member
             EI = self.E_deck * t**3 * width / (12.0 * (1.0 - self.poisson**2)) + diaph[i] * EI_d
@@ -494,13 +468,13 @@ class SlabOnGirderBridge(ModalBridge):
                 ke = np.zeros((6, 6))
                 me = np.zeros((6, 6))
                 ke[:4, :4] = beam_element_stiffness(EI, b)
-                ke[4:, 4:] = _bar(GJ / b)
+                ke[4:, 4:] = bar_element_stiffness(GJ / b)
                 me[:4, :4] = beam_element_mass(mu * width + diaph[i] * m_d, b)
                 if rotation is None:  # local (w_a, ∂w/∂y_a, w_b, ∂w/∂y_b, ∂w/∂x_a, ∂w/∂x_b)
-                    d = [self._dof(j, i, 0), self._dof(j, i, 2), self._dof(j + 1, i, 0), self._dof(j + 1, i, 2),
-                         self._dof(j, i, 1), self._dof(j + 1, i, 1)]
+                    d = [dof(j, i, 0), dof(j, i, 2), dof(j + 1, i, 0), dof(j + 1, i, 2),
+                         dof(j, i, 1), dof(j + 1, i, 1)]
                 else:  # to the nodes' (w, ∂w/∂x, ∂w/∂y) at both ends
-                    d = [self._dof(j, i, k) for k in range(3)] + [self._dof(j + 1, i, k) for k in range(3)]
+                    d = [dof(j, i, k) for k in range(3)] + [dof(j + 1, i, k) for k in range(3)]
                     ke = rotation.T @ ke @ rotation
                     me = rotation.T @ me @ rotation
                 add(d, ke, me)
@@ -508,11 +482,11 @@ class SlabOnGirderBridge(ModalBridge):
         for j in range(n_lines):
             for i in self.support_stations:
                 if self.bearing_stiffness is None:
-                    fixed.append(self._dof(j, i, 0))
+                    fixed.append(dof(j, i, 0))
                 else:
-                    add([self._dof(j, i, 0)], np.array([[self.bearing_stiffness]]), None)
+                    add([dof(j, i, 0)], np.array([[self.bearing_stiffness]]), None)
                 if n_lines == 1:
-                    fixed.append(self._dof(j, i, 2))
+                    fixed.append(dof(j, i, 2))
         r, c = np.concatenate(rows), np.concatenate(cols)
         K = sp.coo_matrix((np.concatenate(kv), (r, c)), shape=(ndof, ndof)).tocsr()
         M = sp.coo_matrix((np.concatenate(mv), (r, c)), shape=(ndof, ndof)).tocsr()
@@ -532,12 +506,7 @@ class SlabOnGirderBridge(ModalBridge):
         if not self.skew:  # nor without skew: a square deck keeps its cache file
             params.pop("skew")
         params["n_elements"] = self.element_count
-        text = json.dumps({"version": MODEL_VERSION, **params}, sort_keys=True, default=float)
-        return hashlib.sha256(text.encode()).hexdigest()[:32]
-
-    def _cache_path(self) -> Path:
-        base = Path(self.cache_dir) if self.cache_dir else default_cache_dir()
-        return base / "modes" / f"slab-on-girder-{self.cache_key()}.npz"
+        return mode_cache.cache_key(MODEL_VERSION, params)
 
     def _solve(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """(ω [rad/s], nodal mode matrix over all DOFs (ndof, n_modes)) from the sparse eigenproblem."""
@@ -569,30 +538,16 @@ class SlabOnGirderBridge(ModalBridge):
     @cached_property
     def nodal_modes(self) -> NodalModes:
         """The mode shapes at the grid nodes (:class:`~vbikit.bridge.nodal.NodalModes`) — solved or read from the cache."""
-        path = self._cache_path() if self.use_cache else None
-        omega = full = None
-        if path is not None and path.is_file():
-            try:
-                with np.load(path) as data:
-                    omega, full = data["omega"], data["modes"]
-                log.debug("modes read from cache %s", path)
-            except Exception as err:  # noqa: BLE001 - a broken cache is only a lost speed-up
-                log.warning("ignoring unreadable mode cache %s: %s", path, err)
-                omega = full = None
-        if omega is None:
+        path = mode_cache.cache_path("slab-on-girder", self.cache_key(), self.cache_dir) if self.use_cache else None
+        cached = mode_cache.load_modes(path) if path is not None else None
+        if cached is None:
             omega, full = self._solve()
             if path is not None:
-                try:
-                    path.parent.mkdir(parents=True, exist_ok=True)
-                    tmp = path.with_suffix(f".{os.getpid()}.tmp.npz")
-                    np.savez(tmp, omega=omega, modes=full)
-                    os.replace(tmp, path)
-                except OSError as err:
-                    log.warning("could not write mode cache %s: %s", path, err)
+                mode_cache.save_modes(path, omega, full)
+        else:
+            omega, full = cached
         object.__setattr__(self, "_omega", np.asarray(omega))
-        shape = (self.n_girders, self.element_count + 1, full.shape[1])
-        return NodalModes(self.stations, self.girder_y, full[0::3].reshape(shape), full[1::3].reshape(shape),
-                          full[2::3].reshape(shape), self.skew_tan)
+        return self.dof_map.nodal(full)
 
     # ------------------------------------------------------------------ ModalBridge
     @property
@@ -631,11 +586,9 @@ class SlabOnGirderBridge(ModalBridge):
         (:func:`vbikit.bridge.deck_effects.load_weights`: Hermite along the lines and across them,
         linear along the lines for the transverse slopes); a force at a node loads only that
         node's w; forces off the deck load nothing."""
-        from vbikit.bridge.deck_effects import load_weights
-
         x, y, f = (np.atleast_1d(np.asarray(a, float)).ravel() for a in np.broadcast_arrays(x, y, forces))
-        idx, coef, _, _ = load_weights(self, x, y)
-        F = np.zeros(3 * self.n_girders * (self.element_count + 1))
+        idx, coef, _, _ = load_weights(self.dof_map, x, y)
+        F = np.zeros(self.dof_map.n_dof)
         np.add.at(F, idx.ravel(), (coef * f[:, None]).ravel())
         return F
 
@@ -646,17 +599,13 @@ class SlabOnGirderBridge(ModalBridge):
         F = self.load_vector(x, y, forces)
         u = np.zeros(K.shape[0])
         u[free] = spla.spsolve(K[free][:, free].tocsc(), F[free])
-        shape = (self.n_girders, self.element_count + 1, 1)
-        return NodalModes(self.stations, self.girder_y, u[0::3].reshape(shape), u[1::3].reshape(shape), u[2::3].reshape(shape),
-                          self.skew_tan)
+        return self.dof_map.nodal(u[:, None])
 
     def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
                     girder: Optional[int] = None) -> LoadEffect:
         """Moment or shear of ``girder`` (default: the default girder) at section x [m] (the deck's x; on
         a skew deck the girder's span runs from x = y_g tan θ), or the reaction of its bearing at
         support 0 (entry), 1, … (:mod:`vbikit.bridge.deck_effects`)."""
-        from vbikit.bridge.deck_effects import deck_load_effect
-
         return deck_load_effect(self, kind, x, girder, support)
 
     def default_load_effects(self, girder: Optional[int] = None) -> list[LoadEffect]:
@@ -673,40 +622,6 @@ class SlabOnGirderBridge(ModalBridge):
     def mode_descriptions(self) -> list[str]:
         """Short descriptions of the modes, e.g. "1st bending", "1st torsion", "transverse (2 nodal lines)"."""
         return describe_modes(self.nodal_modes)
-
-
-def snap_to_stations(xi: ArrayLike, stations: NDArray[np.float64]) -> NDArray[np.float64]:
-    """ξ [m] with every value within :data:`STATION_TOLERANCE` × the span (the stations' extent) of a
-    station replaced by that station (read on the element right of it, whatever its round-off)."""
-    xi = np.asarray(xi, float)
-    k = np.clip(np.searchsorted(stations, xi), 1, stations.size - 1)
-    near = np.where(np.abs(stations[k] - xi) < np.abs(stations[k - 1] - xi), k, k - 1)
-    close = np.abs(stations[near] - xi) <= STATION_TOLERANCE * (stations[-1] - stations[0])
-    return np.where(close, stations[near], xi)
-
-
-def girder_line_strain(modes: NodalModes, lever_arm: NDArray[np.float64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
-    """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes);
-    on a skew deck the lines are read at the point's own ξ = x − y tan θ (along the oblique members);
-    at a station (within round-off, :func:`snap_to_stations`) on the element right of it."""
-    x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
-    x, y = x.ravel(), y.ravel()
-    xi = snap_to_stations(x - y * modes.skew_tan if modes.skew_tan else x, modes.x)
-    out = np.zeros((x.size, modes.n_modes))
-    on = (xi >= 0.0) & (xi <= modes.span)
-    if not np.any(on):
-        return out
-    k = modes.line_values(xi[on], 2)  # (n_lines, p, m)
-    p = np.arange(k.shape[1])
-    ly = modes.y
-    if ly.size == 1:
-        out[on] = lever_arm[0] * k[0]
-        return out
-    yc = np.clip(y[on], ly[0], ly[-1])
-    j = np.clip(np.searchsorted(ly, yc, side="right") - 1, 0, ly.size - 2)
-    t = ((yc - ly[j]) / (ly[j + 1] - ly[j]))[:, None]
-    out[on] = (1 - t) * lever_arm[j][:, None] * k[j, p] + t * lever_arm[j + 1][:, None] * k[j + 1, p]
-    return out
 
 
 def describe_modes(modes: NodalModes) -> list[str]:
@@ -739,73 +654,4 @@ def describe_modes(modes: NodalModes) -> list[str]:
         else:
             kind = f"transverse ({changes} nodal lines)"
         out.append(f"{kind}, {half_waves} half-wave{'s' if half_waves > 1 else ''} along the span")
-    return out
-
-
-#: the parameters a scenario may set in ``[bridge.deck]`` (n_modes and damping_ratio are ``[bridge]`` keys)
-SCENARIO_PARAMETERS: tuple[str, ...] = tuple(
-    f.name for f in fields(SlabOnGirderBridge)
-    if f.name not in ("n_modes", "damping_ratio", "use_cache", "cache_dir", "name", "damage")
-)
-
-
-def deck_parameter_docs() -> dict[str, tuple[str, str]]:
-    """``name -> (description, unit)`` of the :class:`SlabOnGirderBridge` parameters, read from its
-    numpy-style docstring (``a, b : type`` lines; the unit is the description's bracketed text,
-    the i-th one for the i-th name of a shared line, "" when dimensionless or not given)."""
-    import re
-
-    text: dict[str, str] = {}
-    position: dict[str, int] = {}
-    names: list[str] = []
-    for line in (SlabOnGirderBridge.__doc__ or "").splitlines():
-        m = re.match(r"^    (\w[\w, ]*?)\s*:\s*.+$", line) or re.match(r"^    (\w[\w, ]*)$", line)
-        if m and not line.startswith("     "):
-            names = [n.strip() for n in m.group(1).split(",")]
-            for i, n in enumerate(names):
-                text[n], position[n] = "", i
-        elif line.startswith("        ") and names:
-            for n in names:
-                text[n] = (text[n] + " " + line.strip()).strip()
-    out = {}
-    for n, t in text.items():
-        units = re.findall(r"\[([^\[\]]+)\]", t)
-        unit = units[position[n]] if position[n] < len(units) else (units[0] if units else "")
-        out[n] = (t, "" if unit == "-" else unit)
-    return out
-
-
-def deck_parameters(table: dict[str, object]) -> dict[str, object]:
-    """Keyword arguments of :class:`SlabOnGirderBridge` from a scenario's ``[bridge.deck]`` table:
-    ``girder`` is an AASHTO type ("I" … "VI") or a table {area, inertia, y_bottom, depth} [m², m⁴, m, m];
-    ``diaphragms`` a list of x [m]; numbers as given (the constructor checks their ranges)."""
-    def number(v: object, where: str) -> float:  # strict: no "12", no true, finite
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
-            raise ValueError(f"bridge.deck.{where}: must be a finite number, got {v!r}")
-        return float(v)
-
-    out: dict[str, object] = {}
-    for key, value in table.items():
-        if key not in SCENARIO_PARAMETERS:
-            raise ValueError(f"unknown [bridge.deck] key {key!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
-        if key == "girder" and isinstance(value, dict):
-            need = ("area", "inertia", "y_bottom", "depth")
-            if sorted(value) != sorted(need):
-                raise ValueError(f"bridge.deck.girder: a custom section needs exactly {', '.join(need)} [m², m⁴, m, m]")
-            value = GirderSection(**{k: number(v, f"girder.{k}") for k, v in value.items()})
-        elif key == "spans":
-            if not isinstance(value, (list, tuple)) or not value:
-                raise ValueError("bridge.deck.spans: a list of span lengths [m]")
-            value = tuple(float(v) for v in value)
-        elif key == "diaphragms":
-            if not isinstance(value, (list, tuple)):
-                raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")
-            value = tuple(number(v, "diaphragms") for v in value)
-        elif key not in ("girder", "name"):
-            value = number(value, key) if not isinstance(value, int) or isinstance(value, bool) else value
-            if key in ("n_girders", "n_elements", "default_girder") and not isinstance(value, int):
-                raise ValueError(f"bridge.deck.{key}: must be an integer, got {value!r}")
-        out[key] = value
-    if "spans" in out and "span" not in out:  # the total length follows from the spans
-        out["span"] = float(sum(out["spans"]))  # type: ignore[arg-type]
     return out

@@ -47,9 +47,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
 from vbikit._files import read_text
-from vbikit.bridge.base import ModalBridge
-from vbikit.bridge.girder_deck import girder_line_strain
-from vbikit.bridge.nodal import NodalModes
+from vbikit.bridge.base import GirderDeck, ModalBridge
+from vbikit.bridge.girder_deck import SlabOnGirderBridge
+from vbikit.bridge.nodal import NodalModes, girder_line_strain
 from vbikit.errors import VbikitError
 
 log = logging.getLogger(__name__)
@@ -131,6 +131,11 @@ class ImportedModalBridge(ModalBridge):
     @property
     def damping_ratios(self) -> NDArray[np.float64]:
         return self.damping
+
+    @property
+    def nodal_modes(self) -> NodalModes:
+        """The nodal modes (``modes``), under the name the FE models use."""
+        return self.modes
 
     @property
     def girder_y(self) -> NDArray[np.float64]:
@@ -233,29 +238,29 @@ def write_modes(bridge: ModalBridge, path: str | Path, modes: NodalModes | None 
     """Write a bridge's nodal modes in the ``vbikit-modes 1`` format (full float precision; a skew
     deck with its ``skew`` header and its stations in an ``xi`` column, so that it reads back exactly).
 
-    ``modes`` defaults to ``bridge.nodal_modes`` (the slab-on-girder model's grid).  The lever arms
-    are the bridge's ``line_properties["c"]`` or ``strain_lever_arm`` when it has them.
+    ``modes`` defaults to ``bridge.nodal_modes`` (the grid of the slab-on-girder model, the continuous
+    beam, imported modes).  The lever arms are the bridge's ``strain_lever_arm`` (a slab-on-girder deck,
+    imported modes).
     """
-    modes = modes if modes is not None else getattr(bridge, "nodal_modes", None) or getattr(bridge, "modes")
+    modes = modes if modes is not None else bridge.nodal_modes  # type: ignore[attr-defined]
     path = Path(path)
-    c = getattr(bridge, "strain_lever_arm", None)
-    if c is None and hasattr(bridge, "line_properties"):
-        c = bridge.line_properties["c"]
+    c = bridge.strain_lever_arm if isinstance(bridge, (ImportedModalBridge, SlabOnGirderBridge)) else None
     lines = [f"# {MAGIC}", f"# span = {modes.span!r}",
              "# frequencies_hz = " + ", ".join(repr(float(f)) for f in bridge.frequencies_hz),
              "# omega = " + ", ".join(repr(float(f)) for f in bridge.omega),
              "# damping_ratios = " + ", ".join(repr(float(z)) for z in bridge.damping_ratios)]
-    if hasattr(bridge, "girder_y"):
-        lines.append("# girder_y = " + ", ".join(repr(float(v)) for v in bridge.girder_y))
+    deck = bridge if isinstance(bridge, GirderDeck) else None
+    if deck is not None:
+        lines.append("# girder_y = " + ", ".join(repr(float(v)) for v in deck.girder_y))
     if c is not None:
         lines.append("# strain_lever_arm = " + ", ".join(repr(float(v)) for v in np.broadcast_to(c, modes.y.shape)))
-    for key in ("default_lateral_offset", "default_girder"):
-        if hasattr(bridge, key):
-            lines.append(f"# {key} = {getattr(bridge, key)!r}")
-    if getattr(bridge, "deck_width", None) is not None:
-        lines.append(f"# deck_width = {float(bridge.deck_width)!r}")
+    lines.append(f"# default_lateral_offset = {bridge.default_lateral_offset!r}")
+    if deck is not None:
+        lines.append(f"# default_girder = {deck.default_girder!r}")
+        if deck.deck_width is not None:
+            lines.append(f"# deck_width = {float(deck.deck_width)!r}")
     if modes.skew_tan:
-        theta = _skew_degrees(modes.skew_tan, getattr(bridge, "skew", None))
+        theta = _skew_degrees(modes.skew_tan, bridge.skew)
         lines.append(f"# skew = {theta!r}")
         if _skew_tan(theta) != modes.skew_tan:  # no angle in degrees gives this tan θ exactly
             lines.append(f"# skew_tan = {modes.skew_tan!r}")

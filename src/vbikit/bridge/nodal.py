@@ -32,17 +32,23 @@ direction moves rigidly; ∂φ/∂x at fixed y is ∂/∂ξ of that.  A point is
 Between the lines of a skew deck φ is only C⁰ in x: its slope jumps at the stations by
 tan θ · N(y) · Δ(∂²w/∂ξ²) of the lines (N the Hermite weight of the slope across), which the
 solver's track tables, sampled on one side of a station, smooth over one table cell.
+
+Grid helpers shared by the grid models: :func:`hermite_basis` (the cubic Hermite shape functions),
+:func:`snap_to_stations` (a section within round-off of a station is that station),
+:func:`girder_line_strain` (bottom-fibre strains read on the lines) and :class:`DofMap` (the
+numbering of a three-DOF-per-node grid, how FE solutions become :class:`NodalModes`).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
 
-def _hermite(t: NDArray[np.float64], h: NDArray[np.float64] | float, order: int) -> tuple[NDArray[np.float64], ...]:
+def hermite_basis(t: NDArray[np.float64], h: NDArray[np.float64] | float, order: int) -> tuple[NDArray[np.float64], ...]:
     """Cubic Hermite basis (N1, N2, N3, N4) for (value₀, slope₀, value₁, slope₁) at local t ∈ [0, 1]
     on an interval of length h, or its ``order``-th derivative with respect to the physical coordinate."""
     if order == 0:
@@ -52,6 +58,22 @@ def _hermite(t: NDArray[np.float64], h: NDArray[np.float64] | float, order: int)
     if order == 2:
         return ((-6 + 12 * t) / h**2, (-4 + 6 * t) / h, (6 - 12 * t) / h**2, (6 * t - 2) / h)
     raise ValueError(order)
+
+
+#: a section within this fraction of the span of a station is at the station: on a skew deck
+#: x = ξ_i + y tan θ comes back as ξ = x − y tan θ with round-off either side of the node, where the
+#: girders' curvatures and moments jump (a section at a station is read just right of it)
+STATION_TOLERANCE = 1e-9
+
+
+def snap_to_stations(xi: ArrayLike, stations: NDArray[np.float64]) -> NDArray[np.float64]:
+    """ξ [m] with every value within :data:`STATION_TOLERANCE` × the span (the stations' extent) of a
+    station replaced by that station (read on the element right of it, whatever its round-off)."""
+    xi = np.asarray(xi, float)
+    k = np.clip(np.searchsorted(stations, xi), 1, stations.size - 1)
+    near = np.where(np.abs(stations[k] - xi) < np.abs(stations[k - 1] - xi), k, k - 1)
+    close = np.abs(stations[near] - xi) <= STATION_TOLERANCE * (stations[-1] - stations[0])
+    return np.where(close, stations[near], xi)
 
 
 @dataclass(frozen=True)
@@ -104,7 +126,7 @@ class NodalModes:
     def line_values(self, x: NDArray[np.float64], order: int = 0) -> NDArray[np.float64]:
         """∂^order w / ∂x^order on every line at stations x: shape (n_lines, n_points, n_modes)."""
         e, t, h = self._locate_x(x)
-        n = _hermite(t, h, order)
+        n = hermite_basis(t, h, order)
         w, wx = self.w, self.wx
         return (n[0][None, :, None] * w[:, e] + n[1][None, :, None] * wx[:, e]
                 + n[2][None, :, None] * w[:, e + 1] + n[3][None, :, None] * wx[:, e + 1])
@@ -145,7 +167,7 @@ class NodalModes:
             j = np.clip(np.searchsorted(ly, yo, side="right") - 1, 0, ly.size - 2)
             b = ly[j + 1] - ly[j]
             t = (yo - ly[j]) / b
-            n = _hermite(t, b, 0)
+            n = hermite_basis(t, b, 0)
             res = (n[0][:, None] * w[j, p] + n[1][:, None] * s[j, p] + n[2][:, None] * w[j + 1, p] + n[3][:, None] * s[j + 1, p])
             lo, hi = yo < ly[0], yo > ly[-1]  # overhangs: rigid extrapolation of the outer line
             res[lo] = w[0, p[lo]] + s[0, p[lo]] * (yo[lo] - ly[0])[:, None]
@@ -165,4 +187,81 @@ class NodalModes:
         if np.any(on):
             k = self.line_values(x[on], 2)
             out[on] = k[j[on], np.arange(k.shape[1])]
+        return out
+
+
+def girder_line_strain(modes: NodalModes, lever_arm: NDArray[np.float64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
+    """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes);
+    ``lever_arm`` c_g [m] per line; on a skew deck the lines are read at the point's own ξ = x − y tan θ
+    (along the oblique members); at a station (within round-off, :func:`snap_to_stations`) on the
+    element right of it."""
+    x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
+    x, y = x.ravel(), y.ravel()
+    xi = snap_to_stations(x - y * modes.skew_tan if modes.skew_tan else x, modes.x)
+    out = np.zeros((x.size, modes.n_modes))
+    on = (xi >= 0.0) & (xi <= modes.span)
+    if not np.any(on):
+        return out
+    k = modes.line_values(xi[on], 2)  # (n_lines, p, m)
+    p = np.arange(k.shape[1])
+    ly = modes.y
+    if ly.size == 1:
+        out[on] = lever_arm[0] * k[0]
+        return out
+    yc = np.clip(y[on], ly[0], ly[-1])
+    j = np.clip(np.searchsorted(ly, yc, side="right") - 1, 0, ly.size - 2)
+    t = ((yc - ly[j]) / (ly[j + 1] - ly[j]))[:, None]
+    out[on] = (1 - t) * lever_arm[j][:, None] * k[j, p] + t * lever_arm[j + 1][:, None] * k[j + 1, p]
+    return out
+
+
+@dataclass(frozen=True)
+class DofMap:
+    """Numbering of the degrees of freedom of a deck grid with three DOFs per node (w, ∂w/∂x, ∂w/∂y):
+    node (line j, station i) has DOFs 3 (j n_st + i) + k, k = 0 (w), 1 (∂w/∂x), 2 (∂w/∂y).
+
+    ``stations`` ξ_i [m] along the lines (ascending, 0 … span), ``line_y`` y_j [m] of the lines
+    (ascending), ``skew_tan`` tan θ of the support lines (line j's node i lies at x = ξ_i + y_j tan θ).
+    """
+
+    stations: NDArray[np.float64]
+    line_y: NDArray[np.float64]
+    skew_tan: float = 0.0
+
+    @property
+    def n_stations(self) -> int:
+        return int(self.stations.size)
+
+    @property
+    def n_elements(self) -> int:
+        """Elements along each line (n_st − 1)."""
+        return int(self.stations.size) - 1
+
+    @property
+    def n_lines(self) -> int:
+        return int(self.line_y.size)
+
+    @property
+    def n_dof(self) -> int:
+        """Total number of DOFs, 3 n_lines n_st."""
+        return 3 * self.n_lines * self.n_stations
+
+    def dof(self, line: ArrayLike, station: ArrayLike, k: int) -> Any:
+        """DOF index (int, or an int array for array arguments) of component k (0: w, 1: ∂w/∂x, 2: ∂w/∂y)
+        at node (``line``, ``station``), both 0-based."""
+        return 3 * (line * self.n_stations + station) + k  # type: ignore[operator]
+
+    def nodal(self, u: NDArray[np.float64]) -> NodalModes:
+        """Columns of ``u`` (n_dof, n) over all DOFs as :class:`NodalModes` on this grid."""
+        shape = (self.n_lines, self.n_stations, u.shape[1])
+        return NodalModes(self.stations, self.line_y, u[0::3].reshape(shape), u[1::3].reshape(shape),
+                          u[2::3].reshape(shape), self.skew_tan)
+
+    def vector(self, modes: NodalModes) -> NDArray[np.float64]:
+        """The inverse of :meth:`nodal`: nodal values of ``modes`` as a (n_dof, n_modes) matrix."""
+        n = modes.n_modes
+        out = np.zeros((self.n_dof, n))
+        out[0::3] = modes.w.reshape(-1, n)
+        out[1::3] = modes.wx.reshape(-1, n)
+        out[2::3] = modes.wy.reshape(-1, n)
         return out

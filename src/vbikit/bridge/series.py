@@ -13,18 +13,22 @@ interpolates the tabulated shapes with cubics, so that jump is smoothed over one
 (L_total / (100 n_modes)), a local error at the joints only.  Responses are read by default on
 the ``instrumented`` span (its midspan, its default girder); load effects are those of the span
 containing the section, shifted by o_k.
+
+A series whose instrumented span is a :class:`~vbikit.bridge.base.GirderDeck` is one itself
+(``SpanSeries(...)`` then returns a :class:`GirderSpanSeries`, with that span's girders).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import Optional, Sequence
+from typing import Any, Optional, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import DescribesModes, GirderDeck, HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import LoadEffect
+from vbikit.bridge.girder_deck import SlabOnGirderBridge
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,6 +52,16 @@ class SpanSeries(ModalBridge):
     instrumented: int = -1
     name: str = "span-series"
     span: float = field(init=False)
+
+    def __new__(cls, *args: Any, **kwargs: Any) -> "SpanSeries":
+        """A :class:`GirderSpanSeries` when the instrumented span is a girder deck."""
+        if cls is SpanSeries and (args or "spans" in kwargs):
+            spans = tuple(args[0] if args else kwargs["spans"])
+            instrumented = args[2] if len(args) > 2 else kwargs.get("instrumented", -1)
+            main = spans[instrumented % len(spans)] if spans else None
+            if isinstance(main, GirderDeck):
+                cls = GirderSpanSeries
+        return super().__new__(cls)
 
     def __post_init__(self) -> None:
         spans = tuple(self.spans)
@@ -142,7 +156,7 @@ class SpanSeries(ModalBridge):
 
     @property
     def default_lateral_offset(self) -> float:  # type: ignore[override]
-        return float(getattr(self._main, "default_lateral_offset", 0.0))
+        return float(self._main.default_lateral_offset)
 
     @property
     def default_section(self) -> float:  # type: ignore[override]
@@ -152,14 +166,6 @@ class SpanSeries(ModalBridge):
     @property
     def default_response_y(self) -> float:
         return float(self._main.default_response_y)
-
-    @property
-    def default_girder(self) -> Optional[int]:
-        return getattr(self._main, "default_girder", None)
-
-    @property
-    def girder_y(self) -> Optional[NDArray[np.float64]]:
-        return getattr(self._main, "girder_y", None)
 
     @property
     def n_modes(self) -> int:
@@ -172,21 +178,14 @@ class SpanSeries(ModalBridge):
         return sum(b is not None for b in self.spans)
 
     @property
-    def deck_width(self) -> float:
-        """Deck width [m] of the instrumented span."""
-        return float(getattr(self._main, "deck_width", 0.0))
-
-    @property
-    def n_girders(self) -> int:
-        return int(getattr(self._main, "n_girders", 1))
-
-    @property
     def element_count(self) -> int:
-        """Elements along the whole series (the spans' own counts added)."""
-        return int(sum(getattr(b, "element_count", 0) for b in self.spans if b is not None))
+        """Elements along the whole series (the grillage spans' own counts added)."""
+        return int(sum(b.element_count for b in self.spans if isinstance(b, SlabOnGirderBridge)))
 
-    def girder_index(self, girder: int) -> int:
-        return self._main.girder_index(girder)  # type: ignore[attr-defined]
+    @property
+    def span_lengths(self) -> tuple[float, ...]:
+        """Length [m] of every span, entry first."""
+        return tuple(self.lengths)  # type: ignore[arg-type]
 
     def span_index(self, x: float) -> int:
         xs = self.support_x
@@ -195,7 +194,7 @@ class SpanSeries(ModalBridge):
     def mode_descriptions(self) -> list[str]:
         """"span k: <the span's own description>" for every mode."""
         _, span, idx = self._order
-        own = {k: (b.mode_descriptions() if callable(getattr(b, "mode_descriptions", None)) else None)
+        own = {k: (b.mode_descriptions() if isinstance(b, DescribesModes) else None)
                for k, b in enumerate(self.spans) if b is not None}
         return [f"span {k + 1}: " + (own[k][i] if own[k] is not None else f"mode {i + 1}") for k, i in zip(span, idx)]
 
@@ -214,7 +213,7 @@ class SpanSeries(ModalBridge):
             k = self.span_index(float(x))
             local = None
         b = self.spans[k]
-        if b is None or not callable(getattr(b, "load_effect", None)):
+        if not isinstance(b, HasLoadEffects):
             raise ValueError(f"{kind}: span {k} is rigid or offers no load effects")
         o = float(self.offsets[k])
         kw = {} if girder is None else {"girder": girder}
@@ -241,9 +240,41 @@ class SpanSeries(ModalBridge):
         o = self.instrumented_offset
         k = self.instrumented
         out = []
-        for e in self._main.default_load_effects(**({} if girder is None else {"girder": girder})):  # type: ignore[attr-defined]
+        if not isinstance(self._main, HasLoadEffects):
+            raise ValueError(f"span {self.instrumented} offers no load effects")
+        for e in self._main.default_load_effects(**({} if girder is None else {"girder": girder})):  # type: ignore[call-arg]
             if e.kind == "reaction":
                 out.append(self.load_effect("reaction", support=2 * k + int(e.support), girder=girder))
             else:
                 out.append(self.load_effect(e.kind, x=e.x + o, girder=girder))
         return out
+
+
+@dataclass(frozen=True, eq=False)
+class GirderSpanSeries(SpanSeries):
+    """A :class:`SpanSeries` whose instrumented span is a girder deck: its girders are the series' girders."""
+
+    @property
+    def _deck(self) -> GirderDeck:
+        return self._main  # type: ignore[return-value]
+
+    @property
+    def default_girder(self) -> int:
+        return int(self._deck.default_girder)
+
+    @property
+    def girder_y(self) -> NDArray[np.float64]:
+        return self._deck.girder_y
+
+    @property
+    def deck_width(self) -> Optional[float]:
+        """Deck width [m] of the instrumented span."""
+        w = self._deck.deck_width
+        return None if w is None else float(w)
+
+    @property
+    def n_girders(self) -> int:
+        return int(self._deck.n_girders)
+
+    def girder_index(self, girder: int) -> int:
+        return self._deck.girder_index(girder)

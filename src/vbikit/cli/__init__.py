@@ -53,7 +53,7 @@ app = typer.Typer(
 
 def _version(value: bool) -> None:
     if value:
-        from vbikit import __version__
+        from vbikit._version import __version__
 
         typer.echo(f"vbikit {__version__}")
         raise typer.Exit()

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 
 from vbikit._files import save_figure
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import DescribesModes, GirderDeck, ModalBridge
 
 
 def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, title: str = "") -> Path:
@@ -18,8 +18,9 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    girder_y = getattr(bridge, "girder_y", None)
-    half = getattr(bridge, "deck_width", None)
+    deck = bridge if isinstance(bridge, GirderDeck) else None
+    girder_y = deck.girder_y if deck is not None else None
+    half = deck.deck_width if deck is not None else None
     half = 0.5 * half if half is not None else (np.abs(girder_y).max() + 0.5 if girder_y is not None else 1.0)
     x = np.linspace(*bridge.deck_extent, 121)
     y = np.linspace(-half, half, 41)
@@ -28,8 +29,7 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
     xi = bridge.span_coordinate(X.ravel(), Y.ravel())
     phi[(xi < 0.0) | (xi > bridge.span)] = np.nan  # beyond a skew deck's oblique ends: not drawn
     n = min(n_modes, phi.shape[1])
-    describe = getattr(bridge, "mode_descriptions", None)
-    labels = describe() if describe else [""] * n
+    labels = bridge.mode_descriptions() if isinstance(bridge, DescribesModes) else [""] * n
     cols = 2 if n > 1 else 1
     rows = int(np.ceil(n / cols))
     fig, axes = plt.subplots(rows, cols, figsize=(5.5 * cols, 2.4 * rows + 0.6), squeeze=False, constrained_layout=True)

@@ -62,7 +62,8 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
             n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
         )
     if spec.model == "slab-on-girder" or spec.deck is not None or spec.damage:
-        from vbikit.bridge.girder_deck import SlabOnGirderBridge, deck_parameters
+        from vbikit.bridge.girder_deck import SlabOnGirderBridge
+        from vbikit.scenario.deck import deck_parameters
 
         overrides = deck_parameters(spec.deck or {})
         if spec.damage:

@@ -120,7 +120,7 @@ def _vehicle_inputs(scenario: Scenario, c: Any) -> dict[str, Any]:
 
 def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
     """The inputs a report states: bridge, vehicle, tire, road, speed, integrator, step, steps, modes."""
-    from vbikit import __version__
+    from vbikit._version import __version__
 
     c, r = plan.built.crossing, scenario.road
     road: dict[str, Any] = {"class": r.road_class}

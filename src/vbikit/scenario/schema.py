@@ -122,7 +122,7 @@ class BridgeSpec(_Section):
         if self.deck is not None and not slab:
             raise ValueError(f"[bridge.deck] applies to model = \"slab-on-girder\" and the slab-on-girder presets, not {self.model!r}")
         if self.deck is not None:
-            from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS
+            from vbikit.scenario.deck import SCENARIO_PARAMETERS
 
             unknown = [k for k in self.deck if k not in SCENARIO_PARAMETERS]
             if unknown:
@@ -466,7 +466,7 @@ def key_unit(key: str) -> str:
     model: Any = Scenario
     *sections, name = key.split(".")
     if sections == ["bridge", "deck"]:
-        from vbikit.bridge.girder_deck import deck_parameter_docs
+        from vbikit.scenario.deck import deck_parameter_docs
 
         return deck_parameter_docs().get(name, ("", ""))[1]
     for part in sections:

@@ -363,7 +363,7 @@ def assemble(study: Study, parts: Path):
     """The study Dataset from the finished-batch files in ``parts`` (all must be present)."""
     import xarray as xr
 
-    from vbikit import __version__
+    from vbikit._version import __version__
 
     dims = [a.name for a in study.axes]
     shape = study.shape

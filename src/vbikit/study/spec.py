@@ -151,7 +151,7 @@ def _check_key(key: str, base: dict[str, Any]) -> None:
         raise StudyError(f"axes.{key!r}: unknown scenario section {section!r}; allowed: "
                          f"{', '.join(k for k in Scenario.model_fields if k != 'name')}")
     if parts[:2] == ["bridge", "deck"] and len(parts) == 3:  # a slab-on-girder deck parameter
-        from vbikit.bridge.girder_deck import SCENARIO_PARAMETERS
+        from vbikit.scenario.deck import SCENARIO_PARAMETERS
 
         if parts[2] not in SCENARIO_PARAMETERS:
             raise StudyError(f"axes.{key!r}: unknown [bridge.deck] key {parts[2]!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")

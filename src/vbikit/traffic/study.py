@@ -221,7 +221,7 @@ class TrafficStudy:
     def dataset(self, ev: dict[str, NDArray], veh: dict[str, NDArray]):
         import xarray as xr
 
-        from vbikit import __version__
+        from vbikit._version import __version__
 
         recs = self.records
         n_veh = np.array([len(m) for m in self.events], np.int64)
