@@ -4,6 +4,7 @@ from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
+from vbikit.bridge.scaled import ScaledBridge
 from vbikit.bridge.sections import (
     AASHTO_GIRDERS,
     GirderSection,
@@ -16,6 +17,7 @@ __all__ = [
     "EulerBernoulliBeam",
     "GirderSection",
     "ModalBridge",
+    "ScaledBridge",
     "SlabOnGirderBridge",
     "composite_beam_properties",
     "cypress_bayou",

@@ -1,8 +1,10 @@
 """Field verification: measured records in, the same crossing simulated, compared, calibrated.
 
-Physics models (bridge, vehicle, road, contact) never import this package; it uses the solver
-and the models.  See docs/field.md.
+Physics models (bridge, vehicle, road, contact), the solver and scenario files never import this
+package; it builds its models and checks its runs as a scenario does (vbikit.scenario.build,
+vbikit.scenario.preflight).  See docs/field.md.
 """
+from vbikit.bridge.scaled import ScaledBridge
 from vbikit.field.io import (
            FieldFileError,
            FieldSpec,
@@ -13,7 +15,6 @@ from vbikit.field.metrics import channel_metrics
 from vbikit.field.workflow import (
            Calibration,
            CaseComparison,
-           ScaledBridge,
            calibrate,
            compare_case,
            parse_tires,

@@ -17,6 +17,7 @@ from vbikit.analysis.checks import input_warnings
 from vbikit.scenario.build import BuiltScenario, build
 from vbikit.scenario.schema import Scenario, ScenarioError
 from vbikit.solve.budget import Limits, RunEstimate, check_run
+from vbikit.solve.crossing import Crossing
 from vbikit.solve.timestep import accuracy_time_step, choose_time_step
 
 
@@ -61,17 +62,11 @@ def check_response_point(built: BuiltScenario) -> None:
                             f"a point inside the span 0 … {bridge.span:g} m")
 
 
-def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
-    """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
-    UnstableTimeStepError or BudgetError, all ``ValueError``)."""
-    built = build(scenario, limits)
-    crossing = built.crossing
-    width = getattr(crossing.bridge, "deck_width", None)
-    if width is not None:
-        track = crossing.contact.lateral + crossing.lateral_offset if not getattr(crossing, "vehicles", ()) else None
-        if track is not None and np.any(np.abs(track) > width / 2):
-            raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
-                                f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
+def check_steps(crossing: Crossing, limits: Limits | None = None) -> tuple[float, RunEstimate]:
+    """The time step [s] a run of ``crossing`` takes and its estimate, checked as every run is: a
+    given step makes at least :data:`MIN_STEPS` steps, the integrator's step rule (and, for explicit
+    integrators, its stability limit), the memory and step budgets of ``limits`` (raises
+    ScenarioError, UnstableTimeStepError or BudgetError, all ``ValueError``)."""
     if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
         raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
                             f"({crossing.duration:.4g} s); leave dt out for the automatic step")
@@ -84,7 +79,21 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
         raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
                             "bridge, vehicle and tire parameters") from None
-    estimate = check_run(crossing, dt, limits)
+    return dt, check_run(crossing, dt, limits)
+
+
+def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
+    """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
+    UnstableTimeStepError or BudgetError, all ``ValueError``)."""
+    built = build(scenario, limits)
+    crossing = built.crossing
+    width = getattr(crossing.bridge, "deck_width", None)
+    if width is not None:
+        track = crossing.contact.lateral + crossing.lateral_offset if not getattr(crossing, "vehicles", ()) else None
+        if track is not None and np.any(np.abs(track) > width / 2):
+            raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
+                                f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
+    dt, estimate = check_steps(crossing, limits)
     check_response_point(built)
     warnings = input_warnings(crossing, dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
     return Plan(scenario, built, dt, estimate, warnings)
