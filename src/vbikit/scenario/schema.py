@@ -7,6 +7,7 @@ and the allowed values.
 """
 from __future__ import annotations
 
+import json
 import math
 import re
 from pathlib import Path
@@ -72,24 +73,13 @@ _POSITIVE = Annotated[float, Field(gt=0)]
 _POSITIVE_OR_LIST = Union[_POSITIVE, list[_POSITIVE]]
 _SPRING = Annotated[float, Field(ge=0, allow_inf_nan=True)]
 
-#: the bridge kinds a [bridge] table names by model (any other model is a preset name)
-BRIDGE_KINDS = ("beam", "continuous-beam", "slab-on-girder", "modes-file")
-
-
-def _damping_ratio() -> Any:
-    return Field(DEFAULT_DAMPING_RATIO, ge=0, lt=1, description="modal damping ratio, every mode [-]")
-
-
-def _n_modes() -> Any:
-    return Field(10, ge=1, le=500, description="retained modes (the lowest n) [-]")
+_DAMPING_RATIO = Annotated[float, Field(ge=0, lt=1, description="modal damping ratio, every mode [-]")]
+_N_MODES = Annotated[int, Field(ge=1, le=500, description="retained modes (the lowest n) [-]")]
+_NEUTRAL_AXIS = Annotated[Optional[float], Field(gt=0, description="neutral axis to bottom fibre, the strain lever arm; default 0.5 m [m]")]
 
 
 def _damage(description: str) -> Any:
     return Field(default_factory=list, description=f"[[bridge.damage]] local stiffness losses{description}")
-
-
-def _neutral_axis_depth() -> Any:
-    return Field(None, gt=0, description="neutral axis to bottom fibre, the strain lever arm; default 0.5 m [m]")
 
 
 def _check_deck_keys(deck: Optional[dict[str, Any]]) -> None:
@@ -126,16 +116,15 @@ class _BridgeKind(_Section):
 
     @classmethod
     def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
-        kinds = [m for m, kind in _KIND_CLASSES.items() if kind is not cls and key in kind.model_fields]
-        presets = key in PresetBridgeSpec.model_fields and cls is not PresetBridgeSpec
-        where = [f'model = "{m}"' for m in kinds] + (["the presets"] if presets else [])
-        return f"{key} is a key of {' and '.join(where)}" if where else ""
+        where = [f'model = "{m}"' if m in BRIDGE_KINDS else "the presets"
+                 for m, kind in _KIND_CLASSES.items() if kind is not cls and key in kind.model_fields]
+        return f"{key} is a key of {' and '.join([', '.join(where[:-1]), where[-1]] if len(where) > 1 else where)}" if where else ""
 
     def _deck_bridge(self, make: Any) -> ModalBridge:
         """``make(n_modes=, damping_ratio=, **deck overrides, damage=)``: a deck whose model errors name bridge.deck.<key>."""
         from vbikit.bridge.girder_deck import deck_parameters
 
-        deck = getattr(self, "deck", None) or {}
+        deck = self.deck or {}  # type: ignore[attr-defined]
         overrides = deck_parameters(deck)
         if self.damage:  # type: ignore[attr-defined]
             overrides["damage"] = self.damage_regions()
@@ -153,9 +142,9 @@ class BeamSpec(_BridgeKind):
     span: Optional[float] = Field(None, gt=0, description="span length [m]")
     EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
     mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
-    damping_ratio: float = _damping_ratio()
-    n_modes: int = _n_modes()
-    neutral_axis_depth: Optional[float] = _neutral_axis_depth()
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
+    neutral_axis_depth: _NEUTRAL_AXIS = None
 
     deck: ClassVar[None] = None
     damage: ClassVar[tuple[DamageSpec, ...]] = ()
@@ -196,9 +185,9 @@ class ContinuousBeamSpec(_BridgeKind):
         None, min_length=2, max_length=2, description="end rotational springs [N m/rad] (entry, exit)")
     elements_per_span: int = Field(40, ge=2, le=1000, description="Hermite elements per span")
     damage: list[DamageSpec] = _damage(" (one span = a simply supported beam)")
-    damping_ratio: float = _damping_ratio()
-    n_modes: int = _n_modes()
-    neutral_axis_depth: Optional[float] = _neutral_axis_depth()
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
+    neutral_axis_depth: _NEUTRAL_AXIS = None
 
     deck: ClassVar[None] = None
 
@@ -226,8 +215,8 @@ class SlabOnGirderSpec(_BridgeKind):
 
     model: Literal["slab-on-girder"] = Field(..., description="3D grillage deck")
     damage: list[DamageSpec] = _damage(" of single girders")
-    damping_ratio: float = _damping_ratio()
-    n_modes: int = _n_modes()
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
     deck: Optional[dict[str, Any]] = Field(
         None, description="table [bridge.deck]: SlabOnGirderBridge parameters, at least span; keys and units in the bridges guide")
 
@@ -250,8 +239,8 @@ class ModesFileSpec(_BridgeKind):
 
     model: Literal["modes-file"] = Field(..., description="imported modes")
     modes_file: str = Field(..., description="path of a `vbikit-modes 1` file, relative to the scenario; n_modes, if given, keeps the first modes")
-    damping_ratio: float = _damping_ratio()
-    n_modes: int = _n_modes()
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
 
     deck: ClassVar[None] = None
     damage: ClassVar[tuple[DamageSpec, ...]] = ()
@@ -276,8 +265,8 @@ class PresetBridgeSpec(_BridgeKind):
 
     model: str = Field(..., description="a bridge preset (`vbikit presets`)")
     damage: list[DamageSpec] = _damage(" of single girders (slab-on-girder presets)")
-    damping_ratio: float = _damping_ratio()
-    n_modes: int = _n_modes()
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
     deck: Optional[dict[str, Any]] = Field(
         None, description="table [bridge.deck]: overrides of a slab-on-girder preset; keys and units in the bridges guide")
 
@@ -321,18 +310,21 @@ class PresetBridgeSpec(_BridgeKind):
         return preset.build(n_modes=self.n_modes, damping_ratio=self.damping_ratio)
 
 
-#: model (or "preset") → the spec class of that bridge kind
-_KIND_CLASSES: dict[str, type[_BridgeKind]] = {
-    "beam": BeamSpec, "continuous-beam": ContinuousBeamSpec, "slab-on-girder": SlabOnGirderSpec,
-    "modes-file": ModesFileSpec, "preset": PresetBridgeSpec,
+#: model → spec class of the bridge kinds named by their model (any other model names a preset:
+#: :class:`PresetBridgeSpec`); a new kind is a spec class with ``model: Literal[...]`` and ``build``, listed here
+BRIDGE_KINDS: dict[str, type[_BridgeKind]] = {
+    get_args(kind.model_fields["model"].annotation)[0]: kind
+    for kind in (BeamSpec, ContinuousBeamSpec, SlabOnGirderSpec, ModesFileSpec)
 }
+#: tag of the discriminated union → spec class
+_KIND_CLASSES: dict[str, type[_BridgeKind]] = {**BRIDGE_KINDS, "preset": PresetBridgeSpec}
 
 
 def bridge_kind(table: Any) -> Optional[str]:
     """The tag of a [bridge] table: its model when a kind of :data:`BRIDGE_KINDS` (default
     "beam"), else "preset" (the preset class checks the name); None when not a table."""
     if isinstance(table, _BridgeKind):
-        return next(tag for tag, kind in _KIND_CLASSES.items() if isinstance(table, kind))
+        return next(tag for tag, kind in _KIND_CLASSES.items() if type(table) is kind)
     if not isinstance(table, dict):
         return None
     model = table.get("model", "beam")
@@ -343,8 +335,8 @@ def bridge_kind(table: Any) -> Optional[str]:
 BridgeSpec = Annotated[
     Union[tuple(Annotated[kind, Tag(tag)] for tag, kind in _KIND_CLASSES.items())],  # type: ignore[misc]
     Discriminator(bridge_kind, custom_error_type="bridge_table",
-                  custom_error_message="must be a table: model = \"beam\", \"continuous-beam\", \"slab-on-girder\", "
-                                       "\"modes-file\" or a preset name, with that model's keys"),
+                  custom_error_message=f"must be a table: model = {', '.join(map(json.dumps, BRIDGE_KINDS))} or a "
+                                       "preset name, with that model's keys"),
 ]
 
 
