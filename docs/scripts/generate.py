@@ -175,7 +175,7 @@ def _allowed() -> dict[str, str]:
     from vbikit.vehicle.presets import VEHICLE_PRESETS
 
     return {
-        "bridge.model": ", ".join(f"`{m}`" for m in ("beam", "continuous-beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)),
+        "bridge.model": ", ".join(f"`{m}`" for m in BRIDGE_PRESETS),  # the presets; each other kind has its own table
         "vehicle.model": ", ".join(f"`{m}`" for m in VEHICLE_PRESETS),
         "road.class": ", ".join(f"`{m}`" for m in ROAD_CLASSES),
     }
@@ -193,8 +193,36 @@ def _list_model(annotation: Any) -> type[BaseModel] | None:
     return None
 
 
+def kind_tables(name: str, kinds: list[type[BaseModel]]) -> str:
+    """[bridge]: a table of keys per kind (the kind is chosen by ``model``), then the tables they share."""
+    out = [f"\n### [{name}]\n\nOne kind of {name} per `model`; each kind takes only its own keys.\n"]
+    allowed = _allowed()
+    for kind in kinds:
+        model = kind.model_fields["model"].annotation
+        tag = typing.get_args(model)[0] if typing.get_origin(model) is typing.Literal else None
+        doc = " ".join((kind.__doc__ or "").strip().split("\n\n")[0].split())
+        heading = f'model = "{tag}"' if tag else "model = a preset name"
+        out.append(f"\n#### {heading}\n\n{doc}\n\n")
+        out.append(model_table(kind, f"{name}.", None if tag else allowed))
+    if name == "bridge":
+        out.append("\n#### [bridge.deck]\n\nParameters of the slab-on-girder grillage deck "
+                   "(`vbikit.bridge.SlabOnGirderBridge`), for `model = \"slab-on-girder\"` or as "
+                   "overrides of a slab-on-girder preset:\n\n")
+        out.append(deck_table())
+    seen = set()
+    for kind in kinds:
+        for sub_name, sub in kind.model_fields.items():
+            inner = [a for a in typing.get_args(sub.annotation) if isinstance(a, type) and issubclass(a, BaseModel)]
+            key = sub.alias or sub_name
+            if inner and key not in seen:
+                seen.add(key)
+                out.append(f"\n#### [[{name}.{key}]]\n\n{(inner[0].__doc__ or '').strip().splitlines()[0]}\n\n")
+                out.append(model_table(inner[0], f"{name}.{key}[i]."))
+    return "".join(out)
+
+
 def scenario_keys() -> str:
-    from vbikit.scenario.schema import Scenario
+    from vbikit.scenario.schema import Scenario, section_models
 
     out = ["Every key of a scenario file, generated from the schema (`vbikit.scenario.schema`). "
            "Units in brackets are SI; `speed_kmh` is the only non-SI input. \"range\" is checked "
@@ -206,6 +234,10 @@ def scenario_keys() -> str:
         if listed is not None:
             out.append(f"\n### [[{name}]]\n\n{(listed.__doc__ or '').strip().split(chr(10) + chr(10))[0]}\n\n")
             out.append(model_table(listed, f"{name}[i].", _allowed()))
+            continue
+        kinds = section_models(name)
+        if len(kinds) > 1:  # a discriminated union: one table per kind
+            out.append(kind_tables(name, kinds))
             continue
         opt = [a for a in typing.get_args(ann) if a is not type(None)]
         if typing.get_origin(ann) is typing.Union and len(opt) == 1:

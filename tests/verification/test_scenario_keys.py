@@ -19,7 +19,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from pydantic import BaseModel
 
 from vbikit.analysis import girder_responses, point_response, summary
 from vbikit.analysis.effects import load_effect_report
@@ -27,7 +26,7 @@ from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.modefile import write_modes
 from vbikit.scenario import build, parse_scenario
 from vbikit.scenario.deck import SCENARIO_PARAMETERS
-from vbikit.scenario.schema import DefectSpec, Scenario, VehicleEntry
+from vbikit.scenario.schema import DefectSpec, Scenario, VehicleEntry, section_keys
 from vbikit.solve import simulate
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -148,6 +147,7 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "response.x": (BASE, 5.0, 3.0),
         "response.y": (_merge(BASE, SLAB), 0.0, 1.0),
         "response.girder": (_merge(BASE, SLAB), 1, 2),
+        "response.points": (BASE, [{"x": 5.0}, {"x": 3.0}], [{"x": 3.0}, {"x": 5.0}]),  # the first is the headline
         # continuous beams and load effects (moment / shear / reaction blocks are outputs)
         "bridge.spans": (CONT, [5.0, 5.0], [4.0, 6.0]),
         "bridge.support_stiffness": (CONT, None, [1e8, 1e8, 1e8]),
@@ -215,15 +215,8 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
 def schema_keys() -> set[str]:
     """Every key a scenario may hold, from the schema (deck and vehicle parameters included)."""
     keys = set()
-    for section, field in Scenario.model_fields.items():
-        model = field.annotation
-        while typing.get_args(model) and not (isinstance(model, type) and issubclass(model, BaseModel)):
-            model = next((a for a in typing.get_args(model) if a is not type(None)), None)  # Optional, list
-        if not (isinstance(model, type) and issubclass(model, BaseModel)):
-            keys.add(section)
-            continue
-        for name, f in model.model_fields.items():
-            keys.add(f"{section}.{f.alias or name}")
+    for section in Scenario.model_fields:  # a section's keys: of every kind of [bridge], say
+        keys |= {f"{section}.{key}" for key in section_keys(section)} or {section}
     keys |= {f"road.defects.{f.alias or n}" for n, f in DefectSpec.model_fields.items()}
     keys |= {f"bridge.deck.{k}" for k in SCENARIO_PARAMETERS}
     keys |= {f"vehicle.{param}@{p.name}" for p in VEHICLE_PRESETS.values() for param in p.parameters}

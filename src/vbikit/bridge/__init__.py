@@ -1,5 +1,6 @@
 """Bridge models reduced to modes (the modal-bridge interface and its optional capabilities, the
-Euler–Bernoulli beam, the continuous beam, the slab-on-girder grillage deck, imported modes, presets)."""
+Euler–Bernoulli beam, the continuous beam, the slab-on-girder grillage deck, a stiffness-scaled
+bridge, imported modes, presets)."""
 from typing import TYPE_CHECKING
 
 from vbikit._lazy import lazy_exports
@@ -10,6 +11,7 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.bridge.continuous import ContinuousBeam
     from vbikit.bridge.girder_deck import SlabOnGirderBridge
     from vbikit.bridge.presets import BRIDGE_PRESETS, cypress_bayou, paper_beam, paper_deck
+    from vbikit.bridge.scaled import ScaledBridge
     from vbikit.bridge.sections import (
         AASHTO_GIRDERS,
         GirderSection,
@@ -26,6 +28,7 @@ __all__ = [
     "GirderSection",
     "HasLoadEffects",
     "ModalBridge",
+    "ScaledBridge",
     "SlabOnGirderBridge",
     "composite_beam_properties",
     "cypress_bayou",
@@ -39,5 +42,6 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.bridge.continuous": ["ContinuousBeam"],
     "vbikit.bridge.girder_deck": ["SlabOnGirderBridge"],
     "vbikit.bridge.presets": ["BRIDGE_PRESETS", "cypress_bayou", "paper_beam", "paper_deck"],
+    "vbikit.bridge.scaled": ["ScaledBridge"],
     "vbikit.bridge.sections": ["AASHTO_GIRDERS", "GirderSection", "composite_beam_properties"],
 })

@@ -1,13 +1,15 @@
 """Field verification: measured records in, the same crossing simulated, compared, calibrated.
 
-Physics models (bridge, vehicle, road, contact) never import this package; it uses the solver
-and the models.  See docs/field.md.
+Physics models (bridge, vehicle, road, contact), the solver and scenario files never import this
+package; it builds its models and checks its runs as a scenario does (vbikit.scenario.build,
+vbikit.scenario.preflight).  See docs/field.md.
 """
 from typing import TYPE_CHECKING
 
 from vbikit._lazy import lazy_exports
 
 if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
+    from vbikit.bridge.scaled import ScaledBridge
     from vbikit.field.io import (
         FieldFileError,
         FieldSpec,
@@ -18,7 +20,6 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.field.workflow import (
         Calibration,
         CaseComparison,
-        ScaledBridge,
         calibrate,
         compare_case,
         parse_tires,
@@ -30,5 +31,6 @@ __all__ = ["Calibration", "CaseComparison", "FieldFileError", "FieldSpec", "Scal
 __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.field.io": ["FieldFileError", "FieldSpec", "load_field_toml", "read_response_csv"],
     "vbikit.field.metrics": ["channel_metrics"],
-    "vbikit.field.workflow": ["Calibration", "CaseComparison", "ScaledBridge", "calibrate", "compare_case", "parse_tires"],
+    "vbikit.bridge.scaled": ["ScaledBridge"],
+    "vbikit.field.workflow": ["Calibration", "CaseComparison", "calibrate", "compare_case", "parse_tires"],
 })

@@ -5,7 +5,7 @@ Pipeline per loading case (:func:`compare_case`):
 1. read the response CSV (:func:`~vbikit.field.io.read_response_csv`) and check it against the
    case's channel table (missing channels, unit mismatches, sampling rate);
 2. simulate the crossing with each tire model on the bridge preset (optionally scaled by a
-   stiffness factor, see :class:`ScaledBridge`) with the measured wheel-track profiles;
+   stiffness factor, see :class:`~vbikit.bridge.scaled.ScaledBridge`) with the measured wheel-track profiles;
 3. align the record in time: ``trigger`` (t_sim = t_meas − t_trig + approach / speed) or
    ``xcorr`` (cross-correlation of the first displacement — else strain — channel with the
    first tire model's simulation);
@@ -28,16 +28,17 @@ from __future__ import annotations
 import logging
 import time as _time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, get_args
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 from scipy.optimize import least_squares
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS
-from vbikit.contact.tires import DiskTire, MultiPointTire, PointTire, RigidDiskTire, TireModel
+from vbikit.bridge.scaled import ScaledBridge
+from vbikit.contact.tires import TireModel
 from vbikit.field.io import (
     CaseSpec,
     FieldFileError,
@@ -57,72 +58,22 @@ from vbikit.field.signal import (
 )
 from vbikit.road.measured import read_profile_csv
 from vbikit.road.profile import RoadProfile
-from vbikit.solve import Crossing, CrossingResult, choose_time_step, simulate
-from vbikit.solve.budget import Limits, check_bridge, check_run
+from vbikit.scenario.build import build_bridge, build_tire
+from vbikit.scenario.preflight import check_steps
+from vbikit.scenario.schema import TireSpec, parse_bridge
+from vbikit.solve import Crossing, CrossingResult, simulate
+from vbikit.solve.budget import Limits, check_bridge
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 log = logging.getLogger(__name__)
 
-#: tire models selectable by name in the field workflow
-#: the tire models a field comparison can use (every model of vbikit.contact)
-FIELD_TIRES = {"point": PointTire, "multipoint": MultiPointTire, "disk": DiskTire, "rigid-disk": RigidDiskTire}
+#: the tire models a field comparison can use (every model of the scenario's [tire])
+FIELD_TIRES: tuple[str, ...] = get_args(TireSpec.model_fields["model"].annotation)
 
 
-class ScaledBridge(ModalBridge):
-    """A modal bridge with all stiffnesses scaled by ``stiffness_factor`` f and a uniform damping ratio.
-
-    K → f K with M unchanged keeps the mass-normalised mode shapes and multiplies every ωᵢ by
-    √f; strain shapes (curvature × lever arm) are unchanged.  ``damping_ratio`` None keeps the
-    base model's ratios.
-    """
-
-    def __init__(self, base: ModalBridge, stiffness_factor: float = 1.0, damping_ratio: float | None = None) -> None:
-        if not (np.isfinite(stiffness_factor) and stiffness_factor > 0):
-            raise ValueError(f"stiffness_factor must be > 0, got {stiffness_factor!r}")
-        if damping_ratio is not None and not 0.0 <= damping_ratio < 1.0:
-            raise ValueError(f"damping_ratio must be in [0, 1), got {damping_ratio!r}")
-        self.base = base
-        self.span = base.span
-        self.stiffness_factor = float(stiffness_factor)
-        self._zeta = damping_ratio
-
-    @property
-    def omega(self) -> NDArray[np.float64]:
-        return np.sqrt(self.stiffness_factor) * self.base.omega
-
-    @property
-    def damping_ratios(self) -> NDArray[np.float64]:
-        z = self.base.damping_ratios
-        return z if self._zeta is None else np.full_like(z, self._zeta)
-
-    def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
-        return self.base.mode_shapes(x, y)
-
-    def mode_slopes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
-        return self.base.mode_slopes(x, y)
-
-    def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
-        return self.base.strain_shapes(x, y)
-
-    # the base model's geometry (a skew deck's oblique supports) is unchanged by the scaling
-    @property
-    def skew(self) -> float:
-        return float(getattr(self.base, "skew", 0.0))
-
-    @property
-    def skew_tan(self) -> float:
-        return self.base.skew_tan
-
-    @property
-    def lateral_edges(self) -> tuple[float, float]:
-        return self.base.lateral_edges
-
-    def default_x_at(self, y: float) -> float:
-        return self.base.default_x_at(y)
-
-    @property
-    def default_response_x(self) -> float:
-        return self.base.default_response_x
+def field_tire(name: str) -> TireModel:
+    """The tire model ``name`` with the defaults of a scenario's [tire] (built as a scenario builds it)."""
+    return build_tire(TireSpec(model=name))
 
 
 def parse_tires(text: str) -> list[str]:
@@ -135,17 +86,17 @@ def parse_tires(text: str) -> list[str]:
 
 
 def base_bridge(spec: FieldSpec) -> ModalBridge:
-    """The bridge preset of a field test (with ``[bridge.deck]`` overrides on slab-on-girder presets)."""
+    """The bridge preset of a field test (with ``[bridge.deck]`` overrides on slab-on-girder presets),
+    validated and built as a scenario's [bridge]."""
     if spec.bridge not in BRIDGE_PRESETS:
         raise FieldFileError(f"{spec.path}: bridge {spec.bridge!r} is not a preset; allowed: {', '.join(BRIDGE_PRESETS)}")
-    preset = BRIDGE_PRESETS[spec.bridge]
-    if spec.bridge_overrides and preset.kind != "slab-on-girder":
-        raise FieldFileError(f"{spec.path}: [bridge.deck] overrides only apply to slab-on-girder presets, not {spec.bridge!r}")
+    table: dict[str, Any] = {"model": spec.bridge, "n_modes": spec.n_modes, "damping_ratio": spec.damping_ratio}
+    if spec.bridge_overrides:
+        table["deck"] = dict(spec.bridge_overrides)
     try:
-        return preset.build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **spec.bridge_overrides)
+        return build_bridge(parse_bridge(table))
     except (TypeError, ValueError) as err:
-        raise FieldFileError(f"{spec.path}: bridge {spec.bridge!r} with damping_ratio, n_modes and "
-                             f"[bridge.deck]: {err}") from None
+        raise FieldFileError(f"{spec.path}: {err}") from None
 
 
 def sensor_y(bridge: ModalBridge, girder: int, where: str) -> float:
@@ -255,17 +206,14 @@ def align_shift(spec: FieldSpec, case: CaseSpec, record: MeasuredRecord, t_sim: 
 
 def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None) -> None:
     """Every check a field comparison makes before it simulates: the bridge's size, and per case and
-    tire model the time step (stability) and the memory and step budgets of the crossing."""
+    tire model the checks of a scenario's run (:func:`~vbikit.scenario.preflight.check_steps`: at
+    least ten steps, the step rule and stability, the memory and step budgets)."""
     bridge = base_bridge(spec)
     check_bridge(bridge, limits)
     for case in spec.cases:
         for name in tires:
             try:
-                crossing = case_crossing(spec, case, FIELD_TIRES[name](), bridge, spec.dt)
-                if spec.dt is not None and spec.dt > crossing.duration / 10:
-                    raise FieldFileError(f"{spec.path}: dt = {spec.dt:g} s gives fewer than 10 steps over the crossing "
-                                         f"({crossing.duration:.4g} s); leave dt out for the automatic step")
-                check_run(crossing, choose_time_step(crossing), limits)
+                check_steps(case_crossing(spec, case, field_tire(name), bridge, spec.dt), limits)
             except FieldFileError:
                 raise
             except (ValueError, RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
@@ -285,7 +233,7 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
     t_sim = np.zeros(0)
     dt = spec.dt
     for name in tires:
-        res = simulate(case_crossing(spec, case, FIELD_TIRES[name](), bridge, dt))
+        res = simulate(case_crossing(spec, case, field_tire(name), bridge, dt))
         dt = res.dt  # every tire model on the same time step …
         t_sim = res.time if t_sim.size == 0 or res.time.size < t_sim.size else t_sim
         sims[name] = simulated_channels(res, case, where)
@@ -379,7 +327,7 @@ def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "m
         bridge = ScaledBridge(base, float(p[0]), float(p[1]))
         out = []
         for cmp, t_meas, chans in prepared:
-            res = simulate(case_crossing(spec, cmp.case, FIELD_TIRES[tire](), bridge, cmp.dt))
+            res = simulate(case_crossing(spec, cmp.case, field_tire(tire), bridge, cmp.dt))
             sim = simulated_channels(res, cmp.case, str(spec.path))
             ok = (t_meas >= res.time[0]) & (t_meas <= res.time[-1])
             for ch in cmp.case.channels:

@@ -8,10 +8,8 @@ import numpy as np
 
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.bridge.base import ModalBridge
-from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.bridge.damage import Damage
 from vbikit.bridge.effects import LoadEffect
-from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.contact.tires import (
     DiskTire,
     MultiPointTire,
@@ -39,48 +37,13 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 
 def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
-    if spec.model == "modes-file":
-        from vbikit.bridge.modefile import modes_from_file
-
-        n_modes = spec.n_modes if "n_modes" in spec.model_fields_set else None
-        try:
-            return modes_from_file(Path(base_dir) / spec.modes_file, damping_ratio=spec.damping_ratio, n_modes=n_modes)
-        except ValueError as err:
-            raise ScenarioError(f"bridge.modes_file: {err}") from None
-    if spec.model == "continuous-beam":
-        from vbikit.bridge.continuous import ContinuousBeam
-
-        return ContinuousBeam(
-            spans=tuple(spec.spans), EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
-            n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
-            support_stiffness=spec.support_stiffness, rotational_stiffness=tuple(spec.rotational_stiffness or (0.0, 0.0)),
-            elements_per_span=spec.elements_per_span, damage=build_damage(spec),
-        )
-    if spec.model == "beam":
-        return EulerBernoulliBeam(
-            span=spec.span, EI=spec.EI, mass_per_length=spec.mass_per_length, damping_ratio=spec.damping_ratio,
-            n_modes=spec.n_modes, neutral_axis_depth=spec.neutral_axis_depth or 0.5,
-        )
-    if spec.model == "slab-on-girder" or spec.deck is not None or spec.damage:
-        from vbikit.bridge.girder_deck import SlabOnGirderBridge
-        from vbikit.scenario.deck import deck_parameters
-
-        overrides = deck_parameters(spec.deck or {})
-        if spec.damage:
-            overrides["damage"] = build_damage(spec)
-        try:
-            if spec.model == "slab-on-girder":
-                return SlabOnGirderBridge(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
-            return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio, **overrides)
-        except ValueError as err:  # the deck model names its parameter: give it the scenario key
-            key = str(err).split(" ", 1)[0]
-            raise ScenarioError(f"bridge.deck.{err}" if key in (spec.deck or {}) else str(err)) from None
-    return BRIDGE_PRESETS[spec.model].build(n_modes=spec.n_modes, damping_ratio=spec.damping_ratio)
+    """The bridge model of a [bridge] spec (each kind builds its own: ``spec.build(base_dir)``)."""
+    return spec.build(base_dir)
 
 
 def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
     """The [[bridge.damage]] regions as :class:`~vbikit.bridge.damage.Damage` (checked)."""
-    return tuple(Damage(d.position, d.length, d.severity, d.girder) for d in spec.damage)
+    return spec.damage_regions()
 
 
 def build_tire(spec: TireSpec) -> TireModel:

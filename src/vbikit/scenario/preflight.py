@@ -18,6 +18,7 @@ from vbikit.errors import VbikitError
 from vbikit.scenario.build import BuiltScenario, build
 from vbikit.scenario.schema import Scenario, ScenarioError
 from vbikit.solve.budget import Limits, RunEstimate, check_run
+from vbikit.solve.crossing import Crossing
 from vbikit.solve.timestep import accuracy_time_step, choose_time_step
 
 
@@ -65,6 +66,26 @@ def check_response_points(built: BuiltScenario) -> None:
                                 f"inside the span 0 … {bridge.span:g} m")
 
 
+def check_steps(crossing: Crossing, limits: Limits | None = None) -> tuple[float, RunEstimate]:
+    """The time step [s] a run of ``crossing`` takes and its estimate, checked as every run is: a
+    given step makes at least :data:`MIN_STEPS` steps, the integrator's step rule (and, for explicit
+    integrators, its stability limit), the memory and step budgets of ``limits`` (raises
+    ScenarioError, UnstableTimeStepError or BudgetError, all ``ValueError``)."""
+    if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
+        raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
+                            f"({crossing.duration:.4g} s); leave dt out for the automatic step")
+    if crossing.integrator == "rk4":
+        # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
+        # its stability limit (eigenvalues of the coupled system) is computed
+        check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
+    try:
+        dt = choose_time_step(crossing)
+    except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
+        raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
+                            "bridge, vehicle and tire parameters") from None
+    return dt, check_run(crossing, dt, limits)
+
+
 def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
     UnstableTimeStepError or BudgetError, all :class:`~vbikit.errors.VbikitError`)."""
@@ -85,19 +106,7 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
         if track is not None and np.any(np.abs(track) > width / 2):
             raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
                                 f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
-    if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
-        raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
-                            f"({crossing.duration:.4g} s); leave dt out for the automatic step")
-    if crossing.integrator == "rk4":
-        # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
-        # its stability limit (eigenvalues of the coupled system) is computed
-        check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
-    try:
-        dt = choose_time_step(crossing)
-    except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
-        raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
-                            "bridge, vehicle and tire parameters") from None
-    estimate = check_run(crossing, dt, limits)
+    dt, estimate = check_steps(crossing, limits)
     check_response_points(built)
     warnings = input_warnings(crossing, dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
     for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)

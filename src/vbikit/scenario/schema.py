@@ -7,23 +7,28 @@ and the allowed values.
 """
 from __future__ import annotations
 
+import json
 import math
 import re
 from pathlib import Path
-from typing import Annotated, Any, Literal, Optional, Union, get_args
+from typing import Annotated, Any, ClassVar, Literal, Optional, Union, get_args
 
 from pydantic import (
     BaseModel,
     ConfigDict,
+    Discriminator,
     Field,
     PrivateAttr,
+    Tag,
+    TypeAdapter,
     ValidationError,
     field_validator,
     model_validator,
 )
 
 from vbikit._toml import parse_toml, read_toml
-from vbikit.bridge.base import DEFAULT_DAMPING_RATIO
+from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
+from vbikit.bridge.damage import Damage
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.errors import VbikitError
 from vbikit.solve.crossing import DEFAULT_INTEGRATOR
@@ -43,6 +48,16 @@ class _Section(BaseModel):
     # strict: no coercion ("12" or true are not numbers, 1.5 is not an integer); finite numbers only
     model_config = ConfigDict(extra="forbid", populate_by_name=True, strict=True, allow_inf_nan=False)
 
+    @classmethod
+    def allowed_keys(cls, table: dict[str, Any]) -> list[str]:
+        """The keys this section accepts (``table``: the section as given)."""
+        return [f.alias or n for n, f in cls.model_fields.items()]
+
+    @classmethod
+    def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
+        """A hint for the unknown ``key`` of ``table`` ("" for none)."""
+        return ""
+
 
 class DamageSpec(_Section):
     """[[bridge.damage]]: a bending-stiffness loss over a region (vbikit.bridge.damage)."""
@@ -52,100 +67,288 @@ class DamageSpec(_Section):
     severity: float = Field(..., ge=0, lt=1, description="relative loss of EI [-]")
     girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
 
+    def build(self) -> Damage:
+        """The region as a :class:`~vbikit.bridge.damage.Damage` (checked by the model)."""
+        return Damage(self.position, self.length, self.severity, self.girder)
 
-_POSITIVE_OR_LIST = Union[Annotated[float, Field(gt=0)], list[Annotated[float, Field(gt=0)]]]
+
+_POSITIVE = Annotated[float, Field(gt=0)]
+_POSITIVE_OR_LIST = Union[_POSITIVE, list[_POSITIVE]]
+_SPRING = Annotated[float, Field(ge=0, allow_inf_nan=True)]
+
+_DAMPING_RATIO = Annotated[float, Field(ge=0, lt=1, description="modal damping ratio, every mode [-]")]
+_N_MODES = Annotated[int, Field(ge=1, le=500, description="retained modes (the lowest n) [-]")]
+_NEUTRAL_AXIS = Annotated[Optional[float], Field(gt=0, description="neutral axis to bottom fibre, the strain lever arm; default 0.5 m [m]")]
 
 
-class BridgeSpec(_Section):
-    """[bridge]: model = "beam" or "continuous-beam" with its properties, or a preset name (properties optional overrides)."""
+def _damage(description: str) -> Any:
+    return Field(default_factory=list, description=f"[[bridge.damage]] local stiffness losses{description}")
 
-    model: str = Field("beam", description="\"beam\" (Euler–Bernoulli beam: span, EI, mass_per_length), \"continuous-beam\" (spans, EI, mass_per_length), \"slab-on-girder\" (3D grillage deck from [bridge.deck]), \"modes-file\" (imported modes) or a preset name (`vbikit presets`)")
-    span: Optional[float] = Field(None, gt=0, description="model = \"beam\": span length [m]")
-    EI: Optional[_POSITIVE_OR_LIST] = Field(None, description="bending stiffness [N m^2] (continuous-beam: one or one per span)")
-    mass_per_length: Optional[_POSITIVE_OR_LIST] = Field(None, description="mass per length [kg/m] (continuous-beam: one or one per span)")
-    spans: Optional[list[Annotated[float, Field(gt=0)]]] = Field(None, description="continuous-beam: span lengths [m]")
-    support_stiffness: Optional[Union[Annotated[float, Field(ge=0, allow_inf_nan=True)], list[Annotated[float, Field(ge=0, allow_inf_nan=True)]]]] = Field(
-        None, description="continuous-beam: vertical support springs [N/m], one or one per support (inf = rigid); default rigid")
-    rotational_stiffness: Optional[list[Annotated[float, Field(ge=0, allow_inf_nan=True)]]] = Field(
-        None, min_length=2, max_length=2, description="continuous-beam: end rotational springs [N m/rad] (entry, exit)")
-    elements_per_span: int = Field(40, ge=2, le=1000, description="continuous-beam: Hermite elements per span")
-    damage: list[DamageSpec] = Field(default_factory=list, description="[[bridge.damage]] local stiffness losses")
-    damping_ratio: float = Field(DEFAULT_DAMPING_RATIO, ge=0, lt=1, description="modal damping ratio, every mode [-]")
-    n_modes: int = Field(10, ge=1, le=500, description="retained modes (the lowest n) [-]")
-    neutral_axis_depth: Optional[float] = Field(None, gt=0, description="neutral axis to bottom fibre, the strain lever arm; default 0.5 m for a beam, the composite section's for presets [m]")
-    modes_file: Optional[str] = Field(None, description="model = \"modes-file\": path of a `vbikit-modes 1` file, relative to the scenario; n_modes, if given, keeps the first modes")
+
+def _check_deck_keys(deck: Optional[dict[str, Any]]) -> None:
+    if deck is not None:
+        from vbikit.scenario.deck import SCENARIO_PARAMETERS
+
+        unknown = [k for k in deck if k not in SCENARIO_PARAMETERS]
+        if unknown:
+            raise ValueError(f"deck: unknown [bridge.deck] key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+
+
+def _check_damage_girders(damage: list[DamageSpec], deck: bool) -> None:
+    for i, d in enumerate(damage):
+        if deck and d.girder is None:
+            raise ValueError(f"damage.{i}: a slab-on-girder deck needs girder (the damaged girder's number)")
+        if not deck and d.girder is not None:
+            raise ValueError(f"damage.{i}: a beam has no girders; remove girder")
+
+
+class _BridgeKind(_Section):
+    """One kind of [bridge]: its own keys, and :meth:`build` that makes the model.
+
+    Every kind has ``model``, ``n_modes``, ``damping_ratio``, ``deck`` (None without a
+    [bridge.deck] table) and ``damage`` (empty without [[bridge.damage]]).
+    """
+
+    def build(self, base_dir: Path | str = ".") -> ModalBridge:
+        """The bridge model (relative file names against ``base_dir``); raises ScenarioError or ValueError."""
+        raise NotImplementedError
+
+    def damage_regions(self) -> tuple[Damage, ...]:
+        """The [[bridge.damage]] regions as :class:`~vbikit.bridge.damage.Damage`."""
+        return tuple(d.build() for d in self.damage)  # type: ignore[attr-defined]
+
+    @classmethod
+    def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
+        where = [f'model = "{m}"' if m in BRIDGE_KINDS else "the presets"
+                 for m, kind in _KIND_CLASSES.items() if kind is not cls and key in kind.model_fields]
+        return f"{key} is a key of {' and '.join([', '.join(where[:-1]), where[-1]] if len(where) > 1 else where)}" if where else ""
+
+    def _deck_bridge(self, make: Any) -> ModalBridge:
+        """``make(n_modes=, damping_ratio=, **deck overrides, damage=)``: a deck whose model errors name bridge.deck.<key>."""
+        from vbikit.scenario.deck import deck_parameters
+
+        deck = self.deck or {}  # type: ignore[attr-defined]
+        overrides = deck_parameters(deck)
+        if self.damage:  # type: ignore[attr-defined]
+            overrides["damage"] = self.damage_regions()
+        try:
+            return make(n_modes=self.n_modes, damping_ratio=self.damping_ratio, **overrides)  # type: ignore[attr-defined]
+        except ValueError as err:  # the deck model names its parameter: give it the scenario key
+            key = str(err).split(" ", 1)[0]
+            raise ScenarioError(f"bridge.deck.{err}" if key in deck else str(err)) from None
+
+
+class BeamSpec(_BridgeKind):
+    """[bridge] model = "beam": a simply supported Euler–Bernoulli beam (vbikit.bridge.EulerBernoulliBeam)."""
+
+    model: Literal["beam"] = Field("beam", description="Euler–Bernoulli beam")
+    span: Optional[float] = Field(None, gt=0, description="span length [m]")
+    EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
+    mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
+    neutral_axis_depth: _NEUTRAL_AXIS = None
+
+    deck: ClassVar[None] = None
+    damage: ClassVar[tuple[DamageSpec, ...]] = ()
+
+    @field_validator("EI", "mass_per_length", mode="before")
+    @classmethod
+    def _one_value(cls, v: Any) -> Any:
+        if isinstance(v, list):
+            raise ValueError("EI and mass_per_length per span (lists) need model = \"continuous-beam\"")
+        return v
+
+    @model_validator(mode="after")
+    def _properties(self) -> "BeamSpec":
+        missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
+        if missing:
+            raise ValueError(f"model = \"beam\" needs {', '.join(missing)} (span [m], EI [N m^2], mass_per_length [kg/m])")
+        return self
+
+    def build(self, base_dir: Path | str = ".") -> ModalBridge:
+        from vbikit.bridge.beam import EulerBernoulliBeam
+
+        return EulerBernoulliBeam(
+            span=self.span, EI=self.EI, mass_per_length=self.mass_per_length, damping_ratio=self.damping_ratio,
+            n_modes=self.n_modes, neutral_axis_depth=self.neutral_axis_depth or 0.5,
+        )
+
+
+class ContinuousBeamSpec(_BridgeKind):
+    """[bridge] model = "continuous-beam": spans in a row on springs (vbikit.bridge.ContinuousBeam)."""
+
+    model: Literal["continuous-beam"] = Field(..., description="Euler–Bernoulli beam over several spans")
+    EI: Optional[_POSITIVE_OR_LIST] = Field(None, description="bending stiffness, one or one per span [N m^2]")
+    mass_per_length: Optional[_POSITIVE_OR_LIST] = Field(None, description="mass per length, one or one per span [kg/m]")
+    spans: Optional[list[_POSITIVE]] = Field(None, description="span lengths [m]")
+    support_stiffness: Optional[Union[_SPRING, list[_SPRING]]] = Field(
+        None, description="vertical support springs [N/m], one or one per support (inf = rigid); default rigid")
+    rotational_stiffness: Optional[list[_SPRING]] = Field(
+        None, min_length=2, max_length=2, description="end rotational springs [N m/rad] (entry, exit)")
+    elements_per_span: int = Field(40, ge=2, le=1000, description="Hermite elements per span")
+    damage: list[DamageSpec] = _damage(" (one span = a simply supported beam)")
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
+    neutral_axis_depth: _NEUTRAL_AXIS = None
+
+    deck: ClassVar[None] = None
+
+    @model_validator(mode="after")
+    def _properties(self) -> "ContinuousBeamSpec":
+        missing = [k for k in ("spans", "EI", "mass_per_length") if getattr(self, k) is None]
+        if missing:
+            raise ValueError(f"model = \"continuous-beam\" needs {', '.join(missing)} (spans [m], EI [N m^2], mass_per_length [kg/m])")
+        _check_damage_girders(self.damage, deck=False)
+        return self
+
+    def build(self, base_dir: Path | str = ".") -> ModalBridge:
+        from vbikit.bridge.continuous import ContinuousBeam
+
+        return ContinuousBeam(
+            spans=tuple(self.spans), EI=self.EI, mass_per_length=self.mass_per_length, damping_ratio=self.damping_ratio,
+            n_modes=self.n_modes, neutral_axis_depth=self.neutral_axis_depth or 0.5,
+            support_stiffness=self.support_stiffness, rotational_stiffness=tuple(self.rotational_stiffness or (0.0, 0.0)),
+            elements_per_span=self.elements_per_span, damage=self.damage_regions(),
+        )
+
+
+class SlabOnGirderSpec(_BridgeKind):
+    """[bridge] model = "slab-on-girder": a 3D grillage deck from [bridge.deck] (vbikit.bridge.SlabOnGirderBridge)."""
+
+    model: Literal["slab-on-girder"] = Field(..., description="3D grillage deck")
+    damage: list[DamageSpec] = _damage(" of single girders")
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
     deck: Optional[dict[str, Any]] = Field(
-        None, description="table [bridge.deck]: SlabOnGirderBridge parameters for model = \"slab-on-girder\" (needs at least span) or overrides of a slab-on-girder preset; keys and units in the bridges guide")
+        None, description="table [bridge.deck]: SlabOnGirderBridge parameters, at least span; keys and units in the bridges guide")
+
+    @model_validator(mode="after")
+    def _deck_table(self) -> "SlabOnGirderSpec":
+        _check_damage_girders(self.damage, deck=True)
+        _check_deck_keys(self.deck)
+        if self.deck is None or not {"span", "spans"} & set(self.deck):
+            raise ValueError("model = \"slab-on-girder\" needs [bridge.deck] with at least span [m] or spans (docs/bridges.md)")
+        return self
+
+    def build(self, base_dir: Path | str = ".") -> ModalBridge:
+        from vbikit.bridge.girder_deck import SlabOnGirderBridge
+
+        return self._deck_bridge(SlabOnGirderBridge)
+
+
+class ModesFileSpec(_BridgeKind):
+    """[bridge] model = "modes-file": modes imported from a `vbikit-modes 1` file (vbikit.bridge.modefile)."""
+
+    model: Literal["modes-file"] = Field(..., description="imported modes")
+    modes_file: str = Field(..., description="path of a `vbikit-modes 1` file, relative to the scenario; n_modes, if given, keeps the first modes")
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
+
+    deck: ClassVar[None] = None
+    damage: ClassVar[tuple[DamageSpec, ...]] = ()
+
+    def build(self, base_dir: Path | str = ".") -> ModalBridge:
+        from vbikit.bridge.modefile import modes_from_file
+
+        n_modes = self.n_modes if "n_modes" in self.model_fields_set else None
+        try:
+            return modes_from_file(Path(base_dir) / self.modes_file, damping_ratio=self.damping_ratio, n_modes=n_modes)
+        except ValueError as err:
+            raise ScenarioError(f"bridge.modes_file: {err}") from None
+
+
+def _deck_preset(name: str) -> bool:
+    return BRIDGE_PRESETS[name].kind == "slab-on-girder"
+
+
+class PresetBridgeSpec(_BridgeKind):
+    """[bridge] model = a preset name (`vbikit presets`): n_modes and damping_ratio, and on the
+    slab-on-girder presets [bridge.deck] overrides and [[bridge.damage]]."""
+
+    model: str = Field(..., description="a bridge preset (`vbikit presets`)")
+    damage: list[DamageSpec] = _damage(" of single girders (slab-on-girder presets)")
+    damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
+    n_modes: _N_MODES = 10
+    deck: Optional[dict[str, Any]] = Field(
+        None, description="table [bridge.deck]: overrides of a slab-on-girder preset; keys and units in the bridges guide")
 
     @field_validator("model")
     @classmethod
     def _known_model(cls, v: str) -> str:
-        allowed = ("beam", "continuous-beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)
-        if v not in allowed:
+        if v not in BRIDGE_PRESETS:
+            allowed = (*BRIDGE_KINDS, *BRIDGE_PRESETS)
             raise ValueError(f"unknown bridge model {v!r}; allowed: {', '.join(allowed)}")
         return v
 
     @model_validator(mode="after")
-    def _continuous_beam_keys(self) -> "BridgeSpec":
-        only = [k for k in ("spans", "support_stiffness", "rotational_stiffness") if getattr(self, k) is not None]
-        if "elements_per_span" in self.model_fields_set:
-            only.append("elements_per_span")
-        if self.model != "continuous-beam" and only:
-            raise ValueError(f"{', '.join(only)}: only with model = \"continuous-beam\"")
-        if self.model != "continuous-beam" and any(isinstance(getattr(self, k), list) for k in ("EI", "mass_per_length")):
-            raise ValueError("EI and mass_per_length per span (lists) need model = \"continuous-beam\"")
-        if self.model == "continuous-beam":
-            missing = [k for k in ("spans", "EI", "mass_per_length") if getattr(self, k) is None]
-            if missing:
-                raise ValueError(f"model = \"continuous-beam\" needs {', '.join(missing)} (spans [m], EI [N m^2], mass_per_length [kg/m])")
-            if self.span is not None:
-                raise ValueError("model = \"continuous-beam\" takes spans (a list), not span")
-        if self.damage:
-            slab = self.model == "slab-on-girder" or (self.model in BRIDGE_PRESETS and BRIDGE_PRESETS[self.model].kind == "slab-on-girder")
-            if not slab and self.model != "continuous-beam":
-                raise ValueError("[[bridge.damage]] applies to model = \"continuous-beam\" (one span = a simply supported beam) "
-                                 "and to slab-on-girder decks")
-            for i, d in enumerate(self.damage):
-                if slab and d.girder is None:
-                    raise ValueError(f"damage.{i}: a slab-on-girder deck needs girder (the damaged girder's number)")
-                if not slab and d.girder is not None:
-                    raise ValueError(f"damage.{i}: a beam has no girders; remove girder")
+    def _overrides(self) -> "PresetBridgeSpec":
+        deck = _deck_preset(self.model)
+        if self.damage and not deck:
+            raise ValueError("damage: [[bridge.damage]] applies to model = \"continuous-beam\" (one span = a simply supported "
+                             f"beam) and to slab-on-girder decks, not the beam preset {self.model!r}")
+        _check_damage_girders(self.damage, deck=True)
+        if self.deck is not None and not deck:
+            raise ValueError(f"deck: [bridge.deck] applies to model = \"slab-on-girder\" and the slab-on-girder presets, not {self.model!r}")
+        _check_deck_keys(self.deck)
         return self
 
-    @model_validator(mode="after")
-    def _beam_needs_properties(self) -> "BridgeSpec":
-        if self.model == "continuous-beam":
-            return self
-        if (self.model == "modes-file") != (self.modes_file is not None):
-            raise ValueError("modes_file is needed by, and only allowed with, model = \"modes-file\"")
-        slab = self.model == "slab-on-girder" or (self.model in BRIDGE_PRESETS and BRIDGE_PRESETS[self.model].kind == "slab-on-girder")
-        if self.deck is not None and not slab:
-            raise ValueError(f"[bridge.deck] applies to model = \"slab-on-girder\" and the slab-on-girder presets, not {self.model!r}")
-        if self.deck is not None:
-            from vbikit.scenario.deck import SCENARIO_PARAMETERS
+    @classmethod
+    def allowed_keys(cls, table: dict[str, Any]) -> list[str]:
+        model = table.get("model")
+        keys = super().allowed_keys(table)
+        if isinstance(model, str) and model in BRIDGE_PRESETS and not _deck_preset(model):
+            keys = [k for k in keys if k not in ("deck", "damage")]
+        return keys
 
-            unknown = [k for k in self.deck if k not in SCENARIO_PARAMETERS]
-            if unknown:
-                raise ValueError(f"unknown [bridge.deck] key(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
-        if self.model == "slab-on-girder" and (self.deck is None or not {"span", "spans"} & set(self.deck)):
-            raise ValueError("model = \"slab-on-girder\" needs [bridge.deck] with at least span [m] or spans (docs/bridges.md)")
-        if self.model == "slab-on-girder":
-            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
-            if given:
-                raise ValueError(f"model = \"slab-on-girder\" takes its parameters from [bridge.deck]; remove {', '.join(given)}")
-        elif self.model == "modes-file":
-            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
-            if given:
-                raise ValueError(f"model = \"modes-file\" takes its data from the file; remove {', '.join(given)}")
-        elif self.model == "beam":
-            missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
-            if missing:
-                raise ValueError(f"model = \"beam\" needs {', '.join(missing)} (span [m], EI [N m^2], mass_per_length [kg/m])")
-        else:
-            given = [k for k in ("span", "EI", "mass_per_length", "neutral_axis_depth") if getattr(self, k) is not None]
-            if given:
-                raise ValueError(f"preset {self.model!r} fixes {', '.join(given)}; only damping_ratio and n_modes may be set")
-        return self
+    @classmethod
+    def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
+        note = super().unknown_key_note(key, table)
+        return f"a preset fixes its properties{'; ' + note if note else ''}"
+
+    def build(self, base_dir: Path | str = ".") -> ModalBridge:
+        preset = BRIDGE_PRESETS[self.model]
+        if self.deck is not None or self.damage:
+            return self._deck_bridge(preset.build)
+        return preset.build(n_modes=self.n_modes, damping_ratio=self.damping_ratio)
+
+
+#: model → spec class of the bridge kinds named by their model (any other model names a preset:
+#: :class:`PresetBridgeSpec`); a new kind is a spec class with ``model: Literal[...]`` and ``build``, listed here
+BRIDGE_KINDS: dict[str, type[_BridgeKind]] = {
+    get_args(kind.model_fields["model"].annotation)[0]: kind
+    for kind in (BeamSpec, ContinuousBeamSpec, SlabOnGirderSpec, ModesFileSpec)
+}
+#: tag of the discriminated union → spec class
+_KIND_CLASSES: dict[str, type[_BridgeKind]] = {**BRIDGE_KINDS, "preset": PresetBridgeSpec}
+
+
+def bridge_kind(table: Any) -> Optional[str]:
+    """The tag of a [bridge] table: its model when a kind of :data:`BRIDGE_KINDS` (default
+    "beam"), else "preset" (the preset class checks the name); None when not a table."""
+    if isinstance(table, _BridgeKind):
+        return next(tag for tag, kind in _KIND_CLASSES.items() if type(table) is kind)
+    if not isinstance(table, dict):
+        return None
+    model = table.get("model", "beam")
+    return model if isinstance(model, str) and model in BRIDGE_KINDS else "preset"
+
+
+#: [bridge]: one spec class per kind, chosen by ``model`` (see :func:`bridge_kind`)
+BridgeSpec = Annotated[
+    Union[tuple(Annotated[kind, Tag(tag)] for tag, kind in _KIND_CLASSES.items())],  # type: ignore[misc]
+    Discriminator(bridge_kind, custom_error_type="bridge_table",
+                  custom_error_message=f"must be a table: model = {', '.join(map(json.dumps, BRIDGE_KINDS))} or a "
+                                       "preset name, with that model's keys"),
+]
+
+
+def parse_bridge(table: dict[str, Any]) -> _BridgeKind:
+    """Validate a [bridge] table alone (raises ScenarioError naming ``bridge.<key>``)."""
+    try:
+        return TypeAdapter(BridgeSpec).validate_python(table)
+    except ValidationError as err:
+        raise ScenarioError(_format(err, {"bridge": table}, ("bridge",)).removeprefix("invalid scenario:\n  ")) from None
 
 
 class VehicleSpec(_Section):
@@ -459,43 +662,102 @@ class Scenario(_Section):
         return self._base_dir
 
 
+def _tags(annotation: Any) -> dict[str, type[BaseModel]]:
+    """tag → section model of a discriminated union of sections (empty for any other annotation)."""
+    out = {}
+    for arg in get_args(annotation):
+        inner = get_args(arg)
+        tag = next((m.tag for m in inner[1:] if isinstance(m, Tag)), None)
+        if tag is not None and isinstance(inner[0], type) and issubclass(inner[0], BaseModel):
+            out[tag] = inner[0]
+    return out
+
+
+def _section(annotation: Any) -> type[BaseModel] | dict[str, type[BaseModel]] | None:
+    """The section model of a field's annotation (through Optional and lists), the tagged models
+    of a union of sections, or None for a plain value."""
+    while True:
+        if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+            return annotation
+        tags = _tags(annotation)
+        if tags:
+            return tags
+        args = [a for a in get_args(annotation) if a is not type(None)]
+        if not args:
+            return None
+        annotation = args[0]
+
+
+def _field(model: type[BaseModel], name: str) -> Any:
+    return next((f for n, f in model.model_fields.items() if name in (n, f.alias)), None)
+
+
+def section_models(section: str) -> list[type[BaseModel]]:
+    """The models of the scenario section ``section`` ("bridge": one per kind), [] for a plain key."""
+    field = Scenario.model_fields.get(section)
+    found = _section(field.annotation) if field is not None else None
+    return [] if found is None else list(found.values()) if isinstance(found, dict) else [found]
+
+
+def section_keys(section: str) -> list[str]:
+    """Every key of the scenario section ``section`` (of any of its kinds), in schema order."""
+    keys: list[str] = []
+    for model in section_models(section):
+        keys += [k for k in model.allowed_keys({}) if k not in keys]  # type: ignore[attr-defined]
+    return keys
+
+
 def key_unit(key: str) -> str:
     """Unit of the scenario key ``"section.key"`` as written in its description (``"km/h"`` for
     ``crossing.speed_kmh``, ``"m"`` for ``tire.contact_length``; ``"-"`` for dimensionless numbers,
     ``""`` for text and unknown keys; ``bridge.deck.*`` keys from the deck model's parameters)."""
-    model: Any = Scenario
     *sections, name = key.split(".")
     if sections == ["bridge", "deck"]:
         from vbikit.scenario.deck import deck_parameter_docs
 
         return deck_parameter_docs().get(name, ("", ""))[1]
+    models: list[type[BaseModel]] = [Scenario]
     for part in sections:
-        field = model.model_fields.get(part)
-        model = field.annotation if field is not None else None
-        if not (isinstance(model, type) and issubclass(model, BaseModel)):
-            return ""
-    field = next((f for n, f in model.model_fields.items() if name in (n, f.alias)), None)
+        found = [_section(f.annotation) for m in models if (f := _field(m, part)) is not None]
+        models = [m for s in found for m in (s.values() if isinstance(s, dict) else [s] if s else [])]
+    field = next((f for m in models if (f := _field(m, name)) is not None), None)
     if field is None:
         return ""
     m = re.search(r"\[([^\[\]]+)\]\s*$", field.description or "")
     return m.group(1) if m else ""
 
 
-def _model_at(path: tuple[Any, ...]) -> type[BaseModel] | None:
-    """The section model that holds the key at ``path`` (walks fields, list items and Optionals)."""
+def _walk(loc: tuple[Any, ...]) -> tuple[tuple[Any, ...], type[BaseModel] | None]:
+    """``loc`` without the tags of discriminated unions (``bridge.beam.span`` → ``bridge.span``),
+    and the section model at its end (None for a plain key)."""
     model: Any = Scenario
-    for part in path:
+    out: list[Any] = []
+    for part in loc:
         if isinstance(part, int):
-            continue
-        if not (isinstance(model, type) and issubclass(model, BaseModel)):
-            return None
-        field = next((f for n, f in model.model_fields.items() if part in (n, f.alias)), None)
-        if field is None:
-            return None
-        model = field.annotation
-        while get_args(model) and not (isinstance(model, type) and issubclass(model, BaseModel)):
-            model = next((a for a in get_args(model) if a is not type(None)), None)
-    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
+            out.append(part)
+        elif isinstance(model, dict) and part in model:
+            model = model[part]
+        else:
+            out.append(part)
+            field = _field(model, part) if isinstance(model, type) and issubclass(model, BaseModel) else None
+            model = _section(field.annotation) if field is not None else None
+    return tuple(out), model if isinstance(model, type) and issubclass(model, BaseModel) else None
+
+
+def _model_at(path: tuple[Any, ...]) -> type[BaseModel] | None:
+    """The section model that holds the key at ``path`` (walks fields, list items, Optionals and
+    the kinds of a discriminated union)."""
+    return _walk(path)[1]
+
+
+def _table_at(data: Any, path: tuple[Any, ...]) -> dict[str, Any]:
+    """The table at ``path`` (tags removed) of the parsed TOML ``data``, {} when there is none."""
+    for part in path:
+        try:
+            data = data[part]
+        except (KeyError, IndexError, TypeError):
+            return {}
+    return data if isinstance(data, dict) else {}
 
 
 def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
@@ -509,15 +771,20 @@ def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
     return out
 
 
-def _format(err: ValidationError, data: dict[str, Any]) -> str:
+def _format(err: ValidationError, data: dict[str, Any], prefix: tuple[Any, ...] = ()) -> str:
+    """The errors of a scenario validation, one line each, naming the key (``prefix``: the
+    location of the validated part when it is not the whole scenario)."""
     lines = []
     for e in err.errors():
-        loc = error_path(e["loc"])
+        path, model = _walk(prefix + tuple(e["loc"][:-1]))
+        clean = _walk(prefix + tuple(e["loc"]))[0]
+        loc = error_path(clean)
         msg = e["msg"].removeprefix("Value error, ")
         if e["type"] == "extra_forbidden":
-            model = _model_at(tuple(e["loc"][:-1]))
-            names = [f.alias or n for n, f in model.model_fields.items()] if model else []
-            msg = f"unknown key; allowed keys: {', '.join(names)}"
+            table = _table_at(data, path)
+            names = model.allowed_keys(table) if model else []  # type: ignore[attr-defined]
+            note = model.unknown_key_note(str(e["loc"][-1]), table) if model else ""  # type: ignore[attr-defined]
+            msg = f"unknown key; allowed keys: {', '.join(names)}{f' ({note})' if note else ''}"
         elif e["type"] == "missing":
             msg = "missing required key"
         elif "input" in e and e["type"] not in ("value_error",):

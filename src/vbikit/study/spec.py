@@ -38,7 +38,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from vbikit._toml import parse_toml, read_toml
 from vbikit.errors import VbikitError
-from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
+from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario, section_keys
 
 #: scenario keys that only change the road: crossings differing only in these share dt, contact
 #: points, tabulated shapes and the static reference (one prepared batch)
@@ -161,8 +161,7 @@ def _check_key(key: str, base: dict[str, Any]) -> None:
                          "are supported")
     if section == "vehicle":  # preset parameters are checked by the scenario validation
         return
-    model = Scenario.model_fields[section].annotation
-    names = [f.alias or n for n, f in model.model_fields.items()]
+    names = section_keys(section)
     if parts[1] not in names:
         raise StudyError(f"axes.{key!r}: unknown key {parts[1]!r} in [{section}]; allowed: {', '.join(names)}")
 
