@@ -37,7 +37,8 @@ from scipy.optimize import least_squares
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS
-from vbikit.contact.tires import DiskTire, MultiPointTire, PointTire, RigidDiskTire, TireModel
+from vbikit.contact.registry import TIRE_MODELS
+from vbikit.contact.tires import TireModel
 from vbikit.field.io import (
     CaseSpec,
     FieldFileError,
@@ -63,9 +64,8 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 log = logging.getLogger(__name__)
 
-#: tire models selectable by name in the field workflow
-#: the tire models a field comparison can use (every model of vbikit.contact)
-FIELD_TIRES = {"point": PointTire, "multipoint": MultiPointTire, "disk": DiskTire, "rigid-disk": RigidDiskTire}
+#: the tire models a field comparison can use: every registered model, with its defaults
+FIELD_TIRES = TIRE_MODELS
 
 
 class ScaledBridge(ModalBridge):

@@ -37,7 +37,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from vbikit._toml import parse_toml, read_toml
-from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
+from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario
 
 #: scenario keys that only change the road: crossings differing only in these share dt, contact
 #: points, tabulated shapes and the static reference (one prepared batch)
@@ -160,6 +160,8 @@ def _check_key(key: str, base: dict[str, Any]) -> None:
         return
     model = Scenario.model_fields[section].annotation
     names = [f.alias or n for n, f in model.model_fields.items()]
+    if section == "tire":  # and every tire model's parameters (the scenario checks them against its model)
+        names = TireSpec.keys()
     if parts[1] not in names:
         raise StudyError(f"axes.{key!r}: unknown key {parts[1]!r} in [{section}]; allowed: {', '.join(names)}")
 
