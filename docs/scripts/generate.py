@@ -147,6 +147,11 @@ def vehicle_table() -> str:
     return "\n".join(rows) + "\n"
 
 
+def _own(models: dict[str, Any]) -> dict[str, Any]:
+    """The registered models defined in vbikit itself (not those a test or an example registered)."""
+    return {name: cls for name, cls in models.items() if cls.__module__.startswith("vbikit.")}
+
+
 def tire_table() -> str:
     """[tire] keys: ``model``, every registered tire model's parameters (meaning prefixed by the
     models that take it) and ``loss_of_contact``."""
@@ -159,7 +164,7 @@ def tire_table() -> str:
 
     users: dict[str, list[str]] = {}
     params: dict[str, Any] = {}
-    for name, cls in TIRE_MODELS.items():
+    for name, cls in _own(TIRE_MODELS).items():
         for key, field in cls.Parameters.model_fields.items():
             users.setdefault(key, []).append(name)
             params[key] = copy.copy(field)
@@ -201,7 +206,7 @@ def _allowed() -> dict[str, str]:
     return {
         "bridge.model": ", ".join(f"`{m}`" for m in ("beam", "continuous-beam", "slab-on-girder", "modes-file", *BRIDGE_PRESETS)),
         "vehicle.model": ", ".join(f"`{m}`" for m in VEHICLE_PRESETS),
-        "tire.model": ", ".join(f"`{m}`" for m in TIRE_MODELS),
+        "tire.model": ", ".join(f"`{m}`" for m in _own(TIRE_MODELS)),
         "road.class": ", ".join(f"`{m}`" for m in ROAD_CLASSES),
     }
 
@@ -310,7 +315,7 @@ def references_md() -> str:
     from vbikit.references import MODEL_REFERENCES, REFERENCES
 
     used_by: dict[str, list[str]] = {}
-    declared = {f"tire:{name}": cls.references for name, cls in TIRE_MODELS.items()}
+    declared = {f"tire:{name}": cls.references for name, cls in _own(TIRE_MODELS).items()}
     for model, keys in {**MODEL_REFERENCES, **declared}.items():
         for k in keys:
             used_by.setdefault(k, []).append(model)
