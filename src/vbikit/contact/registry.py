@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 import typing
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from pydantic import ValidationError
@@ -56,14 +56,15 @@ def tire_model(name: str) -> type[TireModel]:
         raise ValueError(f"unknown tire model {name!r}; allowed: {', '.join(TIRE_MODELS)}") from None
 
 
-def tire_parameters(name: str, parameters: Mapping[str, Any]) -> TireParameters:
+def tire_parameters(name: str, parameters: Mapping[str, Any], common: Sequence[str] = ()) -> TireParameters:
     """``parameters`` validated by the ``Parameters`` model of tire model ``name`` (defaults filled in).
 
-    Raises ValueError naming an unknown key and listing that model's keys, or the pydantic
-    ValidationError (a ValueError) of a value out of range.
+    Raises ValueError naming an unknown key and listing the allowed ones (``common``, keys the
+    caller accepts besides the model's, first), or the pydantic ValidationError (a ValueError)
+    of a value out of range, located at the key.
     """
     cls = tire_model(name)
-    allowed = list(cls.Parameters.model_fields)
+    allowed = [*common, *cls.Parameters.model_fields]
     for key in parameters:
         if key not in allowed:
             head = f"{key}: unknown key" if re.fullmatch(r"[a-z_]+", str(key)) else f"unknown key {key!r}"

@@ -239,12 +239,7 @@ class TireSpec(_Section):
 
     @model_validator(mode="after")
     def _model_parameters(self) -> "TireSpec":
-        allowed = self.keys(self.model)
-        for key in self.model_extra or {}:
-            if key not in allowed:
-                head = f"{key}: unknown key" if re.fullmatch(r"[a-z_]+", key) else f"unknown key {key!r}"
-                raise ValueError(f"{head} for tire model {self.model!r}; allowed keys: {', '.join(allowed)}")
-        tire_model(self.model).Parameters.model_validate(self.model_extra or {})  # errors name tire.<key>
+        tire_parameters(self.model, self.model_extra or {}, common=list(type(self).model_fields))  # errors name tire.<key>
         return self
 
     @classmethod
