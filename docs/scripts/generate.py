@@ -147,6 +147,35 @@ def vehicle_table() -> str:
     return "\n".join(rows) + "\n"
 
 
+def _own(models: dict[str, Any]) -> dict[str, Any]:
+    """The registered models defined in vbikit itself (not those a test or an example registered)."""
+    return {name: cls for name, cls in models.items() if cls.__module__.startswith("vbikit.")}
+
+
+def tire_table() -> str:
+    """[tire] keys: ``model``, every registered tire model's parameters (meaning prefixed by the
+    models that take it) and ``loss_of_contact``."""
+    import copy
+
+    from pydantic import create_model
+
+    from vbikit.contact import TIRE_MODELS
+    from vbikit.scenario.schema import TireSpec
+
+    users: dict[str, list[str]] = {}
+    params: dict[str, Any] = {}
+    for name, cls in _own(TIRE_MODELS).items():
+        for key, field in cls.Parameters.model_fields.items():
+            users.setdefault(key, []).append(name)
+            params[key] = copy.copy(field)
+    for key, field in params.items():
+        field.description = f"{' / '.join(users[key])}: {field.description}"
+    spec = TireSpec.model_fields
+    keys = create_model("TireKeys", model=(str, spec["model"]), **{k: (f.annotation, f) for k, f in params.items()},
+                        **{k: (f.annotation, f) for k, f in spec.items() if k != "model"})
+    return model_table(keys, "tire.", _allowed())
+
+
 def deck_table() -> str:
     """[bridge.deck] keys: the SlabOnGirderBridge parameters a scenario may set."""
     import dataclasses
@@ -171,12 +200,14 @@ def deck_table() -> str:
 
 def _allowed() -> dict[str, str]:
     from vbikit.bridge.presets import BRIDGE_PRESETS
+    from vbikit.contact import TIRE_MODELS
     from vbikit.scenario.schema import ROAD_CLASSES
     from vbikit.vehicle.presets import VEHICLE_PRESETS
 
     return {
         "bridge.model": ", ".join(f"`{m}`" for m in BRIDGE_PRESETS),  # the presets; each other kind has its own table
         "vehicle.model": ", ".join(f"`{m}`" for m in VEHICLE_PRESETS),
+        "tire.model": ", ".join(f"`{m}`" for m in _own(TIRE_MODELS)),
         "road.class": ", ".join(f"`{m}`" for m in ROAD_CLASSES),
     }
 
@@ -246,7 +277,7 @@ def scenario_keys() -> str:
             top.append(name)
         if isinstance(ann, type) and issubclass(ann, BaseModel):
             out.append(f"\n### [{name}]\n\n{(ann.__doc__ or '').strip().splitlines()[0]}\n\n")
-            out.append(model_table(ann, f"{name}.", _allowed()))
+            out.append(tire_table() if name == "tire" else model_table(ann, f"{name}.", _allowed()))
             if name == "bridge":
                 out.append("\n#### [bridge.deck]\n\nParameters of the slab-on-girder grillage deck "
                            "(`vbikit.bridge.SlabOnGirderBridge`), for `model = \"slab-on-girder\"` or as "
@@ -313,10 +344,12 @@ def scenario_keys_page() -> str:
 
 # -------------------------------------------------------------------------------- references
 def references_md() -> str:
+    from vbikit.contact import TIRE_MODELS
     from vbikit.references import MODEL_REFERENCES, REFERENCES
 
     used_by: dict[str, list[str]] = {}
-    for model, keys in MODEL_REFERENCES.items():
+    declared = {f"tire:{name}": cls.references for name, cls in _own(TIRE_MODELS).items()}
+    for model, keys in {**MODEL_REFERENCES, **declared}.items():
         for k in keys:
             used_by.setdefault(k, []).append(model)
     lines = [NOTICE.format(source="vbikit.references"), "# References\n",

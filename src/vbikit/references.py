@@ -6,7 +6,8 @@ fails when they differ), and :data:`MODEL_REFERENCES` says which entries a model
 so that ``vbikit cite SCENARIO`` and ``vbikit run --json`` can list them.
 
 To add a source: add a :class:`Reference` to :data:`REFERENCES`, name its key in
-:data:`MODEL_REFERENCES` for the models that use it, and regenerate the docs.
+:data:`MODEL_REFERENCES` for the models that use it (tire models: in the class's ``references``),
+and regenerate the docs.
 """
 from __future__ import annotations
 
@@ -255,7 +256,8 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
 )}
 
 #: Which entries each model relies on, by the names used in scenario files
-#: (``"<section>:<model>"``; ``"*"`` entries apply to every crossing).
+#: (``"<section>:<model>"``; ``"*"`` entries apply to every crossing).  Tire models declare
+#: theirs on the class (``TireModel.references``, :data:`vbikit.contact.TIRE_MODELS`).
 MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "*": ("MultiPointTire",),
     "bridge:beam": ("Fryba1999",),
@@ -273,10 +275,6 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "vehicle:hs20-44": ("MultiPointTire", "AASHTO-Standard2002"),
     "vehicle:two-axle": ("AASHTO-Standard2002",),
     "vehicle:dump-truck": ("MultiPointTire",),
-    "tire:point": (),
-    "tire:multipoint": ("MultiPointTire", "AASHTO-LRFD"),
-    "tire:disk": ("Yin2010",),
-    "tire:rigid-disk": ("Chang2011",),
     "road:iso": ("ISO8608", "HuangWangShahawy1992", "WangHuang1992"),
     "road:paper-class": ("ISO8608", "AdvCivEng2022"),
     "road:psd": ("HuangWangShahawy1992", "WangHuang1992"),

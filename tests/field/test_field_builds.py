@@ -55,7 +55,7 @@ def test_bridge_errors_name_the_scenario_key(example, bridge, deck, message):
 
 
 def test_the_field_tires_are_the_scenario_tires_with_their_defaults():
-    assert FIELD_TIRES == ("point", "multipoint", "disk", "rigid-disk")
+    assert tuple(FIELD_TIRES) == ("point", "multipoint", "disk", "rigid-disk")
     assert [field_tire(n) for n in FIELD_TIRES] == [PointTire(), MultiPointTire(), DiskTire(), RigidDiskTire()]
 
 

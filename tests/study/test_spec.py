@@ -41,8 +41,9 @@ def test_batches_group_road_only_axes(small_study_dict):
 
 
 def _min():
+    # a multi-point tire: tire.n_points is a key of that model only
     return {"base": {"bridge": {"model": "paper-bridge-2-beam"}, "vehicle": {"model": "two-axle"},
-                     "road": {"class": "C"}, "crossing": {"speed_kmh": 60}}}
+                     "tire": {"model": "multipoint"}, "road": {"class": "C"}, "crossing": {"speed_kmh": 60}}}
 
 
 @pytest.mark.parametrize("axes, needle", [

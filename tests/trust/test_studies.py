@@ -22,7 +22,7 @@ runner = CliRunner()
 SMALL = {
     "name": "trust study", "seed": 3, "batch_size": 2,
     "base": {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "vehicle": {"model": "two-axle"},
-             "road": {"class": "C", "length": 200}, "crossing": {"speed_kmh": 90}},
+             "tire": {"model": "multipoint"}, "road": {"class": "C", "length": 200}, "crossing": {"speed_kmh": 90}},
     "axes": {"tire.n_points": [1, 3], "road.seed": {"samples": 2}},
 }
 

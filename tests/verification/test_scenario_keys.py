@@ -1,7 +1,8 @@
 """Every scenario key changes the result (or is listed as output-only, with the reason).
 
 The keys are enumerated from the schema itself (``vbikit.scenario.schema``: every section's
-fields, the defect fields, every vehicle preset's parameters, every ``[bridge.deck]`` parameter),
+fields, the defect fields, every tire model's and vehicle preset's parameters, every
+``[bridge.deck]`` parameter),
 so a key added to the schema without a case here fails :func:`test_every_schema_key_has_a_case`.
 Each case runs the same small scenario twice through the public path (validate → build →
 simulate → summary, as ``vbikit run``) with two values of the key, and the computed outputs
@@ -26,7 +27,7 @@ from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.modefile import write_modes
 from vbikit.scenario import build, parse_scenario
 from vbikit.scenario.deck import SCENARIO_PARAMETERS
-from vbikit.scenario.schema import DefectSpec, Scenario, VehicleEntry, section_keys
+from vbikit.scenario.schema import DefectSpec, Scenario, TireSpec, VehicleEntry, section_keys
 from vbikit.solve import simulate
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -218,6 +219,7 @@ def schema_keys() -> set[str]:
     for section in Scenario.model_fields:  # a section's keys: of every kind of [bridge], say
         keys |= {f"{section}.{key}" for key in section_keys(section)} or {section}
     keys |= {f"road.defects.{f.alias or n}" for n, f in DefectSpec.model_fields.items()}
+    keys |= {f"tire.{k}" for k in TireSpec.keys()}  # every registered tire model's parameters
     keys |= {f"bridge.deck.{k}" for k in SCENARIO_PARAMETERS}
     keys |= {f"vehicle.{param}@{p.name}" for p in VEHICLE_PRESETS.values() for param in p.parameters}
     keys |= {f"vehicles.{f.alias or n}" for n, f in VehicleEntry.model_fields.items()} | {"vehicles.<parameters>"}

@@ -43,10 +43,10 @@ def presets() -> None:
         typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; wheel loads [kN]: {loads}{freq}")
         typer.echo(f"  {'':<14} {params}")
     typer.echo("Tires ([tire] model = ...):")
-    typer.echo("  point          single-point contact")
-    typer.echo("  multipoint     n_points (default 6), contact_length (default 0.254 m), layout = ends | cells (paper Eq. 6)")
-    typer.echo("  disk           deformable disk of radial springs, radius (default 0.5 m), disk_spacing (default 0.01 m)")
-    typer.echo("  rigid-disk     rigid disk following the surface envelope, radius, disk_spacing")
+    from vbikit.contact import tire_catalogue
+
+    for name, line in tire_catalogue():
+        typer.echo(f"  {name:<14} {line}")
     typer.echo("  all tires: loss_of_contact = true (default; tires cannot pull) | false")
     typer.echo("Deck defects ([[road.defects]] kind = ...):")
     from vbikit.road import DEFECT_DEFAULTS

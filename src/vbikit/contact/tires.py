@@ -21,82 +21,40 @@ envelope).  All four models run through this one mechanism (``vbikit.solve.kerne
 * :class:`DiskTire` — deformable disk of radial springs (after Yin et al.; our formulation,
   model data §3).
 * :class:`RigidDiskTire` — rigid disk following the surface envelope (after Chang et al.).
+
+Each model declares its scenario ``name``, a ``description``, its ``references`` and its
+``Parameters`` (the keys of its ``[tire]`` table) and is registered by name with
+:func:`~vbikit.contact.registry.register_tire`.
 """
 from __future__ import annotations
 
-import abc
 from dataclasses import dataclass
-from typing import Literal
+from typing import ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import Field
+
+from vbikit.contact.base import ContactLayout, TireModel, TireParameters
+from vbikit.contact.registry import register_tire
 
 #: [public] AASHTO LRFD tire contact length 10 in [m]
 AASHTO_CONTACT_LENGTH = 0.254
 
 
-@dataclass(frozen=True)
-class ContactLayout:
-    """The contact points of one tire on one wheel.
-
-    ``offsets`` ξ_p [m], ``stiffness`` k_p [N/m], ``damping`` c_p [N·s/m], ``gaps`` g_p [m],
-    ``static_share`` β_p (share of the static wheel load carried by the point on flat ground,
-    Σ β_p = 1; used for moving-force wheels and the static reference), ``widths`` [m] (length
-    of patch each point stands for, summed over points in contact to report the patch
-    length), ``gated`` (points whose contact is geometric: disk tires), ``envelope`` (the wheel
-    acts through its highest point only: rigid disk).
-    """
-
-    offsets: NDArray[np.float64]
-    stiffness: NDArray[np.float64]
-    damping: NDArray[np.float64]
-    gaps: NDArray[np.float64]
-    static_share: NDArray[np.float64]
-    widths: NDArray[np.float64]
-    gated: bool = False
-    envelope: bool = False
-    #: envelope tires: range of the tire-surface slope g'(ξ) over each point's cell [ξ_p ∓ Δξ/2]
-    slope_range: NDArray[np.float64] | None = None
-
-
-class TireModel(abc.ABC):
-    """A tire model: lays contact points under a wheel."""
-
-    #: scenario name of the model
-    name: str = ""
-
-    @abc.abstractmethod
-    def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Return (offsets ξ_p [m], static shares β_p [-]) of the contact points."""
-
-    def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
-        """Contact points for a wheel whose single-point tire has ``stiffness`` [N/m], ``damping``
-        [N·s/m] and carries ``static_load`` [N].  Default: linear springs shared by β_p."""
-        offsets, weights = self.layout()
-        widths = np.zeros_like(offsets) if offsets.size == 1 else np.full_like(offsets, self.patch_length / offsets.size)
-        return ContactLayout(offsets, weights * stiffness, weights * damping, np.zeros_like(offsets), weights, widths)
-
-    @property
-    def patch_length(self) -> float:
-        """Nominal contact-patch length [m] (0 for a point)."""
-        return 0.0
-
-    @property
-    def point_count(self) -> int:
-        """Number of contact points per tire."""
-        return int(self.layout()[0].size)
-
-
+@register_tire
 @dataclass(frozen=True)
 class PointTire(TireModel):
     """Single-point contact: one spring–dashpot under the wheel centre."""
 
     name = "point"
+    description = "single-point contact"
 
     def layout(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return np.zeros(1), np.ones(1)
 
 
+@register_tire
 @dataclass(frozen=True)
 class MultiPointTire(TireModel):
     """The paper's multi-point tire (Eq. 6): n spring–dampers of k/n, c/n along the patch.
@@ -117,6 +75,21 @@ class MultiPointTire(TireModel):
     contact_length: float = AASHTO_CONTACT_LENGTH
     layout_rule: Literal["ends", "cells"] = "ends"
     name = "multipoint"
+    description = "the paper's multi-point tire (Eq. 6): n points of k/n, c/n along the contact patch"
+    references = ("MultiPointTire", "AASHTO-LRFD")
+
+    class Parameters(TireParameters):
+        """[tire] keys of the multi-point tire."""
+
+        n_points: int = Field(6, ge=1, le=100, description="contact points per tire, each with k/n and c/n [-]")
+        contact_length: float = Field(AASHTO_CONTACT_LENGTH, gt=0, le=2.0, description="patch length, AASHTO's 10 in [m]")
+        layout: Literal["ends", "cells"] = Field(
+            "ends", description="points from −a/2 to a/2 (ends) or at the centres of n equal cells (cells)")
+
+    @classmethod
+    def from_parameters(cls, parameters: TireParameters) -> MultiPointTire:
+        p = parameters
+        return cls(p.n_points, p.contact_length, p.layout)  # type: ignore[attr-defined]
 
     @property
     def patch_length(self) -> float:
@@ -188,6 +161,18 @@ class _DiskGeometry(TireModel):
     spacing: float = 0.01
     max_gap: float = 0.1
 
+    class Parameters(TireParameters):
+        """[tire] keys of the disk tires."""
+
+        radius: float = Field(DEFAULT_TIRE_RADIUS, gt=0.05, le=2.0, description="tire radius [m]")
+        disk_spacing: float = Field(0.01, gt=0, le=0.1, description="spacing of the radial springs [m]")
+
+    @classmethod
+    def from_parameters(cls, parameters: TireParameters) -> _DiskGeometry:
+        """Radius R and spacing from the scenario; the arc represented up to max_gap = R/5."""
+        p = parameters
+        return cls(radius=p.radius, spacing=p.disk_spacing, max_gap=p.radius / 5)  # type: ignore[attr-defined]
+
     def __post_init__(self) -> None:
         _check_disk(self.radius, self.spacing, self.max_gap)
 
@@ -200,6 +185,7 @@ class _DiskGeometry(TireModel):
         return offsets, share / share.sum()
 
 
+@register_tire
 @dataclass(frozen=True)
 class DiskTire(_DiskGeometry):
     """Deformable disk of radial springs (after Yin et al.; [substitute] formulation of model data §3).
@@ -231,6 +217,8 @@ class DiskTire(_DiskGeometry):
     """
 
     name = "disk"
+    description = "deformable disk of radial springs (after Yin et al.)"
+    references = ("Yin2010",)
 
     def static_compression(self, stiffness: float, static_load: float) -> float:
         """d_s = 1.5 F_s / k_t [m]."""
@@ -261,6 +249,7 @@ class DiskTire(_DiskGeometry):
         return 0.0
 
 
+@register_tire
 @dataclass(frozen=True)
 class RigidDiskTire(_DiskGeometry):
     """Rigid disk (after Chang et al.): the tire spring sits under the envelope of the surface.
@@ -277,6 +266,8 @@ class RigidDiskTire(_DiskGeometry):
     """
 
     name = "rigid-disk"
+    description = "rigid disk following the surface envelope (after Chang et al.)"
+    references = ("Chang2011",)
 
     def contact_layout(self, stiffness: float, damping: float, static_load: float) -> ContactLayout:
         offsets, gaps, _ = self._points()

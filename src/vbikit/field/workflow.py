@@ -28,7 +28,7 @@ from __future__ import annotations
 import logging
 import time as _time
 from dataclasses import dataclass, field
-from typing import Any, get_args
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -38,6 +38,7 @@ from scipy.optimize import least_squares
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.bridge.scaled import ScaledBridge
+from vbikit.contact.registry import TIRE_MODELS
 from vbikit.contact.tires import TireModel
 from vbikit.field.io import (
     CaseSpec,
@@ -67,8 +68,8 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 log = logging.getLogger(__name__)
 
-#: the tire models a field comparison can use (every model of the scenario's [tire])
-FIELD_TIRES: tuple[str, ...] = get_args(TireSpec.model_fields["model"].annotation)
+#: the tire models a field comparison can use: every registered model, with its defaults
+FIELD_TIRES = TIRE_MODELS
 
 
 def field_tire(name: str) -> TireModel:

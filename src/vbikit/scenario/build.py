@@ -10,13 +10,9 @@ from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.damage import Damage
 from vbikit.bridge.effects import LoadEffect
-from vbikit.contact.tires import (
-    DiskTire,
-    MultiPointTire,
-    PointTire,
-    RigidDiskTire,
-    TireModel,
-)
+from vbikit.bridge.presets import BRIDGE_PRESETS
+from vbikit.contact.registry import tire_model
+from vbikit.contact.tires import TireModel
 from vbikit.road.defects import Defect, with_defects
 from vbikit.road.measured import read_profile_csv
 from vbikit.road.profile import RoadProfile
@@ -47,12 +43,9 @@ def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
 
 
 def build_tire(spec: TireSpec) -> TireModel:
-    if spec.model == "point":
-        return PointTire()
-    if spec.model == "multipoint":
-        return MultiPointTire(spec.n_points, spec.contact_length, spec.layout)
-    disk = DiskTire if spec.model == "disk" else RigidDiskTire
-    return disk(radius=spec.radius, spacing=spec.disk_spacing, max_gap=spec.radius / 5)
+    """The tire model of a [tire] table: the registered class of ``spec.model`` built from its
+    parameters (ValueError listing the registered names for an unknown model)."""
+    return tire_model(spec.model).from_parameters(spec.parameters)
 
 
 def vehicle_motion(entry: VehicleEntry, default_speed: float | None) -> VehicleMotion:

@@ -1,13 +1,21 @@
 """The references a scenario's models rely on (``vbikit cite``, ``vbikit run --json``)."""
 from __future__ import annotations
 
-from vbikit.references import Reference, references_for
+from collections.abc import Callable
+
+from vbikit.contact.registry import tire_model
+from vbikit.references import MODEL_REFERENCES, REFERENCES, Reference
 from vbikit.scenario.schema import Scenario
+
+#: sections whose models declare their own references (by model name); the other sections'
+#: ``"<section>:<model>"`` names are looked up in :data:`vbikit.references.MODEL_REFERENCES`
+DECLARED_REFERENCES: dict[str, Callable[[str], tuple[str, ...]]] = {
+    "tire": lambda name: tire_model(name).references,
+}
 
 
 def scenario_models(scenario: Scenario) -> list[str]:
-    """The ``"<section>:<model>"`` names of the models a scenario uses (keys of
-    :data:`vbikit.references.MODEL_REFERENCES`)."""
+    """The ``"<section>:<model>"`` names of the models a scenario uses, in first-use order."""
     road = scenario.road
     names = [f"bridge:{scenario.bridge.model}"]
     if scenario.vehicles:  # several vehicles, each with its tire (default the scenario's)
@@ -24,6 +32,17 @@ def scenario_models(scenario: Scenario) -> list[str]:
     return names
 
 
+def model_reference_keys(name: str) -> tuple[str, ...]:
+    """Reference keys of one ``"<section>:<model>"`` name (the model class's own for the sections
+    of :data:`DECLARED_REFERENCES`); unknown names contribute nothing."""
+    section, _, model = name.partition(":")
+    declared = DECLARED_REFERENCES.get(section)
+    return declared(model) if declared is not None else MODEL_REFERENCES.get(name, ())
+
+
 def scenario_references(scenario: Scenario) -> list[Reference]:
     """The bibliography entries of the models ``scenario`` uses, in first-use order."""
-    return references_for(scenario_models(scenario))
+    keys: list[str] = []
+    for name in ("*", *scenario_models(scenario)):
+        keys += [k for k in model_reference_keys(name) if k not in keys]
+    return [REFERENCES[k] for k in keys]

@@ -31,6 +31,8 @@ from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.damage import Damage
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.errors import VbikitError
+from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
+from vbikit.contact.tires import TireParameters
 from vbikit.solve.crossing import DEFAULT_INTEGRATOR
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -421,17 +423,55 @@ def _check_parameter(key: str, value: Any, kind: str) -> None:
 
 
 class TireSpec(_Section):
-    """[tire]: "point", the paper's "multipoint" (Eq. 6), deformable "disk" or "rigid-disk"."""
+    """[tire]: a tire model by name and that model's own parameters (`vbikit presets`).
 
-    model: Literal["point", "multipoint", "disk", "rigid-disk"] = Field(
-        "point", description="contact model: single point, the paper's multi-point (Eq. 6), deformable disk (after Yin et al.) or rigid disk (after Chang et al.)")
-    n_points: int = Field(6, ge=1, le=100, description="multipoint: contact points per tire, each with k/n and c/n [-]")
-    contact_length: float = Field(0.254, gt=0, le=2.0, description="multipoint: patch length, AASHTO's 10 in [m]")
-    layout: Literal["ends", "cells"] = Field(
-        "ends", description="multipoint: points from −a/2 to a/2 (ends) or at the centres of n equal cells (cells)")
-    radius: float = Field(0.5, gt=0.05, le=2.0, description="disk / rigid-disk: tire radius [m]")
-    disk_spacing: float = Field(0.01, gt=0, le=0.1, description="disk / rigid-disk: spacing of the radial springs [m]")
+    ``model`` is a registered tire model (:data:`vbikit.contact.TIRE_MODELS`: "point", the
+    paper's "multipoint" (Eq. 6), deformable "disk", "rigid-disk"); the further keys of the
+    table are that model's parameters, checked by its ``Parameters`` (unknown keys, including
+    another model's parameters, are refused).  ``loss_of_contact`` applies to every model.
+    """
+
+    model_config = ConfigDict(extra="allow")
+    model: str = Field(
+        "point", description="contact model: single point, the paper's multi-point (Eq. 6), deformable disk (after Yin et al.) "
+                             "or rigid disk (after Chang et al.); its parameters are further keys of the same table")
     loss_of_contact: bool = Field(True, description="true: tires cannot pull (a contact point in tension carries no force); false: linear springs that may pull")
+
+    @field_validator("model")
+    @classmethod
+    def _known_model(cls, v: str) -> str:
+        tire_model(v)  # ValueError listing the registered names
+        return v
+
+    @model_validator(mode="after")
+    def _model_parameters(self) -> "TireSpec":
+        tire_parameters(self.model, self.model_extra or {}, common=list(type(self).model_fields))  # errors name tire.<key>
+        return self
+
+    @classmethod
+    def keys(cls, model: str | None = None) -> list[str]:
+        """The keys of a [tire] table: ``model``, ``loss_of_contact`` and the parameters of tire
+        model ``model`` (of every registered model if None)."""
+        models = TIRE_MODELS.values() if model is None else [tire_model(model)]
+        params = [k for m in models for k in m.Parameters.model_fields]
+        return [*cls.model_fields, *dict.fromkeys(params)]
+
+    @property
+    def parameters(self) -> TireParameters:
+        """The model's parameters, validated, with the defaults of the keys not given."""
+        return tire_parameters(self.model, self.model_extra or {})
+
+    def model_copy(self, *, update: dict[str, Any] | None = None, deep: bool = False) -> "TireSpec":
+        """A copy; with ``update`` validated again.  A new ``model`` keeps the given parameters
+        it also takes (a disk's radius for a rigid disk) and drops the others."""
+        if not update:
+            return super().model_copy(deep=deep)
+        data = self.model_dump(exclude_unset=True)
+        model = update.get("model", self.model)
+        if model != self.model and model in TIRE_MODELS:
+            allowed = self.keys(model)
+            data = {k: v for k, v in data.items() if k in allowed}
+        return type(self).model_validate({**data, **update})
 
 
 class VehicleEntry(VehicleSpec):
@@ -700,7 +740,10 @@ def section_models(section: str) -> list[type[BaseModel]]:
 
 
 def section_keys(section: str) -> list[str]:
-    """Every key of the scenario section ``section`` (of any of its kinds), in schema order."""
+    """Every key of the scenario section ``section`` (of any of its kinds; [tire]: of every
+    registered tire model), in schema order."""
+    if section == "tire":
+        return TireSpec.keys()
     keys: list[str] = []
     for model in section_models(section):
         keys += [k for k in model.allowed_keys({}) if k not in keys]  # type: ignore[attr-defined]
@@ -721,6 +764,9 @@ def key_unit(key: str) -> str:
         found = [_section(f.annotation) for m in models if (f := _field(m, part)) is not None]
         models = [m for s in found for m in (s.values() if isinstance(s, dict) else [s] if s else [])]
     field = next((f for m in models if (f := _field(m, name)) is not None), None)
+    if field is None and TireSpec in models:  # a tire model's own parameter
+        field = next((f for cls in TIRE_MODELS.values() for n, f in cls.Parameters.model_fields.items()
+                      if name in (n, f.alias)), None)
     if field is None:
         return ""
     m = re.search(r"\[([^\[\]]+)\]\s*$", field.description or "")

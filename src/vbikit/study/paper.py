@@ -94,6 +94,7 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator
         axes: dict[str, Any] = {"tire.n_points": N_POINTS, "crossing.speed_kmh": SPEEDS_5_8}
     else:
         axes = {"tire.model": ["point", "multipoint", "disk"], "crossing.speed_kmh": SPEEDS_10_11}
+        base["tire"] = {"model": "multipoint"}  # each model with its defaults (multipoint: n = 6 over 0.254 m)
         if f["depression"]:
             base["road"]["defects"] = [{"kind": "depression", "position": 0.0}]
     axes["road.class"] = CLASSES
