@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
+from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import QUANTITIES, Reduction, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
 
@@ -93,9 +94,9 @@ def girder_responses(result: CrossingResult, x: float | None = None, y: float | 
     deck, the same station ξ = x − y tan θ along the girders on a skew deck; an empty list for
     bridges without girders (a beam)."""
     bridge = result.crossing.bridge
-    girder_y = getattr(bridge, "girder_y", None)
-    if girder_y is None:
+    if not isinstance(bridge, GirderDeck):
         return []
+    girder_y = bridge.girder_y
     xi_st = static_modal_history(result) if xi_static is None else xi_static
     return [point_response(result, gx, float(g), xi_st) for gx, g in zip(result.girder_sections(x, y), girder_y)]
 

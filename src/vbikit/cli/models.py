@@ -11,7 +11,7 @@ from vbikit.cli.guard import guard
 
 def presets() -> None:
     """List the bridge, vehicle, tire and road presets with their parameters."""
-    from vbikit.bridge import BRIDGE_PRESETS
+    from vbikit.bridge import BRIDGE_PRESETS, EulerBernoulliBeam
     from vbikit.road import ISO_CLASSES, PAPER_CLASSES
     from vbikit.vehicle import VEHICLE_PRESETS
 
@@ -23,7 +23,7 @@ def presets() -> None:
     for p in BRIDGE_PRESETS.values():
         b = p.build()
         typer.echo(f"  {p.name:<21} {p.description}")
-        if hasattr(b, "EI"):
+        if isinstance(b, EulerBernoulliBeam):
             typer.echo(f"  {'':<21} span {b.span} m, EI {b.EI:.4g} N·m², m {b.mass_per_length:.1f} kg/m, "
                        f"c {b.neutral_axis_depth:.3f} m, f1 {b.frequencies_hz[0]:.2f} Hz")
         else:  # slab-on-girder deck: geometry only (its modes are solved by `vbikit bridge NAME`)
@@ -74,7 +74,7 @@ def bridge(
     first mode shapes."""
     import time
 
-    from vbikit.bridge import BRIDGE_PRESETS
+    from vbikit.bridge import BRIDGE_PRESETS, DescribesModes, GirderDeck
 
     if name.endswith(".toml"):
         from vbikit.errors import VbikitError
@@ -93,7 +93,7 @@ def bridge(
             return bridge_, scenario.bridge.model, scenario.name or Path(name).stem
 
         b, model, label = guard(scenario_bridge)
-        skew = float(getattr(b, "skew", 0.0))
+        skew = float(b.skew)
         description = f"[bridge] of {name} (model {model!r}{f', skew {skew:g}°' if skew else ''})"
         name = Path(name).stem
     elif name not in BRIDGE_PRESETS:
@@ -106,12 +106,12 @@ def bridge(
     t0 = time.perf_counter()
     freqs = b.frequencies_hz
     elapsed = time.perf_counter() - t0
-    describe = getattr(b, "mode_descriptions", None)
-    labels = describe() if describe else [f"bending, {k + 1} half-wave{'s' if k else ''} along the span" for k in range(freqs.size)]
+    labels = b.mode_descriptions() if isinstance(b, DescribesModes) else [f"bending, {k + 1} half-wave{'s' if k else ''} along the span" for k in range(freqs.size)]
     typer.echo(f"{name}: {description}")
-    if hasattr(b, "girder_y"):
+    if isinstance(b, GirderDeck):
         ys = ", ".join(f"{y:+.3f}" for y in b.girder_y)
-        typer.echo(f"  girders (1 … {b.n_girders}) at y = {ys} m; {b.element_count} elements along the span")
+        elements = getattr(b, "element_count", None)  # grillage models: their mesh
+        typer.echo(f"  girders (1 … {b.n_girders}) at y = {ys} m" + (f"; {elements} elements along the span" if elements else ""))
     typer.echo(f"  modes solved (or read from cache) in {elapsed:.3f} s")
     for k, (f, label) in enumerate(zip(freqs, labels), start=1):
         typer.echo(f"  mode {k:>2}  {f:9.3f} Hz  {label}")

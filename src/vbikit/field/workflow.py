@@ -35,9 +35,10 @@ from numpy.typing import NDArray
 from scipy.interpolate import CubicSpline
 from scipy.optimize import least_squares
 
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import GirderDeck, ModalBridge
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.bridge.scaled import ScaledBridge
+from vbikit.bridge.series import SpanSeries
 from vbikit.contact.registry import TIRE_MODELS
 from vbikit.contact.tires import TireModel
 from vbikit.field.io import (
@@ -103,9 +104,9 @@ def base_bridge(spec: FieldSpec) -> ModalBridge:
 def sensor_y(bridge: ModalBridge, girder: int, where: str) -> float:
     """y [m] of a girder's centre line (Girder 1 at the most negative y); a beam model has y = 0."""
     base = bridge.base if isinstance(bridge, ScaledBridge) else bridge
-    gy = getattr(base, "girder_y", None)
-    if gy is None:
+    if not isinstance(base, GirderDeck):
         return 0.0
+    gy = base.girder_y
     if not 1 <= girder <= len(gy):
         raise FieldFileError(f"{where}: girder {girder} does not exist (the bridge has {len(gy)} girders)")
     return float(gy[girder - 1])
@@ -133,7 +134,7 @@ def tested_span_offset(bridge: ModalBridge) -> float:
     :class:`~vbikit.bridge.series.SpanSeries` (channel x, ``approach`` and profiles are measured from
     the tested span's entry, as in the field)."""
     base = bridge.base if isinstance(bridge, ScaledBridge) else bridge
-    return float(getattr(base, "instrumented_offset", 0.0))
+    return float(base.instrumented_offset) if isinstance(base, SpanSeries) else 0.0
 
 
 def simulated_channels(result: CrossingResult, case: CaseSpec, where: str) -> dict[str, NDArray[np.float64]]:

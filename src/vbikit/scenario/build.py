@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint
-from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.base import GirderDeck, HasLoadEffects, ModalBridge
 from vbikit.bridge.damage import Damage
 from vbikit.bridge.effects import LoadEffect
 from vbikit.bridge.presets import BRIDGE_PRESETS
@@ -148,7 +148,7 @@ def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | No
     Empty for bridge models without load effects (unless some were asked for: an error)."""
     r = scenario.response
     asked = [k for k in ("moment", "shear", "reaction") if getattr(r, k) is not None]
-    if not callable(getattr(bridge, "load_effect", None)):
+    if not isinstance(bridge, HasLoadEffects):
         if asked:
             raise ScenarioError(f"response.{asked[0]}: bridge model {scenario.bridge.model!r} does not offer load effects")
         return ()
@@ -213,13 +213,13 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
 def response_point(scenario: Scenario, bridge: ModalBridge, spec: ResponsePointSpec, key: str) -> ResponsePoint:
     """One response point of the scenario, checked: its line y (a girder's, the bridge's default girder
     on a slab-on-girder deck, or as given) and its section x (:func:`response_x`); ``key`` prefixes errors."""
-    girder_y = getattr(bridge, "girder_y", None)
-    if girder_y is None:
+    if not isinstance(bridge, GirderDeck):
         if spec.girder is not None:
             raise ScenarioError(f"{key}girder: bridge model {scenario.bridge.model!r} has no girders; use {key}y")
         girder, y = None, bridge.default_response_y if spec.y is None else spec.y
     else:
-        girder = spec.girder if spec.girder is not None else (None if "y" in spec.model_fields_set else int(getattr(bridge, "default_girder", 1)))
+        girder_y = bridge.girder_y
+        girder = spec.girder if spec.girder is not None else (None if "y" in spec.model_fields_set else int(bridge.default_girder))
         if girder is not None and not 1 <= girder <= len(girder_y):
             raise ScenarioError(f"{key}girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
         y = spec.y if girder is None else float(girder_y[girder - 1])

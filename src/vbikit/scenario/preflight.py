@@ -148,7 +148,7 @@ def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
         "bridge": scenario.bridge.model,
         "span": float(c.bridge.span),
         **({"bridge_deck": dict(scenario.bridge.deck)} if scenario.bridge.deck else {}),
-        **({"skew_degrees": float(c.bridge.skew)} if getattr(c.bridge, "skew", 0.0) else {}),
+        **({"skew_degrees": float(c.bridge.skew)} if c.bridge.skew else {}),
         "n_modes": int(c.bridge.omega.size),
         "damping_ratio": scenario.bridge.damping_ratio,
         **_vehicle_inputs(scenario, c),

@@ -33,6 +33,7 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
+from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import as_number, outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario
@@ -65,7 +66,7 @@ def default_lanes(bridge) -> tuple[float, ...]:
     """Lane centres y [m] when the records give lane numbers: [substitute] two lanes at ∓ deck
     width / 4 (lane 1 at y < 0: on the right of +x traffic) on a deck; one line at y = 0 on a
     beam (no width)."""
-    width = getattr(bridge, "deck_width", None)
+    width = bridge.deck_width if isinstance(bridge, GirderDeck) else None
     if width is None:
         return (0.0,)
     return (-float(width) / 4.0, float(width) / 4.0)
