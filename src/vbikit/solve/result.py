@@ -165,7 +165,7 @@ class CrossingResult:
         vehicle = self.crossing.vehicle
         pts = [self.point()] if points is None else [(float(x), float(y)) for x, y in points]
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-        xi_st = static_modal_history(self.crossing, self.front_position) if static else None
+        xi_st = static_modal_history(self.crossing, self.travel) if static else None
         data: dict[str, tuple[tuple[str, ...], Any, dict[str, str]]] = {}
 
         def deck(prefix: str, dim: str, px: list[float], py: list[float], label: str) -> None:

@@ -105,7 +105,7 @@ EXACT_ROAD_FEATURES_PER_STEP = 2.0
 
 def implicit_time_step(crossing: Crossing) -> float:
     """The automatic step [s] of the exact modal integrator (no bridge-mode term)."""
-    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    v_max = crossing.max_speed
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     f_veh = crossing.vehicle.natural_frequencies()
