@@ -1,8 +1,9 @@
 """The references a scenario's models rely on (``vbikit cite``, ``vbikit run --json``)."""
 from __future__ import annotations
 
-from vbikit.references import Reference, references_for
+from vbikit.references import MODEL_REFERENCES, REFERENCES, Reference
 from vbikit.scenario.schema import Scenario
+from vbikit.solve.integrators import get_integrator
 
 
 def scenario_models(scenario: Scenario) -> list[str]:
@@ -25,5 +26,13 @@ def scenario_models(scenario: Scenario) -> list[str]:
 
 
 def scenario_references(scenario: Scenario) -> list[Reference]:
-    """The bibliography entries of the models ``scenario`` uses, in first-use order."""
-    return references_for(scenario_models(scenario))
+    """The bibliography entries of the models ``scenario`` uses, in first-use order (the
+    integrator's from its registration, :attr:`vbikit.solve.integrators.Integrator.references`)."""
+    keys: list[str] = []
+    for name in ("*", *scenario_models(scenario)):
+        if name.startswith("integrator:"):
+            new = get_integrator(scenario.crossing.integrator).references
+        else:
+            new = MODEL_REFERENCES.get(name, ())
+        keys += [k for k in new if k not in keys]
+    return [REFERENCES[k] for k in keys]

@@ -16,8 +16,8 @@ import numpy as np
 from vbikit.analysis.checks import input_warnings
 from vbikit.scenario.build import BuiltScenario, build
 from vbikit.scenario.schema import Scenario, ScenarioError
-from vbikit.solve.budget import Limits, RunEstimate, check_run
-from vbikit.solve.timestep import accuracy_time_step, choose_time_step
+from vbikit.solve.budget import Limits, RunEstimate
+from vbikit.solve.plan import RunPlan, plan_run
 
 
 #: fewest time steps a crossing may have (a user step longer than the crossing's tenth is refused)
@@ -26,13 +26,15 @@ MIN_STEPS = 10
 
 @dataclass(frozen=True)
 class Plan:
-    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings."""
+    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings;
+    ``run``: the crossing's :class:`~vbikit.solve.plan.RunPlan` (``simulate(crossing, plan=run)``)."""
 
     scenario: Scenario
     built: BuiltScenario
     dt: float
     estimate: RunEstimate
     warnings: list[str] = field(default_factory=list)
+    run: RunPlan | None = None
 
 
 def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
@@ -75,19 +77,14 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
         raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
                             f"({crossing.duration:.4g} s); leave dt out for the automatic step")
-    if crossing.integrator == "rk4":
-        # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
-        # its stability limit (eigenvalues of the coupled system) is computed
-        check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
-    try:
-        dt = choose_time_step(crossing)
+    try:  # an explicit integrator's run is checked at its accuracy step before its stability limit is computed
+        run = plan_run(crossing, limits)
     except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
         raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
                             "bridge, vehicle and tire parameters") from None
-    estimate = check_run(crossing, dt, limits)
     check_response_point(built)
-    warnings = input_warnings(crossing, dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
-    return Plan(scenario, built, dt, estimate, warnings)
+    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
+    return Plan(scenario, built, run.dt, run.estimate, warnings, run)
 
 
 def _vehicle_inputs(scenario: Scenario, c: Any) -> dict[str, Any]:

@@ -26,7 +26,7 @@ import dataclasses
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal, Optional
+from typing import Optional
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,12 +35,10 @@ from vbikit.bridge.base import ModalBridge
 from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
 from vbikit.road.profile import RoadProfile
+from vbikit.solve.builtin_integrators import DEFAULT_INTEGRATOR
+from vbikit.solve.integrators import get_integrator
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
-Integrator = Literal["exact", "rk4", "newmark"]
-INTEGRATORS: tuple[str, ...] = ("exact", "rk4", "newmark")
-#: the integrator a crossing (and a scenario) uses unless told otherwise
-DEFAULT_INTEGRATOR: Integrator = "exact"
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
 
 
@@ -132,9 +130,10 @@ class Crossing:
         the bridge's ``default_lateral_offset`` (as in scenarios; 0 for a beam).
     dt : float, optional
         Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
-    integrator : {"exact", "rk4", "newmark"}
-        "exact" (default): every bridge mode stepped by its exact transition with the modal load
-        linear over the step, the vehicle by Newmark average acceleration, coupled through the
+    integrator : str
+        A registered integrator's name (:data:`vbikit.solve.integrators.INTEGRATORS`).  "exact"
+        (default): every bridge mode stepped by its exact transition with the modal load linear
+        over the step, the vehicle by Newmark average acceleration, coupled through the
         contact forces at the end of each step (docs/theory.md); "rk4": the paper's classical
         Runge–Kutta; "newmark": Newmark average acceleration for bridge and vehicle alike.
     loss_of_contact : bool
@@ -153,7 +152,7 @@ class Crossing:
     free_vibration: float | None = None
     lateral_offset: float | None = None
     dt: float | None = None
-    integrator: Integrator = DEFAULT_INTEGRATOR
+    integrator: str = DEFAULT_INTEGRATOR
     loss_of_contact: bool = True
     road_right: RoadProfile | None = None
     vehicles: tuple[VehicleMotion, ...] = ()
@@ -175,8 +174,7 @@ class Crossing:
             raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
         if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
-        if self.integrator not in INTEGRATORS:
-            raise ValueError(f"crossing.integrator must be one of {INTEGRATORS}, got {self.integrator!r}")
+        get_integrator(self.integrator)  # ValueError listing the registered names
         if self.vehicles:
             self._init_vehicles()
         self._check_roads()

@@ -26,12 +26,15 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
         if a.size:
             ok &= np.isfinite(a).reshape(a.shape[0], -1).all(axis=1)
     if not ok.all():
+        from vbikit.solve.integrators import implicit_names
+
         i = int(np.argmin(ok))
         c = result.crossing
         raise DivergenceError(
             f"the integration diverged at step {i} of {result.n_steps} (t = {result.time[i]:.6g} s, front axle at "
             f"x = {result.front_position[i]:.3f} m): non-finite states with {c.integrator} at dt = {result.dt:.3g} s; "
-            "use a smaller crossing.dt (or leave it out), fewer bridge modes, or integrator = \"newmark\"")
+            "use a smaller crossing.dt (or leave it out), fewer bridge modes, or "
+            + " or ".join(f'integrator = "{name}"' for name in implicit_names() if name != c.integrator))
     return result
 
 
