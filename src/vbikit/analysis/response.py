@@ -142,12 +142,12 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "dt": result.dt,
         "duration": float(result.time[-1]),
         "integrator": crossing.integrator,
-        "speed": crossing.speed if not crossing.vehicles else crossing.max_speed,
+        "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         "warnings": run_warnings(result, response.x, response.y),
     } | ({"response_girder": response_girder,
-          "lateral_offset": crossing.lateral_offset if not crossing.vehicles else [m.lateral_offset for m in crossing.vehicles],
-          **girder_summary(girders)} if girders else {}) | ({"vehicles": vehicle_summaries(result)} if crossing.vehicles else {})
+          "lateral_offset": crossing.lateral_offset if crossing.single else [m.lateral_offset for m in crossing.vehicles],
+          **girder_summary(girders)} if girders else {}) | ({} if crossing.single else {"vehicles": vehicle_summaries(result)})
 
 
 def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:
@@ -193,8 +193,8 @@ def histories(result: CrossingResult, response: PointResponse,
         "velocity": response.velocity,
         "acceleration": response.acceleration,
     }
-    if result.front_position.ndim == 1:
-        out["front_axle_x"] = result.front_position
+    if result.crossing.single:
+        out["front_axle_x"] = result.front_position[:, 0]
     else:  # several vehicles: out = {time, v1_front_axle_x, …, displacement, …}
         fronts = {f"v{i + 1}_front_axle_x": result.front_position[:, i] for i in range(result.front_position.shape[1])}
         out = {"time": out.pop("time"), **fronts, **out}

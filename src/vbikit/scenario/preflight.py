@@ -70,7 +70,7 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     crossing = built.crossing
     width = getattr(crossing.bridge, "deck_width", None)
     if width is not None:
-        track = crossing.contact.lateral + crossing.lateral_offset if not getattr(crossing, "vehicles", ()) else None
+        track = crossing.contact.lateral + crossing.lateral_offset if crossing.single else None
         if track is not None and np.any(np.abs(track) > width / 2):
             raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
                                 f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
@@ -89,7 +89,7 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
 
 def _vehicle_inputs(scenario: Scenario, c: Any) -> dict[str, Any]:
     """The vehicle(s) and their motion: one [vehicle] with the crossing's speed, or every [[vehicles]] entry."""
-    if not c.vehicles:
+    if c.single:
         return {"vehicle": scenario.vehicle.model, "vehicle_parameters": scenario.vehicle.parameters,
                 "speed_kmh": c.speed * 3.6, "speed_m_s": c.speed, "acceleration": c.acceleration,
                 "lateral_offset": c.lateral_offset}

@@ -133,10 +133,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride))
     rows = slice(0, None, 2 * stride)
     time = grid.t_half[rows].copy()
-    if first.vehicles:
-        front, speed = first.front_positions(time), grid.speed[rows].copy()
-    else:
-        front, speed = grid.xf[rows].copy(), grid.vel[rows].copy()
+    front, speed = first.front_positions(time), grid.speed[rows].copy()
     return [CrossingResult(c, time, dt * stride, front, speed,
                            *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt)
             for lane, c in enumerate(crossings[:n_real])]

@@ -34,17 +34,18 @@ def _rk4_growth(z: np.ndarray) -> np.ndarray:
 
 
 def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
-    """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
+    """Eigenvalues [1/s] of the coupled first-order system at several positions of the vehicles."""
     from vbikit.solve.system import coupled_matrices, kernel_data
 
     data = kernel_data(crossing, points_per_mode=10)
     # contact as at rest: the points that carry static load (a disk's static patch, a rigid
     # disk's lowest point, every point of point and multipoint tires)
     active = crossing.contact.weight > 0
-    if crossing.vehicles:  # the vehicles' travel at times spread over the run until the last one leaves
+    if crossing.n_vehicles == 1:  # its travel evenly spread from 1 m before the bridge to 1 m after it has left
+        leaving = crossing.leaving_distance(np.arange(crossing.contact.n), crossing.vehicles[0].sign)
+        positions = list(np.linspace(-1.0, leaving + 1.0, n_positions))
+    else:  # the vehicles' travel at times spread over the run until the last one leaves
         positions = list(crossing.travel(np.linspace(crossing.start_time, crossing.exit_time(), n_positions + 2)))
-    else:
-        positions = list(np.linspace(-1.0, crossing.bridge.deck_extent[1] + crossing.contact.setback.max() + 1.0, n_positions))
     v_max = crossing.max_speed
     eig = []
     for xf in positions:
