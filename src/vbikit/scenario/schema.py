@@ -333,8 +333,8 @@ class CrossingSpec(_Section):
     free_vibration: Optional[float] = Field(None, ge=0, description="time simulated after the last axle leaves; default one first-mode period [s]")
     dt: Optional[float] = Field(None, gt=0, description="time step, default automatic; RK4 refuses a step above its stability limit [s]")
     integrator: str = Field(
-        DEFAULT_INTEGRATOR, description="a registered integrator: " + "; ".join(
-            f"{name}: {integ.description}" for name, integ in INTEGRATORS.items()),
+        DEFAULT_INTEGRATOR, description="the time integrator, one of the registered: " + "; ".join(
+            f'"{name}", {integ.description}' for name, integ in INTEGRATORS.items()),
         json_schema_extra=lambda schema: schema.update(enum=list(integrator_names())))
     lateral_offset: Optional[float] = Field(
         None, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
