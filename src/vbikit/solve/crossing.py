@@ -63,11 +63,11 @@ class VehicleMotion:
         left wheels at y = lateral_offset − (their y on the vehicle).
     tire : TireModel, optional
         Its tire model (default: the crossing's ``tire``).
-
-    The motion is evaluated from a reference state (time t_ref [s], travel s_ref [m], speed
-    v_ref [m/s]): s = s_ref + v_ref τ + a τ²/2, τ = t − t_ref; by default the entry
-    (``entry_time``, 0, ``speed``).  A one-vehicle crossing refers it to its start instead
-    (0, −approach, speed at t = 0), so that its motion is that of its own inputs.
+    reference : tuple of float, optional
+        The state the motion is evaluated from, (t_ref [s], s_ref [m], v_ref [m/s]):
+        s = s_ref + v_ref τ + a τ²/2 with τ = t − t_ref; default the entry
+        (``entry_time``, 0, ``speed``).  A one-vehicle crossing refers its motion to its start
+        (0, −approach, speed at t = 0), so that it is that of its own inputs.
     """
 
     vehicle: Vehicle
