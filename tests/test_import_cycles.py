@@ -1,6 +1,7 @@
 """No import cycle anywhere in the package: a static scan of every ``import`` and ``from … import``
-statement in every module of src/vbikit — at module level, inside functions and under
-``if TYPE_CHECKING:`` alike — mapped to the package's modules, must give an acyclic graph."""
+statement in every module of src/vbikit — at module level and inside functions alike — mapped to
+the package's modules, must give an acyclic graph.  Imports under ``if TYPE_CHECKING:`` are left
+out: they never execute (annotations only), so a loop through them is no import cycle."""
 from __future__ import annotations
 
 import ast
@@ -33,7 +34,12 @@ def import_graph(modules: dict[str, tuple[Path, bool]]) -> dict[str, dict[str, i
     for name, (path, is_package) in modules.items():
         here = name if is_package else name.rpartition(".")[0]
         edges = graph.setdefault(name, {})
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+        tree = ast.parse(path.read_text(encoding="utf-8"), str(path))
+        typing_only = {id(n) for block in ast.walk(tree) if isinstance(block, ast.If) and _is_type_checking(block.test)
+                       for stmt in block.body for n in ast.walk(stmt)}
+        for node in ast.walk(tree):
+            if id(node) in typing_only:
+                continue
             if isinstance(node, ast.Import):
                 targets = [a.name for a in node.names]
             elif isinstance(node, ast.ImportFrom):
@@ -50,6 +56,12 @@ def import_graph(modules: dict[str, tuple[Path, bool]]) -> dict[str, dict[str, i
                 if to is not None and to != name:
                     edges.setdefault(to, node.lineno)
     return graph
+
+
+def _is_type_checking(test: ast.expr) -> bool:
+    """``TYPE_CHECKING`` or ``typing.TYPE_CHECKING``."""
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or \
+        (isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING")
 
 
 def find_cycles(graph: dict[str, dict[str, int]]) -> list[list[str]]:
@@ -109,11 +121,14 @@ def test_the_scan_finds_a_cycle(tmp_path):
     (pkg / "sub" / "__init__.py").write_text("")
     (pkg / "a.py").write_text("from pkg.sub import b\n")
     (pkg / "sub" / "b.py").write_text("def f():\n    from .c import g\n")
-    (pkg / "sub" / "c.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from ..a import x\n")
+    (pkg / "sub" / "c.py").write_text("from ..a import x\n")
     (pkg / "d.py").write_text("import pkg.a\n")
+    (pkg / "e.py").write_text("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    from pkg.d import y\n")
+    (pkg / "f.py").write_text("import typing\nfrom pkg import e\nif typing.TYPE_CHECKING:\n    import pkg.f\n")
     modules = package_modules(tmp_path, "pkg")
     graph = import_graph(modules)
     assert graph["pkg.a"] == {"pkg.sub.b": 1} and graph["pkg.d"] == {"pkg.a": 1}
+    assert graph["pkg.e"] == {} and graph["pkg.f"] == {"pkg.e": 2}  # annotation-only imports are no edges
     assert find_cycles(graph) == [["pkg.a", "pkg.sub.b", "pkg.sub.c", "pkg.a"]]
 
 

@@ -29,7 +29,7 @@ sagging = load_effect_response(result, bridge.load_effect("moment", x=10.0))
 hogging = load_effect_response(result, bridge.load_effect("moment", x=20.0))
 
 fig, ax = plt.subplots(figsize=(7, 3.8), layout="constrained")
-x_front = result.front_position
+x_front = result.front_position[:, 0]
 for r, label in ((sagging, "sagging, x = 10 m"), (hogging, "hogging, over the support at x = 20 m")):
     line, = ax.plot(x_front, r.dynamic / 1e3, lw=1, label=f"{label} (IM {r.impact.impact_factor:.3f})")
     ax.plot(x_front, r.static / 1e3, "--", lw=1, color=line.get_color())

@@ -102,7 +102,7 @@ def test_cli_and_python_api_agree(example):
     assert cli["strain_impact_factor"] == response.strain_impact.impact_factor
     assert cli["response_y"] == response.y
     assert cli["n_steps"] == result.n_steps and cli["dt"] == result.dt
-    if crossing.vehicles:
+    if not crossing.single:
         assert [v["lateral_offset"] for v in cli["inputs"]["vehicles"]] == [m.lateral_offset for m in crossing.vehicles]
     else:
         assert cli["inputs"]["lateral_offset"] == crossing.lateral_offset

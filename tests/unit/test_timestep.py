@@ -53,7 +53,7 @@ def test_auto_dt_limited_by_road_spacing(road):
 def test_auto_dt_uses_highest_speed_when_accelerating(road):
     beam = paper_beam(16.76, "II", n_modes=3)
     c = Crossing(beam, hs20_44(), road=road, speed=15.0, acceleration=2.0)
-    v_max = float(c.velocity(c.duration))
+    v_max = float(c.travel_speed(c.duration)[0, 0])
     assert v_max > 15.0
     assert accuracy_time_step(c) <= road.spacing / v_max * (1 + 1e-12)
 
@@ -115,8 +115,8 @@ def test_gentle_braking_is_accepted():
     c = Crossing(beam, hs20_44(), speed=20.0, acceleration=-2.0)  # stops after 100 m
     distance = c.approach + beam.span + hs20_44().length
     t = c.exit_time()
-    assert float(c.front_position(t)) + c.approach == pytest.approx(distance)
-    assert float(c.velocity(t)) > 0.0
+    assert float(c.front_positions(t)[0, 0]) + c.approach == pytest.approx(distance)
+    assert float(c.travel_speed(t)[0, 0]) > 0.0
 
 
 BEAM = EulerBernoulliBeam(span=20.0, EI=1e10, mass_per_length=5000.0, n_modes=3)

@@ -146,7 +146,7 @@ def test_bump_on_the_right_wheel_line_loads_only_the_right_wheels():
     r = simulate(Crossing(paper_beam(16.76, "II"), veh, road=flat, road_right=bump, speed=10.0, approach=8.0,
                           free_vibration=0.0))
     # while axle 1 crosses the bump (axle 2 is 4.27 m behind)
-    window = (r.front_position >= start) & (r.front_position <= start + length)
+    window = (r.front_position[:, 0] >= start) & (r.front_position[:, 0] <= start + length)
     rise = r.wheel_forces[window] - r.wheel_forces[0]
     k_front = veh.wheels[right[0]].stiffness
     up = rise[:, right[0]].max()
@@ -225,7 +225,7 @@ def test_slow_crossing_off_centre_loads_the_girders_on_its_side():
     veh = hs20_44()
     offset = 1.95
     r = simulate(Crossing(bridge, veh, speed=2.0, approach=1.0, free_vibration=0.0, lateral_offset=offset))
-    xw = r.front_position[:, None] - np.array([w.offset for w in veh.wheels])[None, :]
+    xw = r.front_position[:, :1] - np.array([w.offset for w in veh.wheels])[None, :]
     yw = np.broadcast_to(np.array([w.lateral for w in veh.wheels]) + offset, xw.shape)
     loads = np.broadcast_to(-veh.static_wheel_loads(), xw.shape)  # downward [N], z up
     xi_static = bridge.static_modal_coordinates(xw, yw, loads)  # (n_t, n_modes), the bridge's own shapes
@@ -261,7 +261,7 @@ def test_static_reference_is_the_static_wheel_loads_on_the_influence_line(tire):
     beam = paper_beam(16.76, "II", n_modes=10)
     veh = hs20_44()
     r = simulate(Crossing(beam, veh, tire=tire, road=ROUGH, speed=20.0, approach=2.0, free_vibration=0.0))
-    xw = r.front_position[:, None] - np.array([w.offset for w in veh.wheels])[None, :]
+    xw = r.front_position[:, :1] - np.array([w.offset for w in veh.wheels])[None, :]
     exact = -(_influence(xw, beam.span, beam.EI) * veh.static_wheel_loads()).sum(axis=1)
     static = point_response(r).static_displacement
     peak = np.abs(exact).max()
@@ -310,9 +310,9 @@ def test_slow_wheel_follows_the_piecewise_linear_road(integrator):
     beam = EulerBernoulliBeam(span=2.0, EI=1e8, mass_per_length=1000.0, n_modes=1)
     r = simulate(Crossing(beam, sprung_mass(m, k, c), road=road, speed=0.1, approach=6.0, free_vibration=0.0,
                           integrator=integrator))
-    on_road = r.front_position < -0.5
+    on_road = r.front_position[:, 0] < -0.5
     followed = r.q[on_road, 0] + m * GRAVITY / k
-    expected = np.interp(r.front_position[on_road], x, road.z)  # linear interpolation, numpy's own
+    expected = np.interp(r.front_position[on_road, 0], x, road.z)  # linear interpolation, numpy's own
     # measured: 1.4e-5 m (RK4 and Newmark: the station transients); a staircase or a shifted
     # interpolation would be off by up to the 5 mm of the road
     assert np.abs(followed - expected).max() <= 5e-5
@@ -331,7 +331,7 @@ def test_damped_sprung_mass_on_a_harmonic_road_transmissibility(integrator):
     r = simulate(Crossing(beam, sprung_mass(m, k, c), road=road, speed=v, approach=30.0, free_vibration=0.0,
                           integrator=integrator))
     big = 2 * np.pi * nu * v  # 28.3 rad/s, near the mass's 31.6 rad/s
-    sel = (r.time >= 2.5) & (r.front_position < -1.0)  # transient gone: e^(−ζω·2.5) = 1e-7
+    sel = (r.time >= 2.5) & (r.front_position[:, 0] < -1.0)  # transient gone: e^(−ζω·2.5) = 1e-7
     t = r.time[sel]
     basis = np.column_stack([np.cos(big * t), np.sin(big * t), np.ones_like(t)])
     coef, *_ = np.linalg.lstsq(basis, r.q[sel, 0], rcond=None)

@@ -38,7 +38,7 @@ SHORT = EulerBernoulliBeam(span=2.0, EI=1e8, mass_per_length=1000.0, damping_rat
 def test_at_rest_on_flat_ground_every_tire_and_integrator(integrator, tire):
     r = simulate(Crossing(SHORT, CAR, tire=tire, speed=5.0, approach=1.5, free_vibration=0.0, dt=5e-4,
                           integrator=integrator))
-    before = r.front_position < -0.4  # the whole tire (|ξ| ≤ 0.3 m) still on the approach
+    before = r.front_position[:, 0] < -0.4  # the whole tire (|ξ| ≤ 0.3 m) still on the approach
     loads = CAR.static_wheel_loads()
     assert loads[0] == pytest.approx(450.0 * GRAVITY, rel=1e-12)  # statics: both masses on one tire
     np.testing.assert_allclose(r.wheel_forces[before, 0], loads[0], rtol=1e-9)  # measured ≤ 1e-12
@@ -131,7 +131,7 @@ def test_contact_length_outputs(tire):
     r = simulate(Crossing(SHORT, CAR, tire=tire, speed=5.0, approach=1.5, free_vibration=0.0))
     s = summary(r, point_response(r))
     cols = histories(r, point_response(r))
-    before = r.front_position < -0.4
+    before = r.front_position[:, 0] < -0.4
     length = r.contact_lengths[before, 0]
     if isinstance(tire, MultiPointTire):
         expected = tire.contact_length  # n points of width a/n

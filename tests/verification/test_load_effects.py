@@ -35,7 +35,7 @@ def test_static_reactions_carry_the_static_wheel_loads(runs):
     reactions = load_effect_responses(res, [beam.load_effect("reaction", support=j) for j in range(4)])
     total = sum(r.static for r in reactions)
     wheels = res.crossing.vehicle.wheels
-    x = res.front_position[:, None] - np.array([w.offset for w in wheels])[None, :]
+    x = res.front_position[:, :1] - np.array([w.offset for w in wheels])[None, :]
     on = (x >= 0.0) & (x <= beam.span)
     expected = (on * res.crossing.vehicle.static_wheel_loads()[None, :]).sum(axis=1)
     np.testing.assert_allclose(total, expected, atol=1e-6 * expected.max())

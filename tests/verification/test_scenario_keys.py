@@ -28,7 +28,7 @@ from vbikit.bridge.modefile import write_modes
 from vbikit.scenario import build, parse_scenario
 from vbikit.scenario.deck import SCENARIO_PARAMETERS
 from vbikit.scenario.schema import DefectSpec, Scenario, TireSpec, VehicleEntry, section_keys
-from vbikit.solve import simulate
+from vbikit.solve import integrator_names, simulate
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 #: keys that do not enter the computation
@@ -160,8 +160,8 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "response.reaction": (CONT, [0], [1]),
         "response.load_effect_method": (CONT, "mode-acceleration", "mode-superposition"),
     }
-    default, *others = typing.get_args(Scenario.model_fields["crossing"].annotation.model_fields["integrator"].annotation)
-    for integrator in others:
+    default = Scenario.model_fields["crossing"].annotation.model_fields["integrator"].default
+    for integrator in (name for name in integrator_names() if name != default):
         cases[f"crossing.integrator={integrator}"] = (BASE, default, integrator)
     defect = _merge(BASE, {"road": {"defects": [{"kind": "depression", "position": 2.0}]}})
     cases |= {

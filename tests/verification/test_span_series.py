@@ -59,10 +59,10 @@ def test_vibrating_approach_spans_change_the_entry_state():
     assert a.bridge.omega.size == 18 and a.bridge.default_response_x == pytest.approx(2.5 * L)
     ra, rr = simulate(a), simulate(rigid)
     # the truck's body is already moving when it reaches span 3
-    i = int(np.searchsorted(ra.front_position, 2 * L))
+    i = int(np.searchsorted(ra.front_position[:, 0], 2 * L))
     assert not np.allclose(ra.q[i], rr.q[i], rtol=1e-3)
     # span 1 deflects while the truck is on it
-    j = int(np.searchsorted(ra.front_position, L / 2 + 4.0))
+    j = int(np.searchsorted(ra.front_position[:, 0], L / 2 + 4.0))
     assert ra.displacement(L / 2, a.bridge.default_response_y)[j] < -1e-4
 
 

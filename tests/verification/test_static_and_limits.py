@@ -57,7 +57,7 @@ def test_very_slow_crossing_is_quasi_static():
     beam = paper_beam(16.76, "II", n_modes=n_modes, damping_ratio=0.05)
     veh = hs20_44()
     r = simulate(Crossing(beam, veh, speed=0.5, approach=1.0))
-    x = r.front_position[:, None] - np.array([w.offset for w in veh.wheels])[None, :]
+    x = r.front_position[:, :1] - np.array([w.offset for w in veh.wheels])[None, :]
     exact_static = -(_influence(x, beam.span, beam.EI) * veh.static_wheel_loads()).sum(axis=1)
     peak = np.abs(exact_static).max()
     # modal truncation of the static deflection at midspan: |Σ_{j>5} …| ≤ (2/π⁴)(PL³/EI) Σ_{j≥6} 1/j⁴
@@ -89,7 +89,7 @@ def test_vehicle_at_rest_on_flat_approach(integrator):
     beam = paper_beam(16.76, "II", n_modes=10)
     veh = hs20_44()
     r = simulate(Crossing(beam, veh, speed=20.0, approach=30.0, free_vibration=0.0, integrator=integrator))
-    before = r.front_position < 0.0  # no contact point on the deck yet
+    before = r.front_position[:, 0] < 0.0  # no contact point on the deck yet
     assert before.sum() > 1000
     assert np.abs(r.q[before] - r.q[0]).max() <= 1e-12  # [m, rad]; |q| ~ 0.06
     assert np.abs(r.q_dot[before]).max() <= 1e-12

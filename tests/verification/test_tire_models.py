@@ -151,7 +151,7 @@ def test_disk_static_state_sprung_mass():
     m = HS20_REAR_LOAD / GRAVITY
     tire = DiskTire(radius=R, spacing=0.01)
     res = _static_run(sprung_mass(m, HS20_REAR_K, 2000.0), tire)
-    before = res.front_position < -1.0  # the whole disk (|ξ| ≤ 0.3 m) on the approach
+    before = res.front_position[:, 0] < -1.0  # the whole disk (|ξ| ≤ 0.3 m) on the approach
     force = res.wheel_forces[before, 0]
     # equilibrium of the mass: the tire carries its weight (round-off only)
     np.testing.assert_allclose(force, m * GRAVITY, rtol=1e-12)
@@ -174,7 +174,7 @@ def test_disk_static_state_sprung_mass():
 def test_disk_static_state_hs20_every_wheel():
     tire = DiskTire(radius=R, spacing=0.01)
     res = _static_run(HS20, tire)
-    before = res.front_position < -1.0
+    before = res.front_position[:, 0] < -1.0
     loads = HS20.static_wheel_loads()  # from the vehicle's equilibrium on rigid ground
     np.testing.assert_allclose(res.wheel_forces[before], np.broadcast_to(loads, res.wheel_forces[before].shape),
                                rtol=1e-9)
@@ -205,7 +205,7 @@ def test_rigid_disk_rides_the_step_envelope():
     # dt = 1 ms (ω dt = 0.03): the envelope is only piecewise smooth, so resolve the tire mode finely
     res = simulate(Crossing(beam, sprung_mass(m, k, 0.0), tire=tire, road=road, speed=v, approach=1.5,
                             free_vibration=0.0, dt=1e-3))
-    x = res.front_position  # wheel centre (offset 0)
+    x = res.front_position[:, 0]  # wheel centre (offset 0)
     sel = x < -0.6  # up to 0.6 m before the bridge
     z = wheel_z(res)[sel]
     force = res.wheel_forces[sel, 0]
@@ -252,9 +252,9 @@ def test_rigid_disk_damper_rate_is_bounded_by_the_envelope_slope():
     beam = EulerBernoulliBeam(span=2.0, EI=1e8, mass_per_length=1000.0, n_modes=1)
     res = simulate(Crossing(beam, car, tire=tire, road=road, speed=v, approach=6.0, free_vibration=0.0))
     wheel = car.wheels[0]
-    on_road = res.front_position < -0.5
+    on_road = res.front_position[:, 0] < -0.5
     lay = tire.contact_layout(wheel.stiffness, wheel.damping, 1.0)
-    xw = res.front_position[on_road] - wheel.offset
+    xw = res.front_position[on_road, 0] - wheel.offset
     e = np.max(road.elevation(xw[:, None] + lay.offsets[None, :]) - lay.gaps[None, :], axis=1)
     z = (res.q @ wheel.row)[on_road]
     zdot = (res.q_dot @ wheel.row)[on_road]
@@ -345,7 +345,7 @@ def test_launched_wheel_carries_no_force_and_tires_never_pull(tire):
     # airborne: the wheel's lowest point above every surface point the tire can reach, i.e.
     # z_w > max_p [r(x_w + ξ_p) − g_p] (road sampled like the solver: linear between stations)
     lay = tire.contact_layout(wheel.stiffness, wheel.damping, float(LIGHT_CAR.static_wheel_loads()[0]))
-    xw = res.front_position - wheel.offset
+    xw = res.front_position[:, 0] - wheel.offset
     surface = np.max(BUMP_ROAD.elevation(xw[:, None] + lay.offsets[None, :]) - lay.gaps[None, :], axis=1)
     airborne = wheel_z(res) > surface + 1e-12
     assert np.all(force[airborne] == 0.0)

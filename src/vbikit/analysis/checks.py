@@ -38,12 +38,12 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     """Warnings about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
     out: list[str] = []
     lo, hi = SPEED_RANGE_KMH
-    if crossing.vehicles:  # each vehicle at its entry and when the last one has left
-        t_end = crossing.exit_time()
+    t_end = crossing.exit_time()
+    if crossing.single:  # at the start and when the last axle has left
+        speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.vehicles[0].velocity(t_end))))]
+    else:  # each vehicle at its entry and when the last one has left
         speeds = [(f"vehicles[{i + 1}].speed", f"vehicle {i + 1}'s speed", (m.speed, float(m.velocity(t_end))))
                   for i, m in enumerate(crossing.vehicles)]
-    else:
-        speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.velocity(crossing.exit_time()))))]
     for key, label, (v0, v1) in speeds:
         for what, v in ((label, v0 * 3.6), (f"{label} when the last axle leaves the bridge", v1 * 3.6)):
             if not lo <= v <= hi:

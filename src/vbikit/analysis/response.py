@@ -189,13 +189,13 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "dt": result.dt,
         "duration": float(result.time[-1]),
         "integrator": crossing.integrator,
-        "speed": crossing.speed if not crossing.vehicles else crossing.max_speed,
+        "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         **crossing_outputs,
         "warnings": run_warnings(result, response.x, response.y),
     } | ({"response_girder": response_girder,
-          "lateral_offset": crossing.lateral_offset if not crossing.vehicles else [m.lateral_offset for m in crossing.vehicles],
-          **girder_summary(girders)} if girders else {}) | ({"vehicles": vehicle_summaries(result)} if crossing.vehicles else {})
+          "lateral_offset": crossing.lateral_offset if crossing.single else [m.lateral_offset for m in crossing.vehicles],
+          **girder_summary(girders)} if girders else {}) | ({} if crossing.single else {"vehicles": vehicle_summaries(result)})
 
 
 def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:
@@ -242,8 +242,8 @@ def history_table(result: CrossingResult, responses: list[PointResponse], girder
     from vbikit.solve.result import dof_unit
 
     out: dict[str, tuple[NDArray[np.float64], str]] = {"time": (result.time, "s")}
-    if result.front_position.ndim == 1:
-        fronts = {"front_axle_x": result.front_position}
+    if result.crossing.single:
+        fronts = {"front_axle_x": result.front_position[:, 0]}
     else:
         fronts = {f"v{i + 1}_front_axle_x": result.front_position[:, i] for i in range(result.front_position.shape[1])}
     deck: dict[str, tuple[NDArray[np.float64], str]] = {}
@@ -252,7 +252,7 @@ def history_table(result: CrossingResult, responses: list[PointResponse], girder
     for label, r in zip(labels, responses):
         for q in QUANTITIES.values():
             deck[f"{q.name}_{label}" if several else q.name] = (getattr(r, q.name), q.unit)
-    if result.front_position.ndim == 1:  # one vehicle: {time, displacement, …, front_axle_x}
+    if result.crossing.single:  # one vehicle: {time, displacement, …, front_axle_x}
         out |= deck | {k: (v, "m") for k, v in fronts.items()}
     else:  # several vehicles: {time, v1_front_axle_x, …, displacement, …}
         out |= {k: (v, "m") for k, v in fronts.items()} | deck

@@ -6,11 +6,13 @@ from collections.abc import Callable
 from vbikit.contact.registry import tire_model
 from vbikit.references import MODEL_REFERENCES, REFERENCES, Reference
 from vbikit.scenario.schema import Scenario
+from vbikit.solve.integrators import get_integrator
 
 #: sections whose models declare their own references (by model name); the other sections'
 #: ``"<section>:<model>"`` names are looked up in :data:`vbikit.references.MODEL_REFERENCES`
 DECLARED_REFERENCES: dict[str, Callable[[str], tuple[str, ...]]] = {
     "tire": lambda name: tire_model(name).references,
+    "integrator": lambda name: get_integrator(name).references,
 }
 
 

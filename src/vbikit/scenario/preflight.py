@@ -14,12 +14,13 @@ from typing import Any
 import numpy as np
 
 from vbikit.analysis.checks import input_warnings, point_warnings
+from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
 from vbikit.scenario.build import BuiltScenario, build
 from vbikit.scenario.schema import Scenario, ScenarioError
-from vbikit.solve.budget import Limits, RunEstimate, check_run
+from vbikit.solve.budget import Limits, RunEstimate
 from vbikit.solve.crossing import Crossing
-from vbikit.solve.timestep import accuracy_time_step, choose_time_step
+from vbikit.solve.plan import RunPlan, plan_run
 
 
 #: fewest time steps a crossing may have (a user step longer than the crossing's tenth is refused)
@@ -28,13 +29,15 @@ MIN_STEPS = 10
 
 @dataclass(frozen=True)
 class Plan:
-    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings."""
+    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings;
+    ``run``: the crossing's :class:`~vbikit.solve.plan.RunPlan` (``simulate(crossing, plan=run)``)."""
 
     scenario: Scenario
     built: BuiltScenario
     dt: float
     estimate: RunEstimate
     warnings: list[str] = field(default_factory=list)
+    run: RunPlan | None = None
 
 
 def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
@@ -66,24 +69,20 @@ def check_response_points(built: BuiltScenario) -> None:
                                 f"inside the span 0 … {bridge.span:g} m")
 
 
-def check_steps(crossing: Crossing, limits: Limits | None = None) -> tuple[float, RunEstimate]:
-    """The time step [s] a run of ``crossing`` takes and its estimate, checked as every run is: a
-    given step makes at least :data:`MIN_STEPS` steps, the integrator's step rule (and, for explicit
-    integrators, its stability limit), the memory and step budgets of ``limits`` (raises
-    ScenarioError, UnstableTimeStepError or BudgetError, all ``ValueError``)."""
+def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
+    """The run plan of ``crossing`` (:func:`vbikit.solve.plan.plan_run`: its time step [s] and
+    estimate), checked as every run is: a given step makes at least :data:`MIN_STEPS` steps, the
+    integrator's step rule (and, for explicit integrators, its stability limit), the memory and
+    step budgets of ``limits`` (raises ScenarioError, UnstableTimeStepError or BudgetError)."""
     if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
         raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
                             f"({crossing.duration:.4g} s); leave dt out for the automatic step")
-    if crossing.integrator == "rk4":
-        # RK4's step is at most the accuracy step (or the user's): refuse an oversized run before
-        # its stability limit (eigenvalues of the coupled system) is computed
-        check_run(crossing, crossing.dt if crossing.dt is not None else accuracy_time_step(crossing), limits)
-    try:
-        dt = choose_time_step(crossing)
+    try:  # an explicit integrator's run is checked at its accuracy step before its stability limit is computed
+        run = plan_run(crossing, limits)
     except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
         raise ScenarioError(f"crossing: the time step could not be chosen ({type(err).__name__}: {err}); check the "
                             "bridge, vehicle and tire parameters") from None
-    return dt, check_run(crossing, dt, limits)
+    return run
 
 
 def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
@@ -100,23 +99,23 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
 def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     built = build(scenario, limits)
     crossing = built.crossing
-    width = getattr(crossing.bridge, "deck_width", None)
+    width = crossing.bridge.deck_width if isinstance(crossing.bridge, GirderDeck) else None
     if width is not None:
-        track = crossing.contact.lateral + crossing.lateral_offset if not getattr(crossing, "vehicles", ()) else None
+        track = crossing.contact.lateral + crossing.lateral_offset if crossing.single else None
         if track is not None and np.any(np.abs(track) > width / 2):
             raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
                                 f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
-    dt, estimate = check_steps(crossing, limits)
+    run = check_steps(crossing, limits)
     check_response_points(built)
-    warnings = input_warnings(crossing, dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
+    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
     for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)
         warnings += [w for w in point_warnings(crossing, p.x, p.y) if w not in warnings]
-    return Plan(scenario, built, dt, estimate, warnings)
+    return Plan(scenario, built, run.dt, run.estimate, warnings, run)
 
 
 def _vehicle_inputs(scenario: Scenario, c: Any) -> dict[str, Any]:
     """The vehicle(s) and their motion: one [vehicle] with the crossing's speed, or every [[vehicles]] entry."""
-    if not c.vehicles:
+    if c.single:
         return {"vehicle": scenario.vehicle.model, "vehicle_parameters": scenario.vehicle.parameters,
                 "speed_kmh": c.speed * 3.6, "speed_m_s": c.speed, "acceleration": c.acceleration,
                 "lateral_offset": c.lateral_offset}

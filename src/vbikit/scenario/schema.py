@@ -33,7 +33,7 @@ from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.errors import VbikitError
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
-from vbikit.solve.crossing import DEFAULT_INTEGRATOR
+from vbikit.solve.integrators import DEFAULT_INTEGRATOR, INTEGRATORS, get_integrator, integrator_names
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -577,10 +577,21 @@ class CrossingSpec(_Section):
     approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
     free_vibration: Optional[float] = Field(None, ge=0, description="time simulated after the last axle leaves; default one first-mode period [s]")
     dt: Optional[float] = Field(None, gt=0, description="time step, default automatic; RK4 refuses a step above its stability limit [s]")
-    integrator: Literal["exact", "rk4", "newmark"] = Field(
-        DEFAULT_INTEGRATOR, description="exact modal stepping (default; the step is not limited by the highest mode), the paper's classical Runge–Kutta, or Newmark average acceleration")
+    integrator: str = Field(
+        DEFAULT_INTEGRATOR, description="the time integrator, one of the registered: " + "; ".join(
+            f'"{name}", {integ.description}' for name, integ in INTEGRATORS.items()),
+        json_schema_extra=lambda schema: schema.update(enum=list(integrator_names())))
     lateral_offset: Optional[float] = Field(
         None, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
+
+    @field_validator("integrator")
+    @classmethod
+    def _known_integrator(cls, v: str) -> str:
+        try:
+            get_integrator(v)
+        except ValueError:
+            raise ValueError(f"unknown integrator {v!r}; allowed: {', '.join(map(repr, integrator_names()))}") from None
+        return v
 
     @model_validator(mode="after")
     def _one_speed(self) -> "CrossingSpec":

@@ -26,10 +26,12 @@ from numpy.typing import NDArray
 
 from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
+from vbikit.solve.integrators import get_integrator
+from vbikit.solve.plan import TimeGrid, time_grid
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.simulate import MAX_LANES, TimeGrid, integrate, time_grid
+from vbikit.solve.simulate import MAX_LANES, integrate
 from vbikit.solve.system import kernel_data, static_modal_history
-from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
+from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
@@ -61,25 +63,18 @@ class BatchSolver:
         return self.template.with_road(road, road_right)
 
     def time_step(self, crossing: Crossing) -> float:
-        """The step [s] ``simulate`` would choose for ``crossing`` (same rule, cached limit)."""
-        if crossing.integrator == "rk4":
-            if self._limit is None:
-                self._limit = rk4_stability_limit(self.template)
-            if crossing.dt is not None:
-                if crossing.dt > self._limit:
-                    from vbikit.solve.timestep import choose_time_step
-
-                    return choose_time_step(crossing)  # raises the standard UnstableTimeStepError
-                return float(crossing.dt)
-            return min(self._accuracy_step(crossing), 0.9 * self._limit)
-        return float(crossing.dt) if crossing.dt is not None else self._accuracy_step(crossing)
+        """The step [s] ``simulate`` would choose for ``crossing`` (same rule; the stability limit
+        of an explicit integrator computed once for the template)."""
+        integrator = get_integrator(crossing.integrator)
+        if integrator.stability_limit is not None and self._limit is None:
+            self._limit = integrator.stability_limit(self.template)
+        return choose_time_step(crossing, stability_limit=self._limit, automatic=self._accuracy_step)
 
     def _accuracy_step(self, crossing: Crossing) -> float:
         # within a batch the automatic step depends only on the roads' spacings
         key = tuple(r.spacing if r is not None else None for r in (crossing.road, crossing.road_right))
         if key not in self._accuracy:
-            rule = implicit_time_step if crossing.integrator == "exact" else accuracy_time_step
-            self._accuracy[key] = rule(crossing)
+            self._accuracy[key] = get_integrator(crossing.integrator).time_step(crossing)
         return self._accuracy[key]
 
     def _grid(self, dt: float) -> TimeGrid:

@@ -1,32 +1,32 @@
-"""A crossing: one vehicle (or several) with its tire model driving over one bridge on one road.
+"""A crossing: one or several vehicles, each with its tire model and motion, driving over one
+bridge on one road.
 
-One vehicle (``Crossing(bridge, vehicle, …)``) drives in +x.  At t = 0 its front axle is at
-x = −approach (on the approach road) and it is in static equilibrium on the road (and deck,
-if any contact point is already on it).  The crossing ends ``free_vibration`` seconds after
-the last contact point has left the bridge (x = span; on a skew deck the far end of its own
-wheel track, span + y tan θ).  Speed: v(t) = speed + acceleration · t
-(acceleration < 0 brakes); a vehicle that comes to rest during the free vibration stays at rest.
+Every vehicle is a :class:`VehicleMotion`: its tire, lateral offset, direction (+x or −x), speed,
+acceleration and entry time T_v, the time its front axle passes its entry support (x = 0 driving
++x, x = span driving −x).  Its travel s_v(t) [m] is the distance its front axle has driven past
+that support, s_v = v_v τ + a_v τ²/2 with τ = t − T_v (v_v: its speed at entry; a braking
+vehicle stays where it stopped), so a contact point at ``setback`` behind its front axle is at
+x = s_v − setback (+x) or x = span − s_v + setback (−x).  The run starts at the latest time
+every vehicle is at least ``approach`` before its entry (each in static equilibrium there) and
+ends ``free_vibration`` after the last contact point has left the bridge (x = span; on a skew
+deck the far end of its own wheel track, span + y tan θ); times are on the vehicles' clock
+(t = 0 when ``entry_time`` = 0), so the run may start at t < 0.  The vehicles' degrees of
+freedom sit side by side (``vbikit.vehicle.CombinedVehicle``): they interact only through the
+bridge.
 
-Several vehicles (``Crossing(bridge, vehicles=(VehicleMotion(…), …), …)``): each has its own
-tire, lateral offset, direction (+x or −x), speed, acceleration and entry time T_v, the time
-its front axle passes its entry support (x = 0 driving +x, x = span driving −x).  Its travel
-s_v(t) [m] is the distance its front axle has driven past that support,
-s_v = v_v τ + a_v τ²/2 with τ = t − T_v (v_v: its speed at entry), so a contact point at
-``setback`` behind its front axle is at x = s_v − setback (+x) or x = span − s_v + setback
-(−x).  The run starts at the latest time every vehicle is at least ``approach`` before its
-entry (each in static equilibrium there) and ends ``free_vibration`` after the last one has
-left; times are on the vehicles' clock (t = 0 when ``entry_time`` = 0), so the run may start
-at t < 0.  The vehicles' degrees of freedom sit side by side (``vbikit.vehicle.CombinedVehicle``):
-they interact only through the bridge.
+One vehicle (``Crossing(bridge, vehicle, …)``) is the same: ``crossing.vehicles`` is one
+VehicleMotion driving +x whose front axle is at x = −approach at t = 0, when the run starts,
+with speed ``speed`` + ``acceleration`` · t; ``crossing.vehicle`` is that vehicle itself (its
+own wheel and DOF names) and :attr:`Crossing.single` is True.
 """
 from __future__ import annotations
 
 import copy
 import dataclasses
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Literal, Optional
+from typing import Optional
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,18 +35,15 @@ from vbikit.bridge.base import ModalBridge
 from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
 from vbikit.road.profile import RoadProfile
+from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
-Integrator = Literal["exact", "rk4", "newmark"]
-INTEGRATORS: tuple[str, ...] = ("exact", "rk4", "newmark")
-#: the integrator a crossing (and a scenario) uses unless told otherwise
-DEFAULT_INTEGRATOR: Integrator = "exact"
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
 
 
 @dataclass(frozen=True)
 class VehicleMotion:
-    """One vehicle of a several-vehicle crossing and its motion (module docstring).
+    """One vehicle of a crossing and its motion (module docstring).
 
     Parameters
     ----------
@@ -65,6 +62,11 @@ class VehicleMotion:
         left wheels at y = lateral_offset − (their y on the vehicle).
     tire : TireModel, optional
         Its tire model (default: the crossing's ``tire``).
+    reference : tuple of float, optional
+        The state the motion is evaluated from, (t_ref [s], s_ref [m], v_ref [m/s]):
+        s = s_ref + v_ref τ + a τ²/2 with τ = t − t_ref; default the entry
+        (``entry_time``, 0, ``speed``).  A one-vehicle crossing refers its motion to its start
+        (0, −approach, speed at t = 0), so that it is that of its own inputs.
     """
 
     vehicle: Vehicle
@@ -74,6 +76,11 @@ class VehicleMotion:
     entry_time: float = 0.0
     lateral_offset: Optional[float] = None
     tire: Optional[TireModel] = None
+    reference: Optional[tuple[float, float, float]] = field(default=None, repr=False)
+
+    @property
+    def _ref(self) -> tuple[float, float, float]:
+        return (self.entry_time, 0.0, self.speed) if self.reference is None else self.reference
 
     @property
     def sign(self) -> float:
@@ -82,28 +89,32 @@ class VehicleMotion:
 
     @property
     def stop_time(self) -> float:
-        """τ [s] after entry at which a braking vehicle comes to rest (inf if it does not brake)."""
-        return -self.speed / self.acceleration if self.acceleration < 0 else math.inf
+        """τ [s] after the reference time at which a braking vehicle comes to rest (inf if it does
+        not brake; after entry unless a reference state is given)."""
+        return -self._ref[2] / self.acceleration if self.acceleration < 0 else math.inf
 
     def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """s_v [m]: distance of the front axle past its entry support at time t [s]."""
-        tau = np.minimum(np.asarray(t, float) - self.entry_time, self.stop_time)
-        return self.speed * tau + 0.5 * self.acceleration * tau**2
+        t_ref, s_ref, v_ref = self._ref
+        tau = np.minimum(np.asarray(t, float) - t_ref, self.stop_time)
+        return s_ref + v_ref * tau + 0.5 * self.acceleration * tau**2
 
     def velocity(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """Speed [m/s] at time t [s] (zero once a braking vehicle has stopped)."""
-        tau = np.minimum(np.asarray(t, float) - self.entry_time, self.stop_time)
-        return self.speed + self.acceleration * tau
+        t_ref, _, v_ref = self._ref
+        tau = np.minimum(np.asarray(t, float) - t_ref, self.stop_time)
+        return v_ref + self.acceleration * tau
 
     def time_at(self, travel: float) -> float:
         """Time [s] its front axle has travel ``travel`` [m] (NaN if it never gets there)."""
-        v, a = self.speed, self.acceleration
+        t_ref, s_ref, v = self._ref
+        a, distance = self.acceleration, travel - s_ref
         if abs(a) < 1e-12:
-            return self.entry_time + travel / v
-        disc = v * v + 2 * a * travel
+            return t_ref + distance / v
+        disc = v * v + 2 * a * distance
         if disc < 0:
             return math.nan
-        return self.entry_time + (-v + math.sqrt(disc)) / a
+        return t_ref + (-v + math.sqrt(disc)) / a
 
 
 @dataclass(frozen=True)
@@ -118,29 +129,34 @@ class Crossing:
         Profile under the contact points right of the vehicle centreline (lateral y < 0, the
         right wheel line); None = ``road`` under every wheel (the paper's assumption).
     speed : float
-        Speed at t = 0 [m/s], > 0.
+        One vehicle: its speed at t = 0 [m/s], > 0.
     acceleration : float
-        Constant longitudinal acceleration [m/s²] (negative = braking); the vehicle must
-        still move when its last axle leaves the bridge.
+        One vehicle: its constant longitudinal acceleration [m/s²] (negative = braking); the
+        vehicle must still move when its last axle leaves the bridge.
     approach : float
-        Distance [m] the front axle travels before it reaches the bridge (≥ 0).
+        Distance [m] every front axle travels before it reaches the bridge (≥ 0).
     free_vibration : float, optional
         Time [s] simulated after the last axle leaves; default one period of the first
         bridge mode.
     lateral_offset : float, optional
-        y [m] of the vehicle centreline from the deck centreline (irrelevant for a beam); default
-        the bridge's ``default_lateral_offset`` (as in scenarios; 0 for a beam).
+        One vehicle: y [m] of its centreline from the deck centreline (irrelevant for a beam);
+        default the bridge's ``default_lateral_offset`` (as in scenarios; 0 for a beam).
     dt : float, optional
         Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
-    integrator : {"exact", "rk4", "newmark"}
-        "exact" (default): every bridge mode stepped by its exact transition with the modal load
-        linear over the step, the vehicle by Newmark average acceleration, coupled through the
+    integrator : str
+        A registered integrator's name (:data:`vbikit.solve.integrators.INTEGRATORS`).  "exact"
+        (default): every bridge mode stepped by its exact transition with the modal load linear
+        over the step, the vehicle by Newmark average acceleration, coupled through the
         contact forces at the end of each step (docs/theory.md); "rk4": the paper's classical
         Runge–Kutta; "newmark": Newmark average acceleration for bridge and vehicle alike.
     loss_of_contact : bool
         Tires cannot pull (default True, as real tires): a contact point whose spring would be
         in tension carries no force.  False gives the classical bilateral linear tire.  Disk
         tires are always unilateral (their patch is where they penetrate).
+    vehicles : tuple of VehicleMotion
+        Several vehicles with their motion (instead of ``vehicle``); for one ``vehicle`` it
+        becomes that vehicle's motion from ``speed``, ``acceleration``, ``approach``,
+        ``lateral_offset`` and ``tire``.
     """
 
     bridge: ModalBridge
@@ -153,7 +169,7 @@ class Crossing:
     free_vibration: float | None = None
     lateral_offset: float | None = None
     dt: float | None = None
-    integrator: Integrator = DEFAULT_INTEGRATOR
+    integrator: str = DEFAULT_INTEGRATOR
     loss_of_contact: bool = True
     road_right: RoadProfile | None = None
     vehicles: tuple[VehicleMotion, ...] = ()
@@ -175,19 +191,30 @@ class Crossing:
             raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
         if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
-        if self.integrator not in INTEGRATORS:
-            raise ValueError(f"crossing.integrator must be one of {INTEGRATORS}, got {self.integrator!r}")
-        if self.vehicles:
+        get_integrator(self.integrator)  # ValueError listing the registered names
+        if self.vehicle is not None and not isinstance(self.vehicle, CombinedVehicle):
+            self._init_single()
+        else:
             self._init_vehicles()
         self._check_roads()
+
+    def _init_single(self) -> None:
+        """One vehicle: its motion from the crossing's own speed, acceleration, approach and
+        lateral offset, referred to t = 0 (front axle at x = −approach)."""
+        if any(m.reference is None for m in self.vehicles):  # the motion a copy of this crossing carries is rebuilt
+            raise ValueError("give vehicle (one vehicle) or vehicles (several, with their motion), not both")
+        a, v, d = self.acceleration, self.speed, self.approach
+        motion = VehicleMotion(self.vehicle, v, a, "+x", 0.0, self.lateral_offset, None, (0.0, -d, v))
+        entry = motion.time_at(0.0)
+        if not math.isnan(entry):  # its entry (it may stop before: exit_time, duration and simulate raise)
+            motion = dataclasses.replace(motion, speed=float(motion.velocity(entry)), entry_time=entry)
+        object.__setattr__(self, "vehicles", (motion,))
 
     def _init_vehicles(self) -> None:
         default = float(getattr(self.bridge, "default_lateral_offset", 0.0))
         object.__setattr__(self, "vehicles", tuple(
             dataclasses.replace(m, lateral_offset=default) if isinstance(m, VehicleMotion) and m.lateral_offset is None
             else m for m in self.vehicles))
-        if self.vehicle is not None and not isinstance(self.vehicle, CombinedVehicle):
-            raise ValueError("give vehicle (one vehicle) or vehicles (several, with their motion), not both")
         for i, m in enumerate(self.vehicles):
             if not isinstance(m, VehicleMotion):
                 raise ValueError(f"vehicles[{i + 1}]: expected a VehicleMotion, got {type(m).__name__}")
@@ -209,24 +236,14 @@ class Crossing:
         self.exit_time()  # raises for a vehicle that stops on the bridge
 
     @property
-    def n_vehicles(self) -> int:
-        return len(self.vehicles) if self.vehicles else 1
+    def single(self) -> bool:
+        """True for a crossing built with ``vehicle=`` (one vehicle; reports keep its own layout:
+        its own wheel names, top-level speed and lateral offset), False with ``vehicles=``."""
+        return not isinstance(self.vehicle, CombinedVehicle)
 
     @property
-    def motions(self) -> tuple[VehicleMotion, ...]:
-        """The vehicles and their motion (one vehicle: its +x motion from ``speed``, entering at
-        t = approach/speed for constant speed)."""
-        if self.vehicles:
-            return self.vehicles
-        return (VehicleMotion(self.vehicle, float(self.velocity(self._entry_time_single())), self.acceleration, "+x",
-                              self._entry_time_single(), self.lateral_offset, self.tire),)
-
-    def _entry_time_single(self) -> float:
-        a, v, d = self.acceleration, self.speed, self.approach
-        if abs(a) < 1e-12:
-            return d / v
-        disc = v * v + 2 * a * d
-        return (-v + math.sqrt(max(disc, 0.0))) / a
+    def n_vehicles(self) -> int:
+        return len(self.vehicles)
 
     def _check_roads(self) -> None:
         if self.road_right is not None and self.road is None:
@@ -255,25 +272,20 @@ class Crossing:
     def contact(self) -> ContactPoints:
         """The tire model's contact points under every wheel (several vehicles: each with its
         own tire, stacked in vehicle order)."""
-        if not self.vehicles:
-            return contact_points(self.vehicle, self.tire)
         parts = [contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
-        return stack_contact_points(parts, self.vehicle.dof_offsets)
+        return parts[0] if len(parts) == 1 and self.single else stack_contact_points(parts, self.vehicle.dof_offsets)
 
     @cached_property
     def point_vehicle(self) -> NDArray[np.int64]:
         """Index of the vehicle of every contact point."""
-        if not self.vehicles:
-            return np.zeros(self.contact.n, np.int64)
-        wheel_vehicle = np.repeat(np.arange(len(self.vehicles)), np.diff(self.vehicle.wheel_offsets))
+        wheels = [len(m.vehicle.wheels) for m in self.vehicles]
+        wheel_vehicle = np.repeat(np.arange(len(self.vehicles)), wheels)
         return wheel_vehicle[self.contact.wheel].astype(np.int64)
 
     def point_kinematics(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """Per contact point: ``origin`` [m] and ``direction`` (±1) of x_p = origin + direction·s_v,
         and its deck y [m] (the vehicle's lateral offset plus its own y, mirrored driving −x)."""
         cp = self.contact
-        if not self.vehicles:
-            return -cp.setback, np.ones(cp.n), cp.lateral + self.lateral_offset
         veh = self.point_vehicle
         sign = np.array([m.sign for m in self.vehicles])[veh]
         offset = np.array([m.lateral_offset for m in self.vehicles])[veh]
@@ -281,34 +293,26 @@ class Crossing:
         return origin, sign, offset + sign * cp.lateral
 
     def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """s_v(t) [m] of every vehicle, shape (n_t, n_vehicles) (one vehicle: its front-axle x)."""
+        """s_v(t) [m]: every vehicle's travel past its entry support, shape (n_t, n_vehicles)."""
         t = np.atleast_1d(np.asarray(t, float))
-        if not self.vehicles:
-            return self.front_position(t).reshape(-1, 1)
         return np.stack([m.travel(t) for m in self.vehicles], axis=1)
 
     def travel_speed(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """ds_v/dt [m/s] of every vehicle, shape (n_t, n_vehicles)."""
         t = np.atleast_1d(np.asarray(t, float))
-        if not self.vehicles:
-            return self.velocity(t).reshape(-1, 1)
         return np.stack([m.velocity(t) for m in self.vehicles], axis=1)
 
     def front_positions(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """x [m] of every vehicle's front axle, shape (n_t, n_vehicles)."""
         s = self.travel(t)
-        if not self.vehicles:
-            return s
         sign = np.array([m.sign for m in self.vehicles])
         return np.where(sign > 0, s, self.bridge.span - s)
 
     @property
     def start_time(self) -> float:
-        """Time [s] the run starts: 0 for one vehicle; several: the latest time every vehicle is
-        at least ``approach`` before its entry support."""
-        if not self.vehicles:
-            return 0.0
-        return float(min(m.time_at(-self.approach) for m in self.vehicles))
+        """Time [s] the run starts: the latest time every vehicle is at least ``approach`` before
+        its entry support (0 for one vehicle)."""
+        return float(min(m.time_at(-self.approach) for m in self.vehicles)) + 0.0
 
     @property
     def max_speed(self) -> float:
@@ -322,47 +326,21 @@ class Crossing:
             return float(self.free_vibration)
         return float(2 * np.pi / self.bridge.omega[0])
 
-    @property
-    def stop_time(self) -> float:
-        """Time [s] at which a braking vehicle comes to rest (inf if it does not brake)."""
-        return -self.speed / self.acceleration if self.acceleration < 0 else math.inf
-
-    def front_position(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """x of the front axle [m] at time t [s] (a braking vehicle stays where it stopped)."""
-        t = np.minimum(np.asarray(t, float), self.stop_time)
-        return -self.approach + self.speed * t + 0.5 * self.acceleration * t**2
-
-    def velocity(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """Vehicle speed [m/s] at time t [s] (zero once a braking vehicle has stopped)."""
-        t = np.minimum(np.asarray(t, float), self.stop_time)
-        return self.speed + self.acceleration * t
-
     def exit_time(self) -> float:
-        """Time [s] when the last contact point leaves the deck: passes x = span (on a skew deck the far
-        end of its own wheel track, at most the deck's far corner); several vehicles: the last one's."""
-        if self.vehicles:
-            return self._exit_time_vehicles()
-        distance = self.approach + self._leaving_distance(np.arange(self.contact.n), 1.0)
-        a, v = self.acceleration, self.speed
-        if abs(a) < 1e-12:
-            return distance / v
-        disc = v * v + 2 * a * distance
-        if disc <= 0:
-            stop = -v * v / (2 * a)
-            raise ValueError(
-                f"with crossing.acceleration = {a} m/s² the vehicle stops after {stop:.1f} m, before its last axle "
-                f"leaves the bridge ({distance:.1f} m); use a smaller braking rate or a higher speed"
-            )
-        return (-v + math.sqrt(disc)) / a
-
-    def _exit_time_vehicles(self) -> float:
-        cp = self.contact
+        """Time [s] when the last contact point leaves the deck: each passes x = span (on a skew deck
+        the far end of its own wheel track, at least the deck's far corner) driving +x, x = 0 driving −x."""
         last = -math.inf
         for i, m in enumerate(self.vehicles):
-            distance = self._leaving_distance(np.flatnonzero(self.point_vehicle == i), m.sign)
+            distance = self.leaving_distance(np.flatnonzero(self.point_vehicle == i), m.sign)
             t = m.time_at(distance)
-            if math.isnan(t) or (m.acceleration < 0 and t - m.entry_time > m.stop_time):
-                stop = m.speed**2 / (-2 * m.acceleration)
+            if math.isnan(t) or (m.acceleration < 0 and t - m._ref[0] >= m.stop_time):
+                t_ref, s_ref, v_ref = m._ref
+                stop = v_ref**2 / (-2 * m.acceleration)
+                if self.single:
+                    raise ValueError(
+                        f"with crossing.acceleration = {m.acceleration} m/s² the vehicle stops after {stop:.1f} m, before "
+                        f"its last axle leaves the bridge ({distance - s_ref:.1f} m); use a smaller braking rate or a "
+                        "higher speed")
                 raise ValueError(
                     f"vehicles[{i + 1}].acceleration: with {m.acceleration} m/s² the vehicle stops {stop:.1f} m after its "
                     f"entry, before its last axle leaves the bridge ({distance:.1f} m); use a smaller braking rate "
@@ -370,7 +348,7 @@ class Crossing:
             last = max(last, t)
         return last
 
-    def _leaving_distance(self, points: NDArray[np.int64], sign: float) -> float:
+    def leaving_distance(self, points: NDArray[np.int64], sign: float) -> float:
         """Travel [m] from the entry support (x = 0 driving +x, x = span driving −x) until the contact
         points ``points`` of a vehicle have all left the deck: each its own track's far end (span +
         y tan θ driving +x, y tan θ driving −x, y its deck y), and at least the deck's far corner
@@ -392,12 +370,7 @@ class Crossing:
 
     def road_extent(self) -> tuple[float, float]:
         """Range of x [m] the contact points touch during the crossing."""
-        if self.vehicles:
-            origin, sign, _ = self.point_kinematics()
-            s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
-            x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
-            return float(x.min()), float(x.max())
-        cp = self.contact
-        t_end = self.duration
-        x_end = float(self.front_position(t_end))  # motion is monotone: speed stays > 0 until t_end
-        return -self.approach - float(cp.setback.max()), x_end - float(cp.setback.min())
+        origin, sign, _ = self.point_kinematics()
+        s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
+        x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
+        return float(x.min()), float(x.max())

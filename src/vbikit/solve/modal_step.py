@@ -15,8 +15,8 @@ sin of ω_D h) (``tests/unit/test_modal_step.py`` checks them against the closed
 the same map for Newmark's average-acceleration rule (γ = 1/2, β = 1/4), so that Newmark runs
 through the same partitioned kernel.  :func:`vehicle_step` is the vehicles' map over the step
 with their nominal tires on the contact surface, exact (exponential of the augmented
-first-order system, the wheel loads linear over the step) or Newmark's
-(``vbikit.solve.kernels.implicit``).
+first-order system, the wheel loads linear over the step), :func:`newmark_vehicle_step`
+Newmark's (``vbikit.solve.kernels.implicit``).
 """
 from __future__ import annotations
 
@@ -123,32 +123,37 @@ def _nominal(vehicles: Vehicles) -> tuple[NDArray[np.float64], NDArray[np.float6
     return np.ascontiguousarray(c_hat), np.ascontiguousarray(k_hat)
 
 
-def vehicle_step(vehicles: Vehicles, h: float, rule: str = "exact") -> VehicleStep:
-    """The vehicles' step map over ``h`` [s] with their nominal tires (k_w, c_w of each wheel) on the
-    contact surface and the wheel loads G linear over the step: ``rule`` "exact" (exponential
-    of the augmented first-order system (q, q̇, G, Ġ, 1), exact for any h) or "newmark"
-    (average acceleration)."""
+def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
+    """The vehicles' exact step map over ``h`` [s] with their nominal tires (k_w, c_w of each wheel)
+    on the contact surface and the wheel loads G linear over the step: the exponential of the
+    augmented first-order system (q, q̇, G, Ġ, 1), exact for any h."""
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
     c_hat, k_hat = _nominal(vehicles)
     if n_d == 0:
         return VehicleStep(np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
     m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows
-    if rule == "exact":
-        n = 2 * n_d + 2 * n_w + 1
-        a = np.zeros((n, n))
-        a[:n_d, n_d:2 * n_d] = np.eye(n_d)
-        a[n_d:2 * n_d, :n_d] = -m_inv @ k_hat
-        a[n_d:2 * n_d, n_d:2 * n_d] = -m_inv @ c_hat
-        a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T
-        a[n_d:2 * n_d, -1] = m_inv @ vehicles.gravity
-        a[2 * n_d:2 * n_d + n_w, 2 * n_d + n_w:2 * n_d + 2 * n_w] = np.eye(n_w)
-        e = expm(a * h)
-        z = slice(0, 2 * n_d)
-        e_g, e_dg = e[z, 2 * n_d:2 * n_d + n_w], e[z, 2 * n_d + n_w:2 * n_d + 2 * n_w]
-        return VehicleStep(np.ascontiguousarray(e[z, z]), np.ascontiguousarray(e_g - e_dg / h),
-                           np.ascontiguousarray(e_dg / h), np.ascontiguousarray(e[z, -1]), c_hat, k_hat)
-    if rule != "newmark":
-        raise ValueError(f"unknown vehicle step rule {rule!r}")
+    n = 2 * n_d + 2 * n_w + 1
+    a = np.zeros((n, n))
+    a[:n_d, n_d:2 * n_d] = np.eye(n_d)
+    a[n_d:2 * n_d, :n_d] = -m_inv @ k_hat
+    a[n_d:2 * n_d, n_d:2 * n_d] = -m_inv @ c_hat
+    a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T
+    a[n_d:2 * n_d, -1] = m_inv @ vehicles.gravity
+    a[2 * n_d:2 * n_d + n_w, 2 * n_d + n_w:2 * n_d + 2 * n_w] = np.eye(n_w)
+    e = expm(a * h)
+    z = slice(0, 2 * n_d)
+    e_g, e_dg = e[z, 2 * n_d:2 * n_d + n_w], e[z, 2 * n_d + n_w:2 * n_d + 2 * n_w]
+    return VehicleStep(np.ascontiguousarray(e[z, z]), np.ascontiguousarray(e_g - e_dg / h),
+                       np.ascontiguousarray(e_dg / h), np.ascontiguousarray(e[z, -1]), c_hat, k_hat)
+
+
+def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
+    """The same map as :func:`vehicle_step` by Newmark's average acceleration (γ = 1/2, β = 1/4)."""
+    n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
+    c_hat, k_hat = _nominal(vehicles)
+    if n_d == 0:
+        return VehicleStep(np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
+    m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows
     s_inv = np.linalg.inv(vehicles.mass + 0.5 * h * c_hat + 0.25 * h * h * k_hat)
 
     def advance(u, v, g0, g1, fg):  # columns are independent inputs

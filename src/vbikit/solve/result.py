@@ -27,12 +27,15 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
         if a.size:
             ok &= np.isfinite(a).reshape(a.shape[0], -1).all(axis=1)
     if not ok.all():
+        from vbikit.solve.integrators import implicit_names
+
         i = int(np.argmin(ok))
         c = result.crossing
         raise DivergenceError(
             f"the integration diverged at step {i} of {result.n_steps} (t = {result.time[i]:.6g} s, front axle at "
-            f"x = {result.front_position[i]:.3f} m): non-finite states with {c.integrator} at dt = {result.dt:.3g} s; "
-            "use a smaller crossing.dt (or leave it out), fewer bridge modes, or integrator = \"newmark\"")
+            f"x = {', '.join(f'{x:.3f}' for x in result.front_position[i])} m): non-finite states with {c.integrator} at dt = {result.dt:.3g} s; "
+            "use a smaller crossing.dt (or leave it out), fewer bridge modes, or "
+            + " or ".join(f'integrator = "{name}"' for name in implicit_names() if name != c.integrator))
     return result
 
 
@@ -44,8 +47,8 @@ class CrossingResult:
     ``q``, ``q_dot``, ``q_ddot`` (n_t, n_dof): vehicle coordinates (absolute, z up);
     ``wheel_forces`` (n_t, n_wheels): tire forces [N], compression positive (0 = no contact);
     ``contact_lengths`` (n_t, n_wheels): length [m] of the patch in contact (0 for point tires);
-    ``front_position`` [m], ``speed`` [m/s] of the vehicle (several vehicles: (n_t, n_vehicles),
-    x of each front axle and its speed).  ``dt`` [s] is the spacing of the stored time points;
+    ``front_position`` [m], ``speed`` [m/s] (n_t, n_vehicles): x of each vehicle's front axle and
+    its speed.  ``dt`` [s] is the spacing of the stored time points;
     ``integration_dt`` [s] the integrator's step (larger ``dt`` when the histories were thinned,
     ``simulate(..., output_every=k)``).
     """
@@ -67,20 +70,14 @@ class CrossingResult:
 
     @property
     def travel(self) -> NDArray[np.float64]:
-        """The vehicles' travel s_v [m] at ``time`` ((n_t,) for one vehicle: its front-axle x;
-        else (n_t, n_vehicles))."""
-        if not self.crossing.vehicles:
-            return self.front_position
+        """The vehicles' travel s_v [m] past their entry supports at ``time``, (n_t, n_vehicles)."""
         return self.crossing.travel(self.time)
 
     def wheel_positions(self) -> NDArray[np.float64]:
         """x [m] of every wheel centre at every time (n_t, n_wheels), each vehicle on its own path."""
         crossing = self.crossing
         offsets = np.array([w.offset for w in crossing.vehicle.wheels])
-        if not crossing.vehicles:
-            return self.front_position[:, None] - offsets[None, :]
-        n_per = np.diff(crossing.vehicle.wheel_offsets)
-        veh = np.repeat(np.arange(len(crossing.vehicles)), n_per)
+        veh = np.repeat(np.arange(crossing.n_vehicles), [len(m.vehicle.wheels) for m in crossing.vehicles])
         sign = np.array([m.sign for m in crossing.vehicles])[veh]
         return self.front_position[:, veh] - sign[None, :] * offsets[None, :]
 
@@ -166,7 +163,7 @@ class CrossingResult:
         vehicle = self.crossing.vehicle
         pts = [self.point()] if points is None else [(float(x), float(y)) for x, y in points]
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-        xi_st = static_modal_history(self.crossing, self.front_position) if static else None
+        xi_st = static_modal_history(self.crossing, self.travel) if static else None
         data: dict[str, tuple[tuple[str, ...], Any, dict[str, str]]] = {}
 
         def deck(prefix: str, dim: str, px: list[float], py: list[float], label: str) -> None:
@@ -204,11 +201,13 @@ class CrossingResult:
                  f" on the girder line at the section of x = {float(girder_x):g} m")
             coords["girder"] = ("girder", np.arange(1, len(girder_y) + 1))
             coords["girder_y"] = ("girder", np.asarray(girder_y, float), {"units": "m", "long_name": "girder line from the deck centreline"})
-        motion = ("time",) if self.front_position.ndim == 1 else ("time", "vehicle")
-        if self.front_position.ndim == 2:  # several vehicles: one column each
+        if self.crossing.single:  # one vehicle (built with vehicle=): plain time series
+            motion, front, speed = ("time",), self.front_position[:, 0], self.speed[:, 0]
+        else:  # one column per vehicle
+            motion, front, speed = ("time", "vehicle"), self.front_position, self.speed
             coords["vehicle"] = ("vehicle", np.arange(1, self.front_position.shape[1] + 1))
-        data["front_axle_x"] = (motion, self.front_position, {"units": "m", "long_name": "front axle position from the entry support"})
-        data["speed"] = (motion, self.speed, {"units": "m s-1", "long_name": "vehicle speed"})
+        data["front_axle_x"] = (motion, front, {"units": "m", "long_name": "front axle position from the entry support"})
+        data["speed"] = (motion, speed, {"units": "m s-1", "long_name": "vehicle speed"})
         data["wheel_force"] = (("time", "wheel"), self.wheel_forces, {"units": "N", "long_name": "tire force, compression positive"})
         data["contact_length"] = (("time", "wheel"), self.contact_lengths, {"units": "m", "long_name": "length of the tire patch in contact"})
         data["vehicle_displacement"] = (("time", "dof"), self.q, {"units": "m or rad (dof_units)", "long_name": "vehicle DOF, absolute, z up"})

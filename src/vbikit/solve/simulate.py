@@ -9,19 +9,18 @@ import logging
 import math
 import os
 from dataclasses import dataclass
-from typing import Sequence
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
-from numpy.typing import NDArray
 
-from vbikit.solve import kernels
-from vbikit.solve.budget import Limits, check_run
+from vbikit.solve.budget import Limits
 from vbikit.solve.crossing import Crossing
+from vbikit.solve.integrators import KernelCall, get_integrator
+from vbikit.solve.plan import RunPlan, TimeGrid, plan_run, time_grid  # noqa: F401 - time_grid re-exported
 from vbikit.solve.result import CrossingResult, check_finite
-from vbikit.solve.kernels import Motion
-from vbikit.solve.modal_step import exact_step, newmark_step, vehicle_step
-from vbikit.solve.system import KernelData, kernel_data, point_positions, road_data, static_state
-from vbikit.solve.timestep import choose_time_step
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.solve.system import KernelData
 
 log = logging.getLogger(__name__)
 #: says when numba compiles the kernels (the first run on a machine, ≈ 15 s; benchmarks/bench_compile.py)
@@ -47,19 +46,22 @@ HISTORY_BUDGET = 1 << 30
 
 
 def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int | None = None,
-             history_budget: float = HISTORY_BUDGET) -> CrossingResult:
+             history_budget: float = HISTORY_BUDGET, plan: RunPlan | None = None) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing.
 
     The run's memory and steps are estimated first and refused (:class:`~vbikit.solve.budget.BudgetError`)
     above ``limits`` (default :class:`~vbikit.solve.budget.Limits`: 4 GiB, 5 × 10⁶ steps; raise
-    them for bigger runs).  ``output_every``: store every k-th step only (default 1, or the
-    smallest k that keeps the histories within ``history_budget`` [bytes], logged); the
-    integration step is unchanged, ``result.dt`` is then the spacing of the stored samples and
-    ``result.integration_dt`` the step."""
-    dt = choose_time_step(crossing)
-    check_run(crossing, dt, limits)
-    grid = time_grid(crossing, dt)
-    data = kernel_data(crossing)
+    them for bigger runs).  ``plan``: the crossing's :class:`~vbikit.solve.plan.RunPlan` from
+    :func:`~vbikit.solve.plan.plan_run` if it was planned already (its step, grid and kernel data
+    are reused and ``limits`` is not consulted again).  ``output_every``: store every k-th step
+    only (default 1, or the smallest k that keeps the histories within ``history_budget``
+    [bytes], logged); the integration step is unchanged, ``result.dt`` is then the spacing of
+    the stored samples and ``result.integration_dt`` the step."""
+    if plan is None:
+        plan = plan_run(crossing, limits)
+    elif plan.crossing is not crossing:
+        raise ValueError("simulate(crossing, plan=...): the plan was made for another crossing")
+    grid, data = plan.grid, plan.kernel_data
     if output_every is None:
         output_every = history_stride(grid.n_steps, data, history_budget)
         if output_every > 1:
@@ -71,43 +73,11 @@ def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int
     return check_finite(integrate([crossing], data, grid, int(output_every))[0])
 
 
-def history_stride(n_steps: int, data: KernelData, budget: float = HISTORY_BUDGET) -> int:
+def history_stride(n_steps: int, data: "KernelData", budget: float = HISTORY_BUDGET) -> int:
     """The smallest k such that every k-th of ``n_steps`` + 1 states fits in ``budget`` [bytes]
     (ξ, ξ̇, ξ̈, q, q̇, q̈ and two per wheel, 8 bytes each)."""
     per_row = 8.0 * (3 * data.n_modes + 3 * data.n_dof + 2 * data.n_wheels)
     return max(1, math.ceil((n_steps + 1) * per_row / max(budget, per_row)))
-
-
-@dataclass(frozen=True)
-class TimeGrid:
-    """Half-step time grid of a crossing: ``t_half`` [s] (index 2n = t_n, from the crossing's
-    start time), the vehicles' ``travel`` [m] and ``speed`` [m/s] there (n_half, n_vehicles;
-    one vehicle: its front-axle x)."""
-
-    dt: float
-    n_steps: int
-    t_half: NDArray[np.float64]
-    travel: NDArray[np.float64]
-    speed: NDArray[np.float64]
-
-    @property
-    def xf(self) -> NDArray[np.float64]:
-        """The first vehicle's travel [m] (one vehicle: its front-axle x)."""
-        return self.travel[:, 0]
-
-    @property
-    def vel(self) -> NDArray[np.float64]:
-        return self.speed[:, 0]
-
-
-def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
-    """The half-step grid of ``crossing`` for step ``dt`` [s] (it ends at or after ``crossing.duration``)."""
-    n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))
-    t_half = 0.5 * dt * np.arange(2 * n_steps + 1)
-    if crossing.vehicles:
-        t_half = crossing.start_time + t_half
-    return TimeGrid(dt, n_steps, t_half, np.ascontiguousarray(crossing.travel(t_half)),
-                    np.ascontiguousarray(crossing.travel_speed(t_half)))
 
 
 #: lanes per RK4 kernel call: a batch runs in calls of up to MAX_LANES lanes, each padded to a
@@ -116,18 +86,16 @@ def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
 #: 20 (benchmarks/bench_studies.py).  One crossing is one lane (its own compiled variant).
 MAX_LANES = 32
 LANE_PAD = 8
-#: the implicit integrators' iteration on the end-of-step contact forces stops when no point force
-#: and no wheel load changes by more than this fraction of the largest static wheel load (tight
-#: enough that lanes, which iterate until all have converged, equal single crossings to round-off)
-IMPLICIT_TOLERANCE = 1e-12
-IMPLICIT_MAX_ITERATIONS = 50
 
 
-def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid, stride: int = 1) -> list[CrossingResult]:
+def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid, stride: int = 1) -> list[CrossingResult]:
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
-    and ``grid`` are those of the first) with their integrator, as lanes of kernel calls
-    (:data:`MAX_LANES`): ``kernels.rk4`` for RK4, ``kernels.implicit`` with the modes' exact
-    transition ("exact") or Newmark's ("newmark")."""
+    and ``grid`` are those of the first) with their integrator (its registered ``run``,
+    :mod:`vbikit.solve.integrators`), as lanes of kernel calls (:data:`MAX_LANES`)."""
+    from vbikit.solve import kernels
+    from vbikit.solve.kernels import Motion
+    from vbikit.solve.system import point_positions, road_data, static_state
+
     first, n_real = crossings[0], len(crossings)
     if n_real > MAX_LANES:
         return [res for k in range(0, n_real, MAX_LANES)
@@ -159,28 +127,13 @@ def integrate(crossings: Sequence[Crossing], data: KernelData, grid: TimeGrid, s
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
-    announce_compile(kernels.rk4 if first.integrator == "rk4" else kernels.implicit)
-    if first.integrator == "rk4":
-        kernels.rk4(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, *outputs,
-                    (0,) if n_l == 1 else (0, 0), stride)
-    else:
-        make = exact_step if first.integrator == "exact" else newmark_step
-        step = make(data.modes.omega, data.modes.zeta, dt)
-        loads = np.abs(first.vehicle.static_wheel_loads())
-        tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
-        unsettled, evaluations = kernels.implicit(dt, mot, data.modes, data.vehicles, data.points, road, data.unilateral, step,
-                                     vehicle_step(data.vehicles, dt, first.integrator), *outputs, tol, IMPLICIT_MAX_ITERATIONS,
-                                     (0,) if n_l == 1 else (0, 0), stride)
-        log.debug("%s: %.2f contact-law evaluations per step", first.integrator, evaluations / max(n_steps, 1))
-        if unsettled:
-            log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
-                        first.integrator, IMPLICIT_MAX_ITERATIONS, unsettled, n_steps)
+    integrator = get_integrator(first.integrator)
+    if integrator.kernel is not None:
+        announce_compile(integrator.kernel())
+    integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride))
     rows = slice(0, None, 2 * stride)
     time = grid.t_half[rows].copy()
-    if first.vehicles:
-        front, speed = first.front_positions(time), grid.speed[rows].copy()
-    else:
-        front, speed = grid.xf[rows].copy(), grid.vel[rows].copy()
+    front, speed = first.front_positions(time), grid.speed[rows].copy()
     return [CrossingResult(c, time, dt * stride, front, speed,
                            *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt)
             for lane, c in enumerate(crossings[:n_real])]

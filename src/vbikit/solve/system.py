@@ -96,17 +96,15 @@ def kernel_data(crossing: Crossing, points_per_mode: int = 100) -> KernelData:
     origin, direction, y = crossing.point_kinematics()
     tracks, track_idx = np.unique(y, return_inverse=True)
     table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
-    points = points_data(cp, track_idx.ravel())
-    if crossing.vehicles:
-        points = points._replace(origin=np.ascontiguousarray(origin, float), direction=np.ascontiguousarray(direction, float),
-                                 vehicle=np.ascontiguousarray(crossing.point_vehicle, np.int64))
+    points = points_data(cp, track_idx.ravel())._replace(
+        origin=np.ascontiguousarray(origin, float), direction=np.ascontiguousarray(direction, float),
+        vehicle=np.ascontiguousarray(crossing.point_vehicle, np.int64))
     return KernelData(modes_data(crossing.bridge, table), vehicles_data(crossing.vehicle, cp), points,
                       bool(crossing.loss_of_contact))
 
 
 def motion(crossing: Crossing, t: NDArray[np.float64]) -> Motion:
-    """Travel s_v [m] and speed [m/s] of the crossing's vehicles at times ``t`` [s], (n_t, n_vehicles)
-    (one vehicle: s = its front-axle x)."""
+    """Travel s_v [m] and speed [m/s] of the crossing's vehicles at times ``t`` [s], (n_t, n_vehicles)."""
     return Motion(np.ascontiguousarray(crossing.travel(t), float), np.ascontiguousarray(crossing.travel_speed(t), float))
 
 
@@ -129,8 +127,8 @@ def coupled_matrices(
     road_rate: NDArray[np.float64] | None = None,
     active: NDArray[np.bool_] | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """M, C, K, F of Eq. 9 (u = [ξ; q]) with the vehicles' travel ``front_position`` [m] (the
-    front-axle x for a crossing) moving at ``speed`` [m/s], the given contact points ``active``
+    """M, C, K, F of Eq. 9 (u = [ξ; q]) with the vehicles' travel ``front_position`` [m] (past
+    their entry supports) moving at ``speed`` [m/s], the given contact points ``active``
     (default: every point in linear contact)."""
     n = data.n_modes + data.n_dof
     zero = np.zeros(data.n_points)
@@ -152,8 +150,7 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     contact points: the equilibrium of Eq. 9 on the road elevations ``road`` [m] under the points,
     with the tire dashpots' forces c_p·ṙ_p from the road rates ``road_rate`` [m/s] = dir·v·r'(x_p)
     and the convective deck rate dir·v·φ'_p·ξ at the vehicles' ``speed`` v [m/s] (both 0 by
-    default: rest).  ``travel``: the vehicles' travel at t = 0, default the crossing's front-axle
-    position.  Contact is piecewise linear, so the active set is iterated: start with every
+    default: rest).  ``travel``: the vehicles' travel at the start, default the crossing's.  Contact is piecewise linear, so the active set is iterated: start with every
     point in contact (for a rigid disk, each wheel's highest point), solve, drop points that do
     not press (by the kernels' contact law), repeat until the set is unchanged.
 
@@ -254,7 +251,7 @@ def static_modal_history(crossing: Crossing, travel: NDArray[np.float64],
                          data: KernelData | None = None) -> NDArray[np.float64]:
     """Static modal coordinates ξ_st(t) (n_t, n_modes) under the vehicles' static wheel loads,
     each spread over its contact points by their static shares, at the vehicles' ``travel``
-    [m] (n_t,) for one vehicle (its front-axle x) or (n_t, n_vehicles) (same tabulated mode
+    [m] past their entry supports, (n_t, n_vehicles) ((n_t,): one vehicle) (same tabulated mode
     shapes as the dynamic solution; ``data``: the crossing's kernel data if already computed).
     Several vehicles: every vehicle's static loads along its own path, superposed."""
     cp = crossing.contact

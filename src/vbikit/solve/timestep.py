@@ -1,22 +1,29 @@
 """Time-step selection and the RK4 stability limit.
 
-Automatic step (both integrators), the smallest of
+Automatic step of the RK4 and Newmark integrators (:func:`accuracy_time_step`), the smallest of
   * T_bridge,min / 5   — at least 5 steps per period of the highest retained bridge mode,
   * T_vehicle,min / 20 — 20 steps per period of the highest vehicle mode (tires on ground),
   * Δx_road / v_max    — at most one road sample passed per step,
-  * span / (100 v_max) — at least 100 steps while a point crosses the span.
-For RK4 it is also capped at 0.9 × the stability limit of the coupled system, computed
-from the eigenvalues λ of its first-order matrix at several vehicle positions as the largest
-dt with |R(λ dt)| ≤ 1, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24.  A user step above that limit is
-refused (Newmark average acceleration is unconditionally stable and takes any step).
+  * span / (100 v_max) — at least 100 steps while a point crosses the span,
+with v_max the largest speed any vehicle reaches during the run; the exact modal integrator's
+(:func:`implicit_time_step`) has no bridge-mode term.  An explicit integrator's automatic step
+is also capped at 0.9 × its stability limit; for RK4 that is the limit of the coupled system,
+computed from the eigenvalues λ of its first-order matrix at several vehicle positions as the
+largest dt with |R(λ dt)| ≤ 1, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24.  A user step above the limit
+is refused (the implicit integrators are unconditionally stable and take any step).  Which rule
+an integrator uses is part of its registration (:mod:`vbikit.solve.integrators`).
 """
 from __future__ import annotations
+
+from typing import TYPE_CHECKING, Callable, Optional
 
 import numpy as np
 
 from vbikit.errors import VbikitError
-from vbikit.solve.crossing import Crossing
-from vbikit.solve.system import coupled_matrices, kernel_data
+from vbikit.solve.integrators import get_integrator, implicit_names
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.solve.crossing import Crossing
 
 
 class UnstableTimeStepError(VbikitError):
@@ -28,15 +35,18 @@ def _rk4_growth(z: np.ndarray) -> np.ndarray:
 
 
 def system_eigenvalues(crossing: Crossing, n_positions: int = 5) -> np.ndarray:
-    """Eigenvalues [1/s] of the coupled first-order system at several front-axle positions."""
+    """Eigenvalues [1/s] of the coupled first-order system at several positions of the vehicles."""
+    from vbikit.solve.system import coupled_matrices, kernel_data
+
     data = kernel_data(crossing, points_per_mode=10)
     # contact as at rest: the points that carry static load (a disk's static patch, a rigid
     # disk's lowest point, every point of point and multipoint tires)
     active = crossing.contact.weight > 0
-    if crossing.vehicles:  # the vehicles' travel at times spread over the run until the last one leaves
+    if crossing.n_vehicles == 1:  # its travel evenly spread from 1 m before the bridge to 1 m after it has left
+        leaving = crossing.leaving_distance(np.arange(crossing.contact.n), crossing.vehicles[0].sign)
+        positions = list(np.linspace(-1.0, leaving + 1.0, n_positions))
+    else:  # the vehicles' travel at times spread over the run until the last one leaves
         positions = list(crossing.travel(np.linspace(crossing.start_time, crossing.exit_time(), n_positions + 2)))
-    else:
-        positions = list(np.linspace(-1.0, crossing.bridge.deck_extent[1] + crossing.contact.setback.max() + 1.0, n_positions))
     v_max = crossing.max_speed
     eig = []
     for xf in positions:
@@ -77,22 +87,30 @@ def accuracy_time_step(crossing: Crossing) -> float:
     return float(min(candidates))
 
 
-def choose_time_step(crossing: Crossing) -> float:
-    """The step the crossing runs with: the user's (checked) or the automatic one [s]."""
-    if crossing.integrator == "rk4":
-        limit = rk4_stability_limit(crossing)
+def choose_time_step(crossing: Crossing, stability_limit: Optional[float] = None,
+                     automatic: Optional[Callable[[Crossing], float]] = None) -> float:
+    """The step [s] the crossing runs with: the user's (checked against the stability limit of an
+    explicit integrator) or the integrator's automatic one (capped at 0.9 × that limit).
+
+    ``stability_limit`` [s] and ``automatic`` (the automatic step rule) replace the integrator's
+    own when given (a batch computes them once for many crossings)."""
+    integrator = get_integrator(crossing.integrator)
+    rule = integrator.time_step if automatic is None else automatic
+    if integrator.stability_limit is not None:
+        limit = integrator.stability_limit(crossing) if stability_limit is None else stability_limit
         if crossing.dt is not None:
             if crossing.dt > limit:
+                others = " or ".join(f'integrator = "{name}"' for name in implicit_names())
                 raise UnstableTimeStepError(
-                    f"crossing.dt = {crossing.dt:.3g} s is above the RK4 stability limit {limit:.3g} s of this system "
-                    f"(highest bridge mode {crossing.bridge.frequencies_hz.max():.1f} Hz); use dt <= {limit:.3g} s, "
-                    "leave dt out for an automatic step, fewer bridge modes, or integrator = \"newmark\""
+                    f"crossing.dt = {crossing.dt:.3g} s is above the {integrator.name.upper()} stability limit {limit:.3g} s "
+                    f"of this system (highest bridge mode {crossing.bridge.frequencies_hz.max():.1f} Hz); use dt <= "
+                    f"{limit:.3g} s, leave dt out for an automatic step, fewer bridge modes, or {others}"
                 )
             return float(crossing.dt)
-        return min(accuracy_time_step(crossing), 0.9 * limit)
+        return min(rule(crossing), 0.9 * limit)
     if crossing.dt is not None:
         return float(crossing.dt)
-    return implicit_time_step(crossing) if crossing.integrator == "exact" else accuracy_time_step(crossing)
+    return rule(crossing)
 
 
 #: steps per period of the highest vehicle mode, per shortest road wavelength and per span passage
@@ -106,7 +124,7 @@ EXACT_ROAD_FEATURES_PER_STEP = 2.0
 
 def implicit_time_step(crossing: Crossing) -> float:
     """The automatic step [s] of the exact modal integrator (no bridge-mode term)."""
-    v_max = max(crossing.speed, float(crossing.velocity(crossing.duration)))
+    v_max = crossing.max_speed
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     f_veh = crossing.vehicle.natural_frequencies()

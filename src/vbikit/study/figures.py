@@ -32,7 +32,7 @@ def design_code_lines(base: dict) -> dict[str, float]:
 
     built = build(parse_scenario(base))
     bridge = built.crossing.bridge
-    vehicle = built.crossing.vehicles[0].vehicle if built.crossing.vehicles else built.crossing.vehicle
+    vehicle = built.crossing.vehicles[0].vehicle
     loaded = loaded_length(bridge, built.response_x, built.response_y)
     return code_allowances(loaded, float(bridge.frequencies_hz[0]), vehicle_axle_count(vehicle))
 

@@ -1,0 +1,78 @@
+"""The integrators vbikit ships: ``"exact"`` (the default), ``"rk4"`` and ``"newmark"``
+(:mod:`vbikit.solve.integrators`).  An integrator module added to the package is imported at the
+end of this file."""
+from __future__ import annotations
+
+from typing import Any
+
+from vbikit.solve.integrators import (
+    DEFAULT_INTEGRATOR,
+    INTEGRATORS,
+    Integrator,
+    KernelCall,
+    implicit_kernel,
+    register_integrator,
+    run_implicit,
+)
+from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
+
+
+def _run_exact(call: KernelCall) -> None:
+    from vbikit.solve.modal_step import exact_step, vehicle_step
+
+    data = call.data
+    run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt), vehicle_step(data.vehicles, call.dt))
+
+
+def _run_newmark(call: KernelCall) -> None:
+    from vbikit.solve.modal_step import newmark_step, newmark_vehicle_step
+
+    data = call.data
+    run_implicit(call, newmark_step(data.modes.omega, data.modes.zeta, call.dt),
+                 newmark_vehicle_step(data.vehicles, call.dt))
+
+
+def _run_rk4(call: KernelCall) -> None:
+    from vbikit.solve import kernels
+
+    data = call.data
+    kernels.rk4(call.dt, call.motion, data.modes, data.vehicles, data.points, call.road, data.unilateral, *call.outputs,
+                call.lanes, call.stride)
+
+
+def _rk4_kernel() -> Any:
+    from vbikit.solve import kernels
+
+    return kernels.rk4
+
+
+EXACT = register_integrator(Integrator(
+    name="exact",
+    description="exact modal stepping (default; the step is not limited by the highest mode)",
+    explicit=False,
+    references=("NigamJennings1969", "Chopra2017"),
+    time_step=implicit_time_step,
+    run=_run_exact,
+    kernel=implicit_kernel,
+))
+RK4 = register_integrator(Integrator(
+    name="rk4",
+    description="the paper's classical Runge–Kutta (explicit: the step is capped by its stability limit)",
+    explicit=True,
+    references=("MultiPointTire",),
+    time_step=accuracy_time_step,
+    run=_run_rk4,
+    stability_limit=rk4_stability_limit,
+    kernel=_rk4_kernel,
+))
+NEWMARK = register_integrator(Integrator(
+    name="newmark",
+    description="Newmark average acceleration for bridge and vehicles alike",
+    explicit=False,
+    references=("Newmark1959",),
+    time_step=accuracy_time_step,
+    run=_run_newmark,
+    kernel=implicit_kernel,
+))
+
+assert DEFAULT_INTEGRATOR in INTEGRATORS, "the default integrator is one of the built-in ones"
