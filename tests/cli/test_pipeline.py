@@ -153,3 +153,26 @@ def test_bad_points_are_refused_naming_the_key(extra: str, message: str):
 def test_a_scenario_takes_no_separate_response_plan():
     with pytest.raises(ScenarioError, match="carries its own response plan"):
         vbikit.run(BEAM, ResponsePlan())
+
+
+def test_a_report_computes_nothing_twice(monkeypatch):
+    """One `vbikit.run` chooses the step, checks the budgets and tabulates the mode shapes once:
+    the preflight's run plan goes on to the integration and its tables to the static reference."""
+    import vbikit.solve.plan
+    import vbikit.solve.system
+
+    calls = {"choose_time_step": 0, "check_run": 0, "tabulate_tracks": 0}
+
+    def counted(module, name):
+        real = getattr(module, name)
+
+        def wrapper(*args, **kwargs):
+            calls[name] += 1
+            return real(*args, **kwargs)
+        monkeypatch.setattr(module, name, wrapper)
+
+    counted(vbikit.solve.plan, "choose_time_step")
+    counted(vbikit.solve.plan, "check_run")
+    counted(vbikit.solve.system, "tabulate_tracks")
+    vbikit.run(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml")
+    assert calls == {"choose_time_step": 1, "check_run": 1, "tabulate_tracks": 1}

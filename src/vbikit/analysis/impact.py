@@ -28,7 +28,7 @@ from vbikit.solve.result import CrossingResult
 
 def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
     """ξ_st(t) (n_t, n_modes): static modal coordinates under the moving static wheel loads."""
-    return system.static_modal_history(result.crossing, result.travel)
+    return system.static_modal_history(result.crossing, result.travel, result.kernel_data)
 
 
 @dataclass(frozen=True)

@@ -28,6 +28,7 @@ from vbikit.scenario.report import Report
 from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario, scenario_from_toml
 from vbikit.solve.budget import Limits
 from vbikit.solve.crossing import Crossing
+from vbikit.solve.plan import RunPlan
 from vbikit.solve.result import CrossingResult
 
 log = logging.getLogger(__name__)
@@ -92,7 +93,7 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     from vbikit._files import json_safe
 
     scenario = plan.scenario
-    report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name)
+    report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run)
     s = report.summary
     s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
     s["inputs"] = scenario_inputs(scenario, plan)
@@ -108,11 +109,14 @@ def _references(scenario: Scenario) -> list[dict[str, str]]:
     return [{"key": r.key, "citation": r.text(), **({"doi": r.doi} if r.doi else {})} for r in scenario_references(scenario)]
 
 
-def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "") -> Report:
-    """Simulate ``crossing`` and reduce it by ``plan`` (:func:`report_crossing`)."""
+def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "",
+                 run_plan: RunPlan | None = None) -> Report:
+    """Simulate ``crossing`` (with its checked :class:`~vbikit.solve.plan.RunPlan` if the preflight
+    made one: step, budgets and tables are not computed again) and reduce it by ``plan``
+    (:func:`report_crossing`)."""
     from vbikit.solve import simulate
 
-    return report_crossing(simulate(crossing, limits), plan, name)
+    return report_crossing(simulate(crossing, limits, plan=run_plan), plan, name)
 
 
 def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") -> Report:

@@ -1,7 +1,7 @@
 """Time histories of one crossing and the responses derived from them."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
@@ -50,7 +50,9 @@ class CrossingResult:
     ``front_position`` [m], ``speed`` [m/s] (n_t, n_vehicles): x of each vehicle's front axle and
     its speed.  ``dt`` [s] is the spacing of the stored time points;
     ``integration_dt`` [s] the integrator's step (larger ``dt`` when the histories were thinned,
-    ``simulate(..., output_every=k)``).
+    ``simulate(..., output_every=k)``).  ``kernel_data``: the tabulated arrays the run used
+    (mode-shape tables along the wheel tracks), kept so that the static reference is read from
+    the same tables without tabulating them again.
     """
 
     crossing: Crossing
@@ -67,6 +69,7 @@ class CrossingResult:
     wheel_forces: NDArray[np.float64]
     contact_lengths: NDArray[np.float64]
     integration_dt: float | None = None
+    kernel_data: Any = field(default=None, repr=False, compare=False)
 
     @property
     def travel(self) -> NDArray[np.float64]:
@@ -163,7 +166,7 @@ class CrossingResult:
         vehicle = self.crossing.vehicle
         pts = [self.point()] if points is None else [(float(x), float(y)) for x, y in points]
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
-        xi_st = static_modal_history(self.crossing, self.travel) if static else None
+        xi_st = static_modal_history(self.crossing, self.travel, self.kernel_data) if static else None
         data: dict[str, tuple[tuple[str, ...], Any, dict[str, str]]] = {}
 
         def deck(prefix: str, dim: str, px: list[float], py: list[float], label: str) -> None:

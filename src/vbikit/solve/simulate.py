@@ -135,5 +135,6 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     time = grid.t_half[rows].copy()
     front, speed = first.front_positions(time), grid.speed[rows].copy()
     return [CrossingResult(c, time, dt * stride, front, speed,
-                           *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt)
+                           *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt,
+                           kernel_data=data)
             for lane, c in enumerate(crossings[:n_real])]
