@@ -22,6 +22,7 @@ import math
 import re
 from dataclasses import dataclass
 
+from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
 from vbikit.solve.crossing import Crossing
 
@@ -96,10 +97,10 @@ def check_road(length: float, spacing: float, n_min: float, limits: Limits | Non
 def check_bridge(bridge: object, limits: Limits | None = None) -> None:
     """Refuse a bridge model too large to solve for its modes (slab-on-girder grillages)."""
     limits = limits or Limits()
-    n_elements = getattr(bridge, "element_count", None)
-    n_girders = getattr(bridge, "n_girders", None)
-    if n_elements is None or n_girders is None:
+    n_elements = getattr(bridge, "element_count", None)  # grillage models: their mesh
+    if n_elements is None or not isinstance(bridge, GirderDeck):
         return
+    n_girders = bridge.n_girders
     dof = 3 * int(n_girders) * (int(n_elements) + 1)
     if dof > MAX_BRIDGE_DOF:
         raise BudgetError(

@@ -176,7 +176,7 @@ class Crossing:
 
     def __post_init__(self) -> None:
         if self.lateral_offset is None:
-            object.__setattr__(self, "lateral_offset", float(getattr(self.bridge, "default_lateral_offset", 0.0)))
+            object.__setattr__(self, "lateral_offset", float(self.bridge.default_lateral_offset))
         if not np.isfinite(self.lateral_offset):
             raise ValueError(f"crossing.lateral_offset must be finite, got {self.lateral_offset!r}")
         if not self.vehicles and self.vehicle is None:
@@ -211,7 +211,7 @@ class Crossing:
         object.__setattr__(self, "vehicles", (motion,))
 
     def _init_vehicles(self) -> None:
-        default = float(getattr(self.bridge, "default_lateral_offset", 0.0))
+        default = float(self.bridge.default_lateral_offset)
         object.__setattr__(self, "vehicles", tuple(
             dataclasses.replace(m, lateral_offset=default) if isinstance(m, VehicleMotion) and m.lateral_offset is None
             else m for m in self.vehicles))

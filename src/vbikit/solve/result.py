@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
 from vbikit.solve.crossing import Crossing
 
@@ -93,9 +94,9 @@ class CrossingResult:
         ``default_response_x`` (midspan; a continuous beam: the middle of its first span), y default
         the bridge's ``default_response_y`` (its default girder on a slab-on-girder deck)."""
         b = self.crossing.bridge
-        y = float(getattr(b, "default_response_y", 0.0)) if y is None else float(y)
+        y = float(b.default_response_y) if y is None else float(y)
         if x is None:  # a skew deck's default section depends on the line (oblique supports)
-            x = b.default_x_at(y) if hasattr(b, "default_x_at") else getattr(b, "default_response_x", b.span / 2)
+            x = b.default_x_at(y)
         return float(x), y
 
     def girder_sections(self, x: float | None = None, y: float | None = None) -> list[float]:
@@ -104,10 +105,10 @@ class CrossingResult:
         first span): the same x on a square deck, the same distance ξ = x − y tan θ from the
         support line on a skew deck."""
         b = self.crossing.bridge
-        ys = [float(g) for g in getattr(b, "girder_y", [])]
+        ys = [float(g) for g in b.girder_y] if isinstance(b, GirderDeck) else []
         if x is None:
             return [float(b.default_x_at(g)) for g in ys]
-        y0 = float(getattr(b, "default_response_y", 0.0)) if y is None else float(y)
+        y0 = float(b.default_response_y) if y is None else float(y)
         xi = float(b.span_coordinate(x, y0))
         return [float(x) + (xi - float(b.span_coordinate(x, g))) for g in ys]
 
@@ -185,7 +186,7 @@ class CrossingResult:
                                         "long_name": f"{long_name}{label}"})
 
         deck("", "point", xs, ys, "")
-        girder_y = getattr(bridge, "girder_y", None)
+        girder_y = bridge.girder_y if isinstance(bridge, GirderDeck) else None
         coords: dict[str, Any] = {
             "time": ("time", self.time, {"units": "s", "long_name": "time"}),
             "point": ("point", np.arange(len(pts))),
@@ -224,7 +225,7 @@ class CrossingResult:
             "integrator": self.crossing.integrator,
             "tire_model": self.crossing.tire.name,
             "vehicle": getattr(vehicle, "description", ""),
-            "bridge": getattr(bridge, "name", "") or type(bridge).__name__,
+            "bridge": bridge.name or type(bridge).__name__,
         }
         return xr.Dataset({k: xr.Variable(*v) for k, v in data.items()}, coords=coords, attrs=attrs)
 
