@@ -71,11 +71,27 @@ def write_text(path: str | Path, text: str) -> Path:
     return atomic_write(path, write)
 
 
+def figure_format(path: str | Path) -> str:
+    """The figure format of ``path`` by its suffix (PNG without one); an
+    :class:`~vbikit.errors.OptionError` naming the file and the formats matplotlib writes when it
+    has another suffix (checked before any computation by the commands that draw)."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    from vbikit.errors import OptionError
+
+    fmt = Path(path).suffix.lstrip(".").lower() or "png"
+    supported = FigureCanvasBase.get_supported_filetypes()
+    if fmt not in supported:
+        raise OptionError(f"{path}: figures are written as {', '.join(sorted(supported))} (by the file's suffix), "
+                          f"not {fmt!r}")
+    return fmt
+
+
 def save_figure(fig: Any, path: str | Path, **kwargs: Any) -> Path:
-    """``fig.savefig`` to ``path`` atomically (the format follows the file suffix, PNG without one)."""
-    path = Path(path)
-    fmt = path.suffix.lstrip(".").lower() or "png"
-    return atomic_write(path, lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
+    """``fig.savefig`` to ``path`` atomically (the format follows the file suffix, PNG without one;
+    :func:`figure_format`)."""
+    fmt = figure_format(path)
+    return atomic_write(Path(path), lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
 
 
 _SAFE_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._ +=-]*$")

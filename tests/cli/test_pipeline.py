@@ -176,3 +176,37 @@ def test_a_report_computes_nothing_twice(monkeypatch):
     counted(vbikit.solve.system, "tabulate_tracks")
     vbikit.run(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml")
     assert calls == {"choose_time_step": 1, "check_run": 1, "tabulate_tracks": 1}
+
+
+def test_a_point_given_by_its_girder_reads_that_girders_line():
+    """`ResponsePoint(girder=2)` from Python is read on Girder 2's line, as `girder = 2` in TOML."""
+    from vbikit.bridge import BRIDGE_PRESETS
+    from vbikit.solve import Crossing
+    from vbikit.vehicle import hs20_44
+
+    text = ('[bridge]\nmodel = "paper-bridge-2"\nn_modes = 6\n[vehicle]\nmodel = "hs20-44"\n[road]\nclass = "none"\n'
+            '[crossing]\nspeed_kmh = 60\n[[response.points]]\ngirder = 2\n')
+    from_toml = vbikit.run(text).summary["points"][0]
+    bridge = BRIDGE_PRESETS["paper-bridge-2"].build(n_modes=6)
+    crossing = Crossing(bridge, hs20_44(), speed=60 / 3.6)
+    from_python = vbikit.run(crossing, ResponsePlan((ResponsePoint(girder=2),))).summary["points"][0]
+    assert from_python["y"] == from_toml["y"] == float(bridge.girder_y[1])
+    assert from_python["max_static_displacement"] == from_toml["max_static_displacement"]
+    with pytest.raises(ValueError, match="girder = 2 lies at y"):
+        vbikit.run(crossing, ResponsePlan((ResponsePoint(girder=2, y=0.0),)))
+
+
+def test_a_path_with_an_equals_sign_is_a_path(tmp_path: Path):
+    path = tmp_path / "speed=80.toml"
+    path.write_text(BEAM + "[response]\nx = 12.5\n")
+    assert vbikit.run(str(path)).summary == vbikit.run(path).summary
+
+
+def test_an_unknown_figure_format_is_refused_before_the_run(tmp_path: Path, monkeypatch):
+    import vbikit.scenario.pipeline
+
+    monkeypatch.setattr(vbikit.scenario.pipeline, "run_planned", lambda *a, **k: pytest.fail("the run started"))
+    path = tmp_path / "s.toml"
+    path.write_text(BEAM)
+    res = runner.invoke(app, ["run", str(path), "--plot", str(tmp_path / "f.xyz")])
+    assert res.exit_code == 2 and "figures are written as" in res.output and "not 'xyz'" in res.output

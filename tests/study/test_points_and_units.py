@@ -80,3 +80,36 @@ def _assembled(job, rows):
 def test_every_catalogue_output_has_one_unit_and_name(name):
     o = OUTPUTS[name]
     assert o.name == name and o.unit and o.long_name and o.scope in ("point", "crossing")
+
+
+def test_a_stream_figure_with_several_points(tmp_path):
+    from vbikit.plot.traffic import plot_stream
+    from vbikit.study.run import run_study
+
+    stream = synthetic_stream([LaneTraffic(1, "+x", 900, 80, 5)], 3, seed=2)
+    base = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "road": {"class": "B", "length": 200.0},
+            "crossing": {"approach": 5.0, "free_vibration": 0.1}, "response": {"points": POINTS}}
+    ds = run_study(traffic_study(stream, base, seed=5, batch_size=2), tmp_path / "t.nc", workers=1)
+    assert plot_stream(ds, tmp_path / "t.png").stat().st_size > 0
+
+
+def test_a_study_over_tire_models_keeps_each_models_keys():
+    """An axis over tire.model on a multi-point base: each model gets the base keys it takes."""
+    base = copy.deepcopy(BASE) | {"tire": {"model": "multipoint", "n_points": 4, "loss_of_contact": False}}
+    s = parse_study({"name": "tires", "base": base, "axes": {"tire.model": ["point", "multipoint", "disk"]}})
+    assert [s.scenario_dict((i,))["tire"] for i in range(3)] == [
+        {"model": "point", "loss_of_contact": False}, {"model": "multipoint", "n_points": 4, "loss_of_contact": False},
+        {"model": "disk", "loss_of_contact": False}]
+
+
+def test_stored_parts_of_one_point_read_with_and_without_a_point_axis():
+    """A finished part from before response points ((rows,) per output) is used for a [response]
+    study; a part without a catalogue output is refused with the reason (then recomputed)."""
+    from vbikit.study.run import output_problem, part_output
+
+    legacy = {name: np.arange(3.0) for name in OUTPUTS}
+    assert output_problem(legacy, 3, 1) is None
+    assert part_output(legacy, "impact_factor", 1).shape == (3, 1)
+    assert output_problem(legacy, 3, 2) == "impact_factor has the wrong shape"
+    del legacy["time_of_max_dynamic_displacement"]
+    assert "no time_of_max_dynamic_displacement" in output_problem(legacy, 3, 1)

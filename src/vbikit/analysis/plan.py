@@ -26,7 +26,8 @@ class ResponsePoint:
     y : float or None
         Distance [m] from the deck centreline, positive left; None: the bridge's response line.
     girder : int, optional
-        1-based girder whose line y is (slab-on-girder decks; reports only).
+        1-based girder (bridges with girders): the point is on its line (y, if also given, must be
+        that line's).
     name : str
         Label of the point in reports, CSV columns and datasets (default ``p1``, ``p2``, … by position).
     """
@@ -35,6 +36,12 @@ class ResponsePoint:
     y: float | None = None
     girder: int | None = None
     name: str = ""
+
+
+def point_name(position: int, name: str | None = None) -> str:
+    """A response point's name: its own, else ``p{position}`` (1-based) — the one naming rule of
+    scenarios, reports, CSV columns and datasets."""
+    return name or f"p{position}"
 
 
 @dataclass(frozen=True)
@@ -56,7 +63,7 @@ class ResponsePlan:
     @property
     def point_names(self) -> list[str]:
         """Every point's name (``p{i}`` for an unnamed i-th point)."""
-        return [p.name or f"p{i}" for i, p in enumerate(self.points, start=1)]
+        return [point_name(i, p.name) for i, p in enumerate(self.points, start=1)]
 
     @property
     def first(self) -> ResponsePoint:

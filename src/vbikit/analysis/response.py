@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
-from vbikit.analysis.plan import ResponsePlan
+from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import QUANTITIES, Reduction, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
@@ -101,11 +101,26 @@ def girder_responses(result: CrossingResult, x: float | None = None, y: float | 
     return [point_response(result, gx, float(g), xi_st) for gx, g in zip(result.girder_sections(x, y), girder_y)]
 
 
+def point_line(bridge: object, point: ResponsePoint) -> float | None:
+    """y [m] of a response point: its girder's line (checked against a y also given), its own y,
+    or None (the bridge's response line).  ValueError for a girder the bridge does not have."""
+    if point.girder is None:
+        return point.y
+    if not isinstance(bridge, GirderDeck):
+        raise ValueError(f"response point girder = {point.girder}: the bridge has no girders; give y instead")
+    y = float(bridge.girder_y[bridge.girder_index(point.girder)])
+    if point.y is not None and abs(float(point.y) - y) > 1e-9:
+        raise ValueError(f"response point girder = {point.girder} lies at y = {y:g} m, not at the y = {point.y:g} m given")
+    return y
+
+
 def plan_responses(result: CrossingResult, plan: ResponsePlan,
                    xi_static: NDArray[np.float64] | None = None) -> list[PointResponse]:
-    """The responses at every point of ``plan`` (its order), one static modal history shared."""
+    """The responses at every point of ``plan`` (its order; a point given by its girder on that
+    girder's line), one static modal history shared."""
     xi_st = static_modal_history(result) if xi_static is None else xi_static
-    return [point_response(result, p.x, p.y, xi_st) for p in plan.points]
+    bridge = result.crossing.bridge
+    return [point_response(result, p.x, point_line(bridge, p), xi_st) for p in plan.points]
 
 
 def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,

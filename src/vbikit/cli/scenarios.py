@@ -31,6 +31,10 @@ def run(
         out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
                                    summary_path or out_dir / f"{stem}.json")
     budget = limits(max_memory, max_steps)
+    if plot is not None:  # a figure format matplotlib cannot write is refused before the run
+        from vbikit._files import figure_format
+
+        guard(lambda: figure_format(plot))
     outputs(execute(lambda: load_scenario(scenario), budget), as_json, out, plot, summary_path)
 
 

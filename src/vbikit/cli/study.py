@@ -99,8 +99,10 @@ def run_cmd(
     _check(study, yes, max_memory, max_steps)
     ds = run_job(study, out, workers, scheduler, progress)
     im = ds["impact_factor"]
-    typer.echo(f"impact factor over all crossings: mean {float(im.mean()):.4f}, min {float(im.min()):.4f}, "
-               f"max {float(im.max()):.4f}")
+    for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
+                          else [("", im)]):
+        typer.echo(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
+                   f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
 
 
 @app.command("validate")

@@ -50,8 +50,9 @@ def traffic_cmd(
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     a = ds.attrs
+    first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
     typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f} (one vehicle {a['im_mean_single']:.4f}, "
-               f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(ds['impact_factor'].max()):.4f}")
+               f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
     typer.echo(f"largest static effect: event {a['governing_static_event']}, dynamic amplification "
                f"{a['governing_static_amplification']:.4f}; largest dynamic effect: event {a['governing_dynamic_event']}, "
                f"{a['governing_dynamic_amplification']:.4f} × the largest static effect")

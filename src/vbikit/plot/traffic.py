@@ -9,12 +9,14 @@ import numpy as np
 def plot_stream(ds, path: str | Path, title: str = "") -> Path:
     """Two panels: the distribution of the events' impact factors (single vehicles and multiple
     presence stacked), and each event's dynamic against its static peak deflection [mm] with the
-    governing events marked."""
+    governing events marked; at the first response point when the stream has several."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    if "point" in ds.dims:
+        ds = ds.isel(point=0)
     im = ds["impact_factor"].values
     mp = ds["multiple_presence"].values.astype(bool)
     st = -ds["max_static_displacement"].values * 1e3

@@ -44,7 +44,8 @@ def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> S
         return source
     if isinstance(source, Mapping):
         return parse_scenario(dict(source), base_dir if base_dir is not None else ".")
-    if isinstance(source, Path) or ("\n" not in source and "=" not in source):
+    if isinstance(source, Path) or ("\n" not in source and (source.endswith(".toml") or Path(source).is_file()
+                                                           or "=" not in source)):
         path = Path(source)
         if not path.is_file():
             raise ScenarioError(f"{path}: no such scenario file")
@@ -127,7 +128,7 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     first = plan.first
     xi_static = static_modal_history(result)
     points = plan_responses(result, plan, xi_static)
-    girders = girder_responses(result, first.x, first.y, xi_static)
+    girders = girder_responses(result, first.x, points[0].y, xi_static)
     effects_summary, effects = load_effect_report(result, plan.load_effects, plan.load_effect_method,
                                                   points[0].x, points[0].y)
     first_of_kind = {kind: next((e for e in effects if e.effect.kind == kind), None) for kind in ("moment", "shear", "reaction")}

@@ -26,6 +26,7 @@ from pydantic import (
     model_validator,
 )
 
+from vbikit.analysis.plan import point_name
 from vbikit._toml import parse_toml, read_toml
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.damage import Damage
@@ -653,7 +654,7 @@ class ResponseSpec(_Section):
             given = [k for k in ("x", "y", "girder") if k in self.model_fields_set]
             if given:
                 raise ValueError(f"{given[0]}: give the point in [response] or in [[response.points]] tables, not both")
-            names = [p.name or f"p{i}" for i, p in enumerate(self.points, start=1)]
+            names = [point_name(i, p.name) for i, p in enumerate(self.points, start=1)]
             dup = sorted({n for n in names if names.count(n) > 1})
             if dup:
                 raise ValueError(f"points: names must be unique; repeated: {', '.join(dup)}")

@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.effects import contact_influence, load_effect_response
+from vbikit.analysis.plan import point_name
 from vbikit.analysis.response import reduce_crossing
 from vbikit.outputs import as_number, outputs
 from vbikit.road.profile import RoadProfile
@@ -24,7 +25,7 @@ def point_names(base: dict) -> list[str] | None:
     points = (base.get("response") or {}).get("points")
     if not isinstance(points, list):
         return None
-    return [(p.get("name") if isinstance(p, dict) else None) or f"p{i}" for i, p in enumerate(points, start=1)]
+    return [point_name(i, p.get("name") if isinstance(p, dict) else None) for i, p in enumerate(points, start=1)]
 
 
 #: roads built in this process, by their scenario [road] table (a study reuses the same seeds

@@ -36,14 +36,15 @@ import time
 import zipfile
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
 
 import numpy as np
+from numpy.typing import NDArray
 from filelock import FileLock, Timeout
 
 from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.scenario.schema import key_unit
-from vbikit.outputs import outputs
+from vbikit.outputs import OUTPUTS, outputs
 from vbikit.study.compute import point_names, run_batch
 from vbikit.study.spec import Study, StudyError
 
@@ -106,15 +107,36 @@ def _part_problem(path: Path, k: int, batch: tuple, checksum: str, job) -> Optio
             index = part["index"]
             if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
                 return "its grid indices are not those of this batch"
-            n_points = len(point_names(job.base) or [None])
-            for o in outputs():
-                if part[o.name].shape != ((len(batch), n_points) if o.scope == "point" else (len(batch),)):
-                    return f"{o.name} has the wrong shape"
+            problem = output_problem(part, len(batch), len(point_names(job.base) or [None]))
+            if problem:
+                return problem
             if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
                 return "its step counts are not valid"
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as err:
         return f"it cannot be read ({type(err).__name__})"
     return None
+
+
+def output_problem(part: Any, n_rows: int, n_points: int) -> Optional[str]:
+    """Why the catalogue's outputs (:mod:`vbikit.outputs`) stored in a finished part cannot be used
+    (None if they can): one missing (the part was written by another vbikit version, or an output
+    registered in this process only) or of the wrong shape — (rows, points) for per-point outputs,
+    (rows,) per crossing; with one point a part of vbikit versions before response points, (rows,),
+    is accepted."""
+    for o in outputs():
+        if o.name not in part:
+            return f"it holds no {o.name} (written by another vbikit version, or the output is registered here only)"
+        shape = part[o.name].shape
+        wanted = [(n_rows, n_points)] + ([(n_rows,)] if n_points == 1 else []) if o.scope == "point" else [(n_rows,)]
+        if shape not in wanted:
+            return f"{o.name} has the wrong shape"
+    return None
+
+
+def part_output(part: Any, name: str, n_points: int) -> NDArray:
+    """Output ``name`` of a checked part (:func:`output_problem`), per-point outputs as (rows, points)."""
+    values = np.asarray(part[name])
+    return values.reshape(-1, n_points) if OUTPUTS[name].scope == "point" else values
 
 
 def _check_parts(parts: Path, batches: list, checksum: str, job) -> list[str]:
@@ -378,11 +400,15 @@ def assemble(study: Study, parts: Path):
             raise StudyError(f"batch {k} has not finished ({path} missing)")
         with np.load(path) as part:
             idx = tuple(part["index"].T)
+            problem = output_problem(part, len(part["index"]), n_points)
+            if problem:  # e.g. an output registered in this process but not in the workers
+                raise StudyError(f"batch {k} ({path}): {problem}")
             for name in data:
+                values = part_output(part, name, n_points)
                 if shape:
-                    data[name][idx] = part[name]
+                    data[name][idx] = values
                 else:  # a study without axes: one crossing, 0-d variables
-                    data[name][()] = part[name][0]
+                    data[name][()] = values[0]
             if study.histories:
                 hist_parts.append((idx, part["displacement_history"]))
     variables = {}

@@ -38,7 +38,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from vbikit._toml import parse_toml, read_toml
 from vbikit.errors import VbikitError
-from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario, section_keys
+from vbikit.contact.registry import TIRE_MODELS
+from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario, section_keys
 
 #: scenario keys that only change the road: crossings differing only in these share dt, contact
 #: points, tabulated shapes and the static reference (one prepared batch)
@@ -219,10 +220,18 @@ class Study:
         }, sort_keys=True)
 
     def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
-        """The scenario (dict) of the crossing at grid ``index``."""
+        """The scenario (dict) of the crossing at grid ``index``.  An axis over ``tire.model`` keeps
+        the base tire's keys the swept model takes and drops the others (as ``vbikit compare-tires``
+        does: a multi-point base's ``n_points`` is not a key of the point tire); keys set by other
+        axes stay."""
         data = copy.deepcopy(self.base)
         for axis, i in zip(self.axes, index):
             set_dotted(data, axis.key, axis.scenario_value(i))
+            if axis.key == "tire.model" and isinstance(data.get("tire"), dict):
+                taken = set(TireSpec.keys(data["tire"]["model"])) if data["tire"]["model"] in TIRE_MODELS else None
+                swept = {a.key.split(".", 1)[1] for a in self.axes if a.key.startswith("tire.")}
+                if taken is not None:
+                    data["tire"] = {k: v for k, v in data["tire"].items() if k in taken or k in swept}
         return data
 
     @property

@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import as_number, outputs
+from vbikit.outputs import OUTPUTS, as_number, outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
@@ -138,15 +138,16 @@ class TrafficStudy:
 
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
         """Why a stored part cannot be used for ``batch`` (None if it can)."""
+        from vbikit.study.run import output_problem
+
         if not np.array_equal(part["event"], np.array(batch, np.int64)):
             return "its events are not those of this batch"
         members = [i for e in batch for i in self.events[e]]
         if not np.array_equal(part["vehicle"], np.array(members, np.int64)):
             return "its vehicles are not those of its events"
-        n_points = len(self.point_names or [None])
-        for o in outputs():
-            if part[o.name].shape != ((len(batch), n_points) if o.scope == "point" else (len(batch),)):
-                return f"{o.name} has the wrong shape"
+        problem = output_problem(part, len(batch), len(self.point_names or [None]))
+        if problem:
+            return problem
         for name in EVENT_EXTRAS:
             if part[name].shape != (len(batch),):
                 return f"{name} has the wrong shape"
@@ -159,7 +160,7 @@ class TrafficStudy:
 
     def assemble(self, parts: Path):
         """The stream's Dataset from the finished parts."""
-        from vbikit.study.run import load_part
+        from vbikit.study.run import load_part, part_output
 
         n_e, n_v = self.size, len(self.records)
         n_points = len(self.point_names or [None])
@@ -169,7 +170,7 @@ class TrafficStudy:
         for k in range(len(self.batches())):
             part = load_part(parts, k)
             for name in ev:
-                ev[name][part["event"]] = part[name]
+                ev[name][part["event"]] = part_output(part, name, n_points) if name in OUTPUTS else part[name]
             for name in VEHICLE_OUTPUTS:
                 veh[name][part["vehicle"]] = part[name]
         return self.dataset(ev, veh)
