@@ -88,15 +88,12 @@ class Report:
     def to_xarray(self, static: bool = True) -> "xr.Dataset":
         """The crossing as a labelled dataset (:meth:`CrossingResult.to_xarray`) at the report's
         response points (coordinate ``name`` on dimension ``point``) and girder sections."""
-        first = self.plan.first
-        ds = self.result.to_xarray([(p.x, p.y) for p in self.points],
-                                   girder_x=first.x if first.x is not None else None, static=static)
+        ds = self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static)
         return ds.assign_coords(name=("point", self.plan.point_names))
 
     def to_dataframe(self, static: bool = True) -> "pd.DataFrame":
         """The histories as a wide pandas DataFrame (:meth:`CrossingResult.to_dataframe`)."""
-        first = self.plan.first
-        return self.result.to_dataframe([(p.x, p.y) for p in self.points], girder_x=first.x, static=static)
+        return self.result.to_dataframe([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static)
 
     def plot(self, path: str | Path) -> Path:
         """Figure of the headline point's displacement, strain and acceleration, dynamic against static."""

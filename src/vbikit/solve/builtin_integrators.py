@@ -75,4 +75,5 @@ NEWMARK = register_integrator(Integrator(
     kernel=implicit_kernel,
 ))
 
-assert DEFAULT_INTEGRATOR in INTEGRATORS, "the default integrator is one of the built-in ones"
+if DEFAULT_INTEGRATOR not in INTEGRATORS:  # pragma: no cover - a programming error
+    raise RuntimeError(f"the default integrator {DEFAULT_INTEGRATOR!r} is not one of the built-in ones")
