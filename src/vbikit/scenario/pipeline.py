@@ -15,7 +15,6 @@ reductions (the output catalogue :mod:`vbikit.outputs`, :mod:`vbikit.analysis.re
 """
 from __future__ import annotations
 
-import logging
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -31,9 +30,20 @@ from vbikit.solve.crossing import Crossing
 from vbikit.solve.plan import RunPlan
 from vbikit.solve.result import CrossingResult
 
-log = logging.getLogger(__name__)
-
 ScenarioSource = Scenario | Mapping[str, Any] | str | Path
+
+
+def _names_a_file(source: str) -> bool:
+    """A string that is a file name rather than TOML text: one line ending in .toml, with no ``=``,
+    or an existing file."""
+    if "\n" in source:
+        return False
+    if source.endswith(".toml") or "=" not in source:
+        return True
+    try:
+        return Path(source).is_file()
+    except OSError:  # e.g. a name too long for the file system: TOML text
+        return False
 
 
 def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> Scenario:
@@ -44,8 +54,7 @@ def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> S
         return source
     if isinstance(source, Mapping):
         return parse_scenario(dict(source), base_dir if base_dir is not None else ".")
-    if isinstance(source, Path) or ("\n" not in source and (source.endswith(".toml") or Path(source).is_file()
-                                                           or "=" not in source)):
+    if isinstance(source, Path) or _names_a_file(source):
         path = Path(source)
         if not path.is_file():
             raise ScenarioError(f"{path}: no such scenario file")
