@@ -2,24 +2,24 @@
 
 Two kinds of entries:
 
-* :class:`Quantity` — a time history at a deck point (``displacement``, ``strain``, …): name,
+* [`Quantity`][vbikit.outputs.Quantity] — a time history at a deck point (``displacement``, ``strain``, …): name,
   unit and long name.  CSV headers (``name [unit]``), ``to_xarray`` / ``to_dataframe``
   variables and the docs' results table read them from here.
-* :class:`Output` — a number reduced from a crossing: name, unit, long name, its ``scope``
+* [`Output`][vbikit.outputs.Output] — a number reduced from a crossing: name, unit, long name, its ``scope``
   (``"point"``: one value per response point, from that point's histories; ``"crossing"``: one
   value per crossing) and its ``reduce`` function.  The JSON summary (``vbikit run --json``,
-  :attr:`vbikit.Report.summary`), study datasets and traffic datasets are filled from here, so a
+  ``vbikit.Report.summary``), study datasets and traffic datasets are filled from here, so a
   name or a unit cannot disagree between them.
 
-A reducer receives a :class:`Reduction`: the point's histories (``point``, an object with
-``displacement_impact`` / ``strain_impact`` (:class:`~vbikit.analysis.impact.ImpactFactor`),
-``velocity``, ``acceleration`` … as :class:`~vbikit.analysis.response.PointResponse`), the
+A reducer receives a [`Reduction`][vbikit.outputs.Reduction]: the point's histories (``point``, an object with
+``displacement_impact`` / ``strain_impact`` ([`ImpactFactor`][vbikit.analysis.ImpactFactor]),
+``velocity``, ``acceleration`` … as [`PointResponse`][vbikit.analysis.PointResponse]), the
 crossing result (``result``) and its load-effect responses by kind (``effects``; the first of
 each kind).  It returns a float, or ``None`` when the output does not apply (no load effect of
 that kind): the summary leaves it out and datasets store NaN.
 
-Adding an output is one :func:`register_output` call (docs/extending.md).  Units are written as
-in CSV headers and JSON (``m/s^2``, ``-`` for dimensionless); :func:`cf_unit` gives the CF /
+Adding an output is one [`register_output`][vbikit.outputs.register_output] call (docs/extending.md).  Units are written as
+in CSV headers and JSON (``m/s^2``, ``-`` for dimensionless); [`cf_unit`][vbikit.outputs.cf_unit] gives the CF /
 UDUNITS spelling datasets use (``m s-2``, ``1``).
 """
 from __future__ import annotations

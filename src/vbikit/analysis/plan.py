@@ -1,8 +1,8 @@
 """What to read from a crossing: the response points and the load effects (a response plan).
 
-A :class:`ResponsePlan` is the part of a scenario that says where and what to report, kept
+A [`ResponsePlan`][vbikit.analysis.ResponsePlan] is the part of a scenario that says where and what to report, kept
 apart from the crossing (the physics): ``[response]`` / ``[[response.points]]`` in a scenario
-file, or built directly from Python and passed to :func:`vbikit.run` beside a crossing.
+file, or built directly from Python and passed to [`vbikit.run`][vbikit.scenario.run] beside a crossing.
 """
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """A bridge model with every stiffness scaled: the model a field calibration fits.
 
-:class:`ScaledBridge` wraps any :class:`~vbikit.bridge.base.ModalBridge` and scales its stiffness
+[`ScaledBridge`][vbikit.field.ScaledBridge] wraps any [`ModalBridge`][vbikit.bridge.ModalBridge] and scales its stiffness
 matrix by a factor f > 0 with the mass matrix unchanged (a uniform change of Young's modulus):
 
 * K → f K, M unchanged: the eigenproblem K φ = ω² M φ keeps its mass-normalised mode shapes φᵢ,

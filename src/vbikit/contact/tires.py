@@ -15,16 +15,16 @@ always gated so (the disk's contact patch is where it penetrates).  The wheel fo
 over its points, except for the rigid disk, which acts through its single highest point (the
 envelope).  All four models run through this one mechanism (``vbikit.solve.kernels``).
 
-* :class:`PointTire` — one point under the wheel centre.
-* :class:`MultiPointTire` — the paper's n points of k/n, c/n over 0.254 m (Eq. 6); n = 1 is the
+* [`PointTire`][vbikit.contact.PointTire] — one point under the wheel centre.
+* [`MultiPointTire`][vbikit.contact.MultiPointTire] — the paper's n points of k/n, c/n over 0.254 m (Eq. 6); n = 1 is the
   point tire, through the same code, so it reproduces it exactly.
-* :class:`DiskTire` — deformable disk of radial springs (after Yin et al.; our formulation,
+* [`DiskTire`][vbikit.contact.DiskTire] — deformable disk of radial springs (after Yin et al.; our formulation,
   model data §3).
-* :class:`RigidDiskTire` — rigid disk following the surface envelope (after Chang et al.).
+* [`RigidDiskTire`][vbikit.contact.RigidDiskTire] — rigid disk following the surface envelope (after Chang et al.).
 
 Each model declares its scenario ``name``, a ``description``, its ``references`` and its
 ``Parameters`` (the keys of its ``[tire]`` table) and is registered by name with
-:func:`~vbikit.contact.registry.register_tire`.
+[`register_tire`][vbikit.contact.register_tire].
 """
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """Road surface profiles: sampled elevations with linear interpolation.
 
 Every profile — flat, random from a PSD (paper Eq. 7), or measured — is a
-:class:`RoadProfile`: elevations z_j [m] at increasing stations x_j [m] (x from the bridge
+[`RoadProfile`][vbikit.road.RoadProfile]: elevations z_j [m] at increasing stations x_j [m] (x from the bridge
 entry, negative on the approach), linearly interpolated in between.  Evaluating outside the
 sampled range is an error: the crossing checks coverage before it starts.
 """
@@ -19,7 +19,7 @@ class RoadProfile:
 
     ``label`` describes the origin (e.g. "ISO C, seed 3"); ``resolution`` [m], optional, is the
     length of the shortest feature the time step must resolve (default: the finest sample
-    spacing; see :attr:`spacing`).
+    spacing; see [`spacing`][vbikit.road.RoadProfile.spacing]).
     """
 
     x: NDArray[np.float64]

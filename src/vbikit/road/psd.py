@@ -145,7 +145,7 @@ def correlated_profile(
     ordinary coherence between the two lines is c², the same at every wavenumber.  c = 1 gives
     the paper's identical lines, c = 0 independent ones.  [substitute] Measured roads are more
     coherent at long than at short wavelengths; a constant c is the simplest model that keeps
-    both PSDs exact.  ``left`` must come from :func:`random_profile` with the same ``psd``,
+    both PSDs exact.  ``left`` must come from [`random_profile`][vbikit.road.random_profile] with the same ``psd``,
     ``spacing``, ``length`` and ``x_start``.
     """
     if not 0.0 <= coherence <= 1.0:

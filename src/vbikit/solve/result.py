@@ -20,7 +20,7 @@ class DivergenceError(VbikitError):
 
 
 def check_finite(result: "CrossingResult") -> "CrossingResult":
-    """``result`` if every state history is finite, else :class:`DivergenceError` naming the
+    """``result`` if every state history is finite, else ``DivergenceError`` naming the
     first step (and its time) with a non-finite bridge, vehicle or tire value."""
     ok = np.ones(result.time.size, bool)
     for a in (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.q_ddot, result.wheel_forces):
@@ -112,7 +112,7 @@ class CrossingResult:
         return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
 
     def displacement(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
-        """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: :meth:`point`."""
+        """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: [`point`][vbikit.solve.CrossingResult.point]."""
         return self.xi @ self._shapes(x, y)
 
     def velocity(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
@@ -130,16 +130,16 @@ class CrossingResult:
     # ------------------------------------------------------------------ labelled results
     def to_xarray(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
                   static: bool = True) -> "xr.Dataset":
-        """The crossing as a labelled :class:`xarray.Dataset` with units.
+        """The crossing as a labelled ``xarray.Dataset`` with units.
 
         Parameters
         ----------
         points : sequence of (x, y), optional
             Deck points [m] (x from the entry support, y from the deck centreline); default
-            :meth:`point` (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
+            [`point`][vbikit.solve.CrossingResult.point] (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
         girder_x : float, optional
             Section x [m] (on the response line) of the per-girder responses (dimension ``girder``,
-            Girder 1 first) on a bridge with girders: :meth:`girder_sections`.  Ignored for bridges
+            Girder 1 first) on a bridge with girders: [`girder_sections`][vbikit.solve.CrossingResult.girder_sections].  Ignored for bridges
             without girders.
         static : bool
             Also the static reference responses (``static_displacement``, ``static_strain``).
@@ -227,10 +227,10 @@ class CrossingResult:
 
     def to_dataframe(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
                      static: bool = True) -> "pd.DataFrame":
-        """The histories as a wide :class:`pandas.DataFrame`, index ``time [s]``, one column per
+        """The histories as a wide ``pandas.DataFrame``, index ``time [s]``, one column per
         quantity, point, girder, wheel and DOF, each header naming its unit (``displacement [m]``;
         more than one point: ``displacement_p2 [m]``; ``girder3_strain [-]``,
-        ``wheel_force_axle1_left [N]``, ``tractor_pitch [rad]``).  Arguments as :meth:`to_xarray`."""
+        ``wheel_force_axle1_left [N]``, ``tractor_pitch [rad]``).  Arguments as [`to_xarray`][vbikit.solve.CrossingResult.to_xarray]."""
         import pandas as pd
 
         ds = self.to_xarray(points, girder_x, static)

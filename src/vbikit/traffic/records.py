@@ -209,7 +209,7 @@ def read_records(path: str | Path) -> list[VehicleRecord]:
 
 
 def format_records(records: Sequence[VehicleRecord]) -> str:
-    """CSV text of ``records`` (loads in kN, speed in km/h) that :func:`parse_records` reads back."""
+    """CSV text of ``records`` (loads in kN, speed in km/h) that [`parse_records`][vbikit.traffic.parse_records] reads back."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(["id", "time [s]", "lane", "lateral_offset [m]", "direction", "speed [km/h]", "model",

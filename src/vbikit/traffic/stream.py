@@ -4,11 +4,11 @@ For examples, tests and benchmarks, not a calibrated traffic model.  Each lane h
 direction, flow [trucks/h] and speed distribution.  Arrivals are Poisson with a minimum
 headway (shifted exponential headways h = h_min + Exp(3600/flow − h_min), so that two trucks
 of one lane never overlap); speeds are normal (mean, standard deviation) clipped to ±50 % of
-the mean.  Each truck is drawn from :data:`TRUCK_MIX` by its share; its axle loads are the
+the mean.  Each truck is drawn from ``TRUCK_MIX`` by its share; its axle loads are the
 class's loaded axle loads times a load factor U ~ uniform(0.45, 1.05) (from empty to slightly
 overloaded; the steer axle follows 0.8 + 0.2·U) and an independent 5 % scatter per axle; its
 spacings are the class's mean plus normal scatter (0.3 m between groups, 0.05 m within).
-Values are rounded as :func:`vbikit.traffic.records.format_records` writes them, so a written
+Values are rounded as [`vbikit.traffic.records.format_records`][vbikit.traffic.format_records] writes them, so a written
 and re-read stream is the same.  Same seed, same stream.
 """
 from __future__ import annotations

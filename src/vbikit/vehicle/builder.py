@@ -44,7 +44,7 @@ class Body:
 
 
 class VehicleBuilder:
-    """Incremental assembly of a :class:`~vbikit.vehicle.model.Vehicle`."""
+    """Incremental assembly of a [`Vehicle`][vbikit.vehicle.Vehicle]."""
 
     def __init__(self, name: str) -> None:
         self.name = name

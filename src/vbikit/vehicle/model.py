@@ -9,7 +9,7 @@ Conventions
 * Pitch θ is positive nose-up, roll φ positive raising the left side (y > 0), so a point at
   (s, y) of a rigid body with centre of gravity at s_cg moves by z + (s_cg − s)·θ + y·φ.
 * Tire springs are *not* in K: they are the contact with the road/deck and belong to the
-  coupling (``vbikit.contact``).  Each :class:`Wheel` carries its tire's stiffness and
+  coupling (``vbikit.contact``).  Each [`Wheel`][vbikit.vehicle.Wheel] carries its tire's stiffness and
   damping and the row r_w with z_wheel = r_w · q.
 """
 from __future__ import annotations
@@ -132,7 +132,7 @@ class CombinedVehicle(Vehicle):
 
 
 def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> CombinedVehicle:
-    """Stack ``vehicles`` into one :class:`CombinedVehicle` (see there)."""
+    """Stack ``vehicles`` into one ``CombinedVehicle`` (see there)."""
     from scipy.linalg import block_diag
 
     vehicles = tuple(vehicles)
