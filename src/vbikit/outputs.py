@@ -43,7 +43,17 @@ def cf_unit(unit: str) -> str:
 
 @dataclass(frozen=True)
 class Quantity:
-    """A time history at a deck point: ``name``, ``unit`` (CSV spelling), ``long_name``."""
+    """A time history at a deck point.
+
+    Parameters
+    ----------
+    name : str
+        Column and variable name, e.g. ``"displacement"``.
+    unit : str
+        Unit in the CSV spelling, e.g. ``"m/s^2"``.
+    long_name : str
+        Description for datasets and the docs.
+    """
 
     name: str
     unit: str
@@ -52,8 +62,18 @@ class Quantity:
 
 @dataclass(frozen=True)
 class Reduction:
-    """What a reducer reads: one response point's histories, the crossing result and its
-    load-effect responses (first of each kind: ``"moment"``, ``"shear"``, ``"reaction"``)."""
+    """What a reducer reads.
+
+    Parameters
+    ----------
+    result : CrossingResult
+        The crossing result.
+    point : PointResponse, optional
+        One response point's histories (None for crossing-scope outputs).
+    effects : mapping of str to LoadEffectResponse
+        The load-effect responses, the first of each kind (``"moment"``, ``"shear"``,
+        ``"reaction"``).
+    """
 
     result: Any
     point: Any = None
@@ -62,7 +82,22 @@ class Reduction:
 
 @dataclass(frozen=True)
 class Output:
-    """A number reduced from a crossing (see the module docstring)."""
+    """A number reduced from a crossing (see the module docstring).
+
+    Parameters
+    ----------
+    name : str
+        Key in the JSON summary and variable name in datasets.
+    unit : str
+        Unit in the CSV/JSON spelling (``"-"`` for dimensionless).
+    long_name : str
+        Description for datasets and the docs.
+    scope : str
+        ``"point"``: one value per response point; ``"crossing"``: one value per crossing.
+    reduce : callable
+        ``reduce(reduction) -> float | None``: the value from a [`Reduction`][vbikit.outputs.Reduction],
+        None where the output does not apply.
+    """
 
     name: str
     unit: str
@@ -90,7 +125,18 @@ OUTPUTS: dict[str, Output] = {}
 
 
 def register_output(output: Output) -> Output:
-    """Add ``output`` to the catalogue (a name registered twice is an error)."""
+    """Add ``output`` to the catalogue and return it.
+
+    Parameters
+    ----------
+    output : Output
+        The output to register under ``output.name``.
+
+    Raises
+    ------
+    ValueError
+        A name registered already, or a scope other than ``"point"`` and ``"crossing"``.
+    """
     if output.name in OUTPUTS:
         raise ValueError(f"output {output.name!r} is already registered")
     if output.scope not in ("point", "crossing"):

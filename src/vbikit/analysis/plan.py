@@ -39,7 +39,19 @@ class ResponsePoint:
 
 @dataclass(frozen=True)
 class ResponsePlan:
-    """Response points (at least one; the first is the headline point) and load effects."""
+    """Response points (at least one; the first is the headline point) and load effects.
+
+    Parameters
+    ----------
+    points : tuple of ResponsePoint
+        The response points, at least one, names unique; the first is the headline point
+        (default: the bridge's default point).
+    load_effects : tuple of LoadEffect
+        Moments, shears and reactions to report (default none).
+    load_effect_method : str
+        How load effects are computed from the modes (``vbikit.analysis.effects``):
+        ``"mode-acceleration"`` (default) or ``"mode-superposition"``.
+    """
 
     points: tuple[ResponsePoint, ...] = (ResponsePoint(),)
     load_effects: tuple[LoadEffect, ...] = ()

@@ -30,9 +30,24 @@ TIRE_MODELS: dict[str, type[TireModel]] = {}
 def register_tire(cls: T) -> T:
     """Register tire model class ``cls`` under ``cls.name`` (usable as a class decorator).
 
-    Raises ValueError for an empty name, a name taken by another class, or a reference key
-    that is not in ``vbikit.references.REFERENCES``.  Registering a class again under the
-    same name (a module executed twice) replaces the earlier definition.
+    Registering a class again under the same name (a module executed twice) replaces the
+    earlier definition.
+
+    Parameters
+    ----------
+    cls : type of TireModel
+        The tire model class; its ``name`` is the scenario's ``[tire] model``.
+
+    Returns
+    -------
+    type of TireModel
+        ``cls`` itself.
+
+    Raises
+    ------
+    ValueError
+        An empty name, a name taken by another class, or a reference key that is not in
+        ``vbikit.references.REFERENCES``.
     """
     name = getattr(cls, "name", "")
     if not name:

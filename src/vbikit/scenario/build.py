@@ -170,8 +170,27 @@ def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | No
 
 
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
-    """Compose bridge, vehicle(s), tire and road into a Crossing (raises ScenarioError on bad
-    combinations, ``BudgetError`` on a bridge or road above ``limits``)."""
+    """Compose bridge, vehicle(s), tire and road into a Crossing.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A validated scenario.
+    limits : Limits, optional
+        Memory budget a bridge model or a random road must fit (default ``Limits()``).
+
+    Returns
+    -------
+    BuiltScenario
+        The crossing with the scenario's response points and load effects.
+
+    Raises
+    ------
+    ScenarioError
+        Bad combinations, or a bridge model that cannot be solved.
+    BudgetError
+        A bridge or road above ``limits``.
+    """
     try:
         return _build(scenario, limits)
     except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:  # a model that cannot be solved

@@ -132,9 +132,21 @@ INTEGRATORS: dict[str, Integrator] = {}
 
 
 def register_integrator(integrator: Integrator, replace: bool = False) -> Integrator:
-    """Add ``integrator`` to [`INTEGRATORS`][vbikit.solve.integrators.INTEGRATORS] under its name and return it.  A name taken by an
-    integrator with another ``run`` function is refused unless ``replace`` (the same module
-    executed again re-registers its integrator)."""
+    """Add ``integrator`` to [`INTEGRATORS`][vbikit.solve.integrators.INTEGRATORS] under its name and return it.
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The integrator, registered under ``integrator.name``.
+    replace : bool
+        Allow replacing an integrator of that name with another ``run`` function (refused
+        otherwise; the same module executed again re-registers its integrator either way).
+
+    Raises
+    ------
+    ValueError
+        The name is taken by an integrator with another ``run`` function and not ``replace``.
+    """
     if not isinstance(integrator, Integrator):
         raise TypeError(f"register_integrator: expected an Integrator, got {type(integrator).__name__}")
     old = INTEGRATORS.get(integrator.name)

@@ -49,14 +49,30 @@ def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int
              history_budget: float = HISTORY_BUDGET, plan: RunPlan | None = None) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing.
 
-    The run's memory and steps are estimated first and refused (``BudgetError``)
-    above ``limits`` (default ``Limits``: 4 GiB, 5 × 10⁶ steps; raise
-    them for bigger runs).  ``plan``: the crossing's [`RunPlan`][vbikit.solve.RunPlan] from
-    [`plan_run`][vbikit.solve.plan_run] if it was planned already (its step, grid and kernel data
-    are reused and ``limits`` is not consulted again).  ``output_every``: store every k-th step
-    only (default 1, or the smallest k that keeps the histories within ``history_budget``
-    [bytes], logged); the integration step is unchanged, ``result.dt`` is then the spacing of
-    the stored samples and ``result.integration_dt`` the step."""
+    Parameters
+    ----------
+    crossing : Crossing
+        The crossing to integrate.
+    limits : Limits, optional
+        Memory and step budgets (default ``Limits``: 4 GiB, 5 × 10⁶ steps; raise them for bigger
+        runs); the run's memory and steps are estimated first and refused (``BudgetError``)
+        above them.
+    output_every : int, optional
+        Store every k-th step only (default 1, or the smallest k that keeps the histories within
+        ``history_budget``, logged); the integration step is unchanged, ``result.dt`` is then the
+        spacing of the stored samples and ``result.integration_dt`` the step.
+    history_budget : float
+        Memory [bytes] the stored histories may take when ``output_every`` is not given.
+    plan : RunPlan, optional
+        The crossing's [`RunPlan`][vbikit.solve.RunPlan] from [`plan_run`][vbikit.solve.plan_run]
+        if it was planned already (its step, grid and kernel data are reused and ``limits`` is
+        not consulted again).
+
+    Returns
+    -------
+    CrossingResult
+        The histories of the bridge modes, the vehicle DOFs and the wheel forces.
+    """
     if plan is None:
         plan = plan_run(crossing, limits)
     elif plan.crossing is not crossing:
