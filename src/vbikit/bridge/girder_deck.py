@@ -123,7 +123,7 @@ class SlabOnGirderBridge(ModalBridge):
     overhang : float
         Deck overhang beyond the outer girders' centre lines [m]; deck width = (n − 1) s + 2 overhang.
     girder : GirderSection or str
-        Girder section, or an AASHTO type "I" … "VI" ([`vbikit.bridge.sections.AASHTO_GIRDERS`][vbikit.bridge.sections.AASHTO_GIRDERS]).
+        Girder section, or an AASHTO type "I" … "VI" (`vbikit.bridge.sections.AASHTO_GIRDERS`).
     deck_thickness : float
         Slab thickness t [m].
     E_girder, E_deck : float
@@ -133,7 +133,7 @@ class SlabOnGirderBridge(ModalBridge):
     density : float
         Concrete density ρ [kg/m³] (girders, deck and diaphragms).
     girder_torsion_constant : float, optional
-        St Venant J of one girder [m⁴]; default ``approximate_torsion_constant``.
+        St Venant J of one girder [m⁴]; default `approximate_torsion_constant`.
     diaphragms : tuple of float
         x positions [m] of the diaphragms (snapped to the nearest station); default the two ends.
     diaphragm_width : float
