@@ -105,6 +105,19 @@ ENTRY_POINTS = [
     ("vbikit.outputs.Quantity", "vbikit.outputs:Quantity"),
     ("vbikit.outputs.Reduction", "vbikit.outputs:Reduction"),
     ("vbikit.outputs.register_output", "vbikit.outputs:register_output"),
+    ("vbikit.bridge.GirderSection", "vbikit.bridge.sections:GirderSection"),
+    ("vbikit.bridge.ScaledBridge", "vbikit.bridge.scaled:ScaledBridge"),
+    ("vbikit.vehicle.Vehicle", "vbikit.vehicle.model:Vehicle"),
+    ("vbikit.vehicle.Wheel", "vbikit.vehicle.model:Wheel"),
+    ("vbikit.road.RoadProfile", "vbikit.road.profile:RoadProfile"),
+    ("vbikit.road.RoadPSD", "vbikit.road.psd:RoadPSD"),
+    ("vbikit.road.Defect", "vbikit.road.defects:Defect"),
+    ("vbikit.analysis.ImpactFactor", "vbikit.analysis.impact:ImpactFactor"),
+    ("vbikit.scenario.BuiltScenario", "vbikit.scenario.build:BuiltScenario"),
+    ("vbikit.traffic.VehicleRecord", "vbikit.traffic.records:VehicleRecord"),
+    ("vbikit.traffic.LaneTraffic", "vbikit.traffic.stream:LaneTraffic"),
+    ("vbikit.traffic.TruckClass", "vbikit.traffic.stream:TruckClass"),
+    ("vbikit.traffic.Event", "vbikit.traffic.events:Event"),
 ]
 
 

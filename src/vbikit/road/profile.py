@@ -17,9 +17,17 @@ from numpy.typing import ArrayLike, NDArray
 class RoadProfile:
     """Road elevation r(x) [m] (z up) sampled at stations ``x`` [m], linear in between.
 
-    ``label`` describes the origin (e.g. "ISO C, seed 3"); ``resolution`` [m], optional, is the
-    length of the shortest feature the time step must resolve (default: the finest sample
-    spacing; see [`spacing`][vbikit.road.RoadProfile.spacing]).
+    Parameters
+    ----------
+    x : ndarray
+        Stations [m].
+    z : ndarray
+        Elevation r [m] at each station, z up.
+    label : str
+        The origin (e.g. "ISO C, seed 3").
+    resolution : float, optional
+        Length [m] of the shortest feature the time step must resolve (default: the finest
+        sample spacing; see [`spacing`][vbikit.road.RoadProfile.spacing]).
     """
 
     x: NDArray[np.float64]

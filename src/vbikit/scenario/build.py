@@ -112,7 +112,15 @@ def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
 
 @dataclass(frozen=True)
 class BuiltScenario:
-    """A scenario as models: the crossing (the physics) and its response plan (what to read)."""
+    """A scenario as models.
+
+    Parameters
+    ----------
+    crossing : Crossing
+        The physics.
+    plan : ResponsePlan
+        What to read: the response points and load effects.
+    """
 
     crossing: Crossing
     plan: ResponsePlan

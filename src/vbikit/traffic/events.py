@@ -18,7 +18,15 @@ from numpy.typing import NDArray
 
 @dataclass(frozen=True)
 class Event:
-    """Indices of its vehicles (into the stream, in entry order), first entry and last exit [s]."""
+    """Vehicles on the bridge together.
+
+    Parameters
+    ----------
+    vehicles : tuple of int
+        Indices of its vehicles (into the stream, in entry order).
+    start, end : float
+        First entry and last exit [s].
+    """
 
     vehicles: tuple[int, ...]
     start: float

@@ -23,8 +23,19 @@ from vbikit.traffic.records import VehicleRecord
 
 @dataclass(frozen=True)
 class TruckClass:
-    """A truck class: FHWA ``name``, ``share`` of the trucks, mean loaded axle loads [N] and
-    mean axle spacings [m]."""
+    """A truck class.
+
+    Parameters
+    ----------
+    name : str
+        FHWA class name.
+    share : float
+        Its share of the trucks.
+    axle_loads : tuple of float
+        Mean loaded axle loads [N].
+    axle_spacings : tuple of float
+        Mean axle spacings [m].
+    """
 
     name: str
     share: float
@@ -44,8 +55,19 @@ TRUCK_MIX: tuple[TruckClass, ...] = (
 
 @dataclass(frozen=True)
 class LaneTraffic:
-    """One lane: its number (1, 2, …), ``direction`` "+x"/"-x", ``flow`` [trucks/h] and speed
-    mean / standard deviation [km/h]."""
+    """One lane of a synthetic stream.
+
+    Parameters
+    ----------
+    lane : int
+        Its number (1, 2, …).
+    direction : str
+        "+x" or "-x".
+    flow : float
+        Flow [trucks/h].
+    speed_kmh, speed_sd_kmh : float
+        Speed mean and standard deviation [km/h].
+    """
 
     lane: int
     direction: str

@@ -57,8 +57,22 @@ class Wheel:
 class Vehicle:
     """A linear vehicle model with its wheels.
 
-    ``mass``, ``damping``, ``stiffness`` are the (n_dof × n_dof) matrices without tires,
-    ``gravity`` the gravity load vector F_G [N, N·m].
+    Parameters
+    ----------
+    name : str
+        The model's name.
+    dof_names : tuple of str
+        Name of each degree of freedom.
+    mass, damping, stiffness : ndarray
+        The (n_dof × n_dof) matrices without tires.
+    gravity : ndarray
+        The gravity load vector F_G [N, N·m].
+    wheels : tuple of Wheel
+        The wheels and their tires.
+    description : str
+        A one-line description.
+    parameters : dict of str to float
+        The parameters the model was built from.
     """
 
     name: str
