@@ -118,6 +118,12 @@ ENTRY_POINTS = [
     ("vbikit.traffic.LaneTraffic", "vbikit.traffic.stream:LaneTraffic"),
     ("vbikit.traffic.TruckClass", "vbikit.traffic.stream:TruckClass"),
     ("vbikit.traffic.Event", "vbikit.traffic.events:Event"),
+    ("vbikit.solve.CrossingResult", "vbikit.solve.result:CrossingResult"),
+    ("vbikit.analysis.PointResponse", "vbikit.analysis.response:PointResponse"),
+    ("vbikit.contact.RigidDiskTire", "vbikit.contact.tires:RigidDiskTire"),
+    ("vbikit.contact.DiskTire", "vbikit.contact.tires:DiskTire"),
+    ("vbikit.vehicle.VehicleBuilder", "vbikit.vehicle.builder:VehicleBuilder"),
+    ("vbikit.bridge.EulerBernoulliBeam", "vbikit.bridge.beam:EulerBernoulliBeam"),
 ]
 
 

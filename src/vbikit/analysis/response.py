@@ -19,7 +19,25 @@ from vbikit.solve.result import CrossingResult
 
 @dataclass(frozen=True)
 class PointResponse:
-    """Dynamic and static histories at one deck point (x, y) [m]: SI units, z up, tension positive."""
+    """Dynamic and static histories at one deck point (x, y) [m]: SI units, z up, tension positive.
+
+    Parameters
+    ----------
+    x, y : float
+        The point [m].
+    time : ndarray
+        Time points [s].
+    displacement, static_displacement : ndarray
+        Dynamic and static vertical displacement [m].
+    strain, static_strain : ndarray
+        Dynamic and static bottom-fibre strain [-].
+    velocity : ndarray
+        Vertical velocity [m/s].
+    acceleration : ndarray
+        Vertical acceleration [m/s²].
+    strain_rate : ndarray, optional
+        Strain rate [1/s] (refines the strain peak between samples).
+    """
 
     x: float
     y: float

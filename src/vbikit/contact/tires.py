@@ -263,6 +263,15 @@ class RigidDiskTire(_DiskGeometry):
     continuous contact point (tangency; at a corner of the surface the circle rolls over it):
     the surface slope at the grid point is clamped to the range of g' over the point's cell
     [ξ_p − Δξ/2, ξ_p + Δξ/2], exact on smooth surfaces and the rolling rate at corners.
+
+    Parameters
+    ----------
+    radius : float
+        R [m], default 0.5 m [substitute].
+    spacing : float
+        Δξ [m] between the points (default 0.01 m).
+    max_gap : float
+        Height [m] above the bottom of the circle within which the points lie (default 0.1 m).
     """
 
     name = "rigid-disk"

@@ -43,14 +43,27 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
 class CrossingResult:
     """Histories at the n_t = n_steps + 1 time points ``time`` [s].
 
-    ``xi``, ``xi_dot``, ``xi_ddot`` (n_t, n_modes): bridge modal coordinates and rates;
-    ``q``, ``q_dot``, ``q_ddot`` (n_t, n_dof): vehicle coordinates (absolute, z up);
-    ``wheel_forces`` (n_t, n_wheels): tire forces [N], compression positive (0 = no contact);
-    ``contact_lengths`` (n_t, n_wheels): length [m] of the patch in contact (0 for point tires);
-    ``front_position`` [m], ``speed`` [m/s] (n_t, n_vehicles): x of each vehicle's front axle and
-    its speed.  ``dt`` [s] is the spacing of the stored time points;
-    ``integration_dt`` [s] the integrator's step (larger ``dt`` when the histories were thinned,
-    ``simulate(..., output_every=k)``).
+    Parameters
+    ----------
+    crossing : Crossing
+        The crossing that was integrated.
+    time : ndarray
+        The stored time points [s], (n_t,).
+    dt : float
+        Spacing [s] of the stored time points.
+    front_position, speed : ndarray
+        (n_t, n_vehicles): x [m] of each vehicle's front axle and its speed [m/s].
+    xi, xi_dot, xi_ddot : ndarray
+        (n_t, n_modes): bridge modal coordinates and rates.
+    q, q_dot, q_ddot : ndarray
+        (n_t, n_dof): vehicle coordinates (absolute, z up) and rates.
+    wheel_forces : ndarray
+        (n_t, n_wheels): tire forces [N], compression positive (0 = no contact).
+    contact_lengths : ndarray
+        (n_t, n_wheels): length [m] of the patch in contact (0 for point tires).
+    integration_dt : float, optional
+        The integrator's step [s] (smaller than ``dt`` when the histories were thinned,
+        ``simulate(..., output_every=k)``).
     """
 
     crossing: Crossing
