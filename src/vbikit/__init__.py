@@ -9,11 +9,11 @@ Conventions used everywhere (SI units inside: m, kg, s, N, Pa):
   vehicle DOFs are absolute displacements from the unstretched springs (gravity included).
 * Bottom-fibre strain is positive in tension (sagging gives positive strain).
 
-The library is composed from separate pieces: a :class:`~vbikit.bridge.ModalBridge`,
-a :class:`~vbikit.vehicle.Vehicle`, a :class:`~vbikit.contact.TireModel`, a
-:class:`~vbikit.road.RoadProfile`, combined in a :class:`~vbikit.solve.Crossing` and solved
-by :func:`~vbikit.solve.simulate`; :func:`vbikit.run` runs a whole scenario (a file, TOML text, a
-dict, or a crossing with a response plan) and returns its :class:`~vbikit.scenario.report.Report`,
+The library is composed from separate pieces: a [`ModalBridge`][vbikit.bridge.ModalBridge],
+a [`Vehicle`][vbikit.vehicle.Vehicle], a [`TireModel`][vbikit.contact.TireModel], a
+[`RoadProfile`][vbikit.road.RoadProfile], combined in a [`Crossing`][vbikit.solve.Crossing] and solved
+by [`simulate`][vbikit.solve.simulate.simulate]; [`vbikit.run`][vbikit.scenario.run] runs a whole scenario (a file, TOML text, a
+dict, or a crossing with a response plan) and returns its [`Report`][vbikit.scenario.Report],
 whose ``summary`` is exactly what ``vbikit run --json`` prints.
 """
 from vbikit._version import __version__

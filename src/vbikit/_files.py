@@ -1,14 +1,14 @@
 """Reading input files and writing output files: the one place for the rules every reader and
 writer follows.
 
-* **Atomic outputs** (:func:`atomic_write`, :func:`write_text`, :func:`save_figure`): every output
+* **Atomic outputs** (``atomic_write``, ``write_text``, ``save_figure``): every output
   is written to a temporary file in the destination's folder and renamed over the destination
   (``os.replace``, atomic on POSIX and Windows).  A killed process, a full disk or any other
   failure leaves the previous file (or none) in place, never a partial one; the temporary file
-  is removed.  A failure raises :class:`OutputError` (an ``OSError``) naming the file.
-* **Safe names** (:func:`inside`): a file name taken from an input file (a field case name, …)
+  is removed.  A failure raises ``OutputError`` (an ``OSError``) naming the file.
+* **Safe names** (``inside``): a file name taken from an input file (a field case name, …)
   may not leave the output folder.
-* **Text inputs** (:func:`read_text`): decoded as UTF-8; a file that is not text is refused
+* **Text inputs** (``read_text``): decoded as UTF-8; a file that is not text is refused
   with its name and without echoing its content.
 """
 from __future__ import annotations
@@ -37,7 +37,7 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
     """Call ``write(tmp)`` to write a temporary file next to ``path``, then rename it to ``path``.
 
     The destination folder is created if needed.  On any failure the temporary file is
-    removed, ``path`` is untouched, and an ``OSError`` becomes :class:`OutputError` naming ``path``.
+    removed, ``path`` is untouched, and an ``OSError`` becomes ``OutputError`` naming ``path``.
     """
     path = Path(path)
     try:
@@ -73,7 +73,7 @@ def write_text(path: str | Path, text: str) -> Path:
 
 def figure_format(path: str | Path) -> str:
     """The figure format of ``path`` by its suffix (PNG without one); an
-    :class:`~vbikit.errors.OptionError` naming the file and the formats matplotlib writes when it
+    [`OptionError`][vbikit.errors.OptionError] naming the file and the formats matplotlib writes when it
     has another suffix (checked before any computation by the commands that draw)."""
     from matplotlib.backend_bases import FigureCanvasBase
 
@@ -89,7 +89,7 @@ def figure_format(path: str | Path) -> str:
 
 def save_figure(fig: Any, path: str | Path, **kwargs: Any) -> Path:
     """``fig.savefig`` to ``path`` atomically (the format follows the file suffix, PNG without one;
-    :func:`figure_format`)."""
+    ``figure_format``)."""
     fmt = figure_format(path)
     return atomic_write(Path(path), lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
 
@@ -164,7 +164,7 @@ def json_safe(obj: Any, where: str = "") -> tuple[Any, list[str]]:
 
 
 def json_text(obj: Any, indent: int | None = None) -> str:
-    """Strict JSON of ``obj`` (NaN/inf become null, see :func:`json_safe`)."""
+    """Strict JSON of ``obj`` (NaN/inf become null, see ``json_safe``)."""
     import json
 
     return json.dumps(json_safe(obj)[0], indent=indent, allow_nan=False)

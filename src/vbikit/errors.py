@@ -1,7 +1,7 @@
 """The one base class of user errors.
 
 Every error that bad input causes — a scenario, study, field or records file, a mode or road
-file, a budget or a time step the run refuses — is a :class:`VbikitError`: the command line
+file, a budget or a time step the run refuses — is a [`VbikitError`][vbikit.errors.VbikitError]: the command line
 prints its message on one line and exits with code 2.  Any other exception is a programming
 error and shows its traceback.  ``VbikitError`` is a ``ValueError``, so code that caught the
 specific errors as ``ValueError`` keeps working.
@@ -23,12 +23,12 @@ class VbikitError(ValueError):
 
     Parameters
     ----------
-    message
-        One self-contained sentence (or a heading and indented lines) naming the input.
-    key
+    *args : str
+        The message: one self-contained sentence (or a heading and indented lines) naming the input.
+    key : str, optional
         The scenario (or study, field-file) key the error concerns, e.g. ``"crossing.speed"``;
         None where the error is not about one key.  Classes whose messages start with their key
-        (:attr:`message_names_key`) read it from the message when it is not given.
+        (``message_names_key``) read it from the message when it is not given.
     """
 
     #: the message starts with the key it concerns (``key: …`` or ``key = …``)

@@ -2,24 +2,24 @@
 
 Two kinds of entries:
 
-* :class:`Quantity` — a time history at a deck point (``displacement``, ``strain``, …): name,
+* [`Quantity`][vbikit.outputs.Quantity] — a time history at a deck point (``displacement``, ``strain``, …): name,
   unit and long name.  CSV headers (``name [unit]``), ``to_xarray`` / ``to_dataframe``
   variables and the docs' results table read them from here.
-* :class:`Output` — a number reduced from a crossing: name, unit, long name, its ``scope``
+* [`Output`][vbikit.outputs.Output] — a number reduced from a crossing: name, unit, long name, its ``scope``
   (``"point"``: one value per response point, from that point's histories; ``"crossing"``: one
   value per crossing) and its ``reduce`` function.  The JSON summary (``vbikit run --json``,
-  :attr:`vbikit.Report.summary`), study datasets and traffic datasets are filled from here, so a
+  ``vbikit.Report.summary``), study datasets and traffic datasets are filled from here, so a
   name or a unit cannot disagree between them.
 
-A reducer receives a :class:`Reduction`: the point's histories (``point``, an object with
-``displacement_impact`` / ``strain_impact`` (:class:`~vbikit.analysis.impact.ImpactFactor`),
-``velocity``, ``acceleration`` … as :class:`~vbikit.analysis.response.PointResponse`), the
+A reducer receives a [`Reduction`][vbikit.outputs.Reduction]: the point's histories (``point``, an object with
+``displacement_impact`` / ``strain_impact`` ([`ImpactFactor`][vbikit.analysis.ImpactFactor]),
+``velocity``, ``acceleration`` … as [`PointResponse`][vbikit.analysis.PointResponse]), the
 crossing result (``result``) and its load-effect responses by kind (``effects``; the first of
 each kind).  It returns a float, or ``None`` when the output does not apply (no load effect of
 that kind): the summary leaves it out and datasets store NaN.
 
-Adding an output is one :func:`register_output` call (docs/extending.md).  Units are written as
-in CSV headers and JSON (``m/s^2``, ``-`` for dimensionless); :func:`cf_unit` gives the CF /
+Adding an output is one [`register_output`][vbikit.outputs.register_output] call (docs/extending.md).  Units are written as
+in CSV headers and JSON (``m/s^2``, ``-`` for dimensionless); [`cf_unit`][vbikit.outputs.cf_unit] gives the CF /
 UDUNITS spelling datasets use (``m s-2``, ``1``).
 """
 from __future__ import annotations
@@ -43,7 +43,17 @@ def cf_unit(unit: str) -> str:
 
 @dataclass(frozen=True)
 class Quantity:
-    """A time history at a deck point: ``name``, ``unit`` (CSV spelling), ``long_name``."""
+    """A time history at a deck point.
+
+    Parameters
+    ----------
+    name : str
+        Column and variable name, e.g. ``"displacement"``.
+    unit : str
+        Unit in the CSV spelling, e.g. ``"m/s^2"``.
+    long_name : str
+        Description for datasets and the docs.
+    """
 
     name: str
     unit: str
@@ -52,8 +62,18 @@ class Quantity:
 
 @dataclass(frozen=True)
 class Reduction:
-    """What a reducer reads: one response point's histories, the crossing result and its
-    load-effect responses (first of each kind: ``"moment"``, ``"shear"``, ``"reaction"``)."""
+    """What a reducer reads.
+
+    Parameters
+    ----------
+    result : CrossingResult
+        The crossing result.
+    point : PointResponse, optional
+        One response point's histories (None for crossing-scope outputs).
+    effects : mapping of str to LoadEffectResponse
+        The load-effect responses, the first of each kind (``"moment"``, ``"shear"``,
+        ``"reaction"``).
+    """
 
     result: Any
     point: Any = None
@@ -62,7 +82,22 @@ class Reduction:
 
 @dataclass(frozen=True)
 class Output:
-    """A number reduced from a crossing (see the module docstring)."""
+    """A number reduced from a crossing (see the module docstring).
+
+    Parameters
+    ----------
+    name : str
+        Key in the JSON summary and variable name in datasets.
+    unit : str
+        Unit in the CSV/JSON spelling (``"-"`` for dimensionless).
+    long_name : str
+        Description for datasets and the docs.
+    scope : str
+        ``"point"``: one value per response point; ``"crossing"``: one value per crossing.
+    reduce : callable
+        ``reduce(reduction) -> float | None``: the value from a [`Reduction`][vbikit.outputs.Reduction],
+        None where the output does not apply.
+    """
 
     name: str
     unit: str
@@ -90,7 +125,18 @@ OUTPUTS: dict[str, Output] = {}
 
 
 def register_output(output: Output) -> Output:
-    """Add ``output`` to the catalogue (a name registered twice is an error)."""
+    """Add ``output`` to the catalogue and return it.
+
+    Parameters
+    ----------
+    output : Output
+        The output to register under ``output.name``.
+
+    Raises
+    ------
+    ValueError
+        A name registered already, or a scope other than ``"point"`` and ``"crossing"``.
+    """
     if output.name in OUTPUTS:
         raise ValueError(f"output {output.name!r} is already registered")
     if output.scope not in ("point", "crossing"):

@@ -1,12 +1,12 @@
 """Bibliography of vbikit: every model, preset, parameter source and verification reference.
 
-One registry, :data:`REFERENCES`, keyed by a short citation key.  ``docs/references.md`` and
+One registry, ``REFERENCES``, keyed by a short citation key.  ``docs/references.md`` and
 ``docs/references.bib`` are generated from it (``python docs/scripts/generate.py``; a test
-fails when they differ), and :data:`MODEL_REFERENCES` says which entries a model relies on,
+fails when they differ), and ``MODEL_REFERENCES`` says which entries a model relies on,
 so that ``vbikit cite SCENARIO`` and ``vbikit run --json`` can list them.
 
-To add a source: add a :class:`Reference` to :data:`REFERENCES`, name its key in
-:data:`MODEL_REFERENCES` for the models that use it (tire models: in the class's ``references``),
+To add a source: add a ``Reference`` to ``REFERENCES``, name its key in
+``MODEL_REFERENCES`` for the models that use it (tire models: in the class's ``references``),
 and regenerate the docs.
 """
 from __future__ import annotations
@@ -290,7 +290,7 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
 
 
 def references_for(models: list[str]) -> list[Reference]:
-    """The entries for ``models`` (``"<section>:<model>"`` names of :data:`MODEL_REFERENCES`) in
+    """The entries for ``models`` (``"<section>:<model>"`` names of ``MODEL_REFERENCES``) in
     first-use order, without repeats; unknown names contribute nothing."""
     keys: list[str] = []
     for name in ("*", *models):
@@ -301,6 +301,6 @@ def references_for(models: list[str]) -> list[Reference]:
 
 
 def bibtex(entries: list[Reference] | None = None) -> str:
-    """BibTeX of ``entries`` (default: all of :data:`REFERENCES`)."""
+    """BibTeX of ``entries`` (default: all of ``REFERENCES``)."""
     entries = list(REFERENCES.values()) if entries is None else entries
     return "\n\n".join(r.bibtex() for r in entries) + "\n"

@@ -9,7 +9,7 @@ Thresholds (documented in docs/scenario.md):
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
 * a step given by the user that is coarser than the integrator's automatic step, and bridge
   modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
-  step does not (:func:`step_warnings`);
+  step does not (``step_warnings``);
 * wheels that lost contact (which, where first, for how long).
 """
 from __future__ import annotations
@@ -72,7 +72,7 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
 
 
 def point_warnings(crossing: Crossing, x: float | None = None, y: float | None = None) -> list[str]:
-    """A response point (x, y) [m] at or next to a support (within :data:`SUPPORT_MARGIN` of the
+    """A response point (x, y) [m] at or next to a support (within ``SUPPORT_MARGIN`` of the
     span, along the span from the point's own support line on a skew deck)."""
     bridge = crossing.bridge
     span = bridge.span
@@ -87,7 +87,7 @@ def point_warnings(crossing: Crossing, x: float | None = None, y: float | None =
 
 def step_warnings(crossing: Crossing, dt: float) -> list[str]:
     """Warnings about a user's step ``dt`` [s], judged against the integrator's own automatic step
-    (:func:`vbikit.solve.timestep.choose_time_step` without a dt — the one rule per integrator):
+    ([`vbikit.solve.timestep.choose_time_step`][vbikit.solve.choose_time_step] without a dt — the one rule per integrator):
     a coarser step, and bridge modes the automatic step resolves (≥ 5 steps a period) but ``dt``
     does not.  An integrator whose automatic step leaves modes unresolved (one that integrates
     the modes exactly) gets no mode warning."""

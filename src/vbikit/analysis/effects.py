@@ -1,7 +1,7 @@
 """Load-effect histories (bending moment, shear, reactions) of a crossing and their impact factors.
 
 The bridge supplies each effect's static influence function I(x, y) and modal values r_i
-(:mod:`vbikit.bridge.effects`).  With the contact points at x_p(t) (each vehicle on its own path, :func:`contact_positions`) and
+(``vbikit.bridge.effects``).  With the contact points at x_p(t) (each vehicle on its own path, ``contact_positions``) and
 y_p, each wheel's force f_w(t) (from the coupled solve; compression
 positive) spread over its points by their static shares β_p:
 
@@ -13,7 +13,7 @@ positive) spread over its points by their static shares β_p:
 
 Spreading each wheel force by the static shares is exact for point tires and changes a load
 effect of a multi-point patch (0.254 m long) by far less than its dynamic part.  The impact
-factor is that of :func:`vbikit.analysis.impact.impact_factor`: peaks in the direction of the
+factor is that of [`vbikit.analysis.impact.impact_factor`][vbikit.analysis.impact_factor]: peaks in the direction of the
 static peak (hogging over a pier, where the static peak moment is negative).
 """
 from __future__ import annotations
@@ -35,7 +35,7 @@ METHODS: tuple[str, ...] = ("mode-acceleration", "mode-superposition")
 
 @dataclass(frozen=True)
 class LoadEffectResponse:
-    """Dynamic and static histories of one load effect (SI units, conventions of :mod:`vbikit.bridge.effects`)."""
+    """Dynamic and static histories of one load effect (SI units, conventions of ``vbikit.bridge.effects``)."""
 
     effect: LoadEffect
     method: str
@@ -56,7 +56,7 @@ class LoadEffectResponse:
 
 
 def supports_load_effects(bridge: object) -> bool:
-    """True if the bridge model offers load effects (:class:`~vbikit.bridge.base.HasLoadEffects`)."""
+    """True if the bridge model offers load effects ([`HasLoadEffects`][vbikit.bridge.HasLoadEffects])."""
     return isinstance(bridge, HasLoadEffects)
 
 
@@ -88,7 +88,7 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
                          influence: NDArray[np.float64] | None = None) -> LoadEffectResponse:
     """Histories of ``effect`` over the crossing (see the module docstring); ``xi_static``: the
     static modal history if already computed (mode superposition); ``influence``: the
-    :func:`contact_influence` matrix if already computed (crossings on the same time grid share it)."""
+    ``contact_influence`` matrix if already computed (crossings on the same time grid share it)."""
     if method not in METHODS:
         raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
     bridge = result.crossing.bridge
@@ -110,7 +110,7 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
 
 def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
                           method: str = "mode-acceleration") -> list[LoadEffectResponse]:
-    """:func:`load_effect_response` for several effects (one static modal history shared)."""
+    """``load_effect_response`` for several effects (one static modal history shared)."""
     xi_st = static_modal_history(result) if method == "mode-superposition" and effects else None
     return [load_effect_response(result, e, method, xi_st) for e in effects]
 
@@ -141,7 +141,7 @@ def load_effect_summary(responses: Sequence[LoadEffectResponse], allowances: Any
 
 
 def load_effect_histories(responses: Sequence[LoadEffectResponse]) -> dict[str, NDArray[np.float64]]:
-    """CSV columns ``<name>`` and ``<name>_static`` for each effect (see :attr:`LoadEffectResponse.name`)."""
+    """CSV columns ``<name>`` and ``<name>_static`` for each effect (see ``LoadEffectResponse.name``)."""
     out: dict[str, NDArray[np.float64]] = {}
     for r in responses:
         out[r.name] = r.dynamic
@@ -172,7 +172,7 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     """The summary entries of a crossing's load effects and design-code allowances, and the
     responses themselves (for histories): ``design_code_allowances`` for the deflection at
     ``response_x`` (loaded length: its span) and the ``moment`` / ``shear`` / ``reaction`` blocks of
-    :func:`load_effect_summary` with each effect's code values."""
+    ``load_effect_summary`` with each effect's code values."""
     from vbikit.analysis.codes import code_allowances
 
     bridge, vehicle = result.crossing.bridge, result.crossing.vehicle

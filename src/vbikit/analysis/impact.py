@@ -33,7 +33,17 @@ def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
 
 @dataclass(frozen=True)
 class ImpactFactor:
-    """Peak dynamic and static responses (signed, largest magnitude in the load direction) and IM."""
+    """Peak dynamic and static responses (signed, largest magnitude in the load direction) and IM.
+
+    Parameters
+    ----------
+    dynamic_peak, static_peak : float
+        The peaks of the dynamic and static responses.
+    impact_factor : float
+        IM = (R_dyn,max − R_st,max)/R_st,max [-].
+    time_dynamic_peak, time_static_peak : float
+        When the peaks occur [s].
+    """
 
     dynamic_peak: float
     static_peak: float

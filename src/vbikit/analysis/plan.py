@@ -1,8 +1,8 @@
 """What to read from a crossing: the response points and the load effects (a response plan).
 
-A :class:`ResponsePlan` is the part of a scenario that says where and what to report, kept
+A [`ResponsePlan`][vbikit.analysis.ResponsePlan] is the part of a scenario that says where and what to report, kept
 apart from the crossing (the physics): ``[response]`` / ``[[response.points]]`` in a scenario
-file, or built directly from Python and passed to :func:`vbikit.run` beside a crossing.
+file, or built directly from Python and passed to [`vbikit.run`][vbikit.scenario.run] beside a crossing.
 """
 from __future__ import annotations
 
@@ -46,7 +46,19 @@ def point_name(position: int, name: str | None = None) -> str:
 
 @dataclass(frozen=True)
 class ResponsePlan:
-    """Response points (at least one; the first is the headline point) and load effects."""
+    """Response points (at least one; the first is the headline point) and load effects.
+
+    Parameters
+    ----------
+    points : tuple of ResponsePoint
+        The response points, at least one, names unique; the first is the headline point
+        (default: the bridge's default point).
+    load_effects : tuple of LoadEffect
+        Moments, shears and reactions to report (default none).
+    load_effect_method : str
+        How load effects are computed from the modes (``vbikit.analysis.effects``):
+        ``"mode-acceleration"`` (default) or ``"mode-superposition"``.
+    """
 
     points: tuple[ResponsePoint, ...] = (ResponsePoint(),)
     load_effects: tuple[LoadEffect, ...] = ()

@@ -19,7 +19,25 @@ from vbikit.solve.result import CrossingResult
 
 @dataclass(frozen=True)
 class PointResponse:
-    """Dynamic and static histories at one deck point (x, y) [m]: SI units, z up, tension positive."""
+    """Dynamic and static histories at one deck point (x, y) [m]: SI units, z up, tension positive.
+
+    Parameters
+    ----------
+    x, y : float
+        The point [m].
+    time : ndarray
+        Time points [s].
+    displacement, static_displacement : ndarray
+        Dynamic and static vertical displacement [m].
+    strain, static_strain : ndarray
+        Dynamic and static bottom-fibre strain [-].
+    velocity : ndarray
+        Vertical velocity [m/s].
+    acceleration : ndarray
+        Vertical acceleration [m/s²].
+    strain_rate : ndarray, optional
+        Strain rate [1/s] (refines the strain peak between samples).
+    """
 
     x: float
     y: float
@@ -41,7 +59,7 @@ class PointResponse:
         return impact_factor(self.time, self.strain, self.static_strain, self.strain_rate)
 
     def outputs(self, result: CrossingResult) -> dict[str, float | None]:
-        """Every per-point output of the catalogue (:mod:`vbikit.outputs`) at this point."""
+        """Every per-point output of the catalogue ([`vbikit.outputs`][vbikit.outputs]) at this point."""
         return reduce_outputs(Reduction(result, self), "point")
 
 
@@ -49,7 +67,7 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
                    xi_static: NDArray[np.float64] | None = None) -> PointResponse:
     """Dynamic and static responses at (x, y) [m]; x defaults to midspan, y to the bridge's
     ``default_response_y`` (its default girder on a slab-on-girder deck, as in scenarios);
-    ``xi_static``: the static modal history if already computed (:func:`static_modal_history`)."""
+    ``xi_static``: the static modal history if already computed ([`static_modal_history`][vbikit.analysis.static_modal_history])."""
     bridge = result.crossing.bridge
     x, y = result.point(x, y)
     if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
@@ -125,7 +143,7 @@ def plan_responses(result: CrossingResult, plan: ResponsePlan,
 
 def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,
                     effects: dict[str, Any] | None = None) -> tuple[list[dict[str, float | None]], dict[str, float | None]]:
-    """The catalogue's outputs (:mod:`vbikit.outputs`) of a crossing: per-point outputs at every
+    """The catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) of a crossing: per-point outputs at every
     point of ``plan`` (a list in its order) and the per-crossing outputs.  ``xi_static``: the
     static modal history if already computed; ``effects``: the load-effect responses by kind if
     already computed (default: the first of each kind in ``plan``)."""
@@ -175,10 +193,10 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
             response_girder: int | None = None, points: list[dict[str, object]] | None = None,
             effects: dict[str, object] | None = None) -> dict[str, object]:
     """The JSON-ready summary of a crossing: every per-point output of the catalogue
-    (:mod:`vbikit.outputs`) at the headline ``response`` point, bridge frequencies, wheel forces,
+    ([`vbikit.outputs`][vbikit.outputs]) at the headline ``response`` point, bridge frequencies, wheel forces,
     step data and the per-crossing outputs (those of load effects given in ``effects``, first of
-    each kind); with ``girders`` (from :func:`girder_responses`) also the per-girder values and
-    the governing girder; ``points``: the entries of :func:`point_entries` (default: the headline
+    each kind); with ``girders`` (from [`girder_responses`][vbikit.analysis.girder_responses]) also the per-girder values and
+    the governing girder; ``points``: the entries of [`point_entries`][vbikit.analysis.point_entries] (default: the headline
     point alone)."""
     crossing = result.crossing
     wheel_forces = result.wheel_forces
@@ -249,7 +267,7 @@ GIRDER_QUANTITIES = ("displacement", "static_displacement", "strain", "static_st
 
 def history_table(result: CrossingResult, responses: list[PointResponse], girders: list[PointResponse] | None = None,
                   effects: Sequence[Any] = (), names: Sequence[str] | None = None) -> dict[str, tuple[NDArray[np.float64], str]]:
-    """Named time histories and their units (CSV spelling, :mod:`vbikit.outputs`) for CSV output:
+    """Named time histories and their units (CSV spelling, [`vbikit.outputs`][vbikit.outputs]) for CSV output:
     time, front-axle positions, the deck quantities at every response point (one point: plain
     ``displacement``, …; several: ``displacement_<name>`` with the point ``names``), ``girder{g}_*``
     for every girder, tire forces and patch lengths, vehicle DOFs and their accelerations, and
@@ -291,7 +309,7 @@ def history_table(result: CrossingResult, responses: list[PointResponse], girder
 
 def histories(result: CrossingResult, response: PointResponse,
               girders: list[PointResponse] | None = None) -> dict[str, NDArray[np.float64]]:
-    """Named time histories (SI units) of :func:`history_table` at one response point."""
+    """Named time histories (SI units) of [`history_table`][vbikit.analysis.history_table] at one response point."""
     return {k: v for k, (v, _) in history_table(result, [response], girders).items()}
 
 
@@ -341,7 +359,7 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
 
 def summary_keys() -> dict[str, tuple[str, str]]:
     """Every key of the crossing summary with its unit and meaning: the headline point's outputs
-    of the catalogue (:mod:`vbikit.outputs`, registered ones included), then the other keys, with
+    of the catalogue ([`vbikit.outputs`][vbikit.outputs], registered ones included), then the other keys, with
     the per-crossing outputs before ``warnings``."""
     point = {o.name: (o.unit, o.long_name) for o in outputs("point")}
     crossing = {o.name: (o.unit, o.long_name) for o in outputs("crossing")}

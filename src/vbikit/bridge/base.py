@@ -6,11 +6,11 @@ circular frequencies ``omega`` [rad/s], modal damping ratios ``damping_ratios`` 
 that can supply these — the Euler–Bernoulli beam here, a 3D slab-on-girder FE model or
 modes imported from another program — plugs into the solver unchanged.
 
-Optional capabilities are :class:`typing.Protocol` classes, checked with ``isinstance``:
-:class:`GirderDeck` (girder lines: per-girder responses, deck width), :class:`HasLoadEffects`
-(moments, shears, reactions) and :class:`DescribesModes` (a name for every mode).  Everything
+Optional capabilities are ``typing.Protocol`` classes, checked with ``isinstance``:
+[`GirderDeck`][vbikit.bridge.GirderDeck] (girder lines: per-girder responses, deck width), [`HasLoadEffects`][vbikit.bridge.HasLoadEffects]
+(moments, shears, reactions) and [`DescribesModes`][vbikit.bridge.DescribesModes] (a name for every mode).  Everything
 every bridge can answer — the default vehicle offset, response point and section, the skew, the
-supports and spans — is a :class:`ModalBridge` attribute with a default, so callers need no
+supports and spans — is a [`ModalBridge`][vbikit.bridge.ModalBridge] attribute with a default, so callers need no
 attribute probes.
 """
 from __future__ import annotations
@@ -184,7 +184,7 @@ class GirderDeck(Protocol):
 
 @runtime_checkable
 class HasLoadEffects(Protocol):
-    """A bridge with load effects (:mod:`vbikit.bridge.effects`): moments, shears and reactions."""
+    """A bridge with load effects (``vbikit.bridge.effects``): moments, shears and reactions."""
 
     def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
                     girder: Optional[int] = None) -> "LoadEffect":

@@ -11,7 +11,7 @@ neutral axis to the bottom fibre [m].  z is up, so a downward load gives negativ
 deflection and positive (tensile) bottom strain.  The beam has no transverse extent: mode
 shapes do not depend on y.
 
-Load effects (:mod:`vbikit.bridge.effects`), closed forms: reactions of a unit upward force at x,
+Load effects (``vbikit.bridge.effects``), closed forms: reactions of a unit upward force at x,
 R₀ = −(1 − x/L), R_L = −x/L; M(s) = R₀ s + (s − x)·[x < s], V(s) = R₀ + [x ≤ s]; per unit modal
 coordinate M = EI ∂²φ/∂x², V = EI ∂³φ/∂x³, R₀ = V(0), R_L = −V(L).
 """
@@ -45,7 +45,7 @@ class EulerBernoulliBeam(ModalBridge):
         Mass per unit length m [kg/m].
     damping_ratio : float
         Modal damping ratio ζ [-], the same for every mode (0 ≤ ζ < 1); default
-        :data:`~vbikit.bridge.base.DEFAULT_DAMPING_RATIO` (2 %, as scenarios).
+        ``DEFAULT_DAMPING_RATIO`` (2 %, as scenarios).
     n_modes : int
         Number of retained bending modes.
     neutral_axis_depth : float

@@ -6,11 +6,11 @@ Spans L_k (k = 1 … n) in a row, each with its own bending stiffness EI_k [N·m
 length m_k [kg/m]; n + 1 supports at x_0 = 0, x_1 = L_1, …, x_n = ΣL_k.  Each support is rigid
 in the vertical direction or a vertical spring k_j [N/m]; the two end supports may have
 rotational springs k_θ [N·m/rad] (0 = pinned, inf = clamped).  Local damage
-(:mod:`vbikit.bridge.damage`) lowers EI over a region.
+(``vbikit.bridge.damage``) lowers EI over a region.
 
 Discretisation: cubic Hermite Euler–Bernoulli elements (two DOFs per node, w and ∂w/∂x),
 ``elements_per_span`` equal elements per span, with extra nodes at the ends of damaged regions
-so that each element has one EI; consistent mass.  Element matrices (:mod:`vbikit.bridge.elements`; Przemieniecki,
+so that each element has one EI; consistent mass.  Element matrices (``vbikit.bridge.elements``; Przemieniecki,
 *Theory of Matrix Structural Analysis*, 1968, §5.3 and §11.3):
 
     K_e = EI/h³ [[12, 6h, −12, 6h], [6h, 4h², −6h, 2h²], …],   M_e = m h/420 [[156, 22h, 54, −13h], …]
@@ -22,7 +22,7 @@ frequencies of two or three equal spans agree with the closed forms (Blevins, *F
 Natural Frequency and Mode Shape*, 1979, Table 8-1: λL = π, 3.9266, 2π, 7.0686 for two spans)
 to better than 1e-6 (``tests/verification/test_continuous_beam.py``).
 
-Load effects (:mod:`vbikit.bridge.effects`) follow from equilibrium of the part of the beam left
+Load effects (``vbikit.bridge.effects``) follow from equilibrium of the part of the beam left
 of the section: support reactions are linear in the loads (influence fields from the full
 stiffness, exact at the nodes for Hermite elements), and
 
@@ -98,7 +98,7 @@ class ContinuousBeam(ModalBridge):
     elements_per_span : int
         Hermite elements per span.
     damage : sequence of Damage
-        Local stiffness losses (:class:`vbikit.bridge.damage.Damage` without a girder).
+        Local stiffness losses (``vbikit.bridge.damage.Damage`` without a girder).
     """
 
     spans: tuple[float, ...]
@@ -259,7 +259,7 @@ class ContinuousBeam(ModalBridge):
 
     @property
     def nodal_modes(self) -> NodalModes:
-        """Mode shapes at the nodes (:class:`~vbikit.bridge.nodal.NodalModes`, one line at y = 0)."""
+        """Mode shapes at the nodes (``NodalModes``, one line at y = 0)."""
         return self._modes[2]
 
     # ------------------------------------------------------------------ ModalBridge
@@ -352,7 +352,7 @@ class ContinuousBeam(ModalBridge):
     def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
                     girder: Optional[int] = None) -> LoadEffect:
         """The load effect ``kind`` ("moment", "shear" at section x [m]; "reaction" of support index
-        ``support``, 0 = entry) with its influence function and modal values (:mod:`vbikit.bridge.effects`)."""
+        ``support``, 0 = entry) with its influence function and modal values (``vbikit.bridge.effects``)."""
         if girder is not None:
             raise ValueError("a beam has no girders: leave girder unset")
         if kind not in EFFECT_KINDS:

@@ -1,6 +1,6 @@
 """Girder bending moments, shears and bearing reactions of the slab-on-girder grillage.
 
-Load effects (:mod:`vbikit.bridge.effects`) of :class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge`.
+Load effects (``vbikit.bridge.effects``) of [`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge].
 A point force P at (x, y) enters the grillage as its consistent load (Hermite in x and across y):
 girder line j carries the share c_j P as a point load on its element e = [a, b] ∋ x.  Girder j's
 internal forces at a section s in element e follow from that element's end forces, exactly for the
@@ -21,12 +21,12 @@ element length (4e-3 for the first bending mode of Bridge 2 with 34 elements).
 At a station the girder moment jumps by the couple the transverse members apply to the node
 (their torsion, and on a skew deck their bending, act on ∂w/∂x): a moment or shear at a station
 is the one just right of it, M(s⁺) and V(s⁺), from the element that starts there.  A section
-within :data:`~vbikit.bridge.nodal.STATION_TOLERANCE` × span of a station is that station,
+within ``STATION_TOLERANCE`` × span of a station is that station,
 so a skew girder's station asked for at x = ξ_i + y_g tan θ is read there whatever the round-off
 of x − y_g tan θ.
 
-The grillage enters through the public attributes of :class:`DeckModel` — among them its DOF
-numbering :class:`~vbikit.bridge.nodal.DofMap` (``dof_map``) — so this module does not import the
+The grillage enters through the public attributes of ``DeckModel`` — among them its DOF
+numbering ``DofMap`` (``dof_map``) — so this module does not import the
 grillage's module.
 """
 from __future__ import annotations
@@ -45,7 +45,7 @@ from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stati
 
 
 class DeckModel(GirderDeck, Protocol):
-    """What the load effects read of a grillage deck (:class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge`)."""
+    """What the load effects read of a grillage deck ([`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge])."""
 
     span: float
     skew: float
@@ -76,7 +76,7 @@ def load_weights(dofs: DofMap, x: ArrayLike, y: ArrayLike
     element index e of each point and its line shares c (n, n_lines).  Along the lines: Hermite in
     ξ = x − y tan θ on (w, ∂w/∂x), linear on ∂w/∂y; across them (along the transverse members):
     Hermite on w and on the slope along the members, ∂w/∂y + tan θ ∂w/∂x — the interpolation of
-    :class:`~vbikit.bridge.nodal.NodalModes` with the FE model's linear transverse slopes.  Points
+    ``NodalModes`` with the FE model's linear transverse slopes.  Points
     off the deck (ξ outside 0 … span) get zero coefficients.  ``dofs`` is the grillage's DOF map."""
     xs, ys = dofs.stations, dofs.line_y
     nx = dofs.n_elements

@@ -1,7 +1,7 @@
 """Element matrices of the finite-element bridge models (the continuous beam and the grillage deck).
 
 Euler–Bernoulli beam element of length h [m], DOFs (w₁, θ₁, w₂, θ₂) with θ = ∂w/∂s along the element,
-cubic Hermite shape functions (:func:`vbikit.bridge.nodal.hermite_basis`); St Venant torsion (or any
+cubic Hermite shape functions (``vbikit.bridge.nodal.hermite_basis``); St Venant torsion (or any
 bar) element with linear shape functions on (r₁, r₂).  Sources: Przemieniecki, *Theory of Matrix
 Structural Analysis*, 1968, §5.3 (stiffness) and §11.3 (consistent mass); the Hermite–linear coupling
 is ∫ N_Hermiteᵀ N_linear ds in closed form (checked against Gauss quadrature in

@@ -15,7 +15,7 @@ linear torsion on ∂w/∂y):
 
 * EI_j: composite transformed section of the girder and its tributary deck width b_j (deck
   mid-plane t/2 above the girder top, no haunch, full composite action; n = E_deck / E_girder)
-  — :func:`vbikit.bridge.sections.composite_beam_properties` — plus a parapet's EI on the
+  — [`vbikit.bridge.sections.composite_beam_properties`][vbikit.bridge.composite_beam_properties] — plus a parapet's EI on the
   outer girders.  Interior b_j = s (girder spacing), outer b_j = s/2 + overhang.
 * GJ_j = G_girder J_girder + G_deck t³/6 · b_j (the slab's torsion split equally between the
   two grillage directions, Hambly, *Bridge Deck Behaviour*, 2nd ed., 1991, §5).
@@ -53,7 +53,7 @@ at its supports (a fork support), otherwise it could roll freely.
 
 The generalised eigenproblem K φ = ω² M φ is assembled with scipy.sparse and solved by
 ``scipy.sparse.linalg.eigsh`` in shift-invert mode (σ = 0) for the lowest modes; the modes are
-mass-normalised (φᵀ M φ = 1) and evaluated anywhere by :class:`vbikit.bridge.nodal.NodalModes`.
+mass-normalised (φᵀ M φ = 1) and evaluated anywhere by ``vbikit.bridge.nodal.NodalModes``.
 
 Girder numbering: Girder 1 is the girder at the most negative y (the right-hand girder for a
 driver travelling in +x, since y is positive to the left); Girder n is at the most positive y.
@@ -123,7 +123,7 @@ class SlabOnGirderBridge(ModalBridge):
     overhang : float
         Deck overhang beyond the outer girders' centre lines [m]; deck width = (n − 1) s + 2 overhang.
     girder : GirderSection or str
-        Girder section, or an AASHTO type "I" … "VI" (:data:`vbikit.bridge.sections.AASHTO_GIRDERS`).
+        Girder section, or an AASHTO type "I" … "VI" (`vbikit.bridge.sections.AASHTO_GIRDERS`).
     deck_thickness : float
         Slab thickness t [m].
     E_girder, E_deck : float
@@ -133,7 +133,7 @@ class SlabOnGirderBridge(ModalBridge):
     density : float
         Concrete density ρ [kg/m³] (girders, deck and diaphragms).
     girder_torsion_constant : float, optional
-        St Venant J of one girder [m⁴]; default :func:`approximate_torsion_constant`.
+        St Venant J of one girder [m⁴]; default `approximate_torsion_constant`.
     diaphragms : tuple of float
         x positions [m] of the diaphragms (snapped to the nearest station); default the two ends.
     diaphragm_width : float
@@ -165,7 +165,7 @@ class SlabOnGirderBridge(ModalBridge):
         of a support line lies further along +x (the oblique mesh of the bridges guide, "Skew
         supports"); 0 = square.
     damage : tuple of Damage
-        Local stiffness losses of single girders (:class:`vbikit.bridge.damage.Damage` with ``girder``):
+        Local stiffness losses of single girders (``vbikit.bridge.damage.Damage`` with ``girder``):
         the girder elements' EI × (1 − severity × the fraction of the element inside the region).
     default_girder : int
         Girder (1-based) a scenario reports when it sets neither ``response.girder`` nor ``response.y``.
@@ -173,7 +173,7 @@ class SlabOnGirderBridge(ModalBridge):
         Label only.
     use_cache, cache_dir
         On-disk mode cache (keyed by a hash of every parameter that changes the modes); never
-        needed for correctness.  ``cache_dir`` None = :func:`vbikit.bridge.mode_cache.default_cache_dir`.
+        needed for correctness.  ``cache_dir`` None = ``vbikit.bridge.mode_cache.default_cache_dir``.
     """
 
     span: float
@@ -397,7 +397,7 @@ class SlabOnGirderBridge(ModalBridge):
 
     @cached_property
     def dof_map(self) -> DofMap:
-        """The grid's DOF numbering (:class:`~vbikit.bridge.nodal.DofMap`): node (line j, station i) →
+        """The grid's DOF numbering (``DofMap``): node (line j, station i) →
         3 (j (n_el + 1) + i) + (0: w, 1: ∂w/∂x, 2: ∂w/∂y), with the stations ξ, the girder lines' y and tan θ."""
         return DofMap(self.stations, self.girder_y, self.skew_tan)
 
@@ -537,7 +537,7 @@ class SlabOnGirderBridge(ModalBridge):
 
     @cached_property
     def nodal_modes(self) -> NodalModes:
-        """The mode shapes at the grid nodes (:class:`~vbikit.bridge.nodal.NodalModes`) — solved or read from the cache."""
+        """The mode shapes at the grid nodes (``NodalModes``) — solved or read from the cache."""
         path = mode_cache.cache_path("slab-on-girder", self.cache_key(), self.cache_dir) if self.use_cache else None
         cached = mode_cache.load_modes(path) if path is not None else None
         if cached is None:
@@ -583,7 +583,7 @@ class SlabOnGirderBridge(ModalBridge):
 
     def load_vector(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NDArray[np.float64]:
         """Consistent nodal load vector (all DOFs) of vertical point forces [N] (z up) at (x, y)
-        (:func:`vbikit.bridge.deck_effects.load_weights`: Hermite along the lines and across them,
+        (``vbikit.bridge.deck_effects.load_weights``: Hermite along the lines and across them,
         linear along the lines for the transverse slopes); a force at a node loads only that
         node's w; forces off the deck load nothing."""
         x, y, f = (np.atleast_1d(np.asarray(a, float)).ravel() for a in np.broadcast_arrays(x, y, forces))
@@ -594,7 +594,7 @@ class SlabOnGirderBridge(ModalBridge):
 
     def static_solution(self, x: ArrayLike, y: ArrayLike, forces: ArrayLike) -> NodalModes:
         """Full-stiffness static solution K u = F for point forces [N] (z up) at (x, y), as a one-column
-        :class:`NodalModes` (evaluate deflections [m] with ``.evaluate`` and curvatures with ``.curvatures``)."""
+        ``NodalModes`` (evaluate deflections [m] with ``.evaluate`` and curvatures with ``.curvatures``)."""
         K, _, free = self.assemble()
         F = self.load_vector(x, y, forces)
         u = np.zeros(K.shape[0])
@@ -605,7 +605,7 @@ class SlabOnGirderBridge(ModalBridge):
                     girder: Optional[int] = None) -> LoadEffect:
         """Moment or shear of ``girder`` (default: the default girder) at section x [m] (the deck's x; on
         a skew deck the girder's span runs from x = y_g tan θ), or the reaction of its bearing at
-        support 0 (entry), 1, … (:mod:`vbikit.bridge.deck_effects`)."""
+        support 0 (entry), 1, … (``vbikit.bridge.deck_effects``)."""
         return deck_load_effect(self, kind, x, girder, support)
 
     def default_load_effects(self, girder: Optional[int] = None) -> list[LoadEffect]:

@@ -1,7 +1,7 @@
 """On-disk cache of solved modes: ``<cache dir>/modes/<prefix>-<key>.npz`` holding ``omega`` [rad/s]
 and ``modes`` (the nodal mode matrix over all DOFs).
 
-A model keys its modes by :func:`cache_key` of every parameter that changes them (with a model
+A model keys its modes by ``cache_key`` of every parameter that changes them (with a model
 version that is bumped whenever the model changes its modes).  The cache only saves time: an
 unreadable file is ignored (and solved again), a file that cannot be written is skipped.
 """
@@ -34,7 +34,7 @@ def cache_key(version: str, params: dict[str, Any]) -> str:
 
 
 def cache_path(prefix: str, key: str, cache_dir: Optional[str | Path] = None) -> Path:
-    """``<cache_dir>/modes/<prefix>-<key>.npz`` (``cache_dir`` None: :func:`default_cache_dir`)."""
+    """``<cache_dir>/modes/<prefix>-<key>.npz`` (``cache_dir`` None: ``default_cache_dir``)."""
     base = Path(cache_dir) if cache_dir else default_cache_dir()
     return base / "modes" / f"{prefix}-{key}.npz"
 

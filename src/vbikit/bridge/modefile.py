@@ -23,7 +23,7 @@ File format ``vbikit-modes 1`` (a CSV file with ``#`` header lines; full referen
 * Skew supports (``skew`` = θ, −90 < θ < 90): line j's node i lies at x = ξ_i + y_j tan θ (the
   oblique mesh).  The first column is then either ``x``, the node's plan x (as FE programs export
   it; ξ = x − y tan θ must give every line the same stations within 1e-6 of the span), or ``xi``,
-  the station ξ itself (what :func:`write_modes` writes: an exact round trip).
+  the station ξ itself (what ``write_modes`` writes: an exact round trip).
 * ``w_k`` is the vertical (z up) component of mode k, **mass-normalised** (φᵀ M φ = 1, units
   kg^-1/2), as OpenSees, ANSYS and SAP2000 export them by default.
 * ``dwdx_k`` and ``dwdy_k`` (optional, both or neither) are the slopes ∂w/∂x and ∂w/∂y.  From
@@ -31,8 +31,8 @@ File format ``vbikit-modes 1`` (a CSV file with ``#`` header lines; full referen
   Without them, slopes are taken from cubic splines through the nodal w (not-a-knot) along each
   line and across each station (on a skew deck across the lines at constant ξ, the derivative
   along the oblique members, ∂w/∂y + tan θ ∂w/∂x, from which ∂w/∂y follows).
-* Between nodes, :class:`~vbikit.bridge.nodal.NodalModes` interpolates (Hermite along x and
-  across y), so a file written by :func:`write_modes` from a vbikit model reproduces that model
+* Between nodes, ``NodalModes`` interpolates (Hermite along x and
+  across y), so a file written by ``write_modes`` from a vbikit model reproduces that model
   exactly.
 """
 from __future__ import annotations
@@ -65,7 +65,7 @@ class ModeFileError(VbikitError):
 
 @dataclass(frozen=True, eq=False)
 class ImportedModalBridge(ModalBridge):
-    """A bridge given by nodal modes (:class:`NodalModes`), e.g. read by :func:`modes_from_file`.
+    """A bridge given by nodal modes (``NodalModes``), e.g. read by ``modes_from_file``.
 
     ``strain_lever_arm`` [m] per node line (distance from the neutral axis down to the bottom
     fibre); ``girder_y`` [m] the girder lines (Girder 1 first) for per-girder responses;
@@ -73,8 +73,8 @@ class ImportedModalBridge(ModalBridge):
     x extent on a skew deck).
 
     Skew support lines (``modes.skew_tan`` = tan θ ≠ 0): line j's stations lie at x = ξ_i + y_j tan θ
-    (:mod:`vbikit.bridge.nodal`), the deck point (x, y) has ξ = x − y tan θ (:meth:`span_coordinate`),
-    responses default to the midspan of the line at y (:meth:`default_x_at`), and strains are read on
+    (``vbikit.bridge.nodal``), the deck point (x, y) has ξ = x − y tan θ ([`span_coordinate`][vbikit.bridge.ModalBridge.span_coordinate]),
+    responses default to the midspan of the line at y ([`default_x_at`][vbikit.bridge.ModalBridge.default_x_at]), and strains are read on
     the lines at the point's own ξ.  The deck's x extent runs from the entry support line's x at the
     deck's lateral edges to the exit line's: the edges are ±deck_width/2, or — without a deck width —
     the outermost node lines (a wheel outside them then sees the rigidly extrapolated overhang only
@@ -191,7 +191,7 @@ def _skew_tan(skew: float) -> float:
 
 def _skew_degrees(skew_tan: float, skew: Optional[float] = None) -> float:
     """θ [°] for ``skew_tan``: the bridge's own ``skew`` when it has one and it gives that tan θ, else
-    arctan, moved by up to 64 ulps to an angle that :func:`_skew_tan` maps exactly to ``skew_tan`` if
+    arctan, moved by up to 64 ulps to an angle that ``_skew_tan`` maps exactly to ``skew_tan`` if
     there is one (else the file also gets a ``skew_tan`` header)."""
     if skew is not None and _skew_tan(float(skew)) == skew_tan:
         return float(skew)
@@ -277,7 +277,7 @@ def write_modes(bridge: ModalBridge, path: str | Path, modes: NodalModes | None 
 
 
 def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int | None = None) -> ImportedModalBridge:
-    """Read a ``vbikit-modes 1`` file (see the module docstring) into an :class:`ImportedModalBridge`.
+    """Read a ``vbikit-modes 1`` file (see the module docstring) into an ``ImportedModalBridge``.
 
     ``damping_ratio`` applies when the file has no ``damping_ratios``; ``n_modes`` keeps only the first modes.
     """

@@ -1,7 +1,7 @@
 """Mode shapes given at the nodes of a rectangular deck grid, evaluated anywhere on the deck.
 
-Both the slab-on-girder FE model (:mod:`vbikit.bridge.girder_deck`) and modes imported from
-other programs (:mod:`vbikit.bridge.modefile`) store their modes the same way: on ``n_lines``
+Both the slab-on-girder FE model (``vbikit.bridge.girder_deck``) and modes imported from
+other programs (``vbikit.bridge.modefile``) store their modes the same way: on ``n_lines``
 longitudinal lines y = y_j (girder lines, ascending y) at ``n_st`` stations x = x_i (ascending,
 x_0 = 0, x_last = span), every mode has the nodal values
 
@@ -33,10 +33,10 @@ Between the lines of a skew deck φ is only C⁰ in x: its slope jumps at the st
 tan θ · N(y) · Δ(∂²w/∂ξ²) of the lines (N the Hermite weight of the slope across), which the
 solver's track tables, sampled on one side of a station, smooth over one table cell.
 
-Grid helpers shared by the grid models: :func:`hermite_basis` (the cubic Hermite shape functions),
-:func:`snap_to_stations` (a section within round-off of a station is that station),
-:func:`girder_line_strain` (bottom-fibre strains read on the lines) and :class:`DofMap` (the
-numbering of a three-DOF-per-node grid, how FE solutions become :class:`NodalModes`).
+Grid helpers shared by the grid models: ``hermite_basis`` (the cubic Hermite shape functions),
+``snap_to_stations`` (a section within round-off of a station is that station),
+``girder_line_strain`` (bottom-fibre strains read on the lines) and ``DofMap`` (the
+numbering of a three-DOF-per-node grid, how FE solutions become ``NodalModes``).
 """
 from __future__ import annotations
 
@@ -67,7 +67,7 @@ STATION_TOLERANCE = 1e-9
 
 
 def snap_to_stations(xi: ArrayLike, stations: NDArray[np.float64]) -> NDArray[np.float64]:
-    """ξ [m] with every value within :data:`STATION_TOLERANCE` × the span (the stations' extent) of a
+    """ξ [m] with every value within ``STATION_TOLERANCE`` × the span (the stations' extent) of a
     station replaced by that station (read on the element right of it, whatever its round-off)."""
     xi = np.asarray(xi, float)
     k = np.clip(np.searchsorted(stations, xi), 1, stations.size - 1)
@@ -193,7 +193,7 @@ class NodalModes:
 def girder_line_strain(modes: NodalModes, lever_arm: NDArray[np.float64], x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
     """ε = c_g ∂²w/∂x² on the line(s) y (linear between lines, clamped beyond), shape (n_points, n_modes);
     ``lever_arm`` c_g [m] per line; on a skew deck the lines are read at the point's own ξ = x − y tan θ
-    (along the oblique members); at a station (within round-off, :func:`snap_to_stations`) on the
+    (along the oblique members); at a station (within round-off, ``snap_to_stations``) on the
     element right of it."""
     x, y = np.broadcast_arrays(np.atleast_1d(np.asarray(x, float)), np.atleast_1d(np.asarray(y, float)))
     x, y = x.ravel(), y.ravel()
@@ -252,13 +252,13 @@ class DofMap:
         return 3 * (line * self.n_stations + station) + k  # type: ignore[operator]
 
     def nodal(self, u: NDArray[np.float64]) -> NodalModes:
-        """Columns of ``u`` (n_dof, n) over all DOFs as :class:`NodalModes` on this grid."""
+        """Columns of ``u`` (n_dof, n) over all DOFs as ``NodalModes`` on this grid."""
         shape = (self.n_lines, self.n_stations, u.shape[1])
         return NodalModes(self.stations, self.line_y, u[0::3].reshape(shape), u[1::3].reshape(shape),
                           u[2::3].reshape(shape), self.skew_tan)
 
     def vector(self, modes: NodalModes) -> NDArray[np.float64]:
-        """The inverse of :meth:`nodal`: nodal values of ``modes`` as a (n_dof, n_modes) matrix."""
+        """The inverse of ``nodal``: nodal values of ``modes`` as a (n_dof, n_modes) matrix."""
         n = modes.n_modes
         out = np.zeros((self.n_dof, n))
         out[0::3] = modes.w.reshape(-1, n)

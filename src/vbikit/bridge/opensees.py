@@ -1,10 +1,10 @@
 """Modes from a live OpenSeesPy model (or an ospgrillage model, which builds one).
 
 After ``ops.eigen(n)`` on a model whose deck nodes lie on a grid — ``n_lines`` longitudinal lines
-(girders) at y_j, each with a node at every station ξ_i — :func:`modes_from_opensees` reads the
+(girders) at y_j, each with a node at every station ξ_i — ``modes_from_opensees`` reads the
 vertical displacement and the two rotations of every mode at those nodes and returns an
-:class:`~vbikit.bridge.modefile.ImportedModalBridge`, interpolated like vbikit's own deck
-(:class:`~vbikit.bridge.nodal.NodalModes`).  The grid is rectangular (node (j, i) at (ξ_i, y_j)) or
+``ImportedModalBridge``, interpolated like vbikit's own deck
+(``NodalModes``).  The grid is rectangular (node (j, i) at (ξ_i, y_j)) or
 oblique, the skew mesh of a deck with skew support lines (Hambly, *Bridge Deck Behaviour*, 2nd ed.,
 1991, ch. 5; ospgrillage's ``Oblique`` mesh): node (j, i) at (ξ_i + y_j tan θ, y_j), with one tan θ
 for the whole deck, fitted from the node coordinates (least squares over every node) and then
@@ -43,7 +43,7 @@ def modes_from_opensees(ops: Any, node_tags: ArrayLike, x: Sequence[float], y: S
                         default_lateral_offset: float = 0.0, default_girder: int = 1, name: str = "opensees",
                         dofs: Optional[tuple[int, int, int]] = None, vertical_axis: str = "z",
                         deck_width: Optional[float] = None) -> ImportedModalBridge:
-    """An :class:`ImportedModalBridge` from the modes of the live OpenSees domain ``ops``.
+    """An ``ImportedModalBridge`` from the modes of the live OpenSees domain ``ops``.
 
     Parameters
     ----------
@@ -62,7 +62,7 @@ def modes_from_opensees(ops: Any, node_tags: ArrayLike, x: Sequence[float], y: S
         The model's vertical axis (see the module docstring): "z" (default) or "y" (ospgrillage).
     dofs : (int, int, int), optional
         OpenSees DOF numbers of w, ∂w/∂y and ∂w/∂x (default: (3, 4, 5) for "z", (2, 4, 6) for "y").
-    Other parameters are those of :class:`ImportedModalBridge`.
+    Other parameters are those of ``ImportedModalBridge``.
     """
     if vertical_axis not in _FRAMES:
         raise ValueError(f"vertical_axis must be one of {', '.join(_FRAMES)}, got {vertical_axis!r}")

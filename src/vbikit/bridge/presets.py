@@ -1,7 +1,7 @@
 """Bridge presets: the paper's bridges as 3D slab-on-girder decks, and as beam stand-ins.
 
-``paper-bridge-1/2/3`` and ``cypress-bayou`` are :class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge`
-grillage models (see :func:`paper_deck`, :func:`cypress_bayou`).  The ``*-beam`` presets are
+``paper-bridge-1/2/3`` and ``cypress-bayou`` are [`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge]
+grillage models (see [`paper_deck`][vbikit.bridge.paper_deck], [`cypress_bayou`][vbikit.bridge.cypress_bayou]).  The ``*-beam`` presets are
 single Euler–Bernoulli beams with the whole cross-section lumped (full composite action).
 Labels of the beam presets:
 
@@ -76,8 +76,8 @@ def paper_deck(bridge: int, n_modes: int = 10, damping_ratio: float = DEFAULT_DA
       E = 36 GPa girders, 33 GPa deck, ν = 0.2, ρ = 2400 kg/m³; overhang 0.615 m each side (deck
       = roadway, 9.75 m); end diaphragms, plus a midspan diaphragm on Bridges 2 and 3 (0.25 m thick,
       0.75 × girder depth deep); rigid bearings; no haunch, parapet or wearing surface; 2 % modal
-      damping; girder St Venant J from :func:`~vbikit.bridge.girder_deck.approximate_torsion_constant`.
-    * [substitute] default lateral offset :data:`PAPER_LATERAL_OFFSET` (Girder 4 most loaded).
+      damping; girder St Venant J from ``approximate_torsion_constant``.
+    * [substitute] default lateral offset ``PAPER_LATERAL_OFFSET`` (Girder 4 most loaded).
     * Girder 1 is at the most negative y (right-hand edge for a driver in +x), Girder 4 at y = +2.13 m.
     """
     span, girder = {1: (9.16, "II"), 2: (16.76, "II"), 3: (39.62, "VI")}[bridge]
@@ -126,10 +126,10 @@ def cypress_bayou_series(n_modes: int = 10, damping_ratio: float = DEFAULT_DAMPI
     """The whole Cypress Bayou bridge: three simply supported 16.76 m spans in a row, span 3 tested.
 
     * [paper] the tested span is the third of three simple spans; the truck crosses spans 1–2 first.
-    * [substitute] spans 1 and 2 are copies of the tested span's model (:func:`cypress_bayou`, same
+    * [substitute] spans 1 and 2 are copies of the tested span's model ([`cypress_bayou`][vbikit.bridge.cypress_bayou], same
       ``overrides``), each with its own bearings and nothing connecting the spans
-      (:class:`~vbikit.bridge.series.SpanSeries`); ``n_modes`` per span.  With
-      ``rigid_approach_spans`` spans 1–2 are rigid road: the approach model of :func:`cypress_bayou`.
+      (``SpanSeries``); ``n_modes`` per span.  With
+      ``rigid_approach_spans`` spans 1–2 are rigid road: the approach model of [`cypress_bayou`][vbikit.bridge.cypress_bayou].
     * Responses, the default girder (5) and lateral offset (+2.0 m) are those of span 3.
     """
     from vbikit.bridge.series import SpanSeries

@@ -1,6 +1,6 @@
 """A bridge model with every stiffness scaled: the model a field calibration fits.
 
-:class:`ScaledBridge` wraps any :class:`~vbikit.bridge.base.ModalBridge` and scales its stiffness
+[`ScaledBridge`][vbikit.field.ScaledBridge] wraps any [`ModalBridge`][vbikit.bridge.ModalBridge] and scales its stiffness
 matrix by a factor f > 0 with the mass matrix unchanged (a uniform change of Young's modulus):
 
 * K → f K, M unchanged: the eigenproblem K φ = ω² M φ keeps its mass-normalised mode shapes φᵢ,
@@ -20,8 +20,16 @@ from vbikit.bridge.base import ModalBridge
 class ScaledBridge(ModalBridge):
     """``base`` with all stiffnesses × ``stiffness_factor`` f [-] and a uniform ``damping_ratio`` ζ [-].
 
-    ωᵢ = √f ωᵢ(base) [rad/s]; mode, slope and strain shapes unchanged; ``damping_ratio`` None keeps
-    the base model's ratios.
+    ωᵢ = √f ωᵢ(base) [rad/s]; mode, slope and strain shapes unchanged.
+
+    Parameters
+    ----------
+    base : ModalBridge
+        The bridge model to scale.
+    stiffness_factor : float
+        Factor f [-] on all stiffnesses.
+    damping_ratio : float, optional
+        Uniform modal damping ratio ζ [-]; None keeps the base model's ratios.
     """
 
     def __init__(self, base: ModalBridge, stiffness_factor: float = 1.0, damping_ratio: float | None = None) -> None:

@@ -13,8 +13,19 @@ IN = 0.0254  # m per inch
 
 @dataclass(frozen=True)
 class GirderSection:
-    """Prismatic girder section: area A [m²], second moment I [m⁴] about its own centroid,
-    centroid height above the bottom y_b [m], overall depth h [m]."""
+    """Prismatic girder section.
+
+    Parameters
+    ----------
+    area : float
+        Area A [m²].
+    inertia : float
+        Second moment I [m⁴] about its own centroid.
+    y_bottom : float
+        Centroid height above the bottom y_b [m].
+    depth : float
+        Overall depth h [m].
+    """
 
     area: float
     inertia: float

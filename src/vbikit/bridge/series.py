@@ -1,7 +1,7 @@
 """A series of simply supported spans in a row, each its own bridge (deck), or rigid.
 
 Spans k = 0 … n−1 occupy x ∈ [o_k, o_k + L_k] with o_k = Σ_{i<k} L_i.  Each span is a modal
-bridge of its own (typically a :class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge` with its
+bridge of its own (typically a [`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge] with its
 own bearings) or ``None``: rigid (road on ground, no modes).  Nothing connects the spans (the
 joints between them carry no moment or shear), so the modes of the series are the union of the
 spans' modes, each zero outside its own span:
@@ -14,8 +14,8 @@ interpolates the tabulated shapes with cubics, so that jump is smoothed over one
 the ``instrumented`` span (its midspan, its default girder); load effects are those of the span
 containing the section, shifted by o_k.
 
-A series whose instrumented span is a :class:`~vbikit.bridge.base.GirderDeck` is one itself
-(``SpanSeries(...)`` then returns a :class:`GirderSpanSeries`, with that span's girders).
+A series whose instrumented span is a [`GirderDeck`][vbikit.bridge.GirderDeck] is one itself
+(``SpanSeries(...)`` then returns a ``GirderSpanSeries``, with that span's girders).
 """
 from __future__ import annotations
 
@@ -54,7 +54,7 @@ class SpanSeries(ModalBridge):
     span: float = field(init=False)
 
     def __new__(cls, *args: Any, **kwargs: Any) -> "SpanSeries":
-        """A :class:`GirderSpanSeries` when the instrumented span is a girder deck."""
+        """A ``GirderSpanSeries`` when the instrumented span is a girder deck."""
         if cls is SpanSeries and (args or "spans" in kwargs):
             spans = tuple(args[0] if args else kwargs["spans"])
             instrumented = args[2] if len(args) > 2 else kwargs.get("instrumented", -1)
@@ -252,7 +252,7 @@ class SpanSeries(ModalBridge):
 
 @dataclass(frozen=True, eq=False)
 class GirderSpanSeries(SpanSeries):
-    """A :class:`SpanSeries` whose instrumented span is a girder deck: its girders are the series' girders."""
+    """A ``SpanSeries`` whose instrumented span is a girder deck: its girders are the series' girders."""
 
     @property
     def _deck(self) -> GirderDeck:

@@ -1,11 +1,11 @@
 """The ``vbikit`` command line.  Only this package prints; the library logs.
 
 Modules by job: this one holds the app, its global options and the list of commands;
-:mod:`~vbikit.cli.guard` the one error guard; :mod:`~vbikit.cli.render` the text report, JSON
-and CSV outputs; :mod:`~vbikit.cli.execute` the one function that runs a scenario; the command
-groups :mod:`~vbikit.cli.scenarios` (run, validate, cite, demo, compare-tires),
-:mod:`~vbikit.cli.models` (presets, bridge), :mod:`~vbikit.cli.field`, :mod:`~vbikit.cli.study`
-and :mod:`~vbikit.cli.traffic`.  Command modules import numpy, scipy, numba, xarray and
+``guard`` the one error guard; ``render`` the text report, JSON
+and CSV outputs; ``execute`` the one function that runs a scenario; the command
+groups ``scenarios`` (run, validate, cite, demo, compare-tires),
+``models`` (presets, bridge), ``field``, ``study``
+and ``traffic``.  Command modules import numpy, scipy, numba, xarray and
 matplotlib only inside the commands, so ``--version``, ``--help`` and shell completion start
 fast.
 """

@@ -1,7 +1,7 @@
-"""Running one scenario for the command line: :func:`execute` is the only place that does.
+"""Running one scenario for the command line: ``execute`` is the only place that does.
 
 ``execute(load, limits) -> Report`` checks, runs and reports one scenario through the library's
-run pipeline (:mod:`vbikit.scenario.pipeline`, the same path as :func:`vbikit.run`); its
+run pipeline (``vbikit.scenario.pipeline``, the same path as [`vbikit.run`][vbikit.scenario.run]); its
 ``summary`` is the dict ``vbikit run --json`` prints.  Every scenario command (run, demo,
 compare-tires) calls it.
 """
@@ -16,8 +16,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 def execute(load: Callable[[], Any], limits: Any = None) -> "Report":
-    """Check (``load()`` returns a Scenario; every check of :func:`vbikit.scenario.preflight.preflight`),
-    run and report it (:func:`vbikit.scenario.pipeline.run_planned`); user errors exit with code 2,
+    """Check (``load()`` returns a Scenario; every check of ``vbikit.scenario.preflight.preflight``),
+    run and report it (``vbikit.scenario.pipeline.run_planned``); user errors exit with code 2,
     the summary's warnings go to stderr."""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.preflight import preflight

@@ -1,6 +1,6 @@
 """The one error guard of the command line, and the run-wide options it reads.
 
-A user error (:class:`~vbikit.errors.VbikitError`: bad input, a refused budget or time step),
+A user error ([`VbikitError`][vbikit.errors.VbikitError]: bad input, a refused budget or time step),
 an ``OSError`` (an input that cannot be read, an output that cannot be written) and a
 ``MemoryError`` exit with code 2 and one line ``error: …`` on stderr.  Any other exception is a
 programming error and shows its traceback, as does every error with ``--debug``.
@@ -49,7 +49,7 @@ def warn(warnings: list[str]) -> None:
 
 def option(parse: Callable[[str], T], text: str) -> T:
     """``parse(text)`` for a command-line option value; its ``ValueError`` (the message names the
-    option) becomes an :class:`~vbikit.errors.OptionError`."""
+    option) becomes an [`OptionError`][vbikit.errors.OptionError]."""
     try:
         return parse(text)
     except VbikitError:
@@ -59,7 +59,7 @@ def option(parse: Callable[[str], T], text: str) -> T:
 
 
 def limits(max_memory: Optional[str], max_steps: Optional[float]) -> Any:
-    """The :class:`~vbikit.solve.budget.Limits` of ``--max-memory`` and ``--max-steps``."""
+    """The ``Limits`` of ``--max-memory`` and ``--max-steps``."""
     from vbikit.solve.budget import Limits, parse_size
 
     kw: dict[str, Any] = {}

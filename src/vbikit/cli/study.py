@@ -37,7 +37,7 @@ class _Bar:
 
 def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool,
             unit: str = "crossing") -> Any:
-    """Run (or resume) ``study`` (or another job of :func:`~vbikit.study.run.run_study`) with a progress bar."""
+    """Run (or resume) ``study`` (or another job of [`run_study`][vbikit.study.run_study]) with a progress bar."""
     from vbikit.study.run import run_study
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar

@@ -1,8 +1,8 @@
 """Tire contact models (single-point, the paper's multi-point, disks) by name, and vehicle contact points.
 
-The tire models register themselves by scenario name (:data:`TIRE_MODELS`) when their module
-is imported; a new model is one module (class + :func:`register_tire`) and one import line in
-:mod:`vbikit.contact.registry`'s list of built-in modules (or, for a user's model, its own import).
+The tire models register themselves by scenario name ([`TIRE_MODELS`][vbikit.contact.registry.TIRE_MODELS]) when their module
+is imported; a new model is one module (class + [`register_tire`][vbikit.contact.register_tire]) and one import line in
+``vbikit.contact.registry``'s list of built-in modules (or, for a user's model, its own import).
 """
 from typing import TYPE_CHECKING
 

@@ -1,6 +1,6 @@
-"""The tire-model interface: the contact points a model lays under a wheel (:class:`ContactLayout`),
-its scenario parameters (:class:`TireParameters`) and the abstract :class:`TireModel` (equations
-in :mod:`vbikit.contact.tires`)."""
+"""The tire-model interface: the contact points a model lays under a wheel ([`ContactLayout`][vbikit.contact.ContactLayout]),
+its scenario parameters ([`TireParameters`][vbikit.contact.TireParameters]) and the abstract [`TireModel`][vbikit.contact.TireModel] (equations
+in ``vbikit.contact.tires``)."""
 from __future__ import annotations
 
 import abc
@@ -50,7 +50,7 @@ class TireModel(abc.ABC):
     """A tire model: lays contact points under a wheel.
 
     A concrete model sets the class attributes below and is registered with
-    :func:`~vbikit.contact.registry.register_tire`.
+    [`register_tire`][vbikit.contact.register_tire].
     """
 
     #: scenario name of the model ([tire] model = ...)

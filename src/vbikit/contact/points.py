@@ -107,7 +107,7 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
 
 
 def stack_contact_points(parts: "list[ContactPoints]", dof_offsets: "tuple[int, ...]") -> ContactPoints:
-    """The contact points of several vehicles (``parts``, each from :func:`contact_points` of its
+    """The contact points of several vehicles (``parts``, each from [`contact_points`][vbikit.contact.contact_points] of its
     own vehicle and tire) as one set: points and wheels concatenated in vehicle order, wheel
     indices and point ranges shifted, rows padded into the stacked DOF vector (vehicle i owns
     DOFs ``dof_offsets[i]`` … ``dof_offsets[i + 1]``).  Setbacks stay relative to each

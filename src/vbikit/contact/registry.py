@@ -1,10 +1,10 @@
 """The tire models by scenario name: registration, construction from parameters, the catalogue.
 
-A tire model is a :class:`~vbikit.contact.tires.TireModel` subclass that declares its scenario
-``name``, a one-line ``description``, its ``references`` (keys of :data:`vbikit.references.REFERENCES`)
-and its ``Parameters`` (a :class:`~vbikit.contact.tires.TireParameters` pydantic model: the keys of
+A tire model is a [`TireModel`][vbikit.contact.TireModel] subclass that declares its scenario
+``name``, a one-line ``description``, its ``references`` (keys of ``vbikit.references.REFERENCES``)
+and its ``Parameters`` (a [`TireParameters`][vbikit.contact.TireParameters] pydantic model: the keys of
 its ``[tire]`` table besides ``model``, with their ranges, defaults and units).  Decorating the
-class with :func:`register_tire` makes it selectable by name everywhere: scenario files, studies,
+class with [`register_tire`][vbikit.contact.register_tire] makes it selectable by name everywhere: scenario files, studies,
 the field workflow, ``vbikit cite`` and ``vbikit presets``.
 """
 from __future__ import annotations
@@ -30,9 +30,24 @@ TIRE_MODELS: dict[str, type[TireModel]] = {}
 def register_tire(cls: T) -> T:
     """Register tire model class ``cls`` under ``cls.name`` (usable as a class decorator).
 
-    Raises ValueError for an empty name, a name taken by another class, or a reference key
-    that is not in :data:`vbikit.references.REFERENCES`.  Registering a class again under the
-    same name (a module executed twice) replaces the earlier definition.
+    Registering a class again under the same name (a module executed twice) replaces the
+    earlier definition.
+
+    Parameters
+    ----------
+    cls : type of TireModel
+        The tire model class; its ``name`` is the scenario's ``[tire] model``.
+
+    Returns
+    -------
+    type of TireModel
+        ``cls`` itself.
+
+    Raises
+    ------
+    ValueError
+        An empty name, a name taken by another class, or a reference key that is not in
+        ``vbikit.references.REFERENCES``.
     """
     name = getattr(cls, "name", "")
     if not name:

@@ -15,16 +15,16 @@ always gated so (the disk's contact patch is where it penetrates).  The wheel fo
 over its points, except for the rigid disk, which acts through its single highest point (the
 envelope).  All four models run through this one mechanism (``vbikit.solve.kernels``).
 
-* :class:`PointTire` — one point under the wheel centre.
-* :class:`MultiPointTire` — the paper's n points of k/n, c/n over 0.254 m (Eq. 6); n = 1 is the
+* [`PointTire`][vbikit.contact.PointTire] — one point under the wheel centre.
+* [`MultiPointTire`][vbikit.contact.MultiPointTire] — the paper's n points of k/n, c/n over 0.254 m (Eq. 6); n = 1 is the
   point tire, through the same code, so it reproduces it exactly.
-* :class:`DiskTire` — deformable disk of radial springs (after Yin et al.; our formulation,
+* [`DiskTire`][vbikit.contact.DiskTire] — deformable disk of radial springs (after Yin et al.; our formulation,
   model data §3).
-* :class:`RigidDiskTire` — rigid disk following the surface envelope (after Chang et al.).
+* [`RigidDiskTire`][vbikit.contact.RigidDiskTire] — rigid disk following the surface envelope (after Chang et al.).
 
 Each model declares its scenario ``name``, a ``description``, its ``references`` and its
 ``Parameters`` (the keys of its ``[tire]`` table) and is registered by name with
-:func:`~vbikit.contact.registry.register_tire`.
+[`register_tire`][vbikit.contact.register_tire].
 """
 from __future__ import annotations
 
@@ -263,6 +263,15 @@ class RigidDiskTire(_DiskGeometry):
     continuous contact point (tangency; at a corner of the surface the circle rolls over it):
     the surface slope at the grid point is clamped to the range of g' over the point's cell
     [ξ_p − Δξ/2, ξ_p + Δξ/2], exact on smooth surfaces and the rolling rate at corners.
+
+    Parameters
+    ----------
+    radius : float
+        R [m], default 0.5 m [substitute].
+    spacing : float
+        Δξ [m] between the points (default 0.01 m).
+    max_gap : float
+        Height [m] above the bottom of the circle within which the points lie (default 0.1 m).
     """
 
     name = "rigid-disk"

@@ -10,8 +10,8 @@ Response CSV (one file per loading case)::
 The first non-comment row is the header: every cell is ``name [unit]``; the first column is
 time.  Time must be finite, strictly increasing and uniform (relative deviation of each step
 from the median step ≤ ``TIME_TOLERANCE``); every value finite (no NaN, no empty cell).
-Units are converted to SI (m, m/s², strain [-], s) with :data:`UNITS`.  See docs/field.md for
-``FIELD.toml``.  Every error is a :class:`FieldFileError` naming the file, line and column or
+Units are converted to SI (m, m/s², strain [-], s) with ``UNITS``.  See docs/field.md for
+``FIELD.toml``.  Every error is a [`FieldFileError`][vbikit.field.FieldFileError] naming the file, line and column or
 the TOML key.
 """
 from __future__ import annotations

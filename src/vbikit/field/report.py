@@ -1,5 +1,5 @@
 """Outputs of a field comparison: one figure per loading case (like the paper's Figs. 17–18),
-``field-metrics.json`` and ``field-metrics.csv``; :func:`run_field` ties the workflow together."""
+``field-metrics.json`` and ``field-metrics.csv``; ``run_field`` ties the workflow together."""
 from __future__ import annotations
 
 import csv

@@ -33,7 +33,7 @@ def resample(t_src: NDArray[np.float64], x: NDArray[np.float64], t_dst: NDArray[
 
     Meant for up-sampling a record onto the (finer) simulation time base; a record sampled
     faster than the target must be low-passed below the target Nyquist frequency first
-    (:func:`prepare` does that).  Error for a sinusoid of frequency f sampled at fs is
+    (``prepare`` does that).  Error for a sinusoid of frequency f sampled at fs is
     O((2π f / fs)⁴).
     """
     out = np.full(t_dst.shape, np.nan)

@@ -1,6 +1,6 @@
 """A synthetic field test with known truth (for testing the workflow and as a worked example).
 
-:func:`write_synthetic_case` simulates the field-test crossings (dump truck at 64.4 km/h on
+``write_synthetic_case`` simulates the field-test crossings (dump truck at 64.4 km/h on
 ``cypress-bayou`` with a 38.1 mm wood bump at the span entry on an ISO class A profile) with a
 *true* bridge (stiffness factor and damping ratio chosen by the caller), then writes what a
 data-acquisition system would record: the responses at the record's own sampling rate, on its

@@ -1,11 +1,11 @@
 """Field verification: simulate a measured crossing, align and clean the record, compare, calibrate.
 
-Pipeline per loading case (:func:`compare_case`):
+Pipeline per loading case ([`compare_case`][vbikit.field.compare_case]):
 
-1. read the response CSV (:func:`~vbikit.field.io.read_response_csv`) and check it against the
+1. read the response CSV ([`read_response_csv`][vbikit.field.read_response_csv]) and check it against the
    case's channel table (missing channels, unit mismatches, sampling rate);
 2. simulate the crossing with each tire model on the bridge preset (optionally scaled by a
-   stiffness factor, see :class:`~vbikit.bridge.scaled.ScaledBridge`) with the measured wheel-track profiles;
+   stiffness factor, see [`ScaledBridge`][vbikit.field.ScaledBridge]) with the measured wheel-track profiles;
 3. align the record in time: ``trigger`` (t_sim = t_meas − t_trig + approach / speed) or
    ``xcorr`` (cross-correlation of the first displacement — else strain — channel with the
    first tire model's simulation);
@@ -14,9 +14,9 @@ Pipeline per loading case (:func:`compare_case`):
    samples where the bridge is at rest (before the front axle reaches the span, and the last
    ``quiet_tail`` seconds of the record); ``model`` fits it to measured − simulated;
 6. resample the record onto the simulation time base (cubic spline) and compute the metrics of
-   :mod:`vbikit.field.metrics` on the overlap.
+   ``vbikit.field.metrics`` on the overlap.
 
-:func:`calibrate` fits a stiffness factor f (every ωᵢ → √f ωᵢ, mode shapes unchanged: uniform
+[`calibrate`][vbikit.field.calibrate] fits a stiffness factor f (every ωᵢ → √f ωᵢ, mode shapes unchanged: uniform
 scaling of E) and one modal damping ratio ζ by ``scipy.optimize.least_squares``.  Residuals are
 taken at the *measured* sample instants (the simulation, interpolated there), each channel
 divided by its measured RMS; the covariance is s² (JᵀJ)⁻¹ with s² = Σr² / (m − n) (Gauss–Newton
@@ -131,7 +131,7 @@ def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: Moda
 
 def tested_span_offset(bridge: ModalBridge) -> float:
     """x [m] of the tested span's entry in the bridge model: 0, or the spans before it in a
-    :class:`~vbikit.bridge.series.SpanSeries` (channel x, ``approach`` and profiles are measured from
+    ``SpanSeries`` (channel x, ``approach`` and profiles are measured from
     the tested span's entry, as in the field)."""
     base = bridge.base if isinstance(bridge, ScaledBridge) else bridge
     return float(base.instrumented_offset) if isinstance(base, SpanSeries) else 0.0
@@ -156,7 +156,7 @@ def simulated_channels(result: CrossingResult, case: CaseSpec, where: str) -> di
 
 @dataclass
 class CaseComparison:
-    """Result of :func:`compare_case`; histories on the simulation time base ``time`` (overlap only)."""
+    """Result of [`compare_case`][vbikit.field.compare_case]; histories on the simulation time base ``time`` (overlap only)."""
 
     case: CaseSpec
     time: NDArray[np.float64]
@@ -208,7 +208,7 @@ def align_shift(spec: FieldSpec, case: CaseSpec, record: MeasuredRecord, t_sim: 
 
 def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None) -> None:
     """Every check a field comparison makes before it simulates: the bridge's size, and per case and
-    tire model the checks of a scenario's run (:func:`~vbikit.scenario.preflight.check_steps`: at
+    tire model the checks of a scenario's run (``check_steps``: at
     least ten steps, the step rule and stability, the memory and step budgets)."""
     bridge = base_bridge(spec)
     check_bridge(bridge, limits)
@@ -302,7 +302,7 @@ def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "m
               x0: tuple[float, float] | None = None, max_nfev: int = 30) -> Calibration:
     """Least-squares fit of (stiffness factor, damping ratio) to the aligned, cleaned records.
 
-    Uses the time shift, drift fits and low-pass of each :class:`CaseComparison` (made with the
+    Uses the time shift, drift fits and low-pass of each [`CaseComparison`][vbikit.field.CaseComparison] (made with the
     starting model) and the same simulation time step.  Each residual evaluation simulates every
     case once.  See the module docstring for the residual weighting and the covariance.
     """

@@ -41,7 +41,24 @@ DEFECT_DEFAULTS: dict[str, tuple[float, float, float, str]] = {
 
 @dataclass(frozen=True)
 class Defect:
-    """One road feature: signed ``amplitude`` [m] (z up), from ``start`` [m] over ``length`` [m]."""
+    """One road feature (see the module docstring; [`of_kind`][vbikit.road.Defect.of_kind] gives a
+    kind's defaults).
+
+    Parameters
+    ----------
+    kind : str
+        "depression", "bump", "step" or "pothole".
+    start : float
+        Where it starts [m].
+    amplitude : float
+        Signed amplitude [m], z up.
+    length : float
+        Its length [m], > 0.
+    ramp : float
+        Ramp length [m] (trapezoid: in (0, length/2]).
+    shape : str
+        "trapezoid", "cosine" or "step".
+    """
 
     kind: str
     start: float

@@ -27,7 +27,7 @@ def read_profile_csv(path: str | Path) -> RoadProfile:
     """Read a measured profile: optional header row (first cell not a number), then ``x, elevation`` rows (SI: m, m).
 
     Stations must be finite and strictly increasing; comments start with ``#``.  Any bad
-    row raises :class:`RoadFileError` naming the line.
+    row raises [`RoadFileError`][vbikit.road.RoadFileError] naming the line.
     """
     path = Path(path)
     text = read_text(path, RoadFileError, "road profile (CSV: x, elevation)")

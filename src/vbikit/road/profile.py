@@ -1,7 +1,7 @@
 """Road surface profiles: sampled elevations with linear interpolation.
 
 Every profile — flat, random from a PSD (paper Eq. 7), or measured — is a
-:class:`RoadProfile`: elevations z_j [m] at increasing stations x_j [m] (x from the bridge
+[`RoadProfile`][vbikit.road.RoadProfile]: elevations z_j [m] at increasing stations x_j [m] (x from the bridge
 entry, negative on the approach), linearly interpolated in between.  Evaluating outside the
 sampled range is an error: the crossing checks coverage before it starts.
 """
@@ -17,9 +17,17 @@ from numpy.typing import ArrayLike, NDArray
 class RoadProfile:
     """Road elevation r(x) [m] (z up) sampled at stations ``x`` [m], linear in between.
 
-    ``label`` describes the origin (e.g. "ISO C, seed 3"); ``resolution`` [m], optional, is the
-    length of the shortest feature the time step must resolve (default: the finest sample
-    spacing; see :attr:`spacing`).
+    Parameters
+    ----------
+    x : ndarray
+        Stations [m].
+    z : ndarray
+        Elevation r [m] at each station, z up.
+    label : str
+        The origin (e.g. "ISO C, seed 3").
+    resolution : float, optional
+        Length [m] of the shortest feature the time step must resolve (default: the finest
+        sample spacing; see [`spacing`][vbikit.road.RoadProfile.spacing]).
     """
 
     x: NDArray[np.float64]

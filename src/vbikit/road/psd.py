@@ -30,8 +30,16 @@ PAPER_CLASSES: dict[str, str] = {"good": "B", "average": "C", "poor": "D"}
 class RoadPSD:
     """Power-law displacement PSD φ(n) = phi0 · (n / n0)^(−exponent).
 
-    phi0 [m³/cycle] at n0 [cycle/m]; band n_min–n_max [cycle/m] ([substitute] default
-    0.01–4 cycle/m, model data §4).
+    Parameters
+    ----------
+    phi0 : float
+        φ(n0) [m³/cycle].
+    n0 : float
+        Reference spatial frequency [cycle/m].
+    exponent : float
+        Exponent of the power law.
+    n_min, n_max : float
+        The band [cycle/m] ([substitute] default 0.01–4 cycle/m, model data §4).
     """
 
     phi0: float
@@ -145,7 +153,7 @@ def correlated_profile(
     ordinary coherence between the two lines is c², the same at every wavenumber.  c = 1 gives
     the paper's identical lines, c = 0 independent ones.  [substitute] Measured roads are more
     coherent at long than at short wavelengths; a constant c is the simplest model that keeps
-    both PSDs exact.  ``left`` must come from :func:`random_profile` with the same ``psd``,
+    both PSDs exact.  ``left`` must come from [`random_profile`][vbikit.road.random_profile] with the same ``psd``,
     ``spacing``, ``length`` and ``x_start``.
     """
     if not 0.0 <= coherence <= 1.0:

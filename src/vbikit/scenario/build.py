@@ -1,4 +1,4 @@
-"""Turn a validated :class:`~vbikit.scenario.schema.Scenario` into model objects and a Crossing."""
+"""Turn a validated [`Scenario`][vbikit.scenario.Scenario] into model objects and a Crossing."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -38,7 +38,7 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
 
 
 def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
-    """The [[bridge.damage]] regions as :class:`~vbikit.bridge.damage.Damage` (checked)."""
+    """The [[bridge.damage]] regions as ``Damage`` (checked)."""
     return spec.damage_regions()
 
 
@@ -49,7 +49,7 @@ def build_tire(spec: TireSpec) -> TireModel:
 
 
 def vehicle_motion(entry: VehicleEntry, default_speed: float | None) -> VehicleMotion:
-    """One [[vehicles]] table as a :class:`VehicleMotion` (speed default: the [crossing] one;
+    """One [[vehicles]] table as a [`VehicleMotion`][vbikit.solve.VehicleMotion] (speed default: the [crossing] one;
     lateral offset default: the bridge's)."""
     vehicle = VEHICLE_PRESETS[entry.model].build(**entry.parameters)
     speed = entry.speed_ms if entry.speed_ms is not None else default_speed
@@ -112,7 +112,15 @@ def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
 
 @dataclass(frozen=True)
 class BuiltScenario:
-    """A scenario as models: the crossing (the physics) and its response plan (what to read)."""
+    """A scenario as models.
+
+    Parameters
+    ----------
+    crossing : Crossing
+        The physics.
+    plan : ResponsePlan
+        What to read: the response points and load effects.
+    """
 
     crossing: Crossing
     plan: ResponsePlan
@@ -170,8 +178,27 @@ def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | No
 
 
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
-    """Compose bridge, vehicle(s), tire and road into a Crossing (raises ScenarioError on bad
-    combinations, :class:`~vbikit.solve.budget.BudgetError` on a bridge or road above ``limits``)."""
+    """Compose bridge, vehicle(s), tire and road into a Crossing.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A validated scenario.
+    limits : Limits, optional
+        Memory budget a bridge model or a random road must fit (default ``Limits()``).
+
+    Returns
+    -------
+    BuiltScenario
+        The crossing with the scenario's response points and load effects.
+
+    Raises
+    ------
+    ScenarioError
+        Bad combinations, or a bridge model that cannot be solved.
+    BudgetError
+        A bridge or road above ``limits``.
+    """
     try:
         return _build(scenario, limits)
     except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:  # a model that cannot be solved
@@ -212,7 +239,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
 
 def response_point(scenario: Scenario, bridge: ModalBridge, spec: ResponsePointSpec, key: str) -> ResponsePoint:
     """One response point of the scenario, checked: its line y (a girder's, the bridge's default girder
-    on a slab-on-girder deck, or as given) and its section x (:func:`response_x`); ``key`` prefixes errors."""
+    on a slab-on-girder deck, or as given) and its section x (``response_x``); ``key`` prefixes errors."""
     if not isinstance(bridge, GirderDeck):
         if spec.girder is not None:
             raise ScenarioError(f"{key}girder: bridge model {scenario.bridge.model!r} has no girders; use {key}y")

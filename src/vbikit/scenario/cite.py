@@ -36,7 +36,7 @@ def scenario_models(scenario: Scenario) -> list[str]:
 
 def model_reference_keys(name: str) -> tuple[str, ...]:
     """Reference keys of one ``"<section>:<model>"`` name (the model class's own for the sections
-    of :data:`DECLARED_REFERENCES`); unknown names contribute nothing."""
+    of ``DECLARED_REFERENCES``); unknown names contribute nothing."""
     section, _, model = name.partition(":")
     declared = DECLARED_REFERENCES.get(section)
     return declared(model) if declared is not None else MODEL_REFERENCES.get(name, ())

@@ -1,5 +1,5 @@
 """The ``[bridge.deck]`` table of a scenario: the keys it may set, their documentation and its
-translation into keyword arguments of :class:`~vbikit.bridge.girder_deck.SlabOnGirderBridge`.
+translation into keyword arguments of [`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge].
 
 The keys are the model's dataclass fields (less those set elsewhere in a scenario or not
 physical); their descriptions and units are read from the model's numpy-style docstring.
@@ -23,7 +23,7 @@ SCENARIO_PARAMETERS: tuple[str, ...] = tuple(f.name for f in fields(SlabOnGirder
 
 
 def deck_parameter_docs() -> dict[str, tuple[str, str]]:
-    """``name -> (description, unit)`` of the :class:`SlabOnGirderBridge` parameters, read from its
+    """``name -> (description, unit)`` of the [`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge] parameters, read from its
     numpy-style docstring (``a, b : type`` lines; the unit is the description's bracketed text,
     the i-th one for the i-th name of a shared line, "" when dimensionless or not given)."""
     text: dict[str, str] = {}
@@ -47,7 +47,7 @@ def deck_parameter_docs() -> dict[str, tuple[str, str]]:
 
 
 def deck_parameters(table: dict[str, object]) -> dict[str, object]:
-    """Keyword arguments of :class:`SlabOnGirderBridge` from a scenario's ``[bridge.deck]`` table:
+    """Keyword arguments of [`SlabOnGirderBridge`][vbikit.bridge.SlabOnGirderBridge] from a scenario's ``[bridge.deck]`` table:
     ``girder`` is an AASHTO type ("I" … "VI") or a table {area, inertia, y_bottom, depth} [m², m⁴, m, m];
     ``diaphragms`` a list of x [m]; numbers as given (the constructor checks their ranges)."""
     def number(v: object, where: str) -> float:  # strict: no "12", no true, finite

@@ -1,16 +1,16 @@
 """The run pipeline: plan → run → report, the one path from a scenario to its report.
 
-``vbikit run``, ``vbikit demo``, ``vbikit compare-tires`` and Python users call :func:`run`;
+``vbikit run``, ``vbikit demo``, ``vbikit compare-tires`` and Python users call [`run`][vbikit.scenario.run];
 studies and traffic streams, which batch many crossings, use the same build
-(:func:`vbikit.scenario.build.build`), checks (:func:`vbikit.scenario.preflight.preflight`) and
-reductions (the output catalogue :mod:`vbikit.outputs`, :mod:`vbikit.analysis.response`).
+([`vbikit.scenario.build.build`][vbikit.scenario.build.build]), checks (``vbikit.scenario.preflight.preflight``) and
+reductions (the output catalogue [`vbikit.outputs`][vbikit.outputs], ``vbikit.analysis.response``).
 
 * **plan**: build the scenario's models and check everything before integrating
-  (:func:`~vbikit.scenario.preflight.preflight`: files, parameters, time step, budgets,
+  (``preflight``: files, parameters, time step, budgets,
   warnings);
-* **run**: integrate the coupled equations once (:func:`vbikit.solve.simulate`);
+* **run**: integrate the coupled equations once ([`vbikit.solve.simulate`][vbikit.solve.simulate.simulate]);
 * **report**: read every response point, girder and load effect from the histories and
-  summarise them (:func:`report_crossing`): a :class:`~vbikit.scenario.report.Report` whose
+  summarise them (``report_crossing``): a [`Report`][vbikit.scenario.Report] whose
   ``summary`` is exactly the JSON ``vbikit run --json`` prints.
 """
 from __future__ import annotations
@@ -47,7 +47,7 @@ def _names_a_file(source: str) -> bool:
 
 
 def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> Scenario:
-    """A validated :class:`Scenario` from a path, a TOML string, a dict (the parsed TOML) or a
+    """A validated [`Scenario`][vbikit.scenario.Scenario] from a path, a TOML string, a dict (the parsed TOML) or a
     Scenario; relative file names resolve against ``base_dir`` (default: the file's folder, else
     the working directory)."""
     if isinstance(source, Scenario):
@@ -67,13 +67,13 @@ def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> S
 
 def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None, *, limits: Limits | None = None,
         base_dir: str | Path | None = None, name: str = "") -> Report:
-    """Run one crossing and return its :class:`~vbikit.scenario.report.Report`.
+    """Run one crossing and return its [`Report`][vbikit.scenario.Report].
 
     Parameters
     ----------
     source
         A scenario: a file path, TOML text, a dict of the parsed TOML, or a
-        :class:`~vbikit.scenario.Scenario` — or a built :class:`~vbikit.solve.Crossing`.
+        [`Scenario`][vbikit.scenario.Scenario] — or a built [`Crossing`][vbikit.solve.Crossing].
     response : ResponsePlan, optional
         With a Crossing: the response points and load effects to read (default the bridge's
         default point, no load effects).  Scenarios carry their own ([response]).
@@ -98,7 +98,7 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
 
 
 def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
-    """Integrate a checked scenario (:func:`~vbikit.scenario.preflight.preflight`) and report it,
+    """Integrate a checked scenario (``preflight``) and report it,
     with the scenario's inputs, warnings, units and references in the summary."""
     from vbikit._files import json_safe
 
@@ -121,9 +121,9 @@ def _references(scenario: Scenario) -> list[dict[str, str]]:
 
 def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "",
                  run_plan: RunPlan | None = None) -> Report:
-    """Simulate ``crossing`` (with its checked :class:`~vbikit.solve.plan.RunPlan` if the preflight
-    made one: step, budgets and tables are not computed again) and reduce it by ``plan``
-    (:func:`report_crossing`)."""
+    """Simulate ``crossing`` (with its checked [`RunPlan`][vbikit.solve.plan.RunPlan] if the
+    preflight made one: step, budgets and tables are not computed again) and reduce it by ``plan``
+    (``report_crossing``)."""
     from vbikit.solve import simulate
 
     return report_crossing(simulate(crossing, limits, plan=run_plan), plan, name)
@@ -131,7 +131,7 @@ def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | Non
 
 def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") -> Report:
     """Read every response point, the girders at the headline point's section and the load
-    effects from ``result``; the summary holds the catalogue's outputs (:mod:`vbikit.outputs`) of
+    effects from ``result``; the summary holds the catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) of
     the headline point at the top level and of every point under ``points``, the per-girder
     values, the load-effect blocks with the design-code allowances and the run's warnings."""
     first = plan.first

@@ -1,10 +1,10 @@
 """Every check a run makes, before it integrates: the one function ``vbikit validate`` and
 ``vbikit run`` share (so that no scenario passes the one and fails the other for an input reason).
 
-:func:`preflight` builds the scenario (files read, model parameters checked, bridge and road
+``preflight`` builds the scenario (files read, model parameters checked, bridge and road
 budgets), chooses the time step exactly as the run will (``choose_time_step``: the integrator's
 step rule and, for explicit integrators, its stability limit), estimates memory and steps against
-the :class:`~vbikit.solve.budget.Limits`, and collects the input warnings.
+the ``Limits``, and collects the input warnings.
 """
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ MIN_STEPS = 10
 @dataclass(frozen=True)
 class Plan:
     """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings;
-    ``run``: the crossing's :class:`~vbikit.solve.plan.RunPlan` (``simulate(crossing, plan=run)``)."""
+    ``run``: the crossing's [`RunPlan`][vbikit.solve.RunPlan] (``simulate(crossing, plan=run)``)."""
 
     scenario: Scenario
     built: BuiltScenario
@@ -70,8 +70,8 @@ def check_response_points(built: BuiltScenario) -> None:
 
 
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
-    """The run plan of ``crossing`` (:func:`vbikit.solve.plan.plan_run`: its time step [s] and
-    estimate), checked as every run is: a given step makes at least :data:`MIN_STEPS` steps, the
+    """The run plan of ``crossing`` ([`vbikit.solve.plan.plan_run`][vbikit.solve.plan_run]: its time step [s] and
+    estimate), checked as every run is: a given step makes at least ``MIN_STEPS`` steps, the
     integrator's step rule (and, for explicit integrators, its stability limit), the memory and
     step budgets of ``limits`` (raises ScenarioError, UnstableTimeStepError or BudgetError)."""
     if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
@@ -87,7 +87,7 @@ def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
 
 def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
     """Build and check ``scenario`` as a run would, without integrating (raises ScenarioError,
-    UnstableTimeStepError or BudgetError, all :class:`~vbikit.errors.VbikitError`)."""
+    UnstableTimeStepError or BudgetError, all [`VbikitError`][vbikit.errors.VbikitError])."""
     try:
         return _preflight(scenario, limits)
     except VbikitError:

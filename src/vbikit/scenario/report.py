@@ -21,7 +21,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 @dataclass(frozen=True)
 class Report:
-    """A finished crossing and its reduction (build with :func:`vbikit.run`).
+    """A finished crossing and its reduction (build with [`vbikit.run`][vbikit.scenario.run]).
 
     Attributes
     ----------
@@ -59,11 +59,11 @@ class Report:
         return list(self.summary.get("warnings", []))
 
     def histories(self) -> dict[str, tuple[NDArray[np.float64], str]]:
-        """Every CSV column: name → (values, unit) (:func:`vbikit.analysis.response.history_table`)."""
+        """Every CSV column: name → (values, unit) ([`vbikit.analysis.response.history_table`][vbikit.analysis.history_table])."""
         return history_table(self.result, self.points, self.girders, self.effects, self.plan.point_names)
 
     def write_csv(self, path: str | Path) -> Path:
-        """Write :meth:`histories` as CSV, headers ``name [unit]``, 9 significant digits (atomically)."""
+        """Write [`histories`][vbikit.scenario.Report.histories] as CSV, headers ``name [unit]``, 9 significant digits (atomically)."""
         from vbikit._files import atomic_write
 
         table = self.histories()
@@ -79,20 +79,20 @@ class Report:
         return Path(path)
 
     def write_summary(self, path: str | Path) -> Path:
-        """Write :attr:`summary` as indented strict JSON (atomically)."""
+        """Write ``summary`` as indented strict JSON (atomically)."""
         from vbikit._files import json_text, write_text
 
         write_text(Path(path), json_text(self.summary, 2) + "\n")
         return Path(path)
 
     def to_xarray(self, static: bool = True) -> "xr.Dataset":
-        """The crossing as a labelled dataset (:meth:`CrossingResult.to_xarray`) at the report's
+        """The crossing as a labelled dataset ([`CrossingResult.to_xarray`][vbikit.solve.CrossingResult.to_xarray]) at the report's
         response points (coordinate ``name`` on dimension ``point``) and girder sections."""
         ds = self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static)
         return ds.assign_coords(name=("point", self.plan.point_names))
 
     def to_dataframe(self, static: bool = True) -> "pd.DataFrame":
-        """The histories as a wide pandas DataFrame (:meth:`CrossingResult.to_dataframe`)."""
+        """The histories as a wide pandas DataFrame ([`CrossingResult.to_dataframe`][vbikit.solve.CrossingResult.to_dataframe])."""
         return self.result.to_dataframe([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static)
 
     def plot(self, path: str | Path) -> Path:

@@ -2,7 +2,7 @@
 
 Key names are a stable interface; see ``docs/scenario.md`` for the reference.  Every
 section rejects unknown keys, every number is checked against its physical range, and
-:func:`load_scenario` turns any problem into one :class:`ScenarioError` that names the key
+[`load_scenario`][vbikit.scenario.load_scenario] turns any problem into one [`ScenarioError`][vbikit.scenario.ScenarioError] that names the key
 and the allowed values.
 """
 from __future__ import annotations
@@ -71,7 +71,7 @@ class DamageSpec(_Section):
     girder: Optional[int] = Field(None, ge=1, description="girder number (slab-on-girder bridges)")
 
     def build(self) -> Damage:
-        """The region as a :class:`~vbikit.bridge.damage.Damage` (checked by the model)."""
+        """The region as a ``Damage`` (checked by the model)."""
         return Damage(self.position, self.length, self.severity, self.girder)
 
 
@@ -106,7 +106,7 @@ def _check_damage_girders(damage: list[DamageSpec], deck: bool) -> None:
 
 
 class _BridgeKind(_Section):
-    """One kind of [bridge]: its own keys, and :meth:`build` that makes the model.
+    """One kind of [bridge]: its own keys, and ``build`` that makes the model.
 
     Every kind has ``model``, ``n_modes``, ``damping_ratio``, ``deck`` (None without a
     [bridge.deck] table) and ``damage`` (empty without [[bridge.damage]]).
@@ -117,7 +117,7 @@ class _BridgeKind(_Section):
         raise NotImplementedError
 
     def damage_regions(self) -> tuple[Damage, ...]:
-        """The [[bridge.damage]] regions as :class:`~vbikit.bridge.damage.Damage`."""
+        """The [[bridge.damage]] regions as ``Damage``."""
         return tuple(d.build() for d in self.damage)  # type: ignore[attr-defined]
 
     @classmethod
@@ -327,7 +327,7 @@ _KIND_CLASSES: dict[str, type[_BridgeKind]] = {**BRIDGE_KINDS, "preset": PresetB
 
 
 def bridge_kind(table: Any) -> Optional[str]:
-    """The tag of a [bridge] table: its model when a kind of :data:`BRIDGE_KINDS` (default
+    """The tag of a [bridge] table: its model when a kind of ``BRIDGE_KINDS`` (default
     "beam"), else "preset" (the preset class checks the name); None when not a table."""
     if isinstance(table, _BridgeKind):
         return next(tag for tag, kind in _KIND_CLASSES.items() if type(table) is kind)
@@ -426,7 +426,7 @@ def _check_parameter(key: str, value: Any, kind: str) -> None:
 class TireSpec(_Section):
     """[tire]: a tire model by name and that model's own parameters (`vbikit presets`).
 
-    ``model`` is a registered tire model (:data:`vbikit.contact.TIRE_MODELS`: "point", the
+    ``model`` is a registered tire model ([`vbikit.contact.TIRE_MODELS`][vbikit.contact.registry.TIRE_MODELS]: "point", the
     paper's "multipoint" (Eq. 6), deformable "disk", "rigid-disk"); the further keys of the
     table are that model's parameters, checked by its ``Parameters`` (unknown keys, including
     another model's parameters, are refused).  ``loss_of_contact`` applies to every model.

@@ -2,9 +2,9 @@
 
 Crossings with the same bridge, vehicle, tire, speed profile, approach and integrator share
 the time grid, the contact points, the tabulated mode shapes, the kernel argument bundles,
-the RK4 stability limit and the static reference.  :class:`BatchSolver` computes those once
+the RK4 stability limit and the static reference.  ``BatchSolver`` computes those once
 from a template crossing and integrates the roads as *lanes* of one call of the same compiled
-kernel that :func:`vbikit.solve.simulate` calls with one lane (any integrator): the mode shapes at the
+kernel that [`vbikit.solve.simulate`][vbikit.solve.simulate.simulate] calls with one lane (any integrator): the mode shapes at the
 contact points are evaluated once per step for all lanes and the per-lane arithmetic is
 vectorised.  Each lane's arithmetic is that of its own crossing, so every result equals
 ``simulate(dataclasses.replace(template, road=road))`` to round-off (``tests/study/test_batch.py``).

@@ -6,13 +6,13 @@ The estimates count what the solver and the reports hold at once, 8 bytes a numb
 * road profiles: the random profile's DFT grid (N = next power of two ≥ max(length, 1/n_min)/Δx)
   as complex coefficients, phases and the real profile (≈ 40 bytes a sample);
 * the bridge model: a slab-on-girder grillage (3 DOFs a node, n_girders × (n_elements + 1) nodes)
-  solved by a sparse shift-invert eigensolver, limited to :data:`MAX_BRIDGE_DOF` (60 000 DOFs,
+  solved by a sparse shift-invert eigensolver, limited to ``MAX_BRIDGE_DOF`` (60 000 DOFs,
   Bridge 2 with 4000 elements, take 3 s);
 * histories: per lane and time point the bridge modal coordinates and rates (3 n_modes), the vehicle
   coordinates and rates (3 n_dof), wheel forces and patch lengths (2 n_wheels), and for the
   reports the static modal history and the response columns (n_modes + 48).
 
-:func:`check_run` raises :class:`BudgetError` (a ``ValueError``) naming the inputs that drive the
+``check_run`` raises ``BudgetError`` (a ``ValueError``) naming the inputs that drive the
 estimate.  The step limit stands for run time: at the default 5 × 10⁶ steps a single crossing of
 the paper's 3D bridge with 20 modes takes minutes.
 """
@@ -78,7 +78,7 @@ def human(n_bytes: float) -> str:
 
 
 def road_samples(length: float, spacing: float, n_min: float) -> int:
-    """Samples of a random profile (the DFT grid of :func:`vbikit.road.psd.random_profile`)."""
+    """Samples of a random profile (the DFT grid of [`vbikit.road.psd.random_profile`][vbikit.road.random_profile])."""
     return 1 << max(0, math.ceil(math.log2(max(length, 1.0 / n_min) / spacing)))
 
 
@@ -133,7 +133,7 @@ def estimate_run(crossing: Crossing, dt: float, lanes: int = 1) -> RunEstimate:
 
 
 def check_run(crossing: Crossing, dt: float, limits: Limits | None = None, lanes: int = 1) -> RunEstimate:
-    """The run's :class:`RunEstimate`, or :class:`BudgetError` if it is above ``limits``."""
+    """The run's ``RunEstimate``, or ``BudgetError`` if it is above ``limits``."""
     limits = limits or Limits()
     est = estimate_run(crossing, dt, lanes)
     drivers = (f"a crossing of {crossing.duration:.4g} s (crossing.speed {crossing.speed:.4g} m/s = "

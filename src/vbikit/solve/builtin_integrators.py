@@ -1,5 +1,5 @@
 """The integrators vbikit ships: ``"exact"`` (the default), ``"rk4"`` and ``"newmark"``
-(:mod:`vbikit.solve.integrators`).  An integrator module added to the package is imported at the
+(``vbikit.solve.integrators``).  An integrator module added to the package is imported at the
 end of this file."""
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """A crossing: one or several vehicles, each with its tire model and motion, driving over one
 bridge on one road.
 
-Every vehicle is a :class:`VehicleMotion`: its tire, lateral offset, direction (+x or −x), speed,
+Every vehicle is a [`VehicleMotion`][vbikit.solve.VehicleMotion]: its tire, lateral offset, direction (+x or −x), speed,
 acceleration and entry time T_v, the time its front axle passes its entry support (x = 0 driving
 +x, x = span driving −x).  Its travel s_v(t) [m] is the distance its front axle has driven past
 that support, s_v = v_v τ + a_v τ²/2 with τ = t − T_v (v_v: its speed at entry; a braking
@@ -17,7 +17,7 @@ bridge.
 One vehicle (``Crossing(bridge, vehicle, …)``) is the same: ``crossing.vehicles`` is one
 VehicleMotion driving +x whose front axle is at x = −approach at t = 0, when the run starts,
 with speed ``speed`` + ``acceleration`` · t; ``crossing.vehicle`` is that vehicle itself (its
-own wheel and DOF names) and :attr:`Crossing.single` is True.
+own wheel and DOF names) and [`Crossing.single`][vbikit.solve.Crossing.single] is True.
 """
 from __future__ import annotations
 
@@ -123,8 +123,14 @@ class Crossing:
 
     Parameters
     ----------
-    bridge, vehicle, tire, road
-        The composed models; ``road=None`` is a smooth road.
+    bridge : ModalBridge
+        The bridge, reduced to modes.
+    vehicle : Vehicle, optional
+        One vehicle (or give ``vehicles`` instead).
+    tire : TireModel
+        The tire model of ``vehicle`` (default a point tire).
+    road : RoadProfile, optional
+        The road profile; None is a smooth road.
     road_right : RoadProfile, optional
         Profile under the contact points right of the vehicle centreline (lateral y < 0, the
         right wheel line); None = ``road`` under every wheel (the paper's assumption).
@@ -142,9 +148,9 @@ class Crossing:
         One vehicle: y [m] of its centreline from the deck centreline (irrelevant for a beam);
         default the bridge's ``default_lateral_offset`` (as in scenarios; 0 for a beam).
     dt : float, optional
-        Time step [s]; default chosen by :func:`vbikit.solve.timestep.choose_time_step`.
+        Time step [s]; default chosen by [`vbikit.solve.timestep.choose_time_step`][vbikit.solve.choose_time_step].
     integrator : str
-        A registered integrator's name (:data:`vbikit.solve.integrators.INTEGRATORS`).  "exact"
+        A registered integrator's name ([`vbikit.solve.integrators.INTEGRATORS`][vbikit.solve.integrators.INTEGRATORS]).  "exact"
         (default): every bridge mode stepped by its exact transition with the modal load linear
         over the step, the vehicle by Newmark average acceleration, coupled through the
         contact forces at the end of each step (docs/theory.md); "rk4": the paper's classical

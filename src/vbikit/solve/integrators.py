@@ -1,11 +1,11 @@
-"""Time integrators as registered objects: one :class:`Integrator` per name.
+"""Time integrators as registered objects: one [`Integrator`][vbikit.solve.Integrator] per name.
 
 Everything that depends on the integrator — the scenario schema's allowed names, the automatic
 time step and the stability check, the kernel a batch of lanes runs with, the preflight's
-explicit/implicit distinction and the references a report cites — reads :data:`INTEGRATORS`
-(through :func:`get_integrator`), never a chain of name comparisons.
+explicit/implicit distinction and the references a report cites — reads [`INTEGRATORS`][vbikit.solve.integrators.INTEGRATORS]
+(through [`get_integrator`][vbikit.solve.get_integrator]), never a chain of name comparisons.
 
-Built in (registered by :mod:`vbikit.solve.builtin_integrators`):
+Built in (registered by ``vbikit.solve.builtin_integrators``):
 
 * ``"exact"`` — every bridge mode by its exact transition with the modal load linear over the
   step (Nigam & Jennings 1969), the vehicles by the exponential of their augmented system;
@@ -13,9 +13,9 @@ Built in (registered by :mod:`vbikit.solve.builtin_integrators`):
   limit of the coupled system);
 * ``"newmark"`` — Newmark average acceleration for bridge and vehicles alike.
 
-A new integrator is one module that builds an :class:`Integrator` and calls
-:func:`register_integrator`, plus one import of that module (docs/extending.md).  An implicit
-variant only supplies its step maps to :func:`run_implicit`.
+A new integrator is one module that builds an [`Integrator`][vbikit.solve.Integrator] and calls
+[`register_integrator`][vbikit.solve.register_integrator], plus one import of that module (docs/extending.md).  An implicit
+variant only supplies its step maps to ``run_implicit``.
 
 Nothing here imports the compiled kernels until an integrator runs.
 """
@@ -96,7 +96,7 @@ class Integrator:
     explicit : bool
         True if its step is limited by stability (then ``stability_limit`` is required).
     references : tuple of str
-        Keys of :data:`vbikit.references.REFERENCES` that a report using it cites.
+        Keys of ``vbikit.references.REFERENCES`` that a report using it cites.
     time_step : callable
         ``time_step(crossing) -> float``: the automatic (accuracy) step [s].
     run : callable
@@ -132,9 +132,21 @@ INTEGRATORS: dict[str, Integrator] = {}
 
 
 def register_integrator(integrator: Integrator, replace: bool = False) -> Integrator:
-    """Add ``integrator`` to :data:`INTEGRATORS` under its name and return it.  A name taken by an
-    integrator with another ``run`` function is refused unless ``replace`` (the same module
-    executed again re-registers its integrator)."""
+    """Add ``integrator`` to [`INTEGRATORS`][vbikit.solve.integrators.INTEGRATORS] under its name and return it.
+
+    Parameters
+    ----------
+    integrator : Integrator
+        The integrator, registered under ``integrator.name``.
+    replace : bool
+        Allow replacing an integrator of that name with another ``run`` function (refused
+        otherwise; the same module executed again re-registers its integrator either way).
+
+    Raises
+    ------
+    ValueError
+        The name is taken by an integrator with another ``run`` function and not ``replace``.
+    """
     if not isinstance(integrator, Integrator):
         raise TypeError(f"register_integrator: expected an Integrator, got {type(integrator).__name__}")
     old = INTEGRATORS.get(integrator.name)
@@ -170,7 +182,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     """Run ``call`` through the partitioned implicit kernel (``vbikit.solve.kernels.implicit``)
     with the step maps ``modal_step`` (every bridge mode over ``call.dt``) and ``vehicle_step``
     (the vehicles over ``call.dt``), iterating the end-of-step contact forces to
-    :data:`IMPLICIT_TOLERANCE` of the largest static wheel load."""
+    ``IMPLICIT_TOLERANCE`` of the largest static wheel load."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
@@ -186,7 +198,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
 
 
 def implicit_kernel() -> Any:
-    """The compiled partitioned implicit kernel (for :attr:`Integrator.kernel`)."""
+    """The compiled partitioned implicit kernel (for ``Integrator.kernel``)."""
     from vbikit.solve import kernels
 
     return kernels.implicit

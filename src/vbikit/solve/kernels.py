@@ -8,12 +8,12 @@ and sits at
     x_p(t) = origin_p + dir_p · s_v(t),      dx_p/dt = dir_p · v_v(t)
 
 where s_v(t) [m] and v_v(t) = ds_v/dt [m/s] ≥ 0 are the travel and speed of its vehicle v
-(columns of :class:`Motion`, given on the half-step time grid, so each vehicle has its own
+(columns of ``Motion``, given on the half-step time grid, so each vehicle has its own
 speed, acceleration, stop time and start), ``origin`` [m] is x_p at s_v = 0 and ``direction``
 dir_p = +1 (driving towards +x) or −1 (towards −x).  One vehicle driving +x (a
-:class:`vbikit.solve.Crossing`) has s_v = x_front(t), origin_p = −setback_p, dir_p = +1.
+[`vbikit.solve.Crossing`][vbikit.solve.Crossing]) has s_v = x_front(t), origin_p = −setback_p, dir_p = +1.
 
-The contact law, written once (:func:`contact_forces`, called by every integrator and by the
+The contact law, written once (``contact_forces``, called by every integrator and by the
 static start).  With mode-shape rows φ_p, φ'_p = ∂φ/∂x on the point's wheel track
 ``track[p]``, road elevation r_p on road line ``line[p]`` and the wheel's lowest point
 z_w = h_w·q (row ``wheel_rows[wheel[p]]``):
@@ -41,11 +41,11 @@ origin and direction.  Wheels of one vehicle must be contiguous in points (``whe
 ``wheel_count``), as for one vehicle.
 
 Argument bundles (NamedTuples of arrays, built by ``vbikit.solve.system``):
-  :class:`Modes`     the bridge's mode set and its tables along the wheel tracks
-  :class:`Vehicles`  vehicle matrices, wheel rows and wheel → point ranges
-  :class:`Points`    per contact point: kinematics, track, road line, tire law
-  :class:`Road`      road stations and elevations of every road line and lane
-  :class:`Motion`    travel s_v and speed v_v of every vehicle on the half-step grid
+  ``Modes``     the bridge's mode set and its tables along the wheel tracks
+  ``Vehicles``  vehicle matrices, wheel rows and wheel → point ranges
+  ``Points``    per contact point: kinematics, track, road line, tire law
+  ``Road``      road stations and elevations of every road line and lane
+  ``Motion``    travel s_v and speed v_v of every vehicle on the half-step grid
 
 Lanes.  The state carries a last axis of L *lanes*: L crossings that share everything but the
 road (a batch of a study), integrated together.  Everything that does not depend on the road
@@ -118,8 +118,8 @@ class Vehicles(NamedTuple):
 
 class Points(NamedTuple):
     """Per contact point (n_cp,): kinematics ``origin`` [m], ``direction`` (±1.0), ``vehicle``
-    (column of :class:`Motion`); ``track`` (table of :class:`Modes`), ``line`` (road line of
-    :class:`Road`, clamped to the lines present); tire law ``stiffness`` k [N/m], ``damping``
+    (column of ``Motion``); ``track`` (table of ``Modes``), ``line`` (road line of
+    ``Road``, clamped to the lines present); tire law ``stiffness`` k [N/m], ``damping``
     c [N·s/m], ``fixed_load`` f0 [N], ``gap`` g [m], ``gated``; ``wheel`` index; ``width`` [m]
     of patch it stands for; ``slope_range`` (n_cp, 2) tire-surface slopes over its cell
     (envelope wheels)."""
@@ -195,7 +195,7 @@ def new_cache(n_cp: int, n_m: int, n_l: int) -> Cache:
 
 
 def new_work(n_cp: int, n_d: int, n_l: int) -> Work:
-    """Work space of :func:`contact_forces`."""
+    """Work space of ``contact_forces``."""
     return Work(np.full(n_cp, -1, np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), np.bool_),
                 np.zeros(n_cp, np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
 
@@ -290,7 +290,7 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
 @njit(cache=True, fastmath=True, error_model="numpy")
 def road_at(x, vx, points, road, idx, rv, rr, lanes):
     """Road elevation and rate (n_cp, L) under every contact point at positions ``x`` [m] moving
-    at x-rates ``vx`` [m/s] (``idx``: the points' station pointers, see :func:`road_point`)."""
+    at x-rates ``vx`` [m/s] (``idx``: the points' station pointers, see ``road_point``)."""
     for p in range(x.size):
         road_point(x[p], vx[p], p, points.line[p], road, idx, rv, rr, lanes)
 
@@ -336,7 +336,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
     ``wheel_len`` [m] (n_w, L), ``work.active`` flags, and ``work.used[p]``: the point's force was
     evaluated (else it is 0 in every lane).
 
-    ``cache``: the position slot (:class:`Cache`; its mode shapes and road values are filled
+    ``cache``: the position slot (``Cache``; its mode shapes and road values are filled
     on first use).  ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).
     """
     phi, dphi, have, rv, rr, have_r = cache.phi, cache.dphi, cache.have, cache.rv, cache.rr, cache.have_r
@@ -501,7 +501,7 @@ def _modal_load(alpha, phi, force, used, x, track, modes, out, lanes):
 def _gemv(alpha, a, x, y, lanes, transpose):
     """y += α·A·x (or α·Aᵀ·x) for every lane (x, y: (·, L)); zero entries of A are skipped.  The
     one-lane loop is inlined into the caller (small vehicle matrices, every step: a call costs
-    more than the product); the many-lane loops are one compiled function, :func:`_gemv_lanes`."""
+    more than the product); the many-lane loops are one compiled function, ``_gemv_lanes``."""
     if len(lanes) == 1:  # one lane: accumulate in a register
         n_i = a.shape[1] if transpose else a.shape[0]
         n_j = a.shape[0] if transpose else a.shape[1]
@@ -518,7 +518,7 @@ def _gemv(alpha, a, x, y, lanes, transpose):
 
 @_internal
 def _gemv_lanes(alpha, a, x, y, lanes, transpose):
-    """:func:`_gemv` for many lanes: the lanes innermost, vectorised."""
+    """``_gemv`` for many lanes: the lanes innermost, vectorised."""
     n_i = a.shape[1] if transpose else a.shape[0]
     n_j = a.shape[0] if transpose else a.shape[1]
     for i in range(n_i):
@@ -573,7 +573,7 @@ def _store(out, n, state, lanes):
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _fetch(src, n, state, lanes):
-    """state[i, lane] = src[lane, n, i]: the inverse of :func:`_store` (explicit loops: slice
+    """state[i, lane] = src[lane, n, i]: the inverse of ``_store`` (explicit loops: slice
     assignments would compile numba's shape-mismatch error path, seconds of compile time)."""
     n_l = _width(lanes, state)
     for i in range(state.shape[0]):
@@ -583,7 +583,7 @@ def _fetch(src, n, state, lanes):
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _copy(src, dst, lanes):
-    """dst[i, :] = src[i, :] (explicit loops, see :func:`_fetch`)."""
+    """dst[i, :] = src[i, :] (explicit loops, see ``_fetch``)."""
     n_l = _width(lanes, src)
     for i in range(src.shape[0]):
         for lane in range(n_l):
@@ -825,22 +825,22 @@ RELAX_AFTER = 8
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
              wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1):
-    """Partitioned implicit step: every mode by its transition ``step`` (:class:`ModalStep`, the
-    modal load linear over the step), the vehicles by theirs (:class:`VehicleStep`, the wheel
+    """Partitioned implicit step: every mode by its transition ``step`` (``ModalStep``, the
+    modal load linear over the step), the vehicles by theirs (``VehicleStep``, the wheel
     loads linear over the step), coupled through the contact forces at the end of the step.
 
     The end-of-step forces are found by fixed-point iteration on the modal loads p_{n+1} and
     the wheel loads G_w = F_w + k_w z_w + c_w ż_w (k_w, c_w the nominal tire, carried by the
     vehicle map): deck and vehicles at t_{n+1} from the current (p, G), then the contact law
-    (:func:`contact_forces`, gating and envelope included) gives new forces, until no point
+    (``contact_forces``, gating and envelope included) gives new forces, until no point
     force and no G_w changes by more than ``tol_force`` [N] in any lane.  The first guess is the
     linear extrapolation of the last two steps.  The iteration contracts by about the tire
     stiffness over the deck's stiffness under the wheel (and, for points whose contact differs
     from the nominal tire, k h²/(4 m) of the wheel), a few per cent for road vehicles.  Points
     entering and leaving contact make the map non-smooth, and it can cycle between two contact
-    sets; after :data:`RELAX_AFTER` iterations the updates are halved (under-relaxation).
+    sets; after ``RELAX_AFTER`` iterations the updates are halved (under-relaxation).
 
-    Same array conventions as :func:`rk4` (lanes and ``stride`` too).  Returns the number of steps that did
+    Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
     contact-law evaluations.
     """

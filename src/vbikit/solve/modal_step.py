@@ -5,17 +5,17 @@ A mode ξ̈ + 2ζωξ̇ + ω²ξ = p(t) whose load p is linear over the step [t_
     ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1}
     ξ̇_{n+1} = a21 ξ_n + a22 ξ̇_n + b2 p_n + c2 p_{n+1}
 
-:func:`exact_step` gives the exact coefficients — the "piecewise exact" recurrence of Nigam &
+``exact_step`` gives the exact coefficients — the "piecewise exact" recurrence of Nigam &
 Jennings (1969), *Bull. Seismol. Soc. Am.* 59(2), 909–922 (Chopra, *Dynamics of Structures*,
 §5.2): exact for any h, so no mode limits the step.  The coefficients are Chopra's closed form
 (Table 5.2.1) for ζ < 1 and ωh ≥ 0.5; below that (where the closed form's load terms cancel to
 O((ωh)²)) and for ζ ≥ 1 the load part is read from the exponential of the augmented linear
 system (ξ, ξ̇/ω, p/ω², ṗ/ω³) in the dimensionless time ωt, and the free part is e^{−ζωh}(cos,
-sin of ω_D h) (``tests/unit/test_modal_step.py`` checks them against the closed form).  :func:`newmark_step` gives
+sin of ω_D h) (``tests/unit/test_modal_step.py`` checks them against the closed form).  ``newmark_step`` gives
 the same map for Newmark's average-acceleration rule (γ = 1/2, β = 1/4), so that Newmark runs
-through the same partitioned kernel.  :func:`vehicle_step` is the vehicles' map over the step
+through the same partitioned kernel.  ``vehicle_step`` is the vehicles' map over the step
 with their nominal tires on the contact surface, exact (exponential of the augmented
-first-order system, the wheel loads linear over the step), :func:`newmark_vehicle_step`
+first-order system, the wheel loads linear over the step), ``newmark_vehicle_step``
 Newmark's (``vbikit.solve.kernels.implicit``).
 """
 from __future__ import annotations
@@ -148,7 +148,7 @@ def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
 
 
 def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
-    """The same map as :func:`vehicle_step` by Newmark's average acceleration (γ = 1/2, β = 1/4)."""
+    """The same map as ``vehicle_step`` by Newmark's average acceleration (γ = 1/2, β = 1/4)."""
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
     c_hat, k_hat = _nominal(vehicles)
     if n_d == 0:

@@ -3,8 +3,8 @@
 numba writes a cached kernel beside its source file (the package's ``__pycache__``) or, when the
 package directory is read-only, in the user's cache directory (``~/.cache/numba``); when neither
 is writable (and ``NUMBA_CACHE_DIR`` is not set) it refuses to define the kernels, so
-``import vbikit`` would fail.  :func:`ensure_cache_location`, called by
-:mod:`vbikit.solve.kernels` before its first kernel, then points numba at a private per-user
+``import vbikit`` would fail.  ``ensure_cache_location``, called by
+``vbikit.solve.kernels`` before its first kernel, then points numba at a private per-user
 directory in the system's temporary directory (logged).  This module lies beside kernels.py, so
 probing a function of this file probes the kernels' own cache locations.
 """
@@ -22,7 +22,7 @@ log = logging.getLogger(__name__)
 
 
 def _cache_probe() -> None:
-    """A function of this file (beside kernels.py), for :func:`ensure_cache_location`."""
+    """A function of this file (beside kernels.py), for ``ensure_cache_location``."""
 
 
 def _private_dir(path: str) -> str:

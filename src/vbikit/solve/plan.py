@@ -1,7 +1,7 @@
 """A run planned once: its time step, budget estimate, time grid and kernel data.
 
-:func:`plan_run` does every check a run makes before it integrates (the integrator's step rule
-and stability limit, the memory and step budgets); :func:`vbikit.solve.simulate` takes the plan
+[`plan_run`][vbikit.solve.plan_run] does every check a run makes before it integrates (the integrator's step rule
+and stability limit, the memory and step budgets); [`vbikit.solve.simulate`][vbikit.solve.simulate.simulate] takes the plan
 and reuses what it holds, so that a preflight followed by the run computes nothing twice.  The
 time grid and the kernel data (mode shapes tabulated along the wheel tracks, the kernels'
 argument bundles) are built on first use and kept: planning alone (``vbikit validate``) does
@@ -59,8 +59,20 @@ def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
 
 @dataclass(frozen=True)
 class RunPlan:
-    """A checked run of ``crossing``: its ``integrator``, step ``dt`` [s] and budget ``estimate``;
-    the time :attr:`grid` and :attr:`kernel_data` are built on first use and kept."""
+    """A checked run of ``crossing``; the time [`grid`][vbikit.solve.RunPlan.grid] and
+    [`kernel_data`][vbikit.solve.RunPlan.kernel_data] are built on first use and kept.
+
+    Parameters
+    ----------
+    crossing : Crossing
+        The crossing to integrate.
+    integrator : Integrator
+        Its integrator.
+    dt : float
+        The integration step [s].
+    estimate : RunEstimate
+        The run's memory and step budget estimate.
+    """
 
     crossing: Crossing
     integrator: Integrator
@@ -85,13 +97,30 @@ class RunPlan:
 
 
 def plan_run(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
-    """Choose the step of ``crossing`` and check the run against ``limits`` (default
-    :class:`~vbikit.solve.budget.Limits`) without integrating.
+    """Choose the step of ``crossing`` and check the run against ``limits`` without integrating.
 
-    Raises :class:`~vbikit.solve.timestep.UnstableTimeStepError` for a user step above an explicit
-    integrator's stability limit and :class:`~vbikit.solve.budget.BudgetError` for a run above
-    the limits (an explicit integrator's run is checked at its accuracy step first, before its
-    stability limit is computed)."""
+    An explicit integrator's run is checked at its accuracy step first, before its stability
+    limit is computed.
+
+    Parameters
+    ----------
+    crossing : Crossing
+        The crossing to plan.
+    limits : Limits, optional
+        Memory and step budgets (default ``Limits()``).
+
+    Returns
+    -------
+    RunPlan
+        The checked run, to pass to [`simulate`][vbikit.solve.simulate.simulate] as ``plan``.
+
+    Raises
+    ------
+    UnstableTimeStepError
+        A user step above an explicit integrator's stability limit.
+    BudgetError
+        A run above the limits.
+    """
     integrator = get_integrator(crossing.integrator)
     automatic = None
     if integrator.explicit:

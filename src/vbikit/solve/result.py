@@ -21,7 +21,7 @@ class DivergenceError(VbikitError):
 
 
 def check_finite(result: "CrossingResult") -> "CrossingResult":
-    """``result`` if every state history is finite, else :class:`DivergenceError` naming the
+    """``result`` if every state history is finite, else ``DivergenceError`` naming the
     first step (and its time) with a non-finite bridge, vehicle or tire value."""
     ok = np.ones(result.time.size, bool)
     for a in (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.q_ddot, result.wheel_forces):
@@ -44,16 +44,30 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
 class CrossingResult:
     """Histories at the n_t = n_steps + 1 time points ``time`` [s].
 
-    ``xi``, ``xi_dot``, ``xi_ddot`` (n_t, n_modes): bridge modal coordinates and rates;
-    ``q``, ``q_dot``, ``q_ddot`` (n_t, n_dof): vehicle coordinates (absolute, z up);
-    ``wheel_forces`` (n_t, n_wheels): tire forces [N], compression positive (0 = no contact);
-    ``contact_lengths`` (n_t, n_wheels): length [m] of the patch in contact (0 for point tires);
-    ``front_position`` [m], ``speed`` [m/s] (n_t, n_vehicles): x of each vehicle's front axle and
-    its speed.  ``dt`` [s] is the spacing of the stored time points;
-    ``integration_dt`` [s] the integrator's step (larger ``dt`` when the histories were thinned,
-    ``simulate(..., output_every=k)``).  ``kernel_data``: the tabulated arrays the run used
-    (mode-shape tables along the wheel tracks), kept so that the static reference is read from
-    the same tables without tabulating them again.
+    Parameters
+    ----------
+    crossing : Crossing
+        The crossing that was integrated.
+    time : ndarray
+        The stored time points [s], (n_t,).
+    dt : float
+        Spacing [s] of the stored time points.
+    front_position, speed : ndarray
+        (n_t, n_vehicles): x [m] of each vehicle's front axle and its speed [m/s].
+    xi, xi_dot, xi_ddot : ndarray
+        (n_t, n_modes): bridge modal coordinates and rates.
+    q, q_dot, q_ddot : ndarray
+        (n_t, n_dof): vehicle coordinates (absolute, z up) and rates.
+    wheel_forces : ndarray
+        (n_t, n_wheels): tire forces [N], compression positive (0 = no contact).
+    contact_lengths : ndarray
+        (n_t, n_wheels): length [m] of the patch in contact (0 for point tires).
+    integration_dt : float, optional
+        The integrator's step [s] (smaller than ``dt`` when the histories were thinned,
+        ``simulate(..., output_every=k)``).
+    kernel_data : KernelData, optional
+        The tabulated arrays the run used (mode-shape tables along the wheel tracks), kept so that
+        the static reference is read from the same tables without tabulating them again.
     """
 
     crossing: Crossing
@@ -116,7 +130,7 @@ class CrossingResult:
         return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
 
     def displacement(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
-        """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: :meth:`point`."""
+        """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: [`point`][vbikit.solve.CrossingResult.point]."""
         return self.xi @ self._shapes(x, y)
 
     def velocity(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
@@ -134,16 +148,16 @@ class CrossingResult:
     # ------------------------------------------------------------------ labelled results
     def to_xarray(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
                   static: bool = True) -> "xr.Dataset":
-        """The crossing as a labelled :class:`xarray.Dataset` with units.
+        """The crossing as a labelled ``xarray.Dataset`` with units.
 
         Parameters
         ----------
         points : sequence of (x, y), optional
             Deck points [m] (x from the entry support, y from the deck centreline); default
-            :meth:`point` (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
+            [`point`][vbikit.solve.CrossingResult.point] (midspan on the bridge's response line).  Responses there have the dimensions (time, point).
         girder_x : float, optional
             Section x [m] (on the response line) of the per-girder responses (dimension ``girder``,
-            Girder 1 first) on a bridge with girders: :meth:`girder_sections`.  Ignored for bridges
+            Girder 1 first) on a bridge with girders: [`girder_sections`][vbikit.solve.CrossingResult.girder_sections].  Ignored for bridges
             without girders.
         static : bool
             Also the static reference responses (``static_displacement``, ``static_strain``).
@@ -231,10 +245,10 @@ class CrossingResult:
 
     def to_dataframe(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
                      static: bool = True) -> "pd.DataFrame":
-        """The histories as a wide :class:`pandas.DataFrame`, index ``time [s]``, one column per
+        """The histories as a wide ``pandas.DataFrame``, index ``time [s]``, one column per
         quantity, point, girder, wheel and DOF, each header naming its unit (``displacement [m]``;
         more than one point: ``displacement_p2 [m]``; ``girder3_strain [-]``,
-        ``wheel_force_axle1_left [N]``, ``tractor_pitch [rad]``).  Arguments as :meth:`to_xarray`."""
+        ``wheel_force_axle1_left [N]``, ``tractor_pitch [rad]``).  Arguments as [`to_xarray`][vbikit.solve.CrossingResult.to_xarray]."""
         import pandas as pd
 
         ds = self.to_xarray(points, girder_x, static)

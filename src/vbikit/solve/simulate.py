@@ -1,7 +1,7 @@
 """Run crossings: set up the arrays, find the static start, call the compiled integrator.
 
-:func:`integrate` runs several crossings that share everything but the road as *lanes* of
-one kernel call (see :mod:`vbikit.solve.kernels`); :func:`simulate` is the one-lane case.
+``integrate`` runs several crossings that share everything but the road as *lanes* of
+one kernel call (see ``vbikit.solve.kernels``); [`simulate`][vbikit.solve.simulate.simulate] is the one-lane case.
 """
 from __future__ import annotations
 
@@ -49,14 +49,30 @@ def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int
              history_budget: float = HISTORY_BUDGET, plan: RunPlan | None = None) -> CrossingResult:
     """Integrate the coupled equations (paper Eq. 9) over the whole crossing.
 
-    The run's memory and steps are estimated first and refused (:class:`~vbikit.solve.budget.BudgetError`)
-    above ``limits`` (default :class:`~vbikit.solve.budget.Limits`: 4 GiB, 5 × 10⁶ steps; raise
-    them for bigger runs).  ``plan``: the crossing's :class:`~vbikit.solve.plan.RunPlan` from
-    :func:`~vbikit.solve.plan.plan_run` if it was planned already (its step, grid and kernel data
-    are reused and ``limits`` is not consulted again).  ``output_every``: store every k-th step
-    only (default 1, or the smallest k that keeps the histories within ``history_budget``
-    [bytes], logged); the integration step is unchanged, ``result.dt`` is then the spacing of
-    the stored samples and ``result.integration_dt`` the step."""
+    Parameters
+    ----------
+    crossing : Crossing
+        The crossing to integrate.
+    limits : Limits, optional
+        Memory and step budgets (default ``Limits``: 4 GiB, 5 × 10⁶ steps; raise them for bigger
+        runs); the run's memory and steps are estimated first and refused (``BudgetError``)
+        above them.
+    output_every : int, optional
+        Store every k-th step only (default 1, or the smallest k that keeps the histories within
+        ``history_budget``, logged); the integration step is unchanged, ``result.dt`` is then the
+        spacing of the stored samples and ``result.integration_dt`` the step.
+    history_budget : float
+        Memory [bytes] the stored histories may take when ``output_every`` is not given.
+    plan : RunPlan, optional
+        The crossing's [`RunPlan`][vbikit.solve.RunPlan] from [`plan_run`][vbikit.solve.plan_run]
+        if it was planned already (its step, grid and kernel data are reused and ``limits`` is
+        not consulted again).
+
+    Returns
+    -------
+    CrossingResult
+        The histories of the bridge modes, the vehicle DOFs and the wheel forces.
+    """
     if plan is None:
         plan = plan_run(crossing, limits)
     elif plan.crossing is not crossing:
@@ -91,7 +107,7 @@ LANE_PAD = 8
 def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid, stride: int = 1) -> list[CrossingResult]:
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
     and ``grid`` are those of the first) with their integrator (its registered ``run``,
-    :mod:`vbikit.solve.integrators`), as lanes of kernel calls (:data:`MAX_LANES`)."""
+    ``vbikit.solve.integrators``), as lanes of kernel calls (``MAX_LANES``)."""
     from vbikit.solve import kernels
     from vbikit.solve.kernels import Motion
     from vbikit.solve.system import point_positions, road_data, static_state

@@ -1,9 +1,9 @@
 """The coupled system's data for the kernels, and the system at one instant (static start,
 stability limit).
 
-:func:`kernel_data` turns a :class:`~vbikit.solve.Crossing` into the kernels' argument bundles
-(:mod:`vbikit.solve.kernels`: ``Modes``, ``Vehicles``, ``Points``); :func:`motion` gives the
-vehicles' travel on a time grid and :func:`road_data` the road lines of a set of lanes.  A
+``kernel_data`` turns a [`Crossing`][vbikit.solve.Crossing] into the kernels' argument bundles
+(``vbikit.solve.kernels``: ``Modes``, ``Vehicles``, ``Points``); ``motion`` gives the
+vehicles' travel on a time grid and ``road_data`` the road lines of a set of lanes.  A
 several-vehicle system is the same bundles with block-diagonal vehicle matrices, stacked
 wheels and points that carry their own vehicle index, origin and direction (see the kernels'
 module docstring); the functions below that take a ``KernelData`` work on such a system too.
@@ -172,7 +172,7 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
 def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel,
                  road_rate: NDArray[np.float64] | None, speed: float | NDArray[np.float64],
                  max_iterations: int) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    """:func:`static_state` for given rates (raises LinAlgError / RuntimeError if there is none)."""
+    """``static_state`` for given rates (raises LinAlgError / RuntimeError if there is none)."""
     n_m, n_p = data.n_modes, data.n_points
     x, vx = point_positions(data, travel, speed)
     rate = np.zeros(n_p) if road_rate is None else np.array(road_rate, float)

@@ -1,17 +1,17 @@
 """Time-step selection and the RK4 stability limit.
 
-Automatic step of the RK4 and Newmark integrators (:func:`accuracy_time_step`), the smallest of
+Automatic step of the RK4 and Newmark integrators ([`accuracy_time_step`][vbikit.solve.accuracy_time_step]), the smallest of
   * T_bridge,min / 5   — at least 5 steps per period of the highest retained bridge mode,
   * T_vehicle,min / 20 — 20 steps per period of the highest vehicle mode (tires on ground),
   * Δx_road / v_max    — at most one road sample passed per step,
   * span / (100 v_max) — at least 100 steps while a point crosses the span,
 with v_max the largest speed any vehicle reaches during the run; the exact modal integrator's
-(:func:`implicit_time_step`) has no bridge-mode term.  An explicit integrator's automatic step
+(``implicit_time_step``) has no bridge-mode term.  An explicit integrator's automatic step
 is also capped at 0.9 × its stability limit; for RK4 that is the limit of the coupled system,
 computed from the eigenvalues λ of its first-order matrix at several vehicle positions as the
 largest dt with |R(λ dt)| ≤ 1, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24.  A user step above the limit
 is refused (the implicit integrators are unconditionally stable and take any step).  Which rule
-an integrator uses is part of its registration (:mod:`vbikit.solve.integrators`).
+an integrator uses is part of its registration (``vbikit.solve.integrators``).
 """
 from __future__ import annotations
 

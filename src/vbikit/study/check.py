@@ -1,11 +1,11 @@
 """Every check a study run makes before it starts, shared by ``vbikit study validate`` and
 ``vbikit study run``: the study's size against the confirmation limit, and the preflight of a
 scenario run (files, parameters, time step and stability, memory and step budgets, see
-:func:`vbikit.scenario.preflight.preflight`) for the crossings that differ in more than the road.
+``vbikit.scenario.preflight.preflight``) for the crossings that differ in more than the road.
 
 Crossings of one batch differ only in road-only keys and share the first crossing's set-up, so
 the preflight runs once per distinct combination of the other axes — all of them when there are
-at most :data:`MAX_PREFLIGHTS`, else every value of every axis with the other axes at their first
+at most ``MAX_PREFLIGHTS``, else every value of every axis with the other axes at their first
 value (the budgets grow monotonically with speed, span, modes and duration, so a study's extremes
 are among those).  Budgets count the lanes one kernel call runs at once.
 """
@@ -26,7 +26,7 @@ MAX_PREFLIGHTS = 48
 
 @dataclass(frozen=True)
 class StudyCheck:
-    """What :func:`check_study` looked at: ``checked`` scenario preflights, the largest step count
+    """What ``check_study`` looked at: ``checked`` scenario preflights, the largest step count
     and memory estimate of a batch, and warnings (once each)."""
 
     checked: int
@@ -36,7 +36,7 @@ class StudyCheck:
 
 
 def check_size(study: Study, confirmed: bool) -> None:
-    """Refuse a study above :data:`MAX_CROSSINGS_UNCONFIRMED` crossings unless ``confirmed``."""
+    """Refuse a study above ``MAX_CROSSINGS_UNCONFIRMED`` crossings unless ``confirmed``."""
     if study.size > MAX_CROSSINGS_UNCONFIRMED and not confirmed:
         dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes)
         raise StudyError(f"this study has {study.size:.4g} crossings ({dims}), more than {MAX_CROSSINGS_UNCONFIRMED:.0e}: "

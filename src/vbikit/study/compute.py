@@ -1,4 +1,4 @@
-"""One batch of a study: build its crossings, run them with one shared :class:`BatchSolver`, and
+"""One batch of a study: build its crossings, run them with one shared ``BatchSolver``, and
 reduce each to impact factors and peaks (the function executed by local or Dask workers)."""
 from __future__ import annotations
 
@@ -61,7 +61,7 @@ def solver_point(built) -> tuple[float, float]:
 def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1) -> dict[str, NDArray]:
     """Run the crossings at grid indices ``batch`` (they differ only in road-only keys).
 
-    Returns, for every output of the catalogue (:mod:`vbikit.outputs`), an array of length
+    Returns, for every output of the catalogue ([`vbikit.outputs`][vbikit.outputs]), an array of length
     len(batch) (per-crossing outputs) or (len(batch), n_points) (per-point outputs, the base
     scenario's response points in order); ``index`` (len(batch), n_axes) and, if the study
     stores histories, ``displacement_history`` (len(batch), n_t) [m] at the first point (rows

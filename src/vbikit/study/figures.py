@@ -1,6 +1,6 @@
 """Figures of study datasets laid out like the paper's Figs. 5–8 and 10–11, with the design-code
 allowances of the study's bridge and vehicle as reference lines (AASHTO LRFD and Standard, CSA S6,
-OHBDC 1983, JTG D60-2015; :mod:`vbikit.analysis.codes`)."""
+OHBDC 1983, JTG D60-2015; ``vbikit.analysis.codes``)."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -23,7 +23,7 @@ _CODE_STYLES = {"aashto_lrfd": ("--", "AASHTO LRFD"), "aashto_standard": (":", "
 
 
 def design_code_lines(base: dict) -> dict[str, float]:
-    """The design-code allowances (:func:`vbikit.analysis.codes.code_allowances`) of a study's base
+    """The design-code allowances (``vbikit.analysis.codes.code_allowances``) of a study's base
     scenario: loaded length = the span of the response point, f₁ of the bridge model, the axles of
     the vehicle (the first of ``[[vehicles]]``)."""
     from vbikit.analysis.codes import code_allowances

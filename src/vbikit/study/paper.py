@@ -84,7 +84,7 @@ PAPER_INTEGRATOR = "rk4"
 def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator: str = PAPER_INTEGRATOR) -> dict[str, Any]:
     """The study (as the dict of its TOML) of paper figure ``fig`` ("fig5" … "fig11") on the 3D
     bridges at Girder 4, or on the beam stand-ins with ``beam=True``; ``integrator``: the
-    crossings' integrator (default :data:`PAPER_INTEGRATOR`, the paper's RK4)."""
+    crossings' integrator (default ``PAPER_INTEGRATOR``, the paper's RK4)."""
     if fig not in FIGURES:
         raise ValueError(f"unknown paper study {fig!r}; allowed: {', '.join(FIGURES)}")
     f = FIGURES[fig]
@@ -103,7 +103,7 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator
 
 
 def paper_study(fig: str, samples: int = 20, beam: bool = False, integrator: str = PAPER_INTEGRATOR) -> Study:
-    """The validated :class:`Study` of paper figure ``fig`` (see :func:`paper_study_dict`)."""
+    """The validated [`Study`][vbikit.study.Study] of paper figure ``fig`` (see ``paper_study_dict``)."""
     from vbikit.study.spec import parse_study
 
     return parse_study(paper_study_dict(fig, samples, beam, integrator))

@@ -16,12 +16,12 @@ run ends.  A study killed at any moment
 crossing's result depends only on the study (seeds derive from the study seed and the sample
 index), so the final dataset is identical to that of an unbroken run.
 
-The same machinery runs any *job* that has what a :class:`~vbikit.study.spec.Study` has for it —
+The same machinery runs any *job* that has what a [`Study`][vbikit.study.Study] has for it —
 ``name``, ``size`` (work items), ``batches()`` (a tuple of work items per batch) and
 ``to_json()`` (its canonical text: the resume check) — and its own ``run_batch(batch, threads)``
 (arrays of the batch, in a worker), ``part_problem(part, batch)`` (why a stored part is not
 usable, or None) and ``assemble(parts)`` (the Dataset from the parts directory, see
-:func:`load_part`): e.g. a traffic stream (``vbikit.traffic.study``).
+``load_part``): e.g. a traffic stream (``vbikit.traffic.study``).
 """
 from __future__ import annotations
 
@@ -118,7 +118,7 @@ def _part_problem(path: Path, k: int, batch: tuple, checksum: str, job) -> Optio
 
 
 def output_problem(part: Any, n_rows: int, n_points: int) -> Optional[str]:
-    """Why the catalogue's outputs (:mod:`vbikit.outputs`) stored in a finished part cannot be used
+    """Why the catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) stored in a finished part cannot be used
     (None if they can): one missing (the part was written by another vbikit version, or an output
     registered in this process only) or of the wrong shape — (rows, points) for per-point outputs,
     (rows,) per crossing; with one point a part of vbikit versions before response points, (rows,),
@@ -134,7 +134,7 @@ def output_problem(part: Any, n_rows: int, n_points: int) -> Optional[str]:
 
 
 def part_output(part: Any, name: str, n_points: int) -> NDArray:
-    """Output ``name`` of a checked part (:func:`output_problem`), per-point outputs as (rows, points)."""
+    """Output ``name`` of a checked part (``output_problem``), per-point outputs as (rows, points)."""
     values = np.asarray(part[name])
     return values.reshape(-1, n_points) if OUTPUTS[name].scope == "point" else values
 
@@ -191,7 +191,7 @@ def run_study(
     """Run (or resume) ``study`` and write its dataset to ``out`` (NetCDF); returns the Dataset.
 
     ``workers``: local worker processes (default: all cores; 1 runs in this process; kept for
-    the next study of this session, see :func:`shutdown_workers`);
+    the next study of this session, see [`shutdown_workers`][vbikit.study.shutdown_workers]);
     ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
     batches run on that cluster instead; ``progress(done, total)`` is called after every
     finished batch (crossings); ``threads``: crossings run at once inside one worker;

@@ -236,7 +236,7 @@ class Study:
 
     @property
     def n_batches(self) -> int:
-        """len(:meth:`batches`), without listing them."""
+        """len([`batches`][vbikit.study.Study.batches]), without listing them."""
         outer = math.prod(len(a.values) for a in self.axes if a.key not in ROAD_ONLY_KEYS)
         inner = math.prod(len(a.values) for a in self.axes if a.key in ROAD_ONLY_KEYS)
         return outer * -(-inner // self.batch_size)
@@ -323,7 +323,7 @@ def schema_combinations(axes: "tuple[Axis, ...] | list[Axis]") -> list[list[int]
 
     The scenario schema checks each section on its own, so axes of different sections never
     invalidate each other: per section, every combination of that section's value axes (the
-    others at their first value) — or, when that product exceeds :data:`MAX_COMBINATIONS`, every
+    others at their first value) — or, when that product exceeds ``MAX_COMBINATIONS``, every
     pair of its axes with all their value pairs.  Sample axes only change a seed (always valid).
     The count grows with the sum, not the product, of the axes' lengths, so no study hangs here."""
     sections: dict[str, list[int]] = {}

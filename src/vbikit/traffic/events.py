@@ -18,7 +18,15 @@ from numpy.typing import NDArray
 
 @dataclass(frozen=True)
 class Event:
-    """Indices of its vehicles (into the stream, in entry order), first entry and last exit [s]."""
+    """Vehicles on the bridge together.
+
+    Parameters
+    ----------
+    vehicles : tuple of int
+        Indices of its vehicles (into the stream, in entry order).
+    start, end : float
+        First entry and last exit [s].
+    """
 
     vehicles: tuple[int, ...]
     start: float
@@ -42,7 +50,7 @@ def on_bridge_intervals(times: Sequence[float], speeds: Sequence[float], lengths
 def partition(times: Sequence[float], speeds: Sequence[float], lengths: Sequence[float], span: float,
               reach: float = 0.0) -> list[Event]:
     """The events of a stream (see the module docstring), in time order (``reach``: see
-    :func:`on_bridge_intervals`)."""
+    [`on_bridge_intervals`][vbikit.traffic.on_bridge_intervals])."""
     start, end = on_bridge_intervals(times, speeds, lengths, span, reach)
     order = np.argsort(start, kind="stable")
     events: list[Event] = []

@@ -58,10 +58,28 @@ class RecordsError(VbikitError):
 class VehicleRecord:
     """One vehicle of a stream (SI units).
 
-    ``time`` [s]: when its front axle passes its entry support (x = 0 driving +x, x = span
-    driving −x); ``lane`` (1-based) or ``lateral_offset`` [m] (None: from the lane);
-    ``direction`` "+x" / "−x"; ``speed`` [m/s]; ``axle_loads`` [N] and ``axle_spacings`` [m]
-    (``model = "axles"``) or another vehicle preset ``model`` with no axle data.
+    Parameters
+    ----------
+    time : float
+        When its front axle passes its entry support [s] (x = 0 driving +x, x = span driving −x).
+    direction : str
+        "+x" / "−x".
+    speed : float
+        Speed [m/s].
+    axle_loads, axle_spacings : tuple of float
+        Axle loads [N] and axle spacings [m] (``model = "axles"``).
+    lane : int, optional
+        Lane (1-based).
+    lateral_offset : float, optional
+        Lateral offset [m]; None: from the lane.
+    id : str
+        The record's identifier.
+    model : str
+        "axles", or another vehicle preset with no axle data.
+    line : int
+        Line of the records file (for error messages; 0 if none).
+    extra : dict
+        Further information on the vehicle (a synthetic stream's truck class, ``{"class": name}``).
     """
 
     time: float
@@ -209,7 +227,7 @@ def read_records(path: str | Path) -> list[VehicleRecord]:
 
 
 def format_records(records: Sequence[VehicleRecord]) -> str:
-    """CSV text of ``records`` (loads in kN, speed in km/h) that :func:`parse_records` reads back."""
+    """CSV text of ``records`` (loads in kN, speed in km/h) that [`parse_records`][vbikit.traffic.parse_records] reads back."""
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(["id", "time [s]", "lane", "lateral_offset [m]", "direction", "speed [km/h]", "model",

@@ -4,11 +4,11 @@ For examples, tests and benchmarks, not a calibrated traffic model.  Each lane h
 direction, flow [trucks/h] and speed distribution.  Arrivals are Poisson with a minimum
 headway (shifted exponential headways h = h_min + Exp(3600/flow − h_min), so that two trucks
 of one lane never overlap); speeds are normal (mean, standard deviation) clipped to ±50 % of
-the mean.  Each truck is drawn from :data:`TRUCK_MIX` by its share; its axle loads are the
+the mean.  Each truck is drawn from ``TRUCK_MIX`` by its share; its axle loads are the
 class's loaded axle loads times a load factor U ~ uniform(0.45, 1.05) (from empty to slightly
 overloaded; the steer axle follows 0.8 + 0.2·U) and an independent 5 % scatter per axle; its
 spacings are the class's mean plus normal scatter (0.3 m between groups, 0.05 m within).
-Values are rounded as :func:`vbikit.traffic.records.format_records` writes them, so a written
+Values are rounded as [`vbikit.traffic.records.format_records`][vbikit.traffic.format_records] writes them, so a written
 and re-read stream is the same.  Same seed, same stream.
 """
 from __future__ import annotations
@@ -23,8 +23,19 @@ from vbikit.traffic.records import VehicleRecord
 
 @dataclass(frozen=True)
 class TruckClass:
-    """A truck class: FHWA ``name``, ``share`` of the trucks, mean loaded axle loads [N] and
-    mean axle spacings [m]."""
+    """A truck class.
+
+    Parameters
+    ----------
+    name : str
+        FHWA class name.
+    share : float
+        Its share of the trucks.
+    axle_loads : tuple of float
+        Mean loaded axle loads [N].
+    axle_spacings : tuple of float
+        Mean axle spacings [m].
+    """
 
     name: str
     share: float
@@ -44,8 +55,19 @@ TRUCK_MIX: tuple[TruckClass, ...] = (
 
 @dataclass(frozen=True)
 class LaneTraffic:
-    """One lane: its number (1, 2, …), ``direction`` "+x"/"-x", ``flow`` [trucks/h] and speed
-    mean / standard deviation [km/h]."""
+    """One lane of a synthetic stream.
+
+    Parameters
+    ----------
+    lane : int
+        Its number (1, 2, …).
+    direction : str
+        "+x" or "-x".
+    flow : float
+        Flow [trucks/h].
+    speed_kmh, speed_sd_kmh : float
+        Speed mean and standard deviation [km/h].
+    """
 
     lane: int
     direction: str

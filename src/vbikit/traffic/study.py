@@ -1,11 +1,11 @@
 """A traffic stream over a bridge: every event simulated, stored and resumable like a study.
 
-:func:`traffic_study` cuts the stream of :class:`~vbikit.traffic.records.VehicleRecord` into
-events (:func:`~vbikit.traffic.events.partition`) and returns a :class:`TrafficStudy`, a job of
-the study machinery (:func:`vbikit.study.run.run_study`: batches of events on local processes or
+``traffic_study`` cuts the stream of [`VehicleRecord`][vbikit.traffic.VehicleRecord] into
+events ([`partition`][vbikit.traffic.partition]) and returns a ``TrafficStudy``, a job of
+the study machinery ([`vbikit.study.run.run_study`][vbikit.study.run_study]: batches of events on local processes or
 a Dask cluster, each finished batch stored at once, a killed run resumed where it stopped).
 
-Each event is one several-vehicle crossing (:class:`~vbikit.solve.crossing.Crossing` with its
+Each event is one several-vehicle crossing ([`Crossing`][vbikit.solve.Crossing] with its
 vehicles): the bridge, tire, road class, crossing options and response point of a base
 scenario; vehicle i enters at its record's time minus the event's first entry; its lateral
 offset is the record's, or the centre of its lane.  Every event gets its own random road,
@@ -16,7 +16,7 @@ event at rest.
 The dataset (xarray, NetCDF): per event (dimension ``event``) its first vehicle, vehicle count,
 multiple presence, gross weight, static and dynamic peaks and impact factors at the response
 point; per vehicle (dimension ``vehicle``) its record and event, gross weight, smallest wheel
-force and contact loss; the stream's statistics as attributes (:func:`stream_statistics`).
+force and contact loss; the stream's statistics as attributes (``stream_statistics``).
 """
 from __future__ import annotations
 
@@ -80,9 +80,9 @@ def _vehicle(record: VehicleRecord) -> Vehicle:
 
 @dataclass(frozen=True)
 class TrafficStudy:
-    """A stream and what to run it on (build with :func:`traffic_study`).
+    """A stream and what to run it on (build with ``traffic_study``).
 
-    ``records``: the stream; ``base``: the base scenario's sections (:data:`BASE_SECTIONS`);
+    ``records``: the stream; ``base``: the base scenario's sections (``BASE_SECTIONS``);
     ``base_dir``: where its relative paths point; ``lanes``: lane centres y [m] (lane n at
     ``lanes[n - 1]``); ``seed``: the road seeds' source; ``batch_size``: events per batch;
     ``events``: the vehicles of each event (indices into ``records``), ``event_start`` [s] their
@@ -119,9 +119,9 @@ class TrafficStudy:
                            "records_sha256": self._digest, "n_records": len(self.records)}, sort_keys=True)
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
-        """Simulate the events ``batch``; arrays per event (the catalogue's outputs, :mod:`vbikit.outputs`,
-        per response point where they are per point; :data:`EVENT_EXTRAS`; ``event``) and per
-        vehicle of those events (:data:`VEHICLE_OUTPUTS`, ``vehicle``)."""
+        """Simulate the events ``batch``; arrays per event (the catalogue's outputs, [`vbikit.outputs`][vbikit.outputs],
+        per response point where they are per point; ``EVENT_EXTRAS``; ``event``) and per
+        vehicle of those events (``VEHICLE_OUTPUTS``, ``vehicle``)."""
         rows, vehicle_rows = [], []
         for e in batch:
             row, per_vehicle = self.run_event(e)
@@ -364,7 +364,7 @@ _CONTEXTS: dict[str, _Context] = {}
 
 def base_scenario(bridge: str, base_dir: Path | str = ".") -> tuple[dict, str]:
     """The base sections from ``bridge``: a bridge preset name, or a scenario file (its
-    :data:`BASE_SECTIONS`; a [vehicle] or [[vehicles]] there is refused: the records give them)."""
+    ``BASE_SECTIONS``; a [vehicle] or [[vehicles]] there is refused: the records give them)."""
     path = Path(bridge)
     if path.suffix == ".toml" or path.is_file():
         from vbikit._toml import read_toml

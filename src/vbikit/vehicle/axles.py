@@ -1,6 +1,6 @@
 """Trucks from axle loads and spacings (weigh-in-motion records), and the five-axle 3-S2.
 
-A truck is a 3D multibody (conventions of :mod:`vbikit.vehicle.model`): one rigid body, or a
+A truck is a 3D multibody (conventions of ``vbikit.vehicle.model``): one rigid body, or a
 tractor and a semitrailer pinned together at the fifth wheel; under them axle *groups*:
 
 * ``"single"``: one axle with its own suspension;
@@ -13,7 +13,7 @@ Every axle has bounce and roll (roll inertia m·b², as the other presets) and a
 a tire spring–damper per side at ±b.  A bogie owns heave, pitch and roll; its axles are rigid
 on it.
 
-Static loads as given (:func:`axle_truck`).  A rigid body on three or more spring supports is
+Static loads as given ([`axle_truck`][vbikit.vehicle.axle_truck]).  A rigid body on three or more spring supports is
 statically indeterminate: the loads follow the springs.  The defaults make any given split
 exact: every tire compresses by the same static deflection δ_t and every suspension by the same
 δ_s, i.e. tire stiffness ∝ its static wheel load and suspension stiffness ∝ the load it carries
@@ -21,7 +21,7 @@ exact: every tire compresses by the same static deflection δ_t and every suspen
 equilibrium of each body fixes its mass and centre of gravity (the load centroid of its
 supports), a bogie's pivot is the load centroid of its axles, and the tandem loads come out as
 given whatever their ratio.  The fifth-wheel load is the one that puts the tractor body's
-centre of gravity at :data:`TRACTOR_CG_FRACTION` of its wheelbase.
+centre of gravity at ``TRACTOR_CG_FRACTION`` of its wheelbase.
 
 Default properties [substitute], sources:
 
@@ -39,10 +39,10 @@ Default properties [substitute], sources:
   (as the dump truck's body);
 * resulting frequencies (on rigid ground): body modes ≈ 1.2–4 Hz (body heave ≈ √(g/(δ_s + δ_t))/2π
   ≈ 2 Hz), axle and bogie hop and roll ≈ 8–16 Hz;
-* consecutive axles at most :data:`GROUP_SPACING` apart form a group when ``groups`` is not
+* consecutive axles at most ``GROUP_SPACING`` apart form a group when ``groups`` is not
   given; a truck of four or more axles in three or more groups is a tractor (its first two
   groups) with a semitrailer, its fifth wheel 0.5 m ahead of the centre of the tractor's last
-  group (as in :func:`semitrailer_3s2`).
+  group (as in [`semitrailer_3s2`][vbikit.vehicle.semitrailer_3s2]).
 """
 from __future__ import annotations
 
@@ -115,7 +115,7 @@ class BodySpec:
 
 def build_truck(name: str, bodies: Sequence[BodySpec], groups: Sequence[GroupSpec], half_track: float,
                 description: str, parameters: dict | None = None) -> Vehicle:
-    """Assemble bodies, axle groups, suspensions and tires into a :class:`Vehicle`.
+    """Assemble bodies, axle groups, suspensions and tires into a [`Vehicle`][vbikit.vehicle.Vehicle].
 
     DOFs: heave, pitch, roll of the first body; pitch, roll of each hinged body (its heave
     follows the hinge); heave, pitch, roll of each bogie; bounce and roll of each independent
@@ -161,7 +161,7 @@ def _box_inertias(mass: float, length: float) -> tuple[float, float]:
 
 
 def default_groups(axle_spacings: Sequence[float]) -> list[str]:
-    """Axle groups from the spacings: runs of axles at most :data:`GROUP_SPACING` apart
+    """Axle groups from the spacings: runs of axles at most ``GROUP_SPACING`` apart
     (2 → ``tandem``, 3 → ``tridem``; longer runs are split into tridems and tandems)."""
     runs, size = [], 1
     for s in axle_spacings:
@@ -203,8 +203,8 @@ def axle_truck(
     axle_spacings : sequence of float
         Distance [m] from each axle to the next (len(axle_loads) − 1 values), > 0.
     groups : sequence of str, optional
-        Axle groups front to rear, from :data:`GROUP_KINDS`; their axles must add up to the
-        number of axles.  Default: :func:`default_groups`.
+        Axle groups front to rear, from ``GROUP_KINDS``; their axles must add up to the
+        number of axles.  Default: ``default_groups``.
     tractor_groups : int, optional
         Number of groups under the tractor of an articulated truck (0 = one rigid body).
         Default: 2 when there are ≥ 3 groups and ≥ 4 axles, else 0.

@@ -44,7 +44,13 @@ class Body:
 
 
 class VehicleBuilder:
-    """Incremental assembly of a :class:`~vbikit.vehicle.model.Vehicle`."""
+    """Incremental assembly of a [`Vehicle`][vbikit.vehicle.Vehicle].
+
+    Parameters
+    ----------
+    name : str
+        The vehicle's name.
+    """
 
     def __init__(self, name: str) -> None:
         self.name = name

@@ -9,7 +9,7 @@ Conventions
 * Pitch θ is positive nose-up, roll φ positive raising the left side (y > 0), so a point at
   (s, y) of a rigid body with centre of gravity at s_cg moves by z + (s_cg − s)·θ + y·φ.
 * Tire springs are *not* in K: they are the contact with the road/deck and belong to the
-  coupling (``vbikit.contact``).  Each :class:`Wheel` carries its tire's stiffness and
+  coupling (``vbikit.contact``).  Each [`Wheel`][vbikit.vehicle.Wheel] carries its tire's stiffness and
   damping and the row r_w with z_wheel = r_w · q.
 """
 from __future__ import annotations
@@ -57,8 +57,22 @@ class Wheel:
 class Vehicle:
     """A linear vehicle model with its wheels.
 
-    ``mass``, ``damping``, ``stiffness`` are the (n_dof × n_dof) matrices without tires,
-    ``gravity`` the gravity load vector F_G [N, N·m].
+    Parameters
+    ----------
+    name : str
+        The model's name.
+    dof_names : tuple of str
+        Name of each degree of freedom.
+    mass, damping, stiffness : ndarray
+        The (n_dof × n_dof) matrices without tires.
+    gravity : ndarray
+        The gravity load vector F_G [N, N·m].
+    wheels : tuple of Wheel
+        The wheels and their tires.
+    description : str
+        A one-line description.
+    parameters : dict of str to float
+        The parameters the model was built from.
     """
 
     name: str
@@ -132,7 +146,7 @@ class CombinedVehicle(Vehicle):
 
 
 def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> CombinedVehicle:
-    """Stack ``vehicles`` into one :class:`CombinedVehicle` (see there)."""
+    """Stack ``vehicles`` into one ``CombinedVehicle`` (see there)."""
     from scipy.linalg import block_diag
 
     vehicles = tuple(vehicles)

@@ -1,4 +1,4 @@
-"""Vehicle presets.  Each function returns a :class:`~vbikit.vehicle.model.Vehicle`; every
+"""Vehicle presets.  Each function returns a [`Vehicle`][vbikit.vehicle.Vehicle]; every
 number is labelled [paper] (printed in the paper), [public] (standard or published benchmark)
 or [substitute] (our documented engineering choice, see ``docs/model-data.md``).
 """
@@ -140,7 +140,7 @@ def dump_truck() -> Vehicle:
     * [substitute] rear tandem: one walking beam per side (mass 250 kg, pitch inertia
       250 · 1.2²/12 = 30 kg·m²), pinned at its centre (s = 6.85 m, y = ±b) to the body, the two
       rear axles hung from its ends by the suspension springs
-      (:meth:`~vbikit.vehicle.builder.VehicleBuilder.pivoted_beam`).  A rigid body on three
+      ([`pivoted_beam`][vbikit.vehicle.VehicleBuilder.pivoted_beam]).  A rigid body on three
       spring-supported axles is statically indeterminate (plain springs give ≈ 78 / 107 / 86 kN);
       with the beams the body rests on two supports (front suspension, tandem pivots) and the
       beams split their load equally, so the static axle loads are exactly the paper's.
