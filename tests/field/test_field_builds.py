@@ -3,7 +3,6 @@ the [bridge] spec (its errors name bridge.<key>), the tires through the [tire] b
 step and budgets through preflight's shared checks."""
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -16,15 +15,6 @@ from vbikit.field.workflow import FIELD_TIRES, base_bridge, check_field, field_t
 from vbikit.scenario.preflight import MIN_STEPS
 from vbikit.solve.budget import BudgetError, Limits
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "field"
-
-
-@pytest.fixture
-def example(tmp_path):
-    for f in EXAMPLE.glob("*"):
-        if f.suffix in (".csv", ".toml"):
-            shutil.copy(f, tmp_path / f.name)
-    return tmp_path
 
 
 def edit(example: Path, old: str, new: str) -> Path:

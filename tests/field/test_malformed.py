@@ -1,7 +1,6 @@
 """Malformed field files: each kind of fault gives an error naming the file and line or key."""
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import pytest
@@ -9,7 +8,6 @@ import pytest
 from vbikit.field import FieldFileError, load_field_toml, read_response_csv
 from vbikit.field.io import check_case_record
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "field"
 
 GOOD = """# comment
 time [s],G5_disp [mm],G5_acc [m/s^2]
@@ -51,14 +49,6 @@ def test_good_file_in_si(tmp_path):
 def test_bad_csv(tmp_path, bad, message):
     with pytest.raises(FieldFileError, match=message):
         read_response_csv(write(tmp_path, bad))
-
-
-@pytest.fixture
-def example(tmp_path):
-    for f in EXAMPLE.glob("*"):
-        if f.suffix in (".csv", ".toml"):
-            shutil.copy(f, tmp_path / f.name)
-    return tmp_path
 
 
 def test_example_loads(example):

@@ -14,7 +14,6 @@ from vbikit.scenario.cite import scenario_references
 from vbikit.solve import (
     INTEGRATORS,
     Crossing,
-    Integrator,
     UnstableTimeStepError,
     choose_time_step,
     get_integrator,

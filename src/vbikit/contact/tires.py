@@ -29,7 +29,7 @@ Each model declares its scenario ``name``, a ``description``, its ``references``
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import ClassVar, Literal
+from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray

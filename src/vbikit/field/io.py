@@ -30,7 +30,6 @@ from numpy.typing import NDArray
 from vbikit._files import check_name, read_text
 from vbikit._toml import read_toml
 from vbikit.errors import VbikitError
-from vbikit.scenario.deck import deck_parameters
 
 log = logging.getLogger(__name__)
 

@@ -10,7 +10,6 @@ from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.bridge.base import GirderDeck, HasLoadEffects, ModalBridge
 from vbikit.bridge.damage import Damage
 from vbikit.bridge.effects import LoadEffect
-from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.contact.registry import tire_model
 from vbikit.contact.tires import TireModel
 from vbikit.road.defects import Defect, with_defects

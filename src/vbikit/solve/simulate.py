@@ -8,7 +8,6 @@ from __future__ import annotations
 import logging
 import math
 import os
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
@@ -16,7 +15,7 @@ import numpy as np
 from vbikit.solve.budget import Limits
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.integrators import KernelCall, get_integrator
-from vbikit.solve.plan import RunPlan, TimeGrid, plan_run, time_grid  # noqa: F401 - time_grid re-exported
+from vbikit.solve.plan import RunPlan, TimeGrid, plan_run
 from vbikit.solve.result import CrossingResult, check_finite
 
 if TYPE_CHECKING:  # pragma: no cover

@@ -36,7 +36,7 @@ from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import OUTPUTS, as_number, outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
-from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario
+from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names
 from vbikit.study.spec import StudyError, derive_seed
