@@ -10,16 +10,8 @@ from vbikit.bridge import BRIDGE_PRESETS, EulerBernoulliBeam, ModalBridge, SlabO
 from vbikit.bridge.continuous import ContinuousBeam
 from vbikit.bridge.modefile import modes_from_file, write_modes
 from vbikit.scenario.build import build_bridge
-from vbikit.scenario.schema import (
-    BeamSpec,
-    ContinuousBeamSpec,
-    ModesFileSpec,
-    PresetBridgeSpec,
-    ScenarioError,
-    SlabOnGirderSpec,
-    parse_bridge,
-    scenario_from_toml,
-)
+from vbikit.scenario.bridge_spec import BeamSpec, ContinuousBeamSpec, ModesFileSpec, PresetBridgeSpec, SlabOnGirderSpec
+from vbikit.scenario.schema import ScenarioError, parse_bridge, scenario_from_toml
 
 REST = '[vehicle]\nmodel = "hs20-44"\n[crossing]\nspeed_kmh = 72\n'
 BEAM = 'span = 10.0\nEI = 5e9\nmass_per_length = 5000.0\n'
