@@ -65,6 +65,14 @@ CASES = {
     # found by the fuzz run with exact modal stepping: wheels 7e16 m off the deck diverged after validate
     "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7e16\n",
                             ["crossing.lateral_offset", "off the 9.75 m wide deck"]),
+    # [[vehicles]] are checked like [vehicle]: a listed truck 5 m off the centreline of a 9.75 m deck, and one
+    # driving -x whose mirrored wheels leave the deck on the other side
+    "listed-wheels-off-the-deck": ('[bridge]\nmodel = "paper-bridge-2"\nn_modes = 4\n[crossing]\nspeed_kmh = 60\n'
+                                   '[[vehicles]]\nmodel = "hs20-44"\n[[vehicles]]\nmodel = "hs20-44"\nlateral_offset = 5.0\n',
+                                   ["vehicles[2].lateral_offset = 5 m", "y = 6.1 m", "off the 9.75 m wide deck"]),
+    "listed-wheels-off-the-deck-minus-x": ('[bridge]\nmodel = "paper-bridge-2"\nn_modes = 4\n[crossing]\nspeed_kmh = 60\n'
+                                           '[[vehicles]]\nmodel = "hs20-44"\ndirection = "-x"\nlateral_offset = -4.2\n',
+                                           ["vehicles[1].lateral_offset = -4.2 m", "y = 5.3 m", "off the 9.75 m wide deck"]),
     "deep-nesting": ("a = " + "[" * 5000 + "]" * 5000 + "\n", ["s.toml", "not valid TOML"]),
     "unknown-key": (BEAM + "spead = 3\n", ["crossing.spead", "unknown key"]),
 }

@@ -69,6 +69,21 @@ def check_response_points(built: BuiltScenario) -> None:
                                 f"inside the span 0 … {bridge.span:g} m")
 
 
+def check_wheels_on_deck(crossing: Crossing) -> None:
+    """Refuse a vehicle whose wheels would run off a deck of known width (every vehicle: its
+    lateral offset and its wheels' own y, mirrored when it drives −x)."""
+    width = crossing.bridge.deck_width if isinstance(crossing.bridge, GirderDeck) else None
+    if width is None:
+        return
+    _, _, y = crossing.point_kinematics()
+    for i, m in enumerate(crossing.vehicles):
+        off = np.abs(y[crossing.point_vehicle == i])
+        if off.size and np.any(off > width / 2):
+            key = "crossing.lateral_offset" if crossing.single else f"vehicles[{i + 1}].lateral_offset"
+            raise ScenarioError(f"{key} = {m.lateral_offset:g} m puts wheels at y = {off.max():.4g} m from the "
+                                f"centreline, off the {width:g} m wide deck")
+
+
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
     """The run plan of ``crossing`` ([`vbikit.solve.plan.plan_run`][vbikit.solve.plan_run]: its time step [s] and
     estimate), checked as every run is: a given step makes at least ``MIN_STEPS`` steps, the
@@ -99,12 +114,7 @@ def preflight(scenario: Scenario, limits: Limits | None = None) -> Plan:
 def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     built = build(scenario, limits)
     crossing = built.crossing
-    width = crossing.bridge.deck_width if isinstance(crossing.bridge, GirderDeck) else None
-    if width is not None:
-        track = crossing.contact.lateral + crossing.lateral_offset if crossing.single else None
-        if track is not None and np.any(np.abs(track) > width / 2):
-            raise ScenarioError(f"crossing.lateral_offset = {crossing.lateral_offset:g} m puts wheels at y = "
-                                f"{np.abs(track).max():.4g} m from the centreline, off the {width:g} m wide deck")
+    check_wheels_on_deck(crossing)
     run = check_steps(crossing, limits)
     check_response_points(built)
     warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
