@@ -80,3 +80,12 @@ class ResponsePlan:
     @property
     def first(self) -> ResponsePoint:
         return self.points[0]
+
+    @property
+    def first_effects(self) -> dict[str, LoadEffect]:
+        """The first requested load effect of each kind present (``"moment"``, ``"shear"``,
+        ``"reaction"``): the ones the per-crossing outputs of the catalogue report."""
+        out: dict[str, LoadEffect] = {}
+        for e in self.load_effects:
+            out.setdefault(e.kind, e)
+        return out

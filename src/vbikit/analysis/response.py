@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
-from vbikit.analysis.plan import ResponsePlan, ResponsePoint
+from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import QUANTITIES, Reduction, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
@@ -146,14 +146,11 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
     """The catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) of a crossing: per-point outputs at every
     point of ``plan`` (a list in its order) and the per-crossing outputs.  ``xi_static``: the
     static modal history if already computed; ``effects``: the load-effect responses by kind if
-    already computed (default: the first of each kind in ``plan``)."""
+    already computed (default: ``plan.first_effects``)."""
     from vbikit.analysis.effects import load_effect_response
 
     if effects is None:
-        effects = {}
-        for e in plan.load_effects:
-            if e.kind not in effects:
-                effects[e.kind] = load_effect_response(result, e, plan.load_effect_method)
+        effects = {kind: load_effect_response(result, e, plan.load_effect_method) for kind, e in plan.first_effects.items()}
     points = [r.outputs(result) for r in plan_responses(result, plan, xi_static)]
     return points, reduce_outputs(Reduction(result, None, effects), "crossing")
 
@@ -202,11 +199,11 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
     wheel_forces = result.wheel_forces
     crossing_outputs = {k: v for k, v in reduce_outputs(Reduction(result, None, effects or {}), "crossing").items()
                         if v is not None and k not in ("dt", "n_steps")}
-    return response.outputs(result) | {
+    headline = response.outputs(result)
+    return headline | {
         "response_x": response.x,
         "response_y": response.y,
-        "points": points if points is not None else [{"name": "p1", "x": response.x, "y": response.y}
-                                                     | response.outputs(result)],
+        "points": points if points is not None else [{"name": point_name(1), "x": response.x, "y": response.y} | headline],
         "frequencies_hz": [float(f) for f in crossing.bridge.frequencies_hz],
         "vehicle_frequencies_hz": [float(f) for f in crossing.vehicle.natural_frequencies()],
         "static_wheel_loads": {w.name: float(p) for w, p in zip(crossing.vehicle.wheels, crossing.vehicle.static_wheel_loads())},

@@ -18,6 +18,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Mapping
 
+from vbikit.analysis.checks import point_warnings
 from vbikit.analysis.effects import load_effect_report
 from vbikit.analysis.impact import static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -140,12 +141,9 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     girders = girder_responses(result, first.x, points[0].y, xi_static)
     effects_summary, effects = load_effect_report(result, plan.load_effects, plan.load_effect_method,
                                                   points[0].x, points[0].y)
-    first_of_kind = {kind: next((e for e in effects if e.effect.kind == kind), None) for kind in ("moment", "shear", "reaction")}
-    s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points),
-                {k: v for k, v in first_of_kind.items() if v is not None})
+    first_effects = {kind: next(r for r in effects if r.effect is e) for kind, e in plan.first_effects.items()}
+    s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points), first_effects)
     s.update(effects_summary)
-    from vbikit.analysis.checks import point_warnings
-
     for p in points[1:]:
         s["warnings"] += [w for w in point_warnings(result.crossing, p.x, p.y) if w not in s["warnings"]]
     return Report(name, result, plan, points, girders, effects, s)

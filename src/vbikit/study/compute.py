@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from collections import OrderedDict
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -52,6 +53,14 @@ def _road(scenario: Scenario, data: dict) -> tuple[RoadProfile | None, RoadProfi
     return road
 
 
+def stack_outputs(rows: Sequence[tuple[Sequence[dict], dict]]) -> dict[str, NDArray]:
+    """The catalogue's outputs of reduced crossings (each ``(per-point outputs, per-crossing
+    outputs)`` as [`reduce_crossing`][vbikit.analysis.reduce_crossing] gives them) as arrays:
+    per-point outputs (rows, points), per-crossing outputs (rows,); an output that does not apply is NaN."""
+    out = {o.name: np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float) for o in outputs("point")}
+    return out | {o.name: np.array([as_number(r[1][o.name]) for r in rows], float) for o in outputs("crossing")}
+
+
 def solver_point(built) -> tuple[float, float]:
     """(x, y) [m] of a built scenario's first response point (x resolved to the bridge's default)."""
     p = built.plan.first
@@ -76,14 +85,11 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     phi_first = built.crossing.bridge.mode_shapes(*([v] for v in solver_point(built)))[0]
 
     static: dict[float, NDArray] = {}  # static modal history, per step
-    effects = {kind: next((e for e in plan.load_effects if e.kind == kind), None) for kind in ("moment", "shear", "reaction")}
     influence: dict[tuple[str, float], NDArray] = {}  # contact influence matrices, per effect and step
 
     def effect_responses(result) -> dict[str, object]:
         out = {}
-        for kind, effect in effects.items():
-            if effect is None:
-                continue
+        for kind, effect in plan.first_effects.items():
             key = (kind, result.dt)
             if plan.load_effect_method == "mode-acceleration" and key not in influence:
                 influence[key] = contact_influence(result, effect)
@@ -98,11 +104,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
         return points, row, (result.xi @ phi_first if study.histories else None)
 
     rows = solver.run_many(roads, reduce=reduce, threads=threads)
-    out: dict[str, NDArray] = {}
-    for o in outputs("point"):
-        out[o.name] = np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float)
-    for o in outputs("crossing"):
-        out[o.name] = np.array([as_number(r[1][o.name]) for r in rows], float)
+    out = stack_outputs(rows)
     out["index"] = np.array(batch, np.int64).reshape(len(batch), len(study.axes))
     if study.histories:
         n_t = max(r[2].size for r in rows)

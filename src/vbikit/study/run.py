@@ -36,7 +36,7 @@ import time
 import zipfile
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
-from typing import Any, Callable, Optional
+from typing import Any, Callable, Optional, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -131,6 +131,21 @@ def output_problem(part: Any, n_rows: int, n_points: int) -> Optional[str]:
         if shape not in wanted:
             return f"{o.name} has the wrong shape"
     return None
+
+
+def output_variables(data: dict[str, NDArray], dims: Sequence[str], names: Optional[Sequence[str]]) -> dict[str, Any]:
+    """Dataset variables of the catalogue's outputs from ``data`` (per-point outputs with a trailing
+    points axis): dimensions ``dims``, and ``point`` for per-point outputs when the response points
+    are listed (``names``; None for the [response] shorthand, whose single point has no dimension);
+    CF units and long names from the catalogue."""
+    variables = {}
+    for o in outputs():
+        arr = data[o.name].astype(np.int64) if o.name == "n_steps" else data[o.name]
+        if o.scope == "point" and names is None:
+            arr = arr[..., 0]
+        point_dim = ["point"] if o.scope == "point" and names is not None else []
+        variables[o.name] = ([*dims, *point_dim], arr, {"units": o.cf_unit, "long_name": o.long_name})
+    return variables
 
 
 def part_output(part: Any, name: str, n_points: int) -> NDArray:
@@ -411,13 +426,7 @@ def assemble(study: Study, parts: Path):
                     data[name][()] = values[0]
             if study.histories:
                 hist_parts.append((idx, part["displacement_history"]))
-    variables = {}
-    for o in outputs():
-        arr = data[o.name].astype(np.int64) if o.name == "n_steps" else data[o.name]
-        if o.scope == "point" and names is None:  # the [response] shorthand: no point dimension
-            arr = arr[..., 0]
-        point_dim = ["point"] if o.scope == "point" and names is not None else []
-        variables[o.name] = ([*dims, *point_dim], arr, {"units": o.cf_unit, "long_name": o.long_name})
+    variables = output_variables(data, dims, names)
     if study.histories:
         n_t = max(h.shape[1] for _, h in hist_parts)
         hist = np.full(shape + (n_t,), np.nan)

@@ -34,11 +34,11 @@ from numpy.typing import NDArray
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import OUTPUTS, as_number, outputs
+from vbikit.outputs import OUTPUTS, outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.study.compute import point_names
+from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.spec import StudyError, derive_seed
 from vbikit.traffic.events import Event, partition
 from vbikit.traffic.records import VehicleRecord
@@ -127,9 +127,7 @@ class TrafficStudy:
             row, per_vehicle = self.run_event(e)
             rows.append(row)
             vehicle_rows += per_vehicle
-        out = {o.name: np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float) for o in outputs("point")}
-        out |= {o.name: np.array([as_number(r[1][o.name]) for r in rows], float) for o in outputs("crossing")}
-        out |= {k: np.array([r[1][k] for r in rows], float) for k in EVENT_EXTRAS}
+        out = stack_outputs(rows) | {k: np.array([r[1][k] for r in rows], float) for k in EVENT_EXTRAS}
         out["event"] = np.array(batch, np.int64)
         out["vehicle"] = np.array([i for e in batch for i in self.events[e]], np.int64)
         for k in VEHICLE_OUTPUTS:
@@ -233,13 +231,10 @@ class TrafficStudy:
         gross = np.array([_gross(r) for r in recs])
         event_gross = np.array([gross[list(m)].sum() for m in self.events])
         variables: dict[str, Any] = {}
+        from vbikit.study.run import output_variables
+
         names = self.point_names
-        for o in outputs():
-            arr = ev[o.name].astype(np.int64) if o.name == "n_steps" else ev[o.name]
-            if o.scope == "point" and names is None:  # the [response] shorthand: no point dimension
-                arr = arr[:, 0]
-            dims = ("event", "point") if o.scope == "point" and names is not None else "event"
-            variables[o.name] = (dims, arr, {"units": o.cf_unit, "long_name": o.long_name})
+        variables |= output_variables(ev, ["event"], names)
         for name, (units, desc) in EVENT_EXTRAS.items():
             variables[name] = ("event", ev[name].astype(np.int64), {"units": units, "long_name": desc})
         variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time)"})
