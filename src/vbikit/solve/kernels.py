@@ -778,7 +778,11 @@ class VehicleStep(NamedTuple):
     both ends of the step (linear in time over it):
     z_{n+1} = ``transition`` z_n + ``load0`` G_n + ``load1`` G_{n+1} + ``constant`` (gravity);
     ``c_hat`` Ĉ = C_v + Hᵀ diag(c_w) H and ``k_hat`` K̂ = K_v + Hᵀ diag(k_w) H give q̈ from the
-    equation of motion (``vbikit.solve.modal_step``: exact, or Newmark's average acceleration)."""
+    equation of motion (``vbikit.solve.modal_step``: exact, or Newmark's average acceleration).
+    For the coupled solve, with the end loads G = F + K_z z_{n+1} written through the wheel forces
+    F: ``settle`` P = (I − L1 K_z)⁻¹ (2n_d, 2n_d), ``response`` P L1 (2n_d, n_w), and the wheels'
+    displacement and velocity per unit wheel force ``wheel_q`` = H (P L1)[:n_d], ``wheel_v`` =
+    H (P L1)[n_d:] (n_w, n_w)."""
 
     transition: np.ndarray
     load0: np.ndarray
@@ -786,6 +790,10 @@ class VehicleStep(NamedTuple):
     constant: np.ndarray
     c_hat: np.ndarray
     k_hat: np.ndarray
+    settle: np.ndarray
+    response: np.ndarray
+    wheel_q: np.ndarray
+    wheel_v: np.ndarray
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -818,8 +826,203 @@ def _tire_load(vehicles, wheel_force, q, dq, out, lanes):
                     out[w, lane] += h * (kw * q[j, lane] + cw * dq[j, lane])
 
 
-#: iterations of the plain fixed point before the implicit kernel halves its updates
+#: Newton iterations after which the implicit kernel halves its updates (a contact set that would cycle)
 RELAX_AFTER = 8
+
+
+@_internal
+def _lu_factor(a, n, piv):
+    """In-place LU factorisation with partial pivoting of a[:n, :n] (row swaps in ``piv``)."""
+    for j in range(n):
+        best = j
+        big = abs(a[j, j])
+        for i in range(j + 1, n):
+            if abs(a[i, j]) > big:
+                big = abs(a[i, j])
+                best = i
+        piv[j] = best
+        if best != j:
+            for c in range(n):
+                t = a[j, c]
+                a[j, c] = a[best, c]
+                a[best, c] = t
+        d = a[j, j]
+        for i in range(j + 1, n):
+            lij = a[i, j] / d
+            a[i, j] = lij
+            if lij != 0.0:
+                for c in range(j + 1, n):
+                    a[i, c] -= lij * a[j, c]
+
+
+@_internal
+def _lu_solve(a, n, piv, b):
+    """Solve a x = b in place in b[:n] with the factors of ``_lu_factor``."""
+    for j in range(n):
+        k = piv[j]
+        if k != j:
+            t = b[j]
+            b[j] = b[k]
+            b[k] = t
+    for i in range(n):
+        acc = b[i]
+        for j in range(i):
+            acc -= a[i, j] * b[j]
+        b[i] = acc
+    for i in range(n - 1, -1, -1):
+        acc = b[i]
+        for j in range(i + 1, n):
+            acc -= a[i, j] * b[j]
+        b[i] = acc / a[i, i]
+
+
+@_internal
+def _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat, piv, red, red_piv):
+    """Factorise the Jacobian of the contact law on the active points ``act[:na]`` (row i with tire
+    stiffness ``row_k[i]`` and damping ``row_c[i]``).
+
+    Row i of the law's affine part depends on the end-of-step modal loads p through
+    e_i = ∂F_i/∂p (n_m) and on the wheel forces F_w through u_i = ∂F_i/∂F_w (n_w); with
+    p = −Σ_j φ_j F_j and F_w = Σ_{j∈w} F_j, the matrix to solve is I − B_AA = I + W Z, W = [E U]
+    (na, r), Z = [Φ_Aᵀ; S_A] (r, na), r = n_m + n_w.  Factorised directly (``mat``, na × na) when
+    na ≤ r, else through the capacitance matrix I_r + Z W (``red``, r × r; Woodbury's identity),
+    whichever is smaller.  Returns True for the second form."""
+    phi, dphi = cache.phi, cache.dphi
+    n_m = e.shape[1]
+    n_w = u.shape[1]
+    for i in range(na):
+        k = act[i]
+        kk = row_k[i]
+        cc = row_c[i]
+        wi = points.wheel[k]
+        if onb[k]:
+            vx = cache.vx[k]
+            for m in range(n_m):
+                e[i, m] = (kk * step.c1[m] + cc * step.c2[m]) * phi[k, m] + cc * vx * step.c1[m] * dphi[k, m]
+        else:
+            for m in range(n_m):
+                e[i, m] = 0.0
+        for w in range(n_w):
+            u[i, w] = kk * vstep.wheel_q[wi, w] + cc * vstep.wheel_v[wi, w]
+    if na <= n_m + n_w:
+        for i in range(na):
+            for j in range(na):
+                kj = act[j]
+                b = u[i, points.wheel[kj]]
+                if onb[kj]:
+                    for m in range(n_m):
+                        b += e[i, m] * phi[kj, m]
+                mat[i, j] = b + (1.0 if i == j else 0.0)
+        _lu_factor(mat, na, piv)
+        return False
+    r = n_m + n_w
+    for a in range(r):
+        for b in range(r):
+            red[a, b] = 1.0 if a == b else 0.0
+    for i in range(na):
+        k = act[i]
+        wi = points.wheel[k]
+        if onb[k]:
+            for m in range(n_m):
+                fm = phi[k, m]
+                for m2 in range(n_m):
+                    red[m, m2] += fm * e[i, m2]
+                for w in range(n_w):
+                    red[m, n_m + w] += fm * u[i, w]
+        for m2 in range(n_m):
+            red[n_m + wi, m2] += e[i, m2]
+        for w in range(n_w):
+            red[n_m + wi, n_m + w] += u[i, w]
+    _lu_factor(red, r, red_piv)
+    return True
+
+
+@_internal
+def _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, reduced, rhs, t):
+    """Solve (I − B_AA) x = ``rhs`` in place with the factors of ``_coupling`` (``t``: r work)."""
+    if not reduced:
+        _lu_solve(mat, na, piv, rhs)
+        return
+    phi = cache.phi
+    n_m = e.shape[1]
+    n_w = u.shape[1]
+    for a in range(n_m + n_w):
+        t[a] = 0.0
+    for i in range(na):
+        k = act[i]
+        if onb[k]:
+            for m in range(n_m):
+                t[m] += phi[k, m] * rhs[i]
+        t[n_m + points.wheel[k]] += rhs[i]
+    _lu_solve(red, n_m + n_w, red_piv, t)
+    for i in range(na):
+        x = rhs[i]
+        for m in range(n_m):
+            x -= e[i, m] * t[m]
+        for w in range(n_w):
+            x -= u[i, w] * t[n_m + w]
+        rhs[i] = x
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes):
+    """The end-of-step state for point forces ``f`` (n_cp, L): modal loads p = −Σ_p φ_p F_p (points on
+    the deck), wheel sums ``fw``, deck ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, vehicles z = z_b + (P L1) F_w."""
+    n_l = _width(lanes, f)
+    phi, dphi = cache.phi, cache.dphi
+    for m in range(p.shape[0]):
+        for lane in range(n_l):
+            p[m, lane] = 0.0
+    for w in range(fw.shape[0]):
+        for lane in range(n_l):
+            fw[w, lane] = 0.0
+    for k in range(f.shape[0]):
+        nonzero = False
+        for lane in range(n_l):
+            if f[k, lane] != 0.0:
+                nonzero = True
+        if not nonzero:
+            continue
+        _axpy(1.0, f, k, fw, points.wheel[k], lanes)
+        if onb[k]:
+            if not cache.have[k]:
+                shape_point(cache.x[k], points.track[k], modes, phi[k], dphi[k])
+                cache.have[k] = True
+            for m in range(p.shape[0]):
+                _axpy(-phi[k, m], f, k, p, m, lanes)
+    for m in range(p.shape[0]):
+        c1 = step.c1[m]
+        c2 = step.c2[m]
+        for lane in range(n_l):
+            x1[m, lane] = xf[m, lane] + c1 * p[m, lane]
+            v1[m, lane] = vf[m, lane] + c2 * p[m, lane]
+    _copy(zb, z1, lanes)
+    _gemv(1.0, vstep.response, fw, z1, lanes, False)
+
+
+#: the touching rows' stiffness, in units of the point's own: the end-of-step penetration of a touching
+#: point shrinks by about this factor per Newton iteration (it is exactly 0 at convergence)
+TOUCH_STIFFNESS = 1e6
+
+
+@_internal
+def _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb):
+    """Penetration δ [m] and the ungated law k δ + c δ̇ + f0 [N] of point ``k`` in lane ``lane`` at the
+    end-of-step state (its road values and mode shapes in ``cache``)."""
+    s = cache.rv[k, lane]
+    rate = cache.rr[k, lane]
+    if onb[k]:
+        vx = cache.vx[k]
+        for m in range(x1.shape[0]):
+            s += cache.phi[k, m] * x1[m, lane]
+            rate += cache.phi[k, m] * v1[m, lane] + vx * cache.dphi[k, m] * x1[m, lane]
+    w = points.wheel[k]
+    for j in range(y1.shape[0]):
+        h = vehicles.wheel_rows[w, j]
+        s -= h * y1[j, lane]
+        rate -= h * w1[j, lane]
+    pen = s - points.gap[k]
+    return pen, points.stiffness[k] * pen + points.damping[k] * rate + points.fixed_load[k]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
@@ -829,16 +1032,19 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     modal load linear over the step), the vehicles by theirs (``VehicleStep``, the wheel
     loads linear over the step), coupled through the contact forces at the end of the step.
 
-    The end-of-step forces are found by fixed-point iteration on the modal loads p_{n+1} and
-    the wheel loads G_w = F_w + k_w z_w + c_w ż_w (k_w, c_w the nominal tire, carried by the
-    vehicle map): deck and vehicles at t_{n+1} from the current (p, G), then the contact law
-    (``contact_forces``, gating and envelope included) gives new forces, until no point
-    force and no G_w changes by more than ``tol_force`` [N] in any lane.  The first guess is the
-    linear extrapolation of the last two steps.  The iteration contracts by about the tire
-    stiffness over the deck's stiffness under the wheel (and, for points whose contact differs
-    from the nominal tire, k h²/(4 m) of the wheel), a few per cent for road vehicles.  Points
-    entering and leaving contact make the map non-smooth, and it can cycle between two contact
-    sets; after ``RELAX_AFTER`` iterations the updates are halved (under-relaxation).
+    Both step maps are linear, so the end-of-step state is an affine function of the end-of-step
+    point forces F (``_state_of``), and so is each point's contact law while the set of points in
+    contact (and each rigid disk's acting point) stays the same.  The forces are found by a
+    semi-smooth Newton (active-set) iteration on F − law(F) = 0: evaluate the contact law at the
+    state of the current F (``contact_forces``, gating and envelopes included); its active
+    points A give the affine law F_A = a_A + B_AA F_A, solved exactly as (I − B_AA) F_A = a_A
+    with F = 0 off A (``_coupling``: B through the deck modes and through the vehicles); repeat
+    until no point force changes by more than ``tol_force`` [N] in any lane.  With an unchanged
+    contact set that takes two evaluations of the contact law (one Newton step and its check);
+    each change of the set costs one more.  The first guess is the linear extrapolation of the
+    last two steps' forces.  Should the contact set cycle, updates are halved after
+    ``RELAX_AFTER`` iterations.  The factorised I − B_AA is reused by every lane and iteration of a
+    step that has the same active set.
 
     Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
@@ -853,12 +1059,13 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     omega, zeta = modes.omega, modes.zeta
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
+    zb = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
     _fetch(xi, 0, x0, lanes); _fetch(dxi, 0, v0, lanes); _fetch(q, 0, z0[:n_d], lanes); _fetch(dq, 0, z0[n_d:], lanes)
     xf = np.zeros((n_m, n_l)); vf = np.zeros((n_m, n_l))  # free deck response (load p_{n+1} = 0)
-    p0 = np.zeros((n_m, n_l)); pm = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); pn = np.zeros((n_m, n_l))
-    g0 = np.zeros((n_w, n_l)); gm = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l)); gn = np.zeros((n_w, n_l))
-    f_prev = np.zeros((n_cp, n_l))
+    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l))
+    g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l))
+    f = np.zeros((n_cp, n_l)); f0 = np.zeros((n_cp, n_l)); fm = np.zeros((n_cp, n_l)); fw = np.zeros((n_w, n_l))
     acc = np.zeros((n_m, n_l))
     work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
                 np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
@@ -866,6 +1073,25 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
     cache = _slot(n_cp, n_m, n_l)
+    # Newton work space, sized for the most points that can act at once (one per rigid disk)
+    cap = 0
+    for w in range(n_w):
+        cap += 1 if vehicles.wheel_envelope[w] else vehicles.wheel_count[w]
+    cap = max(cap, 1)
+    n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)
+    mat = np.zeros((n_r, n_r)); piv = np.zeros(n_r, dtype=np.int64); e = np.zeros((cap, n_m)); rhs = np.zeros(cap)
+    u = np.zeros((cap, n_w)); red = np.zeros((n_m + n_w, n_m + n_w)); red_piv = np.zeros(n_m + n_w, dtype=np.int64)
+    t = np.zeros(n_m + n_w)
+    reduced = False
+    act = np.zeros(cap, dtype=np.int64); held = np.zeros(cap, dtype=np.int64)
+    onb = np.zeros(n_cp, dtype=np.bool_)
+    lane_err = np.zeros(n_l)
+    touch = np.zeros((n_cp, n_l), dtype=np.bool_)  # points held at zero penetration (see docstring)
+    row_k = np.zeros(cap); row_c = np.zeros(cap); held_k = np.zeros(cap); held_c = np.zeros(cap)
+    gated = np.zeros(n_cp, dtype=np.bool_)
+    for k in range(n_cp):
+        gated[k] = (points.gated[k] or (unilateral and points.stiffness[k] > 0.0)) and \
+            not vehicles.wheel_envelope[points.wheel[k]]
     # t = 0: forces, modal load, wheel loads and accelerations of the initial state
     _refresh(cache, motion, 0, points)
     y0, w0 = z0[:n_d], z0[n_d:]
@@ -876,61 +1102,127 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
     _store(ddxi, 0, acc, lanes); _store(ddq, 0, a1, lanes)
     _store(wheel_force, 0, wf, lanes); _store(wheel_len, 0, wl, lanes)
-    _copy(p0, pm, lanes)
-    _copy(g0, gm, lanes)
+    for k in range(n_cp):
+        for lane in range(n_l):
+            f0[k, lane] = force[k, lane] if work.used[k] else 0.0
+            fm[k, lane] = f0[k, lane]
     unsettled = 0
     evaluations = 0
+    y1, w1 = z1[:n_d], z1[n_d:]
     for n in range(n_steps):
         _refresh(cache, motion, 2 * n + 2, points)
-        # free responses: deck with p_{n+1} = 0, vehicles with G_{n+1} = 0
+        for k in range(n_cp):
+            onb[k] = modes.start[points.track[k]] <= cache.x[k] <= modes.end[points.track[k]]
+        # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
         _combine(step.a11, x0, step.a12, v0, step.b1, p0, xf, lanes)
         _combine(step.a21, x0, step.a22, v0, step.b2, p0, vf, lanes)
         for i in range(2 * n_d):
             for lane in range(n_l):
                 zf[i, lane] = vstep.constant[i]
+                zb[i, lane] = 0.0
         _gemv(1.0, vstep.transition, z0, zf, lanes, False)
         _gemv(1.0, vstep.load0, g0, zf, lanes, False)
-        # first guess: linear extrapolation of the loads
-        for m in range(n_m):
+        _gemv(1.0, vstep.settle, zf, zb, lanes, False)
+        # first guess: linear extrapolation of the forces
+        for k in range(n_cp):
             for lane in range(n_l):
-                p[m, lane] = 2.0 * p0[m, lane] - pm[m, lane]
-        for w in range(n_w):
+                f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
+        n_held = -1  # new positions: no factorisation to reuse
+        for k in range(n_cp):
             for lane in range(n_l):
-                g[w, lane] = 2.0 * g0[w, lane] - gm[w, lane]
+                touch[k, lane] = False
         converged = False
-        y1, w1 = z1[:n_d], z1[n_d:]
         for it in range(max_iterations):
             evaluations += 1
-            _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes)
+            _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
             contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
-            for m in range(n_m):
-                for lane in range(n_l):
-                    pn[m, lane] = 0.0
-            _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, pn, lanes)
-            _tire_load(vehicles, wf, y1, w1, gn, lanes)
             err = 0.0
-            for w in range(n_w):
-                for lane in range(n_l):
-                    err = max(err, abs(gn[w, lane] - g[w, lane]))
+            for lane in range(n_l):
+                lane_err[lane] = 0.0
             for k in range(n_cp):
+                used = work.used[k]
                 for lane in range(n_l):
-                    err = max(err, abs(force[k, lane] - f_prev[k, lane]))
-                    f_prev[k, lane] = force[k, lane]
-            if it >= RELAX_AFTER:  # gated contact can make the plain iteration cycle: damp it
-                for m in range(n_m):
-                    for lane in range(n_l):
-                        pn[m, lane] = 0.5 * (pn[m, lane] + p[m, lane])
-                for w in range(n_w):
-                    for lane in range(n_l):
-                        gn[w, lane] = 0.5 * (gn[w, lane] + g[w, lane])
-            p, pn = pn, p
-            g, gn = gn, g
-            if err <= tol_force and it > 0:
+                    if touch[k, lane]:  # held at δ = 0 with 0 ≤ F ≤ the law's value there
+                        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+                        if 0.0 <= f[k, lane] <= law + tol_force:
+                            lane_err[lane] = max(lane_err[lane], abs(points.stiffness[k] * pen))
+                            continue
+                        touch[k, lane] = False
+                    r = abs((force[k, lane] if used else 0.0) - f[k, lane])
+                    lane_err[lane] = max(lane_err[lane], r)
+            for lane in range(n_l):
+                err = max(err, lane_err[lane])
+            if err <= tol_force:
                 converged = True
                 break
+            for lane in range(n_l):  # one Newton step per unconverged lane
+                if lane_err[lane] <= tol_force:
+                    continue
+                na = 0
+                for k in range(n_cp):
+                    if not work.used[k]:
+                        continue
+                    if gated[k] and not work.active[k, lane] and not touch[k, lane] and f[k, lane] > 0.0:
+                        # pressed in the iterate, released by the law: touching if the law would press
+                        # at zero penetration (a damped tire landing), so that F = 0 and F > 0 both fail
+                        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+                        touch[k, lane] = pen <= 0.0 and law > 0.0
+                    if touch[k, lane]:
+                        act[na] = k
+                        row_k[na] = TOUCH_STIFFNESS * points.stiffness[k]
+                        row_c[na] = 0.0
+                        na += 1
+                    elif work.active[k, lane]:
+                        act[na] = k
+                        row_k[na] = points.stiffness[k]
+                        row_c[na] = points.damping[k]
+                        na += 1
+                same = na == n_held
+                if same:
+                    for i in range(na):
+                        if act[i] != held[i] or row_c[i] != held_c[i] or row_k[i] != held_k[i]:
+                            same = False
+                            break
+                if not same:
+                    reduced = _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat, piv, red,
+                                        red_piv)
+                    for i in range(na):
+                        held[i] = act[i]
+                        held_k[i] = row_k[i]
+                        held_c[i] = row_c[i]
+                    n_held = na
+                for i in range(na):  # a_A = law_A(F) − (B F)_A; touching rows: F + K δ (K = row_k)
+                    k = act[i]
+                    if touch[k, lane]:
+                        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+                        a = f[k, lane] + row_k[i] * pen
+                    else:
+                        a = force[k, lane]
+                    for m in range(n_m):
+                        a -= e[i, m] * p[m, lane]
+                    for w in range(n_w):
+                        a += u[i, w] * fw[w, lane]
+                    rhs[i] = a
+                _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, reduced, rhs, t)
+                blend = 0.5 if it >= RELAX_AFTER else 1.0
+                for k in range(n_cp):
+                    f[k, lane] *= 1.0 - blend
+                for i in range(na):
+                    f[act[i], lane] += blend * rhs[i]
         if not converged:
             unsettled += 1
-        _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes)
+        # the end state of the law's forces (within tol_force of the iterate's)
+        for k in range(n_cp):
+            used = work.used[k]
+            for lane in range(n_l):
+                if touch[k, lane]:  # the touching force is the iterate's (the law's is 0 or undefined)
+                    wf[points.wheel[k], lane] += f[k, lane] - (force[k, lane] if used else 0.0)
+                    if not work.active[k, lane]:
+                        wl[points.wheel[k], lane] += points.width[k]
+                    force[k, lane] = f[k, lane]
+                f[k, lane] = force[k, lane] if used else 0.0
+        _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
+        _tire_load(vehicles, wf, y1, w1, g, lanes)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
         _keep(xi, n + 1, stride, x1, lanes); _keep(dxi, n + 1, stride, v1, lanes)
@@ -940,25 +1232,11 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         x0, x1 = x1, x0
         v0, v1 = v1, v0
         z0, z1 = z1, z0
-        pm, p0, p = p0, p, pm
-        gm, g0, g = g0, g, gm
+        y1, w1 = z1[:n_d], z1[n_d:]
+        p0, p = p, p0
+        g0, g = g, g0
+        fm, f0, f = f0, f, fm
     return unsettled, evaluations
-
-
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _end_state(step, xf, vf, p, x1, v1, vstep, zf, g, z1, lanes):
-    """Deck and vehicles at t_{n+1} for end loads p (modal) and G (wheels)."""
-    n_l = _width(lanes, xf)
-    for m in range(xf.shape[0]):
-        c1 = step.c1[m]
-        c2 = step.c2[m]
-        for lane in range(n_l):
-            x1[m, lane] = xf[m, lane] + c1 * p[m, lane]
-            v1[m, lane] = vf[m, lane] + c2 * p[m, lane]
-    for i in range(zf.shape[0]):
-        for lane in range(n_l):
-            z1[i, lane] = zf[i, lane]
-    _gemv(1.0, vstep.load1, g, z1, lanes, False)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")

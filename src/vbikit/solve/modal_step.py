@@ -123,6 +123,30 @@ def _nominal(vehicles: Vehicles) -> tuple[NDArray[np.float64], NDArray[np.float6
     return np.ascontiguousarray(c_hat), np.ascontiguousarray(k_hat)
 
 
+def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDArray[np.float64],
+                 load1: NDArray[np.float64], constant: NDArray[np.float64], c_hat: NDArray[np.float64],
+                 k_hat: NDArray[np.float64]) -> VehicleStep:
+    """The ``VehicleStep`` of a step map z_{n+1} = T z_n + L0 G_n + L1 G_{n+1} + b, with the maps the
+    coupled solve needs: the end wheel loads are G = F + K_z z_{n+1} (the point forces F summed per
+    wheel, S F, plus the nominal tire's k_w h_w·q + c_w h_w·q̇), so
+
+        z_{n+1} = P (T z_n + L0 G_n + b) + P L1 S F,     P = (I − L1 K_z)⁻¹,
+
+    and the wheels' displacement and velocity h_w·q, h_w·q̇ respond to the wheel forces through
+    ``wheel_q`` = H (P L1)[:n_d] and ``wheel_v`` = H (P L1)[n_d:] (n_w, n_w)."""
+    n_d, rows = vehicles.gravity.size, vehicles.wheel_rows
+    n_w = rows.shape[0]
+    k_z = np.zeros((n_w, 2 * n_d))
+    k_z[:, :n_d] = vehicles.wheel_stiffness[:, None] * rows
+    k_z[:, n_d:] = vehicles.wheel_damping[:, None] * rows
+    settle = np.linalg.inv(np.eye(2 * n_d) - load1 @ k_z) if n_d else np.zeros((0, 0))
+    response = settle @ load1
+    contiguous = np.ascontiguousarray
+    return VehicleStep(contiguous(transition), contiguous(load0), contiguous(load1), contiguous(constant), c_hat, k_hat,
+                       contiguous(settle), contiguous(response), contiguous(rows @ response[:n_d]),
+                       contiguous(rows @ response[n_d:]))
+
+
 def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     """The vehicles' exact step map over ``h`` [s] with their nominal tires (k_w, c_w of each wheel)
     on the contact surface and the wheel loads G linear over the step: the exponential of the
@@ -130,7 +154,7 @@ def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
     c_hat, k_hat = _nominal(vehicles)
     if n_d == 0:
-        return VehicleStep(np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
+        return _vehicle_map(vehicles, np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
     m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows
     n = 2 * n_d + 2 * n_w + 1
     a = np.zeros((n, n))
@@ -143,8 +167,7 @@ def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     e = expm(a * h)
     z = slice(0, 2 * n_d)
     e_g, e_dg = e[z, 2 * n_d:2 * n_d + n_w], e[z, 2 * n_d + n_w:2 * n_d + 2 * n_w]
-    return VehicleStep(np.ascontiguousarray(e[z, z]), np.ascontiguousarray(e_g - e_dg / h),
-                       np.ascontiguousarray(e_dg / h), np.ascontiguousarray(e[z, -1]), c_hat, k_hat)
+    return _vehicle_map(vehicles, e[z, z], e_g - e_dg / h, e_dg / h, e[z, -1], c_hat, k_hat)
 
 
 def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
@@ -152,7 +175,7 @@ def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
     c_hat, k_hat = _nominal(vehicles)
     if n_d == 0:
-        return VehicleStep(np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
+        return _vehicle_map(vehicles, np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
     m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows
     s_inv = np.linalg.inv(vehicles.mass + 0.5 * h * c_hat + 0.25 * h * h * k_hat)
 
@@ -168,5 +191,4 @@ def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     load1 = advance(zdw, zdw, zww, ew, zdw)
     col = np.zeros((n_d, 1))
     constant = advance(col, col, np.zeros((n_w, 1)), np.zeros((n_w, 1)), vehicles.gravity.reshape(n_d, 1))[:, 0]
-    return VehicleStep(np.ascontiguousarray(transition), np.ascontiguousarray(load0), np.ascontiguousarray(load1),
-                       np.ascontiguousarray(constant), c_hat, k_hat)
+    return _vehicle_map(vehicles, transition, load0, load1, constant, c_hat, k_hat)
