@@ -1008,15 +1008,22 @@ TOUCH_STIFFNESS = 1e6
 @_internal
 def _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb):
     """Penetration δ [m] and the ungated law k δ + c δ̇ + f0 [N] of point ``k`` in lane ``lane`` at the
-    end-of-step state (its road values and mode shapes in ``cache``)."""
+    end-of-step state (its road values and mode shapes in ``cache``); on a rigid disk's wheel the
+    surface rate along the travel is clamped to the circle's slopes, as in ``_envelope``."""
     s = cache.rv[k, lane]
-    rate = cache.rr[k, lane]
+    sd = cache.rr[k, lane]
+    deck_rate = 0.0
+    vx = cache.vx[k]
     if onb[k]:
-        vx = cache.vx[k]
         for m in range(x1.shape[0]):
             s += cache.phi[k, m] * x1[m, lane]
-            rate += cache.phi[k, m] * v1[m, lane] + vx * cache.dphi[k, m] * x1[m, lane]
+            deck_rate += cache.phi[k, m] * v1[m, lane]
+            sd += vx * cache.dphi[k, m] * x1[m, lane]
     w = points.wheel[k]
+    if vehicles.wheel_envelope[w]:
+        v = points.direction[k] * vx
+        sd = min(max(sd, v * points.slope_range[k, 0]), v * points.slope_range[k, 1])
+    rate = sd + deck_rate
     for j in range(y1.shape[0]):
         h = vehicles.wheel_rows[w, j]
         s -= h * y1[j, lane]
@@ -1090,8 +1097,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     row_k = np.zeros(cap); row_c = np.zeros(cap); held_k = np.zeros(cap); held_c = np.zeros(cap)
     gated = np.zeros(n_cp, dtype=np.bool_)
     for k in range(n_cp):
-        gated[k] = (points.gated[k] or (unilateral and points.stiffness[k] > 0.0)) and \
-            not vehicles.wheel_envelope[points.wheel[k]]
+        gated[k] = points.gated[k] or (unilateral and points.stiffness[k] > 0.0) or \
+            vehicles.wheel_envelope[points.wheel[k]]
     # t = 0: forces, modal load, wheel loads and accelerations of the initial state
     _refresh(cache, motion, 0, points)
     y0, w0 = z0[:n_d], z0[n_d:]
