@@ -93,6 +93,25 @@ app.command()(models.bridge)
 app.command("field")(field.field_)
 
 
+@app.command("compile")
+def compile_() -> None:
+    """Compile every numerical kernel now and keep it in numba's cache (for a cluster image, a
+    container or a shared installation: later runs, study batches and Dask workers load them in
+    under a second instead of compiling on first use)."""
+    from vbikit.cli.guard import guard
+
+    def work() -> None:
+        from vbikit.solve.numba_cache import cache_location
+        from vbikit.solve.warmup import compile_kernels
+
+        typer.echo("compiling the kernels of every integrator (one lane and many lanes)...", err=True)
+        for name, seconds in compile_kernels().items():
+            typer.echo(f"  {name:<8} ready in {seconds:.1f} s")
+        typer.echo(f"numba cache: {cache_location()}")
+
+    guard(work)
+
+
 def main() -> None:
     """Console-script entry point."""
     app()

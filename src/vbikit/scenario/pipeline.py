@@ -104,7 +104,9 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     from vbikit._files import json_safe
 
     scenario = plan.scenario
-    report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run)
+    asked = any(getattr(scenario.response, key) is not None for key in ("moment", "shear", "reaction"))
+    report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
+                          check_step=asked)
     s = report.summary
     s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
     s["inputs"] = scenario_inputs(scenario, plan)
@@ -121,13 +123,23 @@ def _references(scenario: Scenario) -> list[dict[str, str]]:
 
 
 def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "",
-                 run_plan: RunPlan | None = None) -> Report:
+                 run_plan: RunPlan | None = None, check_step: bool | None = None) -> Report:
     """Simulate ``crossing`` (with its checked [`RunPlan`][vbikit.solve.plan.RunPlan] if the
     preflight made one: step, budgets and tables are not computed again) and reduce it by ``plan``
-    (``report_crossing``)."""
+    (``report_crossing``).  With ``check_step`` (default: the plan reads load effects) at an
+    automatic step, the step is halved until the impact factors converge
+    (``vbikit.scenario.step_check``); a scenario checks it when its [response] asks for moments,
+    shears or reactions (not for the ones reported by default)."""
+    from vbikit.scenario.step_check import converge_step
     from vbikit.solve import simulate
 
-    return report_crossing(simulate(crossing, limits, plan=run_plan), plan, name)
+    report = report_crossing(simulate(crossing, limits, plan=run_plan), plan, name)
+    if check_step is None:
+        check_step = bool(plan.load_effects)
+    if check_step and crossing.dt is None:  # moments, shears, reactions: check the automatic step
+        report = converge_step(report, crossing, lambda finer: report_crossing(simulate(finer, limits), plan, name),
+                               limits)
+    return report
 
 
 def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") -> Report:

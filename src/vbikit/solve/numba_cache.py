@@ -69,3 +69,11 @@ def ensure_cache_location() -> str | None:
     log.warning("numba cannot write its cache beside vbikit or in the user's cache directory: compiled kernels "
                 "go to %s (set NUMBA_CACHE_DIR to choose a directory)", path)
     return path
+
+
+def cache_location() -> str:
+    """Where numba keeps vbikit's compiled kernels: its cache directory (``NUMBA_CACHE_DIR`` or the one
+    chosen by ``ensure_cache_location``), else ``__pycache__`` beside the kernels' module."""
+    if numba.config.CACHE_DIR:
+        return str(numba.config.CACHE_DIR)
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache__")

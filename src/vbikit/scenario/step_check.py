@@ -1,0 +1,95 @@
+"""Step control for the requested outputs: the automatic step checked by step halving.
+
+The automatic step rules (``vbikit.solve.timestep``) resolve the vehicle, the road and the first
+bridge modes, which is what deflections need.  Bending moments, shears and reactions weigh the
+higher modes far more (curvature and its slope grow with the mode number), and on supports that
+move — elastic bearings, a vehicle crossing a pier — those modes keep ringing; their peaks are
+then under-sampled at the automatic step (docs/verification.md, "Convergence of every output").
+
+So when a run asks for load effects at an automatic step, it is repeated at half the step until
+no impact factor of the report (every point, every load effect) changes by more than
+``STEP_TOLERANCE`` between two successive steps (Richardson's step-doubling estimate of the
+coarser run's error), within ``MAX_HALVINGS`` halvings and the run's step budget.  The finer run
+is the one reported.  If the budget ends first, the report says which impact factors are not
+converged, by how much, and the step the observed rate of convergence suggests would do.
+"""
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import replace
+from typing import Any, Callable, Iterator, Mapping
+
+from vbikit.solve.budget import BudgetError, Limits
+from vbikit.solve.crossing import Crossing
+
+log = logging.getLogger(__name__)
+
+#: largest change [-] of any impact factor between the reported step and the step twice as long
+STEP_TOLERANCE = 5e-3
+#: halvings of the automatic step at most (the finest run has 2^MAX_HALVINGS times its steps)
+MAX_HALVINGS = 6
+
+
+def impact_factors(summary: Mapping[str, Any], prefix: str = "") -> Iterator[tuple[str, float]]:
+    """Every finite ``*impact_factor`` number in a run's summary (top level, ``points``, load effect
+    blocks), with a path-like name."""
+    for key, value in summary.items():
+        name = f"{prefix}{key}"
+        if isinstance(value, Mapping):
+            yield from impact_factors(value, name + ".")
+        elif isinstance(value, list):
+            for i, item in enumerate(value):
+                if isinstance(item, Mapping):
+                    yield from impact_factors(item, f"{name}[{item.get('name', i)}].")
+        elif key.endswith("impact_factor") and isinstance(value, (int, float)) and math.isfinite(value):
+            yield name, float(value)
+
+
+def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any]) -> tuple[float, str]:
+    old = dict(impact_factors(a))
+    change, worst = 0.0, ""
+    for name, value in impact_factors(b):
+        if name in old and abs(value - old[name]) > change:
+            change, worst = abs(value - old[name]), name
+    return change, worst
+
+
+def converge_step(report: Any, crossing: Crossing, rerun: Callable[[Crossing], Any],
+                  limits: Limits | None = None) -> Any:
+    """The report of ``crossing`` at the automatic step halved until its impact factors change by at
+    most ``STEP_TOLERANCE`` (``report``: the run at the automatic step; ``rerun(crossing)``: the same
+    run at ``crossing.dt``).  Adds a warning to the returned report's summary if they never do."""
+    from vbikit.solve.plan import plan_run
+
+    dt = float(report.result.integration_dt or report.result.dt)
+    changes: list[float] = []
+    worst = ""
+    for _ in range(MAX_HALVINGS):
+        finer = replace(crossing, dt=dt / 2)
+        try:
+            plan_run(finer, limits)
+        except BudgetError:
+            break
+        new = rerun(finer)
+        change, worst = _largest_change(report.summary, new.summary)
+        changes.append(change)
+        log.info("step check: dt %.3g s -> %.3g s, largest impact-factor change %.2g (%s)", dt, dt / 2, change, worst)
+        report, dt = new, dt / 2
+        if change <= STEP_TOLERANCE:
+            return report
+    if changes:
+        report.summary["warnings"].append(_advice(changes, worst, dt))
+    return report
+
+
+def _advice(changes: list[float], worst: str, dt: float) -> str:
+    text = (f"{worst} is not converged in the time step: it changed by {changes[-1]:.3g} when the step was halved to "
+            f"{dt:.3g} s (tolerance {STEP_TOLERANCE:g})")
+    if len(changes) >= 2 and 0.0 < changes[-1] < changes[-2]:
+        rate = changes[-1] / changes[-2]
+        more = math.ceil(math.log(STEP_TOLERANCE / changes[-1]) / math.log(rate))
+        text += f"; at the observed rate a step of about {dt / 2 ** more:.2g} s would be (set crossing.dt)"
+    else:
+        text += "; set a smaller crossing.dt, or raise the step budget (--max-steps)"
+    return text

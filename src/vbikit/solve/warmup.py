@@ -1,0 +1,50 @@
+"""Compile every kernel in advance (``vbikit compile``): for a cluster image, a container or a
+shared installation, so that no run, study batch or Dask worker compiles on first use.
+
+numba compiles a kernel once per combination of argument types and keeps it in its on-disk
+cache (``vbikit.solve.numba_cache``).  The variants vbikit uses are few: each registered
+integrator with one lane and with many lanes (the batched studies and traffic streams), the
+static start and the static reference.  ``compile_kernels`` runs a tiny crossing through each
+of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
+the cache — exactly those variants.
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import replace
+
+import numpy as np
+
+log = logging.getLogger(__name__)
+
+
+def _tiny_crossing(integrator: str):
+    from vbikit.bridge import EulerBernoulliBeam
+    from vbikit.road import RoadProfile
+    from vbikit.solve.crossing import Crossing
+    from vbikit.vehicle import quarter_car
+
+    x = np.linspace(-20.0, 30.0, 51)
+    road = RoadProfile(x, 1e-3 * np.sin(x), "warm-up")
+    beam = EulerBernoulliBeam(5.0, 1e9, 1e3, 0.02, n_modes=3)
+    return Crossing(beam, quarter_car(), road=road, speed=20.0, approach=1.0, integrator=integrator)
+
+
+def compile_kernels() -> dict[str, float]:
+    """Compile (or load from numba's cache) every kernel variant vbikit runs; returns the seconds
+    each integrator took (one lane, then many lanes)."""
+    from vbikit.solve.batch import BatchSolver
+    from vbikit.solve.integrators import integrator_names
+    from vbikit.solve.simulate import simulate
+
+    took: dict[str, float] = {}
+    for name in integrator_names():
+        crossing = _tiny_crossing(name)
+        t0 = time.perf_counter()
+        simulate(crossing)
+        roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
+        BatchSolver(crossing).run_many(roads)
+        took[name] = time.perf_counter() - t0
+        log.info("kernels of %s ready (%.1f s)", name, took[name])
+    return took
