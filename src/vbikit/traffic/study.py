@@ -158,15 +158,17 @@ class TrafficStudy:
 
     def assemble(self, parts: Path):
         """The stream's Dataset from the finished parts."""
-        from vbikit.study.run import load_part, part_output
+        from vbikit.study.run import part_output
+        from vbikit.study.storage import load_part, part_checksums
 
         n_e, n_v = self.size, len(self.records)
         n_points = len(self.point_names or [None])
         ev = {o.name: np.full((n_e, n_points) if o.scope == "point" else n_e, np.nan) for o in outputs()}
         ev |= {k: np.full(n_e, np.nan) for k in EVENT_EXTRAS}
         veh = {k: np.full(n_v, np.nan) for k in VEHICLE_OUTPUTS}
+        sums = part_checksums(parts)
         for k in range(len(self.batches())):
-            part = load_part(parts, k)
+            part = load_part(parts, k, sums)
             for name in ev:
                 ev[name][part["event"]] = part_output(part, name, n_points) if name in OUTPUTS else part[name]
             for name in VEHICLE_OUTPUTS:
