@@ -116,13 +116,13 @@ def save_figure(fig: Any, path: str | Path, **kwargs: Any) -> Path:
     return atomic_write(Path(path), lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
 
 
-_SAFE_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._ +=-]*$")
+_SAFE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._ +=-]*")  # whole name (fullmatch: no trailing newline)
 
 
 def check_name(name: str, key: str) -> str:
     """``name`` if it can be used as a file name inside an output folder (letters, digits,
     ``. _ - + = space``, not starting with a dot or a separator), else ``ValueError`` naming ``key``."""
-    if not _SAFE_NAME.match(name) or ".." in name or len(name) > 120:
+    if not isinstance(name, str) or not _SAFE_NAME.fullmatch(name) or ".." in name or len(name) > 120:
         raise ValueError(f"{key} = {name!r} cannot be used in a file name: use letters, digits and . _ - + = "
                          "(no path separators, no '..', at most 120 characters)")
     return name
