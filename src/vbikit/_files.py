@@ -163,9 +163,13 @@ def max_input_bytes(error: type[Exception] = ValueError) -> int:
     return int(mb * 2**20)
 
 
+def _size(n: int) -> str:
+    return f"{n:,} bytes" if n < 2**20 else f"{n / 2**20:.1f} MiB"
+
+
 def _too_large(path: Path, what: str, limit: int, size: str) -> str:
-    return (f"{path}: the {what} is {size}, more than the {limit / 2**20:g} MiB allowed for an input file; "
-            f"set the environment variable {MAX_INPUT_ENV} (MiB) to read larger files")
+    return (f"{path}: the {what} is {size}, more than the {_size(limit)} allowed for an input file; "
+            f"set the environment variable {MAX_INPUT_ENV} (in MiB) to read larger files")
 
 
 def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max_bytes: int | None = None) -> bytes:
@@ -185,7 +189,7 @@ def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max
     if kind is not None:
         raise error(f"{path} is {kind}, not a regular file; give the {what} as a file")
     if st.st_size > limit:
-        raise error(_too_large(path, what, limit, f"{st.st_size / 2**20:.1f} MiB"))
+        raise error(_too_large(path, what, limit, _size(st.st_size)))
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0)
     try:
         fd = os.open(path, flags)  # O_NONBLOCK: a FIFO put there since the check cannot block the open
