@@ -196,12 +196,20 @@ def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max
     except OSError as err:
         raise error(f"{path}: cannot read {what}: {err.strerror}") from None
     with os.fdopen(fd, "rb") as fh:
-        if not stat.S_ISREG(os.fstat(fh.fileno()).st_mode):
+        st = os.fstat(fh.fileno())
+        if not stat.S_ISREG(st.st_mode):
             raise error(f"{path} is not a regular file; give the {what} as a file")
-        try:
-            data = fh.read(limit + 1)
+        blocks, total = [], 0
+        try:  # in blocks: a file may grow while read, and /proc files report size 0
+            while total <= limit:
+                block = fh.read(min(max(st.st_size + 1, 1 << 16), limit + 1 - total))
+                if not block:
+                    break
+                blocks.append(block)
+                total += len(block)
         except OSError as err:
             raise error(f"{path}: cannot read {what}: {err.strerror}") from None
+        data = b"".join(blocks)
     if len(data) > limit:
         raise error(_too_large(path, what, limit, "larger"))
     return data

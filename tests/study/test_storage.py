@@ -118,3 +118,18 @@ def test_checksums_are_those_of_the_part_files(tmp_path, study):
     if shutil.which("sha256sum"):
         res = subprocess.run(["sha256sum", "-c", CHECKSUMS], cwd=parts, capture_output=True, text=True)
         assert res.returncode == 0 and res.stdout.count(": OK") == 2, res.stdout + res.stderr
+
+
+def test_a_fifo_in_place_of_a_part_is_recomputed_without_blocking(tmp_path, study, caplog):
+    """A FIFO named like a part (reading it would wait for a writer for ever) is moved aside and
+    its batch recomputed."""
+    clean = run_study(study, tmp_path / "clean.nc", workers=1)
+    out = tmp_path / "r.nc"
+    run_study(study, out, workers=1, keep_parts=True)
+    out.unlink()
+    part = parts_dir(out) / "batch-000000.npz"
+    part.unlink()
+    os.mkfifo(part)
+    with caplog.at_level(logging.WARNING, logger="vbikit.study.run"):
+        xr.testing.assert_identical(clean, run_study(study, out, workers=1))
+    assert f"study part {part} is unusable: it cannot be read" in caplog.text

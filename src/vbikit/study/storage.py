@@ -28,7 +28,7 @@ from typing import Iterator, Optional
 
 import numpy as np
 
-from vbikit._files import OutputError, atomic_write
+from vbikit._files import OutputError, atomic_write, read_bytes
 from vbikit.study.spec import StudyError
 
 #: the file of the parts' checksums, in the parts directory
@@ -92,7 +92,7 @@ def part_bytes(parts: Path, k: int, sums: Optional[dict[str, str]] = None) -> tu
     """The bytes of part ``k`` and why they cannot be trusted (None if they match the recorded
     checksum); ``sums``: ``part_checksums(parts)`` if already read."""
     path = part_path(parts, k)
-    data = path.read_bytes()
+    data = read_bytes(path, StudyError, "study part", max_bytes=1 << 62)  # a regular file (no FIFO), any size
     recorded = (part_checksums(parts) if sums is None else sums).get(path.name)
     if recorded is None:
         return data, (f"no checksum of it is recorded in {CHECKSUMS} (written by an older vbikit version, or the run "
