@@ -196,3 +196,38 @@ def test_records_whose_wheels_leave_the_deck_are_refused_before_the_run():
             traffic_study(parse_records(head + "0,0,+x,80,50 90,4.2\n" + f"9,{y},{direction},80,50 90,4.2\n"), base)
     with pytest.raises(StudyError, match=r"records:2: lane 2 at y = 4 m puts wheels at y = 4\.9 m from the centreline"):
         traffic_study(parse_records(HEAD + "0.0,2,+x,80,53.4 75.6,5.5\n"), base, lanes=[0.0, 4.0])
+
+
+_CELLS = ["0", "1.5", "-1", "nan", "inf", "1e300", "-0", "", " ", "+x", "-x", "north", "80", "53.4 75.6", "5.5",
+          "1;2", "hs20-44", "axles", "2", "0.0", '"a,b"', "\x01", "é", "1e7", "9" * 5000]
+
+
+def test_any_row_is_read_or_refused_with_a_records_error():
+    """Generated rows (hypothesis) under a valid header: each is read (finite values in their
+    ranges) or refused with a RecordsError naming line 2 — never another exception."""
+    import math
+
+    from hypothesis import HealthCheck, given, settings
+    from hypothesis import strategies as st
+
+    header = "time [s],lane,lateral_offset [m],direction,speed [km/h],model,axle_loads [kN],axle_spacings [m]\n"
+    cell = st.one_of(st.sampled_from(_CELLS), st.text(max_size=12))
+
+    @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+    @given(st.lists(cell, min_size=7, max_size=9))
+    def check(cells):
+        text = header + ",".join(c.replace("\n", " ").replace("\r", " ") for c in cells) + "\n"
+        try:
+            records = parse_records(text)
+        except RecordsError as err:
+            assert str(err).startswith("records:2: ")
+            return
+        if not records:  # a row starting with '#' (or blank) is a comment
+            assert not text.split("\n")[1].strip() or text.split("\n")[1].lstrip().startswith("#")
+            return
+        [r] = records
+        assert math.isfinite(r.time) and r.time >= 0 and 0 < r.speed <= 70 and r.direction in ("+x", "-x")
+        assert all(math.isfinite(v) and 0 < v <= 1e6 * 9.80665 for v in r.axle_loads)
+        assert len(r.axle_loads) <= MAX_AXLES
+
+    check()
