@@ -8,15 +8,23 @@ writer follows.
   is removed.  A failure raises ``OutputError`` (an ``OSError``) naming the file.
 * **Safe names** (``inside``): a file name taken from an input file (a field case name, …)
   may not leave the output folder.
-* **Text inputs** (``read_text``): decoded as UTF-8; a file that is not text is refused
-  with its name and without echoing its content.
+* **Outputs readable as the umask says** (``atomic_write``): the temporary file is created
+  with mode ``0o666`` less the process umask, as ``open`` would create the destination itself
+  (folders: ``0o777`` less the umask), not the ``0o600`` of ``tempfile.mkstemp``.
+* **User files** (``read_bytes``, ``read_text``): only a regular file is opened (a folder, FIFO,
+  device or socket is refused before opening it: no hang on a FIFO without a writer, no endless
+  read of ``/dev/zero``), of at most ``max_input_bytes()`` (``VBIKIT_MAX_INPUT_MB``, default
+  ``DEFAULT_MAX_INPUT_MB``), checked before reading and again while reading (``/proc`` files
+  report size 0).  Text is decoded as UTF-8; a file that is not text (NUL bytes, invalid UTF-8)
+  is refused.  Every message names the file and never echoes its content.
 """
 from __future__ import annotations
 
 import errno
 import os
 import re
-import tempfile
+import secrets
+import stat
 from pathlib import Path
 from typing import Any, Callable
 
@@ -33,6 +41,21 @@ def _describe(err: OSError) -> str:
     return err.strerror or str(err)
 
 
+def _create_temporary(path: Path) -> str:
+    """A new empty file ``.<name>.<random>.tmp`` beside ``path``, created exclusively (``O_EXCL``,
+    not following links) with mode ``0o666`` less the umask: the mode ``path`` would get if written
+    directly (``tempfile.mkstemp`` would give ``0o600`` whatever the umask)."""
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0) | getattr(os, "O_CLOEXEC", 0)
+    for _ in range(100):
+        tmp = str(path.parent / f".{path.name}.{secrets.token_hex(4)}.tmp")
+        try:
+            os.close(os.open(tmp, flags, 0o666))
+        except FileExistsError:
+            continue
+        return tmp
+    raise FileExistsError(errno.EEXIST, f"no free temporary name beside {path}")
+
+
 def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
     """Call ``write(tmp)`` to write a temporary file next to ``path``, then rename it to ``path``.
 
@@ -42,8 +65,7 @@ def atomic_write(path: str | Path, write: Callable[[Path], None]) -> Path:
     path = Path(path)
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-        os.close(fd)
+        tmp = _create_temporary(path)
     except OSError as err:
         raise OutputError(err.errno, f"cannot write {path}: {_describe(err)}") from None
     try:
@@ -94,13 +116,13 @@ def save_figure(fig: Any, path: str | Path, **kwargs: Any) -> Path:
     return atomic_write(Path(path), lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
 
 
-_SAFE_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._ +=-]*$")
+_SAFE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._ +=-]*")  # whole name (fullmatch: no trailing newline)
 
 
 def check_name(name: str, key: str) -> str:
     """``name`` if it can be used as a file name inside an output folder (letters, digits,
     ``. _ - + = space``, not starting with a dot or a separator), else ``ValueError`` naming ``key``."""
-    if not _SAFE_NAME.match(name) or ".." in name or len(name) > 120:
+    if not isinstance(name, str) or not _SAFE_NAME.fullmatch(name) or ".." in name or len(name) > 120:
         raise ValueError(f"{key} = {name!r} cannot be used in a file name: use letters, digits and . _ - + = "
                          "(no path separators, no '..', at most 120 characters)")
     return name
@@ -116,18 +138,93 @@ def inside(directory: str | Path, name: str) -> Path:
     return directory / name
 
 
-def read_text(path: str | Path, error: type[Exception], what: str = "file") -> str:
-    """The UTF-8 text of ``path``; a missing file, a folder or a file that is not UTF-8 text raises
-    ``error`` naming the file (never its content)."""
-    path = Path(path)
-    if not path.is_file():
-        raise error(f"{what} not found: {path}")
+#: the largest input file read by default [MiB]; the environment variable ``MAX_INPUT_ENV`` sets another
+DEFAULT_MAX_INPUT_MB = 256
+MAX_INPUT_ENV = "VBIKIT_MAX_INPUT_MB"
+
+_KINDS = ((stat.S_ISDIR, "a folder"), (stat.S_ISFIFO, "a FIFO (named pipe)"), (stat.S_ISCHR, "a character device"),
+          (stat.S_ISBLK, "a block device"), (stat.S_ISSOCK, "a socket"))
+
+
+def max_input_bytes(error: type[Exception] = ValueError) -> int:
+    """The size limit of an input file [bytes]: ``VBIKIT_MAX_INPUT_MB`` MiB if set (a number > 0,
+    else ``error``), else ``DEFAULT_MAX_INPUT_MB`` MiB."""
+    import math
+
+    text = os.environ.get(MAX_INPUT_ENV, "").strip()
+    if not text:
+        return DEFAULT_MAX_INPUT_MB * 2**20
     try:
-        data = path.read_bytes()
+        mb = float(text)
+    except ValueError:
+        mb = math.nan
+    if not (math.isfinite(mb) and 0 < mb <= 2**40):
+        raise error(f"{MAX_INPUT_ENV} must be a size in MiB > 0 (e.g. 1024), got {text!r}")
+    return int(mb * 2**20)
+
+
+def _size(n: int) -> str:
+    return f"{n:,} bytes" if n < 2**20 else f"{n / 2**20:.1f} MiB"
+
+
+def _too_large(path: Path, what: str, limit: int, size: str) -> str:
+    return (f"{path}: the {what} is {size}, more than the {_size(limit)} allowed for an input file; "
+            f"set the environment variable {MAX_INPUT_ENV} (in MiB) to read larger files")
+
+
+def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max_bytes: int | None = None) -> bytes:
+    """The bytes of the user file ``path``, refused with ``error`` naming the file (never its
+    content) when it is missing, not a regular file (a folder, FIFO, device or socket: checked
+    before opening it), or larger than ``max_bytes`` (default ``max_input_bytes()``; checked before
+    reading and while reading)."""
+    path = Path(path)
+    limit = max_input_bytes(error) if max_bytes is None else int(max_bytes)
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        raise error(f"{what} not found: {path}") from None
     except OSError as err:
         raise error(f"{path}: cannot read {what}: {err.strerror}") from None
-    if b"\x00" in data:
-        raise error(f"{path}: not a text file (binary content); expected a {what}")
+    kind = next((name for test, name in _KINDS if test(st.st_mode)), None if stat.S_ISREG(st.st_mode) else "not a file")
+    if kind is not None:
+        raise error(f"{path} is {kind}, not a regular file; give the {what} as a file")
+    if st.st_size > limit:
+        raise error(_too_large(path, what, limit, _size(st.st_size)))
+    flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0)
+    try:
+        fd = os.open(path, flags)  # O_NONBLOCK: a FIFO put there since the check cannot block the open
+    except OSError as err:
+        raise error(f"{path}: cannot read {what}: {err.strerror}") from None
+    with os.fdopen(fd, "rb") as fh:
+        st = os.fstat(fh.fileno())
+        if not stat.S_ISREG(st.st_mode):
+            raise error(f"{path} is not a regular file; give the {what} as a file")
+        blocks, total = [], 0
+        try:  # in blocks: a file may grow while read, and /proc files report size 0
+            while total <= limit:
+                block = fh.read(min(max(st.st_size + 1, 1 << 16), limit + 1 - total))
+                if not block:
+                    break
+                blocks.append(block)
+                total += len(block)
+        except OSError as err:
+            raise error(f"{path}: cannot read {what}: {err.strerror}") from None
+        data = b"".join(blocks)
+    if len(data) > limit:
+        raise error(_too_large(path, what, limit, "larger"))
+    return data
+
+
+def read_text(path: str | Path, error: type[Exception], what: str = "file", max_bytes: int | None = None) -> str:
+    """The UTF-8 text of the user file ``path`` (``read_bytes``); a file that is not UTF-8 text
+    (NUL bytes, invalid UTF-8) raises ``error`` naming the file (never its content)."""
+    path = Path(path)
+    data = read_bytes(path, error, what, max_bytes)
+    nul = data.find(b"\x00")
+    if nul >= 0:
+        line = data.count(b"\n", 0, nul) + 1
+        raise error(f"{path}:{line}: a NUL byte: not a text file (binary content); "
+                    f"expected a {what}")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as err:

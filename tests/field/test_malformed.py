@@ -126,3 +126,24 @@ def test_flat_layout_is_read_with_a_deprecation_message(example):
     assert (old.bridge, old.truck, old.speed, old.approach, old.free_vibration, old.n_modes, old.damping_ratio) == \
         (new.bridge, new.truck, new.speed, new.approach, new.free_vibration, new.n_modes, new.damping_ratio)
     assert old.cases == new.cases
+
+
+@pytest.mark.parametrize("name", ["case1\\n", "case1\\r", "case1\\t", "case1/x"])
+def test_case_name_with_a_line_break_or_separator_is_refused(example, name):
+    """A case name names output files: a trailing newline (which a '$'-anchored pattern lets
+    through) or another control character is refused, naming the key."""
+    with pytest.raises(FieldFileError, match=r"case\[1\]\.name = .* cannot be used in a file name"):
+        load_field_toml(edit(example, 'name = "case1"', f'name = "{name}"'))
+
+
+def test_response_file_that_is_not_a_regular_file_is_refused_unread(tmp_path):
+    """A FIFO with no writer (would block the read forever) and a folder are refused by type,
+    before they are opened."""
+    import os
+
+    fifo = tmp_path / "r.csv"
+    os.mkfifo(fifo)
+    with pytest.raises(FieldFileError, match=r"r\.csv is a FIFO \(named pipe\), not a regular file"):
+        read_response_csv(fifo)
+    with pytest.raises(FieldFileError, match="is a folder, not a regular file"):
+        read_response_csv(tmp_path)

@@ -33,16 +33,16 @@ def test_records_read_in_si_units():
 
 
 @pytest.mark.parametrize("text, match", [
-    ("time [s],lane,direction,speed [mph],axle_loads [kN],axle_spacings [m]\n", r"records:1: column 'speed' takes \[km/h\] or \[m/s\]"),
+    ("time [s],lane,direction,speed [mph],axle_loads [kN],axle_spacings [m]\n", r"records:1: column 4 \(speed\) takes \[km/h\] or \[m/s\], not the unit given"),
     ("time [s],lane,direction,speed [km/h]\n0,1,+x,80\n", "records:2: model axles needs the column axle_loads"),
     ("time [s],direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n", "missing column.*lane or lateral_offset"),
-    (GOOD.replace("1.5,2,-x", "1.5,2,west"), r"records:4: direction: must be \+x or -x"),
-    (GOOD.replace("45 90,5.0", "45 90,5.0 3"), r"records:4: axle_spacings \[m\]: needs 1 spacing"),
-    (GOOD.replace(",72,", ",fast,"), r"records:4: speed \[km/h\]: not a number"),
-    (GOOD.replace("0.0,1,", "-1,1,"), r"records:3: time \[s\]: must be >= 0"),
-    (GOOD.replace("0.0,1,+x", "0.0,0,+x"), r"records:3: lane: must be >= 1"),
+    (GOOD.replace("1.5,2,-x", "1.5,2,west"), r"records:4: column 3 \(direction\): must be \+x or -x$"),
+    (GOOD.replace("45 90,5.0", "45 90,5.0 3"), r"records:4: column 6 \(axle_spacings \[m\]\): needs 1 spacing"),
+    (GOOD.replace(",72,", ",fast,"), r"records:4: column 4 \(speed \[km/h\]\): not a number$"),
+    (GOOD.replace("0.0,1,", "-1,1,"), r"records:3: column 1 \(time \[s\]\): must be >= 0, got -1$"),
+    (GOOD.replace("0.0,1,+x", "0.0,0,+x"), r"records:3: column 2 \(lane\): must be a lane number"),
     (GOOD + "2.0,1,+x,80\n", r"records:5: 4 cells, the header has 6"),
-    ("time [s],lane,weight [kN]\n", r"records:1: unknown column 'weight \[kN\]'"),
+    ("time [s],lane,weight [kN]\n", r"records:1: column 3 of the header is not a known column; allowed: time \[s\]"),
 ])
 def test_bad_records_name_the_line_and_column(text, match):
     with pytest.raises(RecordsError, match=match):
@@ -56,9 +56,9 @@ def test_model_column_and_gross_weight_check():
     a, b = parse_records(text)
     assert a.model == "hs20-44" and a.lateral_offset == 1.8 and a.axle_loads == ()
     assert b.model == "axles" and b.gross_weight == 130e3
-    with pytest.raises(RecordsError, match=r":3: gross_weight \[kN\]: .* differs"):
+    with pytest.raises(RecordsError, match=r":3: column 8 \(gross_weight \[kN\]\): .* differs"):
         parse_records(text.replace(",130\n", ",140\n"))
-    with pytest.raises(RecordsError, match=r":2: model: unknown vehicle preset 'truck'"):
+    with pytest.raises(RecordsError, match=r":2: column 5 \(model\): not a vehicle preset; allowed: axles, "):
         parse_records(text.replace("hs20-44", "truck"))
 
 

@@ -46,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from vbikit._files import read_text
+from vbikit._files import atomic_write, read_text
 from vbikit.bridge.base import GirderDeck, ModalBridge
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
 from vbikit.bridge.nodal import NodalModes, girder_line_strain
@@ -269,11 +269,12 @@ def write_modes(bridge: ModalBridge, path: str | Path, modes: NodalModes | None 
                            *(f"dwdx_{k + 1}" for k in range(n)), *(f"dwdy_{k + 1}" for k in range(n))]))
     yy, xx = np.meshgrid(modes.y, modes.x, indexing="ij")
     table = np.column_stack([xx.ravel(), yy.ravel(), modes.w.reshape(-1, n), modes.wx.reshape(-1, n), modes.wy.reshape(-1, n)])
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with path.open("w") as fh:
-        fh.write("\n".join(lines) + "\n")
-        np.savetxt(fh, table, fmt="%.17g", delimiter=",")
-    return path
+    def write(tmp: Path) -> None:
+        with tmp.open("w") as fh:
+            fh.write("\n".join(lines) + "\n")
+            np.savetxt(fh, table, fmt="%.17g", delimiter=",")
+
+    return atomic_write(path, write)
 
 
 def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int | None = None) -> ImportedModalBridge:

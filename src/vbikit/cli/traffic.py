@@ -1,6 +1,7 @@
 """``vbikit traffic``: a stream of vehicle records over a bridge, run like a study."""
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Optional
 
@@ -14,9 +15,12 @@ from vbikit.errors import OptionError
 def _lanes(text: str) -> list[float]:
     """``--lanes 1.8,-1.8`` → [1.8, -1.8] [m]."""
     try:
-        return [float(v) for v in text.split(",")]
+        lanes = [float(v) for v in text.split(",")]
     except ValueError:
         raise OptionError(f"--lanes: not a comma-separated list of numbers: {text!r}") from None
+    if not all(math.isfinite(y) and abs(y) <= 1e3 for y in lanes):
+        raise OptionError(f"--lanes: lane centres must be finite numbers within ±1000 m, got {text!r}")
+    return lanes
 
 
 def traffic_cmd(
@@ -32,13 +36,15 @@ def traffic_cmd(
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure of the IM distribution and the peaks."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+    max_vehicles: Optional[int] = typer.Option(None, "--max-vehicles", min=1, help="The most vehicle records read "
+                                               "(default 100000; a larger file is refused before it is parsed)."),
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""
-    from vbikit.traffic.records import read_records
+    from vbikit.traffic.records import MAX_RECORDS, read_records
     from vbikit.traffic.study import base_scenario, traffic_study
 
-    recs = guard(lambda: read_records(records))
+    recs = guard(lambda: read_records(records, max_vehicles or MAX_RECORDS))
     base, base_dir = guard(lambda: base_scenario(bridge))
     if road is not None:
         base = {**base, "road": {**base.get("road", {}), "class": road}}

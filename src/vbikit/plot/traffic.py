@@ -5,6 +5,8 @@ from pathlib import Path
 
 import numpy as np
 
+from vbikit._files import save_figure
+
 
 def plot_stream(ds, path: str | Path, title: str = "") -> Path:
     """Two panels: the distribution of the events' impact factors (single vehicles and multiple
@@ -43,7 +45,8 @@ def plot_stream(ds, path: str | Path, title: str = "") -> Path:
                  f"several vehicles; amplification of the governing static event "
                  f"{float(ds.attrs['governing_static_amplification']):.3f}")
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
+    try:
+        save_figure(fig, path, dpi=120)
+    finally:
+        plt.close(fig)
     return path

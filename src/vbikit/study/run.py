@@ -11,7 +11,11 @@ Storage (``out`` = e.g. ``results.nc``):
 
 While a study runs, ``<out>.lock`` is held (``filelock``): a second run on the same ``out`` is
 refused with a message instead of mixing two writers' parts; the lock file is removed when the
-run ends.  A study killed at any moment
+run ends, and a lock path that is a symbolic link is refused (``vbikit.study.storage``).  Every
+part's SHA-256 is recorded when it is written and checked when it is used: a part changed since
+(even rewritten as a valid file with other values) is recomputed on resume and refused when
+the parts are assembled.  Worker processes end with the coordinating process, even when it is
+killed with SIGKILL (``vbikit.study.workers``).  A study killed at any moment
 (SIGKILL, Ctrl-C, a lost machine) loses at most the batches that were running; started again with the same ``out`` it skips the finished batches.  Every
 crossing's result depends only on the study (seeds derive from the study seed and the sample
 index), so the final dataset is identical to that of an unbroken run.
@@ -25,63 +29,37 @@ usable, or None) and ``assemble(parts)`` (the Dataset from the parts directory, 
 """
 from __future__ import annotations
 
-import atexit
 import hashlib
+import io
 import json
 import logging
 import os
 import shutil
-import signal
 import time
 import zipfile
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, wait
 from pathlib import Path
 from typing import Any, Callable, Optional, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
-from filelock import FileLock, Timeout
 
 from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.scenario.schema import key_unit
 from vbikit.outputs import OUTPUTS, outputs
 from vbikit.study.compute import point_names, run_batch
 from vbikit.study.spec import Study, StudyError
+from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
+from vbikit.study.workers import local_pool, shutdown_workers
 
 log = logging.getLogger(__name__)
 
 Progress = Callable[[int, int], None]  # (crossings done, crossings total)
 
 
-def parts_dir(out: Path) -> Path:
-    """Directory of the finished-batch files of the study written to ``out``."""
-    return out.with_name(out.name + ".parts")
-
-
-def _part_path(parts: Path, k: int) -> Path:
-    return parts / f"batch-{k:06d}.npz"
-
-
 def spec_checksum(study: Study) -> str:
     """SHA-256 of the study's canonical JSON: every part carries it (a part of another study is refused)."""
     return hashlib.sha256(study.to_json().encode()).hexdigest()
-
-
-def _save_part(parts: Path, k: int, arrays: dict, checksum: str) -> None:
-    def write(tmp: Path) -> None:
-        with open(tmp, "wb") as fh:
-            np.savez(fh, **arrays, batch_index=np.int64(k), spec_checksum=np.str_(checksum))
-
-    atomic_write(_part_path(parts, k), write)
-
-
-def load_part(parts: Path, k: int) -> dict[str, np.ndarray]:
-    """The arrays of the finished batch ``k`` in the parts directory ``parts``."""
-    path = _part_path(parts, k)
-    if not path.is_file():
-        raise StudyError(f"batch {k} has not finished ({path} missing)")
-    with np.load(path, allow_pickle=False) as part:
-        return {name: part[name] for name in part.files}
 
 
 def _compute(job, batch: tuple, threads: int) -> dict:
@@ -90,30 +68,37 @@ def _compute(job, batch: tuple, threads: int) -> dict:
     return own(batch, threads) if own is not None else run_batch(job, batch, threads)
 
 
-def _part_problem(path: Path, k: int, batch: tuple, checksum: str, job) -> Optional[str]:
+def _part_problem(parts: Path, k: int, batch: tuple, checksum: str, job, sums: dict[str, str]) -> Optional[str]:
     """Why the part file of batch ``k`` cannot be used (None if it can): unreadable, of another
-    batch or study, or with missing or non-finite values."""
+    batch or study, with missing or non-finite values, or changed since it was written (its
+    SHA-256 is not the one recorded in ``sums``)."""
     try:
-        with np.load(path, allow_pickle=False) as part:
-            if "batch_index" not in part or "spec_checksum" not in part:
-                return "it carries no batch index or study checksum"
-            if str(part["spec_checksum"]) != checksum:
-                return "it belongs to another study (checksum differs)"
-            if int(part["batch_index"]) != k:
-                return f"it holds batch {int(part['batch_index'])}, not batch {k}"
-            if hasattr(job, "part_problem"):
-                return job.part_problem(part, batch)
-            n_axes = len(job.axes)
-            index = part["index"]
-            if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
-                return "its grid indices are not those of this batch"
-            problem = output_problem(part, len(batch), len(point_names(job.base) or [None]))
-            if problem:
-                return problem
-            if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
-                return "its step counts are not valid"
+        data, changed = part_bytes(parts, k, sums)
+        with np.load(io.BytesIO(data), allow_pickle=False) as part:
+            problem = _content_problem(part, k, batch, checksum, job)
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile) as err:
         return f"it cannot be read ({type(err).__name__})"
+    return problem or changed
+
+
+def _content_problem(part: Any, k: int, batch: tuple, checksum: str, job) -> Optional[str]:
+    if "batch_index" not in part or "spec_checksum" not in part:
+        return "it carries no batch index or study checksum"
+    if str(part["spec_checksum"]) != checksum:
+        return "it belongs to another study (checksum differs)"
+    if int(part["batch_index"]) != k:
+        return f"it holds batch {int(part['batch_index'])}, not batch {k}"
+    if hasattr(job, "part_problem"):
+        return job.part_problem(part, batch)
+    n_axes = len(job.axes)
+    index = part["index"]
+    if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
+        return "its grid indices are not those of this batch"
+    problem = output_problem(part, len(batch), len(point_names(job.base) or [None]))
+    if problem:
+        return problem
+    if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
+        return "its step counts are not valid"
     return None
 
 
@@ -158,13 +143,14 @@ def _check_parts(parts: Path, batches: list, checksum: str, job) -> list[str]:
     """Move every damaged or foreign part aside (into ``<parts>/damaged/``, to be recomputed) and
     return one message per part moved."""
     notes = []
+    sums = part_checksums(parts)
     for path in sorted(parts.glob("batch-*.npz")):
         try:
             k = int(path.stem.split("-")[1])
         except (IndexError, ValueError):
             k = -1
         problem = "its name is not batch-NNNNNN.npz of this study" if not 0 <= k < len(batches) else \
-            _part_problem(path, k, batches[k], checksum, job)
+            _part_problem(parts, k, batches[k], checksum, job, sums)
         if problem is None:
             continue
         aside = parts / "damaged"
@@ -179,6 +165,9 @@ def _check_parts(parts: Path, batches: list, checksum: str, job) -> list[str]:
 def _prepare_parts(study: Study, out: Path) -> Path:
     parts = parts_dir(out)
     spec = study.to_json()
+    if parts.is_symlink():
+        raise StudyError(f"{parts} is a symbolic link; the parts of a study are kept in a folder beside --out: remove "
+                         "the link or choose another --out")
     if parts.exists():
         marker = parts / "study.json"
         if not marker.is_file() or marker.read_text() != spec:
@@ -190,7 +179,7 @@ def _prepare_parts(study: Study, out: Path) -> Path:
 
 
 def _pending(parts: Path, n_batches: int) -> list[int]:
-    return [k for k in range(n_batches) if not _part_path(parts, k).is_file()]
+    return [k for k in range(n_batches) if not part_path(parts, k).is_file()]
 
 
 def run_study(
@@ -219,26 +208,8 @@ def run_study(
         out.parent.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         raise OutputError(err.errno, f"--out {out}: cannot create the folder {out.parent}: {err.strerror}") from None
-    try:  # a folder where no file can be created (read-only, /proc) is not "locked by another study"
-        with open(str(out) + ".lock", "a"):
-            pass
-    except OSError as err:
-        raise OutputError(err.errno, f"--out {out}: cannot create files in {out.parent}: {err.strerror}") from None
-    # one writer per output: the OS releases the lock when its process ends, even by SIGKILL
-    lock = FileLock(str(out) + ".lock")
-    try:
-        lock.acquire(timeout=0)
-    except Timeout:
-        raise StudyError(f"another vbikit study is writing to {out} (lock {lock.lock_file}); wait for it to "
-                         "finish or choose another --out") from None
-    try:
+    with lock_output(out):
         return _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout)
-    finally:
-        # no lock file beside a finished (or stopped) dataset: removed while still held, so a run
-        # waiting on the old file cannot take it over; only a killed run leaves one (and the OS
-        # has released it, so the next run simply takes it)
-        Path(lock.lock_file).unlink(missing_ok=True)
-        lock.release()
 
 
 def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout):
@@ -265,7 +236,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     def finished(k: int, arrays: dict) -> None:
         nonlocal done
         try:
-            _save_part(parts, k, arrays, checksum)
+            save_part(parts, k, arrays, checksum)
         except OutputError as err:
             raise OutputError(err.errno, f"{err}; the finished batches are kept in {parts}: run the same command "
                                          "again to resume") from None
@@ -293,47 +264,8 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     return ds
 
 
-def _ignore_sigint() -> None:
-    """Worker initializer: Ctrl-C is handled by the coordinating process alone."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-#: the local worker processes, kept between studies of one session so that consecutive studies
-#: (e.g. the paper's six) pay the start-up (imports, compiled-kernel cache, bridge modes, road
-#: profiles of the same seeds) once; ended at exit or by :func:`shutdown_workers`
-_POOL: Optional[ProcessPoolExecutor] = None
-_POOL_WORKERS = 0
-
-
-def _local_pool(workers: int) -> ProcessPoolExecutor:
-    global _POOL, _POOL_WORKERS
-    if _POOL is None or _POOL_WORKERS != workers or getattr(_POOL, "_broken", False):
-        shutdown_workers()
-        _POOL = ProcessPoolExecutor(max_workers=workers, initializer=_ignore_sigint)
-        _POOL_WORKERS = workers
-    return _POOL
-
-
-def shutdown_workers(kill: bool = False) -> None:
-    """End the local worker processes kept between studies (``kill``: at once, dropping running work)."""
-    global _POOL
-    pool, _POOL = _POOL, None
-    if pool is None:
-        return
-    if kill:
-        processes = list((getattr(pool, "_processes", None) or {}).values())
-        pool.shutdown(wait=False, cancel_futures=True)
-        for proc in processes:  # the running batches are lost anyway; do not wait for them
-            proc.terminate()
-    else:
-        pool.shutdown()
-
-
-atexit.register(shutdown_workers)
-
-
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
-    pool = _local_pool(workers)
+    pool = local_pool(workers)
     try:
         futures = {pool.submit(_compute, study, batches[k], threads): k for k in todo}
         pending = set(futures)
@@ -409,23 +341,22 @@ def assemble(study: Study, parts: Path):
     n_points = len(names or [None])
     data = {o.name: np.full(shape + ((n_points,) if o.scope == "point" else ()), np.nan) for o in outputs()}
     hist_parts = []
+    sums = part_checksums(parts)
     for k in range(len(batches)):
-        path = _part_path(parts, k)
-        if not path.is_file():
-            raise StudyError(f"batch {k} has not finished ({path} missing)")
-        with np.load(path) as part:
-            idx = tuple(part["index"].T)
-            problem = output_problem(part, len(part["index"]), n_points)
-            if problem:  # e.g. an output registered in this process but not in the workers
-                raise StudyError(f"batch {k} ({path}): {problem}")
-            for name in data:
-                values = part_output(part, name, n_points)
-                if shape:
-                    data[name][idx] = values
-                else:  # a study without axes: one crossing, 0-d variables
-                    data[name][()] = values[0]
-            if study.histories:
-                hist_parts.append((idx, part["displacement_history"]))
+        path = part_path(parts, k)
+        part = load_part(parts, k, sums)
+        idx = tuple(part["index"].T)
+        problem = output_problem(part, len(part["index"]), n_points)
+        if problem:  # e.g. an output registered in this process but not in the workers
+            raise StudyError(f"batch {k} ({path}): {problem}")
+        for name in data:
+            values = part_output(part, name, n_points)
+            if shape:
+                data[name][idx] = values
+            else:  # a study without axes: one crossing, 0-d variables
+                data[name][()] = values[0]
+        if study.histories:
+            hist_parts.append((idx, part["displacement_history"]))
     variables = output_variables(data, dims, names)
     if study.histories:
         n_t = max(h.shape[1] for _, h in hist_parts)

@@ -19,19 +19,26 @@ column                     meaning                                              
 ``gross_weight`` (opt.)    checked against the sum of the axle loads (1 %)            [kN] or [N]
 =========================  ========================================================  ==========
 
-Every problem is reported with its line number (``records.csv:12: speed [km/h]: …``).
+Every problem is reported with its line number and column (``records.csv:12: column 4 (speed [km/h]): …``),
+never with the text found there.  Limits: ``MAX_RECORDS`` records a file, ``MAX_LINE`` characters a
+line, ``MAX_AXLES`` axles a vehicle; axle loads above ``AXLE_LOAD_MAX`` are refused, above
+``AXLE_LOAD_WARNING`` warned of.
 """
 from __future__ import annotations
 
 import csv
 import io
+import logging
 import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional, Sequence
 
+from vbikit._files import read_text, write_text
 from vbikit.errors import VbikitError
+
+log = logging.getLogger(__name__)
 
 #: the columns, their allowed units and the factor to SI
 UNITS: dict[str, dict[str, float]] = {
@@ -106,64 +113,125 @@ class VehicleRecord:
 
 _HEADER = re.compile(r"^\s*([A-Za-z_]+)\s*(?:\[([^\]]*)\])?\s*$")
 
+#: the most vehicle records read from one file (``read_records(max_records=…)``, ``vbikit traffic --max-vehicles``)
+MAX_RECORDS = 100_000
+#: the longest line of a records file [characters]
+MAX_LINE = 10_000
+#: the most axles of one record
+MAX_AXLES = 30
+#: an axle load above this is warned of as far beyond legal limits [N] (30 t; legal single-axle
+#: limits are about 10–13 t)
+AXLE_LOAD_WARNING = 30e3 * 9.80665
+#: an axle load above this is refused as impossible for a road vehicle [N] (1,000 t)
+AXLE_LOAD_MAX = 1e6 * 9.80665
+#: a speed above this is warned of as implausible for a road vehicle [m/s] (200 km/h)
+SPEED_WARNING = 200 / 3.6
 
-def _numbers(text: str) -> list[float]:
-    return [float(x) for x in text.replace(";", " ").split()]
+
+def _lines(text: str, source: str) -> list[tuple[int, str]]:
+    """(line number, line) of the header and data rows (comments and blank lines skipped); a line
+    longer than ``MAX_LINE`` is refused."""
+    rows = []
+    for no, ln in enumerate(text.split("\n"), start=1):
+        if len(ln) > MAX_LINE:
+            raise RecordsError(f"{source}:{no}: a line of {len(ln):,} characters; a records line holds at most "
+                               f"{MAX_LINE:,} (at most {MAX_AXLES} axles a vehicle)")
+        ln = ln.rstrip("\r")
+        if ln.strip() and not ln.lstrip().startswith("#"):
+            rows.append((no, ln))
+    return rows
 
 
-def parse_records(text: str, source: str = "records") -> list[VehicleRecord]:
-    """Parse a records CSV text (see the module docstring); errors name ``source:line``."""
-    lines = text.splitlines()
-    rows = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not ln.lstrip().startswith("#")]
+def _cells(ln: str, source: str, no: int) -> list[str]:
+    try:
+        return next(csv.reader([ln]))
+    except csv.Error as err:
+        raise RecordsError(f"{source}:{no}: not a CSV line ({err})") from None
+
+
+def parse_records(text: str, source: str = "records", max_records: int = MAX_RECORDS) -> list[VehicleRecord]:
+    """Parse a records CSV text (see the module docstring); errors name ``source:line`` and the
+    column, never the text found there.  More than ``max_records`` records are refused before any
+    is parsed; implausible values (axle loads above ``AXLE_LOAD_WARNING``, speeds above
+    ``SPEED_WARNING``) are logged as warnings."""
+    rows = _lines(text, source)
     if not rows:
         raise RecordsError(f"{source}: no header row (columns: {', '.join(UNITS)})")
+    if len(rows) - 1 > max_records:
+        raise RecordsError(f"{source}: {len(rows) - 1:,} vehicle records, more than the {max_records:,} allowed in one "
+                           "stream; split the file, or raise the limit (vbikit traffic --max-vehicles, "
+                           "read_records(..., max_records=...))")
     head_no, head = rows[0]
-    names = next(csv.reader([head]))
-    columns: list[tuple[str, float, str]] = []
-    for name in names:
+    columns: dict[str, tuple[float, str, int]] = {}  # key -> (factor to SI, header text, column number)
+    for j, name in enumerate(_cells(head, source, head_no), start=1):
         m = _HEADER.match(name)
         if not m or m.group(1) not in UNITS:
-            raise RecordsError(f"{source}:{head_no}: unknown column {name.strip()!r}; allowed: "
+            raise RecordsError(f"{source}:{head_no}: column {j} of the header is not a known column; allowed: "
                                + ", ".join(f"{k} [{'|'.join(u)}]" if any(u) else k for k, u in UNITS.items()))
         key, unit = m.group(1), (m.group(2) or "").strip()
         if unit not in UNITS[key]:
             allowed = " or ".join(f"[{u}]" for u in UNITS[key]) if any(UNITS[key]) else "no unit"
-            raise RecordsError(f"{source}:{head_no}: column {key!r} takes {allowed}, got [{unit}]")
-        columns.append((key, UNITS[key][unit], name.strip()))
-    keys = [c[0] for c in columns]
-    if len(set(keys)) != len(keys):
-        raise RecordsError(f"{source}:{head_no}: a column appears twice")
+            raise RecordsError(f"{source}:{head_no}: column {j} ({key}) takes {allowed}, not the unit given")
+        if key in columns:
+            raise RecordsError(f"{source}:{head_no}: column {j} ({key}) appears twice (also column {columns[key][2]})")
+        columns[key] = (UNITS[key][unit], f"{key} [{unit}]" if unit else key, j)
+    keys = list(columns)
     missing = [k for k in REQUIRED if k not in keys]
     if "lane" not in keys and "lateral_offset" not in keys:
         missing.append("lane or lateral_offset")
     if missing:
         raise RecordsError(f"{source}:{head_no}: missing column(s) {', '.join(missing)}")
     out = []
+    implausible: dict[str, list[int]] = {}
     for no, ln in rows[1:]:
-        cells = next(csv.reader([ln]))
+        cells = _cells(ln, source, no)
         if len(cells) != len(columns):
             raise RecordsError(f"{source}:{no}: {len(cells)} cells, the header has {len(columns)}")
-        out.append(_record(dict(zip(keys, cells)), {c[0]: c for c in columns}, source, no))
+        record = _record(dict(zip(keys, cells)), columns, source, no)
+        if record.axle_loads and max(record.axle_loads) > AXLE_LOAD_WARNING:
+            implausible.setdefault(f"an axle load above {AXLE_LOAD_WARNING / 9.80665e3:.0f} t "
+                                   f"({AXLE_LOAD_WARNING / 1e3:.0f} kN), far beyond legal axle limits", []).append(no)
+        if record.speed > SPEED_WARNING:
+            implausible.setdefault(f"a speed above {SPEED_WARNING * 3.6:.0f} km/h", []).append(no)
+        out.append(record)
+    for what, lines in implausible.items():
+        shown = ", ".join(map(str, lines[:5])) + (", …" if len(lines) > 5 else "")
+        log.warning("%s: %d record(s) with %s (line %s); check the values and their units", source, len(lines), what,
+                    shown)
     return out
 
 
-def _record(cells: dict[str, str], columns: dict, source: str, no: int) -> VehicleRecord:
+def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], source: str, no: int) -> VehicleRecord:
     def fail(key: str, msg: str) -> RecordsError:
-        return RecordsError(f"{source}:{no}: {columns[key][2]}: {msg}")
+        return RecordsError(f"{source}:{no}: column {columns[key][2]} ({columns[key][1]}): {msg}")
 
     def number(key: str, lo: float = -math.inf, strict: bool = False) -> float:
         try:
-            v = float(cells[key]) * columns[key][1]
+            v = float(cells[key]) * columns[key][0]
         except ValueError:
-            raise fail(key, f"not a number: {cells[key]!r}") from None
-        if not math.isfinite(v) or (v <= lo if strict else v < lo):
-            raise fail(key, f"must be {'>' if strict else '>='} {lo:g}, got {cells[key].strip()}")
+            raise fail(key, "not a number") from None
+        if not math.isfinite(v):
+            raise fail(key, "not a finite number")
+        if v <= lo if strict else v < lo:
+            raise fail(key, f"must be {'>' if strict else '>='} {lo:g}, got {v / columns[key][0]:g}")
         return v
+
+    def numbers(key: str) -> list[float]:
+        items = cells[key].replace(";", " ").split()
+        if len(items) > MAX_AXLES:
+            raise fail(key, f"{len(items)} values; a vehicle has at most {MAX_AXLES} axles")
+        try:
+            values = [float(x) * columns[key][0] for x in items]
+        except ValueError:
+            raise fail(key, "not a list of numbers separated by spaces") from None
+        if not all(math.isfinite(v) for v in values):
+            raise fail(key, "not a list of finite numbers")
+        return values
 
     time = number("time", 0.0)
     direction = cells["direction"].strip()
     if direction not in DIRECTIONS:
-        raise fail("direction", f"must be +x or -x, got {direction!r}")
+        raise fail("direction", "must be +x or -x")
     speed = number("speed", 0.0, strict=True)
     if speed > 70:
         raise fail("speed", f"{speed * 3.6:.0f} km/h is beyond the allowed 0 … 252 km/h")
@@ -172,9 +240,9 @@ def _record(cells: dict[str, str], columns: dict, source: str, no: int) -> Vehic
         try:
             lane = int(cells["lane"])
         except ValueError:
-            raise fail("lane", f"must be a lane number 1, 2, …, got {cells['lane']!r}") from None
-        if lane < 1:
-            raise fail("lane", f"must be >= 1, got {lane}")
+            raise fail("lane", "must be a lane number 1, 2, …") from None
+        if not 1 <= lane <= 1000:
+            raise fail("lane", "must be a lane number 1, 2, … (at most 1000)")
     if "lateral_offset" in cells and cells["lateral_offset"].strip():
         lateral = number("lateral_offset")
     if lane is None and lateral is None:
@@ -186,20 +254,17 @@ def _record(cells: dict[str, str], columns: dict, source: str, no: int) -> Vehic
         for key in ("axle_loads", "axle_spacings"):
             if key not in cells:
                 raise RecordsError(f"{source}:{no}: model axles needs the column {key}")
-        try:
-            loads = [v * columns["axle_loads"][1] for v in _numbers(cells["axle_loads"])]
-        except ValueError:
-            raise fail("axle_loads", f"not a list of numbers: {cells['axle_loads']!r}") from None
-        try:
-            spacings = [v * columns["axle_spacings"][1] for v in _numbers(cells["axle_spacings"])]
-        except ValueError:
-            raise fail("axle_spacings", f"not a list of numbers: {cells['axle_spacings']!r}") from None
-        if not loads or not all(math.isfinite(v) and v > 0 for v in loads):
-            raise fail("axle_loads", f"needs one or more loads > 0, got {cells['axle_loads']!r}")
+        loads = numbers("axle_loads")
+        spacings = numbers("axle_spacings")
+        if not loads or not all(v > 0 for v in loads):
+            raise fail("axle_loads", "needs one or more loads > 0")
+        if max(loads) > AXLE_LOAD_MAX:
+            raise fail("axle_loads", f"an axle load of {max(loads) / 9.80665e3:.3g} t is impossible for a road "
+                                     f"vehicle (at most {AXLE_LOAD_MAX / 9.80665e3:.0f} t are read; check the unit)")
         if len(spacings) != len(loads) - 1:
             raise fail("axle_spacings", f"needs {len(loads) - 1} spacing(s) for {len(loads)} axles, got {len(spacings)}")
-        if not all(math.isfinite(v) and 0 < v <= 30 for v in spacings):
-            raise fail("axle_spacings", f"spacings must be in (0, 30] m, got {cells['axle_spacings']!r}")
+        if not all(0 < v <= 30 for v in spacings):
+            raise fail("axle_spacings", "spacings must be in (0, 30] m")
         if "gross_weight" in cells and cells["gross_weight"].strip():
             gw = number("gross_weight", 0.0, strict=True)
             if abs(gw - sum(loads)) > 0.01 * gw:
@@ -209,21 +274,20 @@ def _record(cells: dict[str, str], columns: dict, source: str, no: int) -> Vehic
 
         if model not in VEHICLE_PRESETS or VEHICLE_PRESETS[model].required:
             allowed = [k for k, p in VEHICLE_PRESETS.items() if not p.required]
-            raise fail("model", f"unknown vehicle preset {model!r}; allowed: axles, {', '.join(allowed)}")
+            raise fail("model", f"not a vehicle preset; allowed: axles, {', '.join(allowed)}")
         if any(cells.get(k, "").strip() for k in ("axle_loads", "axle_spacings")):
             raise RecordsError(f"{source}:{no}: a preset vehicle ({model}) takes no axle_loads / axle_spacings")
     return VehicleRecord(time, direction, speed, tuple(loads), tuple(spacings), lane, lateral,
                          cells.get("id", "").strip(), model, no)
 
 
-def read_records(path: str | Path) -> list[VehicleRecord]:
-    """Read a records CSV file (errors name ``file:line``)."""
+def read_records(path: str | Path, max_records: int = MAX_RECORDS) -> list[VehicleRecord]:
+    """Read a records CSV file (errors name ``file:line`` and the column).  The file is opened only if
+    it is a regular file within the input size limit (``vbikit._files.read_text``: no
+    FIFO, device or folder); more than ``max_records`` records are refused before parsing."""
     path = Path(path)
-    try:
-        text = path.read_text()
-    except OSError as err:
-        raise RecordsError(f"cannot read records file {path}: {err.strerror}") from None
-    return parse_records(text, path.name)
+    text = read_text(path, RecordsError, "records file (CSV)")
+    return parse_records(text, path.name, max_records)
 
 
 def format_records(records: Sequence[VehicleRecord]) -> str:
@@ -241,4 +305,5 @@ def format_records(records: Sequence[VehicleRecord]) -> str:
 
 
 def write_records(records: Sequence[VehicleRecord], path: str | Path) -> None:
-    Path(path).write_text(format_records(records))
+    """Write ``records`` as a records CSV file (``format_records``), atomically."""
+    write_text(path, format_records(records))

@@ -158,15 +158,17 @@ class TrafficStudy:
 
     def assemble(self, parts: Path):
         """The stream's Dataset from the finished parts."""
-        from vbikit.study.run import load_part, part_output
+        from vbikit.study.run import part_output
+        from vbikit.study.storage import load_part, part_checksums
 
         n_e, n_v = self.size, len(self.records)
         n_points = len(self.point_names or [None])
         ev = {o.name: np.full((n_e, n_points) if o.scope == "point" else n_e, np.nan) for o in outputs()}
         ev |= {k: np.full(n_e, np.nan) for k in EVENT_EXTRAS}
         veh = {k: np.full(n_v, np.nan) for k in VEHICLE_OUTPUTS}
+        sums = part_checksums(parts)
         for k in range(len(self.batches())):
-            part = load_part(parts, k)
+            part = load_part(parts, k, sums)
             for name in ev:
                 ev[name][part["event"]] = part_output(part, name, n_points) if name in OUTPUTS else part[name]
             for name in VEHICLE_OUTPUTS:
@@ -389,6 +391,7 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
     ctx = _Context.of(base, base_dir)
     bridge = ctx.template.crossing.bridge
     lanes = tuple(float(y) for y in (lanes if lanes is not None else default_lanes(bridge)))
+    width = bridge.deck_width if isinstance(bridge, GirderDeck) else None
     lengths = []
     for r in records:
         where = f"{source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
@@ -396,9 +399,18 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
             raise StudyError(f"{where}: lane {r.lane} has no centre (lanes at y = {', '.join(f'{y:g}' for y in lanes)} m; "
                              "give --lanes or a lateral_offset column)")
         try:
-            lengths.append(_vehicle(r).length)
+            vehicle = _vehicle(r)
         except ValueError as err:
             raise StudyError(f"{where}: {err}") from None
+        lengths.append(vehicle.length)
+        if width is not None:  # wheels on the deck (their y mirrored when the vehicle drives -x)
+            y = r.lateral_offset if r.lateral_offset is not None else lanes[r.lane - 1]
+            sign = 1.0 if r.direction == "+x" else -1.0
+            edge = max(abs(y + sign * w.lateral) for w in vehicle.wheels)
+            if not edge <= width / 2:
+                source_of_y = "lateral_offset" if r.lateral_offset is not None else f"lane {r.lane}"
+                raise StudyError(f"{where}: {source_of_y} at y = {y:g} m puts wheels at y = {edge:.4g} m from the "
+                                 f"centreline, off the {width:g} m wide deck")
     first, last = bridge.deck_extent
     reach = max(-first, last - bridge.span, 0.0)  # a skew deck's ends reach beyond its supports
     events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span, reach)

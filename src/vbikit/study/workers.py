@@ -1,0 +1,96 @@
+"""The local worker processes of studies: one pool kept between the studies of a session, whose
+workers end with the process that started them.
+
+The pool is kept so that consecutive studies (e.g. the paper's six) pay the start-up (imports,
+compiled-kernel cache, bridge modes, road profiles of the same seeds) once; it is ended at exit or
+by ``shutdown_workers``.  A worker ignores Ctrl-C (the coordinating process handles it) and ends
+when its parent ends, however it ends (SIGKILL included, when no clean-up runs): on Linux the
+kernel sends it SIGKILL (``prctl(PR_SET_PDEATHSIG)``), and on every system a watchdog thread ends
+it within ``WATCH_INTERVAL`` once its parent process is gone.
+"""
+from __future__ import annotations
+
+import atexit
+import os
+import signal
+import sys
+import threading
+import time
+from concurrent.futures import ProcessPoolExecutor
+from typing import Optional
+
+#: how often a worker checks that its parent process is alive [s]
+WATCH_INTERVAL = 0.5
+
+_PR_SET_PDEATHSIG = 1  # linux/prctl.h
+
+
+def _die_with_parent(parent: int, thread_bound: bool) -> None:
+    """Worker initializer: ignore Ctrl-C and end when the process ``parent`` ends.
+
+    ``thread_bound``: the kernel's parent-death signal may be used (it fires when the *thread*
+    that started the worker ends, so only when that thread is the parent's main thread)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if thread_bound and sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+        except (OSError, AttributeError):  # pragma: no cover - a libc without prctl
+            pass
+    direct = os.getppid() == parent  # False: started by a fork server (or the parent already ended)
+
+    def alive() -> bool:
+        if direct:
+            return os.getppid() == parent
+        try:
+            os.kill(parent, 0)
+        except ProcessLookupError:
+            return False
+        except PermissionError:  # pragma: no cover - the pid belongs to another user's process now
+            return False
+        return True
+
+    if not alive():  # the parent ended before the watch was set up
+        os._exit(1)
+
+    def watch() -> None:
+        while alive():
+            time.sleep(WATCH_INTERVAL)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="vbikit-parent-watch", daemon=True).start()
+
+
+_POOL: Optional[ProcessPoolExecutor] = None
+_POOL_WORKERS = 0
+
+
+def local_pool(workers: int) -> ProcessPoolExecutor:
+    """The session's pool of ``workers`` local processes (a new one if the count changed or the
+    pool broke)."""
+    global _POOL, _POOL_WORKERS
+    if _POOL is None or _POOL_WORKERS != workers or getattr(_POOL, "_broken", False):
+        shutdown_workers()
+        main = threading.current_thread() is threading.main_thread()
+        _POOL = ProcessPoolExecutor(max_workers=workers, initializer=_die_with_parent, initargs=(os.getpid(), main))
+        _POOL_WORKERS = workers
+    return _POOL
+
+
+def shutdown_workers(kill: bool = False) -> None:
+    """End the local worker processes kept between studies (``kill``: at once, dropping running work)."""
+    global _POOL
+    pool, _POOL = _POOL, None
+    if pool is None:
+        return
+    if kill:
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for proc in processes:  # the running batches are lost anyway; do not wait for them
+            proc.terminate()
+    else:
+        pool.shutdown()
+
+
+atexit.register(shutdown_workers)
