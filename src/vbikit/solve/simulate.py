@@ -27,17 +27,30 @@ log = logging.getLogger(__name__)
 compile_log = logging.getLogger("vbikit.solve.compile")
 
 
-def announce_compile(kernel) -> None:
-    """Log "compiling kernels, first run only" when ``kernel`` (a numba dispatcher) has nothing
-    compiled in this process and nothing in numba's on-disk cache (its index file is missing)."""
+#: CPU seconds numba takes to compile the default path on a quiet machine (benchmarks/bench_compile.py)
+COMPILE_SECONDS = 40
+
+
+def kernels_cached(kernel) -> bool:
+    """Whether ``kernel`` (a numba dispatcher) is compiled in this process or in numba's on-disk cache
+    (its index file exists); True for a plain function (NUMBA_DISABLE_JIT=1)."""
     signatures = getattr(kernel, "signatures", None)
-    if signatures is None or signatures:  # a plain function (NUMBA_DISABLE_JIT=1), or compiled already
-        return
+    if signatures is None or signatures:
+        return True
     index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
-    if index is None or not os.path.exists(index):
-        where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
-        compile_log.info("compiling kernels, first run only (about 15 s; later runs load them from numba's cache%s "
-                         "in under a second)", f" in {where}" if where else "")
+    return index is not None and os.path.exists(index)
+
+
+def announce_compile(kernel, who: str = "") -> None:
+    """Log (``vbikit.solve.compile``, shown by the CLI) that the kernels are about to be compiled when
+    ``kernel`` is neither compiled in this process nor in numba's on-disk cache; ``who`` says where
+    (e.g. "each of the 2 worker processes, on its first batch")."""
+    if kernels_cached(kernel):
+        return
+    where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
+    compile_log.info("compiling the kernels%s, first run only: about %d s of CPU (later runs load them from numba's "
+                     "cache%s in under a second; `vbikit compile` does it in advance)", f" in {who}" if who else "",
+                     COMPILE_SECONDS, f" in {where}" if where else "")
 
 
 #: memory [bytes] the stored histories of one ``simulate`` may take before they are thinned

@@ -245,6 +245,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             progress(done, total)
 
     if todo:
+        _announce_compile(study, scheduler, workers)
         if scheduler is not None:
             _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
         elif (workers or os.cpu_count() or 1) <= 1:
@@ -262,6 +263,26 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     if not keep_parts:
         shutil.rmtree(parts, ignore_errors=True)
     return ds
+
+
+def _announce_compile(study, scheduler, workers) -> None:
+    """Say that the workers will compile the kernels first (instead of a progress bar frozen at 0 %)."""
+    from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
+    from vbikit.solve.simulate import announce_compile
+
+    first = getattr(study, "scenario_dict", None)  # a parameter study's first crossing (traffic: the default)
+    name = (first(study.batches()[0][0]).get("crossing", {}).get("integrator") if first is not None else None) \
+        or DEFAULT_INTEGRATOR
+    kernel = get_integrator(name).kernel
+    if kernel is None:
+        return
+    if scheduler is not None:
+        who = f"every Dask worker of {scheduler} whose machine has not compiled them"
+    elif (workers or os.cpu_count() or 1) <= 1:
+        who = "this process"
+    else:
+        who = f"each of the {workers or os.cpu_count()} worker processes, on its first batch"
+    announce_compile(kernel(), who)
 
 
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
