@@ -1,5 +1,7 @@
 """Regenerate the docs pages that are derived from the code: the key references of scenario,
-study and field files (from their schemas) and the bibliography (from vbikit.references).
+study and field files (from their schemas), the bibliography (from vbikit.references) and the
+blocks that quote computed numbers (from docs/figures/numbers.json, docs/scripts/doc_numbers.py),
+in docs/ and in README.md.
 
     python docs/scripts/generate.py          # rewrite the generated pages
     python docs/scripts/generate.py --check  # exit 1 and name the stale pages (run by the tests)
@@ -441,6 +443,75 @@ def roughness() -> str:
             f"{r['iso_d']:.2f} with ISO D, {r['phi64_n0_1_over_2pi']:.2f} with φ(n₀) = 64e-6 at n₀ = 1/(2π).\n")
 
 
+def demo_caption() -> str:
+    """The caption of the demo figure (README and docs home), from the demo's numbers."""
+    d = _numbers()["demo"]
+    return (f"*The demo crossing (`vbikit demo`): midspan displacement, strain, acceleration and tire forces of "
+            f"the 16.76 m beam under an HS20-44 truck at 75 km/h on an ISO class C road, dynamic against static; "
+            f"IM = {d['impact_factor']:.4f} (strain IM {d['strain_impact_factor']:.4f}), peak deflection "
+            f"{-d['max_dynamic_displacement'] * 1e3:.3f} mm against {-d['max_static_displacement'] * 1e3:.3f} mm "
+            f"static.*\n")
+
+
+def version() -> str:
+    """The docs home's version line (``vbikit.__version__``)."""
+    from vbikit import __version__
+
+    return (f"This site documents **vbikit {__version__}** (`vbikit --version`); what changed between "
+            f"versions is in the [changelog](changelog.md).\n")
+
+
+def _kn(value: float, unit: str = "kN·m") -> str:
+    return f"{value / 1e3:.1f} {unit}"
+
+
+def bridge2_effects() -> str:
+    e = _numbers()["examples"]["bridge2_girder4"]
+    reactions = " / ".join(f"{r['impact_factor']:.3f}" for r in e["reaction"])
+    return (f"For Bridge 2 with the HS20-44 at 75 km/h on the class C road "
+            f"(`examples/paper/bridge2_hs20_girder4.toml`), Girder 4: midspan moment IM "
+            f"{e['moment'][0]['impact_factor']:.3f} (deflection IM {e['impact_factor']:.3f}), shear at the entry "
+            f"{e['shear'][0]['impact_factor']:.3f}, bearing reactions {reactions}.\n")
+
+
+def three_span_grillage() -> str:
+    e = _numbers()["examples"]["three_span_grillage"]
+    sag = [m for m in e["moment"] if not m["hogging_region"]]
+    hog = [m for m in e["moment"] if m["hogging_region"]]
+    piers = e["reaction"][1:-1]
+    codes: dict[str, list[float]] = {}
+    for m in e["moment"]:
+        for k, v in m["code_allowances"].items():
+            codes.setdefault(k, []).append(v)
+
+    def span(values: list[float]) -> str:
+        lo, hi = f"{min(values):.2f}", f"{max(values):.2f}"
+        return lo if lo == hi else f"{lo}–{hi}"
+
+    names = {"aashto_lrfd": "AASHTO LRFD", "aashto_standard": "AASHTO Standard", "jtg_d60_2015": "JTG D60",
+             "ohbdc_1983": "OHBDC", "csa_s6": "CSA S6"}
+    def ims(effects: list[dict[str, Any]]) -> str:
+        return " / ".join(f"{x['impact_factor']:.3f}" for x in effects)
+
+    return (f"`examples/bridges/three_span_grillage_hs20.toml` (16.76 + 20 + 16.76 m, f_1 = "
+            f"{e['first_frequency']:.2f} Hz): Girder 4 under the HS20-44 at 75 km/h on the class C road has "
+            f"sagging-moment IMs {ims(sag)} in the three spans, hogging IMs {ims(hog)} over the piers and "
+            f"pier-reaction IMs {ims(piers)}, beside "
+            + ", ".join(f"{label} {span(codes[k])}" for k, label in names.items() if k in codes) + ".\n")
+
+
+def skew_example() -> str:
+    ex = _numbers()["examples"]
+    s, q = ex["skew"], ex["skew_square"]
+    xs = " m and ".join(f"{r['x']:.3f}" for r in s["reaction"])
+    return (f"`examples/bridges/skew_grillage_hs20.toml` (Bridge 2, skew 20°, 12 modes, HS20-44 at 75 km/h, "
+            f"class C road, multipoint tires): Girder 4 at its own midspan x = {s['response_x']:.3f} m has deflection "
+            f"IM {s['impact_factor']:.3f} ({q['impact_factor']:.3f} on the square deck with the same road), "
+            f"midspan-moment IM {s['moment'][0]['impact_factor']:.3f} ({q['moment'][0]['impact_factor']:.3f}), static "
+            f"midspan moment {_kn(s['moment'][0]['static_peak'])} ({_kn(q['moment'][0]['static_peak'])} square), "
+            f"reactions reported at x = {xs} m.\n")
+
+
 # ---------------------------------------------------------------------------------- gallery
 GALLERY = ROOT / "examples" / "gallery"
 
@@ -512,13 +583,20 @@ BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("gallery/index.md", "gallery-index"): gallery_index,
     ("tires.md", "fig9-table"): fig9_table,
     ("model-data.md", "roughness"): roughness,
+    ("../README.md", "demo-caption"): demo_caption,
+    ("index.md", "demo-caption"): demo_caption,
+    ("index.md", "version"): version,
+    ("bridges.md", "bridge2-effects"): bridge2_effects,
+    ("bridges.md", "three-span-grillage"): three_span_grillage,
+    ("bridges.md", "skew-example"): skew_example,
 }
 
 
 def _with_block(text: str, name: str, body: str, rel: str) -> str:
     begin, end = f"<!-- BEGIN GENERATED {name} -->\n", f"<!-- END GENERATED {name} -->"
     if begin not in text or end not in text:
-        raise SystemExit(f"docs/{rel}: markers for the generated block {name!r} are missing")
+        raise SystemExit(f"{(DOCS / rel).resolve().relative_to(ROOT).as_posix()}: markers for the generated block "
+                         f"{name!r} are missing")
     head, rest = text.split(begin, 1)
     return head + begin + body + end + rest.split(end, 1)[1]
 
@@ -538,7 +616,7 @@ def stale(write: bool) -> list[str]:
         text = path.read_text(encoding="utf-8")
         new = _with_block(text, name, make(), rel)
         if new != text:
-            out.append(f"docs/{rel} ({name})")
+            out.append(f"{path.resolve().relative_to(ROOT).as_posix()} ({name})")
             if write:
                 path.write_text(new, encoding="utf-8")
     for rel, make in _pages().items():
