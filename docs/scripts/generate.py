@@ -360,12 +360,14 @@ def references_md() -> str:
              "entries of the models a scenario uses, and `vbikit run --json` lists their keys under "
              "`references`. How the numbers taken from these sources enter the presets: "
              "[model data](model-data.md).\n",
-             "Entries marked *not yet checked* have a DOI taken from secondary citation data; they are "
-             "to be confirmed against the publisher.\n"]
+             "Entries marked *not yet checked* have a DOI taken from secondary citation data that could not "
+             "be confirmed against the publisher or Crossref; each entry with a DOI says under *Checked* how it "
+             "was confirmed or what was searched without confirming it.\n"]
     for r in REFERENCES.values():
         models = ", ".join(f"`{m}`" for m in used_by.get(r.key, []) if m != "*")
         lines.append(f'\n## {r.key} {{ #{r.key} }}\n\n{r.text()}\n\n*Used for:* {r.used_for}.'
-                     + (f" *Models:* {models}." if models else "") + "\n")
+                     + (f" *Models:* {models}." if models else "")
+                     + (f"\n\n*Checked:* {r.verification}." if r.verification else "") + "\n")
     return "".join(lines)
 
 
