@@ -246,7 +246,7 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        authors=("Nigam, Navin C.", "Jennings, Paul C."), journal="Bulletin of the Seismological Society of America",
        volume="59", number="2", pages="909–922", doi="10.1785/BSSA0590020909", checked=False,
        verification="Journal, volume 59, number 2, pages 909–922 (April 1969), title and authors agree with a "
-                    "scan of the article's first page found by " + SEARCHED + ". DOI unconfirmed: no publisher "
+                    "scan of the article's first page, found when its title was searched in " + SEARCHED + ". DOI unconfirmed: no publisher "
                     "(SSA/GeoScienceWorld) or Crossref record of it was found; it has the SSA form for BSSA 59(2), "
                     "p. 909"),
     _R("Chopra2017", "book", "Dynamics of Structures: Theory and Applications to Earthquake Engineering", "2017",
