@@ -13,6 +13,7 @@ reproduces what the docs say, so a quoted number cannot go stale.
 * ``demo``: the crossing of ``vbikit demo`` (README and docs home); its figure is
   docs/figures/demo.png, which carries the impact factor it was drawn with in its PNG metadata
   (``Description``), so that the tests can tell a stale figure.
+* ``field``: the synthetic field test of docs/field.md (``vbikit field … --calibrate``).
 * ``examples``: load effects of the example scenarios that docs/bridges.md quotes (Bridge 2 at
   Girder 4, the three-span continuous deck, the 20° skew deck and the same deck square).
 """
@@ -141,11 +142,55 @@ def examples() -> dict[str, dict[str, object]]:
     return out
 
 
+FIELD = ROOT / "examples" / "field" / "FIELD.toml"
+
+
+def field() -> dict[str, object]:
+    """``vbikit field examples/field/FIELD.toml --calibrate`` (point and multipoint tires): per case the
+    accelerometer's removed offset [m/s²] and drift [m/s³]; the calibration (multipoint) with its 1σ;
+    per tire model and channel quantity the peak error and normalised RMS error and correlation,
+    nominal and calibrated (the largest |value| over the cases, the smallest correlation)."""
+    import dataclasses
+    import tempfile
+
+    from vbikit.field.io import load_field_toml
+    from vbikit.field.report import run_field
+    from vbikit.field.workflow import compare_case
+
+    with tempfile.TemporaryDirectory() as tmp:
+        run = run_field(FIELD, tmp, ["point", "multipoint"], do_calibrate=True)
+    cal = run.calibration
+    # case 1 aligned by cross-correlation instead of its trigger time, with the true model (E × 1.10,
+    # 2.5 % damping: examples/field/make_synthetic.py) and with the nominal one
+    spec = load_field_toml(FIELD)
+    case = dataclasses.replace(spec.cases[0], align="xcorr")
+    xcorr = {label: compare_case(s, case, ["multipoint"]).table()["trigger_time_s"]
+             for label, s in (("true", dataclasses.replace(spec, stiffness_factor=1.10, damping_ratio=0.025)),
+                              ("nominal", spec))}
+    out: dict[str, object] = {"xcorr_trigger": xcorr,
+        "drift": [{"offset": d.offset, "drift": d.drift} for c in run.comparisons for d in c.drift.values()],
+        "stiffness_factor": cal.stiffness_factor, "stiffness_factor_std": cal.stiffness_factor_std,
+        "damping_ratio": cal.damping_ratio, "damping_ratio_std": cal.damping_ratio_std}
+    for label, cmps in (("nominal", run.comparisons), ("calibrated", run.calibrated)):
+        table: dict[str, dict[str, dict[str, list[float]]]] = {}
+        for c in cmps:
+            quantity = {ch.name: ch.quantity for ch in c.case.channels}
+            for tire, chans in c.metrics.items():
+                for name, m in chans.items():
+                    row = table.setdefault(tire, {}).setdefault(quantity[name], {"peak_error": [], "nrms": [], "corr": []})
+                    row["peak_error"].append(m["peak_error"])
+                    row["nrms"].append(m["normalised_rms_error"])
+                    row["corr"].append(m["correlation"])
+        out[label] = table
+    return out
+
+
 def compute(plot: bool = False) -> dict[str, object]:
     return {"fig9": fig9(ROOT / "docs" / "figures" / "fig9-tire-models.png" if plot else None),
             "roughness": roughness(),
             "demo": demo(DEMO_FIGURE if plot else None),
-            "examples": examples()}
+            "examples": examples(),
+            "field": field()}
 
 
 if __name__ == "__main__":

@@ -60,3 +60,8 @@ def test_demo_numbers_and_figure_are_reproduced(docs_script):
 
 def test_example_load_effects_are_reproduced(docs_script):
     _close(docs_script("doc_numbers").examples(), STORED["examples"], "examples")
+
+
+def test_field_example_numbers_are_reproduced(docs_script):
+    # the synthetic field test of docs/field.md, calibration included (about a minute)
+    _close(docs_script("doc_numbers").field(), STORED["field"], "field")
