@@ -14,7 +14,7 @@ ROOT = Path(__file__).resolve().parents[2]
 TIMING = re.compile(r"(?<![\w.=/-])(?:≈\s*)?\d+(?:\.\d+)?(?:\s*[–-]\s*\d+(?:\.\d+)?)?\s?(?:ms|s|min|minutes|seconds)\b"
                     r"(?![²/^]|\.d)")
 #: the label a section with run times carries
-DATED = re.compile(r"measured (?:on )?\d{4}-\d{2}-\d{2}\b[^.]*?\b(?:machine|cores?)\b", re.S)
+DATED = re.compile(r"measured (?:on )?\d{4}-\d{2}-\d{2}\b[^.]*?\b(?:machine|cores?)\b", re.S | re.I)
 #: durations that are physical quantities of a model or a record, not run times: the words before
 #: them say so (a time step, a trigger time, a headway, a gap, an airborne time, a free-vibration
 #: time, a PSD segment, an alignment bias, a time stamp in an error message)
