@@ -514,6 +514,26 @@ def skew_example() -> str:
             f"reactions reported at x = {xs} m.\n")
 
 
+def bridge_frequencies() -> str:
+    """The first five frequencies and mode descriptions of the slab-on-girder presets (docs/bridges.md),
+    computed from the code (default mesh)."""
+    from vbikit.bridge import BRIDGE_PRESETS
+
+    names = ("paper-bridge-1", "paper-bridge-2", "paper-bridge-3", "cypress-bayou")
+    cols = []
+    for name in names:
+        bridge = BRIDGE_PRESETS[name].build(n_modes=5)
+        cells = []
+        for f, text in zip(bridge.frequencies_hz, bridge.mode_descriptions()):
+            kind, _, waves = text.partition(", ")
+            second = "" if waves.startswith("1 ") else ("2nd " if waves.startswith("2 ") else waves + " ")
+            cells.append(f"{f:.3f} Hz {second}{kind}")
+        cols.append(cells)
+    rows = ["| mode | " + " | ".join(names) + " |", "|---" * (len(names) + 1) + "|"]
+    rows += [f"| {k + 1} | " + " | ".join(c[k] for c in cols) + " |" for k in range(5)]
+    return "\n".join(rows) + "\n"
+
+
 def field_table() -> str:
     """The recovered quantities of the synthetic field test (docs/field.md)."""
     f = _numbers()["field"]
@@ -634,6 +654,7 @@ BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("bridges.md", "three-span-grillage"): three_span_grillage,
     ("bridges.md", "skew-example"): skew_example,
     ("field.md", "field-table"): field_table,
+    ("bridges.md", "bridge-frequencies"): bridge_frequencies,
     ("field.md", "field-metrics"): field_metrics,
 }
 
