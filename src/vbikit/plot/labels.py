@@ -31,7 +31,7 @@ def unit_label(cf_unit: str) -> str:
 
 def axis_label(variable: Any, name: str | None = None) -> str:
     """``"name [unit]"`` for an xarray variable or coordinate: its ``long_name`` (or ``name``) and
-    its ``units`` attribute through :func:`unit_label`."""
+    its ``units`` attribute through [`unit_label`][vbikit.plot.labels.unit_label]."""
     attrs = getattr(variable, "attrs", {})
     text = name or attrs.get("long_name") or str(getattr(variable, "name", ""))
     return f"{text} [{unit_label(str(attrs.get('units', '')))}]"
