@@ -21,7 +21,10 @@ def _open(out: Path, fig: str, beam: bool):
     import xarray as xr
 
     path = out / f"paper-{fig}{'-beam' if beam else ''}.nc"
-    return xr.open_dataset(path).load() if path.is_file() else None
+    if not path.is_file():
+        return None
+    with xr.open_dataset(path) as ds:  # closed again: the netCDF library refuses a second open of a held file
+        return ds.load()
 
 
 def claim1(out: Path) -> str:
