@@ -1,5 +1,7 @@
 """Regenerate the docs pages that are derived from the code: the key references of scenario,
-study and field files (from their schemas) and the bibliography (from vbikit.references).
+study and field files (from their schemas), the bibliography (from vbikit.references) and the
+blocks that quote computed numbers (from docs/figures/numbers.json, docs/scripts/doc_numbers.py),
+in docs/ and in README.md.
 
     python docs/scripts/generate.py          # rewrite the generated pages
     python docs/scripts/generate.py --check  # exit 1 and name the stale pages (run by the tests)
@@ -358,12 +360,14 @@ def references_md() -> str:
              "entries of the models a scenario uses, and `vbikit run --json` lists their keys under "
              "`references`. How the numbers taken from these sources enter the presets: "
              "[model data](model-data.md).\n",
-             "Entries marked *not yet checked* have a DOI taken from secondary citation data; they are "
-             "to be confirmed against the publisher.\n"]
+             "Entries marked *not yet checked* have a DOI taken from secondary citation data that could not "
+             "be confirmed against the publisher or Crossref; each entry with a DOI says under *Checked* how it "
+             "was confirmed or what was searched without confirming it.\n"]
     for r in REFERENCES.values():
         models = ", ".join(f"`{m}`" for m in used_by.get(r.key, []) if m != "*")
         lines.append(f'\n## {r.key} {{ #{r.key} }}\n\n{r.text()}\n\n*Used for:* {r.used_for}.'
-                     + (f" *Models:* {models}." if models else "") + "\n")
+                     + (f" *Models:* {models}." if models else "")
+                     + (f"\n\n*Checked:* {r.verification}." if r.verification else "") + "\n")
     return "".join(lines)
 
 
@@ -441,6 +445,137 @@ def roughness() -> str:
             f"{r['iso_d']:.2f} with ISO D, {r['phi64_n0_1_over_2pi']:.2f} with φ(n₀) = 64e-6 at n₀ = 1/(2π).\n")
 
 
+def demo_caption() -> str:
+    """The caption of the demo figure (README and docs home), from the demo's numbers."""
+    d = _numbers()["demo"]
+    return (f"*The demo crossing (`vbikit demo`): midspan displacement, strain, acceleration and tire forces of "
+            f"the 16.76 m beam under an HS20-44 truck at 75 km/h on an ISO class C road, dynamic against static; "
+            f"IM = {d['impact_factor']:.4f} (strain IM {d['strain_impact_factor']:.4f}), peak deflection "
+            f"{-d['max_dynamic_displacement'] * 1e3:.3f} mm against {-d['max_static_displacement'] * 1e3:.3f} mm "
+            f"static.*\n")
+
+
+def version() -> str:
+    """The docs home's version line (``vbikit.__version__``)."""
+    from vbikit import __version__
+
+    return (f"This site documents **vbikit {__version__}** (`vbikit --version`); what changed between "
+            f"versions is in the [changelog](changelog.md).\n")
+
+
+def _kn(value: float, unit: str = "kN·m") -> str:
+    return f"{value / 1e3:.1f} {unit}"
+
+
+def bridge2_effects() -> str:
+    e = _numbers()["examples"]["bridge2_girder4"]
+    reactions = " / ".join(f"{r['impact_factor']:.3f}" for r in e["reaction"])
+    return (f"For Bridge 2 with the HS20-44 at 75 km/h on the class C road "
+            f"(`examples/paper/bridge2_hs20_girder4.toml`), Girder 4: midspan moment IM "
+            f"{e['moment'][0]['impact_factor']:.3f} (deflection IM {e['impact_factor']:.3f}), shear at the entry "
+            f"{e['shear'][0]['impact_factor']:.3f}, bearing reactions {reactions}.\n")
+
+
+def three_span_grillage() -> str:
+    e = _numbers()["examples"]["three_span_grillage"]
+    sag = [m for m in e["moment"] if not m["hogging_region"]]
+    hog = [m for m in e["moment"] if m["hogging_region"]]
+    piers = e["reaction"][1:-1]
+    codes: dict[str, list[float]] = {}
+    for m in e["moment"]:
+        for k, v in m["code_allowances"].items():
+            codes.setdefault(k, []).append(v)
+
+    def span(values: list[float]) -> str:
+        lo, hi = f"{min(values):.2f}", f"{max(values):.2f}"
+        return lo if lo == hi else f"{lo}–{hi}"
+
+    names = {"aashto_lrfd": "AASHTO LRFD", "aashto_standard": "AASHTO Standard", "jtg_d60_2015": "JTG D60",
+             "ohbdc_1983": "OHBDC", "csa_s6": "CSA S6"}
+    def ims(effects: list[dict[str, Any]]) -> str:
+        return " / ".join(f"{x['impact_factor']:.3f}" for x in effects)
+
+    return (f"`examples/bridges/three_span_grillage_hs20.toml` (16.76 + 20 + 16.76 m, f_1 = "
+            f"{e['first_frequency']:.2f} Hz): Girder 4 under the HS20-44 at 75 km/h on the class C road has "
+            f"sagging-moment IMs {ims(sag)} in the three spans, hogging IMs {ims(hog)} over the piers and "
+            f"pier-reaction IMs {ims(piers)}, beside "
+            + ", ".join(f"{label} {span(codes[k])}" for k, label in names.items() if k in codes) + ".\n")
+
+
+def skew_example() -> str:
+    ex = _numbers()["examples"]
+    s, q = ex["skew"], ex["skew_square"]
+    xs = " m and ".join(f"{r['x']:.3f}" for r in s["reaction"])
+    return (f"`examples/bridges/skew_grillage_hs20.toml` (Bridge 2, skew 20°, 12 modes, HS20-44 at 75 km/h, "
+            f"class C road, multipoint tires): Girder 4 at its own midspan x = {s['response_x']:.3f} m has deflection "
+            f"IM {s['impact_factor']:.3f} ({q['impact_factor']:.3f} on the square deck with the same road), "
+            f"midspan-moment IM {s['moment'][0]['impact_factor']:.3f} ({q['moment'][0]['impact_factor']:.3f}), static "
+            f"midspan moment {_kn(s['moment'][0]['static_peak'])} ({_kn(q['moment'][0]['static_peak'])} square), "
+            f"reactions reported at x = {xs} m.\n")
+
+
+def bridge_frequencies() -> str:
+    """The first five frequencies and mode descriptions of the slab-on-girder presets (docs/bridges.md),
+    computed from the code (default mesh)."""
+    from vbikit.bridge import BRIDGE_PRESETS
+
+    names = ("paper-bridge-1", "paper-bridge-2", "paper-bridge-3", "cypress-bayou")
+    cols = []
+    for name in names:
+        bridge = BRIDGE_PRESETS[name].build(n_modes=5)
+        cells = []
+        for f, text in zip(bridge.frequencies_hz, bridge.mode_descriptions()):
+            kind, _, waves = text.partition(", ")
+            second = "" if waves.startswith("1 ") else ("2nd " if waves.startswith("2 ") else waves + " ")
+            cells.append(f"{f:.3f} Hz {second}{kind}")
+        cols.append(cells)
+    rows = ["| mode | " + " | ".join(names) + " |", "|---" * (len(names) + 1) + "|"]
+    rows += [f"| {k + 1} | " + " | ".join(c[k] for c in cols) + " |" for k in range(5)]
+    return "\n".join(rows) + "\n"
+
+
+def field_table() -> str:
+    """The recovered quantities of the synthetic field test (docs/field.md)."""
+    f = _numbers()["field"]
+    d = f["drift"]
+    sigma = abs(f["damping_ratio"] - 0.025) / f["damping_ratio_std"]
+    rows = ["| quantity | truth | recovered |", "|---|---|---|",
+            f"| trigger, case 1 (by `xcorr`, true model) | 1.2370 s | {f['xcorr_trigger']['true']:.4f} s |",
+            f"| trigger, case 1 (by `xcorr`, nominal model) | 1.2370 s | {f['xcorr_trigger']['nominal']:.4f} s |",
+            f"| accelerometer offset, case 1 / 2 (`quiet`) | 0.0300 m/s² | "
+            f"{' / '.join(format(x['offset'], '.5f') for x in d)} m/s² |",
+            f"| accelerometer drift, case 1 / 2 | 0.00400 m/s³ | {' / '.join(format(x['drift'], '.5f') for x in d)} m/s³ |",
+            f"| stiffness factor (2 cases, multipoint) | 1.1000 | {f['stiffness_factor']:.5f} ± "
+            f"{f['stiffness_factor_std']:.2g} (1σ) |",
+            f"| damping ratio | 0.0250 | {f['damping_ratio']:.5f} ± {f['damping_ratio_std']:.2g} (1σ; the truth is "
+            f"{sigma:.1f}σ away) |"]
+    return "\n".join(rows) + "\n"
+
+
+def field_metrics() -> str:
+    """The metrics sentence of docs/field.md: nominal and calibrated model, multipoint tire."""
+    f = _numbers()["field"]
+    nom, cal = f["nominal"]["multipoint"], f["calibrated"]["multipoint"]
+
+    def rng(values: list[float], scale: float = 1.0, fmt: str = ".1f") -> str:
+        lo, hi = min(values) * scale, max(values) * scale
+        return f"{lo:+{fmt}} … {hi:+{fmt}}" if f"{lo:{fmt}}" != f"{hi:{fmt}}" else f"{lo:+{fmt}}"
+
+    def top(key: str, q: str, which=nom) -> float:
+        return max(abs(v) for v in which[q][key])
+
+    return (f"Against the nominal model (multipoint tire) the displacement peaks are {rng(nom['displacement']['peak_error'], 100)} % "
+            f"off and the normalised RMS errors are up to {top('nrms', 'displacement'):.3f} (displacement), "
+            f"{top('nrms', 'strain'):.3f} (strain) and {top('nrms', 'acceleration'):.2f} (acceleration, correlation "
+            f"{min(nom['acceleration']['corr']):.2f}). With the calibrated model: peak errors "
+            f"{rng(cal['displacement']['peak_error'], 100)} % (displacement), {rng(cal['strain']['peak_error'], 100)} % "
+            f"(strain), {rng(cal['acceleration']['peak_error'], 100)} % (acceleration); normalised RMS errors up to "
+            f"{top('nrms', 'displacement', cal):.3f} (displacement), {top('nrms', 'strain', cal):.3f} (strain), "
+            f"{top('nrms', 'acceleration', cal):.3f} (acceleration); correlation ≥ "
+            f"{min(min(cal[q]['corr']) for q in cal):.3f}. The point tire against the multipoint-generated truth, "
+            f"calibrated model: acceleration peaks {rng(f['calibrated']['point']['acceleration']['peak_error'], 100, '.0f')} %.\n")
+
+
 # ---------------------------------------------------------------------------------- gallery
 GALLERY = ROOT / "examples" / "gallery"
 
@@ -512,13 +647,23 @@ BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("gallery/index.md", "gallery-index"): gallery_index,
     ("tires.md", "fig9-table"): fig9_table,
     ("model-data.md", "roughness"): roughness,
+    ("../README.md", "demo-caption"): demo_caption,
+    ("index.md", "demo-caption"): demo_caption,
+    ("index.md", "version"): version,
+    ("bridges.md", "bridge2-effects"): bridge2_effects,
+    ("bridges.md", "three-span-grillage"): three_span_grillage,
+    ("bridges.md", "skew-example"): skew_example,
+    ("field.md", "field-table"): field_table,
+    ("bridges.md", "bridge-frequencies"): bridge_frequencies,
+    ("field.md", "field-metrics"): field_metrics,
 }
 
 
 def _with_block(text: str, name: str, body: str, rel: str) -> str:
     begin, end = f"<!-- BEGIN GENERATED {name} -->\n", f"<!-- END GENERATED {name} -->"
     if begin not in text or end not in text:
-        raise SystemExit(f"docs/{rel}: markers for the generated block {name!r} are missing")
+        raise SystemExit(f"{(DOCS / rel).resolve().relative_to(ROOT).as_posix()}: markers for the generated block "
+                         f"{name!r} are missing")
     head, rest = text.split(begin, 1)
     return head + begin + body + end + rest.split(end, 1)[1]
 
@@ -538,7 +683,7 @@ def stale(write: bool) -> list[str]:
         text = path.read_text(encoding="utf-8")
         new = _with_block(text, name, make(), rel)
         if new != text:
-            out.append(f"docs/{rel} ({name})")
+            out.append(f"{path.resolve().relative_to(ROOT).as_posix()} ({name})")
             if write:
                 path.write_text(new, encoding="utf-8")
     for rel, make in _pages().items():

@@ -15,6 +15,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from vbikit.plot.labels import axis_label
+from vbikit.plot.styles import code_line
 from vbikit.study import parse_study, run_study
 
 OUT = Path(os.environ.get("VBIKIT_GALLERY_OUT", "vbikit-out"))
@@ -44,9 +46,9 @@ fig, ax = plt.subplots(figsize=(7, 4), layout="constrained")
 for n, label in ((1, "single-point"), (6, "multi-point, n = 6")):
     ax.errorbar(speed, mean.sel(tire_n_points=n), std.sel(tire_n_points=n), capsize=3, marker="o", label=label)
 span_ft = 16.76 / 0.3048
-ax.axhline(0.33, color="k", ls="--", lw=1, label="AASHTO LRFD IM = 0.33")
-ax.axhline(min(50 / (span_ft + 125), 0.3), color="k", ls=":", lw=1, label="AASHTO Standard 50/(L+125)")
-ax.set(xlabel=f"speed [{speed.attrs['units']}]", ylabel="impact factor IM [-]",
+code_line(ax, "aashto_lrfd", 0.33)
+code_line(ax, "aashto_standard", min(50 / (span_ft + 125), 0.3))
+ax.set(xlabel=axis_label(speed, "speed"), ylabel="impact factor IM [-]",
        title="HS20-44 on the 16.76 m beam, ISO C: mean ± std over 8 roads")
 ax.legend(fontsize=8)
 OUT.mkdir(parents=True, exist_ok=True)

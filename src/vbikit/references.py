@@ -43,6 +43,9 @@ class Reference:
     #: False while a DOI (or other locator) is written from secondary citation data and not yet
     #: checked against the publisher; docs/references.md marks such entries
     checked: bool = True
+    #: how the entry was checked, or what was searched without confirming it (docs/references.md
+    #: prints it); every entry with a DOI says one or the other
+    verification: str = ""
     extra: dict[str, str] = field(default_factory=dict)
 
     def text(self) -> str:
@@ -92,6 +95,9 @@ class Reference:
 
 _R = Reference
 
+#: where the entries marked unconfirmed were searched (no general network: no direct Crossref query)
+SEARCHED = "the project's search of stored public web pages and documentation pages (2026-12-02)"
+
 #: Every source vbikit relies on, by citation key.
 REFERENCES: dict[str, Reference] = {r.key: r for r in (
     # Title only: searched in public repositories (README/bib citations), indexed web pages, issue
@@ -103,7 +109,12 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "the random road (Eq. 7), the HS20-44 truck (Table 1), the three paper bridges, the studies of "
        "Figs. 5–11 and the Cypress Bayou field test; equation, table and figure numbers in the docs refer to it",
        note="The copy vbikit follows prints neither authors, journal nor year; complete this entry from the "
-            "published article"),
+            "published article",
+       verification="Unconfirmed. The copy vbikit follows gives on its first page only the title, the abstract and "
+                    "the keywords (dynamic impact factor; single-point tire model; multi-point tire model; disk "
+                    "model; field test), no authors, journal, volume, year or DOI. Searched for the exact title, and "
+                    "for it with 'Deng', 'Cai', 'Cypress Bayou' and 'International Journal of Structural Stability "
+                    "and Dynamics', in " + SEARCHED + ": no record of the article"),
     # DOI 10.1680/vosasuml.35393 (ICE Virtual Library) not found in any publisher or indexing record
     # searched; the book data (3rd ed., Thomas Telford 1999; 1st ed. Noordhoff 1972) agree with
     # reference lists of citing papers (secondary).  Stays unchecked.
@@ -111,11 +122,17 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "moving-force solution of the simply supported beam and its dynamic amplification table "
        "(verification: docs/verification.md)",
        authors=("Frýba, Ladislav",), publisher="Thomas Telford", address="London", edition="3rd",
-       isbn="0-7277-2741-9", checked=False, doi="10.1680/vosasuml.35393", note="First edition Noordhoff, Groningen, 1972"),
+       isbn="0-7277-2741-9", checked=False, doi="10.1680/vosasuml.35393", note="First edition Noordhoff, Groningen, 1972",
+       verification="DOI unconfirmed: searched for it and for title, publisher and year in " + SEARCHED + "; the "
+                    "book data (3rd ed., Thomas Telford, London, 1999) agree with reference lists of citing papers, "
+                    "no publisher or Crossref record of the DOI was found"),
     _R("YangYau1997", "article", "Vehicle-bridge interaction element for dynamic analysis", "1997",
        "sprung mass on a simply supported beam: midspan and vehicle peaks (verification)",
        authors=("Yang, Yeong-Bin", "Yau, Jong-Dar"), journal="Journal of Structural Engineering (ASCE)",
-       volume="123", number="11", pages="1512–1518", doi="10.1061/(ASCE)0733-9445(1997)123:11(1512)"),
+       volume="123", number="11", pages="1512–1518", doi="10.1061/(ASCE)0733-9445(1997)123:11(1512)", checked=False,
+       verification="DOI unconfirmed: searched for it and for title, authors, volume and pages in " + SEARCHED +
+                    "; no publisher (ASCE Library) or Crossref record found. The DOI has ASCE's form for "
+                    "J. Struct. Eng. 123(11), p. 1512"),
     _R("Biggs1964", "book", "Introduction to Structural Dynamics", "1964",
        "sprung + unsprung mass on a beam, first mode (closed-form verification of a two-mass vehicle, §8.5)",
        authors=("Biggs, John M.",), publisher="McGraw-Hill", address="New York", isbn="0-07-005255-7"),
@@ -126,24 +143,32 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "the road PSD form φ(n) = φ(n0)(n/n0)^−2 that the paper adopts ('the PSD function used by Huang and Wang')",
        authors=("Huang, Dongzhou", "Wang, Ton-Lo", "Shahawy, Mohsen"),
        journal="Journal of Structural Engineering (ASCE)", volume="118", number="12", pages="3427–3443",
-       doi="10.1061/(ASCE)0733-9445(1992)118:12(3427)"),
+       doi="10.1061/(ASCE)0733-9445(1992)118:12(3427)", checked=False,
+       verification="DOI unconfirmed: searched for it and for title, authors, volume and pages in " + SEARCHED +
+                    "; no publisher or Crossref record found (only the authors' related 1993 report)"),
     _R("WangHuang1992", "article", "Cable-stayed bridge vibration due to road surface roughness", "1992",
        "the random-road representation as a sum of cosines with random phases (the form of the paper's Eq. 7)",
        authors=("Wang, Ton-Lo", "Huang, Dongzhou"), journal="Journal of Structural Engineering (ASCE)",
-       volume="118", number="5", pages="1354–1374", doi="10.1061/(ASCE)0733-9445(1992)118:5(1354)"),
+       volume="118", number="5", pages="1354–1374", doi="10.1061/(ASCE)0733-9445(1992)118:5(1354)", checked=False,
+       verification="DOI unconfirmed: searched for it and for title, authors, volume and pages in " + SEARCHED +
+                    "; no publisher or Crossref record found"),
     # No publisher (World Scientific) or indexing record of this article was found in the searched
     # corpora; volume, issue, pages and DOI 10.1142/S0219455410003609 stay as written, unchecked.
     _R("Yin2010", "article", "Bridge vibration under vehicular loads: tire patch contact versus point contact", "2010",
        "the deformable-disk tire the paper compares with (vbikit's disk tire is a documented substitute after it)",
        authors=("Yin, Xinfeng", "Cai, C. S.", "Fang, Zhi", "Deng, Lu"),
        journal="International Journal of Structural Stability and Dynamics", volume="10", number="3",
-       pages="529–554", checked=False, doi="10.1142/S0219455410003609"),
+       pages="529–554", checked=False, doi="10.1142/S0219455410003609",
+       verification="DOI unconfirmed: searched for it and for title, authors, journal, volume and pages in "
+                    + SEARCHED + "; no publisher (World Scientific) or Crossref record found"),
     # No publisher (Elsevier) or indexing record of this article was found in the searched corpora;
     # volume, issue, pages and DOI 10.1016/j.jsv.2011.05.012 stay as written, unchecked.
     _R("Chang2011", "article", "Disk model for wheels moving over highway bridges with rough surfaces", "2011",
        "the rigid-disk tire (the wheel follows the envelope of the surface)",
        authors=("Chang, K. C.", "Wu, F. B.", "Yang, Y. B."), journal="Journal of Sound and Vibration",
-       volume="330", number="20", pages="4930–4944", checked=False, doi="10.1016/j.jsv.2011.05.012"),
+       volume="330", number="20", pages="4930–4944", checked=False, doi="10.1016/j.jsv.2011.05.012",
+       verification="DOI unconfirmed: searched for it and for title, authors, journal, volume and pages in "
+                    + SEARCHED + "; no publisher (Elsevier) or Crossref record found"),
     _R("AASHTO-LRFD", "manual", "AASHTO LRFD Bridge Design Specifications", "2020",
        "dynamic load allowance IM = 0.33 / 0.15 fatigue / 0.75 deck joints (Table 3.6.2.1-1); tire contact "
        "area 0.508 m × 0.254 m (3.6.1.2.5), the multi-point tire's default contact length",
@@ -199,6 +224,9 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "vbikit warns)",
        authors=("Ngan, J. W.", "Caprani, Colin C."), journal="Journal of Open Source Software", volume="7",
        number="76", pages="4404", doi="10.21105/joss.04404",
+       verification="Checked against the publisher's Crossref deposit (JOSS papers repository, "
+                    "joss.04404/10.21105.joss.04404.crossref.xml): title, authors, volume 7, issue 76, article 4404, "
+                    "published 2022-08-30, DOI 10.21105/joss.04404",
        url="https://pypi.org/project/ospgrillage/",
        note="Issue 76 as in the publisher's Crossref deposit, published 30 August 2022; the package's "
             "README cites it as 7(77)"),
@@ -209,11 +237,18 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("Newmark1959", "article", "A method of computation for structural dynamics", "1959",
        "the Newmark average-acceleration integrator (crossing.integrator = \"newmark\")",
        authors=("Newmark, Nathan M.",), journal="Journal of the Engineering Mechanics Division (ASCE)", volume="85",
-       number="EM3", pages="67–94", checked=False, doi="10.1061/JMCEA3.0000098"),
+       number="EM3", pages="67–94", checked=False, doi="10.1061/JMCEA3.0000098",
+       verification="Journal, volume 85, issue EM3 (July 1959) and pages 67–94 agree with a scan of the article "
+                    "(library copy). DOI unconfirmed: searched for it in " + SEARCHED + "; it appears only in "
+                    "secondary sources, not in a publisher or Crossref record"),
     _R("NigamJennings1969", "article", "Calculation of response spectra from strong-motion earthquake records", "1969",
        "the exact step of a damped modal oscillator under a load linear over the step (exact modal stepping)",
        authors=("Nigam, Navin C.", "Jennings, Paul C."), journal="Bulletin of the Seismological Society of America",
-       volume="59", number="2", pages="909–922", doi="10.1785/BSSA0590020909"),
+       volume="59", number="2", pages="909–922", doi="10.1785/BSSA0590020909", checked=False,
+       verification="Journal, volume 59, number 2, pages 909–922 (April 1969), title and authors agree with a "
+                    "scan of the article's first page, found when its title was searched in " + SEARCHED + ". DOI unconfirmed: no publisher "
+                    "(SSA/GeoScienceWorld) or Crossref record of it was found; it has the SSA form for BSSA 59(2), "
+                    "p. 909"),
     _R("Chopra2017", "book", "Dynamics of Structures: Theory and Applications to Earthquake Engineering", "2017",
        "modal superposition, Rayleigh/modal damping and the piecewise-exact step (§5.2)",
        authors=("Chopra, Anil K.",), publisher="Pearson", address="Hoboken, NJ", edition="5th", isbn="978-0-13-455512-6"),
@@ -228,16 +263,24 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("Cantero2024", "article", "VBI-2D – Road vehicle-bridge interaction simulation tool and verification framework for Matlab",
        "2024", "independent vehicle–bridge code the beam crossings are checked against (verification)",
        authors=("Cantero, Daniel",), journal="SoftwareX", volume="26", pages="101725",
-       checked=False, doi="10.1016/j.softx.2024.101725", url="https://github.com/DanielCanteroNTNU/VBI-2D"),
+       checked=False, doi="10.1016/j.softx.2024.101725", url="https://github.com/DanielCanteroNTNU/VBI-2D",
+       verification="DOI unconfirmed: searched for it and for title, journal and article number in " + SEARCHED +
+                    "; no publisher (Elsevier) or Crossref record found; title, SoftwareX 26, 101725 (2024) "
+                    "agree with a citation in a public repository's README (secondary)"),
     _R("McKenna2010", "article", "Nonlinear finite-element analysis software architecture using object composition", "2010",
        "OpenSees, the independent grillage and moving-load cross-check of the slab-on-girder deck (verification)",
        authors=("McKenna, Frank", "Scott, Michael H.", "Fenves, Gregory L."),
        journal="Journal of Computing in Civil Engineering", volume="24", number="1", pages="95–107",
-       doi="10.1061/(ASCE)CP.1943-5487.0000002"),
+       doi="10.1061/(ASCE)CP.1943-5487.0000002", checked=False,
+       verification="DOI unconfirmed: searched for it and for title, authors and journal in " + SEARCHED +
+                    "; no publisher (ASCE Library) or Crossref record found"),
     _R("Zhu2018", "article", "OpenSeesPy: Python library for the OpenSees finite element framework", "2018",
        "the Python interface to OpenSees used by the cross-check tests",
        authors=("Zhu, Minjie", "McKenna, Frank", "Scott, Michael H."), journal="SoftwareX", volume="7",
-       pages="6–11", doi="10.1016/j.softx.2017.10.009"),
+       pages="6–11", doi="10.1016/j.softx.2017.10.009", checked=False,
+       verification="DOI unconfirmed: searched for it and for title, journal, volume and pages in " + SEARCHED +
+                    "; the OpenSeesPy documentation found does not give it; no publisher (Elsevier) or Crossref "
+                    "record found"),
     _R("pycba", "software", "pycba: Python Continuous Beam Analysis", "2024",
        "independent static moments, shears and reactions of beams (verification of the static reference)",
        authors=("Caprani, Colin C.",), url="https://github.com/ccaprani/pycba"),
@@ -251,6 +294,9 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
        "(its limits 2–8, 8–32, 32–128 × 1e-6 m³ are ISO's Φ(Ω0) class limits)",
        journal="Advances in Civil Engineering", volume="2022", pages="9946957", doi="10.1155/2022/9946957",
        checked=False,
+       verification="Title and Table 7 read on the publisher's (Hindawi) page of article 9946957. DOI unconfirmed: "
+                    "formed from that article number, not shown on the page read; searched for it and for the title "
+                    "in " + SEARCHED + ": no Crossref record found",
        note="Cited only for its Table 7, 'Roughness coefficient for different surface conditions'; "
             "authors to be completed from the publisher's page"),
 )}

@@ -23,3 +23,9 @@ def test_every_python_block_runs(tmp_path):
     res = subprocess.run([sys.executable, "-c", "\n".join(blocks)], cwd=tmp_path, capture_output=True, text=True,
                          timeout=600)
     assert res.returncode == 0, res.stderr[-4000:]
+    # the peaks the page quotes are the ones the example prints today
+    printed = re.search(r"peak midspan displacement: point (-?[\d.]+) mm, parabolic patch \(n = 5\) (-?[\d.]+) mm",
+                        res.stdout)
+    quoted = re.search(r"It prints the two peaks \(−([\d.]+) mm and −([\d.]+) mm", PAGE.read_text(encoding="utf-8"))
+    assert printed and quoted, res.stdout[-2000:]
+    assert [f"-{q}" for q in quoted.groups()] == list(printed.groups()), (printed.groups(), quoted.groups())

@@ -26,3 +26,42 @@ def test_roughness_readings_are_reproduced(docs_script):
     now = docs_script("doc_numbers").roughness()
     for key, value in STORED["roughness"].items():
         assert now[key] == pytest.approx(value, rel=1e-9), f"{key}: {HINT}"
+
+
+def _close(now, stored, where):
+    """Every number in ``stored`` (nested dicts and lists) equals the one in ``now``."""
+    if isinstance(stored, dict):
+        assert set(now) == set(stored), f"{where}: {HINT}"
+        for key, value in stored.items():
+            _close(now[key], value, f"{where}.{key}")
+    elif isinstance(stored, list):
+        assert len(now) == len(stored), f"{where}: {HINT}"
+        for i, (a, b) in enumerate(zip(now, stored)):
+            _close(a, b, f"{where}[{i}]")
+    elif isinstance(stored, float):
+        assert now == pytest.approx(stored, rel=1e-9, abs=1e-12), f"{where}: {HINT}"
+    else:
+        assert now == stored, f"{where}: {HINT}"
+
+
+def test_demo_numbers_and_figure_are_reproduced(docs_script):
+    # the README and the docs home show docs/figures/demo.png and quote the demo's IM: both must be
+    # what `vbikit demo` gives today (the figure records the IM it was drawn with)
+    from PIL import Image
+
+    module = docs_script("doc_numbers")
+    now = module.demo()
+    _close(now, STORED["demo"], "demo")
+    with Image.open(ROOT / "docs" / "figures" / "demo.png") as png:
+        note = png.info.get("Description")
+    assert note == module.demo_figure_note(STORED["demo"]), \
+        f"docs/figures/demo.png was not drawn from the demo's numbers ({note!r}): {HINT}"
+
+
+def test_example_load_effects_are_reproduced(docs_script):
+    _close(docs_script("doc_numbers").examples(), STORED["examples"], "examples")
+
+
+def test_field_example_numbers_are_reproduced(docs_script):
+    # the synthetic field test of docs/field.md, calibration included (about a minute)
+    _close(docs_script("doc_numbers").field(), STORED["field"], "field")

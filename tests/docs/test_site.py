@@ -74,3 +74,21 @@ def test_markdown_links_resolve_inside_the_repository():
             if not dest.is_relative_to(ROOT) or not dest.exists():
                 bad.append(f"{path.relative_to(ROOT)}: {target}")
     assert not bad, "links that leave the repository or do not resolve:\n" + "\n".join(bad)
+
+
+def test_every_markdown_table_has_its_separator_row():
+    # a table whose header is not followed by |---| renders as raw text (it happened on the
+    # verification page); generated pages included
+    bad = []
+    for path in [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]:
+        lines = path.read_text(encoding="utf-8").splitlines()
+        in_code = False
+        for i, line in enumerate(lines):
+            if line.lstrip().startswith("```"):
+                in_code = not in_code
+            if in_code or not (line.startswith("|") and line.rstrip().endswith("|")):  # a table row, not prose
+                continue
+            starts_table = i == 0 or not lines[i - 1].startswith("|")
+            if starts_table and not re.match(r"^\|(\s*:?-{3,}:?\s*\|)+\s*$", lines[i + 1] if i + 1 < len(lines) else ""):
+                bad.append(f"{path.relative_to(ROOT)}:{i + 1}: {line[:80]}")
+    assert not bad, "tables without a separator row after their header:\n" + "\n".join(bad)

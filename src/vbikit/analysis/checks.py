@@ -106,7 +106,9 @@ def step_warnings(crossing: Crossing, dt: float) -> list[str]:
 
 
 def contact_warnings(result: CrossingResult) -> list[str]:
-    """One warning per wheel whose tire lost contact: where first (wheel x [m]), when, for how long."""
+    """One warning per wheel whose tire lost contact: where first (wheel x [m]), when, for how long —
+    on the bridge (the deck's x extent) when it lost contact there, else that it did so only before
+    or after the bridge."""
     out = []
     forces, dt = result.wheel_forces, result.dt
     x_wheel = result.wheel_positions()
@@ -116,9 +118,21 @@ def contact_warnings(result: CrossingResult) -> list[str]:
         off = forces[:, w] <= 0.0
         if not off.any():
             continue
+        x0, x1 = result.crossing.bridge.deck_extent
+        on = (x_wheel[:, w] >= x0) & (x_wheel[:, w] <= x1)
+        if (off & on).any():  # where it matters: on the deck
+            i = int(np.argmax(off & on))
+            away = float((off & ~on).sum() * dt)
+            out.append(f"wheel {wheel.name} lost contact with the road on the bridge: first at x = "
+                       f"{float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), for "
+                       f"{float((off & on).sum() * dt):.4f} s on the bridge"
+                       + (f" (and {away:.4f} s off it)" if away > 0 else ""))
+            continue
         i = int(np.argmax(off))
-        out.append(f"wheel {wheel.name} lost contact with the road: first at x = "
-                   f"{float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
+        where = ("before the bridge" if (x_wheel[off, w] < x0).all() else
+                 "after the bridge" if (x_wheel[off, w] > x1).all() else "before and after the bridge")
+        out.append(f"wheel {wheel.name} lost contact with the road only {where} (x from {x0:g} to {x1:g} m): "
+                   f"first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
                    f"for {float(off.sum() * dt):.4f} s in all")
     return out
 

@@ -53,6 +53,10 @@ from vbikit.bridge.nodal import NodalModes, hermite_basis
 Numbers = Union[float, Sequence[float]]
 
 #: Gauss–Legendre points and weights on [0, 1] (3 points: exact for the degree-4 integrands here)
+#: longest span [m] a continuous beam takes (100 km: longer than any bridge; far beyond it the FE matrices
+#: overflow)
+MAX_SPAN = 1e5
+
 _GAUSS_T = (np.array([-math.sqrt(0.6), 0.0, math.sqrt(0.6)]) + 1.0) / 2.0
 _GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
 
@@ -118,6 +122,8 @@ class ContinuousBeam(ModalBridge):
         spans = tuple(float(s) for s in np.atleast_1d(np.asarray(self.spans, float)))
         if not spans or any(not (math.isfinite(s) and s > 0) for s in spans):
             raise ValueError(f"bridge.spans: a list of positive span lengths [m], got {self.spans!r}")
+        if any(s > MAX_SPAN for s in spans):  # the model cannot be solved: its element matrices would overflow
+            raise OverflowError(f"bridge.spans: each span at most {MAX_SPAN:g} m, got {max(spans):g} m")
         n = len(spans)
         object.__setattr__(self, "spans", spans)
         object.__setattr__(self, "EI", _per_span("EI", self.EI, n))

@@ -15,13 +15,14 @@ if TYPE_CHECKING:  # pragma: no cover
     from vbikit.scenario.report import Report
 
 
-def execute(load: Callable[[], Any], limits: Any = None) -> "Report":
+def execute(load: Callable[[], Any], limits: Any = None, label: str = "") -> "Report":
     """Check (``load()`` returns a Scenario; every check of ``vbikit.scenario.preflight.preflight``),
     run and report it (``vbikit.scenario.pipeline.run_planned``); user errors exit with code 2,
-    the summary's warnings go to stderr."""
+    the summary's warnings go to stderr, each prefixed with ``label`` when one of several runs
+    (e.g. the tire model in ``compare-tires``)."""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.preflight import preflight
 
     report = guard(lambda: run_planned(preflight(load(), limits), limits))
-    warn(report.summary["warnings"])
+    warn([f"{label}: {w}" if label else w for w in report.summary["warnings"]])
     return report

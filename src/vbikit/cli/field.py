@@ -7,6 +7,9 @@ import typer
 
 from vbikit.cli.guard import guard, option
 
+#: how the metrics table shows an SI unit: (factor, unit) — as the other text reports do
+_SHOWN = {"m": (1e3, "mm"), "-": (1e6, "µε"), "m/s^2": (1.0, "m/s²")}
+
 
 def field_(
     field_file: Path = typer.Argument(..., help="FIELD.toml describing the measured crossings (docs/field.md)."),
@@ -17,6 +20,7 @@ def field_(
     """Compare measured bridge responses with the simulated crossing per tire model; optionally calibrate."""
     from vbikit.field.report import run_field
     from vbikit.field.workflow import parse_tires
+    from vbikit.outputs import QUANTITIES
 
     names = guard(lambda: option(parse_tires, tires))
     run_ = guard(lambda: run_field(field_file, out_dir, names, calibrate))
@@ -25,13 +29,19 @@ def field_(
         for c in cmps:
             typer.echo(f"  [{label}] {c.case.name}: time shift {c.shift:+.4f} s (trigger {c.t_entry - c.shift:.4f} s), "
                        f"low-pass {c.lowpass_hz or 'none'} Hz")
+            units = {ch.name: QUANTITIES[ch.quantity].unit for ch in c.case.channels if ch.quantity in QUANTITIES}
             for ch, d in c.drift.items():
-                typer.echo(f"    {ch}: removed offset {d.offset:+.4g}, drift {d.drift:+.4g} /s ({d.method})")
-            typer.echo(f"    {'tire':<11} {'channel':<16} {'peak err':>9} {'RMS err':>11} {'nRMS':>7} {'corr':>7}")
+                scale, unit = _SHOWN.get(units.get(ch, ""), (1.0, units.get(ch, "")))
+                typer.echo(f"    {ch}: removed offset {d.offset * scale:+.4g} {unit}, drift {d.drift * scale:+.4g} "
+                           f"{unit} per s ({d.method})")
+            typer.echo(f"    {'tire':<11} {'channel':<16} {'peak err [%]':>12} {'RMS err':>18} {'nRMS [-]':>8} "
+                       f"{'corr [-]':>8}")
             for tire, chans in c.metrics.items():
                 for name, m in chans.items():
-                    typer.echo(f"    {tire:<11} {name:<16} {m['peak_error']:+9.3%} {m['rms_error']:11.4g} "
-                               f"{m['normalised_rms_error']:7.4f} {m['correlation']:7.4f}")
+                    scale, unit = _SHOWN.get(units.get(name, ""), (1.0, units.get(name, "")))
+                    rms = f"{m['rms_error'] * scale:.4g} {unit}".rstrip()
+                    typer.echo(f"    {tire:<11} {name:<16} {m['peak_error'] * 100:+12.3f} {rms:>18} "
+                               f"{m['normalised_rms_error']:8.4f} {m['correlation']:8.4f}")
     cal = run_.calibration
     if cal is not None:
         typer.echo(f"  calibration ({cal.tire} tire, {cal.evaluations} runs, {cal.seconds:.1f} s): stiffness factor "

@@ -87,8 +87,10 @@ def print_codes(c: dict[str, Any], title: str) -> None:
     """One line of design-code dynamic allowances and one of the inputs they were computed from."""
     values = "  ".join(f"{label} {c[k]:.3f}" for k, label in CODE_LABELS.items() if k in c)
     typer.echo(f"  {title:<20} {values}")
-    typer.echo(f"  {'':<20} (loaded length {c['loaded_length']:.2f} m, f1 = {c['first_frequency']:.2f} Hz, "
-               f"{c['n_axles']} axles)")
+    n = c["n_axles"]
+    typer.echo(f"  {'':<20} (loaded length {c['loaded_length']:.2f} m and f1 = {c['first_frequency']:.2f} Hz; CSA S6 "
+               f"by {n} axle{'' if n == 1 else 's'}, the distinct axle offsets behind the front axle; several "
+               f"vehicles' axles at one offset count once)")
 
 
 def print_load_effects(s: dict[str, Any]) -> None:

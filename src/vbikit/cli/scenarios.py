@@ -112,7 +112,7 @@ def compare_tires(
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
         t0 = time.perf_counter()
-        run_ = execute(lambda spec=spec: spec)
+        run_ = execute(lambda spec=spec: spec, label=f"tire {label}")
         s = run_.summary
         responses[label] = run_.response
         table[label] = {
@@ -132,9 +132,10 @@ def compare_tires(
         return
     if base.name:
         typer.echo(base.name)
-    typer.echo(f"  {'tire model':<20} {'u_max [mm]':>10} {'IM':>7} {'ε_max [µε]':>11} {'IM_ε':>7} {'|a|max':>8} {'F_min [kN]':>10} {'time [s]':>8}")
+    typer.echo(f"  {'tire model':<20} {'u_max [mm]':>10} {'IM [-]':>7} {'ε_max [µε]':>11} {'IM_ε [-]':>8} "
+               f"{'|a|max [m/s²]':>13} {'F_min [kN]':>10} {'time [s]':>8}")
     for label, row in table.items():
         typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * 1e3:10.4f} {row['impact_factor']:7.4f} "
-                   f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:7.4f} "
-                   f"{row['max_abs_acceleration']:8.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
+                   f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f} "
+                   f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
     typer.echo(f"  figure {fig}; table {out_dir / 'compare-tires.json'}")

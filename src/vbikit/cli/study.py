@@ -163,6 +163,17 @@ def _paper(*figs: str) -> Callable[..., None]:
 
 
 PAPER_FIGS = ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11")
+
+
+def _short_help(*figs: str) -> str:
+    """The one-line summary ``vbikit study --help`` shows (given whole: the default first sentence
+    would end at the "." of "Fig.")."""
+    from vbikit.study.paper import FIGURES
+
+    return (f"Paper {FIGURES[figs[0]]['title']}." if len(figs) == 1 else
+            "All six paper studies (Figs. 5–8, 10, 11), one after another.")
+
+
 for _fig in PAPER_FIGS:
-    app.command(f"paper-{_fig}")(_paper(_fig))
-app.command("paper-all")(_paper(*PAPER_FIGS))
+    app.command(f"paper-{_fig}", short_help=_short_help(_fig))(_paper(_fig))
+app.command("paper-all", short_help=_short_help(*PAPER_FIGS))(_paper(*PAPER_FIGS))

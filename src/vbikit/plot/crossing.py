@@ -8,9 +8,11 @@ from vbikit.analysis.response import PointResponse
 from vbikit.solve.result import CrossingResult
 
 
-def plot_crossing(result: CrossingResult, response: PointResponse, path: str | Path, title: str = "") -> Path:
+def plot_crossing(result: CrossingResult, response: PointResponse, path: str | Path, title: str = "",
+                  metadata: dict[str, str] | None = None) -> Path:
     """Four panels against time: deck displacement (dynamic and static) [mm], bottom-fibre strain
-    [µε], deck acceleration [m/s²] at the response point, and the tire forces [kN]."""
+    [µε], deck acceleration [m/s²] at the response point, and the tire forces [kN]. ``metadata``:
+    text entries stored in the file (``savefig(metadata=…)``, e.g. PNG ``Description``)."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -39,6 +41,6 @@ def plot_crossing(result: CrossingResult, response: PointResponse, path: str | P
         ax.grid(alpha=0.3)
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    save_figure(fig, path, dpi=120)
+    save_figure(fig, path, dpi=120, **({"metadata": metadata} if metadata else {}))
     plt.close(fig)
     return path

@@ -6,6 +6,8 @@ from pathlib import Path
 import numpy as np
 
 from vbikit._files import save_figure
+from vbikit.analysis.codes import aashto_lrfd
+from vbikit.plot.styles import CODE_STYLES
 
 
 def plot_stream(ds, path: str | Path, title: str = "") -> Path:
@@ -27,7 +29,8 @@ def plot_stream(ds, path: str | Path, title: str = "") -> Path:
     edges = np.array(__import__("json").loads(ds.attrs["im_histogram_edges"]))
     a.hist([im[~mp], im[mp]], bins=edges, stacked=True, label=["one vehicle", "several vehicles"])
     a.axvline(float(ds.attrs["im_mean"]), color="k", ls="--", lw=1, label=f"mean {float(ds.attrs['im_mean']):.3f}")
-    a.axvline(0.33, color="r", ls=":", lw=1, label="AASHTO LRFD IM = 0.33")
+    lrfd = CODE_STYLES["aashto_lrfd"]
+    a.axvline(aashto_lrfd(), color=lrfd.color, ls=lrfd.linestyle, lw=1, label=f"{lrfd.label} IM = {aashto_lrfd():.2f}")
     a.set_xlabel("impact factor IM of the event")
     a.set_ylabel("events")
     a.legend(fontsize="small")

@@ -16,12 +16,6 @@ GIRDER_NOTE = "vbikit 3D slab-on-girder grillage (10 modes): impact factors of t
 
 
 
-#: line styles of the design-code reference lines
-_CODE_STYLES = {"aashto_lrfd": ("--", "AASHTO LRFD"), "aashto_standard": (":", "AASHTO Standard 50/(L+125)"),
-                "csa_s6": ("-.", "CSA S6"), "ohbdc_1983": ((0, (5, 1, 1, 1)), "OHBDC 1983"),
-                "jtg_d60_2015": ((0, (1, 2)), "JTG D60-2015")}
-
-
 def design_code_lines(base: dict) -> dict[str, float]:
     """The design-code allowances (``vbikit.analysis.codes.code_allowances``) of a study's base
     scenario: loaded length = the span of the response point, f₁ of the bridge model, the axles of
@@ -38,9 +32,10 @@ def design_code_lines(base: dict) -> dict[str, float]:
 
 
 def _reference_lines(ax, codes: dict[str, float]) -> None:
+    from vbikit.plot.styles import code_line  # one style table for every figure's code lines
+
     for key, value in codes.items():
-        ls, label = _CODE_STYLES[key]
-        ax.axhline(value, color="k", ls=ls, lw=0.8, label=f"{label} = {value:.3f}")
+        code_line(ax, key, value)
 
 
 def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_factor") -> Path:
