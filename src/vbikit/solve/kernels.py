@@ -964,7 +964,7 @@ def _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, red
         rhs[i] = x
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes):
     """The end-of-step state for point forces ``f`` (n_cp, L): modal loads p = −Σ_p φ_p F_p (points on
     the deck), wheel sums ``fw``, deck ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, vehicles z = z_b + (P L1) F_w."""
