@@ -50,7 +50,7 @@ def test_compile_message_only_without_compiled_kernels(caplog):
 
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         announce_compile(Fresh())
-    assert "compiling kernels, first run only" in caplog.text
+    assert "compiling the kernels, first run only" in caplog.text
     caplog.clear()
 
     class Ready:

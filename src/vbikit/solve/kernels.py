@@ -826,6 +826,11 @@ def _tire_load(vehicles, wheel_force, q, dq, out, lanes):
                     out[w, lane] += h * (kw * q[j, lane] + cw * dq[j, lane])
 
 
+#: quasi-Newton updates (the Jacobian through the vehicles only) before the full Newton updates: for
+#: road vehicles on bridges the deck's part of B is small (|B_deck| ~ 1e-5), so these usually settle
+#: a step at a fraction of a full Newton step's cost, with a factorisation that depends only on the
+#: active set (kept across steps); the full Newton steps settle the rest
+QUASI_ITERATIONS = 4
 #: Newton iterations after which the implicit kernel halves its updates (a contact set that would cycle)
 RELAX_AFTER = 8
 
@@ -937,7 +942,7 @@ def _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat,
     return True
 
 
-@_internal
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, reduced, rhs, t):
     """Solve (I − B_AA) x = ``rhs`` in place with the factors of ``_coupling`` (``t``: r work)."""
     if not reduced:
@@ -964,7 +969,7 @@ def _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, red
         rhs[i] = x
 
 
-@_internal
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes):
     """The end-of-step state for point forces ``f`` (n_cp, L): modal loads p = −Σ_p φ_p F_p (points on
     the deck), wheel sums ``fw``, deck ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, vehicles z = z_b + (P L1) F_w."""
@@ -1032,6 +1037,65 @@ def _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb):
     return pen, points.stiffness[k] * pen + points.damping[k] * rate + points.fixed_load[k]
 
 
+@_internal
+def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, act, u, veh, veh_piv, veh_held, rhs, t):
+    """One quasi-Newton update of the point forces ``f[:, lane]`` with the Jacobian through the vehicles
+    only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F (U: ∂F_i/∂F_w, S: sum per wheel), F = 0 off the
+    active set A, by Woodbury's identity with the n_w-square matrix I + S_A U_A, whose factorisation
+    depends only on A (``veh``, kept while A is ``veh_held[:n]``, n = ``veh_held[-1]``)."""
+    n_cp = f.shape[0]
+    n_w = veh.shape[0]
+    na = 0
+    for k in range(n_cp):
+        if used[k] and active[k, lane]:
+            act[na] = k
+            na += 1
+    cap = veh_held.size - 1
+    same = veh_held[cap] == na
+    if same:
+        for i in range(na):
+            if act[i] != veh_held[i]:
+                same = False
+                break
+    for i in range(na):
+        k = act[i]
+        kk = points.stiffness[k]
+        cc = points.damping[k]
+        wi = points.wheel[k]
+        for w in range(n_w):
+            u[i, w] = kk * vstep.wheel_q[wi, w] + cc * vstep.wheel_v[wi, w]
+    if not same:
+        for a in range(n_w):
+            for b in range(n_w):
+                veh[a, b] = 1.0 if a == b else 0.0
+        for i in range(na):
+            wi = points.wheel[act[i]]
+            for w in range(n_w):
+                veh[wi, w] += u[i, w]
+        _lu_factor(veh, n_w, veh_piv)
+        for i in range(na):
+            veh_held[i] = act[i]
+        veh_held[cap] = na
+    for i in range(na):
+        k = act[i]
+        a = force[k, lane]
+        for w in range(n_w):
+            a += u[i, w] * fw[w, lane]
+        rhs[i] = a
+    for w in range(n_w):
+        t[w] = 0.0
+    for i in range(na):
+        t[points.wheel[act[i]]] += rhs[i]
+    _lu_solve(veh, n_w, veh_piv, t)
+    for k in range(n_cp):
+        f[k, lane] = 0.0
+    for i in range(na):
+        x = rhs[i]
+        for w in range(n_w):
+            x -= u[i, w] * t[w]
+        f[act[i], lane] = x
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
              wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1):
@@ -1041,17 +1105,19 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
 
     Both step maps are linear, so the end-of-step state is an affine function of the end-of-step
     point forces F (``_state_of``), and so is each point's contact law while the set of points in
-    contact (and each rigid disk's acting point) stays the same.  The forces are found by a
-    semi-smooth Newton (active-set) iteration on F − law(F) = 0: evaluate the contact law at the
-    state of the current F (``contact_forces``, gating and envelopes included); its active
-    points A give the affine law F_A = a_A + B_AA F_A, solved exactly as (I − B_AA) F_A = a_A
-    with F = 0 off A (``_coupling``: B through the deck modes and through the vehicles); repeat
-    until no point force changes by more than ``tol_force`` [N] in any lane.  With an unchanged
-    contact set that takes two evaluations of the contact law (one Newton step and its check);
-    each change of the set costs one more.  The first guess is the linear extrapolation of the
-    last two steps' forces.  Should the contact set cycle, updates are halved after
-    ``RELAX_AFTER`` iterations.  The factorised I − B_AA is reused by every lane and iteration of a
-    step that has the same active set.
+    contact (and each rigid disk's acting point) stays the same: F_A = a_A + B_AA F_A, with B
+    through the deck modes and through the vehicles.  The forces solve F − law(F) = 0, found by
+    Newton (active-set) updates: evaluate the contact law at the state of the current F
+    (``contact_forces``, gating and envelopes included); its active points A give the affine law;
+    update F_A by it, F = 0 off A; repeat until no point force changes by more than
+    ``tol_force`` [N] in any lane.  The first ``QUASI_ITERATIONS`` updates use the Jacobian through
+    the vehicles only (``_vehicle_newton``: the deck's part of B is ~1e-5 for road vehicles, and
+    that factorisation depends only on A, so it is kept across steps); later ones the full
+    Jacobian (``_coupling``, factorised once per step and active set for all lanes), which settles
+    a contact change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is
+    consistent, is held at zero penetration (``TOUCH_STIFFNESS``).  The first guess is the linear
+    extrapolation of the last two steps' forces.  Should the contact set cycle, updates are halved
+    after ``RELAX_AFTER`` full Newton iterations.
 
     Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
@@ -1085,6 +1151,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     for w in range(n_w):
         cap += 1 if vehicles.wheel_envelope[w] else vehicles.wheel_count[w]
     cap = max(cap, 1)
+    n_held = -1
+    veh = np.zeros((n_w, n_w)); veh_piv = np.zeros(n_w, dtype=np.int64); veh_held = np.zeros(cap + 1, dtype=np.int64)
+    veh_held[cap] = -1  # the active count of the vehicle factorisation held (none yet)
     n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)
     mat = np.zeros((n_r, n_r)); piv = np.zeros(n_r, dtype=np.int64); e = np.zeros((cap, n_m)); rhs = np.zeros(cap)
     u = np.zeros((cap, n_w)); red = np.zeros((n_m + n_w, n_m + n_w)); red_piv = np.zeros(n_m + n_w, dtype=np.int64)
@@ -1130,11 +1199,11 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _gemv(1.0, vstep.transition, z0, zf, lanes, False)
         _gemv(1.0, vstep.load0, g0, zf, lanes, False)
         _gemv(1.0, vstep.settle, zf, zb, lanes, False)
+        n_held = -1  # new positions: no factorisation to reuse
         # first guess: linear extrapolation of the forces
         for k in range(n_cp):
             for lane in range(n_l):
                 f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
-        n_held = -1  # new positions: no factorisation to reuse
         for k in range(n_cp):
             for lane in range(n_l):
                 touch[k, lane] = False
@@ -1162,8 +1231,12 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
             if err <= tol_force:
                 converged = True
                 break
-            for lane in range(n_l):  # one Newton step per unconverged lane
+            for lane in range(n_l):  # one update per unconverged lane
                 if lane_err[lane] <= tol_force:
+                    continue
+                if it < QUASI_ITERATIONS:
+                    _vehicle_newton(f, force, work.used, work.active, lane, points, vstep, fw, act, u, veh, veh_piv,
+                                    veh_held, rhs, t)
                     continue
                 na = 0
                 for k in range(n_cp):
@@ -1211,7 +1284,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                         a += u[i, w] * fw[w, lane]
                     rhs[i] = a
                 _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, reduced, rhs, t)
-                blend = 0.5 if it >= RELAX_AFTER else 1.0
+                blend = 0.5 if it >= QUASI_ITERATIONS + RELAX_AFTER else 1.0
                 for k in range(n_cp):
                     f[k, lane] *= 1.0 - blend
                 for i in range(na):
