@@ -49,14 +49,15 @@ def test_gravity_constant():
     assert GRAVITY == pytest.approx(G, abs=0.01)
 
 
-@pytest.mark.parametrize("loads, spacings", [
-    ([60e3, 110e3], [5.0]),
-    ([50e3, 95e3, 95e3], [4.3, 1.3]),
+@pytest.mark.parametrize("loads, spacings, groups", [
+    ([60e3, 110e3], [5.0], None),
+    ([50e3, 95e3, 95e3], [4.3, 1.3], None),
+    ([50e3, 95e3, 95e3], [4.3, 1.3], ["single", "walking-beam"]),  # one suspension per side at the bogie pivot
 ])
-def test_body_modes_of_axle_truck_have_the_documented_damping(loads, spacings):
+def test_body_modes_of_axle_truck_have_the_documented_damping(loads, spacings, groups):
     from vbikit.vehicle.model import GRAVITY
-    zs, zt, ds = 0.10, 0.03, 0.033
-    v = axle_truck(loads, spacings, tire_deflection=1e-6, suspension_deflection=ds)
+    zs, ds = 0.10, 0.033
+    v = axle_truck(loads, spacings, groups=groups, tire_deflection=1e-6, suspension_deflection=ds)
     w, z = _ground_modes(v)
     w_heave = math.sqrt(GRAVITY / ds)
     body = w < 3 * w_heave  # body heave, pitch, roll; axle hop is ≥ 100× higher with these tires
@@ -177,3 +178,23 @@ def test_csa_and_code_allowances_put_each_value_under_its_key():
     c = codes.code_allowances(9.0, 5.0, 1)
     assert c["ohbdc_1983"] == pytest.approx(_ohbdc(5.0)) and c["jtg_d60_2015"] == pytest.approx(_jtg(5.0))
     assert c["aashto_standard"] == 0.30 and c["csa_s6"] == 0.40
+
+
+# ---------------------------------------------------------------- inputs of the code allowances
+def test_axle_count_and_loaded_length_given_to_the_codes():
+    from vbikit.analysis.effects import loaded_length, vehicle_axle_count
+    from vbikit.bridge.continuous import ContinuousBeam
+    from vbikit.vehicle import hs20_44
+
+    # axles: distinct wheel positions along the truck (two wheels each)
+    assert vehicle_axle_count(hs20_44()) == 3
+    assert vehicle_axle_count(axle_truck([50e3, 120e3, 120e3, 110e3, 110e3], [3.8, 1.3, 8.5, 1.3])) == 5
+    # AASHTO Standard 3.8.2.2: the span that holds the section
+    beam = ContinuousBeam([12.0, 20.0, 15.0], 1e9, 1000.0, n_modes=2)
+    assert loaded_length(beam, 6.0, 0.0) == 12.0
+    assert loaded_length(beam, 25.0, 0.0) == 20.0
+    assert loaded_length(beam, 40.0, 0.0) == 15.0
+    # per load effect: the span, or the mean of the two spans at an interior support (hogging)
+    assert beam.load_effect("moment", x=25.0).loaded_length == 20.0
+    assert beam.load_effect("moment", x=32.0).loaded_length == pytest.approx(17.5)
+    assert beam.load_effect("reaction", support=1).loaded_length == pytest.approx(16.0)

@@ -325,6 +325,11 @@ def test_spring_support_reactions_and_deflection_against_direct_stiffness(ks, kt
                 m_ref = sum(Rj * (xj - s) for xj, Rj in zip(beam.support_x, R) if xj > s) - (a - s if a > s else 0.0)
             m_ours = -beam.load_effect("moment", x=s).influence(np.array([a]))[0]
             assert m_ours == pytest.approx(m_ref, abs=1e-9 * 66.0)
+        # shear just right of the section (a support at s counts left of it): V = Σ_{x_j ≤ s} R_j − [a ≤ s]
+        for s in (18.0, 30.0, 45.0):
+            v_ref = sum(Rj for xj, Rj in zip(beam.support_x, R) if xj <= s) - (1.0 if a <= s else 0.0)
+            v_ours = -beam.load_effect("shear", x=s).influence(np.array([a]))[0]
+            assert v_ours == pytest.approx(v_ref, abs=1e-9)
 
 
 @pytest.mark.parametrize("clamped_end", ["entry", "exit"])
