@@ -264,7 +264,7 @@ T_DECK = (V + "test_deck_damage_and_effects.py", V + "test_load_effects.py", V +
 T_EFFECTS = (V + "test_tire_load_effects.py", V + "test_continuous_general.py", V + "test_load_effects.py",
              V + "test_axle_truck_damping_and_codes.py")
 T_CODES = (V + "test_axle_truck_damping_and_codes.py", "tests/unit/test_codes.py")
-T_TRAFFIC = (V + "test_traffic_on_deck.py", "tests/traffic/test_records_events.py", "tests/traffic/test_traffic_study.py")
+T_TRAFFIC = (V + "test_traffic_events_partition.py", V + "test_traffic_on_deck.py", "tests/traffic/test_records_events.py", "tests/traffic/test_traffic_study.py")
 T_AXLES = (V + "test_axle_truck_damping_and_codes.py", "tests/unit/test_axles.py")
 T_FIELD = (V + "test_field_calibration.py", "tests/field/test_synthetic_truth.py")
 
