@@ -258,7 +258,7 @@ AXLES = "src/vbikit/vehicle/axles.py"
 FIELD = "src/vbikit/field/workflow.py"
 FIELD_IO = "src/vbikit/field/io.py"
 V = "tests/verification/"
-T_CONT = (V + "test_continuous_general.py", V + "test_continuous_beam.py")
+T_CONT = (V + "test_continuous_general.py", V + "test_continuous_modal_values.py", V + "test_continuous_beam.py")
 T_DAMAGE = (V + "test_continuous_general.py", V + "test_deck_damage_inside_elements.py", V + "test_deck_damage_and_effects.py")
 T_DECK = (V + "test_deck_damage_and_effects.py", V + "test_load_effects.py", V + "test_opensees_deck_effects.py")
 T_EFFECTS = (V + "test_tire_load_effects.py", V + "test_continuous_general.py", V + "test_load_effects.py",
@@ -300,8 +300,8 @@ NEW_MUTATIONS: list[Mutation] = [
       Edit(CONT, "moment += (wq * (s - xq)) @ phi", "moment += (wq * (xq - s)) @ phi")),
     N("cont-inertia-force-sign", "continuous beam: modal shear's inertia term with the wrong sign", T_CONT,
       Edit(CONT, "modal = comb @ modal_actions + omega**2 * force_int", "modal = comb @ modal_actions - omega**2 * force_int")),
-    N("cont-mass-normalisation", "continuous beam: modes divided by φᵀMφ instead of its root", T_CONT,
-      Edit(CONT, 'vec = vec / np.sqrt(np.einsum("im,im->m", vec, Mf @ vec))', 'vec = vec / np.einsum("im,im->m", vec, Mf @ vec)')),
+    N("cont-mass-normalisation", "continuous beam: modes normalised to φᵀMφ = 2 instead of 1", T_CONT,
+      Edit(CONT, 'vec = vec / np.sqrt(np.einsum("im,im->m", vec, Mf @ vec))', 'vec = vec / np.sqrt(0.5 * np.einsum("im,im->m", vec, Mf @ vec))')),
     N("cont-load-vector-node-shift", "continuous beam: a point load assembled on the next element's DOFs", T_CONT,
       Edit(CONT, "F[2 * e:2 * e + 4] += f * np.array([float(v) for v in n])",
            "F[2 * e + 2:2 * e + 6] += f * np.array([float(v) for v in n])[:F[2 * e + 2:2 * e + 6].size]")),
