@@ -260,7 +260,7 @@ FIELD_IO = "src/vbikit/field/io.py"
 V = "tests/verification/"
 T_CONT = (V + "test_continuous_general.py", V + "test_continuous_modal_values.py", V + "test_continuous_beam.py")
 T_DAMAGE = (V + "test_continuous_general.py", V + "test_deck_damage_inside_elements.py", V + "test_deck_damage_and_effects.py")
-T_DECK = (V + "test_deck_damage_and_effects.py", V + "test_load_effects.py", V + "test_opensees_deck_effects.py")
+T_DECK = (V + "test_deck_load_effects_element.py", V + "test_deck_damage_and_effects.py", V + "test_load_effects.py", V + "test_opensees_deck_effects.py")
 T_EFFECTS = (V + "test_tire_load_effects.py", V + "test_continuous_general.py", V + "test_load_effects.py",
              V + "test_axle_truck_damping_and_codes.py")
 T_CODES = (V + "test_axle_truck_damping_and_codes.py", "tests/unit/test_codes.py")

@@ -75,8 +75,10 @@ def test_mirror_symmetry_of_lanes_and_girders():
 
 
 def test_per_vehicle_outputs_of_a_multi_vehicle_event():
-    recs = [_record(0, 10.0, 1, speed=20.0, loads=(35e3, 90e3), spacings=(4.5,)),
-            _record(1, 10.3, 2, "-x", speed=25.0),
+    # each vehicle's lightest wheel is lighter than the next vehicle's first wheel is heavy, and the other way
+    # round, so a wheel counted with the wrong vehicle changes that vehicle's minimum
+    recs = [_record(0, 10.0, 1, speed=20.0, loads=(60e3, 90e3), spacings=(4.5,)),
+            _record(1, 10.3, 2, "-x", speed=25.0, loads=(30e3, 110e3, 110e3)),
             _record(2, 10.6, 1, speed=18.0, loads=(50e3, 130e3, 130e3, 120e3, 120e3), spacings=(3.8, 1.3, 8.5, 1.3))]
     job, out = _event_row(recs)
     assert job.events == ((0, 1, 2),)
@@ -102,3 +104,6 @@ def test_per_vehicle_outputs_of_a_multi_vehicle_event():
     # (the summary refines the peak between samples with the Hermite cubic of w and ẇ: measured +8e-6)
     peak = float(np.abs(res.displacement()).max())
     assert abs(float(np.ravel(out["max_dynamic_displacement"])[0])) == pytest.approx(peak, rel=5e-5)
+    # on the event's clock: t = 0 when its first vehicle enters (record time 10.0 s)
+    t_peak = float(res.time[np.argmax(np.abs(res.displacement()))])
+    assert float(np.ravel(out["time_of_max_dynamic_displacement"])[0]) == pytest.approx(t_peak, abs=2 * res.dt)
