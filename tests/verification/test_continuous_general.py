@@ -377,7 +377,10 @@ class _FEBeam:
         sup = [int(np.argmin(np.abs(self.x - x))) for x in xs]
         fixed = []
         for i, k in zip(sup, ks):
-            (fixed.append(2 * i) if math.isinf(k) else K.__setitem__((2 * i, 2 * i), K[2 * i, 2 * i] + k))
+            if math.isinf(k):
+                fixed.append(2 * i)
+            else:
+                K[2 * i, 2 * i] += k
         for i, k in zip((sup[0], sup[-1]), kt):
             if math.isinf(k):
                 fixed.append(2 * i + 1)

@@ -12,8 +12,6 @@
 #   influence line (≈ P a_c/8 at a moment's kink) and leaves the impact factor nearly unchanged.
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
