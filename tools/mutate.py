@@ -12,6 +12,9 @@ moved on) is an error, reported before anything runs, so the list stays in step 
     python tools/mutate.py --list          # check every pattern and list the mutations
     python tools/mutate.py damping wheel   # only mutations whose name contains one of the words
     python tools/mutate.py --markdown      # the table as Markdown (docs/verification.md)
+    python tools/mutate.py --new --only-targeted   # the models added since the paper, each against its own tests
+
+A mutation may name the tests expected to catch it; they run first, then ``--tests``.
 
 Exit status 0 only if every selected mutation is caught.  Unchanged files keep their numba
 cache (the copy keeps modification times), so only a mutated kernel is recompiled.
@@ -65,13 +68,22 @@ class Edit:
 
 @dataclass(frozen=True)
 class Mutation:
+    """``tests``: the test files expected to catch it, run before the others (pytest stops at the
+    first failure, so a caught mutation costs only its own tests)."""
+
     name: str
     description: str
     edits: tuple[Edit, ...]
+    tests: tuple[str, ...] = ()
 
 
 def M(name: str, description: str, *edits: Edit) -> Mutation:
     return Mutation(name, description, edits)
+
+
+def N(name: str, description: str, tests: tuple[str, ...], *edits: Edit) -> Mutation:
+    """A mutation of a model added since the paper, with the physics tests that should catch it."""
+    return Mutation(name, description, edits, tests)
 
 
 def K(pattern: str, replacement: str, count: int | None = 1) -> Edit:
@@ -144,7 +156,8 @@ MUTATIONS: list[Mutation] = [
       Edit(MODAL_STEP, "vehicles.gravity.reshape(n_d, 1))[:, 0]", "0.99 * vehicles.gravity.reshape(n_d, 1))[:, 0]")),
     M("vehicle-mass-factor", "vehicle mass 5 % off in the time stepping (every integrator)",
       K("_gemv(1.0, vehicles.mass_inv, rhs, ddq, lanes, False)", "_gemv(0.95, vehicles.mass_inv, rhs, ddq, lanes, False)"),
-      Edit(MODAL_STEP, "m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows", "m_inv, rows = 0.95 * vehicles.mass_inv, vehicles.wheel_rows"),
+      Edit(MODAL_STEP, "m_inv, rows = vehicles.mass_inv, vehicles.wheel_rows", "m_inv, rows = 0.95 * vehicles.mass_inv, vehicles.wheel_rows",
+           count=None),
       Edit(MODAL_STEP, "s_inv = np.linalg.inv(vehicles.mass + ", "s_inv = np.linalg.inv(1.05 * vehicles.mass + ")),
     M("coupling-stiffness-sign", "bridge–vehicle stiffness coupling K_bv with the wrong sign (Newmark)",
       K("stiff[a, n_m + j] -= k * f[a] * h[j]", "stiff[a, n_m + j] += k * f[a] * h[j]")),
@@ -195,10 +208,8 @@ MUTATIONS: list[Mutation] = [
     M("wheel-lines-swapped", "left and right wheel lines swapped (y > 0 follows the right profile)",
       Edit(SYSTEM, "(contact.lateral < 0.0).astype(np.int64)", "(contact.lateral > 0.0).astype(np.int64)")),
     M("lateral-mirrored", "wheel tracks mirrored on the deck (y → −y)",
-      Edit(CROSSING, "np.ones(cp.n), cp.lateral + self.lateral_offset", "np.ones(cp.n), -(cp.lateral + self.lateral_offset)"),
       Edit(CROSSING, "return origin, sign, offset + sign * cp.lateral", "return origin, sign, -(offset + sign * cp.lateral)")),
     M("lateral-offset-ignored", "the vehicles' lateral offsets ignored on the deck",
-      Edit(CROSSING, "np.ones(cp.n), cp.lateral + self.lateral_offset", "np.ones(cp.n), cp.lateral + 0.0 * self.lateral_offset"),
       Edit(CROSSING, "return origin, sign, offset + sign * cp.lateral", "return origin, sign, 0.0 * offset + sign * cp.lateral")),
     # ---------------------------------------------------------------- initial state
     M("static-start-flat", "static start ignores the road under the wheels",
@@ -232,6 +243,171 @@ MUTATIONS: list[Mutation] = [
     M("road-psd-amplitude", "road harmonics √(2φΔn) → √(φΔn)",
       Edit("src/vbikit/road/psd.py", "amp = np.sqrt(2.0 * psd(n_k) / period)", "amp = np.sqrt(psd(n_k) / period)")),
 ]
+
+
+# ====================================================================== models added since the paper
+CONT = "src/vbikit/bridge/continuous.py"
+DAMAGE = "src/vbikit/bridge/damage.py"
+DECK_EFFECTS = "src/vbikit/bridge/deck_effects.py"
+EFFECTS = "src/vbikit/analysis/effects.py"
+CODES = "src/vbikit/analysis/codes.py"
+EVENTS = "src/vbikit/traffic/events.py"
+TRAFFIC = "src/vbikit/traffic/study.py"
+RECORDS = "src/vbikit/traffic/records.py"
+AXLES = "src/vbikit/vehicle/axles.py"
+FIELD = "src/vbikit/field/workflow.py"
+FIELD_IO = "src/vbikit/field/io.py"
+V = "tests/verification/"
+T_CONT = (V + "test_continuous_general.py", V + "test_continuous_modal_values.py", V + "test_continuous_beam.py")
+T_DAMAGE = (V + "test_continuous_general.py", V + "test_deck_damage_inside_elements.py", V + "test_deck_damage_and_effects.py")
+T_DECK = (V + "test_deck_load_effects_element.py", V + "test_deck_damage_and_effects.py", V + "test_load_effects.py", V + "test_opensees_deck_effects.py")
+T_EFFECTS = (V + "test_tire_load_effects.py", V + "test_continuous_general.py", V + "test_load_effects.py",
+             V + "test_axle_truck_damping_and_codes.py")
+T_CODES = (V + "test_axle_truck_damping_and_codes.py", "tests/unit/test_codes.py")
+T_TRAFFIC = (V + "test_traffic_events_partition.py", V + "test_traffic_on_deck.py", "tests/traffic/test_records_events.py", "tests/traffic/test_traffic_study.py")
+T_AXLES = (V + "test_axle_truck_damping_and_codes.py", "tests/unit/test_axles.py")
+T_FIELD = (V + "test_field_calibration.py", "tests/field/test_synthetic_truth.py")
+
+NEW_MUTATIONS: list[Mutation] = [
+    # ---------------------------------------------------------------- continuous beam
+    N("cont-EI-spans-reversed", "continuous beam: per-span EI taken in reverse span order", T_CONT,
+      Edit(CONT, "EI = np.asarray(self.EI)[k].astype(float)", "EI = np.asarray(self.EI)[::-1][k].astype(float)")),
+    N("cont-mass-spans-reversed", "continuous beam: per-span mass taken in reverse span order", T_CONT,
+      Edit(CONT, "return EI, np.asarray(self.mass_per_length)[k].astype(float)",
+           "return EI, np.asarray(self.mass_per_length)[::-1][k].astype(float)")),
+    N("cont-span-of-element", "continuous beam: an element's span index one too high (clipped)", T_CONT,
+      Edit(CONT, 'k = np.clip(np.searchsorted(self.support_x, mid, side="right") - 1, 0, len(self.spans) - 1)',
+           'k = np.clip(np.searchsorted(self.support_x, mid, side="right"), 0, len(self.spans) - 1)')),
+    N("cont-rotational-ends-swapped", "continuous beam: entry and exit rotational springs swapped", T_CONT,
+      Edit(CONT, "for end, k in zip((0, -1), self.rotational_stiffness):", "for end, k in zip((-1, 0), self.rotational_stiffness):")),
+    N("cont-support-springs-reversed", "continuous beam: support stiffnesses in reverse support order", T_CONT,
+      Edit(CONT, "zip(node_of, self.support_stiffness, self.support_x)", "zip(node_of, self.support_stiffness[::-1], self.support_x)")),
+    N("cont-couple-on-deflection", "continuous beam: rotational spring on the deflection DOF", T_CONT,
+      Edit(CONT, 'out.append(("couple", 2 * int(node_of[end]) + 1, k,', 'out.append(("couple", 2 * int(node_of[end]), k,')),
+    N("cont-spring-reaction-sign", "continuous beam: spring support reaction field +k u instead of −k u", T_CONT,
+      Edit(CONT, "z[free, a] = -k * lu.solve(e)", "z[free, a] = k * lu.solve(e)")),
+    N("cont-spring-modal-sign", "continuous beam: spring support modal reaction +k φ instead of −k φ", T_CONT,
+      Edit(CONT, "modal[a] = -k * full[dof]", "modal[a] = k * full[dof]")),
+    N("cont-rigid-modal-inertia-sign", "continuous beam: rigid support modal reaction K φ + ω² M φ", T_CONT,
+      Edit(CONT, "modal[a] = Kphi[dof] - omega**2 * Mphi[dof]", "modal[a] = Kphi[dof] + omega**2 * Mphi[dof]")),
+    N("cont-couple-moment-sign", "continuous beam: the end spring's couple enters the moment with + sign", T_CONT,
+      Edit(CONT, "comb[a] = -1.0", "comb[a] = 1.0")),
+    N("cont-moment-arm-sign", "continuous beam: lever arm of a support reaction x_j − s instead of s − x_j", T_CONT,
+      Edit(CONT, "comb[a] = s - xa", "comb[a] = xa - s")),
+    N("cont-shear-section-exclusive", "continuous beam: a support at the section not counted left of it (shear)", T_CONT,
+      Edit(CONT, 'elif what == "force" and xa <= s + tol:', 'elif what == "force" and xa < s - tol:')),
+    N("cont-inertia-arm-sign", "continuous beam: inertia moment arm x − s instead of s − x", T_CONT,
+      Edit(CONT, "moment += (wq * (s - xq)) @ phi", "moment += (wq * (xq - s)) @ phi")),
+    N("cont-inertia-force-sign", "continuous beam: modal shear's inertia term with the wrong sign", T_CONT,
+      Edit(CONT, "modal = comb @ modal_actions + omega**2 * force_int", "modal = comb @ modal_actions - omega**2 * force_int")),
+    N("cont-mass-normalisation", "continuous beam: modes normalised to φᵀMφ = 2 instead of 1", T_CONT,
+      Edit(CONT, 'vec = vec / np.sqrt(np.einsum("im,im->m", vec, Mf @ vec))', 'vec = vec / np.sqrt(0.5 * np.einsum("im,im->m", vec, Mf @ vec))')),
+    N("cont-load-vector-node-shift", "continuous beam: a point load assembled on the next element's DOFs", T_CONT,
+      Edit(CONT, "F[2 * e:2 * e + 4] += f * np.array([float(v) for v in n])",
+           "F[2 * e + 2:2 * e + 6] += f * np.array([float(v) for v in n])[:F[2 * e + 2:2 * e + 6].size]")),
+    N("cont-damage-end-not-a-node", "continuous beam: the end of a damaged region is not made a node", T_DAMAGE,
+      Edit(CONT, "pts.append(np.array([d.position, min(d.end, self.span)]))", "pts.append(np.array([d.position]))")),
+    # ---------------------------------------------------------------- damage
+    N("damage-fraction-not-divided", "damage: EI loss × overlap [m] instead of × overlap / element length", T_DAMAGE,
+      Edit(DAMAGE, "factor -= d.severity * d.overlap(a, b) / (b - a)", "factor -= d.severity * d.overlap(a, b)")),
+    N("damage-overlap-min-max", "damage: overlap measured from min(a, start) instead of max(a, start)", T_DAMAGE,
+      Edit(DAMAGE, "return max(0.0, min(b, self.end) - max(a, self.position))",
+           "return max(0.0, min(b, self.end) - min(a, self.position))")),
+    N("damage-end-half-length", "damage: the region ends at position + length/2", T_DAMAGE,
+      Edit(DAMAGE, "return self.position + self.length", "return self.position + 0.5 * self.length")),
+    # ---------------------------------------------------------------- deck load effects
+    N("deck-moment-row-couple-sign", "deck: girder moment from the element's end couple with + sign", T_DECK,
+      Edit(DECK_EFFECTS, 'row = (s - a) * ke[0] - ke[1] if kind == "moment" else ke[0]',
+           'row = (s - a) * ke[0] + ke[1] if kind == "moment" else ke[0]')),
+    N("deck-moment-modal-sign", "deck: modal girder moment −EI φ'' instead of EI φ''", T_DECK,
+      Edit(DECK_EFFECTS, "modal = EI * modes.line_values(np.array([s]), 2)[j, 0]", "modal = -EI * modes.line_values(np.array([s]), 2)[j, 0]")),
+    N("deck-shear-inertia-arm", "deck: modal shear's inertia term about the element start instead of its middle", T_DECK,
+      Edit(DECK_EFFECTS, "omega**2 * m_line * phi * (s - 0.5 * (a + b))", "omega**2 * m_line * phi * (s - a)")),
+    N("deck-reaction-inertia-sign", "deck: rigid bearing modal reaction K φ + ω² M φ", T_DECK,
+      Edit(DECK_EFFECTS, "modal = (K @ full)[d] - omega**2 * (M @ full)[d]", "modal = (K @ full)[d] + omega**2 * (M @ full)[d]")),
+    N("deck-local-moment-arm-sign", "deck: a load inside the section's element adds x − s instead of s − x", T_DECK,
+      Edit(DECK_EFFECTS, "np.where(xi < s, s - xi, 0.0)", "np.where(xi < s, xi - s, 0.0)")),
+    N("deck-local-share-girder", "deck: a load inside the section's element uses girder 1's share", T_DECK,
+      Edit(DECK_EFFECTS, "c = shares[inside, j]", "c = shares[inside, 0]")),
+    # ---------------------------------------------------------------- load effects (mode acceleration)
+    N("effects-damping-correction-half", "mode acceleration: damping term ζω ξ̇ instead of 2ζω ξ̇", T_EFFECTS,
+      Edit(EFFECTS, "result.xi_dot * (2.0 * zeta * omega)", "result.xi_dot * (1.0 * zeta * omega)")),
+    N("effects-correction-sign", "mode acceleration: dynamic correction added instead of subtracted", T_EFFECTS,
+      Edit(EFFECTS, 'dynamic = -np.einsum("tp,tp->t", infl, dyn_forces) - correction',
+           'dynamic = -np.einsum("tp,tp->t", infl, dyn_forces) + correction')),
+    N("effects-static-shares-dropped", "load effects: static reference with every contact point carrying the whole wheel", T_EFFECTS,
+      Edit(EFFECTS, "static_loads = share * result.crossing.vehicle.static_wheel_loads()[cp.wheel]",
+           "static_loads = result.crossing.vehicle.static_wheel_loads()[cp.wheel]")),
+    N("effects-dynamic-shares-dropped", "load effects: dynamic wheel force not spread by the static shares", T_EFFECTS,
+      Edit(EFFECTS, "dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]", "dyn_forces = result.wheel_forces[:, cp.wheel]")),
+    N("effects-path-direction-sign", "load effects: contact points move against their direction", T_EFFECTS,
+      Edit(EFFECTS, "x = origin[None, :] + direction[None, :] * s[:, crossing.point_vehicle]",
+           "x = origin[None, :] - direction[None, :] * s[:, crossing.point_vehicle]")),
+    N("effects-axle-count-wheels", "code allowances: axles counted as wheels", T_EFFECTS,
+      Edit(EFFECTS, "return len({round(float(w.offset), 3) for w in vehicle.wheels})", "return len(vehicle.wheels)")),
+    N("effects-loaded-length-first-span", "code allowances: the loaded length always the first span", T_EFFECTS,
+      Edit(EFFECTS, "return float(spans[bridge.span_index(float(bridge.span_coordinate(x, y)))])", "return float(spans[0])")),
+    # ---------------------------------------------------------------- design codes
+    N("codes-aashto-metres", "AASHTO Standard: L in m instead of ft", T_CODES,
+      Edit(CODES, "min(50.0 / (loaded_length * FT_PER_M + 125.0), 0.30)", "min(50.0 / (loaded_length + 125.0), 0.30)")),
+    N("codes-ohbdc-rise-slope", "OHBDC: rising branch over 2.5 Hz instead of 1.5 Hz", T_CODES,
+      Edit(CODES, "return 0.20 + 0.20 * (f - 1.0) / 1.5", "return 0.20 + 0.20 * (f - 1.0) / 2.5")),
+    N("codes-ohbdc-fall-start", "OHBDC: falling branch measured from 4.0 Hz", T_CODES,
+      Edit(CODES, "return 0.40 - 0.20 * (f - 4.5) / 1.5", "return 0.40 - 0.20 * (f - 4.0) / 1.5")),
+    N("codes-ohbdc-plateau-end", "OHBDC: plateau ends at 4.0 Hz", T_CODES,
+      Edit(CODES, "    if f <= 4.5:\n        return 0.40", "    if f <= 4.0:\n        return 0.40")),
+    N("codes-jtg-log10", "JTG: log10 instead of the natural logarithm", T_CODES,
+      Edit(CODES, "return 0.1767 * math.log(f) - 0.0157", "return 0.1767 * math.log10(f) - 0.0157")),
+    N("codes-jtg-low-breakpoint", "JTG: the 0.05 floor below 1.0 Hz instead of 1.5 Hz", T_CODES,
+      Edit(CODES, "    if f < 1.5:\n        return 0.05", "    if f < 1.0:\n        return 0.05")),
+    N("codes-csa-axle-index", "CSA S6: 0.30 for three axles instead of two", T_CODES,
+      Edit(CODES, "0.30 if n_axles == 2 or cl_w_front_axles", "0.30 if n_axles == 3 or cl_w_front_axles")),
+    N("codes-ohbdc-swapped-argument", "code allowances: OHBDC given the loaded length instead of the frequency", T_CODES,
+      Edit(CODES, '"ohbdc_1983": ohbdc_1983(first_frequency),', '"ohbdc_1983": ohbdc_1983(loaded_length),')),
+    # ---------------------------------------------------------------- traffic
+    N("events-length-ignored", "traffic events: a vehicle leaves when its front axle does (length ignored)", T_TRAFFIC,
+      Edit(EVENTS, "t + (float(span) + float(reach) + np.asarray(lengths, float)) / v", "t + (float(span) + float(reach)) / v")),
+    N("events-end-not-max", "traffic events: an event ends when its latest member leaves, not its last", T_TRAFFIC,
+      Edit(EVENTS, "t1 = max(t1, end[i])", "t1 = end[i]")),
+    N("traffic-entry-time-absolute", "traffic: vehicles enter at their record time, not relative to the event", T_TRAFFIC,
+      Edit(TRAFFIC, "entry_time=r.time - t0,", "entry_time=r.time,")),
+    N("traffic-lane-index", "traffic: lane n placed at lanes[−n] instead of lanes[n − 1]", T_TRAFFIC,
+      Edit(TRAFFIC, "else self.lanes[r.lane - 1]\n            motions", "else self.lanes[-r.lane]\n            motions")),
+    N("traffic-default-lanes-mirrored", "traffic: default lane 1 at y > 0", T_TRAFFIC,
+      Edit(TRAFFIC, "return (-float(width) / 4.0, float(width) / 4.0)", "return (float(width) / 4.0, -float(width) / 4.0)")),
+    N("traffic-vehicle-wheels-off-by-one", "traffic: a vehicle's outputs include the next vehicle's first wheel", T_TRAFFIC,
+      Edit(TRAFFIC, "f = forces[:, offsets[j]:offsets[j + 1]]", "f = forces[:, offsets[j]:offsets[j + 1] + 1]")),
+    N("records-kmh-factor", "traffic records: km/h converted with 1/3", T_TRAFFIC,
+      Edit(RECORDS, '"speed": {"km/h": 1 / 3.6, "m/s": 1.0},', '"speed": {"km/h": 1 / 3.0, "m/s": 1.0},')),
+    N("records-kN-factor", "traffic records: kN read as 100 N", T_TRAFFIC,
+      Edit(RECORDS, '"axle_loads": {"kN": 1e3, "N": 1.0},', '"axle_loads": {"kN": 1e2, "N": 1.0},')),
+    # ---------------------------------------------------------------- trucks from axle records
+    N("axles-tire-damping-mass", "axle truck: tire damper from √(k m_u) instead of √(k m_u/2)", T_AXLES,
+      Edit(AXLES, "c_t = 2 * tire_damping_ratio * math.sqrt(k_t * 0.5 * masses[i])", "c_t = 2 * tire_damping_ratio * math.sqrt(k_t * masses[i])")),
+    N("axles-suspension-damping-load", "axle truck: suspension damper from the whole axle's sprung load", T_AXLES,
+      Edit(AXLES, "c_s = 2 * suspension_damping_ratio * math.sqrt(k_s * 0.5 * sprung[i] / GRAVITY) if suspension else 0.0",
+           "c_s = 2 * suspension_damping_ratio * math.sqrt(k_s * sprung[i] / GRAVITY) if suspension else 0.0")),
+    N("axles-bogie-damping-load", "axle truck: walking-beam suspension damper from the whole group's load", T_AXLES,
+      Edit(AXLES, "c_s = 2 * suspension_damping_ratio * math.sqrt(k_s * 0.5 * p / GRAVITY)",
+           "c_s = 2 * suspension_damping_ratio * math.sqrt(k_s * p / GRAVITY)")),
+    N("axles-tire-stiffness-axle", "axle truck: each tire sized for the whole axle load", T_AXLES,
+      Edit(AXLES, "k_t = 0.5 * loads[i] / tire_deflection", "k_t = loads[i] / tire_deflection")),
+    N("axles-dampers-swapped", "axle truck: suspension and tire dampers swapped (arguments)", T_AXLES,
+      Edit(AXLES, "return AxleSpec(float(s_axle[i]), float(masses[i]), k_s, c_s, k_t, c_t)",
+           "return AxleSpec(float(s_axle[i]), float(masses[i]), k_s, c_t, k_t, c_s)")),
+    # ---------------------------------------------------------------- field calibration
+    N("field-weighting-dropped", "calibration: residuals not divided by each channel's measured RMS", T_FIELD,
+      Edit(FIELD, "out.append((s_at - m) / np.sqrt(np.mean(m**2)))", "out.append(s_at - m)")),
+    N("field-inflation-halved", "calibration: low-pass covariance inflation f_s/(4 f_c) instead of f_s/(2 f_c)", T_FIELD,
+      Edit(FIELD, "c.record.sampling_rate / (2.0 * c.lowpass_hz)", "c.record.sampling_rate / (4.0 * c.lowpass_hz)")),
+    N("field-s2-factor", "calibration: s² = cost/(m − n) instead of 2·cost/(m − n)", T_FIELD,
+      Edit(FIELD, "s2 = 2.0 * sol.cost / (m - n)", "s2 = sol.cost / (m - n)")),
+    N("field-drift-sign", "calibration: the accelerometer drift line added instead of removed", T_FIELD,
+      Edit(FIELD, "m = m - (d.offset + d.drift * (t_meas - d.t_ref))", "m = m + (d.offset + d.drift * (t_meas - d.t_ref))")),
+    N("field-microstrain-factor", "field records: microstrain read as 1e-5", T_FIELD,
+      Edit(FIELD_IO, '"microstrain": ("strain", 1e-6),', '"microstrain": ("strain", 1e-5),')),
+]
+MUTATIONS += NEW_MUTATIONS
 
 
 def mutated_tree(mutation: Mutation, dest: Path) -> None:
@@ -284,8 +460,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--markdown", action="store_true", help="print the result table as Markdown")
     ap.add_argument("--timeout", type=float, default=1200.0, help="seconds per mutation run")
     ap.add_argument("--no-baseline", action="store_true", help="skip the run on the unmutated source")
+    ap.add_argument("--new", action="store_true", help="only the mutations of models added since the paper")
+    ap.add_argument("--only-targeted", action="store_true",
+                    help="run each mutation's own tests only (not --tests after them)")
     args = ap.parse_args(argv)
-    chosen = [m for m in MUTATIONS if not args.select or any(w in m.name for w in args.select)]
+    pool = NEW_MUTATIONS if args.new else MUTATIONS
+    chosen = [m for m in pool if not args.select or any(w in m.name for w in args.select)]
     names = [m.name for m in MUTATIONS]
     if len(set(names)) != len(names):
         print("duplicate mutation names", file=sys.stderr)
@@ -300,8 +480,13 @@ def main(argv: list[str] | None = None) -> int:
         for m in chosen:
             print(f"{m.name:36s} {m.description}")
         return 0
+    def tests_of(m: Mutation) -> list[str]:
+        own = list(m.tests)
+        return own if (args.only_targeted and own) else list(dict.fromkeys(own + list(args.tests)))
+
     if not args.no_baseline:
-        rc, first, sec = run_tests(ROOT / "src", args.tests, args.timeout)
+        base_tests = list(dict.fromkeys([t for m in chosen for t in tests_of(m)]))
+        rc, first, sec = run_tests(ROOT / "src", base_tests, args.timeout)
         if rc != 0:
             print(f"the unmutated source fails the tests ({first}); fix that first", file=sys.stderr)
             return 2
@@ -310,7 +495,7 @@ def main(argv: list[str] | None = None) -> int:
     for m in chosen:
         with tempfile.TemporaryDirectory(prefix="vbikit-mutant-") as tmp:
             mutated_tree(m, Path(tmp))
-            rc, first, sec = run_tests(Path(tmp) / "src", args.tests, args.timeout)
+            rc, first, sec = run_tests(Path(tmp) / "src", tests_of(m), args.timeout)
         status = {0: "NOT CAUGHT", 1: "caught", -1: "timeout"}.get(rc, f"error (exit {rc})")
         rows.append((m, status, first, sec))
         print(f"{status:12s} {m.name:36s} {sec:5.0f} s  {first}", flush=True)
