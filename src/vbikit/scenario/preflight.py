@@ -84,6 +84,66 @@ def check_wheels_on_deck(crossing: Crossing) -> None:
                                 f"centreline, off the {width:g} m wide deck")
 
 
+#: time samples over the run at which listed vehicles are checked for overlap
+_OVERLAP_SAMPLES = 4001
+
+
+def _footprints(crossing: Crossing, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per vehicle: its axles' x extent at the times ``t`` (lo, hi: shape (n_t, n_vehicles)) and its
+    wheels' y extent (ylo, yhi: shape (n_vehicles,)) [m]."""
+    origin, sign, y = crossing.point_kinematics()
+    veh = crossing.point_vehicle
+    s = crossing.travel(t)  # (n_t, n_vehicles)
+    n = crossing.n_vehicles
+    lo, hi = np.empty((t.size, n)), np.empty((t.size, n))
+    ylo, yhi = np.empty(n), np.empty(n)
+    for i in range(n):
+        on = veh == i
+        x = origin[on][None, :] + sign[on][None, :] * s[:, i:i + 1]
+        lo[:, i], hi[:, i] = x.min(axis=1), x.max(axis=1)
+        ylo[i], yhi[i] = y[on].min(), y[on].max()
+    return lo, hi, ylo, yhi
+
+
+def check_vehicle_overlap(crossing: Crossing) -> None:
+    """Refuse listed vehicles that would occupy the same lane at the same place: wheel tracks that
+    overlap across the deck (on a bridge without lateral extent, a beam: the same direction too, as
+    opposing vehicles there stand for two lanes) and axle extents along x that overlap, or pass through
+    each other, on the bridge while the run lasts."""
+    if crossing.single or crossing.n_vehicles < 2:
+        return
+    t = crossing.start_time + np.linspace(0.0, crossing.duration, _OVERLAP_SAMPLES)
+    lo, hi, ylo, yhi = _footprints(crossing, t)
+    x0, x1 = crossing.bridge.deck_extent
+    deck = isinstance(crossing.bridge, GirderDeck)
+    motions = crossing.vehicles
+    for i in range(crossing.n_vehicles):
+        for j in range(i + 1, crossing.n_vehicles):
+            if max(ylo[i], ylo[j]) > min(yhi[i], yhi[j]):
+                continue  # separate lanes
+            if not deck and motions[i].direction != motions[j].direction:
+                continue
+            depth = np.minimum(hi[:, i], hi[:, j]) - np.maximum(lo[:, i], lo[:, j])
+            on_bridge = (np.maximum(lo[:, i], lo[:, j]) <= x1) & (np.minimum(hi[:, i], hi[:, j]) >= x0)
+            gap = 0.5 * (lo[:, i] + hi[:, i] - lo[:, j] - hi[:, j])
+            passed = np.flatnonzero((np.sign(gap[1:]) != np.sign(gap[:-1])) & on_bridge[1:])
+            hit = np.flatnonzero((depth >= 0) & on_bridge)
+            if not hit.size and not passed.size:
+                continue
+            a, b = f"vehicles[{i + 1}]", f"vehicles[{j + 1}]"
+            lanes = (f"their wheel tracks overlap across the deck (y = {ylo[i]:.3g} … {yhi[i]:.3g} m and "
+                     f"{ylo[j]:.3g} … {yhi[j]:.3g} m)")
+            if hit.size:
+                k = hit[np.argmax(depth[hit])]
+                what = (f"at t = {t[k]:.4g} s their axles overlap by {depth[k]:.3g} m along the bridge "
+                        f"(x = {max(lo[k, i], lo[k, j]):.4g} … {min(hi[k, i], hi[k, j]):.4g} m)")
+            else:
+                k = passed[0] + 1
+                what = f"they pass through each other near x = {0.5 * (lo[k, i] + hi[k, i]):.4g} m at t = {t[k]:.4g} s"
+            raise ScenarioError(f"{a} and {b} overlap in one lane: {lanes}, and {what}; give them lateral_offset "
+                                "values a lane apart or entry_time values far enough apart")
+
+
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
     """The run plan of ``crossing`` ([`vbikit.solve.plan.plan_run`][vbikit.solve.plan_run]: its time step [s] and
     estimate), checked as every run is: a given step makes at least ``MIN_STEPS`` steps, the
@@ -115,6 +175,7 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     built = build(scenario, limits)
     crossing = built.crossing
     check_wheels_on_deck(crossing)
+    check_vehicle_overlap(crossing)
     run = check_steps(crossing, limits)
     check_response_points(built)
     warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
