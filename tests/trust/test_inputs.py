@@ -63,8 +63,11 @@ CASES = {
                   ["time steps", "crossing.dt"]),
     "dt-longer-than-crossing": (BEAM + "integrator = \"newmark\"\ndt = 1e9\n", ["crossing.dt = 1e+09 s", "fewer than 10 steps"]),
     # found by the fuzz run with exact modal stepping: wheels 7e16 m off the deck diverged after validate
-    "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7e16\n",
+    # (a lateral offset of -7e16 m is now refused by its range, ±50 m, before the deck width is known)
+    "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7.0\n",
                             ["crossing.lateral_offset", "off the 9.75 m wide deck"]),
+    "lateral-offset-huge": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7e16\n",
+                            ["crossing.lateral_offset", "greater than or equal to -50"]),
     # [[vehicles]] are checked like [vehicle]: a listed truck 5 m off the centreline of a 9.75 m deck, and one
     # driving -x whose mirrored wheels leave the deck on the other side
     "listed-wheels-off-the-deck": ('[bridge]\nmodel = "paper-bridge-2"\nn_modes = 4\n[crossing]\nspeed_kmh = 60\n'

@@ -28,8 +28,12 @@ class DamageSpec(Section):
         return Damage(self.position, self.length, self.severity, self.girder)
 
 
+#: upper ends of the beam properties [N m^2], [kg/m] (far above any bridge: a steel box girder has EI ≈ 1e13 N m^2)
+MAX_EI = 1e16
+MAX_MASS_PER_LENGTH = 1e6
 _POSITIVE = Annotated[float, Field(gt=0)]
-_POSITIVE_OR_LIST = Union[_POSITIVE, list[_POSITIVE]]
+_EI = Annotated[float, Field(gt=0, le=MAX_EI)]
+_MASS = Annotated[float, Field(gt=0, le=MAX_MASS_PER_LENGTH)]
 _SPRING = Annotated[float, Field(ge=0, allow_inf_nan=True)]
 
 _DAMPING_RATIO = Annotated[float, Field(ge=0, lt=1, description="modal damping ratio, every mode [-]")]
@@ -99,8 +103,8 @@ class BeamSpec(BridgeKind):
 
     model: Literal["beam"] = Field("beam", description="Euler–Bernoulli beam")
     span: Optional[float] = Field(None, gt=0, description="span length [m]")
-    EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
-    mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
+    EI: Optional[float] = Field(None, gt=0, le=MAX_EI, description="bending stiffness [N m^2]")
+    mass_per_length: Optional[float] = Field(None, gt=0, le=MAX_MASS_PER_LENGTH, description="mass per length [kg/m]")
     damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
     n_modes: _N_MODES = 10
     neutral_axis_depth: _NEUTRAL_AXIS = None
@@ -135,8 +139,8 @@ class ContinuousBeamSpec(BridgeKind):
     """[bridge] model = "continuous-beam": spans in a row on springs (vbikit.bridge.ContinuousBeam)."""
 
     model: Literal["continuous-beam"] = Field(..., description="Euler–Bernoulli beam over several spans")
-    EI: Optional[_POSITIVE_OR_LIST] = Field(None, description="bending stiffness, one or one per span [N m^2]")
-    mass_per_length: Optional[_POSITIVE_OR_LIST] = Field(None, description="mass per length, one or one per span [kg/m]")
+    EI: Optional[Union[_EI, list[_EI]]] = Field(None, description="bending stiffness, one or one per span [N m^2]")
+    mass_per_length: Optional[Union[_MASS, list[_MASS]]] = Field(None, description="mass per length, one or one per span [kg/m]")
     spans: Optional[list[_POSITIVE]] = Field(None, description="span lengths [m]")
     support_stiffness: Optional[Union[_SPRING, list[_SPRING]]] = Field(
         None, description="vertical support springs [N/m], one or one per support (inf = rigid); default rigid")

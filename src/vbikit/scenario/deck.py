@@ -66,8 +66,10 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
             value = GirderSection(**{k: number(v, f"girder.{k}") for k, v in value.items()})
         elif key == "spans":
             if not isinstance(value, (list, tuple)) or not value:
-                raise ValueError("bridge.deck.spans: a list of span lengths [m]")
-            value = tuple(float(v) for v in value)
+                raise ValueError(f"bridge.deck.spans: must be a list of span lengths > 0 [m], got {value!r}")
+            value = tuple(number(v, "spans") for v in value)
+            if any(v <= 0 for v in value):
+                raise ValueError(f"bridge.deck.spans: every span must be > 0 m, got {list(value)}")
         elif key == "diaphragms":
             if not isinstance(value, (list, tuple)):
                 raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")

@@ -69,6 +69,36 @@ def check_response_points(built: BuiltScenario) -> None:
                                 f"inside the span 0 … {bridge.span:g} m")
 
 
+def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
+    """Refuse a load effect whose static value is zero wherever a wheel can stand (a moment at a pinned
+    end, a reaction of a support without stiffness): no static peak, hence no impact factor.  The
+    check follows the run: the influence line under the wheel lines (mode acceleration) or the modal
+    values (mode superposition)."""
+    effects = built.load_effects
+    if not effects:
+        return
+    crossing = built.crossing
+    bridge = crossing.bridge
+    _, _, y = crossing.point_kinematics()
+    x0, x1 = bridge.deck_extent
+    xx, yy = np.meshgrid(np.linspace(x0, x1, 401), np.unique(y))
+    xi = np.asarray(bridge.span_coordinate(xx, yy))
+    on = (xi >= 0.0) & (xi <= bridge.span)
+    xs, ys = xx[on], yy[on]
+    r = built.plan.load_effect_method
+    given = {k: getattr(scenario.response, k) for k in ("moment", "shear", "reaction")}
+    seen = {"moment": 0, "shear": 0, "reaction": 0}
+    for e in effects:
+        seen[e.kind] += 1
+        values = e.modal if r == "mode-superposition" else (e.influence(xs, ys) if xs.size else np.zeros(1))
+        if np.any(np.asarray(values) != 0.0):
+            continue
+        key = f"response.{e.kind}[{seen[e.kind]}]" if given[e.kind] is not None else f"response.{e.kind} (default)"
+        raise ScenarioError(f"{key}: the {e.label} is zero wherever a wheel can stand (a section at a pinned end or "
+                            "hinge, or a support without stiffness), so it has no static peak and no impact factor; "
+                            f"give response.{e.kind} without it")
+
+
 def check_wheels_on_deck(crossing: Crossing) -> None:
     """Refuse a vehicle whose wheels would run off a deck of known width (every vehicle: its
     lateral offset and its wheels' own y, mirrored when it drives −x)."""
@@ -178,6 +208,7 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     check_vehicle_overlap(crossing)
     run = check_steps(crossing, limits)
     check_response_points(built)
+    check_load_effects(scenario, built)
     warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
     for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)
         warnings += [w for w in point_warnings(crossing, p.x, p.y) if w not in warnings]

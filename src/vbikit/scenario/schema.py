@@ -520,12 +520,16 @@ def _table_at(data: Any, path: tuple[Any, ...]) -> dict[str, Any]:
     return data if isinstance(data, dict) else {}
 
 
+#: the names pydantic gives the members of a union (``EI = 1`` or ``EI = [1, 2]``) in an error's location
+_UNION_MEMBER = re.compile(r"^(list\[)?(constrained-[a-z]+|float|int)\]?$")
+
+
 def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
     """A key's location as users read it: ``road.defects[1].depth`` for the first
     ``[[road.defects]]`` table (arrays of tables counted from 1, in scenario, study and field files)."""
     out = ""
     for part in loc:
-        if part == "__root__":
+        if part == "__root__" or (isinstance(part, str) and _UNION_MEMBER.match(part)):
             continue
         out += f"[{part + 1}]" if isinstance(part, int) else (f".{part}" if out else str(part))
     return out
