@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal, Optional, Union, get_args
 
+import numpy as np
 from pydantic import Discriminator, Field, Tag, field_validator, model_validator
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
@@ -211,11 +212,22 @@ class ModesFileSpec(BridgeKind):
     def build(self, base_dir: Path | str = ".") -> ModalBridge:
         from vbikit.bridge.modefile import modes_from_file
 
-        n_modes = self.n_modes if "n_modes" in self.model_fields_set else None
+        path = Path(base_dir) / self.modes_file
         try:
-            return modes_from_file(Path(base_dir) / self.modes_file, damping_ratio=self.damping_ratio, n_modes=n_modes)
+            bridge = modes_from_file(path, damping_ratio=self.damping_ratio)
+            n_file = int(bridge.omega.size)
+            if "n_modes" in self.model_fields_set and self.n_modes > n_file:
+                raise ScenarioError(f"bridge.n_modes = {self.n_modes}: the mode file {self.modes_file} has {n_file} modes; "
+                                    f"give n_modes 1 … {n_file}, or leave it out for all of them")
+            if "n_modes" in self.model_fields_set and self.n_modes < n_file:
+                bridge = modes_from_file(path, damping_ratio=self.damping_ratio, n_modes=self.n_modes)
         except ValueError as err:
             raise ScenarioError(f"bridge.modes_file: {err}") from None
+        if "damping_ratio" in self.model_fields_set and np.any(bridge.damping_ratios != self.damping_ratio):
+            raise ScenarioError(f"bridge.damping_ratio = {self.damping_ratio:g}: the mode file {self.modes_file} gives its "
+                                f"own damping_ratios ({', '.join(f'{z:g}' for z in bridge.damping_ratios)}), which would "
+                                "be used; remove bridge.damping_ratio, or the file's damping_ratios header")
+        return bridge
 
 
 def _deck_preset(name: str) -> bool:
