@@ -317,7 +317,7 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
     if not np.allclose(omega, 2.0 * np.pi * freqs, rtol=1e-6, atol=0.0):
         k = int(np.argmax(np.abs(omega - 2.0 * np.pi * freqs) / omega))
         raise ModeFileError(f"{path}: header 'omega' must be 2π × frequencies_hz (within 1e-6): mode {k + 1} has omega "
-                            f"{omega[k]!r} rad/s and frequencies_hz {freqs[k]!r} Hz")
+                            f"{float(omega[k])!r} rad/s and frequencies_hz {float(freqs[k])!r} Hz")
     span = _one_float(header, "span", path)
     if not (np.isfinite(span) and span > 0):
         raise ModeFileError(f"{path}: header 'span' must be one length > 0 [m], got {header['span']!r}")

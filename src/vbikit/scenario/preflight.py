@@ -69,6 +69,11 @@ def check_response_points(built: BuiltScenario) -> None:
                                 f"inside the span 0 … {bridge.span:g} m")
 
 
+#: an influence line below this (× the span for a moment) everywhere is zero: round-off of a section at a
+#: pinned end, a free end or a support without stiffness
+_ZERO_INFLUENCE = 1e-9
+
+
 def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
     """Refuse a load effect whose static value is zero wherever a wheel can stand (a moment at a pinned
     end, a reaction of a support without stiffness): no static peak, hence no impact factor.  The
@@ -90,9 +95,13 @@ def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
     seen = {"moment": 0, "shear": 0, "reaction": 0}
     for e in effects:
         seen[e.kind] += 1
-        values = e.modal if r == "mode-superposition" else (e.influence(xs, ys) if xs.size else np.zeros(1))
-        if np.any(np.asarray(values) != 0.0):
-            continue
+        if r == "mode-superposition":
+            if np.any(np.asarray(e.modal) != 0.0):
+                continue
+        else:  # a unit force's effect: [m] for a moment, [-] for a shear or reaction; round-off below the tolerance
+            values = np.asarray(e.influence(xs, ys)) if xs.size else np.zeros(1)
+            if np.max(np.abs(values)) > _ZERO_INFLUENCE * (bridge.span if e.kind == "moment" else 1.0):
+                continue
         key = f"response.{e.kind}[{seen[e.kind]}]" if given[e.kind] is not None else f"response.{e.kind} (default)"
         raise ScenarioError(f"{key}: the {e.label} is zero wherever a wheel can stand (a section at a pinned end or "
                             "hinge, or a support without stiffness), so it has no static peak and no impact factor; "
