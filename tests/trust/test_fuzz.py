@@ -15,7 +15,16 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from fuzzing import RUN_LIMITS, field_files, judge, scenarios, studies, time_limit
+from fuzzing import (
+    RUN_LIMITS,
+    field_files,
+    judge,
+    mode_file_inputs,
+    new_surface_inputs,
+    scenarios,
+    studies,
+    time_limit,
+)
 from hypothesis import HealthCheck, given, settings
 from typer.testing import CliRunner
 
@@ -60,6 +69,36 @@ def check_scenario(text: bytes) -> None:
         _record("scenario", outcome, ran, text)
 
 
+def check_scenario_files(text: bytes, refuse: bool, files: dict[str, bytes] | None = None,
+                         kind: str = "new-surfaces") -> None:
+    """``check_scenario`` with further files beside the scenario (a mode file), and the judge of silent
+    acceptance: an input that must be refused (``fuzzing.must_refuse``) and passes ``validate``."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "fuzz.toml"
+        path.write_bytes(text)
+        for name, data in (files or {}).items():
+            (Path(tmp) / name).write_bytes(data)
+        names = ("fuzz.toml", *(files or {}))
+        shown = text + b"".join(b"\n--- " + n.encode() + b" ---\n" + d[:1500] for n, d in (files or {}).items())
+        summary = Path(tmp) / "summary.json"
+        validated = _invoke(["validate", str(path), *RUN_LIMITS])
+        outcome = judge(validated, names)
+        if outcome == "ok" and refuse:
+            outcome = "silent acceptance"
+        if outcome != "ok":
+            return _record(f"{kind}-validate", outcome, validated, shown)
+        ran = _invoke(["run", str(path), "--json", "--summary", str(summary), *RUN_LIMITS])
+        outcome = judge(ran, names, (summary,))
+        if outcome == "clean":
+            outcome = "validate ok, run refused"
+        _record(kind, outcome, ran, shown)
+
+
+def check_mode_file(inputs: tuple[bytes, bytes, bool]) -> None:
+    toml, modes, refuse = inputs
+    check_scenario_files(toml, refuse, {"fuzz.modes.csv": modes}, "mode-file")
+
+
 def check_study(text: bytes) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "fuzz-study.toml"
@@ -98,6 +137,19 @@ def test_fuzz_scenarios(text):
     check_scenario(text)
 
 
+@_settings(60, slow=False)
+@given(new_surface_inputs())
+def test_fuzz_new_surfaces(inputs):
+    """[[vehicles]], [bridge.deck], [[bridge.damage]], continuous-beam keys and load-effect sections."""
+    check_scenario_files(*inputs)
+
+
+@_settings(40, slow=False)
+@given(mode_file_inputs())
+def test_fuzz_mode_files(inputs):
+    check_mode_file(inputs)
+
+
 @_settings(50, slow=False)
 @given(studies())
 def test_fuzz_studies(text):
@@ -129,3 +181,18 @@ def test_fuzz_studies_more(text):
 @given(field_files())
 def test_fuzz_field_files_more(files):
     check_field(files)
+
+
+@pytest.mark.slow
+@_settings(150, slow=True)
+@given(new_surface_inputs())
+def test_fuzz_new_surfaces_more(inputs):
+    """1,500 generated inputs over the new scenario surfaces (with the mode files below: 2,000 or more)."""
+    check_scenario_files(*inputs)
+
+
+@pytest.mark.slow
+@_settings(60, slow=True)
+@given(mode_file_inputs())
+def test_fuzz_mode_files_more(inputs):
+    check_mode_file(inputs)
