@@ -342,3 +342,22 @@ def test_divergence_of_several_vehicles_names_each_front_axle():
         check_finite(dataclasses.replace(result, xi=xi))
     # front axles at step 5: +x from 0 at 20 m/s, −x from the 16.76 m span at 15 m/s
     assert f"x = {20.0 * t5:.3f} m (vehicle 1), x = {16.76 - 15.0 * t5:.3f} m (vehicle 2)" in str(err.value)
+
+
+def test_axle_load_far_beyond_legal_limits_is_warned(tmp_path):
+    """A 300 kN axle (permit loads exist, so it runs) is warned about: legal single axles carry 20 kip =
+    89 kN (AASHTO/US federal) or 11.5 t = 113 kN (EU Directive 96/53/EC)."""
+    truck = 'model = "axles"\naxle_loads = [60000.0, 300000.0]\naxle_spacings = [4.0]'
+    res = runner.invoke(app, ["validate", str(_write(tmp_path, BEAM + _vehicles(truck)))])
+    assert res.exit_code == 0, res.output
+    assert "warning: vehicles[1].axle_loads: axle 2 carries 300 kN" in res.output
+    truck = 'model = "axles"\naxle_loads = [60000.0, 100000.0]\naxle_spacings = [4.0]'
+    res = runner.invoke(app, ["validate", str(_write(tmp_path, BEAM + _vehicles(truck)))])
+    assert res.exit_code == 0 and "axle_loads" not in res.output, res.output
+
+
+@pytest.mark.parametrize("girder", ['"IX"', "3", "true"])
+def test_deck_girder_type_names_the_key(tmp_path, girder):
+    """Found by the fuzz test: girder = "IX" gave "unknown girder type" without the key."""
+    _refused(_write(tmp_path, DECK + f"[bridge.deck]\ngirder = {girder}\n" + ONE_TRUCK),
+             ["bridge.deck.girder", "AASHTO type (I, II, III, IV, V, VI)"])

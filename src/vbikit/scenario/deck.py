@@ -12,7 +12,7 @@ from dataclasses import fields
 import numpy as np
 
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
-from vbikit.bridge.sections import GirderSection
+from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection
 
 #: model fields a ``[bridge.deck]`` table does not set: ``[bridge]`` keys (n_modes, damping_ratio,
 #: damage), labels and cache settings
@@ -59,6 +59,10 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
     for key, value in table.items():
         if key not in SCENARIO_PARAMETERS:
             raise ValueError(f"unknown [bridge.deck] key {key!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        if key == "girder" and not isinstance(value, (dict, str)) or key == "girder" and isinstance(value, str) \
+                and value not in AASHTO_GIRDERS:
+            raise ValueError(f"bridge.deck.girder: must be an AASHTO type ({', '.join(AASHTO_GIRDERS)}) or a table "
+                             f"{{area, inertia, y_bottom, depth}}, got {value!r}")
         if key == "girder" and isinstance(value, dict):
             need = ("area", "inertia", "y_bottom", "depth")
             if sorted(value) != sorted(need):

@@ -74,6 +74,26 @@ def check_response_points(built: BuiltScenario) -> None:
 _ZERO_INFLUENCE = 1e-9
 
 
+#: an axle load above this [N] is far beyond legal limits (single axle: 20 kip ≈ 89 kN in the US, 11.5 t ≈
+#: 113 kN in the EU; twice the larger)
+HEAVY_AXLE = 226e3
+
+
+def axle_load_warnings(scenario: Scenario) -> list[str]:
+    """Axle trucks (``axle_loads``) with an axle far beyond legal limits (``HEAVY_AXLE``): possible (a
+    permit load), but more often a unit slip."""
+    entries = [("vehicle", scenario.vehicle)] if scenario.vehicle is not None else \
+        [(f"vehicles[{i}]", v) for i, v in enumerate(scenario.vehicles or (), start=1)]
+    out = []
+    for key, spec in entries:
+        loads = spec.parameters.get("axle_loads") if "axle_loads" in (spec.model_extra or {}) else None
+        if loads and max(loads) > HEAVY_AXLE:
+            k = int(np.argmax(loads))
+            out.append(f"{key}.axle_loads: axle {k + 1} carries {loads[k] / 1e3:.4g} kN, far beyond legal single-axle "
+                       f"limits (≈ 89 kN US, 113 kN EU); axle loads are in N")
+    return out
+
+
 def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
     """Refuse a load effect whose static value is zero wherever a wheel can stand (a moment at a pinned
     end, a reaction of a support without stiffness): no static peak, hence no impact factor.  The
@@ -218,7 +238,8 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     run = check_steps(crossing, limits)
     check_response_points(built)
     check_load_effects(scenario, built)
-    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
+    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built) \
+        + axle_load_warnings(scenario)
     for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)
         warnings += [w for w in point_warnings(crossing, p.x, p.y) if w not in warnings]
     return Plan(scenario, built, run.dt, run.estimate, warnings, run)
