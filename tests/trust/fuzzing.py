@@ -318,7 +318,7 @@ def must_refuse(data: Any, key: str = "") -> bool:
 def _expand(data: dict) -> dict:
     """``vehicles.more = N``: N sprung masses one after another (a budget above 50 vehicles)."""
     more = data.get("vehicles", {}).pop("more", None) if isinstance(data.get("vehicles"), dict) else None
-    if more is not None:
+    if isinstance(more, int) and not isinstance(more, bool) and 0 < more <= 500:
         data["vehicles"] = [{"model": "sprung-mass", "speed": 20.0, "entry_time": 1.0 * i} for i in range(more)]
         data.pop("vehicle", None)
     return data

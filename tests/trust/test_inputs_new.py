@@ -214,6 +214,7 @@ def _modes_scenario(tmp_path: Path, extra: str = "") -> Path:
     ({"default_girder": "2"}, ["default_girder", "integer 1 … 1"]),
     ({"girder_y": "1e300"}, ["girder_y", "within the node lines"]),
     ({"default_lateral_offset": "1e300"}, ["default_lateral_offset", "±50 m"]),
+    ({"deck_width": "1e300"}, ["deck_width", "to 200 m"]),  # found by the fuzz test: accepted
 ])
 def test_mode_file_headers_out_of_range(tmp_path, edit, words):
     _mode_file(tmp_path, edit)

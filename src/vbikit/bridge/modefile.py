@@ -59,6 +59,8 @@ MAGIC = "vbikit-modes 1"
 DEFAULT_LEVER_ARM = 0.5
 #: largest |default_lateral_offset| a file may give [m] (the scenario's limit of a lateral offset)
 MAX_LATERAL_OFFSET = 50.0
+#: widest deck a file may give [m]
+MAX_DECK_WIDTH = 200.0
 
 
 class ModeFileError(VbikitError):
@@ -405,11 +407,15 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
     if girder is not None and not (np.isfinite(girder) and girder == int(girder) and 1 <= girder <= n_girders):
         raise ModeFileError(f"{path}: header 'default_girder' must be an integer 1 … {n_girders} (the girders, or node "
                             f"lines, of the file), got {header['default_girder']!r}")
+    width = _one_float(header, "deck_width", path)
+    if width is not None and not (np.isfinite(width) and float(ys[-1] - ys[0]) <= width <= MAX_DECK_WIDTH):
+        raise ModeFileError(f"{path}: header 'deck_width' must be a width [m] from the node lines' spread "
+                            f"{float(ys[-1] - ys[0])!r} to {MAX_DECK_WIDTH:g} m, got {header['deck_width']!r}")
     return ImportedModalBridge(
         modes, omega[:keep], damping, lever, girders,
         default_lateral_offset=0.0 if offset is None else offset,
         default_girder=1 if girder is None else int(girder), name=path.stem,
-        deck_width=_one_float(header, "deck_width", path),
+        deck_width=width,
     )
 
 
