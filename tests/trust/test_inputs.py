@@ -200,8 +200,17 @@ def test_report_states_every_vehicle(tmp_path):
 
 
 def test_a_bridge_that_cannot_be_solved_is_exit_2(tmp_path):
-    """Found by the fuzz test: a continuous beam with a span of 1e300 m ended in a RuntimeError traceback."""
-    text = BEAM.replace('model = "paper-bridge-2-beam"', 'model = "continuous-beam"\nspans = [55.0, 1e300]\n'
-                                                         'EI = 5e9\nmass_per_length = 5000.0')
+    """Found by the fuzz test: a continuous beam with a span of 1e300 m ended in a RuntimeError traceback
+    (that span is now refused by its range, 0.5 … 5000 m; a beam on springs of zero stiffness everywhere,
+    a mechanism, still cannot be solved)."""
+    text = BEAM.replace('model = "paper-bridge-2-beam"', 'model = "continuous-beam"\nspans = [55.0, 10.0]\n'
+                                                         'EI = 5e9\nmass_per_length = 5000.0\n'
+                                                         'support_stiffness = [0.0, 0.0, 0.0]')
     for res in _both(_write(tmp_path, text)):
-        assert res.exit_code == 2 and "bridge (model = 'continuous-beam')" in res.output, res.output
+        assert res.exit_code == 2 and "bridge (model = 'continuous-beam'): the model could not be solved" in res.output, \
+            res.output
+    for spans, words in (("[55.0, 1e300]", "less than or equal to 5000"), ("[55.0, 1e-6]", "greater than or equal to 0.5")):
+        text = BEAM.replace('model = "paper-bridge-2-beam"', f'model = "continuous-beam"\nspans = {spans}\n'
+                                                             'EI = 5e9\nmass_per_length = 5000.0')
+        for res in _both(_write(tmp_path, text)):  # a span of 1e-6 m ended in an IndexError traceback
+            assert res.exit_code == 2 and "bridge.spans[2]" in res.output and words in res.output, res.output

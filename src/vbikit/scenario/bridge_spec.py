@@ -32,6 +32,10 @@ class DamageSpec(Section):
 #: upper ends of the beam properties [N m^2], [kg/m] (far above any bridge: a steel box girder has EI ≈ 1e13 N m^2)
 MAX_EI = 1e16
 MAX_MASS_PER_LENGTH = 1e6
+#: span lengths of a continuous beam [m] (the longest bridge spans are about 2 km; shorter than 0.5 m the mesh
+#: of ``elements_per_span`` elements degenerates)
+MIN_SPAN = 0.5
+MAX_SPAN = 5000.0
 _POSITIVE = Annotated[float, Field(gt=0)]
 _EI = Annotated[float, Field(gt=0, le=MAX_EI)]
 _MASS = Annotated[float, Field(gt=0, le=MAX_MASS_PER_LENGTH)]
@@ -142,7 +146,7 @@ class ContinuousBeamSpec(BridgeKind):
     model: Literal["continuous-beam"] = Field(..., description="Euler–Bernoulli beam over several spans")
     EI: Optional[Union[_EI, list[_EI]]] = Field(None, description="bending stiffness, one or one per span [N m^2]")
     mass_per_length: Optional[Union[_MASS, list[_MASS]]] = Field(None, description="mass per length, one or one per span [kg/m]")
-    spans: Optional[list[_POSITIVE]] = Field(None, description="span lengths [m]")
+    spans: Optional[list[Annotated[float, Field(ge=MIN_SPAN, le=MAX_SPAN)]]] = Field(None, description="span lengths [m]")
     support_stiffness: Optional[Union[_SPRING, list[_SPRING]]] = Field(
         None, description="vertical support springs [N/m], one or one per support (inf = rigid); default rigid")
     rotational_stiffness: Optional[list[_SPRING]] = Field(
