@@ -362,3 +362,14 @@ def test_deck_girder_type_names_the_key(tmp_path, girder):
     """Found by the fuzz test: girder = "IX" gave "unknown girder type" without the key."""
     _refused(_write(tmp_path, DECK + f"[bridge.deck]\ngirder = {girder}\n" + ONE_TRUCK),
              ["bridge.deck.girder", "AASHTO type (I, II, III, IV, V, VI)"])
+
+
+@pytest.mark.parametrize("model, key, value, words", [
+    ("sprung-mass", "mass", "1e300", ["vehicles[1].mass", "<= 1e+06 kg"]),
+    ("moving-force", "force", "1e300", ["vehicles[1].force", "<= 1e+07 N"]),
+    ("quarter-car", "tire_stiffness", "1e300", ["vehicles[1].tire_stiffness", "<= 1e+12 N/m"]),
+    ("quarter-car", "suspension_damping", "1e300", ["vehicles[1].suspension_damping", "<= 1e+09 N s/m"]),
+])
+def test_vehicle_parameters_above_their_range(tmp_path, model, key, value, words):
+    """A sprung mass of 1e300 kg or a force of 1e300 N passed validate and ran."""
+    _refused(_write(tmp_path, BEAM + _vehicles(f'model = "{model}"\n{key} = {value}')), words)

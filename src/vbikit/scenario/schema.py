@@ -106,6 +106,13 @@ def _is_number(value: Any) -> bool:
     return not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
 
 
+#: largest value [unit] of a vehicle preset's number parameter, by the quantity its name ends with (far above
+#: any road vehicle: a 1000 t mass, a 10 MN force)
+VEHICLE_PARAMETER_LIMITS: dict[str, tuple[float, str]] = {
+    "mass": (1e6, "kg"), "force": (1e7, "N"), "stiffness": (1e12, "N/m"), "damping": (1e9, "N s/m"),
+}
+
+
 def _check_parameter(key: str, value: Any, kind: str) -> None:
     """Type and sign of one vehicle parameter (the model checks the rest); messages start "key: "."""
     if kind == "numbers":
@@ -122,6 +129,9 @@ def _check_parameter(key: str, value: Any, kind: str) -> None:
             raise ValueError(f"{key}: must be a number, got {value!r}")
         if value < 0 or (value == 0 and "damping" not in key):
             raise ValueError(f"{key}: must be {'>= 0' if 'damping' in key else '> 0'}, got {value!r}")
+        limit = VEHICLE_PARAMETER_LIMITS.get(key.rsplit("_", 1)[-1])
+        if limit is not None and value > limit[0]:
+            raise ValueError(f"{key}: must be <= {limit[0]:g} {limit[1]}, got {value!r}")
 
 
 class TireSpec(Section):
