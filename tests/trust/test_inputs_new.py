@@ -373,3 +373,11 @@ def test_deck_girder_type_names_the_key(tmp_path, girder):
 def test_vehicle_parameters_above_their_range(tmp_path, model, key, value, words):
     """A sprung mass of 1e300 kg or a force of 1e300 N passed validate and ran."""
     _refused(_write(tmp_path, BEAM + _vehicles(f'model = "{model}"\n{key} = {value}')), words)
+
+
+def test_bridge_command_refuses_more_modes_than_the_file_has(tmp_path):
+    _mode_file(tmp_path)
+    res = runner.invoke(app, ["bridge", str(_modes_scenario(tmp_path)), "--modes", "10", "--no-plot"])
+    assert res.exit_code == 2 and "bridge.n_modes = 10" in res.output and "has 3 modes" in res.output, res.output
+    res = runner.invoke(app, ["bridge", str(_modes_scenario(tmp_path)), "--modes", "2", "--no-plot"])
+    assert res.exit_code == 0 and "mode  2" in res.output and "mode  3" not in res.output, res.output
