@@ -61,8 +61,8 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
             raise ValueError(f"unknown [bridge.deck] key {key!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
         if key == "girder" and not isinstance(value, (dict, str)) or key == "girder" and isinstance(value, str) \
                 and value not in AASHTO_GIRDERS:
-            raise ValueError(f"bridge.deck.girder: must be an AASHTO type ({', '.join(AASHTO_GIRDERS)}) or a table "
-                             f"{{area, inertia, y_bottom, depth}}, got {value!r}")
+            raise ValueError(f"bridge.deck.girder: unknown girder type {value!r}; allowed: an AASHTO type "
+                             f"({', '.join(AASHTO_GIRDERS)}) or a table {{area, inertia, y_bottom, depth}}")
         if key == "girder" and isinstance(value, dict):
             need = ("area", "inertia", "y_bottom", "depth")
             if sorted(value) != sorted(need):
