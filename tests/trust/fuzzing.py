@@ -204,6 +204,209 @@ def scenarios() -> st.SearchStrategy[bytes]:
     return mutated(BASE_SCENARIOS, SCENARIO_KEYS).map(to_toml).flatmap(damaged_text)
 
 
+# ------------------------------------------------------------------------------------- surfaces added since the paper
+# [[vehicles]] (every key, axle trucks, per-vehicle tires), [bridge.deck], [[bridge.damage]], continuous-beam
+# keys, load-effect sections, and mode files (a file written by the project's writer, its headers and rows
+# damaged).  Each generated input also says whether it must be refused (``must_refuse``): it holds a NaN, or an
+# infinity outside the keys where inf means rigid (support and rotational springs).
+
+SPRING_KEYS = ("support_stiffness", "rotational_stiffness")
+SPEEDS_KMH = st.one_of(st.floats(1, 400), NUMBERS)
+def _plausible(good: Any) -> Any:
+    """Mostly ``good`` values, sometimes any number."""
+    return st.one_of(good, good, good, NUMBERS)
+
+
+@st.composite
+def axle_trucks(draw) -> dict:
+    """An [[vehicles]] table of model "axles": loads and spacings mostly of matching lengths."""
+    n = draw(st.one_of(st.integers(1, 8), st.sampled_from([60, 2000])))
+    out: dict[str, Any] = {"model": "axles",
+                           "axle_loads": draw(st.lists(_plausible(st.floats(2e4, 2e5)), min_size=n, max_size=n)),
+                           "axle_spacings": draw(st.lists(_plausible(st.floats(1.0, 8.0)), min_size=n - 1, max_size=n - 1))}
+    if draw(st.integers(0, 4)) == 0:
+        out[draw(st.sampled_from(["axle_loads", "axle_spacings"]))] = draw(st.one_of(WEIRD, st.lists(NUMBERS, max_size=3)))
+    for key, good in (("half_track", st.floats(0.5, 1.5)), ("tire_deflection", st.floats(0.005, 0.05)),
+                      ("suspension_deflection", st.floats(0.01, 0.2)), ("suspension_damping_ratio", st.floats(0, 0.9)),
+                      ("tire_damping_ratio", st.floats(0, 0.9)), ("tractor_groups", st.integers(-1, 4)),
+                      ("unsprung_masses", st.lists(_plausible(st.floats(300, 1500)), min_size=n, max_size=n))):
+        if draw(st.integers(0, 5)) == 0:
+            out[key] = draw(_plausible(good))
+    return out
+
+
+AXLE_TRUCK = axle_trucks()
+LISTED_VEHICLE = st.one_of(
+    st.fixed_dictionaries(
+        {"model": st.sampled_from(["sprung-mass", "moving-force", "two-axle", "hs20-44", "quarter-car", "3s2", "zz"])},
+        optional={"speed": NUMBERS, "speed_kmh": SPEEDS_KMH, "direction": st.sampled_from(["+x", "-x", "up"]),
+                  "entry_time": st.one_of(st.floats(0, 3), NUMBERS), "lateral_offset": st.one_of(st.floats(-6, 6), NUMBERS),
+                  "acceleration": st.one_of(st.floats(-3, 3), NUMBERS), "mass": NUMBERS, "stiffness": NUMBERS,
+                  "force": NUMBERS, "tire": st.fixed_dictionaries({"model": st.sampled_from(["point", "multipoint", "disk"])},
+                                                                   optional={"n_points": st.integers(-1, 40)})}),
+    AXLE_TRUCK,
+)
+DECK_TABLE = st.fixed_dictionaries({}, optional={
+    "spans": st.one_of(st.lists(st.one_of(st.floats(5, 40), NUMBERS, WEIRD), max_size=4), WEIRD,
+                       st.just([10.0] * 40)),
+    "n_elements": st.integers(-1, 10**6), "n_girders": st.integers(-1, 30), "span": NUMBERS,
+    "girder_spacing": NUMBERS, "default_girder": st.one_of(st.integers(-1, 12), NUMBERS), "skew": NUMBERS,
+    "girder": st.one_of(st.sampled_from(["II", "IX"]), st.fixed_dictionaries(
+        {"area": NUMBERS, "inertia": NUMBERS, "y_bottom": NUMBERS, "depth": NUMBERS})),
+})
+DAMAGE = st.lists(st.fixed_dictionaries({}, optional={
+    "position": st.one_of(st.floats(0, 30), NUMBERS), "length": st.one_of(st.floats(0.1, 10), NUMBERS),
+    "severity": st.one_of(st.floats(0, 0.99), NUMBERS), "girder": st.one_of(st.integers(-1, 8), WEIRD)}), max_size=3)
+SECTIONS = st.one_of(st.lists(st.one_of(st.floats(0, 30), NUMBERS), max_size=4), WEIRD)
+
+NEW_SURFACE_KEYS: dict[tuple[str, ...], Any] = {
+    ("vehicles",): st.lists(LISTED_VEHICLE, min_size=0, max_size=4),
+    ("vehicles", "more"): st.sampled_from([60, 200]),  # replaced by that many sprung masses (see new_surface_inputs)
+    ("bridge", "model"): st.sampled_from(["continuous-beam", "slab-on-girder", "paper-bridge-2", "paper-bridge-2-beam",
+                                          "beam"]),
+    ("bridge", "spans"): st.one_of(st.lists(st.one_of(st.floats(2, 60), NUMBERS), max_size=5), WEIRD,
+                                   st.sampled_from([[10.0] * 25, [10.0] * 3000])),
+    ("bridge", "EI"): st.one_of(NUMBERS, st.lists(NUMBERS, max_size=3)),
+    ("bridge", "mass_per_length"): st.one_of(NUMBERS, st.lists(NUMBERS, max_size=3)),
+    ("bridge", "support_stiffness"): st.one_of(NUMBERS, st.lists(st.one_of(st.sampled_from([0.0, 1e6, 1e12]), NUMBERS),
+                                                                 max_size=4)),
+    ("bridge", "rotational_stiffness"): st.lists(NUMBERS, max_size=3),
+    ("bridge", "elements_per_span"): st.one_of(st.integers(-1, 1200), WEIRD),
+    ("bridge", "neutral_axis_depth"): NUMBERS, ("bridge", "damping_ratio"): NUMBERS,
+    ("bridge", "n_modes"): st.integers(-1, 30),
+    ("bridge", "deck"): DECK_TABLE,
+    ("bridge", "damage"): DAMAGE,
+    ("response", "moment"): SECTIONS, ("response", "shear"): SECTIONS,
+    ("response", "reaction"): st.one_of(st.lists(st.integers(-1, 6), max_size=4), WEIRD),
+    ("response", "load_effect_method"): st.sampled_from(["mode-acceleration", "mode-superposition", "other"]),
+    ("crossing", "speed_kmh"): SPEEDS_KMH,
+}
+
+NEW_SURFACE_BASES = [
+    {"bridge": {"model": "continuous-beam", "spans": [10.0, 12.0], "EI": 5e9, "mass_per_length": 5000.0, "n_modes": 3},
+     "crossing": {"approach": 1.0, "free_vibration": 0.05},
+     "vehicles": [{"model": "sprung-mass", "speed": 20.0},
+                  {"model": "two-axle", "speed_kmh": 60.0, "direction": "-x", "entry_time": 0.1}]},
+    {"bridge": {"model": "paper-bridge-2", "n_modes": 3, "deck": {"n_elements": 10}},
+     "crossing": {"approach": 1.0, "free_vibration": 0.05, "speed_kmh": 70.0},
+     "vehicles": [{"model": "hs20-44", "lateral_offset": -1.8}, {"model": "hs20-44", "lateral_offset": 1.8}]},
+    {"bridge": {"model": "continuous-beam", "spans": [8.0, 10.0, 8.0], "EI": [4e9, 6e9, 4e9], "mass_per_length": 4000.0,
+                "n_modes": 3, "support_stiffness": [1e12, 1e9, 1e9, 1e12],
+                "damage": [{"position": 3.0, "length": 1.5, "severity": 0.3}]},
+     "vehicle": {"model": "axles", "axle_loads": [40e3, 80e3, 80e3], "axle_spacings": [4.0, 1.3]},
+     "crossing": {"speed_kmh": 60.0, "approach": 1.0, "free_vibration": 0.05},
+     "response": {"moment": [4.0, 8.0], "shear": [1.0], "reaction": [0, 1]}},
+    {"bridge": {"model": "paper-bridge-2", "n_modes": 3, "deck": {"n_elements": 10},
+                "damage": [{"position": 5.0, "length": 2.0, "severity": 0.2, "girder": 2}]},
+     "vehicle": {"model": "hs20-44"}, "crossing": {"speed_kmh": 60.0, "approach": 1.0, "free_vibration": 0.05},
+     "response": {"moment": [8.38], "reaction": [0, 1]}},
+]
+
+
+def must_refuse(data: Any, key: str = "") -> bool:
+    """True when ``data`` holds a value no scenario may accept: a NaN anywhere, an infinity outside the
+    spring keys (where inf means rigid)."""
+    if isinstance(data, dict):
+        return any(must_refuse(v, k) for k, v in data.items())
+    if isinstance(data, list):
+        return any(must_refuse(v, key) for v in data)
+    if isinstance(data, float):
+        return math.isnan(data) or (math.isinf(data) and key not in SPRING_KEYS)
+    return False
+
+
+def _expand(data: dict) -> dict:
+    """``vehicles.more = N``: N sprung masses one after another (a budget above 50 vehicles)."""
+    more = data.get("vehicles", {}).pop("more", None) if isinstance(data.get("vehicles"), dict) else None
+    if isinstance(more, int) and not isinstance(more, bool) and 0 < more <= 500:
+        data["vehicles"] = [{"model": "sprung-mass", "speed": 20.0, "entry_time": 1.0 * i} for i in range(more)]
+        data.pop("vehicle", None)
+    return data
+
+
+@st.composite
+def new_surface_inputs(draw) -> tuple[bytes, bool]:
+    """(scenario TOML, must_refuse) over the surfaces added since the paper."""
+    data = _expand(draw(mutated(NEW_SURFACE_BASES, NEW_SURFACE_KEYS)))
+    return draw(damaged_text(to_toml(data))), must_refuse(data)
+
+
+def _mode_file_text() -> str:
+    """A mode file written by the project's writer (a three-line grillage, three modes)."""
+    import tempfile
+
+    from vbikit.bridge.modefile import write_modes
+    from vbikit.bridge.presets import BRIDGE_PRESETS
+
+    with tempfile.TemporaryDirectory() as tmp:
+        bridge = BRIDGE_PRESETS["paper-bridge-2"].build(n_modes=3, n_elements=6)
+        return write_modes(bridge, Path(tmp) / "m.csv").read_text()
+
+
+MODE_FILE_TEXT: list[str] = []
+MODE_HEADERS = ["span", "frequencies_hz", "omega", "damping_ratios", "girder_y", "strain_lever_arm",
+                "default_lateral_offset", "default_girder", "deck_width", "skew", "skew_tan"]
+HEADER_VALUES = st.one_of(
+    st.lists(st.floats(-5, 50), min_size=1, max_size=5).map(lambda v: ", ".join(map(repr, v))),
+    st.lists(st.floats(-5, 50), min_size=1, max_size=5).map(lambda v: ", ".join(map(repr, sorted(v)))),
+    st.lists(st.one_of(st.floats(-5, 50), NUMBERS), min_size=0, max_size=6).map(lambda v: ", ".join(map(repr, v))),
+    st.sampled_from(["", "10 20", "nan", "inf", "-inf", "x", "1,,2", "0", "-1", "1e300", "2.5", "5", "0.5", "1", "4"]),
+)
+TAME_VEHICLE = st.fixed_dictionaries({"model": st.sampled_from(["hs20-44", "sprung-mass", "two-axle"])},
+                                     optional={"lateral_offset": st.floats(-4.5, 4.5), "entry_time": st.floats(0, 1),
+                                               "direction": st.sampled_from(["+x", "-x"])})
+
+
+@st.composite
+def mode_file_inputs(draw) -> tuple[bytes, bytes, bool]:
+    """(scenario TOML, mode file, must_refuse): a scenario reading fuzz.modes.csv, the file's headers
+    replaced, removed or added, its rows damaged."""
+    if not MODE_FILE_TEXT:
+        MODE_FILE_TEXT.append(_mode_file_text())
+    lines = MODE_FILE_TEXT[0].splitlines()
+    refuse = False
+    for _ in range(draw(st.integers(0, 2))):
+        key = draw(st.sampled_from(MODE_HEADERS))
+        at = [i for i, line in enumerate(lines) if line.startswith(f"# {key} =")]
+        action = draw(st.sampled_from(["set", "set", "set", "delete"]))
+        if action == "delete":
+            lines = [line for i, line in enumerate(lines) if i not in at]
+            continue
+        value = draw(HEADER_VALUES)
+        if key in ("frequencies_hz", "omega", "span") and any(w in value.split(", ") for w in ("nan", "inf", "-inf")):
+            refuse = True
+        if at:
+            lines[at[0]] = f"# {key} = {value}"
+        else:
+            lines.insert(1, f"# {key} = {value}")
+    rows = draw(st.sampled_from(["intact"] * 12 + ["drop", "nan", "text", "truncate"]))
+    first = next(i for i, line in enumerate(lines) if line and not line.startswith("#")) + 1
+    if rows == "drop" and len(lines) > first + 1:
+        del lines[draw(st.integers(first, len(lines) - 1))]
+    elif rows in ("nan", "text") and len(lines) > first:
+        i = draw(st.integers(first, len(lines) - 1))
+        cells = lines[i].split(",")
+        cells[draw(st.integers(0, len(cells) - 1))] = "nan" if rows == "nan" else "zz"
+        lines[i] = ",".join(cells)
+        refuse = True
+    elif rows == "truncate":
+        lines = lines[: draw(st.integers(0, len(lines)))]
+    bridge: dict[str, Any] = {"model": "modes-file", "modes_file": "fuzz.modes.csv"}
+    for key, values in (("n_modes", st.one_of(st.integers(1, 4), st.integers(-1, 6))),
+                        ("damping_ratio", st.one_of(st.sampled_from([0.02, 0.05]), st.floats(0, 0.99), NUMBERS))):
+        if draw(st.integers(0, 3)) == 0:
+            bridge[key] = draw(values)
+    data = {"bridge": bridge, "crossing": {"speed_kmh": 60.0, "approach": 1.0, "free_vibration": 0.05}}
+    if draw(st.booleans()):
+        data["vehicle"] = {"model": "hs20-44"}
+    else:
+        data["vehicles"] = draw(st.lists(st.one_of(TAME_VEHICLE, TAME_VEHICLE, LISTED_VEHICLE), min_size=1, max_size=2))
+    if draw(st.booleans()):
+        data["response"] = {"girder": draw(st.integers(-1, 6))}
+    refuse = refuse or must_refuse(data)
+    return to_toml(data).encode(), ("\n".join(lines) + "\n").encode(), refuse
+
+
 # ------------------------------------------------------------------------------------- studies
 
 STUDY_BASE = {"name": "fuzz", "seed": 1, "batch_size": 2, "base": BASE_SCENARIOS[1],

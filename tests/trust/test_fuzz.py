@@ -1,8 +1,11 @@
-"""Fuzz tests (hypothesis): generated scenarios, studies and field files (see ``fuzzing.py``).
+"""Fuzz tests (hypothesis): generated scenarios, studies and field files (see ``fuzzing.py``), and the
+surfaces added since the paper: [[vehicles]], [bridge.deck], [[bridge.damage]], continuous-beam keys,
+load-effect sections and mode files.
 
 Every run ends in exit 0 with finite outputs, or exit 2 with one message naming a key or the file;
-never a traceback, a hang, NaN/Infinity in an output, or a scenario that ``validate`` accepts and
-``run`` then refuses.  The default run tries 200 inputs (derandomised, the same every time); the
+never a traceback, a hang, NaN/Infinity in an output, a scenario that ``validate`` accepts and
+``run`` then refuses, or (new surfaces, mode files) an input holding a NaN or a stray infinity that
+``validate`` accepts (silent acceptance).  The default run tries 200 inputs (derandomised, the same every time); the
 ``slow`` variants try ten times as many, randomly.  With ``VBIKIT_FUZZ_LOG=path`` every outcome is
 appended to that file (JSON lines) instead of asserted — that is how the counts in
 docs/changelog.md were measured.
@@ -15,7 +18,16 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from fuzzing import RUN_LIMITS, field_files, judge, scenarios, studies, time_limit
+from fuzzing import (
+    RUN_LIMITS,
+    field_files,
+    judge,
+    mode_file_inputs,
+    new_surface_inputs,
+    scenarios,
+    studies,
+    time_limit,
+)
 from hypothesis import HealthCheck, given, settings
 from typer.testing import CliRunner
 
@@ -60,6 +72,36 @@ def check_scenario(text: bytes) -> None:
         _record("scenario", outcome, ran, text)
 
 
+def check_scenario_files(text: bytes, refuse: bool, files: dict[str, bytes] | None = None,
+                         kind: str = "new-surfaces") -> None:
+    """``check_scenario`` with further files beside the scenario (a mode file), and the judge of silent
+    acceptance: an input that must be refused (``fuzzing.must_refuse``) and passes ``validate``."""
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "fuzz.toml"
+        path.write_bytes(text)
+        for name, data in (files or {}).items():
+            (Path(tmp) / name).write_bytes(data)
+        names = ("fuzz.toml", *(files or {}))
+        shown = text + b"".join(b"\n--- " + n.encode() + b" ---\n" + d[:1500] for n, d in (files or {}).items())
+        summary = Path(tmp) / "summary.json"
+        validated = _invoke(["validate", str(path), *RUN_LIMITS])
+        outcome = judge(validated, names)
+        if outcome == "ok" and refuse:
+            outcome = "silent acceptance"
+        if outcome != "ok":
+            return _record(f"{kind}-validate", outcome, validated, shown)
+        ran = _invoke(["run", str(path), "--json", "--summary", str(summary), *RUN_LIMITS])
+        outcome = judge(ran, names, (summary,))
+        if outcome == "clean":
+            outcome = "validate ok, run refused"
+        _record(kind, outcome, ran, shown)
+
+
+def check_mode_file(inputs: tuple[bytes, bytes, bool]) -> None:
+    toml, modes, refuse = inputs
+    check_scenario_files(toml, refuse, {"fuzz.modes.csv": modes}, "mode-file")
+
+
 def check_study(text: bytes) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "fuzz-study.toml"
@@ -98,6 +140,19 @@ def test_fuzz_scenarios(text):
     check_scenario(text)
 
 
+@_settings(60, slow=False)
+@given(new_surface_inputs())
+def test_fuzz_new_surfaces(inputs):
+    """[[vehicles]], [bridge.deck], [[bridge.damage]], continuous-beam keys and load-effect sections."""
+    check_scenario_files(*inputs)
+
+
+@_settings(40, slow=False)
+@given(mode_file_inputs())
+def test_fuzz_mode_files(inputs):
+    check_mode_file(inputs)
+
+
 @_settings(50, slow=False)
 @given(studies())
 def test_fuzz_studies(text):
@@ -129,3 +184,18 @@ def test_fuzz_studies_more(text):
 @given(field_files())
 def test_fuzz_field_files_more(files):
     check_field(files)
+
+
+@pytest.mark.slow
+@_settings(200, slow=True)
+@given(new_surface_inputs())
+def test_fuzz_new_surfaces_more(inputs):
+    """2,000 generated inputs over the surfaces added since the paper."""
+    check_scenario_files(*inputs)
+
+
+@pytest.mark.slow
+@_settings(60, slow=True)
+@given(mode_file_inputs())
+def test_fuzz_mode_files_more(inputs):
+    check_mode_file(inputs)

@@ -63,8 +63,11 @@ CASES = {
                   ["time steps", "crossing.dt"]),
     "dt-longer-than-crossing": (BEAM + "integrator = \"newmark\"\ndt = 1e9\n", ["crossing.dt = 1e+09 s", "fewer than 10 steps"]),
     # found by the fuzz run with exact modal stepping: wheels 7e16 m off the deck diverged after validate
-    "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7e16\n",
+    # (a lateral offset of -7e16 m is now refused by its range, ±50 m, before the deck width is known)
+    "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7.0\n",
                             ["crossing.lateral_offset", "off the 9.75 m wide deck"]),
+    "lateral-offset-huge": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7e16\n",
+                            ["crossing.lateral_offset", "greater than or equal to -50"]),
     # [[vehicles]] are checked like [vehicle]: a listed truck 5 m off the centreline of a 9.75 m deck, and one
     # driving -x whose mirrored wheels leave the deck on the other side
     "listed-wheels-off-the-deck": ('[bridge]\nmodel = "paper-bridge-2"\nn_modes = 4\n[crossing]\nspeed_kmh = 60\n'
@@ -197,8 +200,17 @@ def test_report_states_every_vehicle(tmp_path):
 
 
 def test_a_bridge_that_cannot_be_solved_is_exit_2(tmp_path):
-    """Found by the fuzz test: a continuous beam with a span of 1e300 m ended in a RuntimeError traceback."""
-    text = BEAM.replace('model = "paper-bridge-2-beam"', 'model = "continuous-beam"\nspans = [55.0, 1e300]\n'
-                                                         'EI = 5e9\nmass_per_length = 5000.0')
+    """Found by the fuzz test: a continuous beam with a span of 1e300 m ended in a RuntimeError traceback
+    (that span is now refused by its range, 0.5 … 5000 m; a beam on springs of zero stiffness everywhere,
+    a mechanism, still cannot be solved)."""
+    text = BEAM.replace('model = "paper-bridge-2-beam"', 'model = "continuous-beam"\nspans = [55.0, 10.0]\n'
+                                                         'EI = 5e9\nmass_per_length = 5000.0\n'
+                                                         'support_stiffness = [0.0, 0.0, 0.0]')
     for res in _both(_write(tmp_path, text)):
-        assert res.exit_code == 2 and "bridge (model = 'continuous-beam')" in res.output, res.output
+        assert res.exit_code == 2 and "bridge (model = 'continuous-beam'): the model could not be solved" in res.output, \
+            res.output
+    for spans, words in (("[55.0, 1e300]", "less than or equal to 5000"), ("[55.0, 1e-6]", "greater than or equal to 0.5")):
+        text = BEAM.replace('model = "paper-bridge-2-beam"', f'model = "continuous-beam"\nspans = {spans}\n'
+                                                             'EI = 5e9\nmass_per_length = 5000.0')
+        for res in _both(_write(tmp_path, text)):  # a span of 1e-6 m ended in an IndexError traceback
+            assert res.exit_code == 2 and "bridge.spans[2]" in res.output and words in res.output, res.output

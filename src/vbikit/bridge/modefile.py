@@ -57,6 +57,10 @@ log = logging.getLogger(__name__)
 MAGIC = "vbikit-modes 1"
 #: strain lever arm used when a file gives none [m] (the beam's default)
 DEFAULT_LEVER_ARM = 0.5
+#: largest |default_lateral_offset| a file may give [m] (the scenario's limit of a lateral offset)
+MAX_LATERAL_OFFSET = 50.0
+#: widest deck a file may give [m]
+MAX_DECK_WIDTH = 200.0
 
 
 class ModeFileError(VbikitError):
@@ -308,9 +312,18 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
             raise ModeFileError(f"{path}: missing header '# {key} = ...'")
     freqs = _floats(header["frequencies_hz"], "frequencies_hz")
     n = freqs.size
+    _check_frequencies(freqs, "frequencies_hz", "Hz", path)
     omega = _floats(header["omega"], "omega") if "omega" in header else 2.0 * np.pi * freqs
     if omega.size != n:
         raise ModeFileError(f"{path}: omega has {omega.size} values but frequencies_hz has {n}")
+    _check_frequencies(omega, "omega", "rad/s", path)
+    if not np.allclose(omega, 2.0 * np.pi * freqs, rtol=1e-6, atol=0.0):
+        k = int(np.argmax(np.abs(omega - 2.0 * np.pi * freqs) / omega))
+        raise ModeFileError(f"{path}: header 'omega' must be 2π × frequencies_hz (within 1e-6): mode {k + 1} has omega "
+                            f"{float(omega[k])!r} rad/s and frequencies_hz {float(freqs[k])!r} Hz")
+    span = _one_float(header, "span", path)
+    if not (np.isfinite(span) and span > 0):
+        raise ModeFileError(f"{path}: header 'span' must be one length > 0 [m], got {header['span']!r}")
     skew = _floats(header["skew"], "skew") if "skew" in header else np.zeros(1)
     if skew.size != 1 or not (np.isfinite(skew[0]) and abs(skew[0]) < 90.0):
         raise ModeFileError(f"{path}: header 'skew' must be one angle in degrees, -90 < skew < 90, got {header['skew']!r}")
@@ -332,7 +345,6 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
         raise ModeFileError(f"{path}: every row needs {len(columns)} finite numbers") from None
     if table.shape[1] != len(columns) or not np.all(np.isfinite(table)):
         raise ModeFileError(f"{path}: every row needs {len(columns)} finite numbers")
-    span = float(_floats(header["span"], "span")[0])
     if columns[0] == "x" and skew_tan:  # plan x of an oblique mesh: the stations along the lines
         table[:, 0] = _stations_from_plan(table[:, 0] - table[:, 1] * skew_tan, table[:, 1], span, path)
     xs, ys = np.unique(table[:, 0]), np.unique(table[:, 1])
@@ -362,18 +374,57 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
             wy = wy - skew_tan * wx
     keep = n if n_modes is None else min(int(n_modes), n)
     modes = NodalModes(xs, ys, w[:, :, :keep], wx[:, :, :keep], wy[:, :, :keep], skew_tan)
-    damping = _floats(header["damping_ratios"], "damping_ratios")[:keep] if "damping_ratios" in header else damping_ratio
+    if "damping_ratios" in header:
+        ratios = _floats(header["damping_ratios"], "damping_ratios")
+        if ratios.size not in (1, n) or not np.all(np.isfinite(ratios) & (ratios >= 0) & (ratios < 1)):
+            raise ModeFileError(f"{path}: header 'damping_ratios' must be 1 or {n} ratios in [0, 1), got "
+                                f"{header['damping_ratios']!r}")
+        damping = ratios[:keep] if ratios.size == n else ratios
+    else:
+        damping = damping_ratio
     if "strain_lever_arm" in header:
         lever = _floats(header["strain_lever_arm"], "strain_lever_arm")
         if lever.size not in (1, ys.size):
             raise ModeFileError(f"{path}: strain_lever_arm needs 1 or {ys.size} values, got {lever.size}")
+        if not np.all(np.isfinite(lever) & (lever > 0)):
+            raise ModeFileError(f"{path}: header 'strain_lever_arm' must be lengths > 0 [m] (neutral axis to bottom "
+                                f"fibre), got {header['strain_lever_arm']!r}")
     else:
         log.warning("%s gives no strain_lever_arm; using %.2f m for strains", path, DEFAULT_LEVER_ARM)
         lever = np.array([DEFAULT_LEVER_ARM])
     girders = _floats(header["girder_y"], "girder_y") if "girder_y" in header else None
+    if girders is not None:
+        lo, hi = float(ys[0]), float(ys[-1])
+        if girders.size < 1 or not np.all(np.isfinite(girders)) or np.any(np.diff(girders) <= 0) \
+                or girders[0] < lo - 1e-9 * max(1.0, abs(lo)) or girders[-1] > hi + 1e-9 * max(1.0, abs(hi)):
+            raise ModeFileError(f"{path}: header 'girder_y' must be ascending y [m] within the node lines "
+                                f"{lo!r} … {hi!r} m, got {header['girder_y']!r}")
+    offset = _one_float(header, "default_lateral_offset", path)
+    if offset is not None and not (np.isfinite(offset) and abs(offset) <= MAX_LATERAL_OFFSET):
+        raise ModeFileError(f"{path}: header 'default_lateral_offset' must be within ±{MAX_LATERAL_OFFSET:g} m, got "
+                            f"{header['default_lateral_offset']!r}")
+    n_girders = ys.size if girders is None else girders.size
+    girder = _one_float(header, "default_girder", path)
+    if girder is not None and not (np.isfinite(girder) and girder == int(girder) and 1 <= girder <= n_girders):
+        raise ModeFileError(f"{path}: header 'default_girder' must be an integer 1 … {n_girders} (the girders, or node "
+                            f"lines, of the file), got {header['default_girder']!r}")
+    width = _one_float(header, "deck_width", path)
+    if width is not None and not (np.isfinite(width) and float(ys[-1] - ys[0]) <= width <= MAX_DECK_WIDTH):
+        raise ModeFileError(f"{path}: header 'deck_width' must be a width [m] from the node lines' spread "
+                            f"{float(ys[-1] - ys[0])!r} to {MAX_DECK_WIDTH:g} m, got {header['deck_width']!r}")
     return ImportedModalBridge(
         modes, omega[:keep], damping, lever, girders,
-        default_lateral_offset=float(header.get("default_lateral_offset", 0.0)),
-        default_girder=int(float(header.get("default_girder", 1))), name=path.stem,
-        deck_width=_one_float(header, "deck_width", path),
+        default_lateral_offset=0.0 if offset is None else offset,
+        default_girder=1 if girder is None else int(girder), name=path.stem,
+        deck_width=width,
     )
+
+
+def _check_frequencies(values: NDArray[np.float64], key: str, unit: str, path: Path) -> None:
+    """Refuse frequencies that are not finite, > 0 and ascending (header ``key``)."""
+    if values.size < 1 or not np.all(np.isfinite(values) & (values > 0)):
+        raise ModeFileError(f"{path}: header {key!r} must be one finite frequency > 0 [{unit}] per mode, got "
+                            f"{', '.join(map(repr, values.tolist())) or 'none'}")
+    if np.any(np.diff(values) < 0):
+        raise ModeFileError(f"{path}: header {key!r} must be ascending (the lowest mode first)")
+

@@ -7,6 +7,7 @@ import json
 from pathlib import Path
 from typing import Annotated, Any, ClassVar, Literal, Optional, Union, get_args
 
+import numpy as np
 from pydantic import Discriminator, Field, Tag, field_validator, model_validator
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
@@ -28,8 +29,16 @@ class DamageSpec(Section):
         return Damage(self.position, self.length, self.severity, self.girder)
 
 
+#: upper ends of the beam properties [N m^2], [kg/m] (far above any bridge: a steel box girder has EI ≈ 1e13 N m^2)
+MAX_EI = 1e16
+MAX_MASS_PER_LENGTH = 1e6
+#: span lengths of a continuous beam [m] (the longest bridge spans are about 2 km; shorter than 0.5 m the mesh
+#: of ``elements_per_span`` elements degenerates)
+MIN_SPAN = 0.5
+MAX_SPAN = 5000.0
 _POSITIVE = Annotated[float, Field(gt=0)]
-_POSITIVE_OR_LIST = Union[_POSITIVE, list[_POSITIVE]]
+_EI = Annotated[float, Field(gt=0, le=MAX_EI)]
+_MASS = Annotated[float, Field(gt=0, le=MAX_MASS_PER_LENGTH)]
 _SPRING = Annotated[float, Field(ge=0, allow_inf_nan=True)]
 
 _DAMPING_RATIO = Annotated[float, Field(ge=0, lt=1, description="modal damping ratio, every mode [-]")]
@@ -99,8 +108,8 @@ class BeamSpec(BridgeKind):
 
     model: Literal["beam"] = Field("beam", description="Euler–Bernoulli beam")
     span: Optional[float] = Field(None, gt=0, description="span length [m]")
-    EI: Optional[float] = Field(None, gt=0, description="bending stiffness [N m^2]")
-    mass_per_length: Optional[float] = Field(None, gt=0, description="mass per length [kg/m]")
+    EI: Optional[float] = Field(None, gt=0, le=MAX_EI, description="bending stiffness [N m^2]")
+    mass_per_length: Optional[float] = Field(None, gt=0, le=MAX_MASS_PER_LENGTH, description="mass per length [kg/m]")
     damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
     n_modes: _N_MODES = 10
     neutral_axis_depth: _NEUTRAL_AXIS = None
@@ -135,9 +144,9 @@ class ContinuousBeamSpec(BridgeKind):
     """[bridge] model = "continuous-beam": spans in a row on springs (vbikit.bridge.ContinuousBeam)."""
 
     model: Literal["continuous-beam"] = Field(..., description="Euler–Bernoulli beam over several spans")
-    EI: Optional[_POSITIVE_OR_LIST] = Field(None, description="bending stiffness, one or one per span [N m^2]")
-    mass_per_length: Optional[_POSITIVE_OR_LIST] = Field(None, description="mass per length, one or one per span [kg/m]")
-    spans: Optional[list[_POSITIVE]] = Field(None, description="span lengths [m]")
+    EI: Optional[Union[_EI, list[_EI]]] = Field(None, description="bending stiffness, one or one per span [N m^2]")
+    mass_per_length: Optional[Union[_MASS, list[_MASS]]] = Field(None, description="mass per length, one or one per span [kg/m]")
+    spans: Optional[list[Annotated[float, Field(ge=MIN_SPAN, le=MAX_SPAN)]]] = Field(None, description="span lengths [m]")
     support_stiffness: Optional[Union[_SPRING, list[_SPRING]]] = Field(
         None, description="vertical support springs [N/m], one or one per support (inf = rigid); default rigid")
     rotational_stiffness: Optional[list[_SPRING]] = Field(
@@ -207,11 +216,22 @@ class ModesFileSpec(BridgeKind):
     def build(self, base_dir: Path | str = ".") -> ModalBridge:
         from vbikit.bridge.modefile import modes_from_file
 
-        n_modes = self.n_modes if "n_modes" in self.model_fields_set else None
+        path = Path(base_dir) / self.modes_file
         try:
-            return modes_from_file(Path(base_dir) / self.modes_file, damping_ratio=self.damping_ratio, n_modes=n_modes)
+            bridge = modes_from_file(path, damping_ratio=self.damping_ratio)
+            n_file = int(bridge.omega.size)
+            if "n_modes" in self.model_fields_set and self.n_modes > n_file:
+                raise ScenarioError(f"bridge.n_modes = {self.n_modes}: the mode file {self.modes_file} has {n_file} modes; "
+                                    f"give n_modes 1 … {n_file}, or leave it out for all of them")
+            if "n_modes" in self.model_fields_set and self.n_modes < n_file:
+                bridge = modes_from_file(path, damping_ratio=self.damping_ratio, n_modes=self.n_modes)
         except ValueError as err:
             raise ScenarioError(f"bridge.modes_file: {err}") from None
+        if "damping_ratio" in self.model_fields_set and np.any(bridge.damping_ratios != self.damping_ratio):
+            raise ScenarioError(f"bridge.damping_ratio = {self.damping_ratio:g}: the mode file {self.modes_file} gives its "
+                                f"own damping_ratios ({', '.join(f'{z:g}' for z in bridge.damping_ratios)}), which would "
+                                "be used; remove bridge.damping_ratio, or the file's damping_ratios header")
+        return bridge
 
 
 def _deck_preset(name: str) -> bool:

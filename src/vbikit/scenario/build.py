@@ -25,7 +25,18 @@ from vbikit.scenario.schema import (
     TireSpec,
     VehicleEntry,
 )
-from vbikit.solve.budget import BudgetError, Limits, check_bridge, check_road
+from vbikit.solve.budget import (
+    MAX_AXLES,
+    MAX_BEAM_ELEMENTS,
+    MAX_EFFECT_ELEMENTS,
+    MAX_SPANS,
+    MAX_VEHICLES,
+    BudgetError,
+    Limits,
+    check_bridge,
+    check_road,
+    check_size,
+)
 from vbikit.solve.crossing import Crossing, VehicleMotion
 from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -205,7 +216,39 @@ def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
                             f"({type(err).__name__}: {err}); check the bridge's dimensions and properties") from None
 
 
+def check_sizes(scenario: Scenario, limits: Limits | None = None) -> None:
+    """Refuse a scenario whose size (axles of a vehicle, vehicles, spans, beam elements, load effects
+    × elements) is above its budget (``vbikit.solve.budget.check_size``), before anything is built."""
+    vehicles = [("vehicle", scenario.vehicle)] if scenario.vehicle is not None else \
+        [(f"vehicles[{i}]", v) for i, v in enumerate(scenario.vehicles or (), start=1)]
+    check_size("vehicles: vehicles in one crossing", len(vehicles), MAX_VEHICLES, limits, "run fewer vehicles at once")
+    for key, spec in vehicles:
+        axles = (spec.model_extra or {}).get("axle_loads")
+        if isinstance(axles, list):
+            check_size(f"{key}.axle_loads: axles of one vehicle", len(axles), MAX_AXLES, limits, "give fewer axles")
+    bridge = scenario.bridge
+    deck = bridge.deck or {}
+    spans = getattr(bridge, "spans", None) or (deck.get("spans") if isinstance(deck.get("spans"), list) else None)
+    if not spans:
+        return
+    key = "bridge.spans" if getattr(bridge, "spans", None) else "bridge.deck.spans"
+    n = len(spans)
+    check_size(f"{key}: spans", n, MAX_SPANS, limits, "give fewer spans")
+    per_span = getattr(bridge, "elements_per_span", None)
+    if per_span is None:  # a grillage: its degrees of freedom are checked once it is meshed (check_bridge)
+        return
+    elements = n * int(per_span)
+    check_size(f"bridge.elements_per_span: {n} spans × {per_span} elements", elements, MAX_BEAM_ELEMENTS, limits,
+               "use fewer bridge.elements_per_span")
+    r = scenario.response
+    defaults = {"moment": 2 * n - 1, "shear": n, "reaction": n + 1}  # the beam's default load effects
+    effects = sum(len(getattr(r, k)) if getattr(r, k) is not None else d for k, d in defaults.items())
+    check_size(f"response: {effects} load effects × {elements} beam elements", effects * elements, MAX_EFFECT_ELEMENTS,
+               limits, "ask for fewer response.moment / shear / reaction or use fewer bridge.elements_per_span")
+
+
 def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
+    check_sizes(scenario, limits)
     try:
         bridge = build_bridge(scenario.bridge, scenario.base_dir)
         check_bridge(bridge, limits)

@@ -12,7 +12,7 @@ from dataclasses import fields
 import numpy as np
 
 from vbikit.bridge.girder_deck import SlabOnGirderBridge
-from vbikit.bridge.sections import GirderSection
+from vbikit.bridge.sections import AASHTO_GIRDERS, GirderSection
 
 #: model fields a ``[bridge.deck]`` table does not set: ``[bridge]`` keys (n_modes, damping_ratio,
 #: damage), labels and cache settings
@@ -59,6 +59,10 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
     for key, value in table.items():
         if key not in SCENARIO_PARAMETERS:
             raise ValueError(f"unknown [bridge.deck] key {key!r}; allowed: {', '.join(SCENARIO_PARAMETERS)}")
+        if key == "girder" and not isinstance(value, (dict, str)) or key == "girder" and isinstance(value, str) \
+                and value not in AASHTO_GIRDERS:
+            raise ValueError(f"bridge.deck.girder: unknown girder type {value!r}; allowed: an AASHTO type "
+                             f"({', '.join(AASHTO_GIRDERS)}) or a table {{area, inertia, y_bottom, depth}}")
         if key == "girder" and isinstance(value, dict):
             need = ("area", "inertia", "y_bottom", "depth")
             if sorted(value) != sorted(need):
@@ -66,8 +70,10 @@ def deck_parameters(table: dict[str, object]) -> dict[str, object]:
             value = GirderSection(**{k: number(v, f"girder.{k}") for k, v in value.items()})
         elif key == "spans":
             if not isinstance(value, (list, tuple)) or not value:
-                raise ValueError("bridge.deck.spans: a list of span lengths [m]")
-            value = tuple(float(v) for v in value)
+                raise ValueError(f"bridge.deck.spans: must be a list of span lengths > 0 [m], got {value!r}")
+            value = tuple(number(v, "spans") for v in value)
+            if any(v <= 0 for v in value):
+                raise ValueError(f"bridge.deck.spans: every span must be > 0 m, got {list(value)}")
         elif key == "diaphragms":
             if not isinstance(value, (list, tuple)):
                 raise ValueError("bridge.deck.diaphragms: a list of x positions [m]")

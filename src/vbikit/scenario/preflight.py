@@ -69,6 +69,65 @@ def check_response_points(built: BuiltScenario) -> None:
                                 f"inside the span 0 … {bridge.span:g} m")
 
 
+#: an influence line below this (× the span for a moment) everywhere is zero: round-off of a section at a
+#: pinned end, a free end or a support without stiffness
+_ZERO_INFLUENCE = 1e-9
+
+
+#: an axle load above this [N] is far beyond legal limits (single axle: 20 kip ≈ 89 kN in the US, 11.5 t ≈
+#: 113 kN in the EU; twice the larger)
+HEAVY_AXLE = 226e3
+
+
+def axle_load_warnings(scenario: Scenario) -> list[str]:
+    """Axle trucks (``axle_loads``) with an axle far beyond legal limits (``HEAVY_AXLE``): possible (a
+    permit load), but more often a unit slip."""
+    entries = [("vehicle", scenario.vehicle)] if scenario.vehicle is not None else \
+        [(f"vehicles[{i}]", v) for i, v in enumerate(scenario.vehicles or (), start=1)]
+    out = []
+    for key, spec in entries:
+        loads = spec.parameters.get("axle_loads") if "axle_loads" in (spec.model_extra or {}) else None
+        if loads and max(loads) > HEAVY_AXLE:
+            k = int(np.argmax(loads))
+            out.append(f"{key}.axle_loads: axle {k + 1} carries {loads[k] / 1e3:.4g} kN, far beyond legal single-axle "
+                       f"limits (≈ 89 kN US, 113 kN EU); axle loads are in N")
+    return out
+
+
+def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
+    """Refuse a load effect whose static value is zero wherever a wheel can stand (a moment at a pinned
+    end, a reaction of a support without stiffness): no static peak, hence no impact factor.  The
+    check follows the run: the influence line under the wheel lines (mode acceleration) or the modal
+    values (mode superposition)."""
+    effects = built.load_effects
+    if not effects:
+        return
+    crossing = built.crossing
+    bridge = crossing.bridge
+    _, _, y = crossing.point_kinematics()
+    x0, x1 = bridge.deck_extent
+    xx, yy = np.meshgrid(np.linspace(x0, x1, 401), np.unique(y))
+    xi = np.asarray(bridge.span_coordinate(xx, yy))
+    on = (xi >= 0.0) & (xi <= bridge.span)
+    xs, ys = xx[on], yy[on]
+    r = built.plan.load_effect_method
+    given = {k: getattr(scenario.response, k) for k in ("moment", "shear", "reaction")}
+    seen = {"moment": 0, "shear": 0, "reaction": 0}
+    for e in effects:
+        seen[e.kind] += 1
+        if r == "mode-superposition":
+            if np.any(np.asarray(e.modal) != 0.0):
+                continue
+        else:  # a unit force's effect: [m] for a moment, [-] for a shear or reaction; round-off below the tolerance
+            values = np.asarray(e.influence(xs, ys)) if xs.size else np.zeros(1)
+            if np.max(np.abs(values)) > _ZERO_INFLUENCE * (bridge.span if e.kind == "moment" else 1.0):
+                continue
+        key = f"response.{e.kind}[{seen[e.kind]}]" if given[e.kind] is not None else f"response.{e.kind} (default)"
+        raise ScenarioError(f"{key}: the {e.label} is zero wherever a wheel can stand (a section at a pinned end or "
+                            "hinge, or a support without stiffness), so it has no static peak and no impact factor; "
+                            f"give response.{e.kind} without it")
+
+
 def check_wheels_on_deck(crossing: Crossing) -> None:
     """Refuse a vehicle whose wheels would run off a deck of known width (every vehicle: its
     lateral offset and its wheels' own y, mirrored when it drives −x)."""
@@ -82,6 +141,66 @@ def check_wheels_on_deck(crossing: Crossing) -> None:
             key = "crossing.lateral_offset" if crossing.single else f"vehicles[{i + 1}].lateral_offset"
             raise ScenarioError(f"{key} = {m.lateral_offset:g} m puts wheels at y = {off.max():.4g} m from the "
                                 f"centreline, off the {width:g} m wide deck")
+
+
+#: time samples over the run at which listed vehicles are checked for overlap
+_OVERLAP_SAMPLES = 4001
+
+
+def _footprints(crossing: Crossing, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per vehicle: its axles' x extent at the times ``t`` (lo, hi: shape (n_t, n_vehicles)) and its
+    wheels' y extent (ylo, yhi: shape (n_vehicles,)) [m]."""
+    origin, sign, y = crossing.point_kinematics()
+    veh = crossing.point_vehicle
+    s = crossing.travel(t)  # (n_t, n_vehicles)
+    n = crossing.n_vehicles
+    lo, hi = np.empty((t.size, n)), np.empty((t.size, n))
+    ylo, yhi = np.empty(n), np.empty(n)
+    for i in range(n):
+        on = veh == i
+        x = origin[on][None, :] + sign[on][None, :] * s[:, i:i + 1]
+        lo[:, i], hi[:, i] = x.min(axis=1), x.max(axis=1)
+        ylo[i], yhi[i] = y[on].min(), y[on].max()
+    return lo, hi, ylo, yhi
+
+
+def check_vehicle_overlap(crossing: Crossing) -> None:
+    """Refuse listed vehicles that would occupy the same lane at the same place: wheel tracks that
+    overlap across the deck (on a bridge without lateral extent, a beam: the same direction too, as
+    opposing vehicles there stand for two lanes) and axle extents along x that overlap, or pass through
+    each other, on the bridge while the run lasts."""
+    if crossing.single or crossing.n_vehicles < 2:
+        return
+    t = crossing.start_time + np.linspace(0.0, crossing.duration, _OVERLAP_SAMPLES)
+    lo, hi, ylo, yhi = _footprints(crossing, t)
+    x0, x1 = crossing.bridge.deck_extent
+    deck = isinstance(crossing.bridge, GirderDeck)
+    motions = crossing.vehicles
+    for i in range(crossing.n_vehicles):
+        for j in range(i + 1, crossing.n_vehicles):
+            if max(ylo[i], ylo[j]) > min(yhi[i], yhi[j]):
+                continue  # separate lanes
+            if not deck and motions[i].direction != motions[j].direction:
+                continue
+            depth = np.minimum(hi[:, i], hi[:, j]) - np.maximum(lo[:, i], lo[:, j])
+            on_bridge = (np.maximum(lo[:, i], lo[:, j]) <= x1) & (np.minimum(hi[:, i], hi[:, j]) >= x0)
+            gap = 0.5 * (lo[:, i] + hi[:, i] - lo[:, j] - hi[:, j])
+            passed = np.flatnonzero((np.sign(gap[1:]) != np.sign(gap[:-1])) & on_bridge[1:])
+            hit = np.flatnonzero((depth >= 0) & on_bridge)
+            if not hit.size and not passed.size:
+                continue
+            a, b = f"vehicles[{i + 1}]", f"vehicles[{j + 1}]"
+            lanes = (f"their wheel tracks overlap across the deck (y = {ylo[i]:.3g} … {yhi[i]:.3g} m and "
+                     f"{ylo[j]:.3g} … {yhi[j]:.3g} m)")
+            if hit.size:
+                k = hit[np.argmax(depth[hit])]
+                what = (f"at t = {t[k]:.4g} s their axles overlap by {depth[k]:.3g} m along the bridge "
+                        f"(x = {max(lo[k, i], lo[k, j]):.4g} … {min(hi[k, i], hi[k, j]):.4g} m)")
+            else:
+                k = passed[0] + 1
+                what = f"they pass through each other near x = {0.5 * (lo[k, i] + hi[k, i]):.4g} m at t = {t[k]:.4g} s"
+            raise ScenarioError(f"{a} and {b} overlap in one lane: {lanes}, and {what}; give them lateral_offset "
+                                "values a lane apart or entry_time values far enough apart")
 
 
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
@@ -115,9 +234,12 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     built = build(scenario, limits)
     crossing = built.crossing
     check_wheels_on_deck(crossing)
+    check_vehicle_overlap(crossing)
     run = check_steps(crossing, limits)
     check_response_points(built)
-    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built)
+    check_load_effects(scenario, built)
+    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built) \
+        + axle_load_warnings(scenario)
     for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)
         warnings += [w for w in point_warnings(crossing, p.x, p.y) if w not in warnings]
     return Plan(scenario, built, run.dt, run.estimate, warnings, run)

@@ -30,11 +30,18 @@ from vbikit.scenario.section import ScenarioError, Section
 from vbikit._toml import parse_toml, read_toml
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
+from vbikit.solve.budget import MAX_AXLES
 from vbikit.solve.integrators import DEFAULT_INTEGRATOR, INTEGRATORS, get_integrator, integrator_names
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 ROAD_CLASSES = ("none", *ISO_CLASSES, *PAPER_CLASSES, "psd")
+#: largest vehicle speed a scenario accepts [m/s] (1080 km/h; speeds above 150 km/h are warned about)
+MAX_SPEED = 300.0
+#: largest |lateral_offset| of a vehicle centreline [m] (decks of known width refuse wheels off the deck)
+MAX_LATERAL_OFFSET = 50.0
+#: latest entry time of a listed vehicle [s]
+MAX_ENTRY_TIME = 3600.0
 
 
 def parse_bridge(table: dict[str, Any]) -> BridgeKind:
@@ -72,6 +79,9 @@ class VehicleSpec(Section):
         missing = [k for k in preset.required if k not in extra]
         if missing:
             raise ValueError(f"vehicle {self.model!r} needs {', '.join(missing)}")
+        axles = extra.get("axle_loads")
+        if isinstance(axles, list) and len(axles) > MAX_AXLES:
+            return self  # above the axle budget: refused (or, with a raised budget, built) by the build step
         if preset.required:  # models built from data (axles): build once to check the combination
             try:
                 preset.build(**self.parameters)
@@ -96,6 +106,13 @@ def _is_number(value: Any) -> bool:
     return not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value)
 
 
+#: largest value [unit] of a vehicle preset's number parameter, by the quantity its name ends with (far above
+#: any road vehicle: a 1000 t mass, a 10 MN force)
+VEHICLE_PARAMETER_LIMITS: dict[str, tuple[float, str]] = {
+    "mass": (1e6, "kg"), "force": (1e7, "N"), "stiffness": (1e12, "N/m"), "damping": (1e9, "N s/m"),
+}
+
+
 def _check_parameter(key: str, value: Any, kind: str) -> None:
     """Type and sign of one vehicle parameter (the model checks the rest); messages start "key: "."""
     if kind == "numbers":
@@ -112,6 +129,9 @@ def _check_parameter(key: str, value: Any, kind: str) -> None:
             raise ValueError(f"{key}: must be a number, got {value!r}")
         if value < 0 or (value == 0 and "damping" not in key):
             raise ValueError(f"{key}: must be {'>= 0' if 'damping' in key else '> 0'}, got {value!r}")
+        limit = VEHICLE_PARAMETER_LIMITS.get(key.rsplit("_", 1)[-1])
+        if limit is not None and value > limit[0]:
+            raise ValueError(f"{key}: must be <= {limit[0]:g} {limit[1]}, got {value!r}")
 
 
 class TireSpec(Section):
@@ -177,12 +197,13 @@ class VehicleEntry(VehicleSpec):
     """
 
     tire: Optional[TireSpec] = Field(None, description="table [vehicles.tire] with the [tire] keys; default the scenario's [tire]")
-    lateral_offset: Optional[float] = Field(None, description="vehicle centreline from the deck centreline, positive left; default the bridge's [m]")
+    lateral_offset: Optional[float] = Field(None, ge=-MAX_LATERAL_OFFSET, le=MAX_LATERAL_OFFSET,
+                                            description="vehicle centreline from the deck centreline, positive left; default the bridge's [m]")
     direction: Literal["+x", "-x"] = Field("+x", description="driving direction")
-    speed: Optional[float] = Field(None, gt=0, description="speed when the front axle passes its entry support [m/s]")
-    speed_kmh: Optional[float] = Field(None, gt=0, description="speed when the front axle passes its entry support [km/h]")
+    speed: Optional[float] = Field(None, gt=0, le=MAX_SPEED, description="speed when the front axle passes its entry support [m/s]")
+    speed_kmh: Optional[float] = Field(None, gt=0, le=MAX_SPEED * 3.6, description="speed when the front axle passes its entry support [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
-    entry_time: float = Field(0.0, ge=0, description="time the front axle passes its entry support (x = 0 driving +x, x = span driving −x) [s]")
+    entry_time: float = Field(0.0, ge=0, le=MAX_ENTRY_TIME, description="time the front axle passes its entry support (x = 0 driving +x, x = span driving −x) [s]")
 
     @model_validator(mode="after")
     def _at_most_one_speed(self) -> "VehicleEntry":
@@ -263,8 +284,8 @@ class RoadSpec(Section):
 class CrossingSpec(Section):
     """[crossing]: speed (m/s) or speed_kmh, acceleration, approach, free vibration, dt, integrator."""
 
-    speed: Optional[float] = Field(None, gt=0, description="speed at t = 0 [m/s]")
-    speed_kmh: Optional[float] = Field(None, gt=0, description="speed at t = 0 [km/h]")
+    speed: Optional[float] = Field(None, gt=0, le=MAX_SPEED, description="speed at t = 0 [m/s]")
+    speed_kmh: Optional[float] = Field(None, gt=0, le=MAX_SPEED * 3.6, description="speed at t = 0 [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration, negative brakes [m/s^2]")
     approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
     free_vibration: Optional[float] = Field(None, ge=0, description="time simulated after the last axle leaves; default one first-mode period [s]")
@@ -274,7 +295,7 @@ class CrossingSpec(Section):
             f'"{name}", {integ.description}' for name, integ in INTEGRATORS.items()),
         json_schema_extra=lambda schema: schema.update(enum=list(integrator_names())))
     lateral_offset: Optional[float] = Field(
-        None, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
+        None, ge=-MAX_LATERAL_OFFSET, le=MAX_LATERAL_OFFSET, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
 
     @field_validator("integrator")
     @classmethod
@@ -509,12 +530,16 @@ def _table_at(data: Any, path: tuple[Any, ...]) -> dict[str, Any]:
     return data if isinstance(data, dict) else {}
 
 
+#: the names pydantic gives the members of a union (``EI = 1`` or ``EI = [1, 2]``) in an error's location
+_UNION_MEMBER = re.compile(r"^(list\[)?(constrained-[a-z]+|float|int)\]?$")
+
+
 def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
     """A key's location as users read it: ``road.defects[1].depth`` for the first
     ``[[road.defects]]`` table (arrays of tables counted from 1, in scenario, study and field files)."""
     out = ""
     for part in loc:
-        if part == "__root__":
+        if part == "__root__" or (isinstance(part, str) and _UNION_MEMBER.match(part)):
             continue
         out += f"[{part + 1}]" if isinstance(part, int) else (f".{part}" if out else str(part))
     return out

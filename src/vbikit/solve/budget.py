@@ -39,6 +39,18 @@ MAX_BRIDGE_DOF = 60_000
 POINTS_PER_STEP = 200
 #: bytes per road-profile sample while a random profile is generated
 _ROAD_BYTES = 40
+#: sizes of a run's inputs allowed at the default step limit, checked before anything is built (the
+#: work of building and checking a model grows with them, like the work of its steps); a raised
+#: ``--max-steps`` raises them in proportion (``size_budget``), a lowered one keeps them
+MAX_AXLES = 50
+#: vehicles in one crossing (one [[vehicles]] event)
+MAX_VEHICLES = 50
+#: spans of a continuous beam
+MAX_SPANS = 20
+#: Hermite elements of a continuous beam (all spans)
+MAX_BEAM_ELEMENTS = 4000
+#: load effects × beam elements (each load effect of a continuous beam integrates over every element)
+MAX_EFFECT_ELEMENTS = 100_000
 
 
 class BudgetError(VbikitError):
@@ -92,6 +104,25 @@ def check_road(length: float, spacing: float, n_min: float, limits: Limits | Non
             f"{what}: a random profile of max(length = {length:g} m, 1/n_min = {1 / n_min:g} m) at spacing = "
             f"{spacing:g} m has {n:.3g} samples and needs ≈ {human(need)}, above the memory limit "
             f"{human(limits.max_memory)}; use a larger road.spacing, a shorter road.length, or raise --max-memory")
+
+
+def size_budget(base: int, limits: Limits | None = None) -> int:
+    """A size budget ``base`` (one of ``MAX_AXLES`` … ``MAX_EFFECT_ELEMENTS``) under ``limits``:
+    ``base`` at the default step limit or below, in proportion above it."""
+    limits = limits or Limits()
+    return int(base * max(1.0, limits.max_steps / DEFAULT_MAX_STEPS))
+
+
+def check_size(what: str, count: int, base: int, limits: Limits | None = None, advice: str = "") -> None:
+    """Refuse ``count`` of ``what`` above ``size_budget(base, limits)``; the message names the
+    budget, the ``--max-steps`` that would allow it, and ``advice`` (the inputs to change)."""
+    allowed = size_budget(base, limits)
+    if count > allowed:
+        need = math.ceil(count / base * DEFAULT_MAX_STEPS)
+        raise BudgetError(
+            f"{what}: {count} is above the budget of {allowed} (checked before the model is built; the size budgets "
+            f"grow with --max-steps above its default {DEFAULT_MAX_STEPS:.3g}): raise --max-steps to {need:.3g} or "
+            f"more{f', or {advice}' if advice else ''}")
 
 
 def check_bridge(bridge: object, limits: Limits | None = None) -> None:

@@ -32,9 +32,12 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
 
         i = int(np.argmin(ok))
         c = result.crossing
+        front = np.atleast_1d(np.asarray(result.front_position[i], float))
+        where = f"front axle at x = {float(front[0]):.3f} m" if front.size == 1 else \
+            "front axles at " + ", ".join(f"x = {float(x):.3f} m (vehicle {k})" for k, x in enumerate(front, start=1))
         raise DivergenceError(
-            f"the integration diverged at step {i} of {result.n_steps} (t = {result.time[i]:.6g} s, front axle at "
-            f"x = {', '.join(f'{x:.3f}' for x in result.front_position[i])} m): non-finite states with {c.integrator} at dt = {result.dt:.3g} s; "
+            f"the integration diverged at step {i} of {result.n_steps} (t = {result.time[i]:.6g} s, {where}): "
+            f"non-finite states with {c.integrator} at dt = {result.dt:.3g} s; "
             "use a smaller crossing.dt (or leave it out), fewer bridge modes, or "
             + " or ".join(f'integrator = "{name}"' for name in implicit_names() if name != c.integrator))
     return result

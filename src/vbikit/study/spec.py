@@ -140,6 +140,13 @@ def set_dotted(data: dict[str, Any], key: str, value: Any) -> None:
     node[parts[-1]] = value
 
 
+#: scenario sections that are arrays of tables: what to sweep instead
+ARRAY_SECTIONS = {
+    "vehicles": "sweep crossing.speed_kmh (or crossing.speed), the speed of every listed vehicle that gives none "
+                "of its own, or write one study per vehicle layout",
+}
+
+
 def _check_key(key: str, base: dict[str, Any]) -> None:
     parts = key.split(".")
     if len(parts) == 1:
@@ -151,6 +158,9 @@ def _check_key(key: str, base: dict[str, Any]) -> None:
     if section not in Scenario.model_fields or section == "name":
         raise StudyError(f"axes.{key!r}: unknown scenario section {section!r}; allowed: "
                          f"{', '.join(k for k in Scenario.model_fields if k != 'name')}")
+    if section in ARRAY_SECTIONS:
+        raise StudyError(f"axes.{key!r}: [[{section}]] is an array of tables, and an axis cannot address one of its "
+                         f"entries; {ARRAY_SECTIONS[section]}")
     if parts[:2] == ["bridge", "deck"] and len(parts) == 3:  # a slab-on-girder deck parameter
         from vbikit.scenario.deck import SCENARIO_PARAMETERS
 

@@ -71,6 +71,10 @@ SUSPENSION_DEFLECTION = 0.033
 SUSPENSION_DAMPING_RATIO = 0.10
 TIRE_DAMPING_RATIO = 0.03
 HALF_TRACK = 0.9
+#: largest half-track [m] (a 4 m wide vehicle; road vehicles are at most 2.6 m wide)
+MAX_HALF_TRACK = 2.0
+#: largest static tire or suspension deflection [m]
+MAX_DEFLECTION = 0.5
 STEER_UNSPRUNG_MASS = 700.0
 UNSPRUNG_MASS = 1100.0
 BODY_HEIGHT = 2.5
@@ -228,10 +232,10 @@ def axle_truck(
         raise ValueError(f"axle_loads must be > 0 N, got {list(loads)}")
     if not (np.all(np.isfinite(spacings)) and np.all(spacings > 0) and np.all(spacings <= 30)):
         raise ValueError(f"axle_spacings must be in (0, 30] m, got {list(spacings)}")
-    for key, v in (("half_track", half_track), ("tire_deflection", tire_deflection),
-                   ("suspension_deflection", suspension_deflection)):
-        if not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{key} must be > 0, got {v!r}")
+    for key, v, hi in (("half_track", half_track, MAX_HALF_TRACK), ("tire_deflection", tire_deflection, MAX_DEFLECTION),
+                       ("suspension_deflection", suspension_deflection, MAX_DEFLECTION)):
+        if not (math.isfinite(v) and 0 < v <= hi):
+            raise ValueError(f"{key} must be in (0, {hi:g}] m, got {v!r}")
     for key, v in (("suspension_damping_ratio", suspension_damping_ratio), ("tire_damping_ratio", tire_damping_ratio)):
         if not (math.isfinite(v) and 0 <= v < 1):
             raise ValueError(f"{key} must be in [0, 1), got {v!r}")
@@ -247,7 +251,7 @@ def axle_truck(
         raise ValueError(f"tractor_groups must be 0 (rigid) or 1 … {len(kinds) - 1}, got {tractor_groups}")
     masses = np.array([STEER_UNSPRUNG_MASS] + [UNSPRUNG_MASS] * (n_ax - 1)) if unsprung_masses is None \
         else np.asarray(unsprung_masses, float)
-    if masses.size != n_ax or not np.all(masses > 0):
+    if masses.size != n_ax or not np.all(np.isfinite(masses) & (masses > 0)):
         raise ValueError(f"unsprung_masses needs {n_ax} value(s) > 0 kg, got {list(np.atleast_1d(masses))}")
     sprung = loads - masses * GRAVITY  # load through the suspension of each axle [N]
     if np.any(sprung < 0.25 * loads):
