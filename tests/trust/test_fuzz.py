@@ -159,6 +159,7 @@ def test_fuzz_studies(text):
     check_study(text)
 
 
+@pytest.mark.filterwarnings("ignore:.*flat FIELD.toml keys are deprecated:FutureWarning")  # generated on purpose
 @_settings(30, slow=False)
 @given(field_files())
 def test_fuzz_field_files(files):
@@ -180,6 +181,7 @@ def test_fuzz_studies_more(text):
 
 
 @pytest.mark.slow
+@pytest.mark.filterwarnings("ignore:.*flat FIELD.toml keys are deprecated:FutureWarning")  # generated on purpose
 @_settings(30, slow=True)
 @given(field_files())
 def test_fuzz_field_files_more(files):

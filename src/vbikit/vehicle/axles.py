@@ -73,8 +73,9 @@ TIRE_DAMPING_RATIO = 0.03
 HALF_TRACK = 0.9
 #: largest half-track [m] (a 4 m wide vehicle; road vehicles are at most 2.6 m wide)
 MAX_HALF_TRACK = 2.0
-#: largest static tire or suspension deflection [m]
-MAX_DEFLECTION = 0.5
+#: largest static tire or suspension deflection [m]: refuses a slip of units (mm given as m) while
+#: leaving room for the very soft suspensions that isolate the axle-hop modes in studies
+MAX_DEFLECTION = 5.0
 STEER_UNSPRUNG_MASS = 700.0
 UNSPRUNG_MASS = 1100.0
 BODY_HEIGHT = 2.5
