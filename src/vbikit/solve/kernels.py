@@ -942,7 +942,7 @@ def _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat,
     return True
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, reduced, rhs, t):
     """Solve (I − B_AA) x = ``rhs`` in place with the factors of ``_coupling`` (``t``: r work)."""
     if not reduced:
@@ -969,7 +969,7 @@ def _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, red
         rhs[i] = x
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes):
     """The end-of-step state for point forces ``f`` (n_cp, L): modal loads p = −Σ_p φ_p F_p (points on
     the deck), wheel sums ``fw``, deck ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, vehicles z = z_b + (P L1) F_w."""
@@ -1038,18 +1038,22 @@ def _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb):
 
 
 @_internal
-def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, act, u, veh, veh_piv, veh_held, rhs, t):
-    """One quasi-Newton update of the point forces ``f[:, lane]`` with the Jacobian through the vehicles
-    only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F (U: ∂F_i/∂F_w, S: sum per wheel), F = 0 off the
-    active set A, by Woodbury's identity with the n_w-square matrix I + S_A U_A, whose factorisation
-    depends only on A (``veh``, kept while A is ``veh_held[:n]``, n = ``veh_held[-1]``)."""
-    n_cp = f.shape[0]
+def _same_active_set(used, active):
+    """Whether every lane has the same active points."""
+    for k in range(active.shape[0]):
+        if used[k]:
+            a0 = active[k, 0]
+            for lane in range(1, active.shape[1]):
+                if active[k, lane] != a0:
+                    return False
+    return True
+
+
+@_internal
+def _vehicle_factor(act, na, points, vstep, u, veh, veh_piv, veh_held):
+    """Rows u_i = ∂F_i/∂F_w of the active points ``act[:na]`` and the factorised I + S_A U_A (kept in
+    ``veh`` while the active set is ``veh_held[:n]``, n = ``veh_held[-1]``)."""
     n_w = veh.shape[0]
-    na = 0
-    for k in range(n_cp):
-        if used[k] and active[k, lane]:
-            act[na] = k
-            na += 1
     cap = veh_held.size - 1
     same = veh_held[cap] == na
     if same:
@@ -1064,18 +1068,96 @@ def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, act, u, veh
         wi = points.wheel[k]
         for w in range(n_w):
             u[i, w] = kk * vstep.wheel_q[wi, w] + cc * vstep.wheel_v[wi, w]
-    if not same:
-        for a in range(n_w):
-            for b in range(n_w):
-                veh[a, b] = 1.0 if a == b else 0.0
+    if same:
+        return
+    for a in range(n_w):
+        for b in range(n_w):
+            veh[a, b] = 1.0 if a == b else 0.0
+    for i in range(na):
+        wi = points.wheel[act[i]]
+        for w in range(n_w):
+            veh[wi, w] += u[i, w]
+    _lu_factor(veh, n_w, veh_piv)
+    for i in range(na):
+        veh_held[i] = act[i]
+    veh_held[cap] = na
+
+
+@_internal
+def _vehicle_newton_lanes(f, force, used, active, points, vstep, fw, act, u, veh, veh_piv, veh_held, rhs, t,
+                          lane_err, tol, lanes):
+    """``_vehicle_newton`` for every unconverged lane at once, when all lanes share the active set
+    (``rhs`` (cap, L), ``t`` (n_w, L) work; lanes innermost)."""
+    n_cp = f.shape[0]
+    n_w = veh.shape[0]
+    n_l = f.shape[1]
+    na = 0
+    for k in range(n_cp):
+        if used[k] and active[k, 0]:
+            act[na] = k
+            na += 1
+    _vehicle_factor(act, na, points, vstep, u, veh, veh_piv, veh_held)
+    for i in range(na):
+        k = act[i]
+        for lane in range(n_l):
+            rhs[i, lane] = force[k, lane]
+        for w in range(n_w):
+            uw = u[i, w]
+            for lane in range(n_l):
+                rhs[i, lane] += uw * fw[w, lane]
+    for w in range(n_w):
+        for lane in range(n_l):
+            t[w, lane] = 0.0
+    for i in range(na):
+        w = points.wheel[act[i]]
+        for lane in range(n_l):
+            t[w, lane] += rhs[i, lane]
+    for j in range(n_w):  # forward and back substitution with the factors of veh, every lane at once
+        kp = veh_piv[j]
+        if kp != j:
+            for lane in range(n_l):
+                tmp = t[j, lane]
+                t[j, lane] = t[kp, lane]
+                t[kp, lane] = tmp
+    for i in range(n_w):
+        for j in range(i):
+            a = veh[i, j]
+            for lane in range(n_l):
+                t[i, lane] -= a * t[j, lane]
+    for i in range(n_w - 1, -1, -1):
+        for j in range(i + 1, n_w):
+            a = veh[i, j]
+            for lane in range(n_l):
+                t[i, lane] -= a * t[j, lane]
+        inv = 1.0 / veh[i, i]
+        for lane in range(n_l):
+            t[i, lane] *= inv
+    for lane in range(n_l):
+        if lane_err[lane] <= tol:  # a settled lane keeps its forces (as one lane would)
+            continue
+        for k in range(n_cp):
+            f[k, lane] = 0.0
         for i in range(na):
-            wi = points.wheel[act[i]]
+            x = rhs[i, lane]
             for w in range(n_w):
-                veh[wi, w] += u[i, w]
-        _lu_factor(veh, n_w, veh_piv)
-        for i in range(na):
-            veh_held[i] = act[i]
-        veh_held[cap] = na
+                x -= u[i, w] * t[w, lane]
+            f[act[i], lane] = x
+
+
+@_internal
+def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, act, u, veh, veh_piv, veh_held, rhs, t):
+    """One quasi-Newton update of the point forces ``f[:, lane]`` with the Jacobian through the vehicles
+    only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F (U: ∂F_i/∂F_w, S: sum per wheel), F = 0 off the
+    active set A, by Woodbury's identity with the n_w-square matrix I + S_A U_A, whose factorisation
+    depends only on A (``_vehicle_factor``)."""
+    n_cp = f.shape[0]
+    n_w = veh.shape[0]
+    na = 0
+    for k in range(n_cp):
+        if used[k] and active[k, lane]:
+            act[na] = k
+            na += 1
+    _vehicle_factor(act, na, points, vstep, u, veh, veh_piv, veh_held)
     for i in range(na):
         k = act[i]
         a = force[k, lane]
@@ -1154,6 +1236,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     n_held = -1
     veh = np.zeros((n_w, n_w)); veh_piv = np.zeros(n_w, dtype=np.int64); veh_held = np.zeros(cap + 1, dtype=np.int64)
     veh_held[cap] = -1  # the active count of the vehicle factorisation held (none yet)
+    rhs_l = np.zeros((cap, n_l)); t_l = np.zeros((n_w, n_l))
     n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)
     mat = np.zeros((n_r, n_r)); piv = np.zeros(n_r, dtype=np.int64); e = np.zeros((cap, n_m)); rhs = np.zeros(cap)
     u = np.zeros((cap, n_w)); red = np.zeros((n_m + n_w, n_m + n_w)); red_piv = np.zeros(n_m + n_w, dtype=np.int64)
@@ -1231,6 +1314,11 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
             if err <= tol_force:
                 converged = True
                 break
+            if it < QUASI_ITERATIONS and n_l > 1 and _same_active_set(work.used, work.active):
+                # every lane has the same contact set (the common case of a batch): one update for all
+                _vehicle_newton_lanes(f, force, work.used, work.active, points, vstep, fw, act, u, veh, veh_piv,
+                                      veh_held, rhs_l, t_l, lane_err, tol_force, lanes)
+                continue
             for lane in range(n_l):  # one update per unconverged lane
                 if lane_err[lane] <= tol_force:
                     continue

@@ -22,8 +22,6 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from vbikit.solve.integrators import DEFAULT_INTEGRATOR
-
 if TYPE_CHECKING:  # pragma: no cover
     from vbikit.study.spec import Study
 
@@ -81,10 +79,10 @@ FIGURES: dict[str, dict[str, Any]] = {
 #: the paper studies run with the library's default integrator (exact modal stepping; against the
 #: paper's RK4 over the whole programme, benchmarks/bench_studies.py: README, "Benchmarks");
 #: ``integrator="rk4"`` runs them as the paper did
-PAPER_INTEGRATOR = DEFAULT_INTEGRATOR
+PAPER_INTEGRATOR: str | None = None  # None: the crossings' own default (vbikit.solve.integrators)
 
 
-def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator: str = PAPER_INTEGRATOR) -> dict[str, Any]:
+def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator: str | None = PAPER_INTEGRATOR) -> dict[str, Any]:
     """The study (as the dict of its TOML) of paper figure ``fig`` ("fig5" … "fig11") on the 3D
     bridges at Girder 4, or on the beam stand-ins with ``beam=True``; ``integrator``: the
     crossings' integrator (default ``PAPER_INTEGRATOR``, the library's default; "rk4" as the paper)."""
@@ -92,7 +90,8 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator
         raise ValueError(f"unknown paper study {fig!r}; allowed: {', '.join(FIGURES)}")
     f = FIGURES[fig]
     base = _base(bridge_model(fig, beam), f["vehicle"], f["title"], beam)
-    base["crossing"]["integrator"] = integrator
+    if integrator is not None:
+        base["crossing"]["integrator"] = integrator
     if f["kind"] == "points":
         axes: dict[str, Any] = {"tire.n_points": N_POINTS, "crossing.speed_kmh": SPEEDS_5_8}
     else:
@@ -105,7 +104,7 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator
     return {"name": f"paper-{fig}" + ("-beam" if beam else ""), "seed": PAPER_SEED, "batch_size": 32, "base": base, "axes": axes}
 
 
-def paper_study(fig: str, samples: int = 20, beam: bool = False, integrator: str = PAPER_INTEGRATOR) -> Study:
+def paper_study(fig: str, samples: int = 20, beam: bool = False, integrator: str | None = PAPER_INTEGRATOR) -> Study:
     """The validated [`Study`][vbikit.study.Study] of paper figure ``fig`` (see ``paper_study_dict``)."""
     from vbikit.study.spec import parse_study
 
