@@ -1145,37 +1145,51 @@ def _vehicle_newton_lanes(f, force, used, active, points, vstep, fw, act, u, veh
 
 
 @_internal
-def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, act, u, veh, veh_piv, veh_held, rhs, t):
+def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, ksum, csum, bq, bv, veh, veh_piv, t):
     """One quasi-Newton update of the point forces ``f[:, lane]`` with the Jacobian through the vehicles
-    only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F (U: ∂F_i/∂F_w, S: sum per wheel), F = 0 off the
-    active set A, by Woodbury's identity with the n_w-square matrix I + S_A U_A, whose factorisation
-    depends only on A (``_vehicle_factor``)."""
+    only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F, F = 0 off the active set A, with
+    u_i = k_i wheel_q[w_i] + c_i wheel_v[w_i] (U: ∂F_i/∂F_w, S: sum per wheel).  By Woodbury's
+    identity it is the n_w-square system (I + S_A U_A) t = S_A b, whose matrix needs only each
+    wheel's sums of active k and c (``ksum``, ``csum``): O(points + wheels³) per lane."""
     n_cp = f.shape[0]
     n_w = veh.shape[0]
-    na = 0
+    wq, wv = vstep.wheel_q, vstep.wheel_v
+    for w in range(n_w):
+        ksum[w] = 0.0
+        csum[w] = 0.0
     for k in range(n_cp):
         if used[k] and active[k, lane]:
-            act[na] = k
-            na += 1
-    _vehicle_factor(act, na, points, vstep, u, veh, veh_piv, veh_held)
-    for i in range(na):
-        k = act[i]
-        a = force[k, lane]
-        for w in range(n_w):
-            a += u[i, w] * fw[w, lane]
-        rhs[i] = a
+            ksum[points.wheel[k]] += points.stiffness[k]
+            csum[points.wheel[k]] += points.damping[k]
     for w in range(n_w):
-        t[w] = 0.0
-    for i in range(na):
-        t[points.wheel[act[i]]] += rhs[i]
-    _lu_solve(veh, n_w, veh_piv, t)
+        aq = 0.0
+        av = 0.0
+        for w2 in range(n_w):
+            veh[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w] * wq[w, w2] + csum[w] * wv[w, w2]
+            aq += wq[w, w2] * fw[w2, lane]
+            av += wv[w, w2] * fw[w2, lane]
+        bq[w] = aq
+        bv[w] = av
+        t[w] = ksum[w] * aq + csum[w] * av  # S_A b = Σ_i∈A∩w (F_i + k_i bq + c_i bv)
     for k in range(n_cp):
-        f[k, lane] = 0.0
-    for i in range(na):
-        x = rhs[i]
-        for w in range(n_w):
-            x -= u[i, w] * t[w]
-        f[act[i], lane] = x
+        if used[k] and active[k, lane]:
+            t[points.wheel[k]] += force[k, lane]
+    _lu_factor(veh, n_w, veh_piv)
+    _lu_solve(veh, n_w, veh_piv, t)
+    for w in range(n_w):  # bq, bv ← b's vehicle terms minus U t's, per wheel
+        aq = 0.0
+        av = 0.0
+        for w2 in range(n_w):
+            aq += wq[w, w2] * t[w2]
+            av += wv[w, w2] * t[w2]
+        bq[w] -= aq
+        bv[w] -= av
+    for k in range(n_cp):
+        if used[k] and active[k, lane]:
+            w = points.wheel[k]
+            f[k, lane] = force[k, lane] + points.stiffness[k] * bq[w] + points.damping[k] * bv[w]
+        else:
+            f[k, lane] = 0.0
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
@@ -1237,6 +1251,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     veh = np.zeros((n_w, n_w)); veh_piv = np.zeros(n_w, dtype=np.int64); veh_held = np.zeros(cap + 1, dtype=np.int64)
     veh_held[cap] = -1  # the active count of the vehicle factorisation held (none yet)
     rhs_l = np.zeros((cap, n_l)); t_l = np.zeros((n_w, n_l))
+    ksum = np.zeros(n_w); csum = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); veh_lane = np.zeros((n_w, n_w))
+    veh_lane_piv = np.zeros(n_w, dtype=np.int64)
     n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)
     mat = np.zeros((n_r, n_r)); piv = np.zeros(n_r, dtype=np.int64); e = np.zeros((cap, n_m)); rhs = np.zeros(cap)
     u = np.zeros((cap, n_w)); red = np.zeros((n_m + n_w, n_m + n_w)); red_piv = np.zeros(n_m + n_w, dtype=np.int64)
@@ -1323,8 +1339,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 if lane_err[lane] <= tol_force:
                     continue
                 if it < QUASI_ITERATIONS:
-                    _vehicle_newton(f, force, work.used, work.active, lane, points, vstep, fw, act, u, veh, veh_piv,
-                                    veh_held, rhs, t)
+                    _vehicle_newton(f, force, work.used, work.active, lane, points, vstep, fw, ksum, csum, bq, bv,
+                                    veh_lane, veh_lane_piv, t)
                     continue
                 na = 0
                 for k in range(n_cp):
