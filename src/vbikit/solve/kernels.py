@@ -1207,8 +1207,10 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     (``contact_forces``, gating and envelopes included); its active points A give the affine law;
     update F_A by it, F = 0 off A; repeat until no point force changes by more than
     ``tol_force`` [N] in any lane.  The first ``QUASI_ITERATIONS`` updates use the Jacobian through
-    the vehicles only (``_vehicle_newton``: the deck's part of B is ~1e-5 for road vehicles, and
-    that factorisation depends only on A, so it is kept across steps); later ones the full
+    the vehicles only (the deck's part of B is ~1e-5 for road vehicles): an n_w-square system built
+    from each wheel's sums of active k and c (``_vehicle_newton``), or, when every lane has the same
+    contact set, one factorisation for all lanes kept while the set holds
+    (``_vehicle_newton_lanes``); later updates use the full
     Jacobian (``_coupling``, factorised once per step and active set for all lanes), which settles
     a contact change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is
     consistent, is held at zero penetration (``TOUCH_STIFFNESS``).  The first guess is the linear

@@ -22,13 +22,14 @@ if TYPE_CHECKING:  # pragma: no cover
     from vbikit.solve.system import KernelData
 
 log = logging.getLogger(__name__)
-#: says when numba compiles the kernels (the first run on a machine, ≈ 15 s; benchmarks/bench_compile.py)
+#: says when numba compiles the kernels (the first run on a machine, ≈ 30 s of CPU; benchmarks/bench_compile.py)
 #: and where its cache goes; the CLI shows it
 compile_log = logging.getLogger("vbikit.solve.compile")
 
 
-#: CPU seconds numba takes to compile the default path on a quiet machine (benchmarks/bench_compile.py)
-COMPILE_SECONDS = 40
+#: CPU seconds numba takes to compile the default path on a quiet machine (benchmarks/bench_compile.py:
+#: 32.6 s for the demo, 2026-12-02)
+COMPILE_SECONDS = 35
 
 
 def kernels_cached(kernel) -> bool:
