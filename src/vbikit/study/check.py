@@ -66,6 +66,28 @@ def _combinations(study: Study) -> list[tuple[int, ...]]:
     return out
 
 
+def _step_advice(study: Study, limits: Limits | None) -> list[str]:
+    """A study that asks for moments, shears or reactions at the automatic step: the base crossing
+    through the run pipeline's step check (``vbikit.scenario.step_check``); if its impact factors
+    settle only at a finer step, say which (the study's crossings keep the automatic step)."""
+    from vbikit.scenario.pipeline import run
+
+    scenario = parse_scenario(study.scenario_dict(tuple(0 for _ in study.axes)), study.base_dir)
+    asked = any(getattr(scenario.response, key) is not None for key in ("moment", "shear", "reaction"))
+    if not asked or scenario.crossing.dt is not None:
+        return []
+    plan = preflight(scenario, limits)
+    report = run(scenario, limits=limits)
+    checked = float(report.result.integration_dt or report.result.dt)
+    if checked >= plan.dt * (1 - 1e-9):
+        return []
+    unsettled = [w for w in report.summary["warnings"] if "not converged in the time step" in w]
+    if unsettled:  # not even the finest checked step settles them
+        return [f"base (the study's crossings run at the automatic step {plan.dt:.3g} s): {w}" for w in unsettled]
+    return [f"base: the load effects' impact factors settle only at dt = {checked:.3g} s (step check of the base "
+            f"crossing; the automatic step is {plan.dt:.3g} s): set crossing.dt = {checked:.3g} in the base"]
+
+
 def check_study(study: Study, limits: Limits | None = None, confirmed: bool = False) -> StudyCheck:
     """Size, then the preflight of the study's distinct set-ups (module docstring); raises
     StudyError naming the axis values of the first failing crossing."""
@@ -83,6 +105,7 @@ def check_study(study: Study, limits: Limits | None = None, confirmed: bool = Fa
             raise StudyError(f"base + axes ({where}): {err}") from None
         max_steps, max_memory = max(max_steps, est.n_steps), max(max_memory, est.memory)
         warnings += [f"{where}: {w}" for w in plan.warnings]
+    warnings += _step_advice(study, limits)
     if study.histories:  # the dataset holds one deflection history per crossing
         need = 8.0 * study.size * (max_steps + 1)
         limit = (limits or Limits()).max_memory
