@@ -104,9 +104,10 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     from vbikit._files import json_safe
 
     scenario = plan.scenario
-    asked = any(getattr(scenario.response, key) is not None for key in ("moment", "shear", "reaction"))
+    from vbikit.scenario.step_check import asks_for_load_effects
+
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
-                          check_step=asked)
+                          check_step=asks_for_load_effects(scenario))
     s = report.summary
     s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
     s["inputs"] = scenario_inputs(scenario, plan)

@@ -31,6 +31,12 @@ STEP_TOLERANCE = 5e-3
 MAX_HALVINGS = 6
 
 
+def asks_for_load_effects(scenario: Any) -> bool:
+    """Whether a scenario's [response] asks for moments, shears or reactions (the ones a run reports by
+    default are not asked for)."""
+    return any(getattr(scenario.response, key) is not None for key in ("moment", "shear", "reaction"))
+
+
 def impact_factors(summary: Mapping[str, Any], prefix: str = "") -> Iterator[tuple[str, float]]:
     """Every finite ``*impact_factor`` number in a run's summary (top level, ``points``, load effect
     blocks), with a path-like name."""

@@ -71,10 +71,10 @@ def _step_advice(study: Study, limits: Limits | None) -> list[str]:
     through the run pipeline's step check (``vbikit.scenario.step_check``); if its impact factors
     settle only at a finer step, say which (the study's crossings keep the automatic step)."""
     from vbikit.scenario.pipeline import run
+    from vbikit.scenario.step_check import asks_for_load_effects
 
     scenario = parse_scenario(study.scenario_dict(tuple(0 for _ in study.axes)), study.base_dir)
-    asked = any(getattr(scenario.response, key) is not None for key in ("moment", "shear", "reaction"))
-    if not asked or scenario.crossing.dt is not None:
+    if not asks_for_load_effects(scenario) or scenario.crossing.dt is not None:
         return []
     plan = preflight(scenario, limits)
     report = run(scenario, limits=limits)
