@@ -1050,69 +1050,43 @@ def _same_active_set(used, active):
 
 
 @_internal
-def _vehicle_factor(act, na, points, vstep, u, veh, veh_piv, veh_held):
-    """Rows u_i = ∂F_i/∂F_w of the active points ``act[:na]`` and the factorised I + S_A U_A (kept in
-    ``veh`` while the active set is ``veh_held[:n]``, n = ``veh_held[-1]``)."""
-    n_w = veh.shape[0]
-    cap = veh_held.size - 1
-    same = veh_held[cap] == na
-    if same:
-        for i in range(na):
-            if act[i] != veh_held[i]:
-                same = False
-                break
-    for i in range(na):
-        k = act[i]
-        kk = points.stiffness[k]
-        cc = points.damping[k]
-        wi = points.wheel[k]
-        for w in range(n_w):
-            u[i, w] = kk * vstep.wheel_q[wi, w] + cc * vstep.wheel_v[wi, w]
-    if same:
-        return
-    for a in range(n_w):
-        for b in range(n_w):
-            veh[a, b] = 1.0 if a == b else 0.0
-    for i in range(na):
-        wi = points.wheel[act[i]]
-        for w in range(n_w):
-            veh[wi, w] += u[i, w]
-    _lu_factor(veh, n_w, veh_piv)
-    for i in range(na):
-        veh_held[i] = act[i]
-    veh_held[cap] = na
-
-
-@_internal
-def _vehicle_newton_lanes(f, force, used, active, points, vstep, fw, act, u, veh, veh_piv, veh_held, rhs, t,
-                          lane_err, tol, lanes):
+def _vehicle_newton_lanes(f, force, used, active, points, vstep, fw, ksum, csum, veh, veh_piv, bq, bv, t, lane_err,
+                          tol, lanes):
     """``_vehicle_newton`` for every unconverged lane at once, when all lanes share the active set
-    (``rhs`` (cap, L), ``t`` (n_w, L) work; lanes innermost)."""
+    (one matrix for all; ``bq``, ``bv``, ``t`` (n_w, L) work; lanes innermost)."""
     n_cp = f.shape[0]
     n_w = veh.shape[0]
     n_l = f.shape[1]
-    na = 0
+    wq, wv = vstep.wheel_q, vstep.wheel_v
+    for w in range(n_w):
+        ksum[w] = 0.0
+        csum[w] = 0.0
     for k in range(n_cp):
         if used[k] and active[k, 0]:
-            act[na] = k
-            na += 1
-    _vehicle_factor(act, na, points, vstep, u, veh, veh_piv, veh_held)
-    for i in range(na):
-        k = act[i]
-        for lane in range(n_l):
-            rhs[i, lane] = force[k, lane]
-        for w in range(n_w):
-            uw = u[i, w]
-            for lane in range(n_l):
-                rhs[i, lane] += uw * fw[w, lane]
+            ksum[points.wheel[k]] += points.stiffness[k]
+            csum[points.wheel[k]] += points.damping[k]
+    for w in range(n_w):
+        for w2 in range(n_w):
+            veh[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w] * wq[w, w2] + csum[w] * wv[w, w2]
+    _lu_factor(veh, n_w, veh_piv)
     for w in range(n_w):
         for lane in range(n_l):
-            t[w, lane] = 0.0
-    for i in range(na):
-        w = points.wheel[act[i]]
+            bq[w, lane] = 0.0
+            bv[w, lane] = 0.0
+        for w2 in range(n_w):
+            q = wq[w, w2]
+            v = wv[w, w2]
+            for lane in range(n_l):
+                bq[w, lane] += q * fw[w2, lane]
+                bv[w, lane] += v * fw[w2, lane]
         for lane in range(n_l):
-            t[w, lane] += rhs[i, lane]
-    for j in range(n_w):  # forward and back substitution with the factors of veh, every lane at once
+            t[w, lane] = ksum[w] * bq[w, lane] + csum[w] * bv[w, lane]
+    for k in range(n_cp):
+        if used[k] and active[k, 0]:
+            w = points.wheel[k]
+            for lane in range(n_l):
+                t[w, lane] += force[k, lane]
+    for j in range(n_w):  # forward and back substitution, every lane at once
         kp = veh_piv[j]
         if kp != j:
             for lane in range(n_l):
@@ -1132,16 +1106,21 @@ def _vehicle_newton_lanes(f, force, used, active, points, vstep, fw, act, u, veh
         inv = 1.0 / veh[i, i]
         for lane in range(n_l):
             t[i, lane] *= inv
-    for lane in range(n_l):
-        if lane_err[lane] <= tol:  # a settled lane keeps its forces (as one lane would)
-            continue
-        for k in range(n_cp):
-            f[k, lane] = 0.0
-        for i in range(na):
-            x = rhs[i, lane]
-            for w in range(n_w):
-                x -= u[i, w] * t[w, lane]
-            f[act[i], lane] = x
+    for w in range(n_w):  # bq, bv ← b's vehicle terms minus U t's, per wheel
+        for w2 in range(n_w):
+            q = wq[w, w2]
+            v = wv[w, w2]
+            for lane in range(n_l):
+                bq[w, lane] -= q * t[w2, lane]
+                bv[w, lane] -= v * t[w2, lane]
+    for k in range(n_cp):
+        on = used[k] and active[k, 0]
+        w = points.wheel[k]
+        kk = points.stiffness[k]
+        cc = points.damping[k]
+        for lane in range(n_l):
+            if lane_err[lane] > tol:  # a settled lane keeps its forces (as one lane would)
+                f[k, lane] = force[k, lane] + kk * bq[w, lane] + cc * bv[w, lane] if on else 0.0
 
 
 @_internal
@@ -1208,9 +1187,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     update F_A by it, F = 0 off A; repeat until no point force changes by more than
     ``tol_force`` [N] in any lane.  The first ``QUASI_ITERATIONS`` updates use the Jacobian through
     the vehicles only (the deck's part of B is ~1e-5 for road vehicles): an n_w-square system built
-    from each wheel's sums of active k and c (``_vehicle_newton``), or, when every lane has the same
-    contact set, one factorisation for all lanes kept while the set holds
-    (``_vehicle_newton_lanes``); later updates use the full
+    from each wheel's sums of active k and c (``_vehicle_newton``; ``_vehicle_newton_lanes`` for
+    all lanes at once when they share the contact set); later updates use the full
     Jacobian (``_coupling``, factorised once per step and active set for all lanes), which settles
     a contact change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is
     consistent, is held at zero penetration (``TOUCH_STIFFNESS``).  The first guess is the linear
@@ -1250,9 +1228,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         cap += 1 if vehicles.wheel_envelope[w] else vehicles.wheel_count[w]
     cap = max(cap, 1)
     n_held = -1
-    veh = np.zeros((n_w, n_w)); veh_piv = np.zeros(n_w, dtype=np.int64); veh_held = np.zeros(cap + 1, dtype=np.int64)
-    veh_held[cap] = -1  # the active count of the vehicle factorisation held (none yet)
-    rhs_l = np.zeros((cap, n_l)); t_l = np.zeros((n_w, n_l))
+    bq_l = np.zeros((n_w, n_l)); bv_l = np.zeros((n_w, n_l)); t_l = np.zeros((n_w, n_l))
     ksum = np.zeros(n_w); csum = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); veh_lane = np.zeros((n_w, n_w))
     veh_lane_piv = np.zeros(n_w, dtype=np.int64)
     n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)
@@ -1334,8 +1310,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 break
             if it < QUASI_ITERATIONS and n_l > 1 and _same_active_set(work.used, work.active):
                 # every lane has the same contact set (the common case of a batch): one update for all
-                _vehicle_newton_lanes(f, force, work.used, work.active, points, vstep, fw, act, u, veh, veh_piv,
-                                      veh_held, rhs_l, t_l, lane_err, tol_force, lanes)
+                _vehicle_newton_lanes(f, force, work.used, work.active, points, vstep, fw, ksum, csum, veh_lane,
+                                      veh_lane_piv, bq_l, bv_l, t_l, lane_err, tol_force, lanes)
                 continue
             for lane in range(n_l):  # one update per unconverged lane
                 if lane_err[lane] <= tol_force:
