@@ -38,6 +38,8 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 ROAD_CLASSES = ("none", *ISO_CLASSES, *PAPER_CLASSES, "psd")
 #: largest vehicle speed a scenario accepts [m/s] (1080 km/h; speeds above 150 km/h are warned about)
 MAX_SPEED = 300.0
+#: smallest speed [m/s] (3.6 m/h: below it a crossing lasts days, and the time arithmetic underflows)
+MIN_SPEED = 1e-3
 #: largest |lateral_offset| of a vehicle centreline [m] (decks of known width refuse wheels off the deck)
 MAX_LATERAL_OFFSET = 50.0
 #: latest entry time of a listed vehicle [s]
@@ -200,8 +202,8 @@ class VehicleEntry(VehicleSpec):
     lateral_offset: Optional[float] = Field(None, ge=-MAX_LATERAL_OFFSET, le=MAX_LATERAL_OFFSET,
                                             description="vehicle centreline from the deck centreline, positive left; default the bridge's [m]")
     direction: Literal["+x", "-x"] = Field("+x", description="driving direction")
-    speed: Optional[float] = Field(None, gt=0, le=MAX_SPEED, description="speed when the front axle passes its entry support [m/s]")
-    speed_kmh: Optional[float] = Field(None, gt=0, le=MAX_SPEED * 3.6, description="speed when the front axle passes its entry support [km/h]")
+    speed: Optional[float] = Field(None, ge=MIN_SPEED, le=MAX_SPEED, description="speed when the front axle passes its entry support [m/s]")
+    speed_kmh: Optional[float] = Field(None, ge=round(MIN_SPEED * 3.6, 12), le=MAX_SPEED * 3.6, description="speed when the front axle passes its entry support [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration [m/s^2]")
     entry_time: float = Field(0.0, ge=0, le=MAX_ENTRY_TIME, description="time the front axle passes its entry support (x = 0 driving +x, x = span driving −x) [s]")
 
@@ -284,8 +286,8 @@ class RoadSpec(Section):
 class CrossingSpec(Section):
     """[crossing]: speed (m/s) or speed_kmh, acceleration, approach, free vibration, dt, integrator."""
 
-    speed: Optional[float] = Field(None, gt=0, le=MAX_SPEED, description="speed at t = 0 [m/s]")
-    speed_kmh: Optional[float] = Field(None, gt=0, le=MAX_SPEED * 3.6, description="speed at t = 0 [km/h]")
+    speed: Optional[float] = Field(None, ge=MIN_SPEED, le=MAX_SPEED, description="speed at t = 0 [m/s]")
+    speed_kmh: Optional[float] = Field(None, ge=round(MIN_SPEED * 3.6, 12), le=MAX_SPEED * 3.6, description="speed at t = 0 [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration, negative brakes [m/s^2]")
     approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
     free_vibration: Optional[float] = Field(None, ge=0, description="time simulated after the last axle leaves; default one first-mode period [s]")
