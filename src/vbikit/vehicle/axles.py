@@ -73,6 +73,9 @@ TIRE_DAMPING_RATIO = 0.03
 HALF_TRACK = 0.9
 #: largest half-track [m] (a 4 m wide vehicle; road vehicles are at most 2.6 m wide)
 MAX_HALF_TRACK = 2.0
+#: largest axle load [N] a truck is built with (1,000 t: far beyond any legal or crane load; a unit slip
+#: such as kg·m/s² given as N·1e3 is refused rather than run)
+MAX_AXLE_LOAD = 1e7
 #: largest static tire or suspension deflection [m]: refuses a slip of units (mm given as m) while
 #: leaving room for the very soft suspensions that isolate the axle-hop modes in studies
 MAX_DEFLECTION = 5.0
@@ -229,10 +232,10 @@ def axle_truck(
         raise ValueError("axle_loads must be a list of at least one axle load [N]")
     if spacings.size != n_ax - 1:
         raise ValueError(f"axle_spacings needs {n_ax - 1} value(s) for {n_ax} axles, got {spacings.size}")
-    if not (np.all(np.isfinite(loads)) and np.all(loads > 0)):
-        raise ValueError(f"axle_loads must be > 0 N, got {list(loads)}")
+    if not (np.all(np.isfinite(loads)) and np.all(loads > 0) and np.all(loads <= MAX_AXLE_LOAD)):
+        raise ValueError(f"axle_loads must be in (0, {MAX_AXLE_LOAD:g}] N, got {[float(x) for x in loads]}")
     if not (np.all(np.isfinite(spacings)) and np.all(spacings > 0) and np.all(spacings <= 30)):
-        raise ValueError(f"axle_spacings must be in (0, 30] m, got {list(spacings)}")
+        raise ValueError(f"axle_spacings must be in (0, 30] m, got {[float(x) for x in spacings]}")
     for key, v, hi in (("half_track", half_track, MAX_HALF_TRACK), ("tire_deflection", tire_deflection, MAX_DEFLECTION),
                        ("suspension_deflection", suspension_deflection, MAX_DEFLECTION)):
         if not (math.isfinite(v) and 0 < v <= hi):
