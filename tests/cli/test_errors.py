@@ -39,7 +39,7 @@ def test_good_scenario_runs(tmp_path):
     "old,new,expect",
     [
         ('mass_per_length = 5000.0', 'mass_per_length = -5000.0', ["bridge.mass_per_length", "greater than 0"]),
-        ('speed = 20.0', 'speed = 0.0', ["crossing.speed", "greater than 0"]),
+        ('speed = 20.0', 'speed = 0.0', ["crossing.speed", "greater than or equal to 0.001"]),
         ('model = "sprung-mass"', 'model = "sprung-mass"\nmass = -3.0', ["mass", "> 0"]),
         ('model = "sprung-mass"', 'model = "truck"', ["vehicle.model", "hs20-44", "quarter-car"]),
         ('[crossing]', '[tire]\nmodel = "multipoint"\nn_points = 0\n[crossing]', ["tire.n_points", "greater than or equal to 1"]),
