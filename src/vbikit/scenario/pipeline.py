@@ -138,8 +138,8 @@ def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | Non
     if check_step is None:
         check_step = bool(plan.load_effects)
     if check_step and crossing.dt is None:  # moments, shears, reactions: check the automatic step
-        report = converge_step(report, crossing, lambda finer: report_crossing(simulate(finer, limits), plan, name),
-                               limits)
+        report = converge_step(report, crossing, lambda finer: report_crossing(
+            simulate(finer.crossing, limits, plan=finer), plan, name), limits)
     return report
 
 

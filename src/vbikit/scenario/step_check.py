@@ -22,6 +22,7 @@ from typing import Any, Callable, Iterator, Mapping
 
 from vbikit.solve.budget import BudgetError, Limits
 from vbikit.solve.crossing import Crossing
+from vbikit.solve.plan import RunPlan
 
 log = logging.getLogger(__name__)
 
@@ -61,11 +62,12 @@ def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any]) -> tuple[float, 
     return change, worst
 
 
-def converge_step(report: Any, crossing: Crossing, rerun: Callable[[Crossing], Any],
+def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], Any],
                   limits: Limits | None = None) -> Any:
     """The report of ``crossing`` at the automatic step halved until its impact factors change by at
-    most ``STEP_TOLERANCE`` (``report``: the run at the automatic step; ``rerun(crossing)``: the same
-    run at ``crossing.dt``).  Adds a warning to the returned report's summary if they never do."""
+    most ``STEP_TOLERANCE`` (``report``: the run at the automatic step; ``rerun(run_plan)``: the same
+    run by a checked plan of ``crossing`` at a given dt).  Adds a warning to the returned report's
+    summary if they never do."""
     from vbikit.solve.plan import plan_run
 
     dt = float(report.result.integration_dt or report.result.dt)
@@ -74,10 +76,10 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[Crossing], A
     for _ in range(MAX_HALVINGS):
         finer = replace(crossing, dt=dt / 2)
         try:
-            plan_run(finer, limits)
+            run_plan = plan_run(finer, limits)
         except BudgetError:
             break
-        new = rerun(finer)
+        new = rerun(run_plan)
         change, worst = _largest_change(report.summary, new.summary)
         changes.append(change)
         log.info("step check: dt %.3g s -> %.3g s, largest impact-factor change %.2g (%s)", dt, dt / 2, change, worst)

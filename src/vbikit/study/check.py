@@ -70,14 +70,14 @@ def _step_advice(study: Study, limits: Limits | None) -> list[str]:
     """A study that asks for moments, shears or reactions at the automatic step: the base crossing
     through the run pipeline's step check (``vbikit.scenario.step_check``); if its impact factors
     settle only at a finer step, say which (the study's crossings keep the automatic step)."""
-    from vbikit.scenario.pipeline import run
+    from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.step_check import asks_for_load_effects
 
     scenario = parse_scenario(study.scenario_dict(tuple(0 for _ in study.axes)), study.base_dir)
     if not asks_for_load_effects(scenario) or scenario.crossing.dt is not None:
         return []
     plan = preflight(scenario, limits)
-    report = run(scenario, limits=limits)
+    report = run_planned(plan, limits)
     checked = float(report.result.integration_dt or report.result.dt)
     if checked >= plan.dt * (1 - 1e-9):
         return []

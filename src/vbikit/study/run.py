@@ -245,7 +245,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             progress(done, total)
 
     if todo:
-        _announce_compile(study, scheduler, workers)
+        _announce_compile(study, batches[todo[0]][0], scheduler, workers)
         if scheduler is not None:
             _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
         elif (workers or os.cpu_count() or 1) <= 1:
@@ -265,13 +265,14 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     return ds
 
 
-def _announce_compile(study, scheduler, workers) -> None:
-    """Say that the workers will compile the kernels first (instead of a progress bar frozen at 0 %)."""
+def _announce_compile(study, first_index, scheduler, workers) -> None:
+    """Say that the workers will compile the kernels first (instead of a progress bar frozen at 0 %);
+    ``first_index``: the first crossing to run (its integrator's kernel)."""
     from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
     from vbikit.solve.simulate import announce_compile
 
-    first = getattr(study, "scenario_dict", None)  # a parameter study's first crossing (traffic: the default)
-    name = (first(study.batches()[0][0]).get("crossing", {}).get("integrator") if first is not None else None) \
+    first = getattr(study, "scenario_dict", None)  # a parameter study's crossing (traffic: the default)
+    name = (first(first_index).get("crossing", {}).get("integrator") if first is not None else None) \
         or DEFAULT_INTEGRATOR
     kernel = get_integrator(name).kernel
     if kernel is None:
