@@ -12,8 +12,9 @@ from hypothesis import strategies as st
 
 from vbikit.fatigue import FatigueError, RainflowCounter, RainflowState, finish, histogram, join, rainflow, reversals
 
-#: ASTM E1049-85 (reapproved 2011), 5.4.4 and its Fig. 6 / Table 4 (the rainflow counting example):
-#: the reversals A…I of the example load history and the counted (range, cycles)
+#: ASTM E1049-85 (reapproved 2011), 5.4.4 (rainflow counting) and its worked example: the
+#: reversals A…I of the example load history and the counted (range, cycles) of its table (the
+#: same history and counts are quoted in the rainflow package's issue #4 and MathWorks' rainflow page)
 ASTM_HISTORY = [-2, 1, -3, 5, -1, 3, -4, 4, -2]
 ASTM_TABLE = [(3.0, 0.5), (4.0, 1.5), (6.0, 0.5), (8.0, 1.0), (9.0, 0.5)]
 
