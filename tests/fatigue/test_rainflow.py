@@ -125,6 +125,16 @@ def test_binned_counter_equals_binned_whole_count():
     for part in np.array_split(x, 9):
         c.feed(part)
     got = c.finish()
+    # the same binned counting on separate workers, states joined
+    states = []
+    for part in np.array_split(x, 5):
+        w = RainflowCounter(bin_width=width)
+        w.feed(part)
+        states.append(w.state)
+    joined = states[0]
+    for other in states[1:]:
+        joined = join(joined, other)
+    assert finish(joined) == got
     edges, totals = histogram([r for r, _ in whole], [n for _, n in whole], width)
     expected = [(k * width, t) for k, t in enumerate(totals) if t > 0]
     assert [(round(r / width), n) for r, n in got] == [(round(r / width), n) for r, n in expected]
