@@ -31,8 +31,11 @@ with F_s = k_s Δ_s + c_s Δ̇_s, F_p = k_p Δ_p + c_p Δ̇_p.
 Rigid contact (``contact="rigid"``): the wheelsets follow the rail.  vbikit's contact is a
 spring (``vbikit.contact``), so a rigid wheel is modelled by removing the wheelset DOFs: the
 primary spring–damper becomes the contact element between the bogie and the rail, and the
-wheelset's weight M_w g is a constant force carried with the wheel (``Wheel.fixed_load``).  The
-wheelset's inertia load on the bridge, M_w (ẅ_rail + r̈), is neglected (6 DOFs remain).
+wheelset's weight M_w g is a gravity load on the bogie at the axle (F_G − M_w g r_j, r_j the
+bogie point's row).  The bogie then feels the primary force F_pj exactly as with a wheelset, the
+rail feels F_pj + M_w g (the contact element carries the wheelset's weight too, so loss of contact
+is the wheel's), and only the wheelset's inertia load on the bridge, M_w (ẅ_rail + r̈), is
+neglected (6 DOFs remain).
 
 Static axle loads (statically determinate: each body rests on two supports):
 P_1 = P_2 = M_w g + (M_t g + M_c g (a − e)/(2a))/2,  P_3 = P_4 = M_w g + (M_t g + M_c g (a + e)/(2a))/2.
@@ -258,8 +261,7 @@ def rail_car(params: RailCarParameters, axle_loads: "tuple[float, ...] | list[fl
     for j, s in enumerate(s_w):
         bogie = bogies[j // 2]
         if k_contact is None:  # rigid: the primary suspension is the contact element
-            vb.wheel(f"w{j + 1}", bogie.point(s), s, 0.0, p.primary_stiffness, p.primary_damping,
-                     fixed_load=p.wheelset_mass * GRAVITY)
+            vb.wheel(f"w{j + 1}", bogie.point(s), s, 0.0, p.primary_stiffness, p.primary_damping)
         else:
             wheelset = vb.body(f"wheelset{j + 1}", p.wheelset_mass, s)
             vb.spring(bogie.point(s), wheelset.heave, p.primary_stiffness, p.primary_damping)
@@ -267,8 +269,11 @@ def rail_car(params: RailCarParameters, axle_loads: "tuple[float, ...] | list[fl
     values = {f.name: getattr(p, f.name) for f in dataclasses.fields(p)
               if isinstance(getattr(p, f.name), (int, float)) and not isinstance(getattr(p, f.name), bool)}
     kind = "rigid contact" if k_contact is None else "linearised Hertz contact" if p.contact == "hertz" else "elastic contact"
-    return vb.build(f"{p.name}: planar rail car, body + 2 bogies + 4 wheelsets, {kind}"
-                    + (f" ({p.source})" if p.source else ""), values)
+    car = vb.build(f"{p.name}: planar rail car, body + 2 bogies + 4 wheelsets, {kind}"
+                   + (f" ({p.source})" if p.source else ""), values)
+    if k_contact is None:  # the wheelsets' weight rests on the bogies' axle points (module docstring)
+        car = dataclasses.replace(car, gravity=car.gravity - p.wheelset_mass * GRAVITY * sum(w.row for w in car.wheels))
+    return car
 
 
 #: Documented cars (whole-car values; per-side literature values × 2 for the planar model).
