@@ -65,10 +65,11 @@ def test_profile_periodogram_and_variance(name):
     """One seeded profile: its periodogram over one period equals G(n_k) at every in-band grid
     wavenumber (Eq. 7 has deterministic amplitudes), zero outside the band.  Its variance is then
     the rectangle sum Σ G(n_k) Δn over the grid n_k = k/P, which by Euler–Maclaurin is
-    ∫ G dn over [n_first, n_last] + Δn (G(n_first) + G(n_last))/2 + Δn²/12 (G'(n_last) − G'(n_first))
-    + O(Δn⁴ G'''): checked against quad of the formula within 1e-4; the end term makes it exceed the band integral over [n_min, n_max]
-    by 1.3 % (German low) / 2.4 % (FRA 5) at P = 3277 m (measured 2026-12-02), bounded below by
-    Δn · G(n_min)."""
+    ∫ G dn over [n_first, n_last] + Δn (G(n_first) + G(n_last))/2
+    + Δn²/12 (G′(n_last) − G′(n_first)) + O(Δn⁴ G‴): checked against quad of the formula
+    within 1e-4.  The end term makes a realisation's variance exceed the band integral over
+    [n_min, n_max] by 1.3 % (German low) / 2.4 % (FRA 5) at P = 3277 m (measured 2026-12-02);
+    the excess is below Δn · G(n_min)."""
     psd = TRACK_PSDS[name]
     prof = track_profile(name, seed=7, spacing=0.05, length=2000.0)
     assert isinstance(prof, RoadProfile)
