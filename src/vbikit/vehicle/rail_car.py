@@ -18,7 +18,7 @@ z_c, θ_c (body), z_t1, θ_t1, z_t2, θ_t2 (bogies), z_w1 … z_w4 (wheelsets). 
 * primary k_p, c_p (per wheelset, both sides) between the bogie point above wheelset j and the
   wheelset:  Δ_pj = z_ti ± b θ_ti − z_wj  (+ for the leading wheelset of the bogie);
 * wheel–rail contact k_H (per wheelset, both wheels) between the wheelset and the rail:
-  linearised Hertz ([`hertz_stiffness`][vbikit.vehicle.rail_car.hertz_stiffness]) by default.
+  linearised Hertz ([`hertz_stiffness`][vbikit.vehicle.hertz_stiffness]) by default.
 
 Equations of motion (the builder assembles exactly these, M q̈ + C q̇ + K q = F_G + contact):
 
@@ -83,7 +83,7 @@ def hertz_stiffness(static_wheel_load: float, G: float | None = None, *, wheel_r
     """Linearised Hertz wheel–rail stiffness k_H [N/m] of one wheel about its static load.
 
     From P = (δZ / G)^(3/2):  k_H = dP/dδZ = (3 / (2G)) P₀^(1/3)  (Zhai 2020, §2.4.1; Yang, Yau &
-    Wu 2004, ch. 8).  ``G`` [m/N^(2/3)] defaults to [`hertz_constant`][vbikit.vehicle.rail_car.hertz_constant]
+    Wu 2004, ch. 8).  ``G`` [m/N^(2/3)] defaults to [`hertz_constant`][vbikit.vehicle.hertz_constant]
     of ``wheel_radius`` [m] and ``tread``.  ``static_wheel_load`` P₀ [N] is one wheel's (half an
     axle's) load.
     """
@@ -238,7 +238,7 @@ def rail_car(params: RailCarParameters, axle_loads: "tuple[float, ...] | list[fl
         The car.
     axle_loads : sequence of 4 floats, optional
         Static axle loads [N], front to rear: the body mass and centre-of-mass offset are set to
-        give them ([`RailCarParameters.with_axle_loads`][vbikit.vehicle.rail_car.RailCarParameters.with_axle_loads]).
+        give them ([`RailCarParameters.with_axle_loads`][vbikit.vehicle.RailCarParameters.with_axle_loads]).
 
     Returns
     -------
