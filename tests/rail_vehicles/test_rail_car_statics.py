@@ -108,7 +108,7 @@ def test_hertz_stiffness_hand_values():
 def test_hertz_constant_against_classical_hertz():
     """Second source: Hertz's contact of two crossed steel cylinders (wheel R_w = 0.43 m, rail crown
     R_r = 0.30 m; E = 210 GPa, ν = 0.3) approached as a sphere of radius R_e = √(R_w R_r) on a plane
-    (Johnson 1985, Contact Mechanics, §4.2, eq. 4.23 with the circular-contact approximation):
+    (Johnson 1985, Contact Mechanics, ch. 4, Hertz theory, in the circular-contact approximation):
     δ = (9 P² / (16 E*² R_e))^(1/3), so G = (9 / (16 E*² R_e))^(1/3) = 4.90e-8 m/N^(2/3).
     Zhai's fit (5.18e-8) includes the real profile's conformity; they agree within 6 %."""
     e_star = 210e9 / (2 * (1 - 0.3**2))

@@ -1,7 +1,7 @@
 # Vertical track-irregularity spectra and profiles, against the sources' formulas and constants
 # written out here: German high-speed spectra (Ω_c = 0.8246, Ω_r = 0.0206 rad/m; A_v = 4.032e-7 /
-# 1.080e-6 m·rad; Zhai 2020 §3.2) and FRA classes (k = 0.25, Ω_c = 0.8245 rad/m, A_v in cm²·rad/m;
-# Garg & Dukkipati 1984 §4.2), integrated with scipy.integrate.quad.
+# 1.080e-6 m·rad; Zhai 2020) and FRA classes (k = 0.25, Ω_c = 0.8245 rad/m, A_v in cm²·rad/m;
+# Garg & Dukkipati 1984), integrated with scipy.integrate.quad.
 from __future__ import annotations
 
 import numpy as np

@@ -2,13 +2,13 @@
 
 Spectra, Ω the angular wavenumber [rad/m], S_v(Ω) one-sided [m²/(rad/m)]:
 
-* German high-speed spectra, low and high disturbance (ORE/ERRI; as tabulated by Zhai 2020,
-  §3.2 "track irregularity power spectral densities", and Guo, Xia, De Roeck & Liu 2012):
+* German high-speed spectra, low and high disturbance (as tabulated by Zhai 2020 with the track
+  irregularity spectra, and by Guo, Xia, De Roeck & Liu 2012):
 
       S_v(Ω) = A_v Ω_c² / ((Ω² + Ω_r²)(Ω² + Ω_c²)),   Ω_c = 0.8246 rad/m, Ω_r = 0.0206 rad/m,
       A_v = 4.032e-7 m·rad (low) / 1.080e-6 m·rad (high)
 
-* US Federal Railroad Administration classes 1–6 (Garg & Dukkipati 1984, §4.2, after Hamid &
+* US Federal Railroad Administration classes 1–6 (Garg & Dukkipati 1984, after Hamid &
   Yang 1981):
 
       S_v(Ω) = k A_v Ω_c² / (Ω² (Ω² + Ω_c²)),   k = 0.25, Ω_c = 0.8245 rad/m,

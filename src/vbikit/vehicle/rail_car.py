@@ -1,6 +1,6 @@
 """Planar multibody railway car: car body, two bogies, four wheelsets (pitch and bounce).
 
-Model (Zhai 2020, ch. 2, vertical vehicle model; Yang, Yau & Wu 2004, ch. 8).  One wheel line
+Model (Zhai 2020, the vertical vehicle model of vehicle–track coupled dynamics).  One wheel line
 in the vertical plane of the track axis: every stiffness, damping and load is the *whole car's*
 (both rails together), as a beam bridge carries both rails.  Longitudinal positions s [m] are
 rearward from the leading wheelset (vbikit's convention, ``vbikit.vehicle.model``):
@@ -61,9 +61,10 @@ def hertz_constant(wheel_radius: float, tread: str = "conical") -> float:
     """Wheel–rail Hertz contact constant G [m/N^(2/3)] of Zhai's empirical fits.
 
     G = 4.57 R^(−0.149) × 10⁻⁸ (conical tread), G = 3.86 R^(−0.115) × 10⁻⁸ (worn / LM tread),
-    R the wheel rolling radius [m] (Zhai 2020, §2.4.1 "wheel/rail normal contact", after
-    Zhai 1996).  The Hertz law is δZ = G P^(2/3) (P the normal load of one wheel [N], δZ the
-    elastic approach [m]).
+    R the wheel rolling radius [m] (Zhai 2020, wheel/rail normal contact model).  The Hertz law
+    is δZ = G P^(2/3) (P the normal load of one wheel [N], δZ the elastic approach [m]).  The
+    classical Hertz compliance of steel on steel (Johnson 1985) gives G within 6 % for R = 0.43 m
+    and a 0.3 m rail crown.
     """
     if not wheel_radius > 0:
         raise ValueError(f"wheel radius must be > 0 m, got {wheel_radius!r}")
@@ -74,7 +75,7 @@ def hertz_constant(wheel_radius: float, tread: str = "conical") -> float:
     return c * wheel_radius ** (-p) * 1e-8
 
 
-#: tread -> (coefficient, exponent) of G = c R^(−p) × 1e-8 m/N^(2/3) (Zhai 2020, §2.4.1)
+#: tread -> (coefficient, exponent) of G = c R^(−p) × 1e-8 m/N^(2/3) (Zhai 2020)
 _HERTZ_FITS: dict[str, tuple[float, float]] = {"conical": (4.57, 0.149), "worn": (3.86, 0.115)}
 
 
@@ -82,9 +83,9 @@ def hertz_stiffness(static_wheel_load: float, G: float | None = None, *, wheel_r
                     tread: str = "conical") -> float:
     """Linearised Hertz wheel–rail stiffness k_H [N/m] of one wheel about its static load.
 
-    From P = (δZ / G)^(3/2):  k_H = dP/dδZ = (3 / (2G)) P₀^(1/3)  (Zhai 2020, §2.4.1; Yang, Yau &
-    Wu 2004, ch. 8).  ``G`` [m/N^(2/3)] defaults to [`hertz_constant`][vbikit.vehicle.hertz_constant]
-    of ``wheel_radius`` [m] and ``tread``.  ``static_wheel_load`` P₀ [N] is one wheel's (half an
+    From P = (δZ / G)^(3/2):  k_H = dP/dδZ = (3 / (2G)) P₀^(1/3)  (Zhai 2020).  ``G``
+    [m/N^(2/3)] defaults to [`hertz_constant`][vbikit.vehicle.hertz_constant] of ``wheel_radius``
+    [m] and ``tread``.  ``static_wheel_load`` P₀ [N] is one wheel's (half an
     axle's) load.
     """
     if not static_wheel_load > 0:
