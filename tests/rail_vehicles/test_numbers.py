@@ -36,3 +36,9 @@ def test_stiff_contact_numbers_are_current():
         for name, value in values.items():
             if name != "run_s":  # measured wall time, dated in the JSON
                 assert now[key][name] == value, (key, name)
+
+
+@pytest.mark.slow
+def test_train_numbers_are_current():
+    stored = json.loads(NUMBERS.read_text(encoding="utf-8"))["train"]
+    assert _script().train() == stored
