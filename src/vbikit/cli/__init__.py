@@ -83,6 +83,7 @@ def _main(
 
 app.add_typer(study.app, name="study")
 app.command("traffic")(traffic.traffic_cmd)
+app.command("driveby")(__import__("vbikit.cli.driveby", fromlist=["driveby_cmd"]).driveby_cmd)
 app.command()(scenarios.run)
 app.command()(scenarios.validate)
 app.command()(scenarios.cite)
