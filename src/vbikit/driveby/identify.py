@@ -63,10 +63,16 @@ def spectrum(signal: ArrayLike, fs: float, method: str = "periodogram", window: 
     return Spectrum(f, p, float(res), method, window)
 
 
-def peak(spec: Spectrum, band: tuple[float, float]) -> float:
-    """Frequency [Hz] of the highest spectral value inside ``band`` (f_lo, f_hi) [Hz]."""
+def peak(spec: Spectrum, band: tuple[float, float], exclude_hz: ArrayLike = (), exclude_width: float | None = None) -> float:
+    """Frequency [Hz] of the highest spectral value inside ``band`` (f_lo, f_hi) [Hz], outside
+    ± ``exclude_width`` [Hz] of each of ``exclude_hz`` (known frequencies, e.g. the test vehicle's
+    own); default 2 / T, the half-width of the Hann window's main lobe (a tone's peak spreads
+    that far)."""
     lo, hi = band
     sel = (spec.frequency >= lo) & (spec.frequency <= hi)
+    width = 2.0 * spec.resolution_hz if exclude_width is None else float(exclude_width)
+    for f0 in np.atleast_1d(np.asarray(exclude_hz, float)):
+        sel &= np.abs(spec.frequency - f0) > width
     if not sel.any():
         raise VbikitError(f"identification.band: [{lo:g}, {hi:g}] Hz holds no spectral line (spectrum up to "
                           f"{spec.frequency[-1]:g} Hz)")
@@ -110,14 +116,16 @@ def default_band(speed: float, span: float, vehicle_hz: ArrayLike = (), f_max: f
 
 def identify_frequency(signal: ArrayLike, fs: float, speed: float, span: float, band: Optional[tuple[float, float]] = None,
                        method: str = "periodogram", window: str = "hann", nperseg: Optional[int] = None,
-                       bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = ()) -> Identification:
+                       bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), exclude_vehicle: bool = False) -> Identification:
     """The highest spectral peak of ``signal`` (sampled at ``fs`` [Hz], a record of a pass at
     ``speed`` [m/s] over a span ``span`` [m]) inside ``band`` [Hz] (default ``default_band``),
     with the expected frequencies labelled (``frequency_labels``; the true bridge and vehicle
-    frequencies when known)."""
+    frequencies when known); ``exclude_vehicle``: skip ± 2 / T (``peak``) around the vehicle frequencies
+    ``vehicle_hz`` (known for a test vehicle; a rough road makes the vehicle shake the bridge at
+    them)."""
     spec = spectrum(signal, fs, method, window, nperseg)
     band = band or default_band(speed, span, vehicle_hz, 0.45 * fs)
-    f = peak(spec, band)
+    f = peak(spec, band, vehicle_hz if exclude_vehicle else ())
     return Identification(f, spec.resolution_hz, (float(band[0]), float(band[1])), spec,
                           frequency_labels(speed, span, bridge_hz, vehicle_hz))
 

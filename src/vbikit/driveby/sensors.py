@@ -86,7 +86,11 @@ class Sensor:
     vehicle: int = 1
 
     def __post_init__(self) -> None:
-        key = f"sensors.{self.name or '?'}"
+        import re
+
+        if not isinstance(self.name, str) or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,39}", self.name):
+            raise SensorError(f"sensors.name: {self.name!r} must be a letter then letters, digits or _ (at most 40)")
+        key = f"sensors.{self.name}"
         if (self.body is None) == (self.axle is None):
             raise SensorError(f"{key}: give body (a vehicle body's name) or axle (an axle number), one of them")
         if self.quantity not in QUANTITIES:

@@ -17,7 +17,10 @@
     body = "body"
 
     [identification]
-    method = "contact"          # "contact": contact-point acceleration (single-axle vehicle); "sensor": the sensor's own
+    method = "contact"          # "contact": contact-point acceleration (single-axle vehicle); "sensor": the sensor's own;
+                                # "residual": contact minus that of an identical vehicle following at gap [m]
+    gap = 4.0                   # method "residual": distance of the follower behind the vehicle [m]
+    exclude_vehicle = true      # skip ± 2 / T around the vehicle's own frequencies
     sensor = "cart_acc"         # default the first sensor
     band = [1.0, 20.0]          # search band [Hz]; default [4 v / L, 20 Hz]
     spectrum = "periodogram"    # or "welch"; window = "hann"
@@ -58,6 +61,8 @@ SWEEP_KEYS: dict[str, tuple[str, str]] = {
 }
 #: identification methods
 METHODS = {"contact": "spectrum of the contact-point acceleration back-calculated from the sensor (single-axle vehicle)",
+           "residual": "spectrum of the residual of the contact-point accelerations of the vehicle and an identical one "
+                       "following it at identification.gap (roughness cancellation)",
            "sensor": "spectrum of the sensor's own record"}
 #: default budget: integration steps of the whole sweep
 MAX_STEPS = 2e7
@@ -89,6 +94,8 @@ class DriveBy:
     band: Optional[tuple[float, float]]
     spectrum: str
     window: str
+    gap: float
+    exclude_vehicle: bool
     sweep: dict
     damage_length: float
     base_dir: str = "."
@@ -99,7 +106,8 @@ class DriveBy:
                            "scenario": self.scenario, "vehicle": self.vehicle,
                            "sampling": [self.sampling.rate, self.sampling.filter_order, self.sampling.cutoff],
                            "sensors": [s.__dict__ for s in self.sensors], "method": self.method, "sensor": self.sensor,
-                           "band": self.band, "spectrum": self.spectrum, "window": self.window, "sweep": self.sweep,
+                           "band": self.band, "spectrum": self.spectrum, "window": self.window, "gap": self.gap,
+                           "exclude_vehicle": self.exclude_vehicle, "sweep": self.sweep,
                            "damage_length": self.damage_length, "base_dir": self.base_dir}, sort_keys=True, default=str)
 
 
@@ -167,9 +175,16 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     if len(set(names)) != len(names):
         raise DriveByError(f"sensors.name: each sensor needs its own name, got {names}")
     ident = _table(data, "identification")
-    extra = [k for k in ident if k not in ("method", "sensor", "band", "spectrum", "window")]
+    ident_keys = ("method", "sensor", "band", "spectrum", "window", "gap", "exclude_vehicle")
+    extra = [k for k in ident if k not in ident_keys]
     if extra:
-        raise DriveByError(f"identification.{extra[0]}: unknown key; allowed: method, sensor, band, spectrum, window")
+        raise DriveByError(f"identification.{extra[0]}: unknown key; allowed: {', '.join(ident_keys)}")
+    gap = ident.get("gap", 4.0)
+    if isinstance(gap, bool) or not isinstance(gap, (int, float)) or not 0 < gap <= 1000:
+        raise DriveByError(f"identification.gap: expected a distance in (0, 1000] m, got {gap!r}")
+    exclude_vehicle = ident.get("exclude_vehicle", True)
+    if not isinstance(exclude_vehicle, bool):
+        raise DriveByError(f"identification.exclude_vehicle: expected true or false, got {exclude_vehicle!r}")
     method = ident.get("method", "contact")
     if method not in METHODS:
         raise DriveByError(f"identification.method: {method!r}; allowed: {', '.join(METHODS)}")
@@ -214,7 +229,7 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     keys = list(sweep)
     cases = tuple(dict(zip(keys, combo)) for combo in itertools.product(*(sweep[k] for k in keys)))
     spec = DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
-                   spectrum, window, sweep, float(damage_length), str(base_dir), cases)
+                   spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases)
     from vbikit.driveby.study import check_cases
 
     check_cases(spec)

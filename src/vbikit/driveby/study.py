@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
-from vbikit.driveby.identify import identify_frequency
+from vbikit.driveby.identify import identify_frequency, residual_response
 from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
@@ -106,11 +106,21 @@ def case_crossing(spec: DriveBy, case: dict):
     kwargs = dict(tire=c.tire, road=c.road, road_right=c.road_right, speed=c.speed, acceleration=c.acceleration,
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
-    crossing = Crossing(c.bridge, vehicle, dt=c.dt, **kwargs)
+
+    def make(dt):
+        if spec.method != "residual":
+            return Crossing(c.bridge, vehicle, dt=dt, **kwargs)
+        from vbikit.solve import VehicleMotion
+
+        follower = VehicleMotion(vehicle, c.speed, entry_time=spec.gap / c.speed)
+        return Crossing(c.bridge, vehicles=(VehicleMotion(vehicle, c.speed), follower), dt=dt,
+                        **{k: v for k, v in kwargs.items() if k not in ("speed", "acceleration")})
+
+    crossing = make(c.dt)
     if c.dt is None:
         dt = choose_time_step(crossing)
         k = max(1, math.ceil(1.0 / (dt * spec.sampling.rate) - 1e-9))
-        crossing = Crossing(c.bridge, vehicle, dt=1.0 / (k * spec.sampling.rate), **kwargs)
+        crossing = make(1.0 / (k * spec.sampling.rate))
     if len(_BUILT) > 64:
         _BUILT.clear()
     _BUILT[key] = crossing
@@ -138,14 +148,14 @@ def check_cases(spec: DriveBy) -> float:
             except SensorError as err:
                 raise DriveByError(str(err)) from None
         total += crossing.duration / crossing.dt
-        if spec.method == "contact" and i == 0:
+        if spec.method in ("contact", "residual") and i == 0:
             try:
-                SingleAxle.of(crossing.vehicle)
+                SingleAxle.of(crossing.vehicles[0].vehicle)
             except Exception as err:  # noqa: BLE001 - a VbikitError naming the key
                 raise DriveByError(str(err)) from None
             chosen = next(s for s in spec.sensors if s.name == spec.sensor)
             if chosen.quantity != "acceleration":
-                raise DriveByError(f"identification.sensor: method \"contact\" needs an acceleration sensor; "
+                raise DriveByError(f"identification.sensor: method \"{spec.method}\" needs an acceleration sensor; "
                                    f"{chosen.name!r} measures {chosen.quantity}")
     if total > spec.max_steps:
         raise DriveByError(f"max_steps: the sweep needs about {total:.3g} integration steps ({len(spec.cases)} cases), "
@@ -162,27 +172,38 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     crossing = case_crossing(spec, case)
     result = simulate(crossing)
     sensors = case_sensors(spec, case)
-    m = measure(result, sensors, spec.sampling, seed=derive_seed(spec.seed, index))
+    k = [s.name for s in sensors].index(spec.sensor)
+    logged = sensors
+    if spec.method == "residual":  # the same sensor on the follower
+        import dataclasses
+
+        logged = (*sensors, dataclasses.replace(sensors[k], name=f"{sensors[k].name}_follower", vehicle=2))
+    m = measure(result, logged, spec.sampling, seed=derive_seed(spec.seed, index))
     on = on_bridge(result, 0)
     t_on = result.time[on]
     window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
-    k = [s.name for s in sensors].index(spec.sensor)
+    vehicle = crossing.vehicles[0].vehicle
     signal = m.values[k]
-    if spec.method == "contact":
-        signal = contact_acceleration_from_measured(signal, SingleAxle.of(crossing.vehicle), m.dt)
-    speed = float(crossing.speed)
+    speed = float(crossing.vehicles[0].speed)
+    if spec.method in ("contact", "residual"):
+        signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
+    if spec.method == "residual":
+        follower = contact_acceleration_from_measured(m.values[-1], SingleAxle.of(vehicle), m.dt)
+        signal = residual_response(signal, follower, spec.sampling.rate, spec.gap, speed)
+        window &= np.isfinite(signal)
     bridge = crossing.bridge
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
     ident = identify_frequency(signal[window], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
-                               bridge_hz=bridge.frequencies_hz[:1])
+                               bridge_hz=bridge.frequencies_hz[:1], vehicle_hz=vehicle.natural_frequencies(),
+                               exclude_vehicle=spec.exclude_vehicle)
     return {
         "identified_frequency_hz": ident.frequency_hz,
         "bridge_frequency_hz": float(bridge.frequencies_hz[0]),
         "resolution_hz": ident.resolution_hz,
-        "vehicle_frequency_hz": float(crossing.vehicle.natural_frequencies()[0]),
+        "vehicle_frequency_hz": float(vehicle.natural_frequencies()[0]),
         "record_start": float(t_on[0]), "record_end": float(t_on[-1]),
         "n_steps": float(result.n_steps), "n_samples": float(m.time.size),
-        "history": m.values, "time0": float(m.time[0]),
+        "history": m.values[:len(sensors)], "time0": float(m.time[0]),
     }
 
 
