@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from vbikit.driveby.spec import DriveByError, parse_driveby
-from vbikit.driveby.study import run_driveby
+from vbikit.driveby.study import check_cases, run_driveby
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "driveby" / "DRIVEBY.toml"
 F1 = (math.pi / 25.0) ** 2 * math.sqrt(2.4e10 / 4800.0) / (2 * math.pi)  # closed form of the example's span, 5.6199 Hz
@@ -88,7 +88,7 @@ def test_errors_name_the_key_before_any_computation(change, message):
     data = read_toml(EXAMPLE, DriveByError)
     change(data)
     with pytest.raises(DriveByError, match=message):
-        parse_driveby(data, EXAMPLE.parent)
+        check_cases(parse_driveby(data, EXAMPLE.parent))
 
 
 def test_example_finishes_quickly_and_identifies_on_smooth_roads(tmp_path):

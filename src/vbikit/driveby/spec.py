@@ -34,7 +34,7 @@
     damage_severity = [0.0, 0.3]        # 0 = healthy
     noise_rms = [0.0, 0.01]             # replaces every sensor's noise_rms [units of the quantity]
 
-Every case is validated as a scenario before anything runs; errors name the key
+Every case is validated as a scenario before anything runs (``vbikit.driveby.study.check_cases``); errors name the key
 (``sweep.speed``, ``sensors.cart_acc.body``, ``bridge.EI``).
 """
 from __future__ import annotations
@@ -135,8 +135,9 @@ def _table(data: dict, key: str) -> dict:
 
 
 def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
-    """Validate a drive-by file's tables (raises ``DriveByError`` naming the key) and every case
-    of its sweep as a scenario."""
+    """Validate a drive-by file's tables (raises ``DriveByError`` naming the key); every case of
+    its sweep is validated as a scenario, and the budget checked, by ``vbikit.driveby.study.check_cases``
+    (which ``run_driveby`` and the command line call before anything runs)."""
     unknown = [k for k in data if k not in TOP_KEYS]
     if unknown:
         raise DriveByError(f"{unknown[0]}: unknown key of a drive-by file; allowed: {', '.join(TOP_KEYS)}")
@@ -228,12 +229,8 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     scenario = {k: copy.deepcopy(data[k]) for k in ("bridge", "tire", "road", "crossing") if k in data}
     keys = list(sweep)
     cases = tuple(dict(zip(keys, combo)) for combo in itertools.product(*(sweep[k] for k in keys)))
-    spec = DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
+    return DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
                    spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases)
-    from vbikit.driveby.study import check_cases
-
-    check_cases(spec)
-    return spec
 
 
 def load_driveby(path: str | Path) -> DriveBy:

@@ -357,6 +357,7 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
         spec = parse_driveby(spec)
     elif not isinstance(spec, DriveBy):
         spec = load_driveby(spec)
+    check_cases(spec)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     ds = run_study(DriveByStudy(spec), out_dir / "driveby.nc", workers=workers, scheduler=scheduler, progress=progress)

@@ -73,6 +73,9 @@ class Vehicle:
         A one-line description.
     parameters : dict of str to float
         The parameters the model was built from.
+    bodies : dict, optional
+        Keyword only: the rigid bodies of a vehicle built by ``VehicleBuilder``, name ->
+        (s_cg [m], heave, pitch, roll rows) (sensor positions, ``vbikit.driveby``).
     """
 
     name: str
