@@ -189,3 +189,21 @@ def test_sampling_filters_before_resampling_and_adds_seeded_noise():
     assert np.std(noisy.values[0] - noisy.clean[0]) == pytest.approx(0.05, rel=0.1)
     snr = measure(fake, [Sensor("acc", body="body", noise_snr_db=20.0)], Sampling(50.0), seed=1)
     assert snr.noise_std[0] == pytest.approx(np.sqrt(np.mean(snr.clean[0] ** 2)) / 10.0)
+
+
+def test_tractor_trailer_sensors_meet_at_the_fifth_wheel():
+    """A simulated HS20-44 pass: a trailer sensor and a tractor sensor at the fifth wheel (s = L1 + L5
+    = 1.698 + 2.215 = 3.913 m, the preset's Table 1 geometry) read the same motion (the trailer is
+    pinned there), while sensors 1 m before and behind it differ (pitch)."""
+    from vbikit.bridge.presets import BRIDGE_PRESETS  # noqa: F401
+
+    truck = VEHICLE_PRESETS["hs20-44"].build()
+    bridge = EulerBernoulliBeam(span=SPAN, EI=EI, mass_per_length=MASS, n_modes=3)
+    result = simulate(Crossing(bridge, truck, speed=15.0, approach=2.0))
+    sensors = [Sensor("tractor_5w", body="tractor", position=3.913), Sensor("trailer_5w", body="trailer", position=3.913),
+               Sensor("tractor_front", body="tractor", position=2.913), Sensor("trailer_rear", body="trailer", position=4.913)]
+    m = measure(result, sensors, Sampling(100.0))
+    scale = np.max(np.abs(m.values[0]))
+    assert scale > 0
+    assert np.max(np.abs(m.values[0] - m.values[1])) < 1e-9 * scale
+    assert np.max(np.abs(m.values[2] - m.values[3])) > 1e-2 * scale
