@@ -115,6 +115,10 @@ def main() -> dict:
         for name in ("driveby-spectrogram.png",):
             shutil.copy(Path(tmp) / name, FIG / "driveby-spectrogram.png")
         smooth = ds["road_class"].values == "none"
+        damaged = smooth & (ds["damage_severity"].values > 0)
+        example_shapes = [{"speed": float(ds["speed"].values[i]), "mac": round(float(ds["mode_shape_mac"].values[i]), 4),
+                           "curvature_x": round(float(ds["curvature_change_x"].values[i]), 2)}
+                          for i in np.flatnonzero(damaged)]
         example_max_err = float(100 * np.max(np.abs(ds["frequency_error"].values[smooth])))
     numbers = {
         "measured": datetime.date.today().isoformat(),
@@ -128,6 +132,7 @@ def main() -> dict:
         "damage": [{k: round(v, 3) for k, v in row.items()} for row in damage],
         "example_seconds": round(example_seconds, 1), "example_cases": int(ds.sizes["case"]),
         "example_max_smooth_error_pct": round(example_max_err, 3),
+        "example_shapes": example_shapes,
     }
     figures(numbers)
     (FIG / "driveby-numbers.json").write_text(json.dumps(numbers, indent=1) + "\n")

@@ -22,6 +22,10 @@ def quoted(n: dict) -> list[str]:
            f"{n['max_error_5_10_pct']:.3f} %", f"{n['signal_rms']:.3g} m/s²",
            f"{rr['A'][0]:.2f} / {rr['A'][1]:.2f} / {rr['A'][2]:.2f} % (class A)",
            f"{rr['B'][0]:.2f} / {rr['B'][1]:.2f} / {rr['B'][2]:.2f} % (class B)"]
+    sh = n["example_shapes"]
+    out.append(" / ".join(f"{r['mac']:.4f}" for r in sh) + ", largest curvature change at x = "
+               + " / ".join(f"{r['curvature_x']:g}" for r in sh) + " m")
+    out.append(f"{n['example_cases']} cases\nin {n['example_seconds']} s (measured {n['measured']}")
     for r in n["damage"]:
         out.append(f"| {r['severity']:.1f} | {r['speed']:g} | {r['identified_shift_pct']:.3f} | {r['true_shift_pct']:.3f} | "
                    f"{r['resolution_pct']:.3f} |")

@@ -44,6 +44,9 @@ def test_cli_writes_the_dataset_contract(tmp_path):
         assert ds["damage_severity"].values.tolist() == [0.0, 0.3]
         assert ds["identified_frequency_shift"].values[1] < 0
         assert ds["sensor_history"].shape[:2] == (2, 1)
+        assert ds["mode_shape_squared"].shape == (2, 41)
+        assert np.nanmax(ds["mode_shape_squared"].values) == pytest.approx(1.0, abs=0.05)
+        assert np.isnan(ds["mode_shape_mac"].values[0]) and 0.9 < ds["mode_shape_mac"].values[1] <= 1.0
         assert ds["sensor_history"].attrs["units"] and ds["identified_frequency_hz"].attrs["units"] == "Hz"
     for name in ("driveby-report.txt", "driveby-spectrogram.png", "driveby-frequency-vs-speed.png", "driveby-damage.png"):
         assert (out / name).is_file(), name

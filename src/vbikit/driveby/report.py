@@ -32,7 +32,9 @@ def report_text(ds) -> str:
         for i in np.flatnonzero(damaged):
             lines.append(f"  case {i}: severity {float(ds['damage_severity'][i]):.2f} at x = {float(ds['damage_position'][i]):g} m: "
                          f"identified {100 * shift[i]:+.2f} %, true {100 * true[i]:+.2f} % "
-                         f"(resolution {100 * float(ds['resolution_hz'][i] / ds['bridge_frequency_hz'][i]):.1f} % of f)")
+                         f"(resolution {100 * float(ds['resolution_hz'][i] / ds['bridge_frequency_hz'][i]):.1f} % of f)"
+                         + (f"; mode-shape MAC {float(ds['mode_shape_mac'][i]):.4f}, largest curvature change at "
+                            f"x = {float(ds['curvature_change_x'][i]):.3g} m" if np.isfinite(float(ds['mode_shape_mac'][i])) else ""))
     lines.append("")
     lines.append("Spectral resolution is 1 / T for a record of T seconds (T = span / speed on the deck); zero-padding "
                  "interpolates the spectrum, it does not resolve peaks closer than 1 / T.")

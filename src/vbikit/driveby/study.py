@@ -23,12 +23,15 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
-from vbikit.driveby.identify import identify_frequency, residual_response
+from vbikit.driveby.identify import identify_frequency, mode_shape_squares, residual_response, shape_change
 from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
 
 log = logging.getLogger(__name__)
+
+#: points of the mode-shape estimate along the deck (x = 0 … span)
+SHAPE_POINTS = 41
 
 #: per-case outputs: name -> (units, long name)
 CASE_OUTPUTS: dict[str, tuple[str, str]] = {
@@ -196,7 +199,14 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     ident = identify_frequency(signal[window], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
                                bridge_hz=bridge.frequencies_hz[:1], vehicle_hz=vehicle.natural_frequencies(),
                                exclude_vehicle=spec.exclude_vehicle)
+    shape = np.full(SHAPE_POINTS, np.nan)
+    if spec.method == "contact":  # φ² along x = v (t − t_entry): Hilbert envelope of the band-passed contact response
+        half = min(2.0 * speed / bridge.span, 0.5 * ident.frequency_hz)
+        env = mode_shape_squares(signal[window], spec.sampling.rate, ident.frequency_hz, half)
+        x = speed * (m.time[window] - t_on[0])
+        shape = np.interp(np.linspace(0.0, bridge.span, SHAPE_POINTS), x, env)
     return {
+        "mode_shape_squared": shape,
         "identified_frequency_hz": ident.frequency_hz,
         "bridge_frequency_hz": float(bridge.frequencies_hz[0]),
         "resolution_hz": ident.resolution_hz,
@@ -236,6 +246,7 @@ class DriveByStudy:
         for j, r in enumerate(rows):
             hist[j, :, :r["history"].shape[1]] = r["history"]
         out["history"] = hist
+        out["mode_shape_squared"] = np.array([r["mode_shape_squared"] for r in rows], float)
         out["time0"] = np.array([r["time0"] for r in rows])
         out["case"] = np.array(batch, np.int64)
         return out
@@ -246,8 +257,10 @@ class DriveByStudy:
         for name in CASE_OUTPUTS:
             if name not in part or part[name].shape != (len(batch),):
                 return f"{name} is missing or has the wrong shape"
-        if part["history"].shape[:2] != (len(batch), len(self.spec.sensors)):
+        if "history" not in part or part["history"].shape[:2] != (len(batch), len(self.spec.sensors)):
             return "its sensor histories have the wrong shape"
+        if "mode_shape_squared" not in part or part["mode_shape_squared"].shape != (len(batch), SHAPE_POINTS):
+            return "its mode-shape estimates have the wrong shape"
         return None
 
     def assemble(self, parts: Path):
@@ -255,7 +268,8 @@ class DriveByStudy:
 
         sums = part_checksums(parts)
         loaded = [load_part(parts, k, sums) for k in range(len(self.batches()))]
-        return dataset(self.spec, {name: np.concatenate([p[name] for p in loaded]) for name in (*CASE_OUTPUTS, "time0", "case")},
+        return dataset(self.spec, {name: np.concatenate([p[name] for p in loaded])
+                                   for name in (*CASE_OUTPUTS, "time0", "case", "mode_shape_squared")},
                        [p["history"] for p in loaded])
 
 
@@ -328,11 +342,33 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     variables["bridge_frequency_shift"] = ("case", true_shift, {"units": "1", "long_name":
                                           "true first frequency / that of the healthy bridge − 1"})
     variables["healthy_case"] = ("case", ref, {"long_name": "index of the healthy counterpart (−1: none)"})
+    shapes = out["mode_shape_squared"][order]
+    variables["mode_shape_squared"] = (("case", "position"), shapes, {
+        "units": "1", "long_name": "first mode shape squared from the contact response's Hilbert envelope, max 1 "
+                                   "(method contact; NaN otherwise)"})
+    indicators = {"mode_shape_mac": ("1", "MAC of the mode-shape estimate with the healthy case's"),
+                  "curvature_change": ("1", "largest change of the estimate's curvature (second difference) against "
+                                            "the healthy case's, inner 80 % of the span"),
+                  "curvature_change_x": ("m", "position of the largest curvature change (damage location estimate)")}
+    values = {k: np.full(n_cases, np.nan) for k in indicators}
+    grid = np.linspace(0.0, float(case_crossing(spec, spec.cases[0] if spec.cases else {}).bridge.span), SHAPE_POINTS)
+    for i in range(n_cases):
+        j = ref[i]
+        if j < 0 or not (np.all(np.isfinite(shapes[i])) and np.all(np.isfinite(shapes[j]))):
+            continue
+        values["mode_shape_mac"][i] = shape_change(np.sqrt(shapes[j]), np.sqrt(shapes[i]))["mac"]
+        inner = slice(SHAPE_POINTS // 10, SHAPE_POINTS - SHAPE_POINTS // 10)  # the band-pass's and Hilbert transform's end effects
+        ind = shape_change(np.sqrt(shapes[j][inner]), np.sqrt(shapes[i][inner]))
+        values["curvature_change"][i] = ind["curvature_change"]
+        values["curvature_change_x"][i] = grid[inner][ind["curvature_argmax"]]
+    for k, (units, long_name) in indicators.items():
+        variables[k] = ("case", values[k], {"units": units, "long_name": long_name})
     variables["sensor_history"] = (("case", "sensor", "sample"), hist, {
         "units": "see sensor_units", "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
     variables["time_start"] = ("case", out["time0"][order], {"units": "s", "long_name": "time of the first sample"})
     coords = {
         "case": ("case", np.arange(n_cases)),
+        "position": ("position", grid, {"units": "m", "long_name": "distance along the deck from the entry support"}),
         "sensor": ("sensor", np.array([s.name for s in spec.sensors], dtype=object)),
         "sensor_units": ("sensor", np.array([s.unit for s in spec.sensors], dtype=object)),
         "sensor_quantity": ("sensor", np.array([s.quantity for s in spec.sensors], dtype=object)),
