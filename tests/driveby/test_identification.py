@@ -127,3 +127,23 @@ def test_frequency_labels_by_hand():
     labels = frequency_labels(10.0, 25.0, [4.0], [3.0], n_driving=2)
     assert labels == {"driving_1": 0.4, "driving_2": 0.8, "bridge_1": 4.0, "bridge_1_minus": 3.8,
                       "bridge_1_plus": 4.2, "vehicle_1": 3.0}
+
+
+def test_spectra_of_a_known_tone_and_their_resolution():
+    """A 7.3 Hz tone, 4 s at 100 Hz: the periodogram's peak at the tone, resolution 1/T = 0.25 Hz;
+    Welch with 128-sample segments: resolution 100/128 Hz (sampling theorem, by hand)."""
+    from vbikit.driveby import spectrum
+    from vbikit.driveby.identify import peak
+
+    fs, f0 = 100.0, 7.3
+    t = np.arange(400) / fs
+    x = np.sin(2 * np.pi * f0 * t) + 0.3 * np.sin(2 * np.pi * 21.0 * t)
+    p = spectrum(x, fs)
+    assert p.resolution_hz == pytest.approx(0.25)
+    assert abs(peak(p, (1.0, 15.0)) - f0) <= p.resolution_hz / 32  # half the 16-fold zero-padded grid spacing
+    assert peak(p, (15.0, 40.0)) == pytest.approx(21.0, abs=0.01)
+    w = spectrum(x, fs, method="welch", nperseg=128)
+    assert w.resolution_hz == pytest.approx(100.0 / 128.0)
+    assert abs(peak(w, (1.0, 15.0)) - f0) <= w.resolution_hz / 32
+    # excluding a known frequency ± 2/T leaves the next peak
+    assert peak(p, (1.0, 40.0), exclude_hz=[f0]) == pytest.approx(21.0, abs=0.01)

@@ -213,7 +213,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "vehicle_frequency_hz": float(vehicle.natural_frequencies()[0]),
         "record_start": float(t_on[0]), "record_end": float(t_on[-1]),
         "n_steps": float(result.n_steps), "n_samples": float(m.time.size),
-        "history": m.values[:len(sensors)], "time0": float(m.time[0]),
+        "history": m.values[:len(sensors)], "time0": float(m.time[0]), "noise_std": m.noise_std[:len(sensors)],
     }
 
 
@@ -247,6 +247,7 @@ class DriveByStudy:
             hist[j, :, :r["history"].shape[1]] = r["history"]
         out["history"] = hist
         out["mode_shape_squared"] = np.array([r["mode_shape_squared"] for r in rows], float)
+        out["noise_std"] = np.array([r["noise_std"] for r in rows], float)
         out["time0"] = np.array([r["time0"] for r in rows])
         out["case"] = np.array(batch, np.int64)
         return out
@@ -261,6 +262,8 @@ class DriveByStudy:
             return "its sensor histories have the wrong shape"
         if "mode_shape_squared" not in part or part["mode_shape_squared"].shape != (len(batch), SHAPE_POINTS):
             return "its mode-shape estimates have the wrong shape"
+        if "noise_std" not in part or part["noise_std"].shape != (len(batch), len(self.spec.sensors)):
+            return "its noise levels have the wrong shape"
         return None
 
     def assemble(self, parts: Path):
@@ -269,7 +272,7 @@ class DriveByStudy:
         sums = part_checksums(parts)
         loaded = [load_part(parts, k, sums) for k in range(len(self.batches()))]
         return dataset(self.spec, {name: np.concatenate([p[name] for p in loaded])
-                                   for name in (*CASE_OUTPUTS, "time0", "case", "mode_shape_squared")},
+                                   for name in (*CASE_OUTPUTS, "time0", "case", "mode_shape_squared", "noise_std")},
                        [p["history"] for p in loaded])
 
 
@@ -365,6 +368,8 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
         variables[k] = ("case", values[k], {"units": units, "long_name": long_name})
     variables["sensor_history"] = (("case", "sensor", "sample"), hist, {
         "units": "see sensor_units", "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
+    variables["noise_std"] = (("case", "sensor"), out["noise_std"][order], {
+        "units": "see sensor_units", "long_name": "standard deviation of the noise added to each sensor's record"})
     variables["time_start"] = ("case", out["time0"][order], {"units": "s", "long_name": "time of the first sample"})
     coords = {
         "case": ("case", np.arange(n_cases)),
