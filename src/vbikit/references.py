@@ -405,6 +405,41 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("Johnson1985", "book", "Contact Mechanics", "1985",
        "the classical Hertz compliance δ = (9P²/(16E*²R))^(1/3) the empirical wheel–rail constant G is checked against",
        authors=("Johnson, K. L.",), publisher="Cambridge University Press", address="Cambridge"),
+    # --- driveby
+    _R("YangLinYau2004", "article", "Extracting bridge frequencies from the dynamic response of a passing vehicle", "2004",
+       "drive-by frequencies: vehicle, driving (n v / L) and shifted bridge frequencies ω_b ± πv/L of a light sprung mass",
+       authors=("Yang, Y. B.", "Lin, C. W.", "Yau, J. D."), journal="Journal of Sound and Vibration", volume="272",
+       pages="471–493", note="Bibliographic data from secondary citations; not checked against the paper"),
+    _R("YangLin2005", "article", "Vehicle–bridge interaction dynamics and potential applications", "2005",
+       "closed form of a light sprung mass over a simply supported beam (verification of the drive-by simulation)",
+       authors=("Yang, Y. B.", "Lin, C. W."), journal="Journal of Sound and Vibration", volume="284", pages="205–226",
+       note="Bibliographic data from secondary citations; not checked against the paper; the closed form used is "
+            "derived in tests/driveby from the paper's stated assumptions"),
+    _R("YangZhengZhangXu2018", "article",
+       "Inversion of bridge modal shapes and damping from the contact-point response of a test vehicle", "2018",
+       "contact-point response u_c = u_v + m_v ü_v / k_v of a single-axle test vehicle",
+       authors=("Yang, Y. B.", "Zheng, Y.", "Zhang, B.", "Xu, H."),
+       note="Title, venue and pages not confirmed (searched the stored pages corpus for authors, year and title "
+            "words without finding the paper)"),
+    _R("YangLiChang2014", "article", "Constructing the mode shapes of a bridge from a passing vehicle: a theoretical study",
+       "2014", "mode-shape squares from the Hilbert envelope of the band-passed vehicle response",
+       authors=("Yang, Y. B.", "Li, Y. C.", "Chang, K. C."), journal="Smart Structures and Systems", volume="13",
+       number="5", pages="797–819", note="Bibliographic data from secondary citations; not checked against the paper"),
+    _R("Malekjafarian2015", "article", "A review of indirect bridge monitoring using passing vehicles", "2015",
+       "review of drive-by (indirect) bridge monitoring", authors=("Malekjafarian, A.", "McGetrick, P. J.", "OBrien, E. J."),
+       journal="Shock and Vibration", volume="2015", pages="286139"),
+    _R("CanteroHesterBrownjohn2017", "article",
+       "Evolution of bridge frequencies and modes of vibration during truck passage", "2017",
+       "how bridge frequencies shift with the vehicle's position and mass (limits of drive-by identification)",
+       authors=("Cantero, Daniel", "Hester, David", "Brownjohn, James"), journal="Engineering Structures", volume="152",
+       pages="452–464"),
+    _R("AllemangBrown1982", "inproceedings", "A correlation coefficient for modal vector analysis", "1982",
+       "modal assurance criterion (MAC) between healthy and damaged mode-shape estimates",
+       authors=("Allemang, R. J.", "Brown, D. L."), publisher="Proceedings of the 1st International Modal Analysis Conference",
+       pages="110–116"),
+    _R("PandeyBiswasSamman1991", "article", "Damage detection from changes in curvature mode shapes", "1991",
+       "curvature-change damage indicator", authors=("Pandey, A. K.", "Biswas, M.", "Samman, M. M."),
+       journal="Journal of Sound and Vibration", volume="145", number="2", pages="321–332"),
 )}
 
 #: Which entries each model relies on, by the names used in scenario files
@@ -446,6 +481,10 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "extremes:return-periods": ("Nowak1999", "EN1990", "EN1991-2"),
     "vehicle:rail-car": ("Zhai2020", "ZhaiWangCai2009", "Goicolea2014", "Iwnicki1998", "Cantero2022"),
     "road:track": ("Zhai2020", "GuoXia2012", "GargDukkipati1984", "HamidYang1981"),
+    "driveby:identification": ("YangLinYau2004", "YangLin2005", "Malekjafarian2015", "CanteroHesterBrownjohn2017"),
+    "driveby:contact-point": ("YangZhengZhangXu2018",),
+    "driveby:mode-shapes": ("YangLiChang2014",),
+    "driveby:damage": ("AllemangBrown1982", "PandeyBiswasSamman1991"),
 }
 
 

@@ -147,4 +147,5 @@ class VehicleBuilder:
             k += ks * np.outer(d, d)
             c += cs * np.outer(d, d)
         wheels = tuple(Wheel(nm, s, y, kt, ct, dense(row), fl) for nm, s, y, kt, ct, row, fl in self.wheels)
-        return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}))
+        bodies = {b.name: (b.s_cg, dense(b.heave), dense(b.pitch), dense(b.roll)) for b in self.bodies}
+        return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}), bodies=bodies)

@@ -73,6 +73,9 @@ class Vehicle:
         A one-line description.
     parameters : dict of str to float
         The parameters the model was built from.
+    bodies : dict, optional
+        Keyword only: the rigid bodies of a vehicle built by ``VehicleBuilder``, name ->
+        (s_cg [m], heave, pitch, roll rows) (sensor positions, ``vbikit.driveby``).
     """
 
     name: str
@@ -84,6 +87,9 @@ class Vehicle:
     wheels: tuple[Wheel, ...]
     description: str = ""
     parameters: dict[str, float] = field(default_factory=dict)
+    #: rigid bodies of a built vehicle: name -> (s_cg [m], heave, pitch, roll rows); a point (s, y) of
+    #: the body moves by (heave + (s_cg − s)·pitch + y·roll) · q (empty when not built by VehicleBuilder)
+    bodies: dict = field(default_factory=dict, kw_only=True, repr=False, compare=False)
 
     @property
     def n_dof(self) -> int:

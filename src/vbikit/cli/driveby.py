@@ -1,0 +1,51 @@
+"""``vbikit driveby``: an instrumented vehicle over healthy and damaged bridges, swept into a
+labelled dataset (docs/driveby.md)."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from vbikit.cli.guard import guard
+
+
+def driveby_cmd(
+    file: Path = typer.Argument(..., help="Drive-by file (DRIVEBY.toml, docs/driveby.md)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for driveby.nc, the figures and the report."),
+    workers: Optional[int] = typer.Option(1, "--workers", min=1, help="Local worker processes (1 = in this process)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
+    max_steps: Optional[float] = typer.Option(None, "--max-steps", min=1, help="Budget: integration steps of the whole sweep "
+                                              "(default the file's max_steps, 2e7)."),
+    figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
+    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+) -> None:
+    """Simulate an instrumented vehicle over the sweep's bridges, identify the bridge frequency and
+    damage indicators, and write a labelled dataset (resumable, processes or Dask)."""
+    import dataclasses
+
+    from vbikit.cli.study import run_job
+    from vbikit.driveby.spec import load_driveby
+    from vbikit.driveby.study import DriveByStudy, check_cases
+
+    spec = guard(lambda: load_driveby(file))
+    if max_steps is not None:
+        spec = dataclasses.replace(spec, max_steps=float(max_steps))
+    steps = guard(lambda: check_cases(spec))
+    typer.echo(f"{file.name}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
+
+    def finish() -> None:
+        from vbikit._files import write_text
+        from vbikit.driveby.report import report_text
+
+        text = report_text(ds)
+        write_text(out_dir / "driveby-report.txt", text)
+        if figures:
+            from vbikit.driveby.figures import write_figures
+
+            write_figures(ds, out_dir)
+        typer.echo(text)
+
+    guard(finish)

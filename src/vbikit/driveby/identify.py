@@ -1,0 +1,193 @@
+"""Identification from a passing vehicle: spectra, the bridge frequency with the driving and
+shifted frequencies labelled, roughness cancellation, mode-shape squares and damage indicators.
+
+Frequencies of a vehicle crossing a simply supported span L at speed v (Yang, Lin & Yau 2004;
+Yang & Lin 2005; a light vehicle, the bridge as under a moving load): the vehicle response
+holds the vehicle frequency f_v, the *driving* frequencies n v / L (the load's position enters
+as sin(π v t / L), so the contact point's quasi-static deflection oscillates at v / L), and the
+bridge frequencies *shifted* by the moving contact point, f_b ± v / (2 L) (circular:
+ω_b ± π v / L).
+
+Spectral resolution: a record of duration T resolves frequencies 1 / T apart (Rayleigh
+resolution).  A single pass over the span lasts T = L / v, so the shifted pair f_b ± v / (2 L)
+— exactly 1 / T apart — merges into one peak near f_b.  Zero-padding (``nfft``) interpolates
+the spectrum between its bins and locates an isolated peak more finely; it does not separate
+peaks closer than 1 / T, which every result reports as ``resolution_hz``.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from vbikit.errors import VbikitError
+
+#: spectral estimators: name -> description
+SPECTRUM_METHODS = {"periodogram": "one windowed FFT of the whole record (finest resolution, 1 / T)",
+                    "welch": "Welch's average of overlapping windowed segments (smoother, resolution 1 / segment)"}
+
+
+@dataclass(frozen=True)
+class Spectrum:
+    """One-sided power spectral density ``psd`` [unit²/Hz] at ``frequency`` [Hz]; ``resolution_hz``
+    the Rayleigh resolution 1 / (record or segment duration) [Hz]."""
+
+    frequency: NDArray[np.float64]
+    psd: NDArray[np.float64]
+    resolution_hz: float
+    method: str
+    window: str
+
+
+def spectrum(signal: ArrayLike, fs: float, method: str = "periodogram", window: str = "hann",
+             nperseg: Optional[int] = None, nfft: Optional[int] = None, detrend: str = "linear") -> Spectrum:
+    """Power spectral density of ``signal`` sampled at ``fs`` [Hz] (``scipy.signal.periodogram`` or
+    ``welch``; any scipy window name; ``nfft`` zero-pads, default 16 × the record or segment)."""
+    from scipy.signal import periodogram, welch
+
+    x = np.asarray(signal, float)
+    if method not in SPECTRUM_METHODS:
+        raise VbikitError(f"identification.spectrum: {method!r} is not a spectral method; allowed: {', '.join(SPECTRUM_METHODS)}")
+    if x.size < 8:
+        raise VbikitError(f"identification: a record of {x.size} samples is too short for a spectrum (at least 8)")
+    if method == "periodogram":
+        n = nfft or 16 * x.size
+        f, p = periodogram(x, fs, window=window, nfft=n, detrend=detrend)
+        res = fs / x.size
+    else:
+        seg = min(nperseg or max(8, x.size // 2), x.size)
+        f, p = welch(x, fs, window=window, nperseg=seg, nfft=nfft or 16 * seg, detrend=detrend)
+        res = fs / seg
+    return Spectrum(f, p, float(res), method, window)
+
+
+def peak(spec: Spectrum, band: tuple[float, float], exclude_hz: ArrayLike = (), exclude_width: float | None = None) -> float:
+    """Frequency [Hz] of the highest spectral value inside ``band`` (f_lo, f_hi) [Hz], outside
+    ± ``exclude_width`` [Hz] of each of ``exclude_hz`` (known frequencies, e.g. the test vehicle's
+    own); default 2 / T, the half-width of the Hann window's main lobe (a tone's peak spreads
+    that far)."""
+    lo, hi = band
+    sel = (spec.frequency >= lo) & (spec.frequency <= hi)
+    width = 2.0 * spec.resolution_hz if exclude_width is None else float(exclude_width)
+    for f0 in np.atleast_1d(np.asarray(exclude_hz, float)):
+        sel &= np.abs(spec.frequency - f0) > width
+    if not sel.any():
+        raise VbikitError(f"identification.band: [{lo:g}, {hi:g}] Hz holds no spectral line (spectrum up to "
+                          f"{spec.frequency[-1]:g} Hz)")
+    i = np.flatnonzero(sel)[np.argmax(spec.psd[sel])]
+    return float(spec.frequency[i])
+
+
+def frequency_labels(speed: float, span: float, bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (),
+                     n_driving: int = 3) -> dict[str, float]:
+    """The frequencies [Hz] expected in a drive-by record: ``driving_n`` = n v / L (n = 1 …
+    ``n_driving``), ``bridge_k``, ``bridge_k_minus`` / ``bridge_k_plus`` = f_b,k ∓ v / (2 L), and
+    ``vehicle_k`` (module docstring)."""
+    labels = {f"driving_{n}": n * speed / span for n in range(1, n_driving + 1)}
+    for k, fb in enumerate(np.atleast_1d(np.asarray(bridge_hz, float)), start=1):
+        labels[f"bridge_{k}"] = float(fb)
+        labels[f"bridge_{k}_minus"] = float(fb - speed / (2 * span))
+        labels[f"bridge_{k}_plus"] = float(fb + speed / (2 * span))
+    for k, fv in enumerate(np.atleast_1d(np.asarray(vehicle_hz, float)), start=1):
+        labels[f"vehicle_{k}"] = float(fv)
+    return labels
+
+
+@dataclass(frozen=True)
+class Identification:
+    """An identified frequency [Hz] with its spectrum, search band [Hz], Rayleigh resolution [Hz]
+    and the labelled expected frequencies."""
+
+    frequency_hz: float
+    resolution_hz: float
+    band: tuple[float, float]
+    spectrum: Spectrum
+    labels: dict[str, float] = field(default_factory=dict)
+
+
+def default_band(speed: float, span: float, vehicle_hz: ArrayLike = (), f_max: float = 30.0) -> tuple[float, float]:
+    """A search band that avoids the driving frequencies: from 4 v / L (twice the second driving
+    frequency) to ``f_max`` [Hz].  (Vehicle frequencies inside it are not removed; identify
+    from the contact-point response, where they are absent, or give ``band``.)"""
+    return (4.0 * speed / span, float(f_max))
+
+
+def identify_frequency(signal: ArrayLike, fs: float, speed: float, span: float, band: Optional[tuple[float, float]] = None,
+                       method: str = "periodogram", window: str = "hann", nperseg: Optional[int] = None,
+                       bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), exclude_vehicle: bool = False) -> Identification:
+    """The highest spectral peak of ``signal`` (sampled at ``fs`` [Hz], a record of a pass at
+    ``speed`` [m/s] over a span ``span`` [m]) inside ``band`` [Hz] (default ``default_band``),
+    with the expected frequencies labelled (``frequency_labels``; the true bridge and vehicle
+    frequencies when known); ``exclude_vehicle``: skip ± 2 / T (``peak``) around the vehicle frequencies
+    ``vehicle_hz`` (known for a test vehicle; a rough road makes the vehicle shake the bridge at
+    them)."""
+    spec = spectrum(signal, fs, method, window, nperseg)
+    band = band or default_band(speed, span, vehicle_hz, 0.45 * fs)
+    f = peak(spec, band, vehicle_hz if exclude_vehicle else ())
+    return Identification(f, spec.resolution_hz, (float(band[0]), float(band[1])), spec,
+                          frequency_labels(speed, span, bridge_hz, vehicle_hz))
+
+
+def residual_response(front: ArrayLike, rear: ArrayLike, fs: float, spacing: float, speed: float) -> NDArray[np.float64]:
+    """Roughness cancellation: the front contact response minus the rear one shifted by the time
+    the rear contact point needs to reach the front one's position, Δt = spacing / speed:
+
+        Δu(t) = u_front(t) − u_rear(t + Δt)
+
+    Both terms pass the same road point at time t, so the road profile cancels and only the
+    deck's displacement at that point at the two times remains (Yang et al.'s residual response
+    of two connected vehicles or two axles; here for any two contact points on one wheel line).
+    Samples whose shifted time falls after the record's end are NaN."""
+    front, rear = np.asarray(front, float), np.asarray(rear, float)
+    t = np.arange(front.size) / fs
+    shifted = np.interp(t + spacing / speed, t, rear, right=np.nan)
+    return front - shifted
+
+
+def bandpass(signal: ArrayLike, fs: float, band: tuple[float, float], order: int = 4) -> NDArray[np.float64]:
+    """Zero-phase Butterworth band-pass (``scipy.signal.sosfiltfilt``) of order ``order`` over
+    ``band`` [Hz]."""
+    from scipy.signal import butter, sosfiltfilt
+
+    sos = butter(order, band, btype="bandpass", fs=fs, output="sos")
+    return sosfiltfilt(sos, np.asarray(signal, float))
+
+
+def mode_shape_squares(contact: ArrayLike, fs: float, frequency_hz: float, half_width_hz: float,
+                       order: int = 4) -> NDArray[np.float64]:
+    """Squared instantaneous amplitude of the bridge component of a contact-point response, the
+    drive-by estimate of φ(x)² along the path x = v t (Yang, Li & Chang 2014: the contact point's
+    bridge component is A(t) φ(v t) sin(ω_b t); the Hilbert transform's envelope of the
+    component band-passed around ω_b is |A φ(v t)|).  Band: ``frequency_hz`` ± ``half_width_hz``
+    (at least v / (2 L), to pass the shifted pair).  Returns the envelope squared, scaled to a
+    maximum of 1."""
+    from scipy.signal import hilbert
+
+    comp = bandpass(contact, fs, (frequency_hz - half_width_hz, frequency_hz + half_width_hz), order)
+    env2 = np.abs(hilbert(comp)) ** 2
+    return env2 / env2.max()
+
+
+def frequency_shift(healthy_hz: float, damaged_hz: float) -> float:
+    """Relative frequency change (f_damaged − f_healthy) / f_healthy [-] (negative for a loss of stiffness)."""
+    return (damaged_hz - healthy_hz) / healthy_hz
+
+
+def shape_change(healthy: ArrayLike, damaged: ArrayLike) -> dict[str, float]:
+    """Damage indicators from two mode-shape estimates on the same x grid (each scaled to a
+    maximum of 1): ``mac`` (modal assurance criterion, Allemang & Brown 1982: 1 = same shape),
+    ``shape_change`` = max |ψ_d − ψ_h| and ``curvature_change`` = max |ψ_d'' − ψ_h''| (Pandey,
+    Biswas & Samman 1991's curvature indicator, central differences per grid step, no units),
+    and ``curvature_argmax`` the grid index of the largest curvature change (the damage location
+    estimate)."""
+    h = np.asarray(healthy, float)
+    d = np.asarray(damaged, float)
+    h, d = h / np.max(np.abs(h)), d / np.max(np.abs(d))
+    mac = float(np.dot(h, d) ** 2 / (np.dot(h, h) * np.dot(d, d)))
+    ch = np.diff(h, 2)
+    cd = np.diff(d, 2)
+    dc = np.abs(cd - ch)
+    return {"mac": mac, "shape_change": float(np.max(np.abs(d - h))), "curvature_change": float(dc.max()),
+            "curvature_argmax": int(np.argmax(dc)) + 1}

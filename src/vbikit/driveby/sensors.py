@@ -1,0 +1,256 @@
+"""Instrumented vehicles: sensors on vehicle bodies and axles, sampled like a data logger.
+
+A sensor sits on a rigid body of the vehicle (``body``, any body of a
+[`VehicleBuilder`][vbikit.vehicle.VehicleBuilder] vehicle: a sprung body, a trailer, an axle) at
+the longitudinal position ``position`` s [m] (rearward from the front axle, the vehicle
+convention) and lateral position y [m]; its vertical motion is
+
+    z_sensor = (h + (s_cg − s)·p + y·r) · q
+
+with h, p, r the body's heave, pitch and roll rows and s_cg its centre of gravity (vehicle
+conventions, ``vbikit.vehicle.model``: pitch nose-up, roll raising the left side).  A sensor on
+``axle = k`` sits on the wheel centres of the k-th axle (axles ordered by their distance behind
+the front axle), the mean of its left and right wheel rows.  ``quantity`` is acceleration
+[m/s²], velocity [m/s] or displacement [m] (from the sensor's position at the start of the
+record: the vehicle at rest on the approach).
+
+Sampling ([`Sampling`][vbikit.driveby.Sampling]): the simulated history at the integration step is
+low-pass filtered by a Butterworth filter of order ``filter_order`` with its −3 dB cut-off at
+``cutoff`` × the sensor rate (default 0.4: below the sensor's Nyquist frequency, 0.5 × rate),
+applied forward and backward (``scipy.signal.sosfiltfilt``: zero phase, the squared magnitude
+response); the filtered history is then resampled at the sensor rate (linear interpolation at
+t_k = t_0 + k / rate: exact decimation when the integration step divides the sensor period).
+Filtering comes before resampling, so nothing above the cut-off folds back.  Noise is then
+added at the sensor rate: white Gaussian noise of standard deviation ``noise_rms`` (units of the
+quantity), or of rms(signal) / 10^(``noise_snr_db``/20) for a signal-to-noise ratio in dB, from
+``numpy.random.default_rng((seed, sensor index))`` — seeded, reproducible, independent per sensor.
+"""
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass, field
+from typing import Optional, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.errors import VbikitError
+from vbikit.vehicle.model import CombinedVehicle, Vehicle
+
+log = logging.getLogger(__name__)
+
+#: measurable quantities: name -> (unit, time derivative of the displacement)
+QUANTITIES: dict[str, tuple[str, int]] = {"displacement": ("m", 0), "velocity": ("m/s", 1), "acceleration": ("m/s^2", 2)}
+
+
+class SensorError(VbikitError):
+    """An invalid sensor or sampling definition; the message names the key."""
+
+    message_names_key = True
+
+
+@dataclass(frozen=True)
+class Sensor:
+    """One sensor on an instrumented vehicle (module docstring).
+
+    Parameters
+    ----------
+    name : str
+        Label of the sensor (dataset coordinate).
+    body : str, optional
+        Name of the rigid body it is fixed to (``vehicle.bodies``); give ``body`` or ``axle``.
+    axle : int, optional
+        1-based axle number (axles in order of their distance behind the front axle).
+    position : float, optional
+        s [m] rearward from the front axle on the body; default the body's centre of gravity.
+    lateral : float
+        y [m] from the vehicle centreline (positive left).
+    quantity : str
+        "acceleration", "velocity" or "displacement".
+    noise_rms : float
+        Standard deviation of the added white noise [units of the quantity], ≥ 0.
+    noise_snr_db : float, optional
+        Signal-to-noise ratio [dB] instead of ``noise_rms``.
+    vehicle : int
+        1-based vehicle number in a crossing of several vehicles.
+    """
+
+    name: str
+    body: Optional[str] = None
+    axle: Optional[int] = None
+    position: Optional[float] = None
+    lateral: float = 0.0
+    quantity: str = "acceleration"
+    noise_rms: float = 0.0
+    noise_snr_db: Optional[float] = None
+    vehicle: int = 1
+
+    def __post_init__(self) -> None:
+        import re
+
+        if not isinstance(self.name, str) or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,39}", self.name):
+            raise SensorError(f"sensors.name: {self.name!r} must be a letter then letters, digits or _ (at most 40)")
+        key = f"sensors.{self.name}"
+        if (self.body is None) == (self.axle is None):
+            raise SensorError(f"{key}: give body (a vehicle body's name) or axle (an axle number), one of them")
+        if self.quantity not in QUANTITIES:
+            raise SensorError(f"{key}.quantity: {self.quantity!r} is not measurable; allowed: {', '.join(QUANTITIES)}")
+        if not (np.isfinite(self.noise_rms) and self.noise_rms >= 0):
+            raise SensorError(f"{key}.noise_rms: must be >= 0, got {self.noise_rms!r}")
+        if self.noise_snr_db is not None and self.noise_rms > 0:
+            raise SensorError(f"{key}: give noise_rms or noise_snr_db, not both")
+        if self.noise_snr_db is not None and not (np.isfinite(self.noise_snr_db) and -20 <= self.noise_snr_db <= 200):
+            raise SensorError(f"{key}.noise_snr_db: must be in [-20, 200] dB, got {self.noise_snr_db!r}")
+
+    @property
+    def unit(self) -> str:
+        return QUANTITIES[self.quantity][0]
+
+
+@dataclass(frozen=True)
+class Sampling:
+    """The data logger: sensor rate [Hz] and anti-alias filter (module docstring).
+
+    ``rate`` > 0 [Hz]; ``filter_order`` Butterworth order (1–12; applied twice: zero phase);
+    ``cutoff`` its −3 dB frequency as a fraction of the rate, in (0, 0.5)."""
+
+    rate: float = 200.0
+    filter_order: int = 8
+    cutoff: float = 0.4
+
+    def __post_init__(self) -> None:
+        if not (np.isfinite(self.rate) and 1.0 <= self.rate <= 1e5):
+            raise SensorError(f"sampling.rate: must be in [1, 1e5] Hz, got {self.rate!r}")
+        if int(self.filter_order) != self.filter_order or not 1 <= self.filter_order <= 12:
+            raise SensorError(f"sampling.filter_order: must be an integer in [1, 12], got {self.filter_order!r}")
+        if not (0.0 < self.cutoff < 0.5):
+            raise SensorError(f"sampling.cutoff: must be in (0, 0.5) (fraction of the rate), got {self.cutoff!r}")
+
+    @property
+    def cutoff_hz(self) -> float:
+        return self.cutoff * self.rate
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """Sensor histories at the sensor rate.
+
+    ``time`` [s] (n_s,); ``values`` (n_sensors, n_s) with noise; ``clean`` the same without
+    noise (filtered and resampled: what a perfect sensor of this rate would record); ``sensors``
+    and ``sampling`` as given; ``noise_std`` the standard deviation of each sensor's noise."""
+
+    time: NDArray[np.float64]
+    values: NDArray[np.float64]
+    clean: NDArray[np.float64]
+    sensors: tuple[Sensor, ...]
+    sampling: Sampling
+    noise_std: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+
+    def __getitem__(self, name: str) -> NDArray[np.float64]:
+        for i, s in enumerate(self.sensors):
+            if s.name == name:
+                return self.values[i]
+        raise KeyError(f"no sensor named {name!r}; sensors: {', '.join(s.name for s in self.sensors)}")
+
+    @property
+    def dt(self) -> float:
+        return 1.0 / self.sampling.rate
+
+
+def _part(vehicle: Vehicle, index: int) -> tuple[Vehicle, int]:
+    """(vehicle ``index`` (1-based), its first DOF in ``vehicle``)."""
+    if isinstance(vehicle, CombinedVehicle):
+        if not 1 <= index <= len(vehicle.parts):
+            raise SensorError(f"sensors.vehicle: {index} is not a vehicle of this crossing (1 … {len(vehicle.parts)})")
+        return vehicle.parts[index - 1], vehicle.dof_offsets[index - 1]
+    if index != 1:
+        raise SensorError(f"sensors.vehicle: the crossing has one vehicle, got vehicle = {index}")
+    return vehicle, 0
+
+
+def axle_offsets(vehicle: Vehicle) -> list[float]:
+    """Distinct wheel offsets s [m] (axles), front first."""
+    return sorted({round(w.offset, 9) for w in vehicle.wheels})
+
+
+def sensor_row(vehicle: Vehicle, sensor: Sensor) -> NDArray[np.float64]:
+    """Row c with z_sensor = c · q over the DOFs of ``vehicle`` (one vehicle, or a crossing's
+    combined vehicles)."""
+    part, first = _part(vehicle, sensor.vehicle)
+    key = f"sensors.{sensor.name}"
+    if sensor.body is not None:
+        if sensor.body not in part.bodies:
+            allowed = ", ".join(part.bodies) or "none (a vehicle without bodies)"
+            raise SensorError(f"{key}.body: {sensor.body!r} is not a body of vehicle {part.name!r}; bodies: {allowed}")
+        s_cg, heave, pitch, roll = part.bodies[sensor.body]
+        s = s_cg if sensor.position is None else float(sensor.position)
+        local = heave + (s_cg - s) * pitch + sensor.lateral * roll
+    else:
+        axles = axle_offsets(part)
+        if not 1 <= int(sensor.axle) <= len(axles):
+            raise SensorError(f"{key}.axle: vehicle {part.name!r} has axles 1 … {len(axles)}, got {sensor.axle}")
+        s = axles[int(sensor.axle) - 1]
+        rows = [w.row for w in part.wheels if abs(w.offset - s) < 1e-9 and w.row.size]
+        if not rows:
+            raise SensorError(f"{key}.axle: axle {sensor.axle} of {part.name!r} has no degrees of freedom (a moving force)")
+        local = np.mean(rows, axis=0)
+    row = np.zeros(vehicle.n_dof)
+    row[first:first + part.n_dof] = local
+    return row
+
+
+def design_filter(sampling: Sampling, fs_in: float) -> NDArray[np.float64]:
+    """Second-order sections of the anti-alias Butterworth low-pass at the input rate ``fs_in`` [Hz]."""
+    from scipy.signal import butter
+
+    if sampling.cutoff_hz >= 0.5 * fs_in:
+        raise SensorError(f"sampling.rate: {sampling.rate:g} Hz needs histories faster than {2 * sampling.cutoff_hz:g} Hz "
+                          f"(the filter cut-off {sampling.cutoff_hz:g} Hz must be below half the simulation rate "
+                          f"{fs_in:g} Hz); use a smaller crossing.dt or a lower sampling.rate")
+    return butter(int(sampling.filter_order), sampling.cutoff_hz, btype="low", fs=fs_in, output="sos")
+
+
+def resample(time: NDArray[np.float64], history: NDArray[np.float64], sampling: Sampling,
+             t_start: float | None = None, t_end: float | None = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Anti-alias filter ``history`` (…, n_t) given at ``time`` (uniform) and resample it at the sensor
+    rate over [t_start, t_end] (default the whole record); returns (sensor times, values)."""
+    from scipy.signal import sosfiltfilt
+
+    dt = float(time[1] - time[0])
+    sos = design_filter(sampling, 1.0 / dt)
+    filtered = sosfiltfilt(sos, history, axis=-1) if history.shape[-1] > 3 * (2 * len(sos) + 1) else history
+    t0 = float(time[0]) if t_start is None else float(t_start)
+    t1 = float(time[-1]) if t_end is None else float(t_end)
+    n = int(np.floor((t1 - t0) * sampling.rate * (1 + 1e-12))) + 1
+    t = t0 + np.arange(n) / sampling.rate
+    flat = filtered.reshape(-1, filtered.shape[-1])
+    out = np.stack([np.interp(t, time, f) for f in flat]).reshape(*filtered.shape[:-1], n)
+    return t, out
+
+
+def measure(result, sensors: Sequence[Sensor], sampling: Sampling, seed: int = 0) -> Measurement:
+    """The sensors' histories of a simulated crossing (``CrossingResult``) at the sensor rate.
+
+    Raw history z = c · q (or c · q̇, c · q̈) at the integration step, anti-alias filtered,
+    resampled, then seeded noise added (module docstring)."""
+    sensors = tuple(sensors)
+    if not sensors:
+        raise SensorError("sensors: an instrumented vehicle needs at least one [[sensors]] table")
+    names = [s.name for s in sensors]
+    dup = sorted({n for n in names if names.count(n) > 1})
+    if dup:
+        raise SensorError(f"sensors.name: each sensor needs its own name; repeated: {', '.join(dup)}")
+    vehicle = result.crossing.vehicle
+    states = (result.q - result.q[0], result.q_dot, result.q_ddot)
+    raw = np.stack([states[QUANTITIES[s.quantity][1]] @ sensor_row(vehicle, s) for s in sensors])
+    t, clean = resample(result.time, raw, sampling)
+    std = np.zeros(len(sensors))
+    noisy = clean.copy()
+    for i, s in enumerate(sensors):
+        if s.noise_snr_db is not None:
+            std[i] = float(np.sqrt(np.mean(clean[i] ** 2))) / 10.0 ** (s.noise_snr_db / 20.0)
+        else:
+            std[i] = s.noise_rms
+        if std[i] > 0:
+            noisy[i] = clean[i] + std[i] * np.random.default_rng((int(seed), i)).standard_normal(t.size)
+    return Measurement(t, noisy, clean, sensors, sampling, std)

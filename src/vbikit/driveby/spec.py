@@ -1,0 +1,245 @@
+"""The drive-by file (DRIVEBY.toml): an instrumented vehicle over a bridge, swept.
+
+    name = "drive-by example"
+    seed = 1                    # noise seeds derive from it and the case index
+    batch_size = 4              # cases per stored batch (study runner)
+    max_steps = 2e7             # budget: integration steps of the whole sweep (raise to run more)
+
+    [bridge] / [tire] / [road] / [crossing]      # scenario tables (docs/scenario.md)
+    [vehicle]                   # a vehicle preset, or "test-cart" / "two-axle-car" (vbikit.driveby.vehicles)
+    model = "test-cart"
+
+    [sampling]
+    rate = 200                  # sensor rate [Hz]; filter_order, cutoff (fraction of the rate)
+
+    [[sensors]]                 # name, body or axle, position [m], lateral [m], quantity, noise_rms / noise_snr_db
+    name = "cart_acc"
+    body = "body"
+
+    [identification]
+    method = "contact"          # "contact": contact-point acceleration (single-axle vehicle); "sensor": the sensor's own;
+                                # "residual": contact minus that of an identical vehicle following at gap [m]
+    gap = 4.0                   # method "residual": distance of the follower behind the vehicle [m]
+    exclude_vehicle = true      # skip ± 2 / T around the vehicle's own frequencies
+    sensor = "cart_acc"         # default the first sensor
+    band = [1.0, 20.0]          # search band [Hz]; default [4 v / L, 20 Hz]
+    spectrum = "periodogram"    # or "welch"; window = "hann"
+
+    [sweep]                     # lists; every combination is one case
+    speed = [5.0, 8.0, 10.0]            # [m/s]
+    road_class = ["none", "A"]
+    road_seed = [1, 2]
+    damage_position = [10.0]            # start of the damaged region [m] (bridge model "continuous-beam")
+    damage_length = 2.5                 # one number [m]
+    damage_severity = [0.0, 0.3]        # 0 = healthy
+    noise_rms = [0.0, 0.01]             # replaces every sensor's noise_rms [units of the quantity]
+
+Every case is validated as a scenario before anything runs (``vbikit.driveby.study.check_cases``); errors name the key
+(``sweep.speed``, ``sensors.cart_acc.body``, ``bridge.EI``).
+"""
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Optional
+
+from vbikit.driveby.sensors import Sampling, Sensor, SensorError
+from vbikit.driveby.vehicles import DRIVEBY_VEHICLES
+from vbikit.errors import VbikitError
+
+#: top-level keys of a drive-by file
+TOP_KEYS = ("name", "seed", "batch_size", "max_steps", "bridge", "tire", "road", "crossing", "vehicle", "sampling",
+            "sensors", "identification", "sweep")
+#: sweep keys -> (kind, unit)
+SWEEP_KEYS: dict[str, tuple[str, str]] = {
+    "speed": ("numbers", "m/s"), "road_class": ("names", ""), "road_seed": ("integers", ""),
+    "damage_position": ("numbers", "m"), "damage_severity": ("numbers", "1"), "noise_rms": ("numbers", "sensor unit"),
+}
+#: identification methods
+METHODS = {"contact": "spectrum of the contact-point acceleration back-calculated from the sensor (single-axle vehicle)",
+           "residual": "spectrum of the residual of the contact-point accelerations of the vehicle and an identical one "
+                       "following it at identification.gap (roughness cancellation)",
+           "sensor": "spectrum of the sensor's own record"}
+#: default budget: integration steps of the whole sweep
+MAX_STEPS = 2e7
+#: default search band's upper end [Hz]
+BAND_MAX_HZ = 20.0
+
+
+class DriveByError(VbikitError):
+    """An invalid drive-by file; the message names the key."""
+
+    message_names_key = True
+
+
+@dataclass(frozen=True)
+class DriveBy:
+    """A parsed drive-by file (module docstring); ``cases`` the sweep's combinations (dicts of
+    the sweep keys), in order (the last key varies fastest)."""
+
+    name: str
+    seed: int
+    batch_size: int
+    max_steps: float
+    scenario: dict
+    vehicle: dict
+    sampling: Sampling
+    sensors: tuple[Sensor, ...]
+    method: str
+    sensor: str
+    band: Optional[tuple[float, float]]
+    spectrum: str
+    window: str
+    gap: float
+    exclude_vehicle: bool
+    sweep: dict
+    damage_length: float
+    base_dir: str = "."
+    cases: tuple = field(default=(), repr=False)
+
+    def to_json(self) -> str:
+        return json.dumps({"kind": "vbikit driveby", "name": self.name, "seed": self.seed, "batch_size": self.batch_size,
+                           "scenario": self.scenario, "vehicle": self.vehicle,
+                           "sampling": [self.sampling.rate, self.sampling.filter_order, self.sampling.cutoff],
+                           "sensors": [s.__dict__ for s in self.sensors], "method": self.method, "sensor": self.sensor,
+                           "band": self.band, "spectrum": self.spectrum, "window": self.window, "gap": self.gap,
+                           "exclude_vehicle": self.exclude_vehicle, "sweep": self.sweep,
+                           "damage_length": self.damage_length, "base_dir": self.base_dir}, sort_keys=True, default=str)
+
+
+def _numbers(key: str, value: Any, kind: str) -> list:
+    values = value if isinstance(value, list) else [value]
+    if not values:
+        raise DriveByError(f"sweep.{key}: give at least one value")
+    for v in values:
+        if kind == "names" and not isinstance(v, str):
+            raise DriveByError(f"sweep.{key}: expected road class names (strings), got {v!r}")
+        if kind == "integers" and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
+            raise DriveByError(f"sweep.{key}: expected integers >= 0, got {v!r}")
+        if kind == "numbers" and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
+            raise DriveByError(f"sweep.{key}: expected finite numbers, got {v!r}")
+    if len(set(map(str, values))) != len(values):
+        raise DriveByError(f"sweep.{key}: repeated values in {values}")
+    return [float(v) if kind == "numbers" else v for v in values]
+
+
+def _table(data: dict, key: str) -> dict:
+    value = data.get(key, {})
+    if not isinstance(value, dict):
+        raise DriveByError(f"{key}: expected a table [{key}], got {type(value).__name__}")
+    return value
+
+
+def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
+    """Validate a drive-by file's tables (raises ``DriveByError`` naming the key); every case of
+    its sweep is validated as a scenario, and the budget checked, by ``vbikit.driveby.study.check_cases``
+    (which ``run_driveby`` and the command line call before anything runs)."""
+    unknown = [k for k in data if k not in TOP_KEYS]
+    if unknown:
+        raise DriveByError(f"{unknown[0]}: unknown key of a drive-by file; allowed: {', '.join(TOP_KEYS)}")
+    if "bridge" not in data:
+        raise DriveByError("bridge: a drive-by file needs a [bridge] table (scenario keys)")
+    name = str(data.get("name", ""))
+    seed, batch = data.get("seed", 0), data.get("batch_size", 4)
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise DriveByError(f"seed: expected an integer >= 0, got {seed!r}")
+    if isinstance(batch, bool) or not isinstance(batch, int) or not 1 <= batch <= 1000:
+        raise DriveByError(f"batch_size: expected an integer in [1, 1000], got {batch!r}")
+    max_steps = data.get("max_steps", MAX_STEPS)
+    if isinstance(max_steps, bool) or not isinstance(max_steps, (int, float)) or not max_steps >= 1:
+        raise DriveByError(f"max_steps: expected a number >= 1, got {max_steps!r}")
+    vehicle = dict(_table(data, "vehicle")) or {"model": "test-cart"}
+    if "model" not in vehicle:
+        raise DriveByError(f"vehicle.model: missing; a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)}")
+    sampling_t = _table(data, "sampling")
+    bad = [k for k in sampling_t if k not in ("rate", "filter_order", "cutoff")]
+    if bad:
+        raise DriveByError(f"sampling.{bad[0]}: unknown key; allowed: rate, filter_order, cutoff")
+    sampling = Sampling(**{k: sampling_t[k] for k in sampling_t})
+    sensors_t = data.get("sensors", [])
+    if not isinstance(sensors_t, list) or not sensors_t:
+        raise DriveByError("sensors: give at least one [[sensors]] table (name, body or axle, quantity, ...)")
+    allowed = ("name", "body", "axle", "position", "lateral", "quantity", "noise_rms", "noise_snr_db", "vehicle")
+    sensors = []
+    for i, t in enumerate(sensors_t):
+        if not isinstance(t, dict) or "name" not in t:
+            raise DriveByError(f"sensors[{i + 1}].name: every [[sensors]] table needs a name")
+        extra = [k for k in t if k not in allowed]
+        if extra:
+            raise DriveByError(f"sensors.{t['name']}.{extra[0]}: unknown key; allowed: {', '.join(allowed)}")
+        sensors.append(Sensor(**t))
+    names = [s.name for s in sensors]
+    if len(set(names)) != len(names):
+        raise DriveByError(f"sensors.name: each sensor needs its own name, got {names}")
+    ident = _table(data, "identification")
+    ident_keys = ("method", "sensor", "band", "spectrum", "window", "gap", "exclude_vehicle")
+    extra = [k for k in ident if k not in ident_keys]
+    if extra:
+        raise DriveByError(f"identification.{extra[0]}: unknown key; allowed: {', '.join(ident_keys)}")
+    gap = ident.get("gap", 4.0)
+    if isinstance(gap, bool) or not isinstance(gap, (int, float)) or not 0 < gap <= 1000:
+        raise DriveByError(f"identification.gap: expected a distance in (0, 1000] m, got {gap!r}")
+    exclude_vehicle = ident.get("exclude_vehicle", True)
+    if not isinstance(exclude_vehicle, bool):
+        raise DriveByError(f"identification.exclude_vehicle: expected true or false, got {exclude_vehicle!r}")
+    method = ident.get("method", "contact")
+    if method not in METHODS:
+        raise DriveByError(f"identification.method: {method!r}; allowed: {', '.join(METHODS)}")
+    sensor = ident.get("sensor", names[0])
+    if sensor not in names:
+        raise DriveByError(f"identification.sensor: {sensor!r} is not a sensor; sensors: {', '.join(names)}")
+    band = ident.get("band")
+    if band is not None:
+        if not (isinstance(band, list) and len(band) == 2 and all(isinstance(b, (int, float)) for b in band)
+                and 0 < band[0] < band[1] < 0.5 * sampling.rate):
+            raise DriveByError(f"identification.band: expected [f_lo, f_hi] with 0 < f_lo < f_hi < rate / 2 = "
+                               f"{0.5 * sampling.rate:g} Hz, got {band!r}")
+        band = (float(band[0]), float(band[1]))
+    spectrum = ident.get("spectrum", "periodogram")
+    if spectrum not in ("periodogram", "welch"):
+        raise DriveByError(f"identification.spectrum: {spectrum!r}; allowed: periodogram, welch")
+    window = str(ident.get("window", "hann"))
+    try:
+        from scipy.signal import get_window
+
+        get_window(window, 16)
+    except ValueError:
+        raise DriveByError(f"identification.window: {window!r} is not a scipy window (hann, hamming, boxcar, ...)") from None
+    sweep_t = dict(_table(data, "sweep"))
+    damage_length = sweep_t.pop("damage_length", 0.1 * 25.0)
+    if isinstance(damage_length, bool) or not isinstance(damage_length, (int, float)) or not damage_length > 0:
+        raise DriveByError(f"sweep.damage_length: expected a number > 0 [m], got {damage_length!r}")
+    sweep = {}
+    for key, value in sweep_t.items():
+        if key not in SWEEP_KEYS:
+            raise DriveByError(f"sweep.{key}: unknown key; allowed: {', '.join(SWEEP_KEYS)}, damage_length")
+        sweep[key] = _numbers(key, value, SWEEP_KEYS[key][0])
+    for v in sweep.get("damage_severity", []):
+        if not 0 <= v < 1:
+            raise DriveByError(f"sweep.damage_severity: values must be in [0, 1), got {v}")
+    for v in sweep.get("noise_rms", []):
+        if v < 0:
+            raise DriveByError(f"sweep.noise_rms: values must be >= 0, got {v}")
+    if "damage_severity" in sweep and "damage_position" not in sweep:
+        raise DriveByError("sweep.damage_position: damage_severity needs damage_position (start of the damaged region [m])")
+    scenario = {k: copy.deepcopy(data[k]) for k in ("bridge", "tire", "road", "crossing") if k in data}
+    keys = list(sweep)
+    cases = tuple(dict(zip(keys, combo)) for combo in itertools.product(*(sweep[k] for k in keys)))
+    return DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
+                   spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases)
+
+
+def load_driveby(path: str | Path) -> DriveBy:
+    """Read and validate a drive-by file."""
+    from vbikit._toml import read_toml
+
+    path = Path(path)
+    data = read_toml(path, DriveByError, "drive-by file")
+    try:
+        return parse_driveby(data, path.parent)
+    except SensorError as err:
+        raise DriveByError(f"{path.name}: {err}") from None
