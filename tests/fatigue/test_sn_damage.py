@@ -132,6 +132,20 @@ def test_damage_equivalent_range_inverts_the_curve_on_both_slopes():
     assert damage_equivalent_range([20 * MPA], [1e5], curve) == 0.0
 
 
+def test_damage_equivalent_range_below_the_cut_off_names_n_ref():
+    # 1e4 cycles of 60 MPa (m = 3 slope): D = 1e4 / (2e6 (71/60)^3) = 3.018e-3 by hand; 2e6 cycles of
+    # any range at or above Δσ_L do at least 2e6 / 1e8 = 0.02, so no range answers: the error names
+    # the argument the user gave (n_ref), not an internal one
+    curve = sn_curve("EN 71")
+    d = 1e4 / (2e6 * (DC / 60.0) ** 3)
+    assert miner_damage([60 * MPA], [1e4], curve) == pytest.approx(d, rel=1e-12)
+    with pytest.raises(FatigueError) as err:
+        damage_equivalent_range([60 * MPA], [1e4], curve)
+    assert err.value.key == "n_ref"
+    # at n_ref = D · N_L the answer is the cut-off limit Δσ_L itself
+    assert damage_equivalent_range([60 * MPA], [1e4], curve, n_ref=d * 1e8) / MPA == pytest.approx(DL, rel=1e-9)
+
+
 def test_remaining_life_by_hand():
     assert remaining_life(0.02, damage_so_far=0.3) == pytest.approx(35.0)
     assert remaining_life(0.0) == math.inf

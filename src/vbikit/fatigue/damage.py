@@ -70,11 +70,24 @@ def equivalent_stress_range(ranges: Any, counts: Any, m: float = 3.0, n_ref: flo
 
 def damage_equivalent_range(ranges: Any, counts: Any, curve: SNCurve, n_ref: float = 2.0e6) -> float:
     """The constant stress range whose ``n_ref`` cycles do the spectrum's Miner damage on ``curve``
-    (bilinear curves included): Δσ with N(Δσ) = n_ref / D.  Zero when the damage is zero."""
+    (bilinear curves included): Δσ with N(Δσ) = n_ref / D.  Zero when the damage is zero.
+
+    On a curve with a cut-off (EN 1993-1-9) no range does less than n_ref / N_L damage in n_ref
+    cycles (N_L = 10⁸): a smaller damage raises a FatigueError naming ``n_ref``, the largest
+    n_ref = D · N_L that works, and ``equivalent_stress_range`` as the single-slope alternative."""
+    n_ref = positive(n_ref, "n_ref")
     d = miner_damage(ranges, counts, curve)
     if d == 0.0:
         return 0.0
-    return curve.stress_range_at(positive(n_ref, "n_ref") / d)
+    last = curve.segments[-1]
+    if curve.rule == "cutoff":
+        n_cut = last.n_ref * (last.stress_ref / last.stress_min) ** last.m
+        if n_ref / d > n_cut:
+            raise FatigueError(f"n_ref: the spectrum's damage D = {d:.4g} is below n_ref / N_L = {n_ref:g} / "
+                               f"{n_cut:.4g}: no range of {curve.name} above its cut-off does that little in "
+                               f"{n_ref:g} cycles; use n_ref ≤ D · N_L = {d * n_cut:.4g}, or "
+                               f"equivalent_stress_range (single slope)")
+    return curve.stress_range_at(n_ref / d)
 
 
 def remaining_life(damage_per_year: float, damage_so_far: float = 0.0, limit: float = 1.0) -> float:
