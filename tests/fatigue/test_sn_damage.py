@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from vbikit.fatigue import (FatigueError, damage_equivalent_range, equivalent_stress_range, miner_damage, rainflow,
-                            remaining_life, sn_curve)
+from vbikit.fatigue import (FatigueError, damage_equivalent_range, en1993_curve, equivalent_stress_range, miner_damage,
+                            rainflow, remaining_life, sn_curve)
 
 MPA = 1e6
 #: 1 ksi = 6.894757293168361 MPa (NIST SP 811, Appendix B: 1 lbf/in² = 6.894757293168361e3 Pa)
@@ -153,3 +153,15 @@ def test_remaining_life_by_hand():
     with pytest.raises(FatigueError) as err:
         remaining_life(-0.1)
     assert err.value.key == "damage_per_year"
+
+
+def test_non_numbers_raise_fatigue_errors_naming_the_argument():
+    for call, key in ((lambda: remaining_life("abc"), "damage_per_year"),
+                      (lambda: remaining_life(0.1, damage_so_far=None), "damage_so_far")):
+        with pytest.raises(FatigueError) as err:
+            call()
+        assert err.value.key == key
+    # a category given as a numeric string is the same curve (it was refused by the name's format)
+    assert en1993_curve("71").name == "EN 71"
+    assert en1993_curve("71", gamma_mf="1.35").cycles_to_failure(100 * MPA)[0] == pytest.approx(
+        2e6 * (DC / 1.35 / 100.0) ** 3, rel=1e-12)

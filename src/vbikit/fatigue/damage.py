@@ -107,16 +107,23 @@ def remaining_life(damage_per_year: float, damage_so_far: float = 0.0, limit: fl
     float
         Years; 0 when the limit is already reached.
     """
-    d = float(damage_per_year)
-    d0 = float(damage_so_far)
-    if not np.isfinite(d) or d < 0:
-        raise FatigueError(f"damage_per_year: needs a finite number ≥ 0, got {damage_per_year!r}")
-    if not np.isfinite(d0) or d0 < 0:
-        raise FatigueError(f"damage_so_far: needs a finite number ≥ 0, got {damage_so_far!r}")
+    d = _non_negative(damage_per_year, "damage_per_year")
+    d0 = _non_negative(damage_so_far, "damage_so_far")
     lim = positive(limit, "limit")
     if d0 >= lim:
         return 0.0
     return float("inf") if d == 0.0 else (lim - d0) / d
+
+
+def _non_negative(value: Any, name: str) -> float:
+    """``value`` as a finite float ≥ 0, or a FatigueError naming ``name``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise FatigueError(f"{name}: needs a finite number ≥ 0, got {value!r}") from None
+    if not np.isfinite(v) or v < 0:
+        raise FatigueError(f"{name}: needs a finite number ≥ 0, got {value!r}")
+    return v
 
 
 __all__ = ["damage_equivalent_range", "equivalent_stress_range", "miner_damage", "remaining_life"]

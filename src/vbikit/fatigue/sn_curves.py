@@ -147,10 +147,11 @@ def en1993_curve(category_mpa: float, gamma_mf: float = 1.0) -> SNCurve:
     gamma_mf : float, optional
         Partial factor for fatigue strength γ_Mf (1.0: the characteristic curve).
     """
-    dc = positive(category_mpa, "category_mpa") * MPA / positive(gamma_mf, "gamma_mf")
+    category, gamma = positive(category_mpa, "category_mpa"), positive(gamma_mf, "gamma_mf")
+    dc = category * MPA / gamma
     dd = (EN_N_C / EN_N_D) ** (1.0 / 3.0) * dc
     dl = (EN_N_D / EN_N_L) ** (1.0 / 5.0) * dd
-    name = f"EN {category_mpa:g}" + (f" (γMf={gamma_mf:g})" if gamma_mf != 1.0 else "")
+    name = f"EN {category:g}" + (f" (γMf={gamma:g})" if gamma != 1.0 else "")
     return SNCurve(name, (SNSegment(dd, dc, EN_N_C, 3.0), SNSegment(dl, dd, EN_N_D, 5.0)), "cutoff", dd,
                    "EN 1993-1-9:2005, 7.1 and Fig. 7.1 (direct stress ranges)")
 
