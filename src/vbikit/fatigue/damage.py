@@ -25,9 +25,10 @@ def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
     Returns
     -------
     float
-        The damage (1.0: failure by Miner's rule).  Ranges below the EN cut-off do nothing; with
-        an AASHTO curve the whole spectrum does nothing when its largest range (with a count > 0)
-        is below (ΔF)_TH.
+        The damage (1.0: failure by Miner's rule).  The whole spectrum does nothing when its
+        largest range (with a count > 0) is below the curve's constant-amplitude fatigue limit
+        ``curve.threshold`` (EN 1993-1-9:2005 1.3.3.3, Δσ_D; AASHTO LRFD 6.6.1.2.5, (ΔF)_TH);
+        otherwise ranges below the EN cut-off Δσ_L do nothing and all others count.
     """
     if not isinstance(curve, SNCurve):
         raise FatigueError(f"curve: needs an SNCurve (e.g. sn_curve('EN 71')), got {type(curve).__name__}")
@@ -35,7 +36,7 @@ def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
     live = n > 0
     if not live.any():
         return 0.0
-    if curve.rule == "max-range" and r[live].max() < curve.threshold:
+    if r[live].max() < curve.threshold:
         return 0.0
     big_n = curve.cycles_to_failure(r[live])
     return float(np.sum(n[live] / big_n))
