@@ -158,6 +158,9 @@ def test_bad_input_raises_naming_the_argument():
         (lambda: fit_peaks_over_threshold(good, threshold=np.sort(good)[-3], rate_per_year=10), "threshold"),
         (lambda: fit_peaks_over_threshold(good, threshold=0.0, rate_per_year=-1), "rate_per_year"),
         (lambda: return_level(fit_block_maxima(good, "gumbel", blocks_per_year=1), 0.5), "period_years"),
+        # T·n = 1 is G⁻¹(0) = −∞ for block maxima (annual maxima, T = 1 year; daily maxima, T = 1 day)
+        (lambda: return_level(fit_block_maxima(good, "gumbel", blocks_per_year=1), 1.0), "period_years"),
+        (lambda: return_levels(fit_block_maxima(good, "gev", blocks_per_year=365), [1 / 365, 10]), "periods"),
         (lambda: return_levels(fit_block_maxima(good, "gumbel"), [100], ci=1.5), "ci"),
         (lambda: return_levels(fit_block_maxima(good, "gumbel"), [100], method="profile"), "method"),
         (lambda: return_levels(fit_block_maxima(good, "gumbel"), [-5]), "periods"),
@@ -166,3 +169,9 @@ def test_bad_input_raises_naming_the_argument():
         with pytest.raises(ExtremesError) as err:
             call()
         assert err.value.key == key, (key, str(err.value))
+
+
+def test_pot_return_level_at_one_exceedance_a_year_is_the_threshold():
+    # Coles eq. 4.13 at λT = 1: x = u + σ/ξ (1^ξ − 1) = u (defined, unlike T·n = 1 for block maxima)
+    gpd = _true_fit("gpd", (2.0, 0.1), 4.0, threshold=10.0)
+    assert return_level(gpd, 0.25) == pytest.approx(10.0, abs=1e-12)

@@ -35,3 +35,24 @@ def test_named_return_periods():
     with pytest.raises(ExtremesError) as err:
         return_period("eurocode")
     assert err.value.key == "name"
+
+
+def test_eurocode_preset_quotes_the_exact_return_periods():
+    # the description's two readings of "about 1000 years", by hand: T = 1 / (1 − (1 − p)^(1/years))
+    #   10 % in 100 years: 1 / (1 − 0.9^0.01)  = 949.62 years
+    #    5 % in  50 years: 1 / (1 − 0.95^0.02) = 975.29 years
+    text = RETURN_PERIODS["eurocode-1000"].description
+    assert 1.0 / (1.0 - 0.9 ** 0.01) == pytest.approx(949.62, abs=0.005)
+    assert 1.0 / (1.0 - 0.95 ** 0.02) == pytest.approx(975.29, abs=0.005)
+    assert "(exactly 949.6 years)" in text and "(975.3 years)" in text
+
+
+def test_exceedance_return_period_refuses_bad_input_naming_the_argument():
+    for args, key in (((0.1, float("inf")), "years"), ((0.1, "a century"), "years"), ((0.1, 0.0), "years"),
+                      (("ten percent", 100.0), "probability"), ((1.0, 100.0), "probability")):
+        with pytest.raises(ExtremesError) as err:
+            exceedance_return_period(*args)
+        assert err.value.key == key, args
+    with pytest.raises(ExtremesError) as err:
+        return_period(["eurocode-1000"])
+    assert err.value.key == "name"

@@ -159,3 +159,10 @@ def test_bad_input_names_the_argument():
     with pytest.raises(FatigueError) as err:
         histogram([1.0], [1.0], bin_width=0.0)
     assert err.value.key == "bin_width"
+    # a stored state read back (e.g. a worker's JSON) is checked before counting continues
+    good = {"ranges": [1.0], "counts": [2.0], "residual": [0.0, 3.0], "bin_width": None}
+    for bad in ({"residual": [0.0, float("nan")]}, {"counts": [-1.0]}, {"ranges": [float("inf")]},
+                {"bin_width": 0.0}):
+        with pytest.raises(FatigueError) as err:
+            RainflowState.from_dict({**good, **bad})
+        assert err.value.key in ("state", "bin_width"), bad

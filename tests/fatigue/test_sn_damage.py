@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from vbikit.fatigue import (FatigueError, damage_equivalent_range, equivalent_stress_range, miner_damage, rainflow,
-                            remaining_life, sn_curve)
+from vbikit.fatigue import (FatigueError, damage_equivalent_range, en1993_curve, equivalent_stress_range, miner_damage,
+                            rainflow, remaining_life, sn_curve)
 
 MPA = 1e6
 #: 1 ksi = 6.894757293168361 MPa (NIST SP 811, Appendix B: 1 lbf/in² = 6.894757293168361e3 Pa)
@@ -43,13 +43,23 @@ def test_en_knees_match_the_standards_rounded_values():
 
 @pytest.mark.parametrize("delta_mpa, expected_n", [
     (100.0, 2e6 * (DC / 100.0) ** 3),       # above Δσ_D: slope m = 3 → 705 830 cycles
-    (40.0, 5e6 * (DD / 40.0) ** 5),         # between Δσ_L and Δσ_D: slope m = 5 → 1.91e7 cycles
+    (40.0, math.inf),                       # below Δσ_D at constant amplitude: no damage (1.3.3.3)
     (20.0, math.inf),                       # below the cut-off Δσ_L: no damage
 ])
 def test_miner_damage_of_constant_amplitude_histories_on_each_slope(delta_mpa, expected_n):
     cycles = 1000
     damage = _damage_of_history(delta_mpa * MPA, cycles, sn_curve("EN 71"))
     assert damage == pytest.approx(cycles / expected_n, rel=1e-12, abs=0.0)
+
+
+def test_constant_amplitude_fatigue_limit_applies_to_the_whole_spectrum():
+    # EN 1993-1-9:2005, 1.3.3.3: below Δσ_D no damage under constant amplitude; "under variable
+    # amplitude conditions all stress ranges have to be below this limit for no fatigue damage".
+    curve = sn_curve("EN 71")
+    assert miner_damage([50 * MPA, 35 * MPA], [1e6, 1e7], curve) == 0.0     # both below Δσ_D = 52.3
+    # one cycle above Δσ_D: the 35 MPa cycles count on the m = 5 slope (hand sum of n/N)
+    expected = 1.0 / (2e6 * (DC / 60.0) ** 3) + 1e7 / (5e6 * (DD / 35.0) ** 5)
+    assert miner_damage([60 * MPA, 35 * MPA], [1.0, 1e7], curve) == pytest.approx(expected, rel=1e-12)
 
 
 def test_partial_factor_divides_the_curve():
@@ -127,9 +137,30 @@ def test_equivalent_range_of_a_two_level_spectrum():
 
 def test_damage_equivalent_range_inverts_the_curve_on_both_slopes():
     curve = sn_curve("EN 71")
-    for s in (100.0, 40.0):
-        assert damage_equivalent_range([s * MPA], [1e5], curve, n_ref=1e5) / MPA == pytest.approx(s, rel=1e-12)
+    assert damage_equivalent_range([100 * MPA], [1e5], curve, n_ref=1e5) / MPA == pytest.approx(100.0, rel=1e-12)
+    # one cycle of 60 MPa opens the spectrum (above Δσ_D), 1e5 cycles of 40 MPa on the m = 5 slope:
+    # D by hand, then N_eq = n_ref / D = 1.91e7 lies between N_D and N_L: Δσ = Δσ_D (N_D / N_eq)^(1/5)
+    d = 1.0 / (2e6 * (DC / 60.0) ** 3) + 1e5 / (5e6 * (DD / 40.0) ** 5)
+    n_eq = 1e5 / d
+    assert 5e6 < n_eq < 1e8
+    got = damage_equivalent_range([60 * MPA, 40 * MPA], [1.0, 1e5], curve, n_ref=1e5) / MPA
+    assert got == pytest.approx(DD * (5e6 / n_eq) ** 0.2, rel=1e-12)
     assert damage_equivalent_range([20 * MPA], [1e5], curve) == 0.0
+    assert damage_equivalent_range([40 * MPA], [1e5], curve) == 0.0            # all below Δσ_D
+
+
+def test_damage_equivalent_range_below_the_cut_off_names_n_ref():
+    # 1e4 cycles of 60 MPa (m = 3 slope): D = 1e4 / (2e6 (71/60)^3) = 3.018e-3 by hand; 2e6 cycles of
+    # any range at or above Δσ_L do at least 2e6 / 1e8 = 0.02, so no range answers: the error names
+    # the argument the user gave (n_ref), not an internal one
+    curve = sn_curve("EN 71")
+    d = 1e4 / (2e6 * (DC / 60.0) ** 3)
+    assert miner_damage([60 * MPA], [1e4], curve) == pytest.approx(d, rel=1e-12)
+    with pytest.raises(FatigueError) as err:
+        damage_equivalent_range([60 * MPA], [1e4], curve)
+    assert err.value.key == "n_ref"
+    # at n_ref = D · N_L the answer is the cut-off limit Δσ_L itself
+    assert damage_equivalent_range([60 * MPA], [1e4], curve, n_ref=d * 1e8) / MPA == pytest.approx(DL, rel=1e-9)
 
 
 def test_remaining_life_by_hand():
@@ -139,3 +170,15 @@ def test_remaining_life_by_hand():
     with pytest.raises(FatigueError) as err:
         remaining_life(-0.1)
     assert err.value.key == "damage_per_year"
+
+
+def test_non_numbers_raise_fatigue_errors_naming_the_argument():
+    for call, key in ((lambda: remaining_life("abc"), "damage_per_year"),
+                      (lambda: remaining_life(0.1, damage_so_far=None), "damage_so_far")):
+        with pytest.raises(FatigueError) as err:
+            call()
+        assert err.value.key == key
+    # a category given as a numeric string is the same curve (it was refused by the name's format)
+    assert en1993_curve("71").name == "EN 71"
+    assert en1993_curve("71", gamma_mf="1.35").cycles_to_failure(100 * MPA)[0] == pytest.approx(
+        2e6 * (DC / 1.35 / 100.0) ** 3, rel=1e-12)

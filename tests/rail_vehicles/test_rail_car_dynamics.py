@@ -107,7 +107,8 @@ def _independent(t_eval, rigid):
 
 @pytest.mark.parametrize("contact", ["hertz", "rigid"])
 def test_car_over_dip_matches_independent_integration(contact):
-    """Body, bogie and wheelset motion and the four contact forces within 1 % of their peaks.
+    """Body, bogie and wheelset motion within 3e-5 (Hertz) / 2e-3 (rigid) of their peaks, the four
+    contact forces within 1 % (Hertz) / 0.5 % (rigid).
 
     Measured (2026-12-02) at the exact integrator's automatic step (0.25 ms, 20 steps per period of
     the 187 Hz wheelset-on-Hertz mode): motions ≤ 1e-5 (Hertz) / ≤ 9e-4 (rigid) of their peaks,
@@ -115,6 +116,7 @@ def test_car_over_dip_matches_independent_integration(contact):
     ≤ 0.19 %, and stay there: the floor is the road's linear interpolation between its 5 mm samples
     (k_H · h² r''/8 ≈ 17 N against peaks of ≈ 10 kN)."""
     rigid = contact == "rigid"
+    tol_motion, tol_force = (2e-3, 5e-3) if rigid else (3e-5, 1e-2)
     bridge = EulerBernoulliBeam(20.0, 1e10, 1e4, 0.0, n_modes=2)
     crossing = Crossing(bridge, rail_car(_params(contact)), road=_road(), speed=SPEED, approach=APPROACH,
                         free_vibration=0.0)
@@ -130,8 +132,8 @@ def test_car_over_dip_matches_independent_integration(contact):
         peak = np.abs(q_ref[:, j]).max()
         assert peak > 0
         err = np.abs(q[:, j] - q_ref[:, j]).max() / peak
-        assert err < 0.01, (crossing.vehicle.dof_names[j], err)
+        assert err < tol_motion, (crossing.vehicle.dof_names[j], err)
     for j in range(4):
         peak = np.abs(f_ref[:, j]).max()
         err = np.abs(f[:, j] - f_ref[:, j]).max() / peak
-        assert err < 0.01, (f"w{j + 1}", err)
+        assert err < tol_force, (f"w{j + 1}", err)

@@ -56,7 +56,7 @@ def _midspan_moving_forces(t):
 
 @pytest.mark.parametrize("contact", ["hertz", "rigid"])
 def test_light_stiff_car_equals_moving_forces(contact):
-    """Midspan deflection history within 1 % of its peak (and the peak within 1 %).
+    """Midspan deflection history within 0.4 % of its peak (and the peak within 0.2 %).
 
     Measured (2026-12-02): peak difference 0.07 % (Hertz) / 0.06 % (rigid), largest history
     difference 0.18 % / 0.16 % of the peak (the car's inertia, 0.2 % of the span's mass, and its
@@ -70,5 +70,5 @@ def test_light_stiff_car_equals_moving_forces(contact):
     ref = _midspan_moving_forces(res.time)
     peak = np.abs(ref).max()
     assert peak > 3e-5  # 0.04 mm under the 6 kN car: a real deflection
-    assert abs(np.abs(w).max() - peak) / peak < 0.01
-    assert np.abs(w - ref).max() / peak < 0.01
+    assert abs(np.abs(w).max() - peak) / peak < 2e-3
+    assert np.abs(w - ref).max() / peak < 4e-3

@@ -36,6 +36,14 @@ def test_spectrum_values_by_hand():
         np.testing.assert_allclose(TRACK_PSDS[f"fra-{c}"].spectrum(omega), fra(omega, a), rtol=1e-13)
 
 
+def test_user_built_fra_spectrum_defaults_to_k_025():
+    """A user's own FRA spectrum (class 4's A_v = 0.5376 cm²·rad/m, in m²·rad/m) without k is the
+    class-4 formula with k = 0.25 (Garg & Dukkipati 1984), not four times it."""
+    own = TrackPSD("fra", 0.5376e-4, 0.8245)
+    omega = np.array([0.05, 0.4, 2.0])
+    np.testing.assert_allclose(own.spectrum(omega), fra(omega, 0.5376), rtol=1e-13)
+
+
 def test_wavenumber_form_preserves_variance():
     """G(n) [m³/cycle] of n = Ω/2π integrates to the same variance as S_v(Ω) (the factor 2π)."""
     psd = TRACK_PSDS["german-low"]

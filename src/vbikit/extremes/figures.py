@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from vbikit._files import save_figure
+from vbikit.extremes.errors import ExtremesError
 from vbikit.extremes.fits import ExtremeFit
 from vbikit.extremes.plotting_positions import plotting_positions
 from vbikit.extremes.return_levels import _check_periods, return_levels
@@ -54,6 +55,9 @@ def plot_gumbel(fit: ExtremeFit, path: str | Path, periods: Any = (75.0, 100.0, 
 
     t = _check_periods(fit, periods, "periods")
     n = fit.events_per_year
+    if np.any(t * n <= 1.0):  # p = 1 − 1/(T n) = 0 has no place on the Gumbel axis (y = −∞)
+        raise ExtremesError(f"periods: a return period of {t[t * n <= 1.0][0]:g} years is at p = 0 on the plot; "
+                            f"mark periods longer than 1/{n:g} year")
     pos = plotting_positions(fit.sample, method, blocks_per_year=n)
     level, lo, hi = return_levels(fit, t, ci=ci)
     p_t = 1.0 - 1.0 / (t * n)
@@ -73,7 +77,7 @@ def plot_gumbel(fit: ExtremeFit, path: str | Path, periods: Any = (75.0, 100.0, 
     ax.set_ylabel(f"value [{unit_label(unit)}]" if unit else "value")
     top = ax.secondary_xaxis("top", functions=(lambda v: v, lambda v: v))
     marks = np.array([1.0, 10.0, 100.0, 1000.0])
-    marks = marks[marks * n >= 1.0]
+    marks = marks[marks * n > 1.0]  # T n = 1 is p = 0, y = −∞
     top.set_xticks(-np.log(-np.log(1.0 - 1.0 / (marks * n))))
     top.set_xticklabels([f"{m:g}" for m in marks])
     top.set_xlabel("return period [years]")

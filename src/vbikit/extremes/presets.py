@@ -1,6 +1,7 @@
 """Named return periods of characteristic load effects (a small registry)."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from vbikit.extremes.errors import ExtremesError
@@ -31,12 +32,19 @@ class ReturnPeriod:
 def exceedance_return_period(probability: float, years: float) -> float:
     """Return period whose level is exceeded with ``probability`` in ``years`` years:
     T = 1 / (1 − (1 − p)^(1/years)) (independent years).  10 % in 100 years → 949.6 years."""
-    p = float(probability)
+    try:
+        p = float(probability)
+    except (TypeError, ValueError):
+        raise ExtremesError(f"probability: needs a probability in (0, 1), got {probability!r}") from None
     if not 0.0 < p < 1.0:
         raise ExtremesError(f"probability: needs a probability in (0, 1), got {probability!r}")
-    if not years > 0:
-        raise ExtremesError(f"years: needs a number of years > 0, got {years!r}")
-    return 1.0 / (1.0 - (1.0 - p) ** (1.0 / float(years)))
+    try:
+        n_years = float(years)
+    except (TypeError, ValueError):
+        raise ExtremesError(f"years: needs a finite number of years > 0, got {years!r}") from None
+    if not (math.isfinite(n_years) and n_years > 0):
+        raise ExtremesError(f"years: needs a finite number of years > 0, got {years!r}")
+    return 1.0 / (1.0 - (1.0 - p) ** (1.0 / n_years))
 
 
 #: Return periods by name
@@ -52,7 +60,7 @@ RETURN_PERIODS: dict[str, ReturnPeriod] = {r.name: r for r in (
     ReturnPeriod("eurocode-1000", 1000.0,
                  "Eurocode characteristic road traffic values (Load Model 1): a return period of about 1000 years, "
                  "quoted as a 10 % probability of exceedance in 100 years (exactly 949.6 years) or 5 % in 50 years "
-                 "(974.8 years), both rounded to 1000",
+                 "(975.3 years), both rounded to 1000",
                  "EN 1991-2:2003, 4.3.2 (Load Model 1, characteristic values) and the background documents of its "
                  "calibration"),
 )}
@@ -62,9 +70,8 @@ def return_period(name: str) -> float:
     """The years of a named return period (``"aashto-75"``, ``"100-year"``, ``"eurocode-1000"``)."""
     try:
         return RETURN_PERIODS[name].years
-    except KeyError:
+    except (KeyError, TypeError):
         raise ExtremesError(f"name: unknown return period {name!r}; known: {', '.join(RETURN_PERIODS)}") from None
-
 
 
 __all__ = ["RETURN_PERIODS", "ReturnPeriod", "exceedance_return_period", "return_period"]

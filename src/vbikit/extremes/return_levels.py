@@ -4,7 +4,7 @@ The T-year return level is the level exceeded on average once in T years.
 
 - Block maxima, n blocks a year: the (1 − 1/(T·n)) quantile of the fitted block-maximum
   distribution, z_T = G⁻¹(1 − 1/(T n)) (Coles 2001, §3.3.3, eq. 3.4 with p = 1/(T n): the
-  1/p-block return level; for annual maxima n = 1).
+  1/p-block return level; for annual maxima n = 1), defined for T n > 1.
 - Peaks over threshold with λ exceedances a year: x_T = u + σ/ξ [(λT)^ξ − 1]
   (ξ → 0: u + σ ln(λT)) — Coles §4.3.3, eq. 4.13 with m = T n_y and ζ_u = λ / n_y; that is the
   (1 − 1/(λT)) quantile of the fitted exceedance distribution, defined for λT ≥ 1.
@@ -40,11 +40,15 @@ def _check_periods(fit: ExtremeFit, values: Any, name: str) -> np.ndarray:
         raise ExtremesError(f"fit: needs an ExtremeFit (from fit_block_maxima or fit_peaks_over_threshold), "
                             f"got {type(fit).__name__}")
     t = _periods(values, name)
-    short = t * fit.events_per_year < 1.0
+    if fit.distribution == "gpd":  # λT = 1 is the threshold itself (Coles eq. 4.13)
+        short = t * fit.events_per_year < 1.0
+        what, bound = "shorter than the mean interval between exceedances", "at least"
+    else:  # T·n = 1 is the quantile G⁻¹(0): −∞ (or the lower end point), not a level
+        short = t * fit.events_per_year <= 1.0
+        what, bound = "not longer than one block", "longer than"
     if short.any():
-        what = "block" if fit.distribution != "gpd" else "mean interval between exceedances"
-        raise ExtremesError(f"{name}: {t[short][0]:g} years is shorter than one {what} "
-                            f"(1/{fit.events_per_year:g} year); the return level is not defined there")
+        raise ExtremesError(f"{name}: {t[short][0]:g} years is {what} (1/{fit.events_per_year:g} year); "
+                            f"the return period must be {bound} 1/{fit.events_per_year:g} year")
     return t
 
 
@@ -56,7 +60,7 @@ def return_level(fit: ExtremeFit, period_years: float) -> float:
     fit : ExtremeFit
         From ``fit_block_maxima`` or ``fit_peaks_over_threshold``.
     period_years : float
-        Return period T, years (T · events_per_year ≥ 1).
+        Return period T, years (block maxima: T · events_per_year > 1; POT: ≥ 1).
 
     Returns
     -------

@@ -25,9 +25,10 @@ def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
     Returns
     -------
     float
-        The damage (1.0: failure by Miner's rule).  Ranges below the EN cut-off do nothing; with
-        an AASHTO curve the whole spectrum does nothing when its largest range (with a count > 0)
-        is below (ΔF)_TH.
+        The damage (1.0: failure by Miner's rule).  The whole spectrum does nothing when its
+        largest range (with a count > 0) is below the curve's constant-amplitude fatigue limit
+        ``curve.threshold`` (EN 1993-1-9:2005 1.3.3.3, Δσ_D; AASHTO LRFD 6.6.1.2.5, (ΔF)_TH);
+        otherwise ranges below the EN cut-off Δσ_L do nothing and all others count.
     """
     if not isinstance(curve, SNCurve):
         raise FatigueError(f"curve: needs an SNCurve (e.g. sn_curve('EN 71')), got {type(curve).__name__}")
@@ -35,7 +36,7 @@ def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
     live = n > 0
     if not live.any():
         return 0.0
-    if curve.rule == "max-range" and r[live].max() < curve.threshold:
+    if r[live].max() < curve.threshold:
         return 0.0
     big_n = curve.cycles_to_failure(r[live])
     return float(np.sum(n[live] / big_n))
@@ -70,11 +71,24 @@ def equivalent_stress_range(ranges: Any, counts: Any, m: float = 3.0, n_ref: flo
 
 def damage_equivalent_range(ranges: Any, counts: Any, curve: SNCurve, n_ref: float = 2.0e6) -> float:
     """The constant stress range whose ``n_ref`` cycles do the spectrum's Miner damage on ``curve``
-    (bilinear curves included): Δσ with N(Δσ) = n_ref / D.  Zero when the damage is zero."""
+    (bilinear curves included): Δσ with N(Δσ) = n_ref / D.  Zero when the damage is zero.
+
+    On a curve with a cut-off (EN 1993-1-9) no range does less than n_ref / N_L damage in n_ref
+    cycles (N_L = 10⁸): a smaller damage raises a FatigueError naming ``n_ref``, the largest
+    n_ref = D · N_L that works, and ``equivalent_stress_range`` as the single-slope alternative."""
+    n_ref = positive(n_ref, "n_ref")
     d = miner_damage(ranges, counts, curve)
     if d == 0.0:
         return 0.0
-    return curve.stress_range_at(positive(n_ref, "n_ref") / d)
+    last = curve.segments[-1]
+    if curve.rule == "cutoff":
+        n_cut = last.n_ref * (last.stress_ref / last.stress_min) ** last.m
+        if n_ref / d > n_cut:
+            raise FatigueError(f"n_ref: the spectrum's damage D = {d:.4g} is below n_ref / N_L = {n_ref:g} / "
+                               f"{n_cut:.4g}: no range of {curve.name} above its cut-off does that little in "
+                               f"{n_ref:g} cycles; use n_ref ≤ D · N_L = {d * n_cut:.4g}, or "
+                               f"equivalent_stress_range (single slope)")
+    return curve.stress_range_at(n_ref / d)
 
 
 def remaining_life(damage_per_year: float, damage_so_far: float = 0.0, limit: float = 1.0) -> float:
@@ -94,16 +108,23 @@ def remaining_life(damage_per_year: float, damage_so_far: float = 0.0, limit: fl
     float
         Years; 0 when the limit is already reached.
     """
-    d = float(damage_per_year)
-    d0 = float(damage_so_far)
-    if not np.isfinite(d) or d < 0:
-        raise FatigueError(f"damage_per_year: needs a finite number ≥ 0, got {damage_per_year!r}")
-    if not np.isfinite(d0) or d0 < 0:
-        raise FatigueError(f"damage_so_far: needs a finite number ≥ 0, got {damage_so_far!r}")
+    d = _non_negative(damage_per_year, "damage_per_year")
+    d0 = _non_negative(damage_so_far, "damage_so_far")
     lim = positive(limit, "limit")
     if d0 >= lim:
         return 0.0
     return float("inf") if d == 0.0 else (lim - d0) / d
+
+
+def _non_negative(value: Any, name: str) -> float:
+    """``value`` as a finite float ≥ 0, or a FatigueError naming ``name``."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise FatigueError(f"{name}: needs a finite number ≥ 0, got {value!r}") from None
+    if not np.isfinite(v) or v < 0:
+        raise FatigueError(f"{name}: needs a finite number ≥ 0, got {value!r}")
+    return v
 
 
 __all__ = ["damage_equivalent_range", "equivalent_stress_range", "miner_damage", "remaining_life"]

@@ -1,13 +1,15 @@
 """S-N (fatigue resistance) curves as data, and one mechanism to evaluate them.
 
 A curve is a list of power-law segments ``N = N_ref · (Δσ_ref / Δσ)^m``, each valid down to a
-lower stress range, and a rule for small ranges:
+lower stress range, a constant-amplitude fatigue limit and a rule for small ranges.  Both codes
+give a spectrum whose *largest* range is below the constant-amplitude fatigue limit no damage
+(EN 1993-1-9:2005, 1.3.3.3: "under variable amplitude conditions all stress ranges have to be
+below this limit for no fatigue damage to occur", Δσ_D; AASHTO LRFD 6.6.1.2.5, (ΔF)_TH).  When a
+range reaches the limit, every range counts on the curve, except:
 
 - ``"cutoff"`` (EN 1993-1-9): ranges below the last segment's lower bound (the cut-off limit
   Δσ_L) do no damage;
-- ``"max-range"`` (AASHTO LRFD 6.6.1.2.5): the straight line N = A·Δf^−3 holds for every range,
-  but a spectrum whose *largest* range is below the constant-amplitude fatigue threshold
-  (ΔF)_TH does no damage (infinite life).
+- ``"max-range"`` (AASHTO LRFD 6.6.1.2.5): the straight line N = A·Δf^−3 holds for every range.
 
 Stresses are in Pa throughout; the registry names give the detail category in MPa (EN) or the
 AASHTO letter.  Sources and numbers: ``en1993_curve`` and ``AASHTO_CATEGORIES``.
@@ -80,10 +82,10 @@ class SNCurve:
         Ordered from high to low stress ranges.
     rule : str
         ``"cutoff"``: ranges below the last segment's ``stress_min`` do no damage (EN 1993-1-9);
-        ``"max-range"``: the last segment extends to zero, but no damage at all if the largest
-        range of a spectrum is below ``threshold`` (AASHTO LRFD 6.6.1.2.5).
+        ``"max-range"``: the last segment extends to zero (AASHTO LRFD 6.6.1.2.5).
     threshold : float
-        Constant-amplitude fatigue limit, Pa (EN: Δσ_D; AASHTO: (ΔF)_TH).
+        Constant-amplitude fatigue limit, Pa (EN: Δσ_D; AASHTO: (ΔF)_TH): no damage at all if the
+        largest range of a spectrum is below it (``miner_damage``).
     source : str
         Standard and clause.
     """
@@ -97,8 +99,9 @@ class SNCurve:
     def cycles_to_failure(self, ranges: Any) -> np.ndarray:
         """Cycles to failure N(Δσ) of each stress range (Pa), vectorised.
 
-        ``inf`` below the cut-off (rule ``"cutoff"``) and at Δσ = 0.  The ``"max-range"`` rule
-        is a property of a whole spectrum and is applied in ``miner_damage``, not here.
+        ``inf`` below the cut-off (rule ``"cutoff"``) and at Δσ = 0.  The constant-amplitude
+        fatigue limit (``threshold``) is a property of a whole spectrum and is applied in
+        ``miner_damage``, not here.
         """
         r = series_1d(np.atleast_1d(ranges), "ranges")
         if (r < 0).any():
@@ -136,6 +139,9 @@ def en1993_curve(category_mpa: float, gamma_mf: float = 1.0) -> SNCurve:
     - Δσ_L ≤ Δσ < Δσ_D:  N = 5·10⁶ · (Δσ_D / Δσ)⁵
     - Δσ < Δσ_L:         no damage (cut-off)
 
+    and no damage at all when every range of a spectrum is below Δσ_D (1.3.3.3, the
+    constant-amplitude fatigue limit; applied by ``miner_damage``).
+
     with Δσ_D = (2/5)^(1/3) Δσ_C (constant-amplitude fatigue limit, N_D = 5·10⁶) and
     Δσ_L = (5/100)^(1/5) Δσ_D (cut-off limit, N_L = 10⁸).  With the partial factor γ_Mf
     (EN 1993-1-9 Table 3.1) every stress of the curve is divided by γ_Mf.
@@ -147,10 +153,11 @@ def en1993_curve(category_mpa: float, gamma_mf: float = 1.0) -> SNCurve:
     gamma_mf : float, optional
         Partial factor for fatigue strength γ_Mf (1.0: the characteristic curve).
     """
-    dc = positive(category_mpa, "category_mpa") * MPA / positive(gamma_mf, "gamma_mf")
+    category, gamma = positive(category_mpa, "category_mpa"), positive(gamma_mf, "gamma_mf")
+    dc = category * MPA / gamma
     dd = (EN_N_C / EN_N_D) ** (1.0 / 3.0) * dc
     dl = (EN_N_D / EN_N_L) ** (1.0 / 5.0) * dd
-    name = f"EN {category_mpa:g}" + (f" (γMf={gamma_mf:g})" if gamma_mf != 1.0 else "")
+    name = f"EN {category:g}" + (f" (γMf={gamma:g})" if gamma != 1.0 else "")
     return SNCurve(name, (SNSegment(dd, dc, EN_N_C, 3.0), SNSegment(dl, dd, EN_N_D, 5.0)), "cutoff", dd,
                    "EN 1993-1-9:2005, 7.1 and Fig. 7.1 (direct stress ranges)")
 

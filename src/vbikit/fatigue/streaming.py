@@ -69,7 +69,10 @@ class RainflowState:
             raise FatigueError(f"state: not a rainflow state ({exc})") from None
         if ranges.shape != counts.shape or ranges.ndim != 1 or residual.ndim != 1:
             raise FatigueError("state: ranges and counts need equal 1-D lengths and the residual a 1-D list")
-        return cls(ranges, counts, residual, None if width is None else float(width))
+        for key, arr in (("ranges", ranges), ("counts", counts), ("residual", residual)):
+            if not np.all(np.isfinite(arr)) or (key != "residual" and (arr < 0).any()):
+                raise FatigueError(f"state: {key} must be finite" + (" and ≥ 0" if key != "residual" else ""))
+        return cls(ranges, counts, residual, None if width is None else positive(width, "bin_width"))
 
 
 def _key(rng: float, width: float | None) -> float:

@@ -77,7 +77,8 @@ class TrackPSD:
     omega_r : float
         Ω_r [rad/m] (German spectra only).
     k : float
-        Safety factor k [-] (FRA spectra only; 0.25).
+        Safety factor k [-] (FRA spectra only; default 0.25, the value of Garg & Dukkipati 1984
+        that the FRA classes' A_v go with).
     n_min, n_max : float
         The band [cycle/m] of the generated profile (wavelengths 1/n_max … 1/n_min).
     name : str
@@ -88,7 +89,7 @@ class TrackPSD:
     A_v: float
     omega_c: float
     omega_r: float = 0.0
-    k: float = 1.0
+    k: float = 0.25
     n_min: float = 1.0 / 80.0
     n_max: float = 1.0
     name: str = ""
