@@ -14,7 +14,7 @@ docs/figures/railveh-numbers.json and draw docs/figures/railveh-track-spectra.pn
 * ``train``: eight ICE3 coaches (24.775 m apart, a substitute coach length) over the same span at
   80 m/s, smooth track, with 3 and 6 modes: peak midspan acceleration and deflection with Hertz and
   rigid contact and as moving forces (the coaches' static axle loads).
-tests/rail_vehicles/test_numbers.py recomputes the fast parts and checks the JSON.
+tests/rail_vehicles/test_railveh_numbers.py recomputes the fast parts and checks the JSON.
 """
 from __future__ import annotations
 
