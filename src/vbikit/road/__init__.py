@@ -16,6 +16,7 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
         phase_angles,
         random_profile,
     )
+    from vbikit.road.track import TRACK_PSDS, TrackPSD, track_profile
 
 __all__ = [
     "DEFECT_DEFAULTS",
@@ -27,10 +28,13 @@ __all__ = [
     "RoadFileError",
     "RoadPSD",
     "RoadProfile",
+    "TRACK_PSDS",
+    "TrackPSD",
     "correlated_profile",
     "phase_angles",
     "random_profile",
     "read_profile_csv",
+    "track_profile",
 ]
 
 __getattr__, __dir__ = lazy_exports(globals(), {
@@ -38,4 +42,5 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.road.measured": ["RoadFileError", "read_profile_csv"],
     "vbikit.road.profile": ["RoadProfile"],
     "vbikit.road.psd": ["ISO_CLASSES", "ISO_N0", "PAPER_CLASSES", "RoadPSD", "correlated_profile", "phase_angles", "random_profile"],
+    "vbikit.road.track": ["TRACK_PSDS", "TrackPSD", "track_profile"],
 })
