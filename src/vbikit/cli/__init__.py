@@ -17,7 +17,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from vbikit.cli import field, models, scenarios, study, traffic
+from vbikit.cli import field, models, rail, scenarios, study, traffic
 from vbikit.cli.guard import STATE
 
 #: the global options, accepted after the subcommand as well (``vbikit run X.toml -q``)
@@ -91,6 +91,7 @@ app.command("compare-tires")(scenarios.compare_tires)
 app.command()(models.presets)
 app.command()(models.bridge)
 app.command("field")(field.field_)
+app.command("rail")(rail.rail_cmd)
 
 
 @app.command("compile")
