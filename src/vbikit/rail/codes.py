@@ -123,17 +123,19 @@ def lm71_peak(influence: Callable[[NDArray[np.float64], NDArray[np.float64]], ND
     effect (EN 1991-2 6.3.2(2)) outside the group's 6.4 m; |R| of the worse sign."""
     axles, q_axle, q_line = lm71_loads(alpha)
     x = np.arange(0.0, span + 0.5 * step, step)
-    eta = -np.asarray(influence(x, np.zeros_like(x)), float)  # effect of a unit *downward* force
-    centres = np.arange(-3.2, span + 3.2 + 0.5 * step, step)
+    inside = x.copy()  # the end values as limits from inside the span (an axle on a support carries no shear)
+    inside[0], inside[-1] = 1e-9 * span, span * (1 - 1e-9)
+    eta = -np.asarray(influence(inside, np.zeros_like(x)), float)  # effect of a unit *downward* force
+    # every position that puts an axle or an end of the distributed-load gap on a grid point
+    centres = np.unique(np.concatenate([x - a for a in axles] + [x - 3.2, x + 3.2]))
+    xa = centres[:, None] + axles[None, :]
+    on = (xa >= -1e-9) & (xa <= span + 1e-9)
     best = 0.0
     for sign in (1.0, -1.0):
         part = np.clip(sign * eta, 0.0, None)
         cum = np.concatenate([[0.0], np.cumsum(0.5 * (part[1:] + part[:-1]) * step)])
-        for c in centres:
-            xa = c + axles
-            on = (xa >= 0) & (xa <= span)
-            conc = float(np.sum(np.interp(xa[on], x, sign * eta))) * q_axle
-            lo, hi = np.clip(c - 3.2, 0, span), np.clip(c + 3.2, 0, span)
-            udl = (cum[-1] - (np.interp(hi, x, cum) - np.interp(lo, x, cum))) * q_line
-            best = max(best, conc + udl)
+        conc = np.sum(np.where(on, np.interp(np.clip(xa, 0, span), x, sign * eta), 0.0), axis=1) * q_axle
+        lo, hi = np.clip(centres - 3.2, 0, span), np.clip(centres + 3.2, 0, span)
+        udl = (cum[-1] - (np.interp(hi, x, cum) - np.interp(lo, x, cum))) * q_line
+        best = max(best, float(np.max(conc + udl)))
     return best
