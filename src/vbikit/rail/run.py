@@ -105,7 +105,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     trains = load_trains(spec, base_dir)
     n0 = float(bridge.frequencies_hz[0])
     v_min, v_max = spec.speeds.min * KMH, spec.speeds.top * KMH
-    res = {t.name: train_resonances(t, n0, v_max, RESONANCE_ORDERS) for t in trains}
+    res = {t.name: (lambda r: r[r >= v_min])(train_resonances(t, n0, v_max, RESONANCE_ORDERS)) for t in trains}
     all_res = np.concatenate([r for r in res.values()] + [np.zeros(0)])
     fine = spec.speeds.fine_step * KMH if spec.speeds.fine_step else None
     speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH)

@@ -63,9 +63,11 @@ def _filter_coefficients(omega: NDArray[np.float64], zeta: NDArray[np.float64], 
 
 def default_dx(bridge: ModalBridge, min_speed: float, steps_per_period: int = STEPS_PER_PERIOD) -> float:
     """Δx [m]: ``steps_per_period`` samples per period of the highest retained mode at the lowest
-    speed, and at least 100 samples along the span."""
+    speed, and at least 100 samples along the span; rounded down so that the span is an even number
+    of steps (the first axle is then sampled on both supports and at midspan)."""
     f_top = float(np.max(bridge.omega)) / (2 * np.pi)
-    return float(min(min_speed / (f_top * steps_per_period), bridge.span / 100.0))
+    raw = min(min_speed / (f_top * steps_per_period), bridge.span / 100.0)
+    return float(bridge.span / (2 * math.ceil(bridge.span / (2 * raw))))
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,89 @@
+"""run_rail / `vbikit rail`: the schema's errors, the budget, the dataset contract and a cut-down of
+examples/railway through the command line."""
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from vbikit.rail.run import RailBudgetError, run_rail
+from vbikit.rail.spec import RailSpecError, parse_rail_spec
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "railway"
+
+
+def spec(**over):
+    data = {"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0},
+            "trains": {"presets": ["hslm-a1"]},
+            "speeds": {"min": 200.0, "max": 260.0, "step": 20.0}}
+    for key, value in over.items():
+        data[key] = {**data.get(key, {}), **value}
+    return data
+
+
+def test_errors_name_keys_and_ranges_before_computing():
+    with pytest.raises(RailSpecError) as err:
+        parse_rail_spec(spec(bridge={"deck": "timber", "damping": 0.5}, trains={"presets": ["hslm-a12"]},
+                             speeds={"line_max": 300.0}))
+    msg = str(err.value)
+    assert "bridge.deck: deck must be one of steel, composite" in msg
+    assert "bridge.damping: Input should be less than 0.2" in msg
+    assert "trains.presets: unknown train 'hslm-a12'" in msg
+    assert "speeds.max: give either max (km/h) or line_max" in msg
+    with pytest.raises(RailSpecError, match="speeds.step"):
+        parse_rail_spec(spec(speeds={"step": 0.0}))
+
+
+def test_budget_refused_before_the_sweep():
+    with pytest.raises(RailBudgetError, match="run.budget: the sweep needs"):
+        run_rail(spec(run={"budget": 1e5}), figures=False)
+
+
+def test_dataset_contract_and_a_one_axle_train_against_closed_forms(tmp_path):
+    (tmp_path / "one.csv").write_text("position_m,load_kN\n0,200\n")
+    data = spec(trains={"presets": ["hslm-a1", "hslm-a2"], "tables": [str(tmp_path / "one.csv")]})
+    result = run_rail(data, tmp_path / "out", figures=False)
+    ds = result.dataset
+    assert list(ds.train.values) == ["HSLM-A1", "HSLM-A2", "one"]
+    assert ds["max_deck_acceleration"].dims == ("train", "speed")
+    assert ds["max_deck_acceleration"].attrs["units"] == "m s-2"
+    assert ds.speed.attrs["units"] == "m s-1"
+    # one 200 kN axle over the 20 m span: M = P L / 4 = 1000 kN m (sampled at midspan); deflection within the
+    # retained modes (1, 2, 3 at midspan: odd ones) = P L³/(48 EI) × (1 + 3⁻⁴) / (π⁴/96)
+    one = ds.sel(train="one")
+    assert float(one["static_moment"]) == pytest.approx(1000e3, rel=1e-9)
+    # shear just right of the support: an axle on the support carries none (vbikit.bridge.effects), the
+    # first sample after it is Δx in: V = P (1 − Δx/L)
+    assert float(one["static_shear"]) == pytest.approx(200e3 * (1 - ds.attrs["dx_m"] / 20.0), rel=1e-9)
+    w = 200e3 * 20.0**3 / (48 * 7.9e10) * (1 + 3.0**-4) / (math.pi**4 / 96)
+    assert int(ds.attrs["n_modes"]) == 3
+    assert float(one["static_deflection"]) == pytest.approx(w, rel=1e-4)
+    # the deck damping of Table 6.6 (prestressed concrete, L = 20 m: 1.0 %) plus Δζ(20) = 0.118/0.398 %
+    assert ds.attrs["damping_ratio"] == pytest.approx((1.0 + 0.118 / 0.398) / 100, rel=1e-12)
+    assert (tmp_path / "out" / "rail.nc").exists() and "result:" in result.report
+
+
+def test_example_cut_down_through_the_cli(tmp_path):
+    for name in ("hslm_20m.toml", "talgo_like.csv"):
+        shutil.copy(EXAMPLE / name, tmp_path / name)
+    text = (tmp_path / "hslm_20m.toml").read_text()
+    text = text.replace('presets = ["hslm-a", "ice3"]', 'presets = ["hslm-a3", "ice3"]')
+    text = text.replace("step = 2.0", "step = 20.0").replace("fine_step = 0.5", "fine_step = 5.0")
+    text = text.replace("workers = 2", "workers = 1")
+    (tmp_path / "hslm_20m.toml").write_text(text)
+    out = tmp_path / "out"
+    run = subprocess.run([sys.executable, "-c", "from vbikit.cli import app; app(prog_name='vbikit')", "rail", str(tmp_path / "hslm_20m.toml"), "--out-dir", str(out)],
+                         capture_output=True, text=True, env=os.environ.copy(), timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "deck acceleration: peak" in run.stdout
+    import xarray as xr
+
+    with xr.open_dataset(out / "rail.nc") as ds:
+        assert list(ds.train.values) == ["HSLM-A3", "ICE 3", "talgo_like"]
+        assert np.all(np.isfinite(ds["max_deck_acceleration"].values))
+        assert float(ds["acceleration_limit"]) == 3.5
+    assert (out / "rail-acceleration.png").stat().st_size > 10_000
