@@ -18,8 +18,10 @@ linear time-invariant filter; its z-transform gives, for ξ and ξ̇,
     num_ξ = [c1, b1 − a22 c1 + a12 c2, a12 b2 − a22 b1]
     num_ξ̇ = [c2, b2 − a11 c2 + a21 c1, a21 b1 − a11 b2]
 
-(zero initial state, the load zero at the first sample), applied with ``scipy.signal.lfilter`` for
-every (speed, mode).  ξ̈ = p − 2ζωξ̇ − ω²ξ at the samples.  The train is followed until its last
+(zero initial state, the load zero at the first sample): ``moving_load_history`` applies it with
+``scipy.signal.lfilter`` for every mode.  A sweep (``moving_load_sweep``) runs the recurrence itself
+in one compiled loop per speed (numba) and keeps only the peaks, so no history is stored.
+ξ̈ = p − 2ζωξ̇ − ω²ξ at the samples.  The train is followed until its last
 axle leaves the deck plus ``free_vibration`` seconds.
 
 Outputs: deck displacement and acceleration at points (plain modal sums Σ φᵢ ξᵢ, Σ φᵢ ξ̈ᵢ), the
@@ -37,8 +39,13 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from numba import njit
+
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect
+from vbikit.solve.numba_cache import ensure_cache_location
+
+ensure_cache_location()  # before the @njit(cache=True) below
 
 #: samples per period of the highest retained mode at the lowest speed (sets Δx when not given)
 STEPS_PER_PERIOD = 20
@@ -48,6 +55,49 @@ MAX_FILTER_STEPS = 4e9
 
 class MovingLoadBudgetError(ValueError):
     """The sweep would take more filter steps than allowed (raise ``max_steps``)."""
+
+
+@njit(cache=True, fastmath=False, error_model="numpy")
+def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega2, damp):  # pragma: no cover (compiled)
+    """The recurrence ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1} (ξ̇ likewise) over ``n_total``
+    samples (p zero beyond its rows), tracking max |Σ φ ξ̈|, max |Σ φ ξ| at each point and
+    max |R_st + Σ r (ξ − p/ω²)| of each effect; ξ̈ = p − damp ξ̇ − ω² ξ (damp = 2ζω)."""
+    n_m = a11.size
+    n_p, n_e = phi.shape[0], r.shape[0]
+    n_rows = p.shape[0]
+    acc = np.zeros(n_p)
+    disp = np.zeros(n_p)
+    eff = np.zeros(n_e)
+    x = np.zeros(n_m)
+    v = np.zeros(n_m)
+    xa = np.zeros(n_m)
+    for n in range(n_total):
+        for i in range(n_m):
+            p1 = p[n, i] if n < n_rows else 0.0
+            if n > 0:
+                p0 = p[n - 1, i] if n - 1 < n_rows else 0.0
+                x0, v0 = x[i], v[i]
+                x[i] = a11[i] * x0 + a12[i] * v0 + b1[i] * p0 + c1[i] * p1
+                v[i] = a21[i] * x0 + a22[i] * v0 + b2[i] * p0 + c2[i] * p1
+            xa[i] = p1 - damp[i] * v[i] - omega2[i] * x[i]
+        for k in range(n_p):
+            sa = 0.0
+            sd = 0.0
+            for i in range(n_m):
+                sa += phi[k, i] * xa[i]
+                sd += phi[k, i] * x[i]
+            if abs(sa) > acc[k]:
+                acc[k] = abs(sa)
+            if abs(sd) > disp[k]:
+                disp[k] = abs(sd)
+        for e in range(n_e):
+            s = static[n, e] if n < n_rows else 0.0
+            for i in range(n_m):
+                pi = p[n, i] if n < n_rows else 0.0
+                s += r[e, i] * (x[i] - pi / omega2[i])
+            if abs(s) > eff[e]:
+                eff[e] = abs(s)
+    return acc, disp, eff
 
 
 def _filter_coefficients(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float):
@@ -207,11 +257,17 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
     acc = np.empty((v.size, xs.size))
     disp = np.empty((v.size, xs.size))
     eff = np.empty((v.size, len(effects)))
+    from vbikit.solve.modal_step import exact_step
+
+    zeta = bridge.damping_ratios
+    omega2, damp = np.ascontiguousarray(omega**2), np.ascontiguousarray(2.0 * zeta * omega)
+    p_tab = np.ascontiguousarray(table.modal_load)
+    st_tab = np.ascontiguousarray(table.static_effects)
+    phi_c, r_c = np.ascontiguousarray(phi), np.ascontiguousarray(r)
     for k, speed in enumerate(v):
-        hist = _history(bridge, table, float(speed), fv)
-        acc[k] = np.max(np.abs(hist.xi_ddot @ phi.T), axis=0)
-        disp[k] = np.max(np.abs(hist.xi @ phi.T), axis=0)
-        if effects:
-            dyn = hist.static_effects + (hist.xi - hist.modal_load / omega**2) @ r.T
-            eff[k] = np.max(np.abs(dyn), axis=0)
+        h = dx / float(speed)
+        c = exact_step(omega, zeta, h)
+        n_total = table.n_forced + int(math.ceil(fv / h))
+        acc[k], disp[k], eff[k] = _peaks(p_tab, st_tab, n_total, c.a11, c.a12, c.a21, c.a22, c.b1, c.b2, c.c1, c.c2,
+                                         phi_c, r_c, omega2, damp)
     return MovingLoadEnvelopes(v, xs, acc, disp, static_disp, eff, static_eff, dx)
