@@ -299,6 +299,27 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
                     "in " + SEARCHED + ": no Crossref record found",
        note="Cited only for its Table 7, 'Roughness coefficient for different surface conditions'; "
             "authors to be completed from the publisher's page"),
+    # --- rail
+    _R("EN1991-2", "manual", "Eurocode 1: Actions on structures — Part 2: Traffic loads on bridges (EN 1991-2:2003)", "2003",
+       "HSLM-A/B (Annex E, Table E.1, Figures E.1, E.2), damping (Table 6.6, Eq. 6.13), resonance speeds and "
+       "the dynamic analysis (6.4.6), Φ2/Φ3 (6.4.5.2), LM71 (6.3.2), φ'' (Annex C)",
+       organization="CEN", address="Brussels"),
+    _R("EN1990-A2", "manual", "Eurocode: Basis of structural design — Annex A2: Application for bridges (EN 1990:2002/A1:2005)",
+       "2005", "peak deck acceleration limits and the frequency range of the dynamic analysis (A2.4.4.2.1)",
+       organization="CEN", address="Brussels"),
+    _R("Goicolea2014", "misc", "Simplified Mechanical Description of AVE S-103 - ICE3 Velaro E High Speed Train", "2014",
+       "geometry, masses and suspensions of the ICE 3 preset (vbikit.rail.ice3)",
+       authors=("Goicolea, José M.",), publisher="Universidad Politécnica de Madrid",
+       url="https://oa.upm.es/43946/1/aves103_ice3.pdf", note="Read through its transcription in TTB-2D"),
+    _R("TTB2D", "software", "TTB-2D: train–track–bridge interaction simulation tool for Matlab", "n.d.",
+       "the ICE 3 car data as transcribed from Goicolea (2014) (TrainProp_AVE_S103_ICE3_Velaro_E_*)",
+       authors=("Cantero, Daniel",), url="https://github.com/DanielCanteroNTNU/TTB-2D"),
+    _R("SincBridgeDynamics", "software", "SincBridgeDynamics.jl", "n.d.",
+       "second source of the HSLM-A axle lists (TRAIN_MODELS) and of the Table 6.6 damping rule (ec1damping)",
+       url="https://github.com/antonioaro/SincBridgeDynamics.jl"),
+    _R("YangYauHsu1997", "article", "Vibration of simple beams due to trains moving at high speeds", "1997",
+       "resonance and cancellation of equally spaced moving loads on a simple beam (verification)",
+       authors=("Yang, Y. B.", "Yau, J. D.", "Hsu, L. C."), journal="Engineering Structures", volume="19", number="11"),
 )}
 
 #: Which entries each model relies on, by the names used in scenario files
@@ -332,6 +353,10 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "bridge:continuous-beam": ("Blevins1979", "pycba"),
     "vehicle:3s2": ("Cantero2024",),
     "vehicle:axles": ("AASHTO-Standard2002",),
+    # --- rail
+    "train:hslm-a": ("EN1991-2", "SincBridgeDynamics"),
+    "train:ice3": ("Goicolea2014", "TTB2D"),
+    "rail:checks": ("EN1991-2", "EN1990-A2", "Fryba1999", "NigamJennings1969"),
 }
 
 

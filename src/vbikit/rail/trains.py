@@ -245,7 +245,7 @@ def ice3() -> Train:
     axle, static axle loads 152.1 kN (cars 4 and 5: 135.9 kN) from the masses."""
     return train_from_cars("ICE 3", _ice3_cars(),
                            "Goicolea (2014), Simplified mechanical description of AVE S-103 - ICE3 Velaro E "
-                           "high speed train, Universidad Politecnica de Madrid (as used by TTB-2D, Cantero 2022)",
+                           "high speed train, Universidad Politecnica de Madrid (as transcribed in TTB-2D, Cantero)",
                            coach_length=24.775)
 
 
@@ -264,9 +264,9 @@ TRAIN_PRESETS: dict[str, TrainPreset] = {
     **{f"hslm-a{k}": TrainPreset(f"hslm-a{k}", (lambda k=k: hslm_a(k)),
                                  f"HSLM-A{k}: EN 1991-2 Annex E universal train, N = {HSLM_A_TABLE[k][0]}, "
                                  f"D = {HSLM_A_TABLE[k][1]:g} m, d = {HSLM_A_TABLE[k][2]:g} m, P = {HSLM_A_TABLE[k][3]:g} kN",
-                                 ("EN1991-2",)) for k in HSLM_A_TABLE},
+                                 ("EN1991-2", "SincBridgeDynamics")) for k in HSLM_A_TABLE},
     "ice3": TrainPreset("ice3", ice3, "ICE 3 / AVE S-103 (Velaro E), 8 cars with their masses and suspensions",
-                        ("Goicolea2014", "Cantero2022")),
+                        ("Goicolea2014", "TTB2D")),
 }
 
 
