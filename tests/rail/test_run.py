@@ -87,3 +87,22 @@ def test_example_cut_down_through_the_cli(tmp_path):
         assert np.all(np.isfinite(ds["max_deck_acceleration"].values))
         assert float(ds["acceleration_limit"]) == 3.5
     assert (out / "rail-acceleration.png").stat().st_size > 10_000
+
+
+def test_coupled_cars_on_an_irregular_track_join_the_sweep():
+    data = spec(trains={"presets": ["ice3"]}, speeds={"min": 250.0, "max": 260.0, "step": 10.0},
+                coupled={"enabled": True, "irregularity": "german-low", "seed": 3})
+    ds = run_rail(data, figures=False).dataset
+    assert list(ds.train.values) == ["ICE 3", "ICE 3 (coupled)"]
+    acc = ds["max_deck_acceleration"].values
+    assert acc.shape == (2, 2) and (acc > 0).all() and (acc[1] != acc[0]).all()
+    # the static reference of the coupled cars is the moving-force train's (same static axle loads)
+    assert float(ds["static_deflection"][1]) == pytest.approx(float(ds["static_deflection"][0]), rel=1e-9)
+
+
+def test_speed_grid_refines_near_resonance():
+    from vbikit.rail.sweep import speed_grid
+
+    v = speed_grid(30.0, 40.0, 5.0, resonances=[33.3], fine_step=0.5, width=1.0)
+    assert list(v[:2]) == [30.0, 32.3] and 35.0 in v and v[-1] == 40.0
+    assert all(abs(x - y) < 0.5 + 1e-9 for x, y in zip(v[1:], v[2:]) if 32.3 <= x < 34.3)
