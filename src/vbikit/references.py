@@ -299,6 +299,61 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
                     "in " + SEARCHED + ": no Crossref record found",
        note="Cited only for its Table 7, 'Roughness coefficient for different surface conditions'; "
             "authors to be completed from the publisher's page"),
+    # --- rail-vehicles (vbikit.vehicle.rail_car, vbikit.road.track)
+    _R("Zhai2020", "book", "Vehicle–Track Coupled Dynamics: Theory and Applications", "2020",
+       "the planar car model (body, bogies, wheelsets), the linearised Hertz wheel–rail stiffness "
+       "k_H = 3/(2G) P0^(1/3) with G = 4.57 R^-0.149 × 1e-8 (conical) / 3.86 R^-0.115 × 1e-8 (worn) m/N^(2/3), "
+       "and the German high-speed track spectra's constants",
+       authors=("Zhai, Wanming",), publisher="Springer", address="Singapore",
+       note="Chapters on the vehicle model, wheel/rail normal contact and track irregularity spectra; "
+            "section numbers as cited in the code not yet checked against the printed book"),
+    _R("ZhaiWangCai2009", "article", "Fundamentals of vehicle–track coupled dynamics", "2009",
+       "the 'China Star' power-car preset (masses, inertias, suspensions, geometry)",
+       authors=("Zhai, Wanming", "Wang, Kaiyun", "Cai, Chengbiao"), journal="Vehicle System Dynamics",
+       volume="47", number="11", pages="1349–1376",
+       note="Values read through their transcription in TTB-2D (TrainProp_ChineseStarPowerCar.m), "
+            "per-side stiffnesses and dampings doubled for the planar model"),
+    _R("Goicolea2014", "misc", "Simplified Mechanical Description of AVE S-103 - ICE3 Velaro E High Speed Train",
+       "2014", "the ICE3 / AVE S-103 intermediate-coach preset (coaches 2, 3, 6, 7)",
+       authors=("Goicolea, José M.",), organization="Universidad Politécnica de Madrid",
+       url="https://oa.upm.es/43946/1/aves103_ice3.pdf",
+       note="Values read through their transcription in TTB-2D (TrainProp_AVE_S103_ICE3_Velaro_E_C2367.m)"),
+    _R("Iwnicki1998", "article", "Manchester Benchmarks for Rail Vehicle Simulation", "1998",
+       "the Manchester benchmark vehicle preset",
+       authors=("Iwnicki, Simon",), journal="Vehicle System Dynamics", volume="30", number="3-4", pages="295–313",
+       doi="10.1080/00423119808969454", checked=False,
+       verification="DOI unconfirmed: taken from the TTB-2D source file that cites the article "
+                    "(TrainProp_Manchester_BenchMark.m); searched for it and for the title in " + SEARCHED +
+                    ": no publisher (Taylor & Francis) or Crossref record found"),
+    _R("Cantero2022", "article", "TTB-2D: Train-Track-Bridge interaction simulation tool for Matlab", "2022",
+       "independent open code read (not copied) for the rail-car presets' source values and the track spectra's "
+       "constants (second source)",
+       authors=("Cantero, Daniel",), journal="SoftwareX", volume="20", pages="101253",
+       doi="10.1016/j.softx.2022.101253", url="https://github.com/DanielCanteroNTNU/TTB-2D", checked=False,
+       verification="DOI unconfirmed: taken from the TTB-2D source files' citation notice; searched for it in "
+                    + SEARCHED + ": no publisher (Elsevier) or Crossref record found"),
+    _R("GuoXia2012", "article",
+       "Integral model for train-track-bridge interaction on the Sesia viaduct: Dynamic simulation and critical assessment",
+       "2012", "second source of the German high-speed (low disturbance) spectrum's constants "
+       "A_v = 4.032e-7 m·rad, Ω_c = 0.8246 rad/m, Ω_r = 0.0206 rad/m",
+       authors=("Guo, W. W.", "Xia, H.", "De Roeck, G.", "Liu, K."), journal="Computers & Structures",
+       volume="112–113", pages="205–216", doi="10.1016/j.compstruc.2012.09.001", checked=False,
+       verification="DOI unconfirmed: taken from the TTB-2D option file that cites the article (A04_Options.m); "
+                    "searched for it in " + SEARCHED + ": no publisher (Elsevier) or Crossref record found"),
+    _R("GargDukkipati1984", "book", "Dynamics of Railway Vehicle Systems", "1984",
+       "the FRA track classes' vertical-profile spectrum S = k A_v Ω_c² / (Ω² (Ω² + Ω_c²)), k = 0.25, "
+       "Ω_c = 0.8245 rad/m, A_v = 1.2107 … 0.0339 cm²·rad/m for classes 1–6",
+       authors=("Garg, Vijay K.", "Dukkipati, Rao V."), publisher="Academic Press", address="Toronto",
+       note="After the US Federal Railroad Administration's track-geometry analyses (Hamid & Yang 1981); "
+            "constants checked against two independent open codes (TTB-2D A04_Options.m, after Berawi's thesis; "
+            "a public Python vehicle–bridge script); section not yet checked against the printed book"),
+    _R("HamidYang1981", "article", "Analytical description of track-geometry variations", "1981",
+       "origin of the FRA track-class spectra (as cited by Garg & Dukkipati 1984)",
+       authors=("Hamid, A.", "Yang, T.-L."), journal="Transportation Research Record", volume="838", pages="19–26",
+       note="Cited through secondary sources; not read"),
+    _R("Johnson1985", "book", "Contact Mechanics", "1985",
+       "the classical Hertz compliance δ = (9P²/(16E*²R))^(1/3) the empirical wheel–rail constant G is checked against",
+       authors=("Johnson, K. L.",), publisher="Cambridge University Press", address="Cambridge"),
     # --- rail
     _R("EN1991-2", "manual", "Eurocode 1: Actions on structures — Part 2: Traffic loads on bridges (EN 1991-2:2003)", "2003",
        "HSLM-A/B (Annex E, Table E.1, Figures E.1, E.2), damping (Table 6.6, Eq. 6.13), resonance speeds and "
@@ -307,13 +362,6 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("EN1990-A2", "manual", "Eurocode: Basis of structural design — Annex A2: Application for bridges (EN 1990:2002/A1:2005)",
        "2005", "peak deck acceleration limits and the frequency range of the dynamic analysis (A2.4.4.2.1)",
        organization="CEN", address="Brussels"),
-    _R("Goicolea2014", "misc", "Simplified Mechanical Description of AVE S-103 - ICE3 Velaro E High Speed Train", "2014",
-       "geometry, masses and suspensions of the ICE 3 preset (vbikit.rail.ice3)",
-       authors=("Goicolea, José M.",), publisher="Universidad Politécnica de Madrid",
-       url="https://oa.upm.es/43946/1/aves103_ice3.pdf", note="Read through its transcription in TTB-2D"),
-    _R("TTB2D", "software", "TTB-2D: train–track–bridge interaction simulation tool for Matlab", "n.d.",
-       "the ICE 3 car data as transcribed from Goicolea (2014) (TrainProp_AVE_S103_ICE3_Velaro_E_*)",
-       authors=("Cantero, Daniel",), url="https://github.com/DanielCanteroNTNU/TTB-2D"),
     _R("SincBridgeDynamics", "software", "SincBridgeDynamics.jl", "n.d.",
        "second source of the HSLM-A axle lists (TRAIN_MODELS) and of the Table 6.6 damping rule (ec1damping)",
        url="https://github.com/antonioaro/SincBridgeDynamics.jl"),
@@ -353,9 +401,11 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "bridge:continuous-beam": ("Blevins1979", "pycba"),
     "vehicle:3s2": ("Cantero2024",),
     "vehicle:axles": ("AASHTO-Standard2002",),
+    "vehicle:rail-car": ("Zhai2020", "ZhaiWangCai2009", "Goicolea2014", "Iwnicki1998", "Cantero2022"),
+    "road:track": ("Zhai2020", "GuoXia2012", "GargDukkipati1984", "HamidYang1981"),
     # --- rail
     "train:hslm-a": ("EN1991-2", "SincBridgeDynamics"),
-    "train:ice3": ("Goicolea2014", "TTB2D"),
+    "train:ice3": ("Goicolea2014", "Cantero2022"),
     "rail:checks": ("EN1991-2", "EN1990-A2", "Fryba1999", "NigamJennings1969"),
 }
 

@@ -266,7 +266,7 @@ TRAIN_PRESETS: dict[str, TrainPreset] = {
                                  f"D = {HSLM_A_TABLE[k][1]:g} m, d = {HSLM_A_TABLE[k][2]:g} m, P = {HSLM_A_TABLE[k][3]:g} kN",
                                  ("EN1991-2", "SincBridgeDynamics")) for k in HSLM_A_TABLE},
     "ice3": TrainPreset("ice3", ice3, "ICE 3 / AVE S-103 (Velaro E), 8 cars with their masses and suspensions",
-                        ("Goicolea2014", "TTB2D")),
+                        ("Goicolea2014", "Cantero2022")),
 }
 
 

@@ -2,20 +2,20 @@
 
 Spectra, Ω the angular wavenumber [rad/m], S_v(Ω) one-sided [m²/(rad/m)]:
 
-* German high-speed spectra, low and high disturbance (ORE/ERRI; as tabulated by Zhai 2020,
-  §3.2 "track irregularity power spectral densities", and Guo, Xia, De Roeck & Liu 2012):
+* German high-speed spectra, low and high disturbance (as tabulated by Zhai 2020 with the track
+  irregularity spectra, and by Guo, Xia, De Roeck & Liu 2012):
 
       S_v(Ω) = A_v Ω_c² / ((Ω² + Ω_r²)(Ω² + Ω_c²)),   Ω_c = 0.8246 rad/m, Ω_r = 0.0206 rad/m,
       A_v = 4.032e-7 m·rad (low) / 1.080e-6 m·rad (high)
 
-* US Federal Railroad Administration classes 1–6 (Garg & Dukkipati 1984, §4.2, after Hamid &
+* US Federal Railroad Administration classes 1–6 (Garg & Dukkipati 1984, after Hamid &
   Yang 1981):
 
       S_v(Ω) = k A_v Ω_c² / (Ω² (Ω² + Ω_c²)),   k = 0.25, Ω_c = 0.8245 rad/m,
       A_v = 1.2107, 1.0181, 0.6816, 0.5376, 0.2095, 0.0339 cm²·rad/m (class 1 … 6)
 
 The profile generator is vbikit's road generator ([`random_profile`][vbikit.road.random_profile], paper Eq. 7):
-a [`TrackPSD`][vbikit.road.track.TrackPSD] presents the spectrum in the road PSD's terms — a callable
+a [`TrackPSD`][vbikit.road.TrackPSD] presents the spectrum in the road PSD's terms — a callable
 giving the one-sided displacement PSD G(n) [m³/cycle] of the wavenumber n = Ω/2π [cycle/m], with
 the band [n_min, n_max] — so the same seeded mechanism builds roads and tracks:
 G(n) = 2π S_v(2πn), since S_v dΩ = G dn.
@@ -109,7 +109,7 @@ class TrackPSD:
 
     @classmethod
     def named(cls, name: str, **band: float) -> "TrackPSD":
-        """A registered spectrum ([`TRACK_PSDS`][vbikit.road.track.TRACK_PSDS]), optionally with another band
+        """A registered spectrum (``vbikit.road.TRACK_PSDS``), optionally with another band
         (``n_min``, ``n_max`` [cycle/m])."""
         try:
             psd = TRACK_PSDS[name.lower()]
@@ -132,7 +132,7 @@ class TrackPSD:
         return float(self(ISO_N0))
 
     def band_variance(self) -> float:
-        """∫ G(n) dn over [n_min, n_max] = ∫ S_v(Ω) dΩ over [2π n_min, 2π n_max] [m²] (closed form)."""
+        """∫ G(n) dn over [n_min, n_max] = ∫ S_v(Ω) dΩ over 2π n_min … 2π n_max, in m² (closed form)."""
         primitive = TRACK_SPECTRUM_FORMS[self.form][1]
         return float(primitive(2 * np.pi * self.n_max, self) - primitive(2 * np.pi * self.n_min, self))
 
