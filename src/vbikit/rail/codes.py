@@ -1,17 +1,17 @@
 """EN 1991-2 / EN 1990 rules of the dynamic analysis of railway bridges.
 
-* Damping (EN 1991-2:2003 6.4.6.3.1, Table 6.6): lower limits of ζ [%] for span L [m]:
+* Damping (EN 1991-2:2003 6.4.6, Table 6.6): lower limits of ζ [%] for span L [m]:
   steel and composite 0.5 + 0.125 (20 − L) for L < 20 m, 0.5 above; prestressed concrete
   1.0 + 0.07 (20 − L) / 1.0; filler beam and reinforced concrete 1.5 + 0.07 (20 − L) / 1.5
   (the same rule in SincBridgeDynamics.jl, ``ec1damping``).
 * Additional damping for spans below 30 m (EN 1991-2 Eq. 6.13, Figure 6.15), allowing for
   vehicle–bridge interaction in a moving-force analysis:
   Δζ = (0.0187 L − 0.00064 L²) / (1 − 0.0441 L − 0.0044 L² + 0.000255 L³) [%].
-* Frequency range (EN 1990 A2.4.4.2.1(4) and EN 1991-2 6.4.6.3.3): modes up to the greater of
+* Frequency range (EN 1990 A2.4.4.2.1(4) and EN 1991-2 6.4.6): modes up to the greater of
   30 Hz, 1.5 n0 and n3.
 * Peak deck acceleration limits (EN 1990 A2.4.4.2.1(4)): 3.5 m/s² ballasted track, 5 m/s²
   direct fastening.
-* Resonance speeds (EN 1991-2 6.4.6.2 (3)): v_i = n0 λ_i, λ_i = D / i.
+* Resonance speeds (EN 1991-2 6.4.6): v_i = n0 λ_i, λ_i = D / i.
 * Dynamic factors of the static load models (EN 1991-2 6.4.5.2): Φ2 = 1.44/(√L_Φ − 0.2) + 0.82
   within 1.00 … 1.67 (carefully maintained track), Φ3 = 2.16/(√L_Φ − 0.2) + 0.73 within 1.00 … 2.00
   (standard maintenance), L_Φ the determinant length [m] (the span of a simply supported girder).

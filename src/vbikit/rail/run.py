@@ -11,7 +11,7 @@ Checks (``vbikit.rail.codes`` for the rules and their clauses):
   retained modes, moment and shear with the full static influence line);
 * (1 + φ'dyn + φ''/2) × the train's static effect — the largest over trains and speeds — against
   Φ × α × LM71 (Φ2 or Φ3 with L_Φ = the span, EN 1991-2 Table 6.2 for a simply supported main
-  girder): the larger governs the design (EN 1991-2 6.4.6.5(3)).  LM71 alone; SW/0 is not
+  girder): the larger governs the design (EN 1991-2 6.4.6).  LM71 alone; SW/0 is not
   considered (it does not govern a single simply supported span).
 """
 from __future__ import annotations

@@ -1,7 +1,7 @@
 """Speed sweeps: every train over every speed → envelopes of deck acceleration, deflection, moment
 and shear against speed (a NetCDF-ready ``xarray.Dataset``), with resonance speeds.
 
-Moving forces (EN 1991-2 6.4.6.4) through the fast solver ``vbikit.solve.moving_loads`` (exact
+Moving forces (EN 1991-2 6.4.6) through the fast solver ``vbikit.solve.moving_loads`` (exact
 modal stepping per speed, vectorised); optionally the trains with multibody cars as coupled car
 models (``vbikit.vehicle.rail_car``) through ``vbikit.solve.simulate``, one crossing per speed,
 on an optional track irregularity (``vbikit.road.track``).
@@ -30,7 +30,7 @@ KMH = 1.0 / 3.6
 def speed_grid(v_min: float, v_max: float, step: float, resonances: Sequence[float] = (), fine_step: float | None = None,
                width: float = 0.0) -> NDArray[np.float64]:
     """Speeds [m/s] from ``v_min`` to ``v_max`` every ``step`` [m/s], plus every ``fine_step``
-    within ± ``width`` of each resonance speed (EN 1991-2 6.4.6.2(2): smaller steps near resonance)."""
+    within ± ``width`` of each resonance speed (EN 1991-2 6.4.6: smaller steps near resonance)."""
     n = int(math.floor((v_max - v_min) / step + 1e-9))
     grid = [v_min + step * np.arange(n + 1), np.array([v_max])]
     if fine_step and width > 0:

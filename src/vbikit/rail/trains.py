@@ -113,7 +113,7 @@ class Train:
         Where the data come from.
     coach_length : float, optional
         The principal excitation wavelength D [m] (regular coach length) when the train has one;
-        resonance speeds are v_i = n0 D / i (EN 1991-2 6.4.6.2).
+        resonance speeds are v_i = n0 D / i (EN 1991-2 6.4.6).
     """
 
     name: str
