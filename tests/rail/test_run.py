@@ -41,6 +41,10 @@ def test_errors_name_keys_and_ranges_before_computing():
 def test_budget_refused_before_the_sweep():
     with pytest.raises(RailBudgetError, match="run.budget: the sweep needs"):
         run_rail(spec(run={"budget": 1e5}), figures=False)
+    with pytest.raises(RailBudgetError, match="coupled.max_steps: the coupled cars need"):
+        run_rail(spec(trains={"presets": ["ice3"]}, coupled={"enabled": True, "max_steps": 1e4}), figures=False)
+    with pytest.raises(RailSpecError, match="coupled.enabled: none of the trains has car data"):
+        run_rail(spec(coupled={"enabled": True}), figures=False)
 
 
 def test_dataset_contract_and_a_one_axle_train_against_closed_forms(tmp_path):

@@ -110,7 +110,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     fine = spec.speeds.fine_step * KMH if spec.speeds.fine_step else None
     speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH)
     span = float(bridge.span)
-    points = np.linspace(0.0, span, spec.run.points + 2)[1:-1]
+    points = np.unique(np.append(np.linspace(0.0, span, spec.run.points + 2)[1:-1], 0.5 * span))  # midspan always
     effects = (("moment", 0.5 * span), ("shear", 0.0))
     dx = default_dx(bridge, float(speeds.min()), spec.run.steps_per_period)
     fv = 1.0 / n0
@@ -119,13 +119,25 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         raise RailBudgetError(f"run.budget: the sweep needs {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
                               f"speeds × {bridge.omega.size} modes), above the budget {spec.run.budget:.3g}; raise "
                               "run.budget or use fewer trains, speeds or a coarser step")
+    coupled = [t for t in trains if t.cars] if spec.coupled.enabled else []
+    if spec.coupled.enabled and not coupled:
+        raise RailSpecError("coupled.enabled: none of the trains has car data (masses and suspensions): use a preset "
+                            "such as 'ice3', or disable coupled")
+    coupled_steps = sum(float(np.sum((span + 10.0 + t.length) / dx + fv * speeds / dx))  # Σ over speeds
+                        for t in coupled) if coupled else 0.0
+    if coupled_steps > spec.coupled.max_steps:
+        raise RailBudgetError(f"coupled.max_steps: the coupled cars need {coupled_steps:.3g} time steps ({len(coupled)} "
+                              f"trains × {speeds.size} speeds), above {spec.coupled.max_steps:.3g}; raise coupled.max_steps "
+                              "or use fewer speeds")
+    if span < 7.0 and any(t.name.startswith("HSLM-A") for t in trains):
+        log.warning("span %.3g m < 7 m: EN 1991-2 Annex E uses HSLM-B for simply supported spans below 7 m", span)
     setup = SweepSetup(bridge, points, effects, dx, fv, spec.run.budget)
     log.info("sweeping %d trains × %d speeds, %d modes (%.1f … %.1f Hz), Δx = %.4f m", len(trains), speeds.size,
              bridge.omega.size, n0, bridge.frequencies_hz[-1], dx)
     envs = sweep_moving_forces(setup, trains, speeds, workers or spec.run.workers)
     names = [t.name for t in trains]
-    if spec.coupled.enabled:
-        for t in trains:
+    if coupled:
+        for t in coupled:
             if t.cars:
                 log.info("coupled cars: %s over %d speeds", t.name, speeds.size)
                 envs.append(coupled_envelopes(setup, t, speeds, spec.coupled.irregularity, spec.coupled.seed,

@@ -28,6 +28,7 @@
     enabled = false
     irregularity = "german-low"      # a track PSD (vbikit.road.track), or omit for a smooth track
     seed = 0
+    max_steps = 2e6                  # the most coupled time steps (all speeds and trains together)
 
     [run]
     workers = 1
@@ -153,6 +154,7 @@ class CoupledSection(_Section):
     enabled: bool = False
     irregularity: Optional[str] = None
     seed: int = Field(0, ge=0)
+    max_steps: float = Field(2e6, gt=0, le=1e10)
     contact: Union[str, float] = "hertz"  # "hertz" or a stiffness [N/m] per wheelset
 
     @field_validator("contact")
