@@ -125,4 +125,4 @@ def test_matches_simulate_with_a_moving_force_vehicle():
     n = min(r.time.size, h.time.size - 1)
     np.testing.assert_allclose(h.time[1:n + 1], r.time[:n], atol=1e-12)
     for mine, theirs in ((h.xi, r.xi), (h.xi_ddot, r.xi_ddot)):
-        assert np.max(np.abs(mine[1:n + 1] - theirs[:n])) <= 1e-8 * np.max(np.abs(theirs))
+        assert np.max(np.abs(mine[1:n + 1] - theirs[:n])) <= 5e-10 * np.max(np.abs(theirs))  # achieved 8.5e-11
