@@ -110,3 +110,21 @@ def test_speed_grid_refines_near_resonance():
     v = speed_grid(30.0, 40.0, 5.0, resonances=[33.3], fine_step=0.5, width=1.0)
     assert list(v[:2]) == [30.0, 32.3] and 35.0 in v and v[-1] == 40.0
     assert all(abs(x - y) < 0.5 + 1e-9 for x, y in zip(v[1:], v[2:]) if 32.3 <= x < 34.3)
+
+
+def test_rail_distribution_over_three_sleepers(tmp_path):
+    from vbikit.rail.trains import parse_train_table, rail_distributed
+
+    t = rail_distributed(parse_train_table("0,200\n3,100\n", "two"), 0.6)
+    np.testing.assert_allclose(t.axle_positions, [0.0, 0.6, 1.2, 3.0, 3.6, 4.2])
+    np.testing.assert_allclose(t.axle_loads, [50e3, 100e3, 50e3, 25e3, 50e3, 25e3])
+    # one 200 kN axle over three sleepers a = 0.6 m on the 20 m span: P/4 at L/2 ± a and P/2 at L/2 give
+    # M_mid = P L/4 − P a/4 = 1000 − 30 = 970 kN m (the sampling misses the peak by at most P/2 · Δx/2)
+    (tmp_path / "one.csv").write_text("0,200\n")
+    (tmp_path / "rail.toml").write_text(
+        "[bridge]\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n[trains]\ntables = [\"one.csv\"]\n"
+        "sleeper_spacing = 0.6\n[speeds]\nmin = 200.0\nmax = 220.0\nstep = 20.0\n")
+    ds = run_rail(tmp_path / "rail.toml", figures=False).dataset
+    assert list(ds.train.values) == ["one (rail-distributed)"]
+    m = float(ds["static_moment"][0])
+    assert 970e3 - 100e3 * ds.attrs["dx_m"] / 2 - 1e-6 <= m <= 970e3 + 1e-6

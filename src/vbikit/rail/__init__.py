@@ -32,6 +32,7 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
         hslm_b,
         ice3,
         parse_train_table,
+        rail_distributed,
         read_train_table,
     )
 
@@ -66,6 +67,7 @@ __all__ = [
     "hslm_b",
     "ice3",
     "parse_train_table",
+    "rail_distributed",
     "read_train_table",
 ]
 
@@ -77,5 +79,6 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.rail.spec": ["RailSpec", "RailSpecError", "load_rail_spec", "parse_rail_spec"],
     "vbikit.rail.sweep": ["speed_grid"],
     "vbikit.rail.trains": ["HSLM_A_TABLE", "TRAIN_PRESETS", "CarGeometry", "Train", "TrainError", "TrainPreset",
-                           "get_train", "hslm_a", "hslm_b", "ice3", "parse_train_table", "read_train_table"],
+                           "get_train", "hslm_a", "hslm_b", "ice3", "parse_train_table", "rail_distributed",
+                           "read_train_table"],
 })

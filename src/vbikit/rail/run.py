@@ -102,7 +102,12 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     t0 = time.perf_counter()
     spec, base_dir = _spec(source)
     bridge, f_limit = build_bridge(spec)
-    trains = load_trains(spec, base_dir)
+    originals = load_trains(spec, base_dir)  # with their cars, for coupled models
+    trains = originals
+    if spec.trains.sleeper_spacing is not None:
+        from vbikit.rail.trains import rail_distributed
+
+        trains = [rail_distributed(t, spec.trains.sleeper_spacing) for t in originals]
     n0 = float(bridge.frequencies_hz[0])
     v_min, v_max = spec.speeds.min * KMH, spec.speeds.top * KMH
     res = {t.name: (lambda r: r[r >= v_min])(train_resonances(t, n0, v_max, RESONANCE_ORDERS)) for t in trains}
@@ -119,7 +124,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         raise RailBudgetError(f"run.budget: the sweep needs {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
                               f"speeds × {bridge.omega.size} modes), above the budget {spec.run.budget:.3g}; raise "
                               "run.budget or use fewer trains, speeds or a coarser step")
-    coupled = [t for t in trains if t.cars] if spec.coupled.enabled else []
+    coupled = [t for t in originals if t.cars] if spec.coupled.enabled else []
     if spec.coupled.enabled and not coupled:
         raise RailSpecError("coupled.enabled: none of the trains has car data (masses and suspensions): use a preset "
                             "such as 'ice3', or disable coupled")
@@ -143,7 +148,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                 envs.append(coupled_envelopes(setup, t, speeds, spec.coupled.irregularity, spec.coupled.seed,
                                               spec.coupled.contact))
                 names.append(f"{t.name} (coupled)")
-                res[names[-1]] = res[t.name]
+                res[names[-1]] = res[trains[originals.index(t)].name]
     ds = assemble(spec, bridge, names, speeds, points, envs, res, f_limit)
     checks = check(ds)
     report = format_report(ds, checks)

@@ -16,6 +16,7 @@
     [trains]
     presets = ["hslm-a1", "hslm-a2"] # or "hslm-a" for all ten
     tables = ["my_train.csv"]        # position [m], load [kN] per line
+    # sleeper_spacing = 0.6          # distribute each axle over three sleepers (EN 1991-2 6.3.6.1)
 
     [speeds]                         # km/h
     min = 100.0
@@ -101,6 +102,7 @@ class BridgeSection(_Section):
 class TrainsSection(_Section):
     presets: list[str] = Field(default_factory=list)
     tables: list[str] = Field(default_factory=list)
+    sleeper_spacing: Optional[float] = Field(None, ge=0.1, le=2.0)
 
     @field_validator("presets")
     @classmethod

@@ -212,6 +212,22 @@ def hslm_b(n: int, spacing: float, load: float = 170e3) -> Train:
                  "EN 1991-2:2003 Annex E, Figure E.2 (N and d given by the user)", spacing)
 
 
+def rail_distributed(train: Train, sleeper_spacing: float = 0.6) -> Train:
+    """The longitudinal distribution of each axle load by the rail over three sleepers (EN 1991-2
+    6.3.6.1, Figure 6.4): P/4 at −a, P/2 at 0, P/4 at +a (a the sleeper spacing [m]), the chain
+    shifted by a so that it starts at 0 (a shift of the entry time only).  Moving forces only: the
+    result has no cars."""
+    a = float(sleeper_spacing)
+    if not (math.isfinite(a) and 0.1 <= a <= 2.0):
+        raise TrainError(f"sleeper spacing must be within 0.1 … 2 m, got {sleeper_spacing!r}", key="trains.sleeper_spacing")
+    x = (train.axle_positions[:, None] + np.array([0.0, a, 2 * a])[None, :]).ravel()
+    p = (train.axle_loads[:, None] * np.array([0.25, 0.5, 0.25])[None, :]).ravel()
+    order = np.argsort(x, kind="stable")
+    return Train(f"{train.name} (rail-distributed)", x[order], p[order], None,
+                 f"{train.source}; loads distributed over three sleepers {a:g} m apart (EN 1991-2 6.3.6.1)",
+                 train.coach_length)
+
+
 # ------------------------------------------------------------------------------- real trains
 def _ice3_cars() -> tuple[CarGeometry, ...]:
     """The eight cars of the ICE 3 / AVE S-103 (Velaro E) as described by Goicolea (2014): bogie
