@@ -128,3 +128,10 @@ def test_rail_distribution_over_three_sleepers(tmp_path):
     assert list(ds.train.values) == ["one (rail-distributed)"]
     m = float(ds["static_moment"][0])
     assert 970e3 - 100e3 * ds.attrs["dx_m"] / 2 - 1e-6 <= m <= 970e3 + 1e-6
+
+
+def test_report_warns_when_the_modes_miss_the_required_range():
+    result = run_rail(spec(bridge={"n_modes": 1, "damping": 0.015}), figures=False)
+    # n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz; n3 = 9 n0 = 62.8 Hz is the required range; one mode reaches 6.98 Hz
+    assert "WARNING: the 1 modes reach 7.0 Hz, below the required 62.8 Hz" in result.report
+    assert "damping 1.500 % (given (bridge.damping)" in result.report

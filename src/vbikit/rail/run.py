@@ -219,6 +219,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit):
     ds.attrs.update({
         "title": "vbikit railway speed sweep", "span_m": span, "EI_Nm2": b.EI, "mass_per_length_kg_m": b.mass_per_length,
         "damping_ratio": float(bridge.damping_ratio), "deck": b.deck, "track": b.track,
+        "damping_source": "given (bridge.damping)" if b.damping is not None else "EN 1991-2 Table 6.6",
         "additional_damping": int(b.additional_damping and b.damping is None), "first_frequency_hz": n0,
         "frequency_limit_hz": f_limit, "n_modes": int(bridge.omega.size), "dynamic_factor_Phi": phi_lm,
         "maintenance": b.maintenance, "classification_factor": alpha, "lm71_moment_static": lm_m,
@@ -261,9 +262,15 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         "vbikit railway dynamic check (EN 1991-2 6.4.6, EN 1990 A2.4.4.2.1)",
         f"bridge: simply supported span {a['span_m']:g} m, n0 = {a['first_frequency_hz']:.3f} Hz, {a['n_modes']} modes "
         f"(up to {float(ds['frequency'].values[-1]):.1f} Hz; required max(30 Hz, 1.5 n0, n3) = {a['frequency_limit_hz']:.1f} Hz), "
-        f"damping {100 * a['damping_ratio']:.3f} % ({a['deck']}{', with additional damping' if a['additional_damping'] else ''})",
+        f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}"
+        f"{', with additional damping' if a['additional_damping'] else ''})",
         f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {float(ds.speed_kmh.min()):.0f} … "
         f"{float(ds.speed_kmh.max()):.0f} km/h",
+    ]
+    if float(ds["frequency"].values[-1]) < a["frequency_limit_hz"] * (1 - 1e-9):
+        lines.append(f"WARNING: the {a['n_modes']} modes reach {float(ds['frequency'].values[-1]):.1f} Hz, below the "
+                     f"required {a['frequency_limit_hz']:.1f} Hz (EN 1990 A2.4.4.2.1): raise bridge.n_modes")
+    lines += [
         "",
         f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {3.6 * acc['speed']:.1f} km/h) against "
         f"{acc['limit']:g} m/s² ({a['track']} track): {'PASS' if acc['passes'] else 'FAIL'} ({100 * acc['ratio']:.0f} % of the limit)",
