@@ -132,6 +132,29 @@ def test_rail_distribution_over_three_sleepers(tmp_path):
 
 def test_report_warns_when_the_modes_miss_the_required_range():
     result = run_rail(spec(bridge={"n_modes": 1, "damping": 0.015}), figures=False)
-    # n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz; n3 = 9 n0 = 62.8 Hz is the required range; one mode reaches 6.98 Hz
-    assert "WARNING: the 1 modes reach 7.0 Hz, below the required 62.8 Hz" in result.report
+    # n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz; n3 = 9 n0 = 62.8 Hz is the required range: modes 1, 2, 3 (n_k = k² n0)
+    assert "WARNING: 1 modes retained, but the 3 modes up to 62.8 Hz are required" in result.report
     assert "damping 1.500 % (given (bridge.damping)" in result.report
+
+
+def test_scenario_bridge_is_the_same_beam(tmp_path):
+    (tmp_path / "deck.toml").write_text('[bridge]\nmodel = "beam"\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n')
+    base = {"trains": {"presets": ["hslm-a4"]}, "speeds": {"min": 230.0, "max": 290.0, "step": 20.0}}
+    a = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, **base}, figures=False).dataset
+    b = run_rail({"bridge": {"scenario": str(tmp_path / "deck.toml")}, **base}, figures=False).dataset
+    for name in ("max_deck_acceleration", "max_deflection", "max_moment", "max_shear", "lm71_moment", "lm71_shear"):
+        np.testing.assert_array_equal(a[name].values, b[name].values)
+    assert a.attrs["damping_ratio"] == b.attrs["damping_ratio"] and a.attrs["n_modes"] == b.attrs["n_modes"] == 3
+
+
+def test_scenario_bridge_errors(tmp_path):
+    (tmp_path / "two.toml").write_text('[bridge]\nmodel = "continuous-beam"\nspans = [20.0, 20.0]\nEI = 7.9e10\n'
+                                       'mass_per_length = 25000.0\n')
+    with pytest.raises(RailSpecError, match="bridge.scenario: two.toml is a bridge of 2 spans"):
+        run_rail({"bridge": {"scenario": str(tmp_path / "two.toml")}, "trains": {"presets": ["hslm-a1"]},
+                  "speeds": {"max": 300.0}}, figures=False)
+    with pytest.raises(RailSpecError, match="bridge.span: give either scenario or span"):
+        parse_rail_spec({"bridge": {"scenario": "x.toml", "span": 20.0}, "trains": {"presets": ["hslm-a1"]},
+                         "speeds": {"max": 300.0}})
+    with pytest.raises(RailSpecError, match="bridge.EI: give span, EI and mass_per_length"):
+        parse_rail_spec({"bridge": {"span": 20.0}, "trains": {"presets": ["hslm-a1"]}, "speeds": {"max": 300.0}})

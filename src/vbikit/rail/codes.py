@@ -117,7 +117,7 @@ def lm71_loads(alpha: float = 1.0) -> tuple[NDArray[np.float64], float, float]:
 
 
 def lm71_peak(influence: Callable[[NDArray[np.float64], NDArray[np.float64]], NDArray[np.float64]], span: float,
-              alpha: float = 1.0, step: float = 0.02) -> float:
+              alpha: float = 1.0, step: float = 0.02, y: float = 0.0) -> float:
     """Largest |R| of LM71 on a span with the static influence line I(x) [per N of upward force]:
     the axle group at every position (``step`` [m]), the distributed load wherever it adds to the
     effect (EN 1991-2 6.3.2(2)) outside the group's 6.4 m; |R| of the worse sign."""
@@ -125,7 +125,7 @@ def lm71_peak(influence: Callable[[NDArray[np.float64], NDArray[np.float64]], ND
     x = np.arange(0.0, span + 0.5 * step, step)
     inside = x.copy()  # the end values as limits from inside the span (an axle on a support carries no shear)
     inside[0], inside[-1] = 1e-9 * span, span * (1 - 1e-9)
-    eta = -np.asarray(influence(inside, np.zeros_like(x)), float)  # effect of a unit *downward* force
+    eta = -np.asarray(influence(inside, np.full_like(x, y)), float)  # effect of a unit *downward* force on the line y
     # every position that puts an axle or an end of the distributed-load gap on a grid point
     centres = np.unique(np.concatenate([x - a for a in axles] + [x - 3.2, x + 3.2]))
     xa = centres[:, None] + axles[None, :]

@@ -1,9 +1,10 @@
 """The RAIL.toml input of ``vbikit rail`` / ``vbikit.rail.run_rail`` (pydantic schema).
 
-    [bridge]                         # a simply supported span (Euler–Bernoulli beam)
+    [bridge]                         # a simply supported span (Euler–Bernoulli beam) …
     span = 20.0                      # m
     EI = 1.2e10                      # N m²
     mass_per_length = 15000.0        # kg/m
+    # scenario = "deck.toml"         # … or the [bridge] of a vbikit scenario (one span, square supports)
     deck = "prestressed-concrete"    # EN 1991-2 Table 6.6 row (steel, composite, prestressed-concrete,
                                      # reinforced-concrete, filler-beam)
     track = "ballasted"              # or "direct" (acceleration limit 3.5 or 5 m/s²)
@@ -59,9 +60,10 @@ class _Section(BaseModel):
 
 
 class BridgeSection(_Section):
-    span: float = Field(gt=0, le=300)
-    EI: float = Field(gt=0, le=1e15)
-    mass_per_length: float = Field(gt=0, le=1e6)
+    span: Optional[float] = Field(None, gt=0, le=300)
+    EI: Optional[float] = Field(None, gt=0, le=1e15)
+    mass_per_length: Optional[float] = Field(None, gt=0, le=1e6)
+    scenario: Optional[str] = None
     deck: str = "prestressed-concrete"
     track: str = "ballasted"
     damping: Optional[float] = Field(None, ge=0, lt=0.2)
@@ -69,6 +71,17 @@ class BridgeSection(_Section):
     n_modes: Optional[int] = Field(None, ge=1, le=50)
     classification_factor: float = 1.0
     maintenance: str = "careful"
+
+    @model_validator(mode="after")
+    def _beam_or_scenario(self) -> "BridgeSection":
+        beam = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is not None]
+        if self.scenario is None and len(beam) < 3:
+            missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
+            raise ValueError(f"{missing[0]}: give span, EI and mass_per_length (a simply supported beam), or scenario "
+                             "(a vbikit scenario file whose [bridge] is used)")
+        if self.scenario is not None and beam:
+            raise ValueError(f"{beam[0]}: give either scenario or span, EI and mass_per_length, not both")
+        return self
 
     @field_validator("deck")
     @classmethod
@@ -205,7 +218,7 @@ def _format(err: ValidationError) -> str:
     for e in err.errors():
         loc = ".".join(str(p) for p in e["loc"])
         msg = e["msg"].removeprefix("Value error, ")
-        key = re.match(r"^([a-z_]+): ", msg)
+        key = re.match(r"^([A-Za-z_]+): ", msg)
         if key and e["type"] == "value_error":
             loc, msg = f"{loc}.{key.group(1)}" if loc else key.group(1), msg[key.end():]
         if e["type"] == "extra_forbidden":

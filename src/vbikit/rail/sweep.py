@@ -54,6 +54,7 @@ class SweepSetup:
     dx: float
     free_vibration: float
     max_steps: float
+    y: float = 0.0
 
     @property
     def effects(self) -> tuple[LoadEffect, ...]:
@@ -65,7 +66,8 @@ def _sweep_one(args: tuple[SweepSetup, Train, NDArray[np.float64]]):
 
     setup, train, speeds = args
     return moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, speeds, setup.points,
-                             setup.effects, dx=setup.dx, free_vibration=setup.free_vibration, max_steps=setup.max_steps)
+                             setup.effects, dx=setup.dx, free_vibration=setup.free_vibration, y=setup.y,
+                             max_steps=setup.max_steps)
 
 
 def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDArray[np.float64], workers: int = 1) -> list:
@@ -88,12 +90,13 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
 
     cars = rail_cars(train, contact)
     bridge = setup.bridge
-    phi = bridge.mode_shapes(setup.points, np.zeros(setup.points.size))
+    phi = bridge.mode_shapes(setup.points, np.full(setup.points.size, setup.y))
     n_v, n_p, n_e = speeds.size, setup.points.size, len(setup.effects)
     acc, disp, eff = np.empty((n_v, n_p)), np.empty((n_v, n_p)), np.empty((n_v, n_e))
     static_disp, static_eff = np.zeros(n_p), np.zeros(n_e)
     for k, v in enumerate(speeds):
-        motions = tuple(VehicleMotion(car, float(v), entry_time=float(offset) / float(v)) for car, offset in cars)
+        motions = tuple(VehicleMotion(car, float(v), entry_time=float(offset) / float(v), lateral_offset=setup.y)
+                        for car, offset in cars)
         crossing = Crossing(bridge, vehicles=motions, dt=setup.dx / float(v), free_vibration=setup.free_vibration)
         if irregularity:
             from vbikit.road.track import track_profile
