@@ -322,7 +322,9 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("EN1991-2", "manual", "Eurocode 1: Actions on structures — Part 2: Traffic loads on bridges (EN 1991-2:2003)",
        "2003",
        "the return period of about 1000 years of the characteristic road traffic values (the 'eurocode-1000' "
-       "preset of vbikit.extremes)",
+       "preset of vbikit.extremes); railway: HSLM-A/B (Annex E, Table E.1, Figures E.1, E.2), damping "
+       "(Table 6.6, Eq. 6.13), resonance speeds and the dynamic analysis (6.4.6), Φ2/Φ3 (6.4.5.2), LM71 (6.3.2), "
+       "φ'' (Annex C)",
        organization="European Committee for Standardization (CEN)", address="Brussels",
        note="The wording of the probability of exceedance (10 % in 100 years, or 5 % in 50 years; both about "
             "1000 years) was not confirmed against the standard's text"),
@@ -440,6 +442,16 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("PandeyBiswasSamman1991", "article", "Damage detection from changes in curvature mode shapes", "1991",
        "curvature-change damage indicator", authors=("Pandey, A. K.", "Biswas, M.", "Samman, M. M."),
        journal="Journal of Sound and Vibration", volume="145", number="2", pages="321–332"),
+    # --- rail
+    _R("EN1990-A2", "manual", "Eurocode: Basis of structural design — Annex A2: Application for bridges (EN 1990:2002/A1:2005)",
+       "2005", "peak deck acceleration limits and the frequency range of the dynamic analysis (A2.4.4.2.1)",
+       organization="CEN", address="Brussels"),
+    _R("SincBridgeDynamics", "software", "SincBridgeDynamics.jl", "n.d.",
+       "second source of the HSLM-A axle lists (TRAIN_MODELS) and of the Table 6.6 damping rule (ec1damping)",
+       url="https://github.com/antonioaro/SincBridgeDynamics.jl"),
+    _R("YangYauHsu1997", "article", "Vibration of simple beams due to trains moving at high speeds", "1997",
+       "resonance and cancellation of equally spaced moving loads on a simple beam (verification)",
+       authors=("Yang, Y. B.", "Yau, J. D.", "Hsu, L. C."), journal="Engineering Structures", volume="19", number="11"),
 )}
 
 #: Which entries each model relies on, by the names used in scenario files
@@ -485,6 +497,10 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "driveby:contact-point": ("YangZhengZhangXu2018",),
     "driveby:mode-shapes": ("YangLiChang2014",),
     "driveby:damage": ("AllemangBrown1982", "PandeyBiswasSamman1991"),
+    # --- rail
+    "train:hslm-a": ("EN1991-2", "SincBridgeDynamics"),
+    "train:ice3": ("Goicolea2014", "Cantero2022"),
+    "rail:checks": ("EN1991-2", "EN1990-A2", "Fryba1999", "NigamJennings1969"),
 }
 
 

@@ -4,7 +4,7 @@ Modules by job: this one holds the app, its global options and the list of comma
 ``guard`` the one error guard; ``render`` the text report, JSON
 and CSV outputs; ``execute`` the one function that runs a scenario; the command
 groups ``scenarios`` (run, validate, cite, demo, compare-tires),
-``models`` (presets, bridge), ``field``, ``study``, ``driveby``
+``models`` (presets, bridge), ``field``, ``study``, ``driveby``, ``rail``
 and ``traffic``.  Command modules import numpy, scipy, numba, xarray and
 matplotlib only inside the commands, so ``--version``, ``--help`` and shell completion start
 fast.
@@ -17,7 +17,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from vbikit.cli import driveby, field, models, scenarios, study, traffic
+from vbikit.cli import driveby, field, models, rail, scenarios, study, traffic
 from vbikit.cli.guard import STATE
 
 #: the global options, accepted after the subcommand as well (``vbikit run X.toml -q``)
@@ -92,6 +92,7 @@ app.command("compare-tires")(scenarios.compare_tires)
 app.command()(models.presets)
 app.command()(models.bridge)
 app.command("field")(field.field_)
+app.command("rail")(rail.rail_cmd)
 
 
 @app.command("compile")

@@ -1,0 +1,110 @@
+"""Recompute the numbers docs/railway.md quotes and store them in docs/figures/rail-numbers.json,
+and draw docs/figures/rail-acceleration.png (the example sweep's acceleration envelopes).
+
+    python docs/scripts/rail_numbers.py          # about a minute (the example sweep)
+
+tests/rail/test_docs.py checks that every number the page quotes is the JSON's, and recomputes the
+fast parts (``hslm``, ``codes``, ``verification``); the example sweep is recomputed by a slow test.
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+NUMBERS = ROOT / "docs" / "figures" / "rail-numbers.json"
+FIGURE = ROOT / "docs" / "figures" / "rail-acceleration.png"
+EXAMPLE = ROOT / "examples" / "railway" / "hslm_20m.toml"
+
+
+def hslm() -> dict:
+    from vbikit.rail.trains import HSLM_A_TABLE, hslm_a
+
+    out = {}
+    for k, (n, D, d, P) in HSLM_A_TABLE.items():
+        t = hslm_a(k)
+        out[t.name] = {"N": n, "D": D, "d": d, "P_kN": P, "axles": t.n_axles, "length_m": round(t.length, 4)}
+    return out
+
+
+def codes() -> dict:
+    from vbikit.bridge.beam import EulerBernoulliBeam
+    from vbikit.rail import codes as c
+
+    beam = EulerBernoulliBeam(20.0, 1e10, 1e4)
+    return {
+        "delta_zeta_pct": {f"{L:g}": round(100 * c.additional_damping(L), 4) for L in (5.0, 10.0, 15.0, 20.0, 25.0)},
+        "zeta_pct_20m": {name: round(100 * d.ratio(20.0), 4) for name, d in c.DECK_DAMPING.items()},
+        "zeta_pct_10m": {name: round(100 * d.ratio(10.0), 4) for name, d in c.DECK_DAMPING.items()},
+        "phi2_20m": round(c.phi2(20.0), 4), "phi3_20m": round(c.phi3(20.0), 4),
+        "lm71_moment_20m_kNm": round(c.lm71_peak(beam.load_effect("moment", 10.0).influence, 20.0) / 1e3, 2),
+        "lm71_shear_20m_kN": round(c.lm71_peak(beam.load_effect("shear", 0.0).influence, 20.0) / 1e3, 2),
+    }
+
+
+def verification() -> dict:
+    """The solver against simulate (HSLM-A4, 280 km/h, 4 modes) and the resonance of 12 axles."""
+    import numpy as np
+
+    from vbikit.bridge.beam import EulerBernoulliBeam
+    from vbikit.rail.trains import hslm_a
+    from vbikit.solve import Crossing, simulate
+    from vbikit.solve.moving_loads import moving_load_history, moving_load_sweep
+    from vbikit.vehicle.builder import VehicleBuilder
+
+    beam = EulerBernoulliBeam(20.0, 1.2e10, 15000.0, 0.015, n_modes=4)
+    train = hslm_a(4)
+    vb = VehicleBuilder("train")
+    for k, (a, p) in enumerate(zip(train.axle_positions, train.axle_loads)):
+        vb.wheel(f"a{k}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
+    v, dx = 280 / 3.6, 0.05
+    h = moving_load_history(beam, train.axle_positions, train.axle_loads, v, dx=dx, free_vibration=0.4)
+    r = simulate(Crossing(beam, vb.build("train"), speed=v, approach=0.0, dt=dx / v, free_vibration=0.4))
+    n = min(r.time.size, h.time.size - 1)
+    err = float(np.max(np.abs(h.xi_ddot[1:n + 1] - r.xi_ddot[:n])) / np.max(np.abs(r.xi_ddot)))
+    one = EulerBernoulliBeam(15.0, 8.0e9, 12000.0, 0.01, n_modes=1)
+    n0 = float(one.frequencies_hz[0])
+    speeds = n0 * 20.0 * np.linspace(0.85, 1.15, 61)
+    env = moving_load_sweep(one, 20.0 * np.arange(12), np.full(12, 170e3), speeds, [7.5], dx=0.01, free_vibration=1.0)
+    v_star = float(speeds[int(np.argmax(env.max_acceleration[:, 0]))])
+    return {"simulate_rel_err": float(f"{err:.1e}"), "resonance_ratio": round(v_star / (n0 * 20.0), 4),
+            "n0_hz": round(n0, 4)}
+
+
+def example() -> dict:
+    from vbikit.rail.run import run_rail
+
+    result = run_rail(EXAMPLE, None, figures=False)
+    from vbikit.rail.figures import plot_acceleration_envelopes
+
+    plot_acceleration_envelopes(result.dataset, FIGURE)
+    ds, c = result.dataset, result.checks
+    a = c["acceleration"]
+    return {
+        "n0_hz": round(ds.attrs["first_frequency_hz"], 3), "n_modes": int(ds.attrs["n_modes"]),
+        "damping_pct": round(100 * ds.attrs["damping_ratio"], 3), "speeds": int(ds.speed.size),
+        "peak_acc": round(a["peak"], 3), "peak_train": a["train"], "peak_speed_kmh": round(3.6 * a["speed"], 1),
+        "passes": a["passes"],
+        "moment_ratio": round(c["moment"]["ratio"], 3), "shear_ratio": round(c["shear"]["ratio"], 3),
+        "moment_governs": c["moment"]["governs"], "phi_dyn_deflection": round(c["deflection"]["phi_dyn"], 3),
+    }
+
+
+def compute(slow: bool = True) -> dict:
+    out = {"hslm": hslm(), "codes": codes(), "verification": verification()}
+    if slow:
+        out["example"] = example()
+    return out
+
+
+def main() -> None:
+    numbers = compute()
+    NUMBERS.write_text(json.dumps(numbers, indent=1, ensure_ascii=False) + "\n")
+    print(json.dumps(numbers, indent=1, ensure_ascii=False))
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(ROOT / "src"))
+    main()

@@ -1,0 +1,246 @@
+"""The RAIL.toml input of ``vbikit rail`` / ``vbikit.rail.run_rail`` (pydantic schema).
+
+    [bridge]                         # a simply supported span (Euler–Bernoulli beam) …
+    span = 20.0                      # m
+    EI = 1.2e10                      # N m²
+    mass_per_length = 15000.0        # kg/m
+    # scenario = "deck.toml"         # … or the [bridge] of a vbikit scenario (one span, square supports)
+    deck = "prestressed-concrete"    # EN 1991-2 Table 6.6 row (steel, composite, prestressed-concrete,
+                                     # reinforced-concrete, filler-beam)
+    track = "ballasted"              # or "direct" (acceleration limit 3.5 or 5 m/s²)
+    # damping = 0.015                # ζ [-] instead of Table 6.6 (+ Δζ)
+    additional_damping = true        # add Δζ of Eq. 6.13 (spans below 30 m)
+    # n_modes = 3                    # default: every mode up to max(30 Hz, 1.5 n0, n3), at least 3
+    classification_factor = 1.0      # α of LM71
+    maintenance = "careful"          # Φ2 ("careful") or Φ3 ("standard")
+
+    [trains]
+    presets = ["hslm-a1", "hslm-a2"] # or "hslm-a" for all ten
+    tables = ["my_train.csv"]        # position [m], load [kN] per line
+    # sleeper_spacing = 0.6          # distribute each axle over three sleepers (EN 1991-2 6.3.6.1)
+
+    [speeds]                         # km/h
+    min = 100.0
+    max = 420.0                      # or line_max = 350.0 → max = 1.2 × 350
+    step = 5.0
+    fine_step = 1.0                  # near every resonance speed n0 D / i …
+    fine_width = 10.0                # … within ± this
+
+    [coupled]                        # optional: trains with car data as coupled cars
+    enabled = false
+    irregularity = "german-low"      # a track PSD (vbikit.road.track), or omit for a smooth track
+    seed = 0
+    max_steps = 2e6                  # the most coupled time steps (all speeds and trains together)
+
+    [run]
+    workers = 1
+    steps_per_period = 20            # samples per period of the highest mode at the lowest speed
+    budget = 4e9                     # the most filter steps
+"""
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any, Optional, Union
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+
+from vbikit.errors import VbikitError
+from vbikit.rail.codes import CLASSIFICATION_FACTORS, DECK_DAMPING, DYNAMIC_FACTORS, ACCELERATION_LIMITS
+
+
+class RailSpecError(VbikitError):
+    """An invalid RAIL.toml; the message names the key and the allowed range."""
+
+    message_names_key = True
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False)
+
+
+class BridgeSection(_Section):
+    span: Optional[float] = Field(None, gt=0, le=300)
+    EI: Optional[float] = Field(None, gt=0, le=1e15)
+    mass_per_length: Optional[float] = Field(None, gt=0, le=1e6)
+    scenario: Optional[str] = None
+    deck: str = "prestressed-concrete"
+    track: str = "ballasted"
+    damping: Optional[float] = Field(None, ge=0, lt=0.2)
+    additional_damping: bool = True
+    n_modes: Optional[int] = Field(None, ge=1, le=50)
+    classification_factor: float = 1.0
+    maintenance: str = "careful"
+
+    @model_validator(mode="after")
+    def _beam_or_scenario(self) -> "BridgeSection":
+        beam = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is not None]
+        if self.scenario is None and len(beam) < 3:
+            missing = [k for k in ("span", "EI", "mass_per_length") if getattr(self, k) is None]
+            raise ValueError(f"{missing[0]}: give span, EI and mass_per_length (a simply supported beam), or scenario "
+                             "(a vbikit scenario file whose [bridge] is used)")
+        if self.scenario is not None and beam:
+            raise ValueError(f"{beam[0]}: give either scenario or span, EI and mass_per_length, not both")
+        return self
+
+    @field_validator("deck")
+    @classmethod
+    def _deck(cls, v: str) -> str:
+        if v not in DECK_DAMPING:
+            raise ValueError(f"deck must be one of {', '.join(DECK_DAMPING)}, got {v!r}")
+        return v
+
+    @field_validator("track")
+    @classmethod
+    def _track(cls, v: str) -> str:
+        if v not in ACCELERATION_LIMITS:
+            raise ValueError(f"track must be one of {', '.join(ACCELERATION_LIMITS)}, got {v!r}")
+        return v
+
+    @field_validator("maintenance")
+    @classmethod
+    def _maint(cls, v: str) -> str:
+        if v not in DYNAMIC_FACTORS:
+            raise ValueError(f"maintenance must be one of {', '.join(DYNAMIC_FACTORS)}, got {v!r}")
+        return v
+
+    @field_validator("classification_factor")
+    @classmethod
+    def _alpha(cls, v: float) -> float:
+        if not any(abs(v - a) < 1e-9 for a in CLASSIFICATION_FACTORS):
+            raise ValueError(f"classification_factor must be one of {', '.join(map(str, CLASSIFICATION_FACTORS))}, got {v!r}")
+        return v
+
+
+class TrainsSection(_Section):
+    presets: list[str] = Field(default_factory=list)
+    tables: list[str] = Field(default_factory=list)
+    sleeper_spacing: Optional[float] = Field(None, ge=0.1, le=2.0)
+
+    @field_validator("presets")
+    @classmethod
+    def _presets(cls, v: list[str]) -> list[str]:
+        from vbikit.rail.trains import TRAIN_PRESETS
+
+        out: list[str] = []
+        for name in v:
+            key = name.strip().lower()
+            if key == "hslm-a":
+                out += [f"hslm-a{k}" for k in range(1, 11)]
+            elif key in TRAIN_PRESETS:
+                out.append(key)
+            else:
+                raise ValueError(f"unknown train {name!r}; allowed: hslm-a (all ten), {', '.join(TRAIN_PRESETS)}")
+        return list(dict.fromkeys(out))
+
+    @model_validator(mode="after")
+    def _some(self) -> "TrainsSection":
+        if not self.presets and not self.tables:
+            raise ValueError("presets: give at least one train (presets or tables)")
+        return self
+
+
+class SpeedsSection(_Section):
+    min: float = Field(100.0, ge=10, le=600)
+    max: Optional[float] = Field(None, ge=10, le=600)
+    line_max: Optional[float] = Field(None, ge=10, le=500)
+    step: float = Field(5.0, ge=0.1, le=100)
+    fine_step: Optional[float] = Field(None, ge=0.05, le=100)
+    fine_width: float = Field(10.0, ge=0, le=100)
+
+    @model_validator(mode="after")
+    def _range(self) -> "SpeedsSection":
+        if (self.max is None) == (self.line_max is None):
+            raise ValueError("max: give either max (km/h) or line_max (km/h; the sweep goes to 1.2 × line_max)")
+        top = self.top
+        if top > 600:
+            raise ValueError(f"line_max: 1.2 × line_max must be ≤ 600 km/h, got {top:g}")
+        if top <= self.min:
+            raise ValueError(f"max: must exceed min = {self.min:g} km/h, got {top:g}")
+        return self
+
+    @property
+    def top(self) -> float:
+        """The highest speed [km/h]."""
+        return float(self.max) if self.max is not None else 1.2 * float(self.line_max)
+
+
+class CoupledSection(_Section):
+    enabled: bool = False
+    irregularity: Optional[str] = None
+    seed: int = Field(0, ge=0)
+    max_steps: float = Field(2e6, gt=0, le=1e10)
+    contact: Union[str, float] = "hertz"  # "hertz" or a stiffness [N/m] per wheelset
+
+    @field_validator("contact")
+    @classmethod
+    def _contact(cls, v: Union[str, float]) -> Union[str, float]:
+        # rigid contact is refused: the rail car carries its wheelset weight as a wheel's fixed load, which the
+        # solver also applies to the car as a reaction, so the deck receives 88 % of the static axle load
+        # (measured: ICE 3 car, 5 m/s, deflection / static = 0.885); the Hertz contact has no fixed load
+        if isinstance(v, str) and v != "hertz":
+            raise ValueError(f"contact must be 'hertz' or a wheel-rail stiffness per wheelset in N/m, got {v!r}")
+        if not isinstance(v, str) and not (v > 0):
+            raise ValueError(f"contact stiffness must be > 0 N/m, got {v!r}")
+        return v
+
+    @field_validator("irregularity")
+    @classmethod
+    def _irr(cls, v: Optional[str]) -> Optional[str]:
+        if v is None:
+            return v
+        from vbikit.road.track import TRACK_PSDS
+
+        if v not in TRACK_PSDS:
+            raise ValueError(f"irregularity must be one of {', '.join(TRACK_PSDS)}, got {v!r}")
+        return v
+
+
+class RunSection(_Section):
+    workers: int = Field(1, ge=1, le=64)
+    steps_per_period: int = Field(20, ge=8, le=200)
+    budget: float = Field(4e9, gt=0, le=1e13)
+    points: int = Field(9, ge=1, le=99)
+
+
+class RailSpec(_Section):
+    """The whole RAIL.toml."""
+
+    bridge: BridgeSection
+    trains: TrainsSection
+    speeds: SpeedsSection = Field(default_factory=SpeedsSection)
+    coupled: CoupledSection = Field(default_factory=CoupledSection)
+    run: RunSection = Field(default_factory=RunSection)
+
+
+def _format(err: ValidationError) -> str:
+    lines = []
+    for e in err.errors():
+        loc = ".".join(str(p) for p in e["loc"])
+        msg = e["msg"].removeprefix("Value error, ")
+        key = re.match(r"^([A-Za-z_]+): ", msg)
+        if key and e["type"] == "value_error":
+            loc, msg = f"{loc}.{key.group(1)}" if loc else key.group(1), msg[key.end():]
+        if e["type"] == "extra_forbidden":
+            msg = "unknown key"
+        elif e["type"] == "missing":
+            msg = "missing required key"
+        elif "input" in e and e["type"] != "value_error":
+            msg = f"{msg} (got {e['input']!r})"
+        lines.append(f"{loc}: {msg}" if loc else msg)
+    return "\n  ".join(lines)
+
+
+def parse_rail_spec(data: dict[str, Any]) -> RailSpec:
+    """Validate a parsed RAIL.toml (raises ``RailSpecError`` naming every bad key)."""
+    try:
+        return RailSpec.model_validate(data)
+    except ValidationError as err:
+        raise RailSpecError(_format(err)) from None
+
+
+def load_rail_spec(path: str | Path) -> RailSpec:
+    """Read and validate a RAIL.toml file."""
+    from vbikit._toml import read_toml
+
+    return parse_rail_spec(read_toml(path, RailSpecError, "rail file"))

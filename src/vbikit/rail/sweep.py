@@ -1,0 +1,149 @@
+"""Speed sweeps: every train over every speed → envelopes of deck acceleration, deflection, moment
+and shear against speed (a NetCDF-ready ``xarray.Dataset``), with resonance speeds.
+
+Moving forces (EN 1991-2 6.4.6) through the fast solver ``vbikit.solve.moving_loads`` (exact
+modal stepping per speed, vectorised); optionally the trains with multibody cars as coupled car
+models (``vbikit.vehicle.rail_car``) through ``vbikit.solve.simulate``, one crossing per speed,
+on an optional track irregularity (``vbikit.road.track``).
+"""
+from __future__ import annotations
+
+import logging
+import math
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from typing import Optional, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.bridge.base import ModalBridge
+from vbikit.bridge.effects import LoadEffect
+from vbikit.rail.codes import resonance_speeds
+from vbikit.rail.trains import Train
+
+log = logging.getLogger(__name__)
+
+KMH = 1.0 / 3.6
+
+
+def speed_grid(v_min: float, v_max: float, step: float, resonances: Sequence[float] = (), fine_step: float | None = None,
+               width: float = 0.0) -> NDArray[np.float64]:
+    """Speeds [m/s] from ``v_min`` to ``v_max`` every ``step`` [m/s], plus every ``fine_step``
+    within ± ``width`` of each resonance speed (EN 1991-2 6.4.6: smaller steps near resonance)."""
+    n = int(math.floor((v_max - v_min) / step + 1e-9))
+    grid = [v_min + step * np.arange(n + 1), np.array([v_max])]
+    if fine_step and width > 0:
+        for r in resonances:
+            lo, hi = max(v_min, r - width), min(v_max, r + width)
+            if hi > lo:
+                grid.append(np.arange(lo, hi + 0.5 * fine_step, fine_step))
+    v = np.unique(np.round(np.concatenate(grid), 9))
+    return v[(v >= v_min - 1e-9) & (v <= v_max + 1e-9)]
+
+
+@dataclass(frozen=True)
+class SweepSetup:
+    """What every train's sweep shares: the bridge, response points x [m], the load effects as
+    (kind, section x [m]) pairs (picklable, for worker processes), Δx [m] and the free vibration [s]
+    after the last axle leaves."""
+
+    bridge: ModalBridge
+    points: NDArray[np.float64]
+    effect_specs: tuple[tuple[str, float], ...]
+    dx: float
+    free_vibration: float
+    max_steps: float
+    y: float = 0.0
+
+    @property
+    def effects(self) -> tuple[LoadEffect, ...]:
+        return tuple(self.bridge.load_effect(kind, x) for kind, x in self.effect_specs)
+
+
+def _sweep_one(args: tuple[SweepSetup, Train, NDArray[np.float64]]):
+    from vbikit.solve.moving_loads import moving_load_sweep
+
+    setup, train, speeds = args
+    return moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, speeds, setup.points,
+                             setup.effects, dx=setup.dx, free_vibration=setup.free_vibration, y=setup.y,
+                             max_steps=setup.max_steps)
+
+
+def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDArray[np.float64], workers: int = 1) -> list:
+    """``MovingLoadEnvelopes`` of every train (``workers`` processes; 1: in this process)."""
+    jobs = [(setup, t, speeds) for t in trains]
+    if workers <= 1 or len(trains) < 2:
+        return [_sweep_one(j) for j in jobs]
+    with ProcessPoolExecutor(max_workers=workers) as pool:
+        return list(pool.map(_sweep_one, jobs))
+
+
+def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float64], irregularity: Optional[str] = None,
+                      seed: int = 0, contact: str | float = "hertz"):
+    """Envelopes of one train whose cars have masses and suspensions, as coupled car models
+    (``rail_car``, point contact) — each car one ``VehicleMotion`` entering when its first axle
+    reaches the bridge — over a smooth or irregular track; one ``simulate`` per speed."""
+    from vbikit.solve.crossing import Crossing, VehicleMotion
+    from vbikit.solve.moving_loads import MovingLoadEnvelopes
+    from vbikit.solve.simulate import simulate
+
+    cars = rail_cars(train, contact)
+    bridge = setup.bridge
+    phi = bridge.mode_shapes(setup.points, np.full(setup.points.size, setup.y))
+    n_v, n_p, n_e = speeds.size, setup.points.size, len(setup.effects)
+    acc, disp, eff = np.empty((n_v, n_p)), np.empty((n_v, n_p)), np.empty((n_v, n_e))
+    static_disp, static_eff = np.zeros(n_p), np.zeros(n_e)
+    for k, v in enumerate(speeds):
+        motions = tuple(VehicleMotion(car, float(v), entry_time=float(offset) / float(v), lateral_offset=setup.y)
+                        for car, offset in cars)
+        crossing = Crossing(bridge, vehicles=motions, dt=setup.dx / float(v), free_vibration=setup.free_vibration)
+        if irregularity:
+            from vbikit.road.track import track_profile
+
+            lo, hi = crossing.road_extent()
+            road = track_profile(irregularity, seed, length=hi - lo + 2.0, x_start=lo - 1.0)
+            crossing = crossing.with_road(road)
+        result = simulate(crossing)
+        acc[k] = np.max(np.abs(result.xi_ddot @ phi.T), axis=0)
+        disp[k] = np.max(np.abs(result.xi @ phi.T), axis=0)
+        if n_e:
+            from vbikit.analysis.effects import load_effect_response
+
+            for e, effect in enumerate(setup.effects):
+                resp = load_effect_response(result, effect)
+                eff[k, e] = np.max(np.abs(resp.dynamic))
+                static_eff[e] = max(static_eff[e], float(np.max(np.abs(resp.static))))
+        from vbikit.analysis.impact import static_modal_history
+
+        static_disp = np.maximum(static_disp, np.max(np.abs(static_modal_history(result) @ phi.T), axis=0))
+    return MovingLoadEnvelopes(speeds, setup.points, acc, disp, static_disp, eff, static_eff, setup.dx)
+
+
+def rail_cars(train: Train, contact: str | float = "hertz") -> list:
+    """(Vehicle, offset of its first axle [m] behind the train's first axle) of every car of a train
+    with multibody data (``Train.cars``)."""
+    from vbikit.rail.trains import TrainError
+    from vbikit.vehicle.rail_car import RailCarParameters, rail_car
+
+    if not train.cars or any(c.static_axle_load is None or c.primary_stiffness is None for c in train.cars):
+        raise TrainError(f"train {train.name!r} has no car masses and suspensions: coupled cars need a train such as "
+                         "'ice3' (HSLM and table trains run as moving forces)", key="coupled")
+    out = []
+    for car in train.cars:
+        params = RailCarParameters(
+            body_mass=car.body_mass, body_pitch_inertia=car.body_pitch_inertia, bogie_mass=car.bogie_mass,
+            bogie_pitch_inertia=car.bogie_pitch_inertia, wheelset_mass=car.wheelset_mass,
+            primary_stiffness=car.primary_stiffness, primary_damping=car.primary_damping or 0.0,
+            secondary_stiffness=car.secondary_stiffness, secondary_damping=car.secondary_damping or 0.0,
+            bogie_half_distance=0.5 * car.bogie_spacing, axle_half_spacing=0.5 * car.axle_spacing,
+            contact=contact, name=car.name or "car", source=train.source)
+        out.append((rail_car(params), float(car.axle_positions[0] - train.axle_positions[0])))
+    return out
+
+
+def train_resonances(train: Train, n0: float, v_max: float, orders: int = 4) -> NDArray[np.float64]:
+    """v_i = n0 D / i [m/s] of a train with a regular coach length D (empty otherwise)."""
+    if not train.coach_length:
+        return np.zeros(0)
+    return resonance_speeds(n0, train.coach_length, v_max, orders)

@@ -1,0 +1,160 @@
+"""run_rail / `vbikit rail`: the schema's errors, the budget, the dataset contract and a cut-down of
+examples/railway through the command line."""
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from vbikit.rail.run import RailBudgetError, run_rail
+from vbikit.rail.spec import RailSpecError, parse_rail_spec
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "railway"
+
+
+def spec(**over):
+    data = {"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0},
+            "trains": {"presets": ["hslm-a1"]},
+            "speeds": {"min": 200.0, "max": 260.0, "step": 20.0}}
+    for key, value in over.items():
+        data[key] = {**data.get(key, {}), **value}
+    return data
+
+
+def test_errors_name_keys_and_ranges_before_computing():
+    with pytest.raises(RailSpecError) as err:
+        parse_rail_spec(spec(bridge={"deck": "timber", "damping": 0.5}, trains={"presets": ["hslm-a12"]},
+                             speeds={"line_max": 300.0}))
+    msg = str(err.value)
+    assert "bridge.deck: deck must be one of steel, composite" in msg
+    assert "bridge.damping: Input should be less than 0.2" in msg
+    assert "trains.presets: unknown train 'hslm-a12'" in msg
+    assert "speeds.max: give either max (km/h) or line_max" in msg
+    with pytest.raises(RailSpecError, match="speeds.step"):
+        parse_rail_spec(spec(speeds={"step": 0.0}))
+
+
+def test_budget_refused_before_the_sweep():
+    with pytest.raises(RailBudgetError, match="run.budget: the sweep needs"):
+        run_rail(spec(run={"budget": 1e5}), figures=False)
+    with pytest.raises(RailBudgetError, match="coupled.max_steps: the coupled cars need"):
+        run_rail(spec(trains={"presets": ["ice3"]}, coupled={"enabled": True, "max_steps": 1e4}), figures=False)
+    with pytest.raises(RailSpecError, match="coupled.enabled: none of the trains has car data"):
+        run_rail(spec(coupled={"enabled": True}), figures=False)
+
+
+def test_dataset_contract_and_a_one_axle_train_against_closed_forms(tmp_path):
+    (tmp_path / "one.csv").write_text("position_m,load_kN\n0,200\n")
+    data = spec(trains={"presets": ["hslm-a1", "hslm-a2"], "tables": [str(tmp_path / "one.csv")]})
+    result = run_rail(data, tmp_path / "out", figures=False)
+    ds = result.dataset
+    assert list(ds.train.values) == ["HSLM-A1", "HSLM-A2", "one"]
+    assert ds["max_deck_acceleration"].dims == ("train", "speed")
+    assert ds["max_deck_acceleration"].attrs["units"] == "m s-2"
+    assert ds.speed.attrs["units"] == "m s-1"
+    # one 200 kN axle over the 20 m span: M = P L / 4 = 1000 kN m (sampled at midspan); deflection within the
+    # retained modes (1, 2, 3 at midspan: odd ones) = P L³/(48 EI) × (1 + 3⁻⁴) / (π⁴/96)
+    one = ds.sel(train="one")
+    assert float(one["static_moment"]) == pytest.approx(1000e3, rel=1e-9)
+    # shear just right of the support: an axle on the support carries none (vbikit.bridge.effects), the
+    # first sample after it is Δx in: V = P (1 − Δx/L)
+    assert float(one["static_shear"]) == pytest.approx(200e3 * (1 - ds.attrs["dx_m"] / 20.0), rel=1e-9)
+    w = 200e3 * 20.0**3 / (48 * 7.9e10) * (1 + 3.0**-4) / (math.pi**4 / 96)
+    assert int(ds.attrs["n_modes"]) == 3
+    assert float(one["static_deflection"]) == pytest.approx(w, rel=1e-4)
+    # the deck damping of Table 6.6 (prestressed concrete, L = 20 m: 1.0 %) plus Δζ(20) = 0.118/0.398 %
+    assert ds.attrs["damping_ratio"] == pytest.approx((1.0 + 0.118 / 0.398) / 100, rel=1e-12)
+    assert (tmp_path / "out" / "rail.nc").exists() and "result:" in result.report
+
+
+def test_example_cut_down_through_the_cli(tmp_path):
+    for name in ("hslm_20m.toml", "talgo_like.csv"):
+        shutil.copy(EXAMPLE / name, tmp_path / name)
+    text = (tmp_path / "hslm_20m.toml").read_text()
+    text = text.replace('presets = ["hslm-a", "ice3"]', 'presets = ["hslm-a3", "ice3"]')
+    text = text.replace("step = 2.0", "step = 20.0").replace("fine_step = 0.5", "fine_step = 5.0")
+    text = text.replace("workers = 2", "workers = 1")
+    (tmp_path / "hslm_20m.toml").write_text(text)
+    out = tmp_path / "out"
+    run = subprocess.run([sys.executable, "-c", "from vbikit.cli import app; app(prog_name='vbikit')", "rail", str(tmp_path / "hslm_20m.toml"), "--out-dir", str(out)],
+                         capture_output=True, text=True, env=os.environ.copy(), timeout=300)
+    assert run.returncode == 0, run.stderr
+    assert "deck acceleration: peak" in run.stdout
+    import xarray as xr
+
+    with xr.open_dataset(out / "rail.nc") as ds:
+        assert list(ds.train.values) == ["HSLM-A3", "ICE 3", "talgo_like"]
+        assert np.all(np.isfinite(ds["max_deck_acceleration"].values))
+        assert float(ds["acceleration_limit"]) == 3.5
+    assert (out / "rail-acceleration.png").stat().st_size > 10_000
+
+
+def test_coupled_cars_on_an_irregular_track_join_the_sweep():
+    data = spec(trains={"presets": ["ice3"]}, speeds={"min": 250.0, "max": 260.0, "step": 10.0},
+                coupled={"enabled": True, "irregularity": "german-low", "seed": 3})
+    ds = run_rail(data, figures=False).dataset
+    assert list(ds.train.values) == ["ICE 3", "ICE 3 (coupled)"]
+    acc = ds["max_deck_acceleration"].values
+    assert acc.shape == (2, 2) and (acc > 0).all() and (acc[1] != acc[0]).all()
+    # the static reference of the coupled cars is the moving-force train's (same static axle loads)
+    assert float(ds["static_deflection"][1]) == pytest.approx(float(ds["static_deflection"][0]), rel=1e-9)
+
+
+def test_speed_grid_refines_near_resonance():
+    from vbikit.rail.sweep import speed_grid
+
+    v = speed_grid(30.0, 40.0, 5.0, resonances=[33.3], fine_step=0.5, width=1.0)
+    assert list(v[:2]) == [30.0, 32.3] and 35.0 in v and v[-1] == 40.0
+    assert all(abs(x - y) < 0.5 + 1e-9 for x, y in zip(v[1:], v[2:]) if 32.3 <= x < 34.3)
+
+
+def test_rail_distribution_over_three_sleepers(tmp_path):
+    from vbikit.rail.trains import parse_train_table, rail_distributed
+
+    t = rail_distributed(parse_train_table("0,200\n3,100\n", "two"), 0.6)
+    np.testing.assert_allclose(t.axle_positions, [0.0, 0.6, 1.2, 3.0, 3.6, 4.2])
+    np.testing.assert_allclose(t.axle_loads, [50e3, 100e3, 50e3, 25e3, 50e3, 25e3])
+    # one 200 kN axle over three sleepers a = 0.6 m on the 20 m span: P/4 at L/2 ± a and P/2 at L/2 give
+    # M_mid = P L/4 − P a/4 = 1000 − 30 = 970 kN m (the sampling misses the peak by at most P/2 · Δx/2)
+    (tmp_path / "one.csv").write_text("0,200\n")
+    (tmp_path / "rail.toml").write_text(
+        "[bridge]\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n[trains]\ntables = [\"one.csv\"]\n"
+        "sleeper_spacing = 0.6\n[speeds]\nmin = 200.0\nmax = 220.0\nstep = 20.0\n")
+    ds = run_rail(tmp_path / "rail.toml", figures=False).dataset
+    assert list(ds.train.values) == ["one (rail-distributed)"]
+    m = float(ds["static_moment"][0])
+    assert 970e3 - 100e3 * ds.attrs["dx_m"] / 2 - 1e-6 <= m <= 970e3 + 1e-6
+
+
+def test_report_warns_when_the_modes_miss_the_required_range():
+    result = run_rail(spec(bridge={"n_modes": 1, "damping": 0.015}), figures=False)
+    # n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz; n3 = 9 n0 = 62.8 Hz is the required range: modes 1, 2, 3 (n_k = k² n0)
+    assert "WARNING: 1 modes retained, but the 3 modes up to 62.8 Hz are required" in result.report
+    assert "damping 1.500 % (given (bridge.damping)" in result.report
+
+
+def test_scenario_bridge_is_the_same_beam(tmp_path):
+    (tmp_path / "deck.toml").write_text('[bridge]\nmodel = "beam"\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n')
+    base = {"trains": {"presets": ["hslm-a4"]}, "speeds": {"min": 230.0, "max": 290.0, "step": 20.0}}
+    a = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, **base}, figures=False).dataset
+    b = run_rail({"bridge": {"scenario": str(tmp_path / "deck.toml")}, **base}, figures=False).dataset
+    for name in ("max_deck_acceleration", "max_deflection", "max_moment", "max_shear", "lm71_moment", "lm71_shear"):
+        np.testing.assert_array_equal(a[name].values, b[name].values)
+    assert a.attrs["damping_ratio"] == b.attrs["damping_ratio"] and a.attrs["n_modes"] == b.attrs["n_modes"] == 3
+
+
+def test_scenario_bridge_errors(tmp_path):
+    (tmp_path / "two.toml").write_text('[bridge]\nmodel = "continuous-beam"\nspans = [20.0, 20.0]\nEI = 7.9e10\n'
+                                       'mass_per_length = 25000.0\n')
+    with pytest.raises(RailSpecError, match="bridge.scenario: two.toml is a bridge of 2 spans"):
+        run_rail({"bridge": {"scenario": str(tmp_path / "two.toml")}, "trains": {"presets": ["hslm-a1"]},
+                  "speeds": {"max": 300.0}}, figures=False)
+    with pytest.raises(RailSpecError, match="bridge.span: give either scenario or span"):
+        parse_rail_spec({"bridge": {"scenario": "x.toml", "span": 20.0}, "trains": {"presets": ["hslm-a1"]},
+                         "speeds": {"max": 300.0}})
+    with pytest.raises(RailSpecError, match="bridge.EI: give span, EI and mass_per_length"):
+        parse_rail_spec({"bridge": {"span": 20.0}, "trains": {"presets": ["hslm-a1"]}, "speeds": {"max": 300.0}})

@@ -1,0 +1,74 @@
+"""Trains: HSLM-A against EN 1991-2 Table E.1 and the axle lists of SincBridgeDynamics.jl, the ICE 3
+preset against its source's geometry and masses, CSV tables."""
+import numpy as np
+import pytest
+
+from vbikit.rail.trains import HSLM_A_TABLE, TRAIN_PRESETS, TrainError, get_train, hslm_a, hslm_b, ice3, parse_train_table
+
+#: EN 1991-2:2003 Table E.1 (N intermediate coaches, D [m], d [m], P [kN]), written out here
+TABLE_E1 = {1: (18, 18, 2.0, 170), 2: (17, 19, 3.5, 200), 3: (16, 20, 2.0, 180), 4: (15, 21, 3.0, 190),
+            5: (14, 22, 2.0, 170), 6: (13, 23, 2.0, 180), 7: (13, 24, 2.0, 190), 8: (12, 25, 2.5, 190),
+            9: (11, 26, 2.0, 210), 10: (11, 27, 2.0, 210)}
+#: second source: SincBridgeDynamics.jl (antonioaro), src/TRAIN_MODELS.jl — number of axles and the
+#: last axle's position [m] of its A_1 … A_10 lists
+JULIA_COUNT_LAST = {1: (50, 397.525), 2: (48, 398.525), 3: (46, 397.525), 4: (44, 394.525), 5: (42, 389.525),
+                    6: (40, 382.525), 7: (40, 397.525), 8: (38, 387.525), 9: (36, 375.525), 10: (36, 388.525)}
+#: the first twelve axles of its A_2 (d = 3.5 m, unequal to the power-car bogie's 3 m) and A_8 (d = 2.5 m)
+JULIA_A2_HEAD = [0.0, 3.0, 14.0, 17.0, 20.525, 24.025, 36.0125, 39.5125, 55.0125, 58.5125, 74.0125, 77.5125]
+JULIA_A8_TAIL = [342.5125, 345.0125, 364.5, 367.0, 370.525, 373.525, 384.525, 387.525]
+
+
+@pytest.mark.parametrize("k", range(1, 11))
+def test_hslm_a_against_table_e1_and_julia(k):
+    n, D, d, P = TABLE_E1[k]
+    assert HSLM_A_TABLE[k] == (n, D, d, P)
+    t = get_train(f"hslm-a{k}")
+    assert t.name == f"HSLM-A{k}"
+    count, last = JULIA_COUNT_LAST[k]
+    assert t.n_axles == count == 2 * n + 14
+    assert t.length == pytest.approx(last, abs=1e-9)
+    np.testing.assert_allclose(t.axle_loads, P * 1e3)
+    assert t.coach_length == D
+
+
+def test_hslm_a_axle_lists_match_julia_where_d_differs():
+    np.testing.assert_allclose(hslm_a(2).axle_positions[:12], JULIA_A2_HEAD, atol=1e-9)
+    np.testing.assert_allclose(hslm_a(8).axle_positions[-8:], JULIA_A8_TAIL, atol=1e-9)
+
+
+def test_presets_registry_names():
+    assert [f"hslm-a{k}" for k in range(1, 11)] == [n for n in TRAIN_PRESETS if n.startswith("hslm-a")]
+    with pytest.raises(TrainError, match="hslm-a1"):
+        get_train("hslm-a11")
+
+
+def test_ice3_from_goicolea_geometry_and_masses():
+    t = ice3()
+    assert t.n_axles == 32
+    # 200.32 m over the noses (Goicolea 2014) less 2 × (4.76 − 1.25) m from each nose to its first axle
+    assert t.length == pytest.approx(200.32 - 2 * (4.76 - 1.25), abs=1e-9)
+    # axle load g ((M_c/2 + M_t)/2 + M_w): 9.81 × ((23900 + 3500)/2 + 1800) = 152 055 N; cars 4, 5: 135 868.5 N
+    np.testing.assert_allclose(t.axle_loads[:4], 152055.0)
+    np.testing.assert_allclose(t.axle_loads[12:20], 135868.5)
+    np.testing.assert_allclose(t.axle_positions[:6], [0.0, 2.5, 17.375, 19.875, 24.775, 27.275])
+    assert len(t.cars) == 8
+
+
+def test_hslm_b_and_its_limits():
+    t = hslm_b(12, 2.75)
+    assert t.n_axles == 12 and t.length == pytest.approx(11 * 2.75)
+    np.testing.assert_allclose(t.axle_loads, 170e3)
+    with pytest.raises(TrainError, match="spacing"):
+        hslm_b(10, 0.1)
+
+
+def test_table_file_parsing_and_errors():
+    t = parse_train_table("position_m,load_kN\n# a comment\n5.0, 100\n7.5, 120\n\n20, 90\n", "mine")
+    np.testing.assert_allclose(t.axle_positions, [0.0, 2.5, 15.0])
+    np.testing.assert_allclose(t.axle_loads, [100e3, 120e3, 90e3])
+    with pytest.raises(TrainError, match="line 3: axle positions must not decrease"):
+        parse_train_table("0,100\n5,100\n4,100\n", "bad")
+    with pytest.raises(TrainError, match="line 2: load must be within"):
+        parse_train_table("0,100\n5,-3\n", "bad")
+    with pytest.raises(TrainError, match="line 2: not numbers"):
+        parse_train_table("0,100\n5,abc\n", "bad")
