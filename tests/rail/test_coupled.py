@@ -6,6 +6,7 @@ form and vbikit.solve.simulate in test_moving_loads.py)."""
 import dataclasses
 
 import numpy as np
+import pytest
 
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.rail.sweep import SweepSetup, coupled_envelopes
@@ -13,7 +14,8 @@ from vbikit.rail.trains import ice3
 from vbikit.solve.moving_loads import moving_load_sweep
 
 
-def test_train_of_stiff_cars_on_a_heavy_bridge_is_the_moving_force_train():
+@pytest.mark.parametrize("contact", ["hertz", "rigid"])  # rigid: the wheelset weight must still reach the deck
+def test_train_of_stiff_cars_on_a_heavy_bridge_is_the_moving_force_train(contact):
     train = ice3()
     stiff = tuple(dataclasses.replace(c, primary_stiffness=100 * c.primary_stiffness,
                                       secondary_stiffness=100 * c.secondary_stiffness) for c in train.cars)
@@ -23,7 +25,7 @@ def test_train_of_stiff_cars_on_a_heavy_bridge_is_the_moving_force_train():
     points = np.array([5.0, 10.0, 13.0])
     setup = SweepSetup(beam, points, (("moment", 10.0),), 0.05, 0.5, 1e12)
     speeds = np.array([280 / 3.6])
-    coupled = coupled_envelopes(setup, stiff_train, speeds, contact="hertz")
+    coupled = coupled_envelopes(setup, stiff_train, speeds, contact=contact)
     forces = moving_load_sweep(beam, train.axle_positions, train.axle_loads, speeds, points, setup.effects,
                                dx=0.05, free_vibration=0.5)
     for a, b in ((coupled.max_displacement, forces.max_displacement), (coupled.max_acceleration, forces.max_acceleration),

@@ -170,16 +170,13 @@ class CoupledSection(_Section):
     irregularity: Optional[str] = None
     seed: int = Field(0, ge=0)
     max_steps: float = Field(2e6, gt=0, le=1e10)
-    contact: Union[str, float] = "hertz"  # "hertz" or a stiffness [N/m] per wheelset
+    contact: Union[str, float] = "hertz"  # "hertz", "rigid" or a stiffness [N/m] per wheelset
 
     @field_validator("contact")
     @classmethod
     def _contact(cls, v: Union[str, float]) -> Union[str, float]:
-        # rigid contact is refused: the rail car carries its wheelset weight as a wheel's fixed load, which the
-        # solver also applies to the car as a reaction, so the deck receives 88 % of the static axle load
-        # (measured: ICE 3 car, 5 m/s, deflection / static = 0.885); the Hertz contact has no fixed load
-        if isinstance(v, str) and v != "hertz":
-            raise ValueError(f"contact must be 'hertz' or a wheel-rail stiffness per wheelset in N/m, got {v!r}")
+        if isinstance(v, str) and v not in ("hertz", "rigid"):
+            raise ValueError(f"contact must be 'hertz', 'rigid' or a wheel-rail stiffness per wheelset in N/m, got {v!r}")
         if not isinstance(v, str) and not (v > 0):
             raise ValueError(f"contact stiffness must be > 0 N/m, got {v!r}")
         return v
