@@ -40,7 +40,7 @@ def _one(args):
     """One crossing through simulate: a moving-force vehicle with every axle of the train."""
     import numpy as np
 
-    from vbikit.rail.trains import hslm_a
+    from vbikit.vehicle.trains import hslm_a
     from vbikit.solve import Crossing, simulate
     from vbikit.vehicle.builder import VehicleBuilder
 
@@ -62,7 +62,7 @@ def main() -> None:
     import numpy as np
 
     from vbikit.rail.sweep import SweepSetup, sweep_moving_forces
-    from vbikit.rail.trains import hslm_a
+    from vbikit.vehicle.trains import hslm_a
     from vbikit.solve.moving_loads import default_dx
 
     beam = _beam()

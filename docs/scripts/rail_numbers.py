@@ -20,7 +20,7 @@ EXAMPLE = ROOT / "examples" / "railway" / "hslm_20m.toml"
 
 
 def hslm() -> dict:
-    from vbikit.rail.trains import HSLM_A_TABLE, hslm_a
+    from vbikit.vehicle.trains import HSLM_A_TABLE, hslm_a
 
     out = {}
     for k, (n, D, d, P) in HSLM_A_TABLE.items():
@@ -49,7 +49,7 @@ def verification() -> dict:
     import numpy as np
 
     from vbikit.bridge.beam import EulerBernoulliBeam
-    from vbikit.rail.trains import hslm_a
+    from vbikit.vehicle.trains import hslm_a
     from vbikit.solve import Crossing, simulate
     from vbikit.solve.moving_loads import moving_load_history, moving_load_sweep
     from vbikit.vehicle.builder import VehicleBuilder

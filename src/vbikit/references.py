@@ -498,8 +498,8 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "driveby:mode-shapes": ("YangLiChang2014",),
     "driveby:damage": ("AllemangBrown1982", "PandeyBiswasSamman1991"),
     # --- rail
-    "train:hslm-a": ("EN1991-2", "SincBridgeDynamics"),
-    "train:ice3": ("Goicolea2014", "Cantero2022"),
+    **{f"vehicle:hslm-a{k}": ("EN1991-2", "SincBridgeDynamics") for k in range(1, 11)},
+    "vehicle:ice3": ("Goicolea2014", "Cantero2022"),
     "rail:checks": ("EN1991-2", "EN1990-A2", "Fryba1999", "NigamJennings1969"),
 }
 

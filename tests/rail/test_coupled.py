@@ -10,7 +10,7 @@ import pytest
 
 from vbikit.bridge.beam import EulerBernoulliBeam
 from vbikit.rail.sweep import SweepSetup, coupled_envelopes
-from vbikit.rail.trains import ice3
+from vbikit.vehicle.trains import ice3
 from vbikit.solve.moving_loads import moving_load_sweep
 
 

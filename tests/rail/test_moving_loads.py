@@ -110,7 +110,7 @@ def test_cancellation_at_span_over_spacing_three_halves():
 
 
 def test_matches_simulate_with_a_moving_force_vehicle():
-    from vbikit.rail.trains import hslm_a
+    from vbikit.vehicle.trains import hslm_a
     from vbikit.solve import Crossing, simulate
     from vbikit.vehicle.builder import VehicleBuilder
 

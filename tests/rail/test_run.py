@@ -113,7 +113,7 @@ def test_speed_grid_refines_near_resonance():
 
 
 def test_rail_distribution_over_three_sleepers(tmp_path):
-    from vbikit.rail.trains import parse_train_table, rail_distributed
+    from vbikit.vehicle.trains import parse_train_table, rail_distributed
 
     t = rail_distributed(parse_train_table("0,200\n3,100\n", "two"), 0.6)
     np.testing.assert_allclose(t.axle_positions, [0.0, 0.6, 1.2, 3.0, 3.6, 4.2])

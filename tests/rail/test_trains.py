@@ -3,7 +3,7 @@ preset against its source's geometry and masses, CSV tables."""
 import numpy as np
 import pytest
 
-from vbikit.rail.trains import HSLM_A_TABLE, TRAIN_PRESETS, TrainError, get_train, hslm_a, hslm_b, ice3, parse_train_table
+from vbikit.vehicle.trains import HSLM_A_TABLE, TRAIN_PRESETS, TrainError, get_train, hslm_a, hslm_b, ice3, parse_train_table
 
 #: EN 1991-2:2003 Table E.1 (N intermediate coaches, D [m], d [m], P [kN]), written out here
 TABLE_E1 = {1: (18, 18, 2.0, 170), 2: (17, 19, 3.5, 200), 3: (16, 20, 2.0, 180), 4: (15, 21, 3.0, 190),
@@ -72,3 +72,16 @@ def test_table_file_parsing_and_errors():
         parse_train_table("0,100\n5,-3\n", "bad")
     with pytest.raises(TrainError, match="line 2: not numbers"):
         parse_train_table("0,100\n5,abc\n", "bad")
+
+
+def test_a_scenario_names_a_train_as_its_vehicle():
+    """`[vehicle] model = "hslm-a4"`: the train's axles as moving forces (one wheel per axle, its
+    load fixed, no DOFs) at the Table E.1 load P = 190 kN."""
+    from vbikit.scenario import build, parse_scenario
+
+    built = build(parse_scenario({"bridge": {"model": "beam", "span": 20.0, "EI": 1e10, "mass_per_length": 15e3},
+                                  "vehicle": {"model": "hslm-a4"}, "crossing": {"speed_kmh": 200}}))
+    v = built.crossing.vehicle
+    assert v.n_dof == 0 and len(v.wheels) == 2 * 15 + 14
+    np.testing.assert_allclose([w.fixed_load for w in v.wheels], 190e3)
+    np.testing.assert_allclose([w.offset for w in v.wheels], hslm_a(4).axle_positions)

@@ -16,6 +16,12 @@ TOTAL_MASS = {
     "dump-truck": (80.0e3 + 2 * 95.6e3) / GRAVITY,  # paper §4.2 axle loads; sprung 24,745 kg (+0.26) + axles 2,900 kg
     "3s2": 3100.0 + 20000.0 + 3 * 750.0 + 2 * 1100.0,  # VBI-2D's five-axle vehicle (E01_Example.m)
     "axles": (53.4e3 + 4 * 75.6e3) / GRAVITY,  # the preset's example: axle loads given
+    # trains as moving axle loads: EN 1991-2 Table E.1, HSLM-A: 2N + 14 axles of P [kN] (N, P written out)
+    **{f"hslm-a{k}": (2 * n + 14) * p * 1e3 / GRAVITY for k, (n, p) in
+       {1: (18, 170), 2: (17, 200), 3: (16, 180), 4: (15, 190), 5: (14, 170), 6: (13, 180), 7: (13, 190),
+        8: (12, 190), 9: (11, 210), 10: (11, 210)}.items()},
+    # ICE 3 (Goicolea 2014): 24 axles of g((23900 + 3500)/2 + 1800) kg and 8 of 135,868.5 N (cars 4 and 5)
+    "ice3": (24 * 9.81 * ((23900 + 3500) / 2 + 1800) + 8 * 135868.5) / GRAVITY,
 }
 
 
@@ -25,7 +31,7 @@ def preset(request) -> tuple[str, Vehicle]:
 
 
 #: presets with degrees of freedom (all but the moving force)
-DOF_PRESETS = sorted(set(VEHICLE_PRESETS) - {"moving-force"})
+DOF_PRESETS = sorted(n for n, p in VEHICLE_PRESETS.items() if p.example_vehicle().n_dof > 0)  # not the moving forces
 
 
 @pytest.fixture(params=DOF_PRESETS)

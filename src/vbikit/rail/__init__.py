@@ -1,4 +1,4 @@
-"""Railway bridges: trains (HSLM-A/B, real trains), speed sweeps, EN 1991-2 / EN 1990 dynamic checks."""
+"""Railway bridges: speed sweeps of trains (the trains themselves: vbikit.vehicle.trains), EN 1991-2 / EN 1990 dynamic checks."""
 from typing import TYPE_CHECKING
 
 from vbikit._lazy import lazy_exports
@@ -20,21 +20,6 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.rail.run import RailBudgetError, RailResult, run_rail
     from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
     from vbikit.rail.sweep import speed_grid
-    from vbikit.rail.trains import (
-        HSLM_A_TABLE,
-        TRAIN_PRESETS,
-        CarGeometry,
-        Train,
-        TrainError,
-        TrainPreset,
-        get_train,
-        hslm_a,
-        hslm_b,
-        ice3,
-        parse_train_table,
-        rail_distributed,
-        read_train_table,
-    )
 
 __all__ = [
     "ACCELERATION_LIMITS",
@@ -56,19 +41,6 @@ __all__ = [
     "resonance_speeds",
     "run_rail",
     "speed_grid",
-    "HSLM_A_TABLE",
-    "TRAIN_PRESETS",
-    "CarGeometry",
-    "Train",
-    "TrainError",
-    "TrainPreset",
-    "get_train",
-    "hslm_a",
-    "hslm_b",
-    "ice3",
-    "parse_train_table",
-    "rail_distributed",
-    "read_train_table",
 ]
 
 __getattr__, __dir__ = lazy_exports(globals(), {
@@ -78,7 +50,4 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.rail.run": ["RailBudgetError", "RailResult", "run_rail"],
     "vbikit.rail.spec": ["RailSpec", "RailSpecError", "load_rail_spec", "parse_rail_spec"],
     "vbikit.rail.sweep": ["speed_grid"],
-    "vbikit.rail.trains": ["HSLM_A_TABLE", "TRAIN_PRESETS", "CarGeometry", "Train", "TrainError", "TrainPreset",
-                           "get_train", "hslm_a", "hslm_b", "ice3", "parse_train_table", "rail_distributed",
-                           "read_train_table"],
 })

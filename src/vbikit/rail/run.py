@@ -29,7 +29,7 @@ from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
 from vbikit.rail.sweep import KMH, SweepSetup, coupled_envelopes, speed_grid, sweep_moving_forces, train_resonances
-from vbikit.rail.trains import Train, get_train, read_train_table
+from vbikit.vehicle.trains import Train, get_train, read_train_table
 
 log = logging.getLogger(__name__)
 
@@ -159,7 +159,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     originals = load_trains(spec, base_dir)  # with their cars, for coupled models
     trains = originals
     if spec.trains.sleeper_spacing is not None:
-        from vbikit.rail.trains import rail_distributed
+        from vbikit.vehicle.trains import rail_distributed
 
         trains = [rail_distributed(t, spec.trains.sleeper_spacing) for t in originals]
     n0 = float(bridge.frequencies_hz[0])

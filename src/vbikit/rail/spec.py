@@ -120,7 +120,7 @@ class TrainsSection(_Section):
     @field_validator("presets")
     @classmethod
     def _presets(cls, v: list[str]) -> list[str]:
-        from vbikit.rail.trains import TRAIN_PRESETS
+        from vbikit.vehicle.trains import TRAIN_PRESETS
 
         out: list[str] = []
         for name in v:

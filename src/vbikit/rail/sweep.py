@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.rail.codes import resonance_speeds
-from vbikit.rail.trains import Train
+from vbikit.vehicle.trains import Train
 
 log = logging.getLogger(__name__)
 
@@ -123,7 +123,7 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
 def rail_cars(train: Train, contact: str | float = "hertz") -> list:
     """(Vehicle, offset of its first axle [m] behind the train's first axle) of every car of a train
     with multibody data (``Train.cars``)."""
-    from vbikit.rail.trains import TrainError
+    from vbikit.vehicle.trains import TrainError
     from vbikit.vehicle.rail_car import RailCarParameters, rail_car
 
     if not train.cars or any(c.static_axle_load is None or c.primary_stiffness is None for c in train.cars):

@@ -5,11 +5,13 @@ or [substitute] (our documented engineering choice, see ``docs/model-data.md``).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any, Callable
 
 from vbikit.vehicle.axles import axle_truck, semitrailer_3s2
 from vbikit.vehicle.builder import VehicleBuilder
 from vbikit.vehicle.model import GRAVITY, Vehicle
+from vbikit.vehicle.trains import TRAIN_PRESETS, get_train, train_vehicle
 
 
 def moving_force(force: float = 100e3) -> Vehicle:
@@ -175,6 +177,11 @@ def dump_truck() -> Vehicle:
                     {"body_mass": m_body, "body_cg": s_cg})
 
 
+def _train(name: str) -> Vehicle:
+    """A preset train (vbikit.vehicle.trains) as moving axle loads."""
+    return train_vehicle(get_train(name))
+
+
 @dataclass(frozen=True)
 class VehiclePreset:
     name: str
@@ -222,5 +229,7 @@ VEHICLE_PRESETS: dict[str, VehiclePreset] = {
             # a 3-S2 at US legal group loads: 12 / 34 / 34 kip (53.4 / 151.2 / 151.2 kN)
             example={"axle_loads": [53.4e3, 75.6e3, 75.6e3, 75.6e3, 75.6e3], "axle_spacings": [5.5, 1.3, 9.5, 1.3]},
         ),
+        # trains as chains of moving axle loads (vbikit.vehicle.trains): hslm-a1 … hslm-a10, ice3
+        *(VehiclePreset(name, partial(_train, name)) for name in TRAIN_PRESETS),
     )
 }

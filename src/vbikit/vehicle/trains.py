@@ -1,9 +1,9 @@
 """Trains as chains of axle loads: the HSLM-A and HSLM-B load models, real trains from a table
 file, and documented real trains (presets).
 
-A [`Train`][vbikit.rail.Train] is its axle positions a_k [m] behind the first axle (a_0 = 0,
+A [`Train`][vbikit.vehicle.Train] is its axle positions a_k [m] behind the first axle (a_0 = 0,
 non-decreasing), its static axle loads P_k [N] (downward, > 0) and optionally its cars
-([`CarGeometry`][vbikit.rail.CarGeometry]: where each car's bogies are and, when known, its masses
+([`CarGeometry`][vbikit.vehicle.CarGeometry]: where each car's bogies are and, when known, its masses
 and suspensions), from which coupled car models can be built.
 
 HSLM-A (EN 1991-2:2003, Annex E, Table E.1 and Figure E.1): two power cars, two end coaches and
@@ -36,8 +36,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.errors import VbikitError
+from vbikit.vehicle.model import GRAVITY, Vehicle
 
-GRAVITY = 9.81
 
 
 class TrainError(VbikitError):
@@ -263,6 +263,20 @@ def ice3() -> Train:
                            "Goicolea (2014), Simplified mechanical description of AVE S-103 - ICE3 Velaro E "
                            "high speed train, Universidad Politecnica de Madrid (as transcribed in TTB-2D, Cantero)",
                            coach_length=24.775)
+
+
+def train_vehicle(train: Train) -> Vehicle:
+    """The train as a vbikit vehicle of moving forces: one wheel per axle at s = a_k behind the first,
+    carrying P_k as a constant load (no DOFs; the moving-force model of EN 1991-2 6.4.6, as
+    [`moving_force`][vbikit.vehicle.moving_force] for one axle).  ``[vehicle] model = "hslm-a1"`` in a
+    scenario builds this."""
+    from vbikit.vehicle.builder import VehicleBuilder
+
+    vb = VehicleBuilder(train.name)
+    for k, (a, p) in enumerate(zip(train.axle_positions, train.axle_loads)):
+        vb.wheel(f"a{k + 1}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
+    return vb.build(f"{train.name}: {train.n_axles} moving axle loads" + (f" ({train.source})" if train.source else ""),
+                    {"n_axles": float(train.n_axles), "total_load": train.total_load})
 
 
 # ---------------------------------------------------------------------------------- registry
