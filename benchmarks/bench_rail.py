@@ -40,16 +40,12 @@ def _one(args):
     """One crossing through simulate: a moving-force vehicle with every axle of the train."""
     import numpy as np
 
-    from vbikit.vehicle.trains import hslm_a
     from vbikit.solve import Crossing, simulate
-    from vbikit.vehicle.builder import VehicleBuilder
+    from vbikit.vehicle.trains import hslm_a, train_vehicle
 
     k, v, dx, fv = args
     beam, train = _beam(), hslm_a(k)
-    vb = VehicleBuilder(train.name)
-    for i, (a, p) in enumerate(zip(train.axle_positions, train.axle_loads)):
-        vb.wheel(f"a{i}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
-    r = simulate(Crossing(beam, vb.build(train.name), speed=v, approach=0.0, dt=dx / v, free_vibration=fv))
+    r = simulate(Crossing(beam, train_vehicle(train), speed=v, approach=0.0, dt=dx / v, free_vibration=fv))
     phi = beam.mode_shapes(np.linspace(0, 20, 11)[1:-1])
     return float(np.abs(r.xi_ddot @ phi.T).max())
 
