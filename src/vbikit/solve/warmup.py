@@ -4,7 +4,8 @@ shared installation, so that no run, study batch or Dask worker compiles on firs
 numba compiles a kernel once per combination of argument types and keeps it in its on-disk
 cache (``vbikit.solve.numba_cache``).  The variants vbikit uses are few: each registered
 integrator with one lane and with many lanes (the batched studies and traffic streams), the
-static start and the static reference.  ``compile_kernels`` runs a tiny crossing through each
+static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
+railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
 the cache — exactly those variants.
 """
@@ -36,6 +37,7 @@ def compile_kernels() -> dict[str, float]:
     each integrator took (one lane, then many lanes)."""
     from vbikit.solve.batch import BatchSolver
     from vbikit.solve.integrators import integrator_names
+    from vbikit.solve.moving_loads import moving_load_sweep
     from vbikit.solve.simulate import simulate
 
     took: dict[str, float] = {}
@@ -47,4 +49,8 @@ def compile_kernels() -> dict[str, float]:
         BatchSolver(crossing).run_many(roads)
         took[name] = time.perf_counter() - t0
         log.info("kernels of %s ready (%.1f s)", name, took[name])
+    t0 = time.perf_counter()
+    moving_load_sweep(crossing.bridge, [0.0, 2.0], [1e5, 1e5], [20.0, 30.0], [2.5], dx=0.05)
+    took["moving-loads"] = time.perf_counter() - t0
+    log.info("moving-load sweep ready (%.1f s)", took["moving-loads"])
     return took
