@@ -5,20 +5,13 @@ from typing import Any
 
 import numpy as np
 
+from vbikit._checks import finite_1d, positive_number
 from vbikit.extremes.errors import ExtremesError
 
 
 def sample(values: Any, name: str, minimum: int) -> np.ndarray:
     """``values`` as a 1-D float64 array of at least ``minimum`` finite numbers."""
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ExtremesError(f"{name}: needs a 1-D sequence of numbers ({exc})") from None
-    if arr.ndim != 1:
-        raise ExtremesError(f"{name}: needs a 1-D sequence of numbers, got an array of shape {arr.shape}")
-    bad = ~np.isfinite(arr)
-    if bad.any():
-        raise ExtremesError(f"{name}: values must be finite; entry {int(np.argmax(bad))} is {arr[bad][0]!r}")
+    arr = finite_1d(values, name, ExtremesError)
     if arr.size < minimum:
         raise ExtremesError(f"{name}: needs at least {minimum} values for this fit, got {arr.size}")
     if arr.size and arr.min() == arr.max():
@@ -27,14 +20,8 @@ def sample(values: Any, name: str, minimum: int) -> np.ndarray:
 
 
 def positive(value: Any, name: str) -> float:
-    """``value`` as a finite float > 0."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ExtremesError(f"{name}: needs a number > 0, got {value!r}") from None
-    if not np.isfinite(v) or v <= 0:
-        raise ExtremesError(f"{name}: needs a finite number > 0, got {value!r}")
-    return v
+    """``value`` as a finite float > 0, or an ExtremesError naming ``name``."""
+    return positive_number(value, name, ExtremesError)
 
 
 def periods(values: Any, name: str = "periods") -> np.ndarray:

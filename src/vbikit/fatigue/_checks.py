@@ -5,21 +5,13 @@ from typing import Any
 
 import numpy as np
 
+from vbikit._checks import finite_1d, positive_number
 from vbikit.fatigue.errors import FatigueError
 
 
 def series_1d(values: Any, name: str) -> np.ndarray:
     """``values`` as a 1-D float64 array of finite numbers, or a FatigueError naming ``name``."""
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise FatigueError(f"{name}: needs a 1-D sequence of numbers ({exc})") from None
-    if arr.ndim != 1:
-        raise FatigueError(f"{name}: needs a 1-D sequence of numbers, got an array of shape {arr.shape}")
-    bad = ~np.isfinite(arr)
-    if bad.any():
-        raise FatigueError(f"{name}: values must be finite; entry {int(np.argmax(bad))} is {arr[bad][0]!r}")
-    return arr
+    return finite_1d(values, name, FatigueError)
 
 
 def spectrum(ranges: Any, counts: Any) -> tuple[np.ndarray, np.ndarray]:
@@ -35,12 +27,6 @@ def spectrum(ranges: Any, counts: Any) -> tuple[np.ndarray, np.ndarray]:
     return r, n
 
 
-def positive(value: float, name: str) -> float:
+def positive(value: Any, name: str) -> float:
     """``value`` as a finite float > 0, or a FatigueError naming ``name``."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise FatigueError(f"{name}: needs a number > 0, got {value!r}") from None
-    if not np.isfinite(v) or v <= 0:
-        raise FatigueError(f"{name}: needs a finite number > 0, got {value!r}")
-    return v
+    return positive_number(value, name, FatigueError)
