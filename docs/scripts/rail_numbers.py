@@ -49,19 +49,15 @@ def verification() -> dict:
     import numpy as np
 
     from vbikit.bridge.beam import EulerBernoulliBeam
-    from vbikit.vehicle.trains import hslm_a
     from vbikit.solve import Crossing, simulate
     from vbikit.solve.moving_loads import moving_load_history, moving_load_sweep
-    from vbikit.vehicle.builder import VehicleBuilder
+    from vbikit.vehicle.trains import hslm_a, train_vehicle
 
     beam = EulerBernoulliBeam(20.0, 1.2e10, 15000.0, 0.015, n_modes=4)
     train = hslm_a(4)
-    vb = VehicleBuilder("train")
-    for k, (a, p) in enumerate(zip(train.axle_positions, train.axle_loads)):
-        vb.wheel(f"a{k}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
     v, dx = 280 / 3.6, 0.05
     h = moving_load_history(beam, train.axle_positions, train.axle_loads, v, dx=dx, free_vibration=0.4)
-    r = simulate(Crossing(beam, vb.build("train"), speed=v, approach=0.0, dt=dx / v, free_vibration=0.4))
+    r = simulate(Crossing(beam, train_vehicle(train), speed=v, approach=0.0, dt=dx / v, free_vibration=0.4))
     n = min(r.time.size, h.time.size - 1)
     err = float(np.max(np.abs(h.xi_ddot[1:n + 1] - r.xi_ddot[:n])) / np.max(np.abs(r.xi_ddot)))
     one = EulerBernoulliBeam(15.0, 8.0e9, 12000.0, 0.01, n_modes=1)
