@@ -193,51 +193,68 @@ class PointLoads:
 def point_loads(records: Sequence[VehicleRecord], lanes: Sequence[float], pattern: TirePattern = TirePattern(),
                 half_track: float = HALF_TRACK) -> PointLoads:
     """Contact points of ``records`` (axle vehicles; lane n centred at ``lanes[n-1]`` unless the
-    record gives its lateral offset; the wheels' y mirrored for −x traffic)."""
-    veh, setback, ys, loads = [], [], [], []
-    pd = np.asarray(pattern.setback, float)
-    pw = np.asarray(pattern.share, float)
-    for i, r in enumerate(records):
+    record gives its lateral offset; the wheels' y mirrored for −x traffic), sorted by vehicle."""
+    for r in records:
         if r.model != "axles":
             raise ValueError(f"record {r.id or r.line}: model {r.model!r}; lifetime traffic takes axle records")
-        y0 = r.lateral_offset if r.lateral_offset is not None else lanes[r.lane - 1]
-        sign = 1.0 if r.direction == "+x" else -1.0
-        d = np.concatenate([[0.0], np.cumsum(r.axle_spacings)])
-        for side in (half_track, -half_track):
-            for da, pa in zip(d, r.axle_loads):
-                veh.append(np.full(pd.size, i))
-                setback.append(da + pd)
-                ys.append(np.full(pd.size, y0 + sign * side))
-                loads.append(0.5 * pa * pw)
-    return PointLoads(np.concatenate(veh).astype(np.int64), np.concatenate(setback), np.concatenate(ys),
-                      np.concatenate(loads))
+    n_ax = np.array([len(r.axle_loads) for r in records], np.int64)
+    if not len(records):
+        z = np.zeros(0)
+        return PointLoads(z.astype(np.int64), z, z, z)
+    loads = np.fromiter((p for r in records for p in r.axle_loads), float, int(n_ax.sum()))
+    setb = np.fromiter((d for r in records for d in (0.0, *np.cumsum(r.axle_spacings))), float, int(n_ax.sum()))
+    y0 = np.array([r.lateral_offset if r.lateral_offset is not None else lanes[r.lane - 1] for r in records], float)
+    sign = np.array([1.0 if r.direction == "+x" else -1.0 for r in records])
+    veh_axle = np.repeat(np.arange(len(records)), n_ax)
+    pd = np.asarray(pattern.setback, float)
+    pw = np.asarray(pattern.share, float)
+    # (axle, side, pattern point), axles in vehicle order
+    sides = np.array([half_track, -half_track])
+    n_a, n_s, n_p = loads.size, 2, pd.size
+    vehicle = np.broadcast_to(veh_axle[:, None, None], (n_a, n_s, n_p)).ravel()
+    setback = (setb[:, None, None] + np.zeros((1, n_s, 1)) + pd[None, None, :]).ravel()
+    y = (y0[veh_axle][:, None, None] + sign[veh_axle][:, None, None] * sides[None, :, None]
+         + np.zeros((1, 1, n_p))).ravel()
+    load = (0.5 * loads[:, None, None] * np.ones((1, n_s, 1)) * pw[None, None, :]).ravel()
+    return PointLoads(vehicle.astype(np.int64), setback, y, load)
 
 
 # ---------------------------------------------------------------- tabulated lines
 class Tabulated:
     """An influence line tabulated along a set of wheel tracks y on a grid of ``dx`` [m] over the
     deck's x extent, interpolated linearly (error ≤ dx²/8 · max|g''| between kinks, and at a
-    kink — a moment line under the section — at most dx·|jump of g'|/4)."""
+    kink — a moment line under the section — at most dx·|jump of g'|/4).  Tracks along which
+    the line is the same (a beam: g does not depend on y) share one row."""
 
     def __init__(self, line: InfluenceLine, bridge: ModalBridge, tracks: Sequence[float], dx: float):
         first, last = bridge.deck_extent
         self.x0 = float(min(first, 0.0))
         n = int(math.ceil((max(last, bridge.span) - self.x0) / dx)) + 1
         self.h = (max(last, bridge.span) - self.x0) / (n - 1)
+        self.n = n
         self.tracks = np.asarray(sorted(set(float(y) for y in tracks)), float)
         x = self.x0 + self.h * np.arange(n)
-        self.values = np.stack([line.evaluate(x, np.full(n, y)) for y in self.tracks])
-        self.values = np.concatenate([self.values, np.zeros((len(self.tracks), 1))], axis=1)  # guard cell
+        rows = np.stack([line.evaluate(x, np.full(n, y)) for y in self.tracks])
+        uniq, self.row = np.unique(rows, axis=0, return_inverse=True)
+        self.row = np.asarray(self.row).ravel()
+        # flat table with a zero guard cell after each row
+        self.values = np.concatenate([np.concatenate([uniq, np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
+
+    def locate(self, x: NDArray[np.float64], track: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+        """Flat index of the cell and the fraction t in it (t = 0 and the guard cell off the grid)."""
+        u = (x - self.x0) / self.h
+        inside = (u >= 0.0) & (u <= self.n - 1)
+        i = np.minimum(np.where(inside, u, 0.0).astype(np.int64), self.n - 2)
+        t = np.where(inside, u - i, 0.0)
+        flat = np.where(inside, self.row[track] * (self.n + 1) + i, self.n)  # guard cell of row 0
+        return flat, t
+
+    def at(self, flat: NDArray[np.int64], t: NDArray[np.float64]) -> NDArray[np.float64]:
+        v = self.values
+        return v.take(flat) * (1.0 - t) + v.take(flat + 1) * t
 
     def __call__(self, x: NDArray[np.float64], track: NDArray[np.int64]) -> NDArray[np.float64]:
-        n = self.values.shape[1] - 1
-        u = (x - self.x0) / self.h
-        inside = (u >= 0.0) & (u <= n - 1)
-        u = np.where(inside, u, 0.0)
-        i = np.minimum(u.astype(np.int64), n - 2)
-        t = u - i
-        v = self.values[track, i] * (1.0 - t) + self.values[track, i + 1] * t
-        return np.where(inside, v, 0.0)
+        return self.at(*self.locate(x, track))
 
 
 # ---------------------------------------------------------------- events
@@ -254,73 +271,140 @@ class EventStatics:
     histories: Optional[list[NDArray[np.float64]]] = None
 
 
+#: samples of the refinement around each coarse peak (``event_static``)
+REFINE = 24
+
+
+def _evaluate(pts, p_all, t_all, speed, entry, sign_dir, span, lines, tables, track_ids):
+    """Σ over points of g(x_p(t)) P_p for the flat (point, time) pairs: per line the terms."""
+    i_all = pts.vehicle[p_all]
+    travel = speed[i_all] * (t_all - entry[i_all])
+    x = np.where(sign_dir[i_all] > 0, -pts.setback[p_all] + travel, span + pts.setback[p_all] - travel)
+    load = pts.load[p_all]
+    if tables is None:
+        return [line.evaluate(x, pts.y[p_all]) * load for line in lines]
+    out = []
+    located = None
+    for tab, ids in zip(tables, track_ids):  # lines of one bridge share the grid: locate once
+        if located is None or located[0] is not tab.row and not np.array_equal(located[0], tab.row):
+            located = (tab.row, *tab.locate(x, ids[p_all]))
+        out.append(tab.at(located[1], located[2]) * load)
+    return out
+
+
 def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int]], lines: Sequence[InfluenceLine],
                  span: float, lanes: Sequence[float], pattern: TirePattern = TirePattern(), ds: float = 0.1,
                  tables: Optional[Sequence[Tabulated]] = None, times: Optional[Sequence[NDArray[np.float64]]] = None,
-                 keep_histories: bool = False, max_samples: int = 4_000_000) -> EventStatics:
+                 keep_histories: bool = False, max_samples: int = 2_000_000, refine: bool = True) -> EventStatics:
     """Static history and peak of every event (module docstring).
 
     ``events``: vehicle indices into ``records`` of each event; ``tables``: the tabulated lines
     (same order as ``lines``; None: exact evaluation); ``times``: the sample times [s] of each
     event (default: a grid of travel step ``ds`` [m] from the first entry to the last exit, padded
-    by the tire's reach); ``max_samples``: samples × points evaluated at once (memory bound)."""
+    by the tire's reach; then, with ``refine``, each peak is refined on ``REFINE`` samples a
+    step over the two steps around the sampled peak, so that the peak is the continuous maximum
+    within (ds/REFINE)/2 · max|dR/ds|); ``max_samples``: samples × points evaluated at once."""
     pts = point_loads(records, lanes, pattern)
     n_ev = len(events)
     speed = np.array([r.speed for r in records])
     entry = np.array([r.time for r in records])
     sign_dir = np.array([1.0 if r.direction == "+x" else -1.0 for r in records])
     length = np.array([r.length for r in records])
-    # points of each vehicle (pts.vehicle is sorted by vehicle)
     vstart = np.searchsorted(pts.vehicle, np.arange(len(records) + 1))
-    pad = pattern.reach
-    grids = []
+    event_of = np.empty(len(records), np.int64)
     for k, members in enumerate(events):
-        if times is not None:
-            grids.append(np.asarray(times[k], float))
-            continue
-        m = np.asarray(members)
-        t0 = float(np.min(entry[m] - pad / speed[m]))
-        t1 = float(np.max(entry[m] + (span + length[m] + pad) / speed[m]))
-        dt = ds / float(speed[m].max())
-        grids.append(t0 + dt * np.arange(int(math.ceil((t1 - t0) / dt)) + 1))
-    counts = np.array([g.size for g in grids], np.int64)
+        event_of[list(members)] = k
+    n_pts_vehicle = np.diff(vstart)
+    pad = pattern.reach
+    if times is not None:
+        grids = [np.asarray(g, float) for g in times]
+        t0 = np.array([g[0] for g in grids])
+        dt = np.array([g[1] - g[0] if g.size > 1 else 1.0 for g in grids])
+        counts = np.array([g.size for g in grids], np.int64)
+    else:
+        t_in = entry - pad / speed
+        t_out = entry + (span + length + pad) / speed
+        t0 = np.full(n_ev, np.inf)
+        t1 = np.full(n_ev, -np.inf)
+        vmax = np.zeros(n_ev)
+        np.minimum.at(t0, event_of, t_in)
+        np.maximum.at(t1, event_of, t_out)
+        np.maximum.at(vmax, event_of, speed)
+        dt = ds / vmax if n_ev else np.zeros(0)
+        counts = (np.ceil((t1 - t0) / dt).astype(np.int64) + 1) if n_ev else np.zeros(0, np.int64)
+        grids = None
     offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     totals = [np.zeros(int(offsets[-1])) for _ in lines]
     track_ids = None
     if tables is not None:
-        track_ids = [np.searchsorted(tab.tracks, pts.y) for tab in tables]
-        for tab, ids in zip(tables, track_ids):
-            if not np.allclose(tab.tracks[np.minimum(ids, tab.tracks.size - 1)], pts.y, rtol=0, atol=1e-12):
+        track_ids = []
+        for tab in tables:
+            ids = np.minimum(np.searchsorted(tab.tracks, pts.y), tab.tracks.size - 1)
+            if not np.allclose(tab.tracks[ids], pts.y, rtol=0, atol=1e-9):
                 raise ValueError("a wheel track of the traffic is not among the tabulated tracks")
-    # work through the events in groups bounded by samples × points
+            track_ids.append(ids)
+    # points grouped by event
+    p_event = event_of[pts.vehicle]
+    p_order = np.argsort(p_event, kind="stable")
+    p_start = np.searchsorted(p_event[p_order], np.arange(n_ev + 1))
+    work = counts * np.diff(p_start)
     k = 0
     while k < n_ev:
-        work, k1 = 0, k
-        while k1 < n_ev and (k1 == k or work < max_samples):
-            n_pts = sum(vstart[i + 1] - vstart[i] for i in events[k1])
-            work += int(counts[k1]) * int(n_pts)
-            k1 += 1
-        # flat (sample, point) pairs of events k … k1-1
-        p_idx, s_idx = [], []
-        for e in range(k, k1):
-            for i in events[e]:
-                p = np.arange(vstart[i], vstart[i + 1])
-                p_idx.append(np.repeat(p, counts[e]))
-                s_idx.append(np.tile(np.arange(offsets[e], offsets[e + 1]), p.size))
-        if p_idx:
-            p_all = np.concatenate(p_idx)
-            s_all = np.concatenate(s_idx)
-            t_all = np.concatenate(grids[k:k1])[s_all - offsets[k]]
-            i_all = pts.vehicle[p_all]
-            travel = speed[i_all] * (t_all - entry[i_all])
-            x = np.where(sign_dir[i_all] > 0, -pts.setback[p_all] + travel, span + pts.setback[p_all] - travel)
-            for j, line in enumerate(lines):
-                g = tables[j](x, track_ids[j][p_all]) if tables is not None else line.evaluate(x, pts.y[p_all])
-                totals[j][offsets[k]:offsets[k1]] += np.bincount(s_all - offsets[k], weights=g * pts.load[p_all],
-                                                                 minlength=int(offsets[k1] - offsets[k]))
+        k1 = k + max(1, int(np.searchsorted(np.cumsum(work[k:]), max_samples)))
+        k1 = min(k1, n_ev)
+        p = p_order[p_start[k]:p_start[k1]]
+        ev = p_event[p]
+        rep = counts[ev]
+        p_all = np.repeat(p, rep)
+        first = np.repeat(np.cumsum(rep) - rep, rep)
+        step = np.arange(p_all.size) - first  # sample number within the event
+        ev_all = np.repeat(ev, rep)
+        s_local = offsets[ev_all] - offsets[k] + step
+        if grids is None:
+            t_all = t0[ev_all] + dt[ev_all] * step
+        else:
+            t_all = np.concatenate(grids[k:k1])[s_local]
+        terms = _evaluate(pts, p_all, t_all, speed, entry, sign_dir, span, lines, tables, track_ids)
+        n_local = int(offsets[k1] - offsets[k])
+        for j in range(len(lines)):
+            totals[j][offsets[k]:offsets[k1]] = np.bincount(s_local, weights=terms[j], minlength=n_local)
         k = k1
     peaks = np.empty((n_ev, len(lines)))
+    at = np.empty((n_ev, len(lines)), np.int64)
     for j, line in enumerate(lines):
         s = line.sign
-        peaks[:, j] = s * np.maximum.reduceat(s * totals[j], offsets[:-1]) if n_ev else np.empty(0)
+        if n_ev:
+            peaks[:, j] = s * np.maximum.reduceat(s * totals[j], offsets[:-1])
+            # sample index of each event's peak
+            is_peak = (s * totals[j]) == np.repeat(s * peaks[:, j], counts)
+            idx = np.flatnonzero(is_peak)
+            first_peak = np.searchsorted(idx, offsets[:-1])
+            at[:, j] = idx[first_peak] - offsets[:-1]
+    if refine and grids is None and n_ev:
+        peaks = _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir,
+                        span, lines, tables, track_ids)
     return EventStatics(peaks, offsets, totals if keep_histories else None)
+
+
+def _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir, span, lines,
+            tables, track_ids):
+    """Each peak refined on REFINE samples a step over the steps either side of its coarse sample."""
+    n_ev = len(events)
+    out = peaks.copy()
+    m = 2 * REFINE + 1
+    frac = (np.arange(m) - REFINE) / REFINE  # −1 … 1 steps
+    for j, line in enumerate(lines):
+        # every event's points × m times around its coarse peak
+        p = p_order
+        ev = event_of[pts.vehicle[p]]
+        p_all = np.repeat(p, m)
+        ev_all = np.repeat(ev, m)
+        f_all = np.tile(frac, p.size)
+        t_all = t0[ev_all] + dt[ev_all] * (at[ev_all, j] + f_all)
+        terms = _evaluate(pts, p_all, t_all, speed, entry, sign_dir, span, [line],
+                          None if tables is None else [tables[j]], None if track_ids is None else [track_ids[j]])[0]
+        slot = ev_all * m + np.tile(np.arange(m), p.size)
+        r = np.bincount(slot, weights=terms, minlength=n_ev * m).reshape(n_ev, m)
+        s = line.sign
+        out[:, j] = s * np.maximum(s * peaks[:, j], np.max(s * r, axis=1))
+    return out

@@ -183,7 +183,11 @@ class TrafficModel:
                                  max(0.5 * ln.speed_mean, ln.speed_mean - 3 * ln.speed_sd),
                                  min(1.5 * ln.speed_mean, ln.speed_mean + 3 * ln.speed_sd))
                 cls = rng.choice(len(self.classes), size=n, p=shares / shares.sum())
-                axles = [self._vehicle(self.classes[c], rng) for c in cls]
+                axles = [None] * n
+                for c, model in enumerate(self.classes):
+                    sel = np.flatnonzero(cls == c)
+                    for k, v in zip(sel, self._vehicles(model, rng, sel.size)):
+                        axles[k] = v
             for t, v, (loads, spacings) in zip(times, speeds, axles):
                 out.append((float(t), VehicleRecord(round(float(t), 3), ln.direction, float(v), tuple(loads),
                                                     tuple(spacings), lane=ln.lane)))
@@ -191,14 +195,23 @@ class TrafficModel:
         return [r for _, r in out]
 
     @staticmethod
-    def _vehicle(c: ClassModel, rng: np.random.Generator) -> tuple[tuple[float, ...], tuple[float, ...]]:
-        gvw = float(c.gvw.sample(rng, 1)[0])
-        lo = c.gvw.means[0] - 3 * c.gvw.sds[0]
-        gvw = max(gvw, max(lo, 0.2 * c.gvw.means[0]))
-        share = np.array([max(rng.normal(m, s), 0.02) for m, s in c.axle_share])
-        loads = gvw * share / share.sum()
-        spacings = [min(max(rng.normal(m, s), max(m - 3 * s, 0.5)), min(m + 3 * s, 30.0)) for m, s in c.spacing]
-        return tuple(float(x) for x in loads), tuple(float(s) for s in spacings)
+    def _vehicles(c: ClassModel, rng: np.random.Generator, n: int) -> list[tuple[tuple[float, ...], tuple[float, ...]]]:
+        """``n`` vehicles of class ``c``: GVW from its mixture (floored at max(μ₁ − 3σ₁, 0.2 μ₁)),
+        axle shares normal (floored at 0.02, renormalised), spacings normal clipped to ±3 sd
+        (and to 0.5 … 30 m)."""
+        if n == 0:
+            return []
+        lo = max(c.gvw.means[0] - 3 * c.gvw.sds[0], 0.2 * c.gvw.means[0])
+        gvw = np.maximum(c.gvw.sample(rng, n), lo)
+        m, sd = (np.array([a[k] for a in c.axle_share]) for k in (0, 1))
+        share = np.maximum(rng.normal(m, sd, (n, m.size)), 0.02)
+        loads = gvw[:, None] * share / share.sum(axis=1, keepdims=True)
+        if c.spacing:
+            ms, ss = (np.array([a[k] for a in c.spacing]) for k in (0, 1))
+            sp = np.clip(rng.normal(ms, ss, (n, ms.size)), np.maximum(ms - 3 * ss, 0.5), np.minimum(ms + 3 * ss, 30.0))
+        else:
+            sp = np.zeros((n, 0))
+        return [(tuple(map(float, loads[i])), tuple(map(float, sp[i]))) for i in range(n)]
 
 
 def fit_traffic(records: Sequence[VehicleRecord], mode: str = "fitted", components: int = 2) -> TrafficModel:
