@@ -17,7 +17,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from vbikit.cli import field, models, scenarios, study, traffic
+from vbikit.cli import field, lifetime, models, scenarios, study, traffic
 from vbikit.cli.guard import STATE
 
 #: the global options, accepted after the subcommand as well (``vbikit run X.toml -q``)
@@ -83,6 +83,7 @@ def _main(
 
 app.add_typer(study.app, name="study")
 app.command("traffic")(traffic.traffic_cmd)
+app.command("lifetime")(lifetime.lifetime_cmd)
 app.command()(scenarios.run)
 app.command()(scenarios.validate)
 app.command()(scenarios.cite)

@@ -159,6 +159,10 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "daily_max_total": (("day", "load_effect"), day_total * signs, ev_attrs("", "daily maximum of the total effect")),
         "weekly_max_static": (("week", "load_effect"), _blocks(day_static, 7) * signs if n_days >= 7 else np.zeros((0, len(lines))), ev_attrs("", "weekly maximum of the static effect")),
         "weekly_max_total": (("week", "load_effect"), _blocks(day_total, 7) * signs if n_days >= 7 else np.zeros((0, len(lines))), ev_attrs("", "weekly maximum of the total effect")),
+        **{f"fit_{k}": ("load_effect", v,
+                        ev_attrs("see load_effect_units",
+                                 f"{k.replace('_', ' ')} of the fit to s*R (governing direction)"))
+           for k, v in fits.items()},
         "effect_sign": ("load_effect", signs, ev_attrs("1", "governing direction s: peaks are the largest s*R")),
         "im_mean": ("load_effect", np.array(im["im_mean"]), ev_attrs("1", "mean impact factor R_dyn/R_st - 1 of the random sample of events")),
         "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the impact factor (random sample)")),
@@ -189,12 +193,16 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
               "load_effect_units": ("load_effect", np.array(units, dtype=object)),
               "load_effect_kind": ("load_effect", np.array([ln.kind for ln in lines], dtype=object)),
               **fat["coords"]}
+    for k in fits:
+        if k.endswith("shape"):
+            variables[f"fit_{k}"][2]["units"] = "1"
     ds = xr.Dataset(variables, coords=coords)
     # per-effect units: one unit per variable is what CF allows; effects of one kind share it
-    if len(set(units)) == 1:
-        for name, v in ds.data_vars.items():
-            if v.attrs.get("units") == "see load_effect_units":
-                v.attrs["units"] = units[0]
+    for name, v in ds.data_vars.items():
+        if v.attrs.get("units") == "see load_effect_units":
+            v.attrs["units"] = units[0] if len(set(units)) == 1 else "; ".join(units)
+            if len(set(units)) > 1:
+                v.attrs["units_by_load_effect"] = "units in load_effect order (coordinate load_effect_units)"
     n_sim = int(simulated.sum())
     ds.attrs = {
         "title": spec.name or "vbikit lifetime",
@@ -269,7 +277,10 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
         out["ratio"][j] = d_total / d_static if d_static > 0 else math.nan
         out["per_year"][j] = per_year
-        out["eq"][j] = curve.stress_range_at(2e6 / per_year) if per_year > 0 else 0.0
+        try:
+            out["eq"][j] = curve.stress_range_at(2e6 / per_year) if per_year > 0 else 0.0
+        except Exception:  # below the curve's cut-off / threshold: no damage-equivalent range on it
+            out["eq"][j] = math.nan
         out["life"][j] = remaining_life(per_year, spec.fatigue.damage_so_far)
     a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
     width = details[0].bin

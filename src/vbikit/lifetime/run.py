@@ -177,9 +177,10 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     atomic_write(out_dir / "lifetime.nc", lambda tmp: _to_netcdf(ds, tmp))
     write_text(out_dir / "report.txt", text_report(ds))
     if figures:
-        from vbikit.lifetime.figures import write_figures
+        from vbikit.lifetime.figures import traffic_figure, write_figures
 
         write_figures(ds, out_dir)
+        traffic_figure(prep.model, out_dir / "lifetime-traffic.png")
     return ds
 
 
@@ -193,7 +194,7 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
 
     def simulate(new: np.ndarray, r: int) -> np.ndarray:
         ds = _run(prep.dynamic_job(gid[new]), work / f"dynamic-{r}.nc", workers, scheduler, progress,
-                  f"dynamic round {r}")
+                  f"dynamics round {r} ({int(new.size)} of {gid.size:,} events)")
         for k, g in enumerate(ds["event"].values):
             results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
                                                              "damage_static")}
@@ -212,7 +213,7 @@ def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: i
     """The screening of ``vbikit.lifetime.screening`` around a simulator: ``simulate(indices,
     round)`` returns the dynamic peaks (n, n_effects) of those events.  Round 1: the largest static
     event of every block and effect, and ``extra`` (the random sample); then rounds of
-    ``per_round`` events per block and effect kept by the rule, until none is left; then the
+    per_round · 2^(k−1) events per block and effect (round k + 1) kept by the rule, until none is left; then the
     amplification check on the simulated events whose static peak is at least ``CHECK_FRACTION``
     of their block's largest (re-screening with A = 1.25 × the largest amplification seen there,
     at most ``MAX_RESCREENS`` times).
@@ -234,7 +235,8 @@ def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: i
     r, rescreens = 1, 0
     while True:
         threshold = block_dynamic_max(dyn, signs, block, simulated, n_blocks)
-        todo = candidates(static, signs, block, threshold, bound, simulated, per_round)
+        # rounds grow geometrically (per_round, 2·per_round, 4·per_round, …): few rounds when a block keeps many
+        todo = candidates(static, signs, block, threshold, bound, simulated, per_round * 2 ** max(0, r - 1))
         if todo.size:
             r += 1
             run(todo, r)
