@@ -48,7 +48,8 @@ def test_static_peak_equals_coupled_static_reference(bridge, tire, lanes):
 
 def test_moment_line_closed_form_and_tabulation():
     """Simply supported beam: moment at a under a unit downward load at x is x(L−a)/L (x ≤ a),
-    a(L−x)/L (x ≥ a) (statics); the tabulated line interpolates it within dx·max|g'|/4 at the kink."""
+    a(L−x)/L (x ≥ a) (statics); the tabulated line, with its kink on a grid node, reproduces it to
+    rounding; the shear just right of a, −x/L (x < a) and 1 − x/L (x > a), keeps its jump."""
     from vbikit.bridge.presets import BRIDGE_PRESETS
 
     deck = BRIDGE_PRESETS["paper-bridge-2-beam"].build(n_modes=3)
@@ -60,7 +61,12 @@ def test_moment_line_closed_form_and_tabulation():
     assert line.sign == 1.0
     dx = 0.05
     tab = Tabulated(line, deck, [0.0], dx)
-    assert np.max(np.abs(tab(x, np.zeros(x.size, np.int64)) - expected)) <= dx * 1.0 / 4 + 1e-12
+    assert np.max(np.abs(tab(x, np.zeros(x.size, np.int64)) - expected)) <= 1e-9
+    shear = effect_line(deck, deck.load_effect("shear", x=a))
+    tab = Tabulated(shear, deck, [0.0], dx)
+    xs = np.array([a - 1e-6, a + 1e-6, a - 0.37, a + 0.41])
+    expected = np.where(xs < a, -xs / L, 1 - xs / L)
+    assert np.allclose(tab(xs, np.zeros(4, np.int64)), expected, rtol=0, atol=1e-5)
 
 
 def test_single_axle_peak_closed_form():

@@ -222,36 +222,48 @@ def point_loads(records: Sequence[VehicleRecord], lanes: Sequence[float], patter
 # ---------------------------------------------------------------- tabulated lines
 class Tabulated:
     """An influence line tabulated along a set of wheel tracks y on a grid of ``dx`` [m] over the
-    deck's x extent, interpolated linearly (error ≤ dx²/8 · max|g''| between kinks, and at a
-    kink — a moment line under the section — at most dx·|jump of g'|/4).  Tracks along which
-    the line is the same (a beam: g does not depend on y) share one row."""
+    deck's x extent, interpolated linearly within each cell between the line's one-sided limits
+    at the cell's ends, g(x_i⁺) and g(x_(i+1)⁻).  The grid has a node at the line's section (the
+    moment's kink, the shear's jump, a reaction's support), so that a kink or jump there is
+    exact; elsewhere the error is ≤ dx²/8 · max|g''|.  Tracks along which the line is the same
+    (a beam: g does not depend on y) share one row."""
 
     def __init__(self, line: InfluenceLine, bridge: ModalBridge, tracks: Sequence[float], dx: float):
         first, last = bridge.deck_extent
-        self.x0 = float(min(first, 0.0))
-        n = int(math.ceil((max(last, bridge.span) - self.x0) / dx)) + 1
-        self.h = (max(last, bridge.span) - self.x0) / (n - 1)
-        self.n = n
+        first, last = float(min(first, 0.0)), float(max(last, bridge.span))
+        anchor = line.x if math.isfinite(line.x) and first <= line.x <= last else first
+        self.h = float(dx)
+        k0 = int(math.ceil((anchor - first) / dx - 1e-12))
+        self.x0 = anchor - k0 * dx
+        self.n = k0 + int(math.ceil((last - anchor) / dx - 1e-12)) + 1
         self.tracks = np.asarray(sorted(set(float(y) for y in tracks)), float)
-        x = self.x0 + self.h * np.arange(n)
-        rows = np.stack([line.evaluate(x, np.full(n, y)) for y in self.tracks])
-        uniq, self.row = np.unique(rows, axis=0, return_inverse=True)
+        x = self.x0 + self.h * np.arange(self.n)
+        eps = 1e-9 * max(abs(last - first), 1.0)
+        right = np.stack([line.evaluate(x[:-1] + eps, np.full(self.n - 1, y)) for y in self.tracks])
+        left = np.stack([line.evaluate(x[1:] - eps, np.full(self.n - 1, y)) for y in self.tracks])
+        both = np.concatenate([right, left], axis=1)
+        uniq, self.row = np.unique(both, axis=0, return_inverse=True)
         self.row = np.asarray(self.row).ravel()
-        # flat table with a zero guard cell after each row
-        self.values = np.concatenate([np.concatenate([uniq, np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
+        m = self.n - 1
+        # per row: A (cell starts), B (cell ends), then a zero guard cell
+        self.a = np.concatenate([np.concatenate([uniq[:, :m], np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
+        self.b = np.concatenate([np.concatenate([uniq[:, m:], np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
+
+    def same_grid(self, other: "Tabulated") -> bool:
+        return self.x0 == other.x0 and self.h == other.h and self.n == other.n and np.array_equal(self.row, other.row)
 
     def locate(self, x: NDArray[np.float64], track: NDArray[np.int64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
-        """Flat index of the cell and the fraction t in it (t = 0 and the guard cell off the grid)."""
+        """Flat index of the cell and the fraction t in it (the guard cell off the grid)."""
         u = (x - self.x0) / self.h
-        inside = (u >= 0.0) & (u <= self.n - 1)
-        i = np.minimum(np.where(inside, u, 0.0).astype(np.int64), self.n - 2)
+        m = self.n - 1
+        inside = (u >= 0.0) & (u <= m)
+        i = np.minimum(np.where(inside, u, 0.0).astype(np.int64), m - 1)
         t = np.where(inside, u - i, 0.0)
-        flat = np.where(inside, self.row[track] * (self.n + 1) + i, self.n)  # guard cell of row 0
+        flat = np.where(inside, self.row[track] * (m + 1) + i, m)  # guard cell of row 0
         return flat, t
 
     def at(self, flat: NDArray[np.int64], t: NDArray[np.float64]) -> NDArray[np.float64]:
-        v = self.values
-        return v.take(flat) * (1.0 - t) + v.take(flat + 1) * t
+        return self.a.take(flat) * (1.0 - t) + self.b.take(flat) * t
 
     def __call__(self, x: NDArray[np.float64], track: NDArray[np.int64]) -> NDArray[np.float64]:
         return self.at(*self.locate(x, track))
@@ -285,9 +297,9 @@ def _evaluate(pts, p_all, t_all, speed, entry, sign_dir, span, lines, tables, tr
         return [line.evaluate(x, pts.y[p_all]) * load for line in lines]
     out = []
     located = None
-    for tab, ids in zip(tables, track_ids):  # lines of one bridge share the grid: locate once
-        if located is None or located[0] is not tab.row and not np.array_equal(located[0], tab.row):
-            located = (tab.row, *tab.locate(x, ids[p_all]))
+    for tab, ids in zip(tables, track_ids):  # lines on the same grid: locate once
+        if located is None or not tab.same_grid(located[0]):
+            located = (tab, *tab.locate(x, ids[p_all]))
         out.append(tab.at(located[1], located[2]) * load)
     return out
 

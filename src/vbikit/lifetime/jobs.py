@@ -30,6 +30,30 @@ from vbikit.lifetime.influence import event_static
 from vbikit.lifetime.setup import Setup, build_setup, day_events
 from vbikit.lifetime.traffic import TrafficModel
 
+def moving_forces(loads, spacings):
+    """A truck as moving constant forces: each axle load split over two wheels at ± the
+    half-track (``vbikit.lifetime.influence.HALF_TRACK``), no degrees of freedom."""
+    from vbikit.lifetime.influence import HALF_TRACK
+    from vbikit.vehicle.builder import VehicleBuilder
+
+    vb = VehicleBuilder("moving-forces")
+    s = 0.0
+    for a, p in enumerate(loads):
+        s += spacings[a - 1] if a else 0.0
+        for side, y in (("left", HALF_TRACK), ("right", -HALF_TRACK)):
+            vb.wheel(f"axle{a + 1}_{side}", {}, s, y, 0.0, 0.0, fixed_load=0.5 * float(p))
+    return vb.build("moving axle forces", {})
+
+
+def _axle_truck(loads, spacings):
+    from vbikit.vehicle.axles import axle_truck
+
+    return axle_truck(loads, spacings)
+
+
+#: how a dynamic event's trucks are modelled (spec key ``vehicle_model``)
+VEHICLE_MODELS = {"axle-truck": _axle_truck, "moving-forces": moving_forces}
+
 #: events of a day are numbered below this (global event id = day · EVENT_STRIDE + index)
 EVENT_STRIDE = 2**20
 
@@ -200,6 +224,7 @@ class DynamicJob:
     items: tuple[int, ...]
     details: tuple[Detail, ...]
     batch_size: int = 8
+    vehicle_model: str = "axle-truck"
     name: str = "lifetime dynamics"
     _digest: str = field(default="", repr=False)
 
@@ -212,7 +237,7 @@ class DynamicJob:
 
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit lifetime dynamics", "setup": self.setup_key, "traffic": self._digest,
-                           "seed": self.seed, "batch_size": self.batch_size, "details": [d.__dict__ for d in self.details],
+                           "seed": self.seed, "batch_size": self.batch_size, "vehicle_model": self.vehicle_model, "details": [d.__dict__ for d in self.details],
                            "items_sha256": hashlib.sha256(np.asarray(self.items, np.int64).tobytes()).hexdigest(),
                            "n_items": self.size}, sort_keys=True)
 
@@ -220,8 +245,6 @@ class DynamicJob:
         """The coupled crossing of global event ``g`` and its day's records."""
         from vbikit.solve import VehicleMotion
         from vbikit.study.spec import derive_seed
-        from vbikit.vehicle.axles import axle_truck
-
         setup = build_setup(self.setup_key)
         day, k = divmod(int(g), EVENT_STRIDE)
         records, events = day_traffic(self.model, self._digest, setup, day, self.seed)
@@ -233,7 +256,7 @@ class DynamicJob:
         for i in members:
             r = records[i]
             y = r.lateral_offset if r.lateral_offset is not None else setup.lanes[r.lane - 1]
-            motions.append(VehicleMotion(axle_truck(r.axle_loads, r.axle_spacings), speed=r.speed, direction=r.direction,
+            motions.append(VehicleMotion(VEHICLE_MODELS[self.vehicle_model](r.axle_loads, r.axle_spacings), speed=r.speed, direction=r.direction,
                                          entry_time=r.time - t0, lateral_offset=y))
         return ctx.template.with_vehicles(tuple(motions), road, road_right), records, members, t0
 

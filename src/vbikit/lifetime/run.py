@@ -74,7 +74,7 @@ class Prepared:
 
     def dynamic_job(self, items) -> DynamicJob:
         return DynamicJob(self.model, self.setup_key, self.spec.seed, tuple(int(i) for i in items), self.details,
-                          self.spec.batch_size, _digest=_digest(self.model))
+                          self.spec.batch_size, self.spec.vehicle_model, _digest=_digest(self.model))
 
 
 def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None) -> Prepared:
@@ -98,6 +98,8 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
         raise LifetimeError(f"traffic.records: {records_path.name}: {err}") from None
     if spec.traffic.trucks_per_day is not None:
         model = model.scaled(spec.traffic.trucks_per_day / model.trucks_per_day)
+    if spec.traffic.speed_kmh is not None:
+        model = model.with_speed(spec.traffic.speed_kmh / 3.6)
     base = base_sections(spec, base_dir)
     effects = [e.model_dump() for e in spec.load_effects]
     n_lanes = max(ln.lane for ln in model.lanes)

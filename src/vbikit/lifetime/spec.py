@@ -68,6 +68,7 @@ class TrafficSpec(_Strict):
     trucks_per_day: Optional[float] = Field(None, gt=0, le=200_000, description="scale the fitted flows to this many trucks a day (all lanes)")
     lanes: Optional[list[float]] = Field(None, min_length=1, max_length=20, description="lane centres y [m]; default the bridge's")
     components: int = Field(2, ge=1, le=4, description="normal components of each class's GVW mixture")
+    speed_kmh: Optional[float] = Field(None, gt=0, le=250, description="every vehicle at this speed [km/h] (default: the fitted or recorded speeds)")
 
 
 class LoadEffectSpec(_Strict):
@@ -134,6 +135,7 @@ class LifetimeFile(_Strict):
     batch_size: int = Field(8, ge=1, le=1000, description="dynamic events per batch")
     days_per_batch: int = Field(1, ge=1, le=366, description="days per batch of the static pass")
     traffic: TrafficSpec
+    vehicle_model: Literal["axle-truck", "moving-forces"] = Field("axle-truck", description="dynamic events: trucks as 3D multibody axle trucks (vbikit.vehicle.axle_truck) or as moving constant axle forces")
     base: Optional[str] = Field(None, description="a scenario file with the bridge, tire, road and crossing sections")
     bridge: Optional[dict[str, Any]] = None
     tire: Optional[dict[str, Any]] = None

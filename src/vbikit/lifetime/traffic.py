@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Optional, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -131,6 +131,8 @@ class TrafficModel:
     classes: tuple[ClassModel, ...]
     records: tuple[VehicleRecord, ...]
     mode: str = "fitted"
+    #: every vehicle at this speed [m/s] (None: the fitted / recorded speeds)
+    fixed_speed: Optional[float] = None
 
     @property
     def trucks_per_day(self) -> float:
@@ -139,13 +141,17 @@ class TrafficModel:
     def with_mode(self, mode: str) -> "TrafficModel":
         if mode not in MODES:
             raise ValueError(f"traffic mode must be one of {', '.join(MODES)}, got {mode!r}")
-        return TrafficModel(self.lanes, self.classes, self.records, mode)
+        return TrafficModel(self.lanes, self.classes, self.records, mode, self.fixed_speed)
+
+    def with_speed(self, speed: Optional[float]) -> "TrafficModel":
+        """Every vehicle at ``speed`` [m/s] (None: the fitted or recorded speeds)."""
+        return TrafficModel(self.lanes, self.classes, self.records, self.mode, speed)
 
     def scaled(self, factor: float) -> "TrafficModel":
         """The same traffic with every flow times ``factor`` (e.g. a target trucks a day)."""
         lanes = tuple(LaneModel(ln.lane, ln.direction, tuple(q * factor for q in ln.hourly_flow), ln.congested_fraction,
                                 ln.min_headway, ln.speed_mean, ln.speed_sd, ln.records) for ln in self.lanes)
-        return TrafficModel(lanes, self.classes, self.records, self.mode)
+        return TrafficModel(lanes, self.classes, self.records, self.mode, self.fixed_speed)
 
     # ------------------------------------------------------------ generation
     def arrivals(self, lane: LaneModel, rng: np.random.Generator, t0: float) -> NDArray[np.float64]:
@@ -188,6 +194,8 @@ class TrafficModel:
                     sel = np.flatnonzero(cls == c)
                     for k, v in zip(sel, self._vehicles(model, rng, sel.size)):
                         axles[k] = v
+            if self.fixed_speed is not None:
+                speeds = np.full(n, float(self.fixed_speed))
             for t, v, (loads, spacings) in zip(times, speeds, axles):
                 out.append((float(t), VehicleRecord(round(float(t), 3), ln.direction, float(v), tuple(loads),
                                                     tuple(spacings), lane=ln.lane)))
