@@ -61,7 +61,10 @@ def test_moment_line_closed_form_and_tabulation():
     assert line.sign == 1.0
     dx = 0.05
     tab = Tabulated(line, deck, [0.0], dx)
-    assert np.max(np.abs(tab(x, np.zeros(x.size, np.int64)) - expected)) <= 1e-9
+    err = np.abs(tab(x, np.zeros(x.size, np.int64)) - expected)
+    inner = (x > dx) & (x < L - dx)
+    assert np.max(err[inner]) <= 1e-7  # the kink at the section is a node: exact but for the ε of the one-sided limits
+    assert np.max(err[~inner]) <= dx * max(a, L - a) / L / 2  # the support kinks inside a cell: ≤ h·|g'|/2
     shear = effect_line(deck, deck.load_effect("shear", x=a))
     tab = Tabulated(shear, deck, [0.0], dx)
     xs = np.array([a - 1e-6, a + 1e-6, a - 0.37, a + 0.41])

@@ -225,7 +225,8 @@ class Tabulated:
     deck's x extent, interpolated linearly within each cell between the line's one-sided limits
     at the cell's ends, g(x_i⁺) and g(x_(i+1)⁻).  The grid has a node at the line's section (the
     moment's kink, the shear's jump, a reaction's support), so that a kink or jump there is
-    exact; elsewhere the error is ≤ dx²/8 · max|g''|.  Tracks along which the line is the same
+    exact (but for the 1e-9·L offset of the one-sided limits); a kink inside a cell (a support)
+    costs at most dx·|jump of g'|/2 near it; elsewhere the error is ≤ dx²/8 · max|g''|.  Tracks along which the line is the same
     (a beam: g does not depend on y) share one row."""
 
     def __init__(self, line: InfluenceLine, bridge: ModalBridge, tracks: Sequence[float], dx: float):
