@@ -1,6 +1,5 @@
 """ADR when the dynamics vanish, and the dataset contract."""
 import numpy as np
-import pytest
 
 from vbikit.lifetime.run import run_lifetime
 

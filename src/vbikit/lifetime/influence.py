@@ -327,7 +327,6 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     event_of = np.empty(len(records), np.int64)
     for k, members in enumerate(events):
         event_of[list(members)] = k
-    n_pts_vehicle = np.diff(vstart)
     pad = pattern.reach
     if times is not None:
         grids = [np.asarray(g, float) for g in times]

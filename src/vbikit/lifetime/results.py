@@ -25,7 +25,6 @@ from typing import Any
 
 import numpy as np
 
-from vbikit.lifetime.jobs import EVENT_STRIDE
 
 
 def _blocks(values: np.ndarray, size: int) -> np.ndarray:
@@ -233,7 +232,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
 
 def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     """Fatigue variables (module docstring)."""
-    from vbikit.fatigue import RainflowState, damage_equivalent_range, finish, join, miner_damage, remaining_life
+    from vbikit.fatigue import RainflowState, finish, join, miner_damage, remaining_life
 
     spec = prep.spec
     details = prep.details

@@ -18,7 +18,6 @@ finished batches stored under ``out_dir/work``: an interrupted run started again
 from __future__ import annotations
 
 import logging
-import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
