@@ -323,7 +323,6 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     entry = np.array([r.time for r in records])
     sign_dir = np.array([1.0 if r.direction == "+x" else -1.0 for r in records])
     length = np.array([r.length for r in records])
-    vstart = np.searchsorted(pts.vehicle, np.arange(len(records) + 1))
     event_of = np.empty(len(records), np.int64)
     for k, members in enumerate(events):
         event_of[list(members)] = k
