@@ -79,6 +79,8 @@ def _digest(model: TrafficModel) -> str:
     return hashlib.sha256(repr(model).encode()).hexdigest()
 
 
+#: days of traffic kept per process (a dynamic round revisits the days in order)
+DAY_CACHE = 16
 _DAYS: dict[tuple[str, int, int], tuple[list, list]] = {}
 
 
@@ -86,7 +88,7 @@ def day_traffic(model: TrafficModel, digest: str, setup: Setup, day: int, seed: 
     """(records, events) of ``day`` (the last few kept per process)."""
     key = (digest, int(day), int(seed))
     if key not in _DAYS:
-        if len(_DAYS) > 4:
+        if len(_DAYS) >= DAY_CACHE:
             _DAYS.pop(next(iter(_DAYS)))
         records = model.day(day, seed)
         _DAYS[key] = (records, day_events(setup, records))
@@ -233,7 +235,14 @@ class DynamicJob:
         return len(self.items)
 
     def batches(self) -> list[tuple[int, ...]]:
-        return [tuple(self.items[k:k + self.batch_size]) for k in range(0, self.size, self.batch_size)]
+        """Up to ``batch_size`` events of one day each (a worker draws a day's traffic once per batch)."""
+        out: list[tuple[int, ...]] = []
+        items = np.asarray(self.items, np.int64)
+        days = items // EVENT_STRIDE
+        for d in np.unique(days):
+            of_day = items[days == d].tolist()
+            out += [tuple(of_day[k:k + self.batch_size]) for k in range(0, len(of_day), self.batch_size)]
+        return out
 
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit lifetime dynamics", "setup": self.setup_key, "traffic": self._digest,
