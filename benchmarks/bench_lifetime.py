@@ -77,6 +77,9 @@ def main() -> None:
         dyn.run_event(int(g))
     per_event = (time.perf_counter() - t1) / len(gid)
     every = per_event * a["n_events"] / args.workers
+    from vbikit.study import shutdown_workers
+
+    shutdown_workers()  # the workers' peak memory counts once they have ended (RUSAGE_CHILDREN)
     me = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     kids = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     out = {
