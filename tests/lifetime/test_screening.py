@@ -53,3 +53,27 @@ def test_candidates_rule_by_hand():
     assert got.tolist() == [0, 2, 4]
     got = candidates(st, np.array([1.0]), block, thr, 0.5, simulated=np.array([1, 0, 0, 0, 0, 0], bool), per_round=1)
     assert got.tolist() == [2, 4]
+
+
+def test_stored_records_are_the_days_vehicles():
+    """The static pass stores the records of the events the dynamics may need; they are the
+    vehicles of those events as the day's traffic draws them again (times, speeds, lanes, axles)."""
+    import xarray as xr
+
+    from vbikit.lifetime.jobs import day_traffic
+    from vbikit.lifetime.run import stored_records
+
+    prep = prepare(_spec() | {"fatigue": {"dynamic_sample": 0.1, "details": [
+        {"name": "d", "effect": "M", "section_modulus": 0.004, "category": "EN 71"}]}}, ".")
+    job = prep.static_job()
+    part = job.run_batch((2,))
+    static = xr.Dataset({k: ((f"{k}_0",), v) for k, v in part.items() if v.ndim == 1})
+    stored = stored_records(static)
+    records, events = day_traffic(prep.model, job._digest, prep.setup, 2, prep.spec.seed)
+    assert len(stored) >= min(len(events), 1) and part["ev_sample"].sum() > 0
+    for g, recs in stored.items():
+        day, k = divmod(g, EVENT_STRIDE)
+        assert day == 2
+        expected = [records[i] for i in events[k]]
+        assert [(r.time, r.speed, r.lane, r.direction, r.axle_loads, r.axle_spacings) for r in recs] == \
+               [(r.time, r.speed, r.lane, r.direction, r.axle_loads, r.axle_spacings) for r in expected]

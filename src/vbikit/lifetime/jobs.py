@@ -17,6 +17,7 @@ local processes or a Dask cluster, every finished batch stored, a killed run res
 """
 from __future__ import annotations
 
+import bisect
 import hashlib
 import json
 from dataclasses import dataclass, field
@@ -106,6 +107,8 @@ class StaticJob:
     ds: float
     details: tuple[Detail, ...]
     days_per_batch: int = 1
+    sample_fraction: float = 0.0
+    store_top: int = 256
     name: str = "lifetime static pass"
     _digest: str = field(default="", repr=False)
 
@@ -120,7 +123,7 @@ class StaticJob:
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit lifetime static", "setup": self.setup_key, "traffic": self._digest,
                            "n_days": self.n_days, "seed": self.seed, "ds": self.ds, "days_per_batch": self.days_per_batch,
-                           "details": [d.__dict__ for d in self.details]}, sort_keys=True)
+                           "sample_fraction": self.sample_fraction, "store_top": self.store_top, "details": [d.__dict__ for d in self.details]}, sort_keys=True)
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         from vbikit.fatigue import RainflowCounter, miner_damage
@@ -130,7 +133,9 @@ class StaticJob:
         out: dict[str, list] = {k: [] for k in ("ev_day", "ev_index", "ev_start", "ev_n_vehicles", "ev_gross_weight",
                                                "ev_static", "day", "day_trucks", "day_events", "day_damage_closed",
                                                "day_damage_alone", "res_day", "res_detail", "res_value",
-                                               "hist_day", "hist_detail", "hist_bin", "hist_count")}
+                                               "hist_day", "hist_detail", "hist_bin", "hist_count", "ev_sample",
+                                               "rec_event", "rec_time", "rec_speed", "rec_lane", "rec_direction",
+                                               "rec_n_axles", "rec_loads", "rec_spacings")}
         for day in batch:
             records, events = day_traffic(self.model, self._digest, setup, day, self.seed)
             statics = event_static(records, events, setup.lines, setup.span, setup.lanes, setup.pattern, self.ds,
@@ -143,6 +148,25 @@ class StaticJob:
             out["ev_n_vehicles"].append(np.array([len(m) for m in events], np.int64))
             out["ev_gross_weight"].append(np.array([gross[list(m)].sum() for m in events]))
             out["ev_static"].append(statics.peaks.reshape(n, len(setup.lines)))
+            # the random sample (each event with probability sample_fraction) and the records of the events the
+            # dynamics may need (the sample and the store_top largest static peaks of each effect), so that the
+            # dynamic rounds need not draw the day's traffic again
+            sample = np.random.default_rng([int(self.seed), int(day), 0x66617469]).random(n) < self.sample_fraction
+            out["ev_sample"].append(sample.astype(np.int8))
+            keep = set(np.flatnonzero(sample).tolist())
+            for j, line in enumerate(setup.lines):
+                keep |= set(np.argsort(-line.sign * statics.peaks[:, j])[: self.store_top].tolist())
+            for e in sorted(keep):
+                for i in events[e]:
+                    r = records[i]
+                    out["rec_event"].append(np.array([day * EVENT_STRIDE + e], np.int64))
+                    out["rec_time"].append(np.array([r.time]))
+                    out["rec_speed"].append(np.array([r.speed]))
+                    out["rec_lane"].append(np.array([r.lane], np.int64))
+                    out["rec_direction"].append(np.array([1 if r.direction == "+x" else -1], np.int64))
+                    out["rec_n_axles"].append(np.array([len(r.axle_loads)], np.int64))
+                    out["rec_loads"].append(np.asarray(r.axle_loads, float))
+                    out["rec_spacings"].append(np.asarray(r.axle_spacings, float))
             out["day"].append(np.array([day], np.int64))
             out["day_trucks"].append(np.array([len(records)], np.int64))
             out["day_events"].append(np.array([n], np.int64))
@@ -178,7 +202,9 @@ class StaticJob:
             elif k.startswith("day_damage"):
                 res[k] = np.concatenate(v, axis=0) if v else np.zeros((0, len(self.details)))
             else:
-                res[k] = np.concatenate(v) if v else np.zeros(0, np.int64 if k in ("hist_bin",) or k.endswith(("day", "detail")) else float)
+                ints = k in ("hist_bin", "ev_sample", "rec_event", "rec_lane", "rec_direction", "rec_n_axles") or \
+                    k.endswith(("day", "detail"))
+                res[k] = np.concatenate(v) if v else np.zeros(0, np.int64 if ints else float)
         return res
 
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
@@ -206,7 +232,12 @@ class StaticJob:
                 data.setdefault(name, []).append(np.asarray(part[name]))
         cat = {k: np.concatenate(v, axis=0) for k, v in data.items()}
         ds = xr.Dataset({
-            **{k: ("event", cat[k]) for k in ("ev_day", "ev_index", "ev_start", "ev_n_vehicles", "ev_gross_weight")},
+            **{k: ("event", cat[k]) for k in ("ev_day", "ev_index", "ev_start", "ev_n_vehicles", "ev_gross_weight",
+                                              "ev_sample")},
+            **{k: ("rec", cat[k]) for k in ("rec_event", "rec_time", "rec_speed", "rec_lane", "rec_direction",
+                                            "rec_n_axles")},
+            "rec_loads": ("rec_axle", cat["rec_loads"]),
+            "rec_spacings": ("rec_spacing", cat["rec_spacings"]),
             "ev_static": (("event", "line"), cat["ev_static"]),
             **{k: ("day", cat[k]) for k in ("day_trucks", "day_events")},
             **{k: (("day", "detail"), cat[k]) for k in ("day_damage_closed", "day_damage_alone")},
@@ -227,6 +258,8 @@ class DynamicJob:
     details: tuple[Detail, ...]
     batch_size: int = 8
     vehicle_model: str = "axle-truck"
+    #: the records of each item's vehicles when the static pass stored them (else None: drawn again)
+    event_records: tuple = field(default=(), repr=False, compare=False)
     name: str = "lifetime dynamics"
     _digest: str = field(default="", repr=False)
 
@@ -256,8 +289,12 @@ class DynamicJob:
         from vbikit.study.spec import derive_seed
         setup = build_setup(self.setup_key)
         day, k = divmod(int(g), EVENT_STRIDE)
-        records, events = day_traffic(self.model, self._digest, setup, day, self.seed)
-        members = events[k]
+        stored = self.event_records[bisect.bisect_left(self.items, int(g))] if self.event_records else None
+        if stored is not None:
+            records, members = stored, tuple(range(len(stored)))
+        else:
+            records, events = day_traffic(self.model, self._digest, setup, day, self.seed)
+            members = events[k]
         ctx = setup.context
         road, road_right = ctx.road(derive_seed(self.seed, int(g)))
         t0 = records[members[0]].time

@@ -69,11 +69,15 @@ class Prepared:
 
     def static_job(self) -> StaticJob:
         return StaticJob(self.model, self.setup_key, self.n_days, self.spec.seed, self.spec.ds, self.details,
-                         self.spec.days_per_batch, _digest=_digest(self.model))
+                         self.spec.days_per_batch, self.spec.fatigue.dynamic_sample if self.details else 0.0,
+                         _digest=_digest(self.model))
 
-    def dynamic_job(self, items) -> DynamicJob:
-        return DynamicJob(self.model, self.setup_key, self.spec.seed, tuple(int(i) for i in items), self.details,
-                          self.spec.batch_size, self.spec.vehicle_model, _digest=_digest(self.model))
+    def dynamic_job(self, items, records: Optional[dict] = None) -> DynamicJob:
+        """The dynamics of global events ``items``; ``records``: stored vehicle records by global id."""
+        items = tuple(sorted(int(i) for i in items))
+        stored = tuple(records.get(i) for i in items) if records else ()
+        return DynamicJob(self.model, self.setup_key, self.spec.seed, items, self.details, self.spec.batch_size,
+                          self.spec.vehicle_model, stored, _digest=_digest(self.model))
 
 
 def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None) -> Prepared:
@@ -193,15 +197,17 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
     gid = day * EVENT_STRIDE + static["ev_index"].values
     results: dict[int, dict[str, np.ndarray]] = {}
 
+    stored = stored_records(static)
+
     def simulate(new: np.ndarray, r: int) -> np.ndarray:
-        ds = _run(prep.dynamic_job(gid[new]), work / f"dynamic-{r}.nc", workers, scheduler, progress,
+        ds = _run(prep.dynamic_job(gid[new], stored), work / f"dynamic-{r}.nc", workers, scheduler, progress,
                   f"dynamics round {r} ({int(new.size)} of {gid.size:,} events)")
         for k, g in enumerate(ds["event"].values):
             results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
                                                              "damage_static")}
         return np.stack([results[int(g)]["dyn_peak"] for g in gid[new]])
 
-    sample = fatigue_sample(gid.size, spec.fatigue.dynamic_sample if prep.details else 0.0, spec.seed)
+    sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
     signs = np.array([ln.sign for ln in prep.setup.lines])
     simulated, _, rounds, bound = screen(static["ev_static"].values, signs, day, prep.n_days, spec.amplification,
                                          simulate, sample)
@@ -269,11 +275,20 @@ def _block_static_max(static, signs, block, n_blocks) -> np.ndarray:
     return out[block]
 
 
-def fatigue_sample(n_events: int, fraction: float, seed: int) -> np.ndarray:
-    """Indices of the seeded random sample of events simulated for fatigue and IM statistics
-    (``round(fraction · n)``, at least min(n, 10) when fraction > 0), sorted."""
-    if fraction <= 0 or n_events == 0:
-        return np.zeros(0, np.int64)
-    k = min(n_events, max(10, int(round(fraction * n_events))))
-    rng = np.random.default_rng([int(seed), 0x66617469])  # stream "fati"
-    return np.sort(rng.choice(n_events, size=k, replace=False)).astype(np.int64)
+def stored_records(static) -> dict[int, tuple]:
+    """The vehicle records the static pass stored, by global event id (``StaticJob``)."""
+    from vbikit.traffic.records import VehicleRecord
+
+    ev = static["rec_event"].values
+    n_ax = static["rec_n_axles"].values
+    loads, spacings = static["rec_loads"].values, static["rec_spacings"].values
+    la = np.concatenate([[0], np.cumsum(n_ax)])
+    sa = np.concatenate([[0], np.cumsum(np.maximum(n_ax - 1, 0))])
+    time, speed = static["rec_time"].values, static["rec_speed"].values
+    lane, direction = static["rec_lane"].values, static["rec_direction"].values
+    out: dict[int, list] = {}
+    for k in range(ev.size):
+        out.setdefault(int(ev[k]), []).append(VehicleRecord(
+            float(time[k]), "+x" if direction[k] > 0 else "-x", float(speed[k]), tuple(map(float, loads[la[k]:la[k + 1]])),
+            tuple(map(float, spacings[sa[k]:sa[k + 1]])), lane=int(lane[k])))
+    return {g: tuple(v) for g, v in out.items()}
