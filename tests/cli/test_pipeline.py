@@ -16,9 +16,9 @@ from vbikit.cli import app
 from vbikit.scenario import ScenarioError, demo_scenario_text
 
 ROOT = Path(__file__).resolve().parents[2]
-#: every scenario in examples/ that `vbikit run` takes (studies, field files and traffic bases are other formats)
+#: every scenario in examples/ that `vbikit run` takes (studies, field files, traffic bases and lifetime files are other formats)
 EXAMPLES = sorted(p for p in (ROOT / "examples").rglob("*.toml")
-                  if p.parent.name not in ("studies", "field", "base"))
+                  if p.parent.name not in ("studies", "field", "base", "lifetime"))
 runner = CliRunner()
 
 

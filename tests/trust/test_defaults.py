@@ -60,7 +60,7 @@ PYTHON = {
 
 
 SCENARIO_EXAMPLES = sorted({str(p.relative_to(ROOT)) for p in (ROOT / "examples").rglob("*.toml")
-                            if p.parts[-2] not in ("studies", "field", "base")}  # base: traffic base scenarios
+                            if p.parts[-2] not in ("studies", "field", "base", "lifetime")}  # base: traffic base scenarios
                            | {"src/vbikit/scenario/demo.toml"})
 
 
