@@ -12,12 +12,13 @@ from vbikit.cli.guard import STATE, guard
 
 
 class _Bars:
-    """One tqdm bar per stage (static pass: days; dynamics: events, rate in events/s)."""
+    """One tqdm bar per stage: the static pass in days (with trucks/s), each dynamic round in events
+    (events/s) with the fraction of the run's events simulated dynamically so far."""
 
     def __init__(self, enabled: bool) -> None:
         self.enabled, self.bar, self.stage = enabled, None, None
 
-    def __call__(self, stage: str, done: int, total: int) -> None:
+    def __call__(self, stage: str, done: int, total: int, info: dict) -> None:
         if not self.enabled:
             return
         if stage != self.stage:
@@ -29,6 +30,12 @@ class _Bars:
             self.stage = stage
         else:
             self.bar.update(done - self.bar.n)
+        rate = self.bar.format_dict.get("rate")
+        if "trucks_per_day" in info and rate:
+            self.bar.set_postfix_str(f"{rate * info['trucks_per_day']:,.0f} trucks/s", refresh=False)
+        if info.get("events"):
+            self.bar.set_postfix_str(f"dynamic {100 * info['dynamic'] / info['events']:.2f} % of "
+                                     f"{info['events']:,} events", refresh=False)
 
     def close(self) -> None:
         if self.bar is not None:
