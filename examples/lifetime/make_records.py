@@ -6,8 +6,8 @@ from pathlib import Path
 from vbikit.traffic import LaneTraffic, synthetic_stream, write_records
 from vbikit.traffic.records import VehicleRecord
 
-#: [substitute] trucks per hour per lane over the day (night low, daytime peak): 1,000 a day a lane
-PROFILE = (12, 10, 10, 12, 18, 30, 48, 60, 64, 64, 62, 60, 60, 62, 62, 60, 56, 50, 42, 34, 28, 22, 18, 56)
+#: [substitute] trucks per hour per lane over the day (night low, daytime peak): about 1,000 a day a lane
+PROFILE = (12, 10, 10, 12, 18, 30, 48, 60, 64, 64, 62, 60, 60, 62, 62, 60, 56, 50, 42, 34, 28, 22, 18, 14)
 
 records = []
 for hour, flow in enumerate(PROFILE):
