@@ -77,3 +77,15 @@ def test_stored_records_are_the_days_vehicles():
         expected = [records[i] for i in events[k]]
         assert [(r.time, r.speed, r.lane, r.direction, r.axle_loads, r.axle_spacings) for r in recs] == \
                [(r.time, r.speed, r.lane, r.direction, r.axle_loads, r.axle_spacings) for r in expected]
+
+
+def test_trucks_the_multibody_builder_refuses_are_built_rigid_with_exact_loads():
+    """A 3-S2 whose tractor cannot carry the semitrailer (150 / 20 / 20 / 60 / 60 kN) and one with
+    axles lighter than the default unsprung masses (80 / 5 / 5 / 5 / 5 kN): both are built (rigid,
+    lighter unsprung masses) and their static wheel loads sum to the axle loads (statics)."""
+    from vbikit.lifetime.jobs import _axle_truck
+
+    for loads in ((150e3, 20e3, 20e3, 60e3, 60e3), (80e3, 5e3, 5e3, 5e3, 5e3)):
+        truck = _axle_truck(loads, (5.5, 1.3, 9.5, 1.3))
+        wheel = truck.static_wheel_loads()
+        assert np.allclose(wheel[0::2] + wheel[1::2], loads, rtol=1e-9)

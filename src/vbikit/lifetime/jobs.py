@@ -47,9 +47,21 @@ def moving_forces(loads, spacings):
 
 
 def _axle_truck(loads, spacings):
+    """``vbikit.vehicle.axle_truck`` with its defaults; a load split it cannot build (a tractor that
+    cannot carry the semitrailer, an axle lighter than its default unsprung mass — generated or
+    recorded traffic has such trucks) is built as a rigid truck, then with every unsprung mass at
+    most 40 % of its axle's load.  The static axle loads stay exact in every case."""
     from vbikit.vehicle.axles import axle_truck
 
-    return axle_truck(loads, spacings)
+    try:
+        return axle_truck(loads, spacings)
+    except ValueError:
+        pass
+    try:
+        return axle_truck(loads, spacings, tractor_groups=0)
+    except ValueError:
+        unsprung = [min(700.0 if a == 0 else 1100.0, 0.4 * p / 9.80665) for a, p in enumerate(loads)]
+        return axle_truck(loads, spacings, tractor_groups=0, unsprung_masses=unsprung)
 
 
 #: how a dynamic event's trucks are modelled (spec key ``vehicle_model``)

@@ -37,6 +37,9 @@ from vbikit.traffic.records import VehicleRecord
 
 #: headways below this are congested [s]
 CONGESTED_HEADWAY = 1.5
+#: [substitute] smallest generated axle load [N] (above the heaviest default unsprung weight of
+#: vbikit.vehicle.axle_truck, 1,100 kg; an empty truck's axle carries more)
+MIN_AXLE_LOAD = 15e3
 #: smallest headway the generator uses [s] (two trucks of a lane never overlap at highway speeds)
 MIN_HEADWAY = 1.0
 SECONDS_PER_DAY = 86400.0
@@ -205,7 +208,8 @@ class TrafficModel:
     @staticmethod
     def _vehicles(c: ClassModel, rng: np.random.Generator, n: int) -> list[tuple[tuple[float, ...], tuple[float, ...]]]:
         """``n`` vehicles of class ``c``: GVW from its mixture (floored at max(μ₁ − 3σ₁, 0.2 μ₁)),
-        axle shares normal (floored at 0.02, renormalised), spacings normal clipped to ±3 sd
+        axle shares normal (floored at 0.02, renormalised; every axle load at least
+        ``MIN_AXLE_LOAD``), spacings normal clipped to ±3 sd
         (and to 0.5 … 30 m)."""
         if n == 0:
             return []
@@ -213,7 +217,7 @@ class TrafficModel:
         gvw = np.maximum(c.gvw.sample(rng, n), lo)
         m, sd = (np.array([a[k] for a in c.axle_share]) for k in (0, 1))
         share = np.maximum(rng.normal(m, sd, (n, m.size)), 0.02)
-        loads = gvw[:, None] * share / share.sum(axis=1, keepdims=True)
+        loads = np.maximum(gvw[:, None] * share / share.sum(axis=1, keepdims=True), MIN_AXLE_LOAD)
         if c.spacing:
             ms, ss = (np.array([a[k] for a in c.spacing]) for k in (0, 1))
             sp = np.clip(rng.normal(ms, ss, (n, ms.size)), np.maximum(ms - 3 * ss, 0.5), np.minimum(ms + 3 * ss, 30.0))
