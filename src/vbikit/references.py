@@ -171,7 +171,8 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
                     + SEARCHED + "; no publisher (Elsevier) or Crossref record found"),
     _R("AASHTO-LRFD", "manual", "AASHTO LRFD Bridge Design Specifications", "2020",
        "dynamic load allowance IM = 0.33 / 0.15 fatigue / 0.75 deck joints (Table 3.6.2.1-1); tire contact "
-       "area 0.508 m × 0.254 m (3.6.1.2.5), the multi-point tire's default contact length",
+       "area 0.508 m × 0.254 m (3.6.1.2.5), the multi-point tire's default contact length; fatigue resistance "
+       "N = A·Δf⁻³ and thresholds (ΔF)_TH of categories A–E′ (6.6.1.2.5, Tables 6.6.1.2.5-1 and -3)",
        organization="American Association of State Highway and Transportation Officials", address="Washington, DC",
        edition="9th"),
     _R("AASHTO-Standard2002", "manual", "Standard Specifications for Highway Bridges", "2002",
@@ -298,7 +299,58 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
                     "formed from that article number, not shown on the page read; searched for it and for the title "
                     "in " + SEARCHED + ": no Crossref record found",
        note="Cited only for its Table 7, 'Roughness coefficient for different surface conditions'; "
-            "authors to be completed from the publisher's page"),    # --- lifetime
+            "authors to be completed from the publisher's page"),
+    # --- fatigue and extremes (vbikit.fatigue, vbikit.extremes)
+    # The rainflow example history and counts were checked against two copies quoting the standard
+    # (the rainflow package's issue #4 and MathWorks' rainflow page); AASHTO's A and (ΔF)_TH against
+    # AISC 360 Appendix 3 Table A-3.1 (same constants; steelcalculator.app reference page and a copy
+    # of the table with the SI thresholds 165/110/69/48 MPa); the EN 1993-1-9 knees (N_C 2e6, N_D 5e6,
+    # N_L 1e8, m 3 and 5) against Altair's HyperLife Eurocode 3 parameter page.
+    _R("ASTM-E1049", "manual", "Standard Practices for Cycle Counting in Fatigue Analysis (ASTM E1049-85, reapproved 2011)",
+       "1985",
+       "rainflow counting (5.4.4) and its worked example (reversals −2, 1, −3, 5, −1, 3, −4, 4, −2), the test "
+       "of vbikit.fatigue.rainflow",
+       organization="ASTM International", address="West Conshohocken, PA"),
+    _R("EN1993-1-9", "manual", "Eurocode 3: Design of steel structures — Part 1-9: Fatigue (EN 1993-1-9:2005)", "2005",
+       "direct-stress S-N curves of the detail categories (7.1, Fig. 7.1: N_C = 2·10⁶, m = 3 to N_D = 5·10⁶, "
+       "m = 5 to the cut-off N_L = 10⁸), the partial factor γ_Mf (Table 3.1) and Miner's rule (Annex A)",
+       organization="European Committee for Standardization (CEN)", address="Brussels"),
+    _R("AISC360-2022", "manual", "Specification for Structural Steel Buildings (ANSI/AISC 360-22)", "2022",
+       "second source for the AASHTO detail-category constants A and thresholds (ΔF)_TH (Appendix 3, Table A-3.1 "
+       "gives the same values for categories A–E′)",
+       organization="American Institute of Steel Construction", address="Chicago"),
+    _R("EN1991-2", "manual", "Eurocode 1: Actions on structures — Part 2: Traffic loads on bridges (EN 1991-2:2003)",
+       "2003",
+       "the return period of about 1000 years of the characteristic road traffic values (the 'eurocode-1000' "
+       "preset of vbikit.extremes)",
+       organization="European Committee for Standardization (CEN)", address="Brussels",
+       note="The wording of the probability of exceedance (10 % in 100 years, or 5 % in 50 years; both about "
+            "1000 years) was not confirmed against the standard's text"),
+    _R("EN1990", "manual", "Eurocode: Basis of structural design (EN 1990:2002)", "2002",
+       "the 100-year design working life of bridges (Table 2.1, category 5; the '100-year' preset)",
+       organization="European Committee for Standardization (CEN)", address="Brussels"),
+    _R("Nowak1999", "manual", "Calibration of LRFD Bridge Design Code (NCHRP Report 368)", "1999",
+       "the 75-year maximum load effect to which the AASHTO LRFD live load is calibrated (the 'aashto-75' preset)",
+       authors=("Nowak, Andrzej S.",), organization="Transportation Research Board", address="Washington, DC"),
+    _R("Coles2001", "book", "An Introduction to Statistical Modeling of Extreme Values", "2001",
+       "GEV and Gumbel block-maximum models (eqs. 3.2–3.5), the GPD of threshold excesses (eq. 4.2), return "
+       "levels (eqs. 3.4 and 4.13), maximum likelihood with the observed information and the delta method "
+       "(§2.6.4, §3.3.3): vbikit.extremes",
+       authors=("Coles, Stuart",), publisher="Springer", address="London", isbn="1-85233-459-2",
+       note="Springer Series in Statistics"),
+    _R("Gringorten1963", "article", "A plotting rule for extreme probability paper", "1963",
+       "the plotting positions p = (i − 0.44)/(n + 0.12) of the Gumbel plot",
+       authors=("Gringorten, Irving I.",), journal="Journal of Geophysical Research", volume="68", number="3",
+       pages="813–814"),
+    _R("rainflow-py", "software", "rainflow: Python implementation of the ASTM E1049-85 rainflow cycle counting algorithm",
+       "2024", "whole-history rainflow counting (version 3.2.0) in vbikit.fatigue.rainflow and the reference count "
+       "of the chunked-counting tests",
+       authors=("Janiszewski, Piotr",), url="https://github.com/iamlikeme/rainflow"),
+    _R("pyextremes", "software", "pyextremes: Extreme Value Analysis in Python", "2024",
+       "peer check (version 2.6.1) of vbikit.extremes' return levels of block maxima and of peaks over a "
+       "threshold (vbikit.extremes fits with scipy.stats directly)",
+       authors=("Bocharov, George",), url="https://github.com/georgebv/pyextremes"),
+    # --- lifetime
     _R("Caprani2012ADR", "article", "Assessment dynamic ratio for traffic loading on highway bridges", "2012",
        "the assessment dynamic ratio ADR = characteristic total / characteristic static load effect (vbikit.lifetime)",
        authors=("Caprani, Colin C.", "González, Arturo", "Rattigan, Peter H.", "OBrien, Eugene J."),
@@ -350,6 +402,12 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     "bridge:continuous-beam": ("Blevins1979", "pycba"),
     "vehicle:3s2": ("Cantero2024",),
     "vehicle:axles": ("AASHTO-Standard2002",),
+    # --- fatigue and extremes
+    "fatigue:rainflow": ("ASTM-E1049", "rainflow-py"),
+    "fatigue:en1993": ("EN1993-1-9",),
+    "fatigue:aashto": ("AASHTO-LRFD", "AISC360-2022"),
+    "extremes:fits": ("Coles2001", "Gringorten1963", "pyextremes"),
+    "extremes:return-periods": ("Nowak1999", "EN1990", "EN1991-2"),
     # --- lifetime
     "lifetime:adr": ("Caprani2012ADR", "OBrien2010CDI"),
     "lifetime:traffic": ("DempsterLairdRubin1977", "pybtls"),

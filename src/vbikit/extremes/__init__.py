@@ -11,6 +11,7 @@ from vbikit._lazy import lazy_exports
 
 if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type checkers and the API reference
     from vbikit.extremes.errors import ExtremesError
+    from vbikit.extremes.figures import plot_gumbel
     from vbikit.extremes.fits import BLOCK_DISTRIBUTIONS, MIN_SAMPLE, ExtremeFit, fit_block_maxima, fit_peaks_over_threshold
     from vbikit.extremes.plotting_positions import POSITIONS, PlottingPositions, plotting_positions
     from vbikit.extremes.presets import RETURN_PERIODS, ReturnPeriod, exceedance_return_period, return_period
@@ -29,6 +30,7 @@ __all__ = [
     "exceedance_return_period",
     "fit_block_maxima",
     "fit_peaks_over_threshold",
+    "plot_gumbel",
     "plotting_positions",
     "return_level",
     "return_levels",
@@ -37,6 +39,7 @@ __all__ = [
 
 __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.extremes.errors": ["ExtremesError"],
+    "vbikit.extremes.figures": ["plot_gumbel"],
     "vbikit.extremes.fits": ["BLOCK_DISTRIBUTIONS", "ExtremeFit", "MIN_SAMPLE", "fit_block_maxima",
                              "fit_peaks_over_threshold"],
     "vbikit.extremes.plotting_positions": ["POSITIONS", "PlottingPositions", "plotting_positions"],

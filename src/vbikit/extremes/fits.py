@@ -180,13 +180,23 @@ def _covariance(distribution: str, theta: np.ndarray, data: np.ndarray, threshol
 _PARAMS = {"gev": ("location", "scale", "shape"), "gumbel": ("location", "scale"), "gpd": ("scale", "shape")}
 
 
-def _mle(distribution: str, data: np.ndarray) -> np.ndarray:
-    """Maximum-likelihood parameters (θ in ``_PARAMS`` order, ξ in Coles's sign) by scipy's ``fit``."""
+def _mle(distribution: str, data: np.ndarray, start: np.ndarray | None = None) -> np.ndarray:
+    """Maximum-likelihood parameters (θ in ``_PARAMS`` order, ξ in Coles's sign) by scipy's ``fit``;
+    with ``start`` (a θ) one optimisation from there (the bootstrap's refits), else several starts."""
     from scipy import stats
 
     if distribution == "gumbel":
         mu, sigma = stats.gumbel_r.fit(data)
         return np.array([mu, sigma])
+    if start is not None:
+        if distribution == "gev":
+            c, loc, scale = stats.genextreme.fit(data, -start[2], loc=start[0], scale=start[1])
+            theta = np.array([loc, scale, -c])
+        else:
+            c, _, scale = stats.genpareto.fit(data, start[1], floc=0.0, scale=start[0])
+            theta = np.array([scale, c])
+        if np.isfinite(_nll(distribution, theta, data, 0.0 if distribution == "gpd" else None)):
+            return theta
     if distribution == "gev":
         mu0, s0 = stats.gumbel_r.fit(data)
         candidates = [stats.genextreme.fit(data)]

@@ -50,9 +50,11 @@ RETURN_PERIODS: dict[str, ReturnPeriod] = {r.name: r for r in (
                  "Table 2.1, category 5: bridges)",
                  "EN 1990:2002, Table 2.1"),
     ReturnPeriod("eurocode-1000", 1000.0,
-                 "Eurocode characteristic road traffic values (Load Model 1): about a 1000-year return period, "
-                 "i.e. a 10 % probability of exceedance in 100 years (exactly 949.6 years, rounded to 1000)",
-                 "EN 1991-2:2003, 4.1 (characteristic values) and its background documents"),
+                 "Eurocode characteristic road traffic values (Load Model 1): a return period of about 1000 years, "
+                 "quoted as a 10 % probability of exceedance in 100 years (exactly 949.6 years) or 5 % in 50 years "
+                 "(974.8 years), both rounded to 1000",
+                 "EN 1991-2:2003, 4.3.2 (Load Model 1, characteristic values) and the background documents of its "
+                 "calibration"),
 )}
 
 

@@ -143,7 +143,7 @@ def _bootstrap(fit: ExtremeFit, t: np.ndarray, ci: float, n_boot: int, seed: int
         if resample.min() == resample.max():
             continue
         try:
-            theta = _mle(fit.distribution, resample)
+            theta = _mle(fit.distribution, resample, start=fit._theta())
         except ExtremesError:
             continue
         draws[kept] = _levels(fit, theta, t)

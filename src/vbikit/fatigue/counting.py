@@ -2,7 +2,7 @@
 
 ``rainflow(series)`` gives the (range, count) pairs of the standard: full cycles count 1, half
 cycles 0.5, ranges exactly as they occur in the history (differences of two of its values, no
-binning), sorted by range.  The counting itself is the ``rainflow`` package (Janusz Kocjan,
+binning), sorted by range.  The counting itself is the ``rainflow`` package (Piotr Janiszewski,
 PyPI ``rainflow`` 3.2.0), which implements the three-point algorithm of ASTM E1049-85 §5.4.4.
 """
 from __future__ import annotations
@@ -37,9 +37,9 @@ def rainflow(series: Any) -> list[tuple[float, float]]:
 
     Notes
     -----
-    The standard's example (ASTM E1049-85, Fig. 6 / Table 4 of the rainflow counting example),
-    the reversals −2, 1, −3, 5, −1, 3, −4, 4, −2, gives (3, 0.5), (4, 1.5), (6, 0.5), (8, 1.0),
-    (9, 0.5).  First and last points of the history are treated as reversals.
+    The worked example of ASTM E1049-85 §5.4.4 (rainflow counting), the reversals
+    −2, 1, −3, 5, −1, 3, −4, 4, −2, gives (3, 0.5), (4, 1.5), (6, 0.5), (8, 1.0), (9, 0.5).
+    First and last points of the history are treated as reversals.
     """
     arr = series_1d(series, "series")
     if arr.size < 2 or arr.min() == arr.max():

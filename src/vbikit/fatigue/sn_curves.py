@@ -162,7 +162,9 @@ def aashto_curve(category: str) -> SNCurve:
     constant-amplitude fatigue threshold (ΔF)_TH from Table 6.6.1.2.5-3 (constants in
     ``AASHTO_CATEGORIES``, US units, converted exactly: 1 ksi = 6.894757 MPa).  Infinite life
     when the largest stress range is below (ΔF)_TH (Fatigue I limit state, 6.6.1.2.5); otherwise
-    the straight line holds for all ranges (rule ``"max-range"``).
+    the straight line holds for all ranges (rule ``"max-range"``).  The specification checks the
+    Fatigue I *factored* range against (ΔF)_TH; ``miner_damage`` applies the rule to the ranges
+    it is given, so scale them first if that check is meant.
 
     Parameters
     ----------

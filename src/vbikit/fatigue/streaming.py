@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from vbikit.fatigue._checks import positive, series_1d
+from vbikit.fatigue._checks import positive, series_1d, spectrum
 from vbikit.fatigue.counting import _reversals
 from vbikit.fatigue.errors import FatigueError
 
@@ -218,8 +218,6 @@ def histogram(ranges: Any, counts: Any, bin_width: float) -> tuple[np.ndarray, n
     totals : numpy.ndarray
         Cycles in each bin (n values); their sum equals ``sum(counts)``.
     """
-    from vbikit.fatigue._checks import spectrum
-
     r, n = spectrum(ranges, counts)
     w = positive(bin_width, "bin_width")
     if r.size == 0:

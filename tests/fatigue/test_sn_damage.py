@@ -1,0 +1,141 @@
+"""S-N curves and Miner damage against the formulas of EN 1993-1-9 and AASHTO LRFD, computed by hand."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from vbikit.fatigue import (FatigueError, damage_equivalent_range, equivalent_stress_range, miner_damage, rainflow,
+                            remaining_life, sn_curve)
+
+MPA = 1e6
+#: 1 ksi = 6.894757293168361 MPa (NIST SP 811, Appendix B: 1 lbf/in² = 6.894757293168361e3 Pa)
+KSI = 6.894757293168361e6
+
+
+def _constant_amplitude(delta: float, cycles: int) -> list[tuple[float, float]]:
+    """Rainflow cycles of a constant-amplitude history 0, Δ, 0, Δ, …, 0 with ``cycles`` peaks."""
+    history = np.zeros(2 * cycles + 1)
+    history[1::2] = delta
+    return rainflow(history)
+
+
+def _damage_of_history(delta: float, cycles: int, curve) -> float:
+    pairs = _constant_amplitude(delta, cycles)
+    return miner_damage([r for r, _ in pairs], [n for _, n in pairs], curve)
+
+
+# --- EN 1993-1-9 (7.1, Fig. 7.1): detail category 71 --------------------------------------------
+DC = 71.0                                   # Δσ_C, MPa, at N_C = 2e6
+DD = (2.0 / 5.0) ** (1.0 / 3.0) * DC        # Δσ_D = 52.3 MPa at N_D = 5e6
+DL = (5.0 / 100.0) ** (1.0 / 5.0) * DD      # Δσ_L = 28.7 MPa at N_L = 1e8
+
+
+def test_en_knees_match_the_standards_rounded_values():
+    # EN 1993-1-9 Fig. 7.1 labels category 71 with Δσ_D = 52 and Δσ_L = 29 MPa (rounded)
+    curve = sn_curve("EN 71")
+    assert curve.threshold / MPA == pytest.approx(52.0, abs=0.5)
+    assert curve.segments[-1].stress_min / MPA == pytest.approx(29.0, abs=0.5)
+    n = curve.cycles_to_failure(np.array([DC, DD, DL]) * MPA)
+    np.testing.assert_allclose(n, [2e6, 5e6, 1e8], rtol=1e-12)
+
+
+@pytest.mark.parametrize("delta_mpa, expected_n", [
+    (100.0, 2e6 * (DC / 100.0) ** 3),       # above Δσ_D: slope m = 3 → 705 830 cycles
+    (40.0, 5e6 * (DD / 40.0) ** 5),         # between Δσ_L and Δσ_D: slope m = 5 → 1.91e7 cycles
+    (20.0, math.inf),                       # below the cut-off Δσ_L: no damage
+])
+def test_miner_damage_of_constant_amplitude_histories_on_each_slope(delta_mpa, expected_n):
+    cycles = 1000
+    damage = _damage_of_history(delta_mpa * MPA, cycles, sn_curve("EN 71"))
+    assert damage == pytest.approx(cycles / expected_n, rel=1e-12, abs=0.0)
+
+
+def test_partial_factor_divides_the_curve():
+    # γ_Mf = 1.35: the design curve has Δσ_C / γ_Mf at 2e6 cycles; 100 MPa stays on the m = 3 slope
+    curve = sn_curve("EN 71", gamma_mf=1.35)
+    expected = 2e6 * (DC / 1.35 / 100.0) ** 3
+    assert curve.cycles_to_failure(100.0 * MPA)[0] == pytest.approx(expected, rel=1e-12)
+
+
+def test_two_level_spectrum_damage_unequal_ranges_and_counts():
+    # 2 000 cycles at 90 MPa (m = 3) and 300 000 at 35 MPa (m = 5), hand sum of n/N
+    n1, s1, n2, s2 = 2_000.0, 90.0, 300_000.0, 35.0
+    expected = n1 / (2e6 * (DC / s1) ** 3) + n2 / (5e6 * (DD / s2) ** 5)
+    ranges, counts = [s1 * MPA, s2 * MPA], [n1, n2]
+    curve = sn_curve("EN 71")
+    assert miner_damage(ranges, counts, curve) == pytest.approx(expected, rel=1e-12)
+    # swapped arguments are a different (wrong) spectrum: the result must not match
+    swapped = miner_damage(counts, ranges, curve)
+    assert not math.isclose(swapped, expected, rel_tol=1e-3)
+    with pytest.raises(FatigueError) as err:
+        miner_damage(ranges, counts[:1], curve)
+    assert err.value.key == "counts"
+    with pytest.raises(FatigueError) as err:
+        miner_damage([-1.0, 2.0], [1.0, 1.0], curve)
+    assert err.value.key == "ranges"
+    with pytest.raises(FatigueError) as err:
+        miner_damage(ranges, counts, "EN 71")
+    assert err.value.key == "curve"
+
+
+# --- AASHTO LRFD 6.6.1.2.5: N = A / Δf³ ---------------------------------------------------------
+@pytest.mark.parametrize("category, a_1e8_ksi3, delta_ksi", [
+    ("C", 44.0, 12.0),      # Table 6.6.1.2.5-1: A = 44.0e8 ksi³
+    ("E'", 3.9, 3.0),
+    ("A", 250.0, 30.0),
+    ("B'", 61.0, 15.0),
+])
+def test_aashto_cycles_against_the_formula(category, a_1e8_ksi3, delta_ksi):
+    expected = a_1e8_ksi3 * 1e8 / delta_ksi**3
+    curve = sn_curve(f"AASHTO {category}")
+    assert curve.cycles_to_failure(delta_ksi * KSI)[0] == pytest.approx(expected, rel=1e-12)
+
+
+def test_aashto_thresholds_match_the_si_values():
+    # constant-amplitude thresholds, Table 6.6.1.2.5-3, in MPa as printed beside the ksi values
+    # (A 165, B 110, C 69, D 48 MPa; the same values as AISC 360 Appendix 3 Table A-3.1)
+    for cat, mpa in (("A", 165.0), ("B", 110.0), ("C", 69.0), ("D", 48.0)):
+        assert sn_curve(f"AASHTO {cat}").threshold / MPA == pytest.approx(mpa, rel=0.01)
+
+
+def test_aashto_infinite_life_only_if_the_largest_range_is_below_the_threshold():
+    curve = sn_curve("AASHTO C")                 # (ΔF)_TH = 10 ksi
+    low = 5.0 * KSI
+    assert miner_damage([9.0 * KSI, low], [1e6, 1e7], curve) == 0.0
+    # one cycle above the threshold: every cycle counts on the straight line N = A/Δf³
+    expected = 1.0 / (44e8 / 12.0**3) + 1e7 / (44e8 / 5.0**3)
+    assert miner_damage([12.0 * KSI, low], [1.0, 1e7], curve) == pytest.approx(expected, rel=1e-12)
+
+
+def test_curve_names():
+    assert sn_curve("aashto c′").name == "AASHTO C'"
+    assert sn_curve("EN 36").segments[0].stress_ref == pytest.approx(36e6)
+    for bad in ("EN seventy", "BS 7608 F", "AASHTO G"):
+        with pytest.raises(FatigueError):
+            sn_curve(bad)
+
+
+# --- equivalent ranges and remaining life -------------------------------------------------------
+def test_equivalent_range_of_a_two_level_spectrum():
+    # (1e5 · 80³ + 1e6 · 40³) / 2e6 = 57 600 MPa³ → Δσ_eq = 57 600^(1/3) = 38.620 MPa
+    got = equivalent_stress_range([80 * MPA, 40 * MPA], [1e5, 1e6], m=3.0, n_ref=2e6)
+    assert got / MPA == pytest.approx(57_600 ** (1 / 3), rel=1e-12)
+    assert got / MPA == pytest.approx(38.620, abs=0.0005)
+
+
+def test_damage_equivalent_range_inverts_the_curve_on_both_slopes():
+    curve = sn_curve("EN 71")
+    for s in (100.0, 40.0):
+        assert damage_equivalent_range([s * MPA], [1e5], curve, n_ref=1e5) / MPA == pytest.approx(s, rel=1e-12)
+    assert damage_equivalent_range([20 * MPA], [1e5], curve) == 0.0
+
+
+def test_remaining_life_by_hand():
+    assert remaining_life(0.02, damage_so_far=0.3) == pytest.approx(35.0)
+    assert remaining_life(0.0) == math.inf
+    assert remaining_life(0.5, damage_so_far=1.2) == 0.0
+    with pytest.raises(FatigueError) as err:
+        remaining_life(-0.1)
+    assert err.value.key == "damage_per_year"
