@@ -452,6 +452,25 @@ REFERENCES: dict[str, Reference] = {r.key: r for r in (
     _R("YangYauHsu1997", "article", "Vibration of simple beams due to trains moving at high speeds", "1997",
        "resonance and cancellation of equally spaced moving loads on a simple beam (verification)",
        authors=("Yang, Y. B.", "Yau, J. D.", "Hsu, L. C."), journal="Engineering Structures", volume="19", number="11"),
+    # --- lifetime
+    _R("Caprani2012ADR", "article", "Assessment dynamic ratio for traffic loading on highway bridges", "2012",
+       "the assessment dynamic ratio ADR = characteristic total / characteristic static load effect (vbikit.lifetime)",
+       authors=("Caprani, Colin C.", "González, Arturo", "Rattigan, Peter H.", "OBrien, Eugene J."),
+       journal="Structure and Infrastructure Engineering",
+       note="Venue as cited in the literature; volume and pages not checked against the publisher"),
+    _R("OBrien2010CDI", "article", "Characteristic dynamic increment for extreme traffic loading events on short and "
+       "medium span highway bridges", "2010",
+       "the dynamic increment of characteristic (not single-event) load effects (vbikit.lifetime)",
+       authors=("OBrien, Eugene J.", "Cantero, Daniel", "Enright, Bernard", "González, Arturo", "Žnidarič, Aleš",
+                "Caprani, Colin C."), journal="Engineering Structures", volume="32", number="12",
+       note="As cited in the literature; not checked against the publisher"),
+    _R("DempsterLairdRubin1977", "article", "Maximum likelihood from incomplete data via the EM algorithm", "1977",
+       "the EM fit of the normal mixtures of gross vehicle weight (vbikit.lifetime.traffic)",
+       authors=("Dempster, Arthur P.", "Laird, Nan M.", "Rubin, Donald B."),
+       journal="Journal of the Royal Statistical Society, Series B", volume="39", number="1", pages="1–38"),
+    _R("pybtls", "software", "PyBTLS: Python Bridge Traffic Load Simulation (version 1.0.1)", "2023",
+       "the peer of the static lifetime extremes (tests/lifetime/test_peer_pybtls.py) and the multimodal-normal GVW "
+       "model", authors=("Caprani, Colin C.", "Zhou, Ziyi", "Rizqiansyah, Akbar"), url="https://pypi.org/project/pybtls/"),
 )}
 
 #: Which entries each model relies on, by the names used in scenario files
@@ -501,6 +520,9 @@ MODEL_REFERENCES: dict[str, tuple[str, ...]] = {
     **{f"vehicle:hslm-a{k}": ("EN1991-2", "SincBridgeDynamics") for k in range(1, 11)},
     "vehicle:ice3": ("Goicolea2014", "Cantero2022"),
     "rail:checks": ("EN1991-2", "EN1990-A2", "Fryba1999", "NigamJennings1969"),
+    # --- lifetime
+    "lifetime:adr": ("Caprani2012ADR", "OBrien2010CDI"),
+    "lifetime:traffic": ("DempsterLairdRubin1977", "pybtls"),
 }
 
 

@@ -1,0 +1,164 @@
+"""Recompute the numbers docs/lifetime.md quotes: docs/figures/lifetime-numbers.json, the figures
+docs/figures/lifetime-*.png, and the generated block of the page.
+
+    python docs/scripts/lifetime_numbers.py          # the example week (about a minute on 2 cores)
+    python docs/scripts/lifetime_numbers.py --page   # only re-render the page's block from the JSON (and the
+                                                     # benchmark's JSON, if it has run since)
+
+* ``example``: examples/lifetime/lifetime.toml run as ``vbikit lifetime`` runs it (2 workers);
+* ``peer``: static daily maxima of six days of generated traffic against pybtls (BTLS) on the
+  same traffic and influence line (the test tests/lifetime/test_peer_pybtls.py, with its numbers);
+* ``exactness``: the largest relative difference between the convolution and the coupled run's
+  static reference at the run's time steps (tests/lifetime/test_influence.py's events);
+* ``benchmark``: docs/figures/lifetime-benchmark.json if present (``python
+  benchmarks/bench_lifetime.py --json docs/figures/lifetime-benchmark.json``).
+"""
+from __future__ import annotations
+
+import json
+import shutil
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+NUMBERS = ROOT / "docs" / "figures" / "lifetime-numbers.json"
+BENCH = ROOT / "docs" / "figures" / "lifetime-benchmark.json"
+PAGE = ROOT / "docs" / "lifetime.md"
+START, END = "<!-- lifetime-numbers:start -->", "<!-- lifetime-numbers:end -->"
+
+
+def example() -> dict:
+    from vbikit.lifetime.run import run_lifetime
+
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        ds = run_lifetime(ROOT / "examples" / "lifetime" / "lifetime.toml", Path(tmp), workers=2)
+        wall = time.perf_counter() - t0
+        for name in ("gumbel", "adr", "fatigue", "traffic"):
+            shutil.copy(Path(tmp) / f"lifetime-{name}.png", ROOT / "docs" / "figures" / f"lifetime-{name}.png")
+    a = ds.attrs
+    effects = {}
+    for j, name in enumerate(ds["load_effect"].values):
+        effects[str(name)] = {k: float(ds[k].values[j]) for k in (
+            "characteristic_static", "characteristic_total", "assessment_dynamic_ratio", "im_mean", "im_q95",
+            "im_governing_static_event")} | {"units": str(ds["load_effect_units"].values[j]),
+                                              "aashto_lrfd": float(ds["code_allowance"].values[j, 0])}
+    details = {}
+    for j, name in enumerate(ds["detail"].values):
+        details[str(name)] = {k: float(ds[k].values[j]) for k in (
+            "fatigue_damage", "fatigue_damage_static", "fatigue_damage_se", "dynamic_damage_ratio",
+            "fatigue_damage_per_year", "remaining_life")}
+    return {"date": time.strftime("%Y-%m-%d"), "wall_s": wall, "n_days": int(a["n_days"]), "n_trucks": int(a["n_trucks"]),
+            "n_events": int(a["n_events"]), "n_dynamic": int(a["n_dynamic_events"]),
+            "n_sample": int(a["n_sample_events"]), "fraction_dynamic": float(a["fraction_dynamic"]),
+            "static_events_per_s": float(a["events_per_second_static"]),
+            "amplification_max_observed": float(a["amplification_max_observed"]),
+            "first_frequency_hz": float(a["first_frequency_hz"]), "effects": effects, "details": details}
+
+
+def _load_test(name: str):
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(name, ROOT / "tests" / "lifetime" / f"{name}.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def exactness() -> dict:
+    import numpy as np
+
+    from vbikit.analysis.effects import load_effect_response
+    from vbikit.analysis.response import point_response
+    from vbikit.lifetime.influence import TirePattern, deflection_line, effect_line, event_static
+    from vbikit.solve import simulate
+    from vbikit.traffic.study import traffic_study
+
+    records = _load_test("test_influence")._records()
+    out = {}
+    for bridge, tire, lanes in (("paper-bridge-1-beam", "point", (0.0, 0.0)), ("paper-bridge-1", "multipoint", None)):
+        base = {"bridge": {"model": bridge, "n_modes": 4}, "tire": {"model": tire}, "road": {"class": "none"},
+                "response": {"moment": [3.7], "shear": [2.1]}}
+        study = traffic_study(records, base, lanes=lanes)
+        ctx = study.context()
+        deck = ctx.template.crossing.bridge
+        lines = [deflection_line(deck, 5.2, study.lanes[0])] + [effect_line(deck, e) for e in ctx.plan.load_effects]
+        worst = 0.0
+        for e in range(study.size):
+            result = simulate(study.crossing(e))
+            got = event_static(study.records, [study.events[e]], lines, deck.span, study.lanes,
+                               TirePattern.of_crossing(ctx.template), times=[result.time + study.event_start[e]],
+                               keep_histories=True)
+            refs = [point_response(result, 5.2, study.lanes[0]).static_displacement]
+            refs += [load_effect_response(result, eff).static for eff in ctx.plan.load_effects]
+            for j, ref in enumerate(refs):
+                worst = max(worst, float(np.max(np.abs(got.histories[j] - ref)) / np.max(np.abs(ref))))
+        out[bridge] = worst
+    return out
+
+
+def render(numbers: dict) -> str:
+    """The generated block of docs/lifetime.md."""
+    ex = numbers["example"]
+    lines = [START, "", f"Example week (examples/lifetime, measured {ex['date']} on 2 cores shared with other work): "
+             f"{ex['n_days']} days, {ex['n_trucks']:,} trucks, {ex['n_events']:,} events; "
+             f"{ex['n_dynamic']:,} simulated dynamically ({100 * ex['fraction_dynamic']:.2f} %, of which "
+             f"{ex['n_sample']:,} the random sample); run time {ex['wall_s']:.0f} s; static pass "
+             f"{ex['static_events_per_s']:,.0f} events/s; first frequency {ex['first_frequency_hz']:.2f} Hz.", "",
+             "| load effect | unit | characteristic static (1,000 yr) | characteristic total | ADR | mean event IM "
+             "| 95 % event IM | IM of the largest static event | AASHTO LRFD IM |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for name, e in ex["effects"].items():
+        lines.append(f"| {name} | {e['units']} | {e['characteristic_static']:.4g} | {e['characteristic_total']:.4g} | "
+                     f"{e['assessment_dynamic_ratio']:.3f} | {e['im_mean']:.3f} | {e['im_q95']:.3f} | "
+                     f"{e['im_governing_static_event']:.3f} | {e['aashto_lrfd']:.2f} |")
+    lines += ["", "| detail | damage (week, static + dynamic) | ± standard error | static damage | dynamic / static "
+                  "| damage per year | remaining life [years] |", "|---|---|---|---|---|---|---|"]
+    for name, d in ex["details"].items():
+        lines.append(f"| {name} | {d['fatigue_damage']:.3g} | {d['fatigue_damage_se']:.2g} | "
+                     f"{d['fatigue_damage_static']:.3g} | {d['dynamic_damage_ratio']:.3f} | "
+                     f"{d['fatigue_damage_per_year']:.3g} | {d['remaining_life']:.4g} |")
+    ex_ = numbers["exactness"]
+    lines += ["", "Convolution against the coupled run's static reference at the run's time steps (largest relative "
+                  "difference over the histories of the test events): "
+              + ", ".join(f"{k} {v:.1e}" for k, v in ex_.items()) + "."]
+    b = numbers.get("benchmark")
+    if b:
+        lines += ["", f"Benchmark (benchmarks/bench_lifetime.py, measured {b['date']}, {b['workers']} workers on a "
+                      f"2-core machine shared with other work): {b['days']} days, {b['trucks']:,} trucks, "
+                      f"{b['events']:,} events, {b['dynamic_events']:,} dynamic ({100 * b['fraction_dynamic']:.2f} %); "
+                      f"wall time {b['wall_s']:.0f} s ({b['events_per_s_overall']:,.0f} events/s overall, static pass "
+                      f"{b['static_events_per_s']:,.0f} events/s); peak memory {b['peak_rss_coordinator_MB']:.0f} MB "
+                      f"(coordinator) and {b['peak_rss_worker_MB']:.0f} MB (largest worker); dynamics on every event "
+                      f"would take {b['every_event_estimate_s']:,.0f} s ({b['baseline_dynamic_s_per_event_one_core'] * 1e3:.0f} ms "
+                      f"an event on one core): {b['speedup_vs_every_event']:.0f} × faster; one year extrapolated "
+                      f"linearly: {b['year_extrapolated_s'] / 60:.0f} min."]
+    lines += ["", END]
+    return "\n".join(lines)
+
+
+def write_page(numbers: dict) -> None:
+    text = PAGE.read_text()
+    a, b = text.index(START), text.index(END) + len(END)
+    PAGE.write_text(text[:a] + render(numbers) + text[b:])
+
+
+def main() -> None:
+    if "--page" in sys.argv:  # the stored numbers, with the benchmark's if it has run since
+        numbers = json.loads(NUMBERS.read_text())
+        if BENCH.is_file():
+            numbers["benchmark"] = json.loads(BENCH.read_text())
+            NUMBERS.write_text(json.dumps(numbers, indent=1) + "\n")
+        write_page(numbers)
+        return
+    numbers = {"example": example(), "exactness": exactness()}
+    if BENCH.is_file():
+        numbers["benchmark"] = json.loads(BENCH.read_text())
+    NUMBERS.write_text(json.dumps(numbers, indent=1) + "\n")
+    write_page(numbers)
+
+
+if __name__ == "__main__":
+    main()

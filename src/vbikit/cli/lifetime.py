@@ -1,0 +1,74 @@
+"""``vbikit lifetime``: years of traffic over a bridge → characteristic static and total load
+effects, the assessment dynamic ratio and fatigue damage (``vbikit.lifetime``)."""
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from vbikit.cli.guard import STATE, guard
+
+
+class _Bars:
+    """One tqdm bar per stage: the static pass in days (with trucks/s), each dynamic round in events
+    (events/s) with the fraction of the run's events simulated dynamically so far."""
+
+    def __init__(self, enabled: bool) -> None:
+        self.enabled, self.bar, self.stage = enabled, None, None
+
+    def __call__(self, stage: str, done: int, total: int, info: dict) -> None:
+        if not self.enabled:
+            return
+        if stage != self.stage:
+            self.close()
+            from tqdm import tqdm
+
+            unit = "day" if stage.startswith("static") else "event"
+            self.bar = tqdm(total=total, initial=done, desc=stage, unit=unit, dynamic_ncols=True)
+            self.stage = stage
+        else:
+            self.bar.update(done - self.bar.n)
+        rate = self.bar.format_dict.get("rate")
+        if "trucks_per_day" in info and rate:
+            self.bar.set_postfix_str(f"{rate * info['trucks_per_day']:,.0f} trucks/s", refresh=False)
+        if info.get("events"):
+            self.bar.set_postfix_str(f"dynamic {100 * info['dynamic'] / info['events']:.2f} % of "
+                                     f"{info['events']:,} events", refresh=False)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+
+
+def lifetime_cmd(
+    spec: Path = typer.Argument(..., help="Lifetime file (TOML, docs/lifetime.md)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for lifetime.nc, report.txt and the figures."),
+    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
+    figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
+    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show progress bars."),
+) -> None:
+    """Lifetime load effects with dynamics: traffic for days or years from a records file, every
+    event's static peak by influence lines, coupled dynamics for the events that can govern each
+    day (and a random sample for fatigue), extreme-value fits and return levels, ADR, fatigue
+    damage.  An interrupted run started again resumes (finished batches in OUT_DIR/work)."""
+    from vbikit.lifetime.run import run_lifetime
+
+    bars = _Bars(progress and not STATE["quiet"])
+    t0 = time.perf_counter()
+    try:
+        ds = guard(lambda: run_lifetime(spec, out_dir, workers=workers, scheduler=scheduler, progress=bars,
+                                        figures=figures))
+    except KeyboardInterrupt:
+        bars.close()
+        typer.echo(f"\ninterrupted: finished batches are kept in {out_dir / 'work'}; run the same command again "
+                   "to resume", err=True)
+        raise typer.Exit(code=130) from None
+    bars.close()
+    a = ds.attrs
+    typer.echo((out_dir / "report.txt").read_text())
+    typer.echo(f"{a['n_events']:,} events, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
+               f"-> {out_dir / 'lifetime.nc'} ({time.perf_counter() - t0:.1f} s)")

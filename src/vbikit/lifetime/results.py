@@ -1,0 +1,331 @@
+"""Extremes and fatigue of a lifetime run → the ``lifetime.nc`` dataset and the text report.
+
+Extremes (``vbikit.extremes``, scipy.stats maximum likelihood): for every load effect the block
+maxima (days; weeks = maxima of 7 consecutive days) of the static effect (every event) and of
+the total effect (the simulated events: exact block maxima by the screening rule) in the
+effect's governing direction s; a GEV or Gumbel fit of the chosen block with n blocks a year,
+return levels x_T = F⁻¹(1 − 1/(n T)) with delta-method confidence intervals; the characteristic
+value is the return level of ``characteristic_period``; ADR = characteristic total /
+characteristic static.  Peaks over threshold: a GPD fit to the events' static peaks above the
+threshold u = their (1 − 2·n_days/n_events) quantile (about two exceedances a day), λ the
+exceedances a year; return levels x_T = u + σ/ξ ((λT)^ξ − 1).
+
+Fatigue (``vbikit.fatigue``): the static damage of the whole period counted as one history —
+the days' closed cycles plus the cycles closed when the days' residuals are joined in order,
+plus the last residual's half cycles (exact, ``join`` / ``finish``) — and the dynamic part by
+the difference estimator over the random sample S of n events out of N:
+D_total = D_static + (N / n) Σ_{e∈S} (D_dyn,e − D_st,e), each event counted alone, with the
+standard error N·sd(D_dyn,e − D_st,e)/√n (finite-population correction omitted: conservative).
+"""
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+import numpy as np
+
+
+
+def _blocks(values: np.ndarray, size: int) -> np.ndarray:
+    n = values.shape[0] // size
+    return values[: n * size].reshape(n, size, *values.shape[1:]).max(axis=1)
+
+
+def _fit(maxima: np.ndarray, distribution: str, per_year: float, periods, ci: float):
+    from vbikit.extremes import fit_block_maxima, return_levels
+
+    fit = fit_block_maxima(maxima, distribution, per_year)
+    level, lo, hi = return_levels(fit, periods, ci)
+    return fit, level, lo, hi
+
+
+def _pot(values: np.ndarray, n_days: int, days_per_year: int, periods) -> tuple[np.ndarray, float]:
+    from vbikit.extremes import fit_peaks_over_threshold, return_levels
+
+    n = values.size
+    q = max(0.0, 1.0 - 2.0 * n_days / max(n, 1))
+    u = float(np.quantile(values, q)) if n else math.nan
+    if n < 20 or not np.isfinite(u) or np.sum(values > u) < 10:
+        return np.full(len(periods), np.nan), u
+    fit = fit_peaks_over_threshold(values, u, n * days_per_year / n_days)
+    try:
+        level, _, _ = return_levels(fit, periods, 0.95)
+    except Exception:  # periods too short for the exceedance rate
+        return np.full(len(periods), np.nan), u
+    return level, u
+
+
+def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: dict):
+    """The lifetime dataset (module docstring)."""
+    import xarray as xr
+
+    from vbikit._version import __version__
+    from vbikit.analysis.codes import CODES, code_allowances
+
+    spec = prep.spec
+    setup = prep.setup
+    lines = setup.lines
+    names = [ln.name for ln in lines]
+    signs = np.array([ln.sign for ln in lines])
+    units = [ln.units for ln in lines]
+    n_days = prep.n_days
+    periods = np.array(sorted(spec.return_periods), float)
+    day = static["ev_day"].values
+    st = static["ev_static"].values
+    simulated = dyn["simulated"]
+    gid = dyn["gid"]
+    n_ev = gid.size
+    total = np.full(st.shape, np.nan)
+    run_static = np.full(st.shape, np.nan)
+    for k in np.flatnonzero(simulated):
+        r = dyn["results"][int(gid[k])]
+        total[k] = r["dyn_peak"]
+        run_static[k] = r["run_static_peak"]
+    # block maxima in the governing direction (positive), then back to signed values
+    s_st = st * signs
+    s_tot = np.where(simulated[:, None], total * signs, -np.inf)
+    day_static = np.full((n_days, len(lines)), -np.inf)
+    day_total = np.full((n_days, len(lines)), -np.inf)
+    for j in range(len(lines)):
+        np.maximum.at(day_static[:, j], day, s_st[:, j])
+        np.maximum.at(day_total[:, j], day, s_tot[:, j])
+    per_year = spec.days_per_year / (7 if spec.block == "week" else 1)
+    blk = 7 if spec.block == "week" else 1
+    fit_static_blocks = _blocks(day_static, blk)
+    fit_total_blocks = _blocks(day_total, blk)
+    shape = (len(lines), periods.size)
+    rl = {k: np.full(shape, np.nan) for k in ("static", "static_lower", "static_upper", "total", "total_lower",
+                                              "total_upper", "pot_static")}
+    fits = {k: np.full(len(lines), np.nan) for k in ("static_location", "static_scale", "static_shape",
+                                                     "total_location", "total_scale", "total_shape", "pot_threshold")}
+    for j in range(len(lines)):
+        for which, data in (("static", fit_static_blocks[:, j]), ("total", fit_total_blocks[:, j])):
+            fit, level, lo, hi = _fit(data, spec.distribution, per_year, periods, spec.ci)
+            rl[which][j], rl[f"{which}_lower"][j], rl[f"{which}_upper"][j] = level, lo, hi
+            fits[f"{which}_location"][j], fits[f"{which}_scale"][j], fits[f"{which}_shape"][j] = \
+                fit.location, fit.scale, fit.shape
+        rl["pot_static"][j], fits["pot_threshold"][j] = _pot(s_st[:, j], n_days, spec.days_per_year, periods)
+    k_char = int(np.flatnonzero(periods == spec.characteristic_period)[0])
+    char_static = rl["static"][:, k_char] * signs
+    char_total = rl["total"][:, k_char] * signs
+    adr = char_total / char_static
+    # per-event IM statistics on the random sample (unbiased), and on every simulated event
+    sample = dyn["sample"]
+    im_all = total / st - 1.0
+    im_sample = im_all[sample] if sample.size else np.full((0, len(lines)), np.nan)
+
+    def stat(a, f):
+        a = a[np.isfinite(a)]
+        return float(f(a)) if a.size else math.nan
+
+    im = {
+        "im_mean": [stat(im_sample[:, j], np.mean) for j in range(len(lines))],
+        "im_std": [stat(im_sample[:, j], np.std) for j in range(len(lines))],
+        "im_q95": [stat(im_sample[:, j], lambda a: np.quantile(a, 0.95)) for j in range(len(lines))],
+        "im_max": [stat(im_all[simulated, j], np.max) for j in range(len(lines))],
+    }
+    im_gov = []
+    for j in range(len(lines)):
+        k = int(np.argmax(s_st[:, j]))
+        im_gov.append(float(im_all[k, j]))
+    bridge = setup.bridge
+    f1 = float(bridge.frequencies_hz[0])
+    codes = list(CODES)
+    allow = np.full((len(lines), len(codes)), np.nan)
+    for j, ln in enumerate(lines):
+        loaded = float(getattr(ln.effect, "loaded_length", bridge.span) if ln.effect is not None else
+                       bridge.span_lengths[bridge.span_index(float(bridge.span_coordinate(ln.x, ln.y)))])
+        vals = code_allowances(loaded, f1, None)
+        for c, code in enumerate(codes):
+            allow[j, c] = vals.get(code, math.nan)
+    # ---------------------------------------------------------------- fatigue
+    fat = fatigue_results(prep, static, dyn)
+    ev_attrs = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
+    variables: dict[str, Any] = {
+        "characteristic_static": ("load_effect", char_static, ev_attrs("", f"static load effect of the {spec.characteristic_period:g}-year return period")),
+        "characteristic_total": ("load_effect", char_total, ev_attrs("", f"total (static + dynamic) load effect of the {spec.characteristic_period:g}-year return period")),
+        "assessment_dynamic_ratio": ("load_effect", adr, ev_attrs("1", "ADR = characteristic total / characteristic static")),
+        "return_level_static": (("load_effect", "return_period"), rl["static"] * signs[:, None], ev_attrs("", "static return level")),
+        "return_level_static_lower": (("load_effect", "return_period"), rl["static_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method)")),
+        "return_level_static_upper": (("load_effect", "return_period"), rl["static_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method)")),
+        "return_level_total": (("load_effect", "return_period"), rl["total"] * signs[:, None], ev_attrs("", "total return level")),
+        "return_level_total_lower": (("load_effect", "return_period"), rl["total_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method)")),
+        "return_level_total_upper": (("load_effect", "return_period"), rl["total_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method)")),
+        "return_level_pot_static": (("load_effect", "return_period"), rl["pot_static"] * signs[:, None], ev_attrs("", "static return level from peaks over threshold (GPD)")),
+        "adr_by_period": (("load_effect", "return_period"), rl["total"] / rl["static"], ev_attrs("1", "total / static return level")),
+        "daily_max_static": (("day", "load_effect"), day_static * signs, ev_attrs("", "daily maximum of the static effect")),
+        "daily_max_total": (("day", "load_effect"), day_total * signs, ev_attrs("", "daily maximum of the total effect")),
+        "weekly_max_static": (("week", "load_effect"), _blocks(day_static, 7) * signs if n_days >= 7 else np.zeros((0, len(lines))), ev_attrs("", "weekly maximum of the static effect")),
+        "weekly_max_total": (("week", "load_effect"), _blocks(day_total, 7) * signs if n_days >= 7 else np.zeros((0, len(lines))), ev_attrs("", "weekly maximum of the total effect")),
+        **{f"fit_{k}": ("load_effect", v,
+                        ev_attrs("see load_effect_units",
+                                 f"{k.replace('_', ' ')} of the fit to s*R (governing direction)"))
+           for k, v in fits.items()},
+        "effect_sign": ("load_effect", signs, ev_attrs("1", "governing direction s: peaks are the largest s*R")),
+        "im_mean": ("load_effect", np.array(im["im_mean"]), ev_attrs("1", "mean impact factor R_dyn/R_st - 1 of the random sample of events")),
+        "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the impact factor (random sample)")),
+        "im_q95": ("load_effect", np.array(im["im_q95"]), ev_attrs("1", "95 % quantile of the impact factor (random sample)")),
+        "im_max": ("load_effect", np.array(im["im_max"]), ev_attrs("1", "largest impact factor of any simulated event")),
+        "im_governing_static_event": ("load_effect", np.array(im_gov), ev_attrs("1", "impact factor of the event with the largest static effect")),
+        "code_allowance": (("load_effect", "code"), allow, ev_attrs("1", "design-code dynamic allowance (vbikit.analysis.codes)")),
+        "event_day": ("event", day, ev_attrs("1", "day of the event")),
+        "event_start": ("event", static["ev_start"].values, ev_attrs("s", "first vehicle's record time")),
+        "event_n_vehicles": ("event", static["ev_n_vehicles"].values, ev_attrs("1", "vehicles in the event")),
+        "event_gross_weight": ("event", static["ev_gross_weight"].values, ev_attrs("N", "sum of the event's gross vehicle weights")),
+        "event_static": (("event", "load_effect"), st, ev_attrs("", "static peak (convolution)")),
+        "event_total": (("event", "load_effect"), total, ev_attrs("", "dynamic (total) peak; NaN if not simulated")),
+        "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (its time steps); NaN if not simulated")),
+        "event_simulated": ("event", simulated.astype(np.int8), ev_attrs("1", "1 if simulated dynamically")),
+        "event_in_sample": ("event", np.isin(np.arange(n_ev), dyn["sample"]).astype(np.int8), ev_attrs("1", "1 if in the random sample (fatigue, IM statistics)")),
+        "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
+        **fat["variables"],
+    }
+    for name in ("characteristic_static", "characteristic_total", "return_level_static", "return_level_static_lower",
+                 "return_level_static_upper", "return_level_total", "return_level_total_lower",
+                 "return_level_total_upper", "return_level_pot_static", "daily_max_static", "daily_max_total",
+                 "weekly_max_static", "weekly_max_total", "event_static", "event_total", "event_run_static"):
+        variables[name][2]["units"] = "see load_effect_units"
+    coords = {"load_effect": np.array(names, dtype=object), "return_period": ("return_period", periods, {"units": "year"}),
+              "day": np.arange(n_days), "week": np.arange(n_days // 7), "event": np.arange(n_ev),
+              "code": np.array(codes, dtype=object),
+              "load_effect_units": ("load_effect", np.array(units, dtype=object)),
+              "load_effect_kind": ("load_effect", np.array([ln.kind for ln in lines], dtype=object)),
+              **fat["coords"]}
+    for k in fits:
+        if k.endswith("shape"):
+            variables[f"fit_{k}"][2]["units"] = "1"
+    ds = xr.Dataset(variables, coords=coords)
+    # per-effect units: one unit per variable is what CF allows; effects of one kind share it
+    for name, v in ds.data_vars.items():
+        if v.attrs.get("units") == "see load_effect_units":
+            v.attrs["units"] = units[0] if len(set(units)) == 1 else "; ".join(units)
+            if len(set(units)) > 1:
+                v.attrs["units_by_load_effect"] = "units in load_effect order (coordinate load_effect_units)"
+    n_sim = int(simulated.sum())
+    ds.attrs = {
+        "title": spec.name or "vbikit lifetime",
+        "vbikit_version": __version__,
+        "Conventions": "CF-1.8",
+        "lifetime": spec.model_dump_json(),
+        "records": prep.info.get("records", ""),
+        "n_days": n_days,
+        "days_per_year": spec.days_per_year,
+        "n_trucks": int(static["day_trucks"].values.sum()),
+        "n_events": int(n_ev),
+        "n_dynamic_events": n_sim,
+        "fraction_dynamic": n_sim / max(n_ev, 1),
+        "n_sample_events": int(dyn["sample"].size),
+        "amplification_bound_given": float(spec.amplification),
+        "amplification_bound_used": float(bound),
+        "amplification_max_observed": float(np.nanmax(np.where(simulated[:, None], total / st - 1, np.nan))) if n_sim else math.nan,
+        "screening_rounds": json.dumps(rounds),
+        "block": spec.block,
+        "distribution": spec.distribution,
+        "characteristic_period": float(spec.characteristic_period),
+        "first_frequency_hz": f1,
+        **{k: float(v) for k, v in timing.items()},
+        "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
+    }
+    return ds
+
+
+def fatigue_results(prep, static, dyn) -> dict[str, Any]:
+    """Fatigue variables (module docstring)."""
+    from vbikit.fatigue import RainflowState, finish, join, miner_damage, remaining_life
+
+    spec = prep.spec
+    details = prep.details
+    n_days = prep.n_days
+    if not details:
+        return {"variables": {}, "coords": {"detail": np.array([], dtype=object)}}
+    years = n_days / spec.days_per_year
+    closed = static["day_damage_closed"].values
+    alone = static["day_damage_alone"].values
+    res_day, res_det, res_val = (static[k].values for k in ("res_day", "res_detail", "res_value"))
+    h_day, h_det, h_bin, h_cnt = (static[k].values for k in ("hist_day", "hist_detail", "hist_bin", "hist_count"))
+    sample = dyn["sample"]
+    gid = dyn["gid"]
+    n_ev = gid.size
+    out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "life")}
+    max_bin = int(h_bin.max()) + 1 if h_bin.size else 1
+    hist = np.zeros((len(details), max_bin))
+    for j, det in enumerate(details):
+        curve = det.sn()
+        empty = np.zeros(0)
+        state = RainflowState(empty, empty, empty)
+        for d in range(n_days):
+            r = res_val[(res_day == d) & (res_det == j)]
+            state = join(state, RainflowState(empty, empty, r))
+        cyc = finish(state)
+        d_join = miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve) if cyc else 0.0
+        d_static = float(closed[:, j].sum() + d_join)
+        sel = h_det == j
+        np.add.at(hist[j], h_bin[sel], h_cnt[sel])
+        for rng, cnt in cyc:
+            hist[j, min(int(rng // det.bin), max_bin - 1)] += cnt
+        if sample.size:
+            diff = np.array([dyn["results"][int(gid[k])]["damage_dynamic"][j] - dyn["results"][int(gid[k])]["damage_static"][j]
+                             for k in sample])
+            d_total = d_static + n_ev / sample.size * diff.sum()
+            se = n_ev * (diff.std(ddof=1) if diff.size > 1 else math.nan) / math.sqrt(sample.size)
+        else:
+            d_total, se = d_static, math.nan
+        d_total = max(d_total, 0.0)
+        per_year = d_total / years
+        out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
+        out["ratio"][j] = d_total / d_static if d_static > 0 else math.nan
+        out["per_year"][j] = per_year
+        try:
+            out["eq"][j] = curve.stress_range_at(2e6 / per_year) if per_year > 0 else 0.0
+        except Exception:  # below the curve's cut-off / threshold: no damage-equivalent range on it
+            out["eq"][j] = math.nan
+        out["life"][j] = remaining_life(per_year, spec.fatigue.damage_so_far)
+    a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
+    width = details[0].bin
+    variables = {
+        "fatigue_damage": ("detail", out["total"], a("1", "Miner damage over the simulated period, static + dynamic (difference estimator on the random sample)")),
+        "fatigue_damage_static": ("detail", out["static"], a("1", "Miner damage of the static stress history over the simulated period")),
+        "fatigue_damage_se": ("detail", out["se"], a("1", "standard error of fatigue_damage from the dynamic sample")),
+        "fatigue_damage_per_year": ("detail", out["per_year"], a("year-1", "fatigue_damage per year")),
+        "dynamic_damage_ratio": ("detail", out["ratio"], a("1", "fatigue_damage / fatigue_damage_static")),
+        "equivalent_stress_range": ("detail", out["eq"], a("Pa", "damage-equivalent stress range at 2e6 cycles a year")),
+        "remaining_life": ("detail", out["life"], a("year", "years until the Miner sum reaches 1 at fatigue_damage_per_year")),
+        "damage_per_day_static": (("day", "detail"), alone, a("1", "Miner damage of each day's static history counted alone")),
+        "stress_range_histogram": (("detail", "stress_range_bin"), hist, a("1", "static stress-range cycles (half cycles 0.5) per bin")),
+    }
+    coords = {"detail": np.array([d.name for d in details], dtype=object),
+              "stress_range_bin": ("stress_range_bin", np.arange(max_bin) * width,
+                                   {"units": "Pa", "long_name": "lower edge of the stress-range bin"}),
+              "detail_category": ("detail", np.array([d.curve for d in details], dtype=object))}
+    return {"variables": variables, "coords": coords}
+
+
+def text_report(ds) -> str:
+    """The run's plain-text report."""
+    a = ds.attrs
+    lines = [f"vbikit lifetime: {a['title']}",
+             f"{a['n_days']} days ({a['n_days'] / a['days_per_year']:.3g} years), {a['n_trucks']:,} trucks, "
+             f"{a['n_events']:,} events; {a['n_dynamic_events']:,} simulated dynamically "
+             f"({100 * a['fraction_dynamic']:.2f} %, of which {a['n_sample_events']} the random sample)",
+             f"screening bound A = {a['amplification_bound_used']:.3f} (given {a['amplification_bound_given']:.3f}); "
+             f"largest amplification seen {a['amplification_max_observed']:.3f}",
+             f"fits: {a['distribution']} of {'daily' if a['block'] == 'day' else 'weekly'} maxima; characteristic period {a['characteristic_period']:g} years",
+             f"run time {a['time_total_s']:.1f} s (static pass {a['time_static_s']:.1f} s, "
+             f"{a['events_per_second_static']:,.0f} events/s)", "",
+             f"{'load effect':<22}{'unit':<6}{'char. static':>14}{'char. total':>14}{'ADR':>8}{'IM mean':>9}{'IM q95':>8}"
+             f"{'AASHTO':>8}"]
+    for j, name in enumerate(ds["load_effect"].values):
+        lines.append(f"{name:<22}{str(ds['load_effect_units'].values[j]):<6}"
+                     f"{float(ds['characteristic_static'][j]):>14.5g}{float(ds['characteristic_total'][j]):>14.5g}"
+                     f"{float(ds['assessment_dynamic_ratio'][j]):>8.4f}{float(ds['im_mean'][j]):>9.4f}"
+                     f"{float(ds['im_q95'][j]):>8.4f}{float(ds['code_allowance'][j, 0]):>8.2f}")
+    if "fatigue_damage" in ds and ds.sizes.get("detail", 0):
+        lines += ["", f"{'detail':<16}{'category':<12}{'damage':>12}{'± se':>11}{'static':>12}{'dyn/stat':>9}"
+                      f"{'per year':>12}{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
+        for j, name in enumerate(ds["detail"].values):
+            lines.append(f"{name:<16}{str(ds['detail_category'].values[j]):<12}{float(ds['fatigue_damage'][j]):>12.4g}"
+                         f"{float(ds['fatigue_damage_se'][j]):>11.3g}{float(ds['fatigue_damage_static'][j]):>12.4g}"
+                         f"{float(ds['dynamic_damage_ratio'][j]):>9.4f}{float(ds['fatigue_damage_per_year'][j]):>12.4g}"
+                         f"{float(ds['equivalent_stress_range'][j]) / 1e6:>11.3f}{float(ds['remaining_life'][j]):>10.4g}")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,304 @@
+"""A lifetime run: traffic for days or years, static screening, dynamics where it matters,
+extremes and fatigue → one NetCDF dataset (``lifetime.nc``), figures and a text report.
+
+``run_lifetime(spec, out_dir)``:
+
+1. validates everything before any computation (``prepare``: the records, the traffic fit, the
+   bridge and its load effects, the S-N curves, the duration against the fits' minimum sample,
+   the estimated run time against ``budget_hours``);
+2. the static pass (``vbikit.lifetime.jobs.StaticJob``) over every day;
+3. dynamics (``DynamicJob``) in rounds: the largest static event of every day and effect plus a
+   seeded random sample of events (fatigue, IM statistics), then the events the screening rule
+   keeps (``vbikit.lifetime.screening``), then again if an amplification above A was seen;
+4. extremes and fatigue (``vbikit.lifetime.results``).
+
+Every stage runs on the study runner (local processes or ``scheduler = "tcp://…"``) with its
+finished batches stored under ``out_dir/work``: an interrupted run started again resumes.
+"""
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Callable, Optional
+
+import numpy as np
+
+from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
+from vbikit.lifetime.screening import (amplifications, block_dynamic_max, candidates, rescreen_bound,
+                                       top_events)
+from vbikit.lifetime.spec import LifetimeError, LifetimeFile, base_sections, parse_lifetime, read_lifetime
+
+log = logging.getLogger(__name__)
+
+#: [substitute] planning costs of the budget estimate on one core: static pass per truck [s], one
+#: dynamic event [s] (a several-second crossing of a 4–10-mode bridge); measured 2026-12-02 on
+#: the example bridge with margin (docs/lifetime.md)
+STATIC_SECONDS_PER_TRUCK = 1e-4
+DYNAMIC_SECONDS_PER_EVENT = 0.3
+#: events per day and effect the screening is expected to keep (for the estimate; measured about 18 with
+#: 4,000 trucks a day, A = 0.6, class-B roads)
+SCREENED_PER_DAY = 20
+#: screening: events per block and effect taken in one round (``vbikit.lifetime.screening``)
+PER_ROUND = 3
+#: the amplification check covers the simulated events whose static peak is at least this fraction
+#: of their block's largest (light events, far below any block maximum, may amplify more)
+CHECK_FRACTION = 0.5
+#: most re-screenings after an amplification above the bound was seen
+MAX_RESCREENS = 4
+
+#: progress(stage, done, total, info): after every finished batch; info: "events" (of the run, once the
+#: static pass is done), "dynamic" (events simulated so far), "trucks_per_day"
+Progress = Callable[[str, int, int, dict], None]
+
+
+@dataclass
+class Prepared:
+    """A validated lifetime run (``prepare``)."""
+
+    spec: LifetimeFile
+    base_dir: Path
+    model: Any
+    setup_key: str
+    setup: Any
+    details: tuple[Detail, ...]
+    estimate_hours: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def n_days(self) -> int:
+        return self.spec.n_days
+
+    def static_job(self) -> StaticJob:
+        return StaticJob(self.model, self.setup_key, self.n_days, self.spec.seed, self.spec.ds, self.details,
+                         self.spec.days_per_batch, self.spec.fatigue.dynamic_sample if self.details else 0.0,
+                         _digest=_digest(self.model))
+
+    def dynamic_job(self, items, records: Optional[dict] = None) -> DynamicJob:
+        """The dynamics of global events ``items``; ``records``: stored vehicle records by global id."""
+        items = tuple(sorted(int(i) for i in items))
+        stored = tuple(records.get(i) for i in items) if records else ()
+        return DynamicJob(self.model, self.setup_key, self.spec.seed, items, self.details, self.spec.batch_size,
+                          self.spec.vehicle_model, stored, _digest=_digest(self.model))
+
+
+def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None) -> Prepared:
+    """Validate a lifetime run (module docstring, step 1); LifetimeError naming the key."""
+    from vbikit.extremes import MIN_SAMPLE
+    from vbikit.lifetime.setup import build_setup, check_lanes, setup_key
+    from vbikit.lifetime.traffic import fit_traffic
+    from vbikit.traffic.records import RecordsError, read_records
+
+    if isinstance(spec, dict):
+        spec = parse_lifetime(spec)
+    base_dir = Path(base_dir)
+    records_path = base_dir / spec.traffic.records
+    try:
+        records = read_records(records_path)
+    except RecordsError as err:
+        raise LifetimeError(f"traffic.records: {err}") from None
+    try:
+        model = fit_traffic(records, spec.traffic.mode, spec.traffic.components)
+    except ValueError as err:
+        raise LifetimeError(f"traffic.records: {records_path.name}: {err}") from None
+    if spec.traffic.trucks_per_day is not None:
+        model = model.scaled(spec.traffic.trucks_per_day / model.trucks_per_day)
+    if spec.traffic.speed_kmh is not None:
+        model = model.with_speed(spec.traffic.speed_kmh / 3.6)
+    base = base_sections(spec, base_dir)
+    effects = [e.model_dump() for e in spec.load_effects]
+    n_lanes = max(ln.lane for ln in model.lanes)
+    key = setup_key(base, str(base_dir), effects, spec.traffic.lanes, n_lanes, spec.dx)
+    try:
+        setup = build_setup(key)
+        check_lanes(setup, [ln.lane for ln in model.lanes])
+    except ValueError as err:
+        raise LifetimeError(f"{err}") from None
+    names = [ln.name for ln in setup.lines]
+    details = []
+    for i, d in enumerate(spec.fatigue.details):
+        where = f"fatigue.details[{i + 1}]"
+        if d.effect not in names:
+            raise LifetimeError(f"{where}.effect: {d.effect!r} is not a load effect; allowed: {', '.join(names)}")
+        det = Detail(d.name, names.index(d.effect), d.factor, d.category, d.gamma_mf, spec.fatigue.histogram_bin)
+        try:
+            det.sn()
+        except Exception as err:  # FatigueError: unknown category
+            raise LifetimeError(f"{where}.category: {err}") from None
+        details.append(det)
+    n_blocks = spec.n_days // (7 if spec.block == "week" else 1)
+    need = MIN_SAMPLE[spec.distribution]
+    if n_blocks < need:
+        raise LifetimeError(f"days: {spec.n_days} day(s) give {n_blocks} {'daily' if spec.block == 'day' else 'weekly'} maxima; a {spec.distribution} "
+                            f"fit needs at least {need} (raise days/years, or block = \"day\")")
+    trucks = model.trucks_per_day * spec.n_days
+    events = trucks  # at most one event a truck
+    dyn = spec.n_days * len(names) * (1 + SCREENED_PER_DAY) + spec.fatigue.dynamic_sample * events * (1 if details else 0)
+    cores = max(1, workers or 1)
+    hours = (trucks * STATIC_SECONDS_PER_TRUCK * max(1, len(names)) + dyn * DYNAMIC_SECONDS_PER_EVENT) / cores / 3600
+    if hours > spec.budget_hours:
+        raise LifetimeError(f"budget_hours: the run is estimated at {hours:.2f} h on {cores} worker(s) "
+                            f"({trucks:,.0f} trucks, about {dyn:,.0f} dynamic events), above budget_hours = "
+                            f"{spec.budget_hours:g} h; raise budget_hours (up to 10000) to run it")
+    return Prepared(spec, base_dir, model, key, setup, tuple(details), hours,
+                    {"n_records": len(records), "records": str(records_path.name)})
+
+
+def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stage: str, info: Optional[dict] = None):
+    from vbikit.study.run import run_study
+
+    def report(done: int, total: int) -> None:
+        if progress:
+            extra = dict(info or {})
+            if "dynamic" in extra:
+                extra["dynamic"] += done
+            progress(stage, done, total, extra)
+
+    return run_study(job, path, workers=workers, scheduler=scheduler, progress=report)
+
+
+def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, base_dir: str | Path | None = None,
+                 workers: Optional[int] = None, scheduler: Optional[str] = None,
+                 progress: Optional[Progress] = None, figures: bool = True):
+    """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report).
+
+    ``spec``: a lifetime TOML path, a parsed dict or a ``LifetimeFile``; ``base_dir``: where its
+    relative paths point (default: the file's folder, else "."); ``workers`` / ``scheduler``: as
+    ``vbikit.study.run_study``; ``progress(stage, done, total)`` after every finished batch.
+    Returns the dataset."""
+    from vbikit._files import atomic_write, write_text
+    from vbikit.lifetime.results import build_dataset, text_report
+
+    if isinstance(spec, (str, Path)):
+        spec, folder = read_lifetime(spec)
+        base_dir = folder if base_dir is None else base_dir
+    prep = prepare(spec, base_dir if base_dir is not None else ".", workers)
+    out_dir = Path(out_dir)
+    work = out_dir / "work"
+    work.mkdir(parents=True, exist_ok=True)
+    t0 = time.perf_counter()
+    static = _run(prep.static_job(), work / "static.nc", workers, scheduler, progress, "static pass",
+                  {"trucks_per_day": prep.model.trucks_per_day})
+    t_static = time.perf_counter() - t0
+    dyn, rounds, bound = _dynamics(prep, static, work, workers, scheduler, progress)
+    t_total = time.perf_counter() - t0
+    ds = build_dataset(prep, static, dyn, rounds, bound, {"time_static_s": t_static, "time_total_s": t_total})
+    from vbikit.study.run import _to_netcdf
+
+    atomic_write(out_dir / "lifetime.nc", lambda tmp: _to_netcdf(ds, tmp))
+    write_text(out_dir / "report.txt", text_report(ds))
+    if figures:
+        from vbikit.lifetime.figures import traffic_figure, write_figures
+
+        write_figures(ds, out_dir)
+        traffic_figure(prep.model, out_dir / "lifetime-traffic.png")
+    return ds
+
+
+def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
+    """Rounds of dynamics (module docstring); returns the per-event dynamic results (dict by
+    global id), the rounds' log and the final amplification bound."""
+    spec = prep.spec
+    day = static["ev_day"].values
+    gid = day * EVENT_STRIDE + static["ev_index"].values
+    results: dict[int, dict[str, np.ndarray]] = {}
+
+    stored = stored_records(static)
+
+    done = [0]
+
+    def simulate(new: np.ndarray, r: int) -> np.ndarray:
+        ds = _run(prep.dynamic_job(gid[new], stored), work / f"dynamic-{r}.nc", workers, scheduler, progress,
+                  f"dynamics round {r}", {"events": int(gid.size), "dynamic": done[0]})
+        done[0] += int(new.size)
+        for k, g in enumerate(ds["event"].values):
+            results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
+                                                             "damage_static")}
+        return np.stack([results[int(g)]["dyn_peak"] for g in gid[new]])
+
+    sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
+    signs = np.array([ln.sign for ln in prep.setup.lines])
+    simulated, _, rounds, bound = screen(static["ev_static"].values, signs, day, prep.n_days, spec.amplification,
+                                         simulate, sample)
+    return {"gid": gid, "simulated": simulated, "results": results, "sample": sample}, rounds, bound
+
+
+def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: int, amplification: float,
+           simulate: Callable[[np.ndarray, int], np.ndarray], extra: np.ndarray = np.zeros(0, np.int64),
+           per_round: int = PER_ROUND) -> tuple[np.ndarray, np.ndarray, list, float]:
+    """The screening of ``vbikit.lifetime.screening`` around a simulator: ``simulate(indices,
+    round)`` returns the dynamic peaks (n, n_effects) of those events.  Round 1: the largest static
+    event of every block and effect, and ``extra`` (the random sample); then rounds of
+    per_round · 2^(k−1) events per block and effect (round k + 1) kept by the rule, until none is left; then the
+    amplification check on the simulated events whose static peak is at least ``CHECK_FRACTION``
+    of their block's largest (re-screening with A = 1.25 × the largest amplification seen there,
+    at most ``MAX_RESCREENS`` times).
+    Returns (simulated mask, dynamic peaks (NaN where not simulated), rounds, the bound used)."""
+    n, m = static.shape
+    dyn = np.full((n, m), np.nan)
+    simulated = np.zeros(n, bool)
+    rounds: list[dict] = []
+
+    def run(select: np.ndarray, r: int) -> None:
+        new = np.setdiff1d(select, np.flatnonzero(simulated))
+        if new.size:
+            dyn[new] = simulate(new, r)
+            simulated[new] = True
+        rounds.append({"round": r, "new_events": int(new.size), "simulated": int(simulated.sum())})
+
+    run(np.union1d(top_events(static, signs, block), extra), 1)
+    bound = float(amplification)
+    r, rescreens = 1, 0
+    while True:
+        threshold = block_dynamic_max(dyn, signs, block, simulated, n_blocks)
+        # rounds grow geometrically (per_round, 2·per_round, 4·per_round, …): few rounds when a block keeps many
+        todo = candidates(static, signs, block, threshold, bound, simulated, per_round * 2 ** max(0, r - 1))
+        if todo.size:
+            r += 1
+            run(todo, r)
+            continue
+        heavy = simulated & np.any(static * signs >= CHECK_FRACTION * _block_static_max(static, signs, block, n_blocks),
+                                   axis=1)
+        amp = amplifications(dyn[heavy], static[heavy])
+        new_bound = rescreen_bound(amp.ravel(), bound)
+        if new_bound <= bound or rescreens >= MAX_RESCREENS:
+            break
+        log.warning("an event's dynamic amplification %.3f exceeds the screening bound A = %.3f: screening again "
+                    "with A = %.3f", np.nanmax(amp), bound, new_bound)
+        rounds[-1]["rescreen_to"] = new_bound
+        bound, rescreens = new_bound, rescreens + 1
+    return simulated, dyn, rounds, bound
+
+
+def _dyn_matrix(results, gid, simulated, n_lines) -> np.ndarray:
+    out = np.full((gid.size, n_lines), np.nan)
+    for k in np.flatnonzero(simulated):
+        out[k] = results[int(gid[k])]["dyn_peak"]
+    return out
+
+
+def _block_static_max(static, signs, block, n_blocks) -> np.ndarray:
+    out = np.full((n_blocks, static.shape[1]), -np.inf)
+    for j in range(static.shape[1]):
+        np.maximum.at(out[:, j], block, signs[j] * static[:, j])
+    return out[block]
+
+
+def stored_records(static) -> dict[int, tuple]:
+    """The vehicle records the static pass stored, by global event id (``StaticJob``)."""
+    from vbikit.traffic.records import VehicleRecord
+
+    ev = static["rec_event"].values
+    n_ax = static["rec_n_axles"].values
+    loads, spacings = static["rec_loads"].values, static["rec_spacings"].values
+    la = np.concatenate([[0], np.cumsum(n_ax)])
+    sa = np.concatenate([[0], np.cumsum(np.maximum(n_ax - 1, 0))])
+    time, speed = static["rec_time"].values, static["rec_speed"].values
+    lane, direction = static["rec_lane"].values, static["rec_direction"].values
+    out: dict[int, list] = {}
+    for k in range(ev.size):
+        out.setdefault(int(ev[k]), []).append(VehicleRecord(
+            float(time[k]), "+x" if direction[k] > 0 else "-x", float(speed[k]), tuple(map(float, loads[la[k]:la[k + 1]])),
+            tuple(map(float, spacings[sa[k]:sa[k + 1]])), lane=int(lane[k])))
+    return {g: tuple(v) for g, v in out.items()}

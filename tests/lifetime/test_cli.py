@@ -1,0 +1,75 @@
+"""``vbikit lifetime`` on a cut-down of the example, resuming, errors before any computation."""
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from vbikit.lifetime.spec import LifetimeError
+from vbikit.lifetime.run import prepare, run_lifetime
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "lifetime"
+
+
+def _cut_down(tmp_path: Path) -> Path:
+    """The example with 5 days of 60 trucks a day (the records file copied beside it)."""
+    shutil.copy(EXAMPLE / "wim.csv", tmp_path / "wim.csv")
+    text = (EXAMPLE / "lifetime.toml").read_text()
+    text = text.replace("days = 7", "days = 5").replace('mode = "fitted"', 'mode = "fitted"\ntrucks_per_day = 60')
+    text = text.replace("dynamic_sample = 0.02", "dynamic_sample = 0.05").replace("n_modes = 4", "n_modes = 3")
+    path = tmp_path / "lifetime.toml"
+    path.write_text(text)
+    return path
+
+
+def test_cli_cut_down_example_and_resume(tmp_path):
+    """The example's file (5 days, 60 trucks a day) through the CLI: lifetime.nc holds the
+    contract's variables with units, fatigue_damage by detail, the figures and report are
+    written; a second run reuses the stored stages and gives the same dataset."""
+    spec = _cut_down(tmp_path)
+    out = tmp_path / "out"
+    cmd = [sys.executable, "-c", "from vbikit.cli import main; main()", "lifetime", str(spec), "--out-dir", str(out), "--workers", "1",
+           "--no-progress"]
+    first = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    assert first.returncode == 0, first.stderr
+    assert "ADR" in first.stdout
+    with xr.open_dataset(out / "lifetime.nc") as ds:
+        ds = ds.load()
+    for name in ("characteristic_static", "characteristic_total", "assessment_dynamic_ratio"):
+        assert ds[name].dims == ("load_effect",) and ds[name].attrs.get("units")
+    assert ds["fatigue_damage"].dims == ("detail",)
+    assert list(ds["detail"].values) == ["flange_EN36", "flange_AASHTO_E"]
+    assert np.all(np.isfinite(ds["assessment_dynamic_ratio"].values))
+    assert 0 < ds.attrs["fraction_dynamic"] < 1
+    for fig in ("lifetime-gumbel.png", "lifetime-adr.png", "lifetime-fatigue.png", "lifetime-traffic.png", "report.txt"):
+        assert (out / fig).is_file(), fig
+    (out / "lifetime.nc").unlink()
+    again = run_lifetime(spec, out, workers=1, figures=False)
+    for name in ("characteristic_static", "characteristic_total", "fatigue_damage", "event_total"):
+        np.testing.assert_array_equal(again[name].values, ds[name].values)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"days": 0}, "days: Input should be greater than or equal to 1"),
+    ({"amplification": -1}, "amplification: Input should be greater than 0"),
+    ({"colour": 3}, "colour: unknown key"),
+    ({"load_effects": [{"kind": "torque"}]}, "load_effects.0.kind"),
+    ({"fatigue": {"details": [{"name": "d", "effect": "nope", "section_modulus": 0.1, "category": "EN 71"}]}},
+     "fatigue.details[1].effect: 'nope' is not a load effect; allowed: M"),
+    ({"fatigue": {"details": [{"name": "d", "effect": "M", "section_modulus": 0.1, "category": "EN x"}]}},
+     "fatigue.details[1].category"),
+    ({"days": 3}, "days: 3 day(s) give 3 daily maxima; a gumbel fit needs at least 5"),
+    ({"years": 100, "days": None}, "budget_hours: the run is estimated at"),
+    ({"traffic": {"records": "missing.csv"}}, "traffic.records"),
+])
+def test_errors_name_the_key_before_any_computation(change, message):
+    spec = {"days": 5, "traffic": {"records": "examples/lifetime/wim.csv"},
+            "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3},
+            "load_effects": [{"kind": "moment", "x": 4.0, "name": "M"}]}
+    spec.update(change)
+    spec = {k: v for k, v in spec.items() if v is not None}
+    with pytest.raises(LifetimeError, match=__import__("re").escape(message)):
+        prepare(spec, ".")

@@ -1,0 +1,43 @@
+"""docs/lifetime.md quotes the numbers of docs/figures/lifetime-numbers.json (written by
+docs/scripts/lifetime_numbers.py); the slow test recomputes the example."""
+import importlib.util
+import json
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+HINT = "run python docs/scripts/lifetime_numbers.py (it rewrites the JSON, the figures and the page's block)"
+
+
+def _script():
+    spec = importlib.util.spec_from_file_location("lifetime_numbers", ROOT / "docs" / "scripts" / "lifetime_numbers.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_page_quotes_the_stored_numbers():
+    script = _script()
+    numbers = json.loads(script.NUMBERS.read_text())
+    page = script.PAGE.read_text()
+    assert script.render(numbers) in page, HINT
+    for name in ("gumbel", "adr", "fatigue", "traffic"):
+        assert (ROOT / "docs" / "figures" / f"lifetime-{name}.png").is_file()
+
+
+@pytest.mark.slow
+def test_example_numbers_are_reproduced():
+    """The example week again: every count, characteristic value, ADR and damage as stored (run
+    times aside); the convolution's exactness below 1e-9."""
+    script = _script()
+    stored = json.loads(script.NUMBERS.read_text())
+    now = script.example()
+    for key in ("n_days", "n_trucks", "n_events", "n_dynamic", "n_sample"):
+        assert now[key] == stored["example"][key], f"{key}: {HINT}"
+    for group in ("effects", "details"):
+        for name, values in stored["example"][group].items():
+            for key, value in values.items():
+                if isinstance(value, float):
+                    assert now[group][name][key] == pytest.approx(value, rel=1e-9, nan_ok=True), f"{name}.{key}: {HINT}"
+    assert all(v < 1e-9 for v in script.exactness().values())
