@@ -50,7 +50,7 @@ def _alone(args):
     job, indices = args
     from vbikit.analysis import point_response
     from vbikit.solve import simulate
-    from vbikit.traffic.study import _Context  # noqa: F401  (the job's cached base: bridge built once)
+    from vbikit.traffic.study import EventContext  # noqa: F401  (the job's cached base: bridge built once)
 
     ctx = job.context()
     out = []

@@ -17,7 +17,7 @@ from vbikit.lifetime.influence import HALF_TRACK, InfluenceLine, Tabulated, Tire
 class Setup:
     """Built from ``(base, base_dir, effects, lanes, n_lanes, dx)`` (see ``build_setup``)."""
 
-    context: Any  # vbikit.traffic.study._Context
+    context: Any  # vbikit.traffic.study.EventContext
     bridge: Any
     lines: list[InfluenceLine]
     tables: list[Tabulated]
@@ -72,11 +72,11 @@ def build_setup(key: str) -> Setup:
     if key in _SETUPS:
         return _SETUPS[key]
     from vbikit.bridge.base import HasLoadEffects
-    from vbikit.traffic.study import _Context
+    from vbikit.traffic.study import EventContext
 
     d = json.loads(key)
     base = {k: v for k, v in d["base"].items()}
-    ctx = _Context.of(base, d["base_dir"])
+    ctx = EventContext.of(base, d["base_dir"])
     bridge = ctx.template.crossing.bridge
     lines = []
     for i, e in enumerate(d["effects"]):

@@ -176,12 +176,12 @@ class TrafficStudy:
         return self.dataset(ev, veh)
 
     # ------------------------------------------------------------ one event
-    def context(self) -> "_Context":
+    def context(self) -> "EventContext":
         """Bridge, tire, roads and response point of the base scenario (built once per process)."""
         key = json.dumps([self.base, self.base_dir], sort_keys=True)
         if key not in _CONTEXTS:
             _CONTEXTS.clear()
-            _CONTEXTS[key] = _Context.of(self.base, self.base_dir)
+            _CONTEXTS[key] = EventContext.of(self.base, self.base_dir)
         return _CONTEXTS[key]
 
     def crossing(self, e: int) -> Crossing:
@@ -312,8 +312,11 @@ def stream_statistics(ds) -> dict[str, Any]:
 
 
 @dataclass
-class _Context:
-    """What every event of a stream shares (built once per process)."""
+class EventContext:
+    """What every event of a stream shares (built once per process): the base scenario's crossing
+    to put vehicles on (``template``), the scenario, its response plan and its road (``road(seed)``:
+    the event's random road, or the fixed one).  ``EventContext.of(base, base_dir)`` builds it from
+    a traffic base scenario; lifetime runs use it too."""
 
     template: "_Template"
     scenario: Scenario
@@ -322,7 +325,7 @@ class _Context:
     _fixed_road: tuple = (None, None)
 
     @classmethod
-    def of(cls, base: dict, base_dir: str) -> "_Context":
+    def of(cls, base: dict, base_dir: str) -> "EventContext":
         data = dict(base)
         data["vehicle"] = {"model": "moving-force"}  # a stand-in: the records give the vehicles
         crossing = {k: v for k, v in base.get("crossing", {}).items() if k not in ("speed", "speed_kmh")}
@@ -356,7 +359,7 @@ class _Template:
                         dt=c.dt, integrator=c.integrator, loss_of_contact=c.loss_of_contact)
 
 
-_CONTEXTS: dict[str, _Context] = {}
+_CONTEXTS: dict[str, EventContext] = {}
 
 
 def base_scenario(bridge: str, base_dir: Path | str = ".") -> tuple[dict, str]:
@@ -388,7 +391,7 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
         raise StudyError(f"{source or 'records'}: the stream holds no vehicles")
     if batch_size < 1:
         raise StudyError(f"batch_size must be >= 1, got {batch_size}")
-    ctx = _Context.of(base, base_dir)
+    ctx = EventContext.of(base, base_dir)
     bridge = ctx.template.crossing.bridge
     lanes = tuple(float(y) for y in (lanes if lanes is not None else default_lanes(bridge)))
     width = bridge.deck_width if isinstance(bridge, GirderDeck) else None
