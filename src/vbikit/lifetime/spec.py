@@ -44,6 +44,7 @@ from typing import Any, Literal, Optional
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
+from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
 
 BASE_SECTIONS = ("bridge", "tire", "road", "crossing")
@@ -165,25 +166,12 @@ class LifetimeFile(_Strict):
         return int(self.days) if self.days is not None else int(math.ceil(float(self.years) * self.days_per_year))
 
 
-def _format(err: ValidationError) -> str:
-    lines = []
-    for e in err.errors():
-        loc = ".".join(str(p) for p in e["loc"])
-        msg = e["msg"].removeprefix("Value error, ")
-        if e["type"] == "extra_forbidden":
-            msg = "unknown key"
-        elif e["type"] == "missing":
-            msg = "missing required key"
-        lines.append(f"{loc}: {msg}" if loc else msg)
-    return "invalid lifetime file:\n  " + "\n  ".join(lines)
-
-
 def parse_lifetime(data: dict[str, Any]) -> LifetimeFile:
     """Validate a lifetime specification given as a dict (the parsed TOML)."""
     try:
         return LifetimeFile.model_validate(data)
     except ValidationError as err:
-        raise LifetimeError(_format(err)) from None
+        raise LifetimeError(validation_message(err, "invalid lifetime file")) from None
 
 
 def read_lifetime(path: str | Path) -> tuple[LifetimeFile, Path]:

@@ -39,12 +39,12 @@
 """
 from __future__ import annotations
 
-import re
 from pathlib import Path
 from typing import Any, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
+from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
 from vbikit.rail.codes import CLASSIFICATION_FACTORS, DECK_DAMPING, DYNAMIC_FACTORS, ACCELERATION_LIMITS
 
@@ -210,30 +210,12 @@ class RailSpec(_Section):
     run: RunSection = Field(default_factory=RunSection)
 
 
-def _format(err: ValidationError) -> str:
-    lines = []
-    for e in err.errors():
-        loc = ".".join(str(p) for p in e["loc"])
-        msg = e["msg"].removeprefix("Value error, ")
-        key = re.match(r"^([A-Za-z_]+): ", msg)
-        if key and e["type"] == "value_error":
-            loc, msg = f"{loc}.{key.group(1)}" if loc else key.group(1), msg[key.end():]
-        if e["type"] == "extra_forbidden":
-            msg = "unknown key"
-        elif e["type"] == "missing":
-            msg = "missing required key"
-        elif "input" in e and e["type"] != "value_error":
-            msg = f"{msg} (got {e['input']!r})"
-        lines.append(f"{loc}: {msg}" if loc else msg)
-    return "\n  ".join(lines)
-
-
 def parse_rail_spec(data: dict[str, Any]) -> RailSpec:
     """Validate a parsed RAIL.toml (raises ``RailSpecError`` naming every bad key)."""
     try:
         return RailSpec.model_validate(data)
     except ValidationError as err:
-        raise RailSpecError(_format(err)) from None
+        raise RailSpecError(validation_message(err, "")) from None
 
 
 def load_rail_spec(path: str | Path) -> RailSpec:

@@ -37,6 +37,7 @@ import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from vbikit._toml import parse_toml, read_toml
+from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
 from vbikit.contact.registry import TIRE_MODELS
 from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario, section_keys
@@ -271,19 +272,6 @@ class Study:
         return out
 
 
-def _format(err: ValidationError) -> str:
-    lines = []
-    for e in err.errors():
-        loc = ".".join(str(p) for p in e["loc"])
-        msg = e["msg"].removeprefix("Value error, ")
-        if e["type"] == "extra_forbidden":
-            msg = f"unknown key; allowed keys: {', '.join(StudyFile.model_fields)}"
-        elif e["type"] == "missing":
-            msg = "missing required key"
-        lines.append(f"{loc}: {msg}" if loc else msg)
-    return "invalid study:\n  " + "\n  ".join(lines)
-
-
 def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
     """Validate a study given as a dict (the parsed TOML): the study keys, every axis key, and
     every combination of axis values as a scenario."""
@@ -291,7 +279,7 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
     try:
         raw = StudyFile.model_validate(data)
     except ValidationError as err:
-        raise StudyError(_format(err)) from None
+        raise StudyError(validation_message(err, "invalid study", f"unknown key; allowed keys: {', '.join(StudyFile.model_fields)}")) from None
     base = copy.deepcopy(raw.base)
     if "scenario" in base:
         if len(base) != 1:
