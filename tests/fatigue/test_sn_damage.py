@@ -62,6 +62,20 @@ def test_constant_amplitude_fatigue_limit_applies_to_the_whole_spectrum():
     assert miner_damage([60 * MPA, 35 * MPA], [1.0, 1e7], curve) == pytest.approx(expected, rel=1e-12)
 
 
+def test_parts_of_a_longer_loading_add_up_to_the_whole():
+    # A day whose ranges all stay below Δσ_D does damage when another day exceeds it (EN 1993-1-9
+    # 1.3.3.3 judges the whole loading): as parts (whole_spectrum=False) the days add up to the
+    # whole; judged alone the quiet day would wrongly count nothing.
+    curve = sn_curve("EN 71")
+    quiet, busy = ([35 * MPA], [1e7]), ([60 * MPA], [1.0])
+    whole = miner_damage([60 * MPA, 35 * MPA], [1.0, 1e7], curve)
+    parts = sum(miner_damage(r, n, curve, whole_spectrum=False) for r, n in (quiet, busy))
+    assert parts == pytest.approx(whole, rel=1e-12)
+    assert miner_damage(*quiet, curve) == 0.0
+    assert miner_damage(*quiet, curve, whole_spectrum=False) == pytest.approx(1e7 / (5e6 * (DD / 35.0) ** 5), rel=1e-12)
+    assert miner_damage([20 * MPA], [1e9], curve, whole_spectrum=False) == 0.0  # below the cut-off Δσ_L = 28.7 MPa
+
+
 def test_partial_factor_divides_the_curve():
     # γ_Mf = 1.35: the design curve has Δσ_C / γ_Mf at 2e6 cycles; 100 MPa stays on the m = 3 slope
     curve = sn_curve("EN 71", gamma_mf=1.35)

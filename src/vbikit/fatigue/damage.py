@@ -10,7 +10,7 @@ from vbikit.fatigue.errors import FatigueError
 from vbikit.fatigue.sn_curves import SNCurve
 
 
-def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
+def miner_damage(ranges: Any, counts: Any, curve: SNCurve, whole_spectrum: bool = True) -> float:
     """Palmgren–Miner damage sum D = Σ nᵢ / N(Δσᵢ) (EN 1993-1-9 A.5; AASHTO LRFD C6.6.1.2.5).
 
     Parameters
@@ -21,14 +21,17 @@ def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
         Cycles nᵢ at each range (half cycles 0.5).
     curve : SNCurve
         The resistance curve (``sn_curve("EN 71")``).
+    whole_spectrum : bool
+        True (default): the ranges are the detail's whole loading, so they do nothing when the
+        largest (with a count > 0) is below the curve's constant-amplitude fatigue limit
+        ``curve.threshold`` (EN 1993-1-9:2005 1.3.3.3, Δσ_D; AASHTO LRFD 6.6.1.2.5, (ΔF)_TH).
+        False: they are a part of a longer loading (a day, an event, a chunk), whose damages
+        add up; the limit rule is then the caller's, applied once to the whole loading.
 
     Returns
     -------
     float
-        The damage (1.0: failure by Miner's rule).  The whole spectrum does nothing when its
-        largest range (with a count > 0) is below the curve's constant-amplitude fatigue limit
-        ``curve.threshold`` (EN 1993-1-9:2005 1.3.3.3, Δσ_D; AASHTO LRFD 6.6.1.2.5, (ΔF)_TH);
-        otherwise ranges below the EN cut-off Δσ_L do nothing and all others count.
+        The damage (1.0: failure by Miner's rule); ranges below the EN cut-off Δσ_L do nothing.
     """
     if not isinstance(curve, SNCurve):
         raise FatigueError(f"curve: needs an SNCurve (e.g. sn_curve('EN 71')), got {type(curve).__name__}")
@@ -36,7 +39,7 @@ def miner_damage(ranges: Any, counts: Any, curve: SNCurve) -> float:
     live = n > 0
     if not live.any():
         return 0.0
-    if r[live].max() < curve.threshold:
+    if whole_spectrum and r[live].max() < curve.threshold:
         return 0.0
     big_n = curve.cycles_to_failure(r[live])
     return float(np.sum(n[live] / big_n))

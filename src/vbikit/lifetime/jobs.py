@@ -191,9 +191,9 @@ class StaticJob:
                 for e in range(n):
                     counter.feed(np.concatenate([[0.0], hist[offs[e]:offs[e + 1]], [0.0]]))
                 state = counter.state
-                closed.append(miner_damage(state.ranges, state.counts, curve) if state.ranges.size else 0.0)
+                closed.append(miner_damage(state.ranges, state.counts, curve, whole_spectrum=False) if state.ranges.size else 0.0)
                 cyc = counter.finish()
-                alone.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve) if cyc else 0.0)
+                alone.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0)
                 out["res_day"].append(np.full(state.residual.size, day, np.int64))
                 out["res_detail"].append(np.full(state.residual.size, j, np.int64))
                 out["res_value"].append(state.residual)
@@ -339,14 +339,17 @@ class DynamicJob:
                 st.append(resp.static)
         out = {"dyn_peak": np.array([s.sign * np.max(s.sign * d) for s, d in zip(setup.lines, dyn)]),
                "run_static_peak": np.array([s.sign * np.max(s.sign * h) for s, h in zip(setup.lines, st)])}
-        d_dyn, d_st = [], []
+        d_dyn, d_st, top = [], [], []
         for det in self.details:
             curve = det.sn()
             for hist, acc in ((dyn[det.line], d_dyn), (st[det.line], d_st)):
                 cyc = rainflow(np.concatenate([[0.0], hist * det.factor, [0.0]]))
-                acc.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve) if cyc else 0.0)
+                acc.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0)
+                if acc is d_dyn:
+                    top.append(max((c[0] for c in cyc), default=0.0))
         out["damage_dynamic"] = np.array(d_dyn)
         out["damage_static"] = np.array(d_st)
+        out["max_range_dynamic"] = np.array(top)  # largest stress range of the dynamic history [Pa]
         out["n_steps"] = np.array(result.n_steps, float)
         return out
 
@@ -359,7 +362,7 @@ class DynamicJob:
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
         if "event_id" not in part or not np.array_equal(part["event_id"], np.array(batch, np.int64)):
             return "its events are not those of this batch"
-        for k in ("dyn_peak", "run_static_peak", "damage_dynamic", "damage_static"):
+        for k in ("dyn_peak", "run_static_peak", "damage_dynamic", "damage_static", "max_range_dynamic"):
             if k not in part or part[k].shape[0] != len(batch) or not np.all(np.isfinite(part[k])):
                 return f"{k} is missing or not finite"
         return None
@@ -373,7 +376,8 @@ class DynamicJob:
         data: dict[str, list] = {}
         for k in range(len(self.batches())):
             part = load_part(parts, k, sums)
-            for name in ("event_id", "dyn_peak", "run_static_peak", "damage_dynamic", "damage_static", "n_steps"):
+            for name in ("event_id", "dyn_peak", "run_static_peak", "damage_dynamic", "damage_static", "max_range_dynamic",
+                         "n_steps"):
                 data.setdefault(name, []).append(np.asarray(part[name]))
         cat = {k: np.concatenate(v, axis=0) for k, v in data.items()}
         return xr.Dataset({
@@ -381,5 +385,6 @@ class DynamicJob:
             "run_static_peak": (("event", "line"), cat["run_static_peak"]),
             "damage_dynamic": (("event", "detail"), cat["damage_dynamic"].reshape(len(cat["event_id"]), -1)),
             "damage_static": (("event", "detail"), cat["damage_static"].reshape(len(cat["event_id"]), -1)),
+            "max_range_dynamic": (("event", "detail"), cat["max_range_dynamic"].reshape(len(cat["event_id"]), -1)),
             "n_steps": ("event", cat["n_steps"]),
         }, coords={"event": cat["event_id"]}, attrs={"study": self.to_json()})

@@ -247,7 +247,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     sample = dyn["sample"]
     gid = dyn["gid"]
     n_ev = gid.size
-    out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "life")}
+    out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "life",
+                                                       "below_limit")}
     max_bin = int(h_bin.max()) + 1 if h_bin.size else 1
     hist = np.zeros((len(details), max_bin))
     for j, det in enumerate(details):
@@ -258,7 +259,7 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
             r = res_val[(res_day == d) & (res_det == j)]
             state = join(state, RainflowState(empty, empty, r))
         cyc = finish(state)
-        d_join = miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve) if cyc else 0.0
+        d_join = miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0
         d_static = float(closed[:, j].sum() + d_join)
         sel = h_det == j
         np.add.at(hist[j], h_bin[sel], h_cnt[sel])
@@ -272,6 +273,19 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         else:
             d_total, se = d_static, math.nan
         d_total = max(d_total, 0.0)
+        # the constant-amplitude limit rule (EN 1993-1-9 1.3.3.3, AASHTO (ΔF)_TH) on the whole
+        # period's loading: no damage when every range is below the limit.  The static spectrum's
+        # largest range is bounded by the upper edge of its top non-empty histogram bin
+        # (conservative); the total loading's by that and every dynamically simulated event's
+        # largest range (all simulated events, the governing ones included)
+        top = np.flatnonzero(hist[j] > 0)
+        static_below = top.size == 0 or (top[-1] + 1) * det.bin < curve.threshold
+        dyn_top = max((float(r["max_range_dynamic"][j]) for r in dyn["results"].values()), default=0.0)
+        if static_below:
+            d_static = 0.0
+        if static_below and dyn_top < curve.threshold:
+            d_total = 0.0
+        out["below_limit"][j] = float(static_below and dyn_top < curve.threshold)
         per_year = d_total / years
         out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
         out["ratio"][j] = d_total / d_static if d_static > 0 else math.nan
@@ -291,6 +305,7 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         "dynamic_damage_ratio": ("detail", out["ratio"], a("1", "fatigue_damage / fatigue_damage_static")),
         "equivalent_stress_range": ("detail", out["eq"], a("Pa", "damage-equivalent stress range at 2e6 cycles a year")),
         "remaining_life": ("detail", out["life"], a("year", "years until the Miner sum reaches 1 at fatigue_damage_per_year")),
+        "below_fatigue_limit": ("detail", out["below_limit"].astype(np.int8), a("1", "1 if every stress range of the period (static, and of every dynamically simulated event) is below the constant-amplitude fatigue limit: no damage (EN 1993-1-9 1.3.3.3, AASHTO (dF)_TH)")),
         "damage_per_day_static": (("day", "detail"), alone, a("1", "Miner damage of each day's static history counted alone")),
         "stress_range_histogram": (("detail", "stress_range_bin"), hist, a("1", "static stress-range cycles (half cycles 0.5) per bin")),
     }
