@@ -42,7 +42,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any, Optional, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator, model_validator
 
 from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
@@ -57,6 +57,10 @@ class RailSpecError(VbikitError):
 
 class _Section(BaseModel):
     model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False)
+
+
+#: the [bridge] keys that name an entry of a code table: key -> its table (EN 1991-2 / EN 1990 rules)
+_NAMED = {"deck": DECK_DAMPING, "track": ACCELERATION_LIMITS, "maintenance": DYNAMIC_FACTORS}
 
 
 class BridgeSection(_Section):
@@ -83,25 +87,12 @@ class BridgeSection(_Section):
             raise ValueError(f"{beam[0]}: give either scenario or span, EI and mass_per_length, not both")
         return self
 
-    @field_validator("deck")
+    @field_validator("deck", "track", "maintenance")
     @classmethod
-    def _deck(cls, v: str) -> str:
-        if v not in DECK_DAMPING:
-            raise ValueError(f"deck must be one of {', '.join(DECK_DAMPING)}, got {v!r}")
-        return v
-
-    @field_validator("track")
-    @classmethod
-    def _track(cls, v: str) -> str:
-        if v not in ACCELERATION_LIMITS:
-            raise ValueError(f"track must be one of {', '.join(ACCELERATION_LIMITS)}, got {v!r}")
-        return v
-
-    @field_validator("maintenance")
-    @classmethod
-    def _maint(cls, v: str) -> str:
-        if v not in DYNAMIC_FACTORS:
-            raise ValueError(f"maintenance must be one of {', '.join(DYNAMIC_FACTORS)}, got {v!r}")
+    def _named(cls, v: str, info: ValidationInfo) -> str:
+        allowed = _NAMED[info.field_name]
+        if v not in allowed:
+            raise ValueError(f"{info.field_name} must be one of {', '.join(allowed)}, got {v!r}")
         return v
 
     @field_validator("classification_factor")
