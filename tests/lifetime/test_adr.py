@@ -33,3 +33,34 @@ def test_adr_is_one_without_dynamics(tmp_path):
         assert ds[name].dims == ("load_effect",) and ds[name].attrs["units"]
     assert list(ds["load_effect"].values) == ["M", "w", "V"]
     assert (tmp_path / "lifetime.nc").is_file()
+
+
+def test_fatigue_limit_judges_the_whole_period(tmp_path):
+    """EN 1993-1-9 1.3.3.3: no damage when every stress range of the loading is below Δσ_D, and
+    every cycle above Δσ_L counts otherwise.  Quasi-static traffic (as above): the largest stress
+    range of the period is the largest static midspan-moment peak over the section modulus (the
+    stress returns to 0 between events; the moment at x = 3.3 m is ≥ 0 under downward loads).  A
+    detail whose largest range sits 20 % below Δσ_D does no damage though its days' cycles above
+    Δσ_L add up (damage_per_day_static > 0); one whose largest range sits 20 % above Δσ_D does,
+    more than its cycles above Δσ_D alone would (the m = 5 cycles count)."""
+    from vbikit.fatigue import sn_curve
+
+    first = run_lifetime(_spec(days=5), tmp_path / "a", base_dir=".", workers=1, figures=False)
+    m_max = float(first["event_static"].sel(load_effect="M").max())
+    d_d = sn_curve("EN 36").threshold  # Δσ_D of category 36 [Pa]
+    details = [{"name": "below", "effect": "M", "section_modulus": m_max / (0.8 * d_d), "category": "EN 36"},
+               {"name": "above", "effect": "M", "section_modulus": m_max / (1.2 * d_d), "category": "EN 36"}]
+    ds = run_lifetime(_spec(days=5, fatigue={"details": details, "histogram_bin": 1e5}), tmp_path / "b", base_dir=".",
+                      workers=1, figures=False)
+    below, above = ds.sel(detail="below"), ds.sel(detail="above")
+    assert int(below["below_fatigue_limit"]) == 1 and float(below["fatigue_damage"]) == 0.0
+    assert float(below["damage_per_day_static"].sum()) > 0.0
+    assert int(above["below_fatigue_limit"]) == 0 and float(above["fatigue_damage_static"]) > 0.0
+    # the cycles of the 'below' detail, scaled by 1.2 / 0.8, are those of 'above' on the m = 5 slope and
+    # beyond: its damage exceeds what the ranges above Δσ_D alone (on m = 3) would do
+    hist = above["stress_range_histogram"].values
+    edges = ds["stress_range_bin"].values
+    high = edges >= d_d
+    upper = edges + 1e5
+    only_high = float(np.sum(hist[high] / (2e6 * (36e6 / upper[high]) ** 3)))  # an upper bound of their damage
+    assert float(above["fatigue_damage_static"]) > only_high
