@@ -4,7 +4,8 @@ on stderr and lists them under ``warnings`` in the JSON summary); none stops a r
 
 Thresholds (documented in docs/scenario.md):
 
-* speed outside 5–150 km/h (a speed in km/h typed as ``speed`` [m/s] reads 3.6 times too fast);
+* speed outside 5–150 km/h (a speed in km/h typed as ``speed`` [m/s] reads 3.6 times too fast),
+  or outside the vehicle's own usual range (``Vehicle.usual_speed_kmh``: trains 5–420 km/h);
 * road elevation (profile plus defects) over 0.1 m anywhere the wheels go (a profile in mm read as m);
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
 * a step given by the user that is coarser than the integrator's automatic step, and bridge
@@ -37,14 +38,15 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
                    response_y: float | None = None) -> list[str]:
     """Warnings about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
     out: list[str] = []
-    lo, hi = SPEED_RANGE_KMH
     t_end = crossing.exit_time()
     if crossing.single:  # at the start and when the last axle has left
-        speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.vehicles[0].velocity(t_end))))]
+        speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.vehicles[0].velocity(t_end))),
+                   crossing.vehicles[0].vehicle)]
     else:  # each vehicle at its entry and when the last one has left
-        speeds = [(f"vehicles[{i + 1}].speed", f"vehicle {i + 1}'s speed", (m.speed, float(m.velocity(t_end))))
+        speeds = [(f"vehicles[{i + 1}].speed", f"vehicle {i + 1}'s speed", (m.speed, float(m.velocity(t_end))), m.vehicle)
                   for i, m in enumerate(crossing.vehicles)]
-    for key, label, (v0, v1) in speeds:
+    for key, label, (v0, v1), vehicle in speeds:
+        lo, hi = vehicle.usual_speed_kmh or SPEED_RANGE_KMH
         for what, v in ((label, v0 * 3.6), (f"{label} when the last axle leaves the bridge", v1 * 3.6)):
             if not lo <= v <= hi:
                 out.append(f"{key}: {what} {v:.4g} km/h ({v / 3.6:.4g} m/s) is outside the usual "

@@ -73,6 +73,9 @@ class Vehicle:
         A one-line description.
     parameters : dict of str to float
         The parameters the model was built from.
+    usual_speed_kmh : (float, float), optional
+        Keyword only: the usual speed range of this kind of vehicle [km/h]; a speed outside it is
+        warned of (``vbikit.analysis.checks``); None: that of road vehicles.
     bodies : dict, optional
         Keyword only: the rigid bodies of a vehicle built by ``VehicleBuilder``, name ->
         (s_cg [m], heave, pitch, roll rows) (sensor positions, ``vbikit.driveby``).
@@ -90,6 +93,7 @@ class Vehicle:
     #: rigid bodies of a built vehicle: name -> (s_cg [m], heave, pitch, roll rows); a point (s, y) of
     #: the body moves by (heave + (s_cg − s)·pitch + y·roll) · q (empty when not built by VehicleBuilder)
     bodies: dict = field(default_factory=dict, kw_only=True, repr=False, compare=False)
+    usual_speed_kmh: "tuple[float, float] | None" = field(default=None, kw_only=True, repr=False, compare=False)
 
     @property
     def n_dof(self) -> int:

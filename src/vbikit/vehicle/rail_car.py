@@ -51,6 +51,7 @@ from numpy.typing import NDArray
 
 from vbikit.vehicle.builder import VehicleBuilder
 from vbikit.vehicle.model import GRAVITY, Vehicle
+from vbikit.vehicle.trains import TRAIN_SPEED_RANGE_KMH
 
 #: Wheel–rail contact settings: "hertz" (linearised Hertz from the static wheel load and the
 #: wheel radius), "rigid" (wheelsets follow the rail), or a stiffness [N/m] per wheelset.
@@ -274,7 +275,7 @@ def rail_car(params: RailCarParameters, axle_loads: "tuple[float, ...] | list[fl
                    + (f" ({p.source})" if p.source else ""), values)
     if k_contact is None:  # the wheelsets' weight rests on the bogies' axle points (module docstring)
         car = dataclasses.replace(car, gravity=car.gravity - p.wheelset_mass * GRAVITY * sum(w.row for w in car.wheels))
-    return car
+    return dataclasses.replace(car, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH)
 
 
 #: Documented cars (whole-car values; per-side literature values × 2 for the planar model).

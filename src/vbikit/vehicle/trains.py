@@ -28,7 +28,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Optional
 
@@ -37,6 +37,10 @@ from numpy.typing import NDArray
 
 from vbikit.errors import VbikitError
 from vbikit.vehicle.model import GRAVITY, Vehicle
+
+#: usual speeds of trains [km/h]: up to 1.2 × 350 km/h, the sweep limit of EN 1991-2 6.4.6 on the
+#: fastest lines (a speed outside is warned of, as for road vehicles)
+TRAIN_SPEED_RANGE_KMH = (5.0, 420.0)
 
 
 
@@ -275,8 +279,9 @@ def train_vehicle(train: Train) -> Vehicle:
     vb = VehicleBuilder(train.name)
     for k, (a, p) in enumerate(zip(train.axle_positions, train.axle_loads)):
         vb.wheel(f"a{k + 1}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
-    return vb.build(f"{train.name}: {train.n_axles} moving axle loads" + (f" ({train.source})" if train.source else ""),
-                    {"n_axles": float(train.n_axles), "total_load": train.total_load})
+    vehicle = vb.build(f"{train.name}: {train.n_axles} moving axle loads" + (f" ({train.source})" if train.source else ""),
+                       {"n_axles": float(train.n_axles), "total_load": train.total_load})
+    return replace(vehicle, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH)
 
 
 # ---------------------------------------------------------------------------------- registry
