@@ -135,7 +135,6 @@ def figure(path: Path) -> None:
     from vbikit._files import save_figure
 
     save_figure(fig, path, dpi=120)
-    plt.close(fig)
 
 
 def main() -> None:

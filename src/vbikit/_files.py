@@ -111,9 +111,15 @@ def figure_format(path: str | Path) -> str:
 
 def save_figure(fig: Any, path: str | Path, **kwargs: Any) -> Path:
     """``fig.savefig`` to ``path`` atomically (the format follows the file suffix, PNG without one;
-    ``figure_format``)."""
-    fmt = figure_format(path)
-    return atomic_write(Path(path), lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
+    ``figure_format``), then close ``fig`` (also when writing fails), so that a library that
+    draws many figures does not keep them open in pyplot."""
+    try:
+        fmt = figure_format(path)
+        return atomic_write(Path(path), lambda tmp: fig.savefig(tmp, format=fmt, **kwargs))
+    finally:
+        import matplotlib.pyplot as plt
+
+        plt.close(fig)
 
 
 _SAFE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._ +=-]*")  # whole name (fullmatch: no trailing newline)

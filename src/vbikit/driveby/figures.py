@@ -75,8 +75,6 @@ def damage_figure(ds):
 def write_figures(ds, out_dir: str | Path) -> list[Path]:
     """Write driveby-spectrogram.png, driveby-frequency-vs-speed.png and (with damage cases)
     driveby-damage.png into ``out_dir``."""
-    import matplotlib.pyplot as plt
-
     from vbikit._files import save_figure
 
     out_dir = Path(out_dir)
@@ -86,5 +84,4 @@ def write_figures(ds, out_dir: str | Path) -> list[Path]:
         figs.append(("driveby-damage.png", damage_figure(ds)))
     for name, fig in figs:
         written.append(save_figure(fig, out_dir / name, dpi=120))
-        plt.close(fig)
     return written

@@ -84,10 +84,7 @@ def plot_gumbel(fit: ExtremeFit, path: str | Path, periods: Any = (75.0, 100.0, 
     ax.legend(fontsize="small", loc="upper left")
     ax.set_title(title or ", ".join(f"{k} = {v:.4g}" for k, v in fit.params.items()), fontsize="medium")
     path = Path(path)
-    try:
-        save_figure(fig, path, dpi=120)
-    finally:
-        plt.close(fig)
+    save_figure(fig, path, dpi=120)
     return path
 
 

@@ -44,7 +44,6 @@ def plot_case(cmp: CaseComparison, path: str | Path, title: str = "") -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_figure(fig, path, dpi=110)
-    plt.close(fig)
     return path
 
 

@@ -52,5 +52,4 @@ def plot_mode_shapes(bridge: ModalBridge, path: str | Path, n_modes: int = 6, ti
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_figure(fig, path, dpi=110)
-    plt.close(fig)
     return path

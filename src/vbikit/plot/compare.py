@@ -31,5 +31,4 @@ def plot_tire_comparison(responses: dict[str, PointResponse], path: str | Path, 
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_figure(fig, path, dpi=120)
-    plt.close(fig)
     return path

@@ -42,5 +42,4 @@ def plot_crossing(result: CrossingResult, response: PointResponse, path: str | P
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_figure(fig, path, dpi=120, **({"metadata": metadata} if metadata else {}))
-    plt.close(fig)
     return path

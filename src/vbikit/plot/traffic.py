@@ -48,8 +48,5 @@ def plot_stream(ds, path: str | Path, title: str = "") -> Path:
                  f"several vehicles; amplification of the governing static event "
                  f"{float(ds.attrs['governing_static_amplification']):.3f}")
     path = Path(path)
-    try:
-        save_figure(fig, path, dpi=120)
-    finally:
-        plt.close(fig)
+    save_figure(fig, path, dpi=120)
     return path

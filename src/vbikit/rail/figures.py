@@ -39,5 +39,4 @@ def plot_acceleration_envelopes(ds, path: str | Path, title: str = "") -> Path:
     ax.legend(fontsize="x-small", ncol=2)
     ax.grid(alpha=0.3)
     out = save_figure(fig, path, dpi=120)
-    plt.close(fig)
     return out

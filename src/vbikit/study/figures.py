@@ -83,5 +83,4 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_figure(figure, path, dpi=120)
-    plt.close(figure)
     return path
