@@ -24,6 +24,17 @@ def positive(value: Any, name: str) -> float:
     return positive_number(value, name, ExtremesError)
 
 
+def open_unit(value: Any, name: str, what: str) -> float:
+    """``value`` as a float in the open interval (0, 1) (``what`` it is, for the message)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ExtremesError(f"{name}: needs {what} in (0, 1), got {value!r}") from None
+    if not 0.0 < v < 1.0:
+        raise ExtremesError(f"{name}: needs {what} in (0, 1), got {value!r}")
+    return v
+
+
 def periods(values: Any, name: str = "periods") -> np.ndarray:
     """Return periods (years) as a 1-D array of finite numbers > 0."""
     try:

@@ -1,9 +1,9 @@
 """Named return periods of characteristic load effects (a small registry)."""
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
+from vbikit.extremes._checks import open_unit, positive
 from vbikit.extremes.errors import ExtremesError
 
 
@@ -32,18 +32,8 @@ class ReturnPeriod:
 def exceedance_return_period(probability: float, years: float) -> float:
     """Return period whose level is exceeded with ``probability`` in ``years`` years:
     T = 1 / (1 − (1 − p)^(1/years)) (independent years).  10 % in 100 years → 949.6 years."""
-    try:
-        p = float(probability)
-    except (TypeError, ValueError):
-        raise ExtremesError(f"probability: needs a probability in (0, 1), got {probability!r}") from None
-    if not 0.0 < p < 1.0:
-        raise ExtremesError(f"probability: needs a probability in (0, 1), got {probability!r}")
-    try:
-        n_years = float(years)
-    except (TypeError, ValueError):
-        raise ExtremesError(f"years: needs a finite number of years > 0, got {years!r}") from None
-    if not (math.isfinite(n_years) and n_years > 0):
-        raise ExtremesError(f"years: needs a finite number of years > 0, got {years!r}")
+    p = open_unit(probability, "probability", "a probability")
+    n_years = positive(years, "years")
     return 1.0 / (1.0 - (1.0 - p) ** (1.0 / n_years))
 
 

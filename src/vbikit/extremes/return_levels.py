@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from vbikit.extremes._checks import open_unit
 from vbikit.extremes._checks import periods as _periods
 from vbikit.extremes.errors import ExtremesError
 from vbikit.extremes.fits import _PARAMS, ExtremeFit, _frozen, _mle
@@ -99,12 +100,7 @@ def return_levels(fit: ExtremeFit, periods: Any, ci: float = 0.95, method: str =
         One value per period (NaN bounds when the covariance is not available).
     """
     t = _check_periods(fit, periods, "periods")
-    try:
-        level_ci = float(ci)
-    except (TypeError, ValueError):
-        raise ExtremesError(f"ci: needs a confidence level in (0, 1), got {ci!r}") from None
-    if not 0.0 < level_ci < 1.0:
-        raise ExtremesError(f"ci: needs a confidence level in (0, 1), got {ci!r}")
+    level_ci = open_unit(ci, "ci", "a confidence level")
     if method not in CI_METHODS:
         raise ExtremesError(f"method: unknown confidence-interval method {method!r}; allowed: {', '.join(CI_METHODS)}")
     theta = fit._theta()
