@@ -71,6 +71,21 @@ VEHICLE_MODELS = {"axle-truck": _axle_truck, "moving-forces": moving_forces}
 EVENT_STRIDE = 2**20
 
 
+def _joined_parts(parts: Path, n_batches: int) -> dict[str, NDArray]:
+    """Every array of the finished parts (checked against their checksums), the batches' joined
+    along their first axis in batch order (the runner's bookkeeping left out)."""
+    from vbikit.study.storage import load_part, part_checksums
+
+    sums = part_checksums(parts)
+    data: dict[str, list] = {}
+    for k in range(n_batches):
+        part = load_part(parts, k, sums)
+        for name in part:
+            if name not in ("batch_index", "spec_checksum"):
+                data.setdefault(name, []).append(np.asarray(part[name]))
+    return {k: np.concatenate(v, axis=0) for k, v in data.items()}
+
+
 @dataclass(frozen=True)
 class Detail:
     """A fatigue detail as the workers need it: its line index, stress per unit [Pa], S-N curve name, γ_Mf, bin [Pa]."""
@@ -232,17 +247,7 @@ class StaticJob:
     def assemble(self, parts: Path):
         import xarray as xr
 
-        from vbikit.study.storage import load_part, part_checksums
-
-        sums = part_checksums(parts)
-        data: dict[str, list] = {}
-        for k in range(len(self.batches())):
-            part = load_part(parts, k, sums)
-            for name in part:
-                if name in ("batch_index", "spec_checksum"):
-                    continue
-                data.setdefault(name, []).append(np.asarray(part[name]))
-        cat = {k: np.concatenate(v, axis=0) for k, v in data.items()}
+        cat = _joined_parts(parts, len(self.batches()))
         ds = xr.Dataset({
             **{k: ("event", cat[k]) for k in ("ev_day", "ev_index", "ev_start", "ev_n_vehicles", "ev_gross_weight",
                                               "ev_sample")},
@@ -370,16 +375,7 @@ class DynamicJob:
     def assemble(self, parts: Path):
         import xarray as xr
 
-        from vbikit.study.storage import load_part, part_checksums
-
-        sums = part_checksums(parts)
-        data: dict[str, list] = {}
-        for k in range(len(self.batches())):
-            part = load_part(parts, k, sums)
-            for name in ("event_id", "dyn_peak", "run_static_peak", "damage_dynamic", "damage_static", "max_range_dynamic",
-                         "n_steps"):
-                data.setdefault(name, []).append(np.asarray(part[name]))
-        cat = {k: np.concatenate(v, axis=0) for k, v in data.items()}
+        cat = _joined_parts(parts, len(self.batches()))
         return xr.Dataset({
             "dyn_peak": (("event", "line"), cat["dyn_peak"]),
             "run_static_peak": (("event", "line"), cat["run_static_peak"]),
