@@ -12,9 +12,12 @@ than 10 exceedances: no POT value (said so).
 
 **Flags.**
 
-* *methods disagree*: the BM level lies outside the POT interval or the POT level outside the BM
-  interval (each method's confidence interval at the run's ``ci``): an engineer using either
-  interval would reject the other method's value.
+* *methods disagree*: the BM and the POT confidence intervals (the run's ``ci``) do not overlap
+  — the two methods disagree beyond their intervals (a method without an interval: its value
+  outside the other's interval).  The weaker test "either value outside the other's interval"
+  would flag most Gumbel samples, where the free-ξ POT value scatters well beyond the narrow
+  Gumbel BM interval (26 of 30 simulated samples, against 4 of 30 for the overlap test;
+  tests/lifetime/test_accuracy.py).
 * *strongly negative shape*: the fitted ξ (GEV of the block maxima, GPD of the exceedances) is
   below ``XI_STRONGLY_NEGATIVE`` = −0.3.  A negative ξ is a bounded upper tail (end point
   μ − σ/ξ, u − σ/ξ for the GPD); fitted to a short record it pins the long-period levels at
@@ -97,13 +100,17 @@ def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float
 
 
 def methods_disagree(bm, bm_lo, bm_hi, pot, pot_lo, pot_hi) -> np.ndarray:
-    """True where the BM level is outside the POT interval or the POT level outside the BM
-    interval (each test where its numbers exist; False where neither can be made)."""
+    """True where the BM and POT confidence intervals do not overlap; where one method has a
+    value but no interval, where that value lies outside the other's interval (False where
+    neither test can be made)."""
     bm, bm_lo, bm_hi, pot, pot_lo, pot_hi = (np.asarray(a, float) for a in (bm, bm_lo, bm_hi, pot, pot_lo, pot_hi))
+    fin = np.isfinite
+    bm_iv, pot_iv = fin(bm_lo) & fin(bm_hi), fin(pot_lo) & fin(pot_hi)
     with np.errstate(invalid="ignore"):
-        bm_out = np.isfinite(bm) & np.isfinite(pot_lo) & np.isfinite(pot_hi) & ((bm < pot_lo) | (bm > pot_hi))
-        pot_out = np.isfinite(pot) & np.isfinite(bm_lo) & np.isfinite(bm_hi) & ((pot < bm_lo) | (pot > bm_hi))
-    return bm_out | pot_out
+        apart = bm_iv & pot_iv & ((pot_hi < bm_lo) | (pot_lo > bm_hi))
+        pot_out = ~pot_iv & fin(pot) & bm_iv & ((pot < bm_lo) | (pot > bm_hi))
+        bm_out = ~bm_iv & fin(bm) & pot_iv & ((bm < pot_lo) | (bm > pot_hi))
+    return apart | pot_out | bm_out
 
 
 def strongly_negative(*shapes: float) -> bool:
