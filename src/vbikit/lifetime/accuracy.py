@@ -132,8 +132,10 @@ def adr_words(adr: float, lower: float, upper: float, ci: float) -> str:
 
 
 def fatigue_verdict(damage: float, se: float, damage_static: float, years: float, design_life: float,
-                    damage_so_far: float, below_limit: bool, limit_pa: float, ci: float) -> dict:
-    """The verdict of one detail (module docstring): numbers and words."""
+                    damage_so_far: float, below_limit: bool, limit_pa: float, ci: float,
+                    limit_name: str = "Δσ_D") -> dict:
+    """The verdict of one detail (module docstring): numbers and words; ``limit_pa`` the curve's
+    constant-amplitude fatigue limit (EN Δσ_D, AASHTO (ΔF)_TH), named ``limit_name``."""
     from scipy import stats
 
     z = float(stats.norm.ppf(0.5 + ci / 2))
@@ -142,7 +144,7 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
     se_ok = math.isfinite(se)
     upper = damage_so_far + (damage + z * se) / years * design_life if se_ok else math.nan
     remaining = (1.0 - damage_so_far) / per_year if per_year > 0 else math.inf
-    limit = f"{limit_pa / 1e6:.2f} MPa (constant-amplitude limit, EN Δσ_D or AASHTO (ΔF)_TH)"
+    limit = f"{limit_name} = {limit_pa / 1e6:.2f} MPa"
     if below_limit:
         words = (f"no fatigue damage: every stress range (static, and of every simulated event) is below the "
                  f"fatigue limit {limit}; life unlimited")

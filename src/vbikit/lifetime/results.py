@@ -8,7 +8,10 @@ return levels x_T = F⁻¹(1 − 1/(n T)) with delta-method confidence intervals
 value is the return level of ``characteristic_period``; ADR = characteristic total /
 characteristic static.  Peaks over threshold: a GPD fit to the events' static peaks above the
 threshold u = their (1 − 2·n_days/n_events) quantile (about two exceedances a day), λ the
-exceedances a year; return levels x_T = u + σ/ξ ((λT)^ξ − 1).
+exceedances a year; return levels x_T = u + σ/ξ ((λT)^ξ − 1); the same for the simulated events'
+total peaks above the level the screening makes complete.  Beside them the accuracy of every
+result (``vbikit.lifetime.accuracy``): the BM/POT and shape flags, the ADR's interval, the
+governing events and their half-step re-run, the fatigue verdict.
 
 Fatigue (``vbikit.fatigue``): the static damage of the whole period counted as one history —
 the days' closed cycles plus the cycles closed when the days' residuals are joined in order,
@@ -350,7 +353,9 @@ def _verdict_variables(prep, fat_vars: dict) -> dict[str, Any]:
     rows = [fatigue_verdict(float(fat_vars["fatigue_damage"][1][j]), float(fat_vars["fatigue_damage_se"][1][j]),
                             float(fat_vars["fatigue_damage_static"][1][j]), years, spec.fatigue.design_life,
                             spec.fatigue.damage_so_far, bool(fat_vars["below_fatigue_limit"][1][j]),
-                            float(det.sn().threshold), spec.ci) for j, det in enumerate(prep.details)]
+                            float(det.sn().threshold), spec.ci,
+                            "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH")
+            for j, det in enumerate(prep.details)]
     a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
     life = spec.fatigue.design_life
     return {
