@@ -160,8 +160,8 @@ def test_governing_events_half_step_and_summary(quasi_static):
     largest simulated total; quasi-static, the half-step re-run changes the total peak by less
     than the 1 % tolerance and stays within 1e-3 of the static peak; the ADR's interval is
     narrow (the total and static maxima of a day nearly equal: correlation > 0.999) and, for the
-    moment, contains 1 and says so; summary.json holds the same numbers (no NaN), the report names the governing
-    events and prints no bare nan."""
+    moment, contains 1 and says so; summary.json holds the same numbers (no NaN) and is rebuilt
+    from the stored lifetime.nc, the report names the governing events and prints no bare nan."""
     ds, out = quasi_static
     st, tot = ds["event_static"].values, ds["event_total"].values
     signs = ds["effect_sign"].values
@@ -184,9 +184,36 @@ def test_governing_events_half_step_and_summary(quasi_static):
         assert int(ds["adr_indistinguishable_from_one"].values[j]) == int(lo <= 1.0 <= hi)
     assert int(ds["adr_indistinguishable_from_one"].values[0]) == 1  # the moment: ADR 1.0003 ± 5e-4
     facts = json.loads((out / "summary.json").read_text())
+    import xarray as xr
+
+    from vbikit.lifetime.report import summary
+
+    with xr.open_dataset(out / "lifetime.nc") as stored:  # the summary of the stored file is the run's
+        assert json.loads(json.dumps(summary(stored.load()), allow_nan=False)) == facts
     assert facts["load_effects"]["M"]["adr"]["value"] == pytest.approx(float(ds["assessment_dynamic_ratio"].values[0]))
     assert facts["load_effects"]["R"]["governing"]["static"]["event"] == int(ds["governing_event"].values[1, 0])
     report = (out / "report.txt").read_text()
     assert "governing static maximum" in report and "half the time step" in report
     assert "cannot tell the ADR from 1" in report
     assert not re.search(r"\bnan\b", report, re.IGNORECASE)
+
+
+def test_report_flags_a_coarse_step_and_a_disagreement(quasi_static):
+    """The small run's dataset with a governing event 2 % off at half step (tolerance 1 %) and the
+    methods disagreeing at 1,000 years: summary and report say both, in words; 0.5 % is not flagged."""
+    from vbikit.lifetime.report import summary, text_report
+
+    ds = quasi_static[0].copy(deep=True)
+    ds["governing_half_step_change"].values[0, 1] = 0.02
+    ds["governing_half_step_change"].values[1, 1] = 0.005
+    ds["methods_disagree_static"].values[:] = 0
+    ds["methods_disagree_static"].values[0, -1] = 1
+    facts = summary(ds)
+    m, r = facts["load_effects"]["M"], facts["load_effects"]["R"]
+    assert m["governing"]["total"]["half_step_flag"] and not r["governing"]["total"]["half_step_flag"]
+    assert any("+2.00 % at half the time step" in f for f in m["flags"])
+    assert not any("half the time step" in f for f in r["flags"])
+    assert any("disagree beyond their intervals at 1000 years —" in f for f in m["flags"])
+    assert not any("disagree" in f for f in r["flags"])
+    report = text_report(facts)
+    assert "FLAG governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report

@@ -111,13 +111,13 @@ def summary(ds) -> dict[str, Any]:
 
     a = ds.attrs
     out: dict[str, Any] = {
-        "title": a["title"],
-        "run": {k: a[k] for k in ("n_days", "days_per_year", "n_trucks", "n_events", "n_dynamic_events",
+        "title": str(a["title"]),
+        "run": {k: int(a[k]) for k in ("n_days", "days_per_year", "n_trucks", "n_events", "n_dynamic_events",
                                   "n_sample_events")} | {"fraction_dynamic": float(a["fraction_dynamic"]),
                                                          "time_total_s": float(a["time_total_s"]),
                                                          "time_static_s": float(a["time_static_s"]),
                                                          "events_per_second_static": float(a["events_per_second_static"])},
-        "fits": {"distribution": a["distribution"], "block": a["block"],
+        "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
                  "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),
                  "xi_strongly_negative": float(a["xi_strongly_negative"])},
         "screening": {"amplification_bound_given": float(a["amplification_bound_given"]),
@@ -180,13 +180,13 @@ def text_report(facts: dict[str, Any]) -> str:
                    f"{_g(fw['pot_shape'], '.3f')}")
             lines.append(f"  {w}: BM ξ = {_g(fw['block_maxima_shape'], '.3f')}; {pot}"
                          + ("" if fw["pot_shape"] is not None else " (no POT value: too few exceedances)"))
-        lines.append(f"  {'T [yr]':>8}  {'static BM':<34}{'static POT':<34}{'total BM':<34}{'total POT':<34}")
+        lines.append(f"  {'T [yr]':>8}  {'static BM':<38}{'static POT':<38}{'total BM':<38}total POT")
         for row in e["return_levels"]:
             cells = []
             for w in ("static", "total"):
                 mark = " *" if row[w]["methods_disagree"] else ""
                 cells += [_iv(row[w]["block_maxima"]), _iv(row[w]["peaks_over_threshold"]) + mark]
-            lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<34}" for c in cells))
+            lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<37} " for c in cells).rstrip())
         lines.append("  (* BM and POT disagree beyond their intervals)")
         lines.append("  " + e["adr"]["words"])
         for w, g in e.get("governing", {}).items():
@@ -209,6 +209,8 @@ def text_report(facts: dict[str, Any]) -> str:
                          f"{_g(d['fatigue_damage_per_year'], '>12.4g')}"
                          f"{('n/a' if eq is None else format(eq / 1e6, '.3f')):>11}"
                          f"{('unlimited' if d['remaining_life'] is None else format(d['remaining_life'], '.4g')):>10}")
+        if any(d["equivalent_stress_range"] is None for d in facts["fatigue"].values()):
+            lines.append("  (Δσ_E,2 n/a: the range doing the year's damage in 2e6 cycles lies below the curve's cut-off)")
         for name, d in facts["fatigue"].items():
             lines += [f"  {name}: {d['verdict']}", f"  {name}: {d['dynamic_damage_ratio_words']}"]
     return "\n".join(lines) + "\n"

@@ -163,7 +163,8 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
 def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, base_dir: str | Path | None = None,
                  workers: Optional[int] = None, scheduler: Optional[str] = None,
                  progress: Optional[Progress] = None, figures: bool = True):
-    """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report).
+    """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report.txt,
+    summary.json).
 
     ``spec``: a lifetime TOML path, a parsed dict or a ``LifetimeFile``; ``base_dir``: where its
     relative paths point (default: the file's folder, else "."); ``workers`` / ``scheduler``: as
