@@ -45,16 +45,35 @@ def example() -> dict:
             "characteristic_static", "characteristic_total", "assessment_dynamic_ratio", "im_mean", "im_q95",
             "im_governing_static_event")} | {"units": str(ds["load_effect_units"].values[j]),
                                               "aashto_lrfd": float(ds["code_allowance"].values[j, 0])}
+    k_char = int(list(ds["return_period"].values).index(a["characteristic_period"]))
+    for j, name in enumerate(ds["load_effect"].values):
+        e = effects[str(name)]
+        for w in ("static", "total"):
+            e[f"pot_{w}"] = float(ds[f"return_level_pot_{w}"].values[j, k_char])
+            e[f"pot_{w}_shape"] = float(ds[f"fit_pot_{w}_shape"].values[j])
+            e[f"pot_{w}_exceedances"] = float(ds[f"fit_pot_{w}_exceedances"].values[j])
+            e[f"{w}_lower"] = float(ds[f"return_level_{w}_lower"].values[j, k_char])
+            e[f"{w}_upper"] = float(ds[f"return_level_{w}_upper"].values[j, k_char])
+            e[f"methods_disagree_{w}"] = float(ds[f"methods_disagree_{w}"].values[j, k_char])
+            e[f"shape_strongly_negative_{w}"] = float(ds[f"shape_strongly_negative_{w}"].values[j])
+        e["adr_lower"] = float(ds["assessment_dynamic_ratio_lower"].values[j])
+        e["adr_upper"] = float(ds["assessment_dynamic_ratio_upper"].values[j])
+        e["half_step_change_static"] = float(ds["governing_half_step_change"].values[j, 0])
+        e["half_step_change_total"] = float(ds["governing_half_step_change"].values[j, 1])
     details = {}
     for j, name in enumerate(ds["detail"].values):
         details[str(name)] = {k: float(ds[k].values[j]) for k in (
             "fatigue_damage", "fatigue_damage_static", "fatigue_damage_se", "dynamic_damage_ratio",
-            "fatigue_damage_per_year", "remaining_life")}
+            "fatigue_damage_per_year", "remaining_life", "fatigue_damage_design_life",
+            "fatigue_damage_design_life_upper")} | {"verdict": str(ds["fatigue_verdict"].values[j]),
+                                                     "ratio_words": str(ds["dynamic_damage_ratio_note"].values[j])}
     return {"date": time.strftime("%Y-%m-%d"), "wall_s": wall, "n_days": int(a["n_days"]), "n_trucks": int(a["n_trucks"]),
             "n_events": int(a["n_events"]), "n_dynamic": int(a["n_dynamic_events"]),
             "n_sample": int(a["n_sample_events"]), "fraction_dynamic": float(a["fraction_dynamic"]),
             "static_events_per_s": float(a["events_per_second_static"]),
             "amplification_max_observed": float(a["amplification_max_observed"]),
+            "amplification_max_heavy": float(a["amplification_max_heavy"]),
+            "amplification_bound_used": float(a["amplification_bound_used"]),
             "first_frequency_hz": float(a["first_frequency_hz"]), "effects": effects, "details": details}
 
 
@@ -117,9 +136,28 @@ def render(numbers: dict) -> str:
     lines += ["", "| detail | damage (week, static + dynamic) | ± standard error | static damage | dynamic / static "
                   "| damage per year | remaining life [years] |", "|---|---|---|---|---|---|---|"]
     for name, d in ex["details"].items():
+        ratio = "undefined (static damage 0)" if d["dynamic_damage_ratio"] != d["dynamic_damage_ratio"] else \
+            f"{d['dynamic_damage_ratio']:.3f}"
+        life = "unlimited" if d["remaining_life"] == float("inf") else f"{d['remaining_life']:.4g}"
         lines.append(f"| {name} | {d['fatigue_damage']:.3g} | {d['fatigue_damage_se']:.2g} | "
-                     f"{d['fatigue_damage_static']:.3g} | {d['dynamic_damage_ratio']:.3f} | "
-                     f"{d['fatigue_damage_per_year']:.3g} | {d['remaining_life']:.4g} |")
+                     f"{d['fatigue_damage_static']:.3g} | {ratio} | "
+                     f"{d['fatigue_damage_per_year']:.3g} | {life} |")
+    lines += ["", "How accurate (the example week; 1,000-year values, 95 % intervals; BM = Gumbel of the daily "
+                  "maxima, POT = GPD of the peaks over the threshold; flags as in the text):", "",
+              "| load effect | static BM | static POT (ξ) | total BM | total POT (ξ) | ADR (interval) | flags "
+              "| governing total event at half step |", "|---|---|---|---|---|---|---|---|"]
+    for name, e in ex["effects"].items():
+        flags = [f"{w}: ξ < −0.3" for w in ("static", "total") if e[f"shape_strongly_negative_{w}"]]
+        flags += [f"{w}: BM and POT disagree" for w in ("static", "total") if e[f"methods_disagree_{w}"]]
+        if e["adr_lower"] <= 1.0 <= e["adr_upper"]:
+            flags.append("ADR cannot be told from 1")
+        pot = {w: (f"n/a ({e[f'pot_{w}_exceedances']:.0f} exceedance(s), 10 needed)" if e[f"pot_{w}"] != e[f"pot_{w}"] else
+                   f"{e[f'pot_{w}']:.4g} ({e[f'pot_{w}_shape']:.2f})") for w in ("static", "total")}
+        lines.append(f"| {name} | {e['characteristic_static']:.4g} ({e['static_lower']:.3g} … {e['static_upper']:.3g}) | "
+                     f"{pot['static']} | {e['characteristic_total']:.4g} ({e['total_lower']:.3g} … {e['total_upper']:.3g}) | "
+                     f"{pot['total']} | {e['assessment_dynamic_ratio']:.3f} ({e['adr_lower']:.3f} … {e['adr_upper']:.3f}) | "
+                     f"{'; '.join(flags) or 'none'} | {100 * e['half_step_change_total']:+.3f} % |")
+    lines += [""] + [f"Fatigue, {name}: {d['verdict']}; {d['ratio_words']}." for name, d in ex["details"].items()]
     ex_ = numbers["exactness"]
     lines += ["", "Convolution against the coupled run's static reference at the run's time steps (largest relative "
                   "difference over the histories of the test events): "

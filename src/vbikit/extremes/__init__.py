@@ -15,6 +15,7 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.extremes.fits import BLOCK_DISTRIBUTIONS, MIN_SAMPLE, ExtremeFit, fit_block_maxima, fit_peaks_over_threshold
     from vbikit.extremes.plotting_positions import POSITIONS, PlottingPositions, plotting_positions
     from vbikit.extremes.presets import RETURN_PERIODS, ReturnPeriod, exceedance_return_period, return_period
+    from vbikit.extremes.paired import LevelRatio, level_ratio
     from vbikit.extremes.return_levels import CI_METHODS, return_level, return_levels
 
 __all__ = [
@@ -22,6 +23,7 @@ __all__ = [
     "CI_METHODS",
     "ExtremeFit",
     "ExtremesError",
+    "LevelRatio",
     "MIN_SAMPLE",
     "POSITIONS",
     "PlottingPositions",
@@ -30,6 +32,7 @@ __all__ = [
     "exceedance_return_period",
     "fit_block_maxima",
     "fit_peaks_over_threshold",
+    "level_ratio",
     "plot_gumbel",
     "plotting_positions",
     "return_level",
@@ -42,6 +45,7 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.extremes.figures": ["plot_gumbel"],
     "vbikit.extremes.fits": ["BLOCK_DISTRIBUTIONS", "ExtremeFit", "MIN_SAMPLE", "fit_block_maxima",
                              "fit_peaks_over_threshold"],
+    "vbikit.extremes.paired": ["LevelRatio", "level_ratio"],
     "vbikit.extremes.plotting_positions": ["POSITIONS", "PlottingPositions", "plotting_positions"],
     "vbikit.extremes.presets": ["RETURN_PERIODS", "ReturnPeriod", "exceedance_return_period", "return_period"],
     "vbikit.extremes.return_levels": ["CI_METHODS", "return_level", "return_levels"],

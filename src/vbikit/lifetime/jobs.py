@@ -18,6 +18,7 @@ local processes or a Dask cluster, every finished batch stored, a killed run res
 from __future__ import annotations
 
 import bisect
+import dataclasses
 import hashlib
 import json
 from dataclasses import dataclass, field
@@ -277,6 +278,9 @@ class DynamicJob:
     vehicle_model: str = "axle-truck"
     #: the records of each item's vehicles when the static pass stored them (else None: drawn again)
     event_records: tuple = field(default=(), repr=False, compare=False)
+    #: the time step is the automatic one (``vbikit.solve.choose_time_step``) times this (0.5: the
+    #: half-step re-run of the governing events)
+    step_factor: float = 1.0
     name: str = "lifetime dynamics"
     _digest: str = field(default="", repr=False)
 
@@ -298,7 +302,8 @@ class DynamicJob:
         return json.dumps({"kind": "vbikit lifetime dynamics", "setup": self.setup_key, "traffic": self._digest,
                            "seed": self.seed, "batch_size": self.batch_size, "vehicle_model": self.vehicle_model, "details": [d.__dict__ for d in self.details],
                            "items_sha256": hashlib.sha256(np.asarray(self.items, np.int64).tobytes()).hexdigest(),
-                           "n_items": self.size}, sort_keys=True)
+                           "n_items": self.size, **({"step_factor": self.step_factor} if self.step_factor != 1.0 else {})},
+                          sort_keys=True)
 
     def crossing(self, g: int):
         """The coupled crossing of global event ``g`` and its day's records."""
@@ -327,10 +332,12 @@ class DynamicJob:
         from vbikit.analysis.effects import load_effect_response
         from vbikit.analysis.response import point_response
         from vbikit.fatigue import miner_damage, rainflow
-        from vbikit.solve import simulate
+        from vbikit.solve import choose_time_step, simulate
 
         setup = build_setup(self.setup_key)
         crossing, _, _, _ = self.crossing(g)
+        if self.step_factor != 1.0:
+            crossing = dataclasses.replace(crossing, dt=choose_time_step(crossing) * self.step_factor)
         result = simulate(crossing)
         dyn, st = [], []
         for line in setup.lines:

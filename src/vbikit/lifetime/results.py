@@ -8,7 +8,10 @@ return levels x_T = F⁻¹(1 − 1/(n T)) with delta-method confidence intervals
 value is the return level of ``characteristic_period``; ADR = characteristic total /
 characteristic static.  Peaks over threshold: a GPD fit to the events' static peaks above the
 threshold u = their (1 − 2·n_days/n_events) quantile (about two exceedances a day), λ the
-exceedances a year; return levels x_T = u + σ/ξ ((λT)^ξ − 1).
+exceedances a year; return levels x_T = u + σ/ξ ((λT)^ξ − 1); the same for the simulated events'
+total peaks above the level the screening makes complete.  Beside them the accuracy of every
+result (``vbikit.lifetime.accuracy``): the BM/POT and shape flags, the ADR's interval, the
+governing events and their half-step re-run, the fatigue verdict.
 
 Fatigue (``vbikit.fatigue``): the static damage of the whole period counted as one history —
 the days' closed cycles plus the cycles closed when the days' residuals are joined in order,
@@ -25,6 +28,7 @@ from typing import Any
 
 import numpy as np
 
+from vbikit.lifetime.run import CHECK_FRACTION
 
 
 def _blocks(values: np.ndarray, size: int) -> np.ndarray:
@@ -40,20 +44,12 @@ def _fit(maxima: np.ndarray, distribution: str, per_year: float, periods, ci: fl
     return fit, level, lo, hi
 
 
-def _pot(values: np.ndarray, n_days: int, days_per_year: int, periods) -> tuple[np.ndarray, float]:
-    from vbikit.extremes import fit_peaks_over_threshold, return_levels
-
+def _static_threshold(values: np.ndarray, n_days: int) -> float:
+    """The POT threshold of the events' static peaks: their (1 − 2·n_days/n_events) quantile."""
     n = values.size
-    q = max(0.0, 1.0 - 2.0 * n_days / max(n, 1))
-    u = float(np.quantile(values, q)) if n else math.nan
-    if n < 20 or not np.isfinite(u) or np.sum(values > u) < 10:
-        return np.full(len(periods), np.nan), u
-    fit = fit_peaks_over_threshold(values, u, n * days_per_year / n_days)
-    try:
-        level, _, _ = return_levels(fit, periods, 0.95)
-    except Exception:  # periods too short for the exceedance rate
-        return np.full(len(periods), np.nan), u
-    return level, u
+    if n < 20:
+        return math.nan
+    return float(np.quantile(values, max(0.0, 1.0 - 2.0 * n_days / n)))
 
 
 def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: dict):
@@ -62,6 +58,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
 
     from vbikit._version import __version__
     from vbikit.analysis.codes import CODES, code_allowances
+    from vbikit.extremes import level_ratio
+    from vbikit.lifetime import accuracy as acc
 
     spec = prep.spec
     setup = prep.setup
@@ -96,20 +94,44 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     fit_total_blocks = _blocks(day_total, blk)
     shape = (len(lines), periods.size)
     rl = {k: np.full(shape, np.nan) for k in ("static", "static_lower", "static_upper", "total", "total_lower",
-                                              "total_upper", "pot_static")}
+                                              "total_upper", "pot_static", "pot_static_lower", "pot_static_upper",
+                                              "pot_total", "pot_total_lower", "pot_total_upper")}
     fits = {k: np.full(len(lines), np.nan) for k in ("static_location", "static_scale", "static_shape",
-                                                     "total_location", "total_scale", "total_shape", "pot_threshold")}
+                                                     "total_location", "total_scale", "total_shape", "pot_threshold",
+                                                     "pot_static_shape", "pot_total_threshold", "pot_total_shape",
+                                                     "pot_static_exceedances", "pot_total_exceedances")}
+    bm_fits: dict[tuple[str, int], Any] = {}
+    pot_why: dict[str, list[str]] = {"static": [], "total": []}
+    years = n_days / spec.days_per_year
+    complete = acc.completeness_level  # every total above this level was simulated
     for j in range(len(lines)):
         for which, data in (("static", fit_static_blocks[:, j]), ("total", fit_total_blocks[:, j])):
             fit, level, lo, hi = _fit(data, spec.distribution, per_year, periods, spec.ci)
+            bm_fits[which, j] = fit
             rl[which][j], rl[f"{which}_lower"][j], rl[f"{which}_upper"][j] = level, lo, hi
             fits[f"{which}_location"][j], fits[f"{which}_scale"][j], fits[f"{which}_shape"][j] = \
                 fit.location, fit.scale, fit.shape
-        rl["pot_static"][j], fits["pot_threshold"][j] = _pot(s_st[:, j], n_days, spec.days_per_year, periods)
+        u_static = _static_threshold(s_st[:, j], n_days)
+        s_sim = s_tot[simulated, j]
+        u_total = max(complete(s_st[:, j], simulated, bound), u_static) if np.isfinite(u_static) else math.nan
+        for which, values, u in (("static", s_st[:, j], u_static), ("total", s_sim, u_total)):
+            pot = acc.pot_levels(values, u, values.size / years, periods, spec.ci)
+            rl[f"pot_{which}"][j], rl[f"pot_{which}_lower"][j], rl[f"pot_{which}_upper"][j] = \
+                pot.level, pot.lower, pot.upper
+            fits["pot_threshold" if which == "static" else "pot_total_threshold"][j] = u
+            fits[f"pot_{which}_shape"][j] = pot.shape
+            fits[f"pot_{which}_exceedances"][j] = pot.n_exceedances
+            pot_why[which].append(pot.why)
     k_char = int(np.flatnonzero(periods == spec.characteristic_period)[0])
     char_static = rl["static"][:, k_char] * signs
     char_total = rl["total"][:, k_char] * signs
     adr = char_total / char_static
+    ratios = [level_ratio(bm_fits["total", j], bm_fits["static", j], spec.characteristic_period, spec.ci)
+              for j in range(len(lines))]
+    disagree = {w: acc.methods_disagree(rl[w], rl[f"{w}_lower"], rl[f"{w}_upper"], rl[f"pot_{w}"],
+                                        rl[f"pot_{w}_lower"], rl[f"pot_{w}_upper"]) for w in ("static", "total")}
+    steep = {w: np.array([acc.strongly_negative(fits[f"{w}_shape"][j], fits[f"pot_{w}_shape"][j])
+                          for j in range(len(lines))]) for w in ("static", "total")}
     # per-event IM statistics on the random sample (unbiased), and on every simulated event
     sample = dyn["sample"]
     im_all = total / st - 1.0
@@ -152,7 +174,12 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "return_level_total": (("load_effect", "return_period"), rl["total"] * signs[:, None], ev_attrs("", "total return level")),
         "return_level_total_lower": (("load_effect", "return_period"), rl["total_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method)")),
         "return_level_total_upper": (("load_effect", "return_period"), rl["total_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method)")),
-        "return_level_pot_static": (("load_effect", "return_period"), rl["pot_static"] * signs[:, None], ev_attrs("", "static return level from peaks over threshold (GPD)")),
+        **_pot_variables(rl, signs, spec.ci, disagree, steep, pot_why),
+        "assessment_dynamic_ratio_lower": ("load_effect", np.array([r.lower for r in ratios]), ev_attrs("1", f"lower {spec.ci:.0%} confidence bound of the ADR (delta method, covariance of the two fits from the sandwich of the same blocks; vbikit.extremes.level_ratio)")),
+        "assessment_dynamic_ratio_upper": ("load_effect", np.array([r.upper for r in ratios]), ev_attrs("1", f"upper {spec.ci:.0%} confidence bound of the ADR")),
+        "assessment_dynamic_ratio_se": ("load_effect", np.array([r.standard_error for r in ratios]), ev_attrs("1", "standard error of the ADR (delta method)")),
+        "adr_indistinguishable_from_one": ("load_effect", np.array([int(r.lower <= 1.0 <= r.upper) for r in ratios], np.int8), ev_attrs("1", "1 if the ADR's confidence interval contains 1: the data cannot tell the ADR from 1")),
+        "characteristic_correlation": ("load_effect", np.array([r.correlation for r in ratios]), ev_attrs("1", "correlation of the characteristic total and static estimators (same blocks)")),
         "adr_by_period": (("load_effect", "return_period"), rl["total"] / rl["static"], ev_attrs("1", "total / static return level")),
         "daily_max_static": (("day", "load_effect"), day_static * signs, ev_attrs("", "daily maximum of the static effect")),
         "daily_max_total": (("day", "load_effect"), day_total * signs, ev_attrs("", "daily maximum of the total effect")),
@@ -180,10 +207,14 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "event_in_sample": ("event", np.isin(np.arange(n_ev), dyn["sample"]).astype(np.int8), ev_attrs("1", "1 if in the random sample (fatigue, IM statistics)")),
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
         **fat["variables"],
+        **_governing_variables(dyn, st, total, run_static, day, static["ev_start"].values),
     }
     for name in ("characteristic_static", "characteristic_total", "return_level_static", "return_level_static_lower",
                  "return_level_static_upper", "return_level_total", "return_level_total_lower",
-                 "return_level_total_upper", "return_level_pot_static", "daily_max_static", "daily_max_total",
+                 "return_level_total_upper", "return_level_pot_static", "return_level_pot_static_lower",
+                 "return_level_pot_static_upper", "return_level_pot_total", "return_level_pot_total_lower",
+                 "return_level_pot_total_upper", "governing_static_value", "governing_total_value",
+                 "governing_total_half_step", "daily_max_static", "daily_max_total",
                  "weekly_max_static", "weekly_max_total", "event_static", "event_total", "event_run_static"):
         variables[name][2]["units"] = "see load_effect_units"
     coords = {"load_effect": np.array(names, dtype=object), "return_period": ("return_period", periods, {"units": "year"}),
@@ -193,8 +224,11 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
               "load_effect_kind": ("load_effect", np.array([ln.kind for ln in lines], dtype=object)),
               **fat["coords"]}
     for k in fits:
-        if k.endswith("shape"):
+        if k.endswith(("shape", "exceedances")):
             variables[f"fit_{k}"][2]["units"] = "1"
+    if fat["variables"]:
+        variables.update(_verdict_variables(prep, fat["variables"]))
+    coords["governs"] = np.array(["static", "total"], dtype=object)
     ds = xr.Dataset(variables, coords=coords)
     # per-effect units: one unit per variable is what CF allows; effects of one kind share it
     for name, v in ds.data_vars.items():
@@ -219,6 +253,12 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "amplification_bound_given": float(spec.amplification),
         "amplification_bound_used": float(bound),
         "amplification_max_observed": float(np.nanmax(np.where(simulated[:, None], total / st - 1, np.nan))) if n_sim else math.nan,
+        "amplification_max_heavy": _heavy_amplification(st, total, signs, day, n_days, simulated),
+        "amplification_check_fraction": CHECK_FRACTION,
+        "xi_strongly_negative": acc.XI_STRONGLY_NEGATIVE,
+        "half_step_tolerance": acc.HALF_STEP_TOLERANCE,
+        "ci": float(spec.ci),
+        "design_life": float(spec.fatigue.design_life),
         "screening_rounds": json.dumps(rounds),
         "block": spec.block,
         "distribution": spec.distribution,
@@ -228,6 +268,103 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
     }
     return ds
+
+
+def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:
+    """Peaks-over-threshold levels beside the block maxima, and the two flags (``accuracy``)."""
+    from vbikit.lifetime.accuracy import XI_STRONGLY_NEGATIVE
+
+    dims = ("load_effect", "return_period")
+    out: dict[str, Any] = {}
+    for w in ("static", "total"):
+        src = ("the events' static peaks above the threshold" if w == "static" else
+               "the simulated events' total peaks above the threshold, complete above it by the screening")
+        out[f"return_level_pot_{w}"] = (dims, rl[f"pot_{w}"] * signs[:, None], {
+            "units": "", "long_name": f"{w} return level from peaks over threshold (GPD of {src})",
+            "missing_because": "; ".join(f"{k}: {t}" for k, t in enumerate(why[w]) if t)})
+        for b in ("lower", "upper"):
+            out[f"return_level_pot_{w}_{b}"] = (dims, rl[f"pot_{w}_{b}"] * signs[:, None], {
+                "units": "", "long_name": f"{b} {ci:.0%} confidence bound of return_level_pot_{w} (delta method)"})
+        out[f"methods_disagree_{w}"] = (dims, disagree[w].astype(np.int8), {
+            "units": "1", "long_name": f"1 if the block-maximum and the peaks-over-threshold {w} levels disagree: "
+                                       "either lies outside the other's confidence interval"})
+        out[f"shape_strongly_negative_{w}"] = ("load_effect", steep[w].astype(np.int8), {
+            "units": "1", "long_name": f"1 if a fitted shape of the {w} effect (GEV of the block maxima, GPD of the "
+                                       f"exceedances) is below {XI_STRONGLY_NEGATIVE}: a bounded tail fitted from "
+                                       "little data, long-period levels unreliable"})
+    return out
+
+
+def _heavy_amplification(st, total, signs, day, n_days, simulated) -> float:
+    """The largest amplification R_dyn/R_st − 1 among the simulated events the screening checks
+    (static peak ≥ CHECK_FRACTION of their day's largest, for some effect)."""
+    from vbikit.lifetime.screening import amplifications, heavy_events
+
+    heavy = simulated & heavy_events(st, signs, day, n_days, CHECK_FRACTION)
+    amp = amplifications(total[heavy], st[heavy])
+    amp = amp[np.isfinite(amp)]
+    return float(amp.max()) if amp.size else math.nan
+
+
+def _governing_variables(dyn, st, total, run_static, day, start) -> dict[str, Any]:
+    """The governing events (``vbikit.lifetime.governing``) and their half-step re-run."""
+    from vbikit.lifetime.governing import vehicles_words
+
+    if "governing" not in dyn:
+        return {}
+    gov = dyn["governing"]
+    n_lines = gov.shape[0]
+    dims = ("load_effect", "governs")
+    shape = gov.shape
+    val_st, val_tot, half, change, words = (np.full(shape, np.nan), np.full(shape, np.nan), np.full(shape, np.nan),
+                                            np.full(shape, np.nan), np.full(shape, "", dtype=object))
+    for j in range(n_lines):
+        for w in range(2):
+            k = int(gov[j, w])
+            if k < 0:
+                continue
+            g = int(dyn["gid"][k])
+            val_st[j, w], val_tot[j, w] = st[k, j], total[k, j]
+            if g in dyn["half_step"]:
+                half[j, w] = dyn["half_step"][g]["dyn_peak"][j]
+                if np.isfinite(total[k, j]) and total[k, j] != 0:
+                    change[j, w] = half[j, w] / total[k, j] - 1.0
+            words[j, w] = vehicles_words(dyn["vehicles"][g]) if g in dyn["vehicles"] else ""
+    a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
+    ok = np.where(gov >= 0, gov, 0)
+    return {
+        "governing_event": (dims, gov, a("1", "event index governing the static (largest static peak) and the total (largest simulated total peak) maximum; -1 if none")),
+        "governing_day": (dims, np.where(gov >= 0, day[ok], -1), a("1", "day of the governing event")),
+        "governing_time_of_day": (dims, np.where(gov >= 0, np.mod(start[ok], 86400.0), np.nan), a("s", "time of day of the governing event's first vehicle")),
+        "governing_vehicles": (dims, words, a("", "the governing event's vehicles: axles, gross weight, lane, direction, speed, time of day")),
+        "governing_static_value": (dims, val_st, a("", "static peak of the governing event (convolution)")),
+        "governing_total_value": (dims, val_tot, a("", "total peak of the governing event (its run); NaN if not simulated")),
+        "governing_total_half_step": (dims, half, a("", "total peak of the governing event simulated again at half the time step")),
+        "governing_half_step_change": (dims, change, a("1", "relative change of the governing event's total peak at half the time step: R_half / R_run - 1")),
+    }
+
+
+def _verdict_variables(prep, fat_vars: dict) -> dict[str, Any]:
+    """Per detail the fatigue verdict of ``vbikit.lifetime.accuracy.fatigue_verdict``."""
+    from vbikit.lifetime.accuracy import fatigue_verdict
+
+    spec = prep.spec
+    years = prep.n_days / spec.days_per_year
+    rows = [fatigue_verdict(float(fat_vars["fatigue_damage"][1][j]), float(fat_vars["fatigue_damage_se"][1][j]),
+                            float(fat_vars["fatigue_damage_static"][1][j]), years, spec.fatigue.design_life,
+                            spec.fatigue.damage_so_far, bool(fat_vars["below_fatigue_limit"][1][j]),
+                            float(det.sn().threshold), spec.ci,
+                            "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH")
+            for j, det in enumerate(prep.details)]
+    a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
+    life = spec.fatigue.design_life
+    return {
+        "fatigue_damage_design_life": ("detail", np.array([r["damage_design_life"] for r in rows]), a("1", f"Miner damage over the {life:g}-year design life (damage_so_far + damage a year x design life)")),
+        "fatigue_damage_design_life_upper": ("detail", np.array([r["damage_design_life_upper"] for r in rows]), a("1", f"upper {spec.ci:.0%} bound of fatigue_damage_design_life (standard error of the dynamic sample)")),
+        "dynamic_damage_ratio_se": ("detail", np.array([r["ratio_se"] for r in rows]), a("1", "standard error of dynamic_damage_ratio (fatigue_damage_se / fatigue_damage_static); NaN when the ratio is undefined")),
+        "fatigue_verdict": ("detail", np.array([r["verdict"] for r in rows], dtype=object), a("", "the damage over the design life against 1, in words")),
+        "dynamic_damage_ratio_note": ("detail", np.array([r["ratio_words"] for r in rows], dtype=object), a("", "the dynamic-to-static damage ratio in words (why it is undefined when it is)")),
+    }
 
 
 def fatigue_results(prep, static, dyn) -> dict[str, Any]:
@@ -314,33 +451,3 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
                                    {"units": "Pa", "long_name": "lower edge of the stress-range bin"}),
               "detail_category": ("detail", np.array([d.curve for d in details], dtype=object))}
     return {"variables": variables, "coords": coords}
-
-
-def text_report(ds) -> str:
-    """The run's plain-text report."""
-    a = ds.attrs
-    lines = [f"vbikit lifetime: {a['title']}",
-             f"{a['n_days']} days ({a['n_days'] / a['days_per_year']:.3g} years), {a['n_trucks']:,} trucks, "
-             f"{a['n_events']:,} events; {a['n_dynamic_events']:,} simulated dynamically "
-             f"({100 * a['fraction_dynamic']:.2f} %, of which {a['n_sample_events']} the random sample)",
-             f"screening bound A = {a['amplification_bound_used']:.3f} (given {a['amplification_bound_given']:.3f}); "
-             f"largest amplification seen {a['amplification_max_observed']:.3f}",
-             f"fits: {a['distribution']} of {'daily' if a['block'] == 'day' else 'weekly'} maxima; characteristic period {a['characteristic_period']:g} years",
-             f"run time {a['time_total_s']:.1f} s (static pass {a['time_static_s']:.1f} s, "
-             f"{a['events_per_second_static']:,.0f} events/s)", "",
-             f"{'load effect':<22}{'unit':<6}{'char. static':>14}{'char. total':>14}{'ADR':>8}{'IM mean':>9}{'IM q95':>8}"
-             f"{'AASHTO':>8}"]
-    for j, name in enumerate(ds["load_effect"].values):
-        lines.append(f"{name:<22}{str(ds['load_effect_units'].values[j]):<6}"
-                     f"{float(ds['characteristic_static'][j]):>14.5g}{float(ds['characteristic_total'][j]):>14.5g}"
-                     f"{float(ds['assessment_dynamic_ratio'][j]):>8.4f}{float(ds['im_mean'][j]):>9.4f}"
-                     f"{float(ds['im_q95'][j]):>8.4f}{float(ds['code_allowance'][j, 0]):>8.2f}")
-    if "fatigue_damage" in ds and ds.sizes.get("detail", 0):
-        lines += ["", f"{'detail':<16}{'category':<12}{'damage':>12}{'± se':>11}{'static':>12}{'dyn/stat':>9}"
-                      f"{'per year':>12}{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
-        for j, name in enumerate(ds["detail"].values):
-            lines.append(f"{name:<16}{str(ds['detail_category'].values[j]):<12}{float(ds['fatigue_damage'][j]):>12.4g}"
-                         f"{float(ds['fatigue_damage_se'][j]):>11.3g}{float(ds['fatigue_damage_static'][j]):>12.4g}"
-                         f"{float(ds['dynamic_damage_ratio'][j]):>9.4f}{float(ds['fatigue_damage_per_year'][j]):>12.4g}"
-                         f"{float(ds['equivalent_stress_range'][j]) / 1e6:>11.3f}{float(ds['remaining_life'][j]):>10.4g}")
-    return "\n".join(lines) + "\n"

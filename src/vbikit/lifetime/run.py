@@ -17,6 +17,7 @@ finished batches stored under ``out_dir/work``: an interrupted run started again
 """
 from __future__ import annotations
 
+import json
 import logging
 import time
 from dataclasses import dataclass, field
@@ -26,7 +27,7 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
-from vbikit.lifetime.screening import (amplifications, block_dynamic_max, candidates, rescreen_bound,
+from vbikit.lifetime.screening import (amplifications, block_dynamic_max, candidates, heavy_events, rescreen_bound,
                                        top_events)
 from vbikit.lifetime.spec import LifetimeError, LifetimeFile, base_sections, parse_lifetime, read_lifetime
 
@@ -75,12 +76,13 @@ class Prepared:
                          self.spec.days_per_batch, self.spec.fatigue.dynamic_sample if self.details else 0.0,
                          _digest=_digest(self.model))
 
-    def dynamic_job(self, items, records: Optional[dict] = None) -> DynamicJob:
-        """The dynamics of global events ``items``; ``records``: stored vehicle records by global id."""
+    def dynamic_job(self, items, records: Optional[dict] = None, step_factor: float = 1.0) -> DynamicJob:
+        """The dynamics of global events ``items``; ``records``: stored vehicle records by global id;
+        ``step_factor``: times the automatic time step."""
         items = tuple(sorted(int(i) for i in items))
         stored = tuple(records.get(i) for i in items) if records else ()
         return DynamicJob(self.model, self.setup_key, self.spec.seed, items, self.details, self.spec.batch_size,
-                          self.spec.vehicle_model, stored, _digest=_digest(self.model))
+                          self.spec.vehicle_model, stored, step_factor, _digest=_digest(self.model))
 
 
 def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None) -> Prepared:
@@ -161,14 +163,16 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
 def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, base_dir: str | Path | None = None,
                  workers: Optional[int] = None, scheduler: Optional[str] = None,
                  progress: Optional[Progress] = None, figures: bool = True):
-    """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report).
+    """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report.txt,
+    summary.json).
 
     ``spec``: a lifetime TOML path, a parsed dict or a ``LifetimeFile``; ``base_dir``: where its
     relative paths point (default: the file's folder, else "."); ``workers`` / ``scheduler``: as
     ``vbikit.study.run_study``; ``progress(stage, done, total)`` after every finished batch.
     Returns the dataset."""
     from vbikit._files import atomic_write, write_text
-    from vbikit.lifetime.results import build_dataset, text_report
+    from vbikit.lifetime.report import summary, text_report
+    from vbikit.lifetime.results import build_dataset
 
     if isinstance(spec, (str, Path)):
         spec, folder = read_lifetime(spec)
@@ -182,12 +186,15 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
                   {"trucks_per_day": prep.model.trucks_per_day})
     t_static = time.perf_counter() - t0
     dyn, rounds, bound = _dynamics(prep, static, work, workers, scheduler, progress)
+    _governing(prep, static, dyn, work, workers, scheduler, progress)
     t_total = time.perf_counter() - t0
     ds = build_dataset(prep, static, dyn, rounds, bound, {"time_static_s": t_static, "time_total_s": t_total})
     from vbikit.study.run import _to_netcdf
 
     atomic_write(out_dir / "lifetime.nc", lambda tmp: _to_netcdf(ds, tmp))
-    write_text(out_dir / "report.txt", text_report(ds))
+    facts = summary(ds)
+    write_text(out_dir / "summary.json", json.dumps(facts, indent=1, allow_nan=False) + "\n")
+    write_text(out_dir / "report.txt", text_report(facts))
     if figures:
         from vbikit.lifetime.figures import traffic_figure, write_figures
 
@@ -221,7 +228,25 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
     signs = np.array([ln.sign for ln in prep.setup.lines])
     simulated, _, rounds, bound = screen(static["ev_static"].values, signs, day, prep.n_days, spec.amplification,
                                          simulate, sample)
-    return {"gid": gid, "simulated": simulated, "results": results, "sample": sample}, rounds, bound
+    return {"gid": gid, "simulated": simulated, "results": results, "sample": sample, "records": stored}, rounds, bound
+
+
+def _governing(prep: Prepared, static, dyn: dict, work: Path, workers, scheduler, progress) -> None:
+    """The governing events (``vbikit.lifetime.governing``): their vehicles and their re-run at half
+    the time step, added to ``dyn`` as "governing" (event indices), "vehicles" and "half_step" (by
+    global id)."""
+    from vbikit.lifetime.governing import event_vehicles, governing_events
+
+    signs = np.array([ln.sign for ln in prep.setup.lines])
+    total = _dyn_matrix(dyn["results"], dyn["gid"], dyn["simulated"], signs.size)
+    gov = governing_events(static["ev_static"].values, total, signs, dyn["simulated"])
+    items = np.unique(dyn["gid"][gov[gov >= 0]])
+    ds = _run(prep.dynamic_job(items, dyn["records"], step_factor=0.5), work / "half-step.nc", workers, scheduler,
+              progress, "governing events at half step")
+    dyn["governing"] = gov
+    dyn["half_step"] = {int(g): {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak")}
+                        for k, g in enumerate(ds["event"].values)}
+    dyn["vehicles"] = {int(g): event_vehicles(prep, dyn["records"], int(g)) for g in items}
 
 
 def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: int, amplification: float,
@@ -258,8 +283,7 @@ def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: i
             r += 1
             run(todo, r)
             continue
-        heavy = simulated & np.any(static * signs >= CHECK_FRACTION * _block_static_max(static, signs, block, n_blocks),
-                                   axis=1)
+        heavy = simulated & heavy_events(static, signs, block, n_blocks, CHECK_FRACTION)
         amp = amplifications(dyn[heavy], static[heavy])
         new_bound = rescreen_bound(amp.ravel(), bound)
         if new_bound <= bound or rescreens >= MAX_RESCREENS:
@@ -276,13 +300,6 @@ def _dyn_matrix(results, gid, simulated, n_lines) -> np.ndarray:
     for k in np.flatnonzero(simulated):
         out[k] = results[int(gid[k])]["dyn_peak"]
     return out
-
-
-def _block_static_max(static, signs, block, n_blocks) -> np.ndarray:
-    out = np.full((n_blocks, static.shape[1]), -np.inf)
-    for j in range(static.shape[1]):
-        np.maximum.at(out[:, j], block, signs[j] * static[:, j])
-    return out[block]
 
 
 def stored_records(static) -> dict[int, tuple]:

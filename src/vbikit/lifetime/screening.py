@@ -85,3 +85,14 @@ def rescreen_bound(observed: Iterable[float], amplification: float) -> float:
     """The new bound when an observed amplification exceeds A: 1.25 × the largest (else A)."""
     top = max((float(a) for a in observed if np.isfinite(a)), default=-np.inf)
     return float(1.25 * top) if top > amplification else float(amplification)
+
+
+def heavy_events(static: NDArray[np.float64], signs: NDArray[np.float64], block: NDArray[np.int64], n_blocks: int,
+                 fraction: float) -> NDArray[np.bool_]:
+    """Events whose s·R_st is at least ``fraction`` of their block's largest for some effect (the
+    events whose amplification the run checks against A)."""
+    s = np.asarray(static) * np.asarray(signs)[None, :]
+    top = np.full((n_blocks, s.shape[1]), -np.inf)
+    for j in range(s.shape[1]):
+        np.maximum.at(top[:, j], block, s[:, j])
+    return np.any(s >= fraction * top[block], axis=1)

@@ -115,6 +115,7 @@ class FatigueSpec(_Strict):
     dynamic_sample: float = Field(0.05, gt=0, le=1, description="fraction of events simulated dynamically (seeded sample) for the dynamic-to-static damage ratio")
     histogram_bin: float = Field(1e6, gt=0, description="stress-range histogram bin [Pa]")
     damage_so_far: float = Field(0.0, ge=0, description="Miner damage already accumulated (remaining life)")
+    design_life: float = Field(100.0, gt=0, le=1000, description="design working life [years] the damage is judged over (EN 1990 Table 2.1, category 5: 100 years)")
     details: list[DetailSpec] = Field(default_factory=list, max_length=50)
 
 

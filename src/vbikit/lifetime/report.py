@@ -1,0 +1,225 @@
+"""The JSON summary (``summary.json``) and the text report (``report.txt``) of a lifetime run, both
+read from ``lifetime.nc``'s dataset: every number with its interval, flag and verdict in words
+(``vbikit.lifetime.accuracy``).  The report is rendered from the summary, so the two agree."""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from vbikit.lifetime.accuracy import adr_words, amplification_words
+
+
+def _num(x) -> float | None:
+    """A finite float, else None (JSON has no NaN)."""
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _interval(ds, name: str, j: int, k: int) -> dict[str, Any]:
+    return {"value": _num(ds[name].values[j, k]), "lower": _num(ds[f"{name}_lower"].values[j, k]),
+            "upper": _num(ds[f"{name}_upper"].values[j, k])}
+
+
+def _effect(ds, j: int) -> dict[str, Any]:
+    a = ds.attrs
+    periods = ds["return_period"].values
+    levels = []
+    for k, t in enumerate(periods):
+        row: dict[str, Any] = {"return_period": float(t)}
+        for w in ("static", "total"):
+            row[w] = {"block_maxima": _interval(ds, f"return_level_{w}", j, k),
+                      "peaks_over_threshold": _interval(ds, f"return_level_pot_{w}", j, k),
+                      "methods_disagree": bool(ds[f"methods_disagree_{w}"].values[j, k])}
+        levels.append(row)
+    fits = {w: {"block_maxima_shape": _num(ds[f"fit_{w}_shape"].values[j]),
+                "pot_shape": _num(ds[f"fit_pot_{w}_shape"].values[j]),
+                "pot_threshold": _num(ds["fit_pot_threshold" if w == "static" else "fit_pot_total_threshold"].values[j]),
+                "pot_exceedances": int(ds[f"fit_pot_{w}_exceedances"].values[j]),
+                "shape_strongly_negative": bool(ds[f"shape_strongly_negative_{w}"].values[j])}
+            for w in ("static", "total")}
+    adr, lo, hi = (float(ds[n].values[j]) for n in ("assessment_dynamic_ratio", "assessment_dynamic_ratio_lower",
+                                                     "assessment_dynamic_ratio_upper"))
+    out: dict[str, Any] = {
+        "units": str(ds["load_effect_units"].values[j]),
+        "characteristic_period": float(a["characteristic_period"]),
+        "characteristic_static": _num(ds["characteristic_static"].values[j]),
+        "characteristic_total": _num(ds["characteristic_total"].values[j]),
+        "return_levels": levels, "fits": fits,
+        "adr": {"value": _num(adr), "lower": _num(lo), "upper": _num(hi),
+                "standard_error": _num(ds["assessment_dynamic_ratio_se"].values[j]),
+                "indistinguishable_from_one": bool(ds["adr_indistinguishable_from_one"].values[j]),
+                "words": adr_words(adr, lo, hi, float(a["ci"]))},
+        "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event")},
+        "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
+    }
+    if "governing_event" in ds:
+        gov = {}
+        for w, name in enumerate(ds["governs"].values):
+            change = float(ds["governing_half_step_change"].values[j, w])
+            gov[str(name)] = {"event": int(ds["governing_event"].values[j, w]),
+                              "day": int(ds["governing_day"].values[j, w]),
+                              "time_of_day_s": _num(ds["governing_time_of_day"].values[j, w]),
+                              "vehicles": str(ds["governing_vehicles"].values[j, w]),
+                              "static": _num(ds["governing_static_value"].values[j, w]),
+                              "total": _num(ds["governing_total_value"].values[j, w]),
+                              "total_half_step": _num(ds["governing_total_half_step"].values[j, w]),
+                              "half_step_change": _num(change),
+                              "half_step_flag": bool(math.isfinite(change) and abs(change) > a["half_step_tolerance"])}
+        out["governing"] = gov
+    out["flags"] = _flags(out, a)
+    return out
+
+
+def _flags(e: dict, a: dict) -> list[str]:
+    """The effect's warnings in words."""
+    flags = []
+    xi = a["xi_strongly_negative"]
+    for w in ("static", "total"):
+        f = e["fits"][w]
+        if f["shape_strongly_negative"]:
+            shapes = ", ".join(f"{n} ξ = {f[k]:.2f}" for n, k in (("block maxima", "block_maxima_shape"),
+                                                                   ("POT", "pot_shape")) if f[k] is not None)
+            flags.append(f"{w}: strongly negative shape ({shapes} < {xi:g}): a bounded tail fitted from little data; "
+                         "the long-period levels and their intervals are unreliable — simulate more days")
+        bad = [r["return_period"] for r in e["return_levels"] if r[w]["methods_disagree"]]
+        if bad:
+            flags.append(f"{w}: block maxima and peaks over threshold disagree beyond their intervals at "
+                         f"{', '.join(f'{t:g}' for t in bad)} years — the characteristic value depends on the method")
+    if e["adr"]["indistinguishable_from_one"]:
+        flags.append("ADR: the interval contains 1 — the data cannot tell the ADR from 1")
+    for w, g in e.get("governing", {}).items():
+        if g["half_step_flag"]:
+            flags.append(f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "
+                         f"the time step (tolerance {100 * a['half_step_tolerance']:g} %) — the time step is too coarse")
+    return flags
+
+
+def _detail(ds, j: int) -> dict[str, Any]:
+    return {"category": str(ds["detail_category"].values[j]),
+            **{k: _num(ds[k].values[j]) for k in (
+                "fatigue_damage", "fatigue_damage_se", "fatigue_damage_static", "dynamic_damage_ratio",
+                "dynamic_damage_ratio_se", "fatigue_damage_per_year", "equivalent_stress_range", "remaining_life",
+                "fatigue_damage_design_life", "fatigue_damage_design_life_upper")},
+            "below_fatigue_limit": bool(ds["below_fatigue_limit"].values[j]),
+            "verdict": str(ds["fatigue_verdict"].values[j]),
+            "dynamic_damage_ratio_words": str(ds["dynamic_damage_ratio_note"].values[j])}
+
+
+def summary(ds) -> dict[str, Any]:
+    """The run's facts as a JSON-able dict (NaN and infinity as null, explained in words)."""
+    from vbikit.lifetime.run import CHECK_FRACTION
+
+    a = ds.attrs
+    out: dict[str, Any] = {
+        "title": str(a["title"]),
+        "run": {k: int(a[k]) for k in ("n_days", "days_per_year", "n_trucks", "n_events", "n_dynamic_events",
+                                  "n_sample_events")} | {"fraction_dynamic": float(a["fraction_dynamic"]),
+                                                         "time_total_s": float(a["time_total_s"]),
+                                                         "time_static_s": float(a["time_static_s"]),
+                                                         "events_per_second_static": float(a["events_per_second_static"])},
+        "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
+                 "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),
+                 "xi_strongly_negative": float(a["xi_strongly_negative"])},
+        "screening": {"amplification_bound_given": float(a["amplification_bound_given"]),
+                      "amplification_bound_used": float(a["amplification_bound_used"]),
+                      "amplification_max_heavy": _num(a["amplification_max_heavy"]),
+                      "amplification_max_observed": _num(a["amplification_max_observed"]),
+                      "words": amplification_words(float(a["amplification_max_heavy"]),
+                                                   float(a["amplification_max_observed"]),
+                                                   float(a["amplification_bound_given"]),
+                                                   float(a["amplification_bound_used"]), CHECK_FRACTION)},
+        "half_step_tolerance": float(a["half_step_tolerance"]),
+        "load_effects": {str(n): _effect(ds, j) for j, n in enumerate(ds["load_effect"].values)},
+    }
+    if "fatigue_damage" in ds and ds.sizes.get("detail", 0):
+        out["design_life"] = float(a["design_life"])
+        out["fatigue"] = {str(n): _detail(ds, j) for j, n in enumerate(ds["detail"].values)}
+    return out
+
+
+def _g(x: float | None, fmt: str = ".4g") -> str:
+    return "n/a" if x is None else format(x, fmt)
+
+
+def _iv(d: dict) -> str:
+    if d["value"] is None:
+        return "n/a"
+    if d["lower"] is None:
+        return f"{d['value']:.4g} (no interval)"
+    return f"{d['value']:.4g} ({d['lower']:.4g} … {d['upper']:.4g})"
+
+
+def text_report(facts: dict[str, Any]) -> str:
+    """The run's plain-text report (rendered from ``summary``)."""
+    r, f = facts["run"], facts["fits"]
+    ci = f"{f['ci']:.0%}"
+    lines = [f"vbikit lifetime: {facts['title']}",
+             f"{r['n_days']} days ({r['n_days'] / r['days_per_year']:.3g} years), {r['n_trucks']:,} trucks, "
+             f"{r['n_events']:,} events; {r['n_dynamic_events']:,} simulated dynamically "
+             f"({100 * r['fraction_dynamic']:.2f} %, of which {r['n_sample_events']} the random sample)",
+             "screening: " + facts["screening"]["words"],
+             f"fits: {f['distribution']} of {'daily' if f['block'] == 'day' else 'weekly'} maxima (BM) and a GPD of "
+             f"the peaks over a threshold (POT); characteristic period {f['characteristic_period']:g} years; "
+             f"intervals {ci}",
+             f"run time {r['time_total_s']:.1f} s (static pass {r['time_static_s']:.1f} s, "
+             f"{r['events_per_second_static']:,.0f} events/s)", "",
+             f"{'load effect':<22}{'unit':<6}{'char. static':>14}{'char. total':>14}{'ADR':>8}{'ADR ' + ci + ' interval':>20}"
+             f"{'IM mean':>9}{'IM q95':>8}{'AASHTO':>8}"]
+    for name, e in facts["load_effects"].items():
+        ad = e["adr"]
+        span = "n/a" if ad["lower"] is None else f"{ad['lower']:.3f} … {ad['upper']:.3f}"
+        lines.append(f"{name:<22}{e['units']:<6}{_g(e['characteristic_static'], '>14.5g')}"
+                     f"{_g(e['characteristic_total'], '>14.5g')}{_g(ad['value'], '>8.4f')}{span:>20}"
+                     f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
+    for name, e in facts["load_effects"].items():
+        lines += ["", f"{name} [{e['units']}]: return levels, block maxima (BM) beside peaks over threshold (POT), "
+                      f"{ci} intervals"]
+        for w in ("static", "total"):
+            fw = e["fits"][w]
+            pot = (f"POT threshold {_g(fw['pot_threshold'])}, {fw['pot_exceedances']} exceedances, ξ = "
+                   f"{_g(fw['pot_shape'], '.3f')}")
+            lines.append(f"  {w}: BM ξ = {_g(fw['block_maxima_shape'], '.3f')}; {pot}"
+                         + ("" if fw["pot_shape"] is not None else " (no POT value: too few exceedances)"))
+        lines.append(f"  {'T [yr]':>8}  {'static BM':<38}{'static POT':<38}{'total BM':<38}total POT")
+        for row in e["return_levels"]:
+            cells = []
+            for w in ("static", "total"):
+                mark = " *" if row[w]["methods_disagree"] else ""
+                cells += [_iv(row[w]["block_maxima"]), _iv(row[w]["peaks_over_threshold"]) + mark]
+            lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<37} " for c in cells).rstrip())
+        lines.append("  (* BM and POT disagree beyond their intervals)")
+        lines.append("  " + e["adr"]["words"])
+        for w, g in e.get("governing", {}).items():
+            change = g["half_step_change"]
+            check = ("n/a" if change is None else f"{100 * change:+.3f} % "
+                     + ("ABOVE" if g["half_step_flag"] else "within") + f" the {100 * facts['half_step_tolerance']:g} % tolerance")
+            lines.append(f"  governing {w} maximum: day {g['day']} at "
+                         f"{_clock(g['time_of_day_s'])}, {g['vehicles']}; static {_g(g['static'])}, total "
+                         f"{_g(g['total'])}; total at half the time step {_g(g['total_half_step'])} ({check})")
+        for flag in e["flags"]:
+            lines.append("  FLAG " + flag)
+    if "fatigue" in facts:
+        lines += ["", f"fatigue (design life {facts['design_life']:g} years)",
+                  f"{'detail':<16}{'category':<12}{'damage':>12}{'± se':>11}{'static':>12}{'per year':>12}"
+                  f"{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
+        for name, d in facts["fatigue"].items():
+            eq = d["equivalent_stress_range"]
+            lines.append(f"{name:<16}{d['category']:<12}{_g(d['fatigue_damage'], '>12.4g')}"
+                         f"{_g(d['fatigue_damage_se'], '>11.3g')}{_g(d['fatigue_damage_static'], '>12.4g')}"
+                         f"{_g(d['fatigue_damage_per_year'], '>12.4g')}"
+                         f"{('n/a' if eq is None else format(eq / 1e6, '.3f')):>11}"
+                         f"{('unlimited' if d['remaining_life'] is None else format(d['remaining_life'], '.4g')):>10}")
+        if any(d["equivalent_stress_range"] is None for d in facts["fatigue"].values()):
+            lines.append("  (Δσ_E,2 n/a: the range doing the year's damage in 2e6 cycles lies below the curve's cut-off)")
+        for name, d in facts["fatigue"].items():
+            lines += [f"  {name}: {d['verdict']}", f"  {name}: {d['dynamic_damage_ratio_words']}"]
+    return "\n".join(lines) + "\n"
+
+
+def _clock(seconds: float | None) -> str:
+    from vbikit.lifetime.governing import clock
+
+    return "n/a" if seconds is None else clock(seconds)
+
+
+__all__ = ["summary", "text_report"]
