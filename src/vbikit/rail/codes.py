@@ -84,8 +84,9 @@ def frequency_limit(frequencies_hz: NDArray[np.float64]) -> float:
     return max(30.0, 1.5 * float(f[0]), n3)
 
 
-def resonance_speeds(n0: float, wavelength: float, v_max: float, orders: int = 4) -> NDArray[np.float64]:
-    """v_i = n0 D / i [m/s], i = 1 … ``orders``, those ≤ ``v_max``."""
+def resonance_speeds(n0: float, wavelength: float, v_max: float = math.inf, orders: int = 4) -> NDArray[np.float64]:
+    """v_i = n0 D / i [m/s], i = 1 … ``orders``, those ≤ ``v_max`` (default: all ``orders``, so that
+    entry i − 1 is order i)."""
     v = n0 * wavelength / np.arange(1, orders + 1)
     return v[v <= v_max]
 
