@@ -194,7 +194,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                               f"trains × {speeds.size} speeds), above {spec.coupled.max_steps:.3g}; raise coupled.max_steps "
                               "or use fewer speeds")
     if span < 7.0 and any(t.name.startswith("HSLM-A") for t in trains):
-        log.warning("span %.3g m < 7 m: EN 1991-2 Annex E uses HSLM-B for simply supported spans below 7 m", span)
+        log.warning("span %.3g m < 7 m: EN 1991-2:2003 6.4.6.1.1 uses HSLM-B for simply supported spans below 7 m", span)
     y = float(bridge.default_lateral_offset)  # the track's axis; the deck is read on it
     setup = SweepSetup(bridge, points, effects, dx, fv, spec.run.budget, y)
     log.info("sweeping %d trains × %d speeds, %d modes (%.1f … %.1f Hz), Δx = %.4f m", len(trains), speeds.size,
@@ -450,7 +450,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
     a = ds.attrs
     acc = checks["acceleration"]
     lines = [
-        "vbikit railway dynamic check (EN 1991-2 6.4.6, EN 1990 A2.4.4.2.1)",
+        "vbikit railway dynamic check (EN 1991-2:2003 + AC 6.4.6, EN 1990:2002/A1:2005 A2.4.4.2.1)",
         f"bridge: simply supported span {a['span_m']:g} m, n0 = {a['first_frequency_hz']:.3f} Hz, {a['n_modes']} modes "
         f"(up to {float(ds['frequency'].values[-1]):.1f} Hz; required max(30 Hz, 1.5 n0, n3) = {a['frequency_limit_hz']:.1f} Hz), "
         f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}"
