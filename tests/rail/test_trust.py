@@ -153,9 +153,16 @@ def test_refined_acceleration_peak_against_a_dense_sweep():
     assert "error bound of the governing peak" in result.report
 
 
-def test_report_states_units_of_moment_and_shear():
+def test_report_states_units_of_moment_and_shear_and_the_json_the_grid_bound(tmp_path):
+    import json
+
     result = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
-                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, figures=False)
+                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, tmp_path, figures=False)
+    summary = json.loads((tmp_path / "rail-summary.json").read_text())
+    acc = summary["checks"]["acceleration"]
+    assert acc["peak"] == result.checks["acceleration"]["peak"] and 0 <= acc["refinement_bound"] < acc["tolerance"] == 0.005
+    assert [r["order"] for r in summary["trains"]["HSLM-A4"]["resonances"]] == [1, 2, 3, 4]
+    assert summary["checks"]["moment_envelope"]["moment_max_position_m"] > 0
     lines = result.report.splitlines()
     moment = next(x for x in lines if x.startswith("moment at the midspan"))
     shear = next(x for x in lines if x.startswith("shear at the entry support"))

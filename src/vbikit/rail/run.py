@@ -512,8 +512,46 @@ def _grid_line(acc: dict[str, Any]) -> str:
             f"largest over all peaks {100 * acc['largest_refinement_bound']:.3f} % ({verdict})")
 
 
+def summary(result: RailResult) -> dict[str, Any]:
+    """The JSON summary (``rail-summary.json``): the checks (with the speed grid's error bound and the
+    moment envelope along the span), every train's resonance speeds by order i and its refined
+    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null."""
+    ds = result.dataset
+
+    def clean(x):
+        if isinstance(x, dict):
+            return {k: clean(v) for k, v in x.items()}
+        if isinstance(x, (list, tuple)):
+            return [clean(v) for v in x]
+        if isinstance(x, (float, np.floating)):
+            return float(x) if math.isfinite(float(x)) else None
+        if isinstance(x, np.integer):
+            return int(x)
+        if isinstance(x, np.bool_):
+            return bool(x)
+        return x
+
+    trains = {}
+    for k, name in enumerate(map(str, ds.train.values)):
+        row = ds["resonance_speed"].values[k]
+        trains[name] = {
+            "wavelength_m": float(ds["excitation_wavelength"].values[k]), "wavelength_source": str(ds["wavelength_source"].values[k]),
+            "resonances": [{"order": i + 1, "speed_m_s": float(v), "speed_kmh": 3.6 * float(v),
+                            "in_sweep": bool(ds["resonance_in_sweep"].values[k, i])} for i, v in enumerate(row)],
+            "acceleration_peaks": [{"grid_m_s2": float(ds["peak_acceleration_grid"].values[k, j]),
+                                    "refined_m_s2": float(ds["peak_acceleration_refined"].values[k, j]),
+                                    "speed_kmh": 3.6 * float(ds["peak_speed_refined"].values[k, j]),
+                                    "error_bound": float(ds["peak_refinement_bound"].values[k, j])}
+                                   for j in range(ds.peak.size) if np.isfinite(ds["peak_acceleration_refined"].values[k, j])]}
+    return clean({"checks": result.checks, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
+                  "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})
+
+
 def write_outputs(result: RailResult, out_dir: Path, figures: bool = True) -> list[Path]:
-    """``rail.nc``, ``rail-report.txt`` and (``figures``) ``rail-acceleration.png`` in ``out_dir``."""
+    """``rail.nc``, ``rail-report.txt``, ``rail-summary.json`` and (``figures``) ``rail-acceleration.png``
+    in ``out_dir``."""
+    import json
+
     from vbikit._files import atomic_write, write_text
 
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -521,7 +559,8 @@ def write_outputs(result: RailResult, out_dir: Path, figures: bool = True) -> li
     ds["train"] = ds["train"].astype(str)
     ds["wavelength_source"] = ds["wavelength_source"].astype(str)
     files = [atomic_write(out_dir / "rail.nc", lambda tmp: ds.to_netcdf(tmp, engine="netcdf4")),
-             write_text(out_dir / "rail-report.txt", result.report)]
+             write_text(out_dir / "rail-report.txt", result.report),
+             write_text(out_dir / "rail-summary.json", json.dumps(summary(result), indent=1, ensure_ascii=False) + "\n")]
     if figures:
         from vbikit.rail.figures import plot_acceleration_envelopes
 
