@@ -114,7 +114,7 @@ def test_moment_envelope_along_the_span_against_brute_force(tmp_path):
 
 
 def test_peak_refinement_bound_holds_on_a_known_resonance_curve():
-    from vbikit.rail.sweep import PEAK_TOLERANCE, refine_peaks
+    from vbikit.rail.refine import PEAK_TOLERANCE, refine_peaks
 
     def f(v):  # the steady-state amplification of an oscillator, peak 1 / (2 ζ √(1 − ζ²)) at r = √(1 − 2ζ²)
         r, z = np.asarray(v) / 72.0, 0.02

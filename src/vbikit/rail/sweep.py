@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.rail.codes import resonance_speeds
+from vbikit.rail.refine import PEAK_TOLERANCE, RefinedPeaks, refine_peaks
 from vbikit.vehicle.trains import Train
 
 log = logging.getLogger(__name__)
@@ -163,134 +164,9 @@ def train_resonances(train: Train, n0: float, orders: int = 4) -> NDArray[np.flo
     return resonance_speeds(n0, d, orders=orders) if d else np.full(orders, np.nan)
 
 
-# ------------------------------------------------------------------------------ moment envelope
-def moment_sections(span: float, n: int) -> NDArray[np.float64]:
-    """The n − 1 interior sections x_j = j L / n [m] (n even: midspan among them)."""
-    return span * np.arange(1, n) / n
-
-
-def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64], axles: NDArray[np.float64],
-                    loads: NDArray[np.float64], y: float = 0.0, travel: Optional[NDArray[np.float64]] = None) -> NDArray[np.float64]:
-    """max over the train's positions of |Σ_k P_k η(s − a_k)| at each section (η the effect of a unit
-    downward force), evaluated where an axle stands on a breakpoint of a simply supported span's
-    influence line (a support or the section itself: s = a_k, a_k + x, a_k + L) — exact for a
-    piecewise-linear line — and at the first-axle travel samples ``travel`` [m] (curved lines)."""
-    span = float(bridge.span)
-    out = np.zeros(sections.size)
-    for j, x in enumerate(sections):
-        effect = bridge.load_effect(kind, float(x))
-        cand = np.concatenate([axles + b for b in (0.0, float(x), span)] + ([travel] if travel is not None else []))
-        pos = cand[:, None] - axles[None, :]
-        on = (pos >= 0.0) & (pos <= span)
-        eta = np.zeros(pos.shape)
-        if on.any():
-            eta[on] = -np.asarray(effect.influence(pos[on], np.full(int(on.sum()), y)), float)
-        out[j] = float(np.max(np.abs(eta @ loads)))
-    return out
-
-
-def moment_envelope_near(setup: SweepSetup, train: Train, speed: float, x_lo: float, x_hi: float,
-                         n: int = 81) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Peak |M| [N m] of one crossing at ``speed`` [m/s] at n sections in [x_lo, x_hi] [m] (mode
-    acceleration, the sweep's Δx): the envelope between the sweep's sections, to place its maximum."""
-    from vbikit.solve.moving_loads import moving_load_history
-
-    bridge = setup.bridge
-    xs = np.linspace(x_lo, x_hi, n)
-    effects = [bridge.load_effect("moment", float(x)) for x in xs]
-    h = moving_load_history(bridge, train.axle_positions, train.axle_loads, speed, dx=setup.dx,
-                            free_vibration=setup.free_vibration, effects=effects, y=setup.y)
-    r = np.array([e.modal for e in effects])                        # (n, n_m)
-    resp = h.static_effects + (h.xi - h.modal_load / bridge.omega**2) @ r.T
-    return xs, np.max(np.abs(resp), axis=0)
-
-
-# ---------------------------------------------------------------------------- peak refinement
-#: the sweep's acceleration peaks are refined until a halving of the speed step changes them by less than this
-PEAK_TOLERANCE = 0.005
-#: the most halvings per peak, and the peaks refined per train (the largest local maxima, at least
-#: ``PEAK_SHARE`` of the train's largest)
-MAX_HALVINGS = 10
-MAX_PEAKS = 4
-PEAK_SHARE = 0.5
-
-
-@dataclass(frozen=True)
-class RefinedPeaks:
-    """The refined acceleration peaks of one train: per peak the speed [m/s] and value [m/s²] on the
-    sweep's grid, the refined speed and value, the bound of the refined value's remaining grid error
-    (relative), the relative change over the last halving, the final half-step [m/s] and whether
-    the bound fell below the tolerance."""
-
-    grid_speed: NDArray[np.float64]
-    grid_value: NDArray[np.float64]
-    speed: NDArray[np.float64]
-    value: NDArray[np.float64]
-    bound: NDArray[np.float64]
-    last_change: NDArray[np.float64]
-    step: NDArray[np.float64]
-    converged: NDArray[np.bool_]
-
-
-def _peak_indices(values: NDArray[np.float64]) -> list[int]:
-    n = values.size
-    idx = [j for j in range(n) if (j == 0 or values[j] >= values[j - 1]) and (j == n - 1 or values[j] >= values[j + 1])]
-    top = float(values.max()) if n else 0.0
-    idx = [j for j in idx if values[j] >= PEAK_SHARE * top]
-    return sorted(sorted(idx, key=lambda j: -values[j])[:MAX_PEAKS])
-
-
-def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float64],
-                 tolerance: float = PEAK_TOLERANCE) -> RefinedPeaks:
-    """Refine each peak of ``values`` over ``speeds`` (``_peak_indices``) by halving the step around it.
-
-    The best speed v* lies midway in its bracket [v* − h, v* + h]; the midpoints v* ± h/2 are
-    evaluated (``evaluate(speeds) -> values``, every peak's new speeds in one call) and the bracket
-    halves around the best of the three.  With f* the best value and f_± those at the bracket's
-    ends, a peak that is quadratic within the bracket exceeds f* by at most (f* − min f_±)/4 (the
-    parabola's vertex lies within h/2 of v*, where it rises c x0² ≤ c h²/4 while the ends fall at
-    least c h² below f*): that is the bound of the remaining grid error.  Refinement stops when
-    the bound and the change over the last halving are both below ``tolerance`` (relative), or
-    after ``MAX_HALVINGS``.
-    """
-    idx = _peak_indices(values)
-    k = len(idx)
-    best_v = np.array([speeds[j] for j in idx], float)
-    best_a = np.array([values[j] for j in idx], float)
-    lo = np.array([speeds[max(j - 1, 0)] for j in idx], float)
-    hi = np.array([speeds[min(j + 1, speeds.size - 1)] for j in idx], float)
-    f_lo = np.array([values[max(j - 1, 0)] for j in idx], float)
-    f_hi = np.array([values[min(j + 1, speeds.size - 1)] for j in idx], float)
-    grid_v, grid_a = best_v.copy(), best_a.copy()
-    change = np.full(k, np.inf)
-    bound = np.full(k, np.inf)
-    done = np.zeros(k, bool)
-    rounds = np.zeros(k, int)
-    while k and not done.all():
-        active = np.nonzero(~done)[0]
-        m1, m2 = 0.5 * (lo[active] + best_v[active]), 0.5 * (best_v[active] + hi[active])
-        new = evaluate(np.concatenate([m1, m2]))
-        a1, a2 = new[:active.size], new[active.size:]
-        for q, i in enumerate(active):
-            old_v, old_a = best_v[i], best_a[i]
-            if a1[q] > old_a and a1[q] >= a2[q]:
-                hi[i], f_hi[i], best_v[i], best_a[i] = old_v, old_a, m1[q], a1[q]
-            elif a2[q] > old_a:
-                lo[i], f_lo[i], best_v[i], best_a[i] = old_v, old_a, m2[q], a2[q]
-            else:
-                lo[i], hi[i], f_lo[i], f_hi[i] = m1[q], m2[q], a1[q], a2[q]
-            top = best_a[i]
-            change[i] = (top - old_a) / top if top > 0 else 0.0
-            bound[i] = (top - min(f_lo[i], f_hi[i])) / (4.0 * top) if top > 0 else 0.0
-            rounds[i] += 1
-            if (bound[i] < tolerance and change[i] < tolerance) or rounds[i] >= MAX_HALVINGS:
-                done[i] = True
-    return RefinedPeaks(grid_v, grid_a, best_v, best_a, bound, change, 0.5 * (hi - lo),
-                        (bound < tolerance) & (change < tolerance))
-
-
 def refine_train_peaks(setup: SweepSetup, train: Train, envelopes, tolerance: float = PEAK_TOLERANCE) -> RefinedPeaks:
-    """``refine_peaks`` of one train's peak deck acceleration (over the deck points) from its sweep."""
+    """``refine_peaks`` (``vbikit.rail.refine``) of one train's peak deck acceleration (over the deck
+    points) from its sweep."""
     from vbikit.solve.moving_loads import moving_load_sweep
 
     def evaluate(v):
