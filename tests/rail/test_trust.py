@@ -169,3 +169,14 @@ def test_report_states_units_of_moment_and_shear_and_the_json_the_grid_bound(tmp
     assert moment.count(" kN m ") == 2 and shear.count(" kN ") == 2
     m = float(result.dataset["max_moment"].max())  # the dynamic design value is at least the train's peak moment
     assert float(moment.split("= ")[1].split(" kN m")[0]) * 1e3 >= 0.999 * m
+
+
+def test_presets_call_a_trains_loads_axle_loads():
+    from typer.testing import CliRunner
+
+    from vbikit.cli import app
+
+    out = CliRunner().invoke(app, ["presets"]).output.splitlines()
+    hslm = next(x for x in out if x.strip().startswith("hslm-a1 "))
+    assert "axle loads [kN]: 170.0" in hslm and "wheel loads" not in hslm
+    assert any("wheel loads [kN]" in x for x in out)  # road vehicles keep their wheel loads
