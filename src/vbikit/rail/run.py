@@ -29,7 +29,7 @@ from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
 from vbikit.rail.envelope import moment_envelope_near, moment_sections, static_envelope
-from vbikit.rail.refine import PEAK_TOLERANCE
+from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE
 from vbikit.rail.report import check, format_report, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, coupled_envelopes, excitation_wavelength, speed_grid, sweep_moving_forces,
                                train_resonances)
@@ -181,10 +181,12 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     effects = (("moment", 0.5 * span), ("shear", 0.0), *(("moment", float(x)) for x in sections if abs(x - 0.5 * span) > 1e-9 * span))
     dx = default_dx(bridge, float(speeds.min()), spec.run.steps_per_period)
     fv = 1.0 / n0
-    work = filter_steps(bridge, [t.length for t in trains], speeds, dx, fv)
+    refine = np.full(2 * MAX_HALVINGS * MAX_PEAKS, float(speeds.max()))  # the most peak-refinement speeds per train
+    work = filter_steps(bridge, [t.length for t in trains], np.concatenate([speeds, refine]), dx, fv)
     if work > spec.run.budget:
-        raise RailBudgetError(f"run.budget: the sweep needs {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
-                              f"speeds × {bridge.omega.size} modes), above the budget {spec.run.budget:.3g}; raise "
+        raise RailBudgetError(f"run.budget: the sweep needs up to {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
+                              f"speeds and up to {refine.size} refinement speeds × {bridge.omega.size} modes), above the "
+                              f"budget {spec.run.budget:.3g}; raise "
                               "run.budget or use fewer trains, speeds or a coarser step")
     coupled = [t for t in originals if t.cars] if spec.coupled.enabled else []
     if spec.coupled.enabled and not coupled:
