@@ -38,7 +38,9 @@ def quoted() -> list[str]:
             f"error bound of {a['refinement_bound_pct']:g} %", f"gives {a['dense_peak']:g} m/s², {a['refined_vs_dense_pct']:g} % above",
             f"{a['wagons_static_ratio_pct']:g} % above the midspan one, at {a['wagons_static_position_m']:g} m",
             f"largest {a['wagons_dynamic_ratio_pct']:g} % above its midspan value, at {a['wagons_dynamic_position_m']:g} m",
-            f"spacing is {a['ice3_table_wavelength_m']:g} m"]
+            f"spacing is {a['ice3_table_wavelength_m']:g} m", f"moment is {a['moment_grid_kNm']:g} kN m",
+            f"the refined one {a['moment_refined_kNm']:g} kN m with an error bound of {a['moment_bound_pct']:g} %",
+            f"the dense sweep's {a['moment_dense_kNm']:g} kN m"]
     e = s["example"]
     out += [f"n0 = {e['n0_hz']:g} Hz, {e['n_modes']} modes, ζ = {e['damping_pct']:g} %", f"{e['speeds']} speeds",
             f"Peak deck acceleration {e['peak_acc']:g} m/s² ({e['peak_train']} at {e['peak_speed_kmh']:g} km/h",

@@ -3,6 +3,7 @@ it changes by less than a tolerance, with a bound of the remaining grid error (`
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Optional
 
 import numpy as np
 from numpy.typing import NDArray
@@ -42,7 +43,7 @@ def _peak_indices(values: NDArray[np.float64]) -> list[int]:
 
 
 def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float64],
-                 tolerance: float = PEAK_TOLERANCE) -> RefinedPeaks:
+                 tolerance: float = PEAK_TOLERANCE, indices: Optional[list[int]] = None) -> RefinedPeaks:
     """Refine each peak of ``values`` over ``speeds`` (``_peak_indices``) by halving the step around it.
 
     The best speed v* lies midway in its bracket [v* − h, v* + h]; the midpoints v* ± h/2 are
@@ -52,9 +53,10 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
     parabola's vertex lies within h/2 of v*, where it rises c x0² ≤ c h²/4 while the ends fall at
     least c h² below f*): that is the bound of the remaining grid error.  Refinement stops when
     the bound and the change over the last halving are both below ``tolerance`` (relative), or
-    after ``MAX_HALVINGS``.
+    after ``MAX_HALVINGS``.  ``indices``: the grid indices of the peaks to refine (default
+    ``_peak_indices``).
     """
-    idx = _peak_indices(values)
+    idx = _peak_indices(values) if indices is None else list(indices)
     k = len(idx)
     best_v = np.array([speeds[j] for j in idx], float)
     best_a = np.array([values[j] for j in idx], float)

@@ -82,7 +82,9 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         lines.append(f"{kind} at the {where}: (1 + phi'dyn + phi''/2) x train = {c['dynamic_design'] / 1e3:.4g} {unit} "
                      f"({c['train']} at {3.6 * c['speed']:.1f} km/h, phi'dyn = {c['phi_dyn']:.3f}, phi'' = "
                      f"{c['phi_irregularity']:.3f}) vs Phi x alpha x LM71 = {c['lm71_design'] / 1e3:.4g} {unit} (Phi = "
-                     f"{a['dynamic_factor_Phi']:.3f}, alpha = {a['classification_factor']:g}): {c['governs']} governs")
+                     f"{a['dynamic_factor_Phi']:.3f}, alpha = {a['classification_factor']:g}): {c['governs']} governs"
+                     + (f"; speed grid {c['grid_design'] / 1e3:.4g} {unit}, refined peak's error bound "
+                        f"{100 * c['refinement_bound']:.3f} %" if math.isfinite(c.get("refinement_bound", math.nan)) else ""))
     if "moment_envelope" in checks:
         e = checks["moment_envelope"]
         lines.append(f"moment along the span: largest {e['moment_max_Nm'] / 1e3:.4g} kN m at x = {e['moment_max_position_m']:.3f} m "
