@@ -69,6 +69,59 @@ def verification() -> dict:
             "n0_hz": round(n0, 4)}
 
 
+def accuracy() -> dict:
+    """The cases of tests/rail/test_trust.py: a 20 km/h grid against its refined peak and a dense sweep
+    (HSLM-A3, 20 m span); the moment envelope of six four-axle wagons of 22.5 t per axle on a 25 m span
+    (exact static, against midspan); the resonance wavelength of ICE 3 read from a table file."""
+    import numpy as np
+
+    from vbikit.rail.run import build_bridge, run_rail
+    from vbikit.rail.signature import dominant_wavelength
+    from vbikit.rail.spec import parse_rail_spec
+    from vbikit.solve.moving_loads import moving_load_sweep
+    from vbikit.vehicle.trains import hslm_a, ice3
+
+    data = {"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a3"]},
+            "speeds": {"min": 200.0, "max": 260.0, "step": 20.0}}
+    result = run_rail(data, figures=False)
+    ds, acc = result.dataset, result.checks["acceleration"]
+    t = hslm_a(3)
+    v = np.arange(249.0, 253.0, 0.02) / 3.6
+    dense = moving_load_sweep(build_bridge(parse_rail_spec(data))[0], t.axle_positions, t.axle_loads, v, ds.point.values, (),
+                              dx=ds.attrs["dx_m"], free_vibration=1.0 / ds.attrs["first_frequency_hz"])
+    true = float(dense.max_acceleration.max())
+    mom = result.checks["moment"]
+    vm = np.arange(249.0, 255.0, 0.02) / 3.6
+    bridge = build_bridge(parse_rail_spec(data))[0]
+    dense_m = moving_load_sweep(bridge, t.axle_positions, t.axle_loads, vm, ds.point.values[:1],
+                                (bridge.load_effect("moment", 10.0),), dx=ds.attrs["dx_m"],
+                                free_vibration=1.0 / ds.attrs["first_frequency_hz"]).max_effect[:, 0]
+    true_m = float(dense_m.max()) + 0.5 * mom["phi_irregularity"] * float(ds["static_moment"].sel(train="HSLM-A3"))
+    wagon = np.array([0.0, 1.8, 9.0, 10.8])
+    axles = np.concatenate([wagon + 14.0 * k for k in range(6)])
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        table = Path(tmp) / "d2.csv"
+        table.write_text("".join(f"{a:.3f},{22.5 * 9.81:.4f}\n" for a in axles))
+        wagons = run_rail({"bridge": {"span": 25.0, "EI": 2.5e10, "mass_per_length": 12000.0},
+                           "trains": {"tables": [str(table)]}, "speeds": {"min": 40.0, "max": 120.0, "step": 40.0}},
+                          figures=False).dataset.attrs
+    i3 = ice3()
+    return {
+        "grid_peak": round(acc["grid_peak"], 3), "refined_peak": round(acc["peak"], 3),
+        "refined_speed_kmh": round(3.6 * acc["speed"], 2), "refinement_bound_pct": round(100 * acc["refinement_bound"], 3),
+        "dense_peak": round(true, 3), "refined_vs_dense_pct": round(100 * (true - acc["peak"]) / true, 3),
+        "moment_grid_kNm": round(mom["grid_design"] / 1e3, 1), "moment_refined_kNm": round(mom["dynamic_design"] / 1e3, 1),
+        "moment_bound_pct": round(100 * mom["refinement_bound"], 3), "moment_dense_kNm": round(true_m / 1e3, 1),
+        "wagons_static_ratio_pct": round(100 * (wagons["static_moment_max_over_midspan"] - 1), 2),
+        "wagons_static_position_m": round(wagons["static_moment_max_position_m"], 4),
+        "wagons_dynamic_ratio_pct": round(100 * (wagons["moment_max_over_midspan"] - 1), 2),
+        "wagons_dynamic_position_m": round(wagons["moment_max_position_m"], 3),
+        "ice3_table_wavelength_m": round(dominant_wavelength(i3.axle_positions, i3.axle_loads), 6),
+    }
+
+
 def example() -> dict:
     from vbikit.rail.run import run_rail
 
@@ -89,7 +142,7 @@ def example() -> dict:
 
 
 def compute(slow: bool = True) -> dict:
-    out = {"hslm": hslm(), "codes": codes(), "verification": verification()}
+    out = {"hslm": hslm(), "codes": codes(), "verification": verification(), "accuracy": accuracy()}
     if slow:
         out["example"] = example()
     return out

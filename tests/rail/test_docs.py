@@ -33,6 +33,14 @@ def quoted() -> list[str]:
             f"{c['lm71_shear_20m_kN']:g} kN of shear"]
     v = s["verification"]
     out += [f"agree to {v['simulate_rel_err']:.1e} of the peak", f"at {v['resonance_ratio']:g} × n0 D"]
+    a = s["accuracy"]
+    out += [f"largest acceleration is {a['grid_peak']:g} m/s²", f"gives {a['refined_peak']:g} m/s² at {a['refined_speed_kmh']:g} km/h",
+            f"error bound of {a['refinement_bound_pct']:g} %", f"gives {a['dense_peak']:g} m/s², {a['refined_vs_dense_pct']:g} % above",
+            f"{a['wagons_static_ratio_pct']:g} % above the midspan one, at {a['wagons_static_position_m']:g} m",
+            f"largest {a['wagons_dynamic_ratio_pct']:g} % above its midspan value, at {a['wagons_dynamic_position_m']:g} m",
+            f"spacing is {a['ice3_table_wavelength_m']:g} m", f"moment is {a['moment_grid_kNm']:g} kN m",
+            f"the refined one {a['moment_refined_kNm']:g} kN m with an error bound of {a['moment_bound_pct']:g} %",
+            f"the dense sweep's {a['moment_dense_kNm']:g} kN m"]
     e = s["example"]
     out += [f"n0 = {e['n0_hz']:g} Hz, {e['n_modes']} modes, ζ = {e['damping_pct']:g} %", f"{e['speeds']} speeds",
             f"Peak deck acceleration {e['peak_acc']:g} m/s² ({e['peak_train']} at {e['peak_speed_kmh']:g} km/h",
@@ -59,7 +67,7 @@ def _close(now, stored, where):
 
 def test_fast_numbers_are_reproduced():
     now = _script().compute(slow=False)
-    for key in ("hslm", "codes", "verification"):
+    for key in ("hslm", "codes", "verification", "accuracy"):
         if key == "verification":  # a round-off level: its order of magnitude
             assert now[key]["simulate_rel_err"] < 10 * STORED[key]["simulate_rel_err"] + 1e-12
             _close({k: v for k, v in now[key].items() if k != "simulate_rel_err"},

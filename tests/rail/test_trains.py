@@ -1,11 +1,11 @@
-"""Trains: HSLM-A against EN 1991-2 Table E.1 and the axle lists of SincBridgeDynamics.jl, the ICE 3
+"""Trains: HSLM-A against EN 1991-2:2003 Table 6.3 and the axle lists of SincBridgeDynamics.jl, the ICE 3
 preset against its source's geometry and masses, CSV tables."""
 import numpy as np
 import pytest
 
 from vbikit.vehicle.trains import HSLM_A_TABLE, TRAIN_PRESETS, TrainError, get_train, hslm_a, hslm_b, ice3, parse_train_table
 
-#: EN 1991-2:2003 Table E.1 (N intermediate coaches, D [m], d [m], P [kN]), written out here
+#: EN 1991-2:2003 (+ AC) Table 6.3 (N intermediate coaches, D [m], d [m], P [kN]), written out here
 TABLE_E1 = {1: (18, 18, 2.0, 170), 2: (17, 19, 3.5, 200), 3: (16, 20, 2.0, 180), 4: (15, 21, 3.0, 190),
             5: (14, 22, 2.0, 170), 6: (13, 23, 2.0, 180), 7: (13, 24, 2.0, 190), 8: (12, 25, 2.5, 190),
             9: (11, 26, 2.0, 210), 10: (11, 27, 2.0, 210)}

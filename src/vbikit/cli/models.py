@@ -13,7 +13,7 @@ def presets() -> None:
     """List the bridge, vehicle, tire and road presets with their parameters."""
     from vbikit.bridge import BRIDGE_PRESETS, EulerBernoulliBeam
     from vbikit.road import ISO_CLASSES, PAPER_CLASSES
-    from vbikit.vehicle import VEHICLE_PRESETS
+    from vbikit.vehicle import TRAIN_PRESETS, VEHICLE_PRESETS
 
     typer.echo("Bridges ([bridge] model = ...):")
     typer.echo("  beam                  Euler–Bernoulli beam: span, EI, mass_per_length, damping_ratio, n_modes, neutral_axis_depth")
@@ -40,7 +40,8 @@ def presets() -> None:
             params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
         f = v.natural_frequencies()
         freq = f"; frequencies {f.min():.2f} … {f.max():.2f} Hz" if f.size else ""
-        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; wheel loads [kN]: {loads}{freq}")
+        what = "axle loads" if p.name in TRAIN_PRESETS else "wheel loads"  # a train's wheel is one axle (train_vehicle)
+        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; {what} [kN]: {loads}{freq}")
         typer.echo(f"  {'':<14} {params}")
     typer.echo("Tires ([tire] model = ...):")
     from vbikit.contact import tire_catalogue

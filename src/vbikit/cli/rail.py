@@ -12,7 +12,7 @@ from vbikit.cli.guard import guard
 
 def rail_cmd(
     spec: Path = typer.Argument(..., help="RAIL.toml: [bridge], [trains], [speeds] (docs/railway.md)."),
-    out_dir: Path = typer.Option(..., "--out-dir", help="Directory for rail.nc, rail-report.txt and rail-acceleration.png."),
+    out_dir: Path = typer.Option(..., "--out-dir", help="Directory for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes (default: run.workers)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Draw the acceleration-envelope figure."),
 ) -> None:

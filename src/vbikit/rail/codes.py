@@ -1,5 +1,13 @@
 """EN 1991-2 / EN 1990 rules of the dynamic analysis of railway bridges.
 
+Edition: EN 1991-2:2003 with its corrigenda (AC) and EN 1990:2002/A1:2005 Annex A2.  The clause,
+table and equation numbers below are those of that edition (ENV 1991-3:1995, quoted by some
+secondary sources, numbers them differently: there LM71 is Figure 6.2 and Table 6.6 is the groups
+of loads).  Checked against a second source: the HSLM-A trains (6.4.6.1.1, Figure 6.12, Table 6.3;
+Annex E, E.1 refers to them so) and HSLM's limits of validity (Annex E, Table E.1); the others are
+as given by one transcription of the standard and SincBridgeDynamics.jl (Table 6.6) and are marked
+so in docs/railway.md.
+
 * Damping (EN 1991-2:2003 6.4.6, Table 6.6): lower limits of ζ [%] for span L [m]:
   steel and composite 0.5 + 0.125 (20 − L) for L < 20 m, 0.5 above; prestressed concrete
   1.0 + 0.07 (20 − L) / 1.0; filler beam and reinforced concrete 1.5 + 0.07 (20 − L) / 1.5
@@ -11,7 +19,8 @@
   30 Hz, 1.5 n0 and n3.
 * Peak deck acceleration limits (EN 1990 A2.4.4.2.1(4)): 3.5 m/s² ballasted track, 5 m/s²
   direct fastening.
-* Resonance speeds (EN 1991-2 6.4.6): v_i = n0 λ_i, λ_i = D / i.
+* Resonance speeds (EN 1991-2:2003 6.4.6): v_i = n0 λ_i, λ_i = D / i (D: coach length, or for any
+  train its dominant repeated axle spacing, ``vbikit.rail.signature``).
 * Dynamic factors of the static load models (EN 1991-2 6.4.5.2): Φ2 = 1.44/(√L_Φ − 0.2) + 0.82
   within 1.00 … 1.67 (carefully maintained track), Φ3 = 2.16/(√L_Φ − 0.2) + 0.73 within 1.00 … 2.00
   (standard maintenance), L_Φ the determinant length [m] (the span of a simply supported girder).
@@ -84,8 +93,9 @@ def frequency_limit(frequencies_hz: NDArray[np.float64]) -> float:
     return max(30.0, 1.5 * float(f[0]), n3)
 
 
-def resonance_speeds(n0: float, wavelength: float, v_max: float, orders: int = 4) -> NDArray[np.float64]:
-    """v_i = n0 D / i [m/s], i = 1 … ``orders``, those ≤ ``v_max``."""
+def resonance_speeds(n0: float, wavelength: float, v_max: float = math.inf, orders: int = 4) -> NDArray[np.float64]:
+    """v_i = n0 D / i [m/s], i = 1 … ``orders``, those ≤ ``v_max`` (default: all ``orders``, so that
+    entry i − 1 is order i)."""
     v = n0 * wavelength / np.arange(1, orders + 1)
     return v[v <= v_max]
 

@@ -28,13 +28,19 @@ import numpy as np
 from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
-from vbikit.rail.sweep import KMH, SweepSetup, coupled_envelopes, speed_grid, sweep_moving_forces, train_resonances
+from vbikit.rail.envelope import moment_envelope_near, moment_sections, static_envelope
+from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, refine_peaks
+from vbikit.rail.report import check, format_report, summary
+from vbikit.rail.sweep import (KMH, SweepSetup, coupled_envelopes, excitation_wavelength, speed_grid, sweep_moving_forces,
+                               train_resonances)
 from vbikit.vehicle.trains import Train, get_train, read_train_table
 
 log = logging.getLogger(__name__)
 
 #: resonance orders i of v_i = n0 D / i marked and refined
 RESONANCE_ORDERS = 4
+#: the moment envelope along the span is swept at the sections j L / MOMENT_SECTIONS (j = 1 … n − 1)
+MOMENT_SECTIONS = 16
 
 
 class RailBudgetError(VbikitError):
@@ -164,19 +170,23 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         trains = [rail_distributed(t, spec.trains.sleeper_spacing) for t in originals]
     n0 = float(bridge.frequencies_hz[0])
     v_min, v_max = spec.speeds.min * KMH, spec.speeds.top * KMH
-    res = {t.name: (lambda r: r[r >= v_min])(train_resonances(t, n0, v_max, RESONANCE_ORDERS)) for t in trains}
-    all_res = np.concatenate([r for r in res.values()] + [np.zeros(0)])
+    res = {t.name: train_resonances(t, n0, RESONANCE_ORDERS) for t in trains}
+    waves = {t.name: excitation_wavelength(t) for t in trains}
+    all_res = np.concatenate([r[np.isfinite(r)] for r in res.values()] + [np.zeros(0)])
     fine = spec.speeds.fine_step * KMH if spec.speeds.fine_step else None
     speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH)
     span = float(bridge.span)
     points = np.unique(np.append(np.linspace(0.0, span, spec.run.points + 2)[1:-1], 0.5 * span))  # midspan always
-    effects = (("moment", 0.5 * span), ("shear", 0.0))
+    sections = moment_sections(span, MOMENT_SECTIONS)
+    effects = (("moment", 0.5 * span), ("shear", 0.0), *(("moment", float(x)) for x in sections if abs(x - 0.5 * span) > 1e-9 * span))
     dx = default_dx(bridge, float(speeds.min()), spec.run.steps_per_period)
     fv = 1.0 / n0
-    work = filter_steps(bridge, [t.length for t in trains], speeds, dx, fv)
+    refine = np.full(2 * MAX_HALVINGS * MAX_PEAKS, float(speeds.max()))  # the most peak-refinement speeds per train
+    work = filter_steps(bridge, [t.length for t in trains], np.concatenate([speeds, refine]), dx, fv)
     if work > spec.run.budget:
-        raise RailBudgetError(f"run.budget: the sweep needs {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
-                              f"speeds × {bridge.omega.size} modes), above the budget {spec.run.budget:.3g}; raise "
+        raise RailBudgetError(f"run.budget: the sweep needs up to {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
+                              f"speeds and up to {refine.size} refinement speeds × {bridge.omega.size} modes), above the "
+                              f"budget {spec.run.budget:.3g}; raise "
                               "run.budget or use fewer trains, speeds or a coarser step")
     coupled = [t for t in originals if t.cars] if spec.coupled.enabled else []
     if spec.coupled.enabled and not coupled:
@@ -189,13 +199,15 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                               f"trains × {speeds.size} speeds), above {spec.coupled.max_steps:.3g}; raise coupled.max_steps "
                               "or use fewer speeds")
     if span < 7.0 and any(t.name.startswith("HSLM-A") for t in trains):
-        log.warning("span %.3g m < 7 m: EN 1991-2 Annex E uses HSLM-B for simply supported spans below 7 m", span)
+        log.warning("span %.3g m < 7 m: EN 1991-2:2003 6.4.6.1.1 uses HSLM-B for simply supported spans below 7 m", span)
     y = float(bridge.default_lateral_offset)  # the track's axis; the deck is read on it
     setup = SweepSetup(bridge, points, effects, dx, fv, spec.run.budget, y)
     log.info("sweeping %d trains × %d speeds, %d modes (%.1f … %.1f Hz), Δx = %.4f m", len(trains), speeds.size,
              bridge.omega.size, n0, bridge.frequencies_hz[-1], dx)
-    envs = sweep_moving_forces(setup, trains, speeds, workers or spec.run.workers)
+    swept = sweep_moving_forces(setup, trains, speeds, workers or spec.run.workers)
+    envs, refined = [e for e, _ in swept], [r for _, r in swept]
     names = [t.name for t in trains]
+    statics = [static_envelope(bridge, "moment", sections, t.axle_positions, t.axle_loads, y) for t in trains]
     if coupled:
         for t in coupled:
             if t.cars:
@@ -204,9 +216,15 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                                               spec.coupled.contact))
                 names.append(f"{t.name} (coupled)")
                 res[names[-1]] = res[trains[originals.index(t)].name]
-    ds = assemble(spec, bridge, names, speeds, points, envs, res, f_limit)
+                waves[names[-1]] = waves[trains[originals.index(t)].name]
+                refined.append(None)
+                statics.append(statics[originals.index(t)])
+    ds = assemble(spec, bridge, names, speeds, points, envs, res, f_limit, waves=waves, refined=refined,
+                  sections=sections, statics=statics)
+    ds.attrs.update(moment_envelope_summary(ds, setup, {t.name: t for t in trains}))
     ds.attrs["modes_required"] = required
     checks = check(ds)
+    refine_design_checks(ds, checks, setup, {t.name: t for t in trains})
     report = format_report(ds, checks)
     result = RailResult(ds, checks, report, seconds=time.perf_counter() - t0)
     ds.attrs["run_seconds"] = result.seconds
@@ -215,8 +233,13 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     return result
 
 
-def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit):
-    """The NetCDF dataset of a sweep (every variable with units and long_name)."""
+def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,
+             statics=None):
+    """The NetCDF dataset of a sweep (every variable with units and long_name): ``res`` the resonance
+    speeds of every train by order, ``waves`` their (D [m], source), ``refined`` the ``RefinedPeaks``
+    of every train (None: not refined), ``sections`` the sections x [m] of the moment envelope (the
+    sweep's effects 2 … are its moments off midspan) and ``statics`` every train's exact static
+    moment envelope there."""
     import xarray as xr
 
     b = spec.bridge
@@ -237,6 +260,26 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit):
     for i, n in enumerate(names):
         r = res.get(n, np.zeros(0))
         res_arr[i, :r.size] = r
+    v_lo, v_hi = float(speeds.min()), float(speeds.max())
+    in_sweep = np.where(np.isfinite(res_arr), (res_arr >= v_lo * (1 - 1e-12)) & (res_arr <= v_hi * (1 + 1e-12)), False)
+    waves = waves or {}
+    wave = np.array([(waves.get(n) or (None, ""))[0] or np.nan for n in names], float)
+    wave_src = np.array([(waves.get(n) or (None, "none"))[1] for n in names], dtype=object)
+    sections = np.zeros(0) if sections is None else np.asarray(sections, float)
+    n_sec = sections.size
+    others = [j for j, x in enumerate(sections) if abs(x - 0.5 * span) > 1e-9 * span]
+    col = np.array([0 if abs(x - 0.5 * span) <= 1e-9 * span else 2 + others.index(j) for j, x in enumerate(sections)], int)
+    along = dyn_eff[:, :, col] if n_sec else np.zeros((len(names), speeds.size, 0))
+    st_along = np.stack(statics) if statics is not None and n_sec else np.zeros((len(names), n_sec))
+    if n_sec and np.any(np.abs(sections - 0.5 * span) <= 1e-9 * span):
+        st_eff[:, 0] = st_along[:, int(np.argmin(np.abs(sections - 0.5 * span)))]  # the exact static peak at midspan
+    peaks = [r for r in (refined or []) if r is not None]
+    n_pk = max([r.speed.size for r in peaks] + [0])
+    pk = {key: np.full((len(names), n_pk), np.nan) for key in ("grid_speed", "grid_value", "speed", "value", "bound", "last_change", "step")}
+    for i, r in enumerate(refined or []):
+        if r is not None:
+            for key in pk:
+                pk[key][i, :r.speed.size] = getattr(r, key)
     phi_lm = codes.DYNAMIC_FACTORS[b.maintenance](span)
     alpha = b.classification_factor
     y = float(bridge.default_lateral_offset)
@@ -258,7 +301,26 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit):
         "phi_dyn_moment": var(("train", "speed"), dyn_eff[:, :, 0] / st_eff[:, :1] - 1, "1", "phi'dyn of midspan moment"),
         "phi_dyn_shear": var(("train", "speed"), dyn_eff[:, :, 1] / st_eff[:, 1:2] - 1, "1", "phi'dyn of shear at the entry support"),
         "phi_irregularity": var(("speed",), phi_irr, "1", "phi'' of EN 1991-2 Annex C"),
-        "resonance_speed": var(("train", "order"), res_arr, "m s-1", "resonance speed n0 D / i"),
+        "resonance_speed": var(("train", "order"), res_arr, "m s-1",
+                               "resonance speed n0 D / i (every order i, inside the sweep or not: resonance_in_sweep)"),
+        "resonance_in_sweep": var(("train", "order"), in_sweep.astype(float), "1",
+                                  "1 where the resonance speed n0 D / i lies within the swept speeds, 0 outside"),
+        "excitation_wavelength": var(("train",), wave, "m", "D of the resonance speeds n0 D / i (wavelength_source)"),
+        "max_moment_along": var(("train", "speed", "section"), along, "N m", "peak bending moment at each section (mode acceleration)"),
+        "static_moment_along": var(("train", "section"), st_along, "N m",
+                                   "peak static bending moment at each section (exact: an axle on a breakpoint of the influence line)"),
+        "peak_acceleration_grid": var(("train", "peak"), pk["grid_value"], "m s-2", "acceleration peak on the sweep's speed grid"),
+        "peak_speed_grid": var(("train", "peak"), pk["grid_speed"], "m s-1", "speed of the acceleration peak on the sweep's grid"),
+        "peak_acceleration_refined": var(("train", "peak"), pk["value"], "m s-2",
+                                         "acceleration peak after halving the speed step around it (NaN: not refined)"),
+        "peak_speed_refined": var(("train", "peak"), pk["speed"], "m s-1", "speed of the refined acceleration peak"),
+        "peak_grid_error": var(("train", "peak"), (pk["value"] - pk["grid_value"]) / pk["value"], "1",
+                               "relative amount by which the sweep's grid misses the refined peak"),
+        "peak_refinement_bound": var(("train", "peak"), pk["bound"], "1",
+                                     "bound of the refined peak's remaining grid error (relative; a quadratic peak between its samples)"),
+        "peak_last_change": var(("train", "peak"), pk["last_change"], "1",
+                                "relative change of the refined peak over its last halving of the speed step"),
+        "peak_speed_step": var(("train", "peak"), pk["step"], "m s-1", "final half-step of the speed around the refined peak"),
         "acceleration_limit": var((), limit, "m s-2", f"EN 1990 A2.4.4.2.1 limit, {b.track} track"),
         "lm71_moment": var((), phi_lm * lm_m, "N m", "Phi x alpha x LM71 midspan moment"),
         "lm71_shear": var((), phi_lm * lm_v, "N", "Phi x alpha x LM71 shear at the entry support"),
@@ -271,6 +333,9 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit):
         "point": ("point", points, {"units": "m", "long_name": "x of the deck point from the entry support"}),
         "order": ("order", orders, {"units": "1", "long_name": "resonance order i"}),
         "mode": ("mode", np.arange(1, bridge.omega.size + 1), {"units": "1", "long_name": "mode number"}),
+        "section": ("section", sections, {"units": "m", "long_name": "x of the moment section from the entry support"}),
+        "peak": ("peak", np.arange(1, n_pk + 1), {"units": "1", "long_name": "refined acceleration peak (by speed)"}),
+        "wavelength_source": ("train", wave_src, {"long_name": "where the resonance wavelength D comes from"}),
     }
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
@@ -278,89 +343,115 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit):
         "mass_per_length_kg_m": b.mass_per_length if b.mass_per_length is not None else math.nan,
         "bridge_model": type(bridge).__name__ + (f" from {b.scenario}" if b.scenario else ""),
         "damping_ratio": float(bridge.damping_ratios[0]), "deck": b.deck, "track": b.track,
-        "damping_source": "given (bridge.damping)" if b.damping is not None else "EN 1991-2 Table 6.6",
+        "damping_source": "given (bridge.damping)" if b.damping is not None else "EN 1991-2:2003 Table 6.6",
         "additional_damping": int(b.additional_damping and b.damping is None), "first_frequency_hz": n0,
         "frequency_limit_hz": f_limit, "n_modes": int(bridge.omega.size), "dynamic_factor_Phi": phi_lm,
         "maintenance": b.maintenance, "classification_factor": alpha, "lm71_moment_static": lm_m,
         "lm71_shear_static": lm_v, "dx_m": float(envs[0].dx) if envs else math.nan,
         "method": "moving forces, exact modal stepping (vbikit.solve.moving_loads); load effects by mode acceleration",
+        "peak_tolerance": PEAK_TOLERANCE,
+        "peak_refinement": (f"each acceleration peak (local maxima of at least half the train's largest, up to four per train) "
+                            f"refined by halving the speed step around it until both the change over a halving and the "
+                            f"bound of the remaining error (a quadratic peak between its samples) are below "
+                            f"{100 * PEAK_TOLERANCE:g} %; coupled cars not refined"),
     })
     return ds
 
 
-def check(ds) -> dict[str, Any]:
-    """The pass/fail summary: governing train, speed and quantity of every check."""
-    acc = ds["max_deck_acceleration"]
-    i, j = np.unravel_index(int(np.nanargmax(acc.values)), acc.shape)
-    limit = float(ds["acceleration_limit"])
-    peak = float(acc.values[i, j])
-    out: dict[str, Any] = {"acceleration": {
-        "peak": peak, "limit": limit, "train": str(ds.train.values[i]), "speed": float(ds.speed.values[j]),
-        "passes": bool(peak <= limit), "ratio": peak / limit}}
-    irr = ds["phi_irregularity"].values
-    for kind in ("moment", "shear"):
-        dyn = ds[f"max_{kind}"].values + 0.5 * irr[None, :] * ds[f"static_{kind}"].values[:, None]
-        a, b = np.unravel_index(int(np.nanargmax(dyn)), dyn.shape)
-        lm = float(ds[f"lm71_{kind}"])
-        phi = float(ds[f"phi_dyn_{kind}"].values[a, b])
-        out[kind] = {"dynamic_design": float(dyn[a, b]), "lm71_design": lm, "train": str(ds.train.values[a]),
-                     "speed": float(ds.speed.values[b]), "phi_dyn": phi, "phi_irregularity": float(irr[b]),
-                     "governs": "dynamic analysis" if dyn[a, b] > lm else "Phi x LM71", "ratio": float(dyn[a, b] / lm)}
-    phid = ds["phi_dyn_deflection"].values
-    a, b = np.unravel_index(int(np.nanargmax(phid)), phid.shape)
-    out["deflection"] = {"phi_dyn": float(phid[a, b]), "train": str(ds.train.values[a]), "speed": float(ds.speed.values[b])}
-    out["passes"] = out["acceleration"]["passes"]
-    return out
+def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: dict[str, Train]) -> None:
+    """Refine the governing peak of the moment and shear checks over speed as the acceleration peaks
+    are (``refine_peaks`` at the governing train's grid speed): the design value becomes the larger
+    of the grid's and the refined one, with the refinement's error bound (``checks[kind]``)."""
+    from vbikit.solve.moving_loads import moving_load_sweep
 
-
-def format_report(ds, checks: dict[str, Any]) -> str:
-    """The text report of a sweep."""
-    a = ds.attrs
-    acc = checks["acceleration"]
-    lines = [
-        "vbikit railway dynamic check (EN 1991-2 6.4.6, EN 1990 A2.4.4.2.1)",
-        f"bridge: simply supported span {a['span_m']:g} m, n0 = {a['first_frequency_hz']:.3f} Hz, {a['n_modes']} modes "
-        f"(up to {float(ds['frequency'].values[-1]):.1f} Hz; required max(30 Hz, 1.5 n0, n3) = {a['frequency_limit_hz']:.1f} Hz), "
-        f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}"
-        f"{', with additional damping' if a['additional_damping'] else ''})",
-        f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {float(ds.speed_kmh.min()):.0f} … "
-        f"{float(ds.speed_kmh.max()):.0f} km/h",
-    ]
-    if a.get("modes_required", 0) > a["n_modes"]:
-        lines.append(f"WARNING: {a['n_modes']} modes retained, but the {a['modes_required']} modes up to "
-                     f"{a['frequency_limit_hz']:.1f} Hz are required (EN 1990 A2.4.4.2.1): raise bridge.n_modes")
-    lines += [
-        "",
-        f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {3.6 * acc['speed']:.1f} km/h) against "
-        f"{acc['limit']:g} m/s² ({a['track']} track): {'PASS' if acc['passes'] else 'FAIL'} ({100 * acc['ratio']:.0f} % of the limit)",
-    ]
-    for kind in ("moment", "shear"):
+    speeds = ds.speed.values
+    for e, kind in enumerate(("moment", "shear")):
         c = checks[kind]
-        lines.append(f"{kind}: (1 + phi'dyn + phi''/2) x train = {c['dynamic_design']:.4g} ({c['train']} at "
-                     f"{3.6 * c['speed']:.1f} km/h, phi'dyn = {c['phi_dyn']:.3f}, phi'' = {c['phi_irregularity']:.3f}) "
-                     f"vs Phi x alpha x LM71 = {c['lm71_design']:.4g} (Phi = {a['dynamic_factor_Phi']:.3f}, alpha = "
-                     f"{a['classification_factor']:g}): {c['governs']} governs")
-    d = checks["deflection"]
-    lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {3.6 * d['speed']:.1f} km/h)")
-    lines += ["", "resonance speeds v = n0 D / i [km/h]:"]
-    for name, row in zip(ds.train.values, ds["resonance_speed"].values):
-        r = row[np.isfinite(row)]
-        if r.size:
-            lines.append(f"  {name}: " + ", ".join(f"{3.6 * v:.1f}" for v in r))
-    lines += ["", f"result: {'PASS' if checks['passes'] else 'FAIL'} (governing: {acc['train']}, "
-              f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"]
-    return "\n".join(lines) + "\n"
+        c.update(grid_design=c["dynamic_design"], refinement_bound=math.nan)
+        train = trains.get(c["train"])
+        if train is None:  # coupled cars: not refined
+            continue
+        j = int(np.argmin(np.abs(speeds - c["speed"])))
+        static = float(ds[f"static_{kind}"].sel(train=c["train"]))
+
+        def evaluate(v, e=e, train=train):
+            env = moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, v, setup.points[:1],
+                                    setup.effects[e:e + 1], dx=setup.dx, free_vibration=setup.free_vibration, y=setup.y,
+                                    max_steps=setup.max_steps)
+            return env.max_effect[:, 0]
+
+        r = refine_peaks(evaluate, speeds, ds[f"max_{kind}"].sel(train=c["train"]).values, indices=[j])
+        v = float(r.speed[0])
+        irr = codes.phi_irregularity(v, float(ds.attrs["span_m"]), float(ds.attrs["first_frequency_hz"]))
+        design = float(r.value[0]) + 0.5 * irr * static
+        c["refinement_bound"] = float(r.bound[0])
+        if design > c["dynamic_design"]:
+            c.update(dynamic_design=design, speed=v, phi_dyn=float(r.value[0]) / static - 1.0, phi_irregularity=irr)
+        c["governs"] = "dynamic analysis" if c["dynamic_design"] > c["lm71_design"] else "Phi x LM71"
+        c["ratio"] = c["dynamic_design"] / c["lm71_design"]
+
+
+#: sections [per span] of the fine static envelope and of the dynamic one around the swept maximum
+FINE_SECTIONS = 400
+NEAR_SECTIONS = 81
+
+
+def moment_envelope_summary(ds, setup: SweepSetup, trains: dict[str, Train]) -> dict[str, Any]:
+    """The largest moment along the span, dynamic (over trains, speeds and the swept sections, then
+    placed between the sections by one crossing at the governing speed, ``moment_envelope_near``) and
+    static (the exact envelope ``static_envelope`` on L / FINE_SECTIONS), with their positions and
+    their ratios to the same maxima at midspan (dataset attrs)."""
+    span = float(ds.attrs["span_m"])
+    along = ds["max_moment_along"].values
+    if along.shape[-1] == 0:
+        return {}
+    t, v, j = np.unravel_index(int(np.nanargmax(along)), along.shape)
+    name = str(ds.train.values[t])
+    x_sec = float(ds.section.values[j])
+    best, where = float(along[t, v, j]), x_sec
+    h = span / (ds.section.size + 1)
+    if name in trains:
+        xs, env = moment_envelope_near(setup, trains[name], float(ds.speed.values[v]), max(x_sec - h, 1e-6 * span),
+                                       min(x_sec + h, span * (1 - 1e-6)), NEAR_SECTIONS)
+        k = int(np.argmax(env))
+        if env[k] > best:
+            best, where = float(env[k]), float(xs[k])
+    mid = float(np.nanmax(ds["max_moment"].values))
+    st = ds["static_moment_along"].values
+    ts = int(np.unravel_index(int(np.nanargmax(st)), st.shape)[0])
+    sname = str(ds.train.values[ts])
+    base = sname.removesuffix(" (coupled)")
+    fine = span * np.arange(1, FINE_SECTIONS) / FINE_SECTIONS
+    tr = trains.get(base)
+    st_fine = (static_envelope(setup.bridge, "moment", fine, tr.axle_positions, tr.axle_loads, setup.y)
+               if tr is not None else st[ts])
+    fine = fine if tr is not None else ds.section.values
+    ks = int(np.argmax(st_fine))
+    st_mid = float(np.nanmax(ds["static_moment"].values))
+    return {"moment_max_Nm": best, "moment_max_position_m": where, "moment_max_train": name,
+            "moment_max_speed_m_s": float(ds.speed.values[v]), "moment_max_over_midspan": best / mid if mid > 0 else math.nan,
+            "static_moment_max_Nm": float(st_fine[ks]), "static_moment_max_position_m": float(fine[ks]),
+            "static_moment_max_train": sname,
+            "static_moment_max_over_midspan": float(st_fine[ks]) / st_mid if st_mid > 0 else math.nan,
+            "moment_envelope_method": (f"dynamic: {ds.section.size} sections swept (L/{ds.section.size + 1}), the largest "
+                                       f"placed on {NEAR_SECTIONS} sections around it at the governing speed; static: exact "
+                                       f"(an axle on a breakpoint of the influence line) on L/{FINE_SECTIONS}")}
 
 
 def write_outputs(result: RailResult, out_dir: Path, figures: bool = True) -> list[Path]:
-    """``rail.nc``, ``rail-report.txt`` and (``figures``) ``rail-acceleration.png`` in ``out_dir``."""
+    """``rail.nc``, ``rail-report.txt``, ``rail-summary.json`` and (``figures``) ``rail-acceleration.png``
+    in ``out_dir``."""
+    import json
+
     from vbikit._files import atomic_write, write_text
 
     out_dir.mkdir(parents=True, exist_ok=True)
     ds = result.dataset.copy()
     ds["train"] = ds["train"].astype(str)
+    ds["wavelength_source"] = ds["wavelength_source"].astype(str)
     files = [atomic_write(out_dir / "rail.nc", lambda tmp: ds.to_netcdf(tmp, engine="netcdf4")),
-             write_text(out_dir / "rail-report.txt", result.report)]
+             write_text(out_dir / "rail-report.txt", result.report),
+             write_text(out_dir / "rail-summary.json", json.dumps(summary(result.dataset, result.checks), indent=1, ensure_ascii=False) + "\n")]
     if figures:
         from vbikit.rail.figures import plot_acceleration_envelopes
 

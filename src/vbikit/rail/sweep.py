@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.rail.codes import resonance_speeds
+from vbikit.rail.refine import PEAK_TOLERANCE, RefinedPeaks, refine_peaks
 from vbikit.vehicle.trains import Train
 
 log = logging.getLogger(__name__)
@@ -65,13 +66,15 @@ def _sweep_one(args: tuple[SweepSetup, Train, NDArray[np.float64]]):
     from vbikit.solve.moving_loads import moving_load_sweep
 
     setup, train, speeds = args
-    return moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, speeds, setup.points,
-                             setup.effects, dx=setup.dx, free_vibration=setup.free_vibration, y=setup.y,
-                             max_steps=setup.max_steps)
+    env = moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, speeds, setup.points,
+                            setup.effects, dx=setup.dx, free_vibration=setup.free_vibration, y=setup.y,
+                            max_steps=setup.max_steps)
+    return env, refine_train_peaks(setup, train, env)
 
 
 def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDArray[np.float64], workers: int = 1) -> list:
-    """``MovingLoadEnvelopes`` of every train (``workers`` processes; 1: in this process)."""
+    """(``MovingLoadEnvelopes``, ``RefinedPeaks``) of every train (``workers`` processes; 1: in this
+    process)."""
     jobs = [(setup, t, speeds) for t in trains]
     if workers <= 1 or len(trains) < 2:
         return [_sweep_one(j) for j in jobs]
@@ -142,8 +145,33 @@ def rail_cars(train: Train, contact: str | float = "hertz") -> list:
     return out
 
 
-def train_resonances(train: Train, n0: float, v_max: float, orders: int = 4) -> NDArray[np.float64]:
-    """v_i = n0 D / i [m/s] of a train with a regular coach length D (empty otherwise)."""
-    if not train.coach_length:
-        return np.zeros(0)
-    return resonance_speeds(n0, train.coach_length, v_max, orders)
+def excitation_wavelength(train: Train) -> tuple[Optional[float], str]:
+    """The wavelength D [m] of a train's resonances v_i = n0 D / i and where it comes from: its coach
+    length when documented (HSLM, presets), else its dominant repeated axle spacing
+    (``vbikit.rail.signature``)."""
+    if train.coach_length:
+        return float(train.coach_length), "coach length"
+    from vbikit.rail.signature import dominant_wavelength
+
+    d = dominant_wavelength(train.axle_positions, train.axle_loads)
+    return d, ("dominant repeated axle spacing (train spectrum)" if d else "none (no repeated axle spacing)")
+
+
+def train_resonances(train: Train, n0: float, orders: int = 4) -> NDArray[np.float64]:
+    """v_i = n0 D / i [m/s], i = 1 … ``orders`` (entry i − 1 is order i; NaN when the train has no D),
+    D from ``excitation_wavelength``."""
+    d, _ = excitation_wavelength(train)
+    return resonance_speeds(n0, d, orders=orders) if d else np.full(orders, np.nan)
+
+
+def refine_train_peaks(setup: SweepSetup, train: Train, envelopes, tolerance: float = PEAK_TOLERANCE) -> RefinedPeaks:
+    """``refine_peaks`` (``vbikit.rail.refine``) of one train's peak deck acceleration (over the deck
+    points) from its sweep."""
+    from vbikit.solve.moving_loads import moving_load_sweep
+
+    def evaluate(v):
+        env = moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, v, setup.points, (), dx=setup.dx,
+                                free_vibration=setup.free_vibration, y=setup.y, max_steps=setup.max_steps)
+        return env.max_acceleration.max(axis=1)
+
+    return refine_peaks(evaluate, envelopes.speeds, envelopes.max_acceleration.max(axis=1), tolerance)

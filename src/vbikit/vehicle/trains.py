@@ -6,10 +6,13 @@ non-decreasing), its static axle loads P_k [N] (downward, > 0) and optionally it
 ([`CarGeometry`][vbikit.vehicle.CarGeometry]: where each car's bogies are and, when known, its masses
 and suspensions), from which coupled car models can be built.
 
-HSLM-A (EN 1991-2:2003, Annex E, Table E.1 and Figure E.1): two power cars, two end coaches and
-N intermediate coaches of length D, articulated (neighbouring coaches share a bogie), bogie axle
-spacing d, axle load P.  The chain, front to rear (the same axle lists as SincBridgeDynamics.jl,
-``TRAIN_MODELS``, to 1e-4 m):
+HSLM-A (EN 1991-2:2003 + AC, 6.4.6.1.1, Figure 6.12 and Table 6.3 — the numbers checked against the
+standard's Annex E, E.1, which refers to "the Universal Trains in accordance with Figure 6.12 and
+Table 6.3"; Annex E, Table E.1 gives the limits of validity of HSLM, not the trains): two power
+cars, two end coaches and N intermediate coaches of length D, articulated (neighbouring coaches
+share a bogie), bogie axle spacing d, axle load P.  The chain, front to rear (tests/rail/test_trains.py
+asserts, within 1e-9 m, SincBridgeDynamics.jl's ``TRAIN_MODELS`` axle counts and last axles of all
+ten, the first twelve axles of A2 and the last eight of A8):
 
 * power car: two bogies of axle spacing 3 m, 11 m between them — axles at 0, 3, 14, 17 m;
 * end coach: its own bogie (spacing d) with its first axle 3.525 m behind the power car's last,
@@ -19,9 +22,10 @@ spacing d, axle load P.  The chain, front to rear (the same axle lists as SincBr
 
 So an HSLM-A train has 2N + 14 axles and its first-to-last axle length is (N + 2) D + 37.525 m.
 
-HSLM-B (EN 1991-2 Annex E, Figure E.2): N point forces of 170 kN at a uniform spacing d, both
-read from a figure of the span (simply supported spans below 7 m).  The figure's curves are not
-encoded here (no second source could be checked): ``hslm_b`` takes N and d from the user.
+HSLM-B (EN 1991-2:2003 + AC, 6.4.6.1.1; the figure number not checked against a second source): N
+point forces of 170 kN at a uniform spacing d, both read from a figure of the span (simply
+supported spans below 7 m).  The figure's curves are not encoded here (no second source could be
+checked): ``hslm_b`` takes N and d from the user.
 """
 from __future__ import annotations
 
@@ -159,7 +163,7 @@ class Train:
 
 
 # ---------------------------------------------------------------------------------------- HSLM
-#: EN 1991-2:2003 Table E.1: (N intermediate coaches, coach length D [m], bogie axle spacing d [m],
+#: EN 1991-2:2003 + AC, Table 6.3: (N intermediate coaches, coach length D [m], bogie axle spacing d [m],
 #: point force P [kN]) of HSLM-A1 … A10 (D, d, P also in SincBridgeDynamics.jl's TRAIN_MODELS)
 HSLM_A_TABLE: dict[int, tuple[int, float, float, float]] = {
     1: (18, 18.0, 2.0, 170.0),
@@ -173,10 +177,10 @@ HSLM_A_TABLE: dict[int, tuple[int, float, float, float]] = {
     9: (11, 26.0, 2.0, 210.0),
     10: (11, 27.0, 2.0, 210.0),
 }
-#: power car axles [m] (EN 1991-2 Figure E.1) and the gap [m] from its last axle to the end coach's first
+#: power car axles [m] (EN 1991-2:2003 Figure 6.12) and the gap [m] from its last axle to the end coach's first
 POWER_CAR_AXLES = (0.0, 3.0, 14.0, 17.0)
 POWER_TO_END_COACH = 3.525
-HSLM_SOURCE = "EN 1991-2:2003 Annex E, Table E.1 and Figure E.1"
+HSLM_SOURCE = "EN 1991-2:2003 + AC, 6.4.6.1.1, Figure 6.12 and Table 6.3"
 
 
 def hslm_a_axles(n: int, coach: float, d: float) -> NDArray[np.float64]:
@@ -195,7 +199,7 @@ def hslm_a_axles(n: int, coach: float, d: float) -> NDArray[np.float64]:
 
 
 def hslm_a(number: int) -> Train:
-    """HSLM-A``number`` (1 … 10) of EN 1991-2 Annex E as moving axle loads."""
+    """HSLM-A``number`` (1 … 10) of EN 1991-2:2003 (Table 6.3) as moving axle loads."""
     if number not in HSLM_A_TABLE:
         raise TrainError(f"HSLM-A{number}: the HSLM-A trains are numbered 1 … 10")
     n, coach, d, p = HSLM_A_TABLE[number]
@@ -205,15 +209,15 @@ def hslm_a(number: int) -> Train:
 
 
 def hslm_b(n: int, spacing: float, load: float = 170e3) -> Train:
-    """HSLM-B: ``n`` equal point forces ``load`` [N] (170 kN in EN 1991-2 Annex E) at a uniform
-    ``spacing`` d [m]; N and d are read by the user from EN 1991-2 Figure E.2 for the span."""
+    """HSLM-B: ``n`` equal point forces ``load`` [N] (170 kN in EN 1991-2:2003 6.4.6.1.1) at a uniform
+    ``spacing`` d [m]; N and d are read by the user from the standard's HSLM-B figure for the span."""
     if int(n) != n or not 1 <= n <= 100:
         raise TrainError(f"HSLM-B: the number of forces N must be an integer within 1 … 100, got {n!r}")
     if not (math.isfinite(spacing) and 0.5 <= spacing <= 50):
         raise TrainError(f"HSLM-B: the spacing d must be within 0.5 … 50 m, got {spacing!r}")
     a = spacing * np.arange(int(n), dtype=float)
     return Train(f"HSLM-B (N = {int(n)}, d = {spacing:g} m)", a, np.full(a.size, float(load)), None,
-                 "EN 1991-2:2003 Annex E, Figure E.2 (N and d given by the user)", spacing)
+                 "EN 1991-2:2003 + AC, 6.4.6.1.1, HSLM-B (N and d given by the user)", spacing)
 
 
 def rail_distributed(train: Train, sleeper_spacing: float = 0.6) -> Train:
@@ -297,7 +301,7 @@ class TrainPreset:
 
 TRAIN_PRESETS: dict[str, TrainPreset] = {
     **{f"hslm-a{k}": TrainPreset(f"hslm-a{k}", (lambda k=k: hslm_a(k)),
-                                 f"HSLM-A{k}: EN 1991-2 Annex E universal train, N = {HSLM_A_TABLE[k][0]}, "
+                                 f"HSLM-A{k}: EN 1991-2:2003 Table 6.3 universal train, N = {HSLM_A_TABLE[k][0]}, "
                                  f"D = {HSLM_A_TABLE[k][1]:g} m, d = {HSLM_A_TABLE[k][2]:g} m, P = {HSLM_A_TABLE[k][3]:g} kN",
                                  ("EN1991-2", "SincBridgeDynamics")) for k in HSLM_A_TABLE},
     "ice3": TrainPreset("ice3", ice3, "ICE 3 / AVE S-103 (Velaro E), 8 cars with their masses and suspensions",

@@ -1,0 +1,55 @@
+"""The moment envelope along a span: sections, the exact static envelope of a chain of axle loads and
+the dynamic envelope of one crossing around a section."""
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Optional
+
+import numpy as np
+from numpy.typing import NDArray
+
+from vbikit.bridge.base import ModalBridge
+from vbikit.vehicle.trains import Train
+
+if TYPE_CHECKING:
+    from vbikit.rail.sweep import SweepSetup
+
+
+def moment_sections(span: float, n: int) -> NDArray[np.float64]:
+    """The n − 1 interior sections x_j = j L / n [m] (n even: midspan among them)."""
+    return span * np.arange(1, n) / n
+
+
+def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64], axles: NDArray[np.float64],
+                    loads: NDArray[np.float64], y: float = 0.0, travel: Optional[NDArray[np.float64]] = None) -> NDArray[np.float64]:
+    """max over the train's positions of |Σ_k P_k η(s − a_k)| at each section (η the effect of a unit
+    downward force), evaluated where an axle stands on a breakpoint of a simply supported span's
+    influence line (a support or the section itself: s = a_k, a_k + x, a_k + L) — exact for a
+    piecewise-linear line — and at the first-axle travel samples ``travel`` [m] (curved lines)."""
+    span = float(bridge.span)
+    out = np.zeros(sections.size)
+    for j, x in enumerate(sections):
+        effect = bridge.load_effect(kind, float(x))
+        cand = np.concatenate([axles + b for b in (0.0, float(x), span)] + ([travel] if travel is not None else []))
+        pos = cand[:, None] - axles[None, :]
+        on = (pos >= 0.0) & (pos <= span)
+        eta = np.zeros(pos.shape)
+        if on.any():
+            eta[on] = -np.asarray(effect.influence(pos[on], np.full(int(on.sum()), y)), float)
+        out[j] = float(np.max(np.abs(eta @ loads)))
+    return out
+
+
+def moment_envelope_near(setup: "SweepSetup", train: Train, speed: float, x_lo: float, x_hi: float,
+                         n: int = 81) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Peak |M| [N m] of one crossing at ``speed`` [m/s] at n sections in [x_lo, x_hi] [m] (mode
+    acceleration, the sweep's Δx): the envelope between the sweep's sections, to place its maximum."""
+    from vbikit.solve.moving_loads import moving_load_history
+
+    bridge = setup.bridge
+    xs = np.linspace(x_lo, x_hi, n)
+    effects = [bridge.load_effect("moment", float(x)) for x in xs]
+    h = moving_load_history(bridge, train.axle_positions, train.axle_loads, speed, dx=setup.dx,
+                            free_vibration=setup.free_vibration, effects=effects, y=setup.y)
+    r = np.array([e.modal for e in effects])                        # (n, n_m)
+    resp = h.static_effects + (h.xi - h.modal_load / bridge.omega**2) @ r.T
+    return xs, np.max(np.abs(resp), axis=0)

@@ -1,0 +1,92 @@
+"""Refinement of the acceleration peaks of a speed sweep: the speed step halved around each peak until
+it changes by less than a tolerance, with a bound of the remaining grid error (``refine_peaks``)."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: the sweep's acceleration peaks are refined until a halving of the speed step changes them by less than this
+PEAK_TOLERANCE = 0.005
+#: the most halvings per peak, and the peaks refined per train (the largest local maxima, at least
+#: ``PEAK_SHARE`` of the train's largest)
+MAX_HALVINGS = 10
+MAX_PEAKS = 4
+PEAK_SHARE = 0.5
+
+
+@dataclass(frozen=True)
+class RefinedPeaks:
+    """The refined acceleration peaks of one train: per peak the speed [m/s] and value [m/s²] on the
+    sweep's grid, the refined speed and value, the bound of the refined value's remaining grid error
+    (relative), the relative change over the last halving, the final half-step [m/s] and whether
+    the bound fell below the tolerance."""
+
+    grid_speed: NDArray[np.float64]
+    grid_value: NDArray[np.float64]
+    speed: NDArray[np.float64]
+    value: NDArray[np.float64]
+    bound: NDArray[np.float64]
+    last_change: NDArray[np.float64]
+    step: NDArray[np.float64]
+    converged: NDArray[np.bool_]
+
+
+def _peak_indices(values: NDArray[np.float64]) -> list[int]:
+    n = values.size
+    idx = [j for j in range(n) if (j == 0 or values[j] >= values[j - 1]) and (j == n - 1 or values[j] >= values[j + 1])]
+    top = float(values.max()) if n else 0.0
+    idx = [j for j in idx if values[j] >= PEAK_SHARE * top]
+    return sorted(sorted(idx, key=lambda j: -values[j])[:MAX_PEAKS])
+
+
+def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float64],
+                 tolerance: float = PEAK_TOLERANCE, indices: Optional[list[int]] = None) -> RefinedPeaks:
+    """Refine each peak of ``values`` over ``speeds`` (``_peak_indices``) by halving the step around it.
+
+    The best speed v* lies midway in its bracket [v* − h, v* + h]; the midpoints v* ± h/2 are
+    evaluated (``evaluate(speeds) -> values``, every peak's new speeds in one call) and the bracket
+    halves around the best of the three.  With f* the best value and f_± those at the bracket's
+    ends, a peak that is quadratic within the bracket exceeds f* by at most (f* − min f_±)/4 (the
+    parabola's vertex lies within h/2 of v*, where it rises c x0² ≤ c h²/4 while the ends fall at
+    least c h² below f*): that is the bound of the remaining grid error.  Refinement stops when
+    the bound and the change over the last halving are both below ``tolerance`` (relative), or
+    after ``MAX_HALVINGS``.  ``indices``: the grid indices of the peaks to refine (default
+    ``_peak_indices``).
+    """
+    idx = _peak_indices(values) if indices is None else list(indices)
+    k = len(idx)
+    best_v = np.array([speeds[j] for j in idx], float)
+    best_a = np.array([values[j] for j in idx], float)
+    lo = np.array([speeds[max(j - 1, 0)] for j in idx], float)
+    hi = np.array([speeds[min(j + 1, speeds.size - 1)] for j in idx], float)
+    f_lo = np.array([values[max(j - 1, 0)] for j in idx], float)
+    f_hi = np.array([values[min(j + 1, speeds.size - 1)] for j in idx], float)
+    grid_v, grid_a = best_v.copy(), best_a.copy()
+    change = np.full(k, np.inf)
+    bound = np.full(k, np.inf)
+    done = np.zeros(k, bool)
+    rounds = np.zeros(k, int)
+    while k and not done.all():
+        active = np.nonzero(~done)[0]
+        m1, m2 = 0.5 * (lo[active] + best_v[active]), 0.5 * (best_v[active] + hi[active])
+        new = evaluate(np.concatenate([m1, m2]))
+        a1, a2 = new[:active.size], new[active.size:]
+        for q, i in enumerate(active):
+            old_v, old_a = best_v[i], best_a[i]
+            if a1[q] > old_a and a1[q] >= a2[q]:
+                hi[i], f_hi[i], best_v[i], best_a[i] = old_v, old_a, m1[q], a1[q]
+            elif a2[q] > old_a:
+                lo[i], f_lo[i], best_v[i], best_a[i] = old_v, old_a, m2[q], a2[q]
+            else:
+                lo[i], hi[i], f_lo[i], f_hi[i] = m1[q], m2[q], a1[q], a2[q]
+            top = best_a[i]
+            change[i] = (top - old_a) / top if top > 0 else 0.0
+            bound[i] = (top - min(f_lo[i], f_hi[i])) / (4.0 * top) if top > 0 else 0.0
+            rounds[i] += 1
+            if (bound[i] < tolerance and change[i] < tolerance) or rounds[i] >= MAX_HALVINGS:
+                done[i] = True
+    return RefinedPeaks(grid_v, grid_a, best_v, best_a, bound, change, 0.5 * (hi - lo),
+                        (bound < tolerance) & (change < tolerance))

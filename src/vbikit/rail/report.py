@@ -1,0 +1,156 @@
+"""The outcome of a railway sweep in words and numbers: the pass/fail checks (``check``), the text
+report (``format_report``) and the JSON summary (``summary``) of a ``rail.nc`` dataset."""
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+
+def check(ds) -> dict[str, Any]:
+    """The pass/fail summary: governing train, speed and quantity of every check."""
+    acc = ds["max_deck_acceleration"]
+    i, j = np.unravel_index(int(np.nanargmax(acc.values)), acc.shape)
+    limit = float(ds["acceleration_limit"])
+    peak = grid_peak = float(acc.values[i, j])
+    speed = float(ds.speed.values[j])
+    train = str(ds.train.values[i])
+    refined = ds["peak_acceleration_refined"].values
+    bound = ds["peak_refinement_bound"].values
+    governing_bound = math.nan
+    if refined.size and np.any(np.isfinite(refined)):
+        a, b = np.unravel_index(int(np.nanargmax(refined)), refined.shape)
+        if refined[a, b] >= peak:
+            peak, speed, train = float(refined[a, b]), float(ds["peak_speed_refined"].values[a, b]), str(ds.train.values[a])
+            governing_bound = float(bound[a, b])
+    finite = bound[np.isfinite(bound)]
+    out: dict[str, Any] = {"acceleration": {
+        "peak": peak, "limit": limit, "train": train, "speed": speed,
+        "passes": bool(peak <= limit), "ratio": peak / limit, "grid_peak": grid_peak,
+        "grid_error": (peak - grid_peak) / peak if peak > 0 else 0.0, "refinement_bound": governing_bound,
+        "largest_refinement_bound": float(finite.max()) if finite.size else math.nan,
+        "refinement_converged": bool(finite.size and np.all(finite < float(ds.attrs.get("peak_tolerance", 0.005)))),
+        "tolerance": float(ds.attrs.get("peak_tolerance", math.nan))}}
+    irr = ds["phi_irregularity"].values
+    for kind in ("moment", "shear"):
+        dyn = ds[f"max_{kind}"].values + 0.5 * irr[None, :] * ds[f"static_{kind}"].values[:, None]
+        a, b = np.unravel_index(int(np.nanargmax(dyn)), dyn.shape)
+        lm = float(ds[f"lm71_{kind}"])
+        phi = float(ds[f"phi_dyn_{kind}"].values[a, b])
+        out[kind] = {"dynamic_design": float(dyn[a, b]), "lm71_design": lm, "train": str(ds.train.values[a]),
+                     "speed": float(ds.speed.values[b]), "phi_dyn": phi, "phi_irregularity": float(irr[b]),
+                     "governs": "dynamic analysis" if dyn[a, b] > lm else "Phi x LM71", "ratio": float(dyn[a, b] / lm)}
+    phid = ds["phi_dyn_deflection"].values
+    a, b = np.unravel_index(int(np.nanargmax(phid)), phid.shape)
+    out["deflection"] = {"phi_dyn": float(phid[a, b]), "train": str(ds.train.values[a]), "speed": float(ds.speed.values[b])}
+    a = ds.attrs
+    if "moment_max_Nm" in a:
+        out["moment_envelope"] = {k: a[k] for k in ("moment_max_Nm", "moment_max_position_m", "moment_max_train",
+                                                   "moment_max_speed_m_s", "moment_max_over_midspan", "static_moment_max_Nm",
+                                                   "static_moment_max_position_m", "static_moment_max_train",
+                                                   "static_moment_max_over_midspan")}
+    out["passes"] = out["acceleration"]["passes"]
+    return out
+
+
+def format_report(ds, checks: dict[str, Any]) -> str:
+    """The text report of a sweep."""
+    a = ds.attrs
+    acc = checks["acceleration"]
+    lines = [
+        "vbikit railway dynamic check (EN 1991-2:2003 + AC 6.4.6, EN 1990:2002/A1:2005 A2.4.4.2.1)",
+        f"bridge: simply supported span {a['span_m']:g} m, n0 = {a['first_frequency_hz']:.3f} Hz, {a['n_modes']} modes "
+        f"(up to {float(ds['frequency'].values[-1]):.1f} Hz; required max(30 Hz, 1.5 n0, n3) = {a['frequency_limit_hz']:.1f} Hz), "
+        f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}"
+        f"{', with additional damping' if a['additional_damping'] else ''})",
+        f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {float(ds.speed_kmh.min()):.0f} … "
+        f"{float(ds.speed_kmh.max()):.0f} km/h",
+    ]
+    if a.get("modes_required", 0) > a["n_modes"]:
+        lines.append(f"WARNING: {a['n_modes']} modes retained, but the {a['modes_required']} modes up to "
+                     f"{a['frequency_limit_hz']:.1f} Hz are required (EN 1990 A2.4.4.2.1): raise bridge.n_modes")
+    lines += [
+        "",
+        f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {3.6 * acc['speed']:.2f} km/h) against "
+        f"{acc['limit']:g} m/s² ({a['track']} track): {'PASS' if acc['passes'] else 'FAIL'} ({100 * acc['ratio']:.0f} % of the limit)",
+        _grid_line(acc),
+    ]
+    for kind in ("moment", "shear"):
+        c = checks[kind]
+        unit, where = ("kN m", "midspan") if kind == "moment" else ("kN", "entry support")
+        lines.append(f"{kind} at the {where}: (1 + phi'dyn + phi''/2) x train = {c['dynamic_design'] / 1e3:.4g} {unit} "
+                     f"({c['train']} at {3.6 * c['speed']:.1f} km/h, phi'dyn = {c['phi_dyn']:.3f}, phi'' = "
+                     f"{c['phi_irregularity']:.3f}) vs Phi x alpha x LM71 = {c['lm71_design'] / 1e3:.4g} {unit} (Phi = "
+                     f"{a['dynamic_factor_Phi']:.3f}, alpha = {a['classification_factor']:g}): {c['governs']} governs"
+                     + (f"; speed grid {c['grid_design'] / 1e3:.4g} {unit}, refined peak's error bound "
+                        f"{100 * c['refinement_bound']:.3f} %" if math.isfinite(c.get("refinement_bound", math.nan)) else ""))
+    if "moment_envelope" in checks:
+        e = checks["moment_envelope"]
+        lines.append(f"moment along the span: largest {e['moment_max_Nm'] / 1e3:.4g} kN m at x = {e['moment_max_position_m']:.3f} m "
+                     f"({e['moment_max_train']} at {3.6 * e['moment_max_speed_m_s']:.1f} km/h), "
+                     f"{100 * (e['moment_max_over_midspan'] - 1):+.2f} % against the largest at midspan; static "
+                     f"{e['static_moment_max_Nm'] / 1e3:.4g} kN m at x = {e['static_moment_max_position_m']:.3f} m "
+                     f"({e['static_moment_max_train']}), {100 * (e['static_moment_max_over_midspan'] - 1):+.2f} % against midspan")
+    d = checks["deflection"]
+    lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {3.6 * d['speed']:.1f} km/h)")
+    lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length or the dominant repeated axle "
+              "spacing):"]
+    lo, hi = float(ds.speed.values.min()), float(ds.speed.values.max())
+    for k, (name, row) in enumerate(zip(ds.train.values, ds["resonance_speed"].values)):
+        if not np.any(np.isfinite(row)):
+            lines.append(f"  {name}: none (no repeated axle spacing)")
+            continue
+        d = float(ds["excitation_wavelength"].values[k])
+        parts = [f"i = {i + 1}: {3.6 * v:.1f}" + ("" if lo * (1 - 1e-12) <= v <= hi * (1 + 1e-12) else
+                                                  " (above the sweep)" if v > hi else " (below the sweep)")
+                 for i, v in enumerate(row) if np.isfinite(v)]
+        lines.append(f"  {name} (D = {d:.3f} m, {ds['wavelength_source'].values[k]}): " + ", ".join(parts))
+    lines += ["", f"result: {'PASS' if checks['passes'] else 'FAIL'} (governing: {acc['train']}, "
+              f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"]
+    return "\n".join(lines) + "\n"
+
+
+def _grid_line(acc: dict[str, Any]) -> str:
+    """The report's line on the speed grid's error at the acceleration peaks."""
+    if not math.isfinite(acc.get("largest_refinement_bound", math.nan)):
+        return "speed grid: the acceleration peaks were not refined (coupled cars only)"
+    verdict = ("every peak within the tolerance" if acc["refinement_converged"]
+               else "WARNING: some peaks not within the tolerance after the most halvings")
+    return (f"speed grid: the sweep's grid gave {acc['grid_peak']:.3f} m/s², {100 * acc['grid_error']:.2f} % below the refined "
+            f"peak; each peak refined by halving the speed step around it until its change and its error bound were "
+            f"< {100 * acc['tolerance']:g} %: error bound of the governing peak {100 * acc['refinement_bound']:.3f} %, "
+            f"largest over all peaks {100 * acc['largest_refinement_bound']:.3f} % ({verdict})")
+
+
+def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
+    """The JSON summary (``rail-summary.json``): the checks (with the speed grid's error bound and the
+    moment envelope along the span), every train's resonance speeds by order i and its refined
+    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null."""
+    def clean(x):
+        if isinstance(x, dict):
+            return {k: clean(v) for k, v in x.items()}
+        if isinstance(x, (list, tuple)):
+            return [clean(v) for v in x]
+        if isinstance(x, (float, np.floating)):
+            return float(x) if math.isfinite(float(x)) else None
+        if isinstance(x, np.integer):
+            return int(x)
+        if isinstance(x, np.bool_):
+            return bool(x)
+        return x
+
+    trains = {}
+    for k, name in enumerate(map(str, ds.train.values)):
+        row = ds["resonance_speed"].values[k]
+        trains[name] = {
+            "wavelength_m": float(ds["excitation_wavelength"].values[k]), "wavelength_source": str(ds["wavelength_source"].values[k]),
+            "resonances": [{"order": i + 1, "speed_m_s": float(v), "speed_kmh": 3.6 * float(v),
+                            "in_sweep": bool(ds["resonance_in_sweep"].values[k, i])} for i, v in enumerate(row)],
+            "acceleration_peaks": [{"grid_m_s2": float(ds["peak_acceleration_grid"].values[k, j]),
+                                    "refined_m_s2": float(ds["peak_acceleration_refined"].values[k, j]),
+                                    "speed_kmh": 3.6 * float(ds["peak_speed_refined"].values[k, j]),
+                                    "error_bound": float(ds["peak_refinement_bound"].values[k, j])}
+                                   for j in range(ds.peak.size) if np.isfinite(ds["peak_acceleration_refined"].values[k, j])]}
+    return clean({"checks": checks, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
+                  "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})
