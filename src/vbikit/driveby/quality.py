@@ -17,8 +17,11 @@ Every threshold lives here, with its reason (docs/driveby.md, "How accurate is t
   main lobes of the bridge peak and of the vehicle's own response overlap, so the vehicle's
   much larger response biases the bridge peak (or is the peak); 2 half-power bandwidths from a
   damped resonance its power is still 1/17 (−12 dB) of the peak's.
-* **Driving frequencies** n v / L (n = 1 … ``N_DRIVING``): within one main-lobe half-width the
-  peak is labelled as driving, not bridge, and unreliable.
+* **Driving frequencies** n v / L (n = 1 … ``N_DRIVING``): a peak within one main-lobe
+  half-width of one is unreliable.
+* **Label**: the nearest of the expected frequencies the peak matches (a vehicle frequency
+  inside its flagging limit, a driving frequency inside a main lobe, a bridge mode inside
+  ``MODE_TOLERANCE``); ``none`` when it matches none, which makes it unreliable.
 * **Background level** (``FALSE_ALARM`` = 1 %).  The peak's power spectral density against the
   median of the band's other lines (outside its main lobe) and of those within ``LOCAL_LOBES``
   = 5 main-lobe half-widths on each side (the local background; a rough road's spectrum rises
@@ -170,35 +173,31 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
                        f"{edge_limit:g}/T)")
     elif not local_max:
         reasons.append("not a peak of the spectrum (the flank of a larger peak beyond the searched lines)")
-    # vehicle frequencies
+    # the expected frequencies the peak may be: (distance [Hz], label, frequency, matches)
+    candidates = []
     fv = np.atleast_1d(np.asarray(vehicle_hz, float))
     zeta = np.atleast_1d(np.asarray(vehicle_zeta, float)) if np.size(vehicle_zeta) else np.zeros(fv.size)
     v_dist, v_limit = math.inf, VEHICLE_LOBES * main_lobe(window)
-    label, label_hz = "", math.nan
     for k, (f_v, z) in enumerate(zip(fv, zeta), start=1):
         limit = max(VEHICLE_LOBES * lobe, VEHICLE_BANDWIDTHS * 2 * z * f_v) / resolution_hz
         d = abs(f_peak - f_v) / resolution_hz
         if d < v_dist:
             v_dist, v_limit = d, limit
-        if d < limit and not label:
-            label, label_hz = f"vehicle_{k}", float(f_v)
-    if label:
-        reasons.append(f"near the vehicle's own frequency {label_hz:.3g} Hz ({v_dist:.2f}/T away, inside {v_limit:.2f}/T)")
+        candidates.append((abs(f_peak - f_v), f"vehicle_{k}", float(f_v), d < limit))
+        if d < limit:
+            reasons.append(f"near the vehicle's own frequency {f_v:.3g} Hz ({d:.2f}/T away, inside {limit:.2f}/T)")
     for n in range(1, N_DRIVING + 1):
         f_d = n * speed / span
-        if not label and abs(f_peak - f_d) < lobe:
-            label, label_hz = f"driving_{n}", f_d
+        candidates.append((abs(f_peak - f_d), f"driving_{n}", f_d, abs(f_peak - f_d) < lobe))
+        if abs(f_peak - f_d) < lobe:
             reasons.append(f"at the driving frequency {n} v/L = {f_d:.3g} Hz")
-    if not label:
-        for k, f_b in enumerate(np.atleast_1d(np.asarray(bridge_hz, float)), start=1):
-            if abs(f_peak / f_b - 1) <= MODE_TOLERANCE:
-                label, label_hz = f"bridge_{k}", float(f_b)
-                break
-    if not label:
-        label = "none"
-        if np.size(bridge_hz):
-            reasons.append(f"matches no expected frequency (bridge modes of the model within ±{100 * MODE_TOLERANCE:g} %, "
-                           "vehicle, driving)")
+    for k, f_b in enumerate(np.atleast_1d(np.asarray(bridge_hz, float)), start=1):
+        candidates.append((abs(f_peak - f_b), f"bridge_{k}", float(f_b), abs(f_peak / f_b - 1) <= MODE_TOLERANCE))
+    matching = sorted(c for c in candidates if c[3])
+    label, label_hz = (matching[0][1], matching[0][2]) if matching else ("none", math.nan)
+    if not matching and np.size(bridge_hz):
+        reasons.append(f"matches no expected frequency (bridge modes of the model within ±{100 * MODE_TOLERANCE:g} %, "
+                       "vehicle, driving)")
     return PeakQuality(label, label_hz, snr, threshold, v_dist, v_limit, edge, edge_limit, local_max, 0.0, tuple(reasons))
 
 

@@ -121,7 +121,7 @@ def case_crossing(spec: DriveBy, case: dict):
     from vbikit.solve.timestep import choose_time_step
 
     data = _case_scenario(spec, case)
-    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir], sort_keys=True)
+    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap], sort_keys=True)
     if key in _BUILT:
         return _BUILT[key]
     try:
