@@ -104,8 +104,8 @@ def test_issue_case_a_bridge_near_the_vehicle_frequency_is_flagged(tmp_path):
     assert float(ds["bridge_frequency_hz"][0]) == pytest.approx(f_b, rel=1e-3)
     ok = bool(ds["identified_frequency_reliable"][0])
     assert ok is False or abs(float(ds["frequency_error"][0])) < 0.01
-    assert "vehicle" in str(ds["identified_frequency_reason"].values[0])
-    assert ds["identified_frequency_label"].values[0] in ("bridge_1", "vehicle_1")
+    reason = str(ds["identified_frequency_reason"].values[0])
+    assert ok or "cannot separate" in reason  # the model's 3.0 Hz is 1/T from the vehicle's 3.2 Hz
 
 
 def test_issue_cases_b_and_d_rough_road_one_cart_band_edge_and_damage_indicator(tmp_path):
@@ -141,3 +141,28 @@ def test_issue_case_c_following_cart_outlier_pass_is_flagged(tmp_path):
     assert int(ds["multipass_n_passes"][0]) == 3
     assert ds["identified_frequency_reliable"].attrs["flag_meanings"] == "unreliable reliable"
     assert ds["peak_snr_db"].attrs["units"] == "dB" and ds["vehicle_distance"].attrs["units"] == "1"
+
+
+def test_the_peak_is_a_local_maximum_not_the_flank_of_an_excluded_one():
+    """A strong, damped vehicle response at 3.2 Hz (amplitude 30, ζ = 0.1: a broad peak whose
+    skirts fall monotonically) and a bridge tone at 5.6 Hz (0.3), T = 3.125 s (25 m at 8 m/s):
+    outside the excluded ± 2/T around 3.2 Hz the largest value is the vehicle peak's flank at
+    3.2 − 2/T = 2.56 Hz; the peak sought is the bridge's local maximum."""
+    from vbikit.driveby.identify import peak, spectrum
+
+    t = np.arange(int(25 / 8 * FS)) / FS
+    x = 30 * np.exp(-0.1 * 2 * np.pi * 3.2 * t) * np.sin(2 * np.pi * 3.2 * t) + 0.3 * np.sin(2 * np.pi * 5.6 * t)
+    spec = spectrum(x, FS)
+    sel = (spec.frequency >= 1) & (spec.frequency <= 20) & (np.abs(spec.frequency - 3.2) > 2 * spec.resolution_hz)
+    assert spec.frequency[sel][np.argmax(spec.psd[sel])] < 3.2  # the flank: what the highest value gives
+    assert peak(spec, (1.0, 20.0), [3.2]) == pytest.approx(5.6, abs=0.05)
+
+
+def test_two_peaks_of_similar_height_within_two_main_lobes_are_ambiguous():
+    """Tones at 5.4 and 6.0 Hz, T = 5 s: 3/T apart (lobes overlap, 2/T < 3/T < 4/T).  Equal
+    amplitudes: flagged; the second 20 dB lower (amplitude 0.1): not."""
+    t = np.arange(1000) / FS
+    for second, flagged in ((1.0, True), (0.1, False)):
+        x = np.sin(2 * np.pi * 5.4 * t) + second * np.sin(2 * np.pi * 6.0 * t + 1.0)
+        q = identify_frequency(x, FS, 5.0, 25.0, (1.0, 20.0), bridge_hz=[5.6]).quality
+        assert ("ambiguous" in q.reason) is flagged, q

@@ -66,10 +66,12 @@ def spectrum(signal: ArrayLike, fs: float, method: str = "periodogram", window: 
 
 
 def peak(spec: Spectrum, band: tuple[float, float], exclude_hz: ArrayLike = (), exclude_width: float | None = None) -> float:
-    """Frequency [Hz] of the highest spectral value inside ``band`` (f_lo, f_hi) [Hz], outside
-    ± ``exclude_width`` [Hz] of each of ``exclude_hz`` (known frequencies, e.g. the test vehicle's
-    own); default 2 / T, the half-width of the Hann window's main lobe (a tone's peak spreads
-    that far)."""
+    """Frequency [Hz] of the highest peak (local maximum of the whole spectrum) inside ``band``
+    (f_lo, f_hi) [Hz], outside ± ``exclude_width`` [Hz] of each of ``exclude_hz`` (known
+    frequencies, e.g. the test vehicle's own); default 2 / T, the half-width of the Hann window's
+    main lobe (a tone's peak spreads that far).  The flank of a larger peak outside the searched
+    lines (beyond the band or inside an excluded zone) is no peak; only when the searched lines
+    hold no local maximum is their highest value returned (``vbikit.driveby.quality`` flags it)."""
     lo, hi = band
     sel = (spec.frequency >= lo) & (spec.frequency <= hi)
     width = 2.0 * spec.resolution_hz if exclude_width is None else float(exclude_width)
@@ -78,7 +80,11 @@ def peak(spec: Spectrum, band: tuple[float, float], exclude_hz: ArrayLike = (), 
     if not sel.any():
         raise VbikitError(f"identification.band: [{lo:g}, {hi:g}] Hz holds no spectral line (spectrum up to "
                           f"{spec.frequency[-1]:g} Hz)")
-    i = np.flatnonzero(sel)[np.argmax(spec.psd[sel])]
+    p = spec.psd
+    local = np.zeros(p.size, bool)
+    local[1:-1] = (p[1:-1] >= p[:-2]) & (p[1:-1] > p[2:])
+    pick = sel & local if (sel & local).any() else sel
+    i = np.flatnonzero(pick)[np.argmax(p[pick])]
     return float(spec.frequency[i])
 
 

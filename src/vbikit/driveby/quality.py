@@ -16,12 +16,18 @@ Every threshold lives here, with its reason (docs/driveby.md, "How accurate is t
   2 half-power bandwidths 2 ζ f_v of the vehicle mode, whichever is wider).  Inside 2 lobe/T the
   main lobes of the bridge peak and of the vehicle's own response overlap, so the vehicle's
   much larger response biases the bridge peak (or is the peak); 2 half-power bandwidths from a
-  damped resonance its power is still 1/17 (−12 dB) of the peak's.
+  damped resonance its power is still 1/17 (−12 dB) of the peak's.  The same limit applies to
+  the model's frequency of the mode sought: inside it no peak of this pass can be that mode.
 * **Driving frequencies** n v / L (n = 1 … ``N_DRIVING``): a peak within one main-lobe
   half-width of one is unreliable.
 * **Label**: the nearest of the expected frequencies the peak matches (a vehicle frequency
   inside its flagging limit, a driving frequency inside a main lobe, a bridge mode inside
   ``MODE_TOLERANCE``); ``none`` when it matches none, which makes it unreliable.
+* **A rival peak** (``RIVAL_LOBES`` = 2 main-lobe half-widths, ``RIVAL_DB`` = 6 dB).  Another
+  local maximum of the searched lines within 2 main-lobe half-widths of the peak (their lobes
+  overlap) and less than 6 dB (a factor 4 in power, 2 in amplitude) below it: one pass cannot
+  tell which of the two is the bridge, and each pulls the other's location.  A bridge peak split
+  by the road-induced forced response of the deck looks like this.
 * **Background level** (``FALSE_ALARM`` = 1 %).  The peak's power spectral density against the
   median of the band's other lines (outside its main lobe) and of those within ``LOCAL_LOBES``
   = 5 main-lobe half-widths on each side (the local background; a rough road's spectrum rises
@@ -68,6 +74,10 @@ VEHICLE_LOBES = 2.0
 VEHICLE_BANDWIDTHS = 2.0
 #: driving frequencies n v / L checked, n = 1 ... N_DRIVING
 N_DRIVING = 4
+#: a rival local maximum within this many main-lobe half-widths ...
+RIVAL_LOBES = 2.0
+#: ... and less than this many dB below the peak makes it ambiguous
+RIVAL_DB = 6.0
 #: probability that noise alone gives a peak above the background threshold
 FALSE_ALARM = 0.01
 #: the local background: lines within this many main-lobe half-widths on each side of the peak
@@ -110,7 +120,8 @@ class PeakQuality:
     background [dB] with its threshold ``snr_threshold_db``; ``vehicle_distance`` and
     ``edge_distance`` the distances to the nearest vehicle frequency and band edge in units of
     the resolution 1/T, with the flagging limits ``vehicle_limit`` and ``edge_limit`` (same
-    unit); ``speed_correction_hz`` the correction applied; ``reasons`` why it is unreliable (empty:
+    unit); ``rival_db`` the highest other peak within ``RIVAL_LOBES`` main-lobe half-widths
+    relative to this one [dB] (−inf: none); ``speed_correction_hz`` the correction applied; ``reasons`` why it is unreliable (empty:
     reliable)."""
 
     label: str
@@ -122,6 +133,7 @@ class PeakQuality:
     edge_distance: float
     edge_limit: float
     local_maximum: bool
+    rival_db: float = -math.inf
     speed_correction_hz: float = 0.0
     reasons: tuple[str, ...] = field(default=())
 
@@ -141,11 +153,13 @@ def _db(x: float) -> float:
 
 def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_peak: float, resolution_hz: float,
                  band: tuple[float, float], speed: float, span: float, window: str = "hann",
-                 bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), vehicle_zeta: ArrayLike = ()) -> PeakQuality:
+                 bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), vehicle_zeta: ArrayLike = (),
+                 mode: int = 1) -> PeakQuality:
     """Label and quality of the peak at ``f_peak`` [Hz] of the spectrum (``frequency`` [Hz],
     ``psd``) searched in ``band`` [Hz] for a pass at ``speed`` [m/s] over ``span`` [m];
     ``bridge_hz`` the model's bridge frequencies (labels only), ``vehicle_hz`` and
-    ``vehicle_zeta`` the vehicle's frequencies [Hz] and damping ratios (module docstring)."""
+    ``vehicle_zeta`` the vehicle's frequencies [Hz] and damping ratios (module docstring);
+    ``mode`` the bridge mode sought (a peak labelled another bridge mode is unreliable for it)."""
     lobe = main_lobe(window) * resolution_hz
     lo, hi = band
     reasons = []
@@ -163,6 +177,15 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     if not snr >= threshold:
         reasons.append(f"peak {snr:.1f} dB above the background, below the {threshold:.1f} dB that noise alone "
                        f"reaches in {100 * FALSE_ALARM:g} % of passes")
+    # a rival local maximum close by and nearly as high
+    inner = np.zeros(psd.size, bool)
+    inner[1:-1] = (psd[1:-1] >= psd[:-2]) & (psd[1:-1] > psd[2:])
+    rivals = inner & in_band & (np.abs(frequency - f_peak) > lobe) & (np.abs(frequency - f_peak) <= RIVAL_LOBES * lobe)
+    rival_db = _db(float(psd[rivals].max()) / p_peak) if rivals.any() and p_peak > 0 else -math.inf
+    if rival_db > -RIVAL_DB:
+        j = np.flatnonzero(rivals)[np.argmax(psd[rivals])]
+        reasons.append(f"ambiguous: a second peak at {frequency[j]:.4g} Hz, {abs(f_peak - frequency[j]) / resolution_hz:.2f}/T "
+                       f"away, at {rival_db:+.1f} dB of it (within {RIVAL_DB:g} dB)")
     # band edges and local maximum of the whole spectrum
     edge = min(f_peak - lo, hi - f_peak) / resolution_hz
     edge_limit = EDGE_LOBES * main_lobe(window)
@@ -195,10 +218,20 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
         candidates.append((abs(f_peak - f_b), f"bridge_{k}", float(f_b), abs(f_peak / f_b - 1) <= MODE_TOLERANCE))
     matching = sorted(c for c in candidates if c[3])
     label, label_hz = (matching[0][1], matching[0][2]) if matching else ("none", math.nan)
+    fb = np.atleast_1d(np.asarray(bridge_hz, float))
+    if fb.size >= mode:
+        for f_v, z in zip(fv, zeta):
+            limit = max(VEHICLE_LOBES * lobe, VEHICLE_BANDWIDTHS * 2 * z * f_v) / resolution_hz
+            if abs(fb[mode - 1] - f_v) / resolution_hz < limit:
+                reasons.append(f"the model's bridge mode {mode} ({fb[mode - 1]:.4g} Hz) lies {abs(fb[mode - 1] - f_v) / resolution_hz:.2f}/T "
+                               f"from the vehicle's {f_v:.3g} Hz, inside {limit:.2f}/T: a pass this short cannot separate them")
+    if label.startswith("bridge_") and label != f"bridge_{mode}":
+        reasons.append(f"the peak is bridge mode {label[7:]} (model {label_hz:.4g} Hz), not mode {mode} sought")
     if not matching and np.size(bridge_hz):
         reasons.append(f"matches no expected frequency (bridge modes of the model within ±{100 * MODE_TOLERANCE:g} %, "
                        "vehicle, driving)")
-    return PeakQuality(label, label_hz, snr, threshold, v_dist, v_limit, edge, edge_limit, local_max, 0.0, tuple(reasons))
+    return PeakQuality(label, label_hz, snr, threshold, v_dist, v_limit, edge, edge_limit, local_max, rival_db, 0.0,
+                       tuple(reasons))
 
 
 @dataclass(frozen=True)

@@ -49,6 +49,8 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
                           "the band's other lines and of those within 5 main-lobe half-widths, outside its main lobe)"),
     "peak_snr_threshold_db": ("dB", "level that the highest peak of noise alone exceeds in 1 % of passes, "
                                     "10 log10(log2(M / 0.01)), M = (band width) × T independent lines"),
+    "peak_rival_db": ("dB", "highest other peak within 2 main-lobe half-widths of the identified one, relative to it "
+                            "(-inf: none; flagged above -6 dB)"),
     "vehicle_distance": ("1", "distance of the identified frequency to the nearest vehicle frequency, in units of the "
                               "resolution 1/T (inf: no vehicle frequency)"),
     "vehicle_distance_limit": ("1", "flagged below: 2 main-lobe half-widths or 2 half-power bandwidths 2 ζ f_v of that "
@@ -240,6 +242,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "record_start": float(t_on[0]), "record_end": float(t_on[-1]),
         "n_steps": float(result.n_steps), "n_samples": float(m.time.size),
         "label_frequency_hz": q.label_hz, "peak_snr_db": q.snr_db, "peak_snr_threshold_db": q.snr_threshold_db,
+        "peak_rival_db": q.rival_db,
         "vehicle_distance": q.vehicle_distance, "vehicle_distance_limit": q.vehicle_limit,
         "band_edge_distance": q.edge_distance, "band_edge_limit": q.edge_limit, "speed_correction_hz": q.speed_correction_hz,
         "band_low_hz": ident.band[0], "band_high_hz": ident.band[1],
