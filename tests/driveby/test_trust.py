@@ -124,6 +124,12 @@ def test_issue_cases_b_and_d_rough_road_one_cart_band_edge_and_damage_indicator(
     assert math.isnan(float(ds["mode_shape_mac"][1]))  # the shape indicators are excluded too
     text = (tmp_path / "driveby-report.txt").read_text()
     assert "+0.00 %" not in text and "not given" in text
+    import json
+
+    summary = json.loads((tmp_path / "driveby-summary.json").read_text())
+    assert summary["cases"][1]["frequency_shift"] is None and "unreliable" in summary["cases"][1]["frequency_shift_note"]
+    assert summary["cases"][0]["reliable"] is False and "band's edge" in summary["cases"][0]["reason"]
+    assert summary["bridges"]["healthy"]["median_hz"] is None  # no reliable pass: no estimate
 
 
 def test_issue_case_c_following_cart_outlier_pass_is_flagged(tmp_path):

@@ -35,6 +35,47 @@ def multipass_lines(ds) -> list[str]:
     return lines
 
 
+def summary(ds) -> dict:
+    """The results an engineer reads, as plain data for ``driveby-summary.json``: per case the
+    identified frequency [Hz] with its resolution, label, reliability and reason in words, and the
+    damage indicator or why it is not given; per bridge the multi-pass estimate [Hz]."""
+    def num(name, i):
+        v = float(ds[name][i])
+        return v if np.isfinite(v) else None
+
+    cases = []
+    for i in range(ds.sizes["case"]):
+        cases.append({
+            "case": i, "speed_m_s": num("speed", i), "road_class": str(ds["road_class"].values[i]),
+            "road_seed": int(ds["road_seed"][i]), "damage_severity": num("damage_severity", i),
+            "identified_frequency_hz": num("identified_frequency_hz", i), "resolution_hz": num("resolution_hz", i),
+            "label": str(ds["identified_frequency_label"].values[i]),
+            "reliable": bool(ds["identified_frequency_reliable"][i]),
+            "reason": str(ds["identified_frequency_reason"].values[i]) or "passed every check",
+            "peak_snr_db": num("peak_snr_db", i), "true_frequency_hz": num("bridge_frequency_hz", i),
+            "frequency_shift": num("identified_frequency_shift", i),
+            "frequency_shift_note": str(ds["frequency_shift_reason"].values[i]) or "given",
+        })
+    bridges = {}
+    for i in range(ds.sizes["case"]):
+        sev = float(ds["damage_severity"][i])
+        key = "healthy" if sev == 0 else f"severity {sev:g} at x = {float(ds['damage_position'][i]):g} m"
+        if key in bridges:
+            continue
+        n_agree = int(ds["multipass_n_agree"][i])
+        bridges[key] = {"median_hz": num("multipass_frequency_hz", i), "q25_hz": num("multipass_q25_hz", i),
+                        "q75_hz": num("multipass_q75_hz", i), "mean_hz": num("multipass_mean_hz", i),
+                        "std_hz": num("multipass_std_hz", i), "passes": int(ds["multipass_n_passes"][i]),
+                        "reliable_passes": int(ds["multipass_n_reliable"][i]), "agreeing_passes": n_agree,
+                        "verdict": "confirmed" if n_agree >= MIN_PASSES else
+                                   f"not confirmed: fewer than {MIN_PASSES} reliable passes agree",
+                        "frequency_shift": num("multipass_frequency_shift", i) if sev > 0 else None}
+    return {"title": ds.attrs.get("title", "drive-by"), "cases": cases, "bridges": bridges,
+            "note": "a reliable pass is accurate to about its resolution 1/T on a rough road, far better on a smooth "
+                    "one; unreliable passes are left out of the damage indicators and the multi-pass estimates "
+                    "(docs/driveby.md, How accurate is this)"}
+
+
 def report_text(ds) -> str:
     """A plain-text summary of a drive-by Dataset (``vbikit.driveby.study.dataset``)."""
     err = 100 * np.asarray(ds["frequency_error"].values, float)
@@ -80,6 +121,20 @@ def report_text(ds) -> str:
                          + (f"; mode-shape MAC {float(ds['mode_shape_mac'][i]):.4f}, largest curvature change at "
                             f"x = {float(ds['curvature_change_x'][i]):.3g} m" if np.isfinite(float(ds['mode_shape_mac'][i])) else ""))
     lines.append("")
+    lines.append("A reliable pass is accurate to about its resolution 1 / T on a rough road and far better on a smooth "
+                 "one (docs/driveby.md, How accurate is this): on rough roads use the multi-pass median.")
     lines.append("Spectral resolution is 1 / T for a record of T seconds (T = span / speed on the deck); zero-padding "
                  "interpolates the spectrum, it does not resolve peaks closer than 1 / T.")
     return "\n".join(lines) + "\n"
+
+
+def write_report(ds, out_dir) -> str:
+    """Write ``driveby-report.txt`` and ``driveby-summary.json`` into ``out_dir``; returns the report's text."""
+    from pathlib import Path
+
+    from vbikit._files import json_text, write_text
+
+    text = report_text(ds)
+    write_text(Path(out_dir) / "driveby-report.txt", text)
+    write_text(Path(out_dir) / "driveby-summary.json", json_text(summary(ds), indent=1) + "\n")
+    return text

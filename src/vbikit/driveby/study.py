@@ -511,9 +511,9 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
 def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = 1,
                 scheduler: Optional[str] = None, progress=None, figures: bool = True):
     """Run a drive-by sweep (a ``DriveBy``, a file path or its parsed dict) on the study runner and
-    write ``out_dir``/driveby.nc, the figures (``driveby-*.png``) and ``driveby-report.txt``;
+    write ``out_dir``/driveby.nc, the figures (``driveby-*.png``), ``driveby-report.txt`` and
+    ``driveby-summary.json``;
     returns the Dataset.  Resumable: run it again after an interruption."""
-    from vbikit._files import write_text
     from vbikit.driveby.spec import load_driveby, parse_driveby
     from vbikit.study.run import run_study
 
@@ -525,9 +525,9 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     ds = run_study(DriveByStudy(spec), out_dir / "driveby.nc", workers=workers, scheduler=scheduler, progress=progress)
-    from vbikit.driveby.report import report_text
+    from vbikit.driveby.report import write_report
 
-    write_text(out_dir / "driveby-report.txt", report_text(ds))
+    write_report(ds, out_dir)
     if figures:
         from vbikit.driveby.figures import write_figures
 
