@@ -44,8 +44,9 @@ def frequency_figure(ds):
     reliable = np.asarray(ds["identified_frequency_reliable"].values, bool)
     for k, road in enumerate(sorted(set(ds["road_class"].values.tolist()))):
         sel = healthy & (ds["road_class"].values == road)
-        ax.plot(ds["speed"].values[sel & reliable], ds["identified_frequency_hz"].values[sel & reliable], "o", color=f"C{k}",
-                label=f"identified, road {road}")
+        if (sel & reliable).any():
+            ax.plot(ds["speed"].values[sel & reliable], ds["identified_frequency_hz"].values[sel & reliable], "o",
+                    color=f"C{k}", label=f"identified, road {road}")
         if (sel & ~reliable).any():
             ax.plot(ds["speed"].values[sel & ~reliable], ds["identified_frequency_hz"].values[sel & ~reliable], "x",
                     color=f"C{k}", label=f"flagged unreliable, road {road}")

@@ -103,7 +103,7 @@ def report_text(ds) -> str:
         values = ds[key].values
         groups = sorted(set(values.tolist()), key=str)
         if len(groups) > 1:
-            lines.append(f"  by {key}: " + ", ".join(
+            lines.append(f"  all cases by {key}: " + ", ".join(
                 f"{g}: {np.mean(np.abs(err[values == g])):.2f} %" for g in groups))
     lines += ["", *multipass_lines(ds)]
     shift = np.asarray(ds["identified_frequency_shift"].values, float)
