@@ -48,13 +48,18 @@ def test_the_noise_and_road_numbers_the_page_describes():
     assert all(abs(e) > 100 for c in ("A", "B") for e in NUMBERS["error_by_road_pct"][c])  # "about 200 %"
 
 
+def rerun(script: str, out: Path) -> dict:
+    """Run docs/scripts/``script``.py's main() in a fresh process, its figures and JSON into ``out``."""
+    code = (f"import json, sys; sys.path.insert(0, 'docs/scripts'); import {script} as d; "
+            "d.FIG = __import__('pathlib').Path(sys.argv[1]); print(json.dumps(d.main()))")
+    proc = subprocess.run([sys.executable, "-c", code, str(out)], cwd=ROOT, capture_output=True, text=True, timeout=900)
+    assert proc.returncode == 0, proc.stderr
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
 @pytest.mark.slow
 def test_numbers_are_reproduced(tmp_path):
-    code = ("import json, sys; sys.path.insert(0, 'docs/scripts'); import driveby_numbers as d; "
-            "d.FIG = __import__('pathlib').Path(sys.argv[1]); print(json.dumps(d.main()))")
-    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=900)
-    assert proc.returncode == 0, proc.stderr
-    now = json.loads(proc.stdout.strip().splitlines()[-1])
+    now = rerun("driveby_numbers", tmp_path)
     for key in ("f1_hz", "error_by_speed_pct", "error_by_road_pct", "error_by_road_residual_pct", "error_by_noise_pct", "damage"):
         assert now[key] == NUMBERS[key], key
 
@@ -118,10 +123,6 @@ def test_accuracy_claims_the_page_makes():
 
 @pytest.mark.slow
 def test_accuracy_numbers_are_reproduced(tmp_path):
-    code = ("import json, sys; sys.path.insert(0, 'docs/scripts'); import driveby_accuracy as d; "
-            "d.FIG = __import__('pathlib').Path(sys.argv[1]); print(json.dumps(d.main()))")
-    proc = subprocess.run([sys.executable, "-c", code, str(tmp_path)], cwd=ROOT, capture_output=True, text=True, timeout=900)
-    assert proc.returncode == 0, proc.stderr
-    now = json.loads(proc.stdout.strip().splitlines()[-1])
+    now = rerun("driveby_accuracy", tmp_path)
     for key in set(ACCURACY) - {"measured"}:
         assert now[key] == ACCURACY[key], key
