@@ -83,6 +83,14 @@ def main() -> dict:
     sweep = json.loads(json.dumps(rough))
     sweep["sweep"] = {"speed": SWEEP_SPEEDS, "road_class": ["A"], "road_seed": SWEEP_SEEDS}
     rs = run(sweep)
+    car = json.loads(json.dumps(example))  # method "sensor": a two-axle car with three accelerometers
+    car["vehicle"] = {"model": "two-axle-car"}
+    car["sensors"] = [{"name": "front", "body": "body", "position": 0.0, "quantity": "acceleration"},
+                      {"name": "rear", "body": "body", "position": 2.6, "quantity": "acceleration"},
+                      {"name": "axle1", "body": "axle1", "quantity": "acceleration"}]
+    car["identification"] = {"method": "sensor", "band": [1.0, 20.0]}
+    car["sweep"] = {"speed": [5.0, 8.0, 10.0], "road_class": ["none", "A"]}
+    rc = run(car)
     damaged = int(np.flatnonzero(ex["damage_severity"].values > 0)[0])
     numbers = {
         "measured": datetime.date.today().isoformat(),
@@ -95,6 +103,8 @@ def main() -> dict:
         "rough_8": cases(r8), "rough_8_multipass": multipass(r8),
         "rough_15": cases(r15), "rough_15_multipass": multipass(r15),
         "rough_sweep": by_speed(rs), "rough_sweep_multipass": multipass(rs),
+        "car": [c | {"sensors_identified": int(rc["sensors_identified"][i]), "sensors_agree": int(rc["sensors_agree"][i])}
+                for i, c in enumerate(cases(rc))],
     }
     (FIG / "driveby-accuracy.json").write_text(json.dumps(numbers, indent=1, ensure_ascii=False) + "\n")
     return numbers

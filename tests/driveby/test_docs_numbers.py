@@ -93,6 +93,10 @@ def accuracy_quoted(n: dict) -> dict[str, str]:
         "sweep_rows": rows, "sw_n": str(sw["n_passes"]), "sw_mp": f"{sw['median_hz']:.4f}", "sw_err": f"{sw['error_pct']:.2f}",
         "sw_q25": f"{sw['q25_hz']:.4f}", "sw_q75": f"{sw['q75_hz']:.4f}", "sw_rel": str(sw["n_reliable"]),
         "sw_agree": str(sw["n_agree"]),
+        "car_smooth": " / ".join(f"{c['error_pct']:.2f}" for c in n["car"] if c["road"] == "none"),
+        "car_agree": ", ".join(f"{c['sensors_agree']} of {c['sensors_identified']}" for c in n["car"] if c["road"] == "none"),
+        "car_rough_n": str(sum(c["road"] == "A" for c in n["car"])),
+        "car_rough": " / ".join(f"{c['error_pct']:.2f} %" for c in n["car"] if c["road"] == "A"),
     }
 
 
@@ -109,7 +113,9 @@ def test_accuracy_section_quotes_the_stored_numbers():
 def test_accuracy_claims_the_page_makes():
     n = ACCURACY
     # every unreliable pass says why; every reliable one is within its resolution 1/T ("no better")
-    rows = [c for k in ("example", "rough_8", "rough_15") for c in n[k]] + [n["near_vehicle"]]
+    rows = [c for k in ("example", "rough_8", "rough_15", "car") for c in n[k]] + [n["near_vehicle"]]
+    assert all(c["reliable"] and c["sensors_agree"] == c["sensors_identified"] == 2 for c in n["car"] if c["road"] == "none")
+    assert not any(c["reliable"] for c in n["car"] if c["road"] == "A")
     assert all(c["reason"] for c in rows if not c["reliable"]) and all(not c["reason"] for c in rows if c["reliable"])
     assert all(abs(c["error_pct"]) < c["resolution_pct"] for c in rows if c["reliable"])
     assert all(r["max_reliable_error_per_resolution"] < 1 for r in n["rough_sweep"])

@@ -57,10 +57,12 @@ def test_a_peak_near_the_vehicle_frequency_is_flagged():
     assert identify_frequency(_tone(3.25, 5.0, 0.01), FS, 8.0, 40.0, (1.0, 20.0), bridge_hz=[3.0],
                               vehicle_hz=[3.2]).quality.label == "vehicle_1"
     assert ident.quality.vehicle_distance == pytest.approx(1.0, abs=0.1) and ident.quality.vehicle_limit == 4.0
-    # a damped vehicle: 2 half-power bandwidths 2 ζ f_v = 2 × 2 × 0.5 × 3.2 Hz = 6.4 Hz = 32/T widen the limit
-    damped = identify_frequency(_tone(6.0, 5.0, 0.01), FS, 8.0, 40.0, (1.0, 20.0), bridge_hz=[6.0], vehicle_hz=[3.2],
-                                vehicle_zeta=[0.5])
-    assert damped.quality.vehicle_limit == pytest.approx(32.0) and not damped.reliable
+    # a damped vehicle (ζ = 0.5): its half-power band 3.2 (1 ± 0.5) Hz reaches ζ f_v = 1.6 Hz = 8/T from it: a tone
+    # 1.1 Hz = 5.5/T away (beyond 4/T) is flagged, one 2.8 Hz = 14/T away is not
+    for f0, flagged in ((4.3, True), (6.0, False)):
+        damped = identify_frequency(_tone(f0, 5.0, 0.01), FS, 8.0, 40.0, (1.0, 20.0), bridge_hz=[f0], vehicle_hz=[3.2],
+                                    vehicle_zeta=[0.5])
+        assert damped.quality.vehicle_limit == pytest.approx(8.0) and damped.reliable is not flagged, damped.quality
 
 
 def test_multipass_median_quartiles_and_agreement_by_hand():
@@ -172,3 +174,24 @@ def test_two_peaks_of_similar_height_within_two_main_lobes_are_ambiguous():
         x = np.sin(2 * np.pi * 5.4 * t) + second * np.sin(2 * np.pi * 6.0 * t + 1.0)
         q = identify_frequency(x, FS, 5.0, 25.0, (1.0, 20.0), bridge_hz=[5.6]).quality
         assert ("ambiguous" in q.reason) is flagged, q
+
+
+def test_sensors_that_disagree_by_more_than_the_resolution_make_a_pass_unreliable():
+    """Two other sensors: one sees the same 5.6 Hz tone, one a 6.4 Hz tone (T = 5 s, 4/T away):
+    one agrees, one does not, and the reason names it."""
+    from vbikit.driveby.study import sensor_agreement
+
+    main = identify_frequency(_tone(5.6, 5.0, 0.01), FS, 5.0, 25.0, (1.0, 20.0), bridge_hz=[5.62])
+    same = identify_frequency(_tone(5.6, 5.0, 0.01, seed=1), FS, 5.0, 25.0, (1.0, 20.0), bridge_hz=[5.62])
+    other = identify_frequency(_tone(6.4, 5.0, 0.01), FS, 5.0, 25.0, (1.0, 20.0), bridge_hz=[5.62])
+    n, agree, reason = sensor_agreement(main, {"front": same, "rear": other})
+    assert (n, agree) == (2, 1) and reason.startswith("sensor rear identifies 6.4 Hz, 4.00/T")
+    assert sensor_agreement(main, {"front": same}) == (1, 1, "")
+
+
+def test_a_second_sensor_on_the_cart_body_agrees(tmp_path):
+    data = _example(sweep={"speed": [8.0]})
+    data["sensors"].append({"name": "cart_acc_2", "body": "body", "quantity": "acceleration"})
+    ds = run_driveby(parse_driveby(data, EXAMPLE.parent), tmp_path, figures=False)
+    assert int(ds["sensors_identified"][0]) == 1 and int(ds["sensors_agree"][0]) == 1
+    assert bool(ds["identified_frequency_reliable"][0])

@@ -12,12 +12,14 @@ Every threshold lives here, with its reason (docs/driveby.md, "How accurate is t
   be the flank of a peak outside the band, or of a spectrum still rising at the edge.  A peak
   that is not a local maximum of the whole spectrum (its neighbours just outside the band
   higher) is such a flank wherever it lies.
-* **Vehicle frequency** (``VEHICLE_LOBES`` = 2 main-lobe half-widths, or ``VEHICLE_BANDWIDTHS`` =
-  2 half-power bandwidths 2 ζ f_v of the vehicle mode, whichever is wider).  Inside 2 lobe/T the
+* **Vehicle frequency** (``VEHICLE_LOBES`` = 2 main-lobe half-widths, or ``VEHICLE_HALF_BANDS`` =
+  1 × the vehicle mode's half-power band f_v (1 ± ζ), whichever is wider).  Inside 2 lobe/T the
   main lobes of the bridge peak and of the vehicle's own response overlap, so the vehicle's
-  much larger response biases the bridge peak (or is the peak); 2 half-power bandwidths from a
-  damped resonance its power is still 1/17 (−12 dB) of the peak's.  The same limit applies to
-  the model's frequency of the mode sought: inside it no peak of this pass can be that mode.
+  much larger response biases the bridge peak (or is the peak).  Inside the half-power band of
+  a damped vehicle mode its resonance is within 3 dB of its top, so a peak there may be the
+  vehicle's own; outside it the resonance is a sloping background, which the background check
+  measures.  The same limit applies to the model's frequency of the mode sought: inside it no
+  peak of this pass can be that mode.
 * **Driving frequencies** n v / L (n = 1 … ``N_DRIVING``): a peak within one main-lobe
   half-width of one is unreliable.
 * **Label**: the nearest of the expected frequencies the peak matches (a vehicle frequency
@@ -70,8 +72,8 @@ MAIN_LOBE = {"boxcar": 1.0, "hann": 2.0, "hamming": 2.0, "blackman": 3.0}
 EDGE_LOBES = 1.0
 #: a peak closer than this many main-lobe half-widths to a vehicle frequency is flagged ...
 VEHICLE_LOBES = 2.0
-#: ... or closer than this many half-power bandwidths 2 ζ f_v of the vehicle mode
-VEHICLE_BANDWIDTHS = 2.0
+#: ... or inside this many times the vehicle mode's half-power band f_v (1 ± ζ)
+VEHICLE_HALF_BANDS = 1.0
 #: driving frequencies n v / L checked, n = 1 ... N_DRIVING
 N_DRIVING = 4
 #: a rival local maximum within this many main-lobe half-widths ...
@@ -202,7 +204,7 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     zeta = np.atleast_1d(np.asarray(vehicle_zeta, float)) if np.size(vehicle_zeta) else np.zeros(fv.size)
     v_dist, v_limit = math.inf, VEHICLE_LOBES * main_lobe(window)
     for k, (f_v, z) in enumerate(zip(fv, zeta), start=1):
-        limit = max(VEHICLE_LOBES * lobe, VEHICLE_BANDWIDTHS * 2 * z * f_v) / resolution_hz
+        limit = max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * z * f_v) / resolution_hz
         d = abs(f_peak - f_v) / resolution_hz
         if d < v_dist:
             v_dist, v_limit = d, limit
@@ -221,7 +223,7 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     fb = np.atleast_1d(np.asarray(bridge_hz, float))
     if fb.size >= mode:
         for f_v, z in zip(fv, zeta):
-            limit = max(VEHICLE_LOBES * lobe, VEHICLE_BANDWIDTHS * 2 * z * f_v) / resolution_hz
+            limit = max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * z * f_v) / resolution_hz
             if abs(fb[mode - 1] - f_v) / resolution_hz < limit:
                 reasons.append(f"the model's bridge mode {mode} ({fb[mode - 1]:.4g} Hz) lies {abs(fb[mode - 1] - f_v) / resolution_hz:.2f}/T "
                                f"from the vehicle's {f_v:.3g} Hz, inside {limit:.2f}/T: a pass this short cannot separate them")

@@ -53,13 +53,16 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
                             "(-inf: none; flagged above -6 dB)"),
     "vehicle_distance": ("1", "distance of the identified frequency to the nearest vehicle frequency, in units of the "
                               "resolution 1/T (inf: no vehicle frequency)"),
-    "vehicle_distance_limit": ("1", "flagged below: 2 main-lobe half-widths or 2 half-power bandwidths 2 ζ f_v of that "
+    "vehicle_distance_limit": ("1", "flagged below: 2 main-lobe half-widths or the half-power half-band ζ f_v of that "
                                     "vehicle mode, in units of 1/T"),
     "band_edge_distance": ("1", "distance of the identified frequency to the nearer edge of the search band, in units of "
                                 "the resolution 1/T"),
     "band_edge_limit": ("1", "flagged below: one main-lobe half-width of the window, in units of 1/T"),
     "speed_correction_hz": ("Hz", "correction applied to the peak for the speed: 0, the shifted pair f_b ± v/(2L) "
                                   "is 1/T apart and merges into one lobe centred on f_b"),
+    "sensors_identified": ("1", "other acceleration sensors of the vehicle whose own identification is reliable"),
+    "sensors_agree": ("1", "of those, the sensors within the resolution 1/T of this identification (one that is not "
+                           "makes it unreliable)"),
     "band_low_hz": ("Hz", "lower end of the search band"),
     "band_high_hz": ("Hz", "upper end of the search band"),
 }
@@ -192,6 +195,17 @@ def check_cases(spec: DriveBy) -> float:
     return total
 
 
+def sensor_agreement(ident, others: dict) -> tuple[int, int, str]:
+    """How the other acceleration sensors of the vehicle agree with ``ident``: the number whose
+    own identification is reliable, how many of those lie within the resolution 1/T of it, and
+    the reason in words when one does not ('' otherwise)."""
+    good = {name: o for name, o in others.items() if o.reliable}
+    off = {name: o for name, o in good.items() if abs(o.frequency_hz - ident.frequency_hz) > ident.resolution_hz}
+    reason = "; ".join(f"sensor {name} identifies {o.frequency_hz:.4g} Hz, {abs(o.frequency_hz - ident.frequency_hz) / ident.resolution_hz:.2f}/T "
+                       "away (more than 1/T)" for name, o in off.items())
+    return len(good), len(good) - len(off), reason
+
+
 def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     """Simulate case ``index`` and identify its frequency; returns its outputs and sensor histories."""
     from vbikit.solve import simulate
@@ -212,21 +226,33 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     t_on = result.time[on]
     window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
     vehicle = crossing.vehicles[0].vehicle
-    signal = m.values[k]
     speed = float(crossing.vehicles[0].speed)
-    if spec.method in ("contact", "residual"):
-        signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
-    if spec.method == "residual":
-        follower = contact_acceleration_from_measured(m.values[-1], SingleAxle.of(vehicle), m.dt)
-        signal = residual_response(signal, follower, spec.sampling.rate, spec.gap, speed)
-        window &= np.isfinite(signal)
     bridge = crossing.bridge
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
     f_v, zeta_v = vehicle_modes(vehicle)
-    ident = identify_frequency(signal[window], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
-                               bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
-                               vehicle_zeta=zeta_v)
+
+    def record(j: int) -> NDArray:
+        signal = m.values[j]
+        if spec.method in ("contact", "residual"):
+            signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
+        if spec.method == "residual":
+            follower = contact_acceleration_from_measured(m.values[-1], SingleAxle.of(vehicle), m.dt)
+            signal = residual_response(signal, follower, spec.sampling.rate, spec.gap, speed)
+        return signal
+
+    def identify(signal: NDArray, use: NDArray):
+        return identify_frequency(signal[use], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
+                                  bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
+                                  vehicle_zeta=zeta_v)
+
+    signal = record(k)
+    if spec.method == "residual":
+        window &= np.isfinite(signal)
+    ident = identify(signal, window)
     q = ident.quality
+    others = [j for j, s in enumerate(sensors) if j != k and s.quantity == "acceleration" and s.vehicle == sensors[k].vehicle
+              and spec.method != "residual"]  # residual: the follower carries only the chosen sensor
+    agreement = sensor_agreement(ident, {sensors[j].name: identify(record(j), window) for j in others})
     shape = np.full(SHAPE_POINTS, np.nan)
     if spec.method == "contact":  # φ² along x = v (t − t_entry): Hilbert envelope of the band-passed contact response
         half = min(2.0 * speed / bridge.span, 0.5 * ident.frequency_hz)
@@ -246,7 +272,8 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "vehicle_distance": q.vehicle_distance, "vehicle_distance_limit": q.vehicle_limit,
         "band_edge_distance": q.edge_distance, "band_edge_limit": q.edge_limit, "speed_correction_hz": q.speed_correction_hz,
         "band_low_hz": ident.band[0], "band_high_hz": ident.band[1],
-        "identified_frequency_label": q.label, "identified_frequency_reason": q.reason,
+        "sensors_identified": float(agreement[0]), "sensors_agree": float(agreement[1]),
+        "identified_frequency_label": q.label, "identified_frequency_reason": "; ".join(r for r in (q.reason, agreement[2]) if r),
         "history": m.values[:len(sensors)], "time0": float(m.time[0]), "noise_std": m.noise_std[:len(sensors)],
     }
 
@@ -434,7 +461,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     variables: dict[str, Any] = {}
     for name, (units, long_name) in CASE_OUTPUTS.items():
         values = out[name][order]
-        variables[name] = ("case", values.astype(np.int64) if name.startswith("n_") else values,
+        variables[name] = ("case", values.astype(np.int64) if name.startswith(("n_", "sensors_")) else values,
                            {"units": units, "long_name": long_name})
     labels = _labels(spec)
     for name, (units, long_name) in LABEL_ATTRS.items():
