@@ -153,6 +153,48 @@ def _db(x: float) -> float:
     return 10.0 * math.log10(x) if x > 0 else -math.inf
 
 
+def _local_maxima(psd: NDArray[np.float64]) -> NDArray[np.bool_]:
+    out = np.zeros(psd.size, bool)
+    out[1:-1] = (psd[1:-1] >= psd[:-2]) & (psd[1:-1] > psd[2:])
+    return out
+
+
+def _background(frequency, psd, f_peak, p_peak, band, lobe, resolution_hz) -> tuple[float, float, list[str]]:
+    """Peak over background [dB], its threshold [dB] and the reason when below (module docstring)."""
+    lo, hi = band
+    outside = (frequency >= lo) & (frequency <= hi) & (np.abs(frequency - f_peak) > lobe)
+    local = outside & (np.abs(frequency - f_peak) <= LOCAL_LOBES * lobe)
+    levels = [float(np.median(psd[s])) for s in (outside, local) if s.any()]
+    background = max(levels) if levels else 0.0
+    snr = _db(p_peak / background) if background > 0 else math.inf
+    threshold = _db(math.log2(max(1.0, (hi - lo) / resolution_hz) / FALSE_ALARM))
+    if snr >= threshold:
+        return snr, threshold, []
+    return snr, threshold, [f"peak {snr:.1f} dB above the background, below the {threshold:.1f} dB that noise alone "
+                            f"reaches in {100 * FALSE_ALARM:g} % of passes"]
+
+
+def _rival(frequency, psd, f_peak, p_peak, band, lobe, resolution_hz) -> tuple[float, list[str]]:
+    """The highest other local maximum within ``RIVAL_LOBES`` main lobes relative to the peak [dB], and the reason."""
+    near = np.abs(frequency - f_peak)
+    rivals = _local_maxima(psd) & (frequency >= band[0]) & (frequency <= band[1]) & (near > lobe) & (near <= RIVAL_LOBES * lobe)
+    if not rivals.any() or p_peak <= 0:
+        return -math.inf, []
+    j = np.flatnonzero(rivals)[np.argmax(psd[rivals])]
+    rival_db = _db(float(psd[j]) / p_peak)
+    if rival_db <= -RIVAL_DB:
+        return rival_db, []
+    return rival_db, [f"ambiguous: a second peak at {frequency[j]:.4g} Hz, {near[j] / resolution_hz:.2f}/T away, at "
+                      f"{rival_db:+.1f} dB of it (within {RIVAL_DB:g} dB)"]
+
+
+def vehicle_limit(f_v: float, zeta: float, lobe: float, resolution_hz: float) -> float:
+    """The distance from a vehicle frequency ``f_v`` [Hz] (damping ratio ``zeta``) inside which a
+    peak is flagged, in units of 1/T: ``VEHICLE_LOBES`` main lobes ``lobe`` [Hz] or the half-power
+    half-band ζ f_v, whichever is wider."""
+    return max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * zeta * f_v) / resolution_hz
+
+
 def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_peak: float, resolution_hz: float,
                  band: tuple[float, float], speed: float, span: float, window: str = "hann",
                  bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), vehicle_zeta: ArrayLike = (),
@@ -164,35 +206,15 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     ``mode`` the bridge mode sought (a peak labelled another bridge mode is unreliable for it)."""
     lobe = main_lobe(window) * resolution_hz
     lo, hi = band
-    reasons = []
-    # background: band median and local median outside the peak's main lobe
-    in_band = (frequency >= lo) & (frequency <= hi)
     i_peak = int(np.argmin(np.abs(frequency - f_peak)))
     p_peak = float(psd[i_peak])
-    outside = in_band & (np.abs(frequency - f_peak) > lobe)
-    local = outside & (np.abs(frequency - f_peak) <= LOCAL_LOBES * lobe)
-    levels = [float(np.median(psd[s])) for s in (outside, local) if s.any()]
-    background = max(levels) if levels else 0.0
-    snr = _db(p_peak / background) if background > 0 else math.inf
-    n_lines = max(1.0, (hi - lo) / resolution_hz)
-    threshold = _db(math.log2(n_lines / FALSE_ALARM))
-    if not snr >= threshold:
-        reasons.append(f"peak {snr:.1f} dB above the background, below the {threshold:.1f} dB that noise alone "
-                       f"reaches in {100 * FALSE_ALARM:g} % of passes")
-    # a rival local maximum close by and nearly as high
-    inner = np.zeros(psd.size, bool)
-    inner[1:-1] = (psd[1:-1] >= psd[:-2]) & (psd[1:-1] > psd[2:])
-    rivals = inner & in_band & (np.abs(frequency - f_peak) > lobe) & (np.abs(frequency - f_peak) <= RIVAL_LOBES * lobe)
-    rival_db = _db(float(psd[rivals].max()) / p_peak) if rivals.any() and p_peak > 0 else -math.inf
-    if rival_db > -RIVAL_DB:
-        j = np.flatnonzero(rivals)[np.argmax(psd[rivals])]
-        reasons.append(f"ambiguous: a second peak at {frequency[j]:.4g} Hz, {abs(f_peak - frequency[j]) / resolution_hz:.2f}/T "
-                       f"away, at {rival_db:+.1f} dB of it (within {RIVAL_DB:g} dB)")
+    snr, threshold, reasons = _background(frequency, psd, f_peak, p_peak, band, lobe, resolution_hz)
+    rival_db, why = _rival(frequency, psd, f_peak, p_peak, band, lobe, resolution_hz)
+    reasons += why
     # band edges and local maximum of the whole spectrum
     edge = min(f_peak - lo, hi - f_peak) / resolution_hz
     edge_limit = EDGE_LOBES * main_lobe(window)
-    left, right = psd[max(i_peak - 1, 0)], psd[min(i_peak + 1, psd.size - 1)]
-    local_max = bool(p_peak >= left and p_peak >= right)
+    local_max = bool(p_peak >= psd[max(i_peak - 1, 0)] and p_peak >= psd[min(i_peak + 1, psd.size - 1)])
     if edge < edge_limit:
         reasons.append(f"at the search band's edge ({edge:.2f}/T from [{lo:g}, {hi:g}] Hz, inside the main lobe "
                        f"{edge_limit:g}/T)")
@@ -202,34 +224,32 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     candidates = []
     fv = np.atleast_1d(np.asarray(vehicle_hz, float))
     zeta = np.atleast_1d(np.asarray(vehicle_zeta, float)) if np.size(vehicle_zeta) else np.zeros(fv.size)
+    fb = np.atleast_1d(np.asarray(bridge_hz, float))
     v_dist, v_limit = math.inf, VEHICLE_LOBES * main_lobe(window)
     for k, (f_v, z) in enumerate(zip(fv, zeta), start=1):
-        limit = max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * z * f_v) / resolution_hz
+        limit = vehicle_limit(f_v, z, lobe, resolution_hz)
         d = abs(f_peak - f_v) / resolution_hz
         if d < v_dist:
             v_dist, v_limit = d, limit
         candidates.append((abs(f_peak - f_v), f"vehicle_{k}", float(f_v), d < limit))
         if d < limit:
             reasons.append(f"near the vehicle's own frequency {f_v:.3g} Hz ({d:.2f}/T away, inside {limit:.2f}/T)")
+        d_model = abs(fb[mode - 1] - f_v) / resolution_hz if fb.size >= mode else math.inf
+        if d_model < limit:
+            reasons.append(f"the model's bridge mode {mode} ({fb[mode - 1]:.4g} Hz) lies {d_model:.2f}/T from the "
+                           f"vehicle's {f_v:.3g} Hz, inside {limit:.2f}/T: a pass this short cannot separate them")
     for n in range(1, N_DRIVING + 1):
         f_d = n * speed / span
         candidates.append((abs(f_peak - f_d), f"driving_{n}", f_d, abs(f_peak - f_d) < lobe))
         if abs(f_peak - f_d) < lobe:
             reasons.append(f"at the driving frequency {n} v/L = {f_d:.3g} Hz")
-    for k, f_b in enumerate(np.atleast_1d(np.asarray(bridge_hz, float)), start=1):
+    for k, f_b in enumerate(fb, start=1):
         candidates.append((abs(f_peak - f_b), f"bridge_{k}", float(f_b), abs(f_peak / f_b - 1) <= MODE_TOLERANCE))
     matching = sorted(c for c in candidates if c[3])
     label, label_hz = (matching[0][1], matching[0][2]) if matching else ("none", math.nan)
-    fb = np.atleast_1d(np.asarray(bridge_hz, float))
-    if fb.size >= mode:
-        for f_v, z in zip(fv, zeta):
-            limit = max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * z * f_v) / resolution_hz
-            if abs(fb[mode - 1] - f_v) / resolution_hz < limit:
-                reasons.append(f"the model's bridge mode {mode} ({fb[mode - 1]:.4g} Hz) lies {abs(fb[mode - 1] - f_v) / resolution_hz:.2f}/T "
-                               f"from the vehicle's {f_v:.3g} Hz, inside {limit:.2f}/T: a pass this short cannot separate them")
     if label.startswith("bridge_") and label != f"bridge_{mode}":
         reasons.append(f"the peak is bridge mode {label[7:]} (model {label_hz:.4g} Hz), not mode {mode} sought")
-    if not matching and np.size(bridge_hz):
+    if not matching and fb.size:
         reasons.append(f"matches no expected frequency (bridge modes of the model within ±{100 * MODE_TOLERANCE:g} %, "
                        "vehicle, driving)")
     return PeakQuality(label, label_hz, snr, threshold, v_dist, v_limit, edge, edge_limit, local_max, rival_db, 0.0,
