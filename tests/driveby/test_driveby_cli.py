@@ -49,7 +49,7 @@ def test_cli_writes_the_dataset_contract(tmp_path):
         assert ds["mode_shape_mac"].values[0] == pytest.approx(1.0)  # the healthy case against itself
         assert 0.9 < ds["mode_shape_mac"].values[1] <= 1.0
         assert ds["sensor_history"].attrs["units"] and ds["identified_frequency_hz"].attrs["units"] == "Hz"
-    for name in ("driveby-report.txt", "driveby-spectrogram.png", "driveby-frequency-vs-speed.png", "driveby-damage.png"):
+    for name in ("driveby-report.txt", "driveby-summary.json", "driveby-spectrogram.png", "driveby-frequency-vs-speed.png", "driveby-damage.png"):
         assert (out / name).is_file(), name
 
 

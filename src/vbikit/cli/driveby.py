@@ -37,11 +37,9 @@ def driveby_cmd(
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
 
     def finish() -> None:
-        from vbikit._files import write_text
-        from vbikit.driveby.report import report_text
+        from vbikit.driveby.report import write_report
 
-        text = report_text(ds)
-        write_text(out_dir / "driveby-report.txt", text)
+        text = write_report(ds, out_dir)
         if figures:
             from vbikit.driveby.figures import write_figures
 

@@ -34,15 +34,22 @@ def spectrogram_figure(ds, case: int = 0, sensor: int = 0):
 
 
 def frequency_figure(ds):
-    """Identified and true first frequency against speed (one marker per road class)."""
+    """Identified and true first frequency against speed (one marker per road class; crosses:
+    identifications flagged unreliable)."""
     import matplotlib.pyplot as plt
 
 
     fig, ax = plt.subplots(figsize=(6.0, 3.8))
     healthy = np.asarray(ds["damage_severity"].values) == 0
-    for road in sorted(set(ds["road_class"].values.tolist())):
+    reliable = np.asarray(ds["identified_frequency_reliable"].values, bool)
+    for k, road in enumerate(sorted(set(ds["road_class"].values.tolist()))):
         sel = healthy & (ds["road_class"].values == road)
-        ax.plot(ds["speed"].values[sel], ds["identified_frequency_hz"].values[sel], "o", label=f"identified, road {road}")
+        if (sel & reliable).any():
+            ax.plot(ds["speed"].values[sel & reliable], ds["identified_frequency_hz"].values[sel & reliable], "o",
+                    color=f"C{k}", label=f"identified, road {road}")
+        if (sel & ~reliable).any():
+            ax.plot(ds["speed"].values[sel & ~reliable], ds["identified_frequency_hz"].values[sel & ~reliable], "x",
+                    color=f"C{k}", label=f"flagged unreliable, road {road}")
     true = ds["bridge_frequency_hz"].values[healthy]
     if true.size:
         ax.axhline(float(true[0]), color="k", lw=1, label="true f₁ (healthy)")
@@ -54,7 +61,8 @@ def frequency_figure(ds):
 
 
 def damage_figure(ds):
-    """Identified and true relative frequency shift against damage severity."""
+    """Identified (reliable passes only; unreliable ones give none) and true relative frequency
+    shift against damage severity, and the multi-pass estimate's."""
     import matplotlib.pyplot as plt
 
 
@@ -65,6 +73,7 @@ def damage_figure(ds):
     res = 100 * ds["resolution_hz"].values / ds["bridge_frequency_hz"].values
     ax.errorbar(sev, 100 * ds["identified_frequency_shift"].values, yerr=res, fmt="none", ecolor="0.6", lw=0.8,
                 label="± resolution 1/T")
+    ax.plot(sev, 100 * ds["multipass_frequency_shift"].values, "s", mfc="none", label="multi-pass medians")
     ax.set_xlabel("damage severity (EI loss) [-]")
     ax.set_ylabel("first-frequency shift [%]")
     ax.legend(fontsize=8)

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import identify_frequency, mode_shape_squares, residual_response, shape_change
+from vbikit.driveby.quality import vehicle_modes
 from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
@@ -43,6 +44,34 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "record_end": ("s", "end of the identification record (front wheel leaves the deck)"),
     "n_steps": ("1", "integration steps of the crossing"),
     "n_samples": ("1", "sensor samples of the case"),
+    "label_frequency_hz": ("Hz", "the expected frequency the identified peak's label names (NaN: none)"),
+    "peak_snr_db": ("dB", "identified peak's power spectral density over the background (the larger of the median of "
+                          "the band's other lines and of those within 5 main-lobe half-widths, outside its main lobe)"),
+    "peak_snr_threshold_db": ("dB", "level that the highest peak of noise alone exceeds in 1 % of passes, "
+                                    "10 log10(log2(M / 0.01)), M = (band width) × T independent lines"),
+    "peak_rival_db": ("dB", "highest other peak within 2 main-lobe half-widths of the identified one, relative to it "
+                            "(-inf: none; flagged above -6 dB)"),
+    "vehicle_distance": ("1", "distance of the identified frequency to the nearest vehicle frequency, in units of the "
+                              "resolution 1/T (inf: no vehicle frequency)"),
+    "vehicle_distance_limit": ("1", "flagged below: 2 main-lobe half-widths or the half-power half-band ζ f_v of that "
+                                    "vehicle mode, in units of 1/T"),
+    "band_edge_distance": ("1", "distance of the identified frequency to the nearer edge of the search band, in units of "
+                                "the resolution 1/T"),
+    "band_edge_limit": ("1", "flagged below: one main-lobe half-width of the window, in units of 1/T"),
+    "speed_correction_hz": ("Hz", "correction applied to the peak for the speed: 0, the shifted pair f_b ± v/(2L) "
+                                  "is 1/T apart and merges into one lobe centred on f_b"),
+    "sensors_identified": ("1", "other acceleration sensors of the vehicle whose own identification is reliable"),
+    "sensors_agree": ("1", "of those, the sensors within the resolution 1/T of this identification (one that is not "
+                           "makes it unreliable)"),
+    "band_low_hz": ("Hz", "lower end of the search band"),
+    "band_high_hz": ("Hz", "upper end of the search band"),
+}
+#: per-case text outputs: name -> long name
+CASE_TEXT: dict[str, str] = {
+    "identified_frequency_label": "what the identified peak is: bridge_k (bridge mode k of the model, the merged "
+                                  "shifted pair f_b ± v/(2L)), vehicle_k (the vehicle's own frequency k), driving_n "
+                                  "(n v / L), none (no expected frequency)",
+    "identified_frequency_reason": "why the identified frequency is unreliable, in words ('' when reliable)",
 }
 
 
@@ -97,7 +126,7 @@ def case_crossing(spec: DriveBy, case: dict):
     from vbikit.solve.timestep import choose_time_step
 
     data = _case_scenario(spec, case)
-    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir], sort_keys=True)
+    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap], sort_keys=True)
     if key in _BUILT:
         return _BUILT[key]
     try:
@@ -166,6 +195,17 @@ def check_cases(spec: DriveBy) -> float:
     return total
 
 
+def sensor_agreement(ident, others: dict) -> tuple[int, int, str]:
+    """How the other acceleration sensors of the vehicle agree with ``ident``: the number whose
+    own identification is reliable, how many of those lie within the resolution 1/T of it, and
+    the reason in words when one does not ('' otherwise)."""
+    good = {name: o for name, o in others.items() if o.reliable}
+    off = {name: o for name, o in good.items() if abs(o.frequency_hz - ident.frequency_hz) > ident.resolution_hz}
+    reason = "; ".join(f"sensor {name} identifies {o.frequency_hz:.4g} Hz, {abs(o.frequency_hz - ident.frequency_hz) / ident.resolution_hz:.2f}/T "
+                       "away (more than 1/T)" for name, o in off.items())
+    return len(good), len(good) - len(off), reason
+
+
 def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     """Simulate case ``index`` and identify its frequency; returns its outputs and sensor histories."""
     from vbikit.solve import simulate
@@ -186,19 +226,33 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     t_on = result.time[on]
     window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
     vehicle = crossing.vehicles[0].vehicle
-    signal = m.values[k]
     speed = float(crossing.vehicles[0].speed)
-    if spec.method in ("contact", "residual"):
-        signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
-    if spec.method == "residual":
-        follower = contact_acceleration_from_measured(m.values[-1], SingleAxle.of(vehicle), m.dt)
-        signal = residual_response(signal, follower, spec.sampling.rate, spec.gap, speed)
-        window &= np.isfinite(signal)
     bridge = crossing.bridge
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
-    ident = identify_frequency(signal[window], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
-                               bridge_hz=bridge.frequencies_hz[:1], vehicle_hz=vehicle.natural_frequencies(),
-                               exclude_vehicle=spec.exclude_vehicle)
+    f_v, zeta_v = vehicle_modes(vehicle)
+
+    def record(j: int) -> NDArray:
+        signal = m.values[j]
+        if spec.method in ("contact", "residual"):
+            signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
+        if spec.method == "residual":
+            follower = contact_acceleration_from_measured(m.values[-1], SingleAxle.of(vehicle), m.dt)
+            signal = residual_response(signal, follower, spec.sampling.rate, spec.gap, speed)
+        return signal
+
+    def identify(signal: NDArray, use: NDArray):
+        return identify_frequency(signal[use], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
+                                  bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
+                                  vehicle_zeta=zeta_v)
+
+    signal = record(k)
+    if spec.method == "residual":
+        window &= np.isfinite(signal)
+    ident = identify(signal, window)
+    q = ident.quality
+    others = [j for j, s in enumerate(sensors) if j != k and s.quantity == "acceleration" and s.vehicle == sensors[k].vehicle
+              and spec.method != "residual"]  # residual: the follower carries only the chosen sensor
+    agreement = sensor_agreement(ident, {sensors[j].name: identify(record(j), window) for j in others})
     shape = np.full(SHAPE_POINTS, np.nan)
     if spec.method == "contact":  # φ² along x = v (t − t_entry): Hilbert envelope of the band-passed contact response
         half = min(2.0 * speed / bridge.span, 0.5 * ident.frequency_hz)
@@ -213,6 +267,13 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "vehicle_frequency_hz": float(vehicle.natural_frequencies()[0]),
         "record_start": float(t_on[0]), "record_end": float(t_on[-1]),
         "n_steps": float(result.n_steps), "n_samples": float(m.time.size),
+        "label_frequency_hz": q.label_hz, "peak_snr_db": q.snr_db, "peak_snr_threshold_db": q.snr_threshold_db,
+        "peak_rival_db": q.rival_db,
+        "vehicle_distance": q.vehicle_distance, "vehicle_distance_limit": q.vehicle_limit,
+        "band_edge_distance": q.edge_distance, "band_edge_limit": q.edge_limit, "speed_correction_hz": q.speed_correction_hz,
+        "band_low_hz": ident.band[0], "band_high_hz": ident.band[1],
+        "sensors_identified": float(agreement[0]), "sensors_agree": float(agreement[1]),
+        "identified_frequency_label": q.label, "identified_frequency_reason": "; ".join(r for r in (q.reason, agreement[2]) if r),
         "history": m.values[:len(sensors)], "time0": float(m.time[0]), "noise_std": m.noise_std[:len(sensors)],
     }
 
@@ -241,6 +302,7 @@ class DriveByStudy:
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         rows = [run_case(self.spec, i) for i in batch]
         out = {name: np.array([r[name] for r in rows], float) for name in CASE_OUTPUTS}
+        out |= {name: np.array([r[name] for r in rows], dtype=np.str_) for name in CASE_TEXT}
         n = max(r["history"].shape[1] for r in rows)
         hist = np.full((len(rows), len(self.spec.sensors), n), np.nan)
         for j, r in enumerate(rows):
@@ -255,7 +317,7 @@ class DriveByStudy:
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
         if "case" not in part or not np.array_equal(part["case"], np.array(batch, np.int64)):
             return "its cases are not those of this batch"
-        for name in CASE_OUTPUTS:
+        for name in (*CASE_OUTPUTS, *CASE_TEXT):
             if name not in part or part[name].shape != (len(batch),):
                 return f"{name} is missing or has the wrong shape"
         if "history" not in part or part["history"].shape[:2] != (len(batch), len(self.spec.sensors)):
@@ -272,7 +334,7 @@ class DriveByStudy:
         sums = part_checksums(parts)
         loaded = [load_part(parts, k, sums) for k in range(len(self.batches()))]
         return dataset(self.spec, {name: np.concatenate([p[name] for p in loaded])
-                                   for name in (*CASE_OUTPUTS, "time0", "case", "mode_shape_squared", "noise_std")},
+                                   for name in (*CASE_OUTPUTS, *CASE_TEXT, "time0", "case", "mode_shape_squared", "noise_std")},
                        [p["history"] for p in loaded])
 
 
@@ -311,6 +373,76 @@ def healthy_reference(labels: dict[str, NDArray]) -> NDArray[np.int64]:
     return np.array([healthy.get(tuple(labels[k][i] for k in keys), -1) for i in range(labels["speed"].size)], np.int64)
 
 
+def bridge_states(labels: dict[str, NDArray]) -> NDArray[np.int64]:
+    """For every case the index of its bridge (one per damage position and severity; every
+    healthy case the same bridge): the passes over one bridge form its multi-pass estimate."""
+    keys = [(0.0, 0.0) if s == 0 else (float(p), float(s)) for p, s in zip(labels["damage_position"], labels["damage_severity"])]
+    first: dict = {}
+    return np.array([first.setdefault(k, len(first)) for k in keys], np.int64)
+
+
+#: multi-pass outputs per case (its bridge's): name -> (units, long name, MultiPass field)
+MULTIPASS_OUTPUTS = {
+    "multipass_frequency_hz": ("Hz", "median of the reliable passes over this case's bridge", "median"),
+    "multipass_q25_hz": ("Hz", "lower quartile of the reliable passes over this case's bridge", "q25"),
+    "multipass_q75_hz": ("Hz", "upper quartile of the reliable passes over this case's bridge", "q75"),
+    "multipass_mean_hz": ("Hz", "mean of the reliable passes over this case's bridge", "mean"),
+    "multipass_std_hz": ("Hz", "standard deviation (n − 1) of the reliable passes over this case's bridge", "std"),
+    "multipass_n_passes": ("1", "passes over this case's bridge", "n_passes"),
+    "multipass_n_reliable": ("1", "passes over this case's bridge whose peak passed the single-pass checks", "n_reliable"),
+    "multipass_n_agree": ("1", "reliable passes within their resolution 1/T of the multi-pass median", "n_agree"),
+}
+
+
+def pass_reliability(labels: dict[str, NDArray], ident: NDArray, resolution: NDArray, reasons: NDArray):
+    """Per case: reliable (the single-pass checks, and, with at least ``MIN_PASSES`` reliable
+    passes over its bridge, agreement with their median), the reasons in words, and the
+    multi-pass estimate of its bridge (``MULTIPASS_OUTPUTS``: name -> (units, long name, values))."""
+    from vbikit.driveby.quality import MIN_PASSES, multipass_estimate
+
+    reasons = [str(r) for r in reasons]
+    single = np.array([not r for r in reasons])
+    reliable = single.copy()
+    passes = {name: (units, long_name, np.full(ident.size, np.nan)) for name, (units, long_name, _) in MULTIPASS_OUTPUTS.items()}
+    agrees = np.zeros(ident.size, np.int8)
+    states = bridge_states(labels)
+    for b in np.unique(states):
+        sel = np.flatnonzero(states == b)
+        est = multipass_estimate(ident[sel], resolution[sel], single[sel])
+        for name, (_, _, attr) in MULTIPASS_OUTPUTS.items():
+            passes[name][2][sel] = getattr(est, attr)
+        agrees[sel] = est.agrees
+        if est.n_reliable >= MIN_PASSES:
+            for i in sel[single[sel] & ~est.agrees]:
+                reliable[i] = False
+                reasons[i] = (f"disagrees with the median {est.median:.4g} Hz of the {est.n_reliable} reliable passes over "
+                              f"this bridge by {abs(ident[i] - est.median) / resolution[i]:.2f}/T (more than 1/T)")
+    for name in ("multipass_n_passes", "multipass_n_reliable", "multipass_n_agree"):
+        units, long_name, values = passes[name]
+        passes[name] = (units, long_name, values.astype(np.int64))
+    passes["pass_agrees"] = ("", "1: this pass is reliable and within its resolution 1/T of its bridge's multi-pass median",
+                             agrees)
+    return reliable, reasons, passes
+
+
+def reliable_shift(ident: NDArray, ref: NDArray, reliable: NDArray) -> tuple[NDArray, list[str]]:
+    """The damage indicator f / f_healthy − 1 per case, NaN (with the reason) when the case has no
+    healthy counterpart or either pass is unreliable."""
+    shift = np.full(ident.size, np.nan)
+    why = []
+    for i, j in enumerate(ref):
+        if j < 0:
+            why.append("no healthy case of the same speed, road, seed and noise")
+        elif not reliable[j]:
+            why.append(f"the healthy case {j}'s identified frequency is unreliable")
+        elif not reliable[i]:
+            why.append("this case's identified frequency is unreliable")
+        else:
+            shift[i] = ident[i] / ident[j] - 1.0
+            why.append("")
+    return shift, why
+
+
 def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     """The sweep's labelled Dataset (dimensions ``case``, ``sensor``, ``sample``)."""
     import xarray as xr
@@ -329,7 +461,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     variables: dict[str, Any] = {}
     for name, (units, long_name) in CASE_OUTPUTS.items():
         values = out[name][order]
-        variables[name] = ("case", values.astype(np.int64) if name.startswith("n_") else values,
+        variables[name] = ("case", values.astype(np.int64) if name.startswith(("n_", "sensors_")) else values,
                            {"units": units, "long_name": long_name})
     labels = _labels(spec)
     for name, (units, long_name) in LABEL_ATTRS.items():
@@ -338,10 +470,28 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     ident, true = out["identified_frequency_hz"][order], out["bridge_frequency_hz"][order]
     variables["frequency_error"] = ("case", ident / true - 1.0, {"units": "1", "long_name": "identified / true − 1"})
     ref = healthy_reference(labels)
-    shift = np.where(ref >= 0, ident / ident[np.maximum(ref, 0)] - 1.0, np.nan)
+    texts = {name: np.asarray(out[name][order]).astype(str) for name in CASE_TEXT}
+    reliable, reasons, passes = pass_reliability(labels, ident, out["resolution_hz"][order], texts["identified_frequency_reason"])
+    for name, long_name in CASE_TEXT.items():
+        variables[name] = ("case", np.array(reasons if name == "identified_frequency_reason" else texts[name], dtype=object),
+                           {"long_name": long_name})
+    variables["identified_frequency_reliable"] = ("case", reliable.astype(np.int8), {
+        "long_name": "1: the identified frequency passed every check (docs/driveby.md, How accurate is this); 0: "
+                     "unreliable, excluded from the damage indicators, reason in identified_frequency_reason",
+        "flag_values": np.array([0, 1], np.int8), "flag_meanings": "unreliable reliable"})
+    for name, (units, long_name, values) in passes.items():
+        variables[name] = ("case", values, {"long_name": long_name} | ({"units": units} if units else {}))
+    shift, shift_reason = reliable_shift(ident, ref, reliable)
     true_shift = np.where(ref >= 0, true / true[np.maximum(ref, 0)] - 1.0, np.nan)
     variables["identified_frequency_shift"] = ("case", shift, {"units": "1", "long_name":
-                                              "damage indicator: identified frequency / that of the healthy case − 1"})
+                                              "damage indicator: identified frequency / that of the healthy case − 1 "
+                                              "(NaN when either pass is unreliable: frequency_shift_reason)"})
+    variables["frequency_shift_reason"] = ("case", np.array(shift_reason, dtype=object), {
+        "long_name": "why identified_frequency_shift is not given, in words ('' when given)"})
+    mp = passes["multipass_frequency_hz"][2]
+    variables["multipass_frequency_shift"] = ("case", np.where(ref >= 0, mp / mp[np.maximum(ref, 0)] - 1.0, np.nan), {
+        "units": "1", "long_name": "damage indicator from all passes: multi-pass median of this bridge / that of the "
+                                   "healthy bridge − 1 (NaN without reliable passes)"})
     variables["bridge_frequency_shift"] = ("case", true_shift, {"units": "1", "long_name":
                                           "true first frequency / that of the healthy bridge − 1"})
     variables["healthy_case"] = ("case", ref, {"long_name": "index of the healthy counterpart (−1: none)"})
@@ -357,7 +507,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     grid = np.linspace(0.0, float(case_crossing(spec, spec.cases[0] if spec.cases else {}).bridge.span), SHAPE_POINTS)
     for i in range(n_cases):
         j = ref[i]
-        if j < 0 or not (np.all(np.isfinite(shapes[i])) and np.all(np.isfinite(shapes[j]))):
+        if j < 0 or not (reliable[i] and reliable[j]) or not (np.all(np.isfinite(shapes[i])) and np.all(np.isfinite(shapes[j]))):
             continue
         values["mode_shape_mac"][i] = shape_change(np.sqrt(shapes[j]), np.sqrt(shapes[i]))["mac"]
         inner = slice(SHAPE_POINTS // 10, SHAPE_POINTS - SHAPE_POINTS // 10)  # the band-pass's and Hilbert transform's end effects
@@ -388,9 +538,9 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
 def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = 1,
                 scheduler: Optional[str] = None, progress=None, figures: bool = True):
     """Run a drive-by sweep (a ``DriveBy``, a file path or its parsed dict) on the study runner and
-    write ``out_dir``/driveby.nc, the figures (``driveby-*.png``) and ``driveby-report.txt``;
+    write ``out_dir``/driveby.nc, the figures (``driveby-*.png``), ``driveby-report.txt`` and
+    ``driveby-summary.json``;
     returns the Dataset.  Resumable: run it again after an interruption."""
-    from vbikit._files import write_text
     from vbikit.driveby.spec import load_driveby, parse_driveby
     from vbikit.study.run import run_study
 
@@ -402,9 +552,9 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     ds = run_study(DriveByStudy(spec), out_dir / "driveby.nc", workers=workers, scheduler=scheduler, progress=progress)
-    from vbikit.driveby.report import report_text
+    from vbikit.driveby.report import write_report
 
-    write_text(out_dir / "driveby-report.txt", report_text(ds))
+    write_report(ds, out_dir)
     if figures:
         from vbikit.driveby.figures import write_figures
 
