@@ -249,6 +249,13 @@ class Tabulated:
         # per row: A (cell starts), B (cell ends), then a zero guard cell
         self.a = np.concatenate([np.concatenate([uniq[:, :m], np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
         self.b = np.concatenate([np.concatenate([uniq[:, m:], np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
+        self.n_rows = int(uniq.shape[0])
+        # the knots of the exact peaks (``vbikit.lifetime.peaks``): the nodes where the line is
+        # not straight across (within 1e-10 of its largest value)
+        from vbikit.lifetime.peaks import active_nodes
+
+        tol = 1e-10 * float(np.max(np.abs(uniq))) if uniq.size else 0.0
+        self.active_ptr, self.active_idx = active_nodes(self.a, self.b, self.n_rows, self.n, eps / self.h, tol)
 
     def same_grid(self, other: "Tabulated") -> bool:
         return self.x0 == other.x0 and self.h == other.h and self.n == other.n and np.array_equal(self.row, other.row)
@@ -391,7 +398,9 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
             idx = np.flatnonzero(is_peak)
             first_peak = np.searchsorted(idx, offsets[:-1])
             at[:, j] = idx[first_peak] - offsets[:-1]
-    if refine and grids is None and n_ev:
+    if tables is not None and grids is None and n_ev:
+        peaks = _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev)
+    elif refine and grids is None and n_ev:
         peaks = _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir,
                         span, lines, tables, track_ids)
     return EventStatics(peaks, offsets, totals if keep_histories else None)
@@ -418,4 +427,33 @@ def _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, 
         r = np.bincount(slot, weights=terms, minlength=n_ev * m).reshape(n_ev, m)
         s = line.sign
         out[:, j] = s * np.maximum(s * peaks[:, j], np.max(s * r, axis=1))
+    return out
+
+
+def _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev):
+    """Every event's exact extreme on every tabulated line (``vbikit.lifetime.peaks``)."""
+    from vbikit.lifetime.peaks import event_extremes
+
+    out = np.empty((n_ev, len(lines)))
+    veh = pts.vehicle
+    ev = event_of[veh]
+    t_ev = np.full(n_ev, np.inf)
+    np.minimum.at(t_ev, event_of, entry)
+    for j, (line, tab) in enumerate(zip(lines, tables)):
+        row = tab.row[track_ids[j]]
+        # one load per (vehicle, setback, row): the wheels of an axle on the same row merged
+        order = np.lexsort((row, pts.setback, veh))
+        o_veh, o_set, o_row = veh[order], pts.setback[order], row[order]
+        new = np.r_[True, (o_veh[1:] != o_veh[:-1]) | (o_set[1:] != o_set[:-1]) | (o_row[1:] != o_row[:-1])]
+        first = np.flatnonzero(new)
+        load = np.add.reduceat(pts.load[order], first) if first.size else np.zeros(0)
+        v, d, r = o_veh[first], o_set[first], o_row[first]
+        by_event = np.argsort(ev[order][first], kind="stable")
+        v, d, r, load = v[by_event], d[by_event], r[by_event], load[by_event]
+        e = event_of[v]
+        ptr = np.searchsorted(e, np.arange(n_ev + 1)).astype(np.int64)
+        hi, lo = event_extremes(ptr, entry[v] - t_ev[e], speed[v], sign_dir[v], d, load, r.astype(np.int64),
+                                float(span), float(tab.x0), float(tab.h), int(tab.n), tab.a, tab.b, tab.active_ptr,
+                                tab.active_idx)
+        out[:, j] = hi if line.sign > 0 else lo
     return out
