@@ -352,7 +352,6 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
         counts = (np.ceil((t1 - t0) / dt).astype(np.int64) + 1) if n_ev else np.zeros(0, np.int64)
         grids = None
     offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    totals = [np.zeros(int(offsets[-1])) for _ in lines]
     track_ids = None
     if tables is not None:
         track_ids = []
@@ -361,6 +360,12 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
             if not np.allclose(tab.tracks[ids], pts.y, rtol=0, atol=1e-9):
                 raise ValueError("a wheel track of the traffic is not among the tabulated tracks")
             track_ids.append(ids)
+    exact = tables is not None and grids is None
+    if exact and n_ev:
+        peaks = _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev)
+        if not keep_histories:
+            return EventStatics(peaks, offsets, None)
+    totals = [np.zeros(int(offsets[-1])) for _ in lines]
     # points grouped by event
     p_event = event_of[pts.vehicle]
     p_order = np.argsort(p_event, kind="stable")
@@ -387,6 +392,8 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
         for j in range(len(lines)):
             totals[j][offsets[k]:offsets[k1]] = np.bincount(s_local, weights=terms[j], minlength=n_local)
         k = k1
+    if exact:
+        return EventStatics(peaks if n_ev else np.empty((0, len(lines))), offsets, totals if keep_histories else None)
     peaks = np.empty((n_ev, len(lines)))
     at = np.empty((n_ev, len(lines)), np.int64)
     for j, line in enumerate(lines):
@@ -398,9 +405,7 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
             idx = np.flatnonzero(is_peak)
             first_peak = np.searchsorted(idx, offsets[:-1])
             at[:, j] = idx[first_peak] - offsets[:-1]
-    if tables is not None and grids is None and n_ev:
-        peaks = _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev)
-    elif refine and grids is None and n_ev:
+    if refine and grids is None and n_ev:
         peaks = _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir,
                         span, lines, tables, track_ids)
     return EventStatics(peaks, offsets, totals if keep_histories else None)

@@ -131,8 +131,11 @@ def event_extremes(ev_ptr, t_entry, speed, direction, setback, load, row, span, 
             if q_min < 0:
                 break
             if t_min > t_cur:
+                # every knot at t_cur is through: R is the right limit there; then the left limit at t_min
+                best_hi = max(best_hi, R)
+                best_lo = min(best_lo, R)
                 if t_cur > -np.inf:
-                    R += S * (t_min - t_cur)  # left limit at t_min
+                    R += S * (t_min - t_cur)
                     best_hi = max(best_hi, R)
                     best_lo = min(best_lo, R)
                 t_cur = t_min
@@ -165,15 +168,8 @@ def event_extremes(ev_ptr, t_entry, speed, direction, setback, load, row, span, 
             else:
                 slope[q] = 0.0
                 t_next[q] = np.inf
-            # right limit at t_min once every load on a knot at t_min is through
-            done = True
-            for q2 in range(n_p):
-                if t_next[q2] <= t_min:
-                    done = False
-                    break
-            if done:
-                best_hi = max(best_hi, R)
-                best_lo = min(best_lo, R)
+        best_hi = max(best_hi, R)  # the right limit at the last knot
+        best_lo = min(best_lo, R)
         hi[e] = best_hi
         lo[e] = best_lo
     return hi, lo
