@@ -252,10 +252,12 @@ class Tabulated:
         self.n_rows = int(uniq.shape[0])
         # the knots of the exact peaks (``vbikit.lifetime.peaks``): the nodes where the line is
         # not straight across (within 1e-10 of its largest value)
-        from vbikit.lifetime.peaks import active_nodes
+        from vbikit.lifetime.peaks import active_nodes, knot_tables
 
         tol = 1e-10 * float(np.max(np.abs(uniq))) if uniq.size else 0.0
-        self.active_ptr, self.active_idx = active_nodes(self.a, self.b, self.n_rows, self.n, eps / self.h, tol)
+        self.active_ptr, active = active_nodes(self.a, self.b, self.n_rows, self.n, eps / self.h, tol)
+        #: per active node: x, g(x⁻), g(x⁺), dg/dx after it (``vbikit.lifetime.peaks.knot_tables``)
+        self.knots = knot_tables(self.a, self.b, self.n, self.x0, self.h, self.active_ptr, active)
 
     def same_grid(self, other: "Tabulated") -> bool:
         return self.x0 == other.x0 and self.h == other.h and self.n == other.n and np.array_equal(self.row, other.row)
@@ -283,11 +285,14 @@ class EventStatics:
     """Static responses of a chunk of events.
 
     ``peaks`` (n_events, n_lines): each event's peak (largest sign·R, returned with its sign);
-    ``histories``: per line the sampled R(t) of every event, concatenated (``offsets`` (n_events
-    + 1,) index the events' samples), kept only when asked for (fatigue)."""
+    ``histories``: per line the events' histories concatenated, ``offsets[j]`` (n_events + 1,)
+    indexing line j's events, kept only when asked for (fatigue).  On tabulated lines (the
+    lifetime run) a history is the exact sequence of turning points of R(t) (0, every local
+    extreme, 0: ``vbikit.lifetime.peaks``), all a rainflow count needs; at given ``times`` it is
+    R at those times."""
 
     peaks: NDArray[np.float64]
-    offsets: NDArray[np.int64]
+    offsets: list[NDArray[np.int64]]
     histories: Optional[list[NDArray[np.float64]]] = None
 
 
@@ -319,11 +324,14 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     """Static history and peak of every event (module docstring).
 
     ``events``: vehicle indices into ``records`` of each event; ``tables``: the tabulated lines
-    (same order as ``lines``; None: exact evaluation); ``times``: the sample times [s] of each
-    event (default: a grid of travel step ``ds`` [m] from the first entry to the last exit, padded
-    by the tire's reach; then, with ``refine``, each peak is refined on ``REFINE`` samples a
-    step over the two steps around the sampled peak, so that the peak is the continuous maximum
-    within (ds/REFINE)/2 · max|dR/ds|); ``max_samples``: samples × points evaluated at once."""
+    (same order as ``lines``; None: evaluate the lines themselves).  With ``tables`` and no
+    ``times`` (the lifetime run) the peaks are the exact extremes on the tabulated lines and the
+    histories their turning points (``vbikit.lifetime.peaks``; ``ds``, ``max_samples`` and
+    ``refine`` unused).  Otherwise R is sampled: at ``times`` [s] of each event, or on a grid
+    of travel step ``ds`` [m] from the first entry to the last exit, padded by the tire's reach,
+    each peak then refined (``refine``) on ``REFINE`` samples a step over the two steps around
+    the sampled peak (the continuous maximum within (ds/REFINE)/2 · max|dR/ds|);
+    ``max_samples``: samples × points evaluated at once."""
     pts = point_loads(records, lanes, pattern)
     n_ev = len(events)
     speed = np.array([r.speed for r in records])
@@ -333,6 +341,16 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     event_of = np.empty(len(records), np.int64)
     for k, members in enumerate(events):
         event_of[list(members)] = k
+    track_ids = None
+    if tables is not None:
+        track_ids = []
+        for tab in tables:
+            ids = np.minimum(np.searchsorted(tab.tracks, pts.y), tab.tracks.size - 1)
+            if not np.allclose(tab.tracks[ids], pts.y, rtol=0, atol=1e-9):
+                raise ValueError("a wheel track of the traffic is not among the tabulated tracks")
+            track_ids.append(ids)
+        if times is None:
+            return _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev, keep_histories)
     pad = pattern.reach
     if times is not None:
         grids = [np.asarray(g, float) for g in times]
@@ -352,19 +370,6 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
         counts = (np.ceil((t1 - t0) / dt).astype(np.int64) + 1) if n_ev else np.zeros(0, np.int64)
         grids = None
     offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    track_ids = None
-    if tables is not None:
-        track_ids = []
-        for tab in tables:
-            ids = np.minimum(np.searchsorted(tab.tracks, pts.y), tab.tracks.size - 1)
-            if not np.allclose(tab.tracks[ids], pts.y, rtol=0, atol=1e-9):
-                raise ValueError("a wheel track of the traffic is not among the tabulated tracks")
-            track_ids.append(ids)
-    exact = tables is not None and grids is None
-    if exact and n_ev:
-        peaks = _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev)
-        if not keep_histories:
-            return EventStatics(peaks, offsets, None)
     totals = [np.zeros(int(offsets[-1])) for _ in lines]
     # points grouped by event
     p_event = event_of[pts.vehicle]
@@ -392,8 +397,6 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
         for j in range(len(lines)):
             totals[j][offsets[k]:offsets[k1]] = np.bincount(s_local, weights=terms[j], minlength=n_local)
         k = k1
-    if exact:
-        return EventStatics(peaks if n_ev else np.empty((0, len(lines))), offsets, totals if keep_histories else None)
     peaks = np.empty((n_ev, len(lines)))
     at = np.empty((n_ev, len(lines)), np.int64)
     for j, line in enumerate(lines):
@@ -408,7 +411,7 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     if refine and grids is None and n_ev:
         peaks = _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir,
                         span, lines, tables, track_ids)
-    return EventStatics(peaks, offsets, totals if keep_histories else None)
+    return EventStatics(peaks, [offsets] * len(lines), totals if keep_histories else None)
 
 
 def _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir, span, lines,
@@ -435,11 +438,13 @@ def _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, 
     return out
 
 
-def _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev):
-    """Every event's exact extreme on every tabulated line (``vbikit.lifetime.peaks``)."""
+def _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev, keep) -> EventStatics:
+    """Every event's exact extreme on every tabulated line and, with ``keep``, the turning points
+    of its history (``vbikit.lifetime.peaks``)."""
     from vbikit.lifetime.peaks import event_extremes
 
-    out = np.empty((n_ev, len(lines)))
+    peaks = np.empty((n_ev, len(lines)))
+    offsets, histories = [], []
     veh = pts.vehicle
     ev = event_of[veh]
     t_ev = np.full(n_ev, np.inf)
@@ -447,18 +452,17 @@ def _exact_peaks(pts, event_of, speed, entry, sign_dir, span, lines, tables, tra
     for j, (line, tab) in enumerate(zip(lines, tables)):
         row = tab.row[track_ids[j]]
         # one load per (vehicle, setback, row): the wheels of an axle on the same row merged
-        order = np.lexsort((row, pts.setback, veh))
+        order = np.lexsort((row, pts.setback, veh, ev))
         o_veh, o_set, o_row = veh[order], pts.setback[order], row[order]
         new = np.r_[True, (o_veh[1:] != o_veh[:-1]) | (o_set[1:] != o_set[:-1]) | (o_row[1:] != o_row[:-1])]
         first = np.flatnonzero(new)
         load = np.add.reduceat(pts.load[order], first) if first.size else np.zeros(0)
         v, d, r = o_veh[first], o_set[first], o_row[first]
-        by_event = np.argsort(ev[order][first], kind="stable")
-        v, d, r, load = v[by_event], d[by_event], r[by_event], load[by_event]
         e = event_of[v]
         ptr = np.searchsorted(e, np.arange(n_ev + 1)).astype(np.int64)
-        hi, lo = event_extremes(ptr, entry[v] - t_ev[e], speed[v], sign_dir[v], d, load, r.astype(np.int64),
-                                float(span), float(tab.x0), float(tab.h), int(tab.n), tab.a, tab.b, tab.active_ptr,
-                                tab.active_idx)
-        out[:, j] = hi if line.sign > 0 else lo
-    return out
+        hi, lo, tp, tp_ptr = event_extremes(ptr, entry[v] - t_ev[e], speed[v], sign_dir[v], d, load,
+                                            r.astype(np.int64), float(span), tab.active_ptr, *tab.knots, bool(keep))
+        peaks[:, j] = hi if line.sign > 0 else lo
+        offsets.append(tp_ptr)
+        histories.append(tp)
+    return EventStatics(peaks, offsets, histories if keep else None)

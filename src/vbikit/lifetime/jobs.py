@@ -2,9 +2,10 @@
 local processes or a Dask cluster, every finished batch stored, a killed run resumed).
 
 * ``StaticJob``: work items are days.  Each day's traffic is drawn (``TrafficModel.day``), cut
-  into events, and every event's static peak of every load effect computed by convolution
-  (``vbikit.lifetime.influence``); for every fatigue detail the day's stress history (the
-  events' static histories in time order, zero between events — the bridge is empty) is
+  into events, and every event's exact static peak of every load effect computed
+  (``vbikit.lifetime.influence``, ``vbikit.lifetime.peaks``); for every fatigue detail the day's
+  stress history (the turning points of the events' static histories in time order, zero
+  between events — the bridge is empty) is
   rainflow counted (``vbikit.fatigue.RainflowCounter``): the day's closed cycles (their Miner
   damage and histogram) and its residual, which ``vbikit.lifetime.fatigue_results`` joins
   across days exactly.
@@ -202,10 +203,9 @@ class StaticJob:
             for j, (det, curve) in enumerate(zip(self.details, curves)):
                 hist = statics.histories[det.line] * det.factor
                 counter = RainflowCounter()
-                # zero between events (the bridge is empty), then each event's history
-                offs = statics.offsets
-                for e in range(n):
-                    counter.feed(np.concatenate([[0.0], hist[offs[e]:offs[e + 1]], [0.0]]))
+                # the events' histories in time order, each from 0 to 0 (the bridge is empty between events)
+                if hist.size:
+                    counter.feed(hist)
                 state = counter.state
                 closed.append(miner_damage(state.ranges, state.counts, curve, whole_spectrum=False) if state.ranges.size else 0.0)
                 top.append(float(state.ranges.max()) if state.ranges.size else 0.0)  # exact, for the limit rule

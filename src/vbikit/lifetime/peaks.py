@@ -76,52 +76,100 @@ def active_nodes(a: NDArray[np.float64], b: NDArray[np.float64], n_rows: int, n_
     return np.asarray(ptr, np.int64), np.asarray(idx, np.int64)
 
 
-@njit(cache=True)
-def _knot_values(a, b, base, m, k):
-    """(g(x_k⁻), g(x_k⁺)) of a row whose cell 0 is at flat index ``base`` (zero off the grid)."""
-    left = b[base + k - 1] if k > 0 else 0.0
-    right = a[base + k] if k < m else 0.0
-    return left, right
-
-
-@njit(cache=True)
-def event_extremes(ev_ptr, t_entry, speed, direction, setback, load, row, span, x0, h, n_nodes, a, b, act_ptr,
-                   act_idx):
-    """(max R, min R) of every event (module docstring).
-
-    ``ev_ptr`` (n_events + 1,): the loads of event e are ``ev_ptr[e]:ev_ptr[e+1]`` of the flat
-    per-load arrays ``t_entry`` [s] (entry time of the load's vehicle, relative to any time
-    origin of the event), ``speed`` [m/s], ``direction`` (±1), ``setback`` [m], ``load`` [N],
-    ``row`` (table row); ``a``, ``b``: the table's flat one-sided cell values, ``act_ptr``,
-    ``act_idx``: its active nodes per row (``active_nodes``)."""
-    n_ev = ev_ptr.size - 1
+def knot_tables(a: NDArray[np.float64], b: NDArray[np.float64], n_nodes: int, x0: float, h: float,
+                ptr: NDArray[np.int64], idx: NDArray[np.int64]):
+    """Per active node (``active_nodes``' flat order): its x [m], g(x⁻), g(x⁺) (zero off the grid)
+    and the slope dg/dx of the segment to the row's next active node (0 after the last)."""
     m = n_nodes - 1
-    hi = np.empty(n_ev)
-    lo = np.empty(n_ev)
+    row = np.repeat(np.arange(ptr.size - 1), np.diff(ptr))
+    k = idx
+    base = row * n_nodes
+    left = np.where(k > 0, b[base + np.maximum(k - 1, 0)], 0.0)
+    right = np.where(k < m, a[base + np.minimum(k, m - 1)], 0.0)
+    x = x0 + h * k
+    slope = np.zeros(k.size)
+    nxt = np.arange(k.size) + 1
+    inner = np.ones(k.size, bool)
+    inner[ptr[1:] - 1] = False  # the last node of each row
+    j = np.flatnonzero(inner)
+    slope[j] = (left[nxt[j]] - right[j]) / (x[nxt[j]] - x[j])
+    return x, left, right, slope
+
+
+#: turning points of a history are kept when they reverse by more than this fraction of
+#: max|g| · Σ P of the event (the tabulation's ε offsets make reversals of ≈ 1e-9 of it)
+GATE = 1e-7
+
+
+@njit(cache=True)
+def _push(buf, n, first, x, gate):
+    """Add x to the turning points buf[first:n] (hysteresis filter): a value that goes on in the
+    direction of the last step replaces the last point; one that reverses by more than ``gate``
+    is appended; anything else is dropped.  Returns the new n (``buf`` has room)."""
+    if n == first:
+        buf[n] = x
+        return n + 1
+    last = buf[n - 1]
+    if n - first >= 2 and (x - last) * (last - buf[n - 2]) >= 0:
+        buf[n - 1] = x
+        return n
+    if abs(x - last) > gate:
+        buf[n] = x
+        return n + 1
+    return n
+
+
+@njit(cache=True)
+def _sweep(ev_ptr, t_entry, speed, direction, setback, load, row, span, act_ptr, kx, gl, gr, sx, hi, lo, tp, tp_ptr,
+           e_start, g_max):
+    """``event_extremes`` from event ``e_start`` on, writing turning points into ``tp`` (none if
+    it is empty) until the next event might not fit; returns the next event to do."""
+    n_ev = ev_ptr.size - 1
+    keep = tp.size > 0
     max_p = 1
     for e in range(n_ev):
         max_p = max(max_p, ev_ptr[e + 1] - ev_ptr[e])
-    nxt = np.empty(max_p, np.int64)  # next knot of each load (position in its row's active list)
+    nxt = np.empty(max_p, np.int64)  # next knot of each load (flat index of its active node)
     t_next = np.empty(max_p)
     slope = np.empty(max_p)
-    for e in range(n_ev):
+    t_a = np.empty(max_p)  # a load stands on x at t_a + t_b·x
+    t_b = np.empty(max_p)
+    n_tp = tp_ptr[e_start]
+    for e in range(e_start, n_ev):
         p0 = ev_ptr[e]
         n_p = ev_ptr[e + 1] - p0
+        if keep:
+            knots = 0
+            for p in range(p0, p0 + n_p):
+                knots += act_ptr[row[p] + 1] - act_ptr[row[p]]
+            if n_tp + 2 * knots + 2 > tp.size:  # at most two values a knot, and the zeros
+                return e
         for q in range(n_p):
             p = p0 + q
             r = row[p]
-            nxt[q] = act_ptr[r + 1] - 1 if direction[p] < 0 else act_ptr[r]
-            k = act_idx[nxt[q]]
-            xk = x0 + k * h
-            t_next[q] = t_entry[p] + ((xk + setback[p]) if direction[p] > 0 else (span + setback[p] - xk)) / speed[p]
+            if direction[p] > 0:
+                t_a[q] = t_entry[p] + setback[p] / speed[p]
+                t_b[q] = 1.0 / speed[p]
+                nxt[q] = act_ptr[r]
+            else:
+                t_a[q] = t_entry[p] + (span + setback[p]) / speed[p]
+                t_b[q] = -1.0 / speed[p]
+                nxt[q] = act_ptr[r + 1] - 1
+            t_next[q] = t_a[q] + t_b[q] * kx[nxt[q]]
             slope[q] = 0.0
         R = 0.0
         S = 0.0
         t_cur = -np.inf
         best_hi = 0.0
         best_lo = 0.0
+        first = n_tp
+        gate = 0.0
+        for p in range(p0, p0 + n_p):
+            gate += abs(load[p])
+        gate *= GATE * g_max
+        if keep:
+            n_tp = _push(tp, n_tp, first, 0.0, gate)
         while True:
-            # the earliest next knot
             q_min = -1
             t_min = np.inf
             for q in range(n_p):
@@ -132,44 +180,80 @@ def event_extremes(ev_ptr, t_entry, speed, direction, setback, load, row, span, 
                 break
             if t_min > t_cur:
                 # every knot at t_cur is through: R is the right limit there; then the left limit at t_min
-                best_hi = max(best_hi, R)
-                best_lo = min(best_lo, R)
                 if t_cur > -np.inf:
+                    if keep:
+                        n_tp = _push(tp, n_tp, first, R, gate)
+                    best_hi = max(best_hi, R)
+                    best_lo = min(best_lo, R)
                     R += S * (t_min - t_cur)
                     best_hi = max(best_hi, R)
                     best_lo = min(best_lo, R)
+                    if keep:
+                        n_tp = _push(tp, n_tp, first, R, gate)
                 t_cur = t_min
-            # load q_min stands on its knot: its jump and new slope
+            # load q_min stands on its knot: its jump and its new slope
             q = q_min
             p = p0 + q
             r = row[p]
-            base = r * (m + 1)
             j = nxt[q]
-            k = act_idx[j]
-            left, right = _knot_values(a, b, base, m, k)
-            if direction[p] > 0:
-                before, after = left, right
-                j_next = j + 1 if j + 1 < act_ptr[r + 1] else -1
-            else:
-                before, after = right, left
-                j_next = j - 1 if j - 1 >= act_ptr[r] else -1
-            R += load[p] * (after - before)
             S -= slope[q]
-            if j_next >= 0:
-                k2 = act_idx[j_next]
-                l2, r2 = _knot_values(a, b, base, m, k2)
-                end = l2 if direction[p] > 0 else r2
-                xk2 = x0 + k2 * h
-                t2 = t_entry[p] + ((xk2 + setback[p]) if direction[p] > 0 else (span + setback[p] - xk2)) / speed[p]
-                slope[q] = load[p] * (end - after) / (t2 - t_min) if t2 > t_min else 0.0
-                S += slope[q]
-                nxt[q] = j_next
-                t_next[q] = t2
+            if direction[p] > 0:
+                R += load[p] * (gr[j] - gl[j])
+                if j + 1 < act_ptr[r + 1]:
+                    slope[q] = load[p] * speed[p] * sx[j]
+                    nxt[q] = j + 1
+                    t_next[q] = t_a[q] + t_b[q] * kx[j + 1]
+                else:
+                    slope[q] = 0.0
+                    t_next[q] = np.inf
             else:
-                slope[q] = 0.0
-                t_next[q] = np.inf
-        best_hi = max(best_hi, R)  # the right limit at the last knot
-        best_lo = min(best_lo, R)
+                R += load[p] * (gl[j] - gr[j])
+                if j - 1 >= act_ptr[r]:
+                    slope[q] = -load[p] * speed[p] * sx[j - 1]
+                    nxt[q] = j - 1
+                    t_next[q] = t_a[q] + t_b[q] * kx[j - 1]
+                else:
+                    slope[q] = 0.0
+                    t_next[q] = np.inf
+            S += slope[q]
+        # after the last knot every load is off the grid: R = 0 (0 is among the extremes already)
         hi[e] = best_hi
         lo[e] = best_lo
-    return hi, lo
+        if keep:
+            n_tp = _push(tp, n_tp, first, 0.0, gate)
+            tp[n_tp - 1] = 0.0  # the bridge is empty again
+        tp_ptr[e + 1] = n_tp
+    return n_ev
+
+
+def event_extremes(ev_ptr, t_entry, speed, direction, setback, load, row, span, act_ptr, kx, gl, gr, sx,
+                   keep=False):
+    """(max R, min R) of every event and, with ``keep``, the turning points of each event's R(t)
+    (module docstring).
+
+    ``ev_ptr`` (n_events + 1,): the loads of event e are ``ev_ptr[e]:ev_ptr[e+1]`` of the flat
+    per-load arrays ``t_entry`` [s] (entry time of the load's vehicle, relative to a time origin
+    of the event), ``speed`` [m/s], ``direction`` (±1), ``setback`` [m], ``load`` [N], ``row``
+    (table row); ``act_ptr``: the rows' active nodes (``active_nodes``), ``kx``, ``gl``, ``gr``,
+    ``sx``: their x, one-sided values and the slopes after them (``knot_tables``).
+
+    Returns hi, lo (n_events,), the turning points ``tp`` of every event's history (0 before the
+    first load arrives, every local extreme — both one-sided limits at a jump — and 0 when the
+    last has left; reversals smaller than ``GATE`` · max|g| · Σ P dropped; empty without
+    ``keep``) and their offsets ``tp_ptr`` (n_events + 1,)."""
+    n_ev = ev_ptr.size - 1
+    g_max = float(max(np.max(np.abs(gl), initial=0.0), np.max(np.abs(gr), initial=0.0)))
+    hi, lo = np.empty(n_ev), np.empty(n_ev)
+    tp_ptr = np.zeros(n_ev + 1, np.int64)
+    tp = np.empty(max(4096, 8 * n_ev) if keep else 0)
+    e = 0
+    while True:
+        e = _sweep(ev_ptr, t_entry, speed, direction, setback, load, row, span, act_ptr, kx, gl, gr, sx, hi, lo, tp,
+                   tp_ptr, e, g_max)
+        if e >= n_ev:
+            return hi, lo, tp[:tp_ptr[-1]].copy(), tp_ptr
+        # the next event might not fit: room for it and as much again
+        knots = int(np.sum(np.diff(act_ptr)[row[ev_ptr[e]:ev_ptr[e + 1]]]))
+        grown = np.empty(2 * tp.size + 2 * knots + 2)
+        grown[:tp_ptr[e]] = tp[:tp_ptr[e]]
+        tp = grown
