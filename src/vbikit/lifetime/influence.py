@@ -22,13 +22,17 @@ half its axle load spread over the tire model's contact points by their static s
 point of a vehicle entering at t_i with speed v_i is at x_p(t) = −d_p + v_i (t − t_i) (driving
 +x) or L + d_p − v_i (t − t_i) (driving −x).
 
-``event_static`` evaluates R(t) of every event on a time grid of travel step ``ds`` (dt = ds /
-fastest speed of the event), all events of a chunk at once (numpy: one flat array of samples ×
-points, summed with ``bincount``).  For speed the influence lines are tabulated along every
-wheel track on a grid of ``dx`` and interpolated linearly (``exact=False``); ``exact=True``
-evaluates the functions themselves (the test against the coupled run's static reference).
-The sampled peak misses the continuous maximum by at most (ds/2)·max|dR/ds| (the largest slope
-of the response with travel); docs/lifetime.md gives the numbers.
+``event_static`` gives every event's static peak.  In a lifetime run the lines are tabulated
+along every wheel track on a grid of ``dx`` (``Tabulated``: linear within each cell between the
+line's one-sided limits, so a kink or jump at a node is kept) and the peak is the *exact*
+extreme of the event's R(t) on the tabulated lines: R is piecewise linear in t with knots at
+the instants a load stands on a node, so the extreme is one of the one-sided limits at the
+knots, which ``vbikit.lifetime.peaks`` sweeps in time order (no sampling; the fatigue
+histories are the exact turning points).  Without tables (the lines evaluated themselves) or
+at given ``times`` R is sampled instead (the test against the coupled run's static reference at
+its time steps); a sampled peak misses the continuous maximum by at most (ds/2)·max|dR/ds|
+before refinement.
+docs/lifetime.md gives the numbers.
 """
 from __future__ import annotations
 
