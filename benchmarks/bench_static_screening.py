@@ -5,8 +5,9 @@ lines) against pybtls (BTLS) on the same traffic and influence lines, in one run
     python benchmarks/bench_static_screening.py --days 7 --repeat 3
 
 1. traffic: the example's generator (examples/lifetime: fitted to its day of records, two lanes,
-   both directions), ``--days`` days, seeded; the same vehicles are handed to BTLS (axle weights,
-   spacings, widths 1.8 m, speed, time, direction);
+   both directions), ``--days`` days, seeded; the same vehicles are handed to BTLS as the peer
+   test does (tests/lifetime/test_peer_pybtls.py's ``btls_traffic``: axle weights, spacings,
+   widths 1.8 m, speed, time, direction);
 2. bridge: the example's 16.76 m simply supported beam (paper-bridge-2-beam), influence lines of
    the midspan moment and of the entry reaction — vbikit's tables at the example's dx = 0.02 m
    and, for BTLS, the same lines as discrete influence lines through their kinks (0, 8.38,
@@ -53,24 +54,15 @@ def _ours(days, setup, lines):
 
 
 def _btls(days, step, out):
+    import importlib.util
+
     import numpy as np
     import pybtls
 
-    vehicles = []
-    for recs in days:
-        for r in recs:
-            v = pybtls.Vehicle(len(r.axle_loads))
-            v.set_axle_weights([p / 1e3 for p in r.axle_loads])  # kN
-            v.set_axle_spacings(list(r.axle_spacings) + [0.0])  # m
-            v.set_axle_widths([1.8] * len(r.axle_loads))
-            v.set_velocity(r.speed)
-            v.set_time(r.time)
-            v.set_direction(1 if r.direction == "+x" else 2)
-            v.set_local_lane(1)
-            v.set_trans(0.0)
-            vehicles.append(v)
-    loader = pybtls.TrafficLoader(no_lane=2)
-    loader.add_traffic(vehicles)
+    spec = importlib.util.spec_from_file_location("peer", ROOT / "tests" / "lifetime" / "test_peer_pybtls.py")
+    peer = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(peer)  # the peer test's traffic loader: the same vehicles as the test hands BTLS
+    loader = peer.btls_traffic(days)
     bridge = pybtls.Bridge(length=L, no_lane=2)
     for ordinate in ([0.0, SECTION * (L - SECTION) / L, 0.0], [1.0, 1.0 - SECTION / L, 0.0]):
         il = pybtls.InfluenceLine("discrete")

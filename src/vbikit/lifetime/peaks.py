@@ -61,15 +61,23 @@ def active_nodes(a: NDArray[np.float64], b: NDArray[np.float64], n_rows: int, n_
         k = 0
         while k < m - 1:
             rise = (B[k] - A[k]) / (1.0 - 2.0 * delta)  # per cell
-            # first node after k off the line: a jump or kink there (vectorised over the rest of the row)
-            line_a = A[k] + rise * (u_a[k + 1:] - u_a[k])
-            line_b = A[k] + rise * (u_b[k:] - u_a[k])
-            off = (np.abs(A[k + 1:] - line_a) > tol) | (np.abs(B[k:-1] - line_b[:-1]) > tol) | \
-                (np.abs(B[k + 1:] - line_b[1:]) > tol)
-            hit = np.flatnonzero(off)
-            if not hit.size:
+            # the first node after k off the line: a jump or kink there (searched in growing windows)
+            width, hit = 8, None
+            while hit is None:
+                end = min(k + 1 + width, m)
+                line_a = A[k] + rise * (u_a[k + 1:end] - u_a[k])
+                line_b = A[k] + rise * (u_b[k:end] - u_a[k])
+                off = (np.abs(A[k + 1:end] - line_a) > tol) | (np.abs(B[k:end - 1] - line_b[:-1]) > tol) | \
+                    (np.abs(B[k + 1:end] - line_b[1:]) > tol)
+                found = np.flatnonzero(off)
+                if found.size:
+                    hit = k + 1 + int(found[0])
+                elif end == m:
+                    hit = m
+                width *= 4
+            if hit >= m:
                 break
-            k = k + 1 + int(hit[0])
+            k = hit
             idx.append(k)
         idx.append(m)
         ptr.append(len(idx))
