@@ -127,3 +127,12 @@ def test_grillage_deck_wheels_on_four_tracks():
     recs = [VehicleRecord(0.0, "+x", 21.0, (60e3, 130e3, 110e3), (3.6, 1.3), lane=1),
             VehicleRecord(0.21, "-x", 16.5, (55e3, 95e3), (4.2,), lane=2)]
     _check(recs, line, deck, lanes=(-1.8, 1.8))
+
+
+def test_no_traffic():
+    """A day without trucks: no events, no peaks, empty histories."""
+    deck = BRIDGE_PRESETS["paper-bridge-2-beam"].build(n_modes=3)
+    line = effect_line(deck, deck.load_effect("moment", x=5.0))
+    tab = Tabulated(line, deck, [-HALF_TRACK, HALF_TRACK], 0.02)
+    es = event_static([], [], [line], deck.span, (0.0,), tables=[tab], keep_histories=True)
+    assert es.peaks.shape == (0, 1) and es.histories[0].size == 0 and list(es.offsets[0]) == [0]

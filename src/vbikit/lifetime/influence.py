@@ -450,6 +450,8 @@ def _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids
     peaks = np.empty((n_ev, len(lines)))
     offsets, histories = [], []
     veh = pts.vehicle
+    if not veh.size:  # no traffic
+        return EventStatics(peaks, [np.zeros(1, np.int64) for _ in lines], [np.zeros(0) for _ in lines] if keep else None)
     ev = event_of[veh]
     t_ev = np.full(n_ev, np.inf)
     np.minimum.at(t_ev, event_of, entry)
