@@ -117,7 +117,8 @@ def render_exact(numbers: dict) -> str:
     per = ", ".join(f"{n} {x['over_1pct'][n]} / {x['over_01pct'][n]} (worst {100 * x['worst'][n]:.2f} %)"
                     for n in x["over_1pct"])
     cost = ", ".join(f"{n} {v:.1f}" for n, v in x["us_per_truck"].items())
-    return "\n".join([EXACT_START, "", f"The example week (docs/scripts/lifetime_numbers.py, measured {x['date']}): "
+    return "\n".join([EXACT_START, "", f"The example week (docs/scripts/lifetime_numbers.py, measured {x['date']} on 2 cores "
+                      "shared with other work): "
                       f"sampled every {x['step_m']:g} m of travel instead (no refinement), {x['events_over_1pct']:,} of "
                       f"its {x['events']:,} events fall more than 1 % and {x['events_over_01pct']:,} more than 0.1 % "
                       f"below their exact peak (per effect, > 1 % / > 0.1 %: {per}); the entry reaction's maximum of "
