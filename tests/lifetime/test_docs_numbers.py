@@ -22,6 +22,7 @@ def test_page_quotes_the_stored_numbers():
     numbers = json.loads(script.NUMBERS.read_text())
     page = script.PAGE.read_text()
     assert script.render(numbers) in page, HINT
+    assert script.render_exact(numbers) in page, HINT
     for name in ("gumbel", "adr", "fatigue", "traffic"):
         assert (ROOT / "docs" / "figures" / f"lifetime-{name}.png").is_file()
 
@@ -41,3 +42,8 @@ def test_example_numbers_are_reproduced():
                 if isinstance(value, float):
                     assert now[group][name][key] == pytest.approx(value, rel=1e-9, nan_ok=True), f"{name}.{key}: {HINT}"
     assert all(v < 1e-9 for v in script.exactness().values())
+    exact = script.exact_peaks()
+    for key in ("events", "over_1pct", "over_01pct", "events_over_1pct", "events_over_01pct", "reaction_day"):
+        assert exact[key] == stored["exact_peaks"][key], f"{key}: {HINT}"
+    for key in ("reaction_day_max_sampled", "reaction_day_max_exact"):
+        assert exact[key] == pytest.approx(stored["exact_peaks"][key], rel=1e-9), f"{key}: {HINT}"

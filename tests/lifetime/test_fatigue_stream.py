@@ -33,7 +33,7 @@ def test_static_damage_of_the_period_equals_the_whole_history_count():
                           setup.tables, keep_histories=True)
         h = es.histories[0] / 0.004
         for e in range(len(events)):
-            whole += [0.0, *h[es.offsets[e]:es.offsets[e + 1]], 0.0]
+            whole += [0.0, *h[es.offsets[0][e]:es.offsets[0][e + 1]], 0.0]
     cycles = rainflow(np.array(whole))
     expected = miner_damage([c[0] for c in cycles], [c[1] for c in cycles], sn_curve("EN 71"))
     prep.spec = prep.spec.model_copy(update={"days": 3})

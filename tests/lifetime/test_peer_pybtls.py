@@ -5,20 +5,9 @@ import pytest
 pybtls = pytest.importorskip("pybtls")
 
 
-def test_static_daily_maxima_and_characteristic_value_match_pybtls(tmp_path):
-    """Six days of generated two-direction traffic on a 16.76 m simply supported span, midspan
-    moment: vbikit's daily maxima (convolution with peak refinement) against BTLS's block maxima
-    (built-in influence line 1, time step 1 ms) within 0.1 % (BTLS writes 0.1 kN m), and the
-    1,000-year Gumbel return level of each within 0.1 %."""
-    from vbikit.extremes import fit_block_maxima, return_level
-    from vbikit.lifetime.influence import event_static
-    from vbikit.lifetime.setup import build_setup, day_events, setup_key
-    from vbikit.lifetime.traffic import fit_traffic
-    from vbikit.traffic.records import read_records
-
-    L, n_days = 16.76, 6
-    model = fit_traffic(read_records("examples/lifetime/wim.csv")).scaled(0.15)
-    days = [model.day(d, 1) for d in range(n_days)]
+def btls_traffic(days):
+    """The vehicle records of ``days`` as a BTLS traffic loader (two lanes, one per direction;
+    kN, m, m/s, s; axle widths 1.8 m) — also used by benchmarks/bench_static_screening.py."""
     vehicles = []
     for recs in days:
         for r in recs:
@@ -34,6 +23,24 @@ def test_static_daily_maxima_and_characteristic_value_match_pybtls(tmp_path):
             vehicles.append(v)
     loader = pybtls.TrafficLoader(no_lane=2)
     loader.add_traffic(vehicles)
+    return loader
+
+
+def test_static_daily_maxima_and_characteristic_value_match_pybtls(tmp_path):
+    """Six days of generated two-direction traffic on a 16.76 m simply supported span, midspan
+    moment: vbikit's daily maxima (convolution with peak refinement) against BTLS's block maxima
+    (built-in influence line 1, time step 1 ms) within 0.1 % (BTLS writes 0.1 kN m), and the
+    1,000-year Gumbel return level of each within 0.1 %."""
+    from vbikit.extremes import fit_block_maxima, return_level
+    from vbikit.lifetime.influence import event_static
+    from vbikit.lifetime.setup import build_setup, day_events, setup_key
+    from vbikit.lifetime.traffic import fit_traffic
+    from vbikit.traffic.records import read_records
+
+    L, n_days = 16.76, 6
+    model = fit_traffic(read_records("examples/lifetime/wim.csv")).scaled(0.15)
+    days = [model.day(d, 1) for d in range(n_days)]
+    loader = btls_traffic(days)
     il = pybtls.InfluenceLine("built-in")
     il.set_IL(id=1, length=L)
     bridge = pybtls.Bridge(length=L, no_lane=2)

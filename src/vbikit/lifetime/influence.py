@@ -22,13 +22,17 @@ half its axle load spread over the tire model's contact points by their static s
 point of a vehicle entering at t_i with speed v_i is at x_p(t) = −d_p + v_i (t − t_i) (driving
 +x) or L + d_p − v_i (t − t_i) (driving −x).
 
-``event_static`` evaluates R(t) of every event on a time grid of travel step ``ds`` (dt = ds /
-fastest speed of the event), all events of a chunk at once (numpy: one flat array of samples ×
-points, summed with ``bincount``).  For speed the influence lines are tabulated along every
-wheel track on a grid of ``dx`` and interpolated linearly (``exact=False``); ``exact=True``
-evaluates the functions themselves (the test against the coupled run's static reference).
-The sampled peak misses the continuous maximum by at most (ds/2)·max|dR/ds| (the largest slope
-of the response with travel); docs/lifetime.md gives the numbers.
+``event_static`` gives every event's static peak.  In a lifetime run the lines are tabulated
+along every wheel track on a grid of ``dx`` (``Tabulated``: linear within each cell between the
+line's one-sided limits, so a kink or jump at a node is kept) and the peak is the *exact*
+extreme of the event's R(t) on the tabulated lines: R is piecewise linear in t with knots at
+the instants a load stands on a node, so the extreme is one of the one-sided limits at the
+knots, which ``vbikit.lifetime.peaks`` sweeps in time order (no sampling; the fatigue
+histories are the exact turning points).  Without tables (the lines evaluated themselves) or
+at given ``times`` R is sampled instead (the test against the coupled run's static reference at
+its time steps); a sampled peak misses the continuous maximum by at most (ds/2)·max|dR/ds|
+before refinement.
+docs/lifetime.md gives the numbers.
 """
 from __future__ import annotations
 
@@ -249,6 +253,15 @@ class Tabulated:
         # per row: A (cell starts), B (cell ends), then a zero guard cell
         self.a = np.concatenate([np.concatenate([uniq[:, :m], np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
         self.b = np.concatenate([np.concatenate([uniq[:, m:], np.zeros((uniq.shape[0], 1))], axis=1).ravel(), [0.0]])
+        self.n_rows = int(uniq.shape[0])
+        # the knots of the exact peaks (``vbikit.lifetime.peaks``): the nodes where the line is
+        # not straight across (within 1e-10 of its largest value)
+        from vbikit.lifetime.peaks import active_nodes, knot_tables
+
+        tol = 1e-10 * float(np.max(np.abs(uniq))) if uniq.size else 0.0
+        self.active_ptr, active = active_nodes(self.a, self.b, self.n_rows, self.n, eps / self.h, tol)
+        #: per active node: x, g(x⁻), g(x⁺), dg/dx after it (``vbikit.lifetime.peaks.knot_tables``)
+        self.knots = knot_tables(self.a, self.b, self.n, self.x0, self.h, self.active_ptr, active)
 
     def same_grid(self, other: "Tabulated") -> bool:
         return self.x0 == other.x0 and self.h == other.h and self.n == other.n and np.array_equal(self.row, other.row)
@@ -276,11 +289,14 @@ class EventStatics:
     """Static responses of a chunk of events.
 
     ``peaks`` (n_events, n_lines): each event's peak (largest sign·R, returned with its sign);
-    ``histories``: per line the sampled R(t) of every event, concatenated (``offsets`` (n_events
-    + 1,) index the events' samples), kept only when asked for (fatigue)."""
+    ``histories``: per line the events' histories concatenated, ``offsets[j]`` (n_events + 1,)
+    indexing line j's events, kept only when asked for (fatigue).  On tabulated lines (the
+    lifetime run) a history is the exact sequence of turning points of R(t) (0, every local
+    extreme, 0: ``vbikit.lifetime.peaks``), all a rainflow count needs; at given ``times`` it is
+    R at those times."""
 
     peaks: NDArray[np.float64]
-    offsets: NDArray[np.int64]
+    offsets: list[NDArray[np.int64]]
     histories: Optional[list[NDArray[np.float64]]] = None
 
 
@@ -312,11 +328,14 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     """Static history and peak of every event (module docstring).
 
     ``events``: vehicle indices into ``records`` of each event; ``tables``: the tabulated lines
-    (same order as ``lines``; None: exact evaluation); ``times``: the sample times [s] of each
-    event (default: a grid of travel step ``ds`` [m] from the first entry to the last exit, padded
-    by the tire's reach; then, with ``refine``, each peak is refined on ``REFINE`` samples a
-    step over the two steps around the sampled peak, so that the peak is the continuous maximum
-    within (ds/REFINE)/2 · max|dR/ds|); ``max_samples``: samples × points evaluated at once."""
+    (same order as ``lines``; None: evaluate the lines themselves).  With ``tables`` and no
+    ``times`` (the lifetime run) the peaks are the exact extremes on the tabulated lines and the
+    histories their turning points (``vbikit.lifetime.peaks``; ``ds``, ``max_samples`` and
+    ``refine`` unused).  Otherwise R is sampled: at ``times`` [s] of each event, or on a grid
+    of travel step ``ds`` [m] from the first entry to the last exit, padded by the tire's reach,
+    each peak then refined (``refine``) on ``REFINE`` samples a step over the two steps around
+    the sampled peak (the continuous maximum within (ds/REFINE)/2 · max|dR/ds|);
+    ``max_samples``: samples × points evaluated at once."""
     pts = point_loads(records, lanes, pattern)
     n_ev = len(events)
     speed = np.array([r.speed for r in records])
@@ -326,6 +345,16 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     event_of = np.empty(len(records), np.int64)
     for k, members in enumerate(events):
         event_of[list(members)] = k
+    track_ids = None
+    if tables is not None:
+        track_ids = []
+        for tab in tables:
+            ids = np.minimum(np.searchsorted(tab.tracks, pts.y), tab.tracks.size - 1)
+            if not np.allclose(tab.tracks[ids], pts.y, rtol=0, atol=1e-9):
+                raise ValueError("a wheel track of the traffic is not among the tabulated tracks")
+            track_ids.append(ids)
+        if times is None:
+            return _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev, keep_histories)
     pad = pattern.reach
     if times is not None:
         grids = [np.asarray(g, float) for g in times]
@@ -346,14 +375,6 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
         grids = None
     offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     totals = [np.zeros(int(offsets[-1])) for _ in lines]
-    track_ids = None
-    if tables is not None:
-        track_ids = []
-        for tab in tables:
-            ids = np.minimum(np.searchsorted(tab.tracks, pts.y), tab.tracks.size - 1)
-            if not np.allclose(tab.tracks[ids], pts.y, rtol=0, atol=1e-9):
-                raise ValueError("a wheel track of the traffic is not among the tabulated tracks")
-            track_ids.append(ids)
     # points grouped by event
     p_event = event_of[pts.vehicle]
     p_order = np.argsort(p_event, kind="stable")
@@ -394,7 +415,7 @@ def event_static(records: Sequence[VehicleRecord], events: Sequence[Sequence[int
     if refine and grids is None and n_ev:
         peaks = _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir,
                         span, lines, tables, track_ids)
-    return EventStatics(peaks, offsets, totals if keep_histories else None)
+    return EventStatics(peaks, [offsets] * len(lines), totals if keep_histories else None)
 
 
 def _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, speed, entry, sign_dir, span, lines,
@@ -419,3 +440,35 @@ def _refine(pts, events, p_order, p_start, event_of, counts, t0, dt, at, peaks, 
         s = line.sign
         out[:, j] = s * np.maximum(s * peaks[:, j], np.max(s * r, axis=1))
     return out
+
+
+def _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids, n_ev, keep) -> EventStatics:
+    """Every event's exact extreme on every tabulated line and, with ``keep``, the turning points
+    of its history (``vbikit.lifetime.peaks``)."""
+    from vbikit.lifetime.peaks import event_extremes
+
+    peaks = np.empty((n_ev, len(lines)))
+    offsets, histories = [], []
+    veh = pts.vehicle
+    if not veh.size:  # no traffic
+        return EventStatics(peaks, [np.zeros(1, np.int64) for _ in lines], [np.zeros(0) for _ in lines] if keep else None)
+    ev = event_of[veh]
+    t_ev = np.full(n_ev, np.inf)
+    np.minimum.at(t_ev, event_of, entry)
+    for j, (line, tab) in enumerate(zip(lines, tables)):
+        row = tab.row[track_ids[j]]
+        # one load per (vehicle, setback, row): the wheels of an axle on the same row merged
+        order = np.lexsort((row, pts.setback, veh, ev))
+        o_veh, o_set, o_row = veh[order], pts.setback[order], row[order]
+        new = np.r_[True, (o_veh[1:] != o_veh[:-1]) | (o_set[1:] != o_set[:-1]) | (o_row[1:] != o_row[:-1])]
+        first = np.flatnonzero(new)
+        load = np.add.reduceat(pts.load[order], first) if first.size else np.zeros(0)
+        v, d, r = o_veh[first], o_set[first], o_row[first]
+        e = event_of[v]
+        ptr = np.searchsorted(e, np.arange(n_ev + 1)).astype(np.int64)
+        hi, lo, tp, tp_ptr = event_extremes(ptr, entry[v] - t_ev[e], speed[v], sign_dir[v], d, load,
+                                            r.astype(np.int64), float(span), tab.active_ptr, *tab.knots, bool(keep))
+        peaks[:, j] = hi if line.sign > 0 else lo
+        offsets.append(tp_ptr)
+        histories.append(tp)
+    return EventStatics(peaks, offsets, histories if keep else None)

@@ -2,9 +2,10 @@
 local processes or a Dask cluster, every finished batch stored, a killed run resumed).
 
 * ``StaticJob``: work items are days.  Each day's traffic is drawn (``TrafficModel.day``), cut
-  into events, and every event's static peak of every load effect computed by convolution
-  (``vbikit.lifetime.influence``); for every fatigue detail the day's stress history (the
-  events' static histories in time order, zero between events — the bridge is empty) is
+  into events, and every event's exact static peak of every load effect computed
+  (``vbikit.lifetime.influence``, ``vbikit.lifetime.peaks``); for every fatigue detail the day's
+  stress history (the turning points of the events' static histories in time order, zero
+  between events — the bridge is empty) is
   rainflow counted (``vbikit.fatigue.RainflowCounter``): the day's closed cycles (their Miner
   damage and histogram) and its residual, which ``vbikit.lifetime.fatigue_results`` joins
   across days exactly.
@@ -150,7 +151,8 @@ class StaticJob:
 
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit lifetime static", "setup": self.setup_key, "traffic": self._digest,
-                           "n_days": self.n_days, "seed": self.seed, "ds": self.ds, "days_per_batch": self.days_per_batch,
+                           "n_days": self.n_days, "seed": self.seed, "ds": self.ds, "peaks": "exact",
+                           "fatigue_top": "exact", "days_per_batch": self.days_per_batch,
                            "sample_fraction": self.sample_fraction, "store_top": self.store_top, "details": [d.__dict__ for d in self.details]}, sort_keys=True)
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
@@ -160,7 +162,7 @@ class StaticJob:
         curves = [d.sn() for d in self.details]
         out: dict[str, list] = {k: [] for k in ("ev_day", "ev_index", "ev_start", "ev_n_vehicles", "ev_gross_weight",
                                                "ev_static", "day", "day_trucks", "day_events", "day_damage_closed",
-                                               "day_damage_alone", "res_day", "res_detail", "res_value",
+                                               "day_damage_alone", "day_max_range", "res_day", "res_detail", "res_value",
                                                "hist_day", "hist_detail", "hist_bin", "hist_count", "ev_sample",
                                                "rec_event", "rec_time", "rec_speed", "rec_lane", "rec_direction",
                                                "rec_n_axles", "rec_loads", "rec_spacings")}
@@ -198,16 +200,16 @@ class StaticJob:
             out["day"].append(np.array([day], np.int64))
             out["day_trucks"].append(np.array([len(records)], np.int64))
             out["day_events"].append(np.array([n], np.int64))
-            closed, alone = [], []
+            closed, alone, top = [], [], []
             for j, (det, curve) in enumerate(zip(self.details, curves)):
                 hist = statics.histories[det.line] * det.factor
                 counter = RainflowCounter()
-                # zero between events (the bridge is empty), then each event's history
-                offs = statics.offsets
-                for e in range(n):
-                    counter.feed(np.concatenate([[0.0], hist[offs[e]:offs[e + 1]], [0.0]]))
+                # the events' histories in time order, each from 0 to 0 (the bridge is empty between events)
+                if hist.size:
+                    counter.feed(hist)
                 state = counter.state
                 closed.append(miner_damage(state.ranges, state.counts, curve, whole_spectrum=False) if state.ranges.size else 0.0)
+                top.append(float(state.ranges.max()) if state.ranges.size else 0.0)  # exact, for the limit rule
                 cyc = counter.finish()
                 alone.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0)
                 out["res_day"].append(np.full(state.residual.size, day, np.int64))
@@ -223,11 +225,12 @@ class StaticJob:
                     out["hist_count"].append(cnt)
             out["day_damage_closed"].append(np.array(closed, float).reshape(1, len(self.details)))
             out["day_damage_alone"].append(np.array(alone, float).reshape(1, len(self.details)))
+            out["day_max_range"].append(np.array(top, float).reshape(1, len(self.details)))
         res: dict[str, NDArray] = {}
         for k, v in out.items():
             if k in ("ev_static",):
                 res[k] = np.concatenate(v, axis=0) if v else np.zeros((0, len(setup.lines)))
-            elif k.startswith("day_damage"):
+            elif k.startswith("day_damage") or k == "day_max_range":
                 res[k] = np.concatenate(v, axis=0) if v else np.zeros((0, len(self.details)))
             else:
                 ints = k in ("hist_bin", "ev_sample", "rec_event", "rec_lane", "rec_direction", "rec_n_axles") or \
@@ -236,7 +239,7 @@ class StaticJob:
         return res
 
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
-        for k in ("day", "ev_static", "day_damage_closed", "res_value", "hist_count"):
+        for k in ("day", "ev_static", "day_damage_closed", "day_max_range", "res_value", "hist_count"):
             if k not in part:
                 return f"it holds no {k}"
         if not np.array_equal(part["day"], np.array(batch, np.int64)):
@@ -258,7 +261,7 @@ class StaticJob:
             "rec_spacings": ("rec_spacing", cat["rec_spacings"]),
             "ev_static": (("event", "line"), cat["ev_static"]),
             **{k: ("day", cat[k]) for k in ("day_trucks", "day_events")},
-            **{k: (("day", "detail"), cat[k]) for k in ("day_damage_closed", "day_damage_alone")},
+            **{k: (("day", "detail"), cat[k]) for k in ("day_damage_closed", "day_damage_alone", "day_max_range")},
             **{k: ("res", cat[k]) for k in ("res_day", "res_detail", "res_value")},
             **{k: ("hist", cat[k]) for k in ("hist_day", "hist_detail", "hist_bin", "hist_count")},
         }, coords={"day": cat["day"]}, attrs={"study": self.to_json()})

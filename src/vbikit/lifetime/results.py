@@ -381,27 +381,34 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     alone = static["day_damage_alone"].values
     res_day, res_det, res_val = (static[k].values for k in ("res_day", "res_detail", "res_value"))
     h_day, h_det, h_bin, h_cnt = (static[k].values for k in ("hist_day", "hist_detail", "hist_bin", "hist_count"))
+    day_top = static["day_max_range"].values
     sample = dyn["sample"]
     gid = dyn["gid"]
     n_ev = gid.size
     out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "life",
-                                                       "below_limit")}
-    max_bin = int(h_bin.max()) + 1 if h_bin.size else 1
-    hist = np.zeros((len(details), max_bin))
-    for j, det in enumerate(details):
-        curve = det.sn()
-        empty = np.zeros(0)
+                                                       "below_limit", "top")}
+    empty = np.zeros(0)
+    joined = []  # per detail: the cycles that close across days (the residuals joined) and the last residual
+    for j in range(len(details)):
         state = RainflowState(empty, empty, empty)
         for d in range(n_days):
             r = res_val[(res_day == d) & (res_det == j)]
             state = join(state, RainflowState(empty, empty, r))
-        cyc = finish(state)
+        joined.append(finish(state))
+    # the histogram's bins reach the largest range of the period: no range is folded into the top bin
+    max_bin = max([int(h_bin.max()) if h_bin.size else 0]
+                  + [int(rng // det.bin) for det, cyc in zip(details, joined) for rng, _ in cyc]) + 1
+    hist = np.zeros((len(details), max_bin))
+    for j, det in enumerate(details):
+        curve = det.sn()
+        cyc = joined[j]
         d_join = miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0
         d_static = float(closed[:, j].sum() + d_join)
         sel = h_det == j
         np.add.at(hist[j], h_bin[sel], h_cnt[sel])
         for rng, cnt in cyc:
-            hist[j, min(int(rng // det.bin), max_bin - 1)] += cnt
+            hist[j, int(rng // det.bin)] += cnt
+        static_top = max([float(day_top[:, j].max()) if day_top.size else 0.0] + [float(c[0]) for c in cyc])
         if sample.size:
             diff = np.array([dyn["results"][int(gid[k])]["damage_dynamic"][j] - dyn["results"][int(gid[k])]["damage_static"][j]
                              for k in sample])
@@ -412,11 +419,11 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         d_total = max(d_total, 0.0)
         # the constant-amplitude limit rule (EN 1993-1-9 1.3.3.3, AASHTO (ΔF)_TH) on the whole
         # period's loading: no damage when every range is below the limit.  The static spectrum's
-        # largest range is bounded by the upper edge of its top non-empty histogram bin
-        # (conservative); the total loading's by that and every dynamically simulated event's
-        # largest range (all simulated events, the governing ones included)
-        top = np.flatnonzero(hist[j] > 0)
-        static_below = top.size == 0 or (top[-1] + 1) * det.bin < curve.threshold
+        # largest range is exact (each day's largest closed range and the cycles joined across
+        # days); the total loading's is that and every dynamically simulated event's largest
+        # range (all simulated events, the governing ones included)
+        static_below = static_top < curve.threshold
+        out["top"][j] = static_top
         dyn_top = max((float(r["max_range_dynamic"][j]) for r in dyn["results"].values()), default=0.0)
         if static_below:
             d_static = 0.0
@@ -444,7 +451,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         "remaining_life": ("detail", out["life"], a("year", "years until the Miner sum reaches 1 at fatigue_damage_per_year")),
         "below_fatigue_limit": ("detail", out["below_limit"].astype(np.int8), a("1", "1 if every stress range of the period (static, and of every dynamically simulated event) is below the constant-amplitude fatigue limit: no damage (EN 1993-1-9 1.3.3.3, AASHTO (dF)_TH)")),
         "damage_per_day_static": (("day", "detail"), alone, a("1", "Miner damage of each day's static history counted alone")),
-        "stress_range_histogram": (("detail", "stress_range_bin"), hist, a("1", "static stress-range cycles (half cycles 0.5) per bin")),
+        "stress_range_histogram": (("detail", "stress_range_bin"), hist, a("1", "static stress-range cycles (half cycles 0.5) per bin; the bins reach the largest range (none folded)")),
+        "max_stress_range_static": ("detail", out["top"], a("Pa", "largest stress range of the period's static history (exact, not binned): the limit rule's test")),
     }
     coords = {"detail": np.array([d.name for d in details], dtype=object),
               "stress_range_bin": ("stress_range_bin", np.arange(max_bin) * width,

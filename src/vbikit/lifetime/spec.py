@@ -132,7 +132,7 @@ class LifetimeFile(_Strict):
     distribution: Literal["gev", "gumbel"] = "gumbel"
     ci: float = Field(0.95, gt=0, lt=1)
     budget_hours: float = Field(DEFAULT_BUDGET_HOURS, gt=0, le=1e4)
-    ds: float = Field(0.1, gt=0, le=2, description="travel step of the static convolution [m]")
+    ds: float = Field(0.1, gt=0, le=2, description="no longer used (the static peaks are exact extremes, not samples); accepted so that older lifetime files still read [m]")
     dx: float = Field(0.02, gt=0, le=1, description="grid of the tabulated influence lines [m]")
     batch_size: int = Field(32, ge=1, le=1000, description="dynamic events per batch (of one day)")
     days_per_batch: int = Field(1, ge=1, le=366, description="days per batch of the static pass")

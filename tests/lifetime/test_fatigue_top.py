@@ -1,0 +1,52 @@
+"""Fatigue of a lifetime run: a stress range above the histogram's last bin is kept exactly
+(not folded into the top bin), so the limit rule, the damage and the histogram agree."""
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from vbikit.lifetime.jobs import Detail
+from vbikit.lifetime.results import fatigue_results
+
+MPA = 1e6
+
+
+def test_one_range_above_the_fatigue_limit_counts_by_hand():
+    """Two days, EN 1993-1-9 detail 36 (γ_Mf = 1), 1 MPa bins.  Day 0 closes 10 cycles of 20 MPa
+    (its histogram: bin 20, the top bin of the days' histograms); the days' residuals [0, 28 MPa]
+    and [0] join into the history 0 → 28 → 0 MPa: two half cycles of 28 MPa, above
+    Δσ_D = (2/5)^(1/3) · 36 = 26.53 MPa.  By EN 1993-1-9 Fig. 7.1 (the limit rule of 1.3.3.3:
+    one range above Δσ_D, so every range above Δσ_L counts):
+
+        D = 1 / (2·10⁶ (Δσ_C / 28)³)  +  10 / (5·10⁶ (Δσ_D / 20)⁵)
+
+    (m = 3 above Δσ_D, m = 5 between Δσ_L = (5/100)^(1/5) Δσ_D = 14.57 MPa and Δσ_D).  Folding
+    the 28 MPa cycle into the [20, 21) MPa bin put the period below Δσ_D: static damage 0."""
+    c = 36.0
+    d_lim = (2 / 5) ** (1 / 3) * c
+    d_20 = 10 / (5e6 * (d_lim / 20.0) ** 5)  # the day's closed damage, as the static pass stores it
+    expected = 1 / (2e6 * (c / 28.0) ** 3) + d_20
+    import xarray as xr
+
+    static = xr.Dataset({
+        "day_damage_closed": (("day", "detail"), np.array([[d_20], [0.0]])),
+        "day_damage_alone": (("day", "detail"), np.array([[d_20], [0.0]])),
+        "day_max_range": (("day", "detail"), np.array([[20.0 * MPA], [0.0]])),
+        "res_day": ("res", np.array([0, 0, 1], np.int64)),
+        "res_detail": ("res", np.array([0, 0, 0], np.int64)),
+        "res_value": ("res", np.array([0.0, 28.0 * MPA, 0.0])),
+        "hist_day": ("hist", np.array([0], np.int64)),
+        "hist_detail": ("hist", np.array([0], np.int64)),
+        "hist_bin": ("hist", np.array([20], np.int64)),
+        "hist_count": ("hist", np.array([10.0])),
+    })
+    prep = SimpleNamespace(spec=SimpleNamespace(days_per_year=365, fatigue=SimpleNamespace(damage_so_far=0.0)),
+                           details=(Detail("d", 0, 1.0, "EN 36", 1.0, 1.0 * MPA),), n_days=2)
+    got = fatigue_results(prep, static, {"sample": np.zeros(0, np.int64), "gid": np.zeros(0), "results": {}})
+    v = got["variables"]
+    assert v["fatigue_damage_static"][1][0] == pytest.approx(expected, rel=1e-12)
+    assert v["fatigue_damage"][1][0] == pytest.approx(expected, rel=1e-12)
+    assert v["below_fatigue_limit"][1][0] == 0
+    hist = v["stress_range_histogram"][1][0]
+    assert hist[20] == 10 and hist[28] == 1.0 and hist.sum() == 11  # the two half cycles in their own bin
+    assert v["max_stress_range_static"][1][0] == 28.0 * MPA
