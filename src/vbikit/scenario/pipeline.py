@@ -131,13 +131,16 @@ def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | Non
     automatic step, the step is halved until the impact factors converge
     (``vbikit.scenario.step_check``); a scenario checks it when its [response] asks for moments,
     shears or reactions (not for the ones reported by default)."""
-    from vbikit.scenario.step_check import converge_step
+    from vbikit.scenario.step_check import converge_step, load_effect_plan
     from vbikit.solve import simulate
 
-    report = report_crossing(simulate(crossing, limits, plan=run_plan), plan, name)
     if check_step is None:
         check_step = bool(plan.load_effects)
-    if check_step and crossing.dt is None:  # moments, shears, reactions: check the automatic step
+    if check_step and crossing.dt is None:  # start at the step the load effects need (analysis.effect_step)
+        run_plan = load_effect_plan(crossing, plan.load_effects, run_plan, limits)
+    report = report_crossing(simulate(crossing if run_plan is None else run_plan.crossing, limits, plan=run_plan),
+                             plan, name)
+    if check_step and crossing.dt is None:  # moments, shears, reactions: confirm the step by halving
         report = converge_step(report, crossing, lambda finer: report_crossing(
             simulate(finer.crossing, limits, plan=finer), plan, name), limits)
     return report
@@ -157,6 +160,7 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     first_effects = {kind: next(r for r in effects if r.effect is e) for kind, e in plan.first_effects.items()}
     s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points), first_effects)
     s.update(effects_summary)
+    s["warnings"] += [r.step_warning for r in effects if r.step_warning and r.step_warning not in s["warnings"]]
     for p in points[1:]:
         s["warnings"] += [w for w in point_warnings(result.crossing, p.x, p.y) if w not in s["warnings"]]
     return Report(name, result, plan, points, girders, effects, s)

@@ -6,7 +6,9 @@ higher modes far more (curvature and its slope grow with the mode number), and o
 move — elastic bearings, a vehicle crossing a pier — those modes keep ringing; their peaks are
 then under-sampled at the automatic step (docs/verification.md, "Convergence of every output").
 
-So when a run asks for load effects at an automatic step, it is repeated at half the step until
+So a run that asks for load effects at an automatic step starts at the step the effects need when
+that is shorter (``load_effect_plan``: the rule of ``vbikit.analysis.effect_step``, which the
+Python path's ``load_effect_response`` checks too), and is repeated at half the step until
 no impact factor of the report (every point, every load effect) changes by more than
 ``STEP_TOLERANCE`` between two successive steps (Richardson's step-doubling estimate of the
 coarser run's error), within ``MAX_HALVINGS`` halvings and the run's step budget.  The finer run
@@ -18,16 +20,15 @@ from __future__ import annotations
 import logging
 import math
 from dataclasses import replace
-from typing import Any, Callable, Iterator, Mapping
+from typing import Any, Callable, Iterator, Mapping, Sequence
 
+from vbikit.analysis.effect_step import STEP_TOLERANCE, load_effect_step
 from vbikit.solve.budget import BudgetError, Limits
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.plan import RunPlan
 
 log = logging.getLogger(__name__)
 
-#: largest change [-] of any impact factor between the reported step and the step twice as long
-STEP_TOLERANCE = 5e-3
 #: halvings of the automatic step at most (the finest run has 2^MAX_HALVINGS times its steps)
 MAX_HALVINGS = 6
 
@@ -60,6 +61,27 @@ def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any]) -> tuple[float, 
         if name in old and abs(value - old[name]) > change:
             change, worst = abs(value - old[name]), name
     return change, worst
+
+
+def load_effect_plan(crossing: Crossing, effects: Sequence[Any], run_plan: RunPlan | None = None,
+                     limits: Limits | None = None) -> RunPlan | None:
+    """The run plan of ``crossing`` (automatic step) at the step its load ``effects`` need
+    (``vbikit.analysis.effect_step.load_effect_step``) when that is shorter than the automatic one
+    (``run_plan``, or planned here); ``run_plan`` unchanged if not, or if the budget refuses the
+    shorter step (the halving check and the report's step warning then say so)."""
+    from vbikit.solve.plan import plan_run
+
+    current = run_plan if run_plan is not None else plan_run(crossing, limits)
+    best = load_effect_step(crossing, effects)
+    if not best < current.dt:
+        return current
+    try:
+        finer = plan_run(replace(crossing, dt=best), limits)
+    except BudgetError:
+        log.warning("the step %.3g s the load effects need is beyond the step budget: running at %.3g s", best, current.dt)
+        return current
+    log.info("load effects: step %.3g s instead of the automatic %.3g s", best, current.dt)
+    return finer
 
 
 def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], Any],
