@@ -55,14 +55,24 @@ def _deck_points(crossing: Any) -> tuple[NDArray[np.float64], NDArray[np.float64
 
 
 def mode_weights(crossing: Any, effect: Any) -> tuple[NDArray[np.float64], float]:
-    """Per mode, a_i = 2 max |r_i φ_i| / ω_i² over the wheel lines (the bound of its dynamic part per
-    unit load), and max |I| of the modal influence line (module docstring)."""
+    """Per mode, a_i [m or 1 per N] of the module docstring: the bound of its free vibration's share
+    of the effect per unit load, from the jump |φ_i| and the kink v |φ_i'| / ω_i the load makes in
+    the modal force where a wheel enters and leaves the deck (summed over both ends of a wheel line,
+    the largest over the lines), and max |I| of the modal influence line."""
     bridge = crossing.bridge
     x, y = _deck_points(crossing)
+    n_m = bridge.omega.size
     if x.size == 0:
-        return np.zeros(bridge.omega.size), 0.0
-    per_mode = bridge.mode_shapes(x, y) * (np.asarray(effect.modal, float) / bridge.omega**2)[None, :]
-    return 2.0 * np.abs(per_mode).max(axis=0), float(np.abs(per_mode.sum(axis=1)).max())
+        return np.zeros(n_m), 0.0
+    scale = np.asarray(effect.modal, float) / bridge.omega**2
+    i_max = float(np.abs(bridge.mode_shapes(x, y) @ scale).max())
+    lines = np.unique(y)
+    ends_x = np.array([[x[y == line].min(), x[y == line].max()] for line in lines]).ravel()
+    ends_y = np.repeat(lines, 2)
+    jump = np.abs(bridge.mode_shapes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
+    kink = np.abs(bridge.mode_slopes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
+    per_line = jump + kink * (float(crossing.max_speed) / bridge.omega)[None, :]
+    return np.abs(scale) * per_line.max(axis=0), i_max
 
 
 def step_error(crossing: Any, effect: Any, dt: float) -> float:
