@@ -104,10 +104,11 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     from vbikit._files import json_safe
 
     scenario = plan.scenario
-    from vbikit.scenario.step_check import asks_for_load_effects
+    from vbikit.scenario.step_check import asks_for_load_effects, is_train
 
+    train = is_train(scenario)
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
-                          check_step=asks_for_load_effects(scenario))
+                          check_step=asks_for_load_effects(scenario) or train, train=train)
     s = report.summary
     s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
     s["inputs"] = scenario_inputs(scenario, plan)
@@ -124,13 +125,14 @@ def _references(scenario: Scenario) -> list[dict[str, str]]:
 
 
 def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "",
-                 run_plan: RunPlan | None = None, check_step: bool | None = None) -> Report:
+                 run_plan: RunPlan | None = None, check_step: bool | None = None, train: bool = False) -> Report:
     """Simulate ``crossing`` (with its checked [`RunPlan`][vbikit.solve.plan.RunPlan] if the
     preflight made one: step, budgets and tables are not computed again) and reduce it by ``plan``
     (``report_crossing``).  With ``check_step`` (default: the plan reads load effects) at an
     automatic step, the step is halved until the impact factors converge
     (``vbikit.scenario.step_check``); a scenario checks it when its [response] asks for moments,
-    shears or reactions (not for the ones reported by default)."""
+    shears or reactions (not for the ones reported by default) or runs a train (``train``: its peak
+    accelerations are checked too)."""
     from vbikit.scenario.step_check import converge_step, load_effect_plan
     from vbikit.solve import simulate
 
@@ -142,7 +144,7 @@ def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | Non
                              plan, name)
     if check_step and crossing.dt is None:  # moments, shears, reactions: confirm the step by halving
         report = converge_step(report, crossing, lambda finer: report_crossing(
-            simulate(finer.crossing, limits, plan=finer), plan, name), limits)
+            simulate(finer.crossing, limits, plan=finer), plan, name), limits, train=train)
     return report
 
 

@@ -14,6 +14,11 @@ no impact factor of the report (every point, every load effect) changes by more 
 coarser run's error), within ``MAX_HALVINGS`` halvings and the run's step budget.  The finer run
 is the one reported.  If the budget ends first, the report says which impact factors are not
 converged, by how much, and the step the observed rate of convergence suggests would do.
+
+A train of moving axle loads (``is_train``: a ``TRAIN_PRESETS`` vehicle) is checked the same way,
+its peak deck accelerations too (relative change at most ``STEP_TOLERANCE``): each axle entering
+and leaving the deck rings modes far above the first, which the automatic step (a hundredth of the
+first period) does not resolve.
 """
 from __future__ import annotations
 
@@ -39,27 +44,47 @@ def asks_for_load_effects(scenario: Any) -> bool:
     return any(getattr(scenario.response, key) is not None for key in ("moment", "shear", "reaction"))
 
 
-def impact_factors(summary: Mapping[str, Any], prefix: str = "") -> Iterator[tuple[str, float]]:
+def is_train(scenario: Any) -> bool:
+    """Whether a scenario's vehicles include a train of moving axle loads (``TRAIN_PRESETS``)."""
+    from vbikit.vehicle.trains import TRAIN_PRESETS
+
+    specs = [scenario.vehicle] if scenario.vehicle is not None else list(scenario.vehicles or ())
+    return any(spec.model in TRAIN_PRESETS for spec in specs)
+
+
+#: the peaks a train's step check compares (relative change), beside every impact factor (absolute change)
+_RELATIVE = ("max_abs_acceleration",)
+
+
+def checked_values(summary: Mapping[str, Any], relative: tuple[str, ...] = (), prefix: str = "") \
+        -> Iterator[tuple[str, float, bool]]:
     """Every finite ``*impact_factor`` number in a run's summary (top level, ``points``, load effect
-    blocks), with a path-like name."""
+    blocks), with a path-like name, and the peaks named in ``relative`` (flagged True: compared by
+    their relative change)."""
     for key, value in summary.items():
         name = f"{prefix}{key}"
         if isinstance(value, Mapping):
-            yield from impact_factors(value, name + ".")
+            yield from checked_values(value, relative, name + ".")
         elif isinstance(value, list):
             for i, item in enumerate(value):
                 if isinstance(item, Mapping):
-                    yield from impact_factors(item, f"{name}[{item.get('name', i)}].")
-        elif key.endswith("impact_factor") and isinstance(value, (int, float)) and math.isfinite(value):
-            yield name, float(value)
+                    yield from checked_values(item, relative, f"{name}[{item.get('name', i)}].")
+        elif isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value):
+            if key.endswith("impact_factor"):
+                yield name, float(value), False
+            elif key in relative:
+                yield name, float(value), True
 
 
-def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any]) -> tuple[float, str]:
-    old = dict(impact_factors(a))
+def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any], relative: tuple[str, ...] = ()) -> tuple[float, str]:
+    old = {name: value for name, value, _ in checked_values(a, relative)}
     change, worst = 0.0, ""
-    for name, value in impact_factors(b):
-        if name in old and abs(value - old[name]) > change:
-            change, worst = abs(value - old[name]), name
+    for name, value, rel in checked_values(b, relative):
+        if name not in old:
+            continue
+        step = abs(value - old[name]) / (abs(old[name]) if rel else 1.0) if not (rel and old[name] == 0.0) else 0.0
+        if step > change:
+            change, worst = step, name
     return change, worst
 
 
@@ -85,11 +110,13 @@ def load_effect_plan(crossing: Crossing, effects: Sequence[Any], run_plan: RunPl
 
 
 def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], Any],
-                  limits: Limits | None = None) -> Any:
+                  limits: Limits | None = None, train: bool = False) -> Any:
     """The report of ``crossing`` at the automatic step halved until its impact factors change by at
     most ``STEP_TOLERANCE`` (``report``: the run at the automatic step; ``rerun(run_plan)``: the same
     run by a checked plan of ``crossing`` at a given dt).  Adds a warning to the returned report's
-    summary if they never do."""
+    summary if they never do.  With ``train`` the peak deck accelerations are checked too, by their
+    relative change (a train's axle loads ring the higher modes, which the automatic step does not
+    resolve: HSLM-A1 on a 20 m span, 1.4 … 4.7 % low at 150 … 300 km/h)."""
     from vbikit.solve.plan import plan_run
 
     dt = float(report.result.integration_dt or report.result.dt)
@@ -102,9 +129,9 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], An
         except BudgetError:
             break
         new = rerun(run_plan)
-        change, worst = _largest_change(report.summary, new.summary)
+        change, worst = _largest_change(report.summary, new.summary, _RELATIVE if train else ())
         changes.append(change)
-        log.info("step check: dt %.3g s -> %.3g s, largest impact-factor change %.2g (%s)", dt, dt / 2, change, worst)
+        log.info("step check: dt %.3g s -> %.3g s, largest change %.2g (%s)", dt, dt / 2, change, worst)
         report, dt = new, dt / 2
         if change <= STEP_TOLERANCE:
             return report
