@@ -13,7 +13,6 @@ length each changes the counts or the means.
 """
 from __future__ import annotations
 
-import itertools
 import math
 
 import numpy as np
@@ -22,6 +21,8 @@ import pytest
 from vbikit.study.run import run_study
 from vbikit.traffic import VehicleRecord
 from vbikit.traffic.study import traffic_study
+
+from .test_records_events import _components
 
 SPAN, SPEED, SPACING = 20.0, 20.0, 5.0
 BASE = {"bridge": {"model": "beam", "span": SPAN, "EI": 1.0e10, "mass_per_length": 10000.0, "n_modes": 3},
@@ -38,23 +39,11 @@ def _records() -> list[VehicleRecord]:
 
 
 def _groups(records) -> list[frozenset[int]]:
-    """Connected components of the overlap graph of the on-bridge intervals (brute force)."""
+    """The events by brute force: connected components of the overlap graph of the on-bridge
+    intervals [t, t + (span + length) / v]."""
     start = [r.time for r in records]
     end = [r.time + (SPAN + sum(r.axle_spacings)) / r.speed for r in records]
-    parent = list(range(len(records)))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            i = parent[i]
-        return i
-
-    for i, j in itertools.combinations(range(len(records)), 2):
-        if start[i] < end[j] and start[j] < end[i]:
-            parent[root(i)] = root(j)
-    groups: dict[int, set[int]] = {}
-    for i in range(len(records)):
-        groups.setdefault(root(i), set()).add(i)
-    return [frozenset(g) for g in groups.values()]
+    return _components(start, end)
 
 
 @pytest.fixture(scope="module")
