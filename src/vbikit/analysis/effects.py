@@ -18,6 +18,7 @@ static peak (hogging over a pier, where the static peak moment is negative).
 """
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 from typing import Any, Literal, Sequence
 
@@ -28,6 +29,8 @@ from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_his
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.solve.result import CrossingResult
+
+log = logging.getLogger(__name__)
 
 Method = Literal["mode-acceleration", "mode-superposition"]
 METHODS: tuple[str, ...] = ("mode-acceleration", "mode-superposition")
@@ -42,6 +45,10 @@ class LoadEffectResponse:
     time: NDArray[np.float64]
     dynamic: NDArray[np.float64]
     static: NDArray[np.float64]
+    #: why the run's step does not resolve this effect (``vbikit.analysis.effect_step``), None if it does
+    step_warning: str | None = None
+    #: the step [s] that resolves it (``load_effect_step``; inf: any)
+    recommended_dt: float = float("inf")
 
     @property
     def impact(self) -> ImpactFactor:
@@ -93,9 +100,10 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
         raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
     bridge = result.crossing.bridge
     r = effect.modal
+    checked = _step_check(result, effect)
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
-        return LoadEffectResponse(effect, method, result.time, result.xi @ r, xi_st @ r)
+        return LoadEffectResponse(effect, method, result.time, result.xi @ r, xi_st @ r, *checked)
     cp = result.crossing.contact
     infl = contact_influence(result, effect) if influence is None else influence
     share = cp.weight
@@ -105,7 +113,23 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
     omega, zeta = bridge.omega, bridge.damping_ratios
     correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ (r / omega**2)
     dynamic = -np.einsum("tp,tp->t", infl, dyn_forces) - correction
-    return LoadEffectResponse(effect, method, result.time, dynamic, static)
+    return LoadEffectResponse(effect, method, result.time, dynamic, static, *checked)
+
+
+#: step warnings logged already (a study's many crossings log each once)
+_LOGGED: set[str] = set()
+
+
+def _step_check(result: CrossingResult, effect: LoadEffect) -> tuple[str | None, float]:
+    """The step check of ``vbikit.analysis.effect_step`` for ``effect`` read from ``result`` (run at
+    its integration step), logged once per message."""
+    from vbikit.analysis.effect_step import step_warning
+
+    text, best = step_warning(result.crossing, effect, float(result.integration_dt or result.dt))
+    if text is not None and text not in _LOGGED:
+        _LOGGED.add(text)
+        log.warning(text)
+    return text, best
 
 
 def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],

@@ -104,10 +104,11 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     from vbikit._files import json_safe
 
     scenario = plan.scenario
-    from vbikit.scenario.step_check import asks_for_load_effects
+    from vbikit.scenario.step_check import asks_for_load_effects, is_train
 
+    train = is_train(scenario)
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
-                          check_step=asks_for_load_effects(scenario))
+                          check_step=asks_for_load_effects(scenario) or train, train=train)
     s = report.summary
     s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
     s["inputs"] = scenario_inputs(scenario, plan)
@@ -124,22 +125,26 @@ def _references(scenario: Scenario) -> list[dict[str, str]]:
 
 
 def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "",
-                 run_plan: RunPlan | None = None, check_step: bool | None = None) -> Report:
+                 run_plan: RunPlan | None = None, check_step: bool | None = None, train: bool = False) -> Report:
     """Simulate ``crossing`` (with its checked [`RunPlan`][vbikit.solve.plan.RunPlan] if the
     preflight made one: step, budgets and tables are not computed again) and reduce it by ``plan``
     (``report_crossing``).  With ``check_step`` (default: the plan reads load effects) at an
     automatic step, the step is halved until the impact factors converge
     (``vbikit.scenario.step_check``); a scenario checks it when its [response] asks for moments,
-    shears or reactions (not for the ones reported by default)."""
-    from vbikit.scenario.step_check import converge_step
+    shears or reactions (not for the ones reported by default) or runs a train (``train``: its peak
+    accelerations are checked too)."""
+    from vbikit.scenario.step_check import converge_step, load_effect_plan
     from vbikit.solve import simulate
 
-    report = report_crossing(simulate(crossing, limits, plan=run_plan), plan, name)
     if check_step is None:
         check_step = bool(plan.load_effects)
-    if check_step and crossing.dt is None:  # moments, shears, reactions: check the automatic step
+    if check_step and crossing.dt is None:  # start at the step the load effects need (analysis.effect_step)
+        run_plan = load_effect_plan(crossing, plan.load_effects, run_plan, limits)
+    report = report_crossing(simulate(crossing if run_plan is None else run_plan.crossing, limits, plan=run_plan),
+                             plan, name)
+    if check_step and crossing.dt is None:  # moments, shears, reactions: confirm the step by halving
         report = converge_step(report, crossing, lambda finer: report_crossing(
-            simulate(finer.crossing, limits, plan=finer), plan, name), limits)
+            simulate(finer.crossing, limits, plan=finer), plan, name), limits, train=train)
     return report
 
 
@@ -157,6 +162,7 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     first_effects = {kind: next(r for r in effects if r.effect is e) for kind, e in plan.first_effects.items()}
     s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points), first_effects)
     s.update(effects_summary)
+    s["warnings"] += [r.step_warning for r in effects if r.step_warning and r.step_warning not in s["warnings"]]
     for p in points[1:]:
         s["warnings"] += [w for w in point_warnings(result.crossing, p.x, p.y) if w not in s["warnings"]]
     return Report(name, result, plan, points, girders, effects, s)
