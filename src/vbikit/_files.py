@@ -17,6 +17,9 @@ writer follows.
   ``DEFAULT_MAX_INPUT_MB``), checked before reading and again while reading (``/proc`` files
   report size 0).  Text is decoded as UTF-8; a file that is not text (NUL bytes, invalid UTF-8)
   is refused.  Every message names the file and never echoes its content.
+* **CSV rows** (``csv_rows``): the lines of a CSV text as cells, a line longer than
+  ``MAX_CSV_LINE`` characters refused before the ``csv`` module sees it (its field-size limit
+  would raise a bare ``csv.Error``); a malformed line is refused naming its number only.
 """
 from __future__ import annotations
 
@@ -236,6 +239,33 @@ def read_text(path: str | Path, error: type[Exception], what: str = "file", max_
     except UnicodeDecodeError as err:
         raise error(f"{path}: not UTF-8 text (invalid byte at offset {err.start}); save the {what} as UTF-8") from None
     return text.removeprefix("\ufeff")
+
+
+#: the longest line of a CSV input [characters]: 64 KiB (a table row of a few hundred numbers)
+MAX_CSV_LINE = 1 << 16
+
+
+def csv_rows(text: str, error: type[Exception], source: str, max_line: int = MAX_CSV_LINE,
+             what: str = "CSV") -> list[tuple[int, list[str]]]:
+    """(line number, cells stripped of blanks) of every line of the CSV ``text`` that is neither
+    blank nor a ``#`` comment.  A line longer than ``max_line`` characters, or one the ``csv``
+    module cannot read (an unclosed quote, …), raises ``error`` naming ``source`` and the line
+    number, never the line's content (``what``: the kind of file, for the message)."""
+    import csv
+
+    out = []
+    for no, line in enumerate(text.split("\n"), start=1):
+        if len(line) > max_line:
+            raise error(f"{source}:{no}: a line of {len(line):,} characters; a {what} line holds at most {max_line:,}")
+        line = line.rstrip("\r")
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        try:
+            cells = next(csv.reader([line], strict=True))
+        except (csv.Error, StopIteration):
+            raise error(f"{source}:{no}: not a CSV line (a quote left open or misplaced)") from None
+        out.append((no, [c.strip() for c in cells]))
+    return out
 
 
 def json_safe(obj: Any, where: str = "") -> tuple[Any, list[str]]:

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional, Sequence
 
-from vbikit._files import read_text, write_text
+from vbikit._files import csv_rows, read_text, write_text
 from vbikit.errors import VbikitError
 
 log = logging.getLogger(__name__)
@@ -128,33 +128,12 @@ AXLE_LOAD_MAX = 1e6 * 9.80665
 SPEED_WARNING = 200 / 3.6
 
 
-def _lines(text: str, source: str) -> list[tuple[int, str]]:
-    """(line number, line) of the header and data rows (comments and blank lines skipped); a line
-    longer than ``MAX_LINE`` is refused."""
-    rows = []
-    for no, ln in enumerate(text.split("\n"), start=1):
-        if len(ln) > MAX_LINE:
-            raise RecordsError(f"{source}:{no}: a line of {len(ln):,} characters; a records line holds at most "
-                               f"{MAX_LINE:,} (at most {MAX_AXLES} axles a vehicle)")
-        ln = ln.rstrip("\r")
-        if ln.strip() and not ln.lstrip().startswith("#"):
-            rows.append((no, ln))
-    return rows
-
-
-def _cells(ln: str, source: str, no: int) -> list[str]:
-    try:
-        return next(csv.reader([ln]))
-    except csv.Error as err:
-        raise RecordsError(f"{source}:{no}: not a CSV line ({err})") from None
-
-
 def parse_records(text: str, source: str = "records", max_records: int = MAX_RECORDS) -> list[VehicleRecord]:
     """Parse a records CSV text (see the module docstring); errors name ``source:line`` and the
     column, never the text found there.  More than ``max_records`` records are refused before any
     is parsed; implausible values (axle loads above ``AXLE_LOAD_WARNING``, speeds above
     ``SPEED_WARNING``) are logged as warnings."""
-    rows = _lines(text, source)
+    rows = csv_rows(text, RecordsError, source, MAX_LINE, "records")
     if not rows:
         raise RecordsError(f"{source}: no header row (columns: {', '.join(UNITS)})")
     if len(rows) - 1 > max_records:
@@ -163,7 +142,7 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
                            "read_records(..., max_records=...))")
     head_no, head = rows[0]
     columns: dict[str, tuple[float, str, int]] = {}  # key -> (factor to SI, header text, column number)
-    for j, name in enumerate(_cells(head, source, head_no), start=1):
+    for j, name in enumerate(head, start=1):
         m = _HEADER.match(name)
         if not m or m.group(1) not in UNITS:
             raise RecordsError(f"{source}:{head_no}: column {j} of the header is not a known column; allowed: "
@@ -183,8 +162,7 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
         raise RecordsError(f"{source}:{head_no}: missing column(s) {', '.join(missing)}")
     out = []
     implausible: dict[str, list[int]] = {}
-    for no, ln in rows[1:]:
-        cells = _cells(ln, source, no)
+    for no, cells in rows[1:]:
         if len(cells) != len(columns):
             raise RecordsError(f"{source}:{no}: {len(cells)} cells, the header has {len(columns)}")
         record = _record(dict(zip(keys, cells)), columns, source, no)
