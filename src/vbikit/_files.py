@@ -147,6 +147,40 @@ def inside(directory: str | Path, name: str) -> Path:
     return directory / name
 
 
+#: folders no output folder may lie in (device files and the kernel's views, not storage)
+_SYSTEM_DIRS = ("/dev", "/proc", "/sys")
+
+
+def output_dir(path: str | Path, key: str = "--out-dir", create: bool = True) -> Path:
+    """The output folder ``path``, created with its parents (``create``; else only checked: its
+    nearest existing ancestor must be a writable folder); ``OutputError`` naming ``key`` when it
+    names a file (or anything else that is not a folder), lies in ``/dev``, ``/proc`` or ``/sys``
+    (also through a symbolic link), or cannot be created — checked before any computation."""
+    path = Path(path)
+    real = os.path.realpath(path)
+    system = next((d for d in _SYSTEM_DIRS if real == d or real.startswith(d + os.sep)), None)
+    if system is not None:
+        raise OutputError(f"{key} {path}: lies in {system}, a system folder; give a folder for the output files")
+    if os.path.lexists(path) and not os.path.isdir(path):
+        raise OutputError(f"{key} {path}: exists and is not a folder; give a folder for the output files")
+    if not create:
+        ancestor = Path(os.path.abspath(path))
+        while not os.path.lexists(ancestor):
+            ancestor = ancestor.parent
+        if not os.path.isdir(ancestor):
+            raise OutputError(f"{key} {path}: {ancestor} is not a folder; give a folder for the output files")
+        if not os.access(ancestor, os.W_OK | os.X_OK):
+            raise OutputError(f"{key} {path}: cannot create the folder in {ancestor} (not writable)")
+        return path
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise OutputError(f"{key} {path}: cannot create the folder: {_describe(err)}") from None
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise OutputError(f"{key} {path}: the folder is not writable")
+    return path
+
+
 #: the largest input file read by default [MiB]; the environment variable ``MAX_INPUT_ENV`` sets another
 DEFAULT_MAX_INPUT_MB = 256
 MAX_INPUT_ENV = "VBIKIT_MAX_INPUT_MB"

@@ -21,8 +21,9 @@ column                     meaning                                              
 
 Every problem is reported with its line number and column (``records.csv:12: column 4 (speed [km/h]): …``),
 never with the text found there.  Limits: ``MAX_RECORDS`` records a file, ``MAX_LINE`` characters a
-line, ``MAX_AXLES`` axles a vehicle; axle loads above ``AXLE_LOAD_MAX`` are refused, above
-``AXLE_LOAD_WARNING`` warned of.
+line, ``MAX_AXLES`` axles a vehicle, times up to ``MAX_TIME`` (ten years); axle loads above ``AXLE_LOAD_MAX``
+are refused, above ``AXLE_LOAD_WARNING`` warned of, as are vehicles that overlap the one ahead of
+them in their lane and direction (entering before its rear axle has: ``_overlaps``).
 """
 from __future__ import annotations
 
@@ -126,6 +127,8 @@ AXLE_LOAD_WARNING = 30e3 * 9.80665
 AXLE_LOAD_MAX = 1e6 * 9.80665
 #: a speed above this is warned of as implausible for a road vehicle [m/s] (200 km/h)
 SPEED_WARNING = 200 / 3.6
+#: the latest time of a record [s]: ten years (365.25-day years) from the stream's start
+MAX_TIME = 10 * 365.25 * 86400.0
 
 
 def parse_records(text: str, source: str = "records", max_records: int = MAX_RECORDS) -> list[VehicleRecord]:
@@ -172,6 +175,10 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
         if record.speed > SPEED_WARNING:
             implausible.setdefault(f"a speed above {SPEED_WARNING * 3.6:.0f} km/h", []).append(no)
         out.append(record)
+    overlaps = _overlaps(out)
+    if overlaps:
+        implausible[f"its front axle reaching the entry before the rear axle of the vehicle ahead in its lane and "
+                    f"direction ({len(overlaps)} overlapping pair(s): vehicles closer than their own length)"] = overlaps
     for what, lines in implausible.items():
         shown = ", ".join(map(str, lines[:5])) + (", …" if len(lines) > 5 else "")
         log.warning("%s: %d record(s) with %s (line %s); check the values and their units", source, len(lines), what,
@@ -207,6 +214,8 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
         return values
 
     time = number("time", 0.0)
+    if time > MAX_TIME:
+        raise fail("time", f"{time:.3g} s is beyond the {MAX_TIME:.4g} s (ten years) a records file may span")
     direction = cells["direction"].strip()
     if direction not in DIRECTIONS:
         raise fail("direction", "must be +x or -x")
@@ -257,6 +266,21 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
             raise RecordsError(f"{source}:{no}: a preset vehicle ({model}) takes no axle_loads / axle_spacings")
     return VehicleRecord(time, direction, speed, tuple(loads), tuple(spacings), lane, lateral,
                          cells.get("id", "").strip(), model, no)
+
+
+def _overlaps(records: Sequence[VehicleRecord]) -> list[int]:
+    """Line numbers of the records that enter before the vehicle ahead of them (same lane or lateral
+    offset, same direction) has entered whole: t − t_ahead < L_ahead / v_ahead (impossible traffic:
+    the two vehicles overlap, e.g. times written with too few digits or a record repeated)."""
+    last: dict[tuple, VehicleRecord] = {}
+    out = []
+    for r in sorted(records, key=lambda r: r.time):
+        key = (r.lane, r.lateral_offset, r.direction)
+        ahead = last.get(key)
+        if ahead is not None and r.time - ahead.time < sum(ahead.axle_spacings) / ahead.speed:
+            out.append(r.line)
+        last[key] = r
+    return sorted(out)
 
 
 def read_records(path: str | Path, max_records: int = MAX_RECORDS) -> list[VehicleRecord]:
