@@ -68,6 +68,8 @@ METHODS = {"contact": "spectrum of the contact-point acceleration back-calculate
            "sensor": "spectrum of the sensor's own record"}
 #: default budget: integration steps of the whole sweep
 MAX_STEPS = 2e7
+#: the shortest identification.gap [m]: the follower of method "residual" half a metre behind the vehicle
+MIN_GAP = 0.5
 #: the most cases of one sweep (each is estimated, one by one, before anything runs)
 MAX_CASES = 100_000
 #: the numeric sweep keys' ranges: key -> (lowest, highest, highest excluded, unit); speeds those of a scenario
@@ -132,10 +134,10 @@ def _numbers(key: str, value: Any, kind: str) -> list:
     for v in values:
         if kind == "names" and not isinstance(v, str):
             raise DriveByError(f"sweep.{key}: expected road class names (strings), got {v!r}")
-        if kind == "integers" and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
-            raise DriveByError(f"sweep.{key}: expected integers >= 0, got {v!r}")
-        if kind == "numbers" and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
-            raise DriveByError(f"sweep.{key}: expected finite numbers, got {v!r}")
+        if kind == "integers":
+            number(v, f"sweep.{key}", 0, 2**63 - 1, integer=True, error=DriveByError)
+        if kind == "numbers":
+            number(v, f"sweep.{key}", error=DriveByError)
     if len(set(map(str, values))) != len(values):
         raise DriveByError(f"sweep.{key}: repeated values in {values}")
     return [float(v) if kind == "numbers" else v for v in values]
@@ -203,7 +205,7 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     extra = [k for k in ident if k not in ident_keys]
     if extra:
         raise DriveByError(f"identification.{extra[0]}: unknown key; allowed: {', '.join(ident_keys)}")
-    gap = number(ident.get("gap", 4.0), "identification.gap", 0.0, 1000.0, lo_open=True, unit="m", error=DriveByError)
+    gap = number(ident.get("gap", 4.0), "identification.gap", MIN_GAP, 1000.0, unit="m", error=DriveByError)
     exclude_vehicle = ident.get("exclude_vehicle", True)
     if not isinstance(exclude_vehicle, bool):
         raise DriveByError(f"identification.exclude_vehicle: expected true or false, got {exclude_vehicle!r}")

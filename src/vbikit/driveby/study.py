@@ -187,6 +187,7 @@ def check_cases(spec: DriveBy) -> float:
     """Validate the budget first (``estimate_steps`` against ``max_steps``), then every distinct case
     (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once) before anything
     runs; returns the estimated integration steps of the sweep."""
+    _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
     total = estimate_steps(spec)
     if total > spec.max_steps:
         raise DriveByError(f"max_steps: the sweep needs about {total:.3g} integration steps ({len(spec.cases):,} cases), "

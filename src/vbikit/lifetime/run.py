@@ -55,6 +55,9 @@ def bytes_per_event(n_effects: int) -> float:
     return 2 * (41 + 8 * n_effects) + 5 * 8 * n_effects
 
 
+#: the fewest events the random dynamic sample may expect (a standard error needs two)
+MIN_SAMPLE_EVENTS = 2
+
 #: progress(stage, done, total, info): after every finished batch; info: "events" (of the run, once the
 #: static pass is done), "dynamic" (events simulated so far), "trucks_per_day"
 Progress = Callable[[str, int, int, dict], None]
@@ -152,6 +155,11 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             f"fit needs at least {need} (raise days/years, or block = \"day\")")
     trucks = model.trucks_per_day * spec.n_days
     events = trucks  # at most one event a truck
+    sampled = spec.fatigue.dynamic_sample * events
+    if details and sampled < MIN_SAMPLE_EVENTS:
+        raise LifetimeError(f"fatigue.dynamic_sample: {spec.fatigue.dynamic_sample:g} of about {events:,.0f} events samples "
+                            f"{sampled:.3g} event(s); the fatigue damage ratio and its standard error need at least "
+                            f"{MIN_SAMPLE_EVENTS} (raise dynamic_sample or the duration)")
     dyn = spec.n_days * len(names) * (1 + SCREENED_PER_DAY) + spec.fatigue.dynamic_sample * events * (1 if details else 0)
     cores = max(1, workers or 1)
     hours = (trucks * STATIC_SECONDS_PER_TRUCK * max(1, len(names)) + dyn * DYNAMIC_SECONDS_PER_EVENT) / cores / 3600

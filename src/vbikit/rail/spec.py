@@ -165,7 +165,7 @@ class CoupledSection(_Section):
     enabled: bool = False
     irregularity: Optional[str] = None
     seed: int = Field(0, ge=0)
-    max_steps: float = Field(2e6, gt=0, le=1e10)
+    max_steps: float = Field(2e6, ge=1, le=1e10)
     contact: Union[str, float] = "hertz"  # "hertz", "rigid" or a stiffness [N/m] per wheelset (MIN_CONTACT … MAX_CONTACT)
 
     @field_validator("contact")
