@@ -169,3 +169,33 @@ def test_validate_knows_every_input_kind(name, kind):
     res = runner.invoke(app, ["validate", str(path)])
     assert res.exit_code == 0 and kind in res.stdout, res.output
     assert time.perf_counter() - t0 < 4.0  # under 2 s on a quiet machine (docs/changelog.md); margin for a loaded one
+
+
+PAPER_BRIDGE_2 = """[bridge]
+model = "paper-bridge-2"
+n_modes = 3
+[bridge.deck]
+n_elements = 6
+skew = -0.0
+[vehicle]
+model = "hs20-44"
+[crossing]
+speed_kmh = 60
+approach = 1.0
+free_vibration = 0.05
+"""
+
+
+def test_paper_era_leftovers(tmp_path):
+    """response.y = 100 m on paper-bridge-2 (9.75 m wide) refused; a skew of −0.0 is 0.0."""
+    import math
+
+    from vbikit.scenario import build, load_scenario
+
+    path = tmp_path / "s.toml"
+    path.write_text(PAPER_BRIDGE_2 + "[response]\ny = 100.0\n")
+    res = runner.invoke(app, ["validate", str(path)])
+    assert res.exit_code == 2 and "response.y: 100 m is off the 9.75 m wide deck" in res.stderr, res.output
+    path.write_text(PAPER_BRIDGE_2)
+    skew = build(load_scenario(path)).crossing.bridge.skew
+    assert skew == 0.0 and math.copysign(1.0, skew) == 1.0
