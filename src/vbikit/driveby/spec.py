@@ -137,7 +137,8 @@ def _numbers(key: str, value: Any, kind: str) -> list:
         if kind == "integers":
             number(v, f"sweep.{key}", 0, 2**63 - 1, integer=True, error=DriveByError)
         if kind == "numbers":
-            number(v, f"sweep.{key}", error=DriveByError)
+            lo, hi, hi_open, unit = SWEEP_RANGES.get(key, (None, None, False, ""))
+            number(v, f"sweep.{key}", lo, hi, hi_open=hi_open, unit=unit, error=DriveByError)
     if len(set(map(str, values))) != len(values):
         raise DriveByError(f"sweep.{key}: repeated values in {values}")
     return [float(v) if kind == "numbers" else v for v in values]
@@ -243,9 +244,6 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
         if key not in SWEEP_KEYS:
             raise DriveByError(f"sweep.{key}: unknown key; allowed: {', '.join(SWEEP_KEYS)}, damage_length")
         sweep[key] = _numbers(key, value, SWEEP_KEYS[key][0])
-    for key, (lo, hi, hi_open, unit) in SWEEP_RANGES.items():
-        for v in sweep.get(key, []):
-            number(v, f"sweep.{key}", lo, hi, hi_open=hi_open, unit=unit, error=DriveByError)
     for v in sweep.get("road_class", []):
         if len(v) > 40:
             raise DriveByError("sweep.road_class: expected road class names (e.g. none, A … H)")
