@@ -48,21 +48,13 @@ def _settings(n: int, slow: bool):
                     suppress_health_check=list(HealthCheck), print_blob=True)
 
 
-@pytest.mark.parametrize("kind", ["lifetime", "driveby", "rail"])
-def test_fuzz_commands(kind):
-    @_settings(25, slow=False)
-    @given(command_inputs(kind))
-    def run(inputs):
-        check(kind, inputs)
-
-    run()
+KINDS = ("lifetime", "driveby", "rail")
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("kind", ["lifetime", "driveby", "rail"])
-def test_fuzz_commands_more(kind):
-    """700 generated inputs a command (2,100 in all)."""
-    @_settings(700, slow=True)
+@pytest.mark.parametrize("kind, n", [*((k, 25) for k in KINDS), *(pytest.param(k, 700, marks=pytest.mark.slow) for k in KINDS)])
+def test_fuzz_commands(kind, n):
+    """25 generated inputs a command (derandomised); under ``slow`` 700 a command (2,100 in all), randomly."""
+    @_settings(n, slow=n > 25)
     @given(command_inputs(kind))
     def run(inputs):
         check(kind, inputs)

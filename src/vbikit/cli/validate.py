@@ -122,46 +122,27 @@ def _field(path: Path, budget: Any) -> str:
     return f"{len(spec.cases)} case(s)"
 
 
-def _records(path: Path, budget: Any) -> str:
-    from vbikit.traffic.records import read_records
+def _file(module: str, reader: str, summary: Callable[[Any], str]) -> Callable[[Path, Any], str]:
+    """The check of a data file: its reader (``module.reader(path)``, through the safe reader) and a summary."""
+    def check(path: Path, budget: Any) -> str:
+        import importlib
 
-    records = read_records(path)
-    return f"{len(records):,} vehicle records"
+        return summary(getattr(importlib.import_module(module), reader)(path))
 
-
-def _train(path: Path, budget: Any) -> str:
-    from vbikit.vehicle.trains import read_train_table
-
-    train = read_train_table(path)
-    return f"{train.axle_positions.size} axles over {train.length:g} m"
-
-
-def _modes(path: Path, budget: Any) -> str:
-    from vbikit.bridge.modefile import modes_from_file
-
-    bridge = modes_from_file(path)
-    return f"{bridge.omega.size} modes, span {bridge.span:g} m"
-
-
-def _response(path: Path, budget: Any) -> str:
-    from vbikit.field.io import read_response_csv
-
-    record = read_response_csv(path)
-    return f"{len(record.channels)} channel(s), {record.time.size:,} samples"
-
-
-def _profile(path: Path, budget: Any) -> str:
-    from vbikit.road.measured import read_profile_csv
-
-    profile = read_profile_csv(path)
-    return f"{profile.x.size:,} stations"
+    return check
 
 
 #: the checks of each kind: kind -> check(path, Limits) -> summary
 CHECKS: dict[str, Callable[[Path, Any], str]] = {
     "scenario": _scenario, "study": _study, "lifetime": _lifetime, "driveby": _driveby, "rail": _rail,
-    "field": _field, "records": _records, "train": _train, "modes": _modes, "response": _response,
-    "profile": _profile,
+    "field": _field,
+    "records": _file("vbikit.traffic.records", "read_records", lambda r: f"{len(r):,} vehicle records"),
+    "train": _file("vbikit.vehicle.trains", "read_train_table",
+                   lambda t: f"{t.axle_positions.size} axles over {t.length:g} m"),
+    "modes": _file("vbikit.bridge.modefile", "modes_from_file", lambda b: f"{b.omega.size} modes, span {b.span:g} m"),
+    "response": _file("vbikit.field.io", "read_response_csv",
+                      lambda r: f"{len(r.channels)} channel(s), {r.time.size:,} samples"),
+    "profile": _file("vbikit.road.measured", "read_profile_csv", lambda p: f"{p.x.size:,} stations"),
 }
 
 
