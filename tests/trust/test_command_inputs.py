@@ -199,3 +199,16 @@ def test_paper_era_leftovers(tmp_path):
     path.write_text(PAPER_BRIDGE_2)
     skew = build(load_scenario(path)).crossing.bridge.skew
     assert skew == 0.0 and math.copysign(1.0, skew) == 1.0
+
+
+def test_rail_dataset_of_a_scenario_bridge_has_no_nan_attribute(tmp_path):
+    """rail.nc of a scenario bridge carried EI_Nm2 = NaN and mass_per_length_kg_m = NaN (NaN at exit 0)."""
+    import math
+
+    from vbikit.rail.run import run_rail
+
+    (tmp_path / "deck.toml").write_text('[bridge]\nmodel = "beam"\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n')
+    ds = run_rail({"bridge": {"scenario": str(tmp_path / "deck.toml")}, "trains": {"presets": ["hslm-a4"]},
+                   "speeds": {"min": 230.0, "max": 290.0, "step": 30.0}}, figures=False).dataset
+    bad = [k for k, v in ds.attrs.items() if isinstance(v, float) and not math.isfinite(v)]
+    assert bad == [] and "EI_Nm2" not in ds.attrs
