@@ -17,6 +17,9 @@ writer follows.
   ``DEFAULT_MAX_INPUT_MB``), checked before reading and again while reading (``/proc`` files
   report size 0).  Text is decoded as UTF-8; a file that is not text (NUL bytes, invalid UTF-8)
   is refused.  Every message names the file and never echoes its content.
+* **CSV rows** (``csv_rows``): the lines of a CSV text as cells, a line longer than
+  ``MAX_CSV_LINE`` characters refused before the ``csv`` module sees it (its field-size limit
+  would raise a bare ``csv.Error``); a malformed line is refused naming its number only.
 """
 from __future__ import annotations
 
@@ -144,6 +147,40 @@ def inside(directory: str | Path, name: str) -> Path:
     return directory / name
 
 
+#: folders no output folder may lie in (device files and the kernel's views, not storage)
+_SYSTEM_DIRS = ("/dev", "/proc", "/sys")
+
+
+def output_dir(path: str | Path, key: str = "--out-dir", create: bool = True) -> Path:
+    """The output folder ``path``, created with its parents (``create``; else only checked: its
+    nearest existing ancestor must be a writable folder); ``OutputError`` naming ``key`` when it
+    names a file (or anything else that is not a folder), lies in ``/dev``, ``/proc`` or ``/sys``
+    (also through a symbolic link), or cannot be created — checked before any computation."""
+    path = Path(path)
+    real = os.path.realpath(path)
+    system = next((d for d in _SYSTEM_DIRS if real == d or real.startswith(d + os.sep)), None)
+    if system is not None:
+        raise OutputError(f"{key} {path}: lies in {system}, a system folder; give a folder for the output files")
+    if os.path.lexists(path) and not os.path.isdir(path):
+        raise OutputError(f"{key} {path}: exists and is not a folder; give a folder for the output files")
+    if not create:
+        ancestor = Path(os.path.abspath(path))
+        while not os.path.lexists(ancestor):
+            ancestor = ancestor.parent
+        if not os.path.isdir(ancestor):
+            raise OutputError(f"{key} {path}: {ancestor} is not a folder; give a folder for the output files")
+        if not os.access(ancestor, os.W_OK | os.X_OK):
+            raise OutputError(f"{key} {path}: cannot create the folder in {ancestor} (not writable)")
+        return path
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise OutputError(f"{key} {path}: cannot create the folder: {_describe(err)}") from None
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise OutputError(f"{key} {path}: the folder is not writable")
+    return path
+
+
 #: the largest input file read by default [MiB]; the environment variable ``MAX_INPUT_ENV`` sets another
 DEFAULT_MAX_INPUT_MB = 256
 MAX_INPUT_ENV = "VBIKIT_MAX_INPUT_MB"
@@ -236,6 +273,33 @@ def read_text(path: str | Path, error: type[Exception], what: str = "file", max_
     except UnicodeDecodeError as err:
         raise error(f"{path}: not UTF-8 text (invalid byte at offset {err.start}); save the {what} as UTF-8") from None
     return text.removeprefix("\ufeff")
+
+
+#: the longest line of a CSV input [characters]: 64 KiB (a table row of a few hundred numbers)
+MAX_CSV_LINE = 1 << 16
+
+
+def csv_rows(text: str, error: type[Exception], source: str, max_line: int = MAX_CSV_LINE,
+             what: str = "CSV") -> list[tuple[int, list[str]]]:
+    """(line number, cells stripped of blanks) of every line of the CSV ``text`` that is neither
+    blank nor a ``#`` comment.  A line longer than ``max_line`` characters, or one the ``csv``
+    module cannot read (an unclosed quote, …), raises ``error`` naming ``source`` and the line
+    number, never the line's content (``what``: the kind of file, for the message)."""
+    import csv
+
+    out = []
+    for no, line in enumerate(text.split("\n"), start=1):
+        if len(line) > max_line:
+            raise error(f"{source}:{no}: a line of {len(line):,} characters; a {what} line holds at most {max_line:,}")
+        line = line.rstrip("\r")
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        try:
+            cells = next(csv.reader([line], strict=True))
+        except (csv.Error, StopIteration):
+            raise error(f"{source}:{no}: not a CSV line (a quote left open or misplaced)") from None
+        out.append((no, [c.strip() for c in cells]))
+    return out
 
 
 def json_safe(obj: Any, where: str = "") -> tuple[Any, list[str]]:

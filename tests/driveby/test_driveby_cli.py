@@ -78,7 +78,7 @@ def test_python_entry_point_resumes_an_interrupted_sweep(tmp_path):
 
 
 @pytest.mark.parametrize("change, message", [
-    (lambda d: d["sweep"].update(speed=[8.0, "fast"]), r"sweep\.speed: expected finite numbers"),
+    (lambda d: d["sweep"].update(speed=[8.0, "fast"]), r"sweep\.speed: expected a number in \[0\.001, 300\] \[m/s\], got str .fast."),
     (lambda d: d["sensors"][0].update(body="roof"), r"sensors\.cart_acc\.body: 'roof'"),
     (lambda d: d["identification"].update(sensor="gyro"), r"identification\.sensor: 'gyro'"),
     (lambda d: d["bridge"].update(EI=-1.0), r"bridge\.EI"),

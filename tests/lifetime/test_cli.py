@@ -54,13 +54,13 @@ def test_cli_cut_down_example_and_resume(tmp_path):
 
 @pytest.mark.parametrize("change, message", [
     ({"days": 0}, "days: Input should be greater than or equal to 1"),
-    ({"amplification": -1}, "amplification: Input should be greater than 0"),
-    ({"colour": 3}, "colour: unknown key"),
+    ({"amplification": -1}, "amplification: Input should be greater than or equal to 0.01"),
+    ({"colour": 3}, "colour: unknown key; allowed: name, seed, days"),
     ({"load_effects": [{"kind": "torque"}]}, "load_effects.0.kind"),
     ({"fatigue": {"details": [{"name": "d", "effect": "nope", "section_modulus": 0.1, "category": "EN 71"}]}},
      "fatigue.details[1].effect: 'nope' is not a load effect; allowed: M"),
     ({"fatigue": {"details": [{"name": "d", "effect": "M", "section_modulus": 0.1, "category": "EN x"}]}},
-     "fatigue.details[1].category"),
+     "fatigue.details.0.category: 'EN x' is not a detail category"),
     ({"days": 3}, "days: 3 day(s) give 3 daily maxima; a gumbel fit needs at least 5"),
     ({"years": 100, "days": None}, "budget_hours: the run is estimated at"),
     ({"traffic": {"records": "missing.csv"}}, "traffic.records"),

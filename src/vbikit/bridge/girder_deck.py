@@ -228,7 +228,7 @@ class SlabOnGirderBridge(ModalBridge):
                 raise ValueError(f"bridge.damage.{i}: the region {d.position:g} … {d.end:g} m ends beyond the span ({self.span:g} m)")
         if isinstance(self.skew, bool) or not (np.isfinite(self.skew) and abs(self.skew) <= MAX_SKEW):
             raise ValueError(f"skew must be an angle in degrees within -{MAX_SKEW:g} … {MAX_SKEW:g}, got {self.skew!r}")
-        object.__setattr__(self, "skew", float(self.skew))
+        object.__setattr__(self, "skew", float(self.skew) + 0.0)  # + 0.0: a skew of −0.0 is 0.0 (no "−0°" in outputs)
         if int(self.n_girders) != self.n_girders or self.n_girders < 1:
             raise ValueError(f"n_girders must be an integer >= 1, got {self.n_girders!r}")
         if not -1.0 < self.poisson < 0.5:

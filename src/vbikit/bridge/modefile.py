@@ -171,6 +171,11 @@ class ImportedModalBridge(ModalBridge):
         return girder_line_strain(self.modes, self.strain_lever_arm, x, y)
 
 
+#: the longest strain lever arm of a mode file [m]: the neutral axis of the deepest bridge girders lies a few metres
+#: above their bottom fibre
+MAX_LEVER_ARM = 20.0
+
+
 def _floats(text: str, key: str) -> NDArray[np.float64]:
     try:
         return np.array([float(v) for v in text.replace(",", " ").split()])
@@ -386,8 +391,8 @@ def modes_from_file(path: str | Path, damping_ratio: float = 0.02, n_modes: int 
         lever = _floats(header["strain_lever_arm"], "strain_lever_arm")
         if lever.size not in (1, ys.size):
             raise ModeFileError(f"{path}: strain_lever_arm needs 1 or {ys.size} values, got {lever.size}")
-        if not np.all(np.isfinite(lever) & (lever > 0)):
-            raise ModeFileError(f"{path}: header 'strain_lever_arm' must be lengths > 0 [m] (neutral axis to bottom "
+        if not np.all(np.isfinite(lever) & (lever > 0) & (lever <= MAX_LEVER_ARM)):
+            raise ModeFileError(f"{path}: header 'strain_lever_arm' must be lengths in (0, {MAX_LEVER_ARM:g}] m (neutral axis to bottom "
                                 f"fibre), got {header['strain_lever_arm']!r}")
     else:
         log.warning("%s gives no strain_lever_arm; using %.2f m for strains", path, DEFAULT_LEVER_ARM)

@@ -3,7 +3,7 @@
 Modules by job: this one holds the app, its global options and the list of commands;
 ``guard`` the one error guard; ``render`` the text report, JSON
 and CSV outputs; ``execute`` the one function that runs a scenario; the command
-groups ``scenarios`` (run, validate, cite, demo, compare-tires),
+groups ``scenarios`` (run, cite, demo, compare-tires), ``validate`` (every input kind),
 ``models`` (presets, bridge), ``field``, ``study``, ``driveby``, ``rail``, ``lifetime``
 and ``traffic``.  Command modules import numpy, scipy, numba, xarray and
 matplotlib only inside the commands, so ``--version``, ``--help`` and shell completion start
@@ -17,7 +17,7 @@ from typing import Any
 import typer
 from typer.core import TyperGroup
 
-from vbikit.cli import driveby, field, lifetime, models, rail, scenarios, study, traffic
+from vbikit.cli import driveby, field, lifetime, models, rail, scenarios, study, traffic, validate
 from vbikit.cli.guard import STATE
 
 #: the global options, accepted after the subcommand as well (``vbikit run X.toml -q``)
@@ -86,7 +86,7 @@ app.command("traffic")(traffic.traffic_cmd)
 app.command("driveby")(driveby.driveby_cmd)
 app.command("lifetime")(lifetime.lifetime_cmd)
 app.command()(scenarios.run)
-app.command()(scenarios.validate)
+app.command()(validate.validate)
 app.command()(scenarios.cite)
 app.command()(scenarios.demo)
 app.command("compare-tires")(scenarios.compare_tires)

@@ -7,11 +7,11 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard
+from vbikit.cli.guard import guard, out_dir_option, steps_option
 
 
 def driveby_cmd(
-    file: Path = typer.Argument(..., help="Drive-by file (DRIVEBY.toml, docs/driveby.md)."),
+    file: Path = typer.Argument(..., help="Drive-by file (docs/driveby.md)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for driveby.nc, the figures and the report."),
     workers: Optional[int] = typer.Option(1, "--workers", min=1, help="Local worker processes (1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
@@ -28,12 +28,15 @@ def driveby_cmd(
     from vbikit.driveby.spec import load_driveby
     from vbikit.driveby.study import DriveByStudy, check_cases
 
+    if max_steps is not None:
+        max_steps = steps_option(max_steps)
+    out_dir = out_dir_option(out_dir)
     spec = guard(lambda: load_driveby(file))
     if max_steps is not None:
         spec = dataclasses.replace(spec, max_steps=float(max_steps))
     steps = guard(lambda: check_cases(spec))
     typer.echo(f"{file.name}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
-    out_dir.mkdir(parents=True, exist_ok=True)
+    guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
 
     def finish() -> None:

@@ -18,8 +18,8 @@ T = TypeVar("T")
 #: the global options of this invocation (set by the root command before a subcommand runs)
 STATE = {"debug": False, "quiet": False}
 
-_OUT_OF_MEMORY = ("error: out of memory; lower --max-memory to be refused before starting, or reduce the inputs "
-                  "named in the budget message of `vbikit validate`")
+_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, lifetime) to be "
+                  "refused before starting, or reduce the inputs named in the budget message of `vbikit validate`")
 
 
 def guard(action: Callable[[], T]) -> T:
@@ -64,10 +64,32 @@ def limits(max_memory: Optional[str], max_steps: Optional[float]) -> Any:
 
     kw: dict[str, Any] = {}
     if max_memory is not None:
-        kw["max_memory"] = guard(lambda: option(parse_size, max_memory))
+        kw["max_memory"] = memory_option(max_memory)
     if max_steps is not None:
-        kw["max_steps"] = int(max_steps)
+        kw["max_steps"] = int(steps_option(max_steps))
     return Limits(**kw)
+
+
+def steps_option(value: float, name: str = "--max-steps") -> float:
+    """``--max-steps``: a finite number of steps in [1, MAX_STEPS_LIMIT] (exit 2 naming the option)."""
+    from vbikit._validation import MAX_STEPS_LIMIT, number
+
+    return guard(lambda: number(value, name, 1, MAX_STEPS_LIMIT, error=OptionError))
+
+
+def memory_option(text: str) -> float:
+    """``--max-memory``: a size such as 8GiB, finite and > 0 [bytes] (exit 2 naming the option)."""
+    from vbikit.solve.budget import parse_size
+
+    return guard(lambda: option(parse_size, text))
+
+
+def out_dir_option(path: Any) -> Any:
+    """``--out-dir``: the output folder, checked now (exit 2 when it names a file, a system folder …:
+    ``vbikit._files.output_dir``), before any computation; the writers create it."""
+    from vbikit._files import output_dir
+
+    return guard(lambda: output_dir(path, create=False))
 
 
 MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "

@@ -8,7 +8,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard
+from vbikit.cli.guard import MAX_MEMORY, STATE, guard, memory_option, out_dir_option
 
 
 class _Bars:
@@ -50,6 +50,7 @@ def lifetime_cmd(
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show progress bars."),
+    max_memory: Optional[str] = MAX_MEMORY,
 ) -> None:
     """Lifetime load effects with dynamics: traffic for days or years from a records file, every
     event's static peak by influence lines, coupled dynamics for the events that can govern each
@@ -57,11 +58,13 @@ def lifetime_cmd(
     damage.  An interrupted run started again resumes (finished batches in OUT_DIR/work)."""
     from vbikit.lifetime.run import run_lifetime
 
+    memory = None if max_memory is None else memory_option(max_memory)
+    out_dir = out_dir_option(out_dir)
     bars = _Bars(progress and not STATE["quiet"])
     t0 = time.perf_counter()
     try:
         ds = guard(lambda: run_lifetime(spec, out_dir, workers=workers, scheduler=scheduler, progress=bars,
-                                        figures=figures))
+                                        figures=figures, max_memory=memory))
     except KeyboardInterrupt:
         bars.close()
         typer.echo(f"\ninterrupted: finished batches are kept in {out_dir / 'work'}; run the same command again "

@@ -7,20 +7,39 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard
+from vbikit.cli.guard import STATE, guard, out_dir_option
 
 
 def rail_cmd(
-    spec: Path = typer.Argument(..., help="RAIL.toml: [bridge], [trains], [speeds] (docs/railway.md)."),
-    out_dir: Path = typer.Option(..., "--out-dir", help="Directory for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
+    spec: Path = typer.Argument(..., help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for rail.nc, rail-report.txt, rail-summary.json and "
+                                                                      "rail-acceleration.png."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes (default: run.workers)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Draw the acceleration-envelope figure."),
+    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar (trains swept)."),
 ) -> None:
     """Sweep every train over every speed: envelopes of deck acceleration, deflection, moment and
-    shear, phi'dyn, resonance speeds and the pass/fail report."""
+    shear, phi'dyn, resonance speeds and the pass/fail report.  (The sweep runs on local processes;
+    it has no --scheduler: a whole sweep takes seconds to minutes.)"""
     from vbikit.rail.run import run_rail
 
-    result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures))
+    out_dir = out_dir_option(out_dir)
+    bar = None
+
+    def report(done: int, total: int) -> None:
+        nonlocal bar
+        if bar is None:
+            from tqdm import tqdm
+
+            bar = tqdm(total=total, desc="rail sweep", unit="train", dynamic_ncols=True)
+        bar.update(done - bar.n)
+
+    try:
+        result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
+                                        progress=report if progress and not STATE["quiet"] else None))
+    finally:
+        if bar is not None:
+            bar.close()
     typer.echo(result.report, nl=False)
     for f in result.files:
         typer.echo(f"wrote {f}", err=True)

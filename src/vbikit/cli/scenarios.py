@@ -1,4 +1,4 @@
-"""``vbikit run``, ``validate``, ``cite``, ``demo`` and ``compare-tires``: the commands on one
+"""``vbikit run``, ``cite``, ``demo`` and ``compare-tires``: the commands on one
 scenario file.  Heavy modules are imported inside the commands (start-up stays fast)."""
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from typing import Optional
 import typer
 
 from vbikit.cli.execute import execute
-from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, warn
+from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits
 from vbikit.cli.render import json_text, outputs, write_text
 
 
@@ -36,25 +36,6 @@ def run(
 
         guard(lambda: figure_format(plot))
     outputs(execute(lambda: load_scenario(scenario), budget), as_json, out, plot, summary_path)
-
-
-def validate(
-    scenario: Path = typer.Argument(..., help="TOML scenario file."),
-    max_memory: Optional[str] = MAX_MEMORY,
-    max_steps: Optional[float] = MAX_STEPS,
-) -> None:
-    """Check a scenario file without running it: every check `vbikit run` makes before it
-    integrates (files, parameters, time step and stability limit, memory and step budgets)."""
-    from vbikit.scenario import load_scenario
-    from vbikit.scenario.preflight import preflight
-    from vbikit.solve.budget import human
-
-    budget = limits(max_memory, max_steps)
-    plan = guard(lambda: preflight(load_scenario(scenario), budget))
-    warn(plan.warnings)
-    est = plan.estimate
-    typer.echo(f"{scenario}: ok — {est.n_steps} steps of {est.dt:.3e} s ({plan.built.crossing.integrator}), "
-               f"≈ {human(est.memory)}")
 
 
 def cite(

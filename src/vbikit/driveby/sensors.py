@@ -34,6 +34,7 @@ from typing import Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._validation import number
 from vbikit.errors import VbikitError
 from vbikit.vehicle.model import CombinedVehicle, Vehicle
 
@@ -41,6 +42,14 @@ log = logging.getLogger(__name__)
 
 #: measurable quantities: name -> (unit, time derivative of the displacement)
 QUANTITIES: dict[str, tuple[str, int]] = {"displacement": ("m", 0), "velocity": ("m/s", 1), "acceleration": ("m/s^2", 2)}
+
+
+#: a sensor's position s may lie this far ahead of the front axle or behind the last one [m] (overhangs)
+MAX_OVERHANG = 3.0
+#: the largest lateral position |y| of a sensor [m] (a road vehicle is at most 2.55 m wide; its mirrors, a rack)
+MAX_LATERAL = 2.0
+#: the largest noise_rms [units of the quantity]: 1,000 m/s², m/s or m is far beyond any sensor's noise
+MAX_NOISE_RMS = 1e3
 
 
 class SensorError(VbikitError):
@@ -93,14 +102,21 @@ class Sensor:
         key = f"sensors.{self.name}"
         if (self.body is None) == (self.axle is None):
             raise SensorError(f"{key}: give body (a vehicle body's name) or axle (an axle number), one of them")
-        if self.quantity not in QUANTITIES:
+        if self.body is not None and not isinstance(self.body, str):
+            raise SensorError(f"{key}.body: expected a body's name (a string), got {type(self.body).__name__}")
+        if self.axle is not None:
+            number(self.axle, f"{key}.axle", 1, 100, integer=True, error=SensorError)
+        if self.position is not None:
+            number(self.position, f"{key}.position", -MAX_OVERHANG, 100.0, unit="m", error=SensorError)
+        number(self.lateral, f"{key}.lateral", -MAX_LATERAL, MAX_LATERAL, unit="m", error=SensorError)
+        number(self.vehicle, f"{key}.vehicle", 1, 1000, integer=True, error=SensorError)
+        if not isinstance(self.quantity, str) or self.quantity not in QUANTITIES:
             raise SensorError(f"{key}.quantity: {self.quantity!r} is not measurable; allowed: {', '.join(QUANTITIES)}")
-        if not (np.isfinite(self.noise_rms) and self.noise_rms >= 0):
-            raise SensorError(f"{key}.noise_rms: must be >= 0, got {self.noise_rms!r}")
+        number(self.noise_rms, f"{key}.noise_rms", 0.0, MAX_NOISE_RMS, unit="units of the quantity", error=SensorError)
+        if self.noise_snr_db is not None:
+            number(self.noise_snr_db, f"{key}.noise_snr_db", -20.0, 200.0, unit="dB", error=SensorError)
         if self.noise_snr_db is not None and self.noise_rms > 0:
             raise SensorError(f"{key}: give noise_rms or noise_snr_db, not both")
-        if self.noise_snr_db is not None and not (np.isfinite(self.noise_snr_db) and -20 <= self.noise_snr_db <= 200):
-            raise SensorError(f"{key}.noise_snr_db: must be in [-20, 200] dB, got {self.noise_snr_db!r}")
 
     @property
     def unit(self) -> str:
@@ -119,12 +135,10 @@ class Sampling:
     cutoff: float = 0.4
 
     def __post_init__(self) -> None:
-        if not (np.isfinite(self.rate) and 1.0 <= self.rate <= 1e5):
-            raise SensorError(f"sampling.rate: must be in [1, 1e5] Hz, got {self.rate!r}")
-        if int(self.filter_order) != self.filter_order or not 1 <= self.filter_order <= 12:
-            raise SensorError(f"sampling.filter_order: must be an integer in [1, 12], got {self.filter_order!r}")
-        if not (0.0 < self.cutoff < 0.5):
-            raise SensorError(f"sampling.cutoff: must be in (0, 0.5) (fraction of the rate), got {self.cutoff!r}")
+        number(self.rate, "sampling.rate", 1.0, 1e5, unit="Hz", error=SensorError)
+        number(self.filter_order, "sampling.filter_order", 1, 12, integer=True, error=SensorError)
+        number(self.cutoff, "sampling.cutoff", 0.0, 0.5, lo_open=True, hi_open=True, unit="fraction of the rate",
+               error=SensorError)
 
     @property
     def cutoff_hz(self) -> float:
@@ -184,6 +198,11 @@ def sensor_row(vehicle: Vehicle, sensor: Sensor) -> NDArray[np.float64]:
             raise SensorError(f"{key}.body: {sensor.body!r} is not a body of vehicle {part.name!r}; bodies: {allowed}")
         s_cg, heave, pitch, roll = part.bodies[sensor.body]
         s = s_cg if sensor.position is None else float(sensor.position)
+        offsets = [w.offset for w in part.wheels] or [s_cg]
+        lo, hi = min(offsets + [s_cg]) - MAX_OVERHANG, max(offsets + [s_cg]) + MAX_OVERHANG
+        if not lo <= s <= hi:
+            raise SensorError(f"{key}.position: {s:g} m is off the vehicle {part.name!r}: a sensor sits within "
+                              f"{lo:g} … {hi:g} m behind the front axle (its axles ± {MAX_OVERHANG:g} m)")
         local = heave + (s_cg - s) * pitch + sensor.lateral * roll
     else:
         axles = axle_offsets(part)

@@ -47,9 +47,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
 
-from vbikit.driveby.sensors import Sampling, Sensor, SensorError
+from vbikit._validation import MAX_STEPS_LIMIT, number
+from vbikit.driveby.sensors import MAX_NOISE_RMS, Sampling, Sensor, SensorError
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES
 from vbikit.errors import VbikitError
+from vbikit.scenario.schema import MAX_SPEED, MIN_SPEED
 
 #: top-level keys of a drive-by file
 TOP_KEYS = ("name", "seed", "batch_size", "max_steps", "bridge", "tire", "road", "crossing", "vehicle", "sampling",
@@ -66,6 +68,20 @@ METHODS = {"contact": "spectrum of the contact-point acceleration back-calculate
            "sensor": "spectrum of the sensor's own record"}
 #: default budget: integration steps of the whole sweep
 MAX_STEPS = 2e7
+#: the shortest identification.gap [m]: the follower of method "residual" half a metre behind the vehicle
+MIN_GAP = 0.5
+#: the most cases of one sweep (each is estimated, one by one, before anything runs)
+MAX_CASES = 100_000
+#: the numeric sweep keys' ranges: key -> (lowest, highest, highest excluded, unit); speeds those of a scenario
+SWEEP_RANGES: dict[str, tuple[float, float, bool, str]] = {
+    "speed": (MIN_SPEED, MAX_SPEED, False, "m/s"), "damage_position": (0.0, 1000.0, False, "m"),
+    "damage_severity": (0.0, 1.0, True, "1"), "noise_rms": (0.0, MAX_NOISE_RMS, False, "units of the quantity"),
+}
+#: the parameters of the drive-by vehicles that take any: model -> key -> (lowest, highest, unit)
+VEHICLE_PARAMETERS: dict[str, dict[str, tuple[float, float, str]]] = {
+    "test-cart": {"mass": (1.0, 1e5, "kg"), "frequency_hz": (0.1, 100.0, "Hz"), "damping_ratio": (0.0, 0.99, "1")},
+    "two-axle-car": {},
+}
 #: default search band's upper end [Hz]
 BAND_MAX_HZ = 20.0
 
@@ -118,10 +134,11 @@ def _numbers(key: str, value: Any, kind: str) -> list:
     for v in values:
         if kind == "names" and not isinstance(v, str):
             raise DriveByError(f"sweep.{key}: expected road class names (strings), got {v!r}")
-        if kind == "integers" and (isinstance(v, bool) or not isinstance(v, int) or v < 0):
-            raise DriveByError(f"sweep.{key}: expected integers >= 0, got {v!r}")
-        if kind == "numbers" and (isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v)):
-            raise DriveByError(f"sweep.{key}: expected finite numbers, got {v!r}")
+        if kind == "integers":
+            number(v, f"sweep.{key}", 0, 2**63 - 1, integer=True, error=DriveByError)
+        if kind == "numbers":
+            lo, hi, hi_open, unit = SWEEP_RANGES.get(key, (None, None, False, ""))
+            number(v, f"sweep.{key}", lo, hi, hi_open=hi_open, unit=unit, error=DriveByError)
     if len(set(map(str, values))) != len(values):
         raise DriveByError(f"sweep.{key}: repeated values in {values}")
     return [float(v) if kind == "numbers" else v for v in values]
@@ -143,18 +160,27 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
         raise DriveByError(f"{unknown[0]}: unknown key of a drive-by file; allowed: {', '.join(TOP_KEYS)}")
     if "bridge" not in data:
         raise DriveByError("bridge: a drive-by file needs a [bridge] table (scenario keys)")
-    name = str(data.get("name", ""))
-    seed, batch = data.get("seed", 0), data.get("batch_size", 4)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise DriveByError(f"seed: expected an integer >= 0, got {seed!r}")
-    if isinstance(batch, bool) or not isinstance(batch, int) or not 1 <= batch <= 1000:
-        raise DriveByError(f"batch_size: expected an integer in [1, 1000], got {batch!r}")
-    max_steps = data.get("max_steps", MAX_STEPS)
-    if isinstance(max_steps, bool) or not isinstance(max_steps, (int, float)) or not max_steps >= 1:
-        raise DriveByError(f"max_steps: expected a number >= 1, got {max_steps!r}")
+    name = data.get("name", "")
+    if not isinstance(name, str) or len(name) > 200:
+        raise DriveByError("name: expected a text of at most 200 characters")
+    seed = number(data.get("seed", 0), "seed", 0, 2**63 - 1, integer=True, error=DriveByError)
+    batch = number(data.get("batch_size", 4), "batch_size", 1, 1000, integer=True, error=DriveByError)
+    max_steps = number(data.get("max_steps", MAX_STEPS), "max_steps", 1, MAX_STEPS_LIMIT, error=DriveByError)
     vehicle = dict(_table(data, "vehicle")) or {"model": "test-cart"}
     if "model" not in vehicle:
         raise DriveByError(f"vehicle.model: missing; a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)}")
+    if not isinstance(vehicle["model"], str):
+        raise DriveByError(f"vehicle.model: expected a name (a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)})")
+    if vehicle["model"] in VEHICLE_PARAMETERS:
+        allowed_v = VEHICLE_PARAMETERS[vehicle["model"]]
+        for k, v in vehicle.items():
+            if k == "model":
+                continue
+            if k not in allowed_v:
+                raise DriveByError(f"vehicle.{k}: unknown key of the {vehicle['model']}; allowed: "
+                                   f"{', '.join(['model', *allowed_v]) if allowed_v else 'model'}")
+            lo, hi, unit = allowed_v[k]
+            number(v, f"vehicle.{k}", lo, hi, unit=unit, error=DriveByError)
     sampling_t = _table(data, "sampling")
     bad = [k for k in sampling_t if k not in ("rate", "filter_order", "cutoff")]
     if bad:
@@ -180,50 +206,50 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     extra = [k for k in ident if k not in ident_keys]
     if extra:
         raise DriveByError(f"identification.{extra[0]}: unknown key; allowed: {', '.join(ident_keys)}")
-    gap = ident.get("gap", 4.0)
-    if isinstance(gap, bool) or not isinstance(gap, (int, float)) or not 0 < gap <= 1000:
-        raise DriveByError(f"identification.gap: expected a distance in (0, 1000] m, got {gap!r}")
+    gap = number(ident.get("gap", 4.0), "identification.gap", MIN_GAP, 1000.0, unit="m", error=DriveByError)
     exclude_vehicle = ident.get("exclude_vehicle", True)
     if not isinstance(exclude_vehicle, bool):
         raise DriveByError(f"identification.exclude_vehicle: expected true or false, got {exclude_vehicle!r}")
     method = ident.get("method", "contact")
-    if method not in METHODS:
+    if not isinstance(method, str) or method not in METHODS:
         raise DriveByError(f"identification.method: {method!r}; allowed: {', '.join(METHODS)}")
     sensor = ident.get("sensor", names[0])
-    if sensor not in names:
+    if not isinstance(sensor, str) or sensor not in names:
         raise DriveByError(f"identification.sensor: {sensor!r} is not a sensor; sensors: {', '.join(names)}")
     band = ident.get("band")
     if band is not None:
-        if not (isinstance(band, list) and len(band) == 2 and all(isinstance(b, (int, float)) for b in band)
+        if not (isinstance(band, list) and len(band) == 2
+                and all(isinstance(b, (int, float)) and not isinstance(b, bool) for b in band)
                 and 0 < band[0] < band[1] < 0.5 * sampling.rate):
             raise DriveByError(f"identification.band: expected [f_lo, f_hi] with 0 < f_lo < f_hi < rate / 2 = "
                                f"{0.5 * sampling.rate:g} Hz, got {band!r}")
         band = (float(band[0]), float(band[1]))
     spectrum = ident.get("spectrum", "periodogram")
-    if spectrum not in ("periodogram", "welch"):
+    if not isinstance(spectrum, str) or spectrum not in ("periodogram", "welch"):
         raise DriveByError(f"identification.spectrum: {spectrum!r}; allowed: periodogram, welch")
-    window = str(ident.get("window", "hann"))
+    window = ident.get("window", "hann")
+    if not isinstance(window, str) or len(window) > 40:
+        raise DriveByError("identification.window: expected a scipy window name (hann, hamming, boxcar, ...)")
     try:
         from scipy.signal import get_window
 
         get_window(window, 16)
-    except ValueError:
+    except (ValueError, TypeError):
         raise DriveByError(f"identification.window: {window!r} is not a scipy window (hann, hamming, boxcar, ...)") from None
     sweep_t = dict(_table(data, "sweep"))
-    damage_length = sweep_t.pop("damage_length", 0.1 * 25.0)
-    if isinstance(damage_length, bool) or not isinstance(damage_length, (int, float)) or not damage_length > 0:
-        raise DriveByError(f"sweep.damage_length: expected a number > 0 [m], got {damage_length!r}")
+    damage_length = number(sweep_t.pop("damage_length", 0.1 * 25.0), "sweep.damage_length", 1e-3, 1000.0, unit="m",
+                           error=DriveByError)
     sweep = {}
     for key, value in sweep_t.items():
         if key not in SWEEP_KEYS:
             raise DriveByError(f"sweep.{key}: unknown key; allowed: {', '.join(SWEEP_KEYS)}, damage_length")
         sweep[key] = _numbers(key, value, SWEEP_KEYS[key][0])
-    for v in sweep.get("damage_severity", []):
-        if not 0 <= v < 1:
-            raise DriveByError(f"sweep.damage_severity: values must be in [0, 1), got {v}")
-    for v in sweep.get("noise_rms", []):
-        if v < 0:
-            raise DriveByError(f"sweep.noise_rms: values must be >= 0, got {v}")
+    for v in sweep.get("road_class", []):
+        if len(v) > 40:
+            raise DriveByError("sweep.road_class: expected road class names (e.g. none, A … H)")
+    n_cases = math.prod(len(v) for v in sweep.values()) if sweep else 1
+    if n_cases > MAX_CASES:
+        raise DriveByError(f"sweep: {n_cases:,} cases, more than the {MAX_CASES:,} a sweep may hold; sweep fewer values")
     if "damage_severity" in sweep and "damage_position" not in sweep:
         raise DriveByError("sweep.damage_position: damage_severity needs damage_position (start of the damaged region [m])")
     scenario = {k: copy.deepcopy(data[k]) for k in ("bridge", "tire", "road", "crossing") if k in data}

@@ -168,18 +168,73 @@ def case_sensors(spec: DriveBy, case: dict) -> tuple[Sensor, ...]:
     return tuple(dataclasses.replace(s, noise_rms=case["noise_rms"], noise_snr_db=None) for s in spec.sensors)
 
 
-def check_cases(spec: DriveBy) -> float:
-    """Validate every case (scenario, vehicle, sensors) and the budget before anything runs;
-    returns the estimated integration steps of the sweep."""
+#: the scenario keys a sweep key sets (``_case_scenario``): scenario key -> sweep key
+_SWEPT = {"crossing.speed": "speed", "road.class": "road_class", "road.seed": "road_seed",
+          "bridge.damage": "damage_position"}
+
+
+def _in_sweep_words(message: str, case: dict, damage_length: float) -> str:
+    """A case's scenario error in the user's words: a key the sweep set is named as ``sweep.<key>``
+    with the case's value (``crossing.speed`` of ``sweep.speed = [0]`` → ``sweep.speed = 0``)."""
+    for scenario_key, sweep_key in _SWEPT.items():
+        if sweep_key in case and scenario_key in message:
+            head, _, rest = message.partition(scenario_key)
+            rest = rest.split(":", 1)[1].strip() if ":" in rest else rest
+            where = (f"sweep.damage_position = {case['damage_position']!r} (damage_length = {damage_length:g} m)"
+                     if sweep_key == "damage_position" else f"sweep.{sweep_key} = {case[sweep_key]!r}")
+            return f"{where}: {rest}"
+    return message
+
+
+#: sweep keys that do not change whether a case can be built (one case of each value is checked)
+_NEUTRAL = ("road_seed", "noise_rms")
+
+
+def _crossing(spec: DriveBy, case: dict):
+    try:
+        return case_crossing(spec, case)
+    except DriveByError as err:
+        raise DriveByError(_in_sweep_words(str(err), case, spec.damage_length)) from None
+
+
+def estimate_steps(spec: DriveBy) -> float:
+    """The integration steps of the whole sweep: each case's duration / time step, from one crossing
+    built for each distinct speed of the sweep (the step and duration depend on the speed, not on
+    the road seed or the noise); cheap for any number of cases."""
+    per_speed: dict[Any, float] = {}
     total = 0.0
+    for case in spec.cases or [{}]:
+        v = case.get("speed")
+        if v not in per_speed:
+            c = _crossing(spec, case)
+            per_speed[v] = c.duration / c.dt
+        total += per_speed[v]
+    return total
+
+
+def check_cases(spec: DriveBy) -> float:
+    """Validate the budget first (``estimate_steps`` against ``max_steps``), then every distinct case
+    (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once) before anything
+    runs; returns the estimated integration steps of the sweep."""
+    _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
+    total = estimate_steps(spec)
+    if total > spec.max_steps:
+        raise DriveByError(f"max_steps: the sweep needs about {total:.3g} integration steps ({len(spec.cases):,} cases), "
+                           f"above the budget {spec.max_steps:.3g}; raise max_steps (or --max-steps) or sweep fewer cases")
+    seen: set = set()
     for i, case in enumerate(spec.cases or [{}]):
-        crossing = case_crossing(spec, case)
+        shape = tuple((k, v) for k, v in case.items() if k not in _NEUTRAL)
+        neutral = tuple((k, v) for k, v in case.items() if k in _NEUTRAL)
+        if shape in seen and all(item in seen for item in neutral):
+            continue
+        seen.add(shape)
+        seen.update(neutral)
+        crossing = _crossing(spec, case)
         for s in spec.sensors:
             try:
                 sensor_row(crossing.vehicle, s)
             except SensorError as err:
                 raise DriveByError(str(err)) from None
-        total += crossing.duration / crossing.dt
         if spec.method in ("contact", "residual") and i == 0:
             try:
                 SingleAxle.of(crossing.vehicles[0].vehicle)
@@ -189,9 +244,6 @@ def check_cases(spec: DriveBy) -> float:
             if chosen.quantity != "acceleration":
                 raise DriveByError(f"identification.sensor: method \"{spec.method}\" needs an acceleration sensor; "
                                    f"{chosen.name!r} measures {chosen.quantity}")
-    if total > spec.max_steps:
-        raise DriveByError(f"max_steps: the sweep needs about {total:.3g} integration steps ({len(spec.cases)} cases), "
-                           f"above the budget {spec.max_steps:.3g}; raise max_steps (or --max-steps) or sweep fewer cases")
     return total
 
 

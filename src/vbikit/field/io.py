@@ -16,7 +16,6 @@ the TOML key.
 """
 from __future__ import annotations
 
-import csv
 import logging
 import re
 import warnings
@@ -27,7 +26,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit._files import check_name, read_text
+from vbikit._files import check_name, csv_rows, read_text
 from vbikit._toml import read_toml
 from vbikit.errors import VbikitError
 
@@ -84,9 +83,8 @@ def read_response_csv(path: str | Path) -> MeasuredRecord:
     units: list[str] = []
     rows: list[list[float]] = []
     lines: list[int] = []
-    for lineno, row in enumerate(csv.reader(text.splitlines()), start=1):
-        cells = [c.strip() for c in row]
-        if not cells or not any(cells) or cells[0].startswith("#"):
+    for lineno, cells in csv_rows(text, FieldFileError, str(path)):
+        if not any(cells):
             continue
         if not names:
             for col, cell in enumerate(cells, start=1):
@@ -95,7 +93,7 @@ def read_response_csv(path: str | Path) -> MeasuredRecord:
                     raise FieldFileError(f"{path}:{lineno}: header column {col} is not 'name [unit]' (e.g. 'G5_disp [mm]')")
                 unit = m["unit"].strip()
                 if unit not in UNITS:
-                    raise FieldFileError(f"{path}:{lineno}: column {m['name']!r}: unknown unit [{unit}]; "
+                    raise FieldFileError(f"{path}:{lineno}: header column {col}: unknown unit; "
                                          f"allowed: {', '.join(UNITS)}")
                 names.append(m["name"])
                 units.append(unit)
@@ -113,7 +111,7 @@ def read_response_csv(path: str | Path) -> MeasuredRecord:
             except ValueError:
                 raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): not a number") from None
             if not np.isfinite(v):
-                raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): {cell!r} is not finite (NaN/inf)")
+                raise FieldFileError(f"{path}:{lineno}: column {col} ({name}): not finite (NaN/inf)")
             values.append(v)
         rows.append(values)
         lines.append(lineno)

@@ -49,6 +49,16 @@ CHECK_FRACTION = 0.5
 #: most re-screenings after an amplification above the bound was seen
 MAX_RESCREENS = 4
 
+def bytes_per_event(n_effects: int) -> float:
+    """Bytes per event at the run's peak: the stored static pass (five per-event columns of 8 bytes
+    and one of 1, the static peaks: 8 per effect) twice (the parts and their concatenation), and
+    five float arrays per effect while the dataset is built (``vbikit.lifetime.results``)."""
+    return 2 * (41 + 8 * n_effects) + 5 * 8 * n_effects
+
+
+#: the fewest events the random dynamic sample may expect (a standard error needs two)
+MIN_SAMPLE_EVENTS = 2
+
 #: progress(stage, done, total, info): after every finished batch; info: "events" (of the run, once the
 #: static pass is done), "dynamic" (events simulated so far), "trucks_per_day"
 Progress = Callable[[str, int, int, dict], None]
@@ -85,8 +95,16 @@ class Prepared:
                           self.spec.vehicle_model, stored, step_factor, _digest=_digest(self.model))
 
 
-def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None) -> Prepared:
-    """Validate a lifetime run (module docstring, step 1); LifetimeError naming the key."""
+def memory_estimate(n_events: float, n_effects: int) -> float:
+    """Bytes the run's per-event arrays need at their peak (``bytes_per_event``)."""
+    return float(n_events) * bytes_per_event(max(1, n_effects))
+
+
+def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None,
+            max_memory: Optional[float] = None) -> Prepared:
+    """Validate a lifetime run (module docstring, step 1); LifetimeError naming the key.  The run's
+    memory (``memory_estimate``, at most one event a truck) is refused above ``max_memory`` [bytes]
+    (default ``vbikit.solve.budget.DEFAULT_MAX_MEMORY``; ``vbikit lifetime --max-memory``)."""
     from vbikit.extremes import MIN_SAMPLE
     from vbikit.lifetime.setup import build_setup, check_lanes, setup_key
     from vbikit.lifetime.traffic import fit_traffic
@@ -100,6 +118,9 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
         records = read_records(records_path)
     except RecordsError as err:
         raise LifetimeError(f"traffic.records: {err}") from None
+    if not records:
+        raise LifetimeError(f"traffic.records: {records_path.name} holds no vehicle records (a header only); "
+                            "the traffic model is fitted to them")
     try:
         model = fit_traffic(records, spec.traffic.mode, spec.traffic.components)
     except ValueError as err:
@@ -136,6 +157,11 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             f"fit needs at least {need} (raise days/years, or block = \"day\")")
     trucks = model.trucks_per_day * spec.n_days
     events = trucks  # at most one event a truck
+    sampled = spec.fatigue.dynamic_sample * events
+    if details and sampled < MIN_SAMPLE_EVENTS:
+        raise LifetimeError(f"fatigue.dynamic_sample: {spec.fatigue.dynamic_sample:g} of about {events:,.0f} events samples "
+                            f"{sampled:.3g} event(s); the fatigue damage ratio and its standard error need at least "
+                            f"{MIN_SAMPLE_EVENTS} (raise dynamic_sample or the duration)")
     dyn = spec.n_days * len(names) * (1 + SCREENED_PER_DAY) + spec.fatigue.dynamic_sample * events * (1 if details else 0)
     cores = max(1, workers or 1)
     hours = (trucks * STATIC_SECONDS_PER_TRUCK * max(1, len(names)) + dyn * DYNAMIC_SECONDS_PER_EVENT) / cores / 3600
@@ -143,6 +169,14 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
         raise LifetimeError(f"budget_hours: the run is estimated at {hours:.2f} h on {cores} worker(s) "
                             f"({trucks:,.0f} trucks, about {dyn:,.0f} dynamic events), above budget_hours = "
                             f"{spec.budget_hours:g} h; raise budget_hours (up to 10000) to run it")
+    from vbikit.solve.budget import DEFAULT_MAX_MEMORY, human
+
+    limit = DEFAULT_MAX_MEMORY if max_memory is None else float(max_memory)
+    memory = memory_estimate(events, len(names))
+    if memory > limit:
+        raise LifetimeError(f"days: the run is estimated to need {human(memory)} of memory ({events:,.0f} events × "
+                            f"{len(names)} load effect(s)), above the memory budget {human(limit)}; raise it with "
+                            "--max-memory (vbikit lifetime) or max_memory= (run_lifetime), or simulate fewer days")
     return Prepared(spec, base_dir, model, key, setup, tuple(details), hours,
                     {"n_records": len(records), "records": str(records_path.name)})
 
@@ -162,13 +196,14 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
 
 def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, base_dir: str | Path | None = None,
                  workers: Optional[int] = None, scheduler: Optional[str] = None,
-                 progress: Optional[Progress] = None, figures: bool = True):
+                 progress: Optional[Progress] = None, figures: bool = True, max_memory: Optional[float] = None):
     """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report.txt,
     summary.json).
 
     ``spec``: a lifetime TOML path, a parsed dict or a ``LifetimeFile``; ``base_dir``: where its
     relative paths point (default: the file's folder, else "."); ``workers`` / ``scheduler``: as
-    ``vbikit.study.run_study``; ``progress(stage, done, total)`` after every finished batch.
+    ``vbikit.study.run_study``; ``progress(stage, done, total)`` after every finished batch;
+    ``max_memory``: the memory budget [bytes] (``prepare``).
     Returns the dataset."""
     from vbikit._files import atomic_write, write_text
     from vbikit.lifetime.report import summary, text_report
@@ -177,7 +212,7 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     if isinstance(spec, (str, Path)):
         spec, folder = read_lifetime(spec)
         base_dir = folder if base_dir is None else base_dir
-    prep = prepare(spec, base_dir if base_dir is not None else ".", workers)
+    prep = prepare(spec, base_dir if base_dir is not None else ".", workers, max_memory)
     out_dir = Path(out_dir)
     work = out_dir / "work"
     work.mkdir(parents=True, exist_ok=True)

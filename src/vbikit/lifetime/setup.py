@@ -128,8 +128,8 @@ def check_lanes(setup: Setup, lanes_used: Sequence[int]) -> None:
         if not 1 <= lane <= len(setup.lanes):
             raise ValueError(f"lane {lane} of the records has no centre (lanes at y = "
                              f"{', '.join(f'{y:g}' for y in setup.lanes)} m; give traffic.lanes)")
-    width = setup.bridge.deck_width if isinstance(setup.bridge, GirderDeck) else None
-    if width is not None:
+    width = getattr(setup.bridge, "deck_width", None)  # a grillage's, a mode file's; a beam has none
+    if width is not None and np.isfinite(width):
         for lane in lanes_used:
             y = setup.lanes[lane - 1]
             if abs(y) + HALF_TRACK > width / 2:

@@ -40,7 +40,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any, Literal, Optional
+from typing import Annotated, Any, Literal, Optional
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -51,6 +51,8 @@ BASE_SECTIONS = ("bridge", "tire", "road", "crossing")
 #: a run whose estimate exceeds this [h] is refused unless budget_hours is raised
 DEFAULT_BUDGET_HOURS = 2.0
 MAX_DAYS = 365 * 200
+#: the closest section to the entry support other than x = 0 [m]
+MIN_SECTION = 1e-3
 
 
 class LifetimeError(VbikitError):
@@ -60,24 +62,32 @@ class LifetimeError(VbikitError):
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid")
+    """Strict types (no booleans or strings for numbers), finite numbers, no unknown keys."""
+
+    model_config = ConfigDict(extra="forbid", strict=True, allow_inf_nan=False)
 
 
 class TrafficSpec(_Strict):
     records: str = Field(..., min_length=1, description="records file (vbikit.traffic CSV), relative to the lifetime file")
     mode: Literal["fitted", "bootstrap"] = Field("fitted", description="fitted generator or bootstrap resampling of the records")
-    trucks_per_day: Optional[float] = Field(None, gt=0, le=200_000, description="scale the fitted flows to this many trucks a day (all lanes)")
-    lanes: Optional[list[float]] = Field(None, min_length=1, max_length=20, description="lane centres y [m]; default the bridge's")
+    trucks_per_day: Optional[float] = Field(None, ge=1, le=200_000, description="scale the fitted flows to this many trucks a day (all lanes)")
+    lanes: Optional[list[Annotated[float, Field(ge=-100, le=100)]]] = Field(None, min_length=1, max_length=20, description="lane centres y [m]; default the bridge's (each on the deck: checked against the bridge)")
     components: int = Field(2, ge=1, le=4, description="normal components of each class's GVW mixture")
-    speed_kmh: Optional[float] = Field(None, gt=0, le=250, description="every vehicle at this speed [km/h] (default: the fitted or recorded speeds)")
+    speed_kmh: Optional[float] = Field(None, ge=5, le=250, description="every vehicle at this speed [km/h] (default: the fitted or recorded speeds)")
+
+    @model_validator(mode="after")
+    def _unique_lanes(self) -> "TrafficSpec":
+        if self.lanes is not None and len(set(self.lanes)) != len(self.lanes):
+            raise ValueError(f"lanes: each lane needs its own centre y, got {self.lanes}")
+        return self
 
 
 class LoadEffectSpec(_Strict):
     kind: Literal["deflection", "moment", "shear", "reaction"]
-    x: Optional[float] = Field(None, description="section [m] (deflection, moment, shear); default midspan")
-    y: Optional[float] = Field(None, description="deflection: point y [m]; default the bridge's response line")
-    girder: Optional[int] = Field(None, ge=1, description="slab-on-girder decks: the girder (1-based)")
-    support: Optional[int] = Field(None, ge=0, description="reaction: the support index (0 = entry)")
+    x: Optional[float] = Field(None, ge=0, le=1000, description="section [m] (deflection, moment, shear) on the span (checked against the bridge); default midspan")
+    y: Optional[float] = Field(None, ge=-100, le=100, description="deflection: point y [m] on the deck; default the bridge's response line")
+    girder: Optional[int] = Field(None, ge=1, le=100, description="slab-on-girder decks: the girder (1-based)")
+    support: Optional[int] = Field(None, ge=0, le=100, description="reaction: the support index (0 = entry)")
     name: str = Field("", pattern=r"^([A-Za-z][A-Za-z0-9_]*)?$", max_length=40)
 
     @model_validator(mode="after")
@@ -86,6 +96,9 @@ class LoadEffectSpec(_Strict):
             raise ValueError("a reaction needs support = 0, 1, …")
         if self.kind != "reaction" and self.support is not None:
             raise ValueError("support applies to kind = \"reaction\" only")
+        if self.x is not None and 0.0 < self.x < MIN_SECTION:
+            raise ValueError(f"x: a section {self.x!r} m from the entry support: give x = 0 or x >= {MIN_SECTION:g} m "
+                             "(an effect that close to a support is zero to rounding)")
         if self.kind != "deflection" and self.y is not None:
             raise ValueError("y applies to kind = \"deflection\"; give girder for a girder's moment, shear or reaction")
         return self
@@ -94,15 +107,16 @@ class LoadEffectSpec(_Strict):
 class DetailSpec(_Strict):
     name: str = Field(..., pattern=r"^[A-Za-z][A-Za-z0-9_]*$", max_length=40)
     effect: str = Field(..., description="name of a [[load_effects]] entry")
-    section_modulus: Optional[float] = Field(None, gt=0, le=100, description="stress = effect / section_modulus [m³]")
-    stress_per_unit: Optional[float] = Field(None, gt=0, description="stress = effect × stress_per_unit [Pa per effect unit]")
-    category: str = Field(..., description="S-N curve: 'EN <Δσ_C in MPa>' or 'AASHTO <category>'")
+    section_modulus: Optional[float] = Field(None, ge=1e-7, le=100, description="stress = effect / section_modulus [m³] (0.1 cm³ … 100 m³)")
+    stress_per_unit: Optional[float] = Field(None, gt=0, le=1e15, description="stress = effect × stress_per_unit [Pa per effect unit]")
+    category: str = Field(..., description="S-N curve: 'EN <Δσ_C in MPa>' (36 … 160) or 'AASHTO <category>'")
     gamma_mf: float = Field(1.0, ge=1.0, le=2.0, description="EN partial factor γ_Mf")
 
     @model_validator(mode="after")
     def _check(self) -> "DetailSpec":
         if (self.section_modulus is None) == (self.stress_per_unit is None):
             raise ValueError("give section_modulus [m³] or stress_per_unit [Pa per unit], one of them")
+        check_category(self.category)
         return self
 
     @property
@@ -113,8 +127,8 @@ class DetailSpec(_Strict):
 
 class FatigueSpec(_Strict):
     dynamic_sample: float = Field(0.05, gt=0, le=1, description="fraction of events simulated dynamically (seeded sample) for the dynamic-to-static damage ratio")
-    histogram_bin: float = Field(1e6, gt=0, description="stress-range histogram bin [Pa]")
-    damage_so_far: float = Field(0.0, ge=0, description="Miner damage already accumulated (remaining life)")
+    histogram_bin: float = Field(1e6, ge=1e3, le=1e8, description="stress-range histogram bin [Pa] (1 kPa … 100 MPa)")
+    damage_so_far: float = Field(0.0, ge=0, lt=1, description="Miner damage already accumulated, in [0, 1) (remaining life; 1 = failed)")
     design_life: float = Field(100.0, gt=0, le=1000, description="design working life [years] the damage is judged over (EN 1990 Table 2.1, category 5: 100 years)")
     details: list[DetailSpec] = Field(default_factory=list, max_length=50)
 
@@ -125,15 +139,15 @@ class LifetimeFile(_Strict):
     days: Optional[int] = Field(None, ge=1, le=MAX_DAYS, description="simulated days")
     years: Optional[float] = Field(None, gt=0, le=200, description="simulated years (× days_per_year)")
     days_per_year: int = Field(365, ge=1, le=366, description="simulated days in a year (daily blocks per year)")
-    amplification: float = Field(0.5, gt=0, le=5, description="A, upper bound of the dynamic amplification R_dyn/R_st − 1 of any event (screening)")
-    return_periods: list[float] = Field(default_factory=lambda: [75.0, 100.0, 1000.0], min_length=1, max_length=20)
+    amplification: float = Field(0.5, ge=0.01, le=5, description="A, upper bound of the dynamic amplification R_dyn/R_st − 1 of any event (screening), 1 % … 500 %")
+    return_periods: list[Annotated[float, Field(gt=0, le=1e6)]] = Field(default_factory=lambda: [75.0, 100.0, 1000.0], min_length=1, max_length=20, description="return periods [years], each longer than one block")
     characteristic_period: float = Field(1000.0, gt=0, le=1e6, description="return period [years] of the characteristic values")
     block: Literal["day", "week"] = "day"
     distribution: Literal["gev", "gumbel"] = "gumbel"
     ci: float = Field(0.95, gt=0, lt=1)
     budget_hours: float = Field(DEFAULT_BUDGET_HOURS, gt=0, le=1e4)
-    ds: float = Field(0.1, gt=0, le=2, description="no longer used (the static peaks are exact extremes, not samples); accepted so that older lifetime files still read [m]")
-    dx: float = Field(0.02, gt=0, le=1, description="grid of the tabulated influence lines [m]")
+    ds: float = Field(0.1, ge=1e-3, le=2, description="no longer used (the static peaks are exact extremes, not samples); accepted so that older lifetime files still read [m] (1 mm … 2 m)")
+    dx: float = Field(0.02, ge=1e-3, le=1, description="grid of the tabulated influence lines [m] (1 mm … 1 m)")
     batch_size: int = Field(32, ge=1, le=1000, description="dynamic events per batch (of one day)")
     days_per_batch: int = Field(1, ge=1, le=366, description="days per batch of the static pass")
     traffic: TrafficSpec
@@ -158,6 +172,12 @@ class LifetimeFile(_Strict):
         dup = sorted({n for n in names if names.count(n) > 1})
         if dup:
             raise ValueError(f"load_effects: names must be unique; repeated: {', '.join(dup)}")
+        block_years = (7 if self.block == "week" else 1) / self.days_per_year
+        for key, periods in (("return_periods", self.return_periods), ("characteristic_period", [self.characteristic_period])):
+            short = [t for t in periods if t <= block_years]
+            if short:
+                raise ValueError(f"{key}: {short[0]:g} years is not longer than one block ({self.block}: "
+                                 f"{block_years:.3g} years); a return period must exceed it")
         if self.characteristic_period not in self.return_periods:
             self.return_periods = sorted(set(self.return_periods) | {self.characteristic_period})
         return self
@@ -167,12 +187,36 @@ class LifetimeFile(_Strict):
         return int(self.days) if self.days is not None else int(math.ceil(float(self.years) * self.days_per_year))
 
 
+def check_category(category: str) -> None:
+    """ValueError naming ``category`` unless it is an EN 1993-1-9 detail category Δσ_C in MPa
+    within the standard's range (``EN_CATEGORIES``: 36 … 160; numbers between are built the same way)
+    written without a sign, or a known AASHTO letter."""
+    import re
+
+    from vbikit.fatigue.sn_curves import AASHTO_CATEGORIES, EN_CATEGORIES
+
+    text = " ".join(str(category).replace("′", "'").replace("’", "'").split())
+    en = re.fullmatch(r"(?i)EN\s*([0-9]+(?:\.[0-9]*)?)", text)
+    if en:
+        value = float(en.group(1))
+        if min(EN_CATEGORIES) <= value <= max(EN_CATEGORIES):
+            return
+        raise ValueError(f"category: {category!r}: an EN 1993-1-9 detail category is Δσ_C in MPa within "
+                         f"{min(EN_CATEGORIES)} … {max(EN_CATEGORIES)} (e.g. 'EN 71')")
+    aashto = re.fullmatch(r"(?i)AASHTO\s*(.+)", text)
+    if aashto and aashto.group(1).strip().upper() in AASHTO_CATEGORIES:
+        return
+    raise ValueError(f"category: {category!r} is not a detail category; give 'EN <Δσ_C in MPa>' "
+                     f"({min(EN_CATEGORIES)} … {max(EN_CATEGORIES)}) or 'AASHTO <category>' "
+                     f"({', '.join(AASHTO_CATEGORIES)})")
+
+
 def parse_lifetime(data: dict[str, Any]) -> LifetimeFile:
     """Validate a lifetime specification given as a dict (the parsed TOML)."""
     try:
         return LifetimeFile.model_validate(data)
     except ValidationError as err:
-        raise LifetimeError(validation_message(err, "invalid lifetime file")) from None
+        raise LifetimeError(validation_message(err, "invalid lifetime file", model=LifetimeFile)) from None
 
 
 def read_lifetime(path: str | Path) -> tuple[LifetimeFile, Path]:

@@ -21,7 +21,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
 import numpy as np
 
@@ -152,14 +152,33 @@ def _spec(source: Any) -> tuple[RailSpec, Path]:
     return load_rail_spec(path), path.parent
 
 
-def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
-             figures: bool = True) -> RailResult:
-    """Run a railway sweep (module docstring).  ``source``: a RAIL.toml path, its dict or a
-    ``RailSpec``; ``out_dir``: where ``rail.nc``, ``rail-report.txt`` and ``rail-acceleration.png``
-    go (None: nothing written); ``workers`` overrides ``run.workers``."""
+@dataclass
+class RailPlan:
+    """A checked railway sweep before any computation (``plan_rail``): the spec, the bridge, the
+    trains (``originals`` with their cars; ``trains`` as swept), the speeds and the sweep setup."""
+
+    spec: RailSpec
+    bridge: Any
+    f_limit: float
+    required: int
+    originals: list
+    trains: list
+    resonances: dict
+    speeds: Any
+    points: Any
+    effects: tuple
+    setup: Any
+    coupled: list
+    waves: dict
+    sections: Any
+
+
+def plan_rail(source: Any) -> RailPlan:
+    """Every check of a railway sweep before it runs (the spec, the bridge, the train tables, the
+    work budgets ``run.budget`` and ``coupled.max_steps``): what ``run_rail`` and ``vbikit validate``
+    do first."""
     from vbikit.solve.moving_loads import default_dx, filter_steps
 
-    t0 = time.perf_counter()
     spec, base_dir = _spec(source)
     bridge, f_limit, required = build_bridge(spec, base_dir)
     originals = load_trains(spec, base_dir)  # with their cars, for coupled models
@@ -202,9 +221,36 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         log.warning("span %.3g m < 7 m: EN 1991-2:2003 6.4.6.1.1 uses HSLM-B for simply supported spans below 7 m", span)
     y = float(bridge.default_lateral_offset)  # the track's axis; the deck is read on it
     setup = SweepSetup(bridge, points, effects, dx, fv, spec.run.budget, y)
+    return RailPlan(spec, bridge, f_limit, required, originals, trains, res, speeds, points, effects, setup, coupled,
+                    waves, sections)
+
+
+def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
+             figures: bool = True, progress: Optional[Callable[[int, int], None]] = None) -> RailResult:
+    """Run a railway sweep (module docstring).  ``source``: a RAIL.toml path, its dict or a
+    ``RailSpec``; ``out_dir``: where ``rail.nc``, ``rail-report.txt`` and ``rail-acceleration.png``
+    go, with ``rail-summary.json`` (None: nothing written); ``workers`` overrides ``run.workers``; ``progress(done, total)``
+    after every group of trains (as many as workers) swept."""
+    t0 = time.perf_counter()
+    p = plan_rail(source)
+    spec, bridge, f_limit, required, originals, trains, res, speeds, points, setup, coupled = (
+        p.spec, p.bridge, p.f_limit, p.required, p.originals, p.trains, p.resonances, p.speeds, p.points, p.setup,
+        p.coupled)
+    waves, sections, y = p.waves, p.sections, float(bridge.default_lateral_offset)
+    n0 = float(bridge.frequencies_hz[0])
     log.info("sweeping %d trains × %d speeds, %d modes (%.1f … %.1f Hz), Δx = %.4f m", len(trains), speeds.size,
-             bridge.omega.size, n0, bridge.frequencies_hz[-1], dx)
-    swept = sweep_moving_forces(setup, trains, speeds, workers or spec.run.workers)
+             bridge.omega.size, n0, bridge.frequencies_hz[-1], setup.dx)
+    from vbikit.solve.moving_loads import _peaks
+    from vbikit.solve.simulate import announce_compile
+
+    n_workers = workers or spec.run.workers
+    announce_compile(_peaks, "each worker process" if n_workers > 1 and len(trains) > 1 else "")
+    swept = []
+    group = len(trains) if progress is None else max(1, n_workers)
+    for start in range(0, len(trains), group):
+        swept += sweep_moving_forces(setup, trains[start:start + group], speeds, n_workers)
+        if progress is not None:
+            progress(min(start + group, len(trains)), len(trains))
     envs, refined = [e for e, _ in swept], [r for _, r in swept]
     names = [t.name for t in trains]
     statics = [static_envelope(bridge, "moment", sections, t.axle_positions, t.axle_loads, y) for t in trains]
@@ -339,8 +385,8 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
     }
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
-        "title": "vbikit railway speed sweep", "span_m": span, "EI_Nm2": b.EI if b.EI is not None else math.nan,
-        "mass_per_length_kg_m": b.mass_per_length if b.mass_per_length is not None else math.nan,
+        "title": "vbikit railway speed sweep", "span_m": span,
+        **({"EI_Nm2": b.EI, "mass_per_length_kg_m": b.mass_per_length} if b.scenario is None else {}),
         "bridge_model": type(bridge).__name__ + (f" from {b.scenario}" if b.scenario else ""),
         "damping_ratio": float(bridge.damping_ratios[0]), "deck": b.deck, "track": b.track,
         "damping_source": "given (bridge.damping)" if b.damping is not None else "EN 1991-2:2003 Table 6.6",

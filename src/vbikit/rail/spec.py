@@ -49,6 +49,11 @@ from vbikit.errors import VbikitError
 from vbikit.rail.codes import CLASSIFICATION_FACTORS, DECK_DAMPING, DYNAMIC_FACTORS, ACCELERATION_LIMITS
 
 
+#: the range of a wheel-rail contact stiffness per wheelset [N/m]: the linearised Hertzian stiffness of a
+#: wheelset is about 1e9 N/m (two wheels, 1-2e9 N/m each); a track pad under the rail brings it down to ~1e7
+MIN_CONTACT, MAX_CONTACT = 1e6, 1e12
+
+
 class RailSpecError(VbikitError):
     """An invalid RAIL.toml; the message names the key and the allowed range."""
 
@@ -64,9 +69,9 @@ _NAMED = {"deck": DECK_DAMPING, "track": ACCELERATION_LIMITS, "maintenance": DYN
 
 
 class BridgeSection(_Section):
-    span: Optional[float] = Field(None, gt=0, le=300)
-    EI: Optional[float] = Field(None, gt=0, le=1e15)
-    mass_per_length: Optional[float] = Field(None, gt=0, le=1e6)
+    span: Optional[float] = Field(None, ge=1, le=300, description="span [m]")
+    EI: Optional[float] = Field(None, ge=1e6, le=1e15, description="bending stiffness [N m²]")
+    mass_per_length: Optional[float] = Field(None, ge=100, le=1e6, description="mass per length [kg/m]")
     scenario: Optional[str] = None
     deck: str = "prestressed-concrete"
     track: str = "ballasted"
@@ -160,16 +165,17 @@ class CoupledSection(_Section):
     enabled: bool = False
     irregularity: Optional[str] = None
     seed: int = Field(0, ge=0)
-    max_steps: float = Field(2e6, gt=0, le=1e10)
-    contact: Union[str, float] = "hertz"  # "hertz", "rigid" or a stiffness [N/m] per wheelset
+    max_steps: float = Field(2e6, ge=1, le=1e10)
+    contact: Union[str, float] = "hertz"  # "hertz", "rigid" or a stiffness [N/m] per wheelset (MIN_CONTACT … MAX_CONTACT)
 
     @field_validator("contact")
     @classmethod
     def _contact(cls, v: Union[str, float]) -> Union[str, float]:
         if isinstance(v, str) and v not in ("hertz", "rigid"):
             raise ValueError(f"contact must be 'hertz', 'rigid' or a wheel-rail stiffness per wheelset in N/m, got {v!r}")
-        if not isinstance(v, str) and not (v > 0):
-            raise ValueError(f"contact stiffness must be > 0 N/m, got {v!r}")
+        if not isinstance(v, str) and not (MIN_CONTACT <= v <= MAX_CONTACT):
+            raise ValueError(f"a wheel-rail stiffness per wheelset is within {MIN_CONTACT:g} … {MAX_CONTACT:g} N/m "
+                             f"(Hertzian contact is about 1e9 N/m), got {v!r}")
         return v
 
     @field_validator("irregularity")
@@ -206,7 +212,7 @@ def parse_rail_spec(data: dict[str, Any]) -> RailSpec:
     try:
         return RailSpec.model_validate(data)
     except ValidationError as err:
-        raise RailSpecError(validation_message(err, "")) from None
+        raise RailSpecError(validation_message(err, "", model=RailSpec)) from None
 
 
 def load_rail_spec(path: str | Path) -> RailSpec:

@@ -1,12 +1,11 @@
 """Measured road profiles from CSV files: two columns, x [m from the bridge entry], elevation [m]."""
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 
-from vbikit._files import read_text
+from vbikit._files import csv_rows, read_text
 from vbikit.errors import VbikitError
 from vbikit.road.profile import RoadProfile
 
@@ -34,9 +33,8 @@ def read_profile_csv(path: str | Path) -> RoadProfile:
     xs: list[float] = []
     zs: list[float] = []
     header_seen = False
-    for lineno, row in enumerate(csv.reader(text.splitlines()), start=1):
-        cells = [c.strip() for c in row]
-        if not cells or not any(cells) or cells[0].startswith("#"):
+    for lineno, cells in csv_rows(text, RoadFileError, str(path)):
+        if not any(cells):
             continue
         if len(cells) < 2:
             raise RoadFileError(f"{path}:{lineno}: expected 2 columns (x, elevation), got {len(cells)}")

@@ -292,6 +292,10 @@ def response_point(scenario: Scenario, bridge: ModalBridge, spec: ResponsePointS
         if girder is not None and not 1 <= girder <= len(girder_y):
             raise ScenarioError(f"{key}girder: must be 1 … {len(girder_y)} for bridge {scenario.bridge.model!r} (got {girder})")
         y = spec.y if girder is None else float(girder_y[girder - 1])
+    width = getattr(bridge, "deck_width", None)
+    if width is not None and np.isfinite(width) and abs(float(y)) > 0.5 * float(width) + 1e-9:
+        raise ScenarioError(f"{key}y: {float(y):g} m is off the {float(width):g} m wide deck (|y| ≤ "
+                            f"{0.5 * float(width):g} m from the centreline)")
     return ResponsePoint(response_x(bridge, spec.x, y, key), float(y), girder, spec.name)
 
 

@@ -21,8 +21,9 @@ column                     meaning                                              
 
 Every problem is reported with its line number and column (``records.csv:12: column 4 (speed [km/h]): …``),
 never with the text found there.  Limits: ``MAX_RECORDS`` records a file, ``MAX_LINE`` characters a
-line, ``MAX_AXLES`` axles a vehicle; axle loads above ``AXLE_LOAD_MAX`` are refused, above
-``AXLE_LOAD_WARNING`` warned of.
+line, ``MAX_AXLES`` axles a vehicle, times up to ``MAX_TIME`` (ten years); axle loads above ``AXLE_LOAD_MAX``
+are refused, above ``AXLE_LOAD_WARNING`` warned of, as are vehicles that overlap the one ahead of
+them in their lane and direction (entering before its rear axle has: ``_overlaps``).
 """
 from __future__ import annotations
 
@@ -35,7 +36,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional, Sequence
 
-from vbikit._files import read_text, write_text
+from vbikit._files import csv_rows, read_text, write_text
 from vbikit.errors import VbikitError
 
 log = logging.getLogger(__name__)
@@ -126,27 +127,8 @@ AXLE_LOAD_WARNING = 30e3 * 9.80665
 AXLE_LOAD_MAX = 1e6 * 9.80665
 #: a speed above this is warned of as implausible for a road vehicle [m/s] (200 km/h)
 SPEED_WARNING = 200 / 3.6
-
-
-def _lines(text: str, source: str) -> list[tuple[int, str]]:
-    """(line number, line) of the header and data rows (comments and blank lines skipped); a line
-    longer than ``MAX_LINE`` is refused."""
-    rows = []
-    for no, ln in enumerate(text.split("\n"), start=1):
-        if len(ln) > MAX_LINE:
-            raise RecordsError(f"{source}:{no}: a line of {len(ln):,} characters; a records line holds at most "
-                               f"{MAX_LINE:,} (at most {MAX_AXLES} axles a vehicle)")
-        ln = ln.rstrip("\r")
-        if ln.strip() and not ln.lstrip().startswith("#"):
-            rows.append((no, ln))
-    return rows
-
-
-def _cells(ln: str, source: str, no: int) -> list[str]:
-    try:
-        return next(csv.reader([ln]))
-    except csv.Error as err:
-        raise RecordsError(f"{source}:{no}: not a CSV line ({err})") from None
+#: the latest time of a record [s]: ten years (365.25-day years) from the stream's start
+MAX_TIME = 10 * 365.25 * 86400.0
 
 
 def parse_records(text: str, source: str = "records", max_records: int = MAX_RECORDS) -> list[VehicleRecord]:
@@ -154,7 +136,7 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
     column, never the text found there.  More than ``max_records`` records are refused before any
     is parsed; implausible values (axle loads above ``AXLE_LOAD_WARNING``, speeds above
     ``SPEED_WARNING``) are logged as warnings."""
-    rows = _lines(text, source)
+    rows = csv_rows(text, RecordsError, source, MAX_LINE, "records")
     if not rows:
         raise RecordsError(f"{source}: no header row (columns: {', '.join(UNITS)})")
     if len(rows) - 1 > max_records:
@@ -163,7 +145,7 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
                            "read_records(..., max_records=...))")
     head_no, head = rows[0]
     columns: dict[str, tuple[float, str, int]] = {}  # key -> (factor to SI, header text, column number)
-    for j, name in enumerate(_cells(head, source, head_no), start=1):
+    for j, name in enumerate(head, start=1):
         m = _HEADER.match(name)
         if not m or m.group(1) not in UNITS:
             raise RecordsError(f"{source}:{head_no}: column {j} of the header is not a known column; allowed: "
@@ -183,8 +165,7 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
         raise RecordsError(f"{source}:{head_no}: missing column(s) {', '.join(missing)}")
     out = []
     implausible: dict[str, list[int]] = {}
-    for no, ln in rows[1:]:
-        cells = _cells(ln, source, no)
+    for no, cells in rows[1:]:
         if len(cells) != len(columns):
             raise RecordsError(f"{source}:{no}: {len(cells)} cells, the header has {len(columns)}")
         record = _record(dict(zip(keys, cells)), columns, source, no)
@@ -194,6 +175,10 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
         if record.speed > SPEED_WARNING:
             implausible.setdefault(f"a speed above {SPEED_WARNING * 3.6:.0f} km/h", []).append(no)
         out.append(record)
+    overlaps = _overlaps(out)
+    if overlaps:
+        implausible[f"its front axle reaching the entry before the rear axle of the vehicle ahead in its lane and "
+                    f"direction ({len(overlaps)} overlapping pair(s): vehicles closer than their own length)"] = overlaps
     for what, lines in implausible.items():
         shown = ", ".join(map(str, lines[:5])) + (", …" if len(lines) > 5 else "")
         log.warning("%s: %d record(s) with %s (line %s); check the values and their units", source, len(lines), what,
@@ -229,6 +214,8 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
         return values
 
     time = number("time", 0.0)
+    if time > MAX_TIME:
+        raise fail("time", f"{time:.3g} s is beyond the {MAX_TIME:.4g} s (ten years) a records file may span")
     direction = cells["direction"].strip()
     if direction not in DIRECTIONS:
         raise fail("direction", "must be +x or -x")
@@ -279,6 +266,21 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
             raise RecordsError(f"{source}:{no}: a preset vehicle ({model}) takes no axle_loads / axle_spacings")
     return VehicleRecord(time, direction, speed, tuple(loads), tuple(spacings), lane, lateral,
                          cells.get("id", "").strip(), model, no)
+
+
+def _overlaps(records: Sequence[VehicleRecord]) -> list[int]:
+    """Line numbers of the records that enter before the vehicle ahead of them (same lane or lateral
+    offset, same direction) has entered whole: t − t_ahead < L_ahead / v_ahead (impossible traffic:
+    the two vehicles overlap, e.g. times written with too few digits or a record repeated)."""
+    last: dict[tuple, VehicleRecord] = {}
+    out = []
+    for r in sorted(records, key=lambda r: r.time):
+        key = (r.lane, r.lateral_offset, r.direction)
+        ahead = last.get(key)
+        if ahead is not None and r.time - ahead.time < sum(ahead.axle_spacings) / ahead.speed:
+            out.append(r.line)
+        last[key] = r
+    return sorted(out)
 
 
 def read_records(path: str | Path, max_records: int = MAX_RECORDS) -> list[VehicleRecord]:

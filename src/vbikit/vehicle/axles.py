@@ -79,6 +79,9 @@ MAX_AXLE_LOAD = 1e7
 #: largest static tire or suspension deflection [m]: refuses a slip of units (mm given as m) while
 #: leaving room for the very soft suspensions that isolate the axle-hop modes in studies
 MAX_DEFLECTION = 5.0
+#: largest static tire deflection [m]: 10 cm, beyond a flat truck tire (a loaded truck tire deflects 2–4 cm);
+#: 0.5 m (a unit slip) is refused
+MAX_TIRE_DEFLECTION = 0.1
 STEER_UNSPRUNG_MASS = 700.0
 UNSPRUNG_MASS = 1100.0
 BODY_HEIGHT = 2.5
@@ -236,7 +239,7 @@ def axle_truck(
         raise ValueError(f"axle_loads must be in (0, {MAX_AXLE_LOAD:g}] N, got {[float(x) for x in loads]}")
     if not (np.all(np.isfinite(spacings)) and np.all(spacings > 0) and np.all(spacings <= 30)):
         raise ValueError(f"axle_spacings must be in (0, 30] m, got {[float(x) for x in spacings]}")
-    for key, v, hi in (("half_track", half_track, MAX_HALF_TRACK), ("tire_deflection", tire_deflection, MAX_DEFLECTION),
+    for key, v, hi in (("half_track", half_track, MAX_HALF_TRACK), ("tire_deflection", tire_deflection, MAX_TIRE_DEFLECTION),
                        ("suspension_deflection", suspension_deflection, MAX_DEFLECTION)):
         if not (math.isfinite(v) and 0 < v <= hi):
             raise ValueError(f"{key} must be in (0, {hi:g}] m, got {v!r}")

@@ -29,8 +29,7 @@ checked): ``hslm_b`` takes N and d from the user.
 """
 from __future__ import annotations
 
-import csv
-import io
+import logging
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -41,6 +40,12 @@ from numpy.typing import NDArray
 
 from vbikit.errors import VbikitError
 from vbikit.vehicle.model import GRAVITY, Vehicle
+
+log = logging.getLogger(__name__)
+
+#: an axle load of a train table above this is warned of [kN]: 40 t, beyond the heaviest heavy-haul axles
+#: (about 35 t) and far above LM71's 250 kN (EN 1991-2 6.3.2)
+AXLE_LOAD_WARNING_KN = 400.0
 
 #: usual speeds of trains [km/h]: up to 1.2 × 350 km/h, the sweep limit of EN 1991-2 6.4.6 on the
 #: fastest lines (a speed outside is warned of, as for road vehicles)
@@ -323,30 +328,35 @@ def parse_train_table(text: str, name: str, where: str = "train table") -> Train
     """A train from CSV text: one axle a line, ``position [m], load [kN]`` (first axle at 0 or any
     origin — positions are shifted to start at 0); a header line, blank lines and ``#`` comments
     are skipped.  Errors name the line."""
+    from vbikit._files import csv_rows
+
     positions: list[float] = []
     loads: list[float] = []
-    for lineno, row in enumerate(csv.reader(io.StringIO(text)), start=1):
-        cells = [c.strip() for c in row]
-        if not cells or not any(cells) or cells[0].startswith("#"):
-            continue
+    for lineno, cells in csv_rows(text, TrainError, where):
         if len(cells) < 2:
-            raise TrainError(f"{where}, line {lineno}: expected 'position [m], load [kN]', got {','.join(cells)!r}")
+            raise TrainError(f"{where}, line {lineno}: expected two numbers 'position [m], load [kN]', got "
+                             f"{len(cells)} cell(s)")
         try:
             x, p = float(cells[0]), float(cells[1])
         except ValueError:
             if not positions and lineno == 1 or not positions and not any(ch.isdigit() for ch in cells[0]):
                 continue  # a header
-            raise TrainError(f"{where}, line {lineno}: not numbers: {cells[0]!r}, {cells[1]!r}") from None
+            raise TrainError(f"{where}, line {lineno}: position [m] and load [kN] must be numbers") from None
         if not (math.isfinite(x) and math.isfinite(p)):
             raise TrainError(f"{where}, line {lineno}: position and load must be finite")
         if not 0 < p <= 10000:
             raise TrainError(f"{where}, line {lineno}: load must be within 0 … 10000 kN, got {p:g}")
-        if positions and x < positions[-1]:
-            raise TrainError(f"{where}, line {lineno}: axle positions must not decrease ({x:g} m after {positions[-1]:g} m)")
+        if positions and x <= positions[-1]:
+            raise TrainError(f"{where}, line {lineno}: axle positions must increase ({x:g} m after {positions[-1]:g} m; "
+                             "two axles cannot stand at one position)")
         positions.append(x)
         loads.append(p * 1e3)
     if not positions:
         raise TrainError(f"{where}: no axles (expected lines 'position [m], load [kN]')")
+    heavy = [k + 1 for k, p in enumerate(loads) if p > AXLE_LOAD_WARNING_KN * 1e3]
+    if heavy:
+        log.warning("%s: %d axle(s) above %g kN (axle %d first), beyond any railway axle load; check the unit (kN)",
+                    where, len(heavy), AXLE_LOAD_WARNING_KN, heavy[0])
     a = np.array(positions) - positions[0]
     return Train(name, a, np.array(loads), None, where)
 
