@@ -280,15 +280,23 @@ MAX_CSV_LINE = 1 << 16
 
 
 def csv_rows(text: str, error: type[Exception], source: str, max_line: int = MAX_CSV_LINE,
-             what: str = "CSV") -> list[tuple[int, list[str]]]:
+             what: str = "CSV", max_rows: int | None = None,
+             too_many: Callable[[int], str] | None = None) -> list[tuple[int, list[str]]]:
     """(line number, cells stripped of blanks) of every line of the CSV ``text`` that is neither
     blank nor a ``#`` comment.  A line longer than ``max_line`` characters, or one the ``csv``
     module cannot read (an unclosed quote, …), raises ``error`` naming ``source`` and the line
-    number, never the line's content (``what``: the kind of file, for the message)."""
+    number, never the line's content (``what``: the kind of file, for the message).  With
+    ``max_rows``, more rows than that are refused (``error(too_many(rows))``) from a count of the
+    lines before any is parsed."""
     import csv
 
+    lines = text.split("\n")
+    if max_rows is not None:
+        n = sum(1 for line in lines if line.strip() and not line.lstrip().startswith("#"))
+        if n > max_rows:
+            raise error(too_many(n) if too_many else f"{source}: {n:,} rows, more than the {max_rows:,} allowed")
     out = []
-    for no, line in enumerate(text.split("\n"), start=1):
+    for no, line in enumerate(lines, start=1):
         if len(line) > max_line:
             raise error(f"{source}:{no}: a line of {len(line):,} characters; a {what} line holds at most {max_line:,}")
         line = line.rstrip("\r")

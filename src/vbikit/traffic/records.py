@@ -136,13 +136,13 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
     column, never the text found there.  More than ``max_records`` records are refused before any
     is parsed; implausible values (axle loads above ``AXLE_LOAD_WARNING``, speeds above
     ``SPEED_WARNING``) are logged as warnings."""
-    rows = csv_rows(text, RecordsError, source, MAX_LINE, "records")
+    def too_many(rows: int) -> str:  # the header is one of the rows
+        return (f"{source}: {rows - 1:,} vehicle records, more than the {max_records:,} allowed in one stream; split "
+                "the file, or raise the limit (vbikit traffic --max-vehicles, read_records(..., max_records=...))")
+
+    rows = csv_rows(text, RecordsError, source, MAX_LINE, "records", max_records + 1, too_many)
     if not rows:
         raise RecordsError(f"{source}: no header row (columns: {', '.join(UNITS)})")
-    if len(rows) - 1 > max_records:
-        raise RecordsError(f"{source}: {len(rows) - 1:,} vehicle records, more than the {max_records:,} allowed in one "
-                           "stream; split the file, or raise the limit (vbikit traffic --max-vehicles, "
-                           "read_records(..., max_records=...))")
     head_no, head = rows[0]
     columns: dict[str, tuple[float, str, int]] = {}  # key -> (factor to SI, header text, column number)
     for j, name in enumerate(head, start=1):
