@@ -27,7 +27,9 @@ from vbikit.driveby.identify import identify_frequency, mode_shape_squares, resi
 from vbikit.driveby.quality import vehicle_modes
 from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
+from vbikit.driveby.variability import draw, perturbed_vehicle, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
+from vbikit.vehicle.model import GRAVITY
 
 log = logging.getLogger(__name__)
 
@@ -64,6 +66,18 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "sensors_agree": ("1", "of those, the sensors within the resolution 1/T of this identification (one that is not "
                            "makes it unreliable)"),
     "band_low_hz": ("Hz", "lower end of the search band"),
+    "on_bridge_start_sample": ("1", "segmentation: first sample of sensor_history with the front wheel on the deck"),
+    "on_bridge_end_sample": ("1", "segmentation: last sample of sensor_history with the front wheel on the deck "
+                                  "(before: approach, after: off the bridge)"),
+    "bridge_frequency_2_hz": ("Hz", "true second natural frequency of the bridge, modal model (NaN: one mode)"),
+    "temperature_c": ("degC", "deck temperature drawn for the pass (NaN: not varied)"),
+    "stiffness_factor": ("1", "E(T) / E(T_ref) applied to EI (variability.temperature_coefficient)"),
+    "support_stiffness": ("N m-1", "vertical stiffness of every support spring (NaN: the file's supports)"),
+    "vehicle_mass_kg": ("kg", "vehicle mass carried by the wheels (static wheel loads / g) of the drawn vehicle"),
+    "coupling_error_rms": ("1", "decoupled run: relative RMS difference of the identification sensor's noise-free "
+                                "record against a coupled run of the same pass (NaN: not checked, coupling_check_every)"),
+    "coupling_frequency_difference_hz": ("Hz", "decoupled run: identified frequency minus that of the coupled run of "
+                                                "the same pass, same noise (NaN: not checked)"),
     "band_high_hz": ("Hz", "upper end of the search band"),
 }
 #: per-case text outputs: name -> long name
@@ -75,9 +89,38 @@ CASE_TEXT: dict[str, str] = {
 }
 
 
+def case_draw(spec: DriveBy, case: dict) -> dict[str, Any]:
+    """The random parameters of a case of a file with [variability] (``variability.draw``, keyed by
+    the case's index), {} otherwise."""
+    if "index" not in case:
+        return {}
+    base = _vehicle(spec, {})
+    return draw(spec.variability, spec.seed, case["index"], base.n_dof, len(base.wheels))
+
+
+def _vary_bridge(spec: DriveBy, case: dict, bridge: dict, drawn: dict) -> dict:
+    var = spec.variability
+    bridge = dict(bridge)
+    if "temperature" in drawn:
+        f = temperature_factor(var, drawn["temperature"])
+        ei = bridge.get("EI")
+        if ei is None:
+            raise DriveByError("variability.temperature: needs the bridge's EI (bridge.EI) to scale")
+        bridge["EI"] = [f * e for e in ei] if isinstance(ei, list) else f * ei
+    if var.support_stiffness is not None:
+        factor = var.scour_classes[case["scour_class"]] if "scour_class" in case else 1.0
+        bridge["support_stiffness"] = var.support_stiffness * factor
+    return bridge
+
+
 def _case_scenario(spec: DriveBy, case: dict) -> dict:
     """The scenario dict of one case (a stand-in vehicle when the vehicle is not a scenario preset)."""
     data = copy.deepcopy(spec.scenario)
+    drawn = case_draw(spec, case)
+    if "speed" in drawn:
+        case = {**case, "speed": drawn["speed"]}
+    if spec.variability.active:
+        data["bridge"] = _vary_bridge(spec, case, data["bridge"], drawn)
     from vbikit.vehicle.presets import VEHICLE_PRESETS
 
     model = spec.vehicle["model"]
@@ -100,7 +143,10 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
     return data
 
 
-def _vehicle(spec: DriveBy):
+def _vehicle(spec: DriveBy, case: dict):
+    """The case's vehicle: the file's, its parameters scaled by the case's drawn factors."""
+    if "index" in case and spec.variability.vehicle_spread > 0:
+        return perturbed_vehicle(_vehicle(spec, {}), case_draw(spec, case)["vehicle_factors"])
     model = spec.vehicle["model"]
     params = {k: v for k, v in spec.vehicle.items() if k != "model"}
     if model not in DRIVEBY_VEHICLES:
@@ -126,7 +172,8 @@ def case_crossing(spec: DriveBy, case: dict):
     from vbikit.solve.timestep import choose_time_step
 
     data = _case_scenario(spec, case)
-    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap], sort_keys=True)
+    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap,
+                      case.get("index") if spec.variability.vehicle_spread > 0 else None], sort_keys=True)
     if key in _BUILT:
         return _BUILT[key]
     try:
@@ -134,7 +181,7 @@ def case_crossing(spec: DriveBy, case: dict):
     except ScenarioError as err:
         raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
     c = built.crossing
-    vehicle = _vehicle(spec)
+    vehicle = _vehicle(spec, case)
     kwargs = dict(tire=c.tire, road=c.road, road_right=c.road_right, speed=c.speed, acceleration=c.acceleration,
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
@@ -213,7 +260,12 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
 
     case = spec.cases[index] if spec.cases else {}
     crossing = case_crossing(spec, case)
-    result = simulate(crossing)
+    if spec.coupling == "decoupled":
+        from vbikit.driveby.decoupled import simulate_decoupled
+
+        result = simulate_decoupled(crossing)
+    else:
+        result = simulate(crossing)
     sensors = case_sensors(spec, case)
     k = [s.name for s in sensors].index(spec.sensor)
     logged = sensors
@@ -221,17 +273,13 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         import dataclasses
 
         logged = (*sensors, dataclasses.replace(sensors[k], name=f"{sensors[k].name}_follower", vehicle=2))
-    m = measure(result, logged, spec.sampling, seed=derive_seed(spec.seed, index))
-    on = on_bridge(result, 0)
-    t_on = result.time[on]
-    window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
     vehicle = crossing.vehicles[0].vehicle
     speed = float(crossing.vehicles[0].speed)
     bridge = crossing.bridge
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
     f_v, zeta_v = vehicle_modes(vehicle)
 
-    def record(j: int) -> NDArray:
+    def record(m, j: int) -> NDArray:
         signal = m.values[j]
         if spec.method in ("contact", "residual"):
             signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
@@ -245,21 +293,52 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
                                   bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
                                   vehicle_zeta=zeta_v)
 
-    signal = record(k)
-    if spec.method == "residual":
-        window &= np.isfinite(signal)
-    ident = identify(signal, window)
+    def observe(res):
+        m = measure(res, logged, spec.sampling, seed=derive_seed(spec.seed, index))
+        t_on = res.time[on_bridge(res, 0)]
+        window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
+        signal = record(m, k)
+        if spec.method == "residual":
+            window &= np.isfinite(signal)
+        return m, t_on, window, signal, identify(signal, window)
+
+    m, t_on, window, signal, ident = observe(result)
+    check = {"coupling_error_rms": math.nan, "coupling_frequency_difference_hz": math.nan}
+    if spec.coupling == "decoupled" and spec.coupling_check_every and index % spec.coupling_check_every == 0:
+        import dataclasses
+
+        from vbikit.driveby.decoupled import relative_rms_error
+
+        ref = simulate(crossing)
+        clean = tuple(dataclasses.replace(s, noise_rms=0.0, noise_snr_db=None) for s in logged)
+        pair = [measure(r, clean, spec.sampling, seed=0).values[k] for r in (result, ref)]
+        check = {"coupling_error_rms": relative_rms_error(*pair),
+                 "coupling_frequency_difference_hz": ident.frequency_hz - observe(ref)[-1].frequency_hz}
+    drawn = case_draw(spec, case)
+    temperature = drawn.get("temperature", math.nan)
+    var = spec.variability
+    support = math.nan
+    if var.support_stiffness is not None:
+        support = var.support_stiffness * (var.scour_classes[case["scour_class"]] if "scour_class" in case else 1.0)
+    on_samples = np.flatnonzero(window)
+    labels = {
+        "on_bridge_start_sample": float(on_samples[0]), "on_bridge_end_sample": float(on_samples[-1]),
+        "bridge_frequency_2_hz": float(bridge.frequencies_hz[1]) if bridge.frequencies_hz.size > 1 else math.nan,
+        "temperature_c": temperature,
+        "stiffness_factor": temperature_factor(var, temperature) if math.isfinite(temperature) else 1.0,
+        "support_stiffness": support, "vehicle_mass_kg": float(vehicle.total_weight / GRAVITY), **check,
+    }
     q = ident.quality
     others = [j for j, s in enumerate(sensors) if j != k and s.quantity == "acceleration" and s.vehicle == sensors[k].vehicle
               and spec.method != "residual"]  # residual: the follower carries only the chosen sensor
-    agreement = sensor_agreement(ident, {sensors[j].name: identify(record(j), window) for j in others})
+    agreement = sensor_agreement(ident, {sensors[j].name: identify(record(m, j), window) for j in others})
     shape = np.full(SHAPE_POINTS, np.nan)
     if spec.method == "contact":  # φ² along x = v (t − t_entry): Hilbert envelope of the band-passed contact response
         half = min(2.0 * speed / bridge.span, 0.5 * ident.frequency_hz)
         env = mode_shape_squares(signal[window], spec.sampling.rate, ident.frequency_hz, half)
         x = speed * (m.time[window] - t_on[0])
         shape = np.interp(np.linspace(0.0, bridge.span, SHAPE_POINTS), x, env)
-    return {
+    return labels | {
         "mode_shape_squared": shape,
         "identified_frequency_hz": ident.frequency_hz,
         "bridge_frequency_hz": float(bridge.frequencies_hz[0]),
@@ -345,7 +424,9 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
     base_cross = spec.scenario.get("crossing", {})
     base_speed = base_cross.get("speed", base_cross.get("speed_kmh", 28.8) / 3.6)
     return {
-        "speed": np.array([c.get("speed", base_speed) for c in cases], float),
+        "speed": np.array([case_draw(spec, c).get("speed", c.get("speed", base_speed)) for c in cases], float),
+        "scour_class": np.array([c.get("scour_class", -1) for c in cases], np.int64),
+        "pass_index": np.array([c.get("pass", 0) for c in cases], np.int64),
         "road_class": np.array([c.get("road_class", base_road.get("class", "none")) for c in cases], dtype=object),
         "road_seed": np.array([c.get("road_seed", base_road.get("seed", 0)) for c in cases], np.int64),
         "damage_position": np.array([c.get("damage_position", np.nan) if c.get("damage_severity", 0) > 0 else np.nan
@@ -356,7 +437,10 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
 
 
 LABEL_ATTRS = {
-    "speed": ("m s-1", "vehicle speed"),
+    "speed": ("m s-1", "vehicle speed (drawn per pass with variability.speed)"),
+    "scour_class": ("1", "support stiffness class k: support springs = variability.support_stiffness × "
+                         "variability.scour_classes[k] (−1: none)"),
+    "pass_index": ("1", "pass number within its combination of the sweep and scour class (its draw: the case index)"),
     "road_class": ("", "road roughness class (ISO 8608; none = smooth)"),
     "road_seed": ("1", "seed of the random road"),
     "damage_position": ("m", "start of the damaged region from the bridge entry (NaN: healthy)"),
@@ -374,9 +458,11 @@ def healthy_reference(labels: dict[str, NDArray]) -> NDArray[np.int64]:
 
 
 def bridge_states(labels: dict[str, NDArray]) -> NDArray[np.int64]:
-    """For every case the index of its bridge (one per damage position and severity; every
-    healthy case the same bridge): the passes over one bridge form its multi-pass estimate."""
-    keys = [(0.0, 0.0) if s == 0 else (float(p), float(s)) for p, s in zip(labels["damage_position"], labels["damage_severity"])]
+    """For every case the index of its bridge (one per damage position, severity and scour class;
+    every healthy case of a class the same bridge): the passes over one bridge form its multi-pass
+    estimate (temperature, when drawn, varies within one bridge)."""
+    keys = [((0.0, 0.0) if s == 0 else (float(p), float(s)), int(c))
+            for p, s, c in zip(labels["damage_position"], labels["damage_severity"], labels["scour_class"])]
     first: dict = {}
     return np.array([first.setdefault(k, len(first)) for k in keys], np.int64)
 
