@@ -136,6 +136,10 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
         road["class"] = case["road_class"]
     if "road_seed" in case:
         road["seed"] = case["road_seed"]
+    elif "index" in case:  # a random pass of [variability]: its own road, seeded by (file seed, case index)
+        from vbikit.study.spec import derive_seed
+
+        road["seed"] = derive_seed(spec.seed, case["index"])
     if case.get("damage_severity", 0.0) > 0.0:
         data["bridge"] = dict(data["bridge"])
         data["bridge"]["damage"] = [*data["bridge"].get("damage", []), {
@@ -147,6 +151,16 @@ def _vehicle(spec: DriveBy, case: dict):
     """The case's vehicle: the file's, its parameters scaled by the case's drawn factors."""
     if "index" in case and spec.variability.vehicle_spread > 0:
         return perturbed_vehicle(_vehicle(spec, {}), case_draw(spec, case)["vehicle_factors"])
+    key = json.dumps(spec.vehicle, sort_keys=True, default=str)
+    if key not in _VEHICLES:
+        _VEHICLES[key] = _build_vehicle(spec)
+    return _VEHICLES[key]
+
+
+_VEHICLES: dict[str, Any] = {}
+
+
+def _build_vehicle(spec: DriveBy):
     model = spec.vehicle["model"]
     params = {k: v for k, v in spec.vehicle.items() if k != "model"}
     if model not in DRIVEBY_VEHICLES:
@@ -161,12 +175,41 @@ def _vehicle(spec: DriveBy, case: dict):
 
 
 _BUILT: dict[str, Any] = {}
+#: bridges built for a case, by their scenario table: the passes of a dataset share a few bridges
+_BRIDGES: dict[str, Any] = {}
+
+
+def _scenario_crossing(data: dict, base_dir: str):
+    """The scenario's crossing; its bridge taken from ``_BRIDGES`` when an earlier case had the
+    same [bridge] table (a random pass changes the road, the speed and the vehicle, rarely the
+    bridge: its eigen-solution is computed once)."""
+    from vbikit.scenario import build, parse_scenario
+    from vbikit.scenario.build import build_right_road, build_road, check_road_budget
+
+    scenario = parse_scenario(data, base_dir)
+    key = json.dumps([data["bridge"], str(base_dir)], sort_keys=True)
+    if key not in _BRIDGES:
+        if len(_BRIDGES) > 16:
+            _BRIDGES.clear()
+        crossing = build(scenario).crossing
+        _BRIDGES[key] = crossing.bridge
+        return crossing
+    check_road_budget(scenario.road, None)
+    road = build_road(scenario.road, scenario)
+    c = scenario.crossing
+    import types
+
+    from vbikit.scenario.build import build_tire
+
+    return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), road=road,
+                                 road_right=build_right_road(scenario.road, scenario, road), speed=c.speed_ms,
+                                 acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
+                                 dt=c.dt, integrator=c.integrator, loss_of_contact=scenario.tire.loss_of_contact)
 
 
 def case_crossing(spec: DriveBy, case: dict):
     """The crossing of one case: the scenario's bridge, tire, road and options with the vehicle,
     the step a divisor of the sensor period (so that resampling is exact decimation)."""
-    from vbikit.scenario import build, parse_scenario
     from vbikit.scenario.schema import ScenarioError
     from vbikit.solve import Crossing
     from vbikit.solve.timestep import choose_time_step
@@ -177,10 +220,9 @@ def case_crossing(spec: DriveBy, case: dict):
     if key in _BUILT:
         return _BUILT[key]
     try:
-        built = build(parse_scenario(data, spec.base_dir))
+        c = _scenario_crossing(data, spec.base_dir)
     except ScenarioError as err:
         raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
-    c = built.crossing
     vehicle = _vehicle(spec, case)
     kwargs = dict(tire=c.tire, road=c.road, road_right=c.road_right, speed=c.speed, acceleration=c.acceleration,
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,

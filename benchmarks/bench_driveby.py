@@ -1,0 +1,99 @@
+"""Drive-by datasets at scale: the wall time of the published scour set (examples/driveby/scour_1800.toml)
+coupled and decoupled, and the decoupled mode's error against the coupled one over mass ratio,
+span, speed and roughness.
+
+    python benchmarks/bench_driveby.py --passes 20 --workers 2   # 3 classes × 20 passes, × 600/20 extrapolated
+    python benchmarks/bench_driveby.py --passes 600 --workers 2  # the whole set (1800 passes)
+
+1. timing: the example file with ``variability.passes`` = ``--passes`` (per class), coupled and decoupled
+   (``coupling_check_every`` = 0: no coupled checks), run by ``run_driveby`` on ``--workers``
+   processes after a one-pass warm-up (numba compilation); the time × 600 / passes is the whole
+   set's, extrapolated (printed as such unless --passes 600);
+2. error map: one pass of the test cart (f_v = 3.2 Hz) or of the example's 5-axle truck over a simply supported
+   beam (first 4 modes, 2 % damping, f_1 ≈ 5.6 Hz scaled with the span), coupled and decoupled:
+   relative RMS difference of the vehicle's body acceleration and the difference of its
+   identified-frequency peak; grid: mass ratio (vehicle / bridge mass) × span × speed × road class.
+
+Writes nothing but temporary datasets (deleted).
+"""
+from __future__ import annotations
+
+import argparse
+import copy
+import math
+import tempfile
+import time
+import tomllib
+from pathlib import Path
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "driveby" / "scour_1800.toml"
+
+
+def timing(passes: int, workers: int) -> dict[str, float]:
+    from vbikit.driveby.spec import parse_driveby
+    from vbikit.driveby.study import run_driveby
+
+    base = tomllib.loads(EXAMPLE.read_text())
+    times = {}
+    for coupling in ("coupled", "decoupled"):
+        for n, key in ((1, "warm-up"), (passes, coupling)):
+            data = copy.deepcopy(base)
+            data["variability"]["passes"] = n
+            data["coupling"], data["coupling_check_every"] = coupling, 0
+            with tempfile.TemporaryDirectory() as out:
+                t0 = time.perf_counter()
+                run_driveby(parse_driveby(data, EXAMPLE.parent), out, workers=workers, figures=False)
+                if key != "warm-up":
+                    times[key] = time.perf_counter() - t0
+    return times
+
+
+def error_map() -> list[tuple]:
+    from vbikit.bridge.beam import EulerBernoulliBeam
+    from vbikit.driveby.decoupled import relative_rms_error, simulate_decoupled
+    from vbikit.driveby.vehicles import sensor_cart
+    from vbikit.road.psd import RoadPSD, random_profile
+    from vbikit.solve import Crossing, simulate
+
+    rows = []
+    for span in (15.0, 25.0, 40.0):
+        mbar = 4800.0
+        ei = mbar * (2 * math.pi * 5.62) ** 2 * (span / math.pi) ** 4  # f_1 = 5.62 Hz at every span
+        bridge = EulerBernoulliBeam(span=span, EI=ei, mass_per_length=mbar, damping_ratio=0.02, n_modes=4)
+        for ratio in (1e-3, 1e-2, 5e-2):
+            cart = sensor_cart(mass=ratio * mbar * span)
+            for speed in (5.0, 10.0, 20.0):
+                for road_class in ("none", "A", "C"):
+                    road = None if road_class == "none" else random_profile(RoadPSD.iso(road_class), seed=1,
+                                                                            length=span + 20.0, x_start=-10.0)
+                    c = Crossing(bridge, cart, speed=speed, approach=2.0, road=road)
+                    a = simulate(c).q_ddot[:, 0]
+                    b = simulate_decoupled(c).q_ddot[:, 0]
+                    rows.append((span, ratio, speed, road_class, relative_rms_error(b, a)))
+    return rows
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--passes", type=int, default=20)
+    p.add_argument("--workers", type=int, default=2)
+    p.add_argument("--no-map", action="store_true")
+    args = p.parse_args()
+    t = timing(args.passes, args.workers)
+    scale = 600 / args.passes
+    word = "measured" if args.passes == 600 else f"extrapolated × {scale:g} from {3 * args.passes} passes"
+    for k, v in t.items():
+        print(f"{k:10s} {3 * args.passes} passes: {v:.2f} s; 1800 passes: {v * scale:.1f} s ({word}), {workers_note(args.workers)}")
+    print(f"speed ratio coupled / decoupled: {t['coupled'] / t['decoupled']:.2f}")
+    if not args.no_map:
+        print("span_m  mass_ratio  speed_m_s  road  decoupled_rel_rms_error")
+        for span, ratio, speed, road, err in error_map():
+            print(f"{span:6.1f}  {ratio:10.0e}  {speed:9.1f}  {road:4s}  {err:.3e}")
+
+
+def workers_note(workers: int) -> str:
+    return f"{workers} workers"
+
+
+if __name__ == "__main__":
+    main()
