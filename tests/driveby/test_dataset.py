@@ -117,3 +117,51 @@ def test_scour_classes_change_the_first_frequency_as_a_beam_on_springs():
     for g, e in zip(got, expected):
         assert abs(g / e - 1) < 2e-3, (got, expected)
     assert got[0] > got[1] > got[2]
+
+
+def test_dataset_labels_recomputed_independently(tmp_path):
+    """A small decoupled dataset (test cart, 2 scour classes × 2 passes, drawn speed, temperature and
+    cart): every label recomputed here from (seed, index) and a beam-on-springs FE model."""
+    import xarray as xr
+
+    from vbikit.driveby.spec import parse_driveby
+    from vbikit.driveby.study import run_driveby
+
+    span, ei, mbar, k0, seed, rate = 25.0, 2.4e10, 4800.0, 5e8, 3, 200.0
+    spec = parse_driveby({
+        "seed": seed, "coupling": "decoupled", "coupling_check_every": 2,
+        "bridge": {"model": "continuous-beam", "spans": [span], "EI": ei, "mass_per_length": mbar, "n_modes": 3},
+        "crossing": {"approach": 5.0}, "sampling": {"rate": rate},
+        "sensors": [{"name": "acc", "body": "body"}], "identification": {"band": [1.0, 20.0]},
+        "variability": {"passes": 2, "speed": [7.0, 9.0], "vehicle_spread": 0.1, "support_stiffness": k0,
+                        "scour_classes": [1.0, 0.9], "temperature": [0.0, 30.0]}})
+    run_driveby(spec, tmp_path, workers=1, figures=False)
+    ds = xr.open_dataset(tmp_path / "driveby.nc", chunks={"case": 4})
+    assert ds["sensor_history"].encoding["chunksizes"][0] == 4  # chunked on disk
+    assert ds.sizes["case"] == 4
+    for i in range(4):
+        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i,)))
+        speed, temperature = rng.uniform(7.0, 9.0), rng.uniform(0.0, 30.0)
+        mass_factor = rng.uniform(0.9, 1.1)
+        assert float(ds.speed[i]) == pytest.approx(speed, rel=1e-12)
+        assert float(ds.temperature_c[i]) == pytest.approx(temperature, rel=1e-12)
+        assert float(ds.vehicle_mass_kg[i]) == pytest.approx(120.0 * mass_factor, rel=1e-9)
+        factor = (1.0, 0.9)[i // 2]
+        assert int(ds.scour_class[i]) == i // 2 and int(ds.pass_index[i]) == i % 2
+        assert float(ds.support_stiffness[i]) == pytest.approx(k0 * factor)
+        stiffness = 1 - 0.003 * (temperature - 20.0)  # E(T) of the module docstring, α_E = 0.003 /°C
+        expected = beam_on_springs_frequency(span, ei * stiffness, mbar, k0 * factor)
+        assert float(ds.bridge_frequency_hz[i]) == pytest.approx(expected, rel=2e-3)
+        # segmentation: the record starts with the front wheel 5 m before the deck (t = 0), which it
+        # enters at t = 5 / v and leaves at (5 + L) / v
+        t0 = float(ds.time_start[i])
+        assert t0 == 0.0
+        assert int(ds.on_bridge_start_sample[i]) == math.ceil(5.0 / speed * rate)
+        assert int(ds.on_bridge_end_sample[i]) == math.floor((5.0 + span) / speed * rate)
+        assert int(ds.off_bridge_sample[i]) == math.floor((5.0 + span) / speed * rate) + 1  # one-axle cart
+        checked = i % 2 == 0
+        assert np.isfinite(float(ds.coupling_error_rms[i])) == checked
+        if checked:  # a 120 kg cart on a 120 t span (mass ratio 1e-3): about 1.5 % (test above)
+            assert 1e-3 < float(ds.coupling_error_rms[i]) < 5e-2
+        u = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i, 1))).random()
+        assert int(ds.split[i]) == (0 if u < 0.7 else 1 if u < 0.85 else 2)

@@ -37,22 +37,30 @@ from numpy.typing import NDArray
 from vbikit.errors import VbikitError
 
 
+def _step(crossing) -> float:
+    """The crossing's step, or the one ``simulate`` would choose (``choose_time_step``)."""
+    from vbikit.solve.timestep import choose_time_step
+
+    return float(crossing.dt) if crossing.dt is not None else float(choose_time_step(crossing))
+
+
 def _time_grid(crossing) -> NDArray[np.float64]:
-    n = int(round(crossing.duration / crossing.dt))
-    return crossing.start_time + crossing.dt * np.arange(n + 1)
+    dt = _step(crossing)
+    n = max(1, math.ceil(crossing.duration / dt - 1e-9))  # the engine's grid (vbikit.solve.plan.time_grid)
+    return crossing.start_time + dt * np.arange(n + 1)
 
 
 def bridge_under_forces(crossing, time: NDArray[np.float64]) -> tuple[NDArray, NDArray, NDArray]:
     """Modal coordinates ξ, ξ̇, ξ̈ (n_t, n_modes) of the bridge under the vehicle's static wheel
-    loads moving at its speed (step 1 of the module docstring), at ``time`` (a uniform grid of step
-    ``crossing.dt``; t = 0: the front axle on the entry support)."""
+    loads moving at its speed (step 1 of the module docstring), at ``time`` (a uniform grid; t = 0:
+    the front axle on the entry support)."""
     from vbikit.solve.moving_loads import moving_load_history
 
     if crossing.n_vehicles != 1 or crossing.vehicles[0].acceleration != 0 or crossing.vehicles[0].sign < 0:
         raise VbikitError("coupling = \"decoupled\": one vehicle at constant speed driving +x (identification.method "
                           "\"residual\", an acceleration and other directions need coupling = \"coupled\")")
     motion = crossing.vehicles[0]
-    vehicle, speed, dt = motion.vehicle, float(motion.speed), float(crossing.dt)
+    vehicle, speed, dt = motion.vehicle, float(motion.speed), float(time[1] - time[0])
     loads = vehicle.static_wheel_loads()
     offsets = np.array([w.offset for w in vehicle.wheels])
     lateral = np.array([motion.lateral_offset + w.lateral for w in vehicle.wheels])
@@ -169,7 +177,7 @@ def simulate_decoupled(crossing):
     front = crossing.front_positions(time)
     speed = crossing.travel_speed(time)
     fields = {f.name for f in dataclasses.fields(CrossingResult)}
-    kwargs = dict(crossing=crossing, time=time, dt=float(crossing.dt), front_position=front, speed=speed, xi=xi,
+    kwargs = dict(crossing=crossing, time=time, dt=float(time[1] - time[0]), front_position=front, speed=speed, xi=xi,
                   xi_dot=xi_dot, xi_ddot=xi_ddot, q=q, q_dot=q_dot, q_ddot=q_ddot, wheel_forces=forces,
                   contact_lengths=np.zeros_like(forces))
     return CrossingResult(**{k: v for k, v in kwargs.items() if k in fields})

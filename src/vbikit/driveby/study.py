@@ -27,12 +27,14 @@ from vbikit.driveby.identify import identify_frequency, mode_shape_squares, resi
 from vbikit.driveby.quality import vehicle_modes
 from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
-from vbikit.driveby.variability import draw, perturbed_vehicle, temperature_factor
+from vbikit.driveby.variability import SPLIT_NAMES, draw, perturbed_vehicle, split_of, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
 from vbikit.vehicle.model import GRAVITY
 
 log = logging.getLogger(__name__)
 
+#: cases per chunk of the sensor records in driveby.nc
+HISTORY_CHUNK_CASES = 64
 #: points of the mode-shape estimate along the deck (x = 0 … span)
 SHAPE_POINTS = 41
 
@@ -69,6 +71,7 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "on_bridge_start_sample": ("1", "segmentation: first sample of sensor_history with the front wheel on the deck"),
     "on_bridge_end_sample": ("1", "segmentation: last sample of sensor_history with the front wheel on the deck "
                                   "(before: approach, after: off the bridge)"),
+    "off_bridge_sample": ("1", "segmentation: first sample with every wheel off the deck (NaN: not within the record)"),
     "bridge_frequency_2_hz": ("Hz", "true second natural frequency of the bridge, modal model (NaN: one mode)"),
     "temperature_c": ("degC", "deck temperature drawn for the pass (NaN: not varied)"),
     "stiffness_factor": ("1", "E(T) / E(T_ref) applied to EI (variability.temperature_coefficient)"),
@@ -362,9 +365,13 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     support = math.nan
     if var.support_stiffness is not None:
         support = var.support_stiffness * (var.scour_classes[case["scour_class"]] if "scour_class" in case else 1.0)
-    on_samples = np.flatnonzero(window)
+    front = crossing.front_positions(m.time)[:, 0]  # segmentation from the kinematics at the sample times
+    lo, hi = bridge.deck_extent
+    on_samples = np.flatnonzero((front >= lo) & (front <= hi))
+    off = np.flatnonzero(front - vehicle.length > hi)
     labels = {
         "on_bridge_start_sample": float(on_samples[0]), "on_bridge_end_sample": float(on_samples[-1]),
+        "off_bridge_sample": float(off[0]) if off.size else math.nan,
         "bridge_frequency_2_hz": float(bridge.frequencies_hz[1]) if bridge.frequencies_hz.size > 1 else math.nan,
         "temperature_c": temperature,
         "stiffness_factor": temperature_factor(var, temperature) if math.isfinite(temperature) else 1.0,
@@ -646,6 +653,10 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
         variables[k] = ("case", values[k], {"units": units, "long_name": long_name})
     variables["sensor_history"] = (("case", "sensor", "sample"), hist, {
         "units": "see sensor_units", "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
+    variables["split"] = ("case", np.array([split_of(spec.seed, i) for i in range(n_cases)], np.int8), {
+        "long_name": "documented train / validation / test split by the file's seed (vbikit.driveby.variability."
+                     "split_of: 70 / 15 / 15 %, fixed per case index)",
+        "flag_values": np.array([0, 1, 2], np.int8), "flag_meanings": " ".join(SPLIT_NAMES)})
     variables["noise_std"] = (("case", "sensor"), out["noise_std"][order], {
         "units": "see sensor_units", "long_name": "standard deviation of the noise added to each sensor's record"})
     variables["time_start"] = ("case", out["time0"][order], {"units": "s", "long_name": "time of the first sample"})
@@ -660,7 +671,11 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
              "sampling_rate": spec.sampling.rate, "sampling_filter": f"Butterworth order {spec.sampling.filter_order}, "
              f"cut-off {spec.sampling.cutoff_hz:g} Hz, zero phase (forward-backward), applied before resampling",
              "identification_method": spec.method, "identification_sensor": spec.sensor, "Conventions": "CF-1.8"}
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    ds = xr.Dataset(variables, coords=coords, attrs=attrs)
+    # chunked and compressed on disk: xarray.open_dataset(..., chunks={"case": n}) streams the records with Dask
+    ds["sensor_history"].encoding.update(
+        chunksizes=(min(n_cases, HISTORY_CHUNK_CASES), len(spec.sensors), max(n_samples, 1)), zlib=True, complevel=1)
+    return ds
 
 
 def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = 1,

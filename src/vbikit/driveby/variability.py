@@ -145,6 +145,20 @@ def pass_rng(seed: int, index: int) -> np.random.Generator:
     return np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(int(index),)))
 
 
+#: train / validation / test shares of the documented split (``split_of``)
+SPLIT_SHARES = (0.70, 0.15, 0.15)
+#: names of the split's parts, in code order 0, 1, 2
+SPLIT_NAMES = ("train", "validation", "test")
+
+
+def split_of(seed: int, index: int) -> int:
+    """The part of the documented split case ``index`` belongs to: 0 train, 1 validation, 2 test
+    (shares ``SPLIT_SHARES``), from u ~ U(0, 1) of ``SeedSequence(seed, spawn_key=(index, 1))`` — a
+    stream of its own, independent of the pass's draw, fixed by (seed, index) like it."""
+    u = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(int(index), 1))).random()
+    return 0 if u < SPLIT_SHARES[0] else 1 if u < SPLIT_SHARES[0] + SPLIT_SHARES[1] else 2
+
+
 def temperature_factor(var: Variability, temperature: float) -> float:
     """E(T) / E(T_ref) = 1 − α_E (T − T_ref) (module docstring)."""
     return 1.0 - var.temperature_coefficient * (temperature - var.temperature_reference)
