@@ -78,6 +78,16 @@ def test_bad_coupling_names_the_key():
         parse_coupling({"coupling_check_every": -1})
 
 
+def test_decoupled_residual_refused_before_running():
+    from vbikit.driveby.spec import DriveByError, parse_driveby
+    from vbikit.driveby.study import check_cases
+
+    spec = parse_driveby({"coupling": "decoupled", "bridge": {"model": "beam", "span": 25.0, "EI": EI, "mass_per_length": MASS},
+                          "sensors": [{"name": "acc", "body": "body"}], "identification": {"method": "residual"}})
+    with pytest.raises(DriveByError, match="coupling"):
+        check_cases(spec)
+
+
 def beam_on_springs_frequency(span, ei, mbar, k_support, n_el=40):
     """First natural frequency [Hz] of a beam pinned on two vertical springs k [N/m]: Hermite
     (cubic) beam elements with consistent mass, the springs added to the end deflection DOFs,
@@ -165,3 +175,15 @@ def test_dataset_labels_recomputed_independently(tmp_path):
             assert 1e-3 < float(ds.coupling_error_rms[i]) < 5e-2
         u = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(i, 1))).random()
         assert int(ds.split[i]) == (0 if u < 0.7 else 1 if u < 0.85 else 2)
+
+
+def test_scour_example_is_the_published_set():
+    from pathlib import Path
+
+    from vbikit.driveby.spec import load_driveby
+
+    spec = load_driveby(Path(__file__).resolve().parents[2] / "examples" / "driveby" / "scour_1800.toml")
+    assert len(spec.cases) == 1800 and spec.variability.scour_classes == (1.0, 0.95, 0.9)
+    assert spec.scenario["bridge"]["EI"] == pytest.approx(3.5e10 * 1.3901, rel=1e-5)
+    assert sum(spec.vehicle["axle_loads"]) == pytest.approx(35e3 * 9.81)
+    assert spec.sampling.rate == 1000.0 and spec.variability.speed == (19.0, 21.0)

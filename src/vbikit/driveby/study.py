@@ -263,6 +263,9 @@ def case_sensors(spec: DriveBy, case: dict) -> tuple[Sensor, ...]:
 def check_cases(spec: DriveBy) -> float:
     """Validate every case (scenario, vehicle, sensors) and the budget before anything runs;
     returns the estimated integration steps of the sweep."""
+    if spec.coupling == "decoupled" and spec.method == "residual":
+        raise DriveByError("coupling: \"decoupled\" runs one vehicle; identification.method = \"residual\" (a "
+                           "following vehicle) needs coupling = \"coupled\"")
     total = 0.0
     for i, case in enumerate(spec.cases or [{}]):
         crossing = case_crossing(spec, case)
