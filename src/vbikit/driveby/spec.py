@@ -49,13 +49,14 @@ from typing import Any, Optional
 
 from vbikit._validation import MAX_STEPS_LIMIT, number
 from vbikit.driveby.sensors import MAX_NOISE_RMS, Sampling, Sensor, SensorError
+from vbikit.driveby.variability import COUPLING_CHECK_EVERY, Variability, expand_cases, parse_coupling, parse_variability
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES
 from vbikit.errors import VbikitError
 from vbikit.scenario.schema import MAX_SPEED, MIN_SPEED
 
 #: top-level keys of a drive-by file
 TOP_KEYS = ("name", "seed", "batch_size", "max_steps", "bridge", "tire", "road", "crossing", "vehicle", "sampling",
-            "sensors", "identification", "sweep")
+            "sensors", "identification", "sweep", "coupling", "coupling_check_every", "variability")
 #: sweep keys -> (kind, unit)
 SWEEP_KEYS: dict[str, tuple[str, str]] = {
     "speed": ("numbers", "m/s"), "road_class": ("names", ""), "road_seed": ("integers", ""),
@@ -116,6 +117,10 @@ class DriveBy:
     damage_length: float
     base_dir: str = "."
     cases: tuple = field(default=(), repr=False)
+    # dataset keys (vbikit.driveby.variability): coupling mode, its check interval, the random passes
+    coupling: str = "coupled"
+    coupling_check_every: int = COUPLING_CHECK_EVERY
+    variability: Variability = field(default_factory=Variability)
 
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit driveby", "name": self.name, "seed": self.seed, "batch_size": self.batch_size,
@@ -124,7 +129,10 @@ class DriveBy:
                            "sensors": [s.__dict__ for s in self.sensors], "method": self.method, "sensor": self.sensor,
                            "band": self.band, "spectrum": self.spectrum, "window": self.window, "gap": self.gap,
                            "exclude_vehicle": self.exclude_vehicle, "sweep": self.sweep,
-                           "damage_length": self.damage_length, "base_dir": self.base_dir}, sort_keys=True, default=str)
+                           "damage_length": self.damage_length, "base_dir": self.base_dir,
+                           **({"coupling": self.coupling, "coupling_check_every": self.coupling_check_every,
+                               "variability": self.variability.__dict__} if self.variability.active
+                              or self.coupling != "coupled" else {})}, sort_keys=True, default=str)
 
 
 def _numbers(key: str, value: Any, kind: str) -> list:
@@ -255,8 +263,12 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     scenario = {k: copy.deepcopy(data[k]) for k in ("bridge", "tire", "road", "crossing") if k in data}
     keys = list(sweep)
     cases = tuple(dict(zip(keys, combo)) for combo in itertools.product(*(sweep[k] for k in keys)))
+    coupling, check_every = parse_coupling(data)
+    variability = parse_variability(data.get("variability"))
+    cases = expand_cases(cases, variability)
     return DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
-                   spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases)
+                   spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases,
+                   coupling, check_every, variability)
 
 
 def load_driveby(path: str | Path) -> DriveBy:

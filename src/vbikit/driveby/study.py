@@ -27,10 +27,14 @@ from vbikit.driveby.identify import identify_frequency, mode_shape_squares, resi
 from vbikit.driveby.quality import vehicle_modes
 from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
+from vbikit.driveby.variability import SPLIT_NAMES, draw, perturbed_vehicle, split_of, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
+from vbikit.vehicle.model import GRAVITY
 
 log = logging.getLogger(__name__)
 
+#: cases per chunk of the sensor records in driveby.nc
+HISTORY_CHUNK_CASES = 64
 #: points of the mode-shape estimate along the deck (x = 0 … span)
 SHAPE_POINTS = 41
 
@@ -64,6 +68,19 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "sensors_agree": ("1", "of those, the sensors within the resolution 1/T of this identification (one that is not "
                            "makes it unreliable)"),
     "band_low_hz": ("Hz", "lower end of the search band"),
+    "on_bridge_start_sample": ("1", "segmentation: first sample of sensor_history with the front wheel on the deck"),
+    "on_bridge_end_sample": ("1", "segmentation: last sample of sensor_history with the front wheel on the deck "
+                                  "(before: approach, after: off the bridge)"),
+    "off_bridge_sample": ("1", "segmentation: first sample with every wheel off the deck (NaN: not within the record)"),
+    "bridge_frequency_2_hz": ("Hz", "true second natural frequency of the bridge, modal model (NaN: one mode)"),
+    "temperature_c": ("degC", "deck temperature drawn for the pass (NaN: not varied)"),
+    "stiffness_factor": ("1", "E(T) / E(T_ref) applied to EI (variability.temperature_coefficient)"),
+    "support_stiffness": ("N m-1", "vertical stiffness of every support spring (NaN: the file's supports)"),
+    "vehicle_mass_kg": ("kg", "vehicle mass carried by the wheels (static wheel loads / g) of the drawn vehicle"),
+    "coupling_error_rms": ("1", "decoupled run: relative RMS difference of the identification sensor's noise-free "
+                                "record against a coupled run of the same pass (NaN: not checked, coupling_check_every)"),
+    "coupling_frequency_difference_hz": ("Hz", "decoupled run: identified frequency minus that of the coupled run of "
+                                                "the same pass, same noise (NaN: not checked)"),
     "band_high_hz": ("Hz", "upper end of the search band"),
 }
 #: per-case text outputs: name -> long name
@@ -75,9 +92,38 @@ CASE_TEXT: dict[str, str] = {
 }
 
 
+def case_draw(spec: DriveBy, case: dict) -> dict[str, Any]:
+    """The random parameters of a case of a file with [variability] (``variability.draw``, keyed by
+    the case's index), {} otherwise."""
+    if "index" not in case:
+        return {}
+    base = _vehicle(spec, {})
+    return draw(spec.variability, spec.seed, case["index"], base.n_dof, len(base.wheels))
+
+
+def _vary_bridge(spec: DriveBy, case: dict, bridge: dict, drawn: dict) -> dict:
+    var = spec.variability
+    bridge = dict(bridge)
+    if "temperature" in drawn:
+        f = temperature_factor(var, drawn["temperature"])
+        ei = bridge.get("EI")
+        if ei is None:
+            raise DriveByError("variability.temperature: needs the bridge's EI (bridge.EI) to scale")
+        bridge["EI"] = [f * e for e in ei] if isinstance(ei, list) else f * ei
+    if var.support_stiffness is not None:
+        factor = var.scour_classes[case["scour_class"]] if "scour_class" in case else 1.0
+        bridge["support_stiffness"] = var.support_stiffness * factor
+    return bridge
+
+
 def _case_scenario(spec: DriveBy, case: dict) -> dict:
     """The scenario dict of one case (a stand-in vehicle when the vehicle is not a scenario preset)."""
     data = copy.deepcopy(spec.scenario)
+    drawn = case_draw(spec, case)
+    if "speed" in drawn:
+        case = {**case, "speed": drawn["speed"]}
+    if spec.variability.active:
+        data["bridge"] = _vary_bridge(spec, case, data["bridge"], drawn)
     from vbikit.vehicle.presets import VEHICLE_PRESETS
 
     model = spec.vehicle["model"]
@@ -93,6 +139,10 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
         road["class"] = case["road_class"]
     if "road_seed" in case:
         road["seed"] = case["road_seed"]
+    elif "index" in case:  # a random pass of [variability]: its own road, seeded by (file seed, case index)
+        from vbikit.study.spec import derive_seed
+
+        road["seed"] = derive_seed(spec.seed, case["index"])
     if case.get("damage_severity", 0.0) > 0.0:
         data["bridge"] = dict(data["bridge"])
         data["bridge"]["damage"] = [*data["bridge"].get("damage", []), {
@@ -100,7 +150,20 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
     return data
 
 
-def _vehicle(spec: DriveBy):
+def _vehicle(spec: DriveBy, case: dict):
+    """The case's vehicle: the file's, its parameters scaled by the case's drawn factors."""
+    if "index" in case and spec.variability.vehicle_spread > 0:
+        return perturbed_vehicle(_vehicle(spec, {}), case_draw(spec, case)["vehicle_factors"])
+    key = json.dumps(spec.vehicle, sort_keys=True, default=str)
+    if key not in _VEHICLES:
+        _VEHICLES[key] = _build_vehicle(spec)
+    return _VEHICLES[key]
+
+
+_VEHICLES: dict[str, Any] = {}
+
+
+def _build_vehicle(spec: DriveBy):
     model = spec.vehicle["model"]
     params = {k: v for k, v in spec.vehicle.items() if k != "model"}
     if model not in DRIVEBY_VEHICLES:
@@ -115,26 +178,55 @@ def _vehicle(spec: DriveBy):
 
 
 _BUILT: dict[str, Any] = {}
+#: bridges built for a case, by their scenario table: the passes of a dataset share a few bridges
+_BRIDGES: dict[str, Any] = {}
+
+
+def _scenario_crossing(data: dict, base_dir: str):
+    """The scenario's crossing; its bridge taken from ``_BRIDGES`` when an earlier case had the
+    same [bridge] table (a random pass changes the road, the speed and the vehicle, rarely the
+    bridge: its eigen-solution is computed once)."""
+    from vbikit.scenario import build, parse_scenario
+    from vbikit.scenario.build import build_right_road, build_road, check_road_budget
+
+    scenario = parse_scenario(data, base_dir)
+    key = json.dumps([data["bridge"], str(base_dir)], sort_keys=True)
+    if key not in _BRIDGES:
+        if len(_BRIDGES) > 16:
+            _BRIDGES.clear()
+        crossing = build(scenario).crossing
+        _BRIDGES[key] = crossing.bridge
+        return crossing
+    check_road_budget(scenario.road, None)
+    road = build_road(scenario.road, scenario)
+    c = scenario.crossing
+    import types
+
+    from vbikit.scenario.build import build_tire
+
+    return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), road=road,
+                                 road_right=build_right_road(scenario.road, scenario, road), speed=c.speed_ms,
+                                 acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
+                                 dt=c.dt, integrator=c.integrator, loss_of_contact=scenario.tire.loss_of_contact)
 
 
 def case_crossing(spec: DriveBy, case: dict):
     """The crossing of one case: the scenario's bridge, tire, road and options with the vehicle,
     the step a divisor of the sensor period (so that resampling is exact decimation)."""
-    from vbikit.scenario import build, parse_scenario
     from vbikit.scenario.schema import ScenarioError
     from vbikit.solve import Crossing
     from vbikit.solve.timestep import choose_time_step
 
     data = _case_scenario(spec, case)
-    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap], sort_keys=True)
+    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap,
+                      case.get("index") if spec.variability.vehicle_spread > 0 else None], sort_keys=True)
     if key in _BUILT:
         return _BUILT[key]
     try:
-        built = build(parse_scenario(data, spec.base_dir))
+        c = _scenario_crossing(data, spec.base_dir)
     except ScenarioError as err:
         raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
-    c = built.crossing
-    vehicle = _vehicle(spec)
+    vehicle = _vehicle(spec, case)
     kwargs = dict(tire=c.tire, road=c.road, road_right=c.road_right, speed=c.speed, acceleration=c.acceleration,
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
@@ -216,6 +308,9 @@ def check_cases(spec: DriveBy) -> float:
     """Validate the budget first (``estimate_steps`` against ``max_steps``), then every distinct case
     (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once) before anything
     runs; returns the estimated integration steps of the sweep."""
+    if spec.coupling == "decoupled" and spec.method == "residual":
+        raise DriveByError("coupling: \"decoupled\" runs one vehicle; identification.method = \"residual\" (a "
+                           "following vehicle) needs coupling = \"coupled\"")
     _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
     total = estimate_steps(spec)
     if total > spec.max_steps:
@@ -265,7 +360,12 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
 
     case = spec.cases[index] if spec.cases else {}
     crossing = case_crossing(spec, case)
-    result = simulate(crossing)
+    if spec.coupling == "decoupled":
+        from vbikit.driveby.decoupled import simulate_decoupled
+
+        result = simulate_decoupled(crossing)
+    else:
+        result = simulate(crossing)
     sensors = case_sensors(spec, case)
     k = [s.name for s in sensors].index(spec.sensor)
     logged = sensors
@@ -273,17 +373,13 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         import dataclasses
 
         logged = (*sensors, dataclasses.replace(sensors[k], name=f"{sensors[k].name}_follower", vehicle=2))
-    m = measure(result, logged, spec.sampling, seed=derive_seed(spec.seed, index))
-    on = on_bridge(result, 0)
-    t_on = result.time[on]
-    window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
     vehicle = crossing.vehicles[0].vehicle
     speed = float(crossing.vehicles[0].speed)
     bridge = crossing.bridge
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
     f_v, zeta_v = vehicle_modes(vehicle)
 
-    def record(j: int) -> NDArray:
+    def record(m, j: int) -> NDArray:
         signal = m.values[j]
         if spec.method in ("contact", "residual"):
             signal = contact_acceleration_from_measured(signal, SingleAxle.of(vehicle), m.dt)
@@ -297,21 +393,56 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
                                   bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
                                   vehicle_zeta=zeta_v)
 
-    signal = record(k)
-    if spec.method == "residual":
-        window &= np.isfinite(signal)
-    ident = identify(signal, window)
+    def observe(res):
+        m = measure(res, logged, spec.sampling, seed=derive_seed(spec.seed, index))
+        t_on = res.time[on_bridge(res, 0)]
+        window = (m.time >= t_on[0]) & (m.time <= t_on[-1])
+        signal = record(m, k)
+        if spec.method == "residual":
+            window &= np.isfinite(signal)
+        return m, t_on, window, signal, identify(signal, window)
+
+    m, t_on, window, signal, ident = observe(result)
+    check = {"coupling_error_rms": math.nan, "coupling_frequency_difference_hz": math.nan}
+    if spec.coupling == "decoupled" and spec.coupling_check_every and index % spec.coupling_check_every == 0:
+        import dataclasses
+
+        from vbikit.driveby.decoupled import relative_rms_error
+
+        ref = simulate(crossing)
+        clean = tuple(dataclasses.replace(s, noise_rms=0.0, noise_snr_db=None) for s in logged)
+        pair = [measure(r, clean, spec.sampling, seed=0).values[k] for r in (result, ref)]
+        check = {"coupling_error_rms": relative_rms_error(*pair),
+                 "coupling_frequency_difference_hz": ident.frequency_hz - observe(ref)[-1].frequency_hz}
+    drawn = case_draw(spec, case)
+    temperature = drawn.get("temperature", math.nan)
+    var = spec.variability
+    support = math.nan
+    if var.support_stiffness is not None:
+        support = var.support_stiffness * (var.scour_classes[case["scour_class"]] if "scour_class" in case else 1.0)
+    front = crossing.front_positions(m.time)[:, 0]  # segmentation from the kinematics at the sample times
+    lo, hi = bridge.deck_extent
+    on_samples = np.flatnonzero((front >= lo) & (front <= hi))
+    off = np.flatnonzero(front - vehicle.length > hi)
+    labels = {
+        "on_bridge_start_sample": float(on_samples[0]), "on_bridge_end_sample": float(on_samples[-1]),
+        "off_bridge_sample": float(off[0]) if off.size else math.nan,
+        "bridge_frequency_2_hz": float(bridge.frequencies_hz[1]) if bridge.frequencies_hz.size > 1 else math.nan,
+        "temperature_c": temperature,
+        "stiffness_factor": temperature_factor(var, temperature) if math.isfinite(temperature) else 1.0,
+        "support_stiffness": support, "vehicle_mass_kg": float(vehicle.total_weight / GRAVITY), **check,
+    }
     q = ident.quality
     others = [j for j, s in enumerate(sensors) if j != k and s.quantity == "acceleration" and s.vehicle == sensors[k].vehicle
               and spec.method != "residual"]  # residual: the follower carries only the chosen sensor
-    agreement = sensor_agreement(ident, {sensors[j].name: identify(record(j), window) for j in others})
+    agreement = sensor_agreement(ident, {sensors[j].name: identify(record(m, j), window) for j in others})
     shape = np.full(SHAPE_POINTS, np.nan)
     if spec.method == "contact":  # φ² along x = v (t − t_entry): Hilbert envelope of the band-passed contact response
         half = min(2.0 * speed / bridge.span, 0.5 * ident.frequency_hz)
         env = mode_shape_squares(signal[window], spec.sampling.rate, ident.frequency_hz, half)
         x = speed * (m.time[window] - t_on[0])
         shape = np.interp(np.linspace(0.0, bridge.span, SHAPE_POINTS), x, env)
-    return {
+    return labels | {
         "mode_shape_squared": shape,
         "identified_frequency_hz": ident.frequency_hz,
         "bridge_frequency_hz": float(bridge.frequencies_hz[0]),
@@ -397,7 +528,9 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
     base_cross = spec.scenario.get("crossing", {})
     base_speed = base_cross.get("speed", base_cross.get("speed_kmh", 28.8) / 3.6)
     return {
-        "speed": np.array([c.get("speed", base_speed) for c in cases], float),
+        "speed": np.array([case_draw(spec, c).get("speed", c.get("speed", base_speed)) for c in cases], float),
+        "scour_class": np.array([c.get("scour_class", -1) for c in cases], np.int64),
+        "pass_index": np.array([c.get("pass", 0) for c in cases], np.int64),
         "road_class": np.array([c.get("road_class", base_road.get("class", "none")) for c in cases], dtype=object),
         "road_seed": np.array([c.get("road_seed", base_road.get("seed", 0)) for c in cases], np.int64),
         "damage_position": np.array([c.get("damage_position", np.nan) if c.get("damage_severity", 0) > 0 else np.nan
@@ -408,7 +541,10 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
 
 
 LABEL_ATTRS = {
-    "speed": ("m s-1", "vehicle speed"),
+    "speed": ("m s-1", "vehicle speed (drawn per pass with variability.speed)"),
+    "scour_class": ("1", "support stiffness class k: support springs = variability.support_stiffness × "
+                         "variability.scour_classes[k] (−1: none)"),
+    "pass_index": ("1", "pass number within its combination of the sweep and scour class (its draw: the case index)"),
     "road_class": ("", "road roughness class (ISO 8608; none = smooth)"),
     "road_seed": ("1", "seed of the random road"),
     "damage_position": ("m", "start of the damaged region from the bridge entry (NaN: healthy)"),
@@ -426,9 +562,11 @@ def healthy_reference(labels: dict[str, NDArray]) -> NDArray[np.int64]:
 
 
 def bridge_states(labels: dict[str, NDArray]) -> NDArray[np.int64]:
-    """For every case the index of its bridge (one per damage position and severity; every
-    healthy case the same bridge): the passes over one bridge form its multi-pass estimate."""
-    keys = [(0.0, 0.0) if s == 0 else (float(p), float(s)) for p, s in zip(labels["damage_position"], labels["damage_severity"])]
+    """For every case the index of its bridge (one per damage position, severity and scour class;
+    every healthy case of a class the same bridge): the passes over one bridge form its multi-pass
+    estimate (temperature, when drawn, varies within one bridge)."""
+    keys = [((0.0, 0.0) if s == 0 else (float(p), float(s)), int(c))
+            for p, s, c in zip(labels["damage_position"], labels["damage_severity"], labels["scour_class"])]
     first: dict = {}
     return np.array([first.setdefault(k, len(first)) for k in keys], np.int64)
 
@@ -570,6 +708,10 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
         variables[k] = ("case", values[k], {"units": units, "long_name": long_name})
     variables["sensor_history"] = (("case", "sensor", "sample"), hist, {
         "units": "see sensor_units", "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
+    variables["split"] = ("case", np.array([split_of(spec.seed, i) for i in range(n_cases)], np.int8), {
+        "long_name": "documented train / validation / test split by the file's seed (vbikit.driveby.variability."
+                     "split_of: 70 / 15 / 15 %, fixed per case index)",
+        "flag_values": np.array([0, 1, 2], np.int8), "flag_meanings": " ".join(SPLIT_NAMES)})
     variables["noise_std"] = (("case", "sensor"), out["noise_std"][order], {
         "units": "see sensor_units", "long_name": "standard deviation of the noise added to each sensor's record"})
     variables["time_start"] = ("case", out["time0"][order], {"units": "s", "long_name": "time of the first sample"})
@@ -584,7 +726,11 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
              "sampling_rate": spec.sampling.rate, "sampling_filter": f"Butterworth order {spec.sampling.filter_order}, "
              f"cut-off {spec.sampling.cutoff_hz:g} Hz, zero phase (forward-backward), applied before resampling",
              "identification_method": spec.method, "identification_sensor": spec.sensor, "Conventions": "CF-1.8"}
-    return xr.Dataset(variables, coords=coords, attrs=attrs)
+    ds = xr.Dataset(variables, coords=coords, attrs=attrs)
+    # chunked and compressed on disk: xarray.open_dataset(..., chunks={"case": n}) streams the records with Dask
+    ds["sensor_history"].encoding.update(
+        chunksizes=(min(n_cases, HISTORY_CHUNK_CASES), len(spec.sensors), max(n_samples, 1)), zlib=True, complevel=1)
+    return ds
 
 
 def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = 1,
