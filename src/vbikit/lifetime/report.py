@@ -107,7 +107,7 @@ def _detail(ds, j: int) -> dict[str, Any]:
 
 def summary(ds) -> dict[str, Any]:
     """The run's facts as a JSON-able dict (NaN and infinity as null, explained in words)."""
-    from vbikit.lifetime.run import CHECK_FRACTION
+    from vbikit.lifetime.screening import CHECK_FRACTION
 
     a = ds.attrs
     out: dict[str, Any] = {

@@ -28,7 +28,7 @@ from typing import Any
 
 import numpy as np
 
-from vbikit.lifetime.run import CHECK_FRACTION
+from vbikit.lifetime.screening import CHECK_FRACTION
 
 
 def _blocks(values: np.ndarray, size: int) -> np.ndarray:

@@ -27,7 +27,7 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
-from vbikit.lifetime.screening import (amplifications, block_dynamic_max, candidates, heavy_events, rescreen_bound,
+from vbikit.lifetime.screening import (CHECK_FRACTION, amplifications, block_dynamic_max, candidates, heavy_events, rescreen_bound,
                                        top_events)
 from vbikit.lifetime.spec import LifetimeError, LifetimeFile, base_sections, parse_lifetime, read_lifetime
 
@@ -43,9 +43,6 @@ DYNAMIC_SECONDS_PER_EVENT = 0.3
 SCREENED_PER_DAY = 20
 #: screening: events per block and effect taken in one round (``vbikit.lifetime.screening``)
 PER_ROUND = 3
-#: the amplification check covers the simulated events whose static peak is at least this fraction
-#: of their block's largest (light events, far below any block maximum, may amplify more)
-CHECK_FRACTION = 0.5
 #: most re-screenings after an amplification above the bound was seen
 MAX_RESCREENS = 4
 

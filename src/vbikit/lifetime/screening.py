@@ -25,6 +25,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 
+#: the amplification check covers the simulated events whose static peak is at least this fraction
+#: of their block's largest (light events, far below any block maximum, may amplify more)
+CHECK_FRACTION = 0.5
+
+
 def top_events(static: NDArray[np.float64], signs: NDArray[np.float64], block: NDArray[np.int64]) -> NDArray[np.int64]:
     """Index of the event with the largest s·R_st in every block and every effect (unique, sorted)."""
     s = np.asarray(static) * np.asarray(signs)[None, :]
