@@ -313,7 +313,6 @@ class DynamicJob:
             records, events = day_traffic(self.model, self._digest, setup, day, self.seed)
             members = events[k]
         ctx = setup.context
-        road, road_right = ctx.road(derive_seed(self.seed, int(g)))
         t0 = records[members[0]].time
         motions = []
         for i in members:
@@ -321,7 +320,7 @@ class DynamicJob:
             y = r.lateral_offset if r.lateral_offset is not None else setup.lanes[r.lane - 1]
             motions.append(VehicleMotion(VEHICLE_MODELS[self.vehicle_model](r.axle_loads, r.axle_spacings), speed=r.speed, direction=r.direction,
                                          entry_time=r.time - t0, lateral_offset=y))
-        return ctx.template.with_vehicles(tuple(motions), road, road_right), records, members, t0
+        return ctx.crossing(tuple(motions), derive_seed(self.seed, int(g))), records, members, t0
 
     def run_event(self, g: int) -> dict[str, NDArray]:
         from vbikit.analysis.effects import load_effect_response

@@ -80,15 +80,18 @@ def build_defects(spec: RoadSpec) -> list[Defect]:
     return defects
 
 
-def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:
-    """The right wheel line's own profile, or None when both lines share ``left`` (the default)."""
+def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None,
+                     window: tuple[float, float] | None = None) -> RoadProfile | None:
+    """The right wheel line's own profile, or None when both lines share ``left`` (the default);
+    ``window``: as ``left``'s (``build_road``)."""
     if spec.profile_file_right:
         return _profile(scenario, spec.profile_file_right, "road.profile_file_right")
     if left is None or spec.right_coherence >= 1.0:
         return None
     psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, n_min=spec.n_min, n_max=spec.n_max) if spec.road_class == "psd" \
         else RoadPSD.iso(spec.road_class, n_min=spec.n_min, n_max=spec.n_max)
-    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length)
+    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length,
+                              window=window)
 
 
 def check_road_budget(spec: RoadSpec, limits: Limits | None = None) -> None:
@@ -105,7 +108,10 @@ def _profile(scenario: Scenario, name: str, key: str) -> RoadProfile:
         raise ScenarioError(f"{key}: {err}") from None
 
 
-def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
+def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] | None = None) -> RoadProfile | None:
+    """The road profile of ``spec`` (None: smooth); a random one only over ``window`` = (x_lo, x_hi) [m]
+    when given (the range a crossing touches, ``Crossing.road_extent``: the same road there, far cheaper
+    than its whole period, ``vbikit.road.random_profile``)."""
     defects = build_defects(spec)
     if spec.profile_file:
         return with_defects(_profile(scenario, spec.profile_file, "road.profile_file"), defects)
@@ -117,7 +123,8 @@ def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
     else:
         psd = RoadPSD.iso(spec.road_class, **band)
     label = f"class {spec.road_class}, seed {spec.seed}"
-    return with_defects(random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label), defects)
+    return with_defects(random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label,
+                                       window=window), defects)
 
 
 @dataclass(frozen=True)
@@ -187,6 +194,16 @@ def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | No
     return tuple(out)
 
 
+def with_scenario_road(crossing: Crossing, spec: RoadSpec, scenario: Scenario, seed: int | None = None) -> Crossing:
+    """``crossing`` (built without a road) on the road of ``spec`` (``seed``: instead of its own), a
+    random road generated only over the range its contact points touch."""
+    if seed is not None:
+        spec = spec.model_copy(update={"seed": int(seed)})
+    window = crossing.road_extent()
+    road = build_road(spec, scenario, window)
+    return crossing.with_road(road, build_right_road(spec, scenario, road, window))
+
+
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
     """Compose bridge, vehicle(s), tire and road into a Crossing.
 
@@ -254,9 +271,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         check_bridge(bridge, limits)
         check_road_budget(scenario.road, limits)
         c = scenario.crossing
-        road = build_road(scenario.road, scenario)
-        common = dict(bridge=bridge, tire=build_tire(scenario.tire), road=road,
-                      road_right=build_right_road(scenario.road, scenario, road), approach=c.approach,
+        common = dict(bridge=bridge, tire=build_tire(scenario.tire), approach=c.approach,
                       free_vibration=c.free_vibration, dt=c.dt,
                       integrator=c.integrator,
                       loss_of_contact=scenario.tire.loss_of_contact)
@@ -268,6 +283,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         else:
             motions = tuple(vehicle_motion(v, c.speed_ms) for v in scenario.vehicles)
             crossing = Crossing(vehicles=motions, speed=max(m.speed for m in motions), **common)
+        crossing = with_scenario_road(crossing, scenario.road, scenario)
     except BudgetError:
         raise
     except ValueError as err:
