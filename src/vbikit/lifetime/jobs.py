@@ -323,7 +323,7 @@ class DynamicJob:
         return ctx.crossing(tuple(motions), derive_seed(self.seed, int(g))), records, members, t0
 
     def run_event(self, g: int) -> dict[str, NDArray]:
-        from vbikit.analysis.effects import load_effect_response
+        from vbikit.analysis.effects import load_effect_responses
         from vbikit.analysis.response import point_response
         from vbikit.fatigue import miner_damage, rainflow
         from vbikit.solve import simulate
@@ -332,13 +332,15 @@ class DynamicJob:
         crossing, _, _, _ = self.crossing(g)
         result = simulate(crossing)
         dyn, st = [], []
+        effect_lines = [line for line in setup.lines if line.kind != "deflection"]
+        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines]))
         for line in setup.lines:
             if line.kind == "deflection":
                 resp = point_response(result, line.x, line.y)
                 dyn.append(resp.displacement)
                 st.append(resp.static_displacement)
             else:
-                resp = load_effect_response(result, line.effect)
+                resp = next(effects)
                 dyn.append(resp.dynamic)
                 st.append(resp.static)
         out = {"dyn_peak": np.array([s.sign * np.max(s.sign * d) for s, d in zip(setup.lines, dyn)]),
