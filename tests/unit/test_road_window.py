@@ -70,16 +70,19 @@ def test_bad_window_is_refused():
         random_profile(RoadPSD.iso("C"), 1, window=(5.0, 1.0))
 
 
-def test_a_scenario_crossing_gets_its_road_over_the_range_it_uses():
-    from vbikit.scenario.build import build
+def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
+    from vbikit.scenario.build import build, with_scenario_road
     from vbikit.scenario.schema import parse_scenario
 
     data = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "vehicle": {"model": "hs20-44"},
             "road": {"class": "C", "seed": 1, "right_coherence": 0.8}, "crossing": {"speed_kmh": 75}}
-    crossing = build(parse_scenario(data, ".")).crossing
+    scenario = parse_scenario(data, ".")
+    whole = build(scenario).crossing  # a scenario run: the whole period
+    crossing = with_scenario_road(whole.with_road(None), scenario.road, scenario, seed=5)
     lo, hi = crossing.road_extent()
-    full = random_profile(RoadPSD.iso("C"), 1)
+    full = random_profile(RoadPSD.iso("C"), 5)
     for road in (crossing.road, crossing.road_right):
         assert road.covers(lo, hi) and road.x[-1] - road.x[0] < hi - lo + 0.1
     x, z = _cut(full, crossing.road)
     assert np.array_equal(x, crossing.road.x) and np.max(np.abs(z - crossing.road.z)) < 1e-12 * full.z.std()
+    assert whole.road.x.size == full.x.size
