@@ -86,3 +86,17 @@ def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
     x, z = _cut(full, crossing.road)
     assert np.array_equal(x, crossing.road.x) and np.max(np.abs(z - crossing.road.z)) < 1e-12 * full.z.std()
     assert whole.road.x.size == full.x.size
+
+
+@pytest.mark.parametrize("window", [None, (0.0, 3.0)])
+def test_whole_period_and_window_with_the_band_up_to_nyquist(window):
+    """n_max = 1/(2Δx): the Nyquist wavenumber is in the band (a real FFT counts it once)."""
+    psd = RoadPSD.iso("C", n_max=50.0)
+    p = random_profile(psd, 2, spacing=0.01, length=20.0, window=window)
+    n_k, theta = phase_angles(psd, 2, spacing=0.01, length=20.0)
+    assert n_k[-1] == pytest.approx(50.0)
+    period = 1.0 / (n_k[1] - n_k[0])
+    amp = np.sqrt(2.0 * psd(n_k) / period)
+    for j in (0, 5, p.x.size - 1):
+        direct = np.sum(amp * np.cos(2.0 * np.pi * n_k * p.x[j] + theta))
+        assert p.z[j] == pytest.approx(direct, abs=1e-11 * p.z.std())

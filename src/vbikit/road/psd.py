@@ -145,9 +145,10 @@ def random_profile(
         first, last = _window_samples(window, x0, spacing, n_samples)
         z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, first, last - first + 1)
         return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label)
-    coef = np.zeros(n_samples, complex)
+    coef = np.zeros(n_samples // 2 + 1, complex)
     coef[k] = band
-    z = np.real(np.fft.ifft(coef)) * n_samples
+    coef[n_samples // 2] *= 2.0  # irfft counts the Nyquist term once, the others twice (k = 0 is never in the band)
+    z = np.fft.irfft(coef, n_samples) * (0.5 * n_samples)  # = Re Σ_k coef_k exp(2πi k j / N): one real FFT
     x = x0 + spacing * np.arange(n_samples)
     return RoadProfile(x, z, label)
 
