@@ -17,9 +17,11 @@ Workloads (each warmed up once, then ``--repeat`` timed rounds; the figure is th
   axle trucks), per event.
 
 Measured: thread CPU time (``time.thread_time``) of the whole call and, inside it, of the compiled
-step loop (``vbikit.solve.kernels.implicit`` wrapped); "outside" = whole − kernel.  With ``--compare``
-every workload runs in a child process per tree, the trees alternating round by round, so that both
-see the same machine load.  Writes nothing but numba's cache.
+step loop (``vbikit.solve.kernels.implicit`` wrapped); "outside" = whole − kernel.  Every workload
+runs in a child process per tree (with ``--compare`` the trees alternate round by round, so that both
+see the same machine load), with one BLAS thread: on a busy machine BLAS worker threads that wait
+for a core turn a 51 × 51 matrix product into milliseconds of spinning.  Writes nothing but numba's
+cache.
 """
 from __future__ import annotations
 
@@ -82,7 +84,7 @@ def _workload(name: str):
 
         from vbikit.lifetime.run import prepare
 
-        prep = prepare(spec(1, 4000.0, 0.001), ".")
+        prep = prepare(spec(7, 4000.0, 0.001), ".")
         day0 = prep.static_job().run_batch((0,))
         gid = (day0["ev_day"] * 2**20 + day0["ev_index"])[:12]
         dyn = prep.dynamic_job(gid)
@@ -107,7 +109,7 @@ def measure(name: str, repeat: int) -> dict:
 
 
 def _child(src: str, name: str, repeat: int) -> dict:
-    env = dict(os.environ, PYTHONPATH=src)
+    env = dict(os.environ, PYTHONPATH=src, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
     out = subprocess.run([sys.executable, __file__, "--child", name, "--repeat", str(repeat)], env=env,
                          capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
