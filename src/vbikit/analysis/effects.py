@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
-from vbikit.bridge.effects import LoadEffect
+from vbikit.bridge.effects import LoadEffect, influence_values
 from vbikit.solve.result import CrossingResult
 
 log = logging.getLogger(__name__)
@@ -78,16 +78,23 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
     return x, np.broadcast_to(y, x.shape)
 
 
-def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
-    """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
+def contact_influences(result: CrossingResult, effects: Sequence[LoadEffect]) -> NDArray[np.float64]:
+    """I(x_p(t), y_p) of every effect for every time and contact point, shape (n_effects, n_t, n_cp)
+    (0 off the deck); the effects share the points' positions and whatever their influence
+    functions share (``vbikit.bridge.effects.influence_values``)."""
     x, y = contact_positions(result)
     bridge = result.crossing.bridge
     xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
     on = (xi >= 0.0) & (xi <= bridge.span)
-    out = np.zeros(x.shape)
-    if np.any(on):
-        out[on] = effect.influence(x[on], y[on])
+    out = np.zeros((len(effects),) + x.shape)
+    if effects and np.any(on):
+        out[:, on] = influence_values(effects, x[on], y[on]).T
     return out
+
+
+def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
+    """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
+    return contact_influences(result, [effect])[0]
 
 
 def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str = "mode-acceleration",
@@ -96,24 +103,39 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
     """Histories of ``effect`` over the crossing (see the module docstring); ``xi_static``: the
     static modal history if already computed (mode superposition); ``influence``: the
     ``contact_influence`` matrix if already computed (crossings on the same time grid share it)."""
+    return load_effect_responses(result, [effect], method, xi_static,
+                                 None if influence is None else np.asarray(influence)[None])[0]
+
+
+def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
+                          xi_static: NDArray[np.float64] | None = None,
+                          influence: NDArray[np.float64] | None = None) -> list[LoadEffectResponse]:
+    """``load_effect_response`` for several effects at once: one static modal history (mode
+    superposition), or (mode acceleration) one pass over the contact points' positions, their
+    static and dynamic forces and the modal correction of every effect; ``influence``: their
+    ``contact_influences`` (n_effects, n_t, n_cp) if already computed."""
     if method not in METHODS:
         raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
-    bridge = result.crossing.bridge
-    r = effect.modal
-    checked = _step_check(result, effect)
+    if not effects:
+        return []
+    t = result.time
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
-        return LoadEffectResponse(effect, method, result.time, result.xi @ r, xi_st @ r, *checked)
-    cp = result.crossing.contact
-    infl = contact_influence(result, effect) if influence is None else influence
+        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal, *_step_check(result, e))
+                for e in effects]
+    crossing = result.crossing
+    bridge, cp = crossing.bridge, crossing.contact
+    infl = contact_influences(result, effects) if influence is None else np.asarray(influence)
     share = cp.weight
-    static_loads = share * result.crossing.vehicle.static_wheel_loads()[cp.wheel]
-    static = -(infl @ static_loads)
+    static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
     dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
     omega, zeta = bridge.omega, bridge.damping_ratios
-    correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ (r / omega**2)
-    dynamic = -np.einsum("tp,tp->t", infl, dyn_forces) - correction
-    return LoadEffectResponse(effect, method, result.time, dynamic, static, *checked)
+    modal = np.stack([e.modal for e in effects], axis=1) / (omega**2)[:, None]  # (n_modes, n_effects)
+    correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
+    static = -(infl @ static_loads)
+    dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
+    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], *_step_check(result, e))
+            for k, e in enumerate(effects)]
 
 
 #: step warnings logged already (a study's many crossings log each once)
@@ -130,13 +152,6 @@ def _step_check(result: CrossingResult, effect: LoadEffect) -> tuple[str | None,
         _LOGGED.add(text)
         log.warning(text)
     return text, best
-
-
-def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
-                          method: str = "mode-acceleration") -> list[LoadEffectResponse]:
-    """``load_effect_response`` for several effects (one static modal history shared)."""
-    xi_st = static_modal_history(result) if method == "mode-superposition" and effects else None
-    return [load_effect_response(result, e, method, xi_st) for e in effects]
 
 
 def _entry(resp: LoadEffectResponse, allowances: dict[str, Any] | None) -> dict[str, Any]:

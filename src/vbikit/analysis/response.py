@@ -147,10 +147,11 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
     point of ``plan`` (a list in its order) and the per-crossing outputs.  ``xi_static``: the
     static modal history if already computed; ``effects``: the load-effect responses by kind if
     already computed (default: ``plan.first_effects``)."""
-    from vbikit.analysis.effects import load_effect_response
+    from vbikit.analysis.effects import load_effect_responses
 
     if effects is None:
-        effects = {kind: load_effect_response(result, e, plan.load_effect_method) for kind, e in plan.first_effects.items()}
+        first = plan.first_effects
+        effects = dict(zip(first, load_effect_responses(result, tuple(first.values()), plan.load_effect_method)))
     points = [r.outputs(result) for r in plan_responses(result, plan, xi_static)]
     return points, reduce_outputs(Reduction(result, None, effects), "crossing")
 

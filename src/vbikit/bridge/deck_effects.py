@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import GirderDeck
-from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, SharedInfluence
 from vbikit.bridge.elements import beam_element_stiffness
 from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stations
 
@@ -127,10 +127,47 @@ def load_weights(dofs: DofMap, x: ArrayLike, y: ArrayLike
     off = (x < 0.0) | (x > xs[-1])
     coef[off] = 0.0
     shares = np.zeros((n, ys.size))
-    np.add.at(shares, (np.arange(n), j0), cw0)
-    np.add.at(shares, (np.arange(n), j1), cw1)
+    rows = np.arange(n)
+    shares[rows, j0] = cw0  # one entry per row in each statement: as np.add.at, without its per-element loop
+    shares[rows, j1] += cw1
     shares[off] = 0.0
     return idx, coef, e, shares
+
+
+class DeckInfluence(SharedInfluence):
+    """I(x, y) of one grillage load effect: vᵀF(x, y) with F the consistent load of unit forces at the
+    points (``load_weights``, shared by every effect of the deck), plus, for a moment or shear, the
+    terms of the points inside the section's element e = [a, a + h] on girder line j (module docstring)."""
+
+    def __init__(self, bridge: DeckModel, v: NDArray[np.float64], kind: str = "reaction", element: int = -1,
+                 line: int = 0, a: float = 0.0, h: float = 1.0, s: float = 0.0) -> None:
+        self.bridge, self.dofs, self.v = bridge, bridge.dof_map, v
+        self.kind, self.element, self.line, self.a, self.h, self.s = kind, element, line, a, h, s
+
+    @property
+    def shared_key(self) -> int:
+        return id(self.dofs)
+
+    def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]):
+        return load_weights(self.dofs, x, y)
+
+    def apply(self, part, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        idx, coef, el, shares = part
+        out = (self.v[idx] * coef).sum(axis=1)
+        if self.kind == "reaction":
+            return out
+        inside = el == self.element
+        if np.any(inside):
+            a, h, s = self.a, self.h, self.s
+            c = shares[inside, self.line]
+            xp = np.asarray(x, float).ravel()
+            xi = self.bridge.span_coordinate(xp[inside], np.broadcast_to(np.asarray(y, float), xp.shape)[inside])
+            n = hermite_basis((xi - a) / h, h, 0)
+            if self.kind == "moment":
+                out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))
+            else:
+                out[inside] += c * (-n[0] + np.where(xi <= s, 1.0, 0.0))
+        return out
 
 
 def _factor(bridge: DeckModel):
@@ -187,12 +224,9 @@ def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
             v = _field(bridge, g)
             modal = -bridge.bearing_stiffness * full[d]
 
-        def influence(xp, yp, v=v):
-            idx, coef, _, _ = load_weights(dofs, xp, yp)
-            return (v[idx] * coef).sum(axis=1)
-
         length = spans[0] if support == 0 else spans[-1] if support == spans.size else 0.5 * (spans[support - 1] + spans[support])
-        return LoadEffect("reaction", float(bridge.girder_x(girder, sx[support])), modal, influence, float(length),
+        return LoadEffect("reaction", float(bridge.girder_x(girder, sx[support])), modal, DeckInfluence(bridge, v),
+                          float(length),
                           girder=girder, support=support)
     y_line = float(bridge.girder_y[j])
     xi_s = None if x is None else float(bridge.span_coordinate(x, y_line))
@@ -219,21 +253,7 @@ def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
         m_line = float(bridge.line_properties["m"][j])
         phi = modes.line_values(np.array([s]), 0)[j, 0]
         modal = EI * (k2[1] - k2[0]) / h + omega**2 * m_line * phi * (s - 0.5 * (a + b))
-
-    def influence(xp, yp, v=v, kind=kind):
-        xp = np.asarray(xp, float).ravel()
-        idx, coef, el, shares = load_weights(dofs, xp, yp)
-        out = (v[idx] * coef).sum(axis=1)
-        inside = el == e
-        if np.any(inside):
-            c = shares[inside, j]
-            xi = bridge.span_coordinate(xp[inside], np.broadcast_to(np.asarray(yp, float), xp.shape)[inside])
-            n = hermite_basis((xi - a) / h, h, 0)
-            if kind == "moment":
-                out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))
-            else:
-                out[inside] += c * (-n[0] + np.where(xi <= s, 1.0, 0.0))
-        return out
+    influence = DeckInfluence(bridge, v, kind, e, j, a, h, s)
 
     k = int(np.argmin(np.abs(sx - s)))
     interior = abs(sx[k] - s) <= 1e-9 * bridge.span and 0 < k < spans.size

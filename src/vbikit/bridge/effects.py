@@ -24,8 +24,9 @@ the support on the bridge (positive under downward loads).
 """
 from __future__ import annotations
 
+import abc
 from dataclasses import dataclass, field
-from typing import Callable, Literal, Optional
+from typing import Any, Callable, Hashable, Literal, Optional, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -64,3 +65,48 @@ class LoadEffect:
     def label(self) -> str:
         where = f"support {self.support} (x = {self.x:g} m)" if self.kind == "reaction" else f"x = {self.x:g} m"
         return f"{self.kind} at {where}" + (f", girder {self.girder}" if self.girder is not None else "")
+
+
+class SharedInfluence(abc.ABC):
+    """An influence function I(x, y) whose costly part depends on the load points only and is the
+    same for every effect of one model (a grillage deck's consistent load of the points):
+    ``shared(x, y)`` computes it, ``apply(part, x, y)`` finishes one effect's values, and effects with
+    equal ``shared_key`` share the part (``influence_values``)."""
+
+    @property
+    @abc.abstractmethod
+    def shared_key(self) -> Hashable:
+        """Effects with equal keys accept each other's ``shared`` part."""
+
+    @abc.abstractmethod
+    def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> Any:
+        """The part of I(x, y) common to every effect with this ``shared_key``."""
+
+    @abc.abstractmethod
+    def apply(self, part: Any, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        """I(x, y) [per N] from the ``shared`` part of the same points."""
+
+    def __call__(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        x = np.asarray(x, float).ravel()
+        y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+        return self.apply(self.shared(x, y), x, y)
+
+
+def influence_values(effects: Sequence[LoadEffect], x: NDArray[np.float64],
+                     y: NDArray[np.float64]) -> NDArray[np.float64]:
+    """I(x_p, y_p) of every effect at the load points (x, y) [m] (1-D), shape (n_points, n_effects);
+    influence functions that share a part (``SharedInfluence``) compute it once."""
+    x = np.asarray(x, float).ravel()
+    y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+    out = np.empty((x.size, len(effects)))
+    groups: dict[Hashable, list[int]] = {}
+    for i, e in enumerate(effects):
+        if isinstance(e.influence, SharedInfluence):
+            groups.setdefault(e.influence.shared_key, []).append(i)
+        else:
+            out[:, i] = e.influence(x, y)
+    for members in groups.values():
+        part = effects[members[0]].influence.shared(x, y)  # type: ignore[attr-defined]
+        for i in members:
+            out[:, i] = effects[i].influence.apply(part, x, y)  # type: ignore[attr-defined]
+    return out

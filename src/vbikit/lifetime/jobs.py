@@ -321,7 +321,6 @@ class DynamicJob:
             records, events = day_traffic(self.model, self._digest, setup, day, self.seed)
             members = events[k]
         ctx = setup.context
-        road, road_right = ctx.road(derive_seed(self.seed, int(g)))
         t0 = records[members[0]].time
         motions = []
         for i in members:
@@ -329,10 +328,10 @@ class DynamicJob:
             y = r.lateral_offset if r.lateral_offset is not None else setup.lanes[r.lane - 1]
             motions.append(VehicleMotion(VEHICLE_MODELS[self.vehicle_model](r.axle_loads, r.axle_spacings), speed=r.speed, direction=r.direction,
                                          entry_time=r.time - t0, lateral_offset=y))
-        return ctx.template.with_vehicles(tuple(motions), road, road_right), records, members, t0
+        return ctx.crossing(tuple(motions), derive_seed(self.seed, int(g))), records, members, t0
 
     def run_event(self, g: int) -> dict[str, NDArray]:
-        from vbikit.analysis.effects import load_effect_response
+        from vbikit.analysis.effects import load_effect_responses
         from vbikit.analysis.response import point_response
         from vbikit.fatigue import miner_damage, rainflow
         from vbikit.solve import choose_time_step, simulate
@@ -343,13 +342,15 @@ class DynamicJob:
             crossing = dataclasses.replace(crossing, dt=choose_time_step(crossing) * self.step_factor)
         result = simulate(crossing)
         dyn, st = [], []
+        effect_lines = [line for line in setup.lines if line.kind != "deflection"]
+        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines]))
         for line in setup.lines:
             if line.kind == "deflection":
                 resp = point_response(result, line.x, line.y)
                 dyn.append(resp.displacement)
                 st.append(resp.static_displacement)
             else:
-                resp = load_effect_response(result, line.effect)
+                resp = next(effects)
                 dyn.append(resp.dynamic)
                 st.append(resp.static)
         out = {"dyn_peak": np.array([s.sign * np.max(s.sign * d) for s, d in zip(setup.lines, dyn)]),

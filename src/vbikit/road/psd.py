@@ -8,15 +8,29 @@ n_k = k·Δn inside the band [n_min, n_max], Δn = 1/P, and the profile is sampl
 over one period P = N·Δx (N a power of two), so the sum is evaluated exactly by one inverse
 FFT.  P, Δx and the band do not depend on the vehicle or speed, so the same seed gives the
 same road at the same x in every crossing of a study.
+
+A crossing touches only some 50 m of the 1.3 km period.  With ``window = (x_lo, x_hi)`` the same
+sum is evaluated only at the stations covering that range (the same stations and, up to round-off,
+the same elevations as the whole period's inverse FFT): the band's M coefficients go to the m
+stations by Bluestein's chirp-z identity k·l = (k² + l² − (l − k)²)/2, one circular convolution of
+length ≥ M + m − 1 instead of an FFT of the whole period (L. I. Bluestein, "A linear filtering
+approach to the computation of the discrete Fourier transform", IEEE Trans. Audio Electroacoust.
+18, 1970, 451–455).  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
+with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_window.py``).
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.fft as sp_fft
 from numpy.typing import NDArray
 
 from vbikit.road.profile import RoadProfile
+
+#: [substitute] stations added on each side of a requested window (the profile still covers it
+#: after the crossing's own round-off)
+WINDOW_MARGIN_SAMPLES = 2
 
 #: [public] ISO 8608 reference wavenumber n₀ [cycle/m]
 ISO_N0 = 0.1
@@ -94,6 +108,7 @@ def random_profile(
     length: float = 1000.0,
     x_start: float | None = None,
     label: str = "",
+    window: tuple[float, float] | None = None,
 ) -> RoadProfile:
     """One random profile realisation by Eq. 7, reproducible from ``seed``.
 
@@ -112,6 +127,9 @@ def random_profile(
         the first grid wavenumber under 1 % of the variance for ISO spectra.
     x_start : float, optional
         Station of the first sample [m]; default −P/2 (centred on the bridge entry).
+    window : (float, float), optional
+        Only the stations covering x_lo … x_hi [m] (clipped to the period; module docstring):
+        the same road there as without ``window``, at a fraction of the cost.
     """
     if spacing <= 0:
         raise ValueError(f"road spacing must be > 0 m, got {spacing!r}")
@@ -121,11 +139,53 @@ def random_profile(
     x0 = -period / 2 if x_start is None else float(x_start)
     theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
     amp = np.sqrt(2.0 * psd(n_k) / period)
-    coef = np.zeros(n_samples, complex)
-    coef[k] = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
-    z = np.real(np.fft.ifft(coef)) * n_samples
+    band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
+    label = label or f"PSD phi0={psd.phi0:g}, seed {seed}"
+    if window is not None:
+        first, last = _window_samples(window, x0, spacing, n_samples)
+        z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, first, last - first + 1)
+        return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label)
+    coef = np.zeros(n_samples // 2 + 1, complex)
+    coef[k] = band
+    coef[n_samples // 2] *= 2.0  # irfft counts the Nyquist term once, the others twice (k = 0 is never in the band)
+    z = np.fft.irfft(coef, n_samples) * (0.5 * n_samples)  # = Re Σ_k coef_k exp(2πi k j / N): one real FFT
     x = x0 + spacing * np.arange(n_samples)
-    return RoadProfile(x, z, label or f"PSD phi0={psd.phi0:g}, seed {seed}")
+    return RoadProfile(x, z, label)
+
+
+def _window_samples(window: tuple[float, float], x0: float, spacing: float, n_samples: int) -> tuple[int, int]:
+    """First and last sample index j (x_j = x0 + j·Δx) covering ``window`` with the margin, clipped to the period."""
+    lo, hi = (float(v) for v in window)
+    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= hi):
+        raise ValueError(f"road window must be finite (x_lo, x_hi) with x_lo <= x_hi, got {window!r}")
+    first = int(np.floor((lo - x0) / spacing)) - WINDOW_MARGIN_SAMPLES
+    last = int(np.ceil((hi - x0) / spacing)) + WINDOW_MARGIN_SAMPLES
+    first, last = max(first, 0), min(last, n_samples - 1)
+    return (first, max(last, first + 1)) if first < n_samples - 1 else (n_samples - 2, n_samples - 1)
+
+
+def _chirp(q: NDArray[np.int64], n_samples: int) -> NDArray[np.complex128]:
+    """exp(iπ q²/N) with q² reduced modulo 2N in integers (exact phase for any q)."""
+    return np.exp(1j * np.pi * ((q * q) % (2 * n_samples)) / n_samples)
+
+
+def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int, m: int) -> NDArray[np.float64]:
+    """Re Σ_n band_n · exp(2πi (k0 + n) j / N) at j = first … first + m − 1: the inverse DFT (times N)
+    of coefficients at k = k0 … k0 + M − 1, at m consecutive samples only (module docstring)."""
+    n_band = band.size
+    if n_band == 0:
+        return np.zeros(m)
+    n = np.arange(n_band, dtype=np.int64)
+    d = band * np.exp(2j * np.pi * ((n * first) % n_samples) / n_samples)  # shift to l = j − first
+    a = d * _chirp(n, n_samples)
+    size = int(sp_fft.next_fast_len(n_band + m - 1))
+    b = np.zeros(size, complex)
+    b[:m] = np.conj(_chirp(np.arange(m, dtype=np.int64), n_samples))  # W^{−j²/2}, j = 0 … m − 1
+    b[size - n_band + 1:] = np.conj(_chirp(np.arange(-(n_band - 1), 0, dtype=np.int64), n_samples))
+    conv = sp_fft.ifft(sp_fft.fft(a, size) * sp_fft.fft(b))[:m]
+    j = np.arange(first, first + m, dtype=np.int64)
+    carrier = np.exp(2j * np.pi * ((k0 * j) % n_samples) / n_samples)  # the band's lowest index
+    return np.real(carrier * _chirp(np.arange(m, dtype=np.int64), n_samples) * conv)
 
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -144,6 +204,7 @@ def correlated_profile(
     length: float = 1000.0,
     x_start: float | None = None,
     label: str = "",
+    window: tuple[float, float] | None = None,
 ) -> RoadProfile:
     """The right wheel line's profile, partially correlated with ``left`` (same PSD).
 
@@ -154,13 +215,13 @@ def correlated_profile(
     the paper's identical lines, c = 0 independent ones.  [substitute] Measured roads are more
     coherent at long than at short wavelengths; a constant c is the simplest model that keeps
     both PSDs exact.  ``left`` must come from [`random_profile`][vbikit.road.random_profile] with the same ``psd``,
-    ``spacing``, ``length`` and ``x_start``.
+    ``spacing``, ``length``, ``x_start`` and ``window``.
     """
     if not 0.0 <= coherence <= 1.0:
         raise ValueError(f"left/right coherence must be in [0, 1], got {coherence!r}")
     child = int(np.random.SeedSequence(seed).spawn(1)[0].generate_state(1)[0])
-    other = random_profile(psd, child, spacing=spacing, length=length, x_start=x_start)
+    other = random_profile(psd, child, spacing=spacing, length=length, x_start=x_start, window=window)
     if other.x.shape != left.x.shape or not np.array_equal(other.x, left.x):
-        raise ValueError("the left profile was not generated with the same spacing, length and x_start")
+        raise ValueError("the left profile was not generated with the same spacing, length, x_start and window")
     z = coherence * left.z + np.sqrt(1.0 - coherence**2) * other.z
     return RoadProfile(left.x, z, label or f"{left.label}, right line (coherence {coherence:g})")

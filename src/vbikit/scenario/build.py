@@ -1,6 +1,9 @@
 """Turn a validated [`Scenario`][vbikit.scenario.Scenario] into model objects and a Crossing."""
 from __future__ import annotations
 
+import json
+import os
+from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -42,9 +45,46 @@ from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 
+#: bridges built from [bridge] specs, newest last (``build_bridge``): a study's batches, repeated runs
+#: and the events of a process reuse one bridge, with its modes, mode tables along the wheel tracks
+#: and load-effect factorisation
+_BRIDGES: "OrderedDict[str, ModalBridge]" = OrderedDict()
+#: [substitute] bridges kept (a 3D deck with its tables and factors holds a few MB)
+BRIDGE_CACHE_SIZE = 4
+
+
+def _bridge_key(spec: BridgeSpec) -> str | None:
+    """The cache key of a [bridge] spec: its every value and the mode-cache folder; None (not kept)
+    when the spec names a file, whose content may change between runs."""
+    data = spec.model_dump(mode="json")
+
+    def names_file(value: object, key: str = "") -> bool:
+        if isinstance(value, dict):
+            return any(names_file(v, str(k)) for k, v in value.items())
+        if isinstance(value, (list, tuple)):
+            return any(names_file(v, key) for v in value)
+        return value is not None and ("file" in key or "path" in key)
+
+    if names_file(data):
+        return None
+    return json.dumps([type(spec).__name__, data, os.environ.get("VBIKIT_CACHE_DIR", "")], sort_keys=True, default=str)
+
+
 def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
-    """The bridge model of a [bridge] spec (each kind builds its own: ``spec.build(base_dir)``)."""
-    return spec.build(base_dir)
+    """The bridge model of a [bridge] spec (each kind builds its own: ``spec.build(base_dir)``); the
+    same spec again gives the same (immutable) bridge object, kept for the last
+    ``BRIDGE_CACHE_SIZE`` specs (not for a spec naming a file)."""
+    key = _bridge_key(spec)
+    if key is None:
+        return spec.build(base_dir)
+    bridge = _BRIDGES.get(key)
+    if bridge is None:
+        bridge = spec.build(base_dir)
+        if len(_BRIDGES) >= BRIDGE_CACHE_SIZE:
+            _BRIDGES.popitem(last=False)
+        _BRIDGES[key] = bridge
+    _BRIDGES.move_to_end(key)
+    return bridge
 
 
 def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
@@ -80,15 +120,18 @@ def build_defects(spec: RoadSpec) -> list[Defect]:
     return defects
 
 
-def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None) -> RoadProfile | None:
-    """The right wheel line's own profile, or None when both lines share ``left`` (the default)."""
+def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | None,
+                     window: tuple[float, float] | None = None) -> RoadProfile | None:
+    """The right wheel line's own profile, or None when both lines share ``left`` (the default);
+    ``window``: as ``left``'s (``build_road``)."""
     if spec.profile_file_right:
         return _profile(scenario, spec.profile_file_right, "road.profile_file_right")
     if left is None or spec.right_coherence >= 1.0:
         return None
     psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, n_min=spec.n_min, n_max=spec.n_max) if spec.road_class == "psd" \
         else RoadPSD.iso(spec.road_class, n_min=spec.n_min, n_max=spec.n_max)
-    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length)
+    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length,
+                              window=window)
 
 
 def check_road_budget(spec: RoadSpec, limits: Limits | None = None) -> None:
@@ -105,7 +148,10 @@ def _profile(scenario: Scenario, name: str, key: str) -> RoadProfile:
         raise ScenarioError(f"{key}: {err}") from None
 
 
-def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
+def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] | None = None) -> RoadProfile | None:
+    """The road profile of ``spec`` (None: smooth); a random one only over ``window`` = (x_lo, x_hi) [m]
+    when given (the range a crossing touches, ``Crossing.road_extent``: the same road there, far cheaper
+    than its whole period, ``vbikit.road.random_profile``)."""
     defects = build_defects(spec)
     if spec.profile_file:
         return with_defects(_profile(scenario, spec.profile_file, "road.profile_file"), defects)
@@ -117,7 +163,8 @@ def build_road(spec: RoadSpec, scenario: Scenario) -> RoadProfile | None:
     else:
         psd = RoadPSD.iso(spec.road_class, **band)
     label = f"class {spec.road_class}, seed {spec.seed}"
-    return with_defects(random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label), defects)
+    return with_defects(random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label,
+                                       window=window), defects)
 
 
 @dataclass(frozen=True)
@@ -187,6 +234,19 @@ def build_load_effects(scenario: Scenario, bridge: ModalBridge, girder: int | No
     return tuple(out)
 
 
+def with_scenario_road(crossing: Crossing, spec: RoadSpec, scenario: Scenario, seed: int | None = None) -> Crossing:
+    """``crossing`` (built without a road) on the road of ``spec`` (``seed``: instead of its own), a
+    random road generated only over the range its contact points touch (the events of traffic and
+    lifetime runs, each on its own road: the same road there as the whole period's to ≈ 1e-15 of its
+    rms, at a fraction of the cost; a scenario run keeps the whole period, bitwise the road of a
+    Python script's ``random_profile``)."""
+    if seed is not None:
+        spec = spec.model_copy(update={"seed": int(seed)})
+    window = crossing.road_extent()
+    road = build_road(spec, scenario, window)
+    return crossing.with_road(road, build_right_road(spec, scenario, road, window))
+
+
 def build(scenario: Scenario, limits: Limits | None = None) -> BuiltScenario:
     """Compose bridge, vehicle(s), tire and road into a Crossing.
 
@@ -254,7 +314,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         check_bridge(bridge, limits)
         check_road_budget(scenario.road, limits)
         c = scenario.crossing
-        road = build_road(scenario.road, scenario)
+        road = build_road(scenario.road, scenario)  # the whole period: as a Python script's random_profile
         common = dict(bridge=bridge, tire=build_tire(scenario.tire), road=road,
                       road_right=build_right_road(scenario.road, scenario, road), approach=c.approach,
                       free_vibration=c.free_vibration, dt=c.dt,

@@ -9,7 +9,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.effects import contact_influence, load_effect_response
+from vbikit.analysis.effects import contact_influences, load_effect_responses
 from vbikit.analysis.plan import point_name
 from vbikit.analysis.response import reduce_crossing
 from vbikit.outputs import as_number, outputs
@@ -85,16 +85,14 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     phi_first = built.crossing.bridge.mode_shapes(*([v] for v in solver_point(built)))[0]
 
     static: dict[float, NDArray] = {}  # static modal history, per step
-    influence: dict[tuple[str, float], NDArray] = {}  # contact influence matrices, per effect and step
+    influence: dict[float, NDArray] = {}  # contact influences of the plan's effects, per step
+    kinds, effects = tuple(plan.first_effects), tuple(plan.first_effects.values())
 
     def effect_responses(result) -> dict[str, object]:
-        out = {}
-        for kind, effect in plan.first_effects.items():
-            key = (kind, result.dt)
-            if plan.load_effect_method == "mode-acceleration" and key not in influence:
-                influence[key] = contact_influence(result, effect)
-            out[kind] = load_effect_response(result, effect, plan.load_effect_method, influence=influence.get(key))
-        return out
+        if plan.load_effect_method == "mode-acceleration" and effects and result.dt not in influence:
+            influence[result.dt] = contact_influences(result, effects)
+        return dict(zip(kinds, load_effect_responses(result, effects, plan.load_effect_method,
+                                                     influence=influence.get(result.dt))))
 
     def reduce(result):
         check_finite(result)

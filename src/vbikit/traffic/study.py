@@ -35,7 +35,7 @@ from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import OUTPUTS, outputs
-from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road
+from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
@@ -187,7 +187,6 @@ class TrafficStudy:
     def crossing(self, e: int) -> Crossing:
         """The several-vehicle crossing of event ``e``."""
         ctx = self.context()
-        road, road_right = ctx.road(self.road_seed(e))
         motions = []
         t0 = self.event_start[e]
         for i in self.events[e]:
@@ -195,7 +194,7 @@ class TrafficStudy:
             y = r.lateral_offset if r.lateral_offset is not None else self.lanes[r.lane - 1]
             motions.append(VehicleMotion(_vehicle(r), speed=r.speed, direction=r.direction, entry_time=r.time - t0,
                                          lateral_offset=y))
-        return ctx.template.with_vehicles(tuple(motions), road, road_right)
+        return ctx.crossing(tuple(motions), self.road_seed(e))
 
     def road_seed(self, e: int) -> int:
         """Seed of event ``e``'s random road (−1 if the base road is not random)."""
@@ -344,6 +343,14 @@ class EventContext:
         spec = self.scenario.road.model_copy(update={"seed": int(seed)})
         left = build_road(spec, self.scenario)
         return left, build_right_road(spec, self.scenario, left)
+
+    def crossing(self, motions: tuple[VehicleMotion, ...], seed: int) -> Crossing:
+        """The vehicles ``motions`` on the template's bridge and the road of ``seed`` (a random road
+        only over the range their contact points touch: the same road there as ``road(seed)``)."""
+        if not self.random_road:
+            return self.template.with_vehicles(motions, *self._fixed_road)
+        return with_scenario_road(self.template.with_vehicles(motions, None, None), self.scenario.road, self.scenario,
+                                  seed)
 
 
 @dataclass(frozen=True)

@@ -128,9 +128,14 @@ class Vehicle:
         return np.linalg.solve(self.stiffness + self.tire_stiffness_matrix(), rhs)
 
     def static_wheel_loads(self) -> NDArray[np.float64]:
-        """Static wheel loads [N] (positive = pressing down) on flat rigid ground, from equilibrium."""
-        q = self.static_state()
-        return np.array([w.fixed_load - w.stiffness * (w.row @ q if self.n_dof else 0.0) for w in self.wheels])
+        """Static wheel loads [N] (positive = pressing down) on flat rigid ground, from equilibrium
+        (solved once per vehicle: vehicles are immutable; a fresh copy each call)."""
+        loads = self.__dict__.get("_static_wheel_loads")
+        if loads is None:
+            q = self.static_state()
+            loads = np.array([w.fixed_load - w.stiffness * (w.row @ q if self.n_dof else 0.0) for w in self.wheels])
+            object.__setattr__(self, "_static_wheel_loads", loads)
+        return loads.copy()
 
     def natural_frequencies(self) -> NDArray[np.float64]:
         """Undamped natural frequencies [Hz] on rigid ground (tires as springs)."""

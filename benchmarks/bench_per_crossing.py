@@ -1,0 +1,147 @@
+"""Whole against kernel per crossing, workload by workload: what a crossing costs beyond the step loop
+(set-up: road, mode tables, static start; output reduction), and the same against another source tree.
+
+    python benchmarks/bench_per_crossing.py                          # this tree, 5 repeats
+    python benchmarks/bench_per_crossing.py --compare /path/to/src   # also another tree's src/, same run
+    python benchmarks/bench_per_crossing.py --workloads demo 3d --repeat 9
+
+Workloads (each warmed up once, then ``--repeat`` timed rounds; the figure is the minimum):
+
+* ``demo``: ``vbikit.run`` of the demo scenario (beam, 20 modes, multipoint n = 6, 75 km/h);
+* ``3d``: ``vbikit.run`` of ``examples/paper/bridge2_hs20_girder4.toml`` (3D deck, Girder 4);
+* ``fig10``: the study runner's ``run_batch`` on the paper's Fig. 10 study (first batch, 2 profiles
+  per point), per crossing;
+* ``traffic``: ``TrafficStudy.run_event`` of the first 12 events of the 5,000-truck benchmark stream
+  (``bench_traffic.py``'s base: 3D deck, 10 modes, point tires, class B, a road per event), per event;
+* ``lifetime``: ``run_event`` of 12 dynamic events of ``bench_lifetime.py``'s lifetime (4-mode beam,
+  axle trucks), per event.
+
+Measured: thread CPU time (``time.thread_time``) of the whole call and, inside it, of the compiled
+step loop (``vbikit.solve.kernels.implicit`` wrapped); "outside" = whole − kernel.  Every workload
+runs in a child process per tree (with ``--compare`` the trees alternate round by round, so that both
+see the same machine load), with one BLAS thread: on a busy machine BLAS worker threads that wait
+for a core turn a 51 × 51 matrix product into milliseconds of spinning.  Writes nothing but numba's
+cache.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKLOADS = ("demo", "3d", "fig10", "traffic", "lifetime")
+
+
+def _kernel_clock():
+    """Wrap the compiled step loop so that its thread CPU time adds up in ``spent[0]``."""
+    from vbikit.solve import kernels
+
+    spent = [0.0]
+    inner = kernels.implicit
+
+    def timed(*args, **kw):
+        t0 = time.thread_time()
+        try:
+            return inner(*args, **kw)
+        finally:
+            spent[0] += time.thread_time() - t0
+
+    kernels.implicit = timed
+    return spent
+
+
+def _workload(name: str):
+    """(function running one round, crossings a round)."""
+    if name in ("demo", "3d"):
+        import vbikit
+
+        src = ROOT / ("src/vbikit/scenario/demo.toml" if name == "demo" else "examples/paper/bridge2_hs20_girder4.toml")
+        return (lambda: vbikit.run(src)), 1
+    if name == "fig10":
+        from vbikit.study.compute import run_batch
+        from vbikit.study.paper import paper_study
+
+        study = paper_study("fig10", 2)
+        batch = study.batches()[0] if hasattr(study, "batches") else None
+        return (lambda: run_batch(study, batch)), len(batch)
+    if name == "traffic":
+        sys.path.insert(0, str(ROOT / "benchmarks"))
+        from bench_traffic import _base, _stream
+
+        from vbikit.traffic.study import traffic_study
+
+        job = traffic_study(_stream(5000, 600.0), _base(0.01), batch_size=16)
+        events = range(12)
+        return (lambda: [job.run_event(e) for e in events]), len(events)
+    if name == "lifetime":
+        sys.path.insert(0, str(ROOT / "benchmarks"))
+        from bench_lifetime import spec
+
+        from vbikit.lifetime.run import prepare
+
+        prep = prepare(spec(7, 4000.0, 0.001), ".")
+        day0 = prep.static_job().run_batch((0,))
+        gid = (day0["ev_day"] * 2**20 + day0["ev_index"])[:12]
+        dyn = prep.dynamic_job(gid)
+        return (lambda: [dyn.run_event(int(g)) for g in gid]), len(gid)
+    raise SystemExit(f"unknown workload {name!r}; choose from {', '.join(WORKLOADS)}")
+
+
+def measure(name: str, repeat: int) -> dict:
+    """Warm-up, then ``repeat`` rounds: min whole and kernel thread CPU per crossing [ms]."""
+    run, n = _workload(name)
+    spent = _kernel_clock()
+    run()  # warm-up: compile or load the kernels, build the caches
+    whole, kernel = [], []
+    for _ in range(repeat):
+        spent[0] = 0.0
+        t0 = time.thread_time()
+        run()
+        whole.append((time.thread_time() - t0) / n * 1e3)
+        kernel.append(spent[0] / n * 1e3)
+    k = min(range(repeat), key=whole.__getitem__)
+    return {"workload": name, "whole_ms": whole[k], "kernel_ms": kernel[k], "outside_ms": whole[k] - kernel[k]}
+
+
+def _child(src: str, name: str, repeat: int) -> dict:
+    env = dict(os.environ, PYTHONPATH=src, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
+    out = subprocess.run([sys.executable, __file__, "--child", name, "--repeat", str(repeat)], env=env,
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--workloads", nargs="+", default=list(WORKLOADS), choices=WORKLOADS)
+    p.add_argument("--repeat", type=int, default=5)
+    p.add_argument("--rounds", type=int, default=2, help="alternating rounds per tree with --compare (default 2)")
+    p.add_argument("--compare", default=None, help="another tree's src/ folder, measured in the same run")
+    p.add_argument("--child", default=None, help=argparse.SUPPRESS)
+    args = p.parse_args()
+    if args.child:
+        print(json.dumps(measure(args.child, args.repeat)))
+        return
+    here = str(ROOT / "src")
+    trees = {"this": here} | ({"compare": args.compare} if args.compare else {})
+    print(f"{'workload':10s} {'tree':8s} {'whole ms':>9s} {'kernel ms':>10s} {'outside ms':>11s}")
+    for name in args.workloads:
+        best: dict[str, dict] = {}
+        for _ in range(args.rounds if args.compare else 1):
+            for label, src in trees.items():
+                r = _child(src, name, args.repeat)
+                if label not in best or r["whole_ms"] < best[label]["whole_ms"]:
+                    best[label] = r
+        for label, r in best.items():
+            print(f"{name:10s} {label:8s} {r['whole_ms']:9.1f} {r['kernel_ms']:10.1f} {r['outside_ms']:11.1f}")
+        if args.compare:
+            print(f"{name:10s} {'ratio':8s} {best['compare']['whole_ms'] / best['this']['whole_ms']:9.2f}x "
+                  f"(compare / this, whole)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,100 @@
+"""Output reduction shared between effects and crossings: load effects reduced together (one pass,
+a grillage's consistent load of the points once), static wheel loads solved once per vehicle,
+scenario bridges kept per spec."""
+import numpy as np
+import pytest
+
+from vbikit.analysis.effects import contact_influence, contact_influences, load_effect_responses
+from vbikit.bridge import effects as bridge_effects
+from vbikit.bridge.presets import paper_deck
+from vbikit.solve import Crossing, simulate
+from vbikit.vehicle.presets import hs20_44
+
+
+@pytest.fixture(scope="module")
+def deck_result():
+    bridge = paper_deck(1, n_modes=4, use_cache=False, n_elements=12)
+    return simulate(Crossing(bridge, hs20_44(), speed=20.0, dt=2e-3))
+
+
+def _brute_force(result, effect):
+    """I(x_p, y_p) point by point through the effect's own influence function (one call per point)."""
+    crossing = result.crossing
+    origin, direction, y = crossing.point_kinematics()
+    s = np.asarray(result.travel).reshape(len(result.time), -1)[:, crossing.point_vehicle]
+    x = origin + direction * s
+    out = np.zeros(x.shape)
+    for t in range(0, x.shape[0], 97):
+        for p in range(x.shape[1]):
+            if 0.0 <= x[t, p] <= crossing.bridge.span:
+                out[t, p] = effect.influence(np.array([x[t, p]]), np.array([y[p]]))[0]
+    return out[::97]
+
+
+def test_deck_effects_share_the_consistent_load_and_agree_point_by_point(deck_result, monkeypatch):
+    bridge = deck_result.crossing.bridge
+    effects = bridge.default_load_effects(girder=2)
+    assert len(effects) >= 3
+    calls = []
+    shared = type(effects[0].influence).shared
+    monkeypatch.setattr(type(effects[0].influence), "shared", lambda self, x, y: calls.append(x.size) or shared(self, x, y))
+    together = contact_influences(deck_result, effects)
+    assert len(calls) == 1  # one consistent load of the points for all effects of the deck
+    for k, e in enumerate(effects):
+        assert np.allclose(together[k][::97], _brute_force(deck_result, e), rtol=1e-12, atol=1e-15)
+
+
+def test_effects_reduced_together_equal_one_by_one(deck_result):
+    bridge = deck_result.crossing.bridge
+    effects = bridge.default_load_effects(girder=2)
+    together = load_effect_responses(deck_result, effects)
+    for e, r in zip(effects, together):
+        alone = load_effect_responses(deck_result, [e], influence=contact_influence(deck_result, e)[None])[0]
+        assert np.allclose(r.dynamic, alone.dynamic, rtol=1e-13, atol=1e-12 * np.abs(alone.dynamic).max())
+        assert np.array_equal(r.static, alone.static)
+    sup = load_effect_responses(deck_result, effects, "mode-superposition")
+    assert [r.effect for r in sup] == list(effects) and load_effect_responses(deck_result, []) == []
+
+
+def test_influence_values_keeps_plain_functions_apart():
+    plain = bridge_effects.LoadEffect("moment", 1.0, np.zeros(1), lambda x, y: 2.0 * np.asarray(x), 1.0)
+    out = bridge_effects.influence_values([plain, plain], np.array([1.0, 3.0]), np.array([0.0, 0.0]))
+    assert out.shape == (2, 2) and np.array_equal(out[:, 1], [2.0, 6.0])
+
+
+def test_static_wheel_loads_are_solved_once_and_handed_out_as_copies():
+    v = hs20_44()
+    first = v.static_wheel_loads()
+    first[:] = 0.0  # a caller's change must not reach the vehicle
+    again = v.static_wheel_loads()
+    q = v.static_state()
+    expected = np.array([w.fixed_load - w.stiffness * (w.row @ q) for w in v.wheels])
+    assert np.array_equal(again, expected) and again.sum() == pytest.approx(v.total_weight)
+
+
+def test_scenario_bridges_are_kept_per_spec_and_bounded(tmp_path, monkeypatch):
+    import importlib
+
+    from vbikit.scenario.schema import parse_scenario
+
+    build_module = importlib.import_module("vbikit.scenario.build")
+
+    def spec(**bridge):
+        return parse_scenario({"bridge": {"model": "paper-bridge-2-beam", **bridge}, "vehicle": {"model": "hs20-44"},
+                               "crossing": {"speed_kmh": 75}}, ".").bridge
+
+    a = build_module.build_bridge(spec(n_modes=3))
+    assert build_module.build_bridge(spec(n_modes=3)) is a
+    assert build_module.build_bridge(spec(n_modes=4)) is not a
+    monkeypatch.setenv("VBIKIT_CACHE_DIR", str(tmp_path))  # another mode cache: built again
+    assert build_module.build_bridge(spec(n_modes=3)) is not a
+    for n in range(5, 5 + build_module.BRIDGE_CACHE_SIZE + 2):
+        build_module.build_bridge(spec(n_modes=n))
+    assert len(build_module._BRIDGES) == build_module.BRIDGE_CACHE_SIZE
+
+
+def test_a_bridge_from_a_file_is_built_every_time(tmp_path):
+    from vbikit.scenario.build import _bridge_key
+    from vbikit.scenario.bridge_spec import ModesFileSpec
+
+    assert _bridge_key(ModesFileSpec(model="modes-file", modes_file="m.txt")) is None
