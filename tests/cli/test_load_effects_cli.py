@@ -136,4 +136,7 @@ def test_cli_and_python_give_the_same_load_effects():
     res = simulate(Crossing(beam, hs20_44(), MultiPointTire(6), random_profile(RoadPSD.iso("C"), seed=1), speed=75 / 3.6))
     pier = load_effect_response(res, beam.load_effect("moment", x=20.0)).impact
     entry = next(e for e in s["moment"]["sections"] if e["x"] == 20.0)
-    assert entry["impact_factor"] == pier.impact_factor and entry["static_peak"] == pier.static_peak
+    # the CLI reduces all its effects in one batched pass (matrix products summed in another order
+    # than one effect alone): equal to round-off
+    assert entry["impact_factor"] == pytest.approx(pier.impact_factor, rel=1e-12, abs=1e-14)
+    assert entry["static_peak"] == pytest.approx(pier.static_peak, rel=1e-12)
