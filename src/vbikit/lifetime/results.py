@@ -428,7 +428,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         if static_below:
             d_static = 0.0
         if static_below and dyn_top < curve.threshold:
-            d_total = 0.0
+            # no damage by the limit rule, whatever the sample: no sampling error either
+            d_total, se = 0.0, 0.0
         out["below_limit"][j] = float(static_below and dyn_top < curve.threshold)
         per_year = d_total / years
         out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
@@ -444,7 +445,7 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     variables = {
         "fatigue_damage": ("detail", out["total"], a("1", "Miner damage over the simulated period, static + dynamic (difference estimator on the random sample)")),
         "fatigue_damage_static": ("detail", out["static"], a("1", "Miner damage of the static stress history over the simulated period")),
-        "fatigue_damage_se": ("detail", out["se"], a("1", "standard error of fatigue_damage from the dynamic sample")),
+        "fatigue_damage_se": ("detail", out["se"], a("1", "standard error of fatigue_damage from the dynamic sample (0 when below_fatigue_limit: no damage by the limit rule, whatever the sample)")),
         "fatigue_damage_per_year": ("detail", out["per_year"], a("year-1", "fatigue_damage per year")),
         "dynamic_damage_ratio": ("detail", out["ratio"], a("1", "fatigue_damage / fatigue_damage_static")),
         "equivalent_stress_range": ("detail", out["eq"], a("Pa", "damage-equivalent stress range at 2e6 cycles a year")),
