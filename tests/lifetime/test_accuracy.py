@@ -220,3 +220,22 @@ def test_report_flags_a_coarse_step_and_a_disagreement(quasi_static):
     assert not any("disagree" in f for f in r["flags"])
     report = text_report(facts)
     assert "FLAG governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report
+
+
+def test_report_explains_the_disagreement_mark_only_where_it_is_set(quasi_static):
+    """The return-level table of an effect whose methods agree at every period has no '*' and no
+    note about one (on main the note "(* BM and POT disagree beyond their intervals)" stood under
+    every table, read as a statement even where nothing was marked); where a level is marked, the
+    note explains the mark."""
+    from vbikit.lifetime.report import summary, text_report
+
+    ds = quasi_static[0].copy(deep=True)
+    for w in ("static", "total"):
+        ds[f"methods_disagree_{w}"].values[:] = 0
+    ds["methods_disagree_static"].values[0, -1] = 1  # M at the longest period only
+    report = text_report(summary(ds))
+    blocks = {name: report.split(f"\n{name} [")[1].split("\n\n")[0] for name in ("M", "R")}
+    rows_m = [x for x in blocks["M"].splitlines() if x.strip()[:1].isdigit()]
+    assert sum(" *" in x for x in rows_m) == 1 and " *" in rows_m[-1]
+    assert "disagree beyond their intervals" in blocks["M"]
+    assert " *" not in blocks["R"] and "disagree beyond their intervals" not in blocks["R"]

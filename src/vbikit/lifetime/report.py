@@ -187,7 +187,8 @@ def text_report(facts: dict[str, Any]) -> str:
                 mark = " *" if row[w]["methods_disagree"] else ""
                 cells += [_iv(row[w]["block_maxima"]), _iv(row[w]["peaks_over_threshold"]) + mark]
             lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<37} " for c in cells).rstrip())
-        lines.append("  (* BM and POT disagree beyond their intervals)")
+        if any(row[w]["methods_disagree"] for row in e["return_levels"] for w in ("static", "total")):
+            lines.append("  (* BM and POT disagree beyond their intervals)")
         lines.append("  " + e["adr"]["words"])
         for w, g in e.get("governing", {}).items():
             change = g["half_step_change"]
