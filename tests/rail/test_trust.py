@@ -191,3 +191,21 @@ def test_presets_call_a_trains_loads_axle_loads():
     hslm = next(x for x in out if x.strip().startswith("hslm-a1 "))
     assert "axle loads [kN]: 170.0" in hslm and "wheel loads" not in hslm
     assert any("wheel loads [kN]" in x for x in out)  # road vehicles keep their wheel loads
+
+
+def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value():
+    """The envelope line gives the dynamic peak (1 + phi'dyn) x train, without phi''/2 — not the design value
+    of the midspan line above it — and the midspan value it is compared with, so the two lines cannot be
+    read as one quantity (on main: "largest 5828 kN m … +0.46 % against the largest at midspan" under a
+    midspan design moment of 5987 kN m for the example)."""
+    result = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
+                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, figures=False)
+    ds = result.dataset
+    line = next(x for x in result.report.splitlines() if x.startswith("moment along the span"))
+    assert "dynamic peaks (1 + phi'dyn) x train, without phi''/2" in line
+    mid_dyn = float(ds["max_moment"].max()) / 1e3           # the largest midspan dynamic moment [kN m]
+    mid_static = float(ds["static_moment"].max()) / 1e3
+    assert f"at midspan {mid_dyn:.4g} kN m" in line and f"against midspan {mid_static:.4g} kN m" in line
+    env = float(line.split("largest ")[1].split(" kN m")[0])
+    pct = float(line.split("), ")[1].split(" %")[0])
+    assert pct == pytest.approx(100 * (env / mid_dyn - 1), abs=0.01 + 100 * 5e-4)
