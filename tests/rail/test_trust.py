@@ -209,3 +209,25 @@ def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value()
     env = float(line.split("largest ")[1].split(" kN m")[0])
     pct = float(line.split("), ")[1].split(" %")[0])
     assert pct == pytest.approx(100 * (env / mid_dyn - 1), abs=0.01 + 100 * 5e-4)
+
+
+def test_json_checks_state_the_unit_of_every_number(tmp_path):
+    """rail-summary.json: each check carries the unit of each of its numbers (on main the checks' peak,
+    limit, speed [m/s, where the trains' block says km/h], design moments [N m] and shears [N] had none);
+    the units agree with the dataset's variables they come from."""
+    import json
+
+    run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
+              "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, tmp_path, figures=False)
+    checks = json.loads((tmp_path / "rail-summary.json").read_text())["checks"]
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "rail.nc") as ds:
+        for kind in ("acceleration", "moment", "shear", "deflection"):
+            c = checks[kind]
+            numbers = [k for k, v in c.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
+            assert numbers and set(numbers) <= set(c["units"]), kind
+            assert c["units"]["speed"] == ds["speed"].attrs["units"]
+        assert checks["acceleration"]["units"]["peak"] == ds["max_deck_acceleration"].attrs["units"]
+        assert checks["moment"]["units"]["dynamic_design"] == ds["max_moment"].attrs["units"] == ds["lm71_moment"].attrs["units"]
+        assert checks["shear"]["units"]["lm71_design"] == ds["lm71_shear"].attrs["units"]

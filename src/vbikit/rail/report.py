@@ -128,10 +128,23 @@ def _grid_line(acc: dict[str, Any]) -> str:
             f"largest over all peaks {100 * acc['largest_refinement_bound']:.3f} % ({verdict})")
 
 
+#: the unit of every number of a check (``check``), written beside it in ``rail-summary.json``
+CHECK_UNITS: dict[str, dict[str, str]] = {
+    "acceleration": {"peak": "m s-2", "limit": "m s-2", "speed": "m s-1", "ratio": "1", "grid_peak": "m s-2",
+                     "grid_error": "1", "refinement_bound": "1", "largest_refinement_bound": "1", "tolerance": "1"},
+    "moment": {"dynamic_design": "N m", "lm71_design": "N m", "grid_design": "N m", "speed": "m s-1", "phi_dyn": "1",
+               "phi_irregularity": "1", "ratio": "1", "refinement_bound": "1"},
+    "shear": {"dynamic_design": "N", "lm71_design": "N", "grid_design": "N", "speed": "m s-1", "phi_dyn": "1",
+              "phi_irregularity": "1", "ratio": "1", "refinement_bound": "1"},
+    "deflection": {"phi_dyn": "1", "speed": "m s-1"},
+}
+
+
 def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
     """The JSON summary (``rail-summary.json``): the checks (with the speed grid's error bound and the
     moment envelope along the span), every train's resonance speeds by order i and its refined
-    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null."""
+    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null; every check with the units of
+    its numbers (``CHECK_UNITS``)."""
     def clean(x):
         if isinstance(x, dict):
             return {k: clean(v) for k, v in x.items()}
@@ -157,5 +170,7 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
                                     "speed_kmh": 3.6 * float(ds["peak_speed_refined"].values[k, j]),
                                     "error_bound": float(ds["peak_refinement_bound"].values[k, j])}
                                    for j in range(ds.peak.size) if np.isfinite(ds["peak_acceleration_refined"].values[k, j])]}
+    checks = {k: (v | {"units": {n: u for n, u in CHECK_UNITS[k].items() if n in v}} if k in CHECK_UNITS else v)
+              for k, v in checks.items()}
     return clean({"checks": checks, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})
