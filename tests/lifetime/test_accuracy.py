@@ -239,3 +239,22 @@ def test_report_explains_the_disagreement_mark_only_where_it_is_set(quasi_static
     assert sum(" *" in x for x in rows_m) == 1 and " *" in rows_m[-1]
     assert "disagree beyond their intervals" in blocks["M"]
     assert " *" not in blocks["R"] and "disagree beyond their intervals" not in blocks["R"]
+
+
+def test_summary_gives_the_pot_threshold_with_the_sign_of_the_effect(quasi_static):
+    """The POT threshold of summary.json and the report is a value of the effect, signed like its
+    return levels (the dataset's fit_pot_threshold is s·R, the governing direction): for an effect
+    governed downward (a deflection, s = −1) it is negative (on main: the positive s·R beside
+    negative levels, read as an upward deflection)."""
+    from vbikit.lifetime.report import summary, text_report
+
+    ds = quasi_static[0].copy(deep=True)
+    ds["effect_sign"].values[1] = -1.0  # R read as governed downward: its s·R threshold is then −R
+    facts = summary(ds)
+    for j, name in enumerate(("M", "R")):
+        s = float(ds["effect_sign"].values[j])
+        for w, var in (("static", "fit_pot_threshold"), ("total", "fit_pot_total_threshold")):
+            u = float(ds[var].values[j])
+            assert facts["load_effects"][name]["fits"][w]["pot_threshold"] == pytest.approx(s * u, rel=1e-15)
+    u = float(ds["fit_pot_threshold"].values[1])
+    assert u > 0 and f"POT threshold {-u:.4g}," in text_report(facts)

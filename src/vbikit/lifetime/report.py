@@ -33,7 +33,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
         levels.append(row)
     fits = {w: {"block_maxima_shape": _num(ds[f"fit_{w}_shape"].values[j]),
                 "pot_shape": _num(ds[f"fit_pot_{w}_shape"].values[j]),
-                "pot_threshold": _num(ds["fit_pot_threshold" if w == "static" else "fit_pot_total_threshold"].values[j]),
+                # signed like the levels (the dataset's threshold is s·R, the governing direction)
+                "pot_threshold": _num(float(ds["effect_sign"].values[j])
+                                      * ds["fit_pot_threshold" if w == "static" else "fit_pot_total_threshold"].values[j]),
                 "pot_exceedances": int(ds[f"fit_pot_{w}_exceedances"].values[j]),
                 "shape_strongly_negative": bool(ds[f"shape_strongly_negative_{w}"].values[j])}
             for w in ("static", "total")}
