@@ -54,6 +54,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
         "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event")},
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
     }
+    if "run_static_shortfall" in ds:
+        out["run_static_shortfall"] = {"value": _num(ds["run_static_shortfall"].values[j]),
+                                       "event": int(ds["run_static_shortfall_event"].values[j])}
     if "governing_event" in ds:
         gov = {}
         for w, name in enumerate(ds["governs"].values):
@@ -89,6 +92,12 @@ def _flags(e: dict, a: dict) -> list[str]:
                          f"{', '.join(f'{t:g}' for t in bad)} years — the characteristic value depends on the method")
     if e["adr"]["indistinguishable_from_one"]:
         flags.append("ADR: the interval contains 1 — the data cannot tell the ADR from 1")
+    short = e.get("run_static_shortfall", {})
+    if short.get("value") is not None and short["value"] > a["half_step_tolerance"]:
+        flags.append(f"the coupled runs' time steps miss the exact static peak by up to {100 * short['value']:.2f} % "
+                     f"(event {short['event']}; tolerance {100 * a['half_step_tolerance']:g} %): their total peaks are "
+                     "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
+                     "coarse for this effect")
     for w, g in e.get("governing", {}).items():
         if g["half_step_flag"]:
             flags.append(f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "

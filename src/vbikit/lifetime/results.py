@@ -208,6 +208,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
         **fat["variables"],
         **_governing_variables(dyn, st, total, run_static, day, static["ev_start"].values),
+        **_shortfall_variables(st, run_static, signs, simulated, day, n_days),
     }
     for name in ("characteristic_static", "characteristic_total", "return_level_static", "return_level_static_lower",
                  "return_level_static_upper", "return_level_total", "return_level_total_lower",
@@ -304,6 +305,21 @@ def _heavy_amplification(st, total, signs, day, n_days, simulated) -> float:
     amp = amplifications(total[heavy], st[heavy])
     amp = amp[np.isfinite(amp)]
     return float(amp.max()) if amp.size else math.nan
+
+
+def _shortfall_variables(st, run_static, signs, simulated, day, n_days) -> dict[str, Any]:
+    """How far the coupled runs' time steps miss the exact static peaks (``accuracy.run_static_shortfall``)."""
+    from vbikit.lifetime.accuracy import run_static_shortfall
+
+    worst, event = run_static_shortfall(st, run_static, signs, simulated, day, n_days, CHECK_FRACTION)
+    return {
+        "run_static_shortfall": ("load_effect", worst, {"units": "1", "long_name": (
+            "largest 1 - R_st,run / R_st over the simulated events with a static peak of at least "
+            f"{CHECK_FRACTION:g} of their day's largest: how far the coupled run's time steps miss the exact static "
+            "peak (its total peak is about as low)")}),
+        "run_static_shortfall_event": ("load_effect", event, {"units": "1", "long_name":
+                                                              "event of run_static_shortfall (-1: none)"}),
+    }
 
 
 def _governing_variables(dyn, st, total, run_static, day, start) -> dict[str, Any]:
