@@ -231,3 +231,36 @@ def test_json_checks_state_the_unit_of_every_number(tmp_path):
         assert checks["acceleration"]["units"]["peak"] == ds["max_deck_acceleration"].attrs["units"]
         assert checks["moment"]["units"]["dynamic_design"] == ds["max_moment"].attrs["units"] == ds["lm71_moment"].attrs["units"]
         assert checks["shear"]["units"]["lm71_design"] == ds["lm71_shear"].attrs["units"]
+
+
+def test_static_moment_envelope_of_a_span_with_restrained_ends_against_brute_force(tmp_path):
+    """A 20 m span with rotational end springs 5e10 N m/rad (a continuous-beam scenario bridge, which
+    `vbikit rail` takes): its moment influence lines are curved, so the largest moment is not reached
+    with an axle on a breakpoint.  At x = 2.5 m, HSLM-A3: brute force over first-axle positions every
+    5 mm gives 506 kN m (hogging); on main the breakpoint-only "exact" envelope gave 329 kN m (−35 %).
+    A simply supported beam's lines stay piecewise linear (the breakpoints alone, exact)."""
+    from vbikit.rail.envelope import piecewise_linear, static_envelope
+    from vbikit.rail.run import build_bridge
+    from vbikit.rail.spec import parse_rail_spec
+    from vbikit.vehicle.trains import hslm_a
+
+    (tmp_path / "bridge.toml").write_text('[bridge]\nmodel = "continuous-beam"\nspans = [20.0]\nEI = 7.9e10\n'
+                                          'mass_per_length = 25000.0\nrotational_stiffness = [5e10, 5e10]\n')
+    data = {"bridge": {"scenario": str(tmp_path / "bridge.toml")}, "trains": {"presets": ["hslm-a3"]},
+            "speeds": {"min": 100.0, "max": 120.0, "step": 20.0}}
+    bridge = build_bridge(parse_rail_spec(data), tmp_path)[0]
+    t = hslm_a(3)
+    xs = np.array([2.5, 10.0])
+    got = static_envelope(bridge, "moment", xs, t.axle_positions, t.axle_loads)
+    s = np.arange(0.0, 20.0 + t.axle_positions[-1], 0.005)
+    pos = s[:, None] - t.axle_positions[None, :]
+    on = (pos >= 0) & (pos <= 20.0)
+    for x, g in zip(xs, got):
+        eta = np.zeros(pos.shape)
+        eta[on] = -np.asarray(bridge.load_effect("moment", float(x)).influence(pos[on], np.zeros(int(on.sum()))))
+        brute = float(np.abs(eta @ t.axle_loads).max())
+        assert brute * (1 - 1e-3) <= g <= brute * (1 + 1e-9), x
+    assert not piecewise_linear(bridge.load_effect("moment", 2.5), 2.5, 20.0)
+    beam = build_bridge(parse_rail_spec({**data, "bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}}))[0]
+    assert piecewise_linear(beam.load_effect("moment", 2.5), 2.5, 20.0)
+    assert piecewise_linear(beam.load_effect("shear", 7.0), 7.0, 20.0)
