@@ -50,3 +50,41 @@ def test_one_range_above_the_fatigue_limit_counts_by_hand():
     hist = v["stress_range_histogram"][1][0]
     assert hist[20] == 10 and hist[28] == 1.0 and hist.sum() == 11  # the two half cycles in their own bin
     assert v["max_stress_range_static"][1][0] == 28.0 * MPA
+
+
+def test_below_the_fatigue_limit_the_damage_has_no_sampling_error():
+    """AASHTO category E ((ΔF)_TH = 31 MPa): a static history of 10 cycles of 20 MPa and two sampled
+    events whose dynamic histories (largest range 25 MPa) do differently small damages below the
+    threshold.  Every range of the loading is below (ΔF)_TH, so by the limit rule the damage is
+    exactly 0 (AASHTO LRFD 6.6.1.2.5), whatever the sample: its standard error and the upper bound
+    of the design-life damage are 0 too (on main the sample's spread of sub-threshold damages gave a
+    standard error and an upper bound above 0 beside the verdict "no fatigue damage")."""
+    import xarray as xr
+
+    from vbikit.lifetime.results import _verdict_variables
+
+    static = xr.Dataset({
+        "day_damage_closed": (("day", "detail"), np.array([[1e-7]])),
+        "day_damage_alone": (("day", "detail"), np.array([[1e-7]])),
+        "day_max_range": (("day", "detail"), np.array([[20.0 * MPA]])),
+        "res_day": ("res", np.array([0], np.int64)),
+        "res_detail": ("res", np.array([0], np.int64)),
+        "res_value": ("res", np.array([0.0])),
+        "hist_day": ("hist", np.array([0], np.int64)),
+        "hist_detail": ("hist", np.array([0], np.int64)),
+        "hist_bin": ("hist", np.array([20], np.int64)),
+        "hist_count": ("hist", np.array([10.0])),
+    })
+    results = {0: {"damage_dynamic": [3e-8], "damage_static": [1e-8], "max_range_dynamic": [25.0 * MPA]},
+               1: {"damage_dynamic": [9e-8], "damage_static": [1e-8], "max_range_dynamic": [25.0 * MPA]}}
+    spec = SimpleNamespace(days_per_year=365, ci=0.95,
+                           fatigue=SimpleNamespace(damage_so_far=0.0, design_life=100.0))
+    prep = SimpleNamespace(spec=spec, details=(Detail("d", 0, 1.0, "AASHTO E", 1.0, 1.0 * MPA),), n_days=1)
+    v = fatigue_results(prep, static, {"sample": np.array([0, 1], np.int64), "gid": np.array([0, 1]),
+                                       "results": results})["variables"]
+    assert v["below_fatigue_limit"][1][0] == 1
+    assert v["fatigue_damage"][1][0] == 0.0
+    assert v["fatigue_damage_se"][1][0] == 0.0
+    verdict = _verdict_variables(prep, v)
+    assert verdict["fatigue_damage_design_life_upper"][1][0] == 0.0
+    assert verdict["fatigue_verdict"][1][0].startswith("no fatigue damage")

@@ -191,3 +191,76 @@ def test_presets_call_a_trains_loads_axle_loads():
     hslm = next(x for x in out if x.strip().startswith("hslm-a1 "))
     assert "axle loads [kN]: 170.0" in hslm and "wheel loads" not in hslm
     assert any("wheel loads [kN]" in x for x in out)  # road vehicles keep their wheel loads
+
+
+def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value():
+    """The envelope line gives the dynamic peak (1 + phi'dyn) x train, without phi''/2 — not the design value
+    of the midspan line above it — and the midspan value it is compared with, so the two lines cannot be
+    read as one quantity (on main: "largest 5828 kN m … +0.46 % against the largest at midspan" under a
+    midspan design moment of 5987 kN m for the example)."""
+    result = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
+                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, figures=False)
+    ds = result.dataset
+    line = next(x for x in result.report.splitlines() if x.startswith("moment along the span"))
+    assert "dynamic peaks (1 + phi'dyn) x train, without phi''/2" in line
+    mid_dyn = float(ds["max_moment"].max()) / 1e3           # the largest midspan dynamic moment [kN m]
+    mid_static = float(ds["static_moment"].max()) / 1e3
+    assert f"at midspan {mid_dyn:.4g} kN m" in line and f"against midspan {mid_static:.4g} kN m" in line
+    env = float(line.split("largest ")[1].split(" kN m")[0])
+    pct = float(line.split("), ")[1].split(" %")[0])
+    assert pct == pytest.approx(100 * (env / mid_dyn - 1), abs=0.01 + 100 * 5e-4)
+
+
+def test_json_checks_state_the_unit_of_every_number(tmp_path):
+    """rail-summary.json: each check carries the unit of each of its numbers (on main the checks' peak,
+    limit, speed [m/s, where the trains' block says km/h], design moments [N m] and shears [N] had none);
+    the units agree with the dataset's variables they come from."""
+    import json
+
+    run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
+              "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, tmp_path, figures=False)
+    checks = json.loads((tmp_path / "rail-summary.json").read_text())["checks"]
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "rail.nc") as ds:
+        for kind in ("acceleration", "moment", "shear", "deflection"):
+            c = checks[kind]
+            numbers = [k for k, v in c.items() if isinstance(v, (int, float)) and not isinstance(v, bool)]
+            assert numbers and set(numbers) <= set(c["units"]), kind
+            assert c["units"]["speed"] == ds["speed"].attrs["units"]
+        assert checks["acceleration"]["units"]["peak"] == ds["max_deck_acceleration"].attrs["units"]
+        assert checks["moment"]["units"]["dynamic_design"] == ds["max_moment"].attrs["units"] == ds["lm71_moment"].attrs["units"]
+        assert checks["shear"]["units"]["lm71_design"] == ds["lm71_shear"].attrs["units"]
+
+
+def test_static_moment_envelope_of_a_span_with_restrained_ends_against_brute_force(tmp_path):
+    """A 20 m span with rotational end springs 5e10 N m/rad (a continuous-beam scenario bridge, which
+    `vbikit rail` takes): its moment influence lines are curved, so the largest moment is not reached
+    with an axle on a breakpoint.  At x = 2.5 m, HSLM-A3: brute force over first-axle positions every
+    5 mm gives 506 kN m (hogging); on main the breakpoint-only "exact" envelope gave 329 kN m (−35 %).
+    A simply supported beam's lines stay piecewise linear (the breakpoints alone, exact)."""
+    from vbikit.rail.envelope import piecewise_linear, static_envelope
+    from vbikit.rail.run import build_bridge
+    from vbikit.rail.spec import parse_rail_spec
+    from vbikit.vehicle.trains import hslm_a
+
+    (tmp_path / "bridge.toml").write_text('[bridge]\nmodel = "continuous-beam"\nspans = [20.0]\nEI = 7.9e10\n'
+                                          'mass_per_length = 25000.0\nrotational_stiffness = [5e10, 5e10]\n')
+    data = {"bridge": {"scenario": str(tmp_path / "bridge.toml")}, "trains": {"presets": ["hslm-a3"]},
+            "speeds": {"min": 100.0, "max": 120.0, "step": 20.0}}
+    bridge = build_bridge(parse_rail_spec(data), tmp_path)[0]
+    t = hslm_a(3)
+    xs = np.array([2.5, 10.0])
+    got = static_envelope(bridge, "moment", xs, t.axle_positions, t.axle_loads)
+    s = np.arange(0.0, 20.0 + t.axle_positions[-1], 0.005)
+    pos = s[:, None] - t.axle_positions[None, :]
+    on = (pos >= 0) & (pos <= 20.0)
+    for x, g in zip(xs, got):
+        eta = np.zeros(pos.shape)
+        eta[on] = -np.asarray(bridge.load_effect("moment", float(x)).influence(pos[on], np.zeros(int(on.sum()))))
+        brute = float(np.abs(eta @ t.axle_loads).max())
+        assert brute * (1 - 1e-3) <= g <= brute * (1 + 1e-9), x
+    assert not piecewise_linear(bridge.load_effect("moment", 2.5), 2.5, 20.0)
+    beam = build_bridge(parse_rail_spec({**data, "bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}}))[0]
+    assert piecewise_linear(beam.load_effect("moment", 2.5), 2.5, 20.0)
+    assert piecewise_linear(beam.load_effect("shear", 7.0), 7.0, 20.0)

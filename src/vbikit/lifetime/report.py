@@ -33,7 +33,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
         levels.append(row)
     fits = {w: {"block_maxima_shape": _num(ds[f"fit_{w}_shape"].values[j]),
                 "pot_shape": _num(ds[f"fit_pot_{w}_shape"].values[j]),
-                "pot_threshold": _num(ds["fit_pot_threshold" if w == "static" else "fit_pot_total_threshold"].values[j]),
+                # signed like the levels (the dataset's threshold is s·R, the governing direction)
+                "pot_threshold": _num(float(ds["effect_sign"].values[j])
+                                      * ds["fit_pot_threshold" if w == "static" else "fit_pot_total_threshold"].values[j]),
                 "pot_exceedances": int(ds[f"fit_pot_{w}_exceedances"].values[j]),
                 "shape_strongly_negative": bool(ds[f"shape_strongly_negative_{w}"].values[j])}
             for w in ("static", "total")}
@@ -52,6 +54,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
         "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event")},
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
     }
+    if "run_static_shortfall" in ds:
+        out["run_static_shortfall"] = {"value": _num(ds["run_static_shortfall"].values[j]),
+                                       "event": int(ds["run_static_shortfall_event"].values[j])}
     if "governing_event" in ds:
         gov = {}
         for w, name in enumerate(ds["governs"].values):
@@ -87,6 +92,12 @@ def _flags(e: dict, a: dict) -> list[str]:
                          f"{', '.join(f'{t:g}' for t in bad)} years — the characteristic value depends on the method")
     if e["adr"]["indistinguishable_from_one"]:
         flags.append("ADR: the interval contains 1 — the data cannot tell the ADR from 1")
+    short = e.get("run_static_shortfall", {})
+    if short.get("value") is not None and short["value"] > a["half_step_tolerance"]:
+        flags.append(f"the coupled runs' time steps miss the exact static peak by up to {100 * short['value']:.2f} % "
+                     f"(event {short['event']}; tolerance {100 * a['half_step_tolerance']:g} %): their total peaks are "
+                     "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
+                     "coarse for this effect")
     for w, g in e.get("governing", {}).items():
         if g["half_step_flag"]:
             flags.append(f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "
@@ -187,7 +198,8 @@ def text_report(facts: dict[str, Any]) -> str:
                 mark = " *" if row[w]["methods_disagree"] else ""
                 cells += [_iv(row[w]["block_maxima"]), _iv(row[w]["peaks_over_threshold"]) + mark]
             lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<37} " for c in cells).rstrip())
-        lines.append("  (* BM and POT disagree beyond their intervals)")
+        if any(row[w]["methods_disagree"] for row in e["return_levels"] for w in ("static", "total")):
+            lines.append("  (* BM and POT disagree beyond their intervals)")
         lines.append("  " + e["adr"]["words"])
         for w, g in e.get("governing", {}).items():
             change = g["half_step_change"]

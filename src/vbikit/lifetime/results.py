@@ -208,6 +208,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
         **fat["variables"],
         **_governing_variables(dyn, st, total, run_static, day, static["ev_start"].values),
+        **_shortfall_variables(st, run_static, signs, simulated, day, n_days),
     }
     for name in ("characteristic_static", "characteristic_total", "return_level_static", "return_level_static_lower",
                  "return_level_static_upper", "return_level_total", "return_level_total_lower",
@@ -304,6 +305,21 @@ def _heavy_amplification(st, total, signs, day, n_days, simulated) -> float:
     amp = amplifications(total[heavy], st[heavy])
     amp = amp[np.isfinite(amp)]
     return float(amp.max()) if amp.size else math.nan
+
+
+def _shortfall_variables(st, run_static, signs, simulated, day, n_days) -> dict[str, Any]:
+    """How far the coupled runs' time steps miss the exact static peaks (``accuracy.run_static_shortfall``)."""
+    from vbikit.lifetime.accuracy import run_static_shortfall
+
+    worst, event = run_static_shortfall(st, run_static, signs, simulated, day, n_days, CHECK_FRACTION)
+    return {
+        "run_static_shortfall": ("load_effect", worst, {"units": "1", "long_name": (
+            "largest 1 - R_st,run / R_st over the simulated events with a static peak of at least "
+            f"{CHECK_FRACTION:g} of their day's largest: how far the coupled run's time steps miss the exact static "
+            "peak (its total peak is about as low)")}),
+        "run_static_shortfall_event": ("load_effect", event, {"units": "1", "long_name":
+                                                              "event of run_static_shortfall (-1: none)"}),
+    }
 
 
 def _governing_variables(dyn, st, total, run_static, day, start) -> dict[str, Any]:
@@ -428,7 +444,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         if static_below:
             d_static = 0.0
         if static_below and dyn_top < curve.threshold:
-            d_total = 0.0
+            # no damage by the limit rule, whatever the sample: no sampling error either
+            d_total, se = 0.0, 0.0
         out["below_limit"][j] = float(static_below and dyn_top < curve.threshold)
         per_year = d_total / years
         out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
@@ -444,7 +461,7 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     variables = {
         "fatigue_damage": ("detail", out["total"], a("1", "Miner damage over the simulated period, static + dynamic (difference estimator on the random sample)")),
         "fatigue_damage_static": ("detail", out["static"], a("1", "Miner damage of the static stress history over the simulated period")),
-        "fatigue_damage_se": ("detail", out["se"], a("1", "standard error of fatigue_damage from the dynamic sample")),
+        "fatigue_damage_se": ("detail", out["se"], a("1", "standard error of fatigue_damage from the dynamic sample (0 when below_fatigue_limit: no damage by the limit rule, whatever the sample)")),
         "fatigue_damage_per_year": ("detail", out["per_year"], a("year-1", "fatigue_damage per year")),
         "dynamic_damage_ratio": ("detail", out["ratio"], a("1", "fatigue_damage / fatigue_damage_static")),
         "equivalent_stress_range": ("detail", out["eq"], a("Pa", "damage-equivalent stress range at 2e6 cycles a year")),

@@ -19,17 +19,46 @@ def moment_sections(span: float, n: int) -> NDArray[np.float64]:
     return span * np.arange(1, n) / n
 
 
+#: a line is piecewise linear when it leaves the chords between its breakpoints by at most this share of its largest value
+LINEAR_TOL = 1e-9
+#: samples per piece of the linearity test, and first-axle travel samples per span on a curved line
+_LINEAR_SAMPLES = 200
+TRAVEL_STEPS = 400
+
+
+def piecewise_linear(effect, x: float, span: float, y: float = 0.0) -> bool:
+    """Whether the influence line η(ξ) of ``effect`` (section ``x`` [m]) is straight between its
+    breakpoints 0, x, L (a simply supported span's moment and shear lines; not those of a span with
+    rotational end restraints or of a girder in a deck, which are curved)."""
+    eps = 1e-9 * span
+    values, chords = [], []
+    for a, b in ((0.0, x), (x, span)):
+        if b - a <= 2 * eps:
+            continue
+        u = np.linspace(a + eps, b - eps, _LINEAR_SAMPLES)
+        eta = np.asarray(effect.influence(u, np.full(u.size, y)), float)
+        values.append(eta)
+        chords.append(eta[0] + (eta[-1] - eta[0]) * (u - u[0]) / (u[-1] - u[0]))
+    top = max((float(np.max(np.abs(v))) for v in values), default=0.0)
+    return all(float(np.max(np.abs(v - c))) <= LINEAR_TOL * top for v, c in zip(values, chords)) if top > 0 else True
+
+
 def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64], axles: NDArray[np.float64],
                     loads: NDArray[np.float64], y: float = 0.0, travel: Optional[NDArray[np.float64]] = None) -> NDArray[np.float64]:
     """max over the train's positions of |Σ_k P_k η(s − a_k)| at each section (η the effect of a unit
     downward force), evaluated where an axle stands on a breakpoint of a simply supported span's
     influence line (a support or the section itself: s = a_k, a_k + x, a_k + L) — exact for a
-    piecewise-linear line — and at the first-axle travel samples ``travel`` [m] (curved lines)."""
+    piecewise-linear line — and at the first-axle travel samples ``travel`` [m]; a curved line
+    (``piecewise_linear`` false: restrained ends, a girder of a deck) is also sampled every
+    L / ``TRAVEL_STEPS`` of travel when no ``travel`` is given."""
     span = float(bridge.span)
     out = np.zeros(sections.size)
     for j, x in enumerate(sections):
         effect = bridge.load_effect(kind, float(x))
-        cand = np.concatenate([axles + b for b in (0.0, float(x), span)] + ([travel] if travel is not None else []))
+        extra = travel
+        if extra is None and not piecewise_linear(effect, float(x), span, y):
+            extra = np.arange(0.0, span + float(axles[-1]) + span / TRAVEL_STEPS, span / TRAVEL_STEPS)
+        cand = np.concatenate([axles + b for b in (0.0, float(x), span)] + ([extra] if extra is not None else []))
         pos = cand[:, None] - axles[None, :]
         on = (pos >= 0.0) & (pos <= span)
         eta = np.zeros(pos.shape)

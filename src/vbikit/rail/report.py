@@ -87,11 +87,16 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                         f"{100 * c['refinement_bound']:.3f} %" if math.isfinite(c.get("refinement_bound", math.nan)) else ""))
     if "moment_envelope" in checks:
         e = checks["moment_envelope"]
+        # the dynamic peak (1 + phi'dyn) x train of every section, compared with the same at midspan (not with
+        # the midspan line's design value, which adds phi''/2)
+        mid, mid_static = float(np.nanmax(ds["max_moment"].values)), float(np.nanmax(ds["static_moment"].values))
         lines.append(f"moment along the span: largest {e['moment_max_Nm'] / 1e3:.4g} kN m at x = {e['moment_max_position_m']:.3f} m "
                      f"({e['moment_max_train']} at {3.6 * e['moment_max_speed_m_s']:.1f} km/h), "
-                     f"{100 * (e['moment_max_over_midspan'] - 1):+.2f} % against the largest at midspan; static "
+                     f"{100 * (e['moment_max_over_midspan'] - 1):+.2f} % against the largest at midspan {mid / 1e3:.4g} kN m "
+                     f"(dynamic peaks (1 + phi'dyn) x train, without phi''/2); static "
                      f"{e['static_moment_max_Nm'] / 1e3:.4g} kN m at x = {e['static_moment_max_position_m']:.3f} m "
-                     f"({e['static_moment_max_train']}), {100 * (e['static_moment_max_over_midspan'] - 1):+.2f} % against midspan")
+                     f"({e['static_moment_max_train']}), {100 * (e['static_moment_max_over_midspan'] - 1):+.2f} % against "
+                     f"midspan {mid_static / 1e3:.4g} kN m")
     d = checks["deflection"]
     lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {3.6 * d['speed']:.1f} km/h)")
     lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length or the dominant repeated axle "
@@ -123,10 +128,23 @@ def _grid_line(acc: dict[str, Any]) -> str:
             f"largest over all peaks {100 * acc['largest_refinement_bound']:.3f} % ({verdict})")
 
 
+#: the unit of every number of a check (``check``), written beside it in ``rail-summary.json``
+CHECK_UNITS: dict[str, dict[str, str]] = {
+    "acceleration": {"peak": "m s-2", "limit": "m s-2", "speed": "m s-1", "ratio": "1", "grid_peak": "m s-2",
+                     "grid_error": "1", "refinement_bound": "1", "largest_refinement_bound": "1", "tolerance": "1"},
+    "moment": {"dynamic_design": "N m", "lm71_design": "N m", "grid_design": "N m", "speed": "m s-1", "phi_dyn": "1",
+               "phi_irregularity": "1", "ratio": "1", "refinement_bound": "1"},
+    "shear": {"dynamic_design": "N", "lm71_design": "N", "grid_design": "N", "speed": "m s-1", "phi_dyn": "1",
+              "phi_irregularity": "1", "ratio": "1", "refinement_bound": "1"},
+    "deflection": {"phi_dyn": "1", "speed": "m s-1"},
+}
+
+
 def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
     """The JSON summary (``rail-summary.json``): the checks (with the speed grid's error bound and the
     moment envelope along the span), every train's resonance speeds by order i and its refined
-    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null."""
+    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null; every check with the units of
+    its numbers (``CHECK_UNITS``)."""
     def clean(x):
         if isinstance(x, dict):
             return {k: clean(v) for k, v in x.items()}
@@ -152,5 +170,7 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
                                     "speed_kmh": 3.6 * float(ds["peak_speed_refined"].values[k, j]),
                                     "error_bound": float(ds["peak_refinement_bound"].values[k, j])}
                                    for j in range(ds.peak.size) if np.isfinite(ds["peak_acceleration_refined"].values[k, j])]}
+    checks = {k: (v | {"units": {n: u for n, u in CHECK_UNITS[k].items() if n in v}} if k in CHECK_UNITS else v)
+              for k, v in checks.items()}
     return clean({"checks": checks, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})

@@ -28,7 +28,7 @@ import numpy as np
 from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
-from vbikit.rail.envelope import moment_envelope_near, moment_sections, static_envelope
+from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope
 from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, refine_peaks
 from vbikit.rail.report import check, format_report, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, coupled_envelopes, excitation_wavelength, speed_grid, sweep_moving_forces,
@@ -354,7 +354,8 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "excitation_wavelength": var(("train",), wave, "m", "D of the resonance speeds n0 D / i (wavelength_source)"),
         "max_moment_along": var(("train", "speed", "section"), along, "N m", "peak bending moment at each section (mode acceleration)"),
         "static_moment_along": var(("train", "section"), st_along, "N m",
-                                   "peak static bending moment at each section (exact: an axle on a breakpoint of the influence line)"),
+                                   "peak static bending moment at each section (exact on a piecewise-linear influence line: an "
+                                   "axle on a breakpoint; a curved line also sampled every L/400 of travel)"),
         "peak_acceleration_grid": var(("train", "peak"), pk["grid_value"], "m s-2", "acceleration peak on the sweep's speed grid"),
         "peak_speed_grid": var(("train", "peak"), pk["grid_speed"], "m s-1", "speed of the acceleration peak on the sweep's grid"),
         "peak_acceleration_refined": var(("train", "peak"), pk["value"], "m s-2",
@@ -480,8 +481,10 @@ def moment_envelope_summary(ds, setup: SweepSetup, trains: dict[str, Train]) -> 
             "static_moment_max_train": sname,
             "static_moment_max_over_midspan": float(st_fine[ks]) / st_mid if st_mid > 0 else math.nan,
             "moment_envelope_method": (f"dynamic: {ds.section.size} sections swept (L/{ds.section.size + 1}), the largest "
-                                       f"placed on {NEAR_SECTIONS} sections around it at the governing speed; static: exact "
-                                       f"(an axle on a breakpoint of the influence line) on L/{FINE_SECTIONS}")}
+                                       f"placed on {NEAR_SECTIONS} sections around it at the governing speed; static on L/{FINE_SECTIONS}: "
+                                       f"exact on a piecewise-linear influence line (an axle on a breakpoint), on a "
+                                       f"curved one (restrained ends, a girder of a deck) also every L/{TRAVEL_STEPS} "
+                                       f"of travel")}
 
 
 def write_outputs(result: RailResult, out_dir: Path, figures: bool = True) -> list[Path]:
