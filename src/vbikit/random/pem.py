@@ -30,8 +30,8 @@ wavelength filter) are exact.  Two wheel lines with the road's coherence model
 r_R = c r_L + √(1 − c²) r_I (``vbikit.road.psd.correlated_profile``) are two independent
 pseudo-inputs per line: (r_L, r_R) = (1, c)·r̃ and (0, √(1 − c²))·r̃.
 
-Integration: Newmark's average-acceleration rule on the engine's time grid (one inverse of the
-real effective matrix per step, all lines as right-hand sides), from the static equilibrium
+Integration: Newmark's average-acceleration rule, ``substeps`` steps per step of the engine's
+time grid (one inverse of the real effective matrix per step, all lines as right-hand sides), from the static equilibrium
 K(t₀) ỹ₀ = F̃(t₀) (zero rates; the engine's own start, ``vbikit.solve.system.static_state``).
 
 Assumptions (where it fails): contact everywhere (no lift-off: check the lift-off probability),
@@ -137,7 +137,7 @@ def check_linear(crossing: Crossing) -> None:
 
 
 def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: float,
-                      lines: Lines | None = None, data: KernelData | None = None) -> PEMResult:
+                      lines: Lines | None = None, data: KernelData | None = None, substeps: int = 2) -> PEMResult:
     """Variance histories of the probes' random parts on ``crossing``'s time grid of step ``dt`` [s].
 
     Parameters
@@ -154,13 +154,22 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         Wavenumber lines (default ``band_lines`` over the PSD's band).
     data : KernelData, optional
         The crossing's kernel data if already built.
+    substeps : int
+        Newmark steps per output step ``dt`` (default 2: the average-acceleration rule's period
+        error, ≈ (ω h)²/12, is 4 × smaller than at ``dt``; on the paper's beam with the engine's step
+        the midspan acceleration's σ is then within 0.7 % of the converged one, 6.5 % with 1).
     """
     check_linear(crossing)
     data = kernel_data(crossing) if data is None else data
     lines = band_lines(road.psd.n_min, road.psd.n_max) if lines is None else lines
-    grid = time_grid(crossing, dt)
-    travel, speed = grid.travel[::2], grid.speed[::2]
-    n_t = travel.shape[0]
+    if int(substeps) != substeps or substeps < 1:
+        raise ValueError(f"substeps must be an integer >= 1, got {substeps!r}")
+    n_out = time_grid(crossing, dt).n_steps + 1
+    h = dt / substeps
+    time = crossing.start_time + dt * np.arange(n_out)
+    fine = crossing.start_time + h * np.arange(substeps * (n_out - 1) + 1)
+    travel, speed = crossing.travel(fine), crossing.travel_speed(fine)
+    n_t = n_out
     n_m, n_d, n_p = data.n_modes, data.n_dof, data.n_points
     n = n_m + n_d
     pts, veh = data.points, data.vehicles
@@ -243,9 +252,9 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         record(0, blk, u, v, a, g_w, maps)
         phase.append(ph)
         state.append((u, v, a))
-    c0, c1 = 4.0 / dt**2, 2.0 / dt
+    c0, c1 = 4.0 / h**2, 2.0 / h
     forward = pts.direction[:, None] > 0
-    for i in range(1, n_t):
+    for i in range(1, fine.size):
         x, vx = system(i)
         maps = wheel_maps(vx)
         inv = np.linalg.inv(stiff + c0 * mass + c1 * damp)  # small (n × n): a product per block is cheaper than LU solves
@@ -259,8 +268,9 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
             rhs = f + mass @ (c0 * u + 2.0 * c1 * v + a) + damp @ (c1 * u + v)
             u_new = inv @ rhs
             a_new = c0 * (u_new - u) - 2.0 * c1 * v - a
-            v = v + 0.5 * dt * (a + a_new)
+            v = v + 0.5 * h * (a + a_new)
             state[k] = (u_new, v, a_new)
-            record(i, blk, u_new, v, a_new, g_w, maps)
-    log.info("pseudo-excitation: %d lines × %d input(s), %d steps of %.3g s", lines.size, n_sets, n_t - 1, dt)
-    return PEMResult(grid.t_half[::2].copy(), lines, var, coarse, cov_dv, lam1)
+            if i % substeps == 0:
+                record(i // substeps, blk, u_new, v, a_new, g_w, maps)
+    log.info("pseudo-excitation: %d lines × %d input(s), %d steps of %.3g s", lines.size, n_sets, fine.size - 1, h)
+    return PEMResult(time, lines, var, coarse, cov_dv, lam1)
