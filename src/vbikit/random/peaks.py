@@ -20,10 +20,13 @@ and δ_e = q^1.2, the rate is multiplied by
 
     [1 − exp(−√(π/2) δ_e η)] / [1 − exp(−η²/2)]   (η > 0; capped at 1, and 1 for η ≤ 0).
 
-Poisson assumption: the corrected crossings are independent events, so the distribution of the
-peak P = max_t Z(t) is
+Poisson assumption: the corrected crossings are independent events.  Counting them from the
+start would treat the mean's own passage through b (certain when b < max μ) as a random event
+missed with probability e⁻¹; so they are counted from the time t*_b at which Z is most likely
+above b (largest (μ − b)/σ) in both directions — up-crossings after t*, down-crossings before
+it (the up-crossings of the time-reversed process: μ̇ → −μ̇, ρ → −ρ):
 
-    F_P(b) = P(Z(t₀) ≤ b) · exp(−∫ ν_b(t) dt).
+    F_P(b) = Φ((b − μ(t*))/σ(t*)) · exp(−∫_{t*}^{T} ν⁺_b dt − ∫_{t₀}^{t*} ν⁻_b dt).
 
 Assumptions (where it fails): Gaussian response (linear system, Gaussian road); the Poisson
 assumption is conservative (F_P too low, the peak too high) for low levels and narrow-band
@@ -115,15 +118,20 @@ def peak_distribution(time: NDArray[np.float64], mean: NDArray[np.float64], std:
     levels = np.linspace(float(mean.max()) - 5.0 * top, float((mean + 8.0 * std).max()), n_levels)
     cdf = np.zeros(n_levels)
     dt = np.diff(time)
+    std0 = np.where(random, std, 0.0)
     for j, b in enumerate(levels):
         if b < det:
             continue
-        nu = upcrossing_rate(b, mean, mean_rate, np.where(random, std, 0.0), rate_std, corr)
+        up = upcrossing_rate(b, mean, mean_rate, std0, rate_std, corr)
+        down = upcrossing_rate(b, mean, -mean_rate, std0, rate_std, -corr)  # up-crossings of the reversed process
         if lambda1 is not None:
-            nu = nu * vanmarcke_factor((b - mean) / sd, bandwidth)
-        expo = float(np.sum(0.5 * (nu[1:] + nu[:-1]) * dt))
-        start = float(ndtr((b - mean[0]) / sd[0])) if random[0] else float(b >= mean[0])
-        cdf[j] = start * np.exp(-expo)
+            factor = vanmarcke_factor((b - mean) / sd, bandwidth)
+            up, down = up * factor, down * factor
+        eta = np.where(random, (b - mean) / sd, np.inf)
+        k = int(np.argmin(eta))  # the time most likely to be above b
+        after = float(np.sum(0.5 * (up[k + 1:] + up[k:-1]) * dt[k:]))
+        before = float(np.sum(0.5 * (down[1:k + 1] + down[:k]) * dt[:k]))
+        cdf[j] = float(ndtr(eta[k])) * np.exp(-after - before)
     return PeakDistribution(levels, cdf)
 
 
