@@ -22,9 +22,16 @@ def run(
     max_steps: Optional[float] = MAX_STEPS,
     out_dir: Optional[Path] = typer.Option(None, "--out-dir", help="Write all three (SCENARIO.csv, SCENARIO.png, "
                                            "SCENARIO.json) into this folder."),
+    random_: bool = typer.Option(False, "--random", help="The random road without sampling: mean ± σ histories "
+                                 "and impact-factor quantiles by pseudo-excitation (docs/random.md)."),
 ) -> None:
     """Simulate one crossing described by a scenario file (writes files only when asked)."""
     from vbikit.scenario import load_scenario
+
+    if random_:
+        from vbikit.cli.random_run import run_random
+
+        return run_random(scenario, limits(max_memory, max_steps), as_json, summary_path)
 
     if out_dir is not None:
         stem = scenario.stem
