@@ -102,7 +102,7 @@ def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir
                quantiles: tuple[float, ...] | None = None):
     """The scenario's crossing on its random road without sampling: mean and σ histories by
     pseudo-excitation and the impact factor's distribution (``vbikit.random.response``); the
-    [`RandomResponse`][vbikit.random.response.RandomResponse] whose ``summary`` is exactly what
+    ``vbikit.random.response.RandomResponse`` whose ``summary`` is exactly what
     ``vbikit run --random --json`` prints.
 
     Raises
