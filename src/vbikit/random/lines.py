@@ -1,7 +1,7 @@
 """Spatial-frequency lines of the pseudo-excitation method: where to put them and their weights.
 
 The road's variance is the integral of its one-sided displacement PSD G_d(n) [m³/cycle] over
-the band [n_min, n_max] [cycle/m].  Every response variance of the linear system is the same
+the band n_min … n_max [cycle/m].  Every response variance of the linear system is the same
 integral weighted by the response's squared transfer function, σ²(t) = ∫ |H(n, t)|² G_d(n) dn,
 evaluated by the midpoint rule on cells [a_k, b_k] that tile the band:
 
@@ -44,7 +44,7 @@ class Lines:
 
 
 def band_lines(n_min: float, n_max: float, ratio: float = 0.05, max_width: float = 0.01) -> Lines:
-    """Cells tiling [``n_min``, ``n_max``] [cycle/m]: widths ``ratio``·a (geometric, a the cell's
+    """Cells tiling the band ``n_min`` … ``n_max`` [cycle/m]: widths ``ratio``·a (geometric, a the cell's
     lower edge) capped at ``max_width`` [cycle/m], the last cell cut at n_max."""
     if not 0 < n_min < n_max:
         raise ValueError(f"need 0 < n_min < n_max (cycle/m), got {n_min!r}, {n_max!r}")
