@@ -4,12 +4,13 @@ Run from the repository root (≈ 1 min)::
 
     python docs/scripts/random_numbers.py
 
-writes docs/figures/random-numbers.json (tests/random_vibration/test_docs_numbers.py checks that the
+writes docs/figures/random-numbers.json and the figure random-demo.png (``--no-figure``: not) (tests/random_vibration/test_docs_numbers.py checks that the
 page quotes it; its slow test runs this script again and compares).
 """
 from __future__ import annotations
 
 import json
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,6 +19,7 @@ from scipy.stats import chi2
 
 from vbikit.analysis.impact import impact_factor, static_modal_history
 from vbikit.random import Probes, PseudoRoad, band_lines, pseudo_excitation
+from vbikit.random.figure import plot_random
 from vbikit.random.montecarlo import monte_carlo
 from vbikit.random.response import random_response
 from vbikit.road.psd import RoadPSD
@@ -25,6 +27,7 @@ from vbikit.scenario.pipeline import scenario_of
 from vbikit.scenario.preflight import preflight
 
 OUT = Path(__file__).resolve().parents[1] / "figures" / "random-numbers.json"
+FIGURE = OUT.with_name("random-demo.png")
 MS, MU, KS, CS, KT, CT, V = 10_000.0, 1_000.0, 400e3, 40e3, 1_750e3, 3e3, 25.0
 
 
@@ -75,6 +78,9 @@ def demo(n: int) -> dict[str, object]:
         return r.displacement(x, y), r.xi_ddot @ shape, im.impact_factor
 
     runs = monte_carlo(crossing, road, range(1, n + 1), reduce)
+    if "--no-figure" not in sys.argv:
+        plot_random(rr, FIGURE, [r[0] for r in runs[:30]],
+                    title="demo, class C: mean ± kσ by pseudo-excitation, 30 Monte-Carlo crossings (grey)")
     out: dict[str, object] = {"crossings": n}
     for k, name in enumerate(("displacement", "acceleration")):
         s = np.array([r[k] for r in runs])

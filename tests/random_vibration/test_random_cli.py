@@ -43,8 +43,9 @@ def test_cli_json_equals_python_entry(tmp_path):
     py = vbikit.run_random(path).summary
     for key in ("impact_factor_mean", "impact_factor_std", "lift_off_probability"):
         assert py[key] == cli[key], key
-    text = runner.invoke(app, ["run", str(path), "--random"])
+    text = runner.invoke(app, ["run", str(path), "--random", "--plot", str(tmp_path / "r.png")])
     assert text.exit_code == 0 and "impact factor" in text.output and "quantiles" in text.output
+    assert (tmp_path / "r.png").stat().st_size > 10_000
 
 
 def test_smooth_road_and_disk_tires_are_refused(tmp_path):

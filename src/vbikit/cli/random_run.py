@@ -11,12 +11,17 @@ from vbikit.cli.guard import guard, warn
 from vbikit.cli.render import json_text, write_text
 
 
-def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Path]) -> None:
-    """Run the random-vibration analysis and print its summary (text, or JSON with ``--json``)."""
+def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Path], plot: Optional[Path] = None) -> None:
+    """Run the random-vibration analysis and print its summary (text, or JSON with ``--json``);
+    ``plot``: the figure of the mean and its ±kσ envelopes (``vbikit.random.figure``)."""
     from vbikit.scenario.pipeline import run_random as run
 
     rr = guard(lambda: run(scenario, limits=budget))
     s = rr.summary
+    if plot is not None:
+        from vbikit.random.figure import plot_random
+
+        guard(lambda: plot_random(rr, plot, title=s.get("name", "")))
     if summary_path is not None:
         guard(lambda: write_text(summary_path, json_text(s, indent=2) + "\n"))
     if as_json:

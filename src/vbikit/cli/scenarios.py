@@ -31,7 +31,7 @@ def run(
     if random_:
         from vbikit.cli.random_run import run_random
 
-        return run_random(scenario, limits(max_memory, max_steps), as_json, summary_path)
+        return run_random(scenario, limits(max_memory, max_steps), as_json, summary_path, plot)
 
     if out_dir is not None:
         stem = scenario.stem
