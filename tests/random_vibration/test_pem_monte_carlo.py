@@ -56,7 +56,7 @@ def _compare(plan, road: PseudoRoad, n: int) -> dict[str, float]:
     return {"displacement": _inside(res.std("displacement")[:, 0], disp),
             "acceleration": _inside(res.std("acceleration")[:, 0], acc),
             "wheel force": min(_inside(res.std("wheel_force")[:, w], force[:, :, w]) for w in range(force.shape[2])),
-            "mean z": float((np.abs(disp.mean(axis=0) - smooth.displacement(x)) / standard_error)[on].max())}
+            "mean z": float((np.abs(disp.mean(axis=0) - smooth.displacement(x))[on] / standard_error[on]).max())}
 
 
 def _check(found: dict[str, float]) -> None:

@@ -180,6 +180,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
     coef = np.concatenate([factors[s, line_of][:, None] * amp[None, :] for s in range(n_sets)], axis=1)  # (P, S·L)
     wave = 2.0 * np.pi * np.tile(lines.n, n_sets)  # (S·L,)
     k_p, c_p = pts.stiffness, pts.damping
+    coef_k, coef_cw = coef * k_p[:, None], coef * c_p[:, None] * wave[None, :]  # k_p r̃ and c_p ṙ̃/(i ẋ_p), per exp
     h_w = veh.wheel_rows  # (n_w, n_d)
     n_w = data.n_wheels
     wsum = np.zeros((n_w, n_p))
@@ -223,7 +224,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
     def forcing(phase, vx, blk):
         """The pseudo-loads F̃ (n, 2L') and each wheel's road force Σ_{p∈w} k_p r̃_p + c_p ṙ̃_p (n_w, 2L')
         of the lines ``blk``; r̃_p = coef·exp(i 2π n x_p), ṙ̃_p = i 2π n ẋ_p r̃_p."""
-        g = fl(phase * coef[:, blk] * (k_p[:, None] + 1j * (c_p * vx)[:, None] * wave[None, blk]))
+        g = fl(phase * (coef_k[:, blk] + 1j * vx[:, None] * coef_cw[:, blk]))
         g_w = wsum @ g
         f = np.empty((n, g.shape[1]))
         f[:n_m] = -(phi.T @ g)
@@ -254,6 +255,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         state.append((u, v, a))
     c0, c1 = 4.0 / h**2, 2.0 / h
     forward = pts.direction[:, None] > 0
+    one_way = bool(np.all(forward)) and travel.shape[1] == 1
     for i in range(1, fine.size):
         x, vx = system(i)
         maps = wheel_maps(vx)
@@ -261,8 +263,11 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         # exp(i 2π n (x + Δx)) = exp(i 2π n x)·exp(i 2π n Δx), Δx = dir_p Δs_v: one factor per vehicle
         step = np.exp(1j * np.outer(travel[i] - travel[i - 1], wave))  # (V, S·L)
         for k, blk in enumerate(blocks):
-            fac = step[pts.vehicle][:, blk]
-            phase[k] *= np.where(forward, fac, fac.conj())
+            if one_way:  # one vehicle driving +x: every point's factor is the same
+                phase[k] *= step[0, blk]
+            else:
+                fac = step[pts.vehicle][:, blk]
+                phase[k] *= np.where(forward, fac, fac.conj())
             u, v, a = state[k]
             f, g_w = forcing(phase[k], vx, blk)
             rhs = f + mass @ (c0 * u + 2.0 * c1 * v + a) + damp @ (c1 * u + v)
