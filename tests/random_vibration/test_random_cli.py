@@ -43,9 +43,12 @@ def test_cli_json_equals_python_entry(tmp_path):
     py = vbikit.run_random(path).summary
     for key in ("impact_factor_mean", "impact_factor_std", "lift_off_probability"):
         assert py[key] == cli[key], key
-    text = runner.invoke(app, ["run", str(path), "--random", "--plot", str(tmp_path / "r.png")])
+    text = runner.invoke(app, ["run", str(path), "--random", "--out-dir", str(tmp_path)])
     assert text.exit_code == 0 and "impact factor" in text.output and "quantiles" in text.output
-    assert (tmp_path / "r.png").stat().st_size > 10_000
+    assert (tmp_path / "s.png").stat().st_size > 10_000
+    csv = (tmp_path / "s.csv").read_text().splitlines()
+    assert csv[0].split(",")[:2] == ["time", "point"] and "displacement_std" in csv[0]
+    assert json.loads((tmp_path / "s.json").read_text())["impact_factor_std"] == cli["impact_factor_std"]
 
 
 def test_smooth_road_and_disk_tires_are_refused(tmp_path):

@@ -11,9 +11,11 @@ from vbikit.cli.guard import guard, warn
 from vbikit.cli.render import json_text, write_text
 
 
-def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Path], plot: Optional[Path] = None) -> None:
+def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Path], plot: Optional[Path] = None,
+               out: Optional[Path] = None) -> None:
     """Run the random-vibration analysis and print its summary (text, or JSON with ``--json``);
-    ``plot``: the figure of the mean and its ±kσ envelopes (``vbikit.random.figure``)."""
+    ``plot``: the figure of the mean and its ±kσ envelopes (``vbikit.random.figure``); ``out``: CSV
+    of the mean and σ histories of the deck responses at every point."""
     from vbikit.scenario.pipeline import run_random as run
 
     rr = guard(lambda: run(scenario, limits=budget))
@@ -22,6 +24,13 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
         from vbikit.random.figure import plot_random
 
         guard(lambda: plot_random(rr, plot, title=s.get("name", "")))
+    if out is not None:
+        def table() -> None:
+            ds = rr.dataset()
+            deck = ds[[v for v in ds.data_vars if "point" in ds[v].dims]].drop_vars(["x", "y"])
+            write_text(out, deck.to_dataframe().to_csv())
+
+        guard(table)
     if summary_path is not None:
         guard(lambda: write_text(summary_path, json_text(s, indent=2) + "\n"))
     if as_json:

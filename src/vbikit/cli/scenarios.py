@@ -28,11 +28,6 @@ def run(
     """Simulate one crossing described by a scenario file (writes files only when asked)."""
     from vbikit.scenario import load_scenario
 
-    if random_:
-        from vbikit.cli.random_run import run_random
-
-        return run_random(scenario, limits(max_memory, max_steps), as_json, summary_path, plot)
-
     if out_dir is not None:
         stem = scenario.stem
         out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
@@ -42,6 +37,10 @@ def run(
         from vbikit._files import figure_format
 
         guard(lambda: figure_format(plot))
+    if random_:
+        from vbikit.cli.random_run import run_random
+
+        return run_random(scenario, budget, as_json, summary_path, plot, out)
     outputs(execute(lambda: load_scenario(scenario), budget), as_json, out, plot, summary_path)
 
 
