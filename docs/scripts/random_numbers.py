@@ -97,6 +97,8 @@ def demo(n: int) -> dict[str, object]:
                     **{f"{q:g}": round(float(np.quantile(ims, q)), 3) for q in (0.5, 0.9, 0.95)}}
     out["im_pem"] = {"mean": round(rr.summary["impact_factor_mean"], 3),
                      **{k: round(v, 3) for k, v in rr.summary["impact_factor_quantiles"].items()}}
+    out["im_crossings"] = {k: round(v, 3) for k, v in rr.summary["impact_factor_quantiles_crossings"].items()}
+    out["im_sampling_error"] = round(rr.summary["impact_factor_sampling_error"], 4)
     out["grid_change_pct"] = round(rr.summary["grid_change"] * 100, 2)
     out["n_lines"] = rr.summary["n_lines"]
     return out

@@ -107,6 +107,23 @@ class PEMResult:
     coarse: dict[str, NDArray[np.float64]] = field(default_factory=dict)
     cov_dv: NDArray[np.float64] | None = None
     lambda1: NDArray[np.float64] | None = None
+    lines_displacement: NDArray[np.float64] | None = None
+
+    def sample_displacement(self, n: int, seed: int = 0, chunk: int = 256):
+        """``n`` histories (n, n_t, n_pt) of the deck points' random displacement, Gaussian with
+        exactly PEM's covariance: y(t) = Σ_k Re(ỹ_k(t) w_k), w_k = a_k + i b_k with a_k, b_k independent
+        standard normal (so Cov(y(t), y(s)) = Σ_k Re(ỹ_k(t) ỹ_k(s)*)), yielded in chunks of ``chunk``.
+        Needs ``pseudo_excitation(..., keep_lines=True)``."""
+        if self.lines_displacement is None:
+            raise ValueError("the pseudo responses of every line were not kept: use keep_lines=True")
+        rng = np.random.default_rng(seed)
+        h = self.lines_displacement  # (n_t, n_pt, 2L') float: [Re ỹ_k, Im ỹ_k] interleaved
+        for start in range(0, n, chunk):
+            m = min(chunk, n - start)
+            w = rng.standard_normal((h.shape[2], m))
+            w[1::2] *= -1.0  # Re(ỹ w) = Re ỹ · a − Im ỹ · b
+            flat = h.reshape(-1, h.shape[2]) @ w  # one product: (n_t·n_pt, m)
+            yield np.moveaxis(flat.reshape(h.shape[0], h.shape[1], m), 2, 0)
 
     def std(self, name: str) -> NDArray[np.float64]:
         """σ(t) [unit of the output] of output ``name``."""
@@ -137,7 +154,8 @@ def check_linear(crossing: Crossing) -> None:
 
 
 def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: float,
-                      lines: Lines | None = None, data: KernelData | None = None, substeps: int = 2) -> PEMResult:
+                      lines: Lines | None = None, data: KernelData | None = None, substeps: int = 2,
+                      keep_lines: bool = False) -> PEMResult:
     """Variance histories of the probes' random parts on ``crossing``'s time grid of step ``dt`` [s].
 
     Parameters
@@ -154,6 +172,9 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         Wavenumber lines (default ``band_lines`` over the PSD's band).
     data : KernelData, optional
         The crossing's kernel data if already built.
+    keep_lines : bool
+        Keep every line's pseudo displacement at the deck points (n_t × n_pt × 2 lines floats) for
+        ``PEMResult.sample_displacement``.
     substeps : int
         Newmark steps per output step ``dt`` (default 2: the average-acceleration rule's period
         error, ≈ (ω h)²/12, is 4 × smaller than at ``dt``; on the paper's beam with the engine's step
@@ -205,6 +226,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
     var = {name: np.zeros((n_t, size)) for name, size in zip(NAMES, (n_pt, n_pt, n_pt, n_d, n_d, n_w))}
     coarse = {name: np.zeros_like(v) for name, v in var.items()}
     cov_dv, lam1 = np.zeros((n_t, n_pt)), np.zeros((n_t, n_pt))
+    kept = np.zeros((n_t, n_pt, 2 * wave.size)) if keep_lines else None
 
     def fl(z):  # complex (r, L') → float view (r, 2L')
         return np.ascontiguousarray(z).view(np.float64)
@@ -219,6 +241,8 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
             var[name][i] += z2.sum(axis=1)
             coarse[name][i] += z2 @ cw2
         cov_dv[i] += (d * vel).sum(axis=1)
+        if kept is not None:
+            kept[i, :, 2 * blk.start:2 * blk.stop] = d
         lam1[i] += (np.hypot(d[:, 0::2], d[:, 1::2]) * np.hypot(vel[:, 0::2], vel[:, 1::2])).sum(axis=1)
 
     def forcing(phase, vx, blk):
@@ -278,4 +302,4 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
             if i % substeps == 0:
                 record(i // substeps, blk, u_new, v, a_new, g_w, maps)
     log.info("pseudo-excitation: %d lines × %d input(s), %d steps of %.3g s", lines.size, n_sets, fine.size - 1, h)
-    return PEMResult(time, lines, var, coarse, cov_dv, lam1)
+    return PEMResult(time, lines, var, coarse, cov_dv, lam1, kept)
