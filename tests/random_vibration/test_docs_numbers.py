@@ -33,7 +33,7 @@ def quoted(n: dict) -> list[str]:
             + q(f"{d['im_pem'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
             f"by Monte Carlo {d['im_mc']['mean']:.3f} and " + q(f"{d['im_mc'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
             "cross-check gives " + q(f"{d['im_crossings'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
-            f"({d['n_lines']} lines)"]
+            f"({d['n_lines']} lines,"]
 
 
 def test_page_quotes_the_stored_numbers():
