@@ -46,21 +46,23 @@ def _compare(plan, road: PseudoRoad, n: int) -> dict[str, float]:
     bridge = crossing.bridge
     x = bridge.default_x_at(bridge.default_response_y)
     shapes = bridge.mode_shapes([x], [bridge.default_response_y])
-    res = pseudo_excitation(crossing, road, Probes(shapes), dt, data=plan.run.kernel_data)
+    strains = bridge.strain_shapes([x], [bridge.default_response_y])
+    res = pseudo_excitation(crossing, road, Probes(shapes, strains), dt, data=plan.run.kernel_data)
     runs = monte_carlo(crossing, road, range(1, n + 1),
-                       lambda r: (r.displacement(x), r.xi_ddot @ shapes[0], r.wheel_forces))
-    disp, acc, force = (np.array([r[k] for r in runs]) for k in range(3))
+                       lambda r: (r.displacement(x), r.xi_ddot @ shapes[0], r.wheel_forces, r.strain(x)))
+    disp, acc, force, strain = (np.array([r[k] for r in runs]) for k in range(4))
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
     standard_error = np.sqrt(disp.var(axis=0, ddof=1) / n)
     on = standard_error > 0.02 * standard_error.max()
     return {"displacement": _inside(res.std("displacement")[:, 0], disp),
             "acceleration": _inside(res.std("acceleration")[:, 0], acc),
+            "strain": _inside(res.std("strain")[:, 0], strain),
             "wheel force": min(_inside(res.std("wheel_force")[:, w], force[:, :, w]) for w in range(force.shape[2])),
             "mean z": float((np.abs(disp.mean(axis=0) - smooth.displacement(x))[on] / standard_error[on]).max())}
 
 
 def _check(found: dict[str, float]) -> None:
-    for key in ("displacement", "acceleration", "wheel force"):
+    for key in ("displacement", "acceleration", "strain", "wheel force"):
         assert found[key] >= 0.95, (key, found)
     # the Monte-Carlo mean is the smooth crossing: within 4.5 standard errors at every time point
     assert found["mean z"] < 4.5, found

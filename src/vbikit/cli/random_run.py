@@ -46,7 +46,7 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
                    f"  (static {p['static_peak'] * 1e3:.4f} mm)")
         typer.echo(f"    impact factor      {p['impact_factor_mean']:9.4f} ± {p['impact_factor_std']:.4f}   quantiles {q}")
         typer.echo(f"    σ max: displacement {p['displacement_std_max'] * 1e3:.4f} mm, acceleration "
-                   f"{p['acceleration_std_max']:.4f} m/s²")
+                   f"{p['acceleration_std_max']:.4f} m/s², strain {p['strain_std_max'] * 1e6:.3f} µε")
     typer.echo(f"  lift-off probability (largest at one instant): {s['lift_off_probability']:.3g}")
     typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%}; {s['seconds']:.1f} s")
     typer.echo(f"  quality: {s['quality']}")

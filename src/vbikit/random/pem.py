@@ -85,10 +85,12 @@ class PseudoRoad:
 @dataclass(frozen=True)
 class Probes:
     """What to read: deck points (``shapes`` (n_pts, n_m): φ at each point) — displacement,
-    velocity, acceleration; every vehicle DOF — displacement and acceleration; every wheel's
-    contact force."""
+    velocity, acceleration, and bottom-fibre strain with ``strain_shapes`` (n_pts, n_m) (the
+    bridge's ``strain_shapes`` at the points; default none: σ = 0); every vehicle DOF —
+    displacement and acceleration; every wheel's contact force."""
 
     shapes: NDArray[np.float64]
+    strain_shapes: NDArray[np.float64] | None = None
 
 
 @dataclass
@@ -141,7 +143,8 @@ class PEMResult:
 #: float work (columns × n²) of one block of lines: keeps OpenBLAS calls single-threaded
 BLOCK_WORK = 240_000
 
-NAMES = ("displacement", "velocity", "acceleration", "vehicle_displacement", "vehicle_acceleration", "wheel_force")
+NAMES = ("displacement", "velocity", "acceleration", "strain", "vehicle_displacement", "vehicle_acceleration",
+         "wheel_force")
 
 
 def check_linear(crossing: Crossing) -> None:
@@ -222,8 +225,9 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         return x, vx
 
     out_shapes = probes.shapes
+    strain_shapes = np.zeros_like(out_shapes) if probes.strain_shapes is None else np.atleast_2d(probes.strain_shapes)
     n_pt = out_shapes.shape[0]
-    var = {name: np.zeros((n_t, size)) for name, size in zip(NAMES, (n_pt, n_pt, n_pt, n_d, n_d, n_w))}
+    var = {name: np.zeros((n_t, size)) for name, size in zip(NAMES, (n_pt, n_pt, n_pt, n_pt, n_d, n_d, n_w))}
     coarse = {name: np.zeros_like(v) for name, v in var.items()}
     cov_dv, lam1 = np.zeros((n_t, n_pt)), np.zeros((n_t, n_pt))
     kept = np.zeros((n_t, n_pt, 2 * wave.size)) if keep_lines else None
@@ -236,7 +240,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         force = a_xi @ u[:n_m] + a_dxi @ v[:n_m] + a_q @ u[n_m:] + a_dq @ v[n_m:] + g_w
         d, vel = out_shapes @ u[:n_m], out_shapes @ v[:n_m]
         cw2 = coarse_w[2 * blk.start:2 * blk.stop]
-        for name, z in zip(NAMES, (d, vel, out_shapes @ a[:n_m], u[n_m:], a[n_m:], force)):
+        for name, z in zip(NAMES, (d, vel, out_shapes @ a[:n_m], strain_shapes @ u[:n_m], u[n_m:], a[n_m:], force)):
             z2 = z * z
             var[name][i] += z2.sum(axis=1)
             coarse[name][i] += z2 @ cw2

@@ -52,15 +52,15 @@ class RandomResponse:
     summary: dict[str, Any]
 
     def dataset(self):
-        """xarray Dataset: ``mean`` and ``std`` of the deck displacement, velocity and acceleration
-        over (time, point), and of the wheel forces over (time, wheel)."""
+        """xarray Dataset: ``mean`` and ``std`` of the deck displacement, velocity, acceleration and
+        bottom-fibre strain over (time, point), and of the wheel forces over (time, wheel)."""
         import xarray as xr
 
         t = self.pem.time
         n = min(t.size, self.mean.time.size)
         pts = np.arange(len(self.points))
         data: dict[str, Any] = {}
-        for q, unit in (("displacement", "m"), ("velocity", "m/s"), ("acceleration", "m/s2")):
+        for q, unit in (("displacement", "m"), ("velocity", "m/s"), ("acceleration", "m/s2"), ("strain", "1")):
             data[f"{q}_mean"] = (("time", "point"), np.stack([getattr(p, q)[:n] for p in self.points], axis=1),
                                  {"units": unit, "long_name": f"mean deck {q} (smooth-road crossing)"})
             data[f"{q}_std"] = (("time", "point"), self.pem.std(q)[:n], {"units": unit,
@@ -91,7 +91,8 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
     points = plan_responses(smooth, plan)
     shapes = crossing.bridge.mode_shapes([p.x for p in points], [p.y for p in points])
-    pem = pseudo_excitation(crossing, road, Probes(np.atleast_2d(shapes)), dt, lines=lines, substeps=substeps,
+    strains = crossing.bridge.strain_shapes([p.x for p in points], [p.y for p in points])
+    pem = pseudo_excitation(crossing, road, Probes(np.atleast_2d(shapes), np.atleast_2d(strains)), dt, lines=lines, substeps=substeps,
                             data=data, keep_lines=True)
     n = min(pem.time.size, smooth.time.size)
     peaks = _sampled_peaks(pem, points, n, samples)
@@ -161,4 +162,5 @@ def _point_entry(pem: PEMResult, p: PointResponse, j: int, n: int, quantiles, pe
             "static_peak": sign * r_st, "std_at_peak": float(std[i_peak]),
             "impact_factor_smooth": cross(float(mean.max())),
             "displacement_std_max": float(std.max()),
-            "acceleration_std_max": float(pem.std("acceleration")[:n, j].max())}
+            "acceleration_std_max": float(pem.std("acceleration")[:n, j].max()),
+            "strain_std_max": float(pem.std("strain")[:n, j].max())}
