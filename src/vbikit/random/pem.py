@@ -186,6 +186,8 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
     check_linear(crossing)
     data = kernel_data(crossing) if data is None else data
     lines = band_lines(road.psd.n_min, road.psd.n_max) if lines is None else lines
+    if not dt > 0:
+        raise ValueError(f"dt must be > 0 s, got {dt!r}")
     if int(substeps) != substeps or substeps < 1:
         raise ValueError(f"substeps must be an integer >= 1, got {substeps!r}")
     n_out = time_grid(crossing, dt).n_steps + 1

@@ -87,6 +87,8 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     distribution: the peaks of ``samples`` histories of the Gaussian process with PEM's covariance
     (``PEMResult.sample_displacement``: exact for the linear system, with a sampling error stated
     in the summary), and as a cross-check by Poisson up-crossings (``peak_distribution``)."""
+    if int(samples) != samples or samples < 100:
+        raise ValueError(f"samples must be an integer >= 100, got {samples!r}")
     started = _time.perf_counter()
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
     points = plan_responses(smooth, plan)
