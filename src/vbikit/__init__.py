@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.contact import MultiPointTire, PointTire, TireModel
     from vbikit.errors import VbikitError
     from vbikit.road import RoadProfile
-    from vbikit.scenario.pipeline import run
+    from vbikit.scenario.pipeline import run, run_random
     from vbikit.scenario.report import Report
     from vbikit.vehicle import Vehicle
 
@@ -43,6 +43,7 @@ __all__ = [
     "Vehicle",
     "__version__",
     "run",
+    "run_random",
 ]
 
 __getattr__, __dir__ = lazy_exports(globals(), {
@@ -50,7 +51,7 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.contact": ["MultiPointTire", "PointTire", "TireModel"],
     "vbikit.errors": ["VbikitError"],
     "vbikit.road": ["RoadProfile"],
-    "vbikit.scenario.pipeline": ["run"],
+    "vbikit.scenario.pipeline": ["run", "run_random"],
     "vbikit.scenario.report": ["Report"],
     "vbikit.vehicle": ["Vehicle"],
 })

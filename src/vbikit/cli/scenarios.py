@@ -22,6 +22,8 @@ def run(
     max_steps: Optional[float] = MAX_STEPS,
     out_dir: Optional[Path] = typer.Option(None, "--out-dir", help="Write all three (SCENARIO.csv, SCENARIO.png, "
                                            "SCENARIO.json) into this folder."),
+    random_: bool = typer.Option(False, "--random", help="The random road without sampling: mean ± σ histories "
+                                 "and impact-factor quantiles by pseudo-excitation (docs/random.md)."),
 ) -> None:
     """Simulate one crossing described by a scenario file (writes files only when asked)."""
     from vbikit.scenario import load_scenario
@@ -35,6 +37,10 @@ def run(
         from vbikit._files import figure_format
 
         guard(lambda: figure_format(plot))
+    if random_:
+        from vbikit.cli.random_run import run_random
+
+        return run_random(scenario, budget, as_json, summary_path, plot, out)
     outputs(execute(lambda: load_scenario(scenario), budget), as_json, out, plot, summary_path)
 
 

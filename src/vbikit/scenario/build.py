@@ -128,10 +128,16 @@ def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | Non
         return _profile(scenario, spec.profile_file_right, "road.profile_file_right")
     if left is None or spec.right_coherence >= 1.0:
         return None
-    psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, n_min=spec.n_min, n_max=spec.n_max) if spec.road_class == "psd" \
-        else RoadPSD.iso(spec.road_class, n_min=spec.n_min, n_max=spec.n_max)
-    return correlated_profile(left, psd, spec.seed, spec.right_coherence, spacing=spec.spacing, length=spec.length,
-                              window=window)
+    return correlated_profile(left, road_psd(spec), spec.seed, spec.right_coherence, spacing=spec.spacing,
+                              length=spec.length, window=window)
+
+
+def road_psd(spec: RoadSpec) -> RoadPSD:
+    """The random road's PSD and band of a [road] table with a class (A…H or psd)."""
+    band = {"n_min": spec.n_min, "n_max": spec.n_max}
+    if spec.road_class == "psd":
+        return RoadPSD(spec.phi0, spec.n0, spec.exponent, **band)
+    return RoadPSD.iso(spec.road_class, **band)
 
 
 def check_road_budget(spec: RoadSpec, limits: Limits | None = None) -> None:
@@ -157,13 +163,8 @@ def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] |
         return with_defects(_profile(scenario, spec.profile_file, "road.profile_file"), defects)
     if spec.road_class == "none":
         return with_defects(RoadProfile.flat(), defects) if defects else None
-    band = {"n_min": spec.n_min, "n_max": spec.n_max}
-    if spec.road_class == "psd":
-        psd = RoadPSD(spec.phi0, spec.n0, spec.exponent, **band)
-    else:
-        psd = RoadPSD.iso(spec.road_class, **band)
     label = f"class {spec.road_class}, seed {spec.seed}"
-    return with_defects(random_profile(psd, spec.seed, spacing=spec.spacing, length=spec.length, label=label,
+    return with_defects(random_profile(road_psd(spec), spec.seed, spacing=spec.spacing, length=spec.length, label=label,
                                        window=window), defects)
 
 

@@ -98,6 +98,42 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
     return run_planned(preflight(scenario_of(source, base_dir), limits), limits)
 
 
+def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir: str | Path | None = None,
+               quantiles: tuple[float, ...] | None = None):
+    """The scenario's crossing on its random road without sampling: mean and σ histories by
+    pseudo-excitation and the impact factor's distribution (``vbikit.random.response``); the
+    ``vbikit.random.response.RandomResponse`` whose ``summary`` is exactly what
+    ``vbikit run --random --json`` prints.
+
+    Raises
+    ------
+    ScenarioError
+        A road that is not a random class (A…H or psd), a road with defects, or disk tires.
+    """
+    from vbikit.random import NonlinearTireError, PseudoRoad
+    from vbikit.random.response import QUANTILES, random_response
+    from vbikit.scenario.build import road_psd
+
+    scenario = scenario_of(source, base_dir)
+    road = scenario.road
+    if road.road_class == "none" or road.profile_file:
+        raise ScenarioError("road.class: a random-vibration run needs a random road (class A…H, good/average/poor or "
+                            "psd), not a smooth or measured one")
+    if road.defects:
+        raise ScenarioError("road.defects: a random-vibration run takes the road as a Gaussian process only; remove "
+                            "the defects (or run them with Monte Carlo: several road.seed values)")
+    plan = preflight(scenario, limits)
+    pseudo = PseudoRoad(road_psd(road), road.right_coherence, two_lines=road.right_coherence < 1.0)
+    try:
+        rr = random_response(plan.built.crossing, plan.built.plan, pseudo, plan.run.dt, data=plan.run.kernel_data,
+                             quantiles=quantiles or QUANTILES)
+    except NonlinearTireError as err:
+        raise ScenarioError(f"tire.model: {err}") from None
+    rr.summary = {"name": scenario.name, **rr.summary}
+    rr.summary["warnings"] += [w for w in plan.warnings if w not in rr.summary["warnings"]]
+    return rr
+
+
 def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     """Integrate a checked scenario (``preflight``) and report it,
     with the scenario's inputs, warnings, units and references in the summary."""

@@ -1,0 +1,53 @@
+"""``vbikit run SCENARIO --random``: the crossing on its random road without sampling (mean ± σ
+and the impact factor's distribution by pseudo-excitation)."""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from vbikit.cli.guard import guard, warn
+from vbikit.cli.render import json_text, write_text
+
+
+def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Path], plot: Optional[Path] = None,
+               out: Optional[Path] = None) -> None:
+    """Run the random-vibration analysis and print its summary (text, or JSON with ``--json``);
+    ``plot``: the figure of the mean and its ±kσ envelopes (``vbikit.random.figure``); ``out``: CSV
+    of the mean and σ histories of the deck responses at every point."""
+    from vbikit.scenario.pipeline import run_random as run
+
+    rr = guard(lambda: run(scenario, limits=budget))
+    s = rr.summary
+    if plot is not None:
+        from vbikit.random.figure import plot_random
+
+        guard(lambda: plot_random(rr, plot, title=s.get("name", "")))
+    if out is not None:
+        def table() -> None:
+            ds = rr.dataset()
+            deck = ds[[v for v in ds.data_vars if "point" in ds[v].dims]].drop_vars(["x", "y"])
+            write_text(out, deck.to_dataframe().to_csv())
+
+        guard(table)
+    if summary_path is not None:
+        guard(lambda: write_text(summary_path, json_text(s, indent=2) + "\n"))
+    if as_json:
+        typer.echo(json_text(s))
+        return
+    if s.get("name"):
+        typer.echo(s["name"])
+    typer.echo(f"  method: {s['method']}")
+    for p in s["points"]:
+        q = ", ".join(f"{float(k):.0%}: {v:.4f}" for k, v in p["impact_factor_quantiles"].items())
+        typer.echo(f"  point x = {p['x']:.3f} m, y = {p['y']:.3f} m")
+        typer.echo(f"    peak displacement  {p['displacement_peak_mean'] * 1e3:9.4f} ± {p['displacement_peak_std'] * 1e3:.4f} mm"
+                   f"  (static {p['static_peak'] * 1e3:.4f} mm)")
+        typer.echo(f"    impact factor      {p['impact_factor_mean']:9.4f} ± {p['impact_factor_std']:.4f}   quantiles {q}")
+        typer.echo(f"    σ max: displacement {p['displacement_std_max'] * 1e3:.4f} mm, acceleration "
+                   f"{p['acceleration_std_max']:.4f} m/s², strain {p['strain_std_max'] * 1e6:.3f} µε")
+    typer.echo(f"  lift-off probability (largest at one instant): {s['lift_off_probability']:.3g}")
+    typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%}; {s['seconds']:.1f} s")
+    typer.echo(f"  quality: {s['quality']}")
+    warn(s["warnings"])

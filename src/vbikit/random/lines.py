@@ -1,0 +1,57 @@
+"""Spatial-frequency lines of the pseudo-excitation method: where to put them and their weights.
+
+The road's variance is the integral of its one-sided displacement PSD G_d(n) [m³/cycle] over
+the band n_min … n_max [cycle/m].  Every response variance of the linear system is the same
+integral weighted by the response's squared transfer function, σ²(t) = ∫ |H(n, t)|² G_d(n) dn,
+evaluated by the midpoint rule on cells [a_k, b_k] that tile the band:
+
+    σ²(t) ≈ Σ_k |H(n_k, t)|² G_d(n_k) Δn_k,   n_k = (a_k + b_k)/2,  Δn_k = b_k − a_k.
+
+The cells grow geometrically (width ρ·n, resolving the steep low-wavenumber end of a power-law
+PSD) up to a largest width Δn_max, then stay uniform (resolving the oscillation of |H|² with n
+caused by axle spacing and by a finite crossing: period 1/(v T) for a memory T).  Halving every
+width (``refine``) is the convergence check's finer grid; the method's own check compares the
+rule on every line with the rule on every second line (twice the width, ``coarse_weights``).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+
+@dataclass(frozen=True)
+class Lines:
+    """Midpoint-rule lines: wavenumbers ``n`` [cycle/m] and cell widths ``width`` Δn [cycle/m]."""
+
+    n: NDArray[np.float64]
+    width: NDArray[np.float64]
+
+    @property
+    def size(self) -> int:
+        return int(self.n.size)
+
+    def coarse_weights(self) -> NDArray[np.float64]:
+        """Per line, the factor that turns the fine rule into the rule on every second line with
+        merged cells: (Δn_k + Δn_{k+1})/Δn_k on even k, 0 on odd k (a last unpaired line keeps 1)."""
+        w = np.zeros(self.size)
+        k = np.arange(0, self.size - 1, 2)
+        w[k] = (self.width[k] + self.width[k + 1]) / self.width[k]
+        if self.size % 2:
+            w[-1] = 1.0
+        return w
+
+
+def band_lines(n_min: float, n_max: float, ratio: float = 0.05, max_width: float = 0.01) -> Lines:
+    """Cells tiling the band ``n_min`` … ``n_max`` [cycle/m]: widths ``ratio``·a (geometric, a the cell's
+    lower edge) capped at ``max_width`` [cycle/m], the last cell cut at n_max."""
+    if not 0 < n_min < n_max:
+        raise ValueError(f"need 0 < n_min < n_max (cycle/m), got {n_min!r}, {n_max!r}")
+    if not 0 < ratio <= 1 or not max_width > 0:
+        raise ValueError(f"lines: ratio must be in (0, 1] and max_width > 0, got {ratio!r}, {max_width!r}")
+    edges = [float(n_min)]
+    while edges[-1] < n_max * (1 - 1e-12):
+        edges.append(min(edges[-1] + min(ratio * edges[-1], max_width), float(n_max)))
+    e = np.asarray(edges)
+    return Lines(0.5 * (e[1:] + e[:-1]), np.diff(e))

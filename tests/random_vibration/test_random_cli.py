@@ -1,0 +1,66 @@
+"""``vbikit run --random``: its JSON keys, equal to ``vbikit.run_random``; bad input refused by key."""
+from __future__ import annotations
+
+import json
+
+from typer.testing import CliRunner
+
+import vbikit
+from vbikit.cli import app
+
+runner = CliRunner()
+
+SCENARIO = """
+name = "random check"
+[bridge]
+model = "paper-bridge-2-beam"
+n_modes = 4
+[vehicle]
+model = "hs20-44"
+[tire]
+model = "point"
+[road]
+class = "B"
+[crossing]
+speed_kmh = 75
+approach = 2
+"""
+
+
+def test_cli_json_equals_python_entry(tmp_path, monkeypatch):
+    path = tmp_path / "s.toml"
+    path.write_text(SCENARIO)
+    res = runner.invoke(app, ["run", str(path), "--random", "--json", "--out-dir", str(tmp_path)])
+    assert res.exit_code == 0, res.output
+    cli = json.loads(res.stdout)
+    for key in ("impact_factor_mean", "impact_factor_std", "impact_factor_quantiles", "lift_off_probability",
+                "grid_change", "quality", "warnings"):
+        assert key in cli, key
+    assert set(cli["impact_factor_quantiles"]) == {"0.5", "0.9", "0.95"}
+    q = cli["impact_factor_quantiles"]
+    assert q["0.5"] < q["0.9"] < q["0.95"]
+    assert cli["impact_factor_std"] > 0
+    assert (tmp_path / "s.png").stat().st_size > 10_000
+    csv = (tmp_path / "s.csv").read_text().splitlines()
+    assert csv[0].split(",")[:2] == ["time", "point"] and "displacement_std" in csv[0]
+    assert json.loads((tmp_path / "s.json").read_text())["impact_factor_std"] == cli["impact_factor_std"]
+    rr = vbikit.run_random(path)
+    for key in ("impact_factor_mean", "impact_factor_std", "lift_off_probability"):
+        assert rr.summary[key] == cli[key], key
+    # the text report of that result
+    import vbikit.scenario.pipeline as pipeline
+
+    monkeypatch.setattr(pipeline, "run_random", lambda *a, **k: rr)
+    text = runner.invoke(app, ["run", str(path), "--random"])
+    assert text.exit_code == 0 and "impact factor" in text.output and "quantiles" in text.output
+    assert f"{rr.summary['impact_factor_mean']:9.4f}" in text.output
+
+
+def test_smooth_road_and_disk_tires_are_refused(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(SCENARIO.replace('class = "B"', 'class = "none"'))
+    res = runner.invoke(app, ["run", str(path), "--random"])
+    assert res.exit_code != 0 and "road.class" in res.output
+    path.write_text(SCENARIO.replace('model = "point"', 'model = "disk"'))
+    res = runner.invoke(app, ["run", str(path), "--random"])
+    assert res.exit_code != 0 and "tire.model" in res.output and "Monte Carlo" in res.output
