@@ -173,7 +173,9 @@ class Cache(NamedTuple):
 
 class Work(NamedTuple):
     """Station pointers ``idx`` (n_cp,); outputs ``force`` (n_cp, L), ``active`` (n_cp, L),
-    ``used`` (n_cp,); ``scratch`` (5, L); ``rhs`` (n_d, L)."""
+    ``used`` (n_cp,); ``scratch`` (5, L); ``rhs`` (n_d, L); per point and lane the penetration
+    ``pen`` δ [m] and the ungated law ``law`` k δ + c δ̇ + f0 [N] (for a point left out by the lazy
+    test, ``pen`` holds its bound r_max − g − min z_w + B ≥ δ and ``law`` 0; 0 on rigid disks)."""
 
     idx: np.ndarray
     force: np.ndarray
@@ -181,6 +183,8 @@ class Work(NamedTuple):
     used: np.ndarray
     scratch: np.ndarray
     rhs: np.ndarray
+    pen: np.ndarray
+    law: np.ndarray
 
 
 #: the kernels' compiled helpers: called only from other kernels, so numba builds them without
@@ -196,8 +200,14 @@ def new_cache(n_cp: int, n_m: int, n_l: int) -> Cache:
 
 def new_work(n_cp: int, n_d: int, n_l: int) -> Work:
     """Work space of ``contact_forces``."""
-    return Work(np.full(n_cp, -1, np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), np.bool_),
-                np.zeros(n_cp, np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
+    return _work(n_cp, n_d, n_l)
+
+
+@njit(cache=True, inline="always")
+def _work(n_cp, n_d, n_l):
+    return Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
+                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)), np.zeros((n_cp, n_l)),
+                np.zeros((n_cp, n_l)))
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -301,6 +311,13 @@ def point_law(k, c, f0, pen, rate, gate):
     ``pen`` [m] and rate δ̇ = ``rate`` [m/s]; a ``gate``-d point carries it only while it
     penetrates and presses (else 0)."""
     f = k * pen + c * rate + f0
+    return _gated(f, pen, gate)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _gated(f, pen, gate):
+    """The law's value ``f`` [N] at penetration ``pen`` [m]: a ``gate``-d point carries it only while it
+    penetrates and presses (else 0)."""
     return f if not gate or (pen > 0.0 and f > 0.0) else 0.0
 
 
@@ -342,6 +359,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
     phi, dphi, have, rv, rr, have_r = cache.phi, cache.dphi, cache.have, cache.rv, cache.rr, cache.have_r
     xs, vxs = cache.x, cache.vx
     idx, force, active, used, scratch = work.idx, work.force, work.active, work.used, work.scratch
+    pen, law = work.pen, work.law
     wheel_rows = vehicles.wheel_rows
     r_max = road.r_max
     n_m = xi.shape[0]
@@ -378,10 +396,13 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
             x = xs[p]
             onb = modes.start[points.track[p]] <= x <= modes.end[points.track[p]]
             gate = points.gated[p] or (unilateral and points.stiffness[p] > 0.0)
-            if gate and not envelope and r_max - points.gap[p] - zw_min + (b_max if onb else 0.0) <= 0.0:
+            bound = r_max - points.gap[p] - zw_min + (b_max if onb else 0.0)  # ≥ the penetration in every lane
+            if gate and not envelope and bound <= 0.0:
                 for lane in range(n_l):
                     force[p, lane] = 0.0
                     active[p, lane] = False
+                    pen[p, lane] = bound
+                    law[p, lane] = 0.0
                 continue  # no lane can touch the surface here
             if not have_r[p]:
                 road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes)
@@ -394,6 +415,8 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
                 for lane in range(n_l):
                     force[p, lane] = 0.0
                     active[p, lane] = False
+                    pen[p, lane] = 0.0
+                    law[p, lane] = 0.0
                 continue  # the rigid disk's contact point is chosen below, per lane
             # one store per lane loop, so that the compiler vectorises them (aliasing checks)
             for lane in range(n_l):
@@ -408,8 +431,11 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
             g = points.gap[p]
             wd = points.width[p]
             for lane in range(n_l):
-                force[p, lane] = point_law(k, c, f0, s[0, lane] - g - zw[lane], sd[0, lane] + dr[0, lane] - dzw[lane],
-                                           gate)
+                pen[p, lane] = s[0, lane] - g - zw[lane]
+            for lane in range(n_l):
+                law[p, lane] = point_law(k, c, f0, pen[p, lane], sd[0, lane] + dr[0, lane] - dzw[lane], False)
+            for lane in range(n_l):
+                force[p, lane] = _gated(law[p, lane], pen[p, lane], gate)
             for lane in range(n_l):
                 active[p, lane] = not gate or force[p, lane] > 0.0  # a gated point acts iff it presses
             _axpy(1.0, force, p, wheel_force, w, lanes)
@@ -630,8 +656,7 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
     x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l)); y1 = np.empty((n_d, n_l)); w1 = np.empty((n_d, n_l))
     _fetch(xi, 0, x0, lanes); _fetch(dxi, 0, v0, lanes); _fetch(q, 0, y0, lanes); _fetch(dq, 0, w0, lanes)
     sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
-    work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
-                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
+    work = _work(n_cp, n_d, n_l)
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
     # the three position slots (start, middle, end of a step), built once
@@ -1050,125 +1075,280 @@ def _same_active_set(used, active):
 
 
 @_internal
-def _vehicle_newton_lanes(f, force, used, active, points, vstep, fw, ksum, csum, veh, veh_piv, bq, bv, t, lane_err,
-                          tol, lanes):
-    """``_vehicle_newton`` for every unconverged lane at once, when all lanes share the active set
-    (one matrix for all; ``bq``, ``bv``, ``t`` (n_w, L) work; lanes innermost)."""
-    n_cp = f.shape[0]
+def _vehicle_factors(used, active, lane, points, vstep, ksum, csum, held, veh, veh_piv):
+    """Factorise V = I + S_A U_A (n_w × n_w, row w: δ_ww' + K_w wheel_q[w, w'] + C_w wheel_v[w, w'], with
+    K_w, C_w the sums of the active points' k and c on wheel w in lane ``lane``) into ``veh``,
+    ``veh_piv`` — unless the factors held are those of the same sums (``held``: K (n_w), C (n_w), a
+    valid flag).  V changes only with the active set, so its factors are kept across iterations and
+    steps (the step map ``vstep`` is that of the whole run)."""
     n_w = veh.shape[0]
-    n_l = f.shape[1]
-    wq, wv = vstep.wheel_q, vstep.wheel_v
     for w in range(n_w):
         ksum[w] = 0.0
         csum[w] = 0.0
-    for k in range(n_cp):
-        if used[k] and active[k, 0]:
+    for k in range(active.shape[0]):
+        if used[k] and active[k, lane]:
             ksum[points.wheel[k]] += points.stiffness[k]
             csum[points.wheel[k]] += points.damping[k]
+    if held[2 * n_w] != 0.0:
+        same = True
+        for w in range(n_w):
+            if ksum[w] != held[w] or csum[w] != held[n_w + w]:
+                same = False
+                break
+        if same:
+            return
+    wq, wv = vstep.wheel_q, vstep.wheel_v
     for w in range(n_w):
         for w2 in range(n_w):
             veh[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w] * wq[w, w2] + csum[w] * wv[w, w2]
+        held[w] = ksum[w]
+        held[n_w + w] = csum[w]
+    held[2 * n_w] = 1.0
     _lu_factor(veh, n_w, veh_piv)
+
+
+@_internal
+def _vehicle_newton(f, force, used, active, lane0, lane1, lane_err, tol, points, vstep, fw, ksum, csum, held, veh,
+                    veh_piv, bq, bv, t):
+    """One quasi-Newton update of the point forces ``f[:, lane]`` of every unconverged lane
+    (``lane_err`` > ``tol``) in ``lane0`` … ``lane1`` − 1, lanes that share the active set A of lane
+    ``lane0``, with the Jacobian through the vehicles only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F,
+    F = 0 off A, with u_i = k_i wheel_q[w_i] + c_i wheel_v[w_i] (U: ∂F_i/∂F_w, S: sum per wheel).  By
+    Woodbury's identity it is the n_w-square system (I + S_A U_A) t = S_A b, whose matrix needs only
+    each wheel's sums of active k and c (``_vehicle_factors``, kept while they stay the same):
+    O(points + wheels²) per lane, the lanes innermost.  On return ``bq``, ``bv`` (n_w, L) hold each
+    wheel's change of −z_w and −ż_w by the update (the vehicles' part of the change of its points'
+    penetration and rate)."""
+    n_cp = f.shape[0]
+    n_w = veh.shape[0]
+    wq, wv = vstep.wheel_q, vstep.wheel_v
+    _vehicle_factors(used, active, lane0, points, vstep, ksum, csum, held, veh, veh_piv)
     for w in range(n_w):
-        for lane in range(n_l):
+        for lane in range(lane0, lane1):
             bq[w, lane] = 0.0
             bv[w, lane] = 0.0
         for w2 in range(n_w):
             q = wq[w, w2]
             v = wv[w, w2]
-            for lane in range(n_l):
+            for lane in range(lane0, lane1):
                 bq[w, lane] += q * fw[w2, lane]
                 bv[w, lane] += v * fw[w2, lane]
-        for lane in range(n_l):
+        for lane in range(lane0, lane1):  # S_A b = Σ_i∈A∩w (F_i + k_i bq + c_i bv)
             t[w, lane] = ksum[w] * bq[w, lane] + csum[w] * bv[w, lane]
     for k in range(n_cp):
-        if used[k] and active[k, 0]:
+        if used[k] and active[k, lane0]:
             w = points.wheel[k]
-            for lane in range(n_l):
+            for lane in range(lane0, lane1):
                 t[w, lane] += force[k, lane]
-    for j in range(n_w):  # forward and back substitution, every lane at once
+    for j in range(n_w):  # forward and back substitution with the factors of V, every lane at once
         kp = veh_piv[j]
         if kp != j:
-            for lane in range(n_l):
+            for lane in range(lane0, lane1):
                 tmp = t[j, lane]
                 t[j, lane] = t[kp, lane]
                 t[kp, lane] = tmp
     for i in range(n_w):
         for j in range(i):
             a = veh[i, j]
-            for lane in range(n_l):
+            for lane in range(lane0, lane1):
                 t[i, lane] -= a * t[j, lane]
     for i in range(n_w - 1, -1, -1):
         for j in range(i + 1, n_w):
             a = veh[i, j]
-            for lane in range(n_l):
+            for lane in range(lane0, lane1):
                 t[i, lane] -= a * t[j, lane]
         inv = 1.0 / veh[i, i]
-        for lane in range(n_l):
+        for lane in range(lane0, lane1):
             t[i, lane] *= inv
     for w in range(n_w):  # bq, bv ← b's vehicle terms minus U t's, per wheel
         for w2 in range(n_w):
             q = wq[w, w2]
             v = wv[w, w2]
-            for lane in range(n_l):
+            for lane in range(lane0, lane1):
                 bq[w, lane] -= q * t[w2, lane]
                 bv[w, lane] -= v * t[w2, lane]
     for k in range(n_cp):
-        on = used[k] and active[k, 0]
+        on = used[k] and active[k, lane0]
         w = points.wheel[k]
         kk = points.stiffness[k]
         cc = points.damping[k]
-        for lane in range(n_l):
+        for lane in range(lane0, lane1):
             if lane_err[lane] > tol:  # a settled lane keeps its forces (as one lane would)
                 f[k, lane] = force[k, lane] + kk * bq[w, lane] + cc * bv[w, lane] if on else 0.0
 
 
 @_internal
-def _vehicle_newton(f, force, used, active, lane, points, vstep, fw, ksum, csum, bq, bv, veh, veh_piv, t):
-    """One quasi-Newton update of the point forces ``f[:, lane]`` with the Jacobian through the vehicles
-    only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F, F = 0 off the active set A, with
-    u_i = k_i wheel_q[w_i] + c_i wheel_v[w_i] (U: ∂F_i/∂F_w, S: sum per wheel).  By Woodbury's
-    identity it is the n_w-square system (I + S_A U_A) t = S_A b, whose matrix needs only each
-    wheel's sums of active k and c (``ksum``, ``csum``): O(points + wheels³) per lane."""
+def _deck_bounds(modes):
+    """Per mode (2, n_m): ``amp`` (the bound on |φ_m|) and a bound on |∂φ_m/∂x| of the cubic Hermite
+    interpolant (on a cell, |φ'| ≤ 1.5 |Δφ|/h + |φ'_0| + |φ'_1|)."""
+    n_m = modes.amp.size
+    out = np.zeros((2, n_m))
+    V, S, h = modes.values, modes.slopes, modes.grid_h
+    for m in range(n_m):
+        out[0, m] = modes.amp[m]
+    for tr in range(V.shape[0]):
+        for i in range(V.shape[1] - 1):
+            for m in range(n_m):
+                b = 1.5 * abs(V[tr, i + 1, m] - V[tr, i, m]) / h + abs(S[tr, i, m]) + abs(S[tr, i + 1, m])
+                if b > out[1, m]:
+                    out[1, m] = b
+    return out
+
+
+@_internal
+def _lean_accept(f, f_old, work, lane_err, tol, gated, points, cache, onb, step, bounds, bq, bv, dp):
+    """Accept, without another contact evaluation, the quasi-Newton iterate ``f`` (from ``f_old``, whose
+    law the last evaluation gave) of every unconverged lane whose contact law provably holds to
+    ``tol`` there: returns the number of lanes accepted (their ``lane_err`` set to 0).
+
+    The iterate solves the law's vehicle part exactly (``_vehicle_newton``); what it leaves out is the
+    deck's response to the change of the modal load, Δp = −Σ_k φ_k ΔF_k, which moves the deck under
+    every point by at most B1 = Σ_m amp_m |c1_m Δp_m| and its rate by B2 + |v_x| B3 (B2 with c2,
+    B3 with the slope bound).  So with the active set unchanged the law's residual at the iterate
+    is at most k B1 + c (B2 + |v_x| B3) on every active point and 0 elsewhere; the set stays the same
+    when every gated point's penetration (``work.pen`` + the wheel's ``bq`` ± B1) and law (the
+    iterate's force ± that bound) keep their signs, and every point left out by the lazy test stays
+    out (its bound + ``bq`` + B1 ≤ 0).  Wheels with an envelope (rigid disks) are never accepted here."""
+    used, active, pen, law = work.used, work.active, work.pen, work.law
+    phi = cache.phi
+    n_m = dp.shape[0]
     n_cp = f.shape[0]
-    n_w = veh.shape[0]
-    wq, wv = vstep.wheel_q, vstep.wheel_v
-    for w in range(n_w):
-        ksum[w] = 0.0
-        csum[w] = 0.0
-    for k in range(n_cp):
-        if used[k] and active[k, lane]:
-            ksum[points.wheel[k]] += points.stiffness[k]
-            csum[points.wheel[k]] += points.damping[k]
-    for w in range(n_w):
-        aq = 0.0
-        av = 0.0
-        for w2 in range(n_w):
-            veh[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w] * wq[w, w2] + csum[w] * wv[w, w2]
-            aq += wq[w, w2] * fw[w2, lane]
-            av += wv[w, w2] * fw[w2, lane]
-        bq[w] = aq
-        bv[w] = av
-        t[w] = ksum[w] * aq + csum[w] * av  # S_A b = Σ_i∈A∩w (F_i + k_i bq + c_i bv)
-    for k in range(n_cp):
-        if used[k] and active[k, lane]:
-            t[points.wheel[k]] += force[k, lane]
-    _lu_factor(veh, n_w, veh_piv)
-    _lu_solve(veh, n_w, veh_piv, t)
-    for w in range(n_w):  # bq, bv ← b's vehicle terms minus U t's, per wheel
-        aq = 0.0
-        av = 0.0
-        for w2 in range(n_w):
-            aq += wq[w, w2] * t[w2]
-            av += wv[w, w2] * t[w2]
-        bq[w] -= aq
-        bv[w] -= av
-    for k in range(n_cp):
-        if used[k] and active[k, lane]:
+    accepted = 0
+    for lane in range(lane_err.size):
+        if lane_err[lane] <= tol:
+            continue
+        for m in range(n_m):
+            dp[m] = 0.0
+        for k in range(n_cp):
+            d = f[k, lane] - f_old[k, lane]
+            if d != 0.0 and onb[k]:
+                for m in range(n_m):
+                    dp[m] -= phi[k, m] * d
+        b1 = 0.0
+        b2 = 0.0
+        b3 = 0.0
+        for m in range(n_m):
+            a = abs(dp[m])
+            b1 += bounds[0, m] * abs(step.c1[m]) * a
+            b2 += bounds[0, m] * abs(step.c2[m]) * a
+            b3 += bounds[1, m] * abs(step.c1[m]) * a
+        ok = True
+        worst = 0.0
+        for k in range(n_cp):
             w = points.wheel[k]
-            f[k, lane] = force[k, lane] + points.stiffness[k] * bq[w] + points.damping[k] * bv[w]
+            e1 = b1 if onb[k] else 0.0
+            kk = points.stiffness[k]
+            cc = points.damping[k]
+            dk = kk * b1 + cc * (b2 + abs(cache.vx[k]) * b3) if onb[k] else 0.0
+            if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
+                if pen[k, lane] + bq[w, lane] + e1 > 0.0:
+                    ok = False
+                    break
+                continue
+            if not gated[k]:
+                worst = max(worst, dk)
+                continue
+            p1 = pen[k, lane] + bq[w, lane]
+            l1 = law[k, lane] + kk * bq[w, lane] + cc * bv[w, lane]
+            if active[k, lane]:
+                if p1 - e1 <= 0.0 or l1 - dk <= 0.0:
+                    ok = False
+                    break
+                worst = max(worst, dk)
+            elif p1 + e1 > 0.0 and l1 + dk > 0.0:
+                ok = False
+                break
+        if ok and worst <= tol:
+            lane_err[lane] = 0.0
+            accepted += 1
+    return accepted
+
+
+@_internal
+def _residuals(f, force, used, touch, lane_err, x1, v1, y1, w1, cache, points, vehicles, onb, tol):
+    """Per lane the largest |law(F) − F| over the points (``lane_err``; a touching point: k|δ| while
+    0 ≤ F ≤ its law at δ = 0, else it is released); returns the largest over the lanes."""
+    n_l = lane_err.size
+    for lane in range(n_l):
+        lane_err[lane] = 0.0
+    for k in range(f.shape[0]):
+        u = used[k]
+        for lane in range(n_l):
+            if touch[k, lane]:  # held at δ = 0 with 0 ≤ F ≤ the law's value there
+                pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+                if 0.0 <= f[k, lane] <= law + tol:
+                    lane_err[lane] = max(lane_err[lane], abs(points.stiffness[k] * pen))
+                    continue
+                touch[k, lane] = False
+            r = abs((force[k, lane] if u else 0.0) - f[k, lane])
+            lane_err[lane] = max(lane_err[lane], r)
+    err = 0.0
+    for lane in range(n_l):
+        err = max(err, lane_err[lane])
+    return err
+
+
+@_internal
+def _full_newton(f, force, used, active, lane, blend, touch, gated, x1, v1, y1, w1, cache, points, vehicles, onb,
+                 step, vstep, p, fw, e, u, mat, piv, red, red_piv, rhs, t, act, held, held_k, held_c, row_k, row_c,
+                 held_state):
+    """One full Newton update of lane ``lane``'s point forces: the affine law of the active set A
+    (touching points as stiff rows, ``TOUCH_STIFFNESS``) solved with the full Jacobian (``_coupling``,
+    factorised once per step and set: ``held``, ``held_k``, ``held_c``, ``held_state`` = (size of
+    the set held or −1, reduced form)); F ← (1 − ``blend``) F + ``blend`` F_new."""
+    n_cp = f.shape[0]
+    n_m = e.shape[1]
+    n_w = u.shape[1]
+    na = 0
+    for k in range(n_cp):
+        if not used[k]:
+            continue
+        if gated[k] and not active[k, lane] and not touch[k, lane] and f[k, lane] > 0.0:
+            # pressed in the iterate, released by the law: touching if the law would press
+            # at zero penetration (a damped tire landing), so that F = 0 and F > 0 both fail
+            pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+            touch[k, lane] = pen <= 0.0 and law > 0.0
+        if touch[k, lane]:
+            act[na] = k
+            row_k[na] = TOUCH_STIFFNESS * points.stiffness[k]
+            row_c[na] = 0.0
+            na += 1
+        elif active[k, lane]:
+            act[na] = k
+            row_k[na] = points.stiffness[k]
+            row_c[na] = points.damping[k]
+            na += 1
+    same = na == held_state[0]
+    if same:
+        for i in range(na):
+            if act[i] != held[i] or row_c[i] != held_c[i] or row_k[i] != held_k[i]:
+                same = False
+                break
+    if not same:
+        held_state[1] = _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat, piv, red,
+                                  red_piv)
+        for i in range(na):
+            held[i] = act[i]
+            held_k[i] = row_k[i]
+            held_c[i] = row_c[i]
+        held_state[0] = na
+    for i in range(na):  # a_A = law_A(F) − (B F)_A; touching rows: F + K δ (K = row_k)
+        k = act[i]
+        if touch[k, lane]:
+            pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+            a = f[k, lane] + row_k[i] * pen
         else:
-            f[k, lane] = 0.0
+            a = force[k, lane]
+        for m in range(n_m):
+            a -= e[i, m] * p[m, lane]
+        for w in range(n_w):
+            a += u[i, w] * fw[w, lane]
+        rhs[i] = a
+    _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, held_state[1] != 0, rhs, t)
+    for k in range(n_cp):
+        f[k, lane] *= 1.0 - blend
+    for i in range(na):
+        f[act[i], lane] += blend * rhs[i]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
@@ -1181,19 +1361,23 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     Both step maps are linear, so the end-of-step state is an affine function of the end-of-step
     point forces F (``_state_of``), and so is each point's contact law while the set of points in
     contact (and each rigid disk's acting point) stays the same: F_A = a_A + B_AA F_A, with B
-    through the deck modes and through the vehicles.  The forces solve F − law(F) = 0, found by
-    Newton (active-set) updates: evaluate the contact law at the state of the current F
-    (``contact_forces``, gating and envelopes included); its active points A give the affine law;
-    update F_A by it, F = 0 off A; repeat until no point force changes by more than
-    ``tol_force`` [N] in any lane.  The first ``QUASI_ITERATIONS`` updates use the Jacobian through
-    the vehicles only (the deck's part of B is ~1e-5 for road vehicles): an n_w-square system built
-    from each wheel's sums of active k and c (``_vehicle_newton``; ``_vehicle_newton_lanes`` for
-    all lanes at once when they share the contact set); later updates use the full
-    Jacobian (``_coupling``, factorised once per step and active set for all lanes), which settles
-    a contact change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is
-    consistent, is held at zero penetration (``TOUCH_STIFFNESS``).  The first guess is the linear
-    extrapolation of the last two steps' forces.  Should the contact set cycle, updates are halved
-    after ``RELAX_AFTER`` full Newton iterations.
+    through the deck modes and through the vehicles.  The forces solve F − law(F) = 0, to
+    ``tol_force`` [N] on every point of every lane.
+
+    The common step costs one contact-law evaluation (``contact_forces``, gating and envelopes
+    included) at the first guess, the linear extrapolation of the last two steps' forces: either
+    that guess already holds, or one quasi-Newton update with the Jacobian through the vehicles
+    only (``_vehicle_newton``: an n_w-square system of each wheel's sums of active k and c, whose
+    factors are kept while the active set stays the same) gives forces that provably hold
+    (``_lean_accept``: the deck's part of B, ~1e-5 for road vehicles, bounded through the mode
+    amplitudes; no contact opens or closes).  Otherwise the step iterates: evaluate the law at the
+    current F, its active points A give the affine law; update F_A by it, F = 0 off A; repeat
+    until the law holds.  The first ``QUASI_ITERATIONS`` updates are quasi-Newton (one system for
+    all lanes when they share the contact set), later ones full Newton (``_full_newton``: the full
+    Jacobian, ``_coupling``, factorised once per step and active set), which settles a contact
+    change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is consistent, is
+    held at zero penetration (``TOUCH_STIFFNESS``).  Should the contact set cycle, updates are
+    halved after ``RELAX_AFTER`` full Newton iterations.  The step keeps the iterate's forces.
 
     Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
@@ -1215,27 +1399,32 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l))
     f = np.zeros((n_cp, n_l)); f0 = np.zeros((n_cp, n_l)); fm = np.zeros((n_cp, n_l)); fw = np.zeros((n_w, n_l))
+    f_old = np.zeros((n_cp, n_l))
     acc = np.zeros((n_m, n_l))
-    work = Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
-                np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)))
+    work = _work(n_cp, n_d, n_l)
     force = work.force
     wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l))
     cache = _slot(n_cp, n_m, n_l)
     # Newton work space, sized for the most points that can act at once (one per rigid disk)
     cap = 0
+    lean = True  # the one-evaluation step: not with rigid disks (their acting point may move)
     for w in range(n_w):
         cap += 1 if vehicles.wheel_envelope[w] else vehicles.wheel_count[w]
+        if vehicles.wheel_envelope[w]:
+            lean = False
     cap = max(cap, 1)
-    n_held = -1
+    bounds = _deck_bounds(modes)
+    dp = np.zeros(n_m)
     bq_l = np.zeros((n_w, n_l)); bv_l = np.zeros((n_w, n_l)); t_l = np.zeros((n_w, n_l))
-    ksum = np.zeros(n_w); csum = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); veh_lane = np.zeros((n_w, n_w))
-    veh_lane_piv = np.zeros(n_w, dtype=np.int64)
+    ksum = np.zeros(n_w); csum = np.zeros(n_w); veh = np.zeros((n_w, n_w))
+    veh_piv = np.zeros(n_w, dtype=np.int64)
+    veh_held = np.zeros(2 * n_w + 1)  # the sums whose factors ``veh`` holds, and whether it holds any
     n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)
     mat = np.zeros((n_r, n_r)); piv = np.zeros(n_r, dtype=np.int64); e = np.zeros((cap, n_m)); rhs = np.zeros(cap)
     u = np.zeros((cap, n_w)); red = np.zeros((n_m + n_w, n_m + n_w)); red_piv = np.zeros(n_m + n_w, dtype=np.int64)
     t = np.zeros(n_m + n_w)
-    reduced = False
+    held_state = np.zeros(2, dtype=np.int64)  # size of the active set whose full Jacobian is held (−1: none); reduced
     act = np.zeros(cap, dtype=np.int64); held = np.zeros(cap, dtype=np.int64)
     onb = np.zeros(n_cp, dtype=np.bool_)
     lane_err = np.zeros(n_l)
@@ -1276,114 +1465,57 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _gemv(1.0, vstep.transition, z0, zf, lanes, False)
         _gemv(1.0, vstep.load0, g0, zf, lanes, False)
         _gemv(1.0, vstep.settle, zf, zb, lanes, False)
-        n_held = -1  # new positions: no factorisation to reuse
+        held_state[0] = -1  # new positions: no full Jacobian to reuse
         # first guess: linear extrapolation of the forces
         for k in range(n_cp):
             for lane in range(n_l):
                 f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
-        for k in range(n_cp):
-            for lane in range(n_l):
                 touch[k, lane] = False
         converged = False
         for it in range(max_iterations):
             evaluations += 1
             _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
             contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
-            err = 0.0
-            for lane in range(n_l):
-                lane_err[lane] = 0.0
-            for k in range(n_cp):
-                used = work.used[k]
-                for lane in range(n_l):
-                    if touch[k, lane]:  # held at δ = 0 with 0 ≤ F ≤ the law's value there
-                        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
-                        if 0.0 <= f[k, lane] <= law + tol_force:
-                            lane_err[lane] = max(lane_err[lane], abs(points.stiffness[k] * pen))
-                            continue
-                        touch[k, lane] = False
-                    r = abs((force[k, lane] if used else 0.0) - f[k, lane])
-                    lane_err[lane] = max(lane_err[lane], r)
-            for lane in range(n_l):
-                err = max(err, lane_err[lane])
-            if err <= tol_force:
+            if _residuals(f, force, work.used, touch, lane_err, x1, v1, y1, w1, cache, points, vehicles, onb,
+                          tol_force) <= tol_force:
                 converged = True
                 break
-            if it < QUASI_ITERATIONS and n_l > 1 and _same_active_set(work.used, work.active):
-                # every lane has the same contact set (the common case of a batch): one update for all
-                _vehicle_newton_lanes(f, force, work.used, work.active, points, vstep, fw, ksum, csum, veh_lane,
-                                      veh_lane_piv, bq_l, bv_l, t_l, lane_err, tol_force, lanes)
-                continue
-            for lane in range(n_l):  # one update per unconverged lane
-                if lane_err[lane] <= tol_force:
-                    continue
-                if it < QUASI_ITERATIONS:
-                    _vehicle_newton(f, force, work.used, work.active, lane, points, vstep, fw, ksum, csum, bq, bv,
-                                    veh_lane, veh_lane_piv, t)
-                    continue
-                na = 0
-                for k in range(n_cp):
-                    if not work.used[k]:
-                        continue
-                    if gated[k] and not work.active[k, lane] and not touch[k, lane] and f[k, lane] > 0.0:
-                        # pressed in the iterate, released by the law: touching if the law would press
-                        # at zero penetration (a damped tire landing), so that F = 0 and F > 0 both fail
-                        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
-                        touch[k, lane] = pen <= 0.0 and law > 0.0
-                    if touch[k, lane]:
-                        act[na] = k
-                        row_k[na] = TOUCH_STIFFNESS * points.stiffness[k]
-                        row_c[na] = 0.0
-                        na += 1
-                    elif work.active[k, lane]:
-                        act[na] = k
-                        row_k[na] = points.stiffness[k]
-                        row_c[na] = points.damping[k]
-                        na += 1
-                same = na == n_held
-                if same:
-                    for i in range(na):
-                        if act[i] != held[i] or row_c[i] != held_c[i] or row_k[i] != held_k[i]:
-                            same = False
-                            break
-                if not same:
-                    reduced = _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat, piv, red,
-                                        red_piv)
-                    for i in range(na):
-                        held[i] = act[i]
-                        held_k[i] = row_k[i]
-                        held_c[i] = row_c[i]
-                    n_held = na
-                for i in range(na):  # a_A = law_A(F) − (B F)_A; touching rows: F + K δ (K = row_k)
-                    k = act[i]
-                    if touch[k, lane]:
-                        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
-                        a = f[k, lane] + row_k[i] * pen
-                    else:
-                        a = force[k, lane]
-                    for m in range(n_m):
-                        a -= e[i, m] * p[m, lane]
-                    for w in range(n_w):
-                        a += u[i, w] * fw[w, lane]
-                    rhs[i] = a
-                _newton_solve(act, na, onb, cache, points, e, u, mat, piv, red, red_piv, reduced, rhs, t)
+            if it >= QUASI_ITERATIONS:
                 blend = 0.5 if it >= QUASI_ITERATIONS + RELAX_AFTER else 1.0
-                for k in range(n_cp):
-                    f[k, lane] *= 1.0 - blend
-                for i in range(na):
-                    f[act[i], lane] += blend * rhs[i]
+                for lane in range(n_l):  # one full Newton update per unconverged lane (the rare path)
+                    if lane_err[lane] > tol_force:
+                        _full_newton(f, force, work.used, work.active, lane, blend, touch, gated, x1, v1, y1, w1,
+                                     cache, points, vehicles, onb, step, vstep, p, fw, e, u, mat, piv, red, red_piv,
+                                     rhs, t, act, held, held_k, held_c, row_k, row_c, held_state)
+                continue
+            if it == 0 and lean:
+                _copy(f, f_old, lanes)
+            if n_l > 1 and _same_active_set(work.used, work.active):
+                # every lane has the same contact set (the common case of a batch): one update for all
+                _vehicle_newton(f, force, work.used, work.active, 0, n_l, lane_err, tol_force, points, vstep, fw,
+                                ksum, csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l)
+            else:
+                for lane in range(n_l):  # one update per unconverged lane
+                    if lane_err[lane] > tol_force:
+                        _vehicle_newton(f, force, work.used, work.active, lane, lane + 1, lane_err, tol_force, points,
+                                        vstep, fw, ksum, csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l)
+            if it == 0 and lean and _lean_accept(f, f_old, work, lane_err, tol_force, gated, points, cache, onb, step,
+                                                 bounds, bq_l, bv_l, dp) > 0:
+                settled = True
+                for lane in range(n_l):
+                    settled = settled and lane_err[lane] <= tol_force
+                if settled:
+                    converged = True
+                    break
         if not converged:
             unsettled += 1
-        # the end state of the law's forces (within tol_force of the iterate's)
+        # the end state of the iterate's forces; a touching point's width counts as in contact
         for k in range(n_cp):
-            used = work.used[k]
             for lane in range(n_l):
-                if touch[k, lane]:  # the touching force is the iterate's (the law's is 0 or undefined)
-                    wf[points.wheel[k], lane] += f[k, lane] - (force[k, lane] if used else 0.0)
-                    if not work.active[k, lane]:
-                        wl[points.wheel[k], lane] += points.width[k]
-                    force[k, lane] = f[k, lane]
-                f[k, lane] = force[k, lane] if used else 0.0
+                if touch[k, lane] and not work.active[k, lane]:
+                    wl[points.wheel[k], lane] += points.width[k]
         _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
+        _copy(fw, wf, lanes)
         _tire_load(vehicles, wf, y1, w1, g, lanes)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
