@@ -287,7 +287,7 @@ def main() -> None:
         t0 = time.thread_time()
         floor_loop(*inputs, *outs)
         t_floor.append(time.thread_time() - t0)
-    phi = built.crossing.bridge.mode_shapes([built.response_x], [built.response_y])[0]
+    phi = built.crossing.bridge.mode_shapes(*([c] for c in res.point(built.response_x, built.response_y)))[0]
     u_lib = res.xi @ phi
     u_floor = outs[0][: u_lib.size] @ phi
     agree = float(np.max(np.abs(u_floor[1:] - u_lib[1:])) / np.max(np.abs(u_lib)))

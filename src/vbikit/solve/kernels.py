@@ -1177,46 +1177,33 @@ def _vehicle_newton(f, force, used, active, lane0, lane1, lane_err, tol, points,
                 f[k, lane] = force[k, lane] + kk * bq[w, lane] + cc * bv[w, lane] if on else 0.0
 
 
-@_internal
-def _deck_bounds(modes):
-    """Per mode (2, n_m): ``amp`` (the bound on |φ_m|) and a bound on |∂φ_m/∂x| of the cubic Hermite
-    interpolant (on a cell, |φ'| ≤ 1.5 |Δφ|/h + |φ'_0| + |φ'_1|)."""
-    n_m = modes.amp.size
-    out = np.zeros((2, n_m))
-    V, S, h = modes.values, modes.slopes, modes.grid_h
-    for m in range(n_m):
-        out[0, m] = modes.amp[m]
-    for tr in range(V.shape[0]):
-        for i in range(V.shape[1] - 1):
-            for m in range(n_m):
-                b = 1.5 * abs(V[tr, i + 1, m] - V[tr, i, m]) / h + abs(S[tr, i, m]) + abs(S[tr, i + 1, m])
-                if b > out[1, m]:
-                    out[1, m] = b
-    return out
+#: exact incremental corrections of the one-evaluation step before it falls back to iterating
+LEAN_CORRECTIONS = 4
 
 
 @_internal
-def _lean_accept(f, f_old, work, lane_err, tol, gated, points, cache, onb, step, bounds, bq, bv, dp):
-    """Accept, without another contact evaluation, the quasi-Newton iterate ``f`` (from ``f_old``, whose
-    law the last evaluation gave) of every unconverged lane whose contact law provably holds to
-    ``tol`` there: returns the number of lanes accepted (their ``lane_err`` set to 0).
+def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, step, vstep, fw, ksum, csum, veh_held,
+                 veh, veh_piv, bq, bv, t, lane_err, amp, dp, dxi, dvi):
+    """Settle lane ``lane`` of the one-evaluation step without another contact-law evaluation: returns
+    True when its iterate ``f`` holds the law to ``tol`` (``lane_err[lane]`` set to 0), False when a
+    contact would open or close (the step then iterates with full evaluations).
 
-    The iterate solves the law's vehicle part exactly (``_vehicle_newton``); what it leaves out is the
-    deck's response to the change of the modal load, Δp = −Σ_k φ_k ΔF_k, which moves the deck under
-    every point by at most B1 = Σ_m amp_m |c1_m Δp_m| and its rate by B2 + |v_x| B3 (B2 with c2,
-    B3 with the slope bound).  So with the active set unchanged the law's residual at the iterate
-    is at most k B1 + c (B2 + |v_x| B3) on every active point and 0 elsewhere; the set stays the same
-    when every gated point's penetration (``work.pen`` + the wheel's ``bq`` ± B1) and law (the
-    iterate's force ± that bound) keep their signs, and every point left out by the lazy test stays
-    out (its bound + ``bq`` + B1 ≤ 0).  Wheels with an envelope (rigid disks) are never accepted here."""
+    On entry ``f`` is the quasi-Newton iterate from ``f_old``, whose law the last evaluation gave
+    (``work.pen``, ``work.law`` per point), and ``bq``, ``bv`` the vehicles' part of the update
+    (``_vehicle_newton``).  With the positions fixed, the law is affine in the state and the state in
+    F, so the law at the iterate follows exactly from the change: the deck moves by Δξ = c1 Δp,
+    Δξ̇ = c2 Δp with Δp = −Σ_k φ_k ΔF_k, every point's penetration by φ_k·Δξ + bq_w and its rate by
+    φ_k·Δξ̇ + v_x φ'_k·Δξ + bv_w (no mode-shape, road or lazy-test work: what an evaluation costs
+    besides).  A point left out by the lazy test must stay out (its bound + bq_w + Σ amp|Δξ| ≤ 0).
+    Should the law not hold to ``tol`` yet, another quasi-Newton update follows (the vehicle factors
+    kept), at most ``LEAN_CORRECTIONS`` times; each shrinks the residual by about the deck's part of
+    the Jacobian (~1e-5 for road vehicles)."""
     used, active, pen, law = work.used, work.active, work.pen, work.law
-    phi = cache.phi
+    phi, dphi = cache.phi, cache.dphi
     n_m = dp.shape[0]
     n_cp = f.shape[0]
-    accepted = 0
-    for lane in range(lane_err.size):
-        if lane_err[lane] <= tol:
-            continue
+    n_w = fw.shape[0]
+    for _ in range(LEAN_CORRECTIONS):
         for m in range(n_m):
             dp[m] = 0.0
         for k in range(n_cp):
@@ -1224,44 +1211,48 @@ def _lean_accept(f, f_old, work, lane_err, tol, gated, points, cache, onb, step,
             if d != 0.0 and onb[k]:
                 for m in range(n_m):
                     dp[m] -= phi[k, m] * d
-        b1 = 0.0
-        b2 = 0.0
-        b3 = 0.0
+        b = 0.0
         for m in range(n_m):
-            a = abs(dp[m])
-            b1 += bounds[0, m] * abs(step.c1[m]) * a
-            b2 += bounds[0, m] * abs(step.c2[m]) * a
-            b3 += bounds[1, m] * abs(step.c1[m]) * a
-        ok = True
-        worst = 0.0
+            dxi[m] = step.c1[m] * dp[m]
+            dvi[m] = step.c2[m] * dp[m]
+            b += amp[m] * abs(dxi[m])
+        err = 0.0
         for k in range(n_cp):
             w = points.wheel[k]
-            e1 = b1 if onb[k] else 0.0
-            kk = points.stiffness[k]
-            cc = points.damping[k]
-            dk = kk * b1 + cc * (b2 + abs(cache.vx[k]) * b3) if onb[k] else 0.0
             if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
-                if pen[k, lane] + bq[w, lane] + e1 > 0.0:
-                    ok = False
-                    break
+                pen[k, lane] += bq[w, lane] + (b if onb[k] else 0.0)
+                if pen[k, lane] > 0.0:
+                    return False
                 continue
-            if not gated[k]:
-                worst = max(worst, dk)
-                continue
-            p1 = pen[k, lane] + bq[w, lane]
-            l1 = law[k, lane] + kk * bq[w, lane] + cc * bv[w, lane]
-            if active[k, lane]:
-                if p1 - e1 <= 0.0 or l1 - dk <= 0.0:
-                    ok = False
-                    break
-                worst = max(worst, dk)
-            elif p1 + e1 > 0.0 and l1 + dk > 0.0:
-                ok = False
-                break
-        if ok and worst <= tol:
+            ds = 0.0
+            dr = 0.0
+            dsd = 0.0
+            if onb[k]:
+                for m in range(n_m):
+                    ds += phi[k, m] * dxi[m]
+                    dr += phi[k, m] * dvi[m]
+                    dsd += dphi[k, m] * dxi[m]
+            dpen = ds + bq[w, lane]
+            pen[k, lane] += dpen
+            law[k, lane] += points.stiffness[k] * dpen + points.damping[k] * (dr + cache.vx[k] * dsd + bv[w, lane])
+            fk = _gated(law[k, lane], pen[k, lane], gated[k])
+            if (not gated[k] or fk > 0.0) != active[k, lane]:
+                return False  # a contact opens or closes: the full iteration decides
+            force[k, lane] = fk
+            err = max(err, abs(fk - f[k, lane]))
+        lane_err[lane] = err
+        if err <= tol:
             lane_err[lane] = 0.0
-            accepted += 1
-    return accepted
+            return True
+        for k in range(n_cp):
+            f_old[k, lane] = f[k, lane]
+        for w in range(n_w):
+            fw[w, lane] = 0.0
+        for k in range(n_cp):
+            fw[points.wheel[k], lane] += f[k, lane]
+        _vehicle_newton(f, force, used, active, lane, lane + 1, lane_err, tol, points, vstep, fw, ksum, csum,
+                        veh_held, veh, veh_piv, bq, bv, t)
+    return False
 
 
 @_internal
@@ -1366,11 +1357,12 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
 
     The common step costs one contact-law evaluation (``contact_forces``, gating and envelopes
     included) at the first guess, the linear extrapolation of the last two steps' forces: either
-    that guess already holds, or one quasi-Newton update with the Jacobian through the vehicles
-    only (``_vehicle_newton``: an n_w-square system of each wheel's sums of active k and c, whose
-    factors are kept while the active set stays the same) gives forces that provably hold
-    (``_lean_accept``: the deck's part of B, ~1e-5 for road vehicles, bounded through the mode
-    amplitudes; no contact opens or closes).  Otherwise the step iterates: evaluate the law at the
+    that guess already holds, or quasi-Newton updates with the Jacobian through the vehicles only
+    (``_vehicle_newton``: an n_w-square system of each wheel's sums of active k and c, whose factors
+    are kept while the active set stays the same) settle it, the law at each iterate following
+    exactly from the last evaluation by the change of the state (``_lean_refine``; the deck's part
+    of B is ~1e-5 for road vehicles, so one or two such corrections do), as long as no contact opens
+    or closes and no wheel has an envelope (rigid disk).  Otherwise the step iterates: evaluate the law at the
     current F, its active points A give the affine law; update F_A by it, F = 0 off A; repeat
     until the law holds.  The first ``QUASI_ITERATIONS`` updates are quasi-Newton (one system for
     all lanes when they share the contact set), later ones full Newton (``_full_newton``: the full
@@ -1414,8 +1406,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         if vehicles.wheel_envelope[w]:
             lean = False
     cap = max(cap, 1)
-    bounds = _deck_bounds(modes)
-    dp = np.zeros(n_m)
+    dp = np.zeros(n_m); dxi_l = np.zeros(n_m); dvi_l = np.zeros(n_m)
     bq_l = np.zeros((n_w, n_l)); bv_l = np.zeros((n_w, n_l)); t_l = np.zeros((n_w, n_l))
     ksum = np.zeros(n_w); csum = np.zeros(n_w); veh = np.zeros((n_w, n_w))
     veh_piv = np.zeros(n_w, dtype=np.int64)
@@ -1499,11 +1490,13 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                     if lane_err[lane] > tol_force:
                         _vehicle_newton(f, force, work.used, work.active, lane, lane + 1, lane_err, tol_force, points,
                                         vstep, fw, ksum, csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l)
-            if it == 0 and lean and _lean_accept(f, f_old, work, lane_err, tol_force, gated, points, cache, onb, step,
-                                                 bounds, bq_l, bv_l, dp) > 0:
+            if it == 0 and lean:  # the one-evaluation step: settle each lane by exact increments
                 settled = True
                 for lane in range(n_l):
-                    settled = settled and lane_err[lane] <= tol_force
+                    if lane_err[lane] > tol_force and not _lean_refine(
+                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, step, vstep, fw, ksum,
+                            csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l, lane_err, modes.amp, dp, dxi_l, dvi_l):
+                        settled = False
                 if settled:
                     converged = True
                     break
