@@ -203,8 +203,9 @@ def new_work(n_cp: int, n_d: int, n_l: int) -> Work:
     return _work(n_cp, n_d, n_l)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _work(n_cp, n_d, n_l):
+    """Work space of ``contact_forces`` (``new_work``; also built inside the kernels)."""
     return Work(np.full(n_cp, -1, dtype=np.int64), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l), dtype=np.bool_),
                 np.zeros(n_cp, dtype=np.bool_), np.zeros((5, n_l)), np.zeros((n_d, n_l)), np.zeros((n_cp, n_l)),
                 np.zeros((n_cp, n_l)))
@@ -588,7 +589,7 @@ def _update(dt, x0, v0, a, x1, v1, lanes):
                                                     + a[3, i, lane])
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _store(out, n, state, lanes):
     """out[lane, n, i] = state[i, lane]: a lane-major output row from the lane-minor state."""
     n_l = _width(lanes, state)
@@ -597,7 +598,7 @@ def _store(out, n, state, lanes):
             out[lane, n, i] = state[i, lane]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _fetch(src, n, state, lanes):
     """state[i, lane] = src[lane, n, i]: the inverse of ``_store`` (explicit loops: slice
     assignments would compile numba's shape-mismatch error path, seconds of compile time)."""
@@ -607,7 +608,7 @@ def _fetch(src, n, state, lanes):
             state[i, lane] = src[lane, n, i]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _copy(src, dst, lanes):
     """dst[i, :] = src[i, :] (explicit loops, see ``_fetch``)."""
     n_l = _width(lanes, src)
@@ -616,14 +617,22 @@ def _copy(src, dst, lanes):
             dst[i, lane] = src[i, lane]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _keep(out, n, stride, state, lanes):
     """Store the state of step ``n`` in row n / stride when ``stride`` divides n (thinned histories)."""
     if n % stride == 0:
         _store(out, n // stride, state, lanes)
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
+def _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n, stride, x, v, a, y, w, b, wf, wl, lanes):
+    """``_keep`` of every output of step ``n`` (one call a step)."""
+    _keep(xi, n, stride, x, lanes); _keep(dxi, n, stride, v, lanes); _keep(ddxi, n, stride, a, lanes)
+    _keep(q, n, stride, y, lanes); _keep(dq, n, stride, w, lanes); _keep(ddq, n, stride, b, lanes)
+    _keep(wheel_force, n, stride, wf, lanes); _keep(wheel_len, n, stride, wl, lanes)
+
+
+@_internal
 def _refresh(cache, motion, row, points):
     """Point positions of half-step ``row`` into slot ``cache``; its shapes and road to be refilled."""
     point_kinematics(motion, row, points, cache.x, cache.vx)
@@ -697,7 +706,7 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
         cur = end
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _slot(n_cp, n_m, n_l):
     return Cache(np.zeros(n_cp), np.zeros(n_cp), np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m)),
                  np.zeros(n_cp, dtype=np.bool_), np.zeros((n_cp, n_l)), np.zeros((n_cp, n_l)),
@@ -821,7 +830,7 @@ class VehicleStep(NamedTuple):
     wheel_v: np.ndarray
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _combine(a, x, b, y, c, z, out, lanes):
     """out[m, :] = a_m x[m, :] + b_m y[m, :] + c_m z[m, :] (per-row coefficients)."""
     n_l = _width(lanes, x)
@@ -833,7 +842,7 @@ def _combine(a, x, b, y, c, z, out, lanes):
             out[m, lane] = am * x[m, lane] + bm * y[m, lane] + cm * z[m, lane]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _tire_load(vehicles, wheel_force, q, dq, out, lanes):
     """G_w = F_w + k_w z_w + c_w ż_w per wheel (n_w, L): the wheel force with the nominal tire's
     own linear part added back (the implicit vehicle carries k_w, c_w itself)."""
@@ -1512,10 +1521,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _tire_load(vehicles, wf, y1, w1, g, lanes)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
-        _keep(xi, n + 1, stride, x1, lanes); _keep(dxi, n + 1, stride, v1, lanes)
-        _keep(ddxi, n + 1, stride, acc, lanes)
-        _keep(q, n + 1, stride, y1, lanes); _keep(dq, n + 1, stride, w1, lanes); _keep(ddq, n + 1, stride, a1, lanes)
-        _keep(wheel_force, n + 1, stride, wf, lanes); _keep(wheel_len, n + 1, stride, wl, lanes)
+        _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n + 1, stride, x1, v1, acc, y1, w1, a1, wf, wl,
+                   lanes)
         x0, x1 = x1, x0
         v0, v1 = v1, v0
         z0, z1 = z1, z0
@@ -1526,7 +1533,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     return unsettled, evaluations
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _vehicle_acceleration(vehicles, vstep, z, g, rhs, out, lanes):
     """q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) for the stacked state z = (q, q̇)."""
     n_d = out.shape[0]
@@ -1543,7 +1550,7 @@ def _vehicle_acceleration(vehicles, vstep, z, g, rhs, out, lanes):
     _gemv(1.0, vehicles.mass_inv, rhs, out, lanes, False)
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _modal_acceleration(omega, zeta, x, v, p, out, lanes):
     """ξ̈ = p − 2ζω ξ̇ − ω² ξ."""
     n_l = _width(lanes, x)
