@@ -306,7 +306,7 @@ def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cac
     _gemv(1.0, vehicles.mass_inv, rhs, ddq, lanes, False)
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _modal_load(alpha, phi, force, used, x, track, modes, out, lanes):
     """out[m, :] += α Σ_p φ_pm F_p over the used points on the deck."""
     for p in range(force.shape[0]):

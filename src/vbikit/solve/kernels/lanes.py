@@ -15,11 +15,11 @@ def _width(lanes, a):
     return 1 if len(lanes) == 1 else a.shape[-1]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _gemv(alpha, a, x, y, lanes, transpose):
-    """y += α·A·x (or α·Aᵀ·x) for every lane (x, y: (·, L)); zero entries of A are skipped.  The
-    one-lane loop is inlined into the caller (small vehicle matrices, every step: a call costs
-    more than the product); the many-lane loops are one compiled function, ``_gemv_lanes``."""
+    """y += α·A·x (or α·Aᵀ·x) for every lane (x, y: (·, L)); zero entries of A are skipped.  One
+    lane accumulates in a register; many lanes run ``_gemv_lanes`` (the lanes innermost).  Compiled
+    once and called (inlining it at each call site cost seconds of compile time, no run time)."""
     if len(lanes) == 1:  # one lane: accumulate in a register
         n_i = a.shape[1] if transpose else a.shape[0]
         n_j = a.shape[0] if transpose else a.shape[1]
