@@ -26,9 +26,6 @@ ROOT = Path(__file__).resolve().parents[2]
 SELECTION = [
     "tests/verification/test_kernel_paths.py",
     "tests/verification/test_pinned_streams.py",
-    # lift-off and landing: the implicit step's full Newton and touch rows (the one-evaluation step
-    # settles the bump crossings of test_kernel_paths without them)
-    "tests/verification/test_contact_complementarity.py",
 ]
 #: measured 98.2 % of 665 statements (2026-12-01: exact modal stepping, per-track tables of skew decks).
 #: The 12 lines not run: ``shapes_at``, an eager helper no solver path calls; the station pointer
