@@ -186,6 +186,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
                 touch[k, lane] = False
         converged = False
+        quasi = 0  # quasi-Newton updates of this step so far
+        full = 0  # full Newton updates of this step so far
         for it in range(max_iterations):
             evaluations += 1
             _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
@@ -194,14 +196,16 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                           tol_force) <= tol_force:
                 converged = True
                 break
-            if it >= QUASI_ITERATIONS:
-                blend = 0.5 if it >= QUASI_ITERATIONS + RELAX_AFTER else 1.0
+            if quasi >= QUASI_ITERATIONS:
+                blend = 0.5 if full >= RELAX_AFTER else 1.0
+                full += 1
                 for lane in range(n_l):  # one full Newton update per unconverged lane (the rare path)
                     if lane_err[lane] > tol_force:
                         _full_newton(f, force, work.used, work.active, lane, blend, touch, gated, x1, v1, y1, w1,
                                      cache, points, vehicles, onb, step, vstep, p, fw, e, u, mat, piv, red, red_piv,
                                      rhs, t, act, held, held_k, held_c, row_k, row_c, held_state)
                 continue
+            quasi += 1
             if it == 0 and lean:
                 _copy(f, f_old, lanes)
             if n_l > 1 and _same_active_set(work.used, work.active):
@@ -214,12 +218,16 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                         _vehicle_newton(f, force, work.used, work.active, lane, lane + 1, lane_err, tol_force, points,
                                         vstep, fw, ksum, csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l)
             if it == 0 and lean:  # the one-evaluation step: settle each lane by exact increments
+                extra = 0
+                for lane in range(n_l):
+                    if lane_err[lane] > tol_force:
+                        extra = max(extra, _lean_refine(
+                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, step, vstep, fw, ksum,
+                            csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l, lane_err, modes.amp, dp, dxi_l, dvi_l))
+                quasi += extra  # its updates count towards the quasi-Newton ones before the full Newton
                 settled = True
                 for lane in range(n_l):
-                    if lane_err[lane] > tol_force and not _lean_refine(
-                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, step, vstep, fw, ksum,
-                            csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l, lane_err, modes.amp, dp, dxi_l, dvi_l):
-                        settled = False
+                    settled = settled and lane_err[lane] <= tol_force
                 if settled:
                     converged = True
                     break

@@ -306,9 +306,10 @@ LEAN_CORRECTIONS = 4
 @_internal
 def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, step, vstep, fw, ksum, csum, veh_held,
                  veh, veh_piv, bq, bv, t, lane_err, amp, dp, dxi, dvi):
-    """Settle lane ``lane`` of the one-evaluation step without another contact-law evaluation: returns
-    True when its iterate ``f`` holds the law to ``tol`` (``lane_err[lane]`` set to 0), False when a
-    contact would open or close (the step then iterates with full evaluations).
+    """Settle lane ``lane`` of the one-evaluation step without another contact-law evaluation: its
+    ``lane_err`` is set to 0 when its iterate ``f`` holds the law to ``tol``, and stays above ``tol``
+    when a contact would open or close (the step then iterates with full evaluations).  Returns the
+    number of quasi-Newton updates made here.
 
     On entry ``f`` is the quasi-Newton iterate from ``f_old``, whose law the last evaluation gave
     (``work.pen``, ``work.law`` per point), and ``bq``, ``bv`` the vehicles' part of the update
@@ -325,7 +326,7 @@ def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, st
     n_m = dp.shape[0]
     n_cp = f.shape[0]
     n_w = fw.shape[0]
-    for _ in range(LEAN_CORRECTIONS):
+    for r in range(LEAN_CORRECTIONS):
         for m in range(n_m):
             dp[m] = 0.0
         for k in range(n_cp):
@@ -344,7 +345,7 @@ def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, st
             if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
                 pen[k, lane] += bq[w, lane] + (b if onb[k] else 0.0)
                 if pen[k, lane] > 0.0:
-                    return False
+                    return r
                 continue
             ds = 0.0
             dr = 0.0
@@ -359,13 +360,13 @@ def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, st
             law[k, lane] += points.stiffness[k] * dpen + points.damping[k] * (dr + cache.vx[k] * dsd + bv[w, lane])
             fk = _gated(law[k, lane], pen[k, lane], gated[k])
             if (not gated[k] or fk > 0.0) != active[k, lane]:
-                return False  # a contact opens or closes: the full iteration decides
+                return r  # a contact opens or closes: the full iteration decides
             force[k, lane] = fk
             err = max(err, abs(fk - f[k, lane]))
         lane_err[lane] = err
         if err <= tol:
             lane_err[lane] = 0.0
-            return True
+            return r
         for k in range(n_cp):
             f_old[k, lane] = f[k, lane]
         for w in range(n_w):
@@ -374,7 +375,7 @@ def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, st
             fw[points.wheel[k], lane] += f[k, lane]
         _vehicle_newton(f, force, used, active, lane, lane + 1, lane_err, tol, points, vstep, fw, ksum, csum,
                         veh_held, veh, veh_piv, bq, bv, t)
-    return False
+    return LEAN_CORRECTIONS
 
 
 @_internal
