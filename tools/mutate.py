@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-KERNELS = "src/vbikit/solve/kernels.py"
+KERNELS = "src/vbikit/solve/kernels"  # the kernels' package: K() finds the module of each pattern
 #: the tests run on each mutant, quick and discriminating ones first (pytest stops at the first failure)
 DEFAULT_TESTS = ["tests/verification/test_independent_checks.py", "tests/verification/test_kernel_paths.py",
                  "tests/verification", "tests/unit", "tests/study/test_batch.py"]
@@ -77,18 +77,27 @@ class Mutation:
     tests: tuple[str, ...] = ()
 
 
-def M(name: str, description: str, *edits: Edit) -> Mutation:
-    return Mutation(name, description, edits)
+def M(name: str, description: str, *edits: Edit | tuple[Edit, ...]) -> Mutation:
+    return Mutation(name, description, _flat(edits))
 
 
-def N(name: str, description: str, tests: tuple[str, ...], *edits: Edit) -> Mutation:
+def N(name: str, description: str, tests: tuple[str, ...], *edits: Edit | tuple[Edit, ...]) -> Mutation:
     """A mutation of a model added since the paper, with the physics tests that should catch it."""
-    return Mutation(name, description, edits, tests)
+    return Mutation(name, description, _flat(edits), tests)
 
 
-def K(pattern: str, replacement: str, count: int | None = 1) -> Edit:
-    """An edit of the kernels (the default integrator's code)."""
-    return Edit(KERNELS, pattern, replacement, count)
+def K(pattern: str, replacement: str, count: int | None = 1) -> tuple[Edit, ...]:
+    """Edits of the kernels (the default integrator's code): of the module of the kernels' package
+    that holds ``pattern`` (``count`` times there), or with ``count=None`` of every module that does."""
+    files = sorted(str(p.relative_to(ROOT)) for p in (ROOT / KERNELS).glob("*.py") if pattern in p.read_text())
+    if count is not None or not files:
+        return (Edit(files[0] if len(files) == 1 else KERNELS + "/__init__.py", pattern, replacement, count),)
+    return tuple(Edit(f, pattern, replacement, None) for f in files)
+
+
+def _flat(edits: tuple) -> tuple[Edit, ...]:
+    """``edits`` with K()'s tuples spliced in."""
+    return tuple(e for x in edits for e in (x if isinstance(x, tuple) else (x,)))
 
 
 MUTATIONS: list[Mutation] = [

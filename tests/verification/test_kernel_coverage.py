@@ -2,7 +2,7 @@
 
 numba-compiled functions are invisible to coverage.py, so this job runs the kernel-path tests
 with ``NUMBA_DISABLE_JIT=1`` (the kernels then run as plain Python, ≈ 1 min) under pytest-cov
-and reads the line coverage of ``vbikit/solve/kernels.py`` from the JSON report.  Run it with
+and reads the line coverage of the kernels (``vbikit/solve/kernels/``) from the JSON report.  Run it with
 
     python -m pytest -m slow tests/verification/test_kernel_coverage.py -s
 
@@ -26,11 +26,17 @@ ROOT = Path(__file__).resolve().parents[2]
 SELECTION = [
     "tests/verification/test_kernel_paths.py",
     "tests/verification/test_pinned_streams.py",
+    # heavy wheel hop on a 3D deck: the implicit step's full Newton, touch rows and LU factors (the
+    # one-evaluation step settles the bump crossings of test_kernel_paths without them)
+    "tests/verification/test_heavy_hop_convergence.py::test_deck_class_d",
+    "tests/unit/test_newton_coupling.py",  # the full Newton's capacitance form (disk tires)
 ]
-#: measured 98.2 % of 665 statements (2026-12-01: exact modal stepping, per-track tables of skew decks).
-#: The 12 lines not run: ``shapes_at``, an eager helper no solver path calls; the station pointer
-#: moving towards −x, used only by vehicles driving −x; the implicit kernel's under-relaxation
-#: after 8 fixed-point iterations and its count of steps that did not converge.
+#: measured 97.6 % of 1149 statements of the kernels' package (2026-12-04: the one-evaluation step;
+#: 98.2 % of 665 in the one module on 2026-12-01).  The lines not run: ``shapes_at``, an eager
+#: helper no solver path calls; the station pointer moving towards −x; LU row swaps (the contact
+#: matrices need no pivoting); the rigid disk's rate clamp in ``_penetration``; the one-evaluation
+#: step's exits for a point leaving the lazy test; the under-relaxation after 8 full Newton
+#: iterations and the count of steps that did not converge.
 MIN_KERNEL_COVERAGE = 97.0
 
 
@@ -44,8 +50,12 @@ def test_kernel_coverage_without_jit(tmp_path):
     res = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, timeout=3600)
     assert res.returncode == 0, res.stdout[-3000:] + res.stderr[-3000:]
     files = json.loads(report.read_text())["files"]
-    kernels = next(v for k, v in files.items() if k.replace("\\", "/").endswith("vbikit/solve/kernels.py"))
-    percent = kernels["summary"]["percent_covered"]
+    parts = {k: v for k, v in files.items() if "vbikit/solve/kernels/" in k.replace("\\", "/")}
+    statements = sum(v["summary"]["num_statements"] for v in parts.values())
+    covered = sum(v["summary"]["covered_lines"] for v in parts.values())
+    percent = 100.0 * covered / statements
+    kernels = {"summary": {"num_statements": statements},
+               "missing_lines": {k.rsplit("/", 1)[-1]: v["missing_lines"] for k, v in parts.items()}}
     total = json.loads(report.read_text())["totals"]["percent_covered"]
     print(f"\nkernel coverage (NUMBA_DISABLE_JIT=1): {percent:.1f} % of {kernels['summary']['num_statements']} "
           f"statements; lines not run: {kernels['missing_lines']}; whole package in this selection: {total:.1f} %")

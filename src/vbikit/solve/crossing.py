@@ -35,7 +35,7 @@ from vbikit.bridge.base import ModalBridge
 from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
 from vbikit.road.profile import RoadProfile
-from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
+from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR, get_integrator
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")

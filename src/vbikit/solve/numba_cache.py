@@ -5,8 +5,9 @@ package directory is read-only, in the user's cache directory (``~/.cache/numba`
 is writable (and ``NUMBA_CACHE_DIR`` is not set) it refuses to define the kernels, so
 ``import vbikit`` would fail.  ``ensure_cache_location``, called by
 ``vbikit.solve.kernels`` before its first kernel, then points numba at a private per-user
-directory in the system's temporary directory (logged).  This module lies beside kernels.py, so
-probing a function of this file probes the kernels' own cache locations.
+directory in the system's temporary directory (logged).  This module lies beside the kernels'
+package (solve/kernels/), so probing a function of this file probes the kernels' own cache
+locations.
 """
 from __future__ import annotations
 
@@ -22,7 +23,7 @@ log = logging.getLogger(__name__)
 
 
 def _cache_probe() -> None:
-    """A function of this file (beside kernels.py), for ``ensure_cache_location``."""
+    """A function of this file (beside the kernels' package), for ``ensure_cache_location``."""
 
 
 def _private_dir(path: str) -> str:
@@ -73,7 +74,7 @@ def ensure_cache_location() -> str | None:
 
 def cache_location() -> str:
     """Where numba keeps vbikit's compiled kernels: its cache directory (``NUMBA_CACHE_DIR`` or the one
-    chosen by ``ensure_cache_location``), else ``__pycache__`` beside the kernels' module."""
+    chosen by ``ensure_cache_location``), else ``__pycache__`` in the kernels' package."""
     if numba.config.CACHE_DIR:
         return str(numba.config.CACHE_DIR)
-    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "__pycache__")
+    return os.path.join(os.path.dirname(os.path.abspath(__file__)), "kernels", "__pycache__")

@@ -1,0 +1,308 @@
+"""The demo crossing against its floor: what the arithmetic of a crossing costs without anything else.
+
+    python benchmarks/bench_floor.py               # ≈ 30 s with a warm numba cache
+    python benchmarks/bench_floor.py --repeat 21
+
+The floor is a minimal numba loop (``floor_loop`` below, written for this script) that does a
+crossing's arithmetic once a step with the library's own inputs — the mode-shape tables along the
+wheel tracks, the exact modal and vehicle step maps, the contact points and the road that
+``vbikit.solve.simulate`` hands to its kernel (captured from one ``simulate`` call): per step the
+point positions, the free deck and vehicle responses, the modal load and end-of-step state of the
+extrapolated contact forces, **one contact-law evaluation** (mode shapes by cubic Hermite, road by
+linear interpolation, deck displacement, velocity and convective rate, the tire law with its
+gate), one quasi-Newton update of the forces through the vehicles (a factorisation made once,
+before the loop), the end state and the stored histories.  No Python per step, no checks, one lane.
+
+Reported, each as thread CPU time (``time.thread_time``, robust to other load on a shared
+machine), minimum of ``--repeat`` runs after a warm-up:
+
+* **kernel**: the library's step loop (``kernels.implicit``) inside ``simulate``;
+* **whole**: what ``vbikit run`` does for the crossing — ``simulate`` and the response point's
+  history with its static reference and impact factor;
+* **floor**: ``floor_loop`` on the same inputs;
+
+and the ratios kernel / floor and whole / floor, with the floor's midspan displacement against
+the library's (max difference / peak: the floor solves the same equations, one update a step).
+
+The case is the ``vbikit demo`` scenario: HS20-44 on the 16.76 m beam (20 modes), multipoint
+tire n = 6 (36 contact points), ISO class C road, 75 km/h, exact modal stepping at the automatic
+step (1,914 steps).
+"""
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+from _args import benchmark_args  # noqa: E402
+
+
+def _floor_loop():
+    """The compiled floor (built on first use, so that ``--cold`` applies before numba loads)."""
+    import numpy as np
+    from numba import njit
+
+    @njit(cache=True, fastmath=True, error_model="numpy")
+    def floor_loop(travel, speed, modes_start, modes_end, grid_h, values, slopes, a11, a12, a21, a22, b1, b2, c1, c2,
+                   transition, load0, constant, settle, response, wheel_q, wheel_v, wheel_rows, wheel_k, wheel_c, v_inv,
+                   origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, stations, elevations, x0, v0,
+                   z0, fstart, xi_out, q_out, wf_out):
+        n_steps = xi_out.shape[0] - 1
+        n_m = x0.size
+        n_cp = origin.size
+        n_w = wheel_rows.shape[0]
+        n_d = wheel_rows.shape[1]
+        n_grid = values.shape[1]
+        n_s = stations.size
+        x = x0.copy(); v = v0.copy(); z = z0.copy()
+        p0 = np.zeros(n_m); p = np.zeros(n_m)
+        xf = np.zeros(n_m); vf = np.zeros(n_m); x1 = np.zeros(n_m); v1 = np.zeros(n_m)
+        zf = np.zeros(2 * n_d); zb = np.zeros(2 * n_d); z1 = np.zeros(2 * n_d)
+        g0 = np.zeros(n_w); fw = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w)
+        f = fstart.copy(); fo = fstart.copy(); fp = fstart.copy(); law = np.zeros(n_cp)
+        phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m)); onb = np.zeros(n_cp, np.bool_)
+        xp = np.zeros(n_cp); vxp = np.zeros(n_cp); idx = np.zeros(n_cp, np.int64)
+        for k in range(n_cp):  # the initial wheel loads G = F + k_w z_w + c_w ż_w
+            g0[wheel[k]] += f[k]
+        for w in range(n_w):
+            for j in range(n_d):
+                g0[w] += wheel_rows[w, j] * (wheel_k[w] * z[j] + wheel_c[w] * z[n_d + j])
+        for n in range(n_steps):
+            row = 2 * n + 2
+            for k in range(n_cp):  # positions and mode shapes (cubic Hermite)
+                xp[k] = origin[k] + direction[k] * travel[row, vehicle[k]]
+                vxp[k] = direction[k] * speed[row, vehicle[k]]
+                tr = track[k]
+                onb[k] = modes_start[tr] <= xp[k] <= modes_end[tr]
+                if onb[k]:
+                    u = (xp[k] - modes_start[tr]) / grid_h
+                    i = min(int(u), n_grid - 2)
+                    s = u - i
+                    s2 = s * s
+                    s3 = s2 * s
+                    h00 = 2 * s3 - 3 * s2 + 1
+                    h10 = (s3 - 2 * s2 + s) * grid_h
+                    h01 = -2 * s3 + 3 * s2
+                    h11 = (s3 - s2) * grid_h
+                    d00 = (6 * s2 - 6 * s) / grid_h
+                    d10 = 3 * s2 - 4 * s + 1
+                    d11 = 3 * s2 - 2 * s
+                    for m in range(n_m):
+                        va = values[tr, i, m]
+                        vb = values[tr, i + 1, m]
+                        sa = slopes[tr, i, m]
+                        sb = slopes[tr, i + 1, m]
+                        phi[k, m] = h00 * va + h10 * sa + h01 * vb + h11 * sb
+                        dphi[k, m] = d00 * (va - vb) + d10 * sa + d11 * sb
+            for m in range(n_m):  # free deck response
+                xf[m] = a11[m] * x[m] + a12[m] * v[m] + b1[m] * p0[m]
+                vf[m] = a21[m] * x[m] + a22[m] * v[m] + b2[m] * p0[m]
+            for i in range(2 * n_d):  # free vehicle response, then settled on the nominal tires
+                a = constant[i]
+                for j in range(2 * n_d):
+                    a += transition[i, j] * z[j]
+                for w in range(n_w):
+                    a += load0[i, w] * g0[w]
+                zf[i] = a
+            for i in range(2 * n_d):
+                a = 0.0
+                for j in range(2 * n_d):
+                    a += settle[i, j] * zf[j]
+                zb[i] = a
+            for k in range(n_cp):  # first guess: linear extrapolation
+                f[k] = 2.0 * fo[k] - fp[k]
+            for it in range(2):  # it 0: the state of the guess; it 1: the end state of the updated forces
+                for m in range(n_m):
+                    p[m] = 0.0
+                for w in range(n_w):
+                    fw[w] = 0.0
+                for k in range(n_cp):
+                    fw[wheel[k]] += f[k]
+                    if onb[k]:
+                        for m in range(n_m):
+                            p[m] -= phi[k, m] * f[k]
+                for m in range(n_m):
+                    x1[m] = xf[m] + c1[m] * p[m]
+                    v1[m] = vf[m] + c2[m] * p[m]
+                for i in range(2 * n_d):
+                    a = zb[i]
+                    for w in range(n_w):
+                        a += response[i, w] * fw[w]
+                    z1[i] = a
+                if it == 1:
+                    break
+                for k in range(n_cp):  # the one contact-law evaluation
+                    w = wheel[k]
+                    zw = 0.0
+                    dzw = 0.0
+                    for j in range(n_d):
+                        zw += wheel_rows[w, j] * z1[j]
+                        dzw += wheel_rows[w, j] * z1[n_d + j]
+                    xk = xp[k]
+                    i = idx[k]
+                    while i < n_s - 2 and stations[i + 1] <= xk:
+                        i += 1
+                    while i > 0 and stations[i] > xk:
+                        i -= 1
+                    idx[k] = i
+                    zr = elevations[line[k]]
+                    slope = (zr[i + 1] - zr[i]) / (stations[i + 1] - stations[i])
+                    s = zr[i] + slope * (xk - stations[i])
+                    sd = slope * vxp[k]
+                    dr = 0.0
+                    if onb[k]:
+                        for m in range(n_m):
+                            s += phi[k, m] * x1[m]
+                            dr += phi[k, m] * v1[m]
+                            sd += vxp[k] * dphi[k, m] * x1[m]
+                    pen = s - gap[k] - zw
+                    fl = kk[k] * pen + cc[k] * (sd + dr - dzw) + f0[k]
+                    law[k] = fl if not gated[k] or (pen > 0.0 and fl > 0.0) else 0.0
+                for w in range(n_w):  # one quasi-Newton update through the vehicles: (I + S U) t = S b
+                    aq = 0.0
+                    av = 0.0
+                    for w2 in range(n_w):
+                        aq += wheel_q[w, w2] * fw[w2]
+                        av += wheel_v[w, w2] * fw[w2]
+                    bq[w] = aq
+                    bv[w] = av
+                    t[w] = 0.0
+                for k in range(n_cp):
+                    t[wheel[k]] += law[k] + kk[k] * bq[wheel[k]] + cc[k] * bv[wheel[k]]
+                for w in range(n_w):
+                    a = 0.0
+                    for w2 in range(n_w):
+                        a += v_inv[w, w2] * t[w2]
+                    fw[w] = a
+                for w in range(n_w):
+                    aq = 0.0
+                    av = 0.0
+                    for w2 in range(n_w):
+                        aq += wheel_q[w, w2] * fw[w2]
+                        av += wheel_v[w, w2] * fw[w2]
+                    bq[w] -= aq
+                    bv[w] -= av
+                for k in range(n_cp):
+                    on = law[k] != 0.0 or not gated[k]
+                    f[k] = law[k] + kk[k] * bq[wheel[k]] + cc[k] * bv[wheel[k]] if on else 0.0
+            for w in range(n_w):  # end of step: wheel loads, outputs, shift
+                g0[w] = fw[w]
+                for j in range(n_d):
+                    g0[w] += wheel_rows[w, j] * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
+                wf_out[n + 1, w] = fw[w]
+            for m in range(n_m):
+                x[m] = x1[m]
+                v[m] = v1[m]
+                p0[m] = p[m]
+                xi_out[n + 1, m] = x1[m]
+            for i in range(2 * n_d):
+                z[i] = z1[i]
+            for j in range(n_d):
+                q_out[n + 1, j] = z1[j]
+            for k in range(n_cp):
+                fp[k] = fo[k]
+                fo[k] = f[k]
+
+    return floor_loop
+
+
+def floor_inputs(args: tuple):
+    """The floor's arguments from one captured ``kernels.implicit`` call (lane 0), and its outputs."""
+    import numpy as np
+
+    (dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq, wheel_force,
+     wheel_len, tol, max_iterations, lanes, stride) = args[:21]
+    n_w = vehicles.wheel_rows.shape[0]
+    ksum = np.bincount(points.wheel, weights=points.stiffness, minlength=n_w)
+    csum = np.bincount(points.wheel, weights=points.damping, minlength=n_w)
+    v_inv = np.linalg.inv(np.eye(n_w) + ksum[:, None] * vstep.wheel_q + csum[:, None] * vstep.wheel_v)
+    gated = points.gated | (bool(unilateral) & (points.stiffness > 0.0))
+    n_t = motion.travel.shape[0] // 2 + 1
+    outs = (np.zeros((n_t, xi.shape[2])), np.zeros((n_t, q.shape[2])), np.zeros((n_t, n_w)))
+    c = np.ascontiguousarray
+    fstart = np.zeros(points.origin.size)  # the static start's point forces: its wheel loads spread by stiffness
+    for k in range(points.origin.size):
+        w = points.wheel[k]
+        fstart[k] = wheel_force[0, 0, w] * points.stiffness[k] / ksum[w] if ksum[w] > 0 else 0.0
+    inputs = (c(motion.travel), c(motion.speed), modes.start, modes.end, modes.grid_h, modes.values, modes.slopes,
+              step.a11, step.a12, step.a21, step.a22, step.b1, step.b2, step.c1, step.c2, vstep.transition,
+              vstep.load0, vstep.constant, vstep.settle, vstep.response, vstep.wheel_q, vstep.wheel_v,
+              vehicles.wheel_rows, vehicles.wheel_stiffness, vehicles.wheel_damping, v_inv, points.origin,
+              points.direction, points.vehicle, points.track, np.minimum(points.line, road.elevations.shape[0] - 1),
+              points.stiffness, points.damping,
+              points.fixed_load, points.gap, gated, points.wheel, road.stations, c(road.elevations[:, :, 0]),
+              c(xi[0, 0]), c(dxi[0, 0]), np.concatenate([q[0, 0], dq[0, 0]]), fstart)
+    return inputs, outs
+
+
+def main() -> None:
+    args = benchmark_args(__doc__, "timed runs after the warm-up (minimum reported)")
+    import datetime
+    import os
+
+    import numpy as np
+
+    from vbikit.analysis import point_response
+    from vbikit.scenario import demo_scenario_text, scenario_from_toml
+    from vbikit.scenario.preflight import preflight
+    from vbikit.solve import kernels, simulate
+
+    built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
+    original, captured, spent = kernels.implicit, [], []
+
+    def kernel(*a, **k):
+        t0 = time.thread_time()
+        out = original(*a, **k)
+        spent.append(time.thread_time() - t0)
+        captured[:] = [(a, out)]
+        return out
+
+    def whole():
+        res = simulate(built.crossing)
+        return res, point_response(res, built.response_x, built.response_y)
+
+    kernels.implicit = kernel
+    try:
+        t0 = time.perf_counter()
+        whole()
+        warm = time.perf_counter() - t0
+        spent.clear()
+        t_whole = []
+        for _ in range(args.repeat):
+            t0 = time.thread_time()
+            res, resp = whole()
+            t_whole.append(time.thread_time() - t0)
+        t_kernel = list(spent)
+    finally:
+        kernels.implicit = original
+    call, (unsettled, evaluations) = captured[0]
+    floor_loop = _floor_loop()
+    inputs, outs = floor_inputs(call)
+    t0 = time.perf_counter()
+    floor_loop(*inputs, *outs)
+    floor_warm = time.perf_counter() - t0
+    t_floor = []
+    for _ in range(args.repeat):
+        t0 = time.thread_time()
+        floor_loop(*inputs, *outs)
+        t_floor.append(time.thread_time() - t0)
+    phi = built.crossing.bridge.mode_shapes(*([c] for c in res.point(built.response_x, built.response_y)))[0]
+    u_lib = res.xi @ phi
+    u_floor = outs[0][: u_lib.size] @ phi
+    agree = float(np.max(np.abs(u_floor[1:] - u_lib[1:])) / np.max(np.abs(u_lib)))
+    k, w, f = min(t_kernel), min(t_whole), min(t_floor)
+    n = res.n_steps
+    print(f"bench_floor: the vbikit demo crossing ({n} steps, {res.xi.shape[1]} modes, {inputs[26].size} contact "
+          f"points), {datetime.date.today()}, {os.cpu_count()} CPUs, thread CPU time, min of {args.repeat}")
+    print(f"  first calls (numba cache load or compile): crossing {warm:.2f} s, floor {floor_warm:.2f} s wall")
+    print(f"  kernel (kernels.implicit)      {k * 1e3:7.2f} ms   {evaluations / n:.2f} contact-law evaluations a step, "
+          f"{unsettled} unconverged steps")
+    print(f"  whole crossing (simulate + IM) {w * 1e3:7.2f} ms   IM = {resp.displacement_impact.impact_factor:.4f}")
+    print(f"  floor (one evaluation a step)  {f * 1e3:7.2f} ms   midspan displacement within {agree:.1e} of the "
+          f"library's peak")
+    print(f"  kernel / floor = {k / f:.1f}   whole / floor = {w / f:.1f}")
+
+
+if __name__ == "__main__":
+    main()

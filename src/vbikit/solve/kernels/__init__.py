@@ -1,0 +1,108 @@
+"""Compiled (numba) kernels of the coupled vehicle–bridge equations (paper Eq. 9, modal form).
+
+State: bridge modal coordinates ξ (n_m) and vehicle coordinates q (n_d).
+
+Contact-point kinematics (every point on its own).  Point p belongs to vehicle ``vehicle[p]``
+and sits at
+
+    x_p(t) = origin_p + dir_p · s_v(t),      dx_p/dt = dir_p · v_v(t)
+
+where s_v(t) [m] and v_v(t) = ds_v/dt [m/s] ≥ 0 are the travel and speed of its vehicle v
+(columns of ``Motion``, given on the half-step time grid, so each vehicle has its own
+speed, acceleration, stop time and start), ``origin`` [m] is x_p at s_v = 0 and ``direction``
+dir_p = +1 (driving towards +x) or −1 (towards −x).  One vehicle driving +x (a
+[`vbikit.solve.Crossing`][vbikit.solve.Crossing]) has s_v = x_front(t), origin_p = −setback_p, dir_p = +1.
+
+The contact law, written once (``contact_forces``, called by every integrator and by the
+static start).  With mode-shape rows φ_p, φ'_p = ∂φ/∂x on the point's wheel track
+``track[p]``, road elevation r_p on road line ``line[p]`` and the wheel's lowest point
+z_w = h_w·q (row ``wheel_rows[wheel[p]]``):
+
+    s_p  = φ_p·ξ + r_p                                   surface under the point
+    ṡ_p  = φ_p·ξ̇ + dir_p v (φ'_p·ξ + r'(x_p))            (dir_p v φ'_p·ξ: convective deck rate)
+    δ_p  = s_p − g_p − z_w                               penetration (gap g_p ≥ 0)
+    F_p  = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p              (compression > 0)
+    gated points (disk tires, or all points with loss of contact): F_p = max(0, F_p) if δ_p > 0 else 0
+    envelope wheels (rigid disk): only the point of largest s_p − g_p acts, with the surface
+    rate along the travel direction clamped to the circle's slopes there (``slope_range``)
+    ξ̈ + 2ζω ξ̇ + ω² ξ = −Σ_p φ_pᵀ F_p
+    M_v q̈ + C_v q̇ + K_v q = F_G + Σ_w h_wᵀ Σ_{p∈w} F_p
+
+A point on track k is on the deck while start_k ≤ x_p ≤ end_k (the track's own span: 0 … span,
+shifted by y tan θ on a skew deck, whose oblique support lines cross each track elsewhere); off
+it, φ_p = 0 (the road only).  Nothing in the kernels assumes φ = 0 at the deck ends or a single
+span: the mode-shape tables may be any mode set (continuous beams, grillages, skew decks),
+tabulated over [start_k, end_k] on each wheel track k.
+
+Several vehicles.  The kernels only see contact points, wheels and vehicle DOFs; a traffic
+event is one system whose vehicle matrices are block-diagonal (one block per vehicle), whose
+wheels index rows of the stacked DOF vector and whose points carry their vehicle index,
+origin and direction.  Wheels of one vehicle must be contiguous in points (``wheel_first``,
+``wheel_count``), as for one vehicle.
+
+Modules, by role: ``bundles`` (argument bundles and work spaces), ``lanes`` (lane-wise array
+helpers), ``contact`` (the contact law and the right-hand side), ``explicit`` (RK4), ``implicit_step``
+(the partitioned implicit step loop), ``newton`` (its contact solve), ``assembly`` (system
+matrices at one instant).  Everything is importable from this package, as when it was one module.
+
+Argument bundles (NamedTuples of arrays, built by ``vbikit.solve.system``):
+  ``Modes``     the bridge's mode set and its tables along the wheel tracks
+  ``Vehicles``  vehicle matrices, wheel rows and wheel → point ranges
+  ``Points``    per contact point: kinematics, track, road line, tire law
+  ``Road``      road stations and elevations of every road line and lane
+  ``Motion``    travel s_v and speed v_v of every vehicle on the half-step grid
+
+Lanes.  The state carries a last axis of L *lanes*: L crossings that share everything but the
+road (a batch of a study), integrated together.  Everything that does not depend on the road
+(positions, mode shapes at the contact points, the step) is computed once for all lanes, and
+the per-lane arithmetic runs in contiguous inner loops that the compiler vectorises.  Each
+lane's arithmetic is that of a single crossing (L = 1 is ``simulate``).  The argument
+``lanes`` selects one of two compiled variants: a 1-tuple = one lane, a compile-time constant,
+so that every lane loop disappears (and sums stay in registers); a 2-tuple = many lanes, L
+read from the arrays at run time (the form the loop vectoriser handles; its vector loops take
+32 doubles at a time, hence the callers' 32-lane calls padded to multiples of 8).  Hot loops
+index 2-D arrays directly rather than through row views (measured faster here, ≈ 15 %).
+
+Mode shapes along each wheel track are tabulated on a uniform grid with values and slopes and
+evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``).  Road elevations are
+interpolated linearly in the road's stations inside the kernels (station pointers move both
+ways, so points may drive towards −x).  Both lazily: a gated point that no lane can bring into
+contact (r_max − g_p − min z_w + B ≤ 0, with r_max the highest road elevation and
+B = max_lanes Σ_m max|φ_m|·|ξ_m| the largest possible deck displacement) needs neither.
+"""
+from __future__ import annotations
+
+from vbikit.solve.kernels.bundles import (
+    Cache,
+    ModalStep,
+    Modes,
+    Motion,
+    Points,
+    Road,
+    VehicleStep,
+    Vehicles,
+    Work,
+    new_cache,
+    new_work,
+)
+from vbikit.solve.kernels.contact import (
+    accelerations,
+    contact_forces,
+    point_kinematics,
+    point_law,
+    road_at,
+    road_point,
+    shape_point,
+    shapes_at,
+)
+from vbikit.solve.kernels.explicit import rk4
+from vbikit.solve.kernels.assembly import assemble, static_modal_history
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, QUASI_ITERATIONS, RELAX_AFTER, TOUCH_STIFFNESS
+from vbikit.solve.kernels.implicit_step import implicit
+
+__all__ = [
+    "Cache", "ModalStep", "Modes", "Motion", "Points", "Road", "VehicleStep", "Vehicles", "Work", "new_cache",
+    "new_work", "accelerations", "contact_forces", "point_kinematics", "point_law", "road_at", "road_point",
+    "shape_point", "shapes_at", "rk4", "assemble", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
+    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit",
+]

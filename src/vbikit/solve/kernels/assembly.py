@@ -1,0 +1,85 @@
+"""The coupled system matrices at one instant (the static start, Newmark checks) and the static modal
+load history. (``vbikit.solve.kernels``: the equations and conventions.)"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from vbikit.solve.kernels.contact import shape_point
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, mass, damp, stiff, load):
+    """Coupled system matrices of Eq. 9 at one instant, M ü + C u̇ + K u = F with u = [ξ; q], for
+    the contact points at positions ``x`` [m] with x-rates ``vx`` [m/s] flagged ``active``: the
+    linearisation of the contact law (module docstring) about contact, where F_p = k δ + c δ̇ +
+    f0 (road ``r`` [m] and its rate ``rdot`` [m/s] under each point given)."""
+    omega, zeta = modes.omega, modes.zeta
+    m_v, c_v, k_v, f_g, wheel_rows = vehicles.mass, vehicles.damping, vehicles.stiffness, vehicles.gravity, \
+        vehicles.wheel_rows
+    n_m = omega.size
+    n_d = f_g.size
+    mass[:, :] = 0.0
+    damp[:, :] = 0.0
+    stiff[:, :] = 0.0
+    load[:] = 0.0
+    for m in range(n_m):
+        mass[m, m] = 1.0
+        damp[m, m] = 2.0 * zeta[m] * omega[m]
+        stiff[m, m] = omega[m] * omega[m]
+    for i in range(n_d):
+        load[n_m + i] = f_g[i]
+        for j in range(n_d):
+            mass[n_m + i, n_m + j] = m_v[i, j]
+            damp[n_m + i, n_m + j] = c_v[i, j]
+            stiff[n_m + i, n_m + j] = k_v[i, j]
+    for p in range(points.stiffness.size):
+        if not active[p]:
+            continue
+        k = points.stiffness[p]
+        c = points.damping[p]
+        ext = k * (r[p] - points.gap[p]) + c * rdot[p] + points.fixed_load[p]
+        h = wheel_rows[points.wheel[p]]
+        for i in range(n_d):
+            load[n_m + i] += h[i] * ext
+            for j in range(n_d):
+                stiff[n_m + i, n_m + j] += k * h[i] * h[j]
+                damp[n_m + i, n_m + j] += c * h[i] * h[j]
+        if not modes.start[points.track[p]] <= x[p] <= modes.end[points.track[p]]:
+            continue
+        if not have[p]:
+            shape_point(x[p], points.track[p], modes, phi[p], dphi[p])
+            have[p] = True
+        f = phi[p]
+        g = dphi[p]
+        vel = vx[p]
+        for a in range(n_m):
+            load[a] -= f[a] * ext
+            for b in range(n_m):
+                stiff[a, b] += k * f[a] * f[b] + c * vel * f[a] * g[b]
+                damp[a, b] += c * f[a] * f[b]
+            for j in range(n_d):
+                stiff[a, n_m + j] -= k * f[a] * h[j]
+                damp[a, n_m + j] -= c * f[a] * h[j]
+                stiff[n_m + j, a] -= k * h[j] * f[a] + c * vel * h[j] * g[a]
+                damp[n_m + j, a] -= c * h[j] * f[a]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def static_modal_history(travel, points, loads, modes):
+    """Σ_p φ(x_p(t)) P_p (n_t, n_m) for downward point loads P_p [N] at x_p = origin_p + dir_p·s_v(t),
+    ``travel`` (n_t, n_vehicles) [m] (tabulated shapes, as the solver); ξ_st = −that / ω²."""
+    n_m = modes.values.shape[2]
+    out = np.zeros((travel.shape[0], n_m))
+    phi = np.zeros(n_m)
+    dphi = np.zeros(n_m)
+    for t in range(travel.shape[0]):
+        for p in range(points.origin.size):
+            if loads[p] == 0.0:
+                continue
+            x = points.origin[p] + points.direction[p] * travel[t, points.vehicle[p]]
+            if modes.start[points.track[p]] <= x <= modes.end[points.track[p]]:
+                shape_point(x, points.track[p], modes, phi, dphi)
+                for m in range(n_m):
+                    out[t, m] += phi[m] * loads[p]
+    return out
