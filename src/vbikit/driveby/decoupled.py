@@ -164,6 +164,13 @@ def simulate_decoupled(crossing):
     """The decoupled counterpart of ``vbikit.solve.simulate(crossing)`` (module docstring): a
     ``CrossingResult`` on the same time grid; its ``wheel_forces`` are the tire forces of the
     vehicle on the computed surface."""
+    from vbikit._blas import single_thread_blas
+
+    with single_thread_blas():  # small products of long histories: BLAS threads only contend (vbikit._blas)
+        return _simulate_decoupled(crossing)
+
+
+def _simulate_decoupled(crossing):
     from vbikit.solve.result import CrossingResult
 
     time = _time_grid(crossing)

@@ -182,30 +182,36 @@ _BUILT: dict[str, Any] = {}
 _BRIDGES: dict[str, Any] = {}
 
 
+#: [m] added on each side of the range a case's contact points touch when its random road is
+#: generated (``_scenario_crossing``): the time grid may end up to a step past the crossing's duration
+ROAD_WINDOW_MARGIN = 1.0
+
+
 def _scenario_crossing(data: dict, base_dir: str):
-    """The scenario's crossing; its bridge taken from ``_BRIDGES`` when an earlier case had the
-    same [bridge] table (a random pass changes the road, the speed and the vehicle, rarely the
-    bridge: its eigen-solution is computed once)."""
+    """The scenario's crossing parts; its bridge taken from ``_BRIDGES`` when an earlier case had
+    the same [bridge] table (a random pass changes the road, the speed and the vehicle, rarely the
+    bridge: its eigen-solution is computed once).  ``roads(window)`` builds the left and right road
+    profiles over ``window`` = (x_lo, x_hi) only (``vbikit.scenario.build.build_road``: the same road
+    there as the whole period's, at a fraction of the cost)."""
+    import types
+
     from vbikit.scenario import build, parse_scenario
-    from vbikit.scenario.build import build_right_road, build_road, check_road_budget
+    from vbikit.scenario.build import build_right_road, build_road, build_tire, check_road_budget
 
     scenario = parse_scenario(data, base_dir)
     key = json.dumps([data["bridge"], str(base_dir)], sort_keys=True)
     if key not in _BRIDGES:
         if len(_BRIDGES) > 16:
             _BRIDGES.clear()
-        crossing = build(scenario).crossing
-        _BRIDGES[key] = crossing.bridge
-        return crossing
+        _BRIDGES[key] = build(scenario).crossing.bridge  # the whole scenario checked once per bridge
     check_road_budget(scenario.road, None)
-    road = build_road(scenario.road, scenario)
+
+    def roads(window):
+        road = build_road(scenario.road, scenario, window)
+        return road, build_right_road(scenario.road, scenario, road, window)
+
     c = scenario.crossing
-    import types
-
-    from vbikit.scenario.build import build_tire
-
-    return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), road=road,
-                                 road_right=build_right_road(scenario.road, scenario, road), speed=c.speed_ms,
+    return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), roads=roads, speed=c.speed_ms,
                                  acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
                                  dt=c.dt, integrator=c.integrator, loss_of_contact=scenario.tire.loss_of_contact)
 
@@ -227,7 +233,7 @@ def case_crossing(spec: DriveBy, case: dict):
     except ScenarioError as err:
         raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
     vehicle = _vehicle(spec, case)
-    kwargs = dict(tire=c.tire, road=c.road, road_right=c.road_right, speed=c.speed, acceleration=c.acceleration,
+    kwargs = dict(tire=c.tire, road=None, road_right=None, speed=c.speed, acceleration=c.acceleration,
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
 
@@ -240,6 +246,11 @@ def case_crossing(spec: DriveBy, case: dict):
         return Crossing(c.bridge, vehicles=(VehicleMotion(vehicle, c.speed), follower), dt=dt,
                         **{k: v for k, v in kwargs.items() if k not in ("speed", "acceleration")})
 
+    lo, hi = make(c.dt).road_extent()  # the road only where the contact points go (a road does not move them)
+    try:
+        kwargs["road"], kwargs["road_right"] = c.roads((lo - ROAD_WINDOW_MARGIN, hi + ROAD_WINDOW_MARGIN))
+    except ScenarioError as err:
+        raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
     crossing = make(c.dt)
     if c.dt is None:
         dt = choose_time_step(crossing)
@@ -289,28 +300,56 @@ def _crossing(spec: DriveBy, case: dict):
         raise DriveByError(_in_sweep_words(str(err), case, spec.damage_length)) from None
 
 
+#: case keys of a random pass ([variability]) that select its draw: the passes of one combination of
+#: the sweep share their checks (``check_cases``)
+_DRAW_KEYS = ("index", "pass")
+
+
+def _step_probes(spec: DriveBy, case: dict) -> list[dict]:
+    """The cases whose integration steps bound ``case``'s: itself, or for a random pass (its speed
+    drawn anywhere in ``variability.speed``) the file's vehicle at both ends of the speed range."""
+    if "index" not in case:
+        return [case]
+    base = {k: v for k, v in case.items() if k not in _DRAW_KEYS}
+    speeds = spec.variability.speed
+    return [base] if speeds is None else [{**base, "speed": v} for v in sorted(set(speeds))]
+
+
 def estimate_steps(spec: DriveBy) -> float:
     """The integration steps of the whole sweep: each case's duration / time step, from one crossing
     built for each distinct speed of the sweep (the step and duration depend on the speed, not on
-    the road seed or the noise); cheap for any number of cases."""
+    the road seed or the noise); a random pass counts the larger of its speed range's two ends
+    (the file's vehicle: the drawn vehicles' steps differ by their spread).  Cheap for any number
+    of cases."""
     per_speed: dict[Any, float] = {}
     total = 0.0
     for case in spec.cases or [{}]:
-        v = case.get("speed")
-        if v not in per_speed:
-            c = _crossing(spec, case)
-            per_speed[v] = c.duration / c.dt
-        total += per_speed[v]
+        most = 0.0
+        for probe in _step_probes(spec, case):
+            v = probe.get("speed")
+            if v not in per_speed:
+                c = _crossing(spec, probe)
+                per_speed[v] = c.duration / c.dt
+            most = max(most, per_speed[v])
+        total += most
     return total
 
 
 def check_cases(spec: DriveBy) -> float:
     """Validate the budget first (``estimate_steps`` against ``max_steps``), then every distinct case
-    (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once) before anything
-    runs; returns the estimated integration steps of the sweep."""
+    (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once; of the random
+    passes of one sweep combination and scour class the first, the temperature range's ends by
+    their stiffness factor) before anything runs; returns the estimated integration steps of the
+    sweep."""
     if spec.coupling == "decoupled" and spec.method == "residual":
         raise DriveByError("coupling: \"decoupled\" runs one vehicle; identification.method = \"residual\" (a "
                            "following vehicle) needs coupling = \"coupled\"")
+    var = spec.variability
+    for t in var.temperature or ():
+        if temperature_factor(var, t) <= 0.0:
+            raise DriveByError(f"variability.temperature: {t:g} °C gives E(T)/E(T_ref) = {temperature_factor(var, t):.3g} "
+                               f"<= 0 with temperature_coefficient {var.temperature_coefficient:g} /°C and "
+                               f"temperature_reference {var.temperature_reference:g} °C; narrow the range")
     _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
     total = estimate_steps(spec)
     if total > spec.max_steps:
@@ -318,7 +357,7 @@ def check_cases(spec: DriveBy) -> float:
                            f"above the budget {spec.max_steps:.3g}; raise max_steps (or --max-steps) or sweep fewer cases")
     seen: set = set()
     for i, case in enumerate(spec.cases or [{}]):
-        shape = tuple((k, v) for k, v in case.items() if k not in _NEUTRAL)
+        shape = tuple((k, v) for k, v in case.items() if k not in (*_NEUTRAL, *_DRAW_KEYS))
         neutral = tuple((k, v) for k, v in case.items() if k in _NEUTRAL)
         if shape in seen and all(item in seen for item in neutral):
             continue
@@ -483,7 +522,10 @@ class DriveByStudy:
         return self.spec.to_json()
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
-        rows = [run_case(self.spec, i) for i in batch]
+        from vbikit._blas import single_thread_blas
+
+        with single_thread_blas():  # a pass's products are small: BLAS threads only contend (vbikit._blas)
+            rows = [run_case(self.spec, i) for i in batch]
         out = {name: np.array([r[name] for r in rows], float) for name in CASE_OUTPUTS}
         out |= {name: np.array([r[name] for r in rows], dtype=np.str_) for name in CASE_TEXT}
         n = max(r["history"].shape[1] for r in rows)
