@@ -122,18 +122,24 @@ def _first_order_hold(A: NDArray, B: NDArray, dt: float) -> tuple[NDArray, NDArr
 
 def _recurrence(Ad: NDArray, forcing: NDArray, x0: NDArray) -> NDArray:
     """x_{k+1} = Ad x_k + forcing_k from x_0, (n_t, n): Ad diagonalised, each eigen-coordinate a
-    first-order recursion run by ``scipy.signal.lfilter`` (compiled)."""
+    first-order recursion run by ``scipy.signal.lfilter`` (compiled).  Ad, the forcing and x_0 are
+    real, so the coordinate of an eigenvalue's conjugate is the conjugate of its own: one of each
+    pair is run and counted twice (x = Σ_real z_i v_i + 2 Re Σ_{Im λ_i > 0} z_i v_i)."""
     from scipy.signal import lfilter
 
     lam, V = np.linalg.eig(Ad)
     Vinv = np.linalg.inv(V)
-    g = forcing @ Vinv.T                                   # (n_t − 1, n) in eigen-coordinates
-    z0 = Vinv @ x0
-    z = np.empty((forcing.shape[0] + 1, lam.size), complex)
+    run = np.flatnonzero(lam.imag >= 0.0)                  # LAPACK returns conjugate pairs exactly conjugate
+    if np.count_nonzero(lam.imag > 0) != np.count_nonzero(lam.imag < 0):
+        run = np.arange(lam.size)                          # not paired (cannot happen for a real Ad): run every one
+    weight = np.where(lam[run].imag > 0.0, 2.0, 1.0) if run.size < lam.size else np.ones(run.size)
+    g = forcing @ Vinv[run].T                              # (n_t − 1, n_run) in eigen-coordinates
+    z0 = Vinv[run] @ x0
+    z = np.empty((forcing.shape[0] + 1, run.size), complex)
     z[0] = z0
-    for i, li in enumerate(lam):
+    for i, li in enumerate(lam[run]):
         z[1:, i], _ = lfilter([1.0], [1.0, -li], g[:, i], zi=[li * z0[i]])
-    return np.real(z @ V.T)
+    return np.real((z * weight) @ V[:, run].T)
 
 
 def vehicle_on_surface(vehicle, time: NDArray[np.float64], surface: NDArray[np.float64]) -> tuple[NDArray, NDArray, NDArray]:
