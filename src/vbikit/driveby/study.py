@@ -306,8 +306,9 @@ _DRAW_KEYS = ("index", "pass")
 
 
 def _step_probes(spec: DriveBy, case: dict) -> list[dict]:
-    """The cases whose integration steps bound ``case``'s: itself, or for a random pass (its speed
-    drawn anywhere in ``variability.speed``) the file's vehicle at both ends of the speed range."""
+    """The cases whose integration steps bound ``case``'s (``estimate_steps``): itself, or for a
+    random pass (its speed drawn anywhere in ``variability.speed``) the file's vehicle at both ends
+    of the speed range."""
     if "index" not in case:
         return [case]
     base = {k: v for k, v in case.items() if k not in _DRAW_KEYS}
@@ -318,20 +319,21 @@ def _step_probes(spec: DriveBy, case: dict) -> list[dict]:
 def estimate_steps(spec: DriveBy) -> float:
     """The integration steps of the whole sweep: each case's duration / time step, from one crossing
     built for each distinct speed of the sweep (the step and duration depend on the speed, not on
-    the road seed or the noise); a random pass counts the larger of its speed range's two ends
-    (the file's vehicle: the drawn vehicles' steps differ by their spread).  Cheap for any number
-    of cases."""
-    per_speed: dict[Any, float] = {}
+    the road seed or the noise).  A random pass's speed is drawn anywhere in ``variability.speed``:
+    its duration falls and its step (a divisor of the sensor period, at most the road spacing / v)
+    does not grow with the speed, so it takes at most the slow end's duration / the fast end's step
+    (the file's vehicle: a drawn vehicle's step may differ by its spread).  Cheap for any number of
+    cases."""
+    per_speed: dict[Any, tuple[float, float]] = {}
     total = 0.0
     for case in spec.cases or [{}]:
-        most = 0.0
         for probe in _step_probes(spec, case):
             v = probe.get("speed")
             if v not in per_speed:
                 c = _crossing(spec, probe)
-                per_speed[v] = c.duration / c.dt
-            most = max(most, per_speed[v])
-        total += most
+                per_speed[v] = (c.duration, c.dt)
+        ends = [per_speed[p.get("speed")] for p in _step_probes(spec, case)]
+        total += max(d for d, _ in ends) / min(dt for _, dt in ends)
     return total
 
 

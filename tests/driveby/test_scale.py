@@ -1,0 +1,115 @@
+"""Drive-by datasets at scale: what makes a pass cheap must not change it.
+
+* ``check_cases`` builds one pass per sweep combination and scour class (not every pass) and
+  bounds the budget from both ends of the drawn speed range (each end's steps from its own crossing);
+* a pass's random road is generated only over the range its wheels touch, and equals there the
+  whole-period road of ``vbikit.road.random_profile`` with the same seed;
+* the decoupled recursion run on one eigen-coordinate of each conjugate pair equals the plain
+  state-space loop;
+* one BLAS thread inside ``single_thread_blas``, the previous count after.
+"""
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import vbikit.driveby.study as study
+from vbikit.driveby.spec import DriveByError, parse_driveby
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "driveby" / "scour_1800.toml"
+
+
+def _spec(passes: int, **variability):
+    data = tomllib.loads(EXAMPLE.read_text())
+    data["variability"]["passes"] = passes
+    data["variability"].update(variability)
+    return parse_driveby(data, EXAMPLE.parent)
+
+
+def test_check_cases_builds_a_few_passes_and_bounds_the_budget_by_the_speed_range(monkeypatch):
+    spec = _spec(40)                                    # 3 classes × 40 passes
+    built = []
+    real = study.case_crossing
+
+    def counting(s, case):
+        built.append(case)
+        return real(s, case)
+
+    monkeypatch.setattr(study, "case_crossing", counting)
+    study._BUILT.clear()
+    total = study.check_cases(spec)
+    assert len(spec.cases) == 120 and len(built) <= 8, len(built)   # main built all 120
+    # each end of the speed range on its own crossing (no draw): the slow end runs longest, the fast
+    # one needs the smaller step (here 1 ms at 19 m/s, 0.5 ms at 21 m/s: the step jumps inside the
+    # range, so neither end's steps bound a pass; the slow end's duration / the fast end's step does)
+    slow, fast = (real(spec, {"speed": v}) for v in (19.0, 21.0))
+    assert slow.duration > fast.duration and fast.dt < slow.dt
+    per_pass = slow.duration / fast.dt
+    assert total == pytest.approx(120 * per_pass, rel=1e-12)
+    steps = [real(spec, spec.cases[i]) for i in range(0, 120, 7)]
+    steps = [c.duration / c.dt for c in steps]
+    assert max(steps) <= per_pass * (1 + 1e-12)
+    assert max(steps) > max(slow.duration / slow.dt, fast.duration / fast.dt)   # a pass beyond both ends' steps
+
+
+def test_a_temperature_range_that_makes_ei_negative_is_refused_before_running():
+    spec = _spec(2, temperature=[0.0, 80.0], temperature_reference=-30.0, temperature_coefficient=0.01)
+    with pytest.raises(DriveByError, match=r"variability\.temperature"):
+        study.check_cases(spec)
+
+
+def test_a_pass_road_is_the_whole_period_road_where_the_wheels_go():
+    from vbikit.road.psd import RoadPSD, random_profile
+    from vbikit.study.spec import derive_seed
+
+    spec = _spec(2)
+    study._BUILT.clear()
+    c = study.case_crossing(spec, spec.cases[1])
+    lo, hi = c.road_extent()
+    assert c.road.x[0] <= lo and c.road.x[-1] >= hi
+    assert c.road.x[-1] - c.road.x[0] < 60.0            # ≈ 45 m used, not the 1,310.72 m period
+    whole = random_profile(RoadPSD.iso("A"), derive_seed(spec.seed, 1))   # the scenario's defaults
+    x = np.linspace(lo, hi, 2001)
+    rms = float(np.sqrt(np.mean(whole.z ** 2)))
+    assert np.max(np.abs(c.road.elevation(x) - whole.elevation(x))) < 1e-12 * rms
+
+
+def test_recurrence_on_conjugate_pairs_equals_the_state_space_loop():
+    from vbikit.driveby.decoupled import _recurrence
+
+    rng = np.random.default_rng(3)
+    A = 0.1 * rng.standard_normal((12, 12)) - 0.3 * np.eye(12)
+    Ad = np.eye(12) + 0.05 * A
+    lam = np.linalg.eigvals(Ad)
+    assert np.count_nonzero(lam.imag > 0) >= 2 and np.count_nonzero(lam.imag == 0) >= 1   # pairs and real ones
+    forcing, x0 = rng.standard_normal((400, 12)), rng.standard_normal(12)
+    loop = np.empty((401, 12))
+    loop[0] = x0
+    for k in range(400):
+        loop[k + 1] = Ad @ loop[k] + forcing[k]
+    assert np.max(np.abs(_recurrence(Ad, forcing, x0) - loop)) < 1e-11 * np.max(np.abs(loop))
+
+
+def test_single_thread_blas_sets_one_thread_and_restores():
+    from vbikit._blas import _controls, single_thread_blas
+
+    with single_thread_blas():
+        pass
+    controls = _controls()
+    if not controls:
+        pytest.skip("no OpenBLAS loaded")
+    before = [get() for get, _ in controls]
+    for _, set_ in controls:
+        set_(2)                                         # a count other than 1 to restore
+    try:
+        wanted = [get() for get, _ in controls]
+        with single_thread_blas():
+            inside = [get() for get, _ in controls]
+        assert inside == [1] * len(controls)
+        assert [get() for get, _ in controls] == wanted
+    finally:
+        for (_, set_), n in zip(controls, before):
+            set_(n)
