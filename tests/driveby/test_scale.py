@@ -113,3 +113,59 @@ def test_single_thread_blas_sets_one_thread_and_restores():
     finally:
         for (_, set_), n in zip(controls, before):
             set_(n)
+
+
+def _traffic_spec(passes: int = 2, **extra):
+    data = tomllib.loads(EXAMPLE.read_text())
+    data["variability"] = {"passes": passes, "speed": [19.0, 21.0], "traffic_flow": 1500.0, **extra}
+    data["bridge"]["support_stiffness"] = 2.0e8
+    return parse_driveby(data, EXAMPLE.parent)
+
+
+def test_background_traffic_joins_the_crossing_and_keeps_the_other_draws():
+    from vbikit.driveby.variability import draw, parse_variability
+    from vbikit.traffic.stream import LaneTraffic, synthetic_stream
+    from vbikit.vehicle.model import GRAVITY
+
+    base = parse_variability({"speed": [19.0, 21.0], "vehicle_spread": 0.1})
+    more = parse_variability({"speed": [19.0, 21.0], "vehicle_spread": 0.1, "traffic_flow": 1500.0})
+    for i in range(3):  # the traffic seed draws last: speed and vehicle factors as without traffic
+        a, b = draw(base, 5, i, 4, 2), draw(more, 5, i, 4, 2)
+        assert {k: b[k] for k in a} == a and "traffic_seed" in b and "traffic_seed" not in a
+    spec = _traffic_spec(6)
+    study._BUILT.clear()
+    counts = []
+    for case in spec.cases:
+        c = study.case_crossing(spec, case)
+        d = study.case_draw(spec, case)
+        # the trucks of the stream generator entering while the instrumented vehicle's front axle is on the deck
+        trucks = synthetic_stream([LaneTraffic(2, "-x", 1500.0, 80.0, 8.0)], 0, seed=d["traffic_seed"],
+                                  duration=25.0 / d["speed"])
+        assert c.n_vehicles == 1 + len(trucks)
+        assert [m.direction for m in c.vehicles[1:]] == ["-x"] * len(trucks)
+        assert sum(m.vehicle.total_weight for m in c.vehicles[1:]) == pytest.approx(
+            sum(sum(t.axle_loads) for t in trucks), rel=1e-9)
+        assert c.vehicles[0].speed == pytest.approx(d["speed"]) and c.vehicles[0].direction == "+x"
+        counts.append(len(trucks))
+    assert max(counts) >= 1                              # at 1500 trucks/h some pass meets one
+    i = int(np.argmax(counts))
+    row = study.run_case(spec, i)
+    assert row["background_vehicles"] == counts[i]
+    assert row["background_mass_kg"] == pytest.approx(sum(m.vehicle.total_weight for m in
+                                                          study.case_crossing(spec, spec.cases[i]).vehicles[1:]) / GRAVITY)
+    # the same pass (same speed, road and noise: the traffic seed draws last) without the trucks
+    quiet = _traffic_spec(6)
+    object.__setattr__(quiet, "variability", parse_variability({"passes": 6, "speed": [19.0, 21.0]}))
+    alone = study.run_case(quiet, i)
+    assert alone["background_vehicles"] == 0
+    on = slice(int(row["on_bridge_start_sample"]), int(row["on_bridge_end_sample"]))
+    h, h0 = row["history"][0, on], alone["history"][0, on]
+    assert np.sqrt(np.mean((h - h0) ** 2)) > 0.05 * np.sqrt(np.mean(h0 ** 2))   # more than the 5 % noise
+
+
+def test_background_traffic_needs_the_coupled_mode():
+    data = tomllib.loads(EXAMPLE.read_text())
+    data["variability"] = {"passes": 2, "traffic_flow": 600.0}
+    data["coupling"] = "decoupled"
+    with pytest.raises(DriveByError, match=r"variability\.traffic_flow"):
+        study.check_cases(parse_driveby(data, EXAMPLE.parent))

@@ -82,6 +82,9 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "coupling_frequency_difference_hz": ("Hz", "decoupled run: identified frequency minus that of the coupled run of "
                                                 "the same pass, same noise (NaN: not checked)"),
     "band_high_hz": ("Hz", "upper end of the search band"),
+    "background_vehicles": ("1", "background trucks that entered the deck during the pass (variability.traffic_flow; "
+                                 "0: none)"),
+    "background_mass_kg": ("kg", "their total mass (static wheel loads / g)"),
 }
 #: per-case text outputs: name -> long name
 CASE_TEXT: dict[str, str] = {
@@ -225,7 +228,8 @@ def case_crossing(spec: DriveBy, case: dict):
 
     data = _case_scenario(spec, case)
     key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap,
-                      case.get("index") if spec.variability.vehicle_spread > 0 else None], sort_keys=True)
+                      case.get("index") if spec.variability.vehicle_spread > 0 or spec.variability.traffic_flow else None],
+                     sort_keys=True)
     if key in _BUILT:
         return _BUILT[key]
     try:
@@ -237,13 +241,23 @@ def case_crossing(spec: DriveBy, case: dict):
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
 
+    others: tuple = ()
+    if spec.method == "residual":  # the same vehicle following at the gap
+        from vbikit.solve import VehicleMotion
+
+        others = (VehicleMotion(vehicle, c.speed, entry_time=spec.gap / c.speed),)
+    elif spec.variability.traffic_flow is not None and "index" in case:
+        from vbikit.driveby.traffic import background_vehicles
+
+        others = background_vehicles(spec.variability, case_draw(spec, case)["traffic_seed"], c.bridge.span, c.speed)
+
     def make(dt):
-        if spec.method != "residual":
+        if not others:
             return Crossing(c.bridge, vehicle, dt=dt, **kwargs)
         from vbikit.solve import VehicleMotion
 
-        follower = VehicleMotion(vehicle, c.speed, entry_time=spec.gap / c.speed)
-        return Crossing(c.bridge, vehicles=(VehicleMotion(vehicle, c.speed), follower), dt=dt,
+        lead = VehicleMotion(vehicle, c.speed, acceleration=0.0 if spec.method == "residual" else c.acceleration)
+        return Crossing(c.bridge, vehicles=(lead, *others), dt=dt,
                         **{k: v for k, v in kwargs.items() if k not in ("speed", "acceleration")})
 
     lo, hi = make(c.dt).road_extent()  # the road only where the contact points go (a road does not move them)
@@ -343,6 +357,9 @@ def check_cases(spec: DriveBy) -> float:
     passes of one sweep combination and scour class the first, the temperature range's ends by
     their stiffness factor) before anything runs; returns the estimated integration steps of the
     sweep."""
+    if spec.variability.traffic_flow is not None and (spec.coupling == "decoupled" or spec.method == "residual"):
+        raise DriveByError("variability.traffic_flow: background traffic needs coupling = \"coupled\" and an "
+                           "identification.method other than \"residual\" (one instrumented vehicle, trucks around it)")
     if spec.coupling == "decoupled" and spec.method == "residual":
         raise DriveByError("coupling: \"decoupled\" runs one vehicle; identification.method = \"residual\" (a "
                            "following vehicle) needs coupling = \"coupled\"")
@@ -472,6 +489,9 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "temperature_c": temperature,
         "stiffness_factor": temperature_factor(var, temperature) if math.isfinite(temperature) else 1.0,
         "support_stiffness": support, "vehicle_mass_kg": float(vehicle.total_weight / GRAVITY), **check,
+        "background_vehicles": float(crossing.n_vehicles - 1) if spec.method != "residual" else 0.0,
+        "background_mass_kg": sum(float(m.vehicle.total_weight / GRAVITY) for m in crossing.vehicles[1:])
+        if spec.method != "residual" else 0.0,
     }
     q = ident.quality
     others = [j for j, s in enumerate(sensors) if j != k and s.quantity == "acceleration" and s.vehicle == sensors[k].vehicle
