@@ -169,3 +169,21 @@ def test_background_traffic_needs_the_coupled_mode():
     data["coupling"] = "decoupled"
     with pytest.raises(DriveByError, match=r"variability\.traffic_flow"):
         study.check_cases(parse_driveby(data, EXAMPLE.parent))
+
+
+def test_decoupled_pass_merges_the_wheels_of_an_axle_on_a_beam_without_changing_it(monkeypatch):
+    from vbikit.bridge.continuous import ContinuousBeam
+    from vbikit.driveby.decoupled import simulate_decoupled
+
+    spec = _spec(2)
+    study._BUILT.clear()
+    crossing = study.case_crossing(spec, spec.cases[1])
+    bridge = crossing.bridge
+    assert isinstance(bridge, ContinuousBeam) and bridge.lateral_invariant
+    x = np.linspace(-1.0, 26.0, 55)
+    assert np.array_equal(bridge.mode_shapes(x, np.full(x.size, 0.9)), bridge.mode_shapes(x, np.full(x.size, -0.9)))
+    merged = simulate_decoupled(crossing)
+    monkeypatch.setattr(ContinuousBeam, "lateral_invariant", property(lambda self: False))
+    wheel_by_wheel = simulate_decoupled(crossing)
+    for a, b in ((merged.xi, wheel_by_wheel.xi), (merged.q_ddot, wheel_by_wheel.q_ddot)):
+        assert np.max(np.abs(a - b)) < 1e-10 * np.max(np.abs(b))

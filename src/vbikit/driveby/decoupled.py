@@ -64,6 +64,9 @@ def bridge_under_forces(crossing, time: NDArray[np.float64]) -> tuple[NDArray, N
     loads = vehicle.static_wheel_loads()
     offsets = np.array([w.offset for w in vehicle.wheels])
     lateral = np.array([motion.lateral_offset + w.lateral for w in vehicle.wheels])
+    if crossing.bridge.lateral_invariant:  # a beam: the wheels of an axle act as one force at its x
+        offsets, where = np.unique(offsets, return_inverse=True)
+        loads, lateral = np.bincount(where.ravel(), weights=loads), np.zeros(offsets.size)
     # axle positions shifted by e so that the solver's grid (j − 1) h − e / v falls on the crossing's times
     shift = (-(time[0] - motion.entry_time)) % dt
     if shift > dt - 1e-9 * dt:
@@ -94,14 +97,23 @@ def surface_under_wheels(crossing, time: NDArray[np.float64], xi: NDArray[np.flo
     front = crossing.front_positions(time)[:, 0]
     s = np.zeros((time.size, len(vehicle.wheels)))
     lo, hi = bridge.deck_extent
+    lines = {}  # (offset, y) -> deck displacement: on a beam (bridge.lateral_invariant) one per axle
+    roads = {}
     for j, w in enumerate(vehicle.wheels):
         x = front - w.offset
-        on = (x >= lo) & (x <= hi)
-        if on.any():
-            phi = bridge.mode_shapes(x[on], np.full(int(on.sum()), motion.lateral_offset + w.lateral))
-            s[on, j] = np.einsum("tm,tm->t", xi[on], phi)
+        y = 0.0 if bridge.lateral_invariant else motion.lateral_offset + w.lateral
+        if (w.offset, y) not in lines:
+            deck = np.zeros(time.size)
+            on = (x >= lo) & (x <= hi)
+            if on.any():
+                phi = bridge.mode_shapes(x[on], np.full(int(on.sum()), y))
+                deck[on] = np.einsum("tm,tm->t", xi[on], phi)
+            lines[(w.offset, y)] = deck
+        s[:, j] = lines[(w.offset, y)]
         if crossing.road is not None:
-            s[:, j] += crossing.road.elevation(x)
+            if w.offset not in roads:
+                roads[w.offset] = crossing.road.elevation(x)
+            s[:, j] += roads[w.offset]
     return s
 
 
