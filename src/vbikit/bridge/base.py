@@ -113,6 +113,12 @@ class ModalBridge(abc.ABC):
         return x - y * t if t else np.array(x, float)
 
     @property
+    def lateral_invariant(self) -> bool:
+        """True when the mode shapes do not depend on y (a beam): wheels at the same x load and
+        feel the bridge alike, whatever their y (callers may merge them).  Default False."""
+        return False
+
+    @property
     def default_response_y(self) -> float:
         """y [m] of the deck point responses and impact factors are read at when no y is given
         (the deck centreline; a slab-on-girder deck: its default girder's line)."""

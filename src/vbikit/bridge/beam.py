@@ -92,6 +92,10 @@ class EulerBernoulliBeam(ModalBridge):
     def _amplitude(self) -> float:
         return float(np.sqrt(2.0 / (self.mass_per_length * self.span)))
 
+    @property
+    def lateral_invariant(self) -> bool:
+        return True  # φ(x): y is ignored
+
     def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         arg, on = self._arg(x)
         return np.where(on, self._amplitude * np.sin(arg), 0.0)

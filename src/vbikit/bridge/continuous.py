@@ -277,6 +277,10 @@ class ContinuousBeam(ModalBridge):
     def damping_ratios(self) -> NDArray[np.float64]:
         return np.full(self.omega.size, self.damping_ratio)
 
+    @property
+    def lateral_invariant(self) -> bool:
+        return True  # φ(x): y is ignored
+
     def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         x = np.atleast_1d(np.asarray(x, float)).ravel()
         return self.nodal_modes.evaluate(x, np.zeros_like(x), 0)

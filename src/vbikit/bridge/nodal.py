@@ -156,6 +156,9 @@ class NodalModes:
             return out
         xo, yo = x[on], y[on]
         w = self.line_values(xo, order_x)  # (n_lines, p, m)
+        if self.y.size == 1 and not self.skew_tan and np.all(yo == self.y[0]):
+            out[on] = w[0]  # on the only line: its transverse slope times 0 adds nothing (a beam)
+            return out
         s = self.line_transverse_slopes(xo, order_x)
         if self.skew_tan:  # slope along the oblique transverse members, per unit y
             s = s + self.skew_tan * self.line_values(xo, order_x + 1)

@@ -43,6 +43,10 @@ class ScaledBridge(ModalBridge):
         self._zeta = damping_ratio
 
     @property
+    def lateral_invariant(self) -> bool:
+        return self.base.lateral_invariant
+
+    @property
     def omega(self) -> NDArray[np.float64]:
         return np.sqrt(self.stiffness_factor) * self.base.omega
 

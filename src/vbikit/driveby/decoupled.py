@@ -64,6 +64,9 @@ def bridge_under_forces(crossing, time: NDArray[np.float64]) -> tuple[NDArray, N
     loads = vehicle.static_wheel_loads()
     offsets = np.array([w.offset for w in vehicle.wheels])
     lateral = np.array([motion.lateral_offset + w.lateral for w in vehicle.wheels])
+    if crossing.bridge.lateral_invariant:  # a beam: the wheels of an axle act as one force at its x
+        offsets, where = np.unique(offsets, return_inverse=True)
+        loads, lateral = np.bincount(where.ravel(), weights=loads), np.zeros(offsets.size)
     # axle positions shifted by e so that the solver's grid (j − 1) h − e / v falls on the crossing's times
     shift = (-(time[0] - motion.entry_time)) % dt
     if shift > dt - 1e-9 * dt:
@@ -94,14 +97,23 @@ def surface_under_wheels(crossing, time: NDArray[np.float64], xi: NDArray[np.flo
     front = crossing.front_positions(time)[:, 0]
     s = np.zeros((time.size, len(vehicle.wheels)))
     lo, hi = bridge.deck_extent
+    lines = {}  # (offset, y) -> deck displacement: on a beam (bridge.lateral_invariant) one per axle
+    roads = {}
     for j, w in enumerate(vehicle.wheels):
         x = front - w.offset
-        on = (x >= lo) & (x <= hi)
-        if on.any():
-            phi = bridge.mode_shapes(x[on], np.full(int(on.sum()), motion.lateral_offset + w.lateral))
-            s[on, j] = np.einsum("tm,tm->t", xi[on], phi)
+        y = 0.0 if bridge.lateral_invariant else motion.lateral_offset + w.lateral
+        if (w.offset, y) not in lines:
+            deck = np.zeros(time.size)
+            on = (x >= lo) & (x <= hi)
+            if on.any():
+                phi = bridge.mode_shapes(x[on], np.full(int(on.sum()), y))
+                deck[on] = np.einsum("tm,tm->t", xi[on], phi)
+            lines[(w.offset, y)] = deck
+        s[:, j] = lines[(w.offset, y)]
         if crossing.road is not None:
-            s[:, j] += crossing.road.elevation(x)
+            if w.offset not in roads:
+                roads[w.offset] = crossing.road.elevation(x)
+            s[:, j] += roads[w.offset]
     return s
 
 
@@ -122,18 +134,24 @@ def _first_order_hold(A: NDArray, B: NDArray, dt: float) -> tuple[NDArray, NDArr
 
 def _recurrence(Ad: NDArray, forcing: NDArray, x0: NDArray) -> NDArray:
     """x_{k+1} = Ad x_k + forcing_k from x_0, (n_t, n): Ad diagonalised, each eigen-coordinate a
-    first-order recursion run by ``scipy.signal.lfilter`` (compiled)."""
+    first-order recursion run by ``scipy.signal.lfilter`` (compiled).  Ad, the forcing and x_0 are
+    real, so the coordinate of an eigenvalue's conjugate is the conjugate of its own: one of each
+    pair is run and counted twice (x = Σ_real z_i v_i + 2 Re Σ_{Im λ_i > 0} z_i v_i)."""
     from scipy.signal import lfilter
 
     lam, V = np.linalg.eig(Ad)
     Vinv = np.linalg.inv(V)
-    g = forcing @ Vinv.T                                   # (n_t − 1, n) in eigen-coordinates
-    z0 = Vinv @ x0
-    z = np.empty((forcing.shape[0] + 1, lam.size), complex)
+    run = np.flatnonzero(lam.imag >= 0.0)                  # LAPACK returns conjugate pairs exactly conjugate
+    if np.count_nonzero(lam.imag > 0) != np.count_nonzero(lam.imag < 0):
+        run = np.arange(lam.size)                          # not paired (cannot happen for a real Ad): run every one
+    weight = np.where(lam[run].imag > 0.0, 2.0, 1.0) if run.size < lam.size else np.ones(run.size)
+    g = forcing @ Vinv[run].T                              # (n_t − 1, n_run) in eigen-coordinates
+    z0 = Vinv[run] @ x0
+    z = np.empty((forcing.shape[0] + 1, run.size), complex)
     z[0] = z0
-    for i, li in enumerate(lam):
+    for i, li in enumerate(lam[run]):
         z[1:, i], _ = lfilter([1.0], [1.0, -li], g[:, i], zi=[li * z0[i]])
-    return np.real(z @ V.T)
+    return np.real((z * weight) @ V[:, run].T)
 
 
 def vehicle_on_surface(vehicle, time: NDArray[np.float64], surface: NDArray[np.float64]) -> tuple[NDArray, NDArray, NDArray]:
@@ -164,6 +182,13 @@ def simulate_decoupled(crossing):
     """The decoupled counterpart of ``vbikit.solve.simulate(crossing)`` (module docstring): a
     ``CrossingResult`` on the same time grid; its ``wheel_forces`` are the tire forces of the
     vehicle on the computed surface."""
+    from vbikit._blas import single_thread_blas
+
+    with single_thread_blas():  # small products of long histories: BLAS threads only contend (vbikit._blas)
+        return _simulate_decoupled(crossing)
+
+
+def _simulate_decoupled(crossing):
     from vbikit.solve.result import CrossingResult
 
     time = _time_grid(crossing)

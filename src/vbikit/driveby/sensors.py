@@ -27,6 +27,8 @@ quantity), or of rms(signal) / 10^(``noise_snr_db``/20) for a signal-to-noise ra
 """
 from __future__ import annotations
 
+import functools
+
 import logging
 from dataclasses import dataclass, field
 from typing import Optional, Sequence
@@ -220,13 +222,20 @@ def sensor_row(vehicle: Vehicle, sensor: Sensor) -> NDArray[np.float64]:
 
 def design_filter(sampling: Sampling, fs_in: float) -> NDArray[np.float64]:
     """Second-order sections of the anti-alias Butterworth low-pass at the input rate ``fs_in`` [Hz]."""
-    from scipy.signal import butter
-
     if sampling.cutoff_hz >= 0.5 * fs_in:
         raise SensorError(f"sampling.rate: {sampling.rate:g} Hz needs histories faster than {2 * sampling.cutoff_hz:g} Hz "
                           f"(the filter cut-off {sampling.cutoff_hz:g} Hz must be below half the simulation rate "
                           f"{fs_in:g} Hz); use a smaller crossing.dt or a lower sampling.rate")
-    return butter(int(sampling.filter_order), sampling.cutoff_hz, btype="low", fs=fs_in, output="sos")
+    return _butter(int(sampling.filter_order), float(sampling.cutoff_hz), float(fs_in)).copy()
+
+
+@functools.lru_cache(maxsize=32)
+def _butter(order: int, cutoff_hz: float, fs_in: float) -> NDArray[np.float64]:
+    """``scipy.signal.butter`` sections, designed once per (order, cut-off, rate): the passes of a
+    dataset share their filter."""
+    from scipy.signal import butter
+
+    return butter(order, cutoff_hz, btype="low", fs=fs_in, output="sos")
 
 
 def resample(time: NDArray[np.float64], history: NDArray[np.float64], sampling: Sampling,

@@ -82,6 +82,9 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "coupling_frequency_difference_hz": ("Hz", "decoupled run: identified frequency minus that of the coupled run of "
                                                 "the same pass, same noise (NaN: not checked)"),
     "band_high_hz": ("Hz", "upper end of the search band"),
+    "background_vehicles": ("1", "background trucks that entered the deck during the pass (variability.traffic_flow; "
+                                 "0: none)"),
+    "background_mass_kg": ("kg", "their total mass (static wheel loads / g)"),
 }
 #: per-case text outputs: name -> long name
 CASE_TEXT: dict[str, str] = {
@@ -182,30 +185,36 @@ _BUILT: dict[str, Any] = {}
 _BRIDGES: dict[str, Any] = {}
 
 
+#: [m] added on each side of the range a case's contact points touch when its random road is
+#: generated (``_scenario_crossing``): the time grid may end up to a step past the crossing's duration
+ROAD_WINDOW_MARGIN = 1.0
+
+
 def _scenario_crossing(data: dict, base_dir: str):
-    """The scenario's crossing; its bridge taken from ``_BRIDGES`` when an earlier case had the
-    same [bridge] table (a random pass changes the road, the speed and the vehicle, rarely the
-    bridge: its eigen-solution is computed once)."""
+    """The scenario's crossing parts; its bridge taken from ``_BRIDGES`` when an earlier case had
+    the same [bridge] table (a random pass changes the road, the speed and the vehicle, rarely the
+    bridge: its eigen-solution is computed once).  ``roads(window)`` builds the left and right road
+    profiles over ``window`` = (x_lo, x_hi) only (``vbikit.scenario.build.build_road``: the same road
+    there as the whole period's, at a fraction of the cost)."""
+    import types
+
     from vbikit.scenario import build, parse_scenario
-    from vbikit.scenario.build import build_right_road, build_road, check_road_budget
+    from vbikit.scenario.build import build_right_road, build_road, build_tire, check_road_budget
 
     scenario = parse_scenario(data, base_dir)
     key = json.dumps([data["bridge"], str(base_dir)], sort_keys=True)
     if key not in _BRIDGES:
         if len(_BRIDGES) > 16:
             _BRIDGES.clear()
-        crossing = build(scenario).crossing
-        _BRIDGES[key] = crossing.bridge
-        return crossing
+        _BRIDGES[key] = build(scenario).crossing.bridge  # the whole scenario checked once per bridge
     check_road_budget(scenario.road, None)
-    road = build_road(scenario.road, scenario)
+
+    def roads(window):
+        road = build_road(scenario.road, scenario, window)
+        return road, build_right_road(scenario.road, scenario, road, window)
+
     c = scenario.crossing
-    import types
-
-    from vbikit.scenario.build import build_tire
-
-    return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), road=road,
-                                 road_right=build_right_road(scenario.road, scenario, road), speed=c.speed_ms,
+    return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), roads=roads, speed=c.speed_ms,
                                  acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
                                  dt=c.dt, integrator=c.integrator, loss_of_contact=scenario.tire.loss_of_contact)
 
@@ -219,7 +228,8 @@ def case_crossing(spec: DriveBy, case: dict):
 
     data = _case_scenario(spec, case)
     key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap,
-                      case.get("index") if spec.variability.vehicle_spread > 0 else None], sort_keys=True)
+                      case.get("index") if spec.variability.vehicle_spread > 0 or spec.variability.traffic_flow else None],
+                     sort_keys=True)
     if key in _BUILT:
         return _BUILT[key]
     try:
@@ -227,19 +237,34 @@ def case_crossing(spec: DriveBy, case: dict):
     except ScenarioError as err:
         raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
     vehicle = _vehicle(spec, case)
-    kwargs = dict(tire=c.tire, road=c.road, road_right=c.road_right, speed=c.speed, acceleration=c.acceleration,
+    kwargs = dict(tire=c.tire, road=None, road_right=None, speed=c.speed, acceleration=c.acceleration,
                   approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
 
+    others: tuple = ()
+    if spec.method == "residual":  # the same vehicle following at the gap
+        from vbikit.solve import VehicleMotion
+
+        others = (VehicleMotion(vehicle, c.speed, entry_time=spec.gap / c.speed),)
+    elif spec.variability.traffic_flow is not None and "index" in case:
+        from vbikit.driveby.traffic import background_vehicles
+
+        others = background_vehicles(spec.variability, case_draw(spec, case)["traffic_seed"], c.bridge.span, c.speed)
+
     def make(dt):
-        if spec.method != "residual":
+        if not others:
             return Crossing(c.bridge, vehicle, dt=dt, **kwargs)
         from vbikit.solve import VehicleMotion
 
-        follower = VehicleMotion(vehicle, c.speed, entry_time=spec.gap / c.speed)
-        return Crossing(c.bridge, vehicles=(VehicleMotion(vehicle, c.speed), follower), dt=dt,
+        lead = VehicleMotion(vehicle, c.speed, acceleration=0.0 if spec.method == "residual" else c.acceleration)
+        return Crossing(c.bridge, vehicles=(lead, *others), dt=dt,
                         **{k: v for k, v in kwargs.items() if k not in ("speed", "acceleration")})
 
+    lo, hi = make(c.dt).road_extent()  # the road only where the contact points go (a road does not move them)
+    try:
+        kwargs["road"], kwargs["road_right"] = c.roads((lo - ROAD_WINDOW_MARGIN, hi + ROAD_WINDOW_MARGIN))
+    except ScenarioError as err:
+        raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
     crossing = make(c.dt)
     if c.dt is None:
         dt = choose_time_step(crossing)
@@ -289,28 +314,61 @@ def _crossing(spec: DriveBy, case: dict):
         raise DriveByError(_in_sweep_words(str(err), case, spec.damage_length)) from None
 
 
+#: case keys of a random pass ([variability]) that select its draw: the passes of one combination of
+#: the sweep share their checks (``check_cases``)
+_DRAW_KEYS = ("index", "pass")
+
+
+def _step_probes(spec: DriveBy, case: dict) -> list[dict]:
+    """The cases whose integration steps bound ``case``'s (``estimate_steps``): itself, or for a
+    random pass (its speed drawn anywhere in ``variability.speed``) the file's vehicle at both ends
+    of the speed range."""
+    if "index" not in case:
+        return [case]
+    base = {k: v for k, v in case.items() if k not in _DRAW_KEYS}
+    speeds = spec.variability.speed
+    return [base] if speeds is None else [{**base, "speed": v} for v in sorted(set(speeds))]
+
+
 def estimate_steps(spec: DriveBy) -> float:
     """The integration steps of the whole sweep: each case's duration / time step, from one crossing
     built for each distinct speed of the sweep (the step and duration depend on the speed, not on
-    the road seed or the noise); cheap for any number of cases."""
-    per_speed: dict[Any, float] = {}
+    the road seed or the noise).  A random pass's speed is drawn anywhere in ``variability.speed``:
+    its duration falls and its step (a divisor of the sensor period, at most the road spacing / v)
+    does not grow with the speed, so it takes at most the slow end's duration / the fast end's step
+    (the file's vehicle: a drawn vehicle's step may differ by its spread).  Cheap for any number of
+    cases."""
+    per_speed: dict[Any, tuple[float, float]] = {}
     total = 0.0
     for case in spec.cases or [{}]:
-        v = case.get("speed")
-        if v not in per_speed:
-            c = _crossing(spec, case)
-            per_speed[v] = c.duration / c.dt
-        total += per_speed[v]
+        for probe in _step_probes(spec, case):
+            v = probe.get("speed")
+            if v not in per_speed:
+                c = _crossing(spec, probe)
+                per_speed[v] = (c.duration, c.dt)
+        ends = [per_speed[p.get("speed")] for p in _step_probes(spec, case)]
+        total += max(d for d, _ in ends) / min(dt for _, dt in ends)
     return total
 
 
 def check_cases(spec: DriveBy) -> float:
     """Validate the budget first (``estimate_steps`` against ``max_steps``), then every distinct case
-    (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once) before anything
-    runs; returns the estimated integration steps of the sweep."""
+    (scenario, vehicle, sensors; cases that differ only in ``_NEUTRAL`` keys once; of the random
+    passes of one sweep combination and scour class the first, the temperature range's ends by
+    their stiffness factor) before anything runs; returns the estimated integration steps of the
+    sweep."""
+    if spec.variability.traffic_flow is not None and (spec.coupling == "decoupled" or spec.method == "residual"):
+        raise DriveByError("variability.traffic_flow: background traffic needs coupling = \"coupled\" and an "
+                           "identification.method other than \"residual\" (one instrumented vehicle, trucks around it)")
     if spec.coupling == "decoupled" and spec.method == "residual":
         raise DriveByError("coupling: \"decoupled\" runs one vehicle; identification.method = \"residual\" (a "
                            "following vehicle) needs coupling = \"coupled\"")
+    var = spec.variability
+    for t in var.temperature or ():
+        if temperature_factor(var, t) <= 0.0:
+            raise DriveByError(f"variability.temperature: {t:g} °C gives E(T)/E(T_ref) = {temperature_factor(var, t):.3g} "
+                               f"<= 0 with temperature_coefficient {var.temperature_coefficient:g} /°C and "
+                               f"temperature_reference {var.temperature_reference:g} °C; narrow the range")
     _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
     total = estimate_steps(spec)
     if total > spec.max_steps:
@@ -318,7 +376,7 @@ def check_cases(spec: DriveBy) -> float:
                            f"above the budget {spec.max_steps:.3g}; raise max_steps (or --max-steps) or sweep fewer cases")
     seen: set = set()
     for i, case in enumerate(spec.cases or [{}]):
-        shape = tuple((k, v) for k, v in case.items() if k not in _NEUTRAL)
+        shape = tuple((k, v) for k, v in case.items() if k not in (*_NEUTRAL, *_DRAW_KEYS))
         neutral = tuple((k, v) for k, v in case.items() if k in _NEUTRAL)
         if shape in seen and all(item in seen for item in neutral):
             continue
@@ -431,6 +489,9 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "temperature_c": temperature,
         "stiffness_factor": temperature_factor(var, temperature) if math.isfinite(temperature) else 1.0,
         "support_stiffness": support, "vehicle_mass_kg": float(vehicle.total_weight / GRAVITY), **check,
+        "background_vehicles": float(crossing.n_vehicles - 1) if spec.method != "residual" else 0.0,
+        "background_mass_kg": sum(float(m.vehicle.total_weight / GRAVITY) for m in crossing.vehicles[1:])
+        if spec.method != "residual" else 0.0,
     }
     q = ident.quality
     others = [j for j, s in enumerate(sensors) if j != k and s.quantity == "acceleration" and s.vehicle == sensors[k].vehicle
@@ -483,7 +544,10 @@ class DriveByStudy:
         return self.spec.to_json()
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
-        rows = [run_case(self.spec, i) for i in batch]
+        from vbikit._blas import single_thread_blas
+
+        with single_thread_blas():  # a pass's products are small: BLAS threads only contend (vbikit._blas)
+            rows = [run_case(self.spec, i) for i in batch]
         out = {name: np.array([r[name] for r in rows], float) for name in CASE_OUTPUTS}
         out |= {name: np.array([r[name] for r in rows], dtype=np.str_) for name in CASE_TEXT}
         n = max(r["history"].shape[1] for r in rows)

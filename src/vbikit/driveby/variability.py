@@ -11,6 +11,9 @@ The ``[variability]`` table of a drive-by file (all keys optional)::
     temperature = [0.0, 30.0]       # deck temperature drawn uniformly [°C]
     temperature_reference = 20.0    # [°C]: E(T_ref) = the file's EI
     temperature_coefficient = 0.003 # α_E [1/°C] of E(T) = E_ref [1 − α_E (T − T_ref)]
+    traffic_flow = 600              # background trucks [trucks/h] on the bridge during the pass (coupled only)
+    traffic_speed_kmh = 80.0        # their mean speed [km/h] (standard deviation 10 %)
+    traffic_direction = "-x"        # their direction: "-x" oncoming, "+x" the instrumented vehicle's
 
 Draws.  Pass (case) ``i`` of a file with seed ``s`` draws from
 ``numpy.random.default_rng(numpy.random.SeedSequence(s, spawn_key=(i,)))`` — the i-th child that
@@ -47,7 +50,10 @@ from vbikit.errors import VbikitError
 
 #: keys of [variability]
 VARIABILITY_KEYS = ("passes", "speed", "vehicle_spread", "support_stiffness", "scour_classes", "temperature",
-                    "temperature_reference", "temperature_coefficient")
+                    "temperature_reference", "temperature_coefficient", "traffic_flow", "traffic_speed_kmh",
+                    "traffic_direction")
+#: default speed [km/h] of the background trucks (``vbikit.traffic.LaneTraffic``'s default)
+TRAFFIC_SPEED_KMH = 80.0
 #: default α_E [1/°C] (module docstring, Xia et al. 2006)
 TEMPERATURE_COEFFICIENT = 0.003
 #: default reference temperature [°C]
@@ -77,6 +83,9 @@ class Variability:
     temperature: Optional[tuple[float, float]] = None
     temperature_reference: float = TEMPERATURE_REFERENCE
     temperature_coefficient: float = TEMPERATURE_COEFFICIENT
+    traffic_flow: Optional[float] = None
+    traffic_speed_kmh: float = TRAFFIC_SPEED_KMH
+    traffic_direction: str = "-x"
     extra: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
@@ -125,7 +134,16 @@ def parse_variability(table: Any) -> Variability:
         temperature_reference=float(_number("temperature_reference", t.get("temperature_reference", TEMPERATURE_REFERENCE),
                                             -60.0, 80.0)),
         temperature_coefficient=float(_number("temperature_coefficient", t.get("temperature_coefficient",
-                                                                               TEMPERATURE_COEFFICIENT), 0.0, 0.01)))
+                                                                               TEMPERATURE_COEFFICIENT), 0.0, 0.01)),
+        traffic_flow=float(_number("traffic_flow", t["traffic_flow"], 1.0, 1700.0)) if "traffic_flow" in t else None,
+        traffic_speed_kmh=float(_number("traffic_speed_kmh", t.get("traffic_speed_kmh", TRAFFIC_SPEED_KMH), 10.0, 200.0)),
+        traffic_direction=_direction(t.get("traffic_direction", "-x")))
+
+
+def _direction(value: Any) -> str:
+    if value not in ("+x", "-x"):
+        raise VariabilityError(f"variability.traffic_direction: \"+x\" or \"-x\", got {value!r}")
+    return value
 
 
 def parse_coupling(data: dict) -> tuple[str, int]:
@@ -166,8 +184,10 @@ def temperature_factor(var: Variability, temperature: float) -> float:
 
 def draw(var: Variability, seed: int, index: int, n_dof: int, n_wheels: int) -> dict[str, Any]:
     """The random parameters of pass ``index``: ``speed`` [m/s] and ``temperature`` [°C] (absent
-    when not varied) and ``vehicle_factors`` (5 arrays: per-DOF mass, stiffness, damping factors,
-    per-wheel tire stiffness and damping factors; absent without a spread)."""
+    when not varied), ``vehicle_factors`` (5 arrays: per-DOF mass, stiffness, damping factors,
+    per-wheel tire stiffness and damping factors; absent without a spread) and ``traffic_seed``
+    (the seed of the pass's background trucks, ``vbikit.driveby.traffic``; absent without
+    ``traffic_flow``), drawn in this order (a new key draws last: earlier draws keep their values)."""
     rng = pass_rng(seed, index)
     out: dict[str, Any] = {}
     if var.speed is not None:
@@ -178,6 +198,8 @@ def draw(var: Variability, seed: int, index: int, n_dof: int, n_wheels: int) -> 
         s = var.vehicle_spread
         out["vehicle_factors"] = tuple(tuple(float(v) for v in rng.uniform(1 - s, 1 + s, n))
                                        for n in (n_dof, n_dof, n_dof, n_wheels, n_wheels))
+    if var.traffic_flow is not None:
+        out["traffic_seed"] = int(rng.integers(0, 2**62))
     return out
 
 
