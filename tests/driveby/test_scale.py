@@ -94,25 +94,21 @@ def test_recurrence_on_conjugate_pairs_equals_the_state_space_loop():
 
 
 def test_single_thread_blas_sets_one_thread_and_restores():
-    from vbikit._blas import _controls, single_thread_blas
+    from threadpoolctl import threadpool_info, threadpool_limits
 
-    with single_thread_blas():
-        pass
-    controls = _controls()
-    if not controls:
-        pytest.skip("no OpenBLAS loaded")
-    before = [get() for get, _ in controls]
-    for _, set_ in controls:
-        set_(2)                                         # a count other than 1 to restore
-    try:
-        wanted = [get() for get, _ in controls]
+    from vbikit._blas import single_thread_blas
+
+    def blas_threads() -> list[int]:
+        return [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+
+    if not blas_threads():
+        pytest.skip("no BLAS thread pool found")
+    with threadpool_limits(limits=2, user_api="blas"):  # a count other than 1 to restore
+        wanted = blas_threads()
         with single_thread_blas():
-            inside = [get() for get, _ in controls]
-        assert inside == [1] * len(controls)
-        assert [get() for get, _ in controls] == wanted
-    finally:
-        for (_, set_), n in zip(controls, before):
-            set_(n)
+            inside = blas_threads()
+        assert inside == [1] * len(wanted)
+        assert blas_threads() == wanted
 
 
 def _traffic_spec(passes: int = 2, **extra):
