@@ -99,7 +99,8 @@ class Report:
                                         names=self.plan.point_names, effects=self.effects)
 
     def plot(self, path: str | Path) -> Path:
-        """Figure of the headline point's displacement, strain and acceleration, dynamic against static."""
+        """Figure of the displacement, strain and acceleration at every response point, dynamic
+        against static, and the tire forces."""
         from vbikit.plot import plot_crossing
 
-        return plot_crossing(self.result, self.response, path)
+        return plot_crossing(self.result, self.points, path, names=self.plan.point_names)
