@@ -1,16 +1,16 @@
 """``vbikit lifetime``, ``vbikit driveby`` and ``vbikit rail`` RUN on generated valid-but-extreme
 tiny inputs (``fuzz_runs.py``): exit 0 with no undocumented non-finite number in the JSON and
 NetCDF outputs, or a clean refusal (exit 2, one ``error:`` line); never a traceback.  Default: one
-derandomised input for rail and drive-by (≈ 5 s); ``slow``: 6 random inputs a command."""
+derandomised input for rail and drive-by (≈ 5 s); ``slow``: 4 random inputs a command."""
 from __future__ import annotations
 
 import tempfile
 from pathlib import Path
 
 import pytest
-from fuzz_commands import write_input
+from fuzz_commands import fuzz_settings, write_input
 from fuzz_runs import extreme_inputs, non_finite
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from typer.testing import CliRunner
 
 from vbikit.cli import app
@@ -37,15 +37,11 @@ def run_and_judge(kind: str, inputs) -> None:
             assert result.exit_code == 2 and len(errors) == 1, f"{kind}: exit {result.exit_code}{where}"
 
 
-def _settings(n: int, slow: bool):
-    return settings(max_examples=n, deadline=None, database=None, derandomize=not slow,
-                    suppress_health_check=list(HealthCheck), print_blob=True)
-
 
 @pytest.mark.parametrize("kind, n", [("rail", 1), ("driveby", 1),
-                                     *(pytest.param(k, 6, marks=pytest.mark.slow) for k in ("lifetime", "driveby", "rail"))])
+                                     *(pytest.param(k, 4, marks=pytest.mark.slow) for k in ("lifetime", "driveby", "rail"))])
 def test_extreme_inputs_run_to_finite_outputs_or_a_clean_refusal(kind, n):
-    @_settings(n, slow=n > 1)
+    @fuzz_settings(n, slow=n > 1)
     @given(extreme_inputs(kind))
     def run(inputs):
         run_and_judge(kind, inputs)
