@@ -35,7 +35,7 @@ def _interrupt(tmp_path, sig):
     proc = subprocess.Popen([sys.executable, "-c", CLI, "rail", str(spec), "--out-dir", str(out), "--no-figures",
                              "--no-progress"], start_new_session=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
-    work = out / "work" / "rail"
+    work = out / "rail.parts"
     deadline = time.time() + 120
     while time.time() < deadline and len(list(work.glob("*.npz"))) < 2 and proc.poll() is None:
         time.sleep(0.005)
@@ -72,7 +72,7 @@ def test_kill_9_mid_sweep_keeps_finished_trains_and_resumes_identically(tmp_path
     swept, resumed = _resume_counting(spec, out, monkeypatch)
     assert len(swept) == 10 - len(done)  # only the unfinished trains are swept again
     _same(resumed.dataset, run_rail(spec, None, figures=False).dataset)
-    assert (out / "rail.nc").is_file() and not (out / "work").exists()  # finished: the kept trains are removed
+    assert (out / "rail.nc").is_file() and not (out / "rail.parts").exists()  # finished: the kept trains are removed
 
 
 @pytest.mark.slow
@@ -100,7 +100,7 @@ def test_a_torn_stored_train_is_swept_again_not_trusted(tmp_path, monkeypatch):
     monkeypatch.setattr(rr._Stored, "clear", real_clear)
     again = run_rail(data, out, figures=False)
     _same(again.dataset, first.dataset)
-    assert not (out / "work").exists()
+    assert not (out / "rail.parts").exists()
 
 
 def test_an_interrupt_after_two_trains_keeps_them_and_the_rerun_sweeps_only_the_rest(tmp_path, monkeypatch):
@@ -122,7 +122,7 @@ def test_an_interrupt_after_two_trains_keeps_them_and_the_rerun_sweeps_only_the_
     monkeypatch.setattr(rr, "sweep_moving_forces", interrupted)
     with pytest.raises(KeyboardInterrupt):
         run_rail(data, out, figures=False, progress=lambda d, t: None)
-    assert len(list((out / "work" / "rail").glob("*.npz"))) == 2 and not (out / "rail.nc").exists()
+    assert len(list((out / "rail.parts").glob("*.npz"))) == 2 and not (out / "rail.nc").exists()
     monkeypatch.setattr(rr, "sweep_moving_forces", real)
     swept, resumed = _resume_counting(data, out, monkeypatch)
     assert [t.name for t in swept] == ["HSLM-A3", "HSLM-A4"]

@@ -1,6 +1,6 @@
 """Finished trains of a railway sweep kept on disk, so that an interrupted ``vbikit rail`` (Ctrl-C,
 kill -9, a crash) started again resumes: every train's envelopes (and refined peaks) are written
-atomically to ``out_dir/work/rail/<key>.npz`` as soon as the train is swept; a later run with the
+atomically to ``out_dir/rail.parts/<key>.npz`` as soon as the train is swept; a later run with the
 same sweep reads them instead of sweeping again.  The key is the SHA-256 of everything the result
 depends on (the file's settings, the bridge's frequencies and mode shapes at the points, the
 train's axles, the speeds and the sweep setup), so a changed input never reuses an old result.
@@ -19,7 +19,7 @@ import numpy as np
 
 log = logging.getLogger(__name__)
 
-WORK = Path("work") / "rail"
+WORK = Path("rail.parts")
 
 
 def train_key(spec_json: str, setup: Any, train: Any, speeds: np.ndarray, kind: str) -> str:

@@ -292,7 +292,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
 
 
 class _Stored:
-    """The finished trains of this sweep under ``out_dir/work/rail`` (``vbikit.rail.checkpoint``);
+    """The finished trains of this sweep under ``out_dir/rail.parts`` (``vbikit.rail.checkpoint``);
     nothing stored when ``out_dir`` is None."""
 
     def __init__(self, spec: RailSpec, setup: SweepSetup, speeds, out_dir) -> None:
@@ -322,11 +322,10 @@ class _Stored:
             return
         for path in self.work.glob("*.npz"):
             path.unlink(missing_ok=True)
-        for folder in (self.work, self.work.parent):
-            try:
-                folder.rmdir()  # only when empty: another command's work stays
-            except OSError:
-                pass
+        try:
+            self.work.rmdir()  # only when empty
+        except OSError:
+            pass
 
 
 def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,

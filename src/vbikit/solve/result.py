@@ -168,7 +168,7 @@ class CrossingResult:
         names : sequence of str, optional
             The points' names (coordinate ``point``), as in the CSV headers; default ``p1``, ``p2``, ….
         effects : sequence of LoadEffectResponse, optional
-            Load-effect responses ([`load_effect_response`][vbikit.analysis.load_effect_response]):
+            Load-effect responses (``vbikit.analysis.load_effect_response``):
             each one's ``dynamic`` history as variable ``<name>`` and its ``static`` one as ``<name>_static``
             (the CSV's moment / shear / reaction columns), in the effect's unit.
 
