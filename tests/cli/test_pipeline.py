@@ -118,7 +118,7 @@ def test_several_points_from_python_with_a_crossing():
     from_toml = vbikit.run(BEAM + '[[response.points]]\nname = "a"\nx = 5.0\n[[response.points]]\nname = "b"\nx = 12.5\n')
     assert report.summary["points"] == from_toml.summary["points"]
     ds = report.to_xarray()
-    assert list(ds["name"].values) == ["a", "b"] and list(ds["x"].values) == [5.0, 12.5]
+    assert list(ds["point"].values) == ["a", "b"] and list(ds["x"].values) == [5.0, 12.5]
     np.testing.assert_allclose(ds["displacement"].values[:, 1], report.points[1].displacement, rtol=1e-12, atol=1e-17)
 
 

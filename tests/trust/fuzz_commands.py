@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from fuzzing import ANY_VALUE, NUMBERS, WEIRD, Hang, to_toml
+from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
 HANG_SECONDS = 30
@@ -238,6 +239,12 @@ def damaged_csv(lines: list[str], kind: str, at: int = 0) -> str:
         cells[-1 if len(cells) == 2 else 1] = "nan"
         lines[2] = ",".join(cells)
     return "\n".join(lines) + "\n"
+
+
+def fuzz_settings(n: int, slow: bool):
+    """Hypothesis settings of the command fuzz tests: ``n`` examples, derandomised unless ``slow``."""
+    return settings(max_examples=n, deadline=None, database=None, derandomize=not slow,
+                    suppress_health_check=list(HealthCheck), print_blob=True)
 
 
 FILE_NAMES = {"lifetime": "LIFETIME.toml", "driveby": "DRIVEBY.toml", "rail": "RAIL.toml"}

@@ -15,9 +15,9 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from fuzz_commands import HANG_SECONDS, command_inputs, outcome, write_input
+from fuzz_commands import HANG_SECONDS, command_inputs, fuzz_settings, outcome, write_input
 from fuzzing import time_limit
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given
 from typer.testing import CliRunner
 
 from vbikit.cli import app
@@ -43,10 +43,6 @@ def check(kind: str, inputs) -> None:
         ("" if result is None else result.output)
 
 
-def _settings(n: int, slow: bool):
-    return settings(max_examples=n, deadline=None, database=None, derandomize=not slow,
-                    suppress_health_check=list(HealthCheck), print_blob=True)
-
 
 KINDS = ("lifetime", "driveby", "rail")
 
@@ -54,7 +50,7 @@ KINDS = ("lifetime", "driveby", "rail")
 @pytest.mark.parametrize("kind, n", [*((k, 25) for k in KINDS), *(pytest.param(k, 700, marks=pytest.mark.slow) for k in KINDS)])
 def test_fuzz_commands(kind, n):
     """25 generated inputs a command (derandomised); under ``slow`` 700 a command (2,100 in all), randomly."""
-    @_settings(n, slow=n > 25)
+    @fuzz_settings(n, slow=n > 25)
     @given(command_inputs(kind))
     def run(inputs):
         check(kind, inputs)

@@ -47,7 +47,7 @@ def test_static_reference_matches_the_closed_form(result):
 def test_dataframe_headers_name_units(result):
     df = result.to_dataframe()
     assert df.index.name == "time [s]"
-    for col in ("displacement [m]", "acceleration [m/s^2]", "strain [-]", "wheel_force_P [N]", "front_axle_x [m]"):
+    for col in ("displacement [m]", "acceleration [m/s^2]", "strain [-]", "contact_force_P [N]", "front_axle_x [m]"):
         assert col in df.columns
     assert all(c.endswith("]") for c in df.columns)
     np.testing.assert_array_equal(df["displacement [m]"].to_numpy(), result.displacement())

@@ -19,7 +19,8 @@ def rail_cmd(
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar (trains swept)."),
 ) -> None:
     """Sweep every train over every speed: envelopes of deck acceleration, deflection, moment and
-    shear, phi'dyn, resonance speeds and the pass/fail report.  (The sweep runs on local processes;
+    shear, phi'dyn, resonance speeds and the pass/fail report.  An interrupted sweep started again
+    resumes (finished trains in OUT_DIR/rail.parts).  (The sweep runs on local processes;
     it has no --scheduler: a whole sweep takes seconds to minutes.)"""
     from vbikit.rail.run import run_rail
 
@@ -37,6 +38,10 @@ def rail_cmd(
     try:
         result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
                                         progress=report if progress and not STATE["quiet"] else None))
+    except KeyboardInterrupt:
+        typer.echo(f"\ninterrupted: finished trains are kept in {out_dir / 'rail.parts'}; run the same command "
+                   "again to resume", err=True)
+        raise typer.Exit(code=130) from None
     finally:
         if bar is not None:
             bar.close()

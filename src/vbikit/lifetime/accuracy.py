@@ -89,7 +89,11 @@ def pot_levels(values: np.ndarray, threshold: float, values_per_year: float, per
         level, lo, hi = return_levels(fit, periods, ci)
     except ExtremesError as err:
         return PotLevels(nan, nan.copy(), nan.copy(), threshold, math.nan, k, str(err))
-    return PotLevels(level, lo, hi, threshold, float(fit.shape), k)
+    why = ""
+    if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):  # the fit's covariance (observed information) is singular
+        why = (f"no confidence interval: the covariance of the GPD fit to {k} exceedances could not be estimated "
+               "(the delta method needs it); the level stands without an interval")
+    return PotLevels(level, lo, hi, threshold, float(fit.shape), k, why)
 
 
 def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float) -> float:

@@ -2,7 +2,8 @@
 
 * ``lifetime-gumbel.png``: per load effect the block maxima, static and total, on Gumbel
   probability paper (reduced variate y = −ln(−ln p), Gringorten plotting positions), the fitted
-  distributions and the return levels of the return periods;
+  distributions and the return levels of the return periods with their confidence intervals
+  (delta method), a top axis of return periods in years;
 * ``lifetime-adr.png``: the ratio total / static of the return levels against the return period,
   with the per-event IM statistics and the AASHTO LRFD allowance;
 * ``lifetime-fatigue.png``: per detail the static stress-range histogram and the damage per day;
@@ -53,6 +54,7 @@ def gumbel_figure(ds, path: Path) -> Path:
     week = ds.attrs["block"] == "week"
     per_year = ds.attrs["days_per_year"] / (7 if week else 1)
     periods = ds["return_period"].values
+    ci = _ci_label(ds)
     for j, (ax, name) in enumerate(zip(axes[0], names)):
         s = float(ds["effect_sign"][j])
         unit = str(ds["load_effect_units"].values[j])
@@ -65,16 +67,42 @@ def gumbel_figure(ds, path: Path) -> Path:
             ax.plot(y, _level(y, float(ds[f"fit_{which}_location"][j]), float(ds[f"fit_{which}_scale"][j]),
                               float(ds[f"fit_{which}_shape"][j])), "-", color=color, lw=1, label=f"{which} {ds.attrs['distribution']} fit")
             levels = ds[f"return_level_{which}"].values[j] * s
+            bounds = np.sort(np.stack([ds[f"return_level_{which}_lower"].values[j] * s,
+                                       ds[f"return_level_{which}_upper"].values[j] * s]), axis=0)
             yt = -np.log(-np.log(1 - 1 / (per_year * periods)))
-            ax.plot(yt, levels, "D", color=color, mfc="none", ms=6)
+            shown = np.isfinite(bounds).all(axis=0)  # an interval that could not be computed is not drawn
+            ax.errorbar(yt[shown], levels[shown], yerr=np.abs(bounds[:, shown] - levels[shown]), fmt="D", color=color,
+                        mfc="none", ms=6, capsize=3, lw=1, label=f"{which} return levels, {ci} interval")
+            ax.plot(yt[~shown], levels[~shown], "D", color=color, mfc="none", ms=6)
             for t, yy, lv in zip(periods, yt, levels):
                 if which == "total":
                     ax.annotate(f"{t:g} yr", (yy, lv), textcoords="offset points", xytext=(-12, 6), fontsize=7)
         ax.set_xlabel("Gumbel reduced variate −ln(−ln p)")
+        _return_period_axis(ax, per_year)
         ax.set_ylabel(f"{'−' if s < 0 else ''}{name} [{unit}]")
         ax.set_title(f"{name}: ADR = {float(ds['assessment_dynamic_ratio'][j]):.3f}", fontsize=9)
-        ax.legend(fontsize=6)
+        ax.legend(fontsize=6, loc="upper left")
     return save_figure(fig, path, dpi=120)
+
+
+def _return_period_axis(ax, per_year: float) -> None:
+    """A top axis of return periods T [years] on Gumbel paper: T = 1/(n (1 − p)) with p = exp(−e^−y)
+    and n blocks per year (docs/lifetime.md, "Probability paper")."""
+    lo, hi = ax.get_xlim()
+    marks = np.array([1.0, 10.0, 100.0, 1000.0, 10000.0])
+    marks = marks[marks * per_year > 1.0]  # T n = 1 is p = 0, y = −∞
+    y = -np.log(-np.log(1.0 - 1.0 / (marks * per_year)))
+    keep = (y >= lo) & (y <= hi)
+    top = ax.secondary_xaxis("top", functions=(lambda v: v, lambda v: v))
+    top.set_xticks(y[keep])
+    top.set_xticklabels([f"{m:g}" for m in marks[keep]], fontsize=7)
+    top.set_xlabel("return period [years]", fontsize=8)
+
+
+def _ci_label(ds) -> str:
+    """The confidence level of the return-level intervals as the dataset states it ("95 %")."""
+    level = ds.attrs.get("ci")
+    return f"{100 * float(level):g} %" if level is not None else "confidence"
 
 
 def adr_figure(ds, path: Path) -> Path:

@@ -280,12 +280,14 @@ def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:
     for w in ("static", "total"):
         src = ("the events' static peaks above the threshold" if w == "static" else
                "the simulated events' total peaks above the threshold, complete above it by the screening")
+        because = "; ".join(f"{k}: {t}" for k, t in enumerate(why[w]) if t)  # by load effect, where NaN
         out[f"return_level_pot_{w}"] = (dims, rl[f"pot_{w}"] * signs[:, None], {
             "units": "", "long_name": f"{w} return level from peaks over threshold (GPD of {src})",
-            "missing_because": "; ".join(f"{k}: {t}" for k, t in enumerate(why[w]) if t)})
+            "missing_because": because})
         for b in ("lower", "upper"):
             out[f"return_level_pot_{w}_{b}"] = (dims, rl[f"pot_{w}_{b}"] * signs[:, None], {
-                "units": "", "long_name": f"{b} {ci:.0%} confidence bound of return_level_pot_{w} (delta method)"})
+                "units": "", "long_name": f"{b} {ci:.0%} confidence bound of return_level_pot_{w} (delta method)",
+                "missing_because": because})
         out[f"methods_disagree_{w}"] = (dims, disagree[w].astype(np.int8), {
             "units": "1", "long_name": f"1 if the block-maximum and the peaks-over-threshold {w} levels disagree: "
                                        "either lies outside the other's confidence interval"})

@@ -245,12 +245,19 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
 
     n_workers = workers or spec.run.workers
     announce_compile(_peaks, "each worker process" if n_workers > 1 and len(trains) > 1 else "")
-    swept = []
-    group = len(trains) if progress is None else max(1, n_workers)
-    for start in range(0, len(trains), group):
-        swept += sweep_moving_forces(setup, trains[start:start + group], speeds, n_workers)
+    stored = _Stored(spec, setup, speeds, out_dir)
+    swept = [stored.load(t) for t in trains]
+    todo = [i for i, s in enumerate(swept) if s is None]
+    if len(todo) < len(trains):
+        log.info("resuming: %d of %d trains read from %s", len(trains) - len(todo), len(trains), stored.work)
+    group = max(1, n_workers) if (progress is not None or stored.work is not None) else max(1, len(todo))
+    for start in range(0, len(todo), group):
+        idx = todo[start:start + group]
+        for i, result in zip(idx, sweep_moving_forces(setup, [trains[i] for i in idx], speeds, n_workers)):
+            swept[i] = result
+            stored.save(trains[i], *result)  # a finished train is never lost (kill -9, Ctrl-C)
         if progress is not None:
-            progress(min(start + group, len(trains)), len(trains))
+            progress(len(trains) - len(todo) + min(start + group, len(todo)), len(trains))
     envs, refined = [e for e, _ in swept], [r for _, r in swept]
     names = [t.name for t in trains]
     statics = [static_envelope(bridge, "moment", sections, t.axle_positions, t.axle_loads, y) for t in trains]
@@ -258,8 +265,12 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         for t in coupled:
             if t.cars:
                 log.info("coupled cars: %s over %d speeds", t.name, speeds.size)
-                envs.append(coupled_envelopes(setup, t, speeds, spec.coupled.irregularity, spec.coupled.seed,
-                                              spec.coupled.contact))
+                env = stored.load(t, "coupled")
+                if env is None:
+                    env = (coupled_envelopes(setup, t, speeds, spec.coupled.irregularity, spec.coupled.seed,
+                                             spec.coupled.contact), None)
+                    stored.save(t, *env, kind="coupled")
+                envs.append(env[0])
                 names.append(f"{t.name} (coupled)")
                 res[names[-1]] = res[trains[originals.index(t)].name]
                 waves[names[-1]] = waves[trains[originals.index(t)].name]
@@ -276,7 +287,45 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     ds.attrs["run_seconds"] = result.seconds
     if out_dir is not None:
         result.files = write_outputs(result, Path(out_dir), figures)
+        stored.clear()  # everything is in rail.nc now
     return result
+
+
+class _Stored:
+    """The finished trains of this sweep under ``out_dir/rail.parts`` (``vbikit.rail.checkpoint``);
+    nothing stored when ``out_dir`` is None."""
+
+    def __init__(self, spec: RailSpec, setup: SweepSetup, speeds, out_dir) -> None:
+        from vbikit.rail.checkpoint import WORK
+
+        self.spec_json, self.setup, self.speeds = spec.model_dump_json(), setup, speeds
+        self.work = None if out_dir is None else Path(out_dir) / WORK
+
+    def _key(self, train, kind: str) -> str:
+        from vbikit.rail.checkpoint import train_key
+
+        return train_key(self.spec_json, self.setup, train, self.speeds, kind)
+
+    def load(self, train, kind: str = "forces"):
+        from vbikit.rail.checkpoint import load
+
+        return None if self.work is None else load(self.work, self._key(train, kind))
+
+    def save(self, train, env, refined, kind: str = "forces") -> None:
+        from vbikit.rail.checkpoint import save
+
+        if self.work is not None:
+            save(self.work, self._key(train, kind), env, refined)
+
+    def clear(self) -> None:
+        if self.work is None:
+            return
+        for path in self.work.glob("*.npz"):
+            path.unlink(missing_ok=True)
+        try:
+            self.work.rmdir()  # only when empty
+        except OSError:
+            pass
 
 
 def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,

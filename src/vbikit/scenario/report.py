@@ -87,16 +87,20 @@ class Report:
 
     def to_xarray(self, static: bool = True) -> "xr.Dataset":
         """The crossing as a labelled dataset ([`CrossingResult.to_xarray`][vbikit.solve.CrossingResult.to_xarray]) at the report's
-        response points (coordinate ``name`` on dimension ``point``) and girder sections."""
-        ds = self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static)
-        return ds.assign_coords(name=("point", self.plan.point_names))
+        response points (coordinate ``point``: their names, as in the CSV) and girder sections, with the
+        load-effect histories (``<name>``, ``<name>_static``): the CSV's names and units."""
+        return self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static,
+                                     names=self.plan.point_names, effects=self.effects)
 
     def to_dataframe(self, static: bool = True) -> "pd.DataFrame":
-        """The histories as a wide pandas DataFrame ([`CrossingResult.to_dataframe`][vbikit.solve.CrossingResult.to_dataframe])."""
-        return self.result.to_dataframe([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static)
+        """The histories as a wide pandas DataFrame ([`CrossingResult.to_dataframe`][vbikit.solve.CrossingResult.to_dataframe]):
+        every column of the CSV ([`histories`][vbikit.scenario.Report.histories]) under the same header."""
+        return self.result.to_dataframe([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static,
+                                        names=self.plan.point_names, effects=self.effects)
 
     def plot(self, path: str | Path) -> Path:
-        """Figure of the headline point's displacement, strain and acceleration, dynamic against static."""
+        """Figure of the displacement, strain and acceleration at every response point, dynamic
+        against static, and the tire forces."""
         from vbikit.plot import plot_crossing
 
-        return plot_crossing(self.result, self.response, path)
+        return plot_crossing(self.result, self.points, path, names=self.plan.point_names)

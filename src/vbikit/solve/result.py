@@ -9,6 +9,7 @@ from numpy.typing import NDArray
 
 from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
+from vbikit.outputs import CF_UNITS, QUANTITIES, cf_unit
 from vbikit.solve.crossing import Crossing
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -150,7 +151,7 @@ class CrossingResult:
 
     # ------------------------------------------------------------------ labelled results
     def to_xarray(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
-                  static: bool = True) -> "xr.Dataset":
+                  static: bool = True, names: Sequence[str] | None = None, effects: Sequence[Any] = ()) -> "xr.Dataset":
         """The crossing as a labelled ``xarray.Dataset`` with units.
 
         Parameters
@@ -164,6 +165,12 @@ class CrossingResult:
             without girders.
         static : bool
             Also the static reference responses (``static_displacement``, ``static_strain``).
+        names : sequence of str, optional
+            The points' names (coordinate ``point``), as in the CSV headers; default ``p1``, ``p2``, ….
+        effects : sequence of LoadEffectResponse, optional
+            Load-effect responses (``vbikit.analysis.load_effect_response``):
+            each one's ``dynamic`` history as variable ``<name>`` and its ``static`` one as ``<name>_static``
+            (the CSV's moment / shear / reaction columns), in the effect's unit.
 
         Returns
         -------
@@ -171,10 +178,12 @@ class CrossingResult:
             Coordinate ``time`` [s]; variables with ``units`` and ``long_name`` attributes:
             deck ``displacement`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2], ``strain``
             [-] (tension positive) per point and, with girders, ``girder_*`` per girder;
-            ``wheel_force`` [N] and ``contact_length`` [m] per wheel; ``vehicle_displacement``
+            ``contact_force`` [N] and ``contact_length`` [m] per wheel; ``vehicle_displacement``
             and ``vehicle_acceleration`` per vehicle DOF (units per DOF in the ``dof_units``
             coordinate: m for heave, rad for pitch and roll); ``modal_displacement`` per mode;
-            ``front_axle_x`` [m] and ``speed`` [m/s].  Sign conventions in the dataset's attributes.
+            ``front_axle_x`` [m] and ``speed`` [m/s]; ``<effect>`` and ``<effect>_static`` of every
+            load effect in ``effects``.  Names and units are those of the CSV (``vbikit.outputs``).
+            Sign conventions in the dataset's attributes.
         """
         import xarray as xr
 
@@ -183,6 +192,9 @@ class CrossingResult:
         bridge = self.crossing.bridge
         vehicle = self.crossing.vehicle
         pts = [self.point()] if points is None else [(float(x), float(y)) for x, y in points]
+        labels = [f"p{i}" for i in range(1, len(pts) + 1)] if names is None else [str(n) for n in names]
+        if len(labels) != len(pts):
+            raise ValueError(f"names: {len(labels)} names for {len(pts)} points")
         xs, ys = [p[0] for p in pts], [p[1] for p in pts]
         xi_st = static_modal_history(self.crossing, self.travel, self.kernel_data) if static else None
         data: dict[str, tuple[tuple[str, ...], Any, dict[str, str]]] = {}
@@ -190,23 +202,19 @@ class CrossingResult:
         def deck(prefix: str, dim: str, px: list[float], py: list[float], label: str) -> None:
             phi = np.stack([bridge.mode_shapes([x], [y])[0] for x, y in zip(px, py)], axis=1)
             eps = np.stack([bridge.strain_shapes([x], [y])[0] for x, y in zip(px, py)], axis=1)
-            rows = [("displacement", self.xi @ phi, "deck vertical displacement (z up)"),
-                    ("velocity", self.xi_dot @ phi, "deck vertical velocity"),
-                    ("acceleration", self.xi_ddot @ phi, "deck vertical acceleration"),
-                    ("strain", self.xi @ eps, "bottom-fibre longitudinal strain (tension positive)")]
+            rows = [("displacement", self.xi @ phi), ("velocity", self.xi_dot @ phi),
+                    ("acceleration", self.xi_ddot @ phi), ("strain", self.xi @ eps)]
             if xi_st is not None:
-                rows += [("static_displacement", xi_st @ phi, "static reference displacement"),
-                         ("static_strain", xi_st @ eps, "static reference strain")]
-            for name, values, long_name in rows:
-                data[prefix + name] = (("time", dim), values,
-                                       {"units": CF_UNITS.get(HISTORY_UNITS[name], HISTORY_UNITS[name]),
-                                        "long_name": f"{long_name}{label}"})
+                rows += [("static_displacement", xi_st @ phi), ("static_strain", xi_st @ eps)]
+            for name, values in rows:
+                q = QUANTITIES[name]
+                data[prefix + name] = (("time", dim), values, {"units": cf_unit(q.unit), "long_name": f"{q.long_name}{label}"})
 
         deck("", "point", xs, ys, "")
         girder_y = bridge.girder_y if isinstance(bridge, GirderDeck) else None
         coords: dict[str, Any] = {
             "time": ("time", self.time, {"units": "s", "long_name": "time"}),
-            "point": ("point", np.arange(len(pts))),
+            "point": ("point", labels),
             "x": ("point", np.array(xs), {"units": "m", "long_name": "response point from the entry support"}),
             "y": ("point", np.array(ys), {"units": "m", "long_name": "response point from the deck centreline"}),
             "wheel": ("wheel", [w.name for w in vehicle.wheels]),
@@ -229,11 +237,16 @@ class CrossingResult:
             coords["vehicle"] = ("vehicle", np.arange(1, self.front_position.shape[1] + 1))
         data["front_axle_x"] = (motion, front, {"units": "m", "long_name": "front axle position from the entry support"})
         data["speed"] = (motion, speed, {"units": "m s-1", "long_name": "vehicle speed"})
-        data["wheel_force"] = (("time", "wheel"), self.wheel_forces, {"units": "N", "long_name": "tire force, compression positive"})
+        data["contact_force"] = (("time", "wheel"), self.wheel_forces, {"units": "N", "long_name": "tire force, compression positive"})
         data["contact_length"] = (("time", "wheel"), self.contact_lengths, {"units": "m", "long_name": "length of the tire patch in contact"})
         data["vehicle_displacement"] = (("time", "dof"), self.q, {"units": "m or rad (dof_units)", "long_name": "vehicle DOF, absolute, z up"})
         data["vehicle_acceleration"] = (("time", "dof"), self.q_ddot, {"units": "m s-2 or rad s-2 (dof_units)", "long_name": "vehicle DOF acceleration"})
         data["modal_displacement"] = (("time", "mode"), self.xi, {"units": "kg^0.5 m", "long_name": "bridge modal coordinate (mass-normalised modes)"})
+        for e in effects:  # duck-typed LoadEffectResponse (the solver does not import analysis)
+            what = f"{e.effect.kind} at x = {e.effect.x:g} m" if hasattr(e.effect, "x") else e.name
+            data[e.name] = (("time",), np.asarray(e.dynamic), {"units": cf_unit(e.effect.units), "long_name": f"{what}, dynamic"})
+            data[f"{e.name}_static"] = (("time",), np.asarray(e.static), {"units": cf_unit(e.effect.units),
+                                                                          "long_name": f"{what}, static reference"})
         attrs = {
             "title": "vbikit crossing",
             "conventions": "SI units; x along the bridge from the entry support, y from the deck centreline "
@@ -247,14 +260,16 @@ class CrossingResult:
         return xr.Dataset({k: xr.Variable(*v) for k, v in data.items()}, coords=coords, attrs=attrs)
 
     def to_dataframe(self, points: Sequence[tuple[float, float]] | None = None, girder_x: float | None = None,
-                     static: bool = True) -> "pd.DataFrame":
+                     static: bool = True, names: Sequence[str] | None = None, effects: Sequence[Any] = ()) -> "pd.DataFrame":
         """The histories as a wide ``pandas.DataFrame``, index ``time [s]``, one column per
-        quantity, point, girder, wheel and DOF, each header naming its unit (``displacement [m]``;
-        more than one point: ``displacement_p2 [m]``; ``girder3_strain [-]``,
-        ``wheel_force_axle1_left [N]``, ``tractor_pitch [rad]``).  Arguments as [`to_xarray`][vbikit.solve.CrossingResult.to_xarray]."""
+        quantity, point, girder, wheel and DOF, each header naming its unit with the CSV's names
+        (``displacement [m]``; more than one point: ``displacement_<name> [m]``; ``girder3_strain [-]``,
+        ``contact_force_axle1_left [N]``, ``tractor_pitch [rad]``, ``v2_front_axle_x [m]``, ``M_mid [N m]``
+        and ``M_mid_static [N m]``): every CSV column, plus velocity, speed and modal coordinates.
+        Arguments as [`to_xarray`][vbikit.solve.CrossingResult.to_xarray]."""
         import pandas as pd
 
-        ds = self.to_xarray(points, girder_x, static)
+        ds = self.to_xarray(points, girder_x, static, names, effects)
         plain = {cf: unit for unit, cf in CF_UNITS.items()}
         cols: dict[str, NDArray[np.float64]] = {}
         for name, var in ds.data_vars.items():
@@ -265,7 +280,7 @@ class CrossingResult:
             dim = var.dims[1]
             for i, label in enumerate(ds[dim].values):
                 if dim == "point":
-                    col = name if ds.sizes["point"] == 1 else f"{name}_p{i + 1}"
+                    col = name if ds.sizes["point"] == 1 else f"{name}_{label}"
                     unit = units
                 elif dim == "girder":
                     col, unit = name.replace("girder_", f"girder{label}_"), units
@@ -274,6 +289,8 @@ class CrossingResult:
                     col = f"{label}" if name == "vehicle_displacement" else f"{label}_acceleration"
                 elif dim == "mode":
                     col, unit = f"mode{label}", units
+                elif dim == "vehicle":
+                    col, unit = f"v{label}_{name}", units
                 else:
                     col, unit = f"{name}_{label}", units
                 cols[f"{col} [{unit}]"] = var.values[:, i]
@@ -281,23 +298,6 @@ class CrossingResult:
         return frame
 
 
-#: the CSV spelling of a unit → its CF/UDUNITS spelling in datasets (as in the study datasets)
-CF_UNITS: dict[str, str] = {"m/s": "m s-1", "m/s^2": "m s-2", "-": "1", "rad/s^2": "rad s-2"}
-
-#: units of the named deck and vehicle histories, CSV spelling (headers ``name [unit]``, as the
-#: field-data reader expects); datasets use :data:`CF_UNITS`
-HISTORY_UNITS: dict[str, str] = {
-    "time": "s",
-    "front_axle_x": "m",
-    "displacement": "m",
-    "static_displacement": "m",
-    "velocity": "m/s",
-    "acceleration": "m/s^2",
-    "strain": "-",
-    "static_strain": "-",
-    "contact_force": "N",
-    "contact_length": "m",
-}
 
 
 def dof_unit(name: str) -> str:
