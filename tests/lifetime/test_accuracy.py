@@ -300,3 +300,30 @@ def test_report_flags_runs_that_miss_the_exact_static_peak(quasi_static):
     assert r["run_static_shortfall"] == {"value": pytest.approx(0.05, abs=1e-12), "event": k}
     assert any("miss the exact static peak by up to 5.00 %" in f for f in r["flags"])
     assert "FLAG the coupled runs' time steps miss the exact static peak" in text_report(facts)
+
+
+def test_too_wide_intervals_by_hand():
+    from vbikit.lifetime.accuracy import too_wide
+
+    # review case: the example week's total POT of M_mid at 1,000 years, -2.39e6 … 6.94e6 around 2.27e6 N m
+    assert too_wide(2.27e6, -2.39e6, 6.94e6)
+    assert not too_wide(2.67e6, 1.72e6, 3.62e6)  # BM static of the same effect: 1.9e6 wide < 2.67e6
+    assert too_wide(-0.0054, -0.0011, -0.0120)  # a downward effect: wider than |level|
+    assert not too_wide(-0.0054, -0.0036, -0.0073)
+    assert too_wide(1.0, -0.1, 0.2) and not too_wide(None, 0.0, 1.0) and not too_wide(1.0, math.nan, 2.0)
+
+
+def test_report_flags_an_interval_wider_than_its_level(quasi_static):
+    """A POT level of 1,000 years whose interval spans more than the level is flagged for that
+    method and period, in words; the untouched levels of the other effect are not."""
+    from vbikit.lifetime.report import summary
+
+    ds = quasi_static[0].copy(deep=True)
+    level = float(ds["return_level_pot_static"].values[0, -1])
+    if not math.isfinite(level):
+        ds["return_level_pot_static"].values[0, -1] = level = 1.0e5
+    ds["return_level_pot_static_lower"].values[0, -1] = level - 0.8 * abs(level)
+    ds["return_level_pot_static_upper"].values[0, -1] = level + 0.8 * abs(level)
+    facts = summary(ds)
+    flags = facts["load_effects"]["M"]["flags"]
+    assert any("wider than the level itself (POT at 1000 years" in f for f in flags), flags

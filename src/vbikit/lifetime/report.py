@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from vbikit.lifetime.accuracy import adr_words, amplification_words
+from vbikit.lifetime.accuracy import adr_words, amplification_words, too_wide
 
 
 def _num(x) -> float | None:
@@ -86,6 +86,13 @@ def _flags(e: dict, a: dict) -> list[str]:
                                                                    ("POT", "pot_shape")) if f[k] is not None)
             flags.append(f"{w}: strongly negative shape ({shapes} < {xi:g}): a bounded tail fitted from little data; "
                          "the long-period levels and their intervals are unreliable — simulate more days")
+        wide = [(name, r["return_period"]) for r in e["return_levels"]
+                for name, key in (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
+                if too_wide(r[w][key]["value"], r[w][key]["lower"], r[w][key]["upper"])]
+        if wide:
+            flags.append(f"{w}: confidence interval wider than the level itself ("
+                         + ", ".join(f"{n} at {t:g} years" for n, t in wide)
+                         + "): too uncertain to sign, and too wide to tell whether the methods agree — simulate more days")
         bad = [r["return_period"] for r in e["return_levels"] if r[w]["methods_disagree"]]
         if bad:
             flags.append(f"{w}: block maxima and peaks over threshold disagree beyond their intervals at "
