@@ -174,10 +174,11 @@ def select_outputs(names: Sequence[str], key: str | None = None) -> tuple[str, .
         raise ValueError(f"{where}give at least one output name; allowed: {allowed}")
     unknown = [n for n in names if n not in OUTPUTS]
     if unknown:
-        raise ValueError(f"{where}unknown output {unknown[0]!r}; allowed: {allowed}")
+        shown = unknown[0] if len(unknown[0]) <= 40 else unknown[0][:40] + "…"
+        raise ValueError(f"{where}unknown output {shown!r}; allowed: {allowed}")
     repeated = sorted({n for n in names if names.count(n) > 1})
     if repeated:
-        raise ValueError(f"{where}output {repeated[0]!r} is listed twice")
+        raise ValueError(f"{where}output {repeated[0]!r} is listed more than once")
     return tuple(o.name for o in outputs(names=names))
 
 

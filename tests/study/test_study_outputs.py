@@ -64,7 +64,7 @@ def test_default_study_text_is_unchanged(small_study_dict):
 @pytest.mark.parametrize("outputs, words", [
     (["impact_factor", "impact_factr"], "unknown output 'impact_factr'; allowed: impact_factor, "),
     ([], "give at least one output name"),
-    (["dt", "dt"], "'dt' is listed twice"),
+    (["dt", "dt"], "'dt' is listed more than once"),
     ("impact_factor", "outputs"),
     ([1], "outputs"),
 ])
