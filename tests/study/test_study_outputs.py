@@ -81,3 +81,26 @@ def test_paper_studies_ask_for_what_their_figures_plot():
     assert d["outputs"] == list(PAPER_OUTPUTS) and "impact_factor" in PAPER_OUTPUTS  # plot_paper_figure's variable
     assert not any(OUTPUTS[n].effect for n in PAPER_OUTPUTS)  # no moment, shear or reaction per crossing
     assert parse_study(d).output_names == PAPER_OUTPUTS
+
+
+def test_cli_study_file_with_outputs(tmp_path):
+    from typer.testing import CliRunner
+
+    from vbikit.cli import app
+
+    study = ('name = "cli outputs"\nseed = 3\noutputs = ["n_steps", "min_tire_force"]\n'
+             '[base.bridge]\nmodel = "paper-bridge-2-beam"\nn_modes = 4\n[base.vehicle]\nmodel = "two-axle"\n'
+             '[base.road]\nclass = "C"\nlength = 200\n[base.crossing]\nspeed_kmh = 90\n'
+             '[axes]\n"road.seed" = { samples = 2 }\n')
+    (tmp_path / "s.toml").write_text(study)
+    res = CliRunner().invoke(app, ["study", "run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r.nc"),
+                                   "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    assert "outputs stored: min_tire_force, n_steps" in res.output
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "r.nc") as ds:
+        assert set(ds.data_vars) == {"min_tire_force", "n_steps"} and np.all(ds["n_steps"].values > 100)
+    (tmp_path / "bad.toml").write_text(study.replace('"min_tire_force"', '"min_tyre_force"'))
+    res = CliRunner().invoke(app, ["study", "validate", str(tmp_path / "bad.toml")])
+    assert res.exit_code == 2 and "outputs: unknown output 'min_tyre_force'; allowed: impact_factor" in res.output
