@@ -11,6 +11,11 @@ Workloads (each warmed up once, then ``--repeat`` timed rounds; the figure is th
 * ``3d``: ``vbikit.run`` of ``examples/paper/bridge2_hs20_girder4.toml`` (3D deck, Girder 4);
 * ``fig10``: the study runner's ``run_batch`` on the paper's Fig. 10 study (first batch, 2 profiles
   per point), per crossing;
+* ``fig10-32``: the same study with its 20 profiles, the first 32-crossing batch (32 lanes) of each
+  tire model at 75 km/h (96 crossings a round), per crossing;
+* ``paper``: the whole paper programme (Figs. 5–8, 10, 11) with 3 profiles per point (1,296
+  crossings, batches of 9 lanes) through ``run_study`` in this process (``workers=1``: datasets
+  written to a temporary folder), per crossing;
 * ``traffic``: ``TrafficStudy.run_event`` of the first 12 events of the 5,000-truck benchmark stream
   (``bench_traffic.py``'s base: 3D deck, 10 modes, point tires, class B, a road per event), per event;
 * ``lifetime``: ``run_event`` of 12 dynamic events of ``bench_lifetime.py``'s lifetime (4-mode beam,
@@ -34,7 +39,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-WORKLOADS = ("demo", "3d", "fig10", "traffic", "lifetime")
+WORKLOADS = ("demo", "3d", "fig10", "fig10-32", "paper", "traffic", "lifetime")
 
 
 def _kernel_clock():
@@ -69,6 +74,32 @@ def _workload(name: str):
         study = paper_study("fig10", 2)
         batch = study.batches()[0] if hasattr(study, "batches") else None
         return (lambda: run_batch(study, batch)), len(batch)
+    if name == "fig10-32":
+        from vbikit.study.compute import run_batch
+        from vbikit.study.paper import paper_study
+
+        study = paper_study("fig10", 20)
+        batches = [next(b for b in study.batches() if study.scenario_dict(b[0])["tire"]["model"] == tire
+                        and study.scenario_dict(b[0])["crossing"]["speed_kmh"] == 75 and len(b) == 32)
+                   for tire in ("point", "multipoint", "disk")]
+        return (lambda: [run_batch(study, b) for b in batches]), sum(len(b) for b in batches)
+    if name == "paper":
+        import atexit
+        import shutil
+        import tempfile
+
+        from vbikit.study import run_study
+        from vbikit.study.paper import FIGURES, paper_study
+
+        studies = [paper_study(fig, 3) for fig in FIGURES]
+        tmp = tempfile.mkdtemp(prefix="vbikit-bench-")  # temporary datasets, one per study and round
+        atexit.register(shutil.rmtree, tmp, True)
+
+        def programme():
+            for study in studies:
+                run_study(study, Path(tmp) / f"{study.name}-{time.time_ns()}.nc", workers=1)
+
+        return programme, sum(s.size for s in studies)
     if name == "traffic":
         sys.path.insert(0, str(ROOT / "benchmarks"))
         from bench_traffic import _base, _stream

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Literal, Mapping, Optional
+from typing import Any, Callable, Literal, Mapping, Optional, Sequence
 
 import numpy as np
 
@@ -97,6 +97,10 @@ class Output:
     reduce : callable
         ``reduce(reduction) -> float | None``: the value from a [`Reduction`][vbikit.outputs.Reduction],
         None where the output does not apply.
+    effect : str, optional
+        The load-effect kind (``"moment"``, ``"shear"``, ``"reaction"``) the reducer reads from
+        ``Reduction.effects``; a run that asks for none of these outputs does not compute that
+        kind's histories (``effect_kinds``).
     """
 
     name: str
@@ -104,6 +108,7 @@ class Output:
     long_name: str
     scope: Scope
     reduce: Callable[[Reduction], Optional[float]]
+    effect: Optional[str] = None
 
     @property
     def cf_unit(self) -> str:
@@ -145,15 +150,49 @@ def register_output(output: Output) -> Output:
     return output
 
 
-def outputs(scope: Scope | None = None) -> list[Output]:
-    """The registered outputs (of one ``scope``), in registration order."""
-    return [o for o in OUTPUTS.values() if scope is None or o.scope == scope]
+def outputs(scope: Scope | None = None, names: Optional[Sequence[str]] = None) -> list[Output]:
+    """The registered outputs (of one ``scope``; only those named in ``names`` when given — None:
+    all), in registration order."""
+    wanted = None if names is None else set(names)
+    return [o for o in OUTPUTS.values() if (scope is None or o.scope == scope) and (wanted is None or o.name in wanted)]
 
 
-def reduce_outputs(reduction: Reduction, scope: Scope) -> dict[str, Optional[float]]:
-    """Every output of ``scope`` for ``reduction``: name → value (None where it does not apply)."""
+def select_outputs(names: Sequence[str], key: str | None = None) -> tuple[str, ...]:
+    """``names`` checked against the catalogue, in registration order (a run that asks for these
+    reduces only them).
+
+    Raises
+    ------
+    ValueError
+        An empty list, a repeated name or a name the catalogue does not have; the message lists the
+        allowed names, after ``key:`` when given (a schema validator adds the key itself).
+    """
+    names = list(names)
+    where = f"{key}: " if key else ""
+    allowed = ", ".join(OUTPUTS)
+    if not names:
+        raise ValueError(f"{where}give at least one output name; allowed: {allowed}")
+    unknown = [n for n in names if n not in OUTPUTS]
+    if unknown:
+        shown = unknown[0] if len(unknown[0]) <= 40 else unknown[0][:40] + "…"
+        raise ValueError(f"{where}unknown output {shown!r}; allowed: {allowed}")
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise ValueError(f"{where}output {repeated[0]!r} is listed more than once")
+    return tuple(o.name for o in outputs(names=names))
+
+
+def effect_kinds(names: Optional[Sequence[str]] = None) -> set[str]:
+    """The load-effect kinds the outputs ``names`` (None: all) read (``Output.effect``)."""
+    return {o.effect for o in outputs(names=names) if o.effect is not None}
+
+
+def reduce_outputs(reduction: Reduction, scope: Scope,
+                   names: Optional[Sequence[str]] = None) -> dict[str, Optional[float]]:
+    """Every output of ``scope`` (only those in ``names`` when given) for ``reduction``: name →
+    value (None where it does not apply)."""
     out: dict[str, Optional[float]] = {}
-    for o in outputs(scope):
+    for o in outputs(scope, names):
         value = o.reduce(reduction)
         out[o.name] = None if value is None else float(value)
     return out
@@ -217,7 +256,7 @@ for _kind, _what, _unit in (("moment", "sagging positive", "N m"), ("shear", "dM
             ("dynamic_peak", "dynamic_peak", "dynamic peak in the static peak's direction", _unit)):
         register_output(Output(f"{_kind}_{_suffix}", _u, f"{_kind} ({_what}) {_desc}: the first requested {_kind} "
                                f"(default the bridge's first); absent (NaN) if the bridge has none",
-                               "crossing", _effect(_kind, _attr)))
+                               "crossing", _effect(_kind, _attr), effect=_kind))
 
 register_output(Output("dt", "s", "time step of the stored histories", "crossing", lambda r: r.result.dt))
 register_output(Output("n_steps", "-", "number of time steps", "crossing", lambda r: r.result.n_steps))

@@ -13,7 +13,7 @@ from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import QUANTITIES, Reduction, outputs, reduce_outputs
+from vbikit.outputs import QUANTITIES, Reduction, effect_kinds, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
 
 
@@ -58,9 +58,10 @@ class PointResponse:
     def strain_impact(self) -> ImpactFactor:
         return impact_factor(self.time, self.strain, self.static_strain, self.strain_rate)
 
-    def outputs(self, result: CrossingResult) -> dict[str, float | None]:
-        """Every per-point output of the catalogue ([`vbikit.outputs`][vbikit.outputs]) at this point."""
-        return reduce_outputs(Reduction(result, self), "point")
+    def outputs(self, result: CrossingResult, names: Sequence[str] | None = None) -> dict[str, float | None]:
+        """Every per-point output of the catalogue ([`vbikit.outputs`][vbikit.outputs]) at this point
+        (only those in ``names`` when given)."""
+        return reduce_outputs(Reduction(result, self), "point", names)
 
 
 def point_response(result: CrossingResult, x: float | None = None, y: float | None = None,
@@ -142,18 +143,23 @@ def plan_responses(result: CrossingResult, plan: ResponsePlan,
 
 
 def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,
-                    effects: dict[str, Any] | None = None) -> tuple[list[dict[str, float | None]], dict[str, float | None]]:
+                    effects: dict[str, Any] | None = None,
+                    names: Sequence[str] | None = None) -> tuple[list[dict[str, float | None]], dict[str, float | None]]:
     """The catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) of a crossing: per-point outputs at every
-    point of ``plan`` (a list in its order) and the per-crossing outputs.  ``xi_static``: the
+    point of ``plan`` (a list in its order) and the per-crossing outputs — only those in ``names``
+    when given (None: all; the responses nothing asks for are not computed).  ``xi_static``: the
     static modal history if already computed; ``effects``: the load-effect responses by kind if
-    already computed (default: ``plan.first_effects``)."""
+    already computed (default: those of ``plan.first_effects`` the outputs read)."""
     from vbikit.analysis.effects import load_effect_responses
 
     if effects is None:
-        first = plan.first_effects
+        kinds = effect_kinds(names)
+        first = {k: e for k, e in plan.first_effects.items() if k in kinds}
         effects = dict(zip(first, load_effect_responses(result, tuple(first.values()), plan.load_effect_method)))
-    points = [r.outputs(result) for r in plan_responses(result, plan, xi_static)]
-    return points, reduce_outputs(Reduction(result, None, effects), "crossing")
+    points: list[dict[str, float | None]] = [{} for _ in plan.points]
+    if outputs("point", names):
+        points = [r.outputs(result, names) for r in plan_responses(result, plan, xi_static)]
+    return points, reduce_outputs(Reduction(result, None, effects), "crossing", names)
 
 
 def point_entries(result: CrossingResult, plan: ResponsePlan, responses: list[PointResponse]) -> list[dict[str, object]]:

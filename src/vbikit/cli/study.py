@@ -98,6 +98,9 @@ def run_cmd(
     study = guard(lambda: load_study(study_file))
     _check(study, yes, max_memory, max_steps)
     ds = run_job(study, out, workers, scheduler, progress)
+    if "impact_factor" not in ds:  # the study's outputs key left it out
+        typer.echo(f"outputs stored: {', '.join(study.output_names)}")
+        return
     im = ds["impact_factor"]
     for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
                           else [("", im)]):

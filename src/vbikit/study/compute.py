@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 from vbikit.analysis.effects import contact_influences, load_effect_responses
 from vbikit.analysis.plan import point_name
 from vbikit.analysis.response import reduce_crossing
-from vbikit.outputs import as_number, outputs
+from vbikit.outputs import as_number, effect_kinds, outputs
 from vbikit.road.profile import RoadProfile
 from vbikit.scenario.build import build, build_right_road, build_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
@@ -53,12 +53,14 @@ def _road(scenario: Scenario, data: dict) -> tuple[RoadProfile | None, RoadProfi
     return road
 
 
-def stack_outputs(rows: Sequence[tuple[Sequence[dict], dict]]) -> dict[str, NDArray]:
+def stack_outputs(rows: Sequence[tuple[Sequence[dict], dict]], names: Sequence[str] | None = None) -> dict[str, NDArray]:
     """The catalogue's outputs of reduced crossings (each ``(per-point outputs, per-crossing
     outputs)`` as [`reduce_crossing`][vbikit.analysis.reduce_crossing] gives them) as arrays:
-    per-point outputs (rows, points), per-crossing outputs (rows,); an output that does not apply is NaN."""
-    out = {o.name: np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float) for o in outputs("point")}
-    return out | {o.name: np.array([as_number(r[1][o.name]) for r in rows], float) for o in outputs("crossing")}
+    per-point outputs (rows, points), per-crossing outputs (rows,); an output that does not apply
+    is NaN; only the outputs in ``names`` when given (None: all)."""
+    out = {o.name: np.array([[as_number(p[o.name]) for p in r[0]] for r in rows], float)
+           for o in outputs("point", names)}
+    return out | {o.name: np.array([as_number(r[1][o.name]) for r in rows], float) for o in outputs("crossing", names)}
 
 
 def solver_point(built) -> tuple[float, float]:
@@ -70,7 +72,9 @@ def solver_point(built) -> tuple[float, float]:
 def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1) -> dict[str, NDArray]:
     """Run the crossings at grid indices ``batch`` (they differ only in road-only keys).
 
-    Returns, for every output of the catalogue ([`vbikit.outputs`][vbikit.outputs]), an array of length
+    Returns, for every output the study asks for (``Study.output_names``: its ``outputs`` key,
+    default the whole catalogue [`vbikit.outputs`][vbikit.outputs]; only these are reduced, and load
+    effects only of the kinds they read), an array of length
     len(batch) (per-crossing outputs) or (len(batch), n_points) (per-point outputs, the base
     scenario's response points in order); ``index`` (len(batch), n_axes) and, if the study
     stores histories, ``displacement_history`` (len(batch), n_t) [m] at the first point (rows
@@ -86,7 +90,10 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
 
     static: dict[float, NDArray] = {}  # static modal history, per step
     influence: dict[float, NDArray] = {}  # contact influences of the plan's effects, per step
-    kinds, effects = tuple(plan.first_effects), tuple(plan.first_effects.values())
+    names = study.output_names
+    asked = effect_kinds(names)
+    first = {k: e for k, e in plan.first_effects.items() if k in asked}
+    kinds, effects = tuple(first), tuple(first.values())
 
     def effect_responses(result) -> dict[str, object]:
         if plan.load_effect_method == "mode-acceleration" and effects and result.dt not in influence:
@@ -98,11 +105,11 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
         check_finite(result)
         if result.dt not in static:
             static[result.dt] = solver.static_modal(result.dt)
-        points, row = reduce_crossing(result, plan, static[result.dt], effect_responses(result))
+        points, row = reduce_crossing(result, plan, static[result.dt], effect_responses(result), names)
         return points, row, (result.xi @ phi_first if study.histories else None)
 
     rows = solver.run_many(roads, reduce=reduce, threads=threads)
-    out = stack_outputs(rows)
+    out = stack_outputs(rows, names)
     out["index"] = np.array(batch, np.int64).reshape(len(batch), len(study.axes))
     if study.histories:
         n_t = max(r[2].size for r in rows)

@@ -94,21 +94,22 @@ def _content_problem(part: Any, k: int, batch: tuple, checksum: str, job) -> Opt
     index = part["index"]
     if index.shape != (len(batch), n_axes) or not np.array_equal(index, np.array(batch, np.int64).reshape(len(batch), n_axes)):
         return "its grid indices are not those of this batch"
-    problem = output_problem(part, len(batch), len(point_names(job.base) or [None]))
+    problem = output_problem(part, len(batch), len(point_names(job.base) or [None]), job.output_names)
     if problem:
         return problem
-    if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
+    if "n_steps" in job.output_names and (not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1)):
         return "its step counts are not valid"
     return None
 
 
-def output_problem(part: Any, n_rows: int, n_points: int) -> Optional[str]:
-    """Why the catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) stored in a finished part cannot be used
+def output_problem(part: Any, n_rows: int, n_points: int, names: Optional[Sequence[str]] = None) -> Optional[str]:
+    """Why the catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]; only those in ``names`` when
+    given) stored in a finished part cannot be used
     (None if they can): one missing (the part was written by another vbikit version, or an output
     registered in this process only) or of the wrong shape — (rows, points) for per-point outputs,
     (rows,) per crossing; with one point a part of vbikit versions before response points, (rows,),
     is accepted."""
-    for o in outputs():
+    for o in outputs(names=names):
         if o.name not in part:
             return f"it holds no {o.name} (written by another vbikit version, or the output is registered here only)"
         shape = part[o.name].shape
@@ -118,13 +119,15 @@ def output_problem(part: Any, n_rows: int, n_points: int) -> Optional[str]:
     return None
 
 
-def output_variables(data: dict[str, NDArray], dims: Sequence[str], names: Optional[Sequence[str]]) -> dict[str, Any]:
-    """Dataset variables of the catalogue's outputs from ``data`` (per-point outputs with a trailing
+def output_variables(data: dict[str, NDArray], dims: Sequence[str], names: Optional[Sequence[str]],
+                     selected: Optional[Sequence[str]] = None) -> dict[str, Any]:
+    """Dataset variables of the catalogue's outputs (only those in ``selected`` when given) from
+    ``data`` (per-point outputs with a trailing
     points axis): dimensions ``dims``, and ``point`` for per-point outputs when the response points
     are listed (``names``; None for the [response] shorthand, whose single point has no dimension);
     CF units and long names from the catalogue."""
     variables = {}
-    for o in outputs():
+    for o in outputs(names=selected):
         arr = data[o.name].astype(np.int64) if o.name == "n_steps" else data[o.name]
         if o.scope == "point" and names is None:
             arr = arr[..., 0]
@@ -361,14 +364,16 @@ def assemble(study: Study, parts: Path):
     batches = study.batches()
     names = point_names(study.base)
     n_points = len(names or [None])
-    data = {o.name: np.full(shape + ((n_points,) if o.scope == "point" else ()), np.nan) for o in outputs()}
+    selected = study.output_names
+    data = {o.name: np.full(shape + ((n_points,) if o.scope == "point" else ()), np.nan)
+            for o in outputs(names=selected)}
     hist_parts = []
     sums = part_checksums(parts)
     for k in range(len(batches)):
         path = part_path(parts, k)
         part = load_part(parts, k, sums)
         idx = tuple(part["index"].T)
-        problem = output_problem(part, len(part["index"]), n_points)
+        problem = output_problem(part, len(part["index"]), n_points, selected)
         if problem:  # e.g. an output registered in this process but not in the workers
             raise StudyError(f"batch {k} ({path}): {problem}")
         for name in data:
@@ -379,7 +384,7 @@ def assemble(study: Study, parts: Path):
                 data[name][()] = values[0]
         if study.histories:
             hist_parts.append((idx, part["displacement_history"]))
-    variables = output_variables(data, dims, names)
+    variables = output_variables(data, dims, names, selected)
     if study.histories:
         n_t = max(h.shape[1] for _, h in hist_parts)
         hist = np.full(shape + (n_t,), np.nan)

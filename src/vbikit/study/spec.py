@@ -5,6 +5,7 @@ A study file::
     name = "my study"
     seed = 2026                      # study seed: road seeds derive from it and the sample index
     batch_size = 32                  # crossings per batch (one prepared system, roads run as lanes)
+    outputs = ["impact_factor"]      # optional: only these outputs of vbikit.outputs (default: all)
 
     [base]                           # a whole scenario inline (same keys as a scenario file) ...
     # scenario = "bridge.toml"       # ... or a path to a scenario file, relative to the study file
@@ -39,6 +40,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from vbikit._toml import parse_toml, read_toml
 from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
+from vbikit.outputs import outputs as catalogue_outputs, select_outputs
 from vbikit.contact.registry import TIRE_MODELS
 from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario, section_keys
 
@@ -86,8 +88,14 @@ class StudyFile(BaseModel):
     seed: int = Field(0, ge=0, description="study seed; road seeds derive from it and the sample index")
     batch_size: int = Field(32, ge=1, le=10000, description="crossings per batch")
     histories: bool = Field(False, description="also store midspan displacement histories")
+    outputs: Optional[list[str]] = Field(None, description="the catalogue's outputs to reduce and store (default: all)")
     base: dict[str, Any] = Field(..., description="scenario (inline tables) or {scenario = \"path.toml\"}")
     axes: dict[str, Any] = Field(default_factory=dict, description="key -> list of values, or {samples = N}")
+
+    @field_validator("outputs")
+    @classmethod
+    def _outputs(cls, names: Optional[list[str]]) -> Optional[list[str]]:
+        return None if names is None else list(select_outputs(names))
 
     @field_validator("axes")
     @classmethod
@@ -203,7 +211,8 @@ def dim_name(key: str) -> str:
 
 @dataclass(frozen=True)
 class Study:
-    """A validated study: base scenario dict, axes, seed, batch size and the source text."""
+    """A validated study: base scenario dict, axes, seed, batch size, the outputs to reduce
+    (``outputs``: names of the catalogue ``vbikit.outputs``; None: all of them) and the source text."""
 
     name: str
     seed: int
@@ -212,6 +221,12 @@ class Study:
     base: dict[str, Any]
     axes: tuple[Axis, ...]
     base_dir: Path
+    outputs: Optional[tuple[str, ...]] = None
+
+    @property
+    def output_names(self) -> tuple[str, ...]:
+        """The outputs each crossing is reduced to and the dataset holds, in catalogue order."""
+        return tuple(o.name for o in catalogue_outputs(names=self.outputs))
 
     @property
     def shape(self) -> tuple[int, ...]:
@@ -224,11 +239,14 @@ class Study:
     def to_json(self) -> str:
         """Canonical JSON of the resolved study (stored in the dataset attributes and used to
         recognise the same study on restart)."""
-        return json.dumps({
+        spec = {
             "name": self.name, "seed": self.seed, "batch_size": self.batch_size, "histories": self.histories,
             "base": self.base,
             "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else list(a.values)) for a in self.axes},
-        }, sort_keys=True)
+        }
+        if self.outputs is not None:  # absent: the whole catalogue (studies and datasets written before the key)
+            spec["outputs"] = list(self.outputs)
+        return json.dumps(spec, sort_keys=True)
 
     def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
         """The scenario (dict) of the crossing at grid ``index``.  An axis over ``tire.model`` keeps
@@ -298,7 +316,8 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
             axes.append(Axis(key, dim_name(key), tuple(values)))
     if len({a.name for a in axes}) != len(axes):
         raise StudyError("axes: two axes map to the same dataset dimension name")
-    study = Study(raw.name, raw.seed, raw.batch_size, raw.histories, base, tuple(axes), base_dir)
+    study = Study(raw.name, raw.seed, raw.batch_size, raw.histories, base, tuple(axes), base_dir,
+                  None if raw.outputs is None else tuple(raw.outputs))
     # validate the base alone (clear message for base errors) and every combination of the
     # non-sample axes (sample axes only change the seed, which is always valid)
     try:
