@@ -169,11 +169,11 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "characteristic_total": ("load_effect", char_total, ev_attrs("", f"total (static + dynamic) load effect of the {spec.characteristic_period:g}-year return period")),
         "assessment_dynamic_ratio": ("load_effect", adr, ev_attrs("1", "ADR = characteristic total / characteristic static")),
         "return_level_static": (("load_effect", "return_period"), rl["static"] * signs[:, None], ev_attrs("", "static return level")),
-        "return_level_static_lower": (("load_effect", "return_period"), rl["static_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method)")),
-        "return_level_static_upper": (("load_effect", "return_period"), rl["static_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method)")),
+        "return_level_static_lower": (("load_effect", "return_period"), rl["static_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound nearer zero)")),
+        "return_level_static_upper": (("load_effect", "return_period"), rl["static_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound farther from zero)")),
         "return_level_total": (("load_effect", "return_period"), rl["total"] * signs[:, None], ev_attrs("", "total return level")),
-        "return_level_total_lower": (("load_effect", "return_period"), rl["total_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method)")),
-        "return_level_total_upper": (("load_effect", "return_period"), rl["total_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method)")),
+        "return_level_total_lower": (("load_effect", "return_period"), rl["total_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound nearer zero)")),
+        "return_level_total_upper": (("load_effect", "return_period"), rl["total_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound farther from zero)")),
         **_pot_variables(rl, signs, spec.ci, disagree, steep, pot_why),
         "assessment_dynamic_ratio_lower": ("load_effect", np.array([r.lower for r in ratios]), ev_attrs("1", f"lower {spec.ci:.0%} confidence bound of the ADR (delta method, covariance of the two fits from the sandwich of the same blocks; vbikit.extremes.level_ratio)")),
         "assessment_dynamic_ratio_upper": ("load_effect", np.array([r.upper for r in ratios]), ev_attrs("1", f"upper {spec.ci:.0%} confidence bound of the ADR")),
@@ -286,7 +286,8 @@ def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:
             "missing_because": because})
         for b in ("lower", "upper"):
             out[f"return_level_pot_{w}_{b}"] = (dims, rl[f"pot_{w}_{b}"] * signs[:, None], {
-                "units": "", "long_name": f"{b} {ci:.0%} confidence bound of return_level_pot_{w} (delta method)",
+                "units": "", "long_name": f"{b} {ci:.0%} confidence bound of return_level_pot_{w} (delta method; of the "
+                             "magnitude in the effect's governing direction)",
                 "missing_because": because})
         out[f"methods_disagree_{w}"] = (dims, disagree[w].astype(np.int8), {
             "units": "1", "long_name": f"1 if the block-maximum and the peaks-over-threshold {w} levels disagree: "
