@@ -11,7 +11,7 @@ from vbikit.cli.guard import guard, out_dir_option, steps_option
 
 
 def driveby_cmd(
-    file: Path = typer.Argument(..., help="Drive-by file (docs/driveby.md)."),
+    file: Path = typer.Argument(..., metavar="DRIVEBY.toml", help="Drive-by file (docs/driveby.md)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for driveby.nc, the figures and the report."),
     workers: Optional[int] = typer.Option(1, "--workers", min=1, help="Local worker processes (1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),

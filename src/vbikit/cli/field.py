@@ -12,7 +12,7 @@ _SHOWN = {"m": (1e3, "mm"), "-": (1e6, "µε"), "m/s^2": (1.0, "m/s²")}
 
 
 def field_(
-    field_file: Path = typer.Argument(..., help="FIELD.toml describing the measured crossings (docs/field.md)."),
+    field_file: Path = typer.Argument(..., metavar="FIELD.toml", help="FIELD.toml describing the measured crossings (docs/field.md)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figures and the metrics tables."),
     tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint, disk, rigid-disk."),
     calibrate: bool = typer.Option(False, "--calibrate", help="Fit a stiffness factor and damping ratio (least squares)."),

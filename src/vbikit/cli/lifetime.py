@@ -44,7 +44,7 @@ class _Bars:
 
 
 def lifetime_cmd(
-    spec: Path = typer.Argument(..., help="Lifetime file (TOML, docs/lifetime.md)."),
+    spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for lifetime.nc, report.txt and the figures."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),

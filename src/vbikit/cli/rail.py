@@ -11,7 +11,7 @@ from vbikit.cli.guard import STATE, guard, out_dir_option
 
 
 def rail_cmd(
-    spec: Path = typer.Argument(..., help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
+    spec: Path = typer.Argument(..., metavar="RAIL.toml", help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for rail.nc, rail-report.txt, rail-summary.json and "
                                                                       "rail-acceleration.png."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes (default: run.workers)."),

@@ -13,7 +13,7 @@ from vbikit.cli.render import json_text, outputs, write_text
 
 
 def run(
-    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (the summary) on stdout."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write time histories to this CSV file."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG) of the response."),
@@ -45,7 +45,7 @@ def run(
 
 
 def cite(
-    scenario: Path = typer.Argument(..., help="TOML scenario file."),
+    scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file."),
     bibtex: bool = typer.Option(False, "--bibtex", help="Print BibTeX entries instead of citations."),
 ) -> None:
     """Print the publications behind the models a scenario uses (docs/references.md has them all)."""
@@ -75,7 +75,7 @@ def demo(
 
 
 def compare_tires(
-    scenario: Path = typer.Argument(..., help="TOML scenario file (its [tire] section is replaced by each model)."),
+    scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file (its [tire] section is replaced by each model)."),
     out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the table."),
     n_points: int = typer.Option(6, "--n-points", min=1, help="Points of the multi-point tire."),
     as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),

@@ -83,7 +83,7 @@ _PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progre
 
 @app.command("run")
 def run_cmd(
-    study_file: Path = typer.Argument(..., help="TOML study file."),
+    study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
     out: Path = typer.Option(..., "--out", help="Result dataset (NetCDF, .nc)."),
     workers: Optional[int] = _WORKERS,
     scheduler: Optional[str] = _SCHEDULER,
@@ -110,7 +110,7 @@ def run_cmd(
 
 @app.command("validate")
 def validate_cmd(
-    study_file: Path = typer.Argument(..., help="TOML study file."),
+    study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
     yes: bool = _YES,
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,

@@ -24,7 +24,7 @@ def _lanes(text: str) -> list[float]:
 
 
 def traffic_cmd(
-    records: Path = typer.Argument(..., help="Vehicle records CSV (docs/traffic.md)."),
+    records: Path = typer.Argument(..., metavar="RECORDS.csv", help="Vehicle records CSV (docs/traffic.md)."),
     bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
     out: Path = typer.Option(..., "--out", help="Result dataset (NetCDF, .nc)."),
     lanes: Optional[str] = typer.Option(None, "--lanes", help="Lane centres y [m], comma-separated (lane 1 first); "
