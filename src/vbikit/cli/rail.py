@@ -17,11 +17,13 @@ def rail_cmd(
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes (default: run.workers)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Draw the acceleration-envelope figure."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar (trains swept)."),
+    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address (tcp://host:port): sweep "
+                                                                     "the trains on that cluster, one task a train."),
 ) -> None:
     """Sweep every train over every speed: envelopes of deck acceleration, deflection, moment and
     shear, phi'dyn, resonance speeds and the pass/fail report.  An interrupted sweep started again
-    resumes (finished trains in OUT_DIR/rail.parts).  (The sweep runs on local processes;
-    it has no --scheduler: a whole sweep takes seconds to minutes.)"""
+    resumes (finished trains in OUT_DIR/rail.parts).  The trains are swept on local processes
+    (--workers) or on a Dask cluster (--scheduler)."""
     from vbikit.rail.run import run_rail
 
     out_dir = out_dir_option(out_dir)
@@ -37,7 +39,8 @@ def rail_cmd(
 
     try:
         result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
-                                        progress=report if progress and not STATE["quiet"] else None))
+                                        progress=report if progress and not STATE["quiet"] else None,
+                                        scheduler=scheduler))
     except KeyboardInterrupt:
         typer.echo(f"\ninterrupted: finished trains are kept in {out_dir / 'rail.parts'}; run the same command "
                    "again to resume", err=True)

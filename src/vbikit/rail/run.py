@@ -226,11 +226,13 @@ def plan_rail(source: Any) -> RailPlan:
 
 
 def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
-             figures: bool = True, progress: Optional[Callable[[int, int], None]] = None) -> RailResult:
+             figures: bool = True, progress: Optional[Callable[[int, int], None]] = None,
+             scheduler: Optional[str] = None) -> RailResult:
     """Run a railway sweep (module docstring).  ``source``: a RAIL.toml path, its dict or a
     ``RailSpec``; ``out_dir``: where ``rail.nc``, ``rail-report.txt`` and ``rail-acceleration.png``
     go, with ``rail-summary.json`` (None: nothing written); ``workers`` overrides ``run.workers``; ``progress(done, total)``
-    after every group of trains (as many as workers) swept."""
+    after every group of trains (as many as workers) swept; ``scheduler``: a Dask scheduler's
+    address, the trains swept there (one task a train) instead of on local processes."""
     t0 = time.perf_counter()
     p = plan_rail(source)
     spec, bridge, f_limit, required, originals, trains, res, speeds, points, setup, coupled = (
@@ -253,7 +255,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     group = max(1, n_workers) if (progress is not None or stored.work is not None) else max(1, len(todo))
     for start in range(0, len(todo), group):
         idx = todo[start:start + group]
-        for i, result in zip(idx, sweep_moving_forces(setup, [trains[i] for i in idx], speeds, n_workers)):
+        for i, result in zip(idx, sweep_moving_forces(setup, [trains[i] for i in idx], speeds, n_workers, scheduler)):
             swept[i] = result
             stored.save(trains[i], *result)  # a finished train is never lost (kill -9, Ctrl-C)
         if progress is not None:

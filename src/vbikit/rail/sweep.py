@@ -72,14 +72,35 @@ def _sweep_one(args: tuple[SweepSetup, Train, NDArray[np.float64]]):
     return env, refine_train_peaks(setup, train, env)
 
 
-def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDArray[np.float64], workers: int = 1) -> list:
+def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDArray[np.float64], workers: int = 1,
+                        scheduler: Optional[str] = None) -> list:
     """(``MovingLoadEnvelopes``, ``RefinedPeaks``) of every train (``workers`` processes; 1: in this
-    process)."""
+    process; ``scheduler``: the address of a Dask scheduler, one task a train, instead)."""
     jobs = [(setup, t, speeds) for t in trains]
+    if scheduler is not None:
+        return _sweep_dask(jobs, scheduler)
     if workers <= 1 or len(trains) < 2:
         return [_sweep_one(j) for j in jobs]
     with ProcessPoolExecutor(max_workers=workers) as pool:
         return list(pool.map(_sweep_one, jobs))
+
+
+def _sweep_dask(jobs: list, scheduler: str, connect_timeout: float = 30.0) -> list:
+    """``_sweep_one`` of every job on the Dask cluster at ``scheduler`` (results in job order)."""
+    from vbikit.rail.spec import RailSpecError
+
+    try:
+        from dask.distributed import Client
+    except ImportError:  # pragma: no cover - depends on the install
+        raise RailSpecError("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
+    try:
+        client = Client(scheduler, timeout=f"{connect_timeout}s")
+    except OSError as err:
+        raise RailSpecError(f"--scheduler {scheduler}: cannot connect ({err})") from None
+    try:
+        return client.gather(client.map(_sweep_one, jobs, pure=False))
+    finally:
+        client.close()
 
 
 def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float64], irregularity: Optional[str] = None,
