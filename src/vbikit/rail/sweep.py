@@ -88,15 +88,9 @@ def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDAr
 def _sweep_dask(jobs: list, scheduler: str, connect_timeout: float = 30.0) -> list:
     """``_sweep_one`` of every job on the Dask cluster at ``scheduler`` (results in job order)."""
     from vbikit.rail.spec import RailSpecError
+    from vbikit.study.workers import dask_client
 
-    try:
-        from dask.distributed import Client
-    except ImportError:  # pragma: no cover - depends on the install
-        raise RailSpecError("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
-    try:
-        client = Client(scheduler, timeout=f"{connect_timeout}s")
-    except OSError as err:
-        raise RailSpecError(f"--scheduler {scheduler}: cannot connect ({err})") from None
+    client = dask_client(scheduler, RailSpecError, connect_timeout)
     try:
         return client.gather(client.map(_sweep_one, jobs, pure=False))
     finally:

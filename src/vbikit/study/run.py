@@ -50,7 +50,7 @@ from vbikit.outputs import OUTPUTS, outputs
 from vbikit.study.compute import point_names, run_batch
 from vbikit.study.spec import Study, StudyError
 from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
-from vbikit.study.workers import local_pool, shutdown_workers
+from vbikit.study.workers import dask_client, local_pool, shutdown_workers
 
 log = logging.getLogger(__name__)
 
@@ -304,14 +304,9 @@ def _run_local(study, batches, todo, workers, threads, finished) -> None:
 
 
 def _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout) -> None:
-    try:
-        from dask.distributed import Client, as_completed
-    except ImportError:  # pragma: no cover - depends on the install
-        raise StudyError("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
-    try:
-        client = Client(scheduler, timeout=f"{connect_timeout}s")
-    except OSError as err:
-        raise StudyError(f"--scheduler {scheduler}: cannot connect ({err})") from None
+    client = dask_client(scheduler, StudyError, connect_timeout)
+    from dask.distributed import as_completed
+
     try:
         [study_f] = client.scatter([study], broadcast=True)
         futures = [client.submit(_compute, study_f, batches[k], threads, key=f"vbikit-batch-{k}-{os.getpid()}",

@@ -1,5 +1,6 @@
-"""The local worker processes of studies: one pool kept between the studies of a session, whose
-workers end with the process that started them.
+"""The worker processes of studies: one local pool kept between the studies of a session, whose
+workers end with the process that started them; and the connection to a Dask cluster
+(``dask_client``) for runs given ``--scheduler``.
 
 The pool is kept so that consecutive studies (e.g. the paper's six) pay the start-up (imports,
 compiled-kernel cache, bridge modes, road profiles of the same seeds) once; it is ended at exit or
@@ -17,7 +18,7 @@ import sys
 import threading
 import time
 from concurrent.futures import ProcessPoolExecutor
-from typing import Optional
+from typing import Any, Optional
 
 #: how often a worker checks that its parent process is alive [s]
 WATCH_INTERVAL = 0.5
@@ -94,3 +95,17 @@ def shutdown_workers(kill: bool = False) -> None:
 
 
 atexit.register(shutdown_workers)
+
+
+def dask_client(scheduler: str, error: type[Exception], connect_timeout: float) -> Any:
+    """A ``dask.distributed.Client`` of the scheduler at ``scheduler``; ``error`` (the caller's
+    error class, naming ``--scheduler``) when dask.distributed is not installed or the scheduler
+    cannot be reached within ``connect_timeout`` [s].  The caller closes it."""
+    try:
+        from dask.distributed import Client
+    except ImportError:  # pragma: no cover - depends on the install
+        raise error("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
+    try:
+        return Client(scheduler, timeout=f"{connect_timeout}s")
+    except OSError as err:
+        raise error(f"--scheduler {scheduler}: cannot connect ({err})") from None
