@@ -79,12 +79,18 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
     return best, t_best
 
 
+def static_direction(static: NDArray[np.float64]) -> float:
+    """s = ±1, the sign of the static history's largest-magnitude value (+1 where it is 0): the
+    direction in which the peaks of an impact factor are taken (module docstring)."""
+    return float(np.sign(static[int(np.argmax(np.abs(static)))]) or 1.0)
+
+
 def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
                   dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
     """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction;
     with ``dynamic_rate`` (dR/dt) the dynamic peak is refined between samples (module docstring)."""
     i_st = int(np.argmax(np.abs(static)))
-    sign = np.sign(static[i_st]) or 1.0
+    sign = static_direction(static)
     if static[i_st] == 0.0:
         raise ValueError("the static response is zero everywhere: no impact factor at this response point")
     i_dyn = int(np.argmax(sign * dynamic))

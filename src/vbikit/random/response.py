@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.impact import static_direction
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import PointResponse, plan_responses
 from vbikit.random.lines import Lines
@@ -133,19 +134,15 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
 
 def _sampled_peaks(pem: PEMResult, points: list[PointResponse], n: int, samples: int) -> NDArray[np.float64]:
     """(samples, n_pt): the peak of each sampled history in its static peak's direction."""
-    sign = np.array([_direction(p.static_displacement[:n]) for p in points])
+    sign = np.array([static_direction(p.static_displacement[:n]) for p in points])
     mean = np.stack([p.displacement[:n] for p in points], axis=1) * sign  # (n_t, n_pt)
     out = [np.max(mean[None] + y[:, :n] * sign, axis=1) for y in pem.sample_displacement(samples)]
     return np.concatenate(out, axis=0)
 
 
-def _direction(static: NDArray[np.float64]) -> float:
-    return float(np.sign(static[int(np.argmax(np.abs(static)))]) or 1.0)
-
-
 def _point_entry(pem: PEMResult, p: PointResponse, j: int, n: int, quantiles, peaks: NDArray[np.float64]) -> dict[str, Any]:
     static = p.static_displacement[:n]
-    sign = _direction(static)
+    sign = static_direction(static)
     r_st = float(np.max(sign * static))
     mean, rate = sign * p.displacement[:n], sign * p.velocity[:n]
     std, rate_std = pem.std("displacement")[:n, j], pem.std("velocity")[:n, j]
