@@ -82,8 +82,8 @@ def _compare(n_modes: int, tire: dict, n: int):
 
 
 def test_load_effects_and_vehicle_accelerations_match_monte_carlo():
-    """6 modes, point tires, class C: 60 crossings (the interval is wide; the slow test below has 600)."""
-    found, z = _compare(6, {"model": "point"}, 60)
+    """6 modes, point tires, class C: 200 crossings."""
+    found, z = _compare(6, {"model": "point"}, 200)
     assert all(v >= 0.95 for v in found.values()), found
     assert abs(z) < 3.3, z
 
