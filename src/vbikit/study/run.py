@@ -202,9 +202,14 @@ def run_study(
     ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
     batches run on that cluster instead; ``progress(done, total)`` is called after every
     finished batch (crossings); ``threads``: crossings run at once inside one worker;
-    ``connect_timeout`` [s]: how long to try to reach the scheduler.
+    ``connect_timeout`` [s]: how long to try to reach the scheduler.  A study with ``method =
+    "pem"`` runs one pseudo-excitation analysis per cell instead (``vbikit.study.pem.PemStudy``).
     """
     out = Path(out)
+    if getattr(study, "method", None) == "pem":  # one pseudo-excitation analysis per cell (vbikit.study.pem)
+        from vbikit.study.pem import PemStudy
+
+        study = PemStudy(study)
     if out.suffix not in (".nc", ".nc4", ".netcdf"):
         raise StudyError(f"--out must be a NetCDF file name ending in .nc, got {out}")
     try:
