@@ -111,9 +111,9 @@ class PemStudy:
         import xarray as xr
 
         from vbikit._version import __version__
-        from vbikit.study.run import _cf_unit
-        from vbikit.study.storage import load_part, part_checksums
         from vbikit.scenario.schema import key_unit
+        from vbikit.study.spec import cf_key_unit
+        from vbikit.study.storage import load_part, part_checksums
 
         shape = self.study.shape
         dims = [a.name for a in self.axes]
@@ -135,7 +135,7 @@ class PemStudy:
             values = list(a.values)
             text = isinstance(values[0], str)
             coords[a.name] = (a.name, np.array(values, dtype=object) if text else np.array(values),
-                              {"scenario_key": a.key, "units": _cf_unit(key_unit(a.key), text),
+                              {"scenario_key": a.key, "units": cf_key_unit(key_unit(a.key), text),
                                "long_name": f"scenario key {a.key}"})
         attrs = {"title": self.name or "vbikit study", "study": self.to_json(), "method": "pem",
                  "vbikit_version": __version__, "axes": json.dumps({a.name: a.key for a in self.axes}), "Conventions": "CF-1.8"}

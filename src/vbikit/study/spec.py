@@ -226,6 +226,15 @@ class Axis:
         return self.seeds[i] if self.seeds is not None else self.values[i]
 
 
+def cf_key_unit(unit: str, text: bool) -> str:
+    """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
+    "" for text-valued coordinates (categories have no unit)."""
+    if text:
+        return ""
+    return {"": "1", "-": "1", "m/s": "m s-1", "m/s^2": "m s-2", "km/h": "km h-1", "cycle/m": "m-1",
+            "m^3/cycle": "m3", "N m^2": "N m2"}.get(unit, unit)
+
+
 def dim_name(key: str) -> str:
     """Dataset dimension name of an axis key ("tire.n_points" -> "tire_n_points"; road.seed samples -> "sample")."""
     return key.replace(".", "_").replace("-", "_")
