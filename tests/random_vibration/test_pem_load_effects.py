@@ -94,3 +94,22 @@ def test_load_effects_match_monte_carlo_demo():
     found, z = _compare(20, {"model": "multipoint", "n_points": 6, "contact_length": 0.254}, 600)
     assert all(v >= 0.95 for v in found.values()), found
     assert abs(z) < 3.3, z
+
+
+def test_cli_text_reports_load_effects_and_vehicle(tmp_path, monkeypatch):
+    """``vbikit run --random`` prints every load effect's peak, σ and IM and the vehicle's σ."""
+    from typer.testing import CliRunner
+
+    import vbikit.scenario.pipeline as pipeline
+    from vbikit.cli import app
+
+    _, _, rr = _random(1, {"model": "point"}, samples=400)
+    monkeypatch.setattr(pipeline, "run_random", lambda *a, **k: rr)
+    path = tmp_path / "s.toml"
+    path.write_text("")
+    res = CliRunner().invoke(app, ["run", str(path), "--random"])
+    assert res.exit_code == 0, res.output
+    moment = next(e for e in rr.summary["effects"] if e["kind"] == "moment")
+    assert "moment moment_x8.38 (mode-superposition)" in res.output
+    assert f"{moment['impact_factor_mean']:9.4f}" in res.output
+    assert "σ max wheel force" in res.output and "tractor_heave" in res.output

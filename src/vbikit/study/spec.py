@@ -108,7 +108,7 @@ class StudyFile(BaseModel):
     @classmethod
     def _method(cls, method: str) -> str:
         if method not in STUDY_METHODS:
-            raise ValueError(f"method must be one of {', '.join(STUDY_METHODS)}, got {method!r}")
+            raise ValueError(f"must be one of {', '.join(STUDY_METHODS)}, got {method!r}")
         return method
 
     @field_validator("outputs")
