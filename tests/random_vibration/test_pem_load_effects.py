@@ -113,3 +113,32 @@ def test_cli_text_reports_load_effects_and_vehicle(tmp_path, monkeypatch):
     assert "moment moment_x8.38 (mode-superposition)" in res.output
     assert f"{moment['impact_factor_mean']:9.4f}" in res.output
     assert "σ max wheel force" in res.output and "tractor_heave" in res.output
+
+
+def test_page_quotes_the_stored_effect_numbers():
+    """docs/random.md quotes what docs/scripts/random_effects_numbers.py stored (run it again when
+    the code changes them)."""
+    import json
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    page = " ".join((root / "docs" / "random.md").read_text(encoding="utf-8").split())
+    n = json.loads((root / "docs" / "figures" / "random-effects-numbers.json").read_text())
+    d, f = n["demo_effects"], n["tire_filter"]
+    m, r = d["moment_x8.38"], d["reaction_s0"]
+    q = " / ".join
+    want = [f"at {m['inside_pct']:g} % (mid-span moment) and {r['inside_pct']:g} % (entry reaction)",
+            f"at {d['tractor_heave_acceleration']['inside_pct']:g} % for the tractor's heave acceleration",
+            f"median {m['ratio'][0]:.4f} (5–95 %: {m['ratio'][1]:.4f}–{m['ratio'][2]:.4f})",
+            f"{r['ratio'][0]:.4f} ({r['ratio'][1]:.4f}–{r['ratio'][2]:.4f}) for the reaction",
+            f"by PEM {d['moment_im_pem']['mean']:.3f} and " + q(f"{d['moment_im_pem'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
+            f"by Monte Carlo {d['moment_im_mc']['mean']:.3f} and " + q(f"{d['moment_im_mc'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
+            f"smooth-road IM {d['moment_im_smooth']['mode_superposition']:.4f} against "
+            f"{d['moment_im_smooth']['mode_acceleration']:.4f}",
+            f"is {d['moment_std_max_ma_over_ms']:.4f} times",
+            f"Wheel forces: PEM {f['wheel_force']['pem']:.4f}, Monte Carlo {f['wheel_force']['mc']:.4f}",
+            f"{f['wheel_force']['mc_99'][0]:.4f}–{f['wheel_force']['mc_99'][1]:.4f}",
+            f"Mid-span acceleration: PEM {f['acceleration']['pem']:.4f}, Monte Carlo {f['acceleration']['mc']:.4f}",
+            f"({f['acceleration']['mc_99'][0]:.4f}–{f['acceleration']['mc_99'][1]:.4f})"]
+    missing = [s for s in want if s not in page]
+    assert not missing, f"docs/random.md does not quote {missing}: run python docs/scripts/random_effects_numbers.py"
