@@ -96,21 +96,18 @@ def effects() -> dict:
     return out
 
 
-def tire_filter() -> dict:
+def tire_filter(spacing: float) -> dict:
+    """ρ by PEM and by Monte Carlo on roads sampled every ``spacing`` [m] (PEM on the engine's step
+    for them)."""
+    sys.path.insert(0, str(OUT.parents[2]))  # the repository root: the test's own comparison
+    from tests.random_vibration.test_pem_tire_filter import _tire
+
     road = PseudoRoad(RoadPSD.iso("C"))
     got = {}
     for name, tire in (("point", POINT), ("multi", MULTI)):
-        plan = plan_of(tire)
-        crossing, dt = plan.built.crossing, plan.run.dt
-        b = crossing.bridge
-        shapes = b.mode_shapes([b.default_x_at(b.default_response_y)], [b.default_response_y])
-        res = pseudo_excitation(crossing, road, Probes(shapes), dt, data=plan.run.kernel_data)
-        runs = monte_carlo(crossing, road, range(1, N + 1), lambda r: (r.wheel_forces, r.xi_ddot @ shapes[0]))
-        k = min(res.time.size, runs[0][1].size)
-        got[name] = ({"wheel force": res.var["wheel_force"][:k].sum(axis=1), "acceleration": res.var["acceleration"][:k, 0]},
-                     {"wheel force": np.array([r[0][:k] for r in runs]), "acceleration": np.array([r[1][:k] for r in runs])})
+        got[name] = _tire(tire, road, N, 20, spacing)
     rng = np.random.default_rng(0)
-    out = {"roads": N}
+    out: dict = {"roads": N, "road_spacing": spacing}
     for key in ("wheel force", "acceleration"):
         (pp, mp), (pm, mm) = got["point"], got["multi"]
         v = lambda a: float(a.var(axis=0, ddof=1).mean())  # noqa: E731
@@ -126,7 +123,7 @@ def tire_filter() -> dict:
 
 
 def main() -> None:
-    numbers = {"demo_effects": effects(), "tire_filter": tire_filter()}
+    numbers = {"demo_effects": effects(), "tire_filter": tire_filter(0.01), "tire_filter_fine_road": tire_filter(0.005)}
     OUT.write_text(json.dumps(numbers, indent=2) + "\n")
     json.dump(numbers, sys.stdout, indent=2)
 

@@ -24,14 +24,17 @@ POINT = {"model": "point"}
 MULTI = {"model": "multipoint", "n_points": 6, "contact_length": 0.254}
 
 
-def _tire(tire: dict, road: PseudoRoad, n: int, n_modes: int):
+def _tire(tire: dict, road: PseudoRoad, n: int, n_modes: int, spacing: float = 0.01):
+    """PEM's and Monte Carlo's wheel forces and mid-span acceleration; Monte Carlo on roads sampled
+    every ``spacing`` [m], PEM on the engine's step for those roads."""
     plan = _plan(n_modes, tire)
-    crossing, dt = plan.built.crossing, plan.run.dt
+    crossing = plan.built.crossing
     bridge = crossing.bridge
     x, y = bridge.default_x_at(bridge.default_response_y), bridge.default_response_y
     shapes = bridge.mode_shapes([x], [y])
-    res = pseudo_excitation(crossing, road, Probes(shapes), dt, data=plan.run.kernel_data)
-    runs = monte_carlo(crossing, road, range(1, n + 1), lambda r: (r.wheel_forces, r.xi_ddot @ shapes[0]))
+    runs = monte_carlo(crossing, road, range(1, n + 1), lambda r: (r.wheel_forces, r.xi_ddot @ shapes[0], r.dt),
+                       spacing=spacing)
+    res = pseudo_excitation(crossing, road, Probes(shapes), runs[0][2], data=plan.run.kernel_data)
     k = min(res.time.size, runs[0][1].size)
     pem = {"wheel force": res.var["wheel_force"][:k].sum(axis=1), "acceleration": res.var["acceleration"][:k, 0]}
     mc = {"wheel force": np.array([r[0][:k] for r in runs]), "acceleration": np.array([r[1][:k] for r in runs])}
@@ -43,9 +46,9 @@ def _variance_mean(samples: np.ndarray) -> float:
     return float(samples.var(axis=0, ddof=1).mean())
 
 
-def _check(n: int, n_modes: int) -> dict[str, tuple[float, float, float]]:
+def _check(n: int, n_modes: int, spacing: float = 0.01) -> dict[str, tuple[float, float, float]]:
     road = PseudoRoad(RoadPSD.iso("C"))
-    (pem_p, mc_p), (pem_m, mc_m) = _tire(POINT, road, n, n_modes), _tire(MULTI, road, n, n_modes)
+    (pem_p, mc_p), (pem_m, mc_m) = _tire(POINT, road, n, n_modes, spacing), _tire(MULTI, road, n, n_modes, spacing)
     rng = np.random.default_rng(0)
     found = {}
     for key in pem_p:
@@ -74,5 +77,8 @@ def test_multipoint_tire_filter_matches_monte_carlo():
 
 @pytest.mark.slow
 def test_multipoint_tire_filter_matches_monte_carlo_demo():
-    """The demo's bridge (20 modes), 1,000 roads."""
-    _assert(_check(1000, 20))
+    """The demo's bridge (20 modes), 1,000 roads sampled every 0.005 m: at the scenario's 0.01 m
+    the point tire's acceleration σ by Monte Carlo is ≈ 1 % lower (the road linear between samples
+    and the engine's step for them smooth the shortest wavelengths, which the point tire feels), and
+    the paired interval at 1,000 roads is narrow enough to see it (docs/random.md, (e))."""
+    _assert(_check(1000, 20, spacing=0.005))
