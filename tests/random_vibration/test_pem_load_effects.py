@@ -140,5 +140,11 @@ def test_page_quotes_the_stored_effect_numbers():
             f"{f['wheel_force']['mc_99'][0]:.4f}–{f['wheel_force']['mc_99'][1]:.4f}",
             f"Mid-span acceleration: PEM {f['acceleration']['pem']:.4f}, Monte Carlo {f['acceleration']['mc']:.4f}",
             f"({f['acceleration']['mc_99'][0]:.4f}–{f['acceleration']['mc_99'][1]:.4f})"]
+    g = n["tire_filter_fine_road"]
+    want += [f"Monte Carlo gives\n{g['acceleration']['mc']:.4f} ({g['acceleration']['mc_99'][0]:.4f}–{g['acceleration']['mc_99'][1]:.4f})"
+             .replace("\n", " "), f"PEM on that step {g['acceleration']['pem']:.4f}"]
+    for key in ("wheel_force", "acceleration"):  # what the page claims: inside on the finer road
+        lo, hi = g[key]["mc_99"]
+        assert lo <= g[key]["pem"] <= hi, (key, g)
     missing = [s for s in want if s not in page]
     assert not missing, f"docs/random.md does not quote {missing}: run python docs/scripts/random_effects_numbers.py"
