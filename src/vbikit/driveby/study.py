@@ -974,13 +974,20 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     ds = run_study(DriveByStudy(spec), out_dir / "driveby.nc", workers=workers, scheduler=scheduler, progress=progress)
+    write_outputs(spec, ds, out_dir, figures)
+    return ds
+
+
+def write_outputs(spec: DriveBy, ds, out_dir: Path, figures: bool = True) -> str:
+    """Everything besides driveby.nc: ``driveby-report.txt`` and ``driveby-summary.json``,
+    ``driveby.zarr`` (``dataset.format = "zarr"``), the figures; returns the report's text."""
     from vbikit.driveby.report import write_report
 
-    write_report(ds, out_dir)
+    text = write_report(ds, out_dir)
     if spec.output["format"] == "zarr":
-        write_zarr(ds, out_dir / "driveby.zarr")
+        write_zarr(ds, Path(out_dir) / "driveby.zarr")
     if figures:
         from vbikit.driveby.figures import write_figures
 
         write_figures(ds, out_dir)
-    return ds
+    return text
