@@ -287,12 +287,13 @@ def test_contact_displacement_of_a_slow_pass_is_the_static_deflection():
     assert np.max(np.abs(got - static)) < 0.01 * np.max(np.abs(static))
 
 
-def test_zarr_asked_for_without_the_package_is_a_clear_error(tmp_path):
+def test_zarr_writes_a_store_chunked_per_pass_or_says_the_package_is_missing(tmp_path):
+    """Without zarr (an optional dependency) a clear error before the run; with it, the store."""
     import importlib.util
 
     from vbikit.driveby.study import check_cases, run_driveby
 
-    spec = parse_driveby(_file(dataset={"format": "zarr"}, variability={"passes": 2}))
+    spec = parse_driveby(_file(dataset={"format": "zarr", "chunk_passes": 1}, variability={"passes": 2}))
     if importlib.util.find_spec("zarr") is None:
         with pytest.raises(DriveByError, match=r"dataset\.format: \"zarr\" needs the optional package 'zarr'"):
             check_cases(spec)
@@ -301,7 +302,9 @@ def test_zarr_asked_for_without_the_package_is_a_clear_error(tmp_path):
 
     ds = run_driveby(spec, tmp_path, workers=1, figures=False)
     back = xr.open_zarr(tmp_path / "driveby.zarr")
+    assert back.sensor_history.chunks[0] == (1, 1)
     np.testing.assert_array_equal(back.sensor_history.values, ds.sensor_history.values)
+    np.testing.assert_array_equal(back.split.values, ds.split.values)
 
 
 def test_bad_dataset_table_names_the_key():
