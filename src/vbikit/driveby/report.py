@@ -7,6 +7,10 @@ import numpy as np
 from vbikit.driveby.quality import MIN_PASSES
 
 
+#: the most distinct values of a label the report groups the errors by
+MAX_GROUPS = 20
+
+
 class _Columns:
     """The Dataset's variables as numpy arrays, each read once (indexing an xarray variable per
     case costs ~0.1 ms: seconds for a dataset of thousands of passes)."""
@@ -134,7 +138,7 @@ def report_text(ds) -> str:
             continue
         values = c[key]
         groups = sorted(set(values.tolist()), key=str)
-        if len(groups) > 1:
+        if 1 < len(groups) <= MAX_GROUPS:  # drawn values (one per pass) form no groups
             lines.append(f"  all cases by {key}: " + ", ".join(
                 f"{g}: {np.mean(np.abs(err[values == g])):.2f} %" for g in groups))
     lines += ["", *multipass_lines(ds)]
