@@ -175,6 +175,9 @@ def test_fleet_all_runs_every_pass_with_every_vehicle_and_labels_it(fleet_run):
         speed = rng.uniform(7.0, 9.0)
         mass_factor = rng.uniform(0.9, 1.1, 1)[0]  # first of the vehicle factors (one DOF: a cart)
         assert int(ds.vehicle[i]) == i % 2 and int(ds.draw_index[i]) == p and int(ds.pass_index[i]) == p
+        # a random pass's road: seed = SeedSequence([seed, draw index]).generate_state(1, uint32) (study.spec.derive_seed)
+        road = int(np.random.SeedSequence([SEED, p]).generate_state(1, np.uint32)[0])
+        assert int(ds.road_seed[i]) == road and int(ds.traffic_seed[i]) == -1
         assert float(ds.speed[i]) == pytest.approx(speed, rel=1e-12)
         assert float(ds.vehicle_mass_kg[i]) == pytest.approx((120.0, 300.0)[i % 2] * mass_factor, rel=1e-9)
         assert float(ds.vehicle_factor[i, 0]) == pytest.approx(mass_factor, rel=1e-12)

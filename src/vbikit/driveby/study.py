@@ -161,17 +161,25 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
     road = data.setdefault("road", {})
     if "road_class" in case:
         road["class"] = case["road_class"]
-    if "road_seed" in case:
-        road["seed"] = case["road_seed"]
-    elif "index" in case:  # a random pass of [variability]: its own road, seeded by (file seed, case index)
-        from vbikit.study.spec import derive_seed
-
-        road["seed"] = derive_seed(spec.seed, case["index"])
+    if "road_seed" in case or "index" in case:
+        road["seed"] = case_road_seed(spec, case)
     if case.get("damage_severity", 0.0) > 0.0:
         data["bridge"] = dict(data["bridge"])
         data["bridge"]["damage"] = [*data["bridge"].get("damage", []), {
             "position": case["damage_position"], "length": spec.damage_length, "severity": case["damage_severity"]}]
     return data
+
+
+def case_road_seed(spec: DriveBy, case: dict) -> int:
+    """The road seed of a case: swept, or a random pass's own, seeded by (file seed, draw index)
+    (``vbikit.study.spec.derive_seed``), or the file's [road] seed."""
+    if "road_seed" in case:
+        return int(case["road_seed"])
+    if "index" in case:
+        from vbikit.study.spec import derive_seed
+
+        return derive_seed(spec.seed, case["index"])
+    return int(spec.scenario.get("road", {}).get("seed", 0))
 
 
 def _vehicle(spec: DriveBy, case: dict):
@@ -689,7 +697,8 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
         "scour_class": np.array([c.get("scour_class", -1) for c in cases], np.int64),
         "pass_index": np.array([c.get("pass", 0) for c in cases], np.int64),
         "road_class": np.array([c.get("road_class", base_road.get("class", "none")) for c in cases], dtype=object),
-        "road_seed": np.array([c.get("road_seed", base_road.get("seed", 0)) for c in cases], np.int64),
+        "road_seed": np.array([case_road_seed(spec, c) for c in cases], np.int64),
+        "traffic_seed": np.array([d.get("traffic_seed", -1) for d in drawn], np.int64),
         "damage_position": np.array([c.get("damage_position", np.nan) if c.get("damage_severity", 0) > 0 else np.nan
                                      for c in damage], float),
         "damage_severity": np.array([c.get("damage_severity", 0.0) for c in damage], float),
@@ -709,7 +718,8 @@ LABEL_ATTRS = {
                          "variability.scour_classes[k] (−1: none)"),
     "pass_index": ("1", "pass number within its combination of the sweep and scour class (its draw: the case index)"),
     "road_class": ("", "road roughness class (ISO 8608; none = smooth)"),
-    "road_seed": ("1", "seed of the random road"),
+    "road_seed": ("1", "seed of the random road (a random pass's own: derived from the file's seed and draw_index)"),
+    "traffic_seed": ("1", "seed of the pass's background trucks (variability.traffic_flow; −1: none)"),
     "damage_position": ("m", "start of the damaged region from the bridge entry (NaN: healthy)"),
     "damage_severity": ("1", "relative loss of bending stiffness EI in the damaged region (0: healthy)"),
     "damage_length": ("m", "length of the damaged region (NaN: healthy)"),
