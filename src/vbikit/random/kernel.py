@@ -12,6 +12,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from vbikit.solve.numba_cache import ensure_cache_location
+
+ensure_cache_location()  # before the @njit(cache=True) below
+
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def record(i, st, n_m, n_w, n_d, deck, v_acc, cw, var, coarse, cov_dv, lam1, kept, keep, work_d, work_a):
