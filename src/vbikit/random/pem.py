@@ -30,9 +30,16 @@ wavelength filter) are exact.  Two wheel lines with the road's coherence model
 r_R = c r_L + √(1 − c²) r_I (``vbikit.road.psd.correlated_profile``) are two independent
 pseudo-inputs per line: (r_L, r_R) = (1, c)·r̃ and (0, √(1 − c²))·r̃.
 
-Integration: Newmark's average-acceleration rule, ``substeps`` steps per step of the engine's
-time grid (one inverse of the real effective matrix per step, all lines as right-hand sides), from the static equilibrium
-K(t₀) ỹ₀ = F̃(t₀) (zero rates; the engine's own start, ``vbikit.solve.system.static_state``).
+Integration (``method``): by default the engine's own integrator, exact modal stepping
+(``vbikit.solve.kernels.implicit`` with ``vbikit.solve.modal_step.exact_step`` and
+``vehicle_step``), which is linear for linear tires: per step one matrix maps every line's free
+state and pseudo road load to its end-of-step modal loads and wheel forces (``_exact_lines``), all
+lines as columns of one product, in the compiled loop of ``vbikit.random.kernel``; PEM and the
+engine's Monte Carlo then estimate σ of the same discrete system.  ``method="newmark"``: Newmark's
+average-acceleration rule on the assembled equations, ``substeps`` steps per step of the engine's
+time grid (one inverse of the real effective matrix per step, all lines as right-hand sides).
+Both start from the static equilibrium K(t₀) ỹ₀ = F̃(t₀) (zero rates; the engine's own start,
+``vbikit.solve.system.static_state``).
 
 Assumptions (where it fails): contact everywhere (no lift-off: check the lift-off probability),
 linear tires (disk and rigid-disk tires are geometric nonlinear and are refused), a Gaussian
@@ -379,7 +386,7 @@ def _exact_lines(run: _Run) -> None:
         kernel.record(i, st, n_m, n_w, n_d, deck, v_acc, run.coarse_w, var, coarse, run.cov_dv, run.lam1, kept, keep,
                       np.empty((4 * n_pt, st.shape[1])), np.empty((n_d, st.shape[1])))
 
-    phase, u0, (x0, vx0, phi0, dphi0, *_) = run.static_start()
+    phase, u0, (_, vx0, phi0, dphi0, *_) = run.static_start()
     n_c = phase.shape[1] * 2  # float columns
     st = np.zeros((n_st, n_c))
     inp = np.zeros((o_in_g + n_p, n_c))
@@ -395,6 +402,7 @@ def _exact_lines(run: _Run) -> None:
     eye = np.eye(n_r)
     n_f = run.fine.size
     dtravel = np.diff(run.travel, axis=0)  # (n_f − 1, V)
+    forward = np.ascontiguousarray(run.forward[:, 0])
     for c0 in range(1, n_f, STEP_CHUNK):
         c1 = min(c0 + STEP_CHUNK, n_f)
         phi, dphi, rates = _shape_rows(run, c0, c1)
@@ -405,7 +413,7 @@ def _exact_lines(run: _Run) -> None:
         y = np.linalg.solve(eye - jac @ e, jac)  # (steps, n_r, P)
         gmat = np.ascontiguousarray(np.concatenate([y @ a_xi, y @ a_dxi, y @ a_z, y], axis=2))  # (steps, n_r, n_in)
         kernel.advance(c0 - 1, run.substeps, gmat, st, inp, phase, ms.a11, ms.a12, ms.b1, ms.a21, ms.a22, ms.b2, ms.c1,
-                       ms.c2, free_z, resp, k_z, dtravel[c0 - 1:c1 - 1], run.wave, pts.vehicle, np.ascontiguousarray(run.forward[:, 0]), rates,
+                       ms.c2, free_z, resp, k_z, dtravel[c0 - 1:c1 - 1], run.wave, pts.vehicle, forward, rates,
                        run.coef_k, run.coef_cw, deck, v_acc, run.coarse_w, var, coarse, run.cov_dv, run.lam1, kept, keep)
     r = 0
     for name in NAMES:
