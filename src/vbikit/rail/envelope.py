@@ -14,9 +14,21 @@ if TYPE_CHECKING:
     from vbikit.rail.sweep import SweepSetup
 
 
-def moment_sections(span: float, n: int) -> NDArray[np.float64]:
-    """The n − 1 interior sections x_j = j L / n [m] (n even: midspan among them)."""
-    return span * np.arange(1, n) / n
+def moment_sections(span: float, n: int, supports=(0.0,)) -> NDArray[np.float64]:
+    """The moment stations [m]: x_j = j L / n, j = 0 … n (n even: midspan among them), and every
+    support x in ``supports`` (the span's ends, and interior supports of a continuous girder), sorted.
+    The supports are stations because a span with restrained ends, or a continuous girder over
+    them, has its largest (hogging) moment there — where an envelope of interior stations alone
+    cannot see it; on a simply supported span their moment is 0."""
+    xs = np.concatenate([span * np.arange(0, n + 1) / n, np.asarray(supports, float)])
+    xs = np.sort(xs[(xs >= 0.0) & (xs <= span * (1 + 1e-12))])
+    keep = np.r_[True, np.diff(xs) > 1e-9 * span]
+    return np.minimum(xs[keep], span)
+
+
+def stations_words(n: int) -> str:
+    """The station set of ``moment_sections`` in words (dataset attributes, report, docs)."""
+    return f"x = j L/{n}, j = 0 … {n} (both supports and midspan among them), and every interior support"
 
 
 #: a line is piecewise linear when it leaves the chords between its breakpoints by at most this share of its largest value
