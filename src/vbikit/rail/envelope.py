@@ -14,23 +14,36 @@ if TYPE_CHECKING:
     from vbikit.rail.sweep import SweepSetup
 
 
+#: the entry support's station lies this fraction of L right of it: a bridge model gives the moment at a
+#: section as that of the forces and couples left of it, 0 at x = 0 exactly (a restrained end's couple is
+#: at x = 0); just right of it the moment is the end's hogging moment (to a relative 1e-6)
+END_OFFSET = 1e-6
+
+
 def moment_sections(span: float, n: int, supports=(0.0,)) -> NDArray[np.float64]:
-    """The moment stations [m]: x_j = j L / n, j = 0 … n (n even: midspan among them), and every
-    support x in ``supports`` (the span's ends, and interior supports of a continuous girder), sorted.
-    The supports are stations because a span with restrained ends, or a continuous girder over
-    them, has its largest (hogging) moment there — where an envelope of interior stations alone
-    cannot see it; on a simply supported span their moment is 0."""
+    """The moment stations [m]: x_j = j L / n, j = 0 … n (n even: midspan among them; x_0 at
+    ``END_OFFSET`` · L), and every support x in ``supports`` (the span's ends, and interior supports
+    of a continuous girder), sorted.  The supports are stations because a span with restrained
+    ends, or a continuous girder over them, has its hogging moment there — the largest where the
+    restraint is stiff — which an envelope of interior stations alone cannot see; on a simply
+    supported span their moment is 0."""
     xs = np.concatenate([span * np.arange(0, n + 1) / n, np.asarray(supports, float)])
     xs = np.sort(xs[(xs >= 0.0) & (xs <= span * (1 + 1e-12))])
     keep = np.r_[True, np.diff(xs) > 1e-9 * span]
-    return np.minimum(xs[keep], span)
+    xs = np.minimum(xs[keep], span)
+    xs[0] = max(xs[0], END_OFFSET * span)
+    return xs
 
 
 def stations_words(n: int) -> str:
     """The station set of ``moment_sections`` in words (dataset attributes, report, docs)."""
-    return f"x = j L/{n}, j = 0 … {n} (both supports and midspan among them), and every interior support"
+    return (f"x = j L/{n}, j = 0 … {n} (both supports and midspan among them; x_0 = {END_OFFSET:g} L, just right of "
+            "the entry support), and every interior support")
 
 
+#: influence values [m per unit load] below this fraction of L are rounding of 0 (the moment line at a simply
+#: supported end, a station of ``moment_sections``)
+ROUNDING = 1e-12
 #: a line is piecewise linear when it leaves the chords between its breakpoints by at most this share of its largest value
 LINEAR_TOL = 1e-9
 #: samples per piece of the linearity test, and first-axle travel samples per span on a curved line
@@ -76,6 +89,7 @@ def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64
         eta = np.zeros(pos.shape)
         if on.any():
             eta[on] = -np.asarray(effect.influence(pos[on], np.full(int(on.sum()), y)), float)
+        eta[np.abs(eta) <= ROUNDING * span] = 0.0  # a simply supported end's moment line: rounding of 0
         out[j] = float(np.max(np.abs(eta @ loads)))
     return out
 
