@@ -71,26 +71,46 @@ def piecewise_linear(effect, x: float, span: float, y: float = 0.0) -> bool:
 def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64], axles: NDArray[np.float64],
                     loads: NDArray[np.float64], y: float = 0.0, travel: Optional[NDArray[np.float64]] = None) -> NDArray[np.float64]:
     """max over the train's positions of |Σ_k P_k η(s − a_k)| at each section (η the effect of a unit
-    downward force), evaluated where an axle stands on a breakpoint of a simply supported span's
-    influence line (a support or the section itself: s = a_k, a_k + x, a_k + L) — exact for a
-    piecewise-linear line — and at the first-axle travel samples ``travel`` [m]; a curved line
-    (``piecewise_linear`` false: restrained ends, a girder of a deck) is also sampled every
-    L / ``TRAVEL_STEPS`` of travel when no ``travel`` is given."""
+    downward force).  On a piecewise-linear influence line (a simply supported span's: breakpoints
+    0, x, L; ``piecewise_linear``) the exact extreme by the breakpoint sweep
+    (``vbikit.analysis.breakpoints.chain_extremes``: an axle on a breakpoint; the one-sided values
+    1e-9 L either side of each).  A curved line (restrained ends, a girder of a deck) is evaluated
+    where an axle stands on a breakpoint and at the first-axle travel samples ``travel`` [m], every
+    L / ``TRAVEL_STEPS`` of travel when none is given; ``travel`` given, a straight-sided line is
+    evaluated so too (besides the sweep)."""
+    from vbikit.analysis.breakpoints import chain_extremes
+
     span = float(bridge.span)
+    eps = 1e-9 * span
     out = np.zeros(sections.size)
     for j, x in enumerate(sections):
         effect = bridge.load_effect(kind, float(x))
+
+        def eta_at(pos):
+            pos = np.asarray(pos, float)
+            on = (pos >= 0.0) & (pos <= span)
+            eta = np.zeros(pos.shape)
+            if on.any():
+                eta[on] = -np.asarray(effect.influence(pos[on], np.full(int(on.sum()), y)), float)
+            eta[np.abs(eta) <= ROUNDING * span] = 0.0  # a simply supported end's moment line: rounding of 0
+            return eta
+
+        straight = piecewise_linear(effect, float(x), span, y)
+        best = 0.0
+        if straight:
+            knots = np.unique(np.array([0.0, min(max(float(x), 0.0), span), span]))
+            left, right = eta_at(np.maximum(knots - eps, 0.0)), eta_at(np.minimum(knots + eps, span))
+            hi, lo = chain_extremes(knots, left, right, axles, loads)
+            best = max(hi, -lo)
         extra = travel
-        if extra is None and not piecewise_linear(effect, float(x), span, y):
+        if extra is None and not straight:
             extra = np.arange(0.0, span + float(axles[-1]) + span / TRAVEL_STEPS, span / TRAVEL_STEPS)
-        cand = np.concatenate([axles + b for b in (0.0, float(x), span)] + ([extra] if extra is not None else []))
-        pos = cand[:, None] - axles[None, :]
-        on = (pos >= 0.0) & (pos <= span)
-        eta = np.zeros(pos.shape)
-        if on.any():
-            eta[on] = -np.asarray(effect.influence(pos[on], np.full(int(on.sum()), y)), float)
-        eta[np.abs(eta) <= ROUNDING * span] = 0.0  # a simply supported end's moment line: rounding of 0
-        out[j] = float(np.max(np.abs(eta @ loads)))
+        if extra is not None or not straight:
+            cand = np.concatenate(([] if straight else [axles + b for b in (0.0, float(x), span)]) +
+                                  ([extra] if extra is not None else []))
+            pos = cand[:, None] - axles[None, :]
+            best = max(best, float(np.max(np.abs(eta_at(pos) @ loads))))
+        out[j] = best
     return out
 
 
