@@ -73,8 +73,8 @@ def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64
     """max over the train's positions of |Σ_k P_k η(s − a_k)| at each section (η the effect of a unit
     downward force).  On a piecewise-linear influence line (a simply supported span's: breakpoints
     0, x, L; ``piecewise_linear``) the exact extreme by the breakpoint sweep
-    (``vbikit.analysis.breakpoints.chain_extremes``: an axle on a breakpoint; the one-sided values
-    1e-9 L either side of each).  A curved line (restrained ends, a girder of a deck) is evaluated
+    (``vbikit.analysis.breakpoints.chain_extremes``: an axle on a breakpoint; each straight piece
+    read 1e-9 L inside its ends and extended to them, the one-sided limits).  A curved line (restrained ends, a girder of a deck) is evaluated
     where an axle stands on a breakpoint and at the first-axle travel samples ``travel`` [m], every
     L / ``TRAVEL_STEPS`` of travel when none is given; ``travel`` given, a straight-sided line is
     evaluated so too (besides the sweep)."""
@@ -99,7 +99,11 @@ def static_envelope(bridge: ModalBridge, kind: str, sections: NDArray[np.float64
         best = 0.0
         if straight:
             knots = np.unique(np.array([0.0, min(max(float(x), 0.0), span), span]))
-            left, right = eta_at(np.maximum(knots - eps, 0.0)), eta_at(np.minimum(knots + eps, span))
+            knots = knots[np.r_[True, np.diff(knots) > 4 * eps]]
+            # each straight piece read eps inside its ends and extended to them: the one-sided limits
+            a, b = eta_at(knots[:-1] + eps), eta_at(knots[1:] - eps)
+            ext = (b - a) * eps / (np.diff(knots) - 2 * eps)
+            left, right = np.r_[0.0, b + ext], np.r_[a - ext, 0.0]
             hi, lo = chain_extremes(knots, left, right, axles, loads)
             best = max(hi, -lo)
         extra = travel

@@ -526,7 +526,7 @@ def moment_envelope_summary(ds, setup: SweepSetup, trains: dict[str, Train]) -> 
     st_fine = (static_envelope(setup.bridge, "moment", fine, tr.axle_positions, tr.axle_loads, setup.y)
                if tr is not None else st[ts])
     fine = fine if tr is not None else ds.section.values
-    ks = int(np.argmax(st_fine))
+    ks = int(np.flatnonzero(st_fine >= st_fine.max() * (1 - 1e-12))[0])  # ties (mirror positions): the first
     st_mid = float(np.nanmax(ds["static_moment"].values))
     return {"moment_max_Nm": best, "moment_max_position_m": where, "moment_max_train": name,
             "moment_max_speed_m_s": float(ds.speed.values[v]), "moment_max_over_midspan": best / mid if mid > 0 else math.nan,
