@@ -71,8 +71,16 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 continue
             if have[p] < 2:  # the road under the point (``road_point``)
                 i = idx[p]
-                if i < 0:
-                    i = max(0, min(n_s - 2, np.searchsorted(stations, x, side="right") - 1))
+                if i < 0:  # first use: the cell by bisection (the last station ≤ x, within 0 … n_s − 2)
+                    lo = 0
+                    hi = n_s - 1
+                    while hi - lo > 1:
+                        mid = (lo + hi) // 2
+                        if stations[mid] <= x:
+                            lo = mid
+                        else:
+                            hi = mid
+                    i = lo
                 while i < n_s - 2 and stations[i + 1] <= x:
                     i += 1
                 while i > 0 and stations[i] > x:
@@ -110,7 +118,7 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 wl[w] += width[p]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+@_internal
 def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
     """φ(x), ∂φ/∂x(x) of point ``p`` on track ``tr`` into row p of ``phi``, ``dphi`` (cubic Hermite,
     as ``shape_point``)."""
@@ -259,9 +267,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_d = mass_inv.shape[0]
     n_cp = origin.size
     n_w = wheel_rows.shape[0]
-    x0 = xi[0].copy(); v0 = dxi[0].copy()
+    x0 = np.empty(n_m); v0 = np.empty(n_m)
     z0 = np.empty(2 * n_d); z1 = np.empty(2 * n_d); zf = np.empty(2 * n_d); zb = np.empty(2 * n_d)
-    z0[:n_d] = q[0]; z0[n_d:] = dq[0]
+    for m in range(n_m):
+        x0[m] = xi[0, m]
+        v0[m] = dxi[0, m]
+    for j in range(n_d):
+        z0[j] = q[0, j]
+        z0[n_d + j] = dq[0, j]
     x1 = np.empty(n_m); v1 = np.empty(n_m); xf = np.empty(n_m); vf = np.empty(n_m)
     p0 = np.zeros(n_m); p = np.zeros(n_m); acc = np.empty(n_m); dp = np.empty(n_m); dx = np.empty(n_m)
     dv = np.empty(n_m)
@@ -274,7 +287,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     active = np.zeros(n_cp, np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
     xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros(n_cp); rr = np.zeros(n_cp)
     have = np.zeros(n_cp, np.int64)  # bit 0: mode shapes of this step's positions; bit 1: road
-    idx = np.full(n_cp, -1, np.int64)
+    idx = np.empty(n_cp, np.int64)
+    for k in range(n_cp):
+        idx[k] = -1  # no station pointer yet
     phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
     evaluations = 0
     for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
@@ -298,9 +313,11 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if used[k] and onb[k]:
                     for m in range(n_m):
                         p[m] -= phi[k, m] * fk
-            x1[:] = x0
-            v1[:] = v0
-            z1[:] = z0
+            for m in range(n_m):
+                x1[m] = x0[m]
+                v1[m] = v0[m]
+            for i in range(2 * n_d):
+                z1[i] = z0[i]
         else:
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
                 xf[m] = a11[m] * x0[m] + a12[m] * v0[m] + b1[m] * p0[m]
@@ -420,15 +437,19 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             a1[i] = a
         if (n + 1) % stride == 0:
             r_out = (n + 1) // stride
-            if n >= 0:
-                xi[r_out] = x1
-                dxi[r_out] = v1
-                q[r_out] = z1[:n_d]
-                dq[r_out] = z1[n_d:]
-            ddxi[r_out] = acc
-            ddq[r_out] = a1
-            wheel_force[r_out] = wf
-            wheel_len[r_out] = wl
+            for m in range(n_m):
+                if n >= 0:
+                    xi[r_out, m] = x1[m]
+                    dxi[r_out, m] = v1[m]
+                ddxi[r_out, m] = acc[m]
+            for j in range(n_d):
+                if n >= 0:
+                    q[r_out, j] = z1[j]
+                    dq[r_out, j] = z1[n_d + j]
+                ddq[r_out, j] = a1[j]
+            for w in range(n_w):
+                wheel_force[r_out, w] = wf[w]
+                wheel_len[r_out, w] = wl[w]
         if n >= 0:
             for k in range(n_cp):
                 fp[k] = fo[k]
