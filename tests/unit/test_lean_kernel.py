@@ -1,0 +1,128 @@
+"""The lean single-lane kernel (vbikit.solve.kernels.lean) against the full implicit kernel.
+
+``run_implicit`` runs one lane through ``kernels.lean`` (the one-evaluation steps only, flat) and
+reruns the crossing with ``kernels.implicit`` when it stops at a step it does not take; with
+``integrators.USE_LEAN`` off every run goes to ``implicit``.  Both solve the same end-of-step
+contact forces to the same tolerance with the same arithmetic on the common path (the same first
+guess, the same quasi-Newton updates and exact increments), so their histories agree to round-off:
+measured ≤ 5e-14 of each history's peak on these cases (fastmath reorders the sums), asserted
+≤ 1e-10, far below the integrators' own accuracy (the step: ≈ 5e-6 of the peak,
+benchmarks/README.md).  The reference is the independent code path: ``implicit``, generic over
+lanes, with its own contact law (``contact_forces``), state and update helpers.
+"""
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import numpy as np
+from vbikit.bridge import EulerBernoulliBeam
+from vbikit.road.psd import RoadPSD, random_profile
+from vbikit.scenario import demo_scenario_text, load_scenario, parse_scenario, scenario_from_toml
+from vbikit.scenario.preflight import preflight
+from vbikit.solve import Crossing, integrators, simulate
+from vbikit.solve.crossing import VehicleMotion
+from vbikit.vehicle import hs20_44, semitrailer_3s2
+
+ROOT = Path(__file__).resolve().parents[2]
+HISTORIES = ("xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "wheel_forces", "contact_lengths")
+
+
+def _both(crossing, monkeypatch):
+    """The crossing by the default dispatch and by ``implicit`` alone, and how the first ran."""
+    before = dict(integrators.LEAN_COUNTS)
+    default = simulate(crossing)
+    ran = {k: integrators.LEAN_COUNTS[k] - before[k] for k in before}
+    monkeypatch.setattr(integrators, "USE_LEAN", False)
+    reference = simulate(crossing)
+    monkeypatch.setattr(integrators, "USE_LEAN", True)
+    return default, reference, ran
+
+
+def _worst(a, b) -> float:
+    """max |a − b| / peak |b| over every history."""
+    return max(float(np.max(np.abs(getattr(a, h) - getattr(b, h)))) / max(float(np.max(np.abs(getattr(b, h)))), 1e-300)
+               for h in HISTORIES)
+
+
+def _scenario(text_or_dict):
+    built = preflight(parse_scenario(text_or_dict) if isinstance(text_or_dict, dict) else text_or_dict).built
+    return built.crossing
+
+
+def test_demo_crossing_runs_lean_and_equals_implicit(monkeypatch):
+    """`vbikit demo`: HS20-44, multipoint n = 6 (36 points), ISO C, 75 km/h, 1,914 steps."""
+    crossing = _scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    lean, full, ran = _both(crossing, monkeypatch)
+    assert ran == {"lean": 1, "fallback": 0, "implicit": 0}
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_point_tire_runs_lean_and_equals_implicit(monkeypatch):
+    crossing = _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
+                          "tire": {"model": "point"}, "road": {"class": "B", "seed": 3},
+                          "crossing": {"speed_kmh": 60.0}})
+    lean, full, ran = _both(crossing, monkeypatch)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_two_vehicles_asymmetric_run_lean_and_equal_implicit(monkeypatch):
+    """A traffic-like event: a 3S2 driving +x off the centreline and an HS20-44 driving −x,
+    entering later, at other speeds, on a class B road (stacked vehicles, two directions)."""
+    beam = EulerBernoulliBeam(span=30.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=12)
+    road = random_profile(RoadPSD.iso("B"), length=120.0, seed=4, x_start=-50.0)
+    crossing = Crossing(beam, road=road, approach=3.0, free_vibration=0.1,
+                        vehicles=(VehicleMotion(semitrailer_3s2(), 22.0, lateral_offset=1.2),
+                                  VehicleMotion(hs20_44(), 17.0, direction="-x", entry_time=0.4)))
+    lean, full, ran = _both(crossing, monkeypatch)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_3d_deck_runs_lean_and_equals_implicit(monkeypatch):
+    """examples/paper/bridge2_hs20_girder4.toml: the 3D paper-bridge-2 deck, 20 modes."""
+    crossing = _scenario(load_scenario(ROOT / "examples" / "paper" / "bridge2_hs20_girder4.toml"))
+    lean, full, ran = _both(crossing, monkeypatch)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def _hop(tire: str, road: str):
+    """HS20-44 at 100 km/h on paper Bridge 1 (beam) over a rough road: heavy wheel hop."""
+    return _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
+                      "tire": {"model": tire}, "road": {"class": road, "seed": 1}, "crossing": {"speed_kmh": 100.0}})
+
+
+def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit(monkeypatch):
+    """Point tires on a class F road: the wheels leave the road and land again thousands of times;
+    where the one evaluation already gives the step's contact set (as in ``implicit``'s own
+    one-evaluation step) the lean kernel takes the step, and the histories agree to round-off."""
+    lean, full, ran = _both(_hop("point", "F"), monkeypatch)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 1000  # wheels off the road in > 1000 samples
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_lift_off_that_needs_iterating_falls_back_to_implicit(monkeypatch, caplog):
+    """Disk tires on a class D road: at a landing a contact closes within the step's corrections, the
+    lean kernel stops there and the crossing runs with ``implicit``: bit-identical histories."""
+    crossing = _hop("disk", "D")
+    with caplog.at_level(logging.DEBUG, logger="vbikit.solve.integrators"):
+        fell, full, ran = _both(crossing, monkeypatch)
+    assert ran == {"lean": 0, "fallback": 1, "implicit": 0}
+    assert any("lean kernel stops at step" in r.getMessage() for r in caplog.records)
+    assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 10  # a wheel does leave the road
+    for h in HISTORIES:
+        np.testing.assert_array_equal(getattr(fell, h), getattr(full, h))
+
+
+def test_thinned_histories_are_rows_of_the_full_ones():
+    """Stored every 3rd step (``output_every``): the lean kernel's rows are those of every step."""
+    crossing = _scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    every = simulate(crossing)
+    before = integrators.LEAN_COUNTS["lean"]
+    thin = simulate(crossing, output_every=3)
+    assert integrators.LEAN_COUNTS["lean"] == before + 1
+    for h in HISTORIES:
+        np.testing.assert_array_equal(getattr(thin, h), getattr(every, h)[::3])
