@@ -118,7 +118,7 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 wl[w] += width[p]
 
 
-@_internal
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
     """φ(x), ∂φ/∂x(x) of point ``p`` on track ``tr`` into row p of ``phi``, ``dphi`` (cubic Hermite,
     as ``shape_point``)."""
@@ -173,9 +173,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
     for i in range(z1.size):
         a = zb[i]
         for w in range(fw.size):
-            h = response[i, w]
-            if h != 0.0:
-                a += h * fw[w]
+            a += response[i, w] * fw[w]
         z1[i] = a
 
 
@@ -278,7 +276,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     x1 = np.empty(n_m); v1 = np.empty(n_m); xf = np.empty(n_m); vf = np.empty(n_m)
     p0 = np.zeros(n_m); p = np.zeros(n_m); acc = np.empty(n_m); dp = np.empty(n_m); dx = np.empty(n_m)
     dv = np.empty(n_m)
-    g0 = np.empty(n_w); fw = np.zeros(n_w); wf = np.zeros(n_w); wl = np.zeros(n_w)
+    g0 = np.empty(n_w); dfw = np.zeros(n_w); fw = np.zeros(n_w); wf = np.zeros(n_w); wl = np.zeros(n_w)
     bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w); ksum = np.zeros(n_w); csum = np.zeros(n_w)
     veh = np.zeros((n_w, n_w)); piv = np.zeros(n_w, np.int64); held = np.zeros(2 * n_w + 1)
     rhs = np.empty(n_d); a1 = np.empty(n_d)
@@ -325,20 +323,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for i in range(2 * n_d):
                 a = constant[i]
                 for j in range(2 * n_d):
-                    h = transition[i, j]
-                    if h != 0.0:
-                        a += h * z0[j]
+                    a += transition[i, j] * z0[j]
                 for w in range(n_w):
-                    h = load0[i, w]
-                    if h != 0.0:
-                        a += h * g0[w]
+                    a += load0[i, w] * g0[w]
                 zf[i] = a
             for i in range(2 * n_d):
                 a = 0.0
                 for j in range(2 * n_d):
-                    h = settle[i, j]
-                    if h != 0.0:
-                        a += h * zf[j]
+                    a += settle[i, j] * zf[j]
                 zb[i] = a
             for k in range(n_cp):  # first guess: linear extrapolation of the forces
                 f[k] = 2.0 * fo[k] - fp[k]
@@ -360,9 +352,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         f_old[k] = f[k]
                     if r > 0:
                         for w in range(n_w):
-                            fw[w] = 0.0
-                        for k in range(n_cp):
-                            fw[wheel[k]] += f[k]
+                            fw[w] += dfw[w]
                     _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
                            t)
                     for m in range(n_m):
@@ -373,10 +363,22 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                             for m in range(n_m):
                                 dp[m] -= phi[k, m] * d
                     b = 0.0
-                    for m in range(n_m):
+                    for m in range(n_m):  # the deck's change, and the state of the new iterate
                         dx[m] = c1[m] * dp[m]
                         dv[m] = c2[m] * dp[m]
                         b += amp[m] * abs(dx[m])
+                        p[m] += dp[m]
+                        x1[m] += dx[m]
+                        v1[m] += dv[m]
+                    for w in range(n_w):
+                        dfw[w] = -fw[w]
+                    for k in range(n_cp):
+                        dfw[wheel[k]] += f[k]
+                    for i in range(2 * n_d):  # z = z_b + (P L1) F_w
+                        a = z1[i]
+                        for w in range(n_w):
+                            a += response[i, w] * dfw[w]
+                        z1[i] = a
                     err = 0.0
                     for k in range(n_cp):
                         w = wheel[k]
@@ -407,8 +409,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         break
                 if not settled:
                     return n, evaluations
-                _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf,
-                       vf, zb, p, fw, x1, v1, z1)
+                for w in range(n_w):
+                    fw[w] += dfw[w]
             for w in range(n_w):
                 wf[w] = fw[w]
         # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈, q̈
@@ -454,9 +456,11 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for k in range(n_cp):
                 fp[k] = fo[k]
                 fo[k] = f[k]
-            x0, x1 = x1, x0
-            v0, v1 = v1, v0
-            z0, z1 = z1, z0
+            for m in range(n_m):
+                x0[m] = x1[m]
+                v0[m] = v1[m]
+            for i in range(2 * n_d):
+                z0[i] = z1[i]
         else:
             for k in range(n_cp):
                 fp[k] = fo[k]
