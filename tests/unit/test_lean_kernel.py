@@ -28,14 +28,14 @@ ROOT = Path(__file__).resolve().parents[2]
 HISTORIES = ("xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "wheel_forces", "contact_lengths")
 
 
-def _both(crossing, monkeypatch):
+def _both(crossing):
     """The crossing by the default dispatch and by ``implicit`` alone, and how the first ran."""
     before = dict(integrators.LEAN_COUNTS)
     default = simulate(crossing)
     ran = {k: integrators.LEAN_COUNTS[k] - before[k] for k in before}
-    monkeypatch.setattr(integrators, "USE_LEAN", False)
-    reference = simulate(crossing)
-    monkeypatch.setattr(integrators, "USE_LEAN", True)
+    with integrators.without_lean():
+        reference = simulate(crossing)
+    assert integrators.USE_LEAN and integrators.LEAN_COUNTS["implicit"] == before["implicit"] + 1
     return default, reference, ran
 
 
@@ -50,24 +50,24 @@ def _scenario(text_or_dict):
     return built.crossing
 
 
-def test_demo_crossing_runs_lean_and_equals_implicit(monkeypatch):
+def test_demo_crossing_runs_lean_and_equals_implicit():
     """`vbikit demo`: HS20-44, multipoint n = 6 (36 points), ISO C, 75 km/h, 1,914 steps."""
     crossing = _scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))
-    lean, full, ran = _both(crossing, monkeypatch)
+    lean, full, ran = _both(crossing)
     assert ran == {"lean": 1, "fallback": 0, "implicit": 0}
     assert _worst(lean, full) <= 1e-10
 
 
-def test_point_tire_runs_lean_and_equals_implicit(monkeypatch):
+def test_point_tire_runs_lean_and_equals_implicit():
     crossing = _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
                           "tire": {"model": "point"}, "road": {"class": "B", "seed": 3},
                           "crossing": {"speed_kmh": 60.0}})
-    lean, full, ran = _both(crossing, monkeypatch)
+    lean, full, ran = _both(crossing)
     assert ran["lean"] == 1 and ran["fallback"] == 0
     assert _worst(lean, full) <= 1e-10
 
 
-def test_two_vehicles_asymmetric_run_lean_and_equal_implicit(monkeypatch):
+def test_two_vehicles_asymmetric_run_lean_and_equal_implicit():
     """A traffic-like event: a 3S2 driving +x off the centreline and an HS20-44 driving −x,
     entering later, at other speeds, on a class B road (stacked vehicles, two directions)."""
     beam = EulerBernoulliBeam(span=30.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=12)
@@ -75,15 +75,15 @@ def test_two_vehicles_asymmetric_run_lean_and_equal_implicit(monkeypatch):
     crossing = Crossing(beam, road=road, approach=3.0, free_vibration=0.1,
                         vehicles=(VehicleMotion(semitrailer_3s2(), 22.0, lateral_offset=1.2),
                                   VehicleMotion(hs20_44(), 17.0, direction="-x", entry_time=0.4)))
-    lean, full, ran = _both(crossing, monkeypatch)
+    lean, full, ran = _both(crossing)
     assert ran["lean"] == 1 and ran["fallback"] == 0
     assert _worst(lean, full) <= 1e-10
 
 
-def test_3d_deck_runs_lean_and_equals_implicit(monkeypatch):
+def test_3d_deck_runs_lean_and_equals_implicit():
     """examples/paper/bridge2_hs20_girder4.toml: the 3D paper-bridge-2 deck, 20 modes."""
     crossing = _scenario(load_scenario(ROOT / "examples" / "paper" / "bridge2_hs20_girder4.toml"))
-    lean, full, ran = _both(crossing, monkeypatch)
+    lean, full, ran = _both(crossing)
     assert ran["lean"] == 1 and ran["fallback"] == 0
     assert _worst(lean, full) <= 1e-10
 
@@ -94,22 +94,22 @@ def _hop(tire: str, road: str):
                       "tire": {"model": tire}, "road": {"class": road, "seed": 1}, "crossing": {"speed_kmh": 100.0}})
 
 
-def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit(monkeypatch):
+def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
     """Point tires on a class F road: the wheels leave the road and land again thousands of times;
     where the one evaluation already gives the step's contact set (as in ``implicit``'s own
     one-evaluation step) the lean kernel takes the step, and the histories agree to round-off."""
-    lean, full, ran = _both(_hop("point", "F"), monkeypatch)
+    lean, full, ran = _both(_hop("point", "F"))
     assert ran["lean"] == 1 and ran["fallback"] == 0
     assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 1000  # wheels off the road in > 1000 samples
     assert _worst(lean, full) <= 1e-10
 
 
-def test_lift_off_that_needs_iterating_falls_back_to_implicit(monkeypatch, caplog):
+def test_lift_off_that_needs_iterating_falls_back_to_implicit(caplog):
     """Disk tires on a class D road: at a landing a contact closes within the step's corrections, the
     lean kernel stops there and the crossing runs with ``implicit``: bit-identical histories."""
     crossing = _hop("disk", "D")
     with caplog.at_level(logging.DEBUG, logger="vbikit.solve.integrators"):
-        fell, full, ran = _both(crossing, monkeypatch)
+        fell, full, ran = _both(crossing)
     assert ran == {"lean": 0, "fallback": 1, "implicit": 0}
     assert any("lean kernel stops at step" in r.getMessage() for r in caplog.records)
     assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 10  # a wheel does leave the road

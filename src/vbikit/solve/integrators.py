@@ -22,8 +22,9 @@ Nothing here imports the compiled kernels until an integrator runs.
 from __future__ import annotations
 
 import logging
+from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Iterator
 
 import numpy as np
 
@@ -101,6 +102,18 @@ USE_LEAN = True
 #: closing, corrections not settling), ``"implicit"`` sent to ``implicit`` directly (many lanes,
 #: rigid disks, ``USE_LEAN`` off)
 LEAN_COUNTS: dict[str, int] = {"lean": 0, "fallback": 0, "implicit": 0}
+
+
+@contextmanager
+def without_lean() -> Iterator[None]:
+    """Run every implicit crossing with the full ``implicit`` kernel inside the block (``USE_LEAN``
+    off): to compile its one-lane variant in advance, or to compare the two kernels."""
+    global USE_LEAN
+    before, USE_LEAN = USE_LEAN, False
+    try:
+        yield
+    finally:
+        USE_LEAN = before
 
 
 def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> None:

@@ -29,6 +29,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
+from vbikit.solve.kernels.contact import first_cell
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
@@ -71,16 +72,8 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 continue
             if have[p] < 2:  # the road under the point (``road_point``)
                 i = idx[p]
-                if i < 0:  # first use: the cell by bisection (the last station ≤ x, within 0 … n_s − 2)
-                    lo = 0
-                    hi = n_s - 1
-                    while hi - lo > 1:
-                        mid = (lo + hi) // 2
-                        if stations[mid] <= x:
-                            lo = mid
-                        else:
-                            hi = mid
-                    i = lo
+                if i < 0:
+                    i = first_cell(stations, x)
                 while i < n_s - 2 and stations[i + 1] <= x:
                     i += 1
                 while i > 0 and stations[i] > x:
