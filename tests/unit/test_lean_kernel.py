@@ -16,6 +16,7 @@ import logging
 from pathlib import Path
 
 import numpy as np
+
 from vbikit.bridge import EulerBernoulliBeam
 from vbikit.road.psd import RoadPSD, random_profile
 from vbikit.scenario import demo_scenario_text, load_scenario, parse_scenario, scenario_from_toml
@@ -126,3 +127,23 @@ def test_thinned_histories_are_rows_of_the_full_ones():
     assert integrators.LEAN_COUNTS["lean"] == before + 1
     for h in HISTORIES:
         np.testing.assert_array_equal(getattr(thin, h), getattr(every, h)[::3])
+
+
+def test_a_batch_of_roads_keeps_the_many_lane_kernel_and_equals_lean_single_runs():
+    """Two roads as lanes of one ``implicit`` call (many-lane variant), each equal to its own
+    crossing run by the lean kernel."""
+    from dataclasses import replace
+
+    from vbikit.solve.batch import BatchSolver
+
+    crossing = _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
+                          "tire": {"model": "point"}, "road": {"class": "B", "seed": 3},
+                          "crossing": {"speed_kmh": 60.0}})
+    roads = [crossing.road, replace(crossing.road, z=0.5 * crossing.road.z)]
+    before = dict(integrators.LEAN_COUNTS)
+    lanes = BatchSolver(crossing).run_many(roads)
+    assert integrators.LEAN_COUNTS["implicit"] == before["implicit"] + 1
+    assert integrators.LEAN_COUNTS["lean"] == before["lean"]
+    for road, lane in zip(roads, lanes):
+        single = simulate(replace(crossing, road=road))
+        assert _worst(lane, single) <= 1e-10

@@ -14,7 +14,8 @@ point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 
    each iterate following exactly from the last evaluation by the change of state
    (Δξ = c1 Δp, Δξ̇ = c2 Δp, Δp = −Σ φ_k ΔF_k; Δδ_k = φ_k·Δξ + Δ(−z_w), Δδ̇_k = φ_k·Δξ̇ + v_x φ'_k·Δξ
    + Δ(−ż_w)), at most ``LEAN_CORRECTIONS`` times — the same arithmetic as ``implicit``'s
-   one-evaluation step (``newton._vehicle_newton``, ``newton._lean_refine``).
+   one-evaluation step (``newton._vehicle_newton``, ``newton._lean_refine``); the iterate's end
+   state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇, z += (P L1) ΔF_w).
 
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
 activity changes, or a point the lazy test left out may touch), or the corrections not settling.
@@ -42,7 +43,8 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     ``used`` (else left out by the lazy test: r_max − g − z_w + B ≤ 0, B = Σ amp|ξ|; ``pen`` then holds
     that bound), penetration ``pen`` and ungated law ``law``; per wheel the force sum ``wf`` and patch
     length ``wl``.  Mode shapes (cubic Hermite) and road (linear, station pointers ``idx``) are filled
-    on first use in the step (``have``: shapes; road: ``have`` bit 2)."""
+    on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
+    is in ``rv``, ``rr``)."""
     n_m = x1.size
     n_grid = values.shape[1]
     n_s = stations.size
@@ -277,7 +279,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     force = np.zeros(n_cp); pen = np.zeros(n_cp); law = np.zeros(n_cp)
     active = np.zeros(n_cp, np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
     xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros(n_cp); rr = np.zeros(n_cp)
-    have = np.zeros(n_cp, np.int64)  # bit 0: mode shapes of this step's positions; bit 1: road
+    have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
     idx = np.empty(n_cp, np.int64)
     for k in range(n_cp):
         idx[k] = -1  # no station pointer yet
