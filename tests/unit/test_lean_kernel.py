@@ -1,7 +1,7 @@
 """The lean single-lane kernel (vbikit.solve.kernels.lean) against the full implicit kernel.
 
 ``run_implicit`` runs one lane through ``kernels.lean`` (the one-evaluation steps only, flat) and
-reruns the crossing with ``kernels.implicit`` when it stops at a step it does not take; with
+hands the crossing over to ``kernels.implicit`` when it stops at a step it does not take; with
 ``integrators.USE_LEAN`` off every run goes to ``implicit``.  Both solve the same end-of-step
 contact forces to the same tolerance with the same arithmetic on the common path (the same first
 guess, the same quasi-Newton updates and exact increments), so their histories agree to round-off:
@@ -13,9 +13,11 @@ lanes, with its own contact law (``contact_forces``), state and update helpers.
 from __future__ import annotations
 
 import logging
+import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from vbikit.bridge import EulerBernoulliBeam
 from vbikit.road.psd import RoadPSD, random_profile
@@ -105,17 +107,28 @@ def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
     assert _worst(lean, full) <= 1e-10
 
 
-def test_lift_off_that_needs_iterating_falls_back_to_implicit(caplog):
-    """Disk tires on a class D road: at a landing a contact closes within the step's corrections, the
-    lean kernel stops there and the crossing runs with ``implicit``: bit-identical histories."""
+@pytest.mark.parametrize("every", [1, 3])
+def test_lift_off_that_needs_iterating_hands_over_to_implicit(caplog, every):
+    """Disk tires on a class D road: at a landing a contact closes within the step's updates, the
+    lean kernel stops there and ``implicit`` goes on from the last state stored (every ``every``-th
+    step).  Its restart evaluates the law at that state and extrapolates from it alone (not from
+    the two previous steps' iterates), so the histories differ from an ``implicit`` run from t = 0
+    by the tolerance's order: measured 3.4e-11 of the peak (the iterates agree to 1e-12 of the
+    largest wheel load; accelerations amplify it), asserted ≤ 1e-9."""
     crossing = _hop("disk", "D")
-    with caplog.at_level(logging.DEBUG, logger="vbikit.solve.integrators"):
-        fell, full, ran = _both(crossing)
-    assert ran == {"lean": 0, "fallback": 1, "implicit": 0}
-    assert any("lean kernel stops at step" in r.getMessage() for r in caplog.records)
+    caplog.set_level(logging.DEBUG, logger="vbikit.solve.integrators")
+    before = dict(integrators.LEAN_COUNTS)
+    handed = simulate(crossing, output_every=every)
+    with integrators.without_lean():
+        full = simulate(crossing, output_every=every)
+    assert integrators.LEAN_COUNTS["fallback"] == before["fallback"] + 1
+    assert integrators.LEAN_COUNTS["lean"] == before["lean"]
+    found = [m for r in caplog.records if (m := re.search(r"of (\d+) .* goes on from step (\d+)", r.getMessage()))]
+    assert len(found) == 1
+    n_steps, start = int(found[0].group(1)), int(found[0].group(2))
+    assert 0 < start < n_steps and start % every == 0
     assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 10  # a wheel does leave the road
-    for h in HISTORIES:
-        np.testing.assert_array_equal(getattr(fell, h), getattr(full, h))
+    assert _worst(handed, full) <= 1e-9
 
 
 def test_thinned_histories_are_rows_of_the_full_ones():

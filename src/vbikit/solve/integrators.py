@@ -124,13 +124,16 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
 
     One lane without rigid disks runs the lean kernel (``vbikit.solve.kernels.lean``: the steps
     that take one contact-law evaluation, the same arithmetic) first; should it stop at a step it
-    does not take (a contact opening or closing), the whole crossing is run again by ``implicit``
-    (``LEAN_COUNTS``)."""
+    does not take (a contact opening or closing within the step's updates), ``implicit`` goes on
+    from the last state it stored (``LEAN_COUNTS``).  Its start there evaluates the law at that
+    state and extrapolates from it alone, so the rest of the run differs from an ``implicit`` run
+    from t = 0 by the order of the tolerance (1e-12 of the largest wheel load)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
     loads = np.abs(call.crossing.vehicle.static_wheel_loads())
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
+    motion, outputs, first = call.motion, call.outputs, 0
     if USE_LEAN and len(call.lanes) == 1 and not np.any(data.vehicles.wheel_envelope):
         stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride)
         if stop < 0:
@@ -139,14 +142,19 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                       evaluations / max(call.n_steps, 1))
             return
         LEAN_COUNTS["fallback"] += 1
-        log.debug("%s: the lean kernel stops at step %d of %d (a contact opens or closes); the crossing runs "
-                  "with the full implicit kernel", name, stop + 1, call.n_steps)
+        # the full kernel starts from the last stored state the lean one reached (row 0 of the views)
+        row = stop // call.stride
+        first = row * call.stride
+        motion = motion._replace(travel=motion.travel[2 * first:], speed=motion.speed[2 * first:])
+        outputs = tuple(a[:, row:] for a in outputs)
+        log.debug("%s: the lean kernel stops at step %d of %d (a contact opens or closes within the step); the "
+                  "full implicit kernel goes on from step %d", name, stop + 1, call.n_steps, first)
     else:
         LEAN_COUNTS["implicit"] += 1
-    unsettled, evaluations = kernels.implicit(call.dt, call.motion, data.modes, data.vehicles, data.points, call.road,
-                                              data.unilateral, modal_step, vehicle_step, *call.outputs, tol,
+    unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, call.road,
+                                              data.unilateral, modal_step, vehicle_step, *outputs, tol,
                                               IMPLICIT_MAX_ITERATIONS, call.lanes, call.stride)
-    log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps, 1))
+    log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
     if unsettled:
         log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
                     name, IMPLICIT_MAX_ITERATIONS, unsettled, call.n_steps)
