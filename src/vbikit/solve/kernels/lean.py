@@ -19,8 +19,8 @@ point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 
 
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
 activity changes, or a point the lazy test left out may touch), or the corrections not settling.
-``lean`` then returns that step, and the caller runs the crossing with ``implicit`` (which
-handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
+``lean`` then returns that step, and the caller goes on with ``implicit`` from the last state
+stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
 handled at all (the caller does not call ``lean`` for them).  The outputs are those of
 ``implicit`` (same conventions, row 0 the static start, every ``stride``-th step stored).
 """
