@@ -4,7 +4,12 @@ span, speed and roughness.
 
     python benchmarks/bench_driveby.py --passes 20 --workers 2   # 3 classes × 20 passes, × 600/20 extrapolated
     python benchmarks/bench_driveby.py --passes 600 --workers 2  # the whole set (1800 passes)
+    python benchmarks/bench_driveby.py --cpu-only                # 0. only
 
+0. CPU time per pass, one process, one BLAS thread, the two modes alternating on the same passes
+   of the example (thread CPU time, ``time.thread_time``, the minimum over ``--rounds``): the
+   solution alone (``simulate`` against ``simulate_decoupled`` on the same crossings) and the
+   whole pass (``run_case``: crossing, solution, sensors, identification, labels), after a warm-up;
 1. timing: the example file with ``variability.passes`` = ``--passes`` (per class), coupled and decoupled
    (``coupling_check_every`` = 0: no coupled checks), run by ``run_driveby`` on ``--workers``
    processes after a one-pass warm-up (numba compilation); the time × 600 / passes is the whole
@@ -60,6 +65,47 @@ def timing(passes: int, workers: int) -> dict[str, float]:
     return times
 
 
+def cpu_per_pass(passes: int = 30, rounds: int = 5) -> dict[str, float]:
+    """Thread CPU time [ms] per pass (module docstring, 0.), minimum over ``rounds``."""
+    from vbikit._blas import single_thread_blas
+    from vbikit.driveby.decoupled import simulate_decoupled
+    from vbikit.driveby.spec import parse_driveby
+    from vbikit.driveby.study import case_crossing, run_case
+    from vbikit.solve import simulate
+
+    specs = {}
+    for coupling in ("coupled", "decoupled"):
+        data = tomllib.loads(EXAMPLE.read_text())
+        data["coupling"], data["coupling_check_every"] = coupling, 0
+        specs[coupling] = parse_driveby(data, EXAMPLE.parent)
+    crossings = [case_crossing(specs["coupled"], specs["coupled"].cases[i]) for i in range(passes)]
+    solvers = {"coupled": simulate, "decoupled": simulate_decoupled}
+    best = {f"{kind}_{mode}": math.inf for kind in ("solution", "pass") for mode in solvers}
+    with single_thread_blas():
+        for mode, solve in solvers.items():  # warm-up: compilation, caches
+            solve(crossings[0])
+            run_case(specs[mode], 0)
+        for _ in range(rounds):
+            for mode, solve in solvers.items():
+                t0 = time.thread_time()
+                for c in crossings:
+                    solve(c)
+                best[f"solution_{mode}"] = min(best[f"solution_{mode}"], (time.thread_time() - t0) / passes * 1e3)
+                t0 = time.thread_time()
+                for i in range(passes):
+                    run_case(specs[mode], i)
+                best[f"pass_{mode}"] = min(best[f"pass_{mode}"], (time.thread_time() - t0) / passes * 1e3)
+    return best
+
+
+def print_cpu(passes: int = 30, rounds: int = 5) -> None:
+    b = cpu_per_pass(passes, rounds)
+    print(f"CPU time per pass (thread time, min of {rounds} rounds of {passes} passes, one process, one BLAS thread):")
+    for kind in ("solution", "pass"):
+        c, d = b[f"{kind}_coupled"], b[f"{kind}_decoupled"]
+        print(f"  {kind:8s}  coupled {c:6.2f} ms   decoupled {d:6.2f} ms   ratio {c / d:5.2f}")
+
+
 def error_map() -> list[tuple]:
     from vbikit.bridge.beam import EulerBernoulliBeam
     from vbikit.driveby.decoupled import relative_rms_error, simulate_decoupled
@@ -92,10 +138,15 @@ def main() -> None:
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--no-map", action="store_true", help="timing only")
     p.add_argument("--no-timing", action="store_true", help="error map only")
+    p.add_argument("--cpu-only", action="store_true", help="CPU time per pass only (0.)")
     args = p.parse_args()
+    if args.cpu_only:
+        print_cpu()
+        return
     if args.no_timing:
         print_map()
         return
+    print_cpu()
     t = timing(args.passes, args.workers)
     scale = 600 / args.passes
     word = "measured" if args.passes == 600 else f"extrapolated × {scale:g} from {3 * args.passes} passes"

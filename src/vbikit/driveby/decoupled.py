@@ -85,16 +85,17 @@ class WheelLines:
 
 
 def line_shapes(crossing, time: NDArray[np.float64], lines: WheelLines) -> tuple[NDArray, NDArray]:
-    """x_l(t) [m] (n_t, n_l) of every wheel line and φ_i(x_l(t), y_l) (n_t, n_l, n_m), 0 off the deck:
-    evaluated once, both to load the bridge (step 1) and to read its motion under the wheels (step 2)."""
+    """x_l(t) [m] (n_l, n_t) of every wheel line and φ_i(x_l(t), y_l) (n_l, n_t, n_m), 0 off the deck:
+    evaluated once, both to load the bridge (step 1) and to read its motion under the wheels (step
+    2); line by line, so that every lookup searches a sorted path."""
     bridge = crossing.bridge
     front = crossing.front_positions(time)[:, 0]
-    x = front[:, None] - lines.offset[None, :]
+    x = front[None, :] - lines.offset[:, None]
     lo, hi = bridge.deck_extent
     rows, cols = np.nonzero((x >= lo) & (x <= hi))
     phi = np.zeros((*x.shape, bridge.omega.size))
     if rows.size:
-        phi[rows, cols] = bridge.mode_shapes(x[rows, cols], lines.y[cols])
+        phi[rows, cols] = bridge.mode_shapes(x[rows, cols], lines.y[rows])
     return x, phi
 
 
@@ -115,7 +116,7 @@ def bridge_under_forces(crossing, time: NDArray[np.float64], phi: NDArray[np.flo
     if phi is None:
         phi = line_shapes(crossing, time, lines)[1]
     bridge = crossing.bridge
-    p = -np.einsum("tlm,l->tm", phi, lines.load)
+    p = -np.einsum("ltm,l->tm", phi, lines.load)
     num_x, num_v, den = _filter_coefficients(bridge.omega, bridge.damping_ratios, float(time[1] - time[0]))
     xi, xv = np.empty_like(p), np.empty_like(p)
     for i in range(p.shape[1]):
@@ -127,17 +128,18 @@ def bridge_under_forces(crossing, time: NDArray[np.float64], phi: NDArray[np.flo
 
 def surface_under_lines(crossing, x: NDArray[np.float64], phi: NDArray[np.float64], xi: NDArray[np.float64],
                         dt: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """s_l(t) [m], z up, and its rate ṡ_l [m/s] (n_t, n_l) under each wheel line: the deck
+    """s_l(t) [m], z up, and its rate ṡ_l [m/s] (n_t, n_l) under each wheel line (``x``, ``phi``:
+    ``line_shapes``): the deck
     displacement (0 off the deck) plus the road elevation, the engine's contact law for a point
     tire.  The rate as the engine's (``vbikit.solve.system``): the road's v·r'(x) from the
     piecewise-linear profile's slope (``RoadProfile.evaluate``), plus the deck's rate, smooth, by
     second-order differences (``numpy.gradient``)."""
-    deck = np.einsum("tlm,tm->tl", phi, xi)
+    deck = np.einsum("ltm,tm->tl", phi, xi)
     s, s_dot = deck, np.gradient(deck, dt, axis=0, edge_order=2)
     if crossing.road is not None:
         r, slope = crossing.road.evaluate(x.ravel())
         v = float(crossing.vehicles[0].speed)
-        s, s_dot = s + r.reshape(x.shape), s_dot + v * slope.reshape(x.shape)
+        s, s_dot = s + r.reshape(x.shape).T, s_dot + v * slope.reshape(x.shape).T
     return s, s_dot
 
 
