@@ -101,20 +101,22 @@ def test_light_vehicle_response_approaches_the_coupled_run_first_order_in_mass()
         assert np.array_equal(coupled.time, decoupled.time)
         assert coupled.wheel_forces.min() > 0.0                             # in contact throughout
         errors.append(relative_rms_error(decoupled.q_ddot[:, 0], coupled.q_ddot[:, 0]))
-        # the displacement and the tire force (what the bridge feels) follow too (achieved 2.4e-5 and
-        # 9.5e-5; tire force below)
+        # the displacement and the tire force (what the bridge feels) follow too (displacement achieved
+        # 2.4e-5 and 9.5e-5; tire force 2.8e-5 and 1.1e-4)
         assert relative_rms_error(decoupled.q[:, 0], coupled.q[:, 0]) < 0.1 * ratio
         forces.append(relative_rms_error(decoupled.wheel_forces[:, 0], coupled.wheel_forces[:, 0]))
     # achieved 6.9e-4 and 2.75e-3: below the mass ratio, and growing in proportion to it (a damped cart:
     # the tire dashpot reads the road's rate as the engine does, v r'(x), and starts loaded by it)
     assert errors[0] < 1e-3, errors
     assert 3.6 < errors[1] / errors[0] < 4.4, errors
-    assert forces[0] < 1e-3 and 3.6 < forces[1] / forces[0] < 4.4, forces
+    assert forces[0] < 1e-4 and 3.6 < forces[1] / forces[0] < 4.4, forces
 
 
 def test_scour_truck_pass_decoupled_close_to_coupled_at_its_light_limit():
-    """The scour set's 5-axle truck over its continuous beam, the truck's masses scaled to 1 % (mass
-    ratio 7.6e-4): the decoupled record of the tractor body within 2 % of the coupled one."""
+    """The scour set's 5-axle truck over its continuous beam on support springs, a class A road, the
+    truck's masses, stiffnesses and loads scaled to 1 % (same frequencies; mass ratio 7.6e-4): the
+    decoupled record of the tractor body close to the coupled one (achieved 1.3e-3 relative RMS, about
+    the mass ratio; at full mass the same pass differs by ≈ 0.1, docs/driveby.md)."""
     import dataclasses
 
     from vbikit.vehicle.axles import axle_truck
@@ -131,6 +133,6 @@ def test_scour_truck_pass_decoupled_close_to_coupled_at_its_light_limit():
     crossing = Crossing(bridge, light, speed=20.0, approach=1.0, road=road)
     coupled, decoupled = simulate(crossing), simulate_decoupled(crossing)
     ratio = light.total_weight / 9.81 / (18358.0 * 25.0)
-    assert math.isclose(ratio, 7.48e-4, rel_tol=0.02), ratio
+    assert math.isclose(ratio, 7.626e-4, rel_tol=1e-3), ratio
     err = relative_rms_error(decoupled.q_ddot[:, 0], coupled.q_ddot[:, 0])
-    assert err < 0.02, err
+    assert err < 2.5e-3, err
