@@ -12,8 +12,11 @@ span, speed and roughness.
    whole pass (``run_case``: crossing, solution, sensors, identification, labels), after a warm-up;
 1. timing: the example file with ``variability.passes`` = ``--passes`` (per class), coupled and decoupled
    (``coupling_check_every`` = 0: no coupled checks), run by ``run_driveby`` on ``--workers``
-   processes after a one-pass warm-up (numba compilation); the time × 600 / passes is the whole
-   set's, extrapolated (printed as such unless --passes 600);
+   processes after a one-pass warm-up (numba compilation), each run on its own worker processes
+   (started, then ended: their start-up counts, as in a command-line run): wall time, and CPU time
+   (user + system of this process and its exited worker processes, ``resource.getrusage``: what
+   the run costs, whatever else loads the machine); × 600 / passes is the whole set's, extrapolated (printed as
+   such unless --passes 600);
 2. error map: one pass of the test cart (f_v = 3.2 Hz, undamped) over a simply supported beam
    (4 modes, 2 % damping, 4800 kg/m), coupled and decoupled:
    relative RMS difference of the cart's acceleration, and whether the coupled run's tire left the
@@ -35,11 +38,21 @@ from pathlib import Path
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "driveby" / "scour_1800.toml"
 
 
+def _cpu_seconds() -> float:
+    """User + system CPU time [s] of this process and of its finished children (the worker
+    processes, counted once they have exited): the run's CPU time whatever the machine's load."""
+    import resource
+
+    return sum(r.ru_utime + r.ru_stime for r in (resource.getrusage(resource.RUSAGE_SELF),
+                                                   resource.getrusage(resource.RUSAGE_CHILDREN)))
+
+
 def timing(passes: int, workers: int) -> dict[str, float]:
     import numpy as np
 
     from vbikit.driveby.spec import parse_driveby
     from vbikit.driveby.study import run_driveby
+    from vbikit.study.workers import shutdown_workers
 
     base = tomllib.loads(EXAMPLE.read_text())
     times = {}
@@ -49,10 +62,12 @@ def timing(passes: int, workers: int) -> dict[str, float]:
             data["variability"]["passes"] = n
             data["coupling"], data["coupling_check_every"] = coupling, 0
             with tempfile.TemporaryDirectory() as out:
-                t0 = time.perf_counter()
+                t0, c0 = time.perf_counter(), _cpu_seconds()
                 run_driveby(parse_driveby(data, EXAMPLE.parent), out, workers=workers, figures=False)
+                shutdown_workers()  # the workers exit: their CPU time is counted (a measured run starts its own)
                 if key != "warm-up":
                     times[key] = time.perf_counter() - t0
+                    times[f"{key}_cpu"] = _cpu_seconds() - c0
     data = copy.deepcopy(base)  # the decoupled mode's error on the example itself: every pass checked
     data["variability"]["passes"] = 4
     data["coupling"], data["coupling_check_every"] = "decoupled", 1
@@ -154,9 +169,12 @@ def main() -> None:
           f"median {t.pop('example_error_median'):.3e}, max {t.pop('example_error_max'):.3e}; largest |identified "
           f"frequency difference| {t.pop('example_frequency_difference_max_hz'):.4f} Hz (resolution 1/T "
           f"{t.pop('example_resolution_hz'):.3f} Hz)")
-    for k, v in t.items():
-        print(f"{k:10s} {3 * args.passes} passes: {v:.2f} s; 1800 passes: {v * scale:.1f} s ({word}), {workers_note(args.workers)}")
-    print(f"speed ratio coupled / decoupled: {t['coupled'] / t['decoupled']:.2f}")
+    for k in ("coupled", "decoupled"):
+        v, c = t[k], t[f"{k}_cpu"]
+        print(f"{k:10s} {3 * args.passes} passes: wall {v:.2f} s, CPU {c:.2f} s; 1800 passes: wall {v * scale:.1f} s, "
+              f"CPU {c * scale:.1f} s ({word}), {workers_note(args.workers)}")
+    print(f"ratio coupled / decoupled: wall {t['coupled'] / t['decoupled']:.2f}, CPU "
+          f"{t['coupled_cpu'] / t['decoupled_cpu']:.2f}")
     if not args.no_map:
         print_map()
 

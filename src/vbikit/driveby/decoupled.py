@@ -1,30 +1,41 @@
 """Decoupled drive-by simulation: the bridge under moving forces, then the vehicle driven by the
 bridge's motion (``coupling = "decoupled"`` in a drive-by file).
 
-Two one-way steps replace the coupled vehicle–bridge solution (``vbikit.solve.simulate``):
+Two one-way linear problems replace the coupled vehicle–bridge solution (``vbikit.solve.simulate``),
+on the coupled run's time grid t_k (``_time_grid``):
 
-1. **Bridge under moving forces.**  Each wheel is a constant downward force equal to its static
-   load on rigid ground, P_w (``Vehicle.static_wheel_loads``); every mode obeys
-   ξ̈ᵢ + 2ζᵢωᵢξ̇ᵢ + ωᵢ²ξᵢ = −Σ_w φᵢ(x_w(t), y_w) P_w, solved by the moving-force solver
-   (``vbikit.solve.moving_loads.moving_load_history``, the exact discrete-time recurrence of
-   Nigam & Jennings 1969 with the coupled run's step, its time grid shifted onto the coupled
-   run's by offsetting the axle positions by a fraction of a step).
-2. **Vehicle under base excitation.**  The surface under each wheel is
-   s_w(t) = Σᵢ φᵢ(x_w, y_w) ξᵢ(t) + r(x_w(t)) (deck displacement, 0 off the deck, plus the road
-   profile: the engine's contact law for a point tire), and the vehicle obeys
+0. **Wheel lines.**  Wheels at the same (offset, y) act as one force at one point
+   (``WheelLines``; on a beam, ``bridge.lateral_invariant``, the wheels of an axle).  The mode
+   shapes along every line's path, φ_i(x_l(t_k), y_l) (0 off the deck), are evaluated once
+   (``line_shapes``) and serve both steps.
+1. **Bridge under moving forces.**  Each line carries its static load on rigid ground, P_l
+   (``Vehicle.static_wheel_loads``); every mode obeys
+   ξ̈ᵢ + 2ζᵢωᵢξ̇ᵢ + ωᵢ²ξᵢ = pᵢ(t) = −Σ_l φᵢ(x_l(t), y_l) P_l, a linear moving-load problem: from rest
+   at t₀, the load sampled at t_k and linear between samples, advanced by the exact recurrence of
+   Nigam & Jennings (1969) (``vbikit.solve.modal_step.exact_step``) as a second-order digital filter
+   per mode (``bridge_under_forces``), the recurrence of the moving-force solver
+   ``vbikit.solve.moving_loads`` (tested equal to it).  No contact iteration.
+2. **Vehicle under base excitation.**  The surface under each line is
+   s_l(t) = Σᵢ φᵢ(x_l, y_l) ξᵢ(t) + r(x_l(t)) (deck displacement plus the road profile: the
+   engine's contact law for a point tire), its rate ṡ_l = (deck part by ``numpy.gradient``) + v r'(x_l)
+   (the profile's slope, as the engine's road rate), and the vehicle obeys
 
        M q̈ + C q̇ + K q = F_G + Σ_w r_w [k_w (s_w − r_w·q) + c_w (ṡ_w − r_w·q̇)]
 
-   (``vbikit.vehicle.model``), a linear time-invariant system with input (s_w, ṡ_w), solved
-   exactly for inputs linear between samples (matrix exponential, as ``scipy.signal.lsim``; the
-   recursion diagonalised and run by ``scipy.signal.lfilter``), from the static state on the
-   surface at the first sample; ṡ_w by second-order differences (``numpy.gradient``).
+   (``vbikit.vehicle.model``): ẋ = A x + B u, linear time-invariant with the known input
+   u = (s_l, ṡ_l, 1) (``state_space``).  It is solved exactly for inputs linear between samples
+   (``linear_response``): A = V Λ V⁻¹ once per vehicle, every eigen-coordinate stepped by
+   z_{k+1} = e^{λh} z_k + β₀ g_k + β₁ g_{k+1} (``hold_weights``, the scalar form of the
+   first-order-hold discretisation of ``scipy.signal.lsim``, tested equal to it) in one compiled
+   loop, all matrix products real and contiguous.  It starts as the engine does
+   (``vbikit.solve.system.static_state``): at rest on the surface, the tire dashpots loaded by the
+   surface's rate.  Sensors then read the result as they read a coupled one.
 
 What it neglects: the vehicle's inertia and suspension forces on the bridge (only its weight
-acts), so its error grows with the vehicle-to-bridge mass ratio (Yang, Lin & Yau 2004: the light
-vehicle limit; ``benchmarks/bench_driveby.py`` maps it); the tires cannot lose contact (linear
-springs).  The result is a ``CrossingResult`` on the coupled crossing's time grid, so the sensor
-and identification code reads it unchanged.
+acts), so its error grows with the vehicle-to-bridge mass ratio, first order (Yang, Lin & Yau
+2004: the light vehicle limit; ``benchmarks/bench_driveby.py`` maps it); the tires cannot lose
+contact (linear springs).  The result is a ``CrossingResult`` on the coupled crossing's time grid,
+so the sensor and identification code reads it unchanged.
 """
 from __future__ import annotations
 
