@@ -9,7 +9,8 @@ span, speed and roughness.
 0. CPU time per pass, one process, one BLAS thread, the two modes alternating on the same passes
    of the example (thread CPU time, ``time.thread_time``, the minimum over ``--rounds``): the
    solution alone (``simulate`` against ``simulate_decoupled`` on the same crossings) and the
-   whole pass (``run_case``: crossing, solution, sensors, identification, labels), after a warm-up;
+   whole pass (``run_case``: crossing, solution, sensors, identification, labels; the cache of
+   built crossings emptied before each round, as every pass of a run is new), after a warm-up;
 1. timing: the example file with ``variability.passes`` = ``--passes`` (per class), coupled and decoupled
    (``coupling_check_every`` = 0: no coupled checks), run by ``run_driveby`` on ``--workers``
    processes after a one-pass warm-up (numba compilation), each run on its own worker processes
@@ -85,6 +86,7 @@ def cpu_per_pass(passes: int = 30, rounds: int = 5) -> dict[str, float]:
     from vbikit._blas import single_thread_blas
     from vbikit.driveby.decoupled import simulate_decoupled
     from vbikit.driveby.spec import parse_driveby
+    from vbikit.driveby import study
     from vbikit.driveby.study import case_crossing, run_case
     from vbikit.solve import simulate
 
@@ -106,6 +108,7 @@ def cpu_per_pass(passes: int = 30, rounds: int = 5) -> dict[str, float]:
                 for c in crossings:
                     solve(c)
                 best[f"solution_{mode}"] = min(best[f"solution_{mode}"], (time.thread_time() - t0) / passes * 1e3)
+                study._BUILT.clear()  # every pass builds its crossing, as in a run (its passes are all new)
                 t0 = time.thread_time()
                 for i in range(passes):
                     run_case(specs[mode], i)
