@@ -50,6 +50,24 @@ def test_linear_response_equals_scipy_lsim():
     assert np.max(np.abs(ours[:, n:] - (ref @ A.T + u @ B.T))) < 1e-9 * np.max(np.abs(ours[:, n:]))
 
 
+def test_linear_response_of_a_defective_system_equals_scipy_lsim():
+    # a critically damped oscillator has one double eigenvalue and one eigenvector (a Jordan block):
+    # no eigenbasis, the direct state step is taken
+    from scipy.signal import lsim
+
+    w = 12.0
+    A = np.array([[0.0, 1.0], [-w * w, -2.0 * w]])
+    B = np.array([[0.0], [w * w]])
+    h = 2e-3
+    t = h * np.arange(800)
+    u = np.sin(9.0 * t)[:, None]
+    x0 = np.array([0.01, -0.2])
+    _, _, ref = lsim((A, B, np.eye(2), np.zeros((2, 1))), u, t, X0=x0, interp=True)
+    ours = linear_response(A, B, u, h, x0, n_rate=1)
+    assert np.max(np.abs(ours[:, :2] - ref)) < 1e-10 * np.max(np.abs(ref))
+    assert np.max(np.abs(ours[:, 2] - (ref @ A[1] + u[:, 0] * B[1, 0]))) < 1e-9 * np.max(np.abs(ours[:, 2]))
+
+
 @pytest.mark.parametrize("lam", [-3.0 + 40.0j, -0.01 + 0.0j, 1e-3 + 1e-3j])
 def test_hold_weights_both_branches_equal_the_block_exponential(lam):
     # ż = λz + u, u linear over the step: exp of [[λh, h, 0], [0, 0, 1], [0, 0, 0]] holds μ = e^{λh} and

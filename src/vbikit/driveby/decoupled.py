@@ -203,7 +203,9 @@ def linear_response(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, n
     A = V Λ V⁻¹, and every eigen-coordinate z = V⁻¹ x advanced by ``hold_weights`` in one compiled
     loop (``_decoupled_kernels.diagonal_recursion``).  A, B, u and x0 are real, so the coordinate
     of an eigenvalue's conjugate is the conjugate of its own: one of each pair is run and counted
-    twice (x = Σ_real z_i v_i + 2 Re Σ_{Im λ_i > 0} z_i v_i).  With ``n_rate`` > 0 the last
+    twice (x = Σ_real z_i v_i + 2 Re Σ_{Im λ_i > 0} z_i v_i).  When the eigenvectors are
+    ill-conditioned (``EIGENVECTOR_CONDITION_LIMIT``) the state is stepped directly instead
+    (``_state_recursion``).  With ``n_rate`` > 0 the last
     ``n_rate`` rows of ẋ are appended as columns (x, ẋ[-n_rate:]), from the same product.  The
     products are one contiguous real matrix product in and one out (numpy multiplies complex or
     strided arrays without fast BLAS paths, ≈ 10× slower here)."""
@@ -211,6 +213,8 @@ def linear_response(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, n
 
     n = A.shape[0]
     lam, V = np.linalg.eig(A)
+    if np.linalg.cond(V) > EIGENVECTOR_CONDITION_LIMIT:  # (nearly) defective A: no well-conditioned eigenbasis
+        return _state_recursion(A, B, u, h, x0, n_rate)
     Vinv = np.linalg.inv(V)
     run = np.flatnonzero(lam.imag >= 0.0)                  # LAPACK returns conjugate pairs exactly conjugate
     if np.count_nonzero(lam.imag > 0) != np.count_nonzero(lam.imag < 0):
@@ -231,6 +235,32 @@ def linear_response(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, n
         out[:2 * r, n:] = out[:2 * r, :n] @ A[n - n_rate:].T
         out[2 * r:, n:] = B[n - n_rate:].T
     return zu @ out
+
+
+#: condition number of A's eigenvectors above which ``linear_response`` steps the state directly
+EIGENVECTOR_CONDITION_LIMIT = 1e8
+
+
+def _state_recursion(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, n_rate: int) -> NDArray:
+    """``linear_response`` without the eigenbasis (for a defective or nearly defective A, e.g. a
+    critically damped mode): x_{k+1} = A_d x_k + B₀ u_k + B₁ u_{k+1} with A_d, B₀, B₁ from the
+    exponential of the block matrix [[A, B, 0], [0, 0, I/h], [0, 0, 0]] h (the first-order-hold
+    construction of ``scipy.signal.lsim``), stepped in a compiled loop."""
+    from scipy.linalg import expm
+
+    from vbikit.driveby._decoupled_kernels import state_recursion
+
+    n, m = A.shape[0], B.shape[1]
+    big = np.zeros((n + 2 * m, n + 2 * m))
+    big[:n, :n], big[:n, n:n + m], big[n:n + m, n + m:] = A * h, B * h, np.eye(m)
+    e = expm(big)
+    Ad, B1 = e[:n, :n], e[:n, n + m:]
+    B0 = e[:n, n:n + m] - B1
+    x = state_recursion(np.ascontiguousarray(Ad), np.ascontiguousarray(B0), np.ascontiguousarray(B1),
+                        np.ascontiguousarray(u, dtype=float), np.asarray(x0, float))
+    if not n_rate:
+        return x
+    return np.hstack([x, x @ A[n - n_rate:].T + u @ B[n - n_rate:].T])
 
 
 def vehicle_on_surface(vehicle, time: NDArray[np.float64], surface: NDArray[np.float64],
