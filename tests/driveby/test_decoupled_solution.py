@@ -154,3 +154,31 @@ def test_scour_truck_pass_decoupled_close_to_coupled_at_its_light_limit():
     assert math.isclose(ratio, 7.626e-4, rel_tol=1e-3), ratio
     err = relative_rms_error(decoupled.q_ddot[:, 0], coupled.q_ddot[:, 0])
     assert err < 2.5e-3, err
+
+
+def test_passes_differing_only_in_their_road_share_the_bridge_solution(monkeypatch):
+    from vbikit.bridge.beam import EulerBernoulliBeam
+    from vbikit.driveby import decoupled
+
+    bridge = EulerBernoulliBeam(span=20.0, EI=1.5e10, mass_per_length=5000.0, damping_ratio=0.02, n_modes=3)
+    car = two_axle_car()
+    roads = [random_profile(RoadPSD.iso("B"), seed=s, length=40.0, x_start=-10.0) for s in (1, 2)]
+    crossings = [Crossing(bridge, car, speed=15.0, approach=2.0, road=r) for r in roads]
+    decoupled._SHARED.clear()
+    first = [simulate_decoupled(c) for c in crossings]             # the second reuses the first's bridge
+    calls = []
+    monkeypatch.setattr(decoupled, "line_shapes", lambda *a: calls.append(1) or pytest.fail("recomputed"))
+    again = simulate_decoupled(crossings[1])
+    assert not calls
+    monkeypatch.undo()
+    decoupled._SHARED.clear()
+    fresh = simulate_decoupled(crossings[1])                         # computed anew
+    for a, b in ((first[1], fresh), (again, fresh)):
+        for name in ("xi", "xi_dot", "q", "q_ddot", "wheel_forces"):
+            assert np.array_equal(getattr(a, name), getattr(b, name)), name
+    assert not np.array_equal(first[0].q_ddot, first[1].q_ddot)     # the roads differ, the vehicles' records too
+    first[1].xi[:] = 0.0                                             # a result's arrays are its own
+    assert np.array_equal(simulate_decoupled(crossings[1]).xi, fresh.xi)
+    n = len(decoupled._SHARED)
+    simulate_decoupled(Crossing(bridge, car, speed=16.0, approach=2.0, road=roads[0]))   # another speed: its own
+    assert len(decoupled._SHARED) == n + 1

@@ -7,7 +7,8 @@ on the coupled run's time grid t_k (``_time_grid``):
 0. **Wheel lines.**  Wheels at the same (offset, y) act as one force at one point
    (``WheelLines``; on a beam, ``bridge.lateral_invariant``, the wheels of an axle).  The mode
    shapes along every line's path, φ_i(x_l(t_k), y_l) (0 off the deck), are evaluated once
-   (``line_shapes``) and serve both steps.
+   (``line_shapes``) and serve both steps.  Steps 0 and 1 are shared by passes on the same bridge
+   at the same speed, grid and loads (``_bridge_part``: a sweep over roads or noise).
 1. **Bridge under moving forces.**  Each line carries its static load on rigid ground, P_l
    (``Vehicle.static_wheel_loads``); every mode obeys
    ξ̈ᵢ + 2ζᵢωᵢξ̇ᵢ + ωᵢ²ξᵢ = pᵢ(t) = −Σ_l φᵢ(x_l(t), y_l) P_l, a linear moving-load problem: from rest
@@ -294,14 +295,39 @@ def simulate_decoupled(crossing):
         return _simulate_decoupled(crossing)
 
 
+#: bridge solutions kept for the next passes (``_bridge_part``): key -> (bridge, x, φ, ξ, ξ̇, ξ̈)
+_SHARED: dict[tuple, tuple] = {}
+#: how many are kept (oldest dropped first)
+SHARED_MAX = 8
+
+
+def _bridge_part(crossing, time: NDArray[np.float64], lines: WheelLines) -> tuple[NDArray, ...]:
+    """Steps 0 and 1 of the module docstring — the wheel lines' paths and shapes and the bridge under
+    the moving loads — shared by the passes that have the same bridge (the same object: a drive-by
+    study builds one per scenario table), time grid, speed, entry and wheel lines (offsets, y,
+    loads): such passes differ only in their road or noise, which step 1 does not see.  The modal
+    histories are returned as copies (a result's arrays are its own)."""
+    motion = crossing.vehicles[0]
+    key = (id(crossing.bridge), float(time[0]), float(time[1] - time[0]), time.size, float(motion.speed),
+           float(motion.entry_time), lines.offset.tobytes(), lines.y.tobytes(), lines.load.tobytes())
+    hit = _SHARED.get(key)
+    if hit is None or hit[0] is not crossing.bridge:
+        x, phi = line_shapes(crossing, time, lines)
+        hit = (crossing.bridge, x, phi, *bridge_under_forces(crossing, time, phi, lines))
+        while len(_SHARED) >= SHARED_MAX:
+            _SHARED.pop(next(iter(_SHARED)))
+        _SHARED[key] = hit
+    _, x, phi, xi, xi_dot, xi_ddot = hit
+    return x, phi, xi.copy(), xi_dot.copy(), xi_ddot.copy()
+
+
 def _simulate_decoupled(crossing):
     from vbikit.solve.result import CrossingResult
 
     _check(crossing)
     time = _time_grid(crossing)
     lines = WheelLines.of(crossing)
-    x, phi = line_shapes(crossing, time, lines)
-    xi, xi_dot, xi_ddot = bridge_under_forces(crossing, time, phi, lines)
+    x, phi, xi, xi_dot, xi_ddot = _bridge_part(crossing, time, lines)
     vehicle = crossing.vehicles[0].vehicle
     surface, rate = surface_under_lines(crossing, x, phi, xi, float(time[1] - time[0]))
     q, q_dot, q_ddot = vehicle_on_surface(vehicle, time, surface, lines.of_wheel, rate)
