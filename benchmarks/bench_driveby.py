@@ -11,6 +11,8 @@ span, speed and roughness.
    solution alone (``simulate`` against ``simulate_decoupled`` on the same crossings) and the
    whole pass (``run_case``: crossing, solution, sensors, identification, labels; the cache of
    built crossings emptied before each round, as every pass of a run is new), after a warm-up;
+   and the solution of passes that differ only in their road (base speed, no vehicle spread),
+   coupled, decoupled, and decoupled with the bridge part shared between them;
 1. timing: the example file with ``variability.passes`` = ``--passes`` (per class), coupled and decoupled
    (``coupling_check_every`` = 0: no coupled checks), run by ``run_driveby`` on ``--workers``
    processes after a one-pass warm-up (numba compilation), each run on its own worker processes
@@ -116,12 +118,49 @@ def cpu_per_pass(passes: int = 30, rounds: int = 5) -> dict[str, float]:
     return best
 
 
+def shared_bridge(passes: int = 20, rounds: int = 5) -> dict[str, float]:
+    """Thread CPU time [ms] of a decoupled solution with and without the bridge part shared
+    (``decoupled._bridge_part``): the example at its base speed 20 m/s, no vehicle spread, passes of
+    one scour class differing only in their road (a sweep over roads or noise)."""
+    from vbikit._blas import single_thread_blas
+    from vbikit.driveby import decoupled
+    from vbikit.driveby.spec import parse_driveby
+    from vbikit.driveby.study import case_crossing
+    from vbikit.solve import simulate
+
+    data = tomllib.loads(EXAMPLE.read_text())
+    del data["variability"]["speed"]
+    data["variability"]["vehicle_spread"] = 0.0
+    spec = parse_driveby(data, EXAMPLE.parent)
+    classes = len(spec.variability.scour_classes)
+    crossings = [case_crossing(spec, spec.cases[classes * i]) for i in range(passes)]
+    best = {"coupled": math.inf, "decoupled, bridge solved": math.inf, "decoupled, bridge shared": math.inf}
+    with single_thread_blas():
+        simulate(crossings[0])
+        decoupled.simulate_decoupled(crossings[0])
+        for _ in range(rounds):
+            for key in best:
+                t0 = time.thread_time()
+                for c in crossings:
+                    if key == "coupled":
+                        simulate(c)
+                    else:
+                        if key.endswith("solved"):
+                            decoupled._SHARED.clear()
+                        decoupled.simulate_decoupled(c)
+                best[key] = min(best[key], (time.thread_time() - t0) / passes * 1e3)
+    return best
+
+
 def print_cpu(passes: int = 30, rounds: int = 5) -> None:
     b = cpu_per_pass(passes, rounds)
     print(f"CPU time per pass (thread time, min of {rounds} rounds of {passes} passes, one process, one BLAS thread):")
     for kind in ("solution", "pass"):
         c, d = b[f"{kind}_coupled"], b[f"{kind}_decoupled"]
         print(f"  {kind:8s}  coupled {c:6.2f} ms   decoupled {d:6.2f} ms   ratio {c / d:5.2f}")
+    s = shared_bridge()
+    print("solution at 20 m/s, passes differing only in their road: "
+          + ", ".join(f"{k} {v:.2f} ms" for k, v in s.items()))
 
 
 def error_map() -> list[tuple]:
