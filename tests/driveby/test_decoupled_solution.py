@@ -143,8 +143,9 @@ def test_scour_truck_pass_decoupled_close_to_coupled_at_its_light_limit():
                        axle_spacings=[3.6, 1.3, 6.0, 1.3])
     light = dataclasses.replace(truck, mass=truck.mass * 0.01, stiffness=truck.stiffness * 0.01,
                                 damping=truck.damping * 0.01, gravity=truck.gravity * 0.01,
-                                wheels=tuple(dataclasses.replace(w, stiffness=w.stiffness * 0.01, damping=w.damping * 0.01,
-                                                                 fixed_load=w.fixed_load * 0.01) for w in truck.wheels))
+                                wheels=tuple(dataclasses.replace(w, stiffness=w.stiffness * 0.01,
+                                                                 damping=w.damping * 0.01, fixed_load=w.fixed_load * 0.01)
+                                             for w in truck.wheels))
     bridge = ContinuousBeam(spans=(25.0,), EI=4.86535e10, mass_per_length=18358.0, damping_ratio=0.02, n_modes=4,
                             support_stiffness=2e8)
     road = random_profile(RoadPSD.iso("A"), seed=2, length=60.0, x_start=-20.0)

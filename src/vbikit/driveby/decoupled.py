@@ -118,7 +118,7 @@ def bridge_under_forces(crossing, time: NDArray[np.float64], phi: NDArray[np.flo
     rest at time[0]: the modal loads p_i(t_k) = −Σ_l φ_i(x_l(t_k), y_l) P_l sampled on the grid and
     every mode advanced by the exact recurrence for loads linear between samples (Nigam & Jennings
     1969; ``vbikit.solve.modal_step.exact_step``) as a second-order digital filter
-    (``moving_loads._filter_coefficients``), all modes at once."""
+    per mode (``moving_loads._filter_coefficients``, the moving-force solver's)."""
     from scipy.signal import lfilter
 
     from vbikit.solve.moving_loads import _filter_coefficients
@@ -265,7 +265,8 @@ def _state_recursion(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, 
 
 
 def vehicle_on_surface(vehicle, time: NDArray[np.float64], surface: NDArray[np.float64],
-                       of_wheel: NDArray[np.int64] | None = None, surface_rate: NDArray[np.float64] | None = None) -> tuple[NDArray, NDArray, NDArray]:
+                       of_wheel: NDArray[np.int64] | None = None,
+                       surface_rate: NDArray[np.float64] | None = None) -> tuple[NDArray, NDArray, NDArray]:
     """q, q̇, q̈ (n_t, n_dof) of the vehicle driven by the surface under its wheels (step 2 of the
     module docstring), from its static state on the surface at the first sample (the tire dashpots
     loaded by the surface's rate, as the coupled engine starts); exact for inputs
