@@ -87,6 +87,11 @@ def test_step_check_deck_quantities_are_kept_per_wheel_lines_and_equal_fresh_one
     # warm: the other offset's lines in the cache first, then each again (another crossing object)
     assert effect_step.load_effect_step(dataclasses.replace(near), [effect]) == fresh_near
     assert effect_step.load_effect_step(far, [effect]) == fresh_far
+    # the step itself is kept per top speed: a faster crossing on the same lines gets its own
+    fast = dataclasses.replace(near, speed=35.0)
+    warm_fast = effect_step.load_effect_step(fast, [effect])
+    _fresh()
+    assert effect_step.load_effect_step(dataclasses.replace(fast), [effect]) == warm_fast != fresh_near
     x, y = effect_step._deck_points(near)
     shapes, _, _ = effect_step._deck_modes(near)
     assert np.array_equal(shapes, deck.mode_shapes(x, y))

@@ -65,31 +65,37 @@ def _line_points(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.fl
     return xx[on], yy[on]
 
 
-#: deck quantities (``_deck_modes``) per bridge (by identity, dropped with the bridge: bridges are
-#: immutable) and set of wheel lines: the events of a traffic stream or a lifetime run on one bridge
-#: drive on a few lines
+#: deck quantities (``_deck_modes``) and steps (``load_effect_step``) per bridge (by identity, dropped
+#: with the bridge: bridges are immutable) and set of wheel lines: the events of a traffic stream or a
+#: lifetime run on one bridge drive on a few lines, and scenario runs share their bridges
+#: (``vbikit.scenario.build``)
 _DECK: dict[int, dict[bytes, tuple]] = {}
-_DECK_LINES_PER_BRIDGE = 64
+_DECK_ENTRIES_PER_BRIDGE = 256
+
+
+def _kept(crossing: Any, key: tuple, make: Any) -> Any:
+    """The value of ``key`` kept for the crossing's bridge and set of wheel lines (``make()`` the first time)."""
+    bridge = crossing.bridge
+    _, _, y = crossing.point_kinematics()
+    per_bridge = _DECK.get(id(bridge))
+    if per_bridge is None:
+        per_bridge = _DECK[id(bridge)] = {}
+        weakref.finalize(bridge, _DECK.pop, id(bridge), None)
+    key = (np.unique(y).tobytes(),) + key
+    out = per_bridge.get(key)
+    if out is None:
+        out = make()
+        if len(per_bridge) >= _DECK_ENTRIES_PER_BRIDGE:
+            per_bridge.pop(next(iter(per_bridge)))
+        per_bridge[key] = out
+    return out
 
 
 def _deck_modes(crossing: Any) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Mode shapes at the deck points of every wheel line (n_points, n_modes) and, per line (n_lines,
     n_modes), Σ |φ_i| and Σ |φ_i'| over the line's two ends (kept per bridge and set of lines)."""
-    bridge = crossing.bridge
     _, _, y = crossing.point_kinematics()
-    lines = np.unique(y)
-    per_bridge = _DECK.get(id(bridge))
-    if per_bridge is None:
-        per_bridge = _DECK[id(bridge)] = {}
-        weakref.finalize(bridge, _DECK.pop, id(bridge), None)
-    key = lines.tobytes()
-    out = per_bridge.get(key)
-    if out is None:
-        out = _deck_modes_on(bridge, lines)
-        if len(per_bridge) >= _DECK_LINES_PER_BRIDGE:
-            per_bridge.pop(next(iter(per_bridge)))
-        per_bridge[key] = out
-    return out
+    return _kept(crossing, ("modes",), lambda: _deck_modes_on(crossing.bridge, np.unique(y)))
 
 
 def _deck_modes_on(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64],
@@ -145,6 +151,13 @@ def load_effect_step(crossing: Any, effects: Sequence[Any], tolerance: float = S
     f = np.asarray(crossing.bridge.frequencies_hz, float)
     if not len(effects) or f.size == 0:
         return float("inf")
+    # kept per bridge, wheel lines, top speed, tolerance and effects: what the step depends on
+    key = ("step", float(crossing.max_speed), float(tolerance),
+           b"".join(np.asarray(e.modal, float).tobytes() for e in effects))
+    return _kept(crossing, key, lambda: _load_effect_step(crossing, effects, tolerance, f))
+
+
+def _load_effect_step(crossing: Any, effects: Sequence[Any], tolerance: float, f: NDArray[np.float64]) -> float:
     weights = [mode_weights(crossing, e) for e in effects]
 
     def worst(dt: float) -> float:
