@@ -136,3 +136,14 @@ def test_vehicle_motion_crossing_has_its_own_exit_time(deck):
     one = Crossing(deck, vehicles=(VehicleMotion(truck, 20.0),))
     two = Crossing(deck, vehicles=(VehicleMotion(truck, 20.0), VehicleMotion(truck, 20.0, entry_time=1.5)))
     assert two.exit_time() == pytest.approx(one.exit_time() + 1.5, rel=1e-12)
+
+
+def test_road_spacing_is_that_of_its_own_stations():
+    from vbikit.road import RoadProfile
+
+    road = RoadProfile(np.array([0.0, 0.5, 0.7, 2.0]), np.array([0.0, 1e-3, 0.0, 2e-3]))
+    assert road.spacing == pytest.approx(0.2, rel=1e-12)
+    assert road.spacing == float(np.min(np.diff(road.x)))  # again: the kept value
+    finer = dataclasses.replace(road, x=np.array([0.0, 0.5, 0.55, 2.0]))  # a wrong cache would keep 0.2
+    assert finer.spacing == pytest.approx(0.05, rel=1e-12)
+    assert dataclasses.replace(road, resolution=0.3).spacing == 0.3
