@@ -74,6 +74,11 @@ def test_exit_time_and_top_speed_are_those_of_the_crossing_they_belong_to(deck):
     assert faster.exit_time() == pytest.approx((deck.span + c.approach + length) / 25.0, rel=1e-12)
     assert exit_20 == pytest.approx((deck.span + c.approach + length) / 20.0, rel=1e-12)
     assert faster.max_speed == 25.0 and top_20 == 20.0
+    # the road range: from the last axle's start (−approach − L) to where the front axle is at the end
+    lo, hi = faster.road_extent()
+    assert lo == pytest.approx(-c.approach - length, rel=1e-12)
+    assert hi == pytest.approx(-c.approach + 25.0 * faster.duration, rel=1e-12)
+    assert c.road_extent()[1] == pytest.approx(-c.approach + 20.0 * c.duration, rel=1e-12)
 
 
 def test_step_check_deck_quantities_are_kept_per_wheel_lines_and_equal_fresh_ones(deck):

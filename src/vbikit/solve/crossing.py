@@ -387,8 +387,12 @@ class Crossing:
         return self.exit_time() + self.free_vibration_time - self.start_time
 
     def road_extent(self) -> tuple[float, float]:
-        """Range of x [m] the contact points touch during the crossing."""
-        origin, sign, _ = self.point_kinematics()
-        s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
-        x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
-        return float(x.min()), float(x.max())
+        """Range of x [m] the contact points touch during the crossing (computed once, like ``exit_time``)."""
+        known = self.__dict__.get("_road_extent")
+        if known is None:
+            origin, sign, _ = self.point_kinematics()
+            s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
+            x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
+            known = (float(x.min()), float(x.max()))
+            object.__setattr__(self, "_road_extent", known)
+        return known
