@@ -69,7 +69,7 @@ def _line_points(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.fl
 #: with the bridge: bridges are immutable) and set of wheel lines: the events of a traffic stream or a
 #: lifetime run on one bridge drive on a few lines, and scenario runs share their bridges
 #: (``vbikit.scenario.build``)
-_DECK: dict[int, dict[bytes, tuple]] = {}
+_DECK: dict[int, dict[tuple, Any]] = {}
 _DECK_ENTRIES_PER_BRIDGE = 256
 
 
@@ -104,16 +104,13 @@ def _deck_modes_on(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.
     x, y = _line_points(bridge, lines)
     n_m = bridge.omega.size
     if x.size == 0:
-        return np.zeros((0, n_m)), np.zeros((1, n_m)), np.zeros((1, n_m))  # fresh each time: nothing to share
+        return np.zeros((0, n_m)), np.zeros((1, n_m)), np.zeros((1, n_m))
     lines = np.unique(y)
     ends_x = np.array([[x[y == line].min(), x[y == line].max()] for line in lines]).ravel()
     ends_y = np.repeat(lines, 2)
     jump = np.abs(bridge.mode_shapes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
     kink = np.abs(bridge.mode_slopes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
-    out = (bridge.mode_shapes(x, y), jump, kink)
-    for a in out:  # shared by every crossing on these lines
-        a.flags.writeable = False
-    return out
+    return bridge.mode_shapes(x, y), jump, kink  # shared by every crossing on these lines: read only
 
 
 def mode_weights(crossing: Any, effect: Any) -> tuple[NDArray[np.float64], float]:
