@@ -344,7 +344,7 @@ class DynamicJob:
         result = simulate(crossing)
         dyn, st = [], []
         effect_lines = [line for line in setup.lines if line.kind != "deflection"]
-        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines]))
+        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines], check_step=False))
         for j, line in enumerate(setup.lines):
             if line.kind == "deflection":
                 resp = point_response(result, line.x, line.y)
