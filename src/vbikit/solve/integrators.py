@@ -48,10 +48,18 @@ log = logging.getLogger(__name__)
 
 #: the implicit integrators' end-of-step contact forces hold the contact law to this fraction of the
 #: largest static wheel load on every point: the step stops iterating once |law(F) − F| is below it
-#: (tight enough that lanes, which iterate until all have converged, equal single crossings to
-#: round-off).  The common step reaches it with one contact-law evaluation and exact increments
-#: (``vbikit.solve.kernels.implicit``).
-IMPLICIT_TOLERANCE = 1e-12
+#: (tol = IMPLICIT_TOLERANCE × max static wheel load, ``run_implicit``).  The common step reaches it
+#: with one contact-law evaluation and exact quasi-Newton increments (``vbikit.solve.kernels.lean``,
+#: ``vbikit.solve.kernels.implicit``).  1e-10 lets each point force be off its law by 6.8e-6 N on
+#: the ``vbikit demo`` crossing (largest wheel load 68 kN), against the 1e-12 used before it:
+#: the histories differ from those at 1e-12 by 3e-11 of the peak in the modal displacements, 5e-11
+#: in the vehicle's, 3e-10 in the wheel forces and 2e-9 in the accelerations — far below the
+#: step's own error (≈ 5e-6 of the peak, benchmarks/README.md) — while the updates fall from 2.24
+#: to 1.66 a step and the lean kernel from 7.3 to 6.5 ms (benchmarks/bench_floor.py).  Looser buys
+#: little (1e-9: 1.65 updates a step, the same time; 1e-8: 1.57).  At 1e-10 lanes still equal single
+#: crossings (1.4e-13 of the peak) and the lean kernel the full one (3e-14); a crossing the full
+#: kernel takes over from the lean one differs from a full run by 1.3e-10 (tests/unit/test_lean_kernel.py).
+IMPLICIT_TOLERANCE = 1e-10
 IMPLICIT_MAX_ITERATIONS = 50
 
 
@@ -127,7 +135,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     does not take (a contact opening or closing within the step's updates), ``implicit`` goes on
     from the last state it stored (``LEAN_COUNTS``).  Its start there evaluates the law at that
     state and extrapolates from it alone, so the rest of the run differs from an ``implicit`` run
-    from t = 0 by the order of the tolerance (1e-12 of the largest wheel load)."""
+    from t = 0 by the order of the tolerance (``IMPLICIT_TOLERANCE`` of the largest wheel load)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
