@@ -16,9 +16,12 @@ before the loop), the end state and the stored histories.  No Python per step, n
 Reported, each as thread CPU time (``time.thread_time``, robust to other load on a shared
 machine), minimum of ``--repeat`` runs after a warm-up:
 
-* **kernel**: the library's step loop (``kernels.implicit``) inside ``simulate``;
-* **whole**: what ``vbikit run`` does for the crossing — ``simulate`` and the response point's
-  history with its static reference and impact factor;
+* **kernel**: the library's full step loop (``kernels.implicit``, generic over lanes) inside
+  ``simulate`` (``integrators.USE_LEAN`` off);
+* **lean**: the one-lane step loop ``simulate`` runs by default (``kernels.lean``; it hands a
+  crossing to ``kernels.implicit`` only at a step it does not take — none here);
+* **whole**: what ``vbikit run`` does for the crossing — ``simulate`` (default: lean) and the
+  response point's history with its static reference and impact factor;
 * **floor**: ``floor_loop`` on the same inputs;
 
 and the ratios kernel / floor and whole / floor, with the floor's midspan displacement against
@@ -246,37 +249,57 @@ def main() -> None:
     from vbikit.analysis import point_response
     from vbikit.scenario import demo_scenario_text, scenario_from_toml
     from vbikit.scenario.preflight import preflight
-    from vbikit.solve import kernels, simulate
+    from vbikit.solve import integrators, kernels, simulate
 
     built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
-    original, captured, spent = kernels.implicit, [], []
+    originals = {name: getattr(kernels, name) for name in ("implicit", "lean")}
+    spent: dict[str, list[float]] = {name: [] for name in originals}
+    captured: dict[str, tuple] = {}
 
-    def kernel(*a, **k):
-        t0 = time.thread_time()
-        out = original(*a, **k)
-        spent.append(time.thread_time() - t0)
-        captured[:] = [(a, out)]
-        return out
+    def timed(name):
+        def kernel(*a, **k):
+            t0 = time.thread_time()
+            out = originals[name](*a, **k)
+            spent[name].append(time.thread_time() - t0)
+            captured[name] = (a, out)
+            return out
+        return kernel
 
     def whole():
         res = simulate(built.crossing)
         return res, point_response(res, built.response_x, built.response_y)
 
-    kernels.implicit = kernel
-    try:
+    def timed_runs(use_lean: bool) -> tuple[list[float], float]:
+        """Thread CPU times of ``whole`` and the first call's wall time, with or without the lean kernel."""
+        integrators.USE_LEAN = use_lean
         t0 = time.perf_counter()
         whole()
         warm = time.perf_counter() - t0
-        spent.clear()
-        t_whole = []
+        for times in spent.values():
+            times.clear()
+        out = []
         for _ in range(args.repeat):
             t0 = time.thread_time()
-            res, resp = whole()
-            t_whole.append(time.thread_time() - t0)
-        t_kernel = list(spent)
+            whole()
+            out.append(time.thread_time() - t0)
+        return out, warm
+
+    for name in originals:
+        setattr(kernels, name, timed(name))
+    try:
+        t_whole, warm = timed_runs(True)
+        t_lean = list(spent["lean"])
+        t_whole_implicit, _ = timed_runs(False)
+        t_kernel = list(spent["implicit"])
+        res, resp = whole()
     finally:
-        kernels.implicit = original
-    call, (unsettled, evaluations) = captured[0]
+        for name, fn in originals.items():
+            setattr(kernels, name, fn)
+        integrators.USE_LEAN = True
+    if not t_lean or integrators.LEAN_COUNTS["fallback"]:
+        raise SystemExit("bench_floor: the demo crossing did not run through the lean kernel")
+    call, (unsettled, evaluations) = captured["implicit"]
+    _, (_, lean_evaluations) = captured["lean"]
     floor_loop = _floor_loop()
     inputs, outs = floor_inputs(call)
     t0 = time.perf_counter()
@@ -291,18 +314,20 @@ def main() -> None:
     u_lib = res.xi @ phi
     u_floor = outs[0][: u_lib.size] @ phi
     agree = float(np.max(np.abs(u_floor[1:] - u_lib[1:])) / np.max(np.abs(u_lib)))
-    k, w, f = min(t_kernel), min(t_whole), min(t_floor)
+    k, ln, w, wi, f = min(t_kernel), min(t_lean), min(t_whole), min(t_whole_implicit), min(t_floor)
     n = res.n_steps
     print(f"bench_floor: the vbikit demo crossing ({n} steps, {res.xi.shape[1]} modes, {inputs[26].size} contact "
           f"points), {datetime.date.today()}, {os.cpu_count()} CPUs, thread CPU time, min of {args.repeat}")
     print(f"  first calls (numba cache load or compile): crossing {warm:.2f} s, floor {floor_warm:.2f} s wall")
     print(f"  kernel (kernels.implicit)      {k * 1e3:7.2f} ms   {evaluations / n:.2f} contact-law evaluations a step, "
           f"{unsettled} unconverged steps")
-    print(f"  whole crossing (simulate + IM) {w * 1e3:7.2f} ms   IM = {resp.displacement_impact.impact_factor:.4f}")
+    print(f"  lean (kernels.lean, default)   {ln * 1e3:7.2f} ms   {lean_evaluations / n:.2f} contact-law evaluations a "
+          f"step, no fallback")
+    print(f"  whole crossing (simulate + IM) {w * 1e3:7.2f} ms   IM = {resp.displacement_impact.impact_factor:.4f} "
+          f"(with kernels.implicit: {wi * 1e3:.2f} ms)")
     print(f"  floor (one evaluation a step)  {f * 1e3:7.2f} ms   midspan displacement within {agree:.1e} of the "
           f"library's peak")
-    print(f"  kernel / floor = {k / f:.1f}   whole / floor = {w / f:.1f}")
-
+    print(f"  kernel / floor = {k / f:.1f}   lean / floor = {ln / f:.1f}   whole / floor = {w / f:.1f}")
 
 if __name__ == "__main__":
     main()

@@ -60,6 +60,46 @@ def _kernel_clock():
     return spent
 
 
+#: ``--stages``: functions whose thread CPU time is summed per crossing or event (inclusive: a stage
+#: that calls another counts it too), module -> attribute path
+STAGES = {
+    "random road (window)": ("vbikit.scenario.build", "build_road"),
+    "event crossing (vehicles combined)": ("vbikit.traffic.study", "_Template.with_vehicles"),
+    "plan (step, budget)": ("vbikit.solve.simulate", "plan_run"),
+    "kernel data (tables, bundles)": ("vbikit.solve.system", "kernel_data"),
+    "static start": ("vbikit.solve.system", "static_state"),
+    "step maps": ("vbikit.solve.modal_step", "exact_step"),
+    "vehicle step maps": ("vbikit.solve.modal_step", "vehicle_step"),
+    "static reference": ("vbikit.solve.system", "static_modal_history"),
+    "contact influences": ("vbikit.analysis.effects", "contact_influences"),
+    "rainflow": ("vbikit.fatigue", "rainflow"),
+}
+
+
+def _stage_clocks() -> dict[str, float]:
+    """Wrap the ``STAGES`` functions so that their thread CPU time adds up per name."""
+    import importlib
+
+    spent = {name: 0.0 for name in STAGES}
+    for name, (module, path) in STAGES.items():
+        importlib.import_module(module)
+        owner = sys.modules[module]  # the module itself (a package may shadow it with a function)
+        *parents, attr = path.split(".")
+        for part in parents:
+            owner = getattr(owner, part)
+        inner = getattr(owner, attr)
+
+        def timed(*args, _inner=inner, _name=name, **kw):
+            t0 = time.thread_time()
+            try:
+                return _inner(*args, **kw)
+            finally:
+                spent[_name] += time.thread_time() - t0
+
+        setattr(owner, attr, timed)
+    return spent
+
+
 def _workload(name: str):
     """(function running one round, crossings a round)."""
     if name in ("demo", "3d"):
@@ -123,26 +163,32 @@ def _workload(name: str):
     raise SystemExit(f"unknown workload {name!r}; choose from {', '.join(WORKLOADS)}")
 
 
-def measure(name: str, repeat: int) -> dict:
-    """Warm-up, then ``repeat`` rounds: min whole and kernel thread CPU per crossing [ms]."""
+def measure(name: str, repeat: int, stages: bool = False) -> dict:
+    """Warm-up, then ``repeat`` rounds: min whole and kernel thread CPU per crossing [ms] (and, with
+    ``stages``, the ``STAGES`` of that round)."""
     run, n = _workload(name)
     spent = _kernel_clock()
+    clocks = _stage_clocks() if stages else {}
     run()  # warm-up: compile or load the kernels, build the caches
-    whole, kernel = [], []
+    whole, kernel, parts = [], [], []
     for _ in range(repeat):
         spent[0] = 0.0
+        for key in clocks:
+            clocks[key] = 0.0
         t0 = time.thread_time()
         run()
         whole.append((time.thread_time() - t0) / n * 1e3)
         kernel.append(spent[0] / n * 1e3)
+        parts.append({key: v / n * 1e3 for key, v in clocks.items() if v > 0.0})
     k = min(range(repeat), key=whole.__getitem__)
-    return {"workload": name, "whole_ms": whole[k], "kernel_ms": kernel[k], "outside_ms": whole[k] - kernel[k]}
+    return {"workload": name, "whole_ms": whole[k], "kernel_ms": kernel[k], "outside_ms": whole[k] - kernel[k],
+            "stages_ms": parts[k]}
 
 
-def _child(src: str, name: str, repeat: int) -> dict:
+def _child(src: str, name: str, repeat: int, stages: bool = False) -> dict:
     env = dict(os.environ, PYTHONPATH=src, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    out = subprocess.run([sys.executable, __file__, "--child", name, "--repeat", str(repeat)], env=env,
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run([sys.executable, __file__, "--child", name, "--repeat", str(repeat)]
+                         + (["--stages"] if stages else []), env=env, capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
@@ -152,10 +198,12 @@ def main() -> None:
     p.add_argument("--repeat", type=int, default=5)
     p.add_argument("--rounds", type=int, default=2, help="alternating rounds per tree with --compare (default 2)")
     p.add_argument("--compare", default=None, help="another tree's src/ folder, measured in the same run")
+    p.add_argument("--stages", action="store_true",
+                   help="also the thread CPU time of the stages outside the loop (STAGES; inclusive, per crossing)")
     p.add_argument("--child", default=None, help=argparse.SUPPRESS)
     args = p.parse_args()
     if args.child:
-        print(json.dumps(measure(args.child, args.repeat)))
+        print(json.dumps(measure(args.child, args.repeat, args.stages)))
         return
     here = str(ROOT / "src")
     trees = {"this": here} | ({"compare": args.compare} if args.compare else {})
@@ -164,11 +212,13 @@ def main() -> None:
         best: dict[str, dict] = {}
         for _ in range(args.rounds if args.compare else 1):
             for label, src in trees.items():
-                r = _child(src, name, args.repeat)
+                r = _child(src, name, args.repeat, args.stages)
                 if label not in best or r["whole_ms"] < best[label]["whole_ms"]:
                     best[label] = r
         for label, r in best.items():
             print(f"{name:10s} {label:8s} {r['whole_ms']:9.1f} {r['kernel_ms']:10.1f} {r['outside_ms']:11.1f}")
+            for stage, ms in r.get("stages_ms", {}).items():
+                print(f"{'':10s} {'':8s} {ms:9.2f}  {stage}")
         if args.compare:
             print(f"{name:10s} {'ratio':8s} {best['compare']['whole_ms'] / best['this']['whole_ms']:9.2f}x "
                   f"(compare / this, whole)")

@@ -77,22 +77,6 @@ def test_a_pass_road_is_the_whole_period_road_where_the_wheels_go():
     assert np.max(np.abs(c.road.elevation(x) - whole.elevation(x))) < 1e-12 * rms
 
 
-def test_recurrence_on_conjugate_pairs_equals_the_state_space_loop():
-    from vbikit.driveby.decoupled import _recurrence
-
-    rng = np.random.default_rng(3)
-    A = 0.1 * rng.standard_normal((12, 12)) - 0.3 * np.eye(12)
-    Ad = np.eye(12) + 0.05 * A
-    lam = np.linalg.eigvals(Ad)
-    assert np.count_nonzero(lam.imag > 0) >= 2 and np.count_nonzero(lam.imag == 0) >= 1   # pairs and real ones
-    forcing, x0 = rng.standard_normal((400, 12)), rng.standard_normal(12)
-    loop = np.empty((401, 12))
-    loop[0] = x0
-    for k in range(400):
-        loop[k + 1] = Ad @ loop[k] + forcing[k]
-    assert np.max(np.abs(_recurrence(Ad, forcing, x0) - loop)) < 1e-11 * np.max(np.abs(loop))
-
-
 def test_single_thread_blas_sets_one_thread_and_restores():
     from threadpoolctl import threadpool_info, threadpool_limits
 

@@ -17,6 +17,7 @@ import numpy as np
 from vbikit.scenario import demo_scenario_text, scenario_from_toml
 from vbikit.scenario.preflight import preflight
 from vbikit.solve import simulate
+from vbikit.solve import integrators
 from vbikit.solve.integrators import IMPLICIT_TOLERANCE
 
 
@@ -32,6 +33,7 @@ def test_demo_settles_with_one_contact_evaluation_a_step(caplog, monkeypatch):
         return original(*args)
 
     monkeypatch.setattr(kernels, "implicit", kernel)
+    monkeypatch.setattr(integrators, "USE_LEAN", False)  # implicit itself (the lean kernel: test_lean_kernel.py)
     with caplog.at_level(logging.DEBUG, logger="vbikit.solve.integrators"):
         simulate(crossing)
     per_step = [float(m.group(1)) for r in caplog.records

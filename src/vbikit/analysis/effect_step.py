@@ -34,6 +34,7 @@ Python path) compares the step a result was run at with it and says so when it i
 """
 from __future__ import annotations
 
+import weakref
 from typing import Any, Sequence
 
 import numpy as np
@@ -51,38 +52,65 @@ _SLACK = 1.01
 
 def _deck_points(crossing: Any) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """x, y [m] along every wheel line of ``crossing`` where a wheel can stand on the deck."""
-    bridge = crossing.bridge
     _, _, y = crossing.point_kinematics()
+    return _line_points(crossing.bridge, np.unique(y))
+
+
+def _line_points(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """x, y [m] along the wheel lines y = ``lines`` where a wheel can stand on the deck of ``bridge``."""
     x0, x1 = bridge.deck_extent
-    xx, yy = np.meshgrid(np.linspace(x0, x1, _POINTS), np.unique(y))
+    xx, yy = np.meshgrid(np.linspace(x0, x1, _POINTS), lines)
     xi = np.asarray(bridge.span_coordinate(xx, yy))
     on = (xi >= 0.0) & (xi <= bridge.span)
     return xx[on], yy[on]
 
 
-#: the last crossing's deck quantities (``_deck_modes``): the effects of one run share them
-_LAST: list[tuple[Any, tuple]] = []
+#: deck quantities (``_deck_modes``) and steps (``load_effect_step``) per bridge (by identity, dropped
+#: with the bridge: bridges are immutable) and set of wheel lines: the events of a traffic stream or a
+#: lifetime run on one bridge drive on a few lines, and scenario runs share their bridges
+#: (``vbikit.scenario.build``)
+_DECK: dict[int, dict[tuple, Any]] = {}
+_DECK_ENTRIES_PER_BRIDGE = 256
+
+
+def _kept(crossing: Any, key: tuple, make: Any) -> Any:
+    """The value of ``key`` kept for the crossing's bridge and set of wheel lines (``make()`` the first time)."""
+    bridge = crossing.bridge
+    _, _, y = crossing.point_kinematics()
+    per_bridge = _DECK.get(id(bridge))
+    if per_bridge is None:
+        per_bridge = _DECK[id(bridge)] = {}
+        weakref.finalize(bridge, _DECK.pop, id(bridge), None)
+    key = (np.unique(y).tobytes(),) + key
+    out = per_bridge.get(key)
+    if out is None:
+        out = make()
+        if len(per_bridge) >= _DECK_ENTRIES_PER_BRIDGE:
+            per_bridge.pop(next(iter(per_bridge)))
+        per_bridge[key] = out
+    return out
 
 
 def _deck_modes(crossing: Any) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """Mode shapes at the deck points of every wheel line (n_points, n_modes) and, per line (n_lines,
-    n_modes), Σ |φ_i| and Σ |φ_i'| over the line's two ends."""
-    if _LAST and _LAST[0][0] is crossing:
-        return _LAST[0][1]
-    bridge = crossing.bridge
-    x, y = _deck_points(crossing)
+    n_modes), Σ |φ_i| and Σ |φ_i'| over the line's two ends (kept per bridge and set of lines)."""
+    _, _, y = crossing.point_kinematics()
+    return _kept(crossing, ("modes",), lambda: _deck_modes_on(crossing.bridge, np.unique(y)))
+
+
+def _deck_modes_on(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                                                     NDArray[np.float64]]:
+    """``_deck_modes`` of the wheel lines y = ``lines`` (sorted, unique) on ``bridge``, computed."""
+    x, y = _line_points(bridge, lines)
     n_m = bridge.omega.size
     if x.size == 0:
-        out = (np.zeros((0, n_m)), np.zeros((1, n_m)), np.zeros((1, n_m)))
-    else:
-        lines = np.unique(y)
-        ends_x = np.array([[x[y == line].min(), x[y == line].max()] for line in lines]).ravel()
-        ends_y = np.repeat(lines, 2)
-        jump = np.abs(bridge.mode_shapes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
-        kink = np.abs(bridge.mode_slopes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
-        out = (bridge.mode_shapes(x, y), jump, kink)
-    _LAST[:] = [(crossing, out)]
-    return out
+        return np.zeros((0, n_m)), np.zeros((1, n_m)), np.zeros((1, n_m))
+    lines = np.unique(y)
+    ends_x = np.array([[x[y == line].min(), x[y == line].max()] for line in lines]).ravel()
+    ends_y = np.repeat(lines, 2)
+    jump = np.abs(bridge.mode_shapes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
+    kink = np.abs(bridge.mode_slopes(ends_x, ends_y)).reshape(lines.size, 2, n_m).sum(axis=1)
+    return bridge.mode_shapes(x, y), jump, kink  # shared by every crossing on these lines: read only
 
 
 def mode_weights(crossing: Any, effect: Any) -> tuple[NDArray[np.float64], float]:
@@ -120,6 +148,13 @@ def load_effect_step(crossing: Any, effects: Sequence[Any], tolerance: float = S
     f = np.asarray(crossing.bridge.frequencies_hz, float)
     if not len(effects) or f.size == 0:
         return float("inf")
+    # kept per bridge, wheel lines, top speed, tolerance and effects: what the step depends on
+    key = ("step", float(crossing.max_speed), float(tolerance),
+           b"".join(np.asarray(e.modal, float).tobytes() for e in effects))
+    return _kept(crossing, key, lambda: _load_effect_step(crossing, effects, tolerance, f))
+
+
+def _load_effect_step(crossing: Any, effects: Sequence[Any], tolerance: float, f: NDArray[np.float64]) -> float:
     weights = [mode_weights(crossing, e) for e in effects]
 
     def worst(dt: float) -> float:

@@ -19,8 +19,8 @@ static peak (hogging over a pier, where the static peak moment is negative).
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
-from typing import Any, Literal, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Callable, Literal, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -45,10 +45,25 @@ class LoadEffectResponse:
     time: NDArray[np.float64]
     dynamic: NDArray[np.float64]
     static: NDArray[np.float64]
-    #: why the run's step does not resolve this effect (``vbikit.analysis.effect_step``), None if it does
-    step_warning: str | None = None
-    #: the step [s] that resolves it (``load_effect_step``; inf: any)
-    recommended_dt: float = float("inf")
+    #: the step check of ``vbikit.analysis.effect_step``: (``step_warning``, ``recommended_dt``), or a
+    #: function that makes it on first use (``load_effect_responses(..., check_step=False)``)
+    step_check: tuple[str | None, float] | Callable[[], tuple[str | None, float]] = field(
+        default=(None, float("inf")), repr=False, compare=False)
+
+    def _step(self) -> tuple[str | None, float]:
+        if callable(self.step_check):
+            object.__setattr__(self, "step_check", self.step_check())
+        return self.step_check  # type: ignore[return-value]
+
+    @property
+    def step_warning(self) -> str | None:
+        """Why the run's step does not resolve this effect (``vbikit.analysis.effect_step``), None if it does."""
+        return self._step()[0]
+
+    @property
+    def recommended_dt(self) -> float:
+        """The step [s] that resolves this effect (``load_effect_step``; inf: any)."""
+        return self._step()[1]
 
     @property
     def impact(self) -> ImpactFactor:
@@ -109,11 +124,15 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
 
 def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
                           xi_static: NDArray[np.float64] | None = None,
-                          influence: NDArray[np.float64] | None = None) -> list[LoadEffectResponse]:
+                          influence: NDArray[np.float64] | None = None,
+                          check_step: bool = True) -> list[LoadEffectResponse]:
     """``load_effect_response`` for several effects at once: one static modal history (mode
     superposition), or (mode acceleration) one pass over the contact points' positions, their
     static and dynamic forces and the modal correction of every effect; ``influence``: their
-    ``contact_influences`` (n_effects, n_t, n_cp) if already computed."""
+    ``contact_influences`` (n_effects, n_t, n_cp) if already computed.  ``check_step``: the step
+    check (``vbikit.analysis.effect_step``, its warning logged) now; False: on first use of a
+    response's ``step_warning`` or ``recommended_dt`` (the population runners, which read
+    neither: a check costs about as much as the rest of the reduction)."""
     if method not in METHODS:
         raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
     if not effects:
@@ -121,7 +140,7 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     t = result.time
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
-        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal, *_step_check(result, e))
+        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal, _checked(result, e, check_step))
                 for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
@@ -134,8 +153,13 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
     static = -(infl @ static_loads)
     dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
-    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], *_step_check(result, e))
+    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step))
             for k, e in enumerate(effects)]
+
+
+def _checked(result: CrossingResult, effect: LoadEffect, now: bool):
+    """``_step_check`` of ``effect`` now, or a function making it on first use."""
+    return _step_check(result, effect) if now else (lambda: _step_check(result, effect))
 
 
 #: step warnings logged already (a study's many crossings log each once)

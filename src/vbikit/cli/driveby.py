@@ -12,7 +12,7 @@ from vbikit.cli.guard import guard, out_dir_option, steps_option
 
 def driveby_cmd(
     file: Path = typer.Argument(..., metavar="DRIVEBY.toml", help="Drive-by file (docs/driveby.md)."),
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for driveby.nc, the figures and the report."),
+    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for driveby.nc (and driveby.zarr), the figures and the report."),
     workers: Optional[int] = typer.Option(1, "--workers", min=1, help="Local worker processes (1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
     max_steps: Optional[float] = typer.Option(None, "--max-steps", min=1, help="Budget: integration steps of the whole sweep "
@@ -40,13 +40,8 @@ def driveby_cmd(
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
 
     def finish() -> None:
-        from vbikit.driveby.report import write_report
+        from vbikit.driveby.study import write_outputs
 
-        text = write_report(ds, out_dir)
-        if figures:
-            from vbikit.driveby.figures import write_figures
-
-            write_figures(ds, out_dir)
-        typer.echo(text)
+        typer.echo(write_outputs(spec, ds, out_dir, figures))
 
     guard(finish)

@@ -7,6 +7,10 @@ import numpy as np
 from vbikit.driveby.quality import MIN_PASSES
 
 
+#: the most distinct values of a label the report groups the errors by
+MAX_GROUPS = 20
+
+
 class _Columns:
     """The Dataset's variables as numpy arrays, each read once (indexing an xarray variable per
     case costs ~0.1 ms: seconds for a dataset of thousands of passes)."""
@@ -63,6 +67,8 @@ def summary(ds) -> dict:
     for i in range(ds.sizes["case"]):
         cases.append({
             "case": i, "speed_m_s": num("speed", i), "road_class": str(c["road_class"][i]),
+            **({"vehicle": str(ds["fleet"].values[int(c["vehicle"][i])])} if "vehicle" in ds and int(c["vehicle"][i]) >= 0
+               else {}),
             "road_seed": int(c["road_seed"][i]), "damage_severity": num("damage_severity", i),
             "identified_frequency_hz": num("identified_frequency_hz", i), "resolution_hz": num("resolution_hz", i),
             "label": str(c["identified_frequency_label"][i]),
@@ -92,6 +98,16 @@ def summary(ds) -> dict:
                     "(docs/driveby.md, How accurate is this)"}
 
 
+def fleet_lines(ds) -> list[str]:
+    """One line naming the fleet's vehicles and their passes (none without a fleet)."""
+    if "vehicle" not in ds or int(np.min(ds["vehicle"].values, initial=0)) < 0:
+        return []
+    vehicle = np.asarray(ds["vehicle"].values)
+    names = [str(n) for n in ds["fleet"].values]
+    return ["fleet (label vehicle): " + ", ".join(f"{k} {name}: {int(np.sum(vehicle == k))} passes"
+                                                  for k, name in enumerate(names))]
+
+
 def report_text(ds) -> str:
     """A plain-text summary of a drive-by Dataset (``vbikit.driveby.study.dataset``)."""
     c = _Columns(ds)
@@ -99,6 +115,7 @@ def report_text(ds) -> str:
     lines = [f"{ds.attrs.get('title', 'drive-by')}: {ds.sizes['case']} cases, sensor rate {ds.attrs['sampling_rate']:g} Hz",
              f"anti-alias filter: {ds.attrs['sampling_filter']}",
              f"identification: method {ds.attrs['identification_method']}, sensor {ds.attrs['identification_sensor']}",
+             *fleet_lines(ds),
              "", "case  speed[m/s] road seed severity noise   f_true[Hz] f_ident[Hz] error[%] resolution[Hz] "
                  "label      SNR[dB] reliable"]
     reliable = np.asarray(c["identified_frequency_reliable"], bool)
@@ -116,10 +133,12 @@ def report_text(ds) -> str:
         f"mean |e| {np.mean(np.abs(err[reliable])):.2f} %, max |e| {np.max(np.abs(err[reliable])):.2f} %"
         if reliable.any() else "no reliable case"),
         f"identification error of all cases: mean |e| {np.mean(np.abs(err)):.2f} %, max |e| {np.max(np.abs(err)):.2f} %"]
-    for key in ("speed", "road_class", "noise_rms"):
+    for key in ("speed", "road_class", "noise_rms", "vehicle"):
+        if key not in ds:
+            continue
         values = c[key]
         groups = sorted(set(values.tolist()), key=str)
-        if len(groups) > 1:
+        if 1 < len(groups) <= MAX_GROUPS:  # drawn values (one per pass) form no groups
             lines.append(f"  all cases by {key}: " + ", ".join(
                 f"{g}: {np.mean(np.abs(err[values == g])):.2f} %" for g in groups))
     lines += ["", *multipass_lines(ds)]

@@ -282,3 +282,49 @@ def measure(result, sensors: Sequence[Sensor], sampling: Sampling, seed: int = 0
         if std[i] > 0:
             noisy[i] = clean[i] + std[i] * np.random.default_rng((int(seed), i)).standard_normal(t.size)
     return Measurement(t, noisy, clean, sensors, sampling, std)
+
+
+#: rows of ``contact_truth``: name -> (units, long name)
+CONTACT_TRUTH: dict[str, tuple[str, str]] = {
+    "contact_displacement": ("m", "deck displacement under the instrumented vehicle's front wheel, z up (the model's "
+                                  "truth, no road, no noise; 0 off the deck), filtered and resampled like the sensors"),
+    "contact_acceleration": ("m s-2", "deck acceleration under the instrumented vehicle's front wheel, sum of the modal "
+                                      "accelerations times the mode shapes there (the model's truth, no noise; 0 off "
+                                      "the deck), filtered and resampled like the sensors"),
+}
+
+
+def contact_truth(result, sampling: Sampling) -> NDArray[np.float64]:
+    """The bridge's response at the contact point of wheel 0 (the instrumented vehicle's front
+    wheel) at the sensor rate, rows ``CONTACT_TRUTH``: w(x_c(t), t) = Σ_m ξ_m(t) φ_m(x_c(t), y_c)
+    and Σ_m ξ̈_m(t) φ_m(x_c(t), y_c), with y_c the lateral position of the wheel's first contact
+    point; anti-alias filtered and resampled as the sensors are (``resample``)."""
+    crossing = result.crossing
+    bridge = crossing.bridge
+    x = result.wheel_positions()[:, 0]
+    _, _, y = crossing.point_kinematics()
+    yp = float(y[np.flatnonzero(crossing.contact.wheel == 0)[0]])
+    lo, hi = bridge.deck_extent
+    on = (x >= lo) & (x <= hi)
+    rows = np.zeros((len(CONTACT_TRUTH), x.size))
+    if on.any():
+        phi = bridge.mode_shapes(x[on], np.full(int(on.sum()), yp))
+        rows[0, on] = np.einsum("tm,tm->t", result.xi[on], phi)
+        rows[1, on] = np.einsum("tm,tm->t", result.xi_ddot[on], phi)
+    return resample(result.time, rows, sampling)[1]
+
+
+def amplitude_spectrum(records: NDArray[np.float64], n_fft: int) -> NDArray[np.float64]:
+    """Single-sided amplitude spectrum of each row of ``records`` (…, N), zero-padded to ``n_fft``
+    points: A_k = c_k |X_k| / N with X = DFT, c_0 = 1 (and c = 1 at the Nyquist line of an even
+    ``n_fft``), c_k = 2 otherwise, so that a sinusoid of amplitude a on a line of the record gives
+    A = a there (rectangular window, no detrending).  Frequencies ``numpy.fft.rfftfreq(n_fft, 1/rate)``."""
+    records = np.asarray(records, float)
+    n = records.shape[-1]
+    if n > n_fft:
+        raise SensorError(f"amplitude_spectrum: a record of {n} samples is longer than the spectrum's {n_fft} points")
+    a = np.abs(np.fft.rfft(records, n=n_fft, axis=-1)) * (2.0 / max(n, 1))
+    a[..., 0] *= 0.5
+    if n_fft % 2 == 0:
+        a[..., -1] *= 0.5
+    return a

@@ -12,6 +12,15 @@
     [sampling]
     rate = 200                  # sensor rate [Hz]; filter_order, cutoff (fraction of the rate)
 
+    [[fleet]]                   # instead of [vehicle]: several instrumented vehicles, each a [vehicle] table with a name
+    name = "light-cart"         # (variability.fleet: "draw" one per pass, "all" every one on every pass)
+    model = "test-cart"
+
+    [dataset]                   # the stored dataset (vbikit.driveby.study.dataset)
+    format = "netcdf"           # "zarr" also writes driveby.zarr (needs the zarr package)
+    chunk_passes = 64           # passes per chunk of the per-pass records (1: a chunk per pass)
+    spectra = true              # amplitude spectra of the on-bridge records (sensor_spectrum, contact_spectrum)
+
     [[sensors]]                 # name, body or axle, position [m], lateral [m], quantity, noise_rms / noise_snr_db
     name = "cart_acc"
     body = "body"
@@ -49,14 +58,23 @@ from typing import Any, Optional
 
 from vbikit._validation import MAX_STEPS_LIMIT, number
 from vbikit.driveby.sensors import MAX_NOISE_RMS, Sampling, Sensor, SensorError
-from vbikit.driveby.variability import COUPLING_CHECK_EVERY, Variability, expand_cases, parse_coupling, parse_variability
+from vbikit.driveby.variability import (COUPLING_CHECK_EVERY, DAMAGE_KEYS, Variability, expand_cases, parse_coupling,
+                                        parse_variability)
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES
 from vbikit.errors import VbikitError
 from vbikit.scenario.schema import MAX_SPEED, MIN_SPEED
 
 #: top-level keys of a drive-by file
 TOP_KEYS = ("name", "seed", "batch_size", "max_steps", "bridge", "tire", "road", "crossing", "vehicle", "sampling",
-            "sensors", "identification", "sweep", "coupling", "coupling_check_every", "variability")
+            "sensors", "identification", "sweep", "coupling", "coupling_check_every", "variability", "fleet", "dataset")
+#: [dataset] keys -> (default, description)
+DATASET_KEYS: dict[str, tuple[Any, str]] = {
+    "format": ("netcdf", "\"netcdf\" (driveby.nc) or \"zarr\" (driveby.nc and driveby.zarr; needs the zarr package)"),
+    "chunk_passes": (64, "passes per chunk of the per-pass records, an integer in [1, 100000]"),
+    "spectra": (True, "true or false: amplitude spectra of the on-bridge records"),
+}
+#: dataset formats: name -> the Python package it needs (None: always there)
+DATASET_FORMATS: dict[str, Optional[str]] = {"netcdf": None, "zarr": "zarr"}
 #: sweep keys -> (kind, unit)
 SWEEP_KEYS: dict[str, tuple[str, str]] = {
     "speed": ("numbers", "m/s"), "road_class": ("names", ""), "road_seed": ("integers", ""),
@@ -121,6 +139,14 @@ class DriveBy:
     coupling: str = "coupled"
     coupling_check_every: int = COUPLING_CHECK_EVERY
     variability: Variability = field(default_factory=Variability)
+    #: the instrumented vehicles of [[fleet]]: (name, vehicle table) each; () with one [vehicle]
+    fleet: tuple = ()
+    #: the [dataset] table, every key of ``DATASET_KEYS`` set
+    output: dict = field(default_factory=lambda: {k: v for k, (v, _) in DATASET_KEYS.items()})
+
+    def vehicle_table(self, k: Optional[int]) -> dict:
+        """The vehicle table of fleet vehicle ``k`` (the file's [vehicle] without a fleet or ``k`` None)."""
+        return self.vehicle if k is None or not self.fleet else self.fleet[k][1]
 
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit driveby", "name": self.name, "seed": self.seed, "batch_size": self.batch_size,
@@ -132,7 +158,10 @@ class DriveBy:
                            "damage_length": self.damage_length, "base_dir": self.base_dir,
                            **({"coupling": self.coupling, "coupling_check_every": self.coupling_check_every,
                                "variability": self.variability.__dict__} if self.variability.active
-                              or self.coupling != "coupled" else {})}, sort_keys=True, default=str)
+                              or self.coupling != "coupled" else {}),
+                           **({"fleet": self.fleet} if self.fleet else {}),
+                           **({"dataset": self.output} if self.output != DriveBy.__dataclass_fields__["output"].default_factory()
+                              else {})}, sort_keys=True, default=str)
 
 
 def _numbers(key: str, value: Any, kind: str) -> list:
@@ -174,21 +203,9 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     seed = number(data.get("seed", 0), "seed", 0, 2**63 - 1, integer=True, error=DriveByError)
     batch = number(data.get("batch_size", 4), "batch_size", 1, 1000, integer=True, error=DriveByError)
     max_steps = number(data.get("max_steps", MAX_STEPS), "max_steps", 1, MAX_STEPS_LIMIT, error=DriveByError)
-    vehicle = dict(_table(data, "vehicle")) or {"model": "test-cart"}
-    if "model" not in vehicle:
-        raise DriveByError(f"vehicle.model: missing; a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)}")
-    if not isinstance(vehicle["model"], str):
-        raise DriveByError(f"vehicle.model: expected a name (a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)})")
-    if vehicle["model"] in VEHICLE_PARAMETERS:
-        allowed_v = VEHICLE_PARAMETERS[vehicle["model"]]
-        for k, v in vehicle.items():
-            if k == "model":
-                continue
-            if k not in allowed_v:
-                raise DriveByError(f"vehicle.{k}: unknown key of the {vehicle['model']}; allowed: "
-                                   f"{', '.join(['model', *allowed_v]) if allowed_v else 'model'}")
-            lo, hi, unit = allowed_v[k]
-            number(v, f"vehicle.{k}", lo, hi, unit=unit, error=DriveByError)
+    fleet = _fleet(data)
+    vehicle = fleet[0][1] if fleet else _vehicle_table(dict(_table(data, "vehicle")) or {"model": "test-cart"}, "vehicle")
+    output = _dataset_table(_table(data, "dataset"))
     sampling_t = _table(data, "sampling")
     bad = [k for k in sampling_t if k not in ("rate", "filter_order", "cutoff")]
     if bad:
@@ -265,10 +282,81 @@ def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
     cases = tuple(dict(zip(keys, combo)) for combo in itertools.product(*(sweep[k] for k in keys)))
     coupling, check_every = parse_coupling(data)
     variability = parse_variability(data.get("variability"))
-    cases = expand_cases(cases, variability)
+    if any(k in DAMAGE_KEYS for k, _ in variability.drawn) and "damage_position" in sweep:
+        raise DriveByError("variability.damage_position: the damage is drawn per pass or swept (sweep.damage_position), "
+                           "not both")
+    cases = expand_cases(cases, variability, len(fleet))
     return DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
                    spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases,
-                   coupling, check_every, variability)
+                   coupling, check_every, variability, fleet, output)
+
+
+def _vehicle_table(vehicle: dict, where: str) -> dict:
+    """A validated [vehicle] table (or one of [[fleet]], ``where`` = ``fleet.<name>``)."""
+    if "model" not in vehicle:
+        raise DriveByError(f"{where}.model: missing; a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)}")
+    if not isinstance(vehicle["model"], str):
+        raise DriveByError(f"{where}.model: expected a name (a vehicle preset or one of {', '.join(DRIVEBY_VEHICLES)})")
+    if vehicle["model"] in VEHICLE_PARAMETERS:
+        allowed_v = VEHICLE_PARAMETERS[vehicle["model"]]
+        for k, v in vehicle.items():
+            if k == "model":
+                continue
+            if k not in allowed_v:
+                raise DriveByError(f"{where}.{k}: unknown key of the {vehicle['model']}; allowed: "
+                                   f"{', '.join(['model', *allowed_v]) if allowed_v else 'model'}")
+            lo, hi, unit = allowed_v[k]
+            number(v, f"{where}.{k}", lo, hi, unit=unit, error=DriveByError)
+    return vehicle
+
+
+#: the most vehicles of one [[fleet]]
+MAX_FLEET = 100
+
+
+def _fleet(data: dict) -> tuple:
+    """The [[fleet]] tables as ((name, vehicle table), ...); () without a fleet."""
+    tables = data.get("fleet")
+    if tables is None:
+        return ()
+    if "vehicle" in data:
+        raise DriveByError("fleet: give either [vehicle] (one vehicle) or [[fleet]] tables (several), not both")
+    if not isinstance(tables, list) or not 1 <= len(tables) <= MAX_FLEET or not all(isinstance(t, dict) for t in tables):
+        raise DriveByError(f"fleet: expected 1 … {MAX_FLEET} [[fleet]] tables (name, model and the model's keys)")
+    out = []
+    for i, t in enumerate(tables):
+        name = t.get("name")
+        if not isinstance(name, str) or not name or len(name) > 80:
+            raise DriveByError(f"fleet[{i + 1}].name: every [[fleet]] table needs a name (a text of 1 … 80 characters)")
+        out.append((name, _vehicle_table({k: v for k, v in t.items() if k != "name"}, f"fleet.{name}")))
+    names = [n for n, _ in out]
+    if len(set(names)) != len(names):
+        raise DriveByError(f"fleet.name: each vehicle of the fleet needs its own name, got {names}")
+    return tuple(out)
+
+
+def _dataset_table(table: dict) -> dict:
+    """The [dataset] table, validated, every key of ``DATASET_KEYS`` set (its default where not given)."""
+    extra = [k for k in table if k not in DATASET_KEYS]
+    if extra:
+        raise DriveByError(f"dataset.{extra[0]}: unknown key; allowed: {', '.join(DATASET_KEYS)}")
+    out = {k: table.get(k, v) for k, (v, _) in DATASET_KEYS.items()}
+    if out["format"] not in DATASET_FORMATS:
+        raise DriveByError(f"dataset.format: {out['format']!r}; allowed: {', '.join(DATASET_FORMATS)}")
+    number(out["chunk_passes"], "dataset.chunk_passes", 1, 100_000, integer=True, error=DriveByError)
+    if not isinstance(out["spectra"], bool):
+        raise DriveByError(f"dataset.spectra: expected true or false, got {out['spectra']!r}")
+    return out
+
+
+def check_dataset_format(spec: DriveBy) -> None:
+    """Raise ``DriveByError`` when the [dataset] format needs a package that is not installed."""
+    import importlib.util
+
+    package = DATASET_FORMATS[spec.output["format"]]
+    if package is not None and importlib.util.find_spec(package) is None:
+        raise DriveByError(f"dataset.format: \"{spec.output['format']}\" needs the optional package {package!r}, which is "
+                           f"not installed (pip install {package}); or use format = \"netcdf\"")
 
 
 def load_driveby(path: str | Path) -> DriveBy:

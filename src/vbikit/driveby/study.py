@@ -25,16 +25,15 @@ from numpy.typing import NDArray
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import identify_frequency, mode_shape_squares, residual_response, shape_change
 from vbikit.driveby.quality import vehicle_modes
-from vbikit.driveby.sensors import Sensor, SensorError, measure, sensor_row
-from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError
+from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitude_spectrum, contact_truth, measure,
+                                    sensor_row)
+from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError, check_dataset_format
 from vbikit.driveby.variability import SPLIT_NAMES, draw, perturbed_vehicle, split_of, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
 from vbikit.vehicle.model import GRAVITY
 
 log = logging.getLogger(__name__)
 
-#: cases per chunk of the sensor records in driveby.nc
-HISTORY_CHUNK_CASES = 64
 #: points of the mode-shape estimate along the deck (x = 0 … span)
 SHAPE_POINTS = 41
 
@@ -97,11 +96,28 @@ CASE_TEXT: dict[str, str] = {
 
 def case_draw(spec: DriveBy, case: dict) -> dict[str, Any]:
     """The random parameters of a case of a file with [variability] (``variability.draw``, keyed by
-    the case's index), {} otherwise."""
+    the case's index; the vehicle factors drawn for the largest vehicle of a fleet), {} otherwise."""
     if "index" not in case:
         return {}
-    base = _vehicle(spec, {})
-    return draw(spec.variability, spec.seed, case["index"], base.n_dof, len(base.wheels))
+    n_dof, n_wheels = vehicle_dims(spec)
+    return draw(spec.variability, spec.seed, case["index"], n_dof, n_wheels, len(spec.fleet))
+
+
+def vehicle_dims(spec: DriveBy) -> tuple[int, int]:
+    """The most DOFs and the most wheels of the file's vehicles (one, or those of the fleet)."""
+    built = [_vehicle(spec, {"vehicle": k} if spec.fleet else {}) for k in range(max(1, len(spec.fleet)))]
+    return max(v.n_dof for v in built), max(len(v.wheels) for v in built)
+
+
+def case_vehicle(spec: DriveBy, case: dict) -> Optional[int]:
+    """The fleet vehicle (index into ``spec.fleet``) of a case: its own (``fleet = "all"``) or
+    drawn (``fleet = "draw"``); None without a fleet.  A case of a drawing fleet that is not a
+    pass (the file's own tables) takes the first vehicle."""
+    if not spec.fleet:
+        return None
+    if "vehicle" in case:
+        return int(case["vehicle"])
+    return int(case_draw(spec, case).get("vehicle", 0))
 
 
 def _vary_bridge(spec: DriveBy, case: dict, bridge: dict, drawn: dict) -> dict:
@@ -116,6 +132,11 @@ def _vary_bridge(spec: DriveBy, case: dict, bridge: dict, drawn: dict) -> dict:
     if var.support_stiffness is not None:
         factor = var.scour_classes[case["scour_class"]] if "scour_class" in case else 1.0
         bridge["support_stiffness"] = var.support_stiffness * factor
+    if "rotational_stiffness_entry" in drawn:
+        bridge["rotational_stiffness"] = [drawn["rotational_stiffness_entry"], drawn["rotational_stiffness_exit"]]
+    if drawn.get("damage_severity", 0.0) > 0.0:
+        bridge["damage"] = [*bridge.get("damage", []), {"position": drawn["damage_position"], "severity": drawn["damage_severity"],
+                                                        "length": drawn.get("damage_length", spec.damage_length)}]
     return bridge
 
 
@@ -129,8 +150,8 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
         data["bridge"] = _vary_bridge(spec, case, data["bridge"], drawn)
     from vbikit.vehicle.presets import VEHICLE_PRESETS
 
-    model = spec.vehicle["model"]
-    data["vehicle"] = dict(spec.vehicle) if model in VEHICLE_PRESETS else {"model": "sprung-mass"}
+    table = spec.vehicle_table(case_vehicle(spec, case))
+    data["vehicle"] = dict(table) if table["model"] in VEHICLE_PRESETS else {"model": "sprung-mass"}
     crossing = data.setdefault("crossing", {})
     if "speed" in case:
         crossing.pop("speed_kmh", None)
@@ -140,12 +161,8 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
     road = data.setdefault("road", {})
     if "road_class" in case:
         road["class"] = case["road_class"]
-    if "road_seed" in case:
-        road["seed"] = case["road_seed"]
-    elif "index" in case:  # a random pass of [variability]: its own road, seeded by (file seed, case index)
-        from vbikit.study.spec import derive_seed
-
-        road["seed"] = derive_seed(spec.seed, case["index"])
+    if "road_seed" in case or "index" in case:
+        road["seed"] = case_road_seed(spec, case)
     if case.get("damage_severity", 0.0) > 0.0:
         data["bridge"] = dict(data["bridge"])
         data["bridge"]["damage"] = [*data["bridge"].get("damage", []), {
@@ -153,31 +170,47 @@ def _case_scenario(spec: DriveBy, case: dict) -> dict:
     return data
 
 
+def case_road_seed(spec: DriveBy, case: dict) -> int:
+    """The road seed of a case: swept, or a random pass's own, seeded by (file seed, draw index)
+    (``vbikit.study.spec.derive_seed``), or the file's [road] seed."""
+    if "road_seed" in case:
+        return int(case["road_seed"])
+    if "index" in case:
+        from vbikit.study.spec import derive_seed
+
+        return derive_seed(spec.seed, case["index"])
+    return int(spec.scenario.get("road", {}).get("seed", 0))
+
+
 def _vehicle(spec: DriveBy, case: dict):
-    """The case's vehicle: the file's, its parameters scaled by the case's drawn factors."""
+    """The case's vehicle: the file's (or its fleet vehicle), its parameters scaled by the case's
+    drawn factors."""
+    k = case_vehicle(spec, case) if "index" in case else case.get("vehicle")
     if "index" in case and spec.variability.vehicle_spread > 0:
-        return perturbed_vehicle(_vehicle(spec, {}), case_draw(spec, case)["vehicle_factors"])
-    key = json.dumps(spec.vehicle, sort_keys=True, default=str)
+        base = _vehicle(spec, {} if k is None else {"vehicle": k})
+        return perturbed_vehicle(base, case_draw(spec, case)["vehicle_factors"])
+    table = spec.vehicle_table(k)
+    key = json.dumps(table, sort_keys=True, default=str)
     if key not in _VEHICLES:
-        _VEHICLES[key] = _build_vehicle(spec)
+        _VEHICLES[key] = _build_vehicle(table, "vehicle" if k is None else f"fleet.{spec.fleet[k][0]}")
     return _VEHICLES[key]
 
 
 _VEHICLES: dict[str, Any] = {}
 
 
-def _build_vehicle(spec: DriveBy):
-    model = spec.vehicle["model"]
-    params = {k: v for k, v in spec.vehicle.items() if k != "model"}
+def _build_vehicle(table: dict, where: str = "vehicle"):
+    model = table["model"]
+    params = {k: v for k, v in table.items() if k != "model"}
     if model not in DRIVEBY_VEHICLES:
         from vbikit.vehicle.presets import VEHICLE_PRESETS
 
         if model not in VEHICLE_PRESETS:
-            raise DriveByError(f"vehicle.model: {model!r} is unknown; allowed: {', '.join([*DRIVEBY_VEHICLES, *VEHICLE_PRESETS])}")
+            raise DriveByError(f"{where}.model: {model!r} is unknown; allowed: {', '.join([*DRIVEBY_VEHICLES, *VEHICLE_PRESETS])}")
     try:
         return driveby_vehicle(model, **params)
     except TypeError as err:
-        raise DriveByError(f"vehicle: {err}") from None
+        raise DriveByError(f"{where}: {err}") from None
 
 
 _BUILT: dict[str, Any] = {}
@@ -227,7 +260,8 @@ def case_crossing(spec: DriveBy, case: dict):
     from vbikit.solve.timestep import choose_time_step
 
     data = _case_scenario(spec, case)
-    key = json.dumps([data, spec.vehicle, spec.sampling.rate, spec.base_dir, spec.method, spec.gap,
+    key = json.dumps([data, spec.vehicle_table(case_vehicle(spec, case)), spec.sampling.rate, spec.base_dir, spec.method,
+                      spec.gap,
                       case.get("index") if spec.variability.vehicle_spread > 0 or spec.variability.traffic_flow else None],
                      sort_keys=True)
     if key in _BUILT:
@@ -327,7 +361,10 @@ def _step_probes(spec: DriveBy, case: dict) -> list[dict]:
         return [case]
     base = {k: v for k, v in case.items() if k not in _DRAW_KEYS}
     speeds = spec.variability.speed
-    return [base] if speeds is None else [{**base, "speed": v} for v in sorted(set(speeds))]
+    probes = [base] if speeds is None else [{**base, "speed": v} for v in sorted(set(speeds))]
+    if spec.fleet and "vehicle" not in case:  # a drawn vehicle: any of the fleet
+        probes = [{**p, "vehicle": k} for p in probes for k in range(len(spec.fleet))]
+    return probes
 
 
 def estimate_steps(spec: DriveBy) -> float:
@@ -342,11 +379,11 @@ def estimate_steps(spec: DriveBy) -> float:
     total = 0.0
     for case in spec.cases or [{}]:
         for probe in _step_probes(spec, case):
-            v = probe.get("speed")
+            v = (probe.get("speed"), probe.get("vehicle"))
             if v not in per_speed:
                 c = _crossing(spec, probe)
                 per_speed[v] = (c.duration, c.dt)
-        ends = [per_speed[p.get("speed")] for p in _step_probes(spec, case)]
+        ends = [per_speed[(p.get("speed"), p.get("vehicle"))] for p in _step_probes(spec, case)]
         total += max(d for d, _ in ends) / min(dt for _, dt in ends)
     return total
 
@@ -369,13 +406,16 @@ def check_cases(spec: DriveBy) -> float:
             raise DriveByError(f"variability.temperature: {t:g} °C gives E(T)/E(T_ref) = {temperature_factor(var, t):.3g} "
                                f"<= 0 with temperature_coefficient {var.temperature_coefficient:g} /°C and "
                                f"temperature_reference {var.temperature_reference:g} °C; narrow the range")
-    _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
+    check_dataset_format(spec)
+    base = _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
+    check_drawn_bridge(spec, base.bridge)
     total = estimate_steps(spec)
     if total > spec.max_steps:
         raise DriveByError(f"max_steps: the sweep needs about {total:.3g} integration steps ({len(spec.cases):,} cases), "
                            f"above the budget {spec.max_steps:.3g}; raise max_steps (or --max-steps) or sweep fewer cases")
     seen: set = set()
-    for i, case in enumerate(spec.cases or [{}]):
+    fleet_cases = [{"vehicle": k} for k in range(len(spec.fleet))]  # every vehicle of the fleet, whatever it draws
+    for i, case in enumerate([*(spec.cases or [{}]), *fleet_cases]):
         shape = tuple((k, v) for k, v in case.items() if k not in (*_NEUTRAL, *_DRAW_KEYS))
         neutral = tuple((k, v) for k, v in case.items() if k in _NEUTRAL)
         if shape in seen and all(item in seen for item in neutral):
@@ -388,7 +428,7 @@ def check_cases(spec: DriveBy) -> float:
                 sensor_row(crossing.vehicle, s)
             except SensorError as err:
                 raise DriveByError(str(err)) from None
-        if spec.method in ("contact", "residual") and i == 0:
+        if spec.method in ("contact", "residual") and (i == 0 or "vehicle" in case):
             try:
                 SingleAxle.of(crossing.vehicles[0].vehicle)
             except Exception as err:  # noqa: BLE001 - a VbikitError naming the key
@@ -398,6 +438,44 @@ def check_cases(spec: DriveBy) -> float:
                 raise DriveByError(f"identification.sensor: method \"{spec.method}\" needs an acceleration sensor; "
                                    f"{chosen.name!r} measures {chosen.quantity}")
     return total
+
+
+def check_drawn_bridge(spec: DriveBy, bridge) -> None:
+    """Refuse, before anything runs, drawn bridge parameters the bridge cannot take: rotational
+    springs on a model without them, a damaged region that can reach past the deck's end."""
+    drawn = dict(spec.variability.drawn)
+    model = spec.scenario.get("bridge", {}).get("model")
+    if "rotational_stiffness" in drawn and model != "continuous-beam":
+        raise DriveByError(f"variability.rotational_stiffness: needs bridge.model = \"continuous-beam\" (end rotational "
+                           f"springs), got {model!r}")
+    if "damage_position" in drawn:
+        lo, hi = bridge.deck_extent
+        end = drawn["damage_position"].bounds[1] + (drawn["damage_length"].bounds[1] if "damage_length" in drawn
+                                                     else spec.damage_length)
+        if end > hi - lo:
+            raise DriveByError(f"variability.damage_position: a drawn damaged region can end at {end:g} m (largest "
+                               f"damage_position + damage_length), past the deck's length {hi - lo:g} m; allowed: "
+                               f"position + length <= {hi - lo:g} m")
+
+
+def spectrum_length(spec: DriveBy) -> int:
+    """Points of the zero-padded DFT of the on-bridge records (``sensors.amplitude_spectrum``): the
+    power of two at least twice the longest on-bridge record, deck length / slowest speed × rate
+    (the slowest of the sweep's, the drawn range's and the file's speeds; a decelerating crossing
+    at its exit speed), so that every pass has the same frequency axis rfftfreq(n, 1/rate)."""
+    base = case_crossing(spec, spec.cases[0] if spec.cases else {})
+    lo, hi = base.bridge.deck_extent
+    motion = base.vehicles[0]
+    speeds = [float(motion.speed), *spec.sweep.get("speed", []), *(spec.variability.speed or ())]
+    v = min(speeds)
+    a = float(getattr(motion, "acceleration", 0.0) or 0.0)
+    if a < 0.0:
+        reach = float(base.approach) + (hi - lo)
+        v = math.sqrt(max(v * v + 2.0 * a * reach, 0.0))
+        if v <= 0.0:
+            raise DriveByError("crossing.acceleration: the vehicle stops before leaving the deck: no on-bridge spectrum")
+    n = math.ceil((hi - lo) / v * spec.sampling.rate) + 2
+    return 1 << math.ceil(math.log2(2 * n))
 
 
 def sensor_agreement(ident, others: dict) -> tuple[int, int, str]:
@@ -461,6 +539,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         return m, t_on, window, signal, identify(signal, window)
 
     m, t_on, window, signal, ident = observe(result)
+    truth = contact_truth(result, spec.sampling)
     check = {"coupling_error_rms": math.nan, "coupling_frequency_difference_hz": math.nan}
     if spec.coupling == "decoupled" and spec.coupling_check_every and index % spec.coupling_check_every == 0:
         import dataclasses
@@ -518,8 +597,23 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "band_low_hz": ident.band[0], "band_high_hz": ident.band[1],
         "sensors_identified": float(agreement[0]), "sensors_agree": float(agreement[1]),
         "identified_frequency_label": q.label, "identified_frequency_reason": "; ".join(r for r in (q.reason, agreement[2]) if r),
-        "history": m.values[:len(sensors)], "time0": float(m.time[0]), "noise_std": m.noise_std[:len(sensors)],
+        "history": np.vstack([m.values[:len(sensors)], truth]), "time0": float(m.time[0]),
+        "noise_std": m.noise_std[:len(sensors)],
+        "spectrum": pass_spectra(spec, np.vstack([m.values[:len(sensors)], truth[1:]]), on_samples),
     }
+
+
+def pass_spectra(spec: DriveBy, records: NDArray, on_samples: NDArray) -> NDArray:
+    """Amplitude spectra (``sensors.amplitude_spectrum``) of ``records`` (the sensors and the
+    contact-point acceleration) over the samples with the front wheel on the deck; (rows, 0) when
+    ``dataset.spectra`` is false."""
+    if not spec.output["spectra"]:
+        return np.zeros((records.shape[0], 0))
+    segment = records[:, int(on_samples[0]):int(on_samples[-1]) + 1]
+    try:
+        return amplitude_spectrum(segment, spectrum_length(spec))
+    except SensorError as err:
+        raise DriveByError(f"{err} (a crossing slower than its speed: set dataset.spectra = false)") from None
 
 
 @dataclass(frozen=True)
@@ -551,12 +645,13 @@ class DriveByStudy:
         out = {name: np.array([r[name] for r in rows], float) for name in CASE_OUTPUTS}
         out |= {name: np.array([r[name] for r in rows], dtype=np.str_) for name in CASE_TEXT}
         n = max(r["history"].shape[1] for r in rows)
-        hist = np.full((len(rows), len(self.spec.sensors), n), np.nan)
+        hist = np.full((len(rows), len(self.spec.sensors) + len(CONTACT_TRUTH), n), np.nan)
         for j, r in enumerate(rows):
             hist[j, :, :r["history"].shape[1]] = r["history"]
         out["history"] = hist
         out["mode_shape_squared"] = np.array([r["mode_shape_squared"] for r in rows], float)
         out["noise_std"] = np.array([r["noise_std"] for r in rows], float)
+        out["spectrum"] = np.array([r["spectrum"] for r in rows], float)
         out["time0"] = np.array([r["time0"] for r in rows])
         out["case"] = np.array(batch, np.int64)
         return out
@@ -567,8 +662,10 @@ class DriveByStudy:
         for name in (*CASE_OUTPUTS, *CASE_TEXT):
             if name not in part or part[name].shape != (len(batch),):
                 return f"{name} is missing or has the wrong shape"
-        if "history" not in part or part["history"].shape[:2] != (len(batch), len(self.spec.sensors)):
+        if "history" not in part or part["history"].shape[:2] != (len(batch), len(self.spec.sensors) + len(CONTACT_TRUTH)):
             return "its sensor histories have the wrong shape"
+        if "spectrum" not in part or part["spectrum"].shape[:2] != (len(batch), len(self.spec.sensors) + 1):
+            return "its spectra have the wrong shape"
         if "mode_shape_squared" not in part or part["mode_shape_squared"].shape != (len(batch), SHAPE_POINTS):
             return "its mode-shape estimates have the wrong shape"
         if "noise_std" not in part or part["noise_std"].shape != (len(batch), len(self.spec.sensors)):
@@ -581,7 +678,8 @@ class DriveByStudy:
         sums = part_checksums(parts)
         loaded = [load_part(parts, k, sums) for k in range(len(self.batches()))]
         return dataset(self.spec, {name: np.concatenate([p[name] for p in loaded])
-                                   for name in (*CASE_OUTPUTS, *CASE_TEXT, "time0", "case", "mode_shape_squared", "noise_std")},
+                                   for name in (*CASE_OUTPUTS, *CASE_TEXT, "time0", "case", "mode_shape_squared", "noise_std",
+                                                "spectrum")},
                        [p["history"] for p in loaded])
 
 
@@ -591,15 +689,25 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
     base_road = spec.scenario.get("road", {})
     base_cross = spec.scenario.get("crossing", {})
     base_speed = base_cross.get("speed", base_cross.get("speed_kmh", 28.8) / 3.6)
+    drawn = [case_draw(spec, c) for c in cases]
+    damage = [{**c, **d} for c, d in zip(cases, drawn)]  # a drawn damage or the swept one
+    base_rot = spec.scenario.get("bridge", {}).get("rotational_stiffness") or (math.nan, math.nan)
     return {
-        "speed": np.array([case_draw(spec, c).get("speed", c.get("speed", base_speed)) for c in cases], float),
+        "speed": np.array([d.get("speed", c.get("speed", base_speed)) for c, d in zip(cases, drawn)], float),
         "scour_class": np.array([c.get("scour_class", -1) for c in cases], np.int64),
         "pass_index": np.array([c.get("pass", 0) for c in cases], np.int64),
         "road_class": np.array([c.get("road_class", base_road.get("class", "none")) for c in cases], dtype=object),
-        "road_seed": np.array([c.get("road_seed", base_road.get("seed", 0)) for c in cases], np.int64),
+        "road_seed": np.array([case_road_seed(spec, c) for c in cases], np.int64),
+        "traffic_seed": np.array([d.get("traffic_seed", -1) for d in drawn], np.int64),
         "damage_position": np.array([c.get("damage_position", np.nan) if c.get("damage_severity", 0) > 0 else np.nan
-                                     for c in cases], float),
-        "damage_severity": np.array([c.get("damage_severity", 0.0) for c in cases], float),
+                                     for c in damage], float),
+        "damage_severity": np.array([c.get("damage_severity", 0.0) for c in damage], float),
+        "damage_length": np.array([c.get("damage_length", spec.damage_length) if c.get("damage_severity", 0) > 0 else np.nan
+                                   for c in damage], float),
+        "rotational_stiffness_entry": np.array([d.get("rotational_stiffness_entry", base_rot[0]) for d in drawn], float),
+        "rotational_stiffness_exit": np.array([d.get("rotational_stiffness_exit", base_rot[1]) for d in drawn], float),
+        "vehicle": np.array([-1 if not spec.fleet else case_vehicle(spec, c) for c in cases], np.int64),
+        "draw_index": np.array([c.get("index", i) for i, c in enumerate(cases)], np.int64),
         "noise_rms": np.array([c.get("noise_rms", spec.sensors[0].noise_rms) for c in cases], float),
     }
 
@@ -610,9 +718,18 @@ LABEL_ATTRS = {
                          "variability.scour_classes[k] (−1: none)"),
     "pass_index": ("1", "pass number within its combination of the sweep and scour class (its draw: the case index)"),
     "road_class": ("", "road roughness class (ISO 8608; none = smooth)"),
-    "road_seed": ("1", "seed of the random road"),
+    "road_seed": ("1", "seed of the random road (a random pass's own: derived from the file's seed and draw_index)"),
+    "traffic_seed": ("1", "seed of the pass's background trucks (variability.traffic_flow; −1: none)"),
     "damage_position": ("m", "start of the damaged region from the bridge entry (NaN: healthy)"),
     "damage_severity": ("1", "relative loss of bending stiffness EI in the damaged region (0: healthy)"),
+    "damage_length": ("m", "length of the damaged region (NaN: healthy)"),
+    "rotational_stiffness_entry": ("N m rad-1", "rotational spring at the entry support (drawn with "
+                                                "variability.rotational_stiffness, or the file's; NaN: none given)"),
+    "rotational_stiffness_exit": ("N m rad-1", "rotational spring at the exit support (drawn with "
+                                               "variability.rotational_stiffness, or the file's; NaN: none given)"),
+    "vehicle": ("", "the instrumented vehicle: index into the fleet coordinate (the [[fleet]] names; −1: one [vehicle])"),
+    "draw_index": ("1", "the key of the pass's draw (SeedSequence(seed, spawn_key=(draw_index,))); the vehicles of one "
+                        "pass of fleet = \"all\" share it"),
     "noise_rms": ("sensor unit", "standard deviation of the sensors' added noise"),
 }
 
@@ -706,12 +823,13 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     order = np.argsort(out["case"])
     n_cases = order.size
     n_samples = max(h.shape[2] for h in histories)
-    hist = np.full((n_cases, len(spec.sensors), n_samples), np.nan)
+    n_sensors = len(spec.sensors)
+    hist = np.full((n_cases, n_sensors + len(CONTACT_TRUTH), n_samples), np.nan)
     row = 0
     for h in histories:
         hist[row:row + h.shape[0], :, :h.shape[2]] = h
         row += h.shape[0]
-    hist = hist[order]
+    hist, truth = hist[order, :n_sensors], hist[order, n_sensors:]
     variables: dict[str, Any] = {}
     for name, (units, long_name) in CASE_OUTPUTS.items():
         values = out[name][order]
@@ -721,6 +839,22 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     for name, (units, long_name) in LABEL_ATTRS.items():
         attrs = {"long_name": long_name} | ({"units": units} if units else {})
         variables[name] = ("case", labels[name], attrs)
+    for j, (name, (units, long_name)) in enumerate(CONTACT_TRUTH.items()):
+        variables[name] = (("case", "sample"), truth[:, j], {"units": units, "long_name": long_name +
+                                                             " at t = time_start + sample / sampling_rate (NaN after its end)"})
+    if spec.output["spectra"]:
+        spectra = out["spectrum"][order]
+        variables["sensor_spectrum"] = (("case", "sensor", "frequency"), spectra[:, :n_sensors], {
+            "units": "see sensor_units", "long_name": "single-sided amplitude spectrum of each sensor record while the "
+            "front wheel is on the deck (samples on_bridge_start_sample … on_bridge_end_sample), rectangular window, "
+            "zero-padded: 2 |DFT| / N (vbikit.driveby.sensors.amplitude_spectrum)"})
+        variables["contact_spectrum"] = (("case", "frequency"), spectra[:, n_sensors], {
+            "units": "m s-2", "long_name": "single-sided amplitude spectrum of contact_acceleration over the same samples"})
+    factors = [case_draw(spec, c).get("vehicle_factors") for c in (spec.cases or ({},))]
+    if factors and factors[0] is not None:
+        variables["vehicle_factor"] = (("case", "vehicle_parameter"), np.array([np.concatenate(f) for f in factors])[order], {
+            "units": "1", "long_name": "drawn factor of each vehicle parameter (variability.vehicle_spread; a fleet's "
+                                       "smaller vehicle uses the first of each group)"})
     ident, true = out["identified_frequency_hz"][order], out["bridge_frequency_hz"][order]
     variables["frequency_error"] = ("case", ident / true - 1.0, {"units": "1", "long_name": "identified / true − 1"})
     ref = healthy_reference(labels)
@@ -772,9 +906,9 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
         variables[k] = ("case", values[k], {"units": units, "long_name": long_name})
     variables["sensor_history"] = (("case", "sensor", "sample"), hist, {
         "units": "see sensor_units", "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
-    variables["split"] = ("case", np.array([split_of(spec.seed, i) for i in range(n_cases)], np.int8), {
+    variables["split"] = ("case", np.array([split_of(spec.seed, int(i)) for i in labels["draw_index"]], np.int8), {
         "long_name": "documented train / validation / test split by the file's seed (vbikit.driveby.variability."
-                     "split_of: 70 / 15 / 15 %, fixed per case index)",
+                     "split_of: 70 / 15 / 15 %, fixed per draw_index: the vehicles of one pass in the same part)",
         "flag_values": np.array([0, 1, 2], np.int8), "flag_meanings": " ".join(SPLIT_NAMES)})
     variables["noise_std"] = (("case", "sensor"), out["noise_std"][order], {
         "units": "see sensor_units", "long_name": "standard deviation of the noise added to each sensor's record"})
@@ -785,16 +919,52 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
         "sensor": ("sensor", np.array([s.name for s in spec.sensors], dtype=object)),
         "sensor_units": ("sensor", np.array([s.unit for s in spec.sensors], dtype=object)),
         "sensor_quantity": ("sensor", np.array([s.quantity for s in spec.sensors], dtype=object)),
+        "fleet": ("fleet", np.array([n for n, _ in spec.fleet] or [spec.vehicle["model"]], dtype=object),
+                  {"long_name": "the instrumented vehicles ([[fleet]] names; the [vehicle] model without a fleet)"}),
     }
+    if spec.output["spectra"]:
+        coords["frequency"] = ("frequency", np.fft.rfftfreq(spectrum_length(spec), 1.0 / spec.sampling.rate),
+                               {"units": "Hz", "long_name": "frequency of the amplitude spectra"})
+    if "vehicle_factor" in variables:
+        n_dof, n_wheels = vehicle_dims(spec)
+        coords["vehicle_parameter"] = ("vehicle_parameter", np.array(
+            [f"{g}_{j}" for g, n in (("mass", n_dof), ("stiffness", n_dof), ("damping", n_dof), ("tire_stiffness", n_wheels),
+                                     ("tire_damping", n_wheels)) for j in range(n)], dtype=object))
     attrs = {"title": spec.name or "vbikit drive-by dataset", "study": spec.to_json(), "vbikit_version": __version__,
              "sampling_rate": spec.sampling.rate, "sampling_filter": f"Butterworth order {spec.sampling.filter_order}, "
              f"cut-off {spec.sampling.cutoff_hz:g} Hz, zero phase (forward-backward), applied before resampling",
-             "identification_method": spec.method, "identification_sensor": spec.sensor, "Conventions": "CF-1.8"}
+             "identification_method": spec.method, "identification_sensor": spec.sensor, "Conventions": "CF-1.8",
+             "chunk_passes": int(spec.output["chunk_passes"])}
     ds = xr.Dataset(variables, coords=coords, attrs=attrs)
     # chunked and compressed on disk: xarray.open_dataset(..., chunks={"case": n}) streams the records with Dask
-    ds["sensor_history"].encoding.update(
-        chunksizes=(min(n_cases, HISTORY_CHUNK_CASES), len(spec.sensors), max(n_samples, 1)), zlib=True, complevel=1)
+    for name in PER_PASS_RECORDS:
+        if name in ds:
+            ds[name].encoding.update(chunksizes=(min(n_cases, spec.output["chunk_passes"]), *ds[name].shape[1:]),
+                                     zlib=True, complevel=1)
     return ds
+
+
+#: the per-pass records stored in chunks of ``dataset.chunk_passes`` cases (whole along their other dimensions)
+PER_PASS_RECORDS = ("sensor_history", *CONTACT_TRUTH, "sensor_spectrum", "contact_spectrum")
+
+
+def write_zarr(ds, path: Path) -> None:
+    """``ds`` as a Zarr store at ``path`` (replaced), the per-pass records in chunks of
+    ``dataset.chunk_passes`` cases as in driveby.nc (``dataset.format = "zarr"``; needs the optional
+    package zarr, checked before the run by ``spec.check_dataset_format``)."""
+    import shutil
+
+    out = ds.copy()
+    for name in list(out.variables):
+        out[name].encoding = {}
+        if out[name].dtype == object:
+            out[name] = out[name].astype(str)
+    for name in PER_PASS_RECORDS:
+        if name in out:
+            out[name] = out[name].chunk({"case": int(ds.attrs["chunk_passes"])})
+    if path.exists():
+        shutil.rmtree(path)
+    out.to_zarr(path, mode="w")
 
 
 def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = 1,
@@ -814,11 +984,20 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     ds = run_study(DriveByStudy(spec), out_dir / "driveby.nc", workers=workers, scheduler=scheduler, progress=progress)
+    write_outputs(spec, ds, out_dir, figures)
+    return ds
+
+
+def write_outputs(spec: DriveBy, ds, out_dir: Path, figures: bool = True) -> str:
+    """Everything besides driveby.nc: ``driveby-report.txt`` and ``driveby-summary.json``,
+    ``driveby.zarr`` (``dataset.format = "zarr"``), the figures; returns the report's text."""
     from vbikit.driveby.report import write_report
 
-    write_report(ds, out_dir)
+    text = write_report(ds, out_dir)
+    if spec.output["format"] == "zarr":
+        write_zarr(ds, Path(out_dir) / "driveby.zarr")
     if figures:
         from vbikit.driveby.figures import write_figures
 
         write_figures(ds, out_dir)
-    return ds
+    return text

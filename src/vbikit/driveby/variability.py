@@ -14,12 +14,34 @@ The ``[variability]`` table of a drive-by file (all keys optional)::
     traffic_flow = 600              # background trucks [trucks/h] on the bridge during the pass (coupled only)
     traffic_speed_kmh = 80.0        # their mean speed [km/h] (standard deviation 10 %)
     traffic_direction = "-x"        # their direction: "-x" oncoming, "+x" the instrumented vehicle's
+    rotational_stiffness = {distribution = "loguniform", low = 1e7, high = 1e10}  # end springs [N m/rad], each end its own draw
+    damage_position = {distribution = "uniform", low = 5.0, high = 18.0}          # start of the damaged region [m]
+    damage_length = 2.0                                                           # a number: the same every pass [m]
+    damage_severity = {distribution = "choice", values = [0.0, 0.1, 0.2, 0.3]}    # loss of EI (0: healthy)
+    fleet = "draw"                  # with [[fleet]]: "draw" one vehicle per pass, "all" every vehicle on every pass
+
+Distributions (``DISTRIBUTIONS``, one mechanism for every drawn parameter of ``DRAWN_PARAMETERS``):
+a number (fixed, nothing drawn), ``{distribution = "uniform", low, high}`` (U(low, high)),
+``{distribution = "loguniform", low, high}`` (exp U(ln low, ln high), low > 0) or
+``{distribution = "choice", values = [...]}`` (one of the values, each with probability 1/n).
+Every bound and value must lie in the parameter's allowed range (``DRAWN_PARAMETERS``); the
+check is the pydantic schema ``DrawnParameters``, whose errors name the key and the range.
 
 Draws.  Pass (case) ``i`` of a file with seed ``s`` draws from
 ``numpy.random.default_rng(numpy.random.SeedSequence(s, spawn_key=(i,)))`` — the i-th child that
 ``SeedSequence(s).spawn`` would give — so a pass's draw depends only on (s, i): the same in any
 order, in any batch, on any worker.  The draw order within a pass is fixed: speed, temperature,
-vehicle factors (masses, stiffnesses, dampings, tire stiffnesses, tire dampings).
+vehicle factors (masses, stiffnesses, dampings, tire stiffnesses, tire dampings), the traffic
+seed, then the parameters of ``DRAWN_PARAMETERS`` in its order (rotational stiffness at the entry
+then the exit, damage position, length, severity; a fixed number draws nothing), then the fleet
+vehicle (``fleet = "draw"``: ``rng.integers(0, n_vehicles)``).  A key added later draws after
+these: the earlier draws keep their values.  The vehicle factors are drawn for the largest
+vehicle of a fleet (most DOFs, most wheels); a smaller vehicle uses the first of them.
+
+Fleet.  ``[[fleet]]`` tables (each a ``[vehicle]`` table with a ``name``) replace ``[vehicle]``:
+with ``fleet = "draw"`` every pass draws its vehicle; with ``"all"`` every pass (one draw: speed,
+road, temperature, bridge) is run by every vehicle, the passes of one draw adjacent, sharing
+their ``index`` (the key of the draw) and their part of the split.
 
 Vehicle factors.  A vehicle is stored as matrices (``vbikit.vehicle.model``), so the spread is
 applied per degree of freedom and per wheel: M' = S_m M S_m, K' = S_k K S_k, C' = S_c C S_c with
@@ -41,17 +63,143 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Optional
+from typing import Any, Callable, Optional
 
 import numpy as np
 from numpy.typing import NDArray
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, create_model, field_validator
 
 from vbikit.errors import VbikitError
+
+
+
+@dataclass(frozen=True)
+class DrawnParameter:
+    """A bridge parameter drawn per pass from a stated distribution (``DRAWN_PARAMETERS``):
+    allowed range [low, high], unit, how many values a pass draws (one per label) and their labels."""
+
+    low: float
+    high: float
+    unit: str
+    labels: tuple[str, ...]
+    long_name: str
+
+
+#: parameters drawn per pass from a distribution, in draw order: key -> allowed range, unit, labels
+DRAWN_PARAMETERS: dict[str, DrawnParameter] = {
+    "rotational_stiffness": DrawnParameter(
+        0.0, 1e13, "N m rad-1", ("rotational_stiffness_entry", "rotational_stiffness_exit"),
+        "rotational spring at the {end} support [N m/rad] (0 pinned; continuous-beam), drawn per pass"),
+    "damage_position": DrawnParameter(0.0, 1e5, "m", ("damage_position",),
+                                      "start of the damaged region from the bridge entry (NaN: healthy)"),
+    "damage_length": DrawnParameter(1e-3, 1e3, "m", ("damage_length",), "length of the damaged region (NaN: healthy)"),
+    "damage_severity": DrawnParameter(0.0, 0.99, "1", ("damage_severity",),
+                                      "relative loss of bending stiffness EI in the damaged region (0: healthy)"),
+}
+#: the damage keys: drawn together (a drawn damage needs its position and severity)
+DAMAGE_KEYS = ("damage_position", "damage_length", "damage_severity")
+
+
+class Distribution(BaseModel):
+    """One drawn parameter's distribution (module docstring, ``DISTRIBUTIONS``)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+    distribution: str = Field(..., description="one of DISTRIBUTIONS")
+    low: Optional[float] = None
+    high: Optional[float] = None
+    values: Optional[tuple[float, ...]] = None
+
+    def draw(self, rng: np.random.Generator) -> float:
+        return float(DISTRIBUTIONS[self.distribution][1](self, rng))
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        """The least and the largest value a draw can take."""
+        if self.values is not None:
+            return min(self.values), max(self.values)
+        return self.low, self.low if self.high is None else self.high
+
+
+def _uniform(d: Distribution, rng: np.random.Generator) -> float:
+    return rng.uniform(d.low, d.high)
+
+
+def _loguniform(d: Distribution, rng: np.random.Generator) -> float:
+    return math.exp(rng.uniform(math.log(d.low), math.log(d.high)))
+
+
+def _choice(d: Distribution, rng: np.random.Generator) -> float:
+    return d.values[int(rng.integers(0, len(d.values)))]
+
+
+def _fixed(d: Distribution, rng: np.random.Generator) -> float:
+    return d.low
+
+
+#: distributions: name -> (the keys it takes, sampler(distribution, rng)); a number is "fixed"
+DISTRIBUTIONS: dict[str, tuple[tuple[str, ...], Callable[[Distribution, np.random.Generator], float]]] = {
+    "uniform": (("low", "high"), _uniform),
+    "loguniform": (("low", "high"), _loguniform),
+    "choice": (("values",), _choice),
+    "fixed": (("low",), _fixed),
+}
+
+
+def _distribution(value: Any, info) -> Distribution:
+    """Validator of every ``DrawnParameters`` field: a number or a distribution table, its bounds and
+    values inside the key's allowed range (``DRAWN_PARAMETERS``)."""
+    key = info.field_name
+    p = DRAWN_PARAMETERS[key]
+    where = f"variability.{key}"
+    allowed = f"allowed: [{p.low:g}, {p.high:g}] {p.unit}"
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
+        value = {"distribution": "fixed", "low": value}
+    if not isinstance(value, dict) or not isinstance(value.get("distribution"), str):
+        raise ValueError(f"{where}: a number or a table {{distribution = \"{'|'.join(d for d in DISTRIBUTIONS if d != 'fixed')}\", "
+                         f"...}}, got {value!r}")
+    kind = value["distribution"]
+    if kind not in DISTRIBUTIONS:
+        raise ValueError(f"{where}.distribution: {kind!r}; allowed: {', '.join(DISTRIBUTIONS)}")
+    keys = DISTRIBUTIONS[kind][0]
+    extra = [k for k in value if k not in ("distribution", *keys)]
+    missing = [k for k in keys if k not in value]
+    if extra or missing:
+        raise ValueError(f"{where}: distribution {kind!r} takes {', '.join(keys)}; "
+                         + (f"unknown {extra[0]!r}" if extra else f"missing {missing[0]!r}"))
+
+    def check(name: str, v: Any, lo: float = p.low) -> float:
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and lo <= v <= p.high):
+            unit = "" if p.unit == "1" else f" {p.unit}"
+            bound = f"({p.low:g}, {p.high:g}]{unit}" if lo > p.low else f"[{p.low:g}, {p.high:g}]{unit}"
+            raise ValueError(f"{where}.{name}: expected a number in {bound}, got {v!r}")
+        return float(v)
+
+    if kind == "choice":
+        values = value["values"]
+        if not isinstance(values, list) or not values:
+            raise ValueError(f"{where}.values: a non-empty list of numbers, {allowed}")
+        return Distribution(distribution=kind, values=tuple(check("values", v) for v in values))
+    low = check("low", value["low"], lo=math.nextafter(0.0, 1.0) if kind == "loguniform" else p.low)
+    if kind == "fixed":
+        return Distribution(distribution=kind, low=low)
+    high = check("high", value["high"], lo=math.nextafter(0.0, 1.0) if kind == "loguniform" else p.low)
+    if low > high:
+        raise ValueError(f"{where}: expected low <= high, got low = {low:g}, high = {high:g}")
+    return Distribution(distribution=kind, low=low, high=high)
+
+
+#: the one schema of the drawn parameters: a field per ``DRAWN_PARAMETERS`` key, each a ``Distribution``
+DrawnParameters = create_model(
+    "DrawnParameters", __config__=ConfigDict(extra="forbid", arbitrary_types_allowed=True),
+    __validators__={"distribution": field_validator(*DRAWN_PARAMETERS, mode="before")(_distribution)},
+    **{k: (Optional[Distribution], None) for k in DRAWN_PARAMETERS})
+#: how a fleet's vehicles take part: "draw" one per pass, "all" each pass by every vehicle
+FLEET_MODES = {"draw": "every pass draws its vehicle of [[fleet]]", "all": "every pass is run by every vehicle of [[fleet]]"}
 
 #: keys of [variability]
 VARIABILITY_KEYS = ("passes", "speed", "vehicle_spread", "support_stiffness", "scour_classes", "temperature",
                     "temperature_reference", "temperature_coefficient", "traffic_flow", "traffic_speed_kmh",
-                    "traffic_direction")
+                    "traffic_direction", *DRAWN_PARAMETERS, "fleet")
 #: default speed [km/h] of the background trucks (``vbikit.traffic.LaneTraffic``'s default)
 TRAFFIC_SPEED_KMH = 80.0
 #: default α_E [1/°C] (module docstring, Xia et al. 2006)
@@ -86,6 +234,9 @@ class Variability:
     traffic_flow: Optional[float] = None
     traffic_speed_kmh: float = TRAFFIC_SPEED_KMH
     traffic_direction: str = "-x"
+    #: (key, Distribution) of the parameters drawn from ``DRAWN_PARAMETERS``, in its order
+    drawn: tuple = ()
+    fleet: str = "draw"
     extra: dict = field(default_factory=dict, repr=False, compare=False)
 
     @property
@@ -137,7 +288,31 @@ def parse_variability(table: Any) -> Variability:
                                                                                TEMPERATURE_COEFFICIENT), 0.0, 0.01)),
         traffic_flow=float(_number("traffic_flow", t["traffic_flow"], 1.0, 1700.0)) if "traffic_flow" in t else None,
         traffic_speed_kmh=float(_number("traffic_speed_kmh", t.get("traffic_speed_kmh", TRAFFIC_SPEED_KMH), 10.0, 200.0)),
-        traffic_direction=_direction(t.get("traffic_direction", "-x")))
+        traffic_direction=_direction(t.get("traffic_direction", "-x")),
+        drawn=parse_drawn(t), fleet=_fleet(t.get("fleet", "draw")))
+
+
+def parse_drawn(table: dict) -> tuple:
+    """The drawn parameters of a [variability] table, validated by the schema ``DrawnParameters``
+    (errors name the key and its allowed range); ``((key, Distribution), ...)`` in draw order."""
+    given = {k: table[k] for k in DRAWN_PARAMETERS if k in table}
+    try:
+        model = DrawnParameters.model_validate(given)
+    except ValidationError as err:
+        e = err.errors()[0]
+        raise VariabilityError(e["msg"].removeprefix("Value error, ")) from None
+    drawn = tuple((k, getattr(model, k)) for k in DRAWN_PARAMETERS if getattr(model, k) is not None)
+    keys = {k for k, _ in drawn} & set(DAMAGE_KEYS)
+    if keys and not {"damage_position", "damage_severity"} <= keys:
+        raise VariabilityError("variability.damage_position: a drawn damage needs damage_position and damage_severity "
+                               "(and damage_length, default the sweep's damage_length)")
+    return drawn
+
+
+def _fleet(value: Any) -> str:
+    if value not in FLEET_MODES:
+        raise VariabilityError(f"variability.fleet: {value!r}; allowed: {', '.join(FLEET_MODES)}")
+    return value
 
 
 def _direction(value: Any) -> str:
@@ -182,12 +357,15 @@ def temperature_factor(var: Variability, temperature: float) -> float:
     return 1.0 - var.temperature_coefficient * (temperature - var.temperature_reference)
 
 
-def draw(var: Variability, seed: int, index: int, n_dof: int, n_wheels: int) -> dict[str, Any]:
+def draw(var: Variability, seed: int, index: int, n_dof: int, n_wheels: int, n_vehicles: int = 0) -> dict[str, Any]:
     """The random parameters of pass ``index``: ``speed`` [m/s] and ``temperature`` [°C] (absent
     when not varied), ``vehicle_factors`` (5 arrays: per-DOF mass, stiffness, damping factors,
-    per-wheel tire stiffness and damping factors; absent without a spread) and ``traffic_seed``
+    per-wheel tire stiffness and damping factors; absent without a spread), ``traffic_seed``
     (the seed of the pass's background trucks, ``vbikit.driveby.traffic``; absent without
-    ``traffic_flow``), drawn in this order (a new key draws last: earlier draws keep their values)."""
+    ``traffic_flow``), every label of the ``DRAWN_PARAMETERS`` given (e.g.
+    ``rotational_stiffness_entry``, ``damage_severity``) and ``vehicle`` (the index of the fleet's
+    vehicle, with ``n_vehicles`` > 0 and ``fleet = "draw"``), drawn in this order (a new key draws
+    last: earlier draws keep their values)."""
     rng = pass_rng(seed, index)
     out: dict[str, Any] = {}
     if var.speed is not None:
@@ -200,20 +378,32 @@ def draw(var: Variability, seed: int, index: int, n_dof: int, n_wheels: int) -> 
                                        for n in (n_dof, n_dof, n_dof, n_wheels, n_wheels))
     if var.traffic_flow is not None:
         out["traffic_seed"] = int(rng.integers(0, 2**62))
+    for key, dist in var.drawn:
+        for label in DRAWN_PARAMETERS[key].labels:
+            out[label] = dist.draw(rng)
+    if n_vehicles > 0 and var.fleet == "draw":
+        out["vehicle"] = int(rng.integers(0, n_vehicles))
     return out
 
 
-def expand_cases(cases: tuple, var: Variability) -> tuple:
-    """The sweep's combinations × scour classes × passes (the pass index varies fastest); each case
-    carries its ``index`` (the key of its draw), its ``pass`` and its ``scour_class``."""
-    if not var.active:
+def expand_cases(cases: tuple, var: Variability, n_vehicles: int = 0) -> tuple:
+    """The sweep's combinations × scour classes × passes (the pass index varies fastest; with a
+    fleet of ``n_vehicles`` and ``fleet = "all"``, × vehicles, fastest of all); each case carries
+    its ``index`` (the key of its draw, shared by the vehicles of one pass), its ``pass``, its
+    ``scour_class`` and, with ``fleet = "all"``, its ``vehicle``."""
+    if not var.active and not n_vehicles:
         return cases
     classes = range(len(var.scour_classes)) if var.scour_classes else [None]
+    vehicles = range(n_vehicles) if n_vehicles and var.fleet == "all" else [None]
     out = []
+    index = 0
     for combo in cases or ({},):
         for k in classes:
             for p in range(var.passes):
-                out.append({**combo, **({} if k is None else {"scour_class": k}), "pass": p, "index": len(out)})
+                for v in vehicles:
+                    out.append({**combo, **({} if k is None else {"scour_class": k}), "pass": p, "index": index,
+                                **({} if v is None else {"vehicle": v})})
+                index += 1
     return tuple(out)
 
 
@@ -221,7 +411,8 @@ def perturbed_vehicle(vehicle, factors: tuple):
     """The vehicle with its matrices and tires scaled by ``factors`` (``draw``; module docstring)."""
     import dataclasses
 
-    fm, fk, fc, fkt, fct = (np.asarray(f, float) for f in factors)
+    n, w = vehicle.n_dof, len(vehicle.wheels)  # a fleet's factors are drawn for its largest vehicle: the first n
+    fm, fk, fc, fkt, fct = (np.asarray(f, float)[:k] for f, k in zip(factors, (n, n, n, w, w)))
 
     def congruence(a: NDArray, f: NDArray) -> NDArray:
         s = np.sqrt(f)

@@ -135,12 +135,16 @@ def too_wide(level: float | None, lower: float | None, upper: float | None) -> b
 
 def run_static_shortfall(static: np.ndarray, run_static: np.ndarray, signs: np.ndarray, simulated: np.ndarray,
                          day: np.ndarray, n_days: int, fraction: float) -> tuple[np.ndarray, np.ndarray]:
-    """Per effect, how far the coupled runs' time steps miss the exact static peak: the largest
-    1 − s·R_st,run / s·R_st over the simulated events whose exact static peak s·R_st is at least
-    ``fraction`` of their day's largest (the events that set the daily maxima), and that event
-    (−1: none).  A run samples its total and its static reference at the same instants, so a
-    static peak it misses (a reaction's spike while an axle crosses the support) leaves its total
-    peak about as low: the daily maxima of the total, and the ADR, are then biased low."""
+    """Per effect, how far the coupled runs' own static reference misses the exact static peak: the
+    largest 1 − s·R_st,run / s·R_st over the simulated events whose exact static peak s·R_st is at
+    least ``fraction`` of their day's largest (the events that set the daily maxima), and that
+    event (−1: none).  A run reads its total and its static reference at the same instants — its
+    time steps and, for moments, shears and reactions, both one-sided limits at every instant a
+    wheel crosses a jump or kink of the line (``vbikit.lifetime.peaks.with_knot_limits``), where
+    the exact static peak is reached — so a static peak it still misses leaves its total peak
+    about as low: the daily maxima of the total, and the ADR, are then biased low.  What is left
+    to miss: a deflection's peak between two steps (a smooth line: a relative (π f dt)²/2 or so),
+    a wheel off the tabulated tracks, a braking vehicle's knot instants."""
     s_st, s_run = static * signs[None, :], run_static * signs[None, :]
     n = static.shape[1]
     worst, event = np.zeros(n), np.full(n, -1, np.int64)

@@ -334,6 +334,7 @@ class DynamicJob:
         from vbikit.analysis.effects import load_effect_responses
         from vbikit.analysis.response import point_response
         from vbikit.fatigue import miner_damage, rainflow
+        from vbikit.lifetime.peaks import with_knot_limits
         from vbikit.solve import choose_time_step, simulate
 
         setup = build_setup(self.setup_key)
@@ -343,16 +344,18 @@ class DynamicJob:
         result = simulate(crossing)
         dyn, st = [], []
         effect_lines = [line for line in setup.lines if line.kind != "deflection"]
-        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines]))
-        for line in setup.lines:
+        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines], check_step=False))
+        for j, line in enumerate(setup.lines):
             if line.kind == "deflection":
                 resp = point_response(result, line.x, line.y)
                 dyn.append(resp.displacement)
                 st.append(resp.static_displacement)
             else:
                 resp = next(effects)
-                dyn.append(resp.dynamic)
-                st.append(resp.static)
+                # the total and static at the instants a wheel crosses the line's jumps and kinks too
+                _, h_dyn, h_st = with_knot_limits(result, line.effect, setup.tables[j], resp.dynamic, resp.static)
+                dyn.append(h_dyn)
+                st.append(h_st)
         out = {"dyn_peak": np.array([s.sign * np.max(s.sign * d) for s, d in zip(setup.lines, dyn)]),
                "run_static_peak": np.array([s.sign * np.max(s.sign * h) for s, h in zip(setup.lines, st)])}
         d_dyn, d_st, top = [], [], []

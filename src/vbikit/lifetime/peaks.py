@@ -1,267 +1,111 @@
-"""Exact static peaks of events on a tabulated influence line: the extreme of a sum of moving
-point loads over a piecewise-linear line is reached at an instant when some load stands on a
-node of the line.
+"""Exact static peaks of events on a tabulated influence line, and the coupled runs' total at the
+same instants.
 
-Let g be tabulated on nodes x_k = x_0 + k h (``vbikit.lifetime.influence.Tabulated``): linear
-within each cell between its one-sided limits g(x_k⁺) = a_k and g(x_(k+1)⁻) = b_k, so a jump (a
-shear line at its section) or a kink (a support, a moment line at its section) at a node is
-kept.  A load P_p moving at constant speed, x_p(t) = −d_p + v_p (t − t_p) (driving +x) or
-L + d_p − v_p (t − t_p) (driving −x), contributes P_p g(x_p(t)), piecewise linear in t with
-knots at the instants τ_(p,k) when it stands on a node (zero off the grid).  The event's static
-history
-
-    R(t) = Σ_p P_p g(x_p(t))
-
-is then piecewise linear in t between the union of all knots, so its supremum and infimum are
-among the one-sided limits R(τ⁻), R(τ⁺) at the knots (both kept: at a jump the extreme is a
-one-sided limit, which is what a sampled history approaches).  Nothing is sampled: the peak is
-the exact extreme of the tabulated line's response, whatever the speeds, directions and
-spacings of the event's vehicles.
-
-Only *active* nodes are knots: a node where the tabulated line stays on the straight line of the
-segment it is on (within ``tol``, the tabulation's own ε-offset error) is skipped, so a
-piecewise-linear line (a simply supported beam's moment, shear and reaction) has a handful of
-knots and a curved one (a deflection, a continuous beam) one per node.  ``event_extremes``
-sweeps every event's knots in time order (a merge of the loads' sorted knot lists), carrying
-R and its slope dR/dt from knot to knot: cost O(K·n_p) a event for K knots of n_p loads, no
-sort and no sampling.  Points of one vehicle at the same setback on the same table row (the
-two wheels of an axle on a beam) are merged into one load beforehand.
+The static peaks: every event's loads swept over the active nodes of the tabulated lines
+(``vbikit.lifetime.influence.Tabulated``) by the breakpoint sweep of
+``vbikit.analysis.breakpoints`` (exact on the tabulated line: module docstring there; points of
+one vehicle at the same setback on the same table row, the two wheels of an axle on a beam, are
+merged into one load beforehand).  The coupled runs: ``with_knot_limits`` evaluates a run's total
+at the instants a wheel stands on one of those knots.
 """
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 from numpy.typing import NDArray
 
-from vbikit.solve.numba_cache import ensure_cache_location
+from vbikit.analysis.breakpoints import GATE, active_nodes, event_extremes, knot_tables
 
-ensure_cache_location()  # before the @njit(cache=True) below
-
-
-def active_nodes(a: NDArray[np.float64], b: NDArray[np.float64], n_rows: int, n_nodes: int, delta: float,
-                 tol: float) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
-    """Active nodes of every row of a tabulated line (module docstring), CSR: ``ptr`` (n_rows + 1,),
-    ``idx`` node numbers in increasing order.
-
-    ``a``, ``b``: the table's flat cell starts and ends (row r's cell i at r·n_nodes + i, as in
-    ``Tabulated``), sampled at the fractions ``delta`` and 1 − ``delta`` of the cell (the
-    one-sided limits' offset ε/h).  A segment starts at an active node k with the straight line
-    through a_k and b_k; node k' > k is active when b_(k'−1), a_k' or b_k' (the cell after it)
-    leaves that line by more than ``tol``: a jump, or a kink at k'.  Between active nodes the
-    table is thus straight within ``tol``."""
-    m = n_nodes - 1
-    ptr = [0]
-    idx: list[int] = []
-    u_a = np.arange(m) + delta  # positions (in cells) of a_k and b_k
-    u_b = np.arange(m) + 1.0 - delta
-    for r in range(n_rows):
-        A = a[r * n_nodes:r * n_nodes + m]
-        B = b[r * n_nodes:r * n_nodes + m]
-        idx.append(0)
-        k = 0
-        while k < m - 1:
-            rise = (B[k] - A[k]) / (1.0 - 2.0 * delta)  # per cell
-            # the first node after k off the line: a jump or kink there (searched in growing windows)
-            width, hit = 8, None
-            while hit is None:
-                end = min(k + 1 + width, m)
-                line_a = A[k] + rise * (u_a[k + 1:end] - u_a[k])
-                line_b = A[k] + rise * (u_b[k:end] - u_a[k])
-                off = (np.abs(A[k + 1:end] - line_a) > tol) | (np.abs(B[k:end - 1] - line_b[:-1]) > tol) | \
-                    (np.abs(B[k + 1:end] - line_b[1:]) > tol)
-                found = np.flatnonzero(off)
-                if found.size:
-                    hit = k + 1 + int(found[0])
-                elif end == m:
-                    hit = m
-                width *= 4
-            if hit >= m:
-                break
-            k = hit
-            idx.append(k)
-        idx.append(m)
-        ptr.append(len(idx))
-    return np.asarray(ptr, np.int64), np.asarray(idx, np.int64)
+__all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_tables", "with_knot_limits"]
 
 
-def knot_tables(a: NDArray[np.float64], b: NDArray[np.float64], n_nodes: int, x0: float, h: float,
-                ptr: NDArray[np.int64], idx: NDArray[np.int64]):
-    """Per active node (``active_nodes``' flat order): its x [m], g(x⁻), g(x⁺) (zero off the grid)
-    and the slope dg/dx of the segment to the row's next active node (0 after the last)."""
-    m = n_nodes - 1
-    row = np.repeat(np.arange(ptr.size - 1), np.diff(ptr))
-    k = idx
-    base = row * n_nodes
-    left = np.where(k > 0, b[base + np.maximum(k - 1, 0)], 0.0)
-    right = np.where(k < m, a[base + np.minimum(k, m - 1)], 0.0)
-    x = x0 + h * k
-    slope = np.zeros(k.size)
-    nxt = np.arange(k.size) + 1
-    inner = np.ones(k.size, bool)
-    inner[ptr[1:] - 1] = False  # the last node of each row
-    j = np.flatnonzero(inner)
-    slope[j] = (left[nxt[j]] - right[j]) / (x[nxt[j]] - x[j])
-    return x, left, right, slope
+# ---------------------------------------------------------------- the coupled run's total at the knots
+#: the one-sided limits at a knot instant τ are read at τ ∓ this fraction of the run's step
+KNOT_OFFSET = 1e-6
 
 
-#: turning points of a history are kept when they reverse by more than this fraction of
-#: max|g| · Σ P of the event (the tabulation's ε offsets make reversals of ≈ 1e-9 of it)
-GATE = 1e-7
+def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
+    """The instants τ in (t0, t1) [s] at which a contact point of ``crossing`` stands on an active
+    node of ``table`` (a ``vbikit.lifetime.influence.Tabulated`` line: the knots of the module
+    docstring, the jump of a reaction or shear line, the kink of a moment line), sorted, unique."""
+    origin, sign, y = crossing.point_kinematics()
+    veh = crossing.point_vehicle
+    track = _tracks(table, y)
+    kx = table.knots[0]
+    out = []
+    for p in range(origin.size):
+        r = int(table.row[track[p]])
+        s = (kx[table.active_ptr[r]:table.active_ptr[r + 1]] - origin[p]) * sign[p]  # travel of its vehicle there
+        motion = crossing.vehicles[veh[p]]
+        out += [motion.time_at(float(v)) for v in s]
+    tau = np.asarray(out, float)
+    tau = tau[np.isfinite(tau) & (tau > t0) & (tau < t1)]
+    return np.unique(tau)
 
 
-@njit(cache=True)
-def _push(buf, n, first, x, gate):
-    """Add x to the turning points buf[first:n] (hysteresis filter): a value that goes on in the
-    direction of the last step replaces the last point; one that reverses by more than ``gate``
-    is appended; anything else is dropped.  Returns the new n (``buf`` has room)."""
-    if n == first:
-        buf[n] = x
-        return n + 1
-    last = buf[n - 1]
-    if n - first >= 2 and (x - last) * (last - buf[n - 2]) >= 0:
-        buf[n - 1] = x
-        return n
-    if abs(x - last) > gate:
-        buf[n] = x
-        return n + 1
-    return n
+def _tracks(table, y: NDArray[np.float64]) -> NDArray[np.int64]:
+    """The table's track of every contact point at deck y (ValueError if one is not tabulated)."""
+    ids = np.argmin(np.abs(table.tracks[None, :] - np.asarray(y, float)[:, None]), axis=1)
+    if not np.allclose(table.tracks[ids], y, rtol=0.0, atol=1e-9):
+        raise ValueError("a contact point's wheel track is not among the tabulated tracks")
+    return ids
 
 
-@njit(cache=True)
-def _sweep(ev_ptr, t_entry, speed, direction, setback, load, row, span, act_ptr, kx, gl, gr, sx, hi, lo, tp, tp_ptr,
-           e_start, g_max):
-    """``event_extremes`` from event ``e_start`` on, writing turning points into ``tp`` (none if
-    it is empty) until the next event might not fit; returns the next event to do."""
-    n_ev = ev_ptr.size - 1
-    keep = tp.size > 0
-    max_p = 1
-    for e in range(n_ev):
-        max_p = max(max_p, ev_ptr[e + 1] - ev_ptr[e])
-    nxt = np.empty(max_p, np.int64)  # next knot of each load (flat index of its active node)
-    t_next = np.empty(max_p)
-    slope = np.empty(max_p)
-    t_a = np.empty(max_p)  # a load stands on x at t_a + t_b·x
-    t_b = np.empty(max_p)
-    n_tp = tp_ptr[e_start]
-    for e in range(e_start, n_ev):
-        p0 = ev_ptr[e]
-        n_p = ev_ptr[e + 1] - p0
-        if keep:
-            knots = 0
-            for p in range(p0, p0 + n_p):
-                knots += act_ptr[row[p] + 1] - act_ptr[row[p]]
-            if n_tp + 2 * knots + 2 > tp.size:  # at most two values a knot, and the zeros
-                return e
-        for q in range(n_p):
-            p = p0 + q
-            r = row[p]
-            if direction[p] > 0:
-                t_a[q] = t_entry[p] + setback[p] / speed[p]
-                t_b[q] = 1.0 / speed[p]
-                nxt[q] = act_ptr[r]
-            else:
-                t_a[q] = t_entry[p] + (span + setback[p]) / speed[p]
-                t_b[q] = -1.0 / speed[p]
-                nxt[q] = act_ptr[r + 1] - 1
-            t_next[q] = t_a[q] + t_b[q] * kx[nxt[q]]
-            slope[q] = 0.0
-        R = 0.0
-        S = 0.0
-        t_cur = -np.inf
-        best_hi = 0.0
-        best_lo = 0.0
-        first = n_tp
-        gate = 0.0
-        for p in range(p0, p0 + n_p):
-            gate += abs(load[p])
-        gate *= GATE * g_max
-        if keep:
-            n_tp = _push(tp, n_tp, first, 0.0, gate)
-        while True:
-            q_min = -1
-            t_min = np.inf
-            for q in range(n_p):
-                if t_next[q] < t_min:
-                    t_min = t_next[q]
-                    q_min = q
-            if q_min < 0:
-                break
-            if t_min > t_cur:
-                # every knot at t_cur is through: R is the right limit there; then the left limit at t_min
-                if t_cur > -np.inf:
-                    if keep:
-                        n_tp = _push(tp, n_tp, first, R, gate)
-                    best_hi = max(best_hi, R)
-                    best_lo = min(best_lo, R)
-                    R += S * (t_min - t_cur)
-                    best_hi = max(best_hi, R)
-                    best_lo = min(best_lo, R)
-                    if keep:
-                        n_tp = _push(tp, n_tp, first, R, gate)
-                t_cur = t_min
-            # load q_min stands on its knot: its jump and its new slope
-            q = q_min
-            p = p0 + q
-            r = row[p]
-            j = nxt[q]
-            S -= slope[q]
-            if direction[p] > 0:
-                R += load[p] * (gr[j] - gl[j])
-                if j + 1 < act_ptr[r + 1]:
-                    slope[q] = load[p] * speed[p] * sx[j]
-                    nxt[q] = j + 1
-                    t_next[q] = t_a[q] + t_b[q] * kx[j + 1]
-                else:
-                    slope[q] = 0.0
-                    t_next[q] = np.inf
-            else:
-                R += load[p] * (gl[j] - gr[j])
-                if j - 1 >= act_ptr[r]:
-                    slope[q] = -load[p] * speed[p] * sx[j - 1]
-                    nxt[q] = j - 1
-                    t_next[q] = t_a[q] + t_b[q] * kx[j - 1]
-                else:
-                    slope[q] = 0.0
-                    t_next[q] = np.inf
-            S += slope[q]
-        # after the last knot every load is off the grid: R = 0 (0 is among the extremes already)
-        hi[e] = best_hi
-        lo[e] = best_lo
-        if keep:
-            n_tp = _push(tp, n_tp, first, 0.0, gate)
-            tp[n_tp - 1] = 0.0  # the bridge is empty again
-        tp_ptr[e + 1] = n_tp
-    return n_ev
+def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
+                     static: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The run's histories of a load effect with both one-sided limits at every knot instant inserted
+    in time order: (time, total, static).
 
+    A coupled run reads R at its steps t_n; where a contact point crosses a jump or kink of the
+    influence line (a reaction under an axle passing its support, a shear at its section) R peaks
+    between two steps, and the exact static peak (``event_extremes``) is one of its one-sided
+    limits there.  In mode acceleration (``vbikit.analysis.effects``), with the modal equations
+    ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i = −Q_i, Q_i = Σ_p φ_i(x_p) β_p f_w (as the solver integrates them),
 
-def event_extremes(ev_ptr, t_entry, speed, direction, setback, load, row, span, act_ptr, kx, gl, gr, sx,
-                   keep=False):
-    """(max R, min R) of every event and, with ``keep``, the turning points of each event's R(t)
-    (module docstring).
+        R(t) = Σ_p g(x_p) β_p f_w − Σ_i r_i (ξ̈_i + 2 ζ_i ω_i ξ̇_i) / ω_i²
+             = Σ_p g(x_p) β_p f_w + Σ_i r_i Q_i / ω_i² + Σ_i r_i ξ_i,
+        R_st(t) = Σ_p g(x_p) β_p P_w,
 
-    ``ev_ptr`` (n_events + 1,): the loads of event e are ``ev_ptr[e]:ev_ptr[e+1]`` of the flat
-    per-load arrays ``t_entry`` [s] (entry time of the load's vehicle, relative to a time origin
-    of the event), ``speed`` [m/s], ``direction`` (±1), ``setback`` [m], ``load`` [N], ``row``
-    (table row); ``act_ptr``: the rows' active nodes (``active_nodes``), ``kx``, ``gl``, ``gr``,
-    ``sx``: their x, one-sided values and the slopes after them (``knot_tables``).
+    every jump and kink is in a function of the positions x_p(t) — g, and the mode shapes φ_i in
+    Q_i — known exactly at any t (the vehicles' motion is prescribed), while the wheel forces f_w
+    and the modal displacements ξ_i are states of the dynamics, continuous in t (ξ_i even smooth:
+    its kinks are in ξ̈_i).  So at each knot instant τ (``knot_instants``) both limits R(τ∓) are
+    evaluated at x_p(τ ∓ δ), δ = ``KNOT_OFFSET`` · step, with g from ``table`` (the line the
+    exact static peaks use) and the bridge's mode shapes, f_w interpolated linearly and ξ_i by
+    cubic Hermite interpolation (ξ_i, ξ̇_i) between the two steps around τ: the total at the
+    instant of the exact static peak, no longer up to a step away from it.  Its remaining error
+    is the interpolation: at most (1 − cos(π f dt)) ≈ (π f dt)²/2 of the amplitude of a wheel-force
+    component at frequency f (dt the stored step), and far less for ξ_i.
 
-    Returns hi, lo (n_events,), the turning points ``tp`` of every event's history (0 before the
-    first load arrives, every local extreme — both one-sided limits at a jump — and 0 when the
-    last has left; reversals smaller than ``GATE`` · max|g| · Σ P dropped; empty without
-    ``keep``) and their offsets ``tp_ptr`` (n_events + 1,)."""
-    n_ev = ev_ptr.size - 1
-    g_max = float(max(np.max(np.abs(gl), initial=0.0), np.max(np.abs(gr), initial=0.0)))
-    hi, lo = np.empty(n_ev), np.empty(n_ev)
-    tp_ptr = np.zeros(n_ev + 1, np.int64)
-    tp = np.empty(max(4096, 8 * n_ev) if keep else 0)
-    e = 0
-    while True:
-        e = _sweep(ev_ptr, t_entry, speed, direction, setback, load, row, span, act_ptr, kx, gl, gr, sx, hi, lo, tp,
-                   tp_ptr, e, g_max)
-        if e >= n_ev:
-            return hi, lo, tp[:tp_ptr[-1]].copy(), tp_ptr
-        # the next event might not fit: room for it and as much again
-        knots = int(np.sum(np.diff(act_ptr)[row[ev_ptr[e]:ev_ptr[e + 1]]]))
-        grown = np.empty(2 * tp.size + 2 * knots + 2)
-        grown[:tp_ptr[e]] = tp[:tp_ptr[e]]
-        tp = grown
+    ``result``: the ``CrossingResult``; ``effect``: the ``LoadEffect`` (its modal values r_i);
+    ``dynamic``, ``static``: its histories at ``result.time`` (``vbikit.analysis.effects``)."""
+    t = np.asarray(result.time, float)
+    crossing = result.crossing
+    tau = knot_instants(crossing, table, float(t[0]), float(t[-1])) if t.size > 1 else np.zeros(0)
+    if tau.size == 0:
+        return t, np.asarray(dynamic, float), np.asarray(static, float)
+    delta = KNOT_OFFSET * float(t[1] - t[0])
+    u = np.column_stack([tau - delta, tau + delta]).ravel()  # R(τ⁻), R(τ⁺), in time order
+    origin, sign, y = crossing.point_kinematics()
+    veh = crossing.point_vehicle
+    x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, veh]
+    yy = np.broadcast_to(y, x.shape)
+    g = table(x.ravel(), np.broadcast_to(_tracks(table, y), x.shape).ravel()).reshape(x.shape)
+    bridge = crossing.bridge
+    phi = np.asarray(bridge.mode_shapes(x.ravel(), yy.ravel()), float).reshape(x.shape + (-1,))
+    k = np.clip(np.searchsorted(t, u), 1, t.size - 1)
+    h = t[k] - t[k - 1]
+    w = (u - t[k - 1]) / h
+    cp = crossing.contact
+    share = cp.weight
+    forces = result.wheel_forces[:, cp.wheel]
+    f = (forces[k - 1] * (1.0 - w)[:, None] + forces[k] * w[:, None]) * share[None, :]
+    h00, h10, h01, h11 = 2 * w**3 - 3 * w**2 + 1, w**3 - 2 * w**2 + w, -2 * w**3 + 3 * w**2, w**3 - w**2
+    xi = (h00[:, None] * result.xi[k - 1] + (h10 * h)[:, None] * result.xi_dot[k - 1]
+          + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
+    r = np.asarray(effect.modal, float)
+    q = np.einsum("upi,up->ui", phi, f)
+    total = np.sum(g * f, axis=1) + q @ (r / bridge.omega**2) + xi @ r
+    st = g @ (share * crossing.vehicle.static_wheel_loads()[cp.wheel])
+    time = np.concatenate([t, u])
+    order = np.argsort(time, kind="stable")
+    return time[order], np.concatenate([dynamic, total])[order], np.concatenate([static, st])[order]

@@ -101,10 +101,10 @@ def _flags(e: dict, a: dict) -> list[str]:
         flags.append("ADR: the interval contains 1 — the data cannot tell the ADR from 1")
     short = e.get("run_static_shortfall", {})
     if short.get("value") is not None and short["value"] > a["half_step_tolerance"]:
-        flags.append(f"the coupled runs' time steps miss the exact static peak by up to {100 * short['value']:.2f} % "
+        flags.append(f"the coupled runs' static reference misses the exact static peak by up to {100 * short['value']:.2f} % "
                      f"(event {short['event']}; tolerance {100 * a['half_step_tolerance']:g} %): their total peaks are "
                      "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
-                     "coarse for this effect")
+                     "coarse for this effect, or a wheel left the tabulated tracks")
     for w, g in e.get("governing", {}).items():
         if g["half_step_flag"]:
             flags.append(f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "

@@ -202,7 +202,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "event_gross_weight": ("event", static["ev_gross_weight"].values, ev_attrs("N", "sum of the event's gross vehicle weights")),
         "event_static": (("event", "load_effect"), st, ev_attrs("", "static peak (convolution)")),
         "event_total": (("event", "load_effect"), total, ev_attrs("", "dynamic (total) peak; NaN if not simulated")),
-        "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (its time steps); NaN if not simulated")),
+        "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (at its time steps and, for moments, shears and reactions, at the instants a wheel crosses a jump or kink of the line); NaN if not simulated")),
         "event_simulated": ("event", simulated.astype(np.int8), ev_attrs("1", "1 if simulated dynamically")),
         "event_in_sample": ("event", np.isin(np.arange(n_ev), dyn["sample"]).astype(np.int8), ev_attrs("1", "1 if in the random sample (fatigue, IM statistics)")),
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
@@ -318,8 +318,9 @@ def _shortfall_variables(st, run_static, signs, simulated, day, n_days) -> dict[
     return {
         "run_static_shortfall": ("load_effect", worst, {"units": "1", "long_name": (
             "largest 1 - R_st,run / R_st over the simulated events with a static peak of at least "
-            f"{CHECK_FRACTION:g} of their day's largest: how far the coupled run's time steps miss the exact static "
-            "peak (its total peak is about as low)")}),
+            f"{CHECK_FRACTION:g} of their day's largest: how far the coupled run's static reference (its time steps and "
+            "the instants a wheel crosses a jump or kink of the line) misses the exact static peak (its total peak is "
+            "about as low)")}),
         "run_static_shortfall_event": ("load_effect", event, {"units": "1", "long_name":
                                                               "event of run_static_shortfall (-1: none)"}),
     }

@@ -28,7 +28,7 @@ import numpy as np
 from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
-from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope
+from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope, stations_words
 from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, refine_peaks
 from vbikit.rail.report import check, format_report, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, coupled_envelopes, excitation_wavelength, speed_grid, sweep_moving_forces,
@@ -39,7 +39,8 @@ log = logging.getLogger(__name__)
 
 #: resonance orders i of v_i = n0 D / i marked and refined
 RESONANCE_ORDERS = 4
-#: the moment envelope along the span is swept at the sections j L / MOMENT_SECTIONS (j = 1 … n − 1)
+#: the moment envelope along the span is swept at the sections j L / MOMENT_SECTIONS (j = 0 … n, the supports
+#: included: a restrained end's hogging moment) and every interior support (``moment_sections``)
 MOMENT_SECTIONS = 16
 
 
@@ -196,7 +197,7 @@ def plan_rail(source: Any) -> RailPlan:
     speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH)
     span = float(bridge.span)
     points = np.unique(np.append(np.linspace(0.0, span, spec.run.points + 2)[1:-1], 0.5 * span))  # midspan always
-    sections = moment_sections(span, MOMENT_SECTIONS)
+    sections = moment_sections(span, MOMENT_SECTIONS, np.asarray(bridge.support_x, float))
     effects = (("moment", 0.5 * span), ("shear", 0.0), *(("moment", float(x)) for x in sections if abs(x - 0.5 * span) > 1e-9 * span))
     dx = default_dx(bridge, float(speeds.min()), spec.run.steps_per_period)
     fv = 1.0 / n0
@@ -431,7 +432,8 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "point": ("point", points, {"units": "m", "long_name": "x of the deck point from the entry support"}),
         "order": ("order", orders, {"units": "1", "long_name": "resonance order i"}),
         "mode": ("mode", np.arange(1, bridge.omega.size + 1), {"units": "1", "long_name": "mode number"}),
-        "section": ("section", sections, {"units": "m", "long_name": "x of the moment section from the entry support"}),
+        "section": ("section", sections, {"units": "m", "long_name": "x of the moment section from the entry support",
+                                          "stations": stations_words(MOMENT_SECTIONS)}),
         "peak": ("peak", np.arange(1, n_pk + 1), {"units": "1", "long_name": "refined acceleration peak (by speed)"}),
         "wavelength_source": ("train", wave_src, {"long_name": "where the resonance wavelength D comes from"}),
     }
@@ -507,7 +509,7 @@ def moment_envelope_summary(ds, setup: SweepSetup, trains: dict[str, Train]) -> 
     name = str(ds.train.values[t])
     x_sec = float(ds.section.values[j])
     best, where = float(along[t, v, j]), x_sec
-    h = span / (ds.section.size + 1)
+    h = float(np.min(np.diff(ds.section.values))) if ds.section.size > 1 else span
     if name in trains:
         xs, env = moment_envelope_near(setup, trains[name], float(ds.speed.values[v]), max(x_sec - h, 1e-6 * span),
                                        min(x_sec + h, span * (1 - 1e-6)), NEAR_SECTIONS)
@@ -519,20 +521,21 @@ def moment_envelope_summary(ds, setup: SweepSetup, trains: dict[str, Train]) -> 
     ts = int(np.unravel_index(int(np.nanargmax(st)), st.shape)[0])
     sname = str(ds.train.values[ts])
     base = sname.removesuffix(" (coupled)")
-    fine = span * np.arange(1, FINE_SECTIONS) / FINE_SECTIONS
+    fine = moment_sections(span, FINE_SECTIONS, np.asarray(setup.bridge.support_x, float))
     tr = trains.get(base)
     st_fine = (static_envelope(setup.bridge, "moment", fine, tr.axle_positions, tr.axle_loads, setup.y)
                if tr is not None else st[ts])
     fine = fine if tr is not None else ds.section.values
-    ks = int(np.argmax(st_fine))
+    ks = int(np.flatnonzero(st_fine >= st_fine.max() * (1 - 1e-12))[0])  # ties (mirror positions): the first
     st_mid = float(np.nanmax(ds["static_moment"].values))
     return {"moment_max_Nm": best, "moment_max_position_m": where, "moment_max_train": name,
             "moment_max_speed_m_s": float(ds.speed.values[v]), "moment_max_over_midspan": best / mid if mid > 0 else math.nan,
             "static_moment_max_Nm": float(st_fine[ks]), "static_moment_max_position_m": float(fine[ks]),
             "static_moment_max_train": sname,
             "static_moment_max_over_midspan": float(st_fine[ks]) / st_mid if st_mid > 0 else math.nan,
-            "moment_envelope_method": (f"dynamic: {ds.section.size} sections swept (L/{ds.section.size + 1}), the largest "
-                                       f"placed on {NEAR_SECTIONS} sections around it at the governing speed; static on L/{FINE_SECTIONS}: "
+            "moment_envelope_method": (f"dynamic: {ds.section.size} sections swept ({stations_words(MOMENT_SECTIONS)}), "
+                                       f"the largest placed on {NEAR_SECTIONS} sections around it at the governing speed; "
+                                       f"static on L/{FINE_SECTIONS} (the supports included): "
                                        f"exact on a piecewise-linear influence line (an axle on a breakpoint), on a "
                                        f"curved one (restrained ends, a girder of a deck) also every L/{TRAVEL_STEPS} "
                                        f"of travel")}

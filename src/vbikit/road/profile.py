@@ -54,12 +54,17 @@ class RoadProfile:
     @property
     def spacing(self) -> float:
         """Shortest feature [m] the time step must resolve: ``resolution`` if given, else the finest
-        sample spacing; 0 if the profile is flat (nothing to resolve)."""
-        if not np.any(self.z):
-            return 0.0
-        if self.resolution is not None:
-            return float(self.resolution)
-        return float(np.min(np.diff(self.x)))
+        sample spacing; 0 if the profile is flat (nothing to resolve).  Computed once (a profile is immutable)."""
+        known = self.__dict__.get("_spacing")
+        if known is None:
+            if not np.any(self.z):
+                known = 0.0
+            elif self.resolution is not None:
+                known = float(self.resolution)
+            else:
+                known = float(np.min(np.diff(self.x)))
+            object.__setattr__(self, "_spacing", known)
+        return known
 
     def covers(self, x_min: float, x_max: float) -> bool:
         return bool(self.x[0] <= x_min and x_max <= self.x[-1])

@@ -322,9 +322,13 @@ class Crossing:
 
     @property
     def max_speed(self) -> float:
-        """Highest speed [m/s] of any vehicle during the run."""
-        t = np.array([self.start_time, self.start_time + self.duration])
-        return float(self.travel_speed(t).max())
+        """Highest speed [m/s] of any vehicle during the run (computed once, like ``exit_time``)."""
+        known = self.__dict__.get("_max_speed")
+        if known is None:
+            t = np.array([self.start_time, self.start_time + self.duration])
+            known = float(self.travel_speed(t).max())
+            object.__setattr__(self, "_max_speed", known)
+        return known
 
     @property
     def free_vibration_time(self) -> float:
@@ -334,7 +338,15 @@ class Crossing:
 
     def exit_time(self) -> float:
         """Time [s] when the last contact point leaves the deck: each passes x = span (on a skew deck
-        the far end of its own wheel track, at least the deck's far corner) driving +x, x = 0 driving −x."""
+        the far end of its own wheel track, at least the deck's far corner) driving +x, x = 0 driving −x
+        (computed once: a crossing is immutable, and ``with_road`` keeps its vehicles)."""
+        known = self.__dict__.get("_exit_time")
+        if known is None:
+            known = self._exit_time_of_points()
+            object.__setattr__(self, "_exit_time", known)
+        return known
+
+    def _exit_time_of_points(self) -> float:
         last = -math.inf
         for i, m in enumerate(self.vehicles):
             distance = self.leaving_distance(np.flatnonzero(self.point_vehicle == i), m.sign)
@@ -375,8 +387,12 @@ class Crossing:
         return self.exit_time() + self.free_vibration_time - self.start_time
 
     def road_extent(self) -> tuple[float, float]:
-        """Range of x [m] the contact points touch during the crossing."""
-        origin, sign, _ = self.point_kinematics()
-        s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
-        x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
-        return float(x.min()), float(x.max())
+        """Range of x [m] the contact points touch during the crossing (computed once, like ``exit_time``)."""
+        known = self.__dict__.get("_road_extent")
+        if known is None:
+            origin, sign, _ = self.point_kinematics()
+            s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
+            x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
+            known = (float(x.min()), float(x.max()))
+            object.__setattr__(self, "_road_extent", known)
+        return known

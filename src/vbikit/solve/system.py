@@ -54,7 +54,18 @@ class KernelData:
 
 
 def modes_data(bridge, table: TrackTable) -> Modes:
-    """The ``Modes`` bundle of ``bridge`` with its mode-shape ``table``."""
+    """The ``Modes`` bundle of ``bridge`` with its mode-shape ``table`` (kept with the table: the
+    tables of a bridge's tracks are kept, ``vbikit.solve.tabulate``)."""
+    known = table.__dict__.get("_modes")
+    if (known is not None and known.omega.tobytes() == np.asarray(bridge.omega, float).tobytes()
+            and known.zeta.tobytes() == np.asarray(bridge.damping_ratios, float).tobytes()):
+        return known
+    modes = _modes_data(bridge, table)
+    object.__setattr__(table, "_modes", modes)
+    return modes
+
+
+def _modes_data(bridge, table: TrackTable) -> Modes:
     amp = 1.01 * np.abs(table.values).max(axis=(0, 1))  # bound on |φ_m| incl. Hermite overshoot
     return Modes(np.ascontiguousarray(bridge.omega, float), np.ascontiguousarray(bridge.damping_ratios, float),
                  np.ascontiguousarray(table.start, float), np.ascontiguousarray(table.end, float),

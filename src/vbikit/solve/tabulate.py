@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import weakref
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -30,18 +31,24 @@ class TrackTable:
 
 
 #: tracks already tabulated, per bridge (by identity, dropped when the bridge is collected): the
-#: events of a traffic stream run on the same few wheel tracks of one bridge
-_TRACKS: dict[int, dict[tuple[float, int], tuple[NDArray[np.float64], NDArray[np.float64]]]] = {}
+#: events of a traffic stream run on the same few wheel tracks of one bridge (entries (y, points per
+#: mode): one track's φ, ∂φ/∂x; ("table", tracks, points per mode): a TrackTable)
+_TRACKS: dict[int, dict[tuple, Any]] = {}
 _TRACKS_PER_BRIDGE = 64
 
 
-def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mode: int):
-    """φ and ∂φ/∂x on track y at the stations x (kept per bridge and track)."""
+def _cache(bridge: ModalBridge) -> dict:
+    """The tables kept for ``bridge`` (dropped when it is collected)."""
     key = id(bridge)
     if key not in _TRACKS:
         _TRACKS[key] = {}
         weakref.finalize(bridge, _TRACKS.pop, key, None)
-    cache = _TRACKS[key]
+    return _TRACKS[key]
+
+
+def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mode: int):
+    """φ and ∂φ/∂x on track y at the stations x (kept per bridge and track)."""
+    cache = _cache(bridge)
     entry = cache.get((float(y), points_per_mode))
     if entry is None:
         entry = (bridge.mode_shapes(x, np.full_like(x, y)), bridge.mode_slopes(x, np.full_like(x, y)))
@@ -53,10 +60,23 @@ def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mod
 
 def tabulate_tracks(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode: int = 100) -> TrackTable:
     """Tabulate φ and ∂φ/∂x along each track y in ``tracks`` (each track of a bridge once: the
-    tables are kept while the bridge lives; bridges are immutable)."""
+    tables are kept while the bridge lives; bridges are immutable; so is the table of each set
+    of tracks, which the runs of one vehicle class on one bridge share)."""
+    tracks = np.asarray(tracks, float)
+    cache = _cache(bridge)
+    key = ("table", tracks.tobytes(), points_per_mode)
+    table = cache.get(key)
+    if table is None:
+        table = _tabulate(bridge, tracks, points_per_mode)
+        if len(cache) >= _TRACKS_PER_BRIDGE:
+            cache.pop(next(iter(cache)))
+        cache[key] = table
+    return table
+
+
+def _tabulate(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode: int) -> TrackTable:
     n_modes = bridge.omega.size
     n_grid = max(points_per_mode * n_modes, 200) + 1
-    tracks = np.asarray(tracks, float)
     grid = np.linspace(0.0, float(bridge.span), n_grid)  # ξ along every track
     start = -bridge.span_coordinate(np.zeros(tracks.size), tracks)  # x of ξ = 0 on each track (0 if square)
     values = np.empty((tracks.size, n_grid, n_modes))

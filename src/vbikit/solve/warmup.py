@@ -3,7 +3,8 @@ shared installation, so that no run, study batch or Dask worker compiles on firs
 
 numba compiles a kernel once per combination of argument types and keeps it in its on-disk
 cache (``vbikit.solve.numba_cache``).  The variants vbikit uses are few: each registered
-integrator with one lane and with many lanes (the batched studies and traffic streams), the
+integrator with one lane and with many lanes (the batched studies and traffic streams; one lane of an
+implicit integrator: the lean kernel and the full one it hands a crossing over to), the
 static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
@@ -36,7 +37,7 @@ def compile_kernels() -> dict[str, float]:
     """Compile (or load from numba's cache) every kernel variant vbikit runs; returns the seconds
     each integrator took (one lane, then many lanes)."""
     from vbikit.solve.batch import BatchSolver
-    from vbikit.solve.integrators import integrator_names
+    from vbikit.solve.integrators import get_integrator, integrator_names, without_lean
     from vbikit.solve.moving_loads import moving_load_sweep
     from vbikit.solve.simulate import simulate
 
@@ -45,6 +46,9 @@ def compile_kernels() -> dict[str, float]:
         crossing = _tiny_crossing(name)
         t0 = time.perf_counter()
         simulate(crossing)
+        if not get_integrator(name).explicit:
+            with without_lean():  # the full implicit kernel's one-lane variant, which the lean one hands over to
+                simulate(crossing)
         roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
         BatchSolver(crossing).run_many(roads)
         took[name] = time.perf_counter() - t0

@@ -99,7 +99,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
         if plan.load_effect_method == "mode-acceleration" and effects and result.dt not in influence:
             influence[result.dt] = contact_influences(result, effects)
         return dict(zip(kinds, load_effect_responses(result, effects, plan.load_effect_method,
-                                                     influence=influence.get(result.dt))))
+                                                     influence=influence.get(result.dt), check_step=False)))
 
     def reduce(result):
         check_finite(result)

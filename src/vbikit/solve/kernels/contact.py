@@ -3,7 +3,6 @@ envelopes, and the right-hand side of the coupled equations. (``vbikit.solve.ker
 equations and conventions.)"""
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
@@ -61,6 +60,22 @@ def point_kinematics(motion, row, points, x, vx):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def first_cell(stations, x):
+    """The road cell of position ``x`` [m] by bisection: the last station ≤ x, within 0 … n_s − 2
+    (as ``searchsorted(stations, x, "right") − 1`` clamped; written out, which numba compiles in a
+    fraction of the time)."""
+    lo = 0
+    hi = stations.size - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if stations[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
     """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = vx·dr/dx [m/s] of every lane at
     position ``x`` [m] of point ``p`` on road line ``line`` (linear interpolation; ``idx[p]`` is
@@ -72,7 +87,7 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
     n_s = stations.size
     i = idx[p]
     if i < 0:
-        i = max(0, min(n_s - 2, np.searchsorted(stations, x, side="right") - 1))
+        i = first_cell(stations, x)
     while i < n_s - 2 and stations[i + 1] <= x:
         i += 1
     while i > 0 and stations[i] > x:

@@ -1,0 +1,464 @@
+"""The lean implicit step loop: one crossing (one lane), the common step only, written flat on plain
+contiguous arrays. (``vbikit.solve.kernels``: the equations and conventions.)
+
+``lean`` runs the steps of ``implicit`` that need one contact-law evaluation: the partitioned step
+(every mode by its transition, ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1}, ξ̇ likewise; the
+vehicles z_{n+1} = P (Φ z_n + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleStep``), the end-of-step
+point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}:
+
+1. the state of the guess and the contact law there (``_law``: s_p = φ_p·ξ + r_p,
+   δ_p = s_p − g_p − z_w, F_p = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p, gated);
+2. if max_p |law_p − F_p| ≤ ``tol`` the guess holds; else quasi-Newton updates through the
+   vehicles, (I + U_A S_A) F_A = law_A(F) + U_A S_A F (``_quasi``: by Woodbury the n_w-square
+   system (I + S_A U_A) t = S_A b, factorised per active set A and kept while A stays), the law at
+   each iterate following exactly from the last evaluation by the change of state
+   (Δξ = c1 Δp, Δξ̇ = c2 Δp, Δp = −Σ φ_k ΔF_k; Δδ_k = φ_k·Δξ + Δ(−z_w), Δδ̇_k = φ_k·Δξ̇ + v_x φ'_k·Δξ
+   + Δ(−ż_w)), at most ``LEAN_CORRECTIONS`` times — the same arithmetic as ``implicit``'s
+   one-evaluation step (``newton._vehicle_newton``, ``newton._lean_refine``); the iterate's end
+   state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇, z += (P L1) ΔF_w).
+
+Anything else stops the loop: a contact that opens or closes within the step (a gated point's
+activity changes, or a point the lazy test left out may touch), or the corrections not settling.
+``lean`` then returns that step, and the caller goes on with ``implicit`` from the last state
+stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
+handled at all (the caller does not call ``lean`` for them).  The outputs are those of
+``implicit`` (same conventions, row 0 the static start, every ``stride``-th step stored).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from vbikit.solve.kernels.bundles import _internal
+from vbikit.solve.kernels.contact import first_cell
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
+
+
+@_internal
+def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
+         wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
+         active, used, pen, law, wf, wl):
+    """The contact law at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (q, q̇) for the positions
+    ``xp`` (``contact_forces`` with one lane and no envelopes): per point ``force`` (gated), ``active``,
+    ``used`` (else left out by the lazy test: r_max − g − z_w + B ≤ 0, B = Σ amp|ξ|; ``pen`` then holds
+    that bound), penetration ``pen`` and ungated law ``law``; per wheel the force sum ``wf`` and patch
+    length ``wl``.  Mode shapes (cubic Hermite) and road (linear, station pointers ``idx``) are filled
+    on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
+    is in ``rv``, ``rr``)."""
+    n_m = x1.size
+    n_grid = values.shape[1]
+    n_s = stations.size
+    b_max = 0.0
+    for m in range(n_m):
+        b_max += amp[m] * abs(x1[m])
+    for w in range(wheel_rows.shape[0]):
+        zw = 0.0
+        dzw = 0.0
+        for j in range(n_d):
+            h = wheel_rows[w, j]
+            if h != 0.0:
+                zw += h * z1[j]
+                dzw += h * z1[n_d + j]
+        wf[w] = 0.0
+        wl[w] = 0.0
+        first = wheel_first[w]
+        for p in range(first, first + wheel_count[w]):
+            used[p] = False
+            x = xp[p]
+            bound = r_max - gap[p] - zw + (b_max if onb[p] else 0.0)
+            if gated[p] and bound <= 0.0:
+                force[p] = 0.0
+                active[p] = False
+                pen[p] = bound
+                law[p] = 0.0
+                continue
+            if have[p] < 2:  # the road under the point (``road_point``)
+                i = idx[p]
+                if i < 0:
+                    i = first_cell(stations, x)
+                while i < n_s - 2 and stations[i + 1] <= x:
+                    i += 1
+                while i > 0 and stations[i] > x:
+                    i -= 1
+                idx[p] = i
+                if vxp[p] < 0.0 and i > 0 and stations[i] == x:
+                    i -= 1
+                ln = line[p]
+                slope = (elevations[ln, i + 1] - elevations[ln, i]) / (stations[i + 1] - stations[i])
+                rv[p] = elevations[ln, i] + slope * (x - stations[i])
+                rr[p] = slope * vxp[p]
+                have[p] += 2
+            if onb[p] and have[p] % 2 == 0:
+                _shape(x, track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
+                have[p] += 1
+            used[p] = True
+            s = rv[p]
+            sd = rr[p]
+            dr = 0.0
+            if onb[p]:
+                vx = vxp[p]
+                for m in range(n_m):
+                    s += phi[p, m] * x1[m]
+                    dr += phi[p, m] * v1[m]
+                    sd += vx * dphi[p, m] * x1[m]
+            pn = s - gap[p] - zw
+            fl = kk[p] * pn + cc[p] * (sd + dr - dzw) + f0[p]
+            pen[p] = pn
+            law[p] = fl
+            fk = fl if not gated[p] or (pn > 0.0 and fl > 0.0) else 0.0
+            force[p] = fk
+            active[p] = not gated[p] or fk > 0.0
+            wf[w] += fk
+            if active[p]:
+                wl[w] += width[p]
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
+    """φ(x), ∂φ/∂x(x) of point ``p`` on track ``tr`` into row p of ``phi``, ``dphi`` (cubic Hermite,
+    as ``shape_point``)."""
+    u = (x - start[tr]) / grid_h
+    i = int(u)
+    if i > n_grid - 2:
+        i = n_grid - 2
+    t = u - i
+    t2 = t * t
+    t3 = t2 * t
+    h00 = 2 * t3 - 3 * t2 + 1
+    h10 = (t3 - 2 * t2 + t) * grid_h
+    h01 = -2 * t3 + 3 * t2
+    h11 = (t3 - t2) * grid_h
+    d00 = (6 * t2 - 6 * t) / grid_h
+    d10 = 3 * t2 - 4 * t + 1
+    d01 = (-6 * t2 + 6 * t) / grid_h
+    d11 = 3 * t2 - 2 * t
+    for m in range(values.shape[2]):
+        a0 = values[tr, i, m]
+        a1 = values[tr, i + 1, m]
+        b0 = slopes[tr, i, m]
+        b1 = slopes[tr, i + 1, m]
+        phi[p, m] = h00 * a0 + h10 * b0 + h01 * a1 + h11 * b1
+        dphi[p, m] = d00 * a0 + d10 * b0 + d01 * a1 + d11 * b1
+
+
+@_internal
+def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf, zb,
+           p, fw, x1, v1, z1):
+    """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
+    ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``)."""
+    n_m = p.size
+    for m in range(n_m):
+        p[m] = 0.0
+    for w in range(fw.size):
+        fw[w] = 0.0
+    for k in range(f.size):
+        fk = f[k]
+        if fk == 0.0:
+            continue
+        fw[wheel[k]] += fk
+        if onb[k]:
+            if have[k] % 2 == 0:
+                _shape(xp[k], track[k], start, grid_h, values, slopes, values.shape[1], phi, dphi, k)
+                have[k] += 1
+            for m in range(n_m):
+                p[m] -= phi[k, m] * fk
+    for m in range(n_m):
+        x1[m] = xf[m] + c1[m] * p[m]
+        v1[m] = vf[m] + c2[m] * p[m]
+    for i in range(z1.size):
+        a = zb[i]
+        for w in range(fw.size):
+            a += response[i, w] * fw[w]
+        z1[i] = a
+
+
+@_internal
+def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t):
+    """One quasi-Newton update through the vehicles (``newton._vehicle_newton``, one lane):
+    F_A = law_A + k bq_w + c bv_w, F = 0 off A, with (bq, bv) the change of (−z_w, −ż_w):
+    b = (wheel_q, wheel_v) F_w, (I + S_A U_A) t = S_A b, (bq, bv) = b − (wheel_q, wheel_v) t.  The
+    factors of V = I + S_A U_A (``veh``, ``piv``) are kept while the active sums (``held``) stay."""
+    n_w = fw.size
+    for w in range(n_w):
+        ksum[w] = 0.0
+        csum[w] = 0.0
+    for k in range(f.size):
+        if active[k]:
+            ksum[wheel[k]] += kk[k]
+            csum[wheel[k]] += cc[k]
+    same = held[2 * n_w] != 0.0
+    if same:
+        for w in range(n_w):
+            if ksum[w] != held[w] or csum[w] != held[n_w + w]:
+                same = False
+                break
+    if not same:
+        for w in range(n_w):
+            for w2 in range(n_w):
+                veh[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w] * wheel_q[w, w2] + csum[w] * wheel_v[w, w2]
+            held[w] = ksum[w]
+            held[n_w + w] = csum[w]
+        held[2 * n_w] = 1.0
+        _lu_factor(veh, n_w, piv)
+    for w in range(n_w):
+        aq = 0.0
+        av = 0.0
+        for w2 in range(n_w):
+            aq += wheel_q[w, w2] * fw[w2]
+            av += wheel_v[w, w2] * fw[w2]
+        bq[w] = aq
+        bv[w] = av
+        t[w] = ksum[w] * aq + csum[w] * av
+    for k in range(f.size):
+        if active[k]:
+            t[wheel[k]] += force[k]
+    for j in range(n_w):
+        kp = piv[j]
+        if kp != j:
+            tmp = t[j]
+            t[j] = t[kp]
+            t[kp] = tmp
+    for i in range(n_w):
+        a = t[i]
+        for j in range(i):
+            a -= veh[i, j] * t[j]
+        t[i] = a
+    for i in range(n_w - 1, -1, -1):
+        a = t[i]
+        for j in range(i + 1, n_w):
+            a -= veh[i, j] * t[j]
+        t[i] = a / veh[i, i]
+    for w in range(n_w):
+        aq = 0.0
+        av = 0.0
+        for w2 in range(n_w):
+            aq += wheel_q[w, w2] * t[w2]
+            av += wheel_v[w, w2] * t[w2]
+        bq[w] -= aq
+        bv[w] -= av
+    for k in range(f.size):
+        w = wheel[k]
+        f[k] = force[k] + kk[k] * bq[w] + cc[k] * bv[w] if active[k] else 0.0
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
+         transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity, wheel_rows,
+         wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated,
+         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride):
+    """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
+    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep``, ``Vehicles`` and ``Points`` one by one
+    (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
+    stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
+    one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``.
+
+    Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
+    (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
+    filled); evaluations counts the contact-law evaluations."""
+    n_steps = (travel.shape[0] - 1) // 2
+    n_m = omega.size
+    n_d = mass_inv.shape[0]
+    n_cp = origin.size
+    n_w = wheel_rows.shape[0]
+    x0 = np.empty(n_m); v0 = np.empty(n_m)
+    z0 = np.empty(2 * n_d); z1 = np.empty(2 * n_d); zf = np.empty(2 * n_d); zb = np.empty(2 * n_d)
+    for m in range(n_m):
+        x0[m] = xi[0, m]
+        v0[m] = dxi[0, m]
+    for j in range(n_d):
+        z0[j] = q[0, j]
+        z0[n_d + j] = dq[0, j]
+    x1 = np.empty(n_m); v1 = np.empty(n_m); xf = np.empty(n_m); vf = np.empty(n_m)
+    p0 = np.zeros(n_m); p = np.zeros(n_m); acc = np.empty(n_m); dp = np.empty(n_m); dx = np.empty(n_m)
+    dv = np.empty(n_m)
+    g0 = np.empty(n_w); dfw = np.zeros(n_w); fw = np.zeros(n_w); wf = np.zeros(n_w); wl = np.zeros(n_w)
+    bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w); ksum = np.zeros(n_w); csum = np.zeros(n_w)
+    veh = np.zeros((n_w, n_w)); piv = np.zeros(n_w, np.int64); held = np.zeros(2 * n_w + 1)
+    rhs = np.empty(n_d); a1 = np.empty(n_d)
+    f = np.zeros(n_cp); fo = np.zeros(n_cp); fp = np.zeros(n_cp); f_old = np.zeros(n_cp)
+    force = np.zeros(n_cp); pen = np.zeros(n_cp); law = np.zeros(n_cp)
+    active = np.zeros(n_cp, np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
+    xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros(n_cp); rr = np.zeros(n_cp)
+    have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
+    idx = np.empty(n_cp, np.int64)
+    for k in range(n_cp):
+        idx[k] = -1  # no station pointer yet
+    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
+    evaluations = 0
+    for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
+        row = 2 * n + 2
+        for k in range(n_cp):
+            vh = vehicle[k]
+            xp[k] = origin[k] + direction[k] * travel[row, vh]
+            vxp[k] = direction[k] * speed[row, vh]
+            onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
+            have[k] = 0
+        if n < 0:
+            _law(x0, v0, z0, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+                 wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
+                 r_max, force, active, used, pen, law, wf, wl)
+            for m in range(n_m):
+                p[m] = 0.0
+            for k in range(n_cp):
+                fk = force[k] if used[k] else 0.0
+                f[k] = fk
+                fo[k] = fk
+                if used[k] and onb[k]:
+                    for m in range(n_m):
+                        p[m] -= phi[k, m] * fk
+            for m in range(n_m):
+                x1[m] = x0[m]
+                v1[m] = v0[m]
+            for i in range(2 * n_d):
+                z1[i] = z0[i]
+        else:
+            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                xf[m] = a11[m] * x0[m] + a12[m] * v0[m] + b1[m] * p0[m]
+                vf[m] = a21[m] * x0[m] + a22[m] * v0[m] + b2[m] * p0[m]
+            for i in range(2 * n_d):
+                a = constant[i]
+                for j in range(2 * n_d):
+                    a += transition[i, j] * z0[j]
+                for w in range(n_w):
+                    a += load0[i, w] * g0[w]
+                zf[i] = a
+            for i in range(2 * n_d):
+                a = 0.0
+                for j in range(2 * n_d):
+                    a += settle[i, j] * zf[j]
+                zb[i] = a
+            for k in range(n_cp):  # first guess: linear extrapolation of the forces
+                f[k] = 2.0 * fo[k] - fp[k]
+            _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
+                   zb, p, fw, x1, v1, z1)
+            evaluations += 1
+            _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+                 wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
+                 r_max, force, active, used, pen, law, wf, wl)
+            err = 0.0
+            for k in range(n_cp):
+                err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
+            if err > tol:  # quasi-Newton updates, the law at each iterate by the exact increments
+                settled = False
+                for r in range(LEAN_CORRECTIONS + 1):
+                    if r == LEAN_CORRECTIONS:
+                        return n, evaluations  # not settled by the corrections
+                    for k in range(n_cp):
+                        f_old[k] = f[k]
+                    if r > 0:
+                        for w in range(n_w):
+                            fw[w] += dfw[w]
+                    _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
+                           t)
+                    for m in range(n_m):
+                        dp[m] = 0.0
+                    for k in range(n_cp):
+                        d = f[k] - f_old[k]
+                        if d != 0.0 and onb[k]:
+                            for m in range(n_m):
+                                dp[m] -= phi[k, m] * d
+                    b = 0.0
+                    for m in range(n_m):  # the deck's change, and the state of the new iterate
+                        dx[m] = c1[m] * dp[m]
+                        dv[m] = c2[m] * dp[m]
+                        b += amp[m] * abs(dx[m])
+                        p[m] += dp[m]
+                        x1[m] += dx[m]
+                        v1[m] += dv[m]
+                    for w in range(n_w):
+                        dfw[w] = -fw[w]
+                    for k in range(n_cp):
+                        dfw[wheel[k]] += f[k]
+                    for i in range(2 * n_d):  # z = z_b + (P L1) F_w
+                        a = z1[i]
+                        for w in range(n_w):
+                            a += response[i, w] * dfw[w]
+                        z1[i] = a
+                    err = 0.0
+                    for k in range(n_cp):
+                        w = wheel[k]
+                        if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
+                            pen[k] += bq[w] + (b if onb[k] else 0.0)
+                            if pen[k] > 0.0:
+                                return n, evaluations
+                            continue
+                        ds = 0.0
+                        dr = 0.0
+                        dsd = 0.0
+                        if onb[k]:
+                            for m in range(n_m):
+                                ds += phi[k, m] * dx[m]
+                                dr += phi[k, m] * dv[m]
+                                dsd += dphi[k, m] * dx[m]
+                        dpen = ds + bq[w]
+                        pen[k] += dpen
+                        law[k] += kk[k] * dpen + cc[k] * (dr + vxp[k] * dsd + bv[w])
+                        fl = law[k]
+                        fk = fl if not gated[k] or (pen[k] > 0.0 and fl > 0.0) else 0.0
+                        if (not gated[k] or fk > 0.0) != active[k]:
+                            return n, evaluations  # a contact opens or closes
+                        force[k] = fk
+                        err = max(err, abs(fk - f[k]))
+                    if err <= tol:
+                        settled = True
+                        break
+                if not settled:
+                    return n, evaluations
+                for w in range(n_w):
+                    fw[w] += dfw[w]
+            for w in range(n_w):
+                wf[w] = fw[w]
+        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈, q̈
+        for w in range(n_w):
+            a = wf[w]
+            kw = wheel_k[w]
+            cw = wheel_c[w]
+            for j in range(n_d):
+                h = wheel_rows[w, j]
+                if h != 0.0:
+                    a += h * (kw * z1[j] + cw * z1[n_d + j])
+            g0[w] = a
+        for m in range(n_m):
+            acc[m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
+        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
+            a = gravity[i]
+            for j in range(n_d):
+                a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
+            for w in range(n_w):
+                a += wheel_rows[w, i] * g0[w]
+            rhs[i] = a
+        for i in range(n_d):
+            a = 0.0
+            for j in range(n_d):
+                a += mass_inv[i, j] * rhs[j]
+            a1[i] = a
+        if (n + 1) % stride == 0:
+            r_out = (n + 1) // stride
+            for m in range(n_m):
+                if n >= 0:
+                    xi[r_out, m] = x1[m]
+                    dxi[r_out, m] = v1[m]
+                ddxi[r_out, m] = acc[m]
+            for j in range(n_d):
+                if n >= 0:
+                    q[r_out, j] = z1[j]
+                    dq[r_out, j] = z1[n_d + j]
+                ddq[r_out, j] = a1[j]
+            for w in range(n_w):
+                wheel_force[r_out, w] = wf[w]
+                wheel_len[r_out, w] = wl[w]
+        if n >= 0:
+            for k in range(n_cp):
+                fp[k] = fo[k]
+                fo[k] = f[k]
+            for m in range(n_m):
+                x0[m] = x1[m]
+                v0[m] = v1[m]
+            for i in range(2 * n_d):
+                z0[i] = z1[i]
+        else:
+            for k in range(n_cp):
+                fp[k] = fo[k]
+        for m in range(n_m):
+            p0[m] = p[m]
+    return -1, evaluations

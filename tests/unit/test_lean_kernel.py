@@ -1,0 +1,162 @@
+"""The lean single-lane kernel (vbikit.solve.kernels.lean) against the full implicit kernel.
+
+``run_implicit`` runs one lane through ``kernels.lean`` (the one-evaluation steps only, flat) and
+hands the crossing over to ``kernels.implicit`` when it stops at a step it does not take; with
+``integrators.USE_LEAN`` off every run goes to ``implicit``.  Both solve the same end-of-step
+contact forces to the same tolerance with the same arithmetic on the common path (the same first
+guess, the same quasi-Newton updates and exact increments), so their histories agree to round-off:
+measured ≤ 5e-14 of each history's peak on these cases (fastmath reorders the sums), asserted
+≤ 1e-10, far below the integrators' own accuracy (the step: ≈ 5e-6 of the peak,
+benchmarks/README.md).  The reference is the independent code path: ``implicit``, generic over
+lanes, with its own contact law (``contact_forces``), state and update helpers.
+"""
+from __future__ import annotations
+
+import logging
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from vbikit.bridge import EulerBernoulliBeam
+from vbikit.road.psd import RoadPSD, random_profile
+from vbikit.scenario import demo_scenario_text, load_scenario, parse_scenario, scenario_from_toml
+from vbikit.scenario.preflight import preflight
+from vbikit.solve import Crossing, integrators, simulate
+from vbikit.solve.crossing import VehicleMotion
+from vbikit.vehicle import hs20_44, semitrailer_3s2
+
+ROOT = Path(__file__).resolve().parents[2]
+HISTORIES = ("xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "wheel_forces", "contact_lengths")
+
+
+def _both(crossing):
+    """The crossing by the default dispatch and by ``implicit`` alone, and how the first ran."""
+    before = dict(integrators.LEAN_COUNTS)
+    default = simulate(crossing)
+    ran = {k: integrators.LEAN_COUNTS[k] - before[k] for k in before}
+    with integrators.without_lean():
+        reference = simulate(crossing)
+    assert integrators.USE_LEAN and integrators.LEAN_COUNTS["implicit"] == before["implicit"] + 1
+    return default, reference, ran
+
+
+def _worst(a, b) -> float:
+    """max |a − b| / peak |b| over every history."""
+    return max(float(np.max(np.abs(getattr(a, h) - getattr(b, h)))) / max(float(np.max(np.abs(getattr(b, h)))), 1e-300)
+               for h in HISTORIES)
+
+
+def _scenario(text_or_dict):
+    built = preflight(parse_scenario(text_or_dict) if isinstance(text_or_dict, dict) else text_or_dict).built
+    return built.crossing
+
+
+def test_demo_crossing_runs_lean_and_equals_implicit():
+    """`vbikit demo`: HS20-44, multipoint n = 6 (36 points), ISO C, 75 km/h, 1,914 steps."""
+    crossing = _scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    lean, full, ran = _both(crossing)
+    assert ran == {"lean": 1, "fallback": 0, "implicit": 0}
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_point_tire_runs_lean_and_equals_implicit():
+    crossing = _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
+                          "tire": {"model": "point"}, "road": {"class": "B", "seed": 3},
+                          "crossing": {"speed_kmh": 60.0}})
+    lean, full, ran = _both(crossing)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_two_vehicles_asymmetric_run_lean_and_equal_implicit():
+    """A traffic-like event: a 3S2 driving +x off the centreline and an HS20-44 driving −x,
+    entering later, at other speeds, on a class B road (stacked vehicles, two directions)."""
+    beam = EulerBernoulliBeam(span=30.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=12)
+    road = random_profile(RoadPSD.iso("B"), length=120.0, seed=4, x_start=-50.0)
+    crossing = Crossing(beam, road=road, approach=3.0, free_vibration=0.1,
+                        vehicles=(VehicleMotion(semitrailer_3s2(), 22.0, lateral_offset=1.2),
+                                  VehicleMotion(hs20_44(), 17.0, direction="-x", entry_time=0.4)))
+    lean, full, ran = _both(crossing)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def test_3d_deck_runs_lean_and_equals_implicit():
+    """examples/paper/bridge2_hs20_girder4.toml: the 3D paper-bridge-2 deck, 20 modes."""
+    crossing = _scenario(load_scenario(ROOT / "examples" / "paper" / "bridge2_hs20_girder4.toml"))
+    lean, full, ran = _both(crossing)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def _hop(tire: str, road: str):
+    """HS20-44 at 100 km/h on paper Bridge 1 (beam) over a rough road: heavy wheel hop."""
+    return _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
+                      "tire": {"model": tire}, "road": {"class": road, "seed": 1}, "crossing": {"speed_kmh": 100.0}})
+
+
+def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
+    """Point tires on a class F road: the wheels leave the road and land again thousands of times;
+    where the one evaluation already gives the step's contact set (as in ``implicit``'s own
+    one-evaluation step) the lean kernel takes the step, and the histories agree to round-off."""
+    lean, full, ran = _both(_hop("point", "F"))
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 1000  # wheels off the road in > 1000 samples
+    assert _worst(lean, full) <= 1e-10
+
+
+@pytest.mark.parametrize("every", [1, 3])
+def test_lift_off_that_needs_iterating_hands_over_to_implicit(caplog, every):
+    """Disk tires on a class D road: at a landing a contact closes within the step's updates, the
+    lean kernel stops there and ``implicit`` goes on from the last state stored (every ``every``-th
+    step).  Its restart evaluates the law at that state and extrapolates from it alone (not from
+    the two previous steps' iterates), so the histories differ from an ``implicit`` run from t = 0
+    by the tolerance's order: measured 1.3e-10 of the peak (the iterates agree to
+    IMPLICIT_TOLERANCE = 1e-10 of the largest wheel load; accelerations amplify it), asserted ≤ 1e-9."""
+    crossing = _hop("disk", "D")
+    caplog.set_level(logging.DEBUG, logger="vbikit.solve.integrators")
+    before = dict(integrators.LEAN_COUNTS)
+    handed = simulate(crossing, output_every=every)
+    with integrators.without_lean():
+        full = simulate(crossing, output_every=every)
+    assert integrators.LEAN_COUNTS["fallback"] == before["fallback"] + 1
+    assert integrators.LEAN_COUNTS["lean"] == before["lean"]
+    found = [m for r in caplog.records if (m := re.search(r"of (\d+) .* goes on from step (\d+)", r.getMessage()))]
+    assert len(found) == 1
+    n_steps, start = int(found[0].group(1)), int(found[0].group(2))
+    assert 0 < start < n_steps and start % every == 0
+    assert int(np.sum(full.wheel_forces[1:] == 0.0)) > 10  # a wheel does leave the road
+    assert _worst(handed, full) <= 1e-9
+
+
+def test_thinned_histories_are_rows_of_the_full_ones():
+    """Stored every 3rd step (``output_every``): the lean kernel's rows are those of every step."""
+    crossing = _scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    every = simulate(crossing)
+    before = integrators.LEAN_COUNTS["lean"]
+    thin = simulate(crossing, output_every=3)
+    assert integrators.LEAN_COUNTS["lean"] == before + 1
+    for h in HISTORIES:
+        np.testing.assert_array_equal(getattr(thin, h), getattr(every, h)[::3])
+
+
+def test_a_batch_of_roads_keeps_the_many_lane_kernel_and_equals_lean_single_runs():
+    """Two roads as lanes of one ``implicit`` call (many-lane variant), each equal to its own
+    crossing run by the lean kernel."""
+    from dataclasses import replace
+
+    from vbikit.solve.batch import BatchSolver
+
+    crossing = _scenario({"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"},
+                          "tire": {"model": "point"}, "road": {"class": "B", "seed": 3},
+                          "crossing": {"speed_kmh": 60.0}})
+    roads = [crossing.road, replace(crossing.road, z=0.5 * crossing.road.z)]
+    before = dict(integrators.LEAN_COUNTS)
+    lanes = BatchSolver(crossing).run_many(roads)
+    assert integrators.LEAN_COUNTS["implicit"] == before["implicit"] + 1
+    assert integrators.LEAN_COUNTS["lean"] == before["lean"]
+    for road, lane in zip(roads, lanes):
+        single = simulate(replace(crossing, road=road))
+        assert _worst(lane, single) <= 1e-10
