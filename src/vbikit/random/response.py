@@ -33,6 +33,9 @@ from vbikit.analysis.response import PointResponse, plan_responses
 from vbikit.random.lines import Lines
 from vbikit.random.peaks import exceedance_probability, peak_distribution
 from vbikit.random.pem import PEMResult, Probes, PseudoRoad, pseudo_excitation
+
+#: the pseudo-excitation integrator random runs use (``pseudo_excitation``'s default)
+PEM_METHOD = "exact"
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.simulate import simulate
@@ -137,7 +140,7 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     if effects:  # a load effect is a deck probe whose "shape" is its modal values r_i (module docstring)
         modal = np.stack([e.effect.modal for e in effects])
         shapes, strains = np.vstack([shapes, modal]), np.vstack([strains, np.zeros_like(modal)])
-    pem = pseudo_excitation(crossing, road, Probes(shapes, strains), dt, lines=lines, substeps=substeps,
+    pem = pseudo_excitation(crossing, road, Probes(shapes, strains), dt, lines=lines, substeps=substeps, method=PEM_METHOD,
                             data=data, keep_lines=True)
     n = min(pem.time.size, smooth.time.size)
     n_pt = len(points)
@@ -181,8 +184,9 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     head = entries[0]
     vehicle = crossing.vehicle
     summary: dict[str, Any] = {
-        "method": "pseudo-excitation (Newmark, %d substeps); peaks of %d Gaussian histories with its covariance "
-                  "(cross-check: Poisson up-crossings with Vanmarcke's correction)" % (substeps, samples),
+        "method": "pseudo-excitation (%s integrator, %d step(s) an output step); peaks of %d Gaussian histories "
+                  "with its covariance (cross-check: Poisson up-crossings with Vanmarcke's correction)"
+                  % (PEM_METHOD, substeps, samples),
         **{k: head[k] for k in ("impact_factor_mean", "impact_factor_std", "impact_factor_quantiles",
                                 "impact_factor_sampling_error", "impact_factor_quantiles_crossings",
                                 "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")},
