@@ -47,6 +47,19 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
         typer.echo(f"    impact factor      {p['impact_factor_mean']:9.4f} ± {p['impact_factor_std']:.4f}   quantiles {q}")
         typer.echo(f"    σ max: displacement {p['displacement_std_max'] * 1e3:.4f} mm, acceleration "
                    f"{p['acceleration_std_max']:.4f} m/s², strain {p['strain_std_max'] * 1e6:.3f} µε")
+    for e in s.get("effects", []):
+        q = ", ".join(f"{float(k):.0%}: {v:.4f}" for k, v in e["impact_factor_quantiles"].items())
+        u = e["units"]
+        typer.echo(f"  {e['kind']} {e['name']} ({e['method']})")
+        typer.echo(f"    peak {e['peak_mean']:12.5g} ± {e['peak_std']:.4g} {u}  (static {e['static_peak']:.5g} {u}), "
+                   f"σ max {e['std_max']:.4g} {u}")
+        typer.echo(f"    impact factor      {e['impact_factor_mean']:9.4f} ± {e['impact_factor_std']:.4f}   quantiles {q}")
+    forces = s.get("wheel_force_std_max", {})
+    if forces:
+        typer.echo("  σ max wheel force [kN]: " + ", ".join(f"{k} {v / 1e3:.2f}" for k, v in forces.items()))
+    acc = {k: v for k, v in s.get("vehicle_acceleration_std_max", {}).items() if v > 1e-9}
+    if acc:
+        typer.echo("  σ max vehicle acceleration [m/s², rad/s²]: " + ", ".join(f"{k} {v:.3g}" for k, v in acc.items()))
     typer.echo(f"  lift-off probability (largest at one instant): {s['lift_off_probability']:.3g}")
     typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%}; {s['seconds']:.1f} s")
     typer.echo(f"  quality: {s['quality']}")

@@ -139,19 +139,21 @@ def _paper(*figs: str) -> Callable[..., None]:
         dump: bool = typer.Option(False, "--print-spec", help="Print the study as TOML-equivalent JSON and exit."),
         beam: bool = typer.Option(False, "--beam", help="Use the beam stand-ins (whole section) instead of the 3D "
                                                         "bridges at Girder 4."),
+        method: str = typer.Option("monte-carlo", "--method", help="monte-carlo (the paper's: --samples roads a "
+                                   "point) or pem (the impact factor's distribution by pseudo-excitation, docs/random.md)."),
         yes: bool = _YES,
     ) -> None:
         from vbikit.study.figures import plot_paper_figure
         from vbikit.study.paper import paper_study
 
-        studies = [guard(lambda fig=fig: paper_study(fig, samples, beam)) for fig in figs]
+        studies = [guard(lambda fig=fig: paper_study(fig, samples, beam, method=method)) for fig in figs]
         if dump:
             for study in studies:
                 typer.echo(study.to_json())
             return
         for study in studies:
             _check(study, yes, None, None)
-        suffix = ("-beam" if beam else "") + ("" if samples == 20 else f"-{samples}samples")
+        suffix = ("-beam" if beam else "") + ("-pem" if method == "pem" else "" if samples == 20 else f"-{samples}samples")
         for fig, study in zip(figs, studies):
             out = out_dir / f"paper-{fig}{suffix}.nc"
             ds = run_job(study, out, workers, scheduler, progress)

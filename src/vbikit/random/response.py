@@ -2,7 +2,19 @@
 standard deviation history of every response by pseudo-excitation (``vbikit.random.pem``), and
 the design numbers that follow: the distribution of the peak deflection and of the impact factor
 at each response point (peaks of Gaussian histories with PEM's covariance; the Poisson up-crossing
-estimate of ``vbikit.random.peaks`` as a cross-check), and the probability of lift-off."""
+estimate of ``vbikit.random.peaks`` as a cross-check), the same for every load effect of the plan
+(moment, shear, reaction), and the probability of lift-off.
+
+Load effects.  A load effect by mode superposition, R(t) = Σ_i r_i ξ_i(t) (``vbikit.bridge.effects``:
+r_i = ``LoadEffect.modal``, the library's one definition), is linear in the modal coordinates, so
+its pseudo response is Σ_i r_i ξ̃_i and its variance Σ_k |Σ_i r_i ξ̃_i,k|² — a deck probe whose
+"mode shape" is r (``Probes.shapes`` row).  Its mean is the smooth crossing's R, its static
+reference Σ_i r_i ξ_st,i (``vbikit.analysis.impact.static_modal_history``), both by mode
+superposition too, so that mean, σ and reference are one Gaussian process of one model.  (The
+mode-acceleration form adds the truncated modes' quasi-static part, −Σ_p I_trunc(x_p) f_p, which
+is linear in the wheel forces as well, but PEM would have to keep the wheel forces' pseudo
+responses of every line for it; not done: the summary reports the smooth-road impact factor by
+the plan's method beside it, the measure of the difference.)"""
 from __future__ import annotations
 
 import dataclasses
@@ -14,12 +26,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.impact import static_direction
+from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
+from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import PointResponse, plan_responses
 from vbikit.random.lines import Lines
 from vbikit.random.peaks import exceedance_probability, peak_distribution
 from vbikit.random.pem import PEMResult, Probes, PseudoRoad, pseudo_excitation
+
+#: the pseudo-excitation integrator random runs use (``pseudo_excitation``'s default)
+PEM_METHOD = "exact"
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.simulate import simulate
@@ -40,21 +56,32 @@ QUALITY = ("σ histories exact for the linear system up to the wavenumber grid (
            "below the 90 % quantile")
 #: grid check (σ on every line vs every second line) above which the answer is flagged
 GRID_LIMIT = 0.02
+#: how load effects are formed in random runs: R = Σ_i r_i ξ_i, linear in the modal coordinates
+EFFECT_METHOD = "mode-superposition"
 
 
 @dataclass
 class RandomResponse:
     """The random crossing: ``mean`` (the smooth-road crossing), its ``points`` (mean and static
-    histories per response point), ``pem`` (variances), ``summary`` (JSON-ready numbers)."""
+    histories per response point), ``effects`` (mean and static histories of the plan's load
+    effects, mode superposition), ``pem`` (variances: the deck channels hold the points, then the
+    effects), ``summary`` (JSON-ready numbers)."""
 
     mean: CrossingResult
     points: list[PointResponse]
     pem: PEMResult
     summary: dict[str, Any]
+    effects: list[LoadEffectResponse] = dataclasses.field(default_factory=list)
+
+    def effect_std(self, k: int) -> NDArray[np.float64]:
+        """σ(t) of load effect ``k`` (its unit: N m or N)."""
+        return self.pem.std("displacement")[:, len(self.points) + k]
 
     def dataset(self):
         """xarray Dataset: ``mean`` and ``std`` of the deck displacement, velocity, acceleration and
-        bottom-fibre strain over (time, point), and of the wheel forces over (time, wheel)."""
+        bottom-fibre strain over (time, point), of every load effect (``<name>_mean``, ``<name>_std``,
+        ``<name>_static`` over time, e.g. ``moment_x8.38``), of the vehicle DOFs' accelerations over
+        (time, dof) and of the wheel forces over (time, wheel)."""
         import xarray as xr
 
         t = self.pem.time
@@ -64,15 +91,26 @@ class RandomResponse:
         for q, unit in (("displacement", "m"), ("velocity", "m/s"), ("acceleration", "m/s2"), ("strain", "1")):
             data[f"{q}_mean"] = (("time", "point"), np.stack([getattr(p, q)[:n] for p in self.points], axis=1),
                                  {"units": unit, "long_name": f"mean deck {q} (smooth-road crossing)"})
-            data[f"{q}_std"] = (("time", "point"), self.pem.std(q)[:n], {"units": unit,
+            data[f"{q}_std"] = (("time", "point"), self.pem.std(q)[:n, :pts.size], {"units": unit,
                                                                          "long_name": f"standard deviation of the deck {q} (pseudo-excitation)"})
-        wheels = [w.name for w in self.mean.crossing.vehicle.wheels]
+        for k, e in enumerate(self.effects):
+            unit = e.effect.units.replace(" ", "*")
+            data[f"{e.name}_mean"] = ("time", e.dynamic[:n], {"units": unit, "long_name": f"mean {e.effect.label} "
+                                                                                         "(smooth road, mode superposition)"})
+            data[f"{e.name}_std"] = ("time", self.effect_std(k)[:n], {"units": unit, "long_name": f"standard deviation of "
+                                                                                              f"the {e.effect.label}"})
+            data[f"{e.name}_static"] = ("time", e.static[:n], {"units": unit})
+        vehicle = self.mean.crossing.vehicle
+        data["vehicle_acceleration_mean"] = (("time", "dof"), self.mean.q_ddot[:n], {"units": "m s-2 or rad s-2"})
+        data["vehicle_acceleration_std"] = (("time", "dof"), self.pem.std("vehicle_acceleration")[:n],
+                                            {"units": "m s-2 or rad s-2"})
+        wheels = [w.name for w in vehicle.wheels]
         data["wheel_force_mean"] = (("time", "wheel"), self.mean.wheel_forces[:n], {"units": "N"})
         data["wheel_force_std"] = (("time", "wheel"), self.pem.std("wheel_force")[:n], {"units": "N"})
         s = self.summary
         attrs = {"method": s["method"], "grid_change": s["grid_change"], "n_lines": s["n_lines"],
                  "lift_off_probability": s["lift_off_probability"], "warnings": "; ".join(s["warnings"])}
-        return xr.Dataset(data, coords={"time": t[:n], "point": pts, "wheel": wheels,
+        return xr.Dataset(data, coords={"time": t[:n], "point": pts, "wheel": wheels, "dof": list(vehicle.dof_names),
                                         "x": ("point", [p.x for p in self.points]),
                                         "y": ("point", [p.y for p in self.points])}, attrs=attrs)
 
@@ -87,26 +125,56 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     the static peak's direction and R_st the static peak (``vbikit.analysis.impact``).  P's
     distribution: the peaks of ``samples`` histories of the Gaussian process with PEM's covariance
     (``PEMResult.sample_displacement``: exact for the linear system, with a sampling error stated
-    in the summary), and as a cross-check by Poisson up-crossings (``peak_distribution``)."""
+    in the summary), and as a cross-check by Poisson up-crossings (``peak_distribution``).  The
+    same for every load effect of ``plan`` (``summary["effects"]``; mode superposition, module
+    docstring), with its static reference R_st from the static modal history."""
     if int(samples) != samples or samples < 100:
         raise ValueError(f"samples must be an integer >= 100, got {samples!r}")
     started = _time.perf_counter()
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
-    points = plan_responses(smooth, plan)
-    shapes = crossing.bridge.mode_shapes([p.x for p in points], [p.y for p in points])
-    strains = crossing.bridge.strain_shapes([p.x for p in points], [p.y for p in points])
-    pem = pseudo_excitation(crossing, road, Probes(np.atleast_2d(shapes), np.atleast_2d(strains)), dt, lines=lines, substeps=substeps,
+    xi_st = static_modal_history(smooth)
+    points = plan_responses(smooth, plan, xi_st)
+    effects = load_effect_responses(smooth, plan.load_effects, EFFECT_METHOD, xi_st)
+    xs, ys = [p.x for p in points], [p.y for p in points]
+    shapes, strains = np.atleast_2d(crossing.bridge.mode_shapes(xs, ys)), np.atleast_2d(crossing.bridge.strain_shapes(xs, ys))
+    if effects:  # a load effect is a deck probe whose "shape" is its modal values r_i (module docstring)
+        modal = np.stack([e.effect.modal for e in effects])
+        shapes, strains = np.vstack([shapes, modal]), np.vstack([strains, np.zeros_like(modal)])
+    pem = pseudo_excitation(crossing, road, Probes(shapes, strains), dt, lines=lines, substeps=substeps, method=PEM_METHOD,
                             data=data, keep_lines=True)
     n = min(pem.time.size, smooth.time.size)
-    peaks = _sampled_peaks(pem, points, n, samples)
+    n_pt = len(points)
+    # every deck channel (points, then effects): mean, its rate and the static reference
+    mean = np.stack([p.displacement[:n] for p in points] + [e.dynamic[:n] for e in effects], axis=1)
+    rate = np.stack([p.velocity[:n] for p in points] + [smooth.xi_dot[:n] @ e.effect.modal for e in effects], axis=1)
+    static = np.stack([p.static_displacement[:n] for p in points] + [e.static[:n] for e in effects], axis=1)
+    peaks = _sampled_peaks(pem, mean, static, n, samples)
     entries = []
     for j, p in enumerate(points):
-        entries.append(_point_entry(pem, p, j, n, quantiles, peaks[:, j]))
+        entry = {"x": p.x, "y": p.y, **_peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, peaks[:, j])}
+        entry["displacement_peak_mean"] = entry.pop("peak_mean")
+        entry["displacement_peak_std"] = entry.pop("peak_std")
+        entries.append(entry | {"displacement_std_max": float(pem.std("displacement")[:n, j].max()),
+                                "acceleration_std_max": float(pem.std("acceleration")[:n, j].max()),
+                                "strain_std_max": float(pem.std("strain")[:n, j].max())})
+    effect_entries = []
+    for k, e in enumerate(effects):
+        j = n_pt + k
+        entry = {"name": e.name, "kind": e.effect.kind, "x": e.effect.x, "units": e.effect.units, "method": EFFECT_METHOD,
+                 **_peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, peaks[:, j]),
+                 "std_max": float(pem.std("displacement")[:n, j].max())}
+        if plan.load_effect_method != EFFECT_METHOD:  # the plan's own method on the smooth road: the difference
+            own = load_effect_responses(smooth, [e.effect], plan.load_effect_method)[0]
+            entry[f"impact_factor_smooth_{plan.load_effect_method.replace('-', '_')}"] = _smooth_im(own.dynamic[:n],
+                                                                                                   own.static[:n])
+        effect_entries.append(entry)
     wheel_std = pem.std("wheel_force")[:n]
     lift = {w.name: exceedance_probability(smooth.wheel_forces[:n, k], wheel_std[:, k])
             for k, w in enumerate(crossing.vehicle.wheels)}
     p_lift = max(lift.values(), default=0.0)
-    grid = max(pem.grid_change(q) for q in ("displacement", "acceleration", "wheel_force"))
+    grid = max(_grid_change(pem, "displacement", slice(0, n_pt)), _grid_change(pem, "acceleration", slice(0, n_pt)),
+               pem.grid_change("wheel_force"), *(_grid_change(pem, "displacement", slice(j, j + 1))
+                                                 for j in range(n_pt, n_pt + len(effects))))
     warnings = []
     if p_lift > LIFT_OFF_LIMIT:
         warnings.append(f"a tire lifts off with probability {p_lift:.2g} at some instant (> {LIFT_OFF_LIMIT:g}): the "
@@ -114,52 +182,73 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     if grid > GRID_LIMIT:
         warnings.append(f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every second line")
     head = entries[0]
+    vehicle = crossing.vehicle
     summary: dict[str, Any] = {
-        "method": "pseudo-excitation (Newmark, %d substeps); peaks of %d Gaussian histories with its covariance "
-                  "(cross-check: Poisson up-crossings with Vanmarcke's correction)" % (substeps, samples),
+        "method": "pseudo-excitation (%s integrator, %d step(s) an output step); peaks of %d Gaussian histories "
+                  "with its covariance (cross-check: Poisson up-crossings with Vanmarcke's correction)"
+                  % (PEM_METHOD, substeps, samples),
         **{k: head[k] for k in ("impact_factor_mean", "impact_factor_std", "impact_factor_quantiles",
                                 "impact_factor_sampling_error", "impact_factor_quantiles_crossings",
                                 "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")},
         "lift_off_probability": p_lift,
         "lift_off_probability_by_wheel": lift,
+        "wheel_force_std_max": {w.name: float(wheel_std[:, k].max()) for k, w in enumerate(vehicle.wheels)},
+        "vehicle_acceleration_std_max": dict(zip(vehicle.dof_names,
+                                                 map(float, pem.std("vehicle_acceleration")[:n].max(axis=0)))),
         "grid_change": grid,
         "n_lines": pem.lines.size * road.line_factors().shape[0],
         "quality": QUALITY,
         "points": entries,
+        "effects": effect_entries,
         "warnings": warnings,
         "seconds": _time.perf_counter() - started,
     }
-    return RandomResponse(smooth, points, pem, summary)
+    return RandomResponse(smooth, points, pem, summary, effects)
 
 
-def _sampled_peaks(pem: PEMResult, points: list[PointResponse], n: int, samples: int) -> NDArray[np.float64]:
-    """(samples, n_pt): the peak of each sampled history in its static peak's direction."""
-    sign = np.array([static_direction(p.static_displacement[:n]) for p in points])
-    mean = np.stack([p.displacement[:n] for p in points], axis=1) * sign  # (n_t, n_pt)
-    out = [np.max(mean[None] + y[:, :n] * sign, axis=1) for y in pem.sample_displacement(samples)]
+def _grid_change(pem: PEMResult, name: str, cols: slice) -> float:
+    """``PEMResult.grid_change`` of the channels ``cols`` of ``name`` only (one unit at a time)."""
+    s, c = np.sqrt(pem.var[name][:, cols]), np.sqrt(np.maximum(pem.coarse[name][:, cols], 0.0))
+    top = float(s.max(initial=0.0))
+    return float(np.abs(s - c).max(initial=0.0) / top) if top > 0 else 0.0
+
+
+def _sampled_peaks(pem: PEMResult, mean: NDArray[np.float64], static: NDArray[np.float64], n: int,
+                   samples: int) -> NDArray[np.float64]:
+    """(samples, n_channels): the peak of each sampled history of every deck channel (``mean``
+    (n_t, n_channels), the smooth crossing's) in its static peak's direction."""
+    sign = np.array([static_direction(static[:, j]) for j in range(static.shape[1])])
+    signed = mean * sign
+    out = [np.max(signed[None] + y[:, :n] * sign, axis=1) for y in pem.sample_displacement(samples)]
     return np.concatenate(out, axis=0)
 
 
-def _point_entry(pem: PEMResult, p: PointResponse, j: int, n: int, quantiles, peaks: NDArray[np.float64]) -> dict[str, Any]:
-    static = p.static_displacement[:n]
+def _smooth_im(dynamic: NDArray[np.float64], static: NDArray[np.float64]) -> float:
+    """IM of a smooth-road history in its static peak's direction (sampled peaks)."""
     sign = static_direction(static)
     r_st = float(np.max(sign * static))
-    mean, rate = sign * p.displacement[:n], sign * p.velocity[:n]
+    return float((np.max(sign * dynamic) - r_st) / r_st) if r_st > 0 else float("nan")
+
+
+def _peak_entry(pem: PEMResult, j: int, n: int, mean_signed: NDArray[np.float64], static: NDArray[np.float64],
+                rate_signed: NDArray[np.float64], quantiles, peaks: NDArray[np.float64]) -> dict[str, Any]:
+    """Peak and impact-factor statistics of deck channel ``j`` (a point's displacement or a load
+    effect) from its smooth-road ``mean_signed``, ``rate_signed``, ``static`` histories (signed as
+    the response) and its sampled ``peaks`` (in the static peak's direction)."""
+    sign = static_direction(static)
+    r_st = float(np.max(sign * static))
+    mean, rate = sign * mean_signed, sign * rate_signed
     std, rate_std = pem.std("displacement")[:n, j], pem.std("velocity")[:n, j]
     dist = peak_distribution(pem.time[:n], mean, std, rate, rate_std, pem.cov_dv[:n, j], pem.lambda1[:n, j])
     ok = r_st > 0
     im = (peaks - r_st) / r_st if ok else np.full(peaks.size, np.nan)
     cross = lambda b: (b - r_st) / r_st if ok else float("nan")  # noqa: E731
     i_peak = int(np.argmax(mean))
-    return {"x": p.x, "y": p.y,
-            "impact_factor_mean": float(im.mean()), "impact_factor_std": float(im.std(ddof=1)),
+    return {"impact_factor_mean": float(im.mean()), "impact_factor_std": float(im.std(ddof=1)),
             "impact_factor_quantiles": {f"{q:g}": float(np.quantile(im, q)) for q in quantiles},
             "impact_factor_sampling_error": float(im.std(ddof=1) / np.sqrt(im.size)),
             "impact_factor_samples": int(im.size),
             "impact_factor_quantiles_crossings": {f"{q:g}": cross(dist.quantile(q)) for q in quantiles},
-            "displacement_peak_mean": sign * float(peaks.mean()), "displacement_peak_std": float(peaks.std(ddof=1)),
+            "peak_mean": sign * float(peaks.mean()), "peak_std": float(peaks.std(ddof=1)),
             "static_peak": sign * r_st, "std_at_peak": float(std[i_peak]),
-            "impact_factor_smooth": cross(float(mean.max())),
-            "displacement_std_max": float(std.max()),
-            "acceleration_std_max": float(pem.std("acceleration")[:n, j].max()),
-            "strain_std_max": float(pem.std("strain")[:n, j].max())}
+            "impact_factor_smooth": cross(float(mean.max()))}

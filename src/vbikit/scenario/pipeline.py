@@ -98,6 +98,18 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
     return run_planned(preflight(scenario_of(source, base_dir), limits), limits)
 
 
+def check_random_road(scenario: Scenario) -> None:
+    """Refuse (ScenarioError naming the key) a road a random-vibration run cannot take: not a random
+    class, or with defects (the road must be a Gaussian process given by its PSD)."""
+    road = scenario.road
+    if road.road_class == "none" or road.profile_file:
+        raise ScenarioError("road.class: a random-vibration run needs a random road (class A…H, good/average/poor or "
+                            "psd), not a smooth or measured one")
+    if road.defects:
+        raise ScenarioError("road.defects: a random-vibration run takes the road as a Gaussian process only; remove "
+                            "the defects (or run them with Monte Carlo: several road.seed values)")
+
+
 def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir: str | Path | None = None,
                quantiles: tuple[float, ...] | None = None):
     """The scenario's crossing on its random road without sampling: mean and σ histories by
@@ -115,13 +127,8 @@ def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir
     from vbikit.scenario.build import road_psd
 
     scenario = scenario_of(source, base_dir)
+    check_random_road(scenario)
     road = scenario.road
-    if road.road_class == "none" or road.profile_file:
-        raise ScenarioError("road.class: a random-vibration run needs a random road (class A…H, good/average/poor or "
-                            "psd), not a smooth or measured one")
-    if road.defects:
-        raise ScenarioError("road.defects: a random-vibration run takes the road as a Gaussian process only; remove "
-                            "the defects (or run them with Monte Carlo: several road.seed values)")
     plan = preflight(scenario, limits)
     pseudo = PseudoRoad(road_psd(road), road.right_coherence, two_lines=road.right_coherence < 1.0)
     try:

@@ -40,7 +40,8 @@ def _reference_lines(ax, codes: dict[str, float]) -> None:
 
 def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_factor") -> Path:
     """Mean (markers + line) and ±1 standard deviation (band) over the road samples of
-    ``variable``; one panel per road class.  Figs. 5–8: IM vs number of points, one line per
+    ``variable`` (a ``method = "pem"`` study: its stored ``<variable>_mean`` and ``_std`` over the
+    random road); one panel per road class.  Figs. 5–8: IM vs number of points, one line per
     speed; Figs. 10–11: IM vs speed [km/h], one line per tire model."""
     import matplotlib
 
@@ -54,8 +55,12 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
     bridge = base["bridge"]["model"]
     note = BEAM_NOTE if bridge.endswith("-beam") else GIRDER_NOTE
     codes = design_code_lines(base)
-    mean = ds[variable].mean("sample")
-    std = ds[variable].std("sample", ddof=1) if ds.sizes["sample"] > 1 else 0 * mean
+    pem = ds.attrs.get("method") == "pem"  # a study with method = "pem": the distribution is stored (vbikit.study.pem)
+    if pem:
+        mean, std = ds[f"{variable}_mean"], ds[f"{variable}_std"]
+    else:
+        mean = ds[variable].mean("sample")
+        std = ds[variable].std("sample", ddof=1) if ds.sizes["sample"] > 1 else 0 * mean
     classes = [str(c) for c in ds["road_class"].values]
     figure, axes = plt.subplots(1, len(classes), figsize=(4.2 * len(classes), 4.2), sharey=True,
                                 constrained_layout=True)
@@ -76,10 +81,11 @@ def plot_paper_figure(ds, fig: str, path: str | Path, variable: str = "impact_fa
         ax.set_title(f"{CLASS_NAMES.get(cls, cls)} road", fontsize="medium")
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3)
-    axes[0].set_ylabel("impact factor IM (mean ± 1 s.d. over samples)" if variable == "impact_factor" else variable)
+    over = "the random road (PEM)" if pem else "samples"
+    axes[0].set_ylabel(f"impact factor IM (mean ± 1 s.d. over {over})" if variable == "impact_factor" else variable)
     axes[0].legend(fontsize="small")
-    n = ds.sizes["sample"]
-    figure.suptitle(f"{spec['title']} — vbikit, {n} road profiles per point\n{note}", fontsize="small")
+    roads = "pseudo-excitation (no sampled roads)" if pem else f"{ds.sizes['sample']} road profiles per point"
+    figure.suptitle(f"{spec['title']} — vbikit, {roads}\n{note}", fontsize="small")
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_figure(figure, path, dpi=120)

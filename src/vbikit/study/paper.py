@@ -91,13 +91,21 @@ PAPER_OUTPUTS = ("impact_factor", "max_dynamic_displacement", "max_static_displa
 PAPER_INTEGRATOR: str | None = None  # None: the crossings' own default (vbikit.solve.integrators)
 
 
-def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator: str | None = PAPER_INTEGRATOR) -> dict[str, Any]:
+def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator: str | None = PAPER_INTEGRATOR,
+                     method: str = "monte-carlo") -> dict[str, Any]:
     """The study (as the dict of its TOML) of paper figure ``fig`` ("fig5" … "fig11") on the 3D
     bridges at Girder 4, or on the beam stand-ins with ``beam=True``; ``integrator``: the
-    crossings' integrator (default ``PAPER_INTEGRATOR``, the library's default; "rk4" as the paper)."""
+    crossings' integrator (default ``PAPER_INTEGRATOR``, the library's default; "rk4" as the paper);
+    ``method``: ``"monte-carlo"`` (the paper's: ``samples`` road profiles a cell) or ``"pem"`` (the
+    impact factor's distribution a cell by pseudo-excitation, ``vbikit.study.pem``: no seed axis,
+    linear tires only — Figs. 10/11 sweep the point and multi-point tires, not the disk — and no
+    road defects, so not Fig. 11)."""
     if fig not in FIGURES:
         raise ValueError(f"unknown paper study {fig!r}; allowed: {', '.join(FIGURES)}")
     f = FIGURES[fig]
+    if method == "pem" and f.get("depression"):
+        raise ValueError(f"{fig} has a road depression (road.defects): method = \"pem\" takes the road as a Gaussian "
+                         "process only; run it with method = \"monte-carlo\"")
     base = _base(bridge_model(fig, beam), f["vehicle"], f["title"], beam)
     if integrator is not None:
         base["crossing"]["integrator"] = integrator
@@ -109,13 +117,20 @@ def paper_study_dict(fig: str, samples: int = 20, beam: bool = False, integrator
         if f["depression"]:
             base["road"]["defects"] = [{"kind": "depression", "position": 0.0}]
     axes["road.class"] = CLASSES
+    if method == "pem":
+        if f["kind"] == "tires":
+            axes["tire.model"] = ["point", "multipoint"]  # the disk tire is geometric nonlinear
+        return {"name": f"paper-{fig}" + ("-beam" if beam else "") + "-pem", "seed": PAPER_SEED, "batch_size": 32,
+                "method": "pem", "base": base, "axes": axes}
     axes["road.seed"] = {"samples": samples}
     return {"name": f"paper-{fig}" + ("-beam" if beam else ""), "seed": PAPER_SEED, "batch_size": 32,
-            "outputs": list(PAPER_OUTPUTS), "base": base, "axes": axes}
+            "outputs": list(PAPER_OUTPUTS), "base": base, "axes": axes,
+            **({} if method == "monte-carlo" else {"method": method})}  # another value: the study's error
 
 
-def paper_study(fig: str, samples: int = 20, beam: bool = False, integrator: str | None = PAPER_INTEGRATOR) -> Study:
+def paper_study(fig: str, samples: int = 20, beam: bool = False, integrator: str | None = PAPER_INTEGRATOR,
+                method: str = "monte-carlo") -> Study:
     """The validated [`Study`][vbikit.study.Study] of paper figure ``fig`` (see ``paper_study_dict``)."""
     from vbikit.study.spec import parse_study
 
-    return parse_study(paper_study_dict(fig, samples, beam, integrator))
+    return parse_study(paper_study_dict(fig, samples, beam, integrator, method))

@@ -48,7 +48,7 @@ from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.scenario.schema import key_unit
 from vbikit.outputs import OUTPUTS, outputs
 from vbikit.study.compute import point_names, run_batch
-from vbikit.study.spec import Study, StudyError
+from vbikit.study.spec import Study, StudyError, cf_key_unit as _cf_unit
 from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
 from vbikit.study.workers import dask_client, local_pool, shutdown_workers
 
@@ -202,9 +202,14 @@ def run_study(
     ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
     batches run on that cluster instead; ``progress(done, total)`` is called after every
     finished batch (crossings); ``threads``: crossings run at once inside one worker;
-    ``connect_timeout`` [s]: how long to try to reach the scheduler.
+    ``connect_timeout`` [s]: how long to try to reach the scheduler.  A study with ``method =
+    "pem"`` runs one pseudo-excitation analysis per cell instead (``vbikit.study.pem.PemStudy``).
     """
     out = Path(out)
+    if getattr(study, "method", None) == "pem":  # one pseudo-excitation analysis per cell (vbikit.study.pem)
+        from vbikit.study.pem import PemStudy
+
+        study = PemStudy(study)
     if out.suffix not in (".nc", ".nc4", ".netcdf"):
         raise StudyError(f"--out must be a NetCDF file name ending in .nc, got {out}")
     try:
@@ -337,15 +342,6 @@ def _open_complete(out: Path, study: Study):
     except (OSError, ValueError):
         return None
     return None
-
-
-def _cf_unit(unit: str, text: bool) -> str:
-    """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
-    "" for text-valued coordinates (categories have no unit)."""
-    if text:
-        return ""
-    return {"": "1", "-": "1", "m/s": "m s-1", "m/s^2": "m s-2", "km/h": "km h-1", "cycle/m": "m-1",
-            "m^3/cycle": "m3", "N m^2": "N m2"}.get(unit, unit)
 
 
 def assemble(study: Study, parts: Path):

@@ -6,6 +6,7 @@ A study file::
     seed = 2026                      # study seed: road seeds derive from it and the sample index
     batch_size = 32                  # crossings per batch (one prepared system, roads run as lanes)
     outputs = ["impact_factor"]      # optional: only these outputs of vbikit.outputs (default: all)
+    method = "monte-carlo"           # or "pem": each cell's IM distribution by pseudo-excitation
 
     [base]                           # a whole scenario inline (same keys as a scenario file) ...
     # scenario = "bridge.toml"       # ... or a path to a scenario file, relative to the study file
@@ -23,6 +24,13 @@ study (same x, same elevation), and re-running or resuming gives identical roads
 
 Every combination of the axis values is validated as a scenario before anything runs; errors
 name the study key (``axes."tire.n_points"``) and the scenario key.
+
+``method`` says how the road's randomness is handled: ``"monte-carlo"`` (default) runs one
+crossing per sampled road (the ``road.seed`` axis) and stores the catalogue's outputs of each;
+``"pem"`` runs one pseudo-excitation analysis per cell of the other axes (``vbikit.random``,
+``vbikit.study.pem``) and stores the impact factor's mean, standard deviation and quantiles over
+the random road — no seed axis, no ``outputs`` or ``histories`` then, and every cell's road must
+be a random class without defects.
 """
 from __future__ import annotations
 
@@ -49,6 +57,8 @@ from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scen
 ROAD_ONLY_KEYS = ("road.seed", "road.class", "road.phi0", "road.n0", "road.exponent", "road.right_coherence")
 #: axes that may be given as {samples = N}
 SAMPLE_KEYS = ("road.seed",)
+#: how a study treats the random road (``method``): sampled roads, or pseudo-excitation per cell
+STUDY_METHODS = ("monte-carlo", "pem")
 
 
 class StudyError(VbikitError):
@@ -91,6 +101,15 @@ class StudyFile(BaseModel):
     outputs: Optional[list[str]] = Field(None, description="the catalogue's outputs to reduce and store (default: all)")
     base: dict[str, Any] = Field(..., description="scenario (inline tables) or {scenario = \"path.toml\"}")
     axes: dict[str, Any] = Field(default_factory=dict, description="key -> list of values, or {samples = N}")
+    method: str = Field(STUDY_METHODS[0], description="monte-carlo: one crossing per sampled road; pem: the impact "
+                                                      "factor's distribution per cell by pseudo-excitation")
+
+    @field_validator("method")
+    @classmethod
+    def _method(cls, method: str) -> str:
+        if method not in STUDY_METHODS:
+            raise ValueError(f"must be one of {', '.join(STUDY_METHODS)}, got {method!r}")
+        return method
 
     @field_validator("outputs")
     @classmethod
@@ -157,6 +176,9 @@ ARRAY_SECTIONS = {
 
 
 def _check_key(key: str, base: dict[str, Any]) -> None:
+    if key == "method":
+        raise StudyError(f"axes.'method': method is a study key ({' or '.join(STUDY_METHODS)}), not a scenario key to "
+                         "sweep: run one study per method")
     parts = key.split(".")
     if len(parts) == 1:
         if key not in Scenario.model_fields:
@@ -204,6 +226,15 @@ class Axis:
         return self.seeds[i] if self.seeds is not None else self.values[i]
 
 
+def cf_key_unit(unit: str, text: bool) -> str:
+    """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
+    "" for text-valued coordinates (categories have no unit)."""
+    if text:
+        return ""
+    return {"": "1", "-": "1", "m/s": "m s-1", "m/s^2": "m s-2", "km/h": "km h-1", "cycle/m": "m-1",
+            "m^3/cycle": "m3", "N m^2": "N m2"}.get(unit, unit)
+
+
 def dim_name(key: str) -> str:
     """Dataset dimension name of an axis key ("tire.n_points" -> "tire_n_points"; road.seed samples -> "sample")."""
     return key.replace(".", "_").replace("-", "_")
@@ -222,6 +253,7 @@ class Study:
     axes: tuple[Axis, ...]
     base_dir: Path
     outputs: Optional[tuple[str, ...]] = None
+    method: str = STUDY_METHODS[0]
 
     @property
     def output_names(self) -> tuple[str, ...]:
@@ -246,6 +278,8 @@ class Study:
         }
         if self.outputs is not None:  # absent: the whole catalogue (studies and datasets written before the key)
             spec["outputs"] = list(self.outputs)
+        if self.method != STUDY_METHODS[0]:  # absent: Monte Carlo (studies and datasets written before the key)
+            spec["method"] = self.method
         return json.dumps(spec, sort_keys=True)
 
     def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
@@ -316,8 +350,10 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
             axes.append(Axis(key, dim_name(key), tuple(values)))
     if len({a.name for a in axes}) != len(axes):
         raise StudyError("axes: two axes map to the same dataset dimension name")
+    if raw.method == "pem":
+        _check_pem(raw, axes)
     study = Study(raw.name, raw.seed, raw.batch_size, raw.histories, base, tuple(axes), base_dir,
-                  None if raw.outputs is None else tuple(raw.outputs))
+                  None if raw.outputs is None else tuple(raw.outputs), raw.method)
     # validate the base alone (clear message for base errors) and every combination of the
     # non-sample axes (sample axes only change the seed, which is always valid)
     try:
@@ -327,12 +363,30 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
             raise StudyError(f"base: {err}") from None
     for combo in schema_combinations(axes):
         try:
-            parse_scenario(study.scenario_dict(tuple(combo)), base_dir)
+            scenario = parse_scenario(study.scenario_dict(tuple(combo)), base_dir)
+            if study.method == "pem":
+                from vbikit.scenario.pipeline import check_random_road
+
+                check_random_road(scenario)
         except ScenarioError as err:
             where = ", ".join(f"{a.key} = {a.values[v]!r}" for a, v in zip(axes, combo) if not a.is_samples and
                               len(a.values) > 1) or "no axes"
             raise StudyError(f"base + axes ({where}): {err}") from None
     return study
+
+
+def _check_pem(raw: StudyFile, axes: list[Axis]) -> None:
+    """What ``method = "pem"`` cannot take: a road.seed axis (the road is random in every cell, not
+    sampled), ``outputs`` and ``histories`` (a cell stores the impact factor's distribution)."""
+    for a in axes:
+        if a.key == "road.seed":
+            raise StudyError('axes."road.seed": method = "pem" treats the road as random in every cell (no sampled '
+                             'roads); remove the road.seed axis, or use method = "monte-carlo"')
+    if raw.outputs is not None:
+        raise StudyError('outputs: method = "pem" stores the impact factor\'s distribution of every cell '
+                         '(vbikit.study.pem.PEM_OUTPUTS); remove outputs, or use method = "monte-carlo"')
+    if raw.histories:
+        raise StudyError('histories: method = "pem" stores no histories; remove histories, or use method = "monte-carlo"')
 
 
 def schema_combinations(axes: "tuple[Axis, ...] | list[Axis]") -> list[list[int]]:

@@ -1,0 +1,99 @@
+"""``method = "pem"`` in a study: the key is validated in one place (the study schema) with a
+clear error for other values and for what PEM cannot take, and a PEM study's cells are exactly
+``vbikit.run_random`` of their scenarios (the same numbers, stored over the axes)."""
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+
+from vbikit.scenario.pipeline import run_random
+from vbikit.study.paper import paper_study_dict
+from vbikit.study.run import run_study
+from vbikit.study.spec import StudyError, parse_study
+
+PEM = {
+    "name": "pem study",
+    "method": "pem",
+    "base": {
+        "bridge": {"model": "paper-bridge-2-beam", "n_modes": 2, "damping_ratio": 0.02},
+        "vehicle": {"model": "two-axle"},
+        "tire": {"model": "point", "loss_of_contact": False},
+        "road": {"class": "C", "n_max": 1.0},
+        "crossing": {"speed_kmh": 60, "approach": 5},
+    },
+    "axes": {"crossing.speed_kmh": [60, 90]},
+}
+
+
+def _with(**changes):
+    d = copy.deepcopy(PEM)
+    d.update(changes)
+    return d
+
+
+def test_method_is_validated_in_the_schema():
+    assert parse_study(copy.deepcopy(PEM)).method == "pem"
+    assert parse_study(_with(method="monte-carlo")).method == "monte-carlo"
+    assert "method" not in parse_study(_with(method="monte-carlo")).to_json()  # old studies keep their checksum
+    with pytest.raises(StudyError, match=r"method.*monte-carlo, pem.*'sampling'"):
+        parse_study(_with(method="sampling"))
+    with pytest.raises(StudyError, match="road.seed.*monte-carlo"):
+        parse_study(_with(axes={"road.seed": {"samples": 3}}))
+    with pytest.raises(StudyError, match="outputs"):
+        parse_study(_with(outputs=["impact_factor"]))
+    with pytest.raises(StudyError, match="method is a study key"):
+        parse_study(_with(axes={"method": ["pem", "monte-carlo"]}))
+    with pytest.raises(StudyError, match="road.class.*random road"):
+        parse_study(_with(axes={"road.class": ["C", "none"]}))
+    with pytest.raises(StudyError, match="road.defects"):
+        d = copy.deepcopy(PEM)
+        d["base"]["road"]["defects"] = [{"kind": "depression", "position": 0.0}]
+        parse_study(d)
+
+
+def test_pem_study_cells_equal_run_random(tmp_path):
+    study = parse_study(copy.deepcopy(PEM))
+    ds = run_study(study, tmp_path / "pem.nc", workers=1)
+    assert ds.attrs["method"] == "pem"
+    for i, v in enumerate(PEM["axes"]["crossing.speed_kmh"]):
+        s = run_random(study.scenario_dict((i,))).summary
+        cell = ds.isel(crossing_speed_kmh=i)
+        assert float(cell["impact_factor_mean"]) == s["impact_factor_mean"]
+        assert float(cell["impact_factor_std"]) == s["impact_factor_std"]
+        assert np.array_equal(cell["impact_factor_quantiles"].values, [s["impact_factor_quantiles"][k]
+                                                                       for k in ("0.5", "0.9", "0.95")])
+        moment = next(e for e in s["effects"] if e["kind"] == "moment")
+        assert float(cell["moment_impact_factor_mean"]) == moment["impact_factor_mean"]
+        assert float(cell["lift_off_probability"]) == s["lift_off_probability"]
+    assert run_study(study, tmp_path / "pem.nc", workers=1).equals(ds)  # the finished study is recognised
+
+
+def test_paper_studies_run_either_method():
+    mc, pem = paper_study_dict("fig6", beam=True), paper_study_dict("fig6", beam=True, method="pem")
+    assert "road.seed" in mc["axes"] and "road.seed" not in pem["axes"] and pem["method"] == "pem"
+    assert parse_study(pem).size == parse_study(mc).size // 20
+    with pytest.raises(ValueError, match="fig11.*defects"):
+        paper_study_dict("fig11", method="pem")
+
+
+def test_paper_figure_of_a_pem_dataset(tmp_path):
+    """The paper figure reads a PEM study's stored mean and σ (no sample dimension)."""
+    import json
+
+    import xarray as xr
+
+    from vbikit.study.figures import plot_paper_figure
+    from vbikit.study.paper import CLASSES, N_POINTS, SPEEDS_5_8
+
+    study = paper_study_dict("fig6", beam=True, method="pem")
+    shape = (len(N_POINTS), len(SPEEDS_5_8), len(CLASSES))
+    dims = ["tire_n_points", "crossing_speed_kmh", "road_class"]
+    values = np.random.default_rng(0).uniform(0.1, 0.3, shape)
+    ds = xr.Dataset({"impact_factor_mean": (dims, values), "impact_factor_std": (dims, 0.1 * values)},
+                    coords={"tire_n_points": N_POINTS, "crossing_speed_kmh": SPEEDS_5_8,
+                            "road_class": np.array(CLASSES, dtype=object)},
+                    attrs={"method": "pem", "study": json.dumps(study)})
+    png = plot_paper_figure(ds, "fig6", tmp_path / "fig6.png")
+    assert png.stat().st_size > 10_000
