@@ -104,12 +104,14 @@ def compile_() -> None:
     from vbikit.cli.guard import guard
 
     def work() -> None:
+        from vbikit.random.warmup import compile_random_kernels
         from vbikit.solve.numba_cache import cache_location
         from vbikit.solve.warmup import compile_kernels
 
         typer.echo("compiling the kernels of every integrator (one lane and many lanes)...", err=True)
         for name, seconds in compile_kernels().items():
             typer.echo(f"  {name:<8} ready in {seconds:.1f} s")
+        typer.echo(f"  {'random':<8} ready in {compile_random_kernels():.1f} s (pseudo-excitation)")
         typer.echo(f"numba cache: {cache_location()}")
 
     guard(work)

@@ -109,7 +109,8 @@ class PEMResult:
     ``time`` (n_t,) [s]; per name (n_t, n_channels) arrays: ``var`` (Σ_k |ỹ_k|²), ``coarse``
     (the same on every second line, twice as wide: the grid check); ``cov_dv`` Cov(displacement,
     velocity) of the deck points; ``lambda1`` Σ_k |ỹ_k||ẏ̃_k| of the deck points (the first
-    non-stationary spectral moment of the displacement).  ``lines`` the wavenumber lines used.
+    non-stationary spectral moment of the displacement).  ``lines`` the wavenumber lines used;
+    ``substeps`` the integrator's steps per output step.
     """
 
     time: NDArray[np.float64]
@@ -119,6 +120,7 @@ class PEMResult:
     cov_dv: NDArray[np.float64] | None = None
     lambda1: NDArray[np.float64] | None = None
     lines_displacement: NDArray[np.float64] | None = None
+    substeps: int = 1
 
     def sample_displacement(self, n: int, seed: int = 0, chunk: int = 256):
         """``n`` histories (n, n_t, n_pt) of the deck points' random displacement, Gaussian with
@@ -219,7 +221,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
         (_exact_lines if method == "exact" else _newmark_lines)(run)
     log.info("pseudo-excitation (%s): %d lines × %d input(s), %d steps of %.3g s", method, lines.size,
              run.n_sets, run.fine.size - 1, run.h)
-    return PEMResult(run.time, lines, run.var, run.coarse, run.cov_dv, run.lam1, run.kept)
+    return PEMResult(run.time, lines, run.var, run.coarse, run.cov_dv, run.lam1, run.kept, run.substeps)
 
 
 class _Run:

@@ -116,10 +116,12 @@ class RandomResponse:
 
 
 def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt: float, *,
-                    quantiles: tuple[float, ...] = QUANTILES, lines: Lines | None = None, substeps: int = 2,
+                    quantiles: tuple[float, ...] = QUANTILES, lines: Lines | None = None, substeps: int | None = None,
                     samples: int = SAMPLES, data=None) -> RandomResponse:
     """Mean, σ and impact-factor distribution of ``crossing`` on the random ``road`` at the points of
-    ``plan``, on the time grid of step ``dt`` [s] (the engine's step for the sampled road).
+    ``plan``, on the time grid of step ``dt`` [s] (the engine's step for the sampled road);
+    ``substeps`` integrator steps an output step (None: ``pseudo_excitation``'s default for its
+    method, one exact step, so that PEM and Monte Carlo step the same discrete system).
 
     The impact factor at a point is IM = (P − R_st)/R_st with P the peak of the dynamic response in
     the static peak's direction and R_st the static peak (``vbikit.analysis.impact``).  P's
@@ -186,7 +188,7 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     summary: dict[str, Any] = {
         "method": "pseudo-excitation (%s integrator, %d step(s) an output step); peaks of %d Gaussian histories "
                   "with its covariance (cross-check: Poisson up-crossings with Vanmarcke's correction)"
-                  % (PEM_METHOD, substeps, samples),
+                  % (PEM_METHOD, pem.substeps, samples),
         **{k: head[k] for k in ("impact_factor_mean", "impact_factor_std", "impact_factor_quantiles",
                                 "impact_factor_sampling_error", "impact_factor_quantiles_crossings",
                                 "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")},
