@@ -21,7 +21,7 @@ from vbikit.scenario.preflight import preflight
 from vbikit.solve import Crossing, kernels
 from vbikit.solve.crossing import VehicleMotion
 from vbikit.solve.kernels import Road
-from vbikit.solve.system import kernel_data, point_positions, road_data, static_state
+from vbikit.solve.system import flat_road, kernel_data, point_positions, road_data, static_state
 from vbikit.vehicle import hs20_44, semitrailer_3s2
 
 
@@ -104,3 +104,23 @@ def test_flat_static_start_equals_the_general_kernels(case, where):
     assert np.max(np.abs(xi - xi_ref)) <= 1e-12 * np.max(np.abs(xi_ref))
     assert np.max(np.abs(q - q_ref)) <= 1e-12 * np.max(np.abs(q_ref))
     assert np.max(np.abs(q_ref)) > 0.0 and (where == 0.0 or np.max(np.abs(xi_ref)) > 0.0)
+
+
+@pytest.mark.parametrize("case", ["demo", "two-vehicles"])
+def test_flat_road_at_the_start_equals_road_at(case):
+    """The road under the points at t = 0 of a one-lane crossing (``simulate``: ``system.flat_road``) against ``kernels.road_at``: the same linear interpolation, written
+    as (z1 − z0)/Δs instead of (z1 − z0)·(1/Δs), so equal to round-off (asserted ≤ 1e-12 of the
+    peak; the two-vehicle case drives one vehicle −x, the station rule for vx < 0)."""
+    crossing = CASES[case]()
+    data = kernel_data(crossing)
+    n_p = data.n_points
+    t0 = crossing.start_time + 0.5 * crossing.duration
+    travel, speed = crossing.travel(np.array([t0]))[0], crossing.travel_speed(np.array([t0]))[0]
+    x, vx = point_positions(data, travel, speed)
+    road = road_data([(crossing.road, crossing.road_right)], float(x.min()) - 1.0, float(x.max()) + 1.0)
+    rv, rr = np.zeros((n_p, 1)), np.zeros((n_p, 1))
+    kernels.road_at(x, vx, data.points, road, np.full(n_p, -1, np.int64), rv, rr, (0,))
+    r0, dr0 = flat_road(data, road, x, vx)
+    assert np.max(np.abs(r0 - rv[:, 0])) <= 1e-12 * np.max(np.abs(rv))
+    assert np.max(np.abs(dr0 - rr[:, 0])) <= 1e-12 * np.max(np.abs(rr))
+    assert np.any(vx < 0.0) == (case == "two-vehicles")

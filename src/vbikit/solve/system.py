@@ -246,6 +246,23 @@ def point_gates(data: KernelData) -> NDArray[np.bool_]:
     return np.ascontiguousarray(pts.gated | (bool(data.unilateral) & (pts.stiffness > 0.0)))
 
 
+def flat_road(data: KernelData, road: Road, x: NDArray[np.float64],
+              vx: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Road elevation [m] and rate [m/s] under every point at positions ``x`` [m] with x-rates
+    ``vx`` [m/s] on the first lane of ``road``, by the lean kernel's flat law (``kernels.lean_law``,
+    the same interpolation as ``kernels.road_at``; no rigid disks)."""
+    pts, modes, veh, n_p = data.points, data.modes, data.vehicles, data.n_points
+    r, dr = np.zeros(n_p), np.zeros(n_p)
+    kernels.lean_law(np.zeros(data.n_modes), np.zeros(data.n_dof), np.ascontiguousarray(x, float),
+                     np.ascontiguousarray(vx, float), modes.start, modes.end, float(modes.grid_h), modes.values,
+                     modes.slopes, modes.amp, veh.wheel_rows, veh.wheel_first, veh.wheel_count, pts.track,
+                     np.minimum(pts.line, road.elevations.shape[0] - 1), pts.stiffness, pts.damping, pts.fixed_load,
+                     pts.gap, np.zeros(n_p, bool), pts.width, road.stations,
+                     np.ascontiguousarray(road.elevations[:, :, 0]), float(road.r_max), r, dr, False,
+                     np.zeros(n_p, bool))
+    return r, dr
+
+
 def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_min: float, x_max: float) -> Road:
     """The kernels' road bundle (stations, elevations (n_lines, n_s, L), r_max) of L lanes with
     (left, right) wheel-line profiles each (None: smooth; right None: as the left).

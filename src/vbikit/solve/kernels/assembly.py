@@ -29,10 +29,12 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
     the static start of one crossing compiles only flat kernels, as ``lean``)."""
     n_m = omega.size
     n_d = f_g.size
-    mass[:, :] = 0.0
-    damp[:, :] = 0.0
-    stiff[:, :] = 0.0
-    load[:] = 0.0
+    for a in range(n_m + n_d):
+        load[a] = 0.0
+        for b in range(n_m + n_d):
+            mass[a, b] = 0.0
+            damp[a, b] = 0.0
+            stiff[a, b] = 0.0
     for m in range(n_m):
         mass[m, m] = 1.0
         damp[m, m] = 2.0 * zeta[m] * omega[m]

@@ -477,7 +477,8 @@ def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_row
     n_d = z1.size
     n_w = wheel_rows.shape[0]
     z = np.zeros(2 * n_d)
-    z[:n_d] = z1
+    for j in range(n_d):
+        z[j] = z1[j]
     onb = np.empty(n_cp, np.bool_)
     have = np.empty(n_cp, np.int64)
     idx = np.empty(n_cp, np.int64)
