@@ -171,10 +171,12 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
 def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> tuple:
     """The lean kernel's arguments (``kernels.lean``) of a one-lane ``call``, up to ``tol`` and
     ``stride``: the bundles' arrays one by one, contiguous, the road of the one lane."""
+    from vbikit.solve.system import point_gates
+
     c = np.ascontiguousarray
     data, road = call.data, call.road
     modes, veh, pts = data.modes, data.vehicles, data.points
-    gated = pts.gated | (bool(data.unilateral) & (pts.stiffness > 0.0))
+    gated = point_gates(data)
     line = np.minimum(pts.line, road.elevations.shape[0] - 1)
     outputs = tuple(a[0] for a in call.outputs)
     return tuple(c(a) if isinstance(a, np.ndarray) else a for a in (

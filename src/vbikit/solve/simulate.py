@@ -123,7 +123,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     ``vbikit.solve.integrators``), as lanes of kernel calls (``MAX_LANES``)."""
     from vbikit.solve import kernels
     from vbikit.solve.kernels import Motion
-    from vbikit.solve.system import point_positions, road_data, static_state
+    from vbikit.solve.system import flat_road, point_positions, road_data, static_state
 
     first, n_real = crossings[0], len(crossings)
     if n_real > MAX_LANES:
@@ -145,8 +145,11 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     wheel_len = np.zeros((n_l, n_t, n_w))
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
     x0, vx0 = point_positions(data, mot.travel[0], mot.speed[0])
-    kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
-                    (0,) if n_l == 1 else (0, 0))
+    if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
+        road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0)
+    else:
+        kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
+                        (0,) if n_l == 1 else (0, 0))
     for lane, crossing in enumerate(crossings[:n_real]):
         xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane], mot.travel[0],
                                                          road_rate=rate0[:, lane], speed=mot.speed[0])

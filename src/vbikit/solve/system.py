@@ -148,9 +148,13 @@ def coupled_matrices(
     load = np.zeros(n)
     phi = np.zeros((data.n_points, data.n_modes))
     x, vx = point_positions(data, front_position, speed)
-    kernels.assemble(x, vx, zero if road is None else np.asarray(road, float),
-                     zero if road_rate is None else np.asarray(road_rate, float), data.modes, data.vehicles,
-                     data.points, phi, np.zeros_like(phi), np.zeros(data.n_points, bool), act, mass, damp, stiff, load)
+    modes, veh, pts = data.modes, data.vehicles, data.points
+    kernels.assemble_flat(x, vx, zero if road is None else np.asarray(road, float),
+                          zero if road_rate is None else np.asarray(road_rate, float), modes.omega, modes.zeta,
+                          modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes, veh.mass,
+                          veh.damping, veh.stiffness, veh.gravity, veh.wheel_rows, pts.stiffness, pts.damping,
+                          pts.fixed_load, pts.gap, pts.wheel, pts.track, phi, np.zeros_like(phi),
+                          np.zeros(data.n_points, bool), act, mass, damp, stiff, load)
     return mass, damp, stiff, load
 
 
@@ -198,24 +202,65 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
             # the rigid disk's contact rate: the surface rate clamped to the circle's slopes (as the kernels)
             v = data.points.direction[sl] * vx[sl]
             rate[sl] = np.clip(rate[sl], v * data.points.slope_range[sl, 0], v * data.points.slope_range[sl, 1])
-    cache = kernels.new_cache(n_p, n_m, 1)._replace(x=x, vx=vx, rv=np.ascontiguousarray(road, float).reshape(n_p, 1),
-                                                    rr=np.ascontiguousarray(rate).reshape(n_p, 1),
-                                                    have_r=np.ones(n_p, bool))
-    work = kernels.new_work(n_p, data.n_dof, 1)
-    wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
-    # the road values are given (have_r all True): the bundle only carries r_max
-    bundle = Road(np.array([0.0, 1.0]), np.zeros((1, 2, 1)), float(np.max(road, initial=0.0)))
+    flat = not np.any(veh.wheel_envelope)  # no rigid disk: the flat law of the lean kernel
+    if flat:
+        gated = point_gates(data)
+        zeros = np.zeros(n_p, np.int64)
+        road_c, rate_c = np.ascontiguousarray(road, float), np.ascontiguousarray(rate)
+        r_max = float(np.max(road, initial=0.0))
+    else:
+        cache = kernels.new_cache(n_p, n_m, 1)._replace(x=x, vx=vx, rv=np.ascontiguousarray(road, float).reshape(n_p, 1),
+                                                        rr=np.ascontiguousarray(rate).reshape(n_p, 1),
+                                                        have_r=np.ones(n_p, bool))
+        work = kernels.new_work(n_p, data.n_dof, 1)
+        wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
+        # the road values are given (have_r all True): the bundle only carries r_max
+        bundle = Road(np.array([0.0, 1.0]), np.zeros((1, 2, 1)), float(np.max(road, initial=0.0)))
     for _ in range(max_iterations):
         _, _, stiff, load = coupled_matrices(crossing, data, travel, speed, road, rate, active)
         u = np.linalg.solve(stiff, load)
-        kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
-                               np.zeros((data.n_dof, 1)), data.modes, data.vehicles, data.points, bundle,
-                               data.unilateral, cache, work, wf, wl, (0,))
-        new_active = work.active[:, 0]
+        if flat:
+            new_active = np.zeros(n_p, bool)
+            pts, modes = data.points, data.modes
+            kernels.lean_law(u[:n_m].copy(), u[n_m:].copy(), x, vx, modes.start, modes.end, float(modes.grid_h),
+                             modes.values, modes.slopes, modes.amp, veh.wheel_rows, veh.wheel_first, veh.wheel_count,
+                             pts.track, zeros, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.width,
+                             np.array([0.0, 1.0]), np.zeros((1, 2)), r_max, road_c.copy(), rate_c.copy(), True,
+                             new_active)
+        else:
+            kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
+                                   np.zeros((data.n_dof, 1)), data.modes, data.vehicles, data.points, bundle,
+                                   data.unilateral, cache, work, wf, wl, (0,))
+            new_active = work.active[:, 0]
         if np.array_equal(new_active, active):
             return u[:n_m], u[n_m:], active
         active = new_active.copy()
     raise RuntimeError("the static start did not settle on a set of contact points; check the road under the vehicle")
+
+
+def point_gates(data: KernelData) -> NDArray[np.bool_]:
+    """Which points the flat kernels (``kernels.lean``, ``kernels.lean_law``) gate: those of rigid
+    disks and wheels that may lift off (``Points.gated``), and every point with a tire when contact
+    is unilateral."""
+    pts = data.points
+    return np.ascontiguousarray(pts.gated | (bool(data.unilateral) & (pts.stiffness > 0.0)))
+
+
+def flat_road(data: KernelData, road: Road, x: NDArray[np.float64],
+              vx: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Road elevation [m] and rate [m/s] under every point at positions ``x`` [m] with x-rates
+    ``vx`` [m/s] on the first lane of ``road``, by the lean kernel's flat law (``kernels.lean_law``,
+    the same interpolation as ``kernels.road_at``; no rigid disks)."""
+    pts, modes, veh, n_p = data.points, data.modes, data.vehicles, data.n_points
+    r, dr = np.zeros(n_p), np.zeros(n_p)
+    kernels.lean_law(np.zeros(data.n_modes), np.zeros(data.n_dof), np.ascontiguousarray(x, float),
+                     np.ascontiguousarray(vx, float), modes.start, modes.end, float(modes.grid_h), modes.values,
+                     modes.slopes, modes.amp, veh.wheel_rows, veh.wheel_first, veh.wheel_count, pts.track,
+                     np.minimum(pts.line, road.elevations.shape[0] - 1), pts.stiffness, pts.damping, pts.fixed_load,
+                     pts.gap, np.zeros(n_p, bool), pts.width, road.stations,
+                     np.ascontiguousarray(road.elevations[:, :, 0]), float(road.r_max), r, dr, False,
+                     np.zeros(n_p, bool))
+    return r, dr
 
 
 def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_min: float, x_max: float) -> Road:

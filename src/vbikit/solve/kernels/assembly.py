@@ -6,6 +6,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.contact import shape_point
+from vbikit.solve.kernels.lean import _shape
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
@@ -13,16 +14,27 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
     """Coupled system matrices of Eq. 9 at one instant, M ü + C u̇ + K u = F with u = [ξ; q], for
     the contact points at positions ``x`` [m] with x-rates ``vx`` [m/s] flagged ``active``: the
     linearisation of the contact law (module docstring) about contact, where F_p = k δ + c δ̇ +
-    f0 (road ``r`` [m] and its rate ``rdot`` [m/s] under each point given)."""
-    omega, zeta = modes.omega, modes.zeta
-    m_v, c_v, k_v, f_g, wheel_rows = vehicles.mass, vehicles.damping, vehicles.stiffness, vehicles.gravity, \
-        vehicles.wheel_rows
+    f0 (road ``r`` [m] and its rate ``rdot`` [m/s] under each point given).  The bundles' form of
+    ``assemble_flat`` (which does the work)."""
+    assemble_flat(x, vx, r, rdot, modes.omega, modes.zeta, modes.start, modes.end, modes.grid_h, modes.values,
+                  modes.slopes, vehicles.mass, vehicles.damping, vehicles.stiffness, vehicles.gravity,
+                  vehicles.wheel_rows, points.stiffness, points.damping, points.fixed_load, points.gap,
+                  points.wheel, points.track, phi, dphi, have, active, mass, damp, stiff, load)
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slopes, m_v, c_v, k_v, f_g, wheel_rows,
+                  kk, cc, f0, gap, wheel, track, phi, dphi, have, active, mass, damp, stiff, load):
+    """``assemble`` on plain arrays (the fields of ``Modes``, ``Vehicles`` and ``Points`` one by one:
+    the static start of one crossing compiles only flat kernels, as ``lean``)."""
     n_m = omega.size
     n_d = f_g.size
-    mass[:, :] = 0.0
-    damp[:, :] = 0.0
-    stiff[:, :] = 0.0
-    load[:] = 0.0
+    for a in range(n_m + n_d):
+        load[a] = 0.0
+        for b in range(n_m + n_d):
+            mass[a, b] = 0.0
+            damp[a, b] = 0.0
+            stiff[a, b] = 0.0
     for m in range(n_m):
         mass[m, m] = 1.0
         damp[m, m] = 2.0 * zeta[m] * omega[m]
@@ -33,22 +45,22 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
             mass[n_m + i, n_m + j] = m_v[i, j]
             damp[n_m + i, n_m + j] = c_v[i, j]
             stiff[n_m + i, n_m + j] = k_v[i, j]
-    for p in range(points.stiffness.size):
+    for p in range(kk.size):
         if not active[p]:
             continue
-        k = points.stiffness[p]
-        c = points.damping[p]
-        ext = k * (r[p] - points.gap[p]) + c * rdot[p] + points.fixed_load[p]
-        h = wheel_rows[points.wheel[p]]
+        k = kk[p]
+        c = cc[p]
+        ext = k * (r[p] - gap[p]) + c * rdot[p] + f0[p]
+        h = wheel_rows[wheel[p]]
         for i in range(n_d):
             load[n_m + i] += h[i] * ext
             for j in range(n_d):
                 stiff[n_m + i, n_m + j] += k * h[i] * h[j]
                 damp[n_m + i, n_m + j] += c * h[i] * h[j]
-        if not modes.start[points.track[p]] <= x[p] <= modes.end[points.track[p]]:
+        if not start[track[p]] <= x[p] <= end[track[p]]:
             continue
         if not have[p]:
-            shape_point(x[p], points.track[p], modes, phi[p], dphi[p])
+            _shape(x[p], track[p], start, grid_h, values, slopes, values.shape[1], phi, dphi, p)
             have[p] = True
         f = phi[p]
         g = dphi[p]

@@ -462,3 +462,33 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         for m in range(n_m):
             p0[m] = p[m]
     return -1, evaluations
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_rows, wheel_first, wheel_count, track,
+             line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, rv, rr, have_road, active):
+    """The contact law ``_law`` of one crossing at rest (ξ̇ = 0, q̇ = 0) in the state ξ = ``x1``,
+    q = ``z1`` for points at positions ``xp`` [m] with x-rates ``vxp`` [m/s] (the static start,
+    ``vbikit.solve.system.static_state``): fills ``active`` per point, and the road elevation
+    ``rv`` [m] and rate ``rr`` [m/s] under each point unless ``have_road`` (then they are given).
+    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate)."""
+    n_cp = xp.size
+    n_m = x1.size
+    n_d = z1.size
+    n_w = wheel_rows.shape[0]
+    z = np.zeros(2 * n_d)
+    for j in range(n_d):
+        z[j] = z1[j]
+    onb = np.empty(n_cp, np.bool_)
+    have = np.empty(n_cp, np.int64)
+    idx = np.empty(n_cp, np.int64)
+    for k in range(n_cp):
+        onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
+        have[k] = 2 if have_road else 0
+        idx[k] = -1
+    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
+    force = np.zeros(n_cp); used = np.zeros(n_cp, np.bool_); pen = np.zeros(n_cp); law = np.zeros(n_cp)
+    wf = np.zeros(n_w); wl = np.zeros(n_w)
+    _law(x1, np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+         wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max,
+         force, active, used, pen, law, wf, wl)
