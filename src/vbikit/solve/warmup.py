@@ -4,8 +4,8 @@ shared installation, so that no run, study batch or Dask worker compiles on firs
 numba compiles a kernel once per combination of argument types and keeps it in its on-disk
 cache (``vbikit.solve.numba_cache``).  The variants vbikit uses are few: each registered
 integrator with one lane and with many lanes (the batched studies and traffic streams; one lane of an
-implicit integrator: the lean kernel and the full one it hands a crossing over to), the
-static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
+implicit integrator: the lean kernel and the full one it hands a crossing over to; a rigid-disk
+crossing for the general static start), the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
 the cache — exactly those variants.
@@ -38,6 +38,7 @@ def _tiny_crossing(integrator: str):
 def compile_kernels() -> dict[str, float]:
     """Compile (or load from numba's cache) every kernel variant vbikit runs; returns the seconds
     each integrator took (one lane, then many lanes)."""
+    from vbikit.contact import RigidDiskTire
     from vbikit.solve.batch import BatchSolver
     from vbikit.solve.integrators import get_integrator, integrator_names, without_lean
     from vbikit.solve.moving_loads import moving_load_sweep
@@ -51,6 +52,8 @@ def compile_kernels() -> dict[str, float]:
         if not get_integrator(name).explicit:
             with without_lean():  # the full implicit kernel's one-lane variant, which the lean one hands over to
                 simulate(crossing)
+        if not get_integrator(name).explicit:  # rigid disks: the general static start and the full kernel
+            simulate(replace(crossing, tire=RigidDiskTire()))
         roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
         BatchSolver(crossing).run_many(roads)
         took[name] = time.perf_counter() - t0
