@@ -10,11 +10,13 @@ from vbikit.solve.kernels.lanes import _axpy, _gemv, _width
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def shape_point(x, track, modes, phi_row, dphi_row):
-    """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` of ``modes`` (cubic Hermite)."""
-    V, S, grid_h = modes.values, modes.slopes, modes.grid_h
-    n_grid = V.shape[1]
-    u = (x - modes.start[track]) / grid_h
+def hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row):
+    """φ(x) and ∂φ/∂x(x) on tabulated track ``tr`` (``values``, ``slopes`` (n_tracks, n_grid, n_m)
+    from ``start[tr]`` at spacing ``grid_h``) into ``phi_row``, ``dphi_row``: the cubic Hermite
+    interpolant of the tabulated shapes and slopes, clamped to the last cell.  The one copy of this
+    arithmetic, for the bundle kernels (``shape_point``) and the lean one."""
+    n_grid = values.shape[1]
+    u = (x - start[tr]) / grid_h
     i = int(u)
     if i > n_grid - 2:
         i = n_grid - 2
@@ -29,13 +31,20 @@ def shape_point(x, track, modes, phi_row, dphi_row):
     d10 = 3 * t2 - 4 * t + 1
     d01 = (-6 * t2 + 6 * t) / grid_h
     d11 = 3 * t2 - 2 * t
-    for m in range(V.shape[2]):
-        a0 = V[track, i, m]
-        a1 = V[track, i + 1, m]
-        b0 = S[track, i, m]
-        b1 = S[track, i + 1, m]
+    for m in range(values.shape[2]):
+        a0 = values[tr, i, m]
+        a1 = values[tr, i + 1, m]
+        b0 = slopes[tr, i, m]
+        b1 = slopes[tr, i + 1, m]
         phi_row[m] = h00 * a0 + h10 * b0 + h01 * a1 + h11 * b1
         dphi_row[m] = d00 * a0 + d10 * b0 + d01 * a1 + d11 * b1
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def shape_point(x, track, modes, phi_row, dphi_row):
+    """φ(x) and ∂φ/∂x(x) of one point on tabulated track ``track`` of ``modes`` (cubic Hermite,
+    ``hermite_shape``)."""
+    hermite_shape(x, track, modes.start, modes.grid_h, modes.values, modes.slopes, phi_row, dphi_row)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")

@@ -30,7 +30,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import first_cell
+from vbikit.solve.kernels.contact import first_cell, hermite_shape
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
@@ -116,29 +116,8 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
     """φ(x), ∂φ/∂x(x) of point ``p`` on track ``tr`` into row p of ``phi``, ``dphi`` (cubic Hermite,
-    as ``shape_point``)."""
-    u = (x - start[tr]) / grid_h
-    i = int(u)
-    if i > n_grid - 2:
-        i = n_grid - 2
-    t = u - i
-    t2 = t * t
-    t3 = t2 * t
-    h00 = 2 * t3 - 3 * t2 + 1
-    h10 = (t3 - 2 * t2 + t) * grid_h
-    h01 = -2 * t3 + 3 * t2
-    h11 = (t3 - t2) * grid_h
-    d00 = (6 * t2 - 6 * t) / grid_h
-    d10 = 3 * t2 - 4 * t + 1
-    d01 = (-6 * t2 + 6 * t) / grid_h
-    d11 = 3 * t2 - 2 * t
-    for m in range(values.shape[2]):
-        a0 = values[tr, i, m]
-        a1 = values[tr, i + 1, m]
-        b0 = slopes[tr, i, m]
-        b1 = slopes[tr, i + 1, m]
-        phi[p, m] = h00 * a0 + h10 * b0 + h01 * a1 + h11 * b1
-        dphi[p, m] = d00 * a0 + d10 * b0 + d01 * a1 + d11 * b1
+    ``contact.hermite_shape``; ``n_grid`` is the tables' length, kept for the callers)."""
+    hermite_shape(x, tr, start, grid_h, values, slopes, phi[p], dphi[p])
 
 
 @_internal
