@@ -134,25 +134,84 @@ def load_weights(dofs: DofMap, x: ArrayLike, y: ArrayLike
     return idx, coef, e, shares
 
 
+#: Sample points t = (ξ − a)/h of each element at which a wheel line's influence values are tabulated
+#: (``DeckInfluence``), and the monomial coefficients of the cubic through them (rows: t⁰ … t³).
+_NODES_T = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
+_TO_MONOMIAL = np.linalg.inv(np.vander(_NODES_T, 4, increasing=True))
+#: Wheel lines y whose tables one influence function keeps (oldest dropped first).
+LINE_TABLES_KEPT = 256
+
+
 class DeckInfluence(SharedInfluence):
     """I(x, y) of one grillage load effect: vᵀF(x, y) with F the consistent load of unit forces at the
     points (``load_weights``, shared by every effect of the deck), plus, for a moment or shear, the
-    terms of the points inside the section's element e = [a, a + h] on girder line j (module docstring)."""
+    terms of the points inside the section's element e = [a, a + h] on girder line j (module docstring).
+
+    Along one wheel line (y fixed) vᵀF is, on each element, a cubic in t = (ξ − a)/h: the coefficients
+    of ``load_weights`` are Hermite cubics, linear or (skew) Hermite-derivative terms in t times
+    factors of y alone.  So the values at t = 0, 1/3, 2/3, 1 of every element (one ``load_weights``
+    call of 4 × n_elements points per line, kept on this object per y) give vᵀF at any point of the
+    line by the cubic through them — equal to the direct evaluation (``direct``) up to round-off.
+    Points in the section's own element are evaluated directly (their extra terms kink at s)."""
 
     def __init__(self, bridge: DeckModel, v: NDArray[np.float64], kind: str = "reaction", element: int = -1,
                  line: int = 0, a: float = 0.0, h: float = 1.0, s: float = 0.0) -> None:
         self.bridge, self.dofs, self.v = bridge, bridge.dof_map, v
         self.kind, self.element, self.line, self.a, self.h, self.s = kind, element, line, a, h, s
+        self._line_tables: dict[float, NDArray[np.float64]] = {}
 
     @property
     def shared_key(self) -> int:
         return id(self.dofs)
 
+    def line_table(self, y: float) -> NDArray[np.float64]:
+        """Monomial coefficients (n_elements, 4) in t of vᵀF along the wheel line y [m] (cached)."""
+        table = self._line_tables.get(y)
+        if table is None:
+            xs = self.dofs.stations
+            xi = (xs[:-1, None] + _NODES_T[None, :] * np.diff(xs)[:, None]).ravel()
+            x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
+            idx, coef, _, _ = load_weights(self.dofs, x, y)
+            values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
+            table = values @ _TO_MONOMIAL.T
+            if len(self._line_tables) >= LINE_TABLES_KEPT:
+                self._line_tables.pop(next(iter(self._line_tables)))
+            self._line_tables[y] = table
+        return table
+
     def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]):
-        return load_weights(self.dofs, x, y)
+        """Each point's wheel line (the distinct y and each point's index into them), element, powers
+        of t and whether it is off the deck."""
+        dofs = self.dofs
+        xs = dofs.stations
+        x = np.asarray(x, float).ravel()
+        y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+        xi = x - y * dofs.skew_tan if dofs.skew_tan else x
+        e = np.clip(np.searchsorted(xs, xi, side="right") - 1, 0, dofs.n_elements - 1)
+        t = (xi - xs[e]) / (xs[e + 1] - xs[e])
+        powers = np.stack((np.ones_like(t), t, t * t, t * t * t), axis=1)
+        lines, which = np.unique(y, return_inverse=True)
+        off = (xi < 0.0) | (xi > xs[-1])
+        return lines, which.ravel(), e, powers, off
 
     def apply(self, part, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
-        idx, coef, el, shares = part
+        lines, which, e, powers, off = part
+        tables = np.stack([self.line_table(float(yy)) for yy in lines])
+        out = np.einsum("ij,ij->i", tables[which, e], powers)
+        out[off] = 0.0
+        if self.kind != "reaction":
+            inside = (e == self.element) & ~off
+            if np.any(inside):
+                xp = np.asarray(x, float).ravel()[inside]
+                yp = np.broadcast_to(np.asarray(y, float), np.shape(x)).ravel()[inside]
+                out[inside] = self.direct(xp, yp)
+        return out
+
+    def direct(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        """I(x, y) from ``load_weights`` of the points themselves (no tables)."""
+        x = np.asarray(x, float).ravel()
+        y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+        idx, coef, el, shares = load_weights(self.dofs, x, y)
         out = (self.v[idx] * coef).sum(axis=1)
         if self.kind == "reaction":
             return out
@@ -160,8 +219,7 @@ class DeckInfluence(SharedInfluence):
         if np.any(inside):
             a, h, s = self.a, self.h, self.s
             c = shares[inside, self.line]
-            xp = np.asarray(x, float).ravel()
-            xi = self.bridge.span_coordinate(xp[inside], np.broadcast_to(np.asarray(y, float), xp.shape)[inside])
+            xi = self.bridge.span_coordinate(x[inside], y[inside])
             n = hermite_basis((xi - a) / h, h, 0)
             if self.kind == "moment":
                 out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))
