@@ -152,28 +152,30 @@ class DeckInfluence(SharedInfluence):
     factors of y alone.  So the values at t = 0, 1/3, 2/3, 1 of every element (one ``load_weights``
     call of 4 × n_elements points per line, kept on this object per y) give vᵀF at any point of the
     line by the cubic through them — equal to the direct evaluation (``direct``) up to round-off.
-    Points in the section's own element are evaluated directly (their extra terms kink at s)."""
+    The terms of points in the section's own element (they kink at s) are added as in ``direct``,
+    with the line's share c_j(y) kept with the table."""
 
     def __init__(self, bridge: DeckModel, v: NDArray[np.float64], kind: str = "reaction", element: int = -1,
                  line: int = 0, a: float = 0.0, h: float = 1.0, s: float = 0.0) -> None:
         self.bridge, self.dofs, self.v = bridge, bridge.dof_map, v
         self.kind, self.element, self.line, self.a, self.h, self.s = kind, element, line, a, h, s
-        self._line_tables: dict[float, NDArray[np.float64]] = {}
+        self._line_tables: dict[float, tuple[NDArray[np.float64], float]] = {}
 
     @property
     def shared_key(self) -> int:
         return id(self.dofs)
 
-    def line_table(self, y: float) -> NDArray[np.float64]:
-        """Monomial coefficients (n_elements, 4) in t of vᵀF along the wheel line y [m] (cached)."""
+    def line_table(self, y: float) -> tuple[NDArray[np.float64], float]:
+        """Monomial coefficients (n_elements, 4) in t of vᵀF along the wheel line y [m], and the
+        share c_j(y) of the section's girder line j (cached)."""
         table = self._line_tables.get(y)
         if table is None:
             xs = self.dofs.stations
             xi = (xs[:-1, None] + _NODES_T[None, :] * np.diff(xs)[:, None]).ravel()
             x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
-            idx, coef, _, _ = load_weights(self.dofs, x, y)
+            idx, coef, _, shares = load_weights(self.dofs, x, y)
             values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
-            table = values @ _TO_MONOMIAL.T
+            table = (values @ _TO_MONOMIAL.T, float(shares[0, self.line]))
             if len(self._line_tables) >= LINE_TABLES_KEPT:
                 self._line_tables.pop(next(iter(self._line_tables)))
             self._line_tables[y] = table
@@ -192,19 +194,25 @@ class DeckInfluence(SharedInfluence):
         powers = np.stack((np.ones_like(t), t, t * t, t * t * t), axis=1)
         lines, which = np.unique(y, return_inverse=True)
         off = (xi < 0.0) | (xi > xs[-1])
-        return lines, which.ravel(), e, powers, off
+        return lines, which.ravel(), xi, e, powers, off
 
     def apply(self, part, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
-        lines, which, e, powers, off = part
-        tables = np.stack([self.line_table(float(yy)) for yy in lines])
+        lines, which, xi, e, powers, off = part
+        kept = [self.line_table(float(yy)) for yy in lines]
+        tables = np.stack([k[0] for k in kept])
         out = np.einsum("ij,ij->i", tables[which, e], powers)
         out[off] = 0.0
         if self.kind != "reaction":
             inside = (e == self.element) & ~off
             if np.any(inside):
-                xp = np.asarray(x, float).ravel()[inside]
-                yp = np.broadcast_to(np.asarray(y, float), np.shape(x)).ravel()[inside]
-                out[inside] = self.direct(xp, yp)
+                a, h, s = self.a, self.h, self.s
+                c = np.array([k[1] for k in kept])[which[inside]]
+                xin = xi[inside]
+                n = hermite_basis((xin - a) / h, h, 0)
+                if self.kind == "moment":
+                    out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xin < s, s - xin, 0.0))
+                else:
+                    out[inside] += c * (-n[0] + np.where(xin <= s, 1.0, 0.0))
         return out
 
     def direct(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
