@@ -21,6 +21,7 @@ with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_wi
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import scipy.fft as sp_fft
@@ -169,23 +170,37 @@ def _chirp(q: NDArray[np.int64], n_samples: int) -> NDArray[np.complex128]:
     return np.exp(1j * np.pi * ((q * q) % (2 * n_samples)) / n_samples)
 
 
-def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int, m: int) -> NDArray[np.float64]:
-    """Re Σ_n band_n · exp(2πi (k0 + n) j / N) at j = first … first + m − 1: the inverse DFT (times N)
-    of coefficients at k = k0 … k0 + M − 1, at m consecutive samples only (module docstring)."""
-    n_band = band.size
-    if n_band == 0:
-        return np.zeros(m)
+@lru_cache(maxsize=16)
+def _band_sum_factors(k0: int, n_band: int, n_samples: int, first: int, m: int
+                      ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128], int]:
+    """The factors of ``_band_sum`` that depend on the grid and the window only (not on the
+    coefficients): the shift-and-chirp of each coefficient, the FFT of the chirp kernel, the
+    output's carrier-and-chirp, and the FFT length.  Kept for the last windows: every event of a
+    traffic stream or crossing of a study on one bridge asks for the same ones."""
     n = np.arange(n_band, dtype=np.int64)
-    d = band * np.exp(2j * np.pi * ((n * first) % n_samples) / n_samples)  # shift to l = j − first
-    a = d * _chirp(n, n_samples)
+    pre = np.exp(2j * np.pi * ((n * first) % n_samples) / n_samples) * _chirp(n, n_samples)  # shift to l = j − first
     size = int(sp_fft.next_fast_len(n_band + m - 1))
     b = np.zeros(size, complex)
     b[:m] = np.conj(_chirp(np.arange(m, dtype=np.int64), n_samples))  # W^{−j²/2}, j = 0 … m − 1
     b[size - n_band + 1:] = np.conj(_chirp(np.arange(-(n_band - 1), 0, dtype=np.int64), n_samples))
-    conv = sp_fft.ifft(sp_fft.fft(a, size) * sp_fft.fft(b))[:m]
     j = np.arange(first, first + m, dtype=np.int64)
-    carrier = np.exp(2j * np.pi * ((k0 * j) % n_samples) / n_samples)  # the band's lowest index
-    return np.real(carrier * _chirp(np.arange(m, dtype=np.int64), n_samples) * conv)
+    post = np.exp(2j * np.pi * ((k0 * j) % n_samples) / n_samples) * _chirp(np.arange(m, dtype=np.int64), n_samples)
+    for arr in (pre, b, post):
+        arr.setflags(write=False)
+    kernel = sp_fft.fft(b)
+    kernel.setflags(write=False)
+    return pre, kernel, post, size
+
+
+def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int, m: int) -> NDArray[np.float64]:
+    """Re Σ_n band_n · exp(2πi (k0 + n) j / N) at j = first … first + m − 1: the inverse DFT (times N)
+    of coefficients at k = k0 … k0 + M − 1, at m consecutive samples only (module docstring); the
+    factors independent of ``band`` come from ``_band_sum_factors`` (cached)."""
+    if band.size == 0:
+        return np.zeros(m)
+    pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(first), int(m))
+    conv = sp_fft.ifft(sp_fft.fft(band * pre, size) * kernel)[:m]
+    return np.real(post * conv)
 
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
