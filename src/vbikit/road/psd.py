@@ -93,13 +93,24 @@ class RoadPSD:
 
 def _wavenumber_grid(psd: RoadPSD, spacing: float, length: float) -> tuple[int, float, NDArray[np.int64], NDArray[np.float64]]:
     """The DFT grid of Eq. 7: number of samples N (a power of two, N·Δx ≥ max(length, 1/n_min)),
-    period P = N·Δx [m], and the indices k and wavenumbers n_k = k/P [cycle/m] inside the band."""
-    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
+    period P = N·Δx [m], and the indices k and wavenumbers n_k = k/P [cycle/m] inside the band
+    (read-only arrays, kept for the last grids: ``_band_grid``)."""
+    return _band_grid(float(psd.n_min), float(psd.n_max), float(spacing), float(length))
+
+
+@lru_cache(maxsize=16)
+def _band_grid(n_min: float, n_max: float, spacing: float, length: float
+               ) -> tuple[int, float, NDArray[np.int64], NDArray[np.float64]]:
+    """``_wavenumber_grid`` of the band n_min … n_max [cycle/m]."""
+    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / n_min) / spacing)))
     period = n_samples * spacing
     k = np.arange(n_samples // 2 + 1)
     n_k = k / period
-    in_band = (n_k >= psd.n_min) & (n_k <= psd.n_max)
-    return n_samples, period, k[in_band], n_k[in_band]
+    in_band = (n_k >= n_min) & (n_k <= n_max)
+    k, n_k = k[in_band], n_k[in_band]
+    k.setflags(write=False)
+    n_k.setflags(write=False)
+    return n_samples, period, k, n_k
 
 
 def random_profile(
@@ -205,7 +216,7 @@ def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int,
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The (n_k, θ_k) pairs a profile with these settings uses (for direct evaluation of Eq. 7)."""
-    n_k = _wavenumber_grid(psd, spacing, length)[3]
+    n_k = np.array(_wavenumber_grid(psd, spacing, length)[3])  # a writable copy of the kept grid
     theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
     return n_k, theta
 
