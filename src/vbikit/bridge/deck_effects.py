@@ -166,7 +166,7 @@ class DeckInfluence(SharedInfluence):
         return id(self.dofs)
 
     def line_table(self, y: float) -> tuple[NDArray[np.float64], float]:
-        """Monomial coefficients (n_elements, 4) in t of vᵀF along the wheel line y [m], and the
+        """Monomial coefficients (4, n_elements) in t (rows t⁰ … t³) of vᵀF along the wheel line y [m], and the
         share c_j(y) of the section's girder line j (cached)."""
         table = self._line_tables.get(y)
         if table is None:
@@ -175,15 +175,15 @@ class DeckInfluence(SharedInfluence):
             x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
             idx, coef, _, shares = load_weights(self.dofs, x, y)
             values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
-            table = (values @ _TO_MONOMIAL.T, float(shares[0, self.line]))
+            table = (np.ascontiguousarray((values @ _TO_MONOMIAL.T).T), float(shares[0, self.line]))
             if len(self._line_tables) >= LINE_TABLES_KEPT:
                 self._line_tables.pop(next(iter(self._line_tables)))
             self._line_tables[y] = table
         return table
 
     def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]):
-        """Each point's wheel line (the distinct y and each point's index into them), element, powers
-        of t and whether it is off the deck."""
+        """The distinct wheel lines y, each point's row (line, element) in their stacked tables, its
+        ξ and t on the element and whether it is off the deck."""
         dofs = self.dofs
         xs = dofs.stations
         x = np.asarray(x, float).ravel()
@@ -191,22 +191,23 @@ class DeckInfluence(SharedInfluence):
         xi = x - y * dofs.skew_tan if dofs.skew_tan else x
         e = np.clip(np.searchsorted(xs, xi, side="right") - 1, 0, dofs.n_elements - 1)
         t = (xi - xs[e]) / (xs[e + 1] - xs[e])
-        powers = np.stack((np.ones_like(t), t, t * t, t * t * t), axis=1)
         lines, which = np.unique(y, return_inverse=True)
         off = (xi < 0.0) | (xi > xs[-1])
-        return lines, which.ravel(), xi, e, powers, off
+        return lines, which.ravel() * dofs.n_elements + e, xi, e, t, off
 
     def apply(self, part, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
-        lines, which, xi, e, powers, off = part
+        lines, row, xi, e, t, off = part
+        if not lines.size:
+            return np.zeros(0)
         kept = [self.line_table(float(yy)) for yy in lines]
-        tables = np.stack([k[0] for k in kept])
-        out = np.einsum("ij,ij->i", tables[which, e], powers)
+        poly = np.concatenate([k[0] for k in kept], axis=1) if len(kept) > 1 else kept[0][0]
+        out = ((poly[3][row] * t + poly[2][row]) * t + poly[1][row]) * t + poly[0][row]  # Horner
         out[off] = 0.0
         if self.kind != "reaction":
             inside = (e == self.element) & ~off
             if np.any(inside):
                 a, h, s = self.a, self.h, self.s
-                c = np.array([k[1] for k in kept])[which[inside]]
+                c = np.array([k[1] for k in kept])[row[inside] // self.dofs.n_elements]
                 xin = xi[inside]
                 n = hermite_basis((xin - a) / h, h, 0)
                 if self.kind == "moment":
