@@ -100,3 +100,20 @@ def test_whole_period_and_window_with_the_band_up_to_nyquist(window):
     for j in (0, 5, p.x.size - 1):
         direct = np.sum(amp * np.cos(2.0 * np.pi * n_k * p.x[j] + theta))
         assert p.z[j] == pytest.approx(direct, abs=1e-11 * p.z.std())
+
+
+def test_cached_window_factors_serve_only_their_window():
+    """The chirp-z factors kept per (grid, window) (``_band_sum_factors``): windows asked for in
+    turn, and again with other seeds, are each the whole-period road there."""
+    from vbikit.road.psd import _band_sum_factors
+
+    psd = RoadPSD.iso("B")
+    fulls = {seed: random_profile(psd, seed) for seed in (1, 2)}
+    _band_sum_factors.cache_clear()
+    for window, seed in (((-30.0, 20.0), 1), ((-10.0, 45.0), 1), ((-30.0, 20.0), 2), ((-10.0, 45.0), 2)):
+        part = random_profile(psd, seed, window=window)
+        x, z = _cut(fulls[seed], part)
+        assert np.array_equal(x, part.x)
+        assert np.max(np.abs(z - part.z)) < 1e-12 * fulls[seed].z.std()
+    info = _band_sum_factors.cache_info()
+    assert (info.misses, info.hits) == (2, 2)

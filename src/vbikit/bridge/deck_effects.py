@@ -134,25 +134,93 @@ def load_weights(dofs: DofMap, x: ArrayLike, y: ArrayLike
     return idx, coef, e, shares
 
 
+#: Sample points t = (ξ − a)/h of each element at which a wheel line's influence values are tabulated
+#: (``DeckInfluence``), and the monomial coefficients of the cubic through them (rows: t⁰ … t³).
+_NODES_T = np.array([0.0, 1.0 / 3.0, 2.0 / 3.0, 1.0])
+_TO_MONOMIAL = np.linalg.inv(np.vander(_NODES_T, 4, increasing=True))
+#: Wheel lines y whose tables one influence function keeps (oldest dropped first).
+LINE_TABLES_KEPT = 256
+
+
 class DeckInfluence(SharedInfluence):
     """I(x, y) of one grillage load effect: vᵀF(x, y) with F the consistent load of unit forces at the
     points (``load_weights``, shared by every effect of the deck), plus, for a moment or shear, the
-    terms of the points inside the section's element e = [a, a + h] on girder line j (module docstring)."""
+    terms of the points inside the section's element e = [a, a + h] on girder line j (module docstring).
+
+    Along one wheel line (y fixed) vᵀF is, on each element, a cubic in t = (ξ − a)/h: the coefficients
+    of ``load_weights`` are Hermite cubics, linear or (skew) Hermite-derivative terms in t times
+    factors of y alone.  So the values at t = 0, 1/3, 2/3, 1 of every element (one ``load_weights``
+    call of 4 × n_elements points per line, kept on this object per y) give vᵀF at any point of the
+    line by the cubic through them — equal to the direct evaluation (``direct``) up to round-off.
+    The terms of points in the section's own element (they kink at s) are added as in ``direct``,
+    with the line's share c_j(y) kept with the table."""
 
     def __init__(self, bridge: DeckModel, v: NDArray[np.float64], kind: str = "reaction", element: int = -1,
                  line: int = 0, a: float = 0.0, h: float = 1.0, s: float = 0.0) -> None:
         self.bridge, self.dofs, self.v = bridge, bridge.dof_map, v
         self.kind, self.element, self.line, self.a, self.h, self.s = kind, element, line, a, h, s
+        self._line_tables: dict[float, tuple[NDArray[np.float64], float]] = {}
 
     @property
     def shared_key(self) -> int:
         return id(self.dofs)
 
+    def line_table(self, y: float) -> tuple[NDArray[np.float64], float]:
+        """Monomial coefficients (4, n_elements) in t (rows t⁰ … t³) of vᵀF along the wheel line y [m], and the
+        share c_j(y) of the section's girder line j (cached)."""
+        table = self._line_tables.get(y)
+        if table is None:
+            xs = self.dofs.stations
+            xi = (xs[:-1, None] + _NODES_T[None, :] * np.diff(xs)[:, None]).ravel()
+            x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
+            idx, coef, _, shares = load_weights(self.dofs, x, y)
+            values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
+            table = (np.ascontiguousarray((values @ _TO_MONOMIAL.T).T), float(shares[0, self.line]))
+            if len(self._line_tables) >= LINE_TABLES_KEPT:
+                self._line_tables.pop(next(iter(self._line_tables)))
+            self._line_tables[y] = table
+        return table
+
     def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]):
-        return load_weights(self.dofs, x, y)
+        """The distinct wheel lines y, each point's row (line, element) in their stacked tables, its
+        ξ and t on the element and whether it is off the deck."""
+        dofs = self.dofs
+        xs = dofs.stations
+        x = np.asarray(x, float).ravel()
+        y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+        xi = x - y * dofs.skew_tan if dofs.skew_tan else x
+        e = np.clip(np.searchsorted(xs, xi, side="right") - 1, 0, dofs.n_elements - 1)
+        t = (xi - xs[e]) / (xs[e + 1] - xs[e])
+        lines, which = np.unique(y, return_inverse=True)
+        off = (xi < 0.0) | (xi > xs[-1])
+        return lines, which.ravel() * dofs.n_elements + e, xi, e, t, off
 
     def apply(self, part, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
-        idx, coef, el, shares = part
+        lines, row, xi, e, t, off = part
+        if not lines.size:
+            return np.zeros(0)
+        kept = [self.line_table(float(yy)) for yy in lines]
+        poly = np.concatenate([k[0] for k in kept], axis=1) if len(kept) > 1 else kept[0][0]
+        out = ((poly[3][row] * t + poly[2][row]) * t + poly[1][row]) * t + poly[0][row]  # Horner
+        out[off] = 0.0
+        if self.kind != "reaction":
+            inside = (e == self.element) & ~off
+            if np.any(inside):
+                a, h, s = self.a, self.h, self.s
+                c = np.array([k[1] for k in kept])[row[inside] // self.dofs.n_elements]
+                xin = xi[inside]
+                n = hermite_basis((xin - a) / h, h, 0)
+                if self.kind == "moment":
+                    out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xin < s, s - xin, 0.0))
+                else:
+                    out[inside] += c * (-n[0] + np.where(xin <= s, 1.0, 0.0))
+        return out
+
+    def direct(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        """I(x, y) from ``load_weights`` of the points themselves (no tables)."""
+        x = np.asarray(x, float).ravel()
+        y = np.broadcast_to(np.asarray(y, float), x.shape).ravel()
+        idx, coef, el, shares = load_weights(self.dofs, x, y)
         out = (self.v[idx] * coef).sum(axis=1)
         if self.kind == "reaction":
             return out
@@ -160,8 +228,7 @@ class DeckInfluence(SharedInfluence):
         if np.any(inside):
             a, h, s = self.a, self.h, self.s
             c = shares[inside, self.line]
-            xp = np.asarray(x, float).ravel()
-            xi = self.bridge.span_coordinate(xp[inside], np.broadcast_to(np.asarray(y, float), xp.shape)[inside])
+            xi = self.bridge.span_coordinate(x[inside], y[inside])
             n = hermite_basis((xi - a) / h, h, 0)
             if self.kind == "moment":
                 out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))

@@ -21,6 +21,7 @@ with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_wi
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import scipy.fft as sp_fft
@@ -92,13 +93,24 @@ class RoadPSD:
 
 def _wavenumber_grid(psd: RoadPSD, spacing: float, length: float) -> tuple[int, float, NDArray[np.int64], NDArray[np.float64]]:
     """The DFT grid of Eq. 7: number of samples N (a power of two, N·Δx ≥ max(length, 1/n_min)),
-    period P = N·Δx [m], and the indices k and wavenumbers n_k = k/P [cycle/m] inside the band."""
-    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / psd.n_min) / spacing)))
+    period P = N·Δx [m], and the indices k and wavenumbers n_k = k/P [cycle/m] inside the band
+    (read-only arrays, kept for the last grids: ``_band_grid``)."""
+    return _band_grid(float(psd.n_min), float(psd.n_max), float(spacing), float(length))
+
+
+@lru_cache(maxsize=16)
+def _band_grid(n_min: float, n_max: float, spacing: float, length: float
+               ) -> tuple[int, float, NDArray[np.int64], NDArray[np.float64]]:
+    """``_wavenumber_grid`` of the band n_min … n_max [cycle/m]."""
+    n_samples = 1 << int(np.ceil(np.log2(max(length, 1.0 / n_min) / spacing)))
     period = n_samples * spacing
     k = np.arange(n_samples // 2 + 1)
     n_k = k / period
-    in_band = (n_k >= psd.n_min) & (n_k <= psd.n_max)
-    return n_samples, period, k[in_band], n_k[in_band]
+    in_band = (n_k >= n_min) & (n_k <= n_max)
+    k, n_k = k[in_band], n_k[in_band]
+    k.setflags(write=False)
+    n_k.setflags(write=False)
+    return n_samples, period, k, n_k
 
 
 def random_profile(
@@ -169,28 +181,42 @@ def _chirp(q: NDArray[np.int64], n_samples: int) -> NDArray[np.complex128]:
     return np.exp(1j * np.pi * ((q * q) % (2 * n_samples)) / n_samples)
 
 
-def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int, m: int) -> NDArray[np.float64]:
-    """Re Σ_n band_n · exp(2πi (k0 + n) j / N) at j = first … first + m − 1: the inverse DFT (times N)
-    of coefficients at k = k0 … k0 + M − 1, at m consecutive samples only (module docstring)."""
-    n_band = band.size
-    if n_band == 0:
-        return np.zeros(m)
+@lru_cache(maxsize=16)
+def _band_sum_factors(k0: int, n_band: int, n_samples: int, first: int, m: int
+                      ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128], int]:
+    """The factors of ``_band_sum`` that depend on the grid and the window only (not on the
+    coefficients): the shift-and-chirp of each coefficient, the FFT of the chirp kernel, the
+    output's carrier-and-chirp, and the FFT length.  Kept for the last windows: every event of a
+    traffic stream or crossing of a study on one bridge asks for the same ones."""
     n = np.arange(n_band, dtype=np.int64)
-    d = band * np.exp(2j * np.pi * ((n * first) % n_samples) / n_samples)  # shift to l = j − first
-    a = d * _chirp(n, n_samples)
+    pre = np.exp(2j * np.pi * ((n * first) % n_samples) / n_samples) * _chirp(n, n_samples)  # shift to l = j − first
     size = int(sp_fft.next_fast_len(n_band + m - 1))
     b = np.zeros(size, complex)
     b[:m] = np.conj(_chirp(np.arange(m, dtype=np.int64), n_samples))  # W^{−j²/2}, j = 0 … m − 1
     b[size - n_band + 1:] = np.conj(_chirp(np.arange(-(n_band - 1), 0, dtype=np.int64), n_samples))
-    conv = sp_fft.ifft(sp_fft.fft(a, size) * sp_fft.fft(b))[:m]
     j = np.arange(first, first + m, dtype=np.int64)
-    carrier = np.exp(2j * np.pi * ((k0 * j) % n_samples) / n_samples)  # the band's lowest index
-    return np.real(carrier * _chirp(np.arange(m, dtype=np.int64), n_samples) * conv)
+    post = np.exp(2j * np.pi * ((k0 * j) % n_samples) / n_samples) * _chirp(np.arange(m, dtype=np.int64), n_samples)
+    for arr in (pre, b, post):
+        arr.setflags(write=False)
+    kernel = sp_fft.fft(b)
+    kernel.setflags(write=False)
+    return pre, kernel, post, size
+
+
+def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int, m: int) -> NDArray[np.float64]:
+    """Re Σ_n band_n · exp(2πi (k0 + n) j / N) at j = first … first + m − 1: the inverse DFT (times N)
+    of coefficients at k = k0 … k0 + M − 1, at m consecutive samples only (module docstring); the
+    factors independent of ``band`` come from ``_band_sum_factors`` (cached)."""
+    if band.size == 0:
+        return np.zeros(m)
+    pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(first), int(m))
+    conv = sp_fft.ifft(sp_fft.fft(band * pre, size) * kernel)[:m]
+    return np.real(post * conv)
 
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The (n_k, θ_k) pairs a profile with these settings uses (for direct evaluation of Eq. 7)."""
-    n_k = _wavenumber_grid(psd, spacing, length)[3]
+    n_k = np.array(_wavenumber_grid(psd, spacing, length)[3])  # a writable copy of the kept grid
     theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
     return n_k, theta
 
