@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from vbikit.lifetime.influence import event_static
 from vbikit.lifetime.setup import Setup, build_setup, day_events
 from vbikit.lifetime.traffic import TrafficModel
+from vbikit.study.shipping import reduce_once
 
 def moving_forces(loads, spacings):
     """A truck as moving constant forces: each axle load split over two wheels at ± the
@@ -140,6 +141,9 @@ class StaticJob:
     store_top: int = 256
     name: str = "lifetime static pass"
     _digest: str = field(default="", repr=False)
+
+    #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
+    __reduce__ = reduce_once
 
     @property
     def size(self) -> int:
@@ -286,6 +290,9 @@ class DynamicJob:
     step_factor: float = 1.0
     name: str = "lifetime dynamics"
     _digest: str = field(default="", repr=False)
+
+    #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
+    __reduce__ = reduce_once
 
     @property
     def size(self) -> int:

@@ -39,6 +39,7 @@ from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
+from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
 from vbikit.traffic.events import Event, partition
 from vbikit.traffic.records import VehicleRecord
@@ -100,6 +101,9 @@ class TrafficStudy:
     name: str = ""
     source: str = ""
     _digest: str = field(default="", repr=False)
+
+    #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
+    __reduce__ = reduce_once
 
     # ------------------------------------------------------------ the job protocol of run_study
     @property
