@@ -340,7 +340,7 @@ class DynamicJob:
     def run_event(self, g: int) -> dict[str, NDArray]:
         from vbikit.analysis.effects import load_effect_responses
         from vbikit.analysis.response import point_response
-        from vbikit.fatigue import miner_damage, rainflow
+        from vbikit.fatigue import miner_damage, rainflow, reversals
         from vbikit.lifetime.peaks import with_knot_limits
         from vbikit.solve import choose_time_step, simulate
 
@@ -369,7 +369,9 @@ class DynamicJob:
         for det in self.details:
             curve = det.sn()
             for hist, acc in ((dyn[det.line], d_dyn), (st[det.line], d_st)):
-                cyc = rainflow(np.concatenate([[0.0], hist * det.factor, [0.0]]))
+                # the counting sees only the reversals (ASTM E1049-85 §5.4.4): reduced to them by numpy
+                # first, the counter's own pass in Python runs over tens of points, not thousands
+                cyc = rainflow(reversals(np.concatenate([[0.0], hist * det.factor, [0.0]])))
                 acc.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0)
                 if acc is d_dyn:
                     top.append(max((c[0] for c in cyc), default=0.0))
