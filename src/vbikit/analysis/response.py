@@ -176,7 +176,7 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
         kinds = effect_kinds(names)
         first = {k: e for k, e in plan.first_effects.items() if k in kinds}
         effects = dict(zip(first, load_effect_responses(result, tuple(first.values()), plan.load_effect_method,
-                                                        check_step=False)))  # the outputs do not read it
+                                                        check_step=False))) if first else {}  # (no step check: the outputs do not read it)
     points: list[dict[str, float | None]] = [{} for _ in plan.points]
     if outputs("point", names):
         points = [r.outputs(result, names) for r in plan_responses(result, plan, xi_static)]
