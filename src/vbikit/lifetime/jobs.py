@@ -70,6 +70,11 @@ def _axle_truck(loads, spacings):
 #: how a dynamic event's trucks are modelled (spec key ``vehicle_model``)
 VEHICLE_MODELS = {"axle-truck": _axle_truck, "moving-forces": moving_forces}
 
+#: [substitute] the fewest batches a dynamic round whose records are all stored is cut into: enough
+#: for 2–8 workers to finish together (a week's round of 130 events was 7 day batches: 4 on one of
+#: 2 workers, 3 on the other)
+MIN_DYNAMIC_BATCHES = 16
+
 #: events of a day are numbered below this (global event id = day · EVENT_STRIDE + index)
 EVENT_STRIDE = 2**20
 
@@ -299,9 +304,15 @@ class DynamicJob:
         return len(self.items)
 
     def batches(self) -> list[tuple[int, ...]]:
-        """Up to ``batch_size`` events of one day each (a worker draws a day's traffic once per batch)."""
+        """Up to ``batch_size`` events of one day each (a worker draws a day's traffic once per batch);
+        when every event's records are stored (no day to draw), the events in order in equal batches
+        of at most ``batch_size``, at least ``MIN_DYNAMIC_BATCHES`` of them (a round of a short run
+        spread over every worker, not one batch per day)."""
         out: list[tuple[int, ...]] = []
         items = np.asarray(self.items, np.int64)
+        if items.size and len(self.event_records) == items.size and all(r is not None for r in self.event_records):
+            n_batches = max(-(-items.size // self.batch_size), min(items.size, MIN_DYNAMIC_BATCHES))
+            return [tuple(part.tolist()) for part in np.array_split(items, n_batches)]
         days = items // EVENT_STRIDE
         for d in np.unique(days):
             of_day = items[days == d].tolist()
