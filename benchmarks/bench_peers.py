@@ -2,7 +2,7 @@
 
 Run from the repository root (openseespy is a test dependency)::
 
-    python benchmarks/bench_peers.py              # 5 timed runs of each
+    python benchmarks/bench_peers.py              # 5 timed samples of each, ≈ 40 s
     python benchmarks/bench_peers.py --repeat 9
 
 The case: the Yang & Yau (1997) sprung mass crossing a simply supported beam (L = 25 m,
@@ -10,13 +10,18 @@ EI = 2.87e9 × 2.9 N·m², m = 2303 kg/m, undamped; M_v = 5750 kg, k_v = 1595 kN
 100 km/h, smooth road; published midspan peak ≈ 2.41 mm), from entry to exit (0.9 s).
 
 * **vbikit**: ``simulate(Crossing(...))`` with the default integrator and automatic step, 20 modes
-  (everything a crossing costs: step choice, mode tabulation, static start, integration).
+  (everything a crossing costs: step choice, mode tabulation, static start, integration), and the
+  midspan deflection history from it (its minimum is the peak, as on the OpenSees side).  Two
+  figures: a *new model* each run (beam, vehicle and ``Crossing`` built anew, as the OpenSees side
+  builds its model each run: the mode tables are tabulated again) and the *same crossing again*
+  (its mode tables, vehicle frequencies and exit time kept: what a further run on the same bridge
+  costs, e.g. in a study); of the latter, the thread CPU time of the step loop (``kernels.lean``).
 * **OpenSeesPy, partitioned** (written here, the usual way a VBI is coupled to a general FE
   code): 20 ``elasticBeamColumn`` elements with lumped masses, Newmark average acceleration,
   dt = 1 ms, linear algorithm; the sprung mass integrated beside it by the same Newmark rule;
   the contact force F = k_v (u_b(x_c) − z) applied as consistent nodal loads (Hermite shape
   functions) of the element under the mass, and the deck displacement u_b(x_c) read back with
-  the same shape functions.  Two couplings:
+  the same shape functions (once per analysis).  Two couplings:
 
   - *iterative*: per step, analyse, update F from the new deck and vehicle states, restore the
     beam's committed state (``setNodeDisp/Vel/Accel … -commit``, ``domainChange``) and analyse
@@ -24,9 +29,16 @@ EI = 2.87e9 × 2.9 N·m², m = 2303 kg/m, undamped; M_v = 5750 kg, k_v = 1595 kN
   - *staggered*: one analysis per step with F from the predicted vehicle position (explicit
     in the coupling, the common cheap variant).
 
-Reported: the time per crossing (median of ``--repeat`` runs after a warm-up; numba's compile or
-cache load is in the warm-up only), the midspan peaks and the ratios, measured in the same run.
-The machine is shared: absolute times move with its load, the ratios much less.
+  and its *floor*: the same beam stepped over the crossing by one ``analyze`` call under a fixed
+  load (no coupling, no Python per step), the least a partitioned analysis at that step costs.
+  All three again at vbikit's step (same number of steps: a check that dt = 1 ms is not what
+  makes the peer slow).
+
+Reported: thread CPU time per crossing (``time.thread_time``: OpenSees and numba run in this
+thread; BLAS is held to one thread), the minimum of ``--repeat`` samples after a warm-up (numba's
+cache load is in the warm-up only), each sample the mean of as many runs as take ≥ 20 ms; the
+midspan peaks and the ratios, measured in the same run.  The machine is shared: CPU time moves
+much less with its load than wall time, and the ratios less still.
 """
 from __future__ import annotations
 
@@ -37,7 +49,10 @@ import os
 import sys
 import time
 
-import numpy as np
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")  # one BLAS thread: thread CPU time then counts all of a run's work
+
+import numpy as np  # noqa: E402
 
 L, E, I, M_BEAM = 25.0, 2.87e9, 2.9, 2303.0
 MV, KV, V = 5750.0, 1595e3, 100 / 3.6
@@ -265,6 +280,7 @@ def main() -> int:
             rows.append((label, coupling, t_o))
             print(f"  {coupling}: {analyses} analyses, peak {-peak_o * 1e3:.4f} mm ({peak_o / peak_v - 1:+.2%} vs vbikit), "
                   f"{t_o * 1e3:.1f} ms -> vbikit {t_o / t_fresh:.1f}x (new model) / {t_o / t_again:.1f}x (again) faster")
+    sys.stdout.flush()  # before OpenSees's own exit message
     return 0
 
 
