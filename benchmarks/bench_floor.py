@@ -27,6 +27,13 @@ machine), minimum of ``--repeat`` runs after a warm-up:
 and the ratios kernel / floor and whole / floor, with the floor's midspan displacement against
 the library's (max difference / peak: the floor solves the same equations, one update a step).
 
+Then every workload of ``bench_per_crossing.py`` named by ``--workloads`` (default: demo via
+``vbikit.run``, the 3D example, the Fig. 10 32-lane batches of each tire, a traffic event, a lifetime
+dynamic event; ``paper`` on request) against its own floor, per crossing or event: the workload's
+whole round (default kernels) against ``floor_loop`` run on the inputs of every kernel call of a
+round (lane 0 of each call, counted once per lane).  The floor evaluates every contact point once
+a step, gated or not, so a disk tire's 366 points make its floor large.
+
 The case is the ``vbikit demo`` scenario: HS20-44 on the 16.76 m beam (20 modes), multipoint
 tire n = 6 (36 contact points), ISO class C road, 75 km/h, exact modal stepping at the automatic
 step (1,914 steps).
@@ -39,6 +46,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 from _args import benchmark_args  # noqa: E402
+
+#: the workloads of ``bench_per_crossing.py`` set against their floors by default (``paper``, the
+#: whole programme at 3 profiles, only on request: it takes minutes)
+WORKLOADS = ("demo", "3d", "fig10-32", "traffic", "lifetime")
 
 
 def _floor_loop():
@@ -239,8 +250,63 @@ def floor_inputs(args: tuple):
     return inputs, outs
 
 
+def workload_floor(name: str, repeat: int) -> dict:
+    """One workload of ``bench_per_crossing.py`` (``_workload``) against its floor, per crossing or
+    event [ms]: ``whole`` = its round with the default kernels (min of ``repeat``, thread CPU time)
+    divided by its crossings; ``floor`` = ``floor_loop`` on lane 0 of every kernel call of one
+    round (captured with ``USE_LEAN`` off, so that each call hands ``kernels.implicit`` its
+    inputs), counted once per lane of that call, divided by the same crossings.  A study batch's
+    lanes differ only in their roads, so lane 0 stands for each of them."""
+    from bench_per_crossing import _workload
+
+    from vbikit.solve import integrators, kernels
+
+    run, n = _workload(name)
+    run()  # warm-up: compile or load the kernels, build the caches
+    whole = []
+    for _ in range(repeat):
+        t0 = time.thread_time()
+        run()
+        whole.append(time.thread_time() - t0)
+    calls: list[tuple] = []
+    original = kernels.implicit
+
+    def capture(*a, **k):
+        calls.append(a)
+        return original(*a, **k)
+
+    kernels.implicit = capture
+    integrators.USE_LEAN = False
+    try:
+        run()
+    finally:
+        kernels.implicit = original
+        integrators.USE_LEAN = True
+    floor_loop = _floor_loop()
+    floor = 0.0
+    points = []
+    for a in calls:
+        inputs, outs = floor_inputs(a)
+        floor_loop(*inputs, *outs)  # compiled (or loaded) for these argument types
+        t = []
+        for _ in range(repeat):
+            t0 = time.thread_time()
+            floor_loop(*inputs, *outs)
+            t.append(time.thread_time() - t0)
+        floor += min(t) * a[9].shape[0]  # xi: (lanes, rows, modes)
+        points.append(inputs[26].size)
+    return {"workload": name, "whole_ms": min(whole) / n * 1e3, "floor_ms": floor / n * 1e3, "crossings": n,
+            "calls": len(calls), "points": (min(points), max(points)) if points else (0, 0)}
+
+
 def main() -> None:
-    args = benchmark_args(__doc__, "timed runs after the warm-up (minimum reported)")
+    import argparse
+
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--workloads", nargs="*", default=list(WORKLOADS),
+                        help="bench_per_crossing.py workloads to set against their floors after the demo's detail "
+                             f"(default: {' '.join(WORKLOADS)}; none: only the demo)")
+    args = benchmark_args(__doc__, "timed runs after the warm-up (minimum reported)", parser)
     import datetime
     import os
 
@@ -328,6 +394,14 @@ def main() -> None:
     print(f"  floor (one evaluation a step)  {f * 1e3:7.2f} ms   midspan displacement within {agree:.1e} of the "
           f"library's peak")
     print(f"  kernel / floor = {k / f:.1f}   lean / floor = {ln / f:.1f}   whole / floor = {w / f:.1f}")
+    if args.workloads:
+        print(f"workloads against their floors (per crossing or event, thread CPU time, min of {args.repeat}):")
+        print(f"  {'workload':10s} {'whole ms':>9s} {'floor ms':>9s} {'whole/floor':>12s}  contact points, kernel calls")
+        for name in args.workloads:
+            r = workload_floor(name, args.repeat)
+            print(f"  {name:10s} {r['whole_ms']:9.2f} {r['floor_ms']:9.2f} {r['whole_ms'] / r['floor_ms']:12.1f}  "
+                  f"{r['points'][0]}–{r['points'][1]} points, {r['calls']} calls for {r['crossings']} crossings",
+                  flush=True)
 
 if __name__ == "__main__":
     main()

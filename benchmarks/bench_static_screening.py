@@ -13,8 +13,9 @@ lines) against pybtls (BTLS) on the same traffic and influence lines, in one run
    and, for BTLS, the same lines as discrete influence lines through their kinks (0, 8.38,
    16.76 m; exact for these piecewise-linear lines); a third, curved line (the midspan
    deflection from 4 modes, a knot at every node of the table) for vbikit only;
-3. vbikit: ``event_static`` per day (the day's events cut as in a run), thread CPU time, the
-   minimum over ``--repeat`` repeats, per line set; BTLS: one ``Simulation`` over the days at
+3. vbikit: per day, the day's events cut from its stream (``day_events``, as in a run; BTLS finds
+   its events inside its run) and ``event_static`` on them, thread CPU time of both, the minimum
+   over ``--repeat`` repeats, per line set; BTLS: one ``Simulation`` over the days at
    ``--btls-step`` (default 1 ms, as tests/lifetime/test_peer_pybtls.py), block maxima written,
    one core, thread CPU time (BTLS runs in this thread), minimum over the repeats;
 4. prints trucks per second of each and their ratio, and the daily maxima of both (they agree
@@ -44,13 +45,14 @@ def _ours(days, setup, lines):
     from vbikit.lifetime.setup import day_events
 
     idx = [j for j, ln in enumerate(setup.lines) if ln.name in lines]
-    events = [day_events(setup, r) for r in days]
-    peaks = []
+    peaks, n_events = [], 0
     t = time.thread_time()
-    for recs, evs in zip(days, events):
+    for recs in days:  # the day's events cut from its stream (BTLS finds its own events in its run) and their peaks
+        evs = day_events(setup, recs)
+        n_events += len(evs)
         peaks.append(event_static(recs, evs, [setup.lines[j] for j in idx], setup.span, setup.lanes, setup.pattern,
                                   0.1, [setup.tables[j] for j in idx]).peaks)
-    return time.thread_time() - t, peaks, sum(len(e) for e in events)
+    return time.thread_time() - t, peaks, n_events
 
 
 def _btls(days, step, out):

@@ -46,7 +46,7 @@ def test_bad_output_every_is_refused():
 
 def test_compile_message_only_without_compiled_kernels(caplog):
     class Fresh:  # a dispatcher with nothing compiled and no on-disk cache
-        signatures: list = []
+        overloads: dict = {}
 
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         announce_compile(Fresh())
@@ -54,7 +54,7 @@ def test_compile_message_only_without_compiled_kernels(caplog):
     caplog.clear()
 
     class Ready:
-        signatures = ["(float64,)"]
+        overloads = {"(float64,)": None}
 
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         announce_compile(Ready())

@@ -136,3 +136,39 @@ def test_exact_step_is_the_exponential_of_the_augmented_system(zeta):
             ours = (s.a11, s.a12, s.a21, s.a22, s.b1, s.b2, s.c1, s.c2)
             for o, r in zip(ours, ref):
                 assert o[0] == pytest.approx(r, rel=1e-9, abs=1e-13 * max(abs(r), 1e-12))
+
+
+def test_step_maps_are_made_once_per_inputs_and_no_crossing_writes_to_the_shared_ones():
+    """``exact_step`` and ``vehicle_step`` keep their maps per input bytes and step; a crossing
+    (static start, lean kernel, outputs) must leave the shared arrays as made: each equals a map
+    made afresh after the run, bit for bit."""
+    from vbikit.scenario import demo_scenario_text, scenario_from_toml
+    from vbikit.scenario.preflight import preflight
+    from vbikit.solve import modal_step, simulate
+    from vbikit.solve.system import kernel_data
+
+    built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
+    data = kernel_data(built.crossing)
+    h = 0.00096
+    step = modal_step.exact_step(data.modes.omega, data.modes.zeta, h)
+    vstep = modal_step.vehicle_step(data.vehicles, h)
+    assert modal_step.exact_step(data.modes.omega.copy(), data.modes.zeta.copy(), h) is step
+    assert modal_step.vehicle_step(data.vehicles, h) is vstep
+    assert modal_step.exact_step(data.modes.omega, data.modes.zeta, 2 * h) is not step
+    assert modal_step.vehicle_step(data.vehicles, 2 * h) is not vstep
+    simulate(built.crossing)
+    simulate(built.crossing)
+    mine = modal_step._input_key("exact", 0.0, (data.modes.omega, data.modes.zeta))[2:]
+    runs = [(key[1], kept) for key, kept in modal_step._MAPS.items() if key[0] == "exact" and key[2:] == mine]
+    assert len(runs) >= 2  # the h above and the crossing's own step
+    for dt, kept in runs:
+        for a, b in zip(kept, modal_step._exact_step(data.modes.omega, data.modes.zeta, dt)):
+            np.testing.assert_array_equal(a, b)
+    mine = modal_step._input_key("vehicle", 0.0, (data.vehicles.mass_inv, data.vehicles.damping, data.vehicles.stiffness,
+                                                  data.vehicles.wheel_rows, data.vehicles.wheel_damping,
+                                                  data.vehicles.wheel_stiffness, data.vehicles.gravity))[2:]
+    runs = [(key[1], kept) for key, kept in modal_step._MAPS.items() if key[0] == "vehicle" and key[2:] == mine]
+    assert len(runs) >= 2
+    for dt, kept in runs:
+        for a, b in zip(kept, modal_step._vehicle_step(data.vehicles, dt)):
+            np.testing.assert_array_equal(a, b)

@@ -31,6 +31,13 @@ def _positive(name: str, value: float) -> None:
         raise ValueError(f"{name} must be a positive finite number, got {value!r}")
 
 
+
+def _off_span(values: NDArray[np.float64], on: NDArray[np.bool_]) -> NDArray[np.float64]:
+    """``values`` (stations × modes) with the rows of stations off the span set to 0 (in place)."""
+    if not on.all():
+        values[~on[:, 0]] = 0.0
+    return values
+
 @dataclass(frozen=True)
 class EulerBernoulliBeam(ModalBridge):
     """Simply supported Euler–Bernoulli beam.
@@ -98,11 +105,15 @@ class EulerBernoulliBeam(ModalBridge):
 
     def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         arg, on = self._arg(x)
-        return np.where(on, self._amplitude * np.sin(arg), 0.0)
+        out = np.sin(arg, out=arg)  # in place: the tables of a crossing evaluate thousands of stations
+        out *= self._amplitude
+        return _off_span(out, on)
 
     def mode_slopes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         arg, on = self._arg(x)
-        return np.where(on, self._amplitude * self.wavenumbers * np.cos(arg), 0.0)
+        out = np.cos(arg, out=arg)
+        out *= self._amplitude * self.wavenumbers
+        return _off_span(out, on)
 
     def strain_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         return -self.neutral_axis_depth * self.wavenumbers**2 * self.mode_shapes(x, y)

@@ -25,6 +25,32 @@ from numpy.typing import NDArray
 
 from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
 
+#: step maps already made in this process, by the exact bytes of their inputs and the step (a study,
+#: a traffic stream or repeated runs ask for the same few maps thousands of times; each costs two
+#: small matrix exponentials).  Bounded: the oldest half goes when it is full.
+_MAPS: dict[tuple, object] = {}
+_MAPS_LIMIT = 256
+
+
+def _input_key(kind: str, h: float, arrays) -> tuple:
+    """The key of a step map: its kind, h and every input array's shape, dtype and bytes."""
+    return (kind, float(h)) + tuple((a.shape, a.dtype.str, a.tobytes()) for a in
+                                    (np.ascontiguousarray(x) for x in arrays))
+
+
+def _kept(key: tuple, make):
+    """The map under ``key``, made by ``make()`` the first time.  Every later crossing with the same
+    inputs shares its arrays, so nothing may write to them (they stay writeable only because numba
+    compiles a separate kernel for read-only arrays)."""
+    found = _MAPS.get(key)
+    if found is None:
+        found = make()
+        if len(_MAPS) >= _MAPS_LIMIT:
+            for old in list(_MAPS)[: _MAPS_LIMIT // 2]:
+                del _MAPS[old]
+        _MAPS[key] = found
+    return found
+
 
 def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
     """Matrix exponential of a (..., n, n) stack: scaling and squaring with an 18-term Taylor
@@ -45,11 +71,17 @@ def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
-    """Exact transition of modes ω [rad/s] > 0, ζ [-] ≥ 0 over ``h`` [s] with first-order-hold load."""
+    """Exact transition of modes ω [rad/s] > 0, ζ [-] ≥ 0 over ``h`` [s] with first-order-hold load
+    (made once per ω, ζ, h in a process and shared: not to be written to)."""
     omega = np.asarray(omega, float)
     zeta = np.asarray(zeta, float)
     if np.any(omega <= 0):
         raise ValueError("exact modal stepping needs natural frequencies > 0")
+    return _kept(_input_key("exact", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h))
+
+
+def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
+    """``exact_step`` made afresh."""
     w, theta = omega, omega * h
     out = {k: np.empty_like(omega) for k in ModalStep._fields}
     closed = (zeta < 1.0) & (theta >= 0.5)  # Chopra's closed form: no cancellation at ωh ≥ 0.5
@@ -150,7 +182,15 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
 def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     """The vehicles' exact step map over ``h`` [s] with their nominal tires (k_w, c_w of each wheel)
     on the contact surface and the wheel loads G linear over the step: the exponential of the
-    augmented first-order system (q, q̇, G, Ġ, 1), exact for any h."""
+    augmented first-order system (q, q̇, G, Ġ, 1), exact for any h (made once per vehicles and h
+    in a process and shared: not to be written to)."""
+    inputs = (vehicles.mass_inv, vehicles.damping, vehicles.stiffness, vehicles.wheel_rows, vehicles.wheel_damping,
+              vehicles.wheel_stiffness, vehicles.gravity)
+    return _kept(_input_key("vehicle", h, inputs), lambda: _vehicle_step(vehicles, h))
+
+
+def _vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
+    """``vehicle_step`` made afresh."""
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
     c_hat, k_hat = _nominal(vehicles)
     if n_d == 0:

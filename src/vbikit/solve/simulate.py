@@ -35,8 +35,8 @@ COMPILE_SECONDS = 10
 def kernels_cached(kernel) -> bool:
     """Whether ``kernel`` (a numba dispatcher) is compiled in this process or in numba's on-disk cache
     (its index file exists); True for a plain function (NUMBA_DISABLE_JIT=1)."""
-    signatures = getattr(kernel, "signatures", None)
-    if signatures is None or signatures:
+    overloads = getattr(kernel, "overloads", None)  # not ``signatures``: listing them costs ≈ 16 µs a call
+    if overloads is None or overloads:
         return True
     index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
     return index is not None and os.path.exists(index)

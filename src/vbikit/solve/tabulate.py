@@ -32,7 +32,8 @@ class TrackTable:
 
 #: tracks already tabulated, per bridge (by identity, dropped when the bridge is collected): the
 #: events of a traffic stream run on the same few wheel tracks of one bridge (entries (y, points per
-#: mode): one track's φ, ∂φ/∂x; ("table", tracks, points per mode): a TrackTable)
+#: mode): one track's φ, ∂φ/∂x; ("table", tracks, points per mode): a TrackTable, whose arrays are
+#: those of its track when it has one: read only, as every table)
 _TRACKS: dict[int, dict[tuple, Any]] = {}
 _TRACKS_PER_BRIDGE = 64
 
@@ -79,10 +80,14 @@ def _tabulate(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode:
     n_grid = max(points_per_mode * n_modes, 200) + 1
     grid = np.linspace(0.0, float(bridge.span), n_grid)  # ξ along every track
     start = -bridge.span_coordinate(np.zeros(tracks.size), tracks)  # x of ξ = 0 on each track (0 if square)
-    values = np.empty((tracks.size, n_grid, n_modes))
-    slopes = np.empty_like(values)
-    for k, y in enumerate(tracks):
-        x = grid + start[k] if start[k] else grid
-        values[k], slopes[k] = _track(bridge, float(y), x, points_per_mode)
+    if tracks.size == 1:  # one track (a beam, one lane): its kept φ, ∂φ/∂x as the table, no copy
+        x = grid + start[0] if start[0] else grid
+        values, slopes = (np.ascontiguousarray(a)[None] for a in _track(bridge, float(tracks[0]), x, points_per_mode))
+    else:
+        values = np.empty((tracks.size, n_grid, n_modes))
+        slopes = np.empty_like(values)
+        for k, y in enumerate(tracks):
+            x = grid + start[k] if start[k] else grid
+            values[k], slopes[k] = _track(bridge, float(y), x, points_per_mode)
     return TrackTable(tracks, np.ascontiguousarray(start + 0.0), start + float(bridge.span),
                       float(bridge.span) / (n_grid - 1), values, slopes)

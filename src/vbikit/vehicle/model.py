@@ -138,13 +138,18 @@ class Vehicle:
         return loads.copy()
 
     def natural_frequencies(self) -> NDArray[np.float64]:
-        """Undamped natural frequencies [Hz] on rigid ground (tires as springs)."""
+        """Undamped natural frequencies [Hz] on rigid ground (tires as springs; solved once per
+        vehicle: vehicles are immutable; a fresh copy each call)."""
         if self.n_dof == 0:
             return np.zeros(0)
-        from scipy.linalg import eigh
+        freqs = self.__dict__.get("_natural_frequencies")
+        if freqs is None:
+            from scipy.linalg import eigh
 
-        lam = eigh(self.stiffness + self.tire_stiffness_matrix(), self.mass, eigvals_only=True)
-        return np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
+            lam = eigh(self.stiffness + self.tire_stiffness_matrix(), self.mass, eigvals_only=True)
+            freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
+            object.__setattr__(self, "_natural_frequencies", freqs)
+        return freqs.copy()
 
 
 @dataclass(frozen=True)
