@@ -11,7 +11,10 @@
    reported separately;
 3. the stream with ``traffic_study`` + ``run_study`` (``--workers`` processes, batches of 16
    events): events (vehicles on the bridge together, simulated as one coupled run each), wall
-   time, events/s and trucks/s;
+   time, events/s and trucks/s; and its CPU time (this process's ``time.process_time`` and the
+   workers' ``resource.getrusage(RUSAGE_CHILDREN)`` once they have ended, their start-up
+   included) per event, with the events/s that CPU time allows on ``--workers`` idle cores — on
+   a shared machine the wall time follows the other jobs' load, the CPU time hardly;
 4. one-at-a-time: the first ``--baseline`` trucks, each alone on the bridge (one Crossing with
    one vehicle on the same bridge object, ``simulate``, the displacement IM), on the same number
    of processes: trucks/s, and the time the whole stream would take that way.
@@ -24,6 +27,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import sys
 import tempfile
 import time
@@ -86,15 +90,19 @@ def main() -> None:
         warm = traffic_study(_stream(20, args.flow, seed=1), base, batch_size=4)
         run_study(warm, Path(tmp) / "warm.nc", workers=args.workers)
         t_warm = time.perf_counter() - t0
+        shutdown_workers()  # the warm-up's workers end here: their CPU time is not the stream's
+        kids0 = resource.getrusage(resource.RUSAGE_CHILDREN)
 
         records = _stream(args.trucks, args.flow)
         t0 = time.perf_counter()
         job = traffic_study(records, base, batch_size=16)
         t_setup = time.perf_counter() - t0
-        t0 = time.perf_counter()
+        t0, p0 = time.perf_counter(), time.process_time()
         ds = run_study(job, Path(tmp) / "stream.nc", workers=args.workers)
-        t_stream = time.perf_counter() - t0
+        t_stream, p_stream = time.perf_counter() - t0, time.process_time() - p0
         shutdown_workers()
+        kids1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu_workers = (kids1.ru_utime + kids1.ru_stime) - (kids0.ru_utime + kids0.ru_stime)
 
     n_b = min(args.baseline, len(records))
     chunks = [list(range(k, n_b, args.workers)) for k in range(args.workers)]
@@ -114,6 +122,9 @@ def main() -> None:
           f"{int(ds['n_steps'].mean())} steps a event on average")
     print(f"  stream: {t_stream:.1f} s = {n_ev / t_stream:.1f} events/s = {len(records) / t_stream:.1f} trucks/s "
           f"(target: under 180 s)")
+    cpu = p_stream + cpu_workers
+    print(f"  stream CPU: this process {p_stream:.1f} s + workers {cpu_workers:.1f} s = {cpu / n_ev * 1e3:.1f} ms an event "
+          f"-> {n_ev / (cpu / args.workers):.0f} events/s on {args.workers} idle cores")
     print(f"  one at a time ({n_b} trucks): {t_alone:.1f} s = {n_b / t_alone:.1f} trucks/s -> the whole stream "
           f"{len(records) / (n_b / t_alone):.0f} s")
     print(f"  IM: mean {a['im_mean']:.4f} (one truck {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), "

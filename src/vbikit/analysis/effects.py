@@ -109,27 +109,6 @@ def contact_influences(result: CrossingResult, effects: Sequence[LoadEffect]) ->
     return out
 
 
-def _contact_sums(result: CrossingResult, effects: Sequence[LoadEffect], static_loads: NDArray[np.float64],
-                  forces: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Σ_p I(x_p(t), y_p) β_p P_w and Σ_p I(x_p(t), y_p) β_p f_w(t) of every effect, shape (n_effects,
-    n_t) each: ``contact_influences`` contracted with the static loads ``static_loads`` (n_cp,) and
-    the forces ``forces`` (n_t, n_cp) without forming its (n_effects, n_t, n_cp) array — only the
-    points on the deck are evaluated, each effect's terms summed per time by one ``bincount``."""
-    x, y = contact_positions(result)
-    bridge = result.crossing.bridge
-    xi = bridge.span_coordinate(x, y)
-    on = (xi >= 0.0) & (xi <= bridge.span)
-    n_e, n_t = len(effects), x.shape[0]
-    if not np.any(on):
-        return np.zeros((n_e, n_t)), np.zeros((n_e, n_t))
-    rows, cols = np.nonzero(on)  # in the order of x[on]
-    values = influence_values(effects, x[on], y[on]).T  # (n_effects, n_on)
-    bins = (rows[None, :] + n_t * np.arange(n_e)[:, None]).ravel()
-    static = np.bincount(bins, (values * static_loads[cols]).ravel(), n_e * n_t).reshape(n_e, n_t)
-    forced = np.bincount(bins, (values * forces[rows, cols]).ravel(), n_e * n_t).reshape(n_e, n_t)
-    return static, forced
-
-
 def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
     """I(x_p(t), y_p) for every time and contact point, shape (n_t, n_cp)."""
     return contact_influences(result, [effect])[0]
@@ -167,19 +146,15 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
                 for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
+    infl = contact_influences(result, effects) if influence is None else np.asarray(influence)
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
     dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
     omega, zeta = bridge.omega, bridge.damping_ratios
     modal = np.stack([e.modal for e in effects], axis=1) / (omega**2)[:, None]  # (n_modes, n_effects)
     correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
-    if influence is None:
-        static, forced = _contact_sums(result, effects, static_loads, dyn_forces)
-    else:
-        infl = np.asarray(influence)
-        static, forced = infl @ static_loads, np.einsum("etp,tp->et", infl, dyn_forces)
-    static = -static
-    dynamic = -forced - correction.T
+    static = -(infl @ static_loads)
+    dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step))
             for k, e in enumerate(effects)]
 
