@@ -4,6 +4,7 @@
     python benchmarks/bench_traffic.py                       # 5000 trucks, 2 workers
     python benchmarks/bench_traffic.py --trucks 1000 --baseline 100
     python benchmarks/bench_traffic.py --spacing 0.05        # road sampled every 0.05 m
+    python benchmarks/bench_traffic.py --outputs impact_factor   # only the outputs the statistics need
 
 1. the stream: ``synthetic_stream`` (seed 2026), lane 1 +x and lane 2 −x, ``--flow`` trucks/h
    per lane, speeds 80 ± 8 and 75 ± 8 km/h, the documented truck mix (docs/traffic.md);
@@ -79,6 +80,7 @@ def main() -> None:
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--baseline", type=int, default=200, help="trucks run one at a time (default 200)")
     p.add_argument("--spacing", type=float, default=0.01, help="road sample spacing [m] (default 0.01, the scenario default)")
+    p.add_argument("--outputs", default=None, help="outputs to reduce, comma-separated (default: the whole catalogue)")
     args = benchmark_args(__doc__, "unused (one timed run)", p)
 
     from vbikit.study.run import run_study, shutdown_workers
@@ -95,7 +97,8 @@ def main() -> None:
 
         records = _stream(args.trucks, args.flow)
         t0 = time.perf_counter()
-        job = traffic_study(records, base, batch_size=16)
+        job = traffic_study(records, base, batch_size=16,
+                            **({} if args.outputs is None else {"outputs": args.outputs.split(",")}))
         t_setup = time.perf_counter() - t0
         t0, p0 = time.perf_counter(), time.process_time()
         ds = run_study(job, Path(tmp) / "stream.nc", workers=args.workers)
@@ -116,7 +119,7 @@ def main() -> None:
     n_mp = int(ds["multiple_presence"].sum())
     a = ds.attrs
     print(f"stream: {len(records)} trucks, flow {args.flow:g} /h per lane, road spacing {args.spacing} m, "
-          f"{args.workers} workers, {os.cpu_count()} cores")
+          f"{args.workers} workers, {os.cpu_count()} cores, outputs: {args.outputs or 'all'}")
     print(f"  warm-up (numba cache, workers) {t_warm:.1f} s; stream set-up (validation, events) {t_setup:.1f} s")
     print(f"  {n_ev} events ({n_mp} with several trucks, up to {int(ds['n_vehicles'].max())}), "
           f"{int(ds['n_steps'].mean())} steps a event on average")
