@@ -211,6 +211,55 @@ def _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi
 
 
 @_internal
+def _held_factors(a, pv, hl, ksum, csum, col, wheel_q, wheel_v):
+    """The LU factors (``a``, ``pv``) of V = I + S_A U_A for the active sums of lane ``col``
+    (``ksum``, ``csum`` (n_w, L)), refactorised only when those sums differ from the ones ``hl``
+    holds (its last entry ≠ 0 once filled; ``lean._quasi`` keeps one lane's the same way)."""
+    n_w = a.shape[0]
+    same = hl[2 * n_w] != 0.0
+    if same:
+        for w in range(n_w):
+            if ksum[w, col] != hl[w] or csum[w, col] != hl[n_w + w]:
+                same = False
+                break
+    if not same:
+        for w in range(n_w):
+            for w2 in range(n_w):
+                a[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w, col] * wheel_q[w, w2] + csum[w, col] * wheel_v[w, w2]
+            hl[w] = ksum[w, col]
+            hl[n_w + w] = csum[w, col]
+        hl[2 * n_w] = 1.0
+        _lu_factor(a, n_w, pv)
+
+
+@_internal
+def _solve_held(a, pv, t, lane0, lane1):
+    """t[:, lane] ← V⁻¹ t[:, lane] for lanes ``lane0`` … ``lane1`` − 1 with the LU factors ``a``,
+    ``pv`` of V (row swaps, then forward and back substitution, the lanes innermost)."""
+    n_w = a.shape[0]
+    for j in range(n_w):
+        kp = pv[j]
+        if kp != j:
+            for lane in range(lane0, lane1):
+                tmp = t[j, lane]
+                t[j, lane] = t[kp, lane]
+                t[kp, lane] = tmp
+    for i in range(n_w):
+        for j in range(i):
+            e = a[i, j]
+            for lane in range(lane0, lane1):
+                t[i, lane] -= e * t[j, lane]
+    for i in range(n_w - 1, -1, -1):
+        for j in range(i + 1, n_w):
+            e = a[i, j]
+            for lane in range(lane0, lane1):
+                t[i, lane] -= e * t[j, lane]
+        e = a[i, i]
+        for lane in range(lane0, lane1):
+            t[i, lane] = t[i, lane] / e
+
+
+@_internal
 def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t, work,
                  pts, n_pts):
     """``lean._quasi`` for the lanes with ``work`` set: F_A = law_A + k bq_w + c bv_w, F = 0 off A,
@@ -265,80 +314,13 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
         if not shared:
             break
     if shared and ref >= 0:  # one factorisation (slot n_l), the solve vectorised over the lanes
-        a = veh[n_l]
-        pv = piv[n_l]
-        hl = held[n_l]
-        same = hl[2 * n_w] != 0.0
-        if same:
-            for w in range(n_w):
-                if ksum[w, ref] != hl[w] or csum[w, ref] != hl[n_w + w]:
-                    same = False
-                    break
-        if not same:
-            for w in range(n_w):
-                for w2 in range(n_w):
-                    a[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w, ref] * wheel_q[w, w2] + csum[w, ref] * wheel_v[w, w2]
-                hl[w] = ksum[w, ref]
-                hl[n_w + w] = csum[w, ref]
-            hl[2 * n_w] = 1.0
-            _lu_factor(a, n_w, pv)
-        for j in range(n_w):
-            kp = pv[j]
-            if kp != j:
-                for lane in range(n_l):
-                    tmp = t[j, lane]
-                    t[j, lane] = t[kp, lane]
-                    t[kp, lane] = tmp
-        for i in range(n_w):
-            for j in range(i):
-                e = a[i, j]
-                for lane in range(n_l):
-                    t[i, lane] -= e * t[j, lane]
-        for i in range(n_w - 1, -1, -1):
-            for j in range(i + 1, n_w):
-                e = a[i, j]
-                for lane in range(n_l):
-                    t[i, lane] -= e * t[j, lane]
-            e = a[i, i]
-            for lane in range(n_l):
-                t[i, lane] = t[i, lane] / e
-    for lane in range(n_l):  # else each lane's own n_w-square solve (scalar: n_w is a few wheels)
+        _held_factors(veh[n_l], piv[n_l], held[n_l], ksum, csum, ref, wheel_q, wheel_v)
+        _solve_held(veh[n_l], piv[n_l], t, 0, n_l)
+    for lane in range(n_l):  # else each lane's own n_w-square solve (n_w is a few wheels)
         if shared or not work[lane]:
             continue
-        a = veh[lane]
-        pv = piv[lane]
-        hl = held[lane]
-        same = hl[2 * n_w] != 0.0
-        if same:
-            for w in range(n_w):
-                if ksum[w, lane] != hl[w] or csum[w, lane] != hl[n_w + w]:
-                    same = False
-                    break
-        if not same:
-            for w in range(n_w):
-                for w2 in range(n_w):
-                    a[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w, lane] * wheel_q[w, w2] + \
-                        csum[w, lane] * wheel_v[w, w2]
-                hl[w] = ksum[w, lane]
-                hl[n_w + w] = csum[w, lane]
-            hl[2 * n_w] = 1.0
-            _lu_factor(a, n_w, pv)
-        for j in range(n_w):
-            kp = pv[j]
-            if kp != j:
-                tmp = t[j, lane]
-                t[j, lane] = t[kp, lane]
-                t[kp, lane] = tmp
-        for i in range(n_w):
-            s = t[i, lane]
-            for j in range(i):
-                s -= a[i, j] * t[j, lane]
-            t[i, lane] = s
-        for i in range(n_w - 1, -1, -1):
-            s = t[i, lane]
-            for j in range(i + 1, n_w):
-                s -= a[i, j] * t[j, lane]
-            t[i, lane] = s / a[i, i]
+        _held_factors(veh[lane], piv[lane], held[lane], ksum, csum, lane, wheel_q, wheel_v)
+        _solve_held(veh[lane], piv[lane], t, lane, lane + 1)
     for w in range(n_w):
         for w2 in range(n_w):
             a = wheel_q[w, w2]
