@@ -44,7 +44,7 @@ from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import first_cell, hermite_shape
-from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
 @_internal
@@ -230,33 +230,6 @@ def _held_factors(a, pv, hl, ksum, csum, col, wheel_q, wheel_v):
             hl[n_w + w] = csum[w, col]
         hl[2 * n_w] = 1.0
         _lu_factor(a, n_w, pv)
-
-
-@_internal
-def _solve_held(a, pv, t, lane0, lane1):
-    """t[:, lane] ← V⁻¹ t[:, lane] for lanes ``lane0`` … ``lane1`` − 1 with the LU factors ``a``,
-    ``pv`` of V (row swaps, then forward and back substitution, the lanes innermost)."""
-    n_w = a.shape[0]
-    for j in range(n_w):
-        kp = pv[j]
-        if kp != j:
-            for lane in range(lane0, lane1):
-                tmp = t[j, lane]
-                t[j, lane] = t[kp, lane]
-                t[kp, lane] = tmp
-    for i in range(n_w):
-        for j in range(i):
-            e = a[i, j]
-            for lane in range(lane0, lane1):
-                t[i, lane] -= e * t[j, lane]
-    for i in range(n_w - 1, -1, -1):
-        for j in range(i + 1, n_w):
-            e = a[i, j]
-            for lane in range(lane0, lane1):
-                t[i, lane] -= e * t[j, lane]
-        e = a[i, i]
-        for lane in range(lane0, lane1):
-            t[i, lane] = t[i, lane] / e
 
 
 @_internal
