@@ -143,7 +143,8 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
     motion, outputs, first = call.motion, call.outputs, 0
     if USE_LEAN and len(call.lanes) == 1 and not np.any(data.vehicles.wheel_envelope):
-        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride)
+        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride,
+                                         *kernels.lean_work(data.n_modes, data.n_dof, data.n_points, data.n_wheels))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
             log.debug("%s (lean kernel): %.2f contact-law evaluations per step", name,
@@ -170,7 +171,8 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
 
 def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> tuple:
     """The lean kernel's arguments (``kernels.lean``) of a one-lane ``call``, up to ``tol`` and
-    ``stride``: the bundles' arrays one by one, contiguous, the road of the one lane."""
+    ``stride`` (its work spaces follow those: ``kernels.lean_work``): the bundles' arrays one by one,
+    contiguous, the road of the one lane."""
     from vbikit.solve.system import point_gates
 
     c = np.ascontiguousarray

@@ -34,7 +34,8 @@ from vbikit.solve.kernels.contact import first_cell, hermite_shape
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
-@_internal
+#: the contact law: compiled once, called by ``lean`` and (from Python, hence its wrapper) by ``lean_law``
+@njit(cache=True, fastmath=True, error_model="numpy", no_cfunc_wrapper=True)
 def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
          wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
          active, used, pen, law, wf, wl):
@@ -220,11 +221,12 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
         f[k] = force[k] + kk[k] * bq[w] + cc[k] * bv[w] if active[k] else 0.0
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
          transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity, wheel_rows,
          wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated,
-         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride):
+         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride,
+         modal, state, dof, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep``, ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
@@ -239,31 +241,28 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_d = mass_inv.shape[0]
     n_cp = origin.size
     n_w = wheel_rows.shape[0]
-    x0 = np.empty(n_m); v0 = np.empty(n_m)
-    z0 = np.empty(2 * n_d); z1 = np.empty(2 * n_d); zf = np.empty(2 * n_d); zb = np.empty(2 * n_d)
+    # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
+    x0 = modal[0]; v0 = modal[1]; x1 = modal[2]; v1 = modal[3]; xf = modal[4]; vf = modal[5]; p0 = modal[6]
+    p = modal[7]; acc = modal[8]; dp = modal[9]; dx = modal[10]; dv = modal[11]
+    z0 = state[0]; z1 = state[1]; zf = state[2]; zb = state[3]
+    rhs = dof[0]; a1 = dof[1]
+    g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
+    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
+    f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
+    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]
+    active = flags[0]; used = flags[1]; onb = flags[2]
+    have = index[0]; idx = index[1]
+    phi = shapes[0]; dphi = shapes[1]
     for m in range(n_m):
         x0[m] = xi[0, m]
         v0[m] = dxi[0, m]
     for j in range(n_d):
         z0[j] = q[0, j]
         z0[n_d + j] = dq[0, j]
-    x1 = np.empty(n_m); v1 = np.empty(n_m); xf = np.empty(n_m); vf = np.empty(n_m)
-    p0 = np.zeros(n_m); p = np.zeros(n_m); acc = np.empty(n_m); dp = np.empty(n_m); dx = np.empty(n_m)
-    dv = np.empty(n_m)
-    g0 = np.empty(n_w); dfw = np.zeros(n_w); fw = np.zeros(n_w); wf = np.zeros(n_w); wl = np.zeros(n_w)
-    bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w); ksum = np.zeros(n_w); csum = np.zeros(n_w)
-    veh = np.zeros((n_w, n_w)); piv = np.zeros(n_w, np.int64); held = np.zeros(2 * n_w + 1)
-    rhs = np.empty(n_d); a1 = np.empty(n_d)
-    f = np.zeros(n_cp); fo = np.zeros(n_cp); fp = np.zeros(n_cp); f_old = np.zeros(n_cp)
-    force = np.zeros(n_cp); pen = np.zeros(n_cp); law = np.zeros(n_cp)
-    active = np.zeros(n_cp, np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
-    xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros(n_cp); rr = np.zeros(n_cp)
-    have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
-    idx = np.empty(n_cp, np.int64)
     for k in range(n_cp):
         idx[k] = -1  # no station pointer yet
-    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
     evaluations = 0
+    stop = -1
     for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
         row = 2 * n + 2
         for k in range(n_cp):
@@ -272,19 +271,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
             have[k] = 0
-        if n < 0:
-            _law(x0, v0, z0, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-                 wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-                 r_max, force, active, used, pen, law, wf, wl)
-            for m in range(n_m):
-                p[m] = 0.0
-            for k in range(n_cp):
-                fk = force[k] if used[k] else 0.0
-                f[k] = fk
-                fo[k] = fk
-                if used[k] and onb[k]:
-                    for m in range(n_m):
-                        p[m] -= phi[k, m] * fk
+        if n < 0:  # the start state
             for m in range(n_m):
                 x1[m] = x0[m]
                 v1[m] = v0[m]
@@ -311,17 +298,26 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
-            _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-                 wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-                 r_max, force, active, used, pen, law, wf, wl)
+        _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
+             wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
+             active, used, pen, law, wf, wl)
+        if n < 0:
+            for m in range(n_m):
+                p[m] = 0.0
+            for k in range(n_cp):
+                fk = force[k] if used[k] else 0.0
+                f[k] = fk
+                fo[k] = fk
+                if used[k] and onb[k]:
+                    for m in range(n_m):
+                        p[m] -= phi[k, m] * fk
+        else:
             err = 0.0
             for k in range(n_cp):
                 err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
             if err > tol:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
-                for r in range(LEAN_CORRECTIONS + 1):
-                    if r == LEAN_CORRECTIONS:
-                        return n, evaluations  # not settled by the corrections
+                for r in range(LEAN_CORRECTIONS):
                     for k in range(n_cp):
                         f_old[k] = f[k]
                     if r > 0:
@@ -354,12 +350,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                             a += response[i, w] * dfw[w]
                         z1[i] = a
                     err = 0.0
+                    changed = False
                     for k in range(n_cp):
                         w = wheel[k]
                         if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
                             pen[k] += bq[w] + (b if onb[k] else 0.0)
                             if pen[k] > 0.0:
-                                return n, evaluations
+                                changed = True
+                                break
                             continue
                         ds = 0.0
                         dr = 0.0
@@ -375,14 +373,18 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         fl = law[k]
                         fk = fl if not gated[k] or (pen[k] > 0.0 and fl > 0.0) else 0.0
                         if (not gated[k] or fk > 0.0) != active[k]:
-                            return n, evaluations  # a contact opens or closes
+                            changed = True  # a contact opens or closes
+                            break
                         force[k] = fk
                         err = max(err, abs(fk - f[k]))
+                    if changed:
+                        break
                     if err <= tol:
                         settled = True
                         break
                 if not settled:
-                    return n, evaluations
+                    stop = n
+                    break
                 for w in range(n_w):
                     fw[w] += dfw[w]
             for w in range(n_w):
@@ -440,34 +442,36 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 fp[k] = fo[k]
         for m in range(n_m):
             p0[m] = p[m]
-    return -1, evaluations
+    return stop, evaluations
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
+def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
+    """The work spaces of ``lean`` (its trailing arguments), zeroed: per mode (12, n_m), per vehicle state
+    (4, 2 n_d), per vehicle DOF (2, n_d), per wheel (10, n_w), the held active sums (2 n_w + 1,), the
+    vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp), per point flags
+    (3, n_cp) and indices (2, n_cp), and the mode-shape rows φ, φ' (2, n_cp, n_m).  Allocated by numpy
+    rather than in the kernel: numba compiles no allocation routines for them."""
+    return (np.zeros((12, n_m)), np.zeros((4, 2 * n_d)), np.zeros((2, n_d)), np.zeros((10, n_w)),
+            np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
+            np.zeros((3, n_cp), np.bool_), np.zeros((2, n_cp), np.int64), np.zeros((2, n_cp, n_m)))
+
+
 def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_rows, wheel_first, wheel_count, track,
              line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, rv, rr, have_road, active):
     """The contact law ``_law`` of one crossing at rest (ξ̇ = 0, q̇ = 0) in the state ξ = ``x1``,
     q = ``z1`` for points at positions ``xp`` [m] with x-rates ``vxp`` [m/s] (the static start,
     ``vbikit.solve.system.static_state``): fills ``active`` per point, and the road elevation
     ``rv`` [m] and rate ``rr`` [m/s] under each point unless ``have_road`` (then they are given).
-    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate)."""
-    n_cp = xp.size
-    n_m = x1.size
-    n_d = z1.size
-    n_w = wheel_rows.shape[0]
+    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate), each contiguous.
+    Calls the compiled ``_law`` itself (the one ``lean`` calls, with the same argument types: numba
+    compiles it once for both) with work spaces from numpy."""
+    n_cp, n_m, n_d, n_w = xp.size, x1.size, z1.size, wheel_rows.shape[0]
     z = np.zeros(2 * n_d)
-    for j in range(n_d):
-        z[j] = z1[j]
-    onb = np.empty(n_cp, np.bool_)
-    have = np.empty(n_cp, np.int64)
-    idx = np.empty(n_cp, np.int64)
-    for k in range(n_cp):
-        onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
-        have[k] = 2 if have_road else 0
-        idx[k] = -1
-    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
-    force = np.zeros(n_cp); used = np.zeros(n_cp, np.bool_); pen = np.zeros(n_cp); law = np.zeros(n_cp)
-    wf = np.zeros(n_w); wl = np.zeros(n_w)
-    _law(x1, np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-         wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max,
-         force, active, used, pen, law, wf, wl)
+    z[:n_d] = z1
+    onb = (start[track] <= xp) & (xp <= end[track])
+    have = np.full(n_cp, 2 if have_road else 0, np.int64)
+    phi, dphi = np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m))
+    _law(np.ascontiguousarray(x1, float), np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr,
+         np.full(n_cp, -1, np.int64), start, float(grid_h), values, slopes, amp, wheel_rows, wheel_first, wheel_count,
+         track, line, kk, cc, f0, gap, gated, width, stations, elevations, float(r_max), np.zeros(n_cp), active,
+         np.zeros(n_cp, np.bool_), np.zeros(n_cp), np.zeros(n_cp), np.zeros(n_w), np.zeros(n_w))
