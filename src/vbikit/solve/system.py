@@ -315,5 +315,9 @@ def static_modal_history(crossing: Crossing, travel: NDArray[np.float64],
     data = kernel_data(crossing) if data is None else data
     travel = np.asarray(travel, float)
     travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
-    force = kernels.static_modal_history(travel, data.points, np.ascontiguousarray(loads, float), data.modes)
+    pts, modes = data.points, data.modes
+    force = np.zeros((travel.shape[0], data.n_modes))
+    kernels.static_modal_history(travel, pts.origin, pts.direction, pts.vehicle, pts.track,
+                                 np.ascontiguousarray(loads, float), modes.start, modes.end, float(modes.grid_h),
+                                 modes.values, modes.slopes, force, np.zeros(data.n_modes), np.zeros(data.n_modes))
     return -force / crossing.bridge.omega**2

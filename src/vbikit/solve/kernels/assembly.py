@@ -2,10 +2,10 @@
 load history. (``vbikit.solve.kernels``: the equations and conventions.)"""
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
-from vbikit.solve.kernels.contact import shape_point
+from vbikit.solve.kernels.bundles import _flat
+from vbikit.solve.kernels.contact import hermite_shape
 from vbikit.solve.kernels.lean import _shape
 
 
@@ -22,7 +22,7 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
                   points.wheel, points.track, phi, dphi, have, active, mass, damp, stiff, load)
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
+@_flat
 def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slopes, m_v, c_v, k_v, f_g, wheel_rows,
                   kk, cc, f0, gap, wheel, track, phi, dphi, have, active, mass, damp, stiff, load):
     """``assemble`` on plain arrays (the fields of ``Modes``, ``Vehicles`` and ``Points`` one by one:
@@ -77,21 +77,19 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
                 damp[n_m + j, a] -= c * h[j] * f[a]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
-def static_modal_history(travel, points, loads, modes):
-    """Σ_p φ(x_p(t)) P_p (n_t, n_m) for downward point loads P_p [N] at x_p = origin_p + dir_p·s_v(t),
-    ``travel`` (n_t, n_vehicles) [m] (tabulated shapes, as the solver); ξ_st = −that / ω²."""
-    n_m = modes.values.shape[2]
-    out = np.zeros((travel.shape[0], n_m))
-    phi = np.zeros(n_m)
-    dphi = np.zeros(n_m)
+@_flat
+def static_modal_history(travel, origin, direction, vehicle, track, loads, start, end, grid_h, values, slopes, out, phi,
+                         dphi):
+    """Σ_p φ(x_p(t)) P_p into ``out`` (n_t, n_m), zeroed, for downward point loads ``loads`` P_p [N] at
+    x_p = ``origin``_p + ``direction``_p·s_v(t) on ``track``_p, ``travel`` (n_t, n_vehicles) [m] (the
+    fields of ``Points`` and ``Modes`` one by one; tabulated shapes, as the solver; ``phi``, ``dphi``
+    (n_m,) work space); ξ_st = −that / ω²."""
     for t in range(travel.shape[0]):
-        for p in range(points.origin.size):
+        for p in range(origin.size):
             if loads[p] == 0.0:
                 continue
-            x = points.origin[p] + points.direction[p] * travel[t, points.vehicle[p]]
-            if modes.start[points.track[p]] <= x <= modes.end[points.track[p]]:
-                shape_point(x, points.track[p], modes, phi, dphi)
-                for m in range(n_m):
+            x = origin[p] + direction[p] * travel[t, vehicle[p]]
+            if start[track[p]] <= x <= end[track[p]]:
+                hermite_shape(x, track[p], start, grid_h, values, slopes, phi, dphi)
+                for m in range(phi.size):
                     out[t, m] += phi[m] * loads[p]
-    return out

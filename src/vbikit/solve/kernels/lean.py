@@ -29,13 +29,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from vbikit.solve.kernels.bundles import _internal
+from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import first_cell, hermite_shape
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
-#: the contact law: compiled once, called by ``lean`` and (from Python, hence its wrapper) by ``lean_law``
-@njit(cache=True, fastmath=True, error_model="numpy", no_cfunc_wrapper=True)
+@_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
 def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
          wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
          active, used, pen, law, wf, wl):
@@ -121,7 +120,7 @@ def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
     hermite_shape(x, tr, start, grid_h, values, slopes, phi[p], dphi[p])
 
 
-@_internal
+@_flat_internal
 def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf, zb,
            p, fw, x1, v1, z1):
     """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
@@ -152,7 +151,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         z1[i] = a
 
 
-@_internal
+@_flat_internal
 def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t):
     """One quasi-Newton update through the vehicles (``newton._vehicle_newton``, one lane):
     F_A = law_A + k bq_w + c bv_w, F = 0 off A, with (bq, bv) the change of (−z_w, −ż_w):
@@ -221,7 +220,7 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
         f[k] = force[k] + kk[k] * bq[w] + cc[k] * bv[w] if active[k] else 0.0
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", nogil=True, no_cfunc_wrapper=True)
+@njit(nogil=True, **FLAT_OPTIONS)
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
          transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity, wheel_rows,
          wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated,
@@ -298,9 +297,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
-        _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
-             wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
-             active, used, pen, law, wf, wl)
+        _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+             wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
+             r_max, force, active, used, pen, law, wf, wl)
         if n < 0:
             for m in range(n_m):
                 p[m] = 0.0
