@@ -29,6 +29,7 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
     the static start of one crossing compiles only flat kernels, as ``lean``)."""
     n_m = omega.size
     n_d = f_g.size
+    _, n_grid, _ = values.shape
     for a in range(n_m + n_d):
         load[a] = 0.0
         for b in range(n_m + n_d):
@@ -60,7 +61,7 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
         if not start[track[p]] <= x[p] <= end[track[p]]:
             continue
         if not have[p]:
-            _shape(x[p], track[p], start, grid_h, values, slopes, values.shape[1], phi, dphi, p)
+            _shape(x[p], track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
             have[p] = True
         f = phi[p]
         g = dphi[p]
@@ -84,7 +85,7 @@ def static_modal_history(travel, origin, direction, vehicle, track, loads, start
     x_p = ``origin``_p + ``direction``_p·s_v(t) on ``track``_p, ``travel`` (n_t, n_vehicles) [m] (the
     fields of ``Points`` and ``Modes`` one by one; tabulated shapes, as the solver; ``phi``, ``dphi``
     (n_m,) work space); ξ_st = −that / ω²."""
-    for t in range(travel.shape[0]):
+    for t in range(len(travel)):
         for p in range(origin.size):
             if loads[p] == 0.0:
                 continue

@@ -46,12 +46,12 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
     is in ``rv``, ``rr``)."""
     n_m = x1.size
-    n_grid = values.shape[1]
+    _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     n_s = stations.size
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
-    for w in range(wheel_rows.shape[0]):
+    for w in range(len(wheel_rows)):
         zw = 0.0
         dzw = 0.0
         for j in range(n_d):
@@ -126,6 +126,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
     """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
     ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``)."""
     n_m = p.size
+    _, n_grid, _ = values.shape
     for m in range(n_m):
         p[m] = 0.0
     for w in range(fw.size):
@@ -137,7 +138,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         fw[wheel[k]] += fk
         if onb[k]:
             if have[k] % 2 == 0:
-                _shape(xp[k], track[k], start, grid_h, values, slopes, values.shape[1], phi, dphi, k)
+                _shape(xp[k], track[k], start, grid_h, values, slopes, n_grid, phi, dphi, k)
                 have[k] += 1
             for m in range(n_m):
                 p[m] -= phi[k, m] * fk
@@ -235,11 +236,11 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
     (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
     filled); evaluations counts the contact-law evaluations."""
-    n_steps = (travel.shape[0] - 1) // 2
+    n_steps = (len(travel) - 1) // 2
     n_m = omega.size
-    n_d = mass_inv.shape[0]
+    n_d = len(mass_inv)
     n_cp = origin.size
-    n_w = wheel_rows.shape[0]
+    n_w = len(wheel_rows)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x0 = modal[0]; v0 = modal[1]; x1 = modal[2]; v1 = modal[3]; xf = modal[4]; vf = modal[5]; p0 = modal[6]
     p = modal[7]; acc = modal[8]; dp = modal[9]; dx = modal[10]; dv = modal[11]
