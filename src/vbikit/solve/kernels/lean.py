@@ -23,6 +23,12 @@ activity changes, or a point the lazy test left out may touch), or the correctio
 stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
 handled at all (the caller does not call ``lean`` for them).  The outputs are those of
 ``implicit`` (same conventions, row 0 the static start, every ``stride``-th step stored).
+
+Compilation (the first run's cost, ``benchmarks/bench_compile.py``): ``lean`` and its helpers are flat
+kernels (``bundles.FLAT_OPTIONS``: no allocation inside, hence no reference counting); ``_law`` is
+compiled once, with the argument types of both its callers (``lean`` and, from Python, ``lean_law``);
+``lean`` returns at one place only and calls ``_law`` at one site (numba emits the end of every array's
+lifetime at each return, and each call site passes every array).
 """
 from __future__ import annotations
 
@@ -231,7 +237,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep``, ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
-    one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``.
+    one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the work
+    spaces of ``lean_work`` (zeroed).
 
     Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
     (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
