@@ -46,6 +46,7 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
             mass[n_m + i, n_m + j] = m_v[i, j]
             damp[n_m + i, n_m + j] = c_v[i, j]
             stiff[n_m + i, n_m + j] = k_v[i, j]
+    n = n_m + n_d
     for p in range(kk.size):
         if not active[p]:
             continue
@@ -53,29 +54,21 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
         c = cc[p]
         ext = k * (r[p] - gap[p]) + c * rdot[p] + f0[p]
         h = wheel_rows[wheel[p]]
-        for i in range(n_d):
-            load[n_m + i] += h[i] * ext
-            for j in range(n_d):
-                stiff[n_m + i, n_m + j] += k * h[i] * h[j]
-                damp[n_m + i, n_m + j] += c * h[i] * h[j]
-        if not start[track[p]] <= x[p] <= end[track[p]]:
-            continue
-        if not have[p]:
+        on = start[track[p]] <= x[p] <= end[track[p]]
+        if on and not have[p]:
             _shape(x[p], track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
             have[p] = True
-        f = phi[p]
-        g = dphi[p]
-        vel = vx[p]
-        for a in range(n_m):
-            load[a] -= f[a] * ext
-            for b in range(n_m):
-                stiff[a, b] += k * f[a] * f[b] + c * vel * f[a] * g[b]
-                damp[a, b] += c * f[a] * f[b]
-            for j in range(n_d):
-                stiff[a, n_m + j] -= k * f[a] * h[j]
-                damp[a, n_m + j] -= c * f[a] * h[j]
-                stiff[n_m + j, a] -= k * h[j] * f[a] + c * vel * h[j] * g[a]
-                damp[n_m + j, a] -= c * h[j] * f[a]
+        cv = c * vx[p]
+        # the point's row of ∂δ_p/∂u, b = [φ_p; −h_w] (φ_p = 0 off the deck), and of the convective rate
+        # ∂δ̇_p/∂u = v [φ'_p; 0]: K += k b bᵀ + c b (v [φ'_p; 0])ᵀ, C += c b bᵀ, F −= b (k (r − g) + c ṙ + f0)
+        for a in range(n):
+            ba = (phi[p, a] if on else 0.0) if a < n_m else -h[a - n_m]
+            load[a] -= ba * ext
+            for b in range(n):
+                bb = (phi[p, b] if on else 0.0) if b < n_m else -h[b - n_m]
+                gb = dphi[p, b] if on and b < n_m else 0.0
+                stiff[a, b] += k * ba * bb + cv * ba * gb
+                damp[a, b] += c * ba * bb
 
 
 @_flat
