@@ -149,9 +149,10 @@ def coupled_matrices(
     phi = np.zeros((data.n_points, data.n_modes))
     x, vx = point_positions(data, front_position, speed)
     modes, veh, pts = data.modes, data.vehicles, data.points
-    kernels.assemble_flat(x, vx, zero if road is None else np.asarray(road, float),
-                          zero if road_rate is None else np.asarray(road_rate, float), modes.omega, modes.zeta,
-                          modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes, veh.mass,
+    # contiguous (a lane's column of a batch's road is not): one compiled assembly for every call
+    kernels.assemble_flat(x, vx, zero if road is None else np.ascontiguousarray(road, float),
+                          zero if road_rate is None else np.ascontiguousarray(road_rate, float), modes.omega,
+                          modes.zeta, modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes, veh.mass,
                           veh.damping, veh.stiffness, veh.gravity, veh.wheel_rows, pts.stiffness, pts.damping,
                           pts.fixed_load, pts.gap, pts.wheel, pts.track, phi, np.zeros_like(phi),
                           np.zeros(data.n_points, bool), act, mass, damp, stiff, load)
