@@ -250,9 +250,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_w = len(wheel_rows)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x0 = modal[0]; v0 = modal[1]; x1 = modal[2]; v1 = modal[3]; xf = modal[4]; vf = modal[5]; p0 = modal[6]
-    p = modal[7]; acc = modal[8]; dp = modal[9]; dx = modal[10]; dv = modal[11]
+    p = modal[7]; dp = modal[8]; dx = modal[9]; dv = modal[10]
     z0 = state[0]; z1 = state[1]; zf = state[2]; zb = state[3]
-    rhs = dof[0]; a1 = dof[1]
+    rhs = dof[0]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
     t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
@@ -278,6 +278,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
             have[k] = 0
+            f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
         if n < 0:  # the start state
             for m in range(n_m):
                 x1[m] = x0[m]
@@ -300,8 +301,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 for j in range(2 * n_d):
                     a += settle[i, j] * zf[j]
                 zb[i] = a
-            for k in range(n_cp):  # first guess: linear extrapolation of the forces
-                f[k] = 2.0 * fo[k] - fp[k]
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
@@ -396,7 +395,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     fw[w] += dfw[w]
             for w in range(n_w):
                 wf[w] = fw[w]
-        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈, q̈
+        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
         for w in range(n_w):
             a = wf[w]
             kw = wheel_k[w]
@@ -406,59 +405,48 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if h != 0.0:
                     a += h * (kw * z1[j] + cw * z1[n_d + j])
             g0[w] = a
-        for m in range(n_m):
-            acc[m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
-        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
-            a = gravity[i]
-            for j in range(n_d):
-                a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
-            for w in range(n_w):
-                a += wheel_rows[w, i] * g0[w]
-            rhs[i] = a
-        for i in range(n_d):
-            a = 0.0
-            for j in range(n_d):
-                a += mass_inv[i, j] * rhs[j]
-            a1[i] = a
-        if (n + 1) % stride == 0:
+        if (n + 1) % stride == 0:  # stored (row 0: the start state, as given, and its accelerations)
             r_out = (n + 1) // stride
-            for m in range(n_m):
-                if n >= 0:
-                    xi[r_out, m] = x1[m]
-                    dxi[r_out, m] = v1[m]
-                ddxi[r_out, m] = acc[m]
-            for j in range(n_d):
-                if n >= 0:
-                    q[r_out, j] = z1[j]
-                    dq[r_out, j] = z1[n_d + j]
-                ddq[r_out, j] = a1[j]
+            for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ
+                xi[r_out, m] = x1[m]
+                dxi[r_out, m] = v1[m]
+                ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
+            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
+                a = gravity[i]
+                for j in range(n_d):
+                    a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
+                for w in range(n_w):
+                    a += wheel_rows[w, i] * g0[w]
+                rhs[i] = a
+            for i in range(n_d):
+                a = 0.0
+                for j in range(n_d):
+                    a += mass_inv[i, j] * rhs[j]
+                q[r_out, i] = z1[i]
+                dq[r_out, i] = z1[n_d + i]
+                ddq[r_out, i] = a
             for w in range(n_w):
                 wheel_force[r_out, w] = wf[w]
                 wheel_len[r_out, w] = wl[w]
-        if n >= 0:
-            for k in range(n_cp):
-                fp[k] = fo[k]
-                fo[k] = f[k]
-            for m in range(n_m):
-                x0[m] = x1[m]
-                v0[m] = v1[m]
-            for i in range(2 * n_d):
-                z0[i] = z1[i]
-        else:
-            for k in range(n_cp):
-                fp[k] = fo[k]
+        for k in range(n_cp):  # the end state is the next step's start (at n = −1 it is already)
+            fp[k] = fo[k]
+            fo[k] = f[k]
         for m in range(n_m):
+            x0[m] = x1[m]
+            v0[m] = v1[m]
             p0[m] = p[m]
+        for i in range(2 * n_d):
+            z0[i] = z1[i]
     return stop, evaluations
 
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
-    """The work spaces of ``lean`` (its trailing arguments), zeroed: per mode (12, n_m), per vehicle state
-    (4, 2 n_d), per vehicle DOF (2, n_d), per wheel (10, n_w), the held active sums (2 n_w + 1,), the
+    """The work spaces of ``lean`` (its trailing arguments), zeroed: per mode (11, n_m), per vehicle state
+    (4, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active sums (2 n_w + 1,), the
     vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp), per point flags
     (3, n_cp) and indices (2, n_cp), and the mode-shape rows φ, φ' (2, n_cp, n_m).  Allocated by numpy
     rather than in the kernel: numba compiles no allocation routines for them."""
-    return (np.zeros((12, n_m)), np.zeros((4, 2 * n_d)), np.zeros((2, n_d)), np.zeros((10, n_w)),
+    return (np.zeros((11, n_m)), np.zeros((4, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
             np.zeros((3, n_cp), np.bool_), np.zeros((2, n_cp), np.int64), np.zeros((2, n_cp, n_m)))
 
