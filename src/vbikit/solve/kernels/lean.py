@@ -261,11 +261,11 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     have = index[0]; idx = index[1]
     phi = shapes[0]; dphi = shapes[1]
     for m in range(n_m):
-        x0[m] = xi[0, m]
-        v0[m] = dxi[0, m]
+        x0[m] = x1[m] = xi[0, m]  # the start state (x1, v1, z1: the state of the law at n = −1)
+        v0[m] = v1[m] = dxi[0, m]
     for j in range(n_d):
-        z0[j] = q[0, j]
-        z0[n_d + j] = dq[0, j]
+        z0[j] = z1[j] = q[0, j]
+        z0[n_d + j] = z1[n_d + j] = dq[0, j]
     for k in range(n_cp):
         idx[k] = -1  # no station pointer yet
     evaluations = 0
@@ -279,13 +279,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
             have[k] = 0
             f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
-        if n < 0:  # the start state
-            for m in range(n_m):
-                x1[m] = x0[m]
-                v1[m] = v0[m]
-            for i in range(2 * n_d):
-                z1[i] = z0[i]
-        else:
+        if n >= 0:
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
                 xf[m] = a11[m] * x0[m] + a12[m] * v0[m] + b1[m] * p0[m]
                 vf[m] = a21[m] * x0[m] + a22[m] * v0[m] + b2[m] * p0[m]
@@ -326,14 +320,16 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 for r in range(LEAN_CORRECTIONS):
                     for k in range(n_cp):
                         f_old[k] = f[k]
-                    if r > 0:
-                        for w in range(n_w):
+                    for w in range(n_w):
+                        if r > 0:
                             fw[w] += dfw[w]
+                        dfw[w] = -fw[w]  # (+ the new wheel forces, below)
                     _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
                            t)
                     for m in range(n_m):
                         dp[m] = 0.0
                     for k in range(n_cp):
+                        dfw[wheel[k]] += f[k]
                         d = f[k] - f_old[k]
                         if d != 0.0 and onb[k]:
                             for m in range(n_m):
@@ -346,10 +342,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         p[m] += dp[m]
                         x1[m] += dx[m]
                         v1[m] += dv[m]
-                    for w in range(n_w):
-                        dfw[w] = -fw[w]
-                    for k in range(n_cp):
-                        dfw[wheel[k]] += f[k]
                     for i in range(2 * n_d):  # z = z_b + (P L1) F_w
                         a = z1[i]
                         for w in range(n_w):
