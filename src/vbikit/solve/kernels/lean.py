@@ -249,9 +249,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_cp = origin.size
     n_w = len(wheel_rows)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
-    x0 = modal[0]; v0 = modal[1]; x1 = modal[2]; v1 = modal[3]; xf = modal[4]; vf = modal[5]; p0 = modal[6]
-    p = modal[7]; dp = modal[8]; dx = modal[9]; dv = modal[10]
-    z0 = state[0]; z1 = state[1]; zf = state[2]; zb = state[3]
+    x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
+    dv = modal[7]
+    z1 = state[0]; zf = state[1]; zb = state[2]
     rhs = dof[0]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
     t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
@@ -260,12 +260,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     active = flags[0]; used = flags[1]; onb = flags[2]
     have = index[0]; idx = index[1]
     phi = shapes[0]; dphi = shapes[1]
+    # the state (ξ, ξ̇) = (x1, v1), z = (q, q̇) = z1 and the modal load p: the start state, then each step's end
+    # state, which is the next step's start
     for m in range(n_m):
-        x0[m] = x1[m] = xi[0, m]  # the start state (x1, v1, z1: the state of the law at n = −1)
-        v0[m] = v1[m] = dxi[0, m]
+        x1[m] = xi[0, m]
+        v1[m] = dxi[0, m]
     for j in range(n_d):
-        z0[j] = z1[j] = q[0, j]
-        z0[n_d + j] = z1[n_d + j] = dq[0, j]
+        z1[j] = q[0, j]
+        z1[n_d + j] = dq[0, j]
     for k in range(n_cp):
         idx[k] = -1  # no station pointer yet
     evaluations = 0
@@ -278,15 +280,17 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
             have[k] = 0
+            fp[k] = fo[k]  # the forces of the last two steps' ends
+            fo[k] = f[k]
             f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
         if n >= 0:
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                xf[m] = a11[m] * x0[m] + a12[m] * v0[m] + b1[m] * p0[m]
-                vf[m] = a21[m] * x0[m] + a22[m] * v0[m] + b2[m] * p0[m]
+                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m]
+                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m]
             for i in range(2 * n_d):
                 a = constant[i]
                 for j in range(2 * n_d):
-                    a += transition[i, j] * z0[j]
+                    a += transition[i, j] * z1[j]
                 for w in range(n_w):
                     a += load0[i, w] * g0[w]
                 zf[i] = a
@@ -420,25 +424,16 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for w in range(n_w):
                 wheel_force[r_out, w] = wf[w]
                 wheel_len[r_out, w] = wl[w]
-        for k in range(n_cp):  # the end state is the next step's start (at n = −1 it is already)
-            fp[k] = fo[k]
-            fo[k] = f[k]
-        for m in range(n_m):
-            x0[m] = x1[m]
-            v0[m] = v1[m]
-            p0[m] = p[m]
-        for i in range(2 * n_d):
-            z0[i] = z1[i]
     return stop, evaluations
 
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
-    """The work spaces of ``lean`` (its trailing arguments), zeroed: per mode (11, n_m), per vehicle state
-    (4, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active sums (2 n_w + 1,), the
+    """The work spaces of ``lean`` (its trailing arguments), zeroed: per mode (8, n_m), per vehicle state
+    (3, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active sums (2 n_w + 1,), the
     vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp), per point flags
     (3, n_cp) and indices (2, n_cp), and the mode-shape rows φ, φ' (2, n_cp, n_m).  Allocated by numpy
     rather than in the kernel: numba compiles no allocation routines for them."""
-    return (np.zeros((11, n_m)), np.zeros((4, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
+    return (np.zeros((8, n_m)), np.zeros((3, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
             np.zeros((3, n_cp), np.bool_), np.zeros((2, n_cp), np.int64), np.zeros((2, n_cp, n_m)))
 
