@@ -319,11 +319,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             err = 0.0
             for k in range(n_cp):
                 err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
+                f_old[k] = f[k]  # the iterate before each update
             if err > tol:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
                 for r in range(LEAN_CORRECTIONS):
-                    for k in range(n_cp):
-                        f_old[k] = f[k]
                     for w in range(n_w):
                         if r > 0:
                             fw[w] += dfw[w]
@@ -354,6 +353,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     err = 0.0
                     changed = False
                     for k in range(n_cp):
+                        f_old[k] = f[k]
                         w = wheel[k]
                         if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
                             pen[k] += bq[w] + (b if onb[k] else 0.0)
@@ -389,10 +389,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     break
                 for w in range(n_w):
                     fw[w] += dfw[w]
-            for w in range(n_w):
-                wf[w] = fw[w]
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
         for w in range(n_w):
+            if n >= 0:
+                wf[w] = fw[w]  # (at n = −1 the law's sums)
             a = wf[w]
             kw = wheel_k[w]
             cw = wheel_c[w]
