@@ -268,8 +268,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     for j in range(n_d):
         z1[j] = q[0, j]
         z1[n_d + j] = dq[0, j]
-    for k in range(n_cp):
-        idx[k] = -1  # no station pointer yet
     evaluations = 0
     stop = -1
     for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
@@ -305,10 +303,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
              wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
              r_max, force, active, used, pen, law, wf, wl)
+        updated = False  # by quasi-Newton updates
         if n < 0:
-            for m in range(n_m):
-                p[m] = 0.0
-            for k in range(n_cp):
+            for k in range(n_cp):  # (p, like every work space, comes zeroed)
                 fk = force[k] if used[k] else 0.0
                 f[k] = fk
                 fo[k] = fk
@@ -320,7 +317,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for k in range(n_cp):
                 err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
                 f_old[k] = f[k]  # the iterate before each update
-            if err > tol:  # quasi-Newton updates, the law at each iterate by the exact increments
+            updated = err > tol
+            if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
                 for r in range(LEAN_CORRECTIONS):
                     for w in range(n_w):
@@ -329,9 +327,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         dfw[w] = -fw[w]  # (+ the new wheel forces, below)
                     _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
                            t)
-                    for m in range(n_m):
-                        dp[m] = 0.0
-                    for k in range(n_cp):
+                    for k in range(n_cp):  # (dp is zero: zeroed, and after each use below)
                         dfw[wheel[k]] += f[k]
                         d = f[k] - f_old[k]
                         if d != 0.0 and onb[k]:
@@ -345,6 +341,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         p[m] += dp[m]
                         x1[m] += dx[m]
                         v1[m] += dv[m]
+                        dp[m] = 0.0
                     for i in range(2 * n_d):  # z = z_b + (P L1) F_w
                         a = z1[i]
                         for w in range(n_w):
@@ -387,10 +384,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if not settled:
                     stop = n
                     break
-                for w in range(n_w):
-                    fw[w] += dfw[w]
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
         for w in range(n_w):
+            if updated:
+                fw[w] += dfw[w]
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
             a = wf[w]
@@ -428,14 +425,17 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
-    """The work spaces of ``lean`` (its trailing arguments), zeroed: per mode (8, n_m), per vehicle state
-    (3, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active sums (2 n_w + 1,), the
-    vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp), per point flags
-    (3, n_cp) and indices (2, n_cp), and the mode-shape rows φ, φ' (2, n_cp, n_m).  Allocated by numpy
-    rather than in the kernel: numba compiles no allocation routines for them."""
+    """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
+    (8, n_m), per vehicle state (3, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active
+    sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
+    per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
+    rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
+    routines for them."""
+    index = np.zeros((2, n_cp), np.int64)
+    index[1] = -1
     return (np.zeros((8, n_m)), np.zeros((3, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
-            np.zeros((3, n_cp), np.bool_), np.zeros((2, n_cp), np.int64), np.zeros((2, n_cp, n_m)))
+            np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 
 
 def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_rows, wheel_first, wheel_count, track,
