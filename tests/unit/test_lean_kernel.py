@@ -164,3 +164,27 @@ def test_a_batch_of_roads_runs_the_many_lane_lean_kernel_and_equals_lean_single_
     for road, lane in zip(roads, lanes):
         single = simulate(replace(crossing, road=road))
         assert _worst(lane, single) <= 1e-10
+
+
+def test_the_default_path_compiles_each_flat_kernel_once():
+    """The static start calls the compiled contact law ``_law`` from Python (``kernels.lean_law``) with
+    the argument types ``lean`` calls it with, so the two share one compilation: after the demo crossing
+    and its static reference ``_law`` and ``lean`` have a single specialisation each, and the demo adds at
+    most one to the flat assembly and the static reference (another one, e.g. from a non-contiguous or
+    read-only argument, would compile a kernel again: ≈ 1 s for ``_law``, benchmarks/bench_compile.py;
+    a batch's road columns did so for ``assemble_flat``).  And the flat kernels compile without
+    reference counting and rewrite passes (``FLAT_OPTIONS``; should a numba not know those options they
+    are dropped, and the cold compile takes ≈ 0.6 s longer)."""
+    from vbikit.analysis import static_modal_history
+    from vbikit.solve import kernels
+    from vbikit.solve.kernels.bundles import FLAT_OPTIONS
+    from vbikit.solve.kernels.lean import _law, _quasi, _state
+
+    shared = {"assemble_flat": kernels.assemble_flat, "static_modal_history": kernels.static_modal_history}
+    before = {name: len(k.signatures) for name, k in shared.items()}
+    static_modal_history(simulate(_scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))))
+    # (the helpers of ``lean`` have none when ``lean`` came from numba's cache: its code holds theirs)
+    assert (len(_law.signatures), len(kernels.lean.signatures)) == (1, 1)
+    assert len(_state.signatures) <= 1 and len(_quasi.signatures) <= 1
+    assert all(len(k.signatures) - before[name] <= 1 for name, k in shared.items())
+    assert FLAT_OPTIONS.get("_nrt") is False and FLAT_OPTIONS.get("no_rewrites") is True

@@ -149,7 +149,8 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, call.lanes, 0)
         return
     if len(call.lanes) == 1:
-        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride)
+        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride,
+                                         *_lean_work(call))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
             log.debug("%s (lean kernel): %.2f contact-law evaluations per step", name,
@@ -207,6 +208,14 @@ def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicl
           tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), (0,), first)
 
 
+def _lean_work(call: KernelCall) -> tuple:
+    """Zeroed work spaces of the one-lane lean kernel for ``call`` (``kernels.lean_work``)."""
+    from vbikit.solve import kernels
+
+    data = call.data
+    return kernels.lean_work(data.n_modes, data.n_dof, data.n_points, data.n_wheels)
+
+
 def _lane_road(road: "Road", lane: int) -> "Road":
     """The road of lane ``lane`` alone (its own r_max, as ``road_data`` gives one lane)."""
     from vbikit.solve.kernels import Road
@@ -254,7 +263,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         row = end // stride
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:] for a in one.outputs))
-        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step), tol, stride)
+        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step), tol, stride, *_lean_work(part))
         if stop < 0:
             return
         stop += end
@@ -284,8 +293,9 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
 def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep",
                     lanes: bool = False) -> tuple:
     """The lean kernels' arguments (``kernels.lean``; ``kernels.lean_lanes`` with ``lanes``) of
-    ``call``, up to ``tol`` and ``stride``: the bundles' arrays one by one, contiguous, the road and
-    outputs of the one lane (of every lane)."""
+    ``call``, up to ``tol`` and ``stride`` (the one-lane kernel's work spaces follow those:
+    ``_lean_work``): the bundles' arrays one by one, contiguous, the road and outputs of the one
+    lane (of every lane)."""
     from vbikit.solve.system import point_gates
 
     c = np.ascontiguousarray

@@ -101,12 +101,12 @@ from vbikit.solve.kernels.explicit import rk4
 from vbikit.solve.kernels.assembly import assemble, assemble_flat, static_modal_history
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, QUASI_ITERATIONS, RELAX_AFTER, TOUCH_STIFFNESS
 from vbikit.solve.kernels.implicit_step import implicit
-from vbikit.solve.kernels.lean import lean, lean_law
+from vbikit.solve.kernels.lean import lean, lean_law, lean_work
 from vbikit.solve.kernels.lean_lanes import lean_lanes
 
 __all__ = [
     "Cache", "ModalStep", "Modes", "Motion", "Points", "Road", "VehicleStep", "Vehicles", "Work", "new_cache",
     "new_work", "accelerations", "contact_forces", "point_kinematics", "point_law", "road_at", "road_point",
     "shape_point", "shapes_at", "rk4", "assemble", "assemble_flat", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
-    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_lanes",
+    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes",
 ]
