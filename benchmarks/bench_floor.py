@@ -23,8 +23,12 @@ machine), minimum of ``--repeat`` runs after a warm-up:
 * **whole**: what ``vbikit run`` does for the crossing — ``simulate`` (default: lean) and the
   response point's history with its static reference and impact factor;
 * **floor**: ``floor_loop`` on the same inputs;
+* **lanes**: the crossing on 32 roads (the demo road scaled by 0.5 … 1.5) as lanes of one call
+  (``BatchSolver.run_many``, the batched studies' runner): the many-lane lean kernel
+  (``kernels.lean_lanes``, default) and the many-lane ``kernels.implicit`` (``USE_LEAN`` off), each
+  per crossing (the call's time / 32);
 
-and the ratios kernel / floor and whole / floor, with the floor's midspan displacement against
+and the ratios kernel / floor, whole / floor and lanes / floor, with the floor's midspan displacement against
 the library's (max difference / peak: the floor solves the same equations, one update a step).
 
 Then every workload of ``bench_per_crossing.py`` named by ``--workloads`` (default: demo via
@@ -394,6 +398,11 @@ def main() -> None:
     print(f"  floor (one evaluation a step)  {f * 1e3:7.2f} ms   midspan displacement within {agree:.1e} of the "
           f"library's peak")
     print(f"  kernel / floor = {k / f:.1f}   lean / floor = {ln / f:.1f}   whole / floor = {w / f:.1f}")
+    lanes, lanes_full, frozen = _lanes(built.crossing, args.repeat)
+    print(f"  lanes, 32 roads a call: kernels.lean_lanes {lanes * 1e3:.2f} ms a crossing ({frozen} lanes handed to "
+          f"kernels.implicit), many-lane kernels.implicit {lanes_full * 1e3:.2f} ms a crossing; lanes / floor = "
+          f"{lanes / f:.2f}")
+
     if args.workloads:
         print(f"workloads against their floors (per crossing or event, thread CPU time, min of {args.repeat}):")
         print(f"  {'workload':10s} {'whole ms':>9s} {'floor ms':>9s} {'whole/floor':>12s}  contact points, kernel calls")
@@ -402,6 +411,49 @@ def main() -> None:
             print(f"  {name:10s} {r['whole_ms']:9.2f} {r['floor_ms']:9.2f} {r['whole_ms'] / r['floor_ms']:12.1f}  "
                   f"{r['points'][0]}–{r['points'][1]} points, {r['calls']} calls for {r['crossings']} crossings",
                   flush=True)
+
+
+def _lanes(crossing, repeat: int) -> tuple[float, float, int]:
+    """Thread CPU time a crossing of ``kernels.lean_lanes`` and of the many-lane ``kernels.implicit``
+    (min of ``repeat`` runs / 32; the lean one without the ``implicit`` calls of lanes it hands over) on
+    32 roads, and how many lanes it handed over."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    from vbikit.solve import integrators, kernels
+    from vbikit.solve.batch import BatchSolver
+
+    roads = [replace(crossing.road, z=crossing.road.z * s) for s in np.linspace(0.5, 1.5, 32)]
+    solver = BatchSolver(crossing)
+    out = []
+    for name, use_lean in (("lean_lanes", True), ("implicit", False)):
+        original = getattr(kernels, name)
+        spent: list[float] = []
+
+        def kernel(*a, **k):
+            t0 = time.thread_time()
+            res = original(*a, **k)
+            spent.append(time.thread_time() - t0)
+            return res
+
+        setattr(kernels, name, kernel)
+        integrators.USE_LEAN = use_lean
+        before = integrators.LEAN_COUNTS["lanes_fallback"]
+        runs = []  # the kernel's time of each run (``lean_lanes`` runs in chunks of steps: their sum)
+        try:
+            for _ in range(repeat + 1):
+                spent.clear()
+                solver.run_many(roads)
+                runs.append(sum(spent))
+        finally:
+            setattr(kernels, name, original)
+            integrators.USE_LEAN = True
+        out.append(min(runs[1:]) / len(roads))
+        if use_lean:
+            frozen = (integrators.LEAN_COUNTS["lanes_fallback"] - before) // (repeat + 1)
+    return out[0], out[1], frozen
+
 
 if __name__ == "__main__":
     main()

@@ -22,7 +22,7 @@ Workloads (each warmed up once, then ``--repeat`` timed rounds; the figure is th
   axle trucks), per event.
 
 Measured: thread CPU time (``time.thread_time``) of the whole call and, inside it, of the compiled
-step loop (``vbikit.solve.kernels.lean`` and ``implicit`` wrapped); "outside" = whole − kernel.  Every workload
+step loop (``vbikit.solve.kernels.lean``, ``lean_lanes`` and ``implicit`` wrapped); "outside" = whole − kernel.  Every workload
 runs in a child process per tree (with ``--compare`` the trees alternate round by round, so that both
 see the same machine load), with one BLAS thread: on a busy machine BLAS worker threads that wait
 for a core turn a 51 × 51 matrix product into milliseconds of spinning.  Writes nothing but numba's
@@ -43,9 +43,9 @@ WORKLOADS = ("demo", "3d", "fig10", "fig10-32", "paper", "traffic", "lifetime")
 
 
 def _kernel_clock():
-    """Wrap the compiled step loops (``kernels.lean``, the default for one lane, and
-    ``kernels.implicit``, many lanes and the lean kernel's hand-over) so that their thread CPU
-    time adds up in ``spent[0]``."""
+    """Wrap the compiled step loops (``kernels.lean``, the default for one lane, ``kernels.lean_lanes``,
+    for many, and ``kernels.implicit``, rigid disks and the lean kernels' hand-overs) so that their
+    thread CPU time adds up in ``spent[0]``."""
     from vbikit.solve import kernels
 
     spent = [0.0]
@@ -59,7 +59,7 @@ def _kernel_clock():
                 spent[0] += time.thread_time() - t0
         return timed
 
-    for name in ("implicit", "lean"):
+    for name in ("implicit", "lean", "lean_lanes"):
         if hasattr(kernels, name):
             setattr(kernels, name, wrap(getattr(kernels, name)))
     return spent

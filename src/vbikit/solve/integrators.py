@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import logging
 from contextlib import contextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any, Iterator
 
 import numpy as np
@@ -101,21 +101,23 @@ class KernelCall:
     stride: int
 
 
-#: run one-lane calls through the lean kernel first (``vbikit.solve.kernels.lean``), the full
-#: ``implicit`` kernel only when a step needs it; False: always ``implicit`` (tests compare the two)
+#: run implicit calls through the lean kernels first (``vbikit.solve.kernels.lean`` for one lane,
+#: ``vbikit.solve.kernels.lean_lanes`` for many), the full ``implicit`` kernel only for what they do
+#: not take; False: always ``implicit`` (tests compare the two)
 USE_LEAN = True
 
-#: one-lane implicit runs so far: ``"lean"`` completed by the lean kernel, ``"fallback"`` rerun with
-#: ``implicit`` after the lean kernel stopped at a step it does not take (a contact opening or
-#: closing, corrections not settling), ``"implicit"`` sent to ``implicit`` directly (many lanes,
-#: rigid disks, ``USE_LEAN`` off)
-LEAN_COUNTS: dict[str, int] = {"lean": 0, "fallback": 0, "implicit": 0}
+#: implicit runs so far.  One lane: ``"lean"`` completed by the lean kernel, ``"fallback"`` finished
+#: with ``implicit`` after the lean kernel stopped at a step it does not take (a contact opening or
+#: closing, corrections not settling).  Many lanes, counted per lane: ``"lanes"`` completed by
+#: ``lean_lanes``, ``"lanes_fallback"`` frozen by it at such a step and finished with ``implicit``.
+#: ``"implicit"``: calls sent to ``implicit`` directly (rigid disks, ``USE_LEAN`` off)
+LEAN_COUNTS: dict[str, int] = {"lean": 0, "fallback": 0, "implicit": 0, "lanes": 0, "lanes_fallback": 0}
 
 
 @contextmanager
 def without_lean() -> Iterator[None]:
     """Run every implicit crossing with the full ``implicit`` kernel inside the block (``USE_LEAN``
-    off): to compile its one-lane variant in advance, or to compare the two kernels."""
+    off): to compile its variants in advance, or to compare the kernels."""
     global USE_LEAN
     before, USE_LEAN = USE_LEAN, False
     try:
@@ -130,47 +132,170 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     (the vehicles over ``call.dt``), iterating the end-of-step contact forces to
     ``IMPLICIT_TOLERANCE`` of the largest static wheel load.
 
-    One lane without rigid disks runs the lean kernel (``vbikit.solve.kernels.lean``: the steps
-    that take one contact-law evaluation, the same arithmetic) first; should it stop at a step it
-    does not take (a contact opening or closing within the step's updates), ``implicit`` goes on
-    from the last state it stored (``LEAN_COUNTS``).  Its start there evaluates the law at that
-    state and extrapolates from it alone, so the rest of the run differs from an ``implicit`` run
-    from t = 0 by the order of the tolerance (``IMPLICIT_TOLERANCE`` of the largest wheel load)."""
+    Without rigid disks the lean kernels run first, with the same arithmetic on the steps that take
+    one contact-law evaluation: ``vbikit.solve.kernels.lean`` for one lane, ``lean_lanes`` for
+    many.  Should one lane need more at a step (a contact opening or closing within the step's
+    updates), ``implicit`` goes on with that lane alone from the last state stored (``LEAN_COUNTS``).
+    Its start there evaluates the law at that state and extrapolates from it alone, so the rest of
+    the run differs from an ``implicit`` run from t = 0 by the order of the tolerance
+    (``IMPLICIT_TOLERANCE`` of the largest wheel load)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
     loads = np.abs(call.crossing.vehicle.static_wheel_loads())
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
-    motion, outputs, first = call.motion, call.outputs, 0
-    if USE_LEAN and len(call.lanes) == 1 and not np.any(data.vehicles.wheel_envelope):
-        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride)
+    if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
+        LEAN_COUNTS["implicit"] += 1
+        _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, call.lanes, 0)
+        return
+    if len(call.lanes) == 1:
+        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride,
+                                         *_lean_work(call))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
             log.debug("%s (lean kernel): %.2f contact-law evaluations per step", name,
                       evaluations / max(call.n_steps, 1))
             return
         LEAN_COUNTS["fallback"] += 1
-        # the full kernel starts from the last stored state the lean one reached (row 0 of the views)
-        row = stop // call.stride
-        first = row * call.stride
-        motion = motion._replace(travel=motion.travel[2 * first:], speed=motion.speed[2 * first:])
-        outputs = tuple(a[:, row:] for a in outputs)
-        log.debug("%s: the lean kernel stops at step %d of %d (a contact opens or closes within the step); the "
-                  "full implicit kernel goes on from step %d", name, stop + 1, call.n_steps, first)
-    else:
-        LEAN_COUNTS["implicit"] += 1
-    unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, call.road,
+        _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
+        return
+    _run_lanes(call, modal_step, vehicle_step, tol)
+
+
+def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:
+    """Many lanes through ``kernels.lean_lanes``, ``LANES_CHUNK`` steps a call: a lane it stops at a
+    step goes on alone with ``implicit`` (one-lane variant, its road) from its last stored row to
+    the end of the chunk, and joins the next call afresh (the law at that state, the forces
+    extrapolated from it alone); the other lanes go on exactly (``lean_lanes``' carried state)."""
+    from vbikit.solve import kernels
+    from vbikit.solve.simulate import announce_compile
+
+    announce_compile(kernels.lean_lanes)  # its own compiled kernel: a batch's first run may compile it
+    args = _lean_arguments(call, modal_step, vehicle_step, lanes=True)
+    n_l, n_cp = call.outputs[0].shape[0], call.data.n_points
+    stride, n_steps = call.stride, call.n_steps
+    chunk = max(LANES_CHUNK // stride, 1) * stride
+    stops = np.full(n_l, -1, np.int64)
+    fresh = np.ones(n_l, np.bool_)
+    carry_f = np.zeros((2, n_cp, n_l))
+    carry_p = np.zeros((call.data.n_modes, n_l))
+    carry_g = np.zeros((call.data.n_wheels, n_l))
+    evaluations = handed = 0
+    ever = np.zeros(n_l, np.bool_)
+    for first in range(0, n_steps, chunk):
+        last = min(n_steps, first + chunk)
+        evaluations += kernels.lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g)
+        frozen = np.flatnonzero(stops >= 0)
+        fresh[:] = False
+        for lane in frozen:
+            _lane_steps(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), last)
+        fresh[frozen] = True
+        ever[frozen] = True
+        handed += frozen.size
+    LEAN_COUNTS["lanes"] += int(n_l - ever.sum())
+    LEAN_COUNTS["lanes_fallback"] += int(ever.sum())
+    log.debug("%s (lean kernel, %d lanes): %.2f contact-law evaluations per step; %d lane(s) handed to the full kernel "
+              "%d time(s)", call.crossing.integrator, n_l, evaluations / max(n_steps, 1), int(ever.sum()), handed)
+
+
+def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
+                stop: int, end: int) -> None:
+    """Lane ``lane`` of ``call`` with ``implicit`` (one-lane variant, that lane's road) from the last
+    row stored before step ``stop`` to step ``end``."""
+    row = stop // call.stride
+    first = row * call.stride
+    _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), _lane_road(call.road, lane),
+          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), (0,), first)
+
+
+def _lean_work(call: KernelCall) -> tuple:
+    """Zeroed work spaces of the one-lane lean kernel for ``call`` (``kernels.lean_work``)."""
+    from vbikit.solve import kernels
+
+    data = call.data
+    return kernels.lean_work(data.n_modes, data.n_dof, data.n_points, data.n_wheels)
+
+
+def _lane_road(road: "Road", lane: int) -> "Road":
+    """The road of lane ``lane`` alone (its own r_max, as ``road_data`` gives one lane)."""
+    from vbikit.solve.kernels import Road
+
+    if road.elevations.shape[2] == 1:
+        return road
+    elevations = np.ascontiguousarray(road.elevations[:, :, lane:lane + 1])
+    return Road(road.stations, elevations, float(elevations.max()))
+
+
+#: a crossing the one-lane lean kernel stops at a step goes on with ``implicit`` for this many steps
+#: (the contact event), then with the lean kernel again from the last row stored, at most
+#: ``LEAN_RESUMES`` times; after that ``implicit`` takes the rest of the run
+LEAN_WINDOW = 16
+LEAN_RESUMES = 40
+
+#: steps per ``kernels.lean_lanes`` call: a lane it stops at a step runs alone with ``implicit`` to
+#: the end of the chunk and rejoins the lanes at the next call (``_run_lanes``)
+LANES_CHUNK = 128
+
+
+def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
+                 stop: int) -> None:
+    """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop``: on that
+    lane's road, ``implicit`` (one-lane variant) for ``LEAN_WINDOW`` steps, then the one-lane lean
+    kernel, alternating while the lean kernel stops (``LEAN_RESUMES``).  Each hand-over restarts
+    from a stored state (the law there, the forces extrapolated from it alone): the histories differ
+    from an uninterrupted run by the order of the tolerance."""
+    from vbikit.solve import kernels
+
+    road = _lane_road(call.road, lane)
+    one = replace(call, road=road, outputs=tuple(a[lane:lane + 1] for a in call.outputs), lanes=(0,))
+    stride, n_steps = call.stride, call.n_steps
+    row = stop // stride
+    for resume in range(LEAN_RESUMES + 1):
+        first = row * stride
+        end = n_steps if resume == LEAN_RESUMES else min(n_steps, first + max(LEAN_WINDOW // stride, 1) * stride)
+        log.debug("%s: the lean kernel stops lane %d at step %d of %d (a contact opens or closes within the step); "
+                  "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
+                  first)
+        _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), road,
+              tuple(a[:, row:end // stride + 1] for a in one.outputs), (0,), first)
+        if end >= n_steps or end % stride:
+            return
+        row = end // stride
+        part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
+                       outputs=tuple(a[:, row:] for a in one.outputs))
+        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step), tol, stride, *_lean_work(part))
+        if stop < 0:
+            return
+        stop += end
+        row = stop // stride
+
+
+def _steps(motion: "Motion", first: int, end: int) -> "Motion":
+    """The motion of steps ``first`` … ``end`` (half-step rows 2·first … 2·end)."""
+    return motion._replace(travel=motion.travel[2 * first:2 * end + 1], speed=motion.speed[2 * first:2 * end + 1])
+
+
+def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, motion: "Motion",
+          road: "Road", outputs: tuple, lanes: tuple, first: int) -> None:
+    """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``."""
+    from vbikit.solve import kernels
+
+    data, name = call.data, call.crossing.integrator
+    unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
                                               data.unilateral, modal_step, vehicle_step, *outputs, tol,
-                                              IMPLICIT_MAX_ITERATIONS, call.lanes, call.stride)
+                                              IMPLICIT_MAX_ITERATIONS, lanes, call.stride)
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
     if unsettled:
         log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
                     name, IMPLICIT_MAX_ITERATIONS, unsettled, call.n_steps)
 
 
-def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> tuple:
-    """The lean kernel's arguments (``kernels.lean``) of a one-lane ``call``, up to ``tol`` and
-    ``stride``: the bundles' arrays one by one, contiguous, the road of the one lane."""
+def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep",
+                    lanes: bool = False) -> tuple:
+    """The lean kernels' arguments (``kernels.lean``; ``kernels.lean_lanes`` with ``lanes``) of
+    ``call``, up to ``tol`` and ``stride`` (the one-lane kernel's work spaces follow those:
+    ``_lean_work``): the bundles' arrays one by one, contiguous, the road and outputs of the one
+    lane (of every lane)."""
     from vbikit.solve.system import point_gates
 
     c = np.ascontiguousarray
@@ -178,7 +303,8 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
     modes, veh, pts = data.modes, data.vehicles, data.points
     gated = point_gates(data)
     line = np.minimum(pts.line, road.elevations.shape[0] - 1)
-    outputs = tuple(a[0] for a in call.outputs)
+    outputs = call.outputs if lanes else tuple(a[0] for a in call.outputs)
+    elevations = road.elevations if lanes else road.elevations[:, :, 0]
     return tuple(c(a) if isinstance(a, np.ndarray) else a for a in (
         call.motion.travel, call.motion.speed, modes.start, modes.end, float(modes.grid_h), modes.values,
         modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, vehicle_step.transition, vehicle_step.load0,
@@ -186,7 +312,7 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
         vehicle_step.wheel_v, vehicle_step.c_hat, vehicle_step.k_hat, veh.mass_inv, veh.gravity, veh.wheel_rows,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
-        pts.width, road.stations, road.elevations[:, :, 0], float(road.r_max), *outputs))
+        pts.width, road.stations, elevations, float(road.r_max), *outputs))
 
 
 def implicit_kernel() -> Any:

@@ -22,14 +22,14 @@ if TYPE_CHECKING:  # pragma: no cover
     from vbikit.solve.system import KernelData
 
 log = logging.getLogger(__name__)
-#: says when numba compiles the kernels (the first run on a machine, ≈ 8 s of CPU; benchmarks/bench_compile.py)
+#: says when numba compiles the kernels (the first run on a machine, ≈ 5 s of CPU; benchmarks/bench_compile.py)
 #: and where its cache goes; the CLI shows it
 compile_log = logging.getLogger("vbikit.solve.compile")
 
 
-#: CPU seconds numba takes to compile the default path (benchmarks/bench_compile.py: 7.9 s for the
-#: demo, measured 2026-12-04 on the shared 2-core machine; rounded up for a busier one)
-COMPILE_SECONDS = 10
+#: CPU seconds numba takes to compile the default path (benchmarks/bench_compile.py: 5.3 s for the
+#: demo, measured 2026-12-04 on the shared 2-core machine at load ≈ 4; rounded up for a busier one)
+COMPILE_SECONDS = 7
 
 
 def kernels_cached(kernel) -> bool:

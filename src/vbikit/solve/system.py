@@ -149,9 +149,10 @@ def coupled_matrices(
     phi = np.zeros((data.n_points, data.n_modes))
     x, vx = point_positions(data, front_position, speed)
     modes, veh, pts = data.modes, data.vehicles, data.points
-    kernels.assemble_flat(x, vx, zero if road is None else np.asarray(road, float),
-                          zero if road_rate is None else np.asarray(road_rate, float), modes.omega, modes.zeta,
-                          modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes, veh.mass,
+    # contiguous (a lane's column of a batch's road is not): one compiled assembly for every call
+    kernels.assemble_flat(x, vx, zero if road is None else np.ascontiguousarray(road, float),
+                          zero if road_rate is None else np.ascontiguousarray(road_rate, float), modes.omega,
+                          modes.zeta, modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes, veh.mass,
                           veh.damping, veh.stiffness, veh.gravity, veh.wheel_rows, pts.stiffness, pts.damping,
                           pts.fixed_load, pts.gap, pts.wheel, pts.track, phi, np.zeros_like(phi),
                           np.zeros(data.n_points, bool), act, mass, damp, stiff, load)
@@ -315,5 +316,9 @@ def static_modal_history(crossing: Crossing, travel: NDArray[np.float64],
     data = kernel_data(crossing) if data is None else data
     travel = np.asarray(travel, float)
     travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
-    force = kernels.static_modal_history(travel, data.points, np.ascontiguousarray(loads, float), data.modes)
+    pts, modes = data.points, data.modes
+    force = np.zeros((travel.shape[0], data.n_modes))
+    kernels.static_modal_history(travel, pts.origin, pts.direction, pts.vehicle, pts.track,
+                                 np.ascontiguousarray(loads, float), modes.start, modes.end, float(modes.grid_h),
+                                 modes.values, modes.slopes, force, np.zeros(data.n_modes), np.zeros(data.n_modes))
     return -force / crossing.bridge.omega**2

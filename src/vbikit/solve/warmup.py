@@ -4,8 +4,9 @@ shared installation, so that no run, study batch or Dask worker compiles on firs
 numba compiles a kernel once per combination of argument types and keeps it in its on-disk
 cache (``vbikit.solve.numba_cache``).  The variants vbikit uses are few: each registered
 integrator with one lane and with many lanes (the batched studies and traffic streams; one lane of an
-implicit integrator: the lean kernel and the full one it hands a crossing over to; a rigid-disk
-crossing for the general static start), the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
+implicit integrator: the lean kernel and the full one it hands a crossing over to; many lanes of an
+implicit integrator: the many-lane lean kernel, and the many-lane full one of rigid-disk batches; a
+rigid-disk crossing for the general static start), the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
 the cache — exactly those variants.
@@ -55,7 +56,10 @@ def compile_kernels() -> dict[str, float]:
         if not get_integrator(name).explicit:  # rigid disks: the general static start and the full kernel
             simulate(replace(crossing, tire=RigidDiskTire()))
         roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
-        BatchSolver(crossing).run_many(roads)
+        BatchSolver(crossing).run_many(roads)  # an implicit integrator: the many-lane lean kernel
+        if not get_integrator(name).explicit:
+            with without_lean():  # the many-lane full kernel (rigid-disk batches, ``without_lean``)
+                BatchSolver(crossing).run_many(roads)
         took[name] = time.perf_counter() - t0
         log.info("kernels of %s ready (%.1f s)", name, took[name])
     t0 = time.perf_counter()

@@ -2,10 +2,10 @@
 load history. (``vbikit.solve.kernels``: the equations and conventions.)"""
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
-from vbikit.solve.kernels.contact import shape_point
+from vbikit.solve.kernels.bundles import _flat
+from vbikit.solve.kernels.contact import hermite_shape
 from vbikit.solve.kernels.lean import _shape
 
 
@@ -22,13 +22,14 @@ def assemble(x, vx, r, rdot, modes, vehicles, points, phi, dphi, have, active, m
                   points.wheel, points.track, phi, dphi, have, active, mass, damp, stiff, load)
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
+@_flat
 def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slopes, m_v, c_v, k_v, f_g, wheel_rows,
                   kk, cc, f0, gap, wheel, track, phi, dphi, have, active, mass, damp, stiff, load):
     """``assemble`` on plain arrays (the fields of ``Modes``, ``Vehicles`` and ``Points`` one by one:
     the static start of one crossing compiles only flat kernels, as ``lean``)."""
     n_m = omega.size
     n_d = f_g.size
+    _, n_grid, _ = values.shape
     for a in range(n_m + n_d):
         load[a] = 0.0
         for b in range(n_m + n_d):
@@ -45,6 +46,7 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
             mass[n_m + i, n_m + j] = m_v[i, j]
             damp[n_m + i, n_m + j] = c_v[i, j]
             stiff[n_m + i, n_m + j] = k_v[i, j]
+    n = n_m + n_d
     for p in range(kk.size):
         if not active[p]:
             continue
@@ -52,46 +54,36 @@ def assemble_flat(x, vx, r, rdot, omega, zeta, start, end, grid_h, values, slope
         c = cc[p]
         ext = k * (r[p] - gap[p]) + c * rdot[p] + f0[p]
         h = wheel_rows[wheel[p]]
-        for i in range(n_d):
-            load[n_m + i] += h[i] * ext
-            for j in range(n_d):
-                stiff[n_m + i, n_m + j] += k * h[i] * h[j]
-                damp[n_m + i, n_m + j] += c * h[i] * h[j]
-        if not start[track[p]] <= x[p] <= end[track[p]]:
-            continue
-        if not have[p]:
-            _shape(x[p], track[p], start, grid_h, values, slopes, values.shape[1], phi, dphi, p)
+        on = start[track[p]] <= x[p] <= end[track[p]]
+        if on and not have[p]:
+            _shape(x[p], track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
             have[p] = True
-        f = phi[p]
-        g = dphi[p]
-        vel = vx[p]
-        for a in range(n_m):
-            load[a] -= f[a] * ext
-            for b in range(n_m):
-                stiff[a, b] += k * f[a] * f[b] + c * vel * f[a] * g[b]
-                damp[a, b] += c * f[a] * f[b]
-            for j in range(n_d):
-                stiff[a, n_m + j] -= k * f[a] * h[j]
-                damp[a, n_m + j] -= c * f[a] * h[j]
-                stiff[n_m + j, a] -= k * h[j] * f[a] + c * vel * h[j] * g[a]
-                damp[n_m + j, a] -= c * h[j] * f[a]
+        cv = c * vx[p]
+        # the point's row of ∂δ_p/∂u, b = [φ_p; −h_w] (φ_p = 0 off the deck), and of the convective rate
+        # ∂δ̇_p/∂u = v [φ'_p; 0]: K += k b bᵀ + c b (v [φ'_p; 0])ᵀ, C += c b bᵀ, F −= b (k (r − g) + c ṙ + f0)
+        for a in range(n):
+            ba = (phi[p, a] if on else 0.0) if a < n_m else -h[a - n_m]
+            load[a] -= ba * ext
+            for b in range(n):
+                bb = (phi[p, b] if on else 0.0) if b < n_m else -h[b - n_m]
+                gb = dphi[p, b] if on and b < n_m else 0.0
+                stiff[a, b] += k * ba * bb + cv * ba * gb
+                damp[a, b] += c * ba * bb
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
-def static_modal_history(travel, points, loads, modes):
-    """Σ_p φ(x_p(t)) P_p (n_t, n_m) for downward point loads P_p [N] at x_p = origin_p + dir_p·s_v(t),
-    ``travel`` (n_t, n_vehicles) [m] (tabulated shapes, as the solver); ξ_st = −that / ω²."""
-    n_m = modes.values.shape[2]
-    out = np.zeros((travel.shape[0], n_m))
-    phi = np.zeros(n_m)
-    dphi = np.zeros(n_m)
-    for t in range(travel.shape[0]):
-        for p in range(points.origin.size):
+@_flat
+def static_modal_history(travel, origin, direction, vehicle, track, loads, start, end, grid_h, values, slopes, out, phi,
+                         dphi):
+    """Σ_p φ(x_p(t)) P_p into ``out`` (n_t, n_m), zeroed, for downward point loads ``loads`` P_p [N] at
+    x_p = ``origin``_p + ``direction``_p·s_v(t) on ``track``_p, ``travel`` (n_t, n_vehicles) [m] (the
+    fields of ``Points`` and ``Modes`` one by one; tabulated shapes, as the solver; ``phi``, ``dphi``
+    (n_m,) work space); ξ_st = −that / ω²."""
+    for t in range(len(travel)):
+        for p in range(origin.size):
             if loads[p] == 0.0:
                 continue
-            x = points.origin[p] + points.direction[p] * travel[t, points.vehicle[p]]
-            if modes.start[points.track[p]] <= x <= modes.end[points.track[p]]:
-                shape_point(x, points.track[p], modes, phi, dphi)
-                for m in range(n_m):
+            x = origin[p] + direction[p] * travel[t, vehicle[p]]
+            if start[track[p]] <= x <= end[track[p]]:
+                hermite_shape(x, track[p], start, grid_h, values, slopes, phi, dphi)
+                for m in range(phi.size):
                     out[t, m] += phi[m] * loads[p]
-    return out

@@ -126,6 +126,32 @@ class Work(NamedTuple):
 _internal = njit(cache=True, fastmath=True, error_model="numpy", no_cpython_wrapper=True, no_cfunc_wrapper=True)
 
 
+def _numba_knows(**options) -> dict:
+    """The ``options`` this numba accepts (for the two below, which numba does not document)."""
+    try:
+        from numba.core.options import DefaultOptions
+    except ImportError:  # pragma: no cover - another numba layout: plain kernels
+        return {}
+    return {name: value for name, value in options.items() if hasattr(DefaultOptions, name)}
+
+
+#: options of the flat kernels (``lean`` with ``_law``, ``_state``, ``_quasi``; ``assemble_flat``,
+#: ``static_modal_history``): plain contiguous arrays in, nothing allocated inside (the callers pass
+#: the work spaces), so numba's reference counting is off (``_nrt=False``: no increments and
+#: decrements of every array at each call, view and exit) and so are its rewrite passes
+#: (``no_rewrites``: they fuse whole-array expressions, which these kernels do not have).  Both cut
+#: the cold compile of the default path (benchmarks/bench_compile.py) with bit-identical results, and
+#: ``lean`` runs faster without the counting on its helpers' arguments; the kernels compile without
+#: them (slower) should a numba not know these options.
+FLAT_OPTIONS = dict(cache=True, fastmath=True, error_model="numpy", no_cfunc_wrapper=True,
+                    **_numba_knows(no_rewrites=True, _nrt=False))
+
+#: a flat kernel called from Python
+_flat = njit(**FLAT_OPTIONS)
+#: a flat kernel's helper, called only from flat kernels (no wrappers)
+_flat_internal = njit(no_cpython_wrapper=True, **FLAT_OPTIONS)
+
+
 def new_cache(n_cp: int, n_m: int, n_l: int) -> Cache:
     """An empty position slot."""
     return Cache(np.zeros(n_cp), np.zeros(n_cp), np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m)),

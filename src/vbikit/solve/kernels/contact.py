@@ -15,7 +15,7 @@ def hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row):
     from ``start[tr]`` at spacing ``grid_h``) into ``phi_row``, ``dphi_row``: the cubic Hermite
     interpolant of the tabulated shapes and slopes, clamped to the last cell.  The one copy of this
     arithmetic, for the bundle kernels (``shape_point``) and the lean one."""
-    n_grid = values.shape[1]
+    _, n_grid, n_m = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     u = (x - start[tr]) / grid_h
     i = int(u)
     if i > n_grid - 2:
@@ -31,7 +31,7 @@ def hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row):
     d10 = 3 * t2 - 4 * t + 1
     d01 = (-6 * t2 + 6 * t) / grid_h
     d11 = 3 * t2 - 2 * t
-    for m in range(values.shape[2]):
+    for m in range(n_m):
         a0 = values[tr, i, m]
         a1 = values[tr, i + 1, m]
         b0 = slopes[tr, i, m]

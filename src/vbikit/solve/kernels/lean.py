@@ -23,18 +23,24 @@ activity changes, or a point the lazy test left out may touch), or the correctio
 stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
 handled at all (the caller does not call ``lean`` for them).  The outputs are those of
 ``implicit`` (same conventions, row 0 the static start, every ``stride``-th step stored).
+
+Compilation (the first run's cost, ``benchmarks/bench_compile.py``): ``lean`` and its helpers are flat
+kernels (``bundles.FLAT_OPTIONS``: no allocation inside, hence no reference counting); ``_law`` is
+compiled once, with the argument types of both its callers (``lean`` and, from Python, ``lean_law``);
+``lean`` returns at one place only and calls ``_law`` at one site (numba emits the end of every array's
+lifetime at each return, and each call site passes every array).
 """
 from __future__ import annotations
 
 import numpy as np
 from numba import njit
 
-from vbikit.solve.kernels.bundles import _internal
+from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import first_cell, hermite_shape
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
-@_internal
+@_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
 def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
          wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
          active, used, pen, law, wf, wl):
@@ -46,12 +52,12 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
     is in ``rv``, ``rr``)."""
     n_m = x1.size
-    n_grid = values.shape[1]
+    _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     n_s = stations.size
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
-    for w in range(wheel_rows.shape[0]):
+    for w in range(len(wheel_rows)):
         zw = 0.0
         dzw = 0.0
         for j in range(n_d):
@@ -120,12 +126,13 @@ def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
     hermite_shape(x, tr, start, grid_h, values, slopes, phi[p], dphi[p])
 
 
-@_internal
+@_flat_internal
 def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf, zb,
            p, fw, x1, v1, z1):
     """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
     ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``)."""
     n_m = p.size
+    _, n_grid, _ = values.shape
     for m in range(n_m):
         p[m] = 0.0
     for w in range(fw.size):
@@ -137,7 +144,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         fw[wheel[k]] += fk
         if onb[k]:
             if have[k] % 2 == 0:
-                _shape(xp[k], track[k], start, grid_h, values, slopes, values.shape[1], phi, dphi, k)
+                _shape(xp[k], track[k], start, grid_h, values, slopes, n_grid, phi, dphi, k)
                 have[k] += 1
             for m in range(n_m):
                 p[m] -= phi[k, m] * fk
@@ -151,7 +158,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         z1[i] = a
 
 
-@_internal
+@_flat_internal
 def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t):
     """One quasi-Newton update through the vehicles (``newton._vehicle_newton``, one lane):
     F_A = law_A + k bq_w + c bv_w, F = 0 off A, with (bq, bv) the change of (−z_w, −ż_w):
@@ -220,50 +227,49 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
         f[k] = force[k] + kk[k] * bq[w] + cc[k] * bv[w] if active[k] else 0.0
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+@njit(nogil=True, **FLAT_OPTIONS)
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
          transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity, wheel_rows,
          wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated,
-         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride):
+         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride,
+         modal, state, dof, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep``, ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
-    one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``.
+    one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the work
+    spaces of ``lean_work`` (zeroed).
 
     Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
     (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
     filled); evaluations counts the contact-law evaluations."""
-    n_steps = (travel.shape[0] - 1) // 2
+    n_steps = (len(travel) - 1) // 2
     n_m = omega.size
-    n_d = mass_inv.shape[0]
+    n_d = len(mass_inv)
     n_cp = origin.size
-    n_w = wheel_rows.shape[0]
-    x0 = np.empty(n_m); v0 = np.empty(n_m)
-    z0 = np.empty(2 * n_d); z1 = np.empty(2 * n_d); zf = np.empty(2 * n_d); zb = np.empty(2 * n_d)
+    n_w = len(wheel_rows)
+    # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
+    x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
+    dv = modal[7]
+    z1 = state[0]; zf = state[1]; zb = state[2]
+    rhs = dof[0]
+    g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
+    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
+    f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
+    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]
+    active = flags[0]; used = flags[1]; onb = flags[2]
+    have = index[0]; idx = index[1]
+    phi = shapes[0]; dphi = shapes[1]
+    # the state (ξ, ξ̇) = (x1, v1), z = (q, q̇) = z1 and the modal load p: the start state, then each step's end
+    # state, which is the next step's start
     for m in range(n_m):
-        x0[m] = xi[0, m]
-        v0[m] = dxi[0, m]
+        x1[m] = xi[0, m]
+        v1[m] = dxi[0, m]
     for j in range(n_d):
-        z0[j] = q[0, j]
-        z0[n_d + j] = dq[0, j]
-    x1 = np.empty(n_m); v1 = np.empty(n_m); xf = np.empty(n_m); vf = np.empty(n_m)
-    p0 = np.zeros(n_m); p = np.zeros(n_m); acc = np.empty(n_m); dp = np.empty(n_m); dx = np.empty(n_m)
-    dv = np.empty(n_m)
-    g0 = np.empty(n_w); dfw = np.zeros(n_w); fw = np.zeros(n_w); wf = np.zeros(n_w); wl = np.zeros(n_w)
-    bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w); ksum = np.zeros(n_w); csum = np.zeros(n_w)
-    veh = np.zeros((n_w, n_w)); piv = np.zeros(n_w, np.int64); held = np.zeros(2 * n_w + 1)
-    rhs = np.empty(n_d); a1 = np.empty(n_d)
-    f = np.zeros(n_cp); fo = np.zeros(n_cp); fp = np.zeros(n_cp); f_old = np.zeros(n_cp)
-    force = np.zeros(n_cp); pen = np.zeros(n_cp); law = np.zeros(n_cp)
-    active = np.zeros(n_cp, np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
-    xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros(n_cp); rr = np.zeros(n_cp)
-    have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
-    idx = np.empty(n_cp, np.int64)
-    for k in range(n_cp):
-        idx[k] = -1  # no station pointer yet
-    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
+        z1[j] = q[0, j]
+        z1[n_d + j] = dq[0, j]
     evaluations = 0
+    stop = -1
     for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
         row = 2 * n + 2
         for k in range(n_cp):
@@ -272,32 +278,17 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
             have[k] = 0
-        if n < 0:
-            _law(x0, v0, z0, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-                 wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-                 r_max, force, active, used, pen, law, wf, wl)
-            for m in range(n_m):
-                p[m] = 0.0
-            for k in range(n_cp):
-                fk = force[k] if used[k] else 0.0
-                f[k] = fk
-                fo[k] = fk
-                if used[k] and onb[k]:
-                    for m in range(n_m):
-                        p[m] -= phi[k, m] * fk
-            for m in range(n_m):
-                x1[m] = x0[m]
-                v1[m] = v0[m]
-            for i in range(2 * n_d):
-                z1[i] = z0[i]
-        else:
+            fp[k] = fo[k]  # the forces of the last two steps' ends
+            fo[k] = f[k]
+            f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
+        if n >= 0:
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                xf[m] = a11[m] * x0[m] + a12[m] * v0[m] + b1[m] * p0[m]
-                vf[m] = a21[m] * x0[m] + a22[m] * v0[m] + b2[m] * p0[m]
+                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m]
+                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m]
             for i in range(2 * n_d):
                 a = constant[i]
                 for j in range(2 * n_d):
-                    a += transition[i, j] * z0[j]
+                    a += transition[i, j] * z1[j]
                 for w in range(n_w):
                     a += load0[i, w] * g0[w]
                 zf[i] = a
@@ -306,32 +297,38 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 for j in range(2 * n_d):
                     a += settle[i, j] * zf[j]
                 zb[i] = a
-            for k in range(n_cp):  # first guess: linear extrapolation of the forces
-                f[k] = 2.0 * fo[k] - fp[k]
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
-            _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-                 wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-                 r_max, force, active, used, pen, law, wf, wl)
+        _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+             wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
+             r_max, force, active, used, pen, law, wf, wl)
+        updated = False  # by quasi-Newton updates
+        if n < 0:
+            for k in range(n_cp):  # (p, like every work space, comes zeroed)
+                fk = force[k] if used[k] else 0.0
+                f[k] = fk
+                fo[k] = fk
+                if used[k] and onb[k]:
+                    for m in range(n_m):
+                        p[m] -= phi[k, m] * fk
+        else:
             err = 0.0
             for k in range(n_cp):
                 err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
-            if err > tol:  # quasi-Newton updates, the law at each iterate by the exact increments
+                f_old[k] = f[k]  # the iterate before each update
+            updated = err > tol
+            if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
-                for r in range(LEAN_CORRECTIONS + 1):
-                    if r == LEAN_CORRECTIONS:
-                        return n, evaluations  # not settled by the corrections
-                    for k in range(n_cp):
-                        f_old[k] = f[k]
-                    if r > 0:
-                        for w in range(n_w):
+                for r in range(LEAN_CORRECTIONS):
+                    for w in range(n_w):
+                        if r > 0:
                             fw[w] += dfw[w]
+                        dfw[w] = -fw[w]  # (+ the new wheel forces, below)
                     _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
                            t)
-                    for m in range(n_m):
-                        dp[m] = 0.0
-                    for k in range(n_cp):
+                    for k in range(n_cp):  # (dp is zero: zeroed, and after each use below)
+                        dfw[wheel[k]] += f[k]
                         d = f[k] - f_old[k]
                         if d != 0.0 and onb[k]:
                             for m in range(n_m):
@@ -344,22 +341,22 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         p[m] += dp[m]
                         x1[m] += dx[m]
                         v1[m] += dv[m]
-                    for w in range(n_w):
-                        dfw[w] = -fw[w]
-                    for k in range(n_cp):
-                        dfw[wheel[k]] += f[k]
+                        dp[m] = 0.0
                     for i in range(2 * n_d):  # z = z_b + (P L1) F_w
                         a = z1[i]
                         for w in range(n_w):
                             a += response[i, w] * dfw[w]
                         z1[i] = a
                     err = 0.0
+                    changed = False
                     for k in range(n_cp):
+                        f_old[k] = f[k]
                         w = wheel[k]
                         if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
                             pen[k] += bq[w] + (b if onb[k] else 0.0)
                             if pen[k] > 0.0:
-                                return n, evaluations
+                                changed = True
+                                break
                             continue
                         ds = 0.0
                         dr = 0.0
@@ -375,20 +372,24 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         fl = law[k]
                         fk = fl if not gated[k] or (pen[k] > 0.0 and fl > 0.0) else 0.0
                         if (not gated[k] or fk > 0.0) != active[k]:
-                            return n, evaluations  # a contact opens or closes
+                            changed = True  # a contact opens or closes
+                            break
                         force[k] = fk
                         err = max(err, abs(fk - f[k]))
+                    if changed:
+                        break
                     if err <= tol:
                         settled = True
                         break
                 if not settled:
-                    return n, evaluations
-                for w in range(n_w):
-                    fw[w] += dfw[w]
-            for w in range(n_w):
-                wf[w] = fw[w]
-        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈, q̈
+                    stop = n
+                    break
+        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
         for w in range(n_w):
+            if updated:
+                fw[w] += dfw[w]
+            if n >= 0:
+                wf[w] = fw[w]  # (at n = −1 the law's sums)
             a = wf[w]
             kw = wheel_k[w]
             cw = wheel_c[w]
@@ -397,77 +398,62 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if h != 0.0:
                     a += h * (kw * z1[j] + cw * z1[n_d + j])
             g0[w] = a
-        for m in range(n_m):
-            acc[m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
-        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
-            a = gravity[i]
-            for j in range(n_d):
-                a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
-            for w in range(n_w):
-                a += wheel_rows[w, i] * g0[w]
-            rhs[i] = a
-        for i in range(n_d):
-            a = 0.0
-            for j in range(n_d):
-                a += mass_inv[i, j] * rhs[j]
-            a1[i] = a
-        if (n + 1) % stride == 0:
+        if (n + 1) % stride == 0:  # stored (row 0: the start state, as given, and its accelerations)
             r_out = (n + 1) // stride
-            for m in range(n_m):
-                if n >= 0:
-                    xi[r_out, m] = x1[m]
-                    dxi[r_out, m] = v1[m]
-                ddxi[r_out, m] = acc[m]
-            for j in range(n_d):
-                if n >= 0:
-                    q[r_out, j] = z1[j]
-                    dq[r_out, j] = z1[n_d + j]
-                ddq[r_out, j] = a1[j]
+            for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ
+                xi[r_out, m] = x1[m]
+                dxi[r_out, m] = v1[m]
+                ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
+            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
+                a = gravity[i]
+                for j in range(n_d):
+                    a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
+                for w in range(n_w):
+                    a += wheel_rows[w, i] * g0[w]
+                rhs[i] = a
+            for i in range(n_d):
+                a = 0.0
+                for j in range(n_d):
+                    a += mass_inv[i, j] * rhs[j]
+                q[r_out, i] = z1[i]
+                dq[r_out, i] = z1[n_d + i]
+                ddq[r_out, i] = a
             for w in range(n_w):
                 wheel_force[r_out, w] = wf[w]
                 wheel_len[r_out, w] = wl[w]
-        if n >= 0:
-            for k in range(n_cp):
-                fp[k] = fo[k]
-                fo[k] = f[k]
-            for m in range(n_m):
-                x0[m] = x1[m]
-                v0[m] = v1[m]
-            for i in range(2 * n_d):
-                z0[i] = z1[i]
-        else:
-            for k in range(n_cp):
-                fp[k] = fo[k]
-        for m in range(n_m):
-            p0[m] = p[m]
-    return -1, evaluations
+    return stop, evaluations
 
 
-@njit(cache=True, fastmath=True, error_model="numpy")
+def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
+    """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
+    (8, n_m), per vehicle state (3, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active
+    sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
+    per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
+    rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
+    routines for them."""
+    index = np.zeros((2, n_cp), np.int64)
+    index[1] = -1
+    return (np.zeros((8, n_m)), np.zeros((3, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
+            np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
+            np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
+
+
 def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_rows, wheel_first, wheel_count, track,
              line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, rv, rr, have_road, active):
     """The contact law ``_law`` of one crossing at rest (ξ̇ = 0, q̇ = 0) in the state ξ = ``x1``,
     q = ``z1`` for points at positions ``xp`` [m] with x-rates ``vxp`` [m/s] (the static start,
     ``vbikit.solve.system.static_state``): fills ``active`` per point, and the road elevation
     ``rv`` [m] and rate ``rr`` [m/s] under each point unless ``have_road`` (then they are given).
-    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate)."""
-    n_cp = xp.size
-    n_m = x1.size
-    n_d = z1.size
-    n_w = wheel_rows.shape[0]
+    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate), each contiguous.
+    Calls the compiled ``_law`` itself (the one ``lean`` calls, with the same argument types: numba
+    compiles it once for both) with work spaces from numpy."""
+    n_cp, n_m, n_d, n_w = xp.size, x1.size, z1.size, wheel_rows.shape[0]
     z = np.zeros(2 * n_d)
-    for j in range(n_d):
-        z[j] = z1[j]
-    onb = np.empty(n_cp, np.bool_)
-    have = np.empty(n_cp, np.int64)
-    idx = np.empty(n_cp, np.int64)
-    for k in range(n_cp):
-        onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
-        have[k] = 2 if have_road else 0
-        idx[k] = -1
-    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
-    force = np.zeros(n_cp); used = np.zeros(n_cp, np.bool_); pen = np.zeros(n_cp); law = np.zeros(n_cp)
-    wf = np.zeros(n_w); wl = np.zeros(n_w)
-    _law(x1, np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-         wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max,
-         force, active, used, pen, law, wf, wl)
+    z[:n_d] = z1
+    onb = (start[track] <= xp) & (xp <= end[track])
+    have = np.full(n_cp, 2 if have_road else 0, np.int64)
+    phi, dphi = np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m))
+    _law(np.ascontiguousarray(x1, float), np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr,
+         np.full(n_cp, -1, np.int64), start, float(grid_h), values, slopes, amp, wheel_rows, wheel_first, wheel_count,
+         track, line, kk, cc, f0, gap, gated, width, stations, elevations, float(r_max), np.zeros(n_cp), active,
+         np.zeros(n_cp, np.bool_), np.zeros(n_cp), np.zeros(n_cp), np.zeros(n_w), np.zeros(n_w))

@@ -65,6 +65,33 @@ def _lu_solve(a, n, piv, b):
 
 
 @_internal
+def _solve_held(a, pv, t, lane0, lane1):
+    """t[:, lane] ← V⁻¹ t[:, lane] for lanes ``lane0`` … ``lane1`` − 1 with the LU factors ``a``,
+    ``pv`` of V (row swaps, then forward and back substitution, the lanes innermost)."""
+    n_w = a.shape[0]
+    for j in range(n_w):
+        kp = pv[j]
+        if kp != j:
+            for lane in range(lane0, lane1):
+                tmp = t[j, lane]
+                t[j, lane] = t[kp, lane]
+                t[kp, lane] = tmp
+    for i in range(n_w):
+        for j in range(i):
+            e = a[i, j]
+            for lane in range(lane0, lane1):
+                t[i, lane] -= e * t[j, lane]
+    for i in range(n_w - 1, -1, -1):
+        for j in range(i + 1, n_w):
+            e = a[i, j]
+            for lane in range(lane0, lane1):
+                t[i, lane] -= e * t[j, lane]
+        e = a[i, i]
+        for lane in range(lane0, lane1):
+            t[i, lane] = t[i, lane] / e
+
+
+@_internal
 def _coupling(act, na, row_k, row_c, onb, cache, points, step, vstep, e, u, mat, piv, red, red_piv):
     """Factorise the Jacobian of the contact law on the active points ``act[:na]`` (row i with tire
     stiffness ``row_k[i]`` and damping ``row_c[i]``).
@@ -262,26 +289,7 @@ def _vehicle_newton(f, force, used, active, lane0, lane1, lane_err, tol, points,
             w = points.wheel[k]
             for lane in range(lane0, lane1):
                 t[w, lane] += force[k, lane]
-    for j in range(n_w):  # forward and back substitution with the factors of V, every lane at once
-        kp = veh_piv[j]
-        if kp != j:
-            for lane in range(lane0, lane1):
-                tmp = t[j, lane]
-                t[j, lane] = t[kp, lane]
-                t[kp, lane] = tmp
-    for i in range(n_w):
-        for j in range(i):
-            a = veh[i, j]
-            for lane in range(lane0, lane1):
-                t[i, lane] -= a * t[j, lane]
-    for i in range(n_w - 1, -1, -1):
-        for j in range(i + 1, n_w):
-            a = veh[i, j]
-            for lane in range(lane0, lane1):
-                t[i, lane] -= a * t[j, lane]
-        inv = 1.0 / veh[i, i]
-        for lane in range(lane0, lane1):
-            t[i, lane] *= inv
+    _solve_held(veh, veh_piv, t, lane0, lane1)  # t ← V⁻¹ t, every lane at once
     for w in range(n_w):  # bq, bv ← b's vehicle terms minus U t's, per wheel
         for w2 in range(n_w):
             q = wq[w, w2]

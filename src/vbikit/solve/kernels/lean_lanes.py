@@ -1,0 +1,699 @@
+"""The lean implicit step loop for many lanes: ``lean``'s arithmetic on L crossings that share their
+motion and differ only in the road, the lane index innermost. (``vbikit.solve.kernels``: the
+equations and conventions; ``vbikit.solve.kernels.lean``: the step, one lane.)
+
+State as (·, L) arrays (ξ (n_m, L), z (2n_d, L), point forces (n_cp, L), wheel sums (n_w, L)), so
+that every per-point, per-mode and per-DOF loop ends in a contiguous loop over the lanes, which the
+compiler vectorises.  What the motion fixes is computed once a step for all lanes: the point
+positions, which points are on the deck, the mode shapes φ_p, φ'_p (cubic Hermite, on first use in
+the step) and each point's road cell.  Each lane then takes ``lean``'s step with its own numbers
+(two products regrouped, the same to round-off: the vehicles' settled free response
+z_b = (P Φ) z_n + (P L0) G_n + P g with P Φ, P L0, P g formed once a call, and one factorisation
+of I + S_A U_A shared by the lanes of the same active sums, the solve running across them):
+
+1. the first guess F = 2F_n − F_{n−1}, its end state and the contact law there (``_law_lanes``: one
+   evaluation for all lanes);
+2. per lane the error max_p |law_p − F_p|; lanes above ``tol`` [N] take quasi-Newton updates
+   through the vehicles (``_quasi_lanes``: (I + S_A U_A) t = S_A b with each lane's factors kept
+   while its active sums stay), the law at each iterate following from the last evaluation by the
+   exact increments of the state, at most ``LEAN_CORRECTIONS`` times.  Lanes already settled take
+   zero increments (their numbers stay as they are, bit for bit).
+
+A lane whose step needs more than that (a gated point's activity changes in the updates, a point
+left out by the lazy test may touch, the corrections do not settle) is *frozen* at that step: its
+``stop`` entry is set to the step, its later rows are not written, and it takes no part in the
+shared decisions after (which points the lazy test keeps).  The caller runs the steps in chunks
+(``integrators._run_lanes``): a frozen lane goes on alone with ``implicit`` from its last stored
+row to the end of the chunk and rejoins the next call afresh, while the other lanes go on from the
+state the call leaves (``carry_f``, ``carry_p``, ``carry_g``), exactly as without the chunks.
+
+The lazy test is shared and reads the road under each point (interpolated for all lanes, the
+cheap part): a gated point's deck terms are evaluated for every lane when any live lane's bound
+r_p − g_p − z_w + B on δ_p may be positive (B = Σ_m amp_m |ξ_m| ≥ |φ_p·ξ|; the one-lane kernel
+bounds r_p by the highest elevation r_max); a lane whose own bound is ≤ 0 then finds δ ≤ 0 and
+F = 0, as the one-lane kernel does by leaving the point out.  A point left out for all lanes, and a used gated point with δ ≤ 0 in every lane, must keep
+δ ≤ 0 under the updates: both are watched through each wheel's largest bound (or δ) plus the
+bound of the updates' change, B(Δξ) + Δ(−z_w), without their mode sums (a lane whose bound
+becomes positive is frozen, where the one-lane kernel might still find δ ≤ 0: a lane frozen a
+step early, never a different result).  Rigid-disk envelopes are not handled (the caller sends them to ``implicit``).
+"""
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from vbikit.solve.kernels.bundles import _internal
+from vbikit.solve.kernels.contact import first_cell, hermite_shape
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
+
+
+@_internal
+def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+               wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
+               r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l, dr_l):
+    """``lean._law`` for every lane at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (each (·, L)):
+    per point and lane ``force`` (gated), ``active``, penetration ``pen``, ungated law ``law``; per
+    point ``used`` (False: left out for every lane by the shared lazy test); per wheel and lane the
+    force sum ``wf``, patch length ``wl`` and the largest bound r_p − g − z_w + B of its left-out
+    points on the deck (``lo_on``) and off it (``lo_off``; −1e300 without such points: the
+    updates add the same increments to every left-out point of a wheel, so its largest bound is
+    the one to watch).  Shapes and road on first use in the step (``have`` as in ``lean._law``); ``bmax``,
+    ``zw``, ``dzw``, ``s_l``, ``sd_l``, ``dr_l`` (L,) are work space."""
+    n_m = x1.shape[0]
+    n_l = x1.shape[1]
+    n_s = stations.size
+    for lane in range(n_l):
+        bmax[lane] = 0.0
+    for m in range(n_m):
+        a = amp[m]
+        for lane in range(n_l):
+            bmax[lane] += a * abs(x1[m, lane])
+    for w in range(wheel_rows.shape[0]):
+        for lane in range(n_l):
+            zw[lane] = 0.0
+            dzw[lane] = 0.0
+            wf[w, lane] = 0.0
+            wl[w, lane] = 0.0
+            lo_on[w, lane] = -1e300
+            lo_off[w, lane] = -1e300
+        for j in range(n_d):
+            h = wheel_rows[w, j]
+            if h != 0.0:
+                for lane in range(n_l):
+                    zw[lane] += h * z1[j, lane]
+                    dzw[lane] += h * z1[n_d + j, lane]
+        first = wheel_first[w]
+        for p in range(first, first + wheel_count[w]):
+            x = xp[p]
+            if have[p] < 2:  # the road under the point (``road_point``): one cell for all lanes
+                i = idx[p]
+                if i < 0:
+                    i = first_cell(stations, x)
+                while i < n_s - 2 and stations[i + 1] <= x:
+                    i += 1
+                while i > 0 and stations[i] > x:
+                    i -= 1
+                idx[p] = i
+                if vxp[p] < 0.0 and i > 0 and stations[i] == x:
+                    i -= 1
+                ln = line[p]
+                dx = x - stations[i]
+                inv = 1.0 / (stations[i + 1] - stations[i])
+                vx = vxp[p]
+                for lane in range(n_l):
+                    slope = (elevations[ln, i + 1, lane] - elevations[ln, i, lane]) * inv
+                    rv[p, lane] = elevations[ln, i, lane] + slope * dx
+                    rr[p, lane] = slope * vx
+                have[p] += 2
+            if gated[p]:
+                gp = gap[p]
+                touch = False
+                if onb[p]:
+                    for lane in range(n_l):
+                        bound = rv[p, lane] - gp - zw[lane] + bmax[lane]
+                        s_l[lane] = bound
+                        touch = touch or (live[lane] and bound > 0.0)
+                else:
+                    for lane in range(n_l):
+                        bound = rv[p, lane] - gp - zw[lane]
+                        s_l[lane] = bound
+                        touch = touch or (live[lane] and bound > 0.0)
+                if not touch:
+                    used[p] = False
+                    if onb[p]:
+                        for lane in range(n_l):
+                            lo_on[w, lane] = max(lo_on[w, lane], s_l[lane])
+                    else:
+                        for lane in range(n_l):
+                            lo_off[w, lane] = max(lo_off[w, lane], s_l[lane])
+                    for lane in range(n_l):
+                        force[p, lane] = 0.0
+                        active[p, lane] = False
+                    continue
+            used[p] = True
+            if onb[p] and have[p] % 2 == 0:
+                hermite_shape(x, track[p], start, grid_h, values, slopes, phi[p], dphi[p])
+                have[p] += 1
+            for lane in range(n_l):
+                s_l[lane] = rv[p, lane]
+                sd_l[lane] = rr[p, lane]
+                dr_l[lane] = 0.0
+            if onb[p]:
+                vx = vxp[p]
+                for m in range(n_m):
+                    ph = phi[p, m]
+                    dph = vx * dphi[p, m]
+                    for lane in range(n_l):
+                        s_l[lane] += ph * x1[m, lane]
+                        dr_l[lane] += ph * v1[m, lane]
+                        sd_l[lane] += dph * x1[m, lane]
+            g = gap[p]
+            k = kk[p]
+            c = cc[p]
+            fz = f0[p]
+            gp = gated[p]
+            wd = width[p]
+            for lane in range(n_l):
+                pn = s_l[lane] - g - zw[lane]
+                fl = k * pn + c * (sd_l[lane] + dr_l[lane] - dzw[lane]) + fz
+                pen[p, lane] = pn
+                law[p, lane] = fl
+                on = not gp or (pn > 0.0 and fl > 0.0)
+                fk = fl if on else 0.0
+                force[p, lane] = fk
+                active[p, lane] = on
+                wf[w, lane] += fk
+                wl[w, lane] += wd if on else 0.0
+
+
+@_internal
+def _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
+                 zb, p, fw, x1, v1, z1):
+    """``lean._state`` for every lane: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
+    ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (each (·, L)); ``nz``: the points with a
+    nonzero force in some lane (the others add nothing)."""
+    n_m = p.shape[0]
+    n_l = p.shape[1]
+    for m in range(n_m):
+        for lane in range(n_l):
+            p[m, lane] = 0.0
+    for w in range(fw.shape[0]):
+        for lane in range(n_l):
+            fw[w, lane] = 0.0
+    for k in range(f.shape[0]):
+        if not nz[k]:
+            continue
+        wk = wheel[k]
+        for lane in range(n_l):
+            fw[wk, lane] += f[k, lane]
+        if onb[k]:
+            if have[k] % 2 == 0:
+                hermite_shape(xp[k], track[k], start, grid_h, values, slopes, phi[k], dphi[k])
+                have[k] += 1
+            for m in range(n_m):
+                ph = phi[k, m]
+                for lane in range(n_l):
+                    p[m, lane] -= ph * f[k, lane]
+    for m in range(n_m):
+        a = c1[m]
+        b = c2[m]
+        for lane in range(n_l):
+            x1[m, lane] = xf[m, lane] + a * p[m, lane]
+            v1[m, lane] = vf[m, lane] + b * p[m, lane]
+    for i in range(z1.shape[0]):
+        for lane in range(n_l):
+            z1[i, lane] = zb[i, lane]
+        for w in range(fw.shape[0]):
+            r = response[i, w]
+            if r != 0.0:
+                for lane in range(n_l):
+                    z1[i, lane] += r * fw[w, lane]
+
+
+@_internal
+def _held_factors(a, pv, hl, ksum, csum, col, wheel_q, wheel_v):
+    """The LU factors (``a``, ``pv``) of V = I + S_A U_A for the active sums of lane ``col``
+    (``ksum``, ``csum`` (n_w, L)), refactorised only when those sums differ from the ones ``hl``
+    holds (its last entry ≠ 0 once filled; ``lean._quasi`` keeps one lane's the same way)."""
+    n_w = a.shape[0]
+    same = hl[2 * n_w] != 0.0
+    if same:
+        for w in range(n_w):
+            if ksum[w, col] != hl[w] or csum[w, col] != hl[n_w + w]:
+                same = False
+                break
+    if not same:
+        for w in range(n_w):
+            for w2 in range(n_w):
+                a[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w, col] * wheel_q[w, w2] + csum[w, col] * wheel_v[w, w2]
+            hl[w] = ksum[w, col]
+            hl[n_w + w] = csum[w, col]
+        hl[2 * n_w] = 1.0
+        _lu_factor(a, n_w, pv)
+
+
+@_internal
+def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t, work,
+                 pts, n_pts):
+    """``lean._quasi`` for the lanes with ``work`` set: F_A = law_A + k bq_w + c bv_w, F = 0 off A,
+    (bq, bv) = b − (wheel_q, wheel_v) t, b = (wheel_q, wheel_v) F_w, (I + S_A U_A) t = S_A b.  Each
+    lane keeps the factors of its V = I + S_A U_A (``veh[lane]``, ``piv[lane]``) while its active
+    sums (``held[lane]``) stay; when every working lane has the same sums (all points active, the
+    common case) one set of factors (slot L) serves them all and the solve runs across the lanes.  Other lanes keep F and get bq = bv = 0.  Only the points
+    ``pts[:n_pts]`` are visited (the others are inactive with F = 0 in every lane)."""
+    n_w = fw.shape[0]
+    n_l = fw.shape[1]
+    for w in range(n_w):
+        for lane in range(n_l):
+            ksum[w, lane] = 0.0
+            csum[w, lane] = 0.0
+    for i in range(n_pts):
+        k = pts[i]
+        wk = wheel[k]
+        a = kk[k]
+        b = cc[k]
+        for lane in range(n_l):
+            on = active[k, lane]
+            ksum[wk, lane] += a if on else 0.0
+            csum[wk, lane] += b if on else 0.0
+    for w in range(n_w):
+        for lane in range(n_l):
+            bq[w, lane] = 0.0
+            bv[w, lane] = 0.0
+        for w2 in range(n_w):
+            a = wheel_q[w, w2]
+            b = wheel_v[w, w2]
+            for lane in range(n_l):
+                bq[w, lane] += a * fw[w2, lane]
+                bv[w, lane] += b * fw[w2, lane]
+        for lane in range(n_l):
+            t[w, lane] = ksum[w, lane] * bq[w, lane] + csum[w, lane] * bv[w, lane]
+    for i in range(n_pts):
+        k = pts[i]
+        wk = wheel[k]
+        for lane in range(n_l):
+            t[wk, lane] += force[k, lane] if active[k, lane] else 0.0
+    ref = -1  # the first working lane; the others share its factors when their active sums are its own
+    shared = True
+    for lane in range(n_l):
+        if work[lane]:
+            if ref < 0:
+                ref = lane
+            else:
+                for w in range(n_w):
+                    if ksum[w, lane] != ksum[w, ref] or csum[w, lane] != csum[w, ref]:
+                        shared = False
+                        break
+        if not shared:
+            break
+    if shared and ref >= 0:  # one factorisation (slot n_l), the solve vectorised over the lanes
+        _held_factors(veh[n_l], piv[n_l], held[n_l], ksum, csum, ref, wheel_q, wheel_v)
+        _solve_held(veh[n_l], piv[n_l], t, 0, n_l)
+    for lane in range(n_l):  # else each lane's own n_w-square solve (n_w is a few wheels)
+        if shared or not work[lane]:
+            continue
+        _held_factors(veh[lane], piv[lane], held[lane], ksum, csum, lane, wheel_q, wheel_v)
+        _solve_held(veh[lane], piv[lane], t, lane, lane + 1)
+    for w in range(n_w):
+        for w2 in range(n_w):
+            a = wheel_q[w, w2]
+            b = wheel_v[w, w2]
+            for lane in range(n_l):
+                bq[w, lane] -= a * t[w2, lane]
+                bv[w, lane] -= b * t[w2, lane]
+        for lane in range(n_l):
+            if not work[lane]:
+                bq[w, lane] = 0.0
+                bv[w, lane] = 0.0
+    for i in range(n_pts):
+        k = pts[i]
+        wk = wheel[k]
+        a = kk[k]
+        b = cc[k]
+        for lane in range(n_l):
+            if work[lane]:
+                f[k, lane] = force[k, lane] + a * bq[wk, lane] + b * bv[wk, lane] if active[k, lane] else 0.0
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
+               transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity,
+               wheel_rows, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc,
+               f0, gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force,
+               wheel_len, tol, stride, stop, first, last, fresh, carry_f, carry_p, carry_g):
+    """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
+    ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
+    ``implicit`` for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
+    the lazy test reads the road under each point) and ``stop`` (L,),
+    int64, filled: −1 for a lane whose every step was taken, else the first step n (0-based,
+    t_n → t_{n+1}) that lane needs more than the lean path for (its rows from n + 1 on are not
+    filled).
+
+    The call takes steps ``first`` … ``last`` − 1 (``first`` a multiple of ``stride``), starting
+    from the stored row first / stride.  A lane with ``fresh`` set starts there as at t = 0 (the law
+    at that state, the forces extrapolated from it alone, row ``first`` / ``stride``'s loads and
+    accelerations written); any other lane goes on from the previous call's end, exactly as if
+    the loop had not stopped: its forces at the last two steps (``carry_f`` (2, n_cp, L)), modal
+    load (``carry_p`` (n_m, L)) and wheel loads (``carry_g`` (n_w, L)), which the call leaves
+    there for the next one when it returns with a live lane.  Returns the number of contact-law
+    evaluations after the start (one a step, for all lanes at once)."""
+    n_steps = last
+    n_l = xi.shape[0]
+    n_m = omega.size
+    n_d = mass_inv.shape[0]
+    n_cp = origin.size
+    n_w = wheel_rows.shape[0]
+    x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
+    xf = np.empty((n_m, n_l)); vf = np.empty((n_m, n_l))
+    z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l))
+    zb = np.empty((2 * n_d, n_l))
+    r_first = first // stride
+    for lane in range(n_l):
+        stop[lane] = -1
+        for m in range(n_m):
+            x0[m, lane] = xi[lane, r_first, m]
+            v0[m, lane] = dxi[lane, r_first, m]
+        for j in range(n_d):
+            z0[j, lane] = q[lane, r_first, j]
+            z0[n_d + j, lane] = dq[lane, r_first, j]
+    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
+    dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
+    g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
+    wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
+    ksum = np.zeros((n_w, n_l)); csum = np.zeros((n_w, n_l))
+    veh = np.zeros((n_l + 1, n_w, n_w)); piv = np.zeros((n_l + 1, n_w), np.int64)
+    held = np.zeros((n_l + 1, 2 * n_w + 1))  # per lane, and (slot n_l) shared by lanes of the same sums
+    rhs = np.empty((n_d, n_l)); a1 = np.empty((n_d, n_l))
+    f = np.zeros((n_cp, n_l)); fo = np.zeros((n_cp, n_l)); fp = np.zeros((n_cp, n_l)); f_old = np.zeros((n_cp, n_l))
+    force = np.zeros((n_cp, n_l)); pen = np.zeros((n_cp, n_l)); law = np.zeros((n_cp, n_l))
+    active = np.zeros((n_cp, n_l), np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
+    xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros((n_cp, n_l)); rr = np.zeros((n_cp, n_l))
+    have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
+    idx = np.empty(n_cp, np.int64)
+    for k in range(n_cp):
+        idx[k] = -1  # no station pointer yet
+    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
+    live = np.ones(n_l, np.bool_)  # lanes not frozen
+    work = np.zeros(n_l, np.bool_)  # lanes taking the current update
+    flip = np.zeros(n_l, np.bool_)
+    err = np.zeros(n_l); bmax = np.zeros(n_l); zw = np.zeros(n_l); dzw = np.zeros(n_l); s_l = np.zeros(n_l)
+    sd_l = np.zeros(n_l); dr_l = np.zeros(n_l); b = np.zeros(n_l)
+    lo_on = np.zeros((n_w, n_l)); lo_off = np.zeros((n_w, n_l))
+    # the step's points that matter: ``nz`` those whose first guess is nonzero in some lane, ``rel``
+    # those and the used ones (every other point has F = 0 = law in every lane), ``use`` the used ones
+    nz = np.zeros(n_cp, np.bool_); rel = np.zeros(n_cp, np.int64); use = np.zeros(n_cp, np.int64)
+    n_live = n_l
+    evaluations = 0
+    s_trans = np.zeros((2 * n_d, 2 * n_d)); s_load = np.zeros((2 * n_d, n_w)); s_const = np.zeros(2 * n_d)
+    for i in range(2 * n_d):  # P Φ, P L0, P g: the settled free response in one product a step
+        for j in range(2 * n_d):
+            a = settle[i, j]
+            if a != 0.0:
+                for j2 in range(2 * n_d):
+                    s_trans[i, j2] += a * transition[j, j2]
+                for w in range(n_w):
+                    s_load[i, w] += a * load0[j, w]
+                s_const[i] += a * constant[j]
+    for n in range(first - 1, n_steps):  # n = first − 1: the start state (forces, loads and accelerations)
+        row = 2 * n + 2
+        for k in range(n_cp):
+            vh = vehicle[k]
+            xp[k] = origin[k] + direction[k] * travel[row, vh]
+            vxp[k] = direction[k] * speed[row, vh]
+            onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
+            have[k] = 0
+        if n < first:
+            _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
+                       slopes, amp, wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width,
+                       stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw,
+                       dzw, s_l, sd_l, dr_l)
+            for m in range(n_m):
+                for lane in range(n_l):
+                    p[m, lane] = 0.0
+            for k in range(n_cp):
+                for lane in range(n_l):
+                    fk = force[k, lane] if used[k] else 0.0
+                    f[k, lane] = fk
+                    fo[k, lane] = fk
+                if used[k] and onb[k]:
+                    for m in range(n_m):
+                        ph = phi[k, m]
+                        for lane in range(n_l):
+                            p[m, lane] -= ph * f[k, lane]
+            for m in range(n_m):
+                for lane in range(n_l):
+                    x1[m, lane] = x0[m, lane]
+                    v1[m, lane] = v0[m, lane]
+            for i in range(2 * n_d):
+                for lane in range(n_l):
+                    z1[i, lane] = z0[i, lane]
+        else:
+            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]
+                for lane in range(n_l):
+                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane]
+                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane]
+            for i in range(2 * n_d):  # z_b = P (Φ z_n + L0 G_n + g), P Φ and P L0 formed once
+                ci = s_const[i]
+                for lane in range(n_l):
+                    zb[i, lane] = ci
+                for j in range(2 * n_d):
+                    a = s_trans[i, j]
+                    if a != 0.0:
+                        for lane in range(n_l):
+                            zb[i, lane] += a * z0[j, lane]
+                for w in range(n_w):
+                    a = s_load[i, w]
+                    if a != 0.0:
+                        for lane in range(n_l):
+                            zb[i, lane] += a * g0[w, lane]
+            for k in range(n_cp):  # first guess: linear extrapolation of the forces
+                nonzero = False
+                for lane in range(n_l):
+                    fk = 2.0 * fo[k, lane] - fp[k, lane]
+                    f[k, lane] = fk
+                    nonzero = nonzero or fk != 0.0
+                nz[k] = nonzero
+            _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
+                         xf, vf, zb, p, fw, x1, v1, z1)
+            evaluations += 1
+            _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
+                       slopes, amp, wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width,
+                       stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw,
+                       dzw, s_l, sd_l, dr_l)
+            n_rel = 0
+            n_use = 0
+            for k in range(n_cp):
+                if used[k]:
+                    dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
+                    for lane in range(n_l):
+                        dormant = dormant and pen[k, lane] <= 0.0
+                    if not dormant:
+                        use[n_use] = k
+                        n_use += 1
+                    elif onb[k]:
+                        for lane in range(n_l):
+                            lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
+                    else:
+                        for lane in range(n_l):
+                            lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
+                if used[k] or nz[k]:
+                    rel[n_rel] = k
+                    n_rel += 1
+            for lane in range(n_l):
+                err[lane] = 0.0
+            for i in range(n_rel):
+                k = rel[i]
+                for lane in range(n_l):
+                    err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
+            n_work = 0
+            for lane in range(n_l):
+                work[lane] = live[lane] and err[lane] > tol
+                n_work += 1 if work[lane] else 0
+            for w in range(n_w):
+                for lane in range(n_l):
+                    dfw[w, lane] = 0.0
+            r = 0
+            while n_work > 0:  # quasi-Newton updates, the law at each iterate by the exact increments
+                if r == LEAN_CORRECTIONS:
+                    for lane in range(n_l):  # not settled by the corrections
+                        if work[lane]:
+                            live[lane] = False
+                            stop[lane] = n
+                            n_live -= 1
+                    break
+                r += 1
+                for w in range(n_w):  # F_w of the current forces
+                    for lane in range(n_l):
+                        fw[w, lane] += dfw[w, lane]
+                for i in range(n_rel):
+                    k = rel[i]
+                    for lane in range(n_l):
+                        f_old[k, lane] = f[k, lane]
+                _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
+                             t, work, rel, n_rel)
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        dp[m, lane] = 0.0
+                for w in range(n_w):
+                    for lane in range(n_l):
+                        dfw[w, lane] = -fw[w, lane]
+                for i in range(n_rel):
+                    k = rel[i]
+                    wk = wheel[k]
+                    for lane in range(n_l):
+                        dfw[wk, lane] += f[k, lane]
+                    if onb[k]:
+                        changed = False
+                        for lane in range(n_l):
+                            changed = changed or f[k, lane] != f_old[k, lane]
+                        if changed:
+                            for m in range(n_m):
+                                ph = phi[k, m]
+                                for lane in range(n_l):
+                                    dp[m, lane] -= ph * (f[k, lane] - f_old[k, lane])
+                for lane in range(n_l):
+                    b[lane] = 0.0
+                    if not work[lane]:
+                        for w in range(n_w):
+                            dfw[w, lane] = 0.0
+                for m in range(n_m):  # the deck's change, and the state of the new iterate
+                    e1 = c1[m]
+                    e2 = c2[m]
+                    am = amp[m]
+                    for lane in range(n_l):
+                        dx[m, lane] = e1 * dp[m, lane]
+                        dv[m, lane] = e2 * dp[m, lane]
+                        b[lane] += am * abs(dx[m, lane])
+                        p[m, lane] += dp[m, lane]
+                        x1[m, lane] += dx[m, lane]
+                        v1[m, lane] += dv[m, lane]
+                for i in range(2 * n_d):  # z = z_b + (P L1) F_w
+                    for w in range(n_w):
+                        a = response[i, w]
+                        if a != 0.0:
+                            for lane in range(n_l):
+                                z1[i, lane] += a * dfw[w, lane]
+                for lane in range(n_l):
+                    err[lane] = 0.0
+                    flip[lane] = False  # the lane needs more than this step (set in loops the compiler vectorises)
+                for w in range(n_w):  # points left out by the lazy test or off the road in every lane: δ must
+                    # stay ≤ 0, watched through each wheel's largest δ (or bound on it) plus the increments' bound
+                    for lane in range(n_l):
+                        lo_on[w, lane] += bq[w, lane] + b[lane]
+                        lo_off[w, lane] += bq[w, lane]
+                        flip[lane] = flip[lane] or lo_on[w, lane] > 0.0 or lo_off[w, lane] > 0.0
+                for i in range(n_use):  # the law of the other used points by the exact increments
+                    k = use[i]
+                    w = wheel[k]
+                    for lane in range(n_l):
+                        s_l[lane] = 0.0
+                        dr_l[lane] = 0.0
+                        sd_l[lane] = 0.0
+                    if onb[k]:
+                        for m in range(n_m):
+                            ph = phi[k, m]
+                            dph = dphi[k, m]
+                            for lane in range(n_l):
+                                s_l[lane] += ph * dx[m, lane]
+                                dr_l[lane] += ph * dv[m, lane]
+                                sd_l[lane] += dph * dx[m, lane]
+                    kc = kk[k]
+                    ck = cc[k]
+                    vx = vxp[k]
+                    gk = gated[k]
+                    for lane in range(n_l):
+                        dpen = s_l[lane] + bq[w, lane]
+                        pen[k, lane] += dpen
+                        law[k, lane] += kc * dpen + ck * (dr_l[lane] + vx * sd_l[lane] + bv[w, lane])
+                        fl = law[k, lane]
+                        on = not gk or (pen[k, lane] > 0.0 and fl > 0.0)
+                        fk = fl if on else 0.0
+                        flip[lane] = flip[lane] or on != active[k, lane]  # a contact opens or closes
+                        force[k, lane] = fk
+                        err[lane] = max(err[lane], abs(fk - f[k, lane]))
+                n_work = 0
+                for lane in range(n_l):
+                    if work[lane] and flip[lane]:  # frozen at this step
+                        work[lane] = False
+                        live[lane] = False
+                        stop[lane] = n
+                        n_live -= 1
+                    work[lane] = work[lane] and err[lane] > tol
+                    n_work += 1 if work[lane] else 0
+            if n_live == 0:
+                return evaluations
+            for w in range(n_w):
+                for lane in range(n_l):
+                    fw[w, lane] += dfw[w, lane]
+                    wf[w, lane] = fw[w, lane]
+        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈, q̈
+        for w in range(n_w):
+            kw = wheel_k[w]
+            cw = wheel_c[w]
+            for lane in range(n_l):
+                g0[w, lane] = wf[w, lane]
+            for j in range(n_d):
+                h = wheel_rows[w, j]
+                if h != 0.0:
+                    for lane in range(n_l):
+                        g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
+        for m in range(n_m):
+            e1 = 2.0 * zeta[m] * omega[m]
+            e2 = omega[m] * omega[m]
+            for lane in range(n_l):
+                acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
+        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
+            gi = gravity[i]
+            for lane in range(n_l):
+                rhs[i, lane] = gi
+            for j in range(n_d):
+                ch = c_hat[i, j]
+                kh = k_hat[i, j]
+                if ch != 0.0 or kh != 0.0:
+                    for lane in range(n_l):
+                        rhs[i, lane] -= ch * z1[n_d + j, lane] + kh * z1[j, lane]
+            for w in range(n_w):
+                h = wheel_rows[w, i]
+                if h != 0.0:
+                    for lane in range(n_l):
+                        rhs[i, lane] += h * g0[w, lane]
+        for i in range(n_d):
+            for lane in range(n_l):
+                a1[i, lane] = 0.0
+            for j in range(n_d):
+                mi = mass_inv[i, j]
+                if mi != 0.0:
+                    for lane in range(n_l):
+                        a1[i, lane] += mi * rhs[j, lane]
+        if (n + 1) % stride == 0:
+            r_out = (n + 1) // stride
+            for lane in range(n_l):
+                if not live[lane] or (n < first and not fresh[lane]):
+                    continue
+                for m in range(n_m):
+                    if n >= first:
+                        xi[lane, r_out, m] = x1[m, lane]
+                        dxi[lane, r_out, m] = v1[m, lane]
+                    ddxi[lane, r_out, m] = acc[m, lane]
+                for j in range(n_d):
+                    if n >= first:
+                        q[lane, r_out, j] = z1[j, lane]
+                        dq[lane, r_out, j] = z1[n_d + j, lane]
+                    ddq[lane, r_out, j] = a1[j, lane]
+                for w in range(n_w):
+                    wheel_force[lane, r_out, w] = wf[w, lane]
+                    wheel_len[lane, r_out, w] = wl[w, lane]
+        if n >= first:
+            for k in range(n_cp):
+                for lane in range(n_l):
+                    fp[k, lane] = fo[k, lane]
+                    fo[k, lane] = f[k, lane]
+            x0, x1 = x1, x0
+            v0, v1 = v1, v0
+            z0, z1 = z1, z0
+        else:
+            for k in range(n_cp):
+                for lane in range(n_l):
+                    fp[k, lane] = fo[k, lane]
+            for lane in range(n_l):  # lanes going on: the state the previous call ended with
+                if not fresh[lane]:
+                    for k in range(n_cp):
+                        fo[k, lane] = carry_f[0, k, lane]
+                        fp[k, lane] = carry_f[1, k, lane]
+                    for m in range(n_m):
+                        p[m, lane] = carry_p[m, lane]
+                    for w in range(n_w):
+                        g0[w, lane] = carry_g[w, lane]
+        p0, p = p, p0
+    for k in range(n_cp):  # the state the next call goes on from
+        for lane in range(n_l):
+            carry_f[0, k, lane] = fo[k, lane]
+            carry_f[1, k, lane] = fp[k, lane]
+    for m in range(n_m):
+        for lane in range(n_l):
+            carry_p[m, lane] = p0[m, lane]
+    for w in range(n_w):
+        for lane in range(n_l):
+            carry_g[w, lane] = g0[w, lane]
+    return evaluations
