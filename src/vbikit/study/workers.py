@@ -12,8 +12,8 @@ it within ``WATCH_INTERVAL`` once its parent process is gone.
 A worker runs its BLAS on one thread (``threadpoolctl``): the pool already has one process per
 core, and the products of a crossing are small (51 × 51 mode tables, a few thousand steps × a few
 dozen modes), so BLAS threads only wait for a core and spin — on the 2-core machine they doubled
-the workers' CPU time per traffic event (41.6 against 18.7 ms, ``benchmarks/bench_traffic.py``'s
-1,000-truck stream, 2026-12-04).
+the workers' CPU time per traffic event (41.6 against 19.5 ms on the 1,000-truck stream of
+``benchmarks/bench_traffic.py``, 2026-12-04; benchmarks/README.md).
 """
 from __future__ import annotations
 
