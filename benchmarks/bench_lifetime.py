@@ -13,7 +13,10 @@ per lane) over the example bridge, against dynamics on every event, in one run.
    dynamic damage ratio; A = 0.6;
 3. ``run_lifetime`` on ``--workers`` local processes: wall time, peak memory of this process and
    of its workers (resource.getrusage, ru_maxrss), events, fraction simulated dynamically,
-   events/s of the static pass and of the whole run;
+   events/s of the static pass and of the whole run; its CPU time (this process's
+   ``time.process_time`` and the workers' ``RUSAGE_CHILDREN`` once they have ended) and the year
+   extrapolated from it on ``--workers`` idle cores (CPU / workers × 365 / days: on a shared
+   machine the wall time follows the other jobs' load, the CPU time hardly);
 4. baseline: ``--baseline`` events of day 0 simulated one by one in this process (dynamics on
    every event): events/s, and the time dynamics on every event of the run would take on the
    same workers — the ratio against the screened run.
@@ -61,9 +64,14 @@ def main() -> None:
 
     s = spec(args.days, args.trucks_per_day, args.sample)
     with tempfile.TemporaryDirectory(prefix="vbikit-bench-lifetime-") as tmp:
-        t0 = time.perf_counter()
+        t0, p0 = time.perf_counter(), time.process_time()
         ds = run_lifetime(s, Path(tmp) / "out", workers=args.workers, figures=False)
-        wall = time.perf_counter() - t0
+        wall, cpu_self = time.perf_counter() - t0, time.process_time() - p0
+    from vbikit.study import shutdown_workers
+
+    shutdown_workers()  # the workers' CPU time and peak memory count once they have ended (RUSAGE_CHILDREN)
+    kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = cpu_self + kids.ru_utime + kids.ru_stime
     a = ds.attrs
     # baseline: dynamics on every event, measured on day 0's first events, one process
     prep = prepare(s, ".")
@@ -77,9 +85,6 @@ def main() -> None:
         dyn.run_event(int(g))
     per_event = (time.perf_counter() - t1) / len(gid)
     every = per_event * a["n_events"] / args.workers
-    from vbikit.study import shutdown_workers
-
-    shutdown_workers()  # the workers' peak memory counts once they have ended (RUSAGE_CHILDREN)
     me = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     kids = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
     out = {
@@ -90,6 +95,7 @@ def main() -> None:
         "events_per_s_overall": a["n_events"] / wall, "peak_rss_coordinator_MB": me, "peak_rss_worker_MB": kids,
         "baseline_dynamic_s_per_event_one_core": per_event, "every_event_estimate_s": every,
         "speedup_vs_every_event": every / wall, "year_extrapolated_s": wall * 365 / args.days,
+        "cpu_s": cpu, "year_extrapolated_cpu_s_idle_cores": cpu / args.workers * 365 / args.days,
         "adr": dict(zip(map(str, ds["load_effect"].values), map(float, ds["assessment_dynamic_ratio"].values))),
     }
     print(json.dumps(out, indent=1))

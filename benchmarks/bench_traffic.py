@@ -4,6 +4,7 @@
     python benchmarks/bench_traffic.py                       # 5000 trucks, 2 workers
     python benchmarks/bench_traffic.py --trucks 1000 --baseline 100
     python benchmarks/bench_traffic.py --spacing 0.05        # road sampled every 0.05 m
+    python benchmarks/bench_traffic.py --outputs impact_factor   # only the outputs the statistics need
 
 1. the stream: ``synthetic_stream`` (seed 2026), lane 1 +x and lane 2 −x, ``--flow`` trucks/h
    per lane, speeds 80 ± 8 and 75 ± 8 km/h, the documented truck mix (docs/traffic.md);
@@ -11,7 +12,10 @@
    reported separately;
 3. the stream with ``traffic_study`` + ``run_study`` (``--workers`` processes, batches of 16
    events): events (vehicles on the bridge together, simulated as one coupled run each), wall
-   time, events/s and trucks/s;
+   time, events/s and trucks/s; and its CPU time (this process's ``time.process_time`` and the
+   workers' ``resource.getrusage(RUSAGE_CHILDREN)`` once they have ended, their start-up
+   included) per event, with the events/s that CPU time allows on ``--workers`` idle cores — on
+   a shared machine the wall time follows the other jobs' load, the CPU time hardly;
 4. one-at-a-time: the first ``--baseline`` trucks, each alone on the bridge (one Crossing with
    one vehicle on the same bridge object, ``simulate``, the displacement IM), on the same number
    of processes: trucks/s, and the time the whole stream would take that way.
@@ -24,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import resource
 import sys
 import tempfile
 import time
@@ -75,6 +80,7 @@ def main() -> None:
     p.add_argument("--workers", type=int, default=2)
     p.add_argument("--baseline", type=int, default=200, help="trucks run one at a time (default 200)")
     p.add_argument("--spacing", type=float, default=0.01, help="road sample spacing [m] (default 0.01, the scenario default)")
+    p.add_argument("--outputs", default=None, help="outputs to reduce, comma-separated (default: the whole catalogue)")
     args = benchmark_args(__doc__, "unused (one timed run)", p)
 
     from vbikit.study.run import run_study, shutdown_workers
@@ -86,15 +92,20 @@ def main() -> None:
         warm = traffic_study(_stream(20, args.flow, seed=1), base, batch_size=4)
         run_study(warm, Path(tmp) / "warm.nc", workers=args.workers)
         t_warm = time.perf_counter() - t0
+        shutdown_workers()  # the warm-up's workers end here: their CPU time is not the stream's
+        kids0 = resource.getrusage(resource.RUSAGE_CHILDREN)
 
         records = _stream(args.trucks, args.flow)
         t0 = time.perf_counter()
-        job = traffic_study(records, base, batch_size=16)
+        job = traffic_study(records, base, batch_size=16,
+                            **({} if args.outputs is None else {"outputs": args.outputs.split(",")}))
         t_setup = time.perf_counter() - t0
-        t0 = time.perf_counter()
+        t0, p0 = time.perf_counter(), time.process_time()
         ds = run_study(job, Path(tmp) / "stream.nc", workers=args.workers)
-        t_stream = time.perf_counter() - t0
+        t_stream, p_stream = time.perf_counter() - t0, time.process_time() - p0
         shutdown_workers()
+        kids1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu_workers = (kids1.ru_utime + kids1.ru_stime) - (kids0.ru_utime + kids0.ru_stime)
 
     n_b = min(args.baseline, len(records))
     chunks = [list(range(k, n_b, args.workers)) for k in range(args.workers)]
@@ -108,12 +119,15 @@ def main() -> None:
     n_mp = int(ds["multiple_presence"].sum())
     a = ds.attrs
     print(f"stream: {len(records)} trucks, flow {args.flow:g} /h per lane, road spacing {args.spacing} m, "
-          f"{args.workers} workers, {os.cpu_count()} cores")
+          f"{args.workers} workers, {os.cpu_count()} cores, outputs: {args.outputs or 'all'}")
     print(f"  warm-up (numba cache, workers) {t_warm:.1f} s; stream set-up (validation, events) {t_setup:.1f} s")
     print(f"  {n_ev} events ({n_mp} with several trucks, up to {int(ds['n_vehicles'].max())}), "
           f"{int(ds['n_steps'].mean())} steps a event on average")
     print(f"  stream: {t_stream:.1f} s = {n_ev / t_stream:.1f} events/s = {len(records) / t_stream:.1f} trucks/s "
           f"(target: under 180 s)")
+    cpu = p_stream + cpu_workers
+    print(f"  stream CPU: this process {p_stream:.1f} s + workers {cpu_workers:.1f} s = {cpu / n_ev * 1e3:.1f} ms an event "
+          f"-> {n_ev / (cpu / args.workers):.0f} events/s on {args.workers} idle cores")
     print(f"  one at a time ({n_b} trucks): {t_alone:.1f} s = {n_b / t_alone:.1f} trucks/s -> the whole stream "
           f"{len(records) / (n_b / t_alone):.0f} s")
     print(f"  IM: mean {a['im_mean']:.4f} (one truck {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), "

@@ -166,3 +166,14 @@ def test_bad_input_names_the_argument():
         with pytest.raises(FatigueError) as err:
             RainflowState.from_dict({**good, **bad})
         assert err.value.key in ("state", "bin_width"), bad
+
+
+def test_counting_the_reversals_alone_gives_the_same_cycles():
+    """The lifetime runner counts ``rainflow(reversals(h))`` (``vbikit.lifetime.jobs``): the same
+    (range, count) pairs as the whole history, here random walks with plateaus and the zero ends
+    of an event's history (the bridge empty before and after)."""
+    rng = np.random.default_rng(11)
+    for _ in range(50):
+        h = np.round(np.cumsum(rng.normal(size=rng.integers(3, 400))), 1)  # rounding makes plateaus
+        h = np.concatenate([[0.0, 0.0], h, [0.0, 0.0]])
+        assert rainflow(reversals(h)) == rainflow(h)

@@ -71,3 +71,20 @@ def test_sigkill_of_the_coordinator_ends_its_workers(tmp_path, small_study_dict)
         for p in workers:  # this test's own processes, if the check failed
             if _alive(p):
                 os.kill(p, signal.SIGKILL)
+
+
+def _blas_threads() -> list[int]:
+    from threadpoolctl import threadpool_info
+
+    return [lib["num_threads"] for lib in threadpool_info() if lib["user_api"] == "blas"]
+
+
+def test_a_worker_runs_its_blas_on_one_thread():
+    # one process per core already: BLAS threads would only spin (vbikit.study.workers docstring)
+    from vbikit.study.workers import local_pool, shutdown_workers
+
+    try:
+        threads = local_pool(2).submit(_blas_threads).result(timeout=120)
+    finally:
+        shutdown_workers()
+    assert threads and all(n == 1 for n in threads)

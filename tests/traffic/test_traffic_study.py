@@ -119,3 +119,36 @@ def test_default_lanes():
     base, _ = base_scenario("paper-bridge-2")
     job = traffic_study(synthetic_stream(LANES, 2, seed=1), base)
     assert job.lanes == pytest.approx((-9.75 / 4, 9.75 / 4))  # ∓ deck width / 4
+
+
+def test_a_stream_reduces_only_the_outputs_it_asks_for(stream, tmp_path, monkeypatch):
+    """``outputs``: those variables (and the statistics' ones) equal the full run's, the others are not
+    stored, and a run that asks for no load-effect output computes no load effect."""
+    from vbikit.analysis import effects
+    from vbikit.study import StudyError
+
+    full = run_study(traffic_study(stream, BASE, lanes=[-1.8, 1.8], seed=5, batch_size=4), tmp_path / "a.nc", workers=1)
+    calls = []
+    inner = effects.load_effect_responses
+    monkeypatch.setattr(effects, "load_effect_responses", lambda *a, **k: calls.append(1) or inner(*a, **k))
+    job = traffic_study(stream, BASE, lanes=[-1.8, 1.8], seed=5, batch_size=4, outputs=["max_abs_acceleration"])
+    some = run_study(job, tmp_path / "b.nc", workers=1)
+    assert calls == []
+    stored = {"max_abs_acceleration", "impact_factor", "max_dynamic_displacement", "max_static_displacement", "n_steps"}
+    from vbikit.outputs import OUTPUTS
+
+    assert {k for k in some.data_vars if k in OUTPUTS} == stored
+    for k in stored | {"vehicle_min_wheel_force", "road_seed"}:
+        xr.testing.assert_identical(some[k], full[k])
+    assert some.attrs["im_mean"] == full.attrs["im_mean"] and json.loads(some.attrs["study"])["outputs"][0] == "impact_factor"
+    # asking for a moment output computes the load effects again, and gives the full run's values
+    job = traffic_study(stream, BASE, lanes=[-1.8, 1.8], seed=5, batch_size=4, outputs=["moment_impact_factor"])
+    xr.testing.assert_identical(run_study(job, tmp_path / "c.nc", workers=1)["moment_impact_factor"],
+                                full["moment_impact_factor"])
+    assert calls
+    with pytest.raises(StudyError, match="outputs: unknown output 'peak'; allowed: impact_factor"):
+        traffic_study(stream, BASE, lanes=[-1.8, 1.8], outputs=["peak"])
+    write_records(stream, tmp_path / "s.csv")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "s.csv"), "--bridge", "paper-bridge-2-beam", "--lanes", "-1.8,1.8",
+                              "--outputs", "impact_factor,peak", "--out", str(tmp_path / "x.nc")])
+    assert res.exit_code == 2 and "unknown output 'peak'" in res.stderr

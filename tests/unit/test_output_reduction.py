@@ -98,3 +98,22 @@ def test_a_bridge_from_a_file_is_built_every_time(tmp_path):
     from vbikit.scenario.bridge_spec import ModesFileSpec
 
     assert _bridge_key(ModesFileSpec(model="modes-file", modes_file="m.txt")) is None
+
+
+def test_quadratic_roots_of_the_peak_refinement_agree_with_numpy_roots():
+    """``_real_roots`` (closed form) against ``numpy.roots`` (companion-matrix eigenvalues), and
+    ``hermite_peak`` of a sampled sine against its true peak (1 at t = π/2)."""
+    from vbikit.analysis.impact import _real_roots, hermite_peak
+
+    rng = np.random.default_rng(5)
+    for a, b, c in list(rng.normal(size=(200, 3))) + [(0.0, 2.0, -1.0), (0.0, 0.0, 1.0), (1.0, 0.0, 0.0), (1.0, -2.0, 1.0)]:
+        ours = sorted(_real_roots(float(a), float(b), float(c)))
+        coeffs = [a, b, c] if a != 0.0 else [b, c] if b != 0.0 else []
+        ref = np.roots(coeffs) if coeffs else np.array([])
+        ref = sorted(r.real for r in ref if abs(r.imag) <= 1e-12)
+        assert len(ours) in (len(ref), len(set(ref)))  # a double root may come once
+        assert np.allclose(sorted(set(np.round(ours, 9))), sorted(set(np.round(ref, 9))), rtol=1e-9, atol=1e-12)
+    t = np.linspace(0.0, 3.0, 13)  # step 0.25: the largest sample 0.25 s from the peak
+    peak, when = hermite_peak(t, np.sin(t), np.cos(t), int(np.argmax(np.sin(t))))
+    # the cubic Hermite interpolant's error: h⁴/384 · max|f''''| = 1e-5 at h = 0.25
+    assert peak == pytest.approx(1.0, abs=2e-5) and when == pytest.approx(np.pi / 2, abs=5e-3)

@@ -103,17 +103,22 @@ def test_whole_period_and_window_with_the_band_up_to_nyquist(window):
 
 
 def test_cached_window_factors_serve_only_their_window():
-    """The chirp-z factors kept per (grid, window) (``_band_sum_factors``): windows asked for in
-    turn, and again with other seeds, are each the whole-period road there."""
-    from vbikit.road.psd import _band_sum_factors
+    """The chirp-z factors kept per (grid, window length rounded up to ``WINDOW_QUANTUM``)
+    (``_band_sum_factors``): windows asked for in turn, again with other seeds, and windows of the
+    same length elsewhere on the road (the factors do not depend on where a window starts) are
+    each the whole-period road there."""
+    from vbikit.road.psd import WINDOW_QUANTUM, _band_sum_factors
 
     psd = RoadPSD.iso("B")
     fulls = {seed: random_profile(psd, seed) for seed in (1, 2)}
     _band_sum_factors.cache_clear()
-    for window, seed in (((-30.0, 20.0), 1), ((-10.0, 45.0), 1), ((-30.0, 20.0), 2), ((-10.0, 45.0), 2)):
+    # 50 m and 55 m: 5,005 and 5,505 stations, two lengths after rounding to 512 (5,120 and 5,632)
+    assert WINDOW_QUANTUM == 512
+    for window, seed in (((-30.0, 20.0), 1), ((-10.0, 45.0), 1), ((-30.0, 20.0), 2), ((-10.0, 45.0), 2),
+                         ((-20.0, 30.0), 1), ((300.0, 350.0), 2), ((-29.5, 20.3), 2)):
         part = random_profile(psd, seed, window=window)
         x, z = _cut(fulls[seed], part)
         assert np.array_equal(x, part.x)
         assert np.max(np.abs(z - part.z)) < 1e-12 * fulls[seed].z.std()
     info = _band_sum_factors.cache_info()
-    assert (info.misses, info.hits) == (2, 2)
+    assert (info.misses, info.hits) == (2, 5)

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, Callable, Literal, Sequence
 
 import numpy as np
@@ -65,8 +66,9 @@ class LoadEffectResponse:
         """The step [s] that resolves this effect (``load_effect_step``; inf: any)."""
         return self._step()[1]
 
-    @property
+    @cached_property
     def impact(self) -> ImpactFactor:
+        """Peaks and impact factor (computed once: the catalogue's three outputs of a kind read it)."""
         return impact_factor(self.time, self.dynamic, self.static)
 
     @property

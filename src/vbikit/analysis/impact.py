@@ -67,16 +67,27 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
         a = 6 * y0 + 3 * d0 - 6 * y1 + 3 * d1
         b = -6 * y0 - 4 * d0 + 6 * y1 - 2 * d1
         c = d0
-        roots = np.roots([a, b, c]) if abs(a) > 0 or abs(b) > 0 else np.array([])
-        for s in roots:
-            if abs(s.imag) > 1e-12 or not 0.0 < s.real < 1.0:
+        for s in _real_roots(a, b, c):
+            if not 0.0 < s < 1.0:
                 continue
-            s = s.real
             y = (y0 * (2 * s**3 - 3 * s**2 + 1) + d0 * (s**3 - 2 * s**2 + s) + y1 * (-2 * s**3 + 3 * s**2)
                  + d1 * (s**3 - s**2))
             if y > best:
                 best, t_best = float(y), float(time[j] + s * h)
     return best, t_best
+
+
+def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
+    """Real roots of a s² + b s + c (a root pair whose imaginary part is at most 1e-12 counts as
+    real, at its real part; a, b = 0: none), by the cancellation-free quadratic formula
+    q = −(b + sign(b)·√(b² − 4ac))/2, s = q/a, c/q (Numerical Recipes, 3rd ed., §5.6)."""
+    if a == 0.0:
+        return (-c / b,) if b != 0.0 else ()
+    disc = b * b - 4.0 * a * c
+    if disc < 0.0:  # a complex pair −b/2a ± i √(−disc)/2|a|
+        return (-b / (2.0 * a),) if np.sqrt(-disc) / (2.0 * abs(a)) <= 1e-12 else ()
+    q = -0.5 * (b + np.copysign(np.sqrt(disc), b))
+    return (q / a, c / q) if q != 0.0 else (0.0,)
 
 
 def static_direction(static: NDArray[np.float64]) -> float:

@@ -64,6 +64,27 @@ class PointResponse:
         return reduce_outputs(Reduction(result, self), "point", names)
 
 
+#: mode and strain shapes kept per bridge (on the bridge object) for this many points
+POINT_SHAPES_KEPT = 64
+
+
+def point_shapes(bridge: object, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """φ_i(x, y) and the strain shapes ε_i(x, y) of every mode at one deck point (read-only), kept
+    on the bridge object per point: every crossing and event of a run reads the same points, and a
+    deck's shapes at one point cost a quarter of a millisecond."""
+    kept = getattr(bridge, "__dict__", {}).setdefault("_point_shapes", {})
+    key = (float(x), float(y))
+    shapes = kept.get(key)
+    if shapes is None:
+        shapes = (np.array(bridge.mode_shapes([x], [y])[0], float), np.array(bridge.strain_shapes([x], [y])[0], float))
+        for arr in shapes:
+            arr.setflags(write=False)
+        if len(kept) >= POINT_SHAPES_KEPT:
+            kept.pop(next(iter(kept)))
+        kept[key] = shapes
+    return shapes
+
+
 def point_response(result: CrossingResult, x: float | None = None, y: float | None = None,
                    xi_static: NDArray[np.float64] | None = None) -> PointResponse:
     """Dynamic and static responses at (x, y) [m]; x defaults to midspan, y to the bridge's
@@ -73,8 +94,7 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
     x, y = result.point(x, y)
     if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
         raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
-    phi = bridge.mode_shapes([x], [y])[0]
-    eps = bridge.strain_shapes([x], [y])[0]
+    phi, eps = point_shapes(bridge, x, y)
     xi_st = static_modal_history(result) if xi_static is None else xi_static
     return PointResponse(
         x, y, result.time,
@@ -156,7 +176,7 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
         kinds = effect_kinds(names)
         first = {k: e for k, e in plan.first_effects.items() if k in kinds}
         effects = dict(zip(first, load_effect_responses(result, tuple(first.values()), plan.load_effect_method,
-                                                        check_step=False)))  # the outputs do not read it
+                                                        check_step=False))) if first else {}  # (no step check: the outputs do not read it)
     points: list[dict[str, float | None]] = [{} for _ in plan.points]
     if outputs("point", names):
         points = [r.outputs(result, names) for r in plan_responses(result, plan, xi_static)]

@@ -36,6 +36,9 @@ def traffic_cmd(
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure of the IM distribution and the peaks."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+    outputs: Optional[str] = typer.Option(None, "--outputs", help="The outputs to reduce and store, comma-separated "
+                                          "(docs/results.md; default all; the stream statistics' impact_factor, "
+                                          "max_dynamic_displacement, max_static_displacement and n_steps always)."),
     max_vehicles: Optional[int] = typer.Option(None, "--max-vehicles", min=1, help="The most vehicle records read "
                                                "(default 100000; a larger file is refused before it is parsed)."),
 ) -> None:
@@ -49,8 +52,9 @@ def traffic_cmd(
     if road is not None:
         base = {**base, "road": {**base.get("road", {}), "class": road}}
     lane_y = None if lanes is None else guard(lambda: _lanes(lanes))
+    names = None if outputs is None else [n.strip() for n in outputs.split(",") if n.strip()]
     job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
-                                      source=records.name))
+                                      source=records.name, outputs=names))
     n_mp = sum(len(e) > 1 for e in job.events)
     typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)

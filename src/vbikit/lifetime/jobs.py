@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 from vbikit.lifetime.influence import event_static
 from vbikit.lifetime.setup import Setup, build_setup, day_events
 from vbikit.lifetime.traffic import TrafficModel
+from vbikit.study.shipping import reduce_once
 
 def moving_forces(loads, spacings):
     """A truck as moving constant forces: each axle load split over two wheels at ± the
@@ -68,6 +69,11 @@ def _axle_truck(loads, spacings):
 
 #: how a dynamic event's trucks are modelled (spec key ``vehicle_model``)
 VEHICLE_MODELS = {"axle-truck": _axle_truck, "moving-forces": moving_forces}
+
+#: [substitute] the fewest batches a dynamic round whose records are all stored is cut into: enough
+#: for 2–8 workers to finish together (a week's round of 130 events was 7 day batches: 4 on one of
+#: 2 workers, 3 on the other)
+MIN_DYNAMIC_BATCHES = 16
 
 #: events of a day are numbered below this (global event id = day · EVENT_STRIDE + index)
 EVENT_STRIDE = 2**20
@@ -140,6 +146,9 @@ class StaticJob:
     store_top: int = 256
     name: str = "lifetime static pass"
     _digest: str = field(default="", repr=False)
+
+    #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
+    __reduce__ = reduce_once
 
     @property
     def size(self) -> int:
@@ -287,14 +296,23 @@ class DynamicJob:
     name: str = "lifetime dynamics"
     _digest: str = field(default="", repr=False)
 
+    #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
+    __reduce__ = reduce_once
+
     @property
     def size(self) -> int:
         return len(self.items)
 
     def batches(self) -> list[tuple[int, ...]]:
-        """Up to ``batch_size`` events of one day each (a worker draws a day's traffic once per batch)."""
+        """Up to ``batch_size`` events of one day each (a worker draws a day's traffic once per batch);
+        when every event's records are stored (no day to draw), the events in order in equal batches
+        of at most ``batch_size``, at least ``MIN_DYNAMIC_BATCHES`` of them (a round of a short run
+        spread over every worker, not one batch per day)."""
         out: list[tuple[int, ...]] = []
         items = np.asarray(self.items, np.int64)
+        if items.size and len(self.event_records) == items.size and all(r is not None for r in self.event_records):
+            n_batches = max(-(-items.size // self.batch_size), min(items.size, MIN_DYNAMIC_BATCHES))
+            return [tuple(part.tolist()) for part in np.array_split(items, n_batches)]
         days = items // EVENT_STRIDE
         for d in np.unique(days):
             of_day = items[days == d].tolist()
@@ -333,7 +351,7 @@ class DynamicJob:
     def run_event(self, g: int) -> dict[str, NDArray]:
         from vbikit.analysis.effects import load_effect_responses
         from vbikit.analysis.response import point_response
-        from vbikit.fatigue import miner_damage, rainflow
+        from vbikit.fatigue import miner_damage, rainflow, reversals
         from vbikit.lifetime.peaks import with_knot_limits
         from vbikit.solve import choose_time_step, simulate
 
@@ -362,7 +380,9 @@ class DynamicJob:
         for det in self.details:
             curve = det.sn()
             for hist, acc in ((dyn[det.line], d_dyn), (st[det.line], d_st)):
-                cyc = rainflow(np.concatenate([[0.0], hist * det.factor, [0.0]]))
+                # the counting sees only the reversals (ASTM E1049-85 §5.4.4): reduced to them by numpy
+                # first, the counter's own pass in Python runs over tens of points, not thousands
+                cyc = rainflow(reversals(np.concatenate([[0.0], hist * det.factor, [0.0]])))
                 acc.append(miner_damage([c[0] for c in cyc], [c[1] for c in cyc], curve, whole_spectrum=False) if cyc else 0.0)
                 if acc is d_dyn:
                     top.append(max((c[0] for c in cyc), default=0.0))

@@ -15,7 +15,9 @@ the same elevations as the whole period's inverse FFT): the band's M coefficient
 stations by Bluestein's chirp-z identity k·l = (k² + l² − (l − k)²)/2, one circular convolution of
 length ≥ M + m − 1 instead of an FFT of the whole period (L. I. Bluestein, "A linear filtering
 approach to the computation of the discrete Fourier transform", IEEE Trans. Audio Electroacoust.
-18, 1970, 451–455).  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
+18, 1970, 451–455).  The shift to the window's first station is in the coefficients' phase, so the
+convolution's factors depend on the window's length only and are kept for the few lengths a
+stream's events ask for.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
 with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_window.py``).
 """
 from __future__ import annotations
@@ -150,13 +152,16 @@ def random_profile(
     n_samples, period, k, n_k = _wavenumber_grid(psd, spacing, length)
     x0 = -period / 2 if x_start is None else float(x_start)
     theta = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, n_k.size)
-    amp = np.sqrt(2.0 * psd(n_k) / period)
-    band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
+    amp = _amplitudes(psd, spacing, length)
     label = label or f"PSD phi0={psd.phi0:g}, seed {seed}"
     if window is not None:
         first, last = _window_samples(window, x0, spacing, n_samples)
-        z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, first, last - first + 1)
+        # the shift to the window's first station, k·first (mod N), in the coefficients' own phase
+        shift = (2.0 * np.pi / n_samples) * ((k * first) % n_samples)
+        band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0 + shift))
+        z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, last - first + 1)
         return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label)
+    band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
     coef = np.zeros(n_samples // 2 + 1, complex)
     coef[k] = band
     coef[n_samples // 2] *= 2.0  # irfft counts the Nyquist term once, the others twice (k = 0 is never in the band)
@@ -182,20 +187,35 @@ def _chirp(q: NDArray[np.int64], n_samples: int) -> NDArray[np.complex128]:
 
 
 @lru_cache(maxsize=16)
-def _band_sum_factors(k0: int, n_band: int, n_samples: int, first: int, m: int
+def _amplitudes(psd: RoadPSD, spacing: float, length: float) -> NDArray[np.float64]:
+    """√(2 φ(n_k) Δn) of Eq. 7 on the grid of ``_wavenumber_grid`` (read-only, kept per spectrum and grid)."""
+    _, period, _, n_k = _wavenumber_grid(psd, spacing, length)
+    amp = np.sqrt(2.0 * psd(n_k) / period)
+    amp.setflags(write=False)
+    return amp
+
+
+#: [substitute] window lengths are rounded up to a multiple of this many stations for the chirp-z
+#: factors (``_band_sum_factors``): the events of a stream, each with its own window, then share a
+#: few factor sets instead of computing one each (the extra stations are computed and dropped)
+WINDOW_QUANTUM = 512
+
+
+@lru_cache(maxsize=16)
+def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
                       ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128], int]:
-    """The factors of ``_band_sum`` that depend on the grid and the window only (not on the
-    coefficients): the shift-and-chirp of each coefficient, the FFT of the chirp kernel, the
-    output's carrier-and-chirp, and the FFT length.  Kept for the last windows: every event of a
-    traffic stream or crossing of a study on one bridge asks for the same ones."""
+    """The factors of ``_band_sum`` that depend on the grid and the window's length only (not on the
+    coefficients, nor on where the window starts): the chirp of each coefficient, the FFT of the
+    chirp kernel, the output's carrier-and-chirp, and the FFT length.  Kept for the last lengths:
+    every event of a traffic stream or crossing of a study on one bridge asks for a few of them."""
     n = np.arange(n_band, dtype=np.int64)
-    pre = np.exp(2j * np.pi * ((n * first) % n_samples) / n_samples) * _chirp(n, n_samples)  # shift to l = j − first
+    pre = _chirp(n, n_samples)
     size = int(sp_fft.next_fast_len(n_band + m - 1))
     b = np.zeros(size, complex)
-    b[:m] = np.conj(_chirp(np.arange(m, dtype=np.int64), n_samples))  # W^{−j²/2}, j = 0 … m − 1
+    b[:m] = np.conj(_chirp(np.arange(m, dtype=np.int64), n_samples))  # W^{−l²/2}, l = 0 … m − 1
     b[size - n_band + 1:] = np.conj(_chirp(np.arange(-(n_band - 1), 0, dtype=np.int64), n_samples))
-    j = np.arange(first, first + m, dtype=np.int64)
-    post = np.exp(2j * np.pi * ((k0 * j) % n_samples) / n_samples) * _chirp(np.arange(m, dtype=np.int64), n_samples)
+    l = np.arange(m, dtype=np.int64)
+    post = np.exp(2j * np.pi * ((k0 * l) % n_samples) / n_samples) * _chirp(l, n_samples)
     for arr in (pre, b, post):
         arr.setflags(write=False)
     kernel = sp_fft.fft(b)
@@ -203,15 +223,18 @@ def _band_sum_factors(k0: int, n_band: int, n_samples: int, first: int, m: int
     return pre, kernel, post, size
 
 
-def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, first: int, m: int) -> NDArray[np.float64]:
-    """Re Σ_n band_n · exp(2πi (k0 + n) j / N) at j = first … first + m − 1: the inverse DFT (times N)
-    of coefficients at k = k0 … k0 + M − 1, at m consecutive samples only (module docstring); the
-    factors independent of ``band`` come from ``_band_sum_factors`` (cached)."""
+def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, m: int) -> NDArray[np.float64]:
+    """Re Σ_n band_n · exp(2πi (k0 + n) l / N) at l = 0 … m − 1: the inverse DFT (times N) of
+    coefficients at k = k0 … k0 + M − 1, at its first m samples only (module docstring; a window
+    that starts at station ``first`` has its shift exp(2πi k·first/N) in ``band``); the factors
+    independent of ``band`` come from ``_band_sum_factors`` (cached per length rounded up to
+    ``WINDOW_QUANTUM``)."""
     if band.size == 0:
         return np.zeros(m)
-    pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(first), int(m))
+    m_kept = -(-m // WINDOW_QUANTUM) * WINDOW_QUANTUM
+    pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(m_kept))
     conv = sp_fft.ifft(sp_fft.fft(band * pre, size) * kernel)[:m]
-    return np.real(post * conv)
+    return np.real(post[:m] * conv)
 
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -8,6 +8,12 @@ by ``shutdown_workers``.  A worker ignores Ctrl-C (the coordinating process hand
 when its parent ends, however it ends (SIGKILL included, when no clean-up runs): on Linux the
 kernel sends it SIGKILL (``prctl(PR_SET_PDEATHSIG)``), and on every system a watchdog thread ends
 it within ``WATCH_INTERVAL`` once its parent process is gone.
+
+A worker runs its BLAS on one thread (``threadpoolctl``): the pool already has one process per
+core, and the products of a crossing are small (51 × 51 mode tables, a few thousand steps × a few
+dozen modes), so BLAS threads only wait for a core and spin — on the 2-core machine they doubled
+the workers' CPU time per traffic event (41.6 against 19.5 ms on the 1,000-truck stream of
+``benchmarks/bench_traffic.py``, 2026-12-04; benchmarks/README.md).
 """
 from __future__ import annotations
 
@@ -26,11 +32,22 @@ WATCH_INTERVAL = 0.5
 _PR_SET_PDEATHSIG = 1  # linux/prctl.h
 
 
+def _one_blas_thread() -> None:
+    """Limit every BLAS this process has loaded (numpy's, scipy's) to one thread, for good (module docstring)."""
+    import numpy  # noqa: F401 - loads numpy's BLAS before the limit is set
+    import scipy.linalg  # noqa: F401 - and scipy's
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(limits=1, user_api="blas")
+
+
 def _die_with_parent(parent: int, thread_bound: bool) -> None:
-    """Worker initializer: ignore Ctrl-C and end when the process ``parent`` ends.
+    """Worker initializer: one BLAS thread (``_one_blas_thread``), ignore Ctrl-C and end when the
+    process ``parent`` ends.
 
     ``thread_bound``: the kernel's parent-death signal may be used (it fires when the *thread*
     that started the worker ends, so only when that thread is the parent's main thread)."""
+    _one_blas_thread()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if thread_bound and sys.platform.startswith("linux"):
         try:

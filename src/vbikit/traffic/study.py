@@ -34,11 +34,12 @@ from numpy.typing import NDArray
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import OUTPUTS, outputs
+from vbikit.outputs import OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
+from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
 from vbikit.traffic.events import Event, partition
 from vbikit.traffic.records import VehicleRecord
@@ -55,6 +56,9 @@ BASE_SECTIONS = ("name", "bridge", "tire", "road", "crossing", "response")
 EVENT_EXTRAS: dict[str, tuple[str, str]] = {
     "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road"),
 }
+#: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
+#: (``stream_statistics``) and figure read them, the resume check reads the step counts
+STREAM_OUTPUTS = ("impact_factor", "max_dynamic_displacement", "max_static_displacement", "n_steps")
 #: per-vehicle outputs
 VEHICLE_OUTPUTS: dict[str, tuple[str, str]] = {
     "vehicle_min_wheel_force": ("N", "the vehicle's smallest wheel force in its event"),
@@ -86,7 +90,8 @@ class TrafficStudy:
     ``base_dir``: where its relative paths point; ``lanes``: lane centres y [m] (lane n at
     ``lanes[n - 1]``); ``seed``: the road seeds' source; ``batch_size``: events per batch;
     ``events``: the vehicles of each event (indices into ``records``), ``event_start`` [s] their
-    first entries; ``source``: the records' name (reports).
+    first entries; ``source``: the records' name (reports); ``outputs``: the catalogue's outputs to
+    reduce and store (``STREAM_OUTPUTS`` always among them; None: all).
     """
 
     records: tuple[VehicleRecord, ...]
@@ -100,6 +105,10 @@ class TrafficStudy:
     name: str = ""
     source: str = ""
     _digest: str = field(default="", repr=False)
+    outputs: Optional[tuple[str, ...]] = None
+
+    #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
+    __reduce__ = reduce_once
 
     # ------------------------------------------------------------ the job protocol of run_study
     @property
@@ -111,23 +120,30 @@ class TrafficStudy:
         """Event indices of each batch."""
         return [tuple(range(k, min(k + self.batch_size, self.size))) for k in range(0, self.size, self.batch_size)]
 
+    @property
+    def output_names(self) -> Optional[tuple[str, ...]]:
+        """The catalogue's outputs each event reduces, in catalogue order (None: all of them)."""
+        return None if self.outputs is None else tuple(o.name for o in outputs(names=self.outputs))
+
     def to_json(self) -> str:
-        """Canonical text of the job (the resume check): base scenario, lanes, seed, batch size and
-        the SHA-256 of the records."""
+        """Canonical text of the job (the resume check): base scenario, lanes, seed, batch size, the
+        SHA-256 of the records and the outputs (when not all)."""
         return json.dumps({"kind": "vbikit traffic", "name": self.name, "base": self.base, "base_dir": self.base_dir,
                            "lanes": list(self.lanes), "seed": self.seed, "batch_size": self.batch_size,
-                           "records_sha256": self._digest, "n_records": len(self.records)}, sort_keys=True)
+                           "records_sha256": self._digest, "n_records": len(self.records),
+                           **({"outputs": list(self.output_names)} if self.outputs is not None else {})},
+                          sort_keys=True)
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         """Simulate the events ``batch``; arrays per event (the catalogue's outputs, [`vbikit.outputs`][vbikit.outputs],
-        per response point where they are per point; ``EVENT_EXTRAS``; ``event``) and per
-        vehicle of those events (``VEHICLE_OUTPUTS``, ``vehicle``)."""
+        per response point where they are per point — those of ``output_names``; ``EVENT_EXTRAS``;
+        ``event``) and per vehicle of those events (``VEHICLE_OUTPUTS``, ``vehicle``)."""
         rows, vehicle_rows = [], []
         for e in batch:
             row, per_vehicle = self.run_event(e)
             rows.append(row)
             vehicle_rows += per_vehicle
-        out = stack_outputs(rows) | {k: np.array([r[1][k] for r in rows], float) for k in EVENT_EXTRAS}
+        out = stack_outputs(rows, self.output_names) | {k: np.array([r[1][k] for r in rows], float) for k in EVENT_EXTRAS}
         out["event"] = np.array(batch, np.int64)
         out["vehicle"] = np.array([i for e in batch for i in self.events[e]], np.int64)
         for k in VEHICLE_OUTPUTS:
@@ -143,7 +159,7 @@ class TrafficStudy:
         members = [i for e in batch for i in self.events[e]]
         if not np.array_equal(part["vehicle"], np.array(members, np.int64)):
             return "its vehicles are not those of its events"
-        problem = output_problem(part, len(batch), len(self.point_names or [None]))
+        problem = output_problem(part, len(batch), len(self.point_names or [None]), self.output_names)
         if problem:
             return problem
         for name in EVENT_EXTRAS:
@@ -163,7 +179,8 @@ class TrafficStudy:
 
         n_e, n_v = self.size, len(self.records)
         n_points = len(self.point_names or [None])
-        ev = {o.name: np.full((n_e, n_points) if o.scope == "point" else n_e, np.nan) for o in outputs()}
+        ev = {o.name: np.full((n_e, n_points) if o.scope == "point" else n_e, np.nan)
+              for o in outputs(names=self.output_names)}
         ev |= {k: np.full(n_e, np.nan) for k in EVENT_EXTRAS}
         veh = {k: np.full(n_v, np.nan) for k in VEHICLE_OUTPUTS}
         sums = part_checksums(parts)
@@ -208,7 +225,7 @@ class TrafficStudy:
     def run_event(self, e: int) -> tuple[tuple[list[dict], dict], list[dict[str, float]]]:
         """Simulate event ``e``: its outputs (per response point, per event) and those of each of its vehicles."""
         result = simulate(self.crossing(e))
-        points, row = reduce_crossing(result, self.context().plan)
+        points, row = reduce_crossing(result, self.context().plan, names=self.output_names)
         row["road_seed"] = float(self.road_seed(e))
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
@@ -235,7 +252,7 @@ class TrafficStudy:
         from vbikit.study.run import output_variables
 
         names = self.point_names
-        variables |= output_variables(ev, ["event"], names)
+        variables |= output_variables(ev, ["event"], names, self.output_names)
         for name, (units, desc) in EVENT_EXTRAS.items():
             variables[name] = ("event", ev[name].astype(np.int64), {"units": units, "long_name": desc})
         variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time)"})
@@ -391,9 +408,19 @@ def base_scenario(bridge: str, base_dir: Path | str = ".") -> tuple[dict, str]:
 
 
 def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = ".", lanes: Optional[Sequence[float]] = None,
-                  seed: int = 0, batch_size: int = 16, name: str = "", source: str = "") -> TrafficStudy:
+                  seed: int = 0, batch_size: int = 16, name: str = "", source: str = "",
+                  outputs: Optional[Sequence[str]] = None) -> TrafficStudy:
     """Validate the stream against the base scenario and cut it into events (see the module
-    docstring).  Errors name the record's line."""
+    docstring).  ``outputs``: the catalogue's outputs to reduce and store ([`vbikit.outputs`][vbikit.outputs];
+    ``STREAM_OUTPUTS`` are added; None: all) — the responses and load effects no asked output reads
+    are not computed.  Errors name the record's line."""
+    selected = None
+    if outputs is not None:
+        try:
+            asked = select_outputs(outputs, "outputs")
+        except ValueError as err:
+            raise StudyError(str(err)) from None
+        selected = tuple(dict.fromkeys(STREAM_OUTPUTS + asked))
     if not records:
         raise StudyError(f"{source or 'records'}: the stream holds no vehicles")
     if batch_size < 1:
@@ -427,4 +454,5 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
     digest = hashlib.sha256(json.dumps([[r.id, r.time, r.lane, r.lateral_offset, r.direction, r.speed, r.model,
                                          list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
     return TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
-                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest)
+                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest,
+                        outputs=selected)
