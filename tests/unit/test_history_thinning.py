@@ -8,7 +8,8 @@ import pytest
 
 from vbikit.bridge import paper_beam
 from vbikit.solve import Crossing, simulate
-from vbikit.solve.simulate import announce_compile, history_stride
+from vbikit.solve.compile_notice import announce_compile
+from vbikit.solve.simulate import history_stride
 from vbikit.solve.system import kernel_data
 from vbikit.vehicle import hs20_44
 

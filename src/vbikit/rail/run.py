@@ -244,7 +244,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     log.info("sweeping %d trains × %d speeds, %d modes (%.1f … %.1f Hz), Δx = %.4f m", len(trains), speeds.size,
              bridge.omega.size, n0, bridge.frequencies_hz[-1], setup.dx)
     from vbikit.solve.moving_loads import _peaks
-    from vbikit.solve.simulate import announce_compile
+    from vbikit.solve.compile_notice import announce_compile
 
     n_workers = workers or spec.run.workers
     announce_compile(_peaks, "each worker process" if n_workers > 1 and len(trains) > 1 else "")

@@ -168,7 +168,7 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     the end of the chunk, and joins the next call afresh (the law at that state, the forces
     extrapolated from it alone); the other lanes go on exactly (``lean_lanes``' carried state)."""
     from vbikit.solve import kernels
-    from vbikit.solve.simulate import announce_compile
+    from vbikit.solve.compile_notice import announce_compile
 
     announce_compile(kernels.lean_lanes)  # its own compiled kernel: a batch's first run may compile it
     args = _lean_arguments(call, modal_step, vehicle_step, lanes=True)

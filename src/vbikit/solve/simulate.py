@@ -7,12 +7,12 @@ from __future__ import annotations
 
 import logging
 import math
-import os
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
 from vbikit.solve.budget import Limits
+from vbikit.solve.compile_notice import announce_compile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.integrators import KernelCall, get_integrator
 from vbikit.solve.plan import RunPlan, TimeGrid, plan_run
@@ -22,38 +22,6 @@ if TYPE_CHECKING:  # pragma: no cover
     from vbikit.solve.system import KernelData
 
 log = logging.getLogger(__name__)
-#: says when numba compiles the kernels (the first run on a machine, ≈ 5 s of CPU; benchmarks/bench_compile.py)
-#: and where its cache goes; the CLI shows it
-compile_log = logging.getLogger("vbikit.solve.compile")
-
-
-#: CPU seconds numba takes to compile the default path (benchmarks/bench_compile.py: 5.3 s for the
-#: demo, measured 2026-12-04 on the shared 2-core machine at load ≈ 4; rounded up for a busier one)
-COMPILE_SECONDS = 7
-
-
-def kernels_cached(kernel) -> bool:
-    """Whether ``kernel`` (a numba dispatcher) is compiled in this process or in numba's on-disk cache
-    (its index file exists); True for a plain function (NUMBA_DISABLE_JIT=1)."""
-    overloads = getattr(kernel, "overloads", None)  # not ``signatures``: listing them costs ≈ 16 µs a call
-    if overloads is None or overloads:
-        return True
-    index = getattr(getattr(getattr(kernel, "_cache", None), "_cache_file", None), "_index_path", None)
-    return index is not None and os.path.exists(index)
-
-
-def announce_compile(kernel, who: str = "") -> None:
-    """Log (``vbikit.solve.compile``, shown by the CLI) that the kernels are about to be compiled when
-    ``kernel`` is neither compiled in this process nor in numba's on-disk cache; ``who`` says where
-    (e.g. "each of the 2 worker processes, on its first batch")."""
-    if kernels_cached(kernel):
-        return
-    where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
-    compile_log.info("compiling the kernels%s, first run only: about %d s of CPU (later runs load them from numba's "
-                     "cache%s in under a second; `vbikit compile` does it in advance)", f" in {who}" if who else "",
-                     COMPILE_SECONDS, f" in {where}" if where else "")
-
-
 #: memory [bytes] the stored histories of one ``simulate`` may take before they are thinned
 HISTORY_BUDGET = 1 << 30
 

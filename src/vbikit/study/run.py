@@ -277,7 +277,7 @@ def _announce_compile(study, first_index, scheduler, workers) -> None:
     """Say that the workers will compile the kernels first (instead of a progress bar frozen at 0 %);
     ``first_index``: the first crossing to run (its integrator's kernel)."""
     from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
-    from vbikit.solve.simulate import announce_compile
+    from vbikit.solve.compile_notice import announce_compile
 
     first = getattr(study, "scenario_dict", None)  # a parameter study's crossing (traffic: the default)
     name = (first(first_index).get("crossing", {}).get("integrator") if first is not None else None) \
