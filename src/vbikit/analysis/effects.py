@@ -95,18 +95,50 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
     return x, np.broadcast_to(y, x.shape)
 
 
+@dataclass(frozen=True)
+class ContactInfluences:
+    """I(x_p(t), y_p) of some effects at the (time, contact point) pairs on the deck only, shape
+    (n_on, n_effects) with their ``rows`` (time index) and ``points`` (contact point index): the
+    non-zero part of ``contact_influences`` (about half of a crossing's pairs are off the deck, and
+    the dense (n_effects, n_t, n_cp) array costs more to allocate and reduce than its values).
+    ``sums(per_point)`` gives Σ_p I_e(x_p(t), y_p) · a_p(t) for every effect and time."""
+
+    rows: NDArray[np.int64]
+    points: NDArray[np.int64]
+    values: NDArray[np.float64]
+    n_t: int
+    n_cp: int
+
+    def sums(self, per_pair: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Σ_p I_e(t, p) a(t, p) (n_effects, n_t) for ``per_pair`` = a at the on-deck pairs (n_on,)."""
+        return np.stack([np.bincount(self.rows, weights=self.values[:, k] * per_pair, minlength=self.n_t)
+                         for k in range(self.values.shape[1])]) if self.values.shape[1] else np.zeros((0, self.n_t))
+
+    def dense(self) -> NDArray[np.float64]:
+        """The (n_effects, n_t, n_cp) array of ``contact_influences`` (0 off the deck)."""
+        out = np.zeros((self.values.shape[1], self.n_t, self.n_cp))
+        out[:, self.rows, self.points] = self.values.T
+        return out
+
+
+def contact_influence_table(result: CrossingResult, effects: Sequence[LoadEffect]) -> ContactInfluences:
+    """``contact_influences`` as a [`ContactInfluences`][vbikit.analysis.effects.ContactInfluences]: the
+    values at the on-deck (time, point) pairs only (crossings on the same time grid and contact layout,
+    e.g. a study's lanes, share it)."""
+    x, y = contact_positions(result)
+    bridge = result.crossing.bridge
+    xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
+    rows, points = np.nonzero((xi >= 0.0) & (xi <= bridge.span))
+    values = influence_values(effects, x[rows, points], np.asarray(y)[rows, points]) if effects and rows.size \
+        else np.zeros((rows.size, len(effects)))
+    return ContactInfluences(rows, points, values, x.shape[0], x.shape[1])
+
+
 def contact_influences(result: CrossingResult, effects: Sequence[LoadEffect]) -> NDArray[np.float64]:
     """I(x_p(t), y_p) of every effect for every time and contact point, shape (n_effects, n_t, n_cp)
     (0 off the deck); the effects share the points' positions and whatever their influence
     functions share (``vbikit.bridge.effects.influence_values``)."""
-    x, y = contact_positions(result)
-    bridge = result.crossing.bridge
-    xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
-    on = (xi >= 0.0) & (xi <= bridge.span)
-    out = np.zeros((len(effects),) + x.shape)
-    if effects and np.any(on):
-        out[:, on] = influence_values(effects, x[on], y[on]).T
-    return out
+    return contact_influence_table(result, effects).dense()
 
 
 def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
@@ -126,12 +158,13 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
 
 def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
                           xi_static: NDArray[np.float64] | None = None,
-                          influence: NDArray[np.float64] | None = None,
+                          influence: NDArray[np.float64] | ContactInfluences | None = None,
                           check_step: bool = True) -> list[LoadEffectResponse]:
     """``load_effect_response`` for several effects at once: one static modal history (mode
     superposition), or (mode acceleration) one pass over the contact points' positions, their
     static and dynamic forces and the modal correction of every effect; ``influence``: their
-    ``contact_influences`` (n_effects, n_t, n_cp) if already computed.  ``check_step``: the step
+    ``contact_influence_table`` (or the dense ``contact_influences``, n_effects × n_t × n_cp) if
+    already computed.  ``check_step``: the step
     check (``vbikit.analysis.effect_step``, its warning logged) now; False: on first use of a
     response's ``step_warning`` or ``recommended_dt`` (the population runners, which read
     neither: a check costs about as much as the rest of the reduction)."""
@@ -146,15 +179,21 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
                 for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
-    infl = contact_influences(result, effects) if influence is None else np.asarray(influence)
+    infl = contact_influence_table(result, effects) if influence is None else influence
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
     omega, zeta = bridge.omega, bridge.damping_ratios
     modal = np.stack([e.modal for e in effects], axis=1) / (omega**2)[:, None]  # (n_modes, n_effects)
     correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
-    static = -(infl @ static_loads)
-    dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
+    if isinstance(infl, ContactInfluences):  # the on-deck pairs only
+        rows, pts = infl.rows, infl.points
+        static = -infl.sums(static_loads[pts])
+        dynamic = -infl.sums(result.wheel_forces[rows, cp.wheel[pts]] * share[pts]) - correction.T
+    else:
+        infl = np.asarray(infl)
+        dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
+        static = -(infl @ static_loads)
+        dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step))
             for k, e in enumerate(effects)]
 
