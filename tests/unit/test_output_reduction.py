@@ -4,7 +4,8 @@ scenario bridges kept per spec."""
 import numpy as np
 import pytest
 
-from vbikit.analysis.effects import contact_influence, contact_influences, load_effect_responses
+from vbikit.analysis.effects import (ContactInfluences, contact_influence_table, contact_influences,
+                                    load_effect_responses)
 from vbikit.bridge import effects as bridge_effects
 from vbikit.bridge.presets import paper_deck
 from vbikit.solve import Crossing, simulate
@@ -49,11 +50,27 @@ def test_effects_reduced_together_equal_one_by_one(deck_result):
     effects = bridge.default_load_effects(girder=2)
     together = load_effect_responses(deck_result, effects)
     for e, r in zip(effects, together):
-        alone = load_effect_responses(deck_result, [e], influence=contact_influence(deck_result, e)[None])[0]
+        alone = load_effect_responses(deck_result, [e], influence=contact_influence_table(deck_result, [e]))[0]
         assert np.allclose(r.dynamic, alone.dynamic, rtol=1e-13, atol=1e-12 * np.abs(alone.dynamic).max())
         assert np.array_equal(r.static, alone.static)
     sup = load_effect_responses(deck_result, effects, "mode-superposition")
     assert [r.effect for r in sup] == list(effects) and load_effect_responses(deck_result, []) == []
+
+
+def test_on_deck_pairs_reduce_like_the_dense_influence_array(deck_result):
+    # the sparse table (on-deck (time, point) pairs only) against the dense (n_effects, n_t, n_cp)
+    # array summed by matrix products: the same sums in another order, equal to round-off; and the
+    # table's dense form is the array contact_influences gives (checked point by point above)
+    effects = deck_result.crossing.bridge.default_load_effects(girder=2)
+    table = contact_influence_table(deck_result, effects)
+    dense = table.dense()
+    assert isinstance(table, ContactInfluences) and 0 < table.rows.size < dense[0].size  # some points off the deck
+    assert np.array_equal(dense, contact_influences(deck_result, effects))
+    assert np.count_nonzero(dense) <= table.values.size
+    for sparse, full in zip(load_effect_responses(deck_result, effects, influence=table),
+                            load_effect_responses(deck_result, effects, influence=dense)):
+        for a, b in ((sparse.static, full.static), (sparse.dynamic, full.dynamic)):
+            assert np.allclose(a, b, rtol=0.0, atol=1e-13 * np.abs(b).max())
 
 
 def test_influence_values_keeps_plain_functions_apart():
