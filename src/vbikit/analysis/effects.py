@@ -109,10 +109,20 @@ class ContactInfluences:
     n_t: int
     n_cp: int
 
+    @cached_property
+    def _groups(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        """The first pair of every time with pairs on the deck (``rows`` is sorted), and those times."""
+        starts = np.flatnonzero(np.r_[True, self.rows[1:] != self.rows[:-1]]) if self.rows.size else \
+            np.zeros(0, np.int64)
+        return starts, self.rows[starts]
+
     def sums(self, per_pair: NDArray[np.float64]) -> NDArray[np.float64]:
         """Σ_p I_e(t, p) a(t, p) (n_effects, n_t) for ``per_pair`` = a at the on-deck pairs (n_on,)."""
-        return np.stack([np.bincount(self.rows, weights=self.values[:, k] * per_pair, minlength=self.n_t)
-                         for k in range(self.values.shape[1])]) if self.values.shape[1] else np.zeros((0, self.n_t))
+        out = np.zeros((self.values.shape[1], self.n_t))
+        starts, times = self._groups
+        if starts.size and self.values.shape[1]:
+            out[:, times] = np.add.reduceat(self.values * per_pair[:, None], starts, axis=0).T
+        return out
 
     def dense(self) -> NDArray[np.float64]:
         """The (n_effects, n_t, n_cp) array of ``contact_influences`` (0 off the deck)."""
