@@ -76,7 +76,7 @@ STAGES = {
     "step maps": ("vbikit.solve.modal_step", "exact_step"),
     "vehicle step maps": ("vbikit.solve.modal_step", "vehicle_step"),
     "static reference": ("vbikit.solve.system", "static_modal_history"),
-    "contact influences": ("vbikit.analysis.effects", "contact_influences"),
+    "contact influences": ("vbikit.analysis.effects", "contact_influence_table"),
     "load-effect histories": ("vbikit.analysis.effects", "load_effect_responses"),
     "output reduction (traffic, all outputs)": ("vbikit.traffic.study", "reduce_crossing"),
     "knot limits (lifetime)": ("vbikit.lifetime.peaks", "with_knot_limits"),

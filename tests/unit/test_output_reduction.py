@@ -67,6 +67,12 @@ def test_on_deck_pairs_reduce_like_the_dense_influence_array(deck_result):
     assert isinstance(table, ContactInfluences) and 0 < table.rows.size < dense[0].size  # some points off the deck
     assert np.array_equal(dense, contact_influences(deck_result, effects))
     assert np.count_nonzero(dense) <= table.values.size
+    # several weights at once are each weight alone; a weight of one on every pair sums the dense array
+    a = np.random.default_rng(1).normal(size=(table.rows.size, 2))
+    both = table.sums(a)
+    assert both.shape == (2, len(effects), dense.shape[1])
+    assert np.array_equal(both[1], table.sums(a[:, 1]))
+    assert np.allclose(table.sums(np.ones(table.rows.size)), dense.sum(axis=2), rtol=0.0, atol=1e-13 * np.abs(dense).sum(axis=2).max())
     for sparse, full in zip(load_effect_responses(deck_result, effects, influence=table),
                             load_effect_responses(deck_result, effects, influence=dense)):
         for a, b in ((sparse.static, full.static), (sparse.dynamic, full.dynamic)):

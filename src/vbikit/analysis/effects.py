@@ -117,12 +117,16 @@ class ContactInfluences:
         return starts, self.rows[starts]
 
     def sums(self, per_pair: NDArray[np.float64]) -> NDArray[np.float64]:
-        """Σ_p I_e(t, p) a(t, p) (n_effects, n_t) for ``per_pair`` = a at the on-deck pairs (n_on,)."""
-        out = np.zeros((self.values.shape[1], self.n_t))
+        """Σ_p I_e(t, p) a_j(t, p), shape (n_effects, n_t), for ``per_pair`` = a at the on-deck pairs,
+        (n_on,) one weight, or (n_on, n_j) several at once: then shape (n_j, n_effects, n_t)."""
+        a = np.asarray(per_pair, float)
+        n_e, n_j = self.values.shape[1], (1 if a.ndim == 1 else a.shape[1])
+        out = np.zeros((n_j, n_e, self.n_t))
         starts, times = self._groups
-        if starts.size and self.values.shape[1]:
-            out[:, times] = np.add.reduceat(self.values * per_pair[:, None], starts, axis=0).T
-        return out
+        if starts.size and n_e:
+            products = (a.reshape(-1, n_j)[:, :, None] * self.values[:, None, :]).reshape(-1, n_j * n_e)
+            out[:, :, times] = np.add.reduceat(products, starts, axis=0).T.reshape(n_j, n_e, -1)
+        return out[0] if a.ndim == 1 else out
 
     def dense(self) -> NDArray[np.float64]:
         """The (n_effects, n_t, n_cp) array of ``contact_influences`` (0 off the deck)."""
@@ -138,10 +142,12 @@ def contact_influence_table(result: CrossingResult, effects: Sequence[LoadEffect
     x, y = contact_positions(result)
     bridge = result.crossing.bridge
     xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
-    rows, points = np.nonzero((xi >= 0.0) & (xi <= bridge.span))
-    values = influence_values(effects, x[rows, points], np.asarray(y)[rows, points]) if effects and rows.size \
-        else np.zeros((rows.size, len(effects)))
-    return ContactInfluences(rows, points, values, x.shape[0], x.shape[1])
+    n_t, n_cp = x.shape
+    on = np.flatnonzero((xi >= 0.0) & (xi <= bridge.span))  # (time, point) pairs on the deck, time-major
+    rows, points = np.divmod(on, n_cp)
+    values = influence_values(effects, x.ravel()[on], y[0][points]) if effects and on.size \
+        else np.zeros((on.size, len(effects)))
+    return ContactInfluences(rows, points, values, n_t, n_cp)
 
 
 def contact_influences(result: CrossingResult, effects: Sequence[LoadEffect]) -> NDArray[np.float64]:
@@ -197,8 +203,9 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
     if isinstance(infl, ContactInfluences):  # the on-deck pairs only
         rows, pts = infl.rows, infl.points
-        static = -infl.sums(static_loads[pts])
-        dynamic = -infl.sums(result.wheel_forces[rows, cp.wheel[pts]] * share[pts]) - correction.T
+        static, dynamic = -infl.sums(np.stack([static_loads[pts], result.wheel_forces[rows, cp.wheel[pts]] * share[pts]],
+                                              axis=1))
+        dynamic -= correction.T
     else:
         infl = np.asarray(infl)
         dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
