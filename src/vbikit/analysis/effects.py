@@ -101,7 +101,8 @@ class ContactInfluences:
     (n_on, n_effects) with their ``rows`` (time index) and ``points`` (contact point index): the
     non-zero part of ``contact_influences`` (about half of a crossing's pairs are off the deck, and
     the dense (n_effects, n_t, n_cp) array costs more to allocate and reduce than its values).
-    ``sums(per_point)`` gives Σ_p I_e(x_p(t), y_p) · a_p(t) for every effect and time."""
+    ``sums(a)`` gives Σ_p I_e(x_p(t), y_p) · a_p(t) for every effect and time (mode acceleration's
+    static and quasi-static terms, module docstring)."""
 
     rows: NDArray[np.int64]
     points: NDArray[np.int64]
@@ -136,9 +137,8 @@ class ContactInfluences:
 
 
 def contact_influence_table(result: CrossingResult, effects: Sequence[LoadEffect]) -> ContactInfluences:
-    """``contact_influences`` as a [`ContactInfluences`][vbikit.analysis.effects.ContactInfluences]: the
-    values at the on-deck (time, point) pairs only (crossings on the same time grid and contact layout,
-    e.g. a study's lanes, share it)."""
+    """``contact_influences`` as a ``ContactInfluences``: the values at the on-deck (time, point)
+    pairs only (crossings on the same time grid and contact layout, e.g. a study's lanes, share it)."""
     x, y = contact_positions(result)
     bridge = result.crossing.bridge
     xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
