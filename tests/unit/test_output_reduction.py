@@ -140,3 +140,34 @@ def test_quadratic_roots_of_the_peak_refinement_agree_with_numpy_roots():
     peak, when = hermite_peak(t, np.sin(t), np.cos(t), int(np.argmax(np.sin(t))))
     # the cubic Hermite interpolant's error: h⁴/384 · max|f''''| = 1e-5 at h = 0.25
     assert peak == pytest.approx(1.0, abs=2e-5) and when == pytest.approx(np.pi / 2, abs=5e-3)
+
+
+def test_whole_period_random_roads_are_kept_per_spec_bitwise_and_bounded():
+    # a scenario's whole-period road is generated once per [road] spec: the same object again, read-only,
+    # bit for bit random_profile's road (and its correlated right line); another seed is another road
+    import importlib
+
+    from vbikit.road import RoadPSD, correlated_profile, random_profile
+    from vbikit.scenario.schema import parse_scenario
+
+    build_module = importlib.import_module("vbikit.scenario.build")
+
+    def scenario(**road):
+        return parse_scenario({"bridge": {"model": "paper-bridge-2-beam"}, "vehicle": {"model": "hs20-44"},
+                               "crossing": {"speed_kmh": 75}, "road": {"class": "C", **road}}, ".")
+
+    s = scenario(seed=11, right_coherence=0.5)
+    left = build_module.build_road(s.road, s)
+    right = build_module.build_right_road(s.road, s, left)
+    assert build_module.build_road(s.road, s) is left and build_module.build_right_road(s.road, s, left) is right
+    assert not left.z.flags.writeable and not right.z.flags.writeable
+    direct = random_profile(RoadPSD.iso("C"), 11)
+    assert np.array_equal(left.x, direct.x) and np.array_equal(left.z, direct.z)
+    assert np.array_equal(right.z, correlated_profile(direct, RoadPSD.iso("C"), 11, 0.5).z)
+    other = build_module.build_road(scenario(seed=12).road, s)
+    assert other is not left and not np.array_equal(other.z, left.z)
+    window = build_module.build_road(s.road, s, (0.0, 20.0))  # a window is generated each time
+    assert window is not build_module.build_road(s.road, s, (0.0, 20.0))
+    for seed in range(20, 20 + build_module.ROAD_CACHE_SIZE + 2):
+        build_module.build_road(scenario(seed=seed).road, s)
+    assert len(build_module._ROADS) == build_module.ROAD_CACHE_SIZE
