@@ -66,7 +66,7 @@ def test_on_deck_pairs_reduce_like_the_dense_influence_array(deck_result):
     dense = table.dense()
     assert isinstance(table, ContactInfluences) and 0 < table.rows.size < dense[0].size  # some points off the deck
     assert np.array_equal(dense, contact_influences(deck_result, effects))
-    assert np.count_nonzero(dense) <= table.values.size
+    assert table.values.shape == (len(effects), table.rows.size) and np.count_nonzero(dense) <= table.values.size
     # several weights at once are each weight alone; a weight of one on every pair sums the dense array
     a = np.random.default_rng(1).normal(size=(table.rows.size, 2))
     both = table.sums(a)

@@ -97,12 +97,12 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
 
 @dataclass(frozen=True)
 class ContactInfluences:
-    """I(x_p(t), y_p) of some effects at the (time, contact point) pairs on the deck only, shape
-    (n_on, n_effects) with their ``rows`` (time index) and ``points`` (contact point index): the
-    non-zero part of ``contact_influences`` (about half of a crossing's pairs are off the deck, and
-    the dense (n_effects, n_t, n_cp) array costs more to allocate and reduce than its values).
-    ``sums(a)`` gives Σ_p I_e(x_p(t), y_p) · a_p(t) for every effect and time (mode acceleration's
-    static and quasi-static terms, module docstring)."""
+    """I(x_p(t), y_p) of some effects at the (time, contact point) pairs on the deck only, ``values``
+    of shape (n_effects, n_on), with the pairs' ``rows`` (time index, ascending) and ``points``
+    (contact point index): the non-zero part of ``contact_influences`` (about half of a crossing's
+    pairs are off the deck, and the dense (n_effects, n_t, n_cp) array costs more to allocate and
+    reduce than its values).  ``sums(a)`` gives Σ_p I_e(x_p(t), y_p) · a_p(t) for every effect and
+    time (mode acceleration's static and quasi-static terms, module docstring)."""
 
     rows: NDArray[np.int64]
     points: NDArray[np.int64]
@@ -119,20 +119,22 @@ class ContactInfluences:
 
     def sums(self, per_pair: NDArray[np.float64]) -> NDArray[np.float64]:
         """Σ_p I_e(t, p) a_j(t, p), shape (n_effects, n_t), for ``per_pair`` = a at the on-deck pairs,
-        (n_on,) one weight, or (n_on, n_j) several at once: then shape (n_j, n_effects, n_t)."""
+        (n_on,) one weight, or (n_on, n_j) several at once: then shape (n_j, n_effects, n_t) (each
+        time's pairs summed in order, one contiguous ``reduceat`` per effect and weight)."""
         a = np.asarray(per_pair, float)
-        n_e, n_j = self.values.shape[1], (1 if a.ndim == 1 else a.shape[1])
-        out = np.zeros((n_j, n_e, self.n_t))
+        weights = a[None, :] if a.ndim == 1 else np.ascontiguousarray(a.T)
+        out = np.zeros((weights.shape[0], self.values.shape[0], self.n_t))
         starts, times = self._groups
-        if starts.size and n_e:
-            products = (a.reshape(-1, n_j)[:, :, None] * self.values[:, None, :]).reshape(-1, n_j * n_e)
-            out[:, :, times] = np.add.reduceat(products, starts, axis=0).T.reshape(n_j, n_e, -1)
+        if starts.size:
+            for j, w in enumerate(weights):
+                for e, v in enumerate(self.values):
+                    out[j, e, times] = np.add.reduceat(v * w, starts)
         return out[0] if a.ndim == 1 else out
 
     def dense(self) -> NDArray[np.float64]:
         """The (n_effects, n_t, n_cp) array of ``contact_influences`` (0 off the deck)."""
-        out = np.zeros((self.values.shape[1], self.n_t, self.n_cp))
-        out[:, self.rows, self.points] = self.values.T
+        out = np.zeros((self.values.shape[0], self.n_t, self.n_cp))
+        out[:, self.rows, self.points] = self.values
         return out
 
 
@@ -145,8 +147,8 @@ def contact_influence_table(result: CrossingResult, effects: Sequence[LoadEffect
     n_t, n_cp = x.shape
     on = np.flatnonzero((xi >= 0.0) & (xi <= bridge.span))  # (time, point) pairs on the deck, time-major
     rows, points = np.divmod(on, n_cp)
-    values = influence_values(effects, x.ravel()[on], y[0][points]) if effects and on.size \
-        else np.zeros((on.size, len(effects)))
+    values = np.ascontiguousarray(influence_values(effects, x.ravel()[on], y[0][points]).T) if effects and on.size \
+        else np.zeros((len(effects), on.size))
     return ContactInfluences(rows, points, values, n_t, n_cp)
 
 
