@@ -201,8 +201,9 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
     omega, zeta = bridge.omega, bridge.damping_ratios
-    modal = np.stack([e.modal for e in effects], axis=1) / (omega**2)[:, None]  # (n_modes, n_effects)
-    correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
+    rates = result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)
+    # one matrix-vector product per effect: an effect's history does not depend on which others are reduced with it
+    correction = np.stack([rates @ (e.modal / omega**2) for e in effects], axis=1)  # (n_t, n_effects)
     if isinstance(infl, ContactInfluences):  # the on-deck pairs only
         rows, pts = infl.rows, infl.points
         static, dynamic = -infl.sums(np.stack([static_loads[pts], result.wheel_forces[rows, cp.wheel[pts]] * share[pts]],
