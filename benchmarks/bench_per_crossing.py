@@ -66,7 +66,8 @@ def _kernel_clock():
 
 
 #: ``--stages``: functions whose thread CPU time is summed per crossing or event (inclusive: a stage
-#: that calls another counts it too), module -> attribute path
+#: that calls another counts it too), module -> attribute path (``a|b``: the first that the tree has,
+#: so that ``--compare`` can time an older tree; a stage neither tree has is left out)
 STAGES = {
     "random road (window)": ("vbikit.scenario.build", "build_road"),
     "event crossing (vehicles combined)": ("vbikit.traffic.study", "_Template.with_vehicles"),
@@ -76,7 +77,7 @@ STAGES = {
     "step maps": ("vbikit.solve.modal_step", "exact_step"),
     "vehicle step maps": ("vbikit.solve.modal_step", "vehicle_step"),
     "static reference": ("vbikit.solve.system", "static_modal_history"),
-    "contact influences": ("vbikit.analysis.effects", "contact_influences"),
+    "contact influences": ("vbikit.analysis.effects", "contact_influence_table|contact_influences"),
     "load-effect histories": ("vbikit.analysis.effects", "load_effect_responses"),
     "output reduction (traffic, all outputs)": ("vbikit.traffic.study", "reduce_crossing"),
     "knot limits (lifetime)": ("vbikit.lifetime.peaks", "with_knot_limits"),
@@ -91,10 +92,18 @@ def _stage_clocks() -> dict[str, float]:
     spent = {name: 0.0 for name in STAGES}
     for name, (module, path) in STAGES.items():
         importlib.import_module(module)
-        owner = sys.modules[module]  # the module itself (a package may shadow it with a function)
-        *parents, attr = path.split(".")
-        for part in parents:
-            owner = getattr(owner, part)
+        found = None
+        for alternative in path.split("|"):
+            owner = sys.modules[module]  # the module itself (a package may shadow it with a function)
+            *parents, attr = alternative.split(".")
+            for part in parents:
+                owner = getattr(owner, part, None)
+            if owner is not None and hasattr(owner, attr):
+                found = owner, attr
+                break
+        if found is None:
+            continue
+        owner, attr = found
         inner = getattr(owner, attr)
 
         def timed(*args, _inner=inner, _name=name, **kw):

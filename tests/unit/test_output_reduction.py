@@ -4,7 +4,8 @@ scenario bridges kept per spec."""
 import numpy as np
 import pytest
 
-from vbikit.analysis.effects import contact_influence, contact_influences, load_effect_responses
+from vbikit.analysis.effects import (ContactInfluences, contact_influence_table, contact_influences,
+                                    load_effect_responses)
 from vbikit.bridge import effects as bridge_effects
 from vbikit.bridge.presets import paper_deck
 from vbikit.solve import Crossing, simulate
@@ -49,11 +50,33 @@ def test_effects_reduced_together_equal_one_by_one(deck_result):
     effects = bridge.default_load_effects(girder=2)
     together = load_effect_responses(deck_result, effects)
     for e, r in zip(effects, together):
-        alone = load_effect_responses(deck_result, [e], influence=contact_influence(deck_result, e)[None])[0]
-        assert np.allclose(r.dynamic, alone.dynamic, rtol=1e-13, atol=1e-12 * np.abs(alone.dynamic).max())
-        assert np.array_equal(r.static, alone.static)
+        alone = load_effect_responses(deck_result, [e], influence=contact_influence_table(deck_result, [e]))[0]
+        # each effect's sums and modal correction are its own: bit for bit, with or without the others
+        assert np.array_equal(r.dynamic, alone.dynamic) and np.array_equal(r.static, alone.static)
     sup = load_effect_responses(deck_result, effects, "mode-superposition")
     assert [r.effect for r in sup] == list(effects) and load_effect_responses(deck_result, []) == []
+
+
+def test_on_deck_pairs_reduce_like_the_dense_influence_array(deck_result):
+    # the sparse table (on-deck (time, point) pairs only) against the dense (n_effects, n_t, n_cp)
+    # array summed by matrix products: the same sums in another order, equal to round-off; and the
+    # table's dense form is the array contact_influences gives (checked point by point above)
+    effects = deck_result.crossing.bridge.default_load_effects(girder=2)
+    table = contact_influence_table(deck_result, effects)
+    dense = table.dense()
+    assert isinstance(table, ContactInfluences) and 0 < table.rows.size < dense[0].size  # some points off the deck
+    assert np.array_equal(dense, contact_influences(deck_result, effects))
+    assert table.values.shape == (len(effects), table.rows.size) and np.count_nonzero(dense) <= table.values.size
+    # several weights at once are each weight alone; a weight of one on every pair sums the dense array
+    a = np.random.default_rng(1).normal(size=(table.rows.size, 2))
+    both = table.sums(a)
+    assert both.shape == (2, len(effects), dense.shape[1])
+    assert np.array_equal(both[1], table.sums(a[:, 1]))
+    assert np.allclose(table.sums(np.ones(table.rows.size)), dense.sum(axis=2), rtol=0.0, atol=1e-13 * np.abs(dense).sum(axis=2).max())
+    for sparse, full in zip(load_effect_responses(deck_result, effects, influence=table),
+                            load_effect_responses(deck_result, effects, influence=dense)):
+        for a, b in ((sparse.static, full.static), (sparse.dynamic, full.dynamic)):
+            assert np.allclose(a, b, rtol=0.0, atol=1e-13 * np.abs(b).max())
 
 
 def test_influence_values_keeps_plain_functions_apart():
@@ -117,3 +140,34 @@ def test_quadratic_roots_of_the_peak_refinement_agree_with_numpy_roots():
     peak, when = hermite_peak(t, np.sin(t), np.cos(t), int(np.argmax(np.sin(t))))
     # the cubic Hermite interpolant's error: h⁴/384 · max|f''''| = 1e-5 at h = 0.25
     assert peak == pytest.approx(1.0, abs=2e-5) and when == pytest.approx(np.pi / 2, abs=5e-3)
+
+
+def test_whole_period_random_roads_are_kept_per_spec_bitwise_and_bounded():
+    # a scenario's whole-period road is generated once per [road] spec: the same object again, read-only,
+    # bit for bit random_profile's road (and its correlated right line); another seed is another road
+    import importlib
+
+    from vbikit.road import RoadPSD, correlated_profile, random_profile
+    from vbikit.scenario.schema import parse_scenario
+
+    build_module = importlib.import_module("vbikit.scenario.build")
+
+    def scenario(**road):
+        return parse_scenario({"bridge": {"model": "paper-bridge-2-beam"}, "vehicle": {"model": "hs20-44"},
+                               "crossing": {"speed_kmh": 75}, "road": {"class": "C", **road}}, ".")
+
+    s = scenario(seed=11, right_coherence=0.5)
+    left = build_module.build_road(s.road, s)
+    right = build_module.build_right_road(s.road, s, left)
+    assert build_module.build_road(s.road, s) is left and build_module.build_right_road(s.road, s, left) is right
+    assert not left.z.flags.writeable and not right.z.flags.writeable
+    direct = random_profile(RoadPSD.iso("C"), 11)
+    assert np.array_equal(left.x, direct.x) and np.array_equal(left.z, direct.z)
+    assert np.array_equal(right.z, correlated_profile(direct, RoadPSD.iso("C"), 11, 0.5).z)
+    other = build_module.build_road(scenario(seed=12).road, s)
+    assert other is not left and not np.array_equal(other.z, left.z)
+    window = build_module.build_road(s.road, s, (0.0, 20.0))  # a window is generated each time
+    assert window is not build_module.build_road(s.road, s, (0.0, 20.0))
+    for seed in range(20, 20 + build_module.ROAD_CACHE_SIZE + 2):
+        build_module.build_road(scenario(seed=seed).road, s)
+    assert len(build_module._ROADS) == build_module.ROAD_CACHE_SIZE

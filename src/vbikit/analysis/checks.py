@@ -56,8 +56,8 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     for side, road in (("", crossing.road), ("right wheel line ", crossing.road_right)):
         if road is None:
             continue
-        sel = (road.x >= x_lo) & (road.x <= x_hi)
-        z = road.z[sel] if sel.any() else road.z
+        lo, hi = np.searchsorted(road.x, x_lo, side="left"), np.searchsorted(road.x, x_hi, side="right")
+        z = road.z[lo:hi] if hi > lo else road.z  # the stations x_lo ≤ x ≤ x_hi (x increasing)
         peak = float(np.max(np.abs(z))) if z.size else 0.0
         if peak > MAX_ROAD_FEATURE:
             out.append(f"road: the {side}profile reaches {peak:.3g} m where the wheels go (more than {MAX_ROAD_FEATURE} m); "

@@ -95,18 +95,68 @@ def contact_positions(result: CrossingResult) -> tuple[NDArray[np.float64], NDAr
     return x, np.broadcast_to(y, x.shape)
 
 
+@dataclass(frozen=True)
+class ContactInfluences:
+    """I(x_p(t), y_p) of some effects at the (time, contact point) pairs on the deck only, ``values``
+    of shape (n_effects, n_on), with the pairs' ``rows`` (time index, ascending) and ``points``
+    (contact point index): the non-zero part of ``contact_influences`` (about half of a crossing's
+    pairs are off the deck, and the dense (n_effects, n_t, n_cp) array costs more to allocate and
+    reduce than its values).  ``sums(a)`` gives Σ_p I_e(x_p(t), y_p) · a_p(t) for every effect and
+    time (mode acceleration's static and quasi-static terms, module docstring)."""
+
+    rows: NDArray[np.int64]
+    points: NDArray[np.int64]
+    values: NDArray[np.float64]
+    n_t: int
+    n_cp: int
+
+    @cached_property
+    def _groups(self) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+        """The first pair of every time with pairs on the deck (``rows`` is sorted), and those times."""
+        starts = np.flatnonzero(np.r_[True, self.rows[1:] != self.rows[:-1]]) if self.rows.size else \
+            np.zeros(0, np.int64)
+        return starts, self.rows[starts]
+
+    def sums(self, per_pair: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Σ_p I_e(t, p) a_j(t, p), shape (n_effects, n_t), for ``per_pair`` = a at the on-deck pairs,
+        (n_on,) one weight, or (n_on, n_j) several at once: then shape (n_j, n_effects, n_t) (each
+        time's pairs summed in order, one contiguous ``reduceat`` per effect and weight)."""
+        a = np.asarray(per_pair, float)
+        weights = a[None, :] if a.ndim == 1 else np.ascontiguousarray(a.T)
+        out = np.zeros((weights.shape[0], self.values.shape[0], self.n_t))
+        starts, times = self._groups
+        if starts.size:
+            for j, w in enumerate(weights):
+                for e, v in enumerate(self.values):
+                    out[j, e, times] = np.add.reduceat(v * w, starts)
+        return out[0] if a.ndim == 1 else out
+
+    def dense(self) -> NDArray[np.float64]:
+        """The (n_effects, n_t, n_cp) array of ``contact_influences`` (0 off the deck)."""
+        out = np.zeros((self.values.shape[0], self.n_t, self.n_cp))
+        out[:, self.rows, self.points] = self.values
+        return out
+
+
+def contact_influence_table(result: CrossingResult, effects: Sequence[LoadEffect]) -> ContactInfluences:
+    """``contact_influences`` as a ``ContactInfluences``: the values at the on-deck (time, point)
+    pairs only (crossings on the same time grid and contact layout, e.g. a study's lanes, share it)."""
+    x, y = contact_positions(result)
+    bridge = result.crossing.bridge
+    xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
+    n_t, n_cp = x.shape
+    on = np.flatnonzero((xi >= 0.0) & (xi <= bridge.span))  # (time, point) pairs on the deck, time-major
+    rows, points = np.divmod(on, n_cp)
+    values = np.ascontiguousarray(influence_values(effects, x.ravel()[on], y[0][points]).T) if effects and on.size \
+        else np.zeros((len(effects), on.size))
+    return ContactInfluences(rows, points, values, n_t, n_cp)
+
+
 def contact_influences(result: CrossingResult, effects: Sequence[LoadEffect]) -> NDArray[np.float64]:
     """I(x_p(t), y_p) of every effect for every time and contact point, shape (n_effects, n_t, n_cp)
     (0 off the deck); the effects share the points' positions and whatever their influence
     functions share (``vbikit.bridge.effects.influence_values``)."""
-    x, y = contact_positions(result)
-    bridge = result.crossing.bridge
-    xi = bridge.span_coordinate(x, y)  # along the span from each point's own support line (skew decks)
-    on = (xi >= 0.0) & (xi <= bridge.span)
-    out = np.zeros((len(effects),) + x.shape)
-    if effects and np.any(on):
-        out[:, on] = influence_values(effects, x[on], y[on]).T
-    return out
+    return contact_influence_table(result, effects).dense()
 
 
 def contact_influence(result: CrossingResult, effect: LoadEffect) -> NDArray[np.float64]:
@@ -126,12 +176,13 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
 
 def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
                           xi_static: NDArray[np.float64] | None = None,
-                          influence: NDArray[np.float64] | None = None,
+                          influence: NDArray[np.float64] | ContactInfluences | None = None,
                           check_step: bool = True) -> list[LoadEffectResponse]:
     """``load_effect_response`` for several effects at once: one static modal history (mode
     superposition), or (mode acceleration) one pass over the contact points' positions, their
     static and dynamic forces and the modal correction of every effect; ``influence``: their
-    ``contact_influences`` (n_effects, n_t, n_cp) if already computed.  ``check_step``: the step
+    ``contact_influence_table`` (or the dense ``contact_influences``, n_effects × n_t × n_cp) if
+    already computed.  ``check_step``: the step
     check (``vbikit.analysis.effect_step``, its warning logged) now; False: on first use of a
     response's ``step_warning`` or ``recommended_dt`` (the population runners, which read
     neither: a check costs about as much as the rest of the reduction)."""
@@ -146,15 +197,23 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
                 for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
-    infl = contact_influences(result, effects) if influence is None else np.asarray(influence)
+    infl = contact_influence_table(result, effects) if influence is None else influence
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
     omega, zeta = bridge.omega, bridge.damping_ratios
-    modal = np.stack([e.modal for e in effects], axis=1) / (omega**2)[:, None]  # (n_modes, n_effects)
-    correction = (result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)) @ modal  # (n_t, n_effects)
-    static = -(infl @ static_loads)
-    dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
+    rates = result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)
+    # one matrix-vector product per effect: an effect's history does not depend on which others are reduced with it
+    correction = np.stack([rates @ (e.modal / omega**2) for e in effects], axis=1)  # (n_t, n_effects)
+    if isinstance(infl, ContactInfluences):  # the on-deck pairs only
+        rows, pts = infl.rows, infl.points
+        static, dynamic = -infl.sums(np.stack([static_loads[pts], result.wheel_forces[rows, cp.wheel[pts]] * share[pts]],
+                                              axis=1))
+        dynamic -= correction.T
+    else:
+        infl = np.asarray(infl)
+        dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
+        static = -(infl @ static_loads)
+        dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step))
             for k, e in enumerate(effects)]
 

@@ -39,9 +39,9 @@ class RoadProfile:
         x, z = np.asarray(self.x, float), np.asarray(self.z, float)
         if x.ndim != 1 or x.shape != z.shape or x.size < 2:
             raise ValueError("road profile needs matching 1-D x and z arrays with at least 2 samples")
-        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(z))):
+        if not (np.isfinite(x).all() and np.isfinite(z).all()):
             raise ValueError("road profile contains non-finite values")
-        if np.any(np.diff(x) <= 0):
+        if (x[1:] <= x[:-1]).any():  # x_{j+1} − x_j ≤ 0 for finite x, without the differences' array
             raise ValueError("road profile stations x must be strictly increasing")
         object.__setattr__(self, "x", x)
         object.__setattr__(self, "z", z)

@@ -165,9 +165,17 @@ def random_profile(
     coef = np.zeros(n_samples // 2 + 1, complex)
     coef[k] = band
     coef[n_samples // 2] *= 2.0  # irfft counts the Nyquist term once, the others twice (k = 0 is never in the band)
-    z = np.fft.irfft(coef, n_samples) * (0.5 * n_samples)  # = Re Σ_k coef_k exp(2πi k j / N): one real FFT
+    z = np.fft.irfft(coef, n_samples)
+    z *= 0.5 * n_samples  # = Re Σ_k coef_k exp(2πi k j / N): one real FFT (scaled in place: no second period-long array)
+    return RoadProfile(_stations(x0, spacing, n_samples), z, label)
+
+
+@lru_cache(maxsize=4)
+def _stations(x0: float, spacing: float, n_samples: int) -> NDArray[np.float64]:
+    """x_j = x0 + Δx·j, j = 0 … N − 1 (read-only, kept: the profiles of one period and start share them)."""
     x = x0 + spacing * np.arange(n_samples)
-    return RoadProfile(x, z, label)
+    x.setflags(write=False)
+    return x
 
 
 def _window_samples(window: tuple[float, float], x0: float, spacing: float, n_samples: int) -> tuple[int, int]:

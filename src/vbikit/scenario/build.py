@@ -128,8 +128,14 @@ def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | Non
         return _profile(scenario, spec.profile_file_right, "road.profile_file_right")
     if left is None or spec.right_coherence >= 1.0:
         return None
-    return correlated_profile(left, road_psd(spec), spec.seed, spec.right_coherence, spacing=spec.spacing,
-                              length=spec.length, window=window)
+
+    def make() -> RoadProfile:
+        return correlated_profile(left, road_psd(spec), spec.seed, spec.right_coherence, spacing=spec.spacing,
+                                  length=spec.length, window=window)
+
+    if window is not None or _ROADS.get(_road_key(spec, "left")) is not left:  # kept only with its kept left line
+        return make()
+    return _kept_road(_road_key(spec, "right"), make)
 
 
 def road_psd(spec: RoadSpec) -> RoadPSD:
@@ -154,18 +160,50 @@ def _profile(scenario: Scenario, name: str, key: str) -> RoadProfile:
         raise ScenarioError(f"{key}: {err}") from None
 
 
+#: whole-period random roads built from [road] specs, newest last (``build_road``): runs of one road
+#: with other vehicles, tires or speeds (``vbikit compare-tires``, a script's sweep) generate it once
+_ROADS: "OrderedDict[str, RoadProfile | None]" = OrderedDict()
+#: [substitute] whole-period roads kept (a 1.3 km period at 0.01 m holds 1 MB of elevations)
+ROAD_CACHE_SIZE = 4
+
+
+def _kept_road(key: str, make) -> RoadProfile | None:
+    """``make()``, kept under ``key`` for the last ``ROAD_CACHE_SIZE`` keys (read-only arrays: shared)."""
+    road = _ROADS.get(key)
+    if key not in _ROADS:
+        road = make()
+        if road is not None:
+            road.x.setflags(write=False)
+            road.z.setflags(write=False)
+        if len(_ROADS) >= ROAD_CACHE_SIZE:
+            _ROADS.popitem(last=False)
+        _ROADS[key] = road
+    _ROADS.move_to_end(key)
+    return road
+
+
+def _road_key(spec: RoadSpec, side: str) -> str:
+    """The cache key of a random [road] spec's ``side`` ("left" or "right") whole-period profile: its every value."""
+    return json.dumps([side, spec.model_dump(mode="json")], sort_keys=True, default=str)
+
+
 def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] | None = None) -> RoadProfile | None:
     """The road profile of ``spec`` (None: smooth); a random one only over ``window`` = (x_lo, x_hi) [m]
     when given (the range a crossing touches, ``Crossing.road_extent``: the same road there, far cheaper
-    than its whole period, ``vbikit.road.random_profile``)."""
+    than its whole period, ``vbikit.road.random_profile``).  A whole-period random road is kept for the
+    last ``ROAD_CACHE_SIZE`` specs (the same object, read-only, for the same spec)."""
     defects = build_defects(spec)
     if spec.profile_file:
         return with_defects(_profile(scenario, spec.profile_file, "road.profile_file"), defects)
     if spec.road_class == "none":
         return with_defects(RoadProfile.flat(), defects) if defects else None
     label = f"class {spec.road_class}, seed {spec.seed}"
-    return with_defects(random_profile(road_psd(spec), spec.seed, spacing=spec.spacing, length=spec.length, label=label,
-                                       window=window), defects)
+
+    def make() -> RoadProfile:
+        return with_defects(random_profile(road_psd(spec), spec.seed, spacing=spec.spacing, length=spec.length,
+                                           label=label, window=window), defects)
+
+    return make() if window is not None else _kept_road(_road_key(spec, "left"), make)
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.effects import contact_influences, load_effect_responses
+from vbikit.analysis.effects import ContactInfluences, contact_influence_table, load_effect_responses
 from vbikit.analysis.plan import point_name
 from vbikit.analysis.response import reduce_crossing
 from vbikit.outputs import as_number, effect_kinds, outputs
@@ -89,7 +89,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     phi_first = built.crossing.bridge.mode_shapes(*([v] for v in solver_point(built)))[0]
 
     static: dict[float, NDArray] = {}  # static modal history, per step
-    influence: dict[float, NDArray] = {}  # contact influences of the plan's effects, per step
+    influence: dict[float, ContactInfluences] = {}  # contact influences of the plan's effects, per step
     names = study.output_names
     asked = effect_kinds(names)
     first = {k: e for k, e in plan.first_effects.items() if k in asked}
@@ -97,7 +97,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
 
     def effect_responses(result) -> dict[str, object]:
         if plan.load_effect_method == "mode-acceleration" and effects and result.dt not in influence:
-            influence[result.dt] = contact_influences(result, effects)
+            influence[result.dt] = contact_influence_table(result, effects)
         return dict(zip(kinds, load_effect_responses(result, effects, plan.load_effect_method,
                                                      influence=influence.get(result.dt), check_step=False)))
 
