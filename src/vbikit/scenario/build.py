@@ -168,13 +168,12 @@ ROAD_CACHE_SIZE = 4
 
 
 def _kept_road(key: str, make) -> RoadProfile | None:
-    """``make()``, kept under ``key`` for the last ``ROAD_CACHE_SIZE`` keys (read-only arrays: shared)."""
+    """``make()``, kept under ``key`` for the last ``ROAD_CACHE_SIZE`` keys.  Every later run of the same
+    spec shares its arrays, so nothing may write to them; they stay writeable because numba compiles
+    its kernels again for read-only arrays (≈ 4 s, and results that differ in the last bits)."""
     road = _ROADS.get(key)
     if key not in _ROADS:
         road = make()
-        if road is not None:
-            road.x.setflags(write=False)
-            road.z.setflags(write=False)
         if len(_ROADS) >= ROAD_CACHE_SIZE:
             _ROADS.popitem(last=False)
         _ROADS[key] = road
@@ -191,7 +190,7 @@ def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] |
     """The road profile of ``spec`` (None: smooth); a random one only over ``window`` = (x_lo, x_hi) [m]
     when given (the range a crossing touches, ``Crossing.road_extent``: the same road there, far cheaper
     than its whole period, ``vbikit.road.random_profile``).  A whole-period random road is kept for the
-    last ``ROAD_CACHE_SIZE`` specs (the same object, read-only, for the same spec)."""
+    last ``ROAD_CACHE_SIZE`` specs (the same object for the same spec: not to be written to)."""
     defects = build_defects(spec)
     if spec.profile_file:
         return with_defects(_profile(scenario, spec.profile_file, "road.profile_file"), defects)

@@ -286,7 +286,7 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_
     if not profiles:
         stations = np.array([x_min - 1.0, x_max + 1.0])
     elif all(np.array_equal(x, cut[0][0]) for x, _ in cut):
-        stations = np.ascontiguousarray(cut[0][0], float)
+        stations = np.array(cut[0][0], float)  # own, writeable copy: numba compiles kernels again for read-only arrays
     else:
         stations = np.unique(np.concatenate([x for x, _ in cut]))
     two = any(right is not None for _, right in roads)
