@@ -3,12 +3,12 @@ from __future__ import annotations
 
 import json
 import os
-from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from vbikit._kept import Kept
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint
 from vbikit.bridge.base import GirderDeck, HasLoadEffects, ModalBridge
 from vbikit.bridge.damage import Damage
@@ -48,9 +48,9 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 #: bridges built from [bridge] specs, newest last (``build_bridge``): a study's batches, repeated runs
 #: and the events of a process reuse one bridge, with its modes, mode tables along the wheel tracks
 #: and load-effect factorisation
-_BRIDGES: "OrderedDict[str, ModalBridge]" = OrderedDict()
 #: [substitute] bridges kept (a 3D deck with its tables and factors holds a few MB)
 BRIDGE_CACHE_SIZE = 4
+_BRIDGES: "Kept[str, ModalBridge]" = Kept(BRIDGE_CACHE_SIZE)
 
 
 def _bridge_key(spec: BridgeSpec) -> str | None:
@@ -77,14 +77,7 @@ def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
     key = _bridge_key(spec)
     if key is None:
         return spec.build(base_dir)
-    bridge = _BRIDGES.get(key)
-    if bridge is None:
-        bridge = spec.build(base_dir)
-        if len(_BRIDGES) >= BRIDGE_CACHE_SIZE:
-            _BRIDGES.popitem(last=False)
-        _BRIDGES[key] = bridge
-    _BRIDGES.move_to_end(key)
-    return bridge
+    return _BRIDGES.get(key, lambda: spec.build(base_dir))
 
 
 def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
@@ -133,9 +126,9 @@ def build_right_road(spec: RoadSpec, scenario: Scenario, left: RoadProfile | Non
         return correlated_profile(left, road_psd(spec), spec.seed, spec.right_coherence, spacing=spec.spacing,
                                   length=spec.length, window=window)
 
-    if window is not None or _ROADS.get(_road_key(spec, "left")) is not left:  # kept only with its kept left line
+    if window is not None or _ROADS.peek(_road_key(spec, "left")) is not left:  # kept only with its kept left line
         return make()
-    return _kept_road(_road_key(spec, "right"), make)
+    return _ROADS.get(_road_key(spec, "right"), make)
 
 
 def road_psd(spec: RoadSpec) -> RoadPSD:
@@ -162,23 +155,11 @@ def _profile(scenario: Scenario, name: str, key: str) -> RoadProfile:
 
 #: whole-period random roads built from [road] specs, newest last (``build_road``): runs of one road
 #: with other vehicles, tires or speeds (``vbikit compare-tires``, a script's sweep) generate it once
-_ROADS: "OrderedDict[str, RoadProfile | None]" = OrderedDict()
+#: (shared: nothing may write to them; they stay writeable because numba compiles its kernels again
+#: for read-only arrays, ≈ 4 s, with results that differ in the last bits)
 #: [substitute] whole-period roads kept (a 1.3 km period at 0.01 m holds 1 MB of elevations)
 ROAD_CACHE_SIZE = 4
-
-
-def _kept_road(key: str, make) -> RoadProfile | None:
-    """``make()``, kept under ``key`` for the last ``ROAD_CACHE_SIZE`` keys.  Every later run of the same
-    spec shares its arrays, so nothing may write to them; they stay writeable because numba compiles
-    its kernels again for read-only arrays (≈ 4 s, and results that differ in the last bits)."""
-    road = _ROADS.get(key)
-    if key not in _ROADS:
-        road = make()
-        if len(_ROADS) >= ROAD_CACHE_SIZE:
-            _ROADS.popitem(last=False)
-        _ROADS[key] = road
-    _ROADS.move_to_end(key)
-    return road
+_ROADS: "Kept[str, RoadProfile | None]" = Kept(ROAD_CACHE_SIZE)
 
 
 def _road_key(spec: RoadSpec, side: str) -> str:
@@ -202,7 +183,7 @@ def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] |
         return with_defects(random_profile(road_psd(spec), spec.seed, spacing=spec.spacing, length=spec.length,
                                            label=label, window=window), defects)
 
-    return make() if window is not None else _kept_road(_road_key(spec, "left"), make)
+    return make() if window is not None else _ROADS.get(_road_key(spec, "left"), make)
 
 
 @dataclass(frozen=True)

@@ -23,33 +23,21 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
 
 #: step maps already made in this process, by the exact bytes of their inputs and the step (a study,
 #: a traffic stream or repeated runs ask for the same few maps thousands of times; each costs two
-#: small matrix exponentials).  Bounded: the oldest half goes when it is full.
-_MAPS: dict[tuple, object] = {}
-_MAPS_LIMIT = 256
+#: small matrix exponentials).  Every later crossing with the same inputs shares a map's arrays, so
+#: nothing may write to them (they stay writeable only because numba compiles a separate kernel for
+#: read-only arrays).
+_MAPS: "Kept[tuple, ModalStep | VehicleStep]" = Kept(256)
 
 
 def _input_key(kind: str, h: float, arrays) -> tuple:
     """The key of a step map: its kind, h and every input array's shape, dtype and bytes."""
     return (kind, float(h)) + tuple((a.shape, a.dtype.str, a.tobytes()) for a in
                                     (np.ascontiguousarray(x) for x in arrays))
-
-
-def _kept(key: tuple, make):
-    """The map under ``key``, made by ``make()`` the first time.  Every later crossing with the same
-    inputs shares its arrays, so nothing may write to them (they stay writeable only because numba
-    compiles a separate kernel for read-only arrays)."""
-    found = _MAPS.get(key)
-    if found is None:
-        found = make()
-        if len(_MAPS) >= _MAPS_LIMIT:
-            for old in list(_MAPS)[: _MAPS_LIMIT // 2]:
-                del _MAPS[old]
-        _MAPS[key] = found
-    return found
 
 
 def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -77,7 +65,7 @@ def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) 
     zeta = np.asarray(zeta, float)
     if np.any(omega <= 0):
         raise ValueError("exact modal stepping needs natural frequencies > 0")
-    return _kept(_input_key("exact", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h))
+    return _MAPS.get(_input_key("exact", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h))
 
 
 def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
@@ -186,7 +174,7 @@ def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     in a process and shared: not to be written to)."""
     inputs = (vehicles.mass_inv, vehicles.damping, vehicles.stiffness, vehicles.wheel_rows, vehicles.wheel_damping,
               vehicles.wheel_stiffness, vehicles.gravity)
-    return _kept(_input_key("vehicle", h, inputs), lambda: _vehicle_step(vehicles, h))
+    return _MAPS.get(_input_key("vehicle", h, inputs), lambda: _vehicle_step(vehicles, h))
 
 
 def _vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:

@@ -3,12 +3,12 @@ reduce each to impact factors and peaks (the function executed by local or Dask 
 from __future__ import annotations
 
 import json
-from collections import OrderedDict
 from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.analysis.effects import ContactInfluences, contact_influence_table, load_effect_responses
 from vbikit.analysis.plan import point_name
 from vbikit.analysis.response import reduce_crossing
@@ -31,26 +31,22 @@ def point_names(base: dict) -> list[str] | None:
 
 #: roads built in this process, by their scenario [road] table (a study reuses the same seeds
 #: for every n, speed and tire; 64 profiles of 2^17 samples ≈ 130 MB)
-_ROADS: "OrderedDict[str, tuple[RoadProfile | None, RoadProfile | None]]" = OrderedDict()
-_ROAD_CACHE_SIZE = 64
+_ROADS: "Kept[str, tuple[RoadProfile | None, RoadProfile | None]]" = Kept(64)
 
 
 def _road(scenario: Scenario, data: dict) -> tuple[RoadProfile | None, RoadProfile | None]:
     """The scenario's roads (left, right wheel line or None), built once per process (same
     functions as ``build``, so identical)."""
     key = json.dumps([data.get("road", {}), str(scenario.base_dir)], sort_keys=True)
-    if key in _ROADS:
-        _ROADS.move_to_end(key)
-        return _ROADS[key]
-    try:
-        left = build_road(scenario.road, scenario)
-        road = (left, build_right_road(scenario.road, scenario, left))
-    except ValueError as err:
-        raise ScenarioError(str(err)) from None
-    _ROADS[key] = road
-    if len(_ROADS) > _ROAD_CACHE_SIZE:
-        _ROADS.popitem(last=False)
-    return road
+
+    def make() -> tuple[RoadProfile | None, RoadProfile | None]:
+        try:
+            left = build_road(scenario.road, scenario)
+            return left, build_right_road(scenario.road, scenario, left)
+        except ValueError as err:
+            raise ScenarioError(str(err)) from None
+
+    return _ROADS.get(key, make)
 
 
 def stack_outputs(rows: Sequence[tuple[Sequence[dict], dict]], names: Sequence[str] | None = None) -> dict[str, NDArray]:

@@ -1,0 +1,34 @@
+"""``vbikit._kept.Kept``: made once per key, the least recently used key dropped first."""
+import pytest
+
+from vbikit._kept import Kept
+
+
+def test_a_value_is_made_once_and_the_least_recently_used_goes_first():
+    made = []
+
+    def maker(key):
+        def make():
+            made.append(key)
+            return key * 10
+        return make
+
+    kept = Kept(2)
+    assert kept.get(1, maker(1)) == 10 and kept.get(2, maker(2)) == 20
+    assert kept.get(1, maker(1)) == 10  # kept: not made again, and now the most recent
+    kept.get(3, maker(3))  # 2 is the least recently used: it goes
+    assert made == [1, 2, 3] and len(kept) == 2
+    assert 2 not in kept and 1 in kept and 3 in kept
+    assert kept.peek(2) is None and kept.peek(1) == 10
+    assert [k for k, _ in kept.items()] == [1, 3]
+    kept.get(2, maker(2))  # made again; 1 (peek does not refresh it) goes
+    assert made == [1, 2, 3, 2] and [k for k, _ in kept.items()] == [3, 2]
+
+
+def test_a_failed_make_keeps_nothing_and_the_size_is_checked():
+    kept = Kept(1)
+    with pytest.raises(RuntimeError):
+        kept.get("a", lambda: (_ for _ in ()).throw(RuntimeError("no")))
+    assert len(kept) == 0
+    with pytest.raises(ValueError, match="size: at least 1, got 0"):
+        Kept(0)
