@@ -85,14 +85,12 @@ def first_cell(stations, x):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
-    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = vx·dr/dx [m/s] of every lane at
-    position ``x`` [m] of point ``p`` on road line ``line`` (linear interpolation; ``idx[p]`` is
-    the point's station pointer, −1 before its first use; it moves either way).  On a station the
-    slope is that of the cell the point moves into: the one on its +x side, or on its −x side
-    when vx < 0 (a vehicle driving −x sees the mirror of what one driving +x sees)."""
-    n_l = _width(lanes, rv)
-    stations = road.stations
+def road_cell(stations, x, vx, idx, p):
+    """The road cell i (stations[i] ≤ x < stations[i + 1]) whose line interpolates the road at
+    position ``x`` [m] of point ``p`` moving at ``vx`` [m/s]: ``idx[p]`` is the point's station
+    pointer (−1 before its first use: found by ``first_cell``), moved either way and stored.  On a
+    station the cell is the one the point moves into: on its +x side, or on its −x side when vx < 0
+    (a vehicle driving −x sees the mirror of what one driving +x sees)."""
     n_s = stations.size
     i = idx[p]
     if i < 0:
@@ -104,6 +102,17 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
     idx[p] = i
     if vx < 0.0 and i > 0 and stations[i] == x:  # on a station, driving −x: the cell behind it
         i -= 1
+    return i
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
+    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = vx·dr/dx [m/s] of every lane at
+    position ``x`` [m] of point ``p`` on road line ``line`` (linear interpolation; ``idx[p]`` is
+    the point's station pointer: ``road_cell``, which also picks the cell on a station)."""
+    n_l = _width(lanes, rv)
+    stations = road.stations
+    i = road_cell(stations, x, vx, idx, p)
     z = road.elevations[min(line, road.elevations.shape[0] - 1)]
     dx = x - stations[i]
     inv = 1.0 / (stations[i + 1] - stations[i])

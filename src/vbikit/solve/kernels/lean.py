@@ -36,7 +36,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
-from vbikit.solve.kernels.contact import first_cell, hermite_shape
+from vbikit.solve.kernels.contact import hermite_shape, road_cell
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
@@ -53,7 +53,6 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     is in ``rv``, ``rr``)."""
     n_m = x1.size
     _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
-    n_s = stations.size
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
@@ -79,16 +78,7 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 law[p] = 0.0
                 continue
             if have[p] < 2:  # the road under the point (``road_point``)
-                i = idx[p]
-                if i < 0:
-                    i = first_cell(stations, x)
-                while i < n_s - 2 and stations[i + 1] <= x:
-                    i += 1
-                while i > 0 and stations[i] > x:
-                    i -= 1
-                idx[p] = i
-                if vxp[p] < 0.0 and i > 0 and stations[i] == x:
-                    i -= 1
+                i = road_cell(stations, x, vxp[p], idx, p)
                 ln = line[p]
                 slope = (elevations[ln, i + 1] - elevations[ln, i]) / (stations[i + 1] - stations[i])
                 rv[p] = elevations[ln, i] + slope * (x - stations[i])

@@ -43,7 +43,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import first_cell, hermite_shape
+from vbikit.solve.kernels.contact import hermite_shape, road_cell
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
@@ -61,7 +61,6 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
     ``zw``, ``dzw``, ``s_l``, ``sd_l``, ``dr_l`` (L,) are work space."""
     n_m = x1.shape[0]
     n_l = x1.shape[1]
-    n_s = stations.size
     for lane in range(n_l):
         bmax[lane] = 0.0
     for m in range(n_m):
@@ -86,16 +85,7 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
         for p in range(first, first + wheel_count[w]):
             x = xp[p]
             if have[p] < 2:  # the road under the point (``road_point``): one cell for all lanes
-                i = idx[p]
-                if i < 0:
-                    i = first_cell(stations, x)
-                while i < n_s - 2 and stations[i + 1] <= x:
-                    i += 1
-                while i > 0 and stations[i] > x:
-                    i -= 1
-                idx[p] = i
-                if vxp[p] < 0.0 and i > 0 and stations[i] == x:
-                    i -= 1
+                i = road_cell(stations, x, vxp[p], idx, p)
                 ln = line[p]
                 dx = x - stations[i]
                 inv = 1.0 / (stations[i + 1] - stations[i])
