@@ -37,20 +37,19 @@ def line_sums(travel, origin, direction, y, vehicle, line, wheel, share, static_
     n_el = stations.size - 1
     n_eff = poly.shape[0]
     last = stations[n_el]
-    for i in range(n_t):
-        for p in range(n_cp):
+    # point by point (each time's points are still added in point order); a point's element walks
+    # with its monotone travel: the largest e in 0 … n_el − 1 with ξ_e ≤ ξ (searchsorted, clipped)
+    for p in range(n_cp):
+        e = 0
+        for i in range(n_t):
             x = origin[p] + direction[p] * travel[i, vehicle[p]]
             xi = x - y[p] * skew_tan if skew_tan != 0.0 else x
             if not (xi >= 0.0 and xi <= span) or xi < stations[0] or xi > last:
                 continue
-            lo, hi = 0, n_el + 1  # the number of stations <= ξ (searchsorted, side "right")
-            while lo < hi:
-                mid = (lo + hi) // 2
-                if stations[mid] <= xi:
-                    lo = mid + 1
-                else:
-                    hi = mid
-            e = min(max(lo - 1, 0), n_el - 1)
+            while e < n_el - 1 and stations[e + 1] <= xi:
+                e += 1
+            while e > 0 and stations[e] > xi:
+                e -= 1
             t = (xi - stations[e]) / (stations[e + 1] - stations[e])
             r = line[p] * n_el + e
             f_static = static_load[p]
