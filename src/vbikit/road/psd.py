@@ -156,11 +156,9 @@ def random_profile(
     label = label or f"PSD phi0={psd.phi0:g}, seed {seed}"
     if window is not None:
         first, last = _window_samples(window, x0, spacing, n_samples)
-        # amp·exp(i(θ + 2π n x0 + shift)), the shift to the window's first station exp(2πi·(k·first mod N)/N)
-        # read from the kept unit circle: only exp(iθ) is computed per road
-        band = np.exp(1j * theta)
-        band *= _start_phases(psd, spacing, length, x0)
-        band *= _unit_circle(n_samples)[(k * first) % n_samples]
+        # the shift to the window's first station, k·first (mod N), in the coefficients' own phase
+        shift = (2.0 * np.pi / n_samples) * ((k * first) % n_samples)
+        band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0 + shift))
         z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, last - first + 1)
         return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label)
     band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
@@ -189,33 +187,6 @@ def _window_samples(window: tuple[float, float], x0: float, spacing: float, n_sa
     last = int(np.ceil((hi - x0) / spacing)) + WINDOW_MARGIN_SAMPLES
     first, last = max(first, 0), min(last, n_samples - 1)
     return (first, max(last, first + 1)) if first < n_samples - 1 else (n_samples - 2, n_samples - 1)
-
-
-@lru_cache(maxsize=4)
-def _unit_circle(n_samples: int) -> NDArray[np.complex128]:
-    """exp(2πi j/N), j = 0 … N − 1 (read-only, kept per N: the windows' shifts, ``random_profile``)."""
-    out = np.exp(1j * ((2.0 * np.pi / n_samples) * np.arange(n_samples)))
-    out.setflags(write=False)
-    return out
-
-
-@lru_cache(maxsize=16)
-def _start_phases(psd: RoadPSD, spacing: float, length: float, x0: float) -> NDArray[np.complex128]:
-    """√(2 φ(n_k) Δn) · exp(2πi n_k x0) of the grid (read-only, kept per spectrum, grid and first station)."""
-    _, _, _, n_k = _wavenumber_grid(psd, spacing, length)
-    out = _amplitudes(psd, spacing, length) * np.exp(1j * (2.0 * np.pi * n_k * x0))
-    out.setflags(write=False)
-    return out
-
-
-def _fft_size(n: int) -> int:
-    """The smallest 2^a·3^b ≥ n: pocketfft's fastest lengths (≈ 20 % faster than a 3⁵·7² length)."""
-    best, p3 = 1 << max(int(n - 1).bit_length(), 0), 1
-    while p3 < n:
-        p2 = p3 << max(int(-(-n // p3) - 1).bit_length(), 0)
-        best = min(best, p2)
-        p3 *= 3
-    return min(best, p3)
 
 
 def _chirp(q: NDArray[np.int64], n_samples: int) -> NDArray[np.complex128]:
@@ -247,7 +218,7 @@ def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
     every event of a traffic stream or crossing of a study on one bridge asks for a few of them."""
     n = np.arange(n_band, dtype=np.int64)
     pre = _chirp(n, n_samples)
-    size = _fft_size(n_band + m - 1)
+    size = int(sp_fft.next_fast_len(n_band + m - 1))
     b = np.zeros(size, complex)
     b[:m] = np.conj(_chirp(np.arange(m, dtype=np.int64), n_samples))  # W^{−l²/2}, l = 0 … m − 1
     b[size - n_band + 1:] = np.conj(_chirp(np.arange(-(n_band - 1), 0, dtype=np.int64), n_samples))
