@@ -49,10 +49,17 @@ def test_effects_reduced_together_equal_one_by_one(deck_result):
     bridge = deck_result.crossing.bridge
     effects = bridge.default_load_effects(girder=2)
     together = load_effect_responses(deck_result, effects)
-    for e, r in zip(effects, together):
-        alone = load_effect_responses(deck_result, [e], influence=contact_influence_table(deck_result, [e]))[0]
-        # each effect's sums and modal correction are its own: bit for bit, with or without the others
+    tables = load_effect_responses(deck_result, effects, influence=contact_influence_table(deck_result, effects))
+    for e, r, t in zip(effects, together, tables):
+        # each effect's sums and modal correction are its own: bit for bit, with or without the others,
+        # by the compiled sums (the deck's tabulated influences) and by the pair tables
+        alone = load_effect_responses(deck_result, [e])[0]
         assert np.array_equal(r.dynamic, alone.dynamic) and np.array_equal(r.static, alone.static)
+        alone = load_effect_responses(deck_result, [e], influence=contact_influence_table(deck_result, [e]))[0]
+        assert np.array_equal(t.dynamic, alone.dynamic) and np.array_equal(t.static, alone.static)
+        # the two the same sums in another order: equal to round-off
+        assert np.allclose(r.dynamic, t.dynamic, rtol=0.0, atol=1e-13 * np.abs(t.static).max())
+        assert np.allclose(r.static, t.static, rtol=0.0, atol=1e-13 * np.abs(t.static).max())
     sup = load_effect_responses(deck_result, effects, "mode-superposition")
     assert [r.effect for r in sup] == list(effects) and load_effect_responses(deck_result, []) == []
 

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
-from vbikit.bridge.effects import LoadEffect, influence_values
+from vbikit.bridge.effects import LoadEffect, TabulatedInfluence, influence_values
 from vbikit.solve.result import CrossingResult
 
 log = logging.getLogger(__name__)
@@ -197,14 +197,23 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
                 for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
-    infl = contact_influence_table(result, effects) if influence is None else influence
+    tabulated = influence is None and tabulated_together(effects)
+    infl = contact_influence_table(result, effects) if influence is None and not tabulated else influence
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
     omega, zeta = bridge.omega, bridge.damping_ratios
     rates = result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)
     # one matrix-vector product per effect: an effect's history does not depend on which others are reduced with it
     correction = np.stack([rates @ (e.modal / omega**2) for e in effects], axis=1)  # (n_t, n_effects)
-    if isinstance(infl, ContactInfluences):  # the on-deck pairs only
+    if tabulated:  # compiled, one pass over the (time, point) pairs (vbikit.analysis.line_sums)
+        from vbikit.analysis.line_sums import tabulated_sums
+
+        origin, direction, y = crossing.point_kinematics()
+        static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.travel, cp.wheel, share,
+                                         static_loads, result.wheel_forces, [e.influence for e in effects], bridge.span)
+        static, dynamic = -static, -dynamic
+        dynamic -= correction.T
+    elif isinstance(infl, ContactInfluences):  # the on-deck pairs only
         rows, pts = infl.rows, infl.points
         static, dynamic = -infl.sums(np.stack([static_loads[pts], result.wheel_forces[rows, cp.wheel[pts]] * share[pts]],
                                               axis=1))
@@ -216,6 +225,14 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
         dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step))
             for k, e in enumerate(effects)]
+
+
+def tabulated_together(effects: Sequence[LoadEffect]) -> bool:
+    """True if every effect's influence function is tabulated along wheel lines on the same
+    stations (``TabulatedInfluence`` with one ``shared_key``): their quasi-static sums are then
+    compiled (``vbikit.analysis.line_sums``)."""
+    return bool(effects) and all(isinstance(e.influence, TabulatedInfluence) for e in effects) and \
+        len({e.influence.shared_key for e in effects}) == 1  # type: ignore[attr-defined]
 
 
 def _checked(result: CrossingResult, effect: LoadEffect, now: bool):

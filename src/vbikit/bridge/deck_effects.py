@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import GirderDeck
-from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, SharedInfluence
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence
 from vbikit.bridge.elements import beam_element_stiffness
 from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stations
 
@@ -142,7 +142,7 @@ _TO_MONOMIAL = np.linalg.inv(np.vander(_NODES_T, 4, increasing=True))
 LINE_TABLES_KEPT = 256
 
 
-class DeckInfluence(SharedInfluence):
+class DeckInfluence(TabulatedInfluence):
     """I(x, y) of one grillage load effect: vᵀF(x, y) with F the consistent load of unit forces at the
     points (``load_weights``, shared by every effect of the deck), plus, for a moment or shear, the
     terms of the points inside the section's element e = [a, a + h] on girder line j (module docstring).
@@ -152,22 +152,50 @@ class DeckInfluence(SharedInfluence):
     factors of y alone.  So the values at t = 0, 1/3, 2/3, 1 of every element (one ``load_weights``
     call of 4 × n_elements points per line, kept on this object per y) give vᵀF at any point of the
     line by the cubic through them — equal to the direct evaluation (``direct``) up to round-off.
-    The terms of points in the section's own element (they kink at s) are added as in ``direct``,
-    with the line's share c_j(y) kept with the table."""
+    The terms of points in the section's own element are c_j(y) times −(s − a)·N₁ + N₂ + (s − ξ for
+    ξ < s) for a moment, −N₁ + (1 for ξ ≤ s) for a shear (N the Hermite basis of the element):
+    their cubic part is added to that element's row of the table, their kink (or step) at s to the
+    values (``TabulatedInfluence``), with the line's share c_j(y) kept with the table."""
 
     def __init__(self, bridge: DeckModel, v: NDArray[np.float64], kind: str = "reaction", element: int = -1,
                  line: int = 0, a: float = 0.0, h: float = 1.0, s: float = 0.0) -> None:
         self.bridge, self.dofs, self.v = bridge, bridge.dof_map, v
         self.kind, self.element, self.line, self.a, self.h, self.s = kind, element, line, a, h, s
+        self.kink, self.section = ("none" if kind == "reaction" else kind), s
         self._line_tables: dict[float, tuple[NDArray[np.float64], float]] = {}
+
+    @property
+    def stations(self) -> NDArray[np.float64]:
+        return self.dofs.stations
+
+    @property
+    def skew_tan(self) -> float:
+        return float(self.dofs.skew_tan)
+
+    def line_tables(self, lines) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        kept = [self.line_table(float(y)) for y in lines]
+        poly = np.concatenate([k[0] for k in kept], axis=1) if len(kept) != 1 else kept[0][0]
+        return poly, np.array([k[1] for k in kept])
+
+    def _section_cubic(self, xi: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The cubic part of the section's own element's terms at ξ (per unit share c_j)."""
+        a, h, s = self.a, self.h, self.s
+        n = hermite_basis((xi - a) / h, h, 0)
+        return -(s - a) * n[0] + n[1] if self.kind == "moment" else -n[0]
+
+    def _kink(self, xi: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The kinked part of the section's own element's terms at ξ (per unit share c_j)."""
+        s = self.s
+        return np.where(xi < s, s - xi, 0.0) if self.kind == "moment" else np.where(xi <= s, 1.0, 0.0)
 
     @property
     def shared_key(self) -> int:
         return id(self.dofs)
 
     def line_table(self, y: float) -> tuple[NDArray[np.float64], float]:
-        """Monomial coefficients (4, n_elements) in t (rows t⁰ … t³) of vᵀF along the wheel line y [m], and the
-        share c_j(y) of the section's girder line j (cached)."""
+        """Monomial coefficients (4, n_elements) in t (rows t⁰ … t³) of I along the wheel line y [m]
+        without the kink (or step) at the section, and the share c_j(y) of the section's girder line j
+        (cached)."""
         table = self._line_tables.get(y)
         if table is None:
             xs = self.dofs.stations
@@ -175,7 +203,10 @@ class DeckInfluence(SharedInfluence):
             x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
             idx, coef, _, shares = load_weights(self.dofs, x, y)
             values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
-            table = (np.ascontiguousarray((values @ _TO_MONOMIAL.T).T), float(shares[0, self.line]))
+            c = float(shares[0, self.line])
+            if self.kind != "reaction":
+                values[self.element] += c * self._section_cubic(xi.reshape(-1, 4)[self.element])
+            table = (np.ascontiguousarray((values @ _TO_MONOMIAL.T).T), c)
             if len(self._line_tables) >= LINE_TABLES_KEPT:
                 self._line_tables.pop(next(iter(self._line_tables)))
             self._line_tables[y] = table
@@ -199,21 +230,13 @@ class DeckInfluence(SharedInfluence):
         lines, row, xi, e, t, off = part
         if not lines.size:
             return np.zeros(0)
-        kept = [self.line_table(float(yy)) for yy in lines]
-        poly = np.concatenate([k[0] for k in kept], axis=1) if len(kept) > 1 else kept[0][0]
+        poly, shares = self.line_tables(lines)
         out = ((poly[3][row] * t + poly[2][row]) * t + poly[1][row]) * t + poly[0][row]  # Horner
         out[off] = 0.0
         if self.kind != "reaction":
             inside = (e == self.element) & ~off
             if np.any(inside):
-                a, h, s = self.a, self.h, self.s
-                c = np.array([k[1] for k in kept])[row[inside] // self.dofs.n_elements]
-                xin = xi[inside]
-                n = hermite_basis((xin - a) / h, h, 0)
-                if self.kind == "moment":
-                    out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xin < s, s - xin, 0.0))
-                else:
-                    out[inside] += c * (-n[0] + np.where(xin <= s, 1.0, 0.0))
+                out[inside] += shares[row[inside] // self.dofs.n_elements] * self._kink(xi[inside])
         return out
 
     def direct(self, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -226,14 +249,8 @@ class DeckInfluence(SharedInfluence):
             return out
         inside = el == self.element
         if np.any(inside):
-            a, h, s = self.a, self.h, self.s
-            c = shares[inside, self.line]
             xi = self.bridge.span_coordinate(x[inside], y[inside])
-            n = hermite_basis((xi - a) / h, h, 0)
-            if self.kind == "moment":
-                out[inside] += c * (-(s - a) * n[0] + n[1] + np.where(xi < s, s - xi, 0.0))
-            else:
-                out[inside] += c * (-n[0] + np.where(xi <= s, 1.0, 0.0))
+            out[inside] += shares[inside, self.line] * (self._section_cubic(xi) + self._kink(xi))
         return out
 
 

@@ -92,6 +92,36 @@ class SharedInfluence(abc.ABC):
         return self.apply(self.shared(x, y), x, y)
 
 
+class TabulatedInfluence(SharedInfluence):
+    """A ``SharedInfluence`` tabulated along wheel lines: on each element [ξ_e, ξ_(e+1)] of
+    ``stations`` (ξ = x − y·``skew_tan``, 0 ≤ ξ ≤ the last station) I(x, y) is the cubic in
+    t = (ξ − ξ_e)/(ξ_(e+1) − ξ_e) whose monomial coefficients are ``line_tables``, plus, on the
+    section's own element ``element`` only, the share c(y) times the kink of a moment (s − ξ for
+    ξ < s, else 0) or the step of a shear (1 for ξ ≤ s, else 0), ``s`` = ``section``; nothing for a
+    reaction (``kink`` = "none").  A compiled reduction over moving points reads these tables
+    (``vbikit.analysis.line_sums``); ``apply`` evaluates the same at any points."""
+
+    #: the term of the section's own element: "none" (reaction), "moment" or "shear"
+    kink: str = "none"
+    element: int = -1
+    section: float = 0.0
+
+    @property
+    @abc.abstractmethod
+    def stations(self) -> NDArray[np.float64]:
+        """ξ [m] of the element ends (ascending)."""
+
+    @property
+    @abc.abstractmethod
+    def skew_tan(self) -> float:
+        """tan θ of the support lines (ξ = x − y tan θ)."""
+
+    @abc.abstractmethod
+    def line_tables(self, lines: Sequence[float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Monomial coefficients (4, n_lines × n_elements) in t (rows t⁰ … t³; line-major) along the
+        wheel lines ``lines`` [m], and each line's share c(y) of the section's girder line."""
+
+
 def influence_values(effects: Sequence[LoadEffect], x: NDArray[np.float64],
                      y: NDArray[np.float64]) -> NDArray[np.float64]:
     """I(x_p, y_p) of every effect at the load points (x, y) [m] (1-D), shape (n_points, n_effects);

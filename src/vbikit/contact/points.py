@@ -60,49 +60,44 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
     forces) spread their fixed load by the layout's static shares.
     """
     loads = vehicle.static_wheel_loads()
-    parts: dict[str, list] = {k: [] for k in ("setback", "lateral", "wheel", "weight", "k", "c", "f0", "gap", "width", "gated", "slope", "rows")}
-    first, count, envelope = [], [], []
-    n_dof = vehicle.n_dof
-    for i, (w, load) in enumerate(zip(vehicle.wheels, loads)):
+    wheels = vehicle.wheels
+    lays = []
+    for w, load in zip(wheels, loads):
         if w.stiffness > 0:
             lay = tire.contact_layout(w.stiffness, w.damping, load - w.fixed_load)
         else:
             offsets, share = tire.layout()
             lay = ContactLayout(offsets, np.zeros_like(offsets), np.zeros_like(offsets), np.zeros_like(offsets), share,
                                 np.zeros_like(offsets))
-        n = lay.offsets.size
-        first.append(len(parts["setback"]))
-        count.append(n)
-        envelope.append(lay.envelope)
-        parts["setback"] += list(w.offset - lay.offsets)
-        parts["lateral"] += [w.lateral] * n
-        parts["wheel"] += [i] * n
-        parts["weight"] += list(lay.static_share)
-        parts["k"] += list(lay.stiffness)
-        parts["c"] += list(lay.damping)
-        parts["f0"] += list(lay.static_share * w.fixed_load)
-        parts["gap"] += list(lay.gaps)
-        parts["width"] += list(lay.widths)
-        parts["gated"] += [lay.gated] * n
-        parts["slope"] += list(np.zeros((n, 2)) if lay.slope_range is None else lay.slope_range)
-        parts["rows"] += [w.row if n_dof else np.zeros(0)] * n
-    n_cp = len(parts["setback"])
+        lays.append(lay)
+    count = np.array([lay.offsets.size for lay in lays], np.int64)
+    n_cp = int(count.sum())
+    n_dof = vehicle.n_dof
+
+    def cat(values: list, dtype: type = float) -> NDArray:
+        return np.concatenate([np.asarray(v, dtype).ravel() for v in values]) if values else np.zeros(0, dtype)
+
+    def per_wheel(values: list, dtype: type = float) -> NDArray:
+        return np.repeat(np.array(values, dtype), count)
+
+    rows = np.repeat(np.array([w.row for w in wheels], float).reshape(len(wheels), n_dof), count, axis=0) if n_dof \
+        else np.zeros((n_cp, 0))
     return ContactPoints(
-        np.array(parts["setback"], float),
-        np.array(parts["lateral"], float),
-        np.array(parts["wheel"], np.int64),
-        np.array(parts["weight"], float),
-        np.array(parts["k"], float),
-        np.array(parts["c"], float),
-        np.array(parts["f0"], float),
-        np.array(parts["gap"], float),
-        np.array(parts["width"], float),
-        np.array(parts["gated"], bool),
-        np.array(parts["slope"], float).reshape(n_cp, 2),
-        np.array(parts["rows"], float).reshape(n_cp, n_dof),
-        np.array(first, np.int64),
-        np.array(count, np.int64),
-        np.array(envelope, bool),
+        cat([w.offset - lay.offsets for w, lay in zip(wheels, lays)]),
+        per_wheel([w.lateral for w in wheels]),
+        np.repeat(np.arange(len(wheels), dtype=np.int64), count),
+        cat([lay.static_share for lay in lays]),
+        cat([lay.stiffness for lay in lays]),
+        cat([lay.damping for lay in lays]),
+        cat([lay.static_share * w.fixed_load for w, lay in zip(wheels, lays)]),
+        cat([lay.gaps for lay in lays]),
+        cat([lay.widths for lay in lays]),
+        per_wheel([lay.gated for lay in lays], bool),
+        cat([np.zeros((n, 2)) if lay.slope_range is None else lay.slope_range for n, lay in zip(count, lays)]).reshape(n_cp, 2),
+        rows,
+        np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.int64),
+        count,
+        np.array([lay.envelope for lay in lays], bool),
     )
 
 

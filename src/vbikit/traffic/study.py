@@ -195,7 +195,10 @@ class TrafficStudy:
     # ------------------------------------------------------------ one event
     def context(self) -> "EventContext":
         """Bridge, tire, roads and response point of the base scenario (built once per process)."""
-        key = json.dumps([self.base, self.base_dir], sort_keys=True)
+        key = self.__dict__.get("_context_key")
+        if key is None:  # (the job is immutable: its key is written once)
+            key = json.dumps([self.base, self.base_dir], sort_keys=True)
+            object.__setattr__(self, "_context_key", key)
         if key not in _CONTEXTS:
             _CONTEXTS.clear()
             _CONTEXTS[key] = EventContext.of(self.base, self.base_dir)

@@ -126,26 +126,35 @@ class VehicleBuilder:
         self.wheels.append((name, s, y, stiffness, damping, at, fixed_load))
 
     def build(self, description: str = "", parameters: dict[str, float] | None = None) -> Vehicle:
+        """The [`Vehicle`][vbikit.vehicle.Vehicle]: M = Σ_b (m h hᵀ + J_θ p pᵀ + J_φ r rᵀ), K (C) = Σ_s k (c) d dᵀ
+        with d = a − b, F_G = −g Σ_b m h (module docstring): the rows stacked, each sum over bodies or
+        springs one reduction in their order (the values of adding the terms one by one)."""
         n = len(self.dofs)
 
-        def dense(row: Row) -> np.ndarray:
-            v = np.zeros(n)
-            for i, c in row.items():
-                v[i] += c
+        def dense(rows: list[Row]) -> np.ndarray:
+            v = np.zeros((len(rows), n))
+            for k, row in enumerate(rows):
+                for i, c in row.items():
+                    v[k, i] += c
             return v
 
-        m = np.zeros((n, n))
-        fg = np.zeros(n)
-        for b in self.bodies:
-            h, p, r = dense(b.heave), dense(b.pitch), dense(b.roll)
-            m += b.mass * np.outer(h, h) + b.pitch_inertia * np.outer(p, p) + b.roll_inertia * np.outer(r, r)
-            fg -= GRAVITY * b.mass * h
-        k = np.zeros((n, n))
-        c = np.zeros((n, n))
-        for a, b_, ks, cs in self.springs:
-            d = dense(a) - dense(b_)
-            k += ks * np.outer(d, d)
-            c += cs * np.outer(d, d)
-        wheels = tuple(Wheel(nm, s, y, kt, ct, dense(row), fl) for nm, s, y, kt, ct, row, fl in self.wheels)
-        bodies = {b.name: (b.s_cg, dense(b.heave), dense(b.pitch), dense(b.roll)) for b in self.bodies}
-        return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}), bodies=bodies)
+        def outer_sum(coef: np.ndarray, rows: np.ndarray) -> np.ndarray:
+            """Σ_k coef_k · row_k row_kᵀ (n × n)."""
+            return (coef[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0) if len(rows) \
+                else np.zeros((n, n))
+
+        bodies = self.bodies
+        h, p, r = (dense([getattr(b, a) for b in bodies]) for a in ("heave", "pitch", "roll"))
+        mass = np.array([b.mass for b in bodies], float)
+        m = (mass[:, None, None] * (h[:, :, None] * h[:, None, :])
+             + np.array([b.pitch_inertia for b in bodies], float)[:, None, None] * (p[:, :, None] * p[:, None, :])
+             + np.array([b.roll_inertia for b in bodies], float)[:, None, None] * (r[:, :, None] * r[:, None, :])
+             ).sum(axis=0) if bodies else np.zeros((n, n))
+        fg = -((GRAVITY * mass)[:, None] * h).sum(axis=0) if bodies else np.zeros(n)
+        d = dense([a for a, _, _, _ in self.springs]) - dense([b_ for _, b_, _, _ in self.springs])
+        k = outer_sum(np.array([ks for _, _, ks, _ in self.springs], float), d)
+        c = outer_sum(np.array([cs for _, _, _, cs in self.springs], float), d)
+        rows = dense([row for *_, row, _ in self.wheels])
+        wheels = tuple(Wheel(nm, s, y, kt, ct, rows[w].copy(), fl) for w, (nm, s, y, kt, ct, _, fl) in enumerate(self.wheels))
+        body_rows = {b.name: (b.s_cg, h[i].copy(), p[i].copy(), r[i].copy()) for i, b in enumerate(bodies)}
+        return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}), bodies=body_rows)

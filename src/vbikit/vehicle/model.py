@@ -111,10 +111,19 @@ class Vehicle:
 
     def tire_stiffness_matrix(self) -> NDArray[np.float64]:
         """Σ_w k_w r_w r_wᵀ: the tires as springs to a rigid, flat ground."""
-        k = np.zeros((self.n_dof, self.n_dof))
-        for w in self.wheels:
-            k += w.stiffness * np.outer(w.row, w.row)
-        return k
+        rows, k_w = self._wheel_rows()
+        if not len(rows):
+            return np.zeros((self.n_dof, self.n_dof))
+        return (k_w[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0)  # added wheel by wheel
+
+    def _wheel_rows(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The wheels' rows r_w stacked (n_wheels, n_dof) and their tire stiffnesses k_w (kept: vehicles are immutable)."""
+        kept = self.__dict__.get("_rows_and_stiffness")
+        if kept is None:
+            kept = (np.array([w.row for w in self.wheels], float).reshape(len(self.wheels), self.n_dof),
+                    np.array([w.stiffness for w in self.wheels], float))
+            object.__setattr__(self, "_rows_and_stiffness", kept)
+        return kept
 
     def static_state(self, ground: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Static displacement q_s [m, rad] with each wheel on rigid ground at elevation ``ground`` [m].
@@ -124,7 +133,8 @@ class Vehicle:
         if self.n_dof == 0:
             return np.zeros(0)
         g = np.zeros(len(self.wheels)) if ground is None else np.asarray(ground, float)
-        rhs = self.gravity + sum(w.stiffness * w.row * gw for w, gw in zip(self.wheels, g))
+        rows, k_w = self._wheel_rows()
+        rhs = self.gravity + ((k_w[:, None] * rows) * g[:, None]).sum(axis=0)  # Σ_w k_w r_w g_w, wheel by wheel
         return np.linalg.solve(self.stiffness + self.tire_stiffness_matrix(), rhs)
 
     def static_wheel_loads(self) -> NDArray[np.float64]:
@@ -167,8 +177,6 @@ class CombinedVehicle(Vehicle):
 
 def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> CombinedVehicle:
     """Stack ``vehicles`` into one ``CombinedVehicle`` (see there)."""
-    from scipy.linalg import block_diag
-
     vehicles = tuple(vehicles)
     if not vehicles:
         raise ValueError("combine_vehicles needs at least one vehicle")
@@ -177,16 +185,18 @@ def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> Combine
     n = int(dof_off[-1])
 
     def blocks(attr: str) -> NDArray[np.float64]:
-        mats = [getattr(v, attr) for v in vehicles if v.n_dof]
-        return block_diag(*mats) if mats else np.zeros((0, 0))
+        out = np.zeros((n, n))
+        for i, v in enumerate(vehicles):
+            out[dof_off[i]:dof_off[i + 1], dof_off[i]:dof_off[i + 1]] = getattr(v, attr)
+        return out
 
     wheels = []
     names: list[str] = []
     for i, v in enumerate(vehicles):
         names += [f"v{i + 1}_{d}" for d in v.dof_names]
-        for w in v.wheels:
-            row = np.zeros(n)
-            row[dof_off[i]:dof_off[i + 1]] = w.row
+        rows = np.zeros((len(v.wheels), n))
+        rows[:, dof_off[i]:dof_off[i + 1]] = v._wheel_rows()[0]
+        for w, row in zip(v.wheels, rows):
             wheels.append(Wheel(f"v{i + 1}_{w.name}", w.offset, w.lateral, w.stiffness, w.damping, row, w.fixed_load))
     gravity = np.concatenate([v.gravity for v in vehicles]) if n else np.zeros(0)
     return CombinedVehicle(

@@ -1,0 +1,88 @@
+"""The load effects a traffic stream stores per event against a brute-force reduction of the plain
+``simulate`` result of the same crossing: each effect's influence read by ``DeckInfluence.direct``
+(the consistent load of every (time, contact point) pair, ``load_weights``: no wheel-line tables, no
+compiled sums), summed pair by pair, and the mode-acceleration correction written out
+(``vbikit.analysis.effects``, module docstring: R = −Σ_p I β_p f_w − Σ_i r_i (ξ̈_i + 2ζ_i ω_i ξ̇_i)/ω_i²);
+and the compiled sums (``vbikit.analysis.line_sums``) against the numpy pair tables on a skew deck
+with multi-point tires, two vehicles driving in opposite directions."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vbikit.analysis import impact_factor
+from vbikit.analysis.effects import contact_influence_table, contact_positions, load_effect_responses
+from vbikit.bridge import paper_deck
+from vbikit.contact import MultiPointTire
+from vbikit.solve import Crossing, simulate
+from vbikit.solve.crossing import VehicleMotion
+from vbikit.traffic import LaneTraffic, synthetic_stream
+from vbikit.traffic.study import traffic_study
+from vbikit.vehicle import hs20_44, semitrailer_3s2
+
+#: Bridge 2's grillage with 4 modes, a class B road sampled every 0.05 m, short approach and free vibration
+BASE = {"bridge": {"model": "paper-bridge-2", "n_modes": 4}, "road": {"class": "B", "length": 200.0, "spacing": 0.05},
+        "crossing": {"approach": 5.0, "free_vibration": 0.1}}
+
+
+def brute_force(result, effect):
+    """(dynamic, static) histories of ``effect`` summed pair by pair from ``influence.direct``."""
+    crossing = result.crossing
+    bridge, cp = crossing.bridge, crossing.contact
+    x, y = contact_positions(result)
+    xi = bridge.span_coordinate(x, y)
+    static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    static = np.zeros(x.shape[0])
+    quasi = np.zeros(x.shape[0])
+    for p in range(x.shape[1]):
+        on = (xi[:, p] >= 0.0) & (xi[:, p] <= bridge.span)
+        if on.any():
+            infl = effect.influence.direct(x[on, p], y[on, p])
+            static[on] -= infl * static_loads[p]
+            quasi[on] -= infl * result.wheel_forces[on, cp.wheel[p]] * cp.weight[p]
+    omega, zeta = bridge.omega, bridge.damping_ratios
+    modal = sum(effect.modal[i] * (result.xi_ddot[:, i] + 2.0 * zeta[i] * omega[i] * result.xi_dot[:, i]) / omega[i]**2
+                for i in range(omega.size))
+    return quasi - modal, static
+
+
+def test_stream_load_effects_equal_a_brute_force_reduction_of_each_event():
+    records = synthetic_stream([LaneTraffic(1, "+x", 1500, 80, 5), LaneTraffic(2, "-x", 1500, 70, 5)], 8, seed=4)
+    job = traffic_study(records, BASE, seed=3, batch_size=8)
+    assert any(len(m) > 1 for m in job.events)  # a multiple-presence event among them
+    out = job.run_batch(tuple(range(job.size)))
+    effects = job.context().plan.first_effects
+    assert set(effects) == {"moment", "shear", "reaction"}
+    for e in range(job.size):
+        result = simulate(job.crossing(e))  # the same crossing (its own road seed) as the event's
+        for kind, effect in effects.items():
+            dynamic, static = brute_force(result, effect)
+            im = impact_factor(result.time, dynamic, static)
+            scale = np.abs(static).max()
+            assert scale > 0
+            assert abs(out[f"{kind}_static_peak"][e] - im.static_peak) <= 1e-11 * scale, (e, kind)
+            assert abs(out[f"{kind}_dynamic_peak"][e] - im.dynamic_peak) <= 1e-11 * scale, (e, kind)
+            assert out[f"{kind}_impact_factor"][e] == pytest.approx(im.impact_factor, rel=1e-9, abs=1e-11)
+
+
+@pytest.mark.parametrize("skew", [0.0, 20.0], ids=["straight", "skew 20°"])
+def test_compiled_sums_equal_the_pair_tables_and_the_direct_influence(skew):
+    deck = paper_deck(2, n_modes=4, use_cache=False, n_elements=14, skew=skew)
+    c = Crossing(deck, vehicles=(VehicleMotion(semitrailer_3s2(), 22.0, lateral_offset=2.1),
+                                 VehicleMotion(hs20_44(), 19.0, direction="-x", entry_time=0.25, lateral_offset=-1.7)),
+                 tire=MultiPointTire(), free_vibration=0.05, dt=2e-3)
+    result = simulate(c)
+    effects = [deck.load_effect("moment", x=7.3, girder=4), deck.load_effect("shear", x=3.1, girder=2),
+               deck.load_effect("reaction", support=0, girder=3), deck.load_effect("moment", x=8.38, girder=4),
+               deck.load_effect("shear", x=deck.dof_map.stations[5], girder=1)]  # a section on a station
+    compiled = load_effect_responses(result, effects)  # tabulated influences: the compiled sums
+    tables = load_effect_responses(result, effects, influence=contact_influence_table(result, effects))
+    for k, effect in enumerate(effects):
+        dynamic, static = brute_force(result, effect)
+        scale = np.abs(static).max()
+        assert scale > 0
+        for name, got in (("compiled", compiled[k]), ("tables", tables[k])):
+            # round-off of the tables' cubics (≤ 1e-13 of the largest influence value) and of the sums
+            assert np.abs(got.static - static).max() <= 1e-11 * scale, (name, effect.label)
+            assert np.abs(got.dynamic - dynamic).max() <= 1e-11 * scale, (name, effect.label)
+        assert np.abs(compiled[k].dynamic - tables[k].dynamic).max() <= 1e-12 * scale

@@ -1,0 +1,77 @@
+"""``VehicleBuilder.build`` and the vehicle's tire matrices against their definitions written out as
+dense outer products added one by one (``vbikit.vehicle.builder``, module docstring:
+M = Σ_b (m h hᵀ + J_θ p pᵀ + J_φ r rᵀ), F_G = −g Σ_b m h, K (C) = Σ_s k (c) d dᵀ with d = a − b;
+``Vehicle.tire_stiffness_matrix`` = Σ_w k_w r_w r_wᵀ): the same bits, for a hand-built vehicle
+(hinged body, pivoted beam, springs to the ground) and the trucks of a traffic stream."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from vbikit.vehicle import builder as builder_module
+from vbikit.vehicle.axles import axle_truck
+from vbikit.vehicle.builder import VehicleBuilder
+from vbikit.vehicle.model import GRAVITY, combine_vehicles
+
+
+def dense(row, n):
+    v = np.zeros(n)
+    for i, c in row.items():
+        v[i] += c
+    return v
+
+
+def by_definition(vb: VehicleBuilder):
+    n = len(vb.dofs)
+    m, k, c, fg = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n)
+    for b in vb.bodies:
+        h, p, r = dense(b.heave, n), dense(b.pitch, n), dense(b.roll, n)
+        m += b.mass * np.outer(h, h) + b.pitch_inertia * np.outer(p, p) + b.roll_inertia * np.outer(r, r)
+        fg -= GRAVITY * b.mass * h
+    for a, b_, ks, cs in vb.springs:
+        d = dense(a, n) - dense(b_, n)
+        k += ks * np.outer(d, d)
+        c += cs * np.outer(d, d)
+    return m, k, c, fg
+
+
+def hand_built() -> VehicleBuilder:
+    vb = VehicleBuilder("test")
+    tractor = vb.body("tractor", 7000.0, 2.1, pitch_inertia=2.1e4, roll_inertia=4e3, pitch=True, roll=True)
+    trailer = vb.hinged_body("trailer", 15000.0, 7.3, tractor, 3.9, pitch_inertia=1.5e5, roll_inertia=1e4, roll=True)
+    beam = vb.pivoted_beam("beam", trailer, 11.0, 0.9, mass=300.0, pitch_inertia=120.0)
+    axle = vb.body("axle1", 700.0, 0.0, roll_inertia=600.0, roll=True)
+    for y in (0.9, -0.9):
+        vb.spring(tractor.point(0.0, y), axle.point(0.0, y), 3e5, 1e4)
+        vb.wheel(f"front_{y}", axle.point(0.0, y), 0.0, y, 8e5, 2e3)
+    vb.spring(beam.point(10.4, 0.9), None, 2e6, 5e3)  # to the ground
+    vb.wheel("rear", beam.point(11.6, 0.9), 11.6, 0.9, 1e6, 1e3)
+    return vb
+
+
+def test_hand_built_vehicle_matrices_are_the_definition_bit_for_bit():
+    vb = hand_built()
+    v = vb.build()
+    m, k, c, fg = by_definition(vb)
+    for got, want in ((v.mass, m), (v.stiffness, k), (v.damping, c), (v.gravity, fg)):
+        assert got.shape == want.shape and np.array_equal(got, want)
+    assert np.count_nonzero(v.stiffness) > 10 and np.count_nonzero(v.mass - np.diag(np.diag(v.mass))) > 0
+    tires = sum(w.stiffness * np.outer(w.row, w.row) for w in v.wheels)
+    assert np.array_equal(v.tire_stiffness_matrix(), tires)
+
+
+@pytest.mark.parametrize("loads, spacings", [((53e3, 75e3, 74e3, 76e3, 73e3), (5.5, 1.3, 9.5, 1.3)),
+                                             ((45e3, 90e3), (5.0,)), ((55e3, 85e3, 85e3), (5.0, 1.3))])
+def test_axle_trucks_are_the_definition_bit_for_bit(loads, spacings, monkeypatch):
+    seen = []
+    build = builder_module.VehicleBuilder.build
+    monkeypatch.setattr(builder_module.VehicleBuilder, "build", lambda self, *a, **kw: seen.append(self) or build(self, *a, **kw))
+    v = axle_truck(loads, spacings)
+    m, k, c, fg = by_definition(seen[0])
+    for got, want in ((v.mass, m), (v.stiffness, k), (v.damping, c), (v.gravity, fg)):
+        assert np.array_equal(got, want)
+    # a combined vehicle's blocks are its parts' matrices; the static wheel loads sum to the axle loads
+    both = combine_vehicles([v, hand_built().build()])
+    n = v.n_dof
+    assert np.array_equal(both.mass[:n, :n], v.mass) and not both.stiffness[:n, n:].any()
+    assert both.static_wheel_loads()[:len(v.wheels)].sum() == pytest.approx(sum(loads), rel=1e-12)
