@@ -104,6 +104,7 @@ def compile_() -> None:
     from vbikit.cli.guard import guard
 
     def work() -> None:
+        from vbikit.analysis.warmup import compile_effect_kernels
         from vbikit.random.warmup import compile_random_kernels
         from vbikit.solve.numba_cache import cache_location
         from vbikit.solve.warmup import compile_kernels
@@ -112,6 +113,7 @@ def compile_() -> None:
         for name, seconds in compile_kernels().items():
             typer.echo(f"  {name:<8} ready in {seconds:.1f} s")
         typer.echo(f"  {'random':<8} ready in {compile_random_kernels():.1f} s (pseudo-excitation)")
+        typer.echo(f"  {'effects':<8} ready in {compile_effect_kernels():.1f} s (load effects on grillage decks)")
         typer.echo(f"numba cache: {cache_location()}")
 
     guard(work)
