@@ -26,11 +26,12 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Optional
+from typing import Callable, Hashable, Optional, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.bridge.base import ModalBridge
 from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
@@ -39,6 +40,12 @@ from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR, get_integrator
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
+T = TypeVar("T")
+
+#: values a crossing keeps of its own (``Crossing.kept``): at most this many
+KEPT_PER_CROSSING = 16
+#: the kinds of kept values that do not depend on the road (``Crossing.with_road`` keeps them)
+ROAD_FREE_KINDS = frozenset({"grid", "kernel_data"})
 
 
 @dataclass(frozen=True)
@@ -266,12 +273,38 @@ class Crossing:
 
     def with_road(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> "Crossing":
         """This crossing on other road profiles (checked like the constructor's; the contact
-        points already computed are kept, which makes it cheap for a batch of roads)."""
-        new = copy.copy(self)
+        points already computed and the kept values that do not depend on the road
+        (``ROAD_FREE_KINDS``: time grids, kernel data) are kept, which makes it cheap for a batch
+        of roads)."""
+        new = copy.copy(self)  # without the kept values (__getstate__)
         object.__setattr__(new, "road", road)
         object.__setattr__(new, "road_right", road_right)
         new._check_roads()
+        old = self.__dict__.get("_kept")
+        if old is not None:
+            for key, value in old.items():
+                if key[0] in ROAD_FREE_KINDS:
+                    new.kept(key[0], key[1], lambda v=value: v)
         return new
+
+    def kept(self, kind: str, key: Hashable, make: Callable[[], T]) -> T:
+        """The value of ``kind`` for ``key`` derived from this crossing, made by ``make()`` the
+        first time and kept with the crossing (``KEPT_PER_CROSSING`` at most): a crossing is
+        immutable, so a run of the same crossing again reuses its plan, time grid, kernel data and
+        static start (``vbikit.solve.simulate``).  A crossing with any other input is another
+        object, with nothing kept; ``with_road`` keeps only the ``ROAD_FREE_KINDS``; copies and
+        pickles carry nothing kept.  Kept values are shared by every later run: not to be written."""
+        store = self.__dict__.get("_kept")
+        if store is None:
+            store = Kept(KEPT_PER_CROSSING)
+            object.__setattr__(self, "_kept", store)
+        return store.get((kind, key), make)
+
+    def __getstate__(self) -> dict:
+        """The crossing's state for copies and pickles, without its kept values (``kept``)."""
+        state = dict(self.__dict__)
+        state.pop("_kept", None)
+        return state
 
     # ------------------------------------------------------------ geometry & time
     @cached_property
