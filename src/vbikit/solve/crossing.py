@@ -45,7 +45,7 @@ T = TypeVar("T")
 #: values a crossing keeps of its own (``Crossing.kept``): at most this many
 KEPT_PER_CROSSING = 16
 #: the kinds of kept values that do not depend on the road (``Crossing.with_road`` keeps them)
-ROAD_FREE_KINDS = frozenset({"grid", "kernel_data"})
+ROAD_FREE_KINDS = frozenset({"grid", "kernel_data", "shapes"})
 
 
 @dataclass(frozen=True)
