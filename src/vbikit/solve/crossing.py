@@ -323,7 +323,13 @@ class Crossing:
 
     def point_kinematics(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """Per contact point: ``origin`` [m] and ``direction`` (±1) of x_p = origin + direction·s_v,
-        and its deck y [m] (the vehicle's lateral offset plus its own y, mirrored driving −x)."""
+        and its deck y [m] (the vehicle's lateral offset plus its own y, mirrored driving −x)
+        (computed once; fresh copies)."""
+        return tuple(a.copy() for a in self._kinematics)  # type: ignore[return-value]
+
+    @cached_property
+    def _kinematics(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """``point_kinematics`` (kept: not to be written)."""
         cp = self.contact
         veh = self.point_vehicle
         sign = np.array([m.sign for m in self.vehicles])[veh]
@@ -350,8 +356,12 @@ class Crossing:
     @property
     def start_time(self) -> float:
         """Time [s] the run starts: the latest time every vehicle is at least ``approach`` before
-        its entry support (0 for one vehicle)."""
-        return float(min(m.time_at(-self.approach) for m in self.vehicles)) + 0.0
+        its entry support (0 for one vehicle; computed once, like ``exit_time``)."""
+        known = self.__dict__.get("_start_time")
+        if known is None:
+            known = float(min(m.time_at(-self.approach) for m in self.vehicles)) + 0.0
+            object.__setattr__(self, "_start_time", known)
+        return known
 
     @property
     def max_speed(self) -> float:
@@ -404,7 +414,7 @@ class Crossing:
         points ``points`` of a vehicle have all left the deck: each its own track's far end (span +
         y tan θ driving +x, y tan θ driving −x, y its deck y), and at least the deck's far corner
         (``deck_extent``), plus its setback."""
-        _, _, y = self.point_kinematics()
+        _, _, y = self._kinematics
         cp = self.contact
         start = -self.bridge.span_coordinate(np.zeros(len(points)), y[points])  # x of each track's entry support
         near, far = self.bridge.deck_extent
@@ -423,7 +433,7 @@ class Crossing:
         """Range of x [m] the contact points touch during the crossing (computed once, like ``exit_time``)."""
         known = self.__dict__.get("_road_extent")
         if known is None:
-            origin, sign, _ = self.point_kinematics()
+            origin, sign, _ = self._kinematics
             s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
             x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
             known = (float(x.min()), float(x.max()))

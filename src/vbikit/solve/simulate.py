@@ -105,11 +105,20 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
     wheel_force = np.zeros((n_l, n_t, n_w))
     wheel_len = np.zeros((n_l, n_t, n_w))
-    if n_l == 1:  # one crossing: its road bundle and static start depend on it alone, kept with it
+    if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
         key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes())  # the entry holds data: its id stays its own
-        _, road, xi[0, 0], q[0, 0] = first.kept("start", key, lambda: (data, *_start(crossings, data, mot, 1)))
+        made: list = []
+
+        def start() -> tuple:
+            road, xi0, q0, reach = _start(crossings, data, mot, 1)
+            made.append(road)  # a road profile's bundle is not kept (its size is the profile's)
+            return data, road if first.road is None and first.road_right is None else None, xi0, q0, reach
+
+        _, road, xi[0, 0], q[0, 0], reach = first.kept("start", key, start)
+        if road is None:
+            road = made[0] if made else _road(crossings, *reach)
     else:
-        road, xi0, q0 = _start(crossings, data, mot, n_real)
+        road, xi0, q0, _ = _start(crossings, data, mot, n_real)
         xi[:n_real, 0], q[:n_real, 0] = xi0, q0
         xi[n_real:, 0], q[n_real:, 0] = xi0[-1], q0[-1]  # padding: copies of the last real lane
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
@@ -119,7 +128,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     if integrator.kernel is not None:
         announce_compile(integrator.kernel())
     integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride))
-    _, time, front, speed = first.kept("rows", (id(grid), stride), lambda: (grid, *_rows(first, grid, stride)))
+    time, front, speed = _rows(first, grid, stride)
     return [CrossingResult(c, time.copy(), dt * stride, front.copy(), speed.copy(),
                            *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt,
                            kernel_data=data)
@@ -135,18 +144,25 @@ def _rows(crossing: Crossing, grid: TimeGrid, stride: int) -> tuple:
     return grid.t_half[rows].copy(), np.where(sign > 0, travel, crossing.bridge.span - travel), grid.speed[rows].copy()
 
 
+def _road(crossings: Sequence[Crossing], x_min: float, x_max: float):
+    """The road bundle of the lanes ``crossings`` over ``x_min`` … ``x_max`` [m] (``road_data``)."""
+    from vbikit.solve.system import road_data
+
+    return road_data([(c.road, c.road_right) for c in crossings], x_min, x_max)
+
+
 def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int) -> tuple:
     """The road bundle of the lanes ``crossings`` (the first ``n_real`` real, the rest padding) over
-    the range of x the points cover, and the static start (ξ, q) of every real lane, (n_real, ·)
-    (one lane: (n_modes,), (n_dof,))."""
+    the range of x the points cover, the static start (ξ, q) of every real lane, (n_real, ·) (one
+    lane: (n_modes,), (n_dof,)), and that range (x_min, x_max) [m]."""
     from vbikit.solve import kernels
-    from vbikit.solve.system import flat_road, point_positions, road_data, static_state
+    from vbikit.solve.system import flat_road, point_positions, static_state
 
     n_p, n_l = data.n_points, len(crossings)
     x0, vx0 = point_positions(data, mot.travel[0], mot.speed[0])
     x_last, _ = point_positions(data, mot.travel[-1])  # travel is monotone: extremes at the ends
-    road = road_data([(c.road, c.road_right) for c in crossings], float(min(x0.min(), x_last.min())),
-                     float(max(x0.max(), x_last.max())))
+    reach = float(min(x0.min(), x_last.min())), float(max(x0.max(), x_last.max()))
+    road = _road(crossings, *reach)
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
     if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
         road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0)
@@ -156,5 +172,5 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int) 
     states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0])
               for lane, crossing in enumerate(crossings[:n_real])]
     if n_l == 1:
-        return road, states[0][0], states[0][1]
-    return road, np.array([s[0] for s in states]), np.array([s[1] for s in states])
+        return road, states[0][0], states[0][1], reach
+    return road, np.array([s[0] for s in states]), np.array([s[1] for s in states]), reach

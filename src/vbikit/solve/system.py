@@ -110,7 +110,7 @@ def kernel_data(crossing: Crossing, points_per_mode: int = 100) -> KernelData:
 def _kernel_data(crossing: Crossing, points_per_mode: int) -> KernelData:
     """``kernel_data`` made afresh."""
     cp = crossing.contact
-    origin, direction, y = crossing.point_kinematics()
+    origin, direction, y = crossing.point_kinematics()  # copies: the bundle owns its arrays
     tracks, track_idx = np.unique(y, return_inverse=True)
     table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
     points = points_data(cp, track_idx.ravel())._replace(
