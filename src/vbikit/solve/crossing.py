@@ -48,6 +48,17 @@ KEPT_PER_CROSSING = 16
 ROAD_FREE_KINDS = frozenset({"grid", "kernel_data", "shapes"})
 
 
+#: contact points per (vehicle, tire) object pair, each entry holding the pair (so that its ids stay
+#: its own): the crossings of one vehicle on one tire model share them (vehicles and tires are
+#: immutable); shared, not to be written
+_CONTACTS: "Kept[tuple[int, int], tuple[Vehicle, TireModel, ContactPoints]]" = Kept(64)
+
+
+def _contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
+    """``contact_points(vehicle, tire)``, made once per vehicle and tire object (``_CONTACTS``)."""
+    return _CONTACTS.get((id(vehicle), id(tire)), lambda: (vehicle, tire, contact_points(vehicle, tire)))[2]
+
+
 @dataclass(frozen=True)
 class VehicleMotion:
     """One vehicle of a crossing and its motion (module docstring).
@@ -111,6 +122,11 @@ class VehicleMotion:
         t_ref, _, v_ref = self._ref
         tau = np.minimum(np.asarray(t, float) - t_ref, self.stop_time)
         return v_ref + self.acceleration * tau
+
+    def _speed_at(self, t: float) -> float:
+        """``velocity`` at one time t [s], as a float (the same arithmetic)."""
+        t_ref, _, v_ref = self._ref
+        return v_ref + self.acceleration * min(float(t) - t_ref, self.stop_time)
 
     def time_at(self, travel: float) -> float:
         """Time [s] its front axle has travel ``travel`` [m] (NaN if it never gets there)."""
@@ -220,7 +236,7 @@ class Crossing:
         motion = VehicleMotion(self.vehicle, v, a, "+x", 0.0, self.lateral_offset, None, (0.0, -d, v))
         entry = motion.time_at(0.0)
         if not math.isnan(entry):  # its entry (it may stop before: exit_time, duration and simulate raise)
-            motion = dataclasses.replace(motion, speed=float(motion.velocity(entry)), entry_time=entry)
+            motion = dataclasses.replace(motion, speed=motion._speed_at(entry), entry_time=entry)
         object.__setattr__(self, "vehicles", (motion,))
 
     def _init_vehicles(self) -> None:
@@ -242,7 +258,7 @@ class Crossing:
         object.__setattr__(self, "vehicle", combine_vehicles([m.vehicle for m in self.vehicles]))
         start = self.start_time
         for i, m in enumerate(self.vehicles):
-            if math.isnan(m.time_at(-self.approach)) or float(m.velocity(start)) <= 0:
+            if math.isnan(m.time_at(-self.approach)) or m._speed_at(start) <= 0:
                 raise ValueError(f"vehicles[{i + 1}].acceleration: accelerating at {m.acceleration} m/s² to "
                                  f"{m.speed} m/s at its entry, the vehicle would not be moving {self.approach} m "
                                  "before its entry at the start of the run; use a smaller acceleration or entry speed")
@@ -311,7 +327,7 @@ class Crossing:
     def contact(self) -> ContactPoints:
         """The tire model's contact points under every wheel (several vehicles: each with its
         own tire, stacked in vehicle order)."""
-        parts = [contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
+        parts = [_contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
         return parts[0] if len(parts) == 1 and self.single else stack_contact_points(parts, self.vehicle.dof_offsets)
 
     @cached_property
@@ -367,9 +383,10 @@ class Crossing:
     def max_speed(self) -> float:
         """Highest speed [m/s] of any vehicle during the run (computed once, like ``exit_time``)."""
         known = self.__dict__.get("_max_speed")
-        if known is None:
-            t = np.array([self.start_time, self.start_time + self.duration])
-            known = float(self.travel_speed(t).max())
+        if known is None:  # constant accelerations: each vehicle's top speed is at the start or the end
+            start = self.start_time
+            end = start + self.duration
+            known = max(max(m._speed_at(start), m._speed_at(end)) for m in self.vehicles)
             object.__setattr__(self, "_max_speed", known)
         return known
 
