@@ -35,8 +35,8 @@ def _road(amplitude: float, spacing: float = 0.05) -> RoadProfile:
 
 
 def _crossing(**kw) -> Crossing:
-    args = dict(speed=25.0, approach=5.0, free_vibration=0.2) | kw
-    return Crossing(_beam(), sprung_mass(5750.0, 1595e3, 2e3), **args)
+    args = dict(vehicle=sprung_mass(5750.0, 1595e3, 2e3), speed=25.0, approach=5.0, free_vibration=0.2) | kw
+    return Crossing(_beam(), **args)
 
 
 def _same(a, b) -> bool:
@@ -110,3 +110,20 @@ def test_read_out_shapes_are_those_of_their_point():
     for x in (12.5, 6.0, 12.5):  # a shape kept under another point would give another history
         assert np.array_equal(result.displacement(x), result.xi @ bridge.mode_shapes([x], [0.0])[0])
     assert not np.array_equal(result.displacement(6.0), result.displacement(12.5))
+
+
+def test_contact_points_are_those_of_their_own_vehicle_and_tire():
+    from vbikit.contact import MultiPointTire
+    from vbikit.contact.points import contact_points
+
+    light, heavy = sprung_mass(5750.0, 1595e3, 2e3), sprung_mass(9000.0, 2500e3, 2e3)
+    tire = MultiPointTire()
+    cases = [(light, None), (heavy, None), (light, tire), (heavy, tire), (light, None)]
+    for vehicle, t in cases:  # a contact kept under another vehicle or tire would carry its loads or layout
+        c = _crossing(vehicle=vehicle) if t is None else _crossing(vehicle=vehicle, tire=t)
+        fresh = contact_points(vehicle, c.tire)
+        for name in ("setback", "weight", "stiffness", "damping", "gap", "width"):
+            assert np.array_equal(getattr(c.contact, name), getattr(fresh, name))
+    assert _crossing(vehicle=light).contact is _crossing(vehicle=light).contact  # one vehicle and tire: shared
+    assert not np.array_equal(_crossing(vehicle=light).contact.stiffness, _crossing(vehicle=heavy).contact.stiffness)
+    assert _crossing(vehicle=light, tire=tire).contact.n > _crossing(vehicle=light).contact.n
