@@ -127,3 +127,12 @@ def test_contact_points_are_those_of_their_own_vehicle_and_tire():
     assert _crossing(vehicle=light).contact is _crossing(vehicle=light).contact  # one vehicle and tire: shared
     assert not np.array_equal(_crossing(vehicle=light).contact.stiffness, _crossing(vehicle=heavy).contact.stiffness)
     assert _crossing(vehicle=light, tire=tire).contact.n > _crossing(vehicle=light).contact.n
+
+
+def test_many_read_out_points_do_not_push_the_run_set_up_out():
+    c = _crossing()
+    result = simulate(c)
+    kept = {key: value for key, value in c._kept.items()}
+    for x in np.linspace(1.0, 24.0, 40):
+        result.displacement(float(x))
+    assert all(c._kept.peek(key) is value for key, value in kept.items())

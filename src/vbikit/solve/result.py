@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
 from vbikit.outputs import CF_UNITS, QUANTITIES, cf_unit
@@ -19,6 +20,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 
 _add = np.add.reduce
+#: read-out points whose mode shapes a crossing keeps (``CrossingResult.displacement`` and its kin)
+KEPT_SHAPES = 32
 
 
 class DivergenceError(VbikitError):
@@ -142,9 +145,11 @@ class CrossingResult:
         return [float(x) + (xi - float(b.span_coordinate(x, g))) for g in ys]
 
     def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:
-        """φ_m(x, y) of every mode at the deck point (kept with the crossing: its bridge is immutable)."""
+        """φ_m(x, y) of every mode at the deck point (kept with the crossing, the last ``KEPT_SHAPES``
+        points in one entry of its store: its bridge is immutable)."""
         c, point = self.crossing, self.point(x, y)
-        return c.kept("shapes", point, lambda: c.bridge.mode_shapes(*([v] for v in point))[0])
+        shapes = c.kept("shapes", None, lambda: Kept(KEPT_SHAPES))
+        return shapes.get(point, lambda: c.bridge.mode_shapes(*([v] for v in point))[0])
 
     def displacement(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
         """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: [`point`][vbikit.solve.CrossingResult.point]."""

@@ -129,7 +129,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
         announce_compile(integrator.kernel())
     integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride))
     time, front, speed = _rows(first, grid, stride)
-    return [CrossingResult(c, time.copy(), dt * stride, front.copy(), speed.copy(),
+    return [CrossingResult(c, time, dt * stride, front, speed,
                            *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt,
                            kernel_data=data)
             for lane, c in enumerate(crossings[:n_real])]
