@@ -15,8 +15,10 @@ EI = 2.87e9 × 2.9 N·m², m = 2303 kg/m, undamped; M_v = 5750 kg, k_v = 1595 kN
   midspan deflection history from it (its minimum is the peak, as on the OpenSees side).  Two
   figures: a *new model* each run (beam, vehicle and ``Crossing`` built anew, as the OpenSees side
   builds its model each run: the mode tables are tabulated again) and the *same crossing again*
-  (its mode tables, vehicle frequencies and exit time kept: what a further run on the same bridge
-  costs, e.g. in a study); of the latter, the thread CPU time of the step loop (``kernels.lean``).
+  (the ``Crossing`` object run again: it keeps its plan, time grid, kernel data and static start,
+  ``Crossing.kept``, so this is what re-running one crossing costs; a new ``Crossing`` on the same
+  bridge and vehicle objects plans and starts again); of the latter, the thread CPU time of the
+  step loop (``kernels.lean``).
 * **OpenSeesPy, partitioned** (written here, the usual way a VBI is coupled to a general FE
   code): 20 ``elasticBeamColumn`` elements with lumped masses, Newmark average acceleration,
   dt = 1 ms, linear algorithm (the matrix factored once, ``-factorOnce``, which makes the stepping

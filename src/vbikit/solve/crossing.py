@@ -26,11 +26,12 @@ import dataclasses
 import math
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Optional
+from typing import Callable, Hashable, Optional, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.bridge.base import ModalBridge
 from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
@@ -39,6 +40,23 @@ from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR, get_integrator
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
+T = TypeVar("T")
+
+#: values a crossing keeps of its own (``Crossing.kept``): at most this many
+KEPT_PER_CROSSING = 16
+#: the kinds of kept values that do not depend on the road (``Crossing.with_road`` keeps them)
+ROAD_FREE_KINDS = frozenset({"grid", "kernel_data", "shapes"})
+
+
+#: contact points per (vehicle, tire) object pair, each entry holding the pair (so that its ids stay
+#: its own): the crossings of one vehicle on one tire model share them (vehicles and tires are
+#: immutable); shared, not to be written
+_CONTACTS: "Kept[tuple[int, int], tuple[Vehicle, TireModel, ContactPoints]]" = Kept(64)
+
+
+def _contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
+    """``contact_points(vehicle, tire)``, made once per vehicle and tire object (``_CONTACTS``)."""
+    return _CONTACTS.get((id(vehicle), id(tire)), lambda: (vehicle, tire, contact_points(vehicle, tire)))[2]
 
 
 @dataclass(frozen=True)
@@ -104,6 +122,11 @@ class VehicleMotion:
         t_ref, _, v_ref = self._ref
         tau = np.minimum(np.asarray(t, float) - t_ref, self.stop_time)
         return v_ref + self.acceleration * tau
+
+    def _speed_at(self, t: float) -> float:
+        """``velocity`` at one time t [s], as a float (the same arithmetic)."""
+        t_ref, _, v_ref = self._ref
+        return v_ref + self.acceleration * min(float(t) - t_ref, self.stop_time)
 
     def time_at(self, travel: float) -> float:
         """Time [s] its front axle has travel ``travel`` [m] (NaN if it never gets there)."""
@@ -213,7 +236,7 @@ class Crossing:
         motion = VehicleMotion(self.vehicle, v, a, "+x", 0.0, self.lateral_offset, None, (0.0, -d, v))
         entry = motion.time_at(0.0)
         if not math.isnan(entry):  # its entry (it may stop before: exit_time, duration and simulate raise)
-            motion = dataclasses.replace(motion, speed=float(motion.velocity(entry)), entry_time=entry)
+            motion = dataclasses.replace(motion, speed=motion._speed_at(entry), entry_time=entry)
         object.__setattr__(self, "vehicles", (motion,))
 
     def _init_vehicles(self) -> None:
@@ -235,7 +258,7 @@ class Crossing:
         object.__setattr__(self, "vehicle", combine_vehicles([m.vehicle for m in self.vehicles]))
         start = self.start_time
         for i, m in enumerate(self.vehicles):
-            if math.isnan(m.time_at(-self.approach)) or float(m.velocity(start)) <= 0:
+            if math.isnan(m.time_at(-self.approach)) or m._speed_at(start) <= 0:
                 raise ValueError(f"vehicles[{i + 1}].acceleration: accelerating at {m.acceleration} m/s² to "
                                  f"{m.speed} m/s at its entry, the vehicle would not be moving {self.approach} m "
                                  "before its entry at the start of the run; use a smaller acceleration or entry speed")
@@ -266,19 +289,45 @@ class Crossing:
 
     def with_road(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> "Crossing":
         """This crossing on other road profiles (checked like the constructor's; the contact
-        points already computed are kept, which makes it cheap for a batch of roads)."""
-        new = copy.copy(self)
+        points already computed and the kept values that do not depend on the road
+        (``ROAD_FREE_KINDS``: time grids, kernel data) are kept, which makes it cheap for a batch
+        of roads)."""
+        new = copy.copy(self)  # without the kept values (__getstate__)
         object.__setattr__(new, "road", road)
         object.__setattr__(new, "road_right", road_right)
         new._check_roads()
+        old = self.__dict__.get("_kept")
+        if old is not None:
+            for key, value in old.items():
+                if key[0] in ROAD_FREE_KINDS:
+                    new.kept(key[0], key[1], lambda v=value: v)
         return new
+
+    def kept(self, kind: str, key: Hashable, make: Callable[[], T]) -> T:
+        """The value of ``kind`` for ``key`` derived from this crossing, made by ``make()`` the
+        first time and kept with the crossing (``KEPT_PER_CROSSING`` at most): a crossing is
+        immutable, so a run of the same crossing again reuses its plan, time grid, kernel data and
+        static start (``vbikit.solve.simulate``).  A crossing with any other input is another
+        object, with nothing kept; ``with_road`` keeps only the ``ROAD_FREE_KINDS``; copies and
+        pickles carry nothing kept.  Kept values are shared by every later run: not to be written."""
+        store = self.__dict__.get("_kept")
+        if store is None:
+            store = Kept(KEPT_PER_CROSSING)
+            object.__setattr__(self, "_kept", store)
+        return store.get((kind, key), make)
+
+    def __getstate__(self) -> dict:
+        """The crossing's state for copies and pickles, without its kept values (``kept``)."""
+        state = dict(self.__dict__)
+        state.pop("_kept", None)
+        return state
 
     # ------------------------------------------------------------ geometry & time
     @cached_property
     def contact(self) -> ContactPoints:
         """The tire model's contact points under every wheel (several vehicles: each with its
         own tire, stacked in vehicle order)."""
-        parts = [contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
+        parts = [_contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
         return parts[0] if len(parts) == 1 and self.single else stack_contact_points(parts, self.vehicle.dof_offsets)
 
     @cached_property
@@ -290,7 +339,13 @@ class Crossing:
 
     def point_kinematics(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """Per contact point: ``origin`` [m] and ``direction`` (±1) of x_p = origin + direction·s_v,
-        and its deck y [m] (the vehicle's lateral offset plus its own y, mirrored driving −x)."""
+        and its deck y [m] (the vehicle's lateral offset plus its own y, mirrored driving −x)
+        (computed once; fresh copies)."""
+        return tuple(a.copy() for a in self._kinematics)  # type: ignore[return-value]
+
+    @cached_property
+    def _kinematics(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """``point_kinematics`` (kept: not to be written)."""
         cp = self.contact
         veh = self.point_vehicle
         sign = np.array([m.sign for m in self.vehicles])[veh]
@@ -317,16 +372,21 @@ class Crossing:
     @property
     def start_time(self) -> float:
         """Time [s] the run starts: the latest time every vehicle is at least ``approach`` before
-        its entry support (0 for one vehicle)."""
-        return float(min(m.time_at(-self.approach) for m in self.vehicles)) + 0.0
+        its entry support (0 for one vehicle; computed once, like ``exit_time``)."""
+        known = self.__dict__.get("_start_time")
+        if known is None:
+            known = float(min(m.time_at(-self.approach) for m in self.vehicles)) + 0.0
+            object.__setattr__(self, "_start_time", known)
+        return known
 
     @property
     def max_speed(self) -> float:
         """Highest speed [m/s] of any vehicle during the run (computed once, like ``exit_time``)."""
         known = self.__dict__.get("_max_speed")
-        if known is None:
-            t = np.array([self.start_time, self.start_time + self.duration])
-            known = float(self.travel_speed(t).max())
+        if known is None:  # constant accelerations: each vehicle's top speed is at the start or the end
+            start = self.start_time
+            end = start + self.duration
+            known = max(max(m._speed_at(start), m._speed_at(end)) for m in self.vehicles)
             object.__setattr__(self, "_max_speed", known)
         return known
 
@@ -371,7 +431,7 @@ class Crossing:
         points ``points`` of a vehicle have all left the deck: each its own track's far end (span +
         y tan θ driving +x, y tan θ driving −x, y its deck y), and at least the deck's far corner
         (``deck_extent``), plus its setback."""
-        _, _, y = self.point_kinematics()
+        _, _, y = self._kinematics
         cp = self.contact
         start = -self.bridge.span_coordinate(np.zeros(len(points)), y[points])  # x of each track's entry support
         near, far = self.bridge.deck_extent
@@ -390,7 +450,7 @@ class Crossing:
         """Range of x [m] the contact points touch during the crossing (computed once, like ``exit_time``)."""
         known = self.__dict__.get("_road_extent")
         if known is None:
-            origin, sign, _ = self.point_kinematics()
+            origin, sign, _ = self._kinematics
             s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
             x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
             known = (float(x.min()), float(x.max()))

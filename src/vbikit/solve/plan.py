@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -50,7 +49,13 @@ class TimeGrid:
 
 
 def time_grid(crossing: Crossing, dt: float) -> TimeGrid:
-    """The half-step grid of ``crossing`` for step ``dt`` [s] (it ends at or after ``crossing.duration``)."""
+    """The half-step grid of ``crossing`` for step ``dt`` [s] (it ends at or after ``crossing.duration``;
+    kept with the crossing, ``Crossing.kept``: shared, not to be written)."""
+    return crossing.kept("grid", float(dt), lambda: _time_grid(crossing, float(dt)))
+
+
+def _time_grid(crossing: Crossing, dt: float) -> TimeGrid:
+    """``time_grid`` made afresh."""
     n_steps = max(1, math.ceil(crossing.duration / dt - 1e-9))
     t_half = crossing.start_time + 0.5 * dt * np.arange(2 * n_steps + 1)
     return TimeGrid(dt, n_steps, t_half, np.ascontiguousarray(crossing.travel(t_half)),
@@ -83,14 +88,15 @@ class RunPlan:
     def n_steps(self) -> int:
         return self.estimate.n_steps
 
-    @cached_property
+    @property
     def grid(self) -> TimeGrid:
-        """The half-step time grid of the run."""
+        """The half-step time grid of the run (kept with the crossing)."""
         return time_grid(self.crossing, self.dt)
 
-    @cached_property
+    @property
     def kernel_data(self) -> "KernelData":
-        """Mode-shape tables along the wheel tracks and the kernels' argument bundles (loads the kernels)."""
+        """Mode-shape tables along the wheel tracks and the kernels' argument bundles (loads the
+        kernels; kept with the crossing)."""
         from vbikit.solve.system import kernel_data
 
         return kernel_data(self.crossing)
@@ -120,8 +126,18 @@ def plan_run(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
         A user step above an explicit integrator's stability limit.
     BudgetError
         A run above the limits.
+
+    The step and the estimate are kept with the crossing per ``limits`` (``Crossing.kept``): a run
+    of the same crossing again plans nothing.
     """
     integrator = get_integrator(crossing.integrator)
+    limits = Limits() if limits is None else limits
+    dt, estimate = crossing.kept("plan", (integrator, limits), lambda: _plan(crossing, integrator, limits))
+    return RunPlan(crossing, integrator, dt, estimate)
+
+
+def _plan(crossing: Crossing, integrator: Integrator, limits: Limits) -> tuple[float, RunEstimate]:
+    """The step and estimate of ``plan_run`` made afresh."""
     automatic = None
     if integrator.explicit:
         if crossing.dt is None:
@@ -131,4 +147,4 @@ def plan_run(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
         else:
             check_run(crossing, crossing.dt, limits)
     dt = choose_time_step(crossing, automatic=automatic)
-    return RunPlan(crossing, integrator, dt, check_run(crossing, dt, limits))
+    return dt, check_run(crossing, dt, limits)

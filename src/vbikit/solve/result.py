@@ -1,12 +1,14 @@
 """Time histories of one crossing and the responses derived from them."""
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
 from vbikit.outputs import CF_UNITS, QUANTITIES, cf_unit
@@ -17,6 +19,11 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 
+_add = np.add.reduce
+#: read-out points whose mode shapes a crossing keeps (``CrossingResult.displacement`` and its kin)
+KEPT_SHAPES = 32
+
+
 class DivergenceError(VbikitError):
     """An integration whose states became non-finite; the message gives the step and time."""
 
@@ -25,9 +32,12 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
     """``result`` if every state history is finite, else ``DivergenceError`` naming the
     first step (and its time) with a non-finite bridge, vehicle or tire value."""
     arrays = (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.q_ddot, result.wheel_forces)
+    total = 0.0
     with np.errstate(over="ignore", invalid="ignore"):  # a sum that overflows only takes the step-by-step path
-        if all(np.isfinite(np.sum(a)) for a in arrays):  # NaN and inf propagate into the sum: all finite
-            return result
+        for a in arrays:
+            total += _add(a, None)
+    if math.isfinite(total):  # NaN and inf propagate into the sums: all finite
+        return result
     ok = np.ones(result.time.size, bool)
     for a in arrays:
         if a.size:
@@ -135,7 +145,11 @@ class CrossingResult:
         return [float(x) + (xi - float(b.span_coordinate(x, g))) for g in ys]
 
     def _shapes(self, x: float | None, y: float | None) -> NDArray[np.float64]:
-        return self.crossing.bridge.mode_shapes(*([v] for v in self.point(x, y)))[0]
+        """φ_m(x, y) of every mode at the deck point (kept with the crossing, the last ``KEPT_SHAPES``
+        points in one entry of its store: its bridge is immutable)."""
+        c, point = self.crossing, self.point(x, y)
+        shapes = c.kept("shapes", None, lambda: Kept(KEPT_SHAPES))
+        return shapes.get(point, lambda: c.bridge.mode_shapes(*([v] for v in point))[0])
 
     def displacement(self, x: float | None = None, y: float | None = None) -> NDArray[np.float64]:
         """Deck vertical displacement [m] at (x, y) (z up: negative under load); defaults: [`point`][vbikit.solve.CrossingResult.point]."""

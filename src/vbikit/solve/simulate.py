@@ -89,9 +89,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
     and ``grid`` are those of the first) with their integrator (its registered ``run``,
     ``vbikit.solve.integrators``), as lanes of kernel calls (``MAX_LANES``)."""
-    from vbikit.solve import kernels
     from vbikit.solve.kernels import Motion
-    from vbikit.solve.system import flat_road, point_positions, road_data, static_state
 
     first, n_real = crossings[0], len(crossings)
     if n_real > MAX_LANES:
@@ -102,28 +100,27 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     dt, n_steps = grid.dt, grid.n_steps
     n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
     mot = Motion(grid.travel, grid.speed)
-    x_first, _ = point_positions(data, mot.travel[0])
-    x_last, _ = point_positions(data, mot.travel[-1])  # travel is monotone: extremes at the ends
-    road = road_data([(c.road, c.road_right) for c in crossings], float(min(x_first.min(), x_last.min())),
-                     float(max(x_first.max(), x_last.max())))
     n_t = n_steps // stride + 1  # stored rows (every stride-th step)
     xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
     q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
     wheel_force = np.zeros((n_l, n_t, n_w))
     wheel_len = np.zeros((n_l, n_t, n_w))
-    road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
-    x0, vx0 = point_positions(data, mot.travel[0], mot.speed[0])
-    if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
-        road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0)
-    else:
-        kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
-                        (0,) if n_l == 1 else (0, 0))
-    for lane, crossing in enumerate(crossings[:n_real]):
-        xi[lane, 0], q[lane, 0], active0 = static_state(crossing, data, road0[:, lane], mot.travel[0],
-                                                         road_rate=rate0[:, lane], speed=mot.speed[0])
-    for lane in range(n_real, n_l):  # padding: a copy of the last real lane
-        xi[lane, 0], q[lane, 0] = xi[n_real - 1, 0], q[n_real - 1, 0]
+    if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
+        key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes())  # the entry holds data: its id stays its own
+        made: list = []
 
+        def start() -> tuple:
+            road, xi0, q0, reach = _start(crossings, data, mot, 1)
+            made.append(road)  # a road profile's bundle is not kept (its size is the profile's)
+            return data, road if first.road is None and first.road_right is None else None, xi0, q0, reach
+
+        _, road, xi[0, 0], q[0, 0], reach = first.kept("start", key, start)
+        if road is None:
+            road = made[0] if made else _road(crossings, *reach)
+    else:
+        road, xi0, q0, _ = _start(crossings, data, mot, n_real)
+        xi[:n_real, 0], q[:n_real, 0] = xi0, q0
+        xi[n_real:, 0], q[n_real:, 0] = xi0[-1], q0[-1]  # padding: copies of the last real lane
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
@@ -131,10 +128,49 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     if integrator.kernel is not None:
         announce_compile(integrator.kernel())
     integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride))
-    rows = slice(0, None, 2 * stride)
-    time = grid.t_half[rows].copy()
-    front, speed = first.front_positions(time), grid.speed[rows].copy()
+    time, front, speed = _rows(first, grid, stride)
     return [CrossingResult(c, time, dt * stride, front, speed,
                            *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt,
                            kernel_data=data)
             for lane, c in enumerate(crossings[:n_real])]
+
+
+def _rows(crossing: Crossing, grid: TimeGrid, stride: int) -> tuple:
+    """Time [s], front-axle positions [m] and speeds [m/s] at the stored rows (every ``stride``-th
+    step) of ``grid``: its own travel and speed there (``Crossing.front_positions`` of the grid's travel)."""
+    rows = slice(0, None, 2 * stride)
+    travel = grid.travel[rows]
+    sign = np.array([m.sign for m in crossing.vehicles])
+    return grid.t_half[rows].copy(), np.where(sign > 0, travel, crossing.bridge.span - travel), grid.speed[rows].copy()
+
+
+def _road(crossings: Sequence[Crossing], x_min: float, x_max: float):
+    """The road bundle of the lanes ``crossings`` over ``x_min`` … ``x_max`` [m] (``road_data``)."""
+    from vbikit.solve.system import road_data
+
+    return road_data([(c.road, c.road_right) for c in crossings], x_min, x_max)
+
+
+def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int) -> tuple:
+    """The road bundle of the lanes ``crossings`` (the first ``n_real`` real, the rest padding) over
+    the range of x the points cover, the static start (ξ, q) of every real lane, (n_real, ·) (one
+    lane: (n_modes,), (n_dof,)), and that range (x_min, x_max) [m]."""
+    from vbikit.solve import kernels
+    from vbikit.solve.system import flat_road, point_positions, static_state
+
+    n_p, n_l = data.n_points, len(crossings)
+    x0, vx0 = point_positions(data, mot.travel[0], mot.speed[0])
+    x_last, _ = point_positions(data, mot.travel[-1])  # travel is monotone: extremes at the ends
+    reach = float(min(x0.min(), x_last.min())), float(max(x0.max(), x_last.max()))
+    road = _road(crossings, *reach)
+    road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
+    if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
+        road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0)
+    else:
+        kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
+                        (0,) if n_l == 1 else (0, 0))
+    states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0])
+              for lane, crossing in enumerate(crossings[:n_real])]
+    if n_l == 1:
+        return road, states[0][0], states[0][1], reach
+    return road, np.array([s[0] for s in states]), np.array([s[1] for s in states]), reach

@@ -102,9 +102,15 @@ def points_data(contact, track: NDArray[np.int64], origin: NDArray[np.float64] |
 
 def kernel_data(crossing: Crossing, points_per_mode: int = 100) -> KernelData:
     """Tabulate mode shapes along every wheel track and bundle all arrays for the kernels (several
-    vehicles: their stacked DOFs and wheels, each point with its vehicle, origin and direction)."""
+    vehicles: their stacked DOFs and wheels, each point with its vehicle, origin and direction;
+    kept with the crossing, ``Crossing.kept``: shared, not to be written)."""
+    return crossing.kept("kernel_data", int(points_per_mode), lambda: _kernel_data(crossing, int(points_per_mode)))
+
+
+def _kernel_data(crossing: Crossing, points_per_mode: int) -> KernelData:
+    """``kernel_data`` made afresh."""
     cp = crossing.contact
-    origin, direction, y = crossing.point_kinematics()
+    origin, direction, y = crossing.point_kinematics()  # copies: the bundle owns its arrays
     tracks, track_idx = np.unique(y, return_inverse=True)
     table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
     points = points_data(cp, track_idx.ravel())._replace(
@@ -124,9 +130,10 @@ def point_positions(data: KernelData, travel: NDArray[np.float64] | float,
     """Positions x_p [m] and x-rates dir_p·v [m/s] of every point for the vehicles' ``travel``
     (n_vehicles,) [m] and ``speed`` [m/s] (scalars: every vehicle)."""
     pts = data.points
-    s = np.broadcast_to(np.asarray(travel, float), (int(pts.vehicle.max(initial=0)) + 1,))
-    v = np.broadcast_to(np.asarray(speed, float), s.shape)
-    return pts.origin + pts.direction * s[pts.vehicle], pts.direction * v[pts.vehicle]
+    s, v = np.asarray(travel, float), np.asarray(speed, float)
+    # one value (every vehicle's) multiplies as a scalar: the same products as gathering copies of it
+    return (pts.origin + pts.direction * (s.reshape(()) if s.size == 1 else s[pts.vehicle]),
+            pts.direction * (v.reshape(()) if v.size == 1 else v[pts.vehicle]))
 
 
 def coupled_matrices(
