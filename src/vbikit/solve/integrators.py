@@ -307,9 +307,9 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
     elevations = road.elevations if lanes else road.elevations[:, :, 0]
     return tuple(c(a) if isinstance(a, np.ndarray) else a for a in (
         call.motion.travel, call.motion.speed, modes.start, modes.end, float(modes.grid_h), modes.values,
-        modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, vehicle_step.transition, vehicle_step.load0,
-        vehicle_step.constant, vehicle_step.settle, vehicle_step.response, vehicle_step.wheel_q,
-        vehicle_step.wheel_v, vehicle_step.c_hat, vehicle_step.k_hat, veh.mass_inv, veh.gravity, veh.wheel_rows,
+        modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, vehicle_step.free, vehicle_step.free_load,
+        vehicle_step.free_constant, vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v,
+        vehicle_step.accel, vehicle_step.accel_load, vehicle_step.accel_constant, vehicle_step.band, veh.wheel_rows,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
         pts.width, road.stations, elevations, float(road.r_max), *outputs))

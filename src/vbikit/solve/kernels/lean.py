@@ -4,7 +4,11 @@ contiguous arrays. (``vbikit.solve.kernels``: the equations and conventions.)
 ``lean`` runs the steps of ``implicit`` that need one contact-law evaluation: the partitioned step
 (every mode by its transition, ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1}, ξ̇ likewise; the
 vehicles z_{n+1} = P (Φ z_n + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleStep``), the end-of-step
-point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}:
+point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}.  The
+vehicles' products are those of ``implicit`` regrouped (the same to round-off): the settled free
+response P Φ z_n + P L0 G_n + P g and the accelerations M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G by the fused
+maps of ``VehicleStep``, one product each, every row over its nonzero ``band`` (several vehicles are
+block-diagonal: the other vehicles' zero blocks are skipped).
 
 1. the state of the guess and the contact law there (``_law``: s_p = φ_p·ξ + r_p,
    δ_p = s_p − g_p − z_w, F_p = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p, gated);
@@ -117,10 +121,11 @@ def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
 
 
 @_flat_internal
-def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf, zb,
-           p, fw, x1, v1, z1):
+def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, band, xf, vf,
+           zb, p, fw, x1, v1, z1):
     """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
-    ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``)."""
+    ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``; each row of
+    P L1 over its wheels' ``band``)."""
     n_m = p.size
     _, n_grid, _ = values.shape
     for m in range(n_m):
@@ -143,7 +148,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         v1[m] = vf[m] + c2[m] * p[m]
     for i in range(z1.size):
         a = zb[i]
-        for w in range(fw.size):
+        for w in range(band[i, 2], band[i, 3]):
             a += response[i, w] * fw[w]
         z1[i] = a
 
@@ -219,12 +224,13 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
 
 @njit(nogil=True, **FLAT_OPTIONS)
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-         transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity, wheel_rows,
-         wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated,
-         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride,
-         modal, state, dof, wheels, held, veh, piv, points, flags, index, shapes):
+         free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, band,
+         wheel_rows, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0,
+         gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol,
+         stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
-    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep``, ``Vehicles`` and ``Points`` one by one
+    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` (its fused maps and their ``band``: each row's
+    products run over its nonzero ranges only), ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
     one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the work
@@ -235,14 +241,13 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     filled); evaluations counts the contact-law evaluations."""
     n_steps = (len(travel) - 1) // 2
     n_m = omega.size
-    n_d = len(mass_inv)
+    n_d = len(accel)
     n_cp = origin.size
     n_w = len(wheel_rows)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
     dv = modal[7]
-    z1 = state[0]; zf = state[1]; zb = state[2]
-    rhs = dof[0]
+    z1 = state[0]; zb = state[1]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
     t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
@@ -275,20 +280,15 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
                 xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m]
                 vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m]
-            for i in range(2 * n_d):
-                a = constant[i]
-                for j in range(2 * n_d):
-                    a += transition[i, j] * z1[j]
-                for w in range(n_w):
-                    a += load0[i, w] * g0[w]
-                zf[i] = a
-            for i in range(2 * n_d):
-                a = 0.0
-                for j in range(2 * n_d):
-                    a += settle[i, j] * zf[j]
+            for i in range(2 * n_d):  # z_b = P Φ z_n + P L0 G_n + P g, each row over its band
+                a = free_constant[i]
+                for j in range(band[i, 0], band[i, 1]):
+                    a += free[i, j] * z1[j] + free[i, n_d + j] * z1[n_d + j]
+                for w in range(band[i, 2], band[i, 3]):
+                    a += free_load[i, w] * g0[w]
                 zb[i] = a
-            _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
-                   zb, p, fw, x1, v1, z1)
+            _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, band,
+                   xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
         _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
              wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
@@ -334,7 +334,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         dp[m] = 0.0
                     for i in range(2 * n_d):  # z = z_b + (P L1) F_w
                         a = z1[i]
-                        for w in range(n_w):
+                        for w in range(band[i, 2], band[i, 3]):
                             a += response[i, w] * dfw[w]
                         z1[i] = a
                     err = 0.0
@@ -394,17 +394,13 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 xi[r_out, m] = x1[m]
                 dxi[r_out, m] = v1[m]
                 ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
-            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
-                a = gravity[i]
-                for j in range(n_d):
-                    a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
-                for w in range(n_w):
-                    a += wheel_rows[w, i] * g0[w]
-                rhs[i] = a
-            for i in range(n_d):
-                a = 0.0
-                for j in range(n_d):
-                    a += mass_inv[i, j] * rhs[j]
+            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) = M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G
+                ra = 2 * n_d + i  # (its band)
+                a = accel_constant[i]
+                for j in range(band[ra, 0], band[ra, 1]):
+                    a += accel[i, j] * z1[j] + accel[i, n_d + j] * z1[n_d + j]
+                for w in range(band[ra, 2], band[ra, 3]):
+                    a += accel_load[i, w] * g0[w]
                 q[r_out, i] = z1[i]
                 dq[r_out, i] = z1[n_d + i]
                 ddq[r_out, i] = a
@@ -416,14 +412,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (8, n_m), per vehicle state (3, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active
+    (8, n_m), per vehicle state (2, 2 n_d), per wheel (10, n_w), the held active
     sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((8, n_m)), np.zeros((3, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
+    return (np.zeros((8, n_m)), np.zeros((2, 2 * n_d)), np.zeros((10, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 
