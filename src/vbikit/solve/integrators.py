@@ -294,8 +294,9 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
                     lanes: bool = False) -> tuple:
     """The lean kernels' arguments (``kernels.lean``; ``kernels.lean_lanes`` with ``lanes``) of
     ``call``, up to ``tol`` and ``stride`` (the one-lane kernel's work spaces follow those:
-    ``_lean_work``): the bundles' arrays one by one, contiguous, the road and outputs of the one
-    lane (of every lane)."""
+    ``_lean_work``): the bundles' arrays one by one, contiguous (the step maps' fused ones, the wheel rows
+    as ``kernels.lean.wheel_entries``), the road and outputs of the one lane (of every lane)."""
+    from vbikit.solve.kernels.lean import wheel_entries
     from vbikit.solve.system import point_gates
 
     c = np.ascontiguousarray
@@ -309,7 +310,7 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
         call.motion.travel, call.motion.speed, modes.start, modes.end, float(modes.grid_h), modes.values,
         modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, vehicle_step.free, vehicle_step.free_load,
         vehicle_step.free_constant, vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v,
-        vehicle_step.accel, vehicle_step.accel_load, vehicle_step.accel_constant, vehicle_step.band, veh.wheel_rows,
+        vehicle_step.accel, vehicle_step.accel_load, vehicle_step.accel_constant, *wheel_entries(veh.wheel_rows),
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
         pts.width, road.stations, elevations, float(road.r_max), *outputs))

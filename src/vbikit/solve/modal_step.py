@@ -167,30 +167,10 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
     m_inv = vehicles.mass_inv
     accel = m_inv @ np.hstack([-k_hat, -c_hat]).reshape(n_d, 2 * n_d)
     accel_load, accel_constant = m_inv @ rows.T, m_inv @ vehicles.gravity
-    band = np.vstack([row_bands(free, (free_load != 0.0) | (response != 0.0)), row_bands(accel, accel_load != 0.0)])
     c = np.ascontiguousarray
     return VehicleStep(c(transition), c(load0), c(load1), c(constant), c_hat, k_hat, c(settle), c(response),
                        c(rows @ response[:n_d]), c(rows @ response[n_d:]), c(free), c(free_load), c(free_constant),
-                       c(accel), c(accel_load), c(accel_constant), c(band))
-
-
-def row_bands(pair: NDArray[np.float64], wheels: NDArray[np.bool_]) -> NDArray[np.int64]:
-    """Per row i of a map ``pair`` (r, 2n) on the vehicle state z = (q, q̇) and of a mask ``wheels``
-    (r, n_w) of its wheel columns that are not zero: (lo, hi, lo_w, hi_w), the smallest ranges
-    [lo, hi) of DOFs j and [lo_w, hi_w) of wheels w outside which pair[i, j], pair[i, n + j] and the
-    wheel columns are exactly zero ((0, 0) for a row without any).  For several vehicles stacked
-    block-diagonally (``vbikit.vehicle.model.combine_vehicles``) a row's ranges are its own vehicle's
-    DOFs and wheels, so the lean kernels' products skip the other vehicles' zero blocks; for one
-    vehicle (dense maps) each range is the whole.  Exact: only zero terms are left out."""
-    n = pair.shape[1] // 2
-    out = np.zeros((pair.shape[0], 4), np.int64)
-    for k, mask in enumerate(((pair[:, :n] != 0.0) | (pair[:, n:] != 0.0), np.asarray(wheels, bool))):
-        if mask.shape[1] == 0:
-            continue
-        some = mask.any(axis=1)
-        out[:, 2 * k] = np.where(some, mask.argmax(axis=1), 0)
-        out[:, 2 * k + 1] = np.where(some, mask.shape[1] - mask[:, ::-1].argmax(axis=1), 0)
-    return out
+                       c(accel), c(accel_load), c(accel_constant))
 
 
 def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:

@@ -208,11 +208,7 @@ class VehicleStep(NamedTuple):
     several: the settled free response z_b = P (Φ z_n + L0 G_n + g) = ``free`` z_n + ``free_load`` G_n
     + ``free_constant`` (P Φ (2n_d, 2n_d), P L0 (2n_d, n_w), P g (2n_d,)), and the accelerations
     q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) = ``accel`` z + ``accel_load`` G + ``accel_constant``
-    (M⁻¹[−K̂ −Ĉ] (n_d, 2n_d), M⁻¹Hᵀ (n_d, n_w), M⁻¹F_G (n_d,)); ``band`` (3n_d, 4) int64 holds per row
-    the ranges [lo, hi) outside which those rows are exactly zero (several vehicles: block-diagonal),
-    rows 0 … 2n_d − 1 for ``free`` (columns j and n_d + j for j in [band[i, 0], band[i, 1])),
-    ``free_load`` and ``response`` (wheels [band[i, 2], band[i, 3])), rows 2n_d … 3n_d − 1 likewise for
-    ``accel`` and ``accel_load`` (``vbikit.solve.modal_step.row_bands``)."""
+    (M⁻¹[−K̂ −Ĉ] (n_d, 2n_d), M⁻¹Hᵀ (n_d, n_w), M⁻¹F_G (n_d,))."""
 
     transition: np.ndarray
     load0: np.ndarray
@@ -230,4 +226,3 @@ class VehicleStep(NamedTuple):
     accel: np.ndarray
     accel_load: np.ndarray
     accel_constant: np.ndarray
-    band: np.ndarray

@@ -50,8 +50,8 @@ from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_hel
 
 @_internal
 def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-               wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-               r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l, dr_l):
+               wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
+               elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l, dr_l):
     """``lean._law`` for every lane at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (each (·, L)):
     per point and lane ``force`` (gated), ``active``, penetration ``pen``, ungated law ``law``; per
     point ``used`` (False: left out for every lane by the shared lazy test); per wheel and lane the
@@ -68,7 +68,7 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
         a = amp[m]
         for lane in range(n_l):
             bmax[lane] += a * abs(x1[m, lane])
-    for w in range(wheel_rows.shape[0]):
+    for w in range(wheel_dof.shape[0]):
         for lane in range(n_l):
             zw[lane] = 0.0
             dzw[lane] = 0.0
@@ -76,9 +76,10 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
             wl[w, lane] = 0.0
             lo_on[w, lane] = -1e300
             lo_off[w, lane] = -1e300
-        for j in range(n_d):
-            h = wheel_rows[w, j]
+        for e in range(wheel_dof.shape[1]):  # the nonzero entries of h_w (``lean.wheel_entries``)
+            h = wheel_h[w, e]
             if h != 0.0:
+                j = wheel_dof[w, e]
                 for lane in range(n_l):
                     zw[lane] += h * z1[j, lane]
                     dzw[lane] += h * z1[n_d + j, lane]
@@ -308,8 +309,8 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-               free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, band,
-               wheel_rows, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc,
+               free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, wheel_dof,
+               wheel_h, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc,
                f0, gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force,
                wheel_len, tol, stride, stop, first, last, fresh, carry_f, carry_p, carry_g):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
@@ -333,7 +334,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     n_m = omega.size
     n_d = accel.shape[0]
     n_cp = origin.size
-    n_w = wheel_rows.shape[0]
+    n_w = wheel_dof.shape[0]
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
     xf = np.empty((n_m, n_l)); vf = np.empty((n_m, n_l))
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l))
@@ -385,9 +386,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             have[k] = 0
         if n < first:
             _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                       slopes, amp, wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width,
-                       stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw,
-                       dzw, s_l, sd_l, dr_l)
+                       slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                       gated, width, stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       bmax, zw, dzw, s_l, sd_l, dr_l)
             for m in range(n_m):
                 for lane in range(n_l):
                     p[m, lane] = 0.0
@@ -439,9 +440,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                          xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
             _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                       slopes, amp, wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width,
-                       stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw,
-                       dzw, s_l, sd_l, dr_l)
+                       slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                       gated, width, stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       bmax, zw, dzw, s_l, sd_l, dr_l)
             n_rel = 0
             n_use = 0
             for k in range(n_cp):
@@ -594,9 +595,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             cw = wheel_c[w]
             for lane in range(n_l):
                 g0[w, lane] = wf[w, lane]
-            for j in range(n_d):
-                h = wheel_rows[w, j]
+            for e in range(wheel_dof.shape[1]):
+                h = wheel_h[w, e]
                 if h != 0.0:
+                    j = wheel_dof[w, e]
                     for lane in range(n_l):
                         g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
         for m in range(n_m):
@@ -604,7 +606,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             e2 = omega[m] * omega[m]
             for lane in range(n_l):
                 acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
-        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) = M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G (``VehicleStep``)
+        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``VehicleStep``)
             ai = accel_constant[i]
             for lane in range(n_l):
                 a1[i, lane] = ai
