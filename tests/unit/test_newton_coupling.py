@@ -53,8 +53,7 @@ def test_full_newton_solve_matches_a_dense_solve(n_points, expect_reduced):
     zeros = np.zeros(n_m)
     step = ModalStep(zeros, zeros, zeros, zeros, zeros, zeros, rng.uniform(1e-7, 1e-6, n_m), rng.uniform(1e-4, 1e-3, n_m))
     wq, wv = rng.normal(size=(n_w, n_w)) * 1e-7, rng.normal(size=(n_w, n_w)) * 1e-5
-    vstep = VehicleStep(*(np.zeros((1, 1)),) * 8, wq, wv,
-                        *(np.zeros((1, 1)),) * (len(VehicleStep._fields) - 10))  # (only wheel_q, wheel_v read)
+    vstep = VehicleStep(*(np.zeros((1, 1)),) * 8, wq, wv)
     rhs = rng.normal(size=n_points) * 1e3
 
     e = np.array([((k[i] * step.c1 + c[i] * step.c2) * cache.phi[p] + c[i] * cache.vx[p] * step.c1 * cache.dphi[p])

@@ -204,11 +204,7 @@ class VehicleStep(NamedTuple):
     For the coupled solve, with the end loads G = F + K_z z_{n+1} written through the wheel forces
     F: ``settle`` P = (I − L1 K_z)⁻¹ (2n_d, 2n_d), ``response`` P L1 (2n_d, n_w), and the wheels'
     displacement and velocity per unit wheel force ``wheel_q`` = H (P L1)[:n_d], ``wheel_v`` =
-    H (P L1)[n_d:] (n_w, n_w).  The lean kernels' fused maps, each one product a step in place of
-    several: the settled free response z_b = P (Φ z_n + L0 G_n + g) = ``free`` z_n + ``free_load`` G_n
-    + ``free_constant`` (P Φ (2n_d, 2n_d), P L0 (2n_d, n_w), P g (2n_d,)), and the accelerations
-    q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) = ``accel`` z + ``accel_load`` G + ``accel_constant``
-    (M⁻¹[−K̂ −Ĉ] (n_d, 2n_d), M⁻¹Hᵀ (n_d, n_w), M⁻¹F_G (n_d,))."""
+    H (P L1)[n_d:] (n_w, n_w)."""
 
     transition: np.ndarray
     load0: np.ndarray
@@ -220,9 +216,24 @@ class VehicleStep(NamedTuple):
     response: np.ndarray
     wheel_q: np.ndarray
     wheel_v: np.ndarray
+
+
+class FusedVehicleStep(NamedTuple):
+    """A ``VehicleStep``'s products as the lean kernels take them, each one product a step in place of
+    several (``vbikit.solve.modal_step.fused_step``): the settled free response
+    z_b = P (Φ z_n + L0 G_n + g) = ``free`` z_n + ``free_load`` G_n + ``free_constant`` (P Φ (2n_d, 2n_d),
+    P L0 (2n_d, n_w), P g (2n_d,)); the accelerations q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) = ``accel`` z
+    + ``accel_load`` G + ``accel_constant`` (M⁻¹[−K̂ −Ĉ] (n_d, 2n_d), M⁻¹Hᵀ (n_d, n_w), M⁻¹F_G (n_d,));
+    and each wheel row h_w by its nonzero entries, DOF indices ``wheel_dof`` (n_w, k) int64 and values
+    ``wheel_h`` (n_w, k) (``vbikit.solve.kernels.lean.wheel_entries``).  Kept apart from
+    ``VehicleStep``, which ``implicit`` takes whole: more arrays in that bundle cost ``implicit``
+    reference counting at every helper call."""
+
     free: np.ndarray
     free_load: np.ndarray
     free_constant: np.ndarray
     accel: np.ndarray
     accel_load: np.ndarray
     accel_constant: np.ndarray
+    wheel_dof: np.ndarray
+    wheel_h: np.ndarray

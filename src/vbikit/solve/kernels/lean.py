@@ -7,7 +7,7 @@ vehicles z_{n+1} = P (Φ z_n + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleS
 point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}.  The
 vehicles' products are those of ``implicit`` regrouped (the same to round-off): the settled free
 response P Φ z_n + P L0 G_n + P g and the accelerations M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G by the fused
-maps of ``VehicleStep``, one product each; a wheel's displacement h_w·q and load read only the
+maps of ``FusedVehicleStep``, one product each; a wheel's displacement h_w·q and load read only the
 nonzero entries of its row h_w (``wheel_entries``: two a wheel on the stock trucks, against n_d).
 
 1. the state of the guess and the contact law there (``_law``: s_p = φ_p·ξ + r_p,
@@ -229,8 +229,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
          gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol,
          stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
-    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` (its fused maps), ``Vehicles`` (the wheel rows
-    as ``wheel_entries``) and ``Points`` one by one
+    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
+    ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
     one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the work

@@ -9,7 +9,7 @@ positions, which points are on the deck, the mode shapes φ_p, φ'_p (cubic Herm
 the step) and each point's road cell.  Each lane then takes ``lean``'s step with its own numbers
 (two products regrouped, the same to round-off: the vehicles' settled free response
 z_b = (P Φ) z_n + (P L0) G_n + P g and accelerations q̈ = M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G through
-the fused maps of ``VehicleStep``, and one factorisation
+the fused maps of ``FusedVehicleStep``, and one factorisation
 of I + S_A U_A shared by the lanes of the same active sums, the solve running across them):
 
 1. the first guess F = 2F_n − F_{n−1}, its end state and the contact law there (``_law_lanes``: one
@@ -606,7 +606,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             e2 = omega[m] * omega[m]
             for lane in range(n_l):
                 acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
-        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``VehicleStep``)
+        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``FusedVehicleStep``)
             ai = accel_constant[i]
             for lane in range(n_l):
                 a1[i, lane] = ai
