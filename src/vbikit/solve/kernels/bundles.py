@@ -226,8 +226,7 @@ class FusedVehicleStep(NamedTuple):
     + ``accel_load`` G + ``accel_constant`` (M⁻¹[−K̂ −Ĉ] (n_d, 2n_d), M⁻¹Hᵀ (n_d, n_w), M⁻¹F_G (n_d,));
     and each wheel row h_w by its nonzero entries, DOF indices ``wheel_dof`` (n_w, k) int64 and values
     ``wheel_h`` (n_w, k) (``vbikit.solve.kernels.lean.wheel_entries``).  Kept apart from
-    ``VehicleStep``, which ``implicit`` takes whole: more arrays in that bundle cost ``implicit``
-    reference counting at every helper call."""
+    ``VehicleStep``, the bundle ``implicit`` takes whole and which reads none of these."""
 
     free: np.ndarray
     free_load: np.ndarray
