@@ -19,7 +19,8 @@ nonzero entries of its row h_w (``wheel_entries``: two a wheel on the stock truc
    (Δξ = c1 Δp, Δξ̇ = c2 Δp, Δp = −Σ φ_k ΔF_k; Δδ_k = φ_k·Δξ + Δ(−z_w), Δδ̇_k = φ_k·Δξ̇ + v_x φ'_k·Δξ
    + Δ(−ż_w)), at most ``LEAN_CORRECTIONS`` times — the same arithmetic as ``implicit``'s
    one-evaluation step (``newton._vehicle_newton``, ``newton._lean_refine``); the iterate's end
-   state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇, z += (P L1) ΔF_w).
+   state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇; the iterates read the vehicles only
+   through the wheels' increments, so z += (P L1) ΔF_w once, ΔF_w the corrections' whole change).
 
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
 activity changes, or a point the lazy test left out may touch), or the corrections not settling.
@@ -249,7 +250,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     dv = modal[7]
     z1 = state[0]; zb = state[1]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
-    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
+    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
     law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]
     active = flags[0]; used = flags[1]; onb = flags[2]
@@ -310,6 +311,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             updated = err > tol
             if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
+                for w in range(n_w):
+                    fw0[w] = fw[w]  # the guess's wheel forces
                 for r in range(LEAN_CORRECTIONS):
                     for w in range(n_w):
                         if r > 0:
@@ -332,11 +335,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         x1[m] += dx[m]
                         v1[m] += dv[m]
                         dp[m] = 0.0
-                    for i in range(2 * n_d):  # z = z_b + (P L1) F_w
-                        a = z1[i]
-                        for w in range(n_w):
-                            a += response[i, w] * dfw[w]
-                        z1[i] = a
                     err = 0.0
                     changed = False
                     for k in range(n_cp):
@@ -374,10 +372,16 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if not settled:
                     stop = n
                     break
+                for w in range(n_w):  # the corrections' whole change of the wheel forces
+                    fw[w] += dfw[w]
+                    dfw[w] = fw[w] - fw0[w]
+                for i in range(2 * n_d):  # z = z_b + (P L1) F_w, once for all the corrections (the iterates
+                    a = z1[i]  # read only the wheels' increments bq, bv)
+                    for w in range(n_w):
+                        a += response[i, w] * dfw[w]
+                    z1[i] = a
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
         for w in range(n_w):
-            if updated:
-                fw[w] += dfw[w]
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
             a = wf[w]
@@ -412,14 +416,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (8, n_m), per vehicle state (2, 2 n_d), per wheel (10, n_w), the held active
+    (8, n_m), per vehicle state (2, 2 n_d), per wheel (11, n_w), the held active
     sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((8, n_m)), np.zeros((2, 2 * n_d)), np.zeros((10, n_w)),
+    return (np.zeros((8, n_m)), np.zeros((2, 2 * n_d)), np.zeros((11, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 
