@@ -188,3 +188,81 @@ def test_the_default_path_compiles_each_flat_kernel_once():
     assert len(_state.signatures) <= 1 and len(_quasi.signatures) <= 1
     assert all(len(k.signatures) - before[name] <= 1 for name, k in shared.items())
     assert FLAT_OPTIONS.get("_nrt") is False and FLAT_OPTIONS.get("no_rewrites") is True
+
+
+def test_two_trucks_on_the_3d_deck_run_lean_and_equal_implicit():
+    """examples/traffic/two_trucks.toml: a 3-S2 and a three-axle truck in opposite lanes of
+    paper-bridge-2, one coupled run (the vehicles stacked block-diagonally,
+    ``vehicle.model.combine_vehicles``): the lean kernel with the step map's fused products
+    (``FusedVehicleStep``: ``free``, ``accel``, each wheel's nonzero entries) equals ``implicit`` with the
+    unfused ones (settle·(transition z + load0 G + constant), M⁻¹(F_G + HᵀG − Ĉq̇ − K̂q))."""
+    crossing = _scenario(load_scenario(ROOT / "examples" / "traffic" / "two_trucks.toml"))
+    assert len(crossing.vehicles) == 2
+    lean, full, ran = _both(crossing)
+    assert ran["lean"] == 1 and ran["fallback"] == 0
+    assert _worst(lean, full) <= 1e-10
+
+
+def _two_truck_maps():
+    """The exact step map of the 3-S2 and the HS20-44 stacked (two different trucks), its fused maps
+    and the vehicles' arrays."""
+    from vbikit.solve.modal_step import fused_step, vehicle_step
+    from vbikit.solve.system import vehicles_data
+    from vbikit.vehicle.model import combine_vehicles
+
+    beam = EulerBernoulliBeam(span=30.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=4)
+    crossing = Crossing(beam, vehicles=(VehicleMotion(semitrailer_3s2(), 22.0), VehicleMotion(hs20_44(), 17.0)))
+    vehicles = vehicles_data(combine_vehicles([semitrailer_3s2(), hs20_44()]), crossing.contact)
+    step = vehicle_step(vehicles, 0.002)
+    return vehicles, step, fused_step(vehicles, step)
+
+
+def test_fused_vehicle_maps_equal_the_unfused_products():
+    """``modal_step.fused_step``'s maps against the products they replace, on random states and wheel loads
+    of two different trucks stacked: P Φ z + P L0 G + P g = P (Φ z + L0 G + g) (the free response,
+    as ``implicit`` forms it), and M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G = the solution q̈ of
+    M q̈ = F_G + Hᵀ G − Ĉ q̇ − K̂ q (numpy's solve with M itself, not M⁻¹)."""
+    vehicles, step, fused = _two_truck_maps()
+    from vbikit.solve.modal_step import fused_step
+
+    assert fused_step(vehicles, step) is fused  # made once per step map
+    n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
+    rng = np.random.default_rng(11)
+    for _ in range(5):
+        z = rng.normal(size=2 * n_d) * np.r_[np.full(n_d, 1e-2), np.full(n_d, 1e-1)]
+        g = rng.normal(size=n_w) * 1e4
+        free = step.settle @ (step.transition @ z + step.load0 @ g + step.constant)
+        got = fused.free @ z + fused.free_load @ g + fused.free_constant
+        np.testing.assert_allclose(got, free, rtol=0, atol=1e-12 * np.abs(free).max())
+        rhs = vehicles.gravity + vehicles.wheel_rows.T @ g - step.c_hat @ z[n_d:] - step.k_hat @ z[:n_d]
+        acc = np.linalg.solve(vehicles.mass, rhs)
+        got = fused.accel @ z + fused.accel_load @ g + fused.accel_constant
+        np.testing.assert_allclose(got, acc, rtol=0, atol=1e-12 * np.abs(acc).max())
+
+
+def test_wheel_entries_give_the_dense_wheel_rows():
+    """``kernels.lean.wheel_entries``: each wheel's nonzero entries (index, value), ascending, padded
+    with (0, 0.0), read back into a dense matrix give the rows exactly — on the stacked trucks and on
+    a coupled random matrix with scattered zeros, entries in its first and last columns and an empty
+    row (a left-out or misplaced entry would change h_w·q); and the sum over the entries in their
+    order equals the dense product."""
+    from vbikit.solve.kernels.lean import wheel_entries
+
+    vehicles, _, fused = _two_truck_maps()
+    dof, h = wheel_entries(vehicles.wheel_rows)
+    np.testing.assert_array_equal(dof, fused.wheel_dof)
+    np.testing.assert_array_equal(h, fused.wheel_h)
+    rng = np.random.default_rng(5)
+    coupled = rng.normal(size=(6, 9)) * (rng.random((6, 9)) < 0.6)
+    coupled[0, 0], coupled[1, -1], coupled[2] = 1.5, -2.5, 0.0
+    for rows in (vehicles.wheel_rows, coupled):
+        dof, h = wheel_entries(rows)
+        assert dof.dtype == np.int64 and dof.shape == h.shape == (rows.shape[0], int((rows != 0).sum(1).max()))
+        back = np.zeros_like(rows)
+        for w in range(rows.shape[0]):
+            assert np.all(np.diff(dof[w][h[w] != 0]) > 0)
+            back[w, dof[w][h[w] != 0]] = h[w][h[w] != 0]
+        np.testing.assert_array_equal(back, rows)
+        z = rng.normal(size=rows.shape[1])
+        np.testing.assert_allclose((h * z[dof]).sum(axis=1), rows @ z, rtol=1e-14, atol=1e-14)
+    assert wheel_entries(np.zeros((0, 4)))[0].shape == (0, 0)

@@ -294,8 +294,9 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
                     lanes: bool = False) -> tuple:
     """The lean kernels' arguments (``kernels.lean``; ``kernels.lean_lanes`` with ``lanes``) of
     ``call``, up to ``tol`` and ``stride`` (the one-lane kernel's work spaces follow those:
-    ``_lean_work``): the bundles' arrays one by one, contiguous, the road and outputs of the one
-    lane (of every lane)."""
+    ``_lean_work``): the bundles' arrays one by one, contiguous (the vehicle step map's fused products and
+    wheel entries, ``modal_step.fused_step``), the road and outputs of the one lane (of every lane)."""
+    from vbikit.solve.modal_step import fused_step
     from vbikit.solve.system import point_gates
 
     c = np.ascontiguousarray
@@ -305,11 +306,12 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
     line = np.minimum(pts.line, road.elevations.shape[0] - 1)
     outputs = call.outputs if lanes else tuple(a[0] for a in call.outputs)
     elevations = road.elevations if lanes else road.elevations[:, :, 0]
+    fused = fused_step(veh, vehicle_step)
     return tuple(c(a) if isinstance(a, np.ndarray) else a for a in (
         call.motion.travel, call.motion.speed, modes.start, modes.end, float(modes.grid_h), modes.values,
-        modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, vehicle_step.transition, vehicle_step.load0,
-        vehicle_step.constant, vehicle_step.settle, vehicle_step.response, vehicle_step.wheel_q,
-        vehicle_step.wheel_v, vehicle_step.c_hat, vehicle_step.k_hat, veh.mass_inv, veh.gravity, veh.wheel_rows,
+        modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, fused.free, fused.free_load, fused.free_constant,
+        vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.accel, fused.accel_load,
+        fused.accel_constant, fused.wheel_dof, fused.wheel_h,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
         pts.width, road.stations, elevations, float(road.r_max), *outputs))

@@ -25,6 +25,8 @@ from numpy.typing import NDArray
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
+from vbikit.solve.kernels.bundles import FusedVehicleStep
+from vbikit.solve.kernels.lean import wheel_entries
 
 #: step maps already made in this process, by the exact bytes of their inputs and the step (a study,
 #: a traffic stream or repeated runs ask for the same few maps thousands of times; each costs two
@@ -32,6 +34,9 @@ from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
 #: nothing may write to them (they stay writeable only because numba compiles a separate kernel for
 #: read-only arrays).
 _MAPS: "Kept[tuple, ModalStep | VehicleStep]" = Kept(256)
+#: the lean kernels' fused maps of the step maps in ``_MAPS`` (``fused_step``), by the step map's
+#: identity; each entry holds its step map, so no other object can have that identity while it is kept
+_FUSED: "Kept[int, tuple[VehicleStep, FusedVehicleStep]]" = Kept(256)
 
 
 def _input_key(kind: str, h: float, arrays) -> tuple:
@@ -165,6 +170,25 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
     return VehicleStep(contiguous(transition), contiguous(load0), contiguous(load1), contiguous(constant), c_hat, k_hat,
                        contiguous(settle), contiguous(response), contiguous(rows @ response[:n_d]),
                        contiguous(rows @ response[n_d:]))
+
+
+def fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
+    """The lean kernels' fused maps of the step map ``step`` of ``vehicles`` (``FusedVehicleStep``):
+    P Φ, P L0, P g, M⁻¹[−K̂ −Ĉ], M⁻¹Hᵀ, M⁻¹F_G and the wheel rows' nonzero entries, made once per step
+    map object in a process (kept with it, by identity: ``vehicle_step`` hands out one object per
+    inputs, so every crossing of a study or stream with the same vehicles shares them) and shared: not
+    to be written to."""
+    return _FUSED.get(id(step), lambda: (step, _fused_step(vehicles, step)))[1]
+
+
+def _fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
+    """``fused_step`` made afresh."""
+    n_d, rows, m_inv = vehicles.gravity.size, vehicles.wheel_rows, vehicles.mass_inv
+    c = np.ascontiguousarray
+    return FusedVehicleStep(c(step.settle @ step.transition), c(step.settle @ step.load0),
+                            c(step.settle @ step.constant),
+                            c(m_inv @ np.hstack([-step.k_hat, -step.c_hat]).reshape(n_d, 2 * n_d)),
+                            c(m_inv @ rows.T), c(m_inv @ vehicles.gravity), *wheel_entries(rows))
 
 
 def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:

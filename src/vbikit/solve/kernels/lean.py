@@ -4,7 +4,11 @@ contiguous arrays. (``vbikit.solve.kernels``: the equations and conventions.)
 ``lean`` runs the steps of ``implicit`` that need one contact-law evaluation: the partitioned step
 (every mode by its transition, ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1}, ξ̇ likewise; the
 vehicles z_{n+1} = P (Φ z_n + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleStep``), the end-of-step
-point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}:
+point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}.  The
+vehicles' products are those of ``implicit`` regrouped (the same to round-off): the settled free
+response P Φ z_n + P L0 G_n + P g and the accelerations M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G by the fused
+maps of ``FusedVehicleStep``, one product each; a wheel's displacement h_w·q and load read only the
+nonzero entries of its row h_w (``wheel_entries``: two a wheel on the stock trucks, against n_d).
 
 1. the state of the guess and the contact law there (``_law``: s_p = φ_p·ξ + r_p,
    δ_p = s_p − g_p − z_w, F_p = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p, gated);
@@ -15,7 +19,8 @@ point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 
    (Δξ = c1 Δp, Δξ̇ = c2 Δp, Δp = −Σ φ_k ΔF_k; Δδ_k = φ_k·Δξ + Δ(−z_w), Δδ̇_k = φ_k·Δξ̇ + v_x φ'_k·Δξ
    + Δ(−ż_w)), at most ``LEAN_CORRECTIONS`` times — the same arithmetic as ``implicit``'s
    one-evaluation step (``newton._vehicle_newton``, ``newton._lean_refine``); the iterate's end
-   state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇, z += (P L1) ΔF_w).
+   state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇; the iterates read the vehicles only
+   through the wheels' increments, so z += (P L1) ΔF_w once, ΔF_w the corrections' whole change).
 
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
 activity changes, or a point the lazy test left out may touch), or the corrections not settling.
@@ -41,9 +46,9 @@ from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
 
 
 @_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
-def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_rows,
-         wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, force,
-         active, used, pen, law, wf, wl):
+def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_dof,
+         wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max,
+         force, active, used, pen, law, wf, wl):
     """The contact law at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (q, q̇) for the positions
     ``xp`` (``contact_forces`` with one lane and no envelopes): per point ``force`` (gated), ``active``,
     ``used`` (else left out by the lazy test: r_max − g − z_w + B ≤ 0, B = Σ amp|ξ|; ``pen`` then holds
@@ -56,12 +61,13 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
-    for w in range(len(wheel_rows)):
+    for w in range(len(wheel_dof)):
         zw = 0.0
         dzw = 0.0
-        for j in range(n_d):
-            h = wheel_rows[w, j]
+        for e in range(wheel_dof.shape[1]):  # h_w·q, h_w·q̇ over the row's nonzero entries
+            h = wheel_h[w, e]
             if h != 0.0:
+                j = wheel_dof[w, e]
                 zw += h * z1[j]
                 dzw += h * z1[n_d + j]
         wf[w] = 0.0
@@ -219,12 +225,13 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
 
 @njit(nogil=True, **FLAT_OPTIONS)
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-         transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity, wheel_rows,
-         wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated,
-         wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol, stride,
-         modal, state, dof, wheels, held, veh, piv, points, flags, index, shapes):
+         free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, wheel_dof,
+         wheel_h, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0,
+         gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol,
+         stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
-    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep``, ``Vehicles`` and ``Points`` one by one
+    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
+    ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
     one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the work
@@ -235,16 +242,15 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     filled); evaluations counts the contact-law evaluations."""
     n_steps = (len(travel) - 1) // 2
     n_m = omega.size
-    n_d = len(mass_inv)
+    n_d = len(accel)
     n_cp = origin.size
-    n_w = len(wheel_rows)
+    n_w = len(wheel_dof)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
     dv = modal[7]
-    z1 = state[0]; zf = state[1]; zb = state[2]
-    rhs = dof[0]
+    z1 = state[0]; zb = state[1]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
-    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]
+    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
     law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]
     active = flags[0]; used = flags[1]; onb = flags[2]
@@ -275,24 +281,19 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
                 xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m]
                 vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m]
-            for i in range(2 * n_d):
-                a = constant[i]
+            for i in range(2 * n_d):  # z_b = P Φ z_n + P L0 G_n + P g
+                a = free_constant[i]
                 for j in range(2 * n_d):
-                    a += transition[i, j] * z1[j]
+                    a += free[i, j] * z1[j]
                 for w in range(n_w):
-                    a += load0[i, w] * g0[w]
-                zf[i] = a
-            for i in range(2 * n_d):
-                a = 0.0
-                for j in range(2 * n_d):
-                    a += settle[i, j] * zf[j]
+                    a += free_load[i, w] * g0[w]
                 zb[i] = a
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
         _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-             wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-             r_max, force, active, used, pen, law, wf, wl)
+             wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
+             elevations, r_max, force, active, used, pen, law, wf, wl)
         updated = False  # by quasi-Newton updates
         if n < 0:
             for k in range(n_cp):  # (p, like every work space, comes zeroed)
@@ -310,6 +311,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             updated = err > tol
             if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
+                for w in range(n_w):
+                    fw0[w] = fw[w]  # the guess's wheel forces
                 for r in range(LEAN_CORRECTIONS):
                     for w in range(n_w):
                         if r > 0:
@@ -332,11 +335,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         x1[m] += dx[m]
                         v1[m] += dv[m]
                         dp[m] = 0.0
-                    for i in range(2 * n_d):  # z = z_b + (P L1) F_w
-                        a = z1[i]
-                        for w in range(n_w):
-                            a += response[i, w] * dfw[w]
-                        z1[i] = a
                     err = 0.0
                     changed = False
                     for k in range(n_cp):
@@ -374,18 +372,25 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if not settled:
                     stop = n
                     break
+                for w in range(n_w):  # the corrections' whole change of the wheel forces
+                    fw[w] += dfw[w]
+                    dfw[w] = fw[w] - fw0[w]
+                for i in range(2 * n_d):  # z = z_b + (P L1) F_w, once for all the corrections (the iterates
+                    a = z1[i]  # read only the wheels' increments bq, bv)
+                    for w in range(n_w):
+                        a += response[i, w] * dfw[w]
+                    z1[i] = a
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
         for w in range(n_w):
-            if updated:
-                fw[w] += dfw[w]
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
             a = wf[w]
             kw = wheel_k[w]
             cw = wheel_c[w]
-            for j in range(n_d):
-                h = wheel_rows[w, j]
+            for e in range(wheel_dof.shape[1]):
+                h = wheel_h[w, e]
                 if h != 0.0:
+                    j = wheel_dof[w, e]
                     a += h * (kw * z1[j] + cw * z1[n_d + j])
             g0[w] = a
         if (n + 1) % stride == 0:  # stored (row 0: the start state, as given, and its accelerations)
@@ -394,17 +399,12 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 xi[r_out, m] = x1[m]
                 dxi[r_out, m] = v1[m]
                 ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
-            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
-                a = gravity[i]
-                for j in range(n_d):
-                    a -= c_hat[i, j] * z1[n_d + j] + k_hat[i, j] * z1[j]
+            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused: M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G
+                a = accel_constant[i]
+                for j in range(2 * n_d):
+                    a += accel[i, j] * z1[j]
                 for w in range(n_w):
-                    a += wheel_rows[w, i] * g0[w]
-                rhs[i] = a
-            for i in range(n_d):
-                a = 0.0
-                for j in range(n_d):
-                    a += mass_inv[i, j] * rhs[j]
+                    a += accel_load[i, w] * g0[w]
                 q[r_out, i] = z1[i]
                 dq[r_out, i] = z1[n_d + i]
                 ddq[r_out, i] = a
@@ -416,14 +416,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (8, n_m), per vehicle state (3, 2 n_d), per vehicle DOF (1, n_d), per wheel (10, n_w), the held active
+    (8, n_m), per vehicle state (2, 2 n_d), per wheel (11, n_w), the held active
     sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((8, n_m)), np.zeros((3, 2 * n_d)), np.zeros((1, n_d)), np.zeros((10, n_w)),
+    return (np.zeros((8, n_m)), np.zeros((2, 2 * n_d)), np.zeros((11, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 
@@ -434,16 +434,33 @@ def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_row
     q = ``z1`` for points at positions ``xp`` [m] with x-rates ``vxp`` [m/s] (the static start,
     ``vbikit.solve.system.static_state``): fills ``active`` per point, and the road elevation
     ``rv`` [m] and rate ``rr`` [m/s] under each point unless ``have_road`` (then they are given).
-    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate), each contiguous.
-    Calls the compiled ``_law`` itself (the one ``lean`` calls, with the same argument types: numba
-    compiles it once for both) with work spaces from numpy."""
+    Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate), each contiguous, but
+    the wheel rows ``wheel_rows`` h_w (n_w, n_d) themselves.  Calls the compiled ``_law`` itself (the
+    one ``lean`` calls, with the same argument types: numba compiles it once for both) with work
+    spaces from numpy."""
     n_cp, n_m, n_d, n_w = xp.size, x1.size, z1.size, wheel_rows.shape[0]
+    wheel_dof, wheel_h = wheel_entries(wheel_rows)
     z = np.zeros(2 * n_d)
     z[:n_d] = z1
     onb = (start[track] <= xp) & (xp <= end[track])
     have = np.full(n_cp, 2 if have_road else 0, np.int64)
     phi, dphi = np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m))
     _law(np.ascontiguousarray(x1, float), np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr,
-         np.full(n_cp, -1, np.int64), start, float(grid_h), values, slopes, amp, wheel_rows, wheel_first, wheel_count,
-         track, line, kk, cc, f0, gap, gated, width, stations, elevations, float(r_max), np.zeros(n_cp), active,
-         np.zeros(n_cp, np.bool_), np.zeros(n_cp), np.zeros(n_cp), np.zeros(n_w), np.zeros(n_w))
+         np.full(n_cp, -1, np.int64), start, float(grid_h), values, slopes, amp, wheel_dof, wheel_h, wheel_first,
+         wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, float(r_max), np.zeros(n_cp),
+         active, np.zeros(n_cp, np.bool_), np.zeros(n_cp), np.zeros(n_cp), np.zeros(n_w), np.zeros(n_w))
+
+
+def wheel_entries(wheel_rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The nonzero entries of each wheel's row h_w of ``wheel_rows`` (n_w, n_d), as the lean kernels read
+    them: their DOF indices (n_w, k) int64, ascending, and values (n_w, k), k the most any row has, a
+    shorter row padded with index 0 and value 0.0 (which the kernels skip).  Σ_e h[w, e] z[dof[w, e]]
+    then adds the same nonzero terms of h_w·z in the same order as the dense row, in k terms instead
+    of n_d (each wheel of the stock vehicles acts on two DOFs)."""
+    rows = np.asarray(wheel_rows, float)
+    nonzero = rows != 0.0
+    k = int(nonzero.sum(axis=1).max(initial=0))
+    order = np.argsort(~nonzero, axis=1, kind="stable")[:, :k]  # each row's nonzero columns first, ascending
+    kept = np.take_along_axis(nonzero, order, axis=1)
+    return (np.ascontiguousarray(np.where(kept, order, 0), np.int64),
+            np.ascontiguousarray(np.where(kept, np.take_along_axis(rows, order, axis=1), 0.0)))

@@ -8,7 +8,8 @@ compiler vectorises.  What the motion fixes is computed once a step for all lane
 positions, which points are on the deck, the mode shapes φ_p, φ'_p (cubic Hermite, on first use in
 the step) and each point's road cell.  Each lane then takes ``lean``'s step with its own numbers
 (two products regrouped, the same to round-off: the vehicles' settled free response
-z_b = (P Φ) z_n + (P L0) G_n + P g with P Φ, P L0, P g formed once a call, and one factorisation
+z_b = (P Φ) z_n + (P L0) G_n + P g and accelerations q̈ = M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G through
+the fused maps of ``FusedVehicleStep``, and one factorisation
 of I + S_A U_A shared by the lanes of the same active sums, the solve running across them):
 
 1. the first guess F = 2F_n − F_{n−1}, its end state and the contact law there (``_law_lanes``: one
@@ -49,8 +50,8 @@ from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_hel
 
 @_internal
 def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-               wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations,
-               r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l, dr_l):
+               wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
+               elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l, dr_l):
     """``lean._law`` for every lane at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (each (·, L)):
     per point and lane ``force`` (gated), ``active``, penetration ``pen``, ungated law ``law``; per
     point ``used`` (False: left out for every lane by the shared lazy test); per wheel and lane the
@@ -67,7 +68,7 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
         a = amp[m]
         for lane in range(n_l):
             bmax[lane] += a * abs(x1[m, lane])
-    for w in range(wheel_rows.shape[0]):
+    for w in range(wheel_dof.shape[0]):
         for lane in range(n_l):
             zw[lane] = 0.0
             dzw[lane] = 0.0
@@ -75,9 +76,10 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
             wl[w, lane] = 0.0
             lo_on[w, lane] = -1e300
             lo_off[w, lane] = -1e300
-        for j in range(n_d):
-            h = wheel_rows[w, j]
+        for e in range(wheel_dof.shape[1]):  # the nonzero entries of h_w (``lean.wheel_entries``)
+            h = wheel_h[w, e]
             if h != 0.0:
+                j = wheel_dof[w, e]
                 for lane in range(n_l):
                     zw[lane] += h * z1[j, lane]
                     dzw[lane] += h * z1[n_d + j, lane]
@@ -307,8 +309,8 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-               transition, load0, constant, settle, response, wheel_q, wheel_v, c_hat, k_hat, mass_inv, gravity,
-               wheel_rows, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc,
+               free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, wheel_dof,
+               wheel_h, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc,
                f0, gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force,
                wheel_len, tol, stride, stop, first, last, fresh, carry_f, carry_p, carry_g):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
@@ -330,9 +332,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     n_steps = last
     n_l = xi.shape[0]
     n_m = omega.size
-    n_d = mass_inv.shape[0]
+    n_d = accel.shape[0]
     n_cp = origin.size
-    n_w = wheel_rows.shape[0]
+    n_w = wheel_dof.shape[0]
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
     xf = np.empty((n_m, n_l)); vf = np.empty((n_m, n_l))
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l))
@@ -353,7 +355,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     ksum = np.zeros((n_w, n_l)); csum = np.zeros((n_w, n_l))
     veh = np.zeros((n_l + 1, n_w, n_w)); piv = np.zeros((n_l + 1, n_w), np.int64)
     held = np.zeros((n_l + 1, 2 * n_w + 1))  # per lane, and (slot n_l) shared by lanes of the same sums
-    rhs = np.empty((n_d, n_l)); a1 = np.empty((n_d, n_l))
+    a1 = np.empty((n_d, n_l))
     f = np.zeros((n_cp, n_l)); fo = np.zeros((n_cp, n_l)); fp = np.zeros((n_cp, n_l)); f_old = np.zeros((n_cp, n_l))
     force = np.zeros((n_cp, n_l)); pen = np.zeros((n_cp, n_l)); law = np.zeros((n_cp, n_l))
     active = np.zeros((n_cp, n_l), np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
@@ -374,16 +376,6 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     nz = np.zeros(n_cp, np.bool_); rel = np.zeros(n_cp, np.int64); use = np.zeros(n_cp, np.int64)
     n_live = n_l
     evaluations = 0
-    s_trans = np.zeros((2 * n_d, 2 * n_d)); s_load = np.zeros((2 * n_d, n_w)); s_const = np.zeros(2 * n_d)
-    for i in range(2 * n_d):  # P Φ, P L0, P g: the settled free response in one product a step
-        for j in range(2 * n_d):
-            a = settle[i, j]
-            if a != 0.0:
-                for j2 in range(2 * n_d):
-                    s_trans[i, j2] += a * transition[j, j2]
-                for w in range(n_w):
-                    s_load[i, w] += a * load0[j, w]
-                s_const[i] += a * constant[j]
     for n in range(first - 1, n_steps):  # n = first − 1: the start state (forces, loads and accelerations)
         row = 2 * n + 2
         for k in range(n_cp):
@@ -394,9 +386,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             have[k] = 0
         if n < first:
             _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                       slopes, amp, wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width,
-                       stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw,
-                       dzw, s_l, sd_l, dr_l)
+                       slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                       gated, width, stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       bmax, zw, dzw, s_l, sd_l, dr_l)
             for m in range(n_m):
                 for lane in range(n_l):
                     p[m, lane] = 0.0
@@ -423,17 +415,17 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane]
                     vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane]
-            for i in range(2 * n_d):  # z_b = P (Φ z_n + L0 G_n + g), P Φ and P L0 formed once
-                ci = s_const[i]
+            for i in range(2 * n_d):  # z_b = P (Φ z_n + L0 G_n + g) = P Φ z_n + P L0 G_n + P g (``VehicleStep``)
+                ci = free_constant[i]
                 for lane in range(n_l):
                     zb[i, lane] = ci
                 for j in range(2 * n_d):
-                    a = s_trans[i, j]
+                    a = free[i, j]
                     if a != 0.0:
                         for lane in range(n_l):
                             zb[i, lane] += a * z0[j, lane]
                 for w in range(n_w):
-                    a = s_load[i, w]
+                    a = free_load[i, w]
                     if a != 0.0:
                         for lane in range(n_l):
                             zb[i, lane] += a * g0[w, lane]
@@ -448,9 +440,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                          xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
             _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                       slopes, amp, wheel_rows, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width,
-                       stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw,
-                       dzw, s_l, sd_l, dr_l)
+                       slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                       gated, width, stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       bmax, zw, dzw, s_l, sd_l, dr_l)
             n_rel = 0
             n_use = 0
             for k in range(n_cp):
@@ -603,9 +595,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             cw = wheel_c[w]
             for lane in range(n_l):
                 g0[w, lane] = wf[w, lane]
-            for j in range(n_d):
-                h = wheel_rows[w, j]
+            for e in range(wheel_dof.shape[1]):
+                h = wheel_h[w, e]
                 if h != 0.0:
+                    j = wheel_dof[w, e]
                     for lane in range(n_l):
                         g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
         for m in range(n_m):
@@ -613,29 +606,20 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             e2 = omega[m] * omega[m]
             for lane in range(n_l):
                 acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
-        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q)
-            gi = gravity[i]
+        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``FusedVehicleStep``)
+            ai = accel_constant[i]
             for lane in range(n_l):
-                rhs[i, lane] = gi
-            for j in range(n_d):
-                ch = c_hat[i, j]
-                kh = k_hat[i, j]
-                if ch != 0.0 or kh != 0.0:
+                a1[i, lane] = ai
+            for j in range(2 * n_d):
+                a = accel[i, j]
+                if a != 0.0:
                     for lane in range(n_l):
-                        rhs[i, lane] -= ch * z1[n_d + j, lane] + kh * z1[j, lane]
+                        a1[i, lane] += a * z1[j, lane]
             for w in range(n_w):
-                h = wheel_rows[w, i]
-                if h != 0.0:
+                a = accel_load[i, w]
+                if a != 0.0:
                     for lane in range(n_l):
-                        rhs[i, lane] += h * g0[w, lane]
-        for i in range(n_d):
-            for lane in range(n_l):
-                a1[i, lane] = 0.0
-            for j in range(n_d):
-                mi = mass_inv[i, j]
-                if mi != 0.0:
-                    for lane in range(n_l):
-                        a1[i, lane] += mi * rhs[j, lane]
+                        a1[i, lane] += a * g0[w, lane]
         if (n + 1) % stride == 0:
             r_out = (n + 1) // stride
             for lane in range(n_l):
