@@ -246,3 +246,24 @@ def test_vehicle_step_of_one_vehicle_is_one_block():
 
     veh = vehicles_data(trucks[1], contact_points(trucks[1], PointTire()))
     assert modal_step._blocks(veh, *modal_step._nominal(veh)) == [(0, trucks[1].n_dof)]
+
+
+@pytest.mark.parametrize("theta", [1e-3, 0.4, 5.0, 40.0, 700.0])
+def test_expm_is_the_rotation_and_the_damped_oscillator(theta):
+    """``expm`` (Padé 13 with scaling and squaring) against closed forms: exp([[0, θ], [−θ, 0]]) is
+    the rotation [[cos θ, sin θ], [−sin θ, cos θ]]; exp(t [[0, 1], [−ω², −2ζω]]) the damped
+    oscillator's free response (x, ẋ columns, Chopra Eq. 2.2.4); and a stack of both at once."""
+    from vbikit.solve.modal_step import expm
+
+    rot = expm(np.array([[0.0, theta], [-theta, 0.0]]))
+    np.testing.assert_allclose(rot, [[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]],
+                               rtol=0, atol=4e-15 * max(1.0, theta))
+    w, z = 7.0, 0.05
+    t = theta / w
+    wd, e = w * np.sqrt(1 - z * z), np.exp(-z * w * t)
+    sn, cs = np.sin(wd * t), np.cos(wd * t)
+    free = np.array([[e * (cs + z * w / wd * sn), e * sn / wd],
+                     [-e * w * w / wd * sn, e * (cs - z * w / wd * sn)]])
+    stack = expm(np.stack([np.array([[0.0, 1.0], [-w * w, -2 * z * w]]) * t, np.array([[0.0, theta], [-theta, 0.0]])]))
+    np.testing.assert_allclose(stack[0], free, rtol=0, atol=4e-15 * max(1.0, theta) * np.abs(free).max() + 1e-300)
+    np.testing.assert_allclose(stack[1], rot, rtol=0, atol=1e-15 * max(1.0, theta))

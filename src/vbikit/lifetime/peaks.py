@@ -29,15 +29,15 @@ def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
     docstring, the jump of a reaction or shear line, the kink of a moment line), sorted, unique."""
     origin, sign, y = crossing.point_kinematics()
     veh = crossing.point_vehicle
-    track = _tracks(table, y)
-    kx = table.knots[0]
-    out = []
-    for p in range(origin.size):
-        r = int(table.row[track[p]])
-        s = (kx[table.active_ptr[r]:table.active_ptr[r + 1]] - origin[p]) * sign[p]  # travel of its vehicle there
-        motion = crossing.vehicles[veh[p]]
-        out += [motion.time_at(float(v)) for v in s]
-    tau = np.asarray(out, float)
+    rows = np.asarray(table.row, np.int64)[_tracks(table, y)]
+    first, count = table.active_ptr[rows], table.active_ptr[rows + 1] - table.active_ptr[rows]
+    point = np.repeat(np.arange(origin.size), count)  # every (contact point, active node) pair
+    knot = first[point] + np.arange(point.size) - np.repeat(np.cumsum(count) - count, count)
+    s = (table.knots[0][knot] - origin[point]) * sign[point]  # travel of the point's vehicle there
+    tau = np.empty(point.size)
+    for i, motion in enumerate(crossing.vehicles):
+        mine = veh[point] == i
+        tau[mine] = motion.times_at(s[mine])
     tau = tau[np.isfinite(tau) & (tau > t0) & (tau < t1)]
     return np.unique(tau)
 
