@@ -154,17 +154,12 @@ class Vehicle:
             return np.zeros(0)
         freqs = self.__dict__.get("_natural_frequencies")
         if freqs is None:
-            freqs = self._own_frequencies()
+            from scipy.linalg import eigh
+
+            lam = eigh(self.stiffness + self.tire_stiffness_matrix(), self.mass, eigvals_only=True)
+            freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
             object.__setattr__(self, "_natural_frequencies", freqs)
         return freqs.copy()
-
-    def _own_frequencies(self) -> NDArray[np.float64]:
-        """``natural_frequencies`` solved: K̂ φ = ω² M φ (K̂ = K + Σ k_w r_w r_wᵀ) as the symmetric
-        standard problem L⁻¹ K̂ L⁻ᵀ ψ = ω² ψ with M = L Lᵀ (Cholesky; Golub & Van Loan, Matrix
-        Computations, §8.7.2), ascending."""
-        l_inv = np.linalg.inv(np.linalg.cholesky(self.mass))
-        lam = np.linalg.eigvalsh(l_inv @ (self.stiffness + self.tire_stiffness_matrix()) @ l_inv.T)
-        return np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
 
 
 @dataclass(frozen=True)
@@ -182,7 +177,7 @@ class CombinedVehicle(Vehicle):
     @property
     def _stacked(self) -> bool:
         """True when made by ``combine_vehicles`` from ``parts`` (not a copy with other matrices, e.g.
-        ``dataclasses.replace``): its static state, loads and frequencies are then the parts' own."""
+        ``dataclasses.replace``): its static state and wheel loads are then the parts' own."""
         return bool(self.__dict__.get("_from_parts", False))
 
     def static_state(self, ground: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
@@ -205,14 +200,6 @@ class CombinedVehicle(Vehicle):
             return np.concatenate([p.static_wheel_loads() for p in self.parts])
         except np.linalg.LinAlgError:  # a part singular on its own (a mechanism): the whole system as given
             return super().static_wheel_loads()
-
-    def _own_frequencies(self) -> NDArray[np.float64]:
-        """The union of the vehicles' own natural frequencies (kept per vehicle), ascending: the
-        eigenvalues of the block-diagonal problem are those of its blocks."""
-        if not self._stacked:
-            return super()._own_frequencies()
-        return np.sort(np.concatenate([p.natural_frequencies() for p in self.parts]))
-
 
 def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> CombinedVehicle:
     """Stack ``vehicles`` into one ``CombinedVehicle`` (see there)."""
