@@ -119,3 +119,15 @@ def test_knot_instants_are_every_point_and_node_by_the_scalar_motion():
     for si, ti in zip(s[:-1], tau[:-1]):
         roots = np.roots([0.5 * braking.acceleration, braking.speed, -si])
         assert ti - braking.entry_time == pytest.approx(min(r.real for r in roots if r.real >= 0), rel=1e-12)
+
+
+def test_a_point_off_the_tabulated_tracks_is_refused():
+    """``_tracks``: a deck y within 1e-9 m of a tabulated track is that track; 1e-6 m off, or NaN, is refused."""
+    from vbikit.lifetime.peaks import _tracks
+
+    _, table = _reaction()
+    y0 = float(table.tracks[0])
+    assert _tracks(table, np.array([y0, y0 + 5e-10])).tolist() == [0, 0]
+    for bad in (y0 + 1e-6, np.nan):
+        with pytest.raises(ValueError, match="not among the tabulated tracks"):
+            _tracks(table, np.array([y0, bad]))
