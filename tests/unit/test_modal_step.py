@@ -248,9 +248,9 @@ def test_vehicle_step_of_one_vehicle_is_one_block():
     assert modal_step._blocks(veh, *modal_step._nominal(veh)) == [(0, trucks[1].n_dof)]
 
 
-@pytest.mark.parametrize("theta", [1e-3, 0.4, 5.0, 40.0, 700.0])
+@pytest.mark.parametrize("theta", [1e-3, 0.4, 5.0, 40.0, 300.0])  # ‖A‖₁ up to a truck's augmented system
 def test_expm_is_the_rotation_and_the_damped_oscillator(theta):
-    """``expm`` (Padé 13 with scaling and squaring) against closed forms: exp([[0, θ], [−θ, 0]]) is
+    """``expm`` (Taylor series with scaling and squaring) against closed forms: exp([[0, θ], [−θ, 0]]) is
     the rotation [[cos θ, sin θ], [−sin θ, cos θ]]; exp(t [[0, 1], [−ω², −2ζω]]) the damped
     oscillator's free response (x, ẋ columns, Chopra Eq. 2.2.4); and a stack of both at once."""
     from vbikit.solve.modal_step import expm
