@@ -276,10 +276,31 @@ def _field(bridge: DeckModel, g: NDArray[np.float64], fixed_dof: Optional[int] =
     return v
 
 
+#: load effects one deck keeps (``deck_load_effect``; oldest dropped first)
+EFFECTS_KEPT = 64
+
+
 def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
     """Moment or shear of ``girder`` at section x [m], or the reaction of its bearing at support
-    ``support`` (0 = entry, then the interior supports, the last = exit)."""
+    ``support`` (0 = entry, then the interior supports, the last = exit).  Kept on the bridge object
+    per request (a kept bridge's later runs reuse the effect, its influence field and the wheel-line
+    tables ``DeckInfluence`` made for it); nothing may change a returned effect."""
+    kept = bridge.__dict__.setdefault("_load_effect_cache", {}).setdefault("effects", {})
+    key = (kind, None if x is None else float(x), None if girder is None else int(girder),
+           None if support is None else int(support))
+    effect = kept.get(key)
+    if effect is None:
+        effect = _deck_load_effect(bridge, kind, x, girder, support)
+        if len(kept) >= EFFECTS_KEPT:
+            kept.pop(next(iter(kept)))
+        kept[key] = effect
+    return effect
+
+
+def _deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
+                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
+    """``deck_load_effect`` made anew."""
     if kind not in EFFECT_KINDS:
         raise ValueError(f"load effect must be one of {', '.join(EFFECT_KINDS)}, got {kind!r}")
     if girder is None:
