@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
-from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, UniformLineInfluence
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, UniformLineInfluence, kept_effect
 
 
 def _positive(name: str, value: float) -> None:
@@ -128,7 +128,13 @@ class EulerBernoulliBeam(ModalBridge):
     # ---------------------------------------------------------------- load effects
     def load_effect(self, kind: str, x: float | None = None, support: int | None = None,
                     girder: int | None = None) -> LoadEffect:
-        """Moment or shear at section x [m], or the reaction of support 0 (entry) or 1 (exit); closed forms."""
+        """Moment or shear at section x [m], or the reaction of support 0 (entry) or 1 (exit); closed forms
+        (kept on the beam per request: ``vbikit.bridge.effects.kept_effect``)."""
+        key = (kind, x, support, girder)  # as given: a bad value is refused by the making, never kept
+        return kept_effect(self, key, lambda: self._load_effect(kind, x, support, girder))
+
+    def _load_effect(self, kind: str, x: float | None, support: int | None, girder: int | None) -> LoadEffect:
+        """``load_effect`` made anew."""
         if girder is not None:
             raise ValueError("a beam has no girders: leave girder unset")
         if kind not in EFFECT_KINDS:

@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import GirderDeck
-from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence, kept_effect
 from vbikit.bridge.elements import beam_element_stiffness
 from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stations
 
@@ -276,26 +276,13 @@ def _field(bridge: DeckModel, g: NDArray[np.float64], fixed_dof: Optional[int] =
     return v
 
 
-#: load effects one deck keeps (``deck_load_effect``; oldest dropped first)
-EFFECTS_KEPT = 64
-
-
 def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
     """Moment or shear of ``girder`` at section x [m], or the reaction of its bearing at support
-    ``support`` (0 = entry, then the interior supports, the last = exit).  Kept on the bridge object
-    per request (a kept bridge's later runs reuse the effect, its influence field and the wheel-line
-    tables ``DeckInfluence`` made for it); nothing may change a returned effect."""
-    kept = bridge.__dict__.setdefault("_load_effect_cache", {}).setdefault("effects", {})
-    key = (kind, None if x is None else float(x), None if girder is None else int(girder),
-           None if support is None else int(support))
-    effect = kept.get(key)
-    if effect is None:
-        effect = _deck_load_effect(bridge, kind, x, girder, support)
-        if len(kept) >= EFFECTS_KEPT:
-            kept.pop(next(iter(kept)))
-        kept[key] = effect
-    return effect
+    ``support`` (0 = entry, then the interior supports, the last = exit); kept on the bridge per
+    request (``vbikit.bridge.effects.kept_effect``: with its influence field and wheel-line tables)."""
+    key = (kind, x, support, girder)  # as given: a bad value is refused by the making, never kept
+    return kept_effect(bridge, key, lambda: _deck_load_effect(bridge, kind, x, girder, support))
 
 
 def _deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,

@@ -67,6 +67,29 @@ class LoadEffect:
         return f"{self.kind} at {where}" + (f", girder {self.girder}" if self.girder is not None else "")
 
 
+#: load effects one bridge object keeps (``kept_effect``; oldest dropped first)
+EFFECTS_KEPT = 64
+
+
+def kept_effect(bridge: object, key: Hashable, make: Callable[[], "LoadEffect"]) -> "LoadEffect":
+    """The load effect ``key`` (e.g. kind, section, girder, support) of ``bridge``, made by ``make()``
+    the first time and kept on the bridge object (bridges are immutable): a kept bridge's later runs
+    reuse the effect and whatever its influence function keeps (a deck's wheel-line tables).
+    Shared: nothing may change a returned effect."""
+    try:
+        hash(key)
+    except TypeError:  # e.g. a section given as an array: made, not kept
+        return make()
+    kept = bridge.__dict__.setdefault("_load_effects_kept", {})
+    effect = kept.get(key)
+    if effect is None:
+        effect = make()
+        if len(kept) >= EFFECTS_KEPT:
+            kept.pop(next(iter(kept)))
+        kept[key] = effect
+    return effect
+
+
 class SharedInfluence(abc.ABC):
     """An influence function I(x, y) whose costly part depends on the load points only and is the
     same for every effect of one model (a grillage deck's consistent load of the points):
