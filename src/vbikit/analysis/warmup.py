@@ -1,7 +1,7 @@
 """Compile the load-effect kernel in advance (``vbikit compile``), as ``vbikit.solve.warmup`` does
 for the integrators: one call of ``vbikit.analysis.line_sums.line_sums`` on a tiny table with the
 argument types every run passes (contiguous float64 and int64 arrays, two floats) compiles — or
-loads from numba's cache — the one variant the grillage decks' load effects use."""
+loads from numba's cache — the one variant the load effects of grillage decks and beams use."""
 from __future__ import annotations
 
 import logging
