@@ -20,7 +20,7 @@ def compile_effect_kernels() -> float:
     two = np.zeros(2, f8)
     t0 = time.perf_counter()
     line_sums(np.zeros((2, 1)), two, np.ones(2), two, np.zeros(2, i8), np.zeros(2, i8), np.zeros(2, i8), np.ones(2),
-              np.ones(2), np.ones((2, 1)), np.array([0.0, 1.0]), 0.0, 1.0, np.zeros((1, 4, 1)), np.zeros(1, i8),
+              np.ones(2), np.ones((2, 1)), np.array([0.0, 1.0]), 0.0, 1.0, np.zeros((1, 1, 4)), np.zeros(1, i8),
               np.zeros(1, i8), np.zeros(1, f8), np.ones((1, 1)), np.zeros((1, 2)), np.zeros((1, 2)))
     took = time.perf_counter() - t0
     log.info("load-effect kernel ready (%.1f s)", took)
