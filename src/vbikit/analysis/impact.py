@@ -54,7 +54,7 @@ def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
     data = result.kernel_data
     cp = crossing.contact
     loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    origin, direction, y = crossing._kinematics
+    origin, direction, y = crossing.point_kinematics()
     grid = (None if data is None else (data.modes.grid_h, data.modes.values.shape, data.modes.start.tobytes()))
     key = (travel.shape, grid, b"".join(np.ascontiguousarray(a, float).tobytes() for a in (
         travel, loads, origin, direction, y, crossing.point_vehicle)))
