@@ -44,6 +44,7 @@ step (1,914 steps).
 """
 from __future__ import annotations
 
+import copy
 import sys
 import time
 from pathlib import Path
@@ -335,8 +336,8 @@ def main() -> None:
             return out
         return kernel
 
-    def whole():
-        res = simulate(built.crossing)
+    def whole():  # a new crossing object each run, as `vbikit run` makes one: nothing kept by a crossing (Crossing.kept)
+        res = simulate(copy.copy(built.crossing))
         return res, point_response(res, built.response_x, built.response_y)
 
     def timed_runs(use_lean: bool) -> tuple[list[float], float]:

@@ -29,39 +29,44 @@ KINK_CODES = {"none": 0, "moment": 1, "shear": 2}
 
 @njit(cache=True)
 def line_sums(travel, origin, direction, y, vehicle, line, wheel, share, static_load, wheel_forces, stations,
-              skew_tan, span, poly, kink, element, section, line_share, static, dynamic):  # pragma: no cover (compiled)
+              skew_tan, span, table, kink, element, section, line_share, static, dynamic):  # pragma: no cover (compiled)
     """Add Σ_p I_k β_p P_w to ``static`` (n_effects, n_t) and Σ_p I_k β_p f_w(t) to ``dynamic``
-    (module docstring); ``poly`` (n_effects, 4, n_lines · n_elements), ``line_share`` (n_effects, n_lines)."""
+    (module docstring); ``table`` (n_lines · n_elements, n_effects, 4): each row's monomial coefficients
+    of every effect side by side, ``line_share`` (n_effects, n_lines)."""
     n_t = travel.shape[0]
     n_cp = origin.size
     n_el = stations.size - 1
-    n_eff = poly.shape[0]
-    last = stations[n_el]
+    n_eff = table.shape[1]
+    lo = max(0.0, stations[0])  # on the deck (0 ≤ ξ ≤ span) and on the stations
+    hi = min(span, stations[n_el])
     # point by point (each time's points are still added in point order); a point's element walks
     # with its monotone travel: the largest e in 0 … n_el − 1 with ξ_e ≤ ξ (searchsorted, clipped)
     for p in range(n_cp):
         e = 0
+        o, d, v_p, w_p, lp = origin[p], direction[p], vehicle[p], wheel[p], line[p]
+        shift = y[p] * skew_tan
+        f_static = static_load[p]
+        beta = share[p]
         for i in range(n_t):
-            x = origin[p] + direction[p] * travel[i, vehicle[p]]
-            xi = x - y[p] * skew_tan if skew_tan != 0.0 else x
-            if not (xi >= 0.0 and xi <= span) or xi < stations[0] or xi > last:
+            x = o + d * travel[i, v_p]
+            xi = x - shift if skew_tan != 0.0 else x
+            if not (xi >= lo and xi <= hi):
                 continue
             while e < n_el - 1 and stations[e + 1] <= xi:
                 e += 1
             while e > 0 and stations[e] > xi:
                 e -= 1
             t = (xi - stations[e]) / (stations[e + 1] - stations[e])
-            r = line[p] * n_el + e
-            f_static = static_load[p]
-            f_dynamic = wheel_forces[i, wheel[p]] * share[p]
+            r = lp * n_el + e
+            f_dynamic = wheel_forces[i, w_p] * beta
             for k in range(n_eff):
-                v = ((poly[k, 3, r] * t + poly[k, 2, r]) * t + poly[k, 1, r]) * t + poly[k, 0, r]
+                v = ((table[r, k, 3] * t + table[r, k, 2]) * t + table[r, k, 1]) * t + table[r, k, 0]
                 if kink[k] != 0 and e == element[k]:
                     s = section[k]
                     if kink[k] == 1:
-                        v += line_share[k, line[p]] * (s - xi if xi < s else 0.0)
+                        v += line_share[k, lp] * (s - xi if xi < s else 0.0)
                     else:
-                        v += line_share[k, line[p]] * (1.0 if xi <= s else 0.0)
+                        v += line_share[k, lp] * (1.0 if xi <= s else 0.0)
                 static[k, i] += v * f_static
                 dynamic[k, i] += v * f_dynamic
 
@@ -76,7 +81,7 @@ def tabulated_sums(origin: NDArray[np.float64], direction: NDArray[np.float64], 
     first = influences[0]
     lines, line = np.unique(y, return_inverse=True)
     tables = [f.line_tables(lines) for f in influences]
-    poly = np.ascontiguousarray(np.stack([tb[0] for tb in tables]))
+    table = np.ascontiguousarray(np.stack([tb[0] for tb in tables]).transpose(2, 0, 1))  # (row, effect, power)
     line_share = np.ascontiguousarray(np.stack([tb[1] for tb in tables]))
     travel = np.ascontiguousarray(np.asarray(travel, float).reshape(len(travel), -1))
     n_t = travel.shape[0]
@@ -87,7 +92,7 @@ def tabulated_sums(origin: NDArray[np.float64], direction: NDArray[np.float64], 
               np.ascontiguousarray(line.ravel(), np.int64), np.ascontiguousarray(wheel, np.int64),
               np.ascontiguousarray(share, float), np.ascontiguousarray(static_load, float),
               np.ascontiguousarray(wheel_forces, float), np.ascontiguousarray(first.stations, float),
-              float(first.skew_tan), float(span), poly,
+              float(first.skew_tan), float(span), table,
               np.array([KINK_CODES[f.kink] for f in influences], np.int64),
               np.array([f.element for f in influences], np.int64),
               np.array([f.section for f in influences], float), line_share, static, dynamic)

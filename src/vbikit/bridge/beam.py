@@ -12,8 +12,10 @@ deflection and positive (tensile) bottom strain.  The beam has no transverse ext
 shapes do not depend on y.
 
 Load effects (``vbikit.bridge.effects``), closed forms: reactions of a unit upward force at x,
-R₀ = −(1 − x/L), R_L = −x/L; M(s) = R₀ s + (s − x)·[x < s], V(s) = R₀ + [x ≤ s]; per unit modal
-coordinate M = EI ∂²φ/∂x², V = EI ∂³φ/∂x³, R₀ = V(0), R_L = −V(L).
+R₀ = −(1 − x/L), R_L = −x/L; M(s) = R₀ s + (s − x)·[x < s], V(s) = R₀ + [x ≤ s] (0 off the span;
+linear in t = x/L on the one element [0, L] with the kink or step at s:
+``vbikit.bridge.effects.UniformLineInfluence``, reduced by the compiled ``vbikit.analysis.line_sums``);
+per unit modal coordinate M = EI ∂²φ/∂x², V = EI ∂³φ/∂x³, R₀ = V(0), R_L = −V(L).
 """
 from __future__ import annotations
 
@@ -23,7 +25,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
-from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, UniformLineInfluence, kept_effect
 
 
 def _positive(name: str, value: float) -> None:
@@ -126,7 +128,13 @@ class EulerBernoulliBeam(ModalBridge):
     # ---------------------------------------------------------------- load effects
     def load_effect(self, kind: str, x: float | None = None, support: int | None = None,
                     girder: int | None = None) -> LoadEffect:
-        """Moment or shear at section x [m], or the reaction of support 0 (entry) or 1 (exit); closed forms."""
+        """Moment or shear at section x [m], or the reaction of support 0 (entry) or 1 (exit); closed forms
+        (kept on the beam per request: ``vbikit.bridge.effects.kept_effect``)."""
+        key = (kind, x, support, girder)  # as given: a bad value is refused by the making, never kept
+        return kept_effect(self, key, lambda: self._load_effect(kind, x, support, girder))
+
+    def _load_effect(self, kind: str, x: float | None, support: int | None, girder: int | None) -> LoadEffect:
+        """``load_effect`` made anew."""
         if girder is not None:
             raise ValueError("a beam has no girders: leave girder unset")
         if kind not in EFFECT_KINDS:
@@ -134,23 +142,25 @@ class EulerBernoulliBeam(ModalBridge):
         L, k = self.span, self.wavenumbers
         amp = self._amplitude
         shear_modal = lambda s: -self.EI * k**3 * amp * np.cos(k * s)  # noqa: E731
+        stations = np.array([0.0, L])
 
-        def r0(xp):
-            return -(1.0 - np.asarray(xp, float) / L)
+        def line(c0: float, c1: float, kink: str = "none", s: float = 0.0) -> UniformLineInfluence:
+            """c0 + c1 t, t = x/L, on the one element [0, L] (+ the kink or step at s)."""
+            return UniformLineInfluence(stations, np.array([[c0], [c1], [0.0], [0.0]]), kink, 0 if kink != "none" else -1, s)
 
         if kind == "reaction":
             if support not in (0, 1):
                 raise ValueError(f"reaction: support must be 0 or 1 on a simply supported beam, got {support!r}")
-            if support == 0:
-                return LoadEffect("reaction", 0.0, shear_modal(0.0), lambda xp, yp=None: r0(xp), L, support=0)
-            return LoadEffect("reaction", L, -shear_modal(L), lambda xp, yp=None: -np.asarray(xp, float) / L, L, support=1)
+            if support == 0:  # R₀ = −(1 − x/L)
+                return LoadEffect("reaction", 0.0, shear_modal(0.0), line(-1.0, 1.0), L, support=0)
+            return LoadEffect("reaction", L, -shear_modal(L), line(0.0, -1.0), L, support=1)  # R_L = −x/L
         if x is None or not 0.0 <= x <= L:
             raise ValueError(f"{kind}: section x must be within 0 … {L:g} m, got {x!r}")
         s = float(x)
-        if kind == "moment":
+        if kind == "moment":  # M(s) = R₀ s + (s − x)·[x < s]
             modal = -self.EI * k**2 * amp * np.sin(k * s)
-            return LoadEffect("moment", s, modal, lambda xp, yp=None: r0(xp) * s + np.where(np.asarray(xp) < s, s - np.asarray(xp), 0.0), L)
-        return LoadEffect("shear", s, shear_modal(s), lambda xp, yp=None: r0(xp) + np.where(np.asarray(xp) <= s, 1.0, 0.0), L)
+            return LoadEffect("moment", s, modal, line(-s, s, "moment", s), L)
+        return LoadEffect("shear", s, shear_modal(s), line(-1.0, 1.0, "shear", s), L)  # V(s) = R₀ + [x ≤ s]
 
     def default_load_effects(self) -> list[LoadEffect]:
         """Midspan moment, shear just right of the entry support, both reactions."""

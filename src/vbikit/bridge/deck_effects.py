@@ -39,7 +39,7 @@ import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.base import GirderDeck
-from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence
+from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence, kept_effect
 from vbikit.bridge.elements import beam_element_stiffness
 from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stations
 
@@ -279,7 +279,15 @@ def _field(bridge: DeckModel, g: NDArray[np.float64], fixed_dof: Optional[int] =
 def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
     """Moment or shear of ``girder`` at section x [m], or the reaction of its bearing at support
-    ``support`` (0 = entry, then the interior supports, the last = exit)."""
+    ``support`` (0 = entry, then the interior supports, the last = exit); kept on the bridge per
+    request (``vbikit.bridge.effects.kept_effect``: with its influence field and wheel-line tables)."""
+    key = (kind, x, support, girder)  # as given: a bad value is refused by the making, never kept
+    return kept_effect(bridge, key, lambda: _deck_load_effect(bridge, kind, x, girder, support))
+
+
+def _deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,
+                      girder: Optional[int] = None, support: Optional[int] = None) -> LoadEffect:
+    """``deck_load_effect`` made anew."""
     if kind not in EFFECT_KINDS:
         raise ValueError(f"load effect must be one of {', '.join(EFFECT_KINDS)}, got {kind!r}")
     if girder is None:

@@ -67,6 +67,29 @@ class LoadEffect:
         return f"{self.kind} at {where}" + (f", girder {self.girder}" if self.girder is not None else "")
 
 
+#: load effects one bridge object keeps (``kept_effect``; oldest dropped first)
+EFFECTS_KEPT = 64
+
+
+def kept_effect(bridge: object, key: Hashable, make: Callable[[], "LoadEffect"]) -> "LoadEffect":
+    """The load effect ``key`` (e.g. kind, section, girder, support) of ``bridge``, made by ``make()``
+    the first time and kept on the bridge object (bridges are immutable): a kept bridge's later runs
+    reuse the effect and whatever its influence function keeps (a deck's wheel-line tables).
+    Shared: nothing may change a returned effect."""
+    try:
+        hash(key)
+    except TypeError:  # e.g. a section given as an array: made, not kept
+        return make()
+    kept = bridge.__dict__.setdefault("_load_effects_kept", {})
+    effect = kept.get(key)
+    if effect is None:
+        effect = make()
+        if len(kept) >= EFFECTS_KEPT:
+            kept.pop(next(iter(kept)))
+        kept[key] = effect
+    return effect
+
+
 class SharedInfluence(abc.ABC):
     """An influence function I(x, y) whose costly part depends on the load points only and is the
     same for every effect of one model (a grillage deck's consistent load of the points):
@@ -120,6 +143,71 @@ class TabulatedInfluence(SharedInfluence):
     def line_tables(self, lines: Sequence[float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Monomial coefficients (4, n_lines × n_elements) in t (rows t⁰ … t³; line-major) along the
         wheel lines ``lines`` [m], and each line's share c(y) of the section's girder line."""
+
+
+class UniformLineInfluence(TabulatedInfluence):
+    """A ``TabulatedInfluence`` that is the same along every wheel line (a beam: I depends on x
+    alone): the cubic rows ``poly`` (4, n_elements) in t on the elements of ``stations`` (skew 0,
+    c(y) = 1), plus the kink of a moment or the step of a shear at ``section`` on the element
+    ``element`` (``TabulatedInfluence``).  A simply supported beam's influence lines are linear
+    between its supports with the kink or step at the section, so one element [0, L] with rows
+    t⁰, t¹ holds them exactly (``vbikit.bridge.beam``)."""
+
+    def __init__(self, stations: NDArray[np.float64], poly: NDArray[np.float64], kink: str = "none",
+                 element: int = -1, section: float = 0.0) -> None:
+        stations = np.ascontiguousarray(stations, float)
+        poly = np.ascontiguousarray(poly, float)
+        if stations.ndim != 1 or stations.size < 2 or np.any(np.diff(stations) <= 0.0):
+            raise ValueError("stations must be at least two ascending positions [m]")
+        if poly.shape != (4, stations.size - 1):
+            raise ValueError(f"poly must have shape (4, {stations.size - 1}) (rows t⁰ … t³ per element), "
+                             f"got {poly.shape}")
+        if kink not in ("none", "moment", "shear"):
+            raise ValueError(f"kink must be none, moment or shear, got {kink!r}")
+        if kink != "none" and not 0 <= element < stations.size - 1:
+            raise ValueError(f"element must be in 0 … {stations.size - 2} with a {kink} kink, got {element!r}")
+        self._stations, self.poly = stations, poly
+        self.kink, self.element, self.section = kink, int(element), float(section)
+        self._key = ("uniform-line", stations.tobytes())
+
+    @property
+    def stations(self) -> NDArray[np.float64]:
+        return self._stations
+
+    @property
+    def skew_tan(self) -> float:
+        return 0.0
+
+    @property
+    def shared_key(self) -> Hashable:
+        return self._key
+
+    def line_tables(self, lines: Sequence[float]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        n = len(lines)
+        return (self.poly if n == 1 else np.ascontiguousarray(np.tile(self.poly, (1, n)))), np.ones(n)
+
+    def __call__(self, x: NDArray[np.float64], y: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+        """I at x [m] (any shape; y is ignored), 0 off the stations."""
+        x = np.asarray(x, float)
+        return self.apply(self.shared(x, None), x, None).reshape(x.shape)  # type: ignore[arg-type]
+
+    def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]):
+        """Each point's element e, its t on it, its ξ = x and whether it is off the stations."""
+        xs = self._stations
+        xi = np.asarray(x, float).ravel()
+        e = np.clip(np.searchsorted(xs, xi, side="right") - 1, 0, xs.size - 2)
+        t = (xi - xs[e]) / (xs[e + 1] - xs[e])
+        return xi, e, t, (xi < xs[0]) | (xi > xs[-1])
+
+    def apply(self, part, x: NDArray[np.float64], y: NDArray[np.float64]) -> NDArray[np.float64]:
+        xi, e, t, off = part
+        c = self.poly[:, e]
+        out = ((c[3] * t + c[2]) * t + c[1]) * t + c[0]  # Horner, as vbikit.analysis.line_sums
+        if self.kink != "none":
+            s, here = self.section, e == self.element
+            out += here * (np.where(xi < s, s - xi, 0.0) if self.kink == "moment" else np.where(xi <= s, 1.0, 0.0))
+        out[off] = 0.0
+        return out
 
 
 def influence_values(effects: Sequence[LoadEffect], x: NDArray[np.float64],

@@ -113,7 +113,7 @@ def compile_() -> None:
         for name, seconds in compile_kernels().items():
             typer.echo(f"  {name:<8} ready in {seconds:.1f} s")
         typer.echo(f"  {'random':<8} ready in {compile_random_kernels():.1f} s (pseudo-excitation)")
-        typer.echo(f"  {'effects':<8} ready in {compile_effect_kernels():.1f} s (load effects on grillage decks)")
+        typer.echo(f"  {'effects':<8} ready in {compile_effect_kernels():.1f} s (load effects on beams and grillage decks)")
         typer.echo(f"numba cache: {cache_location()}")
 
     guard(work)

@@ -53,21 +53,34 @@ BRIDGE_CACHE_SIZE = 4
 _BRIDGES: "Kept[str, ModalBridge]" = Kept(BRIDGE_CACHE_SIZE)
 
 
-def _bridge_key(spec: BridgeSpec) -> str | None:
-    """The cache key of a [bridge] spec: its every value and the mode-cache folder; None (not kept)
-    when the spec names a file, whose content may change between runs."""
-    data = spec.model_dump(mode="json")
+#: vehicles and tire models built from their specs (``build_vehicle``, ``build_tire``), newest last:
+#: repeated runs of one vehicle on one tire model get the same (immutable) objects, hence the
+#: contact points and vehicle tables kept per object pair (``vbikit.solve.crossing``)
+VEHICLE_CACHE_SIZE = 16
+_VEHICLES: "Kept[str, Vehicle]" = Kept(VEHICLE_CACHE_SIZE)
+_TIRES: "Kept[str, TireModel]" = Kept(VEHICLE_CACHE_SIZE)
 
-    def names_file(value: object, key: str = "") -> bool:
-        if isinstance(value, dict):
-            return any(names_file(v, str(k)) for k, v in value.items())
-        if isinstance(value, (list, tuple)):
-            return any(names_file(v, key) for v in value)
-        return value is not None and ("file" in key or "path" in key)
 
-    if names_file(data):
+def _names_file(value: object, key: str = "") -> bool:
+    """A spec value (or one inside it) under a key naming a file or path."""
+    if isinstance(value, dict):
+        return any(_names_file(v, str(k)) for k, v in value.items())
+    if isinstance(value, (list, tuple)):
+        return any(_names_file(v, key) for v in value)
+    return value is not None and ("file" in key or "path" in key)
+
+
+def _spec_key(kind: str, data: object) -> str | None:
+    """The cache key of a spec's values ``data``: all of them (and the mode-cache folder); None (not
+    kept) when the spec names a file, whose content may change between runs."""
+    if _names_file(data):
         return None
-    return json.dumps([type(spec).__name__, data, os.environ.get("VBIKIT_CACHE_DIR", "")], sort_keys=True, default=str)
+    return json.dumps([kind, data, os.environ.get("VBIKIT_CACHE_DIR", "")], sort_keys=True, default=str)
+
+
+def _bridge_key(spec: BridgeSpec) -> str | None:
+    """The cache key of a [bridge] spec (``_spec_key``)."""
+    return _spec_key(type(spec).__name__, spec.model_dump(mode="json"))
 
 
 def build_bridge(spec: BridgeSpec, base_dir: Path | str = ".") -> ModalBridge:
@@ -87,14 +100,29 @@ def build_damage(spec: BridgeSpec) -> tuple[Damage, ...]:
 
 def build_tire(spec: TireSpec) -> TireModel:
     """The tire model of a [tire] table: the registered class of ``spec.model`` built from its
-    parameters (ValueError listing the registered names for an unknown model)."""
-    return tire_model(spec.model).from_parameters(spec.parameters)
+    parameters (ValueError listing the registered names for an unknown model); the same table
+    again gives the same (immutable) object (``_TIRES``)."""
+    def make() -> TireModel:
+        return tire_model(spec.model).from_parameters(spec.parameters)
+
+    key = _spec_key("tire", spec.model_dump(mode="json"))
+    return make() if key is None else _TIRES.get(key, make)
+
+
+def build_vehicle(model: str, parameters: dict) -> Vehicle:
+    """The vehicle preset ``model`` built with ``parameters``; the same again gives the same
+    (immutable) object (``_VEHICLES``; not kept when a parameter names a file)."""
+    def make() -> Vehicle:
+        return VEHICLE_PRESETS[model].build(**parameters)
+
+    key = _spec_key("vehicle", [model, parameters])
+    return make() if key is None else _VEHICLES.get(key, make)
 
 
 def vehicle_motion(entry: VehicleEntry, default_speed: float | None) -> VehicleMotion:
     """One [[vehicles]] table as a [`VehicleMotion`][vbikit.solve.VehicleMotion] (speed default: the [crossing] one;
     lateral offset default: the bridge's)."""
-    vehicle = VEHICLE_PRESETS[entry.model].build(**entry.parameters)
+    vehicle = build_vehicle(entry.model, entry.parameters)
     speed = entry.speed_ms if entry.speed_ms is not None else default_speed
     return VehicleMotion(vehicle, speed=float(speed), acceleration=entry.acceleration, direction=entry.direction,
                          entry_time=entry.entry_time,
@@ -340,7 +368,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
                       integrator=c.integrator,
                       loss_of_contact=scenario.tire.loss_of_contact)
         if scenario.vehicles is None:
-            vehicle: Vehicle = VEHICLE_PRESETS[scenario.vehicle.model].build(**scenario.vehicle.parameters)
+            vehicle: Vehicle = build_vehicle(scenario.vehicle.model, scenario.vehicle.parameters)
             crossing = Crossing(vehicle=vehicle, speed=c.speed_ms, acceleration=c.acceleration,
                                 lateral_offset=c.lateral_offset,  # None: the bridge's default
                                 **common)

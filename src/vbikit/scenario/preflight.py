@@ -8,6 +8,7 @@ the ``Limits``, and collects the input warnings.
 """
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -94,6 +95,19 @@ def axle_load_warnings(scenario: Scenario) -> list[str]:
     return out
 
 
+#: influence function -> the sets of wheel lines (bytes of the sorted y) on which it was found not zero
+#: (``check_load_effects``; a kept bridge keeps its effects, ``vbikit.bridge.effects.kept_effect``)
+_NONZERO: "weakref.WeakKeyDictionary[Any, set[bytes]]" = weakref.WeakKeyDictionary()
+
+
+def _nonzero_on(influence: Any) -> set[bytes]:
+    """The wheel-line sets on which ``influence`` is known not to be zero (empty if it cannot be kept)."""
+    try:
+        return _NONZERO.setdefault(influence, set())
+    except TypeError:  # not weakly referable: checked every time
+        return set()
+
+
 def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
     """Refuse a load effect whose static value is zero wherever a wheel can stand (a moment at a pinned
     end, a reaction of a support without stiffness): no static peak, hence no impact factor.  The
@@ -105,11 +119,19 @@ def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
     crossing = built.crossing
     bridge = crossing.bridge
     _, _, y = crossing.point_kinematics()
-    x0, x1 = bridge.deck_extent
-    xx, yy = np.meshgrid(np.linspace(x0, x1, 401), np.unique(y))
-    xi = np.asarray(bridge.span_coordinate(xx, yy))
-    on = (xi >= 0.0) & (xi <= bridge.span)
-    xs, ys = xx[on], yy[on]
+    lines = np.unique(y)
+    lines_key = lines.tobytes()
+    points: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def deck_points() -> tuple[np.ndarray, np.ndarray]:
+        if not points:
+            x0, x1 = bridge.deck_extent
+            xx, yy = np.meshgrid(np.linspace(x0, x1, 401), lines)
+            xi = np.asarray(bridge.span_coordinate(xx, yy))
+            on = (xi >= 0.0) & (xi <= bridge.span)
+            points.append((xx[on], yy[on]))
+        return points[0]
+
     r = built.plan.load_effect_method
     given = {k: getattr(scenario.response, k) for k in ("moment", "shear", "reaction")}
     seen = {"moment": 0, "shear": 0, "reaction": 0}
@@ -119,8 +141,12 @@ def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
             if np.any(np.asarray(e.modal) != 0.0):
                 continue
         else:  # a unit force's effect: [m] for a moment, [-] for a shear or reaction; round-off below the tolerance
+            if lines_key in _nonzero_on(e.influence):
+                continue
+            xs, ys = deck_points()
             values = np.asarray(e.influence(xs, ys)) if xs.size else np.zeros(1)
             if np.max(np.abs(values)) > _ZERO_INFLUENCE * (bridge.span if e.kind == "moment" else 1.0):
+                _nonzero_on(e.influence).add(lines_key)
                 continue
         key = f"response.{e.kind}[{seen[e.kind]}]" if given[e.kind] is not None else f"response.{e.kind} (default)"
         raise ScenarioError(f"{key}: the {e.label} is zero wherever a wheel can stand (a section at a pinned end or "

@@ -27,7 +27,9 @@ from pydantic import (
 from vbikit.analysis.plan import point_name
 from vbikit.scenario.bridge_spec import BridgeKind, BridgeSpec
 from vbikit.scenario.section import ScenarioError, Section
-from vbikit._toml import parse_toml, read_toml
+from vbikit._files import read_text
+from vbikit._kept import Kept
+from vbikit._toml import parse_toml
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
 from vbikit.solve.budget import MAX_AXLES
@@ -587,9 +589,18 @@ def scenario_from_toml(text: str, base_dir: Path | str = ".", source: str = "sce
     return parse_scenario(parse_toml(text, source, ScenarioError), base_dir)
 
 
+#: scenarios validated from files, per (file name, text), newest last (``load_scenario``)
+_LOADED: "Kept[tuple[str, str], Scenario]" = Kept(8)
+
+
 def load_scenario(path: str | Path) -> Scenario:
-    """Read and validate a TOML scenario file."""
-    return parse_scenario(read_toml(path, ScenarioError, "scenario file"), Path(path).parent)
+    """Read and validate a TOML scenario file.  The file is read every time; the same name with the
+    same text again is not parsed and validated again (the scenario kept for the last 8 is copied:
+    the caller owns the returned object)."""
+    text = read_text(path, ScenarioError, "scenario file")
+    kept = _LOADED.get((str(path), text), lambda: parse_scenario(parse_toml(text, str(path), ScenarioError),
+                                                                 Path(path).parent))
+    return kept.model_copy(deep=True)
 
 
 def demo_scenario_text() -> str:
