@@ -85,3 +85,49 @@ def test_two_axles_over_the_support_within_a_step_against_the_sweep_and_a_1mm_ru
     _, total, static = with_knot_limits(result, effect, table, coarse.dynamic, coarse.static)
     assert float(static.max()) == pytest.approx(hi[0], rel=1e-7)
     assert float(total.max()) == pytest.approx(reference, rel=1e-3)
+
+
+def test_knot_instants_are_every_point_and_node_by_the_scalar_motion():
+    """``knot_instants`` (one array per vehicle, ``VehicleMotion.times_at``) against the point-by-point,
+    node-by-node loop over the scalar ``VehicleMotion.time_at`` written out here (brute force), for two
+    vehicles on a beam: one +x at constant speed, one −x braking (its quadratic root); the times of
+    the braking one are also checked against s(t) = v τ + a τ²/2 solved by numpy's polynomial roots."""
+    from vbikit.lifetime.peaks import _tracks, knot_instants
+
+    _, table = _reaction()
+    motions = (VehicleMotion(moving_forces((1e5, 2e5), (4.0,)), speed=SPEED),
+               VehicleMotion(moving_forces((1e5, 1e5, 1e5), (3.0, 1.2)), speed=22.0, acceleration=-2.0, direction="-x",
+                             entry_time=0.4))
+    crossing = Crossing(BRIDGE, vehicles=motions)
+    t0, t1 = crossing.start_time, crossing.start_time + crossing.duration
+    origin, sign, y = crossing.point_kinematics()
+    track = _tracks(table, y)
+    brute = []
+    for p in range(origin.size):
+        r = int(table.row[track[p]])
+        for knot in table.knots[0][table.active_ptr[r]:table.active_ptr[r + 1]]:
+            brute.append(crossing.vehicles[crossing.point_vehicle[p]].time_at(float((knot - origin[p]) * sign[p])))
+    brute = np.asarray(brute)
+    brute = np.unique(brute[np.isfinite(brute) & (brute > t0) & (brute < t1)])
+    mine = knot_instants(crossing, table, t0, t1)
+    assert brute.size >= 2 * 5  # both vehicles' points over both supports
+    np.testing.assert_array_equal(mine, brute)
+    braking = motions[1]
+    s = np.array([0.0, 5.0, 11.0, 1e4])  # the last is beyond where it stops: NaN
+    tau = braking.times_at(s)
+    assert np.isnan(tau[-1])
+    for si, ti in zip(s[:-1], tau[:-1]):
+        roots = np.roots([0.5 * braking.acceleration, braking.speed, -si])
+        assert ti - braking.entry_time == pytest.approx(min(r.real for r in roots if r.real >= 0), rel=1e-12)
+
+
+def test_a_point_off_the_tabulated_tracks_is_refused():
+    """``_tracks``: a deck y within 1e-9 m of a tabulated track is that track; 1e-6 m off, or NaN, is refused."""
+    from vbikit.lifetime.peaks import _tracks
+
+    _, table = _reaction()
+    y0 = float(table.tracks[0])
+    assert _tracks(table, np.array([y0, y0 + 5e-10])).tolist() == [0, 0]
+    for bad in (y0 + 1e-6, np.nan):
+        with pytest.raises(ValueError, match="not among the tabulated tracks"):
+            _tracks(table, np.array([y0, bad]))

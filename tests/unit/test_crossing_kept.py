@@ -136,3 +136,15 @@ def test_many_read_out_points_do_not_push_the_run_set_up_out():
     for x in np.linspace(1.0, 24.0, 40):
         result.displacement(float(x))
     assert all(c._kept.peek(key) is value for key, value in kept.items())
+
+
+def test_result_travel_is_kept_and_each_access_a_fresh_copy():
+    """``CrossingResult.travel`` is the crossing's travel at the stored times, s = −approach + v t for
+    one vehicle at constant speed (closed form), computed once; writing to one access leaves the next."""
+    result = simulate(_crossing())
+    crossing = result.crossing
+    first = result.travel
+    np.testing.assert_allclose(first[:, 0], -crossing.approach + crossing.speed * result.time, rtol=0, atol=1e-12)
+    first[:] = 0.0
+    np.testing.assert_array_equal(result.travel, crossing.travel(result.time))
+    assert result.travel is not result.travel

@@ -172,3 +172,98 @@ def test_step_maps_are_made_once_per_inputs_and_no_crossing_writes_to_the_shared
     for dt, kept in runs:
         for a, b in zip(kept, modal_step._vehicle_step(data.vehicles, dt)):
             np.testing.assert_array_equal(a, b)
+
+
+def _combined_vehicles():
+    """Two different axle trucks (2 and 5 axles) combined, with their point-tire contact."""
+    from vbikit.contact.points import contact_points, stack_contact_points
+    from vbikit.contact.tires import PointTire
+    from vbikit.solve.system import vehicles_data
+    from vbikit.vehicle.axles import axle_truck
+    from vbikit.vehicle.model import combine_vehicles
+
+    trucks = [axle_truck([60e3, 110e3], [4.2]), axle_truck([55e3, 95e3, 95e3, 80e3, 80e3], [3.6, 1.3, 6.0, 1.3])]
+    combined = combine_vehicles(trucks)
+    contact = stack_contact_points([contact_points(t, PointTire()) for t in trucks], combined.dof_offsets)
+    return trucks, combined, vehicles_data(combined, contact)
+
+
+@pytest.mark.parametrize("h", [0.002, 0.0137])
+def test_vehicle_step_of_combined_trucks_is_the_exponential_of_the_whole_augmented_system(h):
+    """Several vehicles' step map is made block by block (``_blocks``); it must equal the map read
+    from scipy.linalg.expm (Padé, Al-Mohy & Higham 2009: another code) of the whole augmented
+    first-order system (q, q̇, G, Ġ, 1) of the combined vehicle, written out here; the blocks'
+    cross terms must be exactly zero, and the settle map P = (I − L1 K_z)⁻¹ the direct inverse."""
+    from scipy.linalg import expm as scipy_expm
+
+    from vbikit.solve import modal_step
+
+    trucks, combined, veh = _combined_vehicles()
+    n_d, n_w = veh.gravity.size, veh.wheel_rows.shape[0]
+    assert modal_step._blocks(veh, *modal_step._nominal(veh)) == [(0, trucks[0].n_dof), (trucks[0].n_dof, n_d)]
+    rows = veh.wheel_rows
+    c_hat = veh.damping + rows.T @ (veh.wheel_damping[:, None] * rows)
+    k_hat = veh.stiffness + rows.T @ (veh.wheel_stiffness[:, None] * rows)
+    m_inv = np.linalg.inv(combined.mass)
+    n = 2 * n_d + 2 * n_w + 1
+    a = np.zeros((n, n))
+    a[:n_d, n_d:2 * n_d] = np.eye(n_d)
+    a[n_d:2 * n_d, :n_d] = -m_inv @ k_hat
+    a[n_d:2 * n_d, n_d:2 * n_d] = -m_inv @ c_hat
+    a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T
+    a[n_d:2 * n_d, -1] = m_inv @ combined.gravity
+    a[2 * n_d:2 * n_d + n_w, 2 * n_d + n_w:-1] = np.eye(n_w)
+    e = scipy_expm(a * h)
+    z = slice(0, 2 * n_d)
+    transition, load1 = e[z, z], e[z, 2 * n_d + n_w:-1] / h
+    load0, constant = e[z, 2 * n_d:2 * n_d + n_w] - load1, e[z, -1]
+    step = modal_step._vehicle_step(veh, h)
+    for mine, ref in ((step.transition, transition), (step.load0, load0), (step.load1, load1)):
+        np.testing.assert_allclose(mine, ref, rtol=1e-10, atol=1e-12 * np.abs(ref).max())
+    np.testing.assert_allclose(step.constant, constant, rtol=1e-10, atol=1e-12 * np.abs(constant).max())
+    k_z = np.hstack([veh.wheel_stiffness[:, None] * rows, veh.wheel_damping[:, None] * rows])
+    settle = np.linalg.inv(np.eye(2 * n_d) - load1 @ k_z)
+    np.testing.assert_allclose(step.settle, settle, rtol=1e-10, atol=1e-12 * np.abs(settle).max())
+    # no term couples the first truck's q, q̇ (and wheels) to the second's
+    first = np.r_[0:trucks[0].n_dof, n_d:n_d + trucks[0].n_dof]
+    second = np.setdiff1d(np.arange(2 * n_d), first)
+    w1 = len(trucks[0].wheels)
+    for m in (step.transition, step.settle):
+        assert not np.any(m[np.ix_(first, second)]) and not np.any(m[np.ix_(second, first)])
+    assert not np.any(step.load1[first, w1:]) and not np.any(step.load1[second, :w1])
+    # the reference itself: the two trucks' exact blocks are not copies of each other
+    assert trucks[0].n_dof != trucks[1].n_dof
+
+
+def test_vehicle_step_of_one_vehicle_is_one_block():
+    """One truck alone: a single block (its DOFs are all coupled), the map unchanged."""
+    from vbikit.solve import modal_step
+
+    trucks, _, _ = _combined_vehicles()
+    from vbikit.contact.points import contact_points
+    from vbikit.contact.tires import PointTire
+    from vbikit.solve.system import vehicles_data
+
+    veh = vehicles_data(trucks[1], contact_points(trucks[1], PointTire()))
+    assert modal_step._blocks(veh, *modal_step._nominal(veh)) == [(0, trucks[1].n_dof)]
+
+
+@pytest.mark.parametrize("theta", [1e-3, 0.4, 5.0, 40.0, 300.0])  # ‖A‖₁ up to a truck's augmented system
+def test_expm_is_the_rotation_and_the_damped_oscillator(theta):
+    """``expm`` (Taylor series with scaling and squaring) against closed forms: exp([[0, θ], [−θ, 0]]) is
+    the rotation [[cos θ, sin θ], [−sin θ, cos θ]]; exp(t [[0, 1], [−ω², −2ζω]]) the damped
+    oscillator's free response (x, ẋ columns, Chopra Eq. 2.2.4); and a stack of both at once."""
+    from vbikit.solve.modal_step import expm
+
+    rot = expm(np.array([[0.0, theta], [-theta, 0.0]]))
+    np.testing.assert_allclose(rot, [[np.cos(theta), np.sin(theta)], [-np.sin(theta), np.cos(theta)]],
+                               rtol=0, atol=4e-15 * max(1.0, theta))
+    w, z = 7.0, 0.05
+    t = theta / w
+    wd, e = w * np.sqrt(1 - z * z), np.exp(-z * w * t)
+    sn, cs = np.sin(wd * t), np.cos(wd * t)
+    free = np.array([[e * (cs + z * w / wd * sn), e * sn / wd],
+                     [-e * w * w / wd * sn, e * (cs - z * w / wd * sn)]])
+    stack = expm(np.stack([np.array([[0.0, 1.0], [-w * w, -2 * z * w]]) * t, np.array([[0.0, theta], [-theta, 0.0]])]))
+    np.testing.assert_allclose(stack[0], free, rtol=0, atol=4e-15 * max(1.0, theta) * np.abs(free).max() + 1e-300)
+    np.testing.assert_allclose(stack[1], rot, rtol=0, atol=1e-15 * max(1.0, theta))

@@ -7,7 +7,7 @@ from scipy.optimize import brentq
 
 from vbikit.bridge import EulerBernoulliBeam, paper_beam
 from vbikit.contact import MultiPointTire
-from vbikit.road import RoadPSD, random_profile
+from vbikit.road import RoadProfile, RoadPSD, random_profile
 from vbikit.solve import (
     Crossing,
     UnstableTimeStepError,
@@ -165,3 +165,38 @@ def test_with_road_checks_like_the_constructor_and_keeps_the_contact_points():
         base.with_road(short)
     with pytest.raises(ValueError, match="needs a road profile for the left line"):
         base.with_road(None, good)
+
+
+@pytest.mark.parametrize("spacing, speed", [(0.01, 22.0), (0.2, 8.0), (0.5, 3.0)])
+def test_automatic_steps_equal_the_eigenvalue_rule_whether_or_not_the_vehicle_binds(spacing, speed):
+    """``implicit_time_step`` and ``accuracy_time_step`` solve the vehicle's eigenvalues only when its
+    period can bind (``_with_vehicle_periods``); the steps must be those of the rule written out
+    here with scipy.linalg.eigh of (K + Σ k_w r_w r_wᵀ, M) on every crossing, bit for bit: two trucks
+    (their periods do not bind on a fine road) and a 318 Hz sprung mass (its period binds)."""
+    from scipy.linalg import eigh
+
+    from vbikit.solve.timestep import EXACT_ROAD_FEATURES_PER_STEP, EXACT_ROAD_LENGTH_PER_STEP, EXACT_STEPS_PER_SPAN
+    from vbikit.solve.timestep import EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD, EXACT_STEPS_PER_VEHICLE_PERIOD
+    from vbikit.solve.timestep import implicit_time_step
+    from vbikit.vehicle.axles import axle_truck
+
+    beam = paper_beam(16.76, "II", n_modes=3)
+    x = np.arange(-60.0, 80.0, spacing)
+    road = RoadProfile(x, 1e-3 * np.sin(2.1 * x), "test")  # sampled every ``spacing``
+    binds = []
+    for vehicle in (axle_truck([60e3, 110e3], [4.2]), hs20_44(), sprung_mass(mass=10.0, stiffness=4e7)):  # 318 Hz
+        c = Crossing(beam, vehicle, road=road, speed=speed)
+        rows = np.array([w.row for w in vehicle.wheels])
+        k_w = np.array([w.stiffness for w in vehicle.wheels])
+        f_max = np.sqrt(eigh(vehicle.stiffness + rows.T @ (k_w[:, None] * rows), vehicle.mass, eigvals_only=True).max()) / (2 * np.pi)
+        v = c.max_speed
+        exact = [beam.span / (EXACT_STEPS_PER_SPAN * v), 2 * np.pi / beam.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD,
+                 min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v]
+        accurate = [2 * np.pi / beam.omega.max() / 5.0, beam.span / (100.0 * v), road.spacing / v]
+        fresh = Crossing(beam, vehicle.__class__(**{f: getattr(vehicle, f) for f in vehicle.__dataclass_fields__}),
+                         road=road, speed=speed)  # its frequencies not yet solved
+        assert implicit_time_step(fresh) == min(exact + [1.0 / f_max / EXACT_STEPS_PER_VEHICLE_PERIOD])
+        assert accuracy_time_step(c) == min(accurate + [1.0 / f_max / 20.0])
+        binds.append(1.0 / f_max / EXACT_STEPS_PER_VEHICLE_PERIOD < min(exact))
+    assert binds[2]  # the 318 Hz mass binds
+    assert not any(binds[:2]) or spacing > 0.01  # the trucks do not on the fine road

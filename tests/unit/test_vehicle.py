@@ -208,3 +208,31 @@ def test_builder_spring_between_points_and_ground():
     np.testing.assert_allclose(v.stiffness, [[1000.0, -1000.0], [-1000.0, 4000.0]])
     np.testing.assert_allclose(v.damping, [[10.0, -10.0], [-10.0, 30.0]])
     np.testing.assert_allclose(v.mass, np.diag([100.0, 50.0]))
+
+
+def test_combined_vehicle_is_its_parts_against_the_whole_block_diagonal_system():
+    """Several vehicles side by side (``combine_vehicles``) take their static state and wheel loads
+    from each vehicle's own; the whole block-diagonal system solved directly (numpy.linalg.solve of
+    the static equilibrium on the combined matrices, written out here) must give the same, and a copy
+    of the combined vehicle with other matrices (``dataclasses.replace``) its own, not its parts'."""
+    import dataclasses
+
+    from vbikit.vehicle.axles import axle_truck
+    from vbikit.vehicle.model import combine_vehicles
+
+    parts = [axle_truck([60e3, 110e3], [4.2]), quarter_car(), axle_truck([55e3, 95e3, 95e3, 80e3, 80e3], [3.6, 1.3, 6.0, 1.3]),
+             VEHICLE_PRESETS["moving-force"].build()]
+    c = combine_vehicles(parts)
+    rows = np.array([w.row for w in c.wheels])
+    k_w = np.array([w.stiffness for w in c.wheels])
+    k_hat = c.stiffness + rows.T @ (k_w[:, None] * rows)
+    ground = np.linspace(-0.01, 0.02, len(c.wheels))
+    q = np.linalg.solve(k_hat, c.gravity + rows.T @ (k_w * ground))
+    np.testing.assert_allclose(c.static_state(ground), q, rtol=1e-11, atol=1e-14)
+    q0 = np.linalg.solve(k_hat, c.gravity)
+    fixed = np.array([w.fixed_load for w in c.wheels])
+    np.testing.assert_allclose(c.static_wheel_loads(), fixed - k_w * (rows @ q0), rtol=1e-11)
+    assert c.static_wheel_loads().sum() == pytest.approx(sum(p.total_weight for p in parts), rel=1e-12)
+    stiffer = dataclasses.replace(c, stiffness=2.0 * c.stiffness)
+    q2 = np.linalg.solve(2.0 * c.stiffness + rows.T @ (k_w[:, None] * rows), c.gravity)
+    np.testing.assert_allclose(stiffer.static_wheel_loads(), fixed - k_w * (rows @ q2), rtol=1e-11)

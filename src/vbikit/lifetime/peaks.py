@@ -27,25 +27,31 @@ def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
     """The instants τ in (t0, t1) [s] at which a contact point of ``crossing`` stands on an active
     node of ``table`` (a ``vbikit.lifetime.influence.Tabulated`` line: the knots of the module
     docstring, the jump of a reaction or shear line, the kink of a moment line), sorted, unique."""
-    origin, sign, y = crossing.point_kinematics()
+    return _knot_instants(crossing, table, t0, t1, _tracks(table, crossing.point_kinematics()[2]))
+
+
+def _knot_instants(crossing, table, t0: float, t1: float, track: NDArray[np.int64]) -> NDArray[np.float64]:
+    """``knot_instants`` with the table's track of every contact point given (``_tracks``)."""
+    origin, sign, _ = crossing.point_kinematics()
     veh = crossing.point_vehicle
-    track = _tracks(table, y)
-    kx = table.knots[0]
-    out = []
-    for p in range(origin.size):
-        r = int(table.row[track[p]])
-        s = (kx[table.active_ptr[r]:table.active_ptr[r + 1]] - origin[p]) * sign[p]  # travel of its vehicle there
-        motion = crossing.vehicles[veh[p]]
-        out += [motion.time_at(float(v)) for v in s]
-    tau = np.asarray(out, float)
+    rows = np.asarray(table.row, np.int64)[track]
+    first, count = table.active_ptr[rows], table.active_ptr[rows + 1] - table.active_ptr[rows]
+    point = np.repeat(np.arange(origin.size), count)  # every (contact point, active node) pair
+    knot = first[point] + np.arange(point.size) - np.repeat(np.cumsum(count) - count, count)
+    s = (table.knots[0][knot] - origin[point]) * sign[point]  # travel of the point's vehicle there
+    tau = np.empty(point.size)
+    for i, motion in enumerate(crossing.vehicles):
+        mine = veh[point] == i
+        tau[mine] = motion.times_at(s[mine])
     tau = tau[np.isfinite(tau) & (tau > t0) & (tau < t1)]
     return np.unique(tau)
 
 
 def _tracks(table, y: NDArray[np.float64]) -> NDArray[np.int64]:
     """The table's track of every contact point at deck y (ValueError if one is not tabulated)."""
-    ids = np.argmin(np.abs(table.tracks[None, :] - np.asarray(y, float)[:, None]), axis=1)
-    if not np.allclose(table.tracks[ids], y, rtol=0.0, atol=1e-9):
+    y = np.asarray(y, float)
+    ids = np.argmin(np.abs(table.tracks[None, :] - y[:, None]), axis=1)
+    if not np.all(np.abs(table.tracks[ids] - y) <= 1e-9):  # within 1e-9 m (NaN: not tabulated)
         raise ValueError("a contact point's wheel track is not among the tabulated tracks")
     return ids
 
@@ -80,16 +86,17 @@ def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
     ``dynamic``, ``static``: its histories at ``result.time`` (``vbikit.analysis.effects``)."""
     t = np.asarray(result.time, float)
     crossing = result.crossing
-    tau = knot_instants(crossing, table, float(t[0]), float(t[-1])) if t.size > 1 else np.zeros(0)
+    origin, sign, y = crossing.point_kinematics()
+    track = _tracks(table, y)
+    tau = _knot_instants(crossing, table, float(t[0]), float(t[-1]), track) if t.size > 1 else np.zeros(0)
     if tau.size == 0:
         return t, np.asarray(dynamic, float), np.asarray(static, float)
     delta = KNOT_OFFSET * float(t[1] - t[0])
     u = np.column_stack([tau - delta, tau + delta]).ravel()  # R(τ⁻), R(τ⁺), in time order
-    origin, sign, y = crossing.point_kinematics()
     veh = crossing.point_vehicle
     x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, veh]
     yy = np.broadcast_to(y, x.shape)
-    g = table(x.ravel(), np.broadcast_to(_tracks(table, y), x.shape).ravel()).reshape(x.shape)
+    g = table(x.ravel(), np.broadcast_to(track, x.shape).ravel()).reshape(x.shape)
     bridge = crossing.bridge
     phi = np.asarray(bridge.mode_shapes(x.ravel(), yy.ravel()), float).reshape(x.shape + (-1,))
     k = np.clip(np.searchsorted(t, u), 1, t.size - 1)

@@ -139,6 +139,16 @@ class VehicleMotion:
             return math.nan
         return t_ref + (-v + math.sqrt(disc)) / a
 
+    def times_at(self, travel: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``time_at`` of every travel in an array [m] (the same arithmetic element by element)."""
+        t_ref, s_ref, v = self._ref
+        a, distance = self.acceleration, np.asarray(travel, float) - s_ref
+        if abs(a) < 1e-12:
+            return t_ref + distance / v
+        disc = v * v + 2 * a * distance
+        with np.errstate(invalid="ignore"):
+            return np.where(disc < 0, np.nan, t_ref + (-v + np.sqrt(disc)) / a)
+
 
 @dataclass(frozen=True)
 class Crossing:

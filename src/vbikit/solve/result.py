@@ -106,8 +106,13 @@ class CrossingResult:
 
     @property
     def travel(self) -> NDArray[np.float64]:
-        """The vehicles' travel s_v [m] past their entry supports at ``time``, (n_t, n_vehicles)."""
-        return self.crossing.travel(self.time)
+        """The vehicles' travel s_v [m] past their entry supports at ``time``, (n_t, n_vehicles)
+        (computed once: a result is immutable; a fresh copy each access)."""
+        known = self.__dict__.get("_travel")
+        if known is None:
+            known = self.crossing.travel(self.time)
+            object.__setattr__(self, "_travel", known)
+        return known.copy()
 
     def wheel_positions(self) -> NDArray[np.float64]:
         """x [m] of every wheel centre at every time (n_t, n_wheels), each vehicle on its own path."""

@@ -78,13 +78,10 @@ def accuracy_time_step(crossing: Crossing) -> float:
     """The accuracy-based automatic step [s] (see module docstring)."""
     v_max = crossing.max_speed
     candidates = [2 * np.pi / crossing.bridge.omega.max() / 5.0, crossing.bridge.span / (100.0 * v_max)]
-    f_veh = crossing.vehicle.natural_frequencies()
-    if f_veh.size and f_veh.max() > 0:
-        candidates.append(1.0 / f_veh.max() / 20.0)
     for road in (crossing.road, crossing.road_right):
         if road is not None and road.spacing > 0:
             candidates.append(road.spacing / v_max)
-    return float(min(candidates))
+    return _with_vehicle_periods(crossing.vehicle, 20.0, min(candidates))
 
 
 def choose_time_step(crossing: Crossing, stability_limit: Optional[float] = None,
@@ -127,10 +124,30 @@ def implicit_time_step(crossing: Crossing) -> float:
     v_max = crossing.max_speed
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
-    f_veh = crossing.vehicle.natural_frequencies()
-    if f_veh.size and f_veh.max() > 0:
-        candidates.append(1.0 / f_veh.max() / EXACT_STEPS_PER_VEHICLE_PERIOD)
     for road in (crossing.road, crossing.road_right):
         if road is not None and road.spacing > 0:
             candidates.append(min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v_max)
-    return float(min(candidates))
+    return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, min(candidates))
+
+
+#: relative margin on the bound of ``_with_vehicle_periods`` (far above the round-off of ‖M⁻¹K̂‖∞)
+_BOUND_MARGIN = 1e-6
+
+
+def _with_vehicle_periods(vehicle, steps_per_period: float, others: float) -> float:
+    """min(``others``, T_min / ``steps_per_period``) [s], T_min = 1 / f_max the shortest period of the
+    vehicle on rigid ground (``Vehicle.natural_frequencies``; no term without frequencies > 0).
+
+    The eigenvalue problem is solved only when that term can be the smaller: ω_max² is the spectral
+    radius of M⁻¹K̂ (K̂ = K + Σ k_w r_w r_wᵀ), which no induced norm is below (Horn & Johnson, Matrix
+    Analysis, Thm 5.6.9), so T_min ≥ 2π / √‖M⁻¹K̂‖∞; when that bound's step is already ≥ ``others``
+    the minimum is ``others`` — the same number as with the eigenvalues, at the cost of one solve."""
+    if vehicle.n_dof and vehicle.__dict__.get("_natural_frequencies") is None:  # (frequencies not yet solved)
+        k_hat = vehicle.stiffness + vehicle.tire_stiffness_matrix()
+        bound = float(np.abs(np.linalg.solve(vehicle.mass, k_hat)).sum(axis=1).max()) * (1.0 + _BOUND_MARGIN)
+        if bound == 0.0 or (np.isfinite(bound) and 2 * np.pi / np.sqrt(bound) / steps_per_period >= others):
+            return float(others)
+    f_veh = vehicle.natural_frequencies()
+    if f_veh.size and f_veh.max() > 0:
+        return float(min(others, 1.0 / f_veh.max() / steps_per_period))
+    return float(others)

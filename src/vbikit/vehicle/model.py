@@ -174,6 +174,32 @@ class CombinedVehicle(Vehicle):
     dof_offsets: tuple[int, ...] = ()
     wheel_offsets: tuple[int, ...] = ()
 
+    @property
+    def _stacked(self) -> bool:
+        """True when made by ``combine_vehicles`` from ``parts`` (not a copy with other matrices, e.g.
+        ``dataclasses.replace``): its static state and wheel loads are then the parts' own."""
+        return bool(self.__dict__.get("_from_parts", False))
+
+    def static_state(self, ground: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+        """Each vehicle's own static state (``Vehicle.static_state``, its wheels' part of
+        ``ground``), stacked: the block-diagonal system decouples."""
+        if not self._stacked:
+            return super().static_state(ground)
+        g = [None] * len(self.parts) if ground is None else \
+            [np.asarray(ground, float)[a:b] for a, b in zip(self.wheel_offsets[:-1], self.wheel_offsets[1:])]
+        try:
+            return np.concatenate([p.static_state(gi) for p, gi in zip(self.parts, g)]) if self.n_dof else np.zeros(0)
+        except np.linalg.LinAlgError:  # a part singular on its own (a mechanism): the whole system as given
+            return super().static_state(ground)
+
+    def static_wheel_loads(self) -> NDArray[np.float64]:
+        """Each vehicle's own static wheel loads (kept per vehicle), stacked (a fresh array)."""
+        if not self._stacked:
+            return super().static_wheel_loads()
+        try:
+            return np.concatenate([p.static_wheel_loads() for p in self.parts])
+        except np.linalg.LinAlgError:  # a part singular on its own (a mechanism): the whole system as given
+            return super().static_wheel_loads()
 
 def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> CombinedVehicle:
     """Stack ``vehicles`` into one ``CombinedVehicle`` (see there)."""
@@ -199,7 +225,9 @@ def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> Combine
         for w, row in zip(v.wheels, rows):
             wheels.append(Wheel(f"v{i + 1}_{w.name}", w.offset, w.lateral, w.stiffness, w.damping, row, w.fixed_load))
     gravity = np.concatenate([v.gravity for v in vehicles]) if n else np.zeros(0)
-    return CombinedVehicle(
+    combined = CombinedVehicle(
         "+".join(v.name for v in vehicles), tuple(names), blocks("mass"), blocks("damping"), blocks("stiffness"),
         gravity, tuple(wheels), f"{len(vehicles)} vehicles: " + ", ".join(v.name for v in vehicles), {},
         vehicles, tuple(int(k) for k in dof_off), tuple(int(k) for k in wheel_off))
+    object.__setattr__(combined, "_from_parts", True)  # its blocks are the parts' own (``CombinedVehicle._stacked``)
+    return combined
