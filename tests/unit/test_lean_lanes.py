@@ -198,3 +198,50 @@ def test_lift_off_with_thinned_histories_equals_implicit():
         assert _worst(lane, ref) <= 1e-9
     for k in (1, 3):  # class A roads: not handed over
         assert _worst(lanes[k], full[k]) <= 1e-10
+
+
+
+def _bumped(road, start: float, height: float, width: float):
+    """``road`` plus a cosine bump of ``height`` [m] over ``width`` [m] from ``start`` [m], on its own
+    stations (the road's resolution, so the time step stays)."""
+    from vbikit.road.profile import RoadProfile
+
+    u = (road.x - start) / width
+    bump = np.where((u >= 0.0) & (u <= 1.0), 0.5 * height * (1.0 - np.cos(2.0 * np.pi * np.clip(u, 0.0, 1.0))), 0.0)
+    return RoadProfile(road.x, road.z + bump, road.label + " + bump", road.resolution)
+
+
+def test_disk_points_on_bumps_are_not_left_out():
+    """The shared lazy test leaves a disk point out only when it cannot touch in any lane (bound
+    r_p − g_p − z_w + Σ amp |ξ| ≤ 0 with the road r_p under the point).  A narrow bump (6 cm high,
+    4 cm wide) on the deck meets the disk's leading points first, whose gaps g_p = R − √(R² − ξ²)
+    (up to 0.1 m) are far above the static compression (≈ 3 cm), while the patch at the bottom still
+    presses: a point wrongly left out would miss a force of order k_p δ_p ≈ 1 kN, ≈ 1e-2 of the
+    peak wheel load, against ``implicit`` (its own contact law, lazy bound with the highest
+    elevation r_max).  Lanes 0–3 carry the bumps (four positions on the 9.16 m deck), lanes 4–7
+    the same roads without: the bumps change the wheel loads by more than 5 kN, and at least
+    one bumped lane runs lean throughout."""
+    from vbikit.solve import kernels
+
+    spec = _paper("disk", 100.0)
+    roads = _roads(spec, [("A", 2), ("B", 4), ("A", 6), ("B", 8)])
+    bumped = [_bumped(r, s, 0.06, 0.04) for r, s in zip(roads, (2.0, 4.5, 6.1, 8.0))]
+    stops: list = []
+    original = kernels.lean_lanes
+
+    def spy(*args):
+        out = original(*args)
+        stops.append(args[-7].copy())
+        return out
+
+    kernels.lean_lanes = spy
+    try:
+        lanes, full, _, _ = _batch(_crossing(spec), bumped + roads, singles=False)
+    finally:
+        kernels.lean_lanes = original
+    frozen = np.any(np.array(stops) >= 0, axis=0)
+    assert not frozen[:4].all()
+    for k, (lane, ref) in enumerate(zip(lanes, full)):
+        assert _worst(lane, ref) <= (1e-9 if frozen[k] else 1e-10)
+    for k in range(4):  # the bump does load the wheels
+        assert float(np.max(np.abs(lanes[k].wheel_forces - lanes[k + 4].wheel_forces))) > 5e3
