@@ -2,6 +2,7 @@
 that runs in one process ask for again)."""
 from __future__ import annotations
 
+import weakref
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Iterator
 from typing import Generic, TypeVar
@@ -45,3 +46,24 @@ class Kept(Generic[K, V]):
 
     def __contains__(self, key: object) -> bool:
         return key in self._items
+
+
+#: (id(owner), name) -> the owner's store (``kept_for``); an entry goes when its owner is collected
+_PER_OWNER: dict[tuple[int, str], Kept] = {}
+
+
+def kept_for(owner: object, name: str, size: int) -> Kept:
+    """The bounded store ``name`` (at most ``size`` values) of the immutable object ``owner`` (a
+    bridge, ...): by identity, dropped when ``owner`` is collected, and not on the object, so that
+    pickling it (for a worker process) carries none of it."""
+    key = (id(owner), name)
+    store = _PER_OWNER.get(key)
+    if store is None:
+        store = _PER_OWNER[key] = Kept(size)
+        weakref.finalize(owner, _PER_OWNER.pop, key, None)
+    return store
+
+
+def forget_kept() -> None:
+    """Drop every ``kept_for`` store (tests that need fresh values)."""
+    _PER_OWNER.clear()

@@ -12,6 +12,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from vbikit._kept import forget_kept
 from vbikit.analysis import effect_step
 from vbikit.analysis.effects import load_effect_responses
 from vbikit.bridge import paper_beam
@@ -27,8 +28,7 @@ def deck():
 
 
 def _fresh():
-    tabulate._TRACKS.clear()
-    effect_step._DECK.clear()
+    forget_kept()
 
 
 def test_track_table_is_kept_per_bridge_and_track_set_and_equals_a_fresh_one(deck):

@@ -1,4 +1,5 @@
-"""``vbikit._kept.Kept``: made once per key, the least recently used key dropped first."""
+"""``vbikit._kept.Kept``: made once per key, the least recently used key dropped first; ``kept_for``: an
+object's own stores."""
 import pytest
 
 from vbikit._kept import Kept
@@ -32,3 +33,25 @@ def test_a_failed_make_keeps_nothing_and_the_size_is_checked():
     assert len(kept) == 0
     with pytest.raises(ValueError, match="size: at least 1, got 0"):
         Kept(0)
+
+
+class Owner:
+    """Stands for an immutable model object (a bridge)."""
+
+
+def test_an_owners_stores_are_its_own_go_with_it_and_are_not_pickled():
+    import gc
+    import pickle
+
+    from vbikit._kept import _PER_OWNER, kept_for
+
+    a, b = Owner(), Owner()
+    assert kept_for(a, "x", 2).get(1, lambda: "a1") == "a1"
+    assert kept_for(a, "x", 2).get(1, lambda: "other") == "a1"  # the same store again
+    assert kept_for(b, "x", 2).get(1, lambda: "b1") == "b1"  # another owner: its own store
+    assert kept_for(a, "y", 2).get(1, lambda: "ay") == "ay"  # another name: its own store
+    assert vars(pickle.loads(pickle.dumps(a))) == {}  # nothing on the object itself
+    n = len(_PER_OWNER)
+    del a
+    gc.collect()
+    assert len(_PER_OWNER) == n - 2  # both of a's stores went with it

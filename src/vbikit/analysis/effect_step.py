@@ -34,11 +34,12 @@ Python path) compares the step a result was run at with it and says so when it i
 """
 from __future__ import annotations
 
-import weakref
 from typing import Any, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
+
+from vbikit._kept import kept_for
 
 
 #: largest estimated (and, in `vbikit run`'s halving check, observed) change [-] of an impact factor
@@ -69,26 +70,13 @@ def _line_points(bridge: Any, lines: NDArray[np.float64]) -> tuple[NDArray[np.fl
 #: with the bridge: bridges are immutable) and set of wheel lines: the events of a traffic stream or a
 #: lifetime run on one bridge drive on a few lines, and scenario runs share their bridges
 #: (``vbikit.scenario.build``)
-_DECK: dict[int, dict[tuple, Any]] = {}
 _DECK_ENTRIES_PER_BRIDGE = 256
 
 
 def _kept(crossing: Any, key: tuple, make: Any) -> Any:
     """The value of ``key`` kept for the crossing's bridge and set of wheel lines (``make()`` the first time)."""
-    bridge = crossing.bridge
     _, _, y = crossing.point_kinematics()
-    per_bridge = _DECK.get(id(bridge))
-    if per_bridge is None:
-        per_bridge = _DECK[id(bridge)] = {}
-        weakref.finalize(bridge, _DECK.pop, id(bridge), None)
-    key = (np.unique(y).tobytes(),) + key
-    out = per_bridge.get(key)
-    if out is None:
-        out = make()
-        if len(per_bridge) >= _DECK_ENTRIES_PER_BRIDGE:
-            per_bridge.pop(next(iter(per_bridge)))
-        per_bridge[key] = out
-    return out
+    return kept_for(crossing.bridge, "deck steps", _DECK_ENTRIES_PER_BRIDGE).get((np.unique(y).tobytes(),) + key, make)
 
 
 def _deck_modes(crossing: Any) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:

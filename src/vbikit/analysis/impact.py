@@ -17,36 +17,25 @@ depend on the output step (a sampled peak misses up to 1 − cos(ω₁Δt/2) of 
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import kept_for
 from vbikit.solve import system
 from vbikit.solve.result import CrossingResult
 
 
-#: static modal histories one bridge keeps (``static_modal_history``; oldest dropped first)
+#: static modal histories one bridge keeps (``static_modal_history``; least recently used dropped first)
 STATIC_HISTORIES_KEPT = 8
-#: id(bridge) -> its kept static modal histories (dropped when the bridge is collected; not on the
-#: bridge object, so that pickling a bridge for a worker process does not carry them)
-_KEPT: dict[int, dict] = {}
-
-
-def _kept_for(bridge: object) -> dict:
-    key = id(bridge)
-    if key not in _KEPT:
-        _KEPT[key] = {}
-        weakref.finalize(bridge, _KEPT.pop, key, None)
-    return _KEPT[key]
 
 
 def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
     """ξ_st(t) (n_t, n_modes): static modal coordinates under the moving static wheel loads
     (``vbikit.solve.system.static_modal_history``).  It depends on the bridge, the contact points'
     static loads, origins, directions and lines and the vehicles' travel only, not on the road or
-    the dynamic solution: kept on the bridge object under those inputs (exact bytes), so that a
+    the dynamic solution: kept for the bridge (``vbikit._kept.kept_for``) under those inputs (exact bytes), so that a
     kept bridge's runs with the same vehicles, speeds and time grid (repeated runs, the roads of
     one study point) compute it once.  Read-only: shared by those runs."""
     crossing = result.crossing
@@ -58,15 +47,13 @@ def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
     grid = (None if data is None else (data.modes.grid_h, data.modes.values.shape, data.modes.start.tobytes()))
     key = (travel.shape, grid, b"".join(np.ascontiguousarray(a, float).tobytes() for a in (
         travel, loads, origin, direction, y, crossing.point_vehicle)))
-    kept = _kept_for(crossing.bridge)
-    xi_st = kept.get(key)
-    if xi_st is None:
+
+    def make() -> NDArray[np.float64]:
         xi_st = system.static_modal_history(crossing, travel, data)
         xi_st.flags.writeable = False
-        if len(kept) >= STATIC_HISTORIES_KEPT:
-            kept.pop(next(iter(kept)))
-        kept[key] = xi_st
-    return xi_st
+        return xi_st
+
+    return kept_for(crossing.bridge, "static histories", STATIC_HISTORIES_KEPT).get(key, make)
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,7 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import kept_for
 from vbikit.analysis.checks import run_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
@@ -64,25 +65,21 @@ class PointResponse:
         return reduce_outputs(Reduction(result, self), "point", names)
 
 
-#: mode and strain shapes kept per bridge (on the bridge object) for this many points
+#: mode and strain shapes kept per bridge (``vbikit._kept.kept_for``) for this many points
 POINT_SHAPES_KEPT = 64
 
 
 def point_shapes(bridge: object, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """φ_i(x, y) and the strain shapes ε_i(x, y) of every mode at one deck point (read-only), kept
-    on the bridge object per point: every crossing and event of a run reads the same points, and a
+    for the bridge per point: every crossing and event of a run reads the same points, and a
     deck's shapes at one point cost a quarter of a millisecond."""
-    kept = getattr(bridge, "__dict__", {}).setdefault("_point_shapes", {})
-    key = (float(x), float(y))
-    shapes = kept.get(key)
-    if shapes is None:
+    def make() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         shapes = (np.array(bridge.mode_shapes([x], [y])[0], float), np.array(bridge.strain_shapes([x], [y])[0], float))
         for arr in shapes:
             arr.setflags(write=False)
-        if len(kept) >= POINT_SHAPES_KEPT:
-            kept.pop(next(iter(kept)))
-        kept[key] = shapes
-    return shapes
+        return shapes
+
+    return kept_for(bridge, "point shapes", POINT_SHAPES_KEPT).get((float(x), float(y)), make)
 
 
 def point_response(result: CrossingResult, x: float | None = None, y: float | None = None,

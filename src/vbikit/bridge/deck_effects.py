@@ -38,6 +38,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 from numpy.typing import ArrayLike, NDArray
 
+from vbikit._kept import Kept
 from vbikit.bridge.base import GirderDeck
 from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence, kept_effect
 from vbikit.bridge.elements import beam_element_stiffness
@@ -162,7 +163,7 @@ class DeckInfluence(TabulatedInfluence):
         self.bridge, self.dofs, self.v = bridge, bridge.dof_map, v
         self.kind, self.element, self.line, self.a, self.h, self.s = kind, element, line, a, h, s
         self.kink, self.section = ("none" if kind == "reaction" else kind), s
-        self._line_tables: dict[float, tuple[NDArray[np.float64], float]] = {}
+        self._line_tables: Kept[float, tuple[NDArray[np.float64], float]] = Kept(LINE_TABLES_KEPT)
 
     @property
     def stations(self) -> NDArray[np.float64]:
@@ -196,21 +197,19 @@ class DeckInfluence(TabulatedInfluence):
         """Monomial coefficients (4, n_elements) in t (rows t⁰ … t³) of I along the wheel line y [m]
         without the kink (or step) at the section, and the share c_j(y) of the section's girder line j
         (cached)."""
-        table = self._line_tables.get(y)
-        if table is None:
-            xs = self.dofs.stations
-            xi = (xs[:-1, None] + _NODES_T[None, :] * np.diff(xs)[:, None]).ravel()
-            x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
-            idx, coef, _, shares = load_weights(self.dofs, x, y)
-            values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
-            c = float(shares[0, self.line])
-            if self.kind != "reaction":
-                values[self.element] += c * self._section_cubic(xi.reshape(-1, 4)[self.element])
-            table = (np.ascontiguousarray((values @ _TO_MONOMIAL.T).T), c)
-            if len(self._line_tables) >= LINE_TABLES_KEPT:
-                self._line_tables.pop(next(iter(self._line_tables)))
-            self._line_tables[y] = table
-        return table
+        return self._line_tables.get(y, lambda: self._line_table(y))
+
+    def _line_table(self, y: float) -> tuple[NDArray[np.float64], float]:
+        """``line_table``'s entry of the wheel line y [m], computed."""
+        xs = self.dofs.stations
+        xi = (xs[:-1, None] + _NODES_T[None, :] * np.diff(xs)[:, None]).ravel()
+        x = xi + y * self.dofs.skew_tan if self.dofs.skew_tan else xi
+        idx, coef, _, shares = load_weights(self.dofs, x, y)
+        values = (self.v[idx] * coef).sum(axis=1).reshape(-1, 4)
+        c = float(shares[0, self.line])
+        if self.kind != "reaction":
+            values[self.element] += c * self._section_cubic(xi.reshape(-1, 4)[self.element])
+        return np.ascontiguousarray((values @ _TO_MONOMIAL.T).T), c
 
     def shared(self, x: NDArray[np.float64], y: NDArray[np.float64]):
         """The distinct wheel lines y, each point's row (line, element) in their stacked tables, its

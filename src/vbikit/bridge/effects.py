@@ -31,6 +31,8 @@ from typing import Any, Callable, Hashable, Literal, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import kept_for
+
 EffectKind = Literal["moment", "shear", "reaction"]
 EFFECT_KINDS: tuple[str, ...] = ("moment", "shear", "reaction")
 EFFECT_UNITS = {"moment": "N m", "shear": "N", "reaction": "N"}
@@ -67,27 +69,20 @@ class LoadEffect:
         return f"{self.kind} at {where}" + (f", girder {self.girder}" if self.girder is not None else "")
 
 
-#: load effects one bridge object keeps (``kept_effect``; oldest dropped first)
+#: load effects one bridge object keeps (``kept_effect``; least recently used dropped first)
 EFFECTS_KEPT = 64
 
 
 def kept_effect(bridge: object, key: Hashable, make: Callable[[], "LoadEffect"]) -> "LoadEffect":
     """The load effect ``key`` (e.g. kind, section, girder, support) of ``bridge``, made by ``make()``
-    the first time and kept on the bridge object (bridges are immutable): a kept bridge's later runs
+    the first time and kept for the bridge (``vbikit._kept.kept_for``; bridges are immutable): a kept bridge's later runs
     reuse the effect and whatever its influence function keeps (a deck's wheel-line tables).
     Shared: nothing may change a returned effect."""
     try:
         hash(key)
     except TypeError:  # e.g. a section given as an array: made, not kept
         return make()
-    kept = bridge.__dict__.setdefault("_load_effects_kept", {})
-    effect = kept.get(key)
-    if effect is None:
-        effect = make()
-        if len(kept) >= EFFECTS_KEPT:
-            kept.pop(next(iter(kept)))
-        kept[key] = effect
-    return effect
+    return kept_for(bridge, "load effects", EFFECTS_KEPT).get(key, make)
 
 
 class SharedInfluence(abc.ABC):

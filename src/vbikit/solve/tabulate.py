@@ -10,13 +10,12 @@ for beam modes; ``tests/unit/test_tabulate.py`` checks it.
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept, kept_for
 from vbikit.bridge.base import ModalBridge
 
 
@@ -34,29 +33,18 @@ class TrackTable:
 #: events of a traffic stream run on the same few wheel tracks of one bridge (entries (y, points per
 #: mode): one track's φ, ∂φ/∂x; ("table", tracks, points per mode): a TrackTable, whose arrays are
 #: those of its track when it has one: read only, as every table)
-_TRACKS: dict[int, dict[tuple, Any]] = {}
 _TRACKS_PER_BRIDGE = 64
 
 
-def _cache(bridge: ModalBridge) -> dict:
+def _cache(bridge: ModalBridge) -> Kept:
     """The tables kept for ``bridge`` (dropped when it is collected)."""
-    key = id(bridge)
-    if key not in _TRACKS:
-        _TRACKS[key] = {}
-        weakref.finalize(bridge, _TRACKS.pop, key, None)
-    return _TRACKS[key]
+    return kept_for(bridge, "track tables", _TRACKS_PER_BRIDGE)
 
 
 def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mode: int):
     """φ and ∂φ/∂x on track y at the stations x (kept per bridge and track)."""
-    cache = _cache(bridge)
-    entry = cache.get((float(y), points_per_mode))
-    if entry is None:
-        entry = (bridge.mode_shapes(x, np.full_like(x, y)), bridge.mode_slopes(x, np.full_like(x, y)))
-        if len(cache) >= _TRACKS_PER_BRIDGE:
-            cache.pop(next(iter(cache)))
-        cache[(float(y), points_per_mode)] = entry
-    return entry
+    return _cache(bridge).get((float(y), points_per_mode), lambda: (
+        bridge.mode_shapes(x, np.full_like(x, y)), bridge.mode_slopes(x, np.full_like(x, y))))
 
 
 def tabulate_tracks(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode: int = 100) -> TrackTable:
@@ -64,15 +52,8 @@ def tabulate_tracks(bridge: ModalBridge, tracks: NDArray[np.float64], points_per
     tables are kept while the bridge lives; bridges are immutable; so is the table of each set
     of tracks, which the runs of one vehicle class on one bridge share)."""
     tracks = np.asarray(tracks, float)
-    cache = _cache(bridge)
-    key = ("table", tracks.tobytes(), points_per_mode)
-    table = cache.get(key)
-    if table is None:
-        table = _tabulate(bridge, tracks, points_per_mode)
-        if len(cache) >= _TRACKS_PER_BRIDGE:
-            cache.pop(next(iter(cache)))
-        cache[key] = table
-    return table
+    return _cache(bridge).get(("table", tracks.tobytes(), points_per_mode),
+                              lambda: _tabulate(bridge, tracks, points_per_mode))
 
 
 def _tabulate(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode: int) -> TrackTable:
