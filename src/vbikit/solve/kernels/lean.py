@@ -58,13 +58,14 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     is in ``rv``, ``rr``)."""
     n_m = x1.size
     _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
+    _, n_e = wheel_dof.shape
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
     for w in range(len(wheel_dof)):
         zw = 0.0
         dzw = 0.0
-        for e in range(wheel_dof.shape[1]):  # h_w·q, h_w·q̇ over the row's nonzero entries
+        for e in range(n_e):  # h_w·q, h_w·q̇ over the row's nonzero entries
             h = wheel_h[w, e]
             if h != 0.0:
                 j = wheel_dof[w, e]
@@ -244,7 +245,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_m = omega.size
     n_d = len(accel)
     n_cp = origin.size
-    n_w = len(wheel_dof)
+    n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
     dv = modal[7]
@@ -387,7 +388,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             a = wf[w]
             kw = wheel_k[w]
             cw = wheel_c[w]
-            for e in range(wheel_dof.shape[1]):
+            for e in range(n_e):
                 h = wheel_h[w, e]
                 if h != 0.0:
                     j = wheel_dof[w, e]
