@@ -40,13 +40,14 @@ def static_modal_history(result: CrossingResult) -> NDArray[np.float64]:
     one study point) compute it once.  Read-only: shared by those runs."""
     crossing = result.crossing
     travel = np.asarray(result.travel, float)
-    data = result.kernel_data
+    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
     cp = crossing.contact
     loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    origin, direction, y = crossing.point_kinematics()
-    grid = (None if data is None else (data.modes.grid_h, data.modes.values.shape, data.modes.start.tobytes()))
+    pts, modes = data.points, data.modes  # the key from the very arrays the history is computed from
+    grid = (modes.grid_h, modes.values.shape, modes.start.tobytes())
+    _, _, y = crossing.point_kinematics()  # the wheel lines, which ``pts.track`` indexes
     key = (travel.shape, grid, b"".join(np.ascontiguousarray(a, float).tobytes() for a in (
-        travel, loads, origin, direction, y, crossing.point_vehicle)))
+        travel, loads, pts.origin, pts.direction, pts.track, pts.vehicle, y)))
 
     def make() -> NDArray[np.float64]:
         xi_st = system.static_modal_history(crossing, travel, data)

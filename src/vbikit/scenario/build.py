@@ -71,11 +71,15 @@ def _names_file(value: object, key: str = "") -> bool:
 
 
 def _spec_key(kind: str, data: object) -> str | None:
-    """The cache key of a spec's values ``data``: all of them (and the mode-cache folder); None (not
-    kept) when the spec names a file, whose content may change between runs."""
+    """The cache key of a spec's values ``data``: all of them (and the mode-cache folder), exactly; None
+    (not kept) when the spec names a file, whose content may change between runs, or holds a value
+    JSON does not hold exactly (a numpy array, whose text form is rounded and shortened)."""
     if _names_file(data):
         return None
-    return json.dumps([kind, data, os.environ.get("VBIKIT_CACHE_DIR", "")], sort_keys=True, default=str)
+    try:
+        return json.dumps([kind, data, os.environ.get("VBIKIT_CACHE_DIR", "")], sort_keys=True)
+    except (TypeError, ValueError):
+        return None
 
 
 def _bridge_key(spec: BridgeSpec) -> str | None:

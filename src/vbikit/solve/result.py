@@ -85,7 +85,9 @@ class CrossingResult:
         ``simulate(..., output_every=k)``).
     kernel_data : KernelData, optional
         The tabulated arrays the run used (mode-shape tables along the wheel tracks), kept so that
-        the static reference is read from the same tables without tabulating them again.
+        the static reference is read from the same tables without tabulating them again.  Shared
+        with the crossing (``Crossing.kept``) and its later runs: not to be written to (kept
+        writeable only because numba compiles a separate kernel for read-only arrays).
     """
 
     crossing: Crossing
