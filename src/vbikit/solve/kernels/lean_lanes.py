@@ -159,6 +159,30 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
 
 
 @_internal
+def _affine_lanes(constant, matrix, load, z, g, out):
+    """out = constant + matrix z + load g in every lane (out (n_rows, L), z (n_cols, L), g (n_w, L)):
+    a fused vehicle map of ``FusedVehicleStep`` (the settled free response, the accelerations), zero
+    entries of ``matrix`` and ``load`` skipped."""
+    n_rows, n_cols = matrix.shape  # (unpacked: numba types an indexed shape through a compiled overload)
+    _, n_w = load.shape
+    _, n_l = out.shape
+    for i in range(n_rows):
+        ci = constant[i]
+        for lane in range(n_l):
+            out[i, lane] = ci
+        for j in range(n_cols):
+            a = matrix[i, j]
+            if a != 0.0:
+                for lane in range(n_l):
+                    out[i, lane] += a * z[j, lane]
+        for w in range(n_w):
+            a = load[i, w]
+            if a != 0.0:
+                for lane in range(n_l):
+                    out[i, lane] += a * g[w, lane]
+
+
+@_internal
 def _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                  zb, p, fw, x1, v1, z1):
     """``lean._state`` for every lane: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
@@ -415,20 +439,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane]
                     vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane]
-            for i in range(2 * n_d):  # z_b = P (Φ z_n + L0 G_n + g) = P Φ z_n + P L0 G_n + P g (``VehicleStep``)
-                ci = free_constant[i]
-                for lane in range(n_l):
-                    zb[i, lane] = ci
-                for j in range(2 * n_d):
-                    a = free[i, j]
-                    if a != 0.0:
-                        for lane in range(n_l):
-                            zb[i, lane] += a * z0[j, lane]
-                for w in range(n_w):
-                    a = free_load[i, w]
-                    if a != 0.0:
-                        for lane in range(n_l):
-                            zb[i, lane] += a * g0[w, lane]
+            # z_b = P (Φ z_n + L0 G_n + g) = P Φ z_n + P L0 G_n + P g (``VehicleStep``)
+            _affine_lanes(free_constant, free, free_load, z0, g0, zb)
             for k in range(n_cp):  # first guess: linear extrapolation of the forces
                 nonzero = False
                 for lane in range(n_l):
@@ -606,20 +618,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             e2 = omega[m] * omega[m]
             for lane in range(n_l):
                 acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
-        for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``FusedVehicleStep``)
-            ai = accel_constant[i]
-            for lane in range(n_l):
-                a1[i, lane] = ai
-            for j in range(2 * n_d):
-                a = accel[i, j]
-                if a != 0.0:
-                    for lane in range(n_l):
-                        a1[i, lane] += a * z1[j, lane]
-            for w in range(n_w):
-                a = accel_load[i, w]
-                if a != 0.0:
-                    for lane in range(n_l):
-                        a1[i, lane] += a * g0[w, lane]
+        # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``FusedVehicleStep``)
+        _affine_lanes(accel_constant, accel, accel_load, z1, g0, a1)
         if (n + 1) % stride == 0:
             r_out = (n + 1) // stride
             for lane in range(n_l):
