@@ -8,12 +8,12 @@ the ``Limits``, and collects the input warnings.
 """
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
+from vbikit._kept import kept_for
 from vbikit.analysis.checks import input_warnings, point_warnings
 from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
@@ -95,17 +95,9 @@ def axle_load_warnings(scenario: Scenario) -> list[str]:
     return out
 
 
-#: influence function -> the sets of wheel lines (bytes of the sorted y) on which it was found not zero
+#: wheel-line sets per influence function whose verdict (zero or not wherever a wheel can stand) is kept
 #: (``check_load_effects``; a kept bridge keeps its effects, ``vbikit.bridge.effects.kept_effect``)
-_NONZERO: "weakref.WeakKeyDictionary[Any, set[bytes]]" = weakref.WeakKeyDictionary()
-
-
-def _nonzero_on(influence: Any) -> set[bytes]:
-    """The wheel-line sets on which ``influence`` is known not to be zero (empty if it cannot be kept)."""
-    try:
-        return _NONZERO.setdefault(influence, set())
-    except TypeError:  # not weakly referable: checked every time
-        return set()
+_VERDICTS_PER_INFLUENCE = 16
 
 
 def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
@@ -141,12 +133,12 @@ def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
             if np.any(np.asarray(e.modal) != 0.0):
                 continue
         else:  # a unit force's effect: [m] for a moment, [-] for a shear or reaction; round-off below the tolerance
-            if lines_key in _nonzero_on(e.influence):
-                continue
-            xs, ys = deck_points()
-            values = np.asarray(e.influence(xs, ys)) if xs.size else np.zeros(1)
-            if np.max(np.abs(values)) > _ZERO_INFLUENCE * (bridge.span if e.kind == "moment" else 1.0):
-                _nonzero_on(e.influence).add(lines_key)
+            def not_zero(e=e) -> bool:
+                xs, ys = deck_points()
+                values = np.asarray(e.influence(xs, ys)) if xs.size else np.zeros(1)
+                return bool(np.max(np.abs(values)) > _ZERO_INFLUENCE * (bridge.span if e.kind == "moment" else 1.0))
+
+            if kept_for(e.influence, "not zero on wheel lines", _VERDICTS_PER_INFLUENCE).get(lines_key, not_zero):
                 continue
         key = f"response.{e.kind}[{seen[e.kind]}]" if given[e.kind] is not None else f"response.{e.kind} (default)"
         raise ScenarioError(f"{key}: the {e.label} is zero wherever a wheel can stand (a section at a pinned end or "
