@@ -18,7 +18,12 @@
    a shared machine the wall time follows the other jobs' load, the CPU time hardly;
 4. one-at-a-time: the first ``--baseline`` trucks, each alone on the bridge (one Crossing with
    one vehicle on the same bridge object, ``simulate``, the displacement IM), on the same number
-   of processes: trucks/s, and the time the whole stream would take that way.
+   of processes: trucks/s, and the time the whole stream would take that way;
+5. by event size (``--by-size N``, default 300; 0: skip): the stream's first N events in this
+   process, each run once as the workers run it (``TrafficStudy.run_event``), thread CPU time of
+   the whole event and of its step loop (``kernels.lean``, and ``kernels.implicit`` where the lean
+   kernel hands over), grouped by the number of trucks on the bridge together: how much of the
+   stream's cost the several-truck events are.
 
 Base scenario: ``paper-bridge-2`` (10 modes, 2 % damping), point tires, ISO class B road with a
 new seed per event, ``--spacing`` m road samples (the scenario default is 0.01 m), response at
@@ -81,6 +86,7 @@ def main() -> None:
     p.add_argument("--baseline", type=int, default=200, help="trucks run one at a time (default 200)")
     p.add_argument("--spacing", type=float, default=0.01, help="road sample spacing [m] (default 0.01, the scenario default)")
     p.add_argument("--outputs", default=None, help="outputs to reduce, comma-separated (default: the whole catalogue)")
+    p.add_argument("--by-size", type=int, default=300, help="events timed in this process by trucks per event (default 300; 0: skip)")
     args = benchmark_args(__doc__, "unused (one timed run)", p)
 
     from vbikit.study.run import run_study, shutdown_workers
@@ -132,6 +138,29 @@ def main() -> None:
           f"{len(records) / (n_b / t_alone):.0f} s")
     print(f"  IM: mean {a['im_mean']:.4f} (one truck {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), "
           f"95 % {a['im_q95']:.4f}; governing static event amplification {a['governing_static_amplification']:.4f}")
+    if args.by_size > 0:
+        _by_size(job, min(args.by_size, n_ev))
+
+
+def _by_size(job, n: int) -> None:
+    """Thread CPU time of the first ``n`` events (each run once) and of their step loops, by trucks per event."""
+    from bench_per_crossing import _kernel_clock
+
+    spent = _kernel_clock()
+    job.run_event(0)  # this process's first event: bridge, tables and compiled kernels loaded
+    rows: dict[int, list[tuple[float, float]]] = {}
+    for e in range(1, n):
+        k0, t0 = spent[0], time.thread_time()
+        job.run_event(e)
+        rows.setdefault(len(job.events[e]), []).append((time.thread_time() - t0, spent[0] - k0))
+    total = sum(w for r in rows.values() for w, _ in r)
+    print(f"  by trucks per event, events 1–{n - 1} in this process (thread CPU, each event run once):")
+    for size in sorted(rows):
+        whole = [w for w, _ in rows[size]]
+        loop = [k for _, k in rows[size]]
+        print(f"    {size} truck(s): {len(whole)} events, {1e3 * sum(whole) / len(whole):.2f} ms an event "
+              f"(step loop {1e3 * sum(loop) / len(loop):.2f} ms), {100 * sum(whole) / total:.0f} % of the time")
+    print(f"    all: {1e3 * total / (n - 1):.2f} ms an event")
 
 
 if __name__ == "__main__":
