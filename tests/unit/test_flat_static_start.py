@@ -1,13 +1,13 @@
-"""The static start on the flat kernels (``kernels.assemble_flat``, ``kernels.lean_law``) against the
-bundles' kernels it replaced (``kernels.assemble``, ``kernels.contact_forces``).
-
-Without rigid disks ``system.static_state`` assembles Eq. 9 and evaluates the contact law with the
-flat functions of the lean kernel, so that a one-lane crossing compiles only flat kernels.  The
-reference here is the former loop written out with the general kernels (the active-set iteration
-of ``static_state``'s docstring: solve K u = F for the active points, drop those that do not press,
-repeat).  Same equations, same arithmetic order: the states agree to round-off (asserted ≤ 1e-12
-of each state's peak).  A rigid-disk crossing keeps the general law (its envelopes), so its start
-is compared too.
+"""The static start (``system.static_state``: Eq. 9 assembled in numpy by ``system.coupled_system``,
+the contact law by the lean kernel's ``kernels.lean_law``) against a reference written out here:
+Eq. 9 linearised about contact assembled point by point (the test's own loop over the points, from
+the law in ``vbikit.solve.kernels``' docstring: K += k b bᵀ + c b gᵀ, C += c b bᵀ, F −= b (k (r − g)
++ c ṙ + f0), b = [φ_p; −h_w], g = v [φ'_p; 0]) and the general contact law kernel
+(``kernels.contact_forces``), in the active-set iteration of ``static_state``'s docstring: solve
+K u = F for the active points, drop those that do not press, repeat.  Same equations, sums in
+another order: the states agree to round-off (asserted ≤ 1e-12 of each state's peak).  A
+rigid-disk crossing keeps the general law (its envelopes), so its start is compared too.  The
+assembled matrices themselves, damping and the convective term included, are compared as well.
 """
 from __future__ import annotations
 
@@ -25,9 +25,35 @@ from vbikit.solve.system import flat_road, kernel_data, point_positions, road_da
 from vbikit.vehicle import hs20_44, semitrailer_3s2
 
 
+def _assembled(data, x, vx, road, rate, active):
+    """M, C, K, F of Eq. 9 at one instant, point by point (module docstring): the test's own assembly."""
+    modes, veh, pts = data.modes, data.vehicles, data.points
+    n_m, n_d, n_p = modes.omega.size, veh.gravity.size, x.size
+    n = n_m + n_d
+    mass, damp, stiff, load = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n)), np.zeros(n)
+    mass[:n_m, :n_m], mass[n_m:, n_m:] = np.eye(n_m), veh.mass
+    damp[:n_m, :n_m], damp[n_m:, n_m:] = np.diag(2.0 * modes.zeta * modes.omega), veh.damping
+    stiff[:n_m, :n_m], stiff[n_m:, n_m:] = np.diag(modes.omega ** 2), veh.stiffness
+    load[n_m:] = veh.gravity
+    phi, dphi, on = np.zeros((n_p, n_m)), np.zeros((n_p, n_m)), np.zeros(n_p, bool)
+    kernels.shapes_at(np.ascontiguousarray(x), pts.track, modes, phi, dphi, on)
+    for p in range(n_p):
+        if not active[p]:
+            continue
+        b, g = np.zeros(n), np.zeros(n)
+        if on[p]:
+            b[:n_m], g[:n_m] = phi[p], vx[p] * dphi[p]
+        b[n_m:] = -veh.wheel_rows[pts.wheel[p]]
+        k, c = pts.stiffness[p], pts.damping[p]
+        stiff += k * np.outer(b, b) + c * np.outer(b, g)
+        damp += c * np.outer(b, b)
+        load -= b * (k * (road[p] - pts.gap[p]) + c * rate[p] + pts.fixed_load[p])
+    return mass, damp, stiff, load
+
+
 def _reference(data, road, travel, rate, speed):
-    """The static start by ``kernels.assemble`` and ``kernels.contact_forces`` (the former loop)."""
-    n_m, n_p, n = data.n_modes, data.n_points, data.n_modes + data.n_dof
+    """The static start by the point-by-point assembly and ``kernels.contact_forces``."""
+    n_m, n_p = data.n_modes, data.n_points
     x, vx = point_positions(data, travel, speed)
     rate = rate.copy()
     active = np.ones(n_p, bool)
@@ -45,12 +71,8 @@ def _reference(data, road, travel, rate, speed):
     wf, wl = np.zeros((data.n_wheels, 1)), np.zeros((data.n_wheels, 1))
     bundle = Road(np.array([0.0, 1.0]), np.zeros((1, 2, 1)), float(np.max(road, initial=0.0)))
     for _ in range(100):
-        mats = [np.zeros((n, n)) for _ in range(3)]
-        load = np.zeros(n)
-        phi = np.zeros((n_p, n_m))
-        kernels.assemble(x, vx, road, rate, data.modes, veh, pts, phi, np.zeros_like(phi), np.zeros(n_p, bool),
-                         active, *mats, load)
-        u = np.linalg.solve(mats[2], load)
+        _, _, stiff, load = _assembled(data, x, vx, road, rate, active)
+        u = np.linalg.solve(stiff, load)
         kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
                                np.zeros((data.n_dof, 1)), data.modes, veh, pts, bundle, data.unilateral, cache, work,
                                wf, wl, (0,))
@@ -124,3 +146,31 @@ def test_flat_road_at_the_start_equals_road_at(case):
     assert np.max(np.abs(r0 - rv[:, 0])) <= 1e-12 * np.max(np.abs(rv))
     assert np.max(np.abs(dr0 - rr[:, 0])) <= 1e-12 * np.max(np.abs(rr))
     assert np.any(vx < 0.0) == (case == "two-vehicles")
+
+
+@pytest.mark.parametrize("case", ["demo", "two-vehicles"])
+def test_coupled_system_equals_the_point_by_point_assembly(case):
+    """``system.coupled_system`` (numpy, vectorised over the points) against ``_assembled`` (a loop over
+    the points): M, C, K (with the convective term c v b φ'ᵀ, which only a moving vehicle on the deck
+    has) and F, half-way across a rough road with every third point inactive, to round-off (≤ 1e-12
+    of each matrix's largest entry).  The two-vehicle case drives one vehicle −x (v < 0)."""
+    from vbikit.solve.system import coupled_system
+
+    crossing = CASES[case]()
+    data = kernel_data(crossing)
+    t0 = crossing.start_time + 0.5 * crossing.duration
+    travel, speed = crossing.travel(np.array([t0]))[0], crossing.travel_speed(np.array([t0]))[0]
+    x, vx = point_positions(data, travel, speed)
+    road = road_data([(crossing.road, crossing.road_right)], float(x.min()) - 1.0, float(x.max()) + 1.0)
+    rv, rr = np.zeros((data.n_points, 1)), np.zeros((data.n_points, 1))
+    kernels.road_at(x, vx, data.points, road, np.full(data.n_points, -1, np.int64), rv, rr, (0,))
+    active = np.arange(data.n_points) % 3 != 0
+    got = coupled_system(data.modes, data.vehicles, data.points, x, vx, rv[:, 0], rr[:, 0], active)
+    want = _assembled(data, x, vx, rv[:, 0], rr[:, 0], active)
+    for name, a, b in zip(("M", "C", "K", "F"), got[:4], want):
+        assert np.max(np.abs(a - b)) <= 1e-12 * np.max(np.abs(b)), name
+    n_m = data.n_modes
+    deck = want[2][:n_m, :n_m]
+    assert np.max(np.abs(deck - deck.T)) > 1e-9 * np.max(np.abs(deck))  # the convective term: K's deck block not symmetric (round-off: ≈ 1e-16)
+    on = active & (data.modes.start[data.points.track] <= x) & (x <= data.modes.end[data.points.track])
+    assert np.all(got[4][~on] == 0.0) and np.all(np.any(got[4][on] != 0.0, axis=1))

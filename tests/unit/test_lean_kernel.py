@@ -170,9 +170,9 @@ def test_the_default_path_compiles_each_flat_kernel_once():
     """The static start calls the compiled contact law ``_law`` from Python (``kernels.lean_law``) with
     the argument types ``lean`` calls it with, so the two share one compilation: after the demo crossing
     and its static reference ``_law`` and ``lean`` have a single specialisation each, and the demo adds at
-    most one to the flat assembly and the static reference (another one, e.g. from a non-contiguous or
-    read-only argument, would compile a kernel again: ≈ 1 s for ``_law``, benchmarks/bench_compile.py;
-    a batch's road columns did so for ``assemble_flat``).  And the flat kernels compile without
+    most one to the static reference (another one, e.g. from a non-contiguous or read-only argument,
+    would compile a kernel again: ≈ 1 s for ``_law``, benchmarks/bench_compile.py; a batch's road
+    columns once did so for the compiled assembly, now numpy's, ``system.coupled_system``).  And the flat kernels compile without
     reference counting and rewrite passes (``FLAT_OPTIONS``; should a numba not know those options they
     are dropped, and the cold compile takes ≈ 0.6 s longer)."""
     from vbikit.analysis import static_modal_history
@@ -180,7 +180,7 @@ def test_the_default_path_compiles_each_flat_kernel_once():
     from vbikit.solve.kernels.bundles import FLAT_OPTIONS
     from vbikit.solve.kernels.lean import _law, _quasi, _state
 
-    shared = {"assemble_flat": kernels.assemble_flat, "static_modal_history": kernels.static_modal_history}
+    shared = {"static_modal_history": kernels.static_modal_history}
     before = {name: len(k.signatures) for name, k in shared.items()}
     static_modal_history(simulate(_scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))))
     # (the helpers of ``lean`` have none when ``lean`` came from numba's cache: its code holds theirs)

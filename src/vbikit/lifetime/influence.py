@@ -45,7 +45,7 @@ from numpy.typing import NDArray
 
 from vbikit.bridge.base import ModalBridge
 from vbikit.outputs import QUANTITIES
-from vbikit.solve.tabulate import tabulate_tracks
+from vbikit.solve.tabulate import hermite_rows, tabulate_tracks
 from vbikit.traffic.records import VehicleRecord
 
 #: half-track of the trucks built from records [m] (vbikit.vehicle.axles.HALF_TRACK)
@@ -88,21 +88,6 @@ class InfluenceLine:
     y: float = math.nan
 
 
-def _hermite(table, track: int, x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """φ̃(x) (n, n_modes) on tabulated track ``track`` (the formulas of ``vbikit.solve.kernels.shape_point``)."""
-    V, S, h = table.values[track], table.slopes[track], table.spacing
-    n_grid = V.shape[0]
-    u = (x - table.start[track]) / h
-    i = np.minimum(u.astype(np.int64), n_grid - 2)
-    t = u - i
-    t2, t3 = t * t, t * t * t
-    h00 = 2 * t3 - 3 * t2 + 1
-    h10 = (t3 - 2 * t2 + t) * h
-    h01 = -2 * t3 + 3 * t2
-    h11 = (t3 - t2) * h
-    return h00[:, None] * V[i] + h10[:, None] * S[i] + h01[:, None] * V[i + 1] + h11[:, None] * S[i + 1]
-
-
 def deflection_line(bridge: ModalBridge, x_r: float, y_r: float, name: str = "") -> InfluenceLine:
     """Deflection at (x_r, y_r) [m] per unit downward load [m/N] from the retained modes (module docstring)."""
     phi_r = np.asarray(bridge.mode_shapes([x_r], [y_r])[0], float)
@@ -120,7 +105,8 @@ def deflection_line(bridge: ModalBridge, x_r: float, y_r: float, name: str = "")
             table = tables[key]
             sel = (y == yy) & (x >= table.start[0]) & (x <= table.end[0])
             if np.any(sel):
-                out[sel] = -(_hermite(table, 0, x[sel]) @ coef)
+                out[sel] = -(hermite_rows(table.start, table.spacing, table.values, table.slopes,
+                                            np.zeros(int(sel.sum()), np.int64), x[sel], with_slopes=False)[0] @ coef)
         return out
 
     return _with_sign(InfluenceLine(name or f"deflection_x{x_r:g}", "deflection", KIND_UNITS["deflection"], evaluate,

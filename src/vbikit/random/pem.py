@@ -3,7 +3,7 @@ pseudo-excitation method (PEM).
 
 Linear system.  While every tire point stays in contact, the coupled equations of
 ``vbikit.solve.kernels`` (paper Eq. 9, u = [ξ; q]) are linear, with the road entering the load
-linearly (``kernels.assemble``):
+linearly (``vbikit.solve.system.coupled_system``):
 
     M(t) ü + C(t) u̇ + K(t) u = F₀(t) + Σ_p b_p(t) (k_p r_p(t) + c_p ṙ_p(t)),
     b_p = [−φ_p(x_p(t)); h_w(p)],  r_p = r(x_p(t)),  ṙ_p = ẋ_p r'(x_p(t)),
@@ -60,7 +60,7 @@ from vbikit.road.psd import RoadPSD
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.plan import time_grid
-from vbikit.solve.system import KernelData, kernel_data, point_positions
+from vbikit.solve.system import KernelData, coupled_system, kernel_data, point_positions
 
 log = logging.getLogger(__name__)
 
@@ -279,12 +279,8 @@ class _Run:
         """The pseudo-static start: K(t₀) u₀ = F̃(t₀) (zero rates, the engine's own start); returns
         the phases, u₀ (n, lines) complex, and the system at t₀ (x, vx, φ, φ', K)."""
         data, n, n_m = self.data, self.n, self.n_m
-        mass, damp, stiff = (np.zeros((n, n)) for _ in range(3))
-        phi, dphi = np.zeros((self.n_p, n_m)), np.zeros((self.n_p, n_m))
         x, vx = point_positions(data, self.travel[0], self.speed[0])
-        zero = np.zeros(self.n_p)
-        kernels.assemble(x, vx, zero, zero, data.modes, data.vehicles, self.pts, phi, dphi,
-                         np.zeros(self.n_p, bool), np.ones(self.n_p, bool), mass, damp, stiff, np.zeros(n))
+        mass, damp, stiff, _, phi, dphi = coupled_system(data.modes, data.vehicles, self.pts, x, vx)
         phase = np.exp(1j * np.outer(x, self.wave[cols]))  # (P, lines): exp(i 2π n_k x_p)
         g = self.road_load(phase, vx, cols)
         f = np.empty((n, g.shape[1]), complex)
@@ -426,7 +422,7 @@ def _exact_lines(run: _Run) -> None:
 
 def _newmark_lines(run: _Run) -> None:
     """The pseudo responses by Newmark's average-acceleration rule on the coupled equations (Eq. 9
-    assembled by ``kernels.assemble``): one inverse of the real effective matrix per step, all lines
+    assembled by ``vbikit.solve.system.coupled_system``): one inverse of the real effective matrix per step, all lines
     as right-hand sides, in blocks of lines."""
     data, pts = run.data, run.pts
     n, n_m, n_p = run.n, run.n_m, run.n_p
@@ -437,14 +433,11 @@ def _newmark_lines(run: _Run) -> None:
     mass, damp, stiff = (np.zeros((n, n)) for _ in range(3))
     load = np.zeros(n)
     phi, dphi = np.zeros((n_p, n_m)), np.zeros((n_p, n_m))
-    zero, active = np.zeros(n_p), np.ones(n_p, bool)
     travel, speed, h = run.travel, run.speed, run.h
 
     def system(i: int):
         x, vx = point_positions(data, travel[i], speed[i])
-        phi[:], dphi[:] = 0.0, 0.0
-        kernels.assemble(x, vx, zero, zero, data.modes, veh, pts, phi, dphi, np.zeros(n_p, bool), active,
-                         mass, damp, stiff, load)
+        mass[:], damp[:], stiff[:], load[:], phi[:], dphi[:] = coupled_system(data.modes, veh, pts, x, vx)
         return x, vx
 
     sh, ss = run.shapes, run.strain_shapes

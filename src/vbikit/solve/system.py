@@ -22,7 +22,7 @@ from vbikit.road.profile import RoadProfile
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.kernels import Modes, Motion, Points, Road, Vehicles
-from vbikit.solve.tabulate import TrackTable, tabulate_tracks
+from vbikit.solve.tabulate import TrackTable, hermite_rows, tabulate_tracks
 
 
 log = logging.getLogger(__name__)
@@ -148,22 +148,50 @@ def coupled_matrices(
     """M, C, K, F of Eq. 9 (u = [ξ; q]) with the vehicles' travel ``front_position`` [m] (past
     their entry supports) moving at ``speed`` [m/s], the given contact points ``active``
     (default: every point in linear contact)."""
-    n = data.n_modes + data.n_dof
-    zero = np.zeros(data.n_points)
-    act = np.ones(data.n_points, bool) if active is None else np.asarray(active, bool)
-    mass, damp, stiff = (np.zeros((n, n)) for _ in range(3))
-    load = np.zeros(n)
-    phi = np.zeros((data.n_points, data.n_modes))
     x, vx = point_positions(data, front_position, speed)
-    modes, veh, pts = data.modes, data.vehicles, data.points
-    # contiguous (a lane's column of a batch's road is not): one compiled assembly for every call
-    kernels.assemble_flat(x, vx, zero if road is None else np.ascontiguousarray(road, float),
-                          zero if road_rate is None else np.ascontiguousarray(road_rate, float), modes.omega,
-                          modes.zeta, modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes, veh.mass,
-                          veh.damping, veh.stiffness, veh.gravity, veh.wheel_rows, pts.stiffness, pts.damping,
-                          pts.fixed_load, pts.gap, pts.wheel, pts.track, phi, np.zeros_like(phi),
-                          np.zeros(data.n_points, bool), act, mass, damp, stiff, load)
-    return mass, damp, stiff, load
+    return coupled_system(data.modes, data.vehicles, data.points, x, vx, road, road_rate, active)[:4]
+
+
+def coupled_system(modes: Modes, vehicles: Vehicles, points: Points, x: NDArray[np.float64], vx: NDArray[np.float64],
+                   road: NDArray[np.float64] | None = None, road_rate: NDArray[np.float64] | None = None,
+                   active: NDArray[np.bool_] | None = None) -> tuple[NDArray[np.float64], ...]:
+    """The coupled system matrices of Eq. 9 at one instant, M ü + C u̇ + K u = F with u = [ξ; q], for
+    contact points at positions ``x`` [m] with x-rates ``vx`` [m/s]: the linearisation of the contact
+    law about contact (``vbikit.solve.kernels``: F_p = k_p δ_p + c_p δ̇_p + f0_p, δ_p = φ_p·ξ + r_p −
+    g_p − h_w·q, δ̇_p = φ_p·ξ̇ + v_p φ'_p·ξ + ṙ_p − h_w·q̇) over the ``active`` points (default all),
+    with the road elevation ``road`` [m] and rate ``road_rate`` [m/s] under each point (default 0).
+    With b_p = [φ_p; −h_w] (φ_p = 0 off the deck) and g_p = v_p [φ'_p; 0]:
+
+    M = diag(I, M_v), C = diag(2ζω, C_v) + Σ c_p b_p b_pᵀ, K = diag(ω², K_v) + Σ (k_p b_p b_pᵀ + c_p b_p g_pᵀ),
+    F = [0; F_G] − Σ b_p (k_p (r_p − g_p) + c_p ṙ_p + f0_p).
+
+    Returns M, C, K, F and the points' mode-shape rows φ, φ' (n_p, n_m), zero off the deck and for
+    points not active (the static start, the explicit step's stability limit and the random-vibration
+    solver assemble here)."""
+    n_m, n_d, n_p = modes.omega.size, vehicles.gravity.size, x.size
+    act = np.ones(n_p, bool) if active is None else np.asarray(active, bool)
+    r = np.zeros(n_p) if road is None else np.asarray(road, float)
+    rdot = np.zeros(n_p) if road_rate is None else np.asarray(road_rate, float)
+    on = act & (modes.start[points.track] <= x) & (x <= modes.end[points.track])
+    phi, dphi = np.zeros((n_p, n_m)), np.zeros((n_p, n_m))
+    if on.any():
+        phi[on], dphi[on] = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, points.track[on], x[on])
+    k, c = np.where(act, points.stiffness, 0.0), np.where(act, points.damping, 0.0)
+    b = np.concatenate([phi, -vehicles.wheel_rows[points.wheel]], axis=1)  # (n_p, n): the rows b_p
+    n = n_m + n_d
+    mass, damp, stiff = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
+    mass[:n_m, :n_m] = np.eye(n_m)
+    mass[n_m:, n_m:] = vehicles.mass
+    damp[:n_m, :n_m] = np.diag(2.0 * modes.zeta * modes.omega)
+    damp[n_m:, n_m:] = vehicles.damping
+    stiff[:n_m, :n_m] = np.diag(modes.omega * modes.omega)
+    stiff[n_m:, n_m:] = vehicles.stiffness
+    damp += b.T @ (c[:, None] * b)
+    stiff += b.T @ (k[:, None] * b)
+    stiff[:, :n_m] += b.T @ ((c * vx)[:, None] * dphi)
+    load = np.concatenate([np.zeros(n_m), vehicles.gravity]) - b.T @ (k * (r - points.gap) + c * rdot
+                                                                        + np.where(act, points.fixed_load, 0.0))
+    return mass, damp, stiff, load, phi, dphi
 
 
 def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel=None,

@@ -72,3 +72,30 @@ def _tabulate(bridge: ModalBridge, tracks: NDArray[np.float64], points_per_mode:
             values[k], slopes[k] = _track(bridge, float(y), x, points_per_mode)
     return TrackTable(tracks, np.ascontiguousarray(start + 0.0), start + float(bridge.span),
                       float(bridge.span) / (n_grid - 1), values, slopes)
+
+
+def hermite_rows(start: NDArray[np.float64], spacing: float, values: NDArray[np.float64], slopes: NDArray[np.float64],
+                 track: NDArray[np.int64], x: NDArray[np.float64], with_slopes: bool = True
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """φ(x) and ∂φ/∂x(x) (None unless ``with_slopes``), each (n, n_modes), of n points at ``x`` [m] on
+    the tabulated tracks ``track`` (a table's ``start``, ``spacing``, ``values`` and ``slopes``, as
+    ``TrackTable`` and the kernels' ``Modes`` hold them): the cubic Hermite interpolant of the tabulated shapes and slopes on the cell
+    of x, clamped to the last cell — the formulas of the compiled kernels (``kernels.hermite_shape``),
+    for Python callers, vectorised over the points.  Every point given is evaluated: a caller keeps
+    those on the deck (start ≤ x ≤ end of their track)."""
+    x = np.asarray(x, float)
+    track = np.asarray(track, np.int64)
+    n_grid = values.shape[1]
+    u = (x - start[track]) / spacing
+    i = np.minimum(u.astype(np.int64), n_grid - 2)
+    t = u - i
+    t2 = t * t
+    t3 = t2 * t
+    v0, v1, s0, s1 = values[track, i], values[track, i + 1], slopes[track, i], slopes[track, i + 1]
+    phi = ((2 * t3 - 3 * t2 + 1)[:, None] * v0 + ((t3 - 2 * t2 + t) * spacing)[:, None] * s0
+           + (-2 * t3 + 3 * t2)[:, None] * v1 + ((t3 - t2) * spacing)[:, None] * s1)
+    if not with_slopes:
+        return phi, None
+    dphi = (((6 * t2 - 6 * t) / spacing)[:, None] * v0 + (3 * t2 - 4 * t + 1)[:, None] * s0
+            + ((-6 * t2 + 6 * t) / spacing)[:, None] * v1 + (3 * t2 - 2 * t)[:, None] * s1)
+    return phi, dphi

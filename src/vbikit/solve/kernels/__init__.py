@@ -44,8 +44,8 @@ Modules, by role: ``bundles`` (argument bundles and work spaces), ``lanes`` (lan
 helpers), ``contact`` (the contact law and the right-hand side), ``explicit`` (RK4), ``implicit_step``
 (the partitioned implicit step loop), ``newton`` (its contact solve), ``lean`` (the same step loop for
 one lane and the one-evaluation steps only, flat; it stops at any other step), ``lean_lanes`` (the same
-for many lanes, the lane index innermost; it freezes a lane at any other step), ``assembly`` (system
-matrices at one instant).  Everything is importable from this package, as when it was one module.
+for many lanes, the lane index innermost; it freezes a lane at any other step), ``assembly`` (the
+static modal load history).  Everything is importable from this package, as when it was one module.
 
 Argument bundles (NamedTuples of arrays, built by ``vbikit.solve.system``):
   ``Modes``     the bridge's mode set and its tables along the wheel tracks
@@ -98,7 +98,7 @@ from vbikit.solve.kernels.contact import (
     shapes_at,
 )
 from vbikit.solve.kernels.explicit import rk4
-from vbikit.solve.kernels.assembly import assemble, assemble_flat, static_modal_history
+from vbikit.solve.kernels.assembly import static_modal_history
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, QUASI_ITERATIONS, RELAX_AFTER, TOUCH_STIFFNESS
 from vbikit.solve.kernels.implicit_step import implicit
 from vbikit.solve.kernels.lean import lean, lean_law, lean_work
@@ -107,6 +107,6 @@ from vbikit.solve.kernels.lean_lanes import lean_lanes
 __all__ = [
     "Cache", "ModalStep", "Modes", "Motion", "Points", "Road", "VehicleStep", "Vehicles", "Work", "new_cache",
     "new_work", "accelerations", "contact_forces", "point_kinematics", "point_law", "road_at", "road_point",
-    "shape_point", "shapes_at", "rk4", "assemble", "assemble_flat", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
+    "shape_point", "shapes_at", "rk4", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
     "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes",
 ]

@@ -135,7 +135,7 @@ def _numba_knows(**options) -> dict:
     return {name: value for name, value in options.items() if hasattr(DefaultOptions, name)}
 
 
-#: options of the flat kernels (``lean`` with ``_law``, ``_state``, ``_quasi``; ``assemble_flat``,
+#: options of the flat kernels (``lean`` with ``_law``, ``_state``, ``_quasi``;
 #: ``static_modal_history``): plain contiguous arrays in, nothing allocated inside (the callers pass
 #: the work spaces), so numba's reference counting is off (``_nrt=False``: no increments and
 #: decrements of every array at each call, view and exit) and so are its rewrite passes
