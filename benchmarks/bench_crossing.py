@@ -103,7 +103,7 @@ def _integration_time(crossing: Crossing, repeat: int) -> float:
 
 def cache_state() -> str:
     hits = misses = 0
-    for name in ("rk4", "implicit", "shapes_at", "assemble", "road_at", "accelerations", "contact_forces"):
+    for name in ("rk4", "implicit", "shapes_at", "road_at", "accelerations", "contact_forces"):
         stats = getattr(kernels, name).stats
         hits += sum(stats.cache_hits.values())
         misses += sum(stats.cache_misses.values())
