@@ -422,8 +422,8 @@ def _exact_lines(run: _Run) -> None:
 
 def _newmark_lines(run: _Run) -> None:
     """The pseudo responses by Newmark's average-acceleration rule on the coupled equations (Eq. 9
-    assembled by ``vbikit.solve.system.coupled_system``): one inverse of the real effective matrix per step, all lines
-    as right-hand sides, in blocks of lines."""
+    assembled by ``vbikit.solve.system.coupled_system``): one inverse of the real effective matrix per
+    step, all lines as right-hand sides, in blocks of lines."""
     data, pts = run.data, run.pts
     n, n_m, n_p = run.n, run.n_m, run.n_p
     veh = data.vehicles

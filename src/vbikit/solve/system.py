@@ -162,8 +162,8 @@ def coupled_system(modes: Modes, vehicles: Vehicles, points: Points, x: NDArray[
     with the road elevation ``road`` [m] and rate ``road_rate`` [m/s] under each point (default 0).
     With b_p = [φ_p; −h_w] (φ_p = 0 off the deck) and g_p = v_p [φ'_p; 0]:
 
-    M = diag(I, M_v), C = diag(2ζω, C_v) + Σ c_p b_p b_pᵀ, K = diag(ω², K_v) + Σ (k_p b_p b_pᵀ + c_p b_p g_pᵀ),
-    F = [0; F_G] − Σ b_p (k_p (r_p − g_p) + c_p ṙ_p + f0_p).
+    M = diag(I, M_v),  C = diag(2ζω, C_v) + Σ c_p b_p b_pᵀ,
+    K = diag(ω², K_v) + Σ (k_p b_p b_pᵀ + c_p b_p g_pᵀ),  F = [0; F_G] − Σ b_p (k_p (r_p − g_p) + c_p ṙ_p + f0_p).
 
     Returns M, C, K, F and the points' mode-shape rows φ, φ' (n_p, n_m), zero off the deck and for
     points not active (the static start, the explicit step's stability limit and the random-vibration

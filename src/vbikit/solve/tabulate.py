@@ -79,9 +79,9 @@ def hermite_rows(start: NDArray[np.float64], spacing: float, values: NDArray[np.
                  ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """φ(x) and ∂φ/∂x(x) (None unless ``with_slopes``), each (n, n_modes), of n points at ``x`` [m] on
     the tabulated tracks ``track`` (a table's ``start``, ``spacing``, ``values`` and ``slopes``, as
-    ``TrackTable`` and the kernels' ``Modes`` hold them): the cubic Hermite interpolant of the tabulated shapes and slopes on the cell
-    of x, clamped to the last cell — the formulas of the compiled kernels (``kernels.hermite_shape``),
-    for Python callers, vectorised over the points.  Every point given is evaluated: a caller keeps
+    ``TrackTable`` and the kernels' ``Modes`` hold them): the cubic Hermite interpolant of the
+    tabulated shapes and slopes on the cell of x, clamped to the last cell — the formulas of the
+    compiled kernels (``kernels.hermite_shape``), for Python callers, vectorised over the points.  Every point given is evaluated: a caller keeps
     those on the deck (start ≤ x ≤ end of their track)."""
     x = np.asarray(x, float)
     track = np.asarray(track, np.int64)
