@@ -15,8 +15,8 @@ import os
 compile_log = logging.getLogger("vbikit.solve.compile")
 
 
-#: CPU seconds numba takes to compile the default path (benchmarks/bench_compile.py: 5.3 s for the
-#: demo, measured 2026-12-04 on the shared 2-core machine at load ≈ 4; rounded up for a busier one)
+#: CPU seconds numba takes to compile the default path (benchmarks/bench_compile.py: 4.8–4.9 s for the
+#: demo on a quiet 2-core machine, 2026-12-04; rounded up for a busier or slower one)
 COMPILE_SECONDS = 7
 
 
