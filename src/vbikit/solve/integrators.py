@@ -155,11 +155,23 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
             LEAN_COUNTS["lean"] += 1
             log.debug("%s (lean kernel): %.2f contact-law evaluations per step", name,
                       evaluations / max(call.n_steps, 1))
-            return
-        LEAN_COUNTS["fallback"] += 1
-        _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
-        return
-    _run_lanes(call, modal_step, vehicle_step, tol)
+        else:
+            LEAN_COUNTS["fallback"] += 1
+            _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
+    else:
+        _run_lanes(call, modal_step, vehicle_step, tol)
+    _vehicle_accelerations(call, vehicle_step)
+
+
+def _vehicle_accelerations(call: KernelCall, vehicle_step: "VehicleStep") -> None:
+    """q̈ of every stored row of ``call``'s outputs (every lane) from its stored q, q̇ and wheel forces
+    (``modal_step.vehicle_accelerations``): the lean kernels leave them out of the step loop, and rows
+    the full kernel took over get the same numbers again (to round-off)."""
+    from vbikit.solve.modal_step import fused_step, vehicle_accelerations
+
+    _, _, q, dq, _, ddq, wheel_force, _ = call.outputs
+    vehicles = call.data.vehicles
+    vehicle_accelerations(vehicles, fused_step(vehicles, vehicle_step), q, dq, wheel_force, ddq)
 
 
 def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:
@@ -304,14 +316,15 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
     modes, veh, pts = data.modes, data.vehicles, data.points
     gated = point_gates(data)
     line = np.minimum(pts.line, road.elevations.shape[0] - 1)
-    outputs = call.outputs if lanes else tuple(a[0] for a in call.outputs)
+    xi, dxi, q, dq, ddxi, _, wheel_force, wheel_len = call.outputs  # all but q̈ (``_vehicle_accelerations``)
+    outputs = (xi, dxi, q, dq, ddxi, wheel_force, wheel_len)
+    outputs = outputs if lanes else tuple(a[0] for a in outputs)
     elevations = road.elevations if lanes else road.elevations[:, :, 0]
     fused = fused_step(veh, vehicle_step)
     return tuple(c(a) if isinstance(a, np.ndarray) else a for a in (
         call.motion.travel, call.motion.speed, modes.start, modes.end, float(modes.grid_h), modes.values,
         modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, fused.free, fused.free_load, fused.free_constant,
-        vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.accel, fused.accel_load,
-        fused.accel_constant, fused.wheel_dof, fused.wheel_h,
+        vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.wheel_dof, fused.wheel_h,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
         pts.width, road.stations, elevations, float(road.r_max), *outputs))

@@ -172,6 +172,25 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
                        contiguous(rows @ response[n_d:]))
 
 
+def vehicle_accelerations(vehicles: Vehicles, fused: FusedVehicleStep, q: NDArray[np.float64],
+                          q_dot: NDArray[np.float64], wheel_force: NDArray[np.float64],
+                          out: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The vehicles' accelerations q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) into ``out`` at every stored row of
+    the histories ``q``, ``q_dot`` (…, n_t, n_d) and ``wheel_force`` F_w (…, n_t, n_w) (any leading
+    lane axes), G = F_w + k_w h_w·q + c_w h_w·q̇ the wheel loads with the nominal tires added back
+    (K̂ = K + Σ k_w h_wᵀh_w, Ĉ likewise): the vehicles' equation of motion, by the fused products of
+    ``fused`` (``FusedVehicleStep.accel``, ``accel_load``, ``accel_constant``) — a few matrix products over
+    all rows after the run in place of one per step in the lean kernels' loops."""
+    rows = vehicles.wheel_rows
+    n_d = rows.shape[1]
+    loads = wheel_force + (q @ rows.T) * vehicles.wheel_stiffness + (q_dot @ rows.T) * vehicles.wheel_damping
+    np.matmul(q, fused.accel[:, :n_d].T, out=out)
+    out += q_dot @ fused.accel[:, n_d:].T
+    out += loads @ fused.accel_load.T
+    out += fused.accel_constant
+    return out
+
+
 def fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
     """The lean kernels' fused maps of the step map ``step`` of ``vehicles`` (``FusedVehicleStep``):
     P Φ, P L0, P g, M⁻¹[−K̂ −Ĉ], M⁻¹Hᵀ, M⁻¹F_G and the wheel rows' nonzero entries, made once per step

@@ -6,9 +6,11 @@ contiguous arrays. (``vbikit.solve.kernels``: the equations and conventions.)
 vehicles z_{n+1} = P (Φ z_n + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleStep``), the end-of-step
 point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}.  The
 vehicles' products are those of ``implicit`` regrouped (the same to round-off): the settled free
-response P Φ z_n + P L0 G_n + P g and the accelerations M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G by the fused
-maps of ``FusedVehicleStep``, one product each; a wheel's displacement h_w·q and load read only the
-nonzero entries of its row h_w (``wheel_entries``: two a wheel on the stock trucks, against n_d).
+response P Φ z_n + P L0 G_n + P g by the fused map of ``FusedVehicleStep``, one product; a wheel's
+displacement h_w·q and load read only the nonzero entries of its row h_w (``wheel_entries``: two a
+wheel on the stock trucks, against n_d).  The vehicles' accelerations q̈ are not computed in the loop:
+they follow from the stored states and wheel forces, all rows in one product after the run
+(``vbikit.solve.modal_step.vehicle_accelerations``).
 
 1. the state of the guess and the contact law there (``_law``: s_p = φ_p·ξ + r_p,
    δ_p = s_p − g_p − z_w, F_p = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p, gated);
@@ -27,7 +29,7 @@ activity changes, or a point the lazy test left out may touch), or the correctio
 ``lean`` then returns that step, and the caller goes on with ``implicit`` from the last state
 stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
 handled at all (the caller does not call ``lean`` for them).  The outputs are those of
-``implicit`` (same conventions, row 0 the static start, every ``stride``-th step stored).
+``implicit`` but q̈ (same conventions, row 0 the static start, every ``stride``-th step stored).
 
 Compilation (the first run's cost, ``benchmarks/bench_compile.py``): ``lean`` and its helpers are flat
 kernels (``bundles.FLAT_OPTIONS``: no allocation inside, hence no reference counting); ``_law`` is
@@ -226,24 +228,24 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
 
 @njit(nogil=True, **FLAT_OPTIONS)
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-         free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, wheel_dof,
-         wheel_h, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0,
-         gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len, tol,
-         stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
+         free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
+         wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
+         stations, elevations, r_max, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, modal, state, wheels,
+         held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
     ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
-    one lane (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the work
-    spaces of ``lean_work`` (zeroed).
+    one lane but q̈ (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the
+    work spaces of ``lean_work`` (zeroed).
 
     Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
     (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
     filled); evaluations counts the contact-law evaluations."""
     n_steps = (len(travel) - 1) // 2
     n_m = omega.size
-    n_d = len(accel)
+    n_d = len(free) // 2
     n_cp = origin.size
     n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
@@ -400,15 +402,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 xi[r_out, m] = x1[m]
                 dxi[r_out, m] = v1[m]
                 ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
-            for i in range(n_d):  # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused: M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G
-                a = accel_constant[i]
-                for j in range(2 * n_d):
-                    a += accel[i, j] * z1[j]
-                for w in range(n_w):
-                    a += accel_load[i, w] * g0[w]
+            for i in range(n_d):
                 q[r_out, i] = z1[i]
                 dq[r_out, i] = z1[n_d + i]
-                ddq[r_out, i] = a
             for w in range(n_w):
                 wheel_force[r_out, w] = wf[w]
                 wheel_len[r_out, w] = wl[w]

@@ -7,9 +7,9 @@ that every per-point, per-mode and per-DOF loop ends in a contiguous loop over t
 compiler vectorises.  What the motion fixes is computed once a step for all lanes: the point
 positions, which points are on the deck, the mode shapes φ_p, φ'_p (cubic Hermite, on first use in
 the step) and each point's road cell.  Each lane then takes ``lean``'s step with its own numbers
-(two products regrouped, the same to round-off: the vehicles' settled free response
-z_b = (P Φ) z_n + (P L0) G_n + P g and accelerations q̈ = M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G through
-the fused maps of ``FusedVehicleStep``, and one factorisation
+(a product regrouped, the same to round-off: the vehicles' settled free response
+z_b = (P Φ) z_n + (P L0) G_n + P g through the fused map of ``FusedVehicleStep``; the vehicles'
+accelerations q̈ follow after the run, ``vbikit.solve.modal_step.vehicle_accelerations``; and one factorisation
 of I + S_A U_A shared by the lanes of the same active sums, the solve running across them):
 
 1. the first guess F = 2F_n − F_{n−1}, its end state and the contact law there (``_law_lanes``: one
@@ -161,8 +161,8 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
 @_internal
 def _affine_lanes(constant, matrix, load, z, g, out):
     """out = constant + matrix z + load g in every lane (out (n_rows, L), z (n_cols, L), g (n_w, L)):
-    a fused vehicle map of ``FusedVehicleStep`` (the settled free response, the accelerations), zero
-    entries of ``matrix`` and ``load`` skipped."""
+    the fused vehicle map of ``FusedVehicleStep`` (the settled free response), zero entries of
+    ``matrix`` and ``load`` skipped."""
     n_rows, n_cols = matrix.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     _, n_w = load.shape
     _, n_l = out.shape
@@ -333,13 +333,13 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-               free, free_load, free_constant, response, wheel_q, wheel_v, accel, accel_load, accel_constant, wheel_dof,
-               wheel_h, wheel_k, wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc,
-               f0, gap, gated, wheel, width, stations, elevations, r_max, xi, dxi, q, dq, ddxi, ddq, wheel_force,
-               wheel_len, tol, stride, stop, first, last, fresh, carry_f, carry_p, carry_g):
+               free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
+               wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
+               stations, elevations, r_max, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop, first,
+               last, fresh, carry_f, carry_p, carry_g):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
     ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
-    ``implicit`` for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
+    ``implicit`` but q̈ for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
     the lazy test reads the road under each point) and ``stop`` (L,),
     int64, filled: −1 for a lane whose every step was taken, else the first step n (0-based,
     t_n → t_{n+1}) that lane needs more than the lean path for (its rows from n + 1 on are not
@@ -356,7 +356,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     n_steps = last
     n_l = xi.shape[0]
     n_m = omega.size
-    n_d = accel.shape[0]
+    n_d = free.shape[0] // 2
     n_cp = origin.size
     n_w = wheel_dof.shape[0]
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
@@ -379,7 +379,6 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     ksum = np.zeros((n_w, n_l)); csum = np.zeros((n_w, n_l))
     veh = np.zeros((n_l + 1, n_w, n_w)); piv = np.zeros((n_l + 1, n_w), np.int64)
     held = np.zeros((n_l + 1, 2 * n_w + 1))  # per lane, and (slot n_l) shared by lanes of the same sums
-    a1 = np.empty((n_d, n_l))
     f = np.zeros((n_cp, n_l)); fo = np.zeros((n_cp, n_l)); fp = np.zeros((n_cp, n_l)); f_old = np.zeros((n_cp, n_l))
     force = np.zeros((n_cp, n_l)); pen = np.zeros((n_cp, n_l)); law = np.zeros((n_cp, n_l))
     active = np.zeros((n_cp, n_l), np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
@@ -601,7 +600,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     fw[w, lane] += dfw[w, lane]
                     wf[w, lane] = fw[w, lane]
-        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈, q̈
+        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
         for w in range(n_w):
             kw = wheel_k[w]
             cw = wheel_c[w]
@@ -618,8 +617,6 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             e2 = omega[m] * omega[m]
             for lane in range(n_l):
                 acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
-        # q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), fused (``FusedVehicleStep``)
-        _affine_lanes(accel_constant, accel, accel_load, z1, g0, a1)
         if (n + 1) % stride == 0:
             r_out = (n + 1) // stride
             for lane in range(n_l):
@@ -630,11 +627,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                         xi[lane, r_out, m] = x1[m, lane]
                         dxi[lane, r_out, m] = v1[m, lane]
                     ddxi[lane, r_out, m] = acc[m, lane]
-                for j in range(n_d):
-                    if n >= first:
+                if n >= first:
+                    for j in range(n_d):
                         q[lane, r_out, j] = z1[j, lane]
                         dq[lane, r_out, j] = z1[n_d + j, lane]
-                    ddq[lane, r_out, j] = a1[j, lane]
                 for w in range(n_w):
                     wheel_force[lane, r_out, w] = wf[w, lane]
                     wheel_len[lane, r_out, w] = wl[w, lane]
