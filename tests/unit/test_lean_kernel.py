@@ -194,8 +194,9 @@ def test_two_trucks_on_the_3d_deck_run_lean_and_equal_implicit():
     """examples/traffic/two_trucks.toml: a 3-S2 and a three-axle truck in opposite lanes of
     paper-bridge-2, one coupled run (the vehicles stacked block-diagonally,
     ``vehicle.model.combine_vehicles``): the lean kernel with the step map's fused products
-    (``FusedVehicleStep``: ``free``, ``accel``, each wheel's nonzero entries) equals ``implicit`` with the
-    unfused ones (settle·(transition z + load0 G + constant), M⁻¹(F_G + HᵀG − Ĉq̇ − K̂q))."""
+    (``FusedVehicleStep``: ``free``, each wheel's nonzero entries) and q̈ after the run
+    (``modal_step.vehicle_accelerations``) equals ``implicit`` with the unfused products
+    (settle·(transition z + load0 G + constant)) and q̈ = M⁻¹(F_G + HᵀG − Ĉq̇ − K̂q) a step."""
     crossing = _scenario(load_scenario(ROOT / "examples" / "traffic" / "two_trucks.toml"))
     assert len(crossing.vehicles) == 2
     lean, full, ran = _both(crossing)
@@ -220,8 +221,7 @@ def _two_truck_maps():
 def test_fused_vehicle_maps_equal_the_unfused_products():
     """``modal_step.fused_step``'s maps against the products they replace, on random states and wheel loads
     of two different trucks stacked: P Φ z + P L0 G + P g = P (Φ z + L0 G + g) (the free response,
-    as ``implicit`` forms it), and M⁻¹[−K̂ −Ĉ] z + M⁻¹Hᵀ G + M⁻¹F_G = the solution q̈ of
-    M q̈ = F_G + Hᵀ G − Ĉ q̇ − K̂ q (numpy's solve with M itself, not M⁻¹)."""
+    as ``implicit`` forms it)."""
     vehicles, step, fused = _two_truck_maps()
     from vbikit.solve.modal_step import fused_step
 
@@ -234,10 +234,30 @@ def test_fused_vehicle_maps_equal_the_unfused_products():
         free = step.settle @ (step.transition @ z + step.load0 @ g + step.constant)
         got = fused.free @ z + fused.free_load @ g + fused.free_constant
         np.testing.assert_allclose(got, free, rtol=0, atol=1e-12 * np.abs(free).max())
-        rhs = vehicles.gravity + vehicles.wheel_rows.T @ g - step.c_hat @ z[n_d:] - step.k_hat @ z[:n_d]
-        acc = np.linalg.solve(vehicles.mass, rhs)
-        got = fused.accel @ z + fused.accel_load @ g + fused.accel_constant
-        np.testing.assert_allclose(got, acc, rtol=0, atol=1e-12 * np.abs(acc).max())
+
+
+def test_vehicle_accelerations_solve_the_equation_of_motion_with_the_nominal_tires():
+    """``modal_step.vehicle_accelerations`` (q̈ after the run, from the vehicles' own K, C and the tire
+    forces F_w) on random histories of two different trucks stacked, two lanes: row by row the solution
+    of M q̈ = F_G + Hᵀ G − Ĉ q̇ − K̂ q (numpy's solve with M itself), the implicit step's form with the
+    nominal tires (K̂, Ĉ of the step map) and G = F_w + k_w h_w·q + c_w h_w·q̇ the loads it carries."""
+    from vbikit.solve.modal_step import vehicle_accelerations
+
+    vehicles, step, _ = _two_truck_maps()
+    n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
+    rng = np.random.default_rng(12)
+    q = rng.normal(size=(2, 7, n_d)) * 1e-2
+    q_dot = rng.normal(size=(2, 7, n_d)) * 1e-1
+    forces = rng.normal(size=(2, 7, n_w)) * 1e4
+    got = vehicle_accelerations(vehicles, q, q_dot, forces, np.full((2, 7, n_d), np.nan))
+    rows = vehicles.wheel_rows
+    for lane in range(2):
+        for t in range(7):
+            z, z_dot = q[lane, t], q_dot[lane, t]
+            loads = forces[lane, t] + vehicles.wheel_stiffness * (rows @ z) + vehicles.wheel_damping * (rows @ z_dot)
+            rhs = vehicles.gravity + rows.T @ loads - step.c_hat @ z_dot - step.k_hat @ z
+            want = np.linalg.solve(vehicles.mass, rhs)
+            np.testing.assert_allclose(got[lane, t], want, rtol=0, atol=1e-12 * np.abs(want).max())
 
 
 def test_wheel_entries_give_the_dense_wheel_rows():

@@ -160,18 +160,17 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
             _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
     else:
         _run_lanes(call, modal_step, vehicle_step, tol)
-    _vehicle_accelerations(call, vehicle_step)
+    _vehicle_accelerations(call)
 
 
-def _vehicle_accelerations(call: KernelCall, vehicle_step: "VehicleStep") -> None:
+def _vehicle_accelerations(call: KernelCall) -> None:
     """q̈ of every stored row of ``call``'s outputs (every lane) from its stored q, q̇ and wheel forces
     (``modal_step.vehicle_accelerations``): the lean kernels leave them out of the step loop, and rows
     the full kernel took over get the same numbers again (to round-off)."""
-    from vbikit.solve.modal_step import fused_step, vehicle_accelerations
+    from vbikit.solve.modal_step import vehicle_accelerations
 
     _, _, q, dq, _, ddq, wheel_force, _ = call.outputs
-    vehicles = call.data.vehicles
-    vehicle_accelerations(vehicles, fused_step(vehicles, vehicle_step), q, dq, wheel_force, ddq)
+    vehicle_accelerations(call.data.vehicles, q, dq, wheel_force, ddq)
 
 
 def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:

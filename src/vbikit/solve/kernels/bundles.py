@@ -219,21 +219,15 @@ class VehicleStep(NamedTuple):
 
 
 class FusedVehicleStep(NamedTuple):
-    """A ``VehicleStep``'s products as the lean kernels take them, each one product a step in place of
+    """A ``VehicleStep``'s products as the lean kernels take them, one product a step in place of
     several (``vbikit.solve.modal_step.fused_step``): the settled free response
     z_b = P (Φ z_n + L0 G_n + g) = ``free`` z_n + ``free_load`` G_n + ``free_constant`` (P Φ (2n_d, 2n_d),
-    P L0 (2n_d, n_w), P g (2n_d,)); the accelerations q̈ = M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) = ``accel`` z
-    + ``accel_load`` G + ``accel_constant`` (M⁻¹[−K̂ −Ĉ] (n_d, 2n_d), M⁻¹Hᵀ (n_d, n_w), M⁻¹F_G (n_d,);
-    read after the run, ``vbikit.solve.modal_step.vehicle_accelerations``);
-    and each wheel row h_w by its nonzero entries, DOF indices ``wheel_dof`` (n_w, k) int64 and values
-    ``wheel_h`` (n_w, k) (``vbikit.solve.kernels.lean.wheel_entries``).  Kept apart from
-    ``VehicleStep``, the bundle ``implicit`` takes whole and which reads none of these."""
+    P L0 (2n_d, n_w), P g (2n_d,)), and each wheel row h_w by its nonzero entries, DOF indices
+    ``wheel_dof`` (n_w, k) int64 and values ``wheel_h`` (n_w, k) (``vbikit.solve.kernels.lean.wheel_entries``).
+    Kept apart from ``VehicleStep``, the bundle ``implicit`` takes whole and which reads none of these."""
 
     free: np.ndarray
     free_load: np.ndarray
     free_constant: np.ndarray
-    accel: np.ndarray
-    accel_load: np.ndarray
-    accel_constant: np.ndarray
     wheel_dof: np.ndarray
     wheel_h: np.ndarray
