@@ -194,8 +194,8 @@ def test_two_trucks_on_the_3d_deck_run_lean_and_equal_implicit():
     """examples/traffic/two_trucks.toml: a 3-S2 and a three-axle truck in opposite lanes of
     paper-bridge-2, one coupled run (the vehicles stacked block-diagonally,
     ``vehicle.model.combine_vehicles``): the lean kernel with the step map's fused products
-    (``FusedVehicleStep``: ``free``, each wheel's nonzero entries) and q̈ after the run
-    (``modal_step.vehicle_accelerations``) equals ``implicit`` with the unfused products
+    (``FusedVehicleStep``: ``free``, each wheel's nonzero entries) and q̈ when read
+    (``result.vehicle_accelerations``) equals ``implicit`` with the unfused products
     (settle·(transition z + load0 G + constant)) and q̈ = M⁻¹(F_G + HᵀG − Ĉq̇ − K̂q) a step."""
     crossing = _scenario(load_scenario(ROOT / "examples" / "traffic" / "two_trucks.toml"))
     assert len(crossing.vehicles) == 2
@@ -237,11 +237,11 @@ def test_fused_vehicle_maps_equal_the_unfused_products():
 
 
 def test_vehicle_accelerations_solve_the_equation_of_motion_with_the_nominal_tires():
-    """``modal_step.vehicle_accelerations`` (q̈ after the run, from the vehicles' own K, C and the tire
+    """``result.vehicle_accelerations`` (q̈ when read, from the vehicles' own K, C and the tire
     forces F_w) on random histories of two different trucks stacked, two lanes: row by row the solution
     of M q̈ = F_G + Hᵀ G − Ĉ q̇ − K̂ q (numpy's solve with M itself), the implicit step's form with the
     nominal tires (K̂, Ĉ of the step map) and G = F_w + k_w h_w·q + c_w h_w·q̇ the loads it carries."""
-    from vbikit.solve.modal_step import vehicle_accelerations
+    from vbikit.solve.result import vehicle_accelerations
 
     vehicles, step, _ = _two_truck_maps()
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
@@ -286,3 +286,35 @@ def test_wheel_entries_give_the_dense_wheel_rows():
         z = rng.normal(size=rows.shape[1])
         np.testing.assert_allclose((h * z[dof]).sum(axis=1), rows @ z, rtol=1e-14, atol=1e-14)
     assert wheel_entries(np.zeros((0, 4)))[0].shape == (0, 0)
+
+
+def test_lean_results_compute_the_vehicle_accelerations_when_read():
+    """A lean run leaves q̈ out of the step loop: its result holds a ``DeferredAccelerations`` until
+    ``q_ddot`` is read (``check_finite`` does not read it), then the array, equal to the full kernel's
+    q̈ (which computes it every step) to 1e-10 of its peak; a result pickled unread gives the same q̈."""
+    import pickle
+
+    from vbikit.solve.result import DeferredAccelerations, check_finite
+
+    crossing = _scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))
+    lean, full, ran = _both(crossing)
+    assert ran["lean"] == 1
+    assert isinstance(lean.__dict__["_q_ddot"], DeferredAccelerations)
+    assert check_finite(lean) is lean and isinstance(lean.__dict__["_q_ddot"], DeferredAccelerations)
+    copy = pickle.loads(pickle.dumps(lean))
+    got = lean.q_ddot
+    assert isinstance(lean.__dict__["_q_ddot"], np.ndarray) and lean.q_ddot is got
+    assert isinstance(full.__dict__["_q_ddot"], np.ndarray)  # implicit alone: filled by the kernel
+    peak = np.abs(full.q_ddot).max()
+    assert peak > 0 and np.abs(got - full.q_ddot).max() <= 1e-10 * peak
+    np.testing.assert_array_equal(copy.q_ddot, got)
+
+
+def test_moving_force_results_have_empty_vehicle_accelerations():
+    """A moving force has no vehicle DOFs: its deferred q̈ is an empty (n_t, 0) history, not an error."""
+    from vbikit.solve import Crossing
+    from vbikit.vehicle.presets import VEHICLE_PRESETS
+
+    beam = EulerBernoulliBeam(span=20.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=3)
+    result = simulate(Crossing(beam, vehicle=VEHICLE_PRESETS["moving-force"].build(), speed=20.0))
+    assert result.q_ddot.shape == (result.time.size, 0)

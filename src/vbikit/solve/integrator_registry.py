@@ -34,8 +34,10 @@ class Integrator:
     time_step : callable
         ``time_step(crossing) -> float``: the automatic (accuracy) step [s].
     run : callable
-        ``run(call: KernelCall) -> None``: integrates the lanes of ``call`` from their static
-        start, filling ``call.outputs``.
+        ``run(call: KernelCall) -> bool | None``: integrates the lanes of ``call`` from their static
+        start, filling ``call.outputs``; True if it left the vehicles' accelerations q̈ out (the
+        results then compute them when read, from q, q̇ and the wheel forces:
+        ``vbikit.solve.result.DeferredAccelerations``).
     stability_limit : callable, optional
         ``stability_limit(crossing) -> float``: the largest stable step [s]; the automatic step
         is capped at 0.9 times it and a larger user step is refused.  Required for an explicit
@@ -50,7 +52,7 @@ class Integrator:
     explicit: bool
     references: tuple[str, ...]
     time_step: Callable[["Crossing"], float]
-    run: Callable[["KernelCall"], None]
+    run: Callable[["KernelCall"], Optional[bool]]
     stability_limit: Optional[Callable[["Crossing"], float]] = None
     kernel: Optional[Callable[[], Any]] = None
 

@@ -126,7 +126,7 @@ def without_lean() -> Iterator[None]:
         USE_LEAN = before
 
 
-def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> None:
+def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> bool:
     """Run ``call`` through the partitioned implicit kernel (``vbikit.solve.kernels.implicit``)
     with the step maps ``modal_step`` (every bridge mode over ``call.dt``) and ``vehicle_step``
     (the vehicles over ``call.dt``), iterating the end-of-step contact forces to
@@ -138,7 +138,11 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     updates), ``implicit`` goes on with that lane alone from the last state stored (``LEAN_COUNTS``).
     Its start there evaluates the law at that state and extrapolates from it alone, so the rest of
     the run differs from an ``implicit`` run from t = 0 by the order of the tolerance
-    (``IMPLICIT_TOLERANCE`` of the largest wheel load)."""
+    (``IMPLICIT_TOLERANCE`` of the largest wheel load).
+
+    Returns True when the lean kernels ran: they leave the vehicles' accelerations q̈ out of the step
+    loop (the results compute them when read, ``vbikit.solve.result.DeferredAccelerations``); False
+    when ``implicit`` alone filled every output."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
@@ -147,7 +151,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
         LEAN_COUNTS["implicit"] += 1
         _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, call.lanes, 0)
-        return
+        return False
     if len(call.lanes) == 1:
         stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride,
                                          *_lean_work(call))
@@ -160,17 +164,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
             _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
     else:
         _run_lanes(call, modal_step, vehicle_step, tol)
-    _vehicle_accelerations(call)
-
-
-def _vehicle_accelerations(call: KernelCall) -> None:
-    """q̈ of every stored row of ``call``'s outputs (every lane) from its stored q, q̇ and wheel forces
-    (``modal_step.vehicle_accelerations``): the lean kernels leave them out of the step loop, and rows
-    the full kernel took over get the same numbers again (to round-off)."""
-    from vbikit.solve.modal_step import vehicle_accelerations
-
-    _, _, q, dq, _, ddq, wheel_force, _ = call.outputs
-    vehicle_accelerations(call.data.vehicles, q, dq, wheel_force, ddq)
+    return True
 
 
 def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:
@@ -315,7 +309,7 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
     modes, veh, pts = data.modes, data.vehicles, data.points
     gated = point_gates(data)
     line = np.minimum(pts.line, road.elevations.shape[0] - 1)
-    xi, dxi, q, dq, ddxi, _, wheel_force, wheel_len = call.outputs  # all but q̈ (``_vehicle_accelerations``)
+    xi, dxi, q, dq, ddxi, _, wheel_force, wheel_len = call.outputs  # all but q̈ (computed when read)
     outputs = (xi, dxi, q, dq, ddxi, wheel_force, wheel_len)
     outputs = outputs if lanes else tuple(a[0] for a in outputs)
     elevations = road.elevations if lanes else road.elevations[:, :, 0]

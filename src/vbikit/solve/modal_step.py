@@ -172,42 +172,6 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
                        contiguous(rows @ response[n_d:]))
 
 
-#: doubles in the work space of ``vehicle_accelerations`` (under the 128 KiB above which the C library
-#: maps fresh pages for an allocation: a fresh array costs its page faults, more than the products)
-ACCELERATION_CHUNK = 16000
-
-
-def vehicle_accelerations(vehicles: Vehicles, q: NDArray[np.float64], q_dot: NDArray[np.float64],
-                          wheel_force: NDArray[np.float64], out: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The vehicles' accelerations q̈ = M⁻¹(F_G + Hᵀ F_w − C q̇ − K q) into ``out`` at every stored row of
-    the histories ``q``, ``q_dot`` (…, n_t, n_d) and the wheel forces ``wheel_force`` F_w (…, n_t, n_w)
-    (any leading lane axes; each C-contiguous): the vehicles' equation of motion with the tire forces
-    as loads (C, K the vehicles' own matrices, without the tires: the implicit step's
-    M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) with G = F_w + k_w h_w·q + c_w h_w·q̇ and K̂ = K + Σ k_w h_wᵀh_w, Ĉ
-    likewise, is the same).  Matrix products over blocks of rows after the run, in place of one
-    product a step in the lean kernels' loops."""
-    arrays = (q, q_dot, wheel_force, out)
-    if not all(a.flags.c_contiguous for a in arrays):
-        raise ValueError("vehicle_accelerations: the histories must be C-contiguous")
-    q2, v2, f2, o2 = (a.reshape(-1, a.shape[-1]) for a in arrays)  # views (contiguous)
-    m_inv = vehicles.mass_inv
-    by_q, by_v = (m_inv @ -vehicles.stiffness).T, (m_inv @ -vehicles.damping).T
-    by_f, constant = (m_inv @ vehicles.wheel_rows.T).T, m_inv @ vehicles.gravity
-    n_rows, n_d = o2.shape
-    chunk = max(1, ACCELERATION_CHUNK // max(n_d, 1))
-    part = np.empty((min(chunk, n_rows), n_d))
-    for lo in range(0, n_rows, chunk):
-        hi = min(lo + chunk, n_rows)
-        o, p = o2[lo:hi], part[:hi - lo]
-        np.matmul(q2[lo:hi], by_q, out=o)
-        np.matmul(v2[lo:hi], by_v, out=p)
-        o += p
-        np.matmul(f2[lo:hi], by_f, out=p)
-        o += p
-        o += constant
-    return out
-
-
 def fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
     """The lean kernels' fused maps of the step map ``step`` of ``vehicles`` (``FusedVehicleStep``):
     P Φ, P L0, P g and the wheel rows' nonzero entries, made once per step

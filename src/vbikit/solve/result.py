@@ -18,6 +18,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
     import xarray as xr
 
+    from vbikit.solve.kernels import Vehicles
+
 
 _add = np.add.reduce
 #: read-out points whose mode shapes a crossing keeps (``CrossingResult.displacement`` and its kin)
@@ -31,7 +33,8 @@ class DivergenceError(VbikitError):
 def check_finite(result: "CrossingResult") -> "CrossingResult":
     """``result`` if every state history is finite, else ``DivergenceError`` naming the
     first step (and its time) with a non-finite bridge, vehicle or tire value."""
-    arrays = (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.q_ddot, result.wheel_forces)
+    # (q̈ is not read: it follows from q, q̇ and the wheel forces, and may not be computed yet)
+    arrays = (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.wheel_forces)
     total = 0.0
     with np.errstate(over="ignore", invalid="ignore"):  # a sum that overflows only takes the step-by-step path
         for a in arrays:
@@ -58,6 +61,82 @@ def check_finite(result: "CrossingResult") -> "CrossingResult":
     return result
 
 
+#: doubles in the work space of ``vehicle_accelerations`` (under the 128 KiB above which the C library
+#: maps fresh pages for an allocation: a fresh array costs its page faults, more than the products)
+ACCELERATION_CHUNK = 16000
+
+
+def vehicle_accelerations(vehicles: "Vehicles", q: NDArray[np.float64], q_dot: NDArray[np.float64],
+                          wheel_force: NDArray[np.float64], out: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The vehicles' accelerations q̈ = M⁻¹(F_G + Hᵀ F_w − C q̇ − K q) into ``out`` at every stored row of
+    the histories ``q``, ``q_dot`` (…, n_t, n_d) and the wheel forces ``wheel_force`` F_w (…, n_t, n_w)
+    (any leading lane axes; each C-contiguous): the vehicles' equation of motion with the tire forces
+    as loads (C, K the vehicles' own matrices, without the tires: the implicit step's
+    M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q) with G = F_w + k_w h_w·q + c_w h_w·q̇ and K̂ = K + Σ k_w h_wᵀh_w, Ĉ
+    likewise, is the same).  Matrix products over blocks of rows after the run, in place of one
+    product a step in the lean kernels' loops."""
+    arrays = (q, q_dot, wheel_force, out)
+    if not all(a.flags.c_contiguous for a in arrays):
+        raise ValueError("vehicle_accelerations: the histories must be C-contiguous")
+    if out.size == 0:  # no vehicle DOFs (moving forces) or no rows
+        return out
+    q2, v2, f2, o2 = (a.reshape(-1, a.shape[-1]) for a in arrays)  # views (contiguous)
+    m_inv = vehicles.mass_inv
+    by_q, by_v = (m_inv @ -vehicles.stiffness).T, (m_inv @ -vehicles.damping).T
+    by_f, constant = (m_inv @ vehicles.wheel_rows.T).T, m_inv @ vehicles.gravity
+    n_rows, n_d = o2.shape
+    chunk = max(1, ACCELERATION_CHUNK // max(n_d, 1))
+    part = np.empty((min(chunk, n_rows), n_d))
+    for lo in range(0, n_rows, chunk):
+        hi = min(lo + chunk, n_rows)
+        o, p = o2[lo:hi], part[:hi - lo]
+        np.matmul(q2[lo:hi], by_q, out=o)
+        np.matmul(v2[lo:hi], by_v, out=p)
+        o += p
+        np.matmul(f2[lo:hi], by_f, out=p)
+        o += p
+        o += constant
+    return out
+
+
+@dataclass(frozen=True)
+class DeferredAccelerations:
+    """The vehicles' accelerations of one stored history, computed when first read
+    (``vehicle_accelerations`` of these arrays into ``out``): an integrator that leaves q̈ out of
+    its step loop (the lean kernels, ``vbikit.solve.integrators.run_implicit``) hands these to its
+    results, and runs that never read q̈ (traffic, lifetime and study reductions) never pay for it."""
+
+    vehicles: Any
+    q: NDArray[np.float64]
+    q_dot: NDArray[np.float64]
+    wheel_force: NDArray[np.float64]
+    out: NDArray[np.float64]
+
+    def __call__(self) -> NDArray[np.float64]:
+        return vehicle_accelerations(self.vehicles, self.q, self.q_dot, self.wheel_force, self.out)
+
+
+class _Deferred:
+    """A field of a frozen dataclass that may be given a ``DeferredAccelerations`` (or any such
+    callable object): computed on the first read and kept (a data descriptor, so the dataclass's
+    ``__init__`` stores through ``__set__``; no default)."""
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.key = "_" + name
+
+    def __get__(self, obj: Any, owner: type | None = None) -> Any:
+        if obj is None:
+            raise AttributeError(self.key[1:])  # (the dataclass then gives the field no default)
+        value = obj.__dict__[self.key]
+        if isinstance(value, DeferredAccelerations):
+            value = value()
+            obj.__dict__[self.key] = value
+        return value
+
+    def __set__(self, obj: Any, value: Any) -> None:
+        obj.__dict__[self.key] = value
+
+
 @dataclass(frozen=True)
 class CrossingResult:
     """Histories at the n_t = n_steps + 1 time points ``time`` [s].
@@ -75,7 +154,8 @@ class CrossingResult:
     xi, xi_dot, xi_ddot : ndarray
         (n_t, n_modes): bridge modal coordinates and rates.
     q, q_dot, q_ddot : ndarray
-        (n_t, n_dof): vehicle coordinates (absolute, z up) and rates.
+        (n_t, n_dof): vehicle coordinates (absolute, z up) and rates (``q_ddot`` may be given as
+        ``DeferredAccelerations``: computed from q, q̇ and the wheel forces when first read).
     wheel_forces : ndarray
         (n_t, n_wheels): tire forces [N], compression positive (0 = no contact).
     contact_lengths : ndarray
@@ -100,7 +180,7 @@ class CrossingResult:
     xi_ddot: NDArray[np.float64]
     q: NDArray[np.float64]
     q_dot: NDArray[np.float64]
-    q_ddot: NDArray[np.float64]
+    q_ddot: NDArray[np.float64] = _Deferred()  # type: ignore[assignment]  (an array, or computed when read)
     wheel_forces: NDArray[np.float64]
     contact_lengths: NDArray[np.float64]
     integration_dt: float | None = None

@@ -16,7 +16,7 @@ from vbikit.solve.compile_notice import announce_compile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.integrators import KernelCall, get_integrator
 from vbikit.solve.plan import RunPlan, TimeGrid, plan_run
-from vbikit.solve.result import CrossingResult, check_finite
+from vbikit.solve.result import CrossingResult, DeferredAccelerations, check_finite
 
 if TYPE_CHECKING:  # pragma: no cover
     from vbikit.solve.system import KernelData
@@ -127,10 +127,12 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     integrator = get_integrator(first.integrator)
     if integrator.kernel is not None:
         announce_compile(integrator.kernel())
-    integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride))
+    deferred = integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0),
+                                         stride))
     time, front, speed = _rows(first, grid, stride)
-    return [CrossingResult(c, time, dt * stride, front, speed,
-                           *(a[lane] for a in (xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len)), integration_dt=dt,
+    return [CrossingResult(c, time, dt * stride, front, speed, xi[lane], dxi[lane], ddxi[lane], q[lane], dq[lane],
+                           DeferredAccelerations(data.vehicles, q[lane], dq[lane], wheel_force[lane], ddq[lane])
+                           if deferred else ddq[lane], wheel_force[lane], wheel_len[lane], integration_dt=dt,
                            kernel_data=data)
             for lane, c in enumerate(crossings[:n_real])]
 

@@ -9,8 +9,8 @@ vehicles' products are those of ``implicit`` regrouped (the same to round-off): 
 response P Φ z_n + P L0 G_n + P g by the fused map of ``FusedVehicleStep``, one product; a wheel's
 displacement h_w·q and load read only the nonzero entries of its row h_w (``wheel_entries``: two a
 wheel on the stock trucks, against n_d).  The vehicles' accelerations q̈ are not computed in the loop:
-they follow from the stored states and wheel forces, all rows in one product after the run
-(``vbikit.solve.modal_step.vehicle_accelerations``).
+they follow from the stored states and wheel forces when a result's ``q_ddot`` is read
+(``vbikit.solve.result.DeferredAccelerations``).
 
 1. the state of the guess and the contact law there (``_law``: s_p = φ_p·ξ + r_p,
    δ_p = s_p − g_p − z_w, F_p = k_p δ_p + c_p (ṡ_p − ż_w) + f0_p, gated);

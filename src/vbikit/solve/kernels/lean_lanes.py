@@ -9,7 +9,7 @@ positions, which points are on the deck, the mode shapes φ_p, φ'_p (cubic Herm
 the step) and each point's road cell.  Each lane then takes ``lean``'s step with its own numbers
 (a product regrouped, the same to round-off: the vehicles' settled free response
 z_b = (P Φ) z_n + (P L0) G_n + P g through the fused map of ``FusedVehicleStep``; the vehicles'
-accelerations q̈ follow after the run, ``vbikit.solve.modal_step.vehicle_accelerations``; and one factorisation
+accelerations q̈ follow when read, ``vbikit.solve.result.DeferredAccelerations``; and one factorisation
 of I + S_A U_A shared by the lanes of the same active sums, the solve running across them):
 
 1. the first guess F = 2F_n − F_{n−1}, its end state and the contact law there (``_law_lanes``: one
