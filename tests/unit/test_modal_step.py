@@ -191,8 +191,8 @@ def _combined_vehicles():
 @pytest.mark.parametrize("h", [0.002, 0.0137])
 def test_vehicle_step_of_combined_trucks_is_the_exponential_of_the_whole_augmented_system(h):
     """Several vehicles' step map is made block by block (``_blocks``); it must equal the map read
-    from the exponential (scipy.linalg.expm) of the whole augmented first-order system
-    (q, q̇, G, Ġ, 1) of the combined vehicle, written out here, not block by block; the blocks'
+    from scipy.linalg.expm (Padé, Al-Mohy & Higham 2009: another code) of the whole augmented
+    first-order system (q, q̇, G, Ġ, 1) of the combined vehicle, written out here; the blocks'
     cross terms must be exactly zero, and the settle map P = (I − L1 K_z)⁻¹ the direct inverse."""
     from scipy.linalg import expm as scipy_expm
 
@@ -250,8 +250,7 @@ def test_vehicle_step_of_one_vehicle_is_one_block():
 
 @pytest.mark.parametrize("theta", [1e-3, 0.4, 5.0, 40.0, 300.0])  # ‖A‖₁ up to a truck's augmented system
 def test_expm_is_the_rotation_and_the_damped_oscillator(theta):
-    """``modal_step.expm`` (scipy.linalg.expm: Al-Mohy & Higham 2009 scaling and squaring with Padé
-    approximants) against closed forms, at the norms of a truck's augmented system: exp([[0, θ], [−θ, 0]]) is
+    """``expm`` (Taylor series with scaling and squaring) against closed forms: exp([[0, θ], [−θ, 0]]) is
     the rotation [[cos θ, sin θ], [−sin θ, cos θ]]; exp(t [[0, 1], [−ω², −2ζω]]) the damped
     oscillator's free response (x, ẋ columns, Chopra Eq. 2.2.4); and a stack of both at once."""
     from vbikit.solve.modal_step import expm

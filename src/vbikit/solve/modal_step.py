@@ -16,15 +16,12 @@ the same map for Newmark's average-acceleration rule (γ = 1/2, β = 1/4), so th
 through the same partitioned kernel.  ``vehicle_step`` is the vehicles' map over the step
 with their nominal tires on the contact surface, exact (exponential of the augmented
 first-order system, the wheel loads linear over the step), ``newmark_vehicle_step``
-Newmark's (``vbikit.solve.kernels.implicit``).  Matrix exponentials are scipy's ``expm``
-(Al-Mohy & Higham 2009, *SIAM J. Matrix Anal. Appl.* 31(3), 970–989: scaling and squaring with
-Padé approximants).
+Newmark's (``vbikit.solve.kernels.implicit``).
 """
 from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import expm
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
@@ -46,6 +43,24 @@ def _input_key(kind: str, h: float, arrays) -> tuple:
     """The key of a step map: its kind, h and every input array's shape, dtype and bytes."""
     return (kind, float(h)) + tuple((a.shape, a.dtype.str, a.tobytes()) for a in
                                     (np.ascontiguousarray(x) for x in arrays))
+
+
+def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Matrix exponential of a (..., n, n) stack: scaling and squaring with an 18-term Taylor
+    series (‖A‖₁/2^s ≤ 1/2, truncation below 1e-17 relative; Moler & Van Loan 2003, method 3).
+    For the small matrices here it is much cheaper than a general routine."""
+    a = np.asarray(a, float)
+    norm = float(np.abs(a).sum(axis=-2).max(initial=0.0))
+    squarings = max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
+    x = a / 2.0**squarings
+    eye = np.broadcast_to(np.eye(a.shape[-1]), a.shape)
+    result, term = eye.copy(), eye.copy()
+    for k in range(1, 19):
+        term = term @ x / k
+        result = result + term
+    for _ in range(squarings):
+        result = result @ result
+    return result
 
 
 def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
