@@ -21,7 +21,8 @@ def _run_exact(call: KernelCall) -> bool:
     from vbikit.solve.modal_step import exact_step, vehicle_step
 
     data = call.data
-    return run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt), vehicle_step(data.vehicles, call.dt))
+    return run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt),
+                        vehicle_step(data.vehicles, call.dt))
 
 
 def _run_newmark(call: KernelCall) -> bool:
@@ -29,7 +30,7 @@ def _run_newmark(call: KernelCall) -> bool:
 
     data = call.data
     return run_implicit(call, newmark_step(data.modes.omega, data.modes.zeta, call.dt),
-                 newmark_vehicle_step(data.vehicles, call.dt))
+                        newmark_vehicle_step(data.vehicles, call.dt))
 
 
 def _run_rk4(call: KernelCall) -> None:
