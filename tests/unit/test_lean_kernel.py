@@ -312,9 +312,21 @@ def test_lean_results_compute_the_vehicle_accelerations_when_read():
 
 def test_moving_force_results_have_empty_vehicle_accelerations():
     """A moving force has no vehicle DOFs: its deferred q̈ is an empty (n_t, 0) history, not an error."""
-    from vbikit.solve import Crossing
     from vbikit.vehicle.presets import VEHICLE_PRESETS
 
     beam = EulerBernoulliBeam(span=20.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=3)
     result = simulate(Crossing(beam, vehicle=VEHICLE_PRESETS["moving-force"].build(), speed=20.0))
     assert result.q_ddot.shape == (result.time.size, 0)
+
+
+def test_a_result_state_with_the_plain_field_name_reads_its_accelerations():
+    """A result pickled before q̈ was deferred keeps it under ``q_ddot`` in its state: still read."""
+    from vbikit.solve.result import CrossingResult
+
+    beam = EulerBernoulliBeam(span=20.0, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=3)
+    result = simulate(Crossing(beam, vehicle=hs20_44(), speed=20.0))
+    state = {k: v for k, v in result.__dict__.items() if k != "_q_ddot"}
+    state["q_ddot"] = np.arange(6.0)
+    old = object.__new__(CrossingResult)
+    old.__dict__.update(state)
+    np.testing.assert_array_equal(old.q_ddot, np.arange(6.0))

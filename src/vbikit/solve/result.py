@@ -117,9 +117,10 @@ class DeferredAccelerations:
 
 
 class _Deferred:
-    """A field of a frozen dataclass that may be given a ``DeferredAccelerations`` (or any such
-    callable object): computed on the first read and kept (a data descriptor, so the dataclass's
-    ``__init__`` stores through ``__set__``; no default)."""
+    """A field of a frozen dataclass that may be given a ``DeferredAccelerations``: computed on the
+    first read and kept (a data descriptor, so the dataclass's ``__init__`` stores through
+    ``__set__``; no default).  The value lives under the field's name with a leading underscore; a
+    state with the plain name (a result pickled before the field was deferred) is read too."""
 
     def __set_name__(self, owner: type, name: str) -> None:
         self.key = "_" + name
@@ -127,7 +128,8 @@ class _Deferred:
     def __get__(self, obj: Any, owner: type | None = None) -> Any:
         if obj is None:
             raise AttributeError(self.key[1:])  # (the dataclass then gives the field no default)
-        value = obj.__dict__[self.key]
+        state = obj.__dict__
+        value = state[self.key] if self.key in state else state[self.key[1:]]
         if isinstance(value, DeferredAccelerations):
             value = value()
             obj.__dict__[self.key] = value
