@@ -23,7 +23,9 @@
    process, each run once as the workers run it (``TrafficStudy.run_event``), thread CPU time of
    the whole event and of its step loop (``kernels.lean``, and ``kernels.implicit`` where the lean
    kernel hands over), grouped by the number of trucks on the bridge together: how much of the
-   stream's cost the several-truck events are.
+   stream's cost the several-truck events are; and the share of their runs a truck spends between
+   ``crossing.approach`` before its entry and its exit (weighted by its DOFs): the part of a
+   several-truck run that integrates trucks far from the bridge is the rest.
 
 Base scenario: ``paper-bridge-2`` (10 modes, 2 % damping), point tires, ISO class B road with a
 new seed per event, ``--spacing`` m road samples (the scenario default is 0.01 m), response at
@@ -161,6 +163,32 @@ def _by_size(job, n: int) -> None:
         print(f"    {size} truck(s): {len(whole)} events, {1e3 * sum(whole) / len(whole):.2f} ms an event "
               f"(step loop {1e3 * sum(loop) / len(loop):.2f} ms), {100 * sum(whole) / total:.0f} % of the time")
     print(f"    all: {1e3 * total / (n - 1):.2f} ms an event")
+    shares = _presence(job, range(1, n))
+    print("    share of the run a truck is between its approach (crossing.approach before its entry) and its "
+          "exit, weighted by its DOFs: " + ", ".join(f"{size} truck(s) {100 * shares[size]:.0f} %" for size in sorted(shares)))
+
+
+def _presence(job, events) -> dict[int, float]:
+    """Per number of trucks in an event: the mean over those events of the share of the run's time each
+    truck spends between ``crossing.approach`` before its entry and the exit of its last axle, weighted by
+    its DOFs (1 for one truck): how much of a several-truck run integrates trucks far from the bridge."""
+    import numpy as np
+
+    from vbikit.solve.plan import plan_run
+
+    out: dict[int, list[float]] = {}
+    for e in events:
+        crossing = job.crossing(e)
+        grid = plan_run(crossing).grid
+        t0 = crossing.start_time
+        t1 = t0 + grid.n_steps * grid.dt
+        weighted = 0.0
+        for i, m in enumerate(crossing.vehicles):
+            exit_time = m.time_at(crossing.leaving_distance(np.flatnonzero(crossing.point_vehicle == i), m.sign))
+            inside = min(exit_time, t1) - max(m.time_at(-crossing.approach), t0)
+            weighted += max(inside, 0.0) / (t1 - t0) * m.vehicle.n_dof
+        out.setdefault(len(crossing.vehicles), []).append(weighted / crossing.vehicle.n_dof)
+    return {size: float(np.mean(v)) for size, v in out.items()}
 
 
 if __name__ == "__main__":

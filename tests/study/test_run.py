@@ -135,12 +135,16 @@ def test_ctrl_c_keeps_finished_batches_and_resume_is_identical(tmp_path, small_s
                              str(out), "--workers", "2", "--no-progress"], start_new_session=True,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     parts = parts_dir(out)
-    deadline = time.time() + 60
-    while time.time() < deadline and len(list(parts.glob("batch-*.npz"))) < 3:
+    t0 = time.time()
+    seen = 0
+    while time.time() < t0 + 60 and seen < 3:
+        seen = len(list(parts.glob("batch-*.npz")))
         time.sleep(0.005)
+    waited = time.time() - t0
     os.killpg(proc.pid, signal.SIGINT)  # like Ctrl-C in a terminal: the whole process group
-    _, err = proc.communicate(timeout=30)
-    assert proc.returncode == 130, err
+    stdout, err = proc.communicate(timeout=30)
+    assert proc.returncode == 130, (f"exit {proc.returncode} after {waited:.2f} s ({seen} parts seen); stdout "
+                                    f"{stdout!r}; stderr {err!r}")
     assert "resume" in err and "Traceback" not in err
     n_done = len(list(parts.glob("batch-*.npz")))
     study = parse_study(small_study_dict)
