@@ -14,7 +14,9 @@ from vbikit.driveby.study import run_driveby
 from vbikit.study.storage import parts_dir
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "driveby" / "DRIVEBY.toml"
-CLI = "from vbikit.cli import main; main()"
+# the CLI as a terminal starts it: SIGINT raises KeyboardInterrupt (a shell's background job starts with SIGINT
+# ignored, which Python keeps: Ctrl-C would then not reach the run)
+CLI = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler); from vbikit.cli import main; main()"
 N_CASES = 12  # 3 speeds × 2 road classes × 2 damage severities
 
 

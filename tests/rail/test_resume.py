@@ -25,7 +25,9 @@ step = 10.0
 [run]
 workers = 1
 """
-CLI = "from vbikit.cli import main; main()"
+# the CLI as a terminal starts it: SIGINT raises KeyboardInterrupt (a shell's background job starts with SIGINT
+# ignored, which Python keeps: Ctrl-C would then not reach the run)
+CLI = "import signal; signal.signal(signal.SIGINT, signal.default_int_handler); from vbikit.cli import main; main()"
 
 
 def _interrupt(tmp_path, sig):
