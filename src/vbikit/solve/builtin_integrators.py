@@ -17,20 +17,19 @@ from vbikit.solve.integrators import (
 from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
 
 
-def _run_exact(call: KernelCall) -> bool:
+def _run_exact(call: KernelCall) -> None:
     from vbikit.solve.modal_step import exact_step, vehicle_step
 
     data = call.data
-    return run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt),
-                        vehicle_step(data.vehicles, call.dt))
+    run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt), vehicle_step(data.vehicles, call.dt))
 
 
-def _run_newmark(call: KernelCall) -> bool:
+def _run_newmark(call: KernelCall) -> None:
     from vbikit.solve.modal_step import newmark_step, newmark_vehicle_step
 
     data = call.data
-    return run_implicit(call, newmark_step(data.modes.omega, data.modes.zeta, call.dt),
-                        newmark_vehicle_step(data.vehicles, call.dt))
+    run_implicit(call, newmark_step(data.modes.omega, data.modes.zeta, call.dt),
+                 newmark_vehicle_step(data.vehicles, call.dt))
 
 
 def _run_rk4(call: KernelCall) -> None:

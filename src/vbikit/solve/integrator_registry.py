@@ -34,10 +34,9 @@ class Integrator:
     time_step : callable
         ``time_step(crossing) -> float``: the automatic (accuracy) step [s].
     run : callable
-        ``run(call: KernelCall) -> bool | None``: integrates the lanes of ``call`` from their static
-        start, filling ``call.outputs``; True if it left the vehicles' accelerations q̈ out (the
-        results then compute them when read, from q, q̇ and the wheel forces:
-        ``vbikit.solve.result.DeferredAccelerations``).
+        ``run(call: KernelCall) -> None``: integrates the lanes of ``call`` from their static
+        start, filling ``call.outputs`` (a run that leaves the vehicles' accelerations q̈ out says so
+        in ``call.deferred``; ``run_implicit`` does).
     stability_limit : callable, optional
         ``stability_limit(crossing) -> float``: the largest stable step [s]; the automatic step
         is capped at 0.9 times it and a larger user step is refused.  Required for an explicit
@@ -52,7 +51,7 @@ class Integrator:
     explicit: bool
     references: tuple[str, ...]
     time_step: Callable[["Crossing"], float]
-    run: Callable[["KernelCall"], Optional[bool]]
+    run: Callable[["KernelCall"], None]
     stability_limit: Optional[Callable[["Crossing"], float]] = None
     kernel: Optional[Callable[[], Any]] = None
 

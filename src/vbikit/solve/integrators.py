@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import logging
 from contextlib import contextmanager
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any, Iterator
 
 import numpy as np
@@ -88,6 +88,9 @@ class KernelCall:
         ``(0,)`` for one lane (its own compiled variant), ``(0, 0)`` for several.
     stride : int
         Every ``stride``-th step is stored.
+    deferred : set of str
+        Filled by the run: ``"q_ddot"`` when it left the vehicles' accelerations (``outputs[5]``)
+        unfilled; the results then compute them when read (``vbikit.solve.result.DeferredAccelerations``).
     """
 
     crossing: "Crossing"
@@ -99,6 +102,7 @@ class KernelCall:
     outputs: tuple
     lanes: tuple
     stride: int
+    deferred: set = field(default_factory=set, compare=False, repr=False)
 
 
 #: run implicit calls through the lean kernels first (``vbikit.solve.kernels.lean`` for one lane,
@@ -126,7 +130,7 @@ def without_lean() -> Iterator[None]:
         USE_LEAN = before
 
 
-def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> bool:
+def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> None:
     """Run ``call`` through the partitioned implicit kernel (``vbikit.solve.kernels.implicit``)
     with the step maps ``modal_step`` (every bridge mode over ``call.dt``) and ``vehicle_step``
     (the vehicles over ``call.dt``), iterating the end-of-step contact forces to
@@ -140,9 +144,9 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     the run differs from an ``implicit`` run from t = 0 by the order of the tolerance
     (``IMPLICIT_TOLERANCE`` of the largest wheel load).
 
-    Returns True when the lean kernels ran: they leave the vehicles' accelerations q̈ out of the step
-    loop (the results compute them when read, ``vbikit.solve.result.DeferredAccelerations``); False
-    when ``implicit`` alone filled every output."""
+    The lean kernels leave the vehicles' accelerations q̈ out of the step loop: when they ran,
+    ``"q_ddot"`` is added to ``call.deferred`` (the results compute q̈ when read,
+    ``vbikit.solve.result.DeferredAccelerations``); ``implicit`` alone fills every output."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
@@ -151,7 +155,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
         LEAN_COUNTS["implicit"] += 1
         _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, call.lanes, 0)
-        return False
+        return
     if len(call.lanes) == 1:
         stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride,
                                          *_lean_work(call))
@@ -164,7 +168,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
             _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
     else:
         _run_lanes(call, modal_step, vehicle_step, tol)
-    return True
+    call.deferred.add("q_ddot")
 
 
 def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:

@@ -127,8 +127,9 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     integrator = get_integrator(first.integrator)
     if integrator.kernel is not None:
         announce_compile(integrator.kernel())
-    deferred = integrator.run(KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0),
-                                         stride))
+    call = KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride)
+    integrator.run(call)
+    deferred = "q_ddot" in call.deferred
     time, front, speed = _rows(first, grid, stride)
     return [CrossingResult(c, time, dt * stride, front, speed, xi[lane], dxi[lane], ddxi[lane], q[lane], dq[lane],
                            DeferredAccelerations(data.vehicles, q[lane], dq[lane], wheel_force[lane], ddq[lane])
