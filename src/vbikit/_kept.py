@@ -55,12 +55,17 @@ _PER_OWNER: dict[tuple[int, str], Kept] = {}
 def kept_for(owner: object, name: str, size: int) -> Kept:
     """The bounded store ``name`` (at most ``size`` values) of the immutable object ``owner`` (a
     bridge, ...): by identity, dropped when ``owner`` is collected, and not on the object, so that
-    pickling it (for a worker process) carries none of it."""
+    pickling it (for a worker process) carries none of it.  An owner that cannot be referenced weakly
+    (a numpy ufunc given as an influence function, ...) gets a new empty store each time: its values
+    are made on every call, not kept (its identity could outlive it)."""
     key = (id(owner), name)
     store = _PER_OWNER.get(key)
     if store is None:
+        try:
+            weakref.finalize(owner, _PER_OWNER.pop, key, None)
+        except TypeError:
+            return Kept(size)
         store = _PER_OWNER[key] = Kept(size)
-        weakref.finalize(owner, _PER_OWNER.pop, key, None)
     return store
 
 

@@ -55,3 +55,16 @@ def test_an_owners_stores_are_its_own_go_with_it_and_are_not_pickled():
     del a
     gc.collect()
     assert len(_PER_OWNER) == n - 2  # both of a's stores went with it
+
+
+def test_an_owner_without_weak_references_gets_its_values_made_every_time():
+    """A numpy ufunc (an influence function given as ``np.sin``) cannot be referenced weakly: nothing
+    is kept for it (its id could be another object's later), and asking is no error."""
+    import numpy as np
+
+    from vbikit._kept import _PER_OWNER, kept_for
+
+    n, made = len(_PER_OWNER), []
+    for _ in range(2):
+        assert kept_for(np.sin, "x", 2).get(1, lambda: made.append(1) or "v") == "v"
+    assert made == [1, 1] and len(_PER_OWNER) == n
