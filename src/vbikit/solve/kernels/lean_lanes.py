@@ -159,27 +159,31 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
 
 
 @_internal
-def _affine_lanes(constant, matrix, load, z, g, out):
-    """out = constant + matrix z + load g in every lane (out (n_rows, L), z (n_cols, L), g (n_w, L)):
-    the fused vehicle map of ``FusedVehicleStep`` (the settled free response), zero entries of
-    ``matrix`` and ``load`` skipped."""
+def _add_product_lanes(matrix, v, out):
+    """out += matrix v in every lane (out (n_rows, L), v (n_cols, L)), zero entries of ``matrix``
+    skipped (the vehicles' maps are block-diagonal for several vehicles, and sparse)."""
     n_rows, n_cols = matrix.shape  # (unpacked: numba types an indexed shape through a compiled overload)
-    _, n_w = load.shape
     _, n_l = out.shape
     for i in range(n_rows):
-        ci = constant[i]
-        for lane in range(n_l):
-            out[i, lane] = ci
         for j in range(n_cols):
             a = matrix[i, j]
             if a != 0.0:
                 for lane in range(n_l):
-                    out[i, lane] += a * z[j, lane]
-        for w in range(n_w):
-            a = load[i, w]
-            if a != 0.0:
-                for lane in range(n_l):
-                    out[i, lane] += a * g[w, lane]
+                    out[i, lane] += a * v[j, lane]
+
+
+@_internal
+def _affine_lanes(constant, matrix, load, z, g, out):
+    """out = constant + matrix z + load g in every lane (out (n_rows, L), z (n_cols, L), g (n_w, L)):
+    the fused vehicle map of ``FusedVehicleStep`` (the settled free response), zero entries of
+    ``matrix`` and ``load`` skipped (each sum in the same order as one loop over both)."""
+    n_rows, n_l = out.shape
+    for i in range(n_rows):
+        ci = constant[i]
+        for lane in range(n_l):
+            out[i, lane] = ci
+    _add_product_lanes(matrix, z, out)
+    _add_product_lanes(load, g, out)
 
 
 @_internal
@@ -541,12 +545,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                         p[m, lane] += dp[m, lane]
                         x1[m, lane] += dx[m, lane]
                         v1[m, lane] += dv[m, lane]
-                for i in range(2 * n_d):  # z = z_b + (P L1) F_w
-                    for w in range(n_w):
-                        a = response[i, w]
-                        if a != 0.0:
-                            for lane in range(n_l):
-                                z1[i, lane] += a * dfw[w, lane]
+                _add_product_lanes(response, dfw, z1)  # z = z_b + (P L1) F_w
                 for lane in range(n_l):
                     err[lane] = 0.0
                     flip[lane] = False  # the lane needs more than this step (set in loops the compiler vectorises)
