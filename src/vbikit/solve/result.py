@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import math
+import threading
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Sequence
 
@@ -80,11 +81,12 @@ def vehicle_accelerations(vehicles: "Vehicles", q: NDArray[np.float64], q_dot: N
         raise ValueError("vehicle_accelerations: the histories must be C-contiguous")
     if out.size == 0:  # no vehicle DOFs (moving forces) or no rows
         return out
-    q2, v2, f2, o2 = (a.reshape(-1, a.shape[-1]) for a in arrays)  # views (contiguous)
+    n_rows = out.size // out.shape[-1]
+    q2, v2, f2, o2 = (a.reshape(n_rows, a.shape[-1]) for a in arrays)  # views (contiguous; F_w may have no wheels)
     m_inv = vehicles.mass_inv
     by_q, by_v = (m_inv @ -vehicles.stiffness).T, (m_inv @ -vehicles.damping).T
     by_f, constant = (m_inv @ vehicles.wheel_rows.T).T, m_inv @ vehicles.gravity
-    n_rows, n_d = o2.shape
+    n_d = o2.shape[1]
     chunk = max(1, ACCELERATION_CHUNK // max(n_d, 1))
     part = np.empty((min(chunk, n_rows), n_d))
     for lo in range(0, n_rows, chunk):
@@ -99,27 +101,56 @@ def vehicle_accelerations(vehicles: "Vehicles", q: NDArray[np.float64], q_dot: N
     return out
 
 
+class ChangedHistoryError(VbikitError):
+    """q̈ asked of a result whose q, q̇ or wheel forces were changed in place after the run."""
+
+
+def _fingerprint(*arrays: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The sum of each array (a cheap check that none was changed in place: a change of units, an
+    offset or added noise changes its sum)."""
+    return np.array([_add(a, None) if a.size else 0.0 for a in arrays])
+
+
 @dataclass(frozen=True)
 class DeferredAccelerations:
     """The vehicles' accelerations of one stored history, computed when first read
     (``vehicle_accelerations`` of these arrays into ``out``): an integrator that leaves q̈ out of
     its step loop (the lean kernels, ``vbikit.solve.integrators.run_implicit``) hands these to its
-    results, and runs that never read q̈ (traffic, lifetime and study reductions) never pay for it."""
+    results, and runs that never read q̈ (traffic, lifetime and study reductions) never pay for it.
+
+    q̈ follows from the result's own q, q̇ and wheel forces (the same arrays), so it is computed only
+    if they still hold what the run stored (``fingerprint``, their sums at the run's end): a result
+    whose histories were changed in place before q̈ was read raises ``ChangedHistoryError`` instead
+    of giving accelerations of the changed values."""
 
     vehicles: Any
     q: NDArray[np.float64]
     q_dot: NDArray[np.float64]
     wheel_force: NDArray[np.float64]
     out: NDArray[np.float64]
+    fingerprint: NDArray[np.float64] | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.fingerprint is None:
+            object.__setattr__(self, "fingerprint", _fingerprint(self.q, self.q_dot, self.wheel_force))
 
     def __call__(self) -> NDArray[np.float64]:
+        if not np.array_equal(_fingerprint(self.q, self.q_dot, self.wheel_force), self.fingerprint, equal_nan=True):
+            raise ChangedHistoryError(
+                "q_ddot follows from the result's q, q_dot and wheel_forces, and one of them was changed in place "
+                "after the run: read q_ddot before changing them, or change copies (numpy's .copy())")
         return vehicle_accelerations(self.vehicles, self.q, self.q_dot, self.wheel_force, self.out)
+
+
+#: one computation of a deferred q̈ at a time (two threads reading one result would write into the same
+#: array: numpy's products release the GIL)
+_DEFERRED_LOCK = threading.Lock()
 
 
 class _Deferred:
     """A field of a frozen dataclass that may be given a ``DeferredAccelerations``: computed on the
     first read and kept (a data descriptor, so the dataclass's ``__init__`` stores through
-    ``__set__``; no default).  The value lives under the field's name with a leading underscore; a
+    ``__set__``; no default), under a lock: threads reading one result compute it once.  The value lives under the field's name with a leading underscore; a
     state with the plain name (a result pickled before the field was deferred) is read too."""
 
     def __set_name__(self, owner: type, name: str) -> None:
@@ -131,8 +162,11 @@ class _Deferred:
         state = obj.__dict__
         value = state[self.key] if self.key in state else state[self.key[1:]]
         if isinstance(value, DeferredAccelerations):
-            value = value()
-            obj.__dict__[self.key] = value
+            with _DEFERRED_LOCK:
+                value = state[self.key]  # (another thread may have computed it meanwhile)
+                if isinstance(value, DeferredAccelerations):
+                    value = value()
+                    state[self.key] = value
         return value
 
     def __set__(self, obj: Any, value: Any) -> None:

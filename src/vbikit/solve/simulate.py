@@ -131,11 +131,14 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     integrator.run(call)
     deferred = "q_ddot" in call.deferred
     time, front, speed = _rows(first, grid, stride)
-    return [CrossingResult(c, time, dt * stride, front, speed, xi[lane], dxi[lane], ddxi[lane], q[lane], dq[lane],
-                           DeferredAccelerations(data.vehicles, q[lane], dq[lane], wheel_force[lane], ddq[lane])
-                           if deferred else ddq[lane], wheel_force[lane], wheel_len[lane], integration_dt=dt,
-                           kernel_data=data)
-            for lane, c in enumerate(crossings[:n_real])]
+    results = []
+    for lane, c in enumerate(crossings[:n_real]):
+        # one view of each history, shared by the result and its deferred q̈ (a pickle then holds each once)
+        q_l, dq_l, f_l = q[lane], dq[lane], wheel_force[lane]
+        ddq_l = DeferredAccelerations(data.vehicles, q_l, dq_l, f_l, ddq[lane]) if deferred else ddq[lane]
+        results.append(CrossingResult(c, time, dt * stride, front, speed, xi[lane], dxi[lane], ddxi[lane], q_l, dq_l,
+                                      ddq_l, f_l, wheel_len[lane], integration_dt=dt, kernel_data=data))
+    return results
 
 
 def _rows(crossing: Crossing, grid: TimeGrid, stride: int) -> tuple:
