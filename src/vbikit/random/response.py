@@ -56,6 +56,13 @@ QUALITY = ("σ histories exact for the linear system up to the wavenumber grid (
            "below the 90 % quantile")
 #: grid check (σ on every line vs every second line) above which the answer is flagged
 GRID_LIMIT = 0.02
+#: which deck channels get peak and impact-factor statistics (``random_response(peaks=...)``): name ->
+#: (the load effects that do, by kind and position in the plan; the Poisson up-crossing cross-check
+#: or not).  "all": every point and effect, with the cross-check (``vbikit run --random``); "study":
+#: what a PEM study stores (``vbikit.study.pem.PEM_OUTPUTS``: the headline point and the first
+#: bending moment, no cross-check).  σ histories, the grid check and the lift-off probability are
+#: computed for every channel either way.
+PEAKS: dict[str, tuple[str, bool]] = {"all": ("every", True), "study": ("first moment", False)}
 #: how load effects are formed in random runs: R = Σ_i r_i ξ_i, linear in the modal coordinates
 EFFECT_METHOD = "mode-superposition"
 
@@ -117,7 +124,7 @@ class RandomResponse:
 
 def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt: float, *,
                     quantiles: tuple[float, ...] = QUANTILES, lines: Lines | None = None, substeps: int | None = None,
-                    samples: int = SAMPLES, data=None) -> RandomResponse:
+                    samples: int = SAMPLES, data=None, peaks: str = "all") -> RandomResponse:
     """Mean, σ and impact-factor distribution of ``crossing`` on the random ``road`` at the points of
     ``plan``, on the time grid of step ``dt`` [s] (the engine's step for the sampled road);
     ``substeps`` integrator steps an output step (None: ``pseudo_excitation``'s default for its
@@ -129,9 +136,15 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     (``PEMResult.sample_displacement``: exact for the linear system, with a sampling error stated
     in the summary), and as a cross-check by Poisson up-crossings (``peak_distribution``).  The
     same for every load effect of ``plan`` (``summary["effects"]``; mode superposition, module
-    docstring), with its static reference R_st from the static modal history."""
+    docstring), with its static reference R_st from the static modal history.  ``peaks`` (``PEAKS``):
+    "all" (default) every point and effect with the up-crossing cross-check; "study" only what a
+    PEM study stores (the headline point and the first bending moment, no cross-check; the other
+    effects' entries then hold σ only), the same numbers for those."""
     if int(samples) != samples or samples < 100:
         raise ValueError(f"samples must be an integer >= 100, got {samples!r}")
+    if peaks not in PEAKS:
+        raise ValueError(f"peaks must be one of {', '.join(PEAKS)}, got {peaks!r}")
+    which, crossings = PEAKS[peaks]
     started = _time.perf_counter()
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
     xi_st = static_modal_history(smooth)
@@ -150,10 +163,25 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     mean = np.stack([p.displacement[:n] for p in points] + [e.dynamic[:n] for e in effects], axis=1)
     rate = np.stack([p.velocity[:n] for p in points] + [smooth.xi_dot[:n] @ e.effect.modal for e in effects], axis=1)
     static = np.stack([p.static_displacement[:n] for p in points] + [e.static[:n] for e in effects], axis=1)
-    peaks = _sampled_peaks(pem, mean, static, n, samples)
+    if which == "every":
+        chosen = list(range(n_pt + len(effects)))
+    else:  # the headline point and the first bending moment
+        first = next((k for k, e in enumerate(effects) if e.effect.kind == "moment"), None)
+        chosen = [0] + ([] if first is None else [n_pt + first])
+    sampled = _sampled_peaks(pem, mean, static, n, samples, chosen)
+    col = {j: c for c, j in enumerate(chosen)}
+
+    def stats(j):
+        if j not in col:
+            return {}
+        return _peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, sampled[:, col[j]], crossings)
+
     entries = []
     for j, p in enumerate(points):
-        entry = {"x": p.x, "y": p.y, **_peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, peaks[:, j])}
+        if j not in col:  # a further point of a study: σ only
+            entries.append({"x": p.x, "y": p.y, "displacement_std_max": float(pem.std("displacement")[:n, j].max())})
+            continue
+        entry = {"x": p.x, "y": p.y, **stats(j)}
         entry["displacement_peak_mean"] = entry.pop("peak_mean")
         entry["displacement_peak_std"] = entry.pop("peak_std")
         entries.append(entry | {"displacement_std_max": float(pem.std("displacement")[:n, j].max()),
@@ -163,9 +191,9 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     for k, e in enumerate(effects):
         j = n_pt + k
         entry = {"name": e.name, "kind": e.effect.kind, "x": e.effect.x, "units": e.effect.units, "method": EFFECT_METHOD,
-                 **_peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, peaks[:, j]),
+                 **stats(j),
                  "std_max": float(pem.std("displacement")[:n, j].max())}
-        if plan.load_effect_method != EFFECT_METHOD:  # the plan's own method on the smooth road: the difference
+        if j in col and plan.load_effect_method != EFFECT_METHOD:  # the plan's own method on the smooth road: the difference
             own = load_effect_responses(smooth, [e.effect], plan.load_effect_method)[0]
             entry[f"impact_factor_smooth_{plan.load_effect_method.replace('-', '_')}"] = _smooth_im(own.dynamic[:n],
                                                                                                    own.static[:n])
@@ -187,11 +215,13 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     vehicle = crossing.vehicle
     summary: dict[str, Any] = {
         "method": "pseudo-excitation (%s integrator, %d step(s) an output step); peaks of %d Gaussian histories "
-                  "with its covariance (cross-check: Poisson up-crossings with Vanmarcke's correction)"
-                  % (PEM_METHOD, pem.substeps, samples),
+                  "with its covariance%s"
+                  % (PEM_METHOD, pem.substeps, samples,
+                     " (cross-check: Poisson up-crossings with Vanmarcke's correction)" if crossings else ""),
         **{k: head[k] for k in ("impact_factor_mean", "impact_factor_std", "impact_factor_quantiles",
                                 "impact_factor_sampling_error", "impact_factor_quantiles_crossings",
-                                "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")},
+                                "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")
+           if k in head},
         "lift_off_probability": p_lift,
         "lift_off_probability_by_wheel": lift,
         "wheel_force_std_max": {w.name: float(wheel_std[:, k].max()) for k, w in enumerate(vehicle.wheels)},
@@ -216,12 +246,17 @@ def _grid_change(pem: PEMResult, name: str, cols: slice) -> float:
 
 
 def _sampled_peaks(pem: PEMResult, mean: NDArray[np.float64], static: NDArray[np.float64], n: int,
-                   samples: int) -> NDArray[np.float64]:
-    """(samples, n_channels): the peak of each sampled history of every deck channel (``mean``
-    (n_t, n_channels), the smooth crossing's) in its static peak's direction."""
-    sign = np.array([static_direction(static[:, j]) for j in range(static.shape[1])])
-    signed = mean * sign
-    out = [np.max(signed[None] + y[:, :n] * sign, axis=1) for y in pem.sample_displacement(samples)]
+                   samples: int, channels: list[int]) -> NDArray[np.float64]:
+    """(samples, len(channels)): the peak of each sampled history of the deck channels ``channels``
+    (``mean`` (n_t, all channels), the smooth crossing's) in its static peak's direction."""
+    sign = np.array([static_direction(static[:, j]) for j in channels])
+    signed = mean[:, channels] * sign
+    out = []
+    for y in pem._sample_blocks(samples, channels=channels):  # (n_t, channels, m): the maximum over time runs over contiguous rows
+        y = y[:n]
+        y *= sign[:, None]
+        y += signed[:, :, None]
+        out.append(y.max(axis=0).T)
     return np.concatenate(out, axis=0)
 
 
@@ -233,24 +268,27 @@ def _smooth_im(dynamic: NDArray[np.float64], static: NDArray[np.float64]) -> flo
 
 
 def _peak_entry(pem: PEMResult, j: int, n: int, mean_signed: NDArray[np.float64], static: NDArray[np.float64],
-                rate_signed: NDArray[np.float64], quantiles, peaks: NDArray[np.float64]) -> dict[str, Any]:
+                rate_signed: NDArray[np.float64], quantiles, peaks: NDArray[np.float64],
+                crossings: bool = True) -> dict[str, Any]:
     """Peak and impact-factor statistics of deck channel ``j`` (a point's displacement or a load
     effect) from its smooth-road ``mean_signed``, ``rate_signed``, ``static`` histories (signed as
-    the response) and its sampled ``peaks`` (in the static peak's direction)."""
+    the response) and its sampled ``peaks`` (in the static peak's direction); ``crossings``: with the
+    Poisson up-crossing quantiles (``impact_factor_quantiles_crossings``)."""
     sign = static_direction(static)
     r_st = float(np.max(sign * static))
     mean, rate = sign * mean_signed, sign * rate_signed
     std, rate_std = pem.std("displacement")[:n, j], pem.std("velocity")[:n, j]
-    dist = peak_distribution(pem.time[:n], mean, std, rate, rate_std, pem.cov_dv[:n, j], pem.lambda1[:n, j])
     ok = r_st > 0
     im = (peaks - r_st) / r_st if ok else np.full(peaks.size, np.nan)
     cross = lambda b: (b - r_st) / r_st if ok else float("nan")  # noqa: E731
     i_peak = int(np.argmax(mean))
-    return {"impact_factor_mean": float(im.mean()), "impact_factor_std": float(im.std(ddof=1)),
-            "impact_factor_quantiles": {f"{q:g}": float(np.quantile(im, q)) for q in quantiles},
-            "impact_factor_sampling_error": float(im.std(ddof=1) / np.sqrt(im.size)),
-            "impact_factor_samples": int(im.size),
-            "impact_factor_quantiles_crossings": {f"{q:g}": cross(dist.quantile(q)) for q in quantiles},
-            "peak_mean": sign * float(peaks.mean()), "peak_std": float(peaks.std(ddof=1)),
-            "static_peak": sign * r_st, "std_at_peak": float(std[i_peak]),
-            "impact_factor_smooth": cross(float(mean.max()))}
+    out = {"impact_factor_mean": float(im.mean()), "impact_factor_std": float(im.std(ddof=1)),
+           "impact_factor_quantiles": {f"{q:g}": float(np.quantile(im, q)) for q in quantiles},
+           "impact_factor_sampling_error": float(im.std(ddof=1) / np.sqrt(im.size)),
+           "impact_factor_samples": int(im.size)}
+    if crossings:
+        dist = peak_distribution(pem.time[:n], mean, std, rate, rate_std, pem.cov_dv[:n, j], pem.lambda1[:n, j])
+        out["impact_factor_quantiles_crossings"] = {f"{q:g}": cross(dist.quantile(q)) for q in quantiles}
+    return out | {"peak_mean": sign * float(peaks.mean()), "peak_std": float(peaks.std(ddof=1)),
+                  "static_peak": sign * r_st, "std_at_peak": float(std[i_peak]),
+                  "impact_factor_smooth": cross(float(mean.max()))}

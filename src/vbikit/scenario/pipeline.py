@@ -111,11 +111,12 @@ def check_random_road(scenario: Scenario) -> None:
 
 
 def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir: str | Path | None = None,
-               quantiles: tuple[float, ...] | None = None):
+               quantiles: tuple[float, ...] | None = None, peaks: str = "all"):
     """The scenario's crossing on its random road without sampling: mean and σ histories by
     pseudo-excitation and the impact factor's distribution (``vbikit.random.response``); the
     ``vbikit.random.response.RandomResponse`` whose ``summary`` is exactly what
-    ``vbikit run --random --json`` prints.
+    ``vbikit run --random --json`` prints (``peaks``: which channels get peak statistics,
+    ``vbikit.random.response.PEAKS``; "study": only what a PEM study stores).
 
     Raises
     ------
@@ -133,7 +134,7 @@ def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir
     pseudo = PseudoRoad(road_psd(road), road.right_coherence, two_lines=road.right_coherence < 1.0)
     try:
         rr = random_response(plan.built.crossing, plan.built.plan, pseudo, plan.run.dt, data=plan.run.kernel_data,
-                             quantiles=quantiles or QUANTILES)
+                             quantiles=quantiles or QUANTILES, peaks=peaks)
     except NonlinearTireError as err:
         raise ScenarioError(f"tire.model: {err}") from None
     rr.summary = {"name": scenario.name, **rr.summary}
