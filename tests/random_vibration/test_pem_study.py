@@ -1,6 +1,7 @@
 """``method = "pem"`` in a study: the key is validated in one place (the study schema) with a
 clear error for other values and for what PEM cannot take, and a PEM study's cells are exactly
-``vbikit.run_random`` of their scenarios (the same numbers, stored over the axes)."""
+``vbikit.run_random`` of their scenarios (the same numbers, stored over the axes), although a cell
+reduces only what it stores (``random_response(peaks="study")``) and ``run_random`` everything."""
 from __future__ import annotations
 
 import copy
@@ -66,7 +67,10 @@ def test_pem_study_cells_equal_run_random(tmp_path):
                                                                        for k in ("0.5", "0.9", "0.95")])
         moment = next(e for e in s["effects"] if e["kind"] == "moment")
         assert float(cell["moment_impact_factor_mean"]) == moment["impact_factor_mean"]
+        assert float(cell["moment_impact_factor_std"]) == moment["impact_factor_std"]
+        assert float(cell["impact_factor_sampling_error"]) == s["impact_factor_sampling_error"]
         assert float(cell["lift_off_probability"]) == s["lift_off_probability"]
+        assert float(cell["grid_change"]) == s["grid_change"]  # every channel's, the effects without peaks too
     assert run_study(study, tmp_path / "pem.nc", workers=1).equals(ds)  # the finished study is recognised
 
 
