@@ -23,7 +23,7 @@ loads or compiles the kernels; every figure the minimum over ``--repeat`` runs):
 * the same cells reduced as the study reduced them before 2026-12-04 (``peaks="all"``: what
   ``vbikit run --random`` reports, statistics of every load effect — moment, shear, two reactions —
   and the cross-check of each, which the study did not store), with this version's blocked
-  cross-check levels and sampling layout (the former code was ≈ 10 % slower still);
+  cross-check levels and sampling layout (the former code's loop over levels was slower still);
 * Monte Carlo: the same figure's study with ``--samples`` road profiles a cell
   (``vbikit.study.run.run_study``, ``workers=1``: every crossing in this process), whole, after a
   warm-up run of the study with one profile a cell;
