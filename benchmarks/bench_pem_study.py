@@ -9,11 +9,12 @@ Run from the repository root::
 
 The case: ``vbikit.study.paper.paper_study(fig, method="pem")`` (Fig. 6: HS20-44 on the 3D
 ``paper-bridge-2`` deck at Girder 4; n = 1, 3 … 9 tire points × 45/75/105 km/h × classes B–D:
-72 cells), one process, no pools.
+72 cells), one process, no pools, BLAS on one thread throughout (``vbikit.study.workers`` limits
+each worker so).
 
 Measured (CPU time of the process, ``time.process_time``: other jobs on a shared machine count
-less; BLAS threads count, so one thread's figures are not flattered; after a warm-up cell that
-loads or compiles the kernels; every figure the minimum over ``--repeat`` runs):
+less; BLAS on one thread, as in the study's worker processes; after a warm-up cell that loads or
+compiles the kernels; every figure the minimum over ``--repeat`` runs):
 
 * PEM, the study's cell (``PemStudy.run_batch``: ``run_random(..., peaks="study")``, the headline
   point's and the first bending moment's peak statistics, no up-crossing cross-check), on every
@@ -50,6 +51,7 @@ ARGS = benchmark_args(__doc__, "runs of each part, the minimum reported (default
 import numpy as np  # noqa: E402
 
 import vbikit.random.response as response  # noqa: E402
+from vbikit._blas import single_thread_blas  # noqa: E402
 from vbikit.scenario.pipeline import run_random  # noqa: E402
 from vbikit.study.paper import paper_study  # noqa: E402
 from vbikit.study.pem import PemStudy  # noqa: E402
@@ -73,6 +75,11 @@ def _timed_part(name):
 
 
 def main() -> None:
+    with single_thread_blas():  # as in the study's worker processes (vbikit.study.workers)
+        _main()
+
+
+def _main() -> None:
     for name in PARTS:
         _timed_part(name)
     study = paper_study(ARGS.fig, method="pem")

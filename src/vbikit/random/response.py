@@ -21,7 +21,7 @@ import dataclasses
 import logging
 import time as _time
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -56,13 +56,27 @@ QUALITY = ("σ histories exact for the linear system up to the wavenumber grid (
            "below the 90 % quantile")
 #: grid check (σ on every line vs every second line) above which the answer is flagged
 GRID_LIMIT = 0.02
+
+
+def _every_channel(n_points: int, effects: list[LoadEffectResponse]) -> list[int]:
+    """Every deck channel: the points, then the load effects."""
+    return list(range(n_points + len(effects)))
+
+
+def _study_channels(n_points: int, effects: list[LoadEffectResponse]) -> list[int]:
+    """What a PEM study stores (``vbikit.study.pem.PEM_OUTPUTS``): the headline point (channel 0) and
+    the first bending moment of the plan, if any."""
+    first = next((k for k, e in enumerate(effects) if e.effect.kind == "moment"), None)
+    return [0] + ([] if first is None else [n_points + first])
+
+
 #: which deck channels get peak and impact-factor statistics (``random_response(peaks=...)``): name ->
-#: (the load effects that do, by kind and position in the plan; the Poisson up-crossing cross-check
-#: or not).  "all": every point and effect, with the cross-check (``vbikit run --random``); "study":
-#: what a PEM study stores (``vbikit.study.pem.PEM_OUTPUTS``: the headline point and the first
-#: bending moment, no cross-check).  σ histories, the grid check and the lift-off probability are
-#: computed for every channel either way.
-PEAKS: dict[str, tuple[str, bool]] = {"all": ("every", True), "study": ("first moment", False)}
+#: (the channels' rule, with the Poisson up-crossing cross-check or not).  "all": every point and
+#: effect, with the cross-check (``vbikit run --random``); "study": what a PEM study stores, no
+#: cross-check.  σ histories, the grid check and the lift-off probability are computed for every
+#: channel either way.
+PEAKS: dict[str, tuple[Callable[[int, list[LoadEffectResponse]], list[int]], bool]] = {
+    "all": (_every_channel, True), "study": (_study_channels, False)}
 #: how load effects are formed in random runs: R = Σ_i r_i ξ_i, linear in the modal coordinates
 EFFECT_METHOD = "mode-superposition"
 
@@ -163,11 +177,7 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     mean = np.stack([p.displacement[:n] for p in points] + [e.dynamic[:n] for e in effects], axis=1)
     rate = np.stack([p.velocity[:n] for p in points] + [smooth.xi_dot[:n] @ e.effect.modal for e in effects], axis=1)
     static = np.stack([p.static_displacement[:n] for p in points] + [e.static[:n] for e in effects], axis=1)
-    if which == "every":
-        chosen = list(range(n_pt + len(effects)))
-    else:  # the headline point and the first bending moment
-        first = next((k for k, e in enumerate(effects) if e.effect.kind == "moment"), None)
-        chosen = [0] + ([] if first is None else [n_pt + first])
+    chosen = which(n_pt, effects)
     sampled = _sampled_peaks(pem, mean, static, n, samples, chosen)
     col = {j: c for c, j in enumerate(chosen)}
 
