@@ -111,12 +111,16 @@ class DetailSpec(_Strict):
     stress_per_unit: Optional[float] = Field(None, gt=0, le=1e15, description="stress = effect × stress_per_unit [Pa per effect unit]")
     category: str = Field(..., description="S-N curve: 'EN <Δσ_C in MPa>', a detail category of EN 1993-1-9 (vbikit.fatigue.EN_CATEGORIES), or 'AASHTO <category>'")
     gamma_mf: float = Field(1.0, ge=1.0, le=2.0, description="EN partial factor γ_Mf")
+    size_factor: float = Field(1.0, ge=0.1, le=1.0, description="EN 1993-1-9 size-effect reduction k_s (its Table 8.x "
+                               "footnotes): the curve is that of the reduced category k_s·Δσ_C (EN categories only)")
 
     @model_validator(mode="after")
     def _check(self) -> "DetailSpec":
         if (self.section_modulus is None) == (self.stress_per_unit is None):
             raise ValueError("give section_modulus [m³] or stress_per_unit [Pa per unit], one of them")
         check_category(self.category)
+        if self.size_factor != 1.0 and not self.category.strip().upper().startswith("EN"):
+            raise ValueError("size_factor: the size-effect reduction k_s applies to EN 1993-1-9 categories only")
         return self
 
     @property
