@@ -146,6 +146,16 @@ class PEMResult:
             w[1::2] *= -1.0  # Re(ỹ w) = Re ỹ · a − Im ỹ · b
             yield (h.reshape(-1, h.shape[2]) @ w).reshape(h.shape[0], h.shape[1], m)  # one product: (n_t·n_pt, m)
 
+    def scaled(self, factor: float) -> "PEMResult":
+        """The result for the road's PSD times ``factor`` (the system is linear in the road): every
+        variance and covariance times ``factor``, every pseudo response times √factor."""
+        a = float(np.sqrt(factor))
+        return PEMResult(self.time, self.lines, {k: v * factor for k, v in self.var.items()},
+                         {k: v * factor for k, v in self.coarse.items()},
+                         None if self.cov_dv is None else self.cov_dv * factor,
+                         None if self.lambda1 is None else self.lambda1 * factor,
+                         None if self.lines_displacement is None else self.lines_displacement * a, self.substeps)
+
     def std(self, name: str) -> NDArray[np.float64]:
         """σ(t) [unit of the output] of output ``name``."""
         return np.sqrt(self.var[name])

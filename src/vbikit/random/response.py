@@ -154,10 +154,40 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     "all" (default) every point and effect with the up-crossing cross-check; "study" only what a
     PEM study stores (the headline point and the first bending moment, no cross-check; the other
     effects' entries then hold σ only), the same numbers for those."""
+    return random_responses(crossing, plan, [road], dt, quantiles=quantiles, lines=lines, substeps=substeps,
+                            samples=samples, data=data, peaks=peaks)[0]
+
+
+def level_factor(road: PseudoRoad, base: PseudoRoad) -> float | None:
+    """G_road(n) / G_base(n) [-] if ``road`` is ``base`` at another level (the same band, exponent,
+    n0 and wheel-line coherence, another φ(n0): e.g. ISO 8608 classes, 4× apart), else None."""
+    if (road.coherence, road.two_lines) != (base.coherence, base.two_lines) or not base.psd.phi0 > 0:
+        return None
+    if dataclasses.replace(road.psd, phi0=base.psd.phi0) != base.psd:
+        return None
+    return float(road.psd.phi0 / base.psd.phi0)
+
+
+def random_responses(crossing: Crossing, plan: ResponsePlan, roads: list[PseudoRoad], dt: float, *,
+                     quantiles: tuple[float, ...] = QUANTILES, lines: Lines | None = None, substeps: int | None = None,
+                     samples: int = SAMPLES, data=None, peaks: str = "all") -> list[RandomResponse]:
+    """``random_response`` of ``crossing`` on each road of ``roads``, which differ only in level
+    (``level_factor``: the PSD G times a factor f_r): the system is linear in the road, so every
+    pseudo response is the first road's times √f_r, every variance its variance times f_r — one
+    pseudo-excitation and one set of sampled Gaussian histories (the same random numbers, scaled)
+    serve them all; the smooth crossing (the mean) is the same.  The numbers equal
+    ``random_response`` road by road (bit for bit when √f_r is a power of two, as between ISO
+    classes; else to round-off)."""
     if int(samples) != samples or samples < 100:
         raise ValueError(f"samples must be an integer >= 100, got {samples!r}")
     if peaks not in PEAKS:
         raise ValueError(f"peaks must be one of {', '.join(PEAKS)}, got {peaks!r}")
+    if not roads:
+        raise ValueError("roads: give at least one road")
+    road = roads[0]
+    factors = [level_factor(r, road) for r in roads]
+    if any(f is None for f in factors):
+        raise ValueError("roads must differ only in their PSD's level phi0 (the same band, exponent, n0 and coherence)")
     which, crossings = PEAKS[peaks]
     started = _time.perf_counter()
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
@@ -178,7 +208,23 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     rate = np.stack([p.velocity[:n] for p in points] + [smooth.xi_dot[:n] @ e.effect.modal for e in effects], axis=1)
     static = np.stack([p.static_displacement[:n] for p in points] + [e.static[:n] for e in effects], axis=1)
     chosen = which(n_pt, effects)
-    sampled = _sampled_peaks(pem, mean, static, n, samples, chosen)
+    scales = [float(np.sqrt(f)) for f in factors]
+    sampled_all = _sampled_peaks(pem, mean, static, n, samples, chosen, scales)
+    base = pem
+    out = []
+    for road, f, sampled in zip(roads, factors, sampled_all):
+        pem = base if f == 1.0 else base.scaled(f)
+        out.append(RandomResponse(smooth, points, pem, _reduce(
+            crossing, plan, road, smooth, points, effects, pem, n, mean, rate, static, chosen, sampled, quantiles,
+            crossings, samples, started), effects))
+    return out
+
+
+def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, static, chosen, sampled, quantiles,
+            crossings, samples, started) -> dict[str, Any]:
+    """The summary of one road (``random_responses``): statistics of the ``chosen`` deck channels
+    from their ``sampled`` peaks, σ of every channel, lift-off, grid check and warnings."""
+    n_pt = len(points)
     col = {j: c for c, j in enumerate(chosen)}
 
     def stats(j):
@@ -245,7 +291,7 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
         "warnings": warnings,
         "seconds": _time.perf_counter() - started,
     }
-    return RandomResponse(smooth, points, pem, summary, effects)
+    return summary
 
 
 def _grid_change(pem: PEMResult, name: str, cols: slice) -> float:
@@ -256,18 +302,21 @@ def _grid_change(pem: PEMResult, name: str, cols: slice) -> float:
 
 
 def _sampled_peaks(pem: PEMResult, mean: NDArray[np.float64], static: NDArray[np.float64], n: int,
-                   samples: int, channels: list[int]) -> NDArray[np.float64]:
-    """(samples, len(channels)): the peak of each sampled history of the deck channels ``channels``
-    (``mean`` (n_t, all channels), the smooth crossing's) in its static peak's direction."""
+                   samples: int, channels: list[int], scales: list[float]) -> list[NDArray[np.float64]]:
+    """Per factor a of ``scales``: (samples, len(channels)), the peak of each sampled history of the
+    deck channels ``channels`` with its random part times a (``mean`` (n_t, all channels), the
+    smooth crossing's) in its static peak's direction."""
     sign = np.array([static_direction(static[:, j]) for j in channels])
     signed = mean[:, channels] * sign
-    out = []
+    out: list[list[NDArray[np.float64]]] = [[] for _ in scales]
     for y in pem._sample_blocks(samples, channels=channels):  # (n_t, channels, m): the maximum over time runs over contiguous rows
         y = y[:n]
-        y *= sign[:, None]
-        y += signed[:, :, None]
-        out.append(y.max(axis=0).T)
-    return np.concatenate(out, axis=0)
+        for k, a in enumerate(scales):
+            z = y * a if a != 1.0 else y.copy() if k < len(scales) - 1 else y
+            z *= sign[:, None]
+            z += signed[:, :, None]
+            out[k].append(z.max(axis=0).T)
+    return [np.concatenate(o, axis=0) for o in out]
 
 
 def _smooth_im(dynamic: NDArray[np.float64], static: NDArray[np.float64]) -> float:
