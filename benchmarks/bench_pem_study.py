@@ -3,9 +3,9 @@ its Monte-Carlo version (20 road profiles a cell, the paper's), CPU per cell and
 
 Run from the repository root::
 
-    python benchmarks/bench_pem_study.py --repeat 2    # every 5th of Fig. 6's 72 cells (15), MC study whole
+    python benchmarks/bench_pem_study.py --repeat 2    # every 3rd of Fig. 6's 24 batches (24 cells), MC study whole
     python benchmarks/bench_pem_study.py --stride 1 --repeat 1   # all 72 cells (≈ 4 min of CPU)
-    python benchmarks/bench_pem_study.py --fig fig8 --stride 9
+    python benchmarks/bench_pem_study.py --fig fig8 --stride 4
 
 The case: ``vbikit.study.paper.paper_study(fig, method="pem")`` (Fig. 6: HS20-44 on the 3D
 ``paper-bridge-2`` deck at Girder 4; n = 1, 3 … 9 tire points × 45/75/105 km/h × classes B–D:
@@ -16,15 +16,18 @@ Measured (CPU time of the process, ``time.process_time``: other jobs on a shared
 less; BLAS on one thread, as in the study's worker processes; after a warm-up cell that loads or
 compiles the kernels; every figure the minimum over ``--repeat`` runs):
 
-* PEM, the study's cell (``PemStudy.run_batch``: ``run_random(..., peaks="study")``, the headline
-  point's and the first bending moment's peak statistics, no up-crossing cross-check), on every
-  ``--stride``-th cell, with its parts: the smooth-road crossing (the mean), the σ histories
-  (``pseudo_excitation``: 254 lines, every point and load effect), the peaks of 4,000 Gaussian
-  histories (``_sampled_peaks``) and the Poisson up-crossing cross-check (``peak_distribution``);
-* the same cells reduced as the study reduced them before 2026-12-04 (``peaks="all"``: what
-  ``vbikit run --random`` reports, statistics of every load effect — moment, shear, two reactions —
-  and the cross-check of each, which the study did not store), with this version's blocked
-  cross-check levels and sampling layout (the former code's loop over levels was slower still);
+* PEM as the study runs it (``PemStudy.run_batch``: a batch holds the cells that differ only in
+  the road class, which share one pseudo-excitation and one set of sampled Gaussian histories,
+  ``run_random_levels``; ``peaks="study"``: the headline point's and the first bending moment's
+  peak statistics, no up-crossing cross-check) on every ``--stride``-th batch, with its parts: the
+  smooth-road crossing (the mean), the σ histories (``pseudo_excitation``: 254 lines, every point
+  and load effect), the peaks of 4,000 Gaussian histories (``_sampled_peaks``) and the Poisson
+  up-crossing cross-check (``peak_distribution``), per cell;
+* the same cells one at a time (``run_random(..., peaks="study")``: no sharing), and reduced as
+  the study reduced them before 2026-12-04 (``peaks="all"``: what ``vbikit run --random`` reports,
+  statistics of every load effect — moment, shear, two reactions — and the cross-check of each,
+  which the study did not store), with this version's blocked cross-check levels and sampling
+  layout (the former code's loop over levels was slower still);
 * Monte Carlo: the same figure's study with ``--samples`` road profiles a cell
   (``vbikit.study.run.run_study``, ``workers=1``: every crossing in this process), whole, after a
   warm-up run of the study with one profile a cell;
@@ -44,7 +47,7 @@ from _args import benchmark_args
 
 _P = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
 _P.add_argument("--fig", default="fig6", help="paper figure (default fig6; not fig11: a road defect)")
-_P.add_argument("--stride", type=int, default=5, help="time every stride-th cell (default 5: 15 of Fig. 6's 72)")
+_P.add_argument("--stride", type=int, default=3, help="time every stride-th batch (default 3: 8 of Fig. 6's 24, 24 cells)")
 _P.add_argument("--samples", type=int, default=20, help="road profiles a cell of the Monte-Carlo study (default 20)")
 ARGS = benchmark_args(__doc__, "runs of each part, the minimum reported (default 5; --repeat 2 ≈ 4 min)", _P)
 
@@ -84,25 +87,37 @@ def _main() -> None:
         _timed_part(name)
     study = paper_study(ARGS.fig, method="pem")
     job = PemStudy(study)
-    cells = job.batches()[::max(1, ARGS.stride)]
+    batches = job.batches()[::max(1, ARGS.stride)]
+    cells = [idx for batch in batches for idx in batch]
     t0 = time.process_time()
     job.run_batch(job.batches()[0])
-    print(f"warm-up cell (kernel load or compilation): {time.process_time() - t0:.2f} s CPU")
+    print(f"warm-up batch (kernel load or compilation): {time.process_time() - t0:.2f} s CPU")
     rows: dict[str, tuple[float, dict[str, float]]] = {}
+    labels = {"study": "study batch (classes share one PEM, peaks=\"study\")",
+              "single": "cell alone (peaks=\"study\")", "all": "cell as before (peaks=\"all\")"}
+
+    def run(kind):
+        if kind == "study":
+            for batch in batches:
+                job.run_batch(batch)
+            return
+        for idx in cells:
+            run_random(study.scenario_dict(idx), base_dir=study.base_dir, quantiles=job.quantiles,
+                       peaks="study" if kind == "single" else "all")
+
     for _ in range(max(1, ARGS.repeat)):
-        for label, peaks in (("study cell (peaks=\"study\")", "study"), ("former cell (peaks=\"all\")", "all")):
+        for kind, label in labels.items():
             SPENT.clear()
             t0 = time.process_time()
-            for (idx,) in cells:
-                run_random(study.scenario_dict(idx), base_dir=study.base_dir, quantiles=job.quantiles, peaks=peaks)
+            run(kind)
             row = ((time.process_time() - t0) / len(cells), {k: v / len(cells) for k, v in SPENT.items()})
             if label not in rows or row[0] < rows[label][0]:
                 rows[label] = row
-    print(f"PEM, {ARGS.fig}: {len(cells)} of {study.size} cells, CPU a cell (mean):")
+    print(f"PEM, {ARGS.fig}: {len(cells)} of {study.size} cells ({len(batches)} batches), CPU a cell (mean):")
     for label, (total, parts) in rows.items():
         print(f"  {label}: {total:.3f} s; " + ", ".join(f"{PARTS[k]} {parts.get(k, 0.0):.3f} s" for k in PARTS))
-    study_cell = rows["study cell (peaks=\"study\")"][0]
-    former = rows["former cell (peaks=\"all\")"][0]
+    study_cell = rows[labels["study"]][0]
+    former = rows[labels["all"]][0]
     print(f"  whole study (× {study.size}): {study_cell * study.size:.1f} s CPU (former {former * study.size:.1f} s, "
           f"{former / study_cell:.1f}×)")
 
