@@ -13,7 +13,7 @@ The case: ``vbikit.study.paper.paper_study(fig, method="pem")`` (Fig. 6: HS20-44
 each worker so).
 
 Measured (CPU time of the process, ``time.process_time``: other jobs on a shared machine count
-less; BLAS on one thread, as in the study's worker processes; after a warm-up cell that loads or
+less; BLAS on one thread, as in the study's worker processes; after a warm-up batch that loads or
 compiles the kernels; every figure the minimum over ``--repeat`` runs):
 
 * PEM as the study runs it (``PemStudy.run_batch``: a batch holds the cells that differ only in
