@@ -8,7 +8,7 @@ from typing import Any, Callable, Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, limits
+from vbikit.cli.guard import STATE, guard, limits, out_dir_option
 
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
@@ -131,7 +131,7 @@ def _paper(*figs: str) -> Callable[..., None]:
     """The command that runs the paper studies ``figs`` one after another (the local worker
     processes are shared between them)."""
     def command(
-        out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the dataset and figure."),
+        out_dir: Path = out_dir_option("Where to write the dataset and figure."),
         samples: int = typer.Option(20, "--samples", min=1, help="Road profiles per point (the paper: 20)."),
         workers: Optional[int] = _WORKERS,
         scheduler: Optional[str] = _SCHEDULER,
