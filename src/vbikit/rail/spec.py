@@ -137,12 +137,12 @@ class TrainsSection(_Section):
 
 
 class SpeedsSection(_Section):
-    min: float = Field(100.0, ge=10, le=600)
-    max: Optional[float] = Field(None, ge=10, le=600)
-    line_max: Optional[float] = Field(None, ge=10, le=500)
-    step: float = Field(5.0, ge=0.1, le=100)
-    fine_step: Optional[float] = Field(None, ge=0.05, le=100)
-    fine_width: float = Field(10.0, ge=0, le=100)
+    min: float = Field(100.0, ge=10, le=600, description="lowest speed [km/h]")
+    max: Optional[float] = Field(None, ge=10, le=600, description="highest speed [km/h]")
+    line_max: Optional[float] = Field(None, ge=10, le=500, description="line speed; the sweep goes to 1.2 × it [km/h]")
+    step: float = Field(5.0, ge=0.1, le=100, description="speed step [km/h]")
+    fine_step: Optional[float] = Field(None, ge=0.05, le=100, description="step near resonance speeds [km/h]")
+    fine_width: float = Field(10.0, ge=0, le=100, description="± range of the fine step [km/h]")
 
     @model_validator(mode="after")
     def _range(self) -> "SpeedsSection":
