@@ -63,7 +63,8 @@ def presets() -> None:
 
 
 def bridge(
-    name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
+    name: str = typer.Argument(..., metavar="PRESET|SCENARIO.toml",
+                               help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
                                "is shown (its [bridge.deck] overrides and n_modes included, unless --modes is given)."),
     n_modes: Optional[int] = typer.Option(None, "--modes", min=1, max=500,
                                           help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),

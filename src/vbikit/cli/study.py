@@ -56,6 +56,8 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 
 
 _YES = typer.Option(False, "--yes", help="Run a study of more than 1e6 crossings (refused without it).")
+_YES_VALIDATE = typer.Option(False, "--yes", help="Accept a study of more than 1e6 crossings, as `study run --yes` "
+                             "would (without it, such a study fails the check).")
 _MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batch (e.g. 8GiB; default 4GiB).")
 _MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of one crossing (default 5e6).")
 
@@ -111,7 +113,7 @@ def run_cmd(
 @app.command("validate")
 def validate_cmd(
     study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
-    yes: bool = _YES,
+    yes: bool = _YES_VALIDATE,
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,
 ) -> None:
