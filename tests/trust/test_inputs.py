@@ -209,7 +209,8 @@ def test_a_bridge_that_cannot_be_solved_is_exit_2(tmp_path):
     for res in _both(_write(tmp_path, text)):
         assert res.exit_code == 2 and "bridge (model = 'continuous-beam'): the model could not be solved" in res.output, \
             res.output
-    for spans, words in (("[55.0, 1e300]", "expected a number in [0.5, 5000] [m], got 1e+300"), ("[55.0, 1e-6]", "expected a number in [0.5, 5000] [m], got 1e-06")):
+    for spans, words in (("[55.0, 1e300]", "expected a number in [0.5, 5000] [m], got 1e+300"),
+                         ("[55.0, 1e-6]", "expected a number in [0.5, 5000] [m], got 1e-06")):
         text = BEAM.replace('model = "paper-bridge-2-beam"', f'model = "continuous-beam"\nspans = {spans}\n'
                                                              'EI = 5e9\nmass_per_length = 5000.0')
         for res in _both(_write(tmp_path, text)):  # a span of 1e-6 m ended in an IndexError traceback

@@ -195,8 +195,8 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     t = result.time
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
-        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal, _checked(result, e, check_step, log_step))
-                for e in effects]
+        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal,
+                                   _checked(result, e, check_step, log_step)) for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
     tabulated = influence is None and tabulated_together(effects)

@@ -154,9 +154,9 @@ class SpeedsSection(_Section):
         if top <= self.min and self.max is not None:
             raise ValueError(f"max: must exceed min = {self.min:g} km/h, got {top:g}")
         if top <= self.min:  # the sweep's top is 1.2 × line_max: say so, and name the keys the file has
-            raise ValueError(f"min: must be below the sweep's highest speed 1.2 × line_max = 1.2 × {self.line_max:g} = "
-                             f"{top:g} km/h, got {self.min:g}; lower min, or raise line_max above {self.min / 1.2:.4g} "
-                             "km/h (or give max instead of line_max)")
+            raise ValueError(f"min: must be below the sweep's highest speed 1.2 × line_max = "
+                             f"1.2 × {self.line_max:g} = {top:g} km/h, got {self.min:g}; lower min, or raise line_max "
+                             f"above {self.min / 1.2:.4g} km/h (or give max instead of line_max)")
         return self
 
     @property
