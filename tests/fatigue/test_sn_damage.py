@@ -141,6 +141,47 @@ def test_curve_names():
             sn_curve(bad)
 
 
+#: EN 1993-1-9:2005, Fig. 7.1 and Tables 8.1–8.10: the detail categories Δσ_C [MPa], written out here
+EN_1993_1_9_FIG_7_1 = (160, 140, 125, 112, 100, 90, 80, 71, 63, 56, 50, 45, 40, 36)
+
+
+def test_every_category_of_the_standard_has_its_curve():
+    from vbikit.fatigue import EN_CATEGORIES, curve_name
+
+    assert sorted(EN_CATEGORIES) == sorted(EN_1993_1_9_FIG_7_1)
+    for c in EN_1993_1_9_FIG_7_1:
+        for written in (f"EN {c}", f"en{c}", f" EN  {c}.0 "):
+            assert curve_name(written) == f"EN {c}"
+        assert sn_curve(f"EN {c}").cycles_to_failure(c * MPA)[0] == pytest.approx(2e6, rel=1e-12)  # N_C at Δσ_C
+    for letter in ("A", "B", "B'", "C", "C'", "D", "E", "E'"):
+        assert curve_name(f"aashto {letter.lower().replace(chr(39), '′')}") == f"AASHTO {letter}"
+
+
+@pytest.mark.parametrize("name, near", [
+    ("EN 37", 36),            # the issue: a typo of 36 gave a fatigue life
+    ("EN 35", 36), ("EN 65", 63), ("EN 70", 71), ("EN 71.5", 71), ("EN 180", 160), ("EN 300", 160),
+    ("EN -36", None), ("EN 1e2", None), ("EN-71", None), ("EN seventy", None), ("EN", None), ("AASHTO G", None),
+    ("AASHTO", None), ("BS 7608 F", None), ("", None),
+])
+def test_a_category_the_standards_do_not_list_is_refused_with_the_list(name, near):
+    from vbikit.fatigue import AASHTO_CATEGORIES, EN_CATEGORIES, curve_name
+
+    for call in (lambda: curve_name(name), lambda: sn_curve(name), lambda: sn_curve(name, gamma_mf=1.35)):
+        with pytest.raises(FatigueError) as err:
+            call()
+        msg = str(err.value)
+        assert err.value.key == "curve"
+        assert f"{name!r} is not a detail category" in msg
+        assert ("EN " + ", ".join(map(str, EN_CATEGORIES))) in msg and ", ".join(AASHTO_CATEGORIES) in msg
+        assert (f"the nearest EN category is {near})" in msg) == (near is not None)
+
+
+def test_a_category_reduced_for_size_is_built_by_en1993_curve():
+    """Δσ_C not in the list (k_s Δσ_C, EN 1993-1-9 Table 8.x) stays possible through the constructor:
+    N = 2e6 at Δσ = Δσ_C (Eq. 7.2)."""
+    assert en1993_curve(65.0).cycles_to_failure(65.0 * MPA)[0] == pytest.approx(2e6, rel=1e-12)
+
+
 # --- equivalent ranges and remaining life -------------------------------------------------------
 def test_equivalent_range_of_a_two_level_spectrum():
     # (1e5 · 80³ + 1e6 · 40³) / 2e6 = 57 600 MPa³ → Δσ_eq = 57 600^(1/3) = 38.620 MPa

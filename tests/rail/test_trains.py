@@ -74,6 +74,66 @@ def test_table_file_parsing_and_errors():
         parse_train_table("0,100\n5,abc\n", "bad")
 
 
+@pytest.mark.parametrize("header", ["", "position_m,load_kN\n", "position [m], load [kN]\n", "Position (m),Load (kN)\n",
+                                    "position,load\n", "# a comment\nPOSITION_M , LOAD_KN\n"])
+def test_table_headers_that_name_the_documented_columns(header):
+    """docs/railway.md: one axle a line 'position [m], load [kN]', an optional header line naming
+    them; empty cells after the two (a spreadsheet's export) are ignored."""
+    t = parse_train_table(header + "10.0,150\n12.5,160,\n30,170,,\n", "t", "my.csv")
+    np.testing.assert_allclose(t.axle_positions, [0.0, 2.5, 20.0])  # shifted to start at 0, by hand
+    np.testing.assert_allclose(t.axle_loads, [150e3, 160e3, 170e3])
+
+
+#: text that is no train table, or not a physical one, and the message (each names the file and line)
+NOT_A_TRAIN = [
+    # accepted before: any first line was skipped as a header (the issue: 'foo,bar' then '1,2' read as one axle)
+    ("foo,bar\n1,2\n", "my.csv, line 1: not a train table: its header's column 1 is not 'position'"),
+    ("position,weight\n0,100\n", "my.csv, line 1: not a train table: its header's column 2 is not 'load'"),
+    ("a,b\nc,d\n0,100\n", "my.csv, line 1: not a train table"),
+    ("position_m,load_kN\nposition_m,load_kN\n0,100\n", "my.csv, line 2: position [m] and load [kN] must be numbers"),
+    ("0,abc\n3,100\n", "my.csv, line 1: position [m] and load [kN] must be numbers"),
+    ("position_mm,load_kN\n0,100\n", "column 1 (position) another unit than m"),
+    ("position [m],load [t]\n0,100\n", "column 2 (load) another unit than kN"),
+    ("axle,position,load\n1,0,100\n", "my.csv, line 1: expected two columns 'position [m], load [kN]', got 3"),
+    ("0,100,2\n3,100,2\n", "my.csv, line 1: expected two columns"),
+    ("0,100\n5000.5,100\n", "my.csv, line 2: this axle is more than 5000 m behind the first"),
+    # refused before too
+    ("position_m,load_kN\n", "my.csv: no axles"),
+    ("# only a comment\n\n", "my.csv: no axles"),
+    ("7\n", "my.csv, line 1: expected two columns"),
+    ("0,100\n3,0\n", "my.csv, line 2: load must be within 0 … 10000 kN"),
+    ("0,-100\n", "my.csv, line 1: load must be within 0 … 10000 kN"),
+    ("0,20000\n", "my.csv, line 1: load must be within 0 … 10000 kN"),
+    ("0,100\nnan,100\n", "my.csv, line 2: position and load must be finite"),
+    ("0,inf\n", "my.csv, line 1: position and load must be finite"),
+    ("0,100\n3,100\n3,100\n", "my.csv, line 3: axle positions must increase"),
+    ("0,100\n3,100\n2,100\n", "my.csv, line 3: axle positions must increase"),
+]
+
+
+@pytest.mark.parametrize("text, message", NOT_A_TRAIN)
+def test_a_table_that_is_no_train_is_refused_naming_file_and_line(text, message):
+    with pytest.raises(TrainError) as err:
+        parse_train_table(text, "t", "my.csv")
+    assert message in str(err.value)
+
+
+@pytest.mark.parametrize("text, marker", [
+    ("foo-7391,bar-8462\n1,2\n", ("foo", "bar", "7391", "8462")),
+    ("position,weight-5173\n0,100\n", ("weight", "5173")),
+    ("0,100\n3,98765.25\n", ("98765",)),
+    ("0,100\n4321.5,100\n1234.5,100\n", ("4321", "1234")),
+    ("0,100\n6789.5,100\n", ("6789",)),
+    ("0,100,marker-2468\n", ("marker", "2468")),
+])
+def test_no_text_of_the_table_in_its_message(text, marker):
+    """A message names the file, the line and the expected columns, never what the file holds."""
+    with pytest.raises(TrainError) as err:
+        parse_train_table(text, "t", "my.csv")
+    assert "my.csv, line" in str(err.value)
+    assert not [m for m in marker if m in str(err.value)], str(err.value)
+
+
 def test_a_scenario_names_a_train_as_its_vehicle():
     """`[vehicle] model = "hslm-a4"`: the train's axles as moving forces (one wheel per axle, its
     load fixed, no DOFs) at the Table E.1 load P = 190 kN."""

@@ -383,3 +383,32 @@ def test_bridge_command_refuses_more_modes_than_the_file_has(tmp_path):
     assert res.exit_code == 2 and "bridge.n_modes = 10" in res.output and "has 3 modes" in res.output, res.output
     res = runner.invoke(app, ["bridge", str(_modes_scenario(tmp_path)), "--modes", "2", "--no-plot"])
     assert res.exit_code == 0 and "mode  2" in res.output and "mode  3" not in res.output, res.output
+
+
+def test_zero_influence_verdict_is_not_carried_to_another_bridge():
+    """The preflight keeps, per influence function, whether it is zero wherever a wheel can stand; the
+    verdict depends on the deck too, so one function used on a 20 m and then a 10 m beam is judged on
+    each: f = 1 beyond x = 12 m only is zero on the 10 m deck (refused there), not on the 20 m one
+    (the verdict was keyed on the wheel lines alone: the 10 m beam passed with the 20 m one's)."""
+    from types import SimpleNamespace
+
+    from vbikit.bridge import EulerBernoulliBeam
+    from vbikit.scenario.preflight import check_load_effects
+    from vbikit.scenario.schema import ScenarioError
+    from vbikit.solve import Crossing
+    from vbikit.vehicle import hs20_44
+
+    def beyond_12_m(x, y):
+        return np.where(np.asarray(x) > 12.0, 1.0, 0.0)
+
+    effect = SimpleNamespace(kind="reaction", influence=beyond_12_m, label="reaction of the test", modal=None)
+    scenario = SimpleNamespace(response=SimpleNamespace(moment=None, shear=None, reaction=None))
+
+    def built(span: float):
+        beam = EulerBernoulliBeam(span=span, EI=2.0e10, mass_per_length=1.2e4, damping_ratio=0.02, n_modes=3)
+        return SimpleNamespace(load_effects=[effect], crossing=Crossing(beam, vehicle=hs20_44(), speed=20.0),
+                               plan=SimpleNamespace(load_effect_method="mode-acceleration"))
+
+    check_load_effects(scenario, built(20.0))  # nonzero beyond 12 m: accepted
+    with pytest.raises(ScenarioError, match="zero wherever a wheel can stand"):
+        check_load_effects(scenario, built(10.0))

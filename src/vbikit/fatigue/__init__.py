@@ -13,7 +13,7 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.fatigue.damage import damage_equivalent_range, equivalent_stress_range, miner_damage, remaining_life
     from vbikit.fatigue.errors import FatigueError
     from vbikit.fatigue.sn_curves import (AASHTO_CATEGORIES, EN_CATEGORIES, SN_CURVES, SNCurve, SNSegment, aashto_curve,
-                                          en1993_curve, sn_curve)
+                                          curve_name, en1993_curve, sn_curve)
     from vbikit.fatigue.streaming import RainflowCounter, RainflowState, finish, histogram, join
 
 __all__ = [
@@ -26,6 +26,7 @@ __all__ = [
     "SNSegment",
     "SN_CURVES",
     "aashto_curve",
+    "curve_name",
     "damage_equivalent_range",
     "en1993_curve",
     "equivalent_stress_range",
@@ -44,6 +45,6 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.fatigue.damage": ["damage_equivalent_range", "equivalent_stress_range", "miner_damage", "remaining_life"],
     "vbikit.fatigue.errors": ["FatigueError"],
     "vbikit.fatigue.sn_curves": ["AASHTO_CATEGORIES", "EN_CATEGORIES", "SN_CURVES", "SNCurve", "SNSegment",
-                                 "aashto_curve", "en1993_curve", "sn_curve"],
+                                 "aashto_curve", "curve_name", "en1993_curve", "sn_curve"],
     "vbikit.fatigue.streaming": ["RainflowCounter", "RainflowState", "finish", "histogram", "join"],
 })

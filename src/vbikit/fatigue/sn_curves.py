@@ -16,6 +16,7 @@ AASHTO letter.  Sources and numbers: ``en1993_curve`` and ``AASHTO_CATEGORIES``.
 """
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -197,28 +198,51 @@ SN_CURVES: dict[str, SNCurve] = {
 }
 
 
-def sn_curve(name: str, gamma_mf: float = 1.0) -> SNCurve:
-    """A curve of the registry by name: ``"EN 71"`` … or ``"AASHTO C'"`` (case and spacing free).
+def _allowed_names() -> str:
+    return (f"EN {', '.join(str(c) for c in EN_CATEGORIES)} (EN 1993-1-9, Δσ_C in MPa) or "
+            f"AASHTO {', '.join(AASHTO_CATEGORIES)}")
 
-    ``gamma_mf`` (EN curves only) divides the curve's stresses by the partial factor γ_Mf; an EN
-    category that is not in the standard's list but is a number (``"EN 65"``) is built the same way.
-    """
+
+def curve_name(name: str) -> str:
+    """The registry name (a key of ``SN_CURVES``) of the S-N curve ``name``: ``"EN <Δσ_C>"`` with
+    Δσ_C one of the detail categories of EN 1993-1-9 (``EN_CATEGORIES``; ``"en71"``, ``"EN 71.0"``
+    → ``"EN 71"``) or ``"AASHTO <category>"`` of ``AASHTO_CATEGORIES`` (``"aashto c′"`` →
+    ``"AASHTO C'"``); case and spacing free.  Anything else — a number the standard does not list
+    (``"EN 37"``, a typo of 36), another family — raises FatigueError with the allowed names.
+    The one check of a curve's name: ``sn_curve`` and the lifetime file's ``category`` use it."""
     text = " ".join(str(name).replace("′", "'").replace("’", "'").split())
-    m = re.fullmatch(r"(?i)(EN|AASHTO)\s*-?\s*(.+)", text)
-    if m is None:
-        raise FatigueError(f"curve: unknown S-N curve {name!r}; names are 'EN <Δσ_C in MPa>' "
-                           f"(e.g. 'EN 71') or 'AASHTO <category>' (e.g. \"AASHTO C'\")")
-    family, rest = m.group(1).upper(), m.group(2).strip()
-    if family == "AASHTO":
+    m = re.fullmatch(r"(?i)(EN|AASHTO)\s*(.+)", text)
+    if m is not None and m.group(1).upper() == "AASHTO":
+        key = f"AASHTO {m.group(2).strip().upper()}"
+    elif m is not None:
+        number = re.fullmatch(r"[0-9]+(?:\.[0-9]*)?", m.group(2).strip())  # no sign, no exponent
+        value = float(number.group()) if number else math.nan
+        key = f"EN {int(value)}" if value in EN_CATEGORIES else ""
+    else:
+        key = ""
+    if key not in SN_CURVES:
+        near = ""
+        if m is not None and m.group(1).upper() == "EN" and math.isfinite(value) and value > 0:
+            near = f" (the nearest EN category is {min(EN_CATEGORIES, key=lambda c: abs(c - value))})"
+        raise FatigueError(f"curve: {name!r} is not a detail category{near}; allowed: {_allowed_names()}")
+    return key
+
+
+def sn_curve(name: str, gamma_mf: float = 1.0) -> SNCurve:
+    """A curve of the registry by name: ``"EN 71"`` … or ``"AASHTO C'"`` (case and spacing free;
+    ``curve_name``: a category neither standard lists is refused).
+
+    ``gamma_mf`` (EN curves only) divides the curve's stresses by the partial factor γ_Mf.  A
+    Δσ_C the standard does not list (a category reduced for size, EN 1993-1-9 Table 8.x k_s) is
+    built by ``en1993_curve`` directly.
+    """
+    key = curve_name(name)
+    if key.startswith("AASHTO"):
         if gamma_mf != 1.0:
             raise FatigueError("gamma_mf: applies to EN 1993-1-9 curves only")
-        return aashto_curve(rest)
-    try:
-        cat = float(rest)
-    except ValueError:
-        raise FatigueError(f"curve: {name!r}: the EN detail category is a number in MPa, e.g. 'EN 71'") from None
-    return en1993_curve(cat, gamma_mf)
+        return SN_CURVES[key]
+    return SN_CURVES[key] if gamma_mf == 1.0 else en1993_curve(float(key.split()[1]), gamma_mf)
 
 
 __all__ = ["AASHTO_CATEGORIES", "EN_CATEGORIES", "KSI", "SNCurve", "SNSegment", "SN_CURVES",
-           "aashto_curve", "en1993_curve", "sn_curve"]
+           "aashto_curve", "curve_name", "en1993_curve", "sn_curve"]

@@ -96,7 +96,8 @@ def _joined_parts(parts: Path, n_batches: int) -> dict[str, NDArray]:
 
 @dataclass(frozen=True)
 class Detail:
-    """A fatigue detail as the workers need it: its line index, stress per unit [Pa], S-N curve name, γ_Mf, bin [Pa]."""
+    """A fatigue detail as the workers need it: its line index, stress per unit [Pa], S-N curve name, γ_Mf,
+    bin [Pa] and the size-effect reduction k_s of an EN category (the curve of k_s·Δσ_C)."""
 
     name: str
     line: int
@@ -104,11 +105,16 @@ class Detail:
     curve: str
     gamma_mf: float
     bin: float
+    size_factor: float = 1.0
 
     def sn(self):
-        from vbikit.fatigue import sn_curve
+        from vbikit.fatigue import curve_name, en1993_curve, sn_curve
 
-        return sn_curve(self.curve, self.gamma_mf) if self.curve.upper().startswith("EN") else sn_curve(self.curve)
+        if not self.curve.upper().startswith("EN"):
+            return sn_curve(self.curve)
+        if self.size_factor == 1.0:
+            return sn_curve(self.curve, self.gamma_mf)
+        return en1993_curve(self.size_factor * float(curve_name(self.curve).split()[1]), self.gamma_mf)
 
 
 def _digest(model: TrafficModel) -> str:

@@ -141,7 +141,8 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
         where = f"fatigue.details[{i + 1}]"
         if d.effect not in names:
             raise LifetimeError(f"{where}.effect: {d.effect!r} is not a load effect; allowed: {', '.join(names)}")
-        det = Detail(d.name, names.index(d.effect), d.factor, d.category, d.gamma_mf, spec.fatigue.histogram_bin)
+        det = Detail(d.name, names.index(d.effect), d.factor, d.category, d.gamma_mf, spec.fatigue.histogram_bin,
+                     d.size_factor)
         try:
             det.sn()
         except Exception as err:  # FatigueError: unknown category

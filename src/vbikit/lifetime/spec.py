@@ -32,7 +32,7 @@ A lifetime file::
     name = "flange"
     effect = "M_mid"              # a load effect above
     section_modulus = 0.012       # stress = effect / section_modulus [m³] (or stress_per_unit [Pa per unit])
-    category = "EN 71"            # EN 1993-1-9 category [MPa] or "AASHTO C'" …
+    category = "EN 71"            # an EN 1993-1-9 detail category [MPa] (160, 140, … 36) or "AASHTO C'" …
 
 Errors name the key and the allowed range (``LifetimeError``).
 """
@@ -109,14 +109,18 @@ class DetailSpec(_Strict):
     effect: str = Field(..., description="name of a [[load_effects]] entry")
     section_modulus: Optional[float] = Field(None, ge=1e-7, le=100, description="stress = effect / section_modulus [m³] (0.1 cm³ … 100 m³)")
     stress_per_unit: Optional[float] = Field(None, gt=0, le=1e15, description="stress = effect × stress_per_unit [Pa per effect unit]")
-    category: str = Field(..., description="S-N curve: 'EN <Δσ_C in MPa>' (36 … 160) or 'AASHTO <category>'")
+    category: str = Field(..., description="S-N curve: 'EN <Δσ_C in MPa>', a detail category of EN 1993-1-9 (vbikit.fatigue.EN_CATEGORIES), or 'AASHTO <category>'")
     gamma_mf: float = Field(1.0, ge=1.0, le=2.0, description="EN partial factor γ_Mf")
+    size_factor: float = Field(1.0, ge=0.1, le=1.0, description="EN 1993-1-9 size-effect reduction k_s (its Table 8.x "
+                               "footnotes): the curve is that of the reduced category k_s·Δσ_C (EN categories only)")
 
     @model_validator(mode="after")
     def _check(self) -> "DetailSpec":
         if (self.section_modulus is None) == (self.stress_per_unit is None):
             raise ValueError("give section_modulus [m³] or stress_per_unit [Pa per unit], one of them")
         check_category(self.category)
+        if self.size_factor != 1.0 and not self.category.strip().upper().startswith("EN"):
+            raise ValueError("size_factor: the size-effect reduction k_s applies to EN 1993-1-9 categories only")
         return self
 
     @property
@@ -188,27 +192,16 @@ class LifetimeFile(_Strict):
 
 
 def check_category(category: str) -> None:
-    """ValueError naming ``category`` unless it is an EN 1993-1-9 detail category Δσ_C in MPa
-    within the standard's range (``EN_CATEGORIES``: 36 … 160; numbers between are built the same way)
-    written without a sign, or a known AASHTO letter."""
-    import re
+    """ValueError naming the key ``category`` unless it names an S-N curve of the registry: an
+    EN 1993-1-9 detail category (``EN_CATEGORIES``) or an AASHTO one (``vbikit.fatigue.curve_name``,
+    the one check of the allowed names and their list)."""
+    from vbikit.fatigue.errors import FatigueError
+    from vbikit.fatigue.sn_curves import curve_name
 
-    from vbikit.fatigue.sn_curves import AASHTO_CATEGORIES, EN_CATEGORIES
-
-    text = " ".join(str(category).replace("′", "'").replace("’", "'").split())
-    en = re.fullmatch(r"(?i)EN\s*([0-9]+(?:\.[0-9]*)?)", text)
-    if en:
-        value = float(en.group(1))
-        if min(EN_CATEGORIES) <= value <= max(EN_CATEGORIES):
-            return
-        raise ValueError(f"category: {category!r}: an EN 1993-1-9 detail category is Δσ_C in MPa within "
-                         f"{min(EN_CATEGORIES)} … {max(EN_CATEGORIES)} (e.g. 'EN 71')")
-    aashto = re.fullmatch(r"(?i)AASHTO\s*(.+)", text)
-    if aashto and aashto.group(1).strip().upper() in AASHTO_CATEGORIES:
-        return
-    raise ValueError(f"category: {category!r} is not a detail category; give 'EN <Δσ_C in MPa>' "
-                     f"({min(EN_CATEGORIES)} … {max(EN_CATEGORIES)}) or 'AASHTO <category>' "
-                     f"({', '.join(AASHTO_CATEGORIES)})")
+    try:
+        curve_name(category)
+    except FatigueError as err:
+        raise ValueError(f"category: {str(err).removeprefix('curve: ')}") from None
 
 
 def parse_lifetime(data: dict[str, Any]) -> LifetimeFile:

@@ -112,7 +112,10 @@ def check_load_effects(scenario: Scenario, built: BuiltScenario) -> None:
     bridge = crossing.bridge
     _, _, y = crossing.point_kinematics()
     lines = np.unique(y)
-    lines_key = lines.tobytes()
+    # the verdict depends on the wheel lines and on where the deck is (extent, span, skew: the points
+    # ``deck_points`` samples), so those are its key: one influence function may serve several bridges
+    probe = np.asarray(bridge.span_coordinate(np.array([0.0, 1.0]), np.array([1.0, 1.0])), float)
+    lines_key = (lines.tobytes(), tuple(map(float, bridge.deck_extent)), float(bridge.span), probe.tobytes())
     points: list[tuple[np.ndarray, np.ndarray]] = []
 
     def deck_points() -> tuple[np.ndarray, np.ndarray]:

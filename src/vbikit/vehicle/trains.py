@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable, Optional
@@ -46,6 +47,10 @@ log = logging.getLogger(__name__)
 #: an axle load of a train table above this is warned of [kN]: 40 t, beyond the heaviest heavy-haul axles
 #: (about 35 t) and far above LM71's 250 kN (EN 1991-2 6.3.2)
 AXLE_LOAD_WARNING_KN = 400.0
+#: the largest axle load [kN] of any train (a 1000 t axle: no railway load, a unit error)
+MAX_AXLE_LOAD_KN = 10000.0
+#: the longest train [m], first to last axle
+MAX_TRAIN_LENGTH = 5000.0
 
 #: usual speeds of trains [km/h]: up to 1.2 × 350 km/h, the sweep limit of EN 1991-2 6.4.6 on the
 #: fastest lines (a speed outside is warned of, as for road vehicles)
@@ -145,10 +150,11 @@ class Train:
             raise TrainError(f"train {self.name!r}: axle positions and loads must be finite")
         if abs(a[0]) > 1e-9 or np.any(np.diff(a) < 0):
             raise TrainError(f"train {self.name!r}: axle positions must start at 0 m and not decrease")
-        if np.any(p <= 0) or np.any(p > 1e7):
-            raise TrainError(f"train {self.name!r}: axle loads must be within 0 … 1e7 N (0 … 10000 kN)")
-        if a[-1] > 5000:
-            raise TrainError(f"train {self.name!r}: longer than 5000 m ({a[-1]:g} m)")
+        if np.any(p <= 0) or np.any(p > MAX_AXLE_LOAD_KN * 1e3):
+            raise TrainError(f"train {self.name!r}: axle loads must be within 0 … {MAX_AXLE_LOAD_KN * 1e3:g} N "
+                             f"(0 … {MAX_AXLE_LOAD_KN:g} kN)")
+        if a[-1] > MAX_TRAIN_LENGTH:
+            raise TrainError(f"train {self.name!r}: longer than {MAX_TRAIN_LENGTH:g} m ({a[-1]:g} m)")
         object.__setattr__(self, "axle_positions", a)
         object.__setattr__(self, "axle_loads", p)
 
@@ -324,35 +330,74 @@ def get_train(name: str) -> Train:
 
 
 # ------------------------------------------------------------------------------- table files
+#: the columns of a train table, in order: (name, unit) — the header line, when given, names them
+TABLE_COLUMNS = (("position", "m"), ("load", "kN"))
+_COLUMNS_TEXT = ", ".join(f"{n} [{u}]" for n, u in TABLE_COLUMNS)
+#: a header cell: the column's name, optionally with its unit as ``name [unit]``, ``name (unit)`` or ``name_unit``
+_HEADER_CELL = re.compile(r"(?i)([a-z]+)(?:\s*\[\s*([a-z]+)\s*\]|\s*\(\s*([a-z]+)\s*\)|[ _]+([a-z]+))?")
+
+
+def _number(cell: str) -> float | None:
+    try:
+        return float(cell)
+    except ValueError:
+        return None
+
+
+def _check_header(cells: list[str], where: str, lineno: int) -> None:
+    """TrainError unless ``cells`` name the columns ``TABLE_COLUMNS`` in order (units, when
+    written, m and kN); the message names the column, never the file's text."""
+    for k, (name, unit) in enumerate(TABLE_COLUMNS):
+        m = _HEADER_CELL.fullmatch(cells[k])
+        given = next((u for u in m.groups()[1:] if u), None) if m else None
+        if m is None or m.group(1).lower() != name:
+            raise TrainError(f"{where}, line {lineno}: not a train table: its header's column {k + 1} is not "
+                             f"'{name}'; a train table has the columns '{_COLUMNS_TEXT}' (header e.g. "
+                             f"'position_m,load_kN', or none: one axle a line)")
+        if given is not None and given.lower() != unit.lower():
+            raise TrainError(f"{where}, line {lineno}: the header gives column {k + 1} ({name}) another unit than "
+                             f"{unit}; a train table is read in '{_COLUMNS_TEXT}'")
+
+
 def parse_train_table(text: str, name: str, where: str = "train table") -> Train:
-    """A train from CSV text: one axle a line, ``position [m], load [kN]`` (first axle at 0 or any
-    origin — positions are shifted to start at 0); a header line, blank lines and ``#`` comments
-    are skipped.  Errors name the line."""
+    """A train from CSV text: one axle a line, ``position [m], load [kN]`` (``TABLE_COLUMNS``; first
+    axle at 0 or any origin — positions are shifted to start at 0); blank lines and ``#`` comments
+    are skipped.  The first line may be a header naming the two columns (``position_m,load_kN``,
+    ``position [m], load [kN]``, ``position,load``; units, when written, m and kN); any other text
+    is refused.  Every axle is two finite numbers (empty cells after them are ignored), its load
+    within 0 … ``MAX_AXLE_LOAD_KN`` kN, its position beyond the previous one, the train at most
+    ``MAX_TRAIN_LENGTH`` m long; at least one axle.  Errors name ``where`` and the line, never the
+    text."""
     from vbikit._files import csv_rows
 
     positions: list[float] = []
     loads: list[float] = []
-    for lineno, cells in csv_rows(text, TrainError, where):
-        if len(cells) < 2:
-            raise TrainError(f"{where}, line {lineno}: expected two numbers 'position [m], load [kN]', got "
+    for row, (lineno, cells) in enumerate(csv_rows(text, TrainError, where)):
+        while len(cells) > len(TABLE_COLUMNS) and not cells[-1]:
+            cells = cells[:-1]  # empty trailing cells (a spreadsheet's export)
+        if len(cells) != len(TABLE_COLUMNS):
+            raise TrainError(f"{where}, line {lineno}: expected two columns '{_COLUMNS_TEXT}', got "
                              f"{len(cells)} cell(s)")
-        try:
-            x, p = float(cells[0]), float(cells[1])
-        except ValueError:
-            if not positions and lineno == 1 or not positions and not any(ch.isdigit() for ch in cells[0]):
-                continue  # a header
-            raise TrainError(f"{where}, line {lineno}: position [m] and load [kN] must be numbers") from None
+        x, p = _number(cells[0]), _number(cells[1])
+        if row == 0 and x is None:
+            _check_header(cells, where, lineno)
+            continue
+        if x is None or p is None:
+            raise TrainError(f"{where}, line {lineno}: position [m] and load [kN] must be numbers")
         if not (math.isfinite(x) and math.isfinite(p)):
             raise TrainError(f"{where}, line {lineno}: position and load must be finite")
-        if not 0 < p <= 10000:
-            raise TrainError(f"{where}, line {lineno}: load must be within 0 … 10000 kN, got {p:g}")
+        if not 0 < p <= MAX_AXLE_LOAD_KN:
+            raise TrainError(f"{where}, line {lineno}: load must be within 0 … {MAX_AXLE_LOAD_KN:g} kN (above 0)")
         if positions and x <= positions[-1]:
-            raise TrainError(f"{where}, line {lineno}: axle positions must increase ({x:g} m after {positions[-1]:g} m; "
-                             "two axles cannot stand at one position)")
+            raise TrainError(f"{where}, line {lineno}: axle positions must increase (this axle is not beyond the "
+                             "previous one; two axles cannot stand at one position)")
+        if positions and x - positions[0] > MAX_TRAIN_LENGTH:
+            raise TrainError(f"{where}, line {lineno}: this axle is more than {MAX_TRAIN_LENGTH:g} m behind the first; "
+                             f"a train is at most {MAX_TRAIN_LENGTH:g} m long")
         positions.append(x)
         loads.append(p * 1e3)
     if not positions:
-        raise TrainError(f"{where}: no axles (expected lines 'position [m], load [kN]')")
+        raise TrainError(f"{where}: no axles (expected lines '{_COLUMNS_TEXT}')")
     heavy = [k + 1 for k, p in enumerate(loads) if p > AXLE_LOAD_WARNING_KN * 1e3]
     if heavy:
         log.warning("%s: %d axle(s) above %g kN (axle %d first), beyond any railway axle load; check the unit (kN)",
