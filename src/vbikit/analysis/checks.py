@@ -46,8 +46,9 @@ STEPS_PER_PERIOD = 5.0
 #: quantity on the bridge (every girder and response point of the run) is flagged (module docstring)
 SMALL_STATIC_FRACTION = 0.2
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
-NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the bridge was moving up "
-                    "(out of phase with the load) when the load passed the section; physical, not an error")
+NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the vehicle's bounce and the "
+                    "deck's vibration were out of phase with the load's arrival at the section (the wheels unloading "
+                    "there); physical, not an error")
 
 
 def input_warnings(crossing: Crossing, dt: float, response_x: float | None = None,
