@@ -62,12 +62,11 @@ def test_static_reference_is_the_ordinary_runs(case):
 
 def test_one_line_is_the_engine_on_a_cosine_road(case):
     """Re ỹ_e(t) of the line n₀ (amplitude a = √(G_d(n₀) Δn)) for every load effect is the engine's
-    crossing on r = a cos 2πn₀x minus the smooth one, both reduced by mode acceleration.  Tolerance
-    2 % of the peak: the engine samples the road every 5 mm and settles the contact forces to
-    1e-6 of the static wheel load (test_pem_paths: 1 % for the deflection); the effect's Σ_w c_w F̃_w
-    term reads the contact forces directly, whose road slope at the kinks of the linear
-    interpolation the dampers see.  A missing term (the truncated modes' part −Σ_w c_w F̃_w is 30–60 %
-    of the shear and reactions here) or a wrong sign moves the history by O(1)."""
+    crossing on r = a cos 2πn₀x minus the smooth one, both reduced by mode acceleration: measured
+    1.5e-4–1.6e-4 of the peak (the engine's road sampled every 5 mm, its contact forces settled to
+    1e-6 of the static wheel load), tolerance 2e-3.  Mode superposition's pseudo response misses
+    54 % of the entry shear's and reaction's here, 1.4 % of the mid-span moment's (measured): a
+    missing term or a wrong sign fails by far."""
     plan, rr, smooth = case
     crossing, dt = plan.built.crossing, plan.run.dt
     amp = float(np.sqrt(ROAD.psd(np.array([N0]))[0] * WIDTH))
@@ -83,6 +82,6 @@ def test_one_line_is_the_engine_on_a_cosine_road(case):
         engine = (w.dynamic - s.dynamic)[:n]
         pem = rr.pem.lines_displacement[:n, n_pt + k, 0]
         assert np.abs(engine).max() > 1e-3 * np.abs(s.static).max()  # the road moves the effect
-        assert np.abs(pem - engine).max() < 0.02 * np.abs(engine).max(), (w.effect.name, np.abs(pem - engine).max()
+        assert np.abs(pem - engine).max() < 2e-3 * np.abs(engine).max(), (w.effect.kind, np.abs(pem - engine).max()
                                                                           / np.abs(engine).max())
     assert rr.pem.lines_displacement.shape[1] == n_pt + len(effects)  # the wheel-force channels are dropped

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.checks import small_static_warnings
 from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
 from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -188,6 +189,10 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
                         "linear theory does not hold there; use Monte Carlo (several road seeds, tires that can lift)")
     if grid > GRID_LIMIT:
         warnings.append(f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every second line")
+    if len(entries) > 1:  # a point's mean IM on a small static reference (vbikit.analysis.checks)
+        warnings += small_static_warnings([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],
+                                          [e["static_peak"] for e in entries],
+                                          [e["impact_factor_mean"] for e in entries])
     head = entries[0]
     vehicle = crossing.vehicle
     summary: dict[str, Any] = {
