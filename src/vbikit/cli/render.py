@@ -100,7 +100,8 @@ def negative_impact(s: dict[str, Any]) -> bool:
 
 
 def print_negative_note(negative: bool) -> None:
-    """The one-line note on negative impact factors (``vbikit.analysis.checks.NEGATIVE_IM_NOTE``), when the report has one."""
+    """The one-line note on negative impact factors (``vbikit.analysis.checks.NEGATIVE_IM_NOTE``),
+    when the report has one."""
     if negative:
         from vbikit.analysis.checks import NEGATIVE_IM_NOTE
 

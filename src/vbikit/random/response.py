@@ -262,7 +262,8 @@ def _combine_acceleration(pem: PEMResult, smooth: CrossingResult, effects: list[
     pem.var["velocity"][:n, eff] = (y_rate * y_rate).sum(axis=2)
     pem.coarse["velocity"][:n, eff] = (y_rate * y_rate) @ coarse_w
     pem.cov_dv[:n, eff] = (y * y_rate).sum(axis=2)
-    pem.lambda1[:n, eff] = (np.hypot(y[..., 0::2], y[..., 1::2]) * np.hypot(y_rate[..., 0::2], y_rate[..., 1::2])).sum(axis=2)
+    modulus = lambda z: np.hypot(z[..., 0::2], z[..., 1::2])  # noqa: E731  |ỹ_k| of the [Re, Im] pairs
+    pem.lambda1[:n, eff] = (modulus(y) * modulus(y_rate)).sum(axis=2)
     kept[:n, eff] = y
     keep = np.r_[0:n_pt + n_e]
     pem.time = pem.time[:n]

@@ -7,8 +7,9 @@ Where a Monte-Carlo study runs one crossing per sampled road and leaves the stat
 random road at the headline response point — mean, standard deviation, quantiles and the mean's
 sampling error — and of the first bending moment of the response plan (by the plan's
 ``load_effect_method``, mode acceleration by default, ``vbikit.random.response``), with the
-lift-off probability and the wavenumber grid check that say whether the linear theory holds.  It runs on ``vbikit.study.run.run_study``'s machinery as a job
-(one cell a batch: resumable, local processes or Dask).
+lift-off probability and the wavenumber grid check that say whether the linear theory holds.
+It runs on ``vbikit.study.run.run_study``'s machinery as a job (one cell a batch: resumable,
+local processes or Dask).
 """
 from __future__ import annotations
 
