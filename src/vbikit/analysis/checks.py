@@ -184,6 +184,21 @@ def small_static_warnings(labels: Sequence[str], static_peaks: Sequence[float], 
             for label, st, im, e, flag in zip(labels, static_peaks, impact_factors, strain, flags) if flag]
 
 
+def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray) -> list[str]:
+    """Warnings for a dataset of many crossings: ``static_peaks`` (..., n_points) the static peak
+    deflections of the points ``names`` in every crossing; one sentence per point whose impact
+    factor rests on a small static reference (``small_static`` across the points of a crossing)
+    in some of the crossings, with how many."""
+    st = np.abs(np.asarray(static_peaks, float))
+    flat = st.reshape(-1, st.shape[-1])
+    top = np.nanmax(flat, axis=1, initial=0.0)[:, None]
+    flags = flat < SMALL_STATIC_FRACTION * top
+    return [f"point {name}: its impact_factor rests on a static deflection under {SMALL_STATIC_FRACTION:.0%} of "
+            f"the largest of the points in {int(k)} of {flat.shape[0]} crossings (a lightly loaded section); "
+            "unreliable there as a design value"
+            for name, k in zip(names, flags.sum(axis=0)) if k]
+
+
 def run_warnings(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[str]:
     """Every warning about a finished crossing: its inputs and its contact losses."""
     return input_warnings(result.crossing, result.dt, response_x, response_y) + contact_warnings(result)
