@@ -255,12 +255,12 @@ def _combine_acceleration(pem: PEMResult, smooth: CrossingResult, effects: list[
     kept = pem.lines_displacement  # (n_t, channels, 2 L')
     eff, wheels = slice(n_pt, n_pt + n_e), slice(n_pt + n_e, n_pt + n_e + n_w)
     y = kept[:n, eff] - np.einsum("wet,twc->tec", coef, kept[:n, wheels])
-    y_rate = np.gradient(y, pem.time[:n], axis=0)
+    y_rate = np.gradient(y, float(pem.time[1] - pem.time[0]), axis=0)  # the uniform output grid
     coarse_w = np.repeat(np.tile(pem.lines.coarse_weights(), n_sets), 2)
-    pem.var["displacement"][:n, eff] = (y * y).sum(axis=2)
-    pem.coarse["displacement"][:n, eff] = (y * y) @ coarse_w
-    pem.var["velocity"][:n, eff] = (y_rate * y_rate).sum(axis=2)
-    pem.coarse["velocity"][:n, eff] = (y_rate * y_rate) @ coarse_w
+    for name, z in (("displacement", y), ("velocity", y_rate)):
+        z2 = z * z
+        pem.var[name][:n, eff] = z2.sum(axis=2)
+        pem.coarse[name][:n, eff] = z2 @ coarse_w
     pem.cov_dv[:n, eff] = (y * y_rate).sum(axis=2)
     modulus = lambda z: np.hypot(z[..., 0::2], z[..., 1::2])  # noqa: E731  |ỹ_k| of the [Re, Im] pairs
     pem.lambda1[:n, eff] = (modulus(y) * modulus(y_rate)).sum(axis=2)
