@@ -125,4 +125,7 @@ def compare_tires(
         typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * 1e3:10.4f} {row['impact_factor']:7.4f} "
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f} "
                    f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
+    from vbikit.cli.render import print_negative_note
+
+    print_negative_note(any(row[k] < 0 for row in table.values() for k in ("impact_factor", "strain_impact_factor")))
     typer.echo(f"  figure {fig}; table {out_dir / 'compare-tires.json'}")

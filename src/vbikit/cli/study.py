@@ -103,11 +103,14 @@ def run_cmd(
     if "impact_factor" not in ds:  # the study's outputs key left it out
         typer.echo(f"outputs stored: {', '.join(study.output_names)}")
         return
+    from vbikit.cli.render import print_negative_note
+
     im = ds["impact_factor"]
     for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
                           else [("", im)]):
         typer.echo(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
                    f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
+    print_negative_note(bool(float(im.min()) < 0))
 
 
 @app.command("validate")
