@@ -66,10 +66,22 @@ def validation_message(err: ValidationError, title: str, unknown_key: Optional[s
                 msg += f"; allowed: {', '.join(keys)}"
         elif e["type"] == "missing":
             msg = "missing required key"
+        elif e["type"] in _BOUND_ERRORS:
+            msg = bound_message(e, _field_at(model, tuple(e["loc"])))
         elif "input" in e and e["type"] != "value_error":
             msg = f"{msg} (got {e['input']!r})"
         lines.append(f"{loc}: {msg}" if loc else msg)
     return f"{title}:\n  " + "\n  ".join(lines) if title else "\n  ".join(lines)
+
+
+def _field_at(model: Optional[type], loc: tuple) -> Any:
+    """The pydantic field (``FieldInfo``) of the key at ``loc`` of ``model`` (a list item: its
+    list's field), None if unknown."""
+    names = [p for p in loc if isinstance(p, str)]
+    if not names:
+        return None
+    parent = _model_at(model, loc[:len(loc) - 1 - loc[::-1].index(names[-1])])
+    return getattr(parent, "model_fields", {}).get(names[-1]) if parent is not None else None
 
 
 def number(value: Any, key: str, lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open: bool = False,
@@ -77,13 +89,7 @@ def number(value: Any, key: str, lo: Optional[float] = None, hi: Optional[float]
     """``value`` as a float (an int for ``integer``), or ``error`` naming ``key`` and the allowed
     range: a number (no boolean, no string), finite, within [lo, hi] (``lo_open``/``hi_open``: the
     bound excluded).  The one strict check of a number read from an input file."""
-    low = "" if lo is None else f"{'(' if lo_open else '['}{lo:g}"
-    high = "" if hi is None else f"{hi:g}{')' if hi_open else ']'}"
-    what = "an integer" if integer else "a number"
-    rng = (f" in {low}, {high}" if lo is not None and hi is not None else
-           f" {'>' if lo_open else '>='} {lo:g}" if lo is not None else
-           f" {'<' if hi_open else '<='} {hi:g}" if hi is not None else "")
-    expect = f"{key}: expected {what}{rng}{f' [{unit}]' if unit else ''}"
+    expect = f"{key}: {expected(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)}"
     ok_type = isinstance(value, int) if integer else isinstance(value, (int, float))
     if isinstance(value, bool) or not ok_type:
         raise error(f"{expect}, got {type(value).__name__} {_short(value)}")
@@ -95,6 +101,63 @@ def number(value: Any, key: str, lo: Optional[float] = None, hi: Optional[float]
             (hi is not None and (v >= hi if hi_open else v > hi)):
         raise error(f"{expect}, got {_short(value)}")
     return int(value) if integer else v
+
+
+def expected(lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open: bool = False, hi_open: bool = False,
+             integer: bool = False, unit: str = "") -> str:
+    """``expected a number in [lo, hi] [unit]`` (or ``>= lo``, ``< hi`` …; ``lo_open``/``hi_open``:
+    the bound excluded): the one wording of an allowed range, of ``number`` and of the bound errors
+    of the input files' pydantic validations (``bound_message``)."""
+    low = "" if lo is None else f"{'(' if lo_open else '['}{lo:g}"
+    high = "" if hi is None else f"{hi:g}{')' if hi_open else ']'}"
+    what = "an integer" if integer else "a number"
+    rng = (f" in {low}, {high}" if lo is not None and hi is not None else
+           f" {'>' if lo_open else '>='} {lo:g}" if lo is not None else
+           f" {'<' if hi_open else '<='} {hi:g}" if hi is not None else "")
+    return f"expected {what}{rng}{f' [{unit}]' if unit else ''}"
+
+
+#: pydantic's error types of a violated bound (``Field(ge=, gt=, le=, lt=)``)
+_BOUND_ERRORS = ("greater_than", "greater_than_equal", "less_than", "less_than_equal")
+#: the unit at the end of a field's description: "speed at t = 0 [km/h]" -> km/h ("[-]": none)
+_UNIT = re.compile(r"\[([A-Za-z0-9²³µ°/^·. -]{1,12})\]\s*$")
+
+
+def _constraints(field: Any) -> list[Any]:
+    """The bound objects (``annotated_types.Ge`` …) of a pydantic field, or of the items of a list
+    field (``list[Annotated[float, Field(ge=…)]]``)."""
+    found = list(getattr(field, "metadata", None) or [])
+    todo = list(typing.get_args(getattr(field, "annotation", None)))
+    while todo and not found:
+        arg = todo.pop(0)
+        for item in getattr(arg, "__metadata__", ()):  # Annotated[float, Field(ge=…)] or Annotated[float, Ge(…)]
+            found += list(getattr(item, "metadata", None) or [item])
+        todo += list(typing.get_args(arg))
+    return found
+
+
+def bound_message(error: dict, field: Any = None) -> Optional[str]:
+    """The message of a pydantic bound error (``Input should be greater than or equal to 0.0036``)
+    as ``expected`` words it, with both bounds of ``field`` (its pydantic ``FieldInfo``; None:
+    the violated bound only) and the unit its description ends with; None for another error."""
+    if error.get("type") not in _BOUND_ERRORS:
+        return None
+    bounds: dict[str, Any] = {"ge": None, "gt": None, "le": None, "lt": None}
+    for item in _constraints(field):
+        for name in bounds:
+            if getattr(item, name, None) is not None:
+                bounds[name] = getattr(item, name)
+    bounds.update({k: v for k, v in (error.get("ctx") or {}).items() if k in bounds})
+    lo_open, hi_open = bounds["gt"] is not None, bounds["lt"] is not None
+    lo = bounds["gt"] if lo_open else bounds["ge"]
+    hi = bounds["lt"] if hi_open else bounds["le"]
+    annotation = getattr(field, "annotation", None)
+    kinds = {annotation, *typing.get_args(annotation)}
+    unit = _UNIT.search(getattr(field, "description", None) or "")
+    text = expected(None if lo is None else float(lo), None if hi is None else float(hi), lo_open=lo_open,
+                    hi_open=hi_open, integer=int in kinds and float not in kinds,
+                    unit=unit.group(1) if unit and unit.group(1).strip() != "-" else "")
+    return f"{text}, got {_short(error['input'])}" if "input" in error else text
 
 
 def _short(value: Any) -> str:

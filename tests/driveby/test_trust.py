@@ -195,3 +195,24 @@ def test_a_second_sensor_on_the_cart_body_agrees(tmp_path):
     ds = run_driveby(parse_driveby(data, EXAMPLE.parent), tmp_path, figures=False)
     assert int(ds["sensors_identified"][0]) == 1 and int(ds["sensors_agree"][0]) == 1
     assert bool(ds["identified_frequency_reliable"][0])
+
+
+def test_the_report_says_the_curvature_change_does_not_locate_damage(tmp_path):
+    """Smooth road, 5 m/s, healthy and 30 % damage at x = 11.25–13.75 m: the largest curvature change
+    of the mode-shape estimate lies at x = 5.62 m (docs/driveby.md, measured), far from the damage;
+    before, the report printed that position as if it were a location, with no word beside it.
+    Now every printed position carries the mark and the one caveat (CURVATURE_LOCATION_CAVEAT), and
+    the dataset's curvature_change_x says it too."""
+    from vbikit.driveby.identify import CURVATURE_LOCATION_CAVEAT
+
+    data = _example()
+    data["sweep"].update(speed=[5.0], road_class=["none"])
+    ds = run_driveby(parse_driveby(data, EXAMPLE.parent), tmp_path, figures=False)
+    x = float(ds["curvature_change_x"][1])
+    assert abs(x - float(ds["damage_position"][1])) > 2.5  # the indicator misses the damaged region
+    text = (tmp_path / "driveby-report.txt").read_text()
+    line = next(t for t in text.splitlines() if "largest curvature change at" in t)
+    assert line.endswith(f"x = {x:.3g} m (*)"), line
+    assert f"(*) the largest curvature change's position is {CURVATURE_LOCATION_CAVEAT}" in text
+    assert "not a damage location" in CURVATURE_LOCATION_CAVEAT
+    assert CURVATURE_LOCATION_CAVEAT in ds["curvature_change_x"].attrs["long_name"]

@@ -31,7 +31,7 @@ def test_errors_name_keys_and_ranges_before_computing():
                              speeds={"line_max": 300.0}))
     msg = str(err.value)
     assert "bridge.deck: deck must be one of steel, composite" in msg
-    assert "bridge.damping: Input should be less than 0.2" in msg
+    assert "bridge.damping: expected a number in [0, 0.2)" in msg
     assert "trains.presets: unknown train 'hslm-a12'" in msg
     assert "speeds.max: give either max (km/h) or line_max" in msg
     with pytest.raises(RailSpecError, match="speeds.step"):

@@ -1,39 +1,46 @@
 """σ(t), mean and impact factor of the load effects (moment, shear, reaction) and of the vehicle's
-accelerations by pseudo-excitation (``vbikit.random.response``, mode superposition R = Σ_i r_i ξ_i):
+accelerations by pseudo-excitation (``vbikit.random.response``; by the plan's method, mode acceleration,
+and by mode superposition R = Σ_i r_i ξ_i):
 
 * a closed form that fails on a wrong sign or factor: with one mode of the simply supported Euler
   beam, φ = a sin(πx/L), the midspan moment is M = EI φ''(L/2) ξ = −EI (π/L)² w(L/2) and the entry
   reaction R₀ = EI φ'''(0) ξ = −EI (π/L)³ w(L/2) (Clough & Penzien 1993, §8; signs of
   ``vbikit.bridge.effects``: sagging and upward reaction positive, z up), so σ_M = EI (π/L)² σ_w,
   mean M = −EI (π/L)² mean w, and their impact factors are the deflection's;
-* vbikit's own Monte Carlo (the engine on sampled roads of the same PSD, bilateral tires): PEM's σ²
+* vbikit's own Monte Carlo (the engine on sampled roads of the same PSD, bilateral tires, its load
+  effects by the same method, mode acceleration): PEM's σ²
   inside the 99 % χ² interval of the sample variance at ≥ 95 % of the random time points (the rule
   of ``test_pem_monte_carlo``), and the moment's mean impact factor within 3.3 standard errors
   (99.9 %) of the Monte-Carlo mean.
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
 from tests.random_vibration.test_pem_monte_carlo import _inside, _plan
-from vbikit.analysis.impact import impact_factor, static_modal_history
+from vbikit.analysis.effects import load_effect_responses
 from vbikit.random import PseudoRoad
 from vbikit.random.montecarlo import monte_carlo
 from vbikit.random.response import random_response
 from vbikit.road.psd import RoadPSD
 
 
-def _random(n_modes: int, tire: dict, samples: int = 4000):
+def _random(n_modes: int, tire: dict, samples: int = 4000, method: str | None = None):
+    """The random crossing of the demo's beam, load effects by the plan's method (default mode
+    acceleration) or ``method``."""
     plan = _plan(n_modes, tire)
     road = PseudoRoad(RoadPSD.iso("C"))
-    rr = random_response(plan.built.crossing, plan.built.plan, road, plan.run.dt, data=plan.run.kernel_data,
+    response_plan = plan.built.plan if method is None else dataclasses.replace(plan.built.plan, load_effect_method=method)
+    rr = random_response(plan.built.crossing, response_plan, road, plan.run.dt, data=plan.run.kernel_data,
                          samples=samples)
     return plan, road, rr
 
 
 def test_one_mode_moment_and_reaction_are_the_deflection_times_closed_form_factors():
-    _, _, rr = _random(1, {"model": "point"}, samples=400)
+    _, _, rr = _random(1, {"model": "point"}, samples=400, method="mode-superposition")
     beam = rr.mean.crossing.bridge
     k = np.pi / beam.span
     assert abs(rr.points[0].x - beam.span / 2) < 1e-12
@@ -58,13 +65,14 @@ def _compare(n_modes: int, tire: dict, n: int):
     plan, road, rr = _random(n_modes, tire)
     crossing = plan.built.crossing
     effects = [e.effect for e in rr.effects]
-    modal = np.stack([e.modal for e in effects], axis=1)
     m = [e.kind for e in effects].index("moment")
 
+    method = rr.effects[0].method  # the plan's: mode acceleration
+
     def reduce(r):
-        xi_st = static_modal_history(r)
-        im = impact_factor(r.time, r.xi[:, :] @ modal[:, m], xi_st @ modal[:, m]).impact_factor
-        return r.xi @ modal, r.q_ddot, im
+        responses = load_effect_responses(r, effects, method, check_step=False)
+        im = responses[m].impact.impact_factor
+        return np.stack([e.dynamic for e in responses], axis=1), r.q_ddot, im
 
     runs = monte_carlo(crossing, road, range(1, n + 1), reduce)
     eff, qdd = np.array([r[0] for r in runs]), np.array([r[1] for r in runs])
@@ -103,7 +111,7 @@ def test_cli_text_reports_load_effects_and_vehicle(tmp_path, monkeypatch):
     import vbikit.scenario.pipeline as pipeline
     from vbikit.cli import app
 
-    _, _, rr = _random(1, {"model": "point"}, samples=400)
+    _, _, rr = _random(1, {"model": "point"}, samples=400, method="mode-superposition")
     monkeypatch.setattr(pipeline, "run_random", lambda *a, **k: rr)
     path = tmp_path / "s.toml"
     path.write_text("")

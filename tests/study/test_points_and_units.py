@@ -113,3 +113,21 @@ def test_stored_parts_of_one_point_read_with_and_without_a_point_axis():
     assert output_problem(legacy, 3, 2) == "impact_factor has the wrong shape"
     del legacy["time_of_max_dynamic_displacement"]
     assert "no time_of_max_dynamic_displacement" in output_problem(legacy, 3, 1)
+
+
+def test_small_static_reference_is_flagged_in_the_dataset(tmp_path):
+    """A point 0.5 m from the entry support beside mid-span: its static peak deflection is a small
+    fraction of mid-span's in every crossing, so its impact factor is flagged in the dataset's
+    ``warnings`` attribute with the count of crossings, recomputed here from the stored static peaks
+    (|R_st| < 20 % of the larger: vbikit.analysis.checks.SMALL_STATIC_FRACTION); the mid-span point
+    is not flagged."""
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION
+
+    points = [{"name": "near", "x": 0.5}, {"name": "mid", "x": 8.38}]
+    ds = run_study(parse_study(study(copy.deepcopy(BASE) | {"response": {"points": points}})), tmp_path / "s.nc", workers=1)
+    st = np.abs(ds["max_static_displacement"].values).reshape(-1, 2)
+    near = int((st[:, 0] < SMALL_STATIC_FRACTION * st.max(axis=1)).sum())
+    assert near == st.shape[0] == 4 and not np.any(st[:, 1] < SMALL_STATIC_FRACTION * st.max(axis=1))
+    text = ds.attrs["warnings"]
+    assert text.startswith("point near: its impact_factor rests on a static deflection under 20%")
+    assert f"in {near} of 4 crossings" in text and "point mid" not in text

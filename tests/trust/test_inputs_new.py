@@ -47,8 +47,8 @@ def _refused(path: Path, words: list[str], commands=("validate", "run"), *args: 
 # ------------------------------------------------------------------------------ [[vehicles]]
 
 @pytest.mark.parametrize("value, words", [
-    ("1e300", ["vehicles[1].lateral_offset", "less than or equal to 50"]),
-    ("-1e300", ["vehicles[1].lateral_offset", "greater than or equal to -50"]),
+    ("1e300", ["vehicles[1].lateral_offset", "expected a number in [-50, 50] [m]"]),
+    ("-1e300", ["vehicles[1].lateral_offset", "expected a number in [-50, 50] [m]"]),
     ("nan", ["vehicles[1].lateral_offset", "finite"]),
     ("inf", ["vehicles[1].lateral_offset", "finite"]),
 ])
@@ -68,9 +68,9 @@ def test_axle_truck_dimensions_out_of_range(tmp_path, key, value, allowed):
 
 
 @pytest.mark.parametrize("key, value, words", [
-    ("speed_kmh", "2000.0", ["vehicles[1].speed_kmh", "less than or equal to 1080"]),
-    ("speed", "1e300", ["vehicles[1].speed", "less than or equal to 300"]),
-    ("entry_time", "1e300", ["vehicles[1].entry_time", "less than or equal to 3600"]),
+    ("speed_kmh", "2000.0", ["vehicles[1].speed_kmh", "expected a number in [0.0036, 1080] [km/h], got 2000.0"]),
+    ("speed", "1e300", ["vehicles[1].speed", "expected a number in [0.001, 300] [m/s], got 1e+300"]),
+    ("entry_time", "1e300", ["vehicles[1].entry_time", "expected a number in [0, 3600] [s], got 1e+300"]),
 ])
 def test_listed_motion_out_of_range(tmp_path, key, value, words):
     _refused(_write(tmp_path, BEAM + _vehicles(f'model = "sprung-mass"\n{key} = {value}')), words)
@@ -157,10 +157,10 @@ def test_default_reaction_of_a_spring_without_stiffness_is_refused(tmp_path):
 
 
 @pytest.mark.parametrize("key, value, words", [
-    ("mass_per_length", "1e300", ["bridge.mass_per_length", "less than or equal to 1000000"]),
-    ("EI", "1e300", ["bridge.EI", "less than or equal to 10000000000000000"]),
+    ("mass_per_length", "1e300", ["bridge.mass_per_length", "expected a number in (0, 1e+06]"]),
+    ("EI", "1e300", ["bridge.EI", "expected a number in (0, 1e+16]"]),
     ("EI", "[5e9, nan]", ["bridge.EI", "finite"]),
-    ("neutral_axis_depth", "-0.5", ["bridge.neutral_axis_depth", "greater than 0"]),
+    ("neutral_axis_depth", "-0.5", ["bridge.neutral_axis_depth", "expected a number > 0 [m], got -0.5"]),
     ("neutral_axis_depth", "nan", ["bridge.neutral_axis_depth", "finite"]),
     ("damping_ratio", "inf", ["bridge.damping_ratio", "finite"]),
 ])

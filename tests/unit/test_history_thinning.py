@@ -45,7 +45,11 @@ def test_bad_output_every_is_refused():
         simulate(c, output_every=0)
 
 
-def test_compile_message_only_without_compiled_kernels(caplog):
+def test_compile_message_only_without_compiled_kernels(caplog, monkeypatch):
+    from vbikit.solve import compile_notice
+
+    monkeypatch.setattr(compile_notice, "_ANNOUNCED", [False])  # not yet announced in this process
+
     class Fresh:  # a dispatcher with nothing compiled and no on-disk cache
         overloads: dict = {}
 
@@ -53,6 +57,7 @@ def test_compile_message_only_without_compiled_kernels(caplog):
         announce_compile(Fresh())
     assert "compiling the kernels, first run only" in caplog.text
     caplog.clear()
+    monkeypatch.setattr(compile_notice, "_ANNOUNCED", [False])
 
     class Ready:
         overloads = {"(float64,)": None}

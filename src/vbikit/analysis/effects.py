@@ -177,7 +177,7 @@ def load_effect_response(result: CrossingResult, effect: LoadEffect, method: str
 def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect], method: str = "mode-acceleration",
                           xi_static: NDArray[np.float64] | None = None,
                           influence: NDArray[np.float64] | ContactInfluences | None = None,
-                          check_step: bool = True) -> list[LoadEffectResponse]:
+                          check_step: bool = True, log_step: bool = True) -> list[LoadEffectResponse]:
     """``load_effect_response`` for several effects at once: one static modal history (mode
     superposition), or (mode acceleration) one pass over the contact points' positions, their
     static and dynamic forces and the modal correction of every effect; ``influence``: their
@@ -185,7 +185,9 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     already computed.  ``check_step``: the step
     check (``vbikit.analysis.effect_step``, its warning logged) now; False: on first use of a
     response's ``step_warning`` or ``recommended_dt`` (the population runners, which read
-    neither: a check costs about as much as the rest of the reduction)."""
+    neither: a check costs about as much as the rest of the reduction).  ``log_step``: log a step
+    warning (once per message); False when the caller reports ``step_warning`` itself (a scenario
+    run's summary ``warnings``, which the command line prints: logged too, it showed twice)."""
     if method not in METHODS:
         raise ValueError(f"load effect method must be one of {', '.join(METHODS)}, got {method!r}")
     if not effects:
@@ -193,8 +195,8 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     t = result.time
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
-        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal, _checked(result, e, check_step))
-                for e in effects]
+        return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal,
+                                   _checked(result, e, check_step, log_step)) for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
     tabulated = influence is None and tabulated_together(effects)
@@ -223,7 +225,7 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
         dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
         static = -(infl @ static_loads)
         dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
-    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step))
+    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step))
             for k, e in enumerate(effects)]
 
 
@@ -235,22 +237,22 @@ def tabulated_together(effects: Sequence[LoadEffect]) -> bool:
         len({e.influence.shared_key for e in effects}) == 1  # type: ignore[attr-defined]
 
 
-def _checked(result: CrossingResult, effect: LoadEffect, now: bool):
+def _checked(result: CrossingResult, effect: LoadEffect, now: bool, log_it: bool = True):
     """``_step_check`` of ``effect`` now, or a function making it on first use."""
-    return _step_check(result, effect) if now else (lambda: _step_check(result, effect))
+    return _step_check(result, effect, log_it) if now else (lambda: _step_check(result, effect, log_it))
 
 
 #: step warnings logged already (a study's many crossings log each once)
 _LOGGED: set[str] = set()
 
 
-def _step_check(result: CrossingResult, effect: LoadEffect) -> tuple[str | None, float]:
+def _step_check(result: CrossingResult, effect: LoadEffect, log_it: bool = True) -> tuple[str | None, float]:
     """The step check of ``vbikit.analysis.effect_step`` for ``effect`` read from ``result`` (run at
-    its integration step), logged once per message."""
+    its integration step), logged once per message (``log_it``)."""
     from vbikit.analysis.effect_step import step_warning
 
     text, best = step_warning(result.crossing, effect, float(result.integration_dt or result.dt))
-    if text is not None and text not in _LOGGED:
+    if log_it and text is not None and text not in _LOGGED:
         _LOGGED.add(text)
         log.warning(text)
     return text, best
@@ -313,7 +315,8 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     """The summary entries of a crossing's load effects and design-code allowances, and the
     responses themselves (for histories): ``design_code_allowances`` for the deflection at
     ``response_x`` (loaded length: its span) and the ``moment`` / ``shear`` / ``reaction`` blocks of
-    ``load_effect_summary`` with each effect's code values."""
+    ``load_effect_summary`` with each effect's code values.  The responses' step warnings are not
+    logged: the caller reports them (``step_warning``; the scenario summary's ``warnings``)."""
     from vbikit.analysis.codes import code_allowances
 
     bridge, vehicle = result.crossing.bridge, result.crossing.vehicle
@@ -322,6 +325,6 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     loaded = loaded_length(bridge, response_x, result.point(response_x, response_y)[1])
     out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1, "n_axles": axles,
                                                        **code_allowances(loaded, f1, axles)}}
-    responses = load_effect_responses(result, effects, method)
+    responses = load_effect_responses(result, effects, method, log_step=False)
     out |= load_effect_summary(responses, lambda e: code_allowances(e.loaded_length, f1, axles))
     return out, responses

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.checks import run_warnings
+from vbikit.analysis.checks import run_warnings, small_static_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
@@ -247,10 +247,31 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         **crossing_outputs,
-        "warnings": run_warnings(result, response.x, response.y),
+        "warnings": run_warnings(result, response.x, response.y) + static_reference_warnings(
+            girders or [], points if points is not None else [{"name": point_name(1), "x": response.x, "y": response.y}
+                                                              | headline]),
     } | ({"response_girder": response_girder,
           "lateral_offset": crossing.lateral_offset if crossing.single else [m.lateral_offset for m in crossing.vehicles],
           **girder_summary(girders)} if girders else {}) | ({} if crossing.single else {"vehicles": vehicle_summaries(result)})
+
+
+def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[str]:
+    """The small-static-reference warnings (``vbikit.analysis.checks.small_static_warnings``) of a
+    crossing's deflection impact factors: every girder at the headline section and every response
+    point (``point_entries``; a point on a girder's section is that girder's entry), against the
+    largest static peak among them all."""
+    labels = [f"Girder {g}" for g in range(1, len(girders) + 1)]
+    statics = [r.displacement_impact.static_peak for r in girders]
+    ims = [r.displacement_impact.impact_factor for r in girders]
+    strains = [r.strain_impact.impact_factor for r in girders]
+    for p in points:
+        if any(abs(r.x - float(p["x"])) < 1e-9 and abs(r.y - float(p["y"])) < 1e-9 for r in girders):
+            continue
+        labels.append(f"point {p['name']}")
+        statics.append(float(p["max_static_displacement"]))
+        ims.append(float(p["impact_factor"]))
+        strains.append(float(p["strain_impact_factor"]))
+    return small_static_warnings(labels, statics, ims, strains) if len(statics) > 1 else []
 
 
 def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:

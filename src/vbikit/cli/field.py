@@ -5,7 +5,7 @@ from pathlib import Path
 
 import typer
 
-from vbikit.cli.guard import guard, option
+from vbikit.cli.guard import guard, option, out_dir_option
 
 #: how the metrics table shows an SI unit: (factor, unit) — as the other text reports do
 _SHOWN = {"m": (1e3, "mm"), "-": (1e6, "µε"), "m/s^2": (1.0, "m/s²")}
@@ -13,7 +13,7 @@ _SHOWN = {"m": (1e3, "mm"), "-": (1e6, "µε"), "m/s^2": (1.0, "m/s²")}
 
 def field_(
     field_file: Path = typer.Argument(..., metavar="FIELD.toml", help="FIELD.toml describing the measured crossings (docs/field.md)."),
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figures and the metrics tables."),
+    out_dir: Path = out_dir_option("Where to write the figures and the metrics tables."),
     tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint, disk, rigid-disk."),
     calibrate: bool = typer.Option(False, "--calibrate", help="Fit a stiffness factor and damping ratio (least squares)."),
 ) -> None:

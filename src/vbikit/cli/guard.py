@@ -7,6 +7,7 @@ programming error and shows its traceback, as does every error with ``--debug``.
 """
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any, Callable, Optional, TypeVar
 
 import typer
@@ -84,12 +85,19 @@ def memory_option(text: str) -> float:
     return guard(lambda: option(parse_size, text))
 
 
-def out_dir_option(path: Any) -> Any:
+def check_out_dir(path: Any) -> Any:
     """``--out-dir``: the output folder, checked now (exit 2 when it names a file, a system folder …:
-    ``vbikit._files.output_dir``), before any computation; the writers create it."""
+    ``vbikit._files.output_dir``), before any computation; the writers create it.  None passes."""
     from vbikit._files import output_dir
 
-    return guard(lambda: output_dir(path, create=False))
+    return None if path is None else guard(lambda: output_dir(path, create=False))
+
+
+def out_dir_option(help: str, default: Any = Path("vbikit-out")) -> Any:
+    """The ``--out-dir`` option of every command that writes into a folder (default ``vbikit-out``;
+    None: the command writes files only when asked): ``check_out_dir`` runs as the command line is
+    parsed, so a bad folder is refused before the command computes anything."""
+    return typer.Option(default, "--out-dir", help=help, callback=check_out_dir)
 
 
 MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "

@@ -45,7 +45,7 @@ class _Bars:
 
 def lifetime_cmd(
     spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for lifetime.nc, report.txt and the figures."),
+    out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt and the figures."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
@@ -59,7 +59,6 @@ def lifetime_cmd(
     from vbikit.lifetime.run import run_lifetime
 
     memory = None if max_memory is None else memory_option(max_memory)
-    out_dir = out_dir_option(out_dir)
     bars = _Bars(progress and not STATE["quiet"])
     t0 = time.perf_counter()
     try:

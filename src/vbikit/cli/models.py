@@ -6,7 +6,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard
+from vbikit.cli.guard import guard, out_dir_option
 
 
 def presets() -> None:
@@ -63,11 +63,12 @@ def presets() -> None:
 
 
 def bridge(
-    name: str = typer.Argument(..., help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
+    name: str = typer.Argument(..., metavar="PRESET|SCENARIO.toml",
+                               help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
                                "is shown (its [bridge.deck] overrides and n_modes included, unless --modes is given)."),
     n_modes: Optional[int] = typer.Option(None, "--modes", min=1, max=500,
                                           help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure NAME-modes.png."),
+    out_dir: Path = out_dir_option("Where to write the figure NAME-modes.png."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the figure to this file instead."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
 ) -> None:

@@ -12,8 +12,7 @@ from vbikit.cli.guard import STATE, guard, out_dir_option
 
 def rail_cmd(
     spec: Path = typer.Argument(..., metavar="RAIL.toml", help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Folder for rail.nc, rail-report.txt, rail-summary.json and "
-                                                                      "rail-acceleration.png."),
+    out_dir: Path = out_dir_option("Folder for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes (default: run.workers)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Draw the acceleration-envelope figure."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar (trains swept)."),
@@ -26,7 +25,6 @@ def rail_cmd(
     (--workers) or on a Dask cluster (--scheduler)."""
     from vbikit.rail.run import run_rail
 
-    out_dir = out_dir_option(out_dir)
     bar = None
 
     def report(done: int, total: int) -> None:

@@ -63,4 +63,8 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     typer.echo(f"  lift-off probability (largest at one instant): {s['lift_off_probability']:.3g}")
     typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%}; {s['seconds']:.1f} s")
     typer.echo(f"  quality: {s['quality']}")
+    from vbikit.cli.render import print_negative_note
+
+    print_negative_note(any(v < 0 for e in [*s["points"], *s.get("effects", [])]
+                            for v in (e["impact_factor_mean"], *e["impact_factor_quantiles"].values())))
     warn(s["warnings"])

@@ -66,7 +66,7 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
     typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}  (strain IM = {s['strain_impact_factor']:.4f})")
     if len(s["points"]) > 1:
-        print_points(s["points"])
+        print_points(s["points"], s.get("girder_max_static_displacement", []))
     for i, v in enumerate(s.get("vehicles", []), start=1):
         loads = " / ".join(f"{f / 1e3:.1f}" for f in v["static_wheel_loads"].values())
         typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
@@ -77,10 +77,35 @@ def print_summary(run: Run) -> None:
             typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
         typer.echo("  girder               " + "  ".join(f"{g:>7d}" for g in range(1, len(s["girder_y"]) + 1)))
         typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
-        typer.echo("  IM                   " + "  ".join(f"{v:7.4f}" for v in s["girder_impact_factors"]))
+        from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+
+        small = small_static(s["girder_max_static_displacement"])
+        typer.echo("  IM                   " + " ".join(f"{v:7.4f}{'!' if f else ' '}"
+                                                      for v, f in zip(s["girder_impact_factors"], small)).rstrip())
+        if any(small):
+            typer.echo(f"  {'':<20} ! unreliable: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
+                       "(a lightly loaded girder); not a design value — see the warning")
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f})")
     print_codes(s["design_code_allowances"], "deflection IM beside")
     print_load_effects(s)
+    print_negative_note(negative_impact(s))
+
+
+def negative_impact(s: dict[str, Any]) -> bool:
+    """Whether the text report of summary ``s`` prints a negative impact factor."""
+    ims = [s.get("impact_factor"), s.get("strain_impact_factor"), *s.get("girder_impact_factors", [])]
+    ims += [p.get(k) for p in s.get("points", []) for k in ("impact_factor", "strain_impact_factor")]
+    ims += [e.get("impact_factor") for kind in ("moment", "shear", "reaction") if kind in s for e in s[kind]["sections"]]
+    return any(v is not None and v < 0 for v in ims)
+
+
+def print_negative_note(negative: bool) -> None:
+    """The one-line note on negative impact factors (``vbikit.analysis.checks.NEGATIVE_IM_NOTE``),
+    when the report has one."""
+    if negative:
+        from vbikit.analysis.checks import NEGATIVE_IM_NOTE
+
+        typer.echo(f"  note: {NEGATIVE_IM_NOTE}")
 
 
 def print_codes(c: dict[str, Any], title: str) -> None:
@@ -111,14 +136,22 @@ def print_load_effects(s: dict[str, Any]) -> None:
                    f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
 
 
-def print_points(points: list[dict[str, Any]]) -> None:
-    """One line per response point ([[response.points]]): where, static and dynamic peaks, IMs."""
+def print_points(points: list[dict[str, Any]], girder_static: list[float] = ()) -> None:
+    """One line per response point ([[response.points]]): where, static and dynamic peaks, IMs; "!"
+    marks an IM on a small static reference (``vbikit.analysis.checks.small_static``, against the
+    points' and the girders' ``girder_static`` peaks)."""
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+
+    small = small_static([p["max_static_displacement"] for p in points] + list(girder_static))[:len(points)]
     typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {'static [mm]':>12} {'dynamic [mm]':>13} {'IM':>8} "
                f"{'strain IM':>9} {'|a|max [m/s²]':>14}")
-    for p in points:
+    for p, flag in zip(points, small):
         typer.echo(f"  {p['name']:<20} {p['x']:8.3f} {p['y']:8.3f} {p['max_static_displacement'] * 1e3:+12.4f} "
                    f"{p['max_dynamic_displacement'] * 1e3:+13.4f} {p['impact_factor']:8.4f} "
-                   f"{p['strain_impact_factor']:9.4f} {p['max_abs_acceleration']:14.4f}")
+                   f"{p['strain_impact_factor']:9.4f} {p['max_abs_acceleration']:14.4f}{'  !' if flag else ''}")
+    if any(small):
+        typer.echo(f"  {'':<20} ! unreliable IM: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
+                   "on the bridge; not a design value — see the warning")
 
 
 def outputs(run: Run, as_json: bool, out: Optional[Path], plot: Optional[Path], summary_path: Optional[Path]) -> None:

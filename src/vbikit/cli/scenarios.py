@@ -8,7 +8,7 @@ from typing import Optional
 import typer
 
 from vbikit.cli.execute import execute
-from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits
+from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option
 from vbikit.cli.render import json_text, outputs, write_text
 
 
@@ -20,8 +20,8 @@ def run(
     summary_path: Optional[Path] = typer.Option(None, "--summary", help="Write the JSON summary to this file."),
     max_memory: Optional[str] = MAX_MEMORY,
     max_steps: Optional[float] = MAX_STEPS,
-    out_dir: Optional[Path] = typer.Option(None, "--out-dir", help="Write all three (SCENARIO.csv, SCENARIO.png, "
-                                           "SCENARIO.json) into this folder."),
+    out_dir: Optional[Path] = out_dir_option("Write all three (SCENARIO.csv, SCENARIO.png, SCENARIO.json) into this "
+                                             "folder.", default=None),
     random_: bool = typer.Option(False, "--random", help="The random road without sampling: mean ± σ histories "
                                  "and impact-factor quantiles by pseudo-excitation (docs/random.md)."),
 ) -> None:
@@ -64,7 +64,7 @@ def cite(
 
 
 def demo(
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the JSON summary."),
+    out_dir: Path = out_dir_option("Where to write the figure and the JSON summary."),
     as_json: bool = typer.Option(False, "--json", help="Print the JSON summary instead of the text report."),
 ) -> None:
     """HS20-44 truck over the 16.76 m beam (Bridge 2 stand-in), ISO class C road, multipoint tires, 75 km/h."""
@@ -76,7 +76,7 @@ def demo(
 
 def compare_tires(
     scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file (its [tire] section is replaced by each model)."),
-    out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the figure and the table."),
+    out_dir: Path = out_dir_option("Where to write the figure and the table."),
     n_points: int = typer.Option(6, "--n-points", min=1, help="Points of the multi-point tire."),
     as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),
 ) -> None:
@@ -125,4 +125,7 @@ def compare_tires(
         typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * 1e3:10.4f} {row['impact_factor']:7.4f} "
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f} "
                    f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
+    from vbikit.cli.render import print_negative_note
+
+    print_negative_note(any(row[k] < 0 for row in table.values() for k in ("impact_factor", "strain_impact_factor")))
     typer.echo(f"  figure {fig}; table {out_dir / 'compare-tires.json'}")

@@ -8,7 +8,7 @@ from typing import Any, Callable, Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, limits
+from vbikit.cli.guard import STATE, guard, limits, out_dir_option
 
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
@@ -56,6 +56,8 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 
 
 _YES = typer.Option(False, "--yes", help="Run a study of more than 1e6 crossings (refused without it).")
+_YES_VALIDATE = typer.Option(False, "--yes", help="Accept a study of more than 1e6 crossings, as `study run --yes` "
+                             "would (without it, such a study fails the check).")
 _MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batch (e.g. 8GiB; default 4GiB).")
 _MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of one crossing (default 5e6).")
 
@@ -101,17 +103,20 @@ def run_cmd(
     if "impact_factor" not in ds:  # the study's outputs key left it out
         typer.echo(f"outputs stored: {', '.join(study.output_names)}")
         return
+    from vbikit.cli.render import print_negative_note
+
     im = ds["impact_factor"]
     for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
                           else [("", im)]):
         typer.echo(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
                    f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
+    print_negative_note(bool(float(im.min()) < 0))
 
 
 @app.command("validate")
 def validate_cmd(
     study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
-    yes: bool = _YES,
+    yes: bool = _YES_VALIDATE,
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,
 ) -> None:
@@ -131,7 +136,7 @@ def _paper(*figs: str) -> Callable[..., None]:
     """The command that runs the paper studies ``figs`` one after another (the local worker
     processes are shared between them)."""
     def command(
-        out_dir: Path = typer.Option(Path("vbikit-out"), "--out-dir", help="Where to write the dataset and figure."),
+        out_dir: Path = out_dir_option("Where to write the dataset and figure."),
         samples: int = typer.Option(20, "--samples", min=1, help="Road profiles per point (the paper: 20)."),
         workers: Optional[int] = _WORKERS,
         scheduler: Optional[str] = _SCHEDULER,

@@ -95,7 +95,15 @@ def tire_from_parameters(name: str, **parameters: Any) -> TireModel:
     try:
         validated = tire_parameters(name, parameters)
     except ValidationError as err:
-        problems = "; ".join(f"{'.'.join(map(str, e['loc']))}: {e['msg']} (got {e['input']!r})" for e in err.errors())
+        from vbikit._validation import bound_message
+
+        fields = tire_model(name).Parameters.model_fields
+
+        def problem(e: Any) -> str:
+            text = bound_message(e, fields.get(e["loc"][-1])) or f"{e['msg']} (got {e['input']!r})"
+            return f"{'.'.join(map(str, e['loc']))}: {text}"
+
+        problems = "; ".join(problem(e) for e in err.errors())
         raise ValueError(f"tire model {name!r}: {problems}") from None
     return tire_model(name).from_parameters(validated)
 

@@ -229,13 +229,19 @@ def frequency_shift(healthy_hz: float, damaged_hz: float) -> float:
     return (damaged_hz - healthy_hz) / healthy_hz
 
 
+#: what the position of the largest curvature change is worth, in words (reports and datasets print it beside it)
+CURVATURE_LOCATION_CAVEAT = ("not a damage location: from one pass the mode-shape estimate changes with the damage by "
+                             "less than its own end and envelope errors, so its largest curvature change falls anywhere "
+                             "(docs/driveby.md, Verification and measured accuracy); the frequency shift is the damage indicator")
+
+
 def shape_change(healthy: ArrayLike, damaged: ArrayLike) -> dict[str, float]:
     """Damage indicators from two mode-shape estimates on the same x grid (each scaled to a
     maximum of 1): ``mac`` (modal assurance criterion, Allemang & Brown 1982: 1 = same shape),
     ``shape_change`` = max |ψ_d − ψ_h| and ``curvature_change`` = max |ψ_d'' − ψ_h''| (Pandey,
     Biswas & Samman 1991's curvature indicator, central differences per grid step, no units),
-    and ``curvature_argmax`` the grid index of the largest curvature change (the damage location
-    estimate)."""
+    and ``curvature_argmax`` the grid index of the largest curvature change (Pandey et al.'s damage
+    location estimate; from one vehicle pass it does not locate damage: ``CURVATURE_LOCATION_CAVEAT``)."""
     h = np.asarray(healthy, float)
     d = np.asarray(damaged, float)
     h, d = h / np.max(np.abs(h)), d / np.max(np.abs(d))

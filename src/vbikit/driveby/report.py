@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from vbikit.driveby.identify import CURVATURE_LOCATION_CAVEAT
 from vbikit.driveby.quality import MIN_PASSES
 
 
@@ -145,6 +146,7 @@ def report_text(ds) -> str:
     shift = np.asarray(c["identified_frequency_shift"], float)
     true = np.asarray(c["bridge_frequency_shift"], float)
     damaged = np.asarray(c["damage_severity"]) > 0
+    curvature = False
     if damaged.any():
         lines += ["", "damage indicator (frequency shift against the healthy case of the same speed, road and noise):"]
         for i in np.flatnonzero(damaged):
@@ -155,7 +157,10 @@ def report_text(ds) -> str:
             lines.append(head + f"identified {100 * shift[i]:+.2f} %, true {100 * true[i]:+.2f} % "
                          f"(resolution {100 * float(c['resolution_hz'][i] / c['bridge_frequency_hz'][i]):.1f} % of f)"
                          + (f"; mode-shape MAC {float(c['mode_shape_mac'][i]):.4f}, largest curvature change at "
-                            f"x = {float(c['curvature_change_x'][i]):.3g} m" if np.isfinite(float(c['mode_shape_mac'][i])) else ""))
+                            f"x = {float(c['curvature_change_x'][i]):.3g} m (*)" if np.isfinite(float(c['mode_shape_mac'][i])) else ""))
+            curvature |= bool(np.isfinite(float(c["mode_shape_mac"][i])))
+        if curvature:
+            lines.append(f"  (*) the largest curvature change's position is {CURVATURE_LOCATION_CAVEAT}")
     lines.append("")
     lines.append("A reliable pass is accurate to about its resolution 1 / T on a rough road and far better on a smooth "
                  "one (docs/driveby.md, How accurate is this): on rough roads use the multi-pass median.")

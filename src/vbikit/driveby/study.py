@@ -23,7 +23,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
-from vbikit.driveby.identify import identify_frequency, mode_shape_squares, residual_response, shape_change
+from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequency, mode_shape_squares,
+                                     residual_response, shape_change)
 from vbikit.driveby.quality import vehicle_modes
 from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitude_spectrum, contact_truth, measure,
                                     sensor_row)
@@ -890,7 +891,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     indicators = {"mode_shape_mac": ("1", "MAC of the mode-shape estimate with the healthy case's"),
                   "curvature_change": ("1", "largest change of the estimate's curvature (second difference) against "
                                             "the healthy case's, inner 80 % of the span"),
-                  "curvature_change_x": ("m", "position of the largest curvature change (damage location estimate)")}
+                  "curvature_change_x": ("m", "position of the largest curvature change: " + CURVATURE_LOCATION_CAVEAT)}
     values = {k: np.full(n_cases, np.nan) for k in indicators}
     grid = np.linspace(0.0, float(case_crossing(spec, spec.cases[0] if spec.cases else {}).bridge.span), SHAPE_POINTS)
     for i in range(n_cases):

@@ -150,12 +150,12 @@ class TrainsSection(_Section):
 
 
 class SpeedsSection(_Section):
-    min: float = Field(100.0, ge=10, le=600)
-    max: Optional[float] = Field(None, ge=10, le=600)
-    line_max: Optional[float] = Field(None, ge=10, le=500)
-    step: float = Field(5.0, ge=0.1, le=100)
-    fine_step: Optional[float] = Field(None, ge=0.05, le=100)
-    fine_width: float = Field(10.0, ge=0, le=100)
+    min: float = Field(100.0, ge=10, le=600, description="lowest speed [km/h]")
+    max: Optional[float] = Field(None, ge=10, le=600, description="highest speed [km/h]")
+    line_max: Optional[float] = Field(None, ge=10, le=500, description="line speed; the sweep goes to 1.2 × it [km/h]")
+    step: float = Field(5.0, ge=0.1, le=100, description="speed step [km/h]")
+    fine_step: Optional[float] = Field(None, ge=0.05, le=100, description="step near resonance speeds [km/h]")
+    fine_width: float = Field(10.0, ge=0, le=100, description="± range of the fine step [km/h]")
 
     @model_validator(mode="after")
     def _range(self) -> "SpeedsSection":
@@ -164,8 +164,12 @@ class SpeedsSection(_Section):
         top = self.top
         if top > 600:
             raise ValueError(f"line_max: 1.2 × line_max must be ≤ 600 km/h, got {top:g}")
-        if top <= self.min:
+        if top <= self.min and self.max is not None:
             raise ValueError(f"max: must exceed min = {self.min:g} km/h, got {top:g}")
+        if top <= self.min:  # the sweep's top is 1.2 × line_max: say so, and name the keys the file has
+            raise ValueError(f"min: must be below the sweep's highest speed 1.2 × line_max = "
+                             f"1.2 × {self.line_max:g} = {top:g} km/h, got {self.min:g}; lower min, or raise line_max "
+                             f"above {self.min / 1.2:.4g} km/h (or give max instead of line_max)")
         return self
 
     @property

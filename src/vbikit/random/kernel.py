@@ -28,7 +28,7 @@ def record(i, st, n_m, n_w, n_d, deck, v_acc, cw, var, coarse, cov_dv, lam1, kep
     o_z = o_f + n_w  # z
     n_c = st.shape[1]
     n_pt = deck.shape[0] // 4
-    np.dot(deck, st[:o_f], work_d)
+    np.dot(deck, st[:o_z], work_d)  # deck channels from [ξ; ξ̇; p; F_w]
     np.dot(v_acc, st[o_z:], work_a)
     r = 0
     for block in range(3):

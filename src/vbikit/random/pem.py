@@ -96,10 +96,17 @@ class Probes:
     """What to read: deck points (``shapes`` (n_pts, n_m): φ at each point) — displacement,
     velocity, acceleration, and bottom-fibre strain with ``strain_shapes`` (n_pts, n_m) (the
     bridge's ``strain_shapes`` at the points; default none: σ = 0); every vehicle DOF —
-    displacement and acceleration; every wheel's contact force."""
+    displacement and acceleration; every wheel's contact force.
+
+    ``state_rows`` (n_rows, 3 n_m + n_w), optional: more deck channels after the points, each
+    linear in the end-of-step state [ξ; ξ̇; p; F_w] (p = ξ̈ + 2ζωξ̇ + ω²ξ the modal load, F_w the
+    wheels' contact forces): its "displacement" channel is ``row · [ξ; ξ̇; p; F_w]`` (kept per line
+    with ``keep_lines``), its velocity, acceleration and strain channels are 0.  A load effect by
+    mode acceleration is built from such channels (``vbikit.random.response``)."""
 
     shapes: NDArray[np.float64]
     strain_shapes: NDArray[np.float64] | None = None
+    state_rows: NDArray[np.float64] | None = None
 
 
 @dataclass
@@ -271,9 +278,16 @@ class _Run:
         self.coarse_w = np.repeat(np.tile(lines.coarse_weights(), n_sets), 2)  # per float column
         self.forward = pts.direction[:, None] > 0
         self.one_way = bool(np.all(self.forward)) and self.travel.shape[1] == 1
-        self.shapes = probes.shapes
-        self.strain_shapes = np.zeros_like(self.shapes) if probes.strain_shapes is None else \
-            np.atleast_2d(probes.strain_shapes)
+        shapes = np.atleast_2d(probes.shapes)
+        strain = np.zeros_like(shapes) if probes.strain_shapes is None else np.atleast_2d(probes.strain_shapes)
+        rows = np.zeros((0, 3 * n_m + n_w)) if probes.state_rows is None else np.atleast_2d(probes.state_rows)
+        if rows.shape[1] != 3 * n_m + n_w:
+            raise ValueError(f"Probes.state_rows must have 3 n_modes + n_wheels = {3 * n_m + n_w} columns, "
+                             f"got {rows.shape[1]}")
+        n_sh, n_rows = shapes.shape[0], rows.shape[0]
+        self.shapes = np.vstack([shapes, np.zeros((n_rows, n_m))])  # the state rows' channels: no φ, no strain
+        self.strain_shapes = np.vstack([strain, np.zeros((n_rows, n_m))])
+        self.state_rows = np.vstack([np.zeros((n_sh, 3 * n_m + n_w)), rows])  # (n_pt, 3 n_m + n_w)
         self.n_pt = n_pt = self.shapes.shape[0]
         self.var = {name: np.zeros((n_out, size)) for name, size in zip(NAMES, (n_pt, n_pt, n_pt, n_pt, n_d, n_d, n_w))}
         self.coarse = {name: np.zeros_like(v) for name, v in self.var.items()}
@@ -381,11 +395,12 @@ def _exact_lines(run: _Run) -> None:
     o_v, o_p, o_f, o_z, o_g = n_m, 2 * n_m, 3 * n_m, 3 * n_m + n_w, 3 * n_m + n_w + 2 * n_d
     n_st, o_in_g = o_g + n_w, 2 * n_m + 2 * n_d
     n_r = n_m + n_w
-    # outputs from st, in the order of NAMES: the deck's from (ξ, ξ̇, p), the vehicles' from (z, G)
+    # outputs from st, in the order of NAMES: the deck's from (ξ, ξ̇, p, F_w), the vehicles' from (z, G)
     w2, zw = data.modes.omega**2, 2.0 * data.modes.zeta * data.modes.omega
     sh, n_pt = run.shapes, run.n_pt
-    deck = np.zeros((4 * n_pt, o_f))
+    deck = np.zeros((4 * n_pt, o_z))  # on [ξ; ξ̇; p; F_w]
     deck[:n_pt, :n_m] = sh
+    deck[:n_pt] += run.state_rows
     deck[n_pt:2 * n_pt, o_v:o_p] = sh
     deck[2 * n_pt:3 * n_pt, :n_m] = -sh * w2  # ξ̈ = p − 2ζω ξ̇ − ω² ξ
     deck[2 * n_pt:3 * n_pt, o_v:o_p] = -sh * zw
@@ -458,13 +473,18 @@ def _newmark_lines(run: _Run) -> None:
         mass[:], damp[:], stiff[:], load[:], phi[:], dphi[:] = coupled_system(data.modes, veh, pts, x, vx)
         return x, vx
 
-    sh, ss = run.shapes, run.strain_shapes
+    sh, ss, rows = run.shapes, run.strain_shapes, run.state_rows
+    w2, zw = data.modes.omega**2, 2.0 * data.modes.zeta * data.modes.omega
 
     def record(i, blk, u, v, a, g_w, wheel_maps):
         a_xi, a_dxi, a_q, a_dq = wheel_maps
         force = a_xi @ u[:n_m] + a_dxi @ v[:n_m] + a_q @ u[n_m:] + a_dq @ v[n_m:] + g_w
         cols = slice(2 * blk.start, 2 * blk.stop)
-        run.record(i, np.vstack([sh @ u[:n_m], sh @ v[:n_m], sh @ a[:n_m], ss @ u[:n_m], u[n_m:], a[n_m:], force]),
+        disp = sh @ u[:n_m]
+        if rows.any():  # row · [ξ; ξ̇; p; F_w], p = ξ̈ + 2ζωξ̇ + ω²ξ
+            p = a[:n_m] + zw[:, None] * v[:n_m] + w2[:, None] * u[:n_m]
+            disp = disp + rows @ np.vstack([u[:n_m], v[:n_m], p, force])
+        run.record(i, np.vstack([disp, sh @ v[:n_m], sh @ a[:n_m], ss @ u[:n_m], u[n_m:], a[n_m:], force]),
                    cols)
 
     def forcing(phase, vx, blk):

@@ -5,16 +5,21 @@ at each response point (peaks of Gaussian histories with PEM's covariance; the P
 estimate of ``vbikit.random.peaks`` as a cross-check), the same for every load effect of the plan
 (moment, shear, reaction), and the probability of lift-off.
 
-Load effects.  A load effect by mode superposition, R(t) = Σ_i r_i ξ_i(t) (``vbikit.bridge.effects``:
-r_i = ``LoadEffect.modal``, the library's one definition), is linear in the modal coordinates, so
-its pseudo response is Σ_i r_i ξ̃_i and its variance Σ_k |Σ_i r_i ξ̃_i,k|² — a deck probe whose
-"mode shape" is r (``Probes.shapes`` row).  Its mean is the smooth crossing's R, its static
-reference Σ_i r_i ξ_st,i (``vbikit.analysis.impact.static_modal_history``), both by mode
-superposition too, so that mean, σ and reference are one Gaussian process of one model.  (The
-mode-acceleration form adds the truncated modes' quasi-static part, −Σ_p I_trunc(x_p) f_p, which
-is linear in the wheel forces as well, but PEM would have to keep the wheel forces' pseudo
-responses of every line for it; not done: the summary reports the smooth-road impact factor by
-the plan's method beside it, the measure of the difference.)"""
+Load effects, by the plan's ``load_effect_method`` (``vbikit.analysis.effects``), the ordinary
+run's: mean (the smooth crossing's R), static reference and random part of one model.
+
+* Mode superposition, R(t) = Σ_i r_i ξ_i(t) (r_i = ``LoadEffect.modal``): its pseudo response is
+  Σ_i r_i ξ̃_i — a deck probe whose "mode shape" is r (``Probes.shapes`` row); static reference
+  Σ_i r_i ξ_st,i (``vbikit.analysis.impact.static_modal_history``): the retained modes only.
+* Mode acceleration (the default), R(t) = −Σ_p I(x_p) β_p f_w(t) − Σ_i r_i (ξ̈_i + 2ζ_iω_i ξ̇_i)/ω_i²
+  = Σ_i r_i ξ_i − Σ_i r_i p_i/ω_i² − Σ_w c_w(t) f_w(t), with p_i = ξ̈_i + 2ζ_iω_i ξ̇_i + ω_i² ξ_i the modal
+  load and c_w(t) = Σ_{p∈w} I(x_p(t)) β_p: linear in the state [ξ; ξ̇; p; F_w], so its pseudo
+  response is the time-invariant part (a ``Probes.state_rows`` row) minus Σ_w c_w(t) F̃_w(t) (the
+  wheels' pseudo forces, state rows too), combined per line (``_combine_acceleration``).  Its
+  static reference is −Σ_p I(x_p) β_p P_w, every mode's static part included: the ordinary run's.
+  A shear or reaction near a support, whose truncated modes' static part is large (30 % of the
+  entry shear of the 3D Bridge 2 with 20 modes), needs it.
+"""
 from __future__ import annotations
 
 import dataclasses
@@ -26,6 +31,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.checks import small_static_warnings
 from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
 from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -77,8 +83,6 @@ def _study_channels(n_points: int, effects: list[LoadEffectResponse]) -> list[in
 #: channel either way.
 PEAKS: dict[str, tuple[Callable[[int, list[LoadEffectResponse]], list[int]], bool]] = {
     "all": (_every_channel, True), "study": (_study_channels, False)}
-#: how load effects are formed in random runs: R = Σ_i r_i ξ_i, linear in the modal coordinates
-EFFECT_METHOD = "mode-superposition"
 
 
 @dataclass
@@ -117,7 +121,7 @@ class RandomResponse:
         for k, e in enumerate(self.effects):
             unit = e.effect.units.replace(" ", "*")
             data[f"{e.name}_mean"] = ("time", e.dynamic[:n], {"units": unit, "long_name": f"mean {e.effect.label} "
-                                                                                         "(smooth road, mode superposition)"})
+                                                                                         f"(smooth road, {e.method})"})
             data[f"{e.name}_std"] = ("time", self.effect_std(k)[:n], {"units": unit, "long_name": f"standard deviation of "
                                                                                               f"the {e.effect.label}"})
             data[f"{e.name}_static"] = ("time", e.static[:n], {"units": unit})
@@ -193,19 +197,25 @@ def random_responses(crossing: Crossing, plan: ResponsePlan, roads: list[PseudoR
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
     xi_st = static_modal_history(smooth)
     points = plan_responses(smooth, plan, xi_st)
-    effects = load_effect_responses(smooth, plan.load_effects, EFFECT_METHOD, xi_st)
+    method = plan.load_effect_method
+    effects = load_effect_responses(smooth, plan.load_effects, method, xi_st)
     xs, ys = [p.x for p in points], [p.y for p in points]
     shapes, strains = np.atleast_2d(crossing.bridge.mode_shapes(xs, ys)), np.atleast_2d(crossing.bridge.strain_shapes(xs, ys))
-    if effects:  # a load effect is a deck probe whose "shape" is its modal values r_i (module docstring)
+    rows = None
+    if effects and method == "mode-superposition":  # a deck probe whose "shape" is r_i (module docstring)
         modal = np.stack([e.effect.modal for e in effects])
         shapes, strains = np.vstack([shapes, modal]), np.vstack([strains, np.zeros_like(modal)])
-    pem = pseudo_excitation(crossing, road, Probes(shapes, strains), dt, lines=lines, substeps=substeps, method=PEM_METHOD,
-                            data=data, keep_lines=True)
+    elif effects:  # mode acceleration: state rows (module docstring)
+        rows = _acceleration_rows(crossing, effects)
+    pem = pseudo_excitation(crossing, road, Probes(shapes, strains, rows), dt, lines=lines, substeps=substeps,
+                            method=PEM_METHOD, data=data, keep_lines=True)
     n = min(pem.time.size, smooth.time.size)
     n_pt = len(points)
+    if rows is not None:
+        _combine_acceleration(pem, smooth, effects, n_pt, road.line_factors().shape[0], n)
     # every deck channel (points, then effects): mean, its rate and the static reference
     mean = np.stack([p.displacement[:n] for p in points] + [e.dynamic[:n] for e in effects], axis=1)
-    rate = np.stack([p.velocity[:n] for p in points] + [smooth.xi_dot[:n] @ e.effect.modal for e in effects], axis=1)
+    rate = np.stack([p.velocity[:n] for p in points] + [_effect_rate(smooth, e, n) for e in effects], axis=1)
     static = np.stack([p.static_displacement[:n] for p in points] + [e.static[:n] for e in effects], axis=1)
     chosen = which(n_pt, effects)
     scales = [float(np.sqrt(f)) for f in factors]
@@ -246,13 +256,8 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
     effect_entries = []
     for k, e in enumerate(effects):
         j = n_pt + k
-        entry = {"name": e.name, "kind": e.effect.kind, "x": e.effect.x, "units": e.effect.units, "method": EFFECT_METHOD,
-                 **stats(j),
-                 "std_max": float(pem.std("displacement")[:n, j].max())}
-        if j in col and plan.load_effect_method != EFFECT_METHOD:  # the plan's own method on the smooth road: the difference
-            own = load_effect_responses(smooth, [e.effect], plan.load_effect_method)[0]
-            entry[f"impact_factor_smooth_{plan.load_effect_method.replace('-', '_')}"] = _smooth_im(own.dynamic[:n],
-                                                                                                   own.static[:n])
+        entry = {"name": e.name, "kind": e.effect.kind, "x": e.effect.x, "units": e.effect.units,
+                 "method": plan.load_effect_method, **stats(j), "std_max": float(pem.std("displacement")[:n, j].max())}
         effect_entries.append(entry)
     wheel_std = pem.std("wheel_force")[:n]
     lift = {w.name: exceedance_probability(smooth.wheel_forces[:n, k], wheel_std[:, k])
@@ -267,6 +272,11 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
                         "linear theory does not hold there; use Monte Carlo (several road seeds, tires that can lift)")
     if grid > GRID_LIMIT:
         warnings.append(f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every second line")
+    if len(entries) > 1 and all("static_peak" in e for e in entries):  # a point's mean IM on a small static
+        # reference (vbikit.analysis.checks); peaks="study" has no statistics of the further points
+        warnings += small_static_warnings([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],
+                                          [e["static_peak"] for e in entries],
+                                          [e["impact_factor_mean"] for e in entries])
     head = entries[0]
     vehicle = crossing.vehicle
     summary: dict[str, Any] = {
@@ -294,6 +304,71 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
     return summary
 
 
+def _acceleration_rows(crossing: Crossing, effects: list[LoadEffectResponse]) -> NDArray[np.float64]:
+    """``Probes.state_rows`` of load effects by mode acceleration (module docstring): per effect
+    [r; 0; −r/ω²; 0] on [ξ; ξ̇; p; F_w] (Σ r_i ξ_i − Σ r_i p_i/ω_i² = −Σ r_i (ξ̈_i + 2ζ_iω_i ξ̇_i)/ω_i²), then
+    one row per wheel picking its contact force F_w."""
+    omega = crossing.bridge.omega
+    n_m, n_w = omega.size, len(crossing.vehicle.wheels)
+    rows = np.zeros((len(effects) + n_w, 3 * n_m + n_w))
+    for k, e in enumerate(effects):
+        rows[k, :n_m] = e.effect.modal
+        rows[k, 2 * n_m:3 * n_m] = -e.effect.modal / omega**2
+    rows[len(effects):, 3 * n_m:] = np.eye(n_w)
+    return rows
+
+
+def _combine_acceleration(pem: PEMResult, smooth: CrossingResult, effects: list[LoadEffectResponse], n_pt: int,
+                          n_sets: int, n: int) -> None:
+    """Complete the mode-acceleration load effects' pseudo responses in ``pem`` (in place) and drop
+    the wheel-force channels that served them: ỹ_e(t) = [Σ r ξ̃ − Σ r p̃/ω²](t) − Σ_w c_ew(t) F̃_w(t) with
+    c_ew(t) = Σ_{p∈w} I_e(x_p(t), y_p) β_p (the influence at the wheel's contact points, spread by
+    their static shares: ``vbikit.analysis.effects``, the engine's rule), per line; then the
+    effects' variances (every line and the grid check's every second line), and their rate ẏ̃_e
+    by central differences in time (``numpy.gradient``: relative error (ω dt)²/6, 3e-4 for a
+    7 Hz mode at 1 ms) for Cov(y, ẏ) and λ₁ of the up-crossing cross-check."""
+    from vbikit.analysis.effects import contact_influence_table
+
+    n_e = len(effects)
+    crossing = smooth.crossing
+    cp = crossing.contact
+    n_w = len(crossing.vehicle.wheels)
+    table = contact_influence_table(smooth, [e.effect for e in effects])
+    pts = table.points
+    share = np.zeros((pts.size, n_w))
+    share[np.arange(pts.size), cp.wheel[pts]] = cp.weight[pts]
+    coef = table.sums(share)[:, :, :n]  # (n_w, n_e, n_t)
+    kept = pem.lines_displacement  # (n_t, channels, 2 L')
+    eff, wheels = slice(n_pt, n_pt + n_e), slice(n_pt + n_e, n_pt + n_e + n_w)
+    y = kept[:n, eff] - np.einsum("wet,twc->tec", coef, kept[:n, wheels])
+    y_rate = np.gradient(y, float(pem.time[1] - pem.time[0]), axis=0)  # the uniform output grid
+    coarse_w = np.repeat(np.tile(pem.lines.coarse_weights(), n_sets), 2)
+    for name, z in (("displacement", y), ("velocity", y_rate)):
+        z2 = z * z
+        pem.var[name][:n, eff] = z2.sum(axis=2)
+        pem.coarse[name][:n, eff] = z2 @ coarse_w
+    pem.cov_dv[:n, eff] = (y * y_rate).sum(axis=2)
+    modulus = lambda z: np.hypot(z[..., 0::2], z[..., 1::2])  # noqa: E731  |ỹ_k| of the [Re, Im] pairs
+    pem.lambda1[:n, eff] = (modulus(y) * modulus(y_rate)).sum(axis=2)
+    kept[:n, eff] = y
+    keep = np.r_[0:n_pt + n_e]
+    pem.time = pem.time[:n]
+    deck = ("displacement", "velocity", "acceleration", "strain")
+    for d in (pem.var, pem.coarse):
+        for name in d:
+            d[name] = d[name][:n, keep] if name in deck else d[name][:n]
+    pem.cov_dv, pem.lambda1 = pem.cov_dv[:n, keep], pem.lambda1[:n, keep]
+    pem.lines_displacement = np.ascontiguousarray(kept[:n, keep])
+
+
+def _effect_rate(smooth: CrossingResult, e: LoadEffectResponse, n: int) -> NDArray[np.float64]:
+    """dR/dt of a load effect's mean history: Σ r_i ξ̇_i by mode superposition; by mode acceleration
+    central differences of R (``_combine_acceleration``)."""
+    if e.method == "mode-superposition":
+        return smooth.xi_dot[:n] @ e.effect.modal
+    return np.gradient(e.dynamic[:n], smooth.time[:n])
+
+
 def _grid_change(pem: PEMResult, name: str, cols: slice) -> float:
     """``PEMResult.grid_change`` of the channels ``cols`` of ``name`` only (one unit at a time)."""
     s, c = np.sqrt(pem.var[name][:, cols]), np.sqrt(np.maximum(pem.coarse[name][:, cols], 0.0))
@@ -317,13 +392,6 @@ def _sampled_peaks(pem: PEMResult, mean: NDArray[np.float64], static: NDArray[np
             z += signed[:, :, None]
             out[k].append(z.max(axis=0).T)
     return [np.concatenate(o, axis=0) for o in out]
-
-
-def _smooth_im(dynamic: NDArray[np.float64], static: NDArray[np.float64]) -> float:
-    """IM of a smooth-road history in its static peak's direction (sampled peaks)."""
-    sign = static_direction(static)
-    r_st = float(np.max(sign * static))
-    return float((np.max(sign * dynamic) - r_st) / r_st) if r_st > 0 else float("nan")
 
 
 def _peak_entry(pem: PEMResult, j: int, n: int, mean_signed: NDArray[np.float64], static: NDArray[np.float64],

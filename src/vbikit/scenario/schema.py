@@ -30,6 +30,7 @@ from vbikit.scenario.section import ScenarioError, Section
 from vbikit._files import read_text
 from vbikit._kept import Kept
 from vbikit._toml import parse_toml
+from vbikit._validation import bound_message
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
 from vbikit.solve.budget import MAX_AXLES
@@ -163,6 +164,14 @@ class TireSpec(Section):
     def _model_parameters(self) -> "TireSpec":
         tire_parameters(self.model, self.model_extra or {}, common=list(type(self).model_fields))  # errors name tire.<key>
         return self
+
+    @classmethod
+    def key_field(cls, key: str, table: dict[str, Any]) -> Any:
+        """The field of ``key``: the section's own, or a parameter of the table's tire model."""
+        own = super().key_field(key, table)
+        if own is not None or table.get("model") not in TIRE_MODELS:
+            return own
+        return tire_model(table["model"]).Parameters.model_fields.get(key)
 
     @classmethod
     def keys(cls, model: str | None = None) -> list[str]:
@@ -549,6 +558,20 @@ def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
     return out
 
 
+def _key_field(loc: tuple[Any, ...], data: dict[str, Any]) -> Any:
+    """The pydantic field of the key at ``loc`` (a list item: its list's field; a tire parameter:
+    its tire model's, ``Section.key_field``), None if unknown."""
+    names = [p for p in loc if isinstance(p, str) and not _UNION_MEMBER.match(p)]
+    if not names:
+        return None
+    at = len(loc) - 1 - loc[::-1].index(names[-1])
+    path, holder = _walk(loc[:at])
+    if holder is None:
+        return None
+    lookup = getattr(holder, "key_field", None)
+    return lookup(names[-1], _table_at(data, path)) if lookup is not None else _field(holder, names[-1])
+
+
 def _format(err: ValidationError, data: dict[str, Any], prefix: tuple[Any, ...] = ()) -> str:
     """The errors of a scenario validation, one line each, naming the key (``prefix``: the
     location of the validated part when it is not the whole scenario)."""
@@ -565,6 +588,8 @@ def _format(err: ValidationError, data: dict[str, Any], prefix: tuple[Any, ...] 
             msg = f"unknown key; allowed keys: {', '.join(names)}{f' ({note})' if note else ''}"
         elif e["type"] == "missing":
             msg = "missing required key"
+        elif bound_message(e) is not None:  # the range with both bounds and the unit
+            msg = bound_message(e, _key_field(prefix + tuple(e["loc"]), data))
         elif "input" in e and e["type"] not in ("value_error",):
             msg = f"{msg} (got {e['input']!r})"
         key = re.match(r"^([a-z_]+): ", msg) if loc and e["type"] == "value_error" else None

@@ -27,6 +27,12 @@ class Section(BaseModel):
         return [f.alias or n for n, f in cls.model_fields.items()]
 
     @classmethod
+    def key_field(cls, key: str, table: dict[str, Any]) -> Any:
+        """The pydantic field (``FieldInfo``) of ``key`` in ``table`` (this section as given), None if
+        it has none (its range and unit are then unknown to the error messages)."""
+        return next((f for n, f in cls.model_fields.items() if key in (n, f.alias)), None)
+
+    @classmethod
     def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
         """A hint for the unknown ``key`` of ``table`` ("" for none)."""
         return ""

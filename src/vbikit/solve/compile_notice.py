@@ -30,12 +30,24 @@ def kernels_cached(kernel) -> bool:
     return index is not None and os.path.exists(index)
 
 
+#: whether this process has announced the compilation (or its parent did for it: ``announced_elsewhere``);
+#: the notice is given once a process, however many callers (a study, then its first crossing) ask
+_ANNOUNCED = [False]
+
+
+def announced_elsewhere() -> None:
+    """Say no more in this process: a study's worker processes, whose parent announced the
+    compilation for all of them (``vbikit.study.run``); each worker said it again before."""
+    _ANNOUNCED[0] = True
+
+
 def announce_compile(kernel, who: str = "") -> None:
     """Log (``vbikit.solve.compile``, shown by the CLI) that the kernels are about to be compiled when
-    ``kernel`` is neither compiled in this process nor in numba's on-disk cache; ``who`` says where
-    (e.g. "each of the 2 worker processes, on its first batch")."""
-    if kernels_cached(kernel):
+    ``kernel`` is neither compiled in this process nor in numba's on-disk cache, once a process;
+    ``who`` says where (e.g. "each of the 2 worker processes, on its first batch")."""
+    if _ANNOUNCED[0] or kernels_cached(kernel):
         return
+    _ANNOUNCED[0] = True
     where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
     compile_log.info("compiling the kernels%s, first run only: about %d s of CPU (later runs load them from numba's "
                      "cache%s in under a second; `vbikit compile` does it in advance)", f" in {who}" if who else "",

@@ -5,10 +5,11 @@ Where a Monte-Carlo study runs one crossing per sampled road and leaves the stat
 ``road.seed`` axis), the random-vibration analysis of ``vbikit run --random``
 (``vbikit.scenario.pipeline.run_random``) and stores the impact factor's distribution over the
 random road at the headline response point — mean, standard deviation, quantiles and the mean's
-sampling error — and of the first bending moment of the response plan (mode superposition,
-``vbikit.random.response``), with the lift-off probability and the wavenumber grid check that say
-whether the linear theory holds.  It runs on ``vbikit.study.run.run_study``'s machinery as a job
-(one cell a batch: resumable, local processes or Dask).
+sampling error — and of the first bending moment of the response plan (by the plan's
+``load_effect_method``, mode acceleration by default, ``vbikit.random.response``), with the
+lift-off probability and the wavenumber grid check that say whether the linear theory holds.
+It runs on ``vbikit.study.run.run_study``'s machinery as a job (one cell a batch: resumable,
+local processes or Dask).
 """
 from __future__ import annotations
 
@@ -28,7 +29,7 @@ PEM_OUTPUTS: dict[str, tuple[tuple[str, ...], str, str]] = {
     "impact_factor_sampling_error": (("impact_factor_sampling_error",), "1",
                                      "sampling error of the mean impact factor (Gaussian histories with PEM's covariance)"),
     "moment_impact_factor_mean": (("effects", "moment", "impact_factor_mean"), "1",
-                                  "mean impact factor of the first bending moment (mode superposition, PEM)"),
+                                  "mean impact factor of the first bending moment (the plan's load-effect method, PEM)"),
     "moment_impact_factor_std": (("effects", "moment", "impact_factor_std"), "1",
                                  "standard deviation of the first bending moment's impact factor (PEM)"),
     "lift_off_probability": (("lift_off_probability",), "1", "largest probability of a tire lifting off at one instant"),

@@ -407,4 +407,10 @@ def assemble(study: Study, parts: Path):
         "axes": json.dumps({a.name: a.key for a in study.axes}),
         "Conventions": "CF-1.8",
     }
+    if names is not None and len(names) > 1 and {"impact_factor", "max_static_displacement"} <= set(data):
+        from vbikit.analysis.checks import small_static_dataset_warnings
+
+        flagged = small_static_dataset_warnings(names, data["max_static_displacement"])
+        if flagged:  # in words, as a random run's dataset carries its warnings
+            attrs["warnings"] = "; ".join(flagged)
     return xr.Dataset(variables, coords=coords, attrs=attrs)

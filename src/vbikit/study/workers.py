@@ -42,12 +42,15 @@ def _one_blas_thread() -> None:
 
 
 def _die_with_parent(parent: int, thread_bound: bool) -> None:
-    """Worker initializer: one BLAS thread (``_one_blas_thread``), ignore Ctrl-C and end when the
-    process ``parent`` ends.
+    """Worker initializer: one BLAS thread (``_one_blas_thread``), ignore Ctrl-C, no compile notice
+    (the parent gave it for every worker: ``announced_elsewhere``) and end when the process ``parent`` ends.
 
     ``thread_bound``: the kernel's parent-death signal may be used (it fires when the *thread*
     that started the worker ends, so only when that thread is the parent's main thread)."""
+    from vbikit.solve.compile_notice import announced_elsewhere
+
     _one_blas_thread()
+    announced_elsewhere()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     if thread_bound and sys.platform.startswith("linux"):
         try:
