@@ -20,8 +20,9 @@ compiles the kernels; every figure the minimum over ``--repeat`` runs):
   the road class, which share one pseudo-excitation and one set of sampled Gaussian histories,
   ``run_random_levels``; ``peaks="study"``: the headline point's and the first bending moment's
   peak statistics, no up-crossing cross-check) on every ``--stride``-th batch, with its parts: the
-  smooth-road crossing (the mean), the σ histories (``pseudo_excitation``: 254 lines, every point
-  and load effect), the peaks of 4,000 Gaussian histories (``_sampled_peaks``) and the Poisson
+  smooth-road crossing (the mean), the σ histories (``pseudo_excitation``: 254 lines, every point,
+  load effect and wheel force), the load effects' mode-acceleration combination
+  (``_combine_acceleration``), the peaks of 4,000 Gaussian histories (``_sampled_peaks``) and the Poisson
   up-crossing cross-check (``peak_distribution``), per cell;
 * the same cells one at a time (``run_random(..., peaks="study")``: no sharing), and reduced as
   the study reduced them before 2026-12-04 (``peaks="all"``: what ``vbikit run --random`` reports,
@@ -61,7 +62,8 @@ from vbikit.study.pem import PemStudy  # noqa: E402
 from vbikit.study.run import run_study  # noqa: E402
 
 PARTS = {"simulate": "smooth-road crossing (mean)", "pseudo_excitation": "σ histories (pseudo_excitation)",
-         "_sampled_peaks": "peaks of 4,000 Gaussian histories", "peak_distribution": "up-crossing cross-check"}
+         "_combine_acceleration": "mode-acceleration effects", "_sampled_peaks": "peaks of 4,000 Gaussian histories",
+         "peak_distribution": "up-crossing cross-check"}
 SPENT: dict[str, float] = collections.defaultdict(float)
 
 
