@@ -77,3 +77,27 @@ def test_split_against_the_independent_count(stream):
     # the two means differ by far more than round-off, so a swapped split cannot pass
     assert abs(sum(single) / len(single) - sum(multiple) / len(multiple)) > 1e-3
     assert all(math.isfinite(v) for v in single + multiple)
+
+
+def test_small_static_events_are_counted_and_left_out_of_the_loaded_statistics():
+    """Events whose static peak is below 20 % of the stream's largest (a light car, a far lane) give IMs
+    on a small reference: counted, and the loaded-event mean and 95 % quantile leave them out — by hand
+    on a made-up dataset whose small events carry huge IMs (a wrong mask, or one on the dynamic peaks,
+    moves the loaded mean by far more than round-off)."""
+    import xarray as xr
+
+    from vbikit.traffic.study import stream_statistics
+
+    static = np.array([10.0, 9.0, 1.9, 0.5, 8.0, 2.1])  # mm: 1.9 and 0.5 below 20 % of 10
+    im = np.array([0.10, 0.20, 1.50, 3.00, 0.30, 0.40])
+    dyn = static * (1 + im)
+    ds = xr.Dataset({"impact_factor": ("event", im), "max_dynamic_displacement": ("event", -dyn * 1e-3),
+                     "max_static_displacement": ("event", -static * 1e-3),
+                     "multiple_presence": ("event", np.array([0, 1, 0, 0, 1, 0]))},
+                    coords={"vehicle": np.arange(8)})
+    a = stream_statistics(ds)
+    assert a["n_small_static_events"] == 2 and a["small_static_fraction"] == 0.2
+    kept = im[[0, 1, 4, 5]]
+    assert a["im_mean_loaded"] == pytest.approx(kept.mean(), rel=1e-12)
+    assert a["im_q95_loaded"] == pytest.approx(np.quantile(kept, 0.95), rel=1e-12)
+    assert a["im_mean"] == pytest.approx(im.mean(), rel=1e-12)  # the all-event figures are unchanged

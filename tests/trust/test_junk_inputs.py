@@ -38,6 +38,8 @@ def test_a_csv_that_is_no_train_table_is_refused(tmp_path, monkeypatch, argv):
                    "'position [m], load [kN]'", *(["trains.tables[1]: "] if "RAIL.toml" in argv else []))
     assert "foo" not in err and "bar" not in err
     assert not (tmp_path / "out").exists()  # refused before the run made anything
+    # only a guessed kind says it was guessed, and how to name another (a records file missing its time column…)
+    assert ("read as a train table" in err and "--kind: " in err) == (argv == ["validate", "junk.csv"])
 
 
 def test_a_real_train_table_still_validates(tmp_path):

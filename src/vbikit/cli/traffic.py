@@ -63,6 +63,12 @@ def traffic_cmd(
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
     typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f} (one vehicle {a['im_mean_single']:.4f}, "
                f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
+    if a["n_small_static_events"]:
+        n_small, share = int(a["n_small_static_events"]), float(a["small_static_fraction"])
+        typer.echo(f"events loading the point (static peak ≥ {share:.0%} of the stream's largest, "
+                   f"{job.size - n_small} of {job.size}): IM mean {a['im_mean_loaded']:.4f}, 95 % {a['im_q95_loaded']:.4f}; "
+                   f"the other {n_small} events' IMs rest on small static references (light vehicles, far lanes): "
+                   "not design values")
     typer.echo(f"largest static effect: event {a['governing_static_event']}, dynamic amplification "
                f"{a['governing_static_amplification']:.4f}; largest dynamic effect: event {a['governing_dynamic_event']}, "
                f"{a['governing_dynamic_amplification']:.4f} × the largest static effect")

@@ -163,5 +163,17 @@ def validate(
     if max_memory is not None:
         memory_option(max_memory)
     found = kind or guard(lambda: detect(file))
-    summary = guard(lambda: CHECKS[found](file, budget))
+
+    def check() -> str:
+        from vbikit.errors import VbikitError
+
+        try:
+            return CHECKS[found](file, budget)
+        except VbikitError as err:
+            if kind is None and found == "train":  # the fallback guess: say so, and how to name the kind
+                raise OptionError(f"{err} (its first line names no other kind of CSV, so it was read as a train "
+                                  f"table; if it is another kind, give --kind: {', '.join(KINDS)})") from None
+            raise
+
+    summary = guard(check)
     typer.echo(f"{file}: ok — {summary}" if found == "scenario" else f"{file}: ok — {KINDS[found]}: {summary}")

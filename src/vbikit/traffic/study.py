@@ -304,7 +304,14 @@ def stream_statistics(ds) -> dict[str, Any]:
     standard deviation, 5/50/95/99 % quantiles, histogram), and the dynamic amplification of the
     event with the largest static effect (its R_dyn / R_st) and of the largest dynamic effect
     (the largest R_dyn of the stream over the largest R_st of the stream: the ratio of the
-    governing total to the governing static load effect); at the first response point."""
+    governing total to the governing static load effect); at the first response point.
+
+    An event whose static peak there is below ``SMALL_STATIC_FRACTION`` (20 %) of the stream's largest
+    (a light vehicle, or one in a far lane of a deck) has an IM resting on a small static reference,
+    not a design value (``vbikit.analysis.checks.small_static``): ``n_small_static_events`` counts
+    them, and ``im_mean_loaded`` / ``im_q95_loaded`` are the mean and 95 % quantile of the others."""
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+
     if "point" in ds.dims:
         ds = ds.isel(point=0)
     im = np.asarray(ds["impact_factor"].values, float)
@@ -315,6 +322,7 @@ def stream_statistics(ds) -> dict[str, Any]:
     edges = np.linspace(min(-0.1, float(np.floor(im.min() * 20) / 20)), max(1.0, float(np.ceil(im.max() * 20) / 20)), 23)
     counts, _ = np.histogram(im, edges)
     q = np.quantile(im, [0.05, 0.5, 0.95, 0.99])
+    loaded = ~np.array(small_static(st), bool)
     return {
         "n_events": int(im.size), "n_vehicles_total": int(ds.sizes["vehicle"]),
         "n_multiple_presence_events": int(mp.sum()),
@@ -323,6 +331,9 @@ def stream_statistics(ds) -> dict[str, Any]:
         "im_mean_single": float(im[~mp].mean()) if (~mp).any() else math.nan,
         "im_mean_multiple": float(im[mp].mean()) if mp.any() else math.nan,
         "im_histogram_edges": [float(x) for x in edges], "im_histogram_counts": [int(c) for c in counts],
+        "small_static_fraction": SMALL_STATIC_FRACTION, "n_small_static_events": int((~loaded).sum()),
+        "im_mean_loaded": float(im[loaded].mean()) if loaded.any() else math.nan,
+        "im_q95_loaded": float(np.quantile(im[loaded], 0.95)) if loaded.any() else math.nan,
         "governing_static_event": i_st,
         "governing_static_amplification": float(dyn[i_st] / st[i_st]),
         "governing_dynamic_event": i_dyn,
