@@ -241,7 +241,8 @@ def render(numbers: dict) -> str:
                       f"(coordinator) and {b['peak_rss_worker_MB']:.0f} MB (largest worker); dynamics on every event "
                       f"would take {b['every_event_estimate_s']:,.0f} s ({b['baseline_dynamic_s_per_event_one_core'] * 1e3:.0f} ms "
                       f"an event on one core): {b['speedup_vs_every_event']:.0f} × faster; one year extrapolated "
-                      f"linearly: {b['year_extrapolated_s'] / 60:.0f} min."]
+                      f"linearly from that run: {b['year_extrapolated_s'] / 60:.0f} min with the code of {b['date']} "
+                      f"(the present code's year: \"Performance and limits\" below)."]
     lines += ["", END]
     return "\n".join(lines)
 

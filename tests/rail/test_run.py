@@ -158,3 +158,25 @@ def test_scenario_bridge_errors(tmp_path):
                          "speeds": {"max": 300.0}})
     with pytest.raises(RailSpecError, match="bridge.EI: give span, EI and mass_per_length"):
         parse_rail_spec({"bridge": {"span": 20.0}, "trains": {"presets": ["hslm-a1"]}, "speeds": {"max": 300.0}})
+
+
+def test_hslm_b_from_the_rail_file(tmp_path):
+    """``[[trains.hslm_b]]`` (N, d) runs ``vbikit.vehicle.hslm_b(N, d)``: N = 3 forces of 170 kN 25 m
+    apart never share the 20 m span, so the static midspan moment and deflection are one force's,
+    P L/4 = 850 kN m and P L³/(48 EI) within the retained modes (closed forms, as the one-axle table
+    train above); its N and d are checked against hslm_b's ranges, naming the key."""
+    data = spec(trains={"presets": [], "hslm_b": [{"n": 3, "d": 25.0}]})
+    ds = run_rail(data, tmp_path / "out", figures=False).dataset
+    assert list(ds.train.values) == ["HSLM-B (N = 3, d = 25 m)"]
+    b = ds.sel(train="HSLM-B (N = 3, d = 25 m)")
+    assert float(b["static_moment"]) == pytest.approx(170e3 * 20.0 / 4, rel=1e-9)
+    w = 170e3 * 20.0**3 / (48 * 7.9e10) * (1 + 3.0**-4) / (math.pi**4 / 96)
+    assert float(b["static_deflection"]) == pytest.approx(w, rel=1e-4)
+    with pytest.raises(RailSpecError) as err:
+        parse_rail_spec(spec(trains={"hslm_b": [{"n": 0, "d": 3.5}, {"n": 10, "d": 60.0}, {"n": 10}]}))
+    msg = str(err.value)
+    assert "trains.hslm_b.0.n: expected an integer in [1, 100], got 0" in msg
+    assert "trains.hslm_b.1.d: expected a number in [0.5, 50], got 60.0" in msg
+    assert "trains.hslm_b.2.d: missing required key" in msg
+    with pytest.raises(RailSpecError, match="train names must differ, repeated: HSLM-B"):
+        run_rail(spec(trains={"hslm_b": [{"n": 10, "d": 3.5}, {"n": 10, "d": 3.5}]}), figures=False)

@@ -1,6 +1,7 @@
 """``method = "pem"`` in a study: the key is validated in one place (the study schema) with a
 clear error for other values and for what PEM cannot take, and a PEM study's cells are exactly
-``vbikit.run_random`` of their scenarios (the same numbers, stored over the axes)."""
+``vbikit.run_random`` of their scenarios (the same numbers, stored over the axes), although a cell
+reduces only what it stores (``random_response(peaks="study")``) and ``run_random`` everything."""
 from __future__ import annotations
 
 import copy
@@ -10,6 +11,7 @@ import pytest
 
 from vbikit.scenario.pipeline import run_random
 from vbikit.study.paper import paper_study_dict
+from vbikit.study.pem import PEM_OUTPUTS, _value
 from vbikit.study.run import run_study
 from vbikit.study.spec import StudyError, parse_study
 
@@ -66,7 +68,10 @@ def test_pem_study_cells_equal_run_random(tmp_path):
                                                                        for k in ("0.5", "0.9", "0.95")])
         moment = next(e for e in s["effects"] if e["kind"] == "moment")
         assert float(cell["moment_impact_factor_mean"]) == moment["impact_factor_mean"]
+        assert float(cell["moment_impact_factor_std"]) == moment["impact_factor_std"]
+        assert float(cell["impact_factor_sampling_error"]) == s["impact_factor_sampling_error"]
         assert float(cell["lift_off_probability"]) == s["lift_off_probability"]
+        assert float(cell["grid_change"]) == s["grid_change"]  # every channel's, the effects without peaks too
     assert run_study(study, tmp_path / "pem.nc", workers=1).equals(ds)  # the finished study is recognised
 
 
@@ -97,3 +102,49 @@ def test_paper_figure_of_a_pem_dataset(tmp_path):
                     attrs={"method": "pem", "study": json.dumps(study)})
     png = plot_paper_figure(ds, "fig6", tmp_path / "fig6.png")
     assert png.stat().st_size > 10_000
+
+
+def test_cells_over_road_class_share_one_pseudo_excitation(tmp_path, monkeypatch):
+    """Cells that differ only in the road class are one batch and one pseudo-excitation (the system
+    is linear in the road: class C's pseudo responses are class B's times 2, its variances times 4),
+    and every stored number equals ``run_random`` of the cell alone, bit for bit (√4 = 2 scales
+    exactly in floating point)."""
+    import vbikit.random.response as response
+
+    study = parse_study(_with(axes={"road.class": ["B", "C", "D"]}))
+    calls = []
+    inner = response.pseudo_excitation
+    monkeypatch.setattr(response, "pseudo_excitation", lambda *a, **k: calls.append(1) or inner(*a, **k))
+    ds = run_study(study, tmp_path / "pem.nc", workers=1)
+    assert len(calls) == 1  # not one a cell
+    monkeypatch.setattr(response, "pseudo_excitation", inner)
+    for i in range(3):
+        s = run_random(study.scenario_dict((i,))).summary
+        cell = ds.isel(road_class=i)
+        for name, (path, _, _) in PEM_OUTPUTS.items():
+            assert float(cell[name]) == _value(s, path), (i, name)
+        assert np.array_equal(cell["impact_factor_quantiles"].values,
+                              [s["impact_factor_quantiles"][k] for k in ("0.5", "0.9", "0.95")])
+
+
+def test_level_sharing_only_for_roads_that_differ_in_level(monkeypatch):
+    """``level_factor``: ISO classes are 4× apart; another exponent, band or coherence is not a level;
+    ``run_random_levels`` of scenarios that differ in more (the speed) runs them one by one
+    (``run_random`` each: one pseudo-excitation each)."""
+    import vbikit.random.response as response
+    from vbikit.random import PseudoRoad
+    from vbikit.random.response import level_factor
+    from vbikit.road.psd import RoadPSD
+    from vbikit.scenario.pipeline import run_random_levels
+
+    b = PseudoRoad(RoadPSD.iso("B"))
+    assert level_factor(PseudoRoad(RoadPSD.iso("D")), b) == 16.0
+    assert level_factor(PseudoRoad(RoadPSD(RoadPSD.iso("B").phi0, 0.1, 2.5)), b) is None
+    assert level_factor(PseudoRoad(RoadPSD.iso("C", n_max=2.0)), b) is None
+    assert level_factor(PseudoRoad(RoadPSD.iso("C"), 0.5, two_lines=True), b) is None
+    calls = []
+    inner = response.pseudo_excitation
+    monkeypatch.setattr(response, "pseudo_excitation", lambda *a, **k: calls.append(1) or inner(*a, **k))
+    study = parse_study(copy.deepcopy(PEM))
+    runs = run_random_levels([study.scenario_dict((0,)), study.scenario_dict((1,))], peaks="study")
+    assert len(calls) == 2 and len(runs) == 2

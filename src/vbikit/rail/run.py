@@ -33,7 +33,7 @@ from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, refine_p
 from vbikit.rail.report import check, format_report, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, coupled_envelopes, excitation_wavelength, speed_grid, sweep_moving_forces,
                                train_resonances)
-from vbikit.vehicle.trains import Train, get_train, read_train_table
+from vbikit.vehicle.trains import Train, get_train, hslm_b, read_train_table
 
 log = logging.getLogger(__name__)
 
@@ -131,6 +131,7 @@ def _scenario_bridge(spec: RailSpec, base_dir: Path):
 
 def load_trains(spec: RailSpec, base_dir: Path) -> list[Train]:
     trains = [get_train(name) for name in spec.trains.presets]
+    trains += [hslm_b(b.n, b.d) for b in spec.trains.hslm_b]
     for i, table in enumerate(spec.trains.tables):
         path = Path(table) if Path(table).is_absolute() else base_dir / table
         try:

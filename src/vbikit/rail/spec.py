@@ -16,6 +16,8 @@
 
     [trains]
     presets = ["hslm-a1", "hslm-a2"] # or "hslm-a" for all ten
+    hslm_b = [{n = 10, d = 3.5}]     # HSLM-B: N forces of 170 kN at spacing d [m] (from EN 1991-2's
+                                     # figure for the span: 1 … 100 forces, 0.5 … 50 m)
     tables = ["my_train.csv"]        # position [m], load [kN] per line
     # sleeper_spacing = 0.6          # distribute each axle over three sleepers (EN 1991-2 6.3.6.1)
 
@@ -47,6 +49,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationIn
 from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
 from vbikit.rail.codes import CLASSIFICATION_FACTORS, DECK_DAMPING, DYNAMIC_FACTORS, ACCELERATION_LIMITS
+from vbikit.vehicle.trains import HSLM_B_N, HSLM_B_SPACING
 
 
 #: the range of a wheel-rail contact stiffness per wheelset [N/m]: the linearised Hertzian stiffness of a
@@ -108,8 +111,18 @@ class BridgeSection(_Section):
         return v
 
 
+class HslmBEntry(_Section):
+    """One HSLM-B train (EN 1991-2:2003 6.4.6.1.1): ``n`` forces of 170 kN at spacing ``d`` [m], both
+    read by the user from the standard's figure for the span (``vbikit.vehicle.hslm_b``, whose
+    ranges these are)."""
+
+    n: int = Field(ge=HSLM_B_N[0], le=HSLM_B_N[1])
+    d: float = Field(ge=HSLM_B_SPACING[0], le=HSLM_B_SPACING[1])
+
+
 class TrainsSection(_Section):
     presets: list[str] = Field(default_factory=list)
+    hslm_b: list[HslmBEntry] = Field(default_factory=list)
     tables: list[str] = Field(default_factory=list)
     sleeper_spacing: Optional[float] = Field(None, ge=0.1, le=2.0)
 
@@ -131,8 +144,8 @@ class TrainsSection(_Section):
 
     @model_validator(mode="after")
     def _some(self) -> "TrainsSection":
-        if not self.presets and not self.tables:
-            raise ValueError("presets: give at least one train (presets or tables)")
+        if not self.presets and not self.tables and not self.hslm_b:
+            raise ValueError("presets: give at least one train (presets, hslm_b or tables)")
         return self
 
 

@@ -76,7 +76,8 @@ class PeakDistribution:
 
 def upcrossing_rate(level: float, mean: NDArray[np.float64], mean_rate: NDArray[np.float64], std: NDArray[np.float64],
                     rate_std: NDArray[np.float64], corr: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Rice's rate ν_b(t) [1/s] of up-crossings of ``level`` (module docstring); 0 where σ = 0."""
+    """Rice's rate ν_b(t) [1/s] of up-crossings of ``level`` (module docstring); 0 where σ = 0.
+    ``level`` a float, or (levels, 1) for (levels, n_t) rates of several levels at once."""
     ok = std > 0
     sd = np.where(ok, std, 1.0)
     eta = (level - mean) / sd
@@ -95,6 +96,10 @@ def vanmarcke_factor(eta: NDArray[np.float64], bandwidth: NDArray[np.float64]) -
     e = np.maximum(eta, 1e-12)
     ratio = -np.expm1(-np.sqrt(np.pi / 2) * de * e) / -np.expm1(-0.5 * e * e)
     return np.where(eta > 0, np.minimum(ratio, 1.0), 1.0)
+
+
+#: floats (levels × time points) of one block of ``peak_distribution``'s levels: ≈ 10 arrays of 2 MB
+LEVEL_BLOCK = 250_000
 
 
 def peak_distribution(time: NDArray[np.float64], mean: NDArray[np.float64], std: NDArray[np.float64],
@@ -119,19 +124,22 @@ def peak_distribution(time: NDArray[np.float64], mean: NDArray[np.float64], std:
     cdf = np.zeros(n_levels)
     dt = np.diff(time)
     std0 = np.where(random, std, 0.0)
-    for j, b in enumerate(levels):
-        if b < det:
-            continue
+    steps = np.arange(dt.size)
+    live = np.flatnonzero(levels >= det)  # below det: F_P = 0
+    size = max(1, LEVEL_BLOCK // max(time.size, 1))
+    for j0 in range(0, live.size, size):  # a block of levels at a time: (levels, n_t) arrays
+        b = levels[live[j0:j0 + size], None]
         up = upcrossing_rate(b, mean, mean_rate, std0, rate_std, corr)
         down = upcrossing_rate(b, mean, -mean_rate, std0, rate_std, -corr)  # up-crossings of the reversed process
         if lambda1 is not None:
             factor = vanmarcke_factor((b - mean) / sd, bandwidth)
             up, down = up * factor, down * factor
         eta = np.where(random, (b - mean) / sd, np.inf)
-        k = int(np.argmin(eta))  # the time most likely to be above b
-        after = float(np.sum(0.5 * (up[k + 1:] + up[k:-1]) * dt[k:]))
-        before = float(np.sum(0.5 * (down[1:k + 1] + down[:k]) * dt[:k]))
-        cdf[j] = float(ndtr(eta[k])) * np.exp(-after - before)
+        k = np.argmin(eta, axis=1)[:, None]  # per level, the time most likely to be above b
+        # trapezoids of ν⁺ on the intervals after t*, of ν⁻ on those before it
+        after = np.sum(np.where(steps >= k, 0.5 * (up[:, 1:] + up[:, :-1]) * dt, 0.0), axis=1)
+        before = np.sum(np.where(steps < k, 0.5 * (down[:, 1:] + down[:, :-1]) * dt, 0.0), axis=1)
+        cdf[live[j0:j0 + size]] = ndtr(np.take_along_axis(eta, k, axis=1)[:, 0]) * np.exp(-after - before)
     return PeakDistribution(levels, cdf)
 
 

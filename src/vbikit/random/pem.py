@@ -134,16 +134,34 @@ class PEMResult:
         exactly PEM's covariance: y(t) = Σ_k Re(ỹ_k(t) w_k), w_k = a_k + i b_k with a_k, b_k independent
         standard normal (so Cov(y(t), y(s)) = Σ_k Re(ỹ_k(t) ỹ_k(s)*)), yielded in chunks of ``chunk``.
         Needs ``pseudo_excitation(..., keep_lines=True)``."""
+        for y in self._sample_blocks(n, seed, chunk):
+            yield np.moveaxis(y, 2, 0)
+
+    def _sample_blocks(self, n: int, seed: int = 0, chunk: int = 256, channels: list[int] | None = None):
+        """``sample_displacement``'s histories as (n_t, n_pt, m) blocks (the product's own layout,
+        time outermost: a maximum over time reads contiguous rows); ``channels``: of those deck
+        points only (the same random numbers, so the same histories of those points)."""
         if self.lines_displacement is None:
             raise ValueError("the pseudo responses of every line were not kept: use keep_lines=True")
         rng = np.random.default_rng(seed)
         h = self.lines_displacement  # (n_t, n_pt, 2L') float: [Re ỹ_k, Im ỹ_k] interleaved
+        if channels is not None:
+            h = np.ascontiguousarray(h[:, channels])
         for start in range(0, n, chunk):
             m = min(chunk, n - start)
             w = rng.standard_normal((h.shape[2], m))
             w[1::2] *= -1.0  # Re(ỹ w) = Re ỹ · a − Im ỹ · b
-            flat = h.reshape(-1, h.shape[2]) @ w  # one product: (n_t·n_pt, m)
-            yield np.moveaxis(flat.reshape(h.shape[0], h.shape[1], m), 2, 0)
+            yield (h.reshape(-1, h.shape[2]) @ w).reshape(h.shape[0], h.shape[1], m)  # one product: (n_t·n_pt, m)
+
+    def scaled(self, factor: float) -> "PEMResult":
+        """The result for the road's PSD times ``factor`` (the system is linear in the road): every
+        variance and covariance times ``factor``, every pseudo response times √factor."""
+        a = float(np.sqrt(factor))
+        return PEMResult(self.time, self.lines, {k: v * factor for k, v in self.var.items()},
+                         {k: v * factor for k, v in self.coarse.items()},
+                         None if self.cov_dv is None else self.cov_dv * factor,
+                         None if self.lambda1 is None else self.lambda1 * factor,
+                         None if self.lines_displacement is None else self.lines_displacement * a, self.substeps)
 
     def std(self, name: str) -> NDArray[np.float64]:
         """σ(t) [unit of the output] of output ``name``."""

@@ -26,7 +26,7 @@ import dataclasses
 import logging
 import time as _time
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 from numpy.typing import NDArray
@@ -62,6 +62,27 @@ QUALITY = ("σ histories exact for the linear system up to the wavenumber grid (
            "below the 90 % quantile")
 #: grid check (σ on every line vs every second line) above which the answer is flagged
 GRID_LIMIT = 0.02
+
+
+def _every_channel(n_points: int, effects: list[LoadEffectResponse]) -> list[int]:
+    """Every deck channel: the points, then the load effects."""
+    return list(range(n_points + len(effects)))
+
+
+def _study_channels(n_points: int, effects: list[LoadEffectResponse]) -> list[int]:
+    """What a PEM study stores (``vbikit.study.pem.PEM_OUTPUTS``): the headline point (channel 0) and
+    the first bending moment of the plan, if any."""
+    first = next((k for k, e in enumerate(effects) if e.effect.kind == "moment"), None)
+    return [0] + ([] if first is None else [n_points + first])
+
+
+#: which deck channels get peak and impact-factor statistics (``random_response(peaks=...)``): name ->
+#: (the channels' rule, with the Poisson up-crossing cross-check or not).  "all": every point and
+#: effect, with the cross-check (``vbikit run --random``); "study": what a PEM study stores, no
+#: cross-check.  σ histories, the grid check and the lift-off probability are computed for every
+#: channel either way.
+PEAKS: dict[str, tuple[Callable[[int, list[LoadEffectResponse]], list[int]], bool]] = {
+    "all": (_every_channel, True), "study": (_study_channels, False)}
 
 
 @dataclass
@@ -121,7 +142,7 @@ class RandomResponse:
 
 def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt: float, *,
                     quantiles: tuple[float, ...] = QUANTILES, lines: Lines | None = None, substeps: int | None = None,
-                    samples: int = SAMPLES, data=None) -> RandomResponse:
+                    samples: int = SAMPLES, data=None, peaks: str = "all") -> RandomResponse:
     """Mean, σ and impact-factor distribution of ``crossing`` on the random ``road`` at the points of
     ``plan``, on the time grid of step ``dt`` [s] (the engine's step for the sampled road);
     ``substeps`` integrator steps an output step (None: ``pseudo_excitation``'s default for its
@@ -133,9 +154,45 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     (``PEMResult.sample_displacement``: exact for the linear system, with a sampling error stated
     in the summary), and as a cross-check by Poisson up-crossings (``peak_distribution``).  The
     same for every load effect of ``plan`` (``summary["effects"]``; mode superposition, module
-    docstring), with its static reference R_st from the static modal history."""
+    docstring), with its static reference R_st from the static modal history.  ``peaks`` (``PEAKS``):
+    "all" (default) every point and effect with the up-crossing cross-check; "study" only what a
+    PEM study stores (the headline point and the first bending moment, no cross-check; the other
+    effects' entries then hold σ only), the same numbers for those."""
+    return random_responses(crossing, plan, [road], dt, quantiles=quantiles, lines=lines, substeps=substeps,
+                            samples=samples, data=data, peaks=peaks)[0]
+
+
+def level_factor(road: PseudoRoad, base: PseudoRoad) -> float | None:
+    """G_road(n) / G_base(n) [-] if ``road`` is ``base`` at another level (the same band, exponent,
+    n0 and wheel-line coherence, another φ(n0): e.g. ISO 8608 classes, 4× apart), else None."""
+    if (road.coherence, road.two_lines) != (base.coherence, base.two_lines) or not base.psd.phi0 > 0:
+        return None
+    if dataclasses.replace(road.psd, phi0=base.psd.phi0) != base.psd:
+        return None
+    return float(road.psd.phi0 / base.psd.phi0)
+
+
+def random_responses(crossing: Crossing, plan: ResponsePlan, roads: list[PseudoRoad], dt: float, *,
+                     quantiles: tuple[float, ...] = QUANTILES, lines: Lines | None = None, substeps: int | None = None,
+                     samples: int = SAMPLES, data=None, peaks: str = "all") -> list[RandomResponse]:
+    """``random_response`` of ``crossing`` on each road of ``roads``, which differ only in level
+    (``level_factor``: the PSD G times a factor f_r): the system is linear in the road, so every
+    pseudo response is the first road's times √f_r, every variance its variance times f_r — one
+    pseudo-excitation and one set of sampled Gaussian histories (the same random numbers, scaled)
+    serve them all; the smooth crossing (the mean) is the same.  The numbers equal
+    ``random_response`` road by road (bit for bit when √f_r is a power of two, as between ISO
+    classes; else to round-off)."""
     if int(samples) != samples or samples < 100:
         raise ValueError(f"samples must be an integer >= 100, got {samples!r}")
+    if peaks not in PEAKS:
+        raise ValueError(f"peaks must be one of {', '.join(PEAKS)}, got {peaks!r}")
+    if not roads:
+        raise ValueError("roads: give at least one road")
+    road = roads[0]
+    factors = [level_factor(r, road) for r in roads]
+    if any(f is None for f in factors):
+        raise ValueError("roads must differ only in their PSD's level phi0 (the same band, exponent, n0 and coherence)")
+    which, crossings = PEAKS[peaks]
     started = _time.perf_counter()
     smooth = simulate(dataclasses.replace(crossing, road=None, road_right=None, dt=dt))
     xi_st = static_modal_history(smooth)
@@ -160,10 +217,37 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     mean = np.stack([p.displacement[:n] for p in points] + [e.dynamic[:n] for e in effects], axis=1)
     rate = np.stack([p.velocity[:n] for p in points] + [_effect_rate(smooth, e, n) for e in effects], axis=1)
     static = np.stack([p.static_displacement[:n] for p in points] + [e.static[:n] for e in effects], axis=1)
-    peaks = _sampled_peaks(pem, mean, static, n, samples)
+    chosen = which(n_pt, effects)
+    scales = [float(np.sqrt(f)) for f in factors]
+    sampled_all = _sampled_peaks(pem, mean, static, n, samples, chosen, scales)
+    base = pem
+    out = []
+    for road, f, sampled in zip(roads, factors, sampled_all):
+        pem = base if f == 1.0 else base.scaled(f)
+        out.append(RandomResponse(smooth, points, pem, _reduce(
+            crossing, plan, road, smooth, points, effects, pem, n, mean, rate, static, chosen, sampled, quantiles,
+            crossings, samples, started), effects))
+    return out
+
+
+def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, static, chosen, sampled, quantiles,
+            crossings, samples, started) -> dict[str, Any]:
+    """The summary of one road (``random_responses``): statistics of the ``chosen`` deck channels
+    from their ``sampled`` peaks, σ of every channel, lift-off, grid check and warnings."""
+    n_pt = len(points)
+    col = {j: c for c, j in enumerate(chosen)}
+
+    def stats(j):
+        if j not in col:
+            return {}
+        return _peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, sampled[:, col[j]], crossings)
+
     entries = []
     for j, p in enumerate(points):
-        entry = {"x": p.x, "y": p.y, **_peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, peaks[:, j])}
+        if j not in col:  # a further point of a study: σ only
+            entries.append({"x": p.x, "y": p.y, "displacement_std_max": float(pem.std("displacement")[:n, j].max())})
+            continue
+        entry = {"x": p.x, "y": p.y, **stats(j)}
         entry["displacement_peak_mean"] = entry.pop("peak_mean")
         entry["displacement_peak_std"] = entry.pop("peak_std")
         entries.append(entry | {"displacement_std_max": float(pem.std("displacement")[:n, j].max()),
@@ -172,9 +256,8 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     effect_entries = []
     for k, e in enumerate(effects):
         j = n_pt + k
-        entry = {"name": e.name, "kind": e.effect.kind, "x": e.effect.x, "units": e.effect.units, "method": method,
-                 **_peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, peaks[:, j]),
-                 "std_max": float(pem.std("displacement")[:n, j].max())}
+        entry = {"name": e.name, "kind": e.effect.kind, "x": e.effect.x, "units": e.effect.units,
+                 "method": plan.load_effect_method, **stats(j), "std_max": float(pem.std("displacement")[:n, j].max())}
         effect_entries.append(entry)
     wheel_std = pem.std("wheel_force")[:n]
     lift = {w.name: exceedance_probability(smooth.wheel_forces[:n, k], wheel_std[:, k])
@@ -189,7 +272,8 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
                         "linear theory does not hold there; use Monte Carlo (several road seeds, tires that can lift)")
     if grid > GRID_LIMIT:
         warnings.append(f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every second line")
-    if len(entries) > 1:  # a point's mean IM on a small static reference (vbikit.analysis.checks)
+    if len(entries) > 1 and all("static_peak" in e for e in entries):  # a point's mean IM on a small static
+        # reference (vbikit.analysis.checks); peaks="study" has no statistics of the further points
         warnings += small_static_warnings([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],
                                           [e["static_peak"] for e in entries],
                                           [e["impact_factor_mean"] for e in entries])
@@ -197,11 +281,13 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
     vehicle = crossing.vehicle
     summary: dict[str, Any] = {
         "method": "pseudo-excitation (%s integrator, %d step(s) an output step); peaks of %d Gaussian histories "
-                  "with its covariance (cross-check: Poisson up-crossings with Vanmarcke's correction)"
-                  % (PEM_METHOD, pem.substeps, samples),
+                  "with its covariance%s"
+                  % (PEM_METHOD, pem.substeps, samples,
+                     " (cross-check: Poisson up-crossings with Vanmarcke's correction)" if crossings else ""),
         **{k: head[k] for k in ("impact_factor_mean", "impact_factor_std", "impact_factor_quantiles",
                                 "impact_factor_sampling_error", "impact_factor_quantiles_crossings",
-                                "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")},
+                                "displacement_peak_mean", "displacement_peak_std", "static_peak", "std_at_peak")
+           if k in head},
         "lift_off_probability": p_lift,
         "lift_off_probability_by_wheel": lift,
         "wheel_force_std_max": {w.name: float(wheel_std[:, k].max()) for k, w in enumerate(vehicle.wheels)},
@@ -215,7 +301,7 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
         "warnings": warnings,
         "seconds": _time.perf_counter() - started,
     }
-    return RandomResponse(smooth, points, pem, summary, effects)
+    return summary
 
 
 def _acceleration_rows(crossing: Crossing, effects: list[LoadEffectResponse]) -> NDArray[np.float64]:
@@ -291,34 +377,45 @@ def _grid_change(pem: PEMResult, name: str, cols: slice) -> float:
 
 
 def _sampled_peaks(pem: PEMResult, mean: NDArray[np.float64], static: NDArray[np.float64], n: int,
-                   samples: int) -> NDArray[np.float64]:
-    """(samples, n_channels): the peak of each sampled history of every deck channel (``mean``
-    (n_t, n_channels), the smooth crossing's) in its static peak's direction."""
-    sign = np.array([static_direction(static[:, j]) for j in range(static.shape[1])])
-    signed = mean * sign
-    out = [np.max(signed[None] + y[:, :n] * sign, axis=1) for y in pem.sample_displacement(samples)]
-    return np.concatenate(out, axis=0)
+                   samples: int, channels: list[int], scales: list[float]) -> list[NDArray[np.float64]]:
+    """Per factor a of ``scales``: (samples, len(channels)), the peak of each sampled history of the
+    deck channels ``channels`` with its random part times a (``mean`` (n_t, all channels), the
+    smooth crossing's) in its static peak's direction."""
+    sign = np.array([static_direction(static[:, j]) for j in channels])
+    signed = mean[:, channels] * sign
+    out: list[list[NDArray[np.float64]]] = [[] for _ in scales]
+    for y in pem._sample_blocks(samples, channels=channels):  # (n_t, channels, m): the maximum over time runs over contiguous rows
+        y = y[:n]
+        for k, a in enumerate(scales):
+            z = y * a if a != 1.0 else y.copy() if k < len(scales) - 1 else y
+            z *= sign[:, None]
+            z += signed[:, :, None]
+            out[k].append(z.max(axis=0).T)
+    return [np.concatenate(o, axis=0) for o in out]
 
 
 def _peak_entry(pem: PEMResult, j: int, n: int, mean_signed: NDArray[np.float64], static: NDArray[np.float64],
-                rate_signed: NDArray[np.float64], quantiles, peaks: NDArray[np.float64]) -> dict[str, Any]:
+                rate_signed: NDArray[np.float64], quantiles, peaks: NDArray[np.float64],
+                crossings: bool = True) -> dict[str, Any]:
     """Peak and impact-factor statistics of deck channel ``j`` (a point's displacement or a load
     effect) from its smooth-road ``mean_signed``, ``rate_signed``, ``static`` histories (signed as
-    the response) and its sampled ``peaks`` (in the static peak's direction)."""
+    the response) and its sampled ``peaks`` (in the static peak's direction); ``crossings``: with the
+    Poisson up-crossing quantiles (``impact_factor_quantiles_crossings``)."""
     sign = static_direction(static)
     r_st = float(np.max(sign * static))
     mean, rate = sign * mean_signed, sign * rate_signed
     std, rate_std = pem.std("displacement")[:n, j], pem.std("velocity")[:n, j]
-    dist = peak_distribution(pem.time[:n], mean, std, rate, rate_std, pem.cov_dv[:n, j], pem.lambda1[:n, j])
     ok = r_st > 0
     im = (peaks - r_st) / r_st if ok else np.full(peaks.size, np.nan)
     cross = lambda b: (b - r_st) / r_st if ok else float("nan")  # noqa: E731
     i_peak = int(np.argmax(mean))
-    return {"impact_factor_mean": float(im.mean()), "impact_factor_std": float(im.std(ddof=1)),
-            "impact_factor_quantiles": {f"{q:g}": float(np.quantile(im, q)) for q in quantiles},
-            "impact_factor_sampling_error": float(im.std(ddof=1) / np.sqrt(im.size)),
-            "impact_factor_samples": int(im.size),
-            "impact_factor_quantiles_crossings": {f"{q:g}": cross(dist.quantile(q)) for q in quantiles},
-            "peak_mean": sign * float(peaks.mean()), "peak_std": float(peaks.std(ddof=1)),
-            "static_peak": sign * r_st, "std_at_peak": float(std[i_peak]),
-            "impact_factor_smooth": cross(float(mean.max()))}
+    out = {"impact_factor_mean": float(im.mean()), "impact_factor_std": float(im.std(ddof=1)),
+           "impact_factor_quantiles": {f"{q:g}": float(np.quantile(im, q)) for q in quantiles},
+           "impact_factor_sampling_error": float(im.std(ddof=1) / np.sqrt(im.size)),
+           "impact_factor_samples": int(im.size)}
+    if crossings:
+        dist = peak_distribution(pem.time[:n], mean, std, rate, rate_std, pem.cov_dv[:n, j], pem.lambda1[:n, j])
+        out["impact_factor_quantiles_crossings"] = {f"{q:g}": cross(dist.quantile(q)) for q in quantiles}
+    return out | {"peak_mean": sign * float(peaks.mean()), "peak_std": float(peaks.std(ddof=1)),
+                  "static_peak": sign * r_st, "std_at_peak": float(std[i_peak]),
+                  "impact_factor_smooth": cross(float(mean.max()))}

@@ -15,6 +15,7 @@ reductions (the output catalogue [`vbikit.outputs`][vbikit.outputs], ``vbikit.an
 """
 from __future__ import annotations
 
+import logging
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -32,6 +33,8 @@ from vbikit.solve.plan import RunPlan
 from vbikit.solve.result import CrossingResult
 
 ScenarioSource = Scenario | Mapping[str, Any] | str | Path
+
+log = logging.getLogger(__name__)
 
 
 def _names_a_file(source: str) -> bool:
@@ -111,11 +114,12 @@ def check_random_road(scenario: Scenario) -> None:
 
 
 def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir: str | Path | None = None,
-               quantiles: tuple[float, ...] | None = None):
+               quantiles: tuple[float, ...] | None = None, peaks: str = "all"):
     """The scenario's crossing on its random road without sampling: mean and σ histories by
     pseudo-excitation and the impact factor's distribution (``vbikit.random.response``); the
     ``vbikit.random.response.RandomResponse`` whose ``summary`` is exactly what
-    ``vbikit run --random --json`` prints.
+    ``vbikit run --random --json`` prints (``peaks``: which channels get peak statistics,
+    ``vbikit.random.response.PEAKS``; "study": only what a PEM study stores).
 
     Raises
     ------
@@ -133,12 +137,56 @@ def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir
     pseudo = PseudoRoad(road_psd(road), road.right_coherence, two_lines=road.right_coherence < 1.0)
     try:
         rr = random_response(plan.built.crossing, plan.built.plan, pseudo, plan.run.dt, data=plan.run.kernel_data,
-                             quantiles=quantiles or QUANTILES)
+                             quantiles=quantiles or QUANTILES, peaks=peaks)
     except NonlinearTireError as err:
         raise ScenarioError(f"tire.model: {err}") from None
     rr.summary = {"name": scenario.name, **rr.summary}
     rr.summary["warnings"] += [w for w in plan.warnings if w not in rr.summary["warnings"]]
     return rr
+
+
+def run_random_levels(sources: list[ScenarioSource], *, limits: Limits | None = None,
+                      base_dir: str | Path | None = None, quantiles: tuple[float, ...] | None = None,
+                      peaks: str = "all") -> list:
+    """``run_random`` of each scenario of ``sources``, one pseudo-excitation for all when they differ
+    only in the road's level (``road.class`` or ``road.phi0``) and run on one time step
+    (``vbikit.random.response.random_responses``: the same numbers as ``run_random`` one by one);
+    otherwise one by one.  A PEM study's cells over ``road.class`` run so."""
+    from vbikit.random import NonlinearTireError, PseudoRoad
+    from vbikit.random.response import QUANTILES, level_factor, random_responses
+    from vbikit.scenario.build import road_psd
+
+    scenarios = [scenario_of(src, base_dir) for src in sources]
+    for scenario in scenarios:
+        check_random_road(scenario)
+
+    def rest(scenario: Scenario) -> dict:
+        d = scenario.model_dump()
+        for key in ("road_class", "phi0"):
+            d["road"].pop(key, None)
+        return d
+
+    plans = [preflight(s, limits) for s in scenarios]
+    pseudo = [PseudoRoad(road_psd(s.road), s.road.right_coherence, two_lines=s.road.right_coherence < 1.0)
+              for s in scenarios]
+    first = rest(scenarios[0])
+    shared = (len(scenarios) > 1 and all(rest(s) == first for s in scenarios[1:])
+              and all(p.run.dt == plans[0].run.dt for p in plans)
+              and all(level_factor(r, pseudo[0]) is not None for r in pseudo))
+    if not shared:
+        if len(scenarios) > 1:
+            log.info("random runs: %d scenarios that differ in more than the road's level, run one by one", len(scenarios))
+        return [run_random(s, limits=limits, quantiles=quantiles, peaks=peaks) for s in scenarios]
+    plan = plans[0]
+    try:
+        out = random_responses(plan.built.crossing, plan.built.plan, pseudo, plan.run.dt, data=plan.run.kernel_data,
+                               quantiles=quantiles or QUANTILES, peaks=peaks)
+    except NonlinearTireError as err:
+        raise ScenarioError(f"tire.model: {err}") from None
+    for rr, scenario, p in zip(out, scenarios, plans):
+        rr.summary = {"name": scenario.name, **rr.summary}
+        rr.summary["warnings"] += [w for w in p.warnings if w not in rr.summary["warnings"]]
+    return out
 
 
 def run_planned(plan: Plan, limits: Limits | None = None) -> Report:

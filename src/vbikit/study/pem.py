@@ -35,6 +35,8 @@ PEM_OUTPUTS: dict[str, tuple[tuple[str, ...], str, str]] = {
     "lift_off_probability": (("lift_off_probability",), "1", "largest probability of a tire lifting off at one instant"),
     "grid_change": (("grid_change",), "1", "wavenumber grid check: σ on every vs every second line"),
 }
+#: the axes whose cells share a batch: the road's level (the PSD times a factor; ``run_random_levels``)
+LEVEL_KEYS = ("road.class",)
 #: outputs that may be NaN (a plan without a moment)
 OPTIONAL = ("moment_impact_factor_mean", "moment_impact_factor_std")
 
@@ -74,16 +76,29 @@ class PemStudy:
         return self.study.scenario_dict(index)
 
     def batches(self) -> list[tuple[tuple[int, ...], ...]]:
-        return [(idx,) for idx in itertools.product(*(range(len(a.values)) for a in self.axes))]
+        """One batch per combination of the axes other than ``road.class`` (``LEVEL_KEYS``), holding
+        that axis's cells: they differ only in the road's level, so they share one pseudo-excitation
+        (``run_random_levels``)."""
+        sizes = [len(a.values) for a in self.axes]
+        level = [k for k, a in enumerate(self.axes) if a.key in LEVEL_KEYS]
+        other = [range(n) if k not in level else range(1) for k, n in enumerate(sizes)]
+        out = []
+        for idx in itertools.product(*other):
+            cells = itertools.product(*(range(sizes[k]) if k in level else (i,) for k, i in enumerate(idx)))
+            out.append(tuple(cells))
+        return out
 
     def run_batch(self, batch: tuple[tuple[int, ...], ...], threads: int = 1) -> dict[str, NDArray]:
-        """Every cell of ``batch`` by ``run_random``: arrays (cells,) of ``PEM_OUTPUTS`` and
-        ``impact_factor_quantiles`` (cells, quantiles)."""
-        from vbikit.scenario.pipeline import run_random
+        """Every cell of ``batch`` as ``run_random`` gives it (``run_random_levels``: one
+        pseudo-excitation for cells that differ only in the road's level): arrays (cells,) of
+        ``PEM_OUTPUTS`` and ``impact_factor_quantiles`` (cells, quantiles)."""
+        from vbikit.scenario.pipeline import run_random_levels
 
         out: dict[str, list] = {name: [] for name in PEM_OUTPUTS} | {"impact_factor_quantiles": []}
-        for idx in batch:
-            s = run_random(self.study.scenario_dict(idx), base_dir=self.study.base_dir, quantiles=self.quantiles).summary
+        runs = run_random_levels([self.study.scenario_dict(idx) for idx in batch], base_dir=self.study.base_dir,
+                                 quantiles=self.quantiles, peaks="study")  # the channels PEM_OUTPUTS reads, no cross-check
+        for rr in runs:
+            s = rr.summary
             for name, (path, _, _) in PEM_OUTPUTS.items():
                 out[name].append(_value(s, path))
             out["impact_factor_quantiles"].append([s["impact_factor_quantiles"][f"{q:g}"] for q in self.quantiles])

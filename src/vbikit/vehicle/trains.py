@@ -219,13 +219,20 @@ def hslm_a(number: int) -> Train:
                  f"{HSLM_SOURCE} (N = {n}, D = {coach:g} m, d = {d:g} m, P = {p:g} kN)", coach)
 
 
+#: the accepted HSLM-B parameters: the number of forces N and their spacing d [m] (``hslm_b``; the
+#: rail file's ``[[trains.hslm_b]]`` takes the same ranges)
+HSLM_B_N, HSLM_B_SPACING = (1, 100), (0.5, 50.0)
+
+
 def hslm_b(n: int, spacing: float, load: float = 170e3) -> Train:
     """HSLM-B: ``n`` equal point forces ``load`` [N] (170 kN in EN 1991-2:2003 6.4.6.1.1) at a uniform
     ``spacing`` d [m]; N and d are read by the user from the standard's HSLM-B figure for the span."""
-    if int(n) != n or not 1 <= n <= 100:
-        raise TrainError(f"HSLM-B: the number of forces N must be an integer within 1 … 100, got {n!r}")
-    if not (math.isfinite(spacing) and 0.5 <= spacing <= 50):
-        raise TrainError(f"HSLM-B: the spacing d must be within 0.5 … 50 m, got {spacing!r}")
+    if int(n) != n or not HSLM_B_N[0] <= n <= HSLM_B_N[1]:
+        raise TrainError(f"HSLM-B: the number of forces N must be an integer within {HSLM_B_N[0]} … {HSLM_B_N[1]}, "
+                         f"got {n!r}")
+    if not (math.isfinite(spacing) and HSLM_B_SPACING[0] <= spacing <= HSLM_B_SPACING[1]):
+        raise TrainError(f"HSLM-B: the spacing d must be within {HSLM_B_SPACING[0]:g} … {HSLM_B_SPACING[1]:g} m, "
+                         f"got {spacing!r}")
     a = spacing * np.arange(int(n), dtype=float)
     return Train(f"HSLM-B (N = {int(n)}, d = {spacing:g} m)", a, np.full(a.size, float(load)), None,
                  "EN 1991-2:2003 + AC, 6.4.6.1.1, HSLM-B (N and d given by the user)", spacing)
