@@ -64,3 +64,31 @@ def test_fatigue_limit_judges_the_whole_period(tmp_path):
     upper = edges + 1e5
     only_high = float(np.sum(hist[high] / (2e6 * (36e6 / upper[high]) ** 3)))  # an upper bound of their damage
     assert float(above["fatigue_damage_static"]) > only_high
+
+
+def test_impact_factor_statistics_of_the_sample_by_hand(tmp_path):
+    """The IM statistics of the dataset, recomputed from its own per-event variables: IM = R_dyn/R_st − 1
+    over the random sample (``event_in_sample``); the sampled events whose |R_st| is below 20 % of the
+    largest |R_st| of all events are counted (``n_small_static_sample``) and left out of
+    ``im_mean_loaded`` / ``im_q95_loaded``.  Two lanes and a deflection off the centre line, so that
+    far-lane light trucks load some effects little (a mask on the wrong events, the dynamic peaks or the
+    sample's complement moves these figures by far more than round-off)."""
+    import tomllib
+
+    with open("examples/lifetime/lifetime.toml", "rb") as fh:
+        spec = tomllib.load(fh)
+    spec.update(days=5)
+    spec["traffic"]["records"] = "examples/lifetime/wim.csv"
+    ds = run_lifetime(spec, tmp_path, base_dir=".", workers=1, figures=False)
+    sample = ds["event_in_sample"].values.astype(bool)
+    st, total = ds["event_static"].values, ds["event_total"].values
+    assert sample.sum() >= 10
+    for j in range(ds.sizes["load_effect"]):
+        im = total[sample, j] / st[sample, j] - 1.0
+        small = np.abs(st[sample, j]) < 0.2 * np.nanmax(np.abs(st[:, j]))
+        assert abs(ds["im_mean"].values[j] - np.mean(im)) <= 1e-12 * max(1.0, abs(np.mean(im)))
+        assert int(ds["n_small_static_sample"].values[j]) == int(small.sum())
+        kept = im[~small]
+        assert abs(ds["im_mean_loaded"].values[j] - kept.mean()) <= 1e-12 * max(1.0, abs(kept.mean()))
+        assert abs(ds["im_q95_loaded"].values[j] - np.quantile(kept, 0.95)) <= 1e-12
+    assert int(ds["n_small_static_sample"].sum()) > 0  # the case the loaded statistics are for occurs here

@@ -51,7 +51,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
                 "standard_error": _num(ds["assessment_dynamic_ratio_se"].values[j]),
                 "indistinguishable_from_one": bool(ds["adr_indistinguishable_from_one"].values[j]),
                 "words": adr_words(adr, lo, hi, float(a["ci"]))},
-        "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event")},
+        "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event",
+                                                  "im_mean_loaded", "im_q95_loaded") if k in ds},
+        "n_small_static_sample": int(ds["n_small_static_sample"].values[j]) if "n_small_static_sample" in ds else 0,
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
     }
     if "run_static_shortfall" in ds:
@@ -189,6 +191,12 @@ def text_report(facts: dict[str, Any]) -> str:
         lines.append(f"{name:<22}{e['units']:<6}{_g(e['characteristic_static'], '>14.5g')}"
                      f"{_g(e['characteristic_total'], '>14.5g')}{_g(ad['value'], '>8.4f')}{span:>20}"
                      f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
+    for name, e in facts["load_effects"].items():
+        if e["n_small_static_sample"]:
+            lines.append(f"  {name}: {e['n_small_static_sample']} sampled events load it below 20 % of the largest static "
+                         f"effect (light vehicles, far lanes): their IMs rest on small static references, not design "
+                         f"values; the others' IM mean {_g(e['im'].get('im_mean_loaded'), '.4f')}, "
+                         f"95 % {_g(e['im'].get('im_q95_loaded'), '.4f')}")
     for name, e in facts["load_effects"].items():
         lines += ["", f"{name} [{e['units']}]: return levels, block maxima (BM) beside peaks over threshold (POT), "
                       f"{ci} intervals"]

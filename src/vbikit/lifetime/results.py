@@ -141,11 +141,21 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         a = a[np.isfinite(a)]
         return float(f(a)) if a.size else math.nan
 
+    # a sampled event whose static peak is below SMALL_STATIC_FRACTION of the largest of all events rests on a
+    # small static reference (a light vehicle, a far lane): counted, and left out of the "loaded" statistics
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION
+
+    top = np.nanmax(np.abs(st), axis=0, initial=0.0) if st.size else np.zeros(len(lines))
+    small_sample = np.abs(st[sample]) < SMALL_STATIC_FRACTION * top if sample.size else np.zeros((0, len(lines)), bool)
+    im_loaded = np.where(small_sample, np.nan, im_sample)
     im = {
         "im_mean": [stat(im_sample[:, j], np.mean) for j in range(len(lines))],
         "im_std": [stat(im_sample[:, j], np.std) for j in range(len(lines))],
         "im_q95": [stat(im_sample[:, j], lambda a: np.quantile(a, 0.95)) for j in range(len(lines))],
         "im_max": [stat(im_all[simulated, j], np.max) for j in range(len(lines))],
+        "im_mean_loaded": [stat(im_loaded[:, j], np.mean) for j in range(len(lines))],
+        "im_q95_loaded": [stat(im_loaded[:, j], lambda a: np.quantile(a, 0.95)) for j in range(len(lines))],
+        "n_small_static_sample": [int(small_sample[:, j].sum()) for j in range(len(lines))],
     }
     im_gov = []
     for j in range(len(lines)):
@@ -194,6 +204,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the impact factor (random sample)")),
         "im_q95": ("load_effect", np.array(im["im_q95"]), ev_attrs("1", "95 % quantile of the impact factor (random sample)")),
         "im_max": ("load_effect", np.array(im["im_max"]), ev_attrs("1", "largest impact factor of any simulated event")),
+        "im_mean_loaded": ("load_effect", np.array(im["im_mean_loaded"]), ev_attrs("1", "mean impact factor of the sampled events whose static peak is at least SMALL_STATIC_FRACTION (20 %) of the largest static peak (the events that load the effect)")),
+        "im_q95_loaded": ("load_effect", np.array(im["im_q95_loaded"]), ev_attrs("1", "95 % quantile of the impact factor of those events")),
+        "n_small_static_sample": ("load_effect", np.array(im["n_small_static_sample"], np.int64), ev_attrs("1", "sampled events whose static peak is below 20 % of the largest: their impact factors rest on a small static reference, not design values")),
         "im_governing_static_event": ("load_effect", np.array(im_gov), ev_attrs("1", "impact factor of the event with the largest static effect")),
         "code_allowance": (("load_effect", "code"), allow, ev_attrs("1", "design-code dynamic allowance (vbikit.analysis.codes)")),
         "event_day": ("event", day, ev_attrs("1", "day of the event")),
