@@ -62,3 +62,24 @@ def test_negative_impact_factor_is_explained(tmp_path):
     assert f"IM {s['moment']['impact_factor']:7.4f}" in res.stdout
     assert res.stdout.count(NEGATIVE_IM_NOTE) == 1
     assert not any("IM" in w for w in s["warnings"])  # a note, not a warning
+
+
+def test_a_lightly_loaded_load_effect_is_flagged_against_its_own_kind(tmp_path):
+    """The same rule for moments, shears and reactions, each kind against the largest static peak of its
+    own kind: on the demo beam (16.76 m, HS20-44) the moment 0.5 m from the entry support carries 13 %
+    of the mid-span moment (a simply supported beam's influence ordinate x(L − x)/L is 0.49 m there
+    against 4.19 m at mid-span) and is flagged, naming the mid-span moment as the largest; the mid-span
+    moment is not, nor the one shear (no other shear to compare with).  The expected flags are
+    recomputed from the run's own static peaks."""
+    from vbikit.scenario import demo_scenario_text
+
+    path = tmp_path / "two_moments.toml"
+    path.write_text(demo_scenario_text().replace("[response]", "[response]\nmoment = [0.5, 8.38]\nshear = [2.0]"))
+    res, s = _run(path, tmp_path)
+    sections = s["moment"]["sections"]
+    assert [m["x"] for m in sections] == [0.5, 8.38]
+    assert small_static([m["static_peak"] for m in sections]) == [True, False]
+    flagged = [w for w in s["warnings"] if "rests on a static moment" in w]
+    assert len(flagged) == 1 and flagged[0].startswith("moment at x = 0.5 m") and "x = 8.38 m" in flagged[0]
+    assert not any("rests on a static shear" in w for w in s["warnings"])
+    assert "rests on a static moment" in res.stderr

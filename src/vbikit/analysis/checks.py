@@ -14,7 +14,8 @@ Thresholds (documented in docs/scenario.md):
 * wheels that lost contact (which, where first, for how long);
 * an impact factor whose static reference is small: a static peak below ``SMALL_STATIC_FRACTION``
   (20 %) of the largest static peak of the same quantity on the bridge (a lightly loaded girder, a
-  point near a support; ``small_static`` / ``small_static_warnings``).  IM = ΔR/R_st divides the
+  point near a support; ``small_static`` / ``small_static_warnings``; for moments, shears and
+  reactions each kind against its own largest, ``effect_static_warnings``).  IM = ΔR/R_st divides the
   dynamic increment ΔR, which the deck's vibration spreads over every girder, by that small R_st:
   on the paper's 3D Bridge 2 under HS20-44 Girder 1 carries 0.28 mm of the governing 2.79 mm
   (10 %) and reads IM = 1.35 against 0.22.  Such an IM is not a design value.
@@ -182,6 +183,27 @@ def small_static_warnings(labels: Sequence[str], static_peaks: Sequence[float], 
             "divided by a small static response gives a large IM; unreliable as a design value — use the most "
             "loaded girder's or point's IM"
             for label, st, im, e, flag in zip(labels, static_peaks, impact_factors, strain, flags) if flag]
+
+
+def effect_static_warnings(effects: Sequence[tuple[str, str, str, float, float]]) -> list[str]:
+    """The small-static rule (``small_static``) for load effects: ``effects`` as (kind, label, units,
+    static peak, impact factor), each kind (moment, shear, reaction) judged against the largest static
+    peak of its own kind among them (a moment of Girder 1 against that of Girder 4, never against a
+    shear); one warning per flagged effect, as ``small_static_warnings`` words it for deflections."""
+    out = []
+    for kind in dict.fromkeys(k for k, *_ in effects):
+        same = [e for e in effects if e[0] == kind]
+        if len(same) < 2:
+            continue
+        peaks = [abs(float(e[3])) for e in same]
+        k = int(np.argmax(peaks))
+        out += [f"{label}: IM = {im:.3g} rests on a static {kind} of {abs(float(st)):.4g} {units}, "
+                f"{abs(float(st)) / peaks[k]:.0%} of the largest {kind} of the run's load effects "
+                f"({peaks[k]:.4g} {units}, {same[k][1]}; flagged below {SMALL_STATIC_FRACTION:.0%}): a lightly loaded "
+                "section, where a small dynamic increment divided by a small static response gives a large IM; "
+                "unreliable as a design value"
+                for (_, label, units, st, im), flag in zip(same, small_static(peaks)) if flag]
+    return out
 
 
 def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray) -> list[str]:

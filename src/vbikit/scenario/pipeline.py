@@ -19,7 +19,7 @@ import logging
 from pathlib import Path
 from typing import Any, Mapping
 
-from vbikit.analysis.checks import point_warnings
+from vbikit.analysis.checks import effect_static_warnings, point_warnings
 from vbikit.analysis.effects import load_effect_report
 from vbikit.analysis.impact import static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -254,6 +254,8 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points), first_effects)
     s.update(effects_summary)
     s["warnings"] += [r.step_warning for r in effects if r.step_warning and r.step_warning not in s["warnings"]]
+    s["warnings"] += effect_static_warnings([(r.effect.kind, r.effect.label, r.effect.units, r.impact.static_peak,
+                                              r.impact.impact_factor) for r in effects])
     for p in points[1:]:
         s["warnings"] += [w for w in point_warnings(result.crossing, p.x, p.y) if w not in s["warnings"]]
     return Report(name, result, plan, points, girders, effects, s)
