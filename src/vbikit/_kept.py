@@ -3,6 +3,7 @@ that runs in one process ask for again)."""
 from __future__ import annotations
 
 import threading
+import types
 import weakref
 from collections import OrderedDict
 from collections.abc import Callable, Hashable, Iterator
@@ -82,9 +83,11 @@ def kept_for(owner: object, name: str, size: int) -> Kept:
     bridge, ...), carried by the owner itself (in its ``__dict__``, beside its cached properties): it
     goes when the owner goes, even when its values refer back to the owner (a deck's load effects
     hold the deck: a cycle the garbage collector frees), and a pickle or copy of the owner carries
-    empty stores (``Kept.__reduce__``: a worker rebuilds its own).  An owner without a ``__dict__``
-    (a numpy ufunc given as an influence function, ...) gets a new empty store each time: its values
-    are made on every call, not kept."""
+    empty stores (``Kept.__reduce__``: a worker rebuilds its own).  An owner without a ``__dict__`` of
+    its own (``__slots__``; a bound method, whose ``__dict__`` is its function's, shared by every
+    instance) gets a new empty store each time: its values are made on every call, not kept."""
+    if isinstance(owner, types.MethodType):  # (its ``__dict__`` is its function's, shared by every instance)
+        return Kept(size)
     try:
         stores = vars(owner)
     except TypeError:

@@ -83,3 +83,34 @@ def test_a_lightly_loaded_load_effect_is_flagged_against_its_own_kind(tmp_path):
     assert len(flagged) == 1 and flagged[0].startswith("moment at x = 0.5 m") and "x = 8.38 m" in flagged[0]
     assert not any("rests on a static shear" in w for w in s["warnings"])
     assert "rests on a static moment" in res.stderr
+
+
+def test_girder_marks_agree_with_the_warnings(tmp_path):
+    """The text report's '!' beside a girder's IM follows the same judgement as the warnings: against the
+    largest static peak of the girders AND the response points.  Headline at x = 1.5 m (girders lightly
+    loaded there), a second point at mid-span (2.79 mm): Girders 1 and 2 are warned of, and both must be
+    marked (the marks compared the girders among themselves only and marked Girder 1 alone)."""
+    path = tmp_path / "girder_vs_point.toml"
+    path.write_text('name = "girder marks vs warning"\n[bridge]\nmodel = "paper-bridge-2"\nn_modes = 10\n'
+                    '[vehicle]\nmodel = "hs20-44"\n[tire]\nmodel = "point"\n[road]\nclass = "none"\n'
+                    '[crossing]\nspeed_kmh = 75\n[[response.points]]\nname = "near_support"\nx = 1.5\ngirder = 4\n'
+                    '[[response.points]]\nname = "mid"\nx = 8.38\ngirder = 4\n')
+    res, s = _run(path, tmp_path)
+    statics = list(s["girder_max_static_displacement"]) + [p["max_static_displacement"] for p in s["points"]]
+    expected = small_static(statics)[:len(s["girder_max_static_displacement"])]
+    warned = [g for g in range(1, len(expected) + 1) if any(w.startswith(f"Girder {g}:") for w in s["warnings"])]
+    assert warned == [g for g, f in enumerate(expected, start=1) if f] and len(warned) >= 2
+    im_line = next(line for line in res.stdout.splitlines() if line.strip().startswith("IM ") and "!" in line)
+    marks = [cell.endswith("!") for cell in im_line.split()[1:]]
+    assert marks == expected
+
+
+def test_bridge_without_a_figure_does_not_need_the_default_folder(tmp_path, monkeypatch):
+    """`vbikit bridge --no-plot` (and `--plot FILE`) write nothing into vbikit-out, so a file of that name
+    in the working folder does not refuse them; the default figure still needs the folder."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "vbikit-out").write_text("not a folder")
+    assert runner.invoke(app, ["bridge", "paper-bridge-1-beam", "--no-plot"]).exit_code == 0
+    assert runner.invoke(app, ["bridge", "paper-bridge-1-beam", "--plot", "modes.png"]).exit_code == 0
+    res = runner.invoke(app, ["bridge", "paper-bridge-1-beam"])
+    assert res.exit_code == 2 and "vbikit-out" in res.stderr

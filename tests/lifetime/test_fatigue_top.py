@@ -108,3 +108,19 @@ def test_size_factor_reduces_the_en_category():
     with pytest.raises(ValueError, match="size_factor"):
         DetailSpec(**(spec | {"category": "EN 80", "size_factor": 1.2}))
     assert DetailSpec(**(spec | {"category": "EN 80"})).size_factor == 0.9
+    # reports name the reduced curve, not the plain category (the same label with 55× the damage before)
+    assert Detail("d", 0, 1.0, "EN 80", 1.0, 1.0 * mpa, size_factor=0.9).label == "EN 80 × k_s 0.9 = 72 MPa"
+    assert Detail("d", 0, 1.0, "EN 80", 1.0, 1.0 * mpa).label == "EN 80"
+
+
+def test_a_large_damage_ratio_is_explained_in_words():
+    """A dynamic / static damage ratio above 2 (the example week's EN 36 detail: 5.4 with an IM mean of
+    0.14) gets the reason in words — the S-N curve's power m and the ranges near the fatigue limit and
+    cut-off — while an ordinary one (1.3) does not."""
+    from vbikit.lifetime.accuracy import fatigue_verdict
+
+    big = fatigue_verdict(5.4e-5, 1e-5, 1e-5, 0.0192, 100.0, 0.0, False, 26.5e6, 0.95)
+    assert big["ratio"] == pytest.approx(5.4) and "power m = 3 … 5" in big["ratio_words"]
+    assert "26.50 MPa" in big["ratio_words"]
+    small = fatigue_verdict(1.3e-5, 1e-6, 1e-5, 0.0192, 100.0, 0.0, False, 26.5e6, 0.95)
+    assert small["ratio"] == pytest.approx(1.3) and "power m" not in small["ratio_words"]

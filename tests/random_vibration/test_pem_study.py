@@ -148,3 +148,20 @@ def test_level_sharing_only_for_roads_that_differ_in_level(monkeypatch):
     study = parse_study(copy.deepcopy(PEM))
     runs = run_random_levels([study.scenario_dict((0,)), study.scenario_dict((1,))], peaks="study")
     assert len(calls) == 2 and len(runs) == 2
+
+
+def test_a_single_road_is_its_own_level_whatever_its_spectrum():
+    """``random_response`` of one road goes through the level sharing: the road against itself is
+    factor 1 even for a zero level (φ0 = 0, which the schema allows) or a track spectrum without a φ0
+    (the reviewer's case: a zero-level `vbikit run --random` ended in a traceback)."""
+    from vbikit.random import PseudoRoad
+    from vbikit.random.response import level_factor
+    from vbikit.road.psd import RoadPSD
+    from vbikit.road.track import TrackPSD
+
+    zero = PseudoRoad(RoadPSD(0.0, 0.1, 2.0, n_max=1.0))
+    track = PseudoRoad(TrackPSD.named("german-low"))
+    assert level_factor(zero, zero) == 1.0 and level_factor(track, track) == 1.0
+    b = PseudoRoad(RoadPSD(16e-6, 0.1, 2.0, n_max=1.0))
+    assert level_factor(track, b) is None and level_factor(b, zero) is None  # (not a level of each other)
+    assert level_factor(PseudoRoad(RoadPSD(64e-6, 0.1, 2.0, n_max=1.0)), b) == 4.0

@@ -59,3 +59,12 @@ def test_a_detail_category_en_1993_1_9_does_not_list_is_refused(tmp_path, comman
     _refused(runner.invoke(app, argv), "fatigue.details.0.category: 'EN 37' is not a detail category",
              "(the nearest EN category is 36)", "allowed: EN " + ", ".join(map(str, EN_CATEGORIES)))
     assert not (tmp_path / "out").exists()
+
+
+def test_a_named_train_table_refused_does_not_say_it_was_guessed(tmp_path):
+    """A CSV whose header names the train-table columns is a train table, not a guess: refused for an
+    axle load out of range, its message does not add the guessed-kind note."""
+    (tmp_path / "heavy.csv").write_text("position [m], load [kN]\n0, 170\n3, 20000\n")
+    res = runner.invoke(app, ["validate", str(tmp_path / "heavy.csv")])
+    err = _refused(res, "heavy.csv")
+    assert "read as a train table" not in err

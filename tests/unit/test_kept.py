@@ -120,3 +120,23 @@ def test_threads_sharing_a_store_keep_one_value_a_key():
     for key, value in kept.items():
         assert value is kept.peek(key)
     assert all(kept.peek(k) is v for k, v in last.items() if k in kept)
+
+
+def test_a_bound_method_owner_gets_no_shared_store():
+    """A bound method's ``__dict__`` is its function's: stores there would be shared by every instance
+    (one bridge's values served for another's method). Nothing is kept for it."""
+    from vbikit._kept import kept_for
+
+    class Influence:
+        def __init__(self, k):
+            self.k = k
+
+        def __call__(self, x):
+            return self.k * x
+
+        def at(self, x):
+            return self.k * x
+
+    a, b = Influence(1.0), Influence(2.0)
+    assert kept_for(a.at, "v", 2).get("key", lambda: "a's") == "a's"
+    assert kept_for(b.at, "v", 2).get("key", lambda: "b's") == "b's"

@@ -68,13 +68,19 @@ def bridge(
                                "is shown (its [bridge.deck] overrides and n_modes included, unless --modes is given)."),
     n_modes: Optional[int] = typer.Option(None, "--modes", min=1, max=500,
                                           help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),
-    out_dir: Path = out_dir_option("Where to write the figure NAME-modes.png."),
+    out_dir: Optional[Path] = out_dir_option("Where to write the figure NAME-modes.png (default vbikit-out; not used "
+                                             "with --plot or --no-plot).", default=None),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Write the figure to this file instead."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
 ) -> None:
     """Frequencies and mode descriptions of a bridge preset or of a scenario's bridge, and a figure of its
     first mode shapes."""
     import time
+
+    from vbikit.cli.guard import check_out_dir
+
+    if out_dir is None and plot is None and not no_plot:  # the default folder, checked only when it is written to
+        out_dir = check_out_dir(Path("vbikit-out"))
 
     from vbikit.bridge import BRIDGE_PRESETS, DescribesModes, GirderDeck
 
@@ -120,5 +126,5 @@ def bridge(
     if not no_plot:
         from vbikit.plot.bridge import plot_mode_shapes
 
-        path = guard(lambda: plot_mode_shapes(b, plot or out_dir / f"{name}-modes.png", title=name))
+        path = guard(lambda: plot_mode_shapes(b, plot or Path(out_dir) / f"{name}-modes.png", title=name))
         typer.echo(f"  figure              {path}")

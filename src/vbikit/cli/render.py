@@ -79,12 +79,14 @@ def print_summary(run: Run) -> None:
         typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
         from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
 
-        small = small_static(s["girder_max_static_displacement"])
+        n_g = len(s["girder_max_static_displacement"])  # judged as the warnings judge them: with the points
+        small = small_static(list(s["girder_max_static_displacement"]) +
+                             [p["max_static_displacement"] for p in s.get("points", [])])[:n_g]
         typer.echo("  IM                   " + " ".join(f"{v:7.4f}{'!' if f else ' '}"
                                                       for v, f in zip(s["girder_impact_factors"], small)).rstrip())
         if any(small):
             typer.echo(f"  {'':<20} ! unreliable: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
-                       "(a lightly loaded girder); not a design value — see the warning")
+                       "of the girders and points (a lightly loaded girder); not a design value — see the warning")
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f})")
     print_codes(s["design_code_allowances"], "deflection IM beside")
     print_load_effects(s)

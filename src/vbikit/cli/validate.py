@@ -28,6 +28,11 @@ KINDS: dict[str, str] = {
 }
 
 
+#: ``detect``'s answer for a CSV whose first line names no kind: read as a train table, which a
+#: refusal then says (``validate``)
+TRAIN_GUESSED = "train (guessed)"
+
+
 def detect(path: Path) -> str:
     """The kind of the input file ``path`` (module docstring); reads it through the safe reader."""
     from vbikit._files import read_text
@@ -46,7 +51,7 @@ def detect(path: Path) -> str:
             return "response"
         if cells[0].startswith("x [") or "elevation" in header:
             return "profile"
-        return "train"
+        return "train" if cells[0].startswith("position") else TRAIN_GUESSED
     from vbikit._toml import read_toml
 
     data = read_toml(path, OptionError, "input file")
@@ -162,7 +167,8 @@ def validate(
     budget = limits(max_memory, max_steps)
     if max_memory is not None:
         memory_option(max_memory)
-    found = kind or guard(lambda: detect(file))
+    detected = kind or guard(lambda: detect(file))
+    found = "train" if detected == TRAIN_GUESSED else detected
 
     def check() -> str:
         from vbikit.errors import VbikitError
@@ -170,7 +176,7 @@ def validate(
         try:
             return CHECKS[found](file, budget)
         except VbikitError as err:
-            if kind is None and found == "train":  # the fallback guess: say so, and how to name the kind
+            if detected == TRAIN_GUESSED:  # the fallback guess: say so, and how to name the kind
                 raise OptionError(f"{err} (its first line names no other kind of CSV, so it was read as a train "
                                   f"table; if it is another kind, give --kind: {', '.join(KINDS)})") from None
             raise

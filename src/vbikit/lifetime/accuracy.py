@@ -177,6 +177,11 @@ def adr_words(adr: float, lower: float, upper: float, ci: float) -> str:
                    ": below 1, the characteristic total is below the static")
 
 
+#: a dynamic-to-static damage ratio above this is explained in words (``fatigue_verdict``): a few tens of
+#: percent of dynamic amplification of the ranges cannot give it on one slope m = 3 … 5 alone ((1.15)^5 = 2.0)
+LARGE_DAMAGE_RATIO = 2.0
+
+
 def fatigue_verdict(damage: float, se: float, damage_static: float, years: float, design_life: float,
                     damage_so_far: float, below_limit: bool, limit_pa: float, ci: float,
                     limit_name: str = "Δσ_D") -> dict:
@@ -209,6 +214,11 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
         ratio_se = se / damage_static if se_ok else math.nan
         ratio_words = (f"dynamic / static damage {ratio:.3f} ± {ratio_se:.2g} (standard error)" if se_ok else
                        f"dynamic / static damage {ratio:.3f} (no standard error)")
+        if ratio > LARGE_DAMAGE_RATIO:
+            ratio_words += (f"; far above the amplification of the ranges themselves: the damage grows as the range to "
+                            f"the power m = 3 … 5 of the S-N curve, and ranges below the fatigue limit {limit} and the "
+                            "cut-off do little or no damage statically, so a small dynamic increase that lifts them onto "
+                            "the curve multiplies their damage (the many lighter trucks' ranges near the limit)")
     else:
         ratio, ratio_se = math.nan, math.nan
         ratio_words = (f"static damage 0 (every static stress range is below the fatigue limit {limit}): the "

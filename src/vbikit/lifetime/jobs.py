@@ -107,6 +107,17 @@ class Detail:
     bin: float
     size_factor: float = 1.0
 
+    @property
+    def label(self) -> str:
+        """The curve as reports name it: the category, and with a size reduction k_s the reduced one
+        ("EN 36 × k_s 0.5 = 18 MPa")."""
+        if self.size_factor == 1.0 or not self.curve.upper().startswith("EN"):
+            return self.curve
+        from vbikit.fatigue import curve_name
+
+        category = float(curve_name(self.curve).split()[1])
+        return f"{self.curve} × k_s {self.size_factor:g} = {category * self.size_factor:.4g} MPa"
+
     def sn(self):
         from vbikit.fatigue import curve_name, en1993_curve, sn_curve
 

@@ -226,12 +226,13 @@ def text_report(facts: dict[str, Any]) -> str:
         for flag in e["flags"]:
             lines.append("  FLAG " + flag)
     if "fatigue" in facts:
+        wide = max([12] + [len(d["category"]) + 2 for d in facts["fatigue"].values()])  # (a reduced category is long)
         lines += ["", f"fatigue (design life {facts['design_life']:g} years)",
-                  f"{'detail':<16}{'category':<12}{'damage':>12}{'± se':>11}{'static':>12}{'per year':>12}"
+                  f"{'detail':<16}{'category':<{wide}}{'damage':>12}{'± se':>11}{'static':>12}{'per year':>12}"
                   f"{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
         for name, d in facts["fatigue"].items():
             eq = d["equivalent_stress_range"]
-            lines.append(f"{name:<16}{d['category']:<12}{_g(d['fatigue_damage'], '>12.4g')}"
+            lines.append(f"{name:<16}{d['category']:<{wide}}{_g(d['fatigue_damage'], '>12.4g')}"
                          f"{_g(d['fatigue_damage_se'], '>11.3g')}{_g(d['fatigue_damage_static'], '>12.4g')}"
                          f"{_g(d['fatigue_damage_per_year'], '>12.4g')}"
                          f"{('n/a' if eq is None else format(eq / 1e6, '.3f')):>11}"

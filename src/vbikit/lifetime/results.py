@@ -491,5 +491,7 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     coords = {"detail": np.array([d.name for d in details], dtype=object),
               "stress_range_bin": ("stress_range_bin", np.arange(max_bin) * width,
                                    {"units": "Pa", "long_name": "lower edge of the stress-range bin"}),
-              "detail_category": ("detail", np.array([d.curve for d in details], dtype=object))}
+              "detail_category": ("detail", np.array([d.label for d in details], dtype=object)),
+              "detail_size_factor": ("detail", np.array([d.size_factor for d in details], float),
+                                     {"units": "1", "long_name": "EN 1993-1-9 size-effect reduction k_s of the category"})}
     return {"variables": variables, "coords": coords}

@@ -164,8 +164,12 @@ def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt
 
 def level_factor(road: PseudoRoad, base: PseudoRoad) -> float | None:
     """G_road(n) / G_base(n) [-] if ``road`` is ``base`` at another level (the same band, exponent,
-    n0 and wheel-line coherence, another φ(n0): e.g. ISO 8608 classes, 4× apart), else None."""
-    if (road.coherence, road.two_lines) != (base.coherence, base.two_lines) or not base.psd.phi0 > 0:
+    n0 and wheel-line coherence, another φ(n0): e.g. ISO 8608 classes, 4× apart), else None; 1 for
+    ``base`` itself (whatever its spectrum: a zero level, a spectrum without ``phi0``)."""
+    if road is base or road == base:
+        return 1.0
+    if (road.coherence, road.two_lines) != (base.coherence, base.two_lines) or type(road.psd) is not type(base.psd) \
+            or "phi0" not in {f.name for f in dataclasses.fields(base.psd)} or not base.psd.phi0 > 0:
         return None
     if dataclasses.replace(road.psd, phi0=base.psd.phi0) != base.psd:
         return None
