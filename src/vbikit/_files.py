@@ -181,6 +181,28 @@ def output_dir(path: str | Path, key: str = "--out-dir", create: bool = True) ->
     return path
 
 
+_FILE_ALLOWED = "give the path of a file in a writable folder (missing folders are created)"
+
+
+def output_file(path: str | Path, key: str) -> Path:
+    """The output file ``path``, checked before any computation (nothing is created; an existing
+    file is replaced by the writers, ``atomic_write``); ``OutputError`` naming ``key`` when it names
+    a folder (or anything else that is not a regular file), lies in ``/dev``, ``/proc`` or ``/sys``
+    (also through a symbolic link), or its folder cannot hold it: the checks of ``output_dir`` on
+    the parent folder (not a file, writable), which the writers create."""
+    path = Path(path)
+    real = os.path.realpath(path)
+    system = next((d for d in _SYSTEM_DIRS if real == d or real.startswith(d + os.sep)), None)
+    if system is not None:
+        raise OutputError(f"{key} {path}: lies in {system}, a system folder; {_FILE_ALLOWED}")
+    if os.path.isdir(path):
+        raise OutputError(f"{key} {path}: is a folder, not a file; {_FILE_ALLOWED}")
+    if os.path.lexists(path) and not os.path.isfile(path):
+        raise OutputError(f"{key} {path}: exists and is not a regular file; {_FILE_ALLOWED}")
+    output_dir(path.parent, key=f"{key} {path}: its folder", create=False)
+    return path
+
+
 #: the largest input file read by default [MiB]; the environment variable ``MAX_INPUT_ENV`` sets another
 DEFAULT_MAX_INPUT_MB = 256
 MAX_INPUT_ENV = "VBIKIT_MAX_INPUT_MB"

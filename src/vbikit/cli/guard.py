@@ -100,6 +100,22 @@ def out_dir_option(help: str, default: Any = Path("vbikit-out")) -> Any:
     return typer.Option(default, "--out-dir", help=help, callback=check_out_dir)
 
 
+def check_out_file(param: typer.CallbackParam, path: Any) -> Any:
+    """An output file option (``--out``, ``--summary``, ``--plot`` …), checked now (exit 2 naming the
+    option when it names a folder, lies in a system folder, or its folder is a file or not writable:
+    ``vbikit._files.output_file``), before any computation.  None passes."""
+    from vbikit._files import output_file
+
+    name = max(param.opts, key=len)
+    return None if path is None else guard(lambda: output_file(path, name))
+
+
+def out_file_option(name: str, help: str, default: Any = None) -> Any:
+    """The option ``name`` of an output file (default None: not written; ``...``: required), checked by
+    ``check_out_file`` as the command line is parsed: a bad path is refused before the command computes."""
+    return typer.Option(default, name, help=help, callback=check_out_file)
+
+
 MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
                                                      "estimated before it starts, refused above.")
 MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")

@@ -8,16 +8,16 @@ from typing import Optional
 import typer
 
 from vbikit.cli.execute import execute
-from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option
+from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option, out_file_option
 from vbikit.cli.render import json_text, outputs, write_text
 
 
 def run(
     scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (the summary) on stdout."),
-    out: Optional[Path] = typer.Option(None, "--out", help="Write time histories to this CSV file."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure (PNG/PDF/SVG) of the response."),
-    summary_path: Optional[Path] = typer.Option(None, "--summary", help="Write the JSON summary to this file."),
+    out: Optional[Path] = out_file_option("--out", "Write time histories to this CSV file."),
+    plot: Optional[Path] = out_file_option("--plot", "Write a figure (PNG/PDF/SVG) of the response."),
+    summary_path: Optional[Path] = out_file_option("--summary", "Write the JSON summary to this file."),
     max_memory: Optional[str] = MAX_MEMORY,
     max_steps: Optional[float] = MAX_STEPS,
     out_dir: Optional[Path] = out_dir_option("Write all three (SCENARIO.csv, SCENARIO.png, SCENARIO.json) into this "

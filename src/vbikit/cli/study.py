@@ -8,7 +8,7 @@ from typing import Any, Callable, Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, limits, out_dir_option
+from vbikit.cli.guard import STATE, guard, limits, out_dir_option, out_file_option
 
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
@@ -86,7 +86,7 @@ _PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progre
 @app.command("run")
 def run_cmd(
     study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
-    out: Path = typer.Option(..., "--out", help="Result dataset (NetCDF, .nc)."),
+    out: Path = out_file_option("--out", "Result dataset (NetCDF, .nc).", ...),
     workers: Optional[int] = _WORKERS,
     scheduler: Optional[str] = _SCHEDULER,
     progress: bool = _PROGRESS,

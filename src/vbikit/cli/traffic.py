@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard
+from vbikit.cli.guard import guard, out_file_option
 from vbikit.cli.study import run_job
 from vbikit.errors import OptionError
 
@@ -26,7 +26,7 @@ def _lanes(text: str) -> list[float]:
 def traffic_cmd(
     records: Path = typer.Argument(..., metavar="RECORDS.csv", help="Vehicle records CSV (docs/traffic.md)."),
     bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
-    out: Path = typer.Option(..., "--out", help="Result dataset (NetCDF, .nc)."),
+    out: Path = out_file_option("--out", "Result dataset (NetCDF, .nc).", ...),
     lanes: Optional[str] = typer.Option(None, "--lanes", help="Lane centres y [m], comma-separated (lane 1 first); "
                                         "default: two lanes at ∓ deck width/4 (y = 0 on a beam)."),
     road: Optional[str] = typer.Option(None, "--road", help="Road class (A…H, good/average/poor, none) instead of the scenario's."),
@@ -34,7 +34,7 @@ def traffic_cmd(
     batch_size: int = typer.Option(16, "--batch-size", min=1, help="Events per stored batch."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Write a figure of the IM distribution and the peaks."),
+    plot: Optional[Path] = out_file_option("--plot", "Write a figure of the IM distribution and the peaks."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
     outputs: Optional[str] = typer.Option(None, "--outputs", help="The outputs to reduce and store, comma-separated "
                                           "(docs/results.md; default all; the stream statistics' impact_factor, "
