@@ -175,8 +175,8 @@ def test_hslm_b_from_the_rail_file(tmp_path):
     with pytest.raises(RailSpecError) as err:
         parse_rail_spec(spec(trains={"hslm_b": [{"n": 0, "d": 3.5}, {"n": 10, "d": 60.0}, {"n": 10}]}))
     msg = str(err.value)
-    assert "trains.hslm_b.0.n: expected an integer in [1, 100], got 0" in msg
-    assert "trains.hslm_b.1.d: expected a number in [0.5, 50], got 60.0" in msg
-    assert "trains.hslm_b.2.d: missing required key" in msg
+    assert "trains.hslm_b[1].n: expected an integer in [1, 100], got 0" in msg
+    assert "trains.hslm_b[2].d: expected a number in [0.5, 50], got 60.0" in msg
+    assert "trains.hslm_b[3].d: missing required key" in msg
     with pytest.raises(RailSpecError, match="train names must differ, repeated: HSLM-B"):
         run_rail(spec(trains={"hslm_b": [{"n": 10, "d": 3.5}, {"n": 10, "d": 3.5}]}), figures=False)
