@@ -148,7 +148,7 @@ def test_bound_message_reads_both_bounds_the_unit_and_integers():
 
     for data, words in (({"depth": -0.02}, "s.depth: expected a number in (0, 0.5] [m], got -0.02"),
                         ({"count": 0}, "s.count: expected an integer in [1, 100], got 0"),
-                        ({"spans": [20.0, 1e9]}, "s.spans.1: expected a number in [0.5, 5000], got 1000000000.0")):
+                        ({"spans": [20.0, 1e9]}, "s.spans[2]: expected a number in [0.5, 5000], got 1000000000.0")):
         with pytest.raises(ValidationError) as err:
             File.model_validate({"s": data})
         assert words in validation_message(err.value, "", model=File)
