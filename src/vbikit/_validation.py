@@ -1,5 +1,6 @@
 """The messages of a failed pydantic validation of an input file (studies, lifetime and railway
-files): one line per problem, naming the key as ``section.key``."""
+files): one line per problem, naming the key as ``section.key`` and a list's item as ``name[k]``
+(k from 1, as every other message of vbikit counts items: ``key_name``)."""
 from __future__ import annotations
 
 import math
@@ -46,6 +47,22 @@ def allowed_keys(model: Optional[type], loc: tuple = ()) -> list[str]:
     return list(getattr(inner, "model_fields", {})) if inner is not None else []
 
 
+def key_name(loc: tuple) -> str:
+    """The key of a pydantic location as the messages name it: names joined by dots, a list's item
+    ``k`` (0-based in ``loc``) as ``[k + 1]`` after its list's name: ``("trains", "hslm_b", 0, "d")``
+    -> ``trains.hslm_b[1].d`` (pydantic's ``__root__`` left out).  The one place a location
+    becomes a key name (of the scenario files too: ``vbikit.scenario.schema.error_path``)."""
+    out = ""
+    for part in loc:
+        if part == "__root__":
+            continue
+        if isinstance(part, int) and not isinstance(part, bool):
+            out += f"[{part + 1}]"
+        else:
+            out += f".{part}" if out else str(part)
+    return out
+
+
 def validation_message(err: ValidationError, title: str, unknown_key: Optional[str] = None,
                        model: Optional[type] = None) -> str:
     """``title`` and one line per error: ``section.key: message``.  An unknown key says
@@ -54,7 +71,7 @@ def validation_message(err: ValidationError, title: str, unknown_key: Optional[s
     starts with a key name is put under that key."""
     lines = []
     for e in err.errors():
-        loc = ".".join(str(p) for p in e["loc"])
+        loc = key_name(tuple(e["loc"]))
         msg = e["msg"].removeprefix("Value error, ")
         key = _KEY_FIRST.match(msg)
         if key and e["type"] == "value_error":

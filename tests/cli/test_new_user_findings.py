@@ -148,7 +148,7 @@ def test_bound_message_reads_both_bounds_the_unit_and_integers():
 
     for data, words in (({"depth": -0.02}, "s.depth: expected a number in (0, 0.5] [m], got -0.02"),
                         ({"count": 0}, "s.count: expected an integer in [1, 100], got 0"),
-                        ({"spans": [20.0, 1e9]}, "s.spans.1: expected a number in [0.5, 5000], got 1000000000.0")):
+                        ({"spans": [20.0, 1e9]}, "s.spans[2]: expected a number in [0.5, 5000], got 1000000000.0")):
         with pytest.raises(ValidationError) as err:
             File.model_validate({"s": data})
         assert words in validation_message(err.value, "", model=File)
@@ -217,3 +217,19 @@ def test_bridge_argument_and_validate_yes_help():
     assert "PRESET|SCENARIO.toml" in text and "name <str>" not in text
     text = runner.invoke(app, ["study", "validate", "--help"]).output
     assert "Run a study" not in text and "Accept a study of more than 1e6 crossings" in text
+
+
+def test_list_items_are_named_from_one_in_every_validation_message():
+    """A new user read `trains.tables[1]` (1-based) beside pydantic's `trains.hslm_b.0.d` and
+    `fatigue.details.0.category` (0-based): every key now names a list item `name[k]`, k from 1
+    (`vbikit._validation.key_name`, also behind the scenario files' `error_path`)."""
+    from vbikit._validation import key_name
+    from vbikit.rail.spec import RailSpecError, parse_rail_spec
+    from vbikit.scenario.schema import error_path
+
+    assert key_name(("trains", "hslm_b", 0, "d")) == "trains.hslm_b[1].d"
+    assert key_name(("a", 2, 0, "b")) == "a[3][1].b" and key_name(("__root__", "x")) == "x"
+    assert error_path(("road", "defects", 0, "depth")) == "road.defects[1].depth"
+    with pytest.raises(RailSpecError, match=r"trains\.hslm_b\[2\]\.d: expected a number in \[0\.5, 50\]"):
+        parse_rail_spec({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "speeds": {"max": 300.0},
+                         "trains": {"hslm_b": [{"n": 10, "d": 3.5}, {"n": 10, "d": 60.0}]}})

@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from vbikit.rail.run import RailBudgetError, run_rail
+from vbikit.rail import codes
+from vbikit.rail.run import RailBudgetError, plan_rail, run_rail
 from vbikit.rail.spec import RailSpecError, parse_rail_spec
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "railway"
@@ -160,6 +161,36 @@ def test_scenario_bridge_errors(tmp_path):
         parse_rail_spec({"bridge": {"span": 20.0}, "trains": {"presets": ["hslm-a1"]}, "speeds": {"max": 300.0}})
 
 
+def test_hslm_b_outside_its_range_is_flagged(tmp_path):
+    """EN 1991-2:2003 6.4.6.1.1(5) and Annex E: HSLM-B for simply supported spans below 7 m only,
+    HSLM-A otherwise.  A new user's HSLM-B (N = 10, d = 3.5 m) on a 20 m span passed with no word:
+    now the report, the JSON and the Python checks carry the warning (a flag, not a refusal: the run
+    may be meant as research), and its resonance line names d the force spacing, not a coach length."""
+    import json
+
+    data = spec(trains={"presets": [], "hslm_b": [{"n": 10, "d": 3.5}]}, speeds={"min": 200.0, "max": 220.0})
+    res = run_rail(data, tmp_path / "out", figures=False)
+    assert len(res.checks["warnings"]) == 1
+    w = res.checks["warnings"][0]
+    assert w.startswith("HSLM-B outside its range of application") and "is not the EN 1991-2 one" in w
+    assert "use HSLM-A" in w and "this span is 20 m" in w and "which this sweep does not run" in w
+    report = (tmp_path / "out" / "rail-report.txt").read_text()
+    assert f"WARNING: {w}" in report
+    assert "1 WARNING(s) above: not the EN 1991-2 check as run" in report.splitlines()[-1]
+    assert "HSLM-B (N = 10, d = 3.5 m) (D = 3.500 m, force spacing d)" in report and "coach length)" not in report
+    saved = json.loads((tmp_path / "out" / "rail-summary.json").read_text())
+    assert saved["warnings"] == [w] and "warnings" not in saved["checks"]
+    assert saved["trains"]["HSLM-B (N = 10, d = 3.5 m)"]["wavelength_source"] == "force spacing d"
+    # within the ranges: no warning (HSLM-B below 7 m, HSLM-A at 7 m and above); outside, both ways
+    short = {"bridge": {"span": 6.0}, "speeds": {"min": 100.0, "max": 120.0}}
+    assert plan_rail(spec(trains={"presets": [], "hslm_b": [{"n": 10, "d": 3.5}]}, **short)).warnings == []
+    assert plan_rail(spec()).warnings == []
+    (w_a,) = plan_rail(spec(**short)).warnings
+    assert w_a.startswith("HSLM-A outside its range of application: span 6 m < 7 m")
+    assert codes.hslm_range_warnings(7.0, ["HSLM-B (N = 1, d = 1 m)", "HSLM-A1"])[0].endswith('presets = ["hslm-a"])')
+    assert codes.hslm_range_warnings(6.99, ["HSLM-B (N = 1, d = 1 m)"]) == []
+
+
 def test_hslm_b_from_the_rail_file(tmp_path):
     """``[[trains.hslm_b]]`` (N, d) runs ``vbikit.vehicle.hslm_b(N, d)``: N = 3 forces of 170 kN 25 m
     apart never share the 20 m span, so the static midspan moment and deflection are one force's,
@@ -175,8 +206,8 @@ def test_hslm_b_from_the_rail_file(tmp_path):
     with pytest.raises(RailSpecError) as err:
         parse_rail_spec(spec(trains={"hslm_b": [{"n": 0, "d": 3.5}, {"n": 10, "d": 60.0}, {"n": 10}]}))
     msg = str(err.value)
-    assert "trains.hslm_b.0.n: expected an integer in [1, 100], got 0" in msg
-    assert "trains.hslm_b.1.d: expected a number in [0.5, 50], got 60.0" in msg
-    assert "trains.hslm_b.2.d: missing required key" in msg
+    assert "trains.hslm_b[1].n: expected an integer in [1, 100], got 0" in msg
+    assert "trains.hslm_b[2].d: expected a number in [0.5, 50], got 60.0" in msg
+    assert "trains.hslm_b[3].d: missing required key" in msg
     with pytest.raises(RailSpecError, match="train names must differ, repeated: HSLM-B"):
         run_rail(spec(trains={"hslm_b": [{"n": 10, "d": 3.5}, {"n": 10, "d": 3.5}]}), figures=False)

@@ -33,9 +33,10 @@ def test_records_read_in_si_units():
 
 
 @pytest.mark.parametrize("text, match", [
-    ("time [s],lane,direction,speed [mph],axle_loads [kN],axle_spacings [m]\n", r"records:1: column 4 \(speed\) takes \[km/h\] or \[m/s\], not the unit given"),
+    ("time [s],lane,direction,speed [mph],axle_loads [kN],axle_spacings [m]\n", r"records:1: column 4 \(speed\) has a unit it does not take: write `speed \[km/h\]` or `speed \[m/s\]`\. "
+     r"A header reads, e\.g\.: id,time \[s\],lane,direction,speed \[km/h\],axle_loads \[kN\],axle_spacings \[m\]$"),
     ("time [s],lane,direction,speed [km/h]\n0,1,+x,80\n", "records:2: model axles needs the column axle_loads"),
-    ("time [s],direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n", "missing column.*lane or lateral_offset"),
+    ("time [s],direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n", r"missing required column\(s\) lane or lateral_offset"),
     (GOOD.replace("1.5,2,-x", "1.5,2,west"), r"records:4: column 3 \(direction\): must be \+x or -x$"),
     (GOOD.replace("45 90,5.0", "45 90,5.0 3"), r"records:4: column 6 \(axle_spacings \[m\]\): needs 1 spacing"),
     (GOOD.replace(",72,", ",fast,"), r"records:4: column 4 \(speed \[km/h\]\): not a number$"),
@@ -47,6 +48,32 @@ def test_records_read_in_si_units():
 def test_bad_records_name_the_line_and_column(text, match):
     with pytest.raises(RecordsError, match=match):
         parse_records(text)
+
+
+def test_header_errors_say_what_is_wrong_and_how_the_header_reads():
+    """A new user's header ``time,lane,speed,gross`` was refused as "column 1 (time) takes [s], not
+    the unit given" although no unit was given: now every problem of the header is named — the
+    units left out, the unknown column, the required column missing — with a header that reads
+    right, and nothing of the file's text but the format's own column names."""
+    with pytest.raises(RecordsError) as err:
+        parse_records("time,lane,speed,gross\n0,1,80,300\n", "user.csv")
+    msg = str(err.value)
+    assert msg.startswith("user.csv:1: column 4 of the header is not a known column; allowed: time [s], lane,")
+    assert "column 1 (time) has no unit: write `time [s]`" in msg
+    assert "column 3 (speed) has no unit: write `speed [km/h]` or `speed [m/s]`" in msg
+    assert "missing required column(s) direction (required: time, lane or lateral_offset, direction, speed; id, " \
+           "model, gross_weight optional)" in msg
+    assert msg.endswith(". A header reads, e.g.: id,time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]")
+    assert "not the unit given" not in msg and "gross," not in msg.replace("gross_weight", "")
+    with pytest.raises(RecordsError) as err:  # a unit given: which one is wrong, not echoed
+        parse_records("time [h],lane [m],direction,speed [km/h]\n", "user.csv")
+    msg = str(err.value)
+    assert "column 1 (time) has a unit it does not take: write `time [s]`" in msg
+    assert "column 2 (lane) takes no unit: write `lane`" in msg and "[h]" not in msg and "missing" not in msg
+    # the header of the docs' example is read (the records then parse)
+    assert len(parse_records("id,time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n"
+                             "v1,0,1,+x,80,45 90,5.0\n")) == 1
+
 
 
 def test_model_column_and_gross_weight_check():

@@ -56,7 +56,7 @@ def test_a_detail_category_en_1993_1_9_does_not_list_is_refused(tmp_path, comman
     data["fatigue"]["details"][0]["category"] = "EN 37"
     path = write_input(tmp_path, "lifetime", data, {"records.csv": "\n".join(RECORDS) + "\n"})
     argv = [command, str(path)] + (["--out-dir", str(tmp_path / "out")] if command == "lifetime" else [])
-    _refused(runner.invoke(app, argv), "fatigue.details.0.category: 'EN 37' is not a detail category",
+    _refused(runner.invoke(app, argv), "fatigue.details[1].category: 'EN 37' is not a detail category",
              "(the nearest EN category is 36)", "allowed: EN " + ", ".join(map(str, EN_CATEGORIES)))
     assert not (tmp_path / "out").exists()
 

@@ -95,13 +95,13 @@ def tire_from_parameters(name: str, **parameters: Any) -> TireModel:
     try:
         validated = tire_parameters(name, parameters)
     except ValidationError as err:
-        from vbikit._validation import bound_message
+        from vbikit._validation import bound_message, key_name
 
         fields = tire_model(name).Parameters.model_fields
 
         def problem(e: Any) -> str:
             text = bound_message(e, fields.get(e["loc"][-1])) or f"{e['msg']} (got {e['input']!r})"
-            return f"{'.'.join(map(str, e['loc']))}: {text}"
+            return f"{key_name(tuple(e['loc']))}: {text}"
 
         problems = "; ".join(problem(e) for e in err.errors())
         raise ValueError(f"tire model {name!r}: {problems}") from None

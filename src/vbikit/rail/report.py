@@ -9,7 +9,10 @@ import numpy as np
 
 
 def check(ds) -> dict[str, Any]:
-    """The pass/fail summary: governing train, speed and quantity of every check."""
+    """The pass/fail summary: governing train, speed and quantity of every check, and
+    ``warnings``: the sweep's limits of the standard in words (the dataset's ``code_warnings``, one a
+    line: an HSLM train outside its range of application, ``codes.hslm_range_warnings``); a PASS
+    with a warning is not the standard's check."""
     acc = ds["max_deck_acceleration"]
     i, j = np.unravel_index(int(np.nanargmax(acc.values)), acc.shape)
     limit = float(ds["acceleration_limit"])
@@ -51,6 +54,7 @@ def check(ds) -> dict[str, Any]:
                                                    "static_moment_max_position_m", "static_moment_max_train",
                                                    "static_moment_max_over_midspan")}
     out["passes"] = out["acceleration"]["passes"]
+    out["warnings"] = [w for w in str(a.get("code_warnings", "")).split("\n") if w]
     return out
 
 
@@ -67,6 +71,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {float(ds.speed_kmh.min()):.0f} … "
         f"{float(ds.speed_kmh.max()):.0f} km/h",
     ]
+    lines += [f"WARNING: {w}" for w in checks.get("warnings", [])]
     if a.get("modes_required", 0) > a["n_modes"]:
         lines.append(f"WARNING: {a['n_modes']} modes retained, but the {a['modes_required']} modes up to "
                      f"{a['frequency_limit_hz']:.1f} Hz are required (EN 1990 A2.4.4.2.1): raise bridge.n_modes")
@@ -99,8 +104,8 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                      f"midspan {mid_static / 1e3:.4g} kN m")
     d = checks["deflection"]
     lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {3.6 * d['speed']:.1f} km/h)")
-    lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length or the dominant repeated axle "
-              "spacing):"]
+    lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length, HSLM-B's force spacing d or "
+              "the dominant repeated axle spacing):"]
     lo, hi = float(ds.speed.values.min()), float(ds.speed.values.max())
     for k, (name, row) in enumerate(zip(ds.train.values, ds["resonance_speed"].values)):
         if not np.any(np.isfinite(row)):
@@ -112,7 +117,9 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                  for i, v in enumerate(row) if np.isfinite(v)]
         lines.append(f"  {name} (D = {d:.3f} m, {ds['wavelength_source'].values[k]}): " + ", ".join(parts))
     lines += ["", f"result: {'PASS' if checks['passes'] else 'FAIL'} (governing: {acc['train']}, "
-              f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"]
+              f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"
+              + (f"; {len(checks['warnings'])} WARNING(s) above: not the EN 1991-2 check as run"
+                 if checks.get("warnings") else "")]
     return "\n".join(lines) + "\n"
 
 
@@ -143,7 +150,7 @@ CHECK_UNITS: dict[str, dict[str, str]] = {
 def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
     """The JSON summary (``rail-summary.json``): the checks (with the speed grid's error bound and the
     moment envelope along the span), every train's resonance speeds by order i and its refined
-    acceleration peaks; speeds in m/s and km/h, moments in N m, NaN as null; every check with the units of
+    acceleration peaks, and ``warnings`` (``check``); speeds in m/s and km/h, moments in N m, NaN as null; every check with the units of
     its numbers (``CHECK_UNITS``)."""
     def clean(x):
         if isinstance(x, dict):
@@ -170,7 +177,8 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
                                     "speed_kmh": 3.6 * float(ds["peak_speed_refined"].values[k, j]),
                                     "error_bound": float(ds["peak_refinement_bound"].values[k, j])}
                                    for j in range(ds.peak.size) if np.isfinite(ds["peak_acceleration_refined"].values[k, j])]}
+    warnings = list(checks.get("warnings", []))  # at the top, as in every summary of vbikit
     checks = {k: (v | {"units": {n: u for n, u in CHECK_UNITS[k].items() if n in v}} if k in CHECK_UNITS else v)
-              for k, v in checks.items()}
-    return clean({"checks": checks, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
+              for k, v in checks.items() if k != "warnings"}
+    return clean({"checks": checks, "warnings": warnings, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})

@@ -173,6 +173,7 @@ class RailPlan:
     coupled: list
     waves: dict
     sections: Any
+    warnings: list = field(default_factory=list)  # the sweep's limits of the standard (codes.hslm_range_warnings)
 
 
 def plan_rail(source: Any) -> RailPlan:
@@ -219,12 +220,13 @@ def plan_rail(source: Any) -> RailPlan:
         raise RailBudgetError(f"coupled.max_steps: the coupled cars need {coupled_steps:.3g} time steps ({len(coupled)} "
                               f"trains × {speeds.size} speeds), above {spec.coupled.max_steps:.3g}; raise coupled.max_steps "
                               "or use fewer speeds")
-    if span < 7.0 and any(t.name.startswith("HSLM-A") for t in trains):
-        log.warning("span %.3g m < 7 m: EN 1991-2:2003 6.4.6.1.1 uses HSLM-B for simply supported spans below 7 m", span)
+    warnings = codes.hslm_range_warnings(span, [t.name for t in originals])
+    for w in warnings:
+        log.warning("%s", w)
     y = float(bridge.default_lateral_offset)  # the track's axis; the deck is read on it
     setup = SweepSetup(bridge, points, effects, dx, fv, spec.run.budget, y)
     return RailPlan(spec, bridge, f_limit, required, originals, trains, res, speeds, points, effects, setup, coupled,
-                    waves, sections)
+                    waves, sections, warnings)
 
 
 def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
@@ -284,6 +286,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                   sections=sections, statics=statics)
     ds.attrs.update(moment_envelope_summary(ds, setup, {t.name: t for t in trains}))
     ds.attrs["modes_required"] = required
+    ds.attrs["code_warnings"] = "\n".join(p.warnings)  # one a line (check: checks["warnings"])
     checks = check(ds)
     refine_design_checks(ds, checks, setup, {t.name: t for t in trains})
     report = format_report(ds, checks)

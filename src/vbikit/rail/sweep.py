@@ -21,7 +21,7 @@ from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.rail.codes import resonance_speeds
 from vbikit.rail.refine import PEAK_TOLERANCE, RefinedPeaks, refine_peaks
-from vbikit.vehicle.trains import Train
+from vbikit.vehicle.trains import HSLM_B_NAME, Train
 
 log = logging.getLogger(__name__)
 
@@ -162,10 +162,10 @@ def rail_cars(train: Train, contact: str | float = "hertz") -> list:
 
 def excitation_wavelength(train: Train) -> tuple[Optional[float], str]:
     """The wavelength D [m] of a train's resonances v_i = n0 D / i and where it comes from: its coach
-    length when documented (HSLM, presets), else its dominant repeated axle spacing
+    length when documented (HSLM-A, presets; HSLM-B: its force spacing d, EN 1991-2 6.4.6.1.1), else its dominant repeated axle spacing
     (``vbikit.rail.signature``)."""
     if train.coach_length:
-        return float(train.coach_length), "coach length"
+        return float(train.coach_length), ("force spacing d" if train.name.startswith(HSLM_B_NAME) else "coach length")
     from vbikit.rail.signature import dominant_wavelength
 
     d = dominant_wavelength(train.axle_positions, train.axle_loads)

@@ -30,7 +30,7 @@ from vbikit.scenario.section import ScenarioError, Section
 from vbikit._files import read_text
 from vbikit._kept import Kept
 from vbikit._toml import parse_toml
-from vbikit._validation import bound_message
+from vbikit._validation import bound_message, key_name
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
 from vbikit.solve.budget import MAX_AXLES
@@ -550,12 +550,7 @@ _UNION_MEMBER = re.compile(r"^(list\[)?(constrained-[a-z]+|float|int)\]?$")
 def error_path(loc: tuple[Any, ...] | list[Any]) -> str:
     """A key's location as users read it: ``road.defects[1].depth`` for the first
     ``[[road.defects]]`` table (arrays of tables counted from 1, in scenario, study and field files)."""
-    out = ""
-    for part in loc:
-        if part == "__root__" or (isinstance(part, str) and _UNION_MEMBER.match(part)):
-            continue
-        out += f"[{part + 1}]" if isinstance(part, int) else (f".{part}" if out else str(part))
-    return out
+    return key_name(tuple(p for p in loc if not (isinstance(p, str) and _UNION_MEMBER.match(p))))
 
 
 def _key_field(loc: tuple[Any, ...], data: dict[str, Any]) -> Any:

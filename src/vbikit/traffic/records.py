@@ -144,25 +144,8 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
     if not rows:
         raise RecordsError(f"{source}: no header row (columns: {', '.join(UNITS)})")
     head_no, head = rows[0]
-    columns: dict[str, tuple[float, str, int]] = {}  # key -> (factor to SI, header text, column number)
-    for j, name in enumerate(head, start=1):
-        m = _HEADER.match(name)
-        if not m or m.group(1) not in UNITS:
-            raise RecordsError(f"{source}:{head_no}: column {j} of the header is not a known column; allowed: "
-                               + ", ".join(f"{k} [{'|'.join(u)}]" if any(u) else k for k, u in UNITS.items()))
-        key, unit = m.group(1), (m.group(2) or "").strip()
-        if unit not in UNITS[key]:
-            allowed = " or ".join(f"[{u}]" for u in UNITS[key]) if any(UNITS[key]) else "no unit"
-            raise RecordsError(f"{source}:{head_no}: column {j} ({key}) takes {allowed}, not the unit given")
-        if key in columns:
-            raise RecordsError(f"{source}:{head_no}: column {j} ({key}) appears twice (also column {columns[key][2]})")
-        columns[key] = (UNITS[key][unit], f"{key} [{unit}]" if unit else key, j)
+    columns = _header(head, f"{source}:{head_no}")
     keys = list(columns)
-    missing = [k for k in REQUIRED if k not in keys]
-    if "lane" not in keys and "lateral_offset" not in keys:
-        missing.append("lane or lateral_offset")
-    if missing:
-        raise RecordsError(f"{source}:{head_no}: missing column(s) {', '.join(missing)}")
     out = []
     implausible: dict[str, list[int]] = {}
     for no, cells in rows[1:]:
@@ -184,6 +167,55 @@ def parse_records(text: str, source: str = "records", max_records: int = MAX_REC
         log.warning("%s: %d record(s) with %s (line %s); check the values and their units", source, len(lines), what,
                     shown)
     return out
+
+
+#: the columns of the header that every error of a header shows as an example (docs/traffic.md)
+EXAMPLE_COLUMNS = ("id", "time", "lane", "direction", "speed", "axle_loads", "axle_spacings")
+
+
+def _spelled(key: str) -> str:
+    """The ways a header may write column ``key``: ``speed [km/h]`` or ``speed [m/s]``; ``lane``."""
+    return " or ".join(f"`{key} [{u}]`" if u else f"`{key}`" for u in UNITS[key])
+
+
+def _header(head: list[str], where: str) -> dict[str, tuple[float, str, int]]:
+    """The columns of a header row: key -> (factor to SI, header text, column number), or one
+    ``RecordsError`` (``where``: ``file:line``) naming every problem — the unknown columns by number,
+    a column without its unit or with one it does not take, a repeated column, the required columns
+    missing — and how the header must read; no text of the file is repeated but the column names
+    the format defines."""
+    columns: dict[str, tuple[float, str, int]] = {}
+    unknown: list[int] = []
+    problems: list[str] = []
+    for j, name in enumerate(head, start=1):
+        m = _HEADER.match(name)
+        if not m or m.group(1) not in UNITS:
+            unknown.append(j)
+            continue
+        key, unit = m.group(1), (m.group(2) or "").strip()
+        if unit not in UNITS[key]:
+            what = ("has no unit" if not unit else "takes no unit" if not any(UNITS[key]) else
+                    "has a unit it does not take")
+            problems.append(f"column {j} ({key}) {what}: write {_spelled(key)}")
+        elif key in columns:
+            problems.append(f"column {j} ({key}) appears twice (also column {columns[key][2]})")
+        else:
+            columns[key] = (UNITS[key][unit], f"{key} [{unit}]" if unit else key, j)
+    named = {m.group(1) for m in map(_HEADER.match, head) if m}
+    missing = [k for k in REQUIRED if k not in named]
+    if "lane" not in named and "lateral_offset" not in named:
+        missing.append("lane or lateral_offset")
+    if unknown:
+        problems.insert(0, f"column{'s' if len(unknown) > 1 else ''} {', '.join(map(str, unknown))} of the header "
+                           f"{'are not known columns' if len(unknown) > 1 else 'is not a known column'}; allowed: "
+                           + ", ".join(f"{k} [{'|'.join(u)}]" if any(u) else k for k, u in UNITS.items()))
+    if missing:
+        problems.append(f"missing required column(s) {', '.join(missing)} (required: {', '.join(REQUIRED[:1])}, lane "
+                        f"or lateral_offset, {', '.join(REQUIRED[1:])}; id, model, gross_weight optional)")
+    if problems:
+        example = ",".join(f"{k} [{next(iter(UNITS[k]))}]" if any(UNITS[k]) else k for k in EXAMPLE_COLUMNS)
+        raise RecordsError(f"{where}: " + "; ".join(problems) + f". A header reads, e.g.: {example}")
+    return columns
 
 
 def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], source: str, no: int) -> VehicleRecord:

@@ -222,6 +222,8 @@ def hslm_a(number: int) -> Train:
 #: the accepted HSLM-B parameters: the number of forces N and their spacing d [m] (``hslm_b``; the
 #: rail file's ``[[trains.hslm_b]]`` takes the same ranges)
 HSLM_B_N, HSLM_B_SPACING = (1, 100), (0.5, 50.0)
+#: the start of every HSLM-B train's name (``hslm_b``): how the railway checks tell HSLM-B from other trains
+HSLM_B_NAME = "HSLM-B"
 
 
 def hslm_b(n: int, spacing: float, load: float = 170e3) -> Train:
@@ -234,7 +236,7 @@ def hslm_b(n: int, spacing: float, load: float = 170e3) -> Train:
         raise TrainError(f"HSLM-B: the spacing d must be within {HSLM_B_SPACING[0]:g} … {HSLM_B_SPACING[1]:g} m, "
                          f"got {spacing!r}")
     a = spacing * np.arange(int(n), dtype=float)
-    return Train(f"HSLM-B (N = {int(n)}, d = {spacing:g} m)", a, np.full(a.size, float(load)), None,
+    return Train(f"{HSLM_B_NAME} (N = {int(n)}, d = {spacing:g} m)", a, np.full(a.size, float(load)), None,
                  "EN 1991-2:2003 + AC, 6.4.6.1.1, HSLM-B (N and d given by the user)", spacing)
 
 
