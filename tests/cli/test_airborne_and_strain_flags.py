@@ -91,3 +91,16 @@ def test_strain_not_converged_in_ten_modes_is_flagged(tmp_path):
     assert s50["max_static_strain"] / exact - 1 == pytest.approx(-0.008, abs=0.001)  # within 1 %: not flagged
     assert not any(w.startswith(STRAIN_WARNING_START) for w in s50["warnings"])
     assert "!" not in _im_line(res50.stdout)
+
+
+def test_three_span_grillage_strain_is_flagged():
+    """examples/bridges/three_span_grillage_hs20.toml: 20 modes give 58.33 µε of the exact 62.19 µε
+    (−6.2 %; the changelog's number).  It is truncation, not a mismatch of c/EI: with 80 modes the
+    modes' peak moves to 61.00 µε (−1.9 %; measured once with vbikit run, not repeated here: slow)."""
+    import vbikit
+    from vbikit.analysis.response import exact_static_strain_peak
+
+    report = vbikit.run(str(ROOT / "examples" / "bridges" / "three_span_grillage_hs20.toml"))
+    modal, exact = report.response.strain_impact.static_peak, exact_static_strain_peak(report.result, report.response)
+    assert modal / exact - 1 == pytest.approx(-0.062, abs=0.001)
+    assert any(w.startswith(STRAIN_WARNING_START) and "-6.2% off" in w for w in report.summary["warnings"])
