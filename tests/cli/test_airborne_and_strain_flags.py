@@ -104,3 +104,18 @@ def test_three_span_grillage_strain_is_flagged():
     modal, exact = report.response.strain_impact.static_peak, exact_static_strain_peak(report.result, report.response)
     assert modal / exact - 1 == pytest.approx(-0.062, abs=0.001)
     assert any(w.startswith(STRAIN_WARNING_START) and "-6.2% off" in w for w in report.summary["warnings"])
+
+
+def test_road_warning_advice_follows_the_profile_label():
+    """The labels vbikit.scenario.build.build_road gives (random, measured, with defects) and one
+    from the Python API without a label: each gets advice that fits it."""
+    from vbikit.analysis.checks import road_advice, road_origin
+
+    assert road_origin("class F, seed 1") == "random class-F road (seed 1)"
+    assert road_origin("class F, seed 1, right line (coherence 0.9)") == "random class-F road (seed 1)"
+    assert road_origin("measured mm.csv + pothole at 5 m") == "measured profile (mm.csv, with defects)"
+    assert road_advice("class F, seed 1") == road_advice("class F, seed 1, right line (coherence 0.9)")
+    assert "road class" in road_advice("class F, seed 1") and "unit" not in road_advice("class F, seed 1")
+    assert "file's unit" in road_advice("measured mm.csv") and "road class" not in road_advice("measured mm.csv")
+    assert "defect sizes" in road_advice("class C, seed 2 + bump at 3 m")
+    assert road_advice("") == "check the profile's unit (elevations are in metres)"

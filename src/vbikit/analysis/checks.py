@@ -89,14 +89,14 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
                            f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)")
                 break
     x_lo, x_hi = crossing.road_extent()
-    for side, road in (("", crossing.road), ("right wheel line ", crossing.road_right)):
+    for side, road in (("", crossing.road), (" (right wheel line)", crossing.road_right)):
         if road is None:
             continue
         lo, hi = np.searchsorted(road.x, x_lo, side="left"), np.searchsorted(road.x, x_hi, side="right")
         z = road.z[lo:hi] if hi > lo else road.z  # the stations x_lo ≤ x ≤ x_hi (x increasing)
         peak = float(np.max(np.abs(z))) if z.size else 0.0
         if peak > MAX_ROAD_FEATURE:
-            out.append(f"road: the {side}{road_origin(road.label)} reaches {peak:.3g} m where the wheels go (more than "
+            out.append(f"road: the {road_origin(road.label)}{side} reaches {peak:.3g} m where the wheels go (more than "
                        f"{MAX_ROAD_FEATURE} m); {road_advice(road.label)}")
     skew = float(crossing.bridge.skew)
     if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
@@ -115,7 +115,8 @@ def road_origin(label: str) -> str:
     "measured profile (f.csv)", "road (…)" otherwise."""
     base = label.split(" + ")[0]
     if base.startswith("class ") and ", seed " in base:
-        cls, seed = base[len("class "):].split(", seed ")
+        cls, seed = base[len("class "):].split(", seed ", 1)
+        seed = seed.split(",")[0]  # (a right wheel line's label goes on: ", right line (coherence …)")
         return f"random class-{cls} road (seed {seed}{', with defects' if ' + ' in label else ''})"
     if base.startswith("measured "):
         return f"measured profile ({base[len('measured '):]}{', with defects' if ' + ' in label else ''})"
@@ -129,10 +130,10 @@ def road_advice(label: str) -> str:
         checks.append("the profile file's unit (elevations are in metres)")
     if " + " in label:
         checks.append("the defect sizes (metres)")
-    if not label.startswith("measured "):
+    if ", seed " in label.split(" + ")[0]:
         checks.append("the road class: a random road this rough lies beyond the range the vehicle and tire models "
                       "are meant for (wheels leave the road)")
-    return "check " + "; ".join(checks)
+    return "check " + ("; ".join(checks) or "the profile's unit (elevations are in metres)")
 
 
 def point_warnings(crossing: Crossing, x: float | None = None, y: float | None = None) -> list[str]:
