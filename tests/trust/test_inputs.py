@@ -135,7 +135,8 @@ def test_profile_in_mm_read_as_m_is_flagged(tmp_path):
     path = _write(tmp_path, BEAM + f'[road]\nprofile_file = "{profile.name}"\n')
     res = runner.invoke(app, ["run", str(path)])
     assert res.exit_code == 0, res.output
-    assert "warning: road: the profile reaches 5 m" in res.stderr
+    assert "warning: road: the measured profile (mm.csv) reaches 5 m" in res.stderr
+    assert "check the profile file's unit" in res.stderr
     assert "lost contact" in res.stderr
 
 

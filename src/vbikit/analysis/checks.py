@@ -11,7 +11,17 @@ Thresholds (documented in docs/scenario.md):
 * a step given by the user that is coarser than the integrator's automatic step, and bridge
   modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
   step does not (``step_warnings``);
-* wheels that lost contact (which, where first, for how long);
+* wheels that lost contact (which, where first, for how long); and, when any wheel was airborne on
+  the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge, one warning
+  that the run's impact factors are dominated by the wheels leaving and landing on the road
+  (``airborne_warnings``; the text report marks the IM with ``!``).  5 % is a hop, not a graze: on
+  Bridge 2 (16.76 m at 75 km/h, 0.80 s on the deck) it is 0.04 s in the air, about half the
+  HS20-44's slowest axle-hop period (10.8 Hz: 0.093 s); an ISO class-F road keeps the front axle up for 0.55 s (68 %);
+* a static strain peak of the modes (modal superposition of curvatures, which converges slowly
+  under a moving load) more than ``STRAIN_MODE_TOLERANCE`` (1 %) away from the exact static strain
+  c/EI times the static moment of the full stiffness (the moment's mode-acceleration static part),
+  where the bridge offers the moment at the point (``strain_convergence_warnings``): the Yang–Yau
+  beam with 10 modes reads 20.32 µε for the exact 21.18 µε (−4.0 %), with 50 modes 21.01 µε (−0.8 %);
 * an impact factor whose static reference is small: a static peak below ``SMALL_STATIC_FRACTION``
   (20 %) of the largest static peak of the same quantity on the bridge (a lightly loaded girder, a
   point near a support; ``small_static`` / ``small_static_warnings``; for moments, shears and
@@ -46,6 +56,14 @@ STEPS_PER_PERIOD = 5.0
 #: an impact factor whose static peak is below this fraction of the largest static peak of the same
 #: quantity on the bridge (every girder and response point of the run) is flagged (module docstring)
 SMALL_STATIC_FRACTION = 0.2
+#: a wheel airborne on the bridge for more than this fraction of its time there flags the run's IMs (module docstring)
+AIRBORNE_FRACTION = 0.05
+#: how the airborne-wheels warning starts (the text report looks for it to mark the IM)
+AIRBORNE_WARNING_START = "impact factors dominated by airborne wheels"
+#: largest relative error of the modes' static strain peak against the exact one before it is flagged
+STRAIN_MODE_TOLERANCE = 0.01
+#: how the strain-convergence warning starts (the text report looks for it to mark the strain IM)
+STRAIN_WARNING_START = "strain not converged in the modes"
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
 NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the vehicle's bounce and the "
                     "deck's vibration were out of phase with the load's arrival at the section (the wheels unloading "
@@ -71,15 +89,15 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
                            f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)")
                 break
     x_lo, x_hi = crossing.road_extent()
-    for side, road in (("", crossing.road), ("right wheel line ", crossing.road_right)):
+    for side, road in (("", crossing.road), (" (right wheel line)", crossing.road_right)):
         if road is None:
             continue
         lo, hi = np.searchsorted(road.x, x_lo, side="left"), np.searchsorted(road.x, x_hi, side="right")
         z = road.z[lo:hi] if hi > lo else road.z  # the stations x_lo ≤ x ≤ x_hi (x increasing)
         peak = float(np.max(np.abs(z))) if z.size else 0.0
         if peak > MAX_ROAD_FEATURE:
-            out.append(f"road: the {side}profile reaches {peak:.3g} m where the wheels go (more than {MAX_ROAD_FEATURE} m); "
-                       "road elevations are in metres — check the profile's unit or the defect sizes")
+            out.append(f"road: the {road_origin(road.label)}{side} reaches {peak:.3g} m where the wheels go (more than "
+                       f"{MAX_ROAD_FEATURE} m); {road_advice(road.label)}")
     skew = float(crossing.bridge.skew)
     if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
         out.append(f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the skew (oblique mesh), "
@@ -89,6 +107,33 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
     if crossing.dt is not None:
         out += step_warnings(crossing, float(crossing.dt))
     return out
+
+
+def road_origin(label: str) -> str:
+    """The road named by its profile's label (``vbikit.scenario.build.build_road``: "class F, seed 1",
+    "measured f.csv", either with " + <defect> at <x> m" appended): "random class-F road (seed 1)",
+    "measured profile (f.csv)", "road (…)" otherwise."""
+    base = label.split(" + ")[0]
+    if base.startswith("class ") and ", seed " in base:
+        cls, seed = base[len("class "):].split(", seed ", 1)
+        seed = seed.split(",")[0]  # (a right wheel line's label goes on: ", right line (coherence …)")
+        return f"random class-{cls} road (seed {seed}{', with defects' if ' + ' in label else ''})"
+    if base.startswith("measured "):
+        return f"measured profile ({base[len('measured '):]}{', with defects' if ' + ' in label else ''})"
+    return f"road ({label})" if label else "road profile"
+
+
+def road_advice(label: str) -> str:
+    """What to check for a road elevation over ``MAX_ROAD_FEATURE``, by the profile's origin (``road_origin``)."""
+    checks = []
+    if label.startswith("measured "):
+        checks.append("the profile file's unit (elevations are in metres)")
+    if " + " in label:
+        checks.append("the defect sizes (metres)")
+    if ", seed " in label.split(" + ")[0]:
+        checks.append("the road class: a random road this rough lies beyond the range the vehicle and tire models "
+                      "are meant for (wheels leave the road)")
+    return "check " + ("; ".join(checks) or "the profile's unit (elevations are in metres)")
 
 
 def point_warnings(crossing: Crossing, x: float | None = None, y: float | None = None) -> list[str]:
@@ -157,6 +202,64 @@ def contact_warnings(result: CrossingResult) -> list[str]:
     return out
 
 
+def airborne_wheels(result: CrossingResult, fraction: float = AIRBORNE_FRACTION) -> list[tuple[str, float, float]]:
+    """The wheels airborne (tire force ≤ 0) on the bridge (the deck's x extent) for more than
+    ``fraction`` of their own time on it: (wheel name, time airborne there [s], that fraction)."""
+    out = []
+    x_wheel, forces, dt = result.wheel_positions(), result.wheel_forces, result.dt
+    x0, x1 = result.crossing.bridge.deck_extent
+    for w, wheel in enumerate(result.crossing.vehicle.wheels):
+        if wheel.stiffness <= 0:
+            continue
+        on = (x_wheel[:, w] >= x0) & (x_wheel[:, w] <= x1)
+        n_on = int(on.sum())
+        share = int(((forces[:, w] <= 0.0) & on).sum()) / n_on if n_on else 0.0
+        if share > fraction:
+            out.append((wheel.name, share * n_on * dt, share))
+    return out
+
+
+def airborne_warnings(result: CrossingResult) -> list[str]:
+    """One warning when wheels were airborne on the bridge for a significant time (``airborne_wheels``):
+    the impact factors are dominated by point-contact impacts, not design values."""
+    wheels = airborne_wheels(result)
+    if not wheels:
+        return []
+    k = int(np.argmax([s for _, _, s in wheels]))
+    name, t, share = wheels[k]
+    return [f"{AIRBORNE_WARNING_START}: {len(wheels)} wheel{'s' if len(wheels) > 1 else ''} left the road on the bridge "
+            f"for more than {AIRBORNE_FRACTION:.0%} of their time on it (longest: {name}, {t:.3g} s, {share:.0%}); "
+            "the impact factors are dominated by the vehicle leaving and landing on the road (point-contact impacts), "
+            "so they are not design values; the road is beyond the model's intended range"]
+
+
+def impact_dominated(warnings: Sequence[str]) -> bool:
+    """Whether a run's ``warnings`` hold the airborne-wheels warning (``airborne_warnings``)."""
+    return any(w.startswith(AIRBORNE_WARNING_START) for w in warnings)
+
+
+def strain_convergence_warnings(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,
+                                where: str = "") -> list[str]:
+    """A warning when the static strain peak of the modes ``modal_static_peak`` differs from the exact
+    one ``exact_static_peak`` (None: not known; nothing) by more than ``STRAIN_MODE_TOLERANCE``: the
+    strain and its IM (ε_dyn / ε_st − 1) are not converged in the ``n_modes`` modes."""
+    if exact_static_peak is None or not exact_static_peak:
+        return []
+    err = (float(modal_static_peak) - float(exact_static_peak)) / abs(float(exact_static_peak))
+    if abs(err) <= STRAIN_MODE_TOLERANCE:
+        return []
+    return [f"{STRAIN_WARNING_START}{f' at {where}' if where else ''}: the static strain peak of the {n_modes} modes, "
+            f"{float(modal_static_peak) * 1e6:.4g} µε, is {err:+.1%} off the exact {float(exact_static_peak) * 1e6:.4g} µε "
+            f"(c/EI times the static moment of the full stiffness; flagged beyond {STRAIN_MODE_TOLERANCE:.0%}): strain "
+            "sums the modes' curvatures, which converge slowly near a moving load, so the strain and the strain IM "
+            "are not reliable; use more modes (bridge.n_modes) or the moment's IM"]
+
+
+def strain_unconverged(warnings: Sequence[str]) -> bool:
+    """Whether a run's ``warnings`` hold the strain-convergence warning (``strain_convergence_warnings``)."""
+    return any(w.startswith(STRAIN_WARNING_START) for w in warnings)
+
+
 def small_static(static_peaks: Sequence[float], fraction: float = SMALL_STATIC_FRACTION) -> list[bool]:
     """Per static peak (signed, of one quantity across the bridge): whether |R_st| is below
     ``fraction`` of the largest |R_st| — the impact factors resting on it are flagged."""
@@ -222,5 +325,7 @@ def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray
 
 
 def run_warnings(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[str]:
-    """Every warning about a finished crossing: its inputs and its contact losses."""
-    return input_warnings(result.crossing, result.dt, response_x, response_y) + contact_warnings(result)
+    """Every warning about a finished crossing: its inputs, its contact losses and wheels airborne long
+    enough to dominate the impact factors."""
+    return (input_warnings(result.crossing, result.dt, response_x, response_y) + contact_warnings(result)
+            + airborne_warnings(result))

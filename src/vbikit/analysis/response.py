@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.checks import run_warnings, small_static_warnings
+from vbikit.analysis.checks import run_warnings, small_static_warnings, strain_convergence_warnings
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
@@ -247,12 +247,55 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         **crossing_outputs,
-        "warnings": run_warnings(result, response.x, response.y) + static_reference_warnings(
+        "warnings": run_warnings(result, response.x, response.y) + strain_warnings(result, response) + static_reference_warnings(
             girders or [], points if points is not None else [{"name": point_name(1), "x": response.x, "y": response.y}
                                                               | headline]),
     } | ({"response_girder": response_girder,
           "lateral_offset": crossing.lateral_offset if crossing.single else [m.lateral_offset for m in crossing.vehicles],
           **girder_summary(girders)} if girders else {}) | ({} if crossing.single else {"vehicles": vehicle_summaries(result)})
+
+
+def exact_static_strain_peak(result: CrossingResult, response: PointResponse) -> float | None:
+    """The exact static strain peak at ``response``'s point [-]: c/EI times the static moment of the
+    full stiffness there (the static part of the moment's mode-acceleration estimate,
+    ``vbikit.bridge.effects``), with c/EI the ratio ε_i / r_i of every mode's strain to its moment —
+    None where the bridge offers no moment at the point (no load effects, a point off the girder
+    lines of a deck, a support) or the ratio is not the same for every mode (strain not c/EI times
+    the moment there)."""
+    from vbikit.analysis.effects import load_effect_responses, supports_load_effects
+
+    bridge = result.crossing.bridge
+    if not supports_load_effects(bridge):
+        return None
+    girder = None
+    if isinstance(bridge, GirderDeck):
+        lines = np.flatnonzero(np.abs(np.asarray(bridge.girder_y, float) - response.y) < 1e-9)
+        if not lines.size:
+            return None
+        girder = int(lines[0]) + 1
+    elif abs(response.y - float(bridge.default_response_y)) > 1e-9:
+        return None
+    try:
+        effect = bridge.load_effect("moment", response.x, girder=girder)
+    except (ValueError, NotImplementedError):
+        return None
+    r, eps = np.asarray(effect.modal, float), point_shapes(bridge, response.x, response.y)[1]
+    used = np.abs(r) > 1e-9 * float(np.max(np.abs(r), initial=0.0))
+    if not used.any():
+        return None
+    ratio = eps[used] / r[used]
+    if np.ptp(ratio) > 1e-6 * float(np.max(np.abs(ratio))):
+        return None
+    static = load_effect_responses(result, [effect], check_step=False)[0].static * float(ratio[0])
+    return float(static[np.argmax(np.abs(static))])
+
+
+def strain_warnings(result: CrossingResult, response: PointResponse) -> list[str]:
+    """The strain-convergence warning (``vbikit.analysis.checks.strain_convergence_warnings``) of the
+    headline point: its static strain peak from the modes against ``exact_static_strain_peak``."""
+    return strain_convergence_warnings(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
+                                       int(result.crossing.bridge.omega.size),
+                                       f"x = {response.x:.3f} m, y = {response.y:.3f} m")
 
 
 def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[str]:

@@ -64,7 +64,17 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
-    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}  (strain IM = {s['strain_impact_factor']:.4f})")
+    from vbikit.analysis.checks import impact_dominated, strain_unconverged
+
+    airborne, strain_off = impact_dominated(s.get("warnings", [])), strain_unconverged(s.get("warnings", []))
+    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if airborne else ''}  "
+               f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if airborne or strain_off else ''})")
+    if airborne:
+        typer.echo(f"  {'':<20} ! unreliable: wheels left the road on the bridge; the IM is dominated by their "
+                   "landing impacts, not a design value — see the warning")
+    if strain_off:
+        typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes (use more modes) "
+                   "— see the warning")
     if len(s["points"]) > 1:
         print_points(s["points"], s.get("girder_max_static_displacement", []))
     for i, v in enumerate(s.get("vehicles", []), start=1):
@@ -87,7 +97,8 @@ def print_summary(run: Run) -> None:
         if any(small):
             typer.echo(f"  {'':<20} ! unreliable: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
                        "of the girders and points (a lightly loaded girder); not a design value — see the warning")
-        typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f})")
+        typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f}"
+                   f"{'!' if airborne else ''})")
     print_codes(s["design_code_allowances"], "deflection IM beside")
     print_load_effects(s)
     print_negative_note(negative_impact(s))
