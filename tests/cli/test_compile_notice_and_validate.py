@@ -95,3 +95,10 @@ def test_validate_reports_the_step_warnings_run_reports():
     assert ran.exit_code == 0, ran.output
     summary = json.loads(ran.stdout[ran.stdout.index("{"):])
     assert sorted(shown) == sorted(summary["warnings"])
+
+
+def test_a_scenario_with_a_misspelt_vehicle_table_is_still_read_as_a_scenario(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(BASE.read_text() + '\n[vehicel]\nmodel = "hs20-44"\n')  # not a base scenario's section
+    res = runner.invoke(app, ["validate", str(path)])
+    assert res.exit_code != 0 and "invalid scenario" in res.output and "vehicel: unknown key" in res.output

@@ -2,7 +2,8 @@
 
 The kind is told by the file (``KINDS``, or ``--kind``): a TOML file by its tables (``[[load_effects]]``
 lifetime, ``[[sensors]]``/``[sampling]`` drive-by, ``[trains]`` railway, ``[axes]`` study,
-``[[case]]`` field, a [bridge] without [vehicle] or [[vehicles]] a traffic base scenario, else a scenario), a CSV file by its first line (``# vbikit-modes`` a mode file,
+``[[case]]`` field, a [bridge] and only the sections a traffic base scenario takes (``BASE_SECTIONS``: no [vehicle] or
+[[vehicles]]) a traffic base scenario, else a scenario), a CSV file by its first line (``# vbikit-modes`` a mode file,
 a ``time [s]`` … ``direction`` header a records file, ``time [s], <channel> [unit]`` a measured
 response, ``x [m], elevation [m]`` a road profile, else a train table).  Each kind runs the checks
 of its command (``CHECKS``), no simulation, and prints one line ``FILE: ok — <kind>: <summary>``.
@@ -62,7 +63,9 @@ def detect(path: Path) -> str:
         return "study"
     if "case" in data or "signal" in data:
         return "field"
-    if "bridge" in data and "vehicle" not in data and "vehicles" not in data:
+    from vbikit.traffic.study import BASE_SECTIONS
+
+    if "bridge" in data and all(k in BASE_SECTIONS for k in data):  # no [vehicle] or [[vehicles]]: the records give them
         return "traffic-base"
     return "scenario"
 
