@@ -63,7 +63,7 @@ def detect(path: Path) -> str:
         return "study"
     if "case" in data or "signal" in data:
         return "field"
-    from vbikit.traffic.study import BASE_SECTIONS
+    from vbikit.traffic.base import BASE_SECTIONS
 
     if "bridge" in data and all(k in BASE_SECTIONS for k in data):  # no [vehicle] or [[vehicles]]: the records give them
         return "traffic-base"
@@ -86,15 +86,19 @@ def _scenario(path: Path, budget: Any) -> str:
 
 def _traffic_base(path: Path, budget: Any) -> str:
     """The checks of ``vbikit traffic --bridge FILE`` before it reads the events: its sections
-    (``base_scenario``) and the event template it builds (``EventContext.of``: bridge, tire, road,
-    response points)."""
-    from vbikit.traffic.study import EventContext, base_scenario
+    (``base_scenario``) and the event template it builds from them (``template_data``, as
+    ``vbikit.traffic.study.EventContext.of``: bridge, tire, road, response points), without loading
+    the kernels."""
+    from vbikit.scenario.build import build
+    from vbikit.scenario.schema import parse_scenario
+    from vbikit.traffic.base import base_scenario, template_data
 
     base, base_dir = base_scenario(str(path))
-    ctx = EventContext.of(base, base_dir)
-    bridge = ctx.template.crossing.bridge
-    return (f"{type(bridge).__name__}, {bridge.omega.size} modes (n0 = {bridge.frequencies_hz[0]:.3g} Hz), "
-            f"{'a random road per event' if ctx.random_road else 'one road for every event'}")
+    scenario = parse_scenario(template_data(base), base_dir)
+    bridge = build(scenario, budget).crossing.bridge
+    road = "one road for every event" if scenario.road.profile_file is not None or scenario.road.road_class == "none" \
+        else "a random road per event"
+    return f"{type(bridge).__name__}, {bridge.omega.size} modes (n0 = {bridge.frequencies_hz[0]:.3g} Hz), {road}"
 
 
 def _study(path: Path, budget: Any) -> str:
