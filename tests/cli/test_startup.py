@@ -55,7 +55,7 @@ def test_completion_loads_no_numerics():
     assert _loaded([], _VBIKIT_COMPLETE="complete_bash", COMP_WORDS="vbikit study pa", COMP_CWORD="2") == []
 
 
-@pytest.mark.parametrize("example", ["traffic/two_trucks.toml", "paper/bridge2_hs20_girder4.toml",
+@pytest.mark.parametrize("example", ["traffic/two_trucks.toml", "paper/bridge2_hs20_girder4.toml", "traffic/base/bridge2.toml",
                                      "bridges/three_span_continuous_hs20.toml"])
 def test_validate_loads_no_kernels_plots_or_datasets(example):
     """`vbikit validate` builds the models (scipy) and the run plan of the default integrator, but

@@ -48,16 +48,16 @@ def test_bad_output_every_is_refused():
 def test_compile_message_only_without_compiled_kernels(caplog, monkeypatch):
     from vbikit.solve import compile_notice
 
-    monkeypatch.setattr(compile_notice, "_ANNOUNCED", [False])  # not yet announced in this process
+    monkeypatch.setattr(compile_notice, "_ANNOUNCED", set())  # not yet announced in this process
 
     class Fresh:  # a dispatcher with nothing compiled and no on-disk cache
         overloads: dict = {}
 
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         announce_compile(Fresh())
-    assert "compiling the kernels, first run only" in caplog.text
+    assert "compiling the kernel Fresh, first run only" in caplog.text
     caplog.clear()
-    monkeypatch.setattr(compile_notice, "_ANNOUNCED", [False])
+    monkeypatch.setattr(compile_notice, "_ANNOUNCED", set())
 
     class Ready:
         overloads = {"(float64,)": None}

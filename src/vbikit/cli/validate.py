@@ -2,7 +2,8 @@
 
 The kind is told by the file (``KINDS``, or ``--kind``): a TOML file by its tables (``[[load_effects]]``
 lifetime, ``[[sensors]]``/``[sampling]`` drive-by, ``[trains]`` railway, ``[axes]`` study,
-``[[case]]`` field, else a scenario), a CSV file by its first line (``# vbikit-modes`` a mode file,
+``[[case]]`` field, a [bridge] and only the sections a traffic base scenario takes (``BASE_SECTIONS``: no [vehicle] or
+[[vehicles]]) a traffic base scenario, else a scenario), a CSV file by its first line (``# vbikit-modes`` a mode file,
 a ``time [s]`` … ``direction`` header a records file, ``time [s], <channel> [unit]`` a measured
 response, ``x [m], elevation [m]`` a road profile, else a train table).  Each kind runs the checks
 of its command (``CHECKS``), no simulation, and prints one line ``FILE: ok — <kind>: <summary>``.
@@ -18,7 +19,9 @@ from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, memory_option
 
 #: the input kinds: name -> what it is (the command that reads it)
 KINDS: dict[str, str] = {
-    "scenario": "a scenario (vbikit run)", "study": "a study (vbikit study run)",
+    "scenario": "a scenario (vbikit run)",
+    "traffic-base": "a traffic base scenario (vbikit traffic --bridge: no vehicles, the records give them)",
+    "study": "a study (vbikit study run)",
     "lifetime": "a lifetime file (vbikit lifetime)", "driveby": "a drive-by file (vbikit driveby)",
     "rail": "a railway file (vbikit rail)", "field": "a field file (vbikit field)",
     "records": "a vehicle records CSV (vbikit traffic, lifetime [traffic].records)",
@@ -65,6 +68,10 @@ def detect(path: Path) -> str:
         return "study"
     if "case" in data or "signal" in data:
         return "field"
+    from vbikit.traffic.base import BASE_SECTIONS
+
+    if "bridge" in data and all(k in BASE_SECTIONS for k in data):  # no [vehicle] or [[vehicles]]: the records give them
+        return "traffic-base"
     return "scenario"
 
 
@@ -73,10 +80,30 @@ def _scenario(path: Path, budget: Any) -> str:
     from vbikit.scenario.preflight import preflight
     from vbikit.solve.budget import human
 
+    from vbikit.scenario.step_check import effect_step_warnings
+
     plan = preflight(load_scenario(path), budget)
-    warn(plan.warnings)
+    steps = effect_step_warnings(plan.scenario, plan.built.crossing, plan.built.plan.load_effects, plan.run, budget)
+    warn(plan.warnings + [w for w in steps if w not in plan.warnings])
     est = plan.estimate
     return f"{est.n_steps} steps of {est.dt:.3e} s ({plan.built.crossing.integrator}), ≈ {human(est.memory)}"
+
+
+def _traffic_base(path: Path, budget: Any) -> str:
+    """The checks of ``vbikit traffic --bridge FILE`` before it reads the events: its sections
+    (``base_scenario``) and the event template it builds from them (``template_data``, as
+    ``vbikit.traffic.study.EventContext.of``: bridge, tire, road, response points), without loading
+    the kernels."""
+    from vbikit.scenario.build import build
+    from vbikit.scenario.schema import parse_scenario
+    from vbikit.traffic.base import base_scenario, template_data
+
+    base, base_dir = base_scenario(str(path))
+    scenario = parse_scenario(template_data(base), base_dir)
+    bridge = build(scenario, budget).crossing.bridge
+    road = "one road for every event" if scenario.road.profile_file is not None or scenario.road.road_class == "none" \
+        else "a random road per event"
+    return f"{type(bridge).__name__}, {bridge.omega.size} modes (n0 = {bridge.frequencies_hz[0]:.3g} Hz), {road}"
 
 
 def _study(path: Path, budget: Any) -> str:
@@ -139,7 +166,7 @@ def _file(module: str, reader: str, summary: Callable[[Any], str]) -> Callable[[
 
 #: the checks of each kind: kind -> check(path, Limits) -> summary
 CHECKS: dict[str, Callable[[Path, Any], str]] = {
-    "scenario": _scenario, "study": _study, "lifetime": _lifetime, "driveby": _driveby, "rail": _rail,
+    "scenario": _scenario, "traffic-base": _traffic_base, "study": _study, "lifetime": _lifetime, "driveby": _driveby, "rail": _rail,
     "field": _field,
     "records": _file("vbikit.traffic.records", "read_records", lambda r: f"{len(r):,} vehicle records"),
     "train": _file("vbikit.vehicle.trains", "read_train_table",

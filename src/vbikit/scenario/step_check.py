@@ -109,6 +109,21 @@ def load_effect_plan(crossing: Crossing, effects: Sequence[Any], run_plan: RunPl
     return finer
 
 
+def effect_step_warnings(scenario: Any, crossing: Crossing, effects: Sequence[Any], run_plan: RunPlan,
+                         limits: Limits | None = None) -> list[str]:
+    """The load-effect step warnings (``vbikit.analysis.effect_step.step_warning``) a run of
+    ``scenario`` reports, without running it: they need the bridge, the wheel lines, the top speed
+    and the step, not the response.  The step is the one the run starts at (``vbikit.scenario.pipeline.run_crossing``):
+    ``run_plan``'s, or, when the scenario asks for moments, shears or reactions or runs a train at an
+    automatic step, the one ``load_effect_plan`` chooses (the halving that follows only refines it)."""
+    from vbikit.analysis.effect_step import step_warning
+
+    if (asks_for_load_effects(scenario) or is_train(scenario)) and crossing.dt is None:
+        run_plan = load_effect_plan(crossing, effects, run_plan, limits) or run_plan
+    found = [step_warning(crossing, e, float(run_plan.dt))[0] for e in effects]
+    return list(dict.fromkeys(w for w in found if w))
+
+
 def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], Any],
                   limits: Limits | None = None, train: bool = False) -> Any:
     """The report of ``crossing`` at the automatic step halved until its impact factors change by at

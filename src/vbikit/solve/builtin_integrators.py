@@ -11,6 +11,7 @@ from vbikit.solve.integrators import (
     Integrator,
     KernelCall,
     implicit_kernel,
+    implicit_lanes_kernel,
     register_integrator,
     run_implicit,
 )
@@ -54,6 +55,7 @@ EXACT = register_integrator(Integrator(
     time_step=implicit_time_step,
     run=_run_exact,
     kernel=implicit_kernel,
+    lanes_kernel=implicit_lanes_kernel,
 ))
 RK4 = register_integrator(Integrator(
     name="rk4",
@@ -64,6 +66,7 @@ RK4 = register_integrator(Integrator(
     run=_run_rk4,
     stability_limit=rk4_stability_limit,
     kernel=_rk4_kernel,
+    lanes_kernel=_rk4_kernel,
 ))
 NEWMARK = register_integrator(Integrator(
     name="newmark",
@@ -73,6 +76,7 @@ NEWMARK = register_integrator(Integrator(
     time_step=accuracy_time_step,
     run=_run_newmark,
     kernel=implicit_kernel,
+    lanes_kernel=implicit_lanes_kernel,
 ))
 
 if DEFAULT_INTEGRATOR not in INTEGRATORS:  # pragma: no cover - a programming error

@@ -2,7 +2,7 @@
 
 ``announce_compile`` logs (logger ``vbikit.solve.compile``, which the CLI shows) that a compiled
 kernel is about to be compiled when it is neither compiled in this process nor in numba's on-disk
-cache, with the expected CPU time ``COMPILE_SECONDS``.  The solver (``simulate``, the many-lane
+cache, with its expected CPU time ``COMPILE_SECONDS``, once per kernel.  The solver (``simulate``, the many-lane
 runner in ``integrators``), studies and the railway sweeps call it before their first kernel call.
 """
 from __future__ import annotations
@@ -15,9 +15,23 @@ import os
 compile_log = logging.getLogger("vbikit.solve.compile")
 
 
-#: CPU seconds numba takes to compile the default path (benchmarks/bench_compile.py: 4.8–4.9 s for the
-#: demo on a quiet 2-core machine, 2026-12-04; rounded up for a busier or slower one)
-COMPILE_SECONDS = 7
+#: CPU seconds numba takes to compile each kernel the first time, by the kernel's name (the one place
+#: these live).  ``lean``, the one-lane path a single crossing (``vbikit run``, ``demo``) runs:
+#: benchmarks/bench_compile.py, 4.8–4.9 s for the demo on a quiet 2-core machine, 2026-12-04.
+#: ``lean_lanes``, the many-lane path a study's batches run: 16.1 s with the one-lane kernels already
+#: in numba's cache (a 2-lane batch of ``warmup._tiny_crossing("exact")`` in a fresh process over an
+#: empty ``NUMBA_CACHE_DIR`` holding only ``simulate``'s kernels, ``time.process_time``; 2026-12-04,
+#: load ≈ 1–2).  Both rounded up ≈ 1.4× for a busier or slower machine; any other kernel: ``lean``'s.
+COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22}
+
+
+def compile_seconds(kernel) -> int:
+    """The expected CPU seconds [s] of ``kernel``'s first compilation (``COMPILE_SECONDS``)."""
+    return COMPILE_SECONDS.get(_name(kernel), COMPILE_SECONDS["lean"])
+
+
+def _name(kernel) -> str:
+    return str(getattr(kernel, "__name__", type(kernel).__name__))
 
 
 def kernels_cached(kernel) -> bool:
@@ -30,25 +44,29 @@ def kernels_cached(kernel) -> bool:
     return index is not None and os.path.exists(index)
 
 
-#: whether this process has announced the compilation (or its parent did for it: ``announced_elsewhere``);
-#: the notice is given once a process, however many callers (a study, then its first crossing) ask
-_ANNOUNCED = [False]
+#: the kernels (by name) this process has announced, "*" for all (its parent announced them for it:
+#: ``announced_elsewhere``): each is announced once a process, however many callers (a study, then its
+#: first crossing) ask
+_ANNOUNCED: set[str] = set()
 
 
 def announced_elsewhere() -> None:
     """Say no more in this process: a study's worker processes, whose parent announced the
-    compilation for all of them (``vbikit.study.run``); each worker said it again before."""
-    _ANNOUNCED[0] = True
+    compilation of every kernel their batches run for all of them (``vbikit.study.run``)."""
+    _ANNOUNCED.add("*")
 
 
-def announce_compile(kernel, who: str = "") -> None:
-    """Log (``vbikit.solve.compile``, shown by the CLI) that the kernels are about to be compiled when
-    ``kernel`` is neither compiled in this process nor in numba's on-disk cache, once a process;
+def announce_compile(kernels, who: str = "") -> None:
+    """Log (``vbikit.solve.compile``, shown by the CLI), for each of ``kernels`` (a dispatcher or a
+    sequence of them) neither compiled in this process nor in numba's on-disk cache, that it is about
+    to be compiled and its expected CPU time (``COMPILE_SECONDS``), once a process and kernel;
     ``who`` says where (e.g. "each of the 2 worker processes, on its first batch")."""
-    if _ANNOUNCED[0] or kernels_cached(kernel):
-        return
-    _ANNOUNCED[0] = True
-    where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
-    compile_log.info("compiling the kernels%s, first run only: about %d s of CPU (later runs load them from numba's "
-                     "cache%s in under a second; `vbikit compile` does it in advance)", f" in {who}" if who else "",
-                     COMPILE_SECONDS, f" in {where}" if where else "")
+    for kernel in kernels if isinstance(kernels, (list, tuple)) else (kernels,):
+        name = _name(kernel)
+        if "*" in _ANNOUNCED or name in _ANNOUNCED or kernels_cached(kernel):
+            continue
+        _ANNOUNCED.add(name)
+        where = getattr(getattr(kernel, "_cache", None), "cache_path", None)
+        compile_log.info("compiling the kernel %s%s, first run only: about %d s of CPU (later runs load it from numba's "
+                         "cache%s in under a second; `vbikit compile` compiles every kernel in advance)", name,
+                         f" in {who}" if who else "", compile_seconds(kernel), f" in {where}" if where else "")

@@ -44,6 +44,9 @@ class Integrator:
     kernel : callable, optional
         ``kernel() -> dispatcher``: the compiled kernel ``run`` calls (to announce its first
         compilation); None if there is none to announce.
+    lanes_kernel : callable, optional
+        ``lanes_kernel() -> dispatcher``: the compiled kernel ``run`` calls with many lanes (a study's
+        batches; announced by ``vbikit.study.run``); None: ``kernel``'s.
     """
 
     name: str
@@ -54,6 +57,7 @@ class Integrator:
     run: Callable[["KernelCall"], None]
     stability_limit: Optional[Callable[["Crossing"], float]] = None
     kernel: Optional[Callable[[], Any]] = None
+    lanes_kernel: Optional[Callable[[], Any]] = None
 
     def __post_init__(self) -> None:
         if not self.name or not isinstance(self.name, str):

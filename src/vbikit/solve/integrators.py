@@ -333,3 +333,11 @@ def implicit_kernel() -> Any:
     from vbikit.solve import kernels
 
     return kernels.lean
+
+
+def implicit_lanes_kernel() -> Any:
+    """The compiled kernel a many-lane implicit call (a study's batch) runs first (for
+    ``Integrator.lanes_kernel``): the many-lane lean kernel (``_run_lanes``)."""
+    from vbikit.solve import kernels
+
+    return kernels.lean_lanes

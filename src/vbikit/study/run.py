@@ -253,7 +253,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             progress(done, total)
 
     if todo:
-        _announce_compile(study, batches[todo[0]][0], scheduler, workers)
+        _announce_compile(study, [batches[k] for k in todo], scheduler, workers)
         if scheduler is not None:
             _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
         elif (workers or os.cpu_count() or 1) <= 1:
@@ -273,17 +273,35 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     return ds
 
 
-def _announce_compile(study, first_index, scheduler, workers) -> None:
-    """Say that the workers will compile the kernels first (instead of a progress bar frozen at 0 %);
-    ``first_index``: the first crossing to run (its integrator's kernel)."""
+def batch_kernels(study, batches) -> list:
+    """The compiled kernels the ``batches`` (tuples of grid indices) of ``study`` run, each once: a
+    parameter study's batch runs its crossings as the lanes of one call (``run_batch``:
+    ``BatchSolver.run_many``), so a batch of several crossings runs its integrator's many-lane kernel
+    (``Integrator.lanes_kernel``; ``newmark``/``exact``: ``lean_lanes``) and a batch of one its one-lane
+    kernel (``Integrator.kernel``; ``lean``); a job with its own ``run_batch`` (a traffic stream, a PEM
+    study) runs its crossings one at a time (one-lane kernel).  The integrator is the first
+    crossing's (``scenario_dict``; traffic: the default)."""
     from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
-    from vbikit.solve.compile_notice import announce_compile
 
     first = getattr(study, "scenario_dict", None)  # a parameter study's crossing (traffic: the default)
-    name = (first(first_index).get("crossing", {}).get("integrator") if first is not None else None) \
+    name = (first(batches[0][0]).get("crossing", {}).get("integrator") if first is not None and batches else None) \
         or DEFAULT_INTEGRATOR
-    kernel = get_integrator(name).kernel
-    if kernel is None:
+    integrator = get_integrator(name)
+    one_at_a_time = hasattr(study, "run_batch") or first is None
+    sizes = {1 if one_at_a_time else min(len(b), 2) for b in batches}
+    makers = ([integrator.kernel] if 1 in sizes else []) + \
+        ([integrator.lanes_kernel or integrator.kernel] if 2 in sizes else [])
+    kernels = [make() for make in makers if make is not None]
+    return [k for i, k in enumerate(kernels) if all(k is not o for o in kernels[:i])]
+
+
+def _announce_compile(study, batches, scheduler, workers) -> None:
+    """Say that the workers will compile the kernels the ``batches`` run (``batch_kernels``) first,
+    each not yet compiled with its expected time (instead of a progress bar frozen at 0 %)."""
+    from vbikit.solve.compile_notice import announce_compile
+
+    kernels = batch_kernels(study, batches)
+    if not kernels:
         return
     if scheduler is not None:
         who = f"every Dask worker of {scheduler} whose machine has not compiled them"
@@ -291,7 +309,7 @@ def _announce_compile(study, first_index, scheduler, workers) -> None:
         who = "this process"
     else:
         who = f"each of the {workers or os.cpu_count()} worker processes, on its first batch"
-    announce_compile(kernel(), who)
+    announce_compile(kernels, who)
 
 
 def _run_local(study, batches, todo, workers, threads, finished) -> None:

@@ -41,6 +41,7 @@ from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
+from vbikit.traffic.base import BASE_SECTIONS, base_scenario, template_data  # noqa: F401 (base_scenario: re-exported)
 from vbikit.traffic.events import Event, partition
 from vbikit.traffic.records import VehicleRecord
 from vbikit.vehicle.axles import axle_truck
@@ -49,8 +50,6 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 log = logging.getLogger(__name__)
 
-#: scenario sections a traffic base scenario may hold (the vehicles come from the records)
-BASE_SECTIONS = ("name", "bridge", "tire", "road", "crossing", "response")
 
 #: per-event outputs beside the catalogue's (vbikit.outputs): name -> (units, description)
 EVENT_EXTRAS: dict[str, tuple[str, str]] = {
@@ -356,11 +355,7 @@ class EventContext:
 
     @classmethod
     def of(cls, base: dict, base_dir: str) -> "EventContext":
-        data = dict(base)
-        data["vehicle"] = {"model": "moving-force"}  # a stand-in: the records give the vehicles
-        crossing = {k: v for k, v in base.get("crossing", {}).items() if k not in ("speed", "speed_kmh")}
-        data["crossing"] = {**crossing, "speed": 20.0}
-        scenario = parse_scenario(data, base_dir)
+        scenario = parse_scenario(template_data(base), base_dir)
         built: BuiltScenario = build(scenario)
         random_road = scenario.road.profile_file is None and scenario.road.road_class != "none"
         ctx = cls(_Template(built.crossing), scenario, built.plan, random_road)
@@ -398,27 +393,6 @@ class _Template:
 
 
 _CONTEXTS: dict[str, EventContext] = {}
-
-
-def base_scenario(bridge: str, base_dir: Path | str = ".") -> tuple[dict, str]:
-    """The base sections from ``bridge``: a bridge preset name, or a scenario file (its
-    ``BASE_SECTIONS``; a [vehicle] or [[vehicles]] there is refused: the records give them)."""
-    path = Path(bridge)
-    if path.suffix == ".toml" or path.is_file():
-        from vbikit._toml import read_toml
-
-        data = read_toml(path, ScenarioError, "scenario file")
-        extra = [k for k in data if k not in BASE_SECTIONS]
-        if extra:
-            raise ScenarioError(f"{path}: a traffic base scenario takes {', '.join(BASE_SECTIONS)}; remove "
-                                f"{', '.join(extra)} (the vehicles come from the records)")
-        return data, str(path.parent)
-    from vbikit.bridge.presets import BRIDGE_PRESETS
-
-    if bridge not in BRIDGE_PRESETS:
-        raise ScenarioError(f"--bridge {bridge!r} is neither a scenario file nor a bridge preset; presets: "
-                            f"{', '.join(BRIDGE_PRESETS)}")
-    return {"bridge": {"model": bridge}}, str(Path(base_dir))
 
 
 def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = ".", lanes: Optional[Sequence[float]] = None,

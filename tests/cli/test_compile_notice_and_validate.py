@@ -1,0 +1,104 @@
+"""Two findings of a new user, each test failing on the code before the fix (main at 7bca391):
+
+1. after ``vbikit demo`` (the one-lane kernels cached), ``vbikit study paper-fig6`` compiled the
+   many-lane kernel ``lean_lanes`` for about a minute without a notice: the study's notice checked
+   only the one-lane kernel ``lean``;
+2. ``vbikit validate`` refused a traffic base scenario (``vehicle: missing required key``), and on
+   ``examples/verification/fryba_moving_force.toml`` left out the three load-effect step warnings
+   ``vbikit run`` reports (``vbikit.analysis.effect_step``), which need no run.
+"""
+from __future__ import annotations
+
+import json
+import logging
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from vbikit.cli import app
+
+runner = CliRunner()
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+FRYBA = EXAMPLES / "verification" / "fryba_moving_force.toml"
+BASE = EXAMPLES / "traffic" / "base" / "bridge2.toml"
+
+
+@pytest.fixture
+def after_demo(monkeypatch):
+    """The state after ``vbikit demo``: the one-lane kernel ``lean`` in numba's cache, nothing else;
+    nothing announced yet in this process."""
+    from vbikit.solve import compile_notice, kernels
+
+    monkeypatch.setattr(compile_notice, "_ANNOUNCED", set())
+    monkeypatch.setattr(compile_notice, "kernels_cached", lambda k: k is kernels.lean)
+
+
+def test_study_announces_the_many_lane_kernel_its_batches_run(after_demo, caplog):
+    from vbikit.solve import kernels
+    from vbikit.solve.compile_notice import COMPILE_SECONDS
+    from vbikit.study.paper import paper_study
+    from vbikit.study.run import _announce_compile, batch_kernels
+
+    study = paper_study("fig6", 20, False, method="monte-carlo")
+    batches = study.batches()
+    assert len(batches[0]) > 1  # the batches run their crossings as lanes of one call
+    assert batch_kernels(study, batches) == [kernels.lean_lanes]
+    with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
+        _announce_compile(study, batches, None, 2)
+        _announce_compile(study, batches, None, 2)  # once a process and kernel
+    assert caplog.text.count("compiling the kernel") == 1
+    assert "lean_lanes" in caplog.text and f"about {COMPILE_SECONDS['lean_lanes']} s of CPU" in caplog.text
+    assert "each of the 2 worker processes" in caplog.text
+
+
+def test_a_batch_of_one_crossing_runs_the_one_lane_kernel(after_demo, caplog):
+    from vbikit.solve import kernels
+    from vbikit.study.paper import paper_study
+    from vbikit.study.run import _announce_compile, batch_kernels
+
+    study = paper_study("fig6", 20, False, method="monte-carlo")
+    one = [(study.batches()[0][0],)]
+    assert batch_kernels(study, one) == [kernels.lean]
+    assert batch_kernels(study, [*one, study.batches()[0]]) == [kernels.lean, kernels.lean_lanes]
+    with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
+        _announce_compile(study, one, None, 1)
+    assert caplog.text == ""  # lean is cached (the demo compiled it)
+
+
+def test_validate_checks_a_traffic_base_scenario():
+    res = runner.invoke(app, ["validate", str(BASE)])
+    assert res.exit_code == 0, res.output
+    assert "traffic base scenario" in res.output and "10 modes" in res.output
+
+
+def test_validate_refuses_a_base_scenario_as_vbikit_traffic_does(tmp_path):
+    path = tmp_path / "base.toml"
+    path.write_text(BASE.read_text() + "\n[speeds]\nmin = 10\n")  # a section a base scenario does not take
+    res = runner.invoke(app, ["validate", "--kind", "traffic-base", str(path)])
+    assert res.exit_code != 0
+    assert "a traffic base scenario takes" in res.output and "remove speeds" in res.output
+
+
+def _warnings(output: str) -> list[str]:
+    return [ln.removeprefix("warning: ") for ln in output.splitlines() if ln.startswith("warning: ")]
+
+
+def test_validate_reports_the_step_warnings_run_reports():
+    res = runner.invoke(app, ["validate", str(FRYBA)])
+    assert res.exit_code == 0, res.output
+    shown = _warnings(res.output)
+    steps = [w for w in shown if "does not resolve" in w]
+    assert len(steps) == 3 and all("crossing dt <= 0.00029 s" in w for w in steps)
+    # the same warnings as the run's summary (the run computes them from its result)
+    ran = runner.invoke(app, ["run", str(FRYBA), "--json"])
+    assert ran.exit_code == 0, ran.output
+    summary = json.loads(ran.stdout[ran.stdout.index("{"):])
+    assert sorted(shown) == sorted(summary["warnings"])
+
+
+def test_a_scenario_with_a_misspelt_vehicle_table_is_still_read_as_a_scenario(tmp_path):
+    path = tmp_path / "s.toml"
+    path.write_text(BASE.read_text() + '\n[vehicel]\nmodel = "hs20-44"\n')  # not a base scenario's section
+    res = runner.invoke(app, ["validate", str(path)])
+    assert res.exit_code != 0 and "invalid scenario" in res.output and "vehicel: unknown key" in res.output
