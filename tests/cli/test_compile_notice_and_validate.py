@@ -70,6 +70,10 @@ def test_validate_checks_a_traffic_base_scenario():
     res = runner.invoke(app, ["validate", str(BASE)])
     assert res.exit_code == 0, res.output
     assert "traffic base scenario" in res.output and "10 modes" in res.output
+    # told by the missing [vehicle], it says so: a scenario whose vehicle was forgotten is not silently "ok"
+    assert "`vbikit run` needs one" in res.output
+    told = runner.invoke(app, ["validate", "--kind", "traffic-base", str(BASE)])
+    assert told.exit_code == 0 and "`vbikit run` needs one" not in told.output
 
 
 def test_validate_refuses_a_base_scenario_as_vbikit_traffic_does(tmp_path):

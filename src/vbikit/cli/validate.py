@@ -209,4 +209,6 @@ def validate(
             raise
 
     summary = guard(check)
+    if kind is None and found == "traffic-base":  # told by a missing [vehicle]: say so, in case it was forgotten
+        summary += " (no [vehicle] or [[vehicles]]: checked as a traffic base; `vbikit run` needs one)"
     typer.echo(f"{file}: ok — {summary}" if found == "scenario" else f"{file}: ok — {KINDS[found]}: {summary}")
