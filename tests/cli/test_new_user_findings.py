@@ -24,6 +24,7 @@ import typer.main
 from typer.testing import CliRunner
 
 from vbikit.cli import app
+from cli_walk import commands as _commands
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -40,16 +41,6 @@ OUT_DIR_COMMANDS = {
     "rail": [str(EXAMPLES / "railway" / "hslm_20m.toml")],
     **{f"study paper-{fig}": [] for fig in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11", "all")},
 }
-
-
-def _commands(group, prefix: str = ""):
-    """(name, click command) of every command under ``group``, subgroups walked."""
-    for name, cmd in group.commands.items():
-        full = f"{prefix}{name}"
-        if hasattr(cmd, "commands"):
-            yield from _commands(cmd, full + " ")
-        else:
-            yield full, cmd
 
 
 def test_every_out_dir_option_is_the_one_checked_option():

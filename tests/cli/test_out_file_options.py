@@ -21,6 +21,7 @@ import typer.main
 from typer.testing import CliRunner
 
 from vbikit.cli import app
+from cli_walk import commands as _commands
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -39,16 +40,6 @@ OUT_FILE_OPTIONS = {
 }
 #: options that take a path to READ (none yet); any other path option must be an output option
 INPUT_PATH_OPTIONS: set[tuple[str, str]] = set()
-
-
-def _commands(group, prefix: str = ""):
-    """(name, click command) of every command under ``group``, subgroups walked."""
-    for name, cmd in group.commands.items():
-        full = f"{prefix}{name}"
-        if hasattr(cmd, "commands"):
-            yield from _commands(cmd, full + " ")
-        else:
-            yield full, cmd
 
 
 def test_every_output_file_option_is_the_one_checked_option():
