@@ -186,8 +186,8 @@ _FILE_ALLOWED = "give the path of a file in a writable folder (missing folders a
 
 def output_file(path: str | Path, key: str) -> Path:
     """The output file ``path``, checked before any computation (nothing is created; an existing
-    file is replaced by the writers, ``atomic_write``); ``OutputError`` naming ``key`` when it names
-    a folder (or anything else that is not a regular file), lies in ``/dev``, ``/proc`` or ``/sys``
+    file or symbolic link is replaced by the writers, ``atomic_write``); ``OutputError`` naming ``key``
+    when it names a folder (or anything else that is not a regular file or a link), lies in ``/dev``, ``/proc`` or ``/sys``
     (also through a symbolic link), or its folder cannot hold it: the checks of ``output_dir`` on
     the parent folder (not a file, writable), which the writers create."""
     path = Path(path)
@@ -197,7 +197,8 @@ def output_file(path: str | Path, key: str) -> Path:
         raise OutputError(f"{key} {path}: lies in {system}, a system folder; {_FILE_ALLOWED}")
     if os.path.isdir(path):
         raise OutputError(f"{key} {path}: is a folder, not a file; {_FILE_ALLOWED}")
-    if os.path.lexists(path) and not os.path.isfile(path):
+    if os.path.lexists(path) and not os.path.isfile(path) and not os.path.islink(path):
+        # (a symbolic link, even a dangling one, is replaced by the writers like a file: os.replace)
         raise OutputError(f"{key} {path}: exists and is not a regular file; {_FILE_ALLOWED}")
     output_dir(path.parent, key=f"{key} {path}: its folder", create=False)
     return path

@@ -93,17 +93,17 @@ def test_strain_not_converged_in_ten_modes_is_flagged(tmp_path):
     assert "!" not in _im_line(res50.stdout)
 
 
-def test_three_span_grillage_strain_is_flagged():
-    """examples/bridges/three_span_grillage_hs20.toml: 20 modes give 58.33 µε of the exact 62.19 µε
-    (−6.2 %; the changelog's number).  It is truncation, not a mismatch of c/EI: with 80 modes the
-    modes' peak moves to 61.00 µε (−1.9 %; measured once with vbikit run, not repeated here: slow)."""
+def test_girder_decks_are_not_checked_for_strain_convergence():
+    """On a girder deck the modes' static strain does not converge to c/EI times the full-stiffness
+    moment (a review measured the 3D Bridge 2 example at 76.21, 75.67, 73.35 µε with 20, 40, 100 modes
+    against 75.92: more modes moved it further off, and the shipped skew example was flagged at 12
+    modes), so decks are not compared: no exact value, no warning, on the three-span grillage example."""
     import vbikit
     from vbikit.analysis.response import exact_static_strain_peak
 
     report = vbikit.run(str(ROOT / "examples" / "bridges" / "three_span_grillage_hs20.toml"))
-    modal, exact = report.response.strain_impact.static_peak, exact_static_strain_peak(report.result, report.response)
-    assert modal / exact - 1 == pytest.approx(-0.062, abs=0.001)
-    assert any(w.startswith(STRAIN_WARNING_START) and "-6.2% off" in w for w in report.summary["warnings"])
+    assert exact_static_strain_peak(report.result, report.response) is None
+    assert not any(w.startswith(STRAIN_WARNING_START) for w in report.summary["warnings"])
 
 
 def test_road_warning_advice_follows_the_profile_label():

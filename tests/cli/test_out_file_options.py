@@ -129,3 +129,18 @@ def test_output_file_refuses_an_unwritable_folder(tmp_path, monkeypatch):
     monkeypatch.setattr(os, "access", lambda p, mode: False if Path(p) == tmp_path else real_access(p, mode))
     with pytest.raises(OutputError, match=r"--out .*x\.nc: its folder .*: cannot create the folder in .* \(not writable\)"):
         output_file(tmp_path / "x.nc", "--out")
+
+
+def test_a_symbolic_link_as_output_is_replaced_as_before(tmp_path):
+    """A symbolic link given as the output file, to a file or dangling, passes the check (the writers'
+    os.replace replaces the link itself, as before the check existed); a link into /dev does not."""
+    from vbikit._files import OutputError, output_file
+
+    (tmp_path / "target.csv").write_text("x")
+    (tmp_path / "to_file.csv").symlink_to(tmp_path / "target.csv")
+    (tmp_path / "dangling.csv").symlink_to(tmp_path / "nowhere.csv")
+    assert output_file(tmp_path / "to_file.csv", "--out") == tmp_path / "to_file.csv"
+    assert output_file(tmp_path / "dangling.csv", "--out") == tmp_path / "dangling.csv"
+    (tmp_path / "null.csv").symlink_to("/dev/null")
+    with pytest.raises(OutputError, match="/dev"):
+        output_file(tmp_path / "null.csv", "--out")
