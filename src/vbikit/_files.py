@@ -151,14 +151,19 @@ def inside(directory: str | Path, name: str) -> Path:
 _SYSTEM_DIRS = ("/dev", "/proc", "/sys")
 
 
+def _system_dir(path: str | Path) -> str | None:
+    """The system folder of ``_SYSTEM_DIRS`` that ``path`` lies in (also through a symbolic link), or None."""
+    real = os.path.realpath(path)
+    return next((d for d in _SYSTEM_DIRS if real == d or real.startswith(d + os.sep)), None)
+
+
 def output_dir(path: str | Path, key: str = "--out-dir", create: bool = True) -> Path:
     """The output folder ``path``, created with its parents (``create``; else only checked: its
     nearest existing ancestor must be a writable folder); ``OutputError`` naming ``key`` when it
     names a file (or anything else that is not a folder), lies in ``/dev``, ``/proc`` or ``/sys``
     (also through a symbolic link), or cannot be created — checked before any computation."""
     path = Path(path)
-    real = os.path.realpath(path)
-    system = next((d for d in _SYSTEM_DIRS if real == d or real.startswith(d + os.sep)), None)
+    system = _system_dir(path)
     if system is not None:
         raise OutputError(f"{key} {path}: lies in {system}, a system folder; give a folder for the output files")
     if os.path.lexists(path) and not os.path.isdir(path):
@@ -191,8 +196,7 @@ def output_file(path: str | Path, key: str) -> Path:
     (also through a symbolic link), or its folder cannot hold it: the checks of ``output_dir`` on
     the parent folder (not a file, writable), which the writers create."""
     path = Path(path)
-    real = os.path.realpath(path)
-    system = next((d for d in _SYSTEM_DIRS if real == d or real.startswith(d + os.sep)), None)
+    system = _system_dir(path)
     if system is not None:
         raise OutputError(f"{key} {path}: lies in {system}, a system folder; {_FILE_ALLOWED}")
     if os.path.isdir(path):

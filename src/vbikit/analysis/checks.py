@@ -39,6 +39,7 @@ from dataclasses import replace
 from typing import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
 from vbikit.solve.crossing import Crossing
@@ -260,11 +261,19 @@ def strain_unconverged(warnings: Sequence[str]) -> bool:
     return any(w.startswith(STRAIN_WARNING_START) for w in warnings)
 
 
+def small_static_mask(static_peaks: ArrayLike, axis: int = -1, fraction: float = SMALL_STATIC_FRACTION
+                      ) -> NDArray[np.bool_]:
+    """Whether each static peak (signed) of ``static_peaks`` is below ``fraction`` of the largest |R_st|
+    along ``axis`` (the peaks of one quantity across the bridge, or across a stream's events; NaN is
+    never small, nor the largest) — the impact factors resting on it are flagged.  The one rule."""
+    st = np.abs(np.asarray(static_peaks, float))
+    top = np.nanmax(st, axis=axis, keepdims=True, initial=0.0)
+    return st < fraction * top
+
+
 def small_static(static_peaks: Sequence[float], fraction: float = SMALL_STATIC_FRACTION) -> list[bool]:
-    """Per static peak (signed, of one quantity across the bridge): whether |R_st| is below
-    ``fraction`` of the largest |R_st| — the impact factors resting on it are flagged."""
-    top = max((abs(float(p)) for p in static_peaks), default=0.0)
-    return [abs(float(p)) < fraction * top for p in static_peaks]
+    """``small_static_mask`` of a list of peaks, as a list."""
+    return small_static_mask(static_peaks, fraction=fraction).tolist()
 
 
 def small_static_warnings(labels: Sequence[str], static_peaks: Sequence[float], impact_factors: Sequence[float],
@@ -314,12 +323,10 @@ def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray
     deflections of the points ``names`` in every crossing; one sentence per point whose impact
     factor rests on a small static reference (``small_static`` across the points of a crossing)
     in some of the crossings, with how many."""
-    st = np.abs(np.asarray(static_peaks, float))
-    flat = st.reshape(-1, st.shape[-1])
-    top = np.nanmax(flat, axis=1, initial=0.0)[:, None]
-    flags = flat < SMALL_STATIC_FRACTION * top
+    st = np.asarray(static_peaks, float)
+    flags = small_static_mask(st.reshape(-1, st.shape[-1]), axis=1)
     return [f"point {name}: its impact_factor rests on a static deflection under {SMALL_STATIC_FRACTION:.0%} of "
-            f"the largest of the points in {int(k)} of {flat.shape[0]} crossings (a lightly loaded section); "
+            f"the largest of the points in {int(k)} of {flags.shape[0]} crossings (a lightly loaded section); "
             "unreliable there as a design value"
             for name, k in zip(names, flags.sum(axis=0)) if k]
 

@@ -269,13 +269,11 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     from vbikit.analysis.effects import load_effect_responses, supports_load_effects
 
     bridge = result.crossing.bridge
-    if not supports_load_effects(bridge) or isinstance(bridge, GirderDeck):
-        return None
-    girder = None
-    if abs(response.y - float(bridge.default_response_y)) > 1e-9:
+    if not supports_load_effects(bridge) or isinstance(bridge, GirderDeck) or \
+            abs(response.y - float(bridge.default_response_y)) > 1e-9:
         return None
     try:
-        effect = bridge.load_effect("moment", response.x, girder=girder)
+        effect = bridge.load_effect("moment", response.x)
     except (ValueError, NotImplementedError):
         return None
     r, eps = np.asarray(effect.modal, float), point_shapes(bridge, response.x, response.y)[1]

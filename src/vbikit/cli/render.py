@@ -75,8 +75,14 @@ def print_summary(run: Run) -> None:
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes (use more modes) "
                    "— see the warning")
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+
+    # one judgement of the small static references, as the warnings make it: the girders with the points
+    girder_static = list(s.get("girder_max_static_displacement", []))
+    small = small_static(girder_static + [p["max_static_displacement"] for p in s["points"]])
+    small_girders, small_points = small[:len(girder_static)], small[len(girder_static):]
     if len(s["points"]) > 1:
-        print_points(s["points"], s.get("girder_max_static_displacement", []))
+        print_points(s["points"], small_points)
     for i, v in enumerate(s.get("vehicles", []), start=1):
         loads = " / ".join(f"{f / 1e3:.1f}" for f in v["static_wheel_loads"].values())
         typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
@@ -87,14 +93,9 @@ def print_summary(run: Run) -> None:
             typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
         typer.echo("  girder               " + "  ".join(f"{g:>7d}" for g in range(1, len(s["girder_y"]) + 1)))
         typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
-        from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
-
-        n_g = len(s["girder_max_static_displacement"])  # judged as the warnings judge them: with the points
-        small = small_static(list(s["girder_max_static_displacement"]) +
-                             [p["max_static_displacement"] for p in s.get("points", [])])[:n_g]
         typer.echo("  IM                   " + " ".join(f"{v:7.4f}{'!' if f else ' '}"
-                                                      for v, f in zip(s["girder_impact_factors"], small)).rstrip())
-        if any(small):
+                                                      for v, f in zip(s["girder_impact_factors"], small_girders)).rstrip())
+        if any(small_girders):
             typer.echo(f"  {'':<20} ! unreliable: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
                        "of the girders and points (a lightly loaded girder); not a design value — see the warning")
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f}"
@@ -149,13 +150,12 @@ def print_load_effects(s: dict[str, Any]) -> None:
                    f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
 
 
-def print_points(points: list[dict[str, Any]], girder_static: list[float] = ()) -> None:
+def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:
     """One line per response point ([[response.points]]): where, static and dynamic peaks, IMs; "!"
-    marks an IM on a small static reference (``vbikit.analysis.checks.small_static``, against the
-    points' and the girders' ``girder_static`` peaks)."""
-    from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+    marks an IM on a small static reference (``small``: per point, ``vbikit.analysis.checks.small_static``
+    against the points' and the girders' peaks)."""
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
-    small = small_static([p["max_static_displacement"] for p in points] + list(girder_static))[:len(points)]
     typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {'static [mm]':>12} {'dynamic [mm]':>13} {'IM':>8} "
                f"{'strain IM':>9} {'|a|max [m/s²]':>14}")
     for p, flag in zip(points, small):

@@ -191,9 +191,12 @@ def text_report(facts: dict[str, Any]) -> str:
         lines.append(f"{name:<22}{e['units']:<6}{_g(e['characteristic_static'], '>14.5g')}"
                      f"{_g(e['characteristic_total'], '>14.5g')}{_g(ad['value'], '>8.4f')}{span:>20}"
                      f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION
+
     for name, e in facts["load_effects"].items():
         if e["n_small_static_sample"]:
-            lines.append(f"  {name}: {e['n_small_static_sample']} sampled events load it below 20 % of the largest static "
+            lines.append(f"  {name}: {e['n_small_static_sample']} sampled events load it below "
+                         f"{SMALL_STATIC_FRACTION * 100:g} % of the largest static "
                          f"effect (light vehicles, far lanes): their IMs rest on small static references, not design "
                          f"values; the others' IM mean {_g(e['im'].get('im_mean_loaded'), '.4f')}, "
                          f"95 % {_g(e['im'].get('im_q95_loaded'), '.4f')}")

@@ -143,10 +143,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
 
     # a sampled event whose static peak is below SMALL_STATIC_FRACTION of the largest of all events rests on a
     # small static reference (a light vehicle, a far lane): counted, and left out of the "loaded" statistics
-    from vbikit.analysis.checks import SMALL_STATIC_FRACTION
+    from vbikit.analysis.checks import small_static_mask
 
-    top = np.nanmax(np.abs(st), axis=0, initial=0.0) if st.size else np.zeros(len(lines))
-    small_sample = np.abs(st[sample]) < SMALL_STATIC_FRACTION * top if sample.size else np.zeros((0, len(lines)), bool)
+    small_sample = small_static_mask(st, axis=0)[sample] if sample.size else np.zeros((0, len(lines)), bool)
     im_loaded = np.where(small_sample, np.nan, im_sample)
     im = {
         "im_mean": [stat(im_sample[:, j], np.mean) for j in range(len(lines))],

@@ -126,23 +126,9 @@ def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir
     ScenarioError
         A road that is not a random class (A…H or psd), a road with defects, or disk tires.
     """
-    from vbikit.random import NonlinearTireError, PseudoRoad
-    from vbikit.random.response import QUANTILES, random_response
-    from vbikit.scenario.build import road_psd
-
     scenario = scenario_of(source, base_dir)
     check_random_road(scenario)
-    road = scenario.road
-    plan = preflight(scenario, limits)
-    pseudo = PseudoRoad(road_psd(road), road.right_coherence, two_lines=road.right_coherence < 1.0)
-    try:
-        rr = random_response(plan.built.crossing, plan.built.plan, pseudo, plan.run.dt, data=plan.run.kernel_data,
-                             quantiles=quantiles or QUANTILES, peaks=peaks)
-    except NonlinearTireError as err:
-        raise ScenarioError(f"tire.model: {err}") from None
-    rr.summary = {"name": scenario.name, **rr.summary}
-    rr.summary["warnings"] += [w for w in plan.warnings if w not in rr.summary["warnings"]]
-    return rr
+    return _random_runs([preflight(scenario, limits)], [scenario], [_pseudo_road(scenario)], quantiles, peaks)[0]
 
 
 def run_random_levels(sources: list[ScenarioSource], *, limits: Limits | None = None,
@@ -152,9 +138,7 @@ def run_random_levels(sources: list[ScenarioSource], *, limits: Limits | None = 
     only in the road's level (``road.class`` or ``road.phi0``) and run on one time step
     (``vbikit.random.response.random_responses``: the same numbers as ``run_random`` one by one);
     otherwise one by one.  A PEM study's cells over ``road.class`` run so."""
-    from vbikit.random import NonlinearTireError, PseudoRoad
-    from vbikit.random.response import QUANTILES, level_factor, random_responses
-    from vbikit.scenario.build import road_psd
+    from vbikit.random.response import level_factor
 
     scenarios = [scenario_of(src, base_dir) for src in sources]
     for scenario in scenarios:
@@ -167,19 +151,38 @@ def run_random_levels(sources: list[ScenarioSource], *, limits: Limits | None = 
         return d
 
     plans = [preflight(s, limits) for s in scenarios]
-    pseudo = [PseudoRoad(road_psd(s.road), s.road.right_coherence, two_lines=s.road.right_coherence < 1.0)
-              for s in scenarios]
+    pseudo = [_pseudo_road(s) for s in scenarios]
     first = rest(scenarios[0])
     shared = (len(scenarios) > 1 and all(rest(s) == first for s in scenarios[1:])
               and all(p.run.dt == plans[0].run.dt for p in plans)
               and all(level_factor(r, pseudo[0]) is not None for r in pseudo))
-    if not shared:
-        if len(scenarios) > 1:
-            log.info("random runs: %d scenarios that differ in more than the road's level, run one by one", len(scenarios))
-        return [run_random(s, limits=limits, quantiles=quantiles, peaks=peaks) for s in scenarios]
+    if shared:
+        return _random_runs(plans, scenarios, pseudo, quantiles, peaks)
+    if len(scenarios) > 1:
+        log.info("random runs: %d scenarios that differ in more than the road's level, run one by one", len(scenarios))
+    return [_random_runs([p], [s], [r], quantiles, peaks)[0] for p, s, r in zip(plans, scenarios, pseudo)]
+
+
+def _pseudo_road(scenario: Scenario):
+    """The scenario's random road as PEM takes it (``vbikit.random.PseudoRoad``)."""
+    from vbikit.random import PseudoRoad
+    from vbikit.scenario.build import road_psd
+
+    road = scenario.road
+    return PseudoRoad(road_psd(road), road.right_coherence, two_lines=road.right_coherence < 1.0)
+
+
+def _random_runs(plans: list[Plan], scenarios: list[Scenario], roads: list, quantiles: tuple[float, ...] | None,
+                 peaks: str) -> list:
+    """The random responses of checked scenarios on their ``roads`` (``_pseudo_road``), which differ at
+    most in level, on the first plan's crossing (``vbikit.random.response.random_responses``: one
+    pseudo-excitation), each summary named and carrying its plan's warnings."""
+    from vbikit.random import NonlinearTireError
+    from vbikit.random.response import QUANTILES, random_responses
+
     plan = plans[0]
     try:
-        out = random_responses(plan.built.crossing, plan.built.plan, pseudo, plan.run.dt, data=plan.run.kernel_data,
+        out = random_responses(plan.built.crossing, plan.built.plan, roads, plan.run.dt, data=plan.run.kernel_data,
                                quantiles=quantiles or QUANTILES, peaks=peaks)
     except NonlinearTireError as err:
         raise ScenarioError(f"tire.model: {err}") from None
