@@ -44,7 +44,7 @@ from numba import njit
 
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cell
-from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
 
 
 @_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
@@ -197,22 +197,7 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
     for k in range(f.size):
         if active[k]:
             t[wheel[k]] += force[k]
-    for j in range(n_w):
-        kp = piv[j]
-        if kp != j:
-            tmp = t[j]
-            t[j] = t[kp]
-            t[kp] = tmp
-    for i in range(n_w):
-        a = t[i]
-        for j in range(i):
-            a -= veh[i, j] * t[j]
-        t[i] = a
-    for i in range(n_w - 1, -1, -1):
-        a = t[i]
-        for j in range(i + 1, n_w):
-            a -= veh[i, j] * t[j]
-        t[i] = a / veh[i, i]
+    _lu_solve(veh, n_w, piv, t)
     for w in range(n_w):
         aq = 0.0
         av = 0.0
