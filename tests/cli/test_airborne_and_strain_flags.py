@@ -3,7 +3,7 @@
 * An HS20-44 on an ISO class-F road over the paper's 3D Bridge 2 (examples/paper/bridge2_hs20_girder4.toml
   with ``class = "F"``) reads IM = 2.06 and |a| = 21.6 m/s²: its front axle is off the road for 0.55 s
   of its 16.76 m / 20.83 m/s = 0.805 s on the deck (68 %).  The IM now carries "!" and a warning that
-  the wheels' leaving and landing dominate it (vbikit.analysis.checks.airborne_warnings, flagged above
+  the wheels' leaving and landing dominate it (vbikit.analysis.checks.airborne_flags, flagged above
   AIRBORNE_FRACTION = 5 % of a wheel's time on the bridge); the road warning names the random road,
   not a profile file's unit.
 * The Yang–Yau sprung mass (examples/verification/yang_yau_sprung_mass.toml, 10 modes) reads a
@@ -21,8 +21,7 @@ from pathlib import Path
 import pytest
 from typer.testing import CliRunner
 
-from vbikit.analysis.checks import AIRBORNE_FRACTION, STRAIN_MODE_TOLERANCE, STRAIN_WARNING_START, \
-    AIRBORNE_WARNING_START
+from vbikit.analysis.checks import AIRBORNE_FRACTION, STRAIN_MODE_TOLERANCE
 from vbikit.cli import app
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -50,16 +49,24 @@ def test_wheels_airborne_on_a_class_f_road_flag_the_impact_factor(tmp_path):
                                                       r"for ([0-9.]+) s on the bridge", "\n".join(s["warnings"]))}
     time_on_deck = 16.76 / (75 / 3.6)  # span / speed: 0.805 s
     assert len(on_bridge) == 6 and max(on_bridge.values()) / time_on_deck == pytest.approx(0.68, abs=0.01)
-    flagged = [w for w in s["warnings"] if w.startswith(AIRBORNE_WARNING_START)]
-    assert len(flagged) == 1
+    (flag,) = [f for f in s["flags"] if f["code"] == "airborne_wheels"]
+    flagged = [flag["message"]]
     n = sum(t / time_on_deck > AIRBORNE_FRACTION for t in on_bridge.values())
     assert f"{n} wheels left the road" in flagged[0] and "68%" in flagged[0]
     assert "not design values" in flagged[0] and "point-contact impacts" in flagged[0]
+    # the same finding as data: the longest-airborne wheel's share of its time on the deck, the threshold
+    longest = max(on_bridge, key=on_bridge.get)
+    assert flag["output"] == "impact_factor" and flag["wheel"] == longest
+    assert flag["value"] == pytest.approx(on_bridge[longest] / time_on_deck, abs=0.01)
+    assert flag["threshold"] == AIRBORNE_FRACTION
+    assert s["warnings"] == [f["message"] for f in s["flags"]]  # one truth: the warnings are the flags' messages
     line = _im_line(res.stdout)
     assert f"IM = {s['impact_factor']:.4f}!" in line and s["impact_factor"] > 2
     assert "! unreliable: wheels left the road" in res.stdout
     assert f"(IM = {s['governing_girder_impact_factor']:.4f}!)" in res.stdout
-    road = next(w for w in s["warnings"] if w.startswith("road:"))
+    road_flag = next(f for f in s["flags"] if f["code"] == "road_elevation")
+    road = road_flag["message"]
+    assert road_flag["value"] == pytest.approx(0.292, abs=5e-4) and road_flag["threshold"] == 0.1
     assert road.startswith("road: the random class-F road (seed 1) reaches 0.292 m")
     assert "profile's unit" not in road and "defect" not in road and "road class" in road
 
@@ -69,7 +76,7 @@ def test_class_c_example_is_not_flagged(tmp_path):
     its strain (modal 76.21 µε, exact 75.92 µε: +0.4 %) is converged."""
     res, s = _run((ROOT / "examples" / "paper" / "bridge2_hs20_girder4.toml").read_text(), tmp_path)
     assert "!" not in _im_line(res.stdout)
-    assert not any(w.startswith((AIRBORNE_WARNING_START, STRAIN_WARNING_START, "road:")) for w in s["warnings"])
+    assert not {"airborne_wheels", "strain_not_converged", "road_elevation"} & {f["code"] for f in s["flags"]}
 
 
 def test_strain_not_converged_in_ten_modes_is_flagged(tmp_path):
@@ -79,8 +86,10 @@ def test_strain_not_converged_in_ten_modes_is_flagged(tmp_path):
     res, s = _run(text, tmp_path)
     error = s["max_static_strain"] / exact - 1
     assert error == pytest.approx(-0.040, abs=0.001) and abs(error) > STRAIN_MODE_TOLERANCE
-    flagged = [w for w in s["warnings"] if w.startswith(STRAIN_WARNING_START)]
-    assert len(flagged) == 1
+    (flag,) = [f for f in s["flags"] if f["code"] == "strain_not_converged"]
+    flagged = [flag["message"]]
+    assert flag["output"] == "strain_impact_factor" and flag["point"] == s["points"][0]["name"]
+    assert flag["value"] == pytest.approx(error, abs=5e-4) and flag["threshold"] == STRAIN_MODE_TOLERANCE
     assert f"{s['max_static_strain'] * 1e6:.4g} µε, is {error:+.1%} off the exact {exact * 1e6:.4g} µε" in flagged[0]
     assert "more modes" in flagged[0]
     line = _im_line(res.stdout)
@@ -89,7 +98,7 @@ def test_strain_not_converged_in_ten_modes_is_flagged(tmp_path):
 
     res50, s50 = _run(text.replace("n_modes = 10", "n_modes = 50"), tmp_path)
     assert s50["max_static_strain"] / exact - 1 == pytest.approx(-0.008, abs=0.001)  # within 1 %: not flagged
-    assert not any(w.startswith(STRAIN_WARNING_START) for w in s50["warnings"])
+    assert not any(f["code"] == "strain_not_converged" for f in s50["flags"])
     assert "!" not in _im_line(res50.stdout)
 
 
@@ -103,19 +112,79 @@ def test_girder_decks_are_not_checked_for_strain_convergence():
 
     report = vbikit.run(str(ROOT / "examples" / "bridges" / "three_span_grillage_hs20.toml"))
     assert exact_static_strain_peak(report.result, report.response) is None
-    assert not any(w.startswith(STRAIN_WARNING_START) for w in report.summary["warnings"])
+    assert not any(f["code"] == "strain_not_converged" for f in report.summary["flags"])
 
 
-def test_road_warning_advice_follows_the_profile_label():
-    """The labels vbikit.scenario.build.build_road gives (random, measured, with defects) and one
-    from the Python API without a label: each gets advice that fits it."""
+def test_road_warning_advice_follows_the_road_origin(tmp_path):
+    """The road's origin is data (RoadProfile.origin, set where the profile is made), never read from
+    its label: random, measured, with defects, and a profile from the Python API without an origin,
+    each gets advice that fits it; a label that looks like a scenario's says nothing by itself."""
+    import numpy as np
+
     from vbikit.analysis.checks import road_advice, road_origin
+    from vbikit.road import Defect, RoadOrigin, RoadProfile, random_profile, read_profile_csv, with_defects
 
-    assert road_origin("class F, seed 1") == "random class-F road (seed 1)"
-    assert road_origin("class F, seed 1, right line (coherence 0.9)") == "random class-F road (seed 1)"
-    assert road_origin("measured mm.csv + pothole at 5 m") == "measured profile (mm.csv, with defects)"
-    assert road_advice("class F, seed 1") == road_advice("class F, seed 1, right line (coherence 0.9)")
-    assert "road class" in road_advice("class F, seed 1") and "unit" not in road_advice("class F, seed 1")
-    assert "file's unit" in road_advice("measured mm.csv") and "road class" not in road_advice("measured mm.csv")
-    assert "defect sizes" in road_advice("class C, seed 2 + bump at 3 m")
-    assert road_advice("") == "check the profile's unit (elevations are in metres)"
+    def profile(origin=None, label=""):
+        return RoadProfile(np.array([0.0, 1.0]), np.zeros(2), label, origin=origin)
+
+    random_f = profile(RoadOrigin("random", "F", 1))
+    assert road_origin(random_f) == "random class-F road (seed 1)"
+    assert "road class" in road_advice(random_f) and "unit" not in road_advice(random_f)
+    measured = profile(RoadOrigin("measured", file="mm.csv", defects=("pothole",)))
+    assert road_origin(measured) == "measured profile (mm.csv, with defects)"
+    assert "file's unit" in road_advice(measured) and "defect sizes" in road_advice(measured)
+    assert "road class" not in road_advice(measured)
+    # the label is a name, not data: a measured profile labelled like a random road stays measured
+    assert road_origin(profile(RoadOrigin("measured", file="f.csv"), "class F, seed 1")) == "measured profile (f.csv)"
+    unknown = profile(label="class F, seed 1")
+    assert road_origin(unknown) == "road (class F, seed 1)"
+    assert road_advice(unknown) == road_advice(profile()) == "check the profile's unit (elevations are in metres)"
+    # where profiles are made: a random profile, a file, defects added, a right wheel line
+    from vbikit.road import RoadPSD, correlated_profile
+
+    left = random_profile(RoadPSD.iso("C"), 7, length=200.0, window=(-5.0, 30.0))
+    assert left.origin == RoadOrigin("random", seed=7)
+    bumped = with_defects(left, [Defect.of_kind("bump", 3.0)])
+    assert bumped.origin.defects == ("bump",) and road_origin(bumped) == "random road (seed 7, with defects)"
+    right = correlated_profile(left, RoadPSD.iso("C"), 7, 0.5, length=200.0, window=(-5.0, 30.0))
+    assert right.origin == left.origin
+    csv = tmp_path / "mm.csv"
+    csv.write_text("x,elevation\n0,0\n1,0.001\n")
+    assert read_profile_csv(csv).origin == RoadOrigin("measured", file="mm.csv")
+
+
+def test_the_report_marks_follow_the_flag_codes_not_the_words(tmp_path, capsys):
+    """The text report's "!" and notes come from the summary's flags (codes), not from how a warning is
+    worded: the Yang–Yau run (strain flagged) with its strain message reworded keeps its mark; with an
+    airborne-wheels flag added the IM is marked; a warning that merely reads like the airborne one, without
+    its flag, marks nothing."""
+    from types import SimpleNamespace
+
+    from vbikit.cli.render import print_summary
+
+    _, s = _run((ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text(), tmp_path)
+    assert [f["code"] for f in s["flags"]] == ["strain_not_converged"]
+
+    def report(summary):
+        print_summary(SimpleNamespace(name="", summary=summary))
+        return _im_line(capsys.readouterr().out)
+
+    reworded = s | {"flags": [s["flags"][0] | {"message": "reworded"}], "warnings": ["reworded"]}
+    assert report(reworded).endswith("!)") and "IM = " in report(reworded)
+    airborne = {"code": "airborne_wheels", "message": "any words", "output": "impact_factor", "subject": None,
+                "girder": None, "point": None, "wheel": "F", "value": 0.5, "threshold": AIRBORNE_FRACTION}
+    line = report(s | {"flags": [airborne]})
+    assert f"IM = {s['impact_factor']:.4f}!" in line
+    words_only = s | {"flags": [], "warnings": ["impact factors dominated by airborne wheels: …",
+                                                "strain not converged in the modes: …"]}
+    assert "!" not in report(words_only)
+
+
+def test_every_flag_has_a_documented_code():
+    """A flag's code is one of FLAG_CODES (a typo fails at once), and docs/results.md lists every code."""
+    from vbikit.analysis.checks import FLAG_CODES, Flag
+
+    with pytest.raises(ValueError, match="airborne_wheel"):
+        Flag("airborne_wheel", "typo")
+    text = (ROOT / "docs" / "results.md").read_text()
+    assert all(f"| `{code}` |" in text for code in FLAG_CODES)

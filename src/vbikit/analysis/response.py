@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.checks import run_warnings, small_static_warnings, strain_convergence_warnings
+from vbikit.analysis.checks import Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
@@ -247,9 +247,9 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         **crossing_outputs,
-        "warnings": run_warnings(result, response.x, response.y) + strain_warnings(result, response) + static_reference_warnings(
+        **flag_fields(run_flags(result, response.x, response.y) + strain_warnings(result, response) + static_reference_warnings(
             girders or [], points if points is not None else [{"name": point_name(1), "x": response.x, "y": response.y}
-                                                              | headline]),
+                                                              | headline])),
     } | ({"response_girder": response_girder,
           "lateral_offset": crossing.lateral_offset if crossing.single else [m.lateral_offset for m in crossing.vehicles],
           **girder_summary(girders)} if girders else {}) | ({} if crossing.single else {"vehicles": vehicle_summaries(result)})
@@ -287,31 +287,37 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     return float(static[np.argmax(np.abs(static))])
 
 
-def strain_warnings(result: CrossingResult, response: PointResponse) -> list[str]:
-    """The strain-convergence warning (``vbikit.analysis.checks.strain_convergence_warnings``) of the
-    headline point: its static strain peak from the modes against ``exact_static_strain_peak``."""
-    return strain_convergence_warnings(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
-                                       int(result.crossing.bridge.omega.size),
-                                       f"x = {response.x:.3f} m, y = {response.y:.3f} m")
+def strain_warnings(result: CrossingResult, response: PointResponse) -> list[Flag]:
+    """The strain-convergence flag (``vbikit.analysis.checks.strain_convergence_flags``) of the
+    headline point (``point_name(1)``): its static strain peak from the modes against ``exact_static_strain_peak``."""
+    return strain_convergence_flags(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
+                                    int(result.crossing.bridge.omega.size),
+                                    f"x = {response.x:.3f} m, y = {response.y:.3f} m", point_name(1))
 
 
-def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[str]:
-    """The small-static-reference warnings (``vbikit.analysis.checks.small_static_warnings``) of a
+def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[Flag]:
+    """The small-static-reference flags (``vbikit.analysis.checks.small_static_flags``) of a
     crossing's deflection impact factors: every girder at the headline section and every response
-    point (``point_entries``; a point on a girder's section is that girder's entry), against the
-    largest static peak among them all."""
+    point (``point_entries``; a point on a girder's section is that girder's entry, its flag naming
+    the point too), against the largest static peak among them all."""
     labels = [f"Girder {g}" for g in range(1, len(girders) + 1)]
+    numbers: list[int | None] = list(range(1, len(girders) + 1))
+    names: list[str | None] = [None] * len(girders)
     statics = [r.displacement_impact.static_peak for r in girders]
     ims = [r.displacement_impact.impact_factor for r in girders]
     strains = [r.strain_impact.impact_factor for r in girders]
     for p in points:
-        if any(abs(r.x - float(p["x"])) < 1e-9 and abs(r.y - float(p["y"])) < 1e-9 for r in girders):
+        on = [g for g, r in enumerate(girders) if abs(r.x - float(p["x"])) < 1e-9 and abs(r.y - float(p["y"])) < 1e-9]
+        if on:
+            names[on[0]] = names[on[0]] or str(p["name"])
             continue
         labels.append(f"point {p['name']}")
+        numbers.append(None)
+        names.append(str(p["name"]))
         statics.append(float(p["max_static_displacement"]))
         ims.append(float(p["impact_factor"]))
         strains.append(float(p["strain_impact_factor"]))
-    return small_static_warnings(labels, statics, ims, strains) if len(statics) > 1 else []
+    return small_static_flags(labels, statics, ims, strains, numbers, names) if len(statics) > 1 else []
 
 
 def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:
@@ -435,7 +441,9 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                       "first requested section, every section under sections, with the code allowances"),
     "shear": ("N", "shear forces (just right of x), as moment"),
     "reaction": ("N", "support reactions, as moment"),
-    "warnings": ("-", "messages about the inputs or the run (also printed on standard error)"),
+    "warnings": ("-", "messages about the inputs or the run (also printed on standard error): the flags' messages"),
+    "flags": ("-", "the checks' findings as records: code (the flag codes' table), message, output, subject, girder, "
+                   "point, wheel, value, threshold"),
     "inputs": ("-", "the inputs as run, every default filled in (units as in the scenario reference)"),
 }
 
