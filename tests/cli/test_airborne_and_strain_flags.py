@@ -188,3 +188,62 @@ def test_every_flag_has_a_documented_code():
         Flag("airborne_wheel", "typo")
     text = (ROOT / "docs" / "results.md").read_text()
     assert all(f"| `{code}` |" in text for code in FLAG_CODES)
+
+
+def _skew_result(airborne: dict[str, tuple[float, float]]):
+    """The parts of a CrossingResult the contact checks read, on the shipped 20° skew example
+    (examples/bridges/skew_grillage_hs20.toml: span 16.76 m, deck x range −1.77 … 18.53 m, the truck at
+    y = 1.4 m): its real crossing, the front axle at 1 m/s from x = −5 m to 40 m (dt = 0.01 s) and each
+    wheel of ``airborne`` off the road while its centre is within the given x range [m]."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from vbikit.scenario import build, load_scenario
+
+    crossing = build(load_scenario(ROOT / "examples" / "bridges" / "skew_grillage_hs20.toml")).crossing
+    x_front = np.arange(-5.0, 40.0, 0.01)
+    wheels = crossing.vehicle.wheels
+    x = x_front[:, None] - np.array([w.offset for w in wheels])[None, :]
+    forces = np.full(x.shape, 5e4)
+    for w, wheel in enumerate(wheels):
+        if wheel.name in airborne:
+            lo, hi = airborne[wheel.name]
+            forces[(x[:, w] >= lo) & (x[:, w] < hi), w] = 0.0
+    return SimpleNamespace(crossing=crossing, wheel_forces=forces, dt=0.01, time=np.arange(x_front.size) * 0.01,
+                           wheel_positions=lambda: x.copy())
+
+
+def test_airborne_time_on_a_skew_deck_is_per_wheel_track():
+    """A wheel's time on a skew deck is its own track's stretch, span long between the oblique support
+    lines at its y (0 ≤ x − y·tan θ ≤ span, bridge.span_coordinate), not the deck's whole x range: the
+    left front wheel (y = 2.5 m) is on the deck for x = 0.910 … 17.670 m (16.76 m), not −1.77 … 18.53 m
+    (20.31 m).  Airborne for 0.90 m of it that is 5.4 % (flagged above 5 %); against the whole range it
+    read 4.4 % and was not flagged."""
+    import math
+
+    import numpy as np
+
+    from vbikit.analysis.checks import airborne_wheels, wheel_track_ends
+
+    result = _skew_result({"axle1_left": (5.0, 5.9)})
+    bridge = result.crossing.bridge
+    ends = wheel_track_ends(result)
+    y = result.crossing.point_kinematics()[2][result.crossing.contact.wheel == 0][0]
+    assert y == pytest.approx(2.5) and bridge.skew == 20.0
+    assert ends[0] == pytest.approx([y * math.tan(math.radians(20.0)), y * math.tan(math.radians(20.0)) + 16.76])
+    assert np.allclose(ends[:, 1] - ends[:, 0], bridge.span)
+    assert bridge.deck_extent[1] - bridge.deck_extent[0] == pytest.approx(20.31, abs=0.01)
+    (name, t, share), = airborne_wheels(result)
+    assert name == "axle1_left" and t == pytest.approx(0.90, abs=0.011)
+    assert share == pytest.approx(0.90 / 16.76, abs=0.002) and share > AIRBORNE_FRACTION > 0.90 / 20.31
+
+
+def test_contact_lost_past_a_skew_track_is_after_the_bridge():
+    """The right front wheel (y = 0.3 m) leaves the skew deck at x = 16.869 m; off the road at 17.5 … 18 m
+    it is past its own track, though within the deck's x range (to 18.53 m): "only after the bridge"."""
+    from vbikit.analysis.checks import contact_flags
+
+    (flag,) = contact_flags(_skew_result({"axle1_right": (17.5, 18.0)}))
+    assert flag.code == "contact_loss" and flag.wheel == "axle1_right" and flag.value == 0.0
+    assert "only after the bridge (its track on the deck: x from 0.109 to 16.869 m)" in flag.message

@@ -17,7 +17,8 @@ Thresholds (documented in docs/scenario.md):
   modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
   step does not (``step_flags``);
 * wheels that lost contact (which, where first, for how long); and, when any wheel was airborne on
-  the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge, one warning
+  the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge (its own
+  track's stretch of the deck, ``wheel_track_ends``: on a skew deck shorter than the deck's x range), one warning
   that the run's impact factors are dominated by the wheels leaving and landing on the road
   (``airborne_flags``; code ``airborne_wheels``; the text report marks the IM with ``!``).  5 % is a hop, not a graze: on
   Bridge 2 (16.76 m at 75 km/h, 0.80 s on the deck) it is 0.04 s in the air, about half the
@@ -348,8 +349,8 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
         lo, hi = map(float, wheel_track_ends(result)[w])
         where = ("before the bridge" if (x_wheel[off, w] < lo).all() else
                  "after the bridge" if (x_wheel[off, w] > hi).all() else "before and after the bridge")
-        out.append(Flag("contact_loss", f"wheel {wheel.name} lost contact with the road only {where} (x from {lo:g} to "
-                        f"{hi:g} m): first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
+        out.append(Flag("contact_loss", f"wheel {wheel.name} lost contact with the road only {where} (its track on the deck: "
+                        f"x from {lo:.3f} to {hi:.3f} m): first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
                         f"for {float(off.sum() * dt):.4f} s in all", subject=f"wheel {wheel.name}", wheel=wheel.name,
                         value=0.0))
     return out
