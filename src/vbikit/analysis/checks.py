@@ -26,7 +26,8 @@ Thresholds (documented in docs/scenario.md):
 * a static strain peak of the modes (modal superposition of curvatures, which converges slowly
   under a moving load) more than ``STRAIN_MODE_TOLERANCE`` (1 %) away from the exact static strain
   c/EI times the static moment of the full stiffness (the moment's mode-acceleration static part),
-  where the bridge offers the moment at the point (``strain_convergence_flags``, code ``strain_not_converged``): the Yang–Yau
+  where the bridge offers the moment at the point (``strain_convergence_flags``, code ``strain_not_converged``;
+  simply supported and continuous beams, not girder decks: ``vbikit.analysis.response.exact_static_strain_peak``): the Yang–Yau
   beam with 10 modes reads 20.32 µε for the exact 21.18 µε (−4.0 %), with 50 modes 21.01 µε (−0.8 %);
 * an impact factor whose static reference is small: a static peak below ``SMALL_STATIC_FRACTION``
   (20 %) of the largest static peak of the same quantity on the bridge (a lightly loaded girder, a
