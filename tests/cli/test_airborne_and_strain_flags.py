@@ -278,7 +278,7 @@ def test_continuous_beams_are_checked_for_strain_convergence(tmp_path):
     no flag).  The three-span example (20 + 25 + 20 m, EI = 1.286e10 N m², c = 0.78 m) on a smooth road
     with point tires at x = 10 m: the HS20-44's static moment peak there by the three-moment equation is
     915.6 kN m, c/EI times it 55.54 µε; the run's reference reads within 0.2 % of it (its time samples
-    step past the peak's kink).  16 modes read −1.5 % (flagged), 64 modes within 1 %."""
+    step past the peak's kink).  16 modes read −1.5 % (flagged); 12 and 64 modes within 1 %."""
     import numpy as np
 
     from vbikit.analysis.response import exact_static_strain_peak
@@ -305,10 +305,11 @@ def test_continuous_beams_are_checked_for_strain_convergence(tmp_path):
     assert flag["value"] == pytest.approx(report.summary["max_static_strain"] / reference - 1, rel=1e-9)
     assert flag["value"] == pytest.approx(-0.015, abs=0.001)
 
-    path.write_text(text.replace("n_modes = 12", "n_modes = 64"))
-    converged = vbikit.run(str(path))
-    assert abs(converged.summary["max_static_strain"] / reference - 1) < STRAIN_MODE_TOLERANCE
-    assert not any(f["code"] == "strain_not_converged" for f in converged.summary["flags"])
+    for n in (12, 64):  # not monotonic: 12 modes happen to be within 1 %, 16 not, 64 again
+        path.write_text(text.replace("n_modes = 12", f"n_modes = {n}"))
+        converged = vbikit.run(str(path))
+        assert abs(converged.summary["max_static_strain"] / reference - 1) < STRAIN_MODE_TOLERANCE
+        assert not any(f["code"] == "strain_not_converged" for f in converged.summary["flags"])
 
 
 def test_a_continuous_beam_section_where_ei_changes_has_no_strain_reference():

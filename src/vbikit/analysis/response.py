@@ -264,9 +264,9 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     the moment there).  A continuous beam gives c/EI of its section (``ContinuousBeam.strain_per_moment``):
     its modes' strain is c times the Hermite elements' curvature and their moment comes from
     equilibrium, which differ by up to 0.5 % over the 12 modes of the three-span example, yet the
-    modes' static strain converges to c/EI times the full-stiffness moment (that example at x = 10 m:
-    −0.6, −1.2, −1.3, −0.2, +0.2 % with 12, 16, 32, 64, 96 modes; not monotonically, the modes'
-    curvatures at a section alternating in sign; tests/cli/test_airborne_and_strain_flags.py).
+    modes' static strain converges to c/EI times the full-stiffness moment, not monotonically (that
+    example at x = 10 m, smooth road, point tires: within 1 % with 12 modes, −1.5 % with 16, within 1 %
+    with 64; tests/cli/test_airborne_and_strain_flags.py).
     Beams only: on a girder deck the modes' static strain does not converge to
     c/EI times the full-stiffness moment (the 3D Bridge 2 example: 76.21, 75.67, 73.35 µε with 20, 40,
     100 modes against 75.92; a grillage girder's strain is read from the element, its moment from the
