@@ -320,3 +320,18 @@ def test_a_continuous_beam_section_where_ei_changes_has_no_strain_reference():
     assert beam.strain_per_moment(10.0) == pytest.approx(0.8 / 1e10)
     assert beam.strain_per_moment(30.0) == pytest.approx(0.8 / 2e10)
     assert beam.strain_per_moment(20.0) is None
+
+
+def test_a_flag_record_is_strict_json():
+    """A flag's record holds plain numbers (numpy floats as float) and null for a value that is not
+    finite, so a summary's flags never add a non-finite warning of their own."""
+    import numpy as np
+
+    from vbikit.analysis.checks import Flag, flag_fields
+
+    fields = flag_fields([Flag("effect_step", "m", output="moment", value=np.float64(1e-3), threshold=float("inf")),
+                          Flag("effect_step", "m", output="moment")])
+    assert fields["warnings"] == ["m"]  # each message once
+    (record,) = fields["flags"]
+    assert record["value"] == 1e-3 and type(record["value"]) is float and record["threshold"] is None
+    json.dumps(record, allow_nan=False)

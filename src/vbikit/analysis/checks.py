@@ -154,8 +154,13 @@ class Flag:
             raise ValueError(f"flag code {self.code!r} is not one of {', '.join(FLAG_CODES)}")
 
     def as_dict(self) -> dict[str, Any]:
-        """The JSON-ready record (every field, None as null)."""
-        return asdict(self)
+        """The JSON-ready record (every field, None as null; a value or threshold that is not finite,
+        e.g. an unbounded step, as None too)."""
+        out = asdict(self)
+        for key in ("value", "threshold"):
+            if out[key] is not None:
+                out[key] = float(out[key]) if np.isfinite(out[key]) else None
+        return out
 
 
 def messages(flags: Iterable[Flag]) -> list[str]:
