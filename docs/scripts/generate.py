@@ -386,6 +386,14 @@ def summary_keys() -> str:
     return "\n".join(rows) + "\n"
 
 
+def flag_codes() -> str:
+    from vbikit.analysis.checks import FLAG_CODES
+
+    rows = ["| code | what was found; value and threshold |", "|---|---|"]
+    rows += [f"| `{code}` | {meaning} |" for code, meaning in FLAG_CODES.items()]
+    return "\n".join(rows) + "\n"
+
+
 def history_columns() -> str:
     from vbikit.analysis.response import GIRDER_QUANTITIES
     from vbikit.outputs import QUANTITIES
@@ -642,6 +650,7 @@ PAGES: dict[str, Callable[[], str]] = {
 #: generated blocks inside hand-written pages: (page, block name) → generator
 BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("results.md", "summary-keys"): summary_keys,
+    ("results.md", "flag-codes"): flag_codes,
     ("results.md", "study-outputs"): study_outputs,
     ("results.md", "history-columns"): history_columns,
     ("gallery/index.md", "gallery-index"): gallery_index,

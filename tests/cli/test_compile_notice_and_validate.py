@@ -106,3 +106,49 @@ def test_a_scenario_with_a_misspelt_vehicle_table_is_still_read_as_a_scenario(tm
     path.write_text(BASE.read_text() + '\n[vehicel]\nmodel = "hs20-44"\n')  # not a base scenario's section
     res = runner.invoke(app, ["validate", str(path)])
     assert res.exit_code != 0 and "invalid scenario" in res.output and "vehicel: unknown key" in res.output
+
+
+def test_lane_chunks_split_by_step_then_by_threads():
+    """BatchSolver.run_many's split, by hand: the crossings of one step together, each group cut into
+    ``threads`` calls of at most ``lanes``."""
+    from vbikit.solve.batch import lane_chunks
+
+    assert lane_chunks([1e-3, 1e-3, 2e-3]) == [(1e-3, [0, 1]), (2e-3, [2])]
+    assert lane_chunks([1e-3] * 4, threads=2) == [(1e-3, [0, 1]), (1e-3, [2, 3])]
+    assert lane_chunks([1e-3] * 3, threads=3) == [(1e-3, [0]), (1e-3, [1]), (1e-3, [2])]
+    assert lane_chunks([1e-3] * 5, lanes=2) == [(1e-3, [0, 1]), (1e-3, [2, 3]), (1e-3, [4])]
+
+
+def test_the_notice_names_the_one_lane_kernel_when_the_batch_is_split(after_demo, caplog):
+    """A batch runs the many-lane kernel only if BatchSolver gives some call several crossings: with as
+    many threads as crossings (``vbikit study run --threads``) every call has one, and a batch of a
+    smooth and a random road (different steps: the random road's samples set its step) splits by step —
+    in both cases only ``lean`` runs, which the demo compiled, so nothing is announced (the notice
+    announced ``lean_lanes`` for every batch of two or more).  The steps are BatchSolver's own."""
+    from vbikit.solve import kernels
+    from vbikit.solve.batch import BatchSolver
+    from vbikit.study.compute import _road
+    from vbikit.study.paper import paper_study, paper_study_dict
+    from vbikit.study.run import _announce_compile, batch_kernels, batch_steps
+    from vbikit.study.spec import parse_study
+    from vbikit.scenario import build, parse_scenario
+
+    study = paper_study("fig6", 20, False, method="monte-carlo")
+    batches = study.batches()
+    assert batch_kernels(study, batches) == [kernels.lean_lanes]
+    assert batch_kernels(study, batches, threads=len(batches[0])) == [kernels.lean]
+    with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
+        _announce_compile(study, batches, None, 2, threads=len(batches[0]))
+    assert caplog.text == ""
+
+    d = paper_study_dict("fig6", 2, True) | {"axes": {"road.class": ["none", "C"]}}
+    mixed = parse_study(d)
+    (batch,) = mixed.batches()
+    assert len(batch) == 2
+    steps = batch_steps(mixed, batch)
+    dicts = [mixed.scenario_dict(idx) for idx in batch]
+    scenarios = [parse_scenario(sd, mixed.base_dir) for sd in dicts]
+    solver = BatchSolver(build(scenarios[0]).crossing)  # as run_batch: the first crossing, the others' roads
+    assert steps == [solver.time_step(solver.crossing(*_road(sc, sd))) for sc, sd in zip(scenarios, dicts)]
+    assert steps[0] != steps[1]
+    assert batch_kernels(mixed, [batch]) == [kernels.lean]

@@ -36,29 +36,33 @@ def test_the_axle_count_beside_the_codes_is_explained_and_in_the_right_number(n,
 
 
 def _result(x_front: np.ndarray, forces: np.ndarray, span: float = 65.0):
-    """The parts of a CrossingResult that contact_warnings reads: one wheel at the front axle."""
+    """The parts of a CrossingResult that contact_flags reads: one wheel at the front axle, on a square deck."""
     t = np.arange(x_front.size) * 0.01
     wheel = SimpleNamespace(name="axle1_left", stiffness=1e6, offset=0.0)
-    crossing = SimpleNamespace(vehicle=SimpleNamespace(wheels=[wheel]), bridge=SimpleNamespace(deck_extent=(0.0, span)))
+    bridge = SimpleNamespace(deck_extent=(0.0, span), span=span, span_coordinate=lambda x, y: np.broadcast_arrays(
+        np.asarray(x, float), np.asarray(y, float))[0].copy())
+    crossing = SimpleNamespace(vehicle=SimpleNamespace(wheels=[wheel]), bridge=bridge,
+                               point_kinematics=lambda: (np.zeros(1), np.ones(1), np.zeros(1)),
+                               contact=SimpleNamespace(wheel=np.zeros(1, np.int64)))
     return SimpleNamespace(wheel_forces=forces[:, None], dt=0.01, time=t, crossing=crossing,
                            wheel_positions=lambda: x_front[:, None])
 
 
 def test_contact_lost_only_after_the_bridge_is_said_to_be_after_it():
-    from vbikit.analysis.checks import contact_warnings
+    from vbikit.analysis.checks import contact_flags
 
     x = np.linspace(-10.0, 80.0, 91)            # 1 m per step
     f = np.where((x > 70.0) & (x < 75.0), 0.0, 5e4)  # airborne at 71 … 74 m, past the 65 m deck
-    (text,) = contact_warnings(_result(x, f))
+    (text,) = [flag.message for flag in contact_flags(_result(x, f))]
     assert "only after the bridge" in text and "x = 71.000 m" in text
 
 
 def test_contact_lost_on_the_bridge_is_located_on_it():
-    from vbikit.analysis.checks import contact_warnings
+    from vbikit.analysis.checks import contact_flags
 
     x = np.linspace(-10.0, 80.0, 91)
     f = np.where(((x > 20.0) & (x < 23.0)) | ((x > 70.0) & (x < 75.0)), 0.0, 5e4)
-    (text,) = contact_warnings(_result(x, f))
+    (text,) = [flag.message for flag in contact_flags(_result(x, f))]
     assert "on the bridge: first at x = 21.000 m" in text
     assert "for 0.0200 s on the bridge (and 0.0400 s off it)" in text
 

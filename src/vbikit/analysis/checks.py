@@ -1,6 +1,11 @@
 """Warnings about runs that may not mean what the user thinks: inputs outside the usual range of the
-models and results that carry a caveat.  Each check returns plain sentences (the CLI prints them
-on stderr and lists them under ``warnings`` in the JSON summary); none stops a run.
+models and results that carry a caveat.  Each check returns [`Flag`][vbikit.analysis.checks.Flag]
+records: a stable ``code`` (``FLAG_CODES``, the one list; docs/results.md's table is generated from
+it), what it is about (the output, girder, point, wheel), the measured ``value`` and its
+``threshold``, and the engineer-readable ``message``.  A summary carries them under ``flags`` and
+their messages under ``warnings`` (``flag_fields``, ``add_flags``: one truth; the CLI prints the
+messages on stderr); the text report decides its ``!`` marks from the codes (``has_flag``), never
+from the words.  None stops a run.
 
 Thresholds (documented in docs/scenario.md):
 
@@ -10,22 +15,24 @@ Thresholds (documented in docs/scenario.md):
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
 * a step given by the user that is coarser than the integrator's automatic step, and bridge
   modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
-  step does not (``step_warnings``);
+  step does not (``step_flags``);
 * wheels that lost contact (which, where first, for how long); and, when any wheel was airborne on
-  the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge, one warning
+  the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge (its own
+  track's stretch of the deck, ``wheel_track_ends``: on a skew deck shorter than the deck's x range), one warning
   that the run's impact factors are dominated by the wheels leaving and landing on the road
-  (``airborne_warnings``; the text report marks the IM with ``!``).  5 % is a hop, not a graze: on
+  (``airborne_flags``; code ``airborne_wheels``; the text report marks the IM with ``!``).  5 % is a hop, not a graze: on
   Bridge 2 (16.76 m at 75 km/h, 0.80 s on the deck) it is 0.04 s in the air, about half the
   HS20-44's slowest axle-hop period (10.8 Hz: 0.093 s); an ISO class-F road keeps the front axle up for 0.55 s (68 %);
 * a static strain peak of the modes (modal superposition of curvatures, which converges slowly
   under a moving load) more than ``STRAIN_MODE_TOLERANCE`` (1 %) away from the exact static strain
   c/EI times the static moment of the full stiffness (the moment's mode-acceleration static part),
-  where the bridge offers the moment at the point (``strain_convergence_warnings``): the Yang–Yau
+  where the bridge offers the moment at the point (``strain_convergence_flags``, code ``strain_not_converged``;
+  simply supported and continuous beams, not girder decks: ``vbikit.analysis.response.exact_static_strain_peak``): the Yang–Yau
   beam with 10 modes reads 20.32 µε for the exact 21.18 µε (−4.0 %), with 50 modes 21.01 µε (−0.8 %);
 * an impact factor whose static reference is small: a static peak below ``SMALL_STATIC_FRACTION``
   (20 %) of the largest static peak of the same quantity on the bridge (a lightly loaded girder, a
-  point near a support; ``small_static`` / ``small_static_warnings``; for moments, shears and
-  reactions each kind against its own largest, ``effect_static_warnings``).  IM = ΔR/R_st divides the
+  point near a support; ``small_static`` / ``small_static_flags``, code ``small_static``; for moments, shears and
+  reactions each kind against its own largest, ``effect_static_flags``).  IM = ΔR/R_st divides the
   dynamic increment ΔR, which the deck's vibration spreads over every girder, by that small R_st:
   on the paper's 3D Bridge 2 under HS20-44 Girder 1 carries 0.28 mm of the governing 2.79 mm
   (10 %) and reads IM = 1.35 against 0.22.  Such an IM is not a design value.
@@ -35,13 +42,14 @@ reports print ``NEGATIVE_IM_NOTE`` beside it.
 """
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import Sequence
+from dataclasses import asdict, dataclass, replace
+from typing import Any, Iterable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
+from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.timestep import choose_time_step
@@ -59,22 +67,137 @@ STEPS_PER_PERIOD = 5.0
 SMALL_STATIC_FRACTION = 0.2
 #: a wheel airborne on the bridge for more than this fraction of its time there flags the run's IMs (module docstring)
 AIRBORNE_FRACTION = 0.05
-#: how the airborne-wheels warning starts (the text report looks for it to mark the IM)
-AIRBORNE_WARNING_START = "impact factors dominated by airborne wheels"
 #: largest relative error of the modes' static strain peak against the exact one before it is flagged
 STRAIN_MODE_TOLERANCE = 0.01
-#: how the strain-convergence warning starts (the text report looks for it to mark the strain IM)
-STRAIN_WARNING_START = "strain not converged in the modes"
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
 NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the vehicle's bounce and the "
                     "deck's vibration were out of phase with the load's arrival at the section (the wheels unloading "
                     "there); physical, not an error")
 
 
-def input_warnings(crossing: Crossing, dt: float, response_x: float | None = None,
-                   response_y: float | None = None) -> list[str]:
-    """Warnings about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
-    out: list[str] = []
+#: every flag code and what it means, with what its ``value`` and ``threshold`` hold (SI units): the one
+#: list (``Flag`` refuses any other code; docs/results.md's table is generated from it)
+FLAG_CODES: dict[str, str] = {
+    "speed_range": "a vehicle speed outside the usual range (``SPEED_RANGE_KMH``, or the vehicle's own); value: the "
+                   "speed [m/s], threshold: the bound it crosses [m/s]",
+    "road_elevation": "road elevation (profile plus defects) over ``MAX_ROAD_FEATURE`` where the wheels go; value: the "
+                      "largest absolute elevation [m], threshold: 0.1 m",
+    "oblique_mesh": "a skew beyond the grillage's advised oblique mesh; value: the skew [°], threshold [°]",
+    "point_near_support": "a response point at or next to a support; value: its distance from the nearer support / "
+                          "the span, threshold: ``SUPPORT_MARGIN`` (0.02)",
+    "coarse_step": "a given crossing.dt coarser than the integrator's automatic step; value: dt [s], threshold: the "
+                   "automatic step [s]",
+    "unresolved_modes": "bridge modes the given step does not resolve (fewer than 5 steps a period); value: the "
+                        "highest such frequency [Hz], threshold: 1 / (5 dt) [Hz]",
+    "contact_loss": "a wheel lost contact with the road; wheel; value: its time off the road on the bridge [s] (0 "
+                    "when only before or after it)",
+    "airborne_wheels": "the impact factors are dominated by wheels leaving the road: a wheel airborne on the bridge for "
+                       "more than ``AIRBORNE_FRACTION`` of its own time there; output: impact_factor; wheel: the "
+                       "longest; value: its airborne share, threshold: 0.05",
+    "strain_not_converged": "the static strain of the modes differs from the exact static strain; output: "
+                            "strain_impact_factor; point; value: the relative error, threshold: "
+                            "``STRAIN_MODE_TOLERANCE`` (0.01)",
+    "small_static": "an impact factor resting on a small static reference; output: impact_factor (deflection) or "
+                    "moment / shear / reaction; girder or point; value: the static peak's share of the largest, "
+                    "threshold: ``SMALL_STATIC_FRACTION`` (0.2)",
+    "defect_outside": "a road defect (partly) outside the approach and the bridge, where no wheel meets it",
+    "heavy_axle": "an axle load far beyond legal limits; value: the axle load [N], threshold [N]",
+    "effect_step": "the step does not resolve a load effect (``vbikit.analysis.effect_step``); output: moment / "
+                   "shear / reaction; value: the run's step [s], threshold: the step that resolves it [s]",
+    "step_not_converged": "impact factors still changing when the step was last halved (the step check); output: "
+                          "the quantity that changed most; value: its change, threshold: the tolerance",
+    "non_finite": "an output that is not a finite number (written as null); output: its key",
+    "lift_off": "random run: a tire lifts off with a probability above the linear theory's limit; value: the "
+                "probability, threshold: the limit",
+    "coarse_grid": "random run: the wavenumber grid is coarse; value: the change of σ between every and every "
+                   "second line, threshold: the limit",
+}
+
+
+@dataclass(frozen=True)
+class Flag:
+    """One finding of a check, as data.
+
+    Parameters
+    ----------
+    code : str
+        What was found, stable (``FLAG_CODES``).
+    message : str
+        The engineer-readable sentence (the summary's ``warnings``, stderr).
+    output : str, optional
+        The summary key the finding puts in doubt ("impact_factor", "strain_impact_factor",
+        "moment", …) or names (a non-finite output).
+    subject : str, optional
+        What it is about, in words ("Girder 1", "point p2", the moment's section, an input key).
+    girder : int, optional
+        The girder (1-based) it is about.
+    point : str, optional
+        The response point (by name) it is about.
+    wheel : str, optional
+        The wheel (by name) it is about.
+    value, threshold : float, optional
+        The measured value and the limit it passed (units: ``FLAG_CODES``).
+    """
+
+    code: str
+    message: str
+    output: str | None = None
+    subject: str | None = None
+    girder: int | None = None
+    point: str | None = None
+    wheel: str | None = None
+    value: float | None = None
+    threshold: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.code not in FLAG_CODES:
+            raise ValueError(f"flag code {self.code!r} is not one of {', '.join(FLAG_CODES)}")
+
+    def as_dict(self) -> dict[str, Any]:
+        """The JSON-ready record (every field, None as null; a value or threshold that is not finite,
+        e.g. an unbounded step, as None too)."""
+        out = asdict(self)
+        for key in ("value", "threshold"):
+            if out[key] is not None:
+                out[key] = float(out[key]) if np.isfinite(out[key]) else None
+        return out
+
+
+def messages(flags: Iterable[Flag]) -> list[str]:
+    """The flags' messages, in order, each once."""
+    return list(dict.fromkeys(f.message for f in flags))
+
+
+def flag_fields(flags: Iterable[Flag]) -> dict[str, list]:
+    """A summary's ``flags`` (JSON records) and ``warnings`` (their messages) from ``flags``, each
+    message once (the first flag with it kept)."""
+    out: dict[str, list] = {"warnings": [], "flags": []}
+    add_flags(out, flags)
+    return out
+
+
+def add_flags(summary: dict[str, Any], flags: Iterable[Flag]) -> None:
+    """Append ``flags`` to ``summary``'s ``flags`` and their messages to its ``warnings`` (the one
+    way a summary gets a warning), skipping a message it holds already."""
+    texts, records = summary.setdefault("warnings", []), summary.setdefault("flags", [])
+    for f in flags:
+        if f.message not in texts:
+            records.append(f.as_dict())
+            texts.append(f.message)
+
+
+def has_flag(summary: Mapping[str, Any], code: str, **match: object) -> bool:
+    """Whether ``summary`` carries a flag of ``code`` whose fields equal ``match`` (e.g. girder=1)."""
+    if code not in FLAG_CODES:
+        raise ValueError(f"flag code {code!r} is not one of {', '.join(FLAG_CODES)}")
+    return any(f.get("code") == code and all(f.get(k) == v for k, v in match.items())
+               for f in summary.get("flags", ()))
+
+
+def input_flags(crossing: Crossing, dt: float, response_x: float | None = None,
+                response_y: float | None = None) -> list[Flag]:
+    """Flags about the inputs of ``crossing`` run with step ``dt`` [s] and read at ``response_x`` [m]."""
+    out: list[Flag] = []
     t_end = crossing.exit_time()
     if crossing.single:  # at the start and when the last axle has left
         speeds = [("crossing.speed", "speed", (crossing.speed, float(crossing.vehicles[0].velocity(t_end))),
@@ -86,8 +209,9 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
         lo, hi = vehicle.usual_speed_kmh or SPEED_RANGE_KMH
         for what, v in ((label, v0 * 3.6), (f"{label} when the last axle leaves the bridge", v1 * 3.6)):
             if not lo <= v <= hi:
-                out.append(f"{key}: {what} {v:.4g} km/h ({v / 3.6:.4g} m/s) is outside the usual "
-                           f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)")
+                out.append(Flag("speed_range", f"{key}: {what} {v:.4g} km/h ({v / 3.6:.4g} m/s) is outside the usual "
+                                f"{lo:g}–{hi:g} km/h; check the unit (speed is in m/s, speed_kmh in km/h)",
+                                subject=key, value=v / 3.6, threshold=(lo if v < lo else hi) / 3.6))
                 break
     x_lo, x_hi = crossing.road_extent()
     for side, road in (("", crossing.road), (" (right wheel line)", crossing.road_right)):
@@ -97,122 +221,158 @@ def input_warnings(crossing: Crossing, dt: float, response_x: float | None = Non
         z = road.z[lo:hi] if hi > lo else road.z  # the stations x_lo ≤ x ≤ x_hi (x increasing)
         peak = float(np.max(np.abs(z))) if z.size else 0.0
         if peak > MAX_ROAD_FEATURE:
-            out.append(f"road: the {road_origin(road.label)}{side} reaches {peak:.3g} m where the wheels go (more than "
-                       f"{MAX_ROAD_FEATURE} m); {road_advice(road.label)}")
+            out.append(Flag("road_elevation", f"road: the {road_origin(road)}{side} reaches {peak:.3g} m where the "
+                            f"wheels go (more than {MAX_ROAD_FEATURE} m); {road_advice(road)}",
+                            subject="road" + side, value=peak, threshold=MAX_ROAD_FEATURE))
     skew = float(crossing.bridge.skew)
     if abs(skew) > OBLIQUE_MESH_ADVISED_SKEW:
-        out.append(f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the skew (oblique mesh), "
-                   f"which grillage practice keeps to skews up to {OBLIQUE_MESH_ADVISED_SKEW:g}° (ospgrillage's meshing rules); expect "
-                   "transverse load sharing near the obtuse corners to be less accurate")
-    out += point_warnings(crossing, response_x, response_y)
+        out.append(Flag("oblique_mesh", f"bridge.deck.skew = {skew:g}°: the grillage's transverse members run along the "
+                        f"skew (oblique mesh), which grillage practice keeps to skews up to {OBLIQUE_MESH_ADVISED_SKEW:g}° "
+                        "(ospgrillage's meshing rules); expect transverse load sharing near the obtuse corners to be "
+                        "less accurate", subject="bridge.deck.skew", value=skew, threshold=OBLIQUE_MESH_ADVISED_SKEW))
+    out += point_flags(crossing, response_x, response_y)
     if crossing.dt is not None:
-        out += step_warnings(crossing, float(crossing.dt))
+        out += step_flags(crossing, float(crossing.dt))
     return out
 
 
-def road_origin(label: str) -> str:
-    """The road named by its profile's label (``vbikit.scenario.build.build_road``: "class F, seed 1",
-    "measured f.csv", either with " + <defect> at <x> m" appended): "random class-F road (seed 1)",
-    "measured profile (f.csv)", "road (…)" otherwise."""
-    base = label.split(" + ")[0]
-    if base.startswith("class ") and ", seed " in base:
-        cls, seed = base[len("class "):].split(", seed ", 1)
-        seed = seed.split(",")[0]  # (a right wheel line's label goes on: ", right line (coherence …)")
-        return f"random class-{cls} road (seed {seed}{', with defects' if ' + ' in label else ''})"
-    if base.startswith("measured "):
-        return f"measured profile ({base[len('measured '):]}{', with defects' if ' + ' in label else ''})"
-    return f"road ({label})" if label else "road profile"
+def road_origin(road: RoadProfile) -> str:
+    """The road named by its origin (``RoadProfile.origin``, set where the profile is made: a scenario's
+    [road], a profile file, ``with_defects``): "random class-F road (seed 1)", "measured profile
+    (f.csv)", either with ", with defects"; "road (<label>)" for a profile of unknown origin."""
+    o = road.origin
+    defects = ", with defects" if o is not None and o.defects else ""
+    if o is not None and o.kind == "random":
+        what = f"random class-{o.road_class} road" if o.road_class else "random road"
+        return f"{what} (seed {o.seed}{defects})"
+    if o is not None and o.kind == "measured":
+        return f"measured profile ({o.file}{defects})"
+    return f"road ({road.label})" if road.label else "road profile"
 
 
-def road_advice(label: str) -> str:
+def road_advice(road: RoadProfile) -> str:
     """What to check for a road elevation over ``MAX_ROAD_FEATURE``, by the profile's origin (``road_origin``)."""
+    o = road.origin
     checks = []
-    if label.startswith("measured "):
+    if o is not None and o.kind == "measured":
         checks.append("the profile file's unit (elevations are in metres)")
-    if " + " in label:
+    if o is not None and o.defects:
         checks.append("the defect sizes (metres)")
-    if ", seed " in label.split(" + ")[0]:
+    if o is not None and o.kind == "random":
         checks.append("the road class: a random road this rough lies beyond the range the vehicle and tire models "
                       "are meant for (wheels leave the road)")
     return "check " + ("; ".join(checks) or "the profile's unit (elevations are in metres)")
 
 
-def point_warnings(crossing: Crossing, x: float | None = None, y: float | None = None) -> list[str]:
-    """A response point (x, y) [m] at or next to a support (within ``SUPPORT_MARGIN`` of the
-    span, along the span from the point's own support line on a skew deck)."""
+def point_flags(crossing: Crossing, x: float | None = None, y: float | None = None,
+                name: str | None = None) -> list[Flag]:
+    """A response point (x, y) [m] (``name``: the point's name) at or next to a support (within
+    ``SUPPORT_MARGIN`` of the span, along the span from the point's own support line on a skew deck)."""
     bridge = crossing.bridge
     span = bridge.span
     y = bridge.default_response_y if y is None else float(y)
     x = bridge.default_x_at(y) if x is None else float(x)
     xi = float(bridge.span_coordinate(x, y))
     if min(xi, span - xi) < SUPPORT_MARGIN * span:
-        return [f"response.x = {x:g} m is at or next to a support (span {span:g} m): the static response there is "
-                "near zero and the impact factor is not meaningful"]
+        return [Flag("point_near_support", f"response.x = {x:g} m is at or next to a support (span {span:g} m): the "
+                     "static response there is near zero and the impact factor is not meaningful",
+                     output="impact_factor", subject=f"x = {x:g} m, y = {y:g} m", point=name,
+                     value=min(xi, span - xi) / span, threshold=SUPPORT_MARGIN)]
     return []
 
 
-def step_warnings(crossing: Crossing, dt: float) -> list[str]:
-    """Warnings about a user's step ``dt`` [s], judged against the integrator's own automatic step
+def step_flags(crossing: Crossing, dt: float) -> list[Flag]:
+    """Flags about a user's step ``dt`` [s], judged against the integrator's own automatic step
     ([`vbikit.solve.timestep.choose_time_step`][vbikit.solve.choose_time_step] without a dt — the one rule per integrator):
     a coarser step, and bridge modes the automatic step resolves (≥ 5 steps a period) but ``dt``
     does not.  An integrator whose automatic step leaves modes unresolved (one that integrates
-    the modes exactly) gets no mode warning."""
+    the modes exactly) gets no mode flag."""
     auto = choose_time_step(replace(crossing, dt=None))
     out = []
     if dt > auto * (1 + 1e-9):
-        out.append(f"crossing.dt = {dt:.3g} s is coarser than the automatic step {auto:.3g} s of this crossing "
-                   f"({crossing.integrator}); results lose accuracy — leave dt out for the automatic step")
+        out.append(Flag("coarse_step", f"crossing.dt = {dt:.3g} s is coarser than the automatic step {auto:.3g} s of this "
+                        f"crossing ({crossing.integrator}); results lose accuracy — leave dt out for the automatic step",
+                        subject="crossing.dt", value=dt, threshold=auto))
     f = crossing.bridge.frequencies_hz
     unresolved = f[(f * dt > 1.0 / STEPS_PER_PERIOD) & (f * auto <= 1.0 / STEPS_PER_PERIOD)]
     if unresolved.size:
-        out.append(f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
-                   f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes "
-                   f"({unresolved.min():.4g}–{unresolved.max():.4g} Hz) are not resolved; use a smaller dt or fewer modes")
+        out.append(Flag("unresolved_modes", f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
+                        f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes "
+                        f"({unresolved.min():.4g}–{unresolved.max():.4g} Hz) are not resolved; use a smaller dt or fewer modes",
+                        subject="crossing.dt", value=float(unresolved.max()), threshold=1 / (STEPS_PER_PERIOD * dt)))
     return out
 
 
-def contact_warnings(result: CrossingResult) -> list[str]:
-    """One warning per wheel whose tire lost contact: where first (wheel x [m]), when, for how long —
-    on the bridge (the deck's x extent) when it lost contact there, else that it did so only before
-    or after the bridge."""
+def wheel_track_ends(result: CrossingResult) -> NDArray[np.float64]:
+    """(n_wheels, 2): x [m] where each wheel's own track enters and leaves the deck, the support lines
+    at the wheel's deck y (the lateral y of its contact points, ``Crossing.point_kinematics``): ξ = 0
+    and ξ = span with ξ = ``bridge.span_coordinate(x, y)``, i.e. x = y·tan θ and span + y·tan θ on a
+    skew deck — a stretch as long as the span, shorter than the deck's full x range
+    (``deck_extent``), which holds every track's ends."""
+    crossing = result.crossing
+    bridge = crossing.bridge
+    _, _, y_points = crossing.point_kinematics()
+    wheel = np.asarray(crossing.contact.wheel, np.int64)
+    n_w = len(crossing.vehicle.wheels)
+    y = np.bincount(wheel, weights=y_points, minlength=n_w) / np.maximum(np.bincount(wheel, minlength=n_w), 1)
+    start = -np.asarray(bridge.span_coordinate(np.zeros(n_w), y), float)
+    return np.stack([start, start + float(bridge.span)], axis=1)
+
+
+def wheels_on_deck(result: CrossingResult) -> NDArray[np.bool_]:
+    """Whether each wheel centre is on its own track's stretch of the deck at each time, (n_t, n_wheels)
+    (``wheel_track_ends``)."""
+    x, ends = result.wheel_positions(), wheel_track_ends(result)
+    return (x >= ends[None, :, 0]) & (x <= ends[None, :, 1])
+
+
+def contact_flags(result: CrossingResult) -> list[Flag]:
+    """One flag per wheel whose tire lost contact: where first (wheel x [m]), when, for how long —
+    on the bridge (its own track on the deck, ``wheels_on_deck``) when it lost contact there, else
+    that it did so only before or after the bridge."""
     out = []
     forces, dt = result.wheel_forces, result.dt
     x_wheel = result.wheel_positions()
+    on_deck: NDArray[np.bool_] | None = None
     for w, wheel in enumerate(result.crossing.vehicle.wheels):
         if wheel.stiffness <= 0:
             continue
         off = forces[:, w] <= 0.0
         if not off.any():
             continue
-        x0, x1 = result.crossing.bridge.deck_extent
-        on = (x_wheel[:, w] >= x0) & (x_wheel[:, w] <= x1)
+        on_deck = wheels_on_deck(result) if on_deck is None else on_deck
+        on = on_deck[:, w]
         if (off & on).any():  # where it matters: on the deck
             i = int(np.argmax(off & on))
             away = float((off & ~on).sum() * dt)
-            out.append(f"wheel {wheel.name} lost contact with the road on the bridge: first at x = "
-                       f"{float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), for "
-                       f"{float((off & on).sum() * dt):.4f} s on the bridge"
-                       + (f" (and {away:.4f} s off it)" if away > 0 else ""))
+            t_on = float((off & on).sum() * dt)
+            out.append(Flag("contact_loss", f"wheel {wheel.name} lost contact with the road on the bridge: first at x = "
+                            f"{float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), for "
+                            f"{t_on:.4f} s on the bridge" + (f" (and {away:.4f} s off it)" if away > 0 else ""),
+                            subject=f"wheel {wheel.name}", wheel=wheel.name, value=t_on))
             continue
         i = int(np.argmax(off))
-        where = ("before the bridge" if (x_wheel[off, w] < x0).all() else
-                 "after the bridge" if (x_wheel[off, w] > x1).all() else "before and after the bridge")
-        out.append(f"wheel {wheel.name} lost contact with the road only {where} (x from {x0:g} to {x1:g} m): "
-                   f"first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
-                   f"for {float(off.sum() * dt):.4f} s in all")
+        lo, hi = map(float, wheel_track_ends(result)[w])
+        where = ("before the bridge" if (x_wheel[off, w] < lo).all() else
+                 "after the bridge" if (x_wheel[off, w] > hi).all() else "before and after the bridge")
+        out.append(Flag("contact_loss", f"wheel {wheel.name} lost contact with the road only {where} (its track on the deck: "
+                        f"x from {lo:.3f} to {hi:.3f} m): first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
+                        f"for {float(off.sum() * dt):.4f} s in all", subject=f"wheel {wheel.name}", wheel=wheel.name,
+                        value=0.0))
     return out
 
 
 def airborne_wheels(result: CrossingResult, fraction: float = AIRBORNE_FRACTION) -> list[tuple[str, float, float]]:
-    """The wheels airborne (tire force ≤ 0) on the bridge (the deck's x extent) for more than
-    ``fraction`` of their own time on it: (wheel name, time airborne there [s], that fraction)."""
+    """The wheels airborne (tire force ≤ 0) on the bridge for more than ``fraction`` of their own time
+    on it (each on its own track's stretch of the deck, ``wheels_on_deck``): (wheel name, time
+    airborne there [s], that fraction)."""
     out = []
-    x_wheel, forces, dt = result.wheel_positions(), result.wheel_forces, result.dt
-    x0, x1 = result.crossing.bridge.deck_extent
+    forces, dt = result.wheel_forces, result.dt
+    on_deck = wheels_on_deck(result)
     for w, wheel in enumerate(result.crossing.vehicle.wheels):
         if wheel.stiffness <= 0:
             continue
-        on = (x_wheel[:, w] >= x0) & (x_wheel[:, w] <= x1)
+        on = on_deck[:, w]
         n_on = int(on.sum())
         share = int(((forces[:, w] <= 0.0) & on).sum()) / n_on if n_on else 0.0
         if share > fraction:
@@ -220,45 +380,42 @@ def airborne_wheels(result: CrossingResult, fraction: float = AIRBORNE_FRACTION)
     return out
 
 
-def airborne_warnings(result: CrossingResult) -> list[str]:
-    """One warning when wheels were airborne on the bridge for a significant time (``airborne_wheels``):
+def airborne_flags(result: CrossingResult) -> list[Flag]:
+    """One flag when wheels were airborne on the bridge for a significant time (``airborne_wheels``):
     the impact factors are dominated by point-contact impacts, not design values."""
     wheels = airborne_wheels(result)
     if not wheels:
         return []
     k = int(np.argmax([s for _, _, s in wheels]))
     name, t, share = wheels[k]
-    return [f"{AIRBORNE_WARNING_START}: {len(wheels)} wheel{'s' if len(wheels) > 1 else ''} left the road on the bridge "
-            f"for more than {AIRBORNE_FRACTION:.0%} of their time on it (longest: {name}, {t:.3g} s, {share:.0%}); "
-            "the impact factors are dominated by the vehicle leaving and landing on the road (point-contact impacts), "
-            "so they are not design values; the road is beyond the model's intended range"]
+    return [Flag("airborne_wheels",
+                 f"impact factors dominated by airborne wheels: {len(wheels)} wheel{'s' if len(wheels) > 1 else ''} left "
+                 f"the road on the bridge for more than {AIRBORNE_FRACTION:.0%} of their time on it (longest: {name}, "
+                 f"{t:.3g} s, {share:.0%}); the impact factors are dominated by the vehicle leaving and landing on the "
+                 "road (point-contact impacts), so they are not design values; the road is beyond the model's "
+                 "intended range", output="impact_factor", subject=f"wheel {name}", wheel=name, value=share,
+                 threshold=AIRBORNE_FRACTION)]
 
 
-def impact_dominated(warnings: Sequence[str]) -> bool:
-    """Whether a run's ``warnings`` hold the airborne-wheels warning (``airborne_warnings``)."""
-    return any(w.startswith(AIRBORNE_WARNING_START) for w in warnings)
-
-
-def strain_convergence_warnings(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,
-                                where: str = "") -> list[str]:
-    """A warning when the static strain peak of the modes ``modal_static_peak`` differs from the exact
+def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,
+                             where: str = "", point: str | None = None) -> list[Flag]:
+    """A flag when the static strain peak of the modes ``modal_static_peak`` differs from the exact
     one ``exact_static_peak`` (None: not known; nothing) by more than ``STRAIN_MODE_TOLERANCE``: the
-    strain and its IM (ε_dyn / ε_st − 1) are not converged in the ``n_modes`` modes."""
+    strain and its IM (ε_dyn / ε_st − 1) are not converged in the ``n_modes`` modes (``where``: the
+    point in words, ``point``: its name)."""
     if exact_static_peak is None or not exact_static_peak:
         return []
     err = (float(modal_static_peak) - float(exact_static_peak)) / abs(float(exact_static_peak))
     if abs(err) <= STRAIN_MODE_TOLERANCE:
         return []
-    return [f"{STRAIN_WARNING_START}{f' at {where}' if where else ''}: the static strain peak of the {n_modes} modes, "
-            f"{float(modal_static_peak) * 1e6:.4g} µε, is {err:+.1%} off the exact {float(exact_static_peak) * 1e6:.4g} µε "
-            f"(c/EI times the static moment of the full stiffness; flagged beyond {STRAIN_MODE_TOLERANCE:.0%}): strain "
-            "sums the modes' curvatures, which converge slowly near a moving load, so the strain and the strain IM "
-            "are not reliable; use more modes (bridge.n_modes) or the moment's IM"]
-
-
-def strain_unconverged(warnings: Sequence[str]) -> bool:
-    """Whether a run's ``warnings`` hold the strain-convergence warning (``strain_convergence_warnings``)."""
-    return any(w.startswith(STRAIN_WARNING_START) for w in warnings)
+    return [Flag("strain_not_converged",
+                 f"strain not converged in the modes{f' at {where}' if where else ''}: the static strain peak of the "
+                 f"{n_modes} modes, {float(modal_static_peak) * 1e6:.4g} µε, is {err:+.1%} off the exact "
+                 f"{float(exact_static_peak) * 1e6:.4g} µε (c/EI times the static moment of the full stiffness; flagged "
+                 f"beyond {STRAIN_MODE_TOLERANCE:.0%}): strain sums the modes' curvatures, which converge slowly near a "
+                 "moving load, so the strain and the strain IM are not reliable; use more modes (bridge.n_modes) or the "
+                 "moment's IM", output="strain_impact_factor", subject=where or None, point=point, value=err,
+                 threshold=STRAIN_MODE_TOLERANCE)]
 
 
 def small_static_mask(static_peaks: ArrayLike, axis: int = -1, fraction: float = SMALL_STATIC_FRACTION
@@ -276,10 +433,14 @@ def small_static(static_peaks: Sequence[float], fraction: float = SMALL_STATIC_F
     return small_static_mask(static_peaks, fraction=fraction).tolist()
 
 
-def small_static_warnings(labels: Sequence[str], static_peaks: Sequence[float], impact_factors: Sequence[float],
-                          strain_impact_factors: Sequence[float] | None = None) -> list[str]:
-    """One warning per deflection impact factor in ``impact_factors`` whose static peak deflection
-    [m] in ``static_peaks`` (same order, ``labels`` naming each: "Girder 1", "point p2") is small
+def small_static_flags(labels: Sequence[str], static_peaks: Sequence[float], impact_factors: Sequence[float],
+                       strain_impact_factors: Sequence[float] | None = None,
+                       girders: Sequence[int | None] | None = None, points: Sequence[str | None] | None = None,
+                       output: str = "impact_factor") -> list[Flag]:
+    """One flag per deflection impact factor in ``impact_factors`` whose static peak deflection
+    [m] in ``static_peaks`` (same order, ``labels`` naming each: "Girder 1", "point p2"; ``girders``,
+    ``points``: each one's girder number and point name, None where not one; ``output``: the summary key
+    of the impact factors) is small
     (``small_static``): the IM (and the strain IM beside it when given), the static peak, its share
     of the largest and why it is not a design value."""
     flags = small_static(static_peaks)
@@ -287,21 +448,27 @@ def small_static_warnings(labels: Sequence[str], static_peaks: Sequence[float], 
         return []
     k = int(np.argmax(np.abs(np.asarray(static_peaks, float))))
     top = abs(float(static_peaks[k]))
-    strain = [None] * len(flags) if strain_impact_factors is None else list(strain_impact_factors)
-    return [f"{label}: IM = {im:.3g}{'' if e is None else f' (strain IM {e:.3g})'} rests on a static deflection of "
-            f"{abs(float(st)) * 1e3:.3g} mm, {abs(float(st)) / top:.0%} of the largest on the bridge "
-            f"({top * 1e3:.3g} mm, {labels[k]}; "
-            f"flagged below {SMALL_STATIC_FRACTION:.0%}): a lightly loaded section, where a small dynamic increment "
-            "divided by a small static response gives a large IM; unreliable as a design value — use the most "
-            "loaded girder's or point's IM"
-            for label, st, im, e, flag in zip(labels, static_peaks, impact_factors, strain, flags) if flag]
+    n = len(flags)
+    strain = [None] * n if strain_impact_factors is None else list(strain_impact_factors)
+    girders = [None] * n if girders is None else list(girders)
+    points = [None] * n if points is None else list(points)
+    return [Flag("small_static",
+                 f"{label}: IM = {im:.3g}{'' if e is None else f' (strain IM {e:.3g})'} rests on a static deflection of "
+                 f"{abs(float(st)) * 1e3:.3g} mm, {abs(float(st)) / top:.0%} of the largest on the bridge "
+                 f"({top * 1e3:.3g} mm, {labels[k]}; "
+                 f"flagged below {SMALL_STATIC_FRACTION:.0%}): a lightly loaded section, where a small dynamic increment "
+                 "divided by a small static response gives a large IM; unreliable as a design value — use the most "
+                 "loaded girder's or point's IM", output=output, subject=label, girder=g, point=p,
+                 value=abs(float(st)) / top, threshold=SMALL_STATIC_FRACTION)
+            for label, st, im, e, g, p, flag in zip(labels, static_peaks, impact_factors, strain, girders, points, flags)
+            if flag]
 
 
-def effect_static_warnings(effects: Sequence[tuple[str, str, str, float, float]]) -> list[str]:
+def effect_static_flags(effects: Sequence[tuple[str, str, str, float, float]]) -> list[Flag]:
     """The small-static rule (``small_static``) for load effects: ``effects`` as (kind, label, units,
     static peak, impact factor), each kind (moment, shear, reaction) judged against the largest static
     peak of its own kind among them (a moment of Girder 1 against that of Girder 4, never against a
-    shear); one warning per flagged effect, as ``small_static_warnings`` words it for deflections."""
+    shear); one flag per flagged effect, as ``small_static_flags`` words it for deflections."""
     out = []
     for kind in dict.fromkeys(k for k, *_ in effects):
         same = [e for e in effects if e[0] == kind]
@@ -309,17 +476,20 @@ def effect_static_warnings(effects: Sequence[tuple[str, str, str, float, float]]
             continue
         peaks = [abs(float(e[3])) for e in same]
         k = int(np.argmax(peaks))
-        out += [f"{label}: IM = {im:.3g} rests on a static {kind} of {abs(float(st)):.4g} {units}, "
-                f"{abs(float(st)) / peaks[k]:.0%} of the largest {kind} of the run's load effects "
-                f"({peaks[k]:.4g} {units}, {same[k][1]}; flagged below {SMALL_STATIC_FRACTION:.0%}): a lightly loaded "
-                "section, where a small dynamic increment divided by a small static response gives a large IM; "
-                "unreliable as a design value"
+        out += [Flag("small_static",
+                     f"{label}: IM = {im:.3g} rests on a static {kind} of {abs(float(st)):.4g} {units}, "
+                     f"{abs(float(st)) / peaks[k]:.0%} of the largest {kind} of the run's load effects "
+                     f"({peaks[k]:.4g} {units}, {same[k][1]}; flagged below {SMALL_STATIC_FRACTION:.0%}): a lightly "
+                     "loaded section, where a small dynamic increment divided by a small static response gives a "
+                     "large IM; unreliable as a design value", output=kind, subject=label,
+                     value=abs(float(st)) / peaks[k], threshold=SMALL_STATIC_FRACTION)
                 for (_, label, units, st, im), flag in zip(same, small_static(peaks)) if flag]
     return out
 
 
 def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray) -> list[str]:
-    """Warnings for a dataset of many crossings: ``static_peaks`` (..., n_points) the static peak
+    """Warnings for a dataset of many crossings (its ``warnings`` attribute, not a summary):
+    ``static_peaks`` (..., n_points) the static peak
     deflections of the points ``names`` in every crossing; one sentence per point whose impact
     factor rests on a small static reference (``small_static`` across the points of a crossing)
     in some of the crossings, with how many."""
@@ -331,8 +501,8 @@ def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray
             for name, k in zip(names, flags.sum(axis=0)) if k]
 
 
-def run_warnings(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[str]:
-    """Every warning about a finished crossing: its inputs, its contact losses and wheels airborne long
+def run_flags(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[Flag]:
+    """Every flag about a finished crossing: its inputs, its contact losses and wheels airborne long
     enough to dominate the impact factors."""
-    return (input_warnings(result.crossing, result.dt, response_x, response_y) + contact_warnings(result)
-            + airborne_warnings(result))
+    return (input_flags(result.crossing, result.dt, response_x, response_y) + contact_flags(result)
+            + airborne_flags(result))

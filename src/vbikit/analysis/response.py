@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.checks import run_warnings, small_static_warnings, strain_convergence_warnings
+from vbikit.analysis.checks import Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
@@ -247,9 +247,9 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         **crossing_outputs,
-        "warnings": run_warnings(result, response.x, response.y) + strain_warnings(result, response) + static_reference_warnings(
+        **flag_fields(run_flags(result, response.x, response.y) + strain_warnings(result, response) + static_reference_warnings(
             girders or [], points if points is not None else [{"name": point_name(1), "x": response.x, "y": response.y}
-                                                              | headline]),
+                                                              | headline])),
     } | ({"response_girder": response_girder,
           "lateral_offset": crossing.lateral_offset if crossing.single else [m.lateral_offset for m in crossing.vehicles],
           **girder_summary(girders)} if girders else {}) | ({} if crossing.single else {"vehicles": vehicle_summaries(result)})
@@ -261,7 +261,13 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     ``vbikit.bridge.effects``), with c/EI the ratio ε_i / r_i of every mode's strain to its moment —
     None where the bridge offers no moment at the point (no load effects, a point off the girder
     lines of a deck, a support) or the ratio is not the same for every mode (strain not c/EI times
-    the moment there).  Beams only: on a girder deck the modes' static strain does not converge to
+    the moment there).  A continuous beam gives c/EI of its section (``ContinuousBeam.strain_per_moment``):
+    its modes' strain is c times the Hermite elements' curvature and their moment comes from
+    equilibrium, which differ by up to 0.5 % over the 12 modes of the three-span example, yet the
+    modes' static strain converges to c/EI times the full-stiffness moment, not monotonically (that
+    example at x = 10 m, smooth road, point tires: within 1 % with 12 modes, −1.5 % with 16, within 1 %
+    with 64; tests/cli/test_airborne_and_strain_flags.py).
+    Beams only: on a girder deck the modes' static strain does not converge to
     c/EI times the full-stiffness moment (the 3D Bridge 2 example: 76.21, 75.67, 73.35 µε with 20, 40,
     100 modes against 75.92; a grillage girder's strain is read from the element, its moment from the
     full model), so a comparison would flag well-converged runs and advise more modes that move the
@@ -276,42 +282,53 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
         effect = bridge.load_effect("moment", response.x)
     except (ValueError, NotImplementedError):
         return None
-    r, eps = np.asarray(effect.modal, float), point_shapes(bridge, response.x, response.y)[1]
-    used = np.abs(r) > 1e-9 * float(np.max(np.abs(r), initial=0.0))
-    if not used.any():
+    section = getattr(bridge, "strain_per_moment", None)  # a continuous beam: c/EI of its section at x
+    if section is not None:
+        c_ei = section(response.x)
+    else:
+        r, eps = np.asarray(effect.modal, float), point_shapes(bridge, response.x, response.y)[1]
+        used = np.abs(r) > 1e-9 * float(np.max(np.abs(r), initial=0.0))
+        if not used.any():
+            return None
+        ratio = eps[used] / r[used]
+        c_ei = None if np.ptp(ratio) > 1e-6 * float(np.max(np.abs(ratio))) else float(ratio[0])
+    if c_ei is None:
         return None
-    ratio = eps[used] / r[used]
-    if np.ptp(ratio) > 1e-6 * float(np.max(np.abs(ratio))):
-        return None
-    static = load_effect_responses(result, [effect], check_step=False)[0].static * float(ratio[0])
+    static = load_effect_responses(result, [effect], check_step=False)[0].static * c_ei
     return float(static[np.argmax(np.abs(static))])
 
 
-def strain_warnings(result: CrossingResult, response: PointResponse) -> list[str]:
-    """The strain-convergence warning (``vbikit.analysis.checks.strain_convergence_warnings``) of the
-    headline point: its static strain peak from the modes against ``exact_static_strain_peak``."""
-    return strain_convergence_warnings(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
-                                       int(result.crossing.bridge.omega.size),
-                                       f"x = {response.x:.3f} m, y = {response.y:.3f} m")
+def strain_warnings(result: CrossingResult, response: PointResponse) -> list[Flag]:
+    """The strain-convergence flag (``vbikit.analysis.checks.strain_convergence_flags``) of the
+    headline point (``point_name(1)``): its static strain peak from the modes against ``exact_static_strain_peak``."""
+    return strain_convergence_flags(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
+                                    int(result.crossing.bridge.omega.size),
+                                    f"x = {response.x:.3f} m, y = {response.y:.3f} m", point_name(1))
 
 
-def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[str]:
-    """The small-static-reference warnings (``vbikit.analysis.checks.small_static_warnings``) of a
+def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[Flag]:
+    """The small-static-reference flags (``vbikit.analysis.checks.small_static_flags``) of a
     crossing's deflection impact factors: every girder at the headline section and every response
-    point (``point_entries``; a point on a girder's section is that girder's entry), against the
-    largest static peak among them all."""
+    point (``point_entries``; a point on a girder's section is that girder's entry, its flag naming
+    the point too), against the largest static peak among them all."""
     labels = [f"Girder {g}" for g in range(1, len(girders) + 1)]
+    numbers: list[int | None] = list(range(1, len(girders) + 1))
+    names: list[str | None] = [None] * len(girders)
     statics = [r.displacement_impact.static_peak for r in girders]
     ims = [r.displacement_impact.impact_factor for r in girders]
     strains = [r.strain_impact.impact_factor for r in girders]
     for p in points:
-        if any(abs(r.x - float(p["x"])) < 1e-9 and abs(r.y - float(p["y"])) < 1e-9 for r in girders):
+        on = [g for g, r in enumerate(girders) if abs(r.x - float(p["x"])) < 1e-9 and abs(r.y - float(p["y"])) < 1e-9]
+        if on:
+            names[on[0]] = names[on[0]] or str(p["name"])
             continue
         labels.append(f"point {p['name']}")
+        numbers.append(None)
+        names.append(str(p["name"]))
         statics.append(float(p["max_static_displacement"]))
         ims.append(float(p["impact_factor"]))
         strains.append(float(p["strain_impact_factor"]))
-    return small_static_warnings(labels, statics, ims, strains) if len(statics) > 1 else []
+    return small_static_flags(labels, statics, ims, strains, numbers, names) if len(statics) > 1 else []
 
 
 def vehicle_summaries(result: CrossingResult) -> list[dict[str, object]]:
@@ -435,7 +452,9 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                       "first requested section, every section under sections, with the code allowances"),
     "shear": ("N", "shear forces (just right of x), as moment"),
     "reaction": ("N", "support reactions, as moment"),
-    "warnings": ("-", "messages about the inputs or the run (also printed on standard error)"),
+    "warnings": ("-", "messages about the inputs or the run (also printed on standard error): the flags' messages"),
+    "flags": ("-", "the checks' findings as records: code (the flag codes' table), message, output, subject, girder, "
+                   "point, wheel, value, threshold"),
     "inputs": ("-", "the inputs as run, every default filled in (units as in the scenario reference)"),
 }
 

@@ -294,6 +294,19 @@ class ContinuousBeam(ModalBridge):
         return self.neutral_axis_depth * self.nodal_modes.curvatures(x, 0)
 
     # ------------------------------------------------------------------ statics
+    def strain_per_moment(self, x: float) -> float | None:
+        """c / EI(x) [1/(N·m)]: the bottom-fibre strain per unit sagging moment at section x [m]
+        (ε = c·M/EI, Euler–Bernoulli), from the element holding x (damage included); None at a node
+        where EI changes (a damage boundary, a support between spans of different EI: no one value)."""
+        nodes = self.nodes
+        EI, _ = self.element_properties()
+        x = float(x)
+        k = int(np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, EI.size - 1))
+        j = int(np.argmin(np.abs(nodes - x)))
+        if abs(nodes[j] - x) <= 1e-9 * self.span and 0 < j < EI.size and EI[j - 1] != EI[j]:
+            return None
+        return float(self.neutral_axis_depth / EI[k])
+
     def static_deflection(self, x: ArrayLike, loads_x: ArrayLike, loads: ArrayLike) -> NDArray[np.float64]:
         """Full-stiffness static deflection [m] at x under point forces ``loads`` [N] (z up) at ``loads_x`` [m]."""
         K, _, free = self.assemble()

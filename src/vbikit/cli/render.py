@@ -64,9 +64,10 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
-    from vbikit.analysis.checks import impact_dominated, strain_unconverged
+    from vbikit.analysis.checks import has_flag
 
-    airborne, strain_off = impact_dominated(s.get("warnings", [])), strain_unconverged(s.get("warnings", []))
+    # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
+    airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
     typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if airborne else ''}  "
                f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if airborne or strain_off else ''})")
     if airborne:
@@ -75,12 +76,12 @@ def print_summary(run: Run) -> None:
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes (use more modes) "
                    "— see the warning")
-    from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
-    # one judgement of the small static references, as the warnings make it: the girders with the points
-    girder_static = list(s.get("girder_max_static_displacement", []))
-    small = small_static(girder_static + [p["max_static_displacement"] for p in s["points"]])
-    small_girders, small_points = small[:len(girder_static)], small[len(girder_static):]
+    # the run's one judgement of the small static references: its small_static flags (girders and points)
+    small_girders = [has_flag(s, "small_static", output="impact_factor", girder=g)
+                     for g in range(1, len(s.get("girder_max_static_displacement", [])) + 1)]
+    small_points = [has_flag(s, "small_static", output="impact_factor", point=p["name"]) for p in s["points"]]
     if len(s["points"]) > 1:
         print_points(s["points"], small_points)
     for i, v in enumerate(s.get("vehicles", []), start=1):
@@ -152,8 +153,8 @@ def print_load_effects(s: dict[str, Any]) -> None:
 
 def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:
     """One line per response point ([[response.points]]): where, static and dynamic peaks, IMs; "!"
-    marks an IM on a small static reference (``small``: per point, ``vbikit.analysis.checks.small_static``
-    against the points' and the girders' peaks)."""
+    marks an IM on a small static reference (``small``: per point, whether the run flags it
+    ``small_static``, ``vbikit.analysis.checks``)."""
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
     typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {'static [mm]':>12} {'dynamic [mm]':>13} {'IM':>8} "

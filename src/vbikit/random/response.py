@@ -31,7 +31,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.checks import small_static_warnings
+from vbikit.analysis.checks import Flag, flag_fields, small_static_flags
 from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
 from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -270,17 +270,19 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
     grid = max(_grid_change(pem, "displacement", slice(0, n_pt)), _grid_change(pem, "acceleration", slice(0, n_pt)),
                pem.grid_change("wheel_force"), *(_grid_change(pem, "displacement", slice(j, j + 1))
                                                  for j in range(n_pt, n_pt + len(effects))))
-    warnings = []
+    flags = []
     if p_lift > LIFT_OFF_LIMIT:
-        warnings.append(f"a tire lifts off with probability {p_lift:.2g} at some instant (> {LIFT_OFF_LIMIT:g}): the "
-                        "linear theory does not hold there; use Monte Carlo (several road seeds, tires that can lift)")
+        flags.append(Flag("lift_off", f"a tire lifts off with probability {p_lift:.2g} at some instant (> {LIFT_OFF_LIMIT:g}): "
+                          "the linear theory does not hold there; use Monte Carlo (several road seeds, tires that can lift)",
+                          value=p_lift, threshold=LIFT_OFF_LIMIT))
     if grid > GRID_LIMIT:
-        warnings.append(f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every second line")
+        flags.append(Flag("coarse_grid", f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every "
+                          "second line", value=grid, threshold=GRID_LIMIT))
     if len(entries) > 1 and all("static_peak" in e for e in entries):  # a point's mean IM on a small static
         # reference (vbikit.analysis.checks); peaks="study" has no statistics of the further points
-        warnings += small_static_warnings([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],
-                                          [e["static_peak"] for e in entries],
-                                          [e["impact_factor_mean"] for e in entries])
+        flags += small_static_flags([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],
+                                    [e["static_peak"] for e in entries],
+                                    [e["impact_factor_mean"] for e in entries], output="impact_factor_mean")
     head = entries[0]
     vehicle = crossing.vehicle
     summary: dict[str, Any] = {
@@ -302,7 +304,7 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
         "quality": QUALITY,
         "points": entries,
         "effects": effect_entries,
-        "warnings": warnings,
+        **flag_fields(flags),
         "seconds": _time.perf_counter() - started,
     }
     return summary

@@ -25,7 +25,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.road.profile import RoadProfile
+from vbikit.road.profile import RoadOrigin, RoadProfile
 
 DefectKind = Literal["depression", "bump", "step", "pothole"]
 Shape = Literal["trapezoid", "cosine", "step"]
@@ -142,4 +142,6 @@ def with_defects(profile: RoadProfile, defects: list[Defect] | tuple[Defect, ...
     x = x[(x >= profile.x[0]) & (x <= profile.x[-1])]
     z = profile.elevation(x) + sum(d.offset(x) for d in defects)
     label = profile.label + " + " + ", ".join(f"{d.kind} at {d.start:g} m" for d in defects)
-    return replace(profile, x=x, z=z, label=label, resolution=min(finest))
+    origin = profile.origin or RoadOrigin()
+    origin = replace(origin, defects=origin.defects + tuple(d.kind for d in defects))
+    return replace(profile, x=x, z=z, label=label, resolution=min(finest), origin=origin)

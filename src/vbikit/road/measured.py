@@ -7,7 +7,7 @@ import numpy as np
 
 from vbikit._files import csv_rows, read_text
 from vbikit.errors import VbikitError
-from vbikit.road.profile import RoadProfile
+from vbikit.road.profile import RoadOrigin, RoadProfile
 
 
 def _is_number(text: str) -> bool:
@@ -54,4 +54,4 @@ def read_profile_csv(path: str | Path) -> RoadProfile:
         zs.append(z)
     if len(xs) < 2:
         raise RoadFileError(f"{path}: needs at least 2 data rows, found {len(xs)}")
-    return RoadProfile(np.array(xs), np.array(zs), f"measured {path.name}")
+    return RoadProfile(np.array(xs), np.array(zs), f"measured {path.name}", origin=RoadOrigin("measured", file=path.name))

@@ -14,6 +14,33 @@ from numpy.typing import ArrayLike, NDArray
 
 
 @dataclass(frozen=True)
+class RoadOrigin:
+    """Where a road profile comes from, as data (the road warning names it and says what to check:
+    ``vbikit.analysis.checks.road_origin``).
+
+    Parameters
+    ----------
+    kind : str
+        "random" (from a PSD: [`random_profile`][vbikit.road.random_profile]), "measured" (a profile
+        file), "smooth" (r ≡ 0) or "" (given as arrays).
+    road_class : str, optional
+        A random road's class as the scenario names it ("A"…"H", "good"…, "psd").
+    seed : int, optional
+        A random road's seed.
+    file : str, optional
+        A measured profile's file name.
+    defects : tuple of str
+        The kinds of the defects added (``with_defects``), in order.
+    """
+
+    kind: str = ""
+    road_class: str | None = None
+    seed: int | None = None
+    file: str | None = None
+    defects: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
 class RoadProfile:
     """Road elevation r(x) [m] (z up) sampled at stations ``x`` [m], linear in between.
 
@@ -28,12 +55,16 @@ class RoadProfile:
     resolution : float, optional
         Length [m] of the shortest feature the time step must resolve (default: the finest
         sample spacing; see [`spacing`][vbikit.road.RoadProfile.spacing]).
+    origin : RoadOrigin, optional
+        Where the profile comes from, as data (set by ``random_profile``, ``read_profile_csv``,
+        ``with_defects``, ``flat``); None: not known.
     """
 
     x: NDArray[np.float64]
     z: NDArray[np.float64]
     label: str = ""
     resolution: float | None = None
+    origin: RoadOrigin | None = None
 
     def __post_init__(self) -> None:
         x, z = np.asarray(self.x, float), np.asarray(self.z, float)
@@ -49,7 +80,7 @@ class RoadProfile:
     @classmethod
     def flat(cls, x_min: float = -1e4, x_max: float = 1e4) -> "RoadProfile":
         """A perfectly smooth road (r ≡ 0) from x_min to x_max [m]."""
-        return cls(np.array([x_min, x_max], float), np.zeros(2), "smooth")
+        return cls(np.array([x_min, x_max], float), np.zeros(2), "smooth", origin=RoadOrigin("smooth"))
 
     @property
     def spacing(self) -> float:

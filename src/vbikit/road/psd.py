@@ -29,7 +29,7 @@ import numpy as np
 import scipy.fft as sp_fft
 from numpy.typing import NDArray
 
-from vbikit.road.profile import RoadProfile
+from vbikit.road.profile import RoadOrigin, RoadProfile
 
 #: [substitute] stations added on each side of a requested window (the profile still covers it
 #: after the crossing's own round-off)
@@ -123,6 +123,7 @@ def random_profile(
     x_start: float | None = None,
     label: str = "",
     window: tuple[float, float] | None = None,
+    origin: RoadOrigin | None = None,
 ) -> RoadProfile:
     """One random profile realisation by Eq. 7, reproducible from ``seed``.
 
@@ -144,7 +145,10 @@ def random_profile(
     window : (float, float), optional
         Only the stations covering x_lo … x_hi [m] (clipped to the period; module docstring):
         the same road there as without ``window``, at a fraction of the cost.
+    origin : RoadOrigin, optional
+        Where the road comes from (e.g. the scenario's road class); default a random road of ``seed``.
     """
+    origin = origin or RoadOrigin("random", seed=int(seed))
     if spacing <= 0:
         raise ValueError(f"road spacing must be > 0 m, got {spacing!r}")
     if psd.n_max > 0.5 / spacing:
@@ -160,14 +164,14 @@ def random_profile(
         shift = (2.0 * np.pi / n_samples) * ((k * first) % n_samples)
         band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0 + shift))
         z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, last - first + 1)
-        return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label)
+        return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label, origin=origin)
     band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
     coef = np.zeros(n_samples // 2 + 1, complex)
     coef[k] = band
     coef[n_samples // 2] *= 2.0  # irfft counts the Nyquist term once, the others twice (k = 0 is never in the band)
     z = np.fft.irfft(coef, n_samples)
     z *= 0.5 * n_samples  # = Re Σ_k coef_k exp(2πi k j / N): one real FFT (scaled in place: no second period-long array)
-    return RoadProfile(_stations(x0, spacing, n_samples), z, label)
+    return RoadProfile(_stations(x0, spacing, n_samples), z, label, origin=origin)
 
 
 @lru_cache(maxsize=4)
@@ -281,4 +285,4 @@ def correlated_profile(
     if other.x.shape != left.x.shape or not np.array_equal(other.x, left.x):
         raise ValueError("the left profile was not generated with the same spacing, length, x_start and window")
     z = coherence * left.z + np.sqrt(1.0 - coherence**2) * other.z
-    return RoadProfile(left.x, z, label or f"{left.label}, right line (coherence {coherence:g})")
+    return RoadProfile(left.x, z, label or f"{left.label}, right line (coherence {coherence:g})", origin=left.origin)

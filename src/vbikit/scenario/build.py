@@ -17,7 +17,7 @@ from vbikit.contact.registry import tire_model
 from vbikit.contact.tires import TireModel
 from vbikit.road.defects import Defect, with_defects
 from vbikit.road.measured import read_profile_csv
-from vbikit.road.profile import RoadProfile
+from vbikit.road.profile import RoadOrigin, RoadProfile
 from vbikit.road.psd import RoadPSD, correlated_profile, random_profile
 from vbikit.scenario.schema import (
     BridgeSpec,
@@ -213,7 +213,8 @@ def build_road(spec: RoadSpec, scenario: Scenario, window: tuple[float, float] |
 
     def make() -> RoadProfile:
         return with_defects(random_profile(road_psd(spec), spec.seed, spacing=spec.spacing, length=spec.length,
-                                           label=label, window=window), defects)
+                                           label=label, window=window,
+                                           origin=RoadOrigin("random", spec.road_class, spec.seed)), defects)
 
     return make() if window is not None else _ROADS.get(_road_key(spec, "left"), make)
 

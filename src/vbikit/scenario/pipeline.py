@@ -19,7 +19,7 @@ import logging
 from pathlib import Path
 from typing import Any, Mapping
 
-from vbikit.analysis.checks import effect_static_warnings, point_warnings
+from vbikit.analysis.checks import Flag, add_flags, effect_static_flags, point_flags
 from vbikit.analysis.effects import load_effect_report
 from vbikit.analysis.impact import static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -188,7 +188,7 @@ def _random_runs(plans: list[Plan], scenarios: list[Scenario], roads: list, quan
         raise ScenarioError(f"tire.model: {err}") from None
     for rr, scenario, p in zip(out, scenarios, plans):
         rr.summary = {"name": scenario.name, **rr.summary}
-        rr.summary["warnings"] += [w for w in p.warnings if w not in rr.summary["warnings"]]
+        add_flags(rr.summary, p.flags)
     return out
 
 
@@ -204,10 +204,10 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
                           check_step=asks_for_load_effects(scenario) or train, train=train)
     s = report.summary
-    s["warnings"] += [w for w in plan.warnings if w not in s["warnings"]]
+    add_flags(s, plan.flags)
     s["inputs"] = scenario_inputs(scenario, plan)
     nonfinite = json_safe(s)[1]  # JSON outputs write these as null, the text report as nan
-    s["warnings"] += [f"{key} is not a finite number (written as null)" for key in nonfinite]
+    add_flags(s, [Flag("non_finite", f"{key} is not a finite number (written as null)", output=key) for key in nonfinite])
     s |= {"units": summary_units(s), "references": _references(scenario)}
     return report
 
@@ -256,9 +256,11 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     first_effects = {kind: next(r for r in effects if r.effect is e) for kind, e in plan.first_effects.items()}
     s = summary(result, points[0], girders, first.girder, point_entries(result, plan, points), first_effects)
     s.update(effects_summary)
-    s["warnings"] += [r.step_warning for r in effects if r.step_warning and r.step_warning not in s["warnings"]]
-    s["warnings"] += effect_static_warnings([(r.effect.kind, r.effect.label, r.effect.units, r.impact.static_peak,
-                                              r.impact.impact_factor) for r in effects])
-    for p in points[1:]:
-        s["warnings"] += [w for w in point_warnings(result.crossing, p.x, p.y) if w not in s["warnings"]]
+    add_flags(s, [Flag("effect_step", r.step_warning, output=r.effect.kind, subject=r.effect.label,
+                       value=float(result.integration_dt or result.dt), threshold=float(r.recommended_dt))
+                  for r in effects if r.step_warning])
+    add_flags(s, effect_static_flags([(r.effect.kind, r.effect.label, r.effect.units, r.impact.static_peak,
+                                       r.impact.impact_factor) for r in effects]))
+    for name, p in zip(plan.point_names[1:], points[1:]):
+        add_flags(s, point_flags(result.crossing, p.x, p.y, name))
     return Report(name, result, plan, points, girders, effects, s)

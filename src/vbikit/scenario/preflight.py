@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from vbikit._kept import kept_for
-from vbikit.analysis.checks import input_warnings, point_warnings
+from vbikit.analysis.checks import Flag, input_flags, messages, point_flags
 from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
 from vbikit.scenario.build import BuiltScenario, build
@@ -30,18 +30,24 @@ MIN_STEPS = 10
 
 @dataclass(frozen=True)
 class Plan:
-    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and warnings;
-    ``run``: the crossing's [`RunPlan`][vbikit.solve.RunPlan] (``simulate(crossing, plan=run)``)."""
+    """A checked scenario: the built crossing, its step ``dt`` [s], the run estimate and the checks'
+    ``flags`` (``vbikit.analysis.checks.Flag``; ``warnings``: their messages); ``run``: the crossing's
+    [`RunPlan`][vbikit.solve.RunPlan] (``simulate(crossing, plan=run)``)."""
 
     scenario: Scenario
     built: BuiltScenario
     dt: float
     estimate: RunEstimate
-    warnings: list[str] = field(default_factory=list)
+    flags: list[Flag] = field(default_factory=list)
     run: RunPlan | None = None
 
+    @property
+    def warnings(self) -> list[str]:
+        """The flags' messages."""
+        return messages(self.flags)
 
-def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
+
+def defect_flags(scenario: Scenario, built: BuiltScenario) -> list[Flag]:
     """Defects that lie (partly) outside the bridge and its approach, where no wheel meets them."""
     crossing = built.crossing
     lo, hi = -crossing.approach, crossing.bridge.deck_extent[1]  # a skew deck ends beyond its span
@@ -50,8 +56,8 @@ def defect_warnings(scenario: Scenario, built: BuiltScenario) -> list[str]:
         start = d.position
         length = d.length if d.length is not None else 0.0
         if start < lo or start + length > hi:
-            out.append(f"road.defects.{i}: the {d.kind} at x = {start:g} … {start + length:g} m lies outside the "
-                       f"approach and the bridge (x = {lo:g} … {hi:g} m)")
+            out.append(Flag("defect_outside", f"road.defects.{i}: the {d.kind} at x = {start:g} … {start + length:g} m "
+                            f"lies outside the approach and the bridge (x = {lo:g} … {hi:g} m)", subject=f"road.defects.{i}"))
     return out
 
 
@@ -80,7 +86,7 @@ _ZERO_INFLUENCE = 1e-9
 HEAVY_AXLE = 226e3
 
 
-def axle_load_warnings(scenario: Scenario) -> list[str]:
+def axle_load_flags(scenario: Scenario) -> list[Flag]:
     """Axle trucks (``axle_loads``) with an axle far beyond legal limits (``HEAVY_AXLE``): possible (a
     permit load), but more often a unit slip."""
     entries = [("vehicle", scenario.vehicle)] if scenario.vehicle is not None else \
@@ -90,8 +96,9 @@ def axle_load_warnings(scenario: Scenario) -> list[str]:
         loads = spec.parameters.get("axle_loads") if "axle_loads" in (spec.model_extra or {}) else None
         if loads and max(loads) > HEAVY_AXLE:
             k = int(np.argmax(loads))
-            out.append(f"{key}.axle_loads: axle {k + 1} carries {loads[k] / 1e3:.4g} kN, far beyond legal single-axle "
-                       f"limits (≈ 89 kN US, 113 kN EU); axle loads are in N")
+            out.append(Flag("heavy_axle", f"{key}.axle_loads: axle {k + 1} carries {loads[k] / 1e3:.4g} kN, far beyond "
+                            "legal single-axle limits (≈ 89 kN US, 113 kN EU); axle loads are in N",
+                            subject=f"{key}.axle_loads", value=float(loads[k]), threshold=HEAVY_AXLE))
     return out
 
 
@@ -259,11 +266,11 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     run = check_steps(crossing, limits)
     check_response_points(built)
     check_load_effects(scenario, built)
-    warnings = input_warnings(crossing, run.dt, built.response_x, built.response_y) + defect_warnings(scenario, built) \
-        + axle_load_warnings(scenario)
-    for p in built.plan.points[1:]:  # the other points' own notes (a point near a support)
-        warnings += [w for w in point_warnings(crossing, p.x, p.y) if w not in warnings]
-    return Plan(scenario, built, run.dt, run.estimate, warnings, run)
+    flags = input_flags(crossing, run.dt, built.response_x, built.response_y) + defect_flags(scenario, built) \
+        + axle_load_flags(scenario)
+    for name, p in zip(built.plan.point_names[1:], built.plan.points[1:]):  # the other points' own notes (near a support)
+        flags += point_flags(crossing, p.x, p.y, name)
+    return Plan(scenario, built, run.dt, run.estimate, flags, run)
 
 
 def _vehicle_inputs(scenario: Scenario, c: Any) -> dict[str, Any]:

@@ -27,6 +27,7 @@ import math
 from dataclasses import replace
 from typing import Any, Callable, Iterator, Mapping, Sequence
 
+from vbikit.analysis.checks import Flag, add_flags
 from vbikit.analysis.effect_step import STEP_TOLERANCE, load_effect_step
 from vbikit.solve.budget import BudgetError, Limits
 from vbikit.solve.crossing import Crossing
@@ -151,7 +152,8 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], An
         if change <= STEP_TOLERANCE:
             return report
     if changes:
-        report.summary["warnings"].append(_advice(changes, worst, dt))
+        add_flags(report.summary, [Flag("step_not_converged", _advice(changes, worst, dt), output=worst or None,
+                                        value=changes[-1], threshold=STEP_TOLERANCE)])
     return report
 
 

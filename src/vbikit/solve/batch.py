@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import logging
 from concurrent.futures import ThreadPoolExecutor
-from typing import Callable, Iterable, Optional, TypeVar
+from typing import Callable, Iterable, Optional, Sequence, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -35,6 +35,23 @@ from vbikit.solve.timestep import choose_time_step
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
+
+
+def lane_chunks(steps: Sequence[float], threads: int = 1, lanes: int = MAX_LANES) -> list[tuple[float, list[int]]]:
+    """How ``BatchSolver.run_many`` splits crossings with time steps ``steps`` [s] into kernel calls: the
+    crossings of one step together (in order), each group cut into ``threads`` calls of at most ``lanes``
+    crossings — (step, indices of its crossings) per call.  A call of one crossing runs the integrator's
+    one-lane kernel, a call of several its many-lane kernel (``vbikit.solve.simulate.integrate``): a
+    batch no larger than ``threads``, or whose crossings all have different steps, never runs the
+    many-lane kernel (``vbikit.study.run.batch_kernels`` names the kernels by this split)."""
+    groups: dict[float, list[int]] = {}
+    for k, dt in enumerate(steps):
+        groups.setdefault(dt, []).append(k)
+    chunks = []
+    for dt, members in groups.items():
+        size = max(1, min(lanes, -(-len(members) // max(1, threads))))
+        chunks += [(dt, members[i:i + size]) for i in range(0, len(members), size)]
+    return chunks
 
 
 class BatchSolver:
@@ -104,13 +121,7 @@ class BatchSolver:
         pairs = [road if isinstance(road, tuple) else (road, None) for road in roads]
         crossings = [self.crossing(left, right) for left, right in pairs]
         keep = reduce if reduce is not None else (lambda result: result)
-        groups: dict[float, list[int]] = {}
-        for k, crossing in enumerate(crossings):
-            groups.setdefault(self.time_step(crossing), []).append(k)
-        chunks = []
-        for dt, members in groups.items():
-            size = max(1, min(lanes, -(-len(members) // max(1, threads))))
-            chunks += [(dt, members[i:i + size]) for i in range(0, len(members), size)]
+        chunks = lane_chunks([self.time_step(crossing) for crossing in crossings], threads, lanes)
 
         def fn(chunk):
             dt, members = chunk

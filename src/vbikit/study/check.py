@@ -81,7 +81,7 @@ def _step_advice(study: Study, limits: Limits | None) -> list[str]:
     checked = float(report.result.integration_dt or report.result.dt)
     if checked >= plan.dt * (1 - 1e-9):
         return []
-    unsettled = [w for w in report.summary["warnings"] if "not converged in the time step" in w]
+    unsettled = [f["message"] for f in report.summary["flags"] if f["code"] == "step_not_converged"]
     if unsettled:  # not even the finest checked step settles them
         return [f"base (the study's crossings run at the automatic step {plan.dt:.3g} s): {w}" for w in unsettled]
     return [f"base: the load effects' impact factors settle only at dt = {checked:.3g} s (step check of the base "

@@ -253,7 +253,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             progress(done, total)
 
     if todo:
-        _announce_compile(study, [batches[k] for k in todo], scheduler, workers)
+        _announce_compile(study, [batches[k] for k in todo], scheduler, workers, threads)
         if scheduler is not None:
             _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
         elif (workers or os.cpu_count() or 1) <= 1:
@@ -273,14 +273,18 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
     return ds
 
 
-def batch_kernels(study, batches) -> list:
-    """The compiled kernels the ``batches`` (tuples of grid indices) of ``study`` run, each once: a
-    parameter study's batch runs its crossings as the lanes of one call (``run_batch``:
-    ``BatchSolver.run_many``), so a batch of several crossings runs its integrator's many-lane kernel
-    (``Integrator.lanes_kernel``; ``newmark``/``exact``: ``lean_lanes``) and a batch of one its one-lane
-    kernel (``Integrator.kernel``; ``lean``); a job with its own ``run_batch`` (a traffic stream, a PEM
-    study) runs its crossings one at a time (one-lane kernel).  The integrator is the first
-    crossing's (``scenario_dict``; traffic: the default)."""
+def batch_kernels(study, batches, threads: int = 1) -> list:
+    """The compiled kernels the ``batches`` (tuples of grid indices) of ``study`` run with ``threads``
+    crossings at once in a worker, each once: a parameter study's batch runs its crossings as the lanes
+    of kernel calls (``run_batch``: ``BatchSolver.run_many``), split as ``vbikit.solve.batch.lane_chunks``
+    splits them — by time step (``batch_steps``), then into ``threads`` calls — so a call of several
+    crossings runs its integrator's many-lane kernel (``Integrator.lanes_kernel``; ``newmark``/``exact``:
+    ``lean_lanes``) and a call of one its one-lane kernel (``Integrator.kernel``; ``lean``): a batch of
+    one, a batch no larger than ``threads`` or one whose crossings all have different steps runs only
+    the one-lane kernel.  A job with its own ``run_batch`` (a traffic stream, a PEM study) runs its
+    crossings one at a time (one-lane kernel).  The integrator is the first crossing's (``scenario_dict``;
+    traffic: the default)."""
+    from vbikit.solve.batch import lane_chunks
     from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
 
     first = getattr(study, "scenario_dict", None)  # a parameter study's crossing (traffic: the default)
@@ -288,19 +292,48 @@ def batch_kernels(study, batches) -> list:
         or DEFAULT_INTEGRATOR
     integrator = get_integrator(name)
     one_at_a_time = hasattr(study, "run_batch") or first is None
-    sizes = {1 if one_at_a_time else min(len(b), 2) for b in batches}
+    sizes: set[int] = set()
+    steps: dict[str, float] = {}
+    for batch in batches:
+        if sizes >= {1, 2}:
+            break
+        if one_at_a_time or len(batch) == 1:
+            sizes.add(1)
+            continue
+        sizes |= {min(len(members), 2) for _, members in lane_chunks(batch_steps(study, batch, steps), threads)}
     makers = ([integrator.kernel] if 1 in sizes else []) + \
         ([integrator.lanes_kernel or integrator.kernel] if 2 in sizes else [])
     kernels = [make() for make in makers if make is not None]
     return [k for i, k in enumerate(kernels) if all(k is not o for o in kernels[:i])]
 
 
-def _announce_compile(study, batches, scheduler, workers) -> None:
-    """Say that the workers will compile the kernels the ``batches`` run (``batch_kernels``) first,
-    each not yet compiled with its expected time (instead of a progress bar frozen at 0 %)."""
+def batch_steps(study, batch, known: dict[str, float] | None = None) -> list[float]:
+    """The time step [s] of each crossing of ``batch`` (grid indices of ``study``): the rule ``simulate``
+    and ``BatchSolver.time_step`` apply (``vbikit.solve.timestep.choose_time_step``) to its built
+    crossing.  Computed once per set-up and road apart from the seed (``known``: kept across calls):
+    the seed changes the elevations, not the sample spacing the step depends on."""
+    from vbikit.scenario import build, parse_scenario
+    from vbikit.solve.timestep import choose_time_step
+
+    known = {} if known is None else known
+    out = []
+    for idx in batch:
+        d = study.scenario_dict(idx)
+        key = json.dumps(d | {"road": {k: v for k, v in (d.get("road") or {}).items() if k != "seed"}},
+                         sort_keys=True, default=str)
+        if key not in known:
+            known[key] = choose_time_step(build(parse_scenario(d, study.base_dir)).crossing)
+        out.append(known[key])
+    return out
+
+
+def _announce_compile(study, batches, scheduler, workers, threads: int = 1) -> None:
+    """Say that the workers will compile the kernels the ``batches`` run with ``threads`` crossings at
+    once (``batch_kernels``) first, each not yet compiled with its expected time (instead of a progress
+    bar frozen at 0 %)."""
     from vbikit.solve.compile_notice import announce_compile
 
-    kernels = batch_kernels(study, batches)
+    kernels = batch_kernels(study, batches, threads)
     if not kernels:
         return
     if scheduler is not None:
