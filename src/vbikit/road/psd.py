@@ -156,10 +156,7 @@ def random_profile(
     label = label or f"PSD phi0={psd.phi0:g}, seed {seed}"
     if window is not None:
         first, last = _window_samples(window, x0, spacing, n_samples)
-        # the shift to the window's first station, k·first (mod N), in the coefficients' own phase
-        shift = (2.0 * np.pi / n_samples) * ((k * first) % n_samples)
-        band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0 + shift))
-        z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, last - first + 1)
+        z = _window_sum(theta, amp, psd, spacing, length, x0, first, last - first + 1)
         return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label)
     band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
     coef = np.zeros(n_samples // 2 + 1, complex)
@@ -243,6 +240,44 @@ def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, m: int) -> 
     pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(m_kept))
     conv = sp_fft.ifft(sp_fft.fft(band * pre, size) * kernel)[:m]
     return np.real(post[:m] * conv)
+
+
+@lru_cache(maxsize=16)
+def _phase_origin(psd: RoadPSD, spacing: float, length: float, x0: float) -> NDArray[np.float64]:
+    """2π n_k x0 of Eq. 7 on the grid of ``_wavenumber_grid`` (read-only, kept per grid and start: the
+    same numbers as computed with each profile)."""
+    n_k = _wavenumber_grid(psd, spacing, length)[3]
+    phase = 2.0 * np.pi * n_k * x0
+    phase.setflags(write=False)
+    return phase
+
+
+def _window_sum(theta: NDArray[np.float64], amp: NDArray[np.float64], psd: RoadPSD, spacing: float, length: float,
+                x0: float, first: int, m: int) -> NDArray[np.float64]:
+    """Eq. 7 at the m stations j = first … first + m − 1 (x_j = x0 + j Δx) from the phases θ_k:
+    the coefficients amp_k exp(i(θ_k + 2π n_k x0 + 2π (k·first mod N)/N)) (the shift to the window's
+    first station in their own phase) summed by ``_band_sum``'s chirp-z convolution, each step in
+    place in one zero-padded buffer (the same operations, in the same order, as on separate arrays)."""
+    n_samples, _, k, _ = _wavenumber_grid(psd, spacing, length)
+    if k.size == 0:
+        return np.zeros(m)
+    m_kept = -(-m // WINDOW_QUANTUM) * WINDOW_QUANTUM
+    pre, kernel, post, size = _band_sum_factors(int(k[0]), int(k.size), int(n_samples), int(m_kept))
+    y = theta + _phase_origin(psd, spacing, length, x0)
+    shift = k * first
+    shift &= n_samples - 1  # k·first mod N (N a power of two, k·first >= 0)
+    y += (2.0 * np.pi / n_samples) * shift
+    buf = np.zeros(size, complex)
+    band = buf[:k.size]
+    band.imag = y
+    np.exp(band, out=band)  # exp(i y): the real part 0 (as 1j·y's ±0: exp of either is 1)
+    band *= amp
+    band *= pre
+    conv = sp_fft.fft(buf, overwrite_x=True)
+    conv *= kernel
+    conv = sp_fft.ifft(conv, overwrite_x=True)[:m]
+    conv *= post[:m]
+    return np.real(conv)
 
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -338,7 +338,8 @@ class Crossing:
         """The tire model's contact points under every wheel (several vehicles: each with its
         own tire, stacked in vehicle order)."""
         parts = [_contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
-        return parts[0] if len(parts) == 1 and self.single else stack_contact_points(parts, self.vehicle.dof_offsets)
+        # one vehicle: its own points (stacking one part gives the same arrays: no shift, no padding)
+        return parts[0] if len(parts) == 1 else stack_contact_points(parts, self.vehicle.dof_offsets)
 
     @cached_property
     def point_vehicle(self) -> NDArray[np.int64]:
