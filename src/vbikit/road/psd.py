@@ -256,23 +256,20 @@ def _window_sum(theta: NDArray[np.float64], amp: NDArray[np.float64], psd: RoadP
                 x0: float, first: int, m: int) -> NDArray[np.float64]:
     """Eq. 7 at the m stations j = first … first + m − 1 (x_j = x0 + j Δx) from the phases θ_k:
     the coefficients amp_k exp(i(θ_k + 2π n_k x0 + 2π (k·first mod N)/N)) (the shift to the window's
-    first station in their own phase) summed by ``_band_sum``'s chirp-z convolution, each step in
-    place in one zero-padded buffer (the same operations, in the same order, as on separate arrays)."""
+    first station in their own phase; one compiled pass, ``vbikit.road._band``) summed by
+    ``_band_sum``'s chirp-z convolution, each step in place in one zero-padded buffer (the same
+    operations, in the same order, as ``_band_sum`` on separate arrays)."""
     n_samples, _, k, _ = _wavenumber_grid(psd, spacing, length)
     if k.size == 0:
         return np.zeros(m)
     m_kept = -(-m // WINDOW_QUANTUM) * WINDOW_QUANTUM
     pre, kernel, post, size = _band_sum_factors(int(k[0]), int(k.size), int(n_samples), int(m_kept))
-    y = theta + _phase_origin(psd, spacing, length, x0)
-    shift = k * first
-    shift &= n_samples - 1  # k·first mod N (N a power of two, k·first >= 0)
-    y += (2.0 * np.pi / n_samples) * shift
+    from vbikit.road._band import band_phasors  # (numba: loaded on first use)
+
     buf = np.zeros(size, complex)
-    band = buf[:k.size]
-    band.imag = y
-    np.exp(band, out=band)  # exp(i y): the real part 0 (as 1j·y's ±0: exp of either is 1)
-    band *= amp
-    band *= pre
+    band_phasors(theta, _phase_origin(psd, spacing, length, x0), amp, k, int(first), n_samples - 1,
+                 2.0 * np.pi / n_samples, buf)
+    buf[:k.size] *= pre
     conv = sp_fft.fft(buf, overwrite_x=True)
     conv *= kernel
     conv = sp_fft.ifft(conv, overwrite_x=True)[:m]
