@@ -22,6 +22,7 @@ with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_wi
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -178,10 +179,10 @@ def _stations(x0: float, spacing: float, n_samples: int) -> NDArray[np.float64]:
 def _window_samples(window: tuple[float, float], x0: float, spacing: float, n_samples: int) -> tuple[int, int]:
     """First and last sample index j (x_j = x0 + j·Δx) covering ``window`` with the margin, clipped to the period."""
     lo, hi = (float(v) for v in window)
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= hi):
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
         raise ValueError(f"road window must be finite (x_lo, x_hi) with x_lo <= x_hi, got {window!r}")
-    first = int(np.floor((lo - x0) / spacing)) - WINDOW_MARGIN_SAMPLES
-    last = int(np.ceil((hi - x0) / spacing)) + WINDOW_MARGIN_SAMPLES
+    first = math.floor((lo - x0) / spacing) - WINDOW_MARGIN_SAMPLES
+    last = math.ceil((hi - x0) / spacing) + WINDOW_MARGIN_SAMPLES
     first, last = max(first, 0), min(last, n_samples - 1)
     return (first, max(last, first + 1)) if first < n_samples - 1 else (n_samples - 2, n_samples - 1)
 
