@@ -132,11 +132,11 @@ class VehicleBuilder:
         n = len(self.dofs)
 
         def dense(rows: list[Row]) -> np.ndarray:
-            v = np.zeros((len(rows), n))
+            v = [0.0] * (len(rows) * n)  # (a list: its items added to as floats, then one array)
             for k, row in enumerate(rows):
                 for i, c in row.items():
-                    v[k, i] += c
-            return v
+                    v[k * n + i] += c
+            return np.array(v, float).reshape(len(rows), n)
 
         def outer_sum(coef: np.ndarray, rows: np.ndarray) -> np.ndarray:
             """Σ_k coef_k · row_k row_kᵀ (n × n)."""
