@@ -210,7 +210,7 @@ WINDOW_QUANTUM = 512
 @lru_cache(maxsize=16)
 def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
                       ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128], int]:
-    """The factors of ``_band_sum`` that depend on the grid and the window's length only (not on the
+    """The factors of ``_window_sum`` that depend on the grid and the window's length only (not on the
     coefficients, nor on where the window starts): the chirp of each coefficient, the FFT of the
     chirp kernel, the output's carrier-and-chirp, and the FFT length.  Kept for the last lengths:
     every event of a traffic stream or crossing of a study on one bridge asks for a few of them."""
@@ -229,20 +229,6 @@ def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
     return pre, kernel, post, size
 
 
-def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, m: int) -> NDArray[np.float64]:
-    """Re Σ_n band_n · exp(2πi (k0 + n) l / N) at l = 0 … m − 1: the inverse DFT (times N) of
-    coefficients at k = k0 … k0 + M − 1, at its first m samples only (module docstring; a window
-    that starts at station ``first`` has its shift exp(2πi k·first/N) in ``band``); the factors
-    independent of ``band`` come from ``_band_sum_factors`` (cached per length rounded up to
-    ``WINDOW_QUANTUM``)."""
-    if band.size == 0:
-        return np.zeros(m)
-    m_kept = -(-m // WINDOW_QUANTUM) * WINDOW_QUANTUM
-    pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(m_kept))
-    conv = sp_fft.ifft(sp_fft.fft(band * pre, size) * kernel)[:m]
-    return np.real(post[:m] * conv)
-
-
 @lru_cache(maxsize=16)
 def _phase_origin(psd: RoadPSD, spacing: float, length: float, x0: float) -> NDArray[np.float64]:
     """2π n_k x0 of Eq. 7 on the grid of ``_wavenumber_grid`` (read-only, kept per grid and start: the
@@ -255,11 +241,13 @@ def _phase_origin(psd: RoadPSD, spacing: float, length: float, x0: float) -> NDA
 
 def _window_sum(theta: NDArray[np.float64], amp: NDArray[np.float64], psd: RoadPSD, spacing: float, length: float,
                 x0: float, first: int, m: int) -> NDArray[np.float64]:
-    """Eq. 7 at the m stations j = first … first + m − 1 (x_j = x0 + j Δx) from the phases θ_k:
-    the coefficients amp_k exp(i(θ_k + 2π n_k x0 + 2π (k·first mod N)/N)) (the shift to the window's
-    first station in their own phase; one compiled pass, ``vbikit.road._band``) summed by
-    ``_band_sum``'s chirp-z convolution, each step in place in one zero-padded buffer (the same
-    operations, in the same order, as ``_band_sum`` on separate arrays)."""
+    """Eq. 7 at the m stations j = first … first + m − 1 (x_j = x0 + j Δx) from the phases θ_k: the
+    inverse DFT (times N) of the band's coefficients c_k = amp_k exp(i(θ_k + 2π n_k x0 + 2π (k·first
+    mod N)/N)), k = k0 … k0 + M − 1 (the shift to the window's first station in their own phase; one
+    compiled pass, ``vbikit.road._band``), at its first m samples only, Re Σ_n c_n exp(2πi (k0 + n) l / N):
+    Bluestein's chirp-z convolution (module docstring), its factors independent of the coefficients
+    from ``_band_sum_factors`` (kept per length rounded up to ``WINDOW_QUANTUM``), each step in place
+    in one zero-padded buffer."""
     n_samples, _, k, _ = _wavenumber_grid(psd, spacing, length)
     if k.size == 0:
         return np.zeros(m)
