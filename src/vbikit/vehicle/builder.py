@@ -39,8 +39,12 @@ class Body:
     roll: Row = field(default_factory=dict)
 
     def point(self, s: float, y: float = 0.0) -> Row:
-        """Vertical displacement row of the body point at (s, y)."""
-        return _combine((1.0, self.heave), (self.s_cg - s, self.pitch), (y, self.roll))
+        """Vertical displacement row of the body point at (s, y) (``_combine`` of its heave, pitch and roll rows)."""
+        out: Row = {}
+        for coef, row in ((1.0, self.heave), (self.s_cg - s, self.pitch), (y, self.roll)):
+            for i, c in row.items():
+                out[i] = out.get(i, 0.0) + coef * c
+        return out
 
 
 class VehicleBuilder:
