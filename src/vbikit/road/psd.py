@@ -17,7 +17,8 @@ length ≥ M + m − 1 instead of an FFT of the whole period (L. I. Bluestein, "
 approach to the computation of the discrete Fourier transform", IEEE Trans. Audio Electroacoust.
 18, 1970, 451–455).  The shift to the window's first station is in the coefficients' phase, so the
 convolution's factors depend on the window's length only and are kept for the few lengths a
-stream's events ask for.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
+stream's events ask for; the coefficients themselves take one compiled pass (``vbikit.road._band``)
+and the convolution runs in place in one buffer.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
 with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_window.py``).
 """
 from __future__ import annotations
