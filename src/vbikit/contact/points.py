@@ -59,8 +59,10 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
     (the disk's radial stiffness depends on the load).  Wheels without a tire spring (moving
     forces) spread their fixed load by the layout's static shares.
     """
-    loads = vehicle.static_wheel_loads()
     wheels = vehicle.wheels
+    if wheels and type(tire).contact_layout is TireModel.contact_layout and all(w.stiffness > 0 for w in wheels):
+        return _shared_layout_points(vehicle, tire)
+    loads = vehicle.static_wheel_loads()
     lays = []
     for w, load in zip(wheels, loads):
         if w.stiffness > 0:
@@ -98,6 +100,40 @@ def contact_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
         np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.int64),
         count,
         np.array([lay.envelope for lay in lays], bool),
+    )
+
+
+def _shared_layout_points(vehicle: Vehicle, tire: TireModel) -> ContactPoints:
+    """``contact_points`` of a tire whose layout is the same under every wheel, its springs and
+    dashpots the wheel's shared by β_p (``TireModel.contact_layout``'s default: point and
+    multi-point tires; wheels with a tire spring): the layout once, the per-point arrays as outer
+    products of the per-wheel values and the layout (the same products as the per-wheel layouts')."""
+    wheels = vehicle.wheels
+    offsets, weights = tire.layout()
+    offsets, weights = np.asarray(offsets, float).ravel(), np.asarray(weights, float).ravel()
+    n_p, n_w, n_dof = offsets.size, len(wheels), vehicle.n_dof
+    widths = np.zeros(n_p) if n_p == 1 else np.full(n_p, tire.patch_length / n_p)
+    per_wheel = np.array([(w.offset, w.lateral, w.stiffness, w.damping, w.fixed_load) for w in wheels], float)
+    count = np.full(n_w, n_p, np.int64)
+    n_cp = n_w * n_p
+    rows = np.repeat(np.array([w.row for w in wheels], float).reshape(n_w, n_dof), n_p, axis=0) if n_dof \
+        else np.zeros((n_cp, 0))
+    return ContactPoints(
+        np.subtract.outer(per_wheel[:, 0], offsets).ravel(),
+        np.repeat(per_wheel[:, 1], n_p),
+        np.repeat(np.arange(n_w, dtype=np.int64), n_p),
+        np.tile(weights, n_w),
+        (weights * per_wheel[:, 2:3]).ravel(),
+        (weights * per_wheel[:, 3:4]).ravel(),
+        (weights * per_wheel[:, 4:5]).ravel(),
+        np.zeros(n_cp),
+        np.tile(widths, n_w),
+        np.zeros(n_cp, bool),
+        np.zeros((n_cp, 2)),
+        rows,
+        np.arange(0, n_cp, n_p, dtype=np.int64),
+        count,
+        np.zeros(n_w, bool),
     )
 
 

@@ -17,11 +17,13 @@ length ≥ M + m − 1 instead of an FFT of the whole period (L. I. Bluestein, "
 approach to the computation of the discrete Fourier transform", IEEE Trans. Audio Electroacoust.
 18, 1970, 451–455).  The shift to the window's first station is in the coefficients' phase, so the
 convolution's factors depend on the window's length only and are kept for the few lengths a
-stream's events ask for.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
+stream's events ask for; the coefficients themselves take one compiled pass (``vbikit.road._band``)
+and the convolution runs in place in one buffer.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
 with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_window.py``).
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -160,10 +162,7 @@ def random_profile(
     label = label or f"PSD phi0={psd.phi0:g}, seed {seed}"
     if window is not None:
         first, last = _window_samples(window, x0, spacing, n_samples)
-        # the shift to the window's first station, k·first (mod N), in the coefficients' own phase
-        shift = (2.0 * np.pi / n_samples) * ((k * first) % n_samples)
-        band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0 + shift))
-        z = _band_sum(band, int(k[0]) if k.size else 0, n_samples, last - first + 1)
+        z = _window_sum(theta, amp, psd, spacing, length, x0, first, last - first + 1)
         return RoadProfile(x0 + spacing * np.arange(first, last + 1), z, label, origin=origin)
     band = amp * np.exp(1j * (theta + 2.0 * np.pi * n_k * x0))
     coef = np.zeros(n_samples // 2 + 1, complex)
@@ -185,10 +184,10 @@ def _stations(x0: float, spacing: float, n_samples: int) -> NDArray[np.float64]:
 def _window_samples(window: tuple[float, float], x0: float, spacing: float, n_samples: int) -> tuple[int, int]:
     """First and last sample index j (x_j = x0 + j·Δx) covering ``window`` with the margin, clipped to the period."""
     lo, hi = (float(v) for v in window)
-    if not (np.isfinite(lo) and np.isfinite(hi) and lo <= hi):
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
         raise ValueError(f"road window must be finite (x_lo, x_hi) with x_lo <= x_hi, got {window!r}")
-    first = int(np.floor((lo - x0) / spacing)) - WINDOW_MARGIN_SAMPLES
-    last = int(np.ceil((hi - x0) / spacing)) + WINDOW_MARGIN_SAMPLES
+    first = math.floor((lo - x0) / spacing) - WINDOW_MARGIN_SAMPLES
+    last = math.ceil((hi - x0) / spacing) + WINDOW_MARGIN_SAMPLES
     first, last = max(first, 0), min(last, n_samples - 1)
     return (first, max(last, first + 1)) if first < n_samples - 1 else (n_samples - 2, n_samples - 1)
 
@@ -216,7 +215,7 @@ WINDOW_QUANTUM = 512
 @lru_cache(maxsize=16)
 def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
                       ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128], int]:
-    """The factors of ``_band_sum`` that depend on the grid and the window's length only (not on the
+    """The factors of ``_window_sum`` that depend on the grid and the window's length only (not on the
     coefficients, nor on where the window starts): the chirp of each coefficient, the FFT of the
     chirp kernel, the output's carrier-and-chirp, and the FFT length.  Kept for the last lengths:
     every event of a traffic stream or crossing of a study on one bridge asks for a few of them."""
@@ -235,18 +234,41 @@ def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
     return pre, kernel, post, size
 
 
-def _band_sum(band: NDArray[np.complex128], k0: int, n_samples: int, m: int) -> NDArray[np.float64]:
-    """Re Σ_n band_n · exp(2πi (k0 + n) l / N) at l = 0 … m − 1: the inverse DFT (times N) of
-    coefficients at k = k0 … k0 + M − 1, at its first m samples only (module docstring; a window
-    that starts at station ``first`` has its shift exp(2πi k·first/N) in ``band``); the factors
-    independent of ``band`` come from ``_band_sum_factors`` (cached per length rounded up to
-    ``WINDOW_QUANTUM``)."""
-    if band.size == 0:
+@lru_cache(maxsize=16)
+def _phase_origin(psd: RoadPSD, spacing: float, length: float, x0: float) -> NDArray[np.float64]:
+    """2π n_k x0 of Eq. 7 on the grid of ``_wavenumber_grid`` (read-only, kept per grid and start: the
+    same numbers as computed with each profile)."""
+    n_k = _wavenumber_grid(psd, spacing, length)[3]
+    phase = 2.0 * np.pi * n_k * x0
+    phase.setflags(write=False)
+    return phase
+
+
+def _window_sum(theta: NDArray[np.float64], amp: NDArray[np.float64], psd: RoadPSD, spacing: float, length: float,
+                x0: float, first: int, m: int) -> NDArray[np.float64]:
+    """Eq. 7 at the m stations j = first … first + m − 1 (x_j = x0 + j Δx) from the phases θ_k: the
+    inverse DFT (times N) of the band's coefficients c_k = amp_k exp(i(θ_k + 2π n_k x0 + 2π (k·first
+    mod N)/N)), k = k0 … k0 + M − 1 (the shift to the window's first station in their own phase; one
+    compiled pass, ``vbikit.road._band``), at its first m samples only, Re Σ_n c_n exp(2πi (k0 + n) l / N):
+    Bluestein's chirp-z convolution (module docstring), its factors independent of the coefficients
+    from ``_band_sum_factors`` (kept per length rounded up to ``WINDOW_QUANTUM``), each step in place
+    in one zero-padded buffer."""
+    n_samples, _, k, _ = _wavenumber_grid(psd, spacing, length)
+    if k.size == 0:
         return np.zeros(m)
     m_kept = -(-m // WINDOW_QUANTUM) * WINDOW_QUANTUM
-    pre, kernel, post, size = _band_sum_factors(int(k0), int(band.size), int(n_samples), int(m_kept))
-    conv = sp_fft.ifft(sp_fft.fft(band * pre, size) * kernel)[:m]
-    return np.real(post[:m] * conv)
+    pre, kernel, post, size = _band_sum_factors(int(k[0]), int(k.size), int(n_samples), int(m_kept))
+    from vbikit.road._band import band_phasors  # (numba: loaded on first use)
+
+    buf = np.zeros(size, complex)
+    band_phasors(theta, _phase_origin(psd, spacing, length, x0), amp, k, int(first), n_samples - 1,
+                 2.0 * np.pi / n_samples, buf)
+    buf[:k.size] *= pre
+    conv = sp_fft.fft(buf, overwrite_x=True)
+    conv *= kernel
+    conv = sp_fft.ifft(conv, overwrite_x=True)[:m]
+    conv *= post[:m]
+    return np.real(conv)
 
 
 def phase_angles(psd: RoadPSD, seed: int, spacing: float = 0.01, length: float = 1000.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

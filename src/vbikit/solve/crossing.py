@@ -123,6 +123,12 @@ class VehicleMotion:
         tau = np.minimum(np.asarray(t, float) - t_ref, self.stop_time)
         return v_ref + self.acceleration * tau
 
+    def _travel_at(self, t: float) -> float:
+        """``travel`` at one time t [s], as a float (the same arithmetic: τ² as τ·τ, as numpy squares)."""
+        t_ref, s_ref, v_ref = self._ref
+        tau = min(float(t) - t_ref, self.stop_time)
+        return s_ref + v_ref * tau + 0.5 * self.acceleration * (tau * tau)
+
     def _speed_at(self, t: float) -> float:
         """``velocity`` at one time t [s], as a float (the same arithmetic)."""
         t_ref, _, v_ref = self._ref
@@ -216,15 +222,15 @@ class Crossing:
     def __post_init__(self) -> None:
         if self.lateral_offset is None:
             object.__setattr__(self, "lateral_offset", float(self.bridge.default_lateral_offset))
-        if not np.isfinite(self.lateral_offset):
+        if not math.isfinite(self.lateral_offset):
             raise ValueError(f"crossing.lateral_offset must be finite, got {self.lateral_offset!r}")
         if not self.vehicles and self.vehicle is None:
             raise ValueError("a crossing needs a vehicle (or vehicles=(VehicleMotion(…), …))")
-        if not (np.isfinite(self.speed) and self.speed > 0):
+        if not (math.isfinite(self.speed) and self.speed > 0):
             raise ValueError(f"crossing.speed must be > 0 m/s, got {self.speed!r}")
-        if not np.isfinite(self.acceleration):
+        if not math.isfinite(self.acceleration):
             raise ValueError("crossing.acceleration must be finite")
-        if not (np.isfinite(self.approach) and self.approach >= 0):
+        if not (math.isfinite(self.approach) and self.approach >= 0):
             raise ValueError(f"crossing.approach must be >= 0 m, got {self.approach!r}")
         if self.free_vibration is not None and not (np.isfinite(self.free_vibration) and self.free_vibration >= 0):
             raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
@@ -257,13 +263,13 @@ class Crossing:
         for i, m in enumerate(self.vehicles):
             if not isinstance(m, VehicleMotion):
                 raise ValueError(f"vehicles[{i + 1}]: expected a VehicleMotion, got {type(m).__name__}")
-            if not (np.isfinite(m.speed) and m.speed > 0):
+            if not (math.isfinite(m.speed) and m.speed > 0):
                 raise ValueError(f"vehicles[{i + 1}].speed must be > 0 m/s, got {m.speed!r}")
-            if not np.isfinite(m.acceleration):
+            if not math.isfinite(m.acceleration):
                 raise ValueError(f"vehicles[{i + 1}].acceleration must be finite")
             if m.direction not in DIRECTIONS:
                 raise ValueError(f"vehicles[{i + 1}].direction must be +x or -x, got {m.direction!r}")
-            if not np.isfinite(m.entry_time) or not np.isfinite(m.lateral_offset):
+            if not math.isfinite(m.entry_time) or not math.isfinite(m.lateral_offset):
                 raise ValueError(f"vehicles[{i + 1}]: entry_time and lateral_offset must be finite")
         object.__setattr__(self, "vehicle", combine_vehicles([m.vehicle for m in self.vehicles]))
         start = self.start_time
@@ -338,7 +344,8 @@ class Crossing:
         """The tire model's contact points under every wheel (several vehicles: each with its
         own tire, stacked in vehicle order)."""
         parts = [_contact_points(m.vehicle, m.tire or self.tire) for m in self.vehicles]
-        return parts[0] if len(parts) == 1 and self.single else stack_contact_points(parts, self.vehicle.dof_offsets)
+        # one vehicle: its own points (stacking one part gives the same arrays: no shift, no padding)
+        return parts[0] if len(parts) == 1 else stack_contact_points(parts, self.vehicle.dof_offsets)
 
     @cached_property
     def point_vehicle(self) -> NDArray[np.int64]:
@@ -461,7 +468,8 @@ class Crossing:
         known = self.__dict__.get("_road_extent")
         if known is None:
             origin, sign, _ = self._kinematics
-            s = self.travel(np.array([self.start_time, self.start_time + self.duration]))[:, self.point_vehicle]
+            ends = (self.start_time, self.start_time + self.duration)
+            s = np.array([[m._travel_at(t) for m in self.vehicles] for t in ends])[:, self.point_vehicle]
             x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
             known = (float(x.min()), float(x.max()))
             object.__setattr__(self, "_road_extent", known)

@@ -216,8 +216,14 @@ class TrafficStudy:
         return ctx.crossing(tuple(motions), self.road_seed(e))
 
     def road_seed(self, e: int) -> int:
-        """Seed of event ``e``'s random road (−1 if the base road is not random)."""
-        return derive_seed(self.seed, e) if self.context().random_road else -1
+        """Seed of event ``e``'s random road (−1 if the base road is not random; the last event's kept:
+        ``run_event`` asks for it twice)."""
+        last = self.__dict__.get("_last_road_seed")
+        if last is not None and last[0] == e:
+            return last[1]
+        seed = derive_seed(self.seed, e) if self.context().random_road else -1
+        object.__setattr__(self, "_last_road_seed", (e, seed))  # (the job is immutable: a function of e)
+        return seed
 
     @property
     def point_names(self) -> list[str] | None:

@@ -235,9 +235,9 @@ def axle_truck(
         raise ValueError("axle_loads must be a list of at least one axle load [N]")
     if spacings.size != n_ax - 1:
         raise ValueError(f"axle_spacings needs {n_ax - 1} value(s) for {n_ax} axles, got {spacings.size}")
-    if not (np.all(np.isfinite(loads)) and np.all(loads > 0) and np.all(loads <= MAX_AXLE_LOAD)):
+    if not all(0 < x <= MAX_AXLE_LOAD for x in loads.tolist()):  # (NaN and ±inf fail a comparison)
         raise ValueError(f"axle_loads must be in (0, {MAX_AXLE_LOAD:g}] N, got {[float(x) for x in loads]}")
-    if not (np.all(np.isfinite(spacings)) and np.all(spacings > 0) and np.all(spacings <= 30)):
+    if not all(0 < x <= 30 for x in spacings.ravel().tolist()):
         raise ValueError(f"axle_spacings must be in (0, 30] m, got {[float(x) for x in spacings]}")
     for key, v, hi in (("half_track", half_track, MAX_HALF_TRACK), ("tire_deflection", tire_deflection, MAX_TIRE_DEFLECTION),
                        ("suspension_deflection", suspension_deflection, MAX_DEFLECTION)):
@@ -246,7 +246,7 @@ def axle_truck(
     for key, v in (("suspension_damping_ratio", suspension_damping_ratio), ("tire_damping_ratio", tire_damping_ratio)):
         if not (math.isfinite(v) and 0 <= v < 1):
             raise ValueError(f"{key} must be in [0, 1), got {v!r}")
-    kinds = list(groups) if groups is not None else default_groups(spacings)
+    kinds = list(groups) if groups is not None else default_groups(spacings.tolist())
     for k in kinds:
         if k not in GROUP_KINDS:
             raise ValueError(f"groups: unknown axle group {k!r}; allowed: {', '.join(GROUP_KINDS)}")
@@ -258,7 +258,7 @@ def axle_truck(
         raise ValueError(f"tractor_groups must be 0 (rigid) or 1 … {len(kinds) - 1}, got {tractor_groups}")
     masses = np.array([STEER_UNSPRUNG_MASS] + [UNSPRUNG_MASS] * (n_ax - 1)) if unsprung_masses is None \
         else np.asarray(unsprung_masses, float)
-    if masses.size != n_ax or not np.all(np.isfinite(masses) & (masses > 0)):
+    if masses.size != n_ax or not all(0 < x < math.inf for x in masses.ravel().tolist()):
         raise ValueError(f"unsprung_masses needs {n_ax} value(s) > 0 kg, got {list(np.atleast_1d(masses))}")
     sprung = loads - masses * GRAVITY  # load through the suspension of each axle [N]
     if np.any(sprung < 0.25 * loads):

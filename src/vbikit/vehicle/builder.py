@@ -39,8 +39,12 @@ class Body:
     roll: Row = field(default_factory=dict)
 
     def point(self, s: float, y: float = 0.0) -> Row:
-        """Vertical displacement row of the body point at (s, y)."""
-        return _combine((1.0, self.heave), (self.s_cg - s, self.pitch), (y, self.roll))
+        """Vertical displacement row of the body point at (s, y) (``_combine`` of its heave, pitch and roll rows)."""
+        out: Row = {}
+        for coef, row in ((1.0, self.heave), (self.s_cg - s, self.pitch), (y, self.roll)):
+            for i, c in row.items():
+                out[i] = out.get(i, 0.0) + coef * c
+        return out
 
 
 class VehicleBuilder:
@@ -132,29 +136,33 @@ class VehicleBuilder:
         n = len(self.dofs)
 
         def dense(rows: list[Row]) -> np.ndarray:
-            v = np.zeros((len(rows), n))
+            v = [0.0] * (len(rows) * n)  # (a list: its items added to as floats, then one array)
             for k, row in enumerate(rows):
                 for i, c in row.items():
-                    v[k, i] += c
-            return v
+                    v[k * n + i] += c
+            return np.array(v, float).reshape(len(rows), n)
 
         def outer_sum(coef: np.ndarray, rows: np.ndarray) -> np.ndarray:
             """Σ_k coef_k · row_k row_kᵀ (n × n)."""
             return (coef[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0) if len(rows) \
                 else np.zeros((n, n))
 
-        bodies = self.bodies
-        h, p, r = (dense([getattr(b, a) for b in bodies]) for a in ("heave", "pitch", "roll"))
+        bodies, springs, wheel_specs = self.bodies, self.springs, self.wheels
+        nb, ns = len(bodies), len(springs)
+        # every row once, in one array: heave, pitch, roll of the bodies, the springs' ends, the wheels
+        every = dense([b.heave for b in bodies] + [b.pitch for b in bodies] + [b.roll for b in bodies]
+                      + [a for a, _, _, _ in springs] + [b_ for _, b_, _, _ in springs] + [row for *_, row, _ in wheel_specs])
+        h, p, r = every[:nb], every[nb:2 * nb], every[2 * nb:3 * nb]
         mass = np.array([b.mass for b in bodies], float)
         m = (mass[:, None, None] * (h[:, :, None] * h[:, None, :])
              + np.array([b.pitch_inertia for b in bodies], float)[:, None, None] * (p[:, :, None] * p[:, None, :])
              + np.array([b.roll_inertia for b in bodies], float)[:, None, None] * (r[:, :, None] * r[:, None, :])
              ).sum(axis=0) if bodies else np.zeros((n, n))
         fg = -((GRAVITY * mass)[:, None] * h).sum(axis=0) if bodies else np.zeros(n)
-        d = dense([a for a, _, _, _ in self.springs]) - dense([b_ for _, b_, _, _ in self.springs])
-        k = outer_sum(np.array([ks for _, _, ks, _ in self.springs], float), d)
-        c = outer_sum(np.array([cs for _, _, _, cs in self.springs], float), d)
-        rows = dense([row for *_, row, _ in self.wheels])
-        wheels = tuple(Wheel(nm, s, y, kt, ct, rows[w].copy(), fl) for w, (nm, s, y, kt, ct, _, fl) in enumerate(self.wheels))
-        body_rows = {b.name: (b.s_cg, h[i].copy(), p[i].copy(), r[i].copy()) for i, b in enumerate(bodies)}
+        d = every[3 * nb:3 * nb + ns] - every[3 * nb + ns:3 * nb + 2 * ns]
+        k = outer_sum(np.array([ks for _, _, ks, _ in springs], float), d)
+        c = outer_sum(np.array([cs for _, _, _, cs in springs], float), d)
+        rows = every[3 * nb + 2 * ns:]  # (each wheel's and body's rows: views of ``every``, which nothing else holds)
+        wheels = tuple(Wheel(nm, s, y, kt, ct, rows[w], fl) for w, (nm, s, y, kt, ct, _, fl) in enumerate(wheel_specs))
+        body_rows = {b.name: (b.s_cg, h[i], p[i], r[i]) for i, b in enumerate(bodies)}
         return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}), bodies=body_rows)

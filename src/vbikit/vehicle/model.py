@@ -206,9 +206,11 @@ def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> Combine
     vehicles = tuple(vehicles)
     if not vehicles:
         raise ValueError("combine_vehicles needs at least one vehicle")
-    dof_off = np.concatenate([[0], np.cumsum([v.n_dof for v in vehicles])]).astype(int)
-    wheel_off = np.concatenate([[0], np.cumsum([len(v.wheels) for v in vehicles])]).astype(int)
-    n = int(dof_off[-1])
+    dof_off, wheel_off = [0], [0]
+    for v in vehicles:
+        dof_off.append(dof_off[-1] + v.n_dof)
+        wheel_off.append(wheel_off[-1] + len(v.wheels))
+    n = dof_off[-1]
 
     def blocks(attr: str) -> NDArray[np.float64]:
         out = np.zeros((n, n))
@@ -228,6 +230,6 @@ def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> Combine
     combined = CombinedVehicle(
         "+".join(v.name for v in vehicles), tuple(names), blocks("mass"), blocks("damping"), blocks("stiffness"),
         gravity, tuple(wheels), f"{len(vehicles)} vehicles: " + ", ".join(v.name for v in vehicles), {},
-        vehicles, tuple(int(k) for k in dof_off), tuple(int(k) for k in wheel_off))
+        vehicles, tuple(dof_off), tuple(wheel_off))
     object.__setattr__(combined, "_from_parts", True)  # its blocks are the parts' own (``CombinedVehicle._stacked``)
     return combined
