@@ -1,5 +1,5 @@
 """The set-up of a traffic event's crossing, made cheaper without changing a number: the windowed
-random road (one compiled pass for the band's coefficients, in-place chirp-z sums, 2π n_k x0 kept
+random road (the band's coefficients and chirp-z sums in place in one buffer, 2π n_k x0 kept
 per grid and start), contact points of tires with one layout under every wheel, a one-vehicle
 crossing's own contact points, the road extent's travel as floats, the event's road seed kept per
 event.  Each is checked bit for bit against the separate-array form it replaced (written out here)

@@ -17,8 +17,7 @@ length ≥ M + m − 1 instead of an FFT of the whole period (L. I. Bluestein, "
 approach to the computation of the discrete Fourier transform", IEEE Trans. Audio Electroacoust.
 18, 1970, 451–455).  The shift to the window's first station is in the coefficients' phase, so the
 convolution's factors depend on the window's length only and are kept for the few lengths a
-stream's events ask for; the coefficients themselves take one compiled pass (``vbikit.road._band``)
-and the convolution runs in place in one buffer.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
+stream's events ask for; the coefficients and the convolution are computed in place in one buffer.  Every phase 2π·q/N is reduced modulo N in integers first, so the window agrees
 with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_window.py``).
 """
 from __future__ import annotations
@@ -248,8 +247,7 @@ def _window_sum(theta: NDArray[np.float64], amp: NDArray[np.float64], psd: RoadP
                 x0: float, first: int, m: int) -> NDArray[np.float64]:
     """Eq. 7 at the m stations j = first … first + m − 1 (x_j = x0 + j Δx) from the phases θ_k: the
     inverse DFT (times N) of the band's coefficients c_k = amp_k exp(i(θ_k + 2π n_k x0 + 2π (k·first
-    mod N)/N)), k = k0 … k0 + M − 1 (the shift to the window's first station in their own phase; one
-    compiled pass, ``vbikit.road._band``), at its first m samples only, Re Σ_n c_n exp(2πi (k0 + n) l / N):
+    mod N)/N)), k = k0 … k0 + M − 1 (the shift to the window's first station in their own phase), at its first m samples only, Re Σ_n c_n exp(2πi (k0 + n) l / N):
     Bluestein's chirp-z convolution (module docstring), its factors independent of the coefficients
     from ``_band_sum_factors`` (kept per length rounded up to ``WINDOW_QUANTUM``), each step in place
     in one zero-padded buffer."""
@@ -258,12 +256,13 @@ def _window_sum(theta: NDArray[np.float64], amp: NDArray[np.float64], psd: RoadP
         return np.zeros(m)
     m_kept = -(-m // WINDOW_QUANTUM) * WINDOW_QUANTUM
     pre, kernel, post, size = _band_sum_factors(int(k[0]), int(k.size), int(n_samples), int(m_kept))
-    from vbikit.road._band import band_phasors  # (numba: loaded on first use)
-
     buf = np.zeros(size, complex)
-    band_phasors(theta, _phase_origin(psd, spacing, length, x0), amp, k, int(first), n_samples - 1,
-                 2.0 * np.pi / n_samples, buf)
-    buf[:k.size] *= pre
+    band = buf[:k.size]
+    phase = theta + _phase_origin(psd, spacing, length, x0)
+    phase += (2.0 * np.pi / n_samples) * ((k * first) & (n_samples - 1))  # N is a power of two: k·first mod N
+    np.exp(1j * phase, out=band)
+    band *= amp
+    band *= pre
     conv = sp_fft.fft(buf, overwrite_x=True)
     conv *= kernel
     conv = sp_fft.ifft(conv, overwrite_x=True)[:m]
