@@ -53,13 +53,17 @@ def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
     norm = float(np.abs(a).sum(axis=-2).max(initial=0.0))
     squarings = max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
     x = a / 2.0**squarings
-    eye = np.broadcast_to(np.eye(a.shape[-1]), a.shape)
-    result, term = eye.copy(), eye.copy()
-    for k in range(1, 19):
-        term = term @ x / k
-        result = result + term
+    result = np.zeros(a.shape)  # the identity (of each matrix of the stack)
+    diagonal = np.arange(a.shape[-1])
+    result[..., diagonal, diagonal] = 1.0
+    term, work = result.copy(), np.empty(a.shape)
+    for k in range(1, 19):  # (in place: the same products, quotients and sums as term = term @ x / k, …)
+        np.matmul(term, x, out=work)
+        np.divide(work, k, out=term)
+        result += term
     for _ in range(squarings):
-        result = result @ result
+        np.matmul(result, result, out=work)
+        result, work = work, result
     return result
 
 
