@@ -20,6 +20,8 @@ Newmark's (``vbikit.solve.kernels.implicit``).
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -101,31 +103,66 @@ def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float)
             out[key][closed] = val
     rest = ~closed
     if np.any(rest):  # the exponential of the augmented system, scaled by ωh ≤ 0.5 (or ζ ≥ 1)
-        z, wr, th = zeta[rest], w[rest], theta[rest]
-        a = np.zeros((wr.size, 4, 4))
-        a[:, 0, 1] = 1.0
-        a[:, 1, 0] = -1.0
-        a[:, 1, 1] = -2.0 * z
-        a[:, 1, 2] = 1.0
-        a[:, 2, 3] = 1.0
-        e = expm(a * th[:, None, None])
+        modes = _mode_terms(w, zeta)  # (what does not depend on h, per mode)
+        every = bool(rest.all())
+
+        def pick(values: NDArray[np.float64]) -> NDArray[np.float64]:
+            return values if every else values[rest]
+
+        wr, th, w2, w3 = pick(w), pick(theta), pick(modes.w2), pick(modes.w3)
+        e = expm(pick(modes.augmented) * th[:, None, None])
         out["a11"][rest], out["a12"][rest] = e[:, 0, 0], e[:, 0, 1] / wr
         out["a21"][rest], out["a22"][rest] = wr * e[:, 1, 0], e[:, 1, 1]
-        out["b1"][rest] = e[:, 0, 2] / wr**2 - e[:, 0, 3] / (wr**3 * h)
-        out["c1"][rest] = e[:, 0, 3] / (wr**3 * h)
-        out["b2"][rest] = e[:, 1, 2] / wr - e[:, 1, 3] / (wr**2 * h)
-        out["c2"][rest] = e[:, 1, 3] / (wr**2 * h)
-        under = z < 1.0  # the free part in closed form (round-off exact)
+        out["b1"][rest] = e[:, 0, 2] / w2 - e[:, 0, 3] / (w3 * h)
+        out["c1"][rest] = e[:, 0, 3] / (w3 * h)
+        out["b2"][rest] = e[:, 1, 2] / wr - e[:, 1, 3] / (w2 * h)
+        out["c2"][rest] = e[:, 1, 3] / (w2 * h)
+        under = rest & (zeta < 1.0)  # the free part in closed form (round-off exact)
         if np.any(under):
-            idx = np.flatnonzero(rest)[under]
-            zz, wu, tu = z[under], wr[under], th[under]
-            r = np.sqrt(1.0 - zz**2)
-            decay, sn, cs = np.exp(-zz * tu), np.sin(r * tu), np.cos(r * tu)
-            out["a11"][idx] = decay * (cs + zz / r * sn)
-            out["a12"][idx] = decay * sn / (r * wu)
-            out["a21"][idx] = -decay * wu * sn / r
-            out["a22"][idx] = decay * (cs - zz / r * sn)
+            tu = theta[under]
+            r, zr, rw = modes.root[under], modes.z_over_r[under], modes.r_w[under]
+            decay, sn, cs = np.exp(-zeta[under] * tu), np.sin(r * tu), np.cos(r * tu)
+            out["a11"][under] = decay * (cs + zr * sn)
+            out["a12"][under] = decay * sn / rw
+            out["a21"][under] = -decay * w[under] * sn / r
+            out["a22"][under] = decay * (cs - zr * sn)
     return ModalStep(**out)
+
+
+class _ModeTerms(NamedTuple):
+    """``_exact_step``'s terms of modes ω, ζ that do not depend on the step: the augmented matrices
+    (n, 4, 4) of (ξ, ξ̇/ω, p, ṗ) in units of ωh, ω², ω³ and, for ζ < 1 (NaN else), r = √(1 − ζ²), ζ/r and r·ω."""
+
+    augmented: NDArray[np.float64]
+    w2: NDArray[np.float64]
+    w3: NDArray[np.float64]
+    root: NDArray[np.float64]
+    z_over_r: NDArray[np.float64]
+    r_w: NDArray[np.float64]
+
+
+#: ``_mode_terms`` of the mode sets seen, by their exact bytes (a stream's events share the bridge's modes
+#: and differ in the step)
+_MODE_TERMS: "Kept[tuple, _ModeTerms]" = Kept(16)
+
+
+def _mode_terms(omega: NDArray[np.float64], zeta: NDArray[np.float64]) -> _ModeTerms:
+    """``_ModeTerms`` of ``omega``, ``zeta`` (made once per mode set in a process; shared: not to be written)."""
+    return _MODE_TERMS.get(_input_key("modes", 0.0, (omega, zeta)), lambda: _make_mode_terms(omega, zeta))
+
+
+def _make_mode_terms(omega: NDArray[np.float64], zeta: NDArray[np.float64]) -> _ModeTerms:
+    """``_mode_terms`` made afresh (the same arithmetic as each step's part of ``_exact_step`` had)."""
+    a = np.zeros((omega.size, 4, 4))
+    a[:, 0, 1] = 1.0
+    a[:, 1, 0] = -1.0
+    a[:, 1, 1] = -2.0 * zeta
+    a[:, 1, 2] = 1.0
+    a[:, 2, 3] = 1.0
+    root = np.full(omega.size, np.nan)
+    under = zeta < 1.0
+    root[under] = np.sqrt(1.0 - zeta[under]**2)
+    return _ModeTerms(a, omega**2, omega**3, root, zeta / root, root * omega)
 
 
 def newmark_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:

@@ -10,6 +10,7 @@ import math
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
+from numpy.typing import NDArray
 
 from vbikit.solve.budget import Limits
 from vbikit.solve.compile_notice import announce_compile
@@ -101,10 +102,12 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
     mot = Motion(grid.travel, grid.speed)
     n_t = n_steps // stride + 1  # stored rows (every stride-th step)
-    xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
-    q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
-    wheel_force = np.zeros((n_l, n_t, n_w))
-    wheel_len = np.zeros((n_l, n_t, n_w))
+    # row 0 zero (the static start goes in), the other rows filled by the kernel (``KernelCall.outputs``):
+    # not zeroed first (that would write the histories' memory twice)
+    xi, dxi, ddxi = (_histories(n_l, n_t, n_m) for _ in range(3))
+    q, dq, ddq = (_histories(n_l, n_t, n_d) for _ in range(3))
+    wheel_force = _histories(n_l, n_t, n_w)
+    wheel_len = _histories(n_l, n_t, n_w)
     if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
         key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes())  # the entry holds data: its id stays its own
         made: list = []
@@ -140,6 +143,13 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
                                       ddq_l, f_l, wheel_len[lane], integration_dt=dt, kernel_data=data))
         results[-1].keep_travel(travel)
     return results
+
+
+def _histories(n_l: int, n_t: int, n: int) -> NDArray[np.float64]:
+    """A history (n_l, n_t, n) of every lane with row 0 zero and the other rows not initialised."""
+    out = np.empty((n_l, n_t, n))
+    out[:, 0] = 0.0
+    return out
 
 
 def _rows(crossing: Crossing, grid: TimeGrid, stride: int) -> tuple:

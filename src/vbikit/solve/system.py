@@ -18,6 +18,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.road.profile import RoadProfile
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
@@ -111,13 +112,25 @@ def _kernel_data(crossing: Crossing, points_per_mode: int) -> KernelData:
     """``kernel_data`` made afresh."""
     cp = crossing.contact
     origin, direction, y = crossing.point_kinematics()  # copies: the bundle owns its arrays
-    tracks, track_idx = np.unique(y, return_inverse=True)
+    tracks, track_idx = wheel_tracks(y)
     table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
     points = points_data(cp, track_idx.ravel())._replace(
         origin=np.ascontiguousarray(origin, float), direction=np.ascontiguousarray(direction, float),
         vehicle=np.ascontiguousarray(crossing.point_vehicle, np.int64))
     return KernelData(modes_data(crossing.bridge, table), vehicles_data(crossing.vehicle, cp), points,
                       bool(crossing.loss_of_contact))
+
+
+#: ``wheel_tracks`` already found, by the points' exact y (a stream's events put their points on a few lines)
+_TRACKS: "Kept[tuple, tuple[NDArray[np.float64], NDArray[np.int64]]]" = Kept(64)
+
+
+def wheel_tracks(y: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The distinct wheel tracks y [m] of points at deck y ``y``, ascending, and each point's index
+    into them (``np.unique(y, return_inverse=True)``; a fresh copy of both: the bundle owns its arrays)."""
+    y = np.ascontiguousarray(y, float)
+    tracks, index = _TRACKS.get((y.shape, y.tobytes()), lambda: np.unique(y, return_inverse=True))
+    return tracks.copy(), index.copy()
 
 
 def motion(crossing: Crossing, t: NDArray[np.float64]) -> Motion:
