@@ -243,10 +243,11 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     the vehicle is not supported, e.g. a profile in mm read as m), the start falls back to the
     equilibrium at rest (no rates), with a warning."""
     travel = crossing.travel(crossing.start_time)[0] if travel is None else travel
-    moving = road_rate is not None and bool(np.any(np.asarray(road_rate) != 0.0)) or bool(np.any(np.asarray(speed) != 0.0))
     try:
         return _equilibrium(crossing, data, road, travel, road_rate, speed, max_iterations)
     except (np.linalg.LinAlgError, RuntimeError):
+        moving = road_rate is not None and bool(np.any(np.asarray(road_rate) != 0.0)) or \
+            bool(np.any(np.asarray(speed) != 0.0))
         if not moving:
             raise
     log.warning("no equilibrium with the tire dashpots' forces from the road rate at t = 0 (a tire would pull); "
@@ -264,7 +265,8 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     active = np.ones(n_p, bool)
     gap = data.points.gap
     veh = data.vehicles
-    for first, count, env in zip(veh.wheel_first, veh.wheel_count, veh.wheel_envelope):
+    flat = not np.any(veh.wheel_envelope)  # no rigid disk: the flat law of the lean kernel
+    for first, count, env in zip(veh.wheel_first, veh.wheel_count, veh.wheel_envelope) if not flat else ():
         if env:
             sl = slice(first, first + count)
             active[sl] = False
@@ -272,7 +274,6 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
             # the rigid disk's contact rate: the surface rate clamped to the circle's slopes (as the kernels)
             v = data.points.direction[sl] * vx[sl]
             rate[sl] = np.clip(rate[sl], v * data.points.slope_range[sl, 0], v * data.points.slope_range[sl, 1])
-    flat = not np.any(veh.wheel_envelope)  # no rigid disk: the flat law of the lean kernel
     if flat:
         gated = point_gates(data)
         zeros = np.zeros(n_p, np.int64)
