@@ -88,11 +88,10 @@ def point_shapes(bridge: object, x: float, y: float,
     return kept_for(bridge, "point shapes", POINT_SHAPES_KEPT).get((float(x), float(y)), make)
 
 
-def _on_deck_shapes(bridge: object, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _on_deck_shapes(bridge: Any, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """``point_shapes`` of a point on the deck, else ValueError naming the allowed range."""
-    if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):  # type: ignore[attr-defined]
-        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, "  # type: ignore[attr-defined]
-                         f"got ({x}, {y})")
+    if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
+        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
     return point_shapes(bridge, x, y)
 
 
