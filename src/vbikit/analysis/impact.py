@@ -119,7 +119,12 @@ def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
 def static_direction(static: NDArray[np.float64]) -> float:
     """s = ±1, the sign of the static history's largest-magnitude value (+1 where it is 0): the
     direction in which the peaks of an impact factor are taken (module docstring)."""
-    return float(np.sign(static[int(np.argmax(np.abs(static)))]) or 1.0)
+    return _sign_at(static, int(np.argmax(np.abs(static))))
+
+
+def _sign_at(static: NDArray[np.float64], i: int) -> float:
+    """``static_direction`` given the index ``i`` of the largest magnitude."""
+    return float(np.sign(static[i]) or 1.0)
 
 
 def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
@@ -127,13 +132,15 @@ def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], stati
     """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction;
     with ``dynamic_rate`` (dR/dt) the dynamic peak is refined between samples (module docstring)."""
     i_st = int(np.argmax(np.abs(static)))
-    sign = static_direction(static)
+    sign = _sign_at(static, i_st)
     if static[i_st] == 0.0:
         raise ValueError("the static response is zero everywhere: no impact factor at this response point")
-    i_dyn = int(np.argmax(sign * dynamic))
+    signed = sign * dynamic
+    i_dyn = int(np.argmax(signed))
     r_dyn, t_dyn = float(dynamic[i_dyn]), float(time[i_dyn])
-    if dynamic_rate is not None:
-        peak, t_dyn = hermite_peak(time, sign * dynamic, sign * dynamic_rate, i_dyn)
+    if dynamic_rate is not None:  # (the Hermite steps either side of the peak read those three samples only)
+        lo, hi = max(i_dyn - 1, 0), i_dyn + 2
+        peak, t_dyn = hermite_peak(time[lo:hi], signed[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
         r_dyn = sign * peak
     r_st = float(static[i_st])
     return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))

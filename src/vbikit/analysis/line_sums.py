@@ -19,6 +19,7 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.solve.numba_cache import ensure_cache_location
 
 ensure_cache_location()  # before the @njit(cache=True) below
@@ -79,21 +80,41 @@ def tabulated_sums(origin: NDArray[np.float64], direction: NDArray[np.float64], 
     on the same stations and skew), each (n_effects, n_t), for contact points at ``origin`` +
     ``direction`` · ``travel``[:, ``vehicle``] on the lines ``y`` (module docstring)."""
     first = influences[0]
-    lines, line = np.unique(y, return_inverse=True)
-    tables = [f.line_tables(lines) for f in influences]
-    table = np.ascontiguousarray(np.stack([tb[0] for tb in tables]).transpose(2, 0, 1))  # (row, effect, power)
-    line_share = np.ascontiguousarray(np.stack([tb[1] for tb in tables]))
+    y = np.ascontiguousarray(y, float)
+    line, table, line_share, kink, element, section = line_tables(influences, y)
     travel = np.ascontiguousarray(np.asarray(travel, float).reshape(len(travel), -1))
     n_t = travel.shape[0]
     static = np.zeros((len(influences), n_t))
     dynamic = np.zeros((len(influences), n_t))
     line_sums(travel, np.ascontiguousarray(origin, float), np.ascontiguousarray(direction, float),
-              np.ascontiguousarray(y, float), np.ascontiguousarray(vehicle, np.int64),
-              np.ascontiguousarray(line.ravel(), np.int64), np.ascontiguousarray(wheel, np.int64),
+              y, np.ascontiguousarray(vehicle, np.int64), line, np.ascontiguousarray(wheel, np.int64),
               np.ascontiguousarray(share, float), np.ascontiguousarray(static_load, float),
               np.ascontiguousarray(wheel_forces, float), np.ascontiguousarray(first.stations, float),
-              float(first.skew_tan), float(span), table,
-              np.array([KINK_CODES[f.kink] for f in influences], np.int64),
-              np.array([f.element for f in influences], np.int64),
-              np.array([f.section for f in influences], float), line_share, static, dynamic)
+              float(first.skew_tan), float(span), table, kink, element, section, line_share, static, dynamic)
     return static, dynamic
+
+
+#: ``line_tables`` already made: by the influences' identities (each entry holds them, so no other
+#: object can take an identity while its entry is kept) and the wheel lines' exact bytes
+_TABLES: "Kept[tuple, tuple]" = Kept(64)
+
+
+def line_tables(influences, y: NDArray[np.float64]) -> tuple[NDArray, ...]:
+    """``line_sums``' arguments of the ``TabulatedInfluence`` functions ``influences`` for points on the
+    wheel lines ``y`` [m]: each point's line index (into the distinct lines, ascending), the cubic rows
+    ``table`` (n_lines · n_elements, n_effects, 4), ``line_share`` (n_effects, n_lines) and the kink
+    codes, elements and sections, made once per influences and lines in a process (a stream's
+    events put their points on the same few lines) and shared: not to be written to."""
+    key = (tuple(id(f) for f in influences), y.shape, y.tobytes())
+    return _TABLES.get(key, lambda: (tuple(influences),) + _line_tables(influences, y))[1:]
+
+
+def _line_tables(influences, y: NDArray[np.float64]) -> tuple[NDArray, ...]:
+    """``line_tables`` made afresh."""
+    lines, line = np.unique(y, return_inverse=True)
+    tables = [f.line_tables(lines) for f in influences]
+    table = np.ascontiguousarray(np.stack([tb[0] for tb in tables]).transpose(2, 0, 1))  # (row, effect, power)
+    line_share = np.ascontiguousarray(np.stack([tb[1] for tb in tables]))
+    return (np.ascontiguousarray(line.ravel(), np.int64), table, line_share,
+            np.array([KINK_CODES[f.kink] for f in influences], np.int64),
+            np.array([f.element for f in influences], np.int64), np.array([f.section for f in influences], float))

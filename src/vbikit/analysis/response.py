@@ -69,10 +69,16 @@ class PointResponse:
 POINT_SHAPES_KEPT = 64
 
 
-def point_shapes(bridge: object, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def point_shapes(bridge: object, x: float, y: float,
+                 checked: bool = False) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """φ_i(x, y) and the strain shapes ε_i(x, y) of every mode at one deck point (read-only), kept
     for the bridge per point: every crossing and event of a run reads the same points, and a
-    deck's shapes at one point cost a quarter of a millisecond."""
+    deck's shapes at one point cost a quarter of a millisecond.  ``checked``: ValueError unless the
+    point is on the deck (0 ≤ the span coordinate ≤ span, y finite), checked once per point kept."""
+    if checked:
+        return kept_for(bridge, "checked points", POINT_SHAPES_KEPT).get((float(x), float(y)),
+                                                                        lambda: _on_deck_shapes(bridge, x, y))
+
     def make() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         shapes = (np.array(bridge.mode_shapes([x], [y])[0], float), np.array(bridge.strain_shapes([x], [y])[0], float))
         for arr in shapes:
@@ -82,6 +88,13 @@ def point_shapes(bridge: object, x: float, y: float) -> tuple[NDArray[np.float64
     return kept_for(bridge, "point shapes", POINT_SHAPES_KEPT).get((float(x), float(y)), make)
 
 
+def _on_deck_shapes(bridge: Any, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``point_shapes`` of a point on the deck, else ValueError naming the allowed range."""
+    if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
+        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
+    return point_shapes(bridge, x, y)
+
+
 def point_response(result: CrossingResult, x: float | None = None, y: float | None = None,
                    xi_static: NDArray[np.float64] | None = None) -> PointResponse:
     """Dynamic and static responses at (x, y) [m]; x defaults to midspan, y to the bridge's
@@ -89,9 +102,7 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
     ``xi_static``: the static modal history if already computed ([`static_modal_history`][vbikit.analysis.static_modal_history])."""
     bridge = result.crossing.bridge
     x, y = result.point(x, y)
-    if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
-        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
-    phi, eps = point_shapes(bridge, x, y)
+    phi, eps = point_shapes(bridge, x, y, checked=True)
     xi_st = static_modal_history(result) if xi_static is None else xi_static
     return PointResponse(
         x, y, result.time,

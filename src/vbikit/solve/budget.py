@@ -167,21 +167,24 @@ def check_run(crossing: Crossing, dt: float, limits: Limits | None = None, lanes
     """The run's ``RunEstimate``, or ``BudgetError`` if it is above ``limits``."""
     limits = limits or Limits()
     est = estimate_run(crossing, dt, lanes)
-    drivers = (f"a crossing of {crossing.duration:.4g} s (crossing.speed {crossing.speed:.4g} m/s = "
-               f"{crossing.speed * 3.6:.4g} km/h, crossing.approach {crossing.approach:g} m, span {crossing.bridge.span:g} m, "
-               f"crossing.free_vibration {crossing.free_vibration_time:.3g} s) at crossing.dt = {dt:.3g} s "
-               f"({crossing.integrator}; bridge.n_modes = {crossing.bridge.omega.size}, highest mode "
-               f"{crossing.bridge.frequencies_hz.max():.4g} Hz)")
+
+    def drivers() -> str:  # (the inputs that set the run's size, for the messages: written only for one)
+        return (f"a crossing of {crossing.duration:.4g} s (crossing.speed {crossing.speed:.4g} m/s = "
+                f"{crossing.speed * 3.6:.4g} km/h, crossing.approach {crossing.approach:g} m, span {crossing.bridge.span:g} m, "
+                f"crossing.free_vibration {crossing.free_vibration_time:.3g} s) at crossing.dt = {dt:.3g} s "
+                f"({crossing.integrator}; bridge.n_modes = {crossing.bridge.omega.size}, highest mode "
+                f"{crossing.bridge.frequencies_hz.max():.4g} Hz)")
+
     if est.n_steps > limits.max_steps:
         raise BudgetError(f"this run needs {est.n_steps:.3g} time steps, above the limit {limits.max_steps:.3g}: "
-                          f"{drivers}; raise --max-steps, or change those inputs")
+                          f"{drivers()}; raise --max-steps, or change those inputs")
     if est.n_steps * est.n_points > POINTS_PER_STEP * limits.max_steps:
         raise BudgetError(f"this run needs {est.n_steps:.3g} time steps × {est.n_points} contact points, above the limit "
                           f"{POINTS_PER_STEP} × {limits.max_steps:.3g} (--max-steps): the tire model has many points "
                           f"(tire.model = {crossing.tire.name!r}; a disk has one per tire.disk_spacing along its rim); "
-                          f"{drivers}; raise --max-steps, or use a coarser tire.disk_spacing")
+                          f"{drivers()}; raise --max-steps, or use a coarser tire.disk_spacing")
     if est.memory > limits.max_memory:
         raise BudgetError(f"this run needs ≈ {human(est.memory)} of memory, above the limit {human(limits.max_memory)}: "
-                          f"{est.n_steps} steps × {crossing.bridge.omega.size} modes × {lanes} lane(s); {drivers}; raise --max-memory, "
+                          f"{est.n_steps} steps × {crossing.bridge.omega.size} modes × {lanes} lane(s); {drivers()}; raise --max-memory, "
                           "or use fewer bridge modes / a shorter crossing")
     return est

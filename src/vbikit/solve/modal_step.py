@@ -20,6 +20,8 @@ Newmark's (``vbikit.solve.kernels.implicit``).
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -47,19 +49,49 @@ def _input_key(kind: str, h: float, arrays) -> tuple:
 
 def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
     """Matrix exponential of a (..., n, n) stack: scaling and squaring with an 18-term Taylor
-    series (‖A‖₁/2^s ≤ 1/2, truncation below 1e-17 relative; Moler & Van Loan 2003, method 3).
-    For the small matrices here it is much cheaper than a general routine."""
+    series (‖A‖₁/2^s ≤ 1/2, truncation below 1e-17 relative; Moler & Van Loan 2003, method 3), one
+    s for the whole stack (the largest norm's; ``expm_each``: each matrix its own).  For the small
+    matrices here it is much cheaper than a general routine."""
     a = np.asarray(a, float)
-    norm = float(np.abs(a).sum(axis=-2).max(initial=0.0))
-    squarings = max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
-    x = a / 2.0**squarings
-    eye = np.broadcast_to(np.eye(a.shape[-1]), a.shape)
-    result, term = eye.copy(), eye.copy()
-    for k in range(1, 19):
-        term = term @ x / k
-        result = result + term
+    squarings = _squarings(float(np.abs(a).sum(axis=-2).max(initial=0.0)))
+    result = _taylor(a / 2.0**squarings)
+    work = np.empty(a.shape)
     for _ in range(squarings):
-        result = result @ result
+        np.matmul(result, result, out=work)
+        result, work = work, result
+    return result
+
+
+def expm_each(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``expm`` of each matrix of the stack ``a`` (k, n, n) on its own scale: the same numbers as
+    ``expm(a[i])`` for every i, in one series for the stack (the blocks of several vehicles)."""
+    a = np.asarray(a, float)
+    squarings = [_squarings(float(norm)) for norm in np.abs(a).sum(axis=-2).max(axis=-1, initial=0.0)]
+    result = _taylor(a / np.array([2.0**s for s in squarings])[:, None, None])
+    for step in range(max(squarings, default=0)):
+        more = [i for i, s in enumerate(squarings) if s > step]
+        if len(more) == len(squarings):
+            result = result @ result
+        else:
+            result[more] = result[more] @ result[more]
+    return result
+
+
+def _squarings(norm: float) -> int:
+    """The squarings s of ``expm`` for a matrix of 1-norm ``norm``: ‖A‖₁/2^s ≤ 1/2."""
+    return max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
+
+
+def _taylor(x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Σ_{k ≤ 18} xᵏ/k! of each matrix of the stack ``x`` (the terms as term = term @ x / k, in place)."""
+    result = np.zeros(x.shape)  # the identity (of each matrix of the stack)
+    diagonal = np.arange(x.shape[-1])
+    result[..., diagonal, diagonal] = 1.0
+    term, work = result.copy(), np.empty(x.shape)
+    for k in range(1, 19):
+        np.matmul(term, x, out=work)
+        np.divide(work, k, out=term)
+        result += term
     return result
 
 
@@ -97,31 +129,66 @@ def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float)
             out[key][closed] = val
     rest = ~closed
     if np.any(rest):  # the exponential of the augmented system, scaled by ωh ≤ 0.5 (or ζ ≥ 1)
-        z, wr, th = zeta[rest], w[rest], theta[rest]
-        a = np.zeros((wr.size, 4, 4))
-        a[:, 0, 1] = 1.0
-        a[:, 1, 0] = -1.0
-        a[:, 1, 1] = -2.0 * z
-        a[:, 1, 2] = 1.0
-        a[:, 2, 3] = 1.0
-        e = expm(a * th[:, None, None])
+        modes = _mode_terms(w, zeta)  # (what does not depend on h, per mode)
+        every = bool(rest.all())
+
+        def pick(values: NDArray[np.float64]) -> NDArray[np.float64]:
+            return values if every else values[rest]
+
+        wr, th, w2, w3 = pick(w), pick(theta), pick(modes.w2), pick(modes.w3)
+        e = expm(pick(modes.augmented) * th[:, None, None])
         out["a11"][rest], out["a12"][rest] = e[:, 0, 0], e[:, 0, 1] / wr
         out["a21"][rest], out["a22"][rest] = wr * e[:, 1, 0], e[:, 1, 1]
-        out["b1"][rest] = e[:, 0, 2] / wr**2 - e[:, 0, 3] / (wr**3 * h)
-        out["c1"][rest] = e[:, 0, 3] / (wr**3 * h)
-        out["b2"][rest] = e[:, 1, 2] / wr - e[:, 1, 3] / (wr**2 * h)
-        out["c2"][rest] = e[:, 1, 3] / (wr**2 * h)
-        under = z < 1.0  # the free part in closed form (round-off exact)
+        out["b1"][rest] = e[:, 0, 2] / w2 - e[:, 0, 3] / (w3 * h)
+        out["c1"][rest] = e[:, 0, 3] / (w3 * h)
+        out["b2"][rest] = e[:, 1, 2] / wr - e[:, 1, 3] / (w2 * h)
+        out["c2"][rest] = e[:, 1, 3] / (w2 * h)
+        under = rest & (zeta < 1.0)  # the free part in closed form (round-off exact)
         if np.any(under):
-            idx = np.flatnonzero(rest)[under]
-            zz, wu, tu = z[under], wr[under], th[under]
-            r = np.sqrt(1.0 - zz**2)
-            decay, sn, cs = np.exp(-zz * tu), np.sin(r * tu), np.cos(r * tu)
-            out["a11"][idx] = decay * (cs + zz / r * sn)
-            out["a12"][idx] = decay * sn / (r * wu)
-            out["a21"][idx] = -decay * wu * sn / r
-            out["a22"][idx] = decay * (cs - zz / r * sn)
+            tu = theta[under]
+            r, zr, rw = modes.root[under], modes.z_over_r[under], modes.r_w[under]
+            decay, sn, cs = np.exp(-zeta[under] * tu), np.sin(r * tu), np.cos(r * tu)
+            out["a11"][under] = decay * (cs + zr * sn)
+            out["a12"][under] = decay * sn / rw
+            out["a21"][under] = -decay * w[under] * sn / r
+            out["a22"][under] = decay * (cs - zr * sn)
     return ModalStep(**out)
+
+
+class _ModeTerms(NamedTuple):
+    """``_exact_step``'s terms of modes ω, ζ that do not depend on the step: the augmented matrices
+    (n, 4, 4) of (ξ, ξ̇/ω, p, ṗ) in units of ωh, ω², ω³ and, for ζ < 1 (NaN else), r = √(1 − ζ²), ζ/r and r·ω."""
+
+    augmented: NDArray[np.float64]
+    w2: NDArray[np.float64]
+    w3: NDArray[np.float64]
+    root: NDArray[np.float64]
+    z_over_r: NDArray[np.float64]
+    r_w: NDArray[np.float64]
+
+
+#: ``_mode_terms`` of the mode sets seen, by their exact bytes (a stream's events share the bridge's modes
+#: and differ in the step)
+_MODE_TERMS: "Kept[tuple, _ModeTerms]" = Kept(16)
+
+
+def _mode_terms(omega: NDArray[np.float64], zeta: NDArray[np.float64]) -> _ModeTerms:
+    """``_ModeTerms`` of ``omega``, ``zeta`` (made once per mode set in a process; shared: not to be written)."""
+    return _MODE_TERMS.get(_input_key("modes", 0.0, (omega, zeta)), lambda: _make_mode_terms(omega, zeta))
+
+
+def _make_mode_terms(omega: NDArray[np.float64], zeta: NDArray[np.float64]) -> _ModeTerms:
+    """``_mode_terms`` made afresh (the same arithmetic as each step's part of ``_exact_step`` had)."""
+    a = np.zeros((omega.size, 4, 4))
+    a[:, 0, 1] = 1.0
+    a[:, 1, 0] = -1.0
+    a[:, 1, 1] = -2.0 * zeta
+    a[:, 1, 2] = 1.0
+    a[:, 2, 3] = 1.0
+    root = np.full(omega.size, np.nan)
+    under = zeta < 1.0
+    root[under] = np.sqrt(1.0 - zeta[under]**2)
+    return _ModeTerms(a, omega**2, omega**3, root, zeta / root, root * omega)
 
 
 def newmark_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
@@ -214,6 +281,11 @@ def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.fl
 
 def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float):
     """The exponential of one block's augmented system (q, q̇, G, Ġ, 1) over h: (Φ, L0, L1, b)."""
+    return _block_maps(expm(_augmented(m_inv, c_hat, k_hat, rows, gravity) * h), gravity.size, rows.shape[0], h)
+
+
+def _augmented(m_inv, c_hat, k_hat, rows, gravity) -> NDArray[np.float64]:
+    """One block's augmented system matrix A of (q, q̇, G, Ġ, 1) (``vehicle_step``)."""
     n_d, n_w = gravity.size, rows.shape[0]
     n = 2 * n_d + 2 * n_w + 1
     a = np.zeros((n, n))
@@ -223,7 +295,11 @@ def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float):
     a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T
     a[n_d:2 * n_d, -1] = m_inv @ gravity
     a[2 * n_d:2 * n_d + n_w, 2 * n_d + n_w:2 * n_d + 2 * n_w] = np.eye(n_w)
-    e = expm(a * h)
+    return a
+
+
+def _block_maps(e: NDArray[np.float64], n_d: int, n_w: int, h: float) -> tuple[NDArray[np.float64], ...]:
+    """(Φ, L0, L1, b) of a block from exp(A h) ``e`` (``_block_exponential``)."""
     z = slice(0, 2 * n_d)
     e_g, e_dg = e[z, 2 * n_d:2 * n_d + n_w], e[z, 2 * n_d + n_w:2 * n_d + 2 * n_w]
     return e[z, z], e_g - e_dg / h, e_dg / h, e[z, -1]
@@ -246,10 +322,18 @@ def _vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     transition, load0, load1 = np.zeros((2 * n_d, 2 * n_d)), np.zeros((2 * n_d, n_w)), np.zeros((2 * n_d, n_w))
     constant = np.zeros(2 * n_d)
     wheel_dof = np.where(np.any(rows != 0.0, axis=1), np.argmax(rows != 0.0, axis=1), -1)  # -1: a wheel without DOFs
-    for lo, hi in blocks:
-        w = np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi))
+    wheels = [np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi)) for lo, hi in blocks]
+    augmented = [_augmented(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi])
+                 * h for (lo, hi), w in zip(blocks, wheels)]
+    exponentials: list = [None] * len(blocks)
+    for size in {a.shape for a in augmented}:  # blocks of one size (vehicles alike) in one series, each on its own scale
+        alike = [i for i, a in enumerate(augmented) if a.shape == size]
+        stack = expm_each(np.stack([augmented[i] for i in alike])) if len(alike) > 1 else [expm(augmented[alike[0]])]
+        for i, e in zip(alike, stack):
+            exponentials[i] = e
+    for (lo, hi), w, e in zip(blocks, wheels, exponentials):
         b, m = slice(lo, hi), hi - lo
-        phi, l0, l1, const = _block_exponential(m_inv[b, b], c_hat[b, b], k_hat[b, b], rows[w, b], gravity[b], h)
+        phi, l0, l1, const = _block_maps(e, m, w.size, h)
         for i, rows_i in enumerate((b, slice(n_d + lo, n_d + hi))):  # its q, then its q̇ in the first-order state
             part = slice(i * m, (i + 1) * m)
             transition[rows_i, b], transition[rows_i, n_d + lo:n_d + hi] = phi[part, :m], phi[part, m:]

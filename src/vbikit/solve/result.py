@@ -31,15 +31,22 @@ class DivergenceError(VbikitError):
     """An integration whose states became non-finite; the message gives the step and time."""
 
 
-def check_finite(result: "CrossingResult") -> "CrossingResult":
+def check_finite(result: "CrossingResult", fresh: bool = False) -> "CrossingResult":
     """``result`` if every state history is finite, else ``DivergenceError`` naming the
-    first step (and its time) with a non-finite bridge, vehicle or tire value."""
+    first step (and its time) with a non-finite bridge, vehicle or tire value.  ``fresh``: the
+    result comes straight from its run, unchanged (``vbikit.solve.simulate``): a deferred q̈'s
+    ``fingerprint``, the sums of q, q̇ and the wheel forces at the run's end, stands for theirs."""
     # (q̈ is not read: it follows from q, q̇ and the wheel forces, and may not be computed yet)
     arrays = (result.xi, result.xi_dot, result.xi_ddot, result.q, result.q_dot, result.wheel_forces)
+    deferred = result.__dict__.get("_q_ddot") if fresh else None
+    known = deferred.fingerprint if isinstance(deferred, DeferredAccelerations) and deferred.q is result.q \
+        and deferred.q_dot is result.q_dot and deferred.wheel_force is result.wheel_forces else None
     total = 0.0
     with np.errstate(over="ignore", invalid="ignore"):  # a sum that overflows only takes the step-by-step path
-        for a in arrays:
+        for a in arrays[:3] if known is not None else arrays:
             total += _add(a, None)
+        if known is not None:
+            total += _add(known, None)
     if math.isfinite(total):  # NaN and inf propagate into the sums: all finite
         return result
     ok = np.ones(result.time.size, bool)
@@ -225,12 +232,19 @@ class CrossingResult:
     @property
     def travel(self) -> NDArray[np.float64]:
         """The vehicles' travel s_v [m] past their entry supports at ``time``, (n_t, n_vehicles)
-        (computed once: a result is immutable; a fresh copy each access)."""
+        (computed once, or given by the run, ``keep_travel``: a result is immutable; a fresh copy each
+        access)."""
         known = self.__dict__.get("_travel")
         if known is None:
             known = self.crossing.travel(self.time)
             object.__setattr__(self, "_travel", known)
         return known.copy()
+
+    def keep_travel(self, travel: NDArray[np.float64]) -> None:
+        """Keep ``travel``, the crossing's ``Crossing.travel`` at ``time`` that the run has already (its time
+        grid's rows: the same numbers, ``travel`` is elementwise in t), as the result's ``travel``
+        (not to be written to)."""
+        object.__setattr__(self, "_travel", travel)
 
     def wheel_positions(self) -> NDArray[np.float64]:
         """x [m] of every wheel centre at every time (n_t, n_wheels), each vehicle on its own path."""

@@ -10,6 +10,7 @@ import math
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
+from numpy.typing import NDArray
 
 from vbikit.solve.budget import Limits
 from vbikit.solve.compile_notice import announce_compile
@@ -67,7 +68,7 @@ def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int
                         history_budget / 1e9, output_every)
     elif int(output_every) != output_every or output_every < 1:
         raise ValueError(f"output_every must be an integer >= 1, got {output_every!r}")
-    return check_finite(integrate([crossing], data, grid, int(output_every))[0])
+    return check_finite(integrate([crossing], data, grid, int(output_every))[0], fresh=True)
 
 
 def history_stride(n_steps: int, data: "KernelData", budget: float = HISTORY_BUDGET) -> int:
@@ -101,10 +102,12 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
     mot = Motion(grid.travel, grid.speed)
     n_t = n_steps // stride + 1  # stored rows (every stride-th step)
-    xi, dxi, ddxi = (np.zeros((n_l, n_t, n_m)) for _ in range(3))
-    q, dq, ddq = (np.zeros((n_l, n_t, n_d)) for _ in range(3))
-    wheel_force = np.zeros((n_l, n_t, n_w))
-    wheel_len = np.zeros((n_l, n_t, n_w))
+    # row 0 zero (the static start goes in), the other rows filled by the kernel (``KernelCall.outputs``):
+    # not zeroed first (that would write the histories' memory twice)
+    xi, dxi, ddxi = (_histories(n_l, n_t, n_m) for _ in range(3))
+    q, dq, ddq = (_histories(n_l, n_t, n_d) for _ in range(3))
+    wheel_force = _histories(n_l, n_t, n_w)
+    wheel_len = _histories(n_l, n_t, n_w)
     if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
         key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes())  # the entry holds data: its id stays its own
         made: list = []
@@ -130,7 +133,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     call = KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride)
     integrator.run(call)
     deferred = "q_ddot" in call.deferred
-    time, front, speed = _rows(first, grid, stride)
+    time, front, speed, travel = _rows(first, grid, stride)
     results = []
     for lane, c in enumerate(crossings[:n_real]):
         # one view of each history, shared by the result and its deferred q̈ (a pickle then holds each once)
@@ -138,16 +141,26 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
         ddq_l = DeferredAccelerations(data.vehicles, q_l, dq_l, f_l, ddq[lane]) if deferred else ddq[lane]
         results.append(CrossingResult(c, time, dt * stride, front, speed, xi[lane], dxi[lane], ddxi[lane], q_l, dq_l,
                                       ddq_l, f_l, wheel_len[lane], integration_dt=dt, kernel_data=data))
+        results[-1].keep_travel(travel)
     return results
 
 
+def _histories(n_l: int, n_t: int, n: int) -> NDArray[np.float64]:
+    """A history (n_l, n_t, n) of every lane with row 0 zero and the other rows not initialised."""
+    out = np.empty((n_l, n_t, n))
+    out[:, 0] = 0.0
+    return out
+
+
 def _rows(crossing: Crossing, grid: TimeGrid, stride: int) -> tuple:
-    """Time [s], front-axle positions [m] and speeds [m/s] at the stored rows (every ``stride``-th
-    step) of ``grid``: its own travel and speed there (``Crossing.front_positions`` of the grid's travel)."""
+    """Time [s], front-axle positions [m], speeds [m/s] and travel [m] at the stored rows (every
+    ``stride``-th step) of ``grid``: its own travel and speed there (``Crossing.front_positions`` of the
+    grid's travel; the travel is the grid's, shared)."""
     rows = slice(0, None, 2 * stride)
     travel = grid.travel[rows]
     sign = np.array([m.sign for m in crossing.vehicles])
-    return grid.t_half[rows].copy(), np.where(sign > 0, travel, crossing.bridge.span - travel), grid.speed[rows].copy()
+    return (grid.t_half[rows].copy(), np.where(sign > 0, travel, crossing.bridge.span - travel), grid.speed[rows].copy(),
+            travel)
 
 
 def _road(crossings: Sequence[Crossing], x_min: float, x_max: float):

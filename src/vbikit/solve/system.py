@@ -18,6 +18,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import Kept
 from vbikit.road.profile import RoadProfile
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
@@ -111,13 +112,25 @@ def _kernel_data(crossing: Crossing, points_per_mode: int) -> KernelData:
     """``kernel_data`` made afresh."""
     cp = crossing.contact
     origin, direction, y = crossing.point_kinematics()  # copies: the bundle owns its arrays
-    tracks, track_idx = np.unique(y, return_inverse=True)
+    tracks, track_idx = wheel_tracks(y)
     table: TrackTable = tabulate_tracks(crossing.bridge, tracks, points_per_mode)
     points = points_data(cp, track_idx.ravel())._replace(
         origin=np.ascontiguousarray(origin, float), direction=np.ascontiguousarray(direction, float),
         vehicle=np.ascontiguousarray(crossing.point_vehicle, np.int64))
     return KernelData(modes_data(crossing.bridge, table), vehicles_data(crossing.vehicle, cp), points,
                       bool(crossing.loss_of_contact))
+
+
+#: ``wheel_tracks`` already found, by the points' exact y (a stream's events put their points on a few lines)
+_TRACKS: "Kept[tuple, tuple[NDArray[np.float64], NDArray[np.int64]]]" = Kept(64)
+
+
+def wheel_tracks(y: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The distinct wheel tracks y [m] of points at deck y ``y``, ascending, and each point's index
+    into them (``np.unique(y, return_inverse=True)``; a fresh copy of both: the bundle owns its arrays)."""
+    y = np.ascontiguousarray(y, float)
+    tracks, index = _TRACKS.get((y.shape, y.tobytes()), lambda: np.unique(y, return_inverse=True))
+    return tracks.copy(), index.copy()
 
 
 def motion(crossing: Crossing, t: NDArray[np.float64]) -> Motion:
@@ -168,30 +181,51 @@ def coupled_system(modes: Modes, vehicles: Vehicles, points: Points, x: NDArray[
     Returns M, C, K, F and the points' mode-shape rows φ, φ' (n_p, n_m), zero off the deck and for
     points not active (the static start, the explicit step's stability limit and the random-vibration
     solver assemble here)."""
-    n_m, n_d, n_p = modes.omega.size, vehicles.gravity.size, x.size
+    n_m, n_d = modes.omega.size, vehicles.gravity.size
+    act, phi, dphi, k, c, b = _contact_rows(modes, vehicles, points, x, active)
+    n = n_m + n_d
+    mass, damp = np.zeros((n, n)), np.zeros((n, n))
+    mass[:n_m, :n_m] = np.eye(n_m)
+    mass[n_m:, n_m:] = vehicles.mass
+    damp[:n_m, :n_m] = np.diag(2.0 * modes.zeta * modes.omega)
+    damp[n_m:, n_m:] = vehicles.damping
+    damp += b.T @ (c[:, None] * b)
+    stiff, load = _stiffness_load(modes, vehicles, points, vx, road, road_rate, act, dphi, k, c, b)
+    return mass, damp, stiff, load, phi, dphi
+
+
+def _contact_rows(modes: Modes, vehicles: Vehicles, points: Points, x: NDArray[np.float64],
+                  active: NDArray[np.bool_] | None) -> tuple[NDArray[np.float64], ...]:
+    """``coupled_system``'s contact terms: the active mask, the rows φ_p, φ'_p (zero off the deck and
+    for points not active), the active points' k_p, c_p and the rows b_p = [φ_p; −h_w] (n_p, n)."""
+    n_m, n_p = modes.omega.size, x.size
     act = np.ones(n_p, bool) if active is None else np.asarray(active, bool)
-    r = np.zeros(n_p) if road is None else np.asarray(road, float)
-    rdot = np.zeros(n_p) if road_rate is None else np.asarray(road_rate, float)
     on = act & (modes.start[points.track] <= x) & (x <= modes.end[points.track])
     phi, dphi = np.zeros((n_p, n_m)), np.zeros((n_p, n_m))
     if on.any():
         phi[on], dphi[on] = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, points.track[on], x[on])
     k, c = np.where(act, points.stiffness, 0.0), np.where(act, points.damping, 0.0)
     b = np.concatenate([phi, -vehicles.wheel_rows[points.wheel]], axis=1)  # (n_p, n): the rows b_p
+    return act, phi, dphi, k, c, b
+
+
+def _stiffness_load(modes: Modes, vehicles: Vehicles, points: Points, vx: NDArray[np.float64],
+                    road: NDArray[np.float64] | None, road_rate: NDArray[np.float64] | None, act: NDArray[np.bool_],
+                    dphi: NDArray[np.float64], k: NDArray[np.float64], c: NDArray[np.float64],
+                    b: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """K and F of ``coupled_system`` from its contact terms (``_contact_rows``): all the static start needs."""
+    n_m, n_d, n_p = modes.omega.size, vehicles.gravity.size, vx.size
+    r = np.zeros(n_p) if road is None else np.asarray(road, float)
+    rdot = np.zeros(n_p) if road_rate is None else np.asarray(road_rate, float)
     n = n_m + n_d
-    mass, damp, stiff = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
-    mass[:n_m, :n_m] = np.eye(n_m)
-    mass[n_m:, n_m:] = vehicles.mass
-    damp[:n_m, :n_m] = np.diag(2.0 * modes.zeta * modes.omega)
-    damp[n_m:, n_m:] = vehicles.damping
+    stiff = np.zeros((n, n))
     stiff[:n_m, :n_m] = np.diag(modes.omega * modes.omega)
     stiff[n_m:, n_m:] = vehicles.stiffness
-    damp += b.T @ (c[:, None] * b)
     stiff += b.T @ (k[:, None] * b)
     stiff[:, :n_m] += b.T @ ((c * vx)[:, None] * dphi)
     load = np.concatenate([np.zeros(n_m), vehicles.gravity]) - b.T @ (k * (r - points.gap) + c * rdot
                                                                         + np.where(act, points.fixed_load, 0.0))
-    return mass, damp, stiff, load, phi, dphi
+    return stiff, load
 
 
 def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel=None,
@@ -209,10 +243,11 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     the vehicle is not supported, e.g. a profile in mm read as m), the start falls back to the
     equilibrium at rest (no rates), with a warning."""
     travel = crossing.travel(crossing.start_time)[0] if travel is None else travel
-    moving = road_rate is not None and bool(np.any(np.asarray(road_rate) != 0.0)) or bool(np.any(np.asarray(speed) != 0.0))
     try:
         return _equilibrium(crossing, data, road, travel, road_rate, speed, max_iterations)
     except (np.linalg.LinAlgError, RuntimeError):
+        moving = road_rate is not None and bool(np.any(np.asarray(road_rate) != 0.0)) or \
+            bool(np.any(np.asarray(speed) != 0.0))
         if not moving:
             raise
     log.warning("no equilibrium with the tire dashpots' forces from the road rate at t = 0 (a tire would pull); "
@@ -230,7 +265,8 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     active = np.ones(n_p, bool)
     gap = data.points.gap
     veh = data.vehicles
-    for first, count, env in zip(veh.wheel_first, veh.wheel_count, veh.wheel_envelope):
+    flat = not np.any(veh.wheel_envelope)  # no rigid disk: the flat law of the lean kernel
+    for first, count, env in zip(veh.wheel_first, veh.wheel_count, veh.wheel_envelope) if not flat else ():
         if env:
             sl = slice(first, first + count)
             active[sl] = False
@@ -238,7 +274,6 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
             # the rigid disk's contact rate: the surface rate clamped to the circle's slopes (as the kernels)
             v = data.points.direction[sl] * vx[sl]
             rate[sl] = np.clip(rate[sl], v * data.points.slope_range[sl, 0], v * data.points.slope_range[sl, 1])
-    flat = not np.any(veh.wheel_envelope)  # no rigid disk: the flat law of the lean kernel
     if flat:
         gated = point_gates(data)
         zeros = np.zeros(n_p, np.int64)
@@ -253,7 +288,8 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
         # the road values are given (have_r all True): the bundle only carries r_max
         bundle = Road(np.array([0.0, 1.0]), np.zeros((1, 2, 1)), float(np.max(road, initial=0.0)))
     for _ in range(max_iterations):
-        _, _, stiff, load = coupled_matrices(crossing, data, travel, speed, road, rate, active)
+        act, _, dphi, k, c, b = _contact_rows(data.modes, veh, data.points, x, active)  # (``coupled_matrices``' K, F)
+        stiff, load = _stiffness_load(data.modes, veh, data.points, vx, road, rate, act, dphi, k, c, b)
         u = np.linalg.solve(stiff, load)
         if flat:
             new_active = np.zeros(n_p, bool)
@@ -311,16 +347,19 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_
     """
     profiles = [p for pair in roads for p in pair if p is not None]
     for p in profiles:
-        p.evaluate(np.array([x_min, x_max]))  # range check with a clear message
+        if not (min(x_min, x_max) >= p.x[0] - 1e-9 and max(x_min, x_max) <= p.x[-1] + 1e-9):  # (its range check)
+            p.evaluate(np.array([x_min, x_max]))  # its clear message
 
-    def window(p: RoadProfile) -> slice:  # the stations that matter for x_min … x_max
-        lo, hi = np.searchsorted(p.x, [x_min, x_max], side="right")
-        return slice(max(0, lo - 2), min(p.x.size, hi + 2))
-
-    cut = [(p.x[window(p)], p.z[window(p)]) for p in profiles]
+    cuts: dict[int, tuple[NDArray[np.float64], NDArray[np.float64]]] = {}  # per profile (by identity): its stations
+    for p in profiles:  # the stations that matter for x_min … x_max, and its elevations there
+        if id(p) not in cuts:
+            lo, hi = np.searchsorted(p.x, [x_min, x_max], side="right")
+            window = slice(max(0, lo - 2), min(p.x.size, hi + 2))
+            cuts[id(p)] = (p.x[window], p.z[window])
+    cut = list(cuts.values())
     if not profiles:
         stations = np.array([x_min - 1.0, x_max + 1.0])
-    elif all(np.array_equal(x, cut[0][0]) for x, _ in cut):
+    elif all(x is cut[0][0] or np.array_equal(x, cut[0][0]) for x, _ in cut):
         stations = np.array(cut[0][0], float)  # own, writeable copy: numba compiles kernels again for read-only arrays
     else:
         stations = np.unique(np.concatenate([x for x, _ in cut]))
@@ -328,7 +367,7 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_
     elev = np.zeros((2 if two else 1, stations.size, len(roads)))
 
     def on_stations(p: RoadProfile) -> NDArray[np.float64]:
-        x, z = p.x[window(p)], p.z[window(p)]
+        x, z = cuts[id(p)]
         return z if np.array_equal(x, stations) else np.interp(stations, x, z)
 
     for lane, (left, right) in enumerate(roads):

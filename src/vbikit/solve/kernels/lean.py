@@ -42,6 +42,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cell
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
@@ -433,7 +434,19 @@ def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_row
          active, np.zeros(n_cp, np.bool_), np.zeros(n_cp), np.zeros(n_cp), np.zeros(n_w), np.zeros(n_w))
 
 
+#: ``wheel_entries`` already made, by the rows' exact bytes (a traffic event's static start and step map read
+#: them three times, and a stream's trucks with the same axles share their rows)
+_ENTRIES: "Kept[tuple, tuple[np.ndarray, np.ndarray]]" = Kept(64)
+
+
 def wheel_entries(wheel_rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``_wheel_entries`` of ``wheel_rows``, made once per rows (their shape and exact bytes) in a process
+    and shared: not to be written to (writeable: numba compiles the kernels again for read-only arrays)."""
+    rows = np.ascontiguousarray(wheel_rows, float)
+    return _ENTRIES.get((rows.shape, rows.tobytes()), lambda: _wheel_entries(rows))
+
+
+def _wheel_entries(wheel_rows: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The nonzero entries of each wheel's row h_w of ``wheel_rows`` (n_w, n_d), as the lean kernels read
     them: their DOF indices (n_w, k) int64, ascending, and values (n_w, k), k the most any row has, a
     shorter row padded with index 0 and value 0.0 (which the kernels skip).  Σ_e h[w, e] z[dof[w, e]]
