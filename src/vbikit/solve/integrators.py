@@ -84,8 +84,8 @@ class KernelCall:
     outputs : tuple of ndarray
         ``(xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)``, each (n_lanes, n_stored, ·),
         row 0 holding the static start (zero but ξ and q); the kernel fills the other rows, which
-        come uninitialised (``np.empty``: every kernel writes them all; q̈ may be left to the
-        results, ``deferred``).
+        come as NaN (a row left unwritten fails ``check_finite``; q̈ may be left to the results,
+        ``deferred``).
     lanes : tuple
         ``(0,)`` for one lane (its own compiled variant), ``(0, 0)`` for several.
     stride : int

@@ -102,8 +102,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     n_m, n_d, n_w, n_p = data.n_modes, data.n_dof, data.n_wheels, data.n_points
     mot = Motion(grid.travel, grid.speed)
     n_t = n_steps // stride + 1  # stored rows (every stride-th step)
-    # row 0 zero (the static start goes in), the other rows filled by the kernel (``KernelCall.outputs``):
-    # not zeroed first (that would write the histories' memory twice)
+    # row 0 zero (the static start goes in), the other rows filled by the kernel (``KernelCall.outputs``)
     xi, dxi, ddxi = (_histories(n_l, n_t, n_m) for _ in range(3))
     q, dq, ddq = (_histories(n_l, n_t, n_d) for _ in range(3))
     wheel_force = _histories(n_l, n_t, n_w)
@@ -146,8 +145,10 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
 
 
 def _histories(n_l: int, n_t: int, n: int) -> NDArray[np.float64]:
-    """A history (n_l, n_t, n) of every lane with row 0 zero and the other rows not initialised."""
-    out = np.empty((n_l, n_t, n))
+    """A history (n_l, n_t, n) of every lane with row 0 zero and the other rows NaN until the kernel writes
+    them: a row an integrator failed to write is then caught by ``check_finite`` instead of being read
+    as numbers (uninitialised memory would be; this costs ≈ 0.04 ms a traffic event over ``np.empty``)."""
+    out = np.full((n_l, n_t, n), np.nan)
     out[:, 0] = 0.0
     return out
 
