@@ -133,3 +133,32 @@ def test_planning_does_not_load_the_kernels():
             "assert 'numba' not in sys.modules and 'vbikit.solve.kernels' not in sys.modules, "
             "sorted(m for m in sys.modules if 'numba' in m or 'kernels' in m)\n")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_rows_an_integrator_leaves_unwritten_fail_the_finiteness_check(beam):
+    """The histories' rows after the static start come as NaN until the integrator writes them
+    (``simulate._histories``): an integrator whose ``run`` stops half way (here: the built-in exact
+    one, then its rows after the middle put back to how they came) is refused by ``check_finite``
+    with the first unwritten step, instead of returning zeros or whatever memory held."""
+    from vbikit.solve.result import DivergenceError
+
+    exact = get_integrator("exact")
+    seen = {}
+
+    def run(call):
+        before = [np.array(a[:, 1:], copy=True) for a in call.outputs]
+        exact.run(call)
+        half = call.outputs[0].shape[1] // 2
+        seen["half"] = half
+        seen["came_as_nan"] = all(np.isnan(b).all() for b in before)
+        for a, b in zip(call.outputs, before):
+            a[:, half:] = b[:, half - 1:]  # as they came: an integrator that stopped at the middle row
+
+    register_integrator(dataclasses.replace(exact, name="half-written", run=run))
+    try:
+        with pytest.raises(DivergenceError, match=r"at step (\d+)") as err:
+            simulate(Crossing(beam, sprung_mass(), speed=15.0, integrator="half-written"))
+    finally:
+        INTEGRATORS.pop("half-written", None)
+    assert seen["came_as_nan"]
+    assert f"at step {seen['half']} " in str(err.value)
