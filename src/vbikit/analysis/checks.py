@@ -15,7 +15,9 @@ Thresholds (documented in docs/scenario.md):
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
 * a step given by the user that is coarser than the integrator's automatic step, and bridge
   modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
-  step does not (``step_flags``);
+  step does not (``step_flags``; its message counts and lists every mode the step leaves unresolved);
+* a random road (``RoadProfile.origin`` of kind "random"): its IMs are one realisation's
+  (``realisation_flags``, code ``one_realisation``; single crossings only);
 * wheels that lost contact (which, where first, for how long); and, when any wheel was airborne on
   the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge (its own
   track's stretch of the deck, ``wheel_track_ends``: on a skew deck shorter than the deck's x range), one warning
@@ -528,8 +530,8 @@ def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray
 def realisation_flags(crossing: Crossing) -> list[Flag]:
     """One flag when the crossing's road is a random realisation (``RoadProfile.origin`` of kind
     "random": an ISO 8608 / paper class or a PSD, with its seed; with or without defects): its impact
-    factors are those of that one road and scatter between seeds (the demo, class C: IM = 0.245 for
-    seed 1; ``vbikit run --random`` of it: 0.203 ± 0.101), so they are not the road class's IM.
+    factors are those of that one road and scatter between seeds (their mean and σ: ``vbikit run
+    --random``, docs/random.md), so they are not the road class's IM.
     Smooth roads, measured profiles and defects alone are deterministic: no flag.  A single-crossing
     check only (``run_flags``): a random run (PEM) or a study over seeds is the remedy, not the case."""
     road = crossing.road
