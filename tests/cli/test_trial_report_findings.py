@@ -86,10 +86,11 @@ def test_one_realisation_flag_follows_the_road_origin_not_its_label():
     from vbikit.analysis.checks import realisation_flags
     from vbikit.road import RoadOrigin, RoadProfile
 
-    def crossing(origin, label=""):
-        return SimpleNamespace(road=RoadProfile(np.array([0.0, 1.0]), np.zeros(2), label, origin=origin))
+    def crossing(origin, label="", z=(0.0, 1e-3)):
+        return SimpleNamespace(road=RoadProfile(np.array([0.0, 1.0]), np.array(z), label, origin=origin))
 
     (flag,) = realisation_flags(crossing(RoadOrigin("random", "C", 7)))
+    assert realisation_flags(crossing(RoadOrigin("random", "psd", 7), z=(0.0, 0.0))) == []  # phi0 = 0: smooth
     assert flag.code == "one_realisation" and flag.value == 7 and flag.output == "impact_factor"
     assert "random class-C road (seed 7)" in flag.message and "vbikit run --random" in flag.message
     assert "road.seed" in flag.message  # the study over seeds

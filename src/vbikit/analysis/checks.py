@@ -536,7 +536,7 @@ def realisation_flags(crossing: Crossing) -> list[Flag]:
     check only (``run_flags``): a random run (PEM) or a study over seeds is the remedy, not the case."""
     road = crossing.road
     o = road.origin if road is not None else None
-    if o is None or o.kind != "random":
+    if o is None or o.kind != "random" or not np.any(road.z):  # a PSD of level 0 is a smooth road
         return []
     return [Flag("one_realisation",
                  f"one road realisation: the impact factors are those of one realisation of the {road_origin(road)}; "
