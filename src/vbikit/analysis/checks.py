@@ -15,7 +15,9 @@ Thresholds (documented in docs/scenario.md):
 * a response point within 2 % of the span from a support (static response near zero, IM meaningless);
 * a step given by the user that is coarser than the integrator's automatic step, and bridge
   modes that the automatic step resolves (at least 5 steps a period, f·dt ≤ 0.2) but the user's
-  step does not (``step_flags``);
+  step does not (``step_flags``; its message counts and lists every mode the step leaves unresolved);
+* a random road (``RoadProfile.origin`` of kind "random"): its IMs are one realisation's
+  (``realisation_flags``, code ``one_realisation``; single crossings only);
 * wheels that lost contact (which, where first, for how long); and, when any wheel was airborne on
   the bridge for more than ``AIRBORNE_FRACTION`` (5 %) of its own time on the bridge (its own
   track's stretch of the deck, ``wheel_track_ends``: on a skew deck shorter than the deck's x range), one warning
@@ -87,8 +89,9 @@ FLAG_CODES: dict[str, str] = {
                           "the span, threshold: ``SUPPORT_MARGIN`` (0.02)",
     "coarse_step": "a given crossing.dt coarser than the integrator's automatic step; value: dt [s], threshold: the "
                    "automatic step [s]",
-    "unresolved_modes": "bridge modes the given step does not resolve (fewer than 5 steps a period); value: the "
-                        "highest such frequency [Hz], threshold: 1 / (5 dt) [Hz]",
+    "unresolved_modes": "bridge modes the given step does not resolve (fewer than 5 steps a period) but the automatic "
+                        "step does (the message counts and lists every mode the step does not resolve); value: the "
+                        "highest frequency of those the automatic step resolves [Hz], threshold: 1 / (5 dt) [Hz]",
     "contact_loss": "a wheel lost contact with the road; wheel; value: its time off the road on the bridge [s] (0 "
                     "when only before or after it)",
     "airborne_wheels": "the impact factors are dominated by wheels leaving the road: a wheel airborne on the bridge for "
@@ -111,6 +114,11 @@ FLAG_CODES: dict[str, str] = {
                 "probability, threshold: the limit",
     "coarse_grid": "random run: the wavenumber grid is coarse; value: the change of σ between every and every "
                    "second line, threshold: the limit",
+    "one_realisation": "the road is one realisation of a random road (a class or PSD with a seed): the impact factors "
+                       "are those of that realisation and scatter between seeds; output: impact_factor; value: the "
+                       "seed",
+    "ignored_input": "an input the model has no use for (response.y or crossing.lateral_offset on a beam, which has "
+                     "no lateral dimension); subject: the key; value: the value given",
 }
 
 
@@ -293,14 +301,32 @@ def step_flags(crossing: Crossing, dt: float) -> list[Flag]:
         out.append(Flag("coarse_step", f"crossing.dt = {dt:.3g} s is coarser than the automatic step {auto:.3g} s of this "
                         f"crossing ({crossing.integrator}); results lose accuracy — leave dt out for the automatic step",
                         subject="crossing.dt", value=dt, threshold=auto))
-    f = crossing.bridge.frequencies_hz
-    unresolved = f[(f * dt > 1.0 / STEPS_PER_PERIOD) & (f * auto <= 1.0 / STEPS_PER_PERIOD)]
-    if unresolved.size:
+    f = np.asarray(crossing.bridge.frequencies_hz, float)
+    limit = 1.0 / STEPS_PER_PERIOD
+    unresolved = np.flatnonzero(f * dt > limit)  # every mode the step does not resolve
+    lost = np.flatnonzero((f * dt > limit) & (f * auto <= limit))  # ... of them, those the automatic step resolves
+    if lost.size:
+        also = "" if lost.size == unresolved.size else (
+            f"; the automatic step {auto:.3g} s resolves {_modes(lost, f)} of them")
         out.append(Flag("unresolved_modes", f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
-                        f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes "
-                        f"({unresolved.min():.4g}–{unresolved.max():.4g} Hz) are not resolved; use a smaller dt or fewer modes",
-                        subject="crossing.dt", value=float(unresolved.max()), threshold=1 / (STEPS_PER_PERIOD * dt)))
+                        f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes, "
+                        f"{_modes(unresolved, f)}, are not resolved{also}; use a smaller dt or fewer modes",
+                        subject="crossing.dt", value=float(f[lost].max()), threshold=1 / (STEPS_PER_PERIOD * dt)))
     return out
+
+
+def _modes(index: NDArray[np.intp], f: NDArray[np.float64]) -> str:
+    """Modes by number (1-based, runs joined: "modes 1–4, 7") and their frequency range [Hz]."""
+    runs: list[list[int]] = []
+    for i in (int(k) + 1 for k in index):
+        if runs and i == runs[-1][1] + 1:
+            runs[-1][1] = i
+        else:
+            runs.append([i, i])
+    numbers = ", ".join(f"{a}" if a == b else f"{a}–{b}" for a, b in runs)
+    word = "mode" if index.size == 1 else "modes"
+    hz = f"{f[index].min():.4g} Hz" if index.size == 1 else f"{f[index].min():.4g}–{f[index].max():.4g} Hz"
+    return f"{word} {numbers} ({hz})"
 
 
 def wheel_track_ends(result: CrossingResult) -> NDArray[np.float64]:
@@ -501,8 +527,28 @@ def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray
             for name, k in zip(names, flags.sum(axis=0)) if k]
 
 
+def realisation_flags(crossing: Crossing) -> list[Flag]:
+    """One flag when the crossing's road is a random realisation (``RoadProfile.origin`` of kind
+    "random": an ISO 8608 / paper class or a PSD, with its seed; with or without defects): its impact
+    factors are those of that one road and scatter between seeds (their mean and σ: ``vbikit run
+    --random``, docs/random.md), so they are not the road class's IM.
+    Smooth roads, measured profiles and defects alone are deterministic: no flag.  A single-crossing
+    check only (``run_flags``): a random run (PEM) or a study over seeds is the remedy, not the case."""
+    road = crossing.road
+    o = road.origin if road is not None else None
+    if o is None or o.kind != "random" or not np.any(road.z):  # a PSD of level 0 is a smooth road
+        return []
+    return [Flag("one_realisation",
+                 f"one road realisation: the impact factors are those of one realisation of the {road_origin(road)}; "
+                 f"another seed of the same road gives another road and other impact factors (they scatter between "
+                 f"realisations), so this IM alone is not the road class's value; for the mean, σ and quantiles over "
+                 f"realisations run `vbikit run --random` on the scenario, or a study over seeds "
+                 f"(\"road.seed\" = {{ samples = N }})", output="impact_factor",
+                 subject="road.seed", value=None if o.seed is None else float(o.seed))]
+
+
 def run_flags(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[Flag]:
-    """Every flag about a finished crossing: its inputs, its contact losses and wheels airborne long
-    enough to dominate the impact factors."""
+    """Every flag about a finished crossing: its inputs, its contact losses, wheels airborne long
+    enough to dominate the impact factors and a random road's one realisation (``realisation_flags``)."""
     return (input_flags(result.crossing, result.dt, response_x, response_y) + contact_flags(result)
-            + airborne_flags(result))
+            + airborne_flags(result) + realisation_flags(result.crossing))

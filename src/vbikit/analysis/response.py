@@ -270,6 +270,7 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     """The exact static strain peak at ``response``'s point [-]: c/EI times the static moment of the
     full stiffness there (the static part of the moment's mode-acceleration estimate,
     ``vbikit.bridge.effects``), with c/EI the ratio ε_i / r_i of every mode's strain to its moment —
+    on a beam (``lateral_invariant``: no lateral dimension) whatever the point's y —
     None where the bridge offers no moment at the point (no load effects, a point off the girder
     lines of a deck, a support) or the ratio is not the same for every mode (strain not c/EI times
     the moment there).  A continuous beam gives c/EI of its section (``ContinuousBeam.strain_per_moment``):
@@ -286,9 +287,10 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     from vbikit.analysis.effects import load_effect_responses, supports_load_effects
 
     bridge = result.crossing.bridge
-    if not supports_load_effects(bridge) or isinstance(bridge, GirderDeck) or \
-            abs(response.y - float(bridge.default_response_y)) > 1e-9:
+    if not supports_load_effects(bridge) or isinstance(bridge, GirderDeck):
         return None
+    if not bridge.lateral_invariant and abs(response.y - float(bridge.default_response_y)) > 1e-9:
+        return None  # a point off the line the moment is read on; a beam has no lateral dimension: any y is its line
     try:
         effect = bridge.load_effect("moment", response.x)
     except (ValueError, NotImplementedError):

@@ -68,14 +68,23 @@ def print_summary(run: Run) -> None:
 
     # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
     airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
-    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if airborne else ''}  "
-               f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if airborne or strain_off else ''})")
+    coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
+    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if airborne or coarse else ''}  "
+               f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if airborne or strain_off or coarse else ''})")
     if airborne:
         typer.echo(f"  {'':<20} ! unreliable: wheels left the road on the bridge; the IM is dominated by their "
                    "landing impacts, not a design value — see the warning")
+    if coarse:
+        typer.echo(f"  {'':<20} ! unreliable: the given crossing.dt is too coarse for this crossing (leave it out for "
+                   "the automatic step) — see the warning")
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes (use more modes) "
                    "— see the warning")
+    realisation = next((f for f in s.get("flags", ()) if f.get("code") == "one_realisation"), None)
+    if realisation is not None:
+        seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
+        typer.echo(f"  {'':<20} note: one realisation of the random road{seed}; other seeds give other IMs — "
+                   "`vbikit run --random` for the mean, σ and quantiles")
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
     # the run's one judgement of the small static references: its small_static flags (girders and points)
@@ -100,7 +109,7 @@ def print_summary(run: Run) -> None:
             typer.echo(f"  {'':<20} ! unreliable: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
                        "of the girders and points (a lightly loaded girder); not a design value — see the warning")
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f}"
-                   f"{'!' if airborne else ''})")
+                   f"{'!' if airborne or coarse else ''})")
     print_codes(s["design_code_allowances"], "deflection IM beside")
     print_load_effects(s)
     print_negative_note(negative_impact(s))

@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard, out_file_option
+from vbikit.cli.guard import guard, out_file_option, warn
 from vbikit.cli.study import run_job
 from vbikit.errors import OptionError
 
@@ -51,6 +51,10 @@ def traffic_cmd(
     base, base_dir = guard(lambda: base_scenario(bridge))
     if road is not None:
         base = {**base, "road": {**base.get("road", {}), "class": road}}
+    from vbikit.scenario.schema import parse_scenario
+    from vbikit.traffic.base import dropped_section_warnings, template_data
+
+    warn(dropped_section_warnings(guard(lambda: parse_scenario(template_data(base), base_dir)).response))
     lane_y = None if lanes is None else guard(lambda: _lanes(lanes))
     names = None if outputs is None else [n.strip() for n in outputs.split(",") if n.strip()]
     job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,

@@ -96,10 +96,11 @@ def _traffic_base(path: Path, budget: Any) -> str:
     the kernels."""
     from vbikit.scenario.build import build
     from vbikit.scenario.schema import parse_scenario
-    from vbikit.traffic.base import base_scenario, template_data
+    from vbikit.traffic.base import base_scenario, dropped_section_warnings, template_data
 
     base, base_dir = base_scenario(str(path))
     scenario = parse_scenario(template_data(base), base_dir)
+    warn(dropped_section_warnings(scenario.response))
     bridge = build(scenario, budget).crossing.bridge
     road = "one road for every event" if scenario.road.profile_file is not None or scenario.road.road_class == "none" \
         else "a random road per event"

@@ -261,6 +261,6 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
                   for r in effects if r.step_warning])
     add_flags(s, effect_static_flags([(r.effect.kind, r.effect.label, r.effect.units, r.impact.static_peak,
                                        r.impact.impact_factor) for r in effects]))
-    for name, p in zip(plan.point_names[1:], points[1:]):
-        add_flags(s, point_flags(result.crossing, p.x, p.y, name))
+    for point_name, p in zip(plan.point_names[1:], points[1:]):  # not ``name``: the report's label
+        add_flags(s, point_flags(result.crossing, p.x, p.y, point_name))
     return Report(name, result, plan, points, girders, effects, s)

@@ -61,6 +61,28 @@ def defect_flags(scenario: Scenario, built: BuiltScenario) -> list[Flag]:
     return out
 
 
+def ignored_input_flags(scenario: Scenario, built: BuiltScenario) -> list[Flag]:
+    """Inputs a beam has no use for, when the user gave them (the schema's ``model_fields_set``, not a
+    default) with a value other than the beam's own 0: ``response.y`` (or a [[response.points]] table's
+    ``y``) and ``crossing.lateral_offset`` of a single vehicle.  A beam (``bridge.lateral_invariant``)
+    has no lateral dimension: its responses and the vehicle's path are the same at every y.  (Listed
+    vehicles' ``lateral_offset`` still separates their lanes in the overlap check: not flagged.)"""
+    if not built.crossing.bridge.lateral_invariant:
+        return []
+    r = scenario.response
+    given = [(f"response.points[{i}].y", p.y) for i, p in enumerate(r.points or (), start=1) if "y" in p.model_fields_set]
+    if r.points is None and "y" in r.model_fields_set:
+        given.append(("response.y", r.y))
+    c = scenario.crossing
+    if scenario.vehicle is not None and "lateral_offset" in c.model_fields_set:
+        given.append(("crossing.lateral_offset", c.lateral_offset))
+    return [Flag("ignored_input", f"{key} = {value:g} m has no effect: the bridge model ({scenario.bridge.model}) is a "
+                 "beam, which has no lateral dimension (its responses and the vehicle's path are the same at every "
+                 f"y); leave {key.rsplit('.', 1)[-1]} out, or use a deck model (slab-on-girder) for lateral positions",
+                 subject=key, value=float(value))
+            for key, value in given if value is not None and value != 0.0]
+
+
 def check_response_points(built: BuiltScenario) -> None:
     """Refuse a response point where every mode shape vanishes (on a support, off the deck): no
     static response there, hence no impact factor."""
@@ -267,7 +289,7 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     check_response_points(built)
     check_load_effects(scenario, built)
     flags = input_flags(crossing, run.dt, built.response_x, built.response_y) + defect_flags(scenario, built) \
-        + axle_load_flags(scenario)
+        + axle_load_flags(scenario) + ignored_input_flags(scenario, built)
     for name, p in zip(built.plan.point_names[1:], built.plan.points[1:]):  # the other points' own notes (near a support)
         flags += point_flags(crossing, p.x, p.y, name)
     return Plan(scenario, built, run.dt, run.estimate, flags, run)

@@ -310,6 +310,12 @@ class CrossingSpec(Section):
     lateral_offset: Optional[float] = Field(
         None, ge=-MAX_LATERAL_OFFSET, le=MAX_LATERAL_OFFSET, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
 
+    @classmethod
+    def missing_note(cls) -> str:
+        return ("it needs the speed, speed [m/s] or speed_kmh [km/h], for a [vehicle]; with [[vehicles]] that each "
+                "give their own speed an empty [crossing] table will do; its other keys (all optional): "
+                + ", ".join(k for k in cls.allowed_keys({}) if k not in ("speed", "speed_kmh")))
+
     @field_validator("integrator")
     @classmethod
     def _known_integrator(cls, v: str) -> str:
@@ -582,7 +588,9 @@ def _format(err: ValidationError, data: dict[str, Any], prefix: tuple[Any, ...] 
             note = model.unknown_key_note(str(e["loc"][-1]), table) if model else ""  # type: ignore[attr-defined]
             msg = f"unknown key; allowed keys: {', '.join(names)}{f' ({note})' if note else ''}"
         elif e["type"] == "missing":
-            msg = "missing required key"
+            table = _walk(prefix + tuple(e["loc"]))[1]  # a whole table missing: name it and what it takes
+            msg = "missing required key" if table is None or not issubclass(table, Section) else \
+                f"missing required table [{loc}]; {table.missing_note()}"
         elif bound_message(e) is not None:  # the range with both bounds and the unit
             msg = bound_message(e, _key_field(prefix + tuple(e["loc"]), data))
         elif "input" in e and e["type"] not in ("value_error",):

@@ -33,6 +33,11 @@ class Section(BaseModel):
         return next((f for n, f in cls.model_fields.items() if key in (n, f.alias)), None)
 
     @classmethod
+    def missing_note(cls) -> str:
+        """What a required table of this section needs, for the error when it is missing (default: its keys)."""
+        return "its keys: " + ", ".join(cls.allowed_keys({}))
+
+    @classmethod
     def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
         """A hint for the unknown ``key`` of ``table`` ("" for none)."""
         return ""

@@ -4,8 +4,12 @@ compiled kernels) so that ``vbikit validate`` checks a base file without loading
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from vbikit.scenario.schema import ScenarioError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.scenario.schema import ResponseSpec
 
 #: scenario sections a traffic base scenario may hold (the vehicles come from the records)
 BASE_SECTIONS = ("name", "bridge", "tire", "road", "crossing", "response")
@@ -40,3 +44,19 @@ def template_data(base: dict) -> dict:
     crossing = {k: v for k, v in base.get("crossing", {}).items() if k not in ("speed", "speed_kmh")}
     data["crossing"] = {**crossing, "speed": 20.0}
     return data
+
+
+def dropped_section_warnings(response: "ResponseSpec") -> list[str]:
+    """A stream's dataset holds one section of each load effect, the first one listed (the
+    catalogue's ``moment_*``, ``shear_*``, ``reaction_*`` outputs: ``ResponsePlan.first_effects``);
+    one warning per kind of which the base scenario's [response] lists more, naming the sections
+    dropped (``vbikit validate`` and ``vbikit traffic`` print them)."""
+    out = []
+    for kind, where in (("moment", "x = {:g} m"), ("shear", "x = {:g} m"), ("reaction", "support {:d}")):
+        given = getattr(response, kind)
+        if given is not None and len(given) > 1:
+            out.append(f"response.{kind}: a traffic stream's dataset keeps the first section of each load effect "
+                       f"only ({kind} at {where.format(given[0])}); dropped: "
+                       f"{', '.join(where.format(v) for v in given[1:])}; list the section you want first, or run "
+                       "one stream per section")
+    return out
