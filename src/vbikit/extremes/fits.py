@@ -296,7 +296,7 @@ def fit_peaks_over_threshold(values: Any, threshold: float, rate_per_year: float
                             f"{MIN_SAMPLE['gpd']} — lower the threshold")
     excess = above - u
     if excess.min() == excess.max():
-        raise ExtremesError(f"values: all {above.size} exceedances of {u!r} are equal; nothing to fit")
+        raise ExtremesError(f"values: all {above.size} exceedances of {u:.6g} are equal; nothing to fit")
     theta = _mle("gpd", excess)
     cov = _covariance("gpd", theta, above, u)
     loglik = -_nll("gpd", theta, above, u)
