@@ -1,7 +1,7 @@
 # A load effect whose static history takes both signs: the moment over a soft pier of a two-span
 # continuous beam (12 + 18 m) sags while the truck is near the pier (the spring settles) and hogs
 # while it is on the far span.  Both extremes are reported (vbikit.analysis.effects: ``opposite``,
-# the summary's ``opposite_*`` keys, the flags ``sagging_over_pier`` / ``two_signed_effect``).
+# the summary's ``opposite_*`` keys, the flag ``sagging_over_pier``).
 #
 # Independent numbers: the pier moment's influence line by the force method (our own, below): the
 # 30 m simply supported beam with the pier reaction R as the redundant, compatibility
@@ -99,10 +99,10 @@ def test_rigid_pier_is_one_signed():
 
 def test_short_span_midspan_is_two_signed():
     # rigid pier, x = 6 m: sagging while the truck is on the short span, hogging (closed form 62 % of
-    # it) while it is on the long one: the two_signed_effect flag, no sagging_over_pier (not over a pier)
+    # it) while it is on the long one: both extremes, no flag (not over a pier)
     r, closed = _run(np.inf, 6.0)
     assert r.impact.static_peak == pytest.approx(closed.max(), rel=1e-3)
     assert r.opposite.static_peak == pytest.approx(closed.min(), rel=1e-3)
     assert r.governing in ("sagging", "hogging")
-    (flag,) = effect_sign_flags([r])
-    assert flag.code == "two_signed_effect" and flag.value == pytest.approx(-closed.min() / closed.max(), rel=2e-3)
+    assert r.opposite_share == pytest.approx(-closed.min() / closed.max(), rel=2e-3)
+    assert effect_sign_flags([r]) == []

@@ -115,9 +115,6 @@ FLAG_CODES: dict[str, str] = {
     "sagging_over_pier": "a moment over an interior support whose largest static value is sagging (a soft "
                          "support); output: moment; value: the hogging extreme's share of it, threshold: "
                          "``SMALL_STATIC_FRACTION`` (0.2; above it the hogging extreme is reported too)",
-    "two_signed_effect": "a load effect whose static history takes both signs, the smaller beyond "
-                         "``SMALL_STATIC_FRACTION`` of the larger (both extremes reported); output: moment / shear / "
-                         "reaction; value: the smaller's share, threshold: 0.2",
     "coarse_grid": "random run: the wavenumber grid is coarse; value: the change of σ between every and every "
                    "second line, threshold: the limit",
     "one_realisation": "the road is one realisation of a random road (a class or PSD with a seed): the impact factors "

@@ -21,7 +21,8 @@ Both signs: a static history that also reaches, the other way, more than ``SMALL
 pier, which sags while the load is near and hogs while it is on the next span; the shear at
 midspan) has the opposite extreme's peaks and IM too (``LoadEffectResponse.opposite``,
 ``impact.impact_factor_toward``): the summary's ``opposite_*`` keys and ``governing`` (the sense
-whose dynamic peak is larger in magnitude), and a flag (``effect_sign_flags``).  The existing
+whose dynamic peak is larger in magnitude); a moment over a pier whose reported extreme is
+sagging is flagged (``effect_sign_flags``).  The existing
 keys keep the largest-magnitude extreme.
 """
 from __future__ import annotations
@@ -347,11 +348,13 @@ def _kilo(value: float, units: str) -> str:
 
 
 def effect_sign_flags(responses: Sequence[LoadEffectResponse]) -> list[Any]:
-    """Flags (``vbikit.analysis.checks.Flag``) for load effects whose one reported extreme is not the
-    whole story: ``sagging_over_pier`` for a moment over an interior support (``hogging_region``)
-    whose largest static value is sagging (a soft pier settling under the load), with the hogging
-    extreme beside it; else ``two_signed_effect`` for a static history taking both signs beyond
-    ``SMALL_STATIC_FRACTION`` of its largest magnitude (``LoadEffectResponse.two_signed``)."""
+    """Flags (``vbikit.analysis.checks.Flag``) for load effects whose reported extreme is not the one
+    the section is read for: ``sagging_over_pier`` for a moment over an interior support
+    (``hogging_region``) whose largest static value is sagging (a soft pier settling under the
+    load), with the hogging extreme beside it (its peaks and IM when ``two_signed``, else its
+    share).  Other two-signed effects (a short span's midspan moment, a pier moment that also sags
+    while the truck is two spans away) are normal and carry no flag: their entries'
+    ``opposite_*`` keys and the text report's second line give the other extreme."""
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION, Flag
 
     out = []
@@ -372,11 +375,6 @@ def effect_sign_flags(responses: Sequence[LoadEffectResponse]) -> list[Any]:
                             f"static_peak, dynamic_peak and impact_factor are the sagging extreme: {both}; the "
                             f"{r.governing} dynamic peak governs", output="moment", subject=e.label,
                             value=r.opposite_share, threshold=SMALL_STATIC_FRACTION))
-        elif opp is not None:
-            out.append(Flag("two_signed_effect",
-                            f"{e.label}: the static {e.kind} takes both signs: {both}; the {r.governing} dynamic "
-                            "peak governs", output=e.kind, subject=e.label, value=r.opposite_share,
-                            threshold=SMALL_STATIC_FRACTION))
     return out
 
 
