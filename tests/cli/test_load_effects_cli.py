@@ -140,3 +140,23 @@ def test_cli_and_python_give_the_same_load_effects():
     # than one effect alone): equal to round-off
     assert entry["impact_factor"] == pytest.approx(pier.impact_factor, rel=1e-12, abs=1e-14)
     assert entry["static_peak"] == pytest.approx(pier.static_peak, rel=1e-12)
+
+
+def test_soft_pier_reports_the_hogging_extreme_too(tmp_path):
+    # spans 12 + 18 m on a 7e7 N/m pier under a 100 kN force: the pier moment's largest static value is
+    # sagging, +188.39 kN m, the hogging one −58.79 kN m (the force method's influence line of
+    # tests/verification/test_two_signed_effects.py, times 100 kN); the hogging one is reported beside it
+    # (opposite_*), flagged sagging_over_pier, and printed on its own line
+    text = SMALL.replace("spans = [12.0, 15.0]", "spans = [12.0, 18.0]").replace("EI = [5e9, 6e9]", "EI = 1.286e10")
+    text = text.format(extra="support_stiffness = [1e12, 7e7, 1e12]", response="moment = [12.0]")
+    s = json.loads(_run(tmp_path, text, "--json").stdout)
+    m = s["moment"]
+    assert m["hogging_region"] and m["static_peak"] > 0 and m["sense"] == "sagging" and m["two_signed"]
+    assert m["static_peak"] == pytest.approx(188.394e3, rel=1e-3) and m["opposite_dynamic_peak"] < 0
+    assert m["opposite_static_peak"] == pytest.approx(-58.791e3, rel=1e-3)
+    assert m["opposite_impact_factor"] == pytest.approx(
+        (m["opposite_dynamic_peak"] - m["opposite_static_peak"]) / m["opposite_static_peak"], rel=1e-12)
+    assert [f["code"] for f in s["flags"] if f["output"] == "moment"] == ["sagging_over_pier"]
+    out = _run(tmp_path, text).stdout
+    line = next(ln for ln in out.splitlines() if "hogging, " in ln and "governs" in ln)
+    assert f"{m['opposite_static_peak'] * 1e-3:+10.2f}" in line and f"{m['opposite_impact_factor']:7.4f}" in line

@@ -112,6 +112,9 @@ FLAG_CODES: dict[str, str] = {
     "non_finite": "an output that is not a finite number (written as null); output: its key",
     "lift_off": "random run: a tire lifts off with a probability above the linear theory's limit; value: the "
                 "probability, threshold: the limit",
+    "sagging_over_pier": "a moment over an interior support whose largest static value is sagging (a soft "
+                         "support); output: moment; value: the hogging extreme's share of it, threshold: "
+                         "``SMALL_STATIC_FRACTION`` (0.2; above it the hogging extreme is reported too)",
     "coarse_grid": "random run: the wavenumber grid is coarse; value: the change of σ between every and every "
                    "second line, threshold: the limit",
     "one_realisation": "the road is one realisation of a random road (a class or PSD with a seed): the impact factors "

@@ -14,7 +14,16 @@ positive) spread over its points by their static shares β_p:
 Spreading each wheel force by the static shares is exact for point tires and changes a load
 effect of a multi-point patch (0.254 m long) by far less than its dynamic part.  The impact
 factor is that of [`vbikit.analysis.impact.impact_factor`][vbikit.analysis.impact_factor]: peaks in the direction of the
-static peak (hogging over a pier, where the static peak moment is negative).
+static history's largest-magnitude value (hogging over a rigid pier, where the static peak moment is negative).
+
+Both signs: a static history that also reaches, the other way, more than ``SMALL_STATIC_FRACTION``
+(20 %, ``vbikit.analysis.checks``) of its largest magnitude (``two_signed``: the moment over a soft
+pier, which sags while the load is near and hogs while it is on the next span; the shear at
+midspan) has the opposite extreme's peaks and IM too (``LoadEffectResponse.opposite``,
+``impact.impact_factor_toward``): the summary's ``opposite_*`` keys and ``governing`` (the sense
+whose dynamic peak is larger in magnitude); a moment over a pier whose reported extreme is
+sagging is flagged (``effect_sign_flags``).  The existing
+keys keep the largest-magnitude extreme.
 """
 from __future__ import annotations
 
@@ -26,7 +35,7 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
+from vbikit.analysis.impact import ImpactFactor, impact_factor, impact_factor_toward, static_direction, static_modal_history
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import LoadEffect, TabulatedInfluence, influence_values
 from vbikit.solve.result import CrossingResult
@@ -70,6 +79,48 @@ class LoadEffectResponse:
     def impact(self) -> ImpactFactor:
         """Peaks and impact factor (computed once: the catalogue's three outputs of a kind read it)."""
         return impact_factor(self.time, self.dynamic, self.static)
+
+    @cached_property
+    def opposite_static_peak(self) -> float:
+        """The static history's extreme of the sign opposite to ``impact.static_peak`` (signed; 0.0
+        when it never goes that way)."""
+        sign = static_direction(self.static)
+        return float(min(0.0, np.min(sign * self.static)) * sign)
+
+    @property
+    def opposite_share(self) -> float:
+        """|``opposite_static_peak``| / |``impact.static_peak``|."""
+        return abs(self.opposite_static_peak) / abs(self.impact.static_peak)
+
+    @property
+    def two_signed(self) -> bool:
+        """Whether the static history's opposite extreme is not negligible: more than
+        ``SMALL_STATIC_FRACTION`` (20 %) of the largest magnitude (module docstring)."""
+        from vbikit.analysis.checks import SMALL_STATIC_FRACTION
+
+        return self.opposite_share > SMALL_STATIC_FRACTION
+
+    @cached_property
+    def opposite(self) -> ImpactFactor | None:
+        """Peaks and IM of the opposite extreme (``impact.impact_factor_toward``) when ``two_signed``,
+        else None."""
+        if not self.two_signed:
+            return None
+        return impact_factor_toward(self.time, self.dynamic, self.static, -static_direction(self.static))
+
+    def sense(self, sign: float) -> str:
+        """The words for a value of sign ``sign``: sagging / hogging (moment), positive / negative."""
+        if self.effect.kind == "moment":
+            return "sagging" if sign > 0 else "hogging"
+        return "positive" if sign > 0 else "negative"
+
+    @property
+    def governing(self) -> str:
+        """The sense (``sense``) of the extreme whose dynamic peak is larger in magnitude (the main
+        one unless ``opposite`` exceeds it)."""
+        im, opp = self.impact, self.opposite
+        peak = opp.dynamic_peak if opp is not None and abs(opp.dynamic_peak) > abs(im.dynamic_peak) else im.dynamic_peak
+        return self.sense(np.sign(peak) or static_direction(self.static))
 
     @property
     def name(self) -> str:
@@ -265,7 +316,15 @@ def _entry(resp: LoadEffectResponse, allowances: dict[str, Any] | None) -> dict[
         "static_peak": im.static_peak, "dynamic_peak": im.dynamic_peak, "impact_factor": im.impact_factor,
         "time_static_peak": im.time_static_peak, "time_dynamic_peak": im.time_dynamic_peak,
         "loaded_length": e.loaded_length, "hogging_region": e.hogging_region,
+        "sense": resp.sense(static_direction(resp.static)), "opposite_sense": resp.sense(-static_direction(resp.static)),
+        "opposite_static_peak": resp.opposite_static_peak, "opposite_share": resp.opposite_share,
+        "two_signed": resp.two_signed, "governing": resp.governing,
     }
+    opp = resp.opposite
+    if opp is not None:
+        entry |= {"opposite_dynamic_peak": opp.dynamic_peak, "opposite_impact_factor": opp.impact_factor,
+                  "time_opposite_static_peak": opp.time_static_peak,
+                  "time_opposite_dynamic_peak": opp.time_dynamic_peak}
     if allowances is not None:
         entry["code_allowances"] = allowances
     return entry
@@ -280,6 +339,42 @@ def load_effect_summary(responses: Sequence[LoadEffectResponse], allowances: Any
         entries = [_entry(r, allowances(r.effect) if allowances else None) for r in responses if r.effect.kind == kind]
         if entries:
             out[kind] = {**entries[0], "method": responses[0].method, "sections": entries}
+    return out
+
+
+def _kilo(value: float, units: str) -> str:
+    """``value`` [N or N m] in kN / kN m, signed, for a message."""
+    return f"{value * 1e-3:+.4g} k{units}"
+
+
+def effect_sign_flags(responses: Sequence[LoadEffectResponse]) -> list[Any]:
+    """Flags (``vbikit.analysis.checks.Flag``) for load effects whose reported extreme is not the one
+    the section is read for: ``sagging_over_pier`` for a moment over an interior support
+    (``hogging_region``) whose largest static value is sagging (a soft pier settling under the
+    load), with the hogging extreme beside it (its peaks and IM when ``two_signed``, else its
+    share).  Other two-signed effects (a short span's midspan moment, a pier moment that also sags
+    while the truck is two spans away) are normal and carry no flag: their entries'
+    ``opposite_*`` keys and the text report's second line give the other extreme."""
+    from vbikit.analysis.checks import SMALL_STATIC_FRACTION, Flag
+
+    out = []
+    for r in responses:
+        e, im, opp = r.effect, r.impact, r.opposite
+        main, other = r.sense(np.sign(im.static_peak) or 1.0), r.sense(-(np.sign(im.static_peak) or 1.0))
+        both = (f"{main} {_kilo(im.static_peak, e.units)} static / {_kilo(im.dynamic_peak, e.units)} dynamic "
+                f"(IM {im.impact_factor:.3g}) and {other} ")
+        both += (f"{_kilo(opp.static_peak, e.units)} static / {_kilo(opp.dynamic_peak, e.units)} dynamic "
+                 f"(IM {opp.impact_factor:.3g}, {r.opposite_share:.0%} of the {main} static peak; the opposite_* keys)"
+                 if opp is not None else
+                 f"{_kilo(r.opposite_static_peak, e.units)} static ({r.opposite_share:.0%} of the {main} static peak, "
+                 f"at most {SMALL_STATIC_FRACTION:.0%}: negligible, not reported)")
+        if e.kind == "moment" and e.hogging_region and im.static_peak > 0:
+            out.append(Flag("sagging_over_pier",
+                            f"{e.label}: over an interior support the largest static moment is sagging, not hogging "
+                            f"— the support settles under the load (a soft support, bridge.support_stiffness) — so "
+                            f"static_peak, dynamic_peak and impact_factor are the sagging extreme: {both}; the "
+                            f"{r.governing} dynamic peak governs", output="moment", subject=e.label,
+                            value=r.opposite_share, threshold=SMALL_STATIC_FRACTION))
     return out
 
 

@@ -144,3 +144,21 @@ def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], stati
         r_dyn = sign * peak
     r_st = float(static[i_st])
     return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))
+
+
+def impact_factor_toward(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
+                         sign: float) -> ImpactFactor | None:
+    """Peaks and IM of a response measured in the direction ``sign`` (±1), whatever the static
+    peak's direction: R_max = max_t(sign·R(t)), IM = (R_dyn,max − R_st,max)/R_st,max as in
+    ``impact_factor``; None when the static history never goes that way (max_t(sign·R_st) ≤ 0).
+    With ``sign = −static_direction(static)`` it gives the opposite extreme of a load effect whose
+    static history takes both signs (the hogging moment over a soft pier whose largest static
+    moment is sagging: ``vbikit.analysis.effects``)."""
+    signed_st = sign * np.asarray(static, float)
+    i_st = int(np.argmax(signed_st))
+    if not signed_st[i_st] > 0.0:
+        return None
+    i_dyn = int(np.argmax(sign * np.asarray(dynamic, float)))
+    r_st, r_dyn = float(static[i_st]), float(dynamic[i_dyn])
+    return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), float(time[i_dyn]),
+                        float(time[i_st]))

@@ -158,6 +158,10 @@ def print_load_effects(s: dict[str, Any]) -> None:
         typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
                    f"  IM {e['impact_factor']:7.4f}   codes {c.get('aashto_standard', float('nan')):.3f} / "
                    f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
+        if e.get("opposite_impact_factor") is not None:  # both signs (vbikit.analysis.effects): the other extreme
+            typer.echo(f"    {'':<8} {e['opposite_sense'] + ', ' + e['governing'] + ' governs':<24} "
+                       f"static {e['opposite_static_peak'] * unit:+10.2f}  dynamic {e['opposite_dynamic_peak'] * unit:+10.2f}"
+                       f"  IM {e['opposite_impact_factor']:7.4f}")
 
 
 def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:

@@ -9,13 +9,14 @@ from vbikit._checks import finite_1d, positive_number
 from vbikit.extremes.errors import ExtremesError
 
 
-def sample(values: Any, name: str, minimum: int) -> np.ndarray:
-    """``values`` as a 1-D float64 array of at least ``minimum`` finite numbers."""
+def sample(values: Any, name: str, minimum: int, distinct: bool = True) -> np.ndarray:
+    """``values`` as a 1-D float64 array of at least ``minimum`` finite numbers, not all equal
+    (``distinct``: a fit needs scatter; plotting positions do not)."""
     arr = finite_1d(values, name, ExtremesError)
     if arr.size < minimum:
         raise ExtremesError(f"{name}: needs at least {minimum} values for this fit, got {arr.size}")
-    if arr.size and arr.min() == arr.max():
-        raise ExtremesError(f"{name}: all {arr.size} values are equal ({arr[0]!r}); nothing to fit")
+    if distinct and arr.size and arr.min() == arr.max():
+        raise ExtremesError(f"{name}: all {arr.size} values are equal ({float(arr[0]):.6g}); nothing to fit")
     return arr
 
 

@@ -289,14 +289,14 @@ def fit_peaks_over_threshold(values: Any, threshold: float, rate_per_year: float
     rate = positive(rate_per_year, "rate_per_year")
     above = data[data > u]
     if above.size == 0:
-        raise ExtremesError(f"threshold: {u!r} is at or above every value (largest {data.max()!r}); "
+        raise ExtremesError(f"threshold: {u:.6g} is at or above every value (largest {float(data.max()):.6g}); "
                             "choose a threshold below the largest values")
     if above.size < MIN_SAMPLE["gpd"]:
-        raise ExtremesError(f"threshold: only {above.size} values exceed {u!r}; a GPD fit needs at least "
+        raise ExtremesError(f"threshold: only {above.size} values exceed {u:.6g}; a GPD fit needs at least "
                             f"{MIN_SAMPLE['gpd']} — lower the threshold")
     excess = above - u
     if excess.min() == excess.max():
-        raise ExtremesError(f"values: all {above.size} exceedances of {u!r} are equal; nothing to fit")
+        raise ExtremesError(f"values: all {above.size} exceedances of {u:.6g} are equal; nothing to fit")
     theta = _mle("gpd", excess)
     cov = _covariance("gpd", theta, above, u)
     loglik = -_nll("gpd", theta, above, u)

@@ -61,7 +61,7 @@ def plotting_positions(maxima: Any, method: str = "gringorten", blocks_per_year:
     if method not in POSITIONS:
         raise ExtremesError(f"method: unknown plotting position {method!r}; allowed: {', '.join(POSITIONS)}")
     n_b = positive(blocks_per_year, "blocks_per_year")
-    x = np.sort(sample(maxima, "maxima", 2))
+    x = np.sort(sample(maxima, "maxima", 2, distinct=False))  # tied maxima have positions too
     i = np.arange(1, x.size + 1, dtype=float)
     p = POSITIONS[method](i, x.size)
     return PlottingPositions(x, p, -np.log(-np.log(p)), 1.0 / (n_b * (1.0 - p)), method)

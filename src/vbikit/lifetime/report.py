@@ -4,6 +4,7 @@ read from ``lifetime.nc``'s dataset: every number with its interval, flag and ve
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from vbikit.lifetime.accuracy import adr_words, amplification_words, too_wide
@@ -46,6 +47,10 @@ def _effect(ds, j: int) -> dict[str, Any]:
         "characteristic_period": float(a["characteristic_period"]),
         "characteristic_static": _num(ds["characteristic_static"].values[j]),
         "characteristic_total": _num(ds["characteristic_total"].values[j]),
+        # why a characteristic value is missing, in words (None where it was estimated; older datasets lack it)
+        **{f"characteristic_{w}_not_estimable": (str(ds[f"characteristic_{w}_not_estimable"].values[j]) or None
+                                                 if f"characteristic_{w}_not_estimable" in ds else None)
+           for w in ("static", "total")},
         "return_levels": levels, "fits": fits,
         "adr": {"value": _num(adr), "lower": _num(lo), "upper": _num(hi),
                 "standard_error": _num(ds["assessment_dynamic_ratio_se"].values[j]),
@@ -79,7 +84,8 @@ def _effect(ds, j: int) -> dict[str, Any]:
 
 def _flags(e: dict, a: dict) -> list[str]:
     """The effect's warnings in words."""
-    flags = []
+    flags = [f"characteristic {w} {e[f'characteristic_{w}_not_estimable']}" for w in ("static", "total")
+             if e.get(f"characteristic_{w}_not_estimable")]
     xi = a["xi_strongly_negative"]
     for w in ("static", "total"):
         f = e["fits"][w]
@@ -158,7 +164,11 @@ def summary(ds) -> dict[str, Any]:
 
 
 def _g(x: float | None, fmt: str = ".4g") -> str:
-    return "n/a" if x is None else format(x, fmt)
+    """``x`` formatted by ``fmt``, or "n/a" in the same alignment and width (table columns stay aligned)."""
+    if x is None:
+        width = re.match(r"[<>^]?\d*", fmt).group()
+        return format("n/a", width if width[:1] in "<>^" else ">" + width) if width else "n/a"
+    return format(x, fmt)
 
 
 def _iv(d: dict) -> str:

@@ -44,6 +44,29 @@ def _fit(maxima: np.ndarray, distribution: str, per_year: float, periods, ci: fl
     return fit, level, lo, hi
 
 
+def _fit_or_why(maxima: np.ndarray, distribution: str, per_year: float, periods, ci: float, block: str,
+                units: str):
+    """``_fit``, or, when the maxima cannot be fitted (all equal, too few finite: ``ExtremesError``),
+    None and NaN levels with the reason in words (the run's other results stand: a late fit failure
+    must not discard the finished simulations)."""
+    from vbikit.extremes import ExtremesError
+
+    try:
+        return (*_fit(maxima, distribution, per_year, periods, ci), "")
+    except ExtremesError as err:
+        nan = np.full(len(periods), np.nan)
+        finite = maxima[np.isfinite(maxima)]
+        what = "daily" if block == "day" else "weekly"
+        if finite.size and finite.min() == finite.max():
+            why = (f"not estimable: all {finite.size} {what} maxima are equal ({finite[0]:.6g} {units}, e.g. the "
+                   f"same vehicle alone on the bridge every {block}), so a {distribution} fit has no scatter to "
+                   "extrapolate from; the observed maximum stands, not a return level — use traffic with varied "
+                   "vehicles")
+        else:
+            why = f"not estimable: the {distribution} fit of {finite.size} {what} maxima failed ({err})"
+        return None, nan, nan.copy(), nan.copy(), why
+
+
 def _static_threshold(values: np.ndarray, n_days: int) -> float:
     """The POT threshold of the events' static peaks: their (1 − 2·n_days/n_events) quantile."""
     n = values.size
@@ -59,6 +82,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     from vbikit._version import __version__
     from vbikit.analysis.codes import CODES, code_allowances
     from vbikit.extremes import level_ratio
+    from vbikit.extremes.paired import LevelRatio
     from vbikit.lifetime import accuracy as acc
 
     spec = prep.spec
@@ -101,16 +125,20 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                                                      "pot_static_shape", "pot_total_threshold", "pot_total_shape",
                                                      "pot_static_exceedances", "pot_total_exceedances")}
     bm_fits: dict[tuple[str, int], Any] = {}
+    bm_why: dict[str, list[str]] = {"static": [], "total": []}  # by load effect: why the fit is missing ("" if none)
     pot_why: dict[str, list[str]] = {"static": [], "total": []}
     years = n_days / spec.days_per_year
     complete = acc.completeness_level  # every total above this level was simulated
     for j in range(len(lines)):
         for which, data in (("static", fit_static_blocks[:, j]), ("total", fit_total_blocks[:, j])):
-            fit, level, lo, hi = _fit(data, spec.distribution, per_year, periods, spec.ci)
+            fit, level, lo, hi, why = _fit_or_why(data, spec.distribution, per_year, periods, spec.ci, spec.block,
+                                                  units[j])
             bm_fits[which, j] = fit
+            bm_why[which].append(why)
             rl[which][j], rl[f"{which}_lower"][j], rl[f"{which}_upper"][j] = level, lo, hi
-            fits[f"{which}_location"][j], fits[f"{which}_scale"][j], fits[f"{which}_shape"][j] = \
-                fit.location, fit.scale, fit.shape
+            if fit is not None:
+                fits[f"{which}_location"][j], fits[f"{which}_scale"][j], fits[f"{which}_shape"][j] = \
+                    fit.location, fit.scale, fit.shape
         u_static = _static_threshold(s_st[:, j], n_days)
         s_sim = s_tot[simulated, j]
         u_total = max(complete(s_st[:, j], simulated, bound), u_static) if np.isfinite(u_static) else math.nan
@@ -127,6 +155,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     char_total = rl["total"][:, k_char] * signs
     adr = char_total / char_static
     ratios = [level_ratio(bm_fits["total", j], bm_fits["static", j], spec.characteristic_period, spec.ci)
+              if bm_fits["total", j] is not None and bm_fits["static", j] is not None
+              else LevelRatio(math.nan, math.nan, math.nan, math.nan, math.nan, spec.ci)  # a fit is missing
               for j in range(len(lines))]
     disagree = {w: acc.methods_disagree(rl[w], rl[f"{w}_lower"], rl[f"{w}_upper"], rl[f"pot_{w}"],
                                         rl[f"pot_{w}_lower"], rl[f"pot_{w}_upper"]) for w in ("static", "total")}
@@ -176,6 +206,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     variables: dict[str, Any] = {
         "characteristic_static": ("load_effect", char_static, ev_attrs("", f"static load effect of the {spec.characteristic_period:g}-year return period")),
         "characteristic_total": ("load_effect", char_total, ev_attrs("", f"total (static + dynamic) load effect of the {spec.characteristic_period:g}-year return period")),
+        **{f"characteristic_{w}_not_estimable": ("load_effect", np.array(bm_why[w], dtype=object), ev_attrs("", f"why the {w} block maxima could not be fitted (all equal, too few), in words; empty where they were: where not, characteristic_{w}, its block-maximum return levels and the ADR are NaN")) for w in ("static", "total")},
         "assessment_dynamic_ratio": ("load_effect", adr, ev_attrs("1", "ADR = characteristic total / characteristic static")),
         "return_level_static": (("load_effect", "return_period"), rl["static"] * signs[:, None], ev_attrs("", "static return level")),
         "return_level_static_lower": (("load_effect", "return_period"), rl["static_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound nearer zero)")),
@@ -276,6 +307,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "block": spec.block,
         "distribution": spec.distribution,
         "characteristic_period": float(spec.characteristic_period),
+        # every characteristic value that could not be estimated, in words ("" when all were: _fit_or_why)
+        "not_estimable": " ".join(f"{n} {w}: {t}." for w in ("static", "total") for n, t in zip(names, bm_why[w]) if t),
         "first_frequency_hz": f1,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),

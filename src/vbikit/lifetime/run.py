@@ -152,7 +152,7 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
     need = MIN_SAMPLE[spec.distribution]
     if n_blocks < need:
         raise LifetimeError(f"days: {spec.n_days} day(s) give {n_blocks} {'daily' if spec.block == 'day' else 'weekly'} maxima; a {spec.distribution} "
-                            f"fit needs at least {need} (raise days/years, or block = \"day\")")
+                            f"fit needs at least {need} ({_block_advice(spec.block, spec.distribution, need)})")
     trucks = model.trucks_per_day * spec.n_days
     events = trucks  # at most one event a truck
     sampled = spec.fatigue.dynamic_sample * events
@@ -177,6 +177,20 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             "--max-memory (vbikit lifetime) or max_memory= (run_lifetime), or simulate fewer days")
     return Prepared(spec, base_dir, model, key, setup, tuple(details), hours,
                     {"n_records": len(records), "records": str(records_path.name)})
+
+
+def _block_advice(block: str, distribution: str, need: int) -> str:
+    """What to change when the run has too few block maxima for its fit: only settings other than
+    those in use (``MIN_SAMPLE``: the fewest maxima of each distribution)."""
+    from vbikit.extremes import MIN_SAMPLE
+
+    days = need * (7 if block == "week" else 1)
+    advice = [f"raise days to at least {days}"]
+    if block == "week":
+        advice.append(f"or block = \"day\" (then days >= {need})")
+    if distribution != "gumbel" and MIN_SAMPLE["gumbel"] < need:
+        advice.append(f"or distribution = \"gumbel\" (needs {MIN_SAMPLE['gumbel']} maxima)")
+    return ", ".join(advice)
 
 
 def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stage: str, info: Optional[dict] = None):

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any, Mapping
 
 from vbikit.analysis.checks import Flag, add_flags, effect_static_flags, point_flags
-from vbikit.analysis.effects import load_effect_report
+from vbikit.analysis.effects import effect_sign_flags, load_effect_report
 from vbikit.analysis.impact import static_modal_history
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import girder_responses, plan_responses, point_entries, summary, summary_units
@@ -261,6 +261,7 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
                   for r in effects if r.step_warning])
     add_flags(s, effect_static_flags([(r.effect.kind, r.effect.label, r.effect.units, r.impact.static_peak,
                                        r.impact.impact_factor) for r in effects]))
+    add_flags(s, effect_sign_flags(effects))
     for point_name, p in zip(plan.point_names[1:], points[1:]):  # not ``name``: the report's label
         add_flags(s, point_flags(result.crossing, p.x, p.y, point_name))
     return Report(name, result, plan, points, girders, effects, s)
