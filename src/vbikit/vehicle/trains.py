@@ -305,7 +305,7 @@ def train_vehicle(train: Train) -> Vehicle:
         vb.wheel(f"a{k + 1}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
     vehicle = vb.build(f"{train.name}: {train.n_axles} moving axle loads" + (f" ({train.source})" if train.source else ""),
                        {"n_axles": float(train.n_axles), "total_load": train.total_load})
-    return replace(vehicle, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH)
+    return replace(vehicle, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH, railway=True)
 
 
 # ---------------------------------------------------------------------------------- registry
