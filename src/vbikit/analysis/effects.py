@@ -426,7 +426,9 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     """The summary entries of a crossing's load effects and design-code allowances, and the
     responses themselves (for histories): ``design_code_allowances`` for the deflection at
     ``response_x`` (loaded length: its span) and the ``moment`` / ``shear`` / ``reaction`` blocks of
-    ``load_effect_summary`` with each effect's code values.  The responses' step warnings are not
+    ``load_effect_summary`` with each effect's code values (CSA S6 by the axles on a span of the
+    loaded length at once, ``axles_on_span_of``; a railway vehicle: EN 1991-2 Φ2 and Φ3 instead,
+    ``vbikit.analysis.codes.railway_allowances``).  The responses' step warnings are not
     logged: the caller reports them (``step_warning``; the scenario summary's ``warnings``)."""
     from vbikit.analysis.codes import code_allowances, railway_allowances
 
@@ -440,9 +442,11 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
             return railway_allowances(length)
         if length not in axles:
             axles[length] = axles_on_span_of(result, length)
-        return {"n_axles": axles[length], **code_allowances(length, f1, axles[length])}
+        return code_allowances(length, f1, axles[length])
 
-    out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1, **allowances(loaded)}}
+    first = allowances(loaded)
+    out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1,
+                                                       **({} if vehicle.railway else {"n_axles": axles[loaded]}), **first}}
     responses = load_effect_responses(result, effects, method, log_step=False)
-    out |= load_effect_summary(responses, lambda e: allowances(e.loaded_length))
+    out |= load_effect_summary(responses, lambda e: allowances(e.loaded_length))  # CSA S6: the axles on its loaded length
     return out, responses
