@@ -432,13 +432,14 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     logged: the caller reports them (``step_warning``; the scenario summary's ``warnings``)."""
     from vbikit.analysis.codes import code_allowances, railway_allowances
 
-    bridge, vehicle = result.crossing.bridge, result.crossing.vehicle
+    bridge = result.crossing.bridge
+    railway = any(m.vehicle.railway for m in result.crossing.vehicles)  # a train among the vehicles
     f1 = float(bridge.frequencies_hz[0])
     loaded = loaded_length(bridge, response_x, result.point(response_x, response_y)[1])
     axles = {}  # CSA S6: the axles on the span at once, by loaded length
 
     def allowances(length: float) -> dict[str, Any]:
-        if vehicle.railway:  # a train: the highway codes do not apply (EN 1991-2 Φ2, Φ3 instead)
+        if railway:  # a train: the highway codes do not apply (EN 1991-2 Φ2, Φ3 instead)
             return railway_allowances(length)
         if length not in axles:
             axles[length] = axles_on_span_of(result, length)
@@ -446,7 +447,7 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
 
     first = allowances(loaded)
     out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1,
-                                                       **({} if vehicle.railway else {"n_axles": axles[loaded]}), **first}}
+                                                       **({} if railway else {"n_axles": axles[loaded]}), **first}}
     responses = load_effect_responses(result, effects, method, log_step=False)
     out |= load_effect_summary(responses, lambda e: allowances(e.loaded_length))  # CSA S6: the axles on its loaded length
     return out, responses
