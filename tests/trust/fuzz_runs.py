@@ -41,7 +41,8 @@ EXTREMES: dict[str, list[tuple[tuple, list]]] = {
 #: variables whose NaN (or ±inf) is a documented "does not apply" on ordinary inputs too
 MAY_BE_NAN: dict[str, set[str]] = {
     "rail": {"peak_acceleration_grid", "peak_speed_grid", "peak_speed_refined", "peak_grid_error", "peak_refinement_bound",
-             "peak_last_change", "peak_speed_step", "resonance_speed", "excitation_wavelength"},
+             "peak_last_change", "peak_speed_step", "resonance_speed", "excitation_wavelength",
+             "bogie_axle_spacing", "bogie_resonance_speed"},  # bogie_*: NaN for a train without (or with fewer) bogie spacings
     "driveby": {"multipass_frequency_hz", "multipass_q25_hz", "multipass_q75_hz", "multipass_mean_hz", "multipass_std_hz",
                 "mode_shape_mac", "curvature_change", "curvature_change_x"},
     "lifetime": {"fit_pot_total_shape", "fit_pot_static_shape", "code_allowance", "dynamic_damage_ratio",

@@ -392,6 +392,22 @@ def vehicle_axle_count(vehicle: Any) -> int:
     return len({round(float(w.offset), 3) for w in vehicle.wheels})
 
 
+def axles_on_span_of(result: CrossingResult, span: float) -> int:
+    """The largest number of axles on a span of length ``span`` [m] at once during a crossing (CSA S6
+    3.8.4.5.3, ``vbikit.analysis.codes.axles_on_span``): one vehicle by its wheel offsets; several
+    by their axles as placed, x = x_front − offset (driving +x; mirrored driving −x), at every
+    time of the run."""
+    from vbikit.analysis.codes import axles_on_span
+
+    motions = result.crossing.vehicles
+    offsets = [np.array([w.offset for w in m.vehicle.wheels], float) for m in motions]
+    if len(motions) == 1:
+        return axles_on_span(offsets[0], span)
+    front = np.asarray(result.crossing.front_positions(result.time), float)
+    x = np.concatenate([front[:, [k]] - m.sign * o[None, :] for k, (m, o) in enumerate(zip(motions, offsets))], axis=1)
+    return axles_on_span(x, span)
+
+
 def loaded_length(bridge: ModalBridge, x: float | None = None, y: float | None = None) -> float:
     """The AASHTO Standard loaded length [m] of a deflection read at (x, y): the span containing the
     section (x default the bridge's default section on the line y; on a skew deck the span is found
@@ -410,16 +426,28 @@ def load_effect_report(result: CrossingResult, effects: Sequence[LoadEffect], me
     """The summary entries of a crossing's load effects and design-code allowances, and the
     responses themselves (for histories): ``design_code_allowances`` for the deflection at
     ``response_x`` (loaded length: its span) and the ``moment`` / ``shear`` / ``reaction`` blocks of
-    ``load_effect_summary`` with each effect's code values.  The responses' step warnings are not
+    ``load_effect_summary`` with each effect's code values (CSA S6 by the axles on a span of the
+    loaded length at once, ``axles_on_span_of``; a railway vehicle: EN 1991-2 Φ2 and Φ3 instead,
+    ``vbikit.analysis.codes.railway_allowances``).  The responses' step warnings are not
     logged: the caller reports them (``step_warning``; the scenario summary's ``warnings``)."""
-    from vbikit.analysis.codes import code_allowances
+    from vbikit.analysis.codes import code_allowances, railway_allowances
 
-    bridge, vehicle = result.crossing.bridge, result.crossing.vehicle
+    bridge = result.crossing.bridge
+    railway = any(m.vehicle.railway for m in result.crossing.vehicles)  # a train among the vehicles
     f1 = float(bridge.frequencies_hz[0])
-    axles = vehicle_axle_count(vehicle)
     loaded = loaded_length(bridge, response_x, result.point(response_x, response_y)[1])
-    out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1, "n_axles": axles,
-                                                       **code_allowances(loaded, f1, axles)}}
+    axles = {}  # CSA S6: the axles on the span at once, by loaded length
+
+    def allowances(length: float) -> dict[str, Any]:
+        if railway:  # a train: the highway codes do not apply (EN 1991-2 Φ2, Φ3 instead)
+            return railway_allowances(length)
+        if length not in axles:
+            axles[length] = axles_on_span_of(result, length)
+        return code_allowances(length, f1, axles[length])
+
+    first = allowances(loaded)
+    out: dict[str, Any] = {"design_code_allowances": {"loaded_length": loaded, "first_frequency": f1,
+                                                       **({} if railway else {"n_axles": axles[loaded]}), **first}}
     responses = load_effect_responses(result, effects, method, log_step=False)
-    out |= load_effect_summary(responses, lambda e: code_allowances(e.loaded_length, f1, axles))
+    out |= load_effect_summary(responses, lambda e: allowances(e.loaded_length))  # CSA S6: the axles on its loaded length
     return out, responses

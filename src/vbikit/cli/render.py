@@ -133,13 +133,20 @@ def print_negative_note(negative: bool) -> None:
 
 
 def print_codes(c: dict[str, Any], title: str) -> None:
-    """One line of design-code dynamic allowances and one of the inputs they were computed from."""
+    """One line of design-code dynamic allowances and one of the inputs they were computed from (a
+    railway vehicle: EN 1991-2 Φ2 / Φ3 and a pointer to ``vbikit rail`` instead of the highway codes)."""
+    if c.get("railway"):
+        typer.echo(f"  {title:<20} EN 1991-2 Phi2 {c['en1991_2_phi2']:.3f}  Phi3 {c['en1991_2_phi3']:.3f}")
+        typer.echo(f"  {'':<20} (railway vehicle: no highway allowances; Phi2 / Phi3 of 6.4.5.2 for L_Phi = "
+                   f"{c['loaded_length']:.2f} m are factors 1 + phi of LM71, not of this train: its resonance check "
+                   "is `vbikit rail`, EN 1991-2 6.4.6)")
+        return
     values = "  ".join(f"{label} {c[k]:.3f}" for k, label in CODE_LABELS.items() if k in c)
     typer.echo(f"  {title:<20} {values}")
     n = c["n_axles"]
     typer.echo(f"  {'':<20} (loaded length {c['loaded_length']:.2f} m and f1 = {c['first_frequency']:.2f} Hz; CSA S6 "
-               f"by {n} axle{'' if n == 1 else 's'}, the distinct axle offsets behind the front axle; several "
-               f"vehicles' axles at one offset count once)")
+               f"by {n} axle{'' if n == 1 else 's'}, the most axles on a span of the loaded length at once; "
+               f"several vehicles' axles as placed, at one offset counted once)")
 
 
 def print_load_effects(s: dict[str, Any]) -> None:
@@ -148,7 +155,10 @@ def print_load_effects(s: dict[str, Any]) -> None:
     if not rows:
         return
     method = next(s[k]["method"] for k in ("moment", "shear", "reaction") if k in s)
-    typer.echo(f"  load effects ({method}; kN m / kN; IM beside AASHTO Std / JTG D60 / OHBDC)")
+    keys = ("en1991_2_phi2", "en1991_2_phi3") if rows[0][1].get("code_allowances", {}).get("railway") else \
+        ("aashto_standard", "jtg_d60_2015", "ohbdc_1983")
+    beside = "EN 1991-2 Phi2 / Phi3" if keys[0] == "en1991_2_phi2" else "AASHTO Std / JTG D60 / OHBDC"
+    typer.echo(f"  load effects ({method}; kN m / kN; IM beside {beside})")
     for kind, e in rows:
         unit = 1e-3
         where = f"support {e['support']}" if kind == "reaction" else f"x = {e['x']:.2f} m"
@@ -156,8 +166,7 @@ def print_load_effects(s: dict[str, Any]) -> None:
             where += f", girder {e['girder']}"
         c = e.get("code_allowances", {})
         typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
-                   f"  IM {e['impact_factor']:7.4f}   codes {c.get('aashto_standard', float('nan')):.3f} / "
-                   f"{c.get('jtg_d60_2015', float('nan')):.3f} / {c.get('ohbdc_1983', float('nan')):.3f}")
+                   f"  IM {e['impact_factor']:7.4f}   codes " + " / ".join(f"{c.get(k, float('nan')):.3f}" for k in keys))
         if e.get("opposite_impact_factor") is not None:  # both signs (vbikit.analysis.effects): the other extreme
             typer.echo(f"    {'':<8} {e['opposite_sense'] + ', ' + e['governing'] + ' governs':<24} "
                        f"static {e['opposite_static_peak'] * unit:+10.2f}  dynamic {e['opposite_dynamic_peak'] * unit:+10.2f}"

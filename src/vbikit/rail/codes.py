@@ -40,6 +40,9 @@ from typing import Callable
 import numpy as np
 from numpy.typing import NDArray
 
+# Φ2 and Φ3 live with the other codes' allowances (the run report shows them for railway vehicles)
+from vbikit.analysis.codes import phi2, phi3
+
 #: EN 1991-2:2003 6.4.6.1.1(5), Annex E: HSLM-B applies to simply supported spans below this [m], HSLM-A otherwise
 HSLM_B_MAX_SPAN = 7.0
 
@@ -125,16 +128,6 @@ def resonance_speeds(n0: float, wavelength: float, v_max: float = math.inf, orde
     entry i − 1 is order i)."""
     v = n0 * wavelength / np.arange(1, orders + 1)
     return v[v <= v_max]
-
-
-def phi2(determinant_length: float) -> float:
-    """Φ2 (carefully maintained track), EN 1991-2 Eq. 6.4."""
-    return float(np.clip(1.44 / (math.sqrt(determinant_length) - 0.2) + 0.82, 1.0, 1.67))
-
-
-def phi3(determinant_length: float) -> float:
-    """Φ3 (standard maintenance), EN 1991-2 Eq. 6.5."""
-    return float(np.clip(2.16 / (math.sqrt(determinant_length) - 0.2) + 0.73, 1.0, 2.0))
 
 
 DYNAMIC_FACTORS: dict[str, Callable[[float], float]] = {"careful": phi2, "standard": phi3}

@@ -3,7 +3,7 @@ report (``format_report``) and the JSON summary (``summary``) of a ``rail.nc`` d
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Optional
 
 import numpy as np
 
@@ -116,11 +116,51 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                                                   " (above the sweep)" if v > hi else " (below the sweep)")
                  for i, v in enumerate(row) if np.isfinite(v)]
         lines.append(f"  {name} (D = {d:.3f} m, {ds['wavelength_source'].values[k]}): " + ", ".join(parts))
+    for k, name in enumerate(ds.train.values):  # the bogies' axle spacings d: v = n0 d / i, those in the sweep
+        inside = [(d, i, v) for d, i, v in bogie_resonance_list(ds, k) if lo * (1 - 1e-12) <= v <= hi * (1 + 1e-12)]
+        if inside:
+            lines.append(f"  {name}, axle spacing within a bogie (v = n0 d / i, in the sweep): " + "; ".join(
+                f"d = {d:g} m: " + ", ".join(f"i = {i}: {3.6 * v:.1f}" for dd, i, v in inside if dd == d)
+                for d in sorted({d for d, _, _ in inside})))
+    near = governing_resonance(ds, acc["train"], acc["speed"])
+    if near:
+        lines.append(f"governing peak ({acc['train']}, {3.6 * acc['speed']:.1f} km/h) nearest the resonance "
+                     f"{near['resonance']} at {near['speed_kmh']:.1f} km/h ({100 * near['offset']:+.1f} %)")
     lines += ["", f"result: {'PASS' if checks['passes'] else 'FAIL'} (governing: {acc['train']}, "
               f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"
               + (f"; {len(checks['warnings'])} WARNING(s) above: not the EN 1991-2 check as run"
                  if checks.get("warnings") else "")]
     return "\n".join(lines) + "\n"
+
+
+def bogie_resonance_list(ds, k: int) -> list[tuple[float, int, float]]:
+    """(d [m], i, v [m/s]) of train ``k``'s resonances n0 d / i of its axle spacings within a bogie
+    (``bogie_resonance_speed``; none for a dataset without them)."""
+    if "bogie_resonance_speed" not in ds:
+        return []
+    d = ds["bogie_axle_spacing"].values[k]
+    v = ds["bogie_resonance_speed"].values[k]
+    return [(float(d[j]), i + 1, float(v[j, i])) for j in range(d.size) if np.isfinite(d[j]) for i in range(v.shape[1])]
+
+
+def governing_resonance(ds, train: str, speed: float) -> Optional[dict[str, Any]]:
+    """The resonance of ``train`` (coach length / wavelength D by order, and the axle spacings within a
+    bogie) nearest to ``speed`` [m/s] (the governing peak's): its label, speed and relative offset of the
+    peak from it; None when the train has none."""
+    from vbikit.rail.sweep import nearest_resonance
+
+    names = [str(n) for n in ds.train.values]
+    if train not in names:
+        return None
+    k = names.index(train)
+    d = float(ds["excitation_wavelength"].values[k])
+    cands = [(f"n0 D / {i + 1} (D = {d:.3f} m, {ds['wavelength_source'].values[k]})", float(v))
+             for i, v in enumerate(ds["resonance_speed"].values[k])]
+    cands += [(f"n0 d / {i} (axle spacing within a bogie d = {dd:g} m)", v) for dd, i, v in bogie_resonance_list(ds, k)]
+    near = nearest_resonance(float(speed), cands)
+    if near is None:
+        return None
+    return {"resonance": near[0], "speed_m_s": near[1], "speed_kmh": 3.6 * near[1], "offset": float(speed) / near[1] - 1.0}
 
 
 def _grid_line(acc: dict[str, Any]) -> str:
@@ -166,12 +206,16 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
         return x
 
     trains = {}
+    lo, hi = float(ds.speed.values.min()), float(ds.speed.values.max())
     for k, name in enumerate(map(str, ds.train.values)):
         row = ds["resonance_speed"].values[k]
         trains[name] = {
             "wavelength_m": float(ds["excitation_wavelength"].values[k]), "wavelength_source": str(ds["wavelength_source"].values[k]),
             "resonances": [{"order": i + 1, "speed_m_s": float(v), "speed_kmh": 3.6 * float(v),
                             "in_sweep": bool(ds["resonance_in_sweep"].values[k, i])} for i, v in enumerate(row)],
+            "bogie_resonances": [{"axle_spacing_m": d, "order": i, "speed_m_s": v, "speed_kmh": 3.6 * v,
+                                  "in_sweep": bool(lo * (1 - 1e-12) <= v <= hi * (1 + 1e-12))}
+                                 for d, i, v in bogie_resonance_list(ds, k)],
             "acceleration_peaks": [{"grid_m_s2": float(ds["peak_acceleration_grid"].values[k, j]),
                                     "refined_m_s2": float(ds["peak_acceleration_refined"].values[k, j]),
                                     "speed_kmh": 3.6 * float(ds["peak_speed_refined"].values[k, j]),
@@ -180,5 +224,8 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
     warnings = list(checks.get("warnings", []))  # at the top, as in every summary of vbikit
     checks = {k: (v | {"units": {n: u for n, u in CHECK_UNITS[k].items() if n in v}} if k in CHECK_UNITS else v)
               for k, v in checks.items() if k != "warnings"}
-    return clean({"checks": checks, "warnings": warnings, "trains": trains, "peak_refinement": ds.attrs.get("peak_refinement", ""),
+    acc = checks.get("acceleration", {})
+    near = governing_resonance(ds, acc["train"], acc["speed"]) if "train" in acc else None
+    return clean({"checks": checks, "warnings": warnings, "trains": trains, "governing_resonance": near,
+                  "peak_refinement": ds.attrs.get("peak_refinement", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})

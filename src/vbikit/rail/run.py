@@ -243,6 +243,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         p.spec, p.bridge, p.f_limit, p.required, p.originals, p.trains, p.resonances, p.speeds, p.points, p.setup,
         p.coupled)
     waves, sections, y = p.waves, p.sections, float(bridge.default_lateral_offset)
+    bogies = {t.name: t.bogie_axle_spacings for t in trains}  # their resonances n0 d / i: assemble, report
     n0 = float(bridge.frequencies_hz[0])
     log.info("sweeping %d trains × %d speeds, %d modes (%.1f … %.1f Hz), Δx = %.4f m", len(trains), speeds.size,
              bridge.omega.size, n0, bridge.frequencies_hz[-1], setup.dx)
@@ -280,10 +281,11 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                 names.append(f"{t.name} (coupled)")
                 res[names[-1]] = res[trains[originals.index(t)].name]
                 waves[names[-1]] = waves[trains[originals.index(t)].name]
+                bogies[names[-1]] = bogies[trains[originals.index(t)].name]
                 refined.append(None)
                 statics.append(statics[originals.index(t)])
     ds = assemble(spec, bridge, names, speeds, points, envs, res, f_limit, waves=waves, refined=refined,
-                  sections=sections, statics=statics)
+                  sections=sections, statics=statics, bogies=bogies)
     ds.attrs.update(moment_envelope_summary(ds, setup, {t.name: t for t in trains}))
     ds.attrs["modes_required"] = required
     ds.attrs["code_warnings"] = "\n".join(p.warnings)  # one a line (check: checks["warnings"])
@@ -336,9 +338,10 @@ class _Stored:
 
 
 def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,
-             statics=None):
+             statics=None, bogies=None):
     """The NetCDF dataset of a sweep (every variable with units and long_name): ``res`` the resonance
-    speeds of every train by order, ``waves`` their (D [m], source), ``refined`` the ``RefinedPeaks``
+    speeds of every train by order, ``waves`` their (D [m], source), ``bogies`` their axle spacings
+    within a bogie [m] (``Train.bogie_axle_spacings``; resonances n0 d / i), ``refined`` the ``RefinedPeaks``
     of every train (None: not refined), ``sections`` the sections x [m] of the moment envelope (the
     sweep's effects 2 … are its moments off midspan) and ``statics`` every train's exact static
     moment envelope there."""
@@ -364,7 +367,12 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         res_arr[i, :r.size] = r
     v_lo, v_hi = float(speeds.min()), float(speeds.max())
     in_sweep = np.where(np.isfinite(res_arr), (res_arr >= v_lo * (1 - 1e-12)) & (res_arr <= v_hi * (1 + 1e-12)), False)
-    waves = waves or {}
+    waves, bogies = waves or {}, bogies or {}
+    n_bogie = max([len(bogies.get(n, ())) for n in names] + [1])  # at least one (NaN) entry: no zero-length dimension
+    bogie_d = np.full((len(names), n_bogie), np.nan)
+    for i, n in enumerate(names):
+        bogie_d[i, :len(bogies.get(n, ()))] = bogies.get(n, ())
+    bogie_res = n0 * bogie_d[:, :, None] / orders[None, None, :]
     wave = np.array([(waves.get(n) or (None, ""))[0] or np.nan for n in names], float)
     wave_src = np.array([(waves.get(n) or (None, "none"))[1] for n in names], dtype=object)
     sections = np.zeros(0) if sections is None else np.asarray(sections, float)
@@ -408,6 +416,10 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "resonance_in_sweep": var(("train", "order"), in_sweep.astype(float), "1",
                                   "1 where the resonance speed n0 D / i lies within the swept speeds, 0 outside"),
         "excitation_wavelength": var(("train",), wave, "m", "D of the resonance speeds n0 D / i (wavelength_source)"),
+        "bogie_axle_spacing": var(("train", "bogie"), bogie_d, "m",
+                                  "the train's axle spacings within a bogie d (NaN: none, or fewer than the most of any train)"),
+        "bogie_resonance_speed": var(("train", "bogie", "order"), bogie_res, "m s-1",
+                                     "resonance speed n0 d / i of each axle spacing within a bogie d (every order i)"),
         "max_moment_along": var(("train", "speed", "section"), along, "N m", "peak bending moment at each section (mode acceleration)"),
         "static_moment_along": var(("train", "section"), st_along, "N m",
                                    "peak static bending moment at each section (exact on a piecewise-linear influence line: an "
@@ -435,6 +447,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "speed_kmh": ("speed", speeds * 3.6, {"units": "km h-1", "long_name": "train speed"}),
         "point": ("point", points, {"units": "m", "long_name": "x of the deck point from the entry support"}),
         "order": ("order", orders, {"units": "1", "long_name": "resonance order i"}),
+        "bogie": ("bogie", np.arange(1, n_bogie + 1), {"units": "1", "long_name": "axle spacing within a bogie (ascending)"}),
         "mode": ("mode", np.arange(1, bridge.omega.size + 1), {"units": "1", "long_name": "mode number"}),
         "section": ("section", sections, {"units": "m", "long_name": "x of the moment section from the entry support",
                                           "stations": stations_words(MOMENT_SECTIONS)}),

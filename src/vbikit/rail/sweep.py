@@ -179,6 +179,21 @@ def train_resonances(train: Train, n0: float, orders: int = 4) -> NDArray[np.flo
     return resonance_speeds(n0, d, orders=orders) if d else np.full(orders, np.nan)
 
 
+def bogie_resonances(train: Train, n0: float, orders: int = 4) -> list[tuple[float, int, float]]:
+    """(d [m], i, v [m/s]) of the resonances of the train's axle spacings within a bogie,
+    v = n0 d / i (``Train.bogie_axle_spacings``; the same rule as the coach length's, EN 1991-2
+    6.4.6, with the bogie's axle pair as the repeated pattern: on a short span, n0 is high and the
+    coach-length resonances n0 D / i lie above any speed, while n0 d / i may not).  Every spacing,
+    orders i = 1 … ``orders``; empty when the train's bogies are not known."""
+    return [(float(d), i, float(n0 * d / i)) for d in train.bogie_axle_spacings for i in range(1, orders + 1)]
+
+
+def nearest_resonance(speed: float, resonances: list[tuple[str, float]]) -> Optional[tuple[str, float]]:
+    """The (label, v [m/s]) of ``resonances`` nearest to ``speed`` [m/s] (None when there are none)."""
+    finite = [(label, v) for label, v in resonances if math.isfinite(v)]
+    return min(finite, key=lambda r: abs(r[1] - speed)) if finite else None
+
+
 def refine_train_peaks(setup: SweepSetup, train: Train, envelopes, tolerance: float = PEAK_TOLERANCE) -> RefinedPeaks:
     """``refine_peaks`` (``vbikit.rail.refine``) of one train's peak deck acceleration (over the deck
     points) from its sweep."""

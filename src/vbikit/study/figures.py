@@ -19,16 +19,17 @@ GIRDER_NOTE = "vbikit 3D slab-on-girder grillage (10 modes): impact factors of t
 def design_code_lines(base: dict) -> dict[str, float]:
     """The design-code allowances (``vbikit.analysis.codes.code_allowances``) of a study's base
     scenario: loaded length = the span of the response point, f₁ of the bridge model, the axles of
-    the vehicle (the first of ``[[vehicles]]``)."""
-    from vbikit.analysis.codes import code_allowances
-    from vbikit.analysis.effects import loaded_length, vehicle_axle_count
+    the vehicle (the first of ``[[vehicles]]``) on that span at once (CSA S6, ``axles_on_span``)."""
+    from vbikit.analysis.codes import axles_on_span, code_allowances
+    from vbikit.analysis.effects import loaded_length
     from vbikit.scenario import build, parse_scenario
 
     built = build(parse_scenario(base))
     bridge = built.crossing.bridge
     vehicle = built.crossing.vehicles[0].vehicle
     loaded = loaded_length(bridge, built.response_x, built.response_y)
-    return code_allowances(loaded, float(bridge.frequencies_hz[0]), vehicle_axle_count(vehicle))
+    return code_allowances(loaded, float(bridge.frequencies_hz[0]),
+                           axles_on_span([w.offset for w in vehicle.wheels], loaded))
 
 
 def _reference_lines(ax, codes: dict[str, float]) -> None:

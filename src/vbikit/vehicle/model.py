@@ -76,6 +76,10 @@ class Vehicle:
     usual_speed_kmh : (float, float), optional
         Keyword only: the usual speed range of this kind of vehicle [km/h]; a speed outside it is
         warned of (``vbikit.analysis.checks``); None: that of road vehicles.
+    railway : bool, optional
+        Keyword only: a railway vehicle (the trains of ``vbikit.vehicle.trains``, ``TRAIN_PRESETS``,
+        and the rail cars of ``vbikit.vehicle.rail_car`` set it): its run report shows the EN 1991-2
+        dynamic factors instead of the highway codes' allowances (``vbikit.analysis.codes``).
     bodies : dict, optional
         Keyword only: the rigid bodies of a vehicle built by ``VehicleBuilder``, name ->
         (s_cg [m], heave, pitch, roll rows) (sensor positions, ``vbikit.driveby``).
@@ -94,6 +98,7 @@ class Vehicle:
     #: the body moves by (heave + (s_cg − s)·pitch + y·roll) · q (empty when not built by VehicleBuilder)
     bodies: dict = field(default_factory=dict, kw_only=True, repr=False, compare=False)
     usual_speed_kmh: "tuple[float, float] | None" = field(default=None, kw_only=True, repr=False, compare=False)
+    railway: bool = field(default=False, kw_only=True, repr=False, compare=False)
 
     @property
     def n_dof(self) -> int:
@@ -230,6 +235,6 @@ def combine_vehicles(vehicles: "tuple[Vehicle, ...] | list[Vehicle]") -> Combine
     combined = CombinedVehicle(
         "+".join(v.name for v in vehicles), tuple(names), blocks("mass"), blocks("damping"), blocks("stiffness"),
         gravity, tuple(wheels), f"{len(vehicles)} vehicles: " + ", ".join(v.name for v in vehicles), {},
-        vehicles, tuple(dof_off), tuple(wheel_off))
+        vehicles, tuple(dof_off), tuple(wheel_off), railway=any(v.railway for v in vehicles))
     object.__setattr__(combined, "_from_parts", True)  # its blocks are the parts' own (``CombinedVehicle._stacked``)
     return combined

@@ -275,7 +275,7 @@ def rail_car(params: RailCarParameters, axle_loads: "tuple[float, ...] | list[fl
                    + (f" ({p.source})" if p.source else ""), values)
     if k_contact is None:  # the wheelsets' weight rests on the bogies' axle points (module docstring)
         car = dataclasses.replace(car, gravity=car.gravity - p.wheelset_mass * GRAVITY * sum(w.row for w in car.wheels))
-    return dataclasses.replace(car, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH)
+    return dataclasses.replace(car, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH, railway=True)
 
 
 #: Documented cars (whole-car values; per-side literature values × 2 for the planar model).

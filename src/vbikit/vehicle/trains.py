@@ -132,6 +132,10 @@ class Train:
     coach_length : float, optional
         The principal excitation wavelength D [m] (regular coach length) when the train has one;
         resonance speeds are v_i = n0 D / i (EN 1991-2 6.4.6).
+    bogie_axle_spacings : tuple of float, optional
+        The train's characteristic axle spacings within a bogie [m] (distinct, ascending): a second
+        family of resonances v = n0 d / i, which governs short spans (HSLM-A: d of Table 6.3 and the
+        power cars' 3 m; default: the cars' ``axle_spacing`` when the cars are known, else none).
     """
 
     name: str
@@ -140,6 +144,7 @@ class Train:
     cars: Optional[tuple[CarGeometry, ...]] = None
     source: str = ""
     coach_length: Optional[float] = None
+    bogie_axle_spacings: tuple[float, ...] = ()
 
     def __post_init__(self) -> None:
         a = np.asarray(self.axle_positions, float).ravel()
@@ -157,6 +162,10 @@ class Train:
             raise TrainError(f"train {self.name!r}: longer than {MAX_TRAIN_LENGTH:g} m ({a[-1]:g} m)")
         object.__setattr__(self, "axle_positions", a)
         object.__setattr__(self, "axle_loads", p)
+        d = self.bogie_axle_spacings or tuple(c.axle_spacing for c in self.cars or ())
+        if not all(math.isfinite(x) and x > 0 for x in d):
+            raise TrainError(f"train {self.name!r}: bogie axle spacings must be > 0 m, got {d!r}")
+        object.__setattr__(self, "bogie_axle_spacings", tuple(sorted({round(float(x), 9) for x in d})))
 
     @property
     def n_axles(self) -> int:
@@ -216,7 +225,8 @@ def hslm_a(number: int) -> Train:
     n, coach, d, p = HSLM_A_TABLE[number]
     a = hslm_a_axles(n, coach, d)
     return Train(f"HSLM-A{number}", a, np.full(a.size, p * 1e3), None,
-                 f"{HSLM_SOURCE} (N = {n}, D = {coach:g} m, d = {d:g} m, P = {p:g} kN)", coach)
+                 f"{HSLM_SOURCE} (N = {n}, D = {coach:g} m, d = {d:g} m, P = {p:g} kN)", coach,
+                 (d, POWER_CAR_AXLES[1] - POWER_CAR_AXLES[0]))  # coach bogies d, power-car bogies 3 m
 
 
 #: the accepted HSLM-B parameters: the number of forces N and their spacing d [m] (``hslm_b``; the
@@ -253,7 +263,7 @@ def rail_distributed(train: Train, sleeper_spacing: float = 0.6) -> Train:
     order = np.argsort(x, kind="stable")
     return Train(f"{train.name} (rail-distributed)", x[order], p[order], None,
                  f"{train.source}; loads distributed over three sleepers {a:g} m apart (EN 1991-2 6.3.6.1)",
-                 train.coach_length)
+                 train.coach_length, train.bogie_axle_spacings)
 
 
 # ------------------------------------------------------------------------------- real trains
@@ -305,7 +315,7 @@ def train_vehicle(train: Train) -> Vehicle:
         vb.wheel(f"a{k + 1}", {}, float(a), 0.0, 0.0, 0.0, fixed_load=float(p))
     vehicle = vb.build(f"{train.name}: {train.n_axles} moving axle loads" + (f" ({train.source})" if train.source else ""),
                        {"n_axles": float(train.n_axles), "total_load": train.total_load})
-    return replace(vehicle, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH)
+    return replace(vehicle, usual_speed_kmh=TRAIN_SPEED_RANGE_KMH, railway=True)
 
 
 # ---------------------------------------------------------------------------------- registry

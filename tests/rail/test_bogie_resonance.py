@@ -1,0 +1,52 @@
+"""The resonances of the axle spacings within a bogie in `vbikit rail`'s list.
+
+A train's loads repeat with its coach length D (v_i = n0 D / i, EN 1991-2:2003 6.4.6) and, inside
+every bogie, with its axle spacing d: on a short span n0 is high, every n0 D / i lies above any
+speed and the governing peak sits at n0 d / i.  HSLM-A4 (EN 1991-2:2003 Table 6.3: D = 21 m,
+d = 3 m; the power cars' bogies 3 m, Figure 6.12) on a 5 m span with EI = 2.5e9 N m²,
+m = 10 000 kg/m: n0 = π/(2 L²) √(EI/m) = π/50 × 500 = 10π = 31.416 Hz (simply supported beam),
+n0 D = 659.7 m/s = 2375.0 km/h (above a 100 … 360 km/h sweep), n0 d = 94.25 m/s = 339.3 km/h,
+n0 d / 2 = 169.6 km/h, n0 d / 3 = 113.1 km/h."""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from vbikit.rail.report import summary
+from vbikit.rail.run import run_rail
+from vbikit.vehicle.trains import get_train, hslm_b
+
+SHORT_SPAN = {"bridge": {"span": 5.0, "EI": 2.5e9, "mass_per_length": 10000.0}, "trains": {"presets": ["hslm-a4"]},
+              "speeds": {"min": 100.0, "line_max": 300.0, "step": 4.0}, "run": {"workers": 1}}
+
+
+def test_bogie_axle_spacings_of_the_presets():
+    # HSLM-A: d of Table 6.3 and the power cars' 3 m bogies (Figure 6.12); ICE 3: 2.5 m (Goicolea 2014)
+    assert get_train("hslm-a1").bogie_axle_spacings == (2.0, 3.0)
+    assert get_train("hslm-a2").bogie_axle_spacings == (3.0, 3.5)
+    assert get_train("hslm-a4").bogie_axle_spacings == (3.0,)
+    assert get_train("ice3").bogie_axle_spacings == (2.5,)
+    assert hslm_b(10, 3.0).bogie_axle_spacings == ()  # equal forces, no bogies
+
+
+def test_short_span_lists_the_bogie_resonance_and_names_it_for_the_peak():
+    result = run_rail(SHORT_SPAN, figures=False)
+    ds, report = result.dataset, result.report
+    n0 = math.pi / (2 * 5.0**2) * math.sqrt(2.5e9 / 1e4)
+    assert float(ds["frequency"].values[0]) == pytest.approx(n0, rel=1e-6)
+    # every coach-length resonance above the sweep (n0 D = 2375 km/h) ...
+    assert "i = 1: 2375.0 (above the sweep)" in report
+    # ... the bogie's: n0 d / i for d = 3 m, in the sweep (360 km/h top)
+    v = [3.6 * n0 * 3.0 / i for i in (1, 2, 3)]
+    assert [round(x, 1) for x in v] == [339.3, 169.6, 113.1]
+    assert "HSLM-A4, axle spacing within a bogie (v = n0 d / i, in the sweep): d = 3 m: i = 1: 339.3, i = 2: 169.6, " \
+           "i = 3: 113.1" in report
+    assert float(ds["bogie_resonance_speed"].sel(train="HSLM-A4", bogie=1, order=1)) == pytest.approx(n0 * 3.0, rel=1e-6)
+    # the governing acceleration peak is at the bogie resonance (the refined peak within 2 % of 339.3 km/h)
+    acc = result.checks["acceleration"]
+    assert abs(3.6 * acc["speed"] / v[0] - 1) < 0.02
+    assert f"nearest the resonance n0 d / 1 (axle spacing within a bogie d = 3 m) at {v[0]:.1f} km/h" in report
+    s = summary(ds, result.checks)
+    assert s["governing_resonance"]["speed_kmh"] == pytest.approx(v[0], rel=1e-6)
+    assert [r["order"] for r in s["trains"]["HSLM-A4"]["bogie_resonances"] if r["in_sweep"]] == [1, 2, 3]
