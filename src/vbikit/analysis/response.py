@@ -459,11 +459,16 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
     "governing_girder_impact_factor": ("-", "impact factor of the governing girder"),
     "vehicles": ("-", "several vehicles: per vehicle its model, direction, entry_time [s], lateral_offset [m], "
                       "speed [m/s], tire_model, static_wheel_loads [N], min_wheel_force [N] and contact_loss"),
-    "design_code_allowances": ("-", "loaded_length [m], first_frequency [Hz], n_axles and each design code's "
-                                    "dynamic allowance [-] for the deflection at response_x"),
-    "moment": ("N m", "bending moments: static_peak, dynamic_peak [N m], impact_factor [-], position x [m] of the "
-                      "first requested section, every section under sections, with the code allowances"),
-    "shear": ("N", "shear forces (just right of x), as moment"),
+    "design_code_allowances": ("-", "loaded_length [m], first_frequency [Hz], n_axles (CSA S6: the axles on the "
+                                    "span at once) and each design code's dynamic allowance [-] for the deflection "
+                                    "at response_x; for a railway vehicle instead railway = true and the EN 1991-2 "
+                                    "factors en1991_2_phi2, en1991_2_phi3 [-] (they apply to LM71, not to the train)"),
+    "moment": ("N m", "bending moments: static_peak, dynamic_peak [N m], impact_factor [-] (in the sense of the "
+                      "largest static magnitude, sense: sagging or hogging), opposite_sense, opposite_static_peak "
+                      "[N m], opposite_share [-], two_signed, governing (the sense of the larger dynamic peak) and, "
+                      "when two_signed, opposite_dynamic_peak, opposite_impact_factor and their times; position x "
+                      "[m] of the first requested section, every section under sections, with the code allowances"),
+    "shear": ("N", "shear forces (just right of x), as moment (senses: positive, negative)"),
     "reaction": ("N", "support reactions, as moment"),
     "warnings": ("-", "messages about the inputs or the run (also printed on standard error): the flags' messages"),
     "flags": ("-", "the checks' findings as records: code (the flag codes' table), message, output, subject, girder, "
