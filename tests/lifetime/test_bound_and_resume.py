@@ -1,4 +1,6 @@
-"""A bootstrap lifetime run whose characteristic static value lies above the largest static effect
+"""Two findings of a new user's lifetime trial.
+
+1. A bootstrap lifetime run whose characteristic static value lies above the largest static effect
 any event of its traffic can produce is flagged (a new user's trial: the 100-year Gumbel static
 value came out above the heaviest possible configuration, without a word).
 
@@ -9,6 +11,9 @@ the heavy ones.  The records' smallest headway is 2,000 s while a truck has a lo
 for (10 + 20) m / (80 km/h) = 1.35 s, so at most one truck is on the bridge at a time and the
 traffic cannot produce more than 250 kN m.  The daily maxima are 50 or 250 kN m (days with and
 without a heavy truck); a Gumbel fit of them puts the 1,000-year level far above 250 kN m.
+
+2. A failure after the simulations (while building the dataset) did not say that they are kept
+under out/work and that a rerun resumes.
 """
 import json
 
@@ -76,3 +81,40 @@ def test_characteristic_above_the_traffic_maximum_is_flagged(tmp_path):
                   "block maxima at 1000 years"):
         assert words in flag
     assert "FLAG " + flag in (out / "report.txt").read_text()
+
+
+def test_a_failure_after_the_simulations_says_they_are_kept_and_a_rerun_resumes(tmp_path, monkeypatch):
+    """A failure while building the dataset (here a disk error raised in its place) tells the user
+    that the stages under out/work are kept and the same command resumes; the rerun then finishes
+    from them.  A failure before any stage finished says nothing of the kind."""
+    from typer.testing import CliRunner
+
+    import vbikit.lifetime.results as results
+    import vbikit.lifetime.run as run_module
+    from vbikit.cli import app
+
+    spec = _write(tmp_path, heavy_every=10)
+    out = tmp_path / "out"
+    build = results.build_dataset
+
+    def disk_full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(results, "build_dataset", disk_full)
+    res = CliRunner().invoke(app, ["lifetime", str(spec), "--out-dir", str(out), "--workers", "1", "--no-figures",
+                                   "--no-progress"])
+    assert res.exit_code == 2, res.output
+    assert "error: [Errno 28] No space left on device" in res.stderr
+    note = next(t for t in res.stderr.splitlines() if t.startswith("note: "))
+    assert f"kept in {out / 'work'}" in note and "static" in note and "run the same command again to resume" in note
+    # the rerun resumes: no stage is simulated again (the study runner would call its jobs' batches)
+    monkeypatch.setattr(results, "build_dataset", build)
+    monkeypatch.setattr("vbikit.study.run._compute", lambda *a, **k: pytest.fail("a finished stage was simulated again"))
+    res = CliRunner().invoke(app, ["lifetime", str(spec), "--out-dir", str(out), "--workers", "1", "--no-figures",
+                                   "--no-progress"])
+    assert res.exit_code == 0, res.output
+    # nothing finished yet: no note
+    monkeypatch.setattr(run_module, "_run", lambda *a, **k: disk_full())
+    with pytest.raises(OSError) as err:
+        run_lifetime(spec, tmp_path / "fresh", workers=1, figures=False)
+    assert not getattr(err.value, "__notes__", None)
