@@ -146,3 +146,17 @@ def test_unknown_defect_key_lists_the_defect_keys(tmp_path):
     for key in ("kind", "position", "depth", "height", "length", "ramp", "shape"):
         assert key in allowed, res.stderr
     assert "seed" not in allowed  # not the keys of [road]
+
+
+def test_a_warning_every_tire_model_shares_is_printed_once(tmp_path):
+    """A random road's ``one_realisation`` warning is the same for the four tire models: printed once,
+    without a tire prefix (a new user saw it four times, each prefixed by the tire name); a warning of
+    one model only keeps its prefix (``shared_warnings``)."""
+    path = write(tmp_path, SMALL + '[road]\nclass = "A"\nseed = 2\nlength = 200.0\n')
+    res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path / "out")])
+    assert res.exit_code == 0, res.output
+    lines = [t for t in res.stderr.splitlines() if "one road realisation" in t]
+    assert len(lines) == 1 and lines[0].startswith("warning: ") and "tire " not in lines[0], res.stderr
+    from vbikit.cli.execute import shared_warnings
+
+    assert shared_warnings({"tire a": ["w1", "w2"], "tire b": ["w2", "w3"]}) == ["w2", "tire a: w1", "tire b: w3"]

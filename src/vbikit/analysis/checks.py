@@ -37,7 +37,13 @@ Thresholds (documented in docs/scenario.md):
   reactions each kind against its own largest, ``effect_static_flags``).  IM = ΔR/R_st divides the
   dynamic increment ΔR, which the deck's vibration spreads over every girder, by that small R_st:
   on the paper's 3D Bridge 2 under HS20-44 Girder 1 carries 0.28 mm of the governing 2.79 mm
-  (10 %) and reads IM = 1.35 against 0.22.  Such an IM is not a design value.
+  (10 %) and reads IM = 1.35 against 0.22.  Such an IM is not a design value;
+* a static deflection peak (at any response point or girder) above ``IMPLAUSIBLE_DEFLECTION_FRACTION``
+  (1/100) of the longest span (``implausible_deflection_flags``, code ``implausible_deflection``): highway
+  bridges are designed to live-load deflections of L/800 to L/300 (AASHTO LRFD 2.5.2.6.2: L/800, L/1000
+  with pedestrians; Eurocode practice about L/300 to L/600), so L/100 under one vehicle lies far beyond
+  any real bridge and almost always means a unit mistake in the stiffness or mass (EI in kN m² instead
+  of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).
 
 A negative impact factor (the dynamic peak below the static one) is physical, not a warning: the
 reports print ``NEGATIVE_IM_NOTE`` beside it.
@@ -71,6 +77,8 @@ SMALL_STATIC_FRACTION = 0.2
 AIRBORNE_FRACTION = 0.05
 #: largest relative error of the modes' static strain peak against the exact one before it is flagged
 STRAIN_MODE_TOLERANCE = 0.01
+#: a static deflection peak above this fraction of the longest span is not plausible for a bridge (module docstring)
+IMPLAUSIBLE_DEFLECTION_FRACTION = 0.01
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
 NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the vehicle's bounce and the "
                     "deck's vibration were out of phase with the load's arrival at the section (the wheels unloading "
@@ -120,6 +128,10 @@ FLAG_CODES: dict[str, str] = {
     "one_realisation": "the road is one realisation of a random road (a class or PSD with a seed): the impact factors "
                        "are those of that realisation and scatter between seeds; output: impact_factor; value: the "
                        "seed",
+    "implausible_deflection": "a static deflection peak larger than a bridge under traffic can plausibly show (a unit "
+                              "mistake in the bridge's stiffness or mass); output: impact_factor; girder or point: "
+                              "the largest; value: its static peak / the longest span, threshold: "
+                              "``IMPLAUSIBLE_DEFLECTION_FRACTION`` (0.01)",
     "ignored_input": "an input the model has no use for (response.y or crossing.lateral_offset on a beam, which has "
                      "no lateral dimension); subject: the key; value: the value given",
 }
@@ -491,6 +503,26 @@ def small_static_flags(labels: Sequence[str], static_peaks: Sequence[float], imp
                  value=abs(float(st)) / top, threshold=SMALL_STATIC_FRACTION)
             for label, st, im, e, g, p, flag in zip(labels, static_peaks, impact_factors, strain, girders, points, flags)
             if flag]
+
+
+def implausible_deflection_flags(span: float, static_peaks: Sequence[tuple[str, float, int | None, str | None]],
+                                 fraction: float = IMPLAUSIBLE_DEFLECTION_FRACTION) -> list[Flag]:
+    """One flag for the run when the largest static deflection peak [m] among ``static_peaks`` (label:
+    "point p1", "Girder 2"; peak [m]; girder number or None; point name or None) exceeds ``fraction``
+    of ``span`` [m] (the longest span): no bridge under a vehicle deflects that much, so the bridge's
+    stiffness or mass is most likely in the wrong unit (module docstring)."""
+    if not static_peaks:
+        return []
+    label, peak, girder, point = max(static_peaks, key=lambda s: abs(float(s[1])))
+    share = abs(float(peak)) / float(span)
+    if not share > fraction:
+        return []
+    return [Flag("implausible_deflection",
+                 f"{label}: static deflection {abs(float(peak)):.3g} m on a {float(span):g} m span (L/{1 / share:.3g}) is "
+                 f"not plausible for a bridge under this load (flagged above L/{1 / fraction:g}; highway bridges are "
+                 "designed to L/800–L/300): check the units of the bridge's stiffness (EI in N m², E in Pa, I in m⁴) "
+                 "and mass (kg/m); every result of this run scales with them",
+                 output="impact_factor", subject=label, girder=girder, point=point, value=share, threshold=fraction)]
 
 
 def effect_static_flags(effects: Sequence[tuple[str, str, str, float, float]]) -> list[Flag]:

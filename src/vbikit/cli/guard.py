@@ -32,11 +32,15 @@ def guard(action: Callable[[], T]) -> T:
         if STATE["debug"]:
             raise
         typer.echo(f"error: {err}", err=True)
+        for note in getattr(err, "__notes__", ()):  # what the run leaves (e.g. a lifetime run's resumable work)
+            typer.echo(f"note: {note}", err=True)
         raise typer.Exit(code=2) from None
-    except MemoryError:
+    except MemoryError as err:
         if STATE["debug"]:
             raise
         typer.echo(_OUT_OF_MEMORY, err=True)
+        for note in getattr(err, "__notes__", ()):
+            typer.echo(f"note: {note}", err=True)
         raise typer.Exit(code=2) from None
 
 

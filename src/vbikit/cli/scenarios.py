@@ -7,8 +7,8 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.execute import execute
-from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option, out_file_option
+from vbikit.cli.execute import execute, shared_warnings
+from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option, out_file_option, warn
 from vbikit.cli.render import json_text, outputs, write_text
 
 
@@ -94,13 +94,14 @@ def compare_tires(
         "disk": {"model": "disk"},
         "rigid disk": {"model": "rigid-disk"},
     }
-    responses, table = {}, {}
+    responses, table, warnings = {}, {}, {}
     for label, tire in models.items():
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
         t0 = time.perf_counter()
-        run_ = execute(lambda spec=spec: spec, label=f"tire {label}")
+        run_ = execute(lambda spec=spec: spec, print_warnings=False)
         s = run_.summary
+        warnings[f"tire {label}"] = s["warnings"]
         responses[label] = run_.response
         table[label] = {
             "max_dynamic_displacement": s["max_dynamic_displacement"],
@@ -112,6 +113,7 @@ def compare_tires(
             "contact_lost": any(v["lost"] for v in s["contact_loss"].values()),
             "seconds": time.perf_counter() - t0,
         }
+    warn(shared_warnings(warnings))  # a warning every tire model shares (the road, the step) once
     fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
     guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
     if as_json:

@@ -33,6 +33,22 @@ than 10 exceedances: no POT value (said so).
   (``WIDE_INTERVAL``), or reaches across zero, cannot be signed, and the overlap test above can
   never fire on it: said in words per method and return period.
 
+* *above the traffic's largest static effect* (bootstrap traffic only): a characteristic static
+  value above ``static_upper_bound``, the largest static effect any event of the traffic model
+  can produce.  In ``mode = "bootstrap"`` every vehicle is one of a finite set of records and a
+  lane's arrivals are at least its smallest headway h_min apart (``TrafficModel.arrivals``), so
+  at most k = ⌊T/h_min⌋ + 1 of a lane's vehicles load the deck at once (T the longest time a
+  vehicle of the lane has a load on the deck's x range: (deck length + vehicle length + 2 × the
+  tire's reach) / speed); since the event's effect s·R(t) = Σ_i s·R_i(t) and each vehicle's
+  s·R_i(t) ≤ max(its own static peak, 0), s·R ≤ Σ_lanes k × the largest single-vehicle peak of
+  the lane — a strict bound (loose where k > 1: the vehicles of a lane never all stand at their
+  worst position at once).  A value above it is the fitted distribution's unbounded tail (Gumbel,
+  a GEV or GPD with ξ ≥ 0) extrapolating past what the traffic can produce.  The fitted generator
+  (``mode = "fitted"``) draws GVWs from normal mixtures without an upper end: no bound, no flag.
+  Nor is the largest observed event one: a characteristic value is meant to exceed it, and how far
+  depends on the tail's shape, which the interval of a short run does not pin down; the POT and
+  shape flags above judge that.
+
 **ADR with its interval.** ADR = z_total / z_static at the characteristic period, with the
 delta-method interval of ``vbikit.extremes.level_ratio`` (the two fits' covariance and their
 cross-covariance from the sandwich of the stacked score equations of the same blocks — the
@@ -100,6 +116,36 @@ def pot_levels(values: np.ndarray, threshold: float, values_per_year: float, per
         why = (f"no confidence interval: the covariance of the GPD fit to {k} exceedances could not be estimated "
                "(the delta method needs it); the level stands without an interval")
     return PotLevels(level, lo, hi, threshold, float(fit.shape), k, why)
+
+
+def static_upper_bound(model, setup, signs: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The largest static effect s·R any event of ``model`` (a ``TrafficModel``) can produce on every
+    load effect of ``setup`` (module docstring, *above the traffic's largest static effect*), and the
+    vehicles per lane k it assumes at once, or None for a model without one (fitted traffic).
+    Returns (bound per load effect, in the governing direction s ≥ 0; k per lane of ``model.lanes``)."""
+    from dataclasses import replace
+
+    from vbikit.lifetime.influence import event_static
+
+    if model.mode != "bootstrap" or not model.records:
+        return None
+    records = [replace(r, time=0.0, speed=float(model.fixed_speed)) if model.fixed_speed is not None else
+               replace(r, time=0.0) for r in model.records]
+    peaks = event_static(records, [(i,) for i in range(len(records))], setup.lines, setup.span, setup.lanes,
+                         setup.pattern, tables=setup.tables).peaks.reshape(len(records), len(setup.lines))
+    single = np.maximum(peaks * np.asarray(signs, float)[None, :], 0.0)  # each vehicle's s·R_i(t) ≤ this
+    first, last = setup.bridge.deck_extent
+    deck = float(max(last, setup.span) - min(first, 0.0))
+    bound = np.zeros(len(setup.lines))
+    per_lane = []
+    for ln in model.lanes:
+        idx = np.asarray(ln.records, np.int64)
+        reside = max((deck + records[i].length + 2.0 * setup.pattern.reach) / records[i].speed for i in idx)
+        h_min = ln.min_headway - 1e-3  # arrival times are rounded to the millisecond (TrafficModel.day)
+        k = int(math.floor(reside / h_min)) + 1
+        per_lane.append(k)
+        bound += k * single[idx].max(axis=0)
+    return bound, np.array(per_lane, np.int64)
 
 
 def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float) -> float:

@@ -51,6 +51,8 @@ def _effect(ds, j: int) -> dict[str, Any]:
         **{f"characteristic_{w}_not_estimable": (str(ds[f"characteristic_{w}_not_estimable"].values[j]) or None
                                                  if f"characteristic_{w}_not_estimable" in ds else None)
            for w in ("static", "total")},
+        # the largest static effect the traffic model can produce (None: no bound, fitted traffic; older datasets)
+        "static_upper_bound": _num(ds["static_upper_bound"].values[j]) if "static_upper_bound" in ds else None,
         "return_levels": levels, "fits": fits,
         "adr": {"value": _num(adr), "lower": _num(lo), "upper": _num(hi),
                 "standard_error": _num(ds["assessment_dynamic_ratio_se"].values[j]),
@@ -86,6 +88,20 @@ def _flags(e: dict, a: dict) -> list[str]:
     """The effect's warnings in words."""
     flags = [f"characteristic {w} {e[f'characteristic_{w}_not_estimable']}" for w in ("static", "total")
              if e.get(f"characteristic_{w}_not_estimable")]
+    bound = e.get("static_upper_bound")
+    if bound is not None:
+        beyond = [f"{name} at {r['return_period']:g} years" for r in e["return_levels"]
+                  for name, key in (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
+                  if r["static"][key]["value"] is not None and abs(r["static"][key]["value"]) > abs(bound)
+                  and r["static"][key]["value"] * bound > 0]
+        char = e["characteristic_static"]
+        if char is not None and char * bound > 0 and abs(char) > abs(bound):
+            flags.append(f"static: the characteristic value {char:.4g} {e['units']} ({e['characteristic_period']:g} years) "
+                         f"exceeds {bound:.4g} {e['units']}, the largest static effect any event of the traffic model "
+                         f"can produce (the heaviest-effect records of each lane, as many at once as the lane's smallest "
+                         f"headway allows): the extrapolation exceeds what the traffic model can produce — the fitted "
+                         f"distribution's unbounded tail; consider a GEV or POT fit with a bounded tail, or the model's "
+                         f"maximum {bound:.4g} {e['units']} (static levels above it: {', '.join(beyond)})")
     xi = a["xi_strongly_negative"]
     for w in ("static", "total"):
         f = e["fits"][w]

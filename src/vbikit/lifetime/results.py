@@ -200,6 +200,10 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         vals = code_allowances(loaded, f1, None)
         for c, code in enumerate(codes):
             allow[j, c] = vals.get(code, math.nan)
+    # the largest static effect the traffic can produce (bootstrap traffic; accuracy.static_upper_bound)
+    upper = acc.static_upper_bound(prep.model, setup, signs)
+    static_bound = np.full(len(lines), np.nan) if upper is None else upper[0]
+    above = [bool(s * c > b) for s, c, b in zip(signs, char_static, static_bound)]  # NaN compares False
     # ---------------------------------------------------------------- fatigue
     fat = fatigue_results(prep, static, dyn)
     ev_attrs = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
@@ -207,6 +211,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "characteristic_static": ("load_effect", char_static, ev_attrs("", f"static load effect of the {spec.characteristic_period:g}-year return period")),
         "characteristic_total": ("load_effect", char_total, ev_attrs("", f"total (static + dynamic) load effect of the {spec.characteristic_period:g}-year return period")),
         **{f"characteristic_{w}_not_estimable": ("load_effect", np.array(bm_why[w], dtype=object), ev_attrs("", f"why the {w} block maxima could not be fitted (all equal, too few), in words; empty where they were: where not, characteristic_{w}, its block-maximum return levels and the ADR are NaN")) for w in ("static", "total")},
+        "static_upper_bound": ("load_effect", static_bound * signs, ev_attrs("", "largest static effect any event of the traffic model can produce: the sum over lanes of k times the lane's largest single-vehicle static peak, k the most vehicles of a lane on the deck at once (bootstrap traffic: vbikit.lifetime.accuracy.static_upper_bound); NaN where the model has no bound (fitted traffic)")),
+        "characteristic_static_above_bound": ("load_effect", np.array(above, np.int8), ev_attrs("1", "1 if the characteristic static value exceeds static_upper_bound: the fitted tail extrapolates past what the traffic model can produce")),
         "assessment_dynamic_ratio": ("load_effect", adr, ev_attrs("1", "ADR = characteristic total / characteristic static")),
         "return_level_static": (("load_effect", "return_period"), rl["static"] * signs[:, None], ev_attrs("", "static return level")),
         "return_level_static_lower": (("load_effect", "return_period"), rl["static_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound nearer zero)")),
@@ -253,7 +259,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         **_governing_variables(dyn, st, total, run_static, day, static["ev_start"].values),
         **_shortfall_variables(st, run_static, signs, simulated, day, n_days),
     }
-    for name in ("characteristic_static", "characteristic_total", "return_level_static", "return_level_static_lower",
+    for name in ("characteristic_static", "characteristic_total", "static_upper_bound", "return_level_static", "return_level_static_lower",
                  "return_level_static_upper", "return_level_total", "return_level_total_lower",
                  "return_level_total_upper", "return_level_pot_static", "return_level_pot_static_lower",
                  "return_level_pot_static_upper", "return_level_pot_total", "return_level_pot_total_lower",
@@ -309,6 +315,11 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "characteristic_period": float(spec.characteristic_period),
         # every characteristic value that could not be estimated, in words ("" when all were: _fit_or_why)
         "not_estimable": " ".join(f"{n} {w}: {t}." for w in ("static", "total") for n, t in zip(names, bm_why[w]) if t),
+        # the characteristic static values above the largest static effect the traffic can produce, in words
+        "above_static_bound": " ".join(
+            f"{n} static: the characteristic value {c:.6g} {u} exceeds {b * s:.6g} {u}, the largest the traffic model "
+            "can produce." for n, u, s, c, b, a_ in zip(names, units, signs, char_static, static_bound, above) if a_),
+        "static_bound_vehicles_per_lane": json.dumps([] if upper is None else upper[1].tolist()),
         "first_frequency_hz": f1,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),

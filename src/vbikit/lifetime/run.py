@@ -216,11 +216,9 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     relative paths point (default: the file's folder, else "."); ``workers`` / ``scheduler``: as
     ``vbikit.study.run_study``; ``progress(stage, done, total)`` after every finished batch;
     ``max_memory``: the memory budget [bytes] (``prepare``).
+    A failure after finished simulations says in a note (``resume_note``; the CLI prints it) that they are kept
+    under ``out_dir/work`` and that the same call resumes.
     Returns the dataset."""
-    from vbikit._files import atomic_write, write_text
-    from vbikit.lifetime.report import summary, text_report
-    from vbikit.lifetime.results import build_dataset
-
     if isinstance(spec, (str, Path)):
         spec, folder = read_lifetime(spec)
         base_dir = folder if base_dir is None else base_dir
@@ -228,6 +226,34 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     out_dir = Path(out_dir)
     work = out_dir / "work"
     work.mkdir(parents=True, exist_ok=True)
+    try:
+        return _simulate_and_write(prep, out_dir, work, workers, scheduler, progress, figures)
+    except Exception as err:  # a user error, a full disk, a bug: the finished work stands
+        note = resume_note(work)
+        if note and "to resume" not in str(err):  # (a study's failed write says so itself)
+            err.add_note(note)
+        raise
+
+
+def resume_note(work: Path) -> str:
+    """What a failed run leaves, in words, when ``work`` holds finished stages (``<stage>.nc``) or batches
+    (``<stage>.nc.parts/batch-*.npz``) that the same command resumes from; "" when it holds none."""
+    stages = sorted(p.stem for p in work.glob("*.nc") if p.is_file())
+    batches = sum(1 for _ in work.glob("*.nc.parts/batch-*.npz"))
+    if not stages and not batches:
+        return ""
+    done = ", ".join(filter(None, [f"stage(s) {', '.join(stages)}" if stages else "",
+                                   f"{batches} batch(es) of an unfinished stage" if batches else ""]))
+    return (f"the finished simulations are kept in {work} ({done}): fix the cause and run the same command "
+            "again to resume; they are not simulated again")
+
+
+def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, scheduler, progress, figures: bool):
+    """``run_lifetime`` after ``prepare``: every stage (stored under ``work``), the dataset and the files."""
+    from vbikit._files import atomic_write, write_text
+    from vbikit.lifetime.report import summary, text_report
+    from vbikit.lifetime.results import build_dataset
+
     t0 = time.perf_counter()
     static = _run(prep.static_job(), work / "static.nc", workers, scheduler, progress, "static pass",
                   {"trucks_per_day": prep.model.trucks_per_day})

@@ -19,7 +19,7 @@ import logging
 from pathlib import Path
 from typing import Any, Mapping
 
-from vbikit.analysis.checks import Flag, add_flags, effect_static_flags, point_flags
+from vbikit.analysis.checks import Flag, add_flags, effect_static_flags, implausible_deflection_flags, point_flags
 from vbikit.analysis.effects import effect_sign_flags, load_effect_report
 from vbikit.analysis.impact import static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -264,4 +264,8 @@ def report_crossing(result: CrossingResult, plan: ResponsePlan, name: str = "") 
     add_flags(s, effect_sign_flags(effects))
     for point_name, p in zip(plan.point_names[1:], points[1:]):  # not ``name``: the report's label
         add_flags(s, point_flags(result.crossing, p.x, p.y, point_name))
+    add_flags(s, implausible_deflection_flags(  # a unit mistake in EI or the mass: every point and girder, the longest span
+        max(result.crossing.bridge.span_lengths),
+        [(f"point {n}", r.displacement_impact.static_peak, None, n) for n, r in zip(plan.point_names, points)]
+        + [(f"Girder {g}", r.displacement_impact.static_peak, g, None) for g, r in enumerate(girders, 1)]))
     return Report(name, result, plan, points, girders, effects, s)

@@ -1,0 +1,57 @@
+"""A beam whose EI was typed in kN m² instead of N m² (a new user's trial: 4.5 m static deflection on
+a 20 m span, only airborne-wheel warnings) is now flagged ``implausible_deflection``: a static
+deflection peak above span/100 (vbikit.analysis.checks.IMPLAUSIBLE_DEFLECTION_FRACTION).
+
+Independent number: the Yang–Yau sprung mass (examples/verification/yang_yau_sprung_mass.toml)
+weighs P = 5750 kg · 9.81 m/s² = 56 407.5 N; a simply supported beam's midspan deflection under a
+point load at midspan is P L³ / (48 EI) (closed form of the simply supported beam; z up, so the summary's peak is −that):
+2.207 mm with EI = 8.323e9 N m² (L/11 300: not flagged) and 2.207 m with EI = 8.323e6 (the kN m² mistake:
+L/11.3, flagged).
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from vbikit.analysis.checks import IMPLAUSIBLE_DEFLECTION_FRACTION, implausible_deflection_flags
+from vbikit.cli import app
+
+ROOT = Path(__file__).resolve().parents[2]
+runner = CliRunner()
+P, L = 5750.0 * 9.81, 25.0
+
+
+def _run(text: str, tmp_path: Path) -> dict:
+    path, summary = tmp_path / "s.toml", tmp_path / "s.json"
+    path.write_text(text)
+    res = runner.invoke(app, ["run", str(path), "--summary", str(summary)])
+    assert res.exit_code == 0, res.output
+    return json.loads(summary.read_text())
+
+
+def test_ei_in_kilonewtons_flags_the_deflection_and_names_the_units(tmp_path):
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    assert "EI = 8.323e9" in text
+    ok = _run(text, tmp_path)
+    assert -ok["max_static_displacement"] == pytest.approx(P * L**3 / (48 * 8.323e9), rel=0.01)
+    assert not [f for f in ok["flags"] if f["code"] == "implausible_deflection"]
+    bad = _run(text.replace("EI = 8.323e9", "EI = 8.323e6"), tmp_path)
+    closed = P * L**3 / (48 * 8.323e6)  # 2.207 m
+    assert -bad["max_static_displacement"] == pytest.approx(closed, rel=0.01)
+    (flag,) = [f for f in bad["flags"] if f["code"] == "implausible_deflection"]
+    assert flag["value"] == pytest.approx(closed / L, rel=0.01) and flag["threshold"] == IMPLAUSIBLE_DEFLECTION_FRACTION
+    assert flag["point"] == "p1"
+    for words in ("not plausible for a bridge under this load", "EI in N m²", "E in Pa", "I in m⁴", "kg/m"):
+        assert words in flag["message"]
+    assert flag["message"] in bad["warnings"]
+
+
+def test_threshold_is_span_over_100_and_the_largest_girder_is_named():
+    peaks = [("Girder 1", -0.05, 1, None), ("Girder 2", -0.21, 2, None), ("point p1", -0.19, None, "p1")]
+    assert implausible_deflection_flags(20.0, peaks[:1]) == []  # L/400: a soft but real bridge
+    (flag,) = implausible_deflection_flags(20.0, peaks)  # 0.21 m > 20 m / 100
+    assert flag.girder == 2 and flag.value == pytest.approx(0.21 / 20.0)
+    assert implausible_deflection_flags(22.0, peaks[1:2]) == []  # 0.21 m on 22 m: L/105, below L/100
