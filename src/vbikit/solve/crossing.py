@@ -148,12 +148,25 @@ class VehicleMotion:
     def times_at(self, travel: NDArray[np.float64]) -> NDArray[np.float64]:
         """``time_at`` of every travel in an array [m] (the same arithmetic element by element)."""
         t_ref, s_ref, v = self._ref
-        a, distance = self.acceleration, np.asarray(travel, float) - s_ref
-        if abs(a) < 1e-12:
-            return t_ref + distance / v
-        disc = v * v + 2 * a * distance
+        travel = np.asarray(travel, float)
+        return _times_at(*np.broadcast_arrays(t_ref, s_ref, v, self.acceleration, travel))
+
+
+def _times_at(t_ref, s_ref, v, a, travel) -> NDArray[np.float64]:
+    """``VehicleMotion.time_at`` element by element for arrays that broadcast together (each element its own
+    reference state (t_ref [s], s_ref [m], v [m/s]), acceleration a [m/s²] and travel [m]): the
+    same arithmetic, t_ref + (s − s_ref)/v where |a| < 1e-12, else the root of
+    s = s_ref + v τ + a τ²/2, t_ref + (−v + √(v² + 2a(s − s_ref)))/a (NaN where it never gets there)."""
+    distance = travel - s_ref
+    out = np.asarray(t_ref + distance / v)
+    bent = np.abs(a) >= 1e-12
+    if bent.any():
+        t_ref, v, a, bent = (np.broadcast_to(z, out.shape) for z in (t_ref, v, a, bent))
+        d, vb, ab = distance[bent], v[bent], a[bent]
+        disc = vb * vb + 2 * ab * d
         with np.errstate(invalid="ignore"):
-            return np.where(disc < 0, np.nan, t_ref + (-v + np.sqrt(disc)) / a)
+            out[bent] = np.where(disc < 0, np.nan, t_ref[bent] + (-vb + np.sqrt(disc)) / ab)
+    return out
 
 
 @dataclass(frozen=True)
@@ -369,6 +382,20 @@ class Crossing:
         offset = np.array([m.lateral_offset for m in self.vehicles])[veh]
         origin = np.where(sign > 0, -cp.setback, self.bridge.span + cp.setback)
         return origin, sign, offset + sign * cp.lateral
+
+    def times_at(self, travel: NDArray[np.float64], vehicle: NDArray[np.int64]) -> NDArray[np.float64]:
+        """Time [s] vehicle ``vehicle[i]``'s front axle has travel ``travel[i]`` [m] past its entry
+        support (NaN if it never gets there; ``vehicle`` broadcasts against ``travel``):
+        ``VehicleMotion.times_at`` of all vehicles in one pass (the same arithmetic element by element)."""
+        ref = self._motion_refs
+        vehicle = np.asarray(vehicle, np.int64)
+        return _times_at(ref[0][vehicle], ref[1][vehicle], ref[2][vehicle], ref[3][vehicle], np.asarray(travel, float))
+
+    @cached_property
+    def _motion_refs(self) -> tuple[NDArray[np.float64], ...]:
+        """Per vehicle: t_ref [s], s_ref [m], v_ref [m/s] of its reference state and its acceleration [m/s²]."""
+        refs = np.array([m._ref for m in self.vehicles], float).reshape(-1, 3)
+        return refs[:, 0].copy(), refs[:, 1].copy(), refs[:, 2].copy(), np.array([m.acceleration for m in self.vehicles], float)
 
     def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """s_v(t) [m]: every vehicle's travel past its entry support, shape (n_t, n_vehicles)."""
