@@ -28,26 +28,21 @@ def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
     """The instants τ in (t0, t1) [s] at which a contact point of ``crossing`` stands on an active
     node of ``table`` (a ``vbikit.lifetime.influence.Tabulated`` line: the knots of the module
     docstring, the jump of a reaction or shear line, the kink of a moment line), sorted, unique."""
-    origin, sign, y = crossing.point_kinematics()
-    return _knot_instants(crossing, (table,), t0, t1, (_tracks(table, y),), origin, sign)[0]
+    return _knot_instants(crossing, [_point_geometry(table, *crossing.point_kinematics())[1]], t0, t1)[0]
 
 
-def _knot_instants(crossing, tables, t0: float, t1: float, tracks, origin: NDArray[np.float64],
-                   sign: NDArray[np.float64]) -> list[NDArray[np.float64]]:
-    """``knot_instants`` of every table of ``tables`` (a sequence), with each table's track of every
-    contact point (``_tracks``) and the points' ``point_kinematics`` (origin, sign) given: every
-    (contact point, active node of its row) pair of every table at once, the travel
-    s = (x_knot − origin)·sign of the point's vehicle there, and its time by ``Crossing.times_at``
-    (all vehicles and tables in one pass); then per table its instants in (t0, t1), sorted, unique."""
-    cols = [_row_knots(table)[np.asarray(table.row, np.int64)[track]] for table, track in zip(tables, tracks)]
-    knot_x = cols[0] if len(cols) == 1 else np.concatenate(cols, axis=1)  # (point, knot), NaN-padded
-    s = (knot_x - origin[:, None]) * sign[:, None]  # travel of the point's vehicle there (NaN: padding)
+def _knot_instants(crossing, travels, t0: float, t1: float) -> list[NDArray[np.float64]]:
+    """``knot_instants`` of several tables at once, given for each the travel of every (contact point,
+    active node of its row) pair (``_point_geometry``): the times of all of them by
+    ``Crossing.times_at`` (all vehicles and tables in one pass), then per table its instants in
+    (t0, t1), sorted, unique."""
+    s = travels[0] if len(travels) == 1 else np.concatenate(travels, axis=1)
     tau = crossing.times_at(s, crossing.point_vehicle[:, None])
     ok = (tau > t0) & (tau < t1)  # (NaN: never there, or padding)
     out, a = [], 0
-    for c in cols:
+    for c in travels:
         b = a + c.shape[1]
-        mine = tau[ok] if len(cols) == 1 else tau[:, a:b][ok[:, a:b]]
+        mine = tau[ok] if len(travels) == 1 else tau[:, a:b][ok[:, a:b]]
         mine.sort()
         out.append(mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine)  # np.unique's pass
         a = b
@@ -77,21 +72,28 @@ def _tracks(table, y: NDArray[np.float64]) -> NDArray[np.int64]:
     return ids
 
 
-#: point geometries whose tracks a table keeps (``_point_tracks``); beyond, it forgets them all
+#: point geometries a table keeps (``_point_geometry``); beyond, it forgets them all
 KEPT_TRACKS = 256
 
 
-def _point_tracks(table, y: NDArray[np.float64]) -> NDArray[np.int64]:
-    """``_tracks`` of the contact points at deck y, kept on the table per geometry (the events of a
-    lifetime run repeat a few lanes and vehicle types; the array is shared: not to be written)."""
-    kept = table.__dict__.setdefault("_point_tracks", {})
-    key = y.tobytes()
-    ids = kept.get(key)
-    if ids is None:
+def _point_geometry(table, origin: NDArray[np.float64], sign: NDArray[np.float64],
+                    y: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """For contact points with ``point_kinematics`` (origin, sign, y): their tracks on ``table``
+    (``_tracks``) and the travel s = (x_knot − origin)·sign [m] of a point's vehicle when the point
+    stands on each active node of its row, shape (point, most active nodes in a row), NaN-padded
+    (``_row_knots``).  Neither depends on the vehicles' timing: kept on the table per geometry (the
+    events of a lifetime run repeat a few lanes and vehicle types; the arrays are shared: not to be
+    written; ``KEPT_TRACKS`` geometries at most)."""
+    kept = table.__dict__.setdefault("_point_geometry", {})
+    key = origin.tobytes() + sign.tobytes() + y.tobytes()
+    known = kept.get(key)
+    if known is None:
         if len(kept) >= KEPT_TRACKS:
             kept.clear()
-        ids = kept[key] = _tracks(table, y)
-    return ids
+        track = _tracks(table, y)
+        knot_x = _row_knots(table)[np.asarray(table.row, np.int64)[track]]
+        known = kept[key] = track, (knot_x - origin[:, None]) * sign[:, None]
+    return known
 
 
 def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
@@ -141,8 +143,8 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
         return keep
     crossing = result.crossing
     origin, sign, y = crossing.point_kinematics()
-    tracks = [_point_tracks(table, y) for table in tables]
-    taus = _knot_instants(crossing, tables, float(t[0]), float(t[-1]), tracks, origin, sign)
+    tracks, travels = zip(*[_point_geometry(table, origin, sign, y) for table in tables])
+    taus = _knot_instants(crossing, travels, float(t[0]), float(t[-1]))
     if n_lines == 1:
         tau = taus[0]
     else:
@@ -155,6 +157,7 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
     u = np.empty(2 * tau.size)  # R(τ⁻), R(τ⁺), in time order
     u[0::2] = tau - delta
     u[1::2] = tau + delta
+    ordered = bool((u[1:] >= u[:-1]).all())  # so is every line's part of u (unless instants closer than 2δ)
     # the run at every instant u (shared by the lines)
     x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, crossing.point_vehicle]
     n_u = x.shape[0]
@@ -194,17 +197,17 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
             rows[1::2] += 1
             g, fj, qj, xij, uj = g[rows], f[rows], q[rows], xi[rows], u[rows]
         total = np.sum(g * fj, axis=1) + qj @ (r / omega2) + xij @ r
-        out.append(_merged(t, uj, dyn, total, sta, g @ p_static))
+        out.append(_merged(t, uj, dyn, total, sta, g @ p_static, ordered))
     return out
 
 
 def _merged(t: NDArray[np.float64], u: NDArray[np.float64], a1: NDArray[np.float64], b1: NDArray[np.float64],
-            a2: NDArray[np.float64], b2: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+            a2: NDArray[np.float64], b2: NDArray[np.float64], ordered: bool = False) -> tuple[NDArray[np.float64], ...]:
     """(time, a1 then b1, a2 then b2) in time order, a1 and a2 at the times ``t`` (nondecreasing), b1
     and b2 at the times ``u``: the order of a stable sort of (t, u) concatenated (a time of u after
     the equal ones of t, equal times of u in their own order), by inserting u into t (one
-    ``searchsorted``) rather than sorting t again."""
-    if u.size > 1 and not np.all(u[1:] >= u[:-1]):  # instants closer than 2δ: u out of order
+    ``searchsorted``) rather than sorting t again.  ``ordered``: u is known to be nondecreasing."""
+    if not ordered and u.size > 1 and not (u[1:] >= u[:-1]).all():  # instants closer than 2δ: u out of order
         order = np.argsort(u, kind="stable")
         u, b1, b2 = u[order], b1[order], b2[order]
     pos = np.searchsorted(t, u, side="right") + np.arange(u.size)  # u's places in the merged series

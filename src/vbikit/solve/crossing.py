@@ -156,9 +156,12 @@ def _times_at(t_ref, s_ref, v, a, travel) -> NDArray[np.float64]:
     """``VehicleMotion.time_at`` element by element for arrays that broadcast together (each element its own
     reference state (t_ref [s], s_ref [m], v [m/s]), acceleration a [m/s²] and travel [m]): the
     same arithmetic, t_ref + (s − s_ref)/v where |a| < 1e-12, else the root of
-    s = s_ref + v τ + a τ²/2, t_ref + (−v + √(v² + 2a(s − s_ref)))/a (NaN where it never gets there)."""
+    s = s_ref + v τ + a τ²/2, t_ref + (−v + √(v² + 2a(s − s_ref)))/a (NaN where it never gets there);
+    a None: every |a| < 1e-12."""
     distance = travel - s_ref
     out = np.asarray(t_ref + distance / v)
+    if a is None:  # known: every |a| < 1e-12
+        return out
     bent = np.abs(a) >= 1e-12
     if bent.any():
         t_ref, v, a, bent = (np.broadcast_to(z, out.shape) for z in (t_ref, v, a, bent))
@@ -387,20 +390,26 @@ class Crossing:
         """Time [s] vehicle ``vehicle[i]``'s front axle has travel ``travel[i]`` [m] past its entry
         support (NaN if it never gets there; ``vehicle`` broadcasts against ``travel``):
         ``VehicleMotion.times_at`` of all vehicles in one pass (the same arithmetic element by element)."""
-        ref = self._motion_refs
-        vehicle = np.asarray(vehicle, np.int64)
-        return _times_at(ref[0][vehicle], ref[1][vehicle], ref[2][vehicle], ref[3][vehicle], np.asarray(travel, float))
+        t_ref, s_ref, v, a, _ = self._motion_refs
+        curved = any(abs(m.acceleration) >= 1e-12 for m in self.vehicles)
+        return _times_at(t_ref[vehicle], s_ref[vehicle], v[vehicle], a[vehicle] if curved else None,
+                         np.asarray(travel, float))
 
     @cached_property
-    def _motion_refs(self) -> tuple[NDArray[np.float64], ...]:
-        """Per vehicle: t_ref [s], s_ref [m], v_ref [m/s] of its reference state and its acceleration [m/s²]."""
-        refs = np.array([m._ref for m in self.vehicles], float).reshape(-1, 3)
-        return refs[:, 0].copy(), refs[:, 1].copy(), refs[:, 2].copy(), np.array([m.acceleration for m in self.vehicles], float)
+    def _motion_refs(self) -> NDArray[np.float64]:
+        """Per vehicle (columns): t_ref [s], s_ref [m], v_ref [m/s] of its reference state, its
+        acceleration [m/s²] and ``stop_time`` [s] (rows)."""
+        return np.array([(*m._ref, m.acceleration, m.stop_time) for m in self.vehicles], float).T
 
     def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """s_v(t) [m]: every vehicle's travel past its entry support, shape (n_t, n_vehicles)."""
+        """s_v(t) [m]: every vehicle's travel past its entry support, shape (n_t, n_vehicles)
+        (``VehicleMotion.travel`` of every vehicle at once: the same arithmetic element by element)."""
         t = np.atleast_1d(np.asarray(t, float))
-        return np.stack([m.travel(t) for m in self.vehicles], axis=1)
+        if t.ndim != 1:
+            return np.stack([m.travel(t) for m in self.vehicles], axis=1)
+        t_ref, s_ref, v_ref, a, stop = self._motion_refs
+        tau = np.minimum(t[:, None] - t_ref, stop)
+        return s_ref + v_ref * tau + 0.5 * a * tau**2
 
     def travel_speed(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """ds_v/dt [m/s] of every vehicle, shape (n_t, n_vehicles)."""
