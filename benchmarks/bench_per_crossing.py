@@ -80,7 +80,7 @@ STAGES = {
     "contact influences": ("vbikit.analysis.effects", "contact_influence_table|contact_influences"),
     "load-effect histories": ("vbikit.analysis.effects", "load_effect_responses"),
     "output reduction (traffic, all outputs)": ("vbikit.traffic.study", "reduce_crossing"),
-    "knot limits (lifetime)": ("vbikit.lifetime.peaks", "with_knot_limits"),
+    "knot limits (lifetime)": ("vbikit.lifetime.peaks", "knot_limits|with_knot_limits"),
     "rainflow": ("vbikit.fatigue", "rainflow"),
 }
 

@@ -369,7 +369,7 @@ class DynamicJob:
         from vbikit.analysis.effects import load_effect_responses
         from vbikit.analysis.response import point_response
         from vbikit.fatigue import miner_damage, rainflow, reversals
-        from vbikit.lifetime.peaks import with_knot_limits
+        from vbikit.lifetime.peaks import knot_limits
         from vbikit.solve import choose_time_step, simulate
 
         setup = build_setup(self.setup_key)
@@ -378,17 +378,20 @@ class DynamicJob:
             crossing = dataclasses.replace(crossing, dt=choose_time_step(crossing) * self.step_factor)
         result = simulate(crossing)
         dyn, st = [], []
-        effect_lines = [line for line in setup.lines if line.kind != "deflection"]
-        effects = iter(load_effect_responses(result, [line.effect for line in effect_lines], check_step=False))
+        effect_at = [j for j, line in enumerate(setup.lines) if line.kind != "deflection"]
+        responses = load_effect_responses(result, [setup.lines[j].effect for j in effect_at], check_step=False)
+        # the total and static at the instants a wheel crosses the lines' jumps and kinks too (all
+        # lines of the run at once: they share the run's state at their instants)
+        limits = dict(zip(effect_at, knot_limits(result, [setup.lines[j].effect for j in effect_at],
+                                                 [setup.tables[j] for j in effect_at],
+                                                 [resp.dynamic for resp in responses], [resp.static for resp in responses])))
         for j, line in enumerate(setup.lines):
             if line.kind == "deflection":
                 resp = point_response(result, line.x, line.y)
                 dyn.append(resp.displacement)
                 st.append(resp.static_displacement)
             else:
-                resp = next(effects)
-                # the total and static at the instants a wheel crosses the line's jumps and kinks too
-                _, h_dyn, h_st = with_knot_limits(result, line.effect, setup.tables[j], resp.dynamic, resp.static)
+                _, h_dyn, h_st = limits[j]
                 dyn.append(h_dyn)
                 st.append(h_st)
         out = {"dyn_peak": np.array([s.sign * np.max(s.sign * d) for s, d in zip(setup.lines, dyn)]),

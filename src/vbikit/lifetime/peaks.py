@@ -15,7 +15,8 @@ from numpy.typing import NDArray
 
 from vbikit.analysis.breakpoints import GATE, active_nodes, event_extremes, knot_tables
 
-__all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_tables", "with_knot_limits"]
+__all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_limits", "knot_tables",
+           "with_knot_limits"]
 
 
 # ---------------------------------------------------------------- the coupled run's total at the knots
@@ -27,24 +28,39 @@ def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
     """The instants τ in (t0, t1) [s] at which a contact point of ``crossing`` stands on an active
     node of ``table`` (a ``vbikit.lifetime.influence.Tabulated`` line: the knots of the module
     docstring, the jump of a reaction or shear line, the kink of a moment line), sorted, unique."""
-    return _knot_instants(crossing, table, t0, t1, _tracks(table, crossing.point_kinematics()[2]))
+    return _knot_instants(crossing, [_point_geometry(table, *crossing.point_kinematics())[1]], t0, t1)[0]
 
 
-def _knot_instants(crossing, table, t0: float, t1: float, track: NDArray[np.int64]) -> NDArray[np.float64]:
-    """``knot_instants`` with the table's track of every contact point given (``_tracks``)."""
-    origin, sign, _ = crossing.point_kinematics()
-    veh = crossing.point_vehicle
-    rows = np.asarray(table.row, np.int64)[track]
-    first, count = table.active_ptr[rows], table.active_ptr[rows + 1] - table.active_ptr[rows]
-    point = np.repeat(np.arange(origin.size), count)  # every (contact point, active node) pair
-    knot = first[point] + np.arange(point.size) - np.repeat(np.cumsum(count) - count, count)
-    s = (table.knots[0][knot] - origin[point]) * sign[point]  # travel of the point's vehicle there
-    tau = np.empty(point.size)
-    for i, motion in enumerate(crossing.vehicles):
-        mine = veh[point] == i
-        tau[mine] = motion.times_at(s[mine])
-    tau = tau[np.isfinite(tau) & (tau > t0) & (tau < t1)]
-    return np.unique(tau)
+def _knot_instants(crossing, travels, t0: float, t1: float) -> list[NDArray[np.float64]]:
+    """``knot_instants`` of several tables at once, given for each the travel of every (contact point,
+    active node of its row) pair (``_point_geometry``): the times of all of them by
+    ``Crossing.times_at`` (all vehicles and tables in one pass), then per table its instants in
+    (t0, t1), sorted, unique."""
+    s = travels[0] if len(travels) == 1 else np.concatenate(travels, axis=1)
+    tau = crossing.times_at(s, crossing.point_vehicle[:, None])
+    ok = (tau > t0) & (tau < t1)  # (NaN: never there, or padding)
+    out, a = [], 0
+    for c in travels:
+        b = a + c.shape[1]
+        mine = tau[ok] if len(travels) == 1 else tau[:, a:b][ok[:, a:b]]
+        mine.sort()
+        out.append(mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine)  # np.unique's pass
+        a = b
+    return out
+
+
+def _row_knots(table) -> NDArray[np.float64]:
+    """x [m] of the active nodes of every row of ``table``, shape (n_rows, most active nodes in a row),
+    padded with NaN (made once per table and kept on it)."""
+    known = table.__dict__.get("_row_knots")
+    if known is None:
+        ptr = np.asarray(table.active_ptr, np.int64)
+        count = np.diff(ptr)
+        known = np.full((count.size, int(count.max()) if count.size else 0), np.nan)
+        col = np.arange(ptr[-1]) - np.repeat(ptr[:-1], count)
+        known[np.repeat(np.arange(count.size), count), col] = np.asarray(table.knots[0], float)[:col.size]
+        table.__dict__["_row_knots"] = known
+    return known
 
 
 def _tracks(table, y: NDArray[np.float64]) -> NDArray[np.int64]:
@@ -54,6 +70,30 @@ def _tracks(table, y: NDArray[np.float64]) -> NDArray[np.int64]:
     if not np.all(np.abs(table.tracks[ids] - y) <= 1e-9):  # within 1e-9 m (NaN: not tabulated)
         raise ValueError("a contact point's wheel track is not among the tabulated tracks")
     return ids
+
+
+#: point geometries a table keeps (``_point_geometry``); beyond, it forgets them all
+KEPT_TRACKS = 256
+
+
+def _point_geometry(table, origin: NDArray[np.float64], sign: NDArray[np.float64],
+                    y: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray[np.float64]]:
+    """For contact points with ``point_kinematics`` (origin, sign, y): their tracks on ``table``
+    (``_tracks``) and the travel s = (x_knot − origin)·sign [m] of a point's vehicle when the point
+    stands on each active node of its row, shape (point, most active nodes in a row), NaN-padded
+    (``_row_knots``).  Neither depends on the vehicles' timing: kept on the table per geometry (the
+    events of a lifetime run repeat a few lanes and vehicle types; the arrays are shared: not to be
+    written; ``KEPT_TRACKS`` geometries at most)."""
+    kept = table.__dict__.setdefault("_point_geometry", {})
+    key = origin.tobytes() + sign.tobytes() + y.tobytes()
+    known = kept.get(key)
+    if known is None:
+        if len(kept) >= KEPT_TRACKS:
+            kept.clear()
+        track = _tracks(table, y)
+        knot_x = _row_knots(table)[np.asarray(table.row, np.int64)[track]]
+        known = kept[key] = track, (knot_x - origin[:, None]) * sign[:, None]
+    return known
 
 
 def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
@@ -83,36 +123,100 @@ def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
     component at frequency f (dt the stored step), and far less for ξ_i.
 
     ``result``: the ``CrossingResult``; ``effect``: the ``LoadEffect`` (its modal values r_i);
-    ``dynamic``, ``static``: its histories at ``result.time`` (``vbikit.analysis.effects``)."""
+    ``dynamic``, ``static``: its histories at ``result.time`` (``vbikit.analysis.effects``).  Several
+    lines of one run at once: ``knot_limits``."""
+    return knot_limits(result, (effect,), (table,), (dynamic,), (static,))[0]
+
+
+def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArray[np.float64], ...]]:
+    """``with_knot_limits`` of several lines of one run (``effects[j]`` tabulated as ``tables[j]``,
+    its histories ``dynamics[j]``, ``statics[j]``), a list of (time, total, static) per line.
+
+    The lines share the run's state at their instants: the positions, mode shapes, wheel forces and
+    modal displacements are evaluated once at the union of their instants (element by element, as for
+    one line alone), each line's sums then over its own instants' rows (so that its numbers are
+    those of ``with_knot_limits`` of it alone)."""
     t = np.asarray(result.time, float)
+    n_lines = len(tables)
+    keep = [(t, np.asarray(d, float), np.asarray(s, float)) for d, s in zip(dynamics, statics)]
+    if t.size <= 1 or n_lines == 0:
+        return keep
     crossing = result.crossing
     origin, sign, y = crossing.point_kinematics()
-    track = _tracks(table, y)
-    tau = _knot_instants(crossing, table, float(t[0]), float(t[-1]), track) if t.size > 1 else np.zeros(0)
+    tracks, travels = zip(*[_point_geometry(table, origin, sign, y) for table in tables])
+    taus = _knot_instants(crossing, travels, float(t[0]), float(t[-1]))
+    if n_lines == 1:
+        tau = taus[0]
+    else:
+        tau = np.concatenate(taus)
+        tau.sort()
+        tau = tau[np.concatenate(([True], tau[1:] != tau[:-1]))] if tau.size else tau
     if tau.size == 0:
-        return t, np.asarray(dynamic, float), np.asarray(static, float)
+        return keep
     delta = KNOT_OFFSET * float(t[1] - t[0])
-    u = np.column_stack([tau - delta, tau + delta]).ravel()  # R(τ⁻), R(τ⁺), in time order
-    veh = crossing.point_vehicle
-    x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, veh]
-    yy = np.broadcast_to(y, x.shape)
-    g = table(x.ravel(), np.broadcast_to(track, x.shape).ravel()).reshape(x.shape)
+    u = np.empty(2 * tau.size)  # R(τ⁻), R(τ⁺), in time order
+    u[0::2] = tau - delta
+    u[1::2] = tau + delta
+    ordered = bool((u[1:] >= u[:-1]).all())  # so is every line's part of u (unless instants closer than 2δ)
+    # the run at every instant u (shared by the lines)
+    x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, crossing.point_vehicle]
+    n_u = x.shape[0]
+    xs = x.ravel()
     bridge = crossing.bridge
-    phi = np.asarray(bridge.mode_shapes(x.ravel(), yy.ravel()), float).reshape(x.shape + (-1,))
-    k = np.clip(np.searchsorted(t, u), 1, t.size - 1)
-    h = t[k] - t[k - 1]
-    w = (u - t[k - 1]) / h
+    phi = np.asarray(bridge.mode_shapes(xs, np.repeat(y[None, :], n_u, 0).ravel()), float).reshape(x.shape + (-1,))
+    k = np.searchsorted(t[1:-1], u) + 1  # the step ending at or after u, within 1 … n_t − 1
+    km = k - 1
+    h = t[k] - t[km]
+    w = (u - t[km]) / h
     cp = crossing.contact
     share = cp.weight
-    forces = result.wheel_forces[:, cp.wheel]
-    f = (forces[k - 1] * (1.0 - w)[:, None] + forces[k] * w[:, None]) * share[None, :]
-    h00, h10, h01, h11 = 2 * w**3 - 3 * w**2 + 1, w**3 - 2 * w**2 + w, -2 * w**3 + 3 * w**2, w**3 - w**2
-    xi = (h00[:, None] * result.xi[k - 1] + (h10 * h)[:, None] * result.xi_dot[k - 1]
+    forces = result.wheel_forces  # only the rows around the instants, not the whole history
+    f = (forces[km][:, cp.wheel] * (1.0 - w)[:, None] + forces[k][:, cp.wheel] * w[:, None]) * share[None, :]
+    # cubic Hermite basis (the same arithmetic as 2w³ − 3w² + 1, w³ − 2w² + w, −2w³ + 3w², w³ − w²)
+    w2, w3 = w**2, w**3
+    h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
+    xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
           + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
-    r = np.asarray(effect.modal, float)
     q = np.einsum("upi,up->ui", phi, f)
-    total = np.sum(g * f, axis=1) + q @ (r / bridge.omega**2) + xi @ r
-    st = g @ (share * crossing.vehicle.static_wheel_loads()[cp.wheel])
-    time = np.concatenate([t, u])
-    order = np.argsort(time, kind="stable")
-    return time[order], np.concatenate([dynamic, total])[order], np.concatenate([static, st])[order]
+    omega2 = bridge.omega**2
+    p_static = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    out, located = [], {}
+    for effect, table, track, mine, (_, dyn, sta) in zip(effects, tables, tracks, taus, keep):
+        if mine.size == 0:
+            out.append((t, dyn, sta))
+            continue
+        grid = (table.x0, table.h, table.n, table.row.tobytes(), track.tobytes())  # lines on one grid share cells
+        if grid not in located:
+            located[grid] = table.locate(xs, np.repeat(track[None, :], n_u, 0).ravel())
+        g = table.at(*located[grid]).reshape(x.shape)  # table(x, track): g at every point and instant
+        r = np.asarray(effect.modal, float)
+        if mine.size == tau.size:  # every instant of the run is one of this line's
+            fj, qj, xij, uj = f, q, xi, u
+        else:  # this line's rows: τ⁻ and τ⁺ of each of its instants
+            rows = np.repeat(2 * np.searchsorted(tau, mine), 2)
+            rows[1::2] += 1
+            g, fj, qj, xij, uj = g[rows], f[rows], q[rows], xi[rows], u[rows]
+        total = np.sum(g * fj, axis=1) + qj @ (r / omega2) + xij @ r
+        out.append(_merged(t, uj, dyn, total, sta, g @ p_static, ordered))
+    return out
+
+
+def _merged(t: NDArray[np.float64], u: NDArray[np.float64], a1: NDArray[np.float64], b1: NDArray[np.float64],
+            a2: NDArray[np.float64], b2: NDArray[np.float64], ordered: bool = False) -> tuple[NDArray[np.float64], ...]:
+    """(time, a1 then b1, a2 then b2) in time order, a1 and a2 at the times ``t`` (nondecreasing), b1
+    and b2 at the times ``u``: the order of a stable sort of (t, u) concatenated (a time of u after
+    the equal ones of t, equal times of u in their own order), by inserting u into t (one
+    ``searchsorted``) rather than sorting t again.  ``ordered``: u is known to be nondecreasing."""
+    if not ordered and u.size > 1 and not (u[1:] >= u[:-1]).all():  # instants closer than 2δ: u out of order
+        order = np.argsort(u, kind="stable")
+        u, b1, b2 = u[order], b1[order], b2[order]
+    pos = np.searchsorted(t, u, side="right") + np.arange(u.size)  # u's places in the merged series
+    keep = np.ones(t.size + u.size, bool)
+    keep[pos] = False
+    out = []
+    for a, b in ((t, u), (a1, b1), (a2, b2)):
+        m = np.empty(keep.size)
+        m[keep] = a
+        m[pos] = b
+        out.append(m)
+    return tuple(out)

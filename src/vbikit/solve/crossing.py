@@ -148,12 +148,28 @@ class VehicleMotion:
     def times_at(self, travel: NDArray[np.float64]) -> NDArray[np.float64]:
         """``time_at`` of every travel in an array [m] (the same arithmetic element by element)."""
         t_ref, s_ref, v = self._ref
-        a, distance = self.acceleration, np.asarray(travel, float) - s_ref
-        if abs(a) < 1e-12:
-            return t_ref + distance / v
-        disc = v * v + 2 * a * distance
+        travel = np.asarray(travel, float)
+        return _times_at(*np.broadcast_arrays(t_ref, s_ref, v, self.acceleration, travel))
+
+
+def _times_at(t_ref, s_ref, v, a, travel) -> NDArray[np.float64]:
+    """``VehicleMotion.time_at`` element by element for arrays that broadcast together (each element its own
+    reference state (t_ref [s], s_ref [m], v [m/s]), acceleration a [m/s²] and travel [m]): the
+    same arithmetic, t_ref + (s − s_ref)/v where |a| < 1e-12, else the root of
+    s = s_ref + v τ + a τ²/2, t_ref + (−v + √(v² + 2a(s − s_ref)))/a (NaN where it never gets there);
+    a None: every |a| < 1e-12."""
+    distance = travel - s_ref
+    out = np.asarray(t_ref + distance / v)
+    if a is None:  # known: every |a| < 1e-12
+        return out
+    bent = np.abs(a) >= 1e-12
+    if bent.any():
+        t_ref, v, a, bent = (np.broadcast_to(z, out.shape) for z in (t_ref, v, a, bent))
+        d, vb, ab = distance[bent], v[bent], a[bent]
+        disc = vb * vb + 2 * ab * d
         with np.errstate(invalid="ignore"):
-            return np.where(disc < 0, np.nan, t_ref + (-v + np.sqrt(disc)) / a)
+            out[bent] = np.where(disc < 0, np.nan, t_ref[bent] + (-vb + np.sqrt(disc)) / ab)
+    return out
 
 
 @dataclass(frozen=True)
@@ -370,10 +386,30 @@ class Crossing:
         origin = np.where(sign > 0, -cp.setback, self.bridge.span + cp.setback)
         return origin, sign, offset + sign * cp.lateral
 
+    def times_at(self, travel: NDArray[np.float64], vehicle: NDArray[np.int64]) -> NDArray[np.float64]:
+        """Time [s] vehicle ``vehicle[i]``'s front axle has travel ``travel[i]`` [m] past its entry
+        support (NaN if it never gets there; ``vehicle`` broadcasts against ``travel``):
+        ``VehicleMotion.times_at`` of all vehicles in one pass (the same arithmetic element by element)."""
+        t_ref, s_ref, v, a, _ = self._motion_refs
+        curved = any(abs(m.acceleration) >= 1e-12 for m in self.vehicles)
+        return _times_at(t_ref[vehicle], s_ref[vehicle], v[vehicle], a[vehicle] if curved else None,
+                         np.asarray(travel, float))
+
+    @cached_property
+    def _motion_refs(self) -> NDArray[np.float64]:
+        """Per vehicle (columns): t_ref [s], s_ref [m], v_ref [m/s] of its reference state, its
+        acceleration [m/s²] and ``stop_time`` [s] (rows)."""
+        return np.array([(*m._ref, m.acceleration, m.stop_time) for m in self.vehicles], float).T
+
     def travel(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
-        """s_v(t) [m]: every vehicle's travel past its entry support, shape (n_t, n_vehicles)."""
+        """s_v(t) [m]: every vehicle's travel past its entry support, shape (n_t, n_vehicles)
+        (``VehicleMotion.travel`` of every vehicle at once: the same arithmetic element by element)."""
         t = np.atleast_1d(np.asarray(t, float))
-        return np.stack([m.travel(t) for m in self.vehicles], axis=1)
+        if t.ndim != 1:
+            return np.stack([m.travel(t) for m in self.vehicles], axis=1)
+        t_ref, s_ref, v_ref, a, stop = self._motion_refs
+        tau = np.minimum(t[:, None] - t_ref, stop)
+        return s_ref + v_ref * tau + 0.5 * a * tau**2
 
     def travel_speed(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """ds_v/dt [m/s] of every vehicle, shape (n_t, n_vehicles)."""
