@@ -55,3 +55,30 @@ def test_threshold_is_span_over_100_and_the_largest_girder_is_named():
     (flag,) = implausible_deflection_flags(20.0, peaks)  # 0.21 m > 20 m / 100
     assert flag.girder == 2 and flag.value == pytest.approx(0.21 / 20.0)
     assert implausible_deflection_flags(22.0, peaks[1:2]) == []  # 0.21 m on 22 m: L/105, below L/100
+
+
+def test_the_unit_mistake_leads_the_warnings_and_marks_the_headline_im(tmp_path):
+    """The second trial: the flag fired but came after seven contact-loss lines, and the headline IM
+    of the report carried no mark. The cause now comes first in ``flags`` and ``warnings`` (and on
+    stderr) and the IMPACT FACTOR line is marked with its legend."""
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    path = tmp_path / "soft.toml"
+    path.write_text(text.replace("EI = 8.323e9", "EI = 8.323e6"))
+    res = runner.invoke(app, ["run", str(path), "--summary", str(tmp_path / "s.json")])
+    assert res.exit_code == 0, res.output
+    s = json.loads((tmp_path / "s.json").read_text())
+    assert len(s["flags"]) > 1  # the symptoms are flagged too
+    assert s["flags"][0]["code"] == "implausible_deflection" and s["warnings"][0] == s["flags"][0]["message"]
+    headline = next(line for line in res.output.splitlines() if "IMPACT FACTOR" in line)
+    assert "!" in headline.split("(strain")[0]
+    assert "check the units of the bridge's stiffness and mass" in res.output
+
+
+def test_a_coarse_step_flag_names_the_impact_factor_it_marks(tmp_path):
+    """The report marks the headline IM for ``coarse_step`` / ``unresolved_modes``; their records say
+    so (``output`` = impact_factor), as docs/results.md's Flags paragraph states for every mark."""
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    s = _run(text + "\n" if "[crossing]" not in text else text.replace("[crossing]", "[crossing]\ndt = 0.05", 1),
+             tmp_path)
+    coarse = [f for f in s["flags"] if f["code"] in ("coarse_step", "unresolved_modes")]
+    assert coarse and all(f["output"] == "impact_factor" for f in coarse)

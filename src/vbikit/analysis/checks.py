@@ -199,14 +199,21 @@ def flag_fields(flags: Iterable[Flag]) -> dict[str, list]:
     return out
 
 
+#: codes that put every result of a run in doubt (a likely input mistake): listed first in ``flags`` and
+#: ``warnings``, so that the cause leads and the symptoms (contact losses, airborne wheels) follow
+LEADING_CODES = ("implausible_deflection",)
+
+
 def add_flags(summary: dict[str, Any], flags: Iterable[Flag]) -> None:
     """Append ``flags`` to ``summary``'s ``flags`` and their messages to its ``warnings`` (the one
-    way a summary gets a warning), skipping a message it holds already."""
+    way a summary gets a warning), skipping a message it holds already; a flag of ``LEADING_CODES``
+    goes before the others."""
     texts, records = summary.setdefault("warnings", []), summary.setdefault("flags", [])
     for f in flags:
         if f.message not in texts:
-            records.append(f.as_dict())
-            texts.append(f.message)
+            at = 0 if f.code in LEADING_CODES else len(records)
+            records.insert(at, f.as_dict())
+            texts.insert(at, f.message)
 
 
 def has_flag(summary: Mapping[str, Any], code: str, **match: object) -> bool:
@@ -315,7 +322,7 @@ def step_flags(crossing: Crossing, dt: float) -> list[Flag]:
     if dt > auto * (1 + 1e-9):
         out.append(Flag("coarse_step", f"crossing.dt = {dt:.3g} s is coarser than the automatic step {auto:.3g} s of this "
                         f"crossing ({crossing.integrator}); results lose accuracy — leave dt out for the automatic step",
-                        subject="crossing.dt", value=dt, threshold=auto))
+                        output="impact_factor", subject="crossing.dt", value=dt, threshold=auto))
     f = np.asarray(crossing.bridge.frequencies_hz, float)
     limit = 1.0 / STEPS_PER_PERIOD
     unresolved = np.flatnonzero(f * dt > limit)  # every mode the step does not resolve
@@ -326,7 +333,8 @@ def step_flags(crossing: Crossing, dt: float) -> list[Flag]:
         out.append(Flag("unresolved_modes", f"crossing.dt = {dt:.3g} s resolves modes up to {1 / (STEPS_PER_PERIOD * dt):.4g} Hz "
                         f"({STEPS_PER_PERIOD:g} steps a period): {unresolved.size} of {f.size} bridge modes, "
                         f"{_modes(unresolved, f)}, are not resolved{also}; use a smaller dt or fewer modes",
-                        subject="crossing.dt", value=float(f[lost].max()), threshold=1 / (STEPS_PER_PERIOD * dt)))
+                        output="impact_factor", subject="crossing.dt", value=float(f[lost].max()),
+                        threshold=1 / (STEPS_PER_PERIOD * dt)))
     return out
 
 
@@ -433,8 +441,8 @@ def airborne_flags(result: CrossingResult) -> list[Flag]:
                  f"impact factors dominated by airborne wheels: {len(wheels)} wheel{'s' if len(wheels) > 1 else ''} left "
                  f"the road on the bridge for more than {AIRBORNE_FRACTION:.0%} of their time on it (longest: {name}, "
                  f"{t:.3g} s, {share:.0%}); the impact factors are dominated by the vehicle leaving and landing on the "
-                 "road (point-contact impacts), so they are not design values; the road is beyond the model's "
-                 "intended range", output="impact_factor", subject=f"wheel {name}", wheel=name, value=share,
+                 "road (point-contact impacts), so they are not design values; the road (or, with an implausible "
+                 "deflection, the bridge's stiffness) is beyond the model's intended range", output="impact_factor", subject=f"wheel {name}", wheel=name, value=share,
                  threshold=AIRBORNE_FRACTION)]
 
 

@@ -69,8 +69,14 @@ def print_summary(run: Run) -> None:
     # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
     airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
     coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
-    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if airborne or coarse else ''}  "
-               f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if airborne or strain_off or coarse else ''})")
+    implausible = has_flag(s, "implausible_deflection")
+    doubt = airborne or coarse or implausible
+    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if doubt else ''}  "
+               f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if doubt or strain_off else ''})")
+    if implausible:
+        typer.echo(f"  {'':<20} ! implausible: the static deflection is far beyond any bridge's under this load — "
+                   "check the units of the bridge's stiffness and mass (see the first warning); no result of this "
+                   "run is meaningful")
     if airborne:
         typer.echo(f"  {'':<20} ! unreliable: wheels left the road on the bridge; the IM is dominated by their "
                    "landing impacts, not a design value — see the warning")
@@ -138,7 +144,8 @@ def print_codes(c: dict[str, Any], title: str) -> None:
     if c.get("railway"):
         typer.echo(f"  {title:<20} EN 1991-2 Phi2 {c['en1991_2_phi2']:.3f}  Phi3 {c['en1991_2_phi3']:.3f}")
         typer.echo(f"  {'':<20} (railway vehicle: no highway allowances; Phi2 / Phi3 of 6.4.5.2 for L_Phi = "
-                   f"{c['loaded_length']:.2f} m are factors 1 + phi of LM71, not of this train: its resonance check "
+                   f"{c['loaded_length']:.2f} m (the loaded length: EN 1991-2 Table 6.2 lengthens L_Phi for continuous "
+                   "decks, which would lower them) are factors 1 + phi of LM71, not of this train: its resonance check "
                    "is `vbikit rail`, EN 1991-2 6.4.6)")
         return
     values = "  ".join(f"{label} {c[k]:.3f}" for k, label in CODE_LABELS.items() if k in c)
