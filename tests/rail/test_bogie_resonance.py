@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from vbikit.rail.report import summary
@@ -50,3 +51,25 @@ def test_short_span_lists_the_bogie_resonance_and_names_it_for_the_peak():
     s = summary(ds, result.checks)
     assert s["governing_resonance"]["speed_kmh"] == pytest.approx(v[0], rel=1e-6)
     assert [r["order"] for r in s["trains"]["HSLM-A4"]["bogie_resonances"] if r["in_sweep"]] == [1, 2, 3]
+
+
+def test_the_governing_peak_is_compared_with_high_coach_orders_too():
+    """The second trial: HSLM-A4 on a 5 m span (n0 = 55.846 Hz in that run), swept 300–360 km/h, peaked
+    at 326 km/h and the report named n0 d / 2 = 301.6 km/h (+8.1 %) as the nearest resonance, because
+    the coach-length orders stopped at i = 4 (above the sweep). The peak sits at
+    n0 D / 13 = 55.846 × 21 / 13 × 3.6 = 324.8 km/h (hand computation), which is now the one named."""
+    import xarray as xr
+
+    from vbikit.rail.report import governing_resonance
+
+    n0, coach, bogie = 55.846, 21.0, 3.0
+    ds = xr.Dataset({"excitation_wavelength": ("train", [coach]),
+                     "resonance_speed": (("train", "order"), [[n0 * coach / i for i in range(1, 5)]]),
+                     "wavelength_source": ("train", ["coach length"]),
+                     "bogie_axle_spacing": (("train", "spacing"), [[bogie]]),
+                     "bogie_resonance_speed": (("train", "spacing", "order"), [[[n0 * bogie / i for i in range(1, 5)]]])},
+                    coords={"train": ["HSLM-A4"], "speed": np.arange(300.0, 361.0, 4.0) / 3.6})
+    near = governing_resonance(ds, "HSLM-A4", 326.0 / 3.6)
+    assert near["resonance"].startswith("n0 D / 13 ")
+    assert near["speed_kmh"] == pytest.approx(n0 * coach / 13 * 3.6, rel=1e-12)  # 324.8 km/h
+    assert near["offset"] == pytest.approx(326.0 / (n0 * coach / 13 * 3.6) - 1.0, rel=1e-9)

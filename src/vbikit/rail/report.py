@@ -143,10 +143,16 @@ def bogie_resonance_list(ds, k: int) -> list[tuple[float, int, float]]:
     return [(float(d[j]), i + 1, float(v[j, i])) for j in range(d.size) if np.isfinite(d[j]) for i in range(v.shape[1])]
 
 
+#: the highest order i of n0 D / i the governing peak is compared with (orders down to 0.9 × the sweep's
+#: lowest speed, at most this many: a short span's coach-length resonances in the sweep are high orders)
+MAX_RESONANCE_ORDER = 60
+
+
 def governing_resonance(ds, train: str, speed: float) -> Optional[dict[str, Any]]:
-    """The resonance of ``train`` (coach length / wavelength D by order, and the axle spacings within a
-    bogie) nearest to ``speed`` [m/s] (the governing peak's): its label, speed and relative offset of the
-    peak from it; None when the train has none."""
+    """The resonance of ``train`` (coach length / wavelength D by order i = 1 … down to 0.9 × the sweep's
+    lowest speed, at most ``MAX_RESONANCE_ORDER``, and the axle spacings within a bogie) nearest to
+    ``speed`` [m/s] (the governing peak's): its label, speed and relative offset of the peak from it;
+    None when the train has none."""
     from vbikit.rail.sweep import nearest_resonance
 
     names = [str(n) for n in ds.train.values]
@@ -154,8 +160,11 @@ def governing_resonance(ds, train: str, speed: float) -> Optional[dict[str, Any]
         return None
     k = names.index(train)
     d = float(ds["excitation_wavelength"].values[k])
-    cands = [(f"n0 D / {i + 1} (D = {d:.3f} m, {ds['wavelength_source'].values[k]})", float(v))
-             for i, v in enumerate(ds["resonance_speed"].values[k])]
+    v1 = float(ds["resonance_speed"].values[k][0])  # n0 D: the orders i are v1 / i, the stored ones and higher
+    lo = float(ds.speed.values.min())
+    orders = max(len(ds["resonance_speed"].values[k]), int(v1 / (0.9 * lo)) if math.isfinite(v1) and lo > 0 else 0)
+    cands = [(f"n0 D / {i} (D = {d:.3f} m, {ds['wavelength_source'].values[k]})", v1 / i)
+             for i in range(1, min(orders, MAX_RESONANCE_ORDER) + 1)] if math.isfinite(v1) else []
     cands += [(f"n0 d / {i} (axle spacing within a bogie d = {dd:g} m)", v) for dd, i, v in bogie_resonance_list(ds, k)]
     near = nearest_resonance(float(speed), cands)
     if near is None:
