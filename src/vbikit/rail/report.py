@@ -165,7 +165,9 @@ def governing_resonance(ds, train: str, speed: float) -> Optional[dict[str, Any]
     orders = max(len(ds["resonance_speed"].values[k]), int(v1 / (0.9 * lo)) if math.isfinite(v1) and lo > 0 else 0)
     cands = [(f"n0 D / {i} (D = {d:.3f} m, {ds['wavelength_source'].values[k]})", v1 / i)
              for i in range(1, min(orders, MAX_RESONANCE_ORDER) + 1)] if math.isfinite(v1) else []
-    cands += [(f"n0 d / {i} (axle spacing within a bogie d = {dd:g} m)", v) for dd, i, v in bogie_resonance_list(ds, k)]
+    bogies = [(f"n0 d / {i} (axle spacing within a bogie d = {dd:g} m)", v) for dd, i, v in bogie_resonance_list(ds, k)]
+    # a coach order at a bogie resonance's speed (D a multiple of d: HSLM-A4's D / 7 = d) is that bogie resonance
+    cands = [c for c in cands if not any(abs(c[1] / b[1] - 1.0) < 1e-6 for b in bogies)] + bogies
     near = nearest_resonance(float(speed), cands)
     if near is None:
         return None
