@@ -80,9 +80,9 @@ STRAIN_MODE_TOLERANCE = 0.01
 #: a static deflection peak above this fraction of the longest span is not plausible for a bridge (module docstring)
 IMPLAUSIBLE_DEFLECTION_FRACTION = 0.01
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
-NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the vehicle's bounce and the "
-                    "deck's vibration were out of phase with the load's arrival at the section (the wheels unloading "
-                    "there); physical, not an error")
+NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the deck's vibration (and a "
+                    "sprung vehicle's bounce, the wheels unloading there) was out of phase with the load's arrival at "
+                    "the section; physical, not an error")
 
 
 #: every flag code and what it means, with what its ``value`` and ``threshold`` hold (SI units): the one

@@ -316,7 +316,9 @@ def strain_warnings(result: CrossingResult, response: PointResponse) -> list[Fla
     headline point (``point_name(1)``): its static strain peak from the modes against ``exact_static_strain_peak``."""
     return strain_convergence_flags(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
                                     int(result.crossing.bridge.omega.size),
-                                    f"x = {response.x:.3f} m, y = {response.y:.3f} m", point_name(1))
+                                    f"x = {response.x:.3f} m" + ("" if getattr(result.crossing.bridge, "lateral_invariant", False)
+                                                                 else f", y = {response.y:.3f} m"),  # a beam has no y
+                                    point_name(1))
 
 
 def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[Flag]:

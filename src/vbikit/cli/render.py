@@ -71,8 +71,8 @@ def print_summary(run: Run) -> None:
     coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
     implausible = has_flag(s, "implausible_deflection")
     doubt = airborne or coarse or implausible
-    typer.echo(f"  IMPACT FACTOR        IM = {s['impact_factor']:.4f}{'!' if doubt else ''}  "
-               f"(strain IM = {s['strain_impact_factor']:.4f}{'!' if doubt or strain_off else ''})")
+    typer.echo(f"  IMPACT FACTOR        IM = {_im(s['impact_factor'])}{'!' if doubt else ''}  "
+               f"(strain IM = {_im(s['strain_impact_factor'])}{'!' if doubt or strain_off else ''})")
     if implausible:
         typer.echo(f"  {'':<20} ! implausible: the static deflection is far beyond any bridge's under this load — "
                    "check the units of the bridge's stiffness and mass (see the first warning); no result of this "
@@ -116,7 +116,7 @@ def print_summary(run: Run) -> None:
                        "of the girders and points (a lightly loaded girder); not a design value — see the warning")
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f}"
                    f"{'!' if airborne or coarse else ''})")
-    print_codes(s["design_code_allowances"], "deflection IM beside")
+    print_codes(s["design_code_allowances"], "deflection IM beside", several=bool(s.get("vehicles")))
     print_load_effects(s)
     print_negative_note(negative_impact(s))
 
@@ -138,7 +138,12 @@ def print_negative_note(negative: bool) -> None:
         typer.echo(f"  note: {NEGATIVE_IM_NOTE}")
 
 
-def print_codes(c: dict[str, Any], title: str) -> None:
+def _im(value: float) -> str:
+    """An impact factor to 4 decimals, a value that rounds to zero printed as 0.0000 (not −0.0000)."""
+    return f"{0.0 if abs(value) < 5e-5 else value:.4f}"
+
+
+def print_codes(c: dict[str, Any], title: str, several: bool = False) -> None:
     """One line of design-code dynamic allowances and one of the inputs they were computed from (a
     railway vehicle: EN 1991-2 Φ2 / Φ3 and a pointer to ``vbikit rail`` instead of the highway codes)."""
     if c.get("railway"):
@@ -152,8 +157,8 @@ def print_codes(c: dict[str, Any], title: str) -> None:
     typer.echo(f"  {title:<20} {values}")
     n = c["n_axles"]
     typer.echo(f"  {'':<20} (loaded length {c['loaded_length']:.2f} m and f1 = {c['first_frequency']:.2f} Hz; CSA S6 "
-               f"by {n} axle{'' if n == 1 else 's'}, the most axles on a span of the loaded length at once; "
-               f"several vehicles' axles as placed, at one offset counted once)")
+               f"by {n} axle{'' if n == 1 else 's'}, the most axles on a span of the loaded length at once"
+               + ("; several vehicles' axles as placed, at one offset counted once)" if several else ")"))
 
 
 def print_load_effects(s: dict[str, Any]) -> None:
