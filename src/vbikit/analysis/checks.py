@@ -173,8 +173,7 @@ class Flag:
     threshold: float | None = None
 
     def __post_init__(self) -> None:
-        if self.code not in FLAG_CODES:
-            raise ValueError(f"flag code {self.code!r} is not one of {', '.join(FLAG_CODES)}")
+        _check_code(self.code)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON-ready record (every field, None as null; a value or threshold that is not finite,
@@ -216,12 +215,23 @@ def add_flags(summary: dict[str, Any], flags: Iterable[Flag]) -> None:
             texts.insert(at, f.message)
 
 
-def has_flag(summary: Mapping[str, Any], code: str, **match: object) -> bool:
-    """Whether ``summary`` carries a flag of ``code`` whose fields equal ``match`` (e.g. girder=1)."""
+def _check_code(code: str) -> None:
+    """ValueError unless ``code`` is one of ``FLAG_CODES``."""
     if code not in FLAG_CODES:
         raise ValueError(f"flag code {code!r} is not one of {', '.join(FLAG_CODES)}")
-    return any(f.get("code") == code and all(f.get(k) == v for k, v in match.items())
-               for f in summary.get("flags", ()))
+
+
+def find_flag(summary: Mapping[str, Any], code: str, **match: object) -> dict[str, Any] | None:
+    """The first flag record of ``summary`` with ``code`` whose fields equal ``match`` (e.g. girder=1),
+    or None."""
+    _check_code(code)
+    return next((f for f in summary.get("flags", ())
+                 if f.get("code") == code and all(f.get(k) == v for k, v in match.items())), None)
+
+
+def has_flag(summary: Mapping[str, Any], code: str, **match: object) -> bool:
+    """Whether ``summary`` carries a flag of ``code`` whose fields equal ``match`` (``find_flag``)."""
+    return find_flag(summary, code, **match) is not None
 
 
 def input_flags(crossing: Crossing, dt: float, response_x: float | None = None,
@@ -368,10 +378,12 @@ def wheel_track_ends(result: CrossingResult) -> NDArray[np.float64]:
     return np.stack([start, start + float(bridge.span)], axis=1)
 
 
-def wheels_on_deck(result: CrossingResult) -> NDArray[np.bool_]:
+def wheels_on_deck(result: CrossingResult, x: NDArray[np.float64] | None = None,
+                   ends: NDArray[np.float64] | None = None) -> NDArray[np.bool_]:
     """Whether each wheel centre is on its own track's stretch of the deck at each time, (n_t, n_wheels)
-    (``wheel_track_ends``)."""
-    x, ends = result.wheel_positions(), wheel_track_ends(result)
+    (``wheel_track_ends``); ``x``: the wheel positions, ``ends``: the track ends, if already made."""
+    x = result.wheel_positions() if x is None else x
+    ends = wheel_track_ends(result) if ends is None else ends
     return (x >= ends[None, :, 0]) & (x <= ends[None, :, 1])
 
 
@@ -382,6 +394,7 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
     out = []
     forces, dt = result.wheel_forces, result.dt
     x_wheel = result.wheel_positions()
+    ends: NDArray[np.float64] | None = None  # (made for the first wheel that lost contact)
     on_deck: NDArray[np.bool_] | None = None
     for w, wheel in enumerate(result.crossing.vehicle.wheels):
         if wheel.stiffness <= 0:
@@ -389,7 +402,9 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
         off = forces[:, w] <= 0.0
         if not off.any():
             continue
-        on_deck = wheels_on_deck(result) if on_deck is None else on_deck
+        if ends is None:
+            ends = wheel_track_ends(result)
+            on_deck = wheels_on_deck(result, x_wheel, ends)
         on = on_deck[:, w]
         if (off & on).any():  # where it matters: on the deck
             i = int(np.argmax(off & on))
@@ -401,7 +416,7 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
                             subject=f"wheel {wheel.name}", wheel=wheel.name, value=t_on))
             continue
         i = int(np.argmax(off))
-        lo, hi = map(float, wheel_track_ends(result)[w])
+        lo, hi = map(float, ends[w])
         where = ("before the bridge" if (x_wheel[off, w] < lo).all() else
                  "after the bridge" if (x_wheel[off, w] > hi).all() else "before and after the bridge")
         out.append(Flag("contact_loss", f"wheel {wheel.name} lost contact with the road only {where} (its track on the deck: "
@@ -442,8 +457,8 @@ def airborne_flags(result: CrossingResult) -> list[Flag]:
                  f"the road on the bridge for more than {AIRBORNE_FRACTION:.0%} of their time on it (longest: {name}, "
                  f"{t:.3g} s, {share:.0%}); the impact factors are dominated by the vehicle leaving and landing on the "
                  "road (point-contact impacts), so they are not design values; the road (or, with an implausible "
-                 "deflection, the bridge's stiffness) is beyond the model's intended range", output="impact_factor", subject=f"wheel {name}", wheel=name, value=share,
-                 threshold=AIRBORNE_FRACTION)]
+                 "deflection, the bridge's stiffness) is beyond the model's intended range", output="impact_factor",
+                 subject=f"wheel {name}", wheel=name, value=share, threshold=AIRBORNE_FRACTION)]
 
 
 def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,

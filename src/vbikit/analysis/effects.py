@@ -81,10 +81,15 @@ class LoadEffectResponse:
         return impact_factor(self.time, self.dynamic, self.static)
 
     @cached_property
+    def direction(self) -> float:
+        """±1: the sign of the static history's largest-magnitude value (``impact.static_direction``)."""
+        return static_direction(self.static)
+
+    @cached_property
     def opposite_static_peak(self) -> float:
         """The static history's extreme of the sign opposite to ``impact.static_peak`` (signed; 0.0
         when it never goes that way)."""
-        sign = static_direction(self.static)
+        sign = self.direction
         return float(min(0.0, np.min(sign * self.static)) * sign)
 
     @property
@@ -106,7 +111,7 @@ class LoadEffectResponse:
         else None."""
         if not self.two_signed:
             return None
-        return impact_factor_toward(self.time, self.dynamic, self.static, -static_direction(self.static))
+        return impact_factor_toward(self.time, self.dynamic, self.static, -self.direction)
 
     def sense(self, sign: float) -> str:
         """The words for a value of sign ``sign``: sagging / hogging (moment), positive / negative."""
@@ -120,7 +125,7 @@ class LoadEffectResponse:
         one unless ``opposite`` exceeds it)."""
         im, opp = self.impact, self.opposite
         peak = opp.dynamic_peak if opp is not None and abs(opp.dynamic_peak) > abs(im.dynamic_peak) else im.dynamic_peak
-        return self.sense(np.sign(peak) or static_direction(self.static))
+        return self.sense(np.sign(peak) or self.direction)
 
     @property
     def name(self) -> str:
@@ -316,7 +321,7 @@ def _entry(resp: LoadEffectResponse, allowances: dict[str, Any] | None) -> dict[
         "static_peak": im.static_peak, "dynamic_peak": im.dynamic_peak, "impact_factor": im.impact_factor,
         "time_static_peak": im.time_static_peak, "time_dynamic_peak": im.time_dynamic_peak,
         "loaded_length": e.loaded_length, "hogging_region": e.hogging_region,
-        "sense": resp.sense(static_direction(resp.static)), "opposite_sense": resp.sense(-static_direction(resp.static)),
+        "sense": resp.sense(resp.direction), "opposite_sense": resp.sense(-resp.direction),
         "opposite_static_peak": resp.opposite_static_peak, "opposite_share": resp.opposite_share,
         "two_signed": resp.two_signed, "governing": resp.governing,
     }
@@ -359,8 +364,10 @@ def effect_sign_flags(responses: Sequence[LoadEffectResponse]) -> list[Any]:
 
     out = []
     for r in responses:
-        e, im, opp = r.effect, r.impact, r.opposite
-        main, other = r.sense(np.sign(im.static_peak) or 1.0), r.sense(-(np.sign(im.static_peak) or 1.0))
+        e, im = r.effect, r.impact
+        if not (e.kind == "moment" and e.hogging_region and im.static_peak > 0):
+            continue
+        opp, main, other = r.opposite, r.sense(r.direction), r.sense(-r.direction)
         both = (f"{main} {_kilo(im.static_peak, e.units)} static / {_kilo(im.dynamic_peak, e.units)} dynamic "
                 f"(IM {im.impact_factor:.3g}) and {other} ")
         both += (f"{_kilo(opp.static_peak, e.units)} static / {_kilo(opp.dynamic_peak, e.units)} dynamic "
@@ -368,13 +375,12 @@ def effect_sign_flags(responses: Sequence[LoadEffectResponse]) -> list[Any]:
                  if opp is not None else
                  f"{_kilo(r.opposite_static_peak, e.units)} static ({r.opposite_share:.0%} of the {main} static peak, "
                  f"at most {SMALL_STATIC_FRACTION:.0%}: negligible, not reported)")
-        if e.kind == "moment" and e.hogging_region and im.static_peak > 0:
-            out.append(Flag("sagging_over_pier",
-                            f"{e.label}: over an interior support the largest static moment is sagging, not hogging "
-                            f"— the support settles under the load (a soft support, bridge.support_stiffness) — so "
-                            f"static_peak, dynamic_peak and impact_factor are the sagging extreme: {both}; the "
-                            f"{r.governing} dynamic peak governs", output="moment", subject=e.label,
-                            value=r.opposite_share, threshold=SMALL_STATIC_FRACTION))
+        out.append(Flag("sagging_over_pier",
+                        f"{e.label}: over an interior support the largest static moment is sagging, not hogging "
+                        f"— the support settles under the load (a soft support, bridge.support_stiffness) — so "
+                        f"static_peak, dynamic_peak and impact_factor are the sagging extreme: {both}; the "
+                        f"{r.governing} dynamic peak governs", output="moment", subject=e.label,
+                        value=r.opposite_share, threshold=SMALL_STATIC_FRACTION))
     return out
 
 

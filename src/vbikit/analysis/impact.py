@@ -132,18 +132,9 @@ def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], stati
     """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction;
     with ``dynamic_rate`` (dR/dt) the dynamic peak is refined between samples (module docstring)."""
     i_st = int(np.argmax(np.abs(static)))
-    sign = _sign_at(static, i_st)
     if static[i_st] == 0.0:
         raise ValueError("the static response is zero everywhere: no impact factor at this response point")
-    signed = sign * dynamic
-    i_dyn = int(np.argmax(signed))
-    r_dyn, t_dyn = float(dynamic[i_dyn]), float(time[i_dyn])
-    if dynamic_rate is not None:  # (the Hermite steps either side of the peak read those three samples only)
-        lo, hi = max(i_dyn - 1, 0), i_dyn + 2
-        peak, t_dyn = hermite_peak(time[lo:hi], signed[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
-        r_dyn = sign * peak
-    r_st = float(static[i_st])
-    return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))
+    return _peaks(time, dynamic, static, _sign_at(static, i_st), i_st, dynamic_rate)
 
 
 def impact_factor_toward(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
@@ -158,7 +149,19 @@ def impact_factor_toward(time: NDArray[np.float64], dynamic: NDArray[np.float64]
     i_st = int(np.argmax(signed_st))
     if not signed_st[i_st] > 0.0:
         return None
-    i_dyn = int(np.argmax(sign * np.asarray(dynamic, float)))
-    r_st, r_dyn = float(static[i_st]), float(dynamic[i_dyn])
-    return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), float(time[i_dyn]),
-                        float(time[i_st]))
+    return _peaks(time, np.asarray(dynamic, float), static, sign, i_st)
+
+
+def _peaks(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64], sign: float,
+           i_st: int, dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
+    """The ``ImpactFactor`` in the direction ``sign`` with the static peak at sample ``i_st``: the
+    dynamic peak max_t(sign·R(t)), refined between samples with ``dynamic_rate`` (dR/dt)."""
+    signed = sign * dynamic
+    i_dyn = int(np.argmax(signed))
+    r_dyn, t_dyn = float(dynamic[i_dyn]), float(time[i_dyn])
+    if dynamic_rate is not None:  # (the Hermite steps either side of the peak read those three samples only)
+        lo, hi = max(i_dyn - 1, 0), i_dyn + 2
+        peak, t_dyn = hermite_peak(time[lo:hi], signed[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
+        r_dyn = sign * peak
+    r_st = float(static[i_st])
+    return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))

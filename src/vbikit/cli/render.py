@@ -64,7 +64,7 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
-    from vbikit.analysis.checks import has_flag
+    from vbikit.analysis.checks import find_flag, has_flag
 
     # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
     airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
@@ -86,7 +86,7 @@ def print_summary(run: Run) -> None:
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes (use more modes) "
                    "— see the warning")
-    realisation = next((f for f in s.get("flags", ()) if f.get("code") == "one_realisation"), None)
+    realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
         typer.echo(f"  {'':<20} note: one realisation of the random road{seed}; other seeds give other IMs — "
