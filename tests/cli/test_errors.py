@@ -91,3 +91,13 @@ def test_presets_and_demo(tmp_path):
     assert res.exit_code == 0, res.output
     assert "IM =" in res.stdout
     assert (tmp_path / "demo.png").stat().st_size > 10_000 and (tmp_path / "demo.json").exists()
+
+
+def test_presets_summarise_a_trains_axle_loads():
+    """HSLM-A1 has 50 axles of P = 170 kN (EN 1991-2 Table 6.3: N = 18 coaches; 8.5 MN in all): one
+    summary, not 50 numbers; a truck's six wheel loads are listed (HS20-44: 15.4, 67.1, 68.0 kN a pair)."""
+    out = runner.invoke(app, ["presets"]).stdout
+    hslm = next(line for line in out.splitlines() if line.strip().startswith("hslm-a1 "))
+    assert "axle loads [kN]: 50 loads, 170.0 each, total 8500" in hslm and "170.0, 170.0" not in hslm
+    truck = next(line for line in out.splitlines() if line.strip().startswith("hs20-44 "))
+    assert "wheel loads [kN]: 15.4, 15.4, 67.1, 67.1, 68.0, 68.0;" in truck

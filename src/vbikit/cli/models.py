@@ -32,7 +32,7 @@ def presets() -> None:
     typer.echo("Vehicles ([vehicle] model = ...):")
     for p in VEHICLE_PRESETS.values():
         v = p.example_vehicle()
-        loads = ", ".join(f"{x / 1e3:.1f}" for x in v.static_wheel_loads())
+        loads = _load_list(v.static_wheel_loads())
         if p.required:
             params = (f"parameters: {', '.join(p.parameters)} (required: {', '.join(p.required)}); example "
                       + ", ".join(f"{k} = {val}" for k, val in p.example.items()))
@@ -128,3 +128,18 @@ def bridge(
 
         path = guard(lambda: plot_mode_shapes(b, plot or Path(out_dir) / f"{name}-modes.png", title=name))
         typer.echo(f"  figure              {path}")
+
+
+#: a preset's static loads are listed one by one up to this many; a train's are summarised
+LISTED_LOADS = 12
+
+
+def _load_list(loads) -> str:
+    """A preset's static wheel (or axle) loads [N] in kN: each, or for more than ``LISTED_LOADS`` (the
+    HSLM trains' 36–50 axles) their count, range and total."""
+    kn = [x / 1e3 for x in loads]
+    if len(kn) <= LISTED_LOADS:
+        return ", ".join(f"{x:.1f}" for x in kn)
+    low, high = min(kn), max(kn)
+    each = f"{low:.1f} each" if high == low else f"{low:.1f} … {high:.1f}"
+    return f"{len(kn)} loads, {each}, total {sum(kn):.0f}"
