@@ -91,6 +91,18 @@ def test_negligible_hogging_is_flagged_not_reported():
     assert flag.code == "sagging_over_pier" and "negligible" in flag.message
 
 
+def test_pier_that_never_hogs_says_so_briefly():
+    """A pier of 1e5 N/m barely supports the 30 m beam (its settlement under the truck's 0.3 MN would
+    be metres): the moment at x = 12 m is that of a simply supported beam, sagging for every load
+    position (closed form ≥ 0), so the flag says it never hogs instead of listing a zero extreme."""
+    r, closed = _run(1e5)
+    assert closed.min() >= 0.0 and r.opposite_static_peak == 0.0
+    (flag,) = effect_sign_flags([r])
+    assert flag.code == "sagging_over_pier" and flag.value == 0.0
+    assert "never hogging under this vehicle" in flag.message and "negligible" not in flag.message
+    assert "+0 kN" not in flag.message and " and hogging " not in flag.message
+
+
 def test_rigid_pier_is_one_signed():
     r, closed = _run(np.inf)
     assert closed.max() <= 0.0 and r.impact.static_peak == pytest.approx(closed.min(), rel=1e-3)
