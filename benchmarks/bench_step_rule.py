@@ -3,6 +3,7 @@ displacement IM at the automatic step and at 1.5, 2 and 4 times it, against RK4 
 
     python benchmarks/bench_step_rule.py                   # 30 one-truck and 10 two-truck events, ≈ 2 min
     python benchmarks/bench_step_rule.py --single 60 --several 20
+    python benchmarks/bench_step_rule.py --timing 25      # also the cost at dt and 2 dt, every 25th event
 
 The events are those of ``bench_traffic.py``'s stream (5,000 trucks is not needed: its first 2,000;
 ``paper-bridge-2``, 10 modes, point tires, ISO class B road with the event's own seed, Girder 4
@@ -15,7 +16,9 @@ The question it answers (the engine issue's next factor): the step rule was set 
 wheels lose contact (docs/verification.md: 3 cm gave up to 9.9e-4 there, so 2 cm is the rule); how
 large are the errors of coarser steps on a class B road, where the stream's trucks keep contact?
 Printed: per event ΔIM = IM(exact, k·dt) − IM(RK4, dt/8) for k = 1, 1.5, 2, 4, whether a wheel lost
-contact, and the largest and 95th-percentile |ΔIM| per k.  Accuracy only: no timing.
+contact, and the largest and 95th-percentile |ΔIM| per k.  ``--timing N``: also the thread CPU
+time of ``simulate`` and the output reduction (``reduce_crossing``, the stream's outputs) of every
+N-th event of the stream at dt and at 2 dt, three alternating rounds.
 """
 from __future__ import annotations
 
@@ -33,6 +36,7 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--single", type=int, default=30, help="one-truck events (default 30)")
     p.add_argument("--several", type=int, default=10, help="two-truck events (default 10)")
+    p.add_argument("--timing", type=int, default=0, help="also time every N-th event at dt and 2 dt (default 0: no)")
     args = p.parse_args()
 
     import numpy as np
@@ -64,6 +68,31 @@ def main() -> None:
         a = np.abs(np.array(rows))
         print(f"{size} truck(s), {len(rows)} events: max |ΔIM| " + ", ".join(f"{x:.1e}" for x in a.max(axis=0))
               + "; 95th percentile " + ", ".join(f"{x:.1e}" for x in np.percentile(a, 95, axis=0)))
+    if args.timing:
+        _timing(job, ctx, args.timing)
+
+
+def _timing(job, ctx, every: int) -> None:
+    """Thread CPU time of ``simulate`` + ``reduce_crossing`` of every ``every``-th event at dt and 2 dt."""
+    import time
+
+    from vbikit.analysis.response import reduce_crossing
+    from vbikit.solve import simulate
+    from vbikit.solve.plan import plan_run
+
+    crossings = []
+    for e in range(1, job.size, every):
+        c = ctx.template.with_vehicles(job.crossing(e).vehicles, *ctx.road(job.road_seed(e)))
+        crossings.append((c, plan_run(c).grid.dt))
+    for c, _ in crossings[:3]:
+        simulate(c)  # warm-up
+    for _ in range(3):
+        for k in (1, 2):
+            t0 = time.thread_time()
+            for c, dt in crossings:
+                reduce_crossing(simulate(dataclasses.replace(c, dt=k * dt)), ctx.plan, names=job.output_names)
+            print(f"simulate + reduction at {k} dt: {1e3 * (time.thread_time() - t0) / len(crossings):.2f} ms an event "
+                  f"({len(crossings)} events)", flush=True)
 
 
 if __name__ == "__main__":
