@@ -22,8 +22,14 @@ def test_thinned_history_is_every_kth_state_of_the_full_one(integrator):
     assert thin.integration_dt == full.dt and thin.dt == pytest.approx(3 * full.dt, rel=1e-12)
     n = thin.time.size
     assert n == full.n_steps // 3 + 1
-    for name in ("time", "xi", "xi_dot", "xi_ddot", "q", "q_dot", "q_ddot", "wheel_forces", "front_position"):
+    for name in ("time", "xi", "xi_dot", "xi_ddot", "q", "q_dot", "wheel_forces", "front_position"):
         np.testing.assert_array_equal(getattr(thin, name), getattr(full, name)[::3][:n], err_msg=name)
+    # q̈ is not stored by the kernel but computed afterwards as matrix products over the stored rows
+    # (``vehicle_accelerations``): BLAS may split a different number of rows differently, so the same
+    # row can differ in its last bits (2.8e-14 m/s² of a 0.32 m/s² peak seen on an AMD EPYC); equal to
+    # round-off, not bitwise
+    qdd = full.q_ddot[::3][:n]
+    np.testing.assert_allclose(thin.q_ddot, qdd, rtol=0, atol=1e-11 * np.abs(qdd).max(), err_msg="q_ddot")
 
 
 def test_budget_sets_the_stride():
