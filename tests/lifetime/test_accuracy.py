@@ -226,6 +226,30 @@ def test_report_flags_a_coarse_step_and_a_disagreement(quasi_static):
     assert "FLAG governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report
 
 
+def test_report_marks_come_from_the_flag_codes(quasi_static):
+    """The report's ABOVE at a governing event and its note under a table with a '*' follow the flag
+    records' codes, not their words: reworded messages keep both marks (and print as FLAG lines);
+    without the two records the marks go although the summary's booleans still say so."""
+    from vbikit.lifetime.report import summary, text_report
+
+    ds = quasi_static[0].copy(deep=True)
+    ds["governing_half_step_change"].values[0, 1] = 0.02
+    ds["methods_disagree_static"].values[:] = 0
+    ds["methods_disagree_static"].values[0, -1] = 1
+    facts = summary(ds)
+    m = facts["load_effects"]["M"]
+    note = "(* BM and POT disagree beyond their intervals)"
+    for f in m["flags"]:
+        f["message"] = f"reworded {f['code']}"
+    report = text_report(facts)
+    assert "ABOVE the 1 % tolerance" in report and note in report
+    assert "FLAG reworded governing_step_sensitive" in report and "FLAG reworded bm_pot_disagree" in report
+    m["flags"] = [f for f in m["flags"] if f["code"] not in ("governing_step_sensitive", "bm_pot_disagree")]
+    report = text_report(facts)
+    assert m["governing"]["total"]["half_step_flag"] and "+2.000 % within the 1 % tolerance" in report
+    assert "ABOVE" not in report and note not in report
+
+
 def test_report_explains_the_disagreement_mark_only_where_it_is_set(quasi_static):
     """The return-level table of an effect whose methods agree at every period has no '*' and no
     note about one (on main the note "(* BM and POT disagree beyond their intervals)" stood under

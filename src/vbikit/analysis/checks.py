@@ -148,7 +148,7 @@ FLAG_CODES: dict[str, str] = {
                       "return_levels.total; value: the lower of the two shapes, threshold: xi_strongly_negative (−0.3)",
     "wide_interval": "lifetime: a return level whose confidence interval is wider than the level (or reaches across "
                      "zero); output: return_levels.static or return_levels.total; value: the largest interval width "
-                     "/ |level| of those flagged, threshold: ``WIDE_INTERVAL`` (1)",
+                     "over the level's magnitude of those flagged, threshold: ``WIDE_INTERVAL`` (1)",
     "bm_pot_disagree": "lifetime: block maxima and peaks over threshold disagree beyond their confidence intervals "
                        "(the intervals do not overlap); output: return_levels.static or return_levels.total; value: "
                        "the largest gap between the two intervals (a method without one: its value) over the periods "
