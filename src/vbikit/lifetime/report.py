@@ -112,13 +112,16 @@ def _not_estimable_flags(name: str, e: dict) -> list[Flag]:
             for w in ("static", "total") if e.get(f"characteristic_{w}_not_estimable")]
 
 
+#: the two methods of a return level: (name in words, the summary's key)
+_METHODS = (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
+
+
 def _static_bound_flags(name: str, e: dict) -> list[Flag]:
     """The characteristic static value beyond ``static_upper_bound`` (same sign, larger magnitude)."""
     bound, char, unit = e.get("static_upper_bound"), e["characteristic_static"], e["units"]
     if bound is None or char is None or not (char * bound > 0 and abs(char) > abs(bound)):
         return []
-    beyond = [f"{method} at {r['return_period']:g} years" for r in e["return_levels"]
-              for method, key in (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
+    beyond = [f"{method} at {r['return_period']:g} years" for r in e["return_levels"] for method, key in _METHODS
               if r["static"][key]["value"] is not None and abs(r["static"][key]["value"]) > abs(bound)
               and r["static"][key]["value"] * bound > 0]
     return [Flag("characteristic_above_static_bound",
@@ -129,9 +132,6 @@ def _static_bound_flags(name: str, e: dict) -> list[Flag]:
                  f"distribution's unbounded tail; consider a GEV or POT fit with a bounded tail, or the model's "
                  f"maximum {bound:.4g} {unit} (static levels above it: {', '.join(beyond)})",
                  output="characteristic_static", subject=name, value=char, threshold=bound)]
-
-
-_METHODS = (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
 
 
 def _fit_flags(name: str, e: dict, w: str, xi: float) -> list[Flag]:
