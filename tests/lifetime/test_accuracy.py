@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from scipy import stats
 
+from vbikit.analysis.checks import find_flag, has_flag
 from vbikit.extremes import fit_block_maxima, level_ratio, return_levels
 from vbikit.lifetime import accuracy as acc
 from vbikit.lifetime.results import _static_threshold
@@ -214,12 +215,39 @@ def test_report_flags_a_coarse_step_and_a_disagreement(quasi_static):
     facts = summary(ds)
     m, r = facts["load_effects"]["M"], facts["load_effects"]["R"]
     assert m["governing"]["total"]["half_step_flag"] and not r["governing"]["total"]["half_step_flag"]
-    assert any("+2.00 % at half the time step" in f for f in m["flags"])
-    assert not any("half the time step" in f for f in r["flags"])
-    assert any("disagree beyond their intervals at 1000 years —" in f for f in m["flags"])
-    assert not any("disagree" in f for f in r["flags"])
+    gov = find_flag(m, "governing_step_sensitive")
+    assert gov["output"] == "governing.total" and gov["subject"] == "M"
+    assert (gov["value"], gov["threshold"]) == (0.02, acc.HALF_STEP_TOLERANCE)  # the values set above
+    assert "+2.00 % at half the time step" in gov["message"] and gov["message"] in m["warnings"]
+    assert not has_flag(r, "governing_step_sensitive")  # 0.5 % < 1 %
+    assert "disagree beyond their intervals at 1000 years —" in find_flag(m, "bm_pot_disagree", output="return_levels.static")["message"]
+    assert not has_flag(r, "bm_pot_disagree")
     report = text_report(facts)
     assert "FLAG governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report
+
+
+def test_report_marks_come_from_the_flag_codes(quasi_static):
+    """The report's ABOVE at a governing event and its note under a table with a '*' follow the flag
+    records' codes, not their words: reworded messages keep both marks (and print as FLAG lines);
+    without the two records the marks go although the summary's booleans still say so."""
+    from vbikit.lifetime.report import summary, text_report
+
+    ds = quasi_static[0].copy(deep=True)
+    ds["governing_half_step_change"].values[0, 1] = 0.02
+    ds["methods_disagree_static"].values[:] = 0
+    ds["methods_disagree_static"].values[0, -1] = 1
+    facts = summary(ds)
+    m = facts["load_effects"]["M"]
+    note = "(* BM and POT disagree beyond their intervals)"
+    for f in m["flags"]:
+        f["message"] = f"reworded {f['code']}"
+    report = text_report(facts)
+    assert "ABOVE the 1 % tolerance" in report and note in report
+    assert "FLAG reworded governing_step_sensitive" in report and "FLAG reworded bm_pot_disagree" in report
+    m["flags"] = [f for f in m["flags"] if f["code"] not in ("governing_step_sensitive", "bm_pot_disagree")]
+    report = text_report(facts)
+    assert m["governing"]["total"]["half_step_flag"] and "+2.000 % within the 1 % tolerance" in report
+    assert "ABOVE" not in report and note not in report
 
 
 def test_report_explains_the_disagreement_mark_only_where_it_is_set(quasi_static):
@@ -285,7 +313,7 @@ def test_report_flags_runs_that_miss_the_exact_static_peak(quasi_static):
     ds = quasi_static[0].copy(deep=True)
     facts = summary(ds)
     assert all(e["run_static_shortfall"]["value"] < acc.HALF_STEP_TOLERANCE for e in facts["load_effects"].values())
-    assert not any("miss the exact static peak" in f for e in facts["load_effects"].values() for f in e["flags"])
+    assert not any(has_flag(e, "static_reference_short") for e in facts["load_effects"].values())
     k = int(ds["governing_event"].values[1, 0])  # R's largest static event: simulated, sets its day's maximum
     assert int(ds["event_simulated"].values[k]) == 1
     ds["event_run_static"].values[k, 1] = 0.95 * ds["event_static"].values[k, 1]
@@ -298,7 +326,10 @@ def test_report_flags_runs_that_miss_the_exact_static_peak(quasi_static):
     facts = summary(ds)
     r = facts["load_effects"]["R"]
     assert r["run_static_shortfall"] == {"value": pytest.approx(0.05, abs=1e-12), "event": k}
-    assert any("misses the exact static peak by up to 5.00 %" in f for f in r["flags"])
+    short = find_flag(r, "static_reference_short", output="adr", subject="R")
+    assert short["value"] == pytest.approx(0.05, abs=1e-12) and short["threshold"] == acc.HALF_STEP_TOLERANCE
+    assert "misses the exact static peak by up to 5.00 %" in short["message"]
+    assert not has_flag(facts["load_effects"]["M"], "static_reference_short")
     assert "FLAG the coupled runs' static reference misses the exact static peak" in text_report(facts)
 
 
@@ -325,5 +356,7 @@ def test_report_flags_an_interval_wider_than_its_level(quasi_static):
     ds["return_level_pot_static_lower"].values[0, -1] = level - 0.8 * abs(level)
     ds["return_level_pot_static_upper"].values[0, -1] = level + 0.8 * abs(level)
     facts = summary(ds)
-    flags = facts["load_effects"]["M"]["flags"]
-    assert any("wider than the level itself (POT at 1000 years" in f for f in flags), flags
+    wide = find_flag(facts["load_effects"]["M"], "wide_interval", output="return_levels.static")
+    assert "wider than the level itself (POT at 1000 years" in wide["message"]
+    # the widest flagged interval: at least the one set above, 1.6 |level| (the largest over those flagged)
+    assert wide["value"] >= 1.6 * (1 - 1e-12) and wide["threshold"] == acc.WIDE_INTERVAL

@@ -76,11 +76,14 @@ def test_characteristic_above_the_traffic_maximum_is_flagged(tmp_path):
     assert ds.attrs["above_static_bound"].startswith(f"M static: the characteristic value {char:.6g} N m exceeds 250000 N m")
     summary = json.loads((out / "summary.json").read_text())["load_effects"]["M"]
     assert summary["static_upper_bound"] == pytest.approx(bound, rel=1e-6)
-    (flag,) = [f for f in summary["flags"] if "largest static effect any event of the traffic model" in f]
-    for words in ("exceeds what the traffic model can produce", "unbounded tail", "bounded tail",
-                  "block maxima at 1000 years"):
-        assert words in flag
-    assert "FLAG " + flag in (out / "report.txt").read_text()
+    (flag,) = [f for f in summary["flags"] if f["code"] == "characteristic_above_static_bound"]
+    assert (flag["output"], flag["subject"]) == ("characteristic_static", "M")
+    assert flag["value"] == pytest.approx(char, rel=1e-12) and flag["threshold"] == pytest.approx(bound, rel=1e-6)
+    for words in ("largest static effect any event of the traffic model", "exceeds what the traffic model can produce",
+                  "unbounded tail", "bounded tail", "block maxima at 1000 years"):
+        assert words in flag["message"]
+    assert "FLAG " + flag["message"] in (out / "report.txt").read_text()
+    assert "characteristic_above_static_bound" in json.loads(ds.attrs["flag_codes"])["M"]
 
 
 def test_a_failure_after_the_simulations_says_they_are_kept_and_a_rerun_resumes(tmp_path, monkeypatch):

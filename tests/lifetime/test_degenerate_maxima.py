@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from vbikit.analysis.checks import find_flag
 from vbikit.extremes import ExtremesError, fit_block_maxima
 from vbikit.lifetime.run import prepare, run_lifetime
 from vbikit.lifetime.spec import LifetimeError
@@ -84,7 +85,9 @@ def test_identical_trucks_write_every_result(tmp_path):
     facts = json.loads((out / "summary.json").read_text())
     m = facts["load_effects"]["M"]
     assert m["characteristic_static"] is None and m["characteristic_static_not_estimable"] == why
-    assert any(f.startswith("characteristic static not estimable") for f in m["flags"])
+    flag = find_flag(m, "characteristic_not_estimable", output="characteristic_static")
+    assert flag["message"] == f"characteristic static {why}" and flag["message"] in m["warnings"]
+    assert flag["value"] is None and flag["subject"] == "M"
     report = (out / "report.txt").read_text()
     assert "FLAG characteristic static not estimable: all 5 daily maxima are equal (250000 N m" in report
     assert "np.float64" not in report and re.search(r"\bM\s+N m\s+n/a\s+n/a\s+n/a", report)

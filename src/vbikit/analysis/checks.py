@@ -134,6 +134,34 @@ FLAG_CODES: dict[str, str] = {
                               "``IMPLAUSIBLE_DEFLECTION_FRACTION`` (0.01)",
     "ignored_input": "an input the model has no use for (response.y or crossing.lateral_offset on a beam, which has "
                      "no lateral dimension); subject: the key; value: the value given",
+    # lifetime (vbikit.lifetime.report; per load effect, subject: the effect's name; units of a level: the effect's,
+    # N m, N or m: load_effect_units)
+    "characteristic_not_estimable": "lifetime: the block maxima could not be fitted (all equal, too few), the "
+                                    "characteristic value is missing; output: characteristic_static or "
+                                    "characteristic_total",
+    "characteristic_above_static_bound": "lifetime: the characteristic static value exceeds the largest static effect "
+                                         "the traffic model can produce (bootstrap traffic); output: "
+                                         "characteristic_static; value: the characteristic static value, threshold: "
+                                         "static_upper_bound (the effect's unit, signed like it)",
+    "negative_shape": "lifetime: a fitted shape ξ (GEV of the block maxima or GPD of the exceedances) strongly "
+                      "negative, a bounded tail fitted from little data; output: return_levels.static or "
+                      "return_levels.total; value: the lower of the two shapes, threshold: xi_strongly_negative (−0.3)",
+    "wide_interval": "lifetime: a return level whose confidence interval is wider than the level (or reaches across "
+                     "zero); output: return_levels.static or return_levels.total; value: the largest interval width "
+                     "over the level's magnitude of those flagged, threshold: ``WIDE_INTERVAL`` (1)",
+    "bm_pot_disagree": "lifetime: block maxima and peaks over threshold disagree beyond their confidence intervals "
+                       "(the intervals do not overlap); output: return_levels.static or return_levels.total; value: "
+                       "the largest gap between the two intervals (a method without one: its value) over the periods "
+                       "flagged (the effect's unit), threshold: 0",
+    "adr_indistinguishable_from_one": "lifetime: the ADR's confidence interval contains 1; output: adr; value: the "
+                                      "interval's bound on the far side of 1 (the lower bound for an ADR ≥ 1, else "
+                                      "the upper), threshold: 1",
+    "static_reference_short": "lifetime: the coupled runs' static reference misses the exact static peak (the daily "
+                              "maxima of the total and the ADR biased low); output: adr; value: the largest relative "
+                              "shortfall (run_static_shortfall), threshold: half_step_tolerance (0.01)",
+    "governing_step_sensitive": "lifetime: a governing event's total peak changes at half the time step; output: "
+                                "governing.static or governing.total; value: the relative change R_half / R_run − 1, "
+                                "threshold: half_step_tolerance (0.01, on its magnitude)",
 }
 
 

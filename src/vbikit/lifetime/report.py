@@ -1,13 +1,20 @@
 """The JSON summary (``summary.json``) and the text report (``report.txt``) of a lifetime run, both
 read from ``lifetime.nc``'s dataset: every number with its interval, flag and verdict in words
-(``vbikit.lifetime.accuracy``).  The report is rendered from the summary, so the two agree."""
+(``vbikit.lifetime.accuracy``).  The report is rendered from the summary, so the two agree.
+
+Each load effect's findings are [`Flag`][vbikit.analysis.checks.Flag] records (codes in
+``vbikit.analysis.checks.FLAG_CODES``; subject: the effect's name): the summary's ``flags`` of the
+effect, their messages its ``warnings`` (``add_flags``); the report prints each message as a FLAG
+line and sets its marks from the codes (``has_flag``)."""
 from __future__ import annotations
 
+import json
 import math
 import re
 from typing import Any
 
-from vbikit.lifetime.accuracy import adr_words, amplification_words, too_wide
+from vbikit.analysis.checks import Flag, add_flags, has_flag
+from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 
 
 def _num(x) -> float | None:
@@ -23,6 +30,7 @@ def _interval(ds, name: str, j: int, k: int) -> dict[str, Any]:
 
 def _effect(ds, j: int) -> dict[str, Any]:
     a = ds.attrs
+    effect = str(ds["load_effect"].values[j])
     periods = ds["return_period"].values
     levels = []
     for k, t in enumerate(periods):
@@ -80,60 +88,139 @@ def _effect(ds, j: int) -> dict[str, Any]:
                               "half_step_change": _num(change),
                               "half_step_flag": bool(math.isfinite(change) and abs(change) > a["half_step_tolerance"])}
         out["governing"] = gov
-    out["flags"] = _flags(out, a)
+    add_flags(out, _flags(effect, out, a))
     return out
 
 
-def _flags(e: dict, a: dict) -> list[str]:
-    """The effect's warnings in words."""
-    flags = [f"characteristic {w} {e[f'characteristic_{w}_not_estimable']}" for w in ("static", "total")
-             if e.get(f"characteristic_{w}_not_estimable")]
-    bound = e.get("static_upper_bound")
-    if bound is not None:
-        beyond = [f"{name} at {r['return_period']:g} years" for r in e["return_levels"]
-                  for name, key in (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
-                  if r["static"][key]["value"] is not None and abs(r["static"][key]["value"]) > abs(bound)
-                  and r["static"][key]["value"] * bound > 0]
-        char = e["characteristic_static"]
-        if char is not None and char * bound > 0 and abs(char) > abs(bound):
-            flags.append(f"static: the characteristic value {char:.4g} {e['units']} ({e['characteristic_period']:g} years) "
-                         f"exceeds {bound:.4g} {e['units']}, the largest static effect any event of the traffic model "
-                         f"can produce (the heaviest-effect records of each lane, as many at once as the lane's smallest "
-                         f"headway allows): the extrapolation exceeds what the traffic model can produce — the fitted "
-                         f"distribution's unbounded tail; consider a GEV or POT fit with a bounded tail, or the model's "
-                         f"maximum {bound:.4g} {e['units']} (static levels above it: {', '.join(beyond)})")
-    xi = a["xi_strongly_negative"]
+def _flags(name: str, e: dict, a: dict) -> list[Flag]:
+    """The accuracy findings of load effect ``name`` (its summary so far, ``e``; the dataset's
+    attributes ``a``) as ``Flag`` records (``FLAG_CODES``; subject: ``name``), in the report's order."""
+    out = _not_estimable_flags(name, e)
+    out += _static_bound_flags(name, e)
     for w in ("static", "total"):
-        f = e["fits"][w]
-        if f["shape_strongly_negative"]:
-            shapes = ", ".join(f"{n} ξ = {f[k]:.2f}" for n, k in (("block maxima", "block_maxima_shape"),
-                                                                   ("POT", "pot_shape")) if f[k] is not None)
-            flags.append(f"{w}: strongly negative shape ({shapes} < {xi:g}): a bounded tail fitted from little data; "
-                         "the long-period levels and their intervals are unreliable — simulate more days")
-        wide = [(name, r["return_period"]) for r in e["return_levels"]
-                for name, key in (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
-                if too_wide(r[w][key]["value"], r[w][key]["lower"], r[w][key]["upper"])]
-        if wide:
-            flags.append(f"{w}: confidence interval wider than the level itself ("
-                         + ", ".join(f"{n} at {t:g} years" for n, t in wide)
-                         + "): too uncertain to sign, and too wide to tell whether the methods agree — simulate more days")
-        bad = [r["return_period"] for r in e["return_levels"] if r[w]["methods_disagree"]]
-        if bad:
-            flags.append(f"{w}: block maxima and peaks over threshold disagree beyond their intervals at "
-                         f"{', '.join(f'{t:g}' for t in bad)} years — the characteristic value depends on the method")
-    if e["adr"]["indistinguishable_from_one"]:
-        flags.append("ADR: the interval contains 1 — the data cannot tell the ADR from 1")
+        out += _fit_flags(name, e, w, float(a["xi_strongly_negative"]))
+    out += _adr_flags(name, e)
+    out += _shortfall_flags(name, e, float(a["half_step_tolerance"]))
+    out += _governing_flags(name, e, float(a["half_step_tolerance"]))
+    return out
+
+
+def _not_estimable_flags(name: str, e: dict) -> list[Flag]:
+    """A characteristic value that could not be estimated, with why."""
+    return [Flag("characteristic_not_estimable", f"characteristic {w} {e[f'characteristic_{w}_not_estimable']}",
+                 output=f"characteristic_{w}", subject=name)
+            for w in ("static", "total") if e.get(f"characteristic_{w}_not_estimable")]
+
+
+#: the two methods of a return level: (name in words, the summary's key)
+_METHODS = (("block maxima", "block_maxima"), ("POT", "peaks_over_threshold"))
+
+
+def _static_bound_flags(name: str, e: dict) -> list[Flag]:
+    """The characteristic static value beyond ``static_upper_bound`` (same sign, larger magnitude)."""
+    bound, char, unit = e.get("static_upper_bound"), e["characteristic_static"], e["units"]
+    if bound is None or char is None or not (char * bound > 0 and abs(char) > abs(bound)):
+        return []
+    beyond = [f"{method} at {r['return_period']:g} years" for r in e["return_levels"] for method, key in _METHODS
+              if r["static"][key]["value"] is not None and abs(r["static"][key]["value"]) > abs(bound)
+              and r["static"][key]["value"] * bound > 0]
+    return [Flag("characteristic_above_static_bound",
+                 f"static: the characteristic value {char:.4g} {unit} ({e['characteristic_period']:g} years) "
+                 f"exceeds {bound:.4g} {unit}, the largest static effect any event of the traffic model "
+                 f"can produce (the heaviest-effect records of each lane, as many at once as the lane's smallest "
+                 f"headway allows): the extrapolation exceeds what the traffic model can produce — the fitted "
+                 f"distribution's unbounded tail; consider a GEV or POT fit with a bounded tail, or the model's "
+                 f"maximum {bound:.4g} {unit} (static levels above it: {', '.join(beyond)})",
+                 output="characteristic_static", subject=name, value=char, threshold=bound)]
+
+
+def _fit_flags(name: str, e: dict, w: str, xi: float) -> list[Flag]:
+    """The ``w`` ("static", "total") return levels' findings: a strongly negative shape (below ``xi``),
+    intervals wider than their level (``too_wide``), BM and POT disagreeing (the dataset's
+    ``methods_disagree_<w>``)."""
+    out = []
+    f = e["fits"][w]
+    if f["shape_strongly_negative"]:
+        shapes = [(n, f[k]) for n, k in (("block maxima", "block_maxima_shape"), ("POT", "pot_shape")) if f[k] is not None]
+        out.append(Flag("negative_shape", f"{w}: strongly negative shape ("
+                        + ", ".join(f"{n} ξ = {x:.2f}" for n, x in shapes)
+                        + f" < {xi:g}): a bounded tail fitted from little data; "
+                        "the long-period levels and their intervals are unreliable — simulate more days",
+                        output=f"return_levels.{w}", subject=name, value=min((x for _, x in shapes), default=None),
+                        threshold=xi))
+    wide = [(n, r["return_period"], r[w][key]) for r in e["return_levels"] for n, key in _METHODS
+            if too_wide(r[w][key]["value"], r[w][key]["lower"], r[w][key]["upper"])]
+    if wide:
+        out.append(Flag("wide_interval", f"{w}: confidence interval wider than the level itself ("
+                        + ", ".join(f"{n} at {t:g} years" for n, t, _ in wide)
+                        + "): too uncertain to sign, and too wide to tell whether the methods agree — simulate more days",
+                        output=f"return_levels.{w}", subject=name, threshold=WIDE_INTERVAL,
+                        value=max(_relative_width(d) for _, _, d in wide)))
+    bad = [r for r in e["return_levels"] if r[w]["methods_disagree"]]
+    if bad:
+        out.append(Flag("bm_pot_disagree", f"{w}: block maxima and peaks over threshold disagree beyond their intervals at "
+                        f"{', '.join(format(r['return_period'], 'g') for r in bad)} years — the characteristic value "
+                        "depends on the method", output=f"return_levels.{w}", subject=name, threshold=0.0,
+                        value=max(_interval_gap(r[w]["block_maxima"], r[w]["peaks_over_threshold"]) for r in bad)))
+    return out
+
+
+def _relative_width(level: dict) -> float:
+    """|upper − lower| / |value| of a level with its interval (infinite for a level 0)."""
+    width = abs(level["upper"] - level["lower"])
+    return width / abs(level["value"]) if level["value"] else math.inf
+
+
+def _interval_gap(a: dict, b: dict) -> float:
+    """The gap between two levels' intervals (negative where they overlap); a level without an
+    interval counts as its value alone (``vbikit.lifetime.accuracy.methods_disagree``); NaN where
+    either has no value."""
+    def span(d: dict) -> tuple[float, float]:
+        if d["lower"] is None or d["upper"] is None:
+            v = math.nan if d["value"] is None else d["value"]
+            return v, v
+        return min(d["lower"], d["upper"]), max(d["lower"], d["upper"])  # (a downward effect's bounds are in either order)
+
+    (a_lo, a_hi), (b_lo, b_hi) = span(a), span(b)
+    return max(b_lo - a_hi, a_lo - b_hi)
+
+
+def _adr_flags(name: str, e: dict) -> list[Flag]:
+    """An ADR whose interval contains 1; value: the interval's bound on the far side of 1."""
+    adr = e["adr"]
+    if not adr["indistinguishable_from_one"]:
+        return []
+    bound = adr["lower"] if adr["value"] is None or adr["value"] >= 1.0 else adr["upper"]
+    return [Flag("adr_indistinguishable_from_one", "ADR: the interval contains 1 — the data cannot tell the ADR from 1",
+                 output="adr", subject=name, value=bound, threshold=1.0)]
+
+
+def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
+    """The coupled runs' static reference short of the exact static peak by more than ``tolerance``."""
     short = e.get("run_static_shortfall", {})
-    if short.get("value") is not None and short["value"] > a["half_step_tolerance"]:
-        flags.append(f"the coupled runs' static reference misses the exact static peak by up to {100 * short['value']:.2f} % "
-                     f"(event {short['event']}; tolerance {100 * a['half_step_tolerance']:g} %): their total peaks are "
-                     "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
-                     "coarse for this effect, or a wheel left the tabulated tracks")
-    for w, g in e.get("governing", {}).items():
-        if g["half_step_flag"]:
-            flags.append(f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "
-                         f"the time step (tolerance {100 * a['half_step_tolerance']:g} %) — the time step is too coarse")
-    return flags
+    if short.get("value") is None or short["value"] <= tolerance:
+        return []
+    return [Flag("static_reference_short",
+                 f"the coupled runs' static reference misses the exact static peak by up to {100 * short['value']:.2f} % "
+                 f"(event {short['event']}; tolerance {100 * tolerance:g} %): their total peaks are "
+                 "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
+                 "coarse for this effect, or a wheel left the tabulated tracks",
+                 output="adr", subject=name, value=short["value"], threshold=tolerance)]
+
+
+def _governing_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
+    """A governing event whose total peak changes at half the time step by more than ``tolerance``."""
+    return [Flag("governing_step_sensitive",
+                 f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "
+                 f"the time step (tolerance {100 * tolerance:g} %) — the time step is too coarse",
+                 output=f"governing.{w}", subject=name, value=g["half_step_change"], threshold=tolerance)
+            for w, g in e.get("governing", {}).items() if g["half_step_flag"]]
+
+
+def flag_codes(facts: dict[str, Any]) -> str:
+    """The codes of every load effect's flags as JSON, {effect: [code, …]} (the dataset's attribute
+    ``flag_codes``)."""
+    return json.dumps({name: [f["code"] for f in e["flags"]] for name, e in facts["load_effects"].items()})
 
 
 def _detail(ds, j: int) -> dict[str, Any]:
@@ -196,7 +283,8 @@ def _iv(d: dict) -> str:
 
 
 def text_report(facts: dict[str, Any]) -> str:
-    """The run's plain-text report (rendered from ``summary``)."""
+    """The run's plain-text report (rendered from ``summary``; its marks, ``*`` under a table and ABOVE
+    at a governing event, from the flags' codes, never from their words)."""
     r, f = facts["run"], facts["fits"]
     ci = f"{f['ci']:.0%}"
     lines = [f"vbikit lifetime: {facts['title']}",
@@ -242,18 +330,19 @@ def text_report(facts: dict[str, Any]) -> str:
                 mark = " *" if row[w]["methods_disagree"] else ""
                 cells += [_iv(row[w]["block_maxima"]), _iv(row[w]["peaks_over_threshold"]) + mark]
             lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<37} " for c in cells).rstrip())
-        if any(row[w]["methods_disagree"] for row in e["return_levels"] for w in ("static", "total")):
+        if has_flag(e, "bm_pot_disagree"):  # (the marks and the flag come from the same methods_disagree_*)
             lines.append("  (* BM and POT disagree beyond their intervals)")
         lines.append("  " + e["adr"]["words"])
         for w, g in e.get("governing", {}).items():
             change = g["half_step_change"]
+            above = has_flag(e, "governing_step_sensitive", output=f"governing.{w}")
             check = ("n/a" if change is None else f"{100 * change:+.3f} % "
-                     + ("ABOVE" if g["half_step_flag"] else "within") + f" the {100 * facts['half_step_tolerance']:g} % tolerance")
+                     + ("ABOVE" if above else "within") + f" the {100 * facts['half_step_tolerance']:g} % tolerance")
             lines.append(f"  governing {w} maximum: day {g['day']} at "
                          f"{_clock(g['time_of_day_s'])}, {g['vehicles']}; static {_g(g['static'])}, total "
                          f"{_g(g['total'])}; total at half the time step {_g(g['total_half_step'])} ({check})")
         for flag in e["flags"]:
-            lines.append("  FLAG " + flag)
+            lines.append("  FLAG " + flag["message"])
     if "fatigue" in facts:
         wide = max([12] + [len(d["category"]) + 2 for d in facts["fatigue"].values()])  # (a reduced category is long)
         lines += ["", f"fatigue (design life {facts['design_life']:g} years)",
