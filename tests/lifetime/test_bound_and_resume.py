@@ -20,36 +20,12 @@ import json
 import numpy as np
 import pytest
 
+from tests.lifetime.specs import SPAN, beam_spec
 from vbikit.lifetime.run import run_lifetime
 
-P_LIGHT, P_HEAVY, SPAN = 20e3, 100e3, 10.0
+P_LIGHT, P_HEAVY = 20e3, 100e3
 
-SPEC = f'''name = "light and heavy trucks"
-seed = 3
-days = 8
-block = "day"
-distribution = "gumbel"
-return_periods = [1, 1000]
-characteristic_period = 1000
-[traffic]
-records = "mix.csv"
-mode = "bootstrap"
-trucks_per_day = 12
-[bridge]
-model = "beam"
-span = {SPAN}
-EI = 2e9
-mass_per_length = 5000.0
-n_modes = 3
-[tire]
-model = "point"
-[crossing]
-approach = 5
-[[load_effects]]
-kind = "moment"
-x = {SPAN / 2}
-name = "M"
-'''
+SPEC = beam_spec("light and heavy trucks", 3, 8, "[1, 1000]", "mix.csv", 12)
 
 
 def _write(tmp_path, heavy_every: int):

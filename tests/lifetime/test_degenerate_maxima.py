@@ -21,41 +21,18 @@ from vbikit.extremes import ExtremesError, fit_block_maxima
 from vbikit.lifetime.run import prepare, run_lifetime
 from vbikit.lifetime.spec import LifetimeError
 
-P, SPAN, Z = 100e3, 10.0, 0.005
+from tests.lifetime.specs import SPAN, beam_spec
 
-SPEC = f'''name = "identical trucks"
-seed = 1
-days = 5
-block = "day"
-distribution = "gumbel"
-return_periods = [75, 1000]
-characteristic_period = 1000
-[traffic]
-records = "same.csv"
-mode = "bootstrap"
-trucks_per_day = 20
-[bridge]
-model = "beam"
-span = {SPAN}
-EI = 2e9
-mass_per_length = 5000.0
-n_modes = 3
-[tire]
-model = "point"
-[crossing]
-approach = 5
-[[load_effects]]
-kind = "moment"
-x = {SPAN / 2}
-name = "M"
-[fatigue]
+P, Z = 100e3, 0.005
+
+SPEC = beam_spec("identical trucks", 1, 5, "[75, 1000]", "same.csv", 20, f'''[fatigue]
 dynamic_sample = 0.3
 [[fatigue.details]]
 name = "d"
 effect = "M"
 section_modulus = {Z}
 category = "EN 36"
-'''
+''')
 
 
 def _write(tmp_path):
