@@ -134,6 +134,16 @@ FLAG_CODES: dict[str, str] = {
                               "``IMPLAUSIBLE_DEFLECTION_FRACTION`` (0.01)",
     "ignored_input": "an input the model has no use for (response.y or crossing.lateral_offset on a beam, which has "
                      "no lateral dimension); subject: the key; value: the value given",
+    "hslm_range": "railway sweep: an HSLM train outside its range of application (EN 1991-2:2003 6.4.6.1.1(5), Annex "
+                  "E: HSLM-B on simply supported spans below 7 m, HSLM-A otherwise), so its check is not the EN 1991-2 "
+                  "one; subject: the trains; value: the span [m], threshold: ``HSLM_B_MAX_SPAN`` (7 m)",
+    "too_few_modes": "railway sweep: fewer modes retained than EN 1990 A2.4.4.2.1 requires (every mode up to max(30 Hz, "
+                     "1.5 n0, n3)); value: the modes retained, threshold: the modes required",
+    "speed_grid_error": "railway sweep: the governing peak of a check still changes with the speed step after its "
+                        "refinement (``vbikit.rail.refine``: the step halved around it at most ``MAX_HALVINGS`` times); "
+                        "output: acceleration, moment, shear or deflection; value: the larger of its relative change "
+                        "over the last halving and the bound of its remaining error, threshold: ``PEAK_TOLERANCE`` "
+                        "(0.005)",
 }
 
 
