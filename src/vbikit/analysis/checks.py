@@ -45,6 +45,11 @@ Thresholds (documented in docs/scenario.md):
   any real bridge and almost always means a unit mistake in the stiffness or mass (EI in kN m² instead
   of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).
 
+* railway sweeps (``vbikit.rail``, docs/railway.md): an HSLM train outside its range of application
+  (``hslm_range``), fewer modes than EN 1990 A2.4.4.2.1 requires (``too_few_modes``), and a governing
+  peak still changing with the speed step after its refinement (``speed_grid_error``, tolerance
+  ``vbikit.rail.refine.PEAK_TOLERANCE``, 0.5 %).
+
 A negative impact factor (the dynamic peak below the static one) is physical, not a warning: the
 reports print ``NEGATIVE_IM_NOTE`` beside it.
 """
