@@ -119,3 +119,22 @@ def test_too_few_modes_is_a_flag_record():
     assert f is not None and f["value"] == 1.0 and f["threshold"] == 3.0
     assert f"WARNING: {f['message']}" in result.report
     assert result.report.splitlines()[-1].endswith("1 WARNING(s) above: not the EN 1991-2 check as run")
+
+
+def test_the_grid_brackets_the_bogie_resonances():
+    """HSLM-A4 (bogie axle spacing d = 3 m, EN 1991-2:2003 Table 6.3) on a 5 m span with EI = 2.5e9 N m²,
+    m = 10 000 kg/m: n0 = π/(2 L²) √(EI/m) = 10π Hz (hand computation), so n0 d / i = 339.29, 169.65 and
+    113.10 km/h for i = 1, 2, 3 lie in a 100 … 360 km/h sweep (every n0 D / i above it).  The grid samples
+    each and one fine step (0.5 km/h) either side; before, the 20 km/h grid alone passed there."""
+    import numpy as np
+
+    from vbikit.rail.run import plan_rail
+
+    data = {"bridge": {"span": 5.0, "EI": 2.5e9, "mass_per_length": 10000.0}, "trains": {"presets": ["hslm-a4"]},
+            "speeds": {"min": 100.0, "max": 360.0, "step": 20.0, "fine_step": 0.5, "fine_width": 2.0}}
+    v = plan_rail(data).speeds * 3.6
+    for i in (1, 2, 3):
+        r = 10 * math.pi * 3.0 / i * 3.6
+        for target in (r - 0.5, r, r + 0.5):
+            assert np.min(np.abs(v - target)) < 1e-6
+    assert v.size == 14 + 3 * 3  # 100, 120, …, 360 and the three brackets (hand count; none on a grid speed)

@@ -243,7 +243,7 @@ def _grid_error_line(checks: dict[str, Any], tolerance: float) -> str:
     for kind, name in GRID_CHECKS.items():
         c = checks.get(kind, {})
         if not math.isfinite(c.get("refinement_bound", math.nan)):
-            parts.append(f"{name} not refined (coupled cars)")
+            parts.append(f"{name} not refined (coupled cars govern it)")
             continue
         mark = " !" if has_flag(checks, "speed_grid_error", output=kind) else ""
         parts.append(f"{name} {100 * c['refinement_change']:.3f} % / {100 * c['refinement_bound']:.3f} % (grid "

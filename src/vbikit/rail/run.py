@@ -177,13 +177,15 @@ class RailPlan:
     warnings: list = field(default_factory=list)  # the sweep's limits of the standard (codes.hslm_range_warnings)
 
 
-def fine_step_resonances(trains: list, res: dict, n0: float) -> np.ndarray:
-    """The speeds [m/s] the fine speed steps (``speeds.fine_step``) surround: every train's resonances
-    n0 D / i (``res``) and those of its axle spacings within a bogie n0 d / i (``bogie_resonances``,
-    the same orders), the family that governs a short span."""
-    coach = [r[np.isfinite(r)] for r in res.values()]
-    bogie = [np.array([v for _, _, v in bogie_resonances(t, n0, RESONANCE_ORDERS)], float) for t in trains]
-    return np.unique(np.concatenate(coach + bogie + [np.zeros(0)]))
+def bogie_resonance_speeds(trains: list, n0: float) -> np.ndarray:
+    """Every train's resonance speeds n0 d / i [m/s] of its axle spacings within a bogie
+    (``bogie_resonances``, orders 1 … ``RESONANCE_ORDERS``), the family that governs a short span:
+    the speed grid samples each and one fine step either side (``speed_grid``'s ``bracketed``), and the
+    peak refinement climbs from there.  Not a fine band as around n0 D / i: on a 5 m span under
+    HSLM-A1 … A10 (100 … 360 km/h, 4 km/h steps, 0.5 km/h within ± 5 km/h) bands around the nine
+    n0 d / i in the sweep took 241 speeds instead of 66 and 2.2 times the CPU time, for the same
+    governing peak (11.278 m/s²), the bogie's few axles giving a broad peak."""
+    return np.unique(np.array([v for t in trains for _, _, v in bogie_resonances(t, n0, RESONANCE_ORDERS)], float))
 
 
 def plan_rail(source: Any) -> RailPlan:
@@ -204,9 +206,10 @@ def plan_rail(source: Any) -> RailPlan:
     v_min, v_max = spec.speeds.min * KMH, spec.speeds.top * KMH
     res = {t.name: train_resonances(t, n0, RESONANCE_ORDERS) for t in trains}
     waves = {t.name: excitation_wavelength(t) for t in trains}
-    all_res = fine_step_resonances(trains, res, n0)
+    all_res = np.concatenate([r[np.isfinite(r)] for r in res.values()] + [np.zeros(0)])
     fine = spec.speeds.fine_step * KMH if spec.speeds.fine_step else None
-    speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH)
+    speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH,
+                        bogie_resonance_speeds(trains, n0))
     span = float(bridge.span)
     points = np.unique(np.append(np.linspace(0.0, span, spec.run.points + 2)[1:-1], 0.5 * span))  # midspan always
     sections = moment_sections(span, MOMENT_SECTIONS, np.asarray(bridge.support_x, float))
