@@ -45,6 +45,11 @@ Thresholds (documented in docs/scenario.md):
   any real bridge and almost always means a unit mistake in the stiffness or mass (EI in kN m² instead
   of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).
 
+* railway sweeps (``vbikit.rail``, docs/railway.md): an HSLM train outside its range of application
+  (``hslm_range``), fewer modes than EN 1990 A2.4.4.2.1 requires (``too_few_modes``), and a governing
+  peak still changing with the speed step after its refinement (``speed_grid_error``, tolerance
+  ``vbikit.rail.refine.PEAK_TOLERANCE``, 0.5 %).
+
 A negative impact factor (the dynamic peak below the static one) is physical, not a warning: the
 reports print ``NEGATIVE_IM_NOTE`` beside it.
 """
@@ -162,6 +167,16 @@ FLAG_CODES: dict[str, str] = {
     "governing_step_sensitive": "lifetime: a governing event's total peak changes at half the time step; output: "
                                 "governing.static or governing.total; value: the relative change R_half / R_run − 1, "
                                 "threshold: half_step_tolerance (0.01, on its magnitude)",
+    "hslm_range": "railway sweep: an HSLM train outside its range of application (EN 1991-2:2003 6.4.6.1.1(5), Annex "
+                  "E: HSLM-B on simply supported spans below 7 m, HSLM-A otherwise), so its check is not the EN 1991-2 "
+                  "one; subject: the trains; value: the span [m], threshold: ``HSLM_B_MAX_SPAN`` (7 m)",
+    "too_few_modes": "railway sweep: fewer modes retained than EN 1990 A2.4.4.2.1 requires (every mode up to max(30 Hz, "
+                     "1.5 n0, n3)); value: the modes retained, threshold: the modes required",
+    "speed_grid_error": "railway sweep: the governing peak of a check still changes with the speed step after its "
+                        "refinement (``vbikit.rail.refine``: the step halved around it at most ``MAX_HALVINGS`` times); "
+                        "output: acceleration, moment, shear or deflection; value: the larger of its relative change "
+                        "over the last halving and the bound of its remaining error, threshold: ``PEAK_TOLERANCE`` "
+                        "(0.005)",
 }
 
 

@@ -27,7 +27,7 @@ so in docs/railway.md.
 * Track irregularities of real trains (EN 1991-2 Annex C): φ'' = α/100 [56 e^{−(L_Φ/10)²} +
   50 (L_Φ n0/80 − 1) e^{−(L_Φ/20)²}] ≥ 0, α = v/22 for v ≤ 22 m/s, else 1.
 * Range of application of HSLM (EN 1991-2:2003 6.4.6.1.1(5) and Annex E): HSLM-B for simply
-  supported spans L < 7 m, HSLM-A otherwise (``HSLM_B_MAX_SPAN``, ``hslm_range_warnings``).
+  supported spans L < 7 m, HSLM-A otherwise (``HSLM_B_MAX_SPAN``, ``hslm_range_flags``).
 * Load Model 71 (EN 1991-2 6.3.2, Figure 6.1): four 250 kN axles 1.6 m apart and 80 kN/m on both
   sides from 0.8 m beyond the outer axles, times the classification factor α.
 """
@@ -47,26 +47,35 @@ from vbikit.analysis.codes import phi2, phi3
 HSLM_B_MAX_SPAN = 7.0
 
 
-def hslm_range_warnings(span: float, names: list[str]) -> list[str]:
-    """The warnings of a sweep whose HSLM trains (``names``: the trains' names) lie outside their
-    range of application (EN 1991-2:2003 6.4.6.1.1(5), Annex E): HSLM-B on a simply supported span
-    ``span`` [m] of 7 m or more (its check is then not the standard's one: HSLM-A is), HSLM-A on a
-    span below 7 m (HSLM-B is).  Warnings, not errors: a user may run either outside its range on
-    purpose (research, comparison)."""
+def hslm_range_flags(span: float, names: list[str]) -> list:
+    """The ``hslm_range`` flags (``vbikit.analysis.checks.Flag``) of a sweep whose HSLM trains
+    (``names``: the trains' names) lie outside their range of application (EN 1991-2:2003
+    6.4.6.1.1(5), Annex E): HSLM-B on a simply supported span ``span`` [m] of 7 m or more (its check
+    is then not the standard's one: HSLM-A is), HSLM-A on a span below 7 m (HSLM-B is); value: the
+    span [m], threshold: ``HSLM_B_MAX_SPAN`` [m].  Flags, not errors: a user may run either outside
+    its range on purpose (research, comparison)."""
+    from vbikit.analysis.checks import Flag
     from vbikit.vehicle.trains import HSLM_B_NAME
 
     out = []
     b_trains = [n for n in names if n.startswith(HSLM_B_NAME)]
-    has_a = any(n.startswith("HSLM-A") for n in names)
+    a_trains = [n for n in names if n.startswith("HSLM-A")]
     if b_trains and span >= HSLM_B_MAX_SPAN:
-        out.append(f"HSLM-B outside its range of application: EN 1991-2:2003 6.4.6.1.1(5) and Annex E apply HSLM-B to "
-                   f"simply supported spans below {HSLM_B_MAX_SPAN:g} m only, this span is {span:g} m, so the check of "
-                   f"{', '.join(b_trains)} is not the EN 1991-2 one; use HSLM-A (trains.presets = [\"hslm-a\"])"
-                   + ("" if has_a else ", which this sweep does not run"))
-    if has_a and span < HSLM_B_MAX_SPAN:
-        out.append(f"HSLM-A outside its range of application: span {span:g} m < {HSLM_B_MAX_SPAN:g} m, for which "
-                   "EN 1991-2:2003 6.4.6.1.1(5) uses HSLM-B (trains.hslm_b, N and d from the standard's figure)")
+        out.append(Flag("hslm_range", f"HSLM-B outside its range of application: EN 1991-2:2003 6.4.6.1.1(5) and Annex E "
+                        f"apply HSLM-B to simply supported spans below {HSLM_B_MAX_SPAN:g} m only, this span is {span:g} m, "
+                        f"so the check of {', '.join(b_trains)} is not the EN 1991-2 one; use HSLM-A (trains.presets = "
+                        f"[\"hslm-a\"])" + ("" if a_trains else ", which this sweep does not run"),
+                        subject=", ".join(b_trains), value=float(span), threshold=HSLM_B_MAX_SPAN))
+    if a_trains and span < HSLM_B_MAX_SPAN:
+        out.append(Flag("hslm_range", f"HSLM-A outside its range of application: span {span:g} m < {HSLM_B_MAX_SPAN:g} m, "
+                        "for which EN 1991-2:2003 6.4.6.1.1(5) uses HSLM-B (trains.hslm_b, N and d from the standard's "
+                        "figure)", subject=", ".join(a_trains), value=float(span), threshold=HSLM_B_MAX_SPAN))
     return out
+
+
+def hslm_range_warnings(span: float, names: list[str]) -> list[str]:
+    """The messages of ``hslm_range_flags`` (the dataset's ``code_warnings``, the log)."""
+    return [f.message for f in hslm_range_flags(span, names)]
 
 
 @dataclass(frozen=True)

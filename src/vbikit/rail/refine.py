@@ -1,5 +1,6 @@
-"""Refinement of the acceleration peaks of a speed sweep: the speed step halved around each peak until
-it changes by less than a tolerance, with a bound of the remaining grid error (``refine_peaks``)."""
+"""Refinement of the peaks of a speed sweep: the speed step halved around each peak until it changes by
+less than a tolerance, with a bound of the remaining grid error (``refine_peaks``), and the speed
+grid's error of a refined peak as the checks state it (``grid_error``)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -43,7 +44,8 @@ def _peak_indices(values: NDArray[np.float64]) -> list[int]:
 
 
 def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float64],
-                 tolerance: float = PEAK_TOLERANCE, indices: Optional[list[int]] = None) -> RefinedPeaks:
+                 tolerance: float = PEAK_TOLERANCE, indices: Optional[list[int]] = None,
+                 max_halvings: int = MAX_HALVINGS) -> RefinedPeaks:
     """Refine each peak of ``values`` over ``speeds`` (``_peak_indices``) by halving the step around it.
 
     The best speed v* lies midway in its bracket [v* − h, v* + h]; the midpoints v* ± h/2 are
@@ -53,8 +55,8 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
     parabola's vertex lies within h/2 of v*, where it rises c x0² ≤ c h²/4 while the ends fall at
     least c h² below f*): that is the bound of the remaining grid error.  Refinement stops when
     the bound and the change over the last halving are both below ``tolerance`` (relative), or
-    after ``MAX_HALVINGS``.  ``indices``: the grid indices of the peaks to refine (default
-    ``_peak_indices``).
+    after ``max_halvings`` (default ``MAX_HALVINGS``).  ``indices``: the grid indices of the peaks
+    to refine (default ``_peak_indices``).
     """
     idx = _peak_indices(values) if indices is None else list(indices)
     k = len(idx)
@@ -86,7 +88,19 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
             change[i] = (top - old_a) / top if top > 0 else 0.0
             bound[i] = (top - min(f_lo[i], f_hi[i])) / (4.0 * top) if top > 0 else 0.0
             rounds[i] += 1
-            if (bound[i] < tolerance and change[i] < tolerance) or rounds[i] >= MAX_HALVINGS:
+            if (bound[i] < tolerance and change[i] < tolerance) or rounds[i] >= max_halvings:
                 done[i] = True
     return RefinedPeaks(grid_v, grid_a, best_v, best_a, bound, change, 0.5 * (hi - lo),
                         (bound < tolerance) & (change < tolerance))
+
+
+def grid_error(peaks: RefinedPeaks, k: int = 0) -> dict[str, float]:
+    """The speed grid's error of refined peak ``k`` (relative numbers, as every check states them):
+    ``grid_error`` = (refined − grid) / refined, what the sweep's grid alone misses;
+    ``refinement_change`` = the relative change over the last halving of the speed step (the change
+    between the last two refinement levels) and ``refinement_bound`` = the bound of the remaining
+    error (``refine_peaks``): the refined value's own grid error, within ``PEAK_TOLERANCE`` when
+    both are below it."""
+    value, grid = float(peaks.value[k]), float(peaks.grid_value[k])
+    return {"grid_error": (value - grid) / value if value > 0 else 0.0,
+            "refinement_change": float(peaks.last_change[k]), "refinement_bound": float(peaks.bound[k])}

@@ -7,12 +7,25 @@ from typing import Any, Optional
 
 import numpy as np
 
+from vbikit.analysis.checks import Flag, add_flags, has_flag
+from vbikit.rail.refine import PEAK_TOLERANCE
+
+#: flag codes that make a sweep not the EN 1991-2 check as run (the report's result line says so)
+STANDARD_CODES = ("hslm_range", "too_few_modes")
+#: the checks whose governing peak is refined over speed and states its grid error, with their names in the report
+GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the entry support",
+               "deflection": "midspan deflection"}
+
 
 def check(ds) -> dict[str, Any]:
-    """The pass/fail summary: governing train, speed and quantity of every check, and
-    ``warnings``: the sweep's limits of the standard in words (the dataset's ``code_warnings``, one a
-    line: an HSLM train outside its range of application, ``codes.hslm_range_warnings``); a PASS
-    with a warning is not the standard's check."""
+    """The pass/fail summary: governing train, speed and quantity of every check (the acceleration
+    with its speed grid's error, ``vbikit.rail.refine.grid_error``), and ``flags`` (records,
+    ``vbikit.analysis.checks.Flag``) with their messages under ``warnings`` (``add_flags``): an HSLM
+    train outside its range of application (``codes.hslm_range_flags``), fewer modes than required,
+    and a governing acceleration peak whose refinement did not converge (``speed_grid_flags``); a
+    PASS with an ``hslm_range`` or ``too_few_modes`` flag is not the standard's check."""
+    from vbikit.rail.codes import hslm_range_flags
+
     acc = ds["max_deck_acceleration"]
     i, j = np.unravel_index(int(np.nanargmax(acc.values)), acc.shape)
     limit = float(ds["acceleration_limit"])
@@ -21,20 +34,23 @@ def check(ds) -> dict[str, Any]:
     train = str(ds.train.values[i])
     refined = ds["peak_acceleration_refined"].values
     bound = ds["peak_refinement_bound"].values
-    governing_bound = math.nan
+    change = ds["peak_last_change"].values if "peak_last_change" in ds else np.full(bound.shape, np.nan)
+    governing_bound = governing_change = math.nan
     if refined.size and np.any(np.isfinite(refined)):
         a, b = np.unravel_index(int(np.nanargmax(refined)), refined.shape)
         if refined[a, b] >= peak:
             peak, speed, train = float(refined[a, b]), float(ds["peak_speed_refined"].values[a, b]), str(ds.train.values[a])
-            governing_bound = float(bound[a, b])
+            governing_bound, governing_change = float(bound[a, b]), float(change[a, b])
     finite = bound[np.isfinite(bound)]
+    tolerance = float(ds.attrs.get("peak_tolerance", PEAK_TOLERANCE))
     out: dict[str, Any] = {"acceleration": {
         "peak": peak, "limit": limit, "train": train, "speed": speed,
         "passes": bool(peak <= limit), "ratio": peak / limit, "grid_peak": grid_peak,
-        "grid_error": (peak - grid_peak) / peak if peak > 0 else 0.0, "refinement_bound": governing_bound,
+        "grid_error": (peak - grid_peak) / peak if peak > 0 else 0.0, "refinement_change": governing_change,
+        "refinement_bound": governing_bound,
         "largest_refinement_bound": float(finite.max()) if finite.size else math.nan,
-        "refinement_converged": bool(finite.size and np.all(finite < float(ds.attrs.get("peak_tolerance", 0.005)))),
-        "tolerance": float(ds.attrs.get("peak_tolerance", math.nan))}}
+        "refinement_converged": bool(finite.size and np.all(finite < tolerance)),
+        "tolerance": tolerance}}
     irr = ds["phi_irregularity"].values
     for kind in ("moment", "shear"):
         dyn = ds[f"max_{kind}"].values + 0.5 * irr[None, :] * ds[f"static_{kind}"].values[:, None]
@@ -46,7 +62,9 @@ def check(ds) -> dict[str, Any]:
                      "governs": "dynamic analysis" if dyn[a, b] > lm else "Phi x LM71", "ratio": float(dyn[a, b] / lm)}
     phid = ds["phi_dyn_deflection"].values
     a, b = np.unravel_index(int(np.nanargmax(phid)), phid.shape)
-    out["deflection"] = {"phi_dyn": float(phid[a, b]), "train": str(ds.train.values[a]), "speed": float(ds.speed.values[b])}
+    out["deflection"] = {"phi_dyn": float(phid[a, b]), "train": str(ds.train.values[a]), "speed": float(ds.speed.values[b]),
+                         "grid_phi_dyn": float(phid[a, b]), "grid_error": math.nan, "refinement_change": math.nan,
+                         "refinement_bound": math.nan}  # refined by ``refine_design_checks``
     a = ds.attrs
     if "moment_max_Nm" in a:
         out["moment_envelope"] = {k: a[k] for k in ("moment_max_Nm", "moment_max_position_m", "moment_max_train",
@@ -54,7 +72,40 @@ def check(ds) -> dict[str, Any]:
                                                    "static_moment_max_position_m", "static_moment_max_train",
                                                    "static_moment_max_over_midspan")}
     out["passes"] = out["acceleration"]["passes"]
-    out["warnings"] = [w for w in str(a.get("code_warnings", "")).split("\n") if w]
+    names = [str(n) for n in ds.train.values if not str(n).endswith(" (coupled)")]
+    add_flags(out, hslm_range_flags(float(a["span_m"]), names) + modes_flags(ds)
+              + speed_grid_flags(out, ("acceleration",), tolerance))
+    return out
+
+
+def modes_flags(ds) -> list[Flag]:
+    """The ``too_few_modes`` flag of a sweep that retained fewer modes than EN 1990 A2.4.4.2.1 requires
+    (every mode up to max(30 Hz, 1.5 n0, n3); the dataset's ``modes_required``)."""
+    a = ds.attrs
+    required, kept = int(a.get("modes_required", 0)), int(a["n_modes"])
+    if required <= kept:
+        return []
+    return [Flag("too_few_modes", f"{kept} modes retained, but the {required} modes up to {a['frequency_limit_hz']:.1f} Hz "
+                 "are required (EN 1990 A2.4.4.2.1): raise bridge.n_modes", value=float(kept), threshold=float(required))]
+
+
+def speed_grid_flags(checks: dict[str, Any], kinds: tuple[str, ...], tolerance: float = PEAK_TOLERANCE) -> list[Flag]:
+    """A ``speed_grid_error`` flag for every check of ``kinds`` whose governing peak was refined
+    (``vbikit.rail.refine.grid_error``) but still changes with the speed step: its change over the
+    last halving or the bound of its remaining error not below ``tolerance`` (relative; the
+    refinement's own stopping rule, so a flagged peak is one that stopped after ``MAX_HALVINGS``)."""
+    out = []
+    for kind in kinds:
+        c = checks.get(kind, {})
+        change, bound = c.get("refinement_change", math.nan), c.get("refinement_bound", math.nan)
+        if not (math.isfinite(change) and math.isfinite(bound)) or max(change, bound) < tolerance:
+            continue
+        out.append(Flag("speed_grid_error", f"the governing {GRID_CHECKS[kind]} peak ({c['train']} at "
+                        f"{3.6 * c['speed']:.2f} km/h) is not converged over speed: after its refinement it still changed "
+                        f"by {100 * change:.2f} % over the last halving of the speed step, error bound {100 * bound:.2f} % "
+                        f"(tolerance {100 * tolerance:g} %); the stated value may be low: use a finer speeds.step or "
+                        "fine_step around it", output=kind, subject=str(c["train"]), value=max(change, bound),
+                        threshold=tolerance))
     return out
 
 
@@ -72,9 +123,6 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         f"{float(ds.speed_kmh.max()):.0f} km/h",
     ]
     lines += [f"WARNING: {w}" for w in checks.get("warnings", [])]
-    if a.get("modes_required", 0) > a["n_modes"]:
-        lines.append(f"WARNING: {a['n_modes']} modes retained, but the {a['modes_required']} modes up to "
-                     f"{a['frequency_limit_hz']:.1f} Hz are required (EN 1990 A2.4.4.2.1): raise bridge.n_modes")
     lines += [
         "",
         f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {3.6 * acc['speed']:.2f} km/h) against "
@@ -104,6 +152,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                      f"midspan {mid_static / 1e3:.4g} kN m")
     d = checks["deflection"]
     lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {3.6 * d['speed']:.1f} km/h)")
+    lines.append(_grid_error_line(checks, float(acc.get("tolerance", PEAK_TOLERANCE))))
     lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length, HSLM-B's force spacing d or "
               "the dominant repeated axle spacing):"]
     lo, hi = float(ds.speed.values.min()), float(ds.speed.values.max())
@@ -128,8 +177,8 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                      f"{near['resonance']} at {near['speed_kmh']:.1f} km/h ({100 * near['offset']:+.1f} %)")
     lines += ["", f"result: {'PASS' if checks['passes'] else 'FAIL'} (governing: {acc['train']}, "
               f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"
-              + (f"; {len(checks['warnings'])} WARNING(s) above: not the EN 1991-2 check as run"
-                 if checks.get("warnings") else "")]
+              + (f"; {len(checks['warnings'])} WARNING(s) above" if checks.get("warnings") else "")
+              + (": not the EN 1991-2 check as run" if any(has_flag(checks, c) for c in STANDARD_CODES) else "")]
     return "\n".join(lines) + "\n"
 
 
@@ -179,29 +228,49 @@ def _grid_line(acc: dict[str, Any]) -> str:
     if not math.isfinite(acc.get("largest_refinement_bound", math.nan)):
         return "speed grid: the acceleration peaks were not refined (coupled cars only)"
     verdict = ("every peak within the tolerance" if acc["refinement_converged"]
-               else "WARNING: some peaks not within the tolerance after the most halvings")
+               else "some peaks not within the tolerance after the most halvings")
     return (f"speed grid: the sweep's grid gave {acc['grid_peak']:.3f} m/s², {100 * acc['grid_error']:.2f} % below the refined "
             f"peak; each peak refined by halving the speed step around it until its change and its error bound were "
             f"< {100 * acc['tolerance']:g} %: error bound of the governing peak {100 * acc['refinement_bound']:.3f} %, "
             f"largest over all peaks {100 * acc['largest_refinement_bound']:.3f} % ({verdict})")
 
 
+def _grid_error_line(checks: dict[str, Any], tolerance: float) -> str:
+    """The report's line on the speed grid's error of every check's governing peak (``GRID_CHECKS``):
+    the refined peak's change over its last halving of the speed step and its error bound, and what
+    the sweep's grid alone missed; ``!`` where ``speed_grid_error`` flags it."""
+    parts = []
+    for kind, name in GRID_CHECKS.items():
+        c = checks.get(kind, {})
+        if not math.isfinite(c.get("refinement_bound", math.nan)):
+            parts.append(f"{name} not refined (coupled cars govern it)")
+            continue
+        mark = " !" if has_flag(checks, "speed_grid_error", output=kind) else ""
+        parts.append(f"{name} {100 * c['refinement_change']:.3f} % / {100 * c['refinement_bound']:.3f} % (grid "
+                     f"{100 * c['grid_error']:.2f} % low){mark}")
+    return (f"speed grid error of the governing peaks (the refined peak's change over the last halving of the speed step "
+            f"/ its error bound, tolerance {100 * tolerance:g} %; in brackets what the sweep's grid alone missed): "
+            + "; ".join(parts))
+
+
 #: the unit of every number of a check (``check``), written beside it in ``rail-summary.json``
 CHECK_UNITS: dict[str, dict[str, str]] = {
     "acceleration": {"peak": "m s-2", "limit": "m s-2", "speed": "m s-1", "ratio": "1", "grid_peak": "m s-2",
-                     "grid_error": "1", "refinement_bound": "1", "largest_refinement_bound": "1", "tolerance": "1"},
+                     "grid_error": "1", "refinement_change": "1", "refinement_bound": "1", "largest_refinement_bound": "1",
+                     "tolerance": "1"},
     "moment": {"dynamic_design": "N m", "lm71_design": "N m", "grid_design": "N m", "speed": "m s-1", "phi_dyn": "1",
-               "phi_irregularity": "1", "ratio": "1", "refinement_bound": "1"},
+               "phi_irregularity": "1", "ratio": "1", "grid_error": "1", "refinement_change": "1", "refinement_bound": "1"},
     "shear": {"dynamic_design": "N", "lm71_design": "N", "grid_design": "N", "speed": "m s-1", "phi_dyn": "1",
-              "phi_irregularity": "1", "ratio": "1", "refinement_bound": "1"},
-    "deflection": {"phi_dyn": "1", "speed": "m s-1"},
+              "phi_irregularity": "1", "ratio": "1", "grid_error": "1", "refinement_change": "1", "refinement_bound": "1"},
+    "deflection": {"phi_dyn": "1", "grid_phi_dyn": "1", "speed": "m s-1", "grid_error": "1", "refinement_change": "1",
+                   "refinement_bound": "1"},
 }
 
 
 def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
     """The JSON summary (``rail-summary.json``): the checks (with the speed grid's error bound and the
     moment envelope along the span), every train's resonance speeds by order i and its refined
-    acceleration peaks, and ``warnings`` (``check``); speeds in m/s and km/h, moments in N m, NaN as null; every check with the units of
+    acceleration peaks, ``flags`` (records) and their messages ``warnings`` (``check``); speeds in m/s and km/h, moments in N m, NaN as null; every check with the units of
     its numbers (``CHECK_UNITS``)."""
     def clean(x):
         if isinstance(x, dict):
@@ -233,10 +302,11 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
                                     "error_bound": float(ds["peak_refinement_bound"].values[k, j])}
                                    for j in range(ds.peak.size) if np.isfinite(ds["peak_acceleration_refined"].values[k, j])]}
     warnings = list(checks.get("warnings", []))  # at the top, as in every summary of vbikit
+    flags = list(checks.get("flags", []))
     checks = {k: (v | {"units": {n: u for n, u in CHECK_UNITS[k].items() if n in v}} if k in CHECK_UNITS else v)
-              for k, v in checks.items() if k != "warnings"}
+              for k, v in checks.items() if k not in ("warnings", "flags")}
     acc = checks.get("acceleration", {})
     near = governing_resonance(ds, acc["train"], acc["speed"]) if "train" in acc else None
-    return clean({"checks": checks, "warnings": warnings, "trains": trains, "governing_resonance": near,
+    return clean({"checks": checks, "warnings": warnings, "flags": flags, "trains": trains, "governing_resonance": near,
                   "peak_refinement": ds.attrs.get("peak_refinement", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})

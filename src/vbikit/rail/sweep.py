@@ -29,9 +29,12 @@ KMH = 1.0 / 3.6
 
 
 def speed_grid(v_min: float, v_max: float, step: float, resonances: Sequence[float] = (), fine_step: float | None = None,
-               width: float = 0.0) -> NDArray[np.float64]:
+               width: float = 0.0, bracketed: Sequence[float] = ()) -> NDArray[np.float64]:
     """Speeds [m/s] from ``v_min`` to ``v_max`` every ``step`` [m/s], plus every ``fine_step``
-    within ± ``width`` of each resonance speed (EN 1991-2 6.4.6: smaller steps near resonance)."""
+    within ± ``width`` of each resonance speed (EN 1991-2 6.4.6: smaller steps near resonance), plus
+    each speed of ``bracketed`` and (with ``fine_step``) one fine step either side of it: a sample
+    at a resonance whose peak the peak refinement (``vbikit.rail.refine``) then climbs, at a few
+    speeds instead of a band's."""
     n = int(math.floor((v_max - v_min) / step + 1e-9))
     grid = [v_min + step * np.arange(n + 1), np.array([v_max])]
     if fine_step and width > 0:
@@ -39,6 +42,8 @@ def speed_grid(v_min: float, v_max: float, step: float, resonances: Sequence[flo
             lo, hi = max(v_min, r - width), min(v_max, r + width)
             if hi > lo:
                 grid.append(np.arange(lo, hi + 0.5 * fine_step, fine_step))
+    for r in bracketed:
+        grid.append(np.array([r - fine_step, r, r + fine_step]) if fine_step else np.array([r]))
     v = np.unique(np.round(np.concatenate(grid), 9))
     return v[(v >= v_min - 1e-9) & (v <= v_max + 1e-9)]
 
