@@ -189,7 +189,7 @@ def test_presets_call_a_trains_loads_axle_loads():
 
     out = CliRunner().invoke(app, ["presets"]).output.splitlines()
     hslm = next(x for x in out if x.strip().startswith("hslm-a1 "))
-    assert "axle loads [kN]: 170.0" in hslm and "wheel loads" not in hslm
+    assert "axle loads [kN]: 50 loads, 170.0 each" in hslm and "wheel loads" not in hslm
     assert any("wheel loads [kN]" in x for x in out)  # road vehicles keep their wheel loads
 
 
