@@ -44,7 +44,10 @@ Thresholds (documented in docs/scenario.md):
   bridges are designed to live-load deflections of L/800 to L/300 (AASHTO LRFD 2.5.2.6.2: L/800, L/1000
   with pedestrians; Eurocode practice about L/300 to L/600), so L/100 under one vehicle lies far beyond
   any real bridge and almost always means a unit mistake in the stiffness or mass (EI in kN m² instead
-  of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).
+  of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).  Study
+  and traffic datasets apply the same rule to every crossing or event
+  (``implausible_deflection_dataset_flags``; the threshold and the words are these), their
+  ``warnings`` and ``flag_codes`` attributes from ``dataset_flag_attrs``.
 
 A negative impact factor (the dynamic peak below the static one) is physical, not a warning: the
 reports print ``NEGATIVE_IM_NOTE`` beside it.
