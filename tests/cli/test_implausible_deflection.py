@@ -107,5 +107,7 @@ def test_the_governing_girder_im_of_a_soft_deck_is_marked(tmp_path):
                                                                       rel=1e-3)  # (peaks sampled at each run's own step)
     assert abs(ok["girder_max_static_displacement"][g]) < 16.76 * IMPLAUSIBLE_DEFLECTION_FRACTION
     assert abs(soft["girder_max_static_displacement"][g]) > 16.76 * IMPLAUSIBLE_DEFLECTION_FRACTION
-    assert [f["code"] for f in soft["flags"]] == ["implausible_deflection", "small_static"]  # no other mark
+    codes = [f["code"] for f in soft["flags"]]
+    assert codes[0] == "implausible_deflection"
+    assert not {"airborne_wheels", "coarse_step", "unresolved_modes"} & set(codes)  # nothing else marks the line
     assert soft_line.rstrip().endswith("!)") and not ok_line.rstrip().endswith("!)")
