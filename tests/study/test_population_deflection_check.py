@@ -111,3 +111,17 @@ def test_the_dataset_rule_is_the_single_run_rule():
     assert attrs["flag_codes"] == "implausible_deflection,small_static"
     assert attrs["warnings"].startswith("implausible static deflection") and attrs["warnings"].endswith("point a: small")
     assert dataset_flag_attrs([], {"small_static": []}) == {}
+
+
+def test_the_traffic_command_prints_the_dataset_warning(tmp_path):
+    from vbikit.traffic import write_records
+
+    records = [VehicleRecord(time=0.0, direction="+x", speed=20.0, model="moving-force", lane=1, id="f1")]
+    write_records(records, tmp_path / "r.csv")
+    bridge = "\n".join(f"[{k}]\n" + "\n".join(f"{n} = {v!r}".replace("'", '"') for n, v in t.items())
+                       for k, t in _base(BAD_EI).items() if k != "vehicle")
+    (tmp_path / "bad.toml").write_text(bridge + "\n")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "bad.toml"), "--out",
+                              str(tmp_path / "t.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    assert "warning: implausible static deflection in 1 of 1 events" in res.output
