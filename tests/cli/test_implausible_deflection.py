@@ -82,3 +82,32 @@ def test_a_coarse_step_flag_names_the_impact_factor_it_marks(tmp_path):
              tmp_path)
     coarse = [f for f in s["flags"] if f["code"] in ("coarse_step", "unresolved_modes")]
     assert coarse and all(f["output"] == "impact_factor" for f in coarse)
+
+
+def test_the_governing_girder_im_of_a_soft_deck_is_marked(tmp_path):
+    """A 3D deck (paper Bridge 2) with E_girder and E_deck typed in kPa instead of Pa (1000 times too
+    soft) under a moving force (no wheels to leave the road, so no other flag marks the IMs): a
+    linear static solution scales with 1/E, so its static deflections are exactly 1000 times those of
+    the real deck — metres on a 16.76 m span — and the report marks the governing girder's IM as it
+    marks the headline IM (from the flag's code, ``has_flag``); the real deck's line is not marked."""
+    deck = ('[bridge]\nmodel = "paper-bridge-2"\n[bridge.deck]\nE_girder = {E_girder}\nE_deck = {E_deck}\n'
+            '[vehicle]\nmodel = "moving-force"\n[road]\nclass = "none"\n[crossing]\nspeed_kmh = 75\n'
+            '[response]\ngirder = 4\n')
+    runs = []
+    for scale in (1.0, 1e-3):
+        path, summary = tmp_path / "deck.toml", tmp_path / "s.json"
+        path.write_text(deck.format(E_girder=36e9 * scale, E_deck=33e9 * scale))
+        res = runner.invoke(app, ["run", str(path), "--summary", str(summary)])
+        assert res.exit_code == 0, res.output
+        line = next(line for line in res.output.splitlines() if line.strip().startswith("governing girder"))
+        runs.append((json.loads(summary.read_text()), line))
+    (ok, ok_line), (soft, soft_line) = runs
+    g = soft["governing_girder"] - 1
+    assert soft["girder_max_static_displacement"][g] == pytest.approx(1000 * ok["girder_max_static_displacement"][g],
+                                                                      rel=1e-3)  # (peaks sampled at each run's own step)
+    assert abs(ok["girder_max_static_displacement"][g]) < 16.76 * IMPLAUSIBLE_DEFLECTION_FRACTION
+    assert abs(soft["girder_max_static_displacement"][g]) > 16.76 * IMPLAUSIBLE_DEFLECTION_FRACTION
+    codes = [f["code"] for f in soft["flags"]]
+    assert codes[0] == "implausible_deflection"
+    assert not {"airborne_wheels", "coarse_step", "unresolved_modes"} & set(codes)  # nothing else marks the line
+    assert soft_line.rstrip().endswith("!)") and not ok_line.rstrip().endswith("!)")

@@ -29,7 +29,8 @@ Thresholds (documented in docs/scenario.md):
   under a moving load) more than ``STRAIN_MODE_TOLERANCE`` (1 %) away from the exact static strain
   c/EI times the static moment of the full stiffness (the moment's mode-acceleration static part),
   where the bridge offers the moment at the point (``strain_convergence_flags``, code ``strain_not_converged``;
-  simply supported and continuous beams, not girder decks: ``vbikit.analysis.response.exact_static_strain_peak``): the Yang–Yau
+  simply supported and continuous beams; on a girder deck's grid the exact strain is that of the full
+  stiffness's static solution: ``vbikit.analysis.response.exact_static_strain_peak``): the Yang–Yau
   beam with 10 modes reads 20.32 µε for the exact 21.18 µε (−4.0 %), with 50 modes 21.01 µε (−0.8 %);
 * an impact factor whose static reference is small: a static peak below ``SMALL_STATIC_FRACTION``
   (20 %) of the largest static peak of the same quantity on the bridge (a lightly loaded girder, a
@@ -43,7 +44,10 @@ Thresholds (documented in docs/scenario.md):
   bridges are designed to live-load deflections of L/800 to L/300 (AASHTO LRFD 2.5.2.6.2: L/800, L/1000
   with pedestrians; Eurocode practice about L/300 to L/600), so L/100 under one vehicle lies far beyond
   any real bridge and almost always means a unit mistake in the stiffness or mass (EI in kN m² instead
-  of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).
+  of N m² reads deflections 1000 times too large: a 4.5 m static deflection on a 20 m span).  Study
+  and traffic datasets apply the same rule to every crossing or event
+  (``implausible_deflection_dataset_flags``; the threshold and the words are these), their
+  ``warnings`` and ``flag_codes`` attributes from ``dataset_flag_attrs``.
 
 * railway sweeps (``vbikit.rail``, docs/railway.md): an HSLM train outside its range of application
   (``hslm_range``), fewer modes than EN 1990 A2.4.4.2.1 requires (``too_few_modes``), and a governing
@@ -56,7 +60,7 @@ reports print ``NEGATIVE_IM_NOTE`` beside it.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, replace
-from typing import Any, Iterable, Mapping, Sequence
+from typing import Any, Callable, Iterable, Mapping, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -505,24 +509,30 @@ def airborne_flags(result: CrossingResult) -> list[Flag]:
 
 
 def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,
-                             where: str = "", point: str | None = None) -> list[Flag]:
+                             where: str = "", point: str | None = None, deck: bool = False) -> list[Flag]:
     """A flag when the static strain peak of the modes ``modal_static_peak`` differs from the exact
     one ``exact_static_peak`` (None: not known; nothing) by more than ``STRAIN_MODE_TOLERANCE``: the
     strain and its IM (ε_dyn / ε_st − 1) are not converged in the ``n_modes`` modes (``where``: the
-    point in words, ``point``: its name)."""
+    point in words, ``point``: its name).  ``deck``: a girder deck's grid, whose exact strain is that
+    of the full stiffness's static solution and whose modes converge to it slowly and not
+    monotonically (``vbikit.analysis.response.exact_static_strain_peak``): the advice names that."""
     if exact_static_peak is None or not exact_static_peak:
         return []
     err = (float(modal_static_peak) - float(exact_static_peak)) / abs(float(exact_static_peak))
     if abs(err) <= STRAIN_MODE_TOLERANCE:
         return []
+    reference, advice = (
+        ("the strain of the grid's full-stiffness static solution",
+         "on a girder deck the modes' strain converges slowly and not monotonically (more modes can move it further "
+         "off before hundreds of modes bring it in), so use the deflection's or the moment's IM") if deck else
+        ("c/EI times the static moment of the full stiffness", "use more modes (bridge.n_modes) or the moment's IM"))
     return [Flag("strain_not_converged",
                  f"strain not converged in the modes{f' at {where}' if where else ''}: the static strain peak of the "
                  f"{n_modes} modes, {float(modal_static_peak) * 1e6:.4g} µε, is {err:+.1%} off the exact "
-                 f"{float(exact_static_peak) * 1e6:.4g} µε (c/EI times the static moment of the full stiffness; flagged "
-                 f"beyond {STRAIN_MODE_TOLERANCE:.0%}): strain sums the modes' curvatures, which converge slowly near a "
-                 "moving load, so the strain and the strain IM are not reliable; use more modes (bridge.n_modes) or the "
-                 "moment's IM", output="strain_impact_factor", subject=where or None, point=point, value=err,
-                 threshold=STRAIN_MODE_TOLERANCE)]
+                 f"{float(exact_static_peak) * 1e6:.4g} µε ({reference}; flagged beyond {STRAIN_MODE_TOLERANCE:.0%}): "
+                 "strain sums the modes' curvatures, which converge slowly near a moving load, so the strain and the "
+                 f"strain IM are not reliable; {advice}", output="strain_impact_factor", subject=where or None,
+                 point=point, value=err, threshold=STRAIN_MODE_TOLERANCE)]
 
 
 def small_static_mask(static_peaks: ArrayLike, axis: int = -1, fraction: float = SMALL_STATIC_FRACTION
@@ -571,6 +581,27 @@ def small_static_flags(labels: Sequence[str], static_peaks: Sequence[float], imp
             if flag]
 
 
+#: what an implausible static deflection asks the user to check (the single run's and the populations' words)
+IMPLAUSIBLE_DEFLECTION_ADVICE = ("check the units of the bridge's stiffness (EI in N m², E in Pa, I in m⁴) and mass "
+                                 "(kg/m)")
+
+
+def implausible_deflection_share(static_peak: ArrayLike, span: ArrayLike) -> NDArray[np.float64]:
+    """|static deflection peak| [m] / the longest span [m], elementwise: the measure that
+    ``implausible_deflection_flags`` and ``implausible_deflection_dataset_flags`` compare with
+    ``IMPLAUSIBLE_DEFLECTION_FRACTION`` (NaN stays NaN)."""
+    return np.abs(np.asarray(static_peak, float)) / np.asarray(span, float)
+
+
+def _implausible_words(peak: float, span: float, fraction: float) -> str:
+    """"static deflection 4.5 m on a 20 m span (L/4.44) is not plausible …: check the units …" — the
+    one wording of an implausible deflection (``implausible_deflection_flags`` and the datasets')."""
+    share = float(implausible_deflection_share(peak, span))
+    return (f"static deflection {abs(float(peak)):.3g} m on a {float(span):g} m span (L/{1 / share:.3g}) is not "
+            f"plausible for a bridge under this load (flagged above L/{1 / fraction:g}; highway bridges are designed "
+            f"to L/800–L/300): {IMPLAUSIBLE_DEFLECTION_ADVICE}")
+
+
 def implausible_deflection_flags(span: float, static_peaks: Sequence[tuple[str, float, int | None, str | None]],
                                  fraction: float = IMPLAUSIBLE_DEFLECTION_FRACTION) -> list[Flag]:
     """One flag for the run when the largest static deflection peak [m] among ``static_peaks`` (label:
@@ -580,15 +611,63 @@ def implausible_deflection_flags(span: float, static_peaks: Sequence[tuple[str, 
     if not static_peaks:
         return []
     label, peak, girder, point = max(static_peaks, key=lambda s: abs(float(s[1])))
-    share = abs(float(peak)) / float(span)
+    share = float(implausible_deflection_share(peak, span))
     if not share > fraction:
         return []
     return [Flag("implausible_deflection",
-                 f"{label}: static deflection {abs(float(peak)):.3g} m on a {float(span):g} m span (L/{1 / share:.3g}) is "
-                 f"not plausible for a bridge under this load (flagged above L/{1 / fraction:g}; highway bridges are "
-                 "designed to L/800–L/300): check the units of the bridge's stiffness (EI in N m², E in Pa, I in m⁴) "
-                 "and mass (kg/m); every result of this run scales with them",
+                 f"{label}: {_implausible_words(peak, span, fraction)}; every result of this run scales with them",
                  output="impact_factor", subject=label, girder=girder, point=point, value=share, threshold=fraction)]
+
+
+def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLike, names: Sequence[str] | None = None,
+                                         unit: str = "crossing",
+                                         describe: Callable[[tuple[int, ...]], str] | None = None,
+                                         fraction: float = IMPLAUSIBLE_DEFLECTION_FRACTION) -> list[Flag]:
+    """The implausible-deflection rule (``implausible_deflection_flags``) for a dataset of many
+    crossings (a study's grid, a traffic stream's events): ``static_peaks`` (..., n_points) the
+    static deflection peaks [m] of the response points ``names`` in every crossing (``names`` None:
+    one unnamed point, and ``static_peaks`` may have the shape of ``spans``), ``spans`` (...) each
+    crossing's longest span [m] (NaN: not known, not judged); ``unit``: what a crossing is called
+    ("crossing", "event"); ``describe``: the words naming a crossing by its index into ``spans``
+    (default: "crossing 12", the flat index).  One flag when any crossing's largest peak exceeds
+    ``fraction`` of its span: how many crossings, the largest as L/n, where, and the units to check;
+    value: that largest share of the span."""
+    st = np.asarray(static_peaks, float)
+    spans = np.asarray(spans, float)
+    if st.shape == spans.shape:
+        st = st[..., None]
+    flat = st.reshape(-1, st.shape[-1])
+    share = implausible_deflection_share(flat, spans.reshape(-1, 1))
+    per_crossing = np.max(np.where(np.isnan(share), -np.inf, share), axis=1, initial=-np.inf)
+    flagged = per_crossing > fraction
+    if not flagged.any():
+        return []
+    k = int(np.argmax(per_crossing))
+    p = int(np.nanargmax(share[k]))
+    point = None if names is None else str(names[p])
+    where = f"point {point}" if point is not None else "the response point"
+    crossing = describe(tuple(int(i) for i in np.unravel_index(k, spans.shape))) if describe else f"{unit} {k}"
+    return [Flag("implausible_deflection",
+                 f"implausible static deflection in {int(flagged.sum())} of {flagged.size} {unit}s; the largest, at "
+                 f"{where} in {crossing}: {_implausible_words(flat[k, p], spans.reshape(-1)[k], fraction)}; every "
+                 f"result of those {unit}s scales with them", output="impact_factor", subject=where, point=point,
+                 value=float(per_crossing[k]), threshold=fraction)]
+
+
+def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[str]] | None = None) -> dict[str, str]:
+    """A population dataset's attributes from its ``flags`` and its ``warnings`` without a record
+    (flag code -> sentences, e.g. ``small_static_dataset_warnings``'s): ``warnings``, every message
+    joined by "; " (a flag of ``LEADING_CODES`` first, as ``add_flags`` orders a summary), and
+    ``flag_codes``, the codes, comma-separated, each once; neither when there is nothing to say."""
+    summary: dict[str, Any] = {}
+    add_flags(summary, flags)
+    texts, codes = list(summary.get("warnings", [])), [f.code for f in flags]
+    for code, sentences in (warnings or {}).items():
+        _check_code(code)
+        texts += [w for w in sentences if w not in texts]
+        codes += [code] if sentences else []
+    codes = list(dict.fromkeys(codes))
+    return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": ",".join(codes)} if codes else {})
 
 
 def effect_static_flags(effects: Sequence[tuple[str, str, str, float, float]]) -> list[Flag]:

@@ -267,27 +267,34 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
 
 
 def exact_static_strain_peak(result: CrossingResult, response: PointResponse) -> float | None:
-    """The exact static strain peak at ``response``'s point [-]: c/EI times the static moment of the
-    full stiffness there (the static part of the moment's mode-acceleration estimate,
-    ``vbikit.bridge.effects``), with c/EI the ratio ε_i / r_i of every mode's strain to its moment —
-    on a beam (``lateral_invariant``: no lateral dimension) whatever the point's y —
-    None where the bridge offers no moment at the point (no load effects, a point off the girder
-    lines of a deck, a support) or the ratio is not the same for every mode (strain not c/EI times
-    the moment there).  A continuous beam gives c/EI of its section (``ContinuousBeam.strain_per_moment``):
-    its modes' strain is c times the Hermite elements' curvature and their moment comes from
-    equilibrium, which differ by up to 0.5 % over the 12 modes of the three-span example, yet the
-    modes' static strain converges to c/EI times the full-stiffness moment, not monotonically (that
-    example at x = 10 m, smooth road, point tires: within 1 % with 12 modes, −1.5 % with 16, within 1 %
-    with 64; tests/cli/test_airborne_and_strain_flags.py).
-    Beams only: on a girder deck the modes' static strain does not converge to
-    c/EI times the full-stiffness moment (the 3D Bridge 2 example: 76.21, 75.67, 73.35 µε with 20, 40,
-    100 modes against 75.92; a grillage girder's strain is read from the element, its moment from the
-    full model), so a comparison would flag well-converged runs and advise more modes that move the
-    strain further off; None there."""
+    """The exact static strain peak at ``response``'s point [-], None where the bridge offers none.
+
+    On a beam: c/EI times the static moment of the full stiffness there (the static part of the
+    moment's mode-acceleration estimate, ``vbikit.bridge.effects``), with c/EI the ratio ε_i / r_i of
+    every mode's strain to its moment — whatever the point's y (``lateral_invariant``: no lateral
+    dimension) — None where the bridge offers no moment at the point (no load effects, a support) or
+    the ratio is not the same for every mode (strain not c/EI times the moment there).  A continuous
+    beam gives c/EI of its section (``ContinuousBeam.strain_per_moment``): its modes' strain is c
+    times the Hermite elements' curvature and their moment comes from equilibrium, which differ by up
+    to 0.5 % over the 12 modes of the three-span example, yet the modes' static strain converges to
+    c/EI times the full-stiffness moment, not monotonically (that example at x = 10 m, smooth road,
+    point tires: within 1 % with 12 modes, −1.5 % with 16, within 1 % with 64;
+    tests/cli/test_airborne_and_strain_flags.py).
+
+    On a girder deck with a grid (``strain_influence``: the slab-on-girder grillage): the strain of
+    the full stiffness's static solution, read as the modes' strain is read (c_g ∂²w/∂x² of the girder
+    lines, ``vbikit.bridge.deck_effects.deck_strain_influence``) — not c/EI times the girder's moment,
+    which the element force recovery gives and the modes' element curvature does not converge to
+    (Bridge 2: 75.92 µε against the modes' 76.21, 75.67, 73.35 µε with 20, 40, 100 modes).  The
+    modes' strain does converge to this one, slowly and not monotonically (Bridge 2, Girder 4 at
+    midspan, HS20-44 on point tires, smooth road, exact 77.11 µε: −5.6 % with 10 modes, −1.2 % with
+    20, −1.9 % with 40, −4.9 % with 100, −1.8 % with 200, −0.4 % with 400 of the grid's 515)."""
     from vbikit.analysis.effects import load_effect_responses, supports_load_effects
 
     bridge = result.crossing.bridge
-    if not supports_load_effects(bridge) or isinstance(bridge, GirderDeck):
+    if isinstance(bridge, GirderDeck):
+        return _deck_static_strain_peak(result, response)
+    if not supports_load_effects(bridge):
         return None
     if not bridge.lateral_invariant and abs(response.y - float(bridge.default_response_y)) > 1e-9:
         return None  # a point off the line the moment is read on; a beam has no lateral dimension: any y is its line
@@ -311,14 +318,33 @@ def exact_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     return float(static[np.argmax(np.abs(static))])
 
 
+def _deck_static_strain_peak(result: CrossingResult, response: PointResponse) -> float | None:
+    """``exact_static_strain_peak`` on a girder deck: the static sum of the strain's influence
+    function (``strain_influence``) over the moving static wheel loads, as a load effect's static part
+    is summed (``load_effect_responses``; the strain carried as a sagging moment's sign: bottom-fibre
+    tension positive); None for a deck without a grid (imported modes)."""
+    from vbikit.analysis.effects import load_effect_responses
+    from vbikit.bridge.effects import LoadEffect
+
+    bridge = result.crossing.bridge
+    make = getattr(bridge, "strain_influence", None)
+    if make is None:
+        return None
+    strain = LoadEffect("moment", response.x, point_shapes(bridge, response.x, response.y)[1],
+                        make(response.x, response.y), float(bridge.span))
+    static = load_effect_responses(result, [strain], check_step=False)[0].static
+    return float(static[np.argmax(np.abs(static))])
+
+
 def strain_warnings(result: CrossingResult, response: PointResponse) -> list[Flag]:
     """The strain-convergence flag (``vbikit.analysis.checks.strain_convergence_flags``) of the
     headline point (``point_name(1)``): its static strain peak from the modes against ``exact_static_strain_peak``."""
+    bridge = result.crossing.bridge
     return strain_convergence_flags(response.strain_impact.static_peak, exact_static_strain_peak(result, response),
-                                    int(result.crossing.bridge.omega.size),
-                                    f"x = {response.x:.3f} m" + ("" if getattr(result.crossing.bridge, "lateral_invariant", False)
+                                    int(bridge.omega.size),
+                                    f"x = {response.x:.3f} m" + ("" if getattr(bridge, "lateral_invariant", False)
                                                                  else f", y = {response.y:.3f} m"),  # a beam has no y
-                                    point_name(1))
+                                    point_name(1), deck=isinstance(bridge, GirderDeck))
 
 
 def static_reference_warnings(girders: list[PointResponse], points: list[dict[str, object]]) -> list[Flag]:

@@ -42,7 +42,7 @@ from vbikit._kept import Kept
 from vbikit.bridge.base import GirderDeck
 from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, TabulatedInfluence, kept_effect
 from vbikit.bridge.elements import beam_element_stiffness
-from vbikit.bridge.nodal import DofMap, NodalModes, hermite_basis, snap_to_stations
+from vbikit.bridge.nodal import DofMap, NodalModes, girder_line_strain, hermite_basis, snap_to_stations
 
 
 class DeckModel(GirderDeck, Protocol):
@@ -273,6 +273,26 @@ def _field(bridge: DeckModel, g: NDArray[np.float64], fixed_dof: Optional[int] =
         v[free] = lu.solve(np.asarray(K[free][:, [fixed_dof]].todense()).ravel())
         v[fixed_dof] = -1.0
     return v
+
+
+def deck_strain_influence(bridge: DeckModel, x: float, y: float) -> DeckInfluence:
+    """The influence function of the girder bottom-fibre strain at the point (x, y) [m] — ε = c_g ∂²w/∂x²
+    on the girder lines, linear between them (``girder_line_strain``, as ``strain_shapes`` reads the
+    modes) — under a unit upward force at any (x_p, y_p), from the full stiffness: ε = gᵀu with u = K⁻¹F
+    and g the strain's row over the DOFs, so I = vᵀF(x_p, y_p) with v = K⁻¹g (one sparse solve with the
+    deck's kept factor, as a reaction's field; Maxwell–Betti).  The exact static strain of the grid,
+    which the modes' static strain reaches only with every mode (Σ φᵢφᵢᵀ/ωᵢ² = K⁻¹ over the free DOFs,
+    mass-normalised modes); a point off the deck has g = 0."""
+    dofs = bridge.dof_map
+    xi = float(snap_to_stations(np.array([x - y * dofs.skew_tan]), dofs.stations)[0])
+    e = int(np.clip(np.searchsorted(dofs.stations, xi, side="right") - 1, 0, dofs.n_elements - 1))
+    stations = range(max(e - 1, 0), min(e + 3, dofs.n_stations))  # the element's nodes and their neighbours
+    cols = np.array([dofs.dof(j, i, k) for j in range(dofs.n_lines) for i in stations for k in range(3)])
+    unit = np.zeros((dofs.n_dof, cols.size))
+    unit[cols, np.arange(cols.size)] = 1.0  # strain is local: no other DOF enters it
+    g = np.zeros(dofs.n_dof)
+    g[cols] = girder_line_strain(dofs.nodal(unit), bridge.line_properties["c"], x, y)[0]
+    return DeckInfluence(bridge, _field(bridge, g))
 
 
 def deck_load_effect(bridge: DeckModel, kind: str, x: Optional[float] = None,

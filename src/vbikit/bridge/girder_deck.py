@@ -72,7 +72,7 @@ from numpy.typing import ArrayLike, NDArray
 from vbikit.bridge import mode_cache
 from vbikit.bridge.base import DEFAULT_DAMPING_RATIO, ModalBridge
 from vbikit.bridge.damage import Damage, active_damage, stiffness_factor
-from vbikit.bridge.deck_effects import deck_load_effect, load_weights
+from vbikit.bridge.deck_effects import DeckInfluence, deck_load_effect, deck_strain_influence, load_weights
 from vbikit.bridge.effects import LoadEffect
 from vbikit.bridge.eigen import lowest_modes
 from vbikit.bridge.elements import (
@@ -600,6 +600,12 @@ class SlabOnGirderBridge(ModalBridge):
         u = np.zeros(K.shape[0])
         u[free] = spla.spsolve(K[free][:, free].tocsc(), F[free])
         return self.dof_map.nodal(u[:, None])
+
+    def strain_influence(self, x: float, y: float) -> DeckInfluence:
+        """Influence function of the girder strain at (x, y) [m] (``strain_shapes``' strain) from the
+        full stiffness: the exact static strain the modes converge to
+        (``vbikit.bridge.deck_effects.deck_strain_influence``)."""
+        return deck_strain_influence(self, float(x), float(y))
 
     def load_effect(self, kind: str, x: Optional[float] = None, support: Optional[int] = None,
                     girder: Optional[int] = None) -> LoadEffect:

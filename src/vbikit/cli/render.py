@@ -115,7 +115,7 @@ def print_summary(run: Run) -> None:
             typer.echo(f"  {'':<20} ! unreliable: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
                        "of the girders and points (a lightly loaded girder); not a design value — see the warning")
         typer.echo(f"  governing girder     {s['governing_girder']} (IM = {s['governing_girder_impact_factor']:.4f}"
-                   f"{'!' if airborne or coarse else ''})")
+                   f"{'!' if doubt else ''})")
     print_codes(s["design_code_allowances"], "deflection IM beside", several=bool(s.get("vehicles")))
     print_load_effects(s)
     print_negative_note(negative_impact(s))

@@ -55,6 +55,15 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
     return ds
 
 
+def warn_dataset(ds: Any) -> None:
+    """Print a study's or stream's dataset warnings (its ``warnings`` attribute: the checks over every
+    crossing, ``vbikit.analysis.checks.dataset_flag_attrs``) on stderr, as one line (not with ``-q``)."""
+    from vbikit.cli.guard import warn
+
+    if ds.attrs.get("warnings"):
+        warn([str(ds.attrs["warnings"])])
+
+
 _YES = typer.Option(False, "--yes", help="Run a study of more than 1e6 crossings (refused without it).")
 _YES_VALIDATE = typer.Option(False, "--yes", help="Accept a study of more than 1e6 crossings, as `study run --yes` "
                              "would (without it, such a study fails the check).")
@@ -100,6 +109,7 @@ def run_cmd(
     study = guard(lambda: load_study(study_file))
     _check(study, yes, max_memory, max_steps)
     ds = run_job(study, out, workers, scheduler, progress)
+    warn_dataset(ds)
     if "impact_factor" not in ds:  # the study's outputs key left it out
         typer.echo(f"outputs stored: {', '.join(study.output_names)}")
         return
@@ -162,6 +172,7 @@ def _paper(*figs: str) -> Callable[..., None]:
         for fig, study in zip(figs, studies):
             out = out_dir / f"paper-{fig}{suffix}.nc"
             ds = run_job(study, out, workers, scheduler, progress)
+            warn_dataset(ds)
             png = guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
             typer.echo(f"figure {png}")
 

@@ -8,7 +8,7 @@ from typing import Optional
 import typer
 
 from vbikit.cli.guard import guard, out_file_option, warn
-from vbikit.cli.study import run_job
+from vbikit.cli.study import run_job, warn_dataset
 from vbikit.errors import OptionError
 
 
@@ -63,6 +63,7 @@ def traffic_cmd(
     typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
+    warn_dataset(ds)
     a = ds.attrs
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
     typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f} (one vehicle {a['im_mean_single']:.4f}, "

@@ -20,6 +20,11 @@ from vbikit.solve.batch import BatchSolver
 from vbikit.solve.result import check_finite
 from vbikit.study.spec import Study
 
+#: a part's array of each crossing's longest span [m] (not an output: the dataset's implausible-deflection
+#: check, ``vbikit.analysis.checks.implausible_deflection_dataset_flags``, reads it)
+LONGEST_SPAN = "longest_span"
+
+
 def point_names(base: dict) -> list[str] | None:
     """The names of a base scenario's [[response.points]] (None for the [response] shorthand: the
     dataset then has no ``point`` dimension)."""
@@ -72,7 +77,8 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     default the whole catalogue [`vbikit.outputs`][vbikit.outputs]; only these are reduced, and load
     effects only of the kinds they read), an array of length
     len(batch) (per-crossing outputs) or (len(batch), n_points) (per-point outputs, the base
-    scenario's response points in order); ``index`` (len(batch), n_axes) and, if the study
+    scenario's response points in order); ``index`` (len(batch), n_axes), ``LONGEST_SPAN`` (len(batch),) [m]
+    (the batch's bridge's longest span, the same for every crossing of a batch) and, if the study
     stores histories, ``displacement_history`` (len(batch), n_t) [m] at the first point (rows
     padded with NaN to the longest)."""
     dicts = [study.scenario_dict(idx) for idx in batch]
@@ -107,6 +113,7 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     rows = solver.run_many(roads, reduce=reduce, threads=threads)
     out = stack_outputs(rows, names)
     out["index"] = np.array(batch, np.int64).reshape(len(batch), len(study.axes))
+    out[LONGEST_SPAN] = np.full(len(batch), max(built.crossing.bridge.span_lengths))  # one bridge a batch
     if study.histories:
         n_t = max(r[2].size for r in rows)
         hist = np.full((len(rows), n_t), np.nan)

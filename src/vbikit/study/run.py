@@ -47,7 +47,7 @@ from numpy.typing import NDArray
 from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.scenario.schema import key_unit
 from vbikit.outputs import OUTPUTS, outputs
-from vbikit.study.compute import point_names, run_batch
+from vbikit.study.compute import LONGEST_SPAN, point_names, run_batch
 from vbikit.study.spec import Study, StudyError, cf_key_unit as _cf_unit
 from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
 from vbikit.study.workers import dask_client, local_pool, shutdown_workers
@@ -97,6 +97,8 @@ def _content_problem(part: Any, k: int, batch: tuple, checksum: str, job) -> Opt
     problem = output_problem(part, len(batch), len(point_names(job.base) or [None]), job.output_names)
     if problem:
         return problem
+    if LONGEST_SPAN not in part or part[LONGEST_SPAN].shape != (len(batch),):
+        return f"it holds no {LONGEST_SPAN} of its crossings (written by another vbikit version)"
     if "n_steps" in job.output_names and (not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1)):
         return "its step counts are not valid"
     return None
@@ -395,6 +397,31 @@ def _open_complete(out: Path, study: Study):
     return None
 
 
+def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[str, NDArray],
+                     spans: NDArray) -> dict[str, str]:
+    """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``):
+    an implausible static deflection in any crossing (``implausible_deflection_dataset_flags``: its
+    peak ``max_static_displacement`` against the crossing's longest span ``spans`` [m]) and the response
+    points whose impact factor rests on a small static reference (``small_static_dataset_warnings``);
+    both need ``max_static_displacement`` among the study's outputs, the second ``impact_factor`` and
+    several points too."""
+    from vbikit.analysis.checks import (dataset_flag_attrs, implausible_deflection_dataset_flags,
+                                        small_static_dataset_warnings)
+
+    if "max_static_displacement" not in data:
+        return {}
+    static = data["max_static_displacement"]
+
+    def describe(index: tuple[int, ...]) -> str:
+        return "the crossing at " + ", ".join(f"{a.key} = {a.scenario_value(i)}" for a, i in zip(study.axes, index)) \
+            if study.axes else "the crossing"
+
+    flags = implausible_deflection_dataset_flags(static, spans, names, describe=describe)
+    small = (small_static_dataset_warnings(names, static)
+             if names is not None and len(names) > 1 and "impact_factor" in data else [])
+    return dataset_flag_attrs(flags, {"small_static": small})
+
+
 def assemble(study: Study, parts: Path):
     """The study Dataset from the finished-batch files in ``parts`` (all must be present)."""
     import xarray as xr
@@ -410,6 +437,7 @@ def assemble(study: Study, parts: Path):
     data = {o.name: np.full(shape + ((n_points,) if o.scope == "point" else ()), np.nan)
             for o in outputs(names=selected)}
     hist_parts = []
+    spans = np.full(shape, np.nan)  # each crossing's longest span [m]
     sums = part_checksums(parts)
     for k in range(len(batches)):
         path = part_path(parts, k)
@@ -424,6 +452,10 @@ def assemble(study: Study, parts: Path):
                 data[name][idx] = values
             else:  # a study without axes: one crossing, 0-d variables
                 data[name][()] = values[0]
+        if shape:
+            spans[idx] = part[LONGEST_SPAN]
+        else:
+            spans[()] = part[LONGEST_SPAN][0]
         if study.histories:
             hist_parts.append((idx, part["displacement_history"]))
     variables = output_variables(data, dims, names, selected)
@@ -458,10 +490,5 @@ def assemble(study: Study, parts: Path):
         "axes": json.dumps({a.name: a.key for a in study.axes}),
         "Conventions": "CF-1.8",
     }
-    if names is not None and len(names) > 1 and {"impact_factor", "max_static_displacement"} <= set(data):
-        from vbikit.analysis.checks import small_static_dataset_warnings
-
-        flagged = small_static_dataset_warnings(names, data["max_static_displacement"])
-        if flagged:  # in words, as a random run's dataset carries its warnings
-            attrs["warnings"] = "; ".join(flagged)
+    attrs |= study_flag_attrs(study, names, data, spans)
     return xr.Dataset(variables, coords=coords, attrs=attrs)

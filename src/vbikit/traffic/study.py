@@ -296,8 +296,19 @@ class TrafficStudy:
             "vbikit_version": __version__,
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
+            **self.flag_attrs(ev["max_static_displacement"]),
         }
         return ds
+
+    def flag_attrs(self, static_peaks: NDArray) -> dict[str, str]:
+        """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
+        when an event's static deflection peak ``static_peaks`` (events, points) [m] is implausible for
+        the bridge's longest span (``implausible_deflection_dataset_flags``); none otherwise."""
+        from vbikit.analysis.checks import dataset_flag_attrs, implausible_deflection_dataset_flags
+
+        span = max(self.context().template.crossing.bridge.span_lengths)
+        spans = np.full(static_peaks.shape[0], float(span))
+        return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event"))
 
 
 def _gross(record: VehicleRecord) -> float:
