@@ -369,16 +369,16 @@ def effect_sign_flags(responses: Sequence[LoadEffectResponse]) -> list[Any]:
             continue
         opp, main, other = r.opposite, r.sense(r.direction), r.sense(-r.direction)
         both = (f"{main} {_kilo(im.static_peak, e.units)} static / {_kilo(im.dynamic_peak, e.units)} dynamic "
-                f"(IM {im.impact_factor:.3g}) and {other} ")
+                f"(IM {im.impact_factor:.3g})")
         if opp is not None:
-            both += (f"{_kilo(opp.static_peak, e.units)} static / {_kilo(opp.dynamic_peak, e.units)} dynamic "
-                     f"(IM {opp.impact_factor:.3g}, {r.opposite_share:.0%} of the {main} static peak; the opposite_* "
-                     "keys)")
+            both += (f" and {other} {_kilo(opp.static_peak, e.units)} static / {_kilo(opp.dynamic_peak, e.units)} "
+                     f"dynamic (IM {opp.impact_factor:.3g}, {r.opposite_share:.0%} of the {main} static peak; the "
+                     "opposite_* keys)")
         elif r.opposite_static_peak == 0.0:
-            both = both.removesuffix(f" and {other} ") + f", never {other} under this vehicle"
+            both += f", never {other} under this vehicle"
         else:
-            both += (f"{_kilo(r.opposite_static_peak, e.units)} static ({r.opposite_share:.0%} of the {main} static "
-                     f"peak, at most {SMALL_STATIC_FRACTION:.0%}: negligible, not reported)")
+            both += (f" and {other} {_kilo(r.opposite_static_peak, e.units)} static ({r.opposite_share:.0%} of the "
+                     f"{main} static peak, at most {SMALL_STATIC_FRACTION:.0%}: negligible, not reported)")
         out.append(Flag("sagging_over_pier",
                         f"{e.label}: over an interior support the largest static moment is sagging, not hogging "
                         f"— the support settles under the load (a soft support, bridge.support_stiffness) — so "
