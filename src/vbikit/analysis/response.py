@@ -322,16 +322,18 @@ def _deck_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     """``exact_static_strain_peak`` on a girder deck: the static sum of the strain's influence
     function (``strain_influence``) over the moving static wheel loads, as a load effect's static part
     is summed (``load_effect_responses``; the strain carried as a sagging moment's sign: bottom-fibre
-    tension positive); None for a deck without a grid (imported modes)."""
+    tension positive); None for a deck without a grid (imported modes).  The strain's effect is kept
+    with the bridge (``kept_effect``): a kept bridge's later runs reuse its solve and wheel-line tables."""
     from vbikit.analysis.effects import load_effect_responses
-    from vbikit.bridge.effects import LoadEffect
+    from vbikit.bridge.effects import LoadEffect, kept_effect
 
     bridge = result.crossing.bridge
     make = getattr(bridge, "strain_influence", None)
     if make is None:
         return None
-    strain = LoadEffect("moment", response.x, point_shapes(bridge, response.x, response.y)[1],
-                        make(response.x, response.y), float(bridge.span))
+    x, y = float(response.x), float(response.y)
+    strain = kept_effect(bridge, ("exact static strain", x, y), lambda: LoadEffect(
+        "moment", x, point_shapes(bridge, x, y)[1], make(x, y), float(bridge.span)))
     static = load_effect_responses(result, [strain], check_step=False)[0].static
     return float(static[np.argmax(np.abs(static))])
 
