@@ -84,8 +84,8 @@ def print_summary(run: Run) -> None:
         typer.echo(f"  {'':<20} ! unreliable: the given crossing.dt is too coarse for this crossing (leave it out for "
                    "the automatic step) — see the warning")
     if strain_off:
-        typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes (use more modes) "
-                   "— see the warning")
+        typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes — see the warning "
+                   "(what to do: more modes on a beam, the deflection's or moment's IM on a girder deck)")
     realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
