@@ -94,12 +94,15 @@ def test_strain_not_converged_in_ten_modes_is_flagged(tmp_path):
     assert "more modes" in flagged[0]
     line = _im_line(res.stdout)
     assert f"IM = {s['impact_factor']:.4f}  " in line and f"strain IM = {s['strain_impact_factor']:.4f}!" in line
-    assert "! unreliable strain IM" in res.stdout
+    assert "! unreliable strain and strain IM" in res.stdout
+    strain_line = next(x for x in res.stdout.splitlines() if x.strip().startswith("max strain"))
+    assert strain_line.count("µε!") == 2  # the strain peaks themselves are the modes' too
 
     res50, s50 = _run(text.replace("n_modes = 10", "n_modes = 50"), tmp_path)
     assert s50["max_static_strain"] / exact - 1 == pytest.approx(-0.008, abs=0.001)  # within 1 %: not flagged
     assert not any(f["code"] == "strain_not_converged" for f in s50["flags"])
     assert "!" not in _im_line(res50.stdout)
+    assert "µε!" not in res50.stdout
 
 
 def test_deck_strain_influence_is_the_full_stiffness_static_strain():

@@ -125,3 +125,13 @@ def test_the_traffic_command_prints_the_dataset_warning(tmp_path):
                               str(tmp_path / "t.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
     assert res.exit_code == 0, res.output
     assert "warning: implausible static deflection in 1 of 1 events" in res.output
+    stats = next(x for x in res.output.splitlines() if x.startswith("impact factor of the events"))
+    assert "mean" in stats and "!" in stats and "! not meaningful: implausible static deflections" in res.output
+    good = "\n".join(f"[{k}]\n" + "\n".join(f"{n} = {v!r}".replace("'", '"') for n, v in t.items())
+                     for k, t in _base(GOOD_EI).items() if k != "vehicle")
+    (tmp_path / "good.toml").write_text(good + "\n")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "good.toml"), "--out",
+                              str(tmp_path / "g.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    stats = next(x for x in res.output.splitlines() if x.startswith("impact factor of the events"))
+    assert "!" not in stats and "not meaningful" not in res.output and "implausible" not in res.output

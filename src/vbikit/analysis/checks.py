@@ -615,7 +615,7 @@ def implausible_deflection_flags(span: float, static_peaks: Sequence[tuple[str, 
     if not share > fraction:
         return []
     return [Flag("implausible_deflection",
-                 f"{label}: {_implausible_words(peak, span, fraction)}; every result of this run scales with them",
+                 f"{label}: {_implausible_words(peak, span, fraction)}; every result of this run depends on them",
                  output="impact_factor", subject=label, girder=girder, point=point, value=share, threshold=fraction)]
 
 
@@ -650,7 +650,7 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
     return [Flag("implausible_deflection",
                  f"implausible static deflection in {int(flagged.sum())} of {flagged.size} {unit}s; the largest, at "
                  f"{where} in {crossing}: {_implausible_words(flat[k, p], spans.reshape(-1)[k], fraction)}; every "
-                 f"result of those {unit}s scales with them", output="impact_factor", subject=where, point=point,
+                 f"result of those {unit}s depends on them", output="impact_factor", subject=where, point=point,
                  value=float(per_crossing[k]), threshold=fraction)]
 
 

@@ -61,10 +61,13 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m{girder}")
     typer.echo(f"  max displacement     dynamic {s['max_dynamic_displacement'] * 1e3:+.4f} mm, "
                f"static {s['max_static_displacement'] * 1e3:+.4f} mm")
-    typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε, static {s['max_static_strain'] * 1e6:+.3f} µε")
+    from vbikit.analysis.checks import find_flag, has_flag
+
+    strain_mark = "!" if has_flag(s, "strain_not_converged") else ""  # the modes' strain peaks are off too
+    typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
+               f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
-    from vbikit.analysis.checks import find_flag, has_flag
 
     # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
     airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
@@ -84,8 +87,8 @@ def print_summary(run: Run) -> None:
         typer.echo(f"  {'':<20} ! unreliable: the given crossing.dt is too coarse for this crossing (leave it out for "
                    "the automatic step) — see the warning")
     if strain_off:
-        typer.echo(f"  {'':<20} ! unreliable strain IM: the strain is not converged in the modes — see the warning "
-                   "(what to do: more modes on a beam, the deflection's or moment's IM on a girder deck)")
+        typer.echo(f"  {'':<20} ! unreliable strain and strain IM: the strain is not converged in the modes — see "
+                   "the warning (what to do: more modes on a beam, the deflection's or moment's IM on a girder deck)")
     realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"

@@ -28,7 +28,8 @@ def traffic_cmd(
     bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
     out: Path = out_file_option("--out", "Result dataset (NetCDF, .nc).", ...),
     lanes: Optional[str] = typer.Option(None, "--lanes", help="Lane centres y [m], comma-separated (lane 1 first); "
-                                        "default: two lanes at ∓ deck width/4 (y = 0 on a beam)."),
+                                        "default: two lanes at ∓ deck width/4 on a deck, one lane at y = 0 on a beam "
+                                        "(records with lane 2 on a beam need --lanes)."),
     road: Optional[str] = typer.Option(None, "--road", help="Road class (A…H, good/average/poor, none) instead of the scenario's."),
     seed: int = typer.Option(0, "--seed", min=0, help="Seed of the events' random roads."),
     batch_size: int = typer.Option(16, "--batch-size", min=1, help="Events per stored batch."),
@@ -66,8 +67,12 @@ def traffic_cmd(
     warn_dataset(ds)
     a = ds.attrs
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
-    typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f} (one vehicle {a['im_mean_single']:.4f}, "
+    doubt = "!" if "implausible_deflection" in str(a.get("flag_codes", "")).split(",") else ""
+    typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f}{doubt} (one vehicle {a['im_mean_single']:.4f}, "
                f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
+    if doubt:
+        typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
+                   "warning; no statistic of this stream is a result")
     if a["n_small_static_events"]:
         n_small, share = int(a["n_small_static_events"]), float(a["small_static_fraction"])
         typer.echo(f"events loading the point (static peak ≥ {share:.0%} of the stream's largest, "
