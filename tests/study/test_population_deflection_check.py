@@ -113,25 +113,25 @@ def test_the_dataset_rule_is_the_single_run_rule():
     assert dataset_flag_attrs([], {"small_static": []}) == {}
 
 
+def _traffic_cli(ei: float, tmp_path, name: str):
+    """``vbikit traffic`` of one moving force on the beam of flexural rigidity ``ei`` (a --bridge file):
+    the result and its line of IM statistics."""
+    bridge = "\n".join(f"[{k}]\n" + "\n".join(f"{n} = {v!r}".replace("'", '"') for n, v in t.items())
+                       for k, t in _base(ei).items() if k != "vehicle")
+    (tmp_path / f"{name}.toml").write_text(bridge + "\n")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / f"{name}.toml"), "--out",
+                              str(tmp_path / f"{name}.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    return res, next(x for x in res.output.splitlines() if x.startswith("impact factor of the events"))
+
+
 def test_the_traffic_command_prints_the_dataset_warning(tmp_path):
     from vbikit.traffic import write_records
 
     records = [VehicleRecord(time=0.0, direction="+x", speed=20.0, model="moving-force", lane=1, id="f1")]
     write_records(records, tmp_path / "r.csv")
-    bridge = "\n".join(f"[{k}]\n" + "\n".join(f"{n} = {v!r}".replace("'", '"') for n, v in t.items())
-                       for k, t in _base(BAD_EI).items() if k != "vehicle")
-    (tmp_path / "bad.toml").write_text(bridge + "\n")
-    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "bad.toml"), "--out",
-                              str(tmp_path / "t.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
-    assert res.exit_code == 0, res.output
+    res, stats = _traffic_cli(BAD_EI, tmp_path, "bad")
     assert "warning: implausible static deflection in 1 of 1 events" in res.output
-    stats = next(x for x in res.output.splitlines() if x.startswith("impact factor of the events"))
     assert "mean" in stats and "!" in stats and "! not meaningful: implausible static deflections" in res.output
-    good = "\n".join(f"[{k}]\n" + "\n".join(f"{n} = {v!r}".replace("'", '"') for n, v in t.items())
-                     for k, t in _base(GOOD_EI).items() if k != "vehicle")
-    (tmp_path / "good.toml").write_text(good + "\n")
-    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "good.toml"), "--out",
-                              str(tmp_path / "g.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
-    assert res.exit_code == 0, res.output
-    stats = next(x for x in res.output.splitlines() if x.startswith("impact factor of the events"))
+    res, stats = _traffic_cli(GOOD_EI, tmp_path, "good")
     assert "!" not in stats and "not meaningful" not in res.output and "implausible" not in res.output
