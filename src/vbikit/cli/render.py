@@ -183,9 +183,9 @@ def print_load_effects(s: dict[str, Any]) -> None:
         typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
                    f"  IM {e['impact_factor']:7.4f}   codes " + " / ".join(f"{c.get(k, float('nan')):.3f}" for k in keys))
         if e.get("opposite_impact_factor") is not None:  # both signs (vbikit.analysis.effects): the other extreme
-            typer.echo(f"    {'':<8} {e['opposite_sense'] + ', ' + e['governing'] + ' governs':<24} "
+            typer.echo(f"    {'':<8} {'and ' + e['opposite_sense']:<24} "
                        f"static {e['opposite_static_peak'] * unit:+10.2f}  dynamic {e['opposite_dynamic_peak'] * unit:+10.2f}"
-                       f"  IM {e['opposite_impact_factor']:7.4f}")
+                       f"  IM {e['opposite_impact_factor']:7.4f}   (the {e['governing']} dynamic peak governs)")
 
 
 def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:
