@@ -63,14 +63,13 @@ def print_summary(run: Run) -> None:
                f"static {s['max_static_displacement'] * 1e3:+.4f} mm")
     from vbikit.analysis.checks import find_flag, has_flag
 
-    strain_mark = "!" if has_flag(s, "strain_not_converged") else ""  # the modes' strain peaks are off too
+    # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
+    airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
+    strain_mark = "!" if strain_off else ""  # the modes' strain peaks are off too, not only their IM
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
-
-    # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
-    airborne, strain_off = has_flag(s, "airborne_wheels"), has_flag(s, "strain_not_converged")
     coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
     implausible = has_flag(s, "implausible_deflection")
     doubt = airborne or coarse or implausible
