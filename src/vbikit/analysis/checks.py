@@ -670,6 +670,13 @@ def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[st
     return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": ",".join(codes)} if codes else {})
 
 
+def dataset_has_flag(attrs: Mapping[str, Any], code: str) -> bool:
+    """Whether a population dataset's attributes (``dataset_flag_attrs``: ``flag_codes``,
+    comma-separated) carry ``code``."""
+    _check_code(code)
+    return code in str(attrs.get("flag_codes", "")).split(",")
+
+
 def effect_static_flags(effects: Sequence[tuple[str, str, str, float, float]]) -> list[Flag]:
     """The small-static rule (``small_static``) for load effects: ``effects`` as (kind, label, units,
     static peak, impact factor), each kind (moment, shear, reaction) judged against the largest static

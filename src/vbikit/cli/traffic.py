@@ -65,9 +65,11 @@ def traffic_cmd(
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     warn_dataset(ds)
+    from vbikit.analysis.checks import dataset_has_flag
+
     a = ds.attrs
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
-    doubt = "!" if "implausible_deflection" in str(a.get("flag_codes", "")).split(",") else ""
+    doubt = "!" if dataset_has_flag(a, "implausible_deflection") else ""
     typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f}{doubt} (one vehicle {a['im_mean_single']:.4f}, "
                f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
     if doubt:
