@@ -37,6 +37,9 @@ def main() -> None:
     p.add_argument("--single", type=int, default=30, help="one-truck events (default 30)")
     p.add_argument("--several", type=int, default=10, help="two-truck events (default 10)")
     p.add_argument("--timing", type=int, default=0, help="also time every N-th event at dt and 2 dt (default 0: no)")
+    p.add_argument("--road", default="B", help="ISO 8608 road class of the events (default B)")
+    p.add_argument("--tire", default="point", help="tire model of the events (default point)")
+    p.add_argument("--speed", type=float, default=0.0, help="every truck at this speed [km/h] (default: the stream's)")
     args = p.parse_args()
 
     import numpy as np
@@ -45,13 +48,22 @@ def main() -> None:
     from vbikit.analysis import point_response
     from vbikit.solve import simulate
     from vbikit.solve.plan import plan_run
+    from vbikit.solve.simulate import simulate_in_contact
     from vbikit.traffic.study import traffic_study
 
-    job = traffic_study(_stream(2000, 600.0), _base(0.01), batch_size=16)
+    base = _base(0.01)
+    base["road"]["class"] = args.road
+    base["tire"]["model"] = args.tire
+    records = _stream(2000, 600.0)
+    if args.speed:
+        records = [dataclasses.replace(r, speed=args.speed / 3.6) for r in records]
+    job = traffic_study(records, base, batch_size=16)
     ctx = job.context()
-    print(f"ΔIM = IM(exact, k dt) − IM(RK4, dt/8), dt the automatic step; k = {', '.join(f'{k:g}' for k in FACTORS)}")
+    print(f"class {args.road} road, {args.tire} tires; ΔIM = IM(exact, k dt) − IM(RK4, dt/8), dt the automatic step; "
+          f"k = {', '.join(f'{k:g}' for k in FACTORS)}; last column: simulate_in_contact (its step / dt, or 'again' "
+          f"where a contact opened or closed and it ran again at dt)")
     for size, count in ((1, args.single), (2, args.several)):
-        rows = []
+        rows, again = [], 0
         for e in [e for e in range(job.size) if len(job.events[e]) == size][:count]:
             crossing = ctx.template.with_vehicles(job.crossing(e).vehicles, *ctx.road(job.road_seed(e)))
             y = float(crossing.bridge.girder_y[3])
@@ -61,13 +73,18 @@ def main() -> None:
                 r = simulate(dataclasses.replace(crossing, dt=step, **({"integrator": integrator} if integrator else {})))
                 lost |= integrator is None and bool(np.any(r.wheel_forces <= 0.0))
                 ims.append(point_response(r, None, y).displacement_impact.impact_factor)
+            r, held = simulate_in_contact(crossing)
+            ims.append(point_response(r, None, y).displacement_impact.impact_factor)
+            again += not held
             rows.append([im - ims[0] for im in ims[1:]])
+            rule = f"{r.integration_dt / dt:.2f} dt" if held else "again"
             print(f"  event {e} ({size} truck{'s' if size > 1 else ''}, {3.6 * crossing.speed:.0f} km/h, dt {1e3 * dt:.3f} ms): "
-                  f"IM {ims[0]:.5f}; ΔIM " + ", ".join(f"{d:+.1e}" for d in rows[-1]) + ("; a wheel lost contact" if lost else ""),
-                  flush=True)
+                  f"IM {ims[0]:.5f}; ΔIM " + ", ".join(f"{d:+.1e}" for d in rows[-1]) + f" ({rule})"
+                  + ("; a wheel lost contact" if lost else ""), flush=True)
         a = np.abs(np.array(rows))
         print(f"{size} truck(s), {len(rows)} events: max |ΔIM| " + ", ".join(f"{x:.1e}" for x in a.max(axis=0))
-              + "; 95th percentile " + ", ".join(f"{x:.1e}" for x in np.percentile(a, 95, axis=0)))
+              + "; 95th percentile " + ", ".join(f"{x:.1e}" for x in np.percentile(a, 95, axis=0))
+              + f"; simulate_in_contact ran {again} of them again at dt")
     if args.timing:
         _timing(job, ctx, args.timing)
 
