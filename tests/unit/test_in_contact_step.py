@@ -1,6 +1,6 @@
 """The in-contact step of population events (``vbikit.solve.simulate.simulate_in_contact``): the
-exact integrator's road terms twice as long where no contact opens or closes, the automatic step
-where one does; the same run as ``simulate`` at the step it reports, and within the default's
+exact integrator's step 1.5 times as long, at whole road stations, where no contact opens or
+closes, the automatic step where one does; the same run as ``simulate`` at the step it reports, and within the default's
 accuracy of a converged RK4 run (the reference: RK4 at an eighth of the automatic step, another
 integrator; docs/verification.md states 5e-4 in IM for the automatic step)."""
 from __future__ import annotations
@@ -18,7 +18,7 @@ from vbikit.scenario.schema import parse_scenario
 from vbikit.solve import simulate
 from vbikit.solve.plan import plan_run
 from vbikit.solve.simulate import simulate_in_contact
-from vbikit.solve.timestep import IN_CONTACT_ROAD_FACTOR, in_contact_time_step
+from vbikit.solve.timestep import IN_CONTACT_FACTOR, in_contact_time_step
 
 #: the module (``vbikit.solve.simulate`` as an attribute is the function)
 simulate_module = importlib.import_module("vbikit.solve.simulate")
@@ -42,10 +42,23 @@ def test_a_run_that_keeps_contact_takes_the_longer_step_and_is_simulate_at_that_
     result, held = simulate_in_contact(crossing)
     assert held
     assert result.integration_dt == pytest.approx(in_contact_time_step(crossing), rel=1e-15)
-    # 110 km/h: 2 cm of road is 0.65 ms, 4 cm below T1/100 (1.37 ms): the road term governs, doubled
-    assert result.integration_dt == pytest.approx(IN_CONTACT_ROAD_FACTOR * automatic, rel=1e-12)
+    # 110 km/h: 2 cm of road is 0.65 ms, below T1/100 (1.37 ms): the road term governs; 1.5 times it
+    # is 3 cm of road, three whole stations
+    assert result.integration_dt == pytest.approx(IN_CONTACT_FACTOR * automatic, rel=1e-12)
+    assert result.integration_dt * crossing.max_speed == pytest.approx(0.03, rel=1e-12)
     assert np.all(result.wheel_forces[1:] > 0.0)
     _same(result, simulate(dataclasses.replace(crossing, dt=result.integration_dt)))
+
+
+def test_the_in_contact_step_passes_whole_road_stations():
+    """45 km/h on the 16.76 m beam: the automatic step is T1/100 = 1.369 ms (2 cm of road would be
+    1.6 ms); 1.5 times it passes 2.57 stations of 1 cm, so the in-contact step is two whole stations,
+    2 cm / 12.5 m/s = 1.6 ms — longer than the automatic step, shorter than 1.5 times it."""
+    crossing = _crossing("B", 45.0)
+    automatic = plan_run(crossing).dt
+    omega1 = crossing.bridge.omega.min()
+    assert automatic == pytest.approx(2 * np.pi / omega1 / 100, rel=1e-12) and automatic > 1.3e-3
+    assert in_contact_time_step(crossing) == pytest.approx(0.02 / 12.5, rel=1e-12)
 
 
 def test_a_run_where_a_wheel_loses_contact_runs_again_at_the_automatic_step():

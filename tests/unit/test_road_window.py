@@ -90,16 +90,16 @@ def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
 
 def test_an_event_road_covers_the_last_step_of_the_in_contact_step():
     """The time grid ends up to one step past the crossing's end (``plan.time_grid``): the window's
-    margin must cover the longest automatic step's road, the in-contact step's (4 stations)."""
+    margin must cover the longest automatic step's road, the in-contact step's (3 stations)."""
     from vbikit.road.psd import WINDOW_MARGIN_SAMPLES
     from vbikit.scenario.build import build, with_scenario_road
     from vbikit.scenario.schema import parse_scenario
     from vbikit.solve.plan import plan_run, time_grid
     from vbikit.solve.system import point_positions
-    from vbikit.solve.timestep import (EXACT_ROAD_FEATURES_PER_STEP, IN_CONTACT_ROAD_FACTOR, implicit_time_step,
+    from vbikit.solve.timestep import (EXACT_ROAD_FEATURES_PER_STEP, IN_CONTACT_FACTOR, implicit_time_step,
                                        in_contact_time_step)
 
-    assert WINDOW_MARGIN_SAMPLES >= EXACT_ROAD_FEATURES_PER_STEP * IN_CONTACT_ROAD_FACTOR
+    assert WINDOW_MARGIN_SAMPLES >= EXACT_ROAD_FEATURES_PER_STEP * IN_CONTACT_FACTOR
     worst = 0.0
     for speed_kmh in np.linspace(90.0, 120.0, 16):  # the grid's overshoot past the end varies with the step
         data = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "vehicle": {"model": "hs20-44"},

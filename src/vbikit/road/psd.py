@@ -34,8 +34,8 @@ from vbikit.road.profile import RoadOrigin, RoadProfile
 
 #: [substitute] stations added on each side of a requested window: the profile still covers it
 #: after the crossing's own round-off and a time grid's last step past the crossing's end (an
-#: automatic step passes at most 4 stations: vbikit.solve.timestep's 2 road samples a step, twice
-#: that at the in-contact step; tests/unit/test_road_window.py checks the two agree)
+#: automatic step passes at most 3 stations: vbikit.solve.timestep's 2 road samples a step, 1.5
+#: times that at the in-contact step; tests/unit/test_road_window.py checks the two agree)
 WINDOW_MARGIN_SAMPLES = 4
 
 #: [public] ISO 8608 reference wavenumber n₀ [cycle/m]
