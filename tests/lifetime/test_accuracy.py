@@ -310,6 +310,26 @@ def test_report_shows_moments_in_kn_m_and_forces_in_kn(quasi_static):
     assert "N m" not in report.replace("kN m", "")
 
 
+def test_report_counts_one_in_the_singular(quasi_static):
+    """A count of one reads singular in the report ("1 exceedance", "1 sampled event loads it",
+    "1 day"; on main "1 exceedances", "1 sampled events load it", "1 days") and more than one
+    plural; a POT fit short of exceedances says "1 exceedance of the threshold"."""
+    from vbikit.lifetime.report import summary, text_report
+
+    facts = summary(quasi_static[0])
+    facts["run"]["n_days"] = 1
+    m, r = facts["load_effects"]["M"], facts["load_effects"]["R"]
+    m["fits"]["static"]["pot_exceedances"], m["fits"]["total"]["pot_exceedances"] = 1, 2
+    m["n_small_static_sample"], r["n_small_static_sample"] = 1, 3
+    report = text_report(facts)
+    assert report.splitlines()[1].startswith("1 day (")
+    assert ", 1 exceedance, ξ" in report and ", 2 exceedances, ξ" in report
+    assert "M: 1 sampled event loads it below" in report and "R: 3 sampled events load it below" in report
+    assert not re.search(r"\b1 (exceedances|days|sampled events)\b", report)
+    one = acc.pot_levels(np.array([1.0, 2.0, 3.0]), 2.5, 1.0, np.array([100.0]), 0.95)
+    assert one.n_exceedances == 1 and one.why.startswith("1 exceedance of the threshold")
+
+
 def test_run_static_shortfall_by_hand():
     """Two days, two effects (the second governed downward).  Day 0: events of static peak 10, 4, 9
     (the last not simulated), day 1: one of 6.  The runs' sampled static peaks: 9.5 (5 % short), 2

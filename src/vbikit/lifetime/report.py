@@ -13,6 +13,7 @@ import math
 import re
 from typing import Any
 
+from vbikit._words import counted
 from vbikit.analysis.checks import Flag, add_flags, has_flag
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.outputs import report_unit
@@ -293,8 +294,9 @@ def text_report(facts: dict[str, Any]) -> str:
     r, f = facts["run"], facts["fits"]
     ci = f"{f['ci']:.0%}"
     lines = [f"vbikit lifetime: {facts['title']}",
-             f"{r['n_days']} days ({r['n_days'] / r['days_per_year']:.3g} years), {r['n_trucks']:,} trucks, "
-             f"{r['n_events']:,} events; {r['n_dynamic_events']:,} simulated dynamically "
+             f"{counted(r['n_days'], 'day')} ({r['n_days'] / r['days_per_year']:.3g} years), "
+             f"{counted(r['n_trucks'], 'truck', thousands=True)}, {counted(r['n_events'], 'event', thousands=True)}; "
+             f"{r['n_dynamic_events']:,} simulated dynamically "
              f"({100 * r['fraction_dynamic']:.2f} %, of which {r['n_sample_events']} the random sample)",
              "screening: " + facts["screening"]["words"],
              f"fits: {f['distribution']} of {'daily' if f['block'] == 'day' else 'weekly'} maxima (BM) and a GPD of "
@@ -315,7 +317,8 @@ def text_report(facts: dict[str, Any]) -> str:
 
     for name, e in facts["load_effects"].items():
         if e["n_small_static_sample"]:
-            lines.append(f"  {name}: {e['n_small_static_sample']} sampled events load it below "
+            n = e["n_small_static_sample"]
+            lines.append(f"  {name}: {counted(n, 'sampled event')} load{'s' if n == 1 else ''} it below "
                          f"{SMALL_STATIC_FRACTION * 100:g} % of the largest static "
                          f"effect (light vehicles, far lanes): their IMs rest on small static references, not design "
                          f"values; the others' IM mean {_g(e['im'].get('im_mean_loaded'), '.4f')}, "
@@ -326,7 +329,7 @@ def text_report(facts: dict[str, Any]) -> str:
                       f"{ci} intervals"]
         for w in ("static", "total"):
             fw = e["fits"][w]
-            pot = (f"POT threshold {_g(fw['pot_threshold'], scale=k)}, {fw['pot_exceedances']} exceedances, ξ = "
+            pot = (f"POT threshold {_g(fw['pot_threshold'], scale=k)}, {counted(fw['pot_exceedances'], 'exceedance')}, ξ = "
                    f"{_g(fw['pot_shape'], '.3f')}")
             lines.append(f"  {w}: BM ξ = {_g(fw['block_maxima_shape'], '.3f')}; {pot}"
                          + ("" if fw["pot_shape"] is not None else " (no POT value: too few exceedances)"))
