@@ -97,6 +97,24 @@ def test_the_grid_error_line_says_what_the_halvings_did_without_repeating_a_numb
     assert "shear at the entry support not refined" in line
 
 
+def test_every_check_states_its_tolerance_and_whether_its_refinement_converged():
+    """``refinement_verdict``, shared by the acceleration and the moment, shear and deflection checks:
+    converged when every refined peak's change and bound are below the tolerance (the refinement's
+    own stopping rule); the Lorentzian stopped after one halving (change 50 %) is not; a check with
+    no refined peak (NaN, coupled cars) is not either."""
+    import numpy as np
+
+    from vbikit.rail.refine import refinement_verdict
+
+    speeds, values = grid()
+    full, cut = refine_peaks(lorentzian, speeds, values), refine_peaks(lorentzian, speeds, values, max_halvings=1)
+    assert refinement_verdict(full.last_change, full.bound) == {"refinement_converged": True, "tolerance": PEAK_TOLERANCE}
+    assert refinement_verdict(cut.last_change, cut.bound)["refinement_converged"] is False
+    both = refinement_verdict(np.r_[full.last_change, cut.last_change], np.r_[full.bound, cut.bound])
+    assert both["refinement_converged"] is False
+    assert refinement_verdict(math.nan, math.nan)["refinement_converged"] is False
+
+
 def test_the_rail_flag_codes_are_in_the_one_list():
     for code in ("hslm_range", "too_few_modes", "speed_grid_error"):
         assert code in FLAG_CODES and "railway sweep" in FLAG_CODES[code]
@@ -123,6 +141,8 @@ def test_hslm_range_is_a_flag_record_in_the_summary(tmp_path):
         c = saved["checks"][kind]
         assert 0.0 <= c["refinement_change"] < PEAK_TOLERANCE and 0.0 <= c["refinement_bound"] < PEAK_TOLERANCE
         assert c["units"]["grid_error"] == "1" and c["grid_error"] >= 0.0
+        # the same fields as the acceleration check (on main only it had them)
+        assert c["tolerance"] == PEAK_TOLERANCE and c["refinement_converged"] is True and c["units"]["tolerance"] == "1"
         assert isinstance(c["refinement_halvings"], int) and 1 <= c["refinement_halvings"] <= 10
     assert not has_flag(saved, "speed_grid_error")
     line = next(x for x in result.report.splitlines() if x.startswith("speed grid error of the governing peaks"))

@@ -4,7 +4,7 @@ grid's error of a refined peak as the checks state it (``grid_error``)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 from numpy.typing import NDArray
@@ -108,3 +108,15 @@ def grid_error(peaks: RefinedPeaks, k: int = 0) -> dict[str, float]:
             "refinement_change": float(peaks.last_change[k]), "refinement_bound": float(peaks.bound[k]),
             "refinement_halvings": int(peaks.halvings[k])}
 
+
+def refinement_verdict(changes, bounds, tolerance: float = PEAK_TOLERANCE) -> dict[str, Any]:
+    """A check's ``tolerance`` and ``refinement_converged``: True when every refined peak of the
+    check (finite ``bounds``; its ``changes`` over the last halving alike) stopped by the
+    refinement's own rule, change and error bound both below ``tolerance`` (``refine_peaks``);
+    False when one stopped after ``MAX_HALVINGS`` instead, or none was refined (coupled cars)."""
+    changes, bounds = np.atleast_1d(np.asarray(changes, float)), np.atleast_1d(np.asarray(bounds, float))
+    refined = np.isfinite(bounds)
+    change = np.where(np.isfinite(changes), changes, 0.0)[refined]  # (a dataset without the changes: the bounds alone)
+    return {"refinement_converged": bool(refined.any() and np.all(bounds[refined] < tolerance)
+                                         and np.all(change < tolerance)),
+            "tolerance": float(tolerance)}

@@ -8,7 +8,7 @@ from typing import Any, Optional
 import numpy as np
 
 from vbikit.analysis.checks import Flag, add_flags, has_flag
-from vbikit.rail.refine import PEAK_TOLERANCE
+from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 
 #: flag codes that make a sweep not the EN 1991-2 check as run (the report's result line says so)
 STANDARD_CODES = ("hslm_range", "too_few_modes")
@@ -52,8 +52,7 @@ def check(ds) -> dict[str, Any]:
         "grid_error": (peak - grid_peak) / peak if peak > 0 else 0.0, "refinement_change": governing_change,
         "refinement_bound": governing_bound, "refinement_halvings": governing_halvings,
         "largest_refinement_bound": float(finite.max()) if finite.size else math.nan,
-        "refinement_converged": bool(finite.size and np.all(finite < tolerance)),
-        "tolerance": tolerance}}
+        **refinement_verdict(change, bound, tolerance)}}
     irr = ds["phi_irregularity"].values
     for kind in ("moment", "shear"):
         dyn = ds[f"max_{kind}"].values + 0.5 * irr[None, :] * ds[f"static_{kind}"].values[:, None]
@@ -277,12 +276,12 @@ CHECK_UNITS: dict[str, dict[str, str]] = {
                      "tolerance": "1", "refinement_halvings": "1"},
     "moment": {"dynamic_design": "N m", "lm71_design": "N m", "grid_design": "N m", "speed": "m s-1", "phi_dyn": "1",
                "phi_irregularity": "1", "ratio": "1", "grid_error": "1", "refinement_change": "1", "refinement_bound": "1",
-               "refinement_halvings": "1"},
+               "tolerance": "1", "refinement_halvings": "1"},
     "shear": {"dynamic_design": "N", "lm71_design": "N", "grid_design": "N", "speed": "m s-1", "phi_dyn": "1",
               "phi_irregularity": "1", "ratio": "1", "grid_error": "1", "refinement_change": "1", "refinement_bound": "1",
-              "refinement_halvings": "1"},
+              "tolerance": "1", "refinement_halvings": "1"},
     "deflection": {"phi_dyn": "1", "grid_phi_dyn": "1", "speed": "m s-1", "grid_error": "1", "refinement_change": "1",
-                   "refinement_bound": "1", "refinement_halvings": "1"},
+                   "refinement_bound": "1", "tolerance": "1", "refinement_halvings": "1"},
 }
 
 

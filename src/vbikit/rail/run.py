@@ -30,7 +30,7 @@ from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
 from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope, stations_words
 from vbikit.analysis.checks import add_flags
-from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks
+from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks, refinement_verdict
 from vbikit.rail.report import check, format_report, speed_grid_flags, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, bogie_resonances, coupled_envelopes, excitation_wavelength, speed_grid,
                                sweep_moving_forces, train_resonances)
@@ -505,7 +505,7 @@ def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: 
         deflection = kind == "deflection"
         c.update({"grid_phi_dyn" if deflection else "grid_design": c["phi_dyn" if deflection else "dynamic_design"],
                   "grid_error": math.nan, "refinement_change": math.nan, "refinement_bound": math.nan,
-                  "refinement_halvings": math.nan})
+                  "refinement_halvings": math.nan} | refinement_verdict(math.nan, math.nan, tolerance))
         train = trains.get(c["train"])
         if train is None:  # coupled cars: not refined
             continue
@@ -514,7 +514,7 @@ def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: 
         static = float(ds[f"static_{kind}"].sel(train=c["train"]))
         r = refine_peaks(_peak_evaluator(setup, train, kind, span), speeds, curve, tolerance=tolerance, indices=[j])
         v = float(r.speed[0])
-        c.update(grid_error(r))
+        c.update(grid_error(r) | refinement_verdict(r.last_change, r.bound, tolerance))
         if deflection:
             if float(r.value[0]) > float(r.grid_value[0]):
                 c.update(phi_dyn=float(r.value[0]) / static - 1.0, speed=v)
