@@ -87,7 +87,7 @@ def print_summary(run: Run) -> None:
                    "the automatic step) — see the warning")
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain and strain IM: the strain is not converged in the modes — see "
-                   "the warning (what to do: more modes on a beam, the deflection's or moment's IM on a girder deck)")
+                   "the warning (what to do: more modes on a beam; on a girder deck sign with the moment IM, not the deflection IM)")
     realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
