@@ -216,11 +216,13 @@ def render(numbers: dict) -> str:
               "| load effect | static BM | static POT (ξ) | total BM | total POT (ξ) | ADR (interval) | flags "
               "| governing total event at half step |", "|---|---|---|---|---|---|---|---|"]
     for name, e in ex["effects"].items():
+        from vbikit._words import counted
+
         flags = [f"{w}: ξ < −0.3" for w in ("static", "total") if e[f"shape_strongly_negative_{w}"]]
         flags += [f"{w}: BM and POT disagree" for w in ("static", "total") if e[f"methods_disagree_{w}"]]
         if e["adr_lower"] <= 1.0 <= e["adr_upper"]:
             flags.append("ADR cannot be told from 1")
-        pot = {w: (f"n/a ({e[f'pot_{w}_exceedances']:.0f} exceedance(s), 10 needed)" if e[f"pot_{w}"] != e[f"pot_{w}"] else
+        pot = {w: (f"n/a ({counted(int(e[f'pot_{w}_exceedances']), 'exceedance')}, 10 needed)" if e[f"pot_{w}"] != e[f"pot_{w}"] else
                    f"{e[f'pot_{w}']:.4g} ({e[f'pot_{w}_shape']:.2f})") for w in ("static", "total")}
         lines.append(f"| {name} | {e['characteristic_static']:.4g} ({e['static_lower']:.3g} … {e['static_upper']:.3g}) | "
                      f"{pot['static']} | {e['characteristic_total']:.4g} ({e['total_lower']:.3g} … {e['total_upper']:.3g}) | "

@@ -396,3 +396,24 @@ def test_a_flag_record_is_strict_json():
     (record,) = fields["flags"]
     assert record["value"] == 1e-3 and type(record["value"]) is float and record["threshold"] is None
     json.dumps(record, allow_nan=False)
+
+
+def test_a_girder_decks_strain_advice_says_which_im_to_sign_with():
+    """On the three-span grillage example the strain is flagged (−7.4 %) and its two substitutes differ
+    a lot: Girder 4's deflection IM 0.116 and its moment IM at the same section 0.187 (docs/bridges.md).
+    On main the warning offered "the deflection's or the moment's IM" as equals; it now says to sign
+    with the moment IM (a moment's IM is the one applied in moment design, a deflection's only in
+    serviceability checks), and so does the report's note.  A beam keeps "use more modes"."""
+    from vbikit.analysis.checks import strain_convergence_flags
+
+    res = runner.invoke(app, ["run", str(ROOT / "examples" / "bridges" / "three_span_grillage_hs20.toml")])
+    assert res.exit_code == 0, res.output
+    warning = next(x for x in res.output.splitlines() if x.startswith("warning: strain not converged"))
+    assert "sign with the girder's moment IM at this section (response.moment), not the deflection IM" in warning
+    assert "moment (strength) design, a deflection's only in serviceability checks" in warning
+    assert "deflection's or the moment's IM" not in warning
+    assert "on a girder deck sign with the moment IM, not the deflection IM" in res.output
+    # the moment IM the advice points to is reported at the strain's own section (girder 4, x = 8.38 m)
+    assert any(x.strip().startswith("moment   x = 8.38 m, girder 4") for x in res.output.splitlines())
+    (beam,) = strain_convergence_flags(0.9e-4, 1e-4, 10, "x = 5.000 m")
+    assert "use more modes (bridge.n_modes)" in beam.message and "sign with" not in beam.message

@@ -98,6 +98,25 @@ def test_presets_summarise_a_trains_axle_loads():
     summary, not 50 numbers; a truck's six wheel loads are listed (HS20-44: 15.4, 67.1, 68.0 kN a pair)."""
     out = runner.invoke(app, ["presets"]).stdout
     hslm = next(line for line in out.splitlines() if line.strip().startswith("hslm-a1 "))
-    assert "axle loads [kN]: 50 loads, 170.0 each, total 8500" in hslm and "170.0, 170.0" not in hslm
+    assert "load per axle [kN]: 50 axles, 170.0 each; total 8500" in hslm and "170.0, 170.0" not in hslm
     truck = next(line for line in out.splitlines() if line.strip().startswith("hs20-44 "))
-    assert "wheel loads [kN]: 15.4, 15.4, 67.1, 67.1, 68.0, 68.0;" in truck
+    assert "load per wheel [kN]: 15.4, 15.4, 67.1, 67.1, 68.0, 68.0; total 300.9;" in truck
+
+
+def test_presets_say_which_loads_are_per_wheel_and_which_per_axle():
+    """The listing says in its header and on every vehicle's line whether the loads are a wheel's (road
+    vehicles: HS20-44's six wheels, three axles of two) or an axle's (trains: HSLM-A1's P = 170 kN is
+    an axle load, EN 1991-2 Table 6.3); on main a bare "wheel loads" / "axle loads" label, which a new
+    user read as the same thing.  Every vehicle line carries exactly one of the two labels."""
+    out = runner.invoke(app, ["presets"]).stdout.splitlines()
+    header = next(line for line in out if line.startswith("Vehicles"))
+    assert "per wheel for road vehicles, per axle for trains" in header
+    start, end = out.index(header) + 1, next(k for k, line in enumerate(out) if line.startswith("Tires"))
+    lines = [x for x in out[start:end] if not x.startswith("    ")]  # (a vehicle's second line is indented further)
+    from vbikit.vehicle import TRAIN_PRESETS
+
+    for line in lines:
+        name = line.split()[0]
+        per = "axle" if name in TRAIN_PRESETS else "wheel"
+        assert f"load per {per} [kN]: " in line and ("per wheel" in line) != ("per axle" in line), line
+    assert any(x.split()[0] in TRAIN_PRESETS for x in lines) and any(x.split()[0] not in TRAIN_PRESETS for x in lines)

@@ -284,8 +284,50 @@ def test_summary_gives_the_pot_threshold_with_the_sign_of_the_effect(quasi_stati
         for w, var in (("static", "fit_pot_threshold"), ("total", "fit_pot_total_threshold")):
             u = float(ds[var].values[j])
             assert facts["load_effects"][name]["fits"][w]["pot_threshold"] == pytest.approx(s * u, rel=1e-15)
-    u = float(ds["fit_pot_threshold"].values[1])
-    assert u > 0 and f"POT threshold {-u:.4g}," in text_report(facts)
+    u = float(ds["fit_pot_threshold"].values[1])  # N; the report shows a force in kN
+    assert u > 0 and f"POT threshold {-u / 1e3:.4g}," in text_report(facts)
+
+
+def test_report_shows_moments_in_kn_m_and_forces_in_kn(quasi_static):
+    """The text report shows the moment M in kN m and the reaction R in kN like `vbikit run`'s
+    report (on main: N m and N), its numbers the summary's SI values / 1000 (1 kN = 1000 N); the
+    summary itself stays SI."""
+    from vbikit.lifetime.report import summary, text_report
+
+    facts = summary(quasi_static[0])
+    assert facts["load_effects"]["M"]["units"] == "N m" and facts["load_effects"]["R"]["units"] == "N"
+    report = text_report(facts)
+    for name, unit in (("M", "kN m"), ("R", "kN")):
+        e = facts["load_effects"][name]
+        row = next(x for x in report.splitlines() if x.startswith(f"{name} "))
+        assert row[22:28].strip() == unit
+        assert float(row[28:42]) == pytest.approx(e["characteristic_static"] / 1e3, rel=1e-4)
+        assert f"\n{name} [{unit}]: return levels" in report
+        bm = e["return_levels"][0]["static"]["block_maxima"]
+        assert f"{bm['value'] / 1e3:.4g} ({bm['lower'] / 1e3:.4g} … {bm['upper'] / 1e3:.4g})" in report
+        gov = e["governing"]["static"]
+        assert f"static {gov['static'] / 1e3:.4g}, total {gov['total'] / 1e3:.4g};" in report
+    assert "N m" not in report.replace("kN m", "")
+
+
+def test_report_counts_one_in_the_singular(quasi_static):
+    """A count of one reads singular in the report ("1 exceedance", "1 sampled event loads it",
+    "1 day"; on main "1 exceedances", "1 sampled events load it", "1 days") and more than one
+    plural; a POT fit short of exceedances says "1 exceedance of the threshold"."""
+    from vbikit.lifetime.report import summary, text_report
+
+    facts = summary(quasi_static[0])
+    facts["run"]["n_days"] = 1
+    m, r = facts["load_effects"]["M"], facts["load_effects"]["R"]
+    m["fits"]["static"]["pot_exceedances"], m["fits"]["total"]["pot_exceedances"] = 1, 2
+    m["n_small_static_sample"], r["n_small_static_sample"] = 1, 3
+    report = text_report(facts)
+    assert report.splitlines()[1].startswith("1 day (")
+    assert ", 1 exceedance, ξ" in report and ", 2 exceedances, ξ" in report
+    assert "M: 1 sampled event loads it below" in report and "R: 3 sampled events load it below" in report
+    assert not re.search(r"\b1 (exceedances|days|sampled events)\b", report)
+    one = acc.pot_levels(np.array([1.0, 2.0, 3.0]), 2.5, 1.0, np.array([100.0]), 0.95)
+    assert one.n_exceedances == 1 and one.why.startswith("1 exceedance of the threshold")
 
 
 def test_run_static_shortfall_by_hand():

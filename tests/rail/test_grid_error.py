@@ -76,6 +76,45 @@ def test_a_converged_refinement_is_not_flagged_and_its_bound_holds():
     assert speed_grid_flags({"shear": nan}, ("shear",)) == []
 
 
+def test_the_grid_error_line_says_what_the_halvings_did_without_repeating_a_number():
+    """After one halving the change over the last halving is all the grid missed (on main the line
+    printed it twice: "50.000 % / 22.500 % (grid 50.00 % low)"); the line says one halving was made,
+    what it gave and the bound, once each.  After two the last change is a number of its own.  By
+    hand (module docstring): one halving 0.1 → 0.2, grid 50 % low, bound 22.5 %; two: 0.2 → 0.8,
+    grid (0.8 − 0.1)/0.8 = 87.5 % low, last change (0.8 − 0.2)/0.8 = 75 %, bound (0.8 − 0.1)/(4 × 0.8)
+    = 21.875 %."""
+    from vbikit.rail.report import _grid_error_line
+
+    speeds, values = grid()
+    one = governing(refine_peaks(lorentzian, speeds, values, max_halvings=1))
+    two = governing(refine_peaks(lorentzian, speeds, values, max_halvings=2))
+    assert (one["refinement_halvings"], two["refinement_halvings"]) == (1, 2)
+    line = _grid_error_line({"acceleration": one, "moment": two}, PEAK_TOLERANCE)
+    assert "deck acceleration after 1 halving 50.00 % above the sweep's grid (error bound 22.500 %)" in line
+    assert "50.000" not in line and line.count("50.00") == 1
+    assert ("midspan moment after 2 halvings 87.50 % above the sweep's grid, the last halving changed it 75.000 % "
+            "(error bound 21.875 %)") in line
+    assert "shear at the entry support not refined" in line
+
+
+def test_every_check_states_its_tolerance_and_whether_its_refinement_converged():
+    """``refinement_verdict``, shared by the acceleration and the moment, shear and deflection checks:
+    converged when every refined peak's change and bound are below the tolerance (the refinement's
+    own stopping rule); the Lorentzian stopped after one halving (change 50 %) is not; a check with
+    no refined peak (NaN, coupled cars) is not either."""
+    import numpy as np
+
+    from vbikit.rail.refine import refinement_verdict
+
+    speeds, values = grid()
+    full, cut = refine_peaks(lorentzian, speeds, values), refine_peaks(lorentzian, speeds, values, max_halvings=1)
+    assert refinement_verdict(full.last_change, full.bound) == {"refinement_converged": True, "tolerance": PEAK_TOLERANCE}
+    assert refinement_verdict(cut.last_change, cut.bound)["refinement_converged"] is False
+    both = refinement_verdict(np.r_[full.last_change, cut.last_change], np.r_[full.bound, cut.bound])
+    assert both["refinement_converged"] is False
+    assert refinement_verdict(math.nan, math.nan)["refinement_converged"] is False
+
+
 def test_the_rail_flag_codes_are_in_the_one_list():
     for code in ("hslm_range", "too_few_modes", "speed_grid_error"):
         assert code in FLAG_CODES and "railway sweep" in FLAG_CODES[code]
@@ -102,6 +141,9 @@ def test_hslm_range_is_a_flag_record_in_the_summary(tmp_path):
         c = saved["checks"][kind]
         assert 0.0 <= c["refinement_change"] < PEAK_TOLERANCE and 0.0 <= c["refinement_bound"] < PEAK_TOLERANCE
         assert c["units"]["grid_error"] == "1" and c["grid_error"] >= 0.0
+        # the same fields as the acceleration check (on main only it had them)
+        assert c["tolerance"] == PEAK_TOLERANCE and c["refinement_converged"] is True and c["units"]["tolerance"] == "1"
+        assert isinstance(c["refinement_halvings"], int) and 1 <= c["refinement_halvings"] <= 10
     assert not has_flag(saved, "speed_grid_error")
     line = next(x for x in result.report.splitlines() if x.startswith("speed grid error of the governing peaks"))
     assert "midspan deflection" in line and " !" not in line

@@ -189,8 +189,8 @@ def test_presets_call_a_trains_loads_axle_loads():
 
     out = CliRunner().invoke(app, ["presets"]).output.splitlines()
     hslm = next(x for x in out if x.strip().startswith("hslm-a1 "))
-    assert "axle loads [kN]: 50 loads, 170.0 each" in hslm and "wheel loads" not in hslm
-    assert any("wheel loads [kN]" in x for x in out)  # road vehicles keep their wheel loads
+    assert "load per axle [kN]: 50 axles, 170.0 each" in hslm and "per wheel" not in hslm
+    assert any("load per wheel [kN]" in x for x in out)  # road vehicles keep their wheel loads
 
 
 def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value():

@@ -508,6 +508,14 @@ def airborne_flags(result: CrossingResult) -> list[Flag]:
                  subject=f"wheel {name}", wheel=name, value=share, threshold=AIRBORNE_FRACTION)]
 
 
+#: what a girder deck's ``strain_not_converged`` advises instead of more modes: the substitute to sign with
+DECK_STRAIN_ADVICE = ("on a girder deck the modes' strain converges slowly and not monotonically (more modes can move it "
+                      "further off before hundreds of modes bring it in), so sign with the girder's moment IM at this "
+                      "section (response.moment), not the deflection IM: the strain follows the girder's bending moment, "
+                      "and a moment's IM is the one applied in moment (strength) design, a deflection's only in "
+                      "serviceability checks")
+
+
 def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,
                              where: str = "", point: str | None = None, deck: bool = False) -> list[Flag]:
     """A flag when the static strain peak of the modes ``modal_static_peak`` differs from the exact
@@ -515,16 +523,15 @@ def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float 
     strain and its IM (ε_dyn / ε_st − 1) are not converged in the ``n_modes`` modes (``where``: the
     point in words, ``point``: its name).  ``deck``: a girder deck's grid, whose exact strain is that
     of the full stiffness's static solution and whose modes converge to it slowly and not
-    monotonically (``vbikit.analysis.response.exact_static_strain_peak``): the advice names that."""
+    monotonically (``vbikit.analysis.response.exact_static_strain_peak``): the advice names that, and
+    which substitute to sign with (``DECK_STRAIN_ADVICE``)."""
     if exact_static_peak is None or not exact_static_peak:
         return []
     err = (float(modal_static_peak) - float(exact_static_peak)) / abs(float(exact_static_peak))
     if abs(err) <= STRAIN_MODE_TOLERANCE:
         return []
     reference, advice = (
-        ("the strain of the grid's full-stiffness static solution",
-         "on a girder deck the modes' strain converges slowly and not monotonically (more modes can move it further "
-         "off before hundreds of modes bring it in), so use the deflection's or the moment's IM") if deck else
+        ("the strain of the grid's full-stiffness static solution", DECK_STRAIN_ADVICE) if deck else
         ("c/EI times the static moment of the full stiffness", "use more modes (bridge.n_modes) or the moment's IM"))
     return [Flag("strain_not_converged",
                  f"strain not converged in the modes{f' at {where}' if where else ''}: the static strain peak of the "

@@ -56,6 +56,7 @@ def lifetime_cmd(
     event's static peak by influence lines, coupled dynamics for the events that can govern each
     day (and a random sample for fatigue), extreme-value fits and return levels, ADR, fatigue
     damage.  An interrupted run started again resumes (finished batches in OUT_DIR/work)."""
+    from vbikit._words import counted
     from vbikit.lifetime.run import run_lifetime
 
     memory = None if max_memory is None else memory_option(max_memory)
@@ -72,5 +73,5 @@ def lifetime_cmd(
     bars.close()
     a = ds.attrs
     typer.echo((out_dir / "report.txt").read_text())
-    typer.echo(f"{a['n_events']:,} events, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
+    typer.echo(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
                f"-> {out_dir / 'lifetime.nc'} ({time.perf_counter() - t0:.1f} s)")

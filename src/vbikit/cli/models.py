@@ -29,10 +29,11 @@ def presets() -> None:
         else:  # slab-on-girder deck: geometry only (its modes are solved by `vbikit bridge NAME`)
             typer.echo(f"  {'':<21} span {b.span} m, deck {b.deck_width:.2f} m, default lateral_offset "
                        f"{b.default_lateral_offset} m, default response girder {b.default_girder}")
-    typer.echo("Vehicles ([vehicle] model = ...):")
+    typer.echo("Vehicles ([vehicle] model = ...; static loads in kN: per wheel for road vehicles, per axle for trains):")
     for p in VEHICLE_PRESETS.values():
         v = p.example_vehicle()
-        loads = _load_list(v.static_wheel_loads())
+        train = p.name in TRAIN_PRESETS  # a train's wheel is one axle (train_vehicle)
+        loads = _load_list(v.static_wheel_loads(), "axle" if train else "wheel")
         if p.required:
             params = (f"parameters: {', '.join(p.parameters)} (required: {', '.join(p.required)}); example "
                       + ", ".join(f"{k} = {val}" for k, val in p.example.items()))
@@ -40,8 +41,7 @@ def presets() -> None:
             params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
         f = v.natural_frequencies()
         freq = f"; frequencies {f.min():.2f} … {f.max():.2f} Hz" if f.size else ""
-        what = "axle loads" if p.name in TRAIN_PRESETS else "wheel loads"  # a train's wheel is one axle (train_vehicle)
-        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; {what} [kN]: {loads}{freq}")
+        typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; {loads}{freq}")
         typer.echo(f"  {'':<14} {params}")
     typer.echo("Tires ([tire] model = ...):")
     from vbikit.contact import tire_catalogue
@@ -134,12 +134,15 @@ def bridge(
 LISTED_LOADS = 12
 
 
-def _load_list(loads) -> str:
-    """A preset's static wheel (or axle) loads [N] in kN: each, or for more than ``LISTED_LOADS`` (the
-    HSLM trains' 36–50 axles) their count, range and total."""
+def _load_list(loads, per: str) -> str:
+    """A preset's static loads [N] in kN, one a ``per`` ("wheel": a road vehicle's, "axle": a
+    train's), labelled so: "load per wheel [kN]: 15.4, 15.4, …; total 301.0", each listed, or for
+    more than ``LISTED_LOADS`` (the HSLM trains' 36–50 axles) "load per axle [kN]: 50 axles, 170.0
+    each; total 8500"."""
     kn = [x / 1e3 for x in loads]
+    total = f"total {sum(kn):.1f}" if len(kn) <= LISTED_LOADS else f"total {sum(kn):.0f}"
     if len(kn) <= LISTED_LOADS:
-        return ", ".join(f"{x:.1f}" for x in kn)
+        return f"load per {per} [kN]: " + ", ".join(f"{x:.1f}" for x in kn) + f"; {total}"
     low, high = min(kn), max(kn)
     each = f"{low:.1f} each" if high == low else f"{low:.1f} … {high:.1f}"
-    return f"{len(kn)} loads, {each}, total {sum(kn):.0f}"
+    return f"load per {per} [kN]: {len(kn)} {per}s, {each}; {total}"

@@ -87,7 +87,7 @@ def print_summary(run: Run) -> None:
                    "the automatic step) — see the warning")
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain and strain IM: the strain is not converged in the modes — see "
-                   "the warning (what to do: more modes on a beam, the deflection's or moment's IM on a girder deck)")
+                   "the warning (what to do: more modes on a beam; on a girder deck sign with the moment IM, not the deflection IM)")
     realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
@@ -172,9 +172,12 @@ def print_load_effects(s: dict[str, Any]) -> None:
     keys = ("en1991_2_phi2", "en1991_2_phi3") if rows[0][1].get("code_allowances", {}).get("railway") else \
         ("aashto_standard", "jtg_d60_2015", "ohbdc_1983")
     beside = "EN 1991-2 Phi2 / Phi3" if keys[0] == "en1991_2_phi2" else "AASHTO Std / JTG D60 / OHBDC"
-    typer.echo(f"  load effects ({method}; kN m / kN; IM beside {beside})")
+    from vbikit.outputs import report_unit
+
+    (moment_unit, _), (force_unit, _) = report_unit("N m"), report_unit("N")
+    typer.echo(f"  load effects ({method}; {moment_unit} / {force_unit}; IM beside {beside})")
     for kind, e in rows:
-        unit = 1e-3
+        unit = report_unit("N m" if kind == "moment" else "N")[1]
         where = f"support {e['support']}" if kind == "reaction" else f"x = {e['x']:.2f} m"
         if e.get("girder"):
             where += f", girder {e['girder']}"

@@ -69,6 +69,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from vbikit._words import counted
+
 #: ξ below this is flagged as a bounded tail fitted from little data (module docstring)
 XI_STRONGLY_NEGATIVE = -0.3
 #: relative change of a governing event's peak at half the time step above which it is flagged
@@ -105,7 +107,7 @@ def pot_levels(values: np.ndarray, threshold: float, values_per_year: float, per
     k = int(np.sum(values > threshold)) if np.isfinite(threshold) else 0
     if k < MIN_EXCEEDANCES:
         return PotLevels(nan, nan.copy(), nan.copy(), threshold, math.nan, k,
-                         f"{k} exceedance(s) of the threshold, a GPD fit needs {MIN_EXCEEDANCES}")
+                         f"{counted(k, 'exceedance')} of the threshold, a GPD fit needs {MIN_EXCEEDANCES}")
     try:
         fit = fit_peaks_over_threshold(values, threshold, values_per_year)
         level, lo, hi = return_levels(fit, periods, ci)
@@ -113,7 +115,7 @@ def pot_levels(values: np.ndarray, threshold: float, values_per_year: float, per
         return PotLevels(nan, nan.copy(), nan.copy(), threshold, math.nan, k, str(err))
     why = ""
     if not (np.all(np.isfinite(lo)) and np.all(np.isfinite(hi))):  # the fit's covariance (observed information) is singular
-        why = (f"no confidence interval: the covariance of the GPD fit to {k} exceedances could not be estimated "
+        why = (f"no confidence interval: the covariance of the GPD fit to {counted(k, 'exceedance')} could not be estimated "
                "(the delta method needs it); the level stands without an interval")
     return PotLevels(level, lo, hi, threshold, float(fit.shape), k, why)
 

@@ -13,8 +13,10 @@ import math
 import re
 from typing import Any
 
+from vbikit._words import counted
 from vbikit.analysis.checks import Flag, add_flags, has_flag
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
+from vbikit.outputs import report_unit
 
 
 def _num(x) -> float | None:
@@ -266,30 +268,35 @@ def summary(ds) -> dict[str, Any]:
     return out
 
 
-def _g(x: float | None, fmt: str = ".4g") -> str:
-    """``x`` formatted by ``fmt``, or "n/a" in the same alignment and width (table columns stay aligned)."""
+def _g(x: float | None, fmt: str = ".4g", scale: float = 1.0) -> str:
+    """``x`` times ``scale`` (to the report's unit, ``vbikit.outputs.report_unit``) formatted by
+    ``fmt``, or "n/a" in the same alignment and width (table columns stay aligned)."""
     if x is None:
         width = re.match(r"[<>^]?\d*", fmt).group()
         return format("n/a", width if width[:1] in "<>^" else ">" + width) if width else "n/a"
-    return format(x, fmt)
+    return format(x * scale, fmt)
 
 
-def _iv(d: dict) -> str:
+def _iv(d: dict, scale: float = 1.0) -> str:
+    """A level with its interval, times ``scale`` (to the report's unit)."""
     if d["value"] is None:
         return "n/a"
     if d["lower"] is None:
-        return f"{d['value']:.4g} (no interval)"
-    return f"{d['value']:.4g} ({d['lower']:.4g} … {d['upper']:.4g})"
+        return f"{d['value'] * scale:.4g} (no interval)"
+    return f"{d['value'] * scale:.4g} ({d['lower'] * scale:.4g} … {d['upper'] * scale:.4g})"
 
 
 def text_report(facts: dict[str, Any]) -> str:
     """The run's plain-text report (rendered from ``summary``; its marks, ``*`` under a table and ABOVE
-    at a governing event, from the flags' codes, never from their words)."""
+    at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m
+    and forces in kN like ``vbikit run``'s report (``vbikit.outputs.report_unit``); the summary and
+    the dataset stay SI, and so do the flags' messages printed as FLAG lines."""
     r, f = facts["run"], facts["fits"]
     ci = f"{f['ci']:.0%}"
     lines = [f"vbikit lifetime: {facts['title']}",
-             f"{r['n_days']} days ({r['n_days'] / r['days_per_year']:.3g} years), {r['n_trucks']:,} trucks, "
-             f"{r['n_events']:,} events; {r['n_dynamic_events']:,} simulated dynamically "
+             f"{counted(r['n_days'], 'day')} ({r['n_days'] / r['days_per_year']:.3g} years), "
+             f"{counted(r['n_trucks'], 'truck', thousands=True)}, {counted(r['n_events'], 'event', thousands=True)}; "
+             f"{r['n_dynamic_events']:,} simulated dynamically "
              f"({100 * r['fraction_dynamic']:.2f} %, of which {r['n_sample_events']} the random sample)",
              "screening: " + facts["screening"]["words"],
              f"fits: {f['distribution']} of {'daily' if f['block'] == 'day' else 'weekly'} maxima (BM) and a GPD of "
@@ -301,25 +308,28 @@ def text_report(facts: dict[str, Any]) -> str:
              f"{'IM mean':>9}{'IM q95':>8}{'AASHTO':>8}"]
     for name, e in facts["load_effects"].items():
         ad = e["adr"]
+        unit, k = report_unit(e["units"])
         span = "n/a" if ad["lower"] is None else f"{ad['lower']:.3f} … {ad['upper']:.3f}"
-        lines.append(f"{name:<22}{e['units']:<6}{_g(e['characteristic_static'], '>14.5g')}"
-                     f"{_g(e['characteristic_total'], '>14.5g')}{_g(ad['value'], '>8.4f')}{span:>20}"
+        lines.append(f"{name:<22}{unit:<6}{_g(e['characteristic_static'], '>14.5g', k)}"
+                     f"{_g(e['characteristic_total'], '>14.5g', k)}{_g(ad['value'], '>8.4f')}{span:>20}"
                      f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
     for name, e in facts["load_effects"].items():
         if e["n_small_static_sample"]:
-            lines.append(f"  {name}: {e['n_small_static_sample']} sampled events load it below "
+            n = e["n_small_static_sample"]
+            lines.append(f"  {name}: {counted(n, 'sampled event')} load{'s' if n == 1 else ''} it below "
                          f"{SMALL_STATIC_FRACTION * 100:g} % of the largest static "
                          f"effect (light vehicles, far lanes): their IMs rest on small static references, not design "
                          f"values; the others' IM mean {_g(e['im'].get('im_mean_loaded'), '.4f')}, "
                          f"95 % {_g(e['im'].get('im_q95_loaded'), '.4f')}")
     for name, e in facts["load_effects"].items():
-        lines += ["", f"{name} [{e['units']}]: return levels, block maxima (BM) beside peaks over threshold (POT), "
+        unit, k = report_unit(e["units"])
+        lines += ["", f"{name} [{unit}]: return levels, block maxima (BM) beside peaks over threshold (POT), "
                       f"{ci} intervals"]
         for w in ("static", "total"):
             fw = e["fits"][w]
-            pot = (f"POT threshold {_g(fw['pot_threshold'])}, {fw['pot_exceedances']} exceedances, ξ = "
+            pot = (f"POT threshold {_g(fw['pot_threshold'], scale=k)}, {counted(fw['pot_exceedances'], 'exceedance')}, ξ = "
                    f"{_g(fw['pot_shape'], '.3f')}")
             lines.append(f"  {w}: BM ξ = {_g(fw['block_maxima_shape'], '.3f')}; {pot}"
                          + ("" if fw["pot_shape"] is not None else " (no POT value: too few exceedances)"))
@@ -328,7 +338,7 @@ def text_report(facts: dict[str, Any]) -> str:
             cells = []
             for w in ("static", "total"):
                 mark = " *" if row[w]["methods_disagree"] else ""
-                cells += [_iv(row[w]["block_maxima"]), _iv(row[w]["peaks_over_threshold"]) + mark]
+                cells += [_iv(row[w]["block_maxima"], k), _iv(row[w]["peaks_over_threshold"], k) + mark]
             lines.append(f"  {row['return_period']:>8g}  " + "".join(f"{c:<37} " for c in cells).rstrip())
         if has_flag(e, "bm_pot_disagree"):  # (the marks and the flag come from the same methods_disagree_*)
             lines.append("  (* BM and POT disagree beyond their intervals)")
@@ -339,8 +349,9 @@ def text_report(facts: dict[str, Any]) -> str:
             check = ("n/a" if change is None else f"{100 * change:+.3f} % "
                      + ("ABOVE" if above else "within") + f" the {100 * facts['half_step_tolerance']:g} % tolerance")
             lines.append(f"  governing {w} maximum: day {g['day']} at "
-                         f"{_clock(g['time_of_day_s'])}, {g['vehicles']}; static {_g(g['static'])}, total "
-                         f"{_g(g['total'])}; total at half the time step {_g(g['total_half_step'])} ({check})")
+                         f"{_clock(g['time_of_day_s'])}, {g['vehicles']}; static {_g(g['static'], scale=k)}, total "
+                         f"{_g(g['total'], scale=k)}; total at half the time step "
+                         f"{_g(g['total_half_step'], scale=k)} ({check})")
         for flag in e["flags"]:
             lines.append("  FLAG " + flag["message"])
     if "fatigue" in facts:

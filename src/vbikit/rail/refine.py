@@ -4,7 +4,7 @@ grid's error of a refined peak as the checks state it (``grid_error``)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,8 +22,8 @@ PEAK_SHARE = 0.5
 class RefinedPeaks:
     """The refined acceleration peaks of one train: per peak the speed [m/s] and value [m/s²] on the
     sweep's grid, the refined speed and value, the bound of the refined value's remaining grid error
-    (relative), the relative change over the last halving, the final half-step [m/s] and whether
-    the bound fell below the tolerance."""
+    (relative), the relative change over the last halving, the final half-step [m/s], whether
+    the bound and the change fell below the tolerance, and the halvings of the speed step made."""
 
     grid_speed: NDArray[np.float64]
     grid_value: NDArray[np.float64]
@@ -33,6 +33,7 @@ class RefinedPeaks:
     last_change: NDArray[np.float64]
     step: NDArray[np.float64]
     converged: NDArray[np.bool_]
+    halvings: NDArray[np.int_]
 
 
 def _peak_indices(values: NDArray[np.float64]) -> list[int]:
@@ -91,7 +92,7 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
             if (bound[i] < tolerance and change[i] < tolerance) or rounds[i] >= max_halvings:
                 done[i] = True
     return RefinedPeaks(grid_v, grid_a, best_v, best_a, bound, change, 0.5 * (hi - lo),
-                        (bound < tolerance) & (change < tolerance))
+                        (bound < tolerance) & (change < tolerance), rounds)
 
 
 def grid_error(peaks: RefinedPeaks, k: int = 0) -> dict[str, float]:
@@ -100,7 +101,22 @@ def grid_error(peaks: RefinedPeaks, k: int = 0) -> dict[str, float]:
     ``refinement_change`` = the relative change over the last halving of the speed step (the change
     between the last two refinement levels) and ``refinement_bound`` = the bound of the remaining
     error (``refine_peaks``): the refined value's own grid error, within ``PEAK_TOLERANCE`` when
-    both are below it."""
+    both are below it; ``refinement_halvings`` = the halvings made (after one, the change is
+    what the grid missed)."""
     value, grid = float(peaks.value[k]), float(peaks.grid_value[k])
     return {"grid_error": (value - grid) / value if value > 0 else 0.0,
-            "refinement_change": float(peaks.last_change[k]), "refinement_bound": float(peaks.bound[k])}
+            "refinement_change": float(peaks.last_change[k]), "refinement_bound": float(peaks.bound[k]),
+            "refinement_halvings": int(peaks.halvings[k])}
+
+
+def refinement_verdict(changes, bounds, tolerance: float = PEAK_TOLERANCE) -> dict[str, Any]:
+    """A check's ``tolerance`` and ``refinement_converged``: True when every refined peak of the
+    check (finite ``bounds``; its ``changes`` over the last halving alike) stopped by the
+    refinement's own rule, change and error bound both below ``tolerance`` (``refine_peaks``);
+    False when one stopped after ``MAX_HALVINGS`` instead, or none was refined (coupled cars)."""
+    changes, bounds = np.atleast_1d(np.asarray(changes, float)), np.atleast_1d(np.asarray(bounds, float))
+    refined = np.isfinite(bounds)
+    change = np.where(np.isfinite(changes), changes, 0.0)[refined]  # (a dataset without the changes: the bounds alone)
+    return {"refinement_converged": bool(refined.any() and np.all(bounds[refined] < tolerance)
+                                         and np.all(change < tolerance)),
+            "tolerance": float(tolerance)}

@@ -30,7 +30,7 @@ from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
 from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope, stations_words
 from vbikit.analysis.checks import add_flags
-from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks
+from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks, refinement_verdict
 from vbikit.rail.report import check, format_report, speed_grid_flags, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, bogie_resonances, coupled_envelopes, excitation_wavelength, speed_grid,
                                sweep_moving_forces, train_resonances)
@@ -398,7 +398,8 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         st_eff[:, 0] = st_along[:, int(np.argmin(np.abs(sections - 0.5 * span)))]  # the exact static peak at midspan
     peaks = [r for r in (refined or []) if r is not None]
     n_pk = max([r.speed.size for r in peaks] + [0])
-    pk = {key: np.full((len(names), n_pk), np.nan) for key in ("grid_speed", "grid_value", "speed", "value", "bound", "last_change", "step")}
+    pk = {key: np.full((len(names), n_pk), np.nan) for key in ("grid_speed", "grid_value", "speed", "value", "bound", "last_change", "step",
+                                                         "halvings")}
     for i, r in enumerate(refined or []):
         if r is not None:
             for key in pk:
@@ -449,6 +450,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "peak_last_change": var(("train", "peak"), pk["last_change"], "1",
                                 "relative change of the refined peak over its last halving of the speed step"),
         "peak_speed_step": var(("train", "peak"), pk["step"], "m s-1", "final half-step of the speed around the refined peak"),
+        "peak_halvings": var(("train", "peak"), pk["halvings"], "1", "halvings of the speed step made around the refined peak (NaN: not refined)"),
         "acceleration_limit": var((), limit, "m s-2", f"EN 1990 A2.4.4.2.1 limit, {b.track} track"),
         "lm71_moment": var((), phi_lm * lm_m, "N m", "Phi x alpha x LM71 midspan moment"),
         "lm71_shear": var((), phi_lm * lm_v, "N", "Phi x alpha x LM71 shear at the entry support"),
@@ -497,20 +499,22 @@ def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: 
     refinement did not converge (``speed_grid_flags``)."""
     speeds = ds.speed.values
     span = float(ds.attrs["span_m"])
+    tolerance = float(ds.attrs.get("peak_tolerance", PEAK_TOLERANCE))
     for kind in ("moment", "shear", "deflection"):
         c = checks[kind]
         deflection = kind == "deflection"
         c.update({"grid_phi_dyn" if deflection else "grid_design": c["phi_dyn" if deflection else "dynamic_design"],
-                  "grid_error": math.nan, "refinement_change": math.nan, "refinement_bound": math.nan})
+                  "grid_error": math.nan, "refinement_change": math.nan, "refinement_bound": math.nan,
+                  "refinement_halvings": math.nan} | refinement_verdict(math.nan, math.nan, tolerance))
         train = trains.get(c["train"])
         if train is None:  # coupled cars: not refined
             continue
         j = int(np.argmin(np.abs(speeds - c["speed"])))
         curve = ds["max_deflection" if deflection else f"max_{kind}"].sel(train=c["train"]).values
         static = float(ds[f"static_{kind}"].sel(train=c["train"]))
-        r = refine_peaks(_peak_evaluator(setup, train, kind, span), speeds, curve, indices=[j])
+        r = refine_peaks(_peak_evaluator(setup, train, kind, span), speeds, curve, tolerance=tolerance, indices=[j])
         v = float(r.speed[0])
-        c.update(grid_error(r))
+        c.update(grid_error(r) | refinement_verdict(r.last_change, r.bound, tolerance))
         if deflection:
             if float(r.value[0]) > float(r.grid_value[0]):
                 c.update(phi_dyn=float(r.value[0]) / static - 1.0, speed=v)
@@ -522,8 +526,7 @@ def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: 
         c["grid_error"] = (c["dynamic_design"] - c["grid_design"]) / c["dynamic_design"]  # of the design value
         c["governs"] = "dynamic analysis" if c["dynamic_design"] > c["lm71_design"] else "Phi x LM71"
         c["ratio"] = c["dynamic_design"] / c["lm71_design"]
-    add_flags(checks, speed_grid_flags(checks, ("moment", "shear", "deflection"),
-                                       float(ds.attrs.get("peak_tolerance", PEAK_TOLERANCE))))
+    add_flags(checks, speed_grid_flags(checks, ("moment", "shear", "deflection"), tolerance))
 
 
 def _peak_evaluator(setup: SweepSetup, train: Train, kind: str, span: float) -> Callable:
