@@ -9,7 +9,7 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit._kept import kept_for
+from vbikit._kept import Kept, kept_for
 from vbikit.analysis.checks import Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
@@ -96,20 +96,25 @@ def _on_deck_shapes(bridge: Any, x: float, y: float) -> tuple[NDArray[np.float64
 
 
 def point_response(result: CrossingResult, x: float | None = None, y: float | None = None,
-                   xi_static: NDArray[np.float64] | None = None) -> PointResponse:
+                   xi_static: NDArray[np.float64] | None = None,
+                   static: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None) -> PointResponse:
     """Dynamic and static responses at (x, y) [m]; x defaults to midspan, y to the bridge's
     ``default_response_y`` (its default girder on a slab-on-girder deck, as in scenarios);
-    ``xi_static``: the static modal history if already computed ([`static_modal_history`][vbikit.analysis.static_modal_history])."""
+    ``xi_static``: the static modal history if already computed ([`static_modal_history`][vbikit.analysis.static_modal_history]);
+    ``static``: the point's static displacement and strain histories if already computed
+    (``static_point_histories``; then ``xi_static`` is not read)."""
     bridge = result.crossing.bridge
     x, y = result.point(x, y)
     phi, eps = point_shapes(bridge, x, y, checked=True)
-    xi_st = static_modal_history(result) if xi_static is None else xi_static
+    if static is None:
+        xi_st = static_modal_history(result) if xi_static is None else xi_static
+        static = (xi_st @ phi, xi_st @ eps)
     return PointResponse(
         x, y, result.time,
         displacement=result.xi @ phi,
-        static_displacement=xi_st @ phi,
+        static_displacement=static[0],
         strain=result.xi @ eps,
-        static_strain=xi_st @ eps,
+        static_strain=static[1],
         velocity=result.xi_dot @ phi,
         acceleration=result.xi_ddot @ phi,
         strain_rate=result.xi_dot @ eps,
@@ -170,6 +175,70 @@ def plan_responses(result: CrossingResult, plan: ResponsePlan,
     return [point_response(result, p.x, point_line(bridge, p), xi_st) for p in plan.points]
 
 
+def plan_points(result: CrossingResult, plan: ResponsePlan) -> list[tuple[float, float]]:
+    """The deck point (x, y) [m] of every point of ``plan`` (its order; ``point_line``, ``CrossingResult.point``)."""
+    bridge = result.crossing.bridge
+    return [result.point(p.x, point_line(bridge, p)) for p in plan.points]
+
+
+#: the static point tables (``_static_point_tables``) kept per mode-shape tables and response points
+STATIC_POINT_TABLES_KEPT = 16
+_STATIC_POINT_TABLES: "Kept[tuple, tuple[NDArray[np.float64], ...]]" = Kept(STATIC_POINT_TABLES_KEPT)
+
+
+def static_point_histories(result: CrossingResult,
+                           points: Sequence[tuple[float, float]]) -> list[tuple[NDArray[np.float64], NDArray[np.float64]]]:
+    """The static displacement [m] and strain [-] histories at the deck points ``points`` (x, y) [m]:
+    ξ_st(t)·φ(x, y) and ξ_st(t)·ε(x, y) with ξ_st the static modal history
+    ([`static_modal_history`][vbikit.analysis.static_modal_history]: ξ_st,m = −Σ_p φ_m(x_p) P_p / ω_m²),
+    without ξ_st: the cubic Hermite interpolant of the tabulated shapes along the wheel tracks is
+    linear in the tables' values and slopes, so Σ_m w_m φ_m(x_p) is the interpolant of the table
+    Σ_m w_m φ_m, and with the weights w_m = φ_m(x, y)/ω_m² (or ε_m(x, y)/ω_m²) of each history
+
+        R_st(t) = −Σ_p P_p Σ_m w_m φ_m(x_p(t)),
+
+    the same compiled pass as ξ_st (``vbikit.solve.kernels.static_modal_history``) over two
+    weighted tables per point instead of one table per mode (made once per mode tables and points,
+    ``_static_point_tables``).  Equal to ξ_st·φ up to round-off (the sums over modes taken before
+    the sum over points instead of after)."""
+    from vbikit.solve import kernels, system
+
+    crossing = result.crossing
+    bridge = crossing.bridge
+    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
+    modes, pts = data.modes, data.points
+    values, slopes = _static_point_tables(bridge, modes, points)
+    cp = crossing.contact
+    loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    travel = np.asarray(result.travel, float)
+    travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
+    n_h = values.shape[2]
+    out = np.zeros((travel.shape[0], n_h))
+    kernels.static_modal_history(travel, pts.origin, pts.direction, pts.vehicle, pts.track,
+                                 np.ascontiguousarray(loads, float), modes.start, modes.end, float(modes.grid_h),
+                                 values, slopes, out, np.zeros(n_h), np.zeros(n_h))
+    np.negative(out, out=out)
+    return [(out[:, 2 * i], out[:, 2 * i + 1]) for i in range(len(points))]
+
+
+def _static_point_tables(bridge: object, modes: Any,
+                         points: Sequence[tuple[float, float]]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The mode tables ``modes.values``, ``modes.slopes`` (n_tracks, n_grid, n_m) weighted into
+    (n_tracks, n_grid, 2 n_points): for every point its φ_m(x, y)/ω_m², then its ε_m(x, y)/ω_m²
+    (``static_point_histories``), kept per tables (their identity: each entry holds them, so no
+    other array can take it while kept) and the weights' exact bytes (read-only, shared)."""
+    omega2 = np.asarray(bridge.omega, float) ** 2
+    weights = np.ascontiguousarray(np.column_stack([shape / omega2 for x, y in points
+                                                    for shape in point_shapes(bridge, x, y, checked=True)]))
+    key = (id(modes.values), id(modes.slopes), weights.shape, weights.tobytes())
+
+    def make() -> tuple[NDArray[np.float64], ...]:
+        tables = (np.ascontiguousarray(modes.values @ weights), np.ascontiguousarray(modes.slopes @ weights))
+        return (modes.values, modes.slopes) + tables  # (the sources kept alive with their identities)
+
+    return _STATIC_POINT_TABLES.get(key, make)[2:]
+
+
 def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,
                     effects: dict[str, Any] | None = None,
                     names: Sequence[str] | None = None) -> tuple[list[dict[str, float | None]], dict[str, float | None]]:
@@ -187,7 +256,12 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
                                                         check_step=False))) if first else {}  # (no step check: the outputs do not read it)
     points: list[dict[str, float | None]] = [{} for _ in plan.points]
     if outputs("point", names):
-        points = [r.outputs(result, names) for r in plan_responses(result, plan, xi_static)]
+        if xi_static is not None:
+            responses = plan_responses(result, plan, xi_static)
+        else:  # the static histories at the points without the static modal history
+            where = plan_points(result, plan)
+            responses = [point_response(result, x, y, static=st) for (x, y), st in zip(where, static_point_histories(result, where))]
+        points = [r.outputs(result, names) for r in responses]
     return points, reduce_outputs(Reduction(result, None, effects), "crossing", names)
 
 
