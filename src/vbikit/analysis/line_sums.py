@@ -118,3 +118,41 @@ def _line_tables(influences, y: NDArray[np.float64]) -> tuple[NDArray, ...]:
     return (np.ascontiguousarray(line.ravel(), np.int64), table, line_share,
             np.array([KINK_CODES[f.kink] for f in influences], np.int64),
             np.array([f.element for f in influences], np.int64), np.array([f.section for f in influences], float))
+
+
+@njit(cache=True, fastmath=True, error_model="numpy")
+def hermite_sums(travel, origin, direction, vehicle, track, loads, start, end, grid_h, values, slopes,
+                 out):  # pragma: no cover (compiled)
+    """Add Σ_p P_p g_k(x_p(t_i)) to ``out`` (n_t, n_k) for downward point loads ``loads`` P_p [N] at
+    x_p = ``origin``_p + ``direction``_p·s_v(t_i) on ``track``_p while start ≤ x_p ≤ end there, with
+    g_k the cubic Hermite interpolant of the tables ``values``, ``slopes`` (n_tracks, n_grid, n_k)
+    on the uniform grid of spacing ``grid_h`` [m] from ``start`` — the arithmetic of
+    ``vbikit.solve.kernels.static_modal_history`` (``hermite_shape``: φ only, not its slope),
+    point by point (each time's points still added in point order)."""
+    n_t = travel.shape[0]
+    n_grid = values.shape[1]
+    n_k = values.shape[2]
+    for p in range(origin.size):
+        load = loads[p]
+        if load == 0.0:
+            continue
+        o, d, v, tr = origin[p], direction[p], vehicle[p], track[p]
+        lo, hi = start[tr], end[tr]
+        for i in range(n_t):
+            x = o + d * travel[i, v]
+            if not (lo <= x <= hi):
+                continue
+            u = (x - lo) / grid_h
+            j = int(u)
+            if j > n_grid - 2:
+                j = n_grid - 2
+            t = u - j
+            t2 = t * t
+            t3 = t2 * t
+            h00 = 2 * t3 - 3 * t2 + 1
+            h10 = (t3 - 2 * t2 + t) * grid_h
+            h01 = -2 * t3 + 3 * t2
+            h11 = (t3 - t2) * grid_h
+            for k in range(n_k):
+                g = h00 * values[tr, j, k] + h10 * slopes[tr, j, k] + h01 * values[tr, j + 1, k] + h11 * slopes[tr, j + 1, k]
+                out[i, k] += g * load

@@ -176,9 +176,12 @@ def plan_responses(result: CrossingResult, plan: ResponsePlan,
 
 
 def plan_points(result: CrossingResult, plan: ResponsePlan) -> list[tuple[float, float]]:
-    """The deck point (x, y) [m] of every point of ``plan`` (its order; ``point_line``, ``CrossingResult.point``)."""
+    """The deck point (x, y) [m] of every point of ``plan`` (its order; ``point_line``, ``CrossingResult.point``),
+    kept for the bridge per plan (they depend on those two only; each entry holds its plan, so that no
+    other plan can take its identity while kept): every event of a stream reads the same points."""
     bridge = result.crossing.bridge
-    return [result.point(p.x, point_line(bridge, p)) for p in plan.points]
+    return kept_for(bridge, "plan points", POINT_SHAPES_KEPT).get(
+        id(plan), lambda: (plan, [result.point(p.x, point_line(bridge, p)) for p in plan.points]))[1]
 
 
 #: the static point tables (``_static_point_tables``) kept per mode-shape tables and response points
@@ -201,7 +204,8 @@ def static_point_histories(result: CrossingResult,
     weighted tables per point instead of one table per mode (made once per mode tables and points,
     ``_static_point_tables``).  Equal to ξ_st·φ up to round-off (the sums over modes taken before
     the sum over points instead of after)."""
-    from vbikit.solve import kernels, system
+    from vbikit.analysis.line_sums import hermite_sums
+    from vbikit.solve import system
 
     crossing = result.crossing
     bridge = crossing.bridge
@@ -214,9 +218,8 @@ def static_point_histories(result: CrossingResult,
     travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
     n_h = values.shape[2]
     out = np.zeros((travel.shape[0], n_h))
-    kernels.static_modal_history(travel, pts.origin, pts.direction, pts.vehicle, pts.track,
-                                 np.ascontiguousarray(loads, float), modes.start, modes.end, float(modes.grid_h),
-                                 values, slopes, out, np.zeros(n_h), np.zeros(n_h))
+    hermite_sums(travel, pts.origin, pts.direction, pts.vehicle, pts.track, np.ascontiguousarray(loads, float),
+                 modes.start, modes.end, float(modes.grid_h), values, slopes, out)
     np.negative(out, out=out)
     return [(out[:, 2 * i], out[:, 2 * i + 1]) for i in range(len(points))]
 
@@ -225,18 +228,19 @@ def _static_point_tables(bridge: object, modes: Any,
                          points: Sequence[tuple[float, float]]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The mode tables ``modes.values``, ``modes.slopes`` (n_tracks, n_grid, n_m) weighted into
     (n_tracks, n_grid, 2 n_points): for every point its φ_m(x, y)/ω_m², then its ε_m(x, y)/ω_m²
-    (``static_point_histories``), kept per tables (their identity: each entry holds them, so no
-    other array can take it while kept) and the weights' exact bytes (read-only, shared)."""
-    omega2 = np.asarray(bridge.omega, float) ** 2
-    weights = np.ascontiguousarray(np.column_stack([shape / omega2 for x, y in points
-                                                    for shape in point_shapes(bridge, x, y, checked=True)]))
-    key = (id(modes.values), id(modes.slopes), weights.shape, weights.tobytes())
+    (``static_point_histories``; the shapes and ω of the immutable ``bridge``), kept per tables and
+    bridge (their identities: each entry holds them, so that no other object can take one while
+    kept) and the points (shared: not to be written)."""
+    key = (id(modes.values), id(modes.slopes), id(bridge), tuple((float(x), float(y)) for x, y in points))
 
-    def make() -> tuple[NDArray[np.float64], ...]:
+    def make() -> tuple[Any, ...]:
+        omega2 = np.asarray(bridge.omega, float) ** 2
+        weights = np.column_stack([shape / omega2 for x, y in points for shape in point_shapes(bridge, x, y, checked=True)])
+        # (writeable, as the mode tables: numba compiles the kernel again for read-only arrays)
         tables = (np.ascontiguousarray(modes.values @ weights), np.ascontiguousarray(modes.slopes @ weights))
-        return (modes.values, modes.slopes) + tables  # (the sources kept alive with their identities)
+        return (modes.values, modes.slopes, bridge) + tables  # (the sources kept alive with their identities)
 
-    return _STATIC_POINT_TABLES.get(key, make)[2:]
+    return _STATIC_POINT_TABLES.get(key, make)[3:]
 
 
 def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,
