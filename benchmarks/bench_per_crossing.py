@@ -77,6 +77,7 @@ STAGES = {
     "step maps": ("vbikit.solve.modal_step", "exact_step"),
     "vehicle step maps": ("vbikit.solve.modal_step", "vehicle_step"),
     "static reference": ("vbikit.solve.system", "static_modal_history"),
+    "static point histories": ("vbikit.analysis.response", "static_point_histories"),
     "contact influences": ("vbikit.analysis.effects", "contact_influence_table|contact_influences"),
     "load-effect histories": ("vbikit.analysis.effects", "load_effect_responses"),
     "output reduction (traffic, all outputs)": ("vbikit.traffic.study", "reduce_crossing"),

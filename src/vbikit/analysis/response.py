@@ -249,8 +249,9 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
     """The catalogue's outputs ([`vbikit.outputs`][vbikit.outputs]) of a crossing: per-point outputs at every
     point of ``plan`` (a list in its order) and the per-crossing outputs — only those in ``names``
     when given (None: all; the responses nothing asks for are not computed).  ``xi_static``: the
-    static modal history if already computed; ``effects``: the load-effect responses by kind if
-    already computed (default: those of ``plan.first_effects`` the outputs read)."""
+    static modal history if already computed (the points' static references its projections;
+    default: ``static_point_histories``, without it); ``effects``: the load-effect responses by kind
+    if already computed (default: those of ``plan.first_effects`` the outputs read)."""
     from vbikit.analysis.effects import load_effect_responses
 
     if effects is None:
