@@ -16,12 +16,11 @@ the same profile).  The automatic step (``vbikit.solve.timestep.implicit_time_st
 The question it answers (the engine issue's next factor): the step rule was set on rough roads where
 wheels lose contact (docs/verification.md: 3 cm gave up to 9.9e-4 there, so 2 cm is the rule); how
 large are the errors of coarser steps on a class B road, where the stream's trucks keep contact?
-Printed: per event ΔIM = IM(exact, k·dt) − IM(RK4, dt/8) for k = 1, 1.5, 2, 4 and for the run of
-``vbikit.solve.simulate.simulate_in_contact`` (the stream's own: the in-contact step, whole road
-stations a step, where no contact opened or closed; its step over dt, or "again" where it ran again
-at dt, or "no longer step"), whether a wheel lost contact at k ≥ 1, and the largest and
-95th-percentile |ΔIM| per column.  With 1 cm stations and dt set by the road (2 cm a step), k = 1,
-1.5, 2 and 4 are whole stations a step for the fastest truck.  ``--timing N``: also the thread CPU
+Printed: per event ΔIM = IM(exact, k·dt) − IM(RK4, dt/8) for k = 1, 1.5, 2, 4, whether a wheel lost
+contact, and the largest and 95th-percentile |ΔIM| per k.  With 1 cm stations and dt set by the road
+(2 cm a step), k = 1, 1.5, 2 and 4 are whole stations a step for the fastest truck: steps that are
+not give larger, erratic errors on these roads (docs/verification.md, "The road's stations and the
+tire dashpots"; ``bench_rate_alignment.py``).  ``--timing N``: also the thread CPU
 time of ``simulate`` and the output reduction (``reduce_crossing``, the stream's outputs) of every
 N-th event of the stream at dt and at 2 dt, three alternating rounds.
 """
@@ -44,7 +43,6 @@ def main() -> None:
     p.add_argument("--timing", type=int, default=0, help="also time every N-th event at dt and 2 dt (default 0: no)")
     p.add_argument("--road", default="B", help="ISO 8608 road class of the events (default B)")
     p.add_argument("--tire", default="point", help="tire model of the events (default point)")
-    p.add_argument("--speed", type=float, default=0.0, help="every truck at this speed [km/h] (default: the stream's)")
     args = p.parse_args()
 
     import numpy as np
@@ -53,23 +51,16 @@ def main() -> None:
     from vbikit.analysis import point_response
     from vbikit.solve import simulate
     from vbikit.solve.plan import plan_run
-    from vbikit.solve.simulate import simulate_in_contact
-    from vbikit.solve.timestep import in_contact_time_step
     from vbikit.traffic.study import traffic_study
 
     base = _base(0.01)
     base["road"]["class"] = args.road
     base["tire"]["model"] = args.tire
-    records = _stream(2000, 600.0)
-    if args.speed:
-        records = [dataclasses.replace(r, speed=args.speed / 3.6) for r in records]
-    job = traffic_study(records, base, batch_size=16)
+    job = traffic_study(_stream(2000, 600.0), base, batch_size=16)
     ctx = job.context()
-    print(f"class {args.road} road, {args.tire} tires; ΔIM = IM(exact, k dt) − IM(RK4, dt/8), dt the automatic step; "
-          f"k = {', '.join(f'{k:g}' for k in FACTORS)}; last column: simulate_in_contact (its step / dt, or 'again' "
-          f"where a contact opened or closed and it ran again at dt)")
+    print(f"class {args.road} road, {args.tire} tires; ΔIM = IM(exact, k dt) − IM(RK4, dt/8), dt the automatic step; k = {', '.join(f'{k:g}' for k in FACTORS)}")
     for size, count in ((1, args.single), (2, args.several)):
-        rows, again = [], 0
+        rows = []
         for e in [e for e in range(job.size) if len(job.events[e]) == size][:count]:
             crossing = ctx.template.with_vehicles(job.crossing(e).vehicles, *ctx.road(job.road_seed(e)))
             y = float(crossing.bridge.girder_y[3])
@@ -79,19 +70,13 @@ def main() -> None:
                 r = simulate(dataclasses.replace(crossing, dt=step, **({"integrator": integrator} if integrator else {})))
                 lost |= integrator is None and bool(np.any(r.wheel_forces <= 0.0))
                 ims.append(point_response(r, None, y).displacement_impact.impact_factor)
-            r, held = simulate_in_contact(crossing)
-            ims.append(point_response(r, None, y).displacement_impact.impact_factor)
-            again += not held and in_contact_time_step(crossing) > dt
             rows.append([im - ims[0] for im in ims[1:]])
-            rule = (f"{r.integration_dt / dt:.2f} dt" if held
-                    else "again" if in_contact_time_step(crossing) > dt else "no longer step")
             print(f"  event {e} ({size} truck{'s' if size > 1 else ''}, {3.6 * crossing.speed:.0f} km/h, dt {1e3 * dt:.3f} ms): "
-                  f"IM {ims[0]:.5f}; ΔIM " + ", ".join(f"{d:+.1e}" for d in rows[-1]) + f" ({rule})"
-                  + ("; a wheel lost contact" if lost else ""), flush=True)
+                  f"IM {ims[0]:.5f}; ΔIM " + ", ".join(f"{d:+.1e}" for d in rows[-1]) + ("; a wheel lost contact" if lost else ""),
+                  flush=True)
         a = np.abs(np.array(rows))
         print(f"{size} truck(s), {len(rows)} events: max |ΔIM| " + ", ".join(f"{x:.1e}" for x in a.max(axis=0))
-              + "; 95th percentile " + ", ".join(f"{x:.1e}" for x in np.percentile(a, 95, axis=0))
-              + f"; simulate_in_contact ran {again} of them again at dt")
+              + "; 95th percentile " + ", ".join(f"{x:.1e}" for x in np.percentile(a, 95, axis=0)))
     if args.timing:
         _timing(job, ctx, args.timing)
 

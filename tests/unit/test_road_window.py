@@ -88,33 +88,6 @@ def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
     assert whole.road.x.size == full.x.size
 
 
-def test_an_event_road_covers_the_last_step_of_the_in_contact_step():
-    """The time grid ends up to one step past the crossing's end (``plan.time_grid``): the window's
-    margin must cover the longest automatic step's road, the in-contact step's (3 stations)."""
-    from vbikit.road.psd import WINDOW_MARGIN_SAMPLES
-    from vbikit.scenario.build import build, with_scenario_road
-    from vbikit.scenario.schema import parse_scenario
-    from vbikit.solve.plan import plan_run, time_grid
-    from vbikit.solve.system import point_positions
-    from vbikit.solve.timestep import (EXACT_ROAD_FEATURES_PER_STEP, IN_CONTACT_FACTOR, implicit_time_step,
-                                       in_contact_time_step)
-
-    assert WINDOW_MARGIN_SAMPLES >= EXACT_ROAD_FEATURES_PER_STEP * IN_CONTACT_FACTOR
-    worst = 0.0
-    for speed_kmh in np.linspace(90.0, 120.0, 16):  # the grid's overshoot past the end varies with the step
-        data = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "vehicle": {"model": "hs20-44"},
-                "tire": {"model": "point"}, "road": {"class": "B", "seed": 1, "spacing": 0.01},
-                "crossing": {"speed_kmh": float(speed_kmh)}}
-        scenario = parse_scenario(data, ".")
-        crossing = with_scenario_road(build(scenario).crossing.with_road(None), scenario.road, scenario, seed=5)
-        dt = in_contact_time_step(crossing)
-        assert dt > 1.2 * implicit_time_step(crossing)  # the road term governs both steps here
-        x, _ = point_positions(plan_run(crossing).kernel_data, time_grid(crossing, dt).travel[-1])
-        assert crossing.road.covers(float(x.min()), float(x.max())), speed_kmh
-        worst = max(worst, float(x.max()) - crossing.road_extent()[1])
-    assert worst > 0.02  # the grid did end more than the old 2-station margin past the crossing's extent
-
-
 @pytest.mark.parametrize("window", [None, (0.0, 3.0)])
 def test_whole_period_and_window_with_the_band_up_to_nyquist(window):
     """n_max = 1/(2Δx): the Nyquist wavenumber is in the band (a real FFT counts it once)."""

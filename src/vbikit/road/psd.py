@@ -32,11 +32,9 @@ from numpy.typing import NDArray
 
 from vbikit.road.profile import RoadOrigin, RoadProfile
 
-#: [substitute] stations added on each side of a requested window: the profile still covers it
-#: after the crossing's own round-off and a time grid's last step past the crossing's end (an
-#: automatic step passes at most 3 stations: vbikit.solve.timestep's 2 road samples a step, 1.5
-#: times that at the in-contact step; tests/unit/test_road_window.py checks the two agree)
-WINDOW_MARGIN_SAMPLES = 4
+#: [substitute] stations added on each side of a requested window (the profile still covers it
+#: after the crossing's own round-off)
+WINDOW_MARGIN_SAMPLES = 2
 
 #: [public] ISO 8608 reference wavenumber n₀ [cycle/m]
 ISO_N0 = 0.1

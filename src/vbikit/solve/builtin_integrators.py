@@ -15,7 +15,7 @@ from vbikit.solve.integrators import (
     register_integrator,
     run_implicit,
 )
-from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, in_contact_time_step, rk4_stability_limit
+from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
 
 
 def _run_exact(call: KernelCall) -> None:
@@ -56,7 +56,6 @@ EXACT = register_integrator(Integrator(
     run=_run_exact,
     kernel=implicit_kernel,
     lanes_kernel=implicit_lanes_kernel,
-    in_contact_time_step=in_contact_time_step,
 ))
 RK4 = register_integrator(Integrator(
     name="rk4",

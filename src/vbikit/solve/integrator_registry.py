@@ -47,10 +47,6 @@ class Integrator:
     lanes_kernel : callable, optional
         ``lanes_kernel() -> dispatcher``: the compiled kernel ``run`` calls with many lanes (a study's
         batches; announced by ``vbikit.study.run``); None: ``kernel``'s.
-    in_contact_time_step : callable, optional
-        ``in_contact_time_step(crossing) -> float``: a longer automatic step [s], valid for a run in
-        which no contact opens or closes (``vbikit.solve.simulate.simulate_in_contact``).  None: no
-        such step.
     """
 
     name: str
@@ -62,7 +58,6 @@ class Integrator:
     stability_limit: Optional[Callable[["Crossing"], float]] = None
     kernel: Optional[Callable[[], Any]] = None
     lanes_kernel: Optional[Callable[[], Any]] = None
-    in_contact_time_step: Optional[Callable[["Crossing"], float]] = None
 
     def __post_init__(self) -> None:
         if not self.name or not isinstance(self.name, str):

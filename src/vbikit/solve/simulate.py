@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.solve.budget import Limits, check_run
+from vbikit.solve.budget import Limits
 from vbikit.solve.compile_notice import announce_compile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.integrators import KernelCall, get_integrator
@@ -69,48 +69,6 @@ def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int
     elif int(output_every) != output_every or output_every < 1:
         raise ValueError(f"output_every must be an integer >= 1, got {output_every!r}")
     return check_finite(integrate([crossing], data, grid, int(output_every))[0], fresh=True)
-
-
-def simulate_in_contact(crossing: Crossing, limits: Limits | None = None) -> tuple[CrossingResult, bool]:
-    """``simulate(crossing, limits)`` at the integrator's longer in-contact step where it holds: for
-    the events of a population (``vbikit.traffic``), most of which keep every contact.
-
-    With an automatic step (``crossing.dt`` None) and an integrator that has an in-contact step
-    (``Integrator.in_contact_time_step``: the exact integrator's, its road terms twice as long,
-    ``vbikit.solve.timestep.in_contact_time_step``), the crossing runs at that step first.  If a
-    contact opened or closed in that run (``contact_changed``), the result is dropped and the
-    crossing runs again at its automatic step, whose 2 cm of road a step is set by such runs
-    (docs/verification.md).  Otherwise this is ``simulate(crossing, limits)``; so it is too with
-    tires whose contacts change by design (rigid-disk envelopes; contact points that carry no static
-    load, as a deformable disk's outside its static patch: they touch and leave as it rolls).
-
-    Returns the result and whether it is the in-contact step's (that step: ``result.integration_dt``).
-    """
-    fine = plan_run(crossing, limits)
-    rule = fine.integrator.in_contact_time_step
-    if (crossing.dt is not None or rule is None or np.any(crossing.contact.weight <= 0.0)
-            or np.any(fine.kernel_data.vehicles.wheel_envelope)):
-        return simulate(crossing, plan=fine), False
-    dt = float(rule(crossing))
-    if dt <= fine.dt * (1.0 + 1e-9):
-        return simulate(crossing, plan=fine), False
-    coarse = RunPlan(crossing, fine.integrator, dt, check_run(crossing, dt, Limits() if limits is None else limits))
-    result = simulate(crossing, plan=coarse)
-    if not contact_changed(result):
-        return result, True
-    log.debug("a contact opened or closed at the in-contact step %.3g s: the crossing runs again at its automatic "
-              "step %.3g s", dt, fine.dt)
-    return simulate(crossing, plan=fine), False
-
-
-def contact_changed(result: CrossingResult) -> bool:
-    """Whether a contact opened or closed at a step of ``result``: a wheel's force reached zero (its
-    tire left the road) or its patch length changed (a point of a multi-point or disk tire left or
-    touched).  A thinned history (``output_every`` > 1) may hide a change between its rows: it
-    counts as changed."""
-    lengths = result.contact_lengths
-    return bool(result.integration_dt != result.dt or np.any(result.wheel_forces[1:] <= 0.0)
-                or np.any(lengths[1:] != lengths[:1]))
 
 
 def history_stride(n_steps: int, data: "KernelData", budget: float = HISTORY_BUDGET) -> int:

@@ -15,7 +15,6 @@ an integrator uses is part of its registration (``vbikit.solve.integrators``).
 """
 from __future__ import annotations
 
-import math
 from typing import TYPE_CHECKING, Callable, Optional
 
 import numpy as np
@@ -118,61 +117,17 @@ EXACT_ROAD_LENGTH_PER_STEP = 0.02
 EXACT_STEPS_PER_SPAN = 100.0
 EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 100.0
 EXACT_ROAD_FEATURES_PER_STEP = 2.0
-#: the exact integrator's step terms but the vehicles' are this many times longer on a run in which
-#: no contact opens or closes (``in_contact_time_step``): 3 cm of road and 67 steps per period of the
-#: first bridge mode.  Measured on traffic events that keep contact (benchmarks/bench_step_rule.py)
-IN_CONTACT_FACTOR = 1.5
 
 
-def implicit_time_step(crossing: Crossing, factor: float = 1.0) -> float:
-    """The automatic step [s] of the exact modal integrator (no bridge-mode term): the smallest of
-    ``factor`` × min(span / (100 v_max), T_1 / 100 (first bridge mode), min(2 cm, 2 road samples) /
-    v_max) and T_vehicle,min / 20."""
+def implicit_time_step(crossing: Crossing) -> float:
+    """The automatic step [s] of the exact modal integrator (no bridge-mode term)."""
     v_max = crossing.max_speed
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     for road in (crossing.road, crossing.road_right):
         if road is not None and road.spacing > 0:
             candidates.append(min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v_max)
-    return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, factor * min(candidates))
-
-
-def in_contact_time_step(crossing: Crossing) -> float:
-    """The exact integrator's step [s] for a run in which every contact stays as it is: its
-    automatic step (``implicit_time_step``) with all terms but the vehicles' ``IN_CONTACT_FACTOR``
-    times longer, shortened to a whole number of road stations a step for the fastest vehicle
-    (``whole_stations``); the automatic step if that is not longer.
-
-    The 2 cm rule is set by wheels that lose and regain contact (docs/verification.md); where none
-    does, 1.5 times the step keeps the displacement IM of traffic events as close to converged RK4
-    as the automatic step does (within 5e-4) — at whole stations a step.  A step that ends at a different place within a road
-    cell each time is not as good: the tire dashpots read the road's rate as the slope of the cell a
-    point is in, and that reading drifts through the cells at a beat of the step; the IM then moves
-    by up to 4e-3 for a 2 % change of the step (benchmarks/bench_step_rule.py, docs/verification.md).
-    Only valid for a run that shows no contact change: ``vbikit.solve.simulate.simulate_in_contact``
-    checks that and runs again at the automatic step otherwise."""
-    automatic = implicit_time_step(crossing)
-    aligned = whole_stations(crossing, implicit_time_step(crossing, IN_CONTACT_FACTOR))
-    return automatic if aligned is None else max(aligned, automatic)
-
-
-def whole_stations(crossing: Crossing, dt: float) -> float | None:
-    """``dt`` [s] shortened so that the fastest vehicle passes a whole number m ≥ 1 of road
-    stations a step: m Δx / v_max.  None without a road, with stations that are not evenly spaced,
-    or with the two wheel tracks' roads on different spacings."""
-    spacings = set()
-    for road in (crossing.road, crossing.road_right):
-        if road is None:
-            continue
-        steps = np.diff(road.x)
-        if steps.size == 0 or steps.max() - steps.min() > 1e-9 * steps.max():
-            return None
-        spacings.add(round(float(steps.mean()), 12))
-    if len(spacings) != 1:
-        return None
-    spacing, speed = spacings.pop(), crossing.max_speed
-    stations = math.floor(speed * dt / spacing * (1.0 + 1e-9))
-    return stations * spacing / speed if stations >= 1 else None
+    return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, min(candidates))
 
 
 #: relative margin on the bound of ``_with_vehicle_periods`` (far above the round-off of ‖M⁻¹K̂‖∞)

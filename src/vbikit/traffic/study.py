@@ -37,8 +37,7 @@ from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
-from vbikit.solve import Crossing, VehicleMotion
-from vbikit.solve.simulate import simulate_in_contact
+from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -55,8 +54,6 @@ log = logging.getLogger(__name__)
 #: per-event outputs beside the catalogue's (vbikit.outputs): name -> (units, description)
 EVENT_EXTRAS: dict[str, tuple[str, str]] = {
     "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road"),
-    "in_contact_step": ("1", "1 if the event ran at the longer in-contact step (no contact opened or closed: "
-                             "vbikit.solve.simulate.simulate_in_contact), 0 at the automatic step"),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts
@@ -165,8 +162,6 @@ class TrafficStudy:
         if problem:
             return problem
         for name in EVENT_EXTRAS:
-            if name not in part:
-                return f"it has no {name} (written by an earlier version)"
             if part[name].shape != (len(batch),):
                 return f"{name} has the wrong shape"
         for name in VEHICLE_OUTPUTS:
@@ -237,10 +232,9 @@ class TrafficStudy:
 
     def run_event(self, e: int) -> tuple[tuple[list[dict], dict], list[dict[str, float]]]:
         """Simulate event ``e``: its outputs (per response point, per event) and those of each of its vehicles."""
-        result, in_contact = simulate_in_contact(self.crossing(e))
+        result = simulate(self.crossing(e))
         points, row = reduce_crossing(result, self.context().plan, names=self.output_names)
         row["road_seed"] = float(self.road_seed(e))
-        row["in_contact_step"] = float(in_contact)
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
