@@ -84,6 +84,11 @@ def traffic_cmd(
     typer.echo(f"largest static effect: event {a['governing_static_event']}, dynamic amplification "
                f"{a['governing_static_amplification']:.4f}; largest dynamic effect: event {a['governing_dynamic_event']}, "
                f"{a['governing_dynamic_amplification']:.4f} × the largest static effect")
+    step = dataset_has_flag(a, "stream_step_sensitive")
+    changes = {int(a[f"governing_{w}_event"]): float(a[f"governing_{w}_half_step_im_change"]) for w in ("static", "dynamic")}
+    typer.echo(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
+               + ", ".join(f"{c:+.1e} (event {e})" for e, c in changes.items())
+               + f" (tolerance {float(a['half_step_tolerance']):g})")
     if plot is not None:
         from vbikit.plot.traffic import plot_stream
 

@@ -31,6 +31,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.checks import Flag
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
@@ -41,6 +42,7 @@ from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
+from vbikit.traffic.accuracy import governing_step_check
 from vbikit.traffic.base import BASE_SECTIONS, base_scenario, template_data  # noqa: F401 (base_scenario: re-exported)
 from vbikit.traffic.events import Event, partition
 from vbikit.traffic.records import VehicleRecord
@@ -289,6 +291,8 @@ class TrafficStudy:
                   "vehicle_id": ("vehicle", np.array([r.id or f"line{r.line}" for r in recs], dtype=object))}
         ds = xr.Dataset(variables, coords=coords)
         stats = stream_statistics(ds)
+        first = ds.isel(point=0) if "point" in ds.dims else ds
+        step_attrs, step_flags = governing_step_check(self, stats, first["impact_factor"].values)
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -296,19 +300,22 @@ class TrafficStudy:
             "vbikit_version": __version__,
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
-            **self.flag_attrs(ev["max_static_displacement"]),
+            **step_attrs,
+            **self.flag_attrs(ev["max_static_displacement"], step_flags),
         }
         return ds
 
-    def flag_attrs(self, static_peaks: NDArray) -> dict[str, str]:
+    def flag_attrs(self, static_peaks: NDArray, flags: Sequence[Flag] = ()) -> dict[str, str]:
         """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
-        when an event's static deflection peak ``static_peaks`` (events, points) [m] is implausible for
-        the bridge's longest span (``implausible_deflection_dataset_flags``); none otherwise."""
+        of ``flags`` (the governing events' step check, ``vbikit.traffic.accuracy``) and of an event's
+        static deflection peak ``static_peaks`` (events, points) [m] implausible for the bridge's
+        longest span (``implausible_deflection_dataset_flags``); none when there is nothing to say."""
         from vbikit.analysis.checks import dataset_flag_attrs, implausible_deflection_dataset_flags
 
         span = max(self.context().template.crossing.bridge.span_lengths)
         spans = np.full(static_peaks.shape[0], float(span))
-        return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event"))
+        return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event")
+                                  + list(flags))
 
 
 def _gross(record: VehicleRecord) -> float:

@@ -1,0 +1,78 @@
+"""A traffic stream's governing events run again at half the time step (``vbikit.traffic.accuracy``):
+the dataset states each one's IM change, against an independent half-step run of the same event
+(``simulate`` + ``point_response``, not the stream's reduction), and flags a change above the
+single run's step tolerance."""
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+import vbikit.traffic.accuracy as accuracy
+from vbikit.analysis import point_response
+from vbikit.analysis.checks import dataset_has_flag
+from vbikit.analysis.effect_step import STEP_TOLERANCE
+from vbikit.cli import app
+from vbikit.solve import simulate
+from vbikit.solve.plan import plan_run
+from vbikit.study.run import run_study
+from vbikit.traffic import LaneTraffic, synthetic_stream, write_records
+from vbikit.traffic.study import traffic_study
+
+#: Bridge 2 beam with 4 modes, a class C road (the step matters there), point tires
+BASE = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "road": {"class": "C", "length": 200.0},
+        "crossing": {"approach": 5.0, "free_vibration": 0.1}}
+
+
+@pytest.fixture(scope="module")
+def stream_dataset(tmp_path_factory):
+    records = synthetic_stream([LaneTraffic(1, "+x", 900, 80, 5), LaneTraffic(2, "-x", 900, 70, 5)], 12, seed=8)
+    job = traffic_study(records, BASE, lanes=[-1.8, 1.8], seed=8, batch_size=6)
+    return job, run_study(job, tmp_path_factory.mktemp("s") / "s.nc", workers=1, progress=False)
+
+
+def _half_step_im(job, event: int) -> float:
+    crossing = job.crossing(event)
+    result = simulate(dataclasses.replace(crossing, dt=0.5 * plan_run(crossing).dt))
+    return point_response(result).displacement_impact.impact_factor
+
+
+def test_the_governing_events_changes_at_half_the_step_are_those_of_an_independent_run(stream_dataset):
+    job, ds = stream_dataset
+    a = ds.attrs
+    im = ds["impact_factor"].values
+    assert a["governing_static_event"] != a["governing_dynamic_event"]  # two events checked
+    for which in ("static", "dynamic"):
+        e = int(a[f"governing_{which}_event"])
+        expected = _half_step_im(job, e) - im[e]
+        assert a[f"governing_{which}_half_step_im_change"] == pytest.approx(expected, rel=1e-9, abs=1e-12)
+        assert a[f"governing_{which}_half_step_im_change"] != 0.0  # a real re-run, not the stored value
+    assert a["half_step_tolerance"] == STEP_TOLERANCE
+    assert not dataset_has_flag(a, "stream_step_sensitive")  # these changes are below 5e-3
+
+
+def test_a_change_above_the_tolerance_is_flagged_with_the_event(stream_dataset, monkeypatch):
+    job, ds = stream_dataset
+    changes = {int(ds.attrs[f"governing_{w}_event"]): abs(ds.attrs[f"governing_{w}_half_step_im_change"])
+               for w in ("static", "dynamic")}
+    tolerance = 0.5 * (min(changes.values()) + max(changes.values()))  # between the two events' changes
+    monkeypatch.setattr(accuracy, "STEP_TOLERANCE", tolerance)
+    attrs, flags = accuracy.governing_step_check(job, dict(ds.attrs), ds["impact_factor"].values)
+    worst = max(changes, key=changes.get)
+    assert [f.subject for f in flags] == [f"event {worst}"]
+    assert flags[0].code == "stream_step_sensitive" and flags[0].threshold == tolerance
+    assert "half the time step" in flags[0].message
+
+
+def test_vbikit_traffic_prints_the_half_step_changes(tmp_path):
+    records = synthetic_stream([LaneTraffic(1, "+x", 600, 75)], 3, seed=9)
+    write_records(records, tmp_path / "r.csv")
+    (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-2-beam"\nn_modes = 4\n[road]\nclass = "B"\n'
+                                        'length = 200.0\n[crossing]\napproach = 5.0\n')
+    res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
+                                   "--out", str(tmp_path / "r.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    line = next(s for s in res.output.splitlines() if "at half the time step" in s)
+    assert "IM changes by" in line and "tolerance 0.005" in line and np.isfinite(float(line.split("by ")[1].split()[0]))
