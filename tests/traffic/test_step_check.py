@@ -66,6 +66,34 @@ def test_a_change_above_the_tolerance_is_flagged_with_the_event(stream_dataset, 
     assert "half the time step" in flags[0].message
 
 
+def test_one_event_governing_both_is_run_once_and_flagged_once(stream_dataset, monkeypatch):
+    job, ds = stream_dataset
+    attrs = dict(ds.attrs)
+    attrs["governing_dynamic_event"] = attrs["governing_static_event"]
+    runs = []
+    original = accuracy.half_step_impact_factor
+    monkeypatch.setattr(accuracy, "half_step_impact_factor", lambda j, e: runs.append(e) or original(j, e))
+    monkeypatch.setattr(accuracy, "STEP_TOLERANCE", 0.0)
+    out, flags = accuracy.governing_step_check(job, attrs, ds["impact_factor"].values)
+    assert runs == [attrs["governing_static_event"]]
+    assert out["governing_static_half_step_im_change"] == out["governing_dynamic_half_step_im_change"]
+    assert len(flags) == 1 and "governing static and dynamic event" in flags[0].message
+
+
+def test_a_re_run_above_the_budget_is_not_checked_not_flagged(stream_dataset, monkeypatch):
+    from vbikit.solve.budget import BudgetError
+
+    job, ds = stream_dataset
+
+    def refuse(*args, **kwargs):
+        raise BudgetError("above the step budget")
+
+    monkeypatch.setattr("vbikit.solve.simulate", refuse)
+    monkeypatch.setattr(accuracy, "STEP_TOLERANCE", 0.0)
+    out, flags = accuracy.governing_step_check(job, dict(ds.attrs), ds["impact_factor"].values)
+    assert np.isnan(out["governing_static_half_step_im_change"]) and not flags
+
+
 def test_vbikit_traffic_prints_the_half_step_changes(tmp_path):
     records = synthetic_stream([LaneTraffic(1, "+x", 600, 75)], 3, seed=9)
     write_records(records, tmp_path / "r.csv")
@@ -75,4 +103,4 @@ def test_vbikit_traffic_prints_the_half_step_changes(tmp_path):
                                    "--out", str(tmp_path / "r.nc"), "--workers", "1", "--no-progress"])
     assert res.exit_code == 0, res.output
     line = next(s for s in res.output.splitlines() if "at half the time step" in s)
-    assert "IM changes by" in line and "tolerance 0.005" in line and np.isfinite(float(line.split("by ")[1].split()[0]))
+    assert "IM changes by" in line and "flagged above 0.005" in line and np.isfinite(float(line.split("by ")[1].split()[0]))

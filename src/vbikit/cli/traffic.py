@@ -87,8 +87,9 @@ def traffic_cmd(
     step = dataset_has_flag(a, "stream_step_sensitive")
     changes = {int(a[f"governing_{w}_event"]): float(a[f"governing_{w}_half_step_im_change"]) for w in ("static", "dynamic")}
     typer.echo(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
-               + ", ".join(f"{c:+.1e} (event {e})" for e, c in changes.items())
-               + f" (tolerance {float(a['half_step_tolerance']):g})")
+               + ", ".join(f"{c:+.1e} (event {e})" if math.isfinite(c) else f"not checked (event {e}: above the budget)"
+                           for e, c in changes.items())
+               + f" (flagged above {float(a['half_step_tolerance']):g})")
     if plot is not None:
         from vbikit.plot.traffic import plot_stream
 
