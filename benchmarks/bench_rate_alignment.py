@@ -96,6 +96,9 @@ def impulse_drift(crossing, dt: float) -> float:
     from vbikit.solve.plan import plan_run
     from vbikit.solve.system import flat_road, kernel_data, point_positions, road_data
 
+    if "x_before" not in inspect.signature(flat_road).parameters:
+        raise SystemExit("--band needs a code version with the secant road rate (flat_road's x_before, x_after): "
+                         "the code here reads the cell's slope only (benchmarks/README.md)")
     c = dataclasses.replace(crossing, dt=dt)
     grid = plan_run(c).grid
     data = kernel_data(c)
@@ -178,8 +181,8 @@ def scan(name, crossing, point, ks, spread: bool, drift: bool, band: bool = Fals
         rows.append((k, d))
         print(f"   k {k:5.2f}  dIM {d:+.2e}{extra}", flush=True)
     fb = integrators.LEAN_COUNTS["fallback"] - before
-    band = [abs(d) for k, d in rows if 0.895 <= k <= 1.105]
-    print(f"   max|dIM| k 0.9…1.1: {max(band, default=float('nan')):.2e}   all k: {max(abs(d) for _, d in rows):.2e}"
+    near = [abs(d) for k, d in rows if 0.895 <= k <= 1.105]
+    print(f"   max|dIM| k 0.9…1.1: {max(near, default=float('nan')):.2e}   all k: {max(abs(d) for _, d in rows):.2e}"
           f"   fallbacks {fb}", flush=True)
     return rows
 

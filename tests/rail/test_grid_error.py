@@ -90,9 +90,9 @@ def test_the_grid_error_line_says_what_the_halvings_did_without_repeating_a_numb
     two = governing(refine_peaks(lorentzian, speeds, values, max_halvings=2))
     assert (one["refinement_halvings"], two["refinement_halvings"]) == (1, 2)
     line = _grid_error_line({"acceleration": one, "moment": two}, PEAK_TOLERANCE)
-    assert "deck acceleration after 1 halving 50.00 % above the sweep's grid (error bound 22.500 %)" in line
+    assert "deck acceleration after 1 halving the sweep's grid 50.00 % low (error bound 22.500 %)" in line
     assert "50.000" not in line and line.count("50.00") == 1
-    assert ("midspan moment after 2 halvings 87.50 % above the sweep's grid, the last halving changed it 75.000 % "
+    assert ("midspan moment after 2 halvings the sweep's grid 87.50 % low, the last halving changed it 75.000 % "
             "(error bound 21.875 %)") in line
     assert "shear at the entry support not refined" in line
 

@@ -136,7 +136,7 @@ LISTED_LOADS = 12
 
 def _load_list(loads, per: str) -> str:
     """A preset's static loads [N] in kN, one a ``per`` ("wheel": a road vehicle's, "axle": a
-    train's), labelled so: "load per wheel [kN]: 15.4, 15.4, …; total 301.0", each listed, or for
+    train's), labelled so: "load per wheel [kN]: 15.4, 15.4, …; total 300.9", each listed, or for
     more than ``LISTED_LOADS`` (the HSLM trains' 36–50 axles) "load per axle [kN]: 50 axles, 170.0
     each; total 8500"."""
     kn = [x / 1e3 for x in loads]

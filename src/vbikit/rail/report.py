@@ -255,12 +255,12 @@ def _grid_error_line(checks: dict[str, Any], tolerance: float) -> str:
 
 
 def _refinement_words(c: dict[str, Any]) -> str:
-    """'after 1 halving 0.12 % above the sweep's grid (error bound 0.010 %)' (one halving: its
-    change is what the grid missed, said once), 'after 3 halvings 1.20 % above the sweep's grid,
-    the last halving changed it 0.040 % (error bound 0.010 %)'; a dataset without the count: the
-    grid's shortfall, the last change and the bound."""
+    """'after 1 halving the sweep's grid 0.12 % low (error bound 0.010 %)' (one halving: its change
+    is what the grid missed, said once), 'after 3 halvings the sweep's grid 1.20 % low, the last
+    halving changed it 0.040 % (error bound 0.010 %)'; a dataset without the count: the grid's
+    shortfall (``grid_error``: (refined − grid) / refined), the last change and the bound."""
     n = c.get("refinement_halvings", math.nan)
-    grid, bound = f"{100 * c['grid_error']:.2f} % above the sweep's grid", f"(error bound {100 * c['refinement_bound']:.3f} %)"
+    grid, bound = f"the sweep's grid {100 * c['grid_error']:.2f} % low", f"(error bound {100 * c['refinement_bound']:.3f} %)"
     last = f"the last halving changed it {100 * c['refinement_change']:.3f} %"
     if n is None or not math.isfinite(n):
         return f"{grid}, {last} {bound}"
