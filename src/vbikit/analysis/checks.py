@@ -168,9 +168,9 @@ FLAG_CODES: dict[str, str] = {
     "static_reference_short": "lifetime: the coupled runs' static reference misses the exact static peak (the daily "
                               "maxima of the total and the ADR biased low); output: adr; value: the largest relative "
                               "shortfall (run_static_shortfall), threshold: half_step_tolerance (0.01)",
-    "stream_step_sensitive": "traffic: a governing event's displacement impact factor changes at half the time step; "
-                             "output: impact_factor; subject: the event; value: IM_half − IM_run, threshold: "
-                             "``STEP_TOLERANCE`` (5e-3, on its magnitude)",
+    "stream_step_sensitive": "traffic: a governing event's impact factors (deflection, strain, load effects) change at "
+                             "half the time step; output: the one that moved most; subject: the event; value: its "
+                             "IM_half − IM_run, threshold: ``STEP_TOLERANCE`` (5e-3, on its magnitude)",
     "governing_step_sensitive": "lifetime: a governing event's total peak changes at half the time step; output: "
                                 "governing.static or governing.total; value: the relative change R_half / R_run − 1, "
                                 "threshold: half_step_tolerance (0.01, on its magnitude)",

@@ -1,6 +1,7 @@
 """``vbikit traffic``: a stream of vehicle records over a bridge, run like a study."""
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 from typing import Optional
@@ -69,12 +70,16 @@ def traffic_cmd(
 
     a = ds.attrs
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
-    doubt = "!" if dataset_has_flag(a, "implausible_deflection") else ""
+    implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
+    doubt = "!" if implausible or airborne else ""
     typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f}{doubt} (one vehicle {a['im_mean_single']:.4f}, "
                f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
-    if doubt:
+    if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
                    "warning; no statistic of this stream is a result")
+    if airborne:
+        typer.echo(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
+                   "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
     if a["n_small_static_events"]:
         n_small, share = int(a["n_small_static_events"]), float(a["small_static_fraction"])
         typer.echo(f"events loading the point (static peak ≥ {share:.0%} of the stream's largest, "
@@ -89,7 +94,13 @@ def traffic_cmd(
     typer.echo(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
                + ", ".join(f"{c:+.1e} (event {e})" if math.isfinite(c) else f"not checked (event {e}: above the budget)"
                            for e, c in changes.items())
-               + f" (flagged above {float(a['half_step_tolerance']):g})")
+               + f" (absolute, the deflection IM at the first point; flagged above {float(a['half_step_tolerance']):g})")
+    others = [(abs(c), name, int(a[f"governing_{w}_event"]), c) for w in ("static", "dynamic")
+              for name, c in json.loads(a[f"governing_{w}_half_step_changes"]).items()
+              if name != "impact_factor" and math.isfinite(c)]
+    if others:
+        _, name, event, change = max(others)
+        typer.echo(f"{'!' if step else ''}  their other impact factors: the largest change {change:+.1e} ({name}, event {event})")
     if plot is not None:
         from vbikit.plot.traffic import plot_stream
 

@@ -14,9 +14,10 @@ point tires the implicit integrators' IM moves by up to a few 1e-3 with the step
 from __future__ import annotations
 
 import dataclasses
+import json
 import logging
 import math
-from typing import Any
+from typing import Any, Mapping, Sequence
 
 from vbikit.analysis.checks import Flag
 from vbikit.analysis.effect_step import STEP_TOLERANCE
@@ -30,10 +31,11 @@ GOVERNING = ("static", "dynamic")
 HALF_STEP = 0.5
 
 
-def half_step_impact_factor(job: Any, event: int) -> float:
-    """The displacement impact factor at the first response point of ``event`` of the stream ``job``
-    (a ``vbikit.traffic.study.TrafficStudy``), run at half the step its event ran with (the event's
-    crossing and road, ``TrafficStudy.crossing``); NaN when that run is above the budget."""
+def half_step_impact_factors(job: Any, event: int, names: Sequence[str]) -> dict[str, float]:
+    """The impact factors ``names`` (catalogue outputs: the point ones at the first response point)
+    of ``event`` of the stream ``job`` (a ``vbikit.traffic.study.TrafficStudy``), run at half the step
+    its event ran with (the event's crossing and road, ``TrafficStudy.crossing``); NaN when that run
+    is above the budget."""
     from vbikit.analysis.response import reduce_crossing
     from vbikit.solve import simulate
     from vbikit.solve.plan import plan_run
@@ -43,30 +45,42 @@ def half_step_impact_factor(job: Any, event: int) -> float:
         result = simulate(dataclasses.replace(crossing, dt=HALF_STEP * plan_run(crossing).dt))
     except BudgetError as err:
         log.warning("the governing event %d was not run again at half the step: %s", event, err)
-        return math.nan
-    points, _ = reduce_crossing(result, job.context().plan, names=("impact_factor",))
-    return float(points[0]["impact_factor"])
+        return {name: math.nan for name in names}
+    points, row = reduce_crossing(result, job.context().plan, names=tuple(names))
+    values = {**points[0], **row}
+    return {name: float(values[name]) if values.get(name) is not None else math.nan for name in names}
 
 
-def governing_step_check(job: Any, attrs: dict[str, Any], im: Any) -> tuple[dict[str, float], list[Flag]]:
-    """The governing events of the stream ``job`` (``attrs``: its statistics) at half the step: the
-    dataset attributes ``governing_<which>_half_step_im_change`` (IM_half − IM_run, ``im`` the events'
-    IMs at the first point; NaN: not checked) and ``half_step_tolerance``, and one
-    ``stream_step_sensitive`` flag per event whose change is above ``STEP_TOLERANCE``."""
-    out: dict[str, float] = {"half_step_tolerance": STEP_TOLERANCE}
+def governing_step_check(job: Any, attrs: dict[str, Any],
+                         stored: Mapping[str, Any]) -> tuple[dict[str, Any], list[Flag]]:
+    """The governing events of the stream ``job`` (``attrs``: its statistics) at half the step.
+    ``stored``: the stream's impact factors by output name (``impact_factor``, the strain's, the load
+    effects'), each per event (at the first point).  Returns the dataset attributes
+    ``governing_<which>_half_step_im_change`` (the deflection IM's IM_half − IM_run; NaN: not checked),
+    ``governing_<which>_half_step_changes`` (JSON: every stored impact factor's change) and
+    ``half_step_tolerance``, and one ``stream_step_sensitive`` flag per event with an impact factor
+    whose change is above ``STEP_TOLERANCE``."""
+    out: dict[str, Any] = {"half_step_tolerance": STEP_TOLERANCE}
     roles: dict[int, list[str]] = {}
     for which in GOVERNING:
         roles.setdefault(int(attrs[f"governing_{which}_event"]), []).append(which)
     flags: list[Flag] = []
     for event, which in roles.items():
-        change = half_step_impact_factor(job, event) - float(im[event])
+        half = half_step_impact_factors(job, event, list(stored))
+        changes = {name: half[name] - float(stored[name][event]) for name in stored}
         for w in which:
-            out[f"governing_{w}_half_step_im_change"] = change
-        if math.isfinite(change) and abs(change) > STEP_TOLERANCE:
+            out[f"governing_{w}_half_step_im_change"] = changes.get("impact_factor", math.nan)
+            out[f"governing_{w}_half_step_changes"] = json.dumps(changes)
+        moved = {name: c for name, c in changes.items() if math.isfinite(c) and abs(c) > STEP_TOLERANCE}
+        if moved:
+            worst = max(moved, key=lambda name: abs(moved[name]))
             flags.append(Flag("stream_step_sensitive",
-                              f"the governing {' and '.join(which)} event ({event}): its impact factor changes by "
-                              f"{change:+.2e} at half the time step (tolerance {STEP_TOLERANCE:g}) — the stream's "
-                              "amplifications carry that much step error; check them with integrator = \"rk4\" "
-                              "(docs/verification.md, \"The road's stations and the tire dashpots\")",
-                              output="impact_factor", subject=f"event {event}", value=change, threshold=STEP_TOLERANCE))
+                              f"the governing {' and '.join(which)} event ({event}): at half the time step "
+                              + ", ".join(f"{name} changes by {c:+.2e}" for name, c in moved.items())
+                              + f" (tolerance {STEP_TOLERANCE:g}) — the stream's values of these carry that much step "
+                              "error; run the stream with a shorter crossing.dt in the base scenario until they settle "
+                              "(as a single run's step check does for load effects), and check a deflection IM on a "
+                              "rough road with integrator = \"rk4\" (docs/verification.md, \"The road's stations and "
+                              "the tire dashpots\")",
+                              output=worst, subject=f"event {event}", value=moved[worst], threshold=STEP_TOLERANCE))
     return out, flags

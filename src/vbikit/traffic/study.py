@@ -31,7 +31,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.checks import Flag
+from vbikit.analysis.checks import Flag, airborne_wheels
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
@@ -56,6 +56,9 @@ log = logging.getLogger(__name__)
 #: per-event outputs beside the catalogue's (vbikit.outputs): name -> (units, description)
 EVENT_EXTRAS: dict[str, tuple[str, str]] = {
     "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road"),
+    "airborne_wheels": ("1", "1 if a wheel was airborne on the bridge for more than 5 % of its time there (the single "
+                             "run's airborne_wheels rule): the event's impact factors are dominated by point-contact "
+                             "impacts, not design values"),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts
@@ -164,6 +167,8 @@ class TrafficStudy:
         if problem:
             return problem
         for name in EVENT_EXTRAS:
+            if name not in part:
+                return f"it has no {name} (written by an earlier version)"
             if part[name].shape != (len(batch),):
                 return f"{name} has the wrong shape"
         for name in VEHICLE_OUTPUTS:
@@ -237,6 +242,7 @@ class TrafficStudy:
         result = simulate(self.crossing(e))
         points, row = reduce_crossing(result, self.context().plan, names=self.output_names)
         row["road_seed"] = float(self.road_seed(e))
+        row["airborne_wheels"] = float(bool(np.any(result.wheel_forces <= 0.0)) and bool(airborne_wheels(result)))
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
@@ -292,7 +298,8 @@ class TrafficStudy:
         ds = xr.Dataset(variables, coords=coords)
         stats = stream_statistics(ds)
         first = ds.isel(point=0) if "point" in ds.dims else ds
-        step_attrs, step_flags = governing_step_check(self, stats, first["impact_factor"].values)
+        impact = {name: first[name].values for name in first.data_vars if str(name).endswith("impact_factor")}
+        step_attrs, step_flags = governing_step_check(self, stats, impact)
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -301,7 +308,7 @@ class TrafficStudy:
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
             **step_attrs,
-            **self.flag_attrs(ev["max_static_displacement"], step_flags),
+            **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags),
         }
         return ds
 
@@ -316,6 +323,25 @@ class TrafficStudy:
         spans = np.full(static_peaks.shape[0], float(span))
         return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event")
                                   + list(flags))
+
+
+def airborne_dataset_flags(airborne: NDArray) -> list[Flag]:
+    """The single run's ``airborne_wheels`` rule over a stream's events (``airborne``: 1 for an event
+    with a wheel airborne on the bridge for more than ``AIRBORNE_FRACTION`` of its time there): one
+    flag counting them, their impact factors not design values; none when no event is."""
+    from vbikit.analysis.checks import AIRBORNE_FRACTION
+
+    flagged = np.flatnonzero(np.asarray(airborne, float) > 0.0)
+    if not flagged.size:
+        return []
+    share = flagged.size / len(airborne)
+    return [Flag("airborne_wheels",
+                 f"{flagged.size} of {len(airborne)} events had a wheel airborne on the bridge for more than "
+                 f"{AIRBORNE_FRACTION:.0%} of its time there (event variable airborne_wheels; first: event "
+                 f"{int(flagged[0])}): their impact factors are dominated by the vehicles leaving and landing on the "
+                 "road (point-contact impacts), so they are not design values, nor are the stream's statistics that "
+                 "include them; the road is beyond the model's intended range", output="impact_factor",
+                 subject=f"{flagged.size} events", value=share, threshold=AIRBORNE_FRACTION)]
 
 
 def _gross(record: VehicleRecord) -> float:
@@ -361,6 +387,7 @@ def stream_statistics(ds) -> dict[str, Any]:
         "governing_static_amplification": float(dyn[i_st] / st[i_st]),
         "governing_dynamic_event": i_dyn,
         "governing_dynamic_amplification": float(dyn[i_dyn] / st[i_st]),
+        "n_airborne_events": int(np.sum(np.asarray(ds["airborne_wheels"].values) > 0)) if "airborne_wheels" in ds else 0,
     }
 
 
