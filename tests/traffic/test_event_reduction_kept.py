@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from vbikit._kept import Kept, forget_kept
+from vbikit._kept import forget_kept
 from vbikit.analysis import response
 from vbikit.solve import simulate
 from vbikit.traffic import LaneTraffic, synthetic_stream
@@ -25,10 +25,10 @@ def stream():
 
 
 def _fresh_context(monkeypatch) -> None:
-    """Forget every event context and kept value of this process (the bridges' stores, the weighted tables)."""
+    """Forget every event context and kept value of this process (the bridges' stores, the weighted
+    tables among them)."""
     traffic._CONTEXTS.clear()
     forget_kept()
-    monkeypatch.setattr(response, "_STATIC_POINT_TABLES", Kept(response.STATIC_POINT_TABLES_KEPT))
 
 
 def _flat(event) -> dict[str, float]:

@@ -9,7 +9,7 @@ from typing import Any, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit._kept import Kept, kept_for
+from vbikit._kept import kept_for
 from vbikit.analysis.checks import Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
@@ -167,12 +167,20 @@ def point_line(bridge: object, point: ResponsePoint) -> float | None:
 
 
 def plan_responses(result: CrossingResult, plan: ResponsePlan,
-                   xi_static: NDArray[np.float64] | None = None) -> list[PointResponse]:
+                   xi_static: NDArray[np.float64] | None = None, per_point: bool = False) -> list[PointResponse]:
     """The responses at every point of ``plan`` (its order; a point given by its girder on that
-    girder's line), one static modal history shared."""
+    girder's line), one static modal history shared — or, with ``per_point`` and no ``xi_static``,
+    the points' static histories without it (``static_point_histories``: the same to round-off)."""
+    if per_point and xi_static is None:
+        where = plan_points(result, plan)
+        return [point_response(result, x, y, static=st) for (x, y), st in zip(where, static_point_histories(result, where))]
     xi_st = static_modal_history(result) if xi_static is None else xi_static
     bridge = result.crossing.bridge
     return [point_response(result, p.x, point_line(bridge, p), xi_st) for p in plan.points]
+
+
+#: the response plans' points a bridge keeps (``plan_points``)
+PLAN_POINTS_KEPT = 8
 
 
 def plan_points(result: CrossingResult, plan: ResponsePlan) -> list[tuple[float, float]]:
@@ -180,13 +188,12 @@ def plan_points(result: CrossingResult, plan: ResponsePlan) -> list[tuple[float,
     kept for the bridge per plan (they depend on those two only; each entry holds its plan, so that no
     other plan can take its identity while kept): every event of a stream reads the same points."""
     bridge = result.crossing.bridge
-    return kept_for(bridge, "plan points", POINT_SHAPES_KEPT).get(
+    return kept_for(bridge, "plan points", PLAN_POINTS_KEPT).get(
         id(plan), lambda: (plan, [result.point(p.x, point_line(bridge, p)) for p in plan.points]))[1]
 
 
-#: the static point tables (``_static_point_tables``) kept per mode-shape tables and response points
+#: the static point tables (``_static_point_tables``) a bridge keeps, per mode-shape tables and response points
 STATIC_POINT_TABLES_KEPT = 16
-_STATIC_POINT_TABLES: "Kept[tuple, tuple[NDArray[np.float64], ...]]" = Kept(STATIC_POINT_TABLES_KEPT)
 
 
 def static_point_histories(result: CrossingResult,
@@ -200,12 +207,11 @@ def static_point_histories(result: CrossingResult,
 
         R_st(t) = −Σ_p P_p Σ_m w_m φ_m(x_p(t)),
 
-    the same compiled pass as ξ_st (``vbikit.solve.kernels.static_modal_history``) over two
+    the compiled pass of ξ_st itself (``vbikit.solve.kernels.static_modal_history``) over two
     weighted tables per point instead of one table per mode (made once per mode tables and points,
     ``_static_point_tables``).  Equal to ξ_st·φ up to round-off (the sums over modes taken before
     the sum over points instead of after)."""
-    from vbikit.analysis.line_sums import hermite_sums
-    from vbikit.solve import system
+    from vbikit.solve import kernels, system
 
     crossing = result.crossing
     bridge = crossing.bridge
@@ -218,8 +224,9 @@ def static_point_histories(result: CrossingResult,
     travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
     n_h = values.shape[2]
     out = np.zeros((travel.shape[0], n_h))
-    hermite_sums(travel, pts.origin, pts.direction, pts.vehicle, pts.track, np.ascontiguousarray(loads, float),
-                 modes.start, modes.end, float(modes.grid_h), values, slopes, out)
+    kernels.static_modal_history(travel, pts.origin, pts.direction, pts.vehicle, pts.track,
+                                 np.ascontiguousarray(loads, float), modes.start, modes.end, float(modes.grid_h), values,
+                                 slopes, out, np.zeros(n_h), np.zeros(n_h))
     np.negative(out, out=out)
     return [(out[:, 2 * i], out[:, 2 * i + 1]) for i in range(len(points))]
 
@@ -228,19 +235,19 @@ def _static_point_tables(bridge: object, modes: Any,
                          points: Sequence[tuple[float, float]]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The mode tables ``modes.values``, ``modes.slopes`` (n_tracks, n_grid, n_m) weighted into
     (n_tracks, n_grid, 2 n_points): for every point its φ_m(x, y)/ω_m², then its ε_m(x, y)/ω_m²
-    (``static_point_histories``; the shapes and ω of the immutable ``bridge``), kept per tables and
-    bridge (their identities: each entry holds them, so that no other object can take one while
-    kept) and the points (shared: not to be written)."""
-    key = (id(modes.values), id(modes.slopes), id(bridge), tuple((float(x), float(y)) for x, y in points))
+    (``static_point_histories``; the shapes and ω of the immutable ``bridge``), kept by the bridge
+    (``kept_for``) per tables (their identities: each entry holds them, so that no other array can
+    take one while kept) and points (shared: not to be written)."""
+    key = (id(modes.values), id(modes.slopes), tuple((float(x), float(y)) for x, y in points))
 
     def make() -> tuple[Any, ...]:
         omega2 = np.asarray(bridge.omega, float) ** 2
         weights = np.column_stack([shape / omega2 for x, y in points for shape in point_shapes(bridge, x, y, checked=True)])
         # (writeable, as the mode tables: numba compiles the kernel again for read-only arrays)
         tables = (np.ascontiguousarray(modes.values @ weights), np.ascontiguousarray(modes.slopes @ weights))
-        return (modes.values, modes.slopes, bridge) + tables  # (the sources kept alive with their identities)
+        return (modes.values, modes.slopes) + tables  # (the sources kept alive with their identities)
 
-    return _STATIC_POINT_TABLES.get(key, make)[3:]
+    return kept_for(bridge, "static point tables", STATIC_POINT_TABLES_KEPT).get(key, make)[2:]
 
 
 def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArray[np.float64] | None = None,
@@ -261,12 +268,7 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
                                                         check_step=False))) if first else {}  # (no step check: the outputs do not read it)
     points: list[dict[str, float | None]] = [{} for _ in plan.points]
     if outputs("point", names):
-        if xi_static is not None:
-            responses = plan_responses(result, plan, xi_static)
-        else:  # the static histories at the points without the static modal history
-            where = plan_points(result, plan)
-            responses = [point_response(result, x, y, static=st) for (x, y), st in zip(where, static_point_histories(result, where))]
-        points = [r.outputs(result, names) for r in responses]
+        points = [r.outputs(result, names) for r in plan_responses(result, plan, xi_static, per_point=True)]
     return points, reduce_outputs(Reduction(result, None, effects), "crossing", names)
 
 
