@@ -56,8 +56,7 @@ def test_a_study_on_a_beam_with_ei_in_kilonewtons_says_so(tmp_path):
     bad = _study(BAD_EI, tmp_path, "bad")
     assert -bad["max_static_displacement"].values == pytest.approx(_four_modes(BAD_EI), rel=1e-4)
     assert _closed_form(BAD_EI) > IMPLAUSIBLE_DEFLECTION_FRACTION * L
-    # (its governing events, whose deflections are 1000 times too large, also move at half the step)
-    assert bad.attrs["flag_codes"].split(",")[0] == "implausible_deflection"
+    assert bad.attrs["flag_codes"] == "implausible_deflection"
     text = bad.attrs["warnings"]
     assert "in 3 of 3 crossings" in text and IMPLAUSIBLE_DEFLECTION_ADVICE in text
     assert f"L/{L / _four_modes(BAD_EI):.3g}" in text  # the largest as a fraction of the span: L/6.39
@@ -78,7 +77,8 @@ def test_a_traffic_stream_on_a_beam_with_ei_in_kilonewtons_says_so(tmp_path):
     assert "warnings" not in ok.attrs and "flag_codes" not in ok.attrs
     bad = _stream(BAD_EI, tmp_path, "bad")
     assert -bad["max_static_displacement"].values == pytest.approx(_four_modes(BAD_EI), rel=1e-4)
-    assert bad.attrs["flag_codes"] == "implausible_deflection"
+    # (its governing events, whose deflections are 1000 times too large, also move at half the step)
+    assert bad.attrs["flag_codes"].split(",")[0] == "implausible_deflection"
     text = bad.attrs["warnings"]
     assert "in 2 of 2 events" in text and IMPLAUSIBLE_DEFLECTION_ADVICE in text
     assert f"L/{L / _four_modes(BAD_EI):.3g}" in text
