@@ -415,5 +415,8 @@ def test_a_girder_decks_strain_advice_says_which_im_to_sign_with():
     assert "on a girder deck sign with the moment IM, not the deflection IM" in res.output
     # the moment IM the advice points to is reported at the strain's own section (girder 4, x = 8.38 m)
     assert any(x.strip().startswith("moment   x = 8.38 m, girder 4") for x in res.output.splitlines())
+    # … and printed under the advice, the number to sign with (the moment table's own row: 0.1868, docs/bridges.md)
+    row = next(x for x in res.output.splitlines() if x.strip().startswith("moment   x = 8.38 m, girder 4"))
+    assert f"the moment IM at x = 8.38 m, girder 4: {row.split('IM')[1].split()[0]}" in res.output
     (beam,) = strain_convergence_flags(0.9e-4, 1e-4, 10, "x = 5.000 m")
     assert "use more modes (bridge.n_modes)" in beam.message and "sign with" not in beam.message

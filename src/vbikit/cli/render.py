@@ -88,6 +88,10 @@ def print_summary(run: Run) -> None:
     if strain_off:
         typer.echo(f"  {'':<20} ! unreliable strain and strain IM: the strain is not converged in the modes — see "
                    "the warning (what to do: more modes on a beam; on a girder deck sign with the moment IM, not the deflection IM)")
+        moment = _moment_at(s, s["response_x"])
+        if "governing_girder" in s and moment is not None:
+            girder = f", girder {moment['girder']}" if moment.get("girder") else ""
+            typer.echo(f"  {'':<20}   the moment IM at x = {moment['x']:.2f} m{girder}: {_im(moment['impact_factor'])}")
     realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
@@ -121,6 +125,12 @@ def print_summary(run: Run) -> None:
     print_codes(s["design_code_allowances"], "deflection IM beside", several=bool(s.get("vehicles")))
     print_load_effects(s)
     print_negative_note(negative_impact(s))
+
+
+def _moment_at(s: dict[str, Any], x: float) -> dict[str, Any] | None:
+    """The run's moment section at ``x`` [m] (within 1 mm), if it reports one."""
+    sections = [e for e in s.get("moment", {}).get("sections", []) if abs(float(e["x"]) - x) <= 1e-3]
+    return sections[0] if sections else None
 
 
 def negative_impact(s: dict[str, Any]) -> bool:
