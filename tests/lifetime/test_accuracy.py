@@ -402,3 +402,13 @@ def test_report_flags_an_interval_wider_than_its_level(quasi_static):
     assert "wider than the level itself (POT at 1000 years" in wide["message"]
     # the widest flagged interval: at least the one set above, 1.6 |level| (the largest over those flagged)
     assert wide["value"] >= 1.6 * (1 - 1e-12) and wide["threshold"] == acc.WIDE_INTERVAL
+
+
+def test_a_negative_level_s_interval_reads_in_increasing_order():
+    """A deflection (negative, its bounds stored by magnitude: lower −0.003295, upper −0.006331 m, the
+    trial's numbers) reads "(-0.006331 … -0.003295)", the interval from the smaller to the larger."""
+    from vbikit.lifetime.report import _iv
+
+    text = _iv({"value": -0.004813, "lower": -0.003295, "upper": -0.006331})
+    assert text == "-0.004813 (-0.006331 … -0.003295)"
+    assert _iv({"value": 2.0e5, "lower": 1.5e5, "upper": 2.5e5}, 1e-3) == "200 (150 … 250)"

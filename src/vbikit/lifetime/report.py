@@ -278,12 +278,14 @@ def _g(x: float | None, fmt: str = ".4g", scale: float = 1.0) -> str:
 
 
 def _iv(d: dict, scale: float = 1.0) -> str:
-    """A level with its interval, times ``scale`` (to the report's unit)."""
+    """A level with its interval, times ``scale`` (to the report's unit), the interval in increasing
+    order (a hogging or upward effect's bounds are stored by magnitude)."""
     if d["value"] is None:
         return "n/a"
     if d["lower"] is None:
         return f"{d['value'] * scale:.4g} (no interval)"
-    return f"{d['value'] * scale:.4g} ({d['lower'] * scale:.4g} … {d['upper'] * scale:.4g})"
+    lo, hi = sorted((d["lower"] * scale, d["upper"] * scale))
+    return f"{d['value'] * scale:.4g} ({lo:.4g} … {hi:.4g})"
 
 
 def text_report(facts: dict[str, Any]) -> str:
