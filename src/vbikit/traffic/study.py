@@ -314,7 +314,8 @@ class TrafficStudy:
 
     def flag_attrs(self, static_peaks: NDArray, flags: Sequence[Flag] = ()) -> dict[str, str]:
         """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
-        of ``flags`` (the governing events' step check, ``vbikit.traffic.accuracy``) and of an event's
+        of ``flags`` (airborne wheels, ``airborne_dataset_flags``; the governing events' step check,
+        ``vbikit.traffic.accuracy``) and of an event's
         static deflection peak ``static_peaks`` (events, points) [m] implausible for the bridge's
         longest span (``implausible_deflection_dataset_flags``); none when there is nothing to say."""
         from vbikit.analysis.checks import dataset_flag_attrs, implausible_deflection_dataset_flags
@@ -334,14 +335,13 @@ def airborne_dataset_flags(airborne: NDArray) -> list[Flag]:
     flagged = np.flatnonzero(np.asarray(airborne, float) > 0.0)
     if not flagged.size:
         return []
-    share = flagged.size / len(airborne)
     return [Flag("airborne_wheels",
                  f"{flagged.size} of {len(airborne)} events had a wheel airborne on the bridge for more than "
                  f"{AIRBORNE_FRACTION:.0%} of its time there (event variable airborne_wheels; first: event "
                  f"{int(flagged[0])}): their impact factors are dominated by the vehicles leaving and landing on the "
                  "road (point-contact impacts), so they are not design values, nor are the stream's statistics that "
                  "include them; the road is beyond the model's intended range", output="impact_factor",
-                 subject=f"{flagged.size} events", value=share, threshold=AIRBORNE_FRACTION)]
+                 subject=f"{flagged.size} events", threshold=AIRBORNE_FRACTION)]  # (value: a wheel's time share; not stored)
 
 
 def _gross(record: VehicleRecord) -> float:
