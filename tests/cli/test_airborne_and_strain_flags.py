@@ -418,5 +418,7 @@ def test_a_girder_decks_strain_advice_says_which_im_to_sign_with():
     # … and printed under the advice, the number to sign with (the moment table's own row: 0.1868, docs/bridges.md)
     row = next(x for x in res.output.splitlines() if x.strip().startswith("moment   x = 8.38 m, girder 4"))
     assert f"the moment IM at x = 8.38 m, girder 4: {row.split('IM')[1].split()[0]}" in res.output
+    # a deck of three spans gives its whole length as such, not as "span 53.52 m"
+    assert "(length 53.52 m," in res.output and "(span 53.52 m" not in res.output
     (beam,) = strain_convergence_flags(0.9e-4, 1e-4, 10, "x = 5.000 m")
     assert "use more modes (bridge.n_modes)" in beam.message and "sign with" not in beam.message

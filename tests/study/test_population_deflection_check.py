@@ -128,7 +128,7 @@ def _traffic_cli(ei: float, tmp_path, name: str):
     res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / f"{name}.toml"), "--out",
                               str(tmp_path / f"{name}.nc"), "--lanes", "0", "--workers", "1", "--no-progress"])
     assert res.exit_code == 0, res.output
-    return res, next(x for x in res.output.splitlines() if x.startswith("impact factor of the events"))
+    return res, next(x for x in res.output.splitlines() if x.startswith("impact factor of all events"))
 
 
 def test_the_traffic_command_prints_the_dataset_warning(tmp_path):

@@ -45,7 +45,9 @@ def print_summary(run: Run) -> None:
         if road.get("defects"):
             road_text += f"; defects: {', '.join(road['defects'])}"
         deck = "".join(f", {k} {v}" for k, v in inp.get("bridge_deck", {}).items())
-        typer.echo(f"  bridge               {inp['bridge']} (span {inp['span']:g} m, {inp['n_modes']} modes, "
+        several_spans = len(inp.get("bridge_deck", {}).get("spans", [])) > 1
+        length = f"length {inp['span']:g} m" if several_spans else f"span {inp['span']:g} m"  # (the deck's whole length)
+        typer.echo(f"  bridge               {inp['bridge']} ({length}, {inp['n_modes']} modes, "
                    f"damping {inp['damping_ratio']:.3g}{deck})")
         several = "vehicles" in inp
         for i, v in enumerate(inp["vehicles"] if several else [inp], start=1):

@@ -72,7 +72,7 @@ def traffic_cmd(
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
     implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
     doubt = "!" if implausible or airborne else ""
-    typer.echo(f"impact factor of the events: mean {a['im_mean']:.4f}{doubt} (one vehicle {a['im_mean_single']:.4f}, "
+    typer.echo(f"impact factor of all events: mean {a['im_mean']:.4f}{doubt} (one vehicle {a['im_mean_single']:.4f}, "
                f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
