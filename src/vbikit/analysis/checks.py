@@ -479,9 +479,12 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
 def airborne_wheels(result: CrossingResult, fraction: float = AIRBORNE_FRACTION) -> list[tuple[str, float, float]]:
     """The wheels airborne (tire force ≤ 0) on the bridge for more than ``fraction`` of their own time
     on it (each on its own track's stretch of the deck, ``wheels_on_deck``): (wheel name, time
-    airborne there [s], that fraction)."""
-    out = []
+    airborne there [s], that fraction).  A run whose every tire force stays positive has none (the
+    deck stretches are not computed: a population's events ask this of every run)."""
+    out: list[tuple[str, float, float]] = []
     forces, dt = result.wheel_forces, result.dt
+    if not np.any(forces <= 0.0):
+        return out
     on_deck = wheels_on_deck(result)
     for w, wheel in enumerate(result.crossing.vehicle.wheels):
         if wheel.stiffness <= 0:

@@ -140,9 +140,8 @@ def _load_list(loads, per: str) -> str:
     more than ``LISTED_LOADS`` (the HSLM trains' 36–50 axles) "load per axle [kN]: 50 axles, 170.0
     each; total 8500"."""
     kn = [x / 1e3 for x in loads]
-    total = f"total {sum(kn):.1f}" if len(kn) <= LISTED_LOADS else f"total {sum(kn):.0f}"
     if len(kn) <= LISTED_LOADS:
-        return f"load per {per} [kN]: " + ", ".join(f"{x:.1f}" for x in kn) + f"; {total}"
+        return f"load per {per} [kN]: " + ", ".join(f"{x:.1f}" for x in kn) + f"; total {sum(kn):.1f}"
     low, high = min(kn), max(kn)
     each = f"{low:.1f} each" if high == low else f"{low:.1f} … {high:.1f}"
-    return f"load per {per} [kN]: {len(kn)} {per}s, {each}; {total}"
+    return f"load per {per} [kN]: {len(kn)} {per}s, {each}; total {sum(kn):.0f}"

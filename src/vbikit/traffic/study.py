@@ -242,7 +242,7 @@ class TrafficStudy:
         result = simulate(self.crossing(e))
         points, row = reduce_crossing(result, self.context().plan, names=self.output_names)
         row["road_seed"] = float(self.road_seed(e))
-        row["airborne_wheels"] = float(bool(np.any(result.wheel_forces <= 0.0)) and bool(airborne_wheels(result)))
+        row["airborne_wheels"] = float(bool(airborne_wheels(result)))
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
