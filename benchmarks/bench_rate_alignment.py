@@ -15,12 +15,14 @@ first five with two) and the ``vbikit demo`` crossing (HS20-44, multipoint tire 
 2. the default integrator at dt × k for each k of ``--ks`` (default 0.90 … 1.10 in 0.02, then 1.5, 1.53,
    2.0): the displacement impact factor IM (response at Girder 4 midspan; the demo's response point)
    minus the reference's;
-3. ``--band``: per k, the rms of the kernels' cell-slope road rate minus the secant rate over the half-step
-   positions (consistent with the road crossed), whole and below 15 Hz (the deck's and axles' band);
+3. ``--band``: per k, the rms of the cell-slope road rate (what the implicit integrators read before
+   the secant rate) minus the secant rate over the half-step positions (consistent with the road
+   crossed), whole and below 15 Hz (the deck's and axles' band);
 4. ``--drift``: per k, the accumulated dashpot impulse error of the first point of the first vehicle,
    max_n |Σ_{j<n} [dt (ṙ_j + ṙ_{j+1})/2 − (r_{j+1} − r_j)]| [m] with ṙ the road rate the kernels take
-   at a step end (``flat_road``) and r the road under the point: how far the trapezoid of the rates
-   drifts from the road the point actually crosses.
+   at a step end (``flat_road`` with the implicit integrators' span dt/2; ``--cell``: the cell's slope, as
+   before the secant rate) and r the road under the point: how far the trapezoid of the rates drifts
+   from the road the point actually crosses.
 
 ``LEAN_COUNTS['fallback']`` is reported (runs the full kernel finished).  ``--time N``: N crossings of
 each case at dt through ``simulate``, thread CPU time of the one-lane lean kernel (``kernels.lean``)
@@ -31,7 +33,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import inspect
 import statistics
 import sys
 import time
@@ -89,16 +90,13 @@ def impact(crossing, point) -> float:
     return point_response(simulate(crossing), *point).displacement_impact.impact_factor
 
 
-def impulse_drift(crossing, dt: float) -> float:
+def impulse_drift(crossing, dt: float, cell: bool = False) -> float:
     """max_n |Σ_{j<n} [dt (ṙ_j + ṙ_{j+1})/2 − Δr_j]| [m] of the first contact point at step ``dt``, with
-    the road elevation and rate the lean kernel takes at each step end (``flat_road``; the secant over the
-    half-step positions where the code version has it)."""
+    the road elevation and rate the lean kernel takes at each step end (``flat_road``: the secant over the
+    half-step positions, span dt/2; ``cell``: the cell's slope, span 0)."""
     from vbikit.solve.plan import plan_run
     from vbikit.solve.system import flat_road, kernel_data, point_positions, road_data
 
-    if "x_before" not in inspect.signature(flat_road).parameters:
-        raise SystemExit("--band needs a code version with the secant road rate (flat_road's x_before, x_after): "
-                         "the code here reads the cell's slope only (benchmarks/README.md)")
     c = dataclasses.replace(crossing, dt=dt)
     grid = plan_run(c).grid
     data = kernel_data(c)
@@ -107,16 +105,11 @@ def impulse_drift(crossing, dt: float) -> float:
     x1, _ = point_positions(data, travel[-1], speed[-1])
     road = road_data([(v.road, v.road_right) for v in [c]], float(min(x0.min(), x1.min())),
                      float(max(x0.max(), x1.max())))
-    secant = "x_before" in inspect.signature(flat_road).parameters  # the code version's rate
-    last = travel.shape[0] - 1
+    span = 0.0 if cell else 0.5 * dt
     r, rd = [], []
     for row in range(0, travel.shape[0], 2):
         x, vx = point_positions(data, travel[row], speed[row])
-        if secant:
-            a, b = flat_road(data, road, x, vx, point_positions(data, travel[max(row - 1, 0)])[0],
-                             point_positions(data, travel[min(row + 1, last)])[0])
-        else:
-            a, b = flat_road(data, road, x, vx)
+        a, b = flat_road(data, road, x, vx, span)
         r.append(a[0])
         rd.append(b[0])
     r, rd = np.array(r), np.array(rd)
@@ -129,7 +122,7 @@ def rate_error_band(crossing, dt: float, band: float = 15.0) -> tuple[float, flo
     positions (consistent with the road crossed: its trapezoid telescopes), e_n [m/s] of the first
     contact point at step ends of step ``dt`` while on the road: (rms of e, rms of its part below ``band``
     [Hz]).  The part below ``band`` is the force error c·e the deck and the axles respond to; the rest
-    is averaged out by them.  Needs a code version with the secant (``flat_road``'s x_before, x_after)."""
+    is averaged out by them."""
     from vbikit.solve.plan import plan_run
     from vbikit.solve.system import flat_road, kernel_data, point_positions, road_data
 
@@ -144,9 +137,8 @@ def rate_error_band(crossing, dt: float, band: float = 15.0) -> tuple[float, flo
     e = []
     for row in range(2, last - 1, 2):
         x, vx = point_positions(data, travel[row], speed[row])
-        _, cell = flat_road(data, road, x, vx)
-        _, sec = flat_road(data, road, x, vx, point_positions(data, travel[row - 1])[0],
-                           point_positions(data, travel[row + 1])[0])
+        _, cell = flat_road(data, road, x, vx, 0.0)
+        _, sec = flat_road(data, road, x, vx, 0.5 * dt)
         e.append(cell[0] - sec[0])
     e = np.array(e)
     spec = np.fft.rfft(e)
@@ -174,7 +166,8 @@ def scan(name, crossing, point, ks, spread: bool, drift: bool, band: bool = Fals
     rows = []
     for k in ks:
         d = impact(dataclasses.replace(crossing, dt=k * dt), point) - ref
-        extra = f"  drift {impulse_drift(crossing, k * dt):.2e} m" if drift else ""
+        extra = (f"  drift {impulse_drift(crossing, k * dt):.2e} m (cell slope {impulse_drift(crossing, k * dt, True):.2e} m)"
+                 if drift else "")
         if band:
             tot, low = rate_error_band(crossing, k * dt)
             extra += f"  rate error rms {tot:.2e} m/s, below 15 Hz {low:.2e} m/s"
@@ -221,7 +214,7 @@ def main(argv=None) -> None:
     ap.add_argument("--rk4-spread", action="store_true")
     ap.add_argument("--drift", action="store_true", help="also the accumulated dashpot impulse error per k")
     ap.add_argument("--band", action="store_true",
-                    help="also the kernels' cell-slope rate error against the secant, rms and below 15 Hz (secant code; with --no-scan: alone)")
+                    help="also the cell-slope rate error against the secant, rms and below 15 Hz (with --no-scan: alone)")
     ap.add_argument("--time", type=int, default=0, help="N: lean kernel thread CPU per crossing, N rounds")
     ap.add_argument("--no-scan", action="store_true")
     args = ap.parse_args(argv)

@@ -18,9 +18,9 @@ wheels lose contact (docs/verification.md: 3 cm gave up to 9.9e-4 there, so 2 cm
 large are the errors of coarser steps on a class B road, where the stream's trucks keep contact?
 Printed: per event ΔIM = IM(exact, k·dt) − IM(RK4, dt/8) for k = 1, 1.5, 2, 4, whether a wheel lost
 contact, and the largest and 95th-percentile |ΔIM| per k.  With 1 cm stations and dt set by the road
-(2 cm a step), k = 1, 1.5, 2 and 4 are whole stations a step for the fastest truck: steps that are
-not give larger, erratic errors on these roads (docs/verification.md, "The road's stations and the
-tire dashpots"; ``bench_rate_alignment.py``).  ``--timing N``: also the thread CPU
+(2 cm a step), k = 1, 1.5, 2 and 4 are whole stations a step for the fastest truck; with the implicit
+integrators' secant road rate other steps behave alike (docs/verification.md, "The road's stations and
+the tire dashpots"; ``bench_rate_alignment.py``).  ``--timing N``: also the thread CPU
 time of ``simulate`` and the output reduction (``reduce_crossing``, the stream's outputs) of every
 N-th event of the stream at dt and at 2 dt, three alternating rounds.
 """

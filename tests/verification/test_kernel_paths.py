@@ -195,7 +195,57 @@ def test_road_rate_on_a_station_is_that_of_the_cell_entered(vx, cell):
     road = Road(stations, z.reshape(1, 3, 1), float(z.max()))
     idx = np.full(1, -1, np.int64)
     rv, rr = np.zeros((1, 1)), np.zeros((1, 1))
-    road_point(1.0, vx, 0, 0, road, idx, rv, rr, (0,))
+    road_point(1.0, vx, 0, 0, road, idx, rv, rr, (0,), 0.0)  # span 0: the cell's slope (RK4's rate)
     slope = np.diff(z)[cell]
     assert rv[0, 0] == pytest.approx(0.01, abs=1e-15)
     assert rr[0, 0] == pytest.approx(vx * slope, abs=1e-15)
+
+
+@pytest.mark.parametrize("vx", [20.0, -20.0])
+def test_secant_road_rate_spans_the_kink_by_hand(vx):
+    """With span s > 0 (the implicit integrators' dt/2) the rate is v (r(x + a) − r(x − a)) / 2a,
+    a = |v| s: on the kink at x = 1 m of slopes +0.01 and −0.03 with a = 1 cm, by hand
+    r(1.01) = 0.0097, r(0.99) = 0.0099, so dr/dx = −0.01 for either direction (the cell's slope would
+    be +0.01 or −0.03 by direction); the elevation stays the station's."""
+    from vbikit.solve.kernels import Road, road_point
+
+    stations = np.array([0.0, 1.0, 2.0])
+    z = np.array([0.0, 0.01, -0.02])
+    road = Road(stations, z.reshape(1, 3, 1), float(z.max()))
+    rv, rr = np.zeros((1, 1)), np.zeros((1, 1))
+    road_point(1.0, vx, 0, 0, road, np.full(1, -1, np.int64), rv, rr, (0,), 0.01 / 20.0)
+    assert rv[0, 0] == pytest.approx(0.01, abs=1e-15)
+    assert rr[0, 0] == pytest.approx(vx * -0.01, abs=1e-13)
+
+
+@pytest.mark.parametrize("k", [0.9, 0.98, 1.0, 1.02, 1.5])
+def test_secant_road_rate_trapezoid_follows_the_road_crossed(k):
+    """The implicit integrators take a dashpot's load as linear over each step, so the road rates they read
+    at the step ends integrate by the trapezoid.  With the secant rate over x ∓ v dt/2 that sum telescopes:
+    Σ_{n<N} dt (ṙ_n + ṙ_{n+1})/2 = [r(x_{N−½}) + r(x_{N+½}) − r(x_{−½}) − r(x_{½})]/2 exactly (r read here
+    from the profile itself, ``RoadProfile.evaluate``), at any step — also one that is not a whole number
+    of 1 cm stations (k × 2 cm), where the cells' slopes drift off by their in-cell offsets."""
+    from vbikit.road import RoadPSD, random_profile
+    from vbikit.solve.kernels import Road, road_point
+
+    profile = random_profile(RoadPSD.iso("C"), length=30.0, seed=3)
+    road = Road(np.ascontiguousarray(profile.x, float), np.asarray(profile.z, float).reshape(1, -1, 1).copy(),
+                float(np.max(profile.z)))
+    v = 20.0
+    dt = k * 0.02 / v
+    x = 5.0 + v * dt * np.arange(400)
+    rr, rr_cell = np.zeros(x.size), np.zeros(x.size)
+    for out, span in ((rr, 0.5 * dt), (rr_cell, 0.0)):
+        idx = np.full(1, -1, np.int64)
+        for n, xn in enumerate(x):
+            rv1, rr1 = np.zeros((1, 1)), np.zeros((1, 1))
+            road_point(xn, v, 0, 0, road, idx, rv1, rr1, (0,), span)
+            out[n] = rr1[0, 0]
+    r = lambda s: profile.evaluate(np.atleast_1d(s))[0][0]  # noqa: E731
+    h = 0.5 * v * dt
+    expected = 0.5 * (r(x[-1] - h) + r(x[-1] + h) - r(x[0] - h) - r(x[0] + h))
+    trapezoid = 0.5 * dt * float(np.sum(rr[1:] + rr[:-1]))
+    assert trapezoid == pytest.approx(expected, abs=1e-12)
+    drift = np.cumsum(0.5 * dt * (rr_cell[1:] + rr_cell[:-1]) - np.diff([r(s) for s in x]))
+    if k not in (1.0, 1.5):  # steps of a whole number of stations: the cells' offsets do not drift
+        assert np.max(np.abs(drift)) > 1e-5  # the cell slope's trapezoid strays from the road crossed

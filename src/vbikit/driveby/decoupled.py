@@ -18,8 +18,9 @@ on the coupled run's time grid t_k (``_time_grid``):
    ``vbikit.solve.moving_loads`` (tested equal to it).  No contact iteration.
 2. **Vehicle under base excitation.**  The surface under each line is
    s_l(t) = Σᵢ φᵢ(x_l, y_l) ξᵢ(t) + r(x_l(t)) (deck displacement plus the road profile: the
-   engine's contact law for a point tire), its rate ṡ_l = (deck part by ``numpy.gradient``) + v r'(x_l)
-   (the profile's slope, as the engine's road rate), and the vehicle obeys
+   engine's contact law for a point tire), its rate ṡ_l = (deck part by ``numpy.gradient``) + the road's
+   rate v r'(x_l), read as the engine's implicit integrators read it (the secant over the half steps
+   around the sample, ``surface_under_lines``), and the vehicle obeys
 
        M q̈ + C q̇ + K q = F_G + Σ_w r_w [k_w (s_w − r_w·q) + c_w (ṡ_w − r_w·q̇)]
 
@@ -143,15 +144,22 @@ def surface_under_lines(crossing, x: NDArray[np.float64], phi: NDArray[np.float6
     """s_l(t) [m], z up, and its rate ṡ_l [m/s] (n_t, n_l) under each wheel line (``x``, ``phi``:
     ``line_shapes``): the deck
     displacement (0 off the deck) plus the road elevation, the engine's contact law for a point
-    tire.  The rate as the engine's (``vbikit.solve.system``): the road's v·r'(x) from the
-    piecewise-linear profile's slope (``RoadProfile.evaluate``), plus the deck's rate, smooth, by
-    second-order differences (``numpy.gradient``)."""
+    tire.  The rate as the engine's implicit integrators read it (``vbikit.solve.kernels``, "the road
+    rate"): the road's secant over the half steps around each sample, v (r(x + a) − r(x − a)) / 2a
+    with a = v dt/2 (``RoadProfile.evaluate``; ``vehicle_on_surface`` takes the input as linear
+    between samples, so its sum over the steps is then the road crossed), plus the deck's rate,
+    smooth, by second-order differences (``numpy.gradient``)."""
     deck = np.einsum("ltm,tm->tl", phi, xi)
     s, s_dot = deck, np.gradient(deck, dt, axis=0, edge_order=2)
     if crossing.road is not None:
         r, slope = crossing.road.evaluate(x.ravel())
         v = float(crossing.vehicles[0].speed)
-        s, s_dot = s + r.reshape(x.shape).T, s_dot + v * slope.reshape(x.shape).T
+        a = 0.5 * v * dt
+        if a > 0.0:
+            rate = v * (crossing.road.evaluate(x.ravel() + a)[0] - crossing.road.evaluate(x.ravel() - a)[0]) / (2.0 * a)
+        else:
+            rate = v * slope
+        s, s_dot = s + r.reshape(x.shape).T, s_dot + rate.reshape(x.shape).T
     return s, s_dot
 
 

@@ -56,6 +56,7 @@ EXACT = register_integrator(Integrator(
     run=_run_exact,
     kernel=implicit_kernel,
     lanes_kernel=implicit_lanes_kernel,
+    secant_road_rate=True,
 ))
 RK4 = register_integrator(Integrator(
     name="rk4",
@@ -77,6 +78,7 @@ NEWMARK = register_integrator(Integrator(
     run=_run_newmark,
     kernel=implicit_kernel,
     lanes_kernel=implicit_lanes_kernel,
+    secant_road_rate=True,
 ))
 
 if DEFAULT_INTEGRATOR not in INTEGRATORS:  # pragma: no cover - a programming error

@@ -47,6 +47,12 @@ class Integrator:
     lanes_kernel : callable, optional
         ``lanes_kernel() -> dispatcher``: the compiled kernel ``run`` calls with many lanes (a study's
         batches; announced by ``vbikit.study.run``); None: ``kernel``'s.
+    secant_road_rate : bool
+        True if it evaluates the contact law at step ends and integrates the tire dashpots' load as
+        linear over the step (the implicit ones): the road rate under a point is then the secant over
+        the half steps around the step end (``road_rate_span`` = dt/2; ``vbikit.solve.kernels``, "the
+        road rate").  False: the slope of the point's road cell (an integrator that evaluates the
+        law at its stages, as RK4).
     """
 
     name: str
@@ -58,6 +64,12 @@ class Integrator:
     stability_limit: Optional[Callable[["Crossing"], float]] = None
     kernel: Optional[Callable[[], Any]] = None
     lanes_kernel: Optional[Callable[[], Any]] = None
+    secant_road_rate: bool = False
+
+    def road_rate_span(self, dt: float) -> float:
+        """The kernels' road-rate ``span`` [s] at step ``dt`` [s] (``vbikit.solve.kernels.road_point``): dt/2
+        with the secant road rate, 0 (the road cell's slope) without."""
+        return 0.5 * float(dt) if self.secant_road_rate else 0.0
 
     def __post_init__(self) -> None:
         if not self.name or not isinstance(self.name, str):

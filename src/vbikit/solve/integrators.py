@@ -294,7 +294,7 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
     data, name = call.data, call.crossing.integrator
     unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
                                               data.unilateral, modal_step, vehicle_step, *outputs, tol,
-                                              IMPLICIT_MAX_ITERATIONS, lanes, call.stride)
+                                              IMPLICIT_MAX_ITERATIONS, lanes, call.stride, _span(call))
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
     if unsettled:
         log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
@@ -326,7 +326,12 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
         vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.wheel_dof, fused.wheel_h,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
-        pts.width, road.stations, elevations, float(road.r_max), *outputs))
+        pts.width, road.stations, elevations, float(road.r_max), _span(call), *outputs))
+
+
+def _span(call: KernelCall) -> float:
+    """The road-rate span [s] of ``call``'s integrator at its step (``Integrator.road_rate_span``)."""
+    return get_integrator(call.crossing.integrator).road_rate_span(call.dt)
 
 
 def implicit_kernel() -> Any:

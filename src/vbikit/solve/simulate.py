@@ -108,11 +108,12 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     wheel_force = _histories(n_l, n_t, n_w)
     wheel_len = _histories(n_l, n_t, n_w)
     if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
-        key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes())  # the entry holds data: its id stays its own
+        span = get_integrator(first.integrator).road_rate_span(dt)
+        key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes(), span)  # the entry holds data: its id stays its own
         made: list = []
 
         def start() -> tuple:
-            road, xi0, q0, reach = _start(crossings, data, mot, 1)
+            road, xi0, q0, reach = _start(crossings, data, mot, 1, span)
             made.append(road)  # a road profile's bundle is not kept (its size is the profile's)
             return data, road if first.road is None and first.road_right is None else None, xi0, q0, reach
 
@@ -120,7 +121,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
         if road is None:
             road = made[0] if made else _road(crossings, *reach)
     else:
-        road, xi0, q0, _ = _start(crossings, data, mot, n_real)
+        road, xi0, q0, _ = _start(crossings, data, mot, n_real, get_integrator(first.integrator).road_rate_span(dt))
         xi[:n_real, 0], q[:n_real, 0] = xi0, q0
         xi[n_real:, 0], q[n_real:, 0] = xi0[-1], q0[-1]  # padding: copies of the last real lane
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
@@ -171,10 +172,11 @@ def _road(crossings: Sequence[Crossing], x_min: float, x_max: float):
     return road_data([(c.road, c.road_right) for c in crossings], x_min, x_max)
 
 
-def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int) -> tuple:
+def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, span: float) -> tuple:
     """The road bundle of the lanes ``crossings`` (the first ``n_real`` real, the rest padding) over
     the range of x the points cover, the static start (ξ, q) of every real lane, (n_real, ·) (one
-    lane: (n_modes,), (n_dof,)), and that range (x_min, x_max) [m]."""
+    lane: (n_modes,), (n_dof,)), and that range (x_min, x_max) [m].  The tire dashpots' road rate at
+    the start as the kernels read it (``span`` [s]: ``Integrator.road_rate_span``)."""
     from vbikit.solve import kernels
     from vbikit.solve.system import flat_road, point_positions, static_state
 
@@ -185,10 +187,10 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int) 
     road = _road(crossings, *reach)
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
     if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
-        road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0)
+        road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0, span)
     else:
         kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
-                        (0,) if n_l == 1 else (0, 0))
+                        (0,) if n_l == 1 else (0, 0), span)
     states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0])
               for lane, crossing in enumerate(crossings[:n_real])]
     if n_l == 1:

@@ -318,11 +318,12 @@ def point_gates(data: KernelData) -> NDArray[np.bool_]:
     return np.ascontiguousarray(pts.gated | (bool(data.unilateral) & (pts.stiffness > 0.0)))
 
 
-def flat_road(data: KernelData, road: Road, x: NDArray[np.float64],
-              vx: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def flat_road(data: KernelData, road: Road, x: NDArray[np.float64], vx: NDArray[np.float64],
+              span: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Road elevation [m] and rate [m/s] under every point at positions ``x`` [m] with x-rates
     ``vx`` [m/s] on the first lane of ``road``, by the lean kernel's flat law (``kernels.lean_law``,
-    the same interpolation as ``kernels.road_at``; no rigid disks)."""
+    the same interpolation as ``kernels.road_at``; no rigid disks; ``span`` [s]: the rate's secant
+    half-width in time, ``kernels.road_point``)."""
     pts, modes, veh, n_p = data.points, data.modes, data.vehicles, data.n_points
     r, dr = np.zeros(n_p), np.zeros(n_p)
     kernels.lean_law(np.zeros(data.n_modes), np.zeros(data.n_dof), np.ascontiguousarray(x, float),
@@ -331,7 +332,7 @@ def flat_road(data: KernelData, road: Road, x: NDArray[np.float64],
                      np.minimum(pts.line, road.elevations.shape[0] - 1), pts.stiffness, pts.damping, pts.fixed_load,
                      pts.gap, np.zeros(n_p, bool), pts.width, road.stations,
                      np.ascontiguousarray(road.elevations[:, :, 0]), float(road.r_max), r, dr, False,
-                     np.zeros(n_p, bool))
+                     np.zeros(n_p, bool), span)
     return r, dr
 
 

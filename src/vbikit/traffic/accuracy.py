@@ -8,8 +8,9 @@ and the lifetime's governing events, ``vbikit.lifetime.governing``, do); the cha
 displacement impact factor, IM_half − IM_run, is the number to read for the step's share of it.
 A change above ``STEP_TOLERANCE`` (the single run's step check tolerance on an IM, 5e-3) is flagged
 (``stream_step_sensitive``): a gross step error.  Smaller ones matter too: on random roads with
-point tires the implicit integrators' IM moves by up to a few 1e-3 with the step (docs/verification.md,
-"The road's stations and the tire dashpots"), which the printed change shows but the flag does not.
+point tires the implicit integrators' IM at the automatic step is low by up to 7e-4 (class C), an
+error of the second order, of which the printed change is about three quarters (docs/verification.md,
+"The road's stations and the tire dashpots").
 """
 from __future__ import annotations
 

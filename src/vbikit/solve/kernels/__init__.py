@@ -28,6 +28,18 @@ z_w = h_w·q (row ``wheel_rows[wheel[p]]``):
     ξ̈ + 2ζω ξ̇ + ω² ξ = −Σ_p φ_pᵀ F_p
     M_v q̈ + C_v q̇ + K_v q = F_G + Σ_w h_wᵀ Σ_{p∈w} F_p
 
+The road rate r'(x_p) dir_p v.  RK4 evaluates the law at its stage times and reads the slope of the
+point's road cell (the profile is linear between stations).  The implicit integrators (exact,
+Newmark) evaluate it at step ends and integrate the dashpot's load as linear over each step (the
+trapezoid), so they read the secant over the half steps around the step end,
+dir_p v (r(x_p + a) − r(x_p − a)) / 2a with a = v dt/2 (``road_point``'s ``span`` = dt/2): the
+trapezoid's sum dt (ṙ_n + ṙ_{n+1})/2 is then the road crossed, r(x_{n+3/2}) − r(x_{n−1/2}) over
+two steps, whatever the point's offset in its cell.  With the cell's slope instead, that offset
+drifts from step to step unless v dt is a whole number of stations, and the sampled slopes alias the
+road's curvature at the beat frequency |v dt/h − round(v dt/h)|/dt into the deck's and axles' band
+(impact factors that moved by up to 3.6e-3 for a 2 % change of step;
+``benchmarks/bench_rate_alignment.py``, docs/verification.md).
+
 A point on track k is on the deck while start_k ≤ x_p ≤ end_k (the track's own span: 0 … span,
 shifted by y tan θ on a skew deck, whose oblique support lines cross each track elsewhere); off
 it, φ_p = 0 (the road only).  Nothing in the kernels assumes φ = 0 at the deck ends or a single

@@ -106,28 +106,55 @@ def road_cell(stations, x, vx, idx, p):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def road_point(x, vx, p, line, road, idx, rv, rr, lanes):
-    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` = vx·dr/dx [m/s] of every lane at
-    position ``x`` [m] of point ``p`` on road line ``line`` (linear interpolation; ``idx[p]`` is
-    the point's station pointer: ``road_cell``, which also picks the cell on a station)."""
+def secant_cells(stations, x, a, vx, idx, p):
+    """The road cells and in-cell fractions (i_a, t_a, i_b, t_b) at x − a and x + a [m] of point ``p``
+    moving at ``vx`` [m/s] (``road_cell``; the pointer ``idx[p]`` is left at the cell of x + a):
+    the secant rate's two readings, r(x ± a) = z_i + t (z_{i+1} − z_i) (beyond the road's ends, the
+    end cell's line extended)."""
+    ia = road_cell(stations, x - a, vx, idx, p)
+    ta = (x - a - stations[ia]) / (stations[ia + 1] - stations[ia])
+    ib = road_cell(stations, x + a, vx, idx, p)
+    tb = (x + a - stations[ib]) / (stations[ib + 1] - stations[ib])
+    return ia, ta, ib, tb
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def road_point(x, vx, p, line, road, idx, rv, rr, lanes, span):
+    """Road elevation ``rv[p, :]`` [m] and rate ``rr[p, :]`` [m/s] of every lane at position ``x`` [m]
+    of point ``p`` moving at ``vx`` [m/s] on road line ``line`` (linear interpolation; ``idx[p]`` is
+    the point's station pointer: ``road_cell``, which also picks the cell on a station).
+
+    The rate (``vbikit.solve.kernels`` docstring, "the road rate"): with ``span`` = 0 the slope of the
+    point's cell, vx·dr/dx; with ``span`` > 0 [s] the secant over a = |vx|·span either side,
+    vx (r(x + a) − r(x − a)) / 2a: with span = dt/2 the road between the half steps around a step
+    end, which the implicit integrators' trapezoid then follows (``secant_cells``)."""
     n_l = _width(lanes, rv)
     stations = road.stations
-    i = road_cell(stations, x, vx, idx, p)
     z = road.elevations[min(line, road.elevations.shape[0] - 1)]
+    a = abs(vx) * span
+    if a > 0.0:
+        ia, ta, ib, tb = secant_cells(stations, x, a, vx, idx, p)
+        scale = vx / (2.0 * a)
+        for lane in range(n_l):
+            rr[p, lane] = (z[ib, lane] + tb * (z[ib + 1, lane] - z[ib, lane])
+                           - z[ia, lane] - ta * (z[ia + 1, lane] - z[ia, lane])) * scale
+    i = road_cell(stations, x, vx, idx, p)
     dx = x - stations[i]
     inv = 1.0 / (stations[i + 1] - stations[i])
     for lane in range(n_l):
         slope = (z[i + 1, lane] - z[i, lane]) * inv
         rv[p, lane] = z[i, lane] + slope * dx
-        rr[p, lane] = slope * vx
+        if a <= 0.0:
+            rr[p, lane] = slope * vx
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def road_at(x, vx, points, road, idx, rv, rr, lanes):
+def road_at(x, vx, points, road, idx, rv, rr, lanes, span=0.0):
     """Road elevation and rate (n_cp, L) under every contact point at positions ``x`` [m] moving
-    at x-rates ``vx`` [m/s] (``idx``: the points' station pointers, see ``road_point``)."""
+    at x-rates ``vx`` [m/s] (``idx``: the points' station pointers; ``span`` [s]: the rate's secant
+    half-width in time, 0 for the cell's slope: see ``road_point``)."""
     for p in range(x.size):
-        road_point(x[p], vx[p], p, points.line[p], road, idx, rv, rr, lanes)
+        road_point(x[p], vx[p], p, points.line[p], road, idx, rv, rr, lanes, span)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -172,14 +199,15 @@ def _deck(phi, dphi, p, vx, xi, dxi, s, dr, sd, lanes):
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, wheel_force, wheel_len,
-                   lanes):
+                   lanes, span=0.0):
     """The contact law (module docstring) at the positions of ``cache``: forces F_p [N]
     (``work.force`` (n_cp, L), compression > 0), per-wheel sums ``wheel_force`` and patch lengths
     ``wheel_len`` [m] (n_w, L), ``work.active`` flags, and ``work.used[p]``: the point's force was
     evaluated (else it is 0 in every lane).
 
     ``cache``: the position slot (``Cache``; its mode shapes and road values are filled
-    on first use).  ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).
+    on first use).  ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).  ``span`` [s]:
+    the road rate's secant half-width in time (``road_point``; 0: the cell's slope).
     """
     phi, dphi, have, rv, rr, have_r = cache.phi, cache.dphi, cache.have, cache.rv, cache.rr, cache.have_r
     xs, vxs = cache.x, cache.vx
@@ -230,7 +258,7 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
                     law[p, lane] = 0.0
                 continue  # no lane can touch the surface here
             if not have_r[p]:
-                road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes)
+                road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes, span)
                 have_r[p] = True
             if onb and not have[p]:
                 shape_point(x, points.track[p], modes, phi[p], dphi[p])

@@ -67,7 +67,7 @@ def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
-             wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1):
+             wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1, span=0.0):
     """Partitioned implicit step: every mode by its transition ``step`` (``ModalStep``, the
     modal load linear over the step), the vehicles by theirs (``VehicleStep``, the wheel
     loads linear over the step), coupled through the contact forces at the end of the step.
@@ -93,6 +93,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is consistent, is
     held at zero penetration (``TOUCH_STIFFNESS``).  Should the contact set cycle, updates are
     halved after ``RELAX_AFTER`` full Newton iterations.  The step keeps the iterate's forces.
+
+    The road rate in each point's law: the secant over |v|·``span`` either side (``road_point``;
+    ``span`` = dt/2 for the implicit integrators, ``vbikit.solve.integrators.road_rate_span``).
 
     Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
@@ -151,7 +154,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     # t = 0: forces, modal load, wheel loads and accelerations of the initial state
     _refresh(cache, motion, 0, points)
     y0, w0 = z0[:n_d], z0[n_d:]
-    contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
+    contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
     _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
     _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
@@ -191,7 +194,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         for it in range(max_iterations):
             evaluations += 1
             _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
-            contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes)
+            contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
             if _residuals(f, force, work.used, touch, lane_err, x1, v1, y1, w1, cache, points, vehicles, onb,
                           tol_force) <= tol_force:
                 converged = True

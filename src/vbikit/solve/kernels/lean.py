@@ -44,21 +44,21 @@ from numba import njit
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell
+from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
 
 
 @_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
 def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp, wheel_dof,
          wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, r_max,
-         force, active, used, pen, law, wf, wl):
+         span, force, active, used, pen, law, wf, wl):
     """The contact law at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (q, q̇) for the positions
     ``xp`` (``contact_forces`` with one lane and no envelopes): per point ``force`` (gated), ``active``,
     ``used`` (else left out by the lazy test: r_max − g − z_w + B ≤ 0, B = Σ amp|ξ|; ``pen`` then holds
     that bound), penetration ``pen`` and ungated law ``law``; per wheel the force sum ``wf`` and patch
     length ``wl``.  Mode shapes (cubic Hermite) and road (linear, station pointers ``idx``) are filled
     on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
-    is in ``rv``, ``rr``)."""
+    is in ``rv``, ``rr``; the rate the secant over |v|·``span`` either side, ``road_point``)."""
     n_m = x1.size
     _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     _, n_e = wheel_dof.shape
@@ -88,11 +88,18 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 law[p] = 0.0
                 continue
             if have[p] < 2:  # the road under the point (``road_point``)
-                i = road_cell(stations, x, vxp[p], idx, p)
                 ln = line[p]
+                vx = vxp[p]
+                a = abs(vx) * span
+                if a > 0.0:  # the secant rate
+                    ia, ta, ib, tb = secant_cells(stations, x, a, vx, idx, p)
+                    rr[p] = (elevations[ln, ib] + tb * (elevations[ln, ib + 1] - elevations[ln, ib]) - elevations[ln, ia]
+                             - ta * (elevations[ln, ia + 1] - elevations[ln, ia])) * (vx / (2.0 * a))
+                i = road_cell(stations, x, vx, idx, p)
                 slope = (elevations[ln, i + 1] - elevations[ln, i]) / (stations[i + 1] - stations[i])
                 rv[p] = elevations[ln, i] + slope * (x - stations[i])
-                rr[p] = slope * vxp[p]
+                if a <= 0.0:
+                    rr[p] = slope * vx
                 have[p] += 2
             if onb[p] and have[p] % 2 == 0:
                 _shape(x, track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
@@ -216,13 +223,14 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
 def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
          free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
          wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
-         stations, elevations, r_max, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, modal, state, wheels,
+         stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, modal, state, wheels,
          held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
     ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
-    stations and elevations of its one lane (n_lines, n_s) and r_max, the outputs of ``implicit`` for
+    stations and elevations of its one lane (n_lines, n_s) and r_max, the road rate's ``span`` [s]
+    (``road_point``: dt/2 for the secant rate, 0 for the cell's slope), the outputs of ``implicit`` for
     one lane but q̈ (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the
     work spaces of ``lean_work`` (zeroed).
 
@@ -282,7 +290,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             evaluations += 1
         _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
              wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
-             elevations, r_max, force, active, used, pen, law, wf, wl)
+             elevations, r_max, span, force, active, used, pen, law, wf, wl)
         updated = False  # by quasi-Newton updates
         if n < 0:
             for k in range(n_cp):  # (p, like every work space, comes zeroed)
@@ -412,11 +420,12 @@ def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]
 
 
 def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_rows, wheel_first, wheel_count, track,
-             line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, rv, rr, have_road, active):
+             line, kk, cc, f0, gap, gated, width, stations, elevations, r_max, rv, rr, have_road, active, span=0.0):
     """The contact law ``_law`` of one crossing at rest (ξ̇ = 0, q̇ = 0) in the state ξ = ``x1``,
     q = ``z1`` for points at positions ``xp`` [m] with x-rates ``vxp`` [m/s] (the static start,
     ``vbikit.solve.system.static_state``): fills ``active`` per point, and the road elevation
-    ``rv`` [m] and rate ``rr`` [m/s] under each point unless ``have_road`` (then they are given).
+    ``rv`` [m] and rate ``rr`` [m/s] under each point unless ``have_road`` (then they are given; the rate
+    the secant over |v|·``span`` either side, ``road_point``).
     Arguments as ``lean``'s (``line`` clamped, ``gated`` with the unilateral gate), each contiguous, but
     the wheel rows ``wheel_rows`` h_w (n_w, n_d) themselves.  Calls the compiled ``_law`` itself (the
     one ``lean`` calls, with the same argument types: numba compiles it once for both) with work
@@ -430,7 +439,8 @@ def lean_law(x1, z1, xp, vxp, start, end, grid_h, values, slopes, amp, wheel_row
     phi, dphi = np.zeros((n_cp, n_m)), np.zeros((n_cp, n_m))
     _law(np.ascontiguousarray(x1, float), np.zeros(n_m), z, n_d, xp, vxp, onb, phi, dphi, have, rv, rr,
          np.full(n_cp, -1, np.int64), start, float(grid_h), values, slopes, amp, wheel_dof, wheel_h, wheel_first,
-         wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, float(r_max), np.zeros(n_cp),
+         wheel_count, track, line, kk, cc, f0, gap, gated, width, stations, elevations, float(r_max), float(span),
+         np.zeros(n_cp),
          active, np.zeros(n_cp, np.bool_), np.zeros(n_cp), np.zeros(n_cp), np.zeros(n_w), np.zeros(n_w))
 
 

@@ -44,21 +44,23 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell
+from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
 @_internal
 def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
                wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
-               elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l, dr_l):
+               elevations, r_max, span, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l,
+               dr_l):
     """``lean._law`` for every lane at the state (ξ, ξ̇) = (``x1``, ``v1``), z = ``z1`` (each (·, L)):
     per point and lane ``force`` (gated), ``active``, penetration ``pen``, ungated law ``law``; per
     point ``used`` (False: left out for every lane by the shared lazy test); per wheel and lane the
     force sum ``wf``, patch length ``wl`` and the largest bound r_p − g − z_w + B of its left-out
     points on the deck (``lo_on``) and off it (``lo_off``; −1e300 without such points: the
     updates add the same increments to every left-out point of a wheel, so its largest bound is
-    the one to watch).  Shapes and road on first use in the step (``have`` as in ``lean._law``); ``bmax``,
+    the one to watch).  Shapes and road on first use in the step (``have`` as in ``lean._law``; the road
+    rate the secant over |v|·``span`` either side, ``road_point``); ``bmax``,
     ``zw``, ``dzw``, ``s_l``, ``sd_l``, ``dr_l`` (L,) are work space."""
     n_m = x1.shape[0]
     n_l = x1.shape[1]
@@ -87,15 +89,26 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
         for p in range(first, first + wheel_count[w]):
             x = xp[p]
             if have[p] < 2:  # the road under the point (``road_point``): one cell for all lanes
-                i = road_cell(stations, x, vxp[p], idx, p)
                 ln = line[p]
+                vx = vxp[p]
+                a = abs(vx) * span
+                if a > 0.0:  # the secant rate
+                    ia, ta, ib, tb = secant_cells(stations, x, a, vx, idx, p)
+                    scale = vx / (2.0 * a)
+                    for lane in range(n_l):
+                        rr[p, lane] = (elevations[ln, ib, lane] + tb * (elevations[ln, ib + 1, lane]
+                                                                        - elevations[ln, ib, lane])
+                                       - elevations[ln, ia, lane]
+                                       - ta * (elevations[ln, ia + 1, lane] - elevations[ln, ia, lane])) * scale
+                i = road_cell(stations, x, vx, idx, p)
                 dx = x - stations[i]
                 inv = 1.0 / (stations[i + 1] - stations[i])
-                vx = vxp[p]
                 for lane in range(n_l):
                     slope = (elevations[ln, i + 1, lane] - elevations[ln, i, lane]) * inv
                     rv[p, lane] = elevations[ln, i, lane] + slope * dx
-                    rr[p, lane] = slope * vx
+                if a <= 0.0:
+                    for lane in range(n_l):
+                        rr[p, lane] = (elevations[ln, i + 1, lane] - elevations[ln, i, lane]) * inv * vx
                 have[p] += 2
             if gated[p]:
                 gp = gap[p]
@@ -339,7 +352,7 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
                free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
                wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
-               stations, elevations, r_max, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop, first,
+               stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop, first,
                last, fresh, carry_f, carry_p, carry_g):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
     ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
@@ -414,7 +427,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
         if n < first:
             _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
                        slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                       gated, width, stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       gated, width, stations, elevations, r_max, span, force, active, used, pen, law, wf, wl, lo_on, lo_off,
                        bmax, zw, dzw, s_l, sd_l, dr_l)
             for m in range(n_m):
                 for lane in range(n_l):
@@ -456,7 +469,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             evaluations += 1
             _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
                        slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                       gated, width, stations, elevations, r_max, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       gated, width, stations, elevations, r_max, span, force, active, used, pen, law, wf, wl, lo_on, lo_off,
                        bmax, zw, dzw, s_l, sd_l, dr_l)
             n_rel = 0
             n_use = 0
