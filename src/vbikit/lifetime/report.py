@@ -290,9 +290,10 @@ def _iv(d: dict, scale: float = 1.0) -> str:
 
 def text_report(facts: dict[str, Any]) -> str:
     """The run's plain-text report (rendered from ``summary``; its marks, ``*`` under a table and ABOVE
-    at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m
-    and forces in kN like ``vbikit run``'s report (``vbikit.outputs.report_unit``); the summary and
-    the dataset stay SI, and so do the flags' messages printed as FLAG lines."""
+    at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m,
+    forces in kN and deflections in mm like ``vbikit run``'s report (``vbikit.outputs.report_unit``);
+    the summary and the dataset stay SI, and so do the flags' messages printed as FLAG lines.  The
+    fatigue table's damage is that of the simulated days, its header says so."""
     r, f = facts["run"], facts["fits"]
     ci = f"{f['ci']:.0%}"
     lines = [f"vbikit lifetime: {facts['title']}",
@@ -358,7 +359,10 @@ def text_report(facts: dict[str, Any]) -> str:
             lines.append("  FLAG " + flag["message"])
     if "fatigue" in facts:
         wide = max([12] + [len(d["category"]) + 2 for d in facts["fatigue"].values()])  # (a reduced category is long)
-        lines += ["", f"fatigue (design life {facts['design_life']:g} years)",
+        days = counted(r["n_days"], "simulated day")
+        lines += ["", f"fatigue: Miner damage over the {days} (damage, its standard error ± se and its static part), "
+                      f"per year ({r['days_per_year']} days), and the remaining life; design life "
+                      f"{facts['design_life']:g} years",
                   f"{'detail':<16}{'category':<{wide}}{'damage':>12}{'± se':>11}{'static':>12}{'per year':>12}"
                   f"{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
         for name, d in facts["fatigue"].items():
