@@ -1,6 +1,6 @@
 """What an engineer reads of `vbikit lifetime`'s report: a deflection in mm (the one table of
 report units, `vbikit.outputs.REPORT_UNITS`), and the period of the fatigue damage said where it is
-printed."""
+printed; its flags in the one format of flag codes and in words."""
 from __future__ import annotations
 
 import pytest
@@ -19,8 +19,9 @@ def facts(tmp_path_factory):
             "tire": {"model": "point"}, "road": {"class": "none"},
             "load_effects": [{"kind": "deflection", "x": 4.58, "name": "w"}, {"kind": "moment", "x": 4.58, "name": "M"}],
             "fatigue": {"details": [{"name": "flange", "effect": "M", "section_modulus": 0.005, "category": "EN 36"}]}}
-    ds = run_lifetime(spec, tmp_path_factory.mktemp("units"), base_dir=".", workers=1, figures=False)
-    return summary(ds)
+    out = tmp_path_factory.mktemp("units")
+    ds = run_lifetime(spec, out, base_dir=".", workers=1, figures=False)
+    return summary(ds) | {"out": out}
 
 
 def test_a_deflection_is_reported_in_mm(facts):
@@ -52,3 +53,28 @@ def test_the_fatigue_table_says_its_period(facts):
     assert "damage over the 5 simulated days" in header and "per year (365 days)" in header
     assert "design life 100 years" in header
     assert lines[lines.index(header) + 1].split()[:3] == ["detail", "category", "damage"]
+
+
+def test_the_flags_are_in_words_and_their_codes_in_the_one_format(facts):
+    """Five days give intervals wider than the levels and an ADR that cannot be told from 1 (the run's
+    findings); every flag names what it puts in doubt in words ("static return levels", "ADR"; on
+    main a path "return_levels.static"), and lifetime.nc stores the codes as every dataset does:
+    comma-separated, each once (on main a JSON table by effect), per effect in a variable."""
+    import json
+
+    import xarray as xr
+
+    from vbikit.analysis.checks import FLAG_CODES, dataset_has_flag
+
+    saved = json.loads((facts["out"] / "summary.json").read_text())["load_effects"]
+    records = [f for e in saved.values() for f in e["flags"]]
+    assert records and all("." not in f["output"] and "_" not in f["output"] for f in records)
+    assert {f["output"] for f in records} <= {"characteristic static value", "characteristic total value",
+                                               "static return levels", "total return levels", "ADR",
+                                               "governing static event", "governing total event"}
+    with xr.open_dataset(facts["out"] / "lifetime.nc") as ds:
+        codes = ds.attrs["flag_codes"].split(",")
+        assert codes == list(dict.fromkeys(f["code"] for f in records)) and set(codes) <= set(FLAG_CODES)
+        assert all(dataset_has_flag(ds.attrs, c) for c in codes)
+        per_effect = [str(x) for x in ds["load_effect_flag_codes"].values]
+    assert per_effect == [",".join(f["code"] for f in e["flags"]) for e in saved.values()]
