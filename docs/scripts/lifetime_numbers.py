@@ -198,8 +198,11 @@ def render(numbers: dict) -> str:
              "| load effect | unit | characteristic static (1,000 yr) | characteristic total | ADR | mean event IM "
              "| 95 % event IM | IM of the largest static event | AASHTO LRFD IM |",
              "|---|---|---|---|---|---|---|---|---|"]
+    from vbikit.outputs import report_unit  # the report's units: kN m, kN, mm
+
     for name, e in ex["effects"].items():
-        lines.append(f"| {name} | {e['units']} | {e['characteristic_static']:.4g} | {e['characteristic_total']:.4g} | "
+        unit, k = report_unit(e["units"])
+        lines.append(f"| {name} | {unit} | {k * e['characteristic_static']:.4g} | {k * e['characteristic_total']:.4g} | "
                      f"{e['assessment_dynamic_ratio']:.3f} | {e['im_mean']:.3f} | {e['im_q95']:.3f} | "
                      f"{e['im_governing_static_event']:.3f} | {e['aashto_lrfd']:.2f} |")
     lines += ["", "| detail | damage (week, static + dynamic) | ± standard error | static damage | dynamic / static "
@@ -211,7 +214,7 @@ def render(numbers: dict) -> str:
         lines.append(f"| {name} | {d['fatigue_damage']:.3g} | {d['fatigue_damage_se']:.2g} | "
                      f"{d['fatigue_damage_static']:.3g} | {ratio} | "
                      f"{d['fatigue_damage_per_year']:.3g} | {life} |")
-    lines += ["", "How accurate (the example week; 1,000-year values, 95 % intervals; BM = Gumbel of the daily "
+    lines += ["", "How accurate (the example week; 1,000-year values in the units above, 95 % intervals; BM = Gumbel of the daily "
                   "maxima, POT = GPD of the peaks over the threshold; flags as in the text):", "",
               "| load effect | static BM | static POT (ξ) | total BM | total POT (ξ) | ADR (interval) | flags "
               "| governing total event at half step |", "|---|---|---|---|---|---|---|---|"]
@@ -223,9 +226,12 @@ def render(numbers: dict) -> str:
         if e["adr_lower"] <= 1.0 <= e["adr_upper"]:
             flags.append("ADR cannot be told from 1")
         pot = {w: (f"n/a ({counted(int(e[f'pot_{w}_exceedances']), 'exceedance')}, 10 needed)" if e[f"pot_{w}"] != e[f"pot_{w}"] else
-                   f"{e[f'pot_{w}']:.4g} ({e[f'pot_{w}_shape']:.2f})") for w in ("static", "total")}
-        lines.append(f"| {name} | {e['characteristic_static']:.4g} ({e['static_lower']:.3g} … {e['static_upper']:.3g}) | "
-                     f"{pot['static']} | {e['characteristic_total']:.4g} ({e['total_lower']:.3g} … {e['total_upper']:.3g}) | "
+                   f"{report_unit(e['units'])[1] * e[f'pot_{w}']:.4g} ({e[f'pot_{w}_shape']:.2f})")
+               for w in ("static", "total")}
+        k = report_unit(e["units"])[1]
+        lo, hi = ({w: sorted((k * e[f"{w}_lower"], k * e[f"{w}_upper"]))[i] for w in ("static", "total")} for i in (0, 1))
+        lines.append(f"| {name} | {k * e['characteristic_static']:.4g} ({lo['static']:.4g} … {hi['static']:.4g}) | "
+                     f"{pot['static']} | {k * e['characteristic_total']:.4g} ({lo['total']:.4g} … {hi['total']:.4g}) | "
                      f"{pot['total']} | {e['assessment_dynamic_ratio']:.3f} ({e['adr_lower']:.3f} … {e['adr_upper']:.3f}) | "
                      f"{'; '.join(flags) or 'none'} | {100 * e['half_step_change_total']:+.3f} % |")
     lines += [""] + [f"Fatigue, {name}: {d['verdict']}; {d['ratio_words']}." for name, d in ex["details"].items()]

@@ -110,7 +110,7 @@ def accuracy() -> dict:
     i3 = ice3()
     return {
         "grid_peak": round(acc["grid_peak"], 3), "refined_peak": round(acc["peak"], 3),
-        "refined_speed_kmh": round(3.6 * acc["speed"], 2), "refinement_bound_pct": round(100 * acc["refinement_bound"], 3),
+        "refined_speed_kmh": round(3.6 * acc["speed"], 1), "refinement_bound_pct": round(100 * acc["refinement_bound"], 3),
         "dense_peak": round(true, 3), "refined_vs_dense_pct": round(100 * (true - acc["peak"]) / true, 3),
         "moment_grid_kNm": round(mom["grid_design"] / 1e3, 1), "moment_refined_kNm": round(mom["dynamic_design"] / 1e3, 1),
         "moment_bound_pct": round(100 * mom["refinement_bound"], 3), "moment_dense_kNm": round(true_m / 1e3, 1),

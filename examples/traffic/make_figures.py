@@ -27,7 +27,9 @@ plot_crossing(result, point_response(result, None, y), figures / "traffic-event.
               title=f"event {e}, the largest static effect: {vehicles}\nGirder 4 midspan, "
                     f"IM = {float(ds['impact_factor'][e]):.3f}")
 a = ds.attrs
-print(f"{a['n_events']} events, {a['n_multiple_presence_events']} with several vehicles; IM mean {a['im_mean']:.3f} "
+print(f"{a['n_events']} events, {a['n_multiple_presence_events']} with several vehicles; "
+      f"{a['n_events'] - a['n_small_static_events']} loading the point: IM mean {a['im_mean_loaded']:.3f}, 95 % "
+      f"{a['im_q95_loaded']:.3f}; all events: IM mean {a['im_mean']:.3f} "
       f"(one {a['im_mean_single']:.3f}, several {a['im_mean_multiple']:.3f}), 95 % {a['im_q95']:.3f}; governing static "
       f"event {e} ({len(job.events[e])} vehicles): amplification {a['governing_static_amplification']:.3f}; largest "
       f"dynamic effect {a['governing_dynamic_amplification']:.3f} x the largest static; figures in {figures}")

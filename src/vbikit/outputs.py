@@ -41,14 +41,17 @@ def cf_unit(unit: str) -> str:
     return CF_UNITS.get(unit, unit)
 
 
-#: SI unit → (unit, factor) of the plain-text reports (``vbikit run``, ``vbikit lifetime``):
-#: moments in kN m, forces in kN; JSON, CSV and NetCDF stay SI
-REPORT_UNITS: dict[str, tuple[str, float]] = {"N m": ("kN m", 1e-3), "N": ("kN", 1e-3)}
+#: SI unit of a result → (unit, factor) of the plain-text reports (``vbikit run``, ``vbikit lifetime``,
+#: ``vbikit rail``, ``vbikit presets``): moments in kN m, forces in kN, deflections (results in m) in
+#: mm; JSON, CSV and NetCDF stay SI.  Geometry (spans, positions, offsets) is input, not a result,
+#: and stays in m
+REPORT_UNITS: dict[str, tuple[str, float]] = {"N m": ("kN m", 1e-3), "N": ("kN", 1e-3), "m": ("mm", 1e3)}
 
 
 def report_unit(unit: str) -> tuple[str, float]:
     """The unit a text report shows a value of SI ``unit`` in and the factor to it
-    (``"N m"`` → ``("kN m", 1e-3)``; a unit not in ``REPORT_UNITS`` as it is, factor 1)."""
+    (``"N m"`` → ``("kN m", 1e-3)``, ``"m"`` (a deflection) → ``("mm", 1e3)``; a unit not in
+    ``REPORT_UNITS`` as it is, factor 1)."""
     return REPORT_UNITS.get(unit, (unit, 1.0))
 
 

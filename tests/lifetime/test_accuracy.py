@@ -216,11 +216,11 @@ def test_report_flags_a_coarse_step_and_a_disagreement(quasi_static):
     m, r = facts["load_effects"]["M"], facts["load_effects"]["R"]
     assert m["governing"]["total"]["half_step_flag"] and not r["governing"]["total"]["half_step_flag"]
     gov = find_flag(m, "governing_step_sensitive")
-    assert gov["output"] == "governing.total" and gov["subject"] == "M"
+    assert gov["output"] == "governing total event" and gov["subject"] == "M"
     assert (gov["value"], gov["threshold"]) == (0.02, acc.HALF_STEP_TOLERANCE)  # the values set above
     assert "+2.00 % at half the time step" in gov["message"] and gov["message"] in m["warnings"]
     assert not has_flag(r, "governing_step_sensitive")  # 0.5 % < 1 %
-    assert "disagree beyond their intervals at 1000 years —" in find_flag(m, "bm_pot_disagree", output="return_levels.static")["message"]
+    assert "disagree beyond their intervals at 1000 years —" in find_flag(m, "bm_pot_disagree", output="static return levels")["message"]
     assert not has_flag(r, "bm_pot_disagree")
     report = text_report(facts)
     assert "FLAG governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report
@@ -368,7 +368,7 @@ def test_report_flags_runs_that_miss_the_exact_static_peak(quasi_static):
     facts = summary(ds)
     r = facts["load_effects"]["R"]
     assert r["run_static_shortfall"] == {"value": pytest.approx(0.05, abs=1e-12), "event": k}
-    short = find_flag(r, "static_reference_short", output="adr", subject="R")
+    short = find_flag(r, "static_reference_short", output="ADR", subject="R")
     assert short["value"] == pytest.approx(0.05, abs=1e-12) and short["threshold"] == acc.HALF_STEP_TOLERANCE
     assert "misses the exact static peak by up to 5.00 %" in short["message"]
     assert not has_flag(facts["load_effects"]["M"], "static_reference_short")
@@ -398,7 +398,7 @@ def test_report_flags_an_interval_wider_than_its_level(quasi_static):
     ds["return_level_pot_static_lower"].values[0, -1] = level - 0.8 * abs(level)
     ds["return_level_pot_static_upper"].values[0, -1] = level + 0.8 * abs(level)
     facts = summary(ds)
-    wide = find_flag(facts["load_effects"]["M"], "wide_interval", output="return_levels.static")
+    wide = find_flag(facts["load_effects"]["M"], "wide_interval", output="static return levels")
     assert "wider than the level itself (POT at 1000 years" in wide["message"]
     # the widest flagged interval: at least the one set above, 1.6 |level| (the largest over those flagged)
     assert wide["value"] >= 1.6 * (1 - 1e-12) and wide["threshold"] == acc.WIDE_INTERVAL

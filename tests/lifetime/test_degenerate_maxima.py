@@ -62,7 +62,7 @@ def test_identical_trucks_write_every_result(tmp_path):
     facts = json.loads((out / "summary.json").read_text())
     m = facts["load_effects"]["M"]
     assert m["characteristic_static"] is None and m["characteristic_static_not_estimable"] == why
-    flag = find_flag(m, "characteristic_not_estimable", output="characteristic_static")
+    flag = find_flag(m, "characteristic_not_estimable", output="characteristic static value")
     assert flag["message"] == f"characteristic static {why}" and flag["message"] in m["warnings"]
     assert flag["value"] is None and flag["subject"] == "M"
     report = (out / "report.txt").read_text()

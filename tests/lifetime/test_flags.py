@@ -8,9 +8,9 @@ import math
 
 import pytest
 
-from vbikit.analysis.checks import FLAG_CODES, Flag, add_flags, find_flag, has_flag
+from vbikit.analysis.checks import FLAG_CODES, Flag, add_flags, dataset_has_flag, find_flag, has_flag
 from vbikit.lifetime import accuracy as acc
-from vbikit.lifetime.report import _flags, flag_codes
+from vbikit.lifetime.report import _flags, effect_flag_codes, flag_codes
 
 ATTRS = {"xi_strongly_negative": -0.3, "half_step_tolerance": 0.01}
 
@@ -55,7 +55,7 @@ def test_not_estimable():
     e = _clean()
     e["characteristic_total_not_estimable"] = "not estimable: all 5 daily maxima are equal (250000 N m)"
     (f,) = _flags("M", e, ATTRS)
-    assert (f.code, f.output, f.subject) == ("characteristic_not_estimable", "characteristic_total", "M")
+    assert (f.code, f.output, f.subject) == ("characteristic_not_estimable", "characteristic total value", "M")
     assert f.message == "characteristic total not estimable: all 5 daily maxima are equal (250000 N m)"
     assert f.value is None and f.threshold is None
 
@@ -78,7 +78,7 @@ def test_above_static_bound(char, bound, flagged):
     assert len(flags) == flagged
     if flagged:
         (f,) = flags
-        assert (f.output, f.value, f.threshold) == ("characteristic_static", char, bound)
+        assert (f.output, f.value, f.threshold) == ("characteristic static value", char, bound)
         assert "block maxima at 1000 years" in f.message and "POT at 1000 years" in f.message
         assert "at 100 years" not in f.message  # the 100-year levels (char / 10) are within the bound
 
@@ -89,7 +89,7 @@ def test_adr_interval_containing_one(adr, lower, upper, bound):
     e = _clean()
     e["adr"] = {"value": adr, "lower": lower, "upper": upper, "indistinguishable_from_one": True}
     (f,) = _flags("M", e, ATTRS)
-    assert (f.code, f.output, f.value, f.threshold) == ("adr_indistinguishable_from_one", "adr", bound, 1.0)
+    assert (f.code, f.output, f.value, f.threshold) == ("adr_indistinguishable_from_one", "ADR", bound, 1.0)
     assert f.message == "ADR: the interval contains 1 — the data cannot tell the ADR from 1"
 
 
@@ -105,7 +105,7 @@ def test_bm_pot_disagreement(bm, pot, gap):
     row = e["return_levels"][1]
     row["static"].update(block_maxima=_level(*bm), peaks_over_threshold=_level(*pot), methods_disagree=True)
     (f,) = _flags("M", e, ATTRS)
-    assert (f.code, f.output, f.threshold) == ("bm_pot_disagree", "return_levels.static", 0.0)
+    assert (f.code, f.output, f.threshold) == ("bm_pot_disagree", "static return levels", 0.0)
     assert f.value == pytest.approx(gap, rel=1e-12)
     assert "disagree beyond their intervals at 1000 years" in f.message
 
@@ -114,7 +114,7 @@ def test_negative_shape():
     e = _clean()
     e["fits"]["total"].update(block_maxima_shape=-0.1, pot_shape=-0.47, shape_strongly_negative=True)
     (f,) = _flags("M", e, ATTRS)
-    assert (f.code, f.output, f.value, f.threshold) == ("negative_shape", "return_levels.total", -0.47, -0.3)
+    assert (f.code, f.output, f.value, f.threshold) == ("negative_shape", "total return levels", -0.47, -0.3)
     assert "block maxima ξ = -0.10, POT ξ = -0.47 < -0.3" in f.message
 
 
@@ -123,7 +123,7 @@ def test_wide_interval():
     e = _clean()
     e["return_levels"][0]["static"]["peaks_over_threshold"] = _level(10.0, 2.0, 18.0)
     (f,) = _flags("M", e, ATTRS)
-    assert (f.code, f.output, f.threshold) == ("wide_interval", "return_levels.static", acc.WIDE_INTERVAL)
+    assert (f.code, f.output, f.threshold) == ("wide_interval", "static return levels", acc.WIDE_INTERVAL)
     assert f.value == pytest.approx(1.6, rel=1e-12) and "(POT at 100 years)" in f.message
 
 
@@ -135,7 +135,7 @@ def test_static_reference_short(shortfall, flagged):
     flags = _flags("M", e, ATTRS)
     assert [f.code for f in flags] == ["static_reference_short"] * flagged
     if flagged:
-        assert (flags[0].output, flags[0].value, flags[0].threshold) == ("adr", 0.05, 0.01)
+        assert (flags[0].output, flags[0].value, flags[0].threshold) == ("ADR", 0.05, 0.01)
         assert "by up to 5.00 % (event 12; tolerance 1 %)" in flags[0].message
 
 
@@ -143,7 +143,7 @@ def test_governing_step_sensitive():
     e = _clean()
     e["governing"]["static"] = {"half_step_change": -0.02, "half_step_flag": True}
     (f,) = _flags("M", e, ATTRS)
-    assert (f.code, f.output, f.value, f.threshold) == ("governing_step_sensitive", "governing.static", -0.02, 0.01)
+    assert (f.code, f.output, f.value, f.threshold) == ("governing_step_sensitive", "governing static event", -0.02, 0.01)
     assert "changes by -2.00 % at half the time step" in f.message
 
 
@@ -173,9 +173,11 @@ def test_every_finding_at_once_keeps_the_report_order_and_survives_json():
     assert m["warnings"] == [f.message for f in flags]
     assert [Flag(**r) for r in m["flags"]] == flags
     assert find_flag(m, "bm_pot_disagree")["value"] == pytest.approx(1.0)  # 12 − 11 (hand)
-    assert has_flag(m, "governing_step_sensitive", output="governing.total")
-    assert not has_flag(m, "governing_step_sensitive", output="governing.static")
-    assert json.loads(flag_codes(back))["M"] == [f.code for f in flags]
+    assert has_flag(m, "governing_step_sensitive", output="governing total event")
+    assert not has_flag(m, "governing_step_sensitive", output="governing static event")
+    # the codes in the one format of every dataset's flag_codes (comma-separated, each once: on main JSON by effect)
+    assert flag_codes(back) == ",".join(f.code for f in flags) == effect_flag_codes(back)[0]
+    assert all(dataset_has_flag({"flag_codes": flag_codes(back)}, f.code) for f in flags)
 
 
 def test_a_wide_interval_of_a_zero_level_is_written_as_null():

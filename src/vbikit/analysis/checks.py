@@ -146,33 +146,33 @@ FLAG_CODES: dict[str, str] = {
     # lifetime (vbikit.lifetime.report; per load effect, subject: the effect's name; units of a level: the effect's,
     # N m, N or m: load_effect_units)
     "characteristic_not_estimable": "lifetime: the block maxima could not be fitted (all equal, too few), the "
-                                    "characteristic value is missing; output: characteristic_static or "
-                                    "characteristic_total",
+                                    "characteristic value is missing; output: \"characteristic static value\" or "
+                                    "\"characteristic total value\"",
     "characteristic_above_static_bound": "lifetime: the characteristic static value exceeds the largest static effect "
                                          "the traffic model can produce (bootstrap traffic); output: "
-                                         "characteristic_static; value: the characteristic static value, threshold: "
+                                         "\"characteristic static value\"; value: the characteristic static value, threshold: "
                                          "static_upper_bound (the effect's unit, signed like it)",
     "negative_shape": "lifetime: a fitted shape ξ (GEV of the block maxima or GPD of the exceedances) strongly "
-                      "negative, a bounded tail fitted from little data; output: return_levels.static or "
-                      "return_levels.total; value: the lower of the two shapes, threshold: xi_strongly_negative (−0.3)",
+                      "negative, a bounded tail fitted from little data; output: \"static return levels\" or "
+                      "\"total return levels\"; value: the lower of the two shapes, threshold: xi_strongly_negative (−0.3)",
     "wide_interval": "lifetime: a return level whose confidence interval is wider than the level (or reaches across "
-                     "zero); output: return_levels.static or return_levels.total; value: the largest interval width "
+                     "zero); output: \"static return levels\" or \"total return levels\"; value: the largest interval width "
                      "over the level's magnitude of those flagged, threshold: ``WIDE_INTERVAL`` (1)",
     "bm_pot_disagree": "lifetime: block maxima and peaks over threshold disagree beyond their confidence intervals "
-                       "(the intervals do not overlap); output: return_levels.static or return_levels.total; value: "
+                       "(the intervals do not overlap); output: \"static return levels\" or \"total return levels\"; value: "
                        "the largest gap between the two intervals (a method without one: its value) over the periods "
                        "flagged (the effect's unit), threshold: 0",
-    "adr_indistinguishable_from_one": "lifetime: the ADR's confidence interval contains 1; output: adr; value: the "
+    "adr_indistinguishable_from_one": "lifetime: the ADR's confidence interval contains 1; output: \"ADR\"; value: the "
                                       "interval's bound on the far side of 1 (the lower bound for an ADR ≥ 1, else "
                                       "the upper), threshold: 1",
     "static_reference_short": "lifetime: the coupled runs' static reference misses the exact static peak (the daily "
-                              "maxima of the total and the ADR biased low); output: adr; value: the largest relative "
+                              "maxima of the total and the ADR biased low); output: \"ADR\"; value: the largest relative "
                               "shortfall (run_static_shortfall), threshold: half_step_tolerance (0.01)",
     "stream_step_sensitive": "traffic: a governing event's impact factors (deflection, strain, load effects) change at "
                              "half the time step; output: the one that moved most; subject: the event; value: its "
                              "IM_half − IM_run, threshold: ``STEP_TOLERANCE`` (5e-3, on its magnitude)",
     "governing_step_sensitive": "lifetime: a governing event's total peak changes at half the time step; output: "
-                                "governing.static or governing.total; value: the relative change R_half / R_run − 1, "
+                                "\"governing static event\" or \"governing total event\"; value: the relative change R_half / R_run − 1, "
                                 "threshold: half_step_tolerance (0.01, on its magnitude)",
     "hslm_range": "railway sweep: an HSLM train outside its range of application (EN 1991-2:2003 6.4.6.1.1(5), Annex "
                   "E: HSLM-B on simply supported spans below 7 m, HSLM-A otherwise), so its check is not the EN 1991-2 "
@@ -199,7 +199,8 @@ class Flag:
         The engineer-readable sentence (the summary's ``warnings``, stderr).
     output : str, optional
         The summary key the finding puts in doubt ("impact_factor", "strain_impact_factor",
-        "moment", …) or names (a non-finite output).
+        "moment", …) or names (a non-finite output); a lifetime finding's, what it puts in doubt
+        in words ("static return levels", "ADR": ``vbikit.lifetime.report.FLAG_OUTPUTS``).
     subject : str, optional
         What it is about, in words ("Girder 1", "point p2", the moment's section, an input key).
     girder : int, optional
@@ -667,6 +668,13 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
                  value=float(per_crossing[k]), threshold=fraction)]
 
 
+def join_codes(codes: Iterable[str]) -> str:
+    """Flag codes as every dataset stores them (the attribute ``flag_codes``): comma-separated, each
+    once, in order of first appearance ("implausible_deflection,small_static"; "" for none) — the
+    one format, ``dataset_has_flag`` reads it."""
+    return ",".join(dict.fromkeys(codes))
+
+
 def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[str]] | None = None) -> dict[str, str]:
     """A population dataset's attributes from its ``flags`` and its ``warnings`` without a record
     (flag code -> sentences, e.g. ``small_static_dataset_warnings``'s): ``warnings``, every message
@@ -679,13 +687,12 @@ def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[st
         _check_code(code)
         texts += [w for w in sentences if w not in texts]
         codes += [code] if sentences else []
-    codes = list(dict.fromkeys(codes))
-    return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": ",".join(codes)} if codes else {})
+    return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": join_codes(codes)} if codes else {})
 
 
 def dataset_has_flag(attrs: Mapping[str, Any], code: str) -> bool:
     """Whether a population dataset's attributes (``dataset_flag_attrs``: ``flag_codes``,
-    comma-separated) carry ``code``."""
+    comma-separated, ``join_codes``; a lifetime dataset's alike) carry ``code``."""
     _check_code(code)
     return code in str(attrs.get("flag_codes", "")).split(",")
 

@@ -7,8 +7,18 @@ import typer
 
 from vbikit.cli.guard import guard, option, out_dir_option
 
-#: how the metrics table shows an SI unit: (factor, unit) — as the other text reports do
-_SHOWN = {"m": (1e3, "mm"), "-": (1e6, "µε"), "m/s^2": (1.0, "m/s²")}
+def _shown(unit: str) -> tuple[float, str]:
+    """How the metrics table shows a channel's SI unit: (factor, unit) — a strain ("-") in µε, an
+    acceleration as m/s², the rest as every text report does (``vbikit.outputs.report_unit``: a
+    displacement in mm)."""
+    from vbikit.outputs import report_unit
+
+    if unit == "-":
+        return 1e6, "µε"
+    if unit == "m/s^2":
+        return 1.0, "m/s²"
+    shown, factor = report_unit(unit)
+    return factor, shown
 
 
 def field_(
@@ -31,14 +41,14 @@ def field_(
                        f"low-pass {c.lowpass_hz or 'none'} Hz")
             units = {ch.name: QUANTITIES[ch.quantity].unit for ch in c.case.channels if ch.quantity in QUANTITIES}
             for ch, d in c.drift.items():
-                scale, unit = _SHOWN.get(units.get(ch, ""), (1.0, units.get(ch, "")))
+                scale, unit = _shown(units.get(ch, ""))
                 typer.echo(f"    {ch}: removed offset {d.offset * scale:+.4g} {unit}, drift {d.drift * scale:+.4g} "
                            f"{unit} per s ({d.method})")
             typer.echo(f"    {'tire':<11} {'channel':<16} {'peak err [%]':>12} {'RMS err':>18} {'nRMS [-]':>8} "
                        f"{'corr [-]':>8}")
             for tire, chans in c.metrics.items():
                 for name, m in chans.items():
-                    scale, unit = _SHOWN.get(units.get(name, ""), (1.0, units.get(name, "")))
+                    scale, unit = _shown(units.get(name, ""))
                     rms = f"{m['rms_error'] * scale:.4g} {unit}".rstrip()
                     typer.echo(f"    {tire:<11} {name:<16} {m['peak_error'] * 100:+12.3f} {rms:>18} "
                                f"{m['normalised_rms_error']:8.4f} {m['correlation']:8.4f}")

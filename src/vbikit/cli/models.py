@@ -12,13 +12,18 @@ from vbikit.cli.guard import guard, out_dir_option, out_file_option
 def presets() -> None:
     """List the bridge, vehicle, tire and road presets with their parameters."""
     from vbikit.bridge import BRIDGE_PRESETS, EulerBernoulliBeam
+    from vbikit.outputs import report_unit
     from vbikit.road import ISO_CLASSES, PAPER_CLASSES
+    from vbikit.scenario.bridge_spec import BeamSpec, ContinuousBeamSpec
     from vbikit.vehicle import TRAIN_PRESETS, VEHICLE_PRESETS
 
-    typer.echo("Bridges ([bridge] model = ...):")
-    typer.echo("  beam                  Euler–Bernoulli beam: span, EI, mass_per_length, damping_ratio, n_modes, neutral_axis_depth")
-    typer.echo("  continuous-beam       beam over several spans: spans (list), EI and mass_per_length (one or per span), "
-               "support_stiffness, rotational_stiffness, [[bridge.damage]]")
+    typer.echo("Bridges ([bridge] model = ...; parameters in SI units, as a scenario takes them):")
+    typer.echo("  beam                  Euler–Bernoulli beam: " + _keys(BeamSpec, ("span", "EI", "mass_per_length",
+                                                                           "damping_ratio", "n_modes", "neutral_axis_depth")))
+    typer.echo("  continuous-beam       beam over several spans: " + _keys(ContinuousBeamSpec, ("spans",))
+               + " (list), " + _keys(ContinuousBeamSpec, ("EI",)) + " and " + _keys(ContinuousBeamSpec, ("mass_per_length",))
+               + " (one or per span), " + _keys(ContinuousBeamSpec, ("support_stiffness", "rotational_stiffness"))
+               + ", [[bridge.damage]]")
     typer.echo("  modes-file            modes imported from a vbikit-modes file (modes_file = ...; docs/bridges.md)")
     for p in BRIDGE_PRESETS.values():
         b = p.build()
@@ -29,16 +34,21 @@ def presets() -> None:
         else:  # slab-on-girder deck: geometry only (its modes are solved by `vbikit bridge NAME`)
             typer.echo(f"  {'':<21} span {b.span} m, deck {b.deck_width:.2f} m, default lateral_offset "
                        f"{b.default_lateral_offset} m, default response girder {b.default_girder}")
-    typer.echo("Vehicles ([vehicle] model = ...; static loads in kN: per wheel for road vehicles, per axle for trains):")
+    typer.echo(f"Vehicles ([vehicle] model = ...; parameters in SI units, as a scenario takes them; static loads in "
+               f"{report_unit('N')[0]}: per wheel for road vehicles, per axle for trains):")
     for p in VEHICLE_PRESETS.values():
         v = p.example_vehicle()
         train = p.name in TRAIN_PRESETS  # a train's wheel is one axle (train_vehicle)
         loads = _load_list(v.static_wheel_loads(), "axle" if train else "wheel")
         if p.required:
-            params = (f"parameters: {', '.join(p.parameters)} (required: {', '.join(p.required)}); example "
-                      + ", ".join(f"{k} = {val}" for k, val in p.example.items()))
-        else:
-            params = ", ".join(f"{k} = {val:g}" for k, val in v.parameters.items()) or "fixed parameters"
+            params = (f"parameters: {', '.join(_named(k) for k in p.parameters)} (required: {', '.join(p.required)}); "
+                      "example " + ", ".join(f"{k} = {val}{_unit_after(k)}" for k, val in p.example.items()))
+        elif p.parameters:
+            params = ", ".join(f"{k} = {val:g}{_unit_after(k)}" for k, val in v.parameters.items())
+        else:  # what the fixed model states of itself, not keys a scenario can set (its loads: the line above)
+            stated = ", ".join(f"{k} {val:g}{_unit_after(k)}" for k, val in v.parameters.items()
+                               if k not in STATED_BY_LOADS)
+            params = f"fixed parameters ({stated})" if stated else "fixed parameters"
         f = v.natural_frequencies()
         freq = f"; frequencies {f.min():.2f} … {f.max():.2f} Hz" if f.size else ""
         typer.echo(f"  {p.name:<14} {v.description}; {v.n_dof} DOF; {loads}{freq}")
@@ -130,18 +140,52 @@ def bridge(
         typer.echo(f"  figure              {path}")
 
 
+#: numbers a vehicle states of itself that its load list already gives (count and total)
+STATED_BY_LOADS = frozenset({"n_axles", "total_load", "gross_weight"})
+
+
+def _keys(spec, names) -> str:
+    """Scenario keys of a schema model, each with its SI unit from its description
+    (``vbikit._words.split_unit``): "span [m], EI [N m²], damping_ratio"."""
+    from vbikit._words import split_unit
+
+    out = []
+    for name in names:
+        unit = split_unit(spec.model_fields[name].description or "")[1]
+        out.append(f"{name} [{unit}]" if unit else name)
+    return ", ".join(out)
+
+
+def _unit_after(name: str) -> str:
+    """" kg" after a vehicle parameter's value (``vbikit.vehicle.presets.PARAMETER_UNITS``; nothing for a
+    dimensionless one)."""
+    from vbikit.vehicle.presets import parameter_unit
+
+    unit = parameter_unit(name)
+    return f" {unit}" if unit and unit != "-" else ""
+
+
+def _named(name: str) -> str:
+    """A vehicle parameter's name with its SI unit: "axle_loads [N]" (dimensionless: the name alone)."""
+    unit = _unit_after(name).strip()
+    return f"{name} [{unit}]" if unit else name
+
+
 #: a preset's static loads are listed one by one up to this many; a train's are summarised
 LISTED_LOADS = 12
 
 
 def _load_list(loads, per: str) -> str:
-    """A preset's static loads [N] in kN, one a ``per`` ("wheel": a road vehicle's, "axle": a
-    train's), labelled so: "load per wheel [kN]: 15.4, 15.4, …; total 300.9", each listed, or for
-    more than ``LISTED_LOADS`` (the HSLM trains' 36–50 axles) "load per axle [kN]: 50 axles, 170.0
-    each; total 8500"."""
-    kn = [x / 1e3 for x in loads]
-    if len(kn) <= LISTED_LOADS:
-        return f"load per {per} [kN]: " + ", ".join(f"{x:.1f}" for x in kn) + f"; total {sum(kn):.1f}"
-    low, high = min(kn), max(kn)
+    """A preset's static loads [N] in the report's force unit (``vbikit.outputs.report_unit``: kN),
+    one a ``per`` ("wheel": a road vehicle's, "axle": a train's), labelled so: "load per wheel [kN]:
+    15.4, 15.4, …; total 300.9", each listed, or for more than ``LISTED_LOADS`` (the HSLM trains'
+    36–50 axles) "load per axle [kN]: 50 axles, 170.0 each; total 8500"."""
+    from vbikit.outputs import report_unit
+
+    unit, k = report_unit("N")
+    shown = [x * k for x in loads]
+    if len(shown) <= LISTED_LOADS:
+        return f"load per {per} [{unit}]: " + ", ".join(f"{x:.1f}" for x in shown) + f"; total {sum(shown):.1f}"
+    low, high = min(shown), max(shown)
     each = f"{low:.1f} each" if high == low else f"{low:.1f} … {high:.1f}"
-    return f"load per {per} [kN]: {len(kn)} {per}s, {each}; total {sum(kn):.0f}"
+    return f"load per {per} [{unit}]: {len(shown)} {per}s, {each}; total {sum(shown):.0f}"

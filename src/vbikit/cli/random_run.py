@@ -39,24 +39,27 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     if s.get("name"):
         typer.echo(s["name"])
     typer.echo(f"  method: {s['method']}")
+    from vbikit.outputs import report_unit
+
+    (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
     for p in s["points"]:
         q = ", ".join(f"{float(k):.0%}: {v:.4f}" for k, v in p["impact_factor_quantiles"].items())
         typer.echo(f"  point x = {p['x']:.3f} m, y = {p['y']:.3f} m")
-        typer.echo(f"    peak displacement  {p['displacement_peak_mean'] * 1e3:9.4f} ± {p['displacement_peak_std'] * 1e3:.4f} mm"
-                   f"  (static {p['static_peak'] * 1e3:.4f} mm)")
+        typer.echo(f"    peak displacement  {p['displacement_peak_mean'] * to_mm:9.4f} ± "
+                   f"{p['displacement_peak_std'] * to_mm:.4f} {mm}  (static {p['static_peak'] * to_mm:.4f} {mm})")
         typer.echo(f"    impact factor      {p['impact_factor_mean']:9.4f} ± {p['impact_factor_std']:.4f}   quantiles {q}")
-        typer.echo(f"    σ max: displacement {p['displacement_std_max'] * 1e3:.4f} mm, acceleration "
+        typer.echo(f"    σ max: displacement {p['displacement_std_max'] * to_mm:.4f} {mm}, acceleration "
                    f"{p['acceleration_std_max']:.4f} m/s², strain {p['strain_std_max'] * 1e6:.3f} µε")
     for e in s.get("effects", []):
         q = ", ".join(f"{float(k):.0%}: {v:.4f}" for k, v in e["impact_factor_quantiles"].items())
-        u = e["units"]
+        u, k = report_unit(e["units"])  # kN m, kN
         typer.echo(f"  {e['kind']} {e['name']} ({e['method']})")
-        typer.echo(f"    peak {e['peak_mean']:12.5g} ± {e['peak_std']:.4g} {u}  (static {e['static_peak']:.5g} {u}), "
-                   f"σ max {e['std_max']:.4g} {u}")
+        typer.echo(f"    peak {e['peak_mean'] * k:12.5g} ± {e['peak_std'] * k:.4g} {u}  (static {e['static_peak'] * k:.5g} {u}), "
+                   f"σ max {e['std_max'] * k:.4g} {u}")
         typer.echo(f"    impact factor      {e['impact_factor_mean']:9.4f} ± {e['impact_factor_std']:.4f}   quantiles {q}")
     forces = s.get("wheel_force_std_max", {})
     if forces:
-        typer.echo("  σ max wheel force [kN]: " + ", ".join(f"{k} {v / 1e3:.2f}" for k, v in forces.items()))
+        typer.echo(f"  σ max wheel force [{kn}]: " + ", ".join(f"{w} {v * to_kn:.2f}" for w, v in forces.items()))
     acc = {k: v for k, v in s.get("vehicle_acceleration_std_max", {}).items() if v > 1e-9}
     if acc:
         typer.echo("  σ max vehicle acceleration [m/s², rad/s²]: " + ", ".join(f"{k} {v:.3g}" for k, v in acc.items()))

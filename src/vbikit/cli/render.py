@@ -61,8 +61,11 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  bridge f1..f3        {', '.join(f'{f:.2f}' for f in s['frequencies_hz'][:3])} Hz")
     girder = f" (Girder {s['response_girder']})" if s.get("response_girder") else ""
     typer.echo(f"  response point       x = {s['response_x']:.3f} m, y = {s['response_y']:.3f} m{girder}")
-    typer.echo(f"  max displacement     dynamic {s['max_dynamic_displacement'] * 1e3:+.4f} mm, "
-               f"static {s['max_static_displacement'] * 1e3:+.4f} mm")
+    from vbikit.outputs import report_unit
+
+    (length_unit, to_length), (force_unit, to_force) = report_unit("m"), report_unit("N")  # mm, kN
+    typer.echo(f"  max displacement     dynamic {s['max_dynamic_displacement'] * to_length:+.4f} {length_unit}, "
+               f"static {s['max_static_displacement'] * to_length:+.4f} {length_unit}")
     from vbikit.analysis.checks import find_flag, has_flag
 
     # the marks come from the flags' codes (vbikit.analysis.checks.FLAG_CODES), never from the warnings' words
@@ -108,15 +111,16 @@ def print_summary(run: Run) -> None:
     if len(s["points"]) > 1:
         print_points(s["points"], small_points)
     for i, v in enumerate(s.get("vehicles", []), start=1):
-        loads = " / ".join(f"{f / 1e3:.1f}" for f in v["static_wheel_loads"].values())
+        loads = " / ".join(f"{f * to_force:.1f}" for f in v["static_wheel_loads"].values())
         typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
-                   f"t = {v['entry_time']:.3f} s, y = {v['lateral_offset']:+.3f} m; wheel loads [kN] {loads}"
+                   f"t = {v['entry_time']:.3f} s, y = {v['lateral_offset']:+.3f} m; wheel loads [{force_unit}] {loads}"
                    f"{'; lost contact' if v['contact_loss'] else ''}")
     if "governing_girder" in s:
         if "vehicles" not in s:
             typer.echo(f"  vehicle lateral      y = {s['lateral_offset']:.3f} m")
         typer.echo("  girder               " + "  ".join(f"{g:>7d}" for g in range(1, len(s["girder_y"]) + 1)))
-        typer.echo("  static max [mm]      " + "  ".join(f"{v * 1e3:+7.3f}" for v in s["girder_max_static_displacement"]))
+        typer.echo(f"  {f'static max [{length_unit}]':<20} "
+                   + "  ".join(f"{v * to_length:+7.3f}" for v in s["girder_max_static_displacement"]))
         typer.echo("  IM                   " + " ".join(f"{v:7.4f}{'!' if f else ' '}"
                                                       for v, f in zip(s["girder_impact_factors"], small_girders)).rstrip())
         if any(small_girders):
@@ -207,12 +211,14 @@ def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:
     marks an IM on a small static reference (``small``: per point, whether the run flags it
     ``small_static``, ``vbikit.analysis.checks``)."""
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
+    from vbikit.outputs import report_unit
 
-    typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {'static [mm]':>12} {'dynamic [mm]':>13} {'IM':>8} "
+    unit, k = report_unit("m")  # deflections in mm (the positions x, y are geometry: m)
+    typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {f'static [{unit}]':>12} {f'dynamic [{unit}]':>13} {'IM':>8} "
                f"{'strain IM':>9} {'|a|max [m/s²]':>14}")
     for p, flag in zip(points, small):
-        typer.echo(f"  {p['name']:<20} {p['x']:8.3f} {p['y']:8.3f} {p['max_static_displacement'] * 1e3:+12.4f} "
-                   f"{p['max_dynamic_displacement'] * 1e3:+13.4f} {p['impact_factor']:8.4f} "
+        typer.echo(f"  {p['name']:<20} {p['x']:8.3f} {p['y']:8.3f} {p['max_static_displacement'] * k:+12.4f} "
+                   f"{p['max_dynamic_displacement'] * k:+13.4f} {p['impact_factor']:8.4f} "
                    f"{p['strain_impact_factor']:9.4f} {p['max_abs_acceleration']:14.4f}{'  !' if flag else ''}")
     if any(small):
         typer.echo(f"  {'':<20} ! unreliable IM: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "

@@ -121,12 +121,15 @@ def compare_tires(
         return
     if base.name:
         typer.echo(base.name)
-    typer.echo(f"  {'tire model':<20} {'u_max [mm]':>10} {'IM [-]':>7} {'ε_max [µε]':>11} {'IM_ε [-]':>8} "
-               f"{'|a|max [m/s²]':>13} {'F_min [kN]':>10} {'time [s]':>8}")
+    from vbikit.outputs import report_unit
+
+    (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
+    typer.echo(f"  {'tire model':<20} {f'u_max [{mm}]':>10} {'IM [-]':>7} {'ε_max [µε]':>11} {'IM_ε [-]':>8} "
+               f"{'|a|max [m/s²]':>13} {f'F_min [{kn}]':>10} {'time [s]':>8}")
     for label, row in table.items():
-        typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * 1e3:10.4f} {row['impact_factor']:7.4f} "
+        typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * to_mm:10.4f} {row['impact_factor']:7.4f} "
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f} "
-                   f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] / 1e3:10.2f} {row['seconds']:8.2f}")
+                   f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] * to_kn:10.2f} {row['seconds']:8.2f}")
     from vbikit.cli.render import print_negative_note
 
     print_negative_note(any(row[k] < 0 for row in table.values() for k in ("impact_factor", "strain_impact_factor")))

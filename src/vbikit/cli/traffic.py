@@ -72,20 +72,22 @@ def traffic_cmd(
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
     implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
     doubt = "!" if implausible or airborne else ""
-    typer.echo(f"impact factor of all events: mean {a['im_mean']:.4f}{doubt} (one vehicle {a['im_mean_single']:.4f}, "
-               f"several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, max {float(first['impact_factor'].max()):.4f}")
+    n_small = int(a["n_small_static_events"])
+    small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
+        " on small static references (light vehicles, far lanes): not design values"
+    if n_small:  # the design values first: the events that load the point
+        typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
+                   f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
+                   f"{a['im_mean_loaded']:.4f}{doubt}, 95 % {a['im_q95_loaded']:.4f}")
+    typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {a['im_mean']:.4f}{doubt} "
+               f"(one vehicle {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, "
+               f"max {float(first['impact_factor'].max()):.4f}" + (f"; {small_words}" if n_small else ""))
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
                    "warning; no statistic of this stream is a result")
     if airborne:
         typer.echo(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
                    "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
-    if a["n_small_static_events"]:
-        n_small, share = int(a["n_small_static_events"]), float(a["small_static_fraction"])
-        typer.echo(f"events loading the point (static peak ≥ {share:.0%} of the stream's largest, "
-                   f"{job.size - n_small} of {job.size}): IM mean {a['im_mean_loaded']:.4f}, 95 % {a['im_q95_loaded']:.4f}; "
-                   f"the other {n_small} events' IMs rest on small static references (light vehicles, far lanes): "
-                   "not design values")
     typer.echo(f"largest static effect: event {a['governing_static_event']}, dynamic amplification "
                f"{a['governing_static_amplification']:.4f}; largest dynamic effect: event {a['governing_dynamic_event']}, "
                f"{a['governing_dynamic_amplification']:.4f} × the largest static effect")

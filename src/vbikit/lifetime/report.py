@@ -8,13 +8,12 @@ effect, their messages its ``warnings`` (``add_flags``); the report prints each 
 line and sets its marks from the codes (``has_flag``)."""
 from __future__ import annotations
 
-import json
 import math
 import re
 from typing import Any
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, add_flags, has_flag
+from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.outputs import report_unit
 
@@ -94,6 +93,18 @@ def _effect(ds, j: int) -> dict[str, Any]:
     return out
 
 
+#: what a lifetime finding puts in doubt (its flag's ``output``), in the report's words: the one
+#: naming (``flag_output``; the report's marks match on it)
+FLAG_OUTPUTS: dict[str, str] = {"characteristic": "characteristic {w} value", "return_levels": "{w} return levels",
+                                "adr": "ADR", "governing": "governing {w} event"}
+
+
+def flag_output(what: str, w: str = "") -> str:
+    """A lifetime flag's ``output`` in words: ``flag_output("return_levels", "static")`` → "static
+    return levels", ``flag_output("adr")`` → "ADR" (``FLAG_OUTPUTS``; ``w``: "static" or "total")."""
+    return FLAG_OUTPUTS[what].format(w=w)
+
+
 def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     """The accuracy findings of load effect ``name`` (its summary so far, ``e``; the dataset's
     attributes ``a``) as ``Flag`` records (``FLAG_CODES``; subject: ``name``), in the report's order."""
@@ -110,7 +121,7 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
 def _not_estimable_flags(name: str, e: dict) -> list[Flag]:
     """A characteristic value that could not be estimated, with why."""
     return [Flag("characteristic_not_estimable", f"characteristic {w} {e[f'characteristic_{w}_not_estimable']}",
-                 output=f"characteristic_{w}", subject=name)
+                 output=flag_output("characteristic", w), subject=name)
             for w in ("static", "total") if e.get(f"characteristic_{w}_not_estimable")]
 
 
@@ -133,7 +144,7 @@ def _static_bound_flags(name: str, e: dict) -> list[Flag]:
                  f"headway allows): the extrapolation exceeds what the traffic model can produce — the fitted "
                  f"distribution's unbounded tail; consider a GEV or POT fit with a bounded tail, or the model's "
                  f"maximum {bound:.4g} {unit} (static levels above it: {', '.join(beyond)})",
-                 output="characteristic_static", subject=name, value=char, threshold=bound)]
+                 output=flag_output("characteristic", "static"), subject=name, value=char, threshold=bound)]
 
 
 def _fit_flags(name: str, e: dict, w: str, xi: float) -> list[Flag]:
@@ -148,7 +159,7 @@ def _fit_flags(name: str, e: dict, w: str, xi: float) -> list[Flag]:
                         + ", ".join(f"{n} ξ = {x:.2f}" for n, x in shapes)
                         + f" < {xi:g}): a bounded tail fitted from little data; "
                         "the long-period levels and their intervals are unreliable — simulate more days",
-                        output=f"return_levels.{w}", subject=name, value=min((x for _, x in shapes), default=None),
+                        output=flag_output("return_levels", w), subject=name, value=min((x for _, x in shapes), default=None),
                         threshold=xi))
     wide = [(n, r["return_period"], r[w][key]) for r in e["return_levels"] for n, key in _METHODS
             if too_wide(r[w][key]["value"], r[w][key]["lower"], r[w][key]["upper"])]
@@ -156,13 +167,13 @@ def _fit_flags(name: str, e: dict, w: str, xi: float) -> list[Flag]:
         out.append(Flag("wide_interval", f"{w}: confidence interval wider than the level itself ("
                         + ", ".join(f"{n} at {t:g} years" for n, t, _ in wide)
                         + "): too uncertain to sign, and too wide to tell whether the methods agree — simulate more days",
-                        output=f"return_levels.{w}", subject=name, threshold=WIDE_INTERVAL,
+                        output=flag_output("return_levels", w), subject=name, threshold=WIDE_INTERVAL,
                         value=max(_relative_width(d) for _, _, d in wide)))
     bad = [r for r in e["return_levels"] if r[w]["methods_disagree"]]
     if bad:
         out.append(Flag("bm_pot_disagree", f"{w}: block maxima and peaks over threshold disagree beyond their intervals at "
                         f"{', '.join(format(r['return_period'], 'g') for r in bad)} years — the characteristic value "
-                        "depends on the method", output=f"return_levels.{w}", subject=name, threshold=0.0,
+                        "depends on the method", output=flag_output("return_levels", w), subject=name, threshold=0.0,
                         value=max(_interval_gap(r[w]["block_maxima"], r[w]["peaks_over_threshold"]) for r in bad)))
     return out
 
@@ -194,7 +205,7 @@ def _adr_flags(name: str, e: dict) -> list[Flag]:
         return []
     bound = adr["lower"] if adr["value"] is None or adr["value"] >= 1.0 else adr["upper"]
     return [Flag("adr_indistinguishable_from_one", "ADR: the interval contains 1 — the data cannot tell the ADR from 1",
-                 output="adr", subject=name, value=bound, threshold=1.0)]
+                 output=flag_output("adr"), subject=name, value=bound, threshold=1.0)]
 
 
 def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
@@ -207,7 +218,7 @@ def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
                  f"(event {short['event']}; tolerance {100 * tolerance:g} %): their total peaks are "
                  "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
                  "coarse for this effect, or a wheel left the tabulated tracks",
-                 output="adr", subject=name, value=short["value"], threshold=tolerance)]
+                 output=flag_output("adr"), subject=name, value=short["value"], threshold=tolerance)]
 
 
 def _governing_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
@@ -215,14 +226,21 @@ def _governing_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
     return [Flag("governing_step_sensitive",
                  f"governing {w} event: its total peak changes by {100 * g['half_step_change']:+.2f} % at half "
                  f"the time step (tolerance {100 * tolerance:g} %) — the time step is too coarse",
-                 output=f"governing.{w}", subject=name, value=g["half_step_change"], threshold=tolerance)
+                 output=flag_output("governing", w), subject=name, value=g["half_step_change"], threshold=tolerance)
             for w, g in e.get("governing", {}).items() if g["half_step_flag"]]
 
 
 def flag_codes(facts: dict[str, Any]) -> str:
-    """The codes of every load effect's flags as JSON, {effect: [code, …]} (the dataset's attribute
-    ``flag_codes``)."""
-    return json.dumps({name: [f["code"] for f in e["flags"]] for name, e in facts["load_effects"].items()})
+    """The codes of every load effect's flags, comma-separated, each once: the dataset's attribute
+    ``flag_codes`` in the format of every population dataset (``vbikit.analysis.checks.join_codes``,
+    read by ``dataset_has_flag``)."""
+    return join_codes(f["code"] for e in facts["load_effects"].values() for f in e["flags"])
+
+
+def effect_flag_codes(facts: dict[str, Any]) -> list[str]:
+    """Each load effect's flag codes in the same format, in ``load_effect`` order (the dataset's
+    variable ``load_effect_flag_codes``; "" for an effect without a flag)."""
+    return [join_codes(f["code"] for f in e["flags"]) for e in facts["load_effects"].values()]
 
 
 def _detail(ds, j: int) -> dict[str, Any]:
@@ -290,9 +308,10 @@ def _iv(d: dict, scale: float = 1.0) -> str:
 
 def text_report(facts: dict[str, Any]) -> str:
     """The run's plain-text report (rendered from ``summary``; its marks, ``*`` under a table and ABOVE
-    at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m
-    and forces in kN like ``vbikit run``'s report (``vbikit.outputs.report_unit``); the summary and
-    the dataset stay SI, and so do the flags' messages printed as FLAG lines."""
+    at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m,
+    forces in kN and deflections in mm like ``vbikit run``'s report (``vbikit.outputs.report_unit``);
+    the summary and the dataset stay SI, and so do the flags' messages printed as FLAG lines.  The
+    fatigue table's damage is that of the simulated days, its header says so."""
     r, f = facts["run"], facts["fits"]
     ci = f"{f['ci']:.0%}"
     lines = [f"vbikit lifetime: {facts['title']}",
@@ -347,7 +366,7 @@ def text_report(facts: dict[str, Any]) -> str:
         lines.append("  " + e["adr"]["words"])
         for w, g in e.get("governing", {}).items():
             change = g["half_step_change"]
-            above = has_flag(e, "governing_step_sensitive", output=f"governing.{w}")
+            above = has_flag(e, "governing_step_sensitive", output=flag_output("governing", w))
             check = ("n/a" if change is None else f"{100 * change:+.3f} % "
                      + ("ABOVE" if above else "within") + f" the {100 * facts['half_step_tolerance']:g} % tolerance")
             lines.append(f"  governing {w} maximum: day {g['day']} at "
@@ -358,7 +377,10 @@ def text_report(facts: dict[str, Any]) -> str:
             lines.append("  FLAG " + flag["message"])
     if "fatigue" in facts:
         wide = max([12] + [len(d["category"]) + 2 for d in facts["fatigue"].values()])  # (a reduced category is long)
-        lines += ["", f"fatigue (design life {facts['design_life']:g} years)",
+        days = counted(r["n_days"], "simulated day")
+        lines += ["", f"fatigue: Miner damage over the {days} (damage, its standard error ± se and its static part), "
+                      f"per year ({r['days_per_year']} days), and the remaining life; design life "
+                      f"{facts['design_life']:g} years",
                   f"{'detail':<16}{'category':<{wide}}{'damage':>12}{'± se':>11}{'static':>12}{'per year':>12}"
                   f"{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
         for name, d in facts["fatigue"].items():

@@ -251,7 +251,7 @@ def resume_note(work: Path) -> str:
 def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, scheduler, progress, figures: bool):
     """``run_lifetime`` after ``prepare``: every stage (stored under ``work``), the dataset and the files."""
     from vbikit._files import atomic_write, write_text
-    from vbikit.lifetime.report import flag_codes, summary, text_report
+    from vbikit.lifetime.report import effect_flag_codes, flag_codes, summary, text_report
     from vbikit.lifetime.results import build_dataset
 
     t0 = time.perf_counter()
@@ -265,7 +265,11 @@ def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, sche
     from vbikit.study.run import _to_netcdf
 
     facts = summary(ds)
-    ds.attrs["flag_codes"] = flag_codes(facts)  # (the summary reads no such attribute: the stored file's is the same)
+    # (the summary reads neither: the stored file's summary is the same)
+    ds.attrs["flag_codes"] = flag_codes(facts)
+    ds["load_effect_flag_codes"] = ("load_effect", np.array(effect_flag_codes(facts), dtype=object),
+                                    {"long_name": "the codes of each load effect's flags in summary.json, comma-separated "
+                                                  "(vbikit.analysis.checks.FLAG_CODES)"})
     atomic_write(out_dir / "lifetime.nc", lambda tmp: _to_netcdf(ds, tmp))
     write_text(out_dir / "summary.json", json.dumps(facts, indent=1, allow_nan=False) + "\n")
     write_text(out_dir / "report.txt", text_report(facts))

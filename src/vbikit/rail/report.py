@@ -8,6 +8,7 @@ from typing import Any, Optional
 import numpy as np
 
 from vbikit.analysis.checks import Flag, add_flags, has_flag
+from vbikit.outputs import report_unit
 from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 
 #: flag codes that make a sweep not the EN 1991-2 check as run (the report's result line says so)
@@ -15,6 +16,24 @@ STANDARD_CODES = ("hslm_range", "too_few_modes")
 #: the checks whose governing peak is refined over speed and states its grid error, with their names in the report
 GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the entry support",
                "deflection": "midspan deflection"}
+
+
+def kmh(speed: float) -> str:
+    """A speed [m/s] in km/h as every railway text writes it (report, flag messages): to 0.1 km/h,
+    without the unit ("250.6"; the refinement's finest steps are below that, and the speed's
+    figure beyond it is not a design quantity)."""
+    return f"{3.6 * float(speed):.1f}"
+
+
+def speed_words(speed: float) -> str:
+    """A speed [m/s] with its unit, ``kmh``'s number: "250.6 km/h"."""
+    return f"{kmh(speed)} km/h"
+
+
+def _effect_words(value: float, si_unit: str) -> str:
+    """A moment or shear [SI] in the report's unit (``vbikit.outputs.report_unit``): "5561 kN m"."""
+    unit, k = report_unit(si_unit)
+    return f"{value * k:.4g} {unit}"
 
 
 def check(ds) -> dict[str, Any]:
@@ -103,7 +122,7 @@ def speed_grid_flags(checks: dict[str, Any], kinds: tuple[str, ...], tolerance: 
         if not (math.isfinite(change) and math.isfinite(bound)) or max(change, bound) < tolerance:
             continue
         out.append(Flag("speed_grid_error", f"the governing {GRID_CHECKS[kind]} peak ({c['train']} at "
-                        f"{3.6 * c['speed']:.2f} km/h) is not converged over speed: after its refinement it still changed "
+                        f"{speed_words(c['speed'])}) is not converged over speed: after its refinement it still changed "
                         f"by {100 * change:.2f} % over the last halving of the speed step, error bound {100 * bound:.2f} % "
                         f"(tolerance {100 * tolerance:g} %); the stated value may be low: use a finer speeds.step or "
                         "fine_step around it", output=kind, subject=str(c["train"]), value=max(change, bound),
@@ -121,39 +140,36 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         f"(up to {float(ds['frequency'].values[-1]):.1f} Hz; required max(30 Hz, 1.5 n0, n3) = {a['frequency_limit_hz']:.1f} Hz), "
         f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}"
         f"{', with additional damping' if a['additional_damping'] else ''})",
-        f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {float(ds.speed_kmh.min()):.0f} … "
-        f"{float(ds.speed_kmh.max()):.0f} km/h",
+        f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {kmh(ds.speed.values.min())} … "
+        f"{speed_words(ds.speed.values.max())}",
     ]
     lines += [f"WARNING: {w}" for w in checks.get("warnings", [])]
     lines += [
         "",
-        f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {3.6 * acc['speed']:.2f} km/h) against "
+        f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {speed_words(acc['speed'])}) against "
         f"{acc['limit']:g} m/s² ({a['track']} track): {'PASS' if acc['passes'] else 'FAIL'} ({100 * acc['ratio']:.0f} % of the limit)",
-        _grid_line(acc),
     ]
     for kind in ("moment", "shear"):
         c = checks[kind]
-        unit, where = ("kN m", "midspan") if kind == "moment" else ("kN", "entry support")
-        lines.append(f"{kind} at the {where}: (1 + phi'dyn + phi''/2) x train = {c['dynamic_design'] / 1e3:.4g} {unit} "
-                     f"({c['train']} at {3.6 * c['speed']:.1f} km/h, phi'dyn = {c['phi_dyn']:.3f}, phi'' = "
-                     f"{c['phi_irregularity']:.3f}) vs Phi x alpha x LM71 = {c['lm71_design'] / 1e3:.4g} {unit} (Phi = "
-                     f"{a['dynamic_factor_Phi']:.3f}, alpha = {a['classification_factor']:g}): {c['governs']} governs"
-                     + (f"; speed grid {c['grid_design'] / 1e3:.4g} {unit}, refined peak's error bound "
-                        f"{100 * c['refinement_bound']:.3f} %" if math.isfinite(c.get("refinement_bound", math.nan)) else ""))
+        si, where = ("N m", "midspan") if kind == "moment" else ("N", "entry support")
+        lines.append(f"{kind} at the {where}: (1 + phi'dyn + phi''/2) x train = {_effect_words(c['dynamic_design'], si)} "
+                     f"({c['train']} at {speed_words(c['speed'])}, phi'dyn = {c['phi_dyn']:.3f}, phi'' = "
+                     f"{c['phi_irregularity']:.3f}) vs Phi x alpha x LM71 = {_effect_words(c['lm71_design'], si)} (Phi = "
+                     f"{a['dynamic_factor_Phi']:.3f}, alpha = {a['classification_factor']:g}): {c['governs']} governs")
     if "moment_envelope" in checks:
         e = checks["moment_envelope"]
         # the dynamic peak (1 + phi'dyn) x train of every section, compared with the same at midspan (not with
         # the midspan line's design value, which adds phi''/2)
         mid, mid_static = float(np.nanmax(ds["max_moment"].values)), float(np.nanmax(ds["static_moment"].values))
-        lines.append(f"moment along the span: largest {e['moment_max_Nm'] / 1e3:.4g} kN m at x = {e['moment_max_position_m']:.3f} m "
-                     f"({e['moment_max_train']} at {3.6 * e['moment_max_speed_m_s']:.1f} km/h), "
-                     f"{100 * (e['moment_max_over_midspan'] - 1):+.2f} % against the largest at midspan {mid / 1e3:.4g} kN m "
-                     f"(dynamic peaks (1 + phi'dyn) x train, without phi''/2); static "
-                     f"{e['static_moment_max_Nm'] / 1e3:.4g} kN m at x = {e['static_moment_max_position_m']:.3f} m "
+        lines.append(f"moment along the span: largest {_effect_words(e['moment_max_Nm'], 'N m')} at x = "
+                     f"{e['moment_max_position_m']:.3f} m ({e['moment_max_train']} at {speed_words(e['moment_max_speed_m_s'])}), "
+                     f"{100 * (e['moment_max_over_midspan'] - 1):+.2f} % against the largest at midspan "
+                     f"{_effect_words(mid, 'N m')} (dynamic peaks (1 + phi'dyn) x train, without phi''/2); static "
+                     f"{_effect_words(e['static_moment_max_Nm'], 'N m')} at x = {e['static_moment_max_position_m']:.3f} m "
                      f"({e['static_moment_max_train']}), {100 * (e['static_moment_max_over_midspan'] - 1):+.2f} % against "
-                     f"midspan {mid_static / 1e3:.4g} kN m")
+                     f"midspan {_effect_words(mid_static, 'N m')}")
     d = checks["deflection"]
-    lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {3.6 * d['speed']:.1f} km/h)")
+    lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {speed_words(d['speed'])})")
     lines.append(_grid_error_line(checks, float(acc.get("tolerance", PEAK_TOLERANCE))))
     lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length, HSLM-B's force spacing d or "
               "the dominant repeated axle spacing):"]
@@ -163,7 +179,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
             lines.append(f"  {name}: none (no repeated axle spacing)")
             continue
         d = float(ds["excitation_wavelength"].values[k])
-        parts = [f"i = {i + 1}: {3.6 * v:.1f}" + ("" if lo * (1 - 1e-12) <= v <= hi * (1 + 1e-12) else
+        parts = [f"i = {i + 1}: {kmh(v)}" + ("" if lo * (1 - 1e-12) <= v <= hi * (1 + 1e-12) else
                                                   " (above the sweep)" if v > hi else " (below the sweep)")
                  for i, v in enumerate(row) if np.isfinite(v)]
         lines.append(f"  {name} (D = {d:.3f} m, {ds['wavelength_source'].values[k]}): " + ", ".join(parts))
@@ -171,14 +187,14 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         inside = [(d, i, v) for d, i, v in bogie_resonance_list(ds, k) if lo * (1 - 1e-12) <= v <= hi * (1 + 1e-12)]
         if inside:
             lines.append(f"  {name}, axle spacing within a bogie (v = n0 d / i, in the sweep): " + "; ".join(
-                f"d = {d:g} m: " + ", ".join(f"i = {i}: {3.6 * v:.1f}" for dd, i, v in inside if dd == d)
+                f"d = {d:g} m: " + ", ".join(f"i = {i}: {kmh(v)}" for dd, i, v in inside if dd == d)
                 for d in sorted({d for d, _, _ in inside})))
     near = governing_resonance(ds, acc["train"], acc["speed"])
     if near:
-        lines.append(f"governing peak ({acc['train']}, {3.6 * acc['speed']:.1f} km/h) nearest the resonance "
-                     f"{near['resonance']} at {near['speed_kmh']:.1f} km/h ({100 * near['offset']:+.1f} %)")
+        lines.append(f"governing peak ({acc['train']}, {speed_words(acc['speed'])}) nearest the resonance "
+                     f"{near['resonance']} at {speed_words(near['speed_m_s'])} ({100 * near['offset']:+.1f} %)")
     lines += ["", f"result: {'PASS' if checks['passes'] else 'FAIL'} (governing: {acc['train']}, "
-              f"{3.6 * acc['speed']:.1f} km/h, deck acceleration)"
+              f"{speed_words(acc['speed'])}, deck acceleration)"
               + (f"; {len(checks['warnings'])} WARNING(s) above" if checks.get("warnings") else "")
               + (": not the EN 1991-2 check as run" if any(has_flag(checks, c) for c in STANDARD_CODES) else "")]
     return "\n".join(lines) + "\n"
@@ -225,23 +241,29 @@ def governing_resonance(ds, train: str, speed: float) -> Optional[dict[str, Any]
     return {"resonance": near[0], "speed_m_s": near[1], "speed_kmh": 3.6 * near[1], "offset": float(speed) / near[1] - 1.0}
 
 
-def _grid_line(acc: dict[str, Any]) -> str:
-    """The report's line on the speed grid's error at the acceleration peaks."""
-    if not math.isfinite(acc.get("largest_refinement_bound", math.nan)):
-        return "speed grid: the acceleration peaks were not refined (coupled cars only)"
-    verdict = ("every peak within the tolerance" if acc["refinement_converged"]
-               else "some peaks not within the tolerance after the most halvings")
-    return (f"speed grid: the sweep's grid gave {acc['grid_peak']:.3f} m/s², {100 * acc['grid_error']:.2f} % below the refined "
-            f"peak; each peak refined by halving the speed step around it until its change and its error bound were "
-            f"< {100 * acc['tolerance']:g} %: error bound of the governing peak {100 * acc['refinement_bound']:.3f} %, "
-            f"largest over all peaks {100 * acc['largest_refinement_bound']:.3f} % ({verdict})")
+#: each check's governed quantity as its grid value is written: (key of the grid value, SI unit; None: a factor)
+_GRID_VALUES = {"acceleration": ("grid_peak", "m/s²"), "moment": ("grid_design", "N m"), "shear": ("grid_design", "N"),
+                "deflection": ("grid_phi_dyn", None)}
+
+
+def _grid_value(kind: str, c: dict[str, Any]) -> str:
+    """What the sweep's grid alone gave for check ``kind``: "3.308 m/s²", "5537 kN m", "phi'dyn 1.206"
+    ("" when the check does not have it)."""
+    key, unit = _GRID_VALUES[kind]
+    value = c.get(key, math.nan)
+    if value is None or not math.isfinite(value):
+        return ""
+    if unit is None:
+        return f"phi'dyn {value:.3f}"
+    return f"{value:.3f} {unit}" if unit == "m/s²" else _effect_words(value, unit)
 
 
 def _grid_error_line(checks: dict[str, Any], tolerance: float) -> str:
-    """The report's line on the speed grid's error of every check's governing peak (``GRID_CHECKS``):
-    the halvings of the speed step made around it, what the sweep's grid alone missed, the change
-    over the last halving (only after more than one: after one it is what the grid missed) and the
-    error bound; ``!`` where ``speed_grid_error`` flags it."""
+    """The report's one statement of the speed grid's error: for every check's governing peak
+    (``GRID_CHECKS``) the halvings of the speed step made around it, what the sweep's grid alone gave
+    and missed, the change over the last halving (only after more than one: after one it is what the
+    grid missed) and the error bound, and for the acceleration the largest bound over every train's
+    refined peaks; ``!`` where ``speed_grid_error`` flags it."""
     parts = []
     for kind, name in GRID_CHECKS.items():
         c = checks.get(kind, {})
@@ -249,18 +271,32 @@ def _grid_error_line(checks: dict[str, Any], tolerance: float) -> str:
             parts.append(f"{name} not refined (coupled cars govern it)")
             continue
         mark = " !" if has_flag(checks, "speed_grid_error", output=kind) else ""
-        parts.append(f"{name} {_refinement_words(c)}{mark}")
+        parts.append(f"{name} {_refinement_words(c, _grid_value(kind, c), _all_peaks_words(kind, c))}{mark}")
     return (f"speed grid error of the governing peaks (the speed step halved around each until the last halving "
             f"changed it by less than {100 * tolerance:g} % and its error bound was below that): " + "; ".join(parts))
 
 
-def _refinement_words(c: dict[str, Any]) -> str:
-    """'after 1 halving the sweep's grid 0.12 % low (error bound 0.010 %)' (one halving: its change
-    is what the grid missed, said once), 'after 3 halvings the sweep's grid 1.20 % low, the last
-    halving changed it 0.040 % (error bound 0.010 %)'; a dataset without the count: the grid's
-    shortfall (``grid_error``: (refined − grid) / refined), the last change and the bound."""
+def _all_peaks_words(kind: str, c: dict[str, Any]) -> str:
+    """The acceleration check's bound over every train's refined peaks and its verdict ("" for the
+    other checks, which refine their governing peak only)."""
+    if kind != "acceleration" or not math.isfinite(c.get("largest_refinement_bound", math.nan)):
+        return ""
+    verdict = ("every peak within the tolerance" if c.get("refinement_converged")
+               else "some peaks not within the tolerance after the most halvings")
+    return f"; of all trains' refined peaks at most {100 * c['largest_refinement_bound']:.3f} %: {verdict}"
+
+
+def _refinement_words(c: dict[str, Any], grid_value: str = "", beyond: str = "") -> str:
+    """'after 1 halving the sweep's grid (5537 kN m) 0.12 % low (error bound 0.010 %)' (one halving:
+    its change is what the grid missed, said once), 'after 3 halvings the sweep's grid 1.20 % low,
+    the last halving changed it 0.040 % (error bound 0.010 %)'; a dataset without the count: the
+    grid's shortfall (``grid_error``: (refined − grid) / refined), the last change and the bound.
+    ``grid_value``: what the grid gave, in brackets after "grid"; ``beyond``: words after the bound,
+    inside its bracket."""
     n = c.get("refinement_halvings", math.nan)
-    grid, bound = f"the sweep's grid {100 * c['grid_error']:.2f} % low", f"(error bound {100 * c['refinement_bound']:.3f} %)"
+    given = f" ({grid_value})" if grid_value else ""
+    grid = f"the sweep's grid{given} {100 * c['grid_error']:.2f} % low"
+    bound = f"(error bound {100 * c['refinement_bound']:.3f} %{beyond})"
     last = f"the last halving changed it {100 * c['refinement_change']:.3f} %"
     if n is None or not math.isfinite(n):
         return f"{grid}, {last} {bound}"

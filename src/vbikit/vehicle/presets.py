@@ -182,6 +182,26 @@ def _train(name: str) -> Vehicle:
     return train_vehicle(get_train(name))
 
 
+#: the SI unit of every vehicle preset parameter and of every number a preset's vehicle states
+#: (``Vehicle.parameters``), by name ("-": dimensionless or a count; None: not a number, e.g. group
+#: names) — the one place: ``vbikit presets`` and docs/reference/scenario-keys.md read it
+PARAMETER_UNITS: dict[str, str | None] = {
+    "force": "N", "mass": "kg", "stiffness": "N/m", "damping": "N·s/m",
+    "sprung_mass": "kg", "unsprung_mass": "kg", "suspension_stiffness": "N/m", "suspension_damping": "N·s/m",
+    "tire_stiffness": "N/m", "tire_damping": "N·s/m",
+    "body_mass": "kg", "body_cg": "m",  # the dump truck's body and its CG behind axle 1
+    "axle_loads": "N", "axle_spacings": "m", "groups": None, "tractor_groups": "-", "unsprung_masses": "kg",
+    "half_track": "m", "tire_deflection": "m", "suspension_deflection": "m", "suspension_damping_ratio": "-",
+    "tire_damping_ratio": "-", "gross_weight": "N", "n_axles": "-", "total_load": "N",
+}
+
+
+def parameter_unit(name: str) -> str | None:
+    """The SI unit of vehicle parameter ``name`` (``PARAMETER_UNITS``; "-": dimensionless, None: not a
+    number or not listed)."""
+    return PARAMETER_UNITS.get(name)
+
+
 @dataclass(frozen=True)
 class VehiclePreset:
     name: str

@@ -1,0 +1,80 @@
+"""What an engineer reads of `vbikit lifetime`'s report: a deflection in mm (the one table of
+report units, `vbikit.outputs.REPORT_UNITS`), and the period of the fatigue damage said where it is
+printed; its flags in the one format of flag codes and in words."""
+from __future__ import annotations
+
+import pytest
+
+
+@pytest.fixture(scope="module")
+def facts(tmp_path_factory):
+    """Moving forces at 5 km/h on a smooth road over the Bridge 1 beam, 5 days of 16 trucks: the
+    midspan deflection, the midspan moment and one EN 36 detail on it."""
+    from vbikit.lifetime.report import summary
+    from vbikit.lifetime.run import run_lifetime
+
+    spec = {"name": "report units", "seed": 4, "days": 5, "amplification": 0.05,
+            "traffic": {"records": "examples/lifetime/wim.csv", "trucks_per_day": 16, "speed_kmh": 5.0},
+            "vehicle_model": "moving-forces", "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3},
+            "tire": {"model": "point"}, "road": {"class": "none"},
+            "load_effects": [{"kind": "deflection", "x": 4.58, "name": "w"}, {"kind": "moment", "x": 4.58, "name": "M"}],
+            "fatigue": {"details": [{"name": "flange", "effect": "M", "section_modulus": 0.005, "category": "EN 36"}]}}
+    out = tmp_path_factory.mktemp("units")
+    ds = run_lifetime(spec, out, base_dir=".", workers=1, figures=False)
+    return summary(ds) | {"out": out}
+
+
+def test_a_deflection_is_reported_in_mm(facts):
+    """The summary keeps SI (m); the report's row, its return-level table and its governing events
+    show mm, the values times 1000 (1 m = 1000 mm); on main the report showed m."""
+    from vbikit.lifetime.report import text_report
+    from vbikit.outputs import report_unit
+
+    assert report_unit("m") == ("mm", 1e3)
+    e = facts["load_effects"]["w"]
+    assert e["units"] == "m"
+    report = text_report(facts)
+    row = next(x for x in report.splitlines() if x.startswith("w "))
+    assert row[22:28].strip() == "mm"
+    assert float(row[28:42]) == pytest.approx(e["characteristic_static"] * 1e3, rel=1e-4)
+    assert "\nw [mm]: return levels" in report
+    gov = e["governing"]["static"]
+    assert f"static {gov['static'] * 1e3:.4g}, total {gov['total'] * 1e3:.4g};" in report
+
+
+def test_the_fatigue_table_says_its_period(facts):
+    """The damage column is the damage of the simulated days (``fatigue_damage``: "Miner damage over
+    the simulated period"), the per-year column that scaled by days_per_year / days: the header line
+    says both (on main: "fatigue (design life 100 years)" only)."""
+    from vbikit.lifetime.report import text_report
+
+    lines = text_report(facts).splitlines()
+    header = next(x for x in lines if x.startswith("fatigue"))
+    assert "damage over the 5 simulated days" in header and "per year (365 days)" in header
+    assert "design life 100 years" in header
+    assert lines[lines.index(header) + 1].split()[:3] == ["detail", "category", "damage"]
+
+
+def test_the_flags_are_in_words_and_their_codes_in_the_one_format(facts):
+    """Five days give intervals wider than the levels and an ADR that cannot be told from 1 (the run's
+    findings); every flag names what it puts in doubt in words ("static return levels", "ADR"; on
+    main a path "return_levels.static"), and lifetime.nc stores the codes as every dataset does:
+    comma-separated, each once (on main a JSON table by effect), per effect in a variable."""
+    import json
+
+    import xarray as xr
+
+    from vbikit.analysis.checks import FLAG_CODES, dataset_has_flag
+
+    saved = json.loads((facts["out"] / "summary.json").read_text())["load_effects"]
+    records = [f for e in saved.values() for f in e["flags"]]
+    assert records and all("." not in f["output"] and "_" not in f["output"] for f in records)
+    assert {f["output"] for f in records} <= {"characteristic static value", "characteristic total value",
+                                               "static return levels", "total return levels", "ADR",
+                                               "governing static event", "governing total event"}
+    with xr.open_dataset(facts["out"] / "lifetime.nc") as ds:
+        codes = ds.attrs["flag_codes"].split(",")
+        assert codes == list(dict.fromkeys(f["code"] for f in records)) and set(codes) <= set(FLAG_CODES)
+        assert all(dataset_has_flag(ds.attrs, c) for c in codes)
+        per_effect = [str(x) for x in ds["load_effect_flag_codes"].values]
+    assert per_effect == [",".join(f["code"] for f in e["flags"]) for e in saved.values()]

@@ -1,0 +1,80 @@
+"""What an engineer reads of a traffic stream: the statistics of the events that load the point
+come first, and the figure marks the events whose IM rests on a small static reference."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from vbikit.cli import app
+from vbikit.traffic import write_records
+from vbikit.traffic.records import VehicleRecord
+
+runner = CliRunner()
+
+
+def test_loaded_events_statistics_are_printed_first(tmp_path):
+    """A 350 kN truck and, 10 s later, a 50 kN two-axle van over the Bridge 2 beam (two events): the
+    van's static peak is about 50/350 = 14 % of the truck's (a beam's deflection is linear in the
+    loads; below the 20 % rule), so only the truck's event loads the point.  Its line — the
+    design value, the mean of one event being that event's IM in the dataset — comes before the line
+    of all events, which names the other event's IM as no design value."""
+    records = [VehicleRecord(time=0.0, direction="+x", speed=20.0, axle_loads=(70e3, 140e3, 140e3),
+                             axle_spacings=(4.0, 1.3), lane=1, id="truck"),
+               VehicleRecord(time=10.0, direction="+x", speed=20.0, axle_loads=(25e3, 25e3), axle_spacings=(3.0,),
+                             lane=1, id="van")]
+    write_records(records, tmp_path / "r.csv")
+    (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-2-beam"\nn_modes = 4\n[road]\nclass = "none"\n'
+                                        "[crossing]\napproach = 5.0\nfree_vibration = 0.1\n")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"), "--out",
+                              str(tmp_path / "s.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    lines = res.stdout.splitlines()
+    loaded = next(i for i, x in enumerate(lines) if x.startswith("impact factor of the events loading the point"))
+    every = next(i for i, x in enumerate(lines) if x.startswith("impact factor of all events"))
+    assert loaded < every
+    ds = xr.open_dataset(tmp_path / "s.nc")
+    st = np.abs(ds["max_static_displacement"].values)
+    assert 0.1 < st[1] / st[0] < 0.2  # (the setup: the van's share, as the docstring says)
+    truck_im = float(ds["impact_factor"].values[0])
+    assert f"(1 of 2, static peak ≥ 20% of the stream's largest): mean {truck_im:.4f}," in lines[loaded]
+    assert lines[every].endswith("the other event's IM rests on small static references (light vehicles, far lanes): "
+                                 "not design values")
+
+
+def _stream(static_mm, multiple):
+    """A hand-made stream dataset with the variables and attributes ``plot_stream`` reads."""
+    st = -np.asarray(static_mm, float) * 1e-3
+    dyn = 1.2 * st
+    im = dyn / st - 1.0
+    return xr.Dataset(
+        {"impact_factor": ("event", im), "multiple_presence": ("event", np.asarray(multiple, int)),
+         "max_static_displacement": ("event", st), "max_dynamic_displacement": ("event", dyn)},
+        attrs={"im_histogram_edges": "[-0.1, 0.1, 0.3, 0.5]", "im_mean": float(im.mean()), "im_mean_loaded": 0.2,
+               "small_static_fraction": 0.2, "governing_static_event": int(np.argmax(static_mm)),
+               "governing_dynamic_event": int(np.argmax(static_mm)), "governing_static_amplification": 1.2,
+               "n_events": len(st), "n_multiple_presence_events": int(sum(multiple))})
+
+
+def test_the_figure_marks_the_small_static_events():
+    """Static peaks 2.0, 1.5, 0.3 and 0.1 mm: 0.3 and 0.1 mm are below 20 % of 2.0 mm (0.4 mm), so
+    those two events — and only they — are drawn apart, with their own marker and legend entry; the
+    others keep the one-vehicle / several-vehicle colours."""
+    import matplotlib.pyplot as plt
+
+    from vbikit.plot.traffic import stream_figure
+
+    fig = stream_figure(_stream([2.0, 1.5, 0.3, 0.1], [0, 1, 0, 1]))
+    hist, scatter = fig.axes
+    by_label = {c.get_label(): c for c in scatter.collections}
+    small = next(c for label, c in by_label.items() if label == "IM not meaningful: static peak < 20% of the largest")
+    assert sorted(small.get_offsets()[:, 0].tolist()) == pytest.approx([0.1, 0.3])
+    assert by_label["one vehicle"].get_offsets()[:, 0].tolist() == pytest.approx([2.0])
+    assert by_label["several vehicles"].get_offsets()[:, 0].tolist() == pytest.approx([1.5])
+    assert small.get_paths()[0] != by_label["one vehicle"].get_paths()[0]  # a distinct marker
+    assert any(t.get_text() == "IM not meaningful: static peak < 20% of the largest" for t in hist.get_legend().get_texts())
+    plt.close(fig)
+    fig = stream_figure(_stream([2.0, 1.5, 0.9], [0, 1, 0]))  # no small static reference: no such entry
+    assert not any(t.get_text().startswith("IM not meaningful") for ax in fig.axes for t in ax.get_legend().get_texts())
+    plt.close(fig)
