@@ -1,7 +1,7 @@
 """Regenerate the docs pages that are derived from the code: the key references of scenario,
 study and field files (from their schemas), the bibliography (from vbikit.references) and the
-blocks that quote computed numbers (from docs/figures/numbers.json, docs/scripts/doc_numbers.py),
-in docs/ and in README.md.
+blocks that quote computed numbers (from docs/figures/numbers.json, docs/scripts/doc_numbers.py;
+docs/figures/convergence-numbers.json, docs/scripts/convergence_numbers.py), in docs/ and in README.md.
 
     python docs/scripts/generate.py          # rewrite the generated pages
     python docs/scripts/generate.py --check  # exit 1 and name the stale pages (run by the tests)
@@ -560,6 +560,27 @@ def field_metrics() -> str:
             f"calibrated model: acceleration peaks {rng(f['calibrated']['point']['acceleration']['peak_error'], 100, '.0f')} %.\n")
 
 
+def _docs_script(name: str) -> Any:
+    """The script docs/scripts/``name``.py loaded as a module (the scripts that render their own blocks)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(f"vbikit_docs_{name}", DOCS / "scripts" / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def convergence_steps() -> str:
+    """The default integrator's IM error per step (docs/verification.md), from
+    docs/figures/convergence-numbers.json (docs/scripts/convergence_numbers.py)."""
+    return _docs_script("convergence_numbers").render_steps()
+
+
+def convergence_automatic() -> str:
+    """The default integrator's IM error at its automatic step on every case (docs/verification.md)."""
+    return _docs_script("convergence_numbers").render_automatic()
+
+
 # ---------------------------------------------------------------------------------- gallery
 GALLERY = ROOT / "examples" / "gallery"
 
@@ -641,6 +662,8 @@ BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("field.md", "field-table"): field_table,
     ("bridges.md", "bridge-frequencies"): bridge_frequencies,
     ("field.md", "field-metrics"): field_metrics,
+    ("verification.md", "convergence-steps"): convergence_steps,
+    ("verification.md", "convergence-automatic"): convergence_automatic,
 }
 
 

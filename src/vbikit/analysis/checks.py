@@ -70,6 +70,7 @@ from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.timestep import choose_time_step
+from vbikit.outputs import report_unit
 
 #: usual range of vehicle speeds [km/h]
 SPEED_RANGE_KMH = (5.0, 150.0)
@@ -111,6 +112,10 @@ FLAG_CODES: dict[str, str] = {
                         "highest frequency of those the automatic step resolves [Hz], threshold: 1 / (5 dt) [Hz]",
     "contact_loss": "a wheel lost contact with the road; wheel; value: its time off the road on the bridge [s] (0 "
                     "when only before or after it)",
+    "wheel_force_step": "implicit integrators: a wheel's tire force read over a step where the road's slope changes "
+                        "within it (a bump's edge): its peak can differ from the force at the instant by up to the "
+                        "tire dashpots' c × (cell slope − step secant) × v; output: max_wheel_force; wheel: the "
+                        "largest; value: that bound / the wheel's peak force, threshold: ``WHEEL_FORCE_STEP`` (0.05)",
     "airborne_wheels": "the impact factors are dominated by wheels leaving the road: a wheel airborne on the bridge for "
                        "more than ``AIRBORNE_FRACTION`` of its own time there; output: impact_factor; wheel: the "
                        "longest; value: its airborne share, threshold: 0.05",
@@ -477,6 +482,69 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
     return out
 
 
+#: a wheel's step-read share of its peak tire force above which ``wheel_force_step`` flags the peak
+#: (``wheel_force_step_bound``: 0.08 % on the demo's class C road, 73 % on examples/field's 38.1 mm bump)
+WHEEL_FORCE_STEP = 0.05
+
+
+def wheel_force_step_bound(result: CrossingResult) -> NDArray[np.float64]:
+    """Per wheel, the largest over the stored steps of |Σ_p c_p (ṙ_cell − ṙ_step)| [N]: how far the tire
+    dashpots' road term of its force, as an implicit integrator reads it at a step end (the road's
+    secant over the half steps around it, ``vbikit.solve.kernels``, "the road rate"), can be from the
+    force at that instant (the slope of the point's road cell, as RK4 reads it).  Zeros for an
+    integrator that reads the cell's slope.  On examples/field's wood bump it equals the point tire's
+    peak-force shortfall against RK4 (273 kN of 647 kN; docs/verification.md)."""
+    from vbikit.solve import kernels
+    from vbikit.solve.integrators import get_integrator
+    from vbikit.solve.system import point_positions, road_data
+
+    crossing, data = result.crossing, result.kernel_data
+    n_w = data.n_wheels if data is not None else 0
+    span = get_integrator(crossing.integrator).road_rate_span(result.integration_dt)
+    if n_w == 0 or span <= 0.0 or (crossing.road is None and crossing.road_right is None):
+        return np.zeros(n_w)
+    pts, n_p = data.points, data.n_points
+    travel, speed = crossing.travel(result.time), crossing.travel_speed(result.time)
+    rows = [point_positions(data, travel[i], speed[i]) for i in range(result.time.size)]
+    x_all = np.concatenate([x for x, _ in rows])
+    road = road_data([(crossing.road, crossing.road_right)], float(x_all.min()) - 1.0, float(x_all.max()) + 1.0)
+    rv, cell, step = np.zeros((n_p, 1)), np.zeros((n_p, 1)), np.zeros((n_p, 1))
+    idx = np.full(n_p, -1, np.int64)
+    worst = np.zeros(n_w)
+    for x, vx in rows:
+        kernels.road_at(x, vx, pts, road, idx, rv, cell, (0,), 0.0)
+        kernels.road_at(x, vx, pts, road, idx, rv, step, (0,), span)
+        per_wheel = np.zeros(n_w)
+        np.add.at(per_wheel, pts.wheel, pts.damping * (cell[:, 0] - step[:, 0]))
+        worst = np.maximum(worst, np.abs(per_wheel))
+    return worst
+
+
+def wheel_force_step_flags(result: CrossingResult) -> list[Flag]:
+    """One flag when a wheel's peak tire force may be off by more than ``WHEEL_FORCE_STEP`` of it because
+    the implicit integrators read the road rate over a step (``wheel_force_step_bound``): over a road
+    feature about a step long the stored forces are the step's, not the instant's.  The bridge's
+    response is not concerned (its loads over a step are the step's)."""
+    bound = wheel_force_step_bound(result)
+    if not bound.size:
+        return []
+    peak = np.maximum(np.abs(result.wheel_forces).max(axis=0), 1e-300)
+    share = bound / peak
+    w = int(np.argmax(share))
+    if share[w] <= WHEEL_FORCE_STEP:
+        return []
+    name = result.crossing.vehicle.wheels[w].name
+    unit, factor = report_unit("N")
+    kn = float(bound[w]) * factor
+    return [Flag("wheel_force_step",
+                 f"tire forces over a road feature about a step long (a bump's edge): the implicit integrator reads the "
+                 f"road's rate over each step, so a wheel's peak tire force can differ from the force at the instant by "
+                 f"up to {kn:.4g} {unit} (wheel {name}, {share[w]:.0%} of its peak); the bridge's response is not "
+                 f"concerned; read peak tire forces (max_wheel_force) from a run with integrator = \"rk4\"",
+                 output="max_wheel_force", subject=f"wheel {name}", wheel=name, value=float(share[w]),
+                 threshold=WHEEL_FORCE_STEP)]
+
+
 def airborne_wheels(result: CrossingResult, fraction: float = AIRBORNE_FRACTION) -> list[tuple[str, float, float]]:
     """The wheels airborne (tire force ≤ 0) on the bridge for more than ``fraction`` of their own time
     on it (each on its own track's stretch of the deck, ``wheels_on_deck``): (wheel name, time
@@ -758,4 +826,4 @@ def run_flags(result: CrossingResult, response_x: float | None = None, response_
     """Every flag about a finished crossing: its inputs, its contact losses, wheels airborne long
     enough to dominate the impact factors and a random road's one realisation (``realisation_flags``)."""
     return (input_flags(result.crossing, result.dt, response_x, response_y) + contact_flags(result)
-            + airborne_flags(result) + realisation_flags(result.crossing))
+            + airborne_flags(result) + wheel_force_step_flags(result) + realisation_flags(result.crossing))
