@@ -9,7 +9,7 @@ wheel tracks, the exact modal and vehicle step maps, the contact points and the 
 ``vbikit.solve.simulate`` hands to its kernel (captured from one ``simulate`` call): per step the
 point positions, the free deck and vehicle responses, the modal load and end-of-step state of the
 extrapolated contact forces, **one contact-law evaluation** (mode shapes by cubic Hermite, road by
-linear interpolation, deck displacement, velocity and convective rate, the tire law with its
+linear interpolation and its rate as the secant over the step, as the library reads it; deck displacement, velocity and convective rate, the tire law with its
 gate), one quasi-Newton update of the forces through the vehicles (a factorisation made once,
 before the loop), the end state and the stored histories.  No Python per step, no checks, one lane.
 
@@ -65,8 +65,8 @@ def _floor_loop():
     @njit(cache=True, fastmath=True, error_model="numpy")
     def floor_loop(travel, speed, modes_start, modes_end, grid_h, values, slopes, a11, a12, a21, a22, b1, b2, c1, c2,
                    transition, load0, constant, settle, response, wheel_q, wheel_v, wheel_rows, wheel_k, wheel_c, v_inv,
-                   origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, stations, elevations, x0, v0,
-                   z0, fstart, xi_out, q_out, wf_out):
+                   origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, stations, elevations, span,
+                   x0, v0, z0, fstart, xi_out, q_out, wf_out):
         n_steps = xi_out.shape[0] - 1
         n_m = x0.size
         n_cp = origin.size
@@ -169,6 +169,17 @@ def _floor_loop():
                     slope = (zr[i + 1] - zr[i]) / (stations[i + 1] - stations[i])
                     s = zr[i] + slope * (xk - stations[i])
                     sd = slope * vxp[k]
+                    if span > 0.0:  # the implicit integrators' road rate: the secant over x ± |v| span
+                        a = abs(vxp[k]) * span
+                        ia = i
+                        while ia > 0 and stations[ia] > xk - a:
+                            ia -= 1
+                        ib = i
+                        while ib < n_s - 2 and stations[ib + 1] <= xk + a:
+                            ib += 1
+                        ra = zr[ia] + (zr[ia + 1] - zr[ia]) * (xk - a - stations[ia]) / (stations[ia + 1] - stations[ia])
+                        rb = zr[ib] + (zr[ib + 1] - zr[ib]) * (xk + a - stations[ib]) / (stations[ib + 1] - stations[ib])
+                        sd = vxp[k] * (rb - ra) / (2.0 * a)
                     dr = 0.0
                     if onb[k]:
                         for m in range(n_m):
@@ -232,6 +243,7 @@ def floor_inputs(args: tuple):
 
     (dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq, wheel_force,
      wheel_len, tol, max_iterations, lanes, stride) = args[:21]
+    span = float(args[21]) if len(args) > 21 else 0.0  # the road rate's secant half-width [s]
     n_w = vehicles.wheel_rows.shape[0]
     ksum = np.bincount(points.wheel, weights=points.stiffness, minlength=n_w)
     csum = np.bincount(points.wheel, weights=points.damping, minlength=n_w)
@@ -250,7 +262,7 @@ def floor_inputs(args: tuple):
               vehicles.wheel_rows, vehicles.wheel_stiffness, vehicles.wheel_damping, v_inv, points.origin,
               points.direction, points.vehicle, points.track, np.minimum(points.line, road.elevations.shape[0] - 1),
               points.stiffness, points.damping,
-              points.fixed_load, points.gap, gated, points.wheel, road.stations, c(road.elevations[:, :, 0]),
+              points.fixed_load, points.gap, gated, points.wheel, road.stations, c(road.elevations[:, :, 0]), span,
               c(xi[0, 0]), c(dxi[0, 0]), np.concatenate([q[0, 0], dq[0, 0]]), fstart)
     return inputs, outs
 
