@@ -31,6 +31,11 @@ SELECTION = [
     "tests/verification/test_heavy_hop_convergence.py::test_deck_class_d",
     "tests/unit/test_newton_coupling.py",  # the full Newton's capacitance form (disk tires)
 ]
+# With the secant road rate (2026-12-05) the heavy-hop deck runs above settle every landing with the
+# one-evaluation step or the quasi-Newton updates: the full Newton (``newton._full_newton``,
+# ``_penetration``) is no longer reached by this selection, and the job measured 88.6 % (below the
+# minimum: it fails until a small crossing that needs the full Newton is added; the landing hand-over
+# of ``test_kernel_paths.py`` reaches ``_lean_refine`` and ``_residuals`` again).
 #: measured 97.6 % of 1149 statements of the kernels' package (2026-12-04: the one-evaluation step;
 #: 98.2 % of 665 in the one module on 2026-12-01).  The lines not run: ``shapes_at``, an eager
 #: helper no solver path calls; the station pointer moving towards −x; LU row swaps (the contact

@@ -80,6 +80,28 @@ def test_loss_of_contact_every_tire_and_integrator(bump_runs, integrator, tire):
     assert force.max() == pytest.approx(ref.wheel_forces[:, 0].max(), rel=0.1)
 
 
+def test_a_landing_the_lean_kernel_hands_over_equals_the_full_kernel():
+    """The multipoint tire over the 80 mm bump at a 1 ms step (10 mm of road a step): at the landing a
+    contact closes within the step's updates, so the lean kernel stops and ``implicit`` (its full
+    Newton) finishes the step window (``integrators._finish_lane``); the histories equal a run of
+    ``implicit`` alone within the tolerance's order.  (The kernel-coverage job reaches the full kernel's
+    contact solve through this crossing: with the secant road rate the other small crossings here
+    settle every landing in one evaluation.)"""
+    from vbikit.solve import integrators
+
+    crossing = Crossing(SHORT, CAR, tire=MultiPointTire(4), road=BUMP_ROAD, speed=10.0, approach=2.0,
+                        free_vibration=0.0, dt=1e-3)
+    before = dict(integrators.LEAN_COUNTS)
+    handed = simulate(crossing)
+    assert integrators.LEAN_COUNTS["fallback"] == before["fallback"] + 1
+    with integrators.without_lean():
+        full = simulate(crossing)
+    assert np.any(full.wheel_forces[:, 0] == 0.0)  # the wheel does leave the road
+    for name in ("xi", "q", "wheel_forces"):
+        a, b = getattr(handed, name), getattr(full, name)
+        assert np.abs(a - b).max() <= 1e-9 * np.abs(b).max()
+
+
 def test_batch_solver_with_a_user_time_step_equals_simulate():
     template = Crossing(SHORT, CAR, tire=MultiPointTire(3), speed=10.0, approach=1.0, free_vibration=0.05, dt=4e-4)
     roads = [random_profile(RoadPSD.iso("C"), seed=s, length=100.0) for s in (1, 2, 3)]
