@@ -28,20 +28,21 @@ def test_roughness_readings_are_reproduced(docs_script):
         assert now[key] == pytest.approx(value, rel=1e-9), f"{key}: {HINT}"
 
 
-def _close(now, stored, where):
-    """Every number in ``stored`` (nested dicts and lists) equals the one in ``now``."""
+def _close(now, stored, where, hint: str = HINT, abs_tol: float = 1e-12):
+    """Every number in ``stored`` (nested dicts and lists) equals the one in ``now`` (rel 1e-9, ``abs_tol``;
+    ``hint``: what to run when they differ).  Also used by tests/verification/test_convergence_numbers.py."""
     if isinstance(stored, dict):
-        assert set(now) == set(stored), f"{where}: {HINT}"
+        assert set(now) == set(stored), f"{where}: {hint}"
         for key, value in stored.items():
-            _close(now[key], value, f"{where}.{key}")
+            _close(now[key], value, f"{where}.{key}", hint, abs_tol)
     elif isinstance(stored, list):
-        assert len(now) == len(stored), f"{where}: {HINT}"
+        assert len(now) == len(stored), f"{where}: {hint}"
         for i, (a, b) in enumerate(zip(now, stored)):
-            _close(a, b, f"{where}[{i}]")
+            _close(a, b, f"{where}[{i}]", hint, abs_tol)
     elif isinstance(stored, float):
-        assert now == pytest.approx(stored, rel=1e-9, abs=1e-12), f"{where}: {HINT}"
+        assert now == pytest.approx(stored, rel=1e-9, abs=abs_tol), f"{where}: {hint}"
     else:
-        assert now == stored, f"{where}: {HINT}"
+        assert now == stored, f"{where}: {hint}"
 
 
 def test_demo_numbers_and_figure_are_reproduced(docs_script):

@@ -71,19 +71,10 @@ def test_the_bound_check_sees_a_case_above_it():
 
 
 def _close(now, stored, where):
-    """Every number in ``stored`` (nested dicts and lists) equals the one in ``now`` (rel 1e-9)."""
-    if isinstance(stored, dict):
-        assert set(now) == set(stored), f"{where}: {HINT}"
-        for key, value in stored.items():
-            _close(now[key], value, f"{where}.{key}")
-    elif isinstance(stored, list):
-        assert len(now) == len(stored), f"{where}: {HINT}"
-        for i, (a, b) in enumerate(zip(now, stored)):
-            _close(a, b, f"{where}[{i}]")
-    elif isinstance(stored, float):
-        assert now == pytest.approx(stored, rel=1e-9, abs=1e-15), f"{where}: {HINT}"
-    else:
-        assert now == stored, f"{where}: {HINT}"
+    """Every number in ``stored`` equals the one in ``now`` (rel 1e-9; tests/docs/test_numbers.py's check)."""
+    from tests.docs.test_numbers import _close as close
+
+    close(now, stored, where, HINT, 1e-15)
 
 
 @pytest.mark.slow
