@@ -223,3 +223,19 @@ def test_flat_road(tent):
 def test_invalid_profile_raises(x, z):
     with pytest.raises(ValueError):
         RoadProfile(np.array(x), np.array(z))
+
+
+def test_secant_rate_by_hand_on_a_kink_and_past_the_ends():
+    """``RoadProfile.secant_rate``: v (r(x + a) − r(x − a)) / 2a with a = |v| span.  Stations 0, 1, 2 m at
+    0, 10, −20 mm (slopes +0.01, −0.03): at the kink x = 1 m with a = 1 cm, by hand r(1.01) = 9.7 mm and
+    r(0.99) = 9.9 mm, so dr/dx = −0.01 either way (the cell's slope would be +0.01 or −0.03); past the
+    ends the end segments extend (at x = 0, a = 1 cm: r(−0.01) = −0.1 mm, r(0.01) = 0.1 mm, slope +0.01);
+    span 0 gives the cell's slope."""
+    from vbikit.road import RoadProfile
+
+    road = RoadProfile(np.array([0.0, 1.0, 2.0]), np.array([0.0, 0.01, -0.02]))
+    for v in (20.0, -20.0):
+        assert road.secant_rate(1.0, v, 0.01 / 20.0) == pytest.approx(v * -0.01, abs=1e-13)
+    assert road.secant_rate(0.0, 20.0, 0.01 / 20.0) == pytest.approx(20.0 * 0.01, abs=1e-13)
+    assert road.secant_rate(2.0, 20.0, 0.01 / 20.0) == pytest.approx(20.0 * -0.03, abs=1e-13)
+    np.testing.assert_allclose(road.secant_rate([0.5, 1.5], 20.0, 0.0), [20.0 * 0.01, 20.0 * -0.03], rtol=1e-13)

@@ -495,7 +495,6 @@ def wheel_force_step_bound(result: CrossingResult) -> NDArray[np.float64]:
     integrator that reads the cell's slope.  On examples/field's wood bump it equals the point tire's
     peak-force shortfall against RK4 (273 kN of 647 kN; docs/verification.md)."""
     from vbikit.solve.integrators import get_integrator
-    from vbikit.solve.system import road_data
 
     crossing, data = result.crossing, result.kernel_data
     n_w = data.n_wheels if data is not None else 0
@@ -506,30 +505,16 @@ def wheel_force_step_bound(result: CrossingResult) -> NDArray[np.float64]:
     travel, speed = crossing.travel(result.time), crossing.travel_speed(result.time)  # (n_t, n_vehicles)
     x = pts.origin + pts.direction * travel[:, pts.vehicle]  # (n_t, n_points), as ``point_positions``
     vx = pts.direction * speed[:, pts.vehicle]
-    a = np.abs(vx) * span
-    road = road_data([(crossing.road, crossing.road_right)], float((x - a).min()) - 1.0, float((x + a).max()) + 1.0)
-    stations, z = road.stations, road.elevations[:, :, 0]
-    flat = np.ascontiguousarray(z).ravel()
-    base = (np.minimum(pts.line, z.shape[0] - 1) * stations.size)[None, :]  # each point's line in ``flat``
-    h = np.diff(stations)
-    uniform = bool(np.allclose(h, h[0], rtol=1e-9, atol=0.0))
-
-    def cell(xq: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Road elevation and slope at ``xq`` on each point's line (linear between stations)."""
-        if uniform:  # the generated roads: the cell by division (``searchsorted`` costs most of this check)
-            i = np.clip(((xq - stations[0]) / h[0]).astype(np.int64), 0, stations.size - 2)
-        else:
-            i = np.clip(np.searchsorted(stations, xq, side="right") - 1, 0, stations.size - 2)
-        z0, z1 = flat.take(base + i), flat.take(base + i + 1)
-        slope = (z1 - z0) / h.take(i)
-        return z0 + slope * (xq - stations.take(i)), slope
-
-    cell_rate = vx * cell(x)[1]
-    safe = np.where(a > 0.0, 2.0 * a, 1.0)
-    step_rate = np.where(a > 0.0, vx * (cell(x + a)[0] - cell(x - a)[0]) / safe, cell_rate)
+    gap = np.zeros_like(x)  # ṙ_cell − ṙ_step per point
+    # the points' road lines as the kernels read them (``road_data``: line 1 is the right profile, or the left)
+    lines = (crossing.road, crossing.road if crossing.road_right is None else crossing.road_right)
+    for line, profile in enumerate(lines):
+        on = np.minimum(pts.line, 1) == line
+        if profile is not None and on.any():
+            gap[:, on] = vx[:, on] * profile.evaluate(x[:, on])[1] - profile.secant_rate(x[:, on], vx[:, on], span)
     by_wheel = np.zeros((pts.wheel.size, n_w))
     by_wheel[np.arange(pts.wheel.size), pts.wheel] = pts.damping
-    return np.abs((cell_rate - step_rate) @ by_wheel).max(axis=0)
+    return np.abs(gap @ by_wheel).max(axis=0)
 
 
 def wheel_force_step_flags(result: CrossingResult) -> list[Flag]:

@@ -118,6 +118,24 @@ class RoadProfile:
         slope = (self.z[seg + 1] - self.z[seg]) / (self.x[seg + 1] - self.x[seg])
         return self.z[seg] + slope * (x - self.x[seg]), slope
 
+    def secant_rate(self, x: ArrayLike, vx: ArrayLike, span: float) -> NDArray[np.float64]:
+        """The road rate the implicit integrators read [m/s] (``vbikit.solve.kernels``, "the road rate"):
+        vx (r(x + a) − r(x − a)) / 2a at positions ``x`` [m] of points moving at ``vx`` [m/s], with
+        a = |vx|·``span`` [s] (dt/2: the half steps around a step end), beyond the profile's ends its
+        end segments extended as the kernels extend them; vx·dr/dx (``evaluate``) where a = 0."""
+        x = np.asarray(x, float)
+        vx = np.broadcast_to(np.asarray(vx, float), x.shape)
+        a = np.abs(vx) * span
+        step = np.where(a > 0.0, a, 1.0)
+        secant = (self._extended(x + step) - self._extended(x - step)) / (2.0 * step)
+        return vx * (secant if np.all(a > 0.0) else np.where(a > 0.0, secant, self.evaluate(x)[1]))
+
+    def _extended(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """r(x) [m], beyond the profile's ends along its end segments."""
+        inside = np.clip(x, self.x[0], self.x[-1])
+        r, slope = self.evaluate(inside)
+        return r + slope * (x - inside)
+
     def elevation(self, x: ArrayLike) -> NDArray[np.float64]:
         """r(x) [m]."""
         return self.evaluate(x)[0]

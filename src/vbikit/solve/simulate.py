@@ -107,8 +107,9 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     q, dq, ddq = (_histories(n_l, n_t, n_d) for _ in range(3))
     wheel_force = _histories(n_l, n_t, n_w)
     wheel_len = _histories(n_l, n_t, n_w)
+    integrator = get_integrator(first.integrator)
+    span = integrator.road_rate_span(dt)  # the road rate the static start loads the dashpots with
     if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
-        span = get_integrator(first.integrator).road_rate_span(dt)
         key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes(), span)  # the entry holds data: its id stays its own
         made: list = []
 
@@ -121,13 +122,12 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
         if road is None:
             road = made[0] if made else _road(crossings, *reach)
     else:
-        road, xi0, q0, _ = _start(crossings, data, mot, n_real, get_integrator(first.integrator).road_rate_span(dt))
+        road, xi0, q0, _ = _start(crossings, data, mot, n_real, span)
         xi[:n_real, 0], q[:n_real, 0] = xi0, q0
         xi[n_real:, 0], q[n_real:, 0] = xi0[-1], q0[-1]  # padding: copies of the last real lane
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
-    integrator = get_integrator(first.integrator)
     if integrator.kernel is not None:
         announce_compile(integrator.kernel())
     call = KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride)
