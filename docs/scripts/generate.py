@@ -1,7 +1,8 @@
 """Regenerate the docs pages that are derived from the code: the key references of scenario,
 study and field files (from their schemas), the bibliography (from vbikit.references) and the
 blocks that quote computed numbers (from docs/figures/numbers.json, docs/scripts/doc_numbers.py;
-docs/figures/convergence-numbers.json, docs/scripts/convergence_numbers.py), in docs/ and in README.md.
+docs/figures/convergence-numbers.json, docs/scripts/convergence_numbers.py; docs/figures/paper-accuracy-numbers.json,
+docs/scripts/paper_accuracy_numbers.py), in docs/ and in README.md.
 
     python docs/scripts/generate.py          # rewrite the generated pages
     python docs/scripts/generate.py --check  # exit 1 and name the stale pages (run by the tests)
@@ -581,6 +582,12 @@ def convergence_automatic() -> str:
     return _docs_script("convergence_numbers").render_automatic()
 
 
+def paper_accuracy() -> str:
+    """The paper programme's impact factors against RK4 (docs/verification.md), from
+    docs/figures/paper-accuracy-numbers.json (docs/scripts/paper_accuracy_numbers.py)."""
+    return _docs_script("paper_accuracy_numbers").render()
+
+
 # ---------------------------------------------------------------------------------- gallery
 GALLERY = ROOT / "examples" / "gallery"
 
@@ -664,6 +671,7 @@ BLOCKS: dict[tuple[str, str], Callable[[], str]] = {
     ("field.md", "field-metrics"): field_metrics,
     ("verification.md", "convergence-steps"): convergence_steps,
     ("verification.md", "convergence-automatic"): convergence_automatic,
+    ("verification.md", "paper-accuracy"): paper_accuracy,
 }
 
 

@@ -93,13 +93,15 @@ def test_point_tires_equal_implicit_and_single_runs():
 
 
 def test_lift_off_freezes_some_lanes_only_and_the_full_kernel_finishes_them():
-    """Disk tires at 100 km/h: on some class E roads (seeds 6 and 7; not 1 or 3) a landing closes a
-    contact within a step's updates (the lane is frozen there and runs alone with ``implicit`` to the end of the chunk), on class A
-    roads nothing does.  Frozen lanes differ from ``implicit`` by the tolerance's order,
+    """Disk tires at 100 km/h: on some class E roads (seeds 3 and 7; not 1 or 6; with the start's road
+    rate read ahead, 2026-12-05 — before, 6 and 7) a landing closes a
+    contact within a step's updates (the lane is frozen there and runs alone with ``implicit`` to the end of the chunk), on these class A
+    roads nothing does (seed 8 of class A hands over at its first step: a point at a disk patch's edge
+    changes its contact there).  Frozen lanes differ from ``implicit`` by the tolerance's order,
     the others by round-off; each lane equals its road run alone (one lane: ``lean``, handing over
     to ``implicit`` the same way)."""
     spec = _paper("disk", 100.0)
-    roads = _roads(spec, [("E", 6), ("A", 2), ("E", 7), ("A", 4), ("E", 1), ("A", 6), ("E", 3), ("A", 8)])
+    roads = _roads(spec, [("E", 6), ("A", 2), ("E", 7), ("A", 4), ("E", 1), ("A", 6), ("E", 3), ("A", 10)])
     stops: list = []
     from vbikit.solve import kernels
 

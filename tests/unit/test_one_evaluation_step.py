@@ -43,7 +43,9 @@ def test_demo_settles_with_one_contact_evaluation_a_step(caplog, monkeypatch):
     # the stored wheel forces hold the law, evaluated afresh at the stored end states (every 50th row)
     (dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq, wheel_force,
      wheel_len, tol, max_iterations, lanes, stride, span) = calls[-1]
-    assert span == 0.5 * dt  # the secant road rate (vbikit.solve.kernels, "the road rate")
+    # the secant road rate (vbikit.solve.kernels, "the road rate"), negative: the call starts at the run's
+    # start, whose state reads the road ahead only; every step end the secant over ±dt/2
+    assert span == -0.5 * dt
     n_cp, n_m, n_d, n_w = points.origin.size, xi.shape[2], q.shape[2], wheel_force.shape[2]
     worst = 0.0
     rows = range(1, xi.shape[1], 50)
@@ -53,7 +55,7 @@ def test_demo_settles_with_one_contact_evaluation_a_step(caplog, monkeypatch):
         wf, wl = np.zeros((n_w, 1)), np.zeros((n_w, 1))
         kernels.point_kinematics(motion, 2 * i * stride, points, cache.x, cache.vx)
         state = [np.ascontiguousarray(a[0, i].reshape(-1, 1)) for a in (xi, dxi, q, dq)]
-        kernels.contact_forces(*state, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,), span)
+        kernels.contact_forces(*state, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,), abs(span))
         worst = max(worst, float(np.abs(wf[:, 0] - wheel_force[0, i]).max()))
     assert len(rows) > 30
     assert tol == IMPLICIT_TOLERANCE * float(np.abs(crossing.vehicle.static_wheel_loads()).max())

@@ -121,13 +121,18 @@ class RoadProfile:
     def secant_rate(self, x: ArrayLike, vx: ArrayLike, span: float) -> NDArray[np.float64]:
         """The road rate the implicit integrators read [m/s] (``vbikit.solve.kernels``, "the road rate"):
         vx (r(x + a) − r(x − a)) / 2a at positions ``x`` [m] of points moving at ``vx`` [m/s], with
-        a = |vx|·``span`` [s] (dt/2: the half steps around a step end), beyond the profile's ends its
-        end segments extended as the kernels extend them; vx·dr/dx (``evaluate``) where a = 0."""
+        a = |vx|·``span`` [s] (dt/2: the half steps around a step end); ``span`` < 0, the run's start:
+        the road ahead only, vx (r(x + a) − r(x)) / a driving +x (vx (r(x) − r(x − a)) / a driving −x),
+        a = |vx|·|span|.  Beyond the profile's ends its end segments extended as the kernels extend
+        them; vx·dr/dx (``evaluate``) where a = 0."""
         x = np.asarray(x, float)
         vx = np.broadcast_to(np.asarray(vx, float), x.shape)
-        a = np.abs(vx) * span
-        step = np.where(a > 0.0, a, 1.0)
-        secant = (self._extended(x + step) - self._extended(x - step)) / (2.0 * step)
+        a = np.abs(vx) * abs(span)
+        lo, hi = x - a, x + a
+        if span < 0.0:
+            lo, hi = np.where(vx > 0.0, x, lo), np.where(vx > 0.0, hi, x)
+        width = np.where(a > 0.0, hi - lo, 1.0)
+        secant = (self._extended(hi) - self._extended(lo)) / width
         return vx * (secant if np.all(a > 0.0) else np.where(a > 0.0, secant, self.evaluate(x)[1]))
 
     def _extended(self, x: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -274,7 +274,8 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         row = end // stride
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:] for a in one.outputs))
-        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step), tol, stride, *_lean_work(part))
+        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), tol, stride,
+                               *_lean_work(part))
         if stop < 0:
             return
         stop += end
@@ -294,7 +295,7 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
     data, name = call.data, call.crossing.integrator
     unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
                                               data.unilateral, modal_step, vehicle_step, *outputs, tol,
-                                              IMPLICIT_MAX_ITERATIONS, lanes, call.stride, _span(call))
+                                              IMPLICIT_MAX_ITERATIONS, lanes, call.stride, _span(call, first == 0))
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
     if unsettled:
         log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
@@ -302,9 +303,10 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
 
 
 def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep",
-                    lanes: bool = False) -> tuple:
+                    lanes: bool = False, start: bool = True) -> tuple:
     """The lean kernels' arguments (``kernels.lean``; ``kernels.lean_lanes`` with ``lanes``) of
-    ``call``, up to ``tol`` and ``stride`` (the one-lane kernel's work spaces follow those:
+    ``call`` (``start``: its motion begins at the run's start, ``_span``), up to ``tol`` and
+    ``stride`` (the one-lane kernel's work spaces follow those:
     ``_lean_work``): the bundles' arrays one by one, contiguous (the vehicle step map's fused products and
     wheel entries, ``modal_step.fused_step``), the road and outputs of the one lane (of every lane)."""
     from vbikit.solve.modal_step import fused_step
@@ -326,12 +328,17 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
         vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.wheel_dof, fused.wheel_h,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
-        pts.width, road.stations, elevations, float(road.r_max), _span(call), *outputs))
+        pts.width, road.stations, elevations, float(road.r_max), _span(call, start), *outputs))
 
 
-def _span(call: KernelCall) -> float:
-    """The road-rate span [s] of ``call``'s integrator at its step (``Integrator.road_rate_span``)."""
-    return get_integrator(call.crossing.integrator).road_rate_span(call.dt)
+def _span(call: KernelCall, start: bool) -> float:
+    """The road-rate span [s] of ``call``'s integrator at its step (``Integrator.road_rate_span``),
+    negative when the kernel call begins at the run's start (``start``): its first evaluation, the
+    start state, then reads the road ahead of each point only (``kernels.road_point``), as the static
+    start did (``vbikit.solve.simulate``); a call that goes on from a stored state reads the secant
+    around it, as the steps before it did."""
+    span = get_integrator(call.crossing.integrator).road_rate_span(call.dt)
+    return -span if start else span
 
 
 def implicit_kernel() -> Any:

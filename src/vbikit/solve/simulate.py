@@ -108,7 +108,9 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     wheel_force = _histories(n_l, n_t, n_w)
     wheel_len = _histories(n_l, n_t, n_w)
     integrator = get_integrator(first.integrator)
-    span = integrator.road_rate_span(dt)  # the road rate the static start loads the dashpots with
+    # the road rate the static start loads the dashpots with: the road ahead of each point only (the
+    # kernels' first evaluation of a run reads it so too, ``integrators._span``)
+    span = -integrator.road_rate_span(dt)
     if n_l == 1:  # one crossing: its static start depends on it alone, kept with it
         key = (id(data), mot.travel[0].tobytes(), mot.speed[0].tobytes(), span)  # the entry holds data: its id stays its own
         made: list = []
@@ -176,7 +178,8 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, 
     """The road bundle of the lanes ``crossings`` (the first ``n_real`` real, the rest padding) over
     the range of x the points cover, the static start (ξ, q) of every real lane, (n_real, ·) (one
     lane: (n_modes,), (n_dof,)), and that range (x_min, x_max) [m].  The tire dashpots' road rate at
-    the start as the kernels read it (``span`` [s]: ``Integrator.road_rate_span``)."""
+    the start as the kernels read it (``span`` [s]: minus ``Integrator.road_rate_span``: the road
+    ahead of each point only, ``kernels.road_point``)."""
     from vbikit.solve import kernels
     from vbikit.solve.system import flat_road, point_positions, static_state
 

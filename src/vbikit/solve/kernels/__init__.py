@@ -38,7 +38,12 @@ two steps, whatever the point's offset in its cell.  With the cell's slope inste
 drifts from step to step unless v dt is a whole number of stations, and the sampled slopes alias the
 road's curvature at the beat frequency |v dt/h − round(v dt/h)|/dt into the deck's and axles' band
 (impact factors that moved by up to 3.6e-3 for a 2 % change of step;
-``benchmarks/bench_rate_alignment.py``, docs/verification.md).
+``benchmarks/bench_rate_alignment.py``, docs/verification.md).  At the run's start a point has no
+road behind it: the static start and a kernel call's first evaluation when the call starts at the
+run's start (``span`` < 0, ``integrators._span``) read the secant over the road ahead only,
+v (r(x_p + a) − r(x_p)) / a driving +x (the mirror driving −x; ``secant_ends``), whose limit is the slope of the cell
+the point moves into, as RK4 reads it: the two integrators then converge to one answer where a point
+starts on a station.
 
 A point on track k is on the deck while start_k ≤ x_p ≤ end_k (the track's own span: 0 … span,
 shifted by y tan θ on a skew deck, whose oblique support lines cross each track elsewhere); off

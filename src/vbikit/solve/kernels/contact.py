@@ -106,15 +106,33 @@ def road_cell(stations, x, vx, idx, p):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def secant_cells(stations, x, a, vx, idx, p):
-    """The road cells and in-cell fractions (i_a, t_a, i_b, t_b) at x − a and x + a [m] of point ``p``
-    moving at ``vx`` [m/s] (``road_cell``; the pointer ``idx[p]`` is left at the cell of x + a):
-    the secant rate's two readings, r(x ± a) = z_i + t (z_{i+1} − z_i) (beyond the road's ends, the
-    end cell's line extended)."""
-    ia = road_cell(stations, x - a, vx, idx, p)
-    ta = (x - a - stations[ia]) / (stations[ia + 1] - stations[ia])
-    ib = road_cell(stations, x + a, vx, idx, p)
-    tb = (x + a - stations[ib]) / (stations[ib + 1] - stations[ib])
+def secant_ends(x, vx, span):
+    """The ends (lo, hi) [m] of the road the secant rate of a point at ``x`` moving at ``vx`` [m/s]
+    reads (``road_point``): with ``span`` > 0 [s] the half steps around it, x ∓ a with a = |vx|·span;
+    with ``span`` < 0 the run's start, where the point has no road behind it: the road ahead only,
+    x … x + a driving +x (x − a … x driving −x) with a = |vx|·|span| (the first half step's road, the
+    limit from the start's side: what RK4's cell slope reads there).  lo = hi where a = 0."""
+    a = abs(vx) * abs(span)
+    lo = x - a
+    hi = x + a
+    if span < 0.0:
+        if vx > 0.0:
+            lo = x
+        else:
+            hi = x
+    return lo, hi
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def secant_cells(stations, lo, hi, vx, idx, p):
+    """The road cells and in-cell fractions (i_a, t_a, i_b, t_b) at ``lo`` and ``hi`` [m]
+    (``secant_ends``) of point ``p`` moving at ``vx`` [m/s] (``road_cell``; the pointer ``idx[p]`` is
+    left at the cell of ``hi``): the secant rate's two readings, r = z_i + t (z_{i+1} − z_i) (beyond
+    the road's ends, the end cell's line extended)."""
+    ia = road_cell(stations, lo, vx, idx, p)
+    ta = (lo - stations[ia]) / (stations[ia + 1] - stations[ia])
+    ib = road_cell(stations, hi, vx, idx, p)
+    tb = (hi - stations[ib]) / (stations[ib + 1] - stations[ib])
     return ia, ta, ib, tb
 
 
@@ -127,14 +145,17 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes, span):
     The rate (``vbikit.solve.kernels`` docstring, "the road rate"): with ``span`` = 0 the slope of the
     point's cell, vx·dr/dx; with ``span`` > 0 [s] the secant over a = |vx|·span either side,
     vx (r(x + a) − r(x − a)) / 2a: with span = dt/2 the road between the half steps around a step
-    end, which the implicit integrators' trapezoid then follows (``secant_cells``)."""
+    end, which the implicit integrators' trapezoid then follows; with ``span`` < 0 (the run's start)
+    the secant over the road ahead only, vx (r(x + a) − r(x)) / a driving +x (``secant_ends``,
+    ``secant_cells``)."""
     n_l = _width(lanes, rv)
     stations = road.stations
     z = road.elevations[min(line, road.elevations.shape[0] - 1)]
-    a = abs(vx) * span
+    lo, hi = secant_ends(x, vx, span)
+    a = hi - lo
     if a > 0.0:
-        ia, ta, ib, tb = secant_cells(stations, x, a, vx, idx, p)
-        scale = vx / (2.0 * a)
+        ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
+        scale = vx / a
         for lane in range(n_l):
             rr[p, lane] = (z[ib, lane] + tb * (z[ib + 1, lane] - z[ib, lane])
                            - z[ia, lane] - ta * (z[ia + 1, lane] - z[ia, lane])) * scale

@@ -95,7 +95,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     halved after ``RELAX_AFTER`` full Newton iterations.  The step keeps the iterate's forces.
 
     The road rate in each point's law: the secant over |v|·``span`` either side (``road_point``;
-    ``span`` = dt/2 for the implicit integrators, ``vbikit.solve.integrators.road_rate_span``).
+    ``span`` = dt/2 for the implicit integrators, ``vbikit.solve.integrators.road_rate_span``; negative
+    when the call starts at the run's start: the start state's law then reads the road ahead only,
+    the steps |span|).
 
     Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
@@ -194,7 +196,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         for it in range(max_iterations):
             evaluations += 1
             _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
-            contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
+            contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, abs(span))
             if _residuals(f, force, work.used, touch, lane_err, x1, v1, y1, w1, cache, points, vehicles, onb,
                           tol_force) <= tol_force:
                 converged = True

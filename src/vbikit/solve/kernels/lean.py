@@ -44,7 +44,7 @@ from numba import njit
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells
+from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells, secant_ends
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
 
 
@@ -90,11 +90,12 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
             if have[p] < 2:  # the road under the point (``road_point``)
                 ln = line[p]
                 vx = vxp[p]
-                a = abs(vx) * span
+                lo, hi = secant_ends(x, vx, span)
+                a = hi - lo
                 if a > 0.0:  # the secant rate
-                    ia, ta, ib, tb = secant_cells(stations, x, a, vx, idx, p)
+                    ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
                     rr[p] = (elevations[ln, ib] + tb * (elevations[ln, ib + 1] - elevations[ln, ib]) - elevations[ln, ia]
-                             - ta * (elevations[ln, ia + 1] - elevations[ln, ia])) * (vx / (2.0 * a))
+                             - ta * (elevations[ln, ia + 1] - elevations[ln, ia])) * (vx / a)
                 i = road_cell(stations, x, vx, idx, p)
                 slope = (elevations[ln, i + 1] - elevations[ln, i]) / (stations[i + 1] - stations[i])
                 rv[p] = elevations[ln, i] + slope * (x - stations[i])
@@ -230,7 +231,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
     (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
     stations and elevations of its one lane (n_lines, n_s) and r_max, the road rate's ``span`` [s]
-    (``road_point``: dt/2 for the secant rate, 0 for the cell's slope), the outputs of ``implicit`` for
+    (``road_point``: dt/2 for the secant rate, 0 for the cell's slope; negative when the call starts
+    at the run's start: the start state's law then reads the road ahead only, the steps |span|), the outputs of ``implicit`` for
     one lane but q̈ (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the
     work spaces of ``lean_work`` (zeroed).
 
@@ -288,9 +290,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
+        read = span if n < 0 else abs(span)  # (the start state: the road ahead only when span < 0)
         _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
              wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
-             elevations, r_max, span, force, active, used, pen, law, wf, wl)
+             elevations, r_max, read, force, active, used, pen, law, wf, wl)
         updated = False  # by quasi-Newton updates
         if n < 0:
             for k in range(n_cp):  # (p, like every work space, comes zeroed)

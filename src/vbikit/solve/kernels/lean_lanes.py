@@ -44,7 +44,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells
+from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells, secant_ends
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
@@ -91,10 +91,11 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
             if have[p] < 2:  # the road under the point (``road_point``): one cell for all lanes
                 ln = line[p]
                 vx = vxp[p]
-                a = abs(vx) * span
+                lo, hi = secant_ends(x, vx, span)
+                a = hi - lo
                 if a > 0.0:  # the secant rate
-                    ia, ta, ib, tb = secant_cells(stations, x, a, vx, idx, p)
-                    scale = vx / (2.0 * a)
+                    ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
+                    scale = vx / a
                     for lane in range(n_l):
                         rr[p, lane] = (elevations[ln, ib, lane] + tb * (elevations[ln, ib + 1, lane]
                                                                         - elevations[ln, ib, lane])
@@ -362,6 +363,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     t_n → t_{n+1}) that lane needs more than the lean path for (its rows from n + 1 on are not
     filled).
 
+    ``span`` as ``lean``'s: negative, the start state of a call with ``first`` = 0 (the run's start)
+    reads the road ahead only (``road_point``); every other evaluation the secant over |span|.
+
     The call takes steps ``first`` … ``last`` − 1 (``first`` a multiple of ``stride``), starting
     from the stored row first / stride.  A lane with ``fresh`` set starts there as at t = 0 (the law
     at that state, the forces extrapolated from it alone, row ``first`` / ``stride``'s loads and
@@ -425,9 +429,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
             have[k] = 0
         if n < first:
+            read = span if first == 0 else abs(span)  # (the run's start: the road ahead only when span < 0)
             _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
                        slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                       gated, width, stations, elevations, r_max, span, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
                        bmax, zw, dzw, s_l, sd_l, dr_l)
             for m in range(n_m):
                 for lane in range(n_l):
@@ -467,9 +472,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
                          xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
+            read = abs(span)
             _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
                        slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                       gated, width, stations, elevations, r_max, span, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                       gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
                        bmax, zw, dzw, s_l, sd_l, dr_l)
             n_rel = 0
             n_use = 0
