@@ -30,6 +30,9 @@ SELECTION = [
     # one-evaluation step settles the bump crossings of test_kernel_paths without them)
     "tests/verification/test_heavy_hop_convergence.py::test_deck_class_d",
     "tests/unit/test_newton_coupling.py",  # the full Newton's capacitance form (disk tires)
+    # the full Newton against a brute-force contact set, a landing held at zero penetration, the
+    # rigid disk's rate clamp in ``_penetration``
+    "tests/unit/test_full_newton.py",
 ]
 # With the secant road rate (2026-12-05) the heavy-hop deck runs above settle every landing with the
 # one-evaluation step or the quasi-Newton updates: the full Newton (``newton._full_newton``,

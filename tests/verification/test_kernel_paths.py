@@ -24,7 +24,7 @@ from vbikit.analysis import histories, point_response, summary
 from vbikit.bridge import EulerBernoulliBeam, SlabOnGirderBridge
 from vbikit.contact import DiskTire, MultiPointTire, PointTire, RigidDiskTire
 from vbikit.road import Defect, RoadProfile, RoadPSD, random_profile, with_defects
-from vbikit.solve import INTEGRATORS, Crossing, simulate
+from vbikit.solve import INTEGRATORS, Crossing, integrators, simulate
 from vbikit.solve.batch import BatchSolver
 from vbikit.vehicle import GRAVITY, quarter_car
 
@@ -155,6 +155,45 @@ def test_batch_solver_with_a_user_time_step_equals_simulate():
         for field in ("xi", "q", "wheel_forces"):
             a, b = getattr(res, field), getattr(alone, field)
             assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max(), field
+
+
+def _worst(a, b) -> float:
+    """max |a − b| / peak |b| over the histories of two results."""
+    return max(float(np.abs(getattr(a, h) - getattr(b, h)).max() / np.abs(getattr(b, h)).max())
+               for h in ("xi", "q", "wheel_forces"))
+
+
+@pytest.mark.parametrize("tire", [DiskTire(spacing=0.02), RigidDiskTire(spacing=0.02)], ids=lambda t: t.name)
+def test_batch_lanes_that_lift_off_equal_the_full_kernel_and_single_runs(tire):
+    """Lanes of one batch over bumps of 0 (flat), 2, 80 and 5 mm: the 80 mm bump launches the wheel
+    and the others do not, so the lanes' contact sets differ.  Disk tires: the many-lane lean kernel
+    freezes the launched lane at the step a contact closes within the updates and ``implicit`` finishes
+    it (``integrators._run_lanes``).  Rigid disks, and ``without_lean`` for both: the many-lane
+    ``implicit`` kernel (lanes with unequal contact sets updated one by one).  References: the many-lane
+    ``implicit`` kernel (its own contact law and updates) and each road run alone (``simulate``); lanes
+    equal them to round-off, a lane handed over to the tolerance's order (as tests/unit/test_lean_lanes.py:
+    ≤ 1e-10, ≤ 1e-9 of each history's peak)."""
+    heights = (0.0, 0.002, 0.08, 0.005)
+    roads = [with_defects(RoadProfile.flat(-20.0, 20.0), [Defect.of_kind("bump", start=-1.5, size=h)]) if h else
+             RoadProfile.flat(-20.0, 20.0) for h in heights]
+    template = Crossing(SHORT, CAR, tire=tire, road=roads[2], speed=10.0, approach=2.0, free_vibration=0.0, dt=5e-4)
+    batch = BatchSolver(template)
+    before = dict(integrators.LEAN_COUNTS)
+    lanes = batch.run_many(roads)
+    ran = {k: integrators.LEAN_COUNTS[k] - before[k] for k in before}
+    with integrators.without_lean():
+        full = batch.run_many(roads)
+    alone = [simulate(template.with_road(r)) for r in roads]
+    lifted = [bool(np.any(r.wheel_forces[:, 0] == 0.0)) for r in full]
+    assert lifted == [False, False, True, False]
+    if isinstance(tire, RigidDiskTire):
+        assert ran["implicit"] >= 1 and ran["lanes"] == ran["lanes_fallback"] == 0
+    else:
+        assert ran["lanes_fallback"] >= 1  # the launched lane was handed over
+    for k, (lane, ref, single) in enumerate(zip(lanes, full, alone)):
+        tol = 1e-9 if lifted[k] else 1e-10
+        assert _worst(lane, ref) <= tol and _worst(lane, single) <= tol, k
+    assert _worst(lanes[2], lanes[3]) > 1e-2  # the lanes do differ
 
 
 def test_parapets_add_to_the_edge_girder_lines():
