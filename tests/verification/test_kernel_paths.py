@@ -119,11 +119,12 @@ def test_damped_rigid_disk_landings_settle_and_agree_with_rk4(caplog):
     Newton settles them (``newton._full_newton``, a landing held at zero penetration; 24 full
     Newton updates with NUMBA_DISABLE_JIT, measured 2026-12-05; the path the kernel-coverage job
     needs, the secant road rate settling the crossings above without it).  Reference: RK4 at 0.1 ms
-    (another integrator, the same equations; RK4 at 0.01 ms differs from it by 2.2e-3 of the peak in
-    the wheel's displacement, ≤ 1.1e-3 in the other measures here).  Measured: no step left unconverged; vehicle displacements within 4.1e-3 (body) and
-    3.0e-2 (wheel) of their peaks (the 1 ms step holds a landing the fine step resolves as
-    micro-bounces: 8 landings against 13); airborne time 0.2740 s against 0.2737 s; wheel-force
-    impulse within 2.6e-3; peak force 51.9 kN against 58.0 kN (the landing impacts, a step long)."""
+    (another integrator, the same equations; RK4 at 0.01 ms differs from it by 2.2e-3 of the peak
+    in the wheel's displacement, ≤ 1.1e-3 in the other measures here).  Measured: no step left
+    unconverged; vehicle displacements within 4.1e-3 (body) and 3.0e-2 (wheel) of their peaks (the
+    1 ms step holds a landing that the fine step resolves as micro-bounces: 8 landings against 13);
+    airborne time 0.2740 s against 0.2737 s; wheel-force impulse within 2.6e-3; peak force 51.9 kN
+    against 58.0 kN (the landing impacts, a step long)."""
     car = quarter_car(sprung_mass=400.0, unsprung_mass=50.0, suspension_stiffness=40e3, suspension_damping=2e3,
                       tire_stiffness=5e5, tire_damping=1e4)
     crossing = Crossing(SHORT, car, tire=RigidDiskTire(spacing=0.02), road=HOP_ROAD, speed=10.0, approach=2.0,
