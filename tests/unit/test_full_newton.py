@@ -23,6 +23,7 @@ makes δ(F) = 0, solved here by hand.
 from __future__ import annotations
 
 import itertools
+
 import numpy as np
 import pytest
 from numba import njit
@@ -48,19 +49,26 @@ def _vehicles(envelope: np.ndarray, rows: np.ndarray) -> Vehicles:
                     np.ones(n_w, np.int64), envelope, wheels, wheels)
 
 
+def _work_spaces(n_cp: int, n_m: int, n_w: int) -> tuple:
+    """``implicit``'s work spaces of the full Newton (sized as there; kept across the updates of a step,
+    so that the factors of an unchanged set are reused): e, u, mat, piv, red, red_piv, rhs, t, act,
+    held, held_k, held_c, row_k, row_c, held_state (no set held)."""
+    cap, r = n_cp, n_m + n_w
+    n_r = min(cap, r)
+    return (np.zeros((cap, n_m)), np.zeros((cap, n_w)), np.zeros((n_r, n_r)), np.zeros(n_r, np.int64),
+            np.zeros((r, r)), np.zeros(r, np.int64), np.zeros(cap), np.zeros(r), np.zeros(cap, np.int64),
+            np.zeros(cap, np.int64), np.zeros(cap), np.zeros(cap), np.zeros(cap), np.zeros(cap),
+            np.array([-1, 0], np.int64))
+
+
 @njit
-def _update(f, force, active, touch, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep, p, fw, held_state):
-    """One full Newton update of lane 0 (``implicit``'s call, its work spaces sized as there)."""
-    n_cp, n_m, n_w = f.shape[0], step.c1.size, vstep.wheel_q.shape[0]
-    cap = n_cp
-    n_r = min(cap, n_m + n_w)
-    used = np.ones(n_cp, np.bool_)
-    gated = np.ones(n_cp, np.bool_)
-    _full_newton(f, force, used, active, 0, 1.0, touch, gated, x1, v1, y1, w1, cache, points, vehicles, onb, step,
-                 vstep, p, fw, np.zeros((cap, n_m)), np.zeros((cap, n_w)), np.zeros((n_r, n_r)),
-                 np.zeros(n_r, np.int64), np.zeros((n_m + n_w, n_m + n_w)), np.zeros(n_m + n_w, np.int64),
-                 np.zeros(cap), np.zeros(n_m + n_w), np.zeros(cap, np.int64), np.zeros(cap, np.int64), np.zeros(cap),
-                 np.zeros(cap), np.zeros(cap), np.zeros(cap), held_state)
+def _update(f, force, active, touch, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep, p, fw, work):
+    """One full Newton update of lane 0 (``implicit``'s call; every point used and gated)."""
+    e, u, mat, piv, red, red_piv, rhs, t, act, held, held_k, held_c, row_k, row_c, held_state = work
+    used = np.ones(f.shape[0], np.bool_)
+    _full_newton(f, force, used, active, 0, 1.0, touch, used, x1, v1, y1, w1, cache, points, vehicles, onb, step,
+                 vstep, p, fw, e, u, mat, piv, red, red_piv, rhs, t, act, held, held_k, held_c, row_k, row_c,
+                 held_state)
 
 
 @njit
@@ -160,7 +168,7 @@ class World:
         """``implicit``'s iteration with full Newton updates only, from F = 0: (F, updates, touch)."""
         f = np.zeros((self.n_cp, 1))
         touch = np.zeros((self.n_cp, 1), np.bool_)
-        held_state = np.array([-1, 0], np.int64)
+        work = _work_spaces(self.n_cp, self.n_m, self.n_w)
         for update in range(max_updates + 1):
             x1, v1, y1, w1, p, fw = self.state(f[:, 0])
             force, active = self.gated(f[:, 0])
@@ -168,8 +176,7 @@ class World:
             args = (x1, v1, y1, w1, self.cache, self.points, self.vehicles, self.onb)
             if _residual(f, force, touch, *args, tol) <= tol:
                 return f[:, 0], update, touch[:, 0]
-            _update(f, force, np.ascontiguousarray(active[:, None]), touch, *args, self.step, self.vstep, p, fw,
-                    held_state)
+            _update(f, force, np.ascontiguousarray(active[:, None]), touch, *args, self.step, self.vstep, p, fw, work)
         raise AssertionError("the full Newton updates did not settle")
 
 
