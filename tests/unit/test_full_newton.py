@@ -61,7 +61,7 @@ def _work_spaces(n_cp: int, n_m: int, n_w: int) -> tuple:
             np.array([-1, 0], np.int64))
 
 
-@njit
+@njit(cache=True)
 def _update(f, force, active, touch, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep, p, fw, work):
     """One full Newton update of lane 0 (``implicit``'s call; every point used and gated)."""
     e, u, mat, piv, red, red_piv, rhs, t, act, held, held_k, held_c, row_k, row_c, held_state = work
@@ -71,13 +71,13 @@ def _update(f, force, active, touch, x1, v1, y1, w1, cache, points, vehicles, on
                  held_state)
 
 
-@njit
+@njit(cache=True)
 def _residual(f, force, touch, x1, v1, y1, w1, cache, points, vehicles, onb, tol):
     return _residuals(f, force, np.ones(f.shape[0], np.bool_), touch, np.zeros(1), x1, v1, y1, w1, cache, points,
                       vehicles, onb, tol)
 
 
-@njit
+@njit(cache=True)
 def _point_law(k, x1, v1, y1, w1, cache, points, vehicles, onb):
     return _penetration(k, 0, x1, v1, y1, w1, cache, points, vehicles, onb)
 
