@@ -116,12 +116,11 @@ def test_damped_rigid_disk_landings_settle_and_agree_with_rk4(caplog):
     """Repeated landings of a rigid disk (the acting point moves) with a critically damped tire
     (k = 5e5 N/m, c = 1e4 N s/m on a 50 kg wheel: ζ = c / 2√(k m) = 1.0) at a 1 ms step: the
     quasi-Newton updates do not settle some of these landings (the contact set changes within the
-    step's updates), so the implicit step's full Newton does (``newton._full_newton``, a landing
-    held at zero penetration; 24 full Newton updates with NUMBA_DISABLE_JIT, measured 2026-12-05;
-    the path the kernel-coverage job needs, the secant road rate settling the crossings above
-    without it).  Reference: RK4 at 0.1 ms
-    (another integrator, the same equations; RK4 at 0.01 ms differs from it by 2.2e-3 of the peak
-    in the wheel's displacement, ≤ 1.1e-3 in the other measures here).  Measured: no step left
+    step's updates), so the implicit step's full Newton does (``newton._full_newton``: 24 updates
+    with NUMBA_DISABLE_JIT, measured 2026-12-05; the path the kernel-coverage job needs, the secant
+    road rate settling the crossings above without it).  Reference: RK4 at 0.1 ms (another
+    integrator, the same equations; RK4 at 0.01 ms differs from it by 2.2e-3 of the peak in the
+    wheel's displacement, ≤ 1.1e-3 in the other measures here).  Measured: no step left
     unconverged; vehicle displacements within 4.1e-3 (body) and 3.0e-2 (wheel) of their peaks (the
     1 ms step holds a landing that the fine step resolves as micro-bounces: 8 landings against 13);
     airborne time 0.2740 s against 0.2737 s; wheel-force impulse within 2.6e-3; peak force 51.9 kN
