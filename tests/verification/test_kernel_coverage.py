@@ -1,9 +1,9 @@
 """Coverage of the compiled kernels (slow job).
 
 numba-compiled functions are invisible to coverage.py, so this job runs the kernel-path tests
-with ``NUMBA_DISABLE_JIT=1`` (the kernels then run as plain Python: 11–15 min, measured 2026-12-05 on a shared 2-core
-machine) under pytest-cov
-and reads the line coverage of the kernels (``vbikit/solve/kernels/``) from the JSON report.  Run it with
+with ``NUMBA_DISABLE_JIT=1`` (the kernels then run as plain Python: 11–15 min, measured 2026-12-05
+on a shared 2-core machine) under pytest-cov and reads the line coverage of the kernels
+(``vbikit/solve/kernels/``) from the JSON report.  Run it with
 
     python -m pytest -m slow tests/verification/test_kernel_coverage.py -s
 
