@@ -1,16 +1,18 @@
 """Coverage of the compiled kernels (slow job).
 
 numba-compiled functions are invisible to coverage.py, so this job runs the kernel-path tests
-with ``NUMBA_DISABLE_JIT=1`` (the kernels then run as plain Python, ≈ 1 min) under pytest-cov
-and reads the line coverage of the kernels (``vbikit/solve/kernels/``) from the JSON report.  Run it with
+with ``NUMBA_DISABLE_JIT=1`` (the kernels then run as plain Python: 11–15 min, measured 2026-12-05
+on a shared 2-core machine) under pytest-cov and reads the line coverage of the kernels
+(``vbikit/solve/kernels/``) from the JSON report.  Run it with
 
     python -m pytest -m slow tests/verification/test_kernel_coverage.py -s
 
 It prints the figure and the lines still not run, and fails below :data:`MIN_KERNEL_COVERAGE`.
 The selection (:data:`SELECTION`) is the small crossings written for this purpose
 (``test_kernel_paths.py``: every integrator × every tire model at rest and over a launching
-bump, the batch solver with lanes and a user step, a vehicle without DOFs, the static start's
-fall-back) and the pinned random streams.
+bump, repeated damped landings of a rigid disk, the batch solver with lanes and a user step and
+with lanes that lift off, a vehicle without DOFs, the static start's fall-back), the full Newton on
+small contrived systems (``test_full_newton.py``) and the pinned random streams.
 """
 from __future__ import annotations
 
@@ -26,22 +28,30 @@ ROOT = Path(__file__).resolve().parents[2]
 SELECTION = [
     "tests/verification/test_kernel_paths.py",
     "tests/verification/test_pinned_streams.py",
-    # heavy wheel hop on a 3D deck: the implicit step's full Newton, touch rows and LU factors (the
-    # one-evaluation step settles the bump crossings of test_kernel_paths without them)
+    # heavy wheel hop on a 3D deck (many wheels and points; with the secant road rate its landings
+    # settle without the full Newton)
     "tests/verification/test_heavy_hop_convergence.py::test_deck_class_d",
     "tests/unit/test_newton_coupling.py",  # the full Newton's capacitance form (disk tires)
+    # the full Newton against a brute-force contact set, a landing held at zero penetration, the
+    # rigid disk's rate clamp in ``_penetration``
+    "tests/unit/test_full_newton.py",
 ]
 # With the secant road rate (2026-12-05) the heavy-hop deck runs above settle every landing with the
-# one-evaluation step or the quasi-Newton updates: the full Newton (``newton._full_newton``,
-# ``_penetration``) is no longer reached by this selection, and the job measured 88.6 % (below the
-# minimum: it fails until a small crossing that needs the full Newton is added; the landing hand-over
-# of ``test_kernel_paths.py`` reaches ``_lean_refine`` and ``_residuals`` again).
-#: measured 97.6 % of 1149 statements of the kernels' package (2026-12-04: the one-evaluation step;
-#: 98.2 % of 665 in the one module on 2026-12-01).  The lines not run: ``shapes_at``, an eager
-#: helper no solver path calls; the station pointer moving towards −x; LU row swaps (the contact
-#: matrices need no pivoting); the rigid disk's rate clamp in ``_penetration``; the one-evaluation
-#: step's exits for a point leaving the lazy test; the under-relaxation after 8 full Newton
-#: iterations and the count of steps that did not converge.
+# one-evaluation step or the quasi-Newton updates, so no crossing here reached the full Newton
+# (``newton._full_newton``, ``_penetration``), nor did any batch that lifts off reach the many-lane
+# kernels' freezing and the many-lane ``implicit`` (added 2026-12-04): 91.9 % of 2027 statements.
+# test_full_newton.py and, in test_kernel_paths.py, the damped rigid-disk landings (24 full Newton
+# updates) and the batch lanes that lift off reach them again.
+#: measured 98.5 % of 2027 statements of the kernels' package (2026-12-05; 97.6 % of 1149 on
+#: 2026-12-04, 98.2 % of 665 in the one module on 2026-12-01).  The lines not run: ``shapes_at``, an
+#: eager helper no solver path calls; ``implicit``'s count of steps that did not converge and a
+#: touching point's width at a step's end; its vehicle accelerations without DOFs (the lean kernels
+#: take moving forces); the one-evaluation step's exits for a point leaving the lazy test (``lean``,
+#: ``_lean_refine``) and for corrections that do not settle (``_lean_refine``, ``lean_lanes``); the
+#: vehicle factors' row swaps (``_solve_held``: those matrices need no pivoting); a point left out by
+#: the lazy test in the full Newton; ``lean_lanes``' cell-slope road rate (a vehicle at rest: no
+#: secant span), its points that the lazy test keeps but no lane presses (watched by their bound) and
+#: its return when every lane is frozen.
 MIN_KERNEL_COVERAGE = 97.0
 
 
