@@ -44,7 +44,7 @@ from numba import njit
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells, secant_ends
+from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
 
 
@@ -92,11 +92,10 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 vx = vxp[p]
                 lo, hi = secant_ends(x, vx, span)
                 a = hi - lo
+                ia, ta, ib, tb, i = road_cells(stations, lo, hi, x, vx, idx, p)
                 if a > 0.0:  # the secant rate
-                    ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
                     rr[p] = (elevations[ln, ib] + tb * (elevations[ln, ib + 1] - elevations[ln, ib]) - elevations[ln, ia]
                              - ta * (elevations[ln, ia + 1] - elevations[ln, ia])) * (vx / a)
-                i = road_cell(stations, x, vx, idx, p)
                 slope = (elevations[ln, i + 1] - elevations[ln, i]) / (stations[i + 1] - stations[i])
                 rv[p] = elevations[ln, i] + slope * (x - stations[i])
                 if a <= 0.0:
