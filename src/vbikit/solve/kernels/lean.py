@@ -60,8 +60,7 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
     is in ``rv``, ``rr``; the rate the secant over |v|·``span`` either side, ``road_point``)."""
     n_m = x1.size
-    _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
-    _, n_e = wheel_dof.shape
+    _, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
@@ -102,7 +101,7 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                     rr[p] = slope * vx
                 have[p] += 2
             if onb[p] and have[p] % 2 == 0:
-                _shape(x, track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
+                hermite_shape(x, track[p], start, grid_h, values, slopes, phi[p], dphi[p])
                 have[p] += 1
             used[p] = True
             s = rv[p]
@@ -126,20 +125,12 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 wl[w] += width[p]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
-    """φ(x), ∂φ/∂x(x) of point ``p`` on track ``tr`` into row p of ``phi``, ``dphi`` (cubic Hermite,
-    ``contact.hermite_shape``; ``n_grid`` is the tables' length, kept for the callers)."""
-    hermite_shape(x, tr, start, grid_h, values, slopes, phi[p], dphi[p])
-
-
 @_flat_internal
 def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf, zb,
            p, fw, x1, v1, z1):
     """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
     ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``)."""
     n_m = p.size
-    _, n_grid, _ = values.shape
     for m in range(n_m):
         p[m] = 0.0
     for w in range(fw.size):
@@ -151,7 +142,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         fw[wheel[k]] += fk
         if onb[k]:
             if have[k] % 2 == 0:
-                _shape(xp[k], track[k], start, grid_h, values, slopes, n_grid, phi, dphi, k)
+                hermite_shape(xp[k], track[k], start, grid_h, values, slopes, phi[k], dphi[k])
                 have[k] += 1
             for m in range(n_m):
                 p[m] -= phi[k, m] * fk
