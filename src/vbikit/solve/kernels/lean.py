@@ -45,7 +45,7 @@ from numba import njit
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
-from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, lu_factor_inline, lu_solve_inline
 
 
 @_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
@@ -183,7 +183,7 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
             held[w] = ksum[w]
             held[n_w + w] = csum[w]
         held[2 * n_w] = 1.0
-        _lu_factor(veh, n_w, piv)
+        lu_factor_inline(veh, n_w, piv)
     for w in range(n_w):
         aq = 0.0
         av = 0.0
@@ -196,7 +196,7 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
     for k in range(f.size):
         if active[k]:
             t[wheel[k]] += force[k]
-    _lu_solve(veh, n_w, piv, t)
+    lu_solve_inline(veh, n_w, piv, t)
     for w in range(n_w):
         aq = 0.0
         av = 0.0
