@@ -301,12 +301,12 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             updated = err > tol
             if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
-                for w in range(n_w):
-                    fw0[w] = fw[w]  # the guess's wheel forces
                 for r in range(LEAN_CORRECTIONS):
                     for w in range(n_w):
                         if r > 0:
                             fw[w] += dfw[w]
+                        else:
+                            fw0[w] = fw[w]  # the guess's wheel forces
                         dfw[w] = -fw[w]  # (+ the new wheel forces, below)
                     _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
                            t)
@@ -370,7 +370,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     for w in range(n_w):
                         a += response[i, w] * dfw[w]
                     z1[i] = a
-        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
+        stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
+        r_out = (n + 1) // stride
+        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
         for w in range(n_w):
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
@@ -383,8 +385,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     j = wheel_dof[w, e]
                     a += h * (kw * z1[j] + cw * z1[n_d + j])
             g0[w] = a
-        if (n + 1) % stride == 0:  # stored (row 0: the start state, as given, and its accelerations)
-            r_out = (n + 1) // stride
+            if stored:
+                wheel_force[r_out, w] = wf[w]
+                wheel_len[r_out, w] = wl[w]
+        if stored:
             for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ
                 xi[r_out, m] = x1[m]
                 dxi[r_out, m] = v1[m]
@@ -392,9 +396,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for i in range(n_d):
                 q[r_out, i] = z1[i]
                 dq[r_out, i] = z1[n_d + i]
-            for w in range(n_w):
-                wheel_force[r_out, w] = wf[w]
-                wheel_len[r_out, w] = wl[w]
     return stop, evaluations
 
 
