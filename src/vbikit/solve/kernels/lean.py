@@ -35,7 +35,11 @@ Compilation (the first run's cost, ``benchmarks/bench_compile.py``): ``lean`` an
 kernels (``bundles.FLAT_OPTIONS``: no allocation inside, hence no reference counting); ``_law`` is
 compiled once, with the argument types of both its callers (``lean`` and, from Python, ``lean_law``);
 ``lean`` returns at one place only and calls ``_law`` at one site (numba emits the end of every array's
-lifetime at each return, and each call site passes every array).
+lifetime at each return, and each call site passes every array).  numba links each compiled helper into
+its callers' LLVM modules, where it is optimised and made into machine code again: small helpers with
+one caller are inlined by numba instead (the LU routines into ``_quasi``: ``newton.lu_factor_inline``),
+and numba's inlined helpers are called at one site each (the road cells of the secant rate's two readings
+and of the point by one ``road_cell``: ``contact.road_cells``).
 """
 from __future__ import annotations
 
