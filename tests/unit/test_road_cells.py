@@ -13,8 +13,9 @@ STATIONS = np.array([0.0, 1.0, 2.0, 4.0])
 
 
 def _cells(x: float, a: float, vx: float = 10.0, start: int = -1):
+    """``road_cells`` with the secant's ends x ∓ a (``secant_ends`` with a positive span)."""
     idx = np.array([start], np.int64)
-    return road_cells(STATIONS, x, a, vx, idx, 0), int(idx[0])
+    return road_cells(STATIONS, x - a, x + a, x, vx, idx, 0), int(idx[0])
 
 
 def test_secant_readings_and_the_point_cell():
