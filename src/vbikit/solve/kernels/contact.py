@@ -3,6 +3,7 @@ envelopes, and the right-hand side of the coupled equations. (``vbikit.solve.ker
 equations and conventions.)"""
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
@@ -17,7 +18,7 @@ def hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row):
     arithmetic, for the bundle kernels (``shape_point``) and the lean one."""
     _, n_grid, n_m = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     u = (x - start[tr]) / grid_h
-    i = int(u)
+    i = np.int64(u)  # (truncated as int(u), which numba compiles as an overload of its own)
     if i > n_grid - 2:
         i = n_grid - 2
     t = u - i
@@ -124,16 +125,31 @@ def secant_ends(x, vx, span):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def secant_cells(stations, lo, hi, vx, idx, p):
-    """The road cells and in-cell fractions (i_a, t_a, i_b, t_b) at ``lo`` and ``hi`` [m]
-    (``secant_ends``) of point ``p`` moving at ``vx`` [m/s] (``road_cell``; the pointer ``idx[p]`` is
-    left at the cell of ``hi``): the secant rate's two readings, r = z_i + t (z_{i+1} − z_i) (beyond
-    the road's ends, the end cell's line extended)."""
-    ia = road_cell(stations, lo, vx, idx, p)
-    ta = (lo - stations[ia]) / (stations[ia + 1] - stations[ia])
-    ib = road_cell(stations, hi, vx, idx, p)
-    tb = (hi - stations[ib]) / (stations[ib + 1] - stations[ib])
-    return ia, ta, ib, tb
+def road_cells(stations, lo, hi, x, vx, idx, p):
+    """The road cells of point ``p`` at position ``x`` [m] moving at ``vx`` [m/s] (``road_cell``):
+    with ``hi`` > ``lo`` first those of the secant rate's two readings at ``lo`` and ``hi`` [m]
+    (``secant_ends``) with their in-cell fractions, r = z_i + t (z_{i+1} − z_i) (beyond the road's
+    ends, the end cell's line extended), then the cell i of x; returns (i_a, t_a, i_b, t_b, i) (with
+    hi ≤ lo only i, the others 0).  The pointer ``idx[p]`` is left at the cell of x.  One
+    ``road_cell`` call site for the three readings (numba inlines its body once instead of three
+    times: less for the kernels to compile)."""
+    ia = 0
+    ib = 0
+    ta = 0.0
+    tb = 0.0
+    i = 0
+    for j in range(0 if hi > lo else 2, 3):  # lo, hi, then x
+        xj = lo if j == 0 else (hi if j == 1 else x)
+        c = road_cell(stations, xj, vx, idx, p)
+        if j == 2:
+            i = c
+        elif j == 0:
+            ia = c
+            ta = (xj - stations[c]) / (stations[c + 1] - stations[c])
+        else:
+            ib = c
+            tb = (xj - stations[c]) / (stations[c + 1] - stations[c])
+    return ia, ta, ib, tb, i
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -147,19 +163,18 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes, span):
     vx (r(x + a) − r(x − a)) / 2a: with span = dt/2 the road between the half steps around a step
     end, which the implicit integrators' trapezoid then follows; with ``span`` < 0 (the run's start)
     the secant over the road ahead only, vx (r(x + a) − r(x)) / a driving +x (``secant_ends``,
-    ``secant_cells``)."""
+    ``road_cells``)."""
     n_l = _width(lanes, rv)
     stations = road.stations
     z = road.elevations[min(line, road.elevations.shape[0] - 1)]
     lo, hi = secant_ends(x, vx, span)
     a = hi - lo
+    ia, ta, ib, tb, i = road_cells(stations, lo, hi, x, vx, idx, p)
     if a > 0.0:
-        ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
         scale = vx / a
         for lane in range(n_l):
             rr[p, lane] = (z[ib, lane] + tb * (z[ib + 1, lane] - z[ib, lane])
                            - z[ia, lane] - ta * (z[ia + 1, lane] - z[ia, lane])) * scale
-    i = road_cell(stations, x, vx, idx, p)
     dx = x - stations[i]
     inv = 1.0 / (stations[i + 1] - stations[i])
     for lane in range(n_l):

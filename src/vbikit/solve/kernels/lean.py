@@ -35,7 +35,11 @@ Compilation (the first run's cost, ``benchmarks/bench_compile.py``): ``lean`` an
 kernels (``bundles.FLAT_OPTIONS``: no allocation inside, hence no reference counting); ``_law`` is
 compiled once, with the argument types of both its callers (``lean`` and, from Python, ``lean_law``);
 ``lean`` returns at one place only and calls ``_law`` at one site (numba emits the end of every array's
-lifetime at each return, and each call site passes every array).
+lifetime at each return, and each call site passes every array).  numba links each compiled helper into
+its callers' LLVM modules, where it is optimised and made into machine code again: small helpers with
+one caller are inlined by numba instead (the LU routines into ``_quasi``: ``newton.lu_factor_inline``),
+and numba's inlined helpers are called at one site each (the road cells of the secant rate's two readings
+and of the point by one ``road_cell``: ``contact.road_cells``).
 """
 from __future__ import annotations
 
@@ -44,8 +48,8 @@ from numba import njit
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells, secant_ends
-from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _lu_solve
+from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, lu_factor_inline, lu_solve_inline
 
 
 @_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
@@ -60,8 +64,7 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
     on first use in the step (``have``: + 1 once the shapes are in ``phi``, ``dphi``, + 2 once the road
     is in ``rv``, ``rr``; the rate the secant over |v|·``span`` either side, ``road_point``)."""
     n_m = x1.size
-    _, n_grid, _ = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
-    _, n_e = wheel_dof.shape
+    _, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     b_max = 0.0
     for m in range(n_m):
         b_max += amp[m] * abs(x1[m])
@@ -92,18 +95,17 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 vx = vxp[p]
                 lo, hi = secant_ends(x, vx, span)
                 a = hi - lo
+                ia, ta, ib, tb, i = road_cells(stations, lo, hi, x, vx, idx, p)
                 if a > 0.0:  # the secant rate
-                    ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
                     rr[p] = (elevations[ln, ib] + tb * (elevations[ln, ib + 1] - elevations[ln, ib]) - elevations[ln, ia]
                              - ta * (elevations[ln, ia + 1] - elevations[ln, ia])) * (vx / a)
-                i = road_cell(stations, x, vx, idx, p)
                 slope = (elevations[ln, i + 1] - elevations[ln, i]) / (stations[i + 1] - stations[i])
                 rv[p] = elevations[ln, i] + slope * (x - stations[i])
                 if a <= 0.0:
                     rr[p] = slope * vx
                 have[p] += 2
             if onb[p] and have[p] % 2 == 0:
-                _shape(x, track[p], start, grid_h, values, slopes, n_grid, phi, dphi, p)
+                hermite_shape(x, track[p], start, grid_h, values, slopes, phi[p], dphi[p])
                 have[p] += 1
             used[p] = True
             s = rv[p]
@@ -127,20 +129,12 @@ def _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, gri
                 wl[w] += width[p]
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
-def _shape(x, tr, start, grid_h, values, slopes, n_grid, phi, dphi, p):
-    """φ(x), ∂φ/∂x(x) of point ``p`` on track ``tr`` into row p of ``phi``, ``dphi`` (cubic Hermite,
-    ``contact.hermite_shape``; ``n_grid`` is the tables' length, kept for the callers)."""
-    hermite_shape(x, tr, start, grid_h, values, slopes, phi[p], dphi[p])
-
-
 @_flat_internal
 def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf, zb,
            p, fw, x1, v1, z1):
     """The end-of-step state of point forces ``f``: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
     ξ = ξ_f + c1 p, ξ̇ = ξ̇_f + c2 p, z = z_b + (P L1) F_w (``implicit_step._state_of``)."""
     n_m = p.size
-    _, n_grid, _ = values.shape
     for m in range(n_m):
         p[m] = 0.0
     for w in range(fw.size):
@@ -152,7 +146,7 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
         fw[wheel[k]] += fk
         if onb[k]:
             if have[k] % 2 == 0:
-                _shape(xp[k], track[k], start, grid_h, values, slopes, n_grid, phi, dphi, k)
+                hermite_shape(xp[k], track[k], start, grid_h, values, slopes, phi[k], dphi[k])
                 have[k] += 1
             for m in range(n_m):
                 p[m] -= phi[k, m] * fk
@@ -193,7 +187,7 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
             held[w] = ksum[w]
             held[n_w + w] = csum[w]
         held[2 * n_w] = 1.0
-        _lu_factor(veh, n_w, piv)
+        lu_factor_inline(veh, n_w, piv)
     for w in range(n_w):
         aq = 0.0
         av = 0.0
@@ -206,7 +200,7 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
     for k in range(f.size):
         if active[k]:
             t[wheel[k]] += force[k]
-    _lu_solve(veh, n_w, piv, t)
+    lu_solve_inline(veh, n_w, piv, t)
     for w in range(n_w):
         aq = 0.0
         av = 0.0
@@ -311,12 +305,12 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             updated = err > tol
             if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
                 settled = False
-                for w in range(n_w):
-                    fw0[w] = fw[w]  # the guess's wheel forces
                 for r in range(LEAN_CORRECTIONS):
                     for w in range(n_w):
                         if r > 0:
                             fw[w] += dfw[w]
+                        else:
+                            fw0[w] = fw[w]  # the guess's wheel forces
                         dfw[w] = -fw[w]  # (+ the new wheel forces, below)
                     _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
                            t)
@@ -380,7 +374,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     for w in range(n_w):
                         a += response[i, w] * dfw[w]
                     z1[i] = a
-        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈)
+        stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
+        r_out = (n + 1) // stride
+        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
         for w in range(n_w):
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
@@ -393,8 +389,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     j = wheel_dof[w, e]
                     a += h * (kw * z1[j] + cw * z1[n_d + j])
             g0[w] = a
-        if (n + 1) % stride == 0:  # stored (row 0: the start state, as given, and its accelerations)
-            r_out = (n + 1) // stride
+            if stored:
+                wheel_force[r_out, w] = wf[w]
+                wheel_len[r_out, w] = wl[w]
+        if stored:
             for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ
                 xi[r_out, m] = x1[m]
                 dxi[r_out, m] = v1[m]
@@ -402,9 +400,6 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             for i in range(n_d):
                 q[r_out, i] = z1[i]
                 dq[r_out, i] = z1[n_d + i]
-            for w in range(n_w):
-                wheel_force[r_out, w] = wf[w]
-                wheel_len[r_out, w] = wl[w]
     return stop, evaluations
 
 

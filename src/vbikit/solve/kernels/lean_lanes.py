@@ -44,7 +44,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cell, secant_cells, secant_ends
+from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
@@ -93,15 +93,14 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
                 vx = vxp[p]
                 lo, hi = secant_ends(x, vx, span)
                 a = hi - lo
+                ia, ta, ib, tb, i = road_cells(stations, lo, hi, x, vx, idx, p)
                 if a > 0.0:  # the secant rate
-                    ia, ta, ib, tb = secant_cells(stations, lo, hi, vx, idx, p)
                     scale = vx / a
                     for lane in range(n_l):
                         rr[p, lane] = (elevations[ln, ib, lane] + tb * (elevations[ln, ib + 1, lane]
                                                                         - elevations[ln, ib, lane])
                                        - elevations[ln, ia, lane]
                                        - ta * (elevations[ln, ia + 1, lane] - elevations[ln, ia, lane])) * scale
-                i = road_cell(stations, x, vx, idx, p)
                 dx = x - stations[i]
                 inv = 1.0 / (stations[i + 1] - stations[i])
                 for lane in range(n_l):

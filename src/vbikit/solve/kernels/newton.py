@@ -3,6 +3,8 @@ copy for one lane and many), the exact one-evaluation refinement, the full activ
 and its touch rows. (``vbikit.solve.kernels``: the equations and conventions.)"""
 from __future__ import annotations
 
+from numba import njit
+
 from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import _gated
 
@@ -62,6 +64,14 @@ def _lu_solve(a, n, piv, b):
         for j in range(i + 1, n):
             acc -= a[i, j] * b[j]
         b[i] = acc / a[i, i]
+
+
+#: the same two routines inlined by numba into their one caller, the lean kernel's quasi-Newton update
+#: (``lean._quasi``): not compiled on their own and then optimised again in each caller's LLVM module
+#: (numba links a compiled helper into every caller's module, where LLVM optimises it and makes its
+#: machine code again); ≈ −0.15 s of the default path's cold compile (benchmarks/README.md)
+lu_factor_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(_lu_factor.py_func)
+lu_solve_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(_lu_solve.py_func)
 
 
 @_internal
