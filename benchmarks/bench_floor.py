@@ -243,7 +243,9 @@ def floor_inputs(args: tuple):
 
     (dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq, wheel_force,
      wheel_len, tol, max_iterations, lanes, stride) = args[:21]
-    span = float(args[21]) if len(args) > 21 else 0.0  # the road rate's secant half-width [s]
+    # the road rate's secant half-width [s] of the steps (the captured call's span is negative: it starts at the
+    # run's start, whose state the floor takes as given)
+    span = abs(float(args[21])) if len(args) > 21 else 0.0
     n_w = vehicles.wheel_rows.shape[0]
     ksum = np.bincount(points.wheel, weights=points.stiffness, minlength=n_w)
     csum = np.bincount(points.wheel, weights=points.damping, minlength=n_w)
