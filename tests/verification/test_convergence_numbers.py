@@ -17,9 +17,9 @@ ROOT = Path(__file__).resolve().parents[2]
 HINT = "run python docs/scripts/convergence_numbers.py, then python docs/scripts/generate.py"
 
 
-def _script():
-    spec = importlib.util.spec_from_file_location("vbikit_docs_convergence_numbers",
-                                                  ROOT / "docs" / "scripts" / "convergence_numbers.py")
+def _script(name: str = "convergence_numbers"):
+    """docs/scripts/``name``.py loaded as a module (also used by test_paper_accuracy_numbers.py)."""
+    spec = importlib.util.spec_from_file_location(f"vbikit_docs_{name}", ROOT / "docs" / "scripts" / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -70,18 +70,18 @@ def test_the_bound_check_sees_a_case_above_it():
     assert "every case is above" in script.render_automatic(numbers)
 
 
-def _close(now, stored, where):
-    """Every number in ``stored`` equals the one in ``now`` (rel 1e-9; tests/docs/test_numbers.py's check)."""
-    from tests.docs.test_numbers import _close as close
-
-    close(now, stored, where, HINT, 1e-15)
-
-
 @pytest.mark.slow
 def test_the_script_reproduces_the_stored_numbers():
     # the whole study again (≈ 30–40 s warm, the 11 crossings at 1 + 1 + 1 + 8 + 1 steps, 4 of them at 6 more)
-    script = _script()
+    recomputed_equals_stored(_script(), "convergence-numbers")
+
+
+def recomputed_equals_stored(script, where: str, hint: str = HINT, abs_tol: float = 1e-15) -> None:
+    """A docs script's numbers computed again equal its stored ones, but the date and run time (also
+    used by test_paper_accuracy_numbers.py)."""
+    from tests.docs.test_numbers import _close as close
+
     stored, now = script.stored(), script.compute()
     for key in ("date", "wall_s"):
         stored.pop(key), now.pop(key)
-    _close(now, stored, "convergence-numbers")
+    close(now, stored, where, hint, abs_tol)

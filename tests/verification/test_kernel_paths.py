@@ -31,6 +31,8 @@ from vbikit.solve import INTEGRATORS, Crossing, integrators, simulate
 from vbikit.solve.batch import BatchSolver
 from vbikit.vehicle import GRAVITY, quarter_car
 
+from tests.unit.test_lean_lanes import _batch
+
 TIRES = [PointTire(), MultiPointTire(4), DiskTire(spacing=0.02), RigidDiskTire(spacing=0.02)]
 CAR = quarter_car(sprung_mass=400.0, unsprung_mass=50.0, suspension_stiffness=40e3, suspension_damping=2e3,
                   tire_stiffness=400e3, tire_damping=500.0)
@@ -181,13 +183,7 @@ def test_batch_lanes_that_lift_off_equal_the_full_kernel_and_single_runs(tire):
     roads = [with_defects(RoadProfile.flat(-20.0, 20.0), [Defect.of_kind("bump", start=-1.5, size=h)]) if h else
              RoadProfile.flat(-20.0, 20.0) for h in heights]
     template = Crossing(SHORT, CAR, tire=tire, road=roads[2], speed=10.0, approach=2.0, free_vibration=0.0, dt=5e-4)
-    batch = BatchSolver(template)
-    before = dict(integrators.LEAN_COUNTS)
-    lanes = batch.run_many(roads)
-    ran = {k: integrators.LEAN_COUNTS[k] - before[k] for k in before}
-    with integrators.without_lean():
-        full = batch.run_many(roads)
-    alone = [simulate(template.with_road(r)) for r in roads]
+    lanes, full, alone, ran = _batch(template, roads)
     lifted = [bool(np.any(r.wheel_forces[:, 0] == 0.0)) for r in full]
     assert lifted == [False, False, True, False]
     if isinstance(tire, RigidDiskTire):

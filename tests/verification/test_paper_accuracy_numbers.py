@@ -7,21 +7,18 @@ The reference of every ΔIM is independent of the integrator under study: classi
 paper's integrator) at its own automatic step, on the same crossings."""
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import pytest
+
+from tests.verification.test_convergence_numbers import _script as _load, recomputed_equals_stored
 
 ROOT = Path(__file__).resolve().parents[2]
 HINT = "run python docs/scripts/paper_accuracy_numbers.py, then python docs/scripts/generate.py"
 
 
 def _script():
-    spec = importlib.util.spec_from_file_location("vbikit_docs_paper_accuracy_numbers",
-                                                  ROOT / "docs" / "scripts" / "paper_accuracy_numbers.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return _load("paper_accuracy_numbers")
 
 
 def test_page_quotes_the_stored_numbers():
@@ -66,10 +63,4 @@ def test_worst_crossing_is_the_largest_and_its_series_starts_at_its_checked_run(
 
 @pytest.mark.slow
 def test_the_script_reproduces_the_stored_numbers():
-    from tests.docs.test_numbers import _close
-
-    script = _script()
-    stored, now = script.stored(), script.compute()
-    for key in ("date", "wall_s"):
-        stored.pop(key), now.pop(key)
-    _close(now, stored, "paper-accuracy-numbers", HINT, 1e-9)
+    recomputed_equals_stored(_script(), "paper-accuracy-numbers", HINT, 1e-9)
