@@ -3,7 +3,6 @@ envelopes, and the right-hand side of the coupled equations. (``vbikit.solve.ker
 equations and conventions.)"""
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
@@ -18,7 +17,7 @@ def hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row):
     arithmetic, for the bundle kernels (``shape_point``) and the lean one."""
     _, n_grid, n_m = values.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     u = (x - start[tr]) / grid_h
-    i = np.int64(u)  # (truncated as int(u), which numba compiles as an overload of its own)
+    i = int(u)
     if i > n_grid - 2:
         i = n_grid - 2
     t = u - i
