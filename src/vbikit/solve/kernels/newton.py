@@ -70,8 +70,12 @@ def _lu_solve(a, n, piv, b):
 #: (``lean._quasi``): not compiled on their own and then optimised again in each caller's LLVM module
 #: (numba links a compiled helper into every caller's module, where LLVM optimises it and makes its
 #: machine code again); ≈ −0.15 s of the default path's cold compile (benchmarks/README.md)
-lu_factor_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(_lu_factor.py_func)
-lu_solve_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(_lu_solve.py_func)
+#: (``getattr``: with NUMBA_DISABLE_JIT=1, as the kernel-coverage job runs, ``njit`` returns the Python
+#: function itself, without ``py_func``)
+lu_factor_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(
+    getattr(_lu_factor, "py_func", _lu_factor))
+lu_solve_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(
+    getattr(_lu_solve, "py_func", _lu_solve))
 
 
 @_internal
