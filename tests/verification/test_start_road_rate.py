@@ -47,6 +47,17 @@ def test_secant_rate_at_the_start_reads_the_road_ahead_by_hand():
     assert road.secant_rate(x0, -SPEED, -a_time) == pytest.approx(-SPEED * LEFT, rel=1e-9)
 
 
+def test_run_rates_read_ahead_at_the_first_step_end_only():
+    # a point on the kink at three step ends (time along either axis): the start reads the slope ahead,
+    # the later step ends (on the kink again, the same position) the centred secant; both by hand
+    road, span = _v_road(), 1e-3
+    x = np.full(3, -APPROACH)
+    ahead, centred = SPEED * RIGHT, SPEED * (LEFT + RIGHT) / 2
+    np.testing.assert_allclose(road.run_rates(x, SPEED, span), [ahead, centred, centred], rtol=1e-9)
+    np.testing.assert_allclose(road.run_rates(np.stack([x, x]), SPEED, span, axis=1),
+                               [[ahead, centred, centred]] * 2, rtol=1e-9)
+
+
 def _crossing(integrator: str, dt: float) -> Crossing:
     beam = EulerBernoulliBeam(8.0, 2e9, 4e3, 0.02, n_modes=4)
     return Crossing(beam, quarter_car(), road=_v_road(), speed=SPEED, approach=APPROACH, free_vibration=0.1,

@@ -511,9 +511,7 @@ def wheel_force_step_bound(result: CrossingResult) -> NDArray[np.float64]:
     for line, profile in enumerate(lines):
         on = np.minimum(pts.line, 1) == line
         if profile is not None and on.any():
-            rate = profile.secant_rate(x[:, on], vx[:, on], span)
-            rate[0] = profile.secant_rate(x[0, on], vx[0, on], -span)  # the run's start: the road ahead only
-            gap[:, on] = vx[:, on] * profile.evaluate(x[:, on])[1] - rate
+            gap[:, on] = vx[:, on] * profile.evaluate(x[:, on])[1] - profile.run_rates(x[:, on], vx[:, on], span)
     by_wheel = np.zeros((pts.wheel.size, n_w))
     by_wheel[np.arange(pts.wheel.size), pts.wheel] = pts.damping
     return np.abs(gap @ by_wheel).max(axis=0)

@@ -147,7 +147,7 @@ def surface_under_lines(crossing, x: NDArray[np.float64], phi: NDArray[np.float6
     tire.  The rate as the engine's implicit integrators read it (``vbikit.solve.kernels``, "the road
     rate"): the road's secant over the half steps around each sample, v (r(x + a) − r(x − a)) / 2a
     with a = v dt/2, at the first sample the road ahead only, v (r(x + a) − r(x)) / a
-    (``RoadProfile.secant_rate``; ``vehicle_on_surface`` takes the input as linear
+    (``RoadProfile.run_rates``; ``vehicle_on_surface`` takes the input as linear
     between samples, so its sum over the steps is then the road crossed), plus the deck's rate,
     smooth, by second-order differences (``numpy.gradient``)."""
     deck = np.einsum("ltm,tm->tl", phi, xi)
@@ -155,8 +155,7 @@ def surface_under_lines(crossing, x: NDArray[np.float64], phi: NDArray[np.float6
     if crossing.road is not None:
         r = crossing.road.elevation(x.ravel())
         speed = float(crossing.vehicles[0].speed)
-        rate = crossing.road.secant_rate(x, speed, 0.5 * dt)
-        rate[:, 0] = crossing.road.secant_rate(x[:, 0], speed, -0.5 * dt)  # the start: the road ahead only
+        rate = crossing.road.run_rates(x, speed, 0.5 * dt, axis=1)  # (the start: the road ahead only)
         s, s_dot = s + r.reshape(x.shape).T, s_dot + rate.T
     return s, s_dot
 

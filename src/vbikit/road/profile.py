@@ -135,6 +135,18 @@ class RoadProfile:
         secant = (self._extended(hi) - self._extended(lo)) / width
         return vx * (secant if np.all(a > 0.0) else np.where(a > 0.0, secant, self.evaluate(x)[1]))
 
+    def run_rates(self, x: ArrayLike, vx: ArrayLike, span: float, axis: int = 0) -> NDArray[np.float64]:
+        """The road rates [m/s] the implicit integrators read at a run's step ends (``secant_rate``):
+        positions ``x`` [m] and x-rates ``vx`` [m/s] with time along ``axis``, its first entry the
+        run's start, read over the road ahead only (``span`` negated), every other entry the secant
+        over ±|vx|·``span`` [s] (dt/2)."""
+        x = np.asarray(x, float)
+        vx = np.broadcast_to(np.asarray(vx, float), x.shape)
+        rate = self.secant_rate(x, vx, span)
+        first = (slice(None),) * (axis % x.ndim) + (0,)
+        rate[first] = self.secant_rate(x[first], vx[first], -span)
+        return rate
+
     def _extended(self, x: NDArray[np.float64]) -> NDArray[np.float64]:
         """r(x) [m], beyond the profile's ends along its end segments."""
         inside = np.clip(x, self.x[0], self.x[-1])

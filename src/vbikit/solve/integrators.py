@@ -159,7 +159,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, call.lanes, 0)
         return
     if len(call.lanes) == 1:
-        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step), tol, call.stride,
+        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step, start=True), tol, call.stride,
                                          *_lean_work(call))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
@@ -182,7 +182,7 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     from vbikit.solve.compile_notice import announce_compile
 
     announce_compile(kernels.lean_lanes)  # its own compiled kernel: a batch's first run may compile it
-    args = _lean_arguments(call, modal_step, vehicle_step, lanes=True)
+    args = _lean_arguments(call, modal_step, vehicle_step, lanes=True, start=True)
     n_l, n_cp = call.outputs[0].shape[0], call.data.n_points
     stride, n_steps = call.stride, call.n_steps
     chunk = max(LANES_CHUNK // stride, 1) * stride
@@ -303,7 +303,7 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
 
 
 def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep",
-                    lanes: bool = False, start: bool = True) -> tuple:
+                    lanes: bool = False, *, start: bool) -> tuple:
     """The lean kernels' arguments (``kernels.lean``; ``kernels.lean_lanes`` with ``lanes``) of
     ``call`` (``start``: its motion begins at the run's start, ``_span``), up to ``tol`` and
     ``stride`` (the one-lane kernel's work spaces follow those:
