@@ -35,7 +35,7 @@ def test_asked_outputs_only_same_values(tmp_path, small_study_dict, monkeypatch)
     full = run_study(parse_study(_small(small_study_dict)), tmp_path / "full.nc", workers=1)
     seen = _effects_counter(monkeypatch)
     one = run_study(parse_study(_small(small_study_dict) | {"outputs": ["impact_factor"]}), tmp_path / "im.nc", workers=1)
-    assert set(one.data_vars) == {"impact_factor"}
+    assert set(one.data_vars) == {"impact_factor", "unconverged_steps"}  # the crossing's quality always (QUALITY_OUTPUTS)
     assert set(full.data_vars) == set(OUTPUTS)  # without the key: the whole catalogue, as before
     np.testing.assert_array_equal(one["impact_factor"].values, full["impact_factor"].values)
     assert np.all(np.isfinite(one["impact_factor"].values))
@@ -49,7 +49,8 @@ def test_load_effect_output_reduces_its_kind_only(tmp_path, small_study_dict, mo
     seen = _effects_counter(monkeypatch)
     asked = ["moment_impact_factor", "n_steps", "strain_impact_factor"]
     ds = run_study(parse_study(_small(small_study_dict) | {"outputs": asked}), tmp_path / "m.nc", workers=1)
-    assert list(ds.data_vars) == ["strain_impact_factor", "moment_impact_factor", "n_steps"]  # catalogue order
+    assert list(ds.data_vars) == ["strain_impact_factor", "moment_impact_factor", "n_steps",
+                                  "unconverged_steps"]  # catalogue order
     for name in asked:
         np.testing.assert_array_equal(ds[name].values, full[name].values, err_msg=name)
     assert seen and all(kinds == ("moment",) for kinds in seen)
@@ -80,7 +81,7 @@ def test_paper_studies_ask_for_what_their_figures_plot():
     d = paper_study_dict("fig10", 1)
     assert d["outputs"] == list(PAPER_OUTPUTS) and "impact_factor" in PAPER_OUTPUTS  # plot_paper_figure's variable
     assert not any(OUTPUTS[n].effect for n in PAPER_OUTPUTS)  # no moment, shear or reaction per crossing
-    assert parse_study(d).output_names == PAPER_OUTPUTS
+    assert parse_study(d).output_names == (*PAPER_OUTPUTS, "unconverged_steps")  # and the quality output, always
 
 
 def test_cli_study_file_with_outputs(tmp_path):
@@ -100,7 +101,7 @@ def test_cli_study_file_with_outputs(tmp_path):
     import xarray as xr
 
     with xr.open_dataset(tmp_path / "r.nc") as ds:
-        assert set(ds.data_vars) == {"min_tire_force", "n_steps"} and np.all(ds["n_steps"].values > 100)
+        assert set(ds.data_vars) == {"min_tire_force", "n_steps", "unconverged_steps"} and np.all(ds["n_steps"].values > 100)
     (tmp_path / "bad.toml").write_text(study.replace('"min_tire_force"', '"min_tyre_force"'))
     res = CliRunner().invoke(app, ["study", "validate", str(tmp_path / "bad.toml")])
     assert res.exit_code == 2 and "outputs: unknown output 'min_tyre_force'; allowed: impact_factor" in res.output

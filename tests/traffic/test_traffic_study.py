@@ -134,7 +134,8 @@ def test_a_stream_reduces_only_the_outputs_it_asks_for(stream, tmp_path, monkeyp
     job = traffic_study(stream, BASE, lanes=[-1.8, 1.8], seed=5, batch_size=4, outputs=["max_abs_acceleration"])
     some = run_study(job, tmp_path / "b.nc", workers=1)
     assert calls == []
-    stored = {"max_abs_acceleration", "impact_factor", "max_dynamic_displacement", "max_static_displacement", "n_steps"}
+    stored = {"max_abs_acceleration", "impact_factor", "max_dynamic_displacement", "max_static_displacement", "n_steps",
+              "unconverged_steps"}
     from vbikit.outputs import OUTPUTS
 
     assert {k for k in some.data_vars if k in OUTPUTS} == stored

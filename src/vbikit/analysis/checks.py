@@ -132,6 +132,10 @@ FLAG_CODES: dict[str, str] = {
     "step_not_converged": "impact factors still changing when the step was last halved (the step check); output: "
                           "the quantity that changed most; value: its change, threshold: the tolerance",
     "non_finite": "an output that is not a finite number (written as null); output: its key",
+    "contact_not_converged": "implicit integrators: steps whose end-of-step contact forces did not settle to their "
+                             "tolerance within the iteration limit (the run went on with the last iterate); output: "
+                             "unconverged_steps; value: their number (in a dataset: in the worst crossing or event), "
+                             "threshold: 0",
     "lift_off": "random run: a tire lifts off with a probability above the linear theory's limit; value: the "
                 "probability, threshold: the limit",
     "sagging_over_pier": "a moment over an interior support whose largest static value is sagging (a soft "
@@ -827,8 +831,48 @@ def realisation_flags(crossing: Crossing) -> list[Flag]:
                  subject="road.seed", value=None if o.seed is None else float(o.seed))]
 
 
+#: what a ``contact_not_converged`` flag advises
+UNCONVERGED_ADVICE = ("the states after those steps carry a contact-force error above the tolerance; run again with a "
+                      "shorter crossing.dt (a stiff, heavily damped tire on a light wheel needs one), or check with "
+                      "integrator = \"rk4\", which does not iterate")
+
+
+def convergence_flags(result: CrossingResult) -> list[Flag]:
+    """One flag when the implicit integrator's contact forces did not settle in some steps
+    (``CrossingResult.unconverged_steps``)."""
+    n = int(result.unconverged_steps)
+    if n <= 0:
+        return []
+    dt = result.integration_dt or result.dt
+    steps = max(int(round((float(result.time[-1]) - float(result.time[0])) / dt)), 1)
+    return [Flag("contact_not_converged",
+                 f"the contact forces did not converge in {n} of the run's {steps} time steps: {UNCONVERGED_ADVICE}",
+                 output="unconverged_steps", value=float(n), threshold=0.0)]
+
+
+def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
+                              describe: Callable[[tuple[int, ...]], str] | None = None) -> list[Flag]:
+    """The ``contact_not_converged`` rule over a dataset of many crossings (a study's grid, a traffic
+    stream's events): ``counts`` (...) each crossing's ``unconverged_steps`` (NaN: not known); one flag
+    when any is above 0: how many crossings, the worst and its count (``describe``: the words naming a
+    crossing by its index into ``counts``; default "crossing 12", the flat index)."""
+    c = np.asarray(counts, float)
+    flagged = np.nan_to_num(c, nan=0.0) > 0.0
+    if not flagged.any():
+        return []
+    k = int(np.argmax(np.nan_to_num(c, nan=0.0)))
+    index = tuple(int(i) for i in np.unravel_index(k, c.shape))
+    worst = describe(index) if describe else f"{unit} {k}"
+    return [Flag("contact_not_converged",
+                 f"the contact forces did not converge in some time steps of {int(flagged.sum())} of {c.size} {unit}s "
+                 f"(variable unconverged_steps; the most: {int(c.reshape(-1)[k])} steps in {worst}): "
+                 f"{UNCONVERGED_ADVICE}", output="unconverged_steps", value=float(c.reshape(-1)[k]), threshold=0.0)]
+
+
 def run_flags(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[Flag]:
     """Every flag about a finished crossing: its inputs, its contact losses, wheels airborne long
-    enough to dominate the impact factors and a random road's one realisation (``realisation_flags``)."""
+    enough to dominate the impact factors, steps whose contact forces did not converge
+    (``convergence_flags``) and a random road's one realisation (``realisation_flags``)."""
     return (input_flags(result.crossing, result.dt, response_x, response_y) + contact_flags(result)
-            + airborne_flags(result) + wheel_force_step_flags(result) + realisation_flags(result.crossing))
+            + airborne_flags(result) + wheel_force_step_flags(result) + convergence_flags(result)
+            + realisation_flags(result.crossing))

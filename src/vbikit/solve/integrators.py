@@ -93,6 +93,10 @@ class KernelCall:
     deferred : set of str
         Filled by the run: ``"q_ddot"`` when it left the vehicles' accelerations (``outputs[5]``)
         unfilled; the results then compute them when read (``vbikit.solve.result.DeferredAccelerations``).
+    unconverged : dict of int to int
+        Filled by the run: per lane, the steps whose contact forces did not settle within
+        ``IMPLICIT_MAX_ITERATIONS`` (lanes without any are left out; a call of the full kernel over
+        several lanes counts a step for every lane when any of them did not settle).
     """
 
     crossing: "Crossing"
@@ -105,6 +109,7 @@ class KernelCall:
     lanes: tuple
     stride: int
     deferred: set = field(default_factory=set, compare=False, repr=False)
+    unconverged: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 #: run implicit calls through the lean kernels first (``vbikit.solve.kernels.lean`` for one lane,
@@ -216,7 +221,7 @@ def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicl
     row = stop // call.stride
     first = row * call.stride
     _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), _lane_road(call.road, lane),
-          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), (0,), first)
+          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), (0,), first, lane)
 
 
 def _lean_work(call: KernelCall) -> tuple:
@@ -268,7 +273,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                   "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
                   first)
         _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), road,
-              tuple(a[:, row:end // stride + 1] for a in one.outputs), (0,), first)
+              tuple(a[:, row:end // stride + 1] for a in one.outputs), (0,), first, lane)
         if end >= n_steps or end % stride:
             return
         row = end // stride
@@ -288,8 +293,10 @@ def _steps(motion: "Motion", first: int, end: int) -> "Motion":
 
 
 def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, motion: "Motion",
-          road: "Road", outputs: tuple, lanes: tuple, first: int) -> None:
-    """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``."""
+          road: "Road", outputs: tuple, lanes: tuple, first: int, lane: int | None = None) -> None:
+    """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``;
+    its unsettled steps are counted in ``call.unconverged`` for lane ``lane`` (None: every lane of
+    ``outputs``)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
@@ -298,6 +305,8 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
                                               IMPLICIT_MAX_ITERATIONS, lanes, call.stride, _span(call, first == 0))
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
     if unsettled:
+        for k in range(outputs[0].shape[0]) if lane is None else (lane,):
+            call.unconverged[k] = call.unconverged.get(k, 0) + int(unsettled)
         log.warning("%s: the contact forces did not converge within %d iterations in %d of %d steps",
                     name, IMPLICIT_MAX_ITERATIONS, unsettled, call.n_steps)
 

@@ -211,6 +211,13 @@ class CrossingResult:
         the static reference is read from the same tables without tabulating them again.  Shared
         with the crossing (``Crossing.kept``) and its later runs: not to be written to (kept
         writeable only because numba compiles a separate kernel for read-only arrays).
+    unconverged_steps : int
+        Integration steps of an implicit integrator whose end-of-step contact forces did not settle
+        to their tolerance within the iteration limit (``vbikit.solve.integrators.IMPLICIT_TOLERANCE``,
+        ``IMPLICIT_MAX_ITERATIONS``); the run goes on with the last iterate, so the states after such a
+        step carry a force error above the tolerance.  0 for a sound run (and for RK4, which does
+        not iterate); a crossing run as one lane of a rigid-disk batch counts the steps where any
+        lane of its kernel call did not settle.  Flagged (``contact_not_converged``).
     """
 
     crossing: Crossing
@@ -228,6 +235,7 @@ class CrossingResult:
     contact_lengths: NDArray[np.float64]
     integration_dt: float | None = None
     kernel_data: Any = field(default=None, repr=False, compare=False)
+    unconverged_steps: int = 0
 
     @property
     def travel(self) -> NDArray[np.float64]:

@@ -142,7 +142,8 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
         q_l, dq_l, f_l = q[lane], dq[lane], wheel_force[lane]
         ddq_l = DeferredAccelerations(data.vehicles, q_l, dq_l, f_l, ddq[lane]) if deferred else ddq[lane]
         results.append(CrossingResult(c, time, dt * stride, front, speed, xi[lane], dxi[lane], ddxi[lane], q_l, dq_l,
-                                      ddq_l, f_l, wheel_len[lane], integration_dt=dt, kernel_data=data))
+                                      ddq_l, f_l, wheel_len[lane], integration_dt=dt, kernel_data=data,
+                                      unconverged_steps=call.unconverged.get(lane, 0)))
         results[-1].keep_travel(travel)
     return results
 

@@ -401,24 +401,29 @@ def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[st
                      spans: NDArray) -> dict[str, str]:
     """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``):
     an implausible static deflection in any crossing (``implausible_deflection_dataset_flags``: its
-    peak ``max_static_displacement`` against the crossing's longest span ``spans`` [m]) and the response
-    points whose impact factor rests on a small static reference (``small_static_dataset_warnings``);
-    both need ``max_static_displacement`` among the study's outputs, the second ``impact_factor`` and
-    several points too."""
+    peak ``max_static_displacement`` against the crossing's longest span ``spans`` [m]), the response
+    points whose impact factor rests on a small static reference (``small_static_dataset_warnings``)
+    and crossings whose contact forces did not converge in some steps (``unconverged_dataset_flags``);
+    each needs its output among the study's outputs (``max_static_displacement``; for the second
+    ``impact_factor`` and several points too; ``unconverged_steps``)."""
     from vbikit.analysis.checks import (dataset_flag_attrs, implausible_deflection_dataset_flags,
-                                        small_static_dataset_warnings)
-
-    if "max_static_displacement" not in data:
-        return {}
-    static = data["max_static_displacement"]
+                                        small_static_dataset_warnings, unconverged_dataset_flags)
 
     def describe(index: tuple[int, ...]) -> str:
         return "the crossing at " + ", ".join(f"{a.key} = {a.scenario_value(i)}" for a, i in zip(study.axes, index)) \
             if study.axes else "the crossing"
 
-    flags = implausible_deflection_dataset_flags(static, spans, names, describe=describe)
-    small = (small_static_dataset_warnings(names, static)
-             if names is not None and len(names) > 1 and "impact_factor" in data else [])
+    flags = []
+    small: list = []
+    if "max_static_displacement" in data:
+        static = data["max_static_displacement"]
+        flags += implausible_deflection_dataset_flags(static, spans, names, describe=describe)
+        small = (small_static_dataset_warnings(names, static)
+                 if names is not None and len(names) > 1 and "impact_factor" in data else [])
+    if "unconverged_steps" in data:
+        flags += unconverged_dataset_flags(data["unconverged_steps"], describe=describe)
+    if not flags and not small:
+        return {}
     return dataset_flag_attrs(flags, {"small_static": small})
 
 

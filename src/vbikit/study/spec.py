@@ -48,7 +48,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from vbikit._toml import parse_toml, read_toml
 from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
-from vbikit.outputs import outputs as catalogue_outputs, select_outputs
+from vbikit.outputs import QUALITY_OUTPUTS, outputs as catalogue_outputs, select_outputs
 from vbikit.contact.registry import TIRE_MODELS
 from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario, section_keys
 
@@ -257,8 +257,10 @@ class Study:
 
     @property
     def output_names(self) -> tuple[str, ...]:
-        """The outputs each crossing is reduced to and the dataset holds, in catalogue order."""
-        return tuple(o.name for o in catalogue_outputs(names=self.outputs))
+        """The outputs each crossing is reduced to and the dataset holds, in catalogue order: those
+        asked for (all by default) and ``vbikit.outputs.QUALITY_OUTPUTS`` always."""
+        names = None if self.outputs is None else (*self.outputs, *QUALITY_OUTPUTS)
+        return tuple(o.name for o in catalogue_outputs(names=names))
 
     @property
     def shape(self) -> tuple[int, ...]:

@@ -31,11 +31,11 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.checks import Flag, airborne_wheels
+from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import OUTPUTS, outputs, select_outputs
+from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
@@ -61,8 +61,9 @@ EVENT_EXTRAS: dict[str, tuple[str, str]] = {
                              "impacts, not design values"),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
-#: (``stream_statistics``) and figure read them, the resume check reads the step counts
-STREAM_OUTPUTS = ("impact_factor", "max_dynamic_displacement", "max_static_displacement", "n_steps")
+#: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
+#: flags read the events' quality (``vbikit.outputs.QUALITY_OUTPUTS``)
+STREAM_OUTPUTS = ("impact_factor", "max_dynamic_displacement", "max_static_displacement", "n_steps", *QUALITY_OUTPUTS)
 #: per-vehicle outputs
 VEHICLE_OUTPUTS: dict[str, tuple[str, str]] = {
     "vehicle_min_wheel_force": ("N", "the vehicle's smallest wheel force in its event"),
@@ -308,7 +309,8 @@ class TrafficStudy:
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
             **step_attrs,
-            **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags),
+            **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
+                              + unconverged_dataset_flags(ev["unconverged_steps"], "event")),
         }
         return ds
 
