@@ -413,6 +413,8 @@ def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[st
         return "the crossing at " + ", ".join(f"{a.key} = {a.scenario_value(i)}" for a, i in zip(study.axes, index)) \
             if study.axes else "the crossing"
 
+    if "max_static_displacement" not in data and "unconverged_steps" not in data:
+        return {}
     flags = []
     small: list = []
     if "max_static_displacement" in data:
@@ -422,8 +424,6 @@ def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[st
                  if names is not None and len(names) > 1 and "impact_factor" in data else [])
     if "unconverged_steps" in data:
         flags += unconverged_dataset_flags(data["unconverged_steps"], describe=describe)
-    if not flags and not small:
-        return {}
     return dataset_flag_attrs(flags, {"small_static": small})
 
 
