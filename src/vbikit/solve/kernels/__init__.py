@@ -43,7 +43,8 @@ road behind it: the static start and a kernel call's first evaluation when the c
 run's start (``span`` < 0, ``integrators._span``) read the secant over the road ahead only,
 v (r(x_p + a) − r(x_p)) / a driving +x (the mirror driving −x; ``secant_ends``), whose limit is the slope of the cell
 the point moves into, as RK4 reads it: the two integrators then converge to one answer where a point
-starts on a station.
+starts on a station (on it within rounding: ``contact.road_cell`` takes a point within ``ON_STATION``
+of a cell's width of a station to be on it, so that RK4's cell is not the one behind the point).
 
 A point on track k is on the deck while start_k ≤ x_p ≤ end_k (the track's own span: 0 … span,
 shifted by y tan θ on a skew deck, whose oblique support lines cross each track elsewhere); off

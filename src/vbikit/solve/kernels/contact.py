@@ -84,13 +84,24 @@ def first_cell(stations, x):
     return lo
 
 
+#: a position within this fraction of its cell's width of a station is on that station
+#: (``road_cell``): stations x0 + h·i and positions origin ± travel carry rounding errors of some
+#: 1e-14 m, far below it; a point between them for 1e-11 m of a 1 cm cell passes in picoseconds.
+ON_STATION = 1e-9
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def road_cell(stations, x, vx, idx, p):
     """The road cell i (stations[i] ≤ x < stations[i + 1]) whose line interpolates the road at
     position ``x`` [m] of point ``p`` moving at ``vx`` [m/s]: ``idx[p]`` is the point's station
     pointer (−1 before its first use: found by ``first_cell``), moved either way and stored.  On a
     station the cell is the one the point moves into: on its +x side, or on its −x side when vx < 0
-    (a vehicle driving −x sees the mirror of what one driving +x sees)."""
+    (a vehicle driving −x sees the mirror of what one driving +x sees).  A point is on a station
+    within ``ON_STATION`` of the cell's width, either side: a point that starts on a station (a whole
+    number of stations from the road's origin) is computed a rounding error (≈ 1e-14 m) to one side
+    of it, and the cell that error picks gave RK4's start road rate (the static start's dashpot
+    load) the slope of the cell behind the point, whose start then differed from the implicit
+    integrators' (which read the road ahead over half a step, ``secant_ends``) by c·v·Δslope/k."""
     n_s = stations.size
     i = idx[p]
     if i < 0:
@@ -100,8 +111,12 @@ def road_cell(stations, x, vx, idx, p):
     while i > 0 and stations[i] > x:
         i -= 1
     idx[p] = i
-    if vx < 0.0 and i > 0 and stations[i] == x:  # on a station, driving −x: the cell behind it
-        i -= 1
+    tol = ON_STATION * (stations[i + 1] - stations[i])
+    if vx < 0.0:  # on station i (or just past it): the cell behind it, the one the point moves into
+        if i > 0 and x - stations[i] <= tol:
+            i -= 1
+    elif i < n_s - 2 and stations[i + 1] - x <= tol:  # on station i + 1, just short of it: the cell ahead
+        i += 1
     return i
 
 
