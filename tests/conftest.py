@@ -25,6 +25,15 @@ _CACHE = tempfile.mkdtemp(prefix="vbikit-test-cache-")
 os.environ["VBIKIT_CACHE_DIR"] = _CACHE
 atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)
 
+#: a folder shared by the whole run: made by the process pytest was started in (before it starts the
+#: xdist workers, which inherit the variable) and removed when that process exits; for the workers'
+#: lock files and for what they build once for all (the kernels, the strict docs site)
+RUN_DIR_VARIABLE = "VBIKIT_TEST_RUN_DIR"
+if RUN_DIR_VARIABLE not in os.environ or "PYTEST_XDIST_WORKER" not in os.environ:
+    os.environ[RUN_DIR_VARIABLE] = tempfile.mkdtemp(prefix="vbikit-test-run-")
+    atexit.register(shutil.rmtree, os.environ[RUN_DIR_VARIABLE], ignore_errors=True)
+RUN_DIR = os.environ[RUN_DIR_VARIABLE]
+
 
 def _silence_process_exit() -> None:
     devnull = os.open(os.devnull, os.O_WRONLY)
@@ -148,23 +157,33 @@ def _share_the_kernel_compilation(folder: str) -> None:
 def pytest_collection_finish(session) -> None:
     """In an xdist worker of a distributed run of the whole suite (or most of it): share the kernel
     compilation out before the first test (``_share_the_kernel_compilation``)."""
-    run = os.environ.get("PYTEST_XDIST_TESTRUNUID")
     workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
-    if not run or workers < 2 or len(session.items) < SHARED_COMPILE_MIN_TESTS or os.name != "posix":
+    if "PYTEST_XDIST_WORKER" not in os.environ or workers < 2 or len(session.items) < SHARED_COMPILE_MIN_TESTS:
         return
     _lock_numba_cache_writes()
-    folder = _compile_folder(run)
+    folder = os.path.join(RUN_DIR, "kernels")
     os.makedirs(folder, exist_ok=True)
     _share_the_kernel_compilation(folder)
 
 
-def _compile_folder(run: str) -> str:
-    """The lock files and markers of distributed run ``run`` (xdist's test-run id)."""
-    return os.path.join(tempfile.gettempdir(), f"vbikit-test-compile-{run}")
+@pytest.fixture(scope="session")
+def strict_site() -> dict:
+    """The documentation site built once for the whole run with ``mkdocs build --strict`` (from this
+    tree's ``src``), by the first worker that asks, under a lock; the others wait and read the same
+    build: ``{"site": folder, "returncode": …, "output": stdout + stderr}``."""
+    import subprocess
+    import sys
+    from pathlib import Path
 
-
-def pytest_sessionfinish(session) -> None:
-    """A worker at the end of the run removes the run's lock files (long after the shared compile)."""
-    run = os.environ.get("PYTEST_XDIST_TESTRUNUID")
-    if run:
-        shutil.rmtree(_compile_folder(run), ignore_errors=True)
+    root = Path(__file__).resolve().parents[1]
+    site, result = os.path.join(RUN_DIR, "site"), os.path.join(RUN_DIR, "site.json")
+    with _flock(os.path.join(RUN_DIR, "site.lock")):
+        if not os.path.exists(result):
+            env = {**os.environ, "NO_MKDOCS_2_WARNING": "1",
+                   "PYTHONPATH": os.pathsep.join(filter(None, [str(root / "src"), os.environ.get("PYTHONPATH")]))}
+            res = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-d", site], cwd=root,
+                                 capture_output=True, text=True, env=env)
+            with open(result, "w", encoding="utf-8") as f:
+                json.dump({"site": site, "returncode": res.returncode, "output": res.stdout + res.stderr}, f)
+        with open(result, encoding="utf-8") as f:
+            return json.load(f)
