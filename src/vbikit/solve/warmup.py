@@ -9,7 +9,8 @@ implicit integrator: the many-lane lean kernel, and the many-lane full one of ri
 rigid-disk crossing for the general static start), the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
-the cache — exactly those variants.
+the cache — exactly those variants; ``kernel_groups`` hands the same work out as groups that share
+no kernel, for several processes compiling at once (the test suite's workers).
 """
 from __future__ import annotations
 
