@@ -1,18 +1,39 @@
 """Test-wide settings: the slab-on-girder mode cache goes to a throw-away directory, so tests
-never read modes cached by an earlier version of the code and never write to the user's home."""
+never read modes cached by an earlier version of the code and never write to the user's home.
+
+In a distributed run (pytest-xdist, the default) the workers first share the kernel compilation
+out (``_share_the_kernel_compilation``): each has some of the groups of
+``vbikit.solve.warmup.kernel_groups`` (and the pseudo-excitation and load-effect kernels) compiled
+in a child process, and every test process then loads them from numba's disk cache, instead of
+every worker compiling each kernel its tests meet; numba's cache writes are serialised between the
+processes (``_lock_numba_cache_writes``)."""
 from __future__ import annotations
 
 import atexit
+import contextlib
+import fcntl
 import json
+import logging
 import os
 import shutil
 import tempfile
+import time
+from collections.abc import Callable, Iterator
 
 import pytest
 
 _CACHE = tempfile.mkdtemp(prefix="vbikit-test-cache-")
 os.environ["VBIKIT_CACHE_DIR"] = _CACHE
 atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)
+
+#: a folder shared by the whole run: made by the process pytest was started in (before it starts the
+#: xdist workers, which inherit the variable) and removed when that process exits; for the workers'
+#: lock files and for what they build once for all (the kernels, the strict docs site)
+RUN_DIR_VARIABLE = "VBIKIT_TEST_RUN_DIR"
+if RUN_DIR_VARIABLE not in os.environ or "PYTEST_XDIST_WORKER" not in os.environ:
+    os.environ[RUN_DIR_VARIABLE] = tempfile.mkdtemp(prefix="vbikit-test-run-")
+    atexit.register(shutil.rmtree, os.environ[RUN_DIR_VARIABLE], ignore_errors=True)
+RUN_DIR = os.environ[RUN_DIR_VARIABLE]
 
 
 def _silence_process_exit() -> None:
@@ -49,3 +70,136 @@ def _study_toml(d: dict) -> str:
 def study_toml():
     """The function writing a study dict as study-file text (shared by the study and trust tests)."""
     return _study_toml
+
+
+#: a distributed run of fewer tests than this compiles only what its tests use (on first use), as
+#: a run of a few test files should; the whole suite (about 2,400 tests) shares the compilation out
+SHARED_COMPILE_MIN_TESTS = 500
+
+log = logging.getLogger(__name__)
+
+
+@contextlib.contextmanager
+def _flock(path: str, blocking: bool = True) -> Iterator[bool]:
+    """An exclusive ``flock`` on ``path`` (created) for the block; yields whether it was taken (always
+    when ``blocking``).  The lock goes with the process, so a worker that dies releases it."""
+    fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o600)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | (0 if blocking else fcntl.LOCK_NB))
+        except BlockingIOError:
+            yield False
+            return
+        yield True
+    finally:
+        os.close(fd)  # closing releases the lock
+
+
+def _lock_numba_cache_writes() -> None:
+    """numba adds a compiled variant to a kernel's cache by reading the kernel's index file, adding an
+    entry with the first free data-file number and writing both files back (each write atomic, the
+    whole not): two processes adding different variants of one kernel at the same time can both
+    take number 1, and the index can then name the other variant's data (numba issues #4807,
+    #10128).  In this test run, each such read-modify-write holds a lock on the index file."""
+    from numba.core import caching
+
+    save = caching.IndexDataCacheFile.save
+    if getattr(save, "vbikit_locked", False):
+        return
+
+    def locked_save(self, key, data):
+        with _flock(self._index_path + ".lock"):
+            save(self, key, data)
+
+    locked_save.vbikit_locked = True
+    caching.IndexDataCacheFile.save = locked_save
+
+
+def _compile_groups() -> dict[str, Callable[[], object]]:
+    """What the workers share out, largest first (cold-compile CPU seconds of each, measured
+    2026-12-05: implicit-full 65, rk4 46, implicit-lanes 43, implicit-lean 10, random 5, the rest
+    about 1): ``kernel_groups`` and the pseudo-excitation and load-effect kernels (kernels of their
+    own, so that no kernel is compiled by two groups)."""
+    from vbikit.analysis.warmup import compile_effect_kernels
+    from vbikit.random.warmup import compile_random_kernels
+    from vbikit.solve.warmup import kernel_groups
+
+    groups: dict[str, Callable[[], object]] = dict(kernel_groups())
+    groups["random"] = compile_random_kernels
+    groups["effects"] = compile_effect_kernels
+    first = ["implicit-full", "rk4", "implicit-lanes", "implicit-lean"]
+    return {k: groups[k] for k in sorted(groups, key=lambda k: first.index(k) if k in first else len(first))}
+
+
+def _compile_in_subprocess(name: str) -> None:
+    """Compile group ``name`` of ``_compile_groups`` in a child process, which writes the kernels to
+    numba's disk cache: every test process then loads the same cache-built machine code.  A kernel
+    compiled inside a test process can differ from the same kernel loaded from the cache at round-off
+    (seen in this suite: 7e-10 N·m in a moment of 1.3e6 N·m), and tests that compare a run in this
+    process with one in a Dask or study worker (which loads from the cache) assert identity."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    code = ("import logging, sys; sys.path.insert(0, sys.argv[1]); import conftest; "
+            "conftest._lock_numba_cache_writes(); conftest._compile_groups()[sys.argv[2]]()")
+    res = subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent), name], capture_output=True,
+                         text=True, env=os.environ.copy())
+    if res.returncode != 0:  # a kernel that fails to compile fails the tests that run it
+        log.error("kernel group %s did not compile: %s", name, res.stderr[-2000:])
+
+
+def _share_the_kernel_compilation(folder: str) -> None:
+    """Each worker takes the next group nobody has taken (a lock file per group in ``folder``, held
+    while the group compiles, and a marker once done), has it compiled in a child process
+    (``_compile_in_subprocess``: numba writes it to its disk cache), and at the end waits for the
+    groups the others are still compiling; the tests then load every kernel from the cache."""
+    waiting = []
+    for name in _compile_groups():
+        lock, done = os.path.join(folder, name + ".lock"), os.path.join(folder, name + ".done")
+        with _flock(lock, blocking=False) as mine:
+            if not mine:
+                waiting.append(lock)
+            elif not os.path.exists(done):
+                t0 = time.perf_counter()
+                _compile_in_subprocess(name)
+                open(done, "w").close()
+                log.info("kernel group %s compiled or loaded (%.1f s)", name, time.perf_counter() - t0)
+    for lock in waiting:
+        with _flock(lock):
+            pass
+
+
+def pytest_collection_finish(session) -> None:
+    """In an xdist worker of a distributed run of the whole suite (or most of it): share the kernel
+    compilation out before the first test (``_share_the_kernel_compilation``)."""
+    workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    if "PYTEST_XDIST_WORKER" not in os.environ or workers < 2 or len(session.items) < SHARED_COMPILE_MIN_TESTS:
+        return
+    _lock_numba_cache_writes()
+    folder = os.path.join(RUN_DIR, "kernels")
+    os.makedirs(folder, exist_ok=True)
+    _share_the_kernel_compilation(folder)
+
+
+@pytest.fixture(scope="session")
+def strict_site() -> dict:
+    """The documentation site built once for the whole run with ``mkdocs build --strict`` (from this
+    tree's ``src``), by the first worker that asks, under a lock; the others wait and read the same
+    build: ``{"site": folder, "returncode": …, "output": stdout + stderr}``."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    site, result = os.path.join(RUN_DIR, "site"), os.path.join(RUN_DIR, "site.json")
+    with _flock(os.path.join(RUN_DIR, "site.lock")):
+        if not os.path.exists(result):
+            env = {**os.environ, "NO_MKDOCS_2_WARNING": "1",
+                   "PYTHONPATH": os.pathsep.join(filter(None, [str(root / "src"), os.environ.get("PYTHONPATH")]))}
+            res = subprocess.run([sys.executable, "-m", "mkdocs", "build", "--strict", "-d", site], cwd=root,
+                                 capture_output=True, text=True, env=env)
+            with open(result, "w", encoding="utf-8") as f:
+                json.dump({"site": site, "returncode": res.returncode, "output": res.stdout + res.stderr}, f)
+        with open(result, encoding="utf-8") as f:
+            return json.load(f)

@@ -9,12 +9,14 @@ implicit integrator: the many-lane lean kernel, and the many-lane full one of ri
 rigid-disk crossing for the general static start), the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
-the cache — exactly those variants.
+the cache — exactly those variants; ``kernel_groups`` hands the same work out as groups that share
+no kernel, for several processes compiling at once (the test suite's workers).
 """
 from __future__ import annotations
 
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -36,34 +38,99 @@ def _tiny_crossing(integrator: str):
     return Crossing(beam, quarter_car(), road=road, speed=20.0, approach=1.0, integrator=integrator)
 
 
+def _variants(name: str) -> dict[str, Callable[[], None]]:
+    """The crossings that compile (or load) every kernel variant of integrator ``name``, by kind:
+    ``one-lane`` (an implicit integrator: the lean kernel), ``full`` (the full implicit kernel's
+    one-lane variant, which the lean one hands over to), ``rigid-disk`` (the general static start and
+    the full kernel), ``lanes`` (a 2-road batch: an implicit integrator's many-lane lean kernel) and
+    ``full-lanes`` (the many-lane full kernel of rigid-disk batches, ``without_lean``)."""
+    from vbikit.contact import RigidDiskTire
+    from vbikit.solve.batch import BatchSolver
+    from vbikit.solve.integrators import get_integrator, without_lean
+    from vbikit.solve.simulate import simulate
+
+    crossing = _tiny_crossing(name)
+    roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
+
+    def full() -> None:
+        with without_lean():
+            simulate(crossing)
+
+    def full_lanes() -> None:
+        with without_lean():
+            BatchSolver(crossing).run_many(roads)
+
+    variants: dict[str, Callable[[], None]] = {"one-lane": lambda: simulate(crossing)}
+    if not get_integrator(name).explicit:
+        variants["full"] = full
+        variants["rigid-disk"] = lambda: simulate(replace(crossing, tire=RigidDiskTire()))
+    variants["lanes"] = lambda: BatchSolver(crossing).run_many(roads)
+    if not get_integrator(name).explicit:
+        variants["full-lanes"] = full_lanes
+    return variants
+
+
+def _moving_loads() -> None:
+    """The moving-load sweep's compiled peak loop (``vbikit.solve.moving_loads``)."""
+    from vbikit.solve.moving_loads import moving_load_sweep
+
+    from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
+
+    moving_load_sweep(_tiny_crossing(DEFAULT_INTEGRATOR).bridge, [0.0, 2.0], [1e5, 1e5], [20.0, 30.0], [2.5], dx=0.05)
+
+
 def compile_kernels() -> dict[str, float]:
     """Compile (or load from numba's cache) every kernel variant vbikit runs; returns the seconds
     each integrator took (one lane, then many lanes)."""
-    from vbikit.contact import RigidDiskTire
-    from vbikit.solve.batch import BatchSolver
-    from vbikit.solve.integrators import get_integrator, integrator_names, without_lean
-    from vbikit.solve.moving_loads import moving_load_sweep
-    from vbikit.solve.simulate import simulate
+    from vbikit.solve.integrators import integrator_names
 
     took: dict[str, float] = {}
     for name in integrator_names():
-        crossing = _tiny_crossing(name)
         t0 = time.perf_counter()
-        simulate(crossing)
-        if not get_integrator(name).explicit:
-            with without_lean():  # the full implicit kernel's one-lane variant, which the lean one hands over to
-                simulate(crossing)
-        if not get_integrator(name).explicit:  # rigid disks: the general static start and the full kernel
-            simulate(replace(crossing, tire=RigidDiskTire()))
-        roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
-        BatchSolver(crossing).run_many(roads)  # an implicit integrator: the many-lane lean kernel
-        if not get_integrator(name).explicit:
-            with without_lean():  # the many-lane full kernel (rigid-disk batches, ``without_lean``)
-                BatchSolver(crossing).run_many(roads)
+        for run in _variants(name).values():
+            run()
         took[name] = time.perf_counter() - t0
         log.info("kernels of %s ready (%.1f s)", name, took[name])
     t0 = time.perf_counter()
-    moving_load_sweep(crossing.bridge, [0.0, 2.0], [1e5, 1e5], [20.0, 30.0], [2.5], dx=0.05)
+    _moving_loads()
     took["moving-loads"] = time.perf_counter() - t0
     log.info("moving-load sweep ready (%.1f s)", took["moving-loads"])
     return took
+
+
+#: the variants of ``_variants`` that compile the same kernels for every implicit integrator (the
+#: implicit integrators differ in their step maps, which are arguments, not compiled code), grouped
+#: so that no kernel is compiled by two groups: ``one-lane`` the lean kernel; ``full`` and
+#: ``full-lanes`` the full kernel's two variants; ``rigid-disk`` and ``lanes`` the general contact
+#: evaluation's and road lookup's variants and the many-lane lean kernel
+IMPLICIT_GROUPS = {"implicit-lean": ("one-lane",), "implicit-full": ("full", "full-lanes"),
+                   "implicit-lanes": ("rigid-disk", "lanes")}
+
+
+def kernel_groups() -> dict[str, Callable[[], None]]:
+    """``compile_kernels``' work as named groups no two of which compile the same kernel, for
+    compiling them in several processes at once (the test suite's workers share them out): numba
+    writes one cache index per kernel, and two processes adding different variants of one kernel
+    at the same time could each write that index without the other's variant.  Each explicit
+    integrator is one group (its own kernel), the implicit ones share ``IMPLICIT_GROUPS``, and the
+    moving-load sweep is one more."""
+    from vbikit.solve.integrators import get_integrator, integrator_names
+
+    groups: dict[str, list[Callable[[], None]]] = {}
+    for name in integrator_names():
+        variants = _variants(name)
+        if get_integrator(name).explicit:
+            groups[name] = list(variants.values())
+            continue
+        for group, kinds in IMPLICIT_GROUPS.items():
+            groups.setdefault(group, []).extend(variants[k] for k in kinds)
+    groups["moving-loads"] = [_moving_loads]
+    return {group: _run_all(runs) for group, runs in groups.items()}
+
+
+def _run_all(runs: list[Callable[[], None]]) -> Callable[[], None]:
+    """One call running ``runs`` in order."""
+    def run() -> None:
+        for r in runs:
+            r()
+    return run

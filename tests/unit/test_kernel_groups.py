@@ -1,0 +1,46 @@
+"""``kernel_groups`` (the test run's workers share its groups out) does ``compile_kernels``' work:
+every variant of every integrator in exactly one group, so that nothing ``vbikit compile``
+compiles is left to the tests and no variant is run by two groups (checked on the variant kinds
+and on the calls made; nothing is compiled here)."""
+from __future__ import annotations
+
+from collections import Counter
+
+import pytest
+
+from vbikit.solve import warmup
+from vbikit.solve.integrators import get_integrator, integrator_names
+
+
+def test_every_variant_of_every_integrator_is_in_exactly_one_group(monkeypatch):
+    calls: list[tuple[str, str]] = []
+
+    def recording_variants(name: str) -> dict:
+        kinds = ["one-lane", "lanes"] if get_integrator(name).explicit else ["one-lane", "full", "rigid-disk", "lanes",
+                                                                              "full-lanes"]
+        return {k: (lambda k=k: calls.append((name, k))) for k in kinds}
+
+    expected = Counter((name, k) for name in integrator_names() for k in recording_variants(name))
+    monkeypatch.setattr(warmup, "_variants", recording_variants)
+    monkeypatch.setattr(warmup, "_moving_loads", lambda: calls.append(("moving-loads", "sweep")))
+    for run in warmup.kernel_groups().values():
+        run()
+    assert Counter(calls) == expected + Counter({("moving-loads", "sweep"): 1})
+
+
+def test_the_variant_kinds_are_those_of_the_warm_up_crossings():
+    """The kinds the test above assumes are the ones ``_variants`` builds (its crossings are built,
+    not run)."""
+    for name in integrator_names():
+        kinds = list(warmup._variants(name))
+        want = ["one-lane", "lanes"] if get_integrator(name).explicit else ["one-lane", "full", "rigid-disk", "lanes",
+                                                                            "full-lanes"]
+        assert kinds == want
+        if not get_integrator(name).explicit:
+            grouped = [k for ks in warmup.IMPLICIT_GROUPS.values() for k in ks]
+            assert sorted(grouped) == sorted(want)  # each implicit kind in one group
+
+
+@pytest.mark.parametrize("name", ["implicit-lean", "implicit-full", "implicit-lanes", "moving-loads"])
+def test_the_groups_are_named(name):
+    assert name in warmup.kernel_groups()
