@@ -186,3 +186,23 @@ def test_a_wide_interval_of_a_zero_level_is_written_as_null():
     e["return_levels"][0]["total"]["block_maxima"] = _level(0.0, -1.0, 1.0)
     (f,) = _flags("M", e, ATTRS)
     assert f.code == "wide_interval" and math.isinf(f.value) and f.as_dict()["value"] is None
+
+
+def test_unconverged_coupled_runs():
+    """Dataset attributes of a lifetime with 3 coupled runs whose contact forces did not converge in
+    some steps (the most, 12, in event 40007): one flag per load effect on its total levels."""
+    a = ATTRS | {"n_unconverged_events": 3, "unconverged_steps_max": 12.0, "unconverged_event": 40007}
+    (f,) = _flags("M", _clean(), a)
+    assert (f.code, f.output, f.subject, f.value, f.threshold) == ("contact_not_converged", "total return levels", "M",
+                                                                  12.0, 0.0)
+    assert "3 coupled run(s)" in f.message and "12 steps, event 40007" in f.message
+    assert _codes(_clean()) == [] and _flags("M", _clean(), ATTRS | {"n_unconverged_events": 0}) == []
+
+
+def test_unconverged_attributes_from_the_runs():
+    from vbikit.lifetime.results import _unconverged_attrs
+
+    runs = {5: {"unconverged_steps": 0.0}, 9: {"unconverged_steps": 4.0}, 11: {"unconverged_steps": 2.0}, 12: {}}
+    assert _unconverged_attrs(runs) == {"n_unconverged_events": 2, "unconverged_steps_max": 4.0, "unconverged_event": 9}
+    assert _unconverged_attrs({1: {"unconverged_steps": 0.0}}) == {"n_unconverged_events": 0,
+                                                                    "unconverged_steps_max": 0.0, "unconverged_event": -1}

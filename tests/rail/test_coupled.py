@@ -31,3 +31,38 @@ def test_train_of_stiff_cars_on_a_heavy_bridge_is_the_moving_force_train(contact
     for a, b in ((coupled.max_displacement, forces.max_displacement), (coupled.max_acceleration, forces.max_acceleration),
                  (coupled.max_effect, forces.max_effect)):
         np.testing.assert_allclose(a, b, rtol=0.01)
+
+
+def test_coupled_cars_count_unconverged_steps_per_speed_and_the_sweep_flags_them(monkeypatch, tmp_path):
+    """At one contact-law evaluation a step (``IMPLICIT_MAX_ITERATIONS`` = 1) the implicit integrator
+    cannot settle the Hertz contact of the coupled cars, so every speed counts steps; a moving-force
+    sweep has none to count (None); the counts survive the checkpoint and the report's flag names
+    the worst train and speed."""
+    import xarray as xr
+
+    from vbikit.rail.checkpoint import load, save
+    from vbikit.rail.report import unconverged_flags
+    from vbikit.solve import integrators
+
+    train = dataclasses.replace(ice3(), cars=ice3().cars[:1])  # its first car alone
+    m = 1e4
+    beam = EulerBernoulliBeam(20.0, (2 * 400 * 5 / np.pi) ** 2 * m, m, 0.02, n_modes=3)
+    setup = SweepSetup(beam, np.array([10.0]), (), 0.1, 0.05, 1e12)
+    speeds = np.array([200 / 3.6, 280 / 3.6])
+    sound = coupled_envelopes(setup, train, speeds[:1])
+    assert sound.unconverged_steps.tolist() == [0.0]
+    monkeypatch.setattr(integrators, "IMPLICIT_MAX_ITERATIONS", 1)
+    env = coupled_envelopes(setup, train, speeds)
+    assert env.unconverged_steps.shape == (2,) and np.all(env.unconverged_steps > 0)
+    assert moving_load_sweep(beam, train.axle_positions, train.axle_loads, speeds, setup.points, dx=0.05,
+                             free_vibration=0.2).unconverged_steps is None
+    save(tmp_path, "k", env, None)
+    np.testing.assert_array_equal(load(tmp_path, "k")[0].unconverged_steps, env.unconverged_steps)
+    counts = np.vstack([np.zeros(2), env.unconverged_steps])
+    ds = xr.Dataset({"unconverged_steps": (("train", "speed"), counts)},
+                    coords={"train": ["HSLM-A1", "ICE 3 (coupled)"], "speed": speeds})
+    [flag] = unconverged_flags(ds)
+    worst = int(np.argmax(env.unconverged_steps))
+    assert flag.code == "contact_not_converged" and flag.value == env.unconverged_steps[worst]
+    assert "2 of 4 runs" in flag.message and "ICE 3 (coupled) at" in flag.message
+    assert unconverged_flags(ds.assign(unconverged_steps=0 * ds["unconverged_steps"])) == []

@@ -134,8 +134,8 @@ FLAG_CODES: dict[str, str] = {
     "non_finite": "an output that is not a finite number (written as null); output: its key",
     "contact_not_converged": "implicit integrators: steps whose end-of-step contact forces did not settle to their "
                              "tolerance within the iteration limit (the run went on with the last iterate); output: "
-                             "unconverged_steps; value: their number (in a dataset: in the worst crossing or event), "
-                             "threshold: 0",
+                             "unconverged_steps (lifetime: \"total return levels\", subject: the load effect); value: "
+                             "their number (in a dataset or a lifetime: in the worst crossing or event), threshold: 0",
     "lift_off": "random run: a tire lifts off with a probability above the linear theory's limit; value: the "
                 "probability, threshold: the limit",
     "sagging_over_pier": "a moment over an interior support whose largest static value is sagging (a soft "

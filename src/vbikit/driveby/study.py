@@ -47,6 +47,8 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "record_start": ("s", "start of the identification record (front wheel enters the deck)"),
     "record_end": ("s", "end of the identification record (front wheel leaves the deck)"),
     "n_steps": ("1", "integration steps of the crossing"),
+    "unconverged_steps": ("1", "integration steps whose contact forces did not converge within the implicit "
+                               "integrator's iteration limit (0 for a sound run; vbikit.outputs)"),
     "n_samples": ("1", "sensor samples of the case"),
     "label_frequency_hz": ("Hz", "the expected frequency the identified peak's label names (NaN: none)"),
     "peak_snr_db": ("dB", "identified peak's power spectral density over the background (the larger of the median of "
@@ -590,7 +592,8 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "resolution_hz": ident.resolution_hz,
         "vehicle_frequency_hz": float(vehicle.natural_frequencies()[0]),
         "record_start": float(t_on[0]), "record_end": float(t_on[-1]),
-        "n_steps": float(result.n_steps), "n_samples": float(m.time.size),
+        "n_steps": float(result.n_steps), "unconverged_steps": float(result.unconverged_steps),
+        "n_samples": float(m.time.size),
         "label_frequency_hz": q.label_hz, "peak_snr_db": q.snr_db, "peak_snr_threshold_db": q.snr_threshold_db,
         "peak_rival_db": q.rival_db,
         "vehicle_distance": q.vehicle_distance, "vehicle_distance_limit": q.vehicle_limit,

@@ -410,6 +410,7 @@ class DynamicJob:
         out["damage_static"] = np.array(d_st)
         out["max_range_dynamic"] = np.array(top)  # largest stress range of the dynamic history [Pa]
         out["n_steps"] = np.array(result.n_steps, float)
+        out["unconverged_steps"] = np.array(result.unconverged_steps, float)  # (CrossingResult.unconverged_steps)
         return out
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
@@ -421,7 +422,8 @@ class DynamicJob:
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
         if "event_id" not in part or not np.array_equal(part["event_id"], np.array(batch, np.int64)):
             return "its events are not those of this batch"
-        for k in ("dyn_peak", "run_static_peak", "damage_dynamic", "damage_static", "max_range_dynamic"):
+        for k in ("dyn_peak", "run_static_peak", "damage_dynamic", "damage_static", "max_range_dynamic",
+                  "unconverged_steps"):
             if k not in part or part[k].shape[0] != len(batch) or not np.all(np.isfinite(part[k])):
                 return f"{k} is missing or not finite"
         return None
@@ -437,4 +439,5 @@ class DynamicJob:
             "damage_static": (("event", "detail"), cat["damage_static"].reshape(len(cat["event_id"]), -1)),
             "max_range_dynamic": (("event", "detail"), cat["max_range_dynamic"].reshape(len(cat["event_id"]), -1)),
             "n_steps": ("event", cat["n_steps"]),
+            "unconverged_steps": ("event", cat["unconverged_steps"]),
         }, coords={"event": cat["event_id"]}, attrs={"study": self.to_json()})

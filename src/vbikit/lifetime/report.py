@@ -13,7 +13,7 @@ import re
 from typing import Any
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes
+from vbikit.analysis.checks import UNCONVERGED_ADVICE, Flag, add_flags, has_flag, join_codes
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.outputs import report_unit
 
@@ -115,6 +115,7 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     out += _adr_flags(name, e)
     out += _shortfall_flags(name, e, float(a["half_step_tolerance"]))
     out += _governing_flags(name, e, float(a["half_step_tolerance"]))
+    out += _unconverged_flags(name, a)
     return out
 
 
@@ -219,6 +220,19 @@ def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
                  "about as low, so the daily maxima of the total and the ADR are biased low — the time step is too "
                  "coarse for this effect, or a wheel left the tabulated tracks",
                  output=flag_output("adr"), subject=name, value=short["value"], threshold=tolerance)]
+
+
+def _unconverged_flags(name: str, a: dict) -> list[Flag]:
+    """Coupled runs with steps whose contact forces did not converge (``n_unconverged_events``): their
+    totals enter every load effect's total levels, ADR and fatigue."""
+    n = int(a.get("n_unconverged_events", 0))
+    if n <= 0:
+        return []
+    return [Flag("contact_not_converged",
+                 f"the contact forces did not converge in some time steps of {n} coupled run(s) (the most: "
+                 f"{int(a['unconverged_steps_max'])} steps, event {int(a['unconverged_event'])}): {UNCONVERGED_ADVICE}",
+                 output=flag_output("return_levels", "total"), subject=name, value=float(a["unconverged_steps_max"]),
+                 threshold=0.0)]
 
 
 def _governing_flags(name: str, e: dict, tolerance: float) -> list[Flag]:

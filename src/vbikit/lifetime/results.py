@@ -300,6 +300,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "n_dynamic_events": n_sim,
         "fraction_dynamic": n_sim / max(n_ev, 1),
         "n_sample_events": int(dyn["sample"].size),
+        **_unconverged_attrs(dyn["results"]),
         "amplification_bound_given": float(spec.amplification),
         "amplification_bound_used": float(bound),
         "amplification_max_observed": float(np.nanmax(np.where(simulated[:, None], total / st - 1, np.nan))) if n_sim else math.nan,
@@ -325,6 +326,16 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
     }
     return ds
+
+
+def _unconverged_attrs(results: dict) -> dict[str, Any]:
+    """How many coupled runs had steps whose contact forces did not converge
+    (``CrossingResult.unconverged_steps``), the most steps in one and its event's global id (-1: none)."""
+    counts = {g: float(r.get("unconverged_steps", 0.0)) for g, r in results.items()}
+    bad = {g: c for g, c in counts.items() if c > 0}
+    worst = max(bad, key=bad.get) if bad else -1
+    return {"n_unconverged_events": len(bad), "unconverged_steps_max": bad.get(worst, 0.0),
+            "unconverged_event": int(worst)}
 
 
 def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:

@@ -35,8 +35,13 @@ def train_key(spec_json: str, setup: Any, train: Any, speeds: np.ndarray, kind: 
     return h.hexdigest()[:32]
 
 
+#: the envelopes' fields that may be None (not stored then): the coupled cars' unconverged steps
+OPTIONAL_FIELDS = ("unconverged_steps",)
+
+
 def _arrays(obj: Any, prefix: str) -> dict[str, np.ndarray]:
-    return {f"{prefix}{f.name}": np.asarray(getattr(obj, f.name)) for f in fields(obj)}
+    """The fields of ``obj`` as arrays under ``prefix`` (a field that is None is left out: read back as None)."""
+    return {f"{prefix}{f.name}": np.asarray(getattr(obj, f.name)) for f in fields(obj) if getattr(obj, f.name) is not None}
 
 
 def save(work: Path, key: str, env: Any, refined: Optional[Any]) -> None:
@@ -67,8 +72,9 @@ def load(work: Path, key: str) -> Optional[tuple[Any, Optional[Any]]]:
         data = read_bytes(path, ValueError, "stored train sweep")
         with np.load(io.BytesIO(data), allow_pickle=False) as npz:
             arr = {name: npz[name] for name in npz.files}
-        env = MovingLoadEnvelopes(**{f.name: (float(arr[f"env.{f.name}"]) if f.name == "dx" else arr[f"env.{f.name}"])
-                                     for f in fields(MovingLoadEnvelopes)})
+        env = MovingLoadEnvelopes(**{f.name: (float(arr[f"env.{f.name}"]) if f.name == "dx"
+                                              else arr.get(f"env.{f.name}") if f.name in OPTIONAL_FIELDS
+                                              else arr[f"env.{f.name}"]) for f in fields(MovingLoadEnvelopes)})
         refined = (RefinedPeaks(**{f.name: arr[f"ref.{f.name}"] for f in fields(RefinedPeaks)})
                    if any(k.startswith("ref.") for k in arr) else None)
     except (ValueError, KeyError, OSError, EOFError, zipfile.BadZipFile) as err:  # a torn or foreign file: sweep again

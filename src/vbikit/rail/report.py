@@ -7,7 +7,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from vbikit.analysis.checks import Flag, add_flags, has_flag
+from vbikit.analysis.checks import Flag, add_flags, has_flag, unconverged_dataset_flags
 from vbikit.outputs import report_unit
 from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 
@@ -95,8 +95,19 @@ def check(ds) -> dict[str, Any]:
     out["passes"] = out["acceleration"]["passes"]
     names = [str(n) for n in ds.train.values if not str(n).endswith(" (coupled)")]
     add_flags(out, hslm_range_flags(float(a["span_m"]), names) + modes_flags(ds)
-              + speed_grid_flags(out, ("acceleration",), tolerance))
+              + speed_grid_flags(out, ("acceleration",), tolerance) + unconverged_flags(ds))
     return out
+
+
+def unconverged_flags(ds) -> list[Flag]:
+    """The ``contact_not_converged`` flag of a sweep whose coupled cars had steps whose contact forces
+    did not converge (the dataset's ``unconverged_steps``, per train and speed; absent in sweeps
+    written before it)."""
+    if "unconverged_steps" not in ds:
+        return []
+    counts = ds["unconverged_steps"]
+    describe = (lambda i: f"{ds.train.values[i[0]]} at {speed_words(float(ds.speed.values[i[1]]))}")
+    return unconverged_dataset_flags(counts.values, "run", describe)
 
 
 def modes_flags(ds) -> list[Flag]:

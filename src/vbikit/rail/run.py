@@ -455,6 +455,10 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "lm71_moment": var((), phi_lm * lm_m, "N m", "Phi x alpha x LM71 midspan moment"),
         "lm71_shear": var((), phi_lm * lm_v, "N", "Phi x alpha x LM71 shear at the entry support"),
         "frequency": var(("mode",), bridge.frequencies_hz, "Hz", "natural frequency"),
+        "unconverged_steps": var(("train", "speed"), np.stack([np.zeros(speeds.size) if e.unconverged_steps is None
+                                                               else e.unconverged_steps for e in envs]), "1",
+                                 "coupled cars: integration steps whose contact forces did not converge within the "
+                                 "implicit integrator's iteration limit (0 for a sound run; moving forces: 0)"),
     }
     coords = {
         "train": ("train", np.array(names, dtype=object)),

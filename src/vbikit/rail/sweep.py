@@ -117,6 +117,7 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
     n_v, n_p, n_e = speeds.size, setup.points.size, len(setup.effects)
     acc, disp, eff = np.empty((n_v, n_p)), np.empty((n_v, n_p)), np.empty((n_v, n_e))
     static_disp, static_eff = np.zeros(n_p), np.zeros(n_e)
+    unconverged = np.zeros(n_v)
     for k, v in enumerate(speeds):
         motions = tuple(VehicleMotion(car, float(v), entry_time=float(offset) / float(v), lateral_offset=setup.y)
                         for car, offset in cars)
@@ -128,6 +129,7 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
             road = track_profile(irregularity, seed, length=hi - lo + 2.0, x_start=lo - 1.0)
             crossing = crossing.with_road(road)
         result = simulate(crossing)
+        unconverged[k] = result.unconverged_steps
         acc[k] = np.max(np.abs(result.xi_ddot @ phi.T), axis=0)
         disp[k] = np.max(np.abs(result.xi @ phi.T), axis=0)
         if n_e:
@@ -140,7 +142,7 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
         from vbikit.analysis.impact import static_modal_history
 
         static_disp = np.maximum(static_disp, np.max(np.abs(static_modal_history(result) @ phi.T), axis=0))
-    return MovingLoadEnvelopes(speeds, setup.points, acc, disp, static_disp, eff, static_eff, setup.dx)
+    return MovingLoadEnvelopes(speeds, setup.points, acc, disp, static_disp, eff, static_eff, setup.dx, unconverged)
 
 
 def rail_cars(train: Train, contact: str | float = "hertz") -> list:

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence
+from typing import Optional, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -208,7 +208,9 @@ class MovingLoadEnvelopes:
     ``max_acceleration`` (n_v, n_p) [m/s²]: max |ẅ| at each point; ``max_displacement`` (n_v, n_p)
     [m]: max |w|; ``static_displacement`` (n_p,) [m]: max |w_st| (retained modes);
     ``max_effect`` (n_v, n_e) and ``static_effect`` (n_e,): max |R| dynamic (mode acceleration) and
-    static (full stiffness) [N m or N]; ``dx`` [m] the travel per step.
+    static (full stiffness) [N m or N]; ``dx`` [m] the travel per step; ``unconverged_steps`` (n_v,)
+    the steps whose contact forces did not converge at each speed (coupled car models,
+    ``CrossingResult.unconverged_steps``; None: moving forces, nothing iterated).
     """
 
     speeds: NDArray[np.float64]
@@ -219,6 +221,7 @@ class MovingLoadEnvelopes:
     max_effect: NDArray[np.float64]
     static_effect: NDArray[np.float64]
     dx: float
+    unconverged_steps: Optional[NDArray[np.float64]] = None
 
 
 def filter_steps(bridge: ModalBridge, train_lengths: Sequence[float], speeds: ArrayLike, dx: float,
