@@ -194,7 +194,7 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, 
         road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0, span)
     else:
         kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
-                        (0,) if n_l == 1 else (0, 0), span, data.vehicles.wheel_envelope[data.points.wheel])
+                        (0,) if n_l == 1 else (0, 0), span)
     states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0])
               for lane, crossing in enumerate(crossings[:n_real])]
     if n_l == 1:

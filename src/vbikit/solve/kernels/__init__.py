@@ -40,7 +40,9 @@ road's curvature at the beat frequency |v dt/h − round(v dt/h)|/dt into the de
 (impact factors that moved by up to 3.6e-3 for a 2 % change of step;
 ``benchmarks/bench_rate_alignment.py``, docs/verification.md).  At the run's start a point has no
 road behind it: the static start and a kernel call's first evaluation when the call starts at the
-run's start (``span`` < 0, ``integrators._span``) read the secant over the road ahead only,
+run's start (``span`` < 0, ``integrators._span``) read the secant over the road ahead only (every
+point, a rigid disk's candidates too: its envelope's rate is then that of the candidate in contact
+over the cell it moves into, clamped),
 v (r(x_p + a) − r(x_p)) / a driving +x (the mirror driving −x; ``secant_ends``), whose limit is the slope of the cell
 the point moves into, as RK4 reads it: the two integrators then converge to one answer where a point
 starts on a station (on it within rounding: ``contact.road_cell`` takes a point within ``ON_STATION``

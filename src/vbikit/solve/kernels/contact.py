@@ -199,15 +199,15 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes, span):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def road_at(x, vx, points, road, idx, rv, rr, lanes, span, envelope):
+def road_at(x, vx, points, road, idx, rv, rr, lanes, span=0.0):
     """Road elevation and rate (n_cp, L) under every contact point at positions ``x`` [m] moving
     at x-rates ``vx`` [m/s] (``idx``: the points' station pointers; ``span`` [s]: the rate's secant
     half-width in time, 0 for the cell's slope, negative at the run's start: see ``road_point``).
-    The candidate points of a rigid disk (``envelope[p]``) read the centred secant at the start too:
-    the disk's contact rate is its envelope's, which on a station lies between the two cells'
-    slopes, not the one-sided slope ahead (``contact_forces`` reads them so)."""
+    A rigid disk's candidate points read the road ahead at the start too: the rate its envelope
+    then has, that of the candidate in contact over the cell it moves into, clamped
+    (``contact_forces``, ``_envelope``)."""
     for p in range(x.size):
-        road_point(x[p], vx[p], p, points.line[p], road, idx, rv, rr, lanes, abs(span) if envelope[p] else span)
+        road_point(x[p], vx[p], p, points.line[p], road, idx, rv, rr, lanes, span)
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
@@ -310,8 +310,8 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
                     pen[p, lane] = bound
                     law[p, lane] = 0.0
                 continue  # no lane can touch the surface here
-            if not have_r[p]:  # (a rigid disk's candidates: the centred secant at the start too, ``road_at``)
-                road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes, abs(span) if envelope else span)
+            if not have_r[p]:
+                road_point(x, vxs[p], p, points.line[p], road, idx, rv, rr, lanes, span)
                 have_r[p] = True
             if onb and not have[p]:
                 shape_point(x, points.track[p], modes, phi[p], dphi[p])
