@@ -8,7 +8,8 @@ from numba import njit
 from vbikit.solve.kernels.bundles import _internal, _slot, _work
 from vbikit.solve.kernels.lanes import _axpy, _combine, _copy, _fetch, _gemv, _keep_step, _store, _width
 from vbikit.solve.kernels.contact import _modal_load, _refresh, contact_forces, shape_point
-from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _vehicle_newton
+from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _touch_points,\
+    _vehicle_newton
 
 
 @_internal
@@ -206,6 +207,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 full += 1
                 for lane in range(n_l):  # one full Newton update per unconverged lane (the rare path)
                     if lane_err[lane] > tol_force:
+                        _touch_points(f, force, work.used, work.active, touch, gated, lane, tol_force, x1, v1, y1, w1,
+                                      cache, points, vehicles, onb, step, vstep, fw, modes, road, work.idx, lanes,
+                                      abs(span), act, row_k, row_c)
                         _full_newton(f, force, work.used, work.active, lane, blend, touch, gated, x1, v1, y1, w1,
                                      cache, points, vehicles, onb, step, vstep, p, fw, e, u, mat, piv, red, red_piv,
                                      rhs, t, act, held, held_k, held_c, row_k, row_c, held_state)
