@@ -439,7 +439,7 @@ def _touch_points(f, force, used, active, touch, gated, lane, tol, x1, v1, y1, w
     (active: F = F_A), and the touch test, which ``_full_newton`` makes on used points only, never
     sees them.  ``order``, ``depth``, ``carry``: work space of the points' count."""
     for k in range(f.shape[0]):
-        if not gated[k] or active[k, lane] and used[k] or touch[k, lane] or not f[k, lane] > 0.0:
+        if not gated[k] or not (touch[k, lane] or f[k, lane] > 0.0):
             continue
         if not used[k]:
             if not cache.have_r[k]:
@@ -449,8 +449,9 @@ def _touch_points(f, force, used, active, touch, gated, lane, tol, x1, v1, y1, w
                 shape_point(cache.x[k], points.track[k], modes, cache.phi[k], cache.dphi[k])
                 cache.have[k] = True
             used[k] = True
-        pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
-        touch[k, lane] = pen <= 0.0 and law > 0.0
+        if not active[k, lane] and not touch[k, lane]:
+            pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+            touch[k, lane] = pen <= 0.0 and law > 0.0
     _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep,
                  fw, order, depth, carry)
 
