@@ -473,7 +473,9 @@ def _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, p
     next one touches, and with it every point level with it (δ within ``tol``/k, where the touching
     residual k|δ| allows); those deeper press, enter the update as active rows with their ungated law
     (``force``, ``active`` of lane ``lane`` set here; the next evaluation sets them anew).  The update
-    is exact for that choice and the next residual confirms it.  A wheel whose touching points are all
+    is exact for that choice and the next residual confirms it (should all of them fall short of F_req
+    by the estimate, the shallowest touches all the same: the estimate is a linearisation at the
+    iterate, and a touching point takes whatever δ = 0 needs).  A wheel whose touching points are all
     level (one point, or a level patch) is left as it is."""
     first, count = vehicles.wheel_first, vehicles.wheel_count
     n_m = step.c1.shape[0]
@@ -525,6 +527,8 @@ def _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, p
                 held += carry[i]
                 if held >= need:
                     edge = i
+        if edge == n:  # not enough even if all pressed: the shallowest touches
+            edge = n - 1
         for i in range(n):
             k = order[i]
             level = edge < n and points.stiffness[k] * abs(depth[i] - depth[edge]) <= tol
