@@ -459,8 +459,9 @@ def _touch_points(f, force, used, active, touch, gated, lane, tol, x1, v1, y1, w
 @_internal
 def _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep, fw,
                  order, depth, carry):
-    """Which of a wheel's touching points settle its landing, where they are not all level.  Held at δ = 0 together, points whose δ differ (the road or the deck
-    under a multipoint patch not quite level) would ask for δ_i − δ_j = 0 of one rigid wheel: forces of
+    """Which of a wheel's touching points settle its landing, where they are not all level.  Held at
+    δ = 0 together, points whose δ differ (the road or the deck under a multipoint patch not quite
+    level) would ask for δ_i − δ_j = 0 of one rigid wheel: forces of
     ±10⁴ of the wheel load, which the next residual releases, and the iteration cycles between all
     points pressed (F = 0 sinks the wheel in) and all lifted (their F lifts it out).
 
@@ -469,8 +470,8 @@ def _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, p
     0 ≤ F ≤ the law there) and the rest clear (δ < 0, F = 0).  The wheel force F_req that brings the
     deepest point to δ = 0 is estimated from the iterate: its wheel force, the deepest δ and the
     wheel's compliance through the vehicles and the deck, wheel_q + Σ c1 φ² (the rate's: wheel_v +
-    Σ c2 φ²).  Less what the wheel's pressing points carry then, the deepest points press while the sum of their laws at δ = 0 stays below F_req; the
-    next one touches, and with it every point level with it (δ within ``tol``/k, where the touching
+    Σ c2 φ²).  Less what the wheel's pressing points carry then, the deepest points press while the
+    sum of their laws at δ = 0 stays below F_req; the next one touches, and with it every point level with it (δ within ``tol``/k, where the touching
     residual k|δ| allows); those deeper press, enter the update as active rows with their ungated law
     (``force``, ``active`` of lane ``lane`` set here; the next evaluation sets them anew).  The update
     is exact for that choice and the next residual confirms it (should all of them fall short of F_req
