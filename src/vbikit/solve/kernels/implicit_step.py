@@ -93,7 +93,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     Jacobian, ``_coupling``, factorised once per step and active set), which settles a contact
     change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is consistent, is
     held at zero penetration (``TOUCH_STIFFNESS``; ``_touch_points``: also points the lazy test left
-    out, and a wheel's touching points that are not level split into pressing, touching and clear).  Should the contact set cycle, updates are
+    out, and a wheel's touching points that are not level split into pressing, touching and clear).
+    Should the contact set cycle, updates are
     halved after ``RELAX_AFTER`` full Newton iterations.  The step keeps the iterate's forces.
 
     The road rate in each point's law: the secant over |v|·``span`` either side (``road_point``;

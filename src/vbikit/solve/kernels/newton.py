@@ -471,7 +471,8 @@ def _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, p
     deepest point to δ = 0 is estimated from the iterate: its wheel force, the deepest δ and the
     wheel's compliance through the vehicles and the deck, wheel_q + Σ c1 φ² (the rate's: wheel_v +
     Σ c2 φ²).  Less what the wheel's pressing points carry then, the deepest points press while the
-    sum of their laws at δ = 0 stays below F_req; the next one touches, and with it every point level with it (δ within ``tol``/k, where the touching
+    sum of their laws at δ = 0 stays below F_req; the next one touches, and with it every point level
+    with it (δ within ``tol``/k, where the touching
     residual k|δ| allows); those deeper press, enter the update as active rows with their ungated law
     (``force``, ``active`` of lane ``lane`` set here; the next evaluation sets them anew).  The update
     is exact for that choice and the next residual confirms it (should all of them fall short of F_req
