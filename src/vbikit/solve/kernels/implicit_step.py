@@ -8,7 +8,8 @@ from numba import njit
 from vbikit.solve.kernels.bundles import _internal, _slot, _work
 from vbikit.solve.kernels.lanes import _axpy, _combine, _copy, _fetch, _gemv, _keep_step, _store, _width
 from vbikit.solve.kernels.contact import _modal_load, _refresh, contact_forces, shape_point
-from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _vehicle_newton
+from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _touch_points,\
+    _vehicle_newton
 
 
 @_internal
@@ -91,7 +92,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     all lanes when they share the contact set), later ones full Newton (``_full_newton``: the full
     Jacobian, ``_coupling``, factorised once per step and active set), which settles a contact
     change in one update.  A damped tire landing, where neither F = 0 nor F > 0 is consistent, is
-    held at zero penetration (``TOUCH_STIFFNESS``).  Should the contact set cycle, updates are
+    held at zero penetration (``TOUCH_STIFFNESS``; ``_touch_points``: also points the lazy test left
+    out, and a wheel's touching points that are not level split into pressing, touching and clear).
+    Should the contact set cycle, updates are
     halved after ``RELAX_AFTER`` full Newton iterations.  The step keeps the iterate's forces.
 
     The road rate in each point's law: the secant over |v|·``span`` either side (``road_point``;
@@ -206,6 +209,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 full += 1
                 for lane in range(n_l):  # one full Newton update per unconverged lane (the rare path)
                     if lane_err[lane] > tol_force:
+                        _touch_points(f, force, work.used, work.active, touch, gated, lane, tol_force, x1, v1, y1, w1,
+                                      cache, points, vehicles, onb, step, vstep, fw, modes, road, work.idx, lanes,
+                                      abs(span), act, row_k, row_c)
                         _full_newton(f, force, work.used, work.active, lane, blend, touch, gated, x1, v1, y1, w1,
                                      cache, points, vehicles, onb, step, vstep, p, fw, e, u, mat, piv, red, red_piv,
                                      rhs, t, act, held, held_k, held_c, row_k, row_c, held_state)

@@ -6,7 +6,7 @@ from __future__ import annotations
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import _gated
+from vbikit.solve.kernels.contact import _gated, road_point, shape_point
 
 
 #: quasi-Newton updates (the Jacobian through the vehicles only) before the full Newton updates: for
@@ -422,6 +422,122 @@ def _residuals(f, force, used, touch, lane_err, x1, v1, y1, w1, cache, points, v
     for lane in range(n_l):
         err = max(err, lane_err[lane])
     return err
+
+
+@_internal
+def _touch_points(f, force, used, active, touch, gated, lane, tol, x1, v1, y1, w1, cache, points, vehicles, onb, step,
+                  vstep, fw, modes, road, idx, lanes, span, order, depth, carry):
+    """Before a full Newton update of lane ``lane``: the touch test of ``_full_newton`` (a gated point the
+    iterate presses, F > 0, that the law releases, touches if δ ≤ 0 and its law > 0) made first, on
+    every point that needs it, and a wheel's touching points settled together (``_split_touch``).
+
+    Points the lazy test left out (``contact_forces``: bound on δ ≤ 0, force 0, inactive) are taken in
+    when the iterate presses them or holds them touching: their road values (``road_point``, ``span``
+    as the law's) and mode shapes are filled, and they count as used with the force 0 and inactive
+    that the law gives there.  Without this a damped landing whose iterate lifts the wheel above the
+    road's highest elevation cycles: F_A lifts the points out (left out: F = 0), F = 0 presses them in
+    (active: F = F_A), and the touch test, which ``_full_newton`` makes on used points only, never
+    sees them.  ``order``, ``depth``, ``carry``: work space of the points' count."""
+    for k in range(f.shape[0]):
+        if not gated[k] or not (touch[k, lane] or f[k, lane] > 0.0):
+            continue
+        if not used[k]:
+            if not cache.have_r[k]:
+                road_point(cache.x[k], cache.vx[k], k, points.line[k], road, idx, cache.rv, cache.rr, lanes, span)
+                cache.have_r[k] = True
+            if onb[k] and not cache.have[k]:
+                shape_point(cache.x[k], points.track[k], modes, cache.phi[k], cache.dphi[k])
+                cache.have[k] = True
+            used[k] = True
+        if not active[k, lane] and not touch[k, lane]:
+            pen, law = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+            touch[k, lane] = pen <= 0.0 and law > 0.0
+    _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep,
+                 fw, order, depth, carry)
+
+
+@_internal
+def _split_touch(force, used, active, touch, lane, tol, x1, v1, y1, w1, cache, points, vehicles, onb, step, vstep, fw,
+                 order, depth, carry):
+    """Which of a wheel's touching points settle its landing, where they are not all level.  Held at
+    δ = 0 together, points whose δ differ (the road or the deck under a multipoint patch not quite
+    level) would ask for δ_i − δ_j = 0 of one rigid wheel: forces of
+    ±10⁴ of the wheel load, which the next residual releases, and the iteration cycles between all
+    points pressed (F = 0 sinks the wheel in) and all lifted (their F lifts it out).
+
+    The law's solution has, ordered by depth, the deepest points pressing (δ > 0, each carrying about
+    its law at δ = 0, c δ̇ + f0: their k δ is tiny), the points level with the next one touching (δ = 0,
+    0 ≤ F ≤ the law there) and the rest clear (δ < 0, F = 0).  The wheel force F_req that brings the
+    deepest point to δ = 0 is estimated from the iterate: its wheel force, the deepest δ and the
+    wheel's compliance through the vehicles and the deck, wheel_q + Σ c1 φ² (the rate's: wheel_v +
+    Σ c2 φ²).  Less what the wheel's pressing points carry then, the deepest points press while the
+    sum of their laws at δ = 0 stays below F_req; the next one touches, and with it every point level
+    with it (δ within ``tol``/k, where the touching
+    residual k|δ| allows); those deeper press, enter the update as active rows with their ungated law
+    (``force``, ``active`` of lane ``lane`` set here; the next evaluation sets them anew).  The update
+    is exact for that choice and the next residual confirms it (should all of them fall short of F_req
+    by the estimate, the shallowest touches all the same: the estimate is a linearisation at the
+    iterate, and a touching point takes whatever δ = 0 needs).  A wheel whose touching points are all
+    level (one point, or a level patch) is left as it is."""
+    first, count = vehicles.wheel_first, vehicles.wheel_count
+    n_m = step.c1.shape[0]
+    for w in range(first.shape[0]):
+        n = 0
+        for k in range(first[w], first[w] + count[w]):
+            if used[k] and touch[k, lane] and not active[k, lane]:
+                order[n] = k
+                n += 1
+        if n < 2:
+            continue
+        for i in range(n):  # depth and law at δ = 0 of each touching point, deepest first
+            pen, law = _penetration(order[i], lane, x1, v1, y1, w1, cache, points, vehicles, onb)
+            depth[i] = pen
+            carry[i] = law - points.stiffness[order[i]] * pen
+            j = i
+            while j > 0 and depth[j] > depth[j - 1]:
+                depth[j], depth[j - 1] = depth[j - 1], depth[j]
+                carry[j], carry[j - 1] = carry[j - 1], carry[j]
+                order[j], order[j - 1] = order[j - 1], order[j]
+                j -= 1
+        level = True
+        for i in range(1, n):
+            level = level and points.stiffness[order[i]] * (depth[0] - depth[i]) <= tol
+        if level:
+            continue
+        d = order[0]
+        a = vstep.wheel_q[w, w]
+        b = vstep.wheel_v[w, w]
+        if onb[d]:
+            for m in range(n_m):
+                g = cache.phi[d, m] * cache.phi[d, m]
+                a += step.c1[m] * g
+                b += step.c2[m] * g
+        need = fw[w, lane] + depth[0] / a  # the wheel force that brings the deepest point to δ = 0
+        if need <= 0.0:  # the wheel stays clear of the road without force
+            for i in range(n):
+                touch[order[i], lane] = False
+            continue
+        held = 0.0  # what the wheel's pressing points carry under F_req
+        for k in range(first[w], first[w] + count[w]):
+            if used[k] and active[k, lane]:
+                held += max(0.0, force[k, lane] - (points.stiffness[k] * a + points.damping[k] * b) *
+                            (need - fw[w, lane]))
+        edge = n  # the point that settles it (n: none, all press)
+        for i in range(n):
+            carry[i] -= points.damping[order[i]] * b * (need - fw[w, lane])  # its law at δ = 0 under F_req
+            if carry[i] > 0.0 and held < need:
+                held += carry[i]
+                if held >= need:
+                    edge = i
+        if edge == n:  # not enough even if all pressed: the shallowest touches
+            edge = n - 1
+        for i in range(n):
+            k = order[i]
+            level = edge < n and points.stiffness[k] * abs(depth[i] - depth[edge]) <= tol
+            touch[k, lane] = level
+            if not level and i < edge and carry[i] > 0.0:
+                active[k, lane] = True  # pressing: an active row with its ungated law
+                force[k, lane] = _penetration(k, lane, x1, v1, y1, w1, cache, points, vehicles, onb)[1]
 
 
 @_internal
