@@ -31,6 +31,7 @@ from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitud
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError, check_dataset_format
 from vbikit.driveby.variability import SPLIT_NAMES, draw, perturbed_vehicle, split_of, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
+from vbikit.outputs import OUTPUTS, cf_unit
 from vbikit.vehicle.model import GRAVITY
 
 log = logging.getLogger(__name__)
@@ -47,8 +48,7 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "record_start": ("s", "start of the identification record (front wheel enters the deck)"),
     "record_end": ("s", "end of the identification record (front wheel leaves the deck)"),
     "n_steps": ("1", "integration steps of the crossing"),
-    "unconverged_steps": ("1", "integration steps whose contact forces did not converge within the implicit "
-                               "integrator's iteration limit (0 for a sound run; vbikit.outputs)"),
+    "unconverged_steps": (cf_unit(OUTPUTS["unconverged_steps"].unit), OUTPUTS["unconverged_steps"].long_name),
     "n_samples": ("1", "sensor samples of the case"),
     "label_frequency_hz": ("Hz", "the expected frequency the identified peak's label names (NaN: none)"),
     "peak_snr_db": ("dB", "identified peak's power spectral density over the background (the larger of the median of "

@@ -30,6 +30,7 @@ from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
 from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope, stations_words
 from vbikit.analysis.checks import add_flags
+from vbikit.outputs import OUTPUTS, cf_unit
 from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks, refinement_verdict
 from vbikit.rail.report import check, format_report, speed_grid_flags, summary
 from vbikit.rail.sweep import (KMH, SweepSetup, bogie_resonances, coupled_envelopes, excitation_wavelength, speed_grid,
@@ -456,9 +457,9 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "lm71_shear": var((), phi_lm * lm_v, "N", "Phi x alpha x LM71 shear at the entry support"),
         "frequency": var(("mode",), bridge.frequencies_hz, "Hz", "natural frequency"),
         "unconverged_steps": var(("train", "speed"), np.stack([np.zeros(speeds.size) if e.unconverged_steps is None
-                                                               else e.unconverged_steps for e in envs]), "1",
-                                 "coupled cars: integration steps whose contact forces did not converge within the "
-                                 "implicit integrator's iteration limit (0 for a sound run; moving forces: 0)"),
+                                                               else e.unconverged_steps for e in envs]),
+                                 cf_unit(OUTPUTS["unconverged_steps"].unit),
+                                 f"coupled cars: {OUTPUTS['unconverged_steps'].long_name} (moving forces: 0)"),
     }
     coords = {
         "train": ("train", np.array(names, dtype=object)),
