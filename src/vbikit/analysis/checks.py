@@ -856,17 +856,18 @@ def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
     stream's events): ``counts`` (...) each crossing's ``unconverged_steps`` (NaN: not known); one flag
     when any is above 0: how many crossings, the worst and its count (``describe``: the words naming a
     crossing by its index into ``counts``; default "crossing 12", the flat index)."""
-    c = np.asarray(counts, float)
-    flagged = np.nan_to_num(c, nan=0.0) > 0.0
+    c = np.nan_to_num(np.asarray(counts, float), nan=0.0)
+    flagged = c > 0.0
     if not flagged.any():
         return []
-    k = int(np.argmax(np.nan_to_num(c, nan=0.0)))
+    k = int(np.argmax(c))
     index = tuple(int(i) for i in np.unravel_index(k, c.shape))
     worst = describe(index) if describe else f"{unit} {k}"
+    most = float(c.reshape(-1)[k])
     return [Flag("contact_not_converged",
                  f"the contact forces did not converge in some time steps of {int(flagged.sum())} of {c.size} {unit}s "
-                 f"(variable unconverged_steps; the most: {int(c.reshape(-1)[k])} steps in {worst}): "
-                 f"{UNCONVERGED_ADVICE}", output="unconverged_steps", value=float(c.reshape(-1)[k]), threshold=0.0)]
+                 f"(variable unconverged_steps; the most: {int(most)} steps in {worst}): "
+                 f"{UNCONVERGED_ADVICE}", output="unconverged_steps", value=most, threshold=0.0)]
 
 
 def run_flags(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[Flag]:
