@@ -865,7 +865,8 @@ def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
     worst = describe(index) if describe else f"{unit} {k}"
     most = float(c.reshape(-1)[k])
     return [Flag("contact_not_converged",
-                 f"the contact forces did not converge in some time steps of {int(flagged.sum())} of {c.size} {unit}s "
+                 f"the contact forces did not converge in some time steps of {int(flagged.sum())} of {c.size} "
+                 f"{unit}{'es' if unit.endswith('s') else 's'} "
                  f"(variable unconverged_steps; the most: {int(most)} steps in {worst}): "
                  f"{UNCONVERGED_ADVICE}", output="unconverged_steps", value=most, threshold=0.0)]
 

@@ -94,6 +94,7 @@ def summary(ds) -> dict:
                                    f"not confirmed: fewer than {MIN_PASSES} reliable passes agree",
                         "frequency_shift": num("multipass_frequency_shift", i) if sev > 0 else None}
     return {"title": ds.attrs.get("title", "drive-by"), "cases": cases, "bridges": bridges,
+            **({"warnings": str(ds.attrs["warnings"])} if ds.attrs.get("warnings") else {}),
             "note": "a reliable pass is accurate to about its resolution 1/T on a rough road, far better on a smooth "
                     "one; unreliable passes are left out of the damage indicators and the multi-pass estimates "
                     "(docs/driveby.md, How accurate is this)"}
@@ -117,6 +118,7 @@ def report_text(ds) -> str:
              f"anti-alias filter: {ds.attrs['sampling_filter']}",
              f"identification: method {ds.attrs['identification_method']}, sensor {ds.attrs['identification_sensor']}",
              *fleet_lines(ds),
+             *([f"WARNING: {ds.attrs['warnings']}"] if ds.attrs.get("warnings") else []),
              "", "case  speed[m/s] road seed severity noise   f_true[Hz] f_ident[Hz] error[%] resolution[Hz] "
                  "label      SNR[dB] reliable"]
     reliable = np.asarray(c["identified_frequency_reliable"], bool)

@@ -22,6 +22,7 @@ from typing import Any, Optional
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit.analysis.checks import dataset_flag_attrs, unconverged_dataset_flags
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequency, mode_shape_squares,
                                      residual_response, shape_change)
@@ -863,6 +864,8 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     variables["frequency_error"] = ("case", ident / true - 1.0, {"units": "1", "long_name": "identified / true − 1"})
     ref = healthy_reference(labels)
     texts = {name: np.asarray(out[name][order]).astype(str) for name in CASE_TEXT}
+    unconverged = np.asarray(out["unconverged_steps"][order], float)
+    texts["identified_frequency_reason"] = unconverged_reasons(texts["identified_frequency_reason"], unconverged)
     reliable, reasons, passes = pass_reliability(labels, ident, out["resolution_hz"][order], texts["identified_frequency_reason"])
     for name, long_name in CASE_TEXT.items():
         variables[name] = ("case", np.array(reasons if name == "identified_frequency_reason" else texts[name], dtype=object),
@@ -939,6 +942,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
              f"cut-off {spec.sampling.cutoff_hz:g} Hz, zero phase (forward-backward), applied before resampling",
              "identification_method": spec.method, "identification_sensor": spec.sensor, "Conventions": "CF-1.8",
              "chunk_passes": int(spec.output["chunk_passes"])}
+    attrs |= dataset_flag_attrs(unconverged_dataset_flags(unconverged, "pass"))
     ds = xr.Dataset(variables, coords=coords, attrs=attrs)
     # chunked and compressed on disk: xarray.open_dataset(..., chunks={"case": n}) streams the records with Dask
     for name in PER_PASS_RECORDS:
@@ -946,6 +950,19 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
             ds[name].encoding.update(chunksizes=(min(n_cases, spec.output["chunk_passes"]), *ds[name].shape[1:]),
                                      zlib=True, complevel=1)
     return ds
+
+
+def unconverged_reasons(reasons: NDArray, counts: NDArray) -> NDArray:
+    """The identification's ``reasons`` (one per pass, '' when reliable) with the words of a pass
+    whose contact forces did not converge in ``counts`` > 0 time steps (its ``unconverged_steps``)
+    put first: such a pass's records carry a contact-force error above the solver's tolerance, so
+    its identification is unreliable whatever its spectrum shows (``contact_not_converged``)."""
+    out = [str(r) for r in reasons]
+    for i in np.flatnonzero(np.nan_to_num(np.asarray(counts, float), nan=0.0) > 0.0):
+        words = (f"the contact forces did not converge in {int(counts[i])} time step(s) of this pass "
+                 f"(unconverged_steps): its records are not trusted")
+        out[i] = words + (f"; {out[i]}" if out[i] else "")
+    return np.array(out, dtype=str)
 
 
 #: the per-pass records stored in chunks of ``dataset.chunk_passes`` cases (whole along their other dimensions)
