@@ -78,3 +78,42 @@ def test_the_flags_are_in_words_and_their_codes_in_the_one_format(facts):
         assert all(dataset_has_flag(ds.attrs, c) for c in codes)
         per_effect = [str(x) for x in ds["load_effect_flag_codes"].values]
     assert per_effect == [",".join(f["code"] for f in e["flags"]) for e in saved.values()]
+
+
+def test_a_missing_total_pot_value_says_the_screening_set_its_threshold(tmp_path):
+    """With 5 % of the events sampled the simulated totals are complete only above
+    c = (1 + A)·max s·R_st of the events not simulated (recomputed here from the dataset's events);
+    the total POT threshold is c, too few exceed it, and the dataset and the report say why in those
+    words.  With every event simulated (dynamic_sample = 1) the total threshold is the static one and
+    the total POT has its value (nothing to say)."""
+    import numpy as np
+
+    from vbikit.lifetime.report import summary, text_report
+    from vbikit.lifetime.run import run_lifetime
+
+    def run(sample: float, name: str):
+        spec = {"name": "pot words", "seed": 4, "days": 5, "amplification": 0.05,
+                "traffic": {"records": "examples/lifetime/wim.csv", "trucks_per_day": 16, "speed_kmh": 5.0},
+                "vehicle_model": "moving-forces", "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3},
+                "tire": {"model": "point"}, "road": {"class": "none"},
+                "load_effects": [{"kind": "moment", "x": 4.58, "name": "M"}],
+                "fatigue": {"dynamic_sample": sample, "details": [{"name": "flange", "effect": "M", "section_modulus": 0.005,
+                                                                   "category": "EN 36"}]}}
+        return run_lifetime(spec, tmp_path / name, base_dir=".", workers=1, figures=False)
+
+    ds = run(0.05, "sampled")
+    left = ~ds["event_simulated"].values.astype(bool)
+    static = ds["event_static"].values[:, 0] * float(ds["effect_sign"].values[0])
+    assert left.any()
+    c = 1.05 * static[left].max()
+    assert float(ds["fit_pot_total_threshold"].values[0]) == c > float(ds["fit_pot_threshold"].values[0])
+    words = str(ds["pot_total_not_estimable"].values[0])
+    assert int(ds["fit_pot_total_exceedances"].values[0]) < 10 and np.isnan(ds["return_level_pot_total"].values[0]).all()
+    assert "a GPD fit needs 10" in words and "complete only above this threshold, (1 + A) = 1.05 times" in words
+    assert str(ds["pot_static_not_estimable"].values[0]) == ""
+    assert f"(no POT value: {words})" in text_report(summary(ds))
+
+    every = run(1.0, "every")
+    assert float(every["fit_pot_total_threshold"].values[0]) == float(every["fit_pot_threshold"].values[0])
+    assert str(every["pot_total_not_estimable"].values[0]) == ""
+    assert np.isfinite(every["return_level_pot_total"].values[0]).all()

@@ -150,6 +150,14 @@ def static_upper_bound(model, setup, signs: np.ndarray) -> tuple[np.ndarray, np.
     return bound, np.array(per_lane, np.int64)
 
 
+def completeness_words(bound: float) -> str:
+    """Why a total POT threshold can be high: the level ``completeness_level`` sets, in words."""
+    return (f"the simulated totals are complete only above this threshold, (1 + A) = {1.0 + bound:g} times the "
+            "largest static peak of the events the screening did not simulate; a larger [fatigue] dynamic_sample "
+            "simulates more of them (1: every event, and the threshold is the static fit's), a smaller amplification "
+            "A lowers it where the run's check shows A holds")
+
+
 def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float) -> float:
     """c = (1 + A)·max s·R_st over the events the screening left out: every event whose total
     s·R_dyn exceeds c was simulated (−inf when every event was)."""

@@ -47,6 +47,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
                 "pot_threshold": _num(float(ds["effect_sign"].values[j])
                                       * ds["fit_pot_threshold" if w == "static" else "fit_pot_total_threshold"].values[j]),
                 "pot_exceedances": int(ds[f"fit_pot_{w}_exceedances"].values[j]),
+                # why there is no POT value, in words (None when there is one; older datasets lack it)
+                "pot_not_estimable": (str(ds[f"pot_{w}_not_estimable"].values[j]) or None
+                                      if f"pot_{w}_not_estimable" in ds else None),
                 "shape_strongly_negative": bool(ds[f"shape_strongly_negative_{w}"].values[j])}
             for w in ("static", "total")}
     adr, lo, hi = (float(ds[n].values[j]) for n in ("assessment_dynamic_ratio", "assessment_dynamic_ratio_lower",
@@ -367,7 +370,8 @@ def text_report(facts: dict[str, Any]) -> str:
             pot = (f"POT threshold {_g(fw['pot_threshold'], scale=k)}, {counted(fw['pot_exceedances'], 'exceedance')}, ξ = "
                    f"{_g(fw['pot_shape'], '.3f')}")
             lines.append(f"  {w}: BM ξ = {_g(fw['block_maxima_shape'], '.3f')}; {pot}"
-                         + ("" if fw["pot_shape"] is not None else " (no POT value: too few exceedances)"))
+                         + ("" if fw["pot_shape"] is not None else
+                            f" (no POT value: {fw['pot_not_estimable'] or 'too few exceedances'})"))
         lines.append(f"  {'T [yr]':>8}  {'static BM':<38}{'static POT':<38}{'total BM':<38}total POT")
         for row in e["return_levels"]:
             cells = []

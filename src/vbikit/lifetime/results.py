@@ -22,6 +22,7 @@ standard error N·sd(D_dyn,e − D_st,e)/√n (finite-population correction omit
 """
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from typing import Any
@@ -141,9 +142,12 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                     fit.location, fit.scale, fit.shape
         u_static = _static_threshold(s_st[:, j], n_days)
         s_sim = s_tot[simulated, j]
-        u_total = max(complete(s_st[:, j], simulated, bound), u_static) if np.isfinite(u_static) else math.nan
+        c = complete(s_st[:, j], simulated, bound)
+        u_total = max(c, u_static) if np.isfinite(u_static) else math.nan
         for which, values, u in (("static", s_st[:, j], u_static), ("total", s_sim, u_total)):
             pot = acc.pot_levels(values, u, values.size / years, periods, spec.ci)
+            if which == "total" and math.isnan(pot.shape) and c > u_static:  # no fit, its threshold set by the screening
+                pot = dataclasses.replace(pot, why=pot.why + "; " + acc.completeness_words(bound))
             rl[f"pot_{which}"][j], rl[f"pot_{which}_lower"][j], rl[f"pot_{which}_upper"][j] = \
                 pot.level, pot.lower, pot.upper
             fits["pot_threshold" if which == "static" else "pot_total_threshold"][j] = u
@@ -221,6 +225,11 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "return_level_total_lower": (("load_effect", "return_period"), rl["total_lower"] * signs[:, None], ev_attrs("", f"lower {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound nearer zero)")),
         "return_level_total_upper": (("load_effect", "return_period"), rl["total_upper"] * signs[:, None], ev_attrs("", f"upper {spec.ci:.0%} confidence bound (delta method; of the magnitude in the effect's governing direction: for a downward effect the bound farther from zero)")),
         **_pot_variables(rl, signs, spec.ci, disagree, steep, pot_why),
+        **{f"pot_{w}_not_estimable": ("load_effect", np.array([t if np.isnan(rl[f"pot_{w}"][j, 0]) else ""
+                                                                for j, t in enumerate(pot_why[w])], dtype=object),
+                                      ev_attrs("", f"why the {w} peaks over threshold could not be fitted, in words; empty "
+                                                   f"where they were (then return_level_pot_{w} holds the levels)"))
+           for w in ("static", "total")},
         "assessment_dynamic_ratio_lower": ("load_effect", np.array([r.lower for r in ratios]), ev_attrs("1", f"lower {spec.ci:.0%} confidence bound of the ADR (delta method, covariance of the two fits from the sandwich of the same blocks; vbikit.extremes.level_ratio)")),
         "assessment_dynamic_ratio_upper": ("load_effect", np.array([r.upper for r in ratios]), ev_attrs("1", f"upper {spec.ci:.0%} confidence bound of the ADR")),
         "assessment_dynamic_ratio_se": ("load_effect", np.array([r.standard_error for r in ratios]), ev_attrs("1", "standard error of the ADR (delta method)")),
