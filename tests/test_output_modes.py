@@ -22,27 +22,47 @@ STUDY = {
     "axes": {"crossing.speed_kmh": [80, 90, 100]},
 }
 
+#: one process writes the outputs under each umask in turn (argv: umasks in octal, comma-separated; the
+#: base folder, a sub-folder per umask; the study; the scenario): the umask is read by the OS at each
+#: ``open``/``mkdir``, so one process serves them all, and the three tests share its start-up
 SCRIPT = """
 import json, os, sys
-os.umask(int(sys.argv[1], 8))
 from vbikit.cli import main
 from vbikit.study import parse_study, run_study
 from vbikit.traffic import parse_records, write_records
-out = sys.argv[2]
-run_study(parse_study(json.loads(sys.argv[3])), os.path.join(out, "study", "s.nc"), workers=1, keep_parts=True)
-write_records(parse_records("time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]\\n"
-                            "0,1,+x,80,50 90,4.2\\n"), os.path.join(out, "records", "r.csv"))
-sys.argv = ["vbikit", "run", sys.argv[4], "--out-dir", os.path.join(out, "run")]
-main()
+umasks, base, study, scenario = sys.argv[1].split(","), sys.argv[2], sys.argv[3], sys.argv[4]
+for umask in umasks:
+    os.umask(int(umask, 8))
+    out = os.path.join(base, umask)
+    run_study(parse_study(json.loads(study)), os.path.join(out, "study", "s.nc"), workers=1, keep_parts=True)
+    write_records(parse_records("time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]\\n"
+                                "0,1,+x,80,50 90,4.2\\n"), os.path.join(out, "records", "r.csv"))
+    sys.argv = ["vbikit", "run", scenario, "--out-dir", os.path.join(out, "run")]
+    try:
+        main()
+    except SystemExit as stop:
+        if stop.code not in (0, None):
+            raise
 """
+
+UMASKS = [0o022, 0o077, 0o002]
+
+
+@pytest.fixture(scope="module")
+def outputs(tmp_path_factory) -> tuple[Path, subprocess.CompletedProcess]:
+    """The base folder (a sub-folder per umask, named by ``oct(umask)``) and the writing process."""
+    base = tmp_path_factory.mktemp("modes")
+    res = subprocess.run([sys.executable, "-c", SCRIPT, ",".join(oct(u) for u in UMASKS), str(base), json.dumps(STUDY),
+                          str(SCENARIO)], capture_output=True, text=True, timeout=600)
+    return base, res
 
 
 @pytest.mark.skipif(os.name != "posix", reason="POSIX permission bits")
-@pytest.mark.parametrize("umask", [0o022, 0o077, 0o002])
-def test_outputs_follow_the_umask(tmp_path, umask):
-    res = subprocess.run([sys.executable, "-c", SCRIPT, oct(umask), str(tmp_path), json.dumps(STUDY), str(SCENARIO)],
-                         capture_output=True, text=True, timeout=600)
+@pytest.mark.parametrize("umask", UMASKS)
+def test_outputs_follow_the_umask(outputs, umask):
+    base, res = outputs
     assert res.returncode == 0, res.stderr
+    tmp_path = base / oct(umask)
     files = {
         "run CSV": tmp_path / "run" / f"{SCENARIO.stem}.csv",
         "run JSON": tmp_path / "run" / f"{SCENARIO.stem}.json",

@@ -315,9 +315,8 @@ def _three_moment_influence(s: float, a: float, spans=(20.0, 25.0, 20.0)) -> flo
     supports, under a unit load at a: Clapeyron's three-moment equation (e.g. S. Timoshenko, D. H. Young,
     *Theory of Structures*, 1965, §8.2), M_{j−1} L_j + 2 M_j (L_j + L_{j+1}) + M_{j+1} L_{j+1} =
     −Σ P u (L² − u²) / L over the loaded span next to support j, u the load's distance from that span's
-    far support; then M(s) = the simply supported span's moment + M_B s / L_1."""
-    import numpy as np
-
+    far support; then M(s) = the simply supported span's moment + M_B s / L_1 (the two equations for
+    M_B, M_C solved by Cramer's rule)."""
     l1, l2, l3 = spans
     xb, xc, xd = l1, l1 + l2, l1 + l2 + l3
     rb = rc = 0.0
@@ -328,7 +327,8 @@ def _three_moment_influence(s: float, a: float, spans=(20.0, 25.0, 20.0)) -> flo
         rc = (a - xb) * (l2**2 - (a - xb) ** 2) / l2
     elif xc < a <= xd:
         rc = (xd - a) * (l3**2 - (xd - a) ** 2) / l3
-    mb, _ = np.linalg.solve([[2 * (l1 + l2), l2], [l2, 2 * (l2 + l3)]], [-rb, -rc])
+    a11, a12, a22 = 2 * (l1 + l2), l2, 2 * (l2 + l3)  # [[a11, a12], [a12, a22]] [M_B, M_C] = [−rb, −rc]
+    mb = (-rb * a22 + rc * a12) / (a11 * a22 - a12 * a12)
     simple = (s * (l1 - a) / l1 if s <= a else a * (l1 - s) / l1) if 0.0 <= a <= l1 else 0.0
     return simple + mb * s / l1
 

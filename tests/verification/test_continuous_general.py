@@ -20,6 +20,7 @@
 #   2ζω damping integrated by scipy's solve_ivp.
 from __future__ import annotations
 
+import bisect
 import math
 
 import numpy as np
@@ -38,69 +39,75 @@ INF = math.inf
 
 
 # ---------------------------------------------------------------- exact segment-by-segment solution
-def _basis(beta: float, ell: float, xi: float) -> np.ndarray:
-    """Rows n = 0…3: d^n/dξ^n of (cos βξ, sin βξ, e^{−βξ}, e^{−β(ℓ−ξ)}) divided by β^n."""
-    c, s = math.cos(beta * xi), math.sin(beta * xi)
-    e1, e2 = math.exp(-beta * xi), math.exp(-beta * (ell - xi))
-    return np.array([[c, s, e1, e2], [-s, c, -e1, e2], [-c, -s, e1, e2], [s, -c, -e1, e2]])
+def _basis(beta: np.ndarray, ell: float, xi: float) -> np.ndarray:
+    """Rows n = 0…3: d^n/dξ^n of (cos βξ, sin βξ, e^{−βξ}, e^{−β(ℓ−ξ)}) divided by β^n, for each β of
+    the array ``beta`` (shape (n_β, 4, 4))."""
+    c, s = np.cos(beta * xi), np.sin(beta * xi)
+    e1, e2 = np.exp(-beta * xi), np.exp(-beta * (ell - xi))
+    return np.stack([np.stack(row, axis=-1) for row in ([c, s, e1, e2], [-s, c, -e1, e2], [-c, -s, e1, e2],
+                                                        [s, -c, -e1, e2])], axis=-2)
 
 
-def _frequency_matrix(omega: float, segs, junction_k, end_k, end_kt) -> np.ndarray:
+def _frequency_matrix(omega, segs, junction_k, end_k, end_kt) -> np.ndarray:
     """Boundary-condition matrix of segments ``segs`` = [(length, EI, m)], junction vertical
     stiffness ``junction_k`` (inf rigid, 0 a free junction), end vertical ``end_k`` and rotational
-    ``end_kt`` stiffness (entry, exit)."""
+    ``end_kt`` stiffness (entry, exit); for an array ``omega``, the stack of the matrices, one a
+    frequency (the determinant scan builds them all at once)."""
+    scalar = np.ndim(omega) == 0
+    omega = np.atleast_1d(np.asarray(omega, dtype=float))
     n = len(segs)
-    A = np.zeros((4 * n, 4 * n))
-    betas = [(omega**2 * m / EI) ** 0.25 for _, EI, m in segs]
+    A = np.zeros((omega.size, 4 * n, 4 * n))
+    betas = [((omega**2 * m / EI) ** 0.25)[:, None] for _, EI, m in segs]  # (n_ω, 1): broadcast along a row
     row = 0
 
     def end(k_seg, at_entry, k, kt):
         nonlocal row
         ell, EI, _ = segs[k_seg]
         b = betas[k_seg]
-        B = _basis(b, ell, 0.0 if at_entry else ell)
+        B = _basis(b[:, 0], ell, 0.0 if at_entry else ell)
         cols = slice(4 * k_seg, 4 * k_seg + 4)
         sgn = 1.0 if at_entry else -1.0
         if math.isinf(k):
-            A[row, cols] = B[0]
+            A[:, row, cols] = B[:, 0]
         else:  # EI w''' = −k w at the entry, +k w at the exit
-            A[row, cols] = EI * b**3 * B[3] + sgn * k * B[0]
+            A[:, row, cols] = EI * b**3 * B[:, 3] + sgn * k * B[:, 0]
         row += 1
         if math.isinf(kt):
-            A[row, cols] = B[1]
+            A[:, row, cols] = B[:, 1]
         else:  # EI w'' = k_θ w' (entry), −k_θ w' (exit)
-            A[row, cols] = EI * b**2 * B[2] - sgn * kt * b * B[1]
+            A[:, row, cols] = EI * b**2 * B[:, 2] - sgn * kt * b * B[:, 1]
         row += 1
 
     end(0, True, end_k[0], end_kt[0])
     for j in range(n - 1):
         (la, EIa, _), (lb, EIb, _) = segs[j], segs[j + 1]
         ba, bb = betas[j], betas[j + 1]
-        Ba, Bb = _basis(ba, la, la), _basis(bb, lb, 0.0)
+        Ba, Bb = _basis(ba[:, 0], la, la), _basis(bb[:, 0], lb, 0.0)
         ca, cb = slice(4 * j, 4 * j + 4), slice(4 * j + 4, 4 * j + 8)
         k = junction_k[j]
         if math.isinf(k):
-            A[row, ca] = Ba[0]; row += 1
-            A[row, cb] = Bb[0]; row += 1
+            A[:, row, ca] = Ba[:, 0]; row += 1
+            A[:, row, cb] = Bb[:, 0]; row += 1
         else:
-            A[row, ca] = Ba[0]; A[row, cb] = -Bb[0]; row += 1
+            A[:, row, ca] = Ba[:, 0]; A[:, row, cb] = -Bb[:, 0]; row += 1
             # −EI_a w_a''' + EI_b w_b''' + k w = 0
-            A[row, ca] = -EIa * ba**3 * Ba[3] + k * Ba[0]; A[row, cb] = EIb * bb**3 * Bb[3]; row += 1
-        A[row, ca] = ba * Ba[1]; A[row, cb] = -bb * Bb[1]; row += 1
-        A[row, ca] = EIa * ba**2 * Ba[2]; A[row, cb] = -EIb * bb**2 * Bb[2]; row += 1
+            A[:, row, ca] = -EIa * ba**3 * Ba[:, 3] + k * Ba[:, 0]; A[:, row, cb] = EIb * bb**3 * Bb[:, 3]; row += 1
+        A[:, row, ca] = ba * Ba[:, 1]; A[:, row, cb] = -bb * Bb[:, 1]; row += 1
+        A[:, row, ca] = EIa * ba**2 * Ba[:, 2]; A[:, row, cb] = -EIb * bb**2 * Bb[:, 2]; row += 1
     end(n - 1, False, end_k[1], end_kt[1])
-    return A
+    return A[0] if scalar else A
 
 
 def exact_omegas(segs, junction_k, end_k=(INF, INF), end_kt=(0.0, 0.0), count=6, omega_max=None,
                  points=40_000) -> np.ndarray:
-    """The lowest ``count`` natural circular frequencies [rad/s] (sign changes of the determinant)."""
+    """The lowest ``count`` natural circular frequencies [rad/s] (sign changes of the determinant,
+    scanned on the grid in stacks of 2,000 matrices)."""
     def det(w):
         sign, logdet = np.linalg.slogdet(_frequency_matrix(w, segs, junction_k, end_k, end_kt))
-        return sign * math.exp(logdet / (4 * len(segs)))  # the root of |det| keeps the sign, tames the size
+        return sign * np.exp(logdet / (4 * len(segs)))  # the root of |det| keeps the sign, tames the size
 
     grid = np.geomspace(omega_max * 1e-3, omega_max, points)
-    vals = np.array([det(w) for w in grid])
+    vals = np.concatenate([det(chunk) for chunk in np.array_split(grid, max(1, points // 2000))])
     roots = [brentq(det, grid[i], grid[i + 1], xtol=1e-13 * grid[i + 1], rtol=1e-14)
              for i in np.flatnonzero(np.sign(vals[:-1]) * np.sign(vals[1:]) < 0)]
     assert len(roots) >= count, f"only {len(roots)} roots below {omega_max}"
@@ -425,9 +432,23 @@ def test_moving_force_on_spring_supports_with_damping_against_solve_ivp():
         tt = np.atleast_1d(tt)
         return np.where((tt <= t_exit)[:, None], -P * fe.shape_at(full, np.clip(v * tt, 0.0, total)), 0.0)
 
+    def force_at(tt):
+        """``force(tt)[0]`` for one time, without the array machinery (the integrator calls it ~135,000
+        times): the same Hermite interpolation as ``_FEBeam.shape_at``, summed in the same order."""
+        if tt > t_exit:
+            return np.zeros(n_modes)
+        xp = min(max(v * tt, 0.0), total)
+        e = min(max(bisect.bisect_right(nodes, xp) - 1, 0), len(nodes) - 2)
+        h = nodes[e + 1] - nodes[e]
+        s = (xp - nodes[e]) / h
+        N = np.array([1 - 3 * s**2 + 2 * s**3, h * (s - 2 * s**2 + s**3), 3 * s**2 - 2 * s**3, h * (s**3 - s**2)])
+        return -P * (N @ full[2 * e:2 * e + 4])
+
+    nodes = fe.x.tolist()
+
     def rhs(tt, z):
         q, dq = z[:n_modes], z[n_modes:]
-        return np.concatenate([dq, force(tt)[0] - 2 * zeta * om * dq - om**2 * q])
+        return np.concatenate([dq, force_at(tt) - 2 * zeta * om * dq - om**2 * q])
 
     sol = solve_ivp(rhs, (0.0, t[-1]), np.zeros(2 * n_modes), t_eval=t, method="DOP853", rtol=1e-10, atol=1e-14,
                     max_step=dt)
@@ -449,6 +470,8 @@ def test_moving_force_on_spring_supports_with_damping_against_solve_ivp():
     R1 = np.array([_direct_stiffness(spans, EI, ks, kt, a)[0][1] if o else 0.0 for a, o in zip(a_t, on)])
     r_i = -ks[1] * fe.shape_at(full, spans[0])[0]
     f_t = force(t)
+    # the integrator's scalar force is the array one (same interpolation, round-off apart)
+    np.testing.assert_allclose([force_at(tt) for tt in t], f_t, rtol=0.0, atol=1e-12 * P)
     ma_ref = P * R1 - (f_t / om**2 - q) @ r_i
     ma = load_effect_response(res, beam.load_effect("reaction", support=1)).dynamic
     err = np.abs(ma - ma_ref) / np.abs(ma_ref).max()
