@@ -10,7 +10,6 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pytest
 
 from vbikit.driveby.study import unconverged_reasons
 from vbikit.solve import integrators
@@ -19,7 +18,7 @@ from vbikit.solve import integrators
 def test_the_reason_names_the_steps_and_keeps_the_identifications_own():
     reasons = unconverged_reasons(np.array(["", "peak below -6 dB", ""]), np.array([0.0, 3.0, np.nan]))
     assert reasons[0] == "" and reasons[2] == ""  # none, and not known (NaN), add nothing
-    assert reasons[1].startswith("the contact forces did not converge in 3 time step(s)")
+    assert reasons[1].startswith("the contact forces did not converge in 3 time steps of this pass")
     assert reasons[1].endswith("; peak below -6 dB")
 
 
@@ -43,11 +42,25 @@ def test_a_rigid_disk_sweep_at_one_iteration_is_flagged_everywhere(tmp_path, mon
     assert np.all(ds["identified_frequency_reliable"].values == 0)
     for i in range(2):
         assert str(ds["identified_frequency_reason"].values[i]).startswith(
-            f"the contact forces did not converge in {int(counts[i])} time step(s)")
+            f"the contact forces did not converge in {int(counts[i])} time steps of this pass")
     assert "contact_not_converged" in ds.attrs["flag_codes"].split(",")
     assert "2 of 2 passes" in ds.attrs["warnings"]
+    worst = int(np.argmax(counts))
+    assert f"the most: {int(counts[worst])} steps in case {worst})" in ds.attrs["warnings"]
     report = (tmp_path / "driveby-report.txt").read_text()
     assert "WARNING: the contact forces did not converge" in report
     summary = json.loads((tmp_path / "driveby-summary.json").read_text())
-    assert "did not converge" in summary["warnings"]
+    assert summary["warnings"] == [ds.attrs["warnings"]]  # a list of messages, each a flag record's
+    assert [f["code"] for f in summary["flags"]] == ["contact_not_converged"]
     assert all(not case["reliable"] for case in summary["cases"])
+
+
+def test_the_flag_counts_passes_and_names_the_worst_case():
+    from vbikit.driveby.quality import unconverged_pass_flags
+
+    assert unconverged_pass_flags(np.array([0.0, np.nan])) == []
+    (flag,) = unconverged_pass_flags(np.array([0.0, 1.0, 0.0]))
+    assert flag.code == "contact_not_converged" and "1 of 3 passes" in flag.message
+    assert "the most: 1 step in case 1)" in flag.message
+    (one,) = unconverged_pass_flags(np.array([4.0]))
+    assert "1 of 1 pass " in one.message and "4 steps in case 0" in one.message

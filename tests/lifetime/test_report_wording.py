@@ -80,40 +80,67 @@ def test_the_flags_are_in_words_and_their_codes_in_the_one_format(facts):
     assert per_effect == [",".join(f["code"] for f in e["flags"]) for e in saved.values()]
 
 
-def test_a_missing_total_pot_value_says_the_screening_set_its_threshold(tmp_path):
-    """With 5 % of the events sampled the simulated totals are complete only above
-    c = (1 + A)·max s·R_st of the events not simulated (recomputed here from the dataset's events);
-    the total POT threshold is c, too few exceed it, and the dataset and the report say why in those
-    words.  With every event simulated (dynamic_sample = 1) the total threshold is the static one and
-    the total POT has its value (nothing to say)."""
-    import numpy as np
-
-    from vbikit.lifetime.report import summary, text_report
+def _pot_run(path, sample: float = 0.05, details: bool = True, amplification: float = 0.05, speed_kmh: float = 5.0):
+    """Five days of 16 trucks as moving forces over the Bridge 1 beam, its midspan moment (and an EN 36
+    detail on it with ``details``: only then is a random sample of ``sample`` of the events simulated)."""
     from vbikit.lifetime.run import run_lifetime
 
-    def run(sample: float, name: str):
-        spec = {"name": "pot words", "seed": 4, "days": 5, "amplification": 0.05,
-                "traffic": {"records": "examples/lifetime/wim.csv", "trucks_per_day": 16, "speed_kmh": 5.0},
-                "vehicle_model": "moving-forces", "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3},
-                "tire": {"model": "point"}, "road": {"class": "none"},
-                "load_effects": [{"kind": "moment", "x": 4.58, "name": "M"}],
-                "fatigue": {"dynamic_sample": sample, "details": [{"name": "flange", "effect": "M", "section_modulus": 0.005,
-                                                                   "category": "EN 36"}]}}
-        return run_lifetime(spec, tmp_path / name, base_dir=".", workers=1, figures=False)
+    fatigue = {"dynamic_sample": sample} | ({"details": [{"name": "flange", "effect": "M", "section_modulus": 0.005,
+                                                          "category": "EN 36"}]} if details else {})
+    spec = {"name": "pot words", "seed": 4, "days": 5, "amplification": amplification,
+            "traffic": {"records": "examples/lifetime/wim.csv", "trucks_per_day": 16, "speed_kmh": speed_kmh},
+            "vehicle_model": "moving-forces", "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3},
+            "tire": {"model": "point"}, "road": {"class": "none"},
+            "load_effects": [{"kind": "moment", "x": 4.58, "name": "M"}], "fatigue": fatigue}
+    return run_lifetime(spec, path, base_dir=".", workers=1, figures=False)
 
-    ds = run(0.05, "sampled")
+
+def _completeness(ds) -> float:
+    """c = (1 + A)·max s·R_st over the events the screening did not simulate, from the dataset's events
+    and the A the run ended with (independently of ``vbikit.lifetime.accuracy.completeness_level``)."""
     left = ~ds["event_simulated"].values.astype(bool)
     static = ds["event_static"].values[:, 0] * float(ds["effect_sign"].values[0])
     assert left.any()
-    c = 1.05 * static[left].max()
-    assert float(ds["fit_pot_total_threshold"].values[0]) == c > float(ds["fit_pot_threshold"].values[0])
+    return (1.0 + float(ds.attrs["amplification_bound_used"])) * static[left].max()
+
+
+def test_a_missing_total_pot_value_says_the_screening_set_its_threshold(tmp_path):
+    """With 5 % of the events sampled (a fatigue detail given) the simulated totals are complete only
+    above c = (1 + A)·max s·R_st of the events not simulated; the total POT threshold is c, too few
+    exceed it, and the dataset and the report say why and what lowers it.  With every event
+    simulated (dynamic_sample = 1) the total threshold is the static one and the total POT has its
+    value (nothing to say)."""
+    import numpy as np
+
+    from vbikit.lifetime.report import summary, text_report
+
+    ds = _pot_run(tmp_path / "sampled")
+    assert float(ds.attrs["amplification_bound_used"]) == 0.05  # the file's A held
+    assert float(ds["fit_pot_total_threshold"].values[0]) == _completeness(ds) > float(ds["fit_pot_threshold"].values[0])
     words = str(ds["pot_total_not_estimable"].values[0])
     assert int(ds["fit_pot_total_exceedances"].values[0]) < 10 and np.isnan(ds["return_level_pot_total"].values[0]).all()
     assert "a GPD fit needs 10" in words and "complete only above this threshold, (1 + A) = 1.05 times" in words
+    assert "a larger [fatigue] dynamic_sample simulates more of them" in words
+    assert words.endswith("a smaller amplification A lowers it where the run's check shows that A holds")
     assert str(ds["pot_static_not_estimable"].values[0]) == ""
     assert f"(no POT value: {words})" in text_report(summary(ds))
 
-    every = run(1.0, "every")
+    every = _pot_run(tmp_path / "every", sample=1.0)
     assert float(every["fit_pot_total_threshold"].values[0]) == float(every["fit_pot_threshold"].values[0])
     assert str(every["pot_total_not_estimable"].values[0]) == ""
     assert np.isfinite(every["return_level_pot_total"].values[0]).all()
+
+
+def test_without_fatigue_details_and_with_a_raised_bound_the_words_say_so(tmp_path):
+    """No fatigue detail: no random sample is drawn, so dynamic_sample changes nothing and the words do
+    not offer it; at 80 km/h the moving forces amplify the moment by more than the file's A = 0.01, the
+    run's check raises A, and the words give the A used and do not advise a smaller one."""
+    ds = _pot_run(tmp_path / "raised", details=False, amplification=0.01, speed_kmh=80.0)
+    used = float(ds.attrs["amplification_bound_used"])
+    assert used > 0.01 and float(ds.attrs["amplification_bound_given"]) == 0.01
+    assert float(ds["fit_pot_total_threshold"].values[0]) == _completeness(ds)
+    words = str(ds["pot_total_not_estimable"].values[0])
+    assert "without [[fatigue.details]] no random sample of events is simulated" in words
+    assert "a larger [fatigue] dynamic_sample" not in words and "a smaller amplification" not in words
+    assert f"(1 + A) = {1 + used:.3g} times" in words
+    assert f"A is {used:.3g} because the run's check raised it from the file's amplification 0.01" in words

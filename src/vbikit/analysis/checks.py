@@ -65,6 +65,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from vbikit._words import counted
 from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
 from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
@@ -135,7 +136,8 @@ FLAG_CODES: dict[str, str] = {
     "contact_not_converged": "implicit integrators: steps whose end-of-step contact forces did not settle to their "
                              "tolerance within the iteration limit (the run went on with the last iterate); output: "
                              "unconverged_steps (lifetime: \"total return levels\", subject: the load effect); value: "
-                             "their number (in a dataset or a lifetime: in the worst crossing or event), threshold: 0",
+                             "their number (in a dataset or a lifetime: in the worst crossing, event or drive-by "
+                             "pass), threshold: 0",
     "lift_off": "random run: a tire lifts off with a probability above the linear theory's limit; value: the "
                 "probability, threshold: the limit",
     "sagging_over_pier": "a moment over an interior support whose largest static value is sagging (a soft "
@@ -851,11 +853,13 @@ def convergence_flags(result: CrossingResult) -> list[Flag]:
 
 
 def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
-                              describe: Callable[[tuple[int, ...]], str] | None = None) -> list[Flag]:
+                              describe: Callable[[tuple[int, ...]], str] | None = None,
+                              plural: str | None = None) -> list[Flag]:
     """The ``contact_not_converged`` rule over a dataset of many crossings (a study's grid, a traffic
-    stream's events): ``counts`` (...) each crossing's ``unconverged_steps`` (NaN: not known); one flag
-    when any is above 0: how many crossings, the worst and its count (``describe``: the words naming a
-    crossing by its index into ``counts``; default "crossing 12", the flat index)."""
+    stream's events, a drive-by sweep's passes): ``counts`` (...) each crossing's ``unconverged_steps``
+    (NaN: not known); one flag when any is above 0: how many crossings, the worst and its count
+    (``describe``: the words naming a crossing by its index into ``counts``; default "crossing 12",
+    the flat index; ``unit`` / ``plural`` the noun, ``plural`` where adding "s" is wrong)."""
     c = np.nan_to_num(np.asarray(counts, float), nan=0.0)
     flagged = c > 0.0
     if not flagged.any():
@@ -865,9 +869,9 @@ def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
     worst = describe(index) if describe else f"{unit} {k}"
     most = float(c.reshape(-1)[k])
     return [Flag("contact_not_converged",
-                 f"the contact forces did not converge in some time steps of {int(flagged.sum())} of {c.size} "
-                 f"{unit}{'es' if unit.endswith('s') else 's'} "
-                 f"(variable unconverged_steps; the most: {int(most)} steps in {worst}): "
+                 f"the contact forces did not converge in some time steps of {int(flagged.sum())} of "
+                 f"{counted(c.size, unit, plural)} (variable unconverged_steps; the most: "
+                 f"{counted(int(most), 'step')} in {worst}): "
                  f"{UNCONVERGED_ADVICE}", output="unconverged_steps", value=most, threshold=0.0)]
 
 

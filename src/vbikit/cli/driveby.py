@@ -24,7 +24,7 @@ def driveby_cmd(
     damage indicators, and write a labelled dataset (resumable, processes or Dask)."""
     import dataclasses
 
-    from vbikit.cli.study import run_job
+    from vbikit.cli.study import run_job, warn_dataset
     from vbikit.driveby.spec import load_driveby
     from vbikit.driveby.study import DriveByStudy, check_cases
 
@@ -37,6 +37,7 @@ def driveby_cmd(
     typer.echo(f"{file.name}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
     guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
+    warn_dataset(ds)
 
     def finish() -> None:
         from vbikit.driveby.study import write_outputs

@@ -66,6 +66,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from vbikit.analysis.checks import Flag, unconverged_dataset_flags
+
 #: main-lobe half-width of a window's spectrum in Rayleigh bins 1/T (Harris 1978, table 1); others: 2
 MAIN_LOBE = {"boxcar": 1.0, "hann": 2.0, "hamming": 2.0, "blackman": 3.0}
 #: a peak closer than this many main-lobe half-widths to a band edge is flagged
@@ -288,3 +290,10 @@ def multipass_estimate(frequency_hz: ArrayLike, resolution_hz: ArrayLike, reliab
     agrees = ok & (np.abs(f - med) <= AGREE_RESOLUTIONS * res)
     return MultiPass(med, q25, q75, float(g.mean()), float(g.std(ddof=1)) if g.size > 1 else math.nan,
                      int(f.size), int(ok.sum()), int(agrees.sum()), agrees)
+
+
+def unconverged_pass_flags(counts: NDArray) -> list[Flag]:
+    """The ``contact_not_converged`` dataset flag of a sweep whose passes (cases, in the dataset's
+    order) counted ``counts`` unconverged contact steps each (``unconverged_dataset_flags``; none
+    when every count is 0 or NaN)."""
+    return unconverged_dataset_flags(counts, "pass", lambda index: f"case {index[0]}", plural="passes")

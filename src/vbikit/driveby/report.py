@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 
 from vbikit.driveby.identify import CURVATURE_LOCATION_CAVEAT
-from vbikit.driveby.quality import MIN_PASSES
+from vbikit.analysis.checks import add_flags
+from vbikit.driveby.quality import MIN_PASSES, unconverged_pass_flags
 
 
 #: the most distinct values of a label the report groups the errors by
@@ -93,8 +94,10 @@ def summary(ds) -> dict:
                         "verdict": "confirmed" if n_agree >= MIN_PASSES else
                                    f"not confirmed: fewer than {MIN_PASSES} reliable passes agree",
                         "frequency_shift": num("multipass_frequency_shift", i) if sev > 0 else None}
-    return {"title": ds.attrs.get("title", "drive-by"), "cases": cases, "bridges": bridges,
-            **({"warnings": str(ds.attrs["warnings"])} if ds.attrs.get("warnings") else {}),
+    out: dict = {}
+    if "unconverged_steps" in ds:  # the dataset's flags as records, at the top as in every summary of vbikit
+        add_flags(out, unconverged_pass_flags(ds["unconverged_steps"].values))
+    return out | {"title": ds.attrs.get("title", "drive-by"), "cases": cases, "bridges": bridges,
             "note": "a reliable pass is accurate to about its resolution 1/T on a rough road, far better on a smooth "
                     "one; unreliable passes are left out of the damage indicators and the multi-pass estimates "
                     "(docs/driveby.md, How accurate is this)"}

@@ -22,11 +22,12 @@ from typing import Any, Optional
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.checks import dataset_flag_attrs, unconverged_dataset_flags
+from vbikit._words import counted
+from vbikit.analysis.checks import dataset_flag_attrs
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequency, mode_shape_squares,
                                      residual_response, shape_change)
-from vbikit.driveby.quality import vehicle_modes
+from vbikit.driveby.quality import unconverged_pass_flags, vehicle_modes
 from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitude_spectrum, contact_truth, measure,
                                     sensor_row)
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError, check_dataset_format
@@ -942,7 +943,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
              f"cut-off {spec.sampling.cutoff_hz:g} Hz, zero phase (forward-backward), applied before resampling",
              "identification_method": spec.method, "identification_sensor": spec.sensor, "Conventions": "CF-1.8",
              "chunk_passes": int(spec.output["chunk_passes"])}
-    attrs |= dataset_flag_attrs(unconverged_dataset_flags(unconverged, "pass"))
+    attrs |= dataset_flag_attrs(unconverged_pass_flags(unconverged))
     ds = xr.Dataset(variables, coords=coords, attrs=attrs)
     # chunked and compressed on disk: xarray.open_dataset(..., chunks={"case": n}) streams the records with Dask
     for name in PER_PASS_RECORDS:
@@ -959,7 +960,7 @@ def unconverged_reasons(reasons: NDArray, counts: NDArray) -> NDArray:
     its identification is unreliable whatever its spectrum shows (``contact_not_converged``)."""
     out = [str(r) for r in reasons]
     for i in np.flatnonzero(np.nan_to_num(np.asarray(counts, float), nan=0.0) > 0.0):
-        words = (f"the contact forces did not converge in {int(counts[i])} time step(s) of this pass "
+        words = (f"the contact forces did not converge in {counted(int(counts[i]), 'time step')} of this pass "
                  f"(unconverged_steps): its records are not trusted")
         out[i] = words + (f"; {out[i]}" if out[i] else "")
     return np.array(out, dtype=str)

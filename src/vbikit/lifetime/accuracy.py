@@ -150,12 +150,21 @@ def static_upper_bound(model, setup, signs: np.ndarray) -> tuple[np.ndarray, np.
     return bound, np.array(per_lane, np.int64)
 
 
-def completeness_words(bound: float) -> str:
-    """Why a total POT threshold can be high: the level ``completeness_level`` sets, in words."""
-    return (f"the simulated totals are complete only above this threshold, (1 + A) = {1.0 + bound:g} times the "
-            "largest static peak of the events the screening did not simulate; a larger [fatigue] dynamic_sample "
-            "simulates more of them (1: every event, and the threshold is the static fit's), a smaller amplification "
-            "A lowers it where the run's check shows A holds")
+def completeness_words(used: float, given: float, sampled: bool) -> str:
+    """Why a total POT threshold is above the static one: the level ``completeness_level`` sets, in
+    words, with what would lower it.  ``used``: the screening bound A the run ended with, ``given``:
+    the file's ``amplification`` (the run's check raises A when an event exceeds it), ``sampled``:
+    whether the run draws a random sample of events ([[fatigue.details]] given)."""
+    words = (f"the simulated totals are complete only above this threshold, (1 + A) = {1.0 + used:.3g} times the "
+             "largest static peak of the events the screening did not simulate; ")
+    words += ("a larger [fatigue] dynamic_sample simulates more of them (1: every event, and the threshold is the "
+              "static fit's)" if sampled else
+              "without [[fatigue.details]] no random sample of events is simulated (with them, [fatigue] "
+              "dynamic_sample = 1 simulates every event, and the threshold is the static fit's)")
+    if used > given:
+        return words + f"; A is {used:.3g} because the run's check raised it from the file's amplification {given:.3g}"
+    return words + "; a smaller amplification A lowers it where the run's check shows that A holds"
+
 
 
 def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float) -> float:

@@ -144,10 +144,14 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         s_sim = s_tot[simulated, j]
         c = complete(s_st[:, j], simulated, bound)
         u_total = max(c, u_static) if np.isfinite(u_static) else math.nan
+        static_fitted = False
         for which, values, u in (("static", s_st[:, j], u_static), ("total", s_sim, u_total)):
             pot = acc.pot_levels(values, u, values.size / years, periods, spec.ci)
-            if which == "total" and math.isnan(pot.shape) and c > u_static:  # no fit, its threshold set by the screening
-                pot = dataclasses.replace(pot, why=pot.why + "; " + acc.completeness_words(bound))
+            static_fitted = static_fitted or (which == "static" and not math.isnan(pot.shape))
+            # no total fit because the screening set its threshold (the static fit has its exceedances): say so
+            if which == "total" and math.isnan(pot.shape) and c > u_static and static_fitted:
+                pot = dataclasses.replace(pot, why=pot.why + "; " + acc.completeness_words(
+                    bound, float(spec.amplification), bool(spec.fatigue.details)))
             rl[f"pot_{which}"][j], rl[f"pot_{which}_lower"][j], rl[f"pot_{which}_upper"][j] = \
                 pot.level, pot.lower, pot.upper
             fits["pot_threshold" if which == "static" else "pot_total_threshold"][j] = u
