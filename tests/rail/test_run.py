@@ -211,3 +211,20 @@ def test_hslm_b_from_the_rail_file(tmp_path):
     assert "trains.hslm_b[3].d: missing required key" in msg
     with pytest.raises(RailSpecError, match="train names must differ, repeated: HSLM-B"):
         run_rail(spec(trains={"hslm_b": [{"n": 10, "d": 3.5}, {"n": 10, "d": 3.5}]}), figures=False)
+
+
+def test_a_peak_at_the_top_of_the_sweep_is_said_to_be_still_rising():
+    """HSLM-A1 (coach length D = 18 m) over the 20 m span: n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz puts the
+    second-order resonance n0 D / 2 at 62.8 m/s = 226 km/h.  Swept 180 … 220 km/h the largest deck
+    acceleration is at the top speed, climbing towards that resonance: the report says so.  Swept on to
+    260 km/h the peak is at the resonance, inside the sweep: nothing said."""
+    n0 = math.pi / (2 * 20.0**2) * math.sqrt(7.9e10 / 25000.0)
+    assert 3.6 * n0 * 18.0 / 2 == pytest.approx(226.1, abs=0.1)
+    below = run_rail(spec(speeds={"min": 180.0, "max": 220.0, "step": 2.0}), figures=False)
+    acc = below.checks["acceleration"]
+    assert acc["at_top_speed"] and 3.6 * acc["speed"] == pytest.approx(220.0)
+    assert "the peak is at the sweep's highest speed, where the response is still rising" in below.report
+    across = run_rail(spec(speeds={"min": 180.0, "max": 260.0, "step": 2.0}), figures=False)
+    acc = across.checks["acceleration"]
+    assert not acc["at_top_speed"] and abs(3.6 * acc["speed"] - 226.1) < 3.0
+    assert "still rising" not in across.report
