@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import logging
 from concurrent.futures import ThreadPoolExecutor
+from importlib import import_module
 from typing import Callable, Iterable, Optional, Sequence, TypeVar
 
 import numpy as np
@@ -52,6 +53,17 @@ def lane_chunks(steps: Sequence[float], threads: int = 1, lanes: int = MAX_LANES
         size = max(1, min(lanes, -(-len(members) // max(1, threads))))
         chunks += [(dt, members[i:i + size]) for i in range(0, len(members), size)]
     return chunks
+
+
+def _settled(result: CrossingResult) -> CrossingResult:
+    """A lane whose contact forces did not converge in some steps (the lanes settle together: a step
+    any lane needs more for counts for all) run again alone by ``simulate``, which runs it at half
+    its step where its own steps do not settle (``simulate.UNCONVERGED_HALVINGS``); else ``result``."""
+    run = import_module("vbikit.solve.simulate")  # (the module, whose name the package's function shadows)
+    if not result.unconverged_steps or run.UNCONVERGED_HALVINGS <= 0:
+        return result
+    log.info("a lane of a batch left %d steps unconverged: run again alone", result.unconverged_steps)
+    return run.simulate(result.crossing)
 
 
 class BatchSolver:
@@ -126,7 +138,7 @@ class BatchSolver:
         def fn(chunk):
             dt, members = chunk
             results = integrate([crossings[k] for k in members], self.data, self._grid(dt))
-            return [keep(result) for result in results]
+            return [keep(_settled(result)) for result in results]
 
         out: list = [None] * len(crossings)
         if threads > 1 and len(chunks) > 1:

@@ -25,6 +25,10 @@ if TYPE_CHECKING:  # pragma: no cover
 log = logging.getLogger(__name__)
 #: memory [bytes] the stored histories of one ``simulate`` may take before they are thinned
 HISTORY_BUDGET = 1 << 30
+#: a run with steps whose contact forces did not converge (``unconverged_steps``) is run again at
+#: half its step, at most this many times (an implicit integrator's contact iteration settles a
+#: landing within a shorter step; what is still unconverged after that is counted and flagged)
+UNCONVERGED_HALVINGS = 2
 
 
 def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int | None = None,
@@ -54,7 +58,49 @@ def simulate(crossing: Crossing, limits: Limits | None = None, output_every: int
     -------
     CrossingResult
         The histories of the bridge modes, the vehicle DOFs and the wheel forces.
+
+    A run with time steps whose contact forces did not converge (``unconverged_steps`` > 0: a light
+    wheel landing on a stiff, heavily damped tire can leave one) is run again at half the step, up to
+    ``UNCONVERGED_HALVINGS`` times within ``limits`` (logged, with the step used; ``result.crossing``
+    then carries that step); the result is the last run's, its remaining count flagged as before.
     """
+    result = _simulate_once(crossing, limits, output_every, history_budget, plan)
+    for _ in range(UNCONVERGED_HALVINGS):
+        if not result.unconverged_steps:
+            break
+        finer = _halved(result, limits, output_every, history_budget)
+        if finer is None:  # refused by the budget
+            break
+        result = finer
+    return result
+
+
+def _halved(result: CrossingResult, limits: Limits | None, output_every: int | None,
+            history_budget: float) -> CrossingResult | None:
+    """``result``'s crossing run again at half its integration step (the histories thinned by twice
+    ``output_every`` when that was given: the same stored samples), or None when the budget refuses it."""
+    from dataclasses import replace
+
+    from vbikit.solve.budget import BudgetError
+
+    step = float(result.integration_dt or result.dt)
+    finer = replace(result.crossing, dt=0.5 * step)
+    try:
+        plan = plan_run(finer, limits)
+    except BudgetError as err:
+        log.warning("%d time steps' contact forces did not converge at dt = %.4g s; the run at dt/2 is above the "
+                    "budget (%s), so the result stands, flagged", result.unconverged_steps, step, err)
+        return None
+    again = _simulate_once(finer, limits, None if output_every is None else 2 * int(output_every), history_budget, plan)
+    log.warning("%d time steps' contact forces did not converge at dt = %.4g s: run again at dt = %.4g s (%s)",
+                result.unconverged_steps, step, 0.5 * step,
+                f"{again.unconverged_steps} unconverged there" if again.unconverged_steps else "every step converged")
+    return again
+
+
+def _simulate_once(crossing: Crossing, limits: Limits | None, output_every: int | None, history_budget: float,
+                   plan: RunPlan | None) -> CrossingResult:
+    """``simulate`` at the crossing's own step (no rerun)."""
     if plan is None:
         plan = plan_run(crossing, limits)
     elif plan.crossing is not crossing:
