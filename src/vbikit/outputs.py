@@ -275,7 +275,8 @@ for _kind, _what, _unit in (("moment", "sagging positive", "N m"), ("shear", "dM
 register_output(Output("dt", "s", "time step of the stored histories", "crossing", lambda r: r.result.dt))
 register_output(Output("n_steps", "-", "number of time steps", "crossing", lambda r: r.result.n_steps))
 register_output(Output("unconverged_steps", "-", "integration steps whose contact forces did not converge within the "
-                       "implicit integrator's iteration limit (0 for a sound run; flag contact_not_converged)",
+                       "implicit integrator's iteration limit, after the run at half and a quarter of its step "
+                       "(0 for a sound run; flag contact_not_converged)",
                        "crossing", lambda r: float(r.result.unconverged_steps)))
 
 #: the outputs every population of crossings (a study's grid, a traffic stream's events) reduces and
