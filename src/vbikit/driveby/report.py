@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from vbikit.driveby.identify import CURVATURE_LOCATION_CAVEAT
 from vbikit.analysis.checks import add_flags
+from vbikit.driveby.identify import CURVATURE_LOCATION_CAVEAT
 from vbikit.driveby.quality import MIN_PASSES, unconverged_pass_flags
 
 

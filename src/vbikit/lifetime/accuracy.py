@@ -166,7 +166,6 @@ def completeness_words(used: float, given: float, sampled: bool) -> str:
     return words + "; a smaller amplification A lowers it where the run's check shows that A holds"
 
 
-
 def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float) -> float:
     """c = (1 + A)·max s·R_st over the events the screening left out: every event whose total
     s·R_dyn exceeds c was simulated (−inf when every event was)."""

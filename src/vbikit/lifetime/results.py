@@ -144,11 +144,11 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         s_sim = s_tot[simulated, j]
         c = complete(s_st[:, j], simulated, bound)
         u_total = max(c, u_static) if np.isfinite(u_static) else math.nan
-        static_fitted = False
         for which, values, u in (("static", s_st[:, j], u_static), ("total", s_sim, u_total)):
             pot = acc.pot_levels(values, u, values.size / years, periods, spec.ci)
-            static_fitted = static_fitted or (which == "static" and not math.isnan(pot.shape))
-            # no total fit because the screening set its threshold (the static fit has its exceedances): say so
+            # no total fit because the screening set its threshold (the static fit, made first, has its
+            # exceedances): say so
+            static_fitted = not math.isnan(fits["pot_static_shape"][j])
             if which == "total" and math.isnan(pot.shape) and c > u_static and static_fitted:
                 pot = dataclasses.replace(pot, why=pot.why + "; " + acc.completeness_words(
                     bound, float(spec.amplification), bool(spec.fatigue.details)))

@@ -59,8 +59,10 @@ def _settled(result: CrossingResult) -> CrossingResult:
     """A lane whose contact forces did not converge in some steps (the lanes settle together: a step
     any lane needs more for counts for all) run again alone by ``simulate``, which runs it at half
     its step where its own steps do not settle (``simulate.UNCONVERGED_HALVINGS``); else ``result``."""
+    if not result.unconverged_steps:
+        return result
     run = import_module("vbikit.solve.simulate")  # (the module, whose name the package's function shadows)
-    if not result.unconverged_steps or run.UNCONVERGED_HALVINGS <= 0:
+    if run.UNCONVERGED_HALVINGS <= 0:
         return result
     log.info("a lane of a batch left %d steps unconverged: run again alone", result.unconverged_steps)
     return run.simulate(result.crossing)

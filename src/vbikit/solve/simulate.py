@@ -7,12 +7,13 @@ from __future__ import annotations
 
 import logging
 import math
+from dataclasses import replace
 from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.solve.budget import Limits
+from vbikit.solve.budget import BudgetError, Limits
 from vbikit.solve.compile_notice import announce_compile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.integrators import KernelCall, get_integrator
@@ -79,10 +80,6 @@ def _halved(result: CrossingResult, limits: Limits | None, output_every: int | N
             history_budget: float) -> CrossingResult | None:
     """``result``'s crossing run again at half its integration step (the histories thinned by twice
     ``output_every`` when that was given: the same stored samples), or None when the budget refuses it."""
-    from dataclasses import replace
-
-    from vbikit.solve.budget import BudgetError
-
     step = float(result.integration_dt or result.dt)
     finer = replace(result.crossing, dt=0.5 * step)
     try:
