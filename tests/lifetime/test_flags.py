@@ -189,13 +189,14 @@ def test_a_wide_interval_of_a_zero_level_is_written_as_null():
 
 
 def test_unconverged_coupled_runs():
-    """Dataset attributes of a lifetime with 3 coupled runs whose contact forces did not converge in
+    """Dataset attributes of a lifetime with 3 of its 250 coupled runs whose contact forces did not converge in
     some steps (the most, 12, in event 40007): one flag per load effect on its total levels."""
-    a = ATTRS | {"n_unconverged_events": 3, "unconverged_steps_max": 12.0, "unconverged_event": 40007}
+    a = ATTRS | {"n_unconverged_events": 3, "unconverged_steps_max": 12.0, "unconverged_event": 40007,
+                 "n_dynamic_events": 250}
     (f,) = _flags("M", _clean(), a)
     assert (f.code, f.output, f.subject, f.value, f.threshold) == ("contact_not_converged", "total return levels", "M",
                                                                   12.0, 0.0)
-    assert "3 coupled run(s)" in f.message and "12 steps, event 40007" in f.message
+    assert "in some time steps of 3 of 250 coupled runs (the most: 12 steps in event 40007)" in f.message
     assert _codes(_clean()) == [] and _flags("M", _clean(), ATTRS | {"n_unconverged_events": 0}) == []
 
 

@@ -867,12 +867,21 @@ def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
     k = int(np.argmax(c))
     index = tuple(int(i) for i in np.unravel_index(k, c.shape))
     worst = describe(index) if describe else f"{unit} {k}"
-    most = float(c.reshape(-1)[k])
-    return [Flag("contact_not_converged",
-                 f"the contact forces did not converge in some time steps of {int(flagged.sum())} of "
-                 f"{counted(c.size, unit, plural)} (variable unconverged_steps; the most: "
-                 f"{counted(int(most), 'step')} in {worst}): "
-                 f"{UNCONVERGED_ADVICE}", output="unconverged_steps", value=most, threshold=0.0)]
+    return [unconverged_runs_flag(int(flagged.sum()), counted(c.size, unit, plural), float(c.reshape(-1)[k]), worst,
+                                  variable="unconverged_steps", output="unconverged_steps")]
+
+
+def unconverged_runs_flag(flagged: int, total: str, most: float, worst: str, variable: str | None = None,
+                          output: str = "unconverged_steps", subject: str | None = None) -> Flag:
+    """The ``contact_not_converged`` flag of many runs, in one wording: ``flagged`` runs of ``total``
+    (their count and noun, "40 coupled runs") had steps whose contact forces did not converge, the
+    most ``most`` steps in ``worst`` (the words naming that run); ``variable``: the dataset variable
+    holding each run's count, if there is one."""
+    where = f"variable {variable}; " if variable else ""
+    return Flag("contact_not_converged",
+                f"the contact forces did not converge in some time steps of {flagged} of {total} ({where}the most: "
+                f"{counted(int(most), 'step')} in {worst}): {UNCONVERGED_ADVICE}", output=output, subject=subject,
+                value=float(most), threshold=0.0)
 
 
 def run_flags(result: CrossingResult, response_x: float | None = None, response_y: float | None = None) -> list[Flag]:

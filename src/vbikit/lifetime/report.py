@@ -13,7 +13,7 @@ import re
 from typing import Any
 
 from vbikit._words import counted
-from vbikit.analysis.checks import UNCONVERGED_ADVICE, Flag, add_flags, has_flag, join_codes
+from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.outputs import report_unit
 
@@ -226,16 +226,15 @@ def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
 
 
 def _unconverged_flags(name: str, a: dict) -> list[Flag]:
-    """Coupled runs with steps whose contact forces did not converge (``n_unconverged_events``): their
-    totals enter every load effect's total levels, ADR and fatigue."""
+    """Coupled runs with steps whose contact forces did not converge (``n_unconverged_events`` of
+    ``n_dynamic_events``): their totals enter every load effect's total levels, ADR and fatigue."""
     n = int(a.get("n_unconverged_events", 0))
     if n <= 0:
         return []
-    return [Flag("contact_not_converged",
-                 f"the contact forces did not converge in some time steps of {n} coupled run(s) (the most: "
-                 f"{int(a['unconverged_steps_max'])} steps, event {int(a['unconverged_event'])}): {UNCONVERGED_ADVICE}",
-                 output=flag_output("return_levels", "total"), subject=name, value=float(a["unconverged_steps_max"]),
-                 threshold=0.0)]
+    runs = int(a.get("n_dynamic_events", n))
+    return [unconverged_runs_flag(n, counted(runs, "coupled run"), float(a["unconverged_steps_max"]),
+                                  f"event {int(a['unconverged_event'])}", output=flag_output("return_levels", "total"),
+                                  subject=name)]
 
 
 def _governing_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
