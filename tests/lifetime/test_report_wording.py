@@ -144,3 +144,19 @@ def test_without_fatigue_details_and_with_a_raised_bound_the_words_say_so(tmp_pa
     assert "a larger [fatigue] dynamic_sample" not in words and "a smaller amplification" not in words
     assert f"(1 + A) = {1 + used:.3g} times" in words
     assert f"A is {used:.3g} because the run's check raised it from the file's amplification 0.01" in words
+
+
+def test_the_screening_words_are_added_only_when_the_screening_set_the_total_threshold():
+    """The three cases of the total POT fit's reason (unit level: a run of at least 5 days always
+    leaves the static fit its exceedances, so the second case cannot be built from a run): the
+    screening's completeness level above the static threshold with the static fit made → its words;
+    the static fit missing too (too few days, not the screening) → the reason as it is; the level
+    at or below the static threshold (the static threshold is the total's) → as it is."""
+    from vbikit.lifetime.accuracy import total_pot_why
+
+    why = "3 exceedances above the threshold, fewer than 5"
+    added = total_pot_why(why, 1425.0, 977.0, True, 0.05, 0.05, False)
+    assert added.startswith(why + "; the simulated totals are complete only above this threshold, (1 + A) = 1.05 times")
+    assert total_pot_why(why, 1425.0, 977.0, False, 0.05, 0.05, False) == why
+    assert total_pot_why(why, 977.0, 977.0, True, 0.05, 0.05, False) == why
+    assert total_pot_why(why, 900.0, 977.0, True, 0.05, 0.05, False) == why

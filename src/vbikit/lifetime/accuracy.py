@@ -166,6 +166,18 @@ def completeness_words(used: float, given: float, sampled: bool) -> str:
     return words + "; a smaller amplification A lowers it where the run's check shows that A holds"
 
 
+def total_pot_why(why: str, level: float, static_threshold: float, static_fitted: bool, used: float, given: float,
+                  sampled: bool) -> str:
+    """Why a total POT fit is missing (``why``, from ``pot_levels``), with ``completeness_words``
+    added when the screening's completeness ``level`` set the total threshold above the static one
+    (``static_threshold``) and the static fit, made first at its own threshold, has its exceedances
+    (``static_fitted``): then the screening, not the traffic, left the total fit short of exceedances.
+    Otherwise ``why`` as it is (the static fit lacks them too: more days, not another screening)."""
+    if level > static_threshold and static_fitted:
+        return why + "; " + completeness_words(used, given, sampled)
+    return why
+
+
 def completeness_level(static_s: np.ndarray, simulated: np.ndarray, bound: float) -> float:
     """c = (1 + A)·max s·R_st over the events the screening left out: every event whose total
     s·R_dyn exceeds c was simulated (−inf when every event was)."""

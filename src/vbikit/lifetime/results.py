@@ -146,12 +146,10 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         u_total = max(c, u_static) if np.isfinite(u_static) else math.nan
         for which, values, u in (("static", s_st[:, j], u_static), ("total", s_sim, u_total)):
             pot = acc.pot_levels(values, u, values.size / years, periods, spec.ci)
-            # no total fit because the screening set its threshold (the static fit, made first, has its
-            # exceedances): say so
-            static_fitted = not math.isnan(fits["pot_static_shape"][j])
-            if which == "total" and math.isnan(pot.shape) and c > u_static and static_fitted:
-                pot = dataclasses.replace(pot, why=pot.why + "; " + acc.completeness_words(
-                    bound, float(spec.amplification), bool(spec.fatigue.details)))
+            if which == "total" and math.isnan(pot.shape):  # the static fit is made first
+                pot = dataclasses.replace(pot, why=acc.total_pot_why(
+                    pot.why, c, u_static, not math.isnan(fits["pot_static_shape"][j]), bound,
+                    float(spec.amplification), bool(spec.fatigue.details)))
             rl[f"pot_{which}"][j], rl[f"pot_{which}_lower"][j], rl[f"pot_{which}_upper"][j] = \
                 pot.level, pot.lower, pot.upper
             fits["pot_threshold" if which == "static" else "pot_total_threshold"][j] = u
