@@ -70,12 +70,19 @@ class InfluenceLine:
     evaluate : callable
         g(x, y) [units per N] for arrays x, y [m] (zero off the span).
     sign : float
-        +1 or −1: the direction the effect is governed in (the sign of g's largest magnitude:
-        −1 for a downward deflection or a hogging moment); peaks are largest values of sign·R.
+        +1 or −1: the direction the effect is governed in (by default the sign of g's largest
+        magnitude: −1 for a downward deflection or a hogging moment; or the one the user gave,
+        ``direction``); peaks are largest values of sign·R.
     effect : object, optional
         The ``vbikit.bridge.effects.LoadEffect`` (None for a deflection).
     x, y : float
         The section / response point [m].
+    direction : str
+        "auto" (the sign of g's largest magnitude), "positive" or "negative" (given).
+    opposite_area : float
+        ∫ of g over the span where it has the sign −``sign``, over ∫ where it has ``sign`` (absolute
+        values; 0 for a one-signed line).  Above 1 a long vehicle or several vehicles load the
+        effect more in the direction the run does not report (``direction_areas``).
     """
 
     name: str
@@ -86,10 +93,13 @@ class InfluenceLine:
     effect: object = field(default=None, repr=False)
     x: float = math.nan
     y: float = math.nan
+    direction: str = "auto"
+    opposite_area: float = 0.0
 
 
-def deflection_line(bridge: ModalBridge, x_r: float, y_r: float, name: str = "") -> InfluenceLine:
-    """Deflection at (x_r, y_r) [m] per unit downward load [m/N] from the retained modes (module docstring)."""
+def deflection_line(bridge: ModalBridge, x_r: float, y_r: float, name: str = "", direction: str = "auto") -> InfluenceLine:
+    """Deflection at (x_r, y_r) [m] per unit downward load [m/N] from the retained modes (module docstring);
+    ``direction`` as in ``InfluenceLine``."""
     phi_r = np.asarray(bridge.mode_shapes([x_r], [y_r])[0], float)
     coef = phi_r / np.asarray(bridge.omega, float) ** 2
     tables: dict[float, object] = {}
@@ -110,10 +120,10 @@ def deflection_line(bridge: ModalBridge, x_r: float, y_r: float, name: str = "")
         return out
 
     return _with_sign(InfluenceLine(name or f"deflection_x{x_r:g}", "deflection", KIND_UNITS["deflection"], evaluate,
-                                    -1.0, None, float(x_r), float(y_r)), bridge, y_r)
+                                    -1.0, None, float(x_r), float(y_r)), bridge, y_r, direction)
 
 
-def effect_line(bridge: ModalBridge, effect, name: str = "", y: float = 0.0) -> InfluenceLine:
+def effect_line(bridge: ModalBridge, effect, name: str = "", y: float = 0.0, direction: str = "auto") -> InfluenceLine:
     """A moment, shear or reaction (``vbikit.bridge.effects.LoadEffect``) per unit downward load
     (the negative of its influence function, zero off the span)."""
 
@@ -130,17 +140,37 @@ def effect_line(bridge: ModalBridge, effect, name: str = "", y: float = 0.0) -> 
     stem = f"reaction_s{effect.support}" if effect.kind == "reaction" else f"{effect.kind}_x{effect.x:g}"
     stem += f"_g{effect.girder}" if effect.girder is not None else ""
     return _with_sign(InfluenceLine(name or stem, effect.kind, effect.units, evaluate, 1.0, effect, float(effect.x),
-                                    float(y)), bridge, y)
+                                    float(y)), bridge, y, direction)
 
 
-def _with_sign(line: InfluenceLine, bridge: ModalBridge, y: float) -> InfluenceLine:
+#: the sign s of each ``direction`` a user can give (``LoadEffectSpec.direction``)
+DIRECTION_SIGNS = {"positive": 1.0, "negative": -1.0}
+
+
+def direction_areas(g: NDArray[np.float64], x: NDArray[np.float64]) -> tuple[float, float]:
+    """The areas ∫ max(g, 0) dx and ∫ max(−g, 0) dx of an influence line sampled at x (trapezoidal
+    rule): what a uniform load over the whole positive or negative part of the line gives."""
+    return (float(np.trapezoid(np.maximum(g, 0.0), x)), float(np.trapezoid(np.maximum(-g, 0.0), x)))
+
+
+def _with_sign(line: InfluenceLine, bridge: ModalBridge, y: float, direction: str = "auto") -> InfluenceLine:
+    """``line`` with its governing sign: the sign of its largest ordinate on the span (one axle
+    governs), or the ``direction`` given; and ``opposite_area``, the area of the other sign's part
+    over its own (``direction_areas``): a two-signed line whose other part is the larger is loaded
+    more the other way by long or several vehicles (a moment near an interior support)."""
     x = np.linspace(0.0, float(bridge.span), 2001)
     g = line.evaluate(x + float(-bridge.span_coordinate(0.0, y)), np.full(x.size, float(y)))
     k = int(np.argmax(np.abs(g)))
     if g[k] == 0.0:
         raise ValueError(f"load effect {line.name}: its influence line is zero everywhere on the span")
-    return InfluenceLine(line.name, line.kind, line.units, line.evaluate, float(np.sign(g[k])), line.effect, line.x,
-                         line.y)
+    positive, negative = direction_areas(g, x)
+    sign = DIRECTION_SIGNS.get(direction, float(np.sign(g[k])))
+    own, other = (positive, negative) if sign > 0 else (negative, positive)
+    if own == 0.0:
+        raise ValueError(f"load effect {line.name}: direction = \"{direction}\": its influence line is never "
+                         f"{direction} on the span, so the effect has no {direction} values")
+    return InfluenceLine(line.name, line.kind, line.units, line.evaluate, sign, line.effect, line.x, line.y,
+                         direction, other / own)
 
 
 # ---------------------------------------------------------------- vehicles as point loads

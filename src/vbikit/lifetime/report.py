@@ -74,6 +74,11 @@ def _effect(ds, j: int) -> dict[str, Any]:
                                                   "im_mean_loaded", "im_q95_loaded") if k in ds},
         "n_small_static_sample": int(ds["n_small_static_sample"].values[j]) if "n_small_static_sample" in ds else 0,
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
+        # the direction s reported, how it was chosen and the other direction's share of the line (older datasets lack them)
+        "direction": {"sign": float(ds["effect_sign"].values[j]),
+                      "source": str(ds["effect_direction"].values[j]) if "effect_direction" in ds else "auto",
+                      "opposite_area": (_num(ds["opposite_direction_area"].values[j])
+                                        if "opposite_direction_area" in ds else None)},
     }
     if "run_static_shortfall" in ds:
         out["run_static_shortfall"] = {"value": _num(ds["run_static_shortfall"].values[j]),
@@ -96,6 +101,11 @@ def _effect(ds, j: int) -> dict[str, Any]:
     return out
 
 
+#: ``opposite_direction_unreported``: the largest area of the unreported sign's part of an influence
+#: line over the reported one's that passes without a flag (equal areas: a uniform load gives both
+#: directions alike)
+OPPOSITE_AREA_LIMIT = 1.0
+
 #: what a lifetime finding puts in doubt (its flag's ``output``), in the report's words: the one
 #: naming (``flag_output``; the report's marks match on it)
 FLAG_OUTPUTS: dict[str, str] = {"characteristic": "characteristic {w} value", "return_levels": "{w} return levels",
@@ -111,7 +121,8 @@ def flag_output(what: str, w: str = "") -> str:
 def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     """The accuracy findings of load effect ``name`` (its summary so far, ``e``; the dataset's
     attributes ``a``) as ``Flag`` records (``FLAG_CODES``; subject: ``name``), in the report's order."""
-    out = _not_estimable_flags(name, e)
+    out = _direction_flags(name, e)
+    out += _not_estimable_flags(name, e)
     out += _static_bound_flags(name, e)
     for w in ("static", "total"):
         out += _fit_flags(name, e, w, float(a["xi_strongly_negative"]))
@@ -120,6 +131,23 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     out += _governing_flags(name, e, float(a["half_step_tolerance"]))
     out += _unconverged_flags(name, a)
     return out
+
+
+def _direction_flags(name: str, e: dict) -> list[Flag]:
+    """A direction chosen by the line's largest ordinate (``direction = "auto"``) while the other
+    sign's part of the influence line has the larger area: long or several vehicles then load the
+    effect more in the direction the run does not report (a moment near an interior support)."""
+    d = e.get("direction")
+    if not d or d["source"] != "auto" or d["opposite_area"] is None or d["opposite_area"] <= OPPOSITE_AREA_LIMIT:
+        return []
+    here, other = ("positive", "negative") if d["sign"] > 0 else ("negative", "positive")
+    return [Flag("opposite_direction_unreported",
+                 f"the influence line is two-signed: its largest ordinate is {here}, so only {here} values are "
+                 f"reported, but its {other} part has {d['opposite_area']:.2f} times the area of its {here} part: "
+                 f"long or several vehicles load it more in the {other} direction, which may govern; add this load "
+                 f"effect again with direction = \"{other}\" (and direction = \"{here}\" here) to see both",
+                 output=flag_output("characteristic", "static"), subject=name, value=d["opposite_area"],
+                 threshold=OPPOSITE_AREA_LIMIT)]
 
 
 def _not_estimable_flags(name: str, e: dict) -> list[Flag]:

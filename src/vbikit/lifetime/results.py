@@ -247,6 +247,13 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                                  f"{k.replace('_', ' ')} of the fit to s*R (governing direction)"))
            for k, v in fits.items()},
         "effect_sign": ("load_effect", signs, ev_attrs("1", "governing direction s: peaks are the largest s*R")),
+        "effect_direction": ("load_effect", np.array([ln.direction for ln in lines], dtype=object),
+                             {"long_name": "how s was chosen: auto (the sign of the influence line's largest "
+                                           "ordinate) or given (positive, negative)"}),
+        "opposite_direction_area": ("load_effect", np.array([ln.opposite_area for ln in lines]),
+                                    ev_attrs("1", "area of the influence line's part of sign -s over that of its "
+                                                  "part of sign s (0: one-signed); above 1 long or several vehicles "
+                                                  "load the effect more in the direction not reported")),
         "im_mean": ("load_effect", np.array(im["im_mean"]), ev_attrs("1", "mean impact factor R_dyn/R_st - 1 of the random sample of events")),
         "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the impact factor (random sample)")),
         "im_q95": ("load_effect", np.array(im["im_q95"]), ev_attrs("1", "95 % quantile of the impact factor (random sample)")),
@@ -379,11 +386,10 @@ def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:
 
 def _heavy_amplification(st, total, signs, day, n_days, simulated) -> float:
     """The largest amplification R_dyn/R_st − 1 among the simulated events the screening checks
-    (static peak ≥ CHECK_FRACTION of their day's largest, for some effect)."""
-    from vbikit.lifetime.screening import amplifications, heavy_events
+    (static peak ≥ CHECK_FRACTION of their day's largest), of the effects they are heavy for."""
+    from vbikit.lifetime.screening import heavy_amplifications
 
-    heavy = simulated & heavy_events(st, signs, day, n_days, CHECK_FRACTION)
-    amp = amplifications(total[heavy], st[heavy])
+    amp = heavy_amplifications(total, st, signs, day, n_days, simulated, CHECK_FRACTION)
     amp = amp[np.isfinite(amp)]
     return float(amp.max()) if amp.size else math.nan
 

@@ -27,8 +27,8 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
-from vbikit.lifetime.screening import (CHECK_FRACTION, amplifications, block_dynamic_max, candidates, heavy_events, rescreen_bound,
-                                       top_events)
+from vbikit.lifetime.screening import (CHECK_FRACTION, block_dynamic_max, candidates, heavy_amplifications,
+                                       rescreen_bound, top_events)
 from vbikit.lifetime.spec import LifetimeError, LifetimeFile, base_sections, parse_lifetime, read_lifetime
 
 log = logging.getLogger(__name__)
@@ -361,8 +361,7 @@ def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: i
             r += 1
             run(todo, r)
             continue
-        heavy = simulated & heavy_events(static, signs, block, n_blocks, CHECK_FRACTION)
-        amp = amplifications(dyn[heavy], static[heavy])
+        amp = heavy_amplifications(dyn, static, signs, block, n_blocks, simulated, CHECK_FRACTION)
         new_bound = rescreen_bound(amp.ravel(), bound)
         if new_bound <= bound or rescreens >= MAX_RESCREENS:
             break

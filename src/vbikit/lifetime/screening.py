@@ -94,10 +94,20 @@ def rescreen_bound(observed: Iterable[float], amplification: float) -> float:
 
 def heavy_events(static: NDArray[np.float64], signs: NDArray[np.float64], block: NDArray[np.int64], n_blocks: int,
                  fraction: float) -> NDArray[np.bool_]:
-    """Events whose s·R_st is at least ``fraction`` of their block's largest for some effect (the
-    events whose amplification the run checks against A)."""
+    """(event, effect) pairs whose s·R_st is at least ``fraction`` of the block's largest of that
+    effect: the amplifications the run checks against A.  Per effect, since an event heavy for one
+    effect can be light for another, whose amplification cannot make a maximum of it (the screening
+    rule; a light event's amplification may exceed A)."""
     s = np.asarray(static) * np.asarray(signs)[None, :]
     top = np.full((n_blocks, s.shape[1]), -np.inf)
     for j in range(s.shape[1]):
         np.maximum.at(top[:, j], block, s[:, j])
-    return np.any(s >= fraction * top[block], axis=1)
+    return s >= fraction * top[block]
+
+
+def heavy_amplifications(dyn: NDArray[np.float64], static: NDArray[np.float64], signs: NDArray[np.float64],
+                         block: NDArray[np.int64], n_blocks: int, simulated: NDArray[np.bool_],
+                         fraction: float) -> NDArray[np.float64]:
+    """The amplifications R_dyn/R_st − 1 of the simulated heavy (event, effect) pairs (``heavy_events``), flat."""
+    heavy = np.asarray(simulated, bool)[:, None] & heavy_events(static, signs, block, n_blocks, fraction)
+    return amplifications(np.asarray(dyn)[heavy], np.asarray(static)[heavy])

@@ -46,6 +46,7 @@ def lane_centres(bridge, n_lanes: int, lanes: Optional[Sequence[float]]) -> tupl
 
 def _line(bridge, e: dict[str, Any]) -> InfluenceLine:
     kind, girder, name = e["kind"], e.get("girder"), e.get("name") or ""
+    direction = e.get("direction") or "auto"
     if kind == "deflection":
         if girder is not None:
             if not isinstance(bridge, GirderDeck):
@@ -56,7 +57,7 @@ def _line(bridge, e: dict[str, Any]) -> InfluenceLine:
         x = float(bridge.default_x_at(y)) if e.get("x") is None else float(e["x"])
         if not 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span:
             raise ValueError(f"x = {x:g} m is off the span 0 … {bridge.span:g} m")
-        return deflection_line(bridge, x, y, name)
+        return deflection_line(bridge, x, y, name, direction)
     kw = {} if girder is None else {"girder": girder}
     if kind == "reaction":
         effect = bridge.load_effect("reaction", support=int(e["support"]), **kw)
@@ -64,7 +65,7 @@ def _line(bridge, e: dict[str, Any]) -> InfluenceLine:
         x = float(bridge.span) / 2 if e.get("x") is None else float(e["x"])
         effect = bridge.load_effect(kind, x=x, **kw)
     y = float(bridge.girder_y[bridge.girder_index(girder)]) if girder is not None else 0.0
-    return effect_line(bridge, effect, name, y)
+    return effect_line(bridge, effect, name, y, direction)
 
 
 def build_setup(key: str) -> Setup:

@@ -89,6 +89,10 @@ class LoadEffectSpec(_Strict):
     girder: Optional[int] = Field(None, ge=1, le=100, description="slab-on-girder decks: the girder (1-based)")
     support: Optional[int] = Field(None, ge=0, le=100, description="reaction: the support index (0 = entry)")
     name: str = Field("", pattern=r"^([A-Za-z][A-Za-z0-9_]*)?$", max_length=40)
+    direction: Literal["auto", "positive", "negative"] = Field(
+        "auto", description="the direction whose extremes the run reports: positive (sagging moment, upward "
+        "deflection or reaction) or negative (hogging moment, downward deflection); auto: the sign of the influence "
+        "line's largest ordinate")
 
     @model_validator(mode="after")
     def _check(self) -> "LoadEffectSpec":
