@@ -225,6 +225,10 @@ def bogie_resonance_list(ds, k: int) -> list[tuple[float, int, float]]:
     return [(float(d[j]), i + 1, float(v[j, i])) for j in range(d.size) if np.isfinite(d[j]) for i in range(v.shape[1])]
 
 
+#: a governing peak farther than this (relative) from every resonance of the first mode is compared with
+#: the higher modes' resonances too (``higher_mode_resonances``): a long span's peak can be a higher mode's
+NEAR_RESONANCE = 0.05
+
 #: the highest order i of n0 D / i the governing peak is compared with (orders down to 0.9 × the sweep's
 #: lowest speed, at most this many: a short span's coach-length resonances in the sweep are high orders)
 MAX_RESONANCE_ORDER = 60
@@ -253,7 +257,31 @@ def governing_resonance(ds, train: str, speed: float) -> Optional[dict[str, Any]
     near = nearest_resonance(float(speed), cands)
     if near is None:
         return None
+    if abs(float(speed) / near[1] - 1.0) > NEAR_RESONANCE:  # not the first mode's: a higher mode's, when nearer
+        higher = nearest_resonance(float(speed), higher_mode_resonances(ds, k))
+        if higher is not None and abs(float(speed) / higher[1] - 1.0) < abs(float(speed) / near[1] - 1.0):
+            near = higher
     return {"resonance": near[0], "speed_m_s": near[1], "speed_kmh": 3.6 * near[1], "offset": float(speed) / near[1] - 1.0}
+
+
+def higher_mode_resonances(ds, k: int) -> list[tuple[str, float]]:
+    """(label, v [m/s]) of train ``k``'s resonances of the second and higher retained modes, n_j D / i
+    and n_j d / i for the orders i stored (``resonance_speed``; the same rule as the first mode's,
+    EN 1991-2 6.4.6, with that mode's frequency n_j from ``frequency``); empty without them."""
+    if "frequency" not in ds:
+        return []
+    freqs = [float(f) for f in np.atleast_1d(ds["frequency"].values)]
+    d = float(ds["excitation_wavelength"].values[k])
+    orders = len(ds["resonance_speed"].values[k])
+    spacings = sorted({dd for dd, _, _ in bogie_resonance_list(ds, k)})
+    out = []
+    for j, f in enumerate(freqs[1:], start=2):
+        if math.isfinite(d):
+            out += [(f"n{j} D / {i} (mode {j}, {f:.3f} Hz; D = {d:.3f} m, {ds['wavelength_source'].values[k]})",
+                     f * d / i) for i in range(1, orders + 1)]
+        out += [(f"n{j} d / {i} (mode {j}, {f:.3f} Hz; axle spacing within a bogie d = {dd:g} m)", f * dd / i)
+                for dd in spacings for i in range(1, orders + 1)]
+    return out
 
 
 #: each check's governed quantity as its grid value is written: (key of the grid value, SI unit; None: a factor)
