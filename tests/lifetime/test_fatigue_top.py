@@ -40,7 +40,7 @@ def test_one_range_above_the_fatigue_limit_counts_by_hand():
         "hist_bin": ("hist", np.array([20], np.int64)),
         "hist_count": ("hist", np.array([10.0])),
     })
-    prep = SimpleNamespace(spec=SimpleNamespace(days_per_year=365, fatigue=SimpleNamespace(damage_so_far=0.0)),
+    prep = SimpleNamespace(spec=SimpleNamespace(days_per_year=365, fatigue=SimpleNamespace(damage_so_far=0.0, design_life=100.0)),
                            details=(Detail("d", 0, 1.0, "EN 36", 1.0, 1.0 * MPA),), n_days=2)
     got = fatigue_results(prep, static, {"sample": np.zeros(0, np.int64), "gid": np.zeros(0), "results": {}})
     v = got["variables"]

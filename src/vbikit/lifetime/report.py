@@ -292,7 +292,8 @@ def _detail(ds, j: int) -> dict[str, Any]:
             **{k: _num(ds[k].values[j]) for k in (
                 "fatigue_damage", "fatigue_damage_se", "fatigue_damage_static", "dynamic_damage_ratio",
                 "dynamic_damage_ratio_se", "fatigue_damage_per_year", "equivalent_stress_range", "remaining_life",
-                "fatigue_damage_design_life", "fatigue_damage_design_life_upper")},
+                "equivalent_stress_range_design_life",
+                "fatigue_damage_design_life", "fatigue_damage_design_life_upper") if k in ds},
             "below_fatigue_limit": bool(ds["below_fatigue_limit"].values[j]),
             "verdict": str(ds["fatigue_verdict"].values[j]),
             "dynamic_damage_ratio_words": str(ds["dynamic_damage_ratio_note"].values[j])}
@@ -429,14 +430,17 @@ def text_report(facts: dict[str, Any]) -> str:
                   f"{'detail':<16}{'category':<{wide}}{'damage':>12}{'± se':>11}{'static':>12}{'per year':>12}"
                   f"{'Δσ_E,2 MPa':>11}{'life yr':>10}"]
         for name, d in facts["fatigue"].items():
-            eq = d["equivalent_stress_range"]
+            eq = d.get("equivalent_stress_range_design_life")
             lines.append(f"{name:<16}{d['category']:<{wide}}{_g(d['fatigue_damage'], '>12.4g')}"
                          f"{_g(d['fatigue_damage_se'], '>11.3g')}{_g(d['fatigue_damage_static'], '>12.4g')}"
                          f"{_g(d['fatigue_damage_per_year'], '>12.4g')}"
                          f"{('n/a' if eq is None else format(eq / 1e6, '.3f')):>11}"
                          f"{('unlimited' if d['remaining_life'] is None else format(d['remaining_life'], '.4g')):>10}")
-        if any(d["equivalent_stress_range"] is None for d in facts["fatigue"].values()):
-            lines.append("  (Δσ_E,2 n/a: the range doing the year's damage in 2e6 cycles lies below the curve's cut-off)")
+        lines.append(f"  (Δσ_E,2: the constant range whose 2e6 cycles do the damage of the {facts['design_life']:g}-year "
+                     "design life's traffic, comparable with the category Δσ_C (EN 1993-1-9 8(2))"
+                     + ("; n/a: that range lies below the curve's cut-off)"
+                        if any(d.get("equivalent_stress_range_design_life") is None for d in facts["fatigue"].values())
+                        else ")"))
         for name, d in facts["fatigue"].items():
             lines += [f"  {name}: {d['verdict']}", f"  {name}: {d['dynamic_damage_ratio_words']}"]
     return "\n".join(lines) + "\n"

@@ -384,6 +384,17 @@ def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:
     return out
 
 
+def _equivalent_range(curve, damage: float) -> float:
+    """The constant stress range whose 2·10⁶ cycles do ``damage`` on ``curve`` (N(Δσ) = 2·10⁶ / D;
+    0 for no damage); NaN where that range lies below the curve's cut-off (no range does so little)."""
+    if damage <= 0:
+        return 0.0
+    try:
+        return curve.stress_range_at(2e6 / damage)
+    except Exception:  # below the curve's cut-off / threshold: no damage-equivalent range on it
+        return math.nan
+
+
 def _heavy_amplification(st, total, signs, day, n_days, simulated) -> float:
     """The largest amplification R_dyn/R_st − 1 among the simulated events the screening checks
     (static peak ≥ CHECK_FRACTION of their day's largest), of the effects they are heavy for."""
@@ -489,8 +500,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     sample = dyn["sample"]
     gid = dyn["gid"]
     n_ev = gid.size
-    out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "life",
-                                                       "below_limit", "top")}
+    out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "eq_life",
+                                                       "life", "below_limit", "top")}
     empty = np.zeros(0)
     joined = []  # per detail: the cycles that close across days (the residuals joined) and the last residual
     for j in range(len(details)):
@@ -539,10 +550,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
         out["ratio"][j] = d_total / d_static if d_static > 0 else math.nan
         out["per_year"][j] = per_year
-        try:
-            out["eq"][j] = curve.stress_range_at(2e6 / per_year) if per_year > 0 else 0.0
-        except Exception:  # below the curve's cut-off / threshold: no damage-equivalent range on it
-            out["eq"][j] = math.nan
+        out["eq"][j] = _equivalent_range(curve, per_year)
+        out["eq_life"][j] = _equivalent_range(curve, per_year * spec.fatigue.design_life)
         out["life"][j] = remaining_life(per_year, spec.fatigue.damage_so_far)
     a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
     width = details[0].bin
@@ -553,6 +562,7 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         "fatigue_damage_per_year": ("detail", out["per_year"], a("year-1", "fatigue_damage per year")),
         "dynamic_damage_ratio": ("detail", out["ratio"], a("1", "fatigue_damage / fatigue_damage_static")),
         "equivalent_stress_range": ("detail", out["eq"], a("Pa", "damage-equivalent stress range at 2e6 cycles a year")),
+        "equivalent_stress_range_design_life": ("detail", out["eq_life"], a("Pa", f"damage-equivalent stress range of the {spec.fatigue.design_life:g}-year design life's traffic at 2e6 cycles (EN 1993-1-9 Δσ_E,2: below Δσ_C exactly when that damage is below 1)")),
         "remaining_life": ("detail", out["life"], a("year", "years until the Miner sum reaches 1 at fatigue_damage_per_year")),
         "below_fatigue_limit": ("detail", out["below_limit"].astype(np.int8), a("1", "1 if every stress range of the period (static, and of every dynamically simulated event) is below the constant-amplitude fatigue limit: no damage (EN 1993-1-9 1.3.3.3, AASHTO (dF)_TH)")),
         "damage_per_day_static": (("day", "detail"), alone, a("1", "Miner damage of each day's static history counted alone")),
