@@ -39,6 +39,16 @@ def test_errors_name_keys_and_ranges_before_computing():
         parse_rail_spec(spec(speeds={"step": 0.0}))
 
 
+def test_a_given_damping_with_additional_damping_set_is_refused():
+    """A given ζ replaces the code's ζ and its Δζ (EN 1991-2 Eq. 6.13) both: ``additional_damping = true``
+    beside it would be ignored, so it is refused naming the key; either alone is accepted."""
+    with pytest.raises(RailSpecError, match=r"bridge.*additional_damping: a given damping replaces"):
+        parse_rail_spec(spec(bridge={"damping": 0.02, "additional_damping": True}))
+    assert parse_rail_spec(spec(bridge={"damping": 0.02})).bridge.damping == 0.02
+    assert parse_rail_spec(spec(bridge={"damping": 0.02, "additional_damping": False})).bridge.damping == 0.02
+    assert parse_rail_spec(spec(bridge={"additional_damping": True})).bridge.additional_damping
+
+
 def test_budget_refused_before_the_sweep():
     with pytest.raises(RailBudgetError, match="run.budget: the sweep needs"):
         run_rail(spec(run={"budget": 1e5}), figures=False)

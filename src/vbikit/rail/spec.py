@@ -8,7 +8,7 @@
     deck = "prestressed-concrete"    # EN 1991-2 Table 6.6 row (steel, composite, prestressed-concrete,
                                      # reinforced-concrete, filler-beam)
     track = "ballasted"              # or "direct" (acceleration limit 3.5 or 5 m/s²)
-    # damping = 0.015                # ζ [-] instead of Table 6.6 (+ Δζ)
+    # damping = 0.015                # ζ [-] instead of Table 6.6 + Δζ (then leave additional_damping out)
     additional_damping = true        # add Δζ of Eq. 6.13 (spans below 30 m)
     # n_modes = 3                    # default: every mode up to max(30 Hz, 1.5 n0, n3), at least 3
     classification_factor = 1.0      # α of LM71
@@ -93,6 +93,9 @@ class BridgeSection(_Section):
                              "(a vbikit scenario file whose [bridge] is used)")
         if self.scenario is not None and beam:
             raise ValueError(f"{beam[0]}: give either scenario or span, EI and mass_per_length, not both")
+        if self.damping is not None and self.additional_damping and "additional_damping" in self.model_fields_set:
+            raise ValueError("additional_damping: a given damping replaces the code's ζ and its additional Δζ "
+                             "(EN 1991-2 Eq. 6.13) both; give damping alone, or additional_damping without damping")
         return self
 
     @field_validator("deck", "track", "maintenance")
