@@ -42,30 +42,48 @@ average over 0.10 m and 0.5 m (``--smooth``; RK4 rerun on it); where the history
 one smoothed event (``where_error``); the holds on the ``vbikit demo`` crossing; and the loop's
 thread CPU time a step with each hold.
 
-Findings (2026-12-05; tables in benchmarks/README.md):
+Findings (2026-12-05).  |ΔIM| max / mean against RK4 at dt/8, k × the automatic step dt:
 
-* The linear hold's error is a bias: on 80 class B events (``--single 60 --several 20``) the signed
-  mean ΔIM is −5.6e-5, −2.3e-4, −5.3e-4, −9.4e-4 at k = 1, 2, 3, 4 (the underestimate ∝ dt²).  The
-  quadratic hold removes it (signed mean within ±1.6e-5 at every k); what is left is scatter of
-  either sign: max |ΔIM| 2.7e-4, 3.6e-4, 4.4e-4, 6.1e-4, 7.5e-4 at k = 1, 1.5, 2, 3, 4 against the
-  linear hold's 4.0e-4, 5.6e-4, 7.7e-4, 1.5e-3, 2.8e-3 (mean 3.9e-5 … 2.2e-4 against 6.5e-5 … 9.5e-4).
-  Both halves count: the quadratic hold on the deck alone or on the vehicles alone does about half.
-* So at today's accuracy (max 4.0e-4, mean 6.5e-5 at 1×) the quadratic hold allows 1.5× (max 3.6e-4,
-  mean 5.4e-5), and within the stated 5e-4 it allows 2× (max 4.4e-4, mean 8.4e-5; class C, 15
-  events, 9 losing contact: 4.1e-4 against the linear hold's 3.2e-4 at 1×); 3× is above 5e-4 (6.1e-4).
-* A cubic hold (four points) is no better on these events (its order shows only on a smooth load):
-  the scatter left is not the hold's truncation.  It is the road's content at wavelengths ≈ 0.1–0.5 m
-  (5–25 steps of 2 cm): smoothed over 0.10 m the errors barely change, smoothed over 0.5 m the
-  quadratic hold's max |ΔIM| at 2× falls from 2.2e-4 to 8.9e-5 (15 events) and the cubic's at 4× to
-  2.4e-4.  A polynomial through step-end samples of the contact force cannot follow a force whose
-  road part changes on the scale of a few steps; the midspan history's error also peaks near the
-  axles' entries to and exits from the deck (a kink in the load at the support; ``where_error``),
-  where it falls only about as dt, though it moves the IM little.  Output sampling (RK4's history at k dt) costs < 4e-5 at 4×; the
-  contact solve's convergence nothing (three updates a step give the same numbers as one).
-* Cost: the loop's time a step is unchanged (≈ 1.08 µs both; the hold adds n_m + 2 n_d n_w
-  multiply-adds and two small carried vectors).  On the ``vbikit demo`` crossing (20 modes, ωh up
-  to ≈ 18, multipoint tires, class C) the quadratic hold stays bounded and is more accurate at 3×
-  (ΔIM −2.6e-5) than the linear hold at 1× (−4.6e-5).
+    events                                hold        k = 1          1.5            2              3              4
+    class B, 80 (``--single 60            linear      4.0e-4/6.5e-5  5.6e-4/1.4e-4  7.7e-4/2.4e-4  1.5e-3/5.4e-4  2.8e-3/9.5e-4
+      --several 20``)                     quadratic   2.7e-4/3.9e-5  3.6e-4/5.4e-5  4.4e-4/8.4e-5  6.1e-4/1.4e-4  7.5e-4/2.2e-4
+                                          cubic       2.6e-4/3.9e-5  3.6e-4/5.2e-5  4.5e-4/8.0e-5  6.7e-4/1.2e-4  8.9e-4/2.0e-4
+    class C, 15 (9 lose contact;          linear      3.2e-4/1.4e-4  6.9e-4/2.7e-4  1.1e-3/4.4e-4  2.3e-3/9.7e-4  4.1e-3/1.6e-3
+      ``--road C``)                       quadratic   1.6e-4/8.1e-5  3.5e-4/1.2e-4  4.1e-4/1.5e-4  9.4e-4/2.6e-4  8.4e-4/3.3e-4
+    class B, 15, road smoothed            linear      7.7e-5/4.0e-5  2.3e-4/8.5e-5  4.2e-4/1.5e-4  1.0e-3/3.5e-4  1.7e-3/6.0e-4
+      over 0.5 m (default run)            quadratic   5.9e-5/1.5e-5  6.7e-5/2.2e-5  8.9e-5/3.3e-5  1.7e-4/5.0e-5  3.5e-4/9.6e-5
+                                          cubic       5.7e-5/1.5e-5  6.1e-5/2.1e-5  7.5e-5/2.8e-5  1.2e-4/4.1e-5  2.4e-4/6.2e-5
+
+* The linear hold's error is a bias: signed mean ΔIM −5.6e-5, −2.3e-4, −5.3e-4, −9.4e-4 at k = 1, 2,
+  3, 4 (class B, 80 events; the underestimate ∝ dt²).  The quadratic hold removes it (signed mean
+  within ±1.6e-5 at every k); what is left is scatter of either sign.  Both halves count: the
+  quadratic hold on the deck alone or on the vehicles alone does about half (``quadratic deck``,
+  ``quadratic vehicles``).
+* Steps: at today's accuracy (max 4.0e-4, mean 6.5e-5, 95th percentile 1.7e-4 at 1×) the quadratic
+  hold allows 1.5× (3.6e-4, 5.4e-5, 1.4e-4); within the stated 5e-4 it allows 2× (max 4.4e-4, mean
+  8.4e-5, 95th percentile 2.2e-4; class C 4.1e-4); 3× is above 5e-4 (6.1e-4).
+* What is left is not the hold's truncation: the cubic (four-point) hold is no better on the rough
+  road.  On the road smoothed over 0.10 m (content shorter than ≈ 10 cm gone: what the stations,
+  the road sampled at the step ends and the secant rate could miss) the errors barely change (linear
+  2× 5.9e-4, quadratic 2× 1.7e-4), so neither the road between stations nor the secant rate drives
+  the error.  Smoothed over 0.5 m every error falls and the cubic pulls ahead at 3–4×: part of the
+  scatter is the contact force's road part changing over 5–25 steps (wavelengths 0.1–0.5 m), which
+  no polynomial through step-end samples follows.  A floor of ≈ 6e-5 at 1× stays for every hold:
+  the midspan history's largest error sits just after an axle leaves the deck, at every k and for
+  both holds, and falls only as dt (``where_error``: 4.2e-5, 8.6e-5, 1.6e-4 / peak at k = 0.5, 1, 2,
+  quadratic), the mark of a jump inside a step.  On ``paper-bridge-2``'s wheel tracks the mode shapes
+  do not vanish at the deck's ends (largest |φ| there 5.6 % and 2.0 % of the track's largest), so a
+  point's modal load −φF (and its surface φξ) jumps when it crosses an end, somewhere inside a step,
+  where no step-end hold can place it (inferred from where and how the error grows; not isolated
+  by a run without the jump).  Output sampling
+  (RK4's own history sampled at k dt) costs < 4e-5 at 4×; the contact solve's convergence nothing
+  (three updates a step give the same numbers as one); RK4 at dt/8 is within 2.6e-5 of RK4 at dt/32
+  (a side check outside this script, events 2, 3, 5, 10).  Consistent with the jump: on the ``vbikit
+  demo`` beam, whose sine modes vanish at its ends, the quadratic hold shows no such floor (below).
+* Cost: the loop's thread CPU time a step is unchanged (1.086 µs linear, 1.090 µs quadratic,
+  1.084 µs cubic; the hold adds n_m + 2 n_d n_w multiply-adds and carries p_{n−1}, G_{n−1}).  On the
+  ``vbikit demo`` crossing (20 modes, ωh up to ≈ 18, multipoint tires, class C) the quadratic hold
+  stays bounded and is more accurate at 3× (ΔIM −2.6e-5) than the linear hold at 1× (−4.6e-5).
 """
 from __future__ import annotations
 
@@ -623,6 +641,9 @@ def where_error(loop, crossing, y: float) -> list[str]:
             near = float(np.min(np.abs(switches - res.time[i]))) if switches.size else float("nan")
             lines.append(f"  k = {k:g} {hold:9s}: max |u − u_RK4| / peak {abs(err[i]) / peak:.1e} at t = {res.time[i]:.3f} s, "
                          f"{1e3 * near:.0f} ms from a point entering or leaving the deck")
+    ends = [float(np.abs(modes.values[t, [0, -1]]).max() / np.abs(modes.values[t]).max()) for t in np.unique(points.track)]
+    lines.append("  the mode shapes at the deck's ends on the wheel tracks, largest |φ| there / largest |φ| on the track: "
+                 + ", ".join(f"{e:.3f}" for e in ends) + " (a point's modal load jumps when it enters or leaves)")
     return lines
 
 
