@@ -69,8 +69,8 @@ Findings (2026-12-05).  |ΔIM| max / mean against RK4 at dt/8, k × the automati
   the error.  Smoothed over 0.5 m every error falls and the cubic pulls ahead at 3–4×: part of the
   scatter is the contact force's road part changing over 5–25 steps (wavelengths 0.1–0.5 m), which
   no polynomial through step-end samples follows.  A floor of ≈ 6e-5 at 1× stays for every hold:
-  the midspan history's largest error sits just after an axle leaves the deck, at every k and for
-  both holds, and falls only as dt (``where_error``: 4.2e-5, 8.6e-5, 1.6e-4 / peak at k = 0.5, 1, 2,
+  the midspan history's largest error (event 0, road smoothed over 0.5 m) sits 27 ms after the
+  front axle leaves the deck, at every k and for both holds, and falls only as dt (``where_error``: 4.2e-5, 8.6e-5, 1.6e-4 / peak at k = 0.5, 1, 2,
   quadratic), the mark of a jump inside a step.  On ``paper-bridge-2``'s wheel tracks the mode shapes
   do not vanish at the deck's ends (largest |φ| there 5.6 % and 2.0 % of the track's largest), so a
   point's modal load −φF (and its surface φξ) jumps when it crosses an end, somewhere inside a step,
@@ -101,8 +101,9 @@ FACTORS = (1.0, 1.5, 2.0, 3.0, 4.0)
 
 
 def _hold_loop():
-    """``bench_floor.floor_loop`` with the three-point hold's p_{n−1} (modes) and G_{n−1} (vehicles)
-    terms, ``updates`` quasi-Newton updates a step, and ξ̇ stored (for the IM's peak refinement)."""
+    """``bench_floor.floor_loop`` with the hold's p_{n−1}, p_{n−2} (modes: d, e) and G_{n−1}, G_{n−2}
+    (vehicles: ``load_m``, ``load_mm``) terms, ``updates`` quasi-Newton updates a step, and ξ̇ stored
+    (for the IM's peak refinement)."""
     from numba import njit
 
     @njit(cache=True, fastmath=True, error_model="numpy")
@@ -389,14 +390,15 @@ def check_coefficients() -> dict[str, float]:
             out[f"{label} hold vs quadrature of the convolution (max rel.)"] = max(
                 out.get(f"{label} hold vs quadrature of the convolution (max rel.)", 0.0), worst)
             if past == 0:
-                diff = max(abs(coef[k][0] - getattr(lib, k)[0]) / abs(getattr(lib, k)[0]) for k in ModalKeys)
+                diff = max(abs(coef[k][0] - getattr(lib, k)[0]) / abs(getattr(lib, k)[0]) for k in MODAL_KEYS)
                 out["linear hold vs the library's exact_step (max rel.)"] = max(
                     out.get("linear hold vs the library's exact_step (max rel.)", 0.0), diff)
     out.update(_order_check())
     return out
 
 
-ModalKeys = ("a11", "a12", "a21", "a22", "b1", "c1", "b2", "c2")
+#: the coefficients of the library's ``ModalStep``
+MODAL_KEYS = ("a11", "a12", "a21", "a22", "b1", "c1", "b2", "c2")
 
 
 def _order_check() -> dict[str, float]:
