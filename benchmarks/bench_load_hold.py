@@ -70,8 +70,8 @@ Findings (2026-12-05).  |ΔIM| max / mean against RK4 at dt/8, k × the automati
   scatter is the contact force's road part changing over 5–25 steps (wavelengths 0.1–0.5 m), which
   no polynomial through step-end samples follows.  A floor of ≈ 6e-5 at 1× stays for every hold:
   the midspan history's largest error (event 0, road smoothed over 0.5 m) sits 27 ms after the
-  front axle leaves the deck, at every k and for both holds, and falls only as dt (``where_error``: 4.2e-5, 8.6e-5, 1.6e-4 / peak at k = 0.5, 1, 2,
-  quadratic), the mark of a jump inside a step.  On ``paper-bridge-2``'s wheel tracks the mode shapes
+  front axle leaves the deck, at every k and for both holds, and falls only as dt (``where_error``:
+  4.2e-5, 8.6e-5, 1.6e-4 / peak at k = 0.5, 1, 2, quadratic), the mark of a jump inside a step.  On ``paper-bridge-2``'s wheel tracks the mode shapes
   do not vanish at the deck's ends (largest |φ| there 5.6 % and 2.0 % of the track's largest), so a
   point's modal load −φF (and its surface φξ) jumps when it crosses an end, somewhere inside a step,
   where no step-end hold can place it (inferred from where and how the error grows; not isolated
