@@ -116,10 +116,11 @@ def _lock_numba_cache_writes() -> None:
 
 
 def _compile_groups() -> dict[str, Callable[[], object]]:
-    """What the workers share out, largest first (cold-compile CPU seconds of each, measured
-    2026-12-05: implicit-full 65, rk4 46, implicit-lanes 43, implicit-lean 10, random 5, the rest
-    about 1): ``kernel_groups`` and the pseudo-excitation and load-effect kernels (kernels of their
-    own, so that no kernel is compiled by two groups)."""
+    """What the workers share out, largest first (cold-compile CPU seconds of each, alone in a fresh
+    process, measured 2026-12-05 two at a time on a loaded machine: rk4 54, implicit-full 39,
+    implicit-lanes 25, implicit-lean 9, random 5, the rest about 1): ``kernel_groups`` and the
+    pseudo-excitation and load-effect kernels (kernels of their own, so that no kernel is compiled
+    by two groups)."""
     from vbikit.analysis.warmup import compile_effect_kernels
     from vbikit.random.warmup import compile_random_kernels
     from vbikit.solve.warmup import kernel_groups
@@ -127,7 +128,7 @@ def _compile_groups() -> dict[str, Callable[[], object]]:
     groups: dict[str, Callable[[], object]] = dict(kernel_groups())
     groups["random"] = compile_random_kernels
     groups["effects"] = compile_effect_kernels
-    first = ["implicit-full", "rk4", "implicit-lanes", "implicit-lean"]
+    first = ["rk4", "implicit-full", "implicit-lanes", "implicit-lean"]
     return {k: groups[k] for k in sorted(groups, key=lambda k: first.index(k) if k in first else len(first))}
 
 

@@ -75,7 +75,7 @@ def _reference(data, road, travel, rate, speed):
         u = np.linalg.solve(stiff, load)
         kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
                                np.zeros((data.n_dof, 1)), data.modes, veh, pts, bundle, data.unilateral, cache, work,
-                               wf, wl, (0,))
+                               wf, wl, kernels.MANY_LANES, 0.0)
         if np.array_equal(work.active[:, 0], active):
             return u[:n_m], u[n_m:], active
         active = work.active[:, 0].copy()
@@ -118,7 +118,7 @@ def test_flat_static_start_equals_the_general_kernels(case, where):
     x, vx = point_positions(data, travel, speed)
     road = road_data([(crossing.road, crossing.road_right)], float(x.min()) - 1.0, float(x.max()) + 1.0)
     rv, rr = np.zeros((data.n_points, 1)), np.zeros((data.n_points, 1))
-    kernels.road_at(x, vx, data.points, road, np.full(data.n_points, -1, np.int64), rv, rr, (0,))
+    kernels.road_at(x, vx, data.points, road, np.full(data.n_points, -1, np.int64), rv, rr, kernels.MANY_LANES, 0.0)
     assert np.any(rv != 0.0) and np.any(rr != 0.0)  # a rough road under a moving vehicle
     xi, q, active = static_state(crossing, data, rv[:, 0], travel, road_rate=rr[:, 0], speed=speed)
     xi_ref, q_ref, active_ref = _reference(data, rv[:, 0].copy(), travel, rr[:, 0].copy(), speed)
@@ -141,7 +141,7 @@ def test_flat_road_at_the_start_equals_road_at(case):
     x, vx = point_positions(data, travel, speed)
     road = road_data([(crossing.road, crossing.road_right)], float(x.min()) - 1.0, float(x.max()) + 1.0)
     rv, rr = np.zeros((n_p, 1)), np.zeros((n_p, 1))
-    kernels.road_at(x, vx, data.points, road, np.full(n_p, -1, np.int64), rv, rr, (0,))
+    kernels.road_at(x, vx, data.points, road, np.full(n_p, -1, np.int64), rv, rr, kernels.MANY_LANES, 0.0)
     r0, dr0 = flat_road(data, road, x, vx)
     assert np.max(np.abs(r0 - rv[:, 0])) <= 1e-12 * np.max(np.abs(rv))
     assert np.max(np.abs(dr0 - rr[:, 0])) <= 1e-12 * np.max(np.abs(rr))
@@ -163,7 +163,7 @@ def test_coupled_system_equals_the_point_by_point_assembly(case):
     x, vx = point_positions(data, travel, speed)
     road = road_data([(crossing.road, crossing.road_right)], float(x.min()) - 1.0, float(x.max()) + 1.0)
     rv, rr = np.zeros((data.n_points, 1)), np.zeros((data.n_points, 1))
-    kernels.road_at(x, vx, data.points, road, np.full(data.n_points, -1, np.int64), rv, rr, (0,))
+    kernels.road_at(x, vx, data.points, road, np.full(data.n_points, -1, np.int64), rv, rr, kernels.MANY_LANES, 0.0)
     active = np.arange(data.n_points) % 3 != 0
     got = coupled_system(data.modes, data.vehicles, data.points, x, vx, rv[:, 0], rr[:, 0], active)
     want = _assembled(data, x, vx, rv[:, 0], rr[:, 0], active)

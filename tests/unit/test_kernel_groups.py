@@ -16,8 +16,7 @@ def test_every_variant_of_every_integrator_is_in_exactly_one_group(monkeypatch):
     calls: list[tuple[str, str]] = []
 
     def recording_variants(name: str) -> dict:
-        kinds = ["one-lane", "lanes"] if get_integrator(name).explicit else ["one-lane", "full", "rigid-disk", "lanes",
-                                                                              "full-lanes"]
+        kinds = ["one-lane", "lanes"] if get_integrator(name).explicit else ["one-lane", "rigid-disk", "lanes"]
         return {k: (lambda k=k: calls.append((name, k))) for k in kinds}
 
     expected = Counter((name, k) for name in integrator_names() for k in recording_variants(name))
@@ -33,8 +32,7 @@ def test_the_variant_kinds_are_those_of_the_warm_up_crossings():
     not run)."""
     for name in integrator_names():
         kinds = list(warmup._variants(name))
-        want = ["one-lane", "lanes"] if get_integrator(name).explicit else ["one-lane", "full", "rigid-disk", "lanes",
-                                                                            "full-lanes"]
+        want = ["one-lane", "lanes"] if get_integrator(name).explicit else ["one-lane", "rigid-disk", "lanes"]
         assert kinds == want
         if not get_integrator(name).explicit:
             grouped = [k for ks in warmup.IMPLICIT_GROUPS.values() for k in ks]

@@ -75,7 +75,7 @@ def _single_mode_run(omega, zeta, dt, n_steps, xi0, dxi0=0.0):
     xi[0, 0, 0], dxi[0, 0, 0] = xi0, dxi0
     step = exact_step(np.array([omega]), np.array([zeta]), dt)
     kernels.implicit(dt, motion, modes, vehicles, points, road, True, step, vehicle_step(vehicles, dt), xi, dxi, q,
-                     dq, ddxi, ddq, wf, wl, 1e-9, 50, (0,))
+                     dq, ddxi, ddq, wf, wl, 1e-9, 50, kernels.MANY_LANES)
     return xi[0, :, 0], dxi[0, :, 0], ddxi[0, :, 0]
 
 

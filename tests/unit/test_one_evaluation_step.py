@@ -55,7 +55,8 @@ def test_demo_settles_with_one_contact_evaluation_a_step(caplog, monkeypatch):
         wf, wl = np.zeros((n_w, 1)), np.zeros((n_w, 1))
         kernels.point_kinematics(motion, 2 * i * stride, points, cache.x, cache.vx)
         state = [np.ascontiguousarray(a[0, i].reshape(-1, 1)) for a in (xi, dxi, q, dq)]
-        kernels.contact_forces(*state, modes, vehicles, points, road, unilateral, cache, work, wf, wl, (0,), abs(span))
+        kernels.contact_forces(*state, modes, vehicles, points, road, unilateral, cache, work, wf, wl,
+                               kernels.MANY_LANES, abs(span))
         worst = max(worst, float(np.abs(wf[:, 0] - wheel_force[0, i]).max()))
     assert len(rows) > 30
     assert tol == IMPLICIT_TOLERANCE * float(np.abs(crossing.vehicle.static_wheel_loads()).max())

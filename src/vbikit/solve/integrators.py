@@ -87,7 +87,8 @@ class KernelCall:
         come as NaN (a row left unwritten fails ``check_finite``; q̈ may be left to the results,
         ``deferred``).
     lanes : tuple
-        ``(0,)`` for one lane (its own compiled variant), ``(0, 0)`` for several.
+        ``kernels.ONE_LANE`` for one lane (its own compiled variant of the lean and RK4 kernels),
+        ``kernels.MANY_LANES`` for several (``implicit`` always runs its many-lane variant).
     stride : int
         Every ``stride``-th step is stored.
     deferred : set of str
@@ -161,7 +162,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
     if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
         LEAN_COUNTS["implicit"] += 1
-        _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, call.lanes, 0)
+        _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, 0)
         return
     if len(call.lanes) == 1:
         stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step, start=True), tol, call.stride,
@@ -216,12 +217,12 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
 
 def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
                 stop: int, end: int) -> None:
-    """Lane ``lane`` of ``call`` with ``implicit`` (one-lane variant, that lane's road) from the last
-    row stored before step ``stop`` to step ``end``."""
+    """Lane ``lane`` of ``call`` with ``implicit`` (that lane alone, its road) from the last row stored
+    before step ``stop`` to step ``end``."""
     row = stop // call.stride
     first = row * call.stride
     _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), _lane_road(call.road, lane),
-          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), (0,), first, lane)
+          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), first, lane)
 
 
 def _lean_work(call: KernelCall) -> tuple:
@@ -256,14 +257,14 @@ LANES_CHUNK = 128
 def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
                  stop: int) -> None:
     """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop``: on that
-    lane's road, ``implicit`` (one-lane variant) for ``LEAN_WINDOW`` steps, then the one-lane lean
+    lane's road, ``implicit`` (that lane alone) for ``LEAN_WINDOW`` steps, then the one-lane lean
     kernel, alternating while the lean kernel stops (``LEAN_RESUMES``).  Each hand-over restarts
     from a stored state (the law there, the forces extrapolated from it alone): the histories differ
     from an uninterrupted run by the order of the tolerance."""
     from vbikit.solve import kernels
 
     road = _lane_road(call.road, lane)
-    one = replace(call, road=road, outputs=tuple(a[lane:lane + 1] for a in call.outputs), lanes=(0,))
+    one = replace(call, road=road, outputs=tuple(a[lane:lane + 1] for a in call.outputs), lanes=kernels.ONE_LANE)
     stride, n_steps = call.stride, call.n_steps
     row = stop // stride
     for resume in range(LEAN_RESUMES + 1):
@@ -273,7 +274,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                   "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
                   first)
         _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), road,
-              tuple(a[:, row:end // stride + 1] for a in one.outputs), (0,), first, lane)
+              tuple(a[:, row:end // stride + 1] for a in one.outputs), first, lane)
         if end >= n_steps or end % stride:
             return
         row = end // stride
@@ -293,16 +294,18 @@ def _steps(motion: "Motion", first: int, end: int) -> "Motion":
 
 
 def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, motion: "Motion",
-          road: "Road", outputs: tuple, lanes: tuple, first: int, lane: int | None = None) -> None:
-    """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``;
-    its unsettled steps are counted in ``call.unconverged`` for lane ``lane`` (None: every lane of
-    ``outputs``)."""
+          road: "Road", outputs: tuple, first: int, lane: int | None = None) -> None:
+    """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``, in its
+    many-lane variant whatever the lane count (``kernels.MANY_LANES``: one compiled variant of the full
+    kernel); its unsettled steps are counted in ``call.unconverged`` for lane ``lane`` (None: every lane
+    of ``outputs``)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
     unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
                                               data.unilateral, modal_step, vehicle_step, *outputs, tol,
-                                              IMPLICIT_MAX_ITERATIONS, lanes, call.stride, _span(call, first == 0))
+                                              IMPLICIT_MAX_ITERATIONS, kernels.MANY_LANES, call.stride,
+                                              _span(call, first == 0))
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
     if unsettled:
         for k in range(outputs[0].shape[0]) if lane is None else (lane,):

@@ -133,7 +133,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     """Static start and time integration of ``crossings`` (they differ only in their roads; ``data``
     and ``grid`` are those of the first) with their integrator (its registered ``run``,
     ``vbikit.solve.integrators``), as lanes of kernel calls (``MAX_LANES``)."""
-    from vbikit.solve.kernels import Motion
+    from vbikit.solve.kernels import MANY_LANES, ONE_LANE, Motion
 
     first, n_real = crossings[0], len(crossings)
     if n_real > MAX_LANES:
@@ -175,7 +175,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
     if integrator.kernel is not None:
         announce_compile(integrator.kernel())
-    call = KernelCall(first, dt, n_steps, mot, data, road, outputs, (0,) if n_l == 1 else (0, 0), stride)
+    call = KernelCall(first, dt, n_steps, mot, data, road, outputs, ONE_LANE if n_l == 1 else MANY_LANES, stride)
     integrator.run(call)
     deferred = "q_ddot" in call.deferred
     time, front, speed, travel = _rows(first, grid, stride)
@@ -236,8 +236,8 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, 
     if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
         road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0, span)
     else:
-        kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0,
-                        (0,) if n_l == 1 else (0, 0), span)
+        kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0, kernels.MANY_LANES,
+                        span)
     states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0])
               for lane, crossing in enumerate(crossings[:n_real])]
     if n_l == 1:

@@ -302,7 +302,7 @@ def _equilibrium(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
         else:
             kernels.contact_forces(u[:n_m].reshape(n_m, 1).copy(), np.zeros((n_m, 1)), u[n_m:].reshape(-1, 1).copy(),
                                    np.zeros((data.n_dof, 1)), data.modes, data.vehicles, data.points, bundle,
-                                   data.unilateral, cache, work, wf, wl, (0,))
+                                   data.unilateral, cache, work, wf, wl, kernels.MANY_LANES, 0.0)
             new_active = work.active[:, 0]
         if np.array_equal(new_active, active):
             return u[:n_m], u[n_m:], active

@@ -4,9 +4,10 @@ shared installation, so that no run, study batch or Dask worker compiles on firs
 numba compiles a kernel once per combination of argument types and keeps it in its on-disk
 cache (``vbikit.solve.numba_cache``).  The variants vbikit uses are few: each registered
 integrator with one lane and with many lanes (the batched studies and traffic streams; one lane of an
-implicit integrator: the lean kernel and the full one it hands a crossing over to; many lanes of an
-implicit integrator: the many-lane lean kernel, and the many-lane full one of rigid-disk batches; a
-rigid-disk crossing for the general static start), the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
+implicit integrator: the lean kernel; many lanes: the many-lane lean kernel; and the full implicit
+kernel, whose only variant is the many-lane one, ``kernels.MANY_LANES``: rigid-disk crossings and
+batches, and the lean kernels' hand-overs, with a rigid-disk crossing for the general static start),
+the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
 the cache — exactly those variants; ``kernel_groups`` hands the same work out as groups that share
@@ -40,33 +41,21 @@ def _tiny_crossing(integrator: str):
 
 def _variants(name: str) -> dict[str, Callable[[], None]]:
     """The crossings that compile (or load) every kernel variant of integrator ``name``, by kind:
-    ``one-lane`` (an implicit integrator: the lean kernel), ``full`` (the full implicit kernel's
-    one-lane variant, which the lean one hands over to), ``rigid-disk`` (the general static start and
-    the full kernel), ``lanes`` (a 2-road batch: an implicit integrator's many-lane lean kernel) and
-    ``full-lanes`` (the many-lane full kernel of rigid-disk batches, ``without_lean``)."""
+    ``one-lane`` (an implicit integrator: the lean kernel), ``rigid-disk`` (an implicit integrator: the
+    general static start and the full kernel, the one variant that rigid-disk crossings and batches and
+    the lean kernels' hand-overs run) and ``lanes`` (a 2-road batch: an implicit integrator's many-lane
+    lean kernel)."""
     from vbikit.contact import RigidDiskTire
     from vbikit.solve.batch import BatchSolver
-    from vbikit.solve.integrators import get_integrator, without_lean
+    from vbikit.solve.integrators import get_integrator
     from vbikit.solve.simulate import simulate
 
     crossing = _tiny_crossing(name)
     roads = [replace(crossing.road, z=crossing.road.z * k) for k in (1.0, 0.5)]
-
-    def full() -> None:
-        with without_lean():
-            simulate(crossing)
-
-    def full_lanes() -> None:
-        with without_lean():
-            BatchSolver(crossing).run_many(roads)
-
     variants: dict[str, Callable[[], None]] = {"one-lane": lambda: simulate(crossing)}
     if not get_integrator(name).explicit:
-        variants["full"] = full
         variants["rigid-disk"] = lambda: simulate(replace(crossing, tire=RigidDiskTire()))
     variants["lanes"] = lambda: BatchSolver(crossing).run_many(roads)
-    if not get_integrator(name).explicit:
-        variants["full-lanes"] = full_lanes
     return variants
 
 
@@ -99,21 +88,20 @@ def compile_kernels() -> dict[str, float]:
 
 
 #: the variants of ``_variants`` that compile the same kernels for every implicit integrator (the
-#: implicit integrators differ in their step maps, which are arguments, not compiled code), grouped
-#: so that no kernel is compiled by two groups: ``one-lane`` the lean kernel; ``full`` and
-#: ``full-lanes`` the full kernel's two variants; ``rigid-disk`` and ``lanes`` the general contact
-#: evaluation's and road lookup's variants and the many-lane lean kernel
-IMPLICIT_GROUPS = {"implicit-lean": ("one-lane",), "implicit-full": ("full", "full-lanes"),
-                   "implicit-lanes": ("rigid-disk", "lanes")}
+#: implicit integrators differ in their step maps, which are arguments, not compiled code), one group
+#: each: ``one-lane`` the lean kernel; ``rigid-disk`` the full kernel; ``lanes`` the many-lane lean kernel
+IMPLICIT_GROUPS = {"implicit-lean": ("one-lane",), "implicit-full": ("rigid-disk",), "implicit-lanes": ("lanes",)}
 
 
 def kernel_groups() -> dict[str, Callable[[], None]]:
-    """``compile_kernels``' work as named groups no two of which compile the same kernel, for
+    """``compile_kernels``' work as named groups no two of which compile the same top-level kernel, for
     compiling them in several processes at once (the test suite's workers share them out): numba
     writes one cache index per kernel, and two processes adding different variants of one kernel
-    at the same time could each write that index without the other's variant.  Each explicit
-    integrator is one group (its own kernel), the implicit ones share ``IMPLICIT_GROUPS``, and the
-    moving-load sweep is one more."""
+    at the same time could each write that index without the other's variant (the helpers RK4 and
+    the implicit kernel share, the contact law and the lane helpers, are still compiled by both
+    groups: the test suite's workers lock each index write).  Each explicit integrator is one group
+    (its own kernel), the implicit ones share ``IMPLICIT_GROUPS``, and the moving-load sweep is one
+    more."""
     from vbikit.solve.integrators import get_integrator, integrator_names
 
     groups: dict[str, list[Callable[[], None]]] = {}

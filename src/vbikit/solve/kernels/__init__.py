@@ -79,11 +79,20 @@ road (a batch of a study), integrated together.  Everything that does not depend
 (positions, mode shapes at the contact points, the step) is computed once for all lanes, and
 the per-lane arithmetic runs in contiguous inner loops that the compiler vectorises.  Each
 lane's arithmetic is that of a single crossing (L = 1 is ``simulate``).  The argument
-``lanes`` selects one of two compiled variants: a 1-tuple = one lane, a compile-time constant,
-so that every lane loop disappears (and sums stay in registers); a 2-tuple = many lanes, L
-read from the arrays at run time (the form the loop vectoriser handles; its vector loops take
-32 doubles at a time, hence the callers' 32-lane calls padded to multiples of 8).  Hot loops
-index 2-D arrays directly rather than through row views (measured faster here, ≈ 15 %).
+``lanes`` selects one of two compiled variants: a 1-tuple (``ONE_LANE``) = one lane, a
+compile-time constant, so that every lane loop disappears (and sums stay in registers); a
+2-tuple (``MANY_LANES``) = many lanes, L read from the arrays at run time (the form the loop
+vectoriser handles; its vector loops take 32 doubles at a time, hence the callers' 32-lane calls
+padded to multiples of 8).  ``rk4`` runs a single crossing with the one-lane variant (2× faster
+than the many-lane one at L = 1); ``implicit``, ``contact_forces`` called from Python and
+``road_at`` are only called with many lanes, one lane too (L = 1 at run time): their one-lane
+variants cost ≈ 17 s of cold compile for the rigid-disk crossings alone (1.2× faster there; a
+crossing without rigid disks runs the flat ``lean`` and hands only contact events over to
+``implicit``).  Hot loops index 2-D arrays directly rather than through row views (measured
+faster here, ≈ 15 %).  Integer arguments of compiled helpers are never bare literals (``np.int64(0)``,
+not ``0``, also for a counter's first value): numba compiles a call with a constant argument, or
+with a counter still typed by its first ``= 0``, as a variant of its own (a ``Literal[int]``
+signature), seconds of compile time for nothing.
 
 Mode shapes along each wheel track are tabulated on a uniform grid with values and slopes and
 evaluated by cubic Hermite interpolation (``vbikit.solve.tabulate``).  Road elevations are
@@ -118,6 +127,7 @@ from vbikit.solve.kernels.contact import (
     shapes_at,
 )
 from vbikit.solve.kernels.explicit import rk4
+from vbikit.solve.kernels.lanes import MANY_LANES, ONE_LANE
 from vbikit.solve.kernels.assembly import static_modal_history
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, QUASI_ITERATIONS, RELAX_AFTER, TOUCH_STIFFNESS
 from vbikit.solve.kernels.implicit_step import implicit
@@ -128,5 +138,6 @@ __all__ = [
     "Cache", "ModalStep", "Modes", "Motion", "Points", "Road", "VehicleStep", "Vehicles", "Work", "new_cache",
     "new_work", "accelerations", "contact_forces", "point_kinematics", "point_law", "road_at", "road_point",
     "shape_point", "shapes_at", "rk4", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
-    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes",
+    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes", "MANY_LANES",
+    "ONE_LANE",
 ]

@@ -199,7 +199,7 @@ def road_point(x, vx, p, line, road, idx, rv, rr, lanes, span):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy")
-def road_at(x, vx, points, road, idx, rv, rr, lanes, span=0.0):
+def road_at(x, vx, points, road, idx, rv, rr, lanes, span):
     """Road elevation and rate (n_cp, L) under every contact point at positions ``x`` [m] moving
     at x-rates ``vx`` [m/s] (``idx``: the points' station pointers; ``span`` [s]: the rate's secant
     half-width in time, 0 for the cell's slope, negative at the run's start: see ``road_point``).
@@ -252,7 +252,7 @@ def _deck(phi, dphi, p, vx, xi, dxi, s, dr, sd, lanes):
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, wheel_force, wheel_len,
-                   lanes, span=0.0):
+                   lanes, span):
     """The contact law (module docstring) at the positions of ``cache``: forces F_p [N]
     (``work.force`` (n_cp, L), compression > 0), per-wheel sums ``wheel_force`` and patch lengths
     ``wheel_len`` [m] (n_w, L), ``work.active`` flags, and ``work.used[p]``: the point's force was
@@ -260,7 +260,8 @@ def contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, ca
 
     ``cache``: the position slot (``Cache``; its mode shapes and road values are filled
     on first use).  ``lanes``: (0,) for one lane, (0, 0) for many (module docstring).  ``span`` [s]:
-    the road rate's secant half-width in time (``road_point``; 0: the cell's slope).
+    the road rate's secant half-width in time (``road_point``; 0: the cell's slope), always given (a
+    default would make every caller that leaves it out compile a variant of its own).
     """
     phi, dphi, have, rv, rr, have_r = cache.phi, cache.dphi, cache.have, cache.rv, cache.rr, cache.have_r
     xs, vxs = cache.x, cache.vx
@@ -391,9 +392,10 @@ def _envelope(w, first, last, xi, dxi, modes, points, cache, zw, dzw, force, whe
 def accelerations(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, ddxi, ddq,
                   wheel_force, wheel_len, lanes):
     """ξ̈ (n_m, L), q̈ (n_d, L) and contact forces for a given state (the right-hand side of Eq. 9)
-    at the positions of ``cache``."""
+    at the positions of ``cache``; the road rate is the cell's slope (``span`` 0: RK4, which evaluates
+    the law at its stage times)."""
     contact_forces(xi, dxi, q, dq, modes, vehicles, points, road, unilateral, cache, work, wheel_force,
-                   wheel_len, lanes)
+                   wheel_len, lanes, 0.0)
     phi = cache.phi
     force, used, rhs = work.force, work.used, work.rhs
     omega, zeta = modes.omega, modes.zeta

@@ -59,7 +59,8 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
     aq = np.zeros((4, n_d, n_l))
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); y0 = np.empty((n_d, n_l)); w0 = np.empty((n_d, n_l))
     x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l)); y1 = np.empty((n_d, n_l)); w1 = np.empty((n_d, n_l))
-    _fetch(xi, 0, x0, lanes); _fetch(dxi, 0, v0, lanes); _fetch(q, 0, y0, lanes); _fetch(dq, 0, w0, lanes)
+    row0 = np.int64(0)  # the start row, not a bare 0 (``vbikit.solve.kernels``: literal arguments)
+    _fetch(xi, row0, x0, lanes); _fetch(dxi, row0, v0, lanes); _fetch(q, row0, y0, lanes); _fetch(dq, row0, w0, lanes)
     sx = np.zeros((n_m, n_l)); sv = np.zeros((n_m, n_l)); sq = np.zeros((n_d, n_l)); sw = np.zeros((n_d, n_l))
     work = _work(n_cp, n_d, n_l)
     wf = np.zeros((n_w, n_l))
@@ -69,7 +70,7 @@ def rk4(dt, motion, modes, vehicles, points, road, unilateral, xi, dxi, q, dq, d
     stage_x = (ax[0], ax[1], ax[2], ax[3])
     stage_q = (aq[0], aq[1], aq[2], aq[3])
     cur = 0
-    _refresh(caches[0], motion, 0, points)
+    _refresh(caches[0], motion, row0, points)
     h = 0.5 * dt
     for n in range(n_steps + 1):
         accelerations(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, caches[cur], work, stage_x[0],

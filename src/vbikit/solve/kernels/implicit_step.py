@@ -102,7 +102,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     when the call starts at the run's start: the start state's law then reads the road ahead only,
     the steps |span|).
 
-    Same array conventions as ``rk4`` (lanes and ``stride`` too).  Returns the number of steps that did
+    Same array conventions as ``rk4`` (lanes and ``stride`` too; vbikit calls it with ``MANY_LANES``
+    only, one lane too: one compiled variant, package docstring).  Returns the number of steps that did
     not converge within ``max_iterations`` (their last iterate is kept) and the number of
     contact-law evaluations.
     """
@@ -117,7 +118,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
     zb = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
-    _fetch(xi, 0, x0, lanes); _fetch(dxi, 0, v0, lanes); _fetch(q, 0, z0[:n_d], lanes); _fetch(dq, 0, z0[n_d:], lanes)
+    row0 = np.int64(0)  # the start row, not a bare 0 (``vbikit.solve.kernels``: literal arguments)
+    _fetch(xi, row0, x0, lanes); _fetch(dxi, row0, v0, lanes); _fetch(q, row0, z0[:n_d], lanes)
+    _fetch(dq, row0, z0[n_d:], lanes)
     xf = np.zeros((n_m, n_l)); vf = np.zeros((n_m, n_l))  # free deck response (load p_{n+1} = 0)
     p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l))
@@ -157,15 +160,15 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         gated[k] = points.gated[k] or (unilateral and points.stiffness[k] > 0.0) or \
             vehicles.wheel_envelope[points.wheel[k]]
     # t = 0: forces, modal load, wheel loads and accelerations of the initial state
-    _refresh(cache, motion, 0, points)
+    _refresh(cache, motion, row0, points)
     y0, w0 = z0[:n_d], z0[n_d:]
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
     _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
     _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
-    _store(ddxi, 0, acc, lanes); _store(ddq, 0, a1, lanes)
-    _store(wheel_force, 0, wf, lanes); _store(wheel_len, 0, wl, lanes)
+    _store(ddxi, row0, acc, lanes); _store(ddq, row0, a1, lanes)
+    _store(wheel_force, row0, wf, lanes); _store(wheel_len, row0, wl, lanes)
     for k in range(n_cp):
         for lane in range(n_l):
             f0[k, lane] = force[k, lane] if work.used[k] else 0.0
@@ -221,8 +224,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 _copy(f, f_old, lanes)
             if n_l > 1 and _same_active_set(work.used, work.active):
                 # every lane has the same contact set (the common case of a batch): one update for all
-                _vehicle_newton(f, force, work.used, work.active, 0, n_l, lane_err, tol_force, points, vstep, fw,
-                                ksum, csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l)
+                _vehicle_newton(f, force, work.used, work.active, np.int64(0), n_l, lane_err, tol_force, points, vstep,
+                                fw, ksum, csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l)
             else:
                 for lane in range(n_l):  # one update per unconverged lane
                     if lane_err[lane] > tol_force:

@@ -6,6 +6,12 @@ from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
 
+#: the ``lanes`` argument of a one-lane call (its own compiled variant: every lane loop disappears)
+ONE_LANE = (0,)
+#: the ``lanes`` argument of a many-lane call (L read from the arrays at run time, L = 1 too): the only
+#: one ``implicit``, ``road_at`` and ``contact_forces`` are called with from Python (``vbikit.solve.kernels``)
+MANY_LANES = (0, 0)
+
 
 @njit(cache=True, inline="always")
 def _width(lanes, a):

@@ -321,7 +321,7 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
             break
     if shared and ref >= 0:  # one factorisation (slot n_l), the solve vectorised over the lanes
         _held_factors(veh[n_l], piv[n_l], held[n_l], ksum, csum, ref, wheel_q, wheel_v)
-        _solve_held(veh[n_l], piv[n_l], t, 0, n_l)
+        _solve_held(veh[n_l], piv[n_l], t, np.int64(0), n_l)
     for lane in range(n_l):  # else each lane's own n_w-square solve (n_w is a few wheels)
         if shared or not work[lane]:
             continue
@@ -476,7 +476,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                        slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
                        gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
                        bmax, zw, dzw, s_l, sd_l, dr_l)
-            n_rel = 0
+            n_rel = np.int64(0)  # not a bare 0 (a literal-typed variant of _quasi_lanes)
             n_use = 0
             for k in range(n_cp):
                 if used[k]:

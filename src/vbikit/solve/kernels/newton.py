@@ -3,6 +3,7 @@ copy for one lane and many), the exact one-evaluation refinement, the full activ
 and its touch rows. (``vbikit.solve.kernels``: the equations and conventions.)"""
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
@@ -551,7 +552,7 @@ def _full_newton(f, force, used, active, lane, blend, touch, gated, x1, v1, y1, 
     n_cp = f.shape[0]
     n_m = e.shape[1]
     n_w = u.shape[1]
-    na = 0
+    na = np.int64(0)  # not a bare 0: its literal type would compile the helpers it reaches twice
     for k in range(n_cp):
         if not used[k]:
             continue
