@@ -60,17 +60,29 @@ def test_direction_the_line_never_takes_is_refused():
         effect_line(beam, beam.load_effect("moment", x=L / 2), direction="negative")
 
 
-@pytest.mark.parametrize("source, ratio, flagged", [("auto", 2.42, True), ("auto", 0.5, False),
-                                                     ("positive", 2.42, False), ("auto", None, False)])
-def test_opposite_direction_flag(source, ratio, flagged):
-    """The flag when the direction was chosen by the largest ordinate and the other part's area is
-    larger; none when the user gave the direction, the other part is smaller, or the ratio is unknown."""
-    e = {"direction": {"sign": 1.0, "source": source, "opposite_area": ratio}}
+@pytest.mark.parametrize("source, area, largest, other, value", [
+    ("auto", 2.42, None, None, 2.42),      # the line's areas alone (the run kept no other direction)
+    ("auto", 0.5, 100.0, -150.0, 1.5),     # the traffic reached more the other way
+    ("auto", 2.42, 100.0, -80.0, 2.42),    # not this traffic, but long or several vehicles may
+    ("auto", 0.5, 100.0, -80.0, None),     # neither
+    ("positive", 2.42, 100.0, -150.0, None),  # the user chose the direction
+    ("auto", None, None, None, None)])     # nothing known
+def test_opposite_direction_flag(source, area, largest, other, value):
+    """The flag when the direction was chosen by the largest ordinate and the other direction may
+    govern: the run's own largest static value the other way is larger (value: their ratio), or the
+    other part of the line has the larger area (value: the area ratio); none when the user gave the
+    direction or neither holds."""
+    e = {"units": "N m", "direction": {"sign": 1.0, "source": source, "opposite_area": area, "largest": largest,
+                                       "largest_opposite": other}}
     flags = _direction_flags("M", e)
-    assert [f.code for f in flags] == (["opposite_direction_unreported"] if flagged else [])
-    if flagged:
+    assert [f.code for f in flags] == (["opposite_direction_unreported"] if value is not None else [])
+    if value is not None:
+        f = flags[0]
         assert "opposite_direction_unreported" in FLAG_CODES
-        assert flags[0].value == ratio and flags[0].threshold == 1.0 and 'direction = "negative"' in flags[0].message
+        assert f.value == pytest.approx(value) and f.threshold == 1.0 and 'direction = "negative"' in f.message
+        assert ("negative direction governs" in f.message) == (value == 1.5)
+        if largest is not None:
+            assert f"reached {other:.4g} N m negative against {largest:.4g} N m positive" in f.message
 
 
 def test_heavy_amplification_reads_each_effect_only_where_the_event_is_heavy():

@@ -67,6 +67,10 @@ def _check(records, line, deck, dx=0.02, lanes=(0.0, 0.0)):
     brute = _turning_points(hist, 3 * bound)
     assert exact.size == brute.size and np.all(np.abs(exact - brute) <= bound + 1e-9 * scale), (exact, brute)
     assert es.histories[0][0] == 0 and es.histories[0][-1] == 0  # the bridge empty before and after
+    # the extreme the other way (the direction not reported), held to the same two bounds
+    other, other_best = es.opposite[0, 0], -s * np.max(-s * hist)
+    assert -s * other >= -s * other_best - 1e-9 * scale
+    assert -s * other - (-s * other_best) <= bound + 1e-9 * scale, (other, other_best, bound)
     return got, best, bound
 
 

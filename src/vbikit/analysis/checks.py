@@ -164,10 +164,12 @@ FLAG_CODES: dict[str, str] = {
                                          "\"characteristic static value\"; value: the characteristic static value, threshold: "
                                          "static_upper_bound (the effect's unit, signed like it)",
     "opposite_direction_unreported": "lifetime: a load effect governed by the sign of its influence line's largest "
-                                     "ordinate (direction = \"auto\") while the other sign's part has the larger area "
-                                     "(long or several vehicles load it more the other way, which the run does not "
-                                     "report); output: \"characteristic static value\"; value: the other part's area "
-                                     "over the reported part's, threshold: ``OPPOSITE_AREA_LIMIT`` (1)",
+                                     "ordinate (direction = \"auto\") while the other direction may govern, which "
+                                     "the run does not report: its traffic reached a larger static value the other "
+                                     "way, or the other sign's part of the line has the larger area (long or several "
+                                     "vehicles load it more that way); output: \"characteristic static value\"; "
+                                     "value: the run's largest static value the other way over the reported way's "
+                                     "where that is above 1, else the area ratio, threshold: ``OPPOSITE_AREA_LIMIT`` (1)",
     "negative_shape": "lifetime: a fitted shape ξ (GEV of the block maxima or GPD of the exceedances) strongly "
                       "negative, a bounded tail fitted from little data; output: \"static return levels\" or "
                       "\"total return levels\"; value: the lower of the two shapes, threshold: xi_strongly_negative (−0.3)",

@@ -305,7 +305,8 @@ class EventStatics:
     """Static responses of a chunk of events.
 
     ``peaks`` (n_events, n_lines): each event's peak (largest sign·R, returned with its sign);
-    ``histories``: per line the events' histories concatenated, ``offsets[j]`` (n_events + 1,)
+    ``opposite`` (n_events, n_lines): its extreme in the other direction (largest −sign·R, with its
+    sign; on tabulated lines only, else None); ``histories``: per line the events' histories concatenated, ``offsets[j]`` (n_events + 1,)
     indexing line j's events, kept only when asked for (fatigue).  On tabulated lines (the
     lifetime run) a history is the exact sequence of turning points of R(t) (0, every local
     extreme, 0: ``vbikit.lifetime.peaks``), all a rainflow count needs; at given ``times`` it is
@@ -314,6 +315,7 @@ class EventStatics:
     peaks: NDArray[np.float64]
     offsets: list[NDArray[np.int64]]
     histories: Optional[list[NDArray[np.float64]]] = None
+    opposite: Optional[NDArray[np.float64]] = None
 
 
 #: samples of the refinement around each coarse peak (``event_static``)
@@ -464,10 +466,12 @@ def _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids
     from vbikit.lifetime.peaks import event_extremes
 
     peaks = np.empty((n_ev, len(lines)))
+    opposite = np.empty((n_ev, len(lines)))
     offsets, histories = [], []
     veh = pts.vehicle
     if not veh.size:  # no traffic
-        return EventStatics(peaks, [np.zeros(1, np.int64) for _ in lines], [np.zeros(0) for _ in lines] if keep else None)
+        return EventStatics(peaks, [np.zeros(1, np.int64) for _ in lines], [np.zeros(0) for _ in lines] if keep else None,
+                            opposite)
     ev = event_of[veh]
     t_ev = np.full(n_ev, np.inf)
     np.minimum.at(t_ev, event_of, entry)
@@ -484,7 +488,7 @@ def _exact(pts, event_of, speed, entry, sign_dir, span, lines, tables, track_ids
         ptr = np.searchsorted(e, np.arange(n_ev + 1)).astype(np.int64)
         hi, lo, tp, tp_ptr = event_extremes(ptr, entry[v] - t_ev[e], speed[v], sign_dir[v], d, load,
                                             r.astype(np.int64), float(span), tab.active_ptr, *tab.knots, bool(keep))
-        peaks[:, j] = hi if line.sign > 0 else lo
+        peaks[:, j], opposite[:, j] = (hi, lo) if line.sign > 0 else (lo, hi)
         offsets.append(tp_ptr)
         histories.append(tp)
-    return EventStatics(peaks, offsets, histories if keep else None)
+    return EventStatics(peaks, offsets, histories if keep else None, opposite)

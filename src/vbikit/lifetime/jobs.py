@@ -177,7 +177,7 @@ class StaticJob:
 
     def to_json(self) -> str:
         return json.dumps({"kind": "vbikit lifetime static", "setup": self.setup_key, "traffic": self._digest,
-                           "n_days": self.n_days, "seed": self.seed, "ds": self.ds, "peaks": "exact",
+                           "n_days": self.n_days, "seed": self.seed, "ds": self.ds, "peaks": "exact both directions",
                            "fatigue_top": "exact", "days_per_batch": self.days_per_batch,
                            "sample_fraction": self.sample_fraction, "store_top": self.store_top, "details": [d.__dict__ for d in self.details]}, sort_keys=True)
 
@@ -187,7 +187,8 @@ class StaticJob:
         setup = build_setup(self.setup_key)
         curves = [d.sn() for d in self.details]
         out: dict[str, list] = {k: [] for k in ("ev_day", "ev_index", "ev_start", "ev_n_vehicles", "ev_gross_weight",
-                                               "ev_static", "day", "day_trucks", "day_events", "day_damage_closed",
+                                               "ev_static", "ev_static_opposite", "day", "day_trucks", "day_events",
+                                               "day_damage_closed",
                                                "day_damage_alone", "day_max_range", "res_day", "res_detail", "res_value",
                                                "hist_day", "hist_detail", "hist_bin", "hist_count", "ev_sample",
                                                "rec_event", "rec_time", "rec_speed", "rec_lane", "rec_direction",
@@ -204,6 +205,7 @@ class StaticJob:
             out["ev_n_vehicles"].append(np.array([len(m) for m in events], np.int64))
             out["ev_gross_weight"].append(np.array([gross[list(m)].sum() for m in events]))
             out["ev_static"].append(statics.peaks.reshape(n, len(setup.lines)))
+            out["ev_static_opposite"].append(statics.opposite.reshape(n, len(setup.lines)))
             # the random sample (each event with probability sample_fraction) and the records of the events the
             # dynamics may need (the sample and the store_top largest static peaks of each effect), so that the
             # dynamic rounds need not draw the day's traffic again
@@ -254,7 +256,7 @@ class StaticJob:
             out["day_max_range"].append(np.array(top, float).reshape(1, len(self.details)))
         res: dict[str, NDArray] = {}
         for k, v in out.items():
-            if k in ("ev_static",):
+            if k in ("ev_static", "ev_static_opposite"):
                 res[k] = np.concatenate(v, axis=0) if v else np.zeros((0, len(setup.lines)))
             elif k.startswith("day_damage") or k == "day_max_range":
                 res[k] = np.concatenate(v, axis=0) if v else np.zeros((0, len(self.details)))
@@ -265,7 +267,7 @@ class StaticJob:
         return res
 
     def part_problem(self, part, batch: tuple[int, ...]) -> Optional[str]:
-        for k in ("day", "ev_static", "day_damage_closed", "day_max_range", "res_value", "hist_count"):
+        for k in ("day", "ev_static", "ev_static_opposite", "day_damage_closed", "day_max_range", "res_value", "hist_count"):
             if k not in part:
                 return f"it holds no {k}"
         if not np.array_equal(part["day"], np.array(batch, np.int64)):
@@ -286,6 +288,7 @@ class StaticJob:
             "rec_loads": ("rec_axle", cat["rec_loads"]),
             "rec_spacings": ("rec_spacing", cat["rec_spacings"]),
             "ev_static": (("event", "line"), cat["ev_static"]),
+            "ev_static_opposite": (("event", "line"), cat["ev_static_opposite"]),
             **{k: ("day", cat[k]) for k in ("day_trucks", "day_events")},
             **{k: (("day", "detail"), cat[k]) for k in ("day_damage_closed", "day_damage_alone", "day_max_range")},
             **{k: ("res", cat[k]) for k in ("res_day", "res_detail", "res_value")},

@@ -78,7 +78,10 @@ def _effect(ds, j: int) -> dict[str, Any]:
         "direction": {"sign": float(ds["effect_sign"].values[j]),
                       "source": str(ds["effect_direction"].values[j]) if "effect_direction" in ds else "auto",
                       "opposite_area": (_num(ds["opposite_direction_area"].values[j])
-                                        if "opposite_direction_area" in ds else None)},
+                                        if "opposite_direction_area" in ds else None),
+                      "largest": _num(ds["static_largest"].values[j]) if "static_largest" in ds else None,
+                      "largest_opposite": (_num(ds["static_largest_opposite"].values[j])
+                                           if "static_largest_opposite" in ds else None)},
     }
     if "run_static_shortfall" in ds:
         out["run_static_shortfall"] = {"value": _num(ds["run_static_shortfall"].values[j]),
@@ -101,9 +104,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
     return out
 
 
-#: ``opposite_direction_unreported``: the largest area of the unreported sign's part of an influence
-#: line over the reported one's that passes without a flag (equal areas: a uniform load gives both
-#: directions alike)
+#: ``opposite_direction_unreported``: the largest ratio, the other direction's over the reported one's,
+#: of the run's largest static values, or of the influence line's two parts' areas, that passes without
+#: a flag (equal: both directions alike)
 OPPOSITE_AREA_LIMIT = 1.0
 
 #: what a lifetime finding puts in doubt (its flag's ``output``), in the report's words: the one
@@ -135,19 +138,34 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:
     """A direction chosen by the line's largest ordinate (``direction = "auto"``) while the other
-    sign's part of the influence line has the larger area: long or several vehicles then load the
-    effect more in the direction the run does not report (a moment near an interior support)."""
+    direction may govern: the run's own traffic reached a larger static value the other way
+    (``static_largest_opposite`` beyond ``static_largest``), or the other sign's part of the
+    influence line has the larger area (long or several vehicles load it more that way; a moment
+    near an interior support).  ``value``: the traffic's ratio of the two largest static values where
+    that fired the flag, else the area ratio."""
     d = e.get("direction")
-    if not d or d["source"] != "auto" or d["opposite_area"] is None or d["opposite_area"] <= OPPOSITE_AREA_LIMIT:
+    if not d or d["source"] != "auto":
+        return []
+    area = d["opposite_area"]
+    big, other_big = d.get("largest"), d.get("largest_opposite")
+    ratio = abs(other_big) / abs(big) if big and other_big is not None else None
+    by_traffic = ratio is not None and ratio > OPPOSITE_AREA_LIMIT
+    by_area = area is not None and area > OPPOSITE_AREA_LIMIT
+    if not (by_traffic or by_area):
         return []
     here, other = ("positive", "negative") if d["sign"] > 0 else ("negative", "positive")
+    unit = e["units"]
+    measured = (f"this run's traffic reached {other_big:.4g} {unit} {other} against {big:.4g} {unit} {here} "
+                f"({ratio:.2f} times)" if ratio is not None else "")
+    shape = f"its {other} part has {area:.2f} times the area of its {here} part" if area is not None else ""
+    why = "; ".join(w for w in (measured, shape) if w)
+    verdict = "governs" if by_traffic else "may govern for long or several vehicles"
     return [Flag("opposite_direction_unreported",
-                 f"the influence line is two-signed: its largest ordinate is {here}, so only {here} values are "
-                 f"reported, but its {other} part has {d['opposite_area']:.2f} times the area of its {here} part: "
-                 f"long or several vehicles load it more in the {other} direction, which may govern; add this load "
-                 f"effect again with direction = \"{other}\" (and direction = \"{here}\" here) to see both",
-                 output=flag_output("characteristic", "static"), subject=name, value=d["opposite_area"],
-                 threshold=OPPOSITE_AREA_LIMIT)]
+                 f"only {here} values are reported (the influence line's largest ordinate is {here}), but the {other} "
+                 f"direction {verdict}: {why}; add this load effect again with direction = \"{other}\" "
+                 f"(and direction = \"{here}\" here) to see both",
+                 output=flag_output("characteristic", "static"), subject=name,
+                 value=ratio if by_traffic else area, threshold=OPPOSITE_AREA_LIMIT)]
 
 
 def _not_estimable_flags(name: str, e: dict) -> list[Flag]:
