@@ -164,6 +164,11 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         + ("; the peak is at the sweep's highest speed, where the response is still rising: it would be higher "
            "just above the sweep (the nearest resonance below)" if acc.get("at_top_speed") else ""),
     ]
+    pts = acc.get("points")
+    if pts:
+        lines.append(f"  read at x = {pts['x_dense']:.2f} m of {pts['n_dense']} deck points at that train and speed; the "
+                     f"sweep's {pts['n_read']} points read {pts['read']:.3f} m/s² there (x = {pts['x_read']:.2f} m, "
+                     f"{100 * pts['error']:.2f} % lower)")
     for kind in ("moment", "shear"):
         c = checks[kind]
         si, where = ("N m", "midspan") if kind == "moment" else ("N", "entry support")
