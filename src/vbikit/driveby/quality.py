@@ -54,6 +54,13 @@ one lobe centred on f_b (the two components have equal amplitude: the contact po
 displacement is sin(π v t / L) sin(ω_b t)), so no speed correction is applied
 (``speed_correction_hz`` = 0); the label is the bridge mode of the merged pair.
 
+* **Half-waves of the mode** (``mode_half_waves``).  That merging needs the sought mode to be one
+  half-wave along the vehicle's path.  The first mode of n equal continuous spans is n half-waves
+  (sin(n π x / L) over the deck), so the contact point sees sin(n π v t / L) sin(ω_b t): the pair
+  f_b ± n v / (2 L), n / T apart, which one pass no longer merges into a lobe centred on f_b —
+  the peak falls on either component, up to n / (2T) from f_b (two 20 m spans at 15 m/s:
+  9.15 Hz for 8.78 Hz, +4.2 %).  A pass over a mode of more than one half-wave is unreliable.
+
 Reference: Harris, F.J. (1978). On the use of windows for harmonic analysis with the discrete
 Fourier transform. *Proc. IEEE* 66(1), 51–83.  Bendat, J.S. & Piersol, A.G. (2010). *Random
 Data*, 4th ed., Wiley.
@@ -197,15 +204,25 @@ def vehicle_limit(f_v: float, zeta: float, lobe: float, resolution_hz: float) ->
     return max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * zeta * f_v) / resolution_hz
 
 
+def mode_half_waves(shape: ArrayLike) -> int:
+    """Number of half-waves of a mode shape sampled along the vehicle's path over the deck: its
+    sign changes + 1, values below 1e-3 of its largest magnitude (the supports) ignored."""
+    phi = np.asarray(shape, float)
+    big = np.abs(phi) > 1e-3 * float(np.max(np.abs(phi), initial=0.0))
+    signs = np.sign(phi[big])
+    return int(np.count_nonzero(signs[1:] != signs[:-1])) + 1 if signs.size else 1
+
+
 def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_peak: float, resolution_hz: float,
                  band: tuple[float, float], speed: float, span: float, window: str = "hann",
                  bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), vehicle_zeta: ArrayLike = (),
-                 mode: int = 1) -> PeakQuality:
+                 mode: int = 1, half_waves: int = 1) -> PeakQuality:
     """Label and quality of the peak at ``f_peak`` [Hz] of the spectrum (``frequency`` [Hz],
     ``psd``) searched in ``band`` [Hz] for a pass at ``speed`` [m/s] over ``span`` [m];
     ``bridge_hz`` the model's bridge frequencies (labels only), ``vehicle_hz`` and
     ``vehicle_zeta`` the vehicle's frequencies [Hz] and damping ratios (module docstring);
-    ``mode`` the bridge mode sought (a peak labelled another bridge mode is unreliable for it)."""
+    ``mode`` the bridge mode sought (a peak labelled another bridge mode is unreliable for it);
+    ``half_waves`` that mode's half-waves along the path (``mode_half_waves``; more than 1 is unreliable)."""
     lobe = main_lobe(window) * resolution_hz
     lo, hi = band
     i_peak = int(np.argmin(np.abs(frequency - f_peak)))
@@ -251,6 +268,11 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     label, label_hz = (matching[0][1], matching[0][2]) if matching else ("none", math.nan)
     if label.startswith("bridge_") and label != f"bridge_{mode}":
         reasons.append(f"the peak is bridge mode {label[7:]} (model {label_hz:.4g} Hz), not mode {mode} sought")
+    if half_waves > 1:
+        reasons.append(f"bridge mode {mode} of the model has {half_waves} half-waves along the deck (several spans): "
+                       f"a pass sees it as the pair f_b ± {half_waves} v/(2L), {half_waves}/T apart, not one lobe at f_b; "
+                       f"the peak may be either, up to {half_waves / 2:g}/T ({half_waves * speed / (2 * span):.3g} Hz) "
+                       "from f_b")
     if not matching and fb.size:
         reasons.append(f"matches no expected frequency (bridge modes of the model within ±{100 * MODE_TOLERANCE:g} %, "
                        "vehicle, driving)")
