@@ -1,6 +1,7 @@
 """A drive-by pass over several continuous spans: the first mode is several half-waves along the
 deck, so the contact point sees the shifted pair f_b ± n v / (2 L) resolved, n / T apart, not
 merged into one lobe at f_b (docs/driveby.md, How accurate is this; ``quality.mode_half_waves``).
+And a peak while the mode sought lies outside the search band is not that mode.
 
 Independent numbers: the first mode of n equal continuous spans of length l (internal supports
 free to rotate) is the simply supported span's, sin(π x / l) along the whole deck, n half-waves,
@@ -69,3 +70,15 @@ def test_a_pass_over_two_spans_is_flagged(tmp_path):
     assert abs(f - fb) > 0.5 * resolution  # the pass is off f_b by a component of the pair ...
     assert int(ds["identified_frequency_reliable"][0]) == 0  # ... and says so
     assert "2 half-waves along the deck" in str(ds["identified_frequency_reason"].values[0])
+
+
+def test_a_peak_while_the_mode_sought_lies_outside_the_band_is_flagged():
+    """A tone at 19 Hz searched in [1, 20] Hz (T = 5 s, 5/T from the edge), the model's mode 1 at
+    22 Hz: within the label's ± 20 % (19 / 22 = 0.86) but the mode itself is outside the band, so the
+    peak cannot be it (before: reliable, labelled bridge_1)."""
+    t = np.arange(1000) / 200.0
+    x = np.sin(2 * np.pi * 19.0 * t) + 0.01 * np.random.default_rng(0).standard_normal(t.size)
+    ident = identify_frequency(x, 200.0, 5.0, 25.0, (1.0, 20.0), bridge_hz=[22.0])
+    assert not ident.reliable and "outside the search band" in ident.quality.reason
+    inside = identify_frequency(x, 200.0, 5.0, 25.0, (1.0, 20.0), bridge_hz=[19.5])
+    assert inside.reliable, inside.quality.reason

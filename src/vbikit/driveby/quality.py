@@ -54,6 +54,9 @@ one lobe centred on f_b (the two components have equal amplitude: the contact po
 displacement is sin(π v t / L) sin(ω_b t)), so no speed correction is applied
 (``speed_correction_hz`` = 0); the label is the bridge mode of the merged pair.
 
+* **Mode outside the band.**  When the model's frequency of the mode sought lies outside the search
+  band (a short, stiff span: 10 m, f_b = 35 Hz, against the default band's 20 Hz), whatever peak
+  the band holds is not that mode.
 * **Half-waves of the mode** (``mode_half_waves``).  That merging needs the sought mode to be one
   half-wave along the vehicle's path.  The first mode of n equal continuous spans is n half-waves
   (sin(n π x / L) over the deck), so the contact point sees sin(n π v t / L) sin(ω_b t): the pair
@@ -268,6 +271,9 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     label, label_hz = (matching[0][1], matching[0][2]) if matching else ("none", math.nan)
     if label.startswith("bridge_") and label != f"bridge_{mode}":
         reasons.append(f"the peak is bridge mode {label[7:]} (model {label_hz:.4g} Hz), not mode {mode} sought")
+    if fb.size >= mode and not lo <= fb[mode - 1] <= hi:
+        reasons.append(f"the model's bridge mode {mode} ({fb[mode - 1]:.4g} Hz) lies outside the search band "
+                       f"[{lo:g}, {hi:g}] Hz: no peak of it can be found")
     if half_waves > 1:
         reasons.append(f"bridge mode {mode} of the model has {half_waves} half-waves along the deck (several spans): "
                        f"a pass sees it as the pair f_b ± {half_waves} v/(2L), {half_waves}/T apart, not one lobe at f_b; "
