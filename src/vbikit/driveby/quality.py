@@ -54,9 +54,19 @@ one lobe centred on f_b (the two components have equal amplitude: the contact po
 displacement is sin(π v t / L) sin(ω_b t)), so no speed correction is applied
 (``speed_correction_hz`` = 0); the label is the bridge mode of the merged pair.
 
-Reference: Harris, F.J. (1978). On the use of windows for harmonic analysis with the discrete
-Fourier transform. *Proc. IEEE* 66(1), 51–83.  Bendat, J.S. & Piersol, A.G. (2010). *Random
-Data*, 4th ed., Wiley.
+* **Mode outside the band.**  When the model's frequency of the mode sought lies outside the search
+  band (a short, stiff span: 10 m, f_b = 35 Hz, against the default band's 20 Hz), whatever peak
+  the band holds is not that mode.
+* **Shape of the mode along the path** (``ENVELOPE_RESOLUTIONS`` = 0.5, ``mode_envelope_offset``).
+  That merging needs the sought mode to be one half-wave along the vehicle's path.  The contact
+  point sees φ(v t) sin(ω_b t), windowed like the record: the bridge's lobe sits at f_b ± k v with
+  k where the spectrum of φ(x) w(x) over the deck peaks.  For one half-wave k = 0; the first mode
+  of n equal continuous spans is sin(n π x / L), whose spectrum peaks near n / (2 L): the pair
+  f_b ± n v / (2 L), n / T apart, no longer one lobe at f_b, and the peak falls on one component
+  (two 20 m spans at 15 m/s: 9.15 Hz for 8.78 Hz, +4.2 %, about 1/T).  A pass is unreliable when
+  k L exceeds 0.5 (half a resolution 1/T).  Unequal spans whose long span dominates the mode
+  stay below it (30 + 10 m: k = 0; 25 + 15 m: k L = 0.43 with a Hann window, measured errors
+  0.03–0.25/T at 5–15 m/s).
 """
 from __future__ import annotations
 
@@ -92,6 +102,8 @@ MODE_TOLERANCE = 0.20
 AGREE_RESOLUTIONS = 1.0
 #: reliable passes needed before a pass that disagrees with their median is flagged
 MIN_PASSES = 3
+#: a mode whose shape along the path moves the bridge's lobe more than this many resolutions 1/T from f_b is flagged
+ENVELOPE_RESOLUTIONS = 0.5
 
 
 def main_lobe(window: str) -> float:
@@ -197,15 +209,30 @@ def vehicle_limit(f_v: float, zeta: float, lobe: float, resolution_hz: float) ->
     return max(VEHICLE_LOBES * lobe, VEHICLE_HALF_BANDS * zeta * f_v) / resolution_hz
 
 
+def mode_envelope_offset(shape: ArrayLike, window: str = "hann") -> float:
+    """Where the amplitude spectrum of a mode shape sampled uniformly along the vehicle's path over
+    the deck (first to last sample: the deck), weighted by the record's ``window``, peaks, in cycles
+    per deck length: the shift of the bridge's lobe from f_b in resolutions 1/T (module docstring;
+    0 for one half-wave).  Zero-padded FFT, 64-fold."""
+    from scipy.signal import get_window
+
+    phi = np.asarray(shape, float)
+    weighted = phi * get_window(window, phi.size, fftbins=False)
+    n = 1 << int(np.ceil(np.log2(64 * phi.size)))
+    return float(np.argmax(np.abs(np.fft.rfft(weighted, n))) * (phi.size - 1) / n)
+
+
 def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_peak: float, resolution_hz: float,
                  band: tuple[float, float], speed: float, span: float, window: str = "hann",
                  bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), vehicle_zeta: ArrayLike = (),
-                 mode: int = 1) -> PeakQuality:
+                 mode: int = 1, envelope_offset: float = 0.0) -> PeakQuality:
     """Label and quality of the peak at ``f_peak`` [Hz] of the spectrum (``frequency`` [Hz],
     ``psd``) searched in ``band`` [Hz] for a pass at ``speed`` [m/s] over ``span`` [m];
     ``bridge_hz`` the model's bridge frequencies (labels only), ``vehicle_hz`` and
     ``vehicle_zeta`` the vehicle's frequencies [Hz] and damping ratios (module docstring);
-    ``mode`` the bridge mode sought (a peak labelled another bridge mode is unreliable for it)."""
+    ``mode`` the bridge mode sought (a peak labelled another bridge mode is unreliable for it);
+    ``envelope_offset`` that mode's ``mode_envelope_offset`` along the path [cycles per span]: a
+    lobe shift envelope_offset · v / L [Hz] above ``ENVELOPE_RESOLUTIONS`` resolutions is unreliable."""
     lobe = main_lobe(window) * resolution_hz
     lo, hi = band
     i_peak = int(np.argmin(np.abs(frequency - f_peak)))
@@ -251,6 +278,14 @@ def peak_quality(frequency: NDArray[np.float64], psd: NDArray[np.float64], f_pea
     label, label_hz = (matching[0][1], matching[0][2]) if matching else ("none", math.nan)
     if label.startswith("bridge_") and label != f"bridge_{mode}":
         reasons.append(f"the peak is bridge mode {label[7:]} (model {label_hz:.4g} Hz), not mode {mode} sought")
+    if fb.size >= mode and not lo <= fb[mode - 1] <= hi:
+        reasons.append(f"the model's bridge mode {mode} ({fb[mode - 1]:.4g} Hz) lies outside the search band "
+                       f"[{lo:g}, {hi:g}] Hz: no peak of it can be found")
+    shift_hz = envelope_offset * speed / span  # the lobe's shift from f_b [Hz]; k L / T with T = L / v
+    if shift_hz > ENVELOPE_RESOLUTIONS * resolution_hz:
+        reasons.append(f"bridge mode {mode} of the model is not one half-wave along the deck (several spans): the "
+                       f"contact point sees it modulated by its shape, so its lobe lies at f_b ± {shift_hz:.3g} Hz "
+                       f"({shift_hz / resolution_hz:.2f} resolutions, above {ENVELOPE_RESOLUTIONS:g}), not at f_b")
     if not matching and fb.size:
         reasons.append(f"matches no expected frequency (bridge modes of the model within ±{100 * MODE_TOLERANCE:g} %, "
                        "vehicle, driving)")

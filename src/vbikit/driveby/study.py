@@ -27,7 +27,7 @@ from vbikit.analysis.checks import dataset_flag_attrs
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequency, mode_shape_squares,
                                      residual_response, shape_change)
-from vbikit.driveby.quality import unconverged_pass_flags, vehicle_modes
+from vbikit.driveby.quality import mode_envelope_offset, unconverged_pass_flags, vehicle_modes
 from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitude_spectrum, contact_truth, measure,
                                     sensor_row)
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError, check_dataset_format
@@ -494,6 +494,16 @@ def sensor_agreement(ident, others: dict) -> tuple[int, int, str]:
     return len(good), len(good) - len(off), reason
 
 
+def first_mode_envelope_offset(bridge, lateral_offset: float | None, window: str) -> float:
+    """``quality.mode_envelope_offset`` [1/T] of ``bridge``'s first mode along the path
+    y = ``lateral_offset`` [m] over the deck (2001 points), weighted by the record's ``window``:
+    0 on a single span, about n/2 on n equal continuous spans."""
+    lo, hi = bridge.deck_extent
+    x = np.linspace(lo, hi, 2001)
+    y = float(bridge.default_lateral_offset if lateral_offset is None else lateral_offset)
+    return mode_envelope_offset(bridge.mode_shapes(x, np.full_like(x, y))[:, 0], window)
+
+
 def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     """Simulate case ``index`` and identify its frequency; returns its outputs and sensor histories."""
     from vbikit.solve import simulate
@@ -519,6 +529,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     bridge = crossing.bridge
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
     f_v, zeta_v = vehicle_modes(vehicle)
+    envelope_offset = first_mode_envelope_offset(bridge, crossing.vehicles[0].lateral_offset, spec.window)
 
     def record(m, j: int) -> NDArray:
         signal = m.values[j]
@@ -532,7 +543,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     def identify(signal: NDArray, use: NDArray):
         return identify_frequency(signal[use], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
                                   bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
-                                  vehicle_zeta=zeta_v)
+                                  vehicle_zeta=zeta_v, envelope_offset=envelope_offset)
 
     def observe(res):
         m = measure(res, logged, spec.sampling, seed=derive_seed(spec.seed, index))
