@@ -67,6 +67,10 @@ displacement is sin(π v t / L) sin(ω_b t)), so no speed correction is applied
   k L exceeds 0.5 (half a resolution 1/T).  Unequal spans whose long span dominates the mode
   stay below it (30 + 10 m: k = 0; 25 + 15 m: k L = 0.43 with a Hann window, measured errors
   0.03–0.25/T at 5–15 m/s).
+
+Reference: Harris, F.J. (1978). On the use of windows for harmonic analysis with the discrete
+Fourier transform. *Proc. IEEE* 66(1), 51–83.  Bendat, J.S. & Piersol, A.G. (2010). *Random
+Data*, 4th ed., Wiley.
 """
 from __future__ import annotations
 
