@@ -23,7 +23,7 @@ from typing import Optional
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from vbikit.driveby.quality import PeakQuality, peak_quality
+from vbikit.driveby.quality import N_DRIVING, PeakQuality, peak_quality
 from vbikit.errors import VbikitError
 
 #: spectral estimators: name -> description
@@ -89,7 +89,7 @@ def peak(spec: Spectrum, band: tuple[float, float], exclude_hz: ArrayLike = (), 
 
 
 def frequency_labels(speed: float, span: float, bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (),
-                     n_driving: int = 3) -> dict[str, float]:
+                     n_driving: int = N_DRIVING) -> dict[str, float]:
     """The frequencies [Hz] expected in a drive-by record: ``driving_n`` = n v / L (n = 1 …
     ``n_driving``), ``bridge_k``, ``bridge_k_minus`` / ``bridge_k_plus`` = f_b,k ∓ v / (2 L), and
     ``vehicle_k`` (module docstring)."""
