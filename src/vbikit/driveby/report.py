@@ -157,7 +157,8 @@ def report_text(ds) -> str:
         for i in np.flatnonzero(damaged):
             head = f"  case {i}: severity {float(c['damage_severity'][i]):.2f} at x = {float(c['damage_position'][i]):g} m: "
             if not np.isfinite(shift[i]):
-                lines.append(head + f"not given ({c['frequency_shift_reason'][i]}); true {100 * true[i]:+.2f} %")
+                truth = f"true {100 * true[i]:+.2f} %" if np.isfinite(true[i]) else "true shift not known (no healthy case)"
+                lines.append(head + f"not given ({c['frequency_shift_reason'][i]}); {truth}")
                 continue
             lines.append(head + f"identified {100 * shift[i]:+.2f} %, true {100 * true[i]:+.2f} % "
                          f"(resolution {100 * float(c['resolution_hz'][i] / c['bridge_frequency_hz'][i]):.1f} % of f)"
