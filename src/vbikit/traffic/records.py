@@ -276,9 +276,7 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
         loads = numbers("axle_loads")
         spacings = numbers("axle_spacings")
         if not loads or not all(v > 0 for v in loads):
-            raise fail("axle_loads", "needs two or more loads > 0")
-        if len(loads) < 2:
-            raise fail("axle_loads", "needs two or more loads > 0 (a body on one axle would pitch freely)")
+            raise fail("axle_loads", "needs one or more loads > 0")
         if max(loads) > AXLE_LOAD_MAX:
             raise fail("axle_loads", f"an axle load of {max(loads) / 9.80665e3:.3g} t is impossible for a road "
                                      f"vehicle (at most {AXLE_LOAD_MAX / 9.80665e3:.0f} t are read; check the unit)")
