@@ -165,3 +165,22 @@ def test_a_single_road_is_its_own_level_whatever_its_spectrum():
     b = PseudoRoad(RoadPSD(16e-6, 0.1, 2.0, n_max=1.0))
     assert level_factor(track, b) is None and level_factor(b, zero) is None  # (not a level of each other)
     assert level_factor(PseudoRoad(RoadPSD(64e-6, 0.1, 2.0, n_max=1.0)), b) == 4.0
+
+
+def test_a_pem_study_flags_the_cells_whose_single_run_is_flagged(tmp_path):
+    """A cell whose ``vbikit run --random`` is flagged ``lift_off`` (a tire lifts off with probability
+    above 1e-3, docs/random.md: the linear theory does not hold) was stored without any flag: the PEM
+    study's dataset had no ``warnings`` / ``flag_codes`` (red-team pass 2026-12-05).  Now the dataset
+    carries the single run's rule over its cells: class C at 60 km/h lifts off (run_random's own flag,
+    checked here), class A does not, so 1 of 2 cells is flagged and the flag names class C."""
+    from vbikit.analysis.checks import dataset_has_flag
+
+    d = _with(axes={"road.class": ["A", "C"]})
+    ds = run_study(parse_study(d), tmp_path / "pem.nc", workers=1)
+    single = {cls: run_random(copy.deepcopy(PEM["base"]) | {"road": {"class": cls, "n_max": 1.0}}).summary
+              for cls in ("A", "C")}
+    assert [f["code"] for f in single["C"]["flags"]] == ["lift_off"]
+    assert "lift_off" not in [f["code"] for f in single["A"]["flags"]]
+    assert dataset_has_flag(ds.attrs, "lift_off")
+    assert "1 of 2 cells: a tire lifts off" in ds.attrs["warnings"]
+    assert "road.class = C" in ds.attrs["warnings"]

@@ -39,6 +39,8 @@ def test_loaded_events_statistics_are_printed_first(tmp_path):
     assert 0.1 < st[1] / st[0] < 0.2  # (the setup: the van's share, as the docstring says)
     truck_im = float(ds["impact_factor"].values[0])
     assert f"(1 of 2, static peak ≥ 20% of the stream's largest): mean {truck_im:.4f}," in lines[loaded]
+    # no multiple presence in this stream: said in words, not printed as "several nan" (before 2026-12-05)
+    assert "(one vehicle " in lines[every] and "several: no such event)" in lines[every] and "nan" not in lines[every]
     assert lines[every].endswith("the other event's IM rests on small static references (light vehicles, far lanes): "
                                  "not design values")
 

@@ -153,3 +153,21 @@ def test_a_stream_reduces_only_the_outputs_it_asks_for(stream, tmp_path, monkeyp
     res = runner.invoke(app, ["traffic", str(tmp_path / "s.csv"), "--bridge", "paper-bridge-2-beam", "--lanes", "-1.8,1.8",
                               "--outputs", "impact_factor,peak", "--out", str(tmp_path / "x.nc")])
     assert res.exit_code == 2 and "unknown output 'peak'" in res.stderr
+
+
+def test_a_one_axle_vehicle_is_refused_before_the_run(tmp_path):
+    """A rigid body on one axle has no stiffness against pitch, so its static equilibrium matrix is
+    singular: a one-axle record was accepted by the stream's checks and stopped the first event with
+    `numpy.linalg.LinAlgError: Singular matrix` (red-team pass 2026-12-05).  ``axle_truck`` now
+    refuses one axle, and the stream names the record's line before any event runs."""
+    from vbikit.study import StudyError
+    from vbikit.traffic import read_records
+    from vbikit.vehicle import axle_truck
+
+    with pytest.raises(ValueError, match="at least two axle loads"):
+        axle_truck([100e3], [])
+    path = tmp_path / "one_axle.csv"
+    path.write_text("id,time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n"
+                    "a,0.0,1,+x,72.0,50 100,4.0\nb,20.0,1,+x,90.0,100,\n")
+    with pytest.raises(StudyError, match=r"one_axle\.csv:3: axle_loads must be a list of at least two axle loads"):
+        traffic_study(read_records(path), BASE, source=str(path))

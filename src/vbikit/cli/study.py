@@ -110,8 +110,8 @@ def run_cmd(
     _check(study, yes, max_memory, max_steps)
     ds = run_job(study, out, workers, scheduler, progress)
     warn_dataset(ds)
-    if "impact_factor" not in ds:  # the study's outputs key left it out
-        typer.echo(f"outputs stored: {', '.join(study.output_names)}")
+    if "impact_factor" not in ds:  # the study's outputs key left it out, or a PEM study's
+        typer.echo(f"outputs stored: {', '.join(str(name) for name in ds.data_vars)}")
         return
     from vbikit.cli.render import print_negative_note
 

@@ -80,7 +80,8 @@ def traffic_cmd(
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
                    f"{a['im_mean_loaded']:.4f}{doubt}, 95 % {a['im_q95_loaded']:.4f}")
     typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {a['im_mean']:.4f}{doubt} "
-               f"(one vehicle {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), 95 % {a['im_q95']:.4f}, "
+               f"({_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}), "
+               f"95 % {a['im_q95']:.4f}, "
                f"max {float(first['impact_factor'].max()):.4f}" + (f"; {small_words}" if n_small else ""))
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
@@ -108,3 +109,10 @@ def traffic_cmd(
 
         guard(lambda: plot_stream(ds, plot))
         typer.echo(f"figure {plot}")
+
+
+def _group_mean(label: str, mean: float) -> str:
+    """``label`` and the mean IM of its events, or that the stream has none (its mean is NaN)."""
+    import math
+
+    return f"{label} {mean:.4f}" if math.isfinite(float(mean)) else f"{label}: no such event"

@@ -41,6 +41,36 @@ LEVEL_KEYS = ("road.class",)
 OPTIONAL = ("moment_impact_factor_mean", "moment_impact_factor_std")
 
 
+def pem_dataset_flags(data: dict[str, NDArray], axes) -> list:
+    """The single ``vbikit run --random``'s quality flags over a PEM study's cells: ``lift_off`` where
+    ``lift_off_probability`` exceeds ``LIFT_OFF_LIMIT`` (the linear theory does not hold there) and
+    ``coarse_grid`` where ``grid_change`` exceeds ``GRID_LIMIT`` (``vbikit.random.response``, the same
+    rules and limits); one flag per code naming how many cells, the worst value and its cell."""
+    from vbikit.analysis.checks import Flag
+    from vbikit.random.response import GRID_LIMIT, LIFT_OFF_LIMIT
+
+    flags = []
+    for code, name, limit, what in (
+            ("lift_off", "lift_off_probability", LIFT_OFF_LIMIT,
+             "a tire lifts off with a probability above {limit:g} at some instant (largest {worst:.2g}, {cell}): the "
+             "linear theory does not hold there, so their impact-factor statistics are not design values; use Monte "
+             "Carlo (several road seeds, tires that can lift)"),
+            ("coarse_grid", "grid_change", GRID_LIMIT,
+             "the wavenumber grid is coarse: σ changes by more than {limit:.0%} between every and every second line "
+             "(largest {worst:.1%}, {cell})")):
+        values = np.asarray(data[name], float)
+        over = np.argwhere(np.atleast_1d(values) > limit)
+        if not over.size:
+            continue
+        flat = np.atleast_1d(values)
+        worst_at = np.unravel_index(int(np.nanargmax(flat)), flat.shape)
+        cell = ", ".join(f"{a.key} = {a.values[i]}" for a, i in zip(axes, worst_at)) or "the study's one cell"
+        worst = float(flat[worst_at])
+        flags.append(Flag(code, f"{len(over)} of {flat.size} cells: " + what.format(limit=limit, worst=worst, cell=cell),
+                          output=name, subject=f"{len(over)} cells", value=worst, threshold=limit))
+    return flags
+
+
 def _value(summary: dict[str, Any], path: tuple[str, ...]) -> float:
     if path[0] == "effects":
         first = next((e for e in summary["effects"] if e["kind"] == path[1]), None)
@@ -153,7 +183,10 @@ class PemStudy:
             coords[a.name] = (a.name, np.array(values, dtype=object) if text else np.array(values),
                               {"scenario_key": a.key, "units": cf_key_unit(key_unit(a.key), text),
                                "long_name": f"scenario key {a.key}"})
+        from vbikit.analysis.checks import dataset_flag_attrs
+
         attrs = {"title": self.name or "vbikit study", "study": self.to_json(), "method": "pem",
-                 "vbikit_version": __version__, "axes": json.dumps({a.name: a.key for a in self.axes}), "Conventions": "CF-1.8"}
+                 "vbikit_version": __version__, "axes": json.dumps({a.name: a.key for a in self.axes}), "Conventions": "CF-1.8",
+                 **dataset_flag_attrs(pem_dataset_flags(data, self.axes))}
         return xr.Dataset(variables, coords=coords, attrs=attrs)
 

@@ -272,7 +272,7 @@ class TrafficStudy:
         variables |= output_variables(ev, ["event"], names, self.output_names)
         for name, (units, desc) in EVENT_EXTRAS.items():
             variables[name] = ("event", ev[name].astype(np.int64), {"units": units, "long_name": desc})
-        variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time)"})
+        variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time; on a skew deck the earliest record time minus reach / speed, when a wheel can first touch the deck's oblique end)"})
         variables["n_vehicles"] = ("event", n_veh, {"units": "1", "long_name": "vehicles in the event"})
         variables["multiple_presence"] = ("event", (n_veh > 1).astype(np.int8), {"units": "1", "long_name": "1 if several vehicles were on the bridge together"})
         variables["event_gross_weight"] = ("event", event_gross, {"units": "N", "long_name": "sum of the event's vehicles' weights"})

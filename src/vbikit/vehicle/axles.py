@@ -210,7 +210,8 @@ def axle_truck(
     Parameters
     ----------
     axle_loads : sequence of float
-        Static load of each axle [N], front to rear (both wheels together), > 0.
+        Static load of each axle [N], front to rear (both wheels together), > 0; at least two
+        axles (one rigid body on one axle would pitch freely).
     axle_spacings : sequence of float
         Distance [m] from each axle to the next (len(axle_loads) − 1 values), > 0.
     groups : sequence of str, optional
@@ -231,8 +232,9 @@ def axle_truck(
     loads = np.asarray(axle_loads, float)
     spacings = np.asarray(axle_spacings, float)
     n_ax = loads.size
-    if n_ax < 1 or loads.ndim != 1:
-        raise ValueError("axle_loads must be a list of at least one axle load [N]")
+    if n_ax < 2 or loads.ndim != 1:
+        raise ValueError("axle_loads must be a list of at least two axle loads [N] (a body on one axle has no "
+                         "stiffness against pitch: its static equilibrium is singular)")
     if spacings.size != n_ax - 1:
         raise ValueError(f"axle_spacings needs {n_ax - 1} value(s) for {n_ax} axles, got {spacings.size}")
     if not all(0 < x <= MAX_AXLE_LOAD for x in loads.tolist()):  # (NaN and ±inf fail a comparison)
