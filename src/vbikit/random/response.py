@@ -63,6 +63,29 @@ QUALITY = ("σ histories exact for the linear system up to the wavenumber grid (
 #: grid check (σ on every line vs every second line) above which the answer is flagged
 GRID_LIMIT = 0.02
 
+#: the run's quality rules, each (flag code, the value's key in the summary and in a PEM study's cells,
+#: its limit, the finding in words with the value, what to do): ``quality_flags``, and over a PEM
+#: study's cells ``vbikit.study.pem.pem_dataset_flags``
+QUALITY_RULES = (
+    ("lift_off", "lift_off_probability", LIFT_OFF_LIMIT,
+     "a tire lifts off with probability {value:.2g} at some instant (> {limit:g})",
+     "the linear theory does not hold there, so the impact-factor statistics are not design values; use Monte Carlo "
+     "(several road seeds, tires that can lift)"),
+    ("coarse_grid", "grid_change", GRID_LIMIT,
+     "the wavenumber grid is coarse: σ changes by {value:.1%} between every and every second line (> {limit:.0%})", ""),
+)
+
+
+def quality_flags(values: dict[str, float]) -> list[Flag]:
+    """The ``QUALITY_RULES`` flags of one run from its ``values`` (by the rules' keys)."""
+    out = []
+    for code, key, limit, finding, advice in QUALITY_RULES:
+        value = float(values[key])
+        if value > limit:
+            out.append(Flag(code, finding.format(value=value, limit=limit) + (f": {advice}" if advice else ""),
+                            value=value, threshold=limit))
+    return out
+
 
 def _every_channel(n_points: int, effects: list[LoadEffectResponse]) -> list[int]:
     """Every deck channel: the points, then the load effects."""
@@ -270,14 +293,7 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
     grid = max(_grid_change(pem, "displacement", slice(0, n_pt)), _grid_change(pem, "acceleration", slice(0, n_pt)),
                pem.grid_change("wheel_force"), *(_grid_change(pem, "displacement", slice(j, j + 1))
                                                  for j in range(n_pt, n_pt + len(effects))))
-    flags = []
-    if p_lift > LIFT_OFF_LIMIT:
-        flags.append(Flag("lift_off", f"a tire lifts off with probability {p_lift:.2g} at some instant (> {LIFT_OFF_LIMIT:g}): "
-                          "the linear theory does not hold there; use Monte Carlo (several road seeds, tires that can lift)",
-                          value=p_lift, threshold=LIFT_OFF_LIMIT))
-    if grid > GRID_LIMIT:
-        flags.append(Flag("coarse_grid", f"the wavenumber grid is coarse: σ changes by {grid:.1%} between every and every "
-                          "second line", value=grid, threshold=GRID_LIMIT))
+    flags = quality_flags({"lift_off_probability": p_lift, "grid_change": grid})
     if len(entries) > 1 and all("static_peak" in e for e in entries):  # a point's mean IM on a small static
         # reference (vbikit.analysis.checks); peaks="study" has no statistics of the further points
         flags += small_static_flags([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],

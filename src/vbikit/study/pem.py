@@ -42,32 +42,24 @@ OPTIONAL = ("moment_impact_factor_mean", "moment_impact_factor_std")
 
 
 def pem_dataset_flags(data: dict[str, NDArray], axes) -> list:
-    """The single ``vbikit run --random``'s quality flags over a PEM study's cells: ``lift_off`` where
-    ``lift_off_probability`` exceeds ``LIFT_OFF_LIMIT`` (the linear theory does not hold there) and
-    ``coarse_grid`` where ``grid_change`` exceeds ``GRID_LIMIT`` (``vbikit.random.response``, the same
-    rules and limits); one flag per code naming how many cells, the worst value and its cell."""
+    """The single ``vbikit run --random``'s quality flags over a PEM study's cells
+    (``vbikit.random.response.QUALITY_RULES``: ``lift_off``, ``coarse_grid``, the same rules and
+    limits): one flag per code naming how many cells, and the worst cell with its value."""
     from vbikit.analysis.checks import Flag
-    from vbikit.random.response import GRID_LIMIT, LIFT_OFF_LIMIT
+    from vbikit.random.response import QUALITY_RULES
 
     flags = []
-    for code, name, limit, what in (
-            ("lift_off", "lift_off_probability", LIFT_OFF_LIMIT,
-             "a tire lifts off with a probability above {limit:g} at some instant (largest {worst:.2g}, {cell}): the "
-             "linear theory does not hold there, so their impact-factor statistics are not design values; use Monte "
-             "Carlo (several road seeds, tires that can lift)"),
-            ("coarse_grid", "grid_change", GRID_LIMIT,
-             "the wavenumber grid is coarse: σ changes by more than {limit:.0%} between every and every second line "
-             "(largest {worst:.1%}, {cell})")):
-        values = np.asarray(data[name], float)
-        over = np.argwhere(np.atleast_1d(values) > limit)
-        if not over.size:
+    for code, key, limit, finding, advice in QUALITY_RULES:
+        values = np.atleast_1d(np.asarray(data[key], float))
+        n_over = int(np.sum(values > limit))
+        if not n_over:
             continue
-        flat = np.atleast_1d(values)
-        worst_at = np.unravel_index(int(np.nanargmax(flat)), flat.shape)
+        worst_at = np.unravel_index(int(np.nanargmax(values)), values.shape)
+        worst = float(values[worst_at])
         cell = ", ".join(f"{a.key} = {a.values[i]}" for a, i in zip(axes, worst_at)) or "the study's one cell"
-        worst = float(flat[worst_at])
-        flags.append(Flag(code, f"{len(over)} of {flat.size} cells: " + what.format(limit=limit, worst=worst, cell=cell),
-                          output=name, subject=f"{len(over)} cells", value=worst, threshold=limit))
+        flags.append(Flag(code, f"{n_over} of {values.size} cells: {finding.format(value=worst, limit=limit)} in the "
+                          f"worst ({cell})" + (f": {advice}" if advice else ""),
+                          output=key, subject=f"{n_over} cells", value=worst, threshold=limit))
     return flags
 
 
