@@ -58,7 +58,7 @@ def pem_dataset_flags(data: dict[str, NDArray], axes) -> list:
         worst = float(values[worst_at])
         cell = ", ".join(f"{a.key} = {a.values[i]}" for a, i in zip(axes, worst_at)) or "the study's one cell"
         flags.append(Flag(code, f"{n_over} of {values.size} cells: {finding.format(value=worst, limit=limit)} in the "
-                          f"worst ({cell})" + (f": {advice}" if advice else ""),
+                          f"worst cell, {cell}" + (f": {advice}" if advice else ""),
                           output=key, subject=f"{n_over} cells", value=worst, threshold=limit))
     return flags
 
