@@ -165,8 +165,8 @@ def test_the_screening_words_are_added_only_when_the_screening_set_the_total_thr
 def test_a_one_signed_line_reports_nothing_the_other_way(facts):
     """On a simply supported span a downward load gives a sagging moment and a downward deflection
     everywhere (statics), so the run's largest static value the other way is 0 (every event starts
-    and ends with the bridge empty) to round-off of the line's tables, the reported way's is the
-    largest daily maximum, and no direction is flagged; a swapped pair of extremes would put the
+    and ends with the bridge empty) to round-off of the line's tables, the reported way's (read from
+    the daily maxima) is the largest event peak, and no direction is flagged; a swapped pair of extremes would put the
     peak on the other side."""
     import numpy as np
     import xarray as xr
@@ -177,7 +177,7 @@ def test_a_one_signed_line_reports_nothing_the_other_way(facts):
         assert abs(d["largest_opposite"]) <= 1e-9 * abs(d["largest"])
         assert abs(d["largest"]) > 0 and d["largest"] * d["sign"] > 0
         with xr.open_dataset(facts["out"] / "lifetime.nc") as ds:
-            daily = ds["daily_max_static"].sel(load_effect=name).values
-        assert d["largest"] == pytest.approx(d["sign"] * np.max(d["sign"] * daily), rel=1e-12)
+            events = ds["event_static"].sel(load_effect=name).values
+        assert d["largest"] == pytest.approx(d["sign"] * np.max(d["sign"] * events), rel=1e-12)
         codes = [f["code"] for f in facts["load_effects"][name].get("flags", [])]
         assert "opposite_direction_unreported" not in codes

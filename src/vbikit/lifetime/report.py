@@ -79,7 +79,7 @@ def _effect(ds, j: int) -> dict[str, Any]:
                       "source": str(ds["effect_direction"].values[j]) if "effect_direction" in ds else "auto",
                       "opposite_area": (_num(ds["opposite_direction_area"].values[j])
                                         if "opposite_direction_area" in ds else None),
-                      "largest": _num(ds["static_largest"].values[j]) if "static_largest" in ds else None,
+                      "largest": _largest(ds["daily_max_static"].values[:, j], float(ds["effect_sign"].values[j])),
                       "largest_opposite": (_num(ds["static_largest_opposite"].values[j])
                                            if "static_largest_opposite" in ds else None)},
     }
@@ -102,6 +102,14 @@ def _effect(ds, j: int) -> dict[str, Any]:
         out["governing"] = gov
     add_flags(out, _flags(effect, out, a))
     return out
+
+
+def _largest(daily: Any, sign: float) -> float | None:
+    """The run's largest static value in the reported direction ``sign``: that of its daily maxima."""
+    import numpy as np
+
+    values = sign * np.asarray(daily, float)
+    return _num(sign * float(np.nanmax(values))) if np.any(np.isfinite(values)) else None
 
 
 #: ``opposite_direction_unreported``: the largest ratio, the other direction's over the reported one's,
@@ -139,7 +147,7 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
 def _direction_flags(name: str, e: dict) -> list[Flag]:
     """A direction chosen by the line's largest ordinate (``direction = "auto"``) while the other
     direction may govern: the run's own traffic reached a larger static value the other way
-    (``static_largest_opposite`` beyond ``static_largest``), or the other sign's part of the
+    (``static_largest_opposite`` beyond the largest ``daily_max_static``), or the other sign's part of the
     influence line has the larger area (long or several vehicles load it more that way; a moment
     near an interior support).  ``value``: the traffic's ratio of the two largest static values where
     that fired the flag, else the area ratio."""

@@ -254,7 +254,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                                     ev_attrs("1", "area of the influence line's part of sign -s over that of its "
                                                   "part of sign s (0: one-signed); above 1 long or several vehicles "
                                                   "load the effect more in the direction not reported")),
-        **_direction_extremes(st, static["ev_static_opposite"].values if "ev_static_opposite" in static else None, signs),
+        **_opposite_extreme(static["ev_static_opposite"].values if "ev_static_opposite" in static else None, signs),
         "im_mean": ("load_effect", np.array(im["im_mean"]), ev_attrs("1", "mean impact factor R_dyn/R_st - 1 of the random sample of events")),
         "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the impact factor (random sample)")),
         "im_q95": ("load_effect", np.array(im["im_q95"]), ev_attrs("1", "95 % quantile of the impact factor (random sample)")),
@@ -385,25 +385,18 @@ def _pot_variables(rl, signs, ci, disagree, steep, why) -> dict[str, Any]:
     return out
 
 
-def _direction_extremes(st: np.ndarray, opposite: np.ndarray | None, signs: np.ndarray) -> dict[str, Any]:
-    """The run's largest static value of each effect in its reported direction s (the largest s·R_st
-    over every event, signed) and in the other one (the largest −s·R over every event's exact static
-    history, signed; NaN where the static pass did not keep it): the traffic's own answer to which
-    direction governs."""
-    n_lines = signs.size
-    largest = np.full(n_lines, np.nan)
-    other = np.full(n_lines, np.nan)
-    if st.shape[0]:
-        largest = signs * np.max(st * signs, axis=0)
-        if opposite is not None:
-            other = -signs * np.max(-opposite * signs, axis=0)
-    a = lambda d: {"units": "see load_effect_units", "long_name": d}  # noqa: E731
-    return {"static_largest": ("load_effect", largest, a("the run's largest static value in the reported direction s "
-                                                         "(largest s*R_st of any event, signed)")),
-            "static_largest_opposite": ("load_effect", other, a(
-                "the run's largest static value in the other direction (largest -s*R of any event's exact static "
-                "history, signed; NaN: not kept); above static_largest in magnitude the direction not reported "
-                "governs this traffic"))}
+def _opposite_extreme(opposite: np.ndarray | None, signs: np.ndarray) -> dict[str, Any]:
+    """The run's largest static value of each effect in the direction it does not report (the largest
+    −s·R over every event's exact static history, signed; NaN where the static pass did not keep it):
+    against the reported direction's (the largest of ``daily_max_static``), the traffic's own answer to
+    which direction governs."""
+    other = np.full(signs.size, np.nan)
+    if opposite is not None and opposite.shape[0]:
+        other = -signs * np.max(-opposite * signs, axis=0)
+    return {"static_largest_opposite": ("load_effect", other, {"units": "see load_effect_units", "long_name": (
+        "the run's largest static value in the direction not reported (largest -s*R of any event's exact static "
+        "history, signed; NaN: not kept); above the largest daily_max_static in magnitude that direction governs "
+        "this traffic")})}
 
 
 def _equivalent_range(curve, damage: float) -> float:
