@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from vbikit.solve.kernels.bundles import _internal, _slot, _work
+from vbikit.solve.kernels.bundles import ModalStep, _internal, _slot, _work
 from vbikit.solve.kernels.lanes import _axpy, _combine, _copy, _fetch, _gemv, _keep_step, _store, _width
 from vbikit.solve.kernels.contact import _modal_load, _refresh, contact_forces, shape_point
 from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _touch_points,\
@@ -68,10 +68,16 @@ def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
-             wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1, span=0.0):
+             wheel_force, wheel_len, past_p, past_g, resume, linear, tol_force, max_iterations, lanes, stride=1, span=0.0):
     """Partitioned implicit step: every mode by its transition ``step`` (``ModalStep``, the
-    modal load linear over the step), the vehicles by theirs (``VehicleStep``, the wheel
-    loads linear over the step), coupled through the contact forces at the end of the step.
+    modal load held linear or quadratic over the step), the vehicles by theirs (``VehicleStep``, the
+    wheel loads held likewise), coupled through the contact forces at the end of the step.  The
+    quadratic hold reads the loads of the step before: at the call's start ``past_p`` (n_m, L) and
+    ``past_g`` (n_w, L) when ``resume`` (a call that goes on from a stored state), else the start's
+    own (the run's start: the loads held constant before t_0, as the static start has them); on
+    return they hold the loads of the step before the last row stored (where a call going on from
+    that row starts).  The steps ``linear`` (n_steps,) marks hold the modal loads linear (a point
+    crosses a deck end there, ``vbikit.solve.integrators.linear_hold_steps``).
 
     Both step maps are linear, so the end-of-step state is an affine function of the end-of-step
     point forces F (``_state_of``), and so is each point's contact law while the set of points in
@@ -115,6 +121,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     n_w = wheel_force.shape[2]
     omega, zeta = modes.omega, modes.zeta
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
+    no_past = np.zeros(n_m)  # the linear hold's map (no p_{n−1}: b + 2d, c − d), for the steps ``linear`` marks
+    held_linear = ModalStep(step.a11, step.a12, step.a21, step.a22, step.b1 + 2.0 * step.d1, step.b2 + 2.0 * step.d2,
+                            step.c1 - step.d1, step.c2 - step.d2, no_past, no_past)
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
     zb = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
@@ -122,8 +131,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     _fetch(xi, row0, x0, lanes); _fetch(dxi, row0, v0, lanes); _fetch(q, row0, z0[:n_d], lanes)
     _fetch(dq, row0, z0[n_d:], lanes)
     xf = np.zeros((n_m, n_l)); vf = np.zeros((n_m, n_l))  # free deck response (load p_{n+1} = 0)
-    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l))
-    g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l))
+    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); pm = np.zeros((n_m, n_l))
+    g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l)); gm = np.zeros((n_w, n_l))
     f = np.zeros((n_cp, n_l)); f0 = np.zeros((n_cp, n_l)); fm = np.zeros((n_cp, n_l)); fw = np.zeros((n_w, n_l))
     f_old = np.zeros((n_cp, n_l))
     acc = np.zeros((n_m, n_l))
@@ -165,6 +174,11 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
     _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
+    if resume:
+        _copy(past_p, pm, lanes); _copy(past_g, gm, lanes)
+    else:
+        _copy(p0, pm, lanes); _copy(g0, gm, lanes)
+        _copy(p0, past_p, lanes); _copy(g0, past_g, lanes)  # (row 0's)
     _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
     _store(ddxi, row0, acc, lanes); _store(ddq, row0, a1, lanes)
@@ -177,18 +191,20 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     evaluations = 0
     y1, w1 = z1[:n_d], z1[n_d:]
     for n in range(n_steps):
+        st = held_linear if linear[n] else step  # the hold of this step's modal loads
         _refresh(cache, motion, 2 * n + 2, points)
         for k in range(n_cp):
             onb[k] = modes.start[points.track[k]] <= cache.x[k] <= modes.end[points.track[k]]
         # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-        _combine(step.a11, x0, step.a12, v0, step.b1, p0, xf, lanes)
-        _combine(step.a21, x0, step.a22, v0, step.b2, p0, vf, lanes)
+        _combine(st.a11, x0, st.a12, v0, st.b1, p0, st.d1, pm, xf, lanes)
+        _combine(st.a21, x0, st.a22, v0, st.b2, p0, st.d2, pm, vf, lanes)
         for i in range(2 * n_d):
             for lane in range(n_l):
                 zf[i, lane] = vstep.constant[i]
                 zb[i, lane] = 0.0
         _gemv(1.0, vstep.transition, z0, zf, lanes, False)
         _gemv(1.0, vstep.load0, g0, zf, lanes, False)
+        _gemv(1.0, vstep.load_past, gm, zf, lanes, False)
         _gemv(1.0, vstep.settle, zf, zb, lanes, False)
         held_state[0] = -1  # new positions: no full Jacobian to reuse
         # first guess: linear extrapolation of the forces
@@ -201,7 +217,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         full = 0  # full Newton updates of this step so far
         for it in range(max_iterations):
             evaluations += 1
-            _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
+            _state_of(f, onb, cache, points, modes, vehicles, st, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
             contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, abs(span))
             if _residuals(f, force, work.used, touch, lane_err, x1, v1, y1, w1, cache, points, vehicles, onb,
                           tol_force) <= tol_force:
@@ -213,10 +229,10 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 for lane in range(n_l):  # one full Newton update per unconverged lane (the rare path)
                     if lane_err[lane] > tol_force:
                         _touch_points(f, force, work.used, work.active, touch, gated, lane, tol_force, x1, v1, y1, w1,
-                                      cache, points, vehicles, onb, step, vstep, fw, modes, road, work.idx, lanes,
+                                      cache, points, vehicles, onb, st, vstep, fw, modes, road, work.idx, lanes,
                                       abs(span), act, row_k, row_c)
                         _full_newton(f, force, work.used, work.active, lane, blend, touch, gated, x1, v1, y1, w1,
-                                     cache, points, vehicles, onb, step, vstep, p, fw, e, u, mat, piv, red, red_piv,
+                                     cache, points, vehicles, onb, st, vstep, p, fw, e, u, mat, piv, red, red_piv,
                                      rhs, t, act, held, held_k, held_c, row_k, row_c, held_state)
                 continue
             quasi += 1
@@ -236,7 +252,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 for lane in range(n_l):
                     if lane_err[lane] > tol_force:
                         extra = max(extra, _lean_refine(
-                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, step, vstep, fw, ksum,
+                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, st, vstep, fw, ksum,
                             csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l, lane_err, modes.amp, dp, dxi_l, dvi_l))
                 quasi += extra  # its updates count towards the quasi-Newton ones before the full Newton
                 settled = True
@@ -252,19 +268,21 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
             for lane in range(n_l):
                 if touch[k, lane] and not work.active[k, lane]:
                     wl[points.wheel[k], lane] += points.width[k]
-        _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
+        _state_of(f, onb, cache, points, modes, vehicles, st, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
         _copy(fw, wf, lanes)
         _tire_load(vehicles, wf, y1, w1, g, lanes)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
         _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n + 1, stride, x1, v1, acc, y1, w1, a1, wf, wl,
                    lanes)
+        if (n + 1) % stride == 0:  # the hold's loads of the step before the row stored
+            _copy(p0, past_p, lanes); _copy(g0, past_g, lanes)
         x0, x1 = x1, x0
         v0, v1 = v1, v0
         z0, z1 = z1, z0
         y1, w1 = z1[:n_d], z1[n_d:]
-        p0, p = p, p0
-        g0, g = g, g0
+        pm, p0, p = p0, p, pm  # (the loads of the step before, for the hold)
+        gm, g0, g = g0, g, gm
         fm, f0, f = f0, f, fm
     return unsettled, evaluations
 

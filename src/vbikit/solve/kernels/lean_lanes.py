@@ -350,10 +350,10 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-               free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
-               wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
-               stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop, first,
-               last, fresh, carry_f, carry_p, carry_g):
+               d1, d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k,
+               wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel,
+               width, stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop,
+               first, last, fresh, carry_f, carry_p, carry_g, carry_pm, carry_gm, linear):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
     ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
     ``implicit`` but q̈ for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
@@ -371,8 +371,13 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     accelerations written); any other lane goes on from the previous call's end, exactly as if
     the loop had not stopped: its forces at the last two steps (``carry_f`` (2, n_cp, L)), modal
     load (``carry_p`` (n_m, L)) and wheel loads (``carry_g`` (n_w, L)), which the call leaves
-    there for the next one when it returns with a live lane.  Returns the number of contact-law
-    evaluations after the start (one a step, for all lanes at once)."""
+    there for the next one when it returns with a live lane.  The hold's loads of the step before
+    (``carry_pm`` (n_m, L), ``carry_gm`` (n_w, L)) are carried the same way and read for every lane
+    but at the run's start (``first`` = 0: the start's own, the loads held constant before t_0); a
+    lane's are written at each row it stores, so that a frozen lane's are those before its last
+    stored row, where ``implicit`` goes on from, and a fresh lane comes with them filled.  Returns
+    the number of contact-law evaluations after the start (one a step, for all lanes at once).
+    ``linear`` (n_steps of the run,) as ``lean``'s: the steps whose modal loads are held linear."""
     n_steps = last
     n_l = xi.shape[0]
     n_m = omega.size
@@ -393,6 +398,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             z0[j, lane] = q[lane, r_first, j]
             z0[n_d + j, lane] = dq[lane, r_first, j]
     p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
+    pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
+    k1 = np.empty(n_m); k2 = np.empty(n_m)  # this step's c (the hold's)
     dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
@@ -454,13 +461,22 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     z1[i, lane] = z0[i, lane]
         else:
+            lin = 1.0 if linear[n] else 0.0  # the hold of this step's modal loads (``lean``)
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]
+                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]
+                f1 = b1[m] + 2.0 * lin * d1[m]; f2 = b2[m] + 2.0 * lin * d2[m]
+                h1 = (1.0 - lin) * d1[m]; h2 = (1.0 - lin) * d2[m]
+                k1[m] = c1[m] - lin * d1[m]; k2[m] = c2[m] - lin * d2[m]
                 for lane in range(n_l):
-                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane]
-                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane]
-            # z_b = P (Φ z_n + L0 G_n + g) = P Φ z_n + P L0 G_n + P g (``VehicleStep``)
+                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * pm[m, lane]
+                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * pm[m, lane]
+                    pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
+            # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
             _affine_lanes(free_constant, free, free_load, z0, g0, zb)
+            _add_product_lanes(free_past, gm, zb)
+            for w in range(n_w):
+                for lane in range(n_l):
+                    gm[w, lane] = g0[w, lane]
             for k in range(n_cp):  # first guess: linear extrapolation of the forces
                 nonzero = False
                 for lane in range(n_l):
@@ -468,7 +484,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     f[k, lane] = fk
                     nonzero = nonzero or fk != 0.0
                 nz[k] = nonzero
-            _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
+            _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, k1, k2, response,
                          xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
             read = abs(span)
@@ -553,8 +569,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                         for w in range(n_w):
                             dfw[w, lane] = 0.0
                 for m in range(n_m):  # the deck's change, and the state of the new iterate
-                    e1 = c1[m]
-                    e2 = c2[m]
+                    e1 = k1[m]
+                    e2 = k2[m]
                     am = amp[m]
                     for lane in range(n_l):
                         dx[m, lane] = e1 * dp[m, lane]
@@ -651,6 +667,11 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for w in range(n_w):
                     wheel_force[lane, r_out, w] = wf[w, lane]
                     wheel_len[lane, r_out, w] = wl[w, lane]
+                if n >= first:  # the hold's loads of the step before the row (the start's: below)
+                    for m in range(n_m):
+                        carry_pm[m, lane] = pm[m, lane]
+                    for w in range(n_w):
+                        carry_gm[w, lane] = gm[w, lane]
         if n >= first:
             for k in range(n_cp):
                 for lane in range(n_l):
@@ -672,6 +693,12 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                         p[m, lane] = carry_p[m, lane]
                     for w in range(n_w):
                         g0[w, lane] = carry_g[w, lane]
+                for m in range(n_m):  # the hold's loads before the start: held constant at the run's start
+                    pm[m, lane] = p[m, lane] if first == 0 else carry_pm[m, lane]
+                    carry_pm[m, lane] = pm[m, lane]
+                for w in range(n_w):
+                    gm[w, lane] = g0[w, lane] if first == 0 else carry_gm[w, lane]
+                    carry_gm[w, lane] = gm[w, lane]
         p0, p = p, p0
     for k in range(n_cp):  # the state the next call goes on from
         for lane in range(n_l):
@@ -683,4 +710,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     for w in range(n_w):
         for lane in range(n_l):
             carry_g[w, lane] = g0[w, lane]
+            if live[lane]:
+                carry_gm[w, lane] = gm[w, lane]
+    for m in range(n_m):
+        for lane in range(n_l):
+            if live[lane]:
+                carry_pm[m, lane] = pm[m, lane]
     return evaluations
