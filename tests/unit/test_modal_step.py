@@ -75,7 +75,8 @@ def _single_mode_run(omega, zeta, dt, n_steps, xi0, dxi0=0.0):
     xi[0, 0, 0], dxi[0, 0, 0] = xi0, dxi0
     step = exact_step(np.array([omega]), np.array([zeta]), dt)
     kernels.implicit(dt, motion, modes, vehicles, points, road, True, step, vehicle_step(vehicles, dt), xi, dxi, q,
-                     dq, ddxi, ddq, wf, wl, np.zeros((1, 1)), np.zeros((0, 1)), False, 1e-9, 50, kernels.MANY_LANES)
+                     dq, ddxi, ddq, wf, wl, np.zeros((1, 1)), np.zeros((0, 1)), False, points.origin.copy(), 1e-9, 50,
+                     kernels.MANY_LANES)
     return xi[0, :, 0], dxi[0, :, 0], ddxi[0, :, 0]
 
 

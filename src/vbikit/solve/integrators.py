@@ -162,31 +162,29 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     data, name = call.data, call.crossing.integrator
     loads = np.abs(call.crossing.vehicle.static_wheel_loads())
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
-    linear = linear_hold_steps(call)
     if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
         LEAN_COUNTS["implicit"] += 1
         _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, 0,
-              _no_past(call, call.outputs[0].shape[0]), linear)
+              _no_past(call, call.outputs[0].shape[0]))
         return
     if len(call.lanes) == 1:
         past_p, past_g, _ = _no_past(call)
         stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
-                                         past_g[:, 0], False, linear, tol, call.stride, *_lean_work(call))
+                                         past_g[:, 0], False, _positions_before(call, 0), tol, call.stride,
+                                         *_lean_work(call))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
             log.debug("%s (lean kernel): %.2f contact-law evaluations per step", name,
                       evaluations / max(call.n_steps, 1))
         else:
             LEAN_COUNTS["fallback"] += 1
-            _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop), (past_p, past_g, int(stop) >= call.stride),
-                         linear)
+            _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop), (past_p, past_g, int(stop) >= call.stride))
     else:
-        _run_lanes(call, modal_step, vehicle_step, tol, linear)
+        _run_lanes(call, modal_step, vehicle_step, tol)
     call.deferred.add("q_ddot")
 
 
-def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float,
-               linear: np.ndarray) -> None:
+def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:
     """Many lanes through ``kernels.lean_lanes``, ``LANES_CHUNK`` steps a call: a lane it stops at a
     step goes on alone with ``implicit`` (one-lane variant, its road) from its last stored row to
     the end of the chunk, and joins the next call afresh (the law at that state, the forces
@@ -210,12 +208,12 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     for first in range(0, n_steps, chunk):
         last = min(n_steps, first + chunk)
         evaluations += kernels.lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g,
-                                          carry_pm, carry_gm, linear)
+                                          carry_pm, carry_gm, _positions_before(call, first))
         frozen = np.flatnonzero(stops >= 0)
         fresh[:] = False
         for lane in frozen:  # (the hold's loads before its last stored row in, those before ``last`` out)
             past = (carry_pm[:, lane:lane + 1].copy(), carry_gm[:, lane:lane + 1].copy(), int(stops[lane]) >= stride)
-            _lane_steps(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), last, past, linear)
+            _lane_steps(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), last, past)
             carry_pm[:, lane], carry_gm[:, lane] = past[0][:, 0], past[1][:, 0]
         fresh[frozen] = True
         ever[frozen] = True
@@ -227,14 +225,14 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
 
 
 def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                stop: int, end: int, past: tuple, linear: np.ndarray) -> None:
+                stop: int, end: int, past: tuple) -> None:
     """Lane ``lane`` of ``call`` with ``implicit`` (that lane alone, its road) from the last row stored
     before step ``stop`` to step ``end`` (``past``: the hold's loads before that row, in; before the
     last row stored, out)."""
     row = stop // call.stride
     first = row * call.stride
     _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), _lane_road(call.road, lane),
-          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), first, past, linear, lane)
+          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), first, past, lane)
 
 
 def _lean_work(call: KernelCall) -> tuple:
@@ -267,7 +265,7 @@ LANES_CHUNK = 128
 
 
 def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                 stop: int, past: tuple, linear: np.ndarray) -> None:
+                 stop: int, past: tuple) -> None:
     """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop``: on that
     lane's road, ``implicit`` (that lane alone) for ``LEAN_WINDOW`` steps, then the one-lane lean
     kernel, alternating while the lean kernel stops (``LEAN_RESUMES``); ``past`` (modal (n_m, 1), wheel
@@ -288,7 +286,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                   "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
                   first)
         _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), road,
-              tuple(a[:, row:end // stride + 1] for a in one.outputs), first, past, linear, lane)
+              tuple(a[:, row:end // stride + 1] for a in one.outputs), first, past, lane)
         past = (past[0], past[1], True)
         if end >= n_steps or end % stride:
             return
@@ -296,7 +294,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:] for a in one.outputs))
         stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
-                               past[1][:, 0], True, linear[end:], tol, stride, *_lean_work(part))
+                               past[1][:, 0], True, _positions_before(call, end), tol, stride, *_lean_work(part))
         if stop < 0:
             return
         stop += end
@@ -309,19 +307,18 @@ def _steps(motion: "Motion", first: int, end: int) -> "Motion":
 
 
 def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, motion: "Motion",
-          road: "Road", outputs: tuple, first: int, past: tuple, linear: np.ndarray, lane: int | None = None) -> None:
+          road: "Road", outputs: tuple, first: int, past: tuple, lane: int | None = None) -> None:
     """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``, in its
     many-lane variant whatever the lane count (``kernels.MANY_LANES``: one compiled variant of the full
     kernel), with ``past`` the hold's loads before its start (modal, wheel, resume: ``_no_past`` at the run's
-    start; the kernel leaves those before its last stored row in them) and ``linear`` the run's steps held
-    linear (``linear_hold_steps``); its unsettled steps are
+    start; the kernel leaves those before its last stored row in them); its unsettled steps are
     counted in ``call.unconverged`` for lane ``lane`` (None: every lane of ``outputs``)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
     unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
                                               data.unilateral, modal_step, vehicle_step, *outputs, *past,
-                                              linear[first:first + (motion.travel.shape[0] - 1) // 2], tol,
+                                              _positions_before(call, first), tol,
                                               IMPLICIT_MAX_ITERATIONS, kernels.MANY_LANES, call.stride,
                                               _span(call, first == 0))
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
@@ -361,24 +358,16 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
         pts.width, road.stations, elevations, float(road.r_max), _span(call, start), *outputs))
 
 
-def linear_hold_steps(call: KernelCall) -> np.ndarray:
-    """The steps n (t_n → t_{n+1}) of ``call`` whose modal loads the kernels hold linear (n_steps,) bool:
-    the first (no loads before t_0 to fit a parabola through) and every step whose three-point stencil
-    t_{n−1}, t_n, t_{n+1} sees a contact point cross a deck end (where a point comes onto or leaves
-    its track, t_{n−1} … t_{n+1}).  There the modal load −Σ φ_p F_p has a kink (mode shapes vanishing at
-    the end) or a jump (mode shapes that do not), which a parabola through the stencil spreads over
-    the whole step: on a one-mode moving force (tests/verification/test_biggs_two_mass.py) the quadratic
-    hold everywhere gives 9× the linear hold's error, from the step after the force comes on.  Elsewhere
-    the load is smooth and the quadratic hold's third order pays."""
-    pts, modes = call.data.points, call.data.modes
-    travel = call.motion.travel[::2]  # t_0 … t_N (the half-step grid's even rows)
-    x = pts.origin + pts.direction * travel[:, pts.vehicle]
-    on = (modes.start[pts.track] <= x) & (x <= modes.end[pts.track])  # the kernels' test (``onb``)
-    change = np.any(on[1:] != on[:-1], axis=1)  # a point comes on or leaves within (t_n, t_{n+1}]
-    linear = change.copy()
-    linear[1:] |= change[:-1]
-    linear[:1] = True
-    return linear
+def _positions_before(call: KernelCall, first: int) -> np.ndarray:
+    """The contact points' positions x [m] (n_cp,) at t_{first−1}, a step before a kernel call that starts
+    at step ``first`` of ``call`` (the hold at the deck's ends, ``vbikit.solve.kernels.hold``); before the
+    run's start, where the motion has no row, each vehicle's travel less its speed times the step."""
+    pts, motion = call.data.points, call.motion
+    if first > 0:
+        travel = motion.travel[2 * first - 2]
+    else:
+        travel = motion.travel[0] - motion.speed[0] * call.dt
+    return np.ascontiguousarray(pts.origin + pts.direction * travel[pts.vehicle])
 
 
 def _no_past(call: KernelCall, n_l: int = 1) -> tuple:

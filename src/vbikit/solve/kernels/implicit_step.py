@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from vbikit.solve.kernels.bundles import ModalStep, _internal, _slot, _work
+from vbikit.solve.kernels.bundles import _internal, _slot, _work
+from vbikit.solve.kernels.hold import hold_correction_lanes
 from vbikit.solve.kernels.lanes import _axpy, _combine, _copy, _fetch, _gemv, _keep_step, _store, _width
 from vbikit.solve.kernels.contact import _modal_load, _refresh, contact_forces, shape_point
 from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _touch_points,\
@@ -68,7 +69,7 @@ def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
-             wheel_force, wheel_len, past_p, past_g, resume, linear, tol_force, max_iterations, lanes, stride=1, span=0.0):
+             wheel_force, wheel_len, past_p, past_g, resume, x_past, tol_force, max_iterations, lanes, stride=1, span=0.0):
     """Partitioned implicit step: every mode by its transition ``step`` (``ModalStep``, the
     modal load held linear or quadratic over the step), the vehicles by theirs (``VehicleStep``, the
     wheel loads held likewise), coupled through the contact forces at the end of the step.  The
@@ -76,8 +77,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     ``past_g`` (n_w, L) when ``resume`` (a call that goes on from a stored state), else the start's
     own (the run's start: the loads held constant before t_0, as the static start has them); on
     return they hold the loads of the step before the last row stored (where a call going on from
-    that row starts).  The steps ``linear`` (n_steps,) marks hold the modal loads linear (a point
-    crosses a deck end there, ``vbikit.solve.integrators.linear_hold_steps``).
+    that row starts).  ``x_past`` (n_cp,): the points' positions [m] a step before the start (the hold
+    at the deck's ends, ``vbikit.solve.kernels.hold``).
 
     Both step maps are linear, so the end-of-step state is an affine function of the end-of-step
     point forces F (``_state_of``), and so is each point's contact law while the set of points in
@@ -121,9 +122,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     n_w = wheel_force.shape[2]
     omega, zeta = modes.omega, modes.zeta
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
-    no_past = np.zeros(n_m)  # the linear hold's map (no p_{n−1}: b + 2d, c − d), for the steps ``linear`` marks
-    held_linear = ModalStep(step.a11, step.a12, step.a21, step.a22, step.b1 + 2.0 * step.d1, step.b2 + 2.0 * step.d2,
-                            step.c1 - step.d1, step.c2 - step.d2, no_past, no_past)
+    corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
+    x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
     zb = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
@@ -191,13 +191,28 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     evaluations = 0
     y1, w1 = z1[:n_d], z1[n_d:]
     for n in range(n_steps):
-        st = held_linear if linear[n] else step  # the hold of this step's modal loads
+        for k in range(n_cp):
+            x_before[k] = x_start[k] if n > 0 else x_past[k]
+            x_start[k] = cache.x[k]  # (t_n, before the refresh)
         _refresh(cache, motion, 2 * n + 2, points)
         for k in range(n_cp):
             onb[k] = modes.start[points.track[k]] <= cache.x[k] <= modes.end[points.track[k]]
-        # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-        _combine(st.a11, x0, st.a12, v0, st.b1, p0, st.d1, pm, xf, lanes)
-        _combine(st.a21, x0, st.a22, v0, st.b2, p0, st.d2, pm, vf, lanes)
+        # first guess: linear extrapolation of the forces (the hold at the deck's ends reads it too)
+        for k in range(n_cp):
+            for lane in range(n_l):
+                f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
+                touch[k, lane] = False
+        # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0; the hold's p_{n−1} with the shares
+        # of points crossing a deck end replaced (``hold``)
+        if hold_correction_lanes(x_before, x_start, cache.x, points.track, modes.start, modes.end, modes.grid_h,
+                                 modes.values, modes.slopes, fm, f0, f, sphi, sdphi, corr):
+            for m in range(n_m):
+                for lane in range(n_l):
+                    corr[m, lane] += pm[m, lane]
+        else:
+            _copy(pm, corr, lanes)
+        _combine(step.a11, x0, step.a12, v0, step.b1, p0, step.d1, corr, xf, lanes)
+        _combine(step.a21, x0, step.a22, v0, step.b2, p0, step.d2, corr, vf, lanes)
         for i in range(2 * n_d):
             for lane in range(n_l):
                 zf[i, lane] = vstep.constant[i]
@@ -207,17 +222,12 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _gemv(1.0, vstep.load_past, gm, zf, lanes, False)
         _gemv(1.0, vstep.settle, zf, zb, lanes, False)
         held_state[0] = -1  # new positions: no full Jacobian to reuse
-        # first guess: linear extrapolation of the forces
-        for k in range(n_cp):
-            for lane in range(n_l):
-                f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
-                touch[k, lane] = False
         converged = False
         quasi = 0  # quasi-Newton updates of this step so far
         full = 0  # full Newton updates of this step so far
         for it in range(max_iterations):
             evaluations += 1
-            _state_of(f, onb, cache, points, modes, vehicles, st, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
+            _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
             contact_forces(x1, v1, y1, w1, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, abs(span))
             if _residuals(f, force, work.used, touch, lane_err, x1, v1, y1, w1, cache, points, vehicles, onb,
                           tol_force) <= tol_force:
@@ -229,10 +239,10 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 for lane in range(n_l):  # one full Newton update per unconverged lane (the rare path)
                     if lane_err[lane] > tol_force:
                         _touch_points(f, force, work.used, work.active, touch, gated, lane, tol_force, x1, v1, y1, w1,
-                                      cache, points, vehicles, onb, st, vstep, fw, modes, road, work.idx, lanes,
+                                      cache, points, vehicles, onb, step, vstep, fw, modes, road, work.idx, lanes,
                                       abs(span), act, row_k, row_c)
                         _full_newton(f, force, work.used, work.active, lane, blend, touch, gated, x1, v1, y1, w1,
-                                     cache, points, vehicles, onb, st, vstep, p, fw, e, u, mat, piv, red, red_piv,
+                                     cache, points, vehicles, onb, step, vstep, p, fw, e, u, mat, piv, red, red_piv,
                                      rhs, t, act, held, held_k, held_c, row_k, row_c, held_state)
                 continue
             quasi += 1
@@ -252,7 +262,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 for lane in range(n_l):
                     if lane_err[lane] > tol_force:
                         extra = max(extra, _lean_refine(
-                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, st, vstep, fw, ksum,
+                            f, f_old, force, work, lane, tol_force, gated, points, cache, onb, step, vstep, fw, ksum,
                             csum, veh_held, veh, veh_piv, bq_l, bv_l, t_l, lane_err, modes.amp, dp, dxi_l, dvi_l))
                 quasi += extra  # its updates count towards the quasi-Newton ones before the full Newton
                 settled = True
@@ -268,7 +278,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
             for lane in range(n_l):
                 if touch[k, lane] and not work.active[k, lane]:
                     wl[points.wheel[k], lane] += points.width[k]
-        _state_of(f, onb, cache, points, modes, vehicles, st, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
+        _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
         _copy(fw, wf, lanes)
         _tire_load(vehicles, wf, y1, w1, g, lanes)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)

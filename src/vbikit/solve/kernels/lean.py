@@ -50,6 +50,7 @@ from numba import njit
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
+from vbikit.solve.kernels.hold import hold_correction
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, lu_factor_inline, lu_solve_inline
 
 
@@ -220,7 +221,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
          d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
          wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
          stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, past_p, past_g, resume,
-         linear, tol, stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
+         x_past, tol, stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
     ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
@@ -232,10 +233,10 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     for the hold (``ModalStep``, ``VehicleStep``): modal ``past_p`` (n_m,) and wheel ``past_g`` (n_w,),
     read when ``resume`` (a call that goes on from a stored state); else the start's own (the run's
     start: the loads held constant before t_0, the static start); on return they hold the loads of
-    the step before the last row stored (where a call going on from that row starts), ``linear``
-    (n_steps,) the steps whose modal loads are held linear (``integrators.linear_hold_steps``: a point
-    crosses a deck end there; the linear hold's coefficients are the quadratic's, b + 2d, c − d and
-    no d), ``tol`` [N] and ``stride``, then the work spaces of ``lean_work`` (zeroed).
+    the step before the last row stored (where a call going on from that row starts), ``x_past``
+    (n_cp,) the points' positions [m] a step before the start (for the hold at the deck's ends,
+    ``vbikit.solve.kernels.hold``), ``tol`` [N] and ``stride``, then the work spaces of ``lean_work``
+    (zeroed).
 
     Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
     (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
@@ -247,12 +248,13 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
-    dv = modal[7]; pm = modal[8]; e1 = modal[9]; e2 = modal[10]
+    dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
     z1 = state[0]; zb = state[1]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
     t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
-    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]
+    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]; x_start = points[11]
+    x_before = points[12]  # the positions at t_n and t_{n−1} (the hold at the deck's ends)
     active = flags[0]; used = flags[1]; onb = flags[2]
     have = index[0]; idx = index[1]
     phi = shapes[0]; dphi = shapes[1]
@@ -270,6 +272,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         row = 2 * n + 2
         for k in range(n_cp):
             vh = vehicle[k]
+            x_before[k] = x_start[k]  # (at n = 0: ``x_past``, below)
+            x_start[k] = xp[k] if n >= 0 else x_past[k]
             xp[k] = origin[k] + direction[k] * travel[row, vh]
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
@@ -278,14 +282,12 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             fo[k] = f[k]
             f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
         if n >= 0:
-            lin = 1.0 if linear[n] else 0.0  # the hold of this step's modal loads (its c: e1, e2)
+            ends = hold_correction(x_before, x_start, xp, track, start, end, grid_h, values, slopes, fp, fo, f, sphi,
+                                   sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                h1 = d1[m]
-                h2 = d2[m]
-                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + (b1[m] + 2.0 * lin * h1) * p[m] + (1.0 - lin) * h1 * pm[m]
-                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + (b2[m] + 2.0 * lin * h2) * p[m] + (1.0 - lin) * h2 * pm[m]
-                e1[m] = c1[m] - lin * h1
-                e2[m] = c2[m] - lin * h2
+                past = pm[m] + corr[m] if ends else pm[m]
+                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past
+                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m] + d2[m] * past
                 pm[m] = p[m]  # (the next step's p_{n−1})
             for i in range(2 * n_d):  # z_b = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g
                 a = free_constant[i]
@@ -296,7 +298,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 zb[i] = a
             for w in range(n_w):
                 gm[w] = g0[w]
-            _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, e1, e2, response, xf, vf,
+            _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
         read = span if n < 0 else abs(span)  # (the start state: the road ahead only when span < 0)
@@ -339,8 +341,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                                 dp[m] -= phi[k, m] * d
                     b = 0.0
                     for m in range(n_m):  # the deck's change, and the state of the new iterate
-                        dx[m] = e1[m] * dp[m]
-                        dv[m] = e2[m] * dp[m]
+                        dx[m] = c1[m] * dp[m]
+                        dv[m] = c2[m] * dp[m]
                         b += amp[m] * abs(dx[m])
                         p[m] += dp[m]
                         x1[m] += dx[m]
@@ -426,15 +428,15 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (11, n_m), per vehicle state (2, 2 n_d), per wheel (12, n_w), the held active
-    sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
+    (12, n_m), per vehicle state (2, 2 n_d), per wheel (12, n_w), the held active
+    sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (13, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((11, n_m)), np.zeros((2, 2 * n_d)), np.zeros((12, n_w)),
-            np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
+    return (np.zeros((12, n_m)), np.zeros((2, 2 * n_d)), np.zeros((12, n_w)),
+            np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((13, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 
 

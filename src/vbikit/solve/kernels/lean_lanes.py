@@ -45,6 +45,7 @@ from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
+from vbikit.solve.kernels.hold import hold_correction_lanes
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
@@ -353,7 +354,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                d1, d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k,
                wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel,
                width, stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop,
-               first, last, fresh, carry_f, carry_p, carry_g, carry_pm, carry_gm, linear):
+               first, last, fresh, carry_f, carry_p, carry_g, carry_pm, carry_gm, x_past):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
     ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
     ``implicit`` but q̈ for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
@@ -377,7 +378,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     lane's are written at each row it stores, so that a frozen lane's are those before its last
     stored row, where ``implicit`` goes on from, and a fresh lane comes with them filled.  Returns
     the number of contact-law evaluations after the start (one a step, for all lanes at once).
-    ``linear`` (n_steps of the run,) as ``lean``'s: the steps whose modal loads are held linear."""
+    ``x_past`` (n_cp,): the points' positions [m] a step before ``first`` (``lean``'s)."""
     n_steps = last
     n_l = xi.shape[0]
     n_m = omega.size
@@ -399,7 +400,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             z0[n_d + j, lane] = dq[lane, r_first, j]
     p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
     pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
-    k1 = np.empty(n_m); k2 = np.empty(n_m)  # this step's c (the hold's)
+    corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
+    x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
     dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
@@ -430,6 +432,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
         row = 2 * n + 2
         for k in range(n_cp):
             vh = vehicle[k]
+            x_before[k] = x_start[k]  # (at n = first: ``x_past``, below)
+            x_start[k] = xp[k] if n >= first else x_past[k]
             xp[k] = origin[k] + direction[k] * travel[row, vh]
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
@@ -461,15 +465,28 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     z1[i, lane] = z0[i, lane]
         else:
-            lin = 1.0 if linear[n] else 0.0  # the hold of this step's modal loads (``lean``)
-            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]
-                f1 = b1[m] + 2.0 * lin * d1[m]; f2 = b2[m] + 2.0 * lin * d2[m]
-                h1 = (1.0 - lin) * d1[m]; h2 = (1.0 - lin) * d2[m]
-                k1[m] = c1[m] - lin * d1[m]; k2[m] = c2[m] - lin * d2[m]
+            for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
+                nonzero = False  # reads it too)
                 for lane in range(n_l):
-                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * pm[m, lane]
-                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * pm[m, lane]
+                    fk = 2.0 * fo[k, lane] - fp[k, lane]
+                    f[k, lane] = fk
+                    nonzero = nonzero or fk != 0.0
+                nz[k] = nonzero
+            if hold_correction_lanes(x_before, x_start, xp, track, start, end, grid_h, values, slopes, fp, fo, f, sphi,
+                                     sdphi, corr):  # points crossing a deck end: their share of p_{n−1}
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        corr[m, lane] += pm[m, lane]
+            else:
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        corr[m, lane] = pm[m, lane]
+            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
+                h2 = d2[m]
+                for lane in range(n_l):
+                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * corr[m, lane]
+                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * corr[m, lane]
                     pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
             # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
             _affine_lanes(free_constant, free, free_load, z0, g0, zb)
@@ -477,14 +494,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             for w in range(n_w):
                 for lane in range(n_l):
                     gm[w, lane] = g0[w, lane]
-            for k in range(n_cp):  # first guess: linear extrapolation of the forces
-                nonzero = False
-                for lane in range(n_l):
-                    fk = 2.0 * fo[k, lane] - fp[k, lane]
-                    f[k, lane] = fk
-                    nonzero = nonzero or fk != 0.0
-                nz[k] = nonzero
-            _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, k1, k2, response,
+            _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
                          xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
             read = abs(span)
@@ -569,8 +579,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                         for w in range(n_w):
                             dfw[w, lane] = 0.0
                 for m in range(n_m):  # the deck's change, and the state of the new iterate
-                    e1 = k1[m]
-                    e2 = k2[m]
+                    e1 = c1[m]
+                    e2 = c2[m]
                     am = amp[m]
                     for lane in range(n_l):
                         dx[m, lane] = e1 * dp[m, lane]
