@@ -8,12 +8,14 @@ which a parabola through the three values spreads over the whole step: on a one-
 quadratic hold everywhere gives 9× the linear hold's error, from the step after the force comes on
 (tests/verification/test_biggs_two_mass.py).  Such a point's share of p_{n−1} is therefore replaced
 by the linear continuation of its shares at t_n and t_{n+1}, 2q_n − q̂_{n+1} (its share is then held
-linear over the step: the quadratic through (2q_n − q_{n+1}, q_n, q_{n+1}) is the line), with q̂_{n+1}
-the share of the step's first guess of the forces F̂ = 2F_n − F_{n−1} (its own end force is not yet
-known; the hold is then linear to within the guess's error, O(h²) in F).  The correction to p_{n−1}
-is
+linear over the step: the quadratic through (2q_n − q_{n+1}, q_n, q_{n+1}) is the line).  Every share
+in the correction is taken with the point's force at t_n, F_n (its end force is not yet known, and a
+kernel that goes on from a stored state has no F_{n−1}: with F_n alone the correction is the same
+whichever kernel takes the step); the hold is then linear to within F's change over a step, a local
+error of O(h³) at the two steps of each crossing, and exactly linear for a constant force.  The
+correction to p_{n−1} is
 
-    Δp = Σ_{k crossing} (2q_{k,n} − q̂_{k,n+1} − q_{k,n−1}),       q = −φ_k(x) F_k (0 off the deck),
+    Δp = Σ_{k crossing} (2q̃_{k,n} − q̃_{k,n+1} − q̃_{k,n−1}),     q̃_{k,j} = −φ_k(x_{k,j}) F_{k,n} (0 off the deck),
 
 point by point, so a run of several loads stays the sum of their runs (the scheme stays linear in
 the loads).  ``hold_correction`` (one lane) and ``hold_correction_lanes`` (forces (n_cp, L)) add it.
@@ -36,12 +38,11 @@ def crossing_ends(x_before, x_start, x_end, tr, start, end):
 
 
 @_flat_internal
-def hold_correction(x_before, x_start, x_end, track, start, end, grid_h, values, slopes, f_before, f_start, f_guess,
-                    phi_row, dphi_row, corr):
+def hold_correction(x_before, x_start, x_end, track, start, end, grid_h, values, slopes, f_start, phi_row, dphi_row,
+                    corr):
     """Δp (module docstring) of one lane into ``corr`` (n_m,), for points at positions ``x_before``,
-    ``x_start``, ``x_end`` (n_cp,) with forces ``f_before`` F_{n−1}, ``f_start`` F_n and ``f_guess`` F̂_{n+1};
-    ``phi_row``, ``dphi_row`` (n_m,) work space.  Returns whether any point crosses (else ``corr`` is not
-    written)."""
+    ``x_start``, ``x_end`` (n_cp,) at t_{n−1}, t_n, t_{n+1} with forces ``f_start`` F_n (n_cp,); ``phi_row``,
+    ``dphi_row`` (n_m,) work space.  Returns whether any point crosses (else ``corr`` is not written)."""
     n_m = corr.size
     found = False
     for k in range(x_start.size):
@@ -53,20 +54,23 @@ def hold_correction(x_before, x_start, x_end, track, start, end, grid_h, values,
             for m in range(n_m):
                 corr[m] = 0.0
             found = True
-        for which in range(3):  # 2q_n, −q̂_{n+1}, −q_{n−1} with q = −φF
+        fk = f_start[k]
+        if fk == 0.0:
+            continue
+        for which in range(3):  # 2q̃_n, −q̃_{n+1}, −q̃_{n−1} with q̃ = −φF_n
             x = x_start[k] if which == 0 else (x_end[k] if which == 1 else x_before[k])
             on = on1 if which == 0 else (on2 if which == 1 else on0)
-            weight = -2.0 * f_start[k] if which == 0 else (f_guess[k] if which == 1 else f_before[k])
-            if on and weight != 0.0:
+            if on:
                 hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row)
+                weight = -2.0 * fk if which == 0 else fk
                 for m in range(n_m):
                     corr[m] += weight * phi_row[m]
     return found
 
 
 @_internal
-def hold_correction_lanes(x_before, x_start, x_end, track, start, end, grid_h, values, slopes, f_before, f_start,
-                          f_guess, phi_row, dphi_row, corr):
+def hold_correction_lanes(x_before, x_start, x_end, track, start, end, grid_h, values, slopes, f_start, phi_row,
+                          dphi_row, corr):
     """``hold_correction`` with the forces of every lane (n_cp, L) into ``corr`` (n_m, L)."""
     n_m, n_l = corr.shape
     found = False
@@ -80,16 +84,15 @@ def hold_correction_lanes(x_before, x_start, x_end, track, start, end, grid_h, v
                 for lane in range(n_l):
                     corr[m, lane] = 0.0
             found = True
-        for which in range(3):  # 2q_n, −q̂_{n+1}, −q_{n−1} with q = −φF
+        for which in range(3):  # 2q̃_n, −q̃_{n+1}, −q̃_{n−1} with q̃ = −φF_n
             x = x_start[k] if which == 0 else (x_end[k] if which == 1 else x_before[k])
             on = on1 if which == 0 else (on2 if which == 1 else on0)
             if not on:
                 continue
             hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row)
-            forces = f_start if which == 0 else (f_guess if which == 1 else f_before)
             scale = -2.0 if which == 0 else 1.0
             for m in range(n_m):
                 a = scale * phi_row[m]
                 for lane in range(n_l):
-                    corr[m, lane] += a * forces[k, lane]
+                    corr[m, lane] += a * f_start[k, lane]
     return found
