@@ -67,6 +67,29 @@ def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p
     _gemv(1.0, vstep.response, fw, z1, lanes, False)
 
 
+@_internal
+def _hold_jumps(wf, contact, g, p, p_start, g_start, jumped, lanes):
+    """A wheel that lands or lifts off within the step (its force sum ``wf`` > 0 now and not before, or
+    the reverse; ``contact`` holds whether it was, and is updated): its load G jumps or kinks there, so
+    the next step holds it from the step's end on — its entry of the loads of the step before,
+    ``g_start`` (which the caller makes the next step's G_{n−1}), set to the end value ``g`` — and every
+    mode's, ``p_start``, to ``p`` in that lane (``lean``: the same rule)."""
+    n_l = _width(lanes, wf)
+    for lane in range(n_l):
+        jumped[lane] = False
+    for w in range(wf.shape[0]):
+        for lane in range(n_l):
+            touching = wf[w, lane] > 0.0
+            if touching != contact[w, lane]:
+                g_start[w, lane] = g[w, lane]
+                jumped[lane] = True
+            contact[w, lane] = touching
+    for lane in range(n_l):
+        if jumped[lane]:
+            for m in range(p.shape[0]):
+                p_start[m, lane] = p[m, lane]
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
              wheel_force, wheel_len, past_p, past_g, resume, x_past, tol_force, max_iterations, lanes, stride=1, span=0.0):
@@ -124,6 +147,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
     corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
     x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
+    contact = np.zeros((n_w, n_l), dtype=np.bool_); jumped = np.zeros(n_l, dtype=np.bool_)
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
     zb = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
@@ -174,6 +198,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
     _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
+    for w in range(n_w):  # the wheels in contact at the start (``_hold_jumps``)
+        for lane in range(n_l):
+            contact[w, lane] = wf[w, lane] > 0.0
     if resume:
         _copy(past_p, pm, lanes); _copy(past_g, gm, lanes)
     else:
@@ -281,6 +308,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
         _copy(fw, wf, lanes)
         _tire_load(vehicles, wf, y1, w1, g, lanes)
+        _hold_jumps(wf, contact, g, p, p0, g0, jumped, lanes)  # (the loads before: p0, g0 become pm, gm below)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
         _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n + 1, stride, x1, v1, acc, y1, w1, a1, wf, wl,

@@ -251,7 +251,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
     z1 = state[0]; zb = state[1]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
-    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]
+    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]; contact = wheels[12]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
     law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]; x_start = points[11]
     x_before = points[12]  # the positions at t_n and t_{n−1} (the hold at the deck's ends)
@@ -396,6 +396,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
         r_out = (n + 1) // stride
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
+        jumped = False
         for w in range(n_w):
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
@@ -410,10 +411,18 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             g0[w] = a
             if n < 0:  # the loads before the start (for the hold)
                 gm[w] = past_g[w] if resume else a
+            touching = wf[w] > 0.0  # a wheel that lands or lifts off: the next step holds from here on
+            if n >= 0 and touching != (contact[w] != 0.0):  # (``hold``: a jump or kink in G and p)
+                gm[w] = a
+                jumped = True
+            contact[w] = 1.0 if touching else 0.0
             if stored:
                 past_g[w] = gm[w]
                 wheel_force[r_out, w] = wf[w]
                 wheel_len[r_out, w] = wl[w]
+        if jumped:
+            for m in range(n_m):
+                pm[m] = p[m]
         if stored:
             for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ; the hold's p of the step before the row
                 past_p[m] = pm[m]
@@ -428,14 +437,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (12, n_m), per vehicle state (2, 2 n_d), per wheel (12, n_w), the held active
+    (12, n_m), per vehicle state (2, 2 n_d), per wheel (13, n_w), the held active
     sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (13, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((12, n_m)), np.zeros((2, 2 * n_d)), np.zeros((12, n_w)),
+    return (np.zeros((12, n_m)), np.zeros((2, 2 * n_d)), np.zeros((13, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((13, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 

@@ -402,6 +402,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
     corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
     x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
+    contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``lean``)
     dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
@@ -655,6 +656,19 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     j = wheel_dof[w, e]
                     for lane in range(n_l):
                         g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
+        for lane in range(n_l):  # a wheel that lands or lifts off: the next step holds from here on (``lean``)
+            jumped[lane] = False
+        for w in range(n_w):
+            for lane in range(n_l):
+                touching = wf[w, lane] > 0.0
+                if n >= first and touching != contact[w, lane]:
+                    gm[w, lane] = g0[w, lane]
+                    jumped[lane] = True
+                contact[w, lane] = touching
+        for lane in range(n_l):
+            if jumped[lane]:
+                for m in range(n_m):
+                    pm[m, lane] = p[m, lane]
         for m in range(n_m):
             e1 = 2.0 * zeta[m] * omega[m]
             e2 = omega[m] * omega[m]
