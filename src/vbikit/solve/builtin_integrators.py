@@ -23,7 +23,7 @@ def _run_exact(call: KernelCall) -> None:
 
     data = call.data
     run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt, QUADRATIC),
-                 vehicle_step(data.vehicles, call.dt, QUADRATIC))
+                 vehicle_step(data.vehicles, call.dt))
 
 
 def _run_newmark(call: KernelCall) -> None:

@@ -38,16 +38,18 @@ def crossing_ends(x_before, x_start, x_end, tr, start, end):
 
 
 @_flat_internal
-def hold_correction(x_before, x_start, x_end, track, start, end, grid_h, values, slopes, f_start, phi_row, dphi_row,
-                    corr):
+def hold_correction(x_before, x_share, x_start, x_end, track, start, end, grid_h, values, slopes, f_start, phi_row,
+                    dphi_row, corr):
     """Δp (module docstring) of one lane into ``corr`` (n_m,), for points at positions ``x_before``,
-    ``x_start``, ``x_end`` (n_cp,) at t_{n−1}, t_n, t_{n+1} with forces ``f_start`` F_n (n_cp,); ``phi_row``,
-    ``dphi_row`` (n_m,) work space.  Returns whether any point crosses (else ``corr`` is not written)."""
+    ``x_start``, ``x_end`` (n_cp,) at t_{n−1}, t_n, t_{n+1} with forces ``f_start`` F_n (n_cp,), whose
+    shares in the kernel's p_{n−1} were taken at ``x_share`` (``x_before``; at a run's first step, whose
+    p_{n−1} is the start's own, ``x_start``); ``phi_row``, ``dphi_row`` (n_m,) work space.  Returns
+    whether any point crosses (else ``corr`` is not written)."""
     n_m = corr.size
     found = False
     for k in range(x_start.size):
         tr = track[k]
-        crossing, on0, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
+        crossing, _, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
         if not crossing:
             continue
         if not found:
@@ -58,8 +60,8 @@ def hold_correction(x_before, x_start, x_end, track, start, end, grid_h, values,
         if fk == 0.0:
             continue
         for which in range(3):  # 2q̃_n, −q̃_{n+1}, −q̃_{n−1} with q̃ = −φF_n
-            x = x_start[k] if which == 0 else (x_end[k] if which == 1 else x_before[k])
-            on = on1 if which == 0 else (on2 if which == 1 else on0)
+            x = x_start[k] if which == 0 else (x_end[k] if which == 1 else x_share[k])
+            on = on1 if which == 0 else (on2 if which == 1 else start[tr] <= x <= end[tr])
             if on:
                 hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row)
                 weight = -2.0 * fk if which == 0 else fk
@@ -69,14 +71,14 @@ def hold_correction(x_before, x_start, x_end, track, start, end, grid_h, values,
 
 
 @_internal
-def hold_correction_lanes(x_before, x_start, x_end, track, start, end, grid_h, values, slopes, f_start, phi_row,
-                          dphi_row, corr):
+def hold_correction_lanes(x_before, x_share, x_start, x_end, track, start, end, grid_h, values, slopes, f_start,
+                          phi_row, dphi_row, corr):
     """``hold_correction`` with the forces of every lane (n_cp, L) into ``corr`` (n_m, L)."""
     n_m, n_l = corr.shape
     found = False
     for k in range(x_start.size):
         tr = track[k]
-        crossing, on0, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
+        crossing, _, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
         if not crossing:
             continue
         if not found:
@@ -85,8 +87,8 @@ def hold_correction_lanes(x_before, x_start, x_end, track, start, end, grid_h, v
                     corr[m, lane] = 0.0
             found = True
         for which in range(3):  # 2q̃_n, −q̃_{n+1}, −q̃_{n−1} with q̃ = −φF_n
-            x = x_start[k] if which == 0 else (x_end[k] if which == 1 else x_before[k])
-            on = on1 if which == 0 else (on2 if which == 1 else on0)
+            x = x_start[k] if which == 0 else (x_end[k] if which == 1 else x_share[k])
+            on = on1 if which == 0 else (on2 if which == 1 else start[tr] <= x <= end[tr])
             if not on:
                 continue
             hermite_shape(x, tr, start, grid_h, values, slopes, phi_row, dphi_row)

@@ -231,8 +231,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
                 touch[k, lane] = False
         # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0; the hold's p_{n−1} with the shares
         # of points crossing a deck end replaced (``hold``)
-        if hold_correction_lanes(x_before, x_start, cache.x, points.track, modes.start, modes.end, modes.grid_h,
-                                 modes.values, modes.slopes, f0, sphi, sdphi, corr):
+        share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
+        if hold_correction_lanes(x_before, share, x_start, cache.x, points.track, modes.start, modes.end,
+                                 modes.grid_h, modes.values, modes.slopes, f0, sphi, sdphi, corr):
             for m in range(n_m):
                 for lane in range(n_l):
                     corr[m, lane] += pm[m, lane]

@@ -282,8 +282,9 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             fo[k] = f[k]
             f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
         if n >= 0:
-            ends = hold_correction(x_before, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi, sdphi,
-                                   corr)  # (points crossing a deck end: their share of p_{n−1})
+            share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
+            ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
+                                   sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
                 past = pm[m] + corr[m] if ends else pm[m]
                 xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past

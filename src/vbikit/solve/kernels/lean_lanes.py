@@ -473,8 +473,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     f[k, lane] = fk
                     nonzero = nonzero or fk != 0.0
                 nz[k] = nonzero
-            if hold_correction_lanes(x_before, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
-                                     sdphi, corr):  # points crossing a deck end: their share of p_{n−1}
+            share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
+            if hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
+                                     sphi, sdphi, corr):  # points crossing a deck end: their share of p_{n−1}
                 for m in range(n_m):
                     for lane in range(n_l):
                         corr[m, lane] += pm[m, lane]
