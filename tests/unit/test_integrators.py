@@ -82,7 +82,7 @@ def test_a_user_run_through_run_implicit_gets_the_vehicle_accelerations(beam):
 
     def run(call):
         run_implicit(call, exact_step(call.data.modes.omega, call.data.modes.zeta, call.dt, QUADRATIC),
-                     vehicle_step(call.data.vehicles, call.dt, QUADRATIC))
+                     vehicle_step(call.data.vehicles, call.dt))
 
     register_integrator(dataclasses.replace(get_integrator("exact"), name="exact-by-hand", run=run))
     try:
