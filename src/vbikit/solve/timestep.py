@@ -111,17 +111,12 @@ def choose_time_step(crossing: Crossing, stability_limit: Optional[float] = None
 
 
 #: steps per period of the highest vehicle mode, per shortest road wavelength and per span passage
-#: for the exact modal integrator (docs/verification.md, convergence study).  The road terms: 3 cm
-#: of road and three road stations a step since the deck's loads are held quadratic over the step
-#: (``vbikit.solve.modal_step.quadratic_hold``); with the linear hold they were 2 cm and two.  On
-#: ``benchmarks/bench_step_rule.py``'s traffic events (2026-12-05) the largest |ΔIM| against RK4 at
-#: dt/8 at 3 cm is below the linear hold's at 2 cm: class B, 40 one-truck events 3.5e-4 against 4.0e-4
-#: (15 two-truck 1.3e-4 against 1.2e-4); class C, where wheels lose contact, 4.1e-4 against 5.4e-4
+#: for the exact modal integrator (docs/verification.md, convergence study)
 EXACT_STEPS_PER_VEHICLE_PERIOD = 20.0
-EXACT_ROAD_LENGTH_PER_STEP = 0.03
+EXACT_ROAD_LENGTH_PER_STEP = 0.02
 EXACT_STEPS_PER_SPAN = 100.0
 EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 100.0
-EXACT_ROAD_FEATURES_PER_STEP = 3.0
+EXACT_ROAD_FEATURES_PER_STEP = 2.0
 
 
 def implicit_time_step(crossing: Crossing) -> float:
