@@ -64,7 +64,7 @@ def _floor_loop():
 
     @njit(cache=True, fastmath=True, error_model="numpy")
     def floor_loop(travel, speed, modes_start, modes_end, grid_h, values, slopes, a11, a12, a21, a22, b1, b2, c1, c2,
-                   transition, load0, constant, settle, response, wheel_q, wheel_v, wheel_rows, wheel_k, wheel_c, v_inv,
+                   d1, d2, transition, load0, constant, settle, response, wheel_q, wheel_v, wheel_rows, wheel_k, wheel_c, v_inv,
                    origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, stations, elevations, span,
                    x0, v0, z0, fstart, xi_out, q_out, wf_out):
         n_steps = xi_out.shape[0] - 1
@@ -75,7 +75,7 @@ def _floor_loop():
         n_grid = values.shape[1]
         n_s = stations.size
         x = x0.copy(); v = v0.copy(); z = z0.copy()
-        p0 = np.zeros(n_m); p = np.zeros(n_m)
+        p0 = np.zeros(n_m); p = np.zeros(n_m); pm = np.zeros(n_m)  # (pm: the deck's load a step before, the hold)
         xf = np.zeros(n_m); vf = np.zeros(n_m); x1 = np.zeros(n_m); v1 = np.zeros(n_m)
         zf = np.zeros(2 * n_d); zb = np.zeros(2 * n_d); z1 = np.zeros(2 * n_d)
         g0 = np.zeros(n_w); fw = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w)
@@ -115,8 +115,9 @@ def _floor_loop():
                         phi[k, m] = h00 * va + h10 * sa + h01 * vb + h11 * sb
                         dphi[k, m] = d00 * (va - vb) + d10 * sa + d11 * sb
             for m in range(n_m):  # free deck response
-                xf[m] = a11[m] * x[m] + a12[m] * v[m] + b1[m] * p0[m]
-                vf[m] = a21[m] * x[m] + a22[m] * v[m] + b2[m] * p0[m]
+                xf[m] = a11[m] * x[m] + a12[m] * v[m] + b1[m] * p0[m] + d1[m] * pm[m]
+                vf[m] = a21[m] * x[m] + a22[m] * v[m] + b2[m] * p0[m] + d2[m] * pm[m]
+                pm[m] = p0[m]
             for i in range(2 * n_d):  # free vehicle response, then settled on the nominal tires
                 a = constant[i]
                 for j in range(2 * n_d):
@@ -242,10 +243,10 @@ def floor_inputs(args: tuple):
     import numpy as np
 
     (dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq, wheel_force,
-     wheel_len, tol, max_iterations, lanes, stride) = args[:21]
+     wheel_len) = args[:17]  # (then the hold's loads before the start, resume, x_past, tol, iterations, lanes, stride)
     # the road rate's secant half-width [s] of the steps (the captured call's span is negative: it starts at the
     # run's start, whose state the floor takes as given)
-    span = abs(float(args[21])) if len(args) > 21 else 0.0
+    span = abs(float(args[25])) if len(args) > 25 else 0.0
     n_w = vehicles.wheel_rows.shape[0]
     ksum = np.bincount(points.wheel, weights=points.stiffness, minlength=n_w)
     csum = np.bincount(points.wheel, weights=points.damping, minlength=n_w)
@@ -259,7 +260,7 @@ def floor_inputs(args: tuple):
         w = points.wheel[k]
         fstart[k] = wheel_force[0, 0, w] * points.stiffness[k] / ksum[w] if ksum[w] > 0 else 0.0
     inputs = (c(motion.travel), c(motion.speed), modes.start, modes.end, modes.grid_h, modes.values, modes.slopes,
-              step.a11, step.a12, step.a21, step.a22, step.b1, step.b2, step.c1, step.c2, vstep.transition,
+              step.a11, step.a12, step.a21, step.a22, step.b1, step.b2, step.c1, step.c2, step.d1, step.d2, vstep.transition,
               vstep.load0, vstep.constant, vstep.settle, vstep.response, vstep.wheel_q, vstep.wheel_v,
               vehicles.wheel_rows, vehicles.wheel_stiffness, vehicles.wheel_damping, v_inv, points.origin,
               points.direction, points.vehicle, points.track, np.minimum(points.line, road.elevations.shape[0] - 1),

@@ -27,8 +27,10 @@ The loop (``hold_loop``) is ``bench_floor.py``'s ``floor_loop`` (one contact-law
 one quasi-Newton update, here ``updates`` of them) with the p_{n−1}, p_{n−2}, G_{n−1}, G_{n−2} terms
 added and ξ̇ stored; with those terms zero it is the floor.  It runs on the inputs the library's own
 ``kernels.implicit`` call receives at each step size (captured from ``simulate`` with
-``USE_LEAN`` off): mode tables, step maps, contact points, road, motion.  Its linear variant is
-checked against the library's midspan history at every step size.
+``USE_LEAN`` off): mode tables, step maps, contact points, road, motion.  Its linear variant was
+checked against the library's midspan history at every step size while the library held every load
+linear; since 2026-12-05 the library holds the deck's loads quadratic (``modal_step.quadratic_hold``, with
+the deck-end and landing rules of ``kernels.hold`` that this loop does not have).
 
 Events: those of ``bench_step_rule.py`` (``bench_traffic.py``'s stream, ``paper-bridge-2``, 10 modes,
 point tires, ISO class B road of each event's seed, Girder 4 midspan displacement IM with the peak
@@ -475,10 +477,11 @@ def variant_inputs(call, hold: str):
     deck, vehicle = HOLDS[hold]
     zm, zv = np.zeros(n_m), np.zeros((2 * n_d, n_w))
     extra = [zm, zm, zv, zm, zm, zv]  # d1, d2, load_m, e1, e2, load_mm
+    del inputs[15:17]  # (the floor's d1, d2: the library's own hold; this loop takes the hold's below)
+    c = hold_modal(modes.omega, modes.zeta, dt, deck)  # (deck = 0: the linear hold's)
+    for i, key in zip(range(7, 15), ("a11", "a12", "a21", "a22", "b1", "b2", "c1", "c2")):
+        inputs[i] = c[key]
     if deck:
-        c = hold_modal(modes.omega, modes.zeta, dt, deck)
-        for i, key in zip(range(7, 15), ("a11", "a12", "a21", "a22", "b1", "b2", "c1", "c2")):
-            inputs[i] = c[key]
         extra[0], extra[1], extra[3], extra[4] = c["d1"], c["d2"], c["e1"], c["e2"]
     if vehicle:
         vs, extra[2], extra[5] = hold_vehicle(vehicles, dt, vehicle)

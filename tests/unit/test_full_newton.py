@@ -102,14 +102,14 @@ class World:
         zeros = np.zeros(n_m)
         self.c1 = rng.uniform(2e-9, 6e-9, n_m)  # deck: m/N of modal load over the step
         self.c2 = rng.uniform(2e-6, 6e-6, n_m)
-        self.step = ModalStep(zeros, zeros, zeros, zeros, zeros, zeros, self.c1, self.c2)
+        self.step = ModalStep(zeros, zeros, zeros, zeros, zeros, zeros, self.c1, self.c2, zeros, zeros)
         coupling = rng.normal(size=(n_w, n_w)) * 0.1
         self.r_q = compliance * (np.eye(n_w) + 0.5 * (coupling + coupling.T))  # vehicles: m/N over the step
         self.r_v = 5e-5 * (np.eye(n_w) + 0.5 * (coupling + coupling.T))
         self.h = np.eye(n_w)  # wheel w's lowest point is DOF w
         square = np.zeros((1, 1))  # the step map's other fields (unused here; ``constant`` is a vector)
         self.vstep = VehicleStep(square, square, square, np.zeros(1), square, square, square, square, self.h @ self.r_q,
-                                 self.h @ self.r_v)
+                                 self.h @ self.r_v, square)
         slopes = np.tile([-0.05, 0.05], (n_cp, 1))
         self.points = _points(np.asarray(wheel_of_point, np.int64), rng.uniform(5e5, 2e6, n_cp),
                               np.full(n_cp, damping), slopes)

@@ -34,7 +34,7 @@ def test_one_lane_runs_the_many_lane_variant_of_the_full_kernel(monkeypatch, cas
     crossing with the lean kernel switched off call ``implicit``, ``contact_forces`` and ``road_at``
     with ``MANY_LANES`` only (the one-lane variants are no longer compiled)."""
     calls: list = []
-    _recording(monkeypatch, "implicit", 19, calls)
+    _recording(monkeypatch, "implicit", 23, calls)
     _recording(monkeypatch, "contact_forces", 13, calls)
     _recording(monkeypatch, "road_at", 7, calls)
     crossing = _tiny_crossing("exact")

@@ -109,7 +109,7 @@ def test_lift_off_freezes_some_lanes_only_and_the_full_kernel_finishes_them():
 
     def spy(*args):  # the lanes each call (a chunk of steps) stops: ``stop``, after tol and stride
         out = original(*args)
-        stops.append(args[-7].copy())
+        stops.append(args[-10].copy())
         return out
 
     kernels.lean_lanes = spy
@@ -233,7 +233,7 @@ def test_disk_points_on_bumps_are_not_left_out():
 
     def spy(*args):
         out = original(*args)
-        stops.append(args[-7].copy())
+        stops.append(args[-10].copy())
         return out
 
     kernels.lean_lanes = spy

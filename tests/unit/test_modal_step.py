@@ -75,7 +75,8 @@ def _single_mode_run(omega, zeta, dt, n_steps, xi0, dxi0=0.0):
     xi[0, 0, 0], dxi[0, 0, 0] = xi0, dxi0
     step = exact_step(np.array([omega]), np.array([zeta]), dt)
     kernels.implicit(dt, motion, modes, vehicles, points, road, True, step, vehicle_step(vehicles, dt), xi, dxi, q,
-                     dq, ddxi, ddq, wf, wl, 1e-9, 50, kernels.MANY_LANES)
+                     dq, ddxi, ddq, wf, wl, np.zeros((1, 1)), np.zeros((0, 1)), False, points.origin.copy(), 1e-9, 50,
+                     kernels.MANY_LANES)
     return xi[0, :, 0], dxi[0, :, 0], ddxi[0, :, 0]
 
 
@@ -150,27 +151,30 @@ def test_step_maps_are_made_once_per_inputs_and_no_crossing_writes_to_the_shared
     built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
     data = kernel_data(built.crossing)
     h = 0.00096
-    step = modal_step.exact_step(data.modes.omega, data.modes.zeta, h)
-    vstep = modal_step.vehicle_step(data.vehicles, h)
-    assert modal_step.exact_step(data.modes.omega.copy(), data.modes.zeta.copy(), h) is step
-    assert modal_step.vehicle_step(data.vehicles, h) is vstep
-    assert modal_step.exact_step(data.modes.omega, data.modes.zeta, 2 * h) is not step
-    assert modal_step.vehicle_step(data.vehicles, 2 * h) is not vstep
+    hold = modal_step.QUADRATIC  # the exact integrator's
+    step = modal_step.exact_step(data.modes.omega, data.modes.zeta, h, hold)
+    vstep = modal_step.vehicle_step(data.vehicles, h, hold)
+    assert modal_step.exact_step(data.modes.omega.copy(), data.modes.zeta.copy(), h, hold) is step
+    assert modal_step.vehicle_step(data.vehicles, h, hold) is vstep
+    assert modal_step.exact_step(data.modes.omega, data.modes.zeta, 2 * h, hold) is not step
+    assert modal_step.vehicle_step(data.vehicles, 2 * h, hold) is not vstep
+    assert modal_step.exact_step(data.modes.omega, data.modes.zeta, h) is not step  # (the linear hold's)
+    assert modal_step.vehicle_step(data.vehicles, h) is not vstep
     simulate(built.crossing)
     simulate(built.crossing)
-    mine = modal_step._input_key("exact", 0.0, (data.modes.omega, data.modes.zeta))[2:]
-    runs = [(key[1], kept) for key, kept in modal_step._MAPS.items() if key[0] == "exact" and key[2:] == mine]
+    mine = modal_step._input_key("", 0.0, (data.modes.omega, data.modes.zeta))[2:]
+    runs = [(key[1], kept) for key, kept in modal_step._MAPS.items() if key[0] == f"exact{hold}" and key[2:] == mine]
     assert len(runs) >= 2  # the h above and the crossing's own step
     for dt, kept in runs:
-        for a, b in zip(kept, modal_step._exact_step(data.modes.omega, data.modes.zeta, dt)):
+        for a, b in zip(kept, modal_step._exact_step(data.modes.omega, data.modes.zeta, dt, hold)):
             np.testing.assert_array_equal(a, b)
-    mine = modal_step._input_key("vehicle", 0.0, (data.vehicles.mass_inv, data.vehicles.damping, data.vehicles.stiffness,
-                                                  data.vehicles.wheel_rows, data.vehicles.wheel_damping,
-                                                  data.vehicles.wheel_stiffness, data.vehicles.gravity))[2:]
-    runs = [(key[1], kept) for key, kept in modal_step._MAPS.items() if key[0] == "vehicle" and key[2:] == mine]
+    mine = modal_step._input_key("", 0.0, (data.vehicles.mass_inv, data.vehicles.damping, data.vehicles.stiffness,
+                                           data.vehicles.wheel_rows, data.vehicles.wheel_damping,
+                                           data.vehicles.wheel_stiffness, data.vehicles.gravity))[2:]
+    runs = [(key[1], kept) for key, kept in modal_step._MAPS.items() if key[0] == f"vehicle{hold}" and key[2:] == mine]
     assert len(runs) >= 2
     for dt, kept in runs:
-        for a, b in zip(kept, modal_step._vehicle_step(data.vehicles, dt)):
+        for a, b in zip(kept, modal_step._vehicle_step(data.vehicles, dt, hold)):
             np.testing.assert_array_equal(a, b)
 
 

@@ -51,9 +51,10 @@ def test_full_newton_solve_matches_a_dense_solve(n_points, expect_reduced):
     k = rng.uniform(1e5, 1e6, n_points)
     c = rng.uniform(1e2, 1e3, n_points)
     zeros = np.zeros(n_m)
-    step = ModalStep(zeros, zeros, zeros, zeros, zeros, zeros, rng.uniform(1e-7, 1e-6, n_m), rng.uniform(1e-4, 1e-3, n_m))
+    step = ModalStep(zeros, zeros, zeros, zeros, zeros, zeros, rng.uniform(1e-7, 1e-6, n_m), rng.uniform(1e-4, 1e-3, n_m),
+                     zeros, zeros)
     wq, wv = rng.normal(size=(n_w, n_w)) * 1e-7, rng.normal(size=(n_w, n_w)) * 1e-5
-    vstep = VehicleStep(*(np.zeros((1, 1)),) * 8, wq, wv)
+    vstep = VehicleStep(*(np.zeros((1, 1)),) * 8, wq, wv, np.zeros((1, 1)))
     rhs = rng.normal(size=n_points) * 1e3
 
     e = np.array([((k[i] * step.c1 + c[i] * step.c2) * cache.phi[p] + c[i] * cache.vx[p] * step.c1 * cache.dphi[p])

@@ -42,7 +42,8 @@ def test_demo_settles_with_one_contact_evaluation_a_step(caplog, monkeypatch):
     assert not [r for r in caplog.records if "did not converge" in r.getMessage()]
     # the stored wheel forces hold the law, evaluated afresh at the stored end states (every 50th row)
     (dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq, wheel_force,
-     wheel_len, tol, max_iterations, lanes, stride, span) = calls[-1]
+     wheel_len, past_p, past_g, resume, x_past, tol, max_iterations, lanes, stride, span) = calls[-1]
+    assert not resume  # the run's start: the hold's loads before it are the start's own
     # the secant road rate (vbikit.solve.kernels, "the road rate"), negative: the call starts at the run's
     # start, whose state reads the road ahead only; every step end the secant over ±dt/2
     assert span == -0.5 * dt

@@ -1,5 +1,6 @@
-# Every output converges at the exact integrator's order (2: modal loads linear over each step)
-# as the step halves, on an unequal two-span continuous beam (20 + 25 m, 10 modes, 2 % damping;
+# Every output converges at least at the exact integrator's order as the step halves (2: the
+# vehicles' wheel loads are held linear over each step, the deck's modal loads quadratic, which lifts
+# the accelerations and some load effects above 2 over these steps), on an unequal two-span continuous beam (20 + 25 m, 10 modes, 2 % damping;
 # quarter car, point tire, smooth road, 70 km/h) with rigid and with elastic supports (vertical
 # springs 5e8, 2e8, 5e8 N/m, rotational end springs 2e9 N m/rad).  Error: the largest difference
 # from a run at 1/16 of the coarsest step, relative to the largest value, up to just before the
@@ -43,7 +44,7 @@ def test_every_output_second_order(elastic):
             keep = runs[dt]["time"][0][:n] < on_deck
             errors.append(np.abs(coarse[:n][keep] - ref[:n][keep]).max() / np.abs(ref[:n][keep]).max())
         order = np.polyfit(np.log(STEPS), np.log(errors), 1)[0]
-        assert 1.9 < order < 2.2, (name, errors, order)  # measured 2.04–2.07
+        assert order > 1.9, (name, errors, order)  # measured 2.04–2.83 (2.04–2.07 with the deck's loads linear)
         assert errors[-1] < 1e-4, (name, errors)
 
 

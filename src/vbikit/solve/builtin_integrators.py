@@ -19,10 +19,11 @@ from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_st
 
 
 def _run_exact(call: KernelCall) -> None:
-    from vbikit.solve.modal_step import exact_step, vehicle_step
+    from vbikit.solve.modal_step import QUADRATIC, exact_step, vehicle_step
 
     data = call.data
-    run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt), vehicle_step(data.vehicles, call.dt))
+    run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt, QUADRATIC),
+                 vehicle_step(data.vehicles, call.dt))
 
 
 def _run_newmark(call: KernelCall) -> None:

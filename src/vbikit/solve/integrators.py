@@ -7,8 +7,10 @@ explicit/implicit distinction and the references a report cites — reads [`INTE
 
 Built in (registered by ``vbikit.solve.builtin_integrators``):
 
-* ``"exact"`` — every bridge mode by its exact transition with the modal load linear over the
-  step (Nigam & Jennings 1969), the vehicles by the exponential of their augmented system;
+* ``"exact"`` — every bridge mode by its exact transition with the modal load quadratic over the
+  step through the loads at its ends and the end of the step before (Nigam & Jennings 1969 with a
+  three-point hold, ``vbikit.solve.modal_step.quadratic_hold``), the vehicles by the exponential of
+  their augmented system with their wheel loads held the same way;
 * ``"rk4"`` — the paper's classical Runge–Kutta (explicit: its step is capped by the stability
   limit of the coupled system);
 * ``"newmark"`` — Newmark average acceleration for bridge and vehicles alike.
@@ -162,10 +164,13 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
     if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
         LEAN_COUNTS["implicit"] += 1
-        _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, 0)
+        _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, 0,
+              _no_past(call, call.outputs[0].shape[0]))
         return
     if len(call.lanes) == 1:
-        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step, start=True), tol, call.stride,
+        past_p, past_g, _ = _no_past(call)
+        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
+                                         past_g[:, 0], False, _positions_before(call, 0), tol, call.stride,
                                          *_lean_work(call))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
@@ -173,7 +178,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                       evaluations / max(call.n_steps, 1))
         else:
             LEAN_COUNTS["fallback"] += 1
-            _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop))
+            _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop), (past_p, past_g, int(stop) >= call.stride))
     else:
         _run_lanes(call, modal_step, vehicle_step, tol)
     call.deferred.add("q_ddot")
@@ -197,15 +202,19 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     carry_f = np.zeros((2, n_cp, n_l))
     carry_p = np.zeros((call.data.n_modes, n_l))
     carry_g = np.zeros((call.data.n_wheels, n_l))
+    carry_pm, carry_gm = np.zeros_like(carry_p), np.zeros_like(carry_g)
     evaluations = handed = 0
     ever = np.zeros(n_l, np.bool_)
     for first in range(0, n_steps, chunk):
         last = min(n_steps, first + chunk)
-        evaluations += kernels.lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g)
+        evaluations += kernels.lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g,
+                                          carry_pm, carry_gm, _positions_before(call, first))
         frozen = np.flatnonzero(stops >= 0)
         fresh[:] = False
-        for lane in frozen:
-            _lane_steps(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), last)
+        for lane in frozen:  # (the hold's loads before its last stored row in, those before ``last`` out)
+            past = (carry_pm[:, lane:lane + 1].copy(), carry_gm[:, lane:lane + 1].copy(), int(stops[lane]) >= stride)
+            _lane_steps(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), last, past)
+            carry_pm[:, lane], carry_gm[:, lane] = past[0][:, 0], past[1][:, 0]
         fresh[frozen] = True
         ever[frozen] = True
         handed += frozen.size
@@ -216,13 +225,14 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
 
 
 def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                stop: int, end: int) -> None:
+                stop: int, end: int, past: tuple) -> None:
     """Lane ``lane`` of ``call`` with ``implicit`` (that lane alone, its road) from the last row stored
-    before step ``stop`` to step ``end``."""
+    before step ``stop`` to step ``end`` (``past``: the hold's loads before that row, in; before the
+    last row stored, out)."""
     row = stop // call.stride
     first = row * call.stride
     _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), _lane_road(call.road, lane),
-          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), first, lane)
+          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), first, past, lane)
 
 
 def _lean_work(call: KernelCall) -> tuple:
@@ -255,10 +265,12 @@ LANES_CHUNK = 128
 
 
 def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                 stop: int) -> None:
+                 stop: int, past: tuple) -> None:
     """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop``: on that
     lane's road, ``implicit`` (that lane alone) for ``LEAN_WINDOW`` steps, then the one-lane lean
-    kernel, alternating while the lean kernel stops (``LEAN_RESUMES``).  Each hand-over restarts
+    kernel, alternating while the lean kernel stops (``LEAN_RESUMES``); ``past`` (modal (n_m, 1), wheel
+    (n_w, 1), resume) the hold's loads before the row it starts from, which each kernel call reads and
+    leaves at those before its last stored row for the next.  Each hand-over restarts
     from a stored state (the law there, the forces extrapolated from it alone): the histories differ
     from an uninterrupted run by the order of the tolerance."""
     from vbikit.solve import kernels
@@ -274,14 +286,15 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                   "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
                   first)
         _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), road,
-              tuple(a[:, row:end // stride + 1] for a in one.outputs), first, lane)
+              tuple(a[:, row:end // stride + 1] for a in one.outputs), first, past, lane)
+        past = (past[0], past[1], True)
         if end >= n_steps or end % stride:
             return
         row = end // stride
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:] for a in one.outputs))
-        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), tol, stride,
-                               *_lean_work(part))
+        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
+                               past[1][:, 0], True, _positions_before(call, end), tol, stride, *_lean_work(part))
         if stop < 0:
             return
         stop += end
@@ -294,16 +307,18 @@ def _steps(motion: "Motion", first: int, end: int) -> "Motion":
 
 
 def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, motion: "Motion",
-          road: "Road", outputs: tuple, first: int, lane: int | None = None) -> None:
+          road: "Road", outputs: tuple, first: int, past: tuple, lane: int | None = None) -> None:
     """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``, in its
     many-lane variant whatever the lane count (``kernels.MANY_LANES``: one compiled variant of the full
-    kernel); its unsettled steps are counted in ``call.unconverged`` for lane ``lane`` (None: every lane
-    of ``outputs``)."""
+    kernel), with ``past`` the hold's loads before its start (modal, wheel, resume: ``_no_past`` at the run's
+    start; the kernel leaves those before its last stored row in them); its unsettled steps are
+    counted in ``call.unconverged`` for lane ``lane`` (None: every lane of ``outputs``)."""
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
     unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
-                                              data.unilateral, modal_step, vehicle_step, *outputs, tol,
+                                              data.unilateral, modal_step, vehicle_step, *outputs, *past,
+                                              _positions_before(call, first), tol,
                                               IMPLICIT_MAX_ITERATIONS, kernels.MANY_LANES, call.stride,
                                               _span(call, first == 0))
     log.debug("%s: %.2f contact-law evaluations per step", name, evaluations / max(call.n_steps - first, 1))
@@ -337,10 +352,30 @@ def _lean_arguments(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Ve
     return tuple(c(a) if isinstance(a, np.ndarray) else a for a in (
         call.motion.travel, call.motion.speed, modes.start, modes.end, float(modes.grid_h), modes.values,
         modes.slopes, modes.amp, modes.omega, modes.zeta, *modal_step, fused.free, fused.free_load, fused.free_constant,
-        vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.wheel_dof, fused.wheel_h,
+        fused.free_past, vehicle_step.response, vehicle_step.wheel_q, vehicle_step.wheel_v, fused.wheel_dof, fused.wheel_h,
         veh.wheel_stiffness, veh.wheel_damping, veh.wheel_first, veh.wheel_count, pts.origin, pts.direction,
         pts.vehicle, pts.track, line, pts.stiffness, pts.damping, pts.fixed_load, pts.gap, gated, pts.wheel,
         pts.width, road.stations, elevations, float(road.r_max), _span(call, start), *outputs))
+
+
+def _positions_before(call: KernelCall, first: int) -> np.ndarray:
+    """The contact points' positions x [m] (n_cp,) at t_{first−1}, a step before a kernel call that starts
+    at step ``first`` of ``call`` (the hold at the deck's ends, ``vbikit.solve.kernels.hold``); before the
+    run's start, where the motion has no row, each vehicle's travel less its speed times the step."""
+    pts, motion = call.data.points, call.motion
+    if first > 0:
+        travel = motion.travel[2 * first - 2]
+    else:
+        travel = motion.travel[0] - motion.speed[0] * call.dt
+    return np.ascontiguousarray(pts.origin + pts.direction * travel[pts.vehicle])
+
+
+def _no_past(call: KernelCall, n_l: int = 1) -> tuple:
+    """The hold's loads before a kernel call's start (modal (n_m, L), wheel (n_w, L), ``resume``) for a call
+    at the run's start: none (the kernel holds the start's loads constant before t_0 and writes, at
+    each row it stores, the loads of the step before it there: a call going on from that row reads
+    them with ``resume`` True)."""
+    return np.zeros((call.data.n_modes, n_l)), np.zeros((call.data.n_wheels, n_l)), False
 
 
 def _span(call: KernelCall, start: bool) -> float:

@@ -95,20 +95,32 @@ def _taylor(x: NDArray[np.float64]) -> NDArray[np.float64]:
     return result
 
 
-def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
-    """Exact transition of modes ω [rad/s] > 0, ζ [-] ≥ 0 over ``h`` [s] with first-order-hold load
-    (made once per ω, ζ, h in a process and shared: not to be written to)."""
+#: the load holds over a step: the degree of the polynomial the loads follow between step ends, through
+#: p_n, p_{n+1} (linear, first-order hold) or through p_{n−1}, p_n, p_{n+1} (quadratic)
+LINEAR, QUADRATIC = 1, 2
+HOLDS = (LINEAR, QUADRATIC)
+
+
+def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float, hold: int = LINEAR) -> ModalStep:
+    """Exact transition of modes ω [rad/s] > 0, ζ [-] ≥ 0 over ``h`` [s] with the load held linear
+    (``hold`` = ``LINEAR``: d1 = d2 = 0) or quadratic (``QUADRATIC``, ``quadratic_hold``) over the step
+    (made once per ω, ζ, h, hold in a process and shared: not to be written to)."""
     omega = np.asarray(omega, float)
     zeta = np.asarray(zeta, float)
     if np.any(omega <= 0):
         raise ValueError("exact modal stepping needs natural frequencies > 0")
-    return _MAPS.get(_input_key("exact", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h))
+    if hold not in HOLDS:
+        raise ValueError(f"hold must be one of {HOLDS} (the load polynomial's degree), got {hold!r}")
+    return _MAPS.get(_input_key(f"exact{hold}", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h, hold))
 
 
-def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
-    """``exact_step`` made afresh."""
+def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float, hold: int = LINEAR) -> ModalStep:
+    """``exact_step`` made afresh: the linear hold's coefficients, then the quadratic's from them
+    (``quadratic_hold``)."""
     w, theta = omega, omega * h
     out = {k: np.empty_like(omega) for k in ModalStep._fields}
+    out["d1"][:] = 0.0
+    out["d2"][:] = 0.0
     closed = (zeta < 1.0) & (theta >= 0.5)  # Chopra's closed form: no cancellation at ωh ≥ 0.5
     if np.any(closed):
         z, wc = zeta[closed], w[closed]
@@ -152,7 +164,38 @@ def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float)
             out["a12"][under] = decay * sn / rw
             out["a21"][under] = -decay * w[under] * sn / r
             out["a22"][under] = decay * (cs - zr * sn)
-    return ModalStep(**out)
+    step = ModalStep(**out)
+    return quadratic_hold(step, omega, zeta, h) if hold == QUADRATIC else step
+
+
+def quadratic_hold(step: ModalStep, omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float) -> ModalStep:
+    """The exact map of ``step`` (the linear hold's, ``exact_step``) with the load QUADRATIC over the
+    step, the Lagrange parabola through p_{n−1}, p_n, p_{n+1} (a three-point hold):
+
+        p(t_n + s h) = p_n + s (p_{n+1} − p_{n−1})/2 + s² (p_{n+1} − 2p_n + p_{n−1})/2,   0 ≤ s ≤ 1.
+
+    With E_k the end response (ξ, ξ̇) to the load s^k/k! (k = 1, 2) read from the exponential of the
+    augmented system (ξ, ξ̇/ω, p/ω², p'/ω², p''/ω²) in s (' = d/ds; ξ' = ωh ξ̇/ω, (ξ̇/ω)' = ωh (p/ω² −
+    2ζ ξ̇/ω − ξ)), the hold's coefficients are d = −E_1/2 + E_2, b' = E_0 − 2E_2, c' = E_1/2 + E_2.
+    The linear hold is the same parabola with p_{n−1} = 2p_n − p_{n+1}, so b = b' + 2d and c = c' − d:
+    only d is new, and b' = b − 2d, c' = c + d keep the linear hold's closed forms.  The free part
+    (a11 … a22) is the same.  Third-order accurate in h for a smooth load (the linear hold: second);
+    the coefficients are checked against quadrature of the convolution integral
+    (tests/unit/test_load_hold.py)."""
+    theta = np.asarray(omega, float) * h
+    n = theta.size
+    a = np.zeros((n, 5, 5))
+    a[:, 0, 1] = theta
+    a[:, 1, 0] = -theta
+    a[:, 1, 1] = -2.0 * np.asarray(zeta, float) * theta
+    a[:, 1, 2] = theta
+    a[:, 2, 3] = 1.0
+    a[:, 3, 4] = 1.0
+    e = expm_each(a)  # (each mode on its own scale: θ spans decades)
+    w2 = np.asarray(omega, float) ** 2
+    d1 = (e[:, 0, 4] - 0.5 * e[:, 0, 3]) / w2
+    d2 = (e[:, 1, 4] - 0.5 * e[:, 1, 3]) * omega / w2
+    return step._replace(b1=step.b1 - 2.0 * d1, b2=step.b2 - 2.0 * d2, c1=step.c1 + d1, c2=step.c2 + d2, d1=d1, d2=d2)
 
 
 class _ModeTerms(NamedTuple):
@@ -204,7 +247,7 @@ def newmark_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float
     one, zero = np.ones_like(omega), np.zeros_like(omega)
     (a11, a21), (a12, a22) = advance(one, zero, zero, zero), advance(zero, one, zero, zero)
     (b1, b2), (c1, c2) = advance(zero, zero, one, zero), advance(zero, zero, zero, one)
-    return ModalStep(a11, a12, a21, a22, b1, b2, c1, c2)
+    return ModalStep(a11, a12, a21, a22, b1, b2, c1, c2, zero, zero.copy())
 
 
 def _nominal(vehicles: Vehicles) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -217,12 +260,12 @@ def _nominal(vehicles: Vehicles) -> tuple[NDArray[np.float64], NDArray[np.float6
 
 def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDArray[np.float64],
                  load1: NDArray[np.float64], constant: NDArray[np.float64], c_hat: NDArray[np.float64],
-                 k_hat: NDArray[np.float64]) -> VehicleStep:
-    """The ``VehicleStep`` of a step map z_{n+1} = T z_n + L0 G_n + L1 G_{n+1} + b, with the maps the
-    coupled solve needs: the end wheel loads are G = F + K_z z_{n+1} (the point forces F summed per
-    wheel, S F, plus the nominal tire's k_w h_w·q + c_w h_w·q̇), so
+                 k_hat: NDArray[np.float64], load_past: NDArray[np.float64] | None = None) -> VehicleStep:
+    """The ``VehicleStep`` of a step map z_{n+1} = T z_n + Lp G_{n−1} + L0 G_n + L1 G_{n+1} + b (``load_past``
+    Lp: None, zero), with the maps the coupled solve needs: the end wheel loads are G = F + K_z z_{n+1}
+    (the point forces F summed per wheel, S F, plus the nominal tire's k_w h_w·q + c_w h_w·q̇), so
 
-        z_{n+1} = P (T z_n + L0 G_n + b) + P L1 S F,     P = (I − L1 K_z)⁻¹,
+        z_{n+1} = P (T z_n + Lp G_{n−1} + L0 G_n + b) + P L1 S F,     P = (I − L1 K_z)⁻¹,
 
     and the wheels' displacement and velocity h_w·q, h_w·q̇ respond to the wheel forces through
     ``wheel_q`` = H (P L1)[:n_d] and ``wheel_v`` = H (P L1)[n_d:] (n_w, n_w)."""
@@ -234,9 +277,10 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
     settle = np.linalg.inv(np.eye(2 * n_d) - load1 @ k_z) if n_d else np.zeros((0, 0))
     response = settle @ load1
     contiguous = np.ascontiguousarray
+    past = np.zeros_like(load0) if load_past is None else contiguous(load_past)
     return VehicleStep(contiguous(transition), contiguous(load0), contiguous(load1), contiguous(constant), c_hat, k_hat,
                        contiguous(settle), contiguous(response), contiguous(rows @ response[:n_d]),
-                       contiguous(rows @ response[n_d:]))
+                       contiguous(rows @ response[n_d:]), past)
 
 
 def fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
@@ -252,17 +296,21 @@ def _fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
     """``fused_step`` made afresh."""
     c = np.ascontiguousarray
     return FusedVehicleStep(c(step.settle @ step.transition), c(step.settle @ step.load0),
-                            c(step.settle @ step.constant), *wheel_entries(vehicles.wheel_rows))
+                            c(step.settle @ step.constant), c(step.settle @ step.load_past),
+                            *wheel_entries(vehicles.wheel_rows))
 
 
-def vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
+def vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleStep:
     """The vehicles' exact step map over ``h`` [s] with their nominal tires (k_w, c_w of each wheel)
-    on the contact surface and the wheel loads G linear over the step: the exponential of the
-    augmented first-order system (q, q̇, G, Ġ, 1), exact for any h (made once per vehicles and h
-    in a process and shared: not to be written to)."""
+    on the contact surface and the wheel loads G held linear (``LINEAR``) or quadratic (``QUADRATIC``,
+    through G_{n−1}, G_n, G_{n+1}, as ``quadratic_hold``'s p) over the step: the exponential of the
+    augmented first-order system (q, q̇, G, G', [G''], 1) in s = (t − t_n)/h (' = d/ds), exact for any h
+    (made once per vehicles, h and hold in a process and shared: not to be written to)."""
+    if hold not in HOLDS:
+        raise ValueError(f"hold must be one of {HOLDS} (the load polynomial's degree), got {hold!r}")
     inputs = (vehicles.mass_inv, vehicles.damping, vehicles.stiffness, vehicles.wheel_rows, vehicles.wheel_damping,
               vehicles.wheel_stiffness, vehicles.gravity)
-    return _MAPS.get(_input_key("vehicle", h, inputs), lambda: _vehicle_step(vehicles, h))
+    return _MAPS.get(_input_key(f"vehicle{hold}", h, inputs), lambda: _vehicle_step(vehicles, h, hold))
 
 
 def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.float64]) -> list[tuple[int, int]]:
@@ -279,33 +327,42 @@ def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.fl
     return list(zip([0, *ends[:-1].tolist()], ends.tolist()))
 
 
-def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float):
-    """The exponential of one block's augmented system (q, q̇, G, Ġ, 1) over h: (Φ, L0, L1, b)."""
-    return _block_maps(expm(_augmented(m_inv, c_hat, k_hat, rows, gravity) * h), gravity.size, rows.shape[0], h)
+def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int):
+    """The exponential of one block's augmented system (``_augmented``) over the step: (Φ, Lp, L0, L1, b)."""
+    return _block_maps(expm(_augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold)), gravity.size, rows.shape[0], hold)
 
 
-def _augmented(m_inv, c_hat, k_hat, rows, gravity) -> NDArray[np.float64]:
-    """One block's augmented system matrix A of (q, q̇, G, Ġ, 1) (``vehicle_step``)."""
+def _augmented(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int) -> NDArray[np.float64]:
+    """One block's augmented system matrix B of (q, q̇, G, G', …, G⁽ʰᵒˡᵈ⁾, 1) in s = (t − t_n)/h over the
+    step (``vehicle_step``): q' = h q̇, q̇' = h M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), G⁽ᵏ⁾' = G⁽ᵏ⁺¹⁾, so that
+    exp(B) is the map over s = 0 … 1."""
     n_d, n_w = gravity.size, rows.shape[0]
-    n = 2 * n_d + 2 * n_w + 1
+    n = 2 * n_d + (hold + 1) * n_w + 1
     a = np.zeros((n, n))
-    a[:n_d, n_d:2 * n_d] = np.eye(n_d)
-    a[n_d:2 * n_d, :n_d] = -m_inv @ k_hat
-    a[n_d:2 * n_d, n_d:2 * n_d] = -m_inv @ c_hat
-    a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = m_inv @ rows.T
-    a[n_d:2 * n_d, -1] = m_inv @ gravity
-    a[2 * n_d:2 * n_d + n_w, 2 * n_d + n_w:2 * n_d + 2 * n_w] = np.eye(n_w)
+    a[:n_d, n_d:2 * n_d] = h * np.eye(n_d)
+    a[n_d:2 * n_d, :n_d] = -h * (m_inv @ k_hat)
+    a[n_d:2 * n_d, n_d:2 * n_d] = -h * (m_inv @ c_hat)
+    a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = h * (m_inv @ rows.T)
+    a[n_d:2 * n_d, -1] = h * (m_inv @ gravity)
+    for k in range(hold):  # the load's chain of s-derivatives
+        lo = 2 * n_d + k * n_w
+        a[lo:lo + n_w, lo + n_w:lo + 2 * n_w] = np.eye(n_w)
     return a
 
 
-def _block_maps(e: NDArray[np.float64], n_d: int, n_w: int, h: float) -> tuple[NDArray[np.float64], ...]:
-    """(Φ, L0, L1, b) of a block from exp(A h) ``e`` (``_block_exponential``)."""
+def _block_maps(e: NDArray[np.float64], n_d: int, n_w: int, hold: int) -> tuple[NDArray[np.float64], ...]:
+    """(Φ, Lp, L0, L1, b) of a block from exp(B) ``e`` (``_block_exponential``), with E_k the columns of
+    G⁽ᵏ⁾ (the end response to the load s^k/k!): linear hold (G' = G_{n+1} − G_n) Lp = 0, L0 = E_0 − E_1,
+    L1 = E_1; quadratic (G' = (G_{n+1} − G_{n−1})/2, G'' = G_{n+1} − 2G_n + G_{n−1}, ``quadratic_hold``)
+    Lp = E_2 − E_1/2, L0 = E_0 − 2E_2, L1 = E_1/2 + E_2."""
     z = slice(0, 2 * n_d)
-    e_g, e_dg = e[z, 2 * n_d:2 * n_d + n_w], e[z, 2 * n_d + n_w:2 * n_d + 2 * n_w]
-    return e[z, z], e_g - e_dg / h, e_dg / h, e[z, -1]
+    cols = [e[z, 2 * n_d + k * n_w:2 * n_d + (k + 1) * n_w] for k in range(hold + 1)]
+    if hold == LINEAR:
+        return e[z, z], np.zeros_like(cols[0]), cols[0] - cols[1], cols[1], e[z, -1]
+    return e[z, z], cols[2] - 0.5 * cols[1], cols[0] - 2.0 * cols[2], 0.5 * cols[1] + cols[2], e[z, -1]
 
 
-def _vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
+def _vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleStep:
     """``vehicle_step`` made afresh.  The augmented matrix of several vehicles (or any DOF blocks
     that nothing couples, ``_blocks``) is block-diagonal up to the constant column, so its
     exponential is that of each block with its own wheels and gravity column (exact: the blocks of
@@ -318,13 +375,15 @@ def _vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
     m_inv, rows, gravity = vehicles.mass_inv, vehicles.wheel_rows, vehicles.gravity
     blocks = _blocks(vehicles, c_hat, k_hat)
     if len(blocks) == 1:
-        return _vehicle_map(vehicles, *_block_exponential(m_inv, c_hat, k_hat, rows, gravity, h), c_hat, k_hat)
+        phi, past, l0, l1, const = _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h, hold)
+        return _vehicle_map(vehicles, phi, l0, l1, const, c_hat, k_hat, past)
     transition, load0, load1 = np.zeros((2 * n_d, 2 * n_d)), np.zeros((2 * n_d, n_w)), np.zeros((2 * n_d, n_w))
+    load_past = np.zeros((2 * n_d, n_w))
     constant = np.zeros(2 * n_d)
     wheel_dof = np.where(np.any(rows != 0.0, axis=1), np.argmax(rows != 0.0, axis=1), -1)  # -1: a wheel without DOFs
     wheels = [np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi)) for lo, hi in blocks]
-    augmented = [_augmented(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi])
-                 * h for (lo, hi), w in zip(blocks, wheels)]
+    augmented = [_augmented(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi],
+                            h, hold) for (lo, hi), w in zip(blocks, wheels)]
     exponentials: list = [None] * len(blocks)
     for size in {a.shape for a in augmented}:  # blocks of one size (vehicles alike) in one series, each on its own scale
         alike = [i for i, a in enumerate(augmented) if a.shape == size]
@@ -333,12 +392,13 @@ def _vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:
             exponentials[i] = e
     for (lo, hi), w, e in zip(blocks, wheels, exponentials):
         b, m = slice(lo, hi), hi - lo
-        phi, l0, l1, const = _block_maps(e, m, w.size, h)
+        phi, past, l0, l1, const = _block_maps(e, m, w.size, hold)
         for i, rows_i in enumerate((b, slice(n_d + lo, n_d + hi))):  # its q, then its q̇ in the first-order state
             part = slice(i * m, (i + 1) * m)
             transition[rows_i, b], transition[rows_i, n_d + lo:n_d + hi] = phi[part, :m], phi[part, m:]
             load0[rows_i, w], load1[rows_i, w], constant[rows_i] = l0[part], l1[part], const[part]
-    return _vehicle_map(vehicles, transition, load0, load1, constant, c_hat, k_hat)
+            load_past[rows_i, w] = past[part]
+    return _vehicle_map(vehicles, transition, load0, load1, constant, c_hat, k_hat, load_past)
 
 
 def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:

@@ -180,8 +180,10 @@ def _slot(n_cp, n_m, n_l):
 
 class ModalStep(NamedTuple):
     """One step h of every mode ξ̈ + 2ζωξ̇ + ω²ξ = p as a linear map of its start state and of the
-    modal load at both ends (load linear in time over the step):
-    ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1},  ξ̇_{n+1} = a21 ξ_n + a22 ξ̇_n + b2 p_n + c2 p_{n+1}
+    modal load at the step's ends and at the end of the step before (the load's hold over the step:
+    linear through p_n, p_{n+1}, with d1 = d2 = 0, or quadratic through p_{n−1}, p_n, p_{n+1}):
+    ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + d1 p_{n−1} + b1 p_n + c1 p_{n+1},
+    ξ̇_{n+1} = a21 ξ_n + a22 ξ̇_n + d2 p_{n−1} + b2 p_n + c2 p_{n+1}
     (each (n_m,); ``vbikit.solve.modal_step``: exact, or Newmark's average acceleration)."""
 
     a11: np.ndarray
@@ -192,13 +194,16 @@ class ModalStep(NamedTuple):
     b2: np.ndarray
     c1: np.ndarray
     c2: np.ndarray
+    d1: np.ndarray
+    d2: np.ndarray
 
 
 class VehicleStep(NamedTuple):
     """One step h of the vehicles with their nominal tires (k_w, c_w per wheel) on the contact
     surface, as a linear map of the stacked state z = (q, q̇) (2n_d) and of the wheel loads G at
-    both ends of the step (linear in time over it):
-    z_{n+1} = ``transition`` z_n + ``load0`` G_n + ``load1`` G_{n+1} + ``constant`` (gravity);
+    both ends of the step and at the end of the step before (their hold over the step, as
+    ``ModalStep``'s: linear, ``load_past`` zero, or quadratic):
+    z_{n+1} = ``transition`` z_n + ``load_past`` G_{n−1} + ``load0`` G_n + ``load1`` G_{n+1} + ``constant`` (gravity);
     ``c_hat`` Ĉ = C_v + Hᵀ diag(c_w) H and ``k_hat`` K̂ = K_v + Hᵀ diag(k_w) H give q̈ from the
     equation of motion (``vbikit.solve.modal_step``: exact, or Newmark's average acceleration).
     For the coupled solve, with the end loads G = F + K_z z_{n+1} written through the wheel forces
@@ -216,18 +221,20 @@ class VehicleStep(NamedTuple):
     response: np.ndarray
     wheel_q: np.ndarray
     wheel_v: np.ndarray
+    load_past: np.ndarray
 
 
 class FusedVehicleStep(NamedTuple):
     """A ``VehicleStep``'s products as the lean kernels take them, one product a step in place of
     several (``vbikit.solve.modal_step.fused_step``): the settled free response
-    z_b = P (Φ z_n + L0 G_n + g) = ``free`` z_n + ``free_load`` G_n + ``free_constant`` (P Φ (2n_d, 2n_d),
-    P L0 (2n_d, n_w), P g (2n_d,)), and each wheel row h_w by its nonzero entries, DOF indices
+    z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = ``free`` z_n + ``free_past`` G_{n−1} + ``free_load`` G_n +
+    ``free_constant`` (P Φ (2n_d, 2n_d), P Lp and P L0 (2n_d, n_w), P g (2n_d,)), and each wheel row h_w by its nonzero entries, DOF indices
     ``wheel_dof`` (n_w, k) int64 and values ``wheel_h`` (n_w, k) (``vbikit.solve.kernels.lean.wheel_entries``).
     Kept apart from ``VehicleStep``, the bundle ``implicit`` takes whole and which reads none of these."""
 
     free: np.ndarray
     free_load: np.ndarray
     free_constant: np.ndarray
+    free_past: np.ndarray
     wheel_dof: np.ndarray
     wheel_h: np.ndarray

@@ -6,6 +6,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal, _slot, _work
+from vbikit.solve.kernels.hold import hold_correction_lanes
 from vbikit.solve.kernels.lanes import _axpy, _combine, _copy, _fetch, _gemv, _keep_step, _store, _width
 from vbikit.solve.kernels.contact import _modal_load, _refresh, contact_forces, shape_point
 from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _touch_points,\
@@ -66,12 +67,41 @@ def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p
     _gemv(1.0, vstep.response, fw, z1, lanes, False)
 
 
+@_internal
+def _hold_jumps(wf, contact, g, p, p_start, g_start, jumped, lanes):
+    """A wheel that lands or lifts off within the step (its force sum ``wf`` > 0 now and not before, or
+    the reverse; ``contact`` holds whether it was, and is updated): its load G jumps or kinks there, so
+    the next step holds it from the step's end on — its entry of the loads of the step before,
+    ``g_start`` (which the caller makes the next step's G_{n−1}), set to the end value ``g`` — and every
+    mode's, ``p_start``, to ``p`` in that lane (``lean``: the same rule)."""
+    n_l = _width(lanes, wf)
+    for lane in range(n_l):
+        jumped[lane] = False
+    for w in range(wf.shape[0]):
+        for lane in range(n_l):
+            touching = wf[w, lane] > 0.0
+            if touching != contact[w, lane]:
+                g_start[w, lane] = g[w, lane]
+                jumped[lane] = True
+            contact[w, lane] = touching
+    for lane in range(n_l):
+        if jumped[lane]:
+            for m in range(p.shape[0]):
+                p_start[m, lane] = p[m, lane]
+
+
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep, xi, dxi, q, dq, ddxi, ddq,
-             wheel_force, wheel_len, tol_force, max_iterations, lanes, stride=1, span=0.0):
+             wheel_force, wheel_len, past_p, past_g, resume, x_past, tol_force, max_iterations, lanes, stride=1, span=0.0):
     """Partitioned implicit step: every mode by its transition ``step`` (``ModalStep``, the
-    modal load linear over the step), the vehicles by theirs (``VehicleStep``, the wheel
-    loads linear over the step), coupled through the contact forces at the end of the step.
+    modal load held linear or quadratic over the step), the vehicles by theirs (``VehicleStep``, the
+    wheel loads held likewise), coupled through the contact forces at the end of the step.  The
+    quadratic hold reads the loads of the step before: at the call's start ``past_p`` (n_m, L) and
+    ``past_g`` (n_w, L) when ``resume`` (a call that goes on from a stored state), else the start's
+    own (the run's start: the loads held constant before t_0, as the static start has them); on
+    return they hold the loads of the step before the last row stored (where a call going on from
+    that row starts).  ``x_past`` (n_cp,): the points' positions [m] a step before the start (the hold
+    at the deck's ends, ``vbikit.solve.kernels.hold``).
 
     Both step maps are linear, so the end-of-step state is an affine function of the end-of-step
     point forces F (``_state_of``), and so is each point's contact law while the set of points in
@@ -115,6 +145,9 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     n_w = wheel_force.shape[2]
     omega, zeta = modes.omega, modes.zeta
     x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
+    corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
+    x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
+    contact = np.zeros((n_w, n_l), dtype=np.bool_); jumped = np.zeros(n_l, dtype=np.bool_)
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l)); zf = np.zeros((2 * n_d, n_l))
     zb = np.zeros((2 * n_d, n_l))
     a1 = np.zeros((n_d, n_l))
@@ -122,8 +155,8 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     _fetch(xi, row0, x0, lanes); _fetch(dxi, row0, v0, lanes); _fetch(q, row0, z0[:n_d], lanes)
     _fetch(dq, row0, z0[n_d:], lanes)
     xf = np.zeros((n_m, n_l)); vf = np.zeros((n_m, n_l))  # free deck response (load p_{n+1} = 0)
-    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l))
-    g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l))
+    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); pm = np.zeros((n_m, n_l))
+    g0 = np.zeros((n_w, n_l)); g = np.zeros((n_w, n_l)); gm = np.zeros((n_w, n_l))
     f = np.zeros((n_cp, n_l)); f0 = np.zeros((n_cp, n_l)); fm = np.zeros((n_cp, n_l)); fw = np.zeros((n_w, n_l))
     f_old = np.zeros((n_cp, n_l))
     acc = np.zeros((n_m, n_l))
@@ -165,6 +198,14 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
     _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
+    for w in range(n_w):  # the wheels in contact at the start (``_hold_jumps``)
+        for lane in range(n_l):
+            contact[w, lane] = wf[w, lane] > 0.0
+    if resume:
+        _copy(past_p, pm, lanes); _copy(past_g, gm, lanes)
+    else:
+        _copy(p0, pm, lanes); _copy(g0, gm, lanes)
+        _copy(p0, past_p, lanes); _copy(g0, past_g, lanes)  # (row 0's)
     _vehicle_acceleration(vehicles, vstep, z0, g0, work.rhs, a1, lanes)
     _modal_acceleration(omega, zeta, x0, v0, p0, acc, lanes)
     _store(ddxi, row0, acc, lanes); _store(ddq, row0, a1, lanes)
@@ -177,25 +218,38 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     evaluations = 0
     y1, w1 = z1[:n_d], z1[n_d:]
     for n in range(n_steps):
+        for k in range(n_cp):
+            x_before[k] = x_start[k] if n > 0 else x_past[k]
+            x_start[k] = cache.x[k]  # (t_n, before the refresh)
         _refresh(cache, motion, 2 * n + 2, points)
         for k in range(n_cp):
             onb[k] = modes.start[points.track[k]] <= cache.x[k] <= modes.end[points.track[k]]
-        # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-        _combine(step.a11, x0, step.a12, v0, step.b1, p0, xf, lanes)
-        _combine(step.a21, x0, step.a22, v0, step.b2, p0, vf, lanes)
+        # first guess: linear extrapolation of the forces (the hold at the deck's ends reads it too)
+        for k in range(n_cp):
+            for lane in range(n_l):
+                f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
+                touch[k, lane] = False
+        # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0; the hold's p_{n−1} with the shares
+        # of points crossing a deck end replaced (``hold``)
+        share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
+        if hold_correction_lanes(x_before, share, x_start, cache.x, points.track, modes.start, modes.end,
+                                 modes.grid_h, modes.values, modes.slopes, f0, sphi, sdphi, corr):
+            for m in range(n_m):
+                for lane in range(n_l):
+                    corr[m, lane] += pm[m, lane]
+        else:
+            _copy(pm, corr, lanes)
+        _combine(step.a11, x0, step.a12, v0, step.b1, p0, step.d1, corr, xf, lanes)
+        _combine(step.a21, x0, step.a22, v0, step.b2, p0, step.d2, corr, vf, lanes)
         for i in range(2 * n_d):
             for lane in range(n_l):
                 zf[i, lane] = vstep.constant[i]
                 zb[i, lane] = 0.0
         _gemv(1.0, vstep.transition, z0, zf, lanes, False)
         _gemv(1.0, vstep.load0, g0, zf, lanes, False)
+        _gemv(1.0, vstep.load_past, gm, zf, lanes, False)
         _gemv(1.0, vstep.settle, zf, zb, lanes, False)
         held_state[0] = -1  # new positions: no full Jacobian to reuse
-        # first guess: linear extrapolation of the forces
-        for k in range(n_cp):
-            for lane in range(n_l):
-                f[k, lane] = 2.0 * f0[k, lane] - fm[k, lane]
-                touch[k, lane] = False
         converged = False
         quasi = 0  # quasi-Newton updates of this step so far
         full = 0  # full Newton updates of this step so far
@@ -255,16 +309,19 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
         _copy(fw, wf, lanes)
         _tire_load(vehicles, wf, y1, w1, g, lanes)
+        _hold_jumps(wf, contact, g, p, p0, g0, jumped, lanes)  # (the loads before: p0, g0 become pm, gm below)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
         _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n + 1, stride, x1, v1, acc, y1, w1, a1, wf, wl,
                    lanes)
+        if (n + 1) % stride == 0:  # the hold's loads of the step before the row stored
+            _copy(p0, past_p, lanes); _copy(g0, past_g, lanes)
         x0, x1 = x1, x0
         v0, v1 = v1, v0
         z0, z1 = z1, z0
         y1, w1 = z1[:n_d], z1[n_d:]
-        p0, p = p, p0
-        g0, g = g, g0
+        pm, p0, p = p0, p, pm  # (the loads of the step before, for the hold)
+        gm, g0, g = g0, g, gm
         fm, f0, f = f0, f, fm
     return unsettled, evaluations
 

@@ -103,12 +103,13 @@ def _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n, stride, x, 
 
 
 @_internal
-def _combine(a, x, b, y, c, z, out, lanes):
-    """out[m, :] = a_m x[m, :] + b_m y[m, :] + c_m z[m, :] (per-row coefficients)."""
+def _combine(a, x, b, y, c, z, d, u, out, lanes):
+    """out[m, :] = a_m x[m, :] + b_m y[m, :] + c_m z[m, :] + d_m u[m, :] (per-row coefficients)."""
     n_l = _width(lanes, x)
     for m in range(x.shape[0]):
         am = a[m]
         bm = b[m]
         cm = c[m]
+        dm = d[m]
         for lane in range(n_l):
-            out[m, lane] = am * x[m, lane] + bm * y[m, lane] + cm * z[m, lane]
+            out[m, lane] = am * x[m, lane] + bm * y[m, lane] + cm * z[m, lane] + dm * u[m, lane]

@@ -2,8 +2,9 @@
 contiguous arrays. (``vbikit.solve.kernels``: the equations and conventions.)
 
 ``lean`` runs the steps of ``implicit`` that need one contact-law evaluation: the partitioned step
-(every mode by its transition, ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1}, ξ̇ likewise; the
-vehicles z_{n+1} = P (Φ z_n + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleStep``), the end-of-step
+(every mode by its transition, ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + d1 p_{n−1} + b1 p_n + c1 p_{n+1}, ξ̇ likewise;
+the vehicles z_{n+1} = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) + P L1 F_w, ``ModalStep``, ``VehicleStep``: the
+loads held linear, d = 0 and Lp = 0, or quadratic over the step), the end-of-step
 point forces F solving F − law(F) = 0 to ``tol`` [N] from the first guess F = 2F_n − F_{n−1}.  The
 vehicles' products are those of ``implicit`` regrouped (the same to round-off): the settled free
 response P Φ z_n + P L0 G_n + P g by the fused map of ``FusedVehicleStep``, one product; a wheel's
@@ -49,6 +50,7 @@ from numba import njit
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
+from vbikit.solve.kernels.hold import hold_correction
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, lu_factor_inline, lu_solve_inline
 
 
@@ -215,11 +217,11 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
 
 
 @njit(nogil=True, **FLAT_OPTIONS)
-def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-         free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
+def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2, d1,
+         d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
          wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
-         stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, modal, state, wheels,
-         held, veh, piv, points, flags, index, shapes):
+         stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, past_p, past_g, resume,
+         x_past, tol, stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
     """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
     (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
     ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
@@ -227,8 +229,14 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     stations and elevations of its one lane (n_lines, n_s) and r_max, the road rate's ``span`` [s]
     (``road_point``: dt/2 for the secant rate, 0 for the cell's slope; negative when the call starts
     at the run's start: the start state's law then reads the road ahead only, the steps |span|), the outputs of ``implicit`` for
-    one lane but q̈ (each (n_stored, ·), row 0 the static start), ``tol`` [N] and ``stride``, then the
-    work spaces of ``lean_work`` (zeroed).
+    one lane but q̈ (each (n_stored, ·), row 0 the static start), the loads of the step before the start
+    for the hold (``ModalStep``, ``VehicleStep``): modal ``past_p`` (n_m,) and wheel ``past_g`` (n_w,),
+    read when ``resume`` (a call that goes on from a stored state); else the start's own (the run's
+    start: the loads held constant before t_0, the static start); on return they hold the loads of
+    the step before the last row stored (where a call going on from that row starts), ``x_past``
+    (n_cp,) the points' positions [m] a step before the start (for the hold at the deck's ends,
+    ``vbikit.solve.kernels.hold``), ``tol`` [N] and ``stride``, then the work spaces of ``lean_work``
+    (zeroed).
 
     Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
     (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
@@ -240,12 +248,13 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
-    dv = modal[7]
+    dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
     z1 = state[0]; zb = state[1]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
-    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]
+    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]; contact = wheels[12]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
-    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]
+    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]; x_start = points[11]
+    x_before = points[12]  # the positions at t_n and t_{n−1} (the hold at the deck's ends)
     active = flags[0]; used = flags[1]; onb = flags[2]
     have = index[0]; idx = index[1]
     phi = shapes[0]; dphi = shapes[1]
@@ -263,6 +272,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         row = 2 * n + 2
         for k in range(n_cp):
             vh = vehicle[k]
+            x_before[k] = x_start[k]  # (at n = 0: ``x_past``, below)
+            x_start[k] = xp[k] if n >= 0 else x_past[k]
             xp[k] = origin[k] + direction[k] * travel[row, vh]
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
@@ -271,16 +282,23 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             fo[k] = f[k]
             f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
         if n >= 0:
+            share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
+            ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
+                                   sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m]
-                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m]
-            for i in range(2 * n_d):  # z_b = P Φ z_n + P L0 G_n + P g
+                past = pm[m] + corr[m] if ends else pm[m]
+                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past
+                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m] + d2[m] * past
+                pm[m] = p[m]  # (the next step's p_{n−1})
+            for i in range(2 * n_d):  # z_b = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g
                 a = free_constant[i]
                 for j in range(2 * n_d):
                     a += free[i, j] * z1[j]
                 for w in range(n_w):
-                    a += free_load[i, w] * g0[w]
+                    a += free_load[i, w] * g0[w] + free_past[i, w] * gm[w]
                 zb[i] = a
+            for w in range(n_w):
+                gm[w] = g0[w]
             _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                    zb, p, fw, x1, v1, z1)
             evaluations += 1
@@ -297,6 +315,8 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                 if used[k] and onb[k]:
                     for m in range(n_m):
                         p[m] -= phi[k, m] * fk
+            for m in range(n_m):  # the modal loads before the start (for the hold)
+                pm[m] = past_p[m] if resume else p[m]
         else:
             err = 0.0
             for k in range(n_cp):
@@ -377,6 +397,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
         r_out = (n + 1) // stride
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
+        jumped = False
         for w in range(n_w):
             if n >= 0:
                 wf[w] = fw[w]  # (at n = −1 the law's sums)
@@ -389,11 +410,23 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     j = wheel_dof[w, e]
                     a += h * (kw * z1[j] + cw * z1[n_d + j])
             g0[w] = a
+            if n < 0:  # the loads before the start (for the hold)
+                gm[w] = past_g[w] if resume else a
+            touching = wf[w] > 0.0  # a wheel that lands or lifts off: the next step holds from here on
+            if n >= 0 and touching != (contact[w] != 0.0):  # (``hold``: a jump or kink in G and p)
+                gm[w] = a
+                jumped = True
+            contact[w] = 1.0 if touching else 0.0
             if stored:
+                past_g[w] = gm[w]
                 wheel_force[r_out, w] = wf[w]
                 wheel_len[r_out, w] = wl[w]
+        if jumped:
+            for m in range(n_m):
+                pm[m] = p[m]
         if stored:
-            for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ
+            for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ; the hold's p of the step before the row
+                past_p[m] = pm[m]
                 xi[r_out, m] = x1[m]
                 dxi[r_out, m] = v1[m]
                 ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
@@ -405,15 +438,15 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (8, n_m), per vehicle state (2, 2 n_d), per wheel (11, n_w), the held active
-    sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (11, n_cp),
+    (12, n_m), per vehicle state (2, 2 n_d), per wheel (13, n_w), the held active
+    sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (13, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((8, n_m)), np.zeros((2, 2 * n_d)), np.zeros((11, n_w)),
-            np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((11, n_cp)),
+    return (np.zeros((12, n_m)), np.zeros((2, 2 * n_d)), np.zeros((13, n_w)),
+            np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((13, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 
 

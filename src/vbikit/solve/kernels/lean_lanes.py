@@ -45,6 +45,7 @@ from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
+from vbikit.solve.kernels.hold import hold_correction_lanes
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
@@ -350,10 +351,10 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
 def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-               free, free_load, free_constant, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
-               wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
-               stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop, first,
-               last, fresh, carry_f, carry_p, carry_g):
+               d1, d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k,
+               wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel,
+               width, stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop,
+               first, last, fresh, carry_f, carry_p, carry_g, carry_pm, carry_gm, x_past):
     """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
     ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
     ``implicit`` but q̈ for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
@@ -371,8 +372,13 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     accelerations written); any other lane goes on from the previous call's end, exactly as if
     the loop had not stopped: its forces at the last two steps (``carry_f`` (2, n_cp, L)), modal
     load (``carry_p`` (n_m, L)) and wheel loads (``carry_g`` (n_w, L)), which the call leaves
-    there for the next one when it returns with a live lane.  Returns the number of contact-law
-    evaluations after the start (one a step, for all lanes at once)."""
+    there for the next one when it returns with a live lane.  The hold's loads of the step before
+    (``carry_pm`` (n_m, L), ``carry_gm`` (n_w, L)) are carried the same way and read for every lane
+    but at the run's start (``first`` = 0: the start's own, the loads held constant before t_0); a
+    lane's are written at each row it stores, so that a frozen lane's are those before its last
+    stored row, where ``implicit`` goes on from, and a fresh lane comes with them filled.  Returns
+    the number of contact-law evaluations after the start (one a step, for all lanes at once).
+    ``x_past`` (n_cp,): the points' positions [m] a step before ``first`` (``lean``'s)."""
     n_steps = last
     n_l = xi.shape[0]
     n_m = omega.size
@@ -393,6 +399,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             z0[j, lane] = q[lane, r_first, j]
             z0[n_d + j, lane] = dq[lane, r_first, j]
     p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
+    pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
+    corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
+    x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
+    contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``lean``)
     dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
@@ -423,6 +433,8 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
         row = 2 * n + 2
         for k in range(n_cp):
             vh = vehicle[k]
+            x_before[k] = x_start[k]  # (at n = first: ``x_past``, below)
+            x_start[k] = xp[k] if n >= first else x_past[k]
             xp[k] = origin[k] + direction[k] * travel[row, vh]
             vxp[k] = direction[k] * speed[row, vh]
             onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
@@ -454,20 +466,36 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     z1[i, lane] = z0[i, lane]
         else:
-            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]
-                for lane in range(n_l):
-                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane]
-                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane]
-            # z_b = P (Φ z_n + L0 G_n + g) = P Φ z_n + P L0 G_n + P g (``VehicleStep``)
-            _affine_lanes(free_constant, free, free_load, z0, g0, zb)
-            for k in range(n_cp):  # first guess: linear extrapolation of the forces
-                nonzero = False
+            for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
+                nonzero = False  # reads it too)
                 for lane in range(n_l):
                     fk = 2.0 * fo[k, lane] - fp[k, lane]
                     f[k, lane] = fk
                     nonzero = nonzero or fk != 0.0
                 nz[k] = nonzero
+            share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
+            if hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
+                                     sphi, sdphi, corr):  # points crossing a deck end: their share of p_{n−1}
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        corr[m, lane] += pm[m, lane]
+            else:
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        corr[m, lane] = pm[m, lane]
+            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
+                h2 = d2[m]
+                for lane in range(n_l):
+                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * corr[m, lane]
+                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * corr[m, lane]
+                    pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
+            # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
+            _affine_lanes(free_constant, free, free_load, z0, g0, zb)
+            _add_product_lanes(free_past, gm, zb)
+            for w in range(n_w):
+                for lane in range(n_l):
+                    gm[w, lane] = g0[w, lane]
             _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
                          xf, vf, zb, p, fw, x1, v1, z1)
             evaluations += 1
@@ -629,6 +657,19 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     j = wheel_dof[w, e]
                     for lane in range(n_l):
                         g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
+        for lane in range(n_l):  # a wheel that lands or lifts off: the next step holds from here on (``lean``)
+            jumped[lane] = False
+        for w in range(n_w):
+            for lane in range(n_l):
+                touching = wf[w, lane] > 0.0
+                if n >= first and touching != contact[w, lane]:
+                    gm[w, lane] = g0[w, lane]
+                    jumped[lane] = True
+                contact[w, lane] = touching
+        for lane in range(n_l):
+            if jumped[lane]:
+                for m in range(n_m):
+                    pm[m, lane] = p[m, lane]
         for m in range(n_m):
             e1 = 2.0 * zeta[m] * omega[m]
             e2 = omega[m] * omega[m]
@@ -651,6 +692,11 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for w in range(n_w):
                     wheel_force[lane, r_out, w] = wf[w, lane]
                     wheel_len[lane, r_out, w] = wl[w, lane]
+                if n >= first:  # the hold's loads of the step before the row (the start's: below)
+                    for m in range(n_m):
+                        carry_pm[m, lane] = pm[m, lane]
+                    for w in range(n_w):
+                        carry_gm[w, lane] = gm[w, lane]
         if n >= first:
             for k in range(n_cp):
                 for lane in range(n_l):
@@ -672,6 +718,12 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                         p[m, lane] = carry_p[m, lane]
                     for w in range(n_w):
                         g0[w, lane] = carry_g[w, lane]
+                for m in range(n_m):  # the hold's loads before the start: held constant at the run's start
+                    pm[m, lane] = p[m, lane] if first == 0 else carry_pm[m, lane]
+                    carry_pm[m, lane] = pm[m, lane]
+                for w in range(n_w):
+                    gm[w, lane] = g0[w, lane] if first == 0 else carry_gm[w, lane]
+                    carry_gm[w, lane] = gm[w, lane]
         p0, p = p, p0
     for k in range(n_cp):  # the state the next call goes on from
         for lane in range(n_l):
@@ -683,4 +735,10 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     for w in range(n_w):
         for lane in range(n_l):
             carry_g[w, lane] = g0[w, lane]
+            if live[lane]:
+                carry_gm[w, lane] = gm[w, lane]
+    for m in range(n_m):
+        for lane in range(n_l):
+            if live[lane]:
+                carry_pm[m, lane] = pm[m, lane]
     return evaluations
