@@ -6,7 +6,9 @@ out (``_share_the_kernel_compilation``): each has some of the groups of
 ``vbikit.solve.warmup.kernel_groups`` (and the pseudo-excitation and load-effect kernels) compiled
 in a child process, and every test process then loads them from numba's disk cache, instead of
 every worker compiling each kernel its tests meet; numba's cache writes are serialised between the
-processes (``_lock_numba_cache_writes``)."""
+processes (``_lock_numba_cache_writes``).  When the cache already holds them as an earlier run of the
+suite left it (``_cache_is_warm``: a stamp of the sources and of the cache files, written once every
+group is in the cache), there is nothing to share out and the tests start at once."""
 from __future__ import annotations
 
 import atexit
@@ -132,7 +134,7 @@ def _compile_groups() -> dict[str, Callable[[], object]]:
     return {k: groups[k] for k in sorted(groups, key=lambda k: first.index(k) if k in first else len(first))}
 
 
-def _compile_in_subprocess(name: str) -> None:
+def _compile_in_subprocess(name: str) -> bool:
     """Compile group ``name`` of ``_compile_groups`` in a child process, which writes the kernels to
     numba's disk cache: every test process then loads the same cache-built machine code.  A kernel
     compiled inside a test process can differ from the same kernel loaded from the cache at round-off
@@ -148,13 +150,15 @@ def _compile_in_subprocess(name: str) -> None:
                          text=True, env=os.environ.copy())
     if res.returncode != 0:  # a kernel that fails to compile fails the tests that run it
         log.error("kernel group %s did not compile: %s", name, res.stderr[-2000:])
+    return res.returncode == 0
 
 
-def _share_the_kernel_compilation(folder: str) -> None:
+def _share_the_kernel_compilation(folder: str) -> bool:
     """Each worker takes the next group nobody has taken (a lock file per group in ``folder``, held
     while the group compiles, and a marker once done), has it compiled in a child process
     (``_compile_in_subprocess``: numba writes it to its disk cache), and at the end waits for the
-    groups the others are still compiling; the tests then load every kernel from the cache."""
+    groups the others are still compiling; the tests then load every kernel from the cache.  Returns
+    whether every group compiled (a group that failed leaves a ``.failed`` marker)."""
     waiting = []
     for name in _compile_groups():
         lock, done = os.path.join(folder, name + ".lock"), os.path.join(folder, name + ".done")
@@ -163,12 +167,93 @@ def _share_the_kernel_compilation(folder: str) -> None:
                 waiting.append(lock)
             elif not os.path.exists(done):
                 t0 = time.perf_counter()
-                _compile_in_subprocess(name)
+                if not _compile_in_subprocess(name):
+                    open(os.path.join(folder, name + ".failed"), "w").close()
                 open(done, "w").close()
                 log.info("kernel group %s compiled or loaded (%.1f s)", name, time.perf_counter() - t0)
     for lock in waiting:
         with _flock(lock):
             pass
+    return not any(f.endswith(".failed") for f in os.listdir(folder))
+
+
+#: the file, in numba's cache folder for vbikit's kernels, holding the stamp of the cache as it was
+#: when every group of ``_compile_groups`` had been compiled or loaded into it
+WARM_STAMP_FILE = "vbikit-tests-warm-cache.txt"
+
+
+def _cache_folders() -> list[str] | None:
+    """Where numba keeps vbikit's compiled kernels: its cache folder (``NUMBA_CACHE_DIR``, or the one
+    ``vbikit.solve.numba_cache.ensure_cache_location`` chose), else the ``__pycache__`` folders
+    beside vbikit's sources.  None when numba may have put them elsewhere (a read-only package
+    folder without a cache folder set: numba's user-wide folder), where no stamp is kept."""
+    import numba
+
+    import vbikit
+    from vbikit.solve.numba_cache import ensure_cache_location
+
+    ensure_cache_location()
+    if numba.config.CACHE_DIR:
+        return [str(numba.config.CACHE_DIR)]
+    package = os.path.dirname(os.path.abspath(vbikit.__file__))
+    if not os.access(package, os.W_OK):
+        return None
+    return [os.path.join(root, d) for root, dirs, _ in os.walk(package) for d in dirs if d == "__pycache__"]
+
+
+def _warm_cache_stamp(folders: list[str]) -> str:
+    """A digest of everything numba's cache of the kernels depends on: numba's and Python's versions,
+    the host CPU (numba keys its cache by it), each vbikit source file (path, modification time, size: what numba checks a cached kernel's
+    source against) and each file of the cache (index ``.nbi`` and data ``.nbc``: path, time, size).
+    Any change to a source or to the cache changes it."""
+    import hashlib
+    import sys
+
+    import numba
+
+    import vbikit
+
+    from llvmlite import binding
+
+    entries = [numba.__version__, sys.version, binding.get_host_cpu_name(), binding.get_host_cpu_features().flatten(),
+               repr(sorted(folders))]
+    package = os.path.dirname(os.path.abspath(vbikit.__file__))
+    for root in [package, *folders]:
+        for path, _, files in sorted(os.walk(root)):
+            for f in sorted(files):
+                if f.endswith((".py", ".nbi", ".nbc")):
+                    st = os.stat(os.path.join(path, f))
+                    entries.append(f"{os.path.join(path, f)} {st.st_mtime_ns} {st.st_size}")
+    return hashlib.sha256("\n".join(entries).encode()).hexdigest()
+
+
+def _cache_is_warm(folders: list[str] | None) -> bool:
+    """Whether the cache holds every group of ``_compile_groups`` as an earlier run of the suite left
+    it (its stamp unchanged since): then there is nothing to share out, and each test process loads
+    the kernels from the cache as it would after sharing (a fresh clone or a changed source or cache
+    shares them out again)."""
+    if folders is None:
+        return False
+    try:
+        with open(os.path.join(folders[0], WARM_STAMP_FILE), encoding="utf-8") as f:
+            return f.read().strip() == _warm_cache_stamp(folders)
+    except OSError:
+        return False
+
+
+def _stamp_the_warm_cache(folders: list[str] | None) -> None:
+    """Record the cache's stamp (``_warm_cache_stamp``) once every group is in it."""
+    if folders is None:
+        return
+    path = os.path.join(folders[0], WARM_STAMP_FILE)
+    try:
+        os.makedirs(folders[0], exist_ok=True)
+        tmp = f"{path}.{os.getpid()}"
+        with open(tmp, "w", encoding="utf-8") as f:
+            f.write(_warm_cache_stamp(folders) + "\n")
+        os.replace(tmp, path)
+    except OSError as err:  # a read-only cache: the next run shares the compilation out again
+        log.info("no stamp of the warm kernel cache written: %s", err)
 
 
 def pytest_collection_finish(session) -> None:
@@ -180,7 +265,14 @@ def pytest_collection_finish(session) -> None:
     _lock_numba_cache_writes()
     folder = os.path.join(RUN_DIR, "kernels")
     os.makedirs(folder, exist_ok=True)
-    _share_the_kernel_compilation(folder)
+    cache = _cache_folders()
+    with _flock(os.path.join(folder, "stamp.lock")):  # one worker reads the stamp while none writes it
+        warm = _cache_is_warm(cache)
+    if warm:  # every kernel is in the cache already (about 14 s of child processes loading them saved)
+        return
+    if _share_the_kernel_compilation(folder):
+        with _flock(os.path.join(folder, "stamp.lock")):
+            _stamp_the_warm_cache(cache)
 
 
 @pytest.fixture(scope="session")

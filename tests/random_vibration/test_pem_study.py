@@ -9,7 +9,7 @@ import copy
 import numpy as np
 import pytest
 
-from vbikit.scenario.pipeline import run_random
+from vbikit.scenario import pipeline
 from vbikit.study.paper import paper_study_dict
 from vbikit.study.pem import PEM_OUTPUTS, _value
 from vbikit.study.run import run_study
@@ -27,6 +27,21 @@ PEM = {
     },
     "axes": {"crossing.speed_kmh": [60, 90]},
 }
+
+
+_SINGLE_RUNS: dict = {}
+
+
+def run_random(scenario: dict):
+    """``vbikit.run_random`` of ``scenario``, run once for this module: three tests compare cells with
+    the same scenario's single run (class C at 60 km/h), a deterministic computation, so they share
+    it (the same report object, only read)."""
+    import json
+
+    key = json.dumps(scenario, sort_keys=True)
+    if key not in _SINGLE_RUNS:
+        _SINGLE_RUNS[key] = pipeline.run_random(copy.deepcopy(scenario))
+    return _SINGLE_RUNS[key]
 
 
 def _with(**changes):

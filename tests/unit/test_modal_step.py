@@ -76,7 +76,9 @@ def _single_mode_run(omega, zeta, dt, n_steps, xi0, dxi0=0.0):
     step = exact_step(np.array([omega]), np.array([zeta]), dt)
     kernels.implicit(dt, motion, modes, vehicles, points, road, True, step, vehicle_step(vehicles, dt), xi, dxi, q,
                      dq, ddxi, ddq, wf, wl, np.zeros((1, 1)), np.zeros((0, 1)), False, points.origin.copy(), 1e-9, 50,
-                     kernels.MANY_LANES)
+                     kernels.MANY_LANES, 1, 0.0)  # stride 1, span 0: the defaults, given
+    # as the solver gives them (an int and a float), so that this call runs the kernel variant the solver runs and
+    # the shared warm-up compiles, not one of its own (omitted arguments are a type of their own to numba)
     return xi[0, :, 0], dxi[0, :, 0], ddxi[0, :, 0]
 
 

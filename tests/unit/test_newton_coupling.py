@@ -24,7 +24,7 @@ class _Points(NamedTuple):
     wheel: np.ndarray
 
 
-@njit
+@njit(cache=True)  # cached like test_full_newton's wrappers: compiled once (about 8 s), not at every run
 def _solve(act, na, row_k, row_c, onb, cache, points, step, vstep, rhs):
     n_m, n_w = step.c1.size, vstep.wheel_q.shape[0]
     cap = act.size

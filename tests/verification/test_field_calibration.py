@@ -15,6 +15,7 @@
 from __future__ import annotations
 
 import dataclasses
+import os
 
 import numpy as np
 import pytest
@@ -25,6 +26,43 @@ from vbikit.field.synthetic import write_synthetic_case
 
 NOISE = {"displacement": 1e-5, "acceleration": 0.01, "strain": 0.5e-6}  # the synthetic case's defaults
 TRUTH_F, TRUTH_Z = 1.10, 0.025
+
+
+@pytest.fixture(scope="module", autouse=True)
+def shared_simulations():
+    """The calibrations of this module share their simulations: ``calibrate`` re-simulates (and
+    re-reads the two profile files of) the case at every residual evaluation, and every fit of the
+    16-seed check starts at the same point (truth) with the same finite-difference steps, so 45 of
+    its 181 simulations repeat a (stiffness factor, damping ratio) already simulated.  A crossing at
+    the same parameters, case and step is the same deterministic computation, so each is simulated
+    once (and each unchanged profile file read once): every fit sees bit-identical residuals, the
+    checks are unchanged and only cheaper."""
+    import vbikit.field.workflow as workflow
+
+    simulate, read_profile = workflow.simulate, workflow.read_profile_csv
+    runs: dict = {}
+    profiles: dict = {}
+
+    def simulate_once(crossing):
+        bridge = crossing.bridge
+        key = (type(bridge), getattr(bridge, "stiffness_factor", None), getattr(bridge, "_zeta", None), repr(crossing.tire),
+               id(crossing.road), id(crossing.road_right), crossing.speed, crossing.approach, crossing.free_vibration,
+               crossing.lateral_offset, crossing.dt)
+        if key not in runs:
+            runs[key] = simulate(crossing)
+        return runs[key]
+
+    def read_profile_once(path):
+        key = (str(path), os.stat(path).st_mtime_ns)
+        if key not in profiles:
+            profiles[key] = read_profile(path)
+        return profiles[key]
+
+    mp = pytest.MonkeyPatch()
+    mp.setattr(workflow, "simulate", simulate_once)
+    mp.setattr(workflow, "read_profile_csv", read_profile_once)
+    yield
+    mp.undo()
 
 
 @pytest.fixture(scope="module")
