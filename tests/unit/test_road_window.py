@@ -88,6 +88,25 @@ def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
     assert whole.road.x.size == full.x.size
 
 
+def test_events_with_a_given_time_step_get_a_road_their_last_step_covers():
+    """A traffic stream whose base scenario gives the step ([crossing] dt = 4 ms, 9–11 cm of road a step
+    at these speeds): each event's windowed road must cover where the time grid's last step ends (up to
+    a step past the crossing's end), not only the crossing's own range; before, 7 of these 8 events
+    stopped with "road profile … covers … but … was requested"."""
+    from vbikit.solve import simulate
+    from vbikit.traffic import LaneTraffic, synthetic_stream
+    from vbikit.traffic.study import traffic_study
+
+    base = {"bridge": {"model": "paper-bridge-2", "n_modes": 4}, "tire": {"model": "point"},
+            "road": {"class": "B"}, "crossing": {"dt": 0.004}}
+    stream = synthetic_stream([LaneTraffic(1, "+x", 600.0, 80, 8), LaneTraffic(2, "-x", 600.0, 75, 8)], 30, seed=2026)
+    job = traffic_study(stream, base, batch_size=4)
+    for e in range(8):
+        crossing = job.crossing(e)
+        result = simulate(crossing)
+        assert result.integration_dt == 0.004 and np.all(np.isfinite(result.xi))
+
+
 @pytest.mark.parametrize("window", [None, (0.0, 3.0)])
 def test_whole_period_and_window_with_the_band_up_to_nyquist(window):
     """n_max = 1/(2Δx): the Nyquist wavenumber is in the band (a real FFT counts it once)."""

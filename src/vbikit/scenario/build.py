@@ -295,6 +295,11 @@ def with_scenario_road(crossing: Crossing, spec: RoadSpec, scenario: Scenario, s
     if seed is not None:
         spec = spec.model_copy(update={"seed": int(seed)})
     window = crossing.road_extent()
+    if crossing.dt is not None:  # a given step: the time grid's last step may pass the crossing's end by up to a
+        # step, and the tire dashpots read the road half a step beyond each point (an automatic step is at most two
+        # stations, which the window's own margin covers: ``road.psd.WINDOW_MARGIN_SAMPLES``)
+        pad = 1.5 * crossing.max_speed * float(crossing.dt)
+        window = (window[0] - pad, window[1] + pad)
     road = build_road(spec, scenario, window)
     return crossing.with_road(road, build_right_road(spec, scenario, road, window))
 
