@@ -174,27 +174,47 @@ def quadratic_hold(step: ModalStep, omega: NDArray[np.float64], zeta: NDArray[np
 
         p(t_n + s h) = p_n + s (p_{n+1} − p_{n−1})/2 + s² (p_{n+1} − 2p_n + p_{n−1})/2,   0 ≤ s ≤ 1.
 
-    With E_k the end response (ξ, ξ̇) to the load s^k/k! (k = 1, 2) read from the exponential of the
-    augmented system (ξ, ξ̇/ω, p/ω², p'/ω², p''/ω²) in s (' = d/ds; ξ' = ωh ξ̇/ω, (ξ̇/ω)' = ωh (p/ω² −
-    2ζ ξ̇/ω − ξ)), the hold's coefficients are d = −E_1/2 + E_2, b' = E_0 − 2E_2, c' = E_1/2 + E_2.
-    The linear hold is the same parabola with p_{n−1} = 2p_n − p_{n+1}, so b = b' + 2d and c = c' − d:
-    only d is new, and b' = b − 2d, c' = c + d keep the linear hold's closed forms.  The free part
-    (a11 … a22) is the same.  Third-order accurate in h for a smooth load (the linear hold: second);
-    the coefficients are checked against quadrature of the convolution integral
+    With E_k the end response (ξ, ξ̇) from rest to the load s^k/k! (k = 1, 2), the hold's coefficients
+    are d = E_2 − E_1/2, b' = E_0 − 2E_2, c' = E_1/2 + E_2.  The linear hold is the same parabola with
+    p_{n−1} = 2p_n − p_{n+1}, so b = b' + 2d and c = c' − d: only d is new, and b' = b − 2d, c' = c + d
+    keep the linear hold's closed forms.  The free part (a11 … a22) is the same.  E_1, E_2: for ωh ≥ 0.5
+    the polynomial particular solutions (t: t/ω² − 2ζ/ω³; t²: t²/ω² − 4ζt/ω³ + (8ζ² − 2)/ω⁴) less their
+    free response through the step's own a11 … a22; below, where those terms cancel, the exponential of
+    the augmented system (ξ, ξ̇/ω, p/ω², p′/ω², p″/ω²) in s (′ = d/ds).  Third-order accurate in h for
+    a smooth load (the linear hold: second); checked against quadrature of the convolution integral
     (tests/unit/test_load_hold.py)."""
-    theta = np.asarray(omega, float) * h
-    n = theta.size
-    a = np.zeros((n, 5, 5))
-    a[:, 0, 1] = theta
-    a[:, 1, 0] = -theta
-    a[:, 1, 1] = -2.0 * np.asarray(zeta, float) * theta
-    a[:, 1, 2] = theta
-    a[:, 2, 3] = 1.0
-    a[:, 3, 4] = 1.0
-    e = expm_each(a)  # (each mode on its own scale: θ spans decades)
-    w2 = np.asarray(omega, float) ** 2
-    d1 = (e[:, 0, 4] - 0.5 * e[:, 0, 3]) / w2
-    d2 = (e[:, 1, 4] - 0.5 * e[:, 1, 3]) * omega / w2
+    w = np.asarray(omega, float)
+    z = np.asarray(zeta, float)
+    theta = w * h
+    d1, d2 = np.empty_like(w), np.empty_like(w)
+    closed = theta >= 0.5  # (as ``_exact_step``'s closed form: no cancellation there)
+    if np.any(closed):
+        wc, zc = w[closed], z[closed]
+        a11, a12, a21, a22 = (getattr(step, k)[closed] for k in ("a11", "a12", "a21", "a22"))
+        w2 = wc * wc
+        b1_, c1_ = 1.0 / w2, -2.0 * zc / (w2 * wc)  # load t: x_p = b1_ t + c1_
+        x1 = h * b1_ + c1_ - a11 * c1_ - a12 * b1_
+        v1 = b1_ - a21 * c1_ - a22 * b1_
+        b2_, c2_ = -4.0 * zc / (w2 * wc), (8.0 * zc * zc - 2.0) / (w2 * w2)  # load t²: x_p = t²/ω² + b2_ t + c2_
+        x2 = h * h / w2 + h * b2_ + c2_ - a11 * c2_ - a12 * b2_
+        v2 = 2.0 * h / w2 + b2_ - a21 * c2_ - a22 * b2_
+        # E_1 = (response to t)/h, E_2 = (response to t²)/(2h²)
+        d1[closed] = x2 / (2.0 * h * h) - 0.5 * x1 / h
+        d2[closed] = v2 / (2.0 * h * h) - 0.5 * v1 / h
+    rest = ~closed
+    if np.any(rest):
+        tr = theta[rest]
+        a = np.zeros((tr.size, 5, 5))
+        a[:, 0, 1] = tr
+        a[:, 1, 0] = -tr
+        a[:, 1, 1] = -2.0 * z[rest] * tr
+        a[:, 1, 2] = tr
+        a[:, 2, 3] = 1.0
+        a[:, 3, 4] = 1.0
+        e = expm(a)  # (ωh < 0.5 here: one scaling serves the stack)
+        wr = w[rest]
+        d1[rest] = (e[:, 0, 4] - 0.5 * e[:, 0, 3]) / (wr * wr)
+        d2[rest] = (e[:, 1, 4] - 0.5 * e[:, 1, 3]) / wr
     return step._replace(b1=step.b1 - 2.0 * d1, b2=step.b2 - 2.0 * d2, c1=step.c1 + d1, c2=step.c2 + d2, d1=d1, d2=d2)
 
 
