@@ -50,9 +50,8 @@ def _input_key(kind: str, h: float, arrays) -> tuple:
 def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
     """Matrix exponential of a (..., n, n) stack: scaling and squaring with an 18-term Taylor
     series (‖A‖₁/2^s ≤ 1/2, truncation below 1e-17 relative; Moler & Van Loan 2003, method 3), one
-    s for the whole stack (the largest norm's).  For the small matrices of the modes (4 × 4, 5 × 5, a
-    stack of them) it is much cheaper than a general routine; the vehicles' larger blocks (a five-axle
-    truck's 47 × 47) take scipy's (``_vehicle_exponential``)."""
+    s for the whole stack (the largest norm's; ``expm_each``: each matrix its own).  For the small
+    matrices here it is much cheaper than a general routine."""
     a = np.asarray(a, float)
     squarings = _squarings(float(np.abs(a).sum(axis=-2).max(initial=0.0)))
     result = _taylor(a / 2.0**squarings)
@@ -60,6 +59,21 @@ def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
     for _ in range(squarings):
         np.matmul(result, result, out=work)
         result, work = work, result
+    return result
+
+
+def expm_each(a: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``expm`` of each matrix of the stack ``a`` (k, n, n) on its own scale: the same numbers as
+    ``expm(a[i])`` for every i, in one series for the stack (the blocks of several vehicles)."""
+    a = np.asarray(a, float)
+    squarings = [_squarings(float(norm)) for norm in np.abs(a).sum(axis=-2).max(axis=-1, initial=0.0)]
+    result = _taylor(a / np.array([2.0**s for s in squarings])[:, None, None])
+    for step in range(max(squarings, default=0)):
+        more = [i for i, s in enumerate(squarings) if s > step]
+        if len(more) == len(squarings):
+            result = result @ result
+        else:
+            result[more] = result[more] @ result[more]
     return result
 
 
@@ -333,19 +347,9 @@ def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.fl
     return list(zip([0, *ends[:-1].tolist()], ends.tolist()))
 
 
-def _vehicle_exponential(a: NDArray[np.float64]) -> NDArray[np.float64]:
-    """exp of a vehicle block's augmented matrix, or of a stack of them, each on its own scale: scipy's
-    (Al-Mohy & Higham 2009; ``scipy.linalg.expm``), 2.5× faster than ``expm``'s series on a five-axle
-    truck's 47 × 47 block and equal to it within 4e-15 of the largest entry (measured 2026-12-06)."""
-    from scipy.linalg import expm as scipy_expm
-
-    return scipy_expm(a)
-
-
 def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int):
     """The exponential of one block's augmented system (``_augmented``) over the step: (Φ, Lp, L0, L1, b)."""
-    return _block_maps(_vehicle_exponential(_augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold)), gravity.size,
-                       rows.shape[0], hold)
+    return _block_maps(expm(_augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold)), gravity.size, rows.shape[0], hold)
 
 
 def _augmented(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int) -> NDArray[np.float64]:
@@ -401,9 +405,9 @@ def _vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleSt
     augmented = [_augmented(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi],
                             h, hold) for (lo, hi), w in zip(blocks, wheels)]
     exponentials: list = [None] * len(blocks)
-    for size in {a.shape for a in augmented}:  # blocks of one size (vehicles alike) in one call, each on its own scale
+    for size in {a.shape for a in augmented}:  # blocks of one size (vehicles alike) in one series, each on its own scale
         alike = [i for i, a in enumerate(augmented) if a.shape == size]
-        stack = _vehicle_exponential(np.stack([augmented[i] for i in alike]))
+        stack = expm_each(np.stack([augmented[i] for i in alike])) if len(alike) > 1 else [expm(augmented[alike[0]])]
         for i, e in zip(alike, stack):
             exponentials[i] = e
     for (lo, hi), w, e in zip(blocks, wheels, exponentials):
