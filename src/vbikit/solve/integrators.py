@@ -10,7 +10,7 @@ Built in (registered by ``vbikit.solve.builtin_integrators``):
 * ``"exact"`` — every bridge mode by its exact transition with the modal load quadratic over the
   step through the loads at its ends and the end of the step before (Nigam & Jennings 1969 with a
   three-point hold, ``vbikit.solve.modal_step.quadratic_hold``), the vehicles by the exponential of
-  their augmented system with their wheel loads held the same way;
+  their augmented system with their wheel loads linear over the step;
 * ``"rk4"`` — the paper's classical Runge–Kutta (explicit: its step is capped by the stability
   limit of the coupled system);
 * ``"newmark"`` — Newmark average acceleration for bridge and vehicles alike.

@@ -19,22 +19,27 @@ correction to p_{n−1} is
 
 point by point, so a run of several loads stays the sum of their runs (the scheme stays linear in
 the loads).  ``hold_correction`` (one lane) and ``hold_correction_lanes`` (forces (n_cp, L)) add it.
+
+Where a wheel lands or lifts off within a step its load G, and the modes' loads, jump or kink there:
+the next step holds them from the step's end on (``hold_jumps``; the one-lane ``lean`` writes the same
+rule flat).
 """
 from __future__ import annotations
 
 from vbikit.solve.kernels.bundles import _flat_internal, _internal
 from vbikit.solve.kernels.contact import hermite_shape
+from vbikit.solve.kernels.lanes import _width
 
 
 @_flat_internal
 def crossing_ends(x_before, x_start, x_end, tr, start, end):
     """Whether a point at positions ``x_before``, ``x_start``, ``x_end`` [m] (t_{n−1}, t_n, t_{n+1}) on
     track ``tr`` comes onto the track or leaves it within the step's stencil, and whether it is on the
-    deck at each of the three times (the kernels' test, start ≤ x ≤ end)."""
+    deck at t_n and at t_{n+1} (the kernels' test, start ≤ x ≤ end)."""
     on0 = start[tr] <= x_before <= end[tr]
     on1 = start[tr] <= x_start <= end[tr]
     on2 = start[tr] <= x_end <= end[tr]
-    return not (on0 == on1 and on1 == on2), on0, on1, on2
+    return not (on0 == on1 and on1 == on2), on1, on2
 
 
 @_flat_internal
@@ -49,7 +54,7 @@ def hold_correction(x_before, x_share, x_start, x_end, track, start, end, grid_h
     found = False
     for k in range(x_start.size):
         tr = track[k]
-        crossing, _, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
+        crossing, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
         if not crossing:
             continue
         if not found:
@@ -78,7 +83,7 @@ def hold_correction_lanes(x_before, x_share, x_start, x_end, track, start, end, 
     found = False
     for k in range(x_start.size):
         tr = track[k]
-        crossing, _, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
+        crossing, on1, on2 = crossing_ends(x_before[k], x_start[k], x_end[k], tr, start, end)
         if not crossing:
             continue
         if not found:
@@ -98,3 +103,26 @@ def hold_correction_lanes(x_before, x_share, x_start, x_end, track, start, end, 
                 for lane in range(n_l):
                     corr[m, lane] += a * f_start[k, lane]
     return found
+
+
+@_internal
+def hold_jumps(wf, contact, g, p, p_start, g_start, jumped, lanes):
+    """A wheel that lands or lifts off within the step (its force sum ``wf`` > 0 now and not before, or
+    the reverse; ``contact`` holds whether it was, and is updated): its load G jumps or kinks there, so
+    the next step holds it from the step's end on — its entry of the loads of the step before,
+    ``g_start`` (which the caller makes the next step's G_{n−1}), set to the end value ``g`` — and every
+    mode's, ``p_start``, to ``p`` in that lane (``lean``: the same rule)."""
+    n_l = _width(lanes, wf)
+    for lane in range(n_l):
+        jumped[lane] = False
+    for w in range(wf.shape[0]):
+        for lane in range(n_l):
+            touching = wf[w, lane] > 0.0
+            if touching != contact[w, lane]:
+                g_start[w, lane] = g[w, lane]
+                jumped[lane] = True
+            contact[w, lane] = touching
+    for lane in range(n_l):
+        if jumped[lane]:
+            for m in range(p.shape[0]):
+                p_start[m, lane] = p[m, lane]

@@ -6,7 +6,7 @@ import numpy as np
 from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal, _slot, _work
-from vbikit.solve.kernels.hold import hold_correction_lanes
+from vbikit.solve.kernels.hold import hold_correction_lanes, hold_jumps
 from vbikit.solve.kernels.lanes import _axpy, _combine, _copy, _fetch, _gemv, _keep_step, _store, _width
 from vbikit.solve.kernels.contact import _modal_load, _refresh, contact_forces, shape_point
 from vbikit.solve.kernels.newton import QUASI_ITERATIONS, RELAX_AFTER, _full_newton, _lean_refine, _residuals, _same_active_set, _touch_points,\
@@ -65,29 +65,6 @@ def _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p
             v1[m, lane] = vf[m, lane] + c2 * p[m, lane]
     _copy(zb, z1, lanes)
     _gemv(1.0, vstep.response, fw, z1, lanes, False)
-
-
-@_internal
-def _hold_jumps(wf, contact, g, p, p_start, g_start, jumped, lanes):
-    """A wheel that lands or lifts off within the step (its force sum ``wf`` > 0 now and not before, or
-    the reverse; ``contact`` holds whether it was, and is updated): its load G jumps or kinks there, so
-    the next step holds it from the step's end on — its entry of the loads of the step before,
-    ``g_start`` (which the caller makes the next step's G_{n−1}), set to the end value ``g`` — and every
-    mode's, ``p_start``, to ``p`` in that lane (``lean``: the same rule)."""
-    n_l = _width(lanes, wf)
-    for lane in range(n_l):
-        jumped[lane] = False
-    for w in range(wf.shape[0]):
-        for lane in range(n_l):
-            touching = wf[w, lane] > 0.0
-            if touching != contact[w, lane]:
-                g_start[w, lane] = g[w, lane]
-                jumped[lane] = True
-            contact[w, lane] = touching
-    for lane in range(n_l):
-        if jumped[lane]:
-            for m in range(p.shape[0]):
-                p_start[m, lane] = p[m, lane]
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
@@ -198,7 +175,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     contact_forces(x0, v0, y0, w0, modes, vehicles, points, road, unilateral, cache, work, wf, wl, lanes, span)
     _modal_load(-1.0, cache.phi, force, work.used, cache.x, points.track, modes, p0, lanes)
     _tire_load(vehicles, wf, y0, w0, g0, lanes)
-    for w in range(n_w):  # the wheels in contact at the start (``_hold_jumps``)
+    for w in range(n_w):  # the wheels in contact at the start (``hold_jumps``)
         for lane in range(n_l):
             contact[w, lane] = wf[w, lane] > 0.0
     if resume:
@@ -232,15 +209,15 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0; the hold's p_{n−1} with the shares
         # of points crossing a deck end replaced (``hold``)
         share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
-        if hold_correction_lanes(x_before, share, x_start, cache.x, points.track, modes.start, modes.end,
-                                 modes.grid_h, modes.values, modes.slopes, f0, sphi, sdphi, corr):
+        ends = hold_correction_lanes(x_before, share, x_start, cache.x, points.track, modes.start, modes.end,
+                                     modes.grid_h, modes.values, modes.slopes, f0, sphi, sdphi, corr)
+        if ends:
             for m in range(n_m):
                 for lane in range(n_l):
                     corr[m, lane] += pm[m, lane]
-        else:
-            _copy(pm, corr, lanes)
-        _combine(step.a11, x0, step.a12, v0, step.b1, p0, step.d1, corr, xf, lanes)
-        _combine(step.a21, x0, step.a22, v0, step.b2, p0, step.d2, corr, vf, lanes)
+        past = corr if ends else pm
+        _combine(step.a11, x0, step.a12, v0, step.b1, p0, step.d1, past, xf, lanes)
+        _combine(step.a21, x0, step.a22, v0, step.b2, p0, step.d2, past, vf, lanes)
         for i in range(2 * n_d):
             for lane in range(n_l):
                 zf[i, lane] = vstep.constant[i]
@@ -309,7 +286,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
         _state_of(f, onb, cache, points, modes, vehicles, step, vstep, xf, vf, zb, p, fw, x1, v1, z1, lanes)
         _copy(fw, wf, lanes)
         _tire_load(vehicles, wf, y1, w1, g, lanes)
-        _hold_jumps(wf, contact, g, p, p0, g0, jumped, lanes)  # (the loads before: p0, g0 become pm, gm below)
+        hold_jumps(wf, contact, g, p, p0, g0, jumped, lanes)  # (the loads before: p0, g0 become pm, gm below)
         _modal_acceleration(omega, zeta, x1, v1, p, acc, lanes)
         _vehicle_acceleration(vehicles, vstep, z1, g, work.rhs, a1, lanes)
         _keep_step(xi, dxi, ddxi, q, dq, ddq, wheel_force, wheel_len, n + 1, stride, x1, v1, acc, y1, w1, a1, wf, wl,

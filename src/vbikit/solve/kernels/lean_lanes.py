@@ -45,7 +45,8 @@ from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
-from vbikit.solve.kernels.hold import hold_correction_lanes
+from vbikit.solve.kernels.hold import hold_correction_lanes, hold_jumps
+from vbikit.solve.kernels.lanes import MANY_LANES
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
 
 
@@ -402,7 +403,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
     corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
     x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
-    contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``lean``)
+    contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``hold_jumps``)
     dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
     g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
     wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
@@ -474,21 +475,19 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     nonzero = nonzero or fk != 0.0
                 nz[k] = nonzero
             share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
-            if hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
-                                     sphi, sdphi, corr):  # points crossing a deck end: their share of p_{n−1}
+            ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
+                                         sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
+            if ends:
                 for m in range(n_m):
                     for lane in range(n_l):
                         corr[m, lane] += pm[m, lane]
-            else:
-                for m in range(n_m):
-                    for lane in range(n_l):
-                        corr[m, lane] = pm[m, lane]
+            past = corr if ends else pm
             for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
                 e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
                 h2 = d2[m]
                 for lane in range(n_l):
-                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * corr[m, lane]
-                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * corr[m, lane]
+                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
+                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
                     pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
             # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
             _affine_lanes(free_constant, free, free_load, z0, g0, zb)
@@ -657,19 +656,12 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     j = wheel_dof[w, e]
                     for lane in range(n_l):
                         g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
-        for lane in range(n_l):  # a wheel that lands or lifts off: the next step holds from here on (``lean``)
-            jumped[lane] = False
-        for w in range(n_w):
-            for lane in range(n_l):
-                touching = wf[w, lane] > 0.0
-                if n >= first and touching != contact[w, lane]:
-                    gm[w, lane] = g0[w, lane]
-                    jumped[lane] = True
-                contact[w, lane] = touching
-        for lane in range(n_l):
-            if jumped[lane]:
-                for m in range(n_m):
-                    pm[m, lane] = p[m, lane]
+        if n >= first:  # a wheel that lands or lifts off: the next step holds from here on
+            hold_jumps(wf, contact, g0, p, pm, gm, jumped, MANY_LANES)
+        else:  # (the wheels in contact at the start)
+            for w in range(n_w):
+                for lane in range(n_l):
+                    contact[w, lane] = wf[w, lane] > 0.0
         for m in range(n_m):
             e1 = 2.0 * zeta[m] * omega[m]
             e2 = omega[m] * omega[m]
