@@ -41,6 +41,7 @@ from vbikit.solve.budget import (
     check_size,
 )
 from vbikit.solve.crossing import Crossing, VehicleMotion
+from vbikit.solve.timestep import automatic_road_per_step
 from vbikit.vehicle.model import Vehicle
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -295,11 +296,11 @@ def with_scenario_road(crossing: Crossing, spec: RoadSpec, scenario: Scenario, s
     if seed is not None:
         spec = spec.model_copy(update={"seed": int(seed)})
     window = crossing.road_extent()
-    if crossing.dt is not None:  # a given step: the time grid's last step may pass the crossing's end by up to a
-        # step, and the tire dashpots read the road half a step beyond each point (an automatic step is at most two
-        # stations, which the window's own margin covers: ``road.psd.WINDOW_MARGIN_SAMPLES``)
-        pad = 1.5 * crossing.max_speed * float(crossing.dt)
-        window = (window[0] - pad, window[1] + pad)
+    # the time grid's last step may pass the crossing's end by up to a step, and the tire dashpots read the road
+    # half a step beyond each point: the window reaches 1.5 steps further on each side (the given step's, or the
+    # longest automatic one on this road)
+    step = crossing.max_speed * float(crossing.dt) if crossing.dt is not None else automatic_road_per_step(spec.spacing)
+    window = (window[0] - 1.5 * step, window[1] + 1.5 * step)
     road = build_road(spec, scenario, window)
     return crossing.with_road(road, build_right_road(spec, scenario, road, window))
 

@@ -113,10 +113,18 @@ def choose_time_step(crossing: Crossing, stability_limit: Optional[float] = None
 #: steps per period of the highest vehicle mode, per shortest road wavelength and per span passage
 #: for the exact modal integrator (docs/verification.md, convergence study)
 EXACT_STEPS_PER_VEHICLE_PERIOD = 20.0
-EXACT_ROAD_LENGTH_PER_STEP = 0.02
+EXACT_ROAD_LENGTH_PER_STEP = 0.03
 EXACT_STEPS_PER_SPAN = 100.0
 EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 100.0
-EXACT_ROAD_FEATURES_PER_STEP = 2.0
+EXACT_ROAD_FEATURES_PER_STEP = 3.0
+
+
+def automatic_road_per_step(spacing: float) -> float:
+    """The most road [m] one automatic step of any registered integrator covers on a road sampled every
+    ``spacing`` m: ``EXACT_ROAD_FEATURES_PER_STEP`` stations (the exact integrator; the explicit ones take
+    one).  What a road generated only over a crossing's range must reach beyond it: the time grid's
+    last step passes the crossing's end by up to a step."""
+    return max(EXACT_ROAD_FEATURES_PER_STEP, 1.0) * float(spacing)
 
 
 def implicit_time_step(crossing: Crossing) -> float:
