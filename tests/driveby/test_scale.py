@@ -18,6 +18,7 @@ import pytest
 
 import vbikit.driveby.study as study
 from vbikit.driveby.spec import DriveByError, parse_driveby
+from vbikit.solve.timestep import EXACT_ROAD_LENGTH_PER_STEP
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "driveby" / "scour_1800.toml"
 
@@ -30,7 +31,11 @@ def _spec(passes: int, **variability):
 
 
 def test_check_cases_builds_a_few_passes_and_bounds_the_budget_by_the_speed_range(monkeypatch):
-    spec = _spec(40)                                    # 3 classes × 40 passes
+    # a speed range across which the automatic step (EXACT_ROAD_LENGTH_PER_STEP / v) passes the 1 ms sample
+    # period: the step, a whole fraction of it, jumps from 1 ms to 0.5 ms inside the range
+    jump = EXACT_ROAD_LENGTH_PER_STEP / 1e-3
+    v_slow, v_fast = 0.93 * jump, 1.07 * jump
+    spec = _spec(40, speed=[v_slow, v_fast])            # 3 classes × 40 passes
     built = []
     real = study.case_crossing
 
@@ -43,9 +48,9 @@ def test_check_cases_builds_a_few_passes_and_bounds_the_budget_by_the_speed_rang
     total = study.check_cases(spec)
     assert len(spec.cases) == 120 and len(built) <= 8, len(built)   # main built all 120
     # each end of the speed range on its own crossing (no draw): the slow end runs longest, the fast
-    # one needs the smaller step (here 1 ms at 19 m/s, 0.5 ms at 21 m/s: the step jumps inside the
+    # one needs the smaller step (1 ms at the slow end, 0.5 ms at the fast one: the step jumps inside the
     # range, so neither end's steps bound a pass; the slow end's duration / the fast end's step does)
-    slow, fast = (real(spec, {"speed": v}) for v in (19.0, 21.0))
+    slow, fast = (real(spec, {"speed": v}) for v in (v_slow, v_fast))
     assert slow.duration > fast.duration and fast.dt < slow.dt
     per_pass = slow.duration / fast.dt
     assert total == pytest.approx(120 * per_pass, rel=1e-12)

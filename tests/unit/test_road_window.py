@@ -73,6 +73,7 @@ def test_bad_window_is_refused():
 def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
     from vbikit.scenario.build import build, with_scenario_road
     from vbikit.scenario.schema import parse_scenario
+    from vbikit.solve.timestep import automatic_road_per_step
 
     data = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 4}, "vehicle": {"model": "hs20-44"},
             "road": {"class": "C", "seed": 1, "right_coherence": 0.8}, "crossing": {"speed_kmh": 75}}
@@ -81,8 +82,11 @@ def test_an_event_crossing_gets_its_road_over_the_range_it_uses():
     crossing = with_scenario_road(whole.with_road(None), scenario.road, scenario, seed=5)
     lo, hi = crossing.road_extent()
     full = random_profile(RoadPSD.iso("C"), 5)
+    # no more than the range, 1.5 of the longest automatic step on each side (3 cm of road a step) and the
+    # window's own 2 stations a side (1 cm apart)
+    pad = 3 * automatic_road_per_step(scenario.road.spacing) + 4 * scenario.road.spacing
     for road in (crossing.road, crossing.road_right):
-        assert road.covers(lo, hi) and road.x[-1] - road.x[0] < hi - lo + 0.1
+        assert road.covers(lo, hi) and road.x[-1] - road.x[0] < hi - lo + pad + 0.02
     x, z = _cut(full, crossing.road)
     assert np.array_equal(x, crossing.road.x) and np.max(np.abs(z - crossing.road.z)) < 1e-12 * full.z.std()
     assert whole.road.x.size == full.x.size
