@@ -46,8 +46,8 @@ REFERENCE_REFINEMENT = 4
 #: multiples of the automatic step at which every case runs too: how much the IM scatters with a step
 #: a few per cent away from it
 NEAR_STEPS = (0.96, 0.97, 0.98, 0.99, 1.01, 1.02, 1.03, 1.04)
-#: a multiple of the automatic step at which every case runs too: 3 cm of road per step at 75 km/h
-#: instead of the step rule's 2 cm (``vbikit.solve.timestep.EXACT_ROAD_LENGTH_PER_STEP``)
+#: a multiple of the automatic step at which every case runs too: 4.5 cm of road per step at 75 km/h
+#: instead of the step rule's 3 cm (``vbikit.solve.timestep.EXACT_ROAD_LENGTH_PER_STEP``)
 COARSE_STEP = 1.5
 
 TIRES = {"point": ({"model": "point"}, "point"),

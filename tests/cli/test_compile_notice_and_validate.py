@@ -142,7 +142,7 @@ def test_the_notice_names_the_one_lane_kernel_when_the_batch_is_split(after_demo
     assert caplog.text == ""
 
     d = paper_study_dict("fig6", 2, True) | {"axes": {"road.class": ["none", "C"]}}
-    d["base"]["road"]["spacing"] = 0.005  # class C's step is then set by its stations, the smooth road's by the truck
+    d["base"]["crossing"]["speed_kmh"] = 105  # class C's step is then set by its road (3 cm), the smooth road's by the truck
     mixed = parse_study(d)
     (batch,) = mixed.batches()
     assert len(batch) == 2

@@ -558,7 +558,7 @@ def wheel_force_step_flags(result: CrossingResult) -> list[Flag]:
     are checked."""
     crossing = result.crossing
     roads = [r for r in (crossing.road, crossing.road_right) if r is not None]
-    if all(r.origin is not None and r.origin.kind in ("random", "smooth") and not r.origin.defects for r in roads):
+    if all(r.band_limited for r in roads):
         return []
     peak = np.maximum(np.abs(result.wheel_forces).max(axis=0), 1e-300)
     bound = wheel_force_step_bound(result)

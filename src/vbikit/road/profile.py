@@ -97,6 +97,15 @@ class RoadProfile:
             object.__setattr__(self, "_spacing", known)
         return known
 
+    @property
+    def band_limited(self) -> bool:
+        """True for a generated road without defects (``RoadOrigin`` kind "random" or "smooth"): its
+        stations sample a signal band-limited to n ≤ n_max (ISO 8608: 4 cycle/m, wavelengths ≥ 25 cm),
+        not edges a time step must resolve one by one; measured profiles, defects and given arrays are
+        not (every station may be an edge)."""
+        origin = self.origin
+        return origin is not None and origin.kind in ("random", "smooth") and not origin.defects
+
     def covers(self, x_min: float, x_max: float) -> bool:
         return bool(self.x[0] <= x_min and x_max <= self.x[-1])
 

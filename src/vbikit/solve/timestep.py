@@ -23,6 +23,7 @@ from vbikit.errors import VbikitError
 from vbikit.solve.integrators import get_integrator, implicit_names
 
 if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.road.profile import RoadProfile
     from vbikit.solve.crossing import Crossing
 
 
@@ -110,21 +111,31 @@ def choose_time_step(crossing: Crossing, stability_limit: Optional[float] = None
     return rule(crossing)
 
 
-#: steps per period of the highest vehicle mode, per shortest road wavelength and per span passage
-#: for the exact modal integrator (docs/verification.md, convergence study)
+#: steps per period of the highest vehicle mode, most road per step [m], road features per step (measured
+#: stations, defect ramps: not on a generated band-limited road, ``RoadProfile.band_limited``), steps per span
+#: passage and per first bridge period for the exact modal integrator (docs/verification.md, convergence study)
 EXACT_STEPS_PER_VEHICLE_PERIOD = 20.0
 EXACT_ROAD_LENGTH_PER_STEP = 0.03
 EXACT_STEPS_PER_SPAN = 100.0
 EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 100.0
-EXACT_ROAD_FEATURES_PER_STEP = 3.0
+EXACT_ROAD_FEATURES_PER_STEP = 2.0
 
 
 def automatic_road_per_step(spacing: float) -> float:
     """The most road [m] one automatic step of any registered integrator covers on a road sampled every
-    ``spacing`` m: ``EXACT_ROAD_FEATURES_PER_STEP`` stations (the exact integrator; the explicit ones take
-    one).  What a road generated only over a crossing's range must reach beyond it: the time grid's
+    ``spacing`` m: ``EXACT_ROAD_LENGTH_PER_STEP`` (the exact integrator) or one station (the explicit
+    ones).  What a road generated only over a crossing's range must reach beyond it: the time grid's
     last step passes the crossing's end by up to a step."""
-    return max(EXACT_ROAD_FEATURES_PER_STEP, 1.0) * float(spacing)
+    return max(EXACT_ROAD_LENGTH_PER_STEP, float(spacing))
+
+
+def exact_road_per_step(road: RoadProfile) -> float:
+    """The most road [m] a step of the exact integrator covers on ``road``: ``EXACT_ROAD_LENGTH_PER_STEP``,
+    and on a road whose stations may be edges (measured, with defects, given as arrays: not
+    ``band_limited``) ``EXACT_ROAD_FEATURES_PER_STEP`` of its shortest feature (``RoadProfile.spacing``)."""
+    if road.band_limited:
+        return EXACT_ROAD_LENGTH_PER_STEP
+    return min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing)
 
 
 def implicit_time_step(crossing: Crossing) -> float:
@@ -134,7 +145,7 @@ def implicit_time_step(crossing: Crossing) -> float:
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     for road in (crossing.road, crossing.road_right):
         if road is not None and road.spacing > 0:
-            candidates.append(min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v_max)
+            candidates.append(exact_road_per_step(road) / v_max)
     return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, min(candidates))
 
 
