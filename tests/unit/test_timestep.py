@@ -200,3 +200,25 @@ def test_automatic_steps_equal_the_eigenvalue_rule_whether_or_not_the_vehicle_bi
         binds.append(1.0 / f_max / EXACT_STEPS_PER_VEHICLE_PERIOD < min(exact))
     assert binds[2]  # the 318 Hz mass binds
     assert not any(binds[:2]) or spacing > 0.01  # the trucks do not on the fine road
+
+
+def test_exact_step_takes_3_cm_of_a_generated_road_and_two_features_of_a_measured_one():
+    """The exact integrator's road terms (vbikit.solve.timestep.exact_road_per_step): 3 cm of a
+    generated random road (1 cm stations that sample a band without wavelengths below 1/n_max), two
+    stations of the same samples given as arrays or carrying a defect (every station may be an edge),
+    and 1/8 of the shortest wavelength of a finer band."""
+    import dataclasses as dc
+
+    from vbikit.road.defects import Defect, with_defects
+    from vbikit.road.profile import RoadProfile
+    from vbikit.road.psd import RoadPSD, random_profile
+    from vbikit.solve.timestep import exact_road_per_step
+
+    road = random_profile(RoadPSD.iso("C"), 3, length=200.0, window=(0.0, 50.0))
+    assert road.band_limited and exact_road_per_step(road) == pytest.approx(0.03)
+    as_arrays = RoadProfile(road.x, road.z, "the same samples")
+    assert not as_arrays.band_limited and exact_road_per_step(as_arrays) == pytest.approx(0.02)
+    bumped = with_defects(road, [Defect.of_kind("bump", 10.0)])
+    assert not bumped.band_limited and exact_road_per_step(bumped) < 0.03
+    fine = random_profile(dc.replace(RoadPSD.iso("C"), n_max=10.0), 3, length=200.0, window=(0.0, 50.0))
+    assert exact_road_per_step(fine) == pytest.approx(0.1 / 8)

@@ -31,6 +31,8 @@ class RoadOrigin:
         A measured profile's file name.
     defects : tuple of str
         The kinds of the defects added (``with_defects``), in order.
+    shortest_wavelength : float, optional
+        A random road's shortest wavelength 1/n_max [m] (its spectrum's band; set by ``random_profile``).
     """
 
     kind: str = ""
@@ -38,6 +40,7 @@ class RoadOrigin:
     seed: int | None = None
     file: str | None = None
     defects: tuple[str, ...] = ()
+    shortest_wavelength: float | None = None
 
 
 @dataclass(frozen=True)
@@ -99,12 +102,14 @@ class RoadProfile:
 
     @property
     def band_limited(self) -> bool:
-        """True for a generated road without defects (``RoadOrigin`` kind "random" or "smooth"): its
-        stations sample a signal band-limited to n ≤ n_max (ISO 8608: 4 cycle/m, wavelengths ≥ 25 cm),
-        not edges a time step must resolve one by one; measured profiles, defects and given arrays are
-        not (every station may be an edge)."""
+        """True for a generated road without defects: smooth, or random from a spectrum
+        (``RoadOrigin.shortest_wavelength`` set: no wavelength below 1/n_max, 25 cm for ISO 8608's
+        4 cycle/m), whose stations sample that signal rather than edges a time step must resolve one
+        by one; measured profiles, defects and given arrays are not (every station may be an edge)."""
         origin = self.origin
-        return origin is not None and origin.kind in ("random", "smooth") and not origin.defects
+        if origin is None or origin.defects:
+            return False
+        return origin.kind == "smooth" or (origin.kind == "random" and origin.shortest_wavelength is not None)
 
     def covers(self, x_min: float, x_max: float) -> bool:
         return bool(self.x[0] <= x_min and x_max <= self.x[-1])

@@ -22,6 +22,7 @@ with the whole-period profile to ≈ 1e-12 of its rms (``tests/unit/test_road_wi
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 from functools import lru_cache
@@ -149,7 +150,7 @@ def random_profile(
     origin : RoadOrigin, optional
         Where the road comes from (e.g. the scenario's road class); default a random road of ``seed``.
     """
-    origin = origin or RoadOrigin("random", seed=int(seed))
+    origin = dataclasses.replace(origin or RoadOrigin("random", seed=int(seed)), shortest_wavelength=1.0 / psd.n_max)
     if spacing <= 0:
         raise ValueError(f"road spacing must be > 0 m, got {spacing!r}")
     if psd.n_max > 0.5 / spacing:

@@ -119,6 +119,9 @@ EXACT_ROAD_LENGTH_PER_STEP = 0.03
 EXACT_STEPS_PER_SPAN = 100.0
 EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 100.0
 EXACT_ROAD_FEATURES_PER_STEP = 2.0
+#: [substitute] steps per shortest wavelength of a generated random road (``RoadOrigin.shortest_wavelength``):
+#: ISO 8608's band (n_max = 4 cycle/m) gives 3.1 cm, above ``EXACT_ROAD_LENGTH_PER_STEP``; a finer band a shorter step
+EXACT_STEPS_PER_ROAD_WAVELENGTH = 8.0
 
 
 def automatic_road_per_step(spacing: float) -> float:
@@ -130,11 +133,14 @@ def automatic_road_per_step(spacing: float) -> float:
 
 
 def exact_road_per_step(road: RoadProfile) -> float:
-    """The most road [m] a step of the exact integrator covers on ``road``: ``EXACT_ROAD_LENGTH_PER_STEP``,
-    and on a road whose stations may be edges (measured, with defects, given as arrays: not
-    ``band_limited``) ``EXACT_ROAD_FEATURES_PER_STEP`` of its shortest feature (``RoadProfile.spacing``)."""
+    """The most road [m] a step of the exact integrator covers on ``road``: ``EXACT_ROAD_LENGTH_PER_STEP``;
+    on a generated random road (``band_limited``) 1/``EXACT_STEPS_PER_ROAD_WAVELENGTH`` of its shortest
+    wavelength, on a road whose stations may be edges (measured, with defects, given as arrays)
+    ``EXACT_ROAD_FEATURES_PER_STEP`` of its shortest feature (``RoadProfile.spacing``)."""
     if road.band_limited:
-        return EXACT_ROAD_LENGTH_PER_STEP
+        wavelength = road.origin.shortest_wavelength if road.origin is not None else None
+        return EXACT_ROAD_LENGTH_PER_STEP if wavelength is None else \
+            min(EXACT_ROAD_LENGTH_PER_STEP, wavelength / EXACT_STEPS_PER_ROAD_WAVELENGTH)
     return min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing)
 
 
