@@ -497,7 +497,7 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
 
 
 #: a wheel's step-read share of its peak tire force above which ``wheel_force_step`` flags the peak
-#: (``wheel_force_step_bound``: 0.08 % on the demo's class C road, 73 % on examples/field's 38.1 mm bump)
+#: (``wheel_force_step_bound``: 0.2 % on the demo's class C road, 73 % on examples/field's 38.1 mm bump)
 WHEEL_FORCE_STEP = 0.05
 
 
@@ -552,8 +552,8 @@ def wheel_force_step_flags(result: CrossingResult) -> list[Flag]:
     the implicit integrators read the road rate over a step (``wheel_force_step_bound``): over a road
     feature about a step long the stored forces are the step's, not the instant's.  The bridge's
     response is not concerned (its loads over a step are the step's).  Not checked on generated
-    random roads without defects (``RoadOrigin`` kind "random" or "smooth"), whose 1 cm cells move a
-    peak by ≈ 0.1 % (the demo's class C road: 0.09 kN of 108 kN; ``tests/unit/test_wheel_force_step.py``)
+    random roads without defects (``RoadProfile.band_limited``), whose 1 cm cells move a
+    peak by ≈ 0.2 % (the demo's class C road: 0.21 kN of 108 kN; ``tests/unit/test_wheel_force_step.py``)
     and whose check would cost about half of a run's own time; measured profiles, defects and arrays
     are checked."""
     crossing = result.crossing
