@@ -204,7 +204,7 @@ def test_road_warning_advice_follows_the_road_origin(tmp_path):
     from vbikit.road import RoadPSD, correlated_profile
 
     left = random_profile(RoadPSD.iso("C"), 7, length=200.0, window=(-5.0, 30.0))
-    assert left.origin == RoadOrigin("random", seed=7, shortest_wavelength=0.25)  # 1/n_max, ISO 8608 band
+    assert left.origin == RoadOrigin("random", seed=7, shortest_wavelength=0.25, roughness=256e-6)  # ISO 8608 C
     bumped = with_defects(left, [Defect.of_kind("bump", 3.0)])
     assert bumped.origin.defects == ("bump",) and road_origin(bumped) == "random road (seed 7, with defects)"
     right = correlated_profile(left, RoadPSD.iso("C"), 7, 0.5, length=200.0, window=(-5.0, 30.0))

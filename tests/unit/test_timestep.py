@@ -202,11 +202,11 @@ def test_automatic_steps_equal_the_eigenvalue_rule_whether_or_not_the_vehicle_bi
     assert not any(binds[:2]) or spacing > 0.01  # the trucks do not on the fine road
 
 
-def test_exact_step_takes_3_cm_of_a_generated_road_and_two_features_of_a_measured_one():
+def test_exact_step_takes_3_cm_of_a_generated_road_up_to_class_c_and_two_features_of_a_measured_one():
     """The exact integrator's road terms (vbikit.solve.timestep.exact_road_per_step): 3 cm of a
-    generated random road (1 cm stations that sample a band without wavelengths below 1/n_max), two
-    stations of the same samples given as arrays or carrying a defect (every station may be an edge),
-    and 1/8 of the shortest wavelength of a finer band."""
+    generated random road up to ISO 8608 class C (1 cm stations that sample a band without wavelengths
+    below 1/n_max), 2 cm of class D; two stations of the same samples given as arrays or carrying a
+    defect (every station may be an edge), and 1/8 of the shortest wavelength of a finer band."""
     import dataclasses as dc
 
     from vbikit.road.defects import Defect, with_defects
@@ -214,11 +214,20 @@ def test_exact_step_takes_3_cm_of_a_generated_road_and_two_features_of_a_measure
     from vbikit.road.psd import RoadPSD, random_profile
     from vbikit.solve.timestep import exact_road_per_step
 
-    road = random_profile(RoadPSD.iso("C"), 3, length=200.0, window=(0.0, 50.0))
-    assert road.band_limited and exact_road_per_step(road) == pytest.approx(0.03)
-    as_arrays = RoadProfile(road.x, road.z, "the same samples")
+    def road(cls, **band):
+        return random_profile(RoadPSD.iso(cls, **band), 3, length=200.0, window=(0.0, 50.0))
+
+    for cls, length in (("A", 0.03), ("C", 0.03), ("D", 0.02), ("H", 0.02)):
+        assert road(cls).band_limited and exact_road_per_step(road(cls)) == pytest.approx(length), cls
+    upper_c = dc.replace(RoadPSD.iso("C"), phi0=1.99 * RoadPSD.iso("C").phi0)  # just inside class C (limit 2x)
+    assert exact_road_per_step(random_profile(upper_c, 3, length=200.0, window=(0.0, 50.0))) == pytest.approx(0.03)
+    lower_d = dc.replace(RoadPSD.iso("C"), phi0=2.01 * RoadPSD.iso("C").phi0)  # just inside class D
+    assert exact_road_per_step(random_profile(lower_d, 3, length=200.0, window=(0.0, 50.0))) == pytest.approx(0.02)
+    c = road("C")
+    as_arrays = RoadProfile(c.x, c.z, "the same samples")
     assert not as_arrays.band_limited and exact_road_per_step(as_arrays) == pytest.approx(0.02)
-    bumped = with_defects(road, [Defect.of_kind("bump", 10.0)])
-    assert not bumped.band_limited and exact_road_per_step(bumped) < 0.03
-    fine = random_profile(dc.replace(RoadPSD.iso("C"), n_max=10.0), 3, length=200.0, window=(0.0, 50.0))
-    assert exact_road_per_step(fine) == pytest.approx(0.1 / 8)
+    half_cm = RoadProfile(c.x[::1] * 0.5, c.z, "stations 5 mm apart")
+    assert exact_road_per_step(half_cm) == pytest.approx(0.01)
+    bumped = with_defects(c, [Defect.of_kind("bump", 10.0)])
+    assert not bumped.band_limited and exact_road_per_step(bumped) <= 0.02
+    assert exact_road_per_step(road("C", n_max=10.0)) == pytest.approx(0.1 / 8)

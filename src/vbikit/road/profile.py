@@ -33,6 +33,9 @@ class RoadOrigin:
         The kinds of the defects added (``with_defects``), in order.
     shortest_wavelength : float, optional
         A random road's shortest wavelength 1/n_max [m] (its spectrum's band; set by ``random_profile``).
+    roughness : float, optional
+        A random road's spectrum at n₀ = 0.1 cycle/m, G_d(n₀) [m³/cycle] (ISO 8608's classification
+        quantity; set by ``random_profile``).
     """
 
     kind: str = ""
@@ -41,6 +44,7 @@ class RoadOrigin:
     file: str | None = None
     defects: tuple[str, ...] = ()
     shortest_wavelength: float | None = None
+    roughness: float | None = None
 
 
 @dataclass(frozen=True)

@@ -150,7 +150,8 @@ def random_profile(
     origin : RoadOrigin, optional
         Where the road comes from (e.g. the scenario's road class); default a random road of ``seed``.
     """
-    origin = dataclasses.replace(origin or RoadOrigin("random", seed=int(seed)), shortest_wavelength=1.0 / psd.n_max)
+    origin = dataclasses.replace(origin or RoadOrigin("random", seed=int(seed)), shortest_wavelength=1.0 / psd.n_max,
+                                 roughness=float(psd(np.array([ISO_N0]))[0]))
     if spacing <= 0:
         raise ValueError(f"road spacing must be > 0 m, got {spacing!r}")
     if psd.n_max > 0.5 / spacing:

@@ -111,17 +111,23 @@ def choose_time_step(crossing: Crossing, stability_limit: Optional[float] = None
     return rule(crossing)
 
 
-#: steps per period of the highest vehicle mode, most road per step [m], road features per step (measured
-#: stations, defect ramps: not on a generated band-limited road, ``RoadProfile.band_limited``), steps per span
-#: passage and per first bridge period for the exact modal integrator (docs/verification.md, convergence study)
+#: steps per period of the highest vehicle mode, most road per step [m] on a generated road up to ISO 8608
+#: class C and on others, road features per step (measured stations, defect ramps: not on a generated
+#: band-limited road, ``RoadProfile.band_limited``), steps per span passage and per first bridge period for
+#: the exact modal integrator (docs/verification.md, convergence study and the paper programme against RK4)
 EXACT_STEPS_PER_VEHICLE_PERIOD = 20.0
 EXACT_ROAD_LENGTH_PER_STEP = 0.03
+EXACT_ROUGH_ROAD_LENGTH_PER_STEP = 0.02
 EXACT_STEPS_PER_SPAN = 100.0
 EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = 100.0
 EXACT_ROAD_FEATURES_PER_STEP = 2.0
 #: [substitute] steps per shortest wavelength of a generated random road (``RoadOrigin.shortest_wavelength``):
 #: ISO 8608's band (n_max = 4 cycle/m) gives 3.1 cm, above ``EXACT_ROAD_LENGTH_PER_STEP``; a finer band a shorter step
 EXACT_STEPS_PER_ROAD_WAVELENGTH = 8.0
+#: G_d(n₀) [m³/cycle] above which a generated road takes ``EXACT_ROUGH_ROAD_LENGTH_PER_STEP``: ISO 8608's upper
+#: limit of class C (its classes' geometric means 16e-6 · 4^i, limits at twice them).  On class D wheels hop and
+#: at 3 cm the paper programme had 6 crossings above its 1e-3 against converged RK4 (docs/verification.md)
+EXACT_SMOOTH_ROAD_ROUGHNESS = 512e-6
 
 
 def automatic_road_per_step(spacing: float) -> float:
@@ -133,15 +139,19 @@ def automatic_road_per_step(spacing: float) -> float:
 
 
 def exact_road_per_step(road: RoadProfile) -> float:
-    """The most road [m] a step of the exact integrator covers on ``road``: ``EXACT_ROAD_LENGTH_PER_STEP``;
-    on a generated random road (``band_limited``) 1/``EXACT_STEPS_PER_ROAD_WAVELENGTH`` of its shortest
-    wavelength, on a road whose stations may be edges (measured, with defects, given as arrays)
+    """The most road [m] a step of the exact integrator covers on ``road``.  On a generated random road
+    (``band_limited``): ``EXACT_ROAD_LENGTH_PER_STEP`` up to ISO 8608 class C (``RoadOrigin.roughness`` ≤
+    ``EXACT_SMOOTH_ROAD_ROUGHNESS``), ``EXACT_ROUGH_ROAD_LENGTH_PER_STEP`` on rougher ones, and at most
+    1/``EXACT_STEPS_PER_ROAD_WAVELENGTH`` of its shortest wavelength.  On a road whose stations may be
+    edges (measured, with defects, given as arrays): ``EXACT_ROUGH_ROAD_LENGTH_PER_STEP`` and
     ``EXACT_ROAD_FEATURES_PER_STEP`` of its shortest feature (``RoadProfile.spacing``)."""
-    if road.band_limited:
-        wavelength = road.origin.shortest_wavelength if road.origin is not None else None
-        return EXACT_ROAD_LENGTH_PER_STEP if wavelength is None else \
-            min(EXACT_ROAD_LENGTH_PER_STEP, wavelength / EXACT_STEPS_PER_ROAD_WAVELENGTH)
-    return min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing)
+    origin = road.origin
+    if road.band_limited and origin is not None:
+        smooth = origin.roughness is not None and origin.roughness <= EXACT_SMOOTH_ROAD_ROUGHNESS
+        length = EXACT_ROAD_LENGTH_PER_STEP if smooth else EXACT_ROUGH_ROAD_LENGTH_PER_STEP
+        wavelength = origin.shortest_wavelength
+        return length if wavelength is None else min(length, wavelength / EXACT_STEPS_PER_ROAD_WAVELENGTH)
+    return min(EXACT_ROUGH_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing)
 
 
 def implicit_time_step(crossing: Crossing) -> float:
