@@ -57,7 +57,8 @@ def test_other_road_spacing_and_smooth_road_get_their_own_step():
 
 def test_many_roads_mixed_steps_chunked_and_padded():
     """35 roads: more than one kernel call of MAX_LANES lanes, a padded last call, and roads of
-    another spacing (another step) and a smooth road in between; the order is kept."""
+    another spacing (the same step: one call reads both stations) and a smooth road (another step) in
+    between; the order is kept."""
     from vbikit.solve.simulate import MAX_LANES
 
     roads = _roads(33)

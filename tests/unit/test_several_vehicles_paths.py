@@ -10,7 +10,7 @@ from vbikit.analysis.impact import static_modal_history
 from vbikit.bridge import EulerBernoulliBeam
 from vbikit.road import RoadProfile
 from vbikit.solve import Crossing, VehicleMotion, choose_time_step, simulate
-from vbikit.solve.timestep import EXACT_ROAD_FEATURES_PER_STEP, EXACT_ROAD_LENGTH_PER_STEP
+from vbikit.solve.timestep import EXACT_ROAD_FEATURES_PER_STEP, EXACT_ROUGH_ROAD_LENGTH_PER_STEP
 from vbikit.vehicle import hs20_44
 
 
@@ -67,7 +67,8 @@ def test_auto_step_uses_fastest_vehicle(beam, integrator):
     assert v_true > 28.0  # the first vehicle speeds up to ≈ 29.7 m/s by the end of the run
     dt = choose_time_step(crossing)
     if integrator == "exact":
-        expected = min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v_true
+        # a road given as arrays (its stations may be edges): 2 cm and two stations a step
+        expected = min(EXACT_ROUGH_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v_true
     else:
         expected = road.spacing / v_true
     assert dt == pytest.approx(expected, rel=1e-12)

@@ -205,7 +205,7 @@ def test_automatic_steps_equal_the_eigenvalue_rule_whether_or_not_the_vehicle_bi
 def test_exact_step_takes_3_cm_of_a_generated_road_up_to_class_c_and_two_features_of_a_measured_one():
     """The exact integrator's road terms (vbikit.solve.timestep.exact_road_per_step): 3 cm of a
     generated random road up to ISO 8608 class C (1 cm stations that sample a band without wavelengths
-    below 1/n_max), 2 cm of class D; two stations of the same samples given as arrays or carrying a
+    below 1/n_max), 2 cm of class D where tires can leave the road; two stations of the same samples given as arrays or carrying a
     defect (every station may be an edge), and 1/8 of the shortest wavelength of a finer band."""
     import dataclasses as dc
 
@@ -219,6 +219,8 @@ def test_exact_step_takes_3_cm_of_a_generated_road_up_to_class_c_and_two_feature
 
     for cls, length in (("A", 0.03), ("C", 0.03), ("D", 0.02), ("H", 0.02)):
         assert road(cls).band_limited and exact_road_per_step(road(cls)) == pytest.approx(length), cls
+        # tires that cannot leave the road (linear springs that may pull): no wheel hop, 3 cm on any class
+        assert exact_road_per_step(road(cls), loss_of_contact=False) == pytest.approx(0.03), cls
     upper_c = dc.replace(RoadPSD.iso("C"), phi0=1.99 * RoadPSD.iso("C").phi0)  # just inside class C (limit 2x)
     assert exact_road_per_step(random_profile(upper_c, 3, length=200.0, window=(0.0, 50.0))) == pytest.approx(0.03)
     lower_d = dc.replace(RoadPSD.iso("C"), phi0=2.01 * RoadPSD.iso("C").phi0)  # just inside class D

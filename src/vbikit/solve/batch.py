@@ -32,7 +32,7 @@ from vbikit.solve.plan import TimeGrid, time_grid
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.simulate import MAX_LANES, integrate
 from vbikit.solve.system import kernel_data, static_modal_history
-from vbikit.solve.timestep import choose_time_step
+from vbikit.solve.timestep import choose_time_step, road_step_key
 
 log = logging.getLogger(__name__)
 T = TypeVar("T")
@@ -102,8 +102,8 @@ class BatchSolver:
         return choose_time_step(crossing, stability_limit=self._limit, automatic=self._accuracy_step)
 
     def _accuracy_step(self, crossing: Crossing) -> float:
-        # within a batch the automatic step depends only on the roads' spacings
-        key = tuple(r.spacing if r is not None else None for r in (crossing.road, crossing.road_right))
+        # within a batch the automatic step depends only on what the rules read of the roads
+        key = tuple(road_step_key(r) for r in (crossing.road, crossing.road_right))
         if key not in self._accuracy:
             self._accuracy[key] = get_integrator(crossing.integrator).time_step(crossing)
         return self._accuracy[key]

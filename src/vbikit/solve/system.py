@@ -351,12 +351,19 @@ def road_data(roads: Sequence[tuple[RoadProfile | None, RoadProfile | None]], x_
         if not (min(x_min, x_max) >= p.x[0] - 1e-9 and max(x_min, x_max) <= p.x[-1] + 1e-9):  # (its range check)
             p.evaluate(np.array([x_min, x_max]))  # its clear message
 
+    def cut_of(p: RoadProfile, a: float, b: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        lo, hi = np.searchsorted(p.x, [a, b], side="right")
+        window = slice(max(0, lo - 2), min(p.x.size, hi + 2))
+        return p.x[window], p.z[window]
+
     cuts: dict[int, tuple[NDArray[np.float64], NDArray[np.float64]]] = {}  # per profile (by identity): its stations
-    for p in profiles:  # the stations that matter for x_min … x_max, and its elevations there
+    for p in profiles:  # the stations that matter for x_min … x_max (two beyond each end), and its elevations there
         if id(p) not in cuts:
-            lo, hi = np.searchsorted(p.x, [x_min, x_max], side="right")
-            window = slice(max(0, lo - 2), min(p.x.size, hi + 2))
-            cuts[id(p)] = (p.x[window], p.z[window])
+            cuts[id(p)] = cut_of(p, x_min, x_max)
+    if cuts:  # profiles of other spacings: each cut over the widest cut's range, so that every lane reads its own
+        # profile (not another's stations, nor its own clamped) wherever any lane's stations reach
+        a, b = min(x[0] for x, _ in cuts.values()), max(x[-1] for x, _ in cuts.values())
+        cuts = {k: cut_of(p, a, b) for p in profiles if (k := id(p)) in cuts}
     cut = list(cuts.values())
     if not profiles:
         stations = np.array([x_min - 1.0, x_max + 1.0])

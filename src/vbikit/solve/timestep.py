@@ -138,20 +138,31 @@ def automatic_road_per_step(spacing: float) -> float:
     return max(EXACT_ROAD_LENGTH_PER_STEP, float(spacing))
 
 
-def exact_road_per_step(road: RoadProfile) -> float:
+def exact_road_per_step(road: RoadProfile, loss_of_contact: bool = True) -> float:
     """The most road [m] a step of the exact integrator covers on ``road``.  On a generated random road
-    (``band_limited``): ``EXACT_ROAD_LENGTH_PER_STEP`` up to ISO 8608 class C (``RoadOrigin.roughness`` ≤
-    ``EXACT_SMOOTH_ROAD_ROUGHNESS``), ``EXACT_ROUGH_ROAD_LENGTH_PER_STEP`` on rougher ones, and at most
+    (``band_limited``): ``EXACT_ROAD_LENGTH_PER_STEP``, or ``EXACT_ROUGH_ROAD_LENGTH_PER_STEP`` above ISO 8608
+    class C (``RoadOrigin.roughness`` > ``EXACT_SMOOTH_ROAD_ROUGHNESS``) where tires can leave the road
+    (``loss_of_contact``: there wheels hop and the contact's instants are resolved to the step), and at most
     1/``EXACT_STEPS_PER_ROAD_WAVELENGTH`` of its shortest wavelength.  On a road whose stations may be
     edges (measured, with defects, given as arrays): ``EXACT_ROUGH_ROAD_LENGTH_PER_STEP`` and
     ``EXACT_ROAD_FEATURES_PER_STEP`` of its shortest feature (``RoadProfile.spacing``)."""
     origin = road.origin
     if road.band_limited and origin is not None:
-        smooth = origin.roughness is not None and origin.roughness <= EXACT_SMOOTH_ROAD_ROUGHNESS
-        length = EXACT_ROAD_LENGTH_PER_STEP if smooth else EXACT_ROUGH_ROAD_LENGTH_PER_STEP
+        rough = loss_of_contact and (origin.roughness is None or origin.roughness > EXACT_SMOOTH_ROAD_ROUGHNESS)
+        length = EXACT_ROUGH_ROAD_LENGTH_PER_STEP if rough else EXACT_ROAD_LENGTH_PER_STEP
         wavelength = origin.shortest_wavelength
         return length if wavelength is None else min(length, wavelength / EXACT_STEPS_PER_ROAD_WAVELENGTH)
     return min(EXACT_ROUGH_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing)
+
+
+def road_step_key(road: RoadProfile | None) -> tuple | None:
+    """What of ``road`` the automatic step rules read (``RoadProfile.spacing``; on a generated road its
+    band and roughness, ``exact_road_per_step``): roads with equal keys get equal steps on the same
+    crossing (a batch computes the step once per key)."""
+    if road is None:
+        return None
+    origin = road.origin if road.band_limited else None
+    return (road.spacing, None if origin is None else (origin.roughness, origin.shortest_wavelength))
 
 
 def implicit_time_step(crossing: Crossing) -> float:
@@ -161,7 +172,7 @@ def implicit_time_step(crossing: Crossing) -> float:
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     for road in (crossing.road, crossing.road_right):
         if road is not None and road.spacing > 0:
-            candidates.append(exact_road_per_step(road) / v_max)
+            candidates.append(exact_road_per_step(road, crossing.loss_of_contact) / v_max)
     return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, min(candidates))
 
 
