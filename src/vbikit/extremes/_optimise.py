@@ -27,8 +27,12 @@ import numpy as np
 
 #: Nelder–Mead tolerances in standardised units (parameters of order one): absolute on the
 #: parameters and on −log L; tighter than scipy's ``fit`` (1e-4 on both in the data's units)
-XATOL = 1e-5
-FATOL = 1e-7
+XATOL = 1e-6
+FATOL = 1e-9
+#: the same for a bootstrap's refit from the full sample's estimate, scipy's ``fit`` tolerances: a
+#: resample's estimate scatters by its standard error (of order 1/√n ≥ 1e-2 here), not by these
+REFIT_XATOL = 1e-4
+REFIT_FATOL = 1e-6
 #: evaluations allowed to one run (a regular fit takes 60–200; a likelihood unbounded at ξ < −1
 #: runs on toward its end point, and the caller's fallback takes over)
 MAXFEV = 1000
@@ -87,9 +91,11 @@ def gpd_start(y: np.ndarray, l1: float, l2: float) -> np.ndarray:
     return np.array([-k, scale])
 
 
-def minimise_nnlf(dist, data: np.ndarray, start: np.ndarray, fixed_loc: bool) -> np.ndarray | None:
+def minimise_nnlf(dist, data: np.ndarray, start: np.ndarray, fixed_loc: bool, xatol: float = XATOL,
+                  fatol: float = FATOL) -> np.ndarray | None:
     """Minimise scipy's ``dist.nnlf`` over (c, loc, scale), or (c, scale) with loc 0 when
-    ``fixed_loc``, by Nelder–Mead from ``start`` (same layout), in standardised units.
+    ``fixed_loc``, by Nelder–Mead from ``start`` (same layout), in standardised units, to the
+    tolerances ``xatol`` (parameters) and ``fatol`` (−log L).
 
     Returns the parameters in the data's units, or None when the run fails (not converged, or a
     non-finite likelihood at its end)."""
@@ -117,7 +123,7 @@ def minimise_nnlf(dist, data: np.ndarray, start: np.ndarray, fixed_loc: bool) ->
         v = f(p)
         return v if np.isfinite(v) else np.inf
 
-    res = minimize(finite, x0, method="Nelder-Mead", options={"xatol": XATOL, "fatol": FATOL, "maxfev": MAXFEV})
+    res = minimize(finite, x0, method="Nelder-Mead", options={"xatol": xatol, "fatol": fatol, "maxfev": MAXFEV})
     if not (res.success and np.isfinite(res.fun)):
         return None
     p = res.x

@@ -197,25 +197,27 @@ IRREGULAR_SHAPE = -0.5
 
 def _fast_mle(distribution: str, data: np.ndarray, start: np.ndarray | None) -> np.ndarray | None:
     """θ (``_PARAMS`` order, Coles's ξ) of one Nelder–Mead run on scipy's likelihood from ``start``
-    or, failing that, from the L-moment estimates (``vbikit.extremes._optimise``); None if both fail."""
+    (to a bootstrap refit's tolerances) or, failing that, from the L-moment estimates
+    (``vbikit.extremes._optimise``); None if both fail."""
     from scipy import stats
 
     from vbikit.extremes import _optimise
 
     lm = _optimise.sample_l_moments(data)
     if distribution == "gev":
-        starts = [] if start is None else [np.array([-start[2], start[0], start[1]])]
-        for first in [*starts, _optimise.gev_start(data, *lm)]:
-            p = _optimise.minimise_nnlf(stats.genextreme, data, first, fixed_loc=False)
-            if p is not None:
-                return np.array([p[1], p[2], -p[0]])
+        dist, fixed_loc, first = stats.genextreme, False, _optimise.gev_start(data, *lm)
+        given = None if start is None else np.array([-start[2], start[0], start[1]])
+    else:  # the excesses over the threshold, location 0
+        dist, fixed_loc, first = stats.genpareto, True, _optimise.gpd_start(data, *lm[:2])
+        given = None if start is None else np.array([start[1], start[0]])
+    p = None
+    if given is not None:
+        p = _optimise.minimise_nnlf(dist, data, given, fixed_loc, _optimise.REFIT_XATOL, _optimise.REFIT_FATOL)
+    if p is None:
+        p = _optimise.minimise_nnlf(dist, data, first, fixed_loc)
+    if p is None:
         return None
-    starts = [] if start is None else [np.array([start[1], start[0]])]
-    for first in [*starts, _optimise.gpd_start(data, *lm[:2])]:
-        p = _optimise.minimise_nnlf(stats.genpareto, data, first, fixed_loc=True)
-        if p is not None:
-            return np.array([p[1], p[0]])
-    return None
+    return np.array([p[1], p[2], -p[0]]) if distribution == "gev" else np.array([p[1], p[0]])
 
 
 def _mle(distribution: str, data: np.ndarray, start: np.ndarray | None = None) -> np.ndarray:
