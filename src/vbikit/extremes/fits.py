@@ -10,6 +10,11 @@ Introduction to Statistical Modeling of Extreme Values*:
 - GPD of the excess y = x − u over a threshold u (Coles eq. 4.2):
   H(y) = 1 − (1 + ξ y/σ)^(−1/ξ).
 
+The maximum of the GEV and GPD likelihoods is found by one Nelder–Mead run on scipy's ``nnlf``
+from the L-moment estimates (Hosking 1990; ``vbikit.extremes._optimise``), which lands on the
+optimum of scipy's own ``fit`` (tested); scipy's ``fit`` from several starts remains the fallback and
+decides a fit that lands at ξ < −0.5, where the likelihood is irregular.
+
 **scipy's sign trap:** ``scipy.stats.genextreme`` uses c = −ξ (its c > 0 is the *bounded*
 Weibull type), while ``scipy.stats.genpareto`` uses c = +ξ.  ``ExtremeFit.shape`` is always
 Coles's ξ; ``ExtremeFit.scipy_c`` is the value scipy wants.
