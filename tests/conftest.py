@@ -3,7 +3,8 @@ never read modes cached by an earlier version of the code and never write to the
 
 In a distributed run (pytest-xdist, the default) the workers first share the kernel compilation
 out (``_share_the_kernel_compilation``): each has some of the groups of
-``vbikit.solve.warmup.kernel_groups`` (and the pseudo-excitation and load-effect kernels) compiled
+``vbikit.solve.warmup.kernel_groups`` (and the pseudo-excitation, load-effect, static-history,
+exact-peak and drive-by kernels) compiled
 in a child process, and every test process then loads them from numba's disk cache, instead of
 every worker compiling each kernel its tests meet; numba's cache writes are serialised between the
 processes (``_lock_numba_cache_writes``).  When the cache already holds them as an earlier run of the
@@ -120,16 +121,20 @@ def _lock_numba_cache_writes() -> None:
 def _compile_groups() -> dict[str, Callable[[], object]]:
     """What the workers share out, largest first (cold-compile CPU seconds of each, alone in a fresh
     process, measured 2026-12-05 two at a time on a loaded machine: rk4 54, implicit-full 39,
-    implicit-lanes 25, implicit-lean 9, random 5, the rest about 1): ``kernel_groups`` and the
-    pseudo-excitation and load-effect kernels (kernels of their own, so that no kernel is compiled
-    by two groups)."""
-    from vbikit.analysis.warmup import compile_effect_kernels
+    implicit-lanes 25, implicit-lean 9, random 5, the rest about 1; measured 2026-12-06: driveby 3,
+    histories 2.5): ``kernel_groups`` and the pseudo-excitation, load-effect, static-history and
+    exact-peak, and drive-by kernels (kernels of their own, so that no kernel is compiled by two
+    groups)."""
+    from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
+    from vbikit.driveby.warmup import compile_driveby_kernels
     from vbikit.random.warmup import compile_random_kernels
     from vbikit.solve.warmup import kernel_groups
 
     groups: dict[str, Callable[[], object]] = dict(kernel_groups())
     groups["random"] = compile_random_kernels
     groups["effects"] = compile_effect_kernels
+    groups["histories"] = compile_history_kernels
+    groups["driveby"] = compile_driveby_kernels
     first = ["rk4", "implicit-full", "implicit-lanes", "implicit-lean"]
     return {k: groups[k] for k in sorted(groups, key=lambda k: first.index(k) if k in first else len(first))}
 

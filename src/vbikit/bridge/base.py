@@ -138,6 +138,13 @@ class ModalBridge(abc.ABC):
     def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         """Mass-normalised vertical mode-shape values φᵢ(x, y) [kg^-1/2], shape (n_points, n_modes)."""
 
+    @property
+    def shape_source(self) -> "ModalBridge":
+        """The bridge whose mode shapes (and geometry) these are: itself; a bridge that only rescales
+        another's stiffness or damping (``ScaledBridge``) gives that one's.  Tables of the shapes
+        (``vbikit.solve.tabulate``) are kept for it, shared by every bridge with the same shapes."""
+        return self
+
     @abc.abstractmethod
     def mode_slopes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         """Longitudinal derivatives ∂φᵢ/∂x [kg^-1/2 m^-1], shape (n_points, n_modes)."""

@@ -55,6 +55,10 @@ class ScaledBridge(ModalBridge):
         z = self.base.damping_ratios
         return z if self._zeta is None else np.full_like(z, self._zeta)
 
+    @property
+    def shape_source(self) -> ModalBridge:
+        return self.base.shape_source  # the shapes and geometry are the base model's
+
     def mode_shapes(self, x: ArrayLike, y: ArrayLike = 0.0) -> NDArray[np.float64]:
         return self.base.mode_shapes(x, y)
 

@@ -104,7 +104,8 @@ def compile_() -> None:
     from vbikit.cli.guard import guard
 
     def work() -> None:
-        from vbikit.analysis.warmup import compile_effect_kernels
+        from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
+        from vbikit.driveby.warmup import compile_driveby_kernels
         from vbikit.random.warmup import compile_random_kernels
         from vbikit.solve.numba_cache import cache_location
         from vbikit.solve.warmup import compile_kernels
@@ -114,6 +115,8 @@ def compile_() -> None:
             typer.echo(f"  {name:<8} ready in {seconds:.1f} s")
         typer.echo(f"  {'random':<8} ready in {compile_random_kernels():.1f} s (pseudo-excitation)")
         typer.echo(f"  {'effects':<8} ready in {compile_effect_kernels():.1f} s (load effects on beams and grillage decks)")
+        typer.echo(f"  {'history':<8} ready in {compile_history_kernels():.1f} s (static modal histories, exact static peaks)")
+        typer.echo(f"  {'driveby':<8} ready in {compile_driveby_kernels():.1f} s (decoupled drive-by passes)")
         typer.echo(f"numba cache: {cache_location()}")
 
     guard(work)

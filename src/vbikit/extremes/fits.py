@@ -10,6 +10,11 @@ Introduction to Statistical Modeling of Extreme Values*:
 - GPD of the excess y = x − u over a threshold u (Coles eq. 4.2):
   H(y) = 1 − (1 + ξ y/σ)^(−1/ξ).
 
+The maximum of the GEV and GPD likelihoods is found by one Nelder–Mead run on scipy's ``nnlf``
+from the L-moment estimates (Hosking 1990; ``vbikit.extremes._optimise``), which lands on the
+optimum of scipy's own ``fit`` (tested); scipy's ``fit`` from several starts remains the fallback and
+decides a fit that lands at ξ < −0.5, where the likelihood is irregular.
+
 **scipy's sign trap:** ``scipy.stats.genextreme`` uses c = −ξ (its c > 0 is the *bounded*
 Weibull type), while ``scipy.stats.genpareto`` uses c = +ξ.  ``ExtremeFit.shape`` is always
 Coles's ξ; ``ExtremeFit.scipy_c`` is the value scipy wants.
@@ -121,24 +126,33 @@ class ExtremeFit:
         return out
 
 
-def _frozen(distribution: str, theta: np.ndarray, threshold: float | None) -> Any:
+def _scipy(distribution: str, theta: np.ndarray, threshold: float | None) -> tuple[Any, tuple[float, ...]]:
+    """The scipy.stats distribution of a block maximum (GEV/Gumbel) or of a value above the
+    threshold (GPD, loc = u) and its arguments (shape first, then loc, scale) for θ."""
     from scipy import stats
 
     if distribution == "gev":
         mu, sigma, xi = theta
-        return stats.genextreme(-xi, loc=mu, scale=sigma)
+        return stats.genextreme, (-xi, mu, sigma)
     if distribution == "gumbel":
         mu, sigma = theta
-        return stats.gumbel_r(loc=mu, scale=sigma)
+        return stats.gumbel_r, (mu, sigma)
     sigma, xi = theta
-    return stats.genpareto(xi, loc=threshold, scale=sigma)
+    return stats.genpareto, (xi, threshold, sigma)
+
+
+def _frozen(distribution: str, theta: np.ndarray, threshold: float | None) -> Any:
+    dist, args = _scipy(distribution, theta, threshold)
+    return dist(*args)
 
 
 def _nll(distribution: str, theta: np.ndarray, data: np.ndarray, threshold: float | None) -> float:
+    """scipy's negative log-likelihood −Σ log f(x) (``nnlf``); +∞ for a scale ≤ 0 or data outside the support."""
     scale = theta[1] if distribution != "gpd" else theta[0]
     if scale <= 0:
         return np.inf
-    val = -float(np.sum(_frozen(distribution, theta, threshold).logpdf(data)))
+    dist, args = _scipy(distribution, theta, threshold)
+    val = float(dist.nnlf(args, data))
     return val if np.isfinite(val) else np.inf
 
 
@@ -180,36 +194,66 @@ def _covariance(distribution: str, theta: np.ndarray, data: np.ndarray, threshol
 _PARAMS = {"gev": ("location", "scale", "shape"), "gumbel": ("location", "scale"), "gpd": ("scale", "shape")}
 
 
+#: below this ξ the likelihood is irregular (Smith 1985; Coles §3.3.2) and may grow without bound
+#: toward ξ < −1, where a fit's end point is the optimiser's: a fit landing there is redone as
+#: scipy's ``fit`` from several starts
+IRREGULAR_SHAPE = -0.5
+
+
+def _fast_mle(distribution: str, data: np.ndarray, start: np.ndarray | None) -> np.ndarray | None:
+    """θ (``_PARAMS`` order, Coles's ξ) of one Nelder–Mead run on scipy's likelihood from ``start``
+    (to a bootstrap refit's tolerances) or, failing that, from the L-moment estimates
+    (``vbikit.extremes._optimise``); None if both fail."""
+    from scipy import stats
+
+    from vbikit.extremes import _optimise
+
+    lm = _optimise.sample_l_moments(data)
+    if distribution == "gev":
+        dist, fixed_loc, first = stats.genextreme, False, _optimise.gev_start(data, *lm)
+        given = None if start is None else np.array([-start[2], start[0], start[1]])
+    else:  # the excesses over the threshold, location 0
+        dist, fixed_loc, first = stats.genpareto, True, _optimise.gpd_start(data, *lm[:2])
+        given = None if start is None else np.array([start[1], start[0]])
+    p = None
+    if given is not None:
+        p = _optimise.minimise_nnlf(dist, data, given, fixed_loc, _optimise.REFIT_XATOL, _optimise.REFIT_FATOL)
+    if p is None:
+        p = _optimise.minimise_nnlf(dist, data, first, fixed_loc)
+    if p is None:
+        return None
+    return np.array([p[1], p[2], -p[0]]) if distribution == "gev" else np.array([p[1], p[0]])
+
+
 def _mle(distribution: str, data: np.ndarray, start: np.ndarray | None = None) -> np.ndarray:
-    """Maximum-likelihood parameters (θ in ``_PARAMS`` order, ξ in Coles's sign) by scipy's ``fit``;
-    with ``start`` (a θ) one optimisation from there (the bootstrap's refits), else several starts."""
+    """Maximum-likelihood parameters (θ in ``_PARAMS`` order, ξ in Coles's sign) of scipy's
+    likelihood: ``_fast_mle`` (from ``start``, a θ, for the bootstrap's refits).  Should it fail, or
+    end at ξ < ``IRREGULAR_SHAPE`` without a ``start``, scipy's ``fit`` from several starts instead,
+    the best kept (the fast fit only if none of these has a finite likelihood)."""
     from scipy import stats
 
     if distribution == "gumbel":
         mu, sigma = stats.gumbel_r.fit(data)
         return np.array([mu, sigma])
-    if start is not None:
-        if distribution == "gev":
-            c, loc, scale = stats.genextreme.fit(data, -start[2], loc=start[0], scale=start[1])
-            theta = np.array([loc, scale, -c])
-        else:
-            c, _, scale = stats.genpareto.fit(data, start[1], floc=0.0, scale=start[0])
-            theta = np.array([scale, c])
-        if np.isfinite(_nll(distribution, theta, data, 0.0 if distribution == "gpd" else None)):
-            return theta
+    thr = 0.0 if distribution == "gpd" else None
+    fast = _fast_mle(distribution, data, start)
+    if fast is not None and (start is not None or fast[-1] >= IRREGULAR_SHAPE):
+        return fast
     if distribution == "gev":
         mu0, s0 = stats.gumbel_r.fit(data)
         candidates = [stats.genextreme.fit(data)]
         for c0 in (0.0, 0.2, -0.2):
             candidates.append(stats.genextreme.fit(data, c0, loc=mu0, scale=s0))
         thetas = [np.array([loc, scale, -c]) for c, loc, scale in candidates]
-    else:  # gpd on the excesses, location fixed at 0
+    else:
         candidates = [stats.genpareto.fit(data, floc=0.0)]
         for c0 in (0.1, -0.1):
             candidates.append(stats.genpareto.fit(data, c0, floc=0.0, scale=float(np.mean(data))))
         thetas = [np.array([scale, c]) for c, _, scale in candidates]
-    nlls = [_nll(distribution, t, data, 0.0 if distribution == "gpd" else None) for t in thetas]
+    nlls = [_nll(distribution, t, data, thr) for t in thetas]
     best = int(np.argmin(nlls))
+    if not np.isfinite(nlls[best]) and fast is not None:
+        return fast
     if not np.isfinite(nlls[best]):
         raise ExtremesError(f"sample: the {distribution.upper()} maximum-likelihood fit did not converge "
                             f"(no finite likelihood); check the data")

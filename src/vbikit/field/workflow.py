@@ -112,12 +112,28 @@ def sensor_y(bridge: ModalBridge, girder: int, where: str) -> float:
     return float(gy[girder - 1])
 
 
-def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: ModalBridge, dt: float | None = None) -> Crossing:
-    """The simulated crossing of one loading case (vehicle enters in static equilibrium ``approach`` before the span)."""
+Profiles = tuple[RoadProfile | None, RoadProfile | None]
+
+
+def _check_truck(spec: FieldSpec) -> None:
     if spec.truck not in VEHICLE_PRESETS:
         raise FieldFileError(f"{spec.path}: truck {spec.truck!r} is not a preset; allowed: {', '.join(VEHICLE_PRESETS)}")
-    left = read_profile_csv(case.profile_left) if case.profile_left else None
-    right = read_profile_csv(case.profile_right) if case.profile_right else None
+
+
+def case_profiles(case: CaseSpec) -> Profiles:
+    """The case's measured wheel-track profiles (left, right) read from their CSV files (None where
+    the case gives none); a bad file raises ``RoadFileError`` naming it and the line."""
+    return (read_profile_csv(case.profile_left) if case.profile_left else None,
+            read_profile_csv(case.profile_right) if case.profile_right else None)
+
+
+def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: ModalBridge, dt: float | None = None,
+                  profiles: Profiles | None = None) -> Crossing:
+    """The simulated crossing of one loading case (vehicle enters in static equilibrium ``approach``
+    before the span); ``profiles``: the case's profiles as ``case_profiles`` reads them (read here
+    when None; a caller simulating one case several times reads them once)."""
+    _check_truck(spec)
+    left, right = case_profiles(case) if profiles is None else profiles
     offset = tested_span_offset(bridge)
     if offset:  # a series of spans: x of the files is from the tested span's entry, the crossing's from the first span's
         if spec.approach < offset:
@@ -213,9 +229,14 @@ def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None)
     bridge = base_bridge(spec)
     check_bridge(bridge, limits)
     for case in spec.cases:
+        profiles: Profiles | None = None
         for name in tires:
             try:
-                check_steps(case_crossing(spec, case, field_tire(name), bridge, spec.dt), limits)
+                tire = field_tire(name)
+                if profiles is None:  # read once for every tire model (after the checks case_crossing makes first)
+                    _check_truck(spec)
+                    profiles = case_profiles(case)
+                check_steps(case_crossing(spec, case, tire, bridge, spec.dt, profiles), limits)
             except FieldFileError:
                 raise
             except (ValueError, RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
@@ -234,8 +255,13 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
     sims: dict[str, dict[str, NDArray[np.float64]]] = {}
     t_sim = np.zeros(0)
     dt = spec.dt
+    profiles: Profiles | None = None
     for name in tires:
-        res = simulate(case_crossing(spec, case, field_tire(name), bridge, dt))
+        tire = field_tire(name)
+        if profiles is None:  # read once for every tire model (after the checks case_crossing makes first)
+            _check_truck(spec)
+            profiles = case_profiles(case)
+        res = simulate(case_crossing(spec, case, tire, bridge, dt, profiles))
         dt = res.dt  # every tire model on the same time step …
         t_sim = res.time if t_sim.size == 0 or res.time.size < t_sim.size else t_sim
         sims[name] = simulated_channels(res, case, where)
@@ -320,7 +346,7 @@ def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "m
                 d = cmp.drift[ch.name]
                 m = m - (d.offset + d.drift * (t_meas - d.t_ref))
             chans[ch.name] = m
-        prepared.append((cmp, t_meas, chans))
+        prepared.append((cmp, t_meas, chans, case_profiles(case)))  # the profiles read once, not per evaluation
     x_start = np.array(x0 if x0 is not None else (spec.stiffness_factor, spec.damping_ratio), float)
     nfev = [0]
 
@@ -328,8 +354,8 @@ def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "m
         nfev[0] += 1
         bridge = ScaledBridge(base, float(p[0]), float(p[1]))
         out = []
-        for cmp, t_meas, chans in prepared:
-            res = simulate(case_crossing(spec, cmp.case, field_tire(tire), bridge, cmp.dt))
+        for cmp, t_meas, chans, profiles in prepared:
+            res = simulate(case_crossing(spec, cmp.case, field_tire(tire), bridge, cmp.dt, profiles))
             sim = simulated_channels(res, cmp.case, str(spec.path))
             ok = (t_meas >= res.time[0]) & (t_meas <= res.time[-1])
             for ch in cmp.case.channels:

@@ -37,8 +37,10 @@ _TRACKS_PER_BRIDGE = 64
 
 
 def _cache(bridge: ModalBridge) -> Kept:
-    """The tables kept for ``bridge`` (dropped when it is collected)."""
-    return kept_for(bridge, "track tables", _TRACKS_PER_BRIDGE)
+    """The tables kept for ``bridge``'s mode shapes, by the bridge they come from
+    (``ModalBridge.shape_source``: a field calibration's rescaled bridges share their base's; dropped
+    when it is collected)."""
+    return kept_for(bridge.shape_source, "track tables", _TRACKS_PER_BRIDGE)
 
 
 def _track(bridge: ModalBridge, y: float, x: NDArray[np.float64], points_per_mode: int):
