@@ -20,6 +20,7 @@ Newmark's (``vbikit.solve.kernels.implicit``).
 """
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -30,12 +31,16 @@ from vbikit.solve.kernels import ModalStep, Vehicles, VehicleStep
 from vbikit.solve.kernels.bundles import FusedVehicleStep
 from vbikit.solve.kernels.lean import wheel_entries
 
-#: step maps already made in this process, by the exact bytes of their inputs and the step (a study,
-#: a traffic stream or repeated runs ask for the same few maps thousands of times; each costs two
-#: small matrix exponentials).  Every later crossing with the same inputs shares a map's arrays, so
-#: nothing may write to them (they stay writeable only because numba compiles a separate kernel for
-#: read-only arrays).
-_MAPS: "Kept[tuple, ModalStep | VehicleStep]" = Kept(256)
+#: the vehicles' step maps (``vehicle_step``) already made in this process, by the exact bytes of
+#: their inputs and the step (a study or repeated runs ask for the same few maps thousands of times;
+#: each costs a matrix exponential).  Every later crossing with the same inputs shares a map's arrays,
+#: so nothing may write to them (they stay writeable only because numba compiles a separate kernel
+#: for read-only arrays).
+_MAPS: "Kept[tuple, VehicleStep]" = Kept(256)
+#: the bridge's step maps (``exact_step``) likewise, kept apart from the vehicles': a traffic stream's
+#: events each have vehicles of their own, so their maps come and go and would push out the bridge's
+#: maps of the steps that recur (a study's crossings, events at a speed met before)
+_MODAL_MAPS: "Kept[tuple, ModalStep]" = Kept(512)
 #: the lean kernels' fused maps of the step maps in ``_MAPS`` (``fused_step``), by the step map's
 #: identity; each entry holds its step map, so no other object can have that identity while it is kept
 _FUSED: "Kept[int, tuple[VehicleStep, FusedVehicleStep]]" = Kept(256)
@@ -82,16 +87,35 @@ def _squarings(norm: float) -> int:
     return max(0, int(np.ceil(np.log2(norm / 0.5)))) if norm > 0.5 else 0
 
 
+#: the Taylor series' degree (``_taylor``) and the coefficients 1/k! of its Paterson–Stockmeyer blocks:
+#: row j holds those of B_j = Σ_{i < 4} c_{4j+i} Xⁱ (zero beyond the degree)
+TAYLOR_DEGREE = 18
+_BLOCK_COEFFICIENTS = np.array([[1.0 / math.factorial(4 * j + i) if 4 * j + i <= TAYLOR_DEGREE else 0.0
+                                 for i in range(4)] for j in range(TAYLOR_DEGREE // 4 + 1)])
+
+
 def _taylor(x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Σ_{k ≤ 18} xᵏ/k! of each matrix of the stack ``x`` (the terms as term = term @ x / k, in place)."""
-    result = np.zeros(x.shape)  # the identity (of each matrix of the stack)
+    """Σ_{k ≤ 18} xᵏ/k! of each matrix of the stack ``x``, by Paterson & Stockmeyer's scheme (SIAM J.
+    Comput. 2(1), 1973, 60–66; Higham, *Functions of Matrices*, 2008, §4.2): with X⁴ = (X²)²,
+
+        Σ_k Xᵏ/k! = B_0 + X⁴(B_1 + X⁴(B_2 + X⁴(B_3 + X⁴ B_4))),   B_j = Σ_{i < 4} Xⁱ/(4j + i)!,
+
+    seven matrix products (X², X³, X⁴ and four Horner steps) instead of the eighteen of the term
+    recursion, and the five blocks as one product of their coefficients with the stacked I, X, X², X³:
+    the same sum to round-off (a block's terms are at most 1/2⁴ of the last one's, ‖X‖₁ ≤ 1/2)."""
+    powers = np.zeros((4,) + x.shape)  # I, X, X², X³ of each matrix of the stack
     diagonal = np.arange(x.shape[-1])
-    result[..., diagonal, diagonal] = 1.0
-    term, work = result.copy(), np.empty(x.shape)
-    for k in range(1, 19):
-        np.matmul(term, x, out=work)
-        np.divide(work, k, out=term)
-        result += term
+    powers[0][..., diagonal, diagonal] = 1.0
+    powers[1] = x
+    np.matmul(x, x, out=powers[2])
+    np.matmul(powers[2], x, out=powers[3])
+    x4 = powers[2] @ powers[2]
+    blocks = (_BLOCK_COEFFICIENTS @ powers.reshape(4, -1)).reshape((len(_BLOCK_COEFFICIENTS),) + x.shape)
+    result, work = blocks[-1].copy(), np.empty(x.shape)
+    for block in blocks[-2::-1]:
+        np.matmul(x4, result, out=work)
+        result, work = work, result
+        result += block
     return result
 
 
@@ -111,7 +135,7 @@ def exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float, 
         raise ValueError("exact modal stepping needs natural frequencies > 0")
     if hold not in HOLDS:
         raise ValueError(f"hold must be one of {HOLDS} (the load polynomial's degree), got {hold!r}")
-    return _MAPS.get(_input_key(f"exact{hold}", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h, hold))
+    return _MODAL_MAPS.get(_input_key(f"exact{hold}", h, (omega, zeta)), lambda: _exact_step(omega, zeta, h, hold))
 
 
 def _exact_step(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float, hold: int = LINEAR) -> ModalStep:
@@ -349,7 +373,36 @@ def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.fl
 
 def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int):
     """The exponential of one block's augmented system (``_augmented``) over the step: (Φ, Lp, L0, L1, b)."""
-    return _block_maps(expm(_augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold)), gravity.size, rows.shape[0], hold)
+    a = _augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold)
+    d = _balancing(a, gravity.size, rows.shape[0], hold)
+    return _block_maps(_unbalanced(expm(_balanced(a, d)), d), gravity.size, rows.shape[0], hold)
+
+
+def _balancing(a: NDArray[np.float64], n_d: int, n_w: int, hold: int) -> NDArray[np.float64]:
+    """Powers of two d of a diagonal similarity D B D⁻¹ (``_balanced``) that brings the augmented matrix
+    B of a block (``_augmented``) to a small norm, so that its exponential takes few squarings (``expm``):
+    q scaled by σ ≈ (‖h M⁻¹K̂‖₁ / h)^½ (a frequency of the block: the blocks q' = h q̇ and q̇' = −h M⁻¹K̂ q
+    become σh and h M⁻¹K̂ / σ, both ≈ h ω instead of one of them h ω²), and the load's k-th derivative by
+    4ᵏ (its chain's unit entries become 1/4).  exp(D B D⁻¹) = D exp(B) D⁻¹, and a power of two scales a
+    number without rounding, so only the series sees another matrix."""
+    d = np.ones(a.shape[-1])
+    stiffness = float(np.abs(a[n_d:2 * n_d, :n_d]).sum(axis=0).max(initial=0.0))
+    step = float(np.abs(a[:n_d, n_d:2 * n_d]).sum(axis=0).max(initial=0.0))
+    if stiffness > 0.0 and step > 0.0:
+        d[:n_d] = 2.0 ** round(0.5 * math.log2(stiffness / step))
+    for k in range(1, hold + 1):
+        d[2 * n_d + k * n_w:2 * n_d + (k + 1) * n_w] = 4.0**k
+    return d
+
+
+def _balanced(a: NDArray[np.float64], d: NDArray[np.float64]) -> NDArray[np.float64]:
+    """D B D⁻¹ of ``a`` with D = diag(``d``)."""
+    return a * (d[:, None] / d[None, :])
+
+
+def _unbalanced(e: NDArray[np.float64], d: NDArray[np.float64]) -> NDArray[np.float64]:
+    """D⁻¹ E D of ``e`` (the exponential of a ``_balanced`` matrix) with D = diag(``d``): the exponential of the original."""
+    return e * (d[None, :] / d[:, None])
 
 
 def _augmented(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int) -> NDArray[np.float64]:
@@ -404,12 +457,14 @@ def _vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleSt
     wheels = [np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi)) for lo, hi in blocks]
     augmented = [_augmented(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi],
                             h, hold) for (lo, hi), w in zip(blocks, wheels)]
+    scales = [_balancing(a, hi - lo, w.size, hold) for a, (lo, hi), w in zip(augmented, blocks, wheels)]
+    balanced = [_balanced(a, d) for a, d in zip(augmented, scales)]
     exponentials: list = [None] * len(blocks)
     for size in {a.shape for a in augmented}:  # blocks of one size (vehicles alike) in one series, each on its own scale
         alike = [i for i, a in enumerate(augmented) if a.shape == size]
-        stack = expm_each(np.stack([augmented[i] for i in alike])) if len(alike) > 1 else [expm(augmented[alike[0]])]
+        stack = expm_each(np.stack([balanced[i] for i in alike])) if len(alike) > 1 else [expm(balanced[alike[0]])]
         for i, e in zip(alike, stack):
-            exponentials[i] = e
+            exponentials[i] = _unbalanced(e, scales[i])
     for (lo, hi), w, e in zip(blocks, wheels, exponentials):
         b, m = slice(lo, hi), hi - lo
         phi, past, l0, l1, const = _block_maps(e, m, w.size, hold)
