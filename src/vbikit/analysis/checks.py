@@ -528,17 +528,18 @@ def wheel_force_step_bound(result: CrossingResult) -> NDArray[np.float64]:
     # the points' road lines as the kernels read them (``road_data``: line 1 is the right profile, or the left)
     lines = [(profile, np.minimum(pts.line, 1) == line) for line, profile in
              enumerate((crossing.road, crossing.road if crossing.road_right is None else crossing.road_right))]
-    lines = [(profile, on) for profile, on in lines if profile is not None and on.any()]
-    step_rates = {id(on): profile.run_rates(x[:, on], vx[:, on], span) for profile, on in lines}
+    # with the rates the step reads there (ṙ_n per point)
+    lines = [(profile, on, profile.run_rates(x[:, on], vx[:, on], span)) for profile, on in lines
+             if profile is not None and on.any()]
     reach = float(np.abs(vx).max()) * result.integration_dt / 2  # the road a point covers in half a step [m]
-    finest = min(float(np.diff(profile.x).min()) for profile, _ in lines)
+    finest = min(float(np.diff(profile.x).min()) for profile, _, _ in lines)
     n_instants = int(min(_MAX_STEP_INSTANTS, max(2, math.ceil(2 * reach / (0.5 * finest)))))
     bound = np.zeros(n_w)
     for s in np.linspace(-1.0, 1.0, n_instants + 1):  # t − t_n = s dt/2
         gap = np.zeros_like(x)  # ṙ_cell(t) − ṙ_n per point
-        for profile, on in lines:
+        for profile, on, step_rate in lines:
             gap[:, on] = vx[:, on] * profile.evaluate(x[:, on] + s * vx[:, on] * (result.integration_dt / 2))[1] \
-                - step_rates[id(on)]
+                - step_rate
         bound = np.maximum(bound, np.abs(gap @ by_wheel).max(axis=0))
     return bound
 

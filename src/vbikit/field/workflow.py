@@ -127,6 +127,13 @@ def case_profiles(case: CaseSpec) -> Profiles:
             read_profile_csv(case.profile_right) if case.profile_right else None)
 
 
+def _checked_profiles(spec: FieldSpec, case: CaseSpec) -> Profiles:
+    """``case_profiles`` after the truck check ``case_crossing`` makes first (the same errors in the same
+    order, for callers that read a case's profiles once for every tire model)."""
+    _check_truck(spec)
+    return case_profiles(case)
+
+
 def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: ModalBridge, dt: float | None = None,
                   profiles: Profiles | None = None) -> Crossing:
     """The simulated crossing of one loading case (vehicle enters in static equilibrium ``approach``
@@ -233,9 +240,7 @@ def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None)
         for name in tires:
             try:
                 tire = field_tire(name)
-                if profiles is None:  # read once for every tire model (after the checks case_crossing makes first)
-                    _check_truck(spec)
-                    profiles = case_profiles(case)
+                profiles = _checked_profiles(spec, case) if profiles is None else profiles
                 check_steps(case_crossing(spec, case, tire, bridge, spec.dt, profiles), limits)
             except FieldFileError:
                 raise
@@ -258,9 +263,7 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
     profiles: Profiles | None = None
     for name in tires:
         tire = field_tire(name)
-        if profiles is None:  # read once for every tire model (after the checks case_crossing makes first)
-            _check_truck(spec)
-            profiles = case_profiles(case)
+        profiles = _checked_profiles(spec, case) if profiles is None else profiles
         res = simulate(case_crossing(spec, case, tire, bridge, dt, profiles))
         dt = res.dt  # every tire model on the same time step …
         t_sim = res.time if t_sim.size == 0 or res.time.size < t_sim.size else t_sim
