@@ -150,7 +150,9 @@ def test_page_quotes_the_stored_effect_numbers():
             f"({f['acceleration']['mc_99'][0]:.4f}–{f['acceleration']['mc_99'][1]:.4f})"]
     g = n["tire_filter_fine_road"]
     want += [f"Monte Carlo gives\n{g['acceleration']['mc']:.4f} ({g['acceleration']['mc_99'][0]:.4f}–{g['acceleration']['mc_99'][1]:.4f})"
-             .replace("\n", " "), f"PEM on that step {g['acceleration']['pem']:.4f}"]
+             .replace("\n", " "), f"PEM on that step {g['acceleration']['pem']:.4f}",
+             f"wheel forces {g['wheel_force']['pem']:.4f} against {g['wheel_force']['mc']:.4f} "
+             f"({g['wheel_force']['mc_99'][0]:.4f}–{g['wheel_force']['mc_99'][1]:.4f})"]
     for key in ("wheel_force", "acceleration"):  # what the page claims: inside on the finer road
         lo, hi = g[key]["mc_99"]
         assert lo <= g[key]["pem"] <= hi, (key, g)
