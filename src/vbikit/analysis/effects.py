@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import logging
 from dataclasses import dataclass, field
-from functools import cached_property
+from functools import cached_property, partial
 from typing import Any, Callable, Literal, Sequence
 
 import numpy as np
@@ -59,6 +59,12 @@ class LoadEffectResponse:
     #: function that makes it on first use (``load_effect_responses(..., check_step=False)``)
     step_check: tuple[str | None, float] | Callable[[], tuple[str | None, float]] = field(
         default=(None, float("inf")), repr=False, compare=False)
+    #: both one-sided limits at every instant a contact point crosses a jump or kink of the influence
+    #: line (``jump_limits``): (time, dynamic, static), or a function making them on first use; None:
+    #: none (mode superposition)
+    limits: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | \
+        Callable[[], tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]] | None = field(
+        default=None, repr=False, compare=False)
 
     def _step(self) -> tuple[str | None, float]:
         if callable(self.step_check):
@@ -76,21 +82,31 @@ class LoadEffectResponse:
         return self._step()[1]
 
     @cached_property
+    def peak_series(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """(time, dynamic, static): the histories' samples, then the one-sided limits at the jump
+        instants (``limits``; not in time order) — what the peaks are taken over (module docstring)."""
+        limits = self.limits() if callable(self.limits) else self.limits
+        if limits is None or limits[0].size == 0:
+            return self.time, self.dynamic, self.static
+        return tuple(np.concatenate((a, b)) for a, b in zip((self.time, self.dynamic, self.static), limits))  # type: ignore[return-value]
+
+    @cached_property
     def impact(self) -> ImpactFactor:
-        """Peaks and impact factor (computed once: the catalogue's three outputs of a kind read it)."""
-        return impact_factor(self.time, self.dynamic, self.static)
+        """Peaks and impact factor over ``peak_series`` (computed once: the catalogue's three outputs
+        of a kind read it)."""
+        return impact_factor(*self.peak_series)
 
     @cached_property
     def direction(self) -> float:
         """±1: the sign of the static history's largest-magnitude value (``impact.static_direction``)."""
-        return static_direction(self.static)
+        return static_direction(self.peak_series[2])
 
     @cached_property
     def opposite_static_peak(self) -> float:
         """The static history's extreme of the sign opposite to ``impact.static_peak`` (signed; 0.0
         when it never goes that way)."""
         sign = self.direction
-        return float(min(0.0, np.min(sign * self.static)) * sign)
+        return float(min(0.0, np.min(sign * self.peak_series[2])) * sign)
 
     @property
     def opposite_share(self) -> float:
@@ -111,7 +127,7 @@ class LoadEffectResponse:
         else None."""
         if not self.two_signed:
             return None
-        return impact_factor_toward(self.time, self.dynamic, self.static, -self.direction)
+        return impact_factor_toward(*self.peak_series, -self.direction)
 
     def sense(self, sign: float) -> str:
         """The words for a value of sign ``sign``: sagging / hogging (moment), positive / negative."""
@@ -281,8 +297,85 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
         dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
         static = -(infl @ static_loads)
         dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
-    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step))
-            for k, e in enumerate(effects)]
+    limits = _SharedLimits(result, tuple(effects))
+    return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
+                               partial(limits, k)) for k, e in enumerate(effects)]
+
+
+def jump_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float64]:
+    """ξ [m] (along the span, ``ModalBridge.span_coordinate``) where the influence line of ``effect``
+    may jump or kink on every wheel line: the support lines (``support_x``: the deck ends, where a
+    point leaves the deck and I drops to 0 — a reaction or a shear at an end support jumps there —
+    and the interior supports, the joints of a series of spans) and the section of a moment (kink)
+    or a shear (jump), sorted, unique."""
+    xs = [float(v) for v in np.asarray(bridge.support_x, float)]
+    if effect.kind != "reaction":
+        f = effect.influence
+        xs.append(float(f.section) if isinstance(f, TabulatedInfluence) and f.kink != "none" else float(effect.x))
+    return np.unique(xs)
+
+
+def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[tuple[NDArray[np.float64], ...]]:
+    """Per effect (mode acceleration), (time, dynamic, static) at both one-sided limits τ∓δ of every
+    instant τ in the run's span at which a contact point stands on one of its ``jump_positions``
+    (module docstring; ``vbikit.analysis.instants``): positions and influence values exact, wheel
+    forces linear and modal displacements cubic Hermite between the two steps around τ, the modal
+    forces from the exact mode shapes.  The run's state is evaluated once at the union of the
+    effects' instants, element by element; each effect's values then over its own instants only (so
+    they do not depend on which other effects are reduced with it)."""
+    from vbikit.analysis.instants import crossing_instants, one_sided, run_state
+
+    t = np.asarray(result.time, float)
+    empty = (np.zeros(0), np.zeros(0), np.zeros(0))
+    if t.size < 2 or not effects:
+        return [empty for _ in effects]
+    crossing = result.crossing
+    bridge = crossing.bridge
+    origin, sign, y = crossing.point_kinematics()
+    lines = y * float(bridge.skew_tan)  # x − ξ of each point's line
+    taus = [crossing_instants(crossing, (jump_positions(bridge, e)[None, :] + lines[:, None] - origin[:, None])
+                              * sign[:, None], float(t[0]), float(t[-1])) for e in effects]
+    tau = np.unique(np.concatenate(taus))
+    if tau.size == 0:
+        return [empty for _ in effects]
+    u = one_sided(tau, float(t[1] - t[0]))
+    state = run_state(result, u)
+    x = state.x
+    yy = np.broadcast_to(y[None, :], x.shape)
+    xi = bridge.span_coordinate(x, yy)
+    on = (xi >= 0.0) & (xi <= bridge.span)  # on the deck (as ``contact_influence_table``)
+    infl = np.zeros((len(effects),) + x.shape)
+    if on.any():
+        infl[:, on] = influence_values(effects, x[on], yy[on]).T
+    cp = crossing.contact
+    static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    omega2 = bridge.omega**2
+    out = []
+    for e, effect, mine in zip(range(len(effects)), effects, taus):
+        if mine.size == 0:
+            out.append(empty)
+            continue
+        rows = np.repeat(2 * np.searchsorted(tau, mine), 2)  # τ⁻ and τ⁺ of each of its instants
+        rows[1::2] += 1
+        g = infl[e, rows]
+        r = np.asarray(effect.modal, float)
+        dynamic = -np.sum(g * state.f[rows], axis=1) + state.q[rows] @ (r / omega2) + state.xi[rows] @ r
+        out.append((u[rows], dynamic, -(g @ static_loads)))
+    return out
+
+
+class _SharedLimits:
+    """``jump_limits`` of one run's effects, computed on the first call (any effect's) and shared by
+    their responses: ``self(k)`` is effect k's."""
+
+    def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...]) -> None:
+        self.result, self.effects = result, effects
+        self.values: list[tuple[NDArray[np.float64], ...]] | None = None
+
+    def __call__(self, k: int) -> tuple[NDArray[np.float64], ...]:
+        if self.values is None:
+            self.values = jump_limits(self.result, self.effects)
+        return self.values[k]
 
 
 def tabulated_together(effects: Sequence[LoadEffect]) -> bool:

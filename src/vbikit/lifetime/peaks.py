@@ -14,14 +14,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.breakpoints import GATE, active_nodes, event_extremes, knot_tables
+from vbikit.analysis.instants import KNOT_OFFSET, one_sided, run_state
 
 __all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_limits", "knot_tables",
            "with_knot_limits"]
 
 
 # ---------------------------------------------------------------- the coupled run's total at the knots
-#: the one-sided limits at a knot instant τ are read at τ ∓ this fraction of the run's step
-KNOT_OFFSET = 1e-6
+# (KNOT_OFFSET, the one-sided limits' offset: ``vbikit.analysis.instants``, re-exported)
 
 
 def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
@@ -153,33 +153,15 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
         tau = tau[np.concatenate(([True], tau[1:] != tau[:-1]))] if tau.size else tau
     if tau.size == 0:
         return keep
-    delta = KNOT_OFFSET * float(t[1] - t[0])
-    u = np.empty(2 * tau.size)  # R(τ⁻), R(τ⁺), in time order
-    u[0::2] = tau - delta
-    u[1::2] = tau + delta
+    u = one_sided(tau, float(t[1] - t[0]))  # R(τ⁻), R(τ⁺), in time order
     ordered = bool((u[1:] >= u[:-1]).all())  # so is every line's part of u (unless instants closer than 2δ)
-    # the run at every instant u (shared by the lines)
-    x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, crossing.point_vehicle]
+    state = run_state(result, u)  # the run at every instant u (shared by the lines)
+    x, f, q, xi = state.x, state.f, state.q, state.xi
     n_u = x.shape[0]
     xs = x.ravel()
-    bridge = crossing.bridge
-    phi = np.asarray(bridge.mode_shapes(xs, np.repeat(y[None, :], n_u, 0).ravel()), float).reshape(x.shape + (-1,))
-    k = np.searchsorted(t[1:-1], u) + 1  # the step ending at or after u, within 1 … n_t − 1
-    km = k - 1
-    h = t[k] - t[km]
-    w = (u - t[km]) / h
+    omega2 = crossing.bridge.omega**2
     cp = crossing.contact
-    share = cp.weight
-    forces = result.wheel_forces  # only the rows around the instants, not the whole history
-    f = (forces[km][:, cp.wheel] * (1.0 - w)[:, None] + forces[k][:, cp.wheel] * w[:, None]) * share[None, :]
-    # cubic Hermite basis (the same arithmetic as 2w³ − 3w² + 1, w³ − 2w² + w, −2w³ + 3w², w³ − w²)
-    w2, w3 = w**2, w**3
-    h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
-    xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
-          + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
-    q = np.einsum("upi,up->ui", phi, f)
-    omega2 = bridge.omega**2
-    p_static = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    p_static = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     out, located = [], {}
     for effect, table, track, mine, (_, dyn, sta) in zip(effects, tables, tracks, taus, keep):
         if mine.size == 0:
