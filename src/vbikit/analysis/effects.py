@@ -304,11 +304,15 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
 
 def jump_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float64]:
     """ξ [m] (along the span, ``ModalBridge.span_coordinate``) where the influence line of ``effect``
-    may jump or kink on every wheel line: the support lines (``support_x``: the deck ends, where a
-    point leaves the deck and I drops to 0 — a reaction or a shear at an end support jumps there —
-    and the interior supports, the joints of a series of spans) and the section of a moment (kink)
-    or a shear (jump), sorted, unique."""
-    xs = [float(v) for v in np.asarray(bridge.support_x, float)]
+    may jump or kink on every wheel line, sorted, unique: the section of a moment (kink) or a shear
+    (jump), and for a shear or a reaction the support lines (``support_x``: the deck ends, where a
+    point leaves the deck and I drops to 0 — a reaction at an end support and a shear next to it
+    jump there — and the joints of a series of spans).  Not a moment's support lines: a moment's
+    influence vanishes at a deck end (a pinned or bearing-supported girder end carries none), so a
+    point entering there adds nothing at that instant, and the value computed at ξ = 0⁺ would be the
+    influence solution's round-off only (which, alone on the deck, would read as an extreme of the
+    other sign: ``opposite_static_peak``)."""
+    xs = [] if effect.kind == "moment" else [float(v) for v in np.asarray(bridge.support_x, float)]
     if effect.kind != "reaction":
         f = effect.influence
         xs.append(float(f.section) if isinstance(f, TabulatedInfluence) and f.kink != "none" else float(effect.x))
