@@ -1,0 +1,178 @@
+"""Load-effect peaks at the jumps of the influence line (``vbikit.analysis.effects.jump_limits``).
+
+A shear or reaction peaks at the instant τ an axle stands on a jump of its influence line (a
+shear at its section, a reaction at the deck end): a one-sided limit R(τ∓).  Read at the steps
+only, the peak was R(τ ∓ θ dt), θ ∈ [0, 1): the static part off by the line's slope times v θ dt,
+the dynamic part by the wheel force's change ḟ_w θ dt — on a rough road it varies at the tire-hop
+frequency f ≈ 10–15 Hz with amplitude A, so by up to 2π f A dt (a traffic event on paper Bridge 2,
+class B road: the shear impact factor scattered by 1.3e-2 over step changes of 1 %).  With both
+limits at every jump instant (positions exact, f_w linear and ξ cubic between the steps), what is
+left is the interpolation's (π f dt)²/2 · A — and the integrator's own change over the step change.
+
+* Closed forms on a simple span (one moving force, smooth road): the shear at s = 0.3 L peaks at
+  +0.7 P (the force just right of s) and −0.3 P (on s, counted left) at the same instant, whichever
+  way it drives; the reaction of the support it enters over is P at that instant (bridge at rest,
+  mode shapes zero at the pinned support; the lifetime's 1 mm run gives P within 6e-5,
+  tests/lifetime/test_knot_total.py).
+* The traffic case: the impact factors' spread over the step × (1, 0.999, 0.997, 0.995, 0.99) and
+  their distance from a run at 1/32 of the step read at its steps only (its sampling miss is 1/32
+  of the coarse one).
+"""
+from __future__ import annotations
+
+import dataclasses
+import logging
+
+import numpy as np
+import pytest
+
+from vbikit.analysis.effect_step import STEP_TOLERANCE
+from vbikit.analysis.effects import jump_limits, load_effect_responses
+from vbikit.analysis.impact import impact_factor
+from vbikit.bridge.beam import EulerBernoulliBeam
+from vbikit.lifetime.jobs import moving_forces
+from vbikit.solve import Crossing, VehicleMotion, simulate
+from vbikit.solve.plan import plan_run
+
+L = 16.76
+BEAM = EulerBernoulliBeam(L, 4.2e9, 9000.0, 0.02, n_modes=4)
+P = 1e5
+SPEED = 25.0
+
+
+@pytest.fixture(autouse=True)
+def _quiet():
+    logging.disable(logging.WARNING)  # the coarse steps' load-effect step notes
+    yield
+    logging.disable(logging.NOTSET)
+
+
+def _beam_run(direction: str, dt: float):
+    motion = VehicleMotion(moving_forces((P,), ()), speed=SPEED, direction=direction)
+    return simulate(Crossing(BEAM, vehicles=(motion,), dt=dt))
+
+
+@pytest.mark.parametrize("direction", ["+x", "-x"])
+@pytest.mark.parametrize("dt", [0.0031, 0.0037])
+def test_shear_off_midspan_both_limits_at_its_section(direction, dt):
+    """Shear just right of s = 0.3 L under one moving force: static +P (1 − s/L) with the force
+    just right of s, −P s/L with it on s (closed form of a simple span), both at the instant it
+    passes s — from the left driving +x (−0.3 P, then +0.7 P), from the right driving −x."""
+    s = 0.3 * L
+    shear = BEAM.load_effect("shear", s)
+    result = _beam_run(direction, dt)
+    (r,) = load_effect_responses(result, [shear])
+    assert np.max(np.abs(r.static)) < 0.7 * P * (1 - 1e-4)  # the steps miss the one-sided limit
+    assert r.impact.static_peak == pytest.approx(P * (1 - s / L), rel=1e-6)
+    assert r.two_signed and r.opposite_static_peak == pytest.approx(-P * s / L, rel=1e-6)
+    # the instant of both: the force on s
+    tau = (s if direction == "+x" else L - s) / SPEED + result.crossing.vehicles[0].entry_time
+    assert r.impact.time_static_peak == pytest.approx(tau, abs=2e-6 * dt)  # (read at τ ∓ 1e-6 dt)
+    assert r.opposite.time_static_peak == pytest.approx(tau, abs=2e-6 * dt)
+    order = np.sign(r.opposite.time_static_peak - r.impact.time_static_peak)
+    assert order == (1.0 if direction == "-x" else -1.0)  # +x: −0.3 P first; −x: +0.7 P first
+
+
+@pytest.mark.parametrize("direction, support", [("+x", 0), ("-x", 1)])
+@pytest.mark.parametrize("dt", [0.0031, 0.0037])
+def test_reaction_of_the_entry_support_is_the_force_as_it_enters(direction, support, dt):
+    """The reaction of the support the force enters over (support 0 driving +x, 1 driving −x):
+    static and total P at that instant (closed form); the steps read both up to a step later, the
+    total 3–4 % low."""
+    reaction = BEAM.load_effect("reaction", support=support)
+    (r,) = load_effect_responses(_beam_run(direction, dt), [reaction])
+    assert float(np.max(r.dynamic)) < P * (1 - 1e-2)  # sampled
+    assert r.impact.static_peak == pytest.approx(P, rel=1e-6)
+    assert r.impact.dynamic_peak == pytest.approx(P, rel=1e-3)  # the interpolation's error (module docstring)
+    (other,) = load_effect_responses(_beam_run(direction, dt), [BEAM.load_effect("reaction", support=1 - support)])
+    assert other.impact.static_peak == pytest.approx(P, rel=1e-6)  # leaving over the other: P at 0⁺ too
+
+
+# ---------------------------------------------------------------- a traffic event on paper Bridge 2
+#: the spread bound: 2π f A dt · n I / R_st ≈ 1e-2 sampled (f = 15 Hz, A = 3 kN per wheel, dt = 1.4 ms,
+#: n = 2 wheels of influence I ≈ 0.6 on a 45 kN static shear) against (π f dt)²/2 · A n I / R_st ≈ 2e-4
+#: interpolated; the bound allows ten times that, a fifth of the sampled spread
+SPREAD = 2e-3
+SCALES = (1.0, 0.999, 0.997, 0.995, 0.99)
+
+
+@pytest.fixture(scope="module")
+def traffic_runs():
+    """Five-axle truck (the stream's class 9, event 299 of benchmarks/bench_traffic.py) driving −x in
+    lane 2 of paper Bridge 2 (10 modes, point tires, class B road), response girder 4: shear at 0 and
+    at 5 m (off midspan), reaction at support 0 (its exit), moment at midspan; runs at the automatic
+    step times SCALES and at 1/32 of it."""
+    from vbikit.traffic import VehicleRecord
+    from vbikit.traffic.study import traffic_study
+
+    record = VehicleRecord(time=0.0, direction="-x", speed=19.972222222222225,
+                           axle_loads=(46620.0, 29820.0, 36330.0, 35920.0, 35290.0),
+                           axle_spacings=(5.396, 1.34, 9.584, 1.269), lane=2, id="v0", line=0)
+    base = {"bridge": {"model": "paper-bridge-2", "n_modes": 10}, "tire": {"model": "point"},
+            "road": {"class": "B", "spacing": 0.01},
+            "response": {"girder": 4, "moment": [8.38], "shear": [0.0, 5.0], "reaction": [0]}}
+    job = traffic_study([record], base, seed=11)  # a road on which the shear at 0 and the reaction peak at the exit jump
+    crossing = job.crossing(0)
+    effects = job.context().plan.load_effects
+    dt0 = plan_run(crossing).grid.dt
+    runs = {f: simulate(dataclasses.replace(crossing, dt=dt0 * f)) for f in SCALES + (1 / 32,)}
+    return effects, runs
+
+
+def test_traffic_event_impact_factors_do_not_depend_on_where_the_steps_fall(traffic_runs):
+    effects, runs = traffic_runs
+    fine = runs[1 / 32]
+    reference = [impact_factor(r.time, r.dynamic, r.static).impact_factor
+                 for r in load_effect_responses(fine, effects, check_step=False)]  # sampled: independent of the fix
+    ims = np.array([[r.impact.impact_factor for r in load_effect_responses(runs[f], effects, check_step=False)]
+                    for f in SCALES])
+    sampled = np.array([[impact_factor(r.time, r.dynamic, r.static).impact_factor
+                         for r in load_effect_responses(runs[f], effects, check_step=False)] for f in SCALES])
+    kinds = [(e.kind, e.x) for e in effects]
+    jumps = [k for k, (kind, _) in enumerate(kinds) if kind != "moment"]
+    assert np.ptp(sampled[:, jumps], axis=0).max() > 2 * SPREAD  # the sampled peaks scatter (the case is one that does)
+    for k, kind in enumerate(kinds):
+        assert np.ptp(ims[:, k]) <= SPREAD, (kind, ims[:, k])
+        assert np.abs(ims[:, k] - reference[k]).max() <= STEP_TOLERANCE, (kind, ims[:, k], reference[k])
+
+
+def test_an_effects_limits_do_not_depend_on_its_companions(traffic_runs):
+    effects, runs = traffic_runs
+    result = runs[1.0]
+    together = jump_limits(result, effects)
+    for k, e in enumerate(effects):
+        (alone,) = jump_limits(result, [e])
+        assert alone[0].size >= 2  # a wheel crosses a jump of every line
+        for a, b in zip(alone, together[k]):
+            np.testing.assert_array_equal(a, b)
+
+
+def test_limits_at_the_steps_are_the_sampled_histories(traffic_runs):
+    """The limits' formula (positions, f_w linear, ξ Hermite, Q from the exact mode shapes) at the
+    steps themselves reproduces the sampled mode-acceleration histories (ξ̈ from the solver): the
+    two forms agree to round-off, so the limits carry no offset against the samples."""
+    from vbikit.analysis.effects import influence_values
+    from vbikit.analysis.instants import run_state
+
+    effects, runs = traffic_runs
+    result = runs[1.0]
+    state = run_state(result, result.time[1:-1])
+    bridge = result.crossing.bridge
+    y = np.broadcast_to(state.y[None, :], state.x.shape)
+    xi = bridge.span_coordinate(state.x, y)
+    on = (xi >= 0) & (xi <= bridge.span)
+    cp = result.crossing.contact
+    static_loads = cp.weight * result.crossing.vehicle.static_wheel_loads()[cp.wheel]
+    for e, r in zip(effects, load_effect_responses(result, effects, check_step=False)):
+        g = np.zeros(state.x.shape)
+        g[on] = influence_values([e], state.x[on], y[on])[:, 0]
+        dynamic = -np.sum(g * state.f, axis=1) + state.q @ (e.modal / bridge.omega**2) + state.xi @ e.modal
+        scale = np.abs(r.dynamic).max()
+        assert np.abs(dynamic - r.dynamic[1:-1]).max() <= 1e-8 * scale
+        assert np.abs(-(g @ static_loads) - r.static[1:-1]).max() <= 1e-10 * scale
+
+
+def test_mode_superposition_has_no_limits(traffic_runs):
+    effects, runs = traffic_runs
+    for r in load_effect_responses(runs[1.0], effects, method="mode-superposition", check_step=False):
+        assert r.limits is None and r.peak_series[0] is r.time
