@@ -16,6 +16,31 @@ effect of a multi-point patch (0.254 m long) by far less than its dynamic part. 
 factor is that of [`vbikit.analysis.impact.impact_factor`][vbikit.analysis.impact_factor]: peaks in the direction of the
 static history's largest-magnitude value (hogging over a rigid pier, where the static peak moment is negative).
 
+Peaks at the jumps (mode acceleration): a shear's influence line jumps at its section, a reaction's
+(and the shear next to an end support) at the deck end, a moment's kinks at its section.  R(t) and
+R_st(t) then jump or kink at the instants τ a contact point stands there, and their peak is often a
+one-sided limit R(τ∓) — the instant an axle leaves over the bearing, or passes the section.  Read
+at the steps only, the peak was R(τ ∓ θ dt), θ ∈ [0, 1) set by where the steps fall: the static
+part off by the line's slope times v θ dt, the dynamic part by the wheel force's change ḟ_w θ dt,
+up to 2π f A dt for a tire-hop component of frequency f and amplitude A (a traffic event on paper
+Bridge 2, class B road: the shear impact factor 0.147 … 0.160 over step changes of 1 %, against
+0.165 at 1/32 of the step).  So the peaks are taken over the samples and both one-sided limits at
+every such instant (``jump_limits``, ``LoadEffectResponse.peak_series``): τ from the vehicles'
+prescribed motion at the ``jump_positions`` ξ_j, and at τ ∓ δ (δ = 1e-6 dt)
+
+    R(τ∓) = −Σ_p I(x_p(τ∓), y_p) β_p f_w(τ) + Σ_i r_i Q_i(τ∓) / ω_i² + Σ_i r_i ξ_i(τ),
+    Q_i = Σ_p φ_i(x_p, y_p) β_p f_w,      R_st(τ∓) = −Σ_p I(x_p(τ∓), y_p) β_p P_w
+
+(the modal equations ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i = −Q_i turn the modal term into displacements
+and modal forces), positions and influence exact, f_w linear and ξ_i cubic Hermite between the two
+steps around τ (``vbikit.analysis.instants``, shared with the lifetime's knot limits): the static
+peak is then the exact one-sided limit, the dynamic one is read at the same instant, and what is
+left is the interpolation's (π f dt)²/2 · A.  The histories (``time``, ``dynamic``, ``static``:
+CSV columns, datasets) stay on the time grid; the summary's peaks and IM, the outputs catalogue's
+and every path that reads ``impact`` (``vbikit run``, studies, traffic) include the limits.  Mode
+superposition has none (R = Σ r_i ξ_i does not jump); the random-vibration path reads its
+statistics on the grid.
+
 Both signs: a static history that also reaches, the other way, more than ``SMALL_STATIC_FRACTION``
 (20 %, ``vbikit.analysis.checks``) of its largest magnitude (``two_signed``: the moment over a soft
 pier, which sags while the load is near and hogs while it is on the next span; the shear at
@@ -297,7 +322,7 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
         dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
         static = -(infl @ static_loads)
         dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
-    limits = _SharedLimits(result, tuple(effects))
+    limits = _SharedLimits(result, tuple(effects), static_loads)
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
                                partial(limits, k)) for k, e in enumerate(effects)]
 
@@ -312,21 +337,23 @@ def jump_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float6
     point entering there adds nothing at that instant, and the value computed at ξ = 0⁺ would be the
     influence solution's round-off only (which, alone on the deck, would read as an extreme of the
     other sign: ``opposite_static_peak``)."""
-    xs = [] if effect.kind == "moment" else [float(v) for v in np.asarray(bridge.support_x, float)]
+    xs = set() if effect.kind == "moment" else {float(v) for v in np.asarray(bridge.support_x, float)}
     if effect.kind != "reaction":
         f = effect.influence
-        xs.append(float(f.section) if isinstance(f, TabulatedInfluence) and f.kink != "none" else float(effect.x))
-    return np.unique(xs)
+        xs.add(float(f.section) if isinstance(f, TabulatedInfluence) and f.kink != "none" else float(effect.x))
+    return np.array(sorted(xs))
 
 
-def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[tuple[NDArray[np.float64], ...]]:
+def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
+                static_loads: NDArray[np.float64] | None = None) -> list[tuple[NDArray[np.float64], ...]]:
     """Per effect (mode acceleration), (time, dynamic, static) at both one-sided limits τ∓δ of every
     instant τ in the run's span at which a contact point stands on one of its ``jump_positions``
     (module docstring; ``vbikit.analysis.instants``): positions and influence values exact, wheel
     forces linear and modal displacements cubic Hermite between the two steps around τ, the modal
     forces from the exact mode shapes.  The run's state is evaluated once at the union of the
     effects' instants, element by element; each effect's values then over its own instants only (so
-    they do not depend on which other effects are reduced with it)."""
+    they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
+    points' β_p P_w if already computed."""
     from vbikit.analysis.instants import crossing_instants, one_sided, run_state
 
     t = np.asarray(result.time, float)
@@ -343,16 +370,16 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[t
     if tau.size == 0:
         return [empty for _ in effects]
     u = one_sided(tau, float(t[1] - t[0]))
-    state = run_state(result, u)
+    state = run_state(result, u, tables=True)
     x = state.x
-    yy = np.broadcast_to(y[None, :], x.shape)
-    xi = bridge.span_coordinate(x, yy)
+    xi = x - lines[None, :]  # ``span_coordinate``
     on = (xi >= 0.0) & (xi <= bridge.span)  # on the deck (as ``contact_influence_table``)
     infl = np.zeros((len(effects),) + x.shape)
     if on.any():
-        infl[:, on] = influence_values(effects, x[on], yy[on]).T
-    cp = crossing.contact
-    static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+        infl[:, on] = influence_values(effects, x[on], y[np.nonzero(on)[1]]).T
+    if static_loads is None:
+        cp = crossing.contact
+        static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     omega2 = bridge.omega**2
     out = []
     for e, effect, mine in zip(range(len(effects)), effects, taus):
@@ -372,13 +399,14 @@ class _SharedLimits:
     """``jump_limits`` of one run's effects, computed on the first call (any effect's) and shared by
     their responses: ``self(k)`` is effect k's."""
 
-    def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...]) -> None:
-        self.result, self.effects = result, effects
+    def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...],
+                 static_loads: NDArray[np.float64]) -> None:
+        self.result, self.effects, self.static_loads = result, effects, static_loads
         self.values: list[tuple[NDArray[np.float64], ...]] | None = None
 
     def __call__(self, k: int) -> tuple[NDArray[np.float64], ...]:
         if self.values is None:
-            self.values = jump_limits(self.result, self.effects)
+            self.values = jump_limits(self.result, self.effects, self.static_loads)
         return self.values[k]
 
 

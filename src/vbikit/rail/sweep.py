@@ -137,8 +137,9 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
 
             for e, effect in enumerate(setup.effects):
                 resp = load_effect_response(result, effect)
-                eff[k, e] = np.max(np.abs(resp.dynamic))
-                static_eff[e] = max(static_eff[e], float(np.max(np.abs(resp.static))))
+                _, dynamic, static = resp.peak_series  # the samples and the one-sided limits at the jumps
+                eff[k, e] = np.max(np.abs(dynamic))
+                static_eff[e] = max(static_eff[e], float(np.max(np.abs(static))))
         from vbikit.analysis.impact import static_modal_history
 
         static_disp = np.maximum(static_disp, np.max(np.abs(static_modal_history(result) @ phi.T), axis=0))
