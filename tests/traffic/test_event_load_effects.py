@@ -133,3 +133,11 @@ def test_compiled_sums_equal_the_pair_tables_and_the_direct_influence(skew):
             assert np.abs(got.static - static).max() <= 1e-11 * scale, (name, effect.label)
             assert np.abs(got.dynamic - dynamic).max() <= 1e-11 * scale, (name, effect.label)
         assert np.abs(compiled[k].dynamic - tables[k].dynamic).max() <= 1e-12 * scale
+        # the peaks: over the samples and the one-sided limits at the jumps, written out (skew: the
+        # instants on each wheel line at x = ξ_j + y tan θ; two vehicles driving opposite ways)
+        u, at_u, static_at_u = brute_force_limits(result, effect)
+        assert u.size > 0
+        im = impact_factor(np.r_[result.time, u], np.r_[dynamic, at_u], np.r_[static, static_at_u])
+        for got in (compiled[k], tables[k]):
+            assert abs(got.impact.static_peak - im.static_peak) <= 1e-11 * scale, effect.label
+            assert abs(got.impact.dynamic_peak - im.dynamic_peak) <= 1e-8 * scale, effect.label

@@ -118,7 +118,9 @@ def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
     evaluated at x_p(τ ∓ δ), δ = ``KNOT_OFFSET`` · step, with g from ``table`` (the line the
     exact static peaks use) and the bridge's mode shapes, f_w interpolated linearly and ξ_i by
     cubic Hermite interpolation (ξ_i, ξ̇_i) between the two steps around τ: the total at the
-    instant of the exact static peak, no longer up to a step away from it.  Its remaining error
+    instant of the exact static peak, no longer up to a step away from it (the run's state at the
+    instants: ``vbikit.analysis.instants.run_state``, which the load effects' jump limits of
+    ``vbikit.analysis.effects`` share).  Its remaining error
     is the interpolation: at most (1 − cos(π f dt)) ≈ (π f dt)²/2 of the amplitude of a wheel-force
     component at frequency f (dt the stored step), and far less for ξ_i.
 
