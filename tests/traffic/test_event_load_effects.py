@@ -52,7 +52,10 @@ def brute_force(result, effect):
 def brute_force_limits(result, effect):
     """(times, dynamic, static) at both one-sided limits τ ∓ 1e-6 dt of every instant τ a contact point
     stands on the effect's section (moment, shear) or a deck end (shear, reaction), written out
-    (module docstring) with R = −Σ_p I β_p f_w + Σ_i r_i Q_i/ω_i² + Σ_i r_i ξ_i, Q_i = Σ_p φ_i β_p f_w."""
+    (module docstring) with R = −Σ_p I β_p f_w + Σ_i r_i Q_i/ω_i² + Σ_i r_i ξ_i: Q_i from the modal
+    equation at the two steps around the instant, linear between them, except for the points that
+    pass a deck end within that step, whose share φ_i β_p f_w is taken from the bridge's own mode
+    shapes (``vbikit.analysis.instants``, "steps"), one instant and one point at a time."""
     from scipy.interpolate import CubicHermiteSpline
 
     crossing = result.crossing
@@ -75,13 +78,38 @@ def brute_force_limits(result, effect):
     f = np.stack([np.interp(u, t, result.wheel_forces[:, cp.wheel[p]]) * cp.weight[p] for p in range(origin.size)], axis=1)
     xi = CubicHermiteSpline(t, result.xi, result.xi_dot)(u)
     static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    omega, zeta = bridge.omega, bridge.damping_ratios
     dynamic, static = xi @ effect.modal, np.zeros(u.size)
+
+    def position(p, when):
+        return origin[p] + sign[p] * crossing.vehicles[crossing.point_vehicle[p]].travel(np.array([when]))[0]
+
+    def on_deck(p, x_p):
+        return 0.0 <= x_p - y[p] * bridge.skew_tan <= bridge.span
+
+    def share(p, when, force):  # φ_i(x_p) β_p f_w of point p at ``when`` (zero off the deck)
+        x_p = position(p, when)
+        if not on_deck(p, x_p):
+            return np.zeros(omega.size)
+        return bridge.mode_shapes(np.array([x_p]), np.array([y[p]]))[0] * force
+
+    for n, when in enumerate(u):
+        k = int(np.searchsorted(t, when))  # t[k - 1] < when <= t[k]
+        w = (when - t[k - 1]) / (t[k] - t[k - 1])
+        q_steps = [-(result.xi_ddot[j] + 2 * zeta * omega * result.xi_dot[j] + omega**2 * result.xi[j]) for j in (k - 1, k)]
+        q = (1 - w) * q_steps[0] + w * q_steps[1]
+        for p in range(origin.size):
+            ends = [position(p, t[j]) - y[p] * bridge.skew_tan for j in (k - 1, k)]
+            if any((ends[0] - s) * (ends[1] - s) <= 0.0 for s in (0.0, bridge.span)):  # passes a deck end in the step
+                forces = [result.wheel_forces[j, cp.wheel[p]] * cp.weight[p] for j in (k - 1, k)]
+                linear = (1 - w) * share(p, t[k - 1], forces[0]) + w * share(p, t[k], forces[1])
+                q = q + share(p, when, f[n, p]) - linear
+        dynamic[n] += q @ (effect.modal / omega**2)
     for p in range(origin.size):
         on = (x[:, p] - y[p] * bridge.skew_tan >= 0.0) & (x[:, p] - y[p] * bridge.skew_tan <= bridge.span)
         if on.any():
             infl = effect.influence.direct(x[on, p], np.full(on.sum(), y[p]))
-            phi = bridge.mode_shapes(x[on, p], np.full(on.sum(), y[p]))
-            dynamic[on] += -infl * f[on, p] + (phi * f[on, p, None]) @ (effect.modal / bridge.omega**2)
+            dynamic[on] -= infl * f[on, p]
             static[on] -= infl * static_loads[p]
     return u, dynamic, static
 

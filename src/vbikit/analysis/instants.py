@@ -22,6 +22,23 @@ both one-sided limits R(τ∓) at an instant τ when a point stands on a jump (r
 (1 − cos(π f dt)) ≈ (π f dt)²/2 of the amplitude of a wheel-force component of frequency f (dt the
 stored step: 4e-3 at 15 Hz and 1.4 ms), and far less for ξ_i — against a sampled history's
 |ḟ_w| · dt, up to 2 π f dt ≈ 0.13 of that amplitude, at a jump.
+
+The modal forces Q_i at u, three ways (``run_state``'s ``modal_forces``):
+
+* ``"shapes"``: Σ_p φ_i(x_p(u)) β_p f_w from the bridge's own mode shapes (the lifetime's knot
+  limits): the solver's Q_i where each point carries its static share of its wheel's force (point
+  tires), not with multi-point tires, whose points carry their own forces (1e-3 … 1e-2 of a load
+  effect off the sampled history on ``vbikit demo``'s crossing);
+* ``"steps"`` (the load effects' jump limits): Q_i at the two steps around u, read off the modal
+  equation, Q_i = −(ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i) (the stored ξ̈_i is the solver's, so these are its
+  Q_i at the steps), linear in time between them, except for the points that cross a support line
+  of the deck within that step — where their share φ_i β_p f_w jumps (a deck end on elastic
+  bearings, a joint) or kinks (a pinned end): for those the linear share is replaced by the exact
+  one from the run's mode tables.  The rest of Q_i is smooth over a step, so its error is of the
+  order of the wheel forces' own interpolation ((π f dt)²/2 of a component at frequency f) plus
+  the mode shapes' change over v·dt ((π i v dt / L)²/8 of mode i's share), and the cost is that of
+  a few points per instant instead of all of them; at the steps themselves it is the sampled
+  history, also with multi-point tires (tests/verification/test_effect_jump_limits.py).
 """
 from __future__ import annotations
 
@@ -68,23 +85,20 @@ class RunState:
     xi: NDArray[np.float64]
 
 
-def run_state(result, u: NDArray[np.float64], tables: bool = False) -> RunState:
+def run_state(result, u: NDArray[np.float64], modal_forces: str = "shapes") -> RunState:
     """The ``RunState`` of ``result`` (a ``CrossingResult`` of at least two steps) at the instants
     ``u`` [s] within its time span; each instant's values are computed element by element (the same
-    whatever the other instants).  The mode shapes in Q_i: the bridge's own (``mode_shapes``), or
-    with ``tables`` the solver's (the run's mode tables along the wheel tracks, cubic Hermite,
-    ``vbikit.solve.tabulate.hermite_rows``: the Q_i the solver integrated, at a fraction of the
-    cost; the two agree to the tables' accuracy, ~1e-9 of a load effect on paper Bridge 2)."""
+    whatever the other instants).  ``modal_forces``: how Q_i is found (module docstring) — "shapes"
+    (Σ_p over the bridge's ``mode_shapes`` with the static shares) or "steps" (the steps' Q_i, linear
+    between them, the points passing a support line within the step exact: cheaper, and the solver's
+    Q_i with any tire)."""
+    if modal_forces not in ("shapes", "steps"):
+        raise ValueError(f"modal_forces must be 'shapes' or 'steps', got {modal_forces!r}")
     t = np.asarray(result.time, float)
     crossing = result.crossing
     origin, sign, y = crossing.point_kinematics()
     x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, crossing.point_vehicle]
     n_u = x.shape[0]
-    if tables:
-        phi = _table_shapes(result, x)
-    else:
-        phi = np.asarray(crossing.bridge.mode_shapes(x.ravel(), np.repeat(y[None, :], n_u, 0).ravel()),
-                         float).reshape(x.shape + (-1,))
     k = np.searchsorted(t[1:-1], u) + 1  # the step ending at or after u, within 1 … n_t − 1
     km = k - 1
     h = t[k] - t[km]
@@ -97,21 +111,66 @@ def run_state(result, u: NDArray[np.float64], tables: bool = False) -> RunState:
     h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
     xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
           + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
-    q = np.einsum("upi,up->ui", phi, f)
+    if modal_forces == "steps":
+        q = _step_modal_forces(result, u, km, k, w, f)
+    else:
+        phi = np.asarray(crossing.bridge.mode_shapes(x.ravel(), np.repeat(y[None, :], n_u, 0).ravel()),
+                         float).reshape(x.shape + (-1,))
+        q = np.einsum("upi,up->ui", phi, f)
     return RunState(u, x, y, f, q, xi)
 
 
-def _table_shapes(result, x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """φ_i of the contact points at ``x`` (n_u, n_cp) from the run's mode tables (``run_state``),
-    (n_u, n_cp, n_modes), zero off the deck (as the solver's contact rows)."""
+def _step_modal_forces(result, u: NDArray[np.float64], km: NDArray[np.int64], k: NDArray[np.int64],
+                       w: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Q_i (n_u, n_modes) at the instants ``u`` between the stored rows ``km`` and ``k`` (fraction
+    ``w`` of the step), ``f`` the points' β_p f_w there: "steps" of the module docstring."""
+    crossing = result.crossing
+    bridge = crossing.bridge
+    omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
+
+    def at_steps(rows: NDArray[np.int64]) -> NDArray[np.float64]:  # the modal equation solved for Q_i
+        return -(result.xi_ddot[rows] + result.xi_dot[rows] * (2.0 * zeta * omega) + result.xi[rows] * omega**2)
+
+    q = (1.0 - w)[:, None] * at_steps(km) + w[:, None] * at_steps(k)
+    # the points that cross a support line within the step: their share exact, not linear
+    t = np.asarray(result.time, float)
+    origin, sign, y = crossing.point_kinematics()
+    ends = np.stack([t[km], t[k]])  # (2, n_u)
+    x_ends = origin + sign * crossing.travel(ends.ravel())[:, crossing.point_vehicle]  # (2·n_u, n_cp)
+    xi_ends = bridge.span_coordinate(x_ends, np.broadcast_to(y, x_ends.shape)).reshape((2,) + f.shape)
+    supports = np.asarray(bridge.support_x, float)
+    crossing_support = np.zeros(f.shape, bool)
+    for s in supports:
+        crossing_support |= (xi_ends[0] - s) * (xi_ends[1] - s) <= 0.0
+    rows, points = np.nonzero(crossing_support)
+    if rows.size == 0:
+        return q
+    cp = crossing.contact
+    forces = result.wheel_forces
+    wheel, weight = cp.wheel[points], cp.weight[points]
+    x_now = origin[points] + sign[points] * crossing.travel(u[rows])[np.arange(rows.size), crossing.point_vehicle[points]]
+    x_a = x_ends.reshape((2,) + f.shape)[0][rows, points]
+    x_b = x_ends.reshape((2,) + f.shape)[1][rows, points]
+    phi_now, phi_a, phi_b = (_point_shapes(result, points, xs) for xs in (x_now, x_a, x_b))
+    share_a = phi_a * (forces[km[rows], wheel] * weight)[:, None]
+    share_b = phi_b * (forces[k[rows], wheel] * weight)[:, None]
+    exact = phi_now * f[rows, points][:, None]
+    wr = w[rows][:, None]
+    np.add.at(q, rows, exact - ((1.0 - wr) * share_a + wr * share_b))
+    return q
+
+
+def _point_shapes(result, points: NDArray[np.int64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """φ_i (m, n_modes) of contact points ``points`` at ``x`` [m] from the run's mode tables, zero off
+    the deck (as the solver's contact rows)."""
     from vbikit.solve import system
     from vbikit.solve.tabulate import hermite_rows
 
     data = result.kernel_data if result.kernel_data is not None else system.kernel_data(result.crossing)
-    modes, track = data.modes, data.points.track
-    on = (modes.start[track][None, :] <= x) & (x <= modes.end[track][None, :])
-    phi = np.zeros(x.shape + (modes.omega.size,))
+    modes, track = data.modes, data.points.track[points]
+    on = (modes.start[track] <= x) & (x <= modes.end[track])
+    phi = np.zeros((x.size, modes.omega.size))
     if on.any():
-        phi[on] = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, track[np.nonzero(on)[1]], x[on],
+        phi[on] = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, track[on], x[on],
                                with_slopes=False)[0]
     return phi
