@@ -370,7 +370,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     if tau.size == 0:
         return [empty for _ in effects]
     u = one_sided(tau, float(t[1] - t[0]))
-    state = run_state(result, u, modal_forces="steps")
+    state = run_state(result, u)
     x = state.x
     xi = x - lines[None, :]  # ``span_coordinate``
     on = (xi >= 0.0) & (xi <= bridge.span)  # on the deck (as ``contact_influence_table``)

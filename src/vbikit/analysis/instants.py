@@ -4,8 +4,9 @@ kink of an influence line: the one mechanism behind the one-sided limits of the 
 traffic) and of the lifetime's lines (``vbikit.lifetime.peaks.knot_limits``).
 
 A load effect read in mode acceleration (``vbikit.analysis.effects``, module docstring), with the
-modal equations as the solver integrates them, ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i = −Q_i,
-Q_i = Σ_p φ_i(x_p, y_p) β_p f_w (compression positive), is
+modal equations as the solver integrates them, ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i = −Q_i (Q_i the modal
+force of the contact points' forces; Σ_p φ_i(x_p, y_p) β_p f_w when each point carries its static
+share β_p of its wheel's force f_w, compression positive), is
 
     R(t) = −Σ_p I(x_p, y_p) β_p f_w − Σ_i r_i (ξ̈_i + 2 ζ_i ω_i ξ̇_i) / ω_i²
          = −Σ_p I(x_p, y_p) β_p f_w + Σ_i r_i Q_i / ω_i² + Σ_i r_i ξ_i,
@@ -14,31 +15,27 @@ Q_i = Σ_p φ_i(x_p, y_p) β_p f_w (compression positive), is
 Every jump and kink of R is in a function of the positions x_p(t) — I, and the mode shapes φ_i in
 Q_i — known exactly at any t (the vehicles' motion is prescribed), while the wheel forces f_w and
 the modal displacements ξ_i are states of the dynamics, continuous in t (ξ_i even smooth: its
-kinks are in ξ̈_i).  So at an instant u between the steps t_k−1 ≤ u ≤ t_k (``run_state``) the
-positions are exact, f_w is interpolated linearly, ξ_i by cubic Hermite interpolation of (ξ_i, ξ̇_i),
-and Q_i is summed from the exact mode shapes: R(u) and R_st(u) then follow at any u, in particular
-both one-sided limits R(τ∓) at an instant τ when a point stands on a jump (read at τ ∓ δ,
-δ = ``KNOT_OFFSET`` · step, ``one_sided``).  The error left is the interpolation's: at most
-(1 − cos(π f dt)) ≈ (π f dt)²/2 of the amplitude of a wheel-force component of frequency f (dt the
-stored step: 4e-3 at 15 Hz and 1.4 ms), and far less for ξ_i — against a sampled history's
-|ḟ_w| · dt, up to 2 π f dt ≈ 0.13 of that amplitude, at a jump.
+kinks are in ξ̈_i).  So at an instant u between the steps t_k−1 ≤ u ≤ t_k (``run_state``):
 
-The modal forces Q_i at u, three ways (``run_state``'s ``modal_forces``):
-
-* ``"shapes"``: Σ_p φ_i(x_p(u)) β_p f_w from the bridge's own mode shapes (the lifetime's knot
-  limits): the solver's Q_i where each point carries its static share of its wheel's force (point
-  tires), not with multi-point tires, whose points carry their own forces (1e-3 … 1e-2 of a load
-  effect off the sampled history on ``vbikit demo``'s crossing);
-* ``"steps"`` (the load effects' jump limits): Q_i at the two steps around u, read off the modal
-  equation, Q_i = −(ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i) (the stored ξ̈_i is the solver's, so these are its
-  Q_i at the steps), linear in time between them, except for the points that cross a support line
-  of the deck within that step — where their share φ_i β_p f_w jumps (a deck end on elastic
+* the positions are exact, f_w is interpolated linearly, ξ_i by cubic Hermite interpolation of
+  (ξ_i, ξ̇_i);
+* Q_i is read off the modal equation at the two steps, Q_i = −(ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i)
+  (the stored ξ̈_i is the solver's, so these are its Q_i, also with multi-point tires, whose
+  points carry their own forces rather than static shares of their wheel's: there the sum
+  Σ_p φ_i β_p f_w is 1e-3 … 1e-2 of a load effect off the sampled history, ``vbikit demo``'s
+  crossing), and taken linear in time between them, except for the points that pass a support
+  line of the deck within that step — where their share φ_i β_p f_w jumps (a deck end on elastic
   bearings, a joint) or kinks (a pinned end): for those the linear share is replaced by the exact
-  one from the run's mode tables.  The rest of Q_i is smooth over a step, so its error is of the
-  order of the wheel forces' own interpolation ((π f dt)²/2 of a component at frequency f) plus
-  the mode shapes' change over v·dt ((π i v dt / L)²/8 of mode i's share), and the cost is that of
-  a few points per instant instead of all of them; at the steps themselves it is the sampled
-  history, also with multi-point tires (tests/verification/test_effect_jump_limits.py).
+  one from the run's mode tables.
+
+R(u) and R_st(u) then follow at any u, in particular both one-sided limits R(τ∓) at an instant τ
+when a point stands on a jump (read at τ ∓ δ, δ = ``KNOT_OFFSET`` · step, ``one_sided``); at the
+steps themselves they are the sampled histories (tests/verification/test_effect_jump_limits.py).
+The error left is the interpolation's: at most (1 − cos(π f dt)) ≈ (π f dt)²/2 of the amplitude of a
+wheel-force component of frequency f (dt the stored step: 4e-3 at 15 Hz and 1.4 ms), the same order
+for the smooth part of Q_i plus its mode shapes' change over v·dt ((π i v dt / L)²/8 of mode i's
+share), and far less for ξ_i — against a sampled history's |ḟ_w| · dt, up to 2 π f dt ≈ 0.13 of that
+amplitude, at a jump.
 """
 from __future__ import annotations
 
@@ -74,7 +71,7 @@ def crossing_instants(crossing, travels: NDArray[np.float64], t0: float, t1: flo
 class RunState:
     """A run's state at the instants ``u`` (module docstring): contact points at ``x`` (n_u, n_cp) on
     the lines ``y`` (n_cp,), their forces β_p f_w ``f`` (n_u, n_cp, linear in time), the modal forces
-    Q_i ``q`` (n_u, n_modes, from the exact mode shapes) and displacements ξ_i ``xi`` (n_u, n_modes,
+    Q_i ``q`` (n_u, n_modes, from the steps) and displacements ξ_i ``xi`` (n_u, n_modes,
     cubic Hermite)."""
 
     u: NDArray[np.float64]
@@ -85,20 +82,14 @@ class RunState:
     xi: NDArray[np.float64]
 
 
-def run_state(result, u: NDArray[np.float64], modal_forces: str = "shapes") -> RunState:
+def run_state(result, u: NDArray[np.float64]) -> RunState:
     """The ``RunState`` of ``result`` (a ``CrossingResult`` of at least two steps) at the instants
-    ``u`` [s] within its time span; each instant's values are computed element by element (the same
-    whatever the other instants).  ``modal_forces``: how Q_i is found (module docstring) — "shapes"
-    (Σ_p over the bridge's ``mode_shapes`` with the static shares) or "steps" (the steps' Q_i, linear
-    between them, the points passing a support line within the step exact: cheaper, and the solver's
-    Q_i with any tire)."""
-    if modal_forces not in ("shapes", "steps"):
-        raise ValueError(f"modal_forces must be 'shapes' or 'steps', got {modal_forces!r}")
+    ``u`` [s] within its time span (module docstring); each instant's values are computed element by
+    element (the same whatever the other instants)."""
     t = np.asarray(result.time, float)
     crossing = result.crossing
     origin, sign, y = crossing.point_kinematics()
     x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, crossing.point_vehicle]
-    n_u = x.shape[0]
     k = np.searchsorted(t[1:-1], u) + 1  # the step ending at or after u, within 1 … n_t − 1
     km = k - 1
     h = t[k] - t[km]
@@ -111,19 +102,14 @@ def run_state(result, u: NDArray[np.float64], modal_forces: str = "shapes") -> R
     h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
     xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
           + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
-    if modal_forces == "steps":
-        q = _step_modal_forces(result, u, km, k, w, f)
-    else:
-        phi = np.asarray(crossing.bridge.mode_shapes(x.ravel(), np.repeat(y[None, :], n_u, 0).ravel()),
-                         float).reshape(x.shape + (-1,))
-        q = np.einsum("upi,up->ui", phi, f)
+    q = _step_modal_forces(result, u, km, k, w, f)
     return RunState(u, x, y, f, q, xi)
 
 
 def _step_modal_forces(result, u: NDArray[np.float64], km: NDArray[np.int64], k: NDArray[np.int64],
                        w: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
     """Q_i (n_u, n_modes) at the instants ``u`` between the stored rows ``km`` and ``k`` (fraction
-    ``w`` of the step), ``f`` the points' β_p f_w there: "steps" of the module docstring."""
+    ``w`` of the step), ``f`` the points' β_p f_w there (module docstring)."""
     crossing = result.crossing
     bridge = crossing.bridge
     omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)

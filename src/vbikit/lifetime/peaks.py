@@ -119,7 +119,7 @@ def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
     exact static peaks use), f_w interpolated linearly, ξ_i by cubic Hermite interpolation
     (ξ_i, ξ̇_i) and Q_i from the modal equation at the two steps around τ, linear between them
     except for the points that pass a support line in that step (their share from the run's mode
-    tables; ``"steps"``: the solver's own Q_i, also with multi-point tires, whose points carry their
+    tables: the solver's own Q_i, also with multi-point tires, whose points carry their
     own forces rather than static shares of their wheel's): the total at the
     instant of the exact static peak, no longer up to a step away from it (the run's state at the
     instants: ``vbikit.analysis.instants.run_state``, which the load effects' jump limits of
@@ -160,7 +160,7 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
         return keep
     u = one_sided(tau, float(t[1] - t[0]))  # R(τ⁻), R(τ⁺), in time order
     ordered = bool((u[1:] >= u[:-1]).all())  # so is every line's part of u (unless instants closer than 2δ)
-    state = run_state(result, u, modal_forces="steps")  # the run at every instant u (shared by the lines)
+    state = run_state(result, u)  # the run at every instant u (shared by the lines)
     x, f, q, xi = state.x, state.f, state.q, state.xi
     n_u = x.shape[0]
     xs = x.ravel()
