@@ -102,14 +102,14 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
     h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
     xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
           + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
-    q = _step_modal_forces(result, u, km, k, w, f)
+    q = _step_modal_forces(result, x, km, k, w, f)
     return RunState(u, x, y, f, q, xi)
 
 
-def _step_modal_forces(result, u: NDArray[np.float64], km: NDArray[np.int64], k: NDArray[np.int64],
+def _step_modal_forces(result, x: NDArray[np.float64], km: NDArray[np.int64], k: NDArray[np.int64],
                        w: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Q_i (n_u, n_modes) at the instants ``u`` between the stored rows ``km`` and ``k`` (fraction
-    ``w`` of the step), ``f`` the points' β_p f_w there (module docstring)."""
+    """Q_i (n_u, n_modes) at instants between the stored rows ``km`` and ``k`` (fraction ``w`` of the
+    step), the points at ``x`` with forces β_p f_w ``f`` there (n_u, n_cp) (module docstring)."""
     crossing = result.crossing
     bridge = crossing.bridge
     omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
@@ -134,7 +134,7 @@ def _step_modal_forces(result, u: NDArray[np.float64], km: NDArray[np.int64], k:
     cp = crossing.contact
     forces = result.wheel_forces
     wheel, weight = cp.wheel[points], cp.weight[points]
-    x_now = origin[points] + sign[points] * crossing.travel(u[rows])[np.arange(rows.size), crossing.point_vehicle[points]]
+    x_now = x[rows, points]
     x_a = x_ends.reshape((2,) + f.shape)[0][rows, points]
     x_b = x_ends.reshape((2,) + f.shape)[1][rows, points]
     phi_now, phi_a, phi_b = (_point_shapes(result, points, xs) for xs in (x_now, x_a, x_b))
