@@ -121,30 +121,27 @@ def _step_modal_forces(result, x: NDArray[np.float64], km: NDArray[np.int64], k:
     # the points that cross a support line within the step: their share exact, not linear
     t = np.asarray(result.time, float)
     origin, sign, y = crossing.point_kinematics()
-    ends = np.stack([t[km], t[k]])  # (2, n_u)
-    x_ends = origin + sign * crossing.travel(ends.ravel())[:, crossing.point_vehicle]  # (2·n_u, n_cp)
-    xi_ends = bridge.span_coordinate(x_ends, np.broadcast_to(y, x_ends.shape)).reshape((2,) + f.shape)
-    supports = np.asarray(bridge.support_x, float)
-    crossing_support = np.zeros(f.shape, bool)
-    for s in supports:
-        crossing_support |= (xi_ends[0] - s) * (xi_ends[1] - s) <= 0.0
-    rows, points = np.nonzero(crossing_support)
+    ends = np.concatenate([t[km], t[k]])  # the step's start, then its end, of every instant
+    x_ends = (origin + sign * crossing.travel(ends)[:, crossing.point_vehicle]).reshape((2,) + f.shape)
+    xi_ends = bridge.span_coordinate(x_ends, np.broadcast_to(y, x_ends.shape))
+    passing = np.zeros(f.shape, bool)
+    for s in np.asarray(bridge.support_x, float):
+        passing |= (xi_ends[0] - s) * (xi_ends[1] - s) <= 0.0
+    rows, points = np.nonzero(passing)
     if rows.size == 0:
         return q
     cp = crossing.contact
-    forces = result.wheel_forces
+    m = rows.size
     wheel, weight = cp.wheel[points], cp.weight[points]
-    x_now = x[rows, points]
-    x_a = x_ends.reshape((2,) + f.shape)[0][rows, points]
-    x_b = x_ends.reshape((2,) + f.shape)[1][rows, points]
-    phi_now, phi_a, phi_b = (_point_shapes(result, points, xs) for xs in (x_now, x_a, x_b))
-    share_a = phi_a * (forces[km[rows], wheel] * weight)[:, None]
-    share_b = phi_b * (forces[k[rows], wheel] * weight)[:, None]
-    exact = phi_now * f[rows, points][:, None]
+    # their shares φ_i β_p f_w at the instant and at the step's two ends, in one table lookup
+    phi = _point_shapes(result, np.tile(points, 3), np.concatenate([x[rows, points], x_ends[0][rows, points],
+                                                                     x_ends[1][rows, points]]))
+    forces = np.concatenate([f[rows, points], result.wheel_forces[km[rows], wheel] * weight,
+                             result.wheel_forces[k[rows], wheel] * weight])
+    share = phi * forces[:, None]
     wr = w[rows][:, None]
-    np.add.at(q, rows, exact - ((1.0 - wr) * share_a + wr * share_b))
+    np.add.at(q, rows, share[:m] - ((1.0 - wr) * share[m:2 * m] + wr * share[2 * m:]))
     return q
-
 
 def _point_shapes(result, points: NDArray[np.int64], x: NDArray[np.float64]) -> NDArray[np.float64]:
     """φ_i (m, n_modes) of contact points ``points`` at ``x`` [m] from the run's mode tables, zero off
