@@ -1,6 +1,7 @@
 """Malformed field files: each kind of fault gives an error naming the file and line or key."""
 from __future__ import annotations
 
+from dataclasses import replace as dataclass_replace
 from pathlib import Path
 
 import pytest
@@ -147,3 +148,21 @@ def test_response_file_that_is_not_a_regular_file_is_refused_unread(tmp_path):
         read_response_csv(fifo)
     with pytest.raises(FieldFileError, match="is a folder, not a regular file"):
         read_response_csv(tmp_path)
+
+
+@pytest.mark.parametrize("cut, ok", [(1e-9, False), (1.0 / 0.02 * 0.99, False), (50.0, True), (100.0, False), (250.0, False)],
+                         ids=["1e-9 Hz", "just below 1/T", "1/T", "Nyquist", "above Nyquist"])
+def test_lowpass_must_fit_the_record(tmp_path, example, cut, ok):
+    """``signal.lowpass_hz`` against a case's record (0.02 s at 200 Hz): from 1/T = 50 Hz up to below
+    the Nyquist frequency 100 Hz; outside, an error naming the key, the case, the file and the range
+    (a cut-off of 1e-9 Hz made the filter's start-up solve singular: a traceback, found by fuzzing)."""
+    spec = load_field_toml(example / "FIELD.toml")
+    case = dataclass_replace(spec.cases[0], channels=())
+    record = read_response_csv(write(tmp_path, GOOD))
+    if ok:
+        check_case_record(case, record, spec.path, cut)
+        return
+    with pytest.raises(FieldFileError, match=r"FIELD\.toml: signal\.lowpass_hz = .* Hz does not fit the record of case "
+                                             r"'case1' \(r\.csv: 0\.02 s sampled at 200 Hz\): the cut-off must be at least "
+                                             r"1/duration = 50 Hz and below the Nyquist frequency 100 Hz"):
+        check_case_record(case, record, spec.path, cut)

@@ -62,6 +62,18 @@ CASES = {
     "mass-tiny": (BEAM.replace('"paper-bridge-2-beam"', '"beam"\nspan = 20.0\nEI = 1e10\nmass_per_length = 1e-300'),
                   ["time steps", "crossing.dt"]),
     "dt-longer-than-crossing": (BEAM + "integrator = \"newmark\"\ndt = 1e9\n", ["crossing.dt = 1e+09 s", "fewer than 10 steps"]),
+    # ten steps over the run but not while the truck is on the span (a long free vibration): the run's static
+    # history was zero at every step and its impact factor raised a traceback (found by fuzzing)
+    # EI = 1e-300: the modes' frequencies underflowed and the load-effect step estimate overflowed (found by fuzzing)
+    "EI-tiny": ("[bridge]\nmodel = \"beam\"\nspan = 20.0\nEI = 1e-300\nmass_per_length = 5000.0\n[vehicle]\n"
+                "model = \"sprung-mass\"\n[crossing]\nspeed = 20.0\n", ["bridge.EI", "[1, 1e+16]", "1e-300"]),
+    # a preset's own diaphragms beyond a span the file shortens: the message named no key (found by fuzzing)
+    "deck-span-shorter-than-preset-diaphragms": (
+        "[bridge]\nmodel = \"paper-bridge-1\"\nn_modes = 4\n[bridge.deck]\nspan = 1.0\n[vehicle]\nmodel = \"hs20-44\"\n"
+        "[crossing]\nspeed_kmh = 60\n", ["bridge.deck: the model's own diaphragms", "0 … 1 m", "(span)",
+                                            "set bridge.deck.diaphragms as well"]),
+    "dt-longer-than-time-on-bridge": (BEAM + "free_vibration = 60\ndt = 0.5\n",
+                                      ["crossing.dt = 0.5 s", "fewer than 10 steps while the vehicles are on the bridge"]),
     # found by the fuzz run with exact modal stepping: wheels 7e16 m off the deck diverged after validate
     # (a lateral offset of -7e16 m is now refused by its range, ±50 m, before the deck width is known)
     "wheels-off-the-deck": (BEAM.replace('"paper-bridge-2-beam"', '"paper-bridge-1"\nn_modes = 4') + "lateral_offset = -7.0\n",

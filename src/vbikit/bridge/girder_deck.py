@@ -255,7 +255,7 @@ class SlabOnGirderBridge(ModalBridge):
         supports = tuple(float(v) for v in self.support_x)
         d = supports if self.diaphragms is None else tuple(float(v) for v in self.diaphragms)
         if any(not 0.0 <= v <= self.span for v in d):
-            raise ValueError(f"diaphragm positions must lie in 0 … {self.span} m, got {d}")
+            raise ValueError(f"diaphragms must stand in 0 … {self.span:g} m (the span), got {list(d)}")
         object.__setattr__(self, "diaphragms", d)
 
     # ------------------------------------------------------------------ geometry

@@ -17,6 +17,7 @@ the TOML key.
 from __future__ import annotations
 
 import logging
+import math
 import re
 import warnings
 from dataclasses import dataclass, field
@@ -448,8 +449,12 @@ def load_field_toml(path: str | Path) -> FieldSpec:
     )
 
 
-def check_case_record(case: CaseSpec, record: MeasuredRecord, spec_path: Path) -> None:
-    """Cross-check a case's channel table against its CSV: missing channels, unit mismatches, sampling rate."""
+def check_case_record(case: CaseSpec, record: MeasuredRecord, spec_path: Path, lowpass_hz: float | None = None) -> None:
+    """Cross-check a case's channel table against its CSV: missing channels, unit mismatches, sampling
+    rate; and the low-pass cut-off ``lowpass_hz`` [Hz] (``signal.lowpass_hz``) against the record: at
+    least 1/T (T its duration: a filter whose period exceeds the record cannot be realised over it,
+    and the Butterworth filter's start-up solve becomes singular far below) and below its Nyquist
+    frequency fs/2."""
     for ch in case.channels:
         if ch.name not in record.channels:
             raise FieldFileError(f"{record.path}: channel {ch.name!r} (listed in {spec_path.name}, case {case.name!r}) "
@@ -462,3 +467,12 @@ def check_case_record(case: CaseSpec, record: MeasuredRecord, spec_path: Path) -
         if abs(fs - case.sampling_rate) > TIME_TOLERANCE * case.sampling_rate:
             raise FieldFileError(f"{record.path}: sampled at {fs:.6g} Hz but {spec_path.name} case {case.name!r} "
                                  f"says sampling_rate = {case.sampling_rate:g} Hz")
+    if lowpass_hz is not None:
+        fs = record.sampling_rate
+        duration = float(record.time[-1] - record.time[0])
+        lowest = 1.0 / duration if duration > 0 else math.inf
+        if not lowest <= lowpass_hz < fs / 2:
+            raise FieldFileError(f"{spec_path.name}: signal.lowpass_hz = {lowpass_hz:g} Hz does not fit the record of case "
+                                 f"{case.name!r} ({record.path.name}: {duration:.4g} s sampled at {fs:.4g} Hz): the cut-off must be "
+                                 f"at least 1/duration = {lowest:.4g} Hz and below the Nyquist frequency {fs / 2:.4g} Hz; "
+                                 "choose one in that range or leave the key out")

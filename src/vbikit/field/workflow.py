@@ -235,6 +235,8 @@ def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None)
     least ten steps, the step rule and stability, the memory and step budgets)."""
     bridge = base_bridge(spec)
     check_bridge(bridge, limits)
+    for case in spec.cases:  # every record against its case first (cheap), before any simulation
+        check_case_record(case, read_response_csv(case.responses), spec.path, spec.lowpass_hz)
     for case in spec.cases:
         profiles: Profiles | None = None
         for name in tires:
@@ -253,7 +255,7 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
     """Run the whole pipeline of the module docstring for one loading case."""
     t0 = _time.perf_counter()
     record = read_response_csv(case.responses)
-    check_case_record(case, record, spec.path)
+    check_case_record(case, record, spec.path, spec.lowpass_hz)
     bridge = ScaledBridge(base_bridge(spec), spec.stiffness_factor if stiffness_factor is None else stiffness_factor,
                           damping_ratio)
     where = f"{spec.path} case {case.name!r}"

@@ -31,13 +31,16 @@ class DamageSpec(Section):
 
 #: upper ends of the beam properties [N m^2], [kg/m] (far above any bridge: a steel box girder has EI ≈ 1e13 N m^2)
 MAX_EI = 1e16
+#: lower end of a beam's bending stiffness [N m^2]: a 10 × 5 mm aluminium laboratory strip has EI ≈ 7 N m^2; far
+#: below it the modes' frequencies underflow against any vehicle's (1e-300 overflowed the load-effect step estimate)
+MIN_EI = 1.0
 MAX_MASS_PER_LENGTH = 1e6
 #: span lengths of a continuous beam [m] (the longest bridge spans are about 2 km; shorter than 0.5 m the mesh
 #: of ``elements_per_span`` elements degenerates)
 MIN_SPAN = 0.5
 MAX_SPAN = 5000.0
 _POSITIVE = Annotated[float, Field(gt=0)]
-_EI = Annotated[float, Field(gt=0, le=MAX_EI)]
+_EI = Annotated[float, Field(ge=MIN_EI, le=MAX_EI)]
 _MASS = Annotated[float, Field(gt=0, le=MAX_MASS_PER_LENGTH)]
 _SPRING = Annotated[float, Field(ge=0, allow_inf_nan=True)]
 
@@ -99,8 +102,15 @@ class BridgeKind(Section):
         try:
             return make(n_modes=self.n_modes, damping_ratio=self.damping_ratio, **overrides)  # type: ignore[attr-defined]
         except ValueError as err:  # the deck model names its parameter: give it the scenario key
+            from vbikit.scenario.deck import SCENARIO_PARAMETERS
+
             key = str(err).split(" ", 1)[0]
-            raise ScenarioError(f"bridge.deck.{err}" if key in deck else str(err)) from None
+            if key in deck:
+                raise ScenarioError(f"bridge.deck.{err}") from None
+            if key in SCENARIO_PARAMETERS:  # the model's own value no longer fits the ones [bridge.deck] changed
+                raise ScenarioError(f"bridge.deck: the model's own {err}, with the values [bridge.deck] sets "
+                                    f"({', '.join(sorted(deck))}); set bridge.deck.{key} as well") from None
+            raise ScenarioError(str(err)) from None
 
 
 class BeamSpec(BridgeKind):
@@ -108,7 +118,7 @@ class BeamSpec(BridgeKind):
 
     model: Literal["beam"] = Field("beam", description="Euler–Bernoulli beam")
     span: Optional[float] = Field(None, gt=0, description="span length [m]")
-    EI: Optional[float] = Field(None, gt=0, le=MAX_EI, description="bending stiffness [N m^2]")
+    EI: Optional[float] = Field(None, ge=MIN_EI, le=MAX_EI, description="bending stiffness [N m^2]")
     mass_per_length: Optional[float] = Field(None, gt=0, le=MAX_MASS_PER_LENGTH, description="mass per length [kg/m]")
     damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
     n_modes: _N_MODES = 10

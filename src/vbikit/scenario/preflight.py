@@ -255,12 +255,17 @@ def check_vehicle_overlap(crossing: Crossing) -> None:
 
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
     """The run plan of ``crossing`` ([`vbikit.solve.plan.plan_run`][vbikit.solve.plan_run]: its time step [s] and
-    estimate), checked as every run is: a given step makes at least ``MIN_STEPS`` steps, the
+    estimate), checked as every run is: a given step makes at least ``MIN_STEPS`` steps while the
+    vehicles are on the bridge (from the first entry to the last exit), the
     integrator's step rule (and, for explicit integrators, its stability limit), the memory and
     step budgets of ``limits`` (raises ScenarioError, UnstableTimeStepError or BudgetError)."""
-    if crossing.dt is not None and crossing.dt > crossing.duration / MIN_STEPS:
-        raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps over the crossing "
-                            f"({crossing.duration:.4g} s); leave dt out for the automatic step")
+    if crossing.dt is not None:
+        on_bridge = crossing.exit_time() - min(m.entry_time for m in crossing.vehicles)  # first entry to last exit
+        if crossing.dt > min(crossing.duration, on_bridge) / MIN_STEPS:
+            raise ScenarioError(f"crossing.dt = {crossing.dt:g} s gives fewer than {MIN_STEPS} steps while the vehicles "
+                                f"are on the bridge ({on_bridge:.4g} s of the run's {crossing.duration:.4g} s); use "
+                                f"dt <= {min(crossing.duration, on_bridge) / MIN_STEPS:.3g} s, or leave dt out for the "
+                                "automatic step")
     try:  # an explicit integrator's run is checked at its accuracy step before its stability limit is computed
         run = plan_run(crossing, limits)
     except (RuntimeError, ArithmeticError, np.linalg.LinAlgError) as err:
