@@ -657,7 +657,9 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                     for lane in range(n_l):
                         g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
         if n >= first:  # a wheel that lands or lifts off: the next step holds from here on
-            hold_jumps(wf, contact, g0, p, pm, gm, jumped, MANY_LANES)
+            # MANY_LANES as int64s, not the global's literal 0s: hold_jumps keeps the one signature implicit
+            # gives it (a literal-typed tuple compiled it a second time)
+            hold_jumps(wf, contact, g0, p, pm, gm, jumped, (np.int64(MANY_LANES[0]), np.int64(MANY_LANES[1])))
         else:  # (the wheels in contact at the start)
             for w in range(n_w):
                 for lane in range(n_l):
