@@ -29,11 +29,13 @@ every such instant (``jump_limits``, ``LoadEffectResponse.peak_series``): τ fro
 prescribed motion at the ``jump_positions`` ξ_j, and at τ ∓ δ (δ = 1e-6 dt)
 
     R(τ∓) = −Σ_p I(x_p(τ∓), y_p) β_p f_w(τ) + Σ_i r_i Q_i(τ∓) / ω_i² + Σ_i r_i ξ_i(τ),
-    Q_i = Σ_p φ_i(x_p, y_p) β_p f_w,      R_st(τ∓) = −Σ_p I(x_p(τ∓), y_p) β_p P_w
+    R_st(τ∓) = −Σ_p I(x_p(τ∓), y_p) β_p P_w
 
 (the modal equations ξ̈_i + 2 ζ_i ω_i ξ̇_i + ω_i² ξ_i = −Q_i turn the modal term into displacements
-and modal forces), positions and influence exact, f_w linear and ξ_i cubic Hermite between the two
-steps around τ (``vbikit.analysis.instants``, shared with the lifetime's knot limits): the static
+and modal forces Q_i), positions and influence exact, f_w linear and ξ_i cubic Hermite between the
+two steps around τ, Q_i from the modal equation at those steps, linear between them but for the
+points passing a support line in the step (``vbikit.analysis.instants``, shared with the
+lifetime's knot limits; the solver's own Q_i, also with multi-point tires): the static
 peak is then the exact one-sided limit, the dynamic one is read at the same instant, and what is
 left is the interpolation's (π f dt)²/2 · A.  The histories (``time``, ``dynamic``, ``static``:
 CSV columns, datasets) stay on the time grid; the summary's peaks and IM, the outputs catalogue's
@@ -350,7 +352,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     instant τ in the run's span at which a contact point stands on one of its ``jump_positions``
     (module docstring; ``vbikit.analysis.instants``): positions and influence values exact, wheel
     forces linear and modal displacements cubic Hermite between the two steps around τ, the modal
-    forces from the exact mode shapes.  The run's state is evaluated once at the union of the
+    forces from the modal equation at those steps (``run_state``).  The run's state is evaluated once at the union of the
     effects' instants, element by element; each effect's values then over its own instants only (so
     they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
     points' β_p P_w if already computed."""
