@@ -356,7 +356,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     effects' instants, element by element; each effect's values then over its own instants only (so
     they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
     points' β_p P_w if already computed."""
-    from vbikit.analysis.instants import crossing_instants, one_sided, run_state
+    from vbikit.analysis.instants import crossing_instants, instant_rows, one_sided, run_state
 
     t = np.asarray(result.time, float)
     empty = (np.zeros(0), np.zeros(0), np.zeros(0))
@@ -382,18 +382,14 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     if static_loads is None:
         cp = crossing.contact
         static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    omega2 = bridge.omega**2
     out = []
     for e, effect, mine in zip(range(len(effects)), effects, taus):
         if mine.size == 0:
             out.append(empty)
             continue
-        rows = np.repeat(2 * np.searchsorted(tau, mine), 2)  # τ⁻ and τ⁺ of each of its instants
-        rows[1::2] += 1
-        g = infl[e, rows]
-        r = np.asarray(effect.modal, float)
-        dynamic = -np.sum(g * state.f[rows], axis=1) + state.q[rows] @ (r / omega2) + state.xi[rows] @ r
-        out.append((u[rows], dynamic, -(g @ static_loads)))
+        rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
+        g = -infl[e, rows]  # the line's value per unit force: −I
+        out.append((u[rows], state.total(g, effect.modal, bridge.omega, rows), g @ static_loads))
     return out
 
 

@@ -81,6 +81,23 @@ class RunState:
     q: NDArray[np.float64]
     xi: NDArray[np.float64]
 
+    def total(self, g: NDArray[np.float64], modal: NDArray[np.float64], omega: NDArray[np.float64],
+              rows: NDArray[np.int64] | None = None) -> NDArray[np.float64]:
+        """A line's value R = Σ_p g_p β_p f_w + Σ_i r_i Q_i / ω_i² + Σ_i r_i ξ_i (module docstring; g = −I
+        for a load effect's influence I, r_i ``modal``, ω_i ``omega``) at the instants' rows ``rows``
+        (None: all), ``g`` (n_rows, n_cp) given at those rows."""
+        f, q, xi = (self.f, self.q, self.xi) if rows is None else (self.f[rows], self.q[rows], self.xi[rows])
+        r = np.asarray(modal, float)
+        return np.sum(g * f, axis=1) + q @ (r / np.asarray(omega, float)**2) + xi @ r
+
+
+def instant_rows(tau: NDArray[np.float64], mine: NDArray[np.float64]) -> NDArray[np.int64]:
+    """The rows of ``one_sided(tau)`` holding τ⁻ and τ⁺ of each instant of ``mine`` (a sorted subset of
+    the sorted ``tau``), in order."""
+    rows = np.repeat(2 * np.searchsorted(tau, mine), 2)
+    rows[1::2] += 1
+    return rows
+
 
 def run_state(result, u: NDArray[np.float64]) -> RunState:
     """The ``RunState`` of ``result`` (a ``CrossingResult`` of at least two steps) at the instants

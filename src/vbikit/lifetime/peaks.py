@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.breakpoints import GATE, active_nodes, event_extremes, knot_tables
-from vbikit.analysis.instants import KNOT_OFFSET, one_sided, run_state
+from vbikit.analysis.instants import KNOT_OFFSET, instant_rows, one_sided, run_state
 
 __all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_limits", "knot_tables",
            "with_knot_limits"]
@@ -161,10 +161,9 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
     u = one_sided(tau, float(t[1] - t[0]))  # R(τ⁻), R(τ⁺), in time order
     ordered = bool((u[1:] >= u[:-1]).all())  # so is every line's part of u (unless instants closer than 2δ)
     state = run_state(result, u)  # the run at every instant u (shared by the lines)
-    x, f, q, xi = state.x, state.f, state.q, state.xi
+    x = state.x
     n_u = x.shape[0]
     xs = x.ravel()
-    omega2 = crossing.bridge.omega**2
     cp = crossing.contact
     p_static = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     out, located = [], {}
@@ -176,15 +175,11 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
         if grid not in located:
             located[grid] = table.locate(xs, np.repeat(track[None, :], n_u, 0).ravel())
         g = table.at(*located[grid]).reshape(x.shape)  # table(x, track): g at every point and instant
-        r = np.asarray(effect.modal, float)
-        if mine.size == tau.size:  # every instant of the run is one of this line's
-            fj, qj, xij, uj = f, q, xi, u
-        else:  # this line's rows: τ⁻ and τ⁺ of each of its instants
-            rows = np.repeat(2 * np.searchsorted(tau, mine), 2)
-            rows[1::2] += 1
-            g, fj, qj, xij, uj = g[rows], f[rows], q[rows], xi[rows], u[rows]
-        total = np.sum(g * fj, axis=1) + qj @ (r / omega2) + xij @ r
-        out.append(_merged(t, uj, dyn, total, sta, g @ p_static, ordered))
+        rows = None if mine.size == tau.size else instant_rows(tau, mine)  # None: every instant is this line's
+        if rows is not None:
+            g = g[rows]
+        total = state.total(g, effect.modal, crossing.bridge.omega, rows)
+        out.append(_merged(t, u if rows is None else u[rows], dyn, total, sta, g @ p_static, ordered))
     return out
 
 
