@@ -93,7 +93,7 @@ class BridgeKind(Section):
 
     def _deck_bridge(self, make: Any) -> ModalBridge:
         """``make(n_modes=, damping_ratio=, **deck overrides, damage=)``: a deck whose model errors name bridge.deck.<key>."""
-        from vbikit.scenario.deck import deck_parameters
+        from vbikit.scenario.deck import SCENARIO_PARAMETERS, deck_parameters
 
         deck = self.deck or {}  # type: ignore[attr-defined]
         overrides = deck_parameters(deck)
@@ -102,8 +102,6 @@ class BridgeKind(Section):
         try:
             return make(n_modes=self.n_modes, damping_ratio=self.damping_ratio, **overrides)  # type: ignore[attr-defined]
         except ValueError as err:  # the deck model names its parameter: give it the scenario key
-            from vbikit.scenario.deck import SCENARIO_PARAMETERS
-
             key = str(err).split(" ", 1)[0]
             if key in deck:
                 raise ScenarioError(f"bridge.deck.{err}") from None
