@@ -5,7 +5,8 @@ compiled sums), summed pair by pair, and the mode-acceleration correction writte
 (``vbikit.analysis.effects``, module docstring: R = −Σ_p I β_p f_w − Σ_i r_i (ξ̈_i + 2ζ_i ω_i ξ̇_i)/ω_i²),
 with both one-sided limits at the instants a contact point crosses a jump or kink of the line written
 out too (each vehicle's own ``time_at``, f_w by ``np.interp``, ξ by scipy's cubic Hermite spline, Q_i
-from the bridge's mode shapes, the influence by ``direct``);
+from the bridge's mode shapes, the influence by ``direct``), and the extremes between the samples
+away from those instants and the deck ends (``np.polyfit``'s parabola through three samples);
 and the compiled sums (``vbikit.analysis.line_sums``) against the numpy pair tables on a skew deck
 with multi-point tires, two vehicles driving in opposite directions."""
 from __future__ import annotations
@@ -114,6 +115,31 @@ def brute_force_limits(result, effect):
     return u, dynamic, static
 
 
+def brute_force_vertices(result, effect, dynamic, static):
+    """(times, dynamic, static) at the extremes between the samples (``impact.smooth_vertices``),
+    written out: for each history and sense its extreme sample, unless a contact point stands on the
+    effect's section or a deck end (each vehicle's ``time_at``) within the two steps around it, the
+    vertex of ``np.polyfit``'s parabola through the three samples, both histories' parabolas read there."""
+    crossing = result.crossing
+    bridge = crossing.bridge
+    origin, sign, y = crossing.point_kinematics()
+    t = result.time
+    where = ([] if effect.kind == "reaction" else [effect.influence.section]) + [0.0, bridge.span]
+    kinks = np.array([crossing.vehicles[crossing.point_vehicle[p]].time_at((xi_j + y[p] * bridge.skew_tan - origin[p]) * sign[p])
+                      for p in range(origin.size) for xi_j in where])
+    out = []
+    for which, history in enumerate((dynamic, static)):
+        for s in (1.0, -1.0):
+            i = int(np.argmax(s * history))
+            if not 0 < i < t.size - 1 or np.any((kinks >= t[i - 1]) & (kinks <= t[i + 1])):
+                continue
+            fits = [np.polyfit(t[i - 1:i + 2] - t[i], h[i - 1:i + 2], 2) for h in (dynamic, static)]
+            if s * fits[which][0] < 0:
+                v = -fits[which][1] / (2 * fits[which][0])
+                out.append((t[i] + v, np.polyval(fits[0], v), np.polyval(fits[1], v)))
+    return tuple(np.array(c) for c in zip(*out)) if out else (np.zeros(0),) * 3
+
+
 def test_stream_load_effects_equal_a_brute_force_reduction_of_each_event():
     records = synthetic_stream([LaneTraffic(1, "+x", 1500, 80, 5), LaneTraffic(2, "-x", 1500, 70, 5)], 8, seed=4)
     job = traffic_study(records, BASE, seed=3, batch_size=8)
@@ -127,7 +153,8 @@ def test_stream_load_effects_equal_a_brute_force_reduction_of_each_event():
         for kind, effect in effects.items():
             dynamic, static = brute_force(result, effect)
             u, at_u, static_at_u = brute_force_limits(result, effect)
-            im = impact_factor(np.r_[result.time, u], np.r_[dynamic, at_u], np.r_[static, static_at_u])
+            v, at_v, static_at_v = brute_force_vertices(result, effect, dynamic, static)
+            im = impact_factor(np.r_[result.time, u, v], np.r_[dynamic, at_u, at_v], np.r_[static, static_at_u, static_at_v])
             scale = np.abs(static).max()
             assert scale > 0
             # (the static peaks: the same positions and influence values; the dynamic ones: Q_i from the
@@ -165,7 +192,8 @@ def test_compiled_sums_equal_the_pair_tables_and_the_direct_influence(skew):
         # instants on each wheel line at x = ξ_j + y tan θ; two vehicles driving opposite ways)
         u, at_u, static_at_u = brute_force_limits(result, effect)
         assert u.size > 0
-        im = impact_factor(np.r_[result.time, u], np.r_[dynamic, at_u], np.r_[static, static_at_u])
+        v, at_v, static_at_v = brute_force_vertices(result, effect, dynamic, static)
+        im = impact_factor(np.r_[result.time, u, v], np.r_[dynamic, at_u, at_v], np.r_[static, static_at_u, static_at_v])
         for got in (compiled[k], tables[k]):
             assert abs(got.impact.static_peak - im.static_peak) <= 1e-11 * scale, effect.label
             assert abs(got.impact.dynamic_peak - im.dynamic_peak) <= 1e-8 * scale, effect.label

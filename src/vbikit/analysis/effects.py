@@ -62,7 +62,8 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.impact import ImpactFactor, impact_factor, impact_factor_toward, static_direction, static_modal_history
+from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices, static_direction,
+                                   static_modal_history)
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import LoadEffect, TabulatedInfluence, influence_values
 from vbikit.solve.result import CrossingResult
@@ -92,6 +93,12 @@ class LoadEffectResponse:
     limits: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | \
         Callable[[], tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]] | None = field(
         default=None, repr=False, compare=False)
+    #: the instants [s] at which the histories may jump or kink (a contact point on a jump or kink of the
+    #: influence line, or on a support line: ``kink_instants``), or a function making them on first
+    #: use; the peaks between the samples are sought away from them (``impact.smooth_vertices``); None:
+    #: not known, the samples and limits only
+    kinks: NDArray[np.float64] | Callable[[], NDArray[np.float64]] | None = field(
+        default=None, repr=False, compare=False)
 
     def _step(self) -> tuple[str | None, float]:
         if callable(self.step_check):
@@ -111,11 +118,20 @@ class LoadEffectResponse:
     @cached_property
     def peak_series(self) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """(time, dynamic, static): the histories' samples, then the one-sided limits at the jump
-        instants (``limits``; not in time order) — what the peaks are taken over (module docstring)."""
+        instants (``limits``), then the extremes between the samples away from the kinks (``kinks``,
+        ``impact.smooth_vertices``); not in time order — what the peaks are taken over (module docstring)."""
+        parts = [(self.time, self.dynamic, self.static)]
         limits = self.limits() if callable(self.limits) else self.limits
-        if limits is None or limits[0].size == 0:
+        if limits is not None and limits[0].size:
+            parts.append(limits)
+        if self.kinks is not None:
+            kinks = self.kinks() if callable(self.kinks) else self.kinks
+            vertices = smooth_vertices(self.time, self.dynamic, self.static, kinks)
+            if vertices[0].size:
+                parts.append(vertices)
+        if len(parts) == 1:
             return self.time, self.dynamic, self.static
-        return tuple(np.concatenate((a, b)) for a, b in zip((self.time, self.dynamic, self.static), limits))  # type: ignore[return-value]
+        return tuple(np.concatenate(cols) for cols in zip(*parts))  # type: ignore[return-value]
 
     @cached_property
     def impact(self) -> ImpactFactor:
@@ -295,7 +311,8 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
         return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal,
-                                   _checked(result, e, check_step, log_step)) for e in effects]
+                                   _checked(result, e, check_step, log_step), kinks=np.zeros(0))  # (Σ r_i ξ_i: smooth)
+                for e in effects]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
     tabulated = influence is None and tabulated_together(effects)
@@ -326,7 +343,7 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
         dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
     limits = _SharedLimits(result, tuple(effects), static_loads)
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
-                               partial(limits, k)) for k, e in enumerate(effects)]
+                               partial(limits, k), partial(limits.kinks, k)) for k, e in enumerate(effects)]
 
 
 def jump_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float64]:
@@ -346,6 +363,36 @@ def jump_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float6
     return np.array(sorted(xs))
 
 
+def kink_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float64]:
+    """ξ [m] where the history of ``effect`` may jump or kink as a contact point passes: its
+    ``jump_positions`` and every support line (``support_x``: a moment's influence kinks where a point
+    enters or leaves the deck, though it is 0 there), sorted, unique."""
+    return np.union1d(jump_positions(bridge, effect), np.asarray(bridge.support_x, float))
+
+
+def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
+                      positions: Callable[[ModalBridge, LoadEffect], NDArray[np.float64]]) -> list[NDArray[np.float64]]:
+    """Per effect, the instants in the run's span at which a contact point stands on one of its
+    ``positions(bridge, effect)`` ξ (on every wheel line, skew decks included), sorted, unique."""
+    from vbikit.analysis.instants import crossing_instants
+
+    t = result.time
+    crossing = result.crossing
+    bridge = crossing.bridge
+    origin, sign, y = crossing.point_kinematics()
+    lines = y * float(bridge.skew_tan)  # x − ξ of each point's line
+    return [crossing_instants(crossing, (positions(bridge, e)[None, :] + lines[:, None] - origin[:, None])
+                              * sign[:, None], float(t[0]), float(t[-1])) for e in effects]
+
+
+def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[NDArray[np.float64]]:
+    """Per effect, the instants [s] at which its histories may jump or kink: a contact point on one of
+    its ``kink_positions`` (``LoadEffectResponse.kinks``)."""
+    if np.asarray(result.time).size < 2:
+        return [np.zeros(0) for _ in effects]
+    return _passing_instants(result, effects, kink_positions)
+
+
 def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
                 static_loads: NDArray[np.float64] | None = None) -> list[tuple[NDArray[np.float64], ...]]:
     """Per effect (mode acceleration), (time, dynamic, static) at both one-sided limits τ∓δ of every
@@ -356,7 +403,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     effects' instants, element by element; each effect's values then over its own instants only (so
     they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
     points' β_p P_w if already computed."""
-    from vbikit.analysis.instants import crossing_instants, instant_rows, one_sided, run_state
+    from vbikit.analysis.instants import instant_rows, one_sided, run_state
 
     t = np.asarray(result.time, float)
     empty = (np.zeros(0), np.zeros(0), np.zeros(0))
@@ -364,10 +411,9 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
         return [empty for _ in effects]
     crossing = result.crossing
     bridge = crossing.bridge
-    origin, sign, y = crossing.point_kinematics()
+    _, _, y = crossing.point_kinematics()
     lines = y * float(bridge.skew_tan)  # x − ξ of each point's line
-    taus = [crossing_instants(crossing, (jump_positions(bridge, e)[None, :] + lines[:, None] - origin[:, None])
-                              * sign[:, None], float(t[0]), float(t[-1])) for e in effects]
+    taus = _passing_instants(result, effects, jump_positions)
     tau = np.unique(np.concatenate(taus))
     if tau.size == 0:
         return [empty for _ in effects]
@@ -394,18 +440,26 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
 
 
 class _SharedLimits:
-    """``jump_limits`` of one run's effects, computed on the first call (any effect's) and shared by
-    their responses: ``self(k)`` is effect k's."""
+    """``jump_limits`` (and ``kink_instants``) of one run's effects, computed on the first call (any
+    effect's) and shared by their responses: ``self(k)`` (``self.kinks(k)``) is effect k's."""
 
     def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...],
                  static_loads: NDArray[np.float64]) -> None:
         self.result, self.effects, self.static_loads = result, effects, static_loads
         self.values: list[tuple[NDArray[np.float64], ...]] | None = None
 
+        self.kink_values: list[NDArray[np.float64]] | None = None
+
     def __call__(self, k: int) -> tuple[NDArray[np.float64], ...]:
         if self.values is None:
             self.values = jump_limits(self.result, self.effects, self.static_loads)
         return self.values[k]
+
+    def kinks(self, k: int) -> NDArray[np.float64]:
+        """``kink_instants`` of effect k (computed for all on the first call)."""
+        if self.kink_values is None:
+            self.kink_values = kink_instants(self.result, self.effects)
+        return self.kink_values[k]
 
 
 def tabulated_together(effects: Sequence[LoadEffect]) -> bool:

@@ -103,6 +103,54 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
     return best, t_best
 
 
+def smooth_vertices(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
+                    kinks: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The extremes of two sampled histories between their samples, where no rate is known (the load
+    effects): for each history (``dynamic``, ``static``) and each sense (largest, smallest) the vertex
+    of the parabola through its extreme sample and the two either side, when that sample is interior,
+    the parabola turns that way and no instant of ``kinks`` [s] (where the histories may jump or kink:
+    an axle on a jump of the influence line or on a support line) lies on the two steps — then
+    (t*, dynamic(t*), static(t*)), both histories read off their parabolas through the same three
+    samples.  Up to four entries (time, dynamic, static), to be taken with the samples.
+
+    A sampled extreme of a smooth history misses up to 1 − cos(π f dt) ≈ (π f dt)²/2 of the amplitude
+    of its component of frequency f; the parabola's vertex misses O((f dt)³) of it (Lagrange
+    interpolation's remainder, at most h³ max|y‴|/(9√3) on three samples h apart: A (2π f h)³/(9√3)).
+    Where a kink lies on the two steps the sample stands (and misses up to a step's change)."""
+    t = np.asarray(time, float)
+    out: list[tuple[float, float, float]] = []
+    n = t.size
+    if n >= 3:
+        histories = (np.asarray(dynamic, float), np.asarray(static, float))
+        k = np.sort(np.asarray(kinks, float))
+        for which in (0, 1):
+            for sign in (1.0, -1.0):
+                i = int(np.argmax(sign * histories[which]))
+                if not 0 < i < n - 1:
+                    continue
+                if k.size and np.searchsorted(k, t[i - 1], "left") < np.searchsorted(k, t[i + 1], "right"):
+                    continue  # a kink on the two steps: the limits there (``vbikit.analysis.effects``) hold the peak
+                s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
+                coef = [_parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
+                a, b, _ = coef[which]
+                if not sign * a < 0.0:
+                    continue  # not turning that way (a flat or inflected top): the sample stands
+                s = -b / (2.0 * a)
+                out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
+    if not out:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    return tuple(np.array(col) for col in zip(*out))  # type: ignore[return-value]
+
+
+def _parabola(s0: float, s2: float, y0: float, y1: float, y2: float) -> tuple[float, float, float]:
+    """(a, b, c) of y = a s² + b s + c through (s0, y0), (0, y1), (s2, y2), s0 < 0 < s2 (Newton's divided
+    differences)."""
+    d0 = (y1 - y0) / -s0
+    d2 = (y2 - y1) / s2
+    a = (d2 - d0) / (s2 - s0)
+    return a, d0 - a * s0, y1
+
+
 def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
     """Real roots of a s² + b s + c (a root pair whose imaginary part is at most 1e-12 counts as
     real, at its real part; a, b = 0: none), by the cancellation-free quadratic formula
