@@ -6,8 +6,8 @@ stream, each run at the automatic step times 1, 0.999, 0.997, 0.995, 0.99 and at
 
 Per effect (the traffic study's first moment, shear and reaction: Girder 4 midspan, shear at x = 0,
 support 0): the impact factor read at the steps only (``impact_factor`` of the histories: the peaks
-before the jump limits) and with the one-sided limits at the jumps (``LoadEffectResponse.impact``,
-``vbikit.analysis.effects``), their spread over the five steps and their largest distance from the
+before the jump limits) and with the one-sided limits at the jumps and the extremes between the
+steps away from them (``LoadEffectResponse.impact``, ``vbikit.analysis.effects``), their spread over the five steps and their largest distance from the
 1/16 run read at its steps.  Over a range: median and maximum over the events, over all events and
 over those whose static peak is above half the range's largest (the ones loading the girder).
 Also the thread CPU time of ``jump_limits`` per event.  Writes nothing.
@@ -71,7 +71,7 @@ def main() -> None:
                       f"{' '.join(f'{v:.4f}' for v in new[:, k])} | 1/16 step {ref[k]:.4f}")
     if args.events:
         return
-    names = ("spread, at steps", "spread, with limits", "|IM - 1/16|, at steps", "|IM - 1/16|, with limits")
+    names = ("spread, at steps", "spread, with limits", "|IM - 1/16|, at steps", "|IM - 1/16|, with limits")  # (limits and vertices)
     static = np.array([r[4] for r in rows])
     big = static > 0.5 * static.max(0)[None, :]
     for which, mask in (("all events", np.ones_like(big)), ("static > half the largest", big)):

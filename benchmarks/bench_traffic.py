@@ -85,7 +85,7 @@ def main() -> None:
     p.add_argument("--trucks", type=int, default=5000)
     p.add_argument("--flow", type=float, default=600.0, help="trucks per hour and lane (default 600)")
     p.add_argument("--workers", type=int, default=2)
-    p.add_argument("--baseline", type=int, default=200, help="trucks run one at a time (default 200)")
+    p.add_argument("--baseline", type=int, default=200, help="trucks run one at a time (default 200; 0: skip)")
     p.add_argument("--spacing", type=float, default=0.01, help="road sample spacing [m] (default 0.01, the scenario default)")
     p.add_argument("--outputs", default=None, help="outputs to reduce, comma-separated (default: the whole catalogue)")
     p.add_argument("--by-size", type=int, default=300, help="events timed in this process by trucks per event (default 300; 0: skip)")
@@ -115,13 +115,15 @@ def main() -> None:
         kids1 = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpu_workers = (kids1.ru_utime + kids1.ru_stime) - (kids0.ru_utime + kids0.ru_stime)
 
-    n_b = min(args.baseline, len(records))
-    chunks = [list(range(k, n_b, args.workers)) for k in range(args.workers)]
-    with ProcessPoolExecutor(args.workers) as pool:
-        list(pool.map(_alone, [(job, c[:2]) for c in chunks]))  # warm the pool (imports, numba cache)
-        t0 = time.perf_counter()
-        list(pool.map(_alone, [(job, c) for c in chunks]))
-        t_alone = time.perf_counter() - t0
+    n_b = min(max(args.baseline, 0), len(records))
+    t_alone = 0.0
+    if n_b:
+        chunks = [list(range(k, n_b, args.workers)) for k in range(args.workers)]
+        with ProcessPoolExecutor(args.workers) as pool:
+            list(pool.map(_alone, [(job, c[:2]) for c in chunks]))  # warm the pool (imports, numba cache)
+            t0 = time.perf_counter()
+            list(pool.map(_alone, [(job, c) for c in chunks]))
+            t_alone = time.perf_counter() - t0
 
     n_ev = job.size
     n_mp = int(ds["multiple_presence"].sum())
@@ -136,8 +138,9 @@ def main() -> None:
     cpu = p_stream + cpu_workers
     print(f"  stream CPU: this process {p_stream:.1f} s + workers {cpu_workers:.1f} s = {cpu / n_ev * 1e3:.1f} ms an event "
           f"-> {n_ev / (cpu / args.workers):.0f} events/s on {args.workers} idle cores")
-    print(f"  one at a time ({n_b} trucks): {t_alone:.1f} s = {n_b / t_alone:.1f} trucks/s -> the whole stream "
-          f"{len(records) / (n_b / t_alone):.0f} s")
+    if n_b:
+        print(f"  one at a time ({n_b} trucks): {t_alone:.1f} s = {n_b / t_alone:.1f} trucks/s -> the whole stream "
+              f"{len(records) / (n_b / t_alone):.0f} s")
     print(f"  IM: mean {a['im_mean']:.4f} (one truck {a['im_mean_single']:.4f}, several {a['im_mean_multiple']:.4f}), "
           f"95 % {a['im_q95']:.4f}; governing static event amplification {a['governing_static_amplification']:.4f}")
     if args.by_size > 0:

@@ -37,11 +37,20 @@ two steps around τ, Q_i from the modal equation at those steps, linear between 
 points passing a support line in the step (``vbikit.analysis.instants``, shared with the
 lifetime's knot limits; the solver's own Q_i, also with multi-point tires): the static
 peak is then the exact one-sided limit, the dynamic one is read at the same instant, and what is
-left is the interpolation's (π f dt)²/2 · A.  The histories (``time``, ``dynamic``, ``static``:
-CSV columns, datasets) stay on the time grid; the summary's peaks and IM, the outputs catalogue's
-and every path that reads ``impact`` (``vbikit run``, studies, traffic) include the limits.  Mode
-superposition has none (R = Σ r_i ξ_i does not jump); the random-vibration path reads its
-statistics on the grid.
+left is the interpolation's (π f dt)²/2 · A.
+
+Peaks between the samples, away from the jumps: no rate of R is stored (ḟ_w is not), so an
+extreme of a smooth stretch is taken as the vertex of the parabola through its extreme sample and
+the two either side (``impact.smooth_vertices``, for the largest and smallest of either history),
+unless a contact point stands on one of the effect's ``kink_positions`` (its jumps, and the support
+lines, where a moment's line kinks as an axle enters or leaves) within those two steps: there the
+limits hold the peak.  A sampled extreme misses up to (π f dt)²/2 of a component's amplitude A, the
+vertex at most A (2π f dt)³/(9√3).  The histories (``time``, ``dynamic``, ``static``: CSV columns,
+datasets) stay on the time grid; the summary's peaks and IM, the outputs catalogue's and every path
+that reads ``impact`` or ``peak_series`` (``vbikit run``, studies, traffic, rail sweeps) include the
+limits and the vertices.  Mode superposition has no limits (R = Σ r_i ξ_i does not jump), only the
+vertices; the random-vibration path reads its statistics on the grid; the lifetime's coupled events
+read their lines over the samples and knot limits (``vbikit.lifetime.peaks``).
 
 Both signs: a static history that also reaches, the other way, more than ``SMALL_STATIC_FRACTION``
 (20 %, ``vbikit.analysis.checks``) of its largest magnitude (``two_signed``: the moment over a soft

@@ -14,6 +14,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit.analysis.breakpoints import GATE, active_nodes, event_extremes, knot_tables
+from vbikit.analysis.effects import kink_instants
+from vbikit.analysis.impact import smooth_vertices
 from vbikit.analysis.instants import KNOT_OFFSET, instant_rows, one_sided, run_state
 
 __all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_limits", "knot_tables",
@@ -98,8 +100,9 @@ def _point_geometry(table, origin: NDArray[np.float64], sign: NDArray[np.float64
 
 def with_knot_limits(result, effect, table, dynamic: NDArray[np.float64],
                      static: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """The run's histories of a load effect with both one-sided limits at every knot instant inserted
-    in time order: (time, total, static).
+    """The run's histories of a load effect with both one-sided limits at every knot instant, and the
+    extremes between the samples away from the knots and support lines (``vbikit.analysis.impact.smooth_vertices``,
+    as every load effect's peaks: ``vbikit.analysis.effects``), inserted in time order: (time, total, static).
 
     A coupled run reads R at its steps t_n; where a contact point crosses a jump or kink of the
     influence line (a reaction under an axle passing its support, a shear at its section) R peaks
@@ -150,6 +153,9 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
     origin, sign, y = crossing.point_kinematics()
     tracks, travels = zip(*[_point_geometry(table, origin, sign, y) for table in tables])
     taus = _knot_instants(crossing, travels, float(t[0]), float(t[-1]))
+    # the extremes between the samples away from the knots and the support lines (``impact.smooth_vertices``)
+    vertices = [smooth_vertices(t, dyn, sta, np.union1d(mine, kinks))
+                for (_, dyn, sta), mine, kinks in zip(keep, taus, kink_instants(result, effects))]
     if n_lines == 1:
         tau = taus[0]
     else:
@@ -157,7 +163,7 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
         tau.sort()
         tau = tau[np.concatenate(([True], tau[1:] != tau[:-1]))] if tau.size else tau
     if tau.size == 0:
-        return keep
+        return [_merged(t, v[0], dyn, v[1], sta, v[2]) for (_, dyn, sta), v in zip(keep, vertices)]
     u = one_sided(tau, float(t[1] - t[0]))  # R(τ⁻), R(τ⁺), in time order
     ordered = bool((u[1:] >= u[:-1]).all())  # so is every line's part of u (unless instants closer than 2δ)
     state = run_state(result, u)  # the run at every instant u (shared by the lines)
@@ -167,9 +173,9 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
     cp = crossing.contact
     p_static = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     out, located = [], {}
-    for effect, table, track, mine, (_, dyn, sta) in zip(effects, tables, tracks, taus, keep):
+    for effect, table, track, mine, (_, dyn, sta), v in zip(effects, tables, tracks, taus, keep, vertices):
         if mine.size == 0:
-            out.append((t, dyn, sta))
+            out.append(_merged(t, v[0], dyn, v[1], sta, v[2]))
             continue
         grid = (table.x0, table.h, table.n, table.row.tobytes(), track.tobytes())  # lines on one grid share cells
         if grid not in located:
@@ -179,7 +185,9 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
         if rows is not None:
             g = g[rows]
         total = state.total(g, effect.modal, crossing.bridge.omega, rows)
-        out.append(_merged(t, u if rows is None else u[rows], dyn, total, sta, g @ p_static, ordered))
+        mine_u = u if rows is None else u[rows]
+        out.append(_merged(t, np.concatenate((mine_u, v[0])), dyn, np.concatenate((total, v[1])), sta,
+                           np.concatenate((g @ p_static, v[2])), ordered and v[0].size == 0))
     return out
 
 
