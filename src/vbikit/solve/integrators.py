@@ -186,8 +186,9 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
 
 def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:
     """Many lanes through ``kernels.lean_lanes``, ``LANES_CHUNK`` steps a call: a lane it stops at a
-    step goes on alone with ``implicit`` (one-lane variant, its road) from its last stored row to
-    the end of the chunk, and joins the next call afresh (the law at that state, the forces
+    step goes on alone (its road) from its last stored row to the end of the chunk, with ``implicit``
+    for the contact event's ``LEAN_WINDOW`` steps and the one-lane lean kernel after it (``_finish_lane``),
+    and joins the next call afresh (the law at that state, the forces
     extrapolated from it alone); the other lanes go on exactly (``lean_lanes``' carried state)."""
     from vbikit.solve import kernels
     from vbikit.solve.compile_notice import announce_compile
@@ -213,7 +214,7 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
         fresh[:] = False
         for lane in frozen:  # (the hold's loads before its last stored row in, those before ``last`` out)
             past = (carry_pm[:, lane:lane + 1].copy(), carry_gm[:, lane:lane + 1].copy(), int(stops[lane]) >= stride)
-            _lane_steps(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), last, past)
+            _finish_lane(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), past, last)
             carry_pm[:, lane], carry_gm[:, lane] = past[0][:, 0], past[1][:, 0]
         fresh[frozen] = True
         ever[frozen] = True
@@ -222,17 +223,6 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     LEAN_COUNTS["lanes_fallback"] += int(ever.sum())
     log.debug("%s (lean kernel, %d lanes): %.2f contact-law evaluations per step; %d lane(s) handed to the full kernel "
               "%d time(s)", call.crossing.integrator, n_l, evaluations / max(n_steps, 1), int(ever.sum()), handed)
-
-
-def _lane_steps(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                stop: int, end: int, past: tuple) -> None:
-    """Lane ``lane`` of ``call`` with ``implicit`` (that lane alone, its road) from the last row stored
-    before step ``stop`` to step ``end`` (``past``: the hold's loads before that row, in; before the
-    last row stored, out)."""
-    row = stop // call.stride
-    first = row * call.stride
-    _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), _lane_road(call.road, lane),
-          tuple(a[lane:lane + 1, row:end // call.stride + 1] for a in call.outputs), first, past, lane)
 
 
 def _lean_work(call: KernelCall) -> tuple:
@@ -265,19 +255,22 @@ LANES_CHUNK = 128
 
 
 def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                 stop: int, past: tuple) -> None:
-    """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop``: on that
-    lane's road, ``implicit`` (that lane alone) for ``LEAN_WINDOW`` steps, then the one-lane lean
-    kernel, alternating while the lean kernel stops (``LEAN_RESUMES``); ``past`` (modal (n_m, 1), wheel
-    (n_w, 1), resume) the hold's loads before the row it starts from, which each kernel call reads and
-    leaves at those before its last stored row for the next.  Each hand-over restarts
-    from a stored state (the law there, the forces extrapolated from it alone): the histories differ
-    from an uninterrupted run by the order of the tolerance."""
+                 stop: int, past: tuple, last: int | None = None) -> None:
+    """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop`` to step
+    ``last`` (None: the run's end): on that lane's road, ``implicit`` (that lane alone) for
+    ``LEAN_WINDOW`` steps, then the one-lane lean kernel, alternating while the lean kernel stops
+    (``LEAN_RESUMES``; after that ``implicit`` to ``last``); ``past`` (modal (n_m, 1), wheel (n_w, 1),
+    resume) the hold's loads before the row it starts from, which each kernel call reads and leaves at
+    those before its last stored row for the next.  Each hand-over restarts from a stored state (the
+    law there, the forces extrapolated from it alone): the histories differ from an uninterrupted run
+    by the order of the tolerance.  A lane of ``lean_lanes`` stopped within a chunk goes on so to the
+    chunk's end (``_run_lanes``): the full kernel only for the contact event's window, not the chunk."""
     from vbikit.solve import kernels
 
     road = _lane_road(call.road, lane)
     one = replace(call, road=road, outputs=tuple(a[lane:lane + 1] for a in call.outputs), lanes=kernels.ONE_LANE)
-    stride, n_steps = call.stride, call.n_steps
+    stride = call.stride
+    n_steps = call.n_steps if last is None else last
     row = stop // stride
     for resume in range(LEAN_RESUMES + 1):
         first = row * stride
@@ -292,7 +285,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
             return
         row = end // stride
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
-                       outputs=tuple(a[:, row:] for a in one.outputs))
+                       outputs=tuple(a[:, row:n_steps // stride + 1] for a in one.outputs))
         stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
                                past[1][:, 0], True, _positions_before(call, end), tol, stride, *_lean_work(part))
         if stop < 0:
