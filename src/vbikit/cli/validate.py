@@ -26,7 +26,7 @@ KINDS: dict[str, str] = {
     "rail": "a railway file (vbikit rail)", "field": "a field file (vbikit field)",
     "records": "a vehicle records CSV (vbikit traffic, lifetime [traffic].records)",
     "train": "a train table CSV (rail [trains].tables)", "modes": "a mode file (bridge.model = \"modes-file\")",
-    "response": "a measured response CSV (vbikit field [[case]].file)",
+    "response": "a measured response CSV (vbikit field [[case]].responses)",
     "profile": "a measured road profile CSV (road.profile_file)",
 }
 
