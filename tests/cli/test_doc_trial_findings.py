@@ -4,7 +4,8 @@ docs before the fix (main at 25ba07d):
 1. ``docs/random.md`` ran ``vbikit run demo.toml --random``, but no ``demo.toml`` ships and the page
    did not say how to get one;
 2. ``vbikit validate`` called a measured response CSV's key ``[[case]].file``; a FIELD.toml's key is
-   ``responses`` (``file`` is refused as an unknown key).
+   ``responses`` (``file`` is refused as an unknown key);
+3. a wheel's contact-loss flag off the bridge printed its deck track as ``x from -0.000``.
 """
 from __future__ import annotations
 
@@ -55,3 +56,17 @@ def test_validate_names_the_field_key_of_a_response_csv():
     assert result.exit_code == 0, result.output
     key = re.search(r"\[\[case\]\]\.(\w+)", result.output).group(1)
     assert key in FIELD_KEYS["case"], f"validate names [[case]].{key}, not a FIELD.toml case key"
+
+
+def test_contact_loss_off_the_bridge_prints_no_negative_zero(tmp_path):
+    # 3. at speed = 75 (m/s, a km/h value in the wrong key) the front wheels leave the road after the
+    # bridge; the flag printed the deck track's start as "x from -0.000" (a round-off below zero)
+    from vbikit.scenario import demo_scenario_text
+
+    path = tmp_path / "fast.toml"
+    path.write_text(demo_scenario_text().replace("speed_kmh = 75", "speed = 75"), encoding="utf-8")
+    result = runner.invoke(app, ["run", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "lost contact with the road only after the bridge (its track on the deck: x from 0.000 to 16.760 m)" \
+        in result.output
+    assert "-0.000" not in result.output
