@@ -490,7 +490,7 @@ def contact_flags(result: CrossingResult) -> list[Flag]:
         where = ("before the bridge" if (x_wheel[off, w] < lo).all() else
                  "after the bridge" if (x_wheel[off, w] > hi).all() else "before and after the bridge")
         out.append(Flag("contact_loss", f"wheel {wheel.name} lost contact with the road only {where} (its track on the deck: "
-                        f"x from {lo:.3f} to {hi:.3f} m): first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
+                        f"x from {round(lo, 3) + 0.0:.3f} to {round(hi, 3) + 0.0:.3f} m): first at x = {float(x_wheel[i, w]):.3f} m (t = {float(result.time[i]):.4f} s), "
                         f"for {float(off.sum() * dt):.4f} s in all", subject=f"wheel {wheel.name}", wheel=wheel.name,
                         value=0.0))
     return out

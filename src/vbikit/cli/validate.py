@@ -26,7 +26,7 @@ KINDS: dict[str, str] = {
     "rail": "a railway file (vbikit rail)", "field": "a field file (vbikit field)",
     "records": "a vehicle records CSV (vbikit traffic, lifetime [traffic].records)",
     "train": "a train table CSV (rail [trains].tables)", "modes": "a mode file (bridge.model = \"modes-file\")",
-    "response": "a measured response CSV (vbikit field [[case]].file)",
+    "response": "a measured response CSV (vbikit field [[case]].responses)",
     "profile": "a measured road profile CSV (road.profile_file)",
 }
 
@@ -181,7 +181,8 @@ CHECKS: dict[str, Callable[[Path, Any], str]] = {
 
 def validate(
     file: Path = typer.Argument(..., metavar="FILE", help="An input file of any kind: scenario, study, lifetime, drive-by, railway or "
-                                          "field TOML; records, train table or mode file CSV."),
+                                          "field TOML; records, train table, mode file, measured response or road "
+                                          "profile CSV."),
     kind: Optional[str] = typer.Option(None, "--kind", help=f"The file's kind if not told by it: {', '.join(KINDS)}."),
     max_memory: Optional[str] = MAX_MEMORY,
     max_steps: Optional[float] = MAX_STEPS,
