@@ -153,3 +153,23 @@ def test_the_notice_names_the_one_lane_kernel_when_the_batch_is_split(after_demo
     assert steps == [solver.time_step(solver.crossing(*_road(sc, sd))) for sc, sd in zip(scenarios, dicts)]
     assert steps[0] != steps[1]
     assert batch_kernels(mixed, [batch]) == [kernels.lean]
+
+
+def test_the_full_kernel_announces_its_compilation(after_demo, caplog):
+    """A new user's finding (2026-12-06): after ``vbikit demo``, ``vbikit compare-tires`` on the paper's
+    Fig. 9 case spent ≈ 55 s in its rigid-disk row compiling the full contact kernel ``implicit``
+    (``integrators._full``: rigid disks, and the steps where a wheel leaves or lands on the road)
+    without a notice.  It is announced now, with its own expected time, once a process."""
+    from vbikit.scenario import demo_scenario_text, scenario_from_toml
+    from vbikit.scenario.preflight import preflight
+    from vbikit.solve import simulate
+    from vbikit.solve.compile_notice import COMPILE_SECONDS
+    from vbikit.solve.integrators import without_lean
+
+    crossing = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built.crossing
+    with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"), without_lean():
+        simulate(crossing)
+        simulate(crossing)
+    assert caplog.text.count("compiling the kernel implicit") == 1
+    assert f"about {COMPILE_SECONDS['implicit']} s of CPU" in caplog.text and "wheel leaves or lands" in caplog.text
+    assert COMPILE_SECONDS["implicit"] > 2 * COMPILE_SECONDS["lean"]  # (its own figure, not lean's default)

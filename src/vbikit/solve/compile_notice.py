@@ -21,8 +21,13 @@ compile_log = logging.getLogger("vbikit.solve.compile")
 #: ``lean_lanes``, the many-lane path a study's batches run: 16.1 s with the one-lane kernels already
 #: in numba's cache (a 2-lane batch of ``warmup._tiny_crossing("exact")`` in a fresh process over an
 #: empty ``NUMBA_CACHE_DIR`` holding only ``simulate``'s kernels, ``time.process_time``; 2026-12-04,
-#: load ≈ 1–2).  Both rounded up ≈ 1.4× for a busier or slower machine; any other kernel: ``lean``'s.
-COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22}
+#: load ≈ 1–2).  Both rounded up ≈ 1.4× for a busier or slower machine.  ``implicit``, the full
+#: contact kernel (a contact opening or closing within a step: a wheel leaving the road, rigid-disk
+#: tires; ``integrators._full``): 59.5 s with ``lean`` already compiled (the demo crossing under
+#: ``without_lean`` in a fresh process over an empty ``NUMBA_CACHE_DIR``, ``time.process_time``;
+#: 2026-12-06, the machine's slow state, in which the demo's cold compile is 8.0 s against 5.7 s) —
+#: ``implicit`` itself 15 s, ``contact_forces`` 9 s, the rest its 140 helpers.  Any other kernel: ``lean``'s.
+COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "implicit": 60}
 
 
 def compile_seconds(kernel) -> int:

@@ -299,6 +299,10 @@ def _steps(motion: "Motion", first: int, end: int) -> "Motion":
     return motion._replace(travel=motion.travel[2 * first:2 * end + 1], speed=motion.speed[2 * first:2 * end + 1])
 
 
+#: when the full kernel runs (``_full``): what its compile notice says
+FULL_KERNEL_USE = "this process (the full contact kernel: a wheel leaves or lands on the road within a step, or rigid-disk tires)"
+
+
 def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, motion: "Motion",
           road: "Road", outputs: tuple, first: int, past: tuple, lane: int | None = None) -> None:
     """``kernels.implicit`` on ``outputs`` (row 0 the start state) from step ``first`` of ``call``, in its
@@ -307,8 +311,10 @@ def _full(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep"
     start; the kernel leaves those before its last stored row in them); its unsettled steps are
     counted in ``call.unconverged`` for lane ``lane`` (None: every lane of ``outputs``)."""
     from vbikit.solve import kernels
+    from vbikit.solve.compile_notice import announce_compile
 
     data, name = call.data, call.crossing.integrator
+    announce_compile(kernels.implicit, FULL_KERNEL_USE)  # (rare: its first use on a machine compiles it)
     unsettled, evaluations = kernels.implicit(call.dt, motion, data.modes, data.vehicles, data.points, road,
                                               data.unilateral, modal_step, vehicle_step, *outputs, *past,
                                               _positions_before(call, first), tol,
