@@ -2,8 +2,9 @@
 
 A batch of roads (``BatchSolver.run_many``: lanes of one kernel call) runs through ``lean_lanes``
 (``lean``'s step for every lane at once, the lane index innermost, ``LANES_CHUNK`` steps a call); a
-lane whose step needs more is frozen there, runs alone with ``implicit`` from its last stored row to
-the end of the chunk and rejoins the lanes at the next call (``integrators._run_lanes``).
+lane whose step needs more is frozen there, runs alone from its last stored row to the end of the
+chunk — ``implicit`` for the contact event's ``LEAN_WINDOW`` steps, then the one-lane ``lean`` — and
+rejoins the lanes at the next call (``integrators._run_lanes``, ``_finish_lane``).
 With ``integrators.USE_LEAN`` off the same batch runs through the many-lane ``implicit`` kernel: the
 independent code path (its own contact law ``contact_forces``, state and update helpers), the
 reference here, and so is each road run alone (``simulate``: one lane, ``lean``).
@@ -97,7 +98,7 @@ def test_point_tires_equal_implicit_and_single_runs():
 def test_lift_off_freezes_some_lanes_only_and_the_full_kernel_finishes_them():
     """Disk tires at 100 km/h: on some class E roads (seeds 3 and 7; not 1 or 6; with the start's road
     rate read ahead, 2026-12-05 — before, 6 and 7) a landing closes a
-    contact within a step's updates (the lane is frozen there and runs alone with ``implicit`` to the end of the chunk), on these class A
+    contact within a step's updates (the lane is frozen there and runs alone to the end of the chunk), on these class A
     roads nothing does (seed 8 of class A hands over at its first step: a point at a disk patch's edge
     changes its contact there).  Frozen lanes differ from ``implicit`` by the tolerance's order,
     the others by round-off; each lane equals its road run alone (one lane: ``lean``, handing over
@@ -127,6 +128,35 @@ def test_lift_off_freezes_some_lanes_only_and_the_full_kernel_finishes_them():
         assert _worst(lane, ref) <= (1e-9 if frozen[k] else 1e-10)
         assert _worst(lane, single) <= (1e-9 if frozen[k] else 1e-10)
     assert any(int(np.sum(r.wheel_forces[1:] == 0.0)) > 10 for r in full)  # a wheel does leave the road
+
+
+def test_a_frozen_lane_runs_the_full_kernel_for_the_contact_events_window_only(monkeypatch):
+    """The lift-off batch in one chunk (``LANES_CHUNK`` above the run's steps): a frozen lane goes on
+    with ``implicit`` for the event's ``LEAN_WINDOW`` steps a call, then with the one-lane ``lean``
+    (until 2026-12-06 ``implicit`` ran it to the chunk's end), and still equals ``implicit`` and its
+    road run alone by the tolerance's order."""
+    from vbikit.solve import kernels
+
+    monkeypatch.setattr(integrators, "LANES_CHUNK", 10**6)
+    spec = _paper("disk", 100.0)
+    roads = _roads(spec, [("E", 6), ("A", 2), ("E", 7), ("A", 4), ("E", 1), ("A", 6), ("E", 3), ("A", 10)])
+    crossing = _crossing(spec)
+    full_kernel, full_steps = kernels.implicit, []
+
+    def full_spy(dt, motion, *args):  # steps a call of the full kernel runs (half-step rows 2·steps + 1)
+        full_steps.append((motion.travel.shape[0] - 1) // 2)
+        return full_kernel(dt, motion, *args)
+
+    before = integrators.LEAN_COUNTS["lanes_fallback"]
+    monkeypatch.setattr(kernels, "implicit", full_spy)
+    lanes = BatchSolver(crossing).run_many(roads)
+    monkeypatch.setattr(kernels, "implicit", full_kernel)
+    assert integrators.LEAN_COUNTS["lanes_fallback"] > before  # lanes were handed over
+    assert full_steps and max(full_steps) <= integrators.LEAN_WINDOW
+    _, full, alone, _ = _batch(crossing, roads)
+    for lane, ref, single in zip(lanes, full, alone):
+        assert _worst(lane, ref) <= 1e-9
+        assert _worst(lane, single) <= 1e-9
 
 
 def test_asymmetric_vehicles_equal_implicit_and_single_runs():
