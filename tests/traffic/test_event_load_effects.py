@@ -115,10 +115,24 @@ def brute_force_limits(result, effect):
     return u, dynamic, static
 
 
+def _line_breaks(effect, bridge, y):
+    """The interior stations ξ_s at which the influence along the wheel line y kinks: its one-sided
+    slopes by ``direct`` at ξ_s ∓ ε (ε = 1e-4 m, central differences over ε/2) differ by more than 1e-4
+    of the line's largest slope (a grillage's line between two girders breaks at every station)."""
+    stations = np.asarray(effect.influence.stations, float)[1:-1]
+    eps = 1e-4
+    xi = np.concatenate([stations + d for d in (-1.25 * eps, -0.75 * eps, 0.75 * eps, 1.25 * eps)])
+    values = effect.influence.direct(xi + y * bridge.skew_tan, np.full(xi.size, y)).reshape(4, -1)
+    left, right = (values[1] - values[0]) / (0.5 * eps), (values[3] - values[2]) / (0.5 * eps)
+    scale = max(float(np.abs(np.r_[left, right]).max(initial=0.0)), 1e-300)
+    return list(stations[np.abs(right - left) > 1e-4 * scale])
+
+
 def brute_force_vertices(result, effect, dynamic, static):
     """(times, dynamic, static) at the extremes between the samples (``impact.smooth_vertices``),
     written out: for each history and sense its extreme sample, unless a contact point stands on the
-    effect's section or a deck end (each vehicle's ``time_at``) within the two steps around it, the
+    effect's section, a deck end or a station where its line kinks (``_line_breaks``; each vehicle's
+    ``time_at``) within the two steps around it, the
     vertex of ``np.polyfit``'s parabola through the three samples, both histories' parabolas read there."""
     crossing = result.crossing
     bridge = crossing.bridge
@@ -126,7 +140,7 @@ def brute_force_vertices(result, effect, dynamic, static):
     t = result.time
     where = ([] if effect.kind == "reaction" else [effect.influence.section]) + [0.0, bridge.span]
     kinks = np.array([crossing.vehicles[crossing.point_vehicle[p]].time_at((xi_j + y[p] * bridge.skew_tan - origin[p]) * sign[p])
-                      for p in range(origin.size) for xi_j in where])
+                      for p in range(origin.size) for xi_j in where + _line_breaks(effect, bridge, float(y[p]))])
     out = []
     for which, history in enumerate((dynamic, static)):
         for s in (1.0, -1.0):

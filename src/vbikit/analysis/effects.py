@@ -39,18 +39,21 @@ lifetime's knot limits; the solver's own Q_i, also with multi-point tires): the 
 peak is then the exact one-sided limit, the dynamic one is read at the same instant, and what is
 left is the interpolation's (π f dt)²/2 · A.
 
-Peaks between the samples, away from the jumps: no rate of R is stored (ḟ_w is not), so an
+Peaks between the samples, away from the kinks: no rate of R is stored (ḟ_w is not), so an
 extreme of a smooth stretch is taken as the vertex of the parabola through its extreme sample and
 the two either side (``impact.smooth_vertices``, for the largest and smallest of either history),
-unless a contact point stands on one of the effect's ``kink_positions`` (its jumps, and the support
-lines, where a moment's line kinks as an axle enters or leaves) within those two steps: there the
-limits hold the peak.  A sampled extreme misses up to (π f dt)²/2 of a component's amplitude A, the
-vertex at most A (2π f dt)³/(9√3).  The histories (``time``, ``dynamic``, ``static``: CSV columns,
-datasets) stay on the time grid; the summary's peaks and IM, the outputs catalogue's and every path
-that reads ``impact`` or ``peak_series`` (``vbikit run``, studies, traffic, rail sweeps) include the
-limits and the vertices.  Mode superposition has no limits (R = Σ r_i ξ_i does not jump), only the
-vertices; the random-vibration path reads its statistics on the grid; the lifetime's coupled events
-read their lines over the samples and knot limits (``vbikit.lifetime.peaks``).
+unless a contact point stands on one of the ``kink_positions`` of its wheel line within those two
+steps (the effect's jumps; the support lines, where a moment's line kinks as an axle enters or
+leaves; the stations where a tabulated line breaks, ``station_kinks``: a grillage's line between
+two girders at every station): there the sample stands, or the limits hold the peak.  A sampled
+extreme misses up to (π f dt)²/2 of a component's amplitude A, the vertex at most
+A (2π f dt)³/(9√3).  The histories (``time``, ``dynamic``, ``static``: CSV columns, datasets) stay
+on the time grid; the summary's peaks and IM, the outputs catalogue's and every path that reads
+``impact`` or ``peak_series`` (``vbikit run``, studies, traffic, the coupled-car rail sweep; the
+moving-force sweep reads its samples) include the limits and the vertices.  Mode superposition has
+no limits (R = Σ r_i ξ_i does not jump), only the vertices (its static history kinks where the mode
+shapes do: the same kinks); the random-vibration path reads its statistics on the grid; the
+lifetime's coupled events take the vertices with their knot limits (``vbikit.lifetime.peaks``).
 
 Both signs: a static history that also reaches, the other way, more than ``SMALL_STATIC_FRACTION``
 (20 %, ``vbikit.analysis.checks``) of its largest magnitude (``two_signed``: the moment over a soft
@@ -319,9 +322,10 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     t = result.time
     if method == "mode-superposition":
         xi_st = static_modal_history(result) if xi_static is None else xi_static
+        kinks = _SharedLimits(result, tuple(effects), None)  # (ξ is smooth; ξ_st kinks as the points cross kinks of φ)
         return [LoadEffectResponse(e, method, t, result.xi @ e.modal, xi_st @ e.modal,
-                                   _checked(result, e, check_step, log_step), kinks=np.zeros(0))  # (Σ r_i ξ_i: smooth)
-                for e in effects]
+                                   _checked(result, e, check_step, log_step), kinks=partial(kinks.kinks, k))
+                for k, e in enumerate(effects)]
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
     tabulated = influence is None and tabulated_together(effects)
@@ -372,11 +376,46 @@ def jump_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float6
     return np.array(sorted(xs))
 
 
-def kink_positions(bridge: ModalBridge, effect: LoadEffect) -> NDArray[np.float64]:
-    """ξ [m] where the history of ``effect`` may jump or kink as a contact point passes: its
-    ``jump_positions`` and every support line (``support_x``: a moment's influence kinks where a point
-    enters or leaves the deck, though it is 0 there), sorted, unique."""
-    return np.union1d(jump_positions(bridge, effect), np.asarray(bridge.support_x, float))
+def kink_positions(bridge: ModalBridge, effect: LoadEffect, y: float | None = None) -> NDArray[np.float64]:
+    """ξ [m] where the history of ``effect`` may jump or kink as a contact point on the wheel line
+    ``y`` [m] passes: its ``jump_positions``, every support line (``support_x``: a moment's influence
+    kinks where a point enters or leaves the deck, though it is 0 there) and, for an influence
+    tabulated along wheel lines, the stations where that line's cubics meet with a break of value or
+    slope (``station_kinks``: a grillage's line between two girders), sorted, unique."""
+    out = np.union1d(jump_positions(bridge, effect), np.asarray(bridge.support_x, float))
+    if y is not None and isinstance(effect.influence, TabulatedInfluence):
+        out = np.union1d(out, station_kinks(effect.influence, float(y)))
+    return out
+
+
+#: a tabulated line breaks at a station where its value or slope changes by more than this fraction
+#: of its largest value or slope (round-off of the tables' cubics: ≈ 1e-13, ``TabulatedInfluence``)
+STATION_BREAK = 1e-8
+#: the station breaks a tabulated influence keeps (``station_kinks``), per wheel line
+STATION_KINKS_KEPT = 64
+
+
+def station_kinks(influence: TabulatedInfluence, y: float) -> NDArray[np.float64]:
+    """The interior stations ξ [m] of ``influence`` at which its cubics along the wheel line ``y`` [m]
+    (``line_tables``, without the section's own kink or step) meet with a break: the end value or
+    slope of one element against the start of the next, beyond ``STATION_BREAK`` of the line's
+    largest (kept per influence and line)."""
+    from vbikit._kept import kept_for
+
+    def make() -> NDArray[np.float64]:
+        poly = np.asarray(influence.line_tables([y])[0], float)  # (4, n_elements), rows t⁰ … t³
+        h = np.diff(np.asarray(influence.stations, float))
+        start_value, end_value = poly[0], poly.sum(axis=0)
+        start_slope, end_slope = poly[1] / h, (poly[1] + 2.0 * poly[2] + 3.0 * poly[3]) / h
+        value_scale = max(float(np.abs(poly).sum(axis=0).max(initial=0.0)), 1e-300)
+        slope_scale = max(float(np.abs(np.r_[start_slope, end_slope]).max(initial=0.0)), 1e-300)
+        broken = (np.abs(end_value[:-1] - start_value[1:]) > STATION_BREAK * value_scale) | \
+            (np.abs(end_slope[:-1] - start_slope[1:]) > STATION_BREAK * slope_scale)
+        out = np.asarray(influence.stations, float)[1:-1][broken]
+        out.setflags(write=False)
+        return out
+
+    return kept_for(influence, "station kinks", STATION_KINKS_KEPT).get(y, make)
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
@@ -396,10 +435,25 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
 
 def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[NDArray[np.float64]]:
     """Per effect, the instants [s] at which its histories may jump or kink: a contact point on one of
-    its ``kink_positions`` (``LoadEffectResponse.kinks``)."""
-    if np.asarray(result.time).size < 2:
+    the ``kink_positions`` of its own wheel line (``LoadEffectResponse.kinks``)."""
+    from vbikit.analysis.instants import crossing_instants
+
+    t = np.asarray(result.time, float)
+    if t.size < 2:
         return [np.zeros(0) for _ in effects]
-    return _passing_instants(result, effects, kink_positions)
+    crossing = result.crossing
+    bridge = crossing.bridge
+    origin, sign, y = crossing.point_kinematics()
+    lines, which = np.unique(y, return_inverse=True)
+    out = []
+    for e in effects:
+        per_line = [kink_positions(bridge, e, float(v)) for v in lines]
+        xi = np.full((lines.size, max(p.size for p in per_line)), np.nan)  # (NaN: none)
+        for k, p in enumerate(per_line):
+            xi[k, :p.size] = p
+        at = xi[which] + (y * float(bridge.skew_tan))[:, None]  # x of each point's positions
+        out.append(crossing_instants(crossing, (at - origin[:, None]) * sign[:, None], float(t[0]), float(t[-1])))
+    return out
 
 
 def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
@@ -453,7 +507,7 @@ class _SharedLimits:
     effect's) and shared by their responses: ``self(k)`` (``self.kinks(k)``) is effect k's."""
 
     def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...],
-                 static_loads: NDArray[np.float64]) -> None:
+                 static_loads: NDArray[np.float64] | None) -> None:
         self.result, self.effects, self.static_loads = result, effects, static_loads
         self.values: list[tuple[NDArray[np.float64], ...]] | None = None
 

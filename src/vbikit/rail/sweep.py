@@ -137,7 +137,7 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
 
             for e, effect in enumerate(setup.effects):
                 resp = load_effect_response(result, effect)
-                _, dynamic, static = resp.peak_series  # the samples and the one-sided limits at the jumps
+                _, dynamic, static = resp.peak_series  # the samples, the one-sided limits at the jumps and the extremes between the samples
                 eff[k, e] = np.max(np.abs(dynamic))
                 static_eff[e] = max(static_eff[e], float(np.max(np.abs(static))))
         from vbikit.analysis.impact import static_modal_history
