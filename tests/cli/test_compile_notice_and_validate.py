@@ -47,9 +47,11 @@ def test_study_announces_the_many_lane_kernel_its_batches_run(after_demo, caplog
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         _announce_compile(study, batches, None, 2)
         _announce_compile(study, batches, None, 2)  # once a process and kernel
-    assert caplog.text.count("compiling the kernel") == 1
-    assert "lean_lanes" in caplog.text and f"about {COMPILE_SECONDS['lean_lanes']} s of CPU" in caplog.text
+    assert caplog.text.count("compiling the kernel lean_lanes") == 1
+    assert f"about {COMPILE_SECONDS['lean_lanes']} s of CPU" in caplog.text
     assert "each of the 2 worker processes" in caplog.text
+    # its class D roads make wheels hop: the full kernel too, once (``may_hand_over``)
+    assert caplog.text.count("compiling the kernel implicit") == 1 and "wheel leaves or lands" in caplog.text
 
 
 def test_a_batch_of_one_crossing_runs_the_one_lane_kernel(after_demo, caplog):
@@ -63,7 +65,23 @@ def test_a_batch_of_one_crossing_runs_the_one_lane_kernel(after_demo, caplog):
     assert batch_kernels(study, [*one, study.batches()[0]]) == [kernels.lean, kernels.lean_lanes]
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         _announce_compile(study, one, None, 1)
-    assert caplog.text == ""  # lean is cached (the demo compiled it)
+    assert "kernel lean" not in caplog.text  # lean is cached (the demo compiled it)
+
+
+def test_a_study_announces_the_full_kernel_only_where_wheels_may_leave_the_road():
+    """``may_hand_over``: rigid-disk tires or roads of ISO 8608 class D and rougher, in the base or an axis."""
+    from types import SimpleNamespace
+
+    from vbikit.study.paper import paper_study
+    from vbikit.study.run import may_hand_over
+
+    assert may_hand_over(paper_study("fig6", 2, False, method="monte-carlo"))  # classes B–D
+    smooth = {"tire": {"model": "point"}, "road": {"class": "B"}}
+    assert not may_hand_over(SimpleNamespace(base=smooth, axes=()))
+    assert may_hand_over(SimpleNamespace(base={**smooth, "road": {"class": "poor"}}, axes=()))
+    assert may_hand_over(SimpleNamespace(base=smooth, axes=(SimpleNamespace(key="tire.model", values=("disk", "rigid-disk")),)))
+    assert not may_hand_over(SimpleNamespace(base=smooth, axes=(SimpleNamespace(key="road.class", values=("A", "C")),)))
+    assert may_hand_over(SimpleNamespace(base=smooth, axes=(SimpleNamespace(key="road.class", values=("C", "E")),)))
 
 
 def test_validate_checks_a_traffic_base_scenario():
@@ -139,7 +157,7 @@ def test_the_notice_names_the_one_lane_kernel_when_the_batch_is_split(after_demo
     assert batch_kernels(study, batches, threads=len(batches[0])) == [kernels.lean]
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         _announce_compile(study, batches, None, 2, threads=len(batches[0]))
-    assert caplog.text == ""
+    assert "kernel lean" not in caplog.text  # (its class D roads announce the full kernel: ``may_hand_over``)
 
     d = paper_study_dict("fig6", 2, True) | {"axes": {"road.class": ["none", "C"]}}
     d["base"]["crossing"]["speed_kmh"] = 105  # class C's step is then set by its road (3 cm), the smooth road's by the truck

@@ -345,6 +345,29 @@ def _announce_compile(study, batches, scheduler, workers, threads: int = 1) -> N
     else:
         who = f"each of the {workers or os.cpu_count()} worker processes, on its first batch"
     announce_compile(kernels, who)
+    if may_hand_over(study):
+        from vbikit.solve import kernels as compiled
+
+        announce_compile(compiled.implicit, f"{who}, for the steps where a wheel leaves or lands on the road")
+
+
+#: road classes on which wheels leave the road (ISO 8608 D and rougher; "poor" is D)
+HOPPING_ROAD_CLASSES = frozenset({"D", "E", "F", "G", "H", "poor"})
+
+
+def may_hand_over(study) -> bool:
+    """Whether the crossings of ``study`` (its base scenario and axes) may run the full contact kernel
+    (``integrators._full``): rigid-disk tires, or roads of ``HOPPING_ROAD_CLASSES`` on which wheels
+    leave the road — for the compile notice (a base given as a file is not read: False)."""
+    base = getattr(study, "base", None) or {}
+    tires = {(base.get("tire") or {}).get("model")}
+    classes = {(base.get("road") or {}).get("class")}
+    for axis in getattr(study, "axes", ()):
+        if axis.key == "tire.model":
+            tires |= set(axis.values)
+        elif axis.key == "road.class":
+            classes |= set(axis.values)
+    return "rigid-disk" in tires or bool(classes & HOPPING_ROAD_CLASSES)
 
 
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
