@@ -18,6 +18,8 @@ from vbikit.lifetime.jobs import moving_forces
 from vbikit.lifetime.peaks import KNOT_OFFSET, _merged, _tracks, knot_instants, knot_limits, with_knot_limits
 from vbikit.solve import Crossing, VehicleMotion, simulate
 
+from tests.vertices_reference import written_out_vertices
+
 L = 16.76
 BRIDGE = EulerBernoulliBeam(L, 4.2e9, 9000.0, 0.02, n_modes=4)
 MOTIONS = (VehicleMotion(moving_forces((1e5, 2e5), (4.0,)), speed=25.0),
@@ -120,17 +122,7 @@ def _reference_vertices(result, dynamic, static, tau):
     ends = [crossing.vehicles[crossing.point_vehicle[p]].time_at((x - origin[p]) * sign[p])
             for p in range(origin.size) for x in (0.0, BRIDGE.span)]
     kinks = np.concatenate([tau, np.array(ends, float)])
-    out = []
-    for which, history in enumerate((dynamic, static)):
-        for s in (1.0, -1.0):
-            i = int(np.argmax(s * history))
-            if not 0 < i < t.size - 1 or np.any((kinks >= t[i - 1]) & (kinks <= t[i + 1])):
-                continue
-            fits = [np.polyfit(t[i - 1:i + 2] - t[i], h[i - 1:i + 2], 2) for h in (dynamic, static)]
-            if s * fits[which][0] < 0:
-                w = -fits[which][1] / (2 * fits[which][0])
-                out.append((t[i] + w, np.polyval(fits[0], w), np.polyval(fits[1], w)))
-    return tuple(np.array(c) for c in zip(*out)) if out else (np.zeros(0),) * 3
+    return written_out_vertices(t, dynamic, static, kinks)
 
 
 def test_knot_instants_as_before(run):

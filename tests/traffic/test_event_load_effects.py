@@ -24,6 +24,8 @@ from vbikit.traffic import LaneTraffic, synthetic_stream
 from vbikit.traffic.study import traffic_study
 from vbikit.vehicle import hs20_44, semitrailer_3s2
 
+from tests.vertices_reference import written_out_vertices
+
 #: Bridge 2's grillage with 4 modes, a class B road sampled every 0.05 m, short approach and free vibration
 BASE = {"bridge": {"model": "paper-bridge-2", "n_modes": 4}, "road": {"class": "B", "length": 200.0, "spacing": 0.05},
         "crossing": {"approach": 5.0, "free_vibration": 0.1}}
@@ -141,17 +143,7 @@ def brute_force_vertices(result, effect, dynamic, static):
     where = ([] if effect.kind == "reaction" else [effect.influence.section]) + [0.0, bridge.span]
     kinks = np.array([crossing.vehicles[crossing.point_vehicle[p]].time_at((xi_j + y[p] * bridge.skew_tan - origin[p]) * sign[p])
                       for p in range(origin.size) for xi_j in where + _line_breaks(effect, bridge, float(y[p]))])
-    out = []
-    for which, history in enumerate((dynamic, static)):
-        for s in (1.0, -1.0):
-            i = int(np.argmax(s * history))
-            if not 0 < i < t.size - 1 or np.any((kinks >= t[i - 1]) & (kinks <= t[i + 1])):
-                continue
-            fits = [np.polyfit(t[i - 1:i + 2] - t[i], h[i - 1:i + 2], 2) for h in (dynamic, static)]
-            if s * fits[which][0] < 0:
-                v = -fits[which][1] / (2 * fits[which][0])
-                out.append((t[i] + v, np.polyval(fits[0], v), np.polyval(fits[1], v)))
-    return tuple(np.array(c) for c in zip(*out)) if out else (np.zeros(0),) * 3
+    return written_out_vertices(t, dynamic, static, kinks)
 
 
 def test_stream_load_effects_equal_a_brute_force_reduction_of_each_event():
