@@ -92,7 +92,8 @@ def test_sampling_rate_mismatch(example):
     "old, new, message",
     [
         ('model = "dump-truck"\n', "", r"missing key vehicle\.model"),
-        ("speed_kmh = 64.4", "speed_kmh = -1", r"crossing\.speed_kmh must be > 0"),
+        ("speed_kmh = 64.4", "speed_kmh = -1", r"crossing\.speed_kmh must be in 0\.0036 … 1080 km/h, got -1"),
+        ("speed_kmh = 64.4", "speed_kmh = 2000", r"crossing\.speed_kmh must be in 0\.0036 … 1080 km/h"),  # a scenario's range
         ("speed_kmh = 64.4", "speed_kmh = 64.4\nspeed = 3", r"unknown key 'crossing\.speed'"),
         ('quantity = "strain"', 'quantity = "stress"', r"case\[1\]\.channel\[3\]\.quantity must be one of"),
         ('unit = "microstrain"', 'unit = "mm"', r"case\[1\]\.channel\[3\]\.unit \[mm\] is not a strain unit"),
@@ -102,7 +103,7 @@ def test_sampling_rate_mismatch(example):
         ('drift = "quiet"', 'drift = "magic"', r"signal\.drift must be"),
         ("x = 8.38", "x = 'mid'", r"case\[1\]\.channel\[1\]\.x must be a finite number"),
     ],
-    ids=["missing", "negative", "unknown", "quantity", "unit", "girder", "trigger", "file", "drift", "x"],
+    ids=["missing", "negative", "too fast", "unknown", "quantity", "unit", "girder", "trigger", "file", "drift", "x"],
 )
 def test_bad_toml(example, old, new, message):
     with pytest.raises(FieldFileError, match=message):

@@ -30,6 +30,11 @@ from numpy.typing import NDArray
 from vbikit._files import check_name, csv_rows, read_text
 from vbikit._toml import read_toml
 from vbikit.errors import VbikitError
+from vbikit.scenario.schema import MAX_SPEED, MIN_SPEED
+
+#: the speeds [km/h] a field file accepts: a scenario's (``vbikit.scenario.schema``)
+SPEED_RANGE_KMH = (round(MIN_SPEED * 3.6, 12), MAX_SPEED * 3.6)
+_SPEED_RANGE_TEXT = f"{SPEED_RANGE_KMH[0]:g} … {SPEED_RANGE_KMH[1]:g}"
 
 log = logging.getLogger(__name__)
 
@@ -218,7 +223,7 @@ FIELD_KEYS: dict[str, dict[str, tuple[str, str, Any, str, str]]] = {
         "model": ("text", "a vehicle preset", ..., "", "the test truck (`vbikit presets`)"),
     },
     "crossing": {
-        "speed_kmh": ("number", "> 0", ..., "km/h", "truck speed (a case may set its own)"),
+        "speed_kmh": ("number", _SPEED_RANGE_TEXT, ..., "km/h", "truck speed (a case may set its own)"),
         "approach": ("number", "≥ 0", 33.52, "m", "distance driven before the span entry (two 16.76 m spans)"),
         "free_vibration": ("number", "≥ 0", 3.0, "s", "time simulated after the last axle leaves"),
         "dt": ("number", "> 0", None, "s", "fixed time step; default automatic"),
@@ -239,7 +244,7 @@ FIELD_KEYS: dict[str, dict[str, tuple[str, str, Any, str, str]]] = {
         "align": ("text", "trigger, xcorr", "trigger", "", "time alignment of record and simulation"),
         "profile_left": ("text", "an existing file", None, "", "measured profile under the left wheel line (y > 0); default a smooth road"),
         "profile_right": ("text", "an existing file", None, "", "measured profile under the right wheel line (needs profile_left)"),
-        "speed_kmh": ("number", "> 0", None, "km/h", "speed of this case; default crossing.speed_kmh"),
+        "speed_kmh": ("number", _SPEED_RANGE_TEXT, None, "km/h", "speed of this case; default crossing.speed_kmh"),
         "channel": ("array of tables", "", ..., "", "the sensors [[case.channel]] used"),
     },
     "case.channel": {
@@ -298,7 +303,7 @@ def _table(doc: dict[str, Any], key: str, path: Path, required: bool = True) -> 
 
 
 def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any = ..., positive: bool = False,
-         nonneg: bool = False) -> Any:
+         nonneg: bool = False, bounds: tuple[float, float] | None = None, unit: str = "") -> Any:
     if key not in table:
         if default is ...:
             raise FieldFileError(f"{path}: missing key {where}{key}")
@@ -310,6 +315,9 @@ def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any =
         raise FieldFileError(f"{path}: {where}{key} must be > 0, got {v!r}")
     if nonneg and not v >= 0:
         raise FieldFileError(f"{path}: {where}{key} must be >= 0, got {v!r}")
+    if bounds is not None and not bounds[0] <= v <= bounds[1]:
+        raise FieldFileError(f"{path}: {where}{key} must be in {bounds[0]:g} … {bounds[1]:g}{' ' + unit if unit else ''}, "
+                             f"got {v!r}")
     return float(v)
 
 
@@ -366,7 +374,7 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         raise FieldFileError(f"{path}: signal.bands_hz must be a list of [low, high] pairs of finite numbers [Hz]") from None
     if any(not 0 <= a < b for a, b in bands):
         raise FieldFileError(f"{path}: signal.bands_hz: every band needs 0 <= low < high, got {bands_raw!r}")
-    speed = _num(crossing_t, "speed_kmh", "crossing.", path, positive=True) / 3.6
+    speed = _num(crossing_t, "speed_kmh", "crossing.", path, bounds=SPEED_RANGE_KMH, unit="km/h") / 3.6
     cases_raw = doc.get("case")
     if not isinstance(cases_raw, list) or not cases_raw:
         raise FieldFileError(f"{path}: needs at least one [[case]] table")
@@ -420,7 +428,8 @@ def load_field_toml(path: str | Path) -> FieldSpec:
             align=align,
             profile_left=_file(c, "profile_left", where, base, path, False),
             profile_right=_file(c, "profile_right", where, base, path, False),
-            speed=None if "speed_kmh" not in c else _num(c, "speed_kmh", where, path, positive=True) / 3.6,
+            speed=None if "speed_kmh" not in c else _num(c, "speed_kmh", where, path, bounds=SPEED_RANGE_KMH,
+                                                           unit="km/h") / 3.6,
         )
         if cs.profile_right is not None and cs.profile_left is None:
             raise FieldFileError(f"{path}: {where}profile_right needs profile_left")
