@@ -136,6 +136,8 @@ def expected(lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open:
 
 #: pydantic's error types of a violated bound (``Field(ge=, gt=, le=, lt=)``)
 _BOUND_ERRORS = ("greater_than", "greater_than_equal", "less_than", "less_than_equal")
+#: pydantic's error types of a value that is not an integer where one is expected (20.5, "20")
+_INTEGER_ERRORS = ("int_from_float", "int_parsing", "int_type")
 #: the unit at the end of a field's description: "speed at t = 0 [km/h]" -> km/h ("[-]": none)
 _UNIT = re.compile(r"\[([A-Za-z0-9²³µ°/^·. -]{1,12})\]\s*$")
 
@@ -154,10 +156,11 @@ def _constraints(field: Any) -> list[Any]:
 
 
 def bound_message(error: dict, field: Any = None) -> Optional[str]:
-    """The message of a pydantic bound error (``Input should be greater than or equal to 0.0036``)
-    as ``expected`` words it, with both bounds of ``field`` (its pydantic ``FieldInfo``; None:
-    the violated bound only) and the unit its description ends with; None for another error."""
-    if error.get("type") not in _BOUND_ERRORS:
+    """The message of a pydantic bound error (``Input should be greater than or equal to 0.0036``), or
+    of a value that is not an integer where one is expected (``Input should be a valid integer``), as
+    ``expected`` words it, with both bounds of ``field`` (its pydantic ``FieldInfo``; None: the
+    violated bound only) and the unit its description ends with; None for another error."""
+    if error.get("type") not in _BOUND_ERRORS + _INTEGER_ERRORS:
         return None
     bounds: dict[str, Any] = {"ge": None, "gt": None, "le": None, "lt": None}
     for item in _constraints(field):
@@ -172,7 +175,7 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
     kinds = {annotation, *typing.get_args(annotation)}
     unit = _UNIT.search(getattr(field, "description", None) or "")
     text = expected(None if lo is None else float(lo), None if hi is None else float(hi), lo_open=lo_open,
-                    hi_open=hi_open, integer=int in kinds and float not in kinds,
+                    hi_open=hi_open, integer=(int in kinds and float not in kinds) or error["type"] in _INTEGER_ERRORS,
                     unit=unit.group(1) if unit and unit.group(1).strip() != "-" else "")
     return f"{text}, got {_short(error['input'])}" if "input" in error else text
 

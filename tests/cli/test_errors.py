@@ -44,6 +44,7 @@ def test_good_scenario_runs(tmp_path):
         ('model = "sprung-mass"', 'model = "truck"', ["vehicle.model", "hs20-44", "quarter-car"]),
         ('[crossing]', '[tire]\nmodel = "multipoint"\nn_points = 0\n[crossing]',
          ["tire.n_points", "expected an integer in [1, 100], got 0"]),
+        ('n_modes = 5', 'n_modes = 5.5', ["bridge.n_modes", "expected an integer in [1, 500], got 5.5"]),  # (a new user's trial)
         ('speed = 20.0', 'speed = 20.0\ndt = 0.0', ["crossing.dt", "expected a number > 0 [s], got 0.0"]),
         ('speed = 20.0', 'speed = 20.0\ndt = 0.01\nintegrator = "rk4"', ["crossing.dt", "stability limit", "newmark"]),
         ('[crossing]', '[road]\nclass = "Q"\n[crossing]', ["road.class", "A, B, C, D, E, F, G, H"]),
