@@ -70,3 +70,16 @@ def test_contact_loss_off_the_bridge_prints_no_negative_zero(tmp_path):
     assert "lost contact with the road only after the bridge (its track on the deck: x from 0.000 to 16.760 m)" \
         in result.output
     assert "-0.000" not in result.output
+
+
+def test_traffic_road_option_names_itself_with_the_allowed_classes(tmp_path):
+    """A new user's trial (2026-12-06): ``vbikit traffic --road Q`` reported the scenario key
+    ``road.class``; it is refused as the option it is, before any run, with the classes allowed."""
+    stream = Path(__file__).resolve().parents[2] / "examples" / "traffic" / "stream.csv"
+    res = CliRunner().invoke(app, ["traffic", str(stream), "--bridge", "paper-bridge-2", "--road", "Q",
+                                   "--out", str(tmp_path / "t.nc")])
+    assert res.exit_code == 2
+    text = res.output + (res.stderr if res.stderr_bytes is not None else "")
+    assert "'--road'" in text and "unknown road class 'Q'" in text and "A, B, C, D, E, F, G, H" in text
+    assert "psd" not in text.split("allowed:")[1]
+    assert not (tmp_path / "t.nc").exists()

@@ -52,6 +52,11 @@ def traffic_cmd(
     recs = guard(lambda: read_records(records, max_vehicles or MAX_RECORDS))
     base, base_dir = guard(lambda: base_scenario(bridge))
     if road is not None:
+        from vbikit.scenario.schema import ROAD_CLASSES
+
+        classes = [c for c in ROAD_CLASSES if c != "psd"]  # (a PSD needs its parameters: a scenario's [road])
+        if road not in classes:
+            raise typer.BadParameter(f"unknown road class {road!r}; allowed: {', '.join(classes)}", param_hint="'--road'")
         base = {**base, "road": {**base.get("road", {}), "class": road}}
     from vbikit.scenario.schema import parse_scenario
     from vbikit.traffic.base import dropped_section_warnings, template_data
