@@ -382,10 +382,21 @@ def kink_positions(bridge: ModalBridge, effect: LoadEffect, y: float | None = No
     kinks where a point enters or leaves the deck, though it is 0 there) and, for an influence
     tabulated along wheel lines, the stations where that line's cubics meet with a break of value or
     slope (``station_kinks``: a grillage's line between two girders), sorted, unique."""
-    out = np.union1d(jump_positions(bridge, effect), np.asarray(bridge.support_x, float))
-    if y is not None and isinstance(effect.influence, TabulatedInfluence):
-        out = np.union1d(out, station_kinks(effect.influence, float(y)))
-    return out
+    from vbikit._kept import kept_for
+
+    def make() -> tuple[Any, NDArray[np.float64]]:
+        out = np.union1d(jump_positions(bridge, effect), np.asarray(bridge.support_x, float))
+        if y is not None and isinstance(effect.influence, TabulatedInfluence):
+            out = np.union1d(out, station_kinks(effect.influence, float(y)))
+        out.setflags(write=False)
+        return effect, out  # (the effect kept with its identity: no other can take it while kept)
+
+    # kept by the bridge per effect and line: every event of a stream asks for the same few
+    return kept_for(bridge, "kink positions", KINK_POSITIONS_KEPT).get((id(effect), y), make)[1]
+
+
+#: the ``kink_positions`` a bridge keeps (per effect and wheel line)
+KINK_POSITIONS_KEPT = 256
 
 
 #: a tabulated line breaks at a station where its value or slope changes by more than this fraction
@@ -435,24 +446,33 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
 
 def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[NDArray[np.float64]]:
     """Per effect, the instants [s] at which its histories may jump or kink: a contact point on one of
-    the ``kink_positions`` of its own wheel line (``LoadEffectResponse.kinks``)."""
-    from vbikit.analysis.instants import crossing_instants
-
+    the ``kink_positions`` of its own wheel line (``LoadEffectResponse.kinks``); every effect's
+    (point, position) pairs timed in one ``Crossing.times_at`` pass, then each effect's own in the
+    run's span, sorted, unique."""
     t = np.asarray(result.time, float)
-    if t.size < 2:
+    if t.size < 2 or not effects:
         return [np.zeros(0) for _ in effects]
     crossing = result.crossing
     bridge = crossing.bridge
     origin, sign, y = crossing.point_kinematics()
     lines, which = np.unique(y, return_inverse=True)
-    out = []
+    blocks = []
     for e in effects:
         per_line = [kink_positions(bridge, e, float(v)) for v in lines]
         xi = np.full((lines.size, max(p.size for p in per_line)), np.nan)  # (NaN: none)
         for k, p in enumerate(per_line):
             xi[k, :p.size] = p
-        at = xi[which] + (y * float(bridge.skew_tan))[:, None]  # x of each point's positions
-        out.append(crossing_instants(crossing, (at - origin[:, None]) * sign[:, None], float(t[0]), float(t[-1])))
+        blocks.append(xi[which])
+    at = np.concatenate(blocks, axis=1) + (y * float(bridge.skew_tan))[:, None]  # x of each point's positions
+    tau = crossing.times_at((at - origin[:, None]) * sign[:, None], crossing.point_vehicle[:, None])
+    inside = (tau > t[0]) & (tau < t[-1])  # (NaN: never there, or padding)
+    out, a = [], 0
+    for block in blocks:
+        b = a + block.shape[1]
+        mine = tau[:, a:b][inside[:, a:b]]
+        mine.sort()
+        out.append(mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine)  # np.unique's pass
+        a = b
     return out
 
 
