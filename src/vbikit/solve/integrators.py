@@ -249,8 +249,8 @@ def _lane_road(road: "Road", lane: int) -> "Road":
 LEAN_WINDOW = 16
 LEAN_RESUMES = 40
 
-#: steps per ``kernels.lean_lanes`` call: a lane it stops at a step runs alone with ``implicit`` to
-#: the end of the chunk and rejoins the lanes at the next call (``_run_lanes``)
+#: steps per ``kernels.lean_lanes`` call: a lane it stops at a step runs alone to the end of the chunk
+#: (``_finish_lane``) and rejoins the lanes at the next call (``_run_lanes``)
 LANES_CHUNK = 128
 
 

@@ -24,8 +24,9 @@ A lane whose step needs more than that (a gated point's activity changes in the 
 left out by the lazy test may touch, the corrections do not settle) is *frozen* at that step: its
 ``stop`` entry is set to the step, its later rows are not written, and it takes no part in the
 shared decisions after (which points the lazy test keeps).  The caller runs the steps in chunks
-(``integrators._run_lanes``): a frozen lane goes on alone with ``implicit`` from its last stored
-row to the end of the chunk and rejoins the next call afresh, while the other lanes go on from the
+(``integrators._run_lanes``): a frozen lane goes on alone from its last stored row to the end of
+the chunk (``implicit`` for the contact event's window, then the one-lane ``lean``,
+``integrators._finish_lane``) and rejoins the next call afresh, while the other lanes go on from the
 state the call leaves (``carry_f``, ``carry_p``, ``carry_g``), exactly as without the chunks.
 
 The lazy test is shared and reads the road under each point (interpolated for all lanes, the
