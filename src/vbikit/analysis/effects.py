@@ -430,25 +430,12 @@ def station_kinks(influence: TabulatedInfluence, y: float) -> NDArray[np.float64
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
-                      positions: Callable[[ModalBridge, LoadEffect], NDArray[np.float64]]) -> list[NDArray[np.float64]]:
-    """Per effect, the instants in the run's span at which a contact point stands on one of its
-    ``positions(bridge, effect)`` ξ (on every wheel line, skew decks included), sorted, unique."""
+                      positions: Callable[[ModalBridge, LoadEffect, float], NDArray[np.float64]]) -> list[NDArray[np.float64]]:
+    """Per effect, the instants in the run's span at which a contact point stands on one of the
+    ``positions(bridge, effect, y)`` ξ of its wheel line y (skew decks included), sorted, unique:
+    every effect's (point, position) pairs timed in one pass (``instants.crossing_instants``)."""
     from vbikit.analysis.instants import crossing_instants
 
-    t = result.time
-    crossing = result.crossing
-    bridge = crossing.bridge
-    origin, sign, y = crossing.point_kinematics()
-    lines = y * float(bridge.skew_tan)  # x − ξ of each point's line
-    return [crossing_instants(crossing, (positions(bridge, e)[None, :] + lines[:, None] - origin[:, None])
-                              * sign[:, None], float(t[0]), float(t[-1])) for e in effects]
-
-
-def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[NDArray[np.float64]]:
-    """Per effect, the instants [s] at which its histories may jump or kink: a contact point on one of
-    the ``kink_positions`` of its own wheel line (``LoadEffectResponse.kinks``); every effect's
-    (point, position) pairs timed in one ``Crossing.times_at`` pass, then each effect's own in the
-    run's span, sorted, unique."""
     t = np.asarray(result.time, float)
     if t.size < 2 or not effects:
         return [np.zeros(0) for _ in effects]
@@ -456,24 +443,20 @@ def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list
     bridge = crossing.bridge
     origin, sign, y = crossing.point_kinematics()
     lines, which = np.unique(y, return_inverse=True)
-    blocks = []
+    travels = []
     for e in effects:
-        per_line = [kink_positions(bridge, e, float(v)) for v in lines]
+        per_line = [positions(bridge, e, float(v)) for v in lines]
         xi = np.full((lines.size, max(p.size for p in per_line)), np.nan)  # (NaN: none)
         for k, p in enumerate(per_line):
             xi[k, :p.size] = p
-        blocks.append(xi[which])
-    at = np.concatenate(blocks, axis=1) + (y * float(bridge.skew_tan))[:, None]  # x of each point's positions
-    tau = crossing.times_at((at - origin[:, None]) * sign[:, None], crossing.point_vehicle[:, None])
-    inside = (tau > t[0]) & (tau < t[-1])  # (NaN: never there, or padding)
-    out, a = [], 0
-    for block in blocks:
-        b = a + block.shape[1]
-        mine = tau[:, a:b][inside[:, a:b]]
-        mine.sort()
-        out.append(mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine)  # np.unique's pass
-        a = b
-    return out
+        travels.append((xi[which] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None])
+    return crossing_instants(crossing, travels, float(t[0]), float(t[-1]))
+
+
+def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[NDArray[np.float64]]:
+    """Per effect, the instants [s] at which its histories may jump or kink: a contact point on one of
+    the ``kink_positions`` of its own wheel line (``LoadEffectResponse.kinks``)."""
+    return _passing_instants(result, effects, kink_positions)
 
 
 def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
@@ -496,7 +479,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     bridge = crossing.bridge
     _, _, y = crossing.point_kinematics()
     lines = y * float(bridge.skew_tan)  # x − ξ of each point's line
-    taus = _passing_instants(result, effects, jump_positions)
+    taus = _passing_instants(result, effects, lambda bridge, e, y: jump_positions(bridge, e))
     tau = np.unique(np.concatenate(taus))
     if tau.size == 0:
         return [empty for _ in effects]

@@ -40,6 +40,7 @@ amplitude, at a jump.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -57,14 +58,23 @@ def one_sided(tau: NDArray[np.float64], dt: float) -> NDArray[np.float64]:
     return u
 
 
-def crossing_instants(crossing, travels: NDArray[np.float64], t0: float, t1: float) -> NDArray[np.float64]:
-    """The instants in (t0, t1) [s] at which contact point p's vehicle has the travel ``travels[p, j]``
-    [m] (shape (n_cp, n_j), NaN: none), by ``Crossing.times_at`` (all vehicles in one pass), sorted,
-    unique (NaN: never there, dropped)."""
-    tau = crossing.times_at(travels, crossing.point_vehicle[:, None])
-    mine = tau[(tau > t0) & (tau < t1)]
-    mine.sort()
-    return mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine  # np.unique's pass
+def crossing_instants(crossing, travels: Sequence[NDArray[np.float64]], t0: float,
+                      t1: float) -> list[NDArray[np.float64]]:
+    """Per block of ``travels``, the instants in (t0, t1) [s] at which contact point p's vehicle has
+    the travel ``block[p, j]`` [m] (each block of shape (n_cp, n_j), NaN: none), sorted, unique (NaN:
+    never there, dropped): every block timed in one ``Crossing.times_at`` pass (all vehicles at once).
+    The load effects' jump and kink instants and the lifetime's knot instants all come from here."""
+    s = travels[0] if len(travels) == 1 else np.concatenate(travels, axis=1)
+    tau = crossing.times_at(s, crossing.point_vehicle[:, None])
+    ok = (tau > t0) & (tau < t1)  # (NaN: never there, or padding)
+    out, a = [], 0
+    for block in travels:
+        b = a + block.shape[1]
+        mine = tau[ok] if len(travels) == 1 else tau[:, a:b][ok[:, a:b]]
+        mine.sort()
+        out.append(mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine)  # np.unique's pass
+        a = b
+    return out
 
 
 @dataclass(frozen=True)

@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 from vbikit.analysis.breakpoints import GATE, active_nodes, event_extremes, knot_tables
 from vbikit.analysis.effects import kink_instants
 from vbikit.analysis.impact import smooth_vertices
-from vbikit.analysis.instants import KNOT_OFFSET, instant_rows, one_sided, run_state
+from vbikit.analysis.instants import KNOT_OFFSET, crossing_instants, instant_rows, one_sided, run_state
 
 __all__ = ["GATE", "KNOT_OFFSET", "active_nodes", "event_extremes", "knot_instants", "knot_limits", "knot_tables",
            "with_knot_limits"]
@@ -30,25 +30,7 @@ def knot_instants(crossing, table, t0: float, t1: float) -> NDArray[np.float64]:
     """The instants τ in (t0, t1) [s] at which a contact point of ``crossing`` stands on an active
     node of ``table`` (a ``vbikit.lifetime.influence.Tabulated`` line: the knots of the module
     docstring, the jump of a reaction or shear line, the kink of a moment line), sorted, unique."""
-    return _knot_instants(crossing, [_point_geometry(table, *crossing.point_kinematics())[1]], t0, t1)[0]
-
-
-def _knot_instants(crossing, travels, t0: float, t1: float) -> list[NDArray[np.float64]]:
-    """``knot_instants`` of several tables at once, given for each the travel of every (contact point,
-    active node of its row) pair (``_point_geometry``): the times of all of them by
-    ``Crossing.times_at`` (all vehicles and tables in one pass), then per table its instants in
-    (t0, t1), sorted, unique."""
-    s = travels[0] if len(travels) == 1 else np.concatenate(travels, axis=1)
-    tau = crossing.times_at(s, crossing.point_vehicle[:, None])
-    ok = (tau > t0) & (tau < t1)  # (NaN: never there, or padding)
-    out, a = [], 0
-    for c in travels:
-        b = a + c.shape[1]
-        mine = tau[ok] if len(travels) == 1 else tau[:, a:b][ok[:, a:b]]
-        mine.sort()
-        out.append(mine[np.concatenate(([True], mine[1:] != mine[:-1]))] if mine.size else mine)  # np.unique's pass
-        a = b
-    return out
+    return crossing_instants(crossing, [_point_geometry(table, *crossing.point_kinematics())[1]], t0, t1)[0]
 
 
 def _row_knots(table) -> NDArray[np.float64]:
@@ -152,7 +134,7 @@ def knot_limits(result, effects, tables, dynamics, statics) -> list[tuple[NDArra
     crossing = result.crossing
     origin, sign, y = crossing.point_kinematics()
     tracks, travels = zip(*[_point_geometry(table, origin, sign, y) for table in tables])
-    taus = _knot_instants(crossing, travels, float(t[0]), float(t[-1]))
+    taus = crossing_instants(crossing, travels, float(t[0]), float(t[-1]))  # (all tables in one pass)
     # the extremes between the samples away from the knots and the support lines (``impact.smooth_vertices``)
     vertices = [smooth_vertices(t, dyn, sta, np.union1d(mine, kinks))
                 for (_, dyn, sta), mine, kinks in zip(keep, taus, kink_instants(result, effects))]
