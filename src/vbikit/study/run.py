@@ -351,14 +351,11 @@ def _announce_compile(study, batches, scheduler, workers, threads: int = 1) -> N
         announce_compile(compiled.implicit, f"{who}, for the steps where a wheel leaves or lands on the road")
 
 
-#: road classes on which wheels leave the road (ISO 8608 D and rougher; "poor" is D)
-HOPPING_ROAD_CLASSES = frozenset({"D", "E", "F", "G", "H", "poor"})
-
-
 def may_hand_over(study) -> bool:
     """Whether the crossings of ``study`` (its base scenario and axes) may run the full contact kernel
-    (``integrators._full``): rigid-disk tires, or roads of ``HOPPING_ROAD_CLASSES`` on which wheels
-    leave the road — for the compile notice (a base given as a file is not read: False)."""
+    (``integrators._full``): rigid-disk tires, or a road class rougher than ISO 8608 class C, on which
+    wheels leave the road (``hopping_road_class``) — for the compile notice (a base given as a file is
+    not read: False)."""
     base = getattr(study, "base", None) or {}
     tires = {(base.get("tire") or {}).get("model")}
     classes = {(base.get("road") or {}).get("class")}
@@ -367,7 +364,18 @@ def may_hand_over(study) -> bool:
             tires |= set(axis.values)
         elif axis.key == "road.class":
             classes |= set(axis.values)
-    return "rigid-disk" in tires or bool(classes & HOPPING_ROAD_CLASSES)
+    return "rigid-disk" in tires or any(hopping_road_class(c) for c in classes if isinstance(c, str))
+
+
+def hopping_road_class(road_class: str) -> bool:
+    """Whether a scenario's ``road.class`` (ISO 8608 A … H or the paper's good / average / poor) is one on
+    which wheels leave the road: its G_d(n₀) above ``timestep.EXACT_SMOOTH_ROAD_ROUGHNESS``, the bound the
+    exact integrator's step rule draws there (class D and rougher)."""
+    from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
+    from vbikit.solve.timestep import EXACT_SMOOTH_ROAD_ROUGHNESS
+
+    key = PAPER_CLASSES.get(road_class, road_class)
+    return key in ISO_CLASSES and ISO_CLASSES[key] > EXACT_SMOOTH_ROAD_ROUGHNESS
 
 
 def _run_local(study, batches, todo, workers, threads, finished) -> None:
