@@ -402,31 +402,20 @@ KINK_POSITIONS_KEPT = 256
 #: a tabulated line breaks at a station where its value or slope changes by more than this fraction
 #: of its largest value or slope (round-off of the tables' cubics: ≈ 1e-13, ``TabulatedInfluence``)
 STATION_BREAK = 1e-8
-#: the station breaks a tabulated influence keeps (``station_kinks``), per wheel line
-STATION_KINKS_KEPT = 64
-
-
 def station_kinks(influence: TabulatedInfluence, y: float) -> NDArray[np.float64]:
     """The interior stations ξ [m] of ``influence`` at which its cubics along the wheel line ``y`` [m]
     (``line_tables``, without the section's own kink or step) meet with a break: the end value or
     slope of one element against the start of the next, beyond ``STATION_BREAK`` of the line's
-    largest (kept per influence and line)."""
-    from vbikit._kept import kept_for
-
-    def make() -> NDArray[np.float64]:
-        poly = np.asarray(influence.line_tables([y])[0], float)  # (4, n_elements), rows t⁰ … t³
-        h = np.diff(np.asarray(influence.stations, float))
-        start_value, end_value = poly[0], poly.sum(axis=0)
-        start_slope, end_slope = poly[1] / h, (poly[1] + 2.0 * poly[2] + 3.0 * poly[3]) / h
-        value_scale = max(float(np.abs(poly).sum(axis=0).max(initial=0.0)), 1e-300)
-        slope_scale = max(float(np.abs(np.r_[start_slope, end_slope]).max(initial=0.0)), 1e-300)
-        broken = (np.abs(end_value[:-1] - start_value[1:]) > STATION_BREAK * value_scale) | \
-            (np.abs(end_slope[:-1] - start_slope[1:]) > STATION_BREAK * slope_scale)
-        out = np.asarray(influence.stations, float)[1:-1][broken]
-        out.setflags(write=False)
-        return out
-
-    return kept_for(influence, "station kinks", STATION_KINKS_KEPT).get(y, make)
+    largest (``kink_positions`` keeps them per effect and line)."""
+    poly = np.asarray(influence.line_tables([y])[0], float)  # (4, n_elements), rows t⁰ … t³
+    h = np.diff(np.asarray(influence.stations, float))
+    start_value, end_value = poly[0], poly.sum(axis=0)
+    start_slope, end_slope = poly[1] / h, (poly[1] + 2.0 * poly[2] + 3.0 * poly[3]) / h
+    value_scale = max(float(np.abs(poly).sum(axis=0).max(initial=0.0)), 1e-300)
+    slope_scale = max(float(np.abs(np.r_[start_slope, end_slope]).max(initial=0.0)), 1e-300)
+    broken = (np.abs(end_value[:-1] - start_value[1:]) > STATION_BREAK * value_scale) | \
+        (np.abs(end_slope[:-1] - start_slope[1:]) > STATION_BREAK * slope_scale)
+    return np.asarray(influence.stations, float)[1:-1][broken]
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
