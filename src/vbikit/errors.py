@@ -52,10 +52,31 @@ def _rebuild(cls: type[VbikitError], args: tuple[Any, ...], key: str | None) -> 
     return err
 
 
+#: a message's heading line of schema errors: ``invalid scenario:`` (the key lines follow, indented)
+_HEADING = re.compile(r"^(invalid [^\n:]+):\n")
+
+
+def naming_file(message: str, path: Any) -> str:
+    """``message``, of an error about the input file ``path``, with the file named in its first line:
+    ``invalid scenario:`` / key lines become ``invalid scenario bad.toml:`` / key lines, any other
+    message ``bad.toml: message``.  A first line that already names ``path`` (the readers' own errors:
+    ``bad.toml: not valid TOML …``, ``records.csv:3: …``) is kept as it is, as is a message about a
+    command-line option (``--scheduler …: cannot connect``).  ``path`` is written as given
+    (``str(path)``), never the file's content."""
+    name = str(path)
+    first = message.split("\n", 1)[0]
+    if first.startswith("--") or re.search(rf"(?<![\w./\\-]){re.escape(name)}(?!\w|\.\w)", first):
+        return message
+    heading = _HEADING.match(message)
+    if heading:
+        return f"{heading.group(1)} {name}:\n{message[heading.end():]}"
+    return f"{name}: {message}"
+
+
 class OptionError(VbikitError):
     """A command-line option value that cannot be used (``--max-memory 4XB``, ``--tires foo``)."""
 
     message_names_key = True
 
 
-__all__ = ["OptionError", "VbikitError"]
+__all__ = ["OptionError", "VbikitError", "naming_file"]

@@ -30,11 +30,11 @@ def driveby_cmd(
 
     if max_steps is not None:
         max_steps = steps_option(max_steps)
-    spec = guard(lambda: load_driveby(file))
+    spec = guard(lambda: load_driveby(file), file=file)
     if max_steps is not None:
         spec = dataclasses.replace(spec, max_steps=float(max_steps))
-    steps = guard(lambda: check_cases(spec))
-    typer.echo(f"{file.name}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
+    steps = guard(lambda: check_cases(spec), file=file)
+    typer.echo(f"{file}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
     guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
     warn_dataset(ds)

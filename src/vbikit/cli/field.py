@@ -33,7 +33,7 @@ def field_(
     from vbikit.outputs import QUANTITIES
 
     names = guard(lambda: option(parse_tires, tires))
-    run_ = guard(lambda: run_field(field_file, out_dir, names, calibrate))
+    run_ = guard(lambda: run_field(field_file, out_dir, names, calibrate), file=field_file)
     typer.echo(run_.spec.name)
     for label, cmps in (("nominal model", run_.comparisons), ("calibrated model", run_.calibrated or [])):
         for c in cmps:

@@ -2,7 +2,10 @@
 
 A user error ([`VbikitError`][vbikit.errors.VbikitError]: bad input, a refused budget or time step),
 an ``OSError`` (an input that cannot be read, an output that cannot be written) and a
-``MemoryError`` exit with code 2 and one line ``error: …`` on stderr.  Any other exception is a
+``MemoryError`` exit with code 2 and one line ``error: …`` on stderr.  A command that reads an input
+file passes it (``guard(action, file=path)``): a user error then names that file in its first line
+(``vbikit.errors.naming_file``: ``error: invalid scenario bad.toml:`` and the key lines), the one
+place every command's input-file errors get their file name.  Any other exception is a
 programming error and shows its traceback, as does every error with ``--debug``.
 """
 from __future__ import annotations
@@ -12,7 +15,7 @@ from typing import Any, Callable, Optional, TypeVar
 
 import typer
 
-from vbikit.errors import OptionError, VbikitError
+from vbikit.errors import OptionError, VbikitError, naming_file
 
 T = TypeVar("T")
 
@@ -23,15 +26,18 @@ _OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, 
                   "refused before starting, or reduce the inputs named in the budget message of `vbikit validate`")
 
 
-def guard(action: Callable[[], T]) -> T:
+def guard(action: Callable[[], T], file: Optional[Path] = None) -> T:
     """Run ``action``; a user error, an unreadable input or unwritable output, or running out of
-    memory exits with code 2 and one message (``--debug``: the traceback instead)."""
+    memory exits with code 2 and one message (``--debug``: the traceback instead).  ``file``: the
+    input file ``action`` reads, named (as given) in the first line of a user error's message
+    unless that line names it already; an option's error (``OptionError``) is not about the file."""
     try:
         return action()
     except (VbikitError, OSError) as err:
         if STATE["debug"]:
             raise
-        typer.echo(f"error: {err}", err=True)
+        about_file = file is not None and isinstance(err, VbikitError) and not isinstance(err, OptionError)
+        typer.echo(f"error: {naming_file(str(err), file) if about_file else err}", err=True)
         for note in getattr(err, "__notes__", ()):  # what the run leaves (e.g. a lifetime run's resumable work)
             typer.echo(f"note: {note}", err=True)
         raise typer.Exit(code=2) from None
@@ -44,12 +50,15 @@ def guard(action: Callable[[], T]) -> T:
         raise typer.Exit(code=2) from None
 
 
-def warn(warnings: list[str]) -> None:
-    """Print the input warnings of a run on stderr (not with ``-q``)."""
+def warn(warnings: list[str], most: Optional[int] = None) -> None:
+    """Print the input warnings of a run on stderr (not with ``-q``); ``most``: at most that many,
+    then one line ``warning: … and N more warnings``."""
     if STATE["quiet"]:
         return
-    for text in warnings:
+    for text in warnings[:most]:
         typer.echo(f"warning: {text}", err=True)
+    if most is not None and len(warnings) > most:
+        typer.echo(f"warning: … and {len(warnings) - most} more warnings", err=True)
 
 
 def option(parse: Callable[[str], T], text: str) -> T:

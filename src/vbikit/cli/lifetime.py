@@ -64,7 +64,7 @@ def lifetime_cmd(
     t0 = time.perf_counter()
     try:
         ds = guard(lambda: run_lifetime(spec, out_dir, workers=workers, scheduler=scheduler, progress=bars,
-                                        figures=figures, max_memory=memory))
+                                        figures=figures, max_memory=memory), file=spec)
     except KeyboardInterrupt:
         bars.close()
         typer.echo(f"\ninterrupted: finished batches are kept in {out_dir / 'work'}; run the same command again "

@@ -110,7 +110,7 @@ def bridge(
                 raise ScenarioError(str(err)) from None
             return bridge_, scenario.bridge.model, scenario.name or Path(name).stem
 
-        b, model, label = guard(scenario_bridge)
+        b, model, label = guard(scenario_bridge, file=Path(name))
         skew = float(b.skew)
         description = f"[bridge] of {name} (model {model!r}{f', skew {skew:g}°' if skew else ''})"
         name = Path(name).stem

@@ -38,7 +38,7 @@ def rail_cmd(
     try:
         result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
                                         progress=report if progress and not STATE["quiet"] else None,
-                                        scheduler=scheduler))
+                                        scheduler=scheduler), file=spec)
     except KeyboardInterrupt:
         typer.echo(f"\ninterrupted: finished trains are kept in {out_dir / 'rail.parts'}; run the same command "
                    "again to resume", err=True)

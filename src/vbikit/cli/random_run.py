@@ -18,7 +18,7 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     of the mean and σ histories of the deck responses at every point."""
     from vbikit.scenario.pipeline import run_random as run
 
-    rr = guard(lambda: run(scenario, limits=budget))
+    rr = guard(lambda: run(scenario, limits=budget), file=scenario)
     s = rr.summary
     if plot is not None:
         from vbikit.random.figure import plot_random

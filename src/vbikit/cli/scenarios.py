@@ -41,7 +41,7 @@ def run(
         from vbikit.cli.random_run import run_random
 
         return run_random(scenario, budget, as_json, summary_path, plot, out)
-    outputs(execute(lambda: load_scenario(scenario), budget), as_json, out, plot, summary_path)
+    outputs(execute(lambda: load_scenario(scenario), budget, file=scenario), as_json, out, plot, summary_path)
 
 
 def cite(
@@ -53,7 +53,7 @@ def cite(
     from vbikit.scenario import load_scenario
     from vbikit.scenario.cite import scenario_models, scenario_references
 
-    spec = guard(lambda: load_scenario(scenario))
+    spec = guard(lambda: load_scenario(scenario), file=scenario)
     refs = scenario_references(spec)
     if bibtex:
         typer.echo(to_bibtex(refs), nl=False)
@@ -87,7 +87,7 @@ def compare_tires(
     from vbikit.plot import plot_tire_comparison
     from vbikit.scenario import load_scenario
 
-    base = guard(lambda: load_scenario(scenario))
+    base = guard(lambda: load_scenario(scenario), file=scenario)
     models = {
         "point": {"model": "point"},
         f"multipoint (n = {n_points})": {"model": "multipoint", "n_points": n_points},
@@ -99,7 +99,7 @@ def compare_tires(
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
         t0 = time.perf_counter()
-        run_ = execute(lambda spec=spec: spec, print_warnings=False)
+        run_ = execute(lambda spec=spec: spec, print_warnings=False, file=scenario)
         s = run_.summary
         warnings[f"tire {label}"] = s["warnings"]
         responses[label] = run_.response

@@ -8,7 +8,7 @@ from typing import Any, Callable, Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, limits, out_dir_option, out_file_option
+from vbikit.cli.guard import STATE, guard, limits, out_dir_option, out_file_option, warn
 
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
@@ -58,8 +58,6 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 def warn_dataset(ds: Any) -> None:
     """Print a study's or stream's dataset warnings (its ``warnings`` attribute: the checks over every
     crossing, ``vbikit.analysis.checks.dataset_flag_attrs``) on stderr, as one line (not with ``-q``)."""
-    from vbikit.cli.guard import warn
-
     if ds.attrs.get("warnings"):
         warn([str(ds.attrs["warnings"])])
 
@@ -71,19 +69,24 @@ _MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batc
 _MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of one crossing (default 5e6).")
 
 
-def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional[float], label: str = "") -> Any:
-    """Every check the run makes before it starts (vbikit.study.check); prints the size and warnings."""
+#: a study check prints at most this many of its warnings (then "… and N more")
+MOST_WARNINGS = 10
+
+
+def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional[float], label: str = "",
+           file: Optional[Path] = None, announce: bool = True) -> Any:
+    """Every check the run makes before it starts (vbikit.study.check); prints the warnings on stderr,
+    and with ``announce`` (a run: before it starts, as progress) the size first, on stderr too; a
+    user error names ``file``, the study file."""
     from vbikit.study.check import check_study
 
     budget = limits(max_memory, max_steps)
-    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
-    typer.echo(f"{label or study.name or 'study'}: {study.size} crossings ({dims}) in {study.n_batches} batches",
-               err=True)
-    result = guard(lambda: check_study(study, budget, confirmed=yes))
-    for text in result.warnings[:10]:
-        typer.echo(f"warning: {text}", err=True)
-    if len(result.warnings) > 10:
-        typer.echo(f"warning: … and {len(result.warnings) - 10} more warnings", err=True)
+    if announce:
+        dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
+        typer.echo(f"{label or study.name or 'study'}: {study.size} crossings ({dims}) in {study.n_batches} batches",
+                   err=True)
+    result = guard(lambda: check_study(study, budget, confirmed=yes), file=file)
+    warn(result.warnings, most=MOST_WARNINGS)
     return result
 
 
@@ -106,8 +109,8 @@ def run_cmd(
     """Run (or resume) a study and write its dataset."""
     from vbikit.study.spec import load_study
 
-    study = guard(lambda: load_study(study_file))
-    _check(study, yes, max_memory, max_steps)
+    study = guard(lambda: load_study(study_file), file=study_file)
+    _check(study, yes, max_memory, max_steps, file=study_file)
     ds = run_job(study, out, workers, scheduler, progress)
     warn_dataset(ds)
     if "impact_factor" not in ds:  # the study's outputs key left it out, or a PEM study's
@@ -132,14 +135,21 @@ def validate_cmd(
 ) -> None:
     """Check a study file without running it: every check `vbikit study run` makes before it starts
     (every axis value in the schema, the size, and each distinct set-up's time step, stability and budgets)."""
-    from vbikit.solve.budget import human
     from vbikit.study.spec import load_study
 
-    study = guard(lambda: load_study(study_file))
-    result = _check(study, yes, max_memory, max_steps)
-    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes)
-    typer.echo(f"{study_file}: ok — {study.size} crossings ({dims}) in {study.n_batches} batches; "
-               f"{result.checked} set-ups checked, up to {result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
+    study = guard(lambda: load_study(study_file), file=study_file)
+    result = _check(study, yes, max_memory, max_steps, file=study_file, announce=False)
+    typer.echo(f"{study_file}: ok — {checked_summary(study, result)}")
+
+
+def checked_summary(study: Any, result: Any) -> str:
+    """The summary of a checked study (``vbikit study validate`` and ``vbikit validate``): its size by
+    axis, batches, the set-ups checked, their largest step count and memory a batch."""
+    from vbikit.solve.budget import human
+
+    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
+    return (f"{study.size} crossings ({dims}) in {study.n_batches} batches; {result.checked} set-ups checked, "
+            f"up to {result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
 
 
 def _paper(*figs: str) -> Callable[..., None]:

@@ -108,15 +108,14 @@ def _traffic_base(path: Path, budget: Any) -> str:
 
 
 def _study(path: Path, budget: Any) -> str:
-    from vbikit.solve.budget import human
+    from vbikit.cli.study import MOST_WARNINGS, checked_summary
     from vbikit.study.check import check_study
     from vbikit.study.spec import load_study
 
     study = load_study(path)
     result = check_study(study, budget, confirmed=False)
-    warn(result.warnings[:10])
-    return (f"{study.size} crossings in {study.n_batches} batches; {result.checked} set-ups checked, up to "
-            f"{result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
+    warn(result.warnings, most=MOST_WARNINGS)
+    return checked_summary(study, result)
 
 
 def _lifetime(path: Path, budget: Any) -> str:
@@ -196,7 +195,7 @@ def validate(
     budget = limits(max_memory, max_steps)
     if max_memory is not None:
         memory_option(max_memory)
-    detected = kind or guard(lambda: detect(file))
+    detected = kind or guard(lambda: detect(file), file=file)
     found = "train" if detected == TRAIN_GUESSED else detected
 
     def check() -> str:
@@ -210,7 +209,7 @@ def validate(
                                   f"table; if it is another kind, give --kind: {', '.join(KINDS)})") from None
             raise
 
-    summary = guard(check)
+    summary = guard(check, file=file)
     if kind is None and found == "traffic-base":  # told by a missing [vehicle]: say so, in case it was forgotten
         summary += " (no [vehicle] or [[vehicles]]: checked as a traffic base; `vbikit run` needs one)"
     typer.echo(f"{file}: ok — {summary}" if found == "scenario" else f"{file}: ok — {KINDS[found]}: {summary}")

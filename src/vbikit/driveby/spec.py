@@ -368,4 +368,4 @@ def load_driveby(path: str | Path) -> DriveBy:
     try:
         return parse_driveby(data, path.parent)
     except SensorError as err:
-        raise DriveByError(f"{path.name}: {err}") from None
+        raise DriveByError(f"{path}: {err}") from None

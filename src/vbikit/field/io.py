@@ -481,7 +481,7 @@ def check_case_record(case: CaseSpec, record: MeasuredRecord, spec_path: Path, l
         duration = float(record.time[-1] - record.time[0])
         lowest = 1.0 / duration if duration > 0 else math.inf
         if not lowest <= lowpass_hz < fs / 2:
-            raise FieldFileError(f"{spec_path.name}: signal.lowpass_hz = {lowpass_hz:g} Hz does not fit the record of case "
+            raise FieldFileError(f"{spec_path}: signal.lowpass_hz = {lowpass_hz:g} Hz does not fit the record of case "
                                  f"{case.name!r} ({record.path.name}: {duration:.4g} s sampled at {fs:.4g} Hz): the cut-off must be "
                                  f"at least 1/duration = {lowest:.4g} Hz and below the Nyquist frequency {fs / 2:.4g} Hz; "
                                  "choose one in that range or leave the key out")

@@ -232,7 +232,7 @@ def parse_rail_spec(data: dict[str, Any]) -> RailSpec:
     try:
         return RailSpec.model_validate(data)
     except ValidationError as err:
-        raise RailSpecError(validation_message(err, "", model=RailSpec)) from None
+        raise RailSpecError(validation_message(err, "invalid rail file", model=RailSpec)) from None
 
 
 def load_rail_spec(path: str | Path) -> RailSpec:
