@@ -321,7 +321,7 @@ def read_records(path: str | Path, max_records: int = MAX_RECORDS) -> list[Vehic
     FIFO, device or folder); more than ``max_records`` records are refused before parsing."""
     path = Path(path)
     text = read_text(path, RecordsError, "records file (CSV)")
-    return parse_records(text, path.name, max_records)
+    return parse_records(text, str(path), max_records)
 
 
 def format_records(records: Sequence[VehicleRecord]) -> str:

@@ -431,4 +431,4 @@ def read_train_table(path: str | Path, name: str | None = None) -> Train:
 
     path = Path(path)
     text = read_text(path, TrainError, "train table")
-    return parse_train_table(text, name or path.stem, where=path.name)
+    return parse_train_table(text, name or path.stem, where=str(path))
