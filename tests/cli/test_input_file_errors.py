@@ -36,7 +36,7 @@ KINDS = {
     "traffic-base": ("traffic/base/bridge2.toml", ("n_modes = 10", "n_modes = -10"), "error: invalid scenario {f}:"),
 }
 
-#: (kind, command line with {f} the bad file): every command that reads each kind
+#: (kind, command line with {f} the bad file): every command that reads each kind ({base}, {stream}: good files)
 CASES = [
     *[("scenario", c) for c in ("run {f}", "run {f} --random", "validate {f}", "cite {f}", "compare-tires {f}",
                                 "bridge {f}")],
@@ -47,12 +47,13 @@ CASES = [
     ("rail", "rail {f}"), ("rail", "validate {f}"),
     ("driveby", "driveby {f}"), ("driveby", "validate {f}"),
     ("field", "field {f}"), ("field", "validate {f}"),
-    ("records", f"traffic {{f}} --bridge {BASE} --out x.nc"), ("records", "validate {f}"),
-    ("traffic-base", f"traffic {STREAM} --bridge {{f}} --out x.nc"), ("traffic-base", "validate {f}"),
+    ("records", "traffic {f} --bridge {base} --out x.nc"), ("records", "validate {f}"),
+    ("traffic-base", "traffic {stream} --bridge {f} --out x.nc"), ("traffic-base", "validate {f}"),
 ]
 
 
-@pytest.mark.parametrize("kind, command", CASES, ids=[f"{k}: {c.split(' {f}')[0]}" for k, c in CASES])
+@pytest.mark.parametrize("kind, command", CASES, ids=[f"{k}: {c.format(f='FILE', base='BASE', stream='STREAM')}"
+                                                     for k, c in CASES])
 def test_an_input_files_error_names_it_in_the_first_line(tmp_path, monkeypatch, kind, command):
     example, (good, bad), first = KINDS[kind]
     text = (EXAMPLES / example).read_text()
@@ -64,7 +65,7 @@ def test_an_input_files_error_names_it_in_the_first_line(tmp_path, monkeypatch, 
     (folder / name).write_text(comment + text.replace(good, bad, 1))
     monkeypatch.chdir(tmp_path)
     given = f"inputs/{name}"  # as typed: a relative path in a folder (not the basename, not resolved)
-    res = runner.invoke(app, command.format(f=given).split())
+    res = runner.invoke(app, command.format(f=given, base=BASE, stream=STREAM).split())
     assert res.exit_code == 2, res.output
     assert res.stderr.splitlines()[0].startswith(first.format(f=given)), res.stderr
     assert MARKER not in res.output and MARKER not in res.stderr
@@ -93,7 +94,7 @@ def test_validate_commands_print_the_summary_once_on_stdout(command):
 
 
 @pytest.mark.parametrize("command", ["validate", "study validate"])
-def test_validate_commands_print_warnings_on_stderr_capped_and_not_with_quiet(tmp_path, command):
+def test_validate_commands_print_warnings_on_stderr_and_not_with_quiet(tmp_path, command):
     text = (EXAMPLES / "studies" / "modes_sensitivity.toml").read_text()
     path = tmp_path / "fast.toml"  # 160 km/h: a speed warning for every set-up
     path.write_text(text.replace("speed_kmh = 75", "speed_kmh = 160"))
