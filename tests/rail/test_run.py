@@ -95,6 +95,9 @@ def test_example_cut_down_through_the_cli(tmp_path):
                          capture_output=True, text=True, env=os.environ.copy(), timeout=300)
     assert run.returncode == 0, run.stderr
     assert "deck acceleration: peak" in run.stdout
+    # the files written and the closing summary are results: stdout, as every command's (stderr: progress)
+    assert f"wrote {out / 'rail.nc'}" in run.stdout and "3 trains × " in run.stdout.splitlines()[-1]
+    assert "wrote " not in run.stderr and "trains × " not in run.stderr
     import xarray as xr
 
     with xr.open_dataset(out / "rail.nc") as ds:

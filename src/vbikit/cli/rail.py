@@ -47,6 +47,6 @@ def rail_cmd(
         if bar is not None:
             bar.close()
     typer.echo(result.report, nl=False)
-    for f in result.files:
-        typer.echo(f"wrote {f}", err=True)
-    typer.echo(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s", err=True)
+    for f in result.files:  # results, on stdout as every command's (its progress bar and warnings: stderr)
+        typer.echo(f"wrote {f}")
+    typer.echo(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s")
