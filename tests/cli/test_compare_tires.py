@@ -157,6 +157,77 @@ def test_a_warning_every_tire_model_shares_is_printed_once(tmp_path):
     assert res.exit_code == 0, res.output
     lines = [t for t in res.stderr.splitlines() if "one road realisation" in t]
     assert len(lines) == 1 and lines[0].startswith("warning: ") and "tire " not in lines[0], res.stderr
-    from vbikit.cli.execute import shared_warnings
+    from vbikit.cli.execute import grouped_warnings
 
-    assert shared_warnings({"tire a": ["w1", "w2"], "tire b": ["w2", "w3"]}) == ["w2", "tire a: w1", "tire b: w3"]
+    assert grouped_warnings({"a": (["w1", "w2"], []), "b": (["w2", "w3"], [])}) == ["tire a: w1", "w2", "tire b: w3"]
+
+
+BUMP = """
+name = "HS20-44 over a 50 mm bump"
+[bridge]
+model = "beam"
+span = 10.0
+EI = 1e10
+mass_per_length = 5000.0
+n_modes = 3
+[vehicle]
+model = "hs20-44"
+[crossing]
+speed = 20.0
+approach = 4.0
+[road]
+class = "none"
+[[road.defects]]
+kind = "bump"
+position = 1.0
+height = 0.05
+"""
+
+
+def test_per_wheel_warnings_of_every_tire_model_are_one_line_with_a_count(tmp_path):
+    """A new user saw about 20 warning lines: each wheel's contact loss (left and right alike) for each
+    tire model.  Now one line per distinct warning, with its count and the worst instance; every
+    instance is kept in compare-tires.json (``grouped_warnings``)."""
+    path = write(tmp_path, BUMP)
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(out)])
+    assert res.exit_code == 0, res.output
+    table = json.loads((out / "compare-tires.json").read_text())
+    every = [(label, w) for label, row in table.items() for w in row["warnings"]]
+    losses = [(label, w) for label, w in every if " lost contact with the road on the bridge" in w]
+    assert len(losses) >= 12  # (20 today: six wheels for three models, two for the disk)
+    lines = res.stderr.splitlines()
+    assert all(line.startswith("warning: ") for line in lines), res.stderr
+    assert len(lines) < len(every) / 4, res.stderr  # (4 lines for 31 warnings today)
+    contact = [line for line in lines if "lost contact" in line]
+    assert len(contact) == 1, res.stderr
+    counts = ", ".join(f"{m} {sum(label == m for label, _ in losses)}" for m in dict.fromkeys(l for l, _ in losses))
+    assert f"(×{len(losses)} over the tire models: {counts}; the worst shown, each in {out / 'compare-tires.json'})" \
+        in contact[0]
+    longest = max(float(w.split(", for ")[1].split(" s")[0]) for _, w in losses)  # the seconds off the road
+    assert f"for {longest:.4f} s on the bridge" in contact[0]
+    for kind in ("dominated by airborne wheels", "tire forces over a road feature", "strain not converged"):
+        assert sum(kind in line for line in lines) == 1, (kind, res.stderr)
+
+
+def test_grouped_warnings_by_flag_code_subject_and_text():
+    from vbikit.cli.execute import grouped_warnings
+
+    def flag(code, message, value=None, threshold=None, wheel=None, subject=None):
+        return {"code": code, "message": message, "value": value, "threshold": threshold, "wheel": wheel,
+                "subject": subject or (f"wheel {wheel}" if wheel else None)}
+
+    small = [flag("small_static", f"Girder 1: share {v}", v, 0.2, subject="Girder 1") for v in (0.12, 0.10)]
+    other = flag("small_static", "Girder 5: share 0.15", 0.15, 0.2, subject="Girder 5")
+    loss = [flag("contact_loss", f"wheel {w} off for {t} s", t, wheel=w) for w, t in (("L", 0.01), ("R", 0.03))]
+    runs = {"a": (["road", small[0].get("message"), loss[0]["message"], loss[1]["message"], "same"],
+                  [small[0], *loss]),
+            "b": (["road", small[1]["message"], other["message"], "same"], [small[1], other]),
+            "c": (["road"], [])}
+    assert grouped_warnings(runs) == [
+        "road",  # every run once, the same words: once, unprefixed
+        "tire b: Girder 1: share 0.1 (×2 over the tire models: a 1, b 1; the worst shown)",  # smaller share worse
+        "tire a: wheel R off for 0.03 s (×2 over the tire models: a 2; the worst shown)",  # wheels together
+        "same (×2 over the tire models: a 1, b 1)",  # the same words, not in every run
+        "tire b: Girder 5: share 0.15",  # another girder: another warning; one run: prefixed
+    ]

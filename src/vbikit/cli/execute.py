@@ -21,7 +21,7 @@ def execute(load: Callable[[], Any], limits: Any = None, label: str = "", print_
     run and report it (``vbikit.scenario.pipeline.run_planned``); user errors exit with code 2,
     the summary's warnings go to stderr, each prefixed with ``label`` when one of several runs;
     ``print_warnings=False``: the caller prints them (``compare-tires``: a warning every run shares
-    once, ``shared_warnings``); ``file``: the scenario file, named in a user error (``guard``)."""
+    one line per distinct warning, ``grouped_warnings``); ``file``: the scenario file, named in a user error (``guard``)."""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.preflight import preflight
 
@@ -31,9 +31,43 @@ def execute(load: Callable[[], Any], limits: Any = None, label: str = "", print_
     return report
 
 
-def shared_warnings(by_run: dict[str, list[str]]) -> list[str]:
-    """The warnings of several runs (by label) as printed once: every warning all runs share, once and
-    unprefixed, first (in the first run's order); then each run's own, prefixed with its label."""
-    runs = list(by_run.values())
-    common = [w for w in (runs[0] if runs else []) if all(w in ws for ws in runs[1:])]
-    return common + [f"{label}: {w}" for label, ws in by_run.items() for w in ws if w not in common]
+def _severity(flag: dict[str, Any]) -> float:
+    """How far a flag is past its threshold, larger worse (``Flag.value`` against ``Flag.threshold``:
+    a value flagged for being small, such as ``small_static``'s share, is the worse the smaller)."""
+    value, threshold = flag.get("value"), flag.get("threshold")
+    if value is None:
+        return 0.0
+    size = abs(float(value))
+    return -size if threshold is not None and size < abs(float(threshold)) else size
+
+
+def grouped_warnings(by_run: dict[str, tuple[list[str], list[dict[str, Any]]]], what: str = "tire",
+                     kept: str = "") -> list[str]:
+    """The warnings of several runs of one scenario (``label -> (summary["warnings"], summary["flags"])``),
+    one line per distinct warning, in the order they first occur.  Distinct: a flag's code and its
+    subject, wheels taken together (``contact_loss`` of every wheel is one warning), or a warning's
+    text when no flag gives it.  A warning every run gives once with the same text is printed once,
+    unprefixed; one of a single run keeps its prefix ``{what} {label}: ``; any other the worst of its
+    instances (``_severity``) with its prefix and a count, ``(×12 over the tire models: point 4,
+    rigid disk 8; the worst shown{kept})``, ``kept`` saying where every instance is."""
+    groups: dict[tuple[str, ...], list[tuple[str, str, dict[str, Any]]]] = {}
+    for label, (warnings, flags) in by_run.items():
+        by_message = {f["message"]: f for f in flags}
+        for text in warnings:
+            flag = by_message.get(text, {})
+            key = ("flag", flag["code"], "" if flag.get("wheel") else str(flag.get("subject"))) if flag else ("text", text)
+            groups.setdefault(key, []).append((label, text, flag))
+    lines = []
+    for found in groups.values():
+        labels = [label for label, _, _ in found]
+        counts = ", ".join(f"{name} {labels.count(name)}" for name in dict.fromkeys(labels))
+        if len(found) == 1:
+            lines.append(f"{what} {labels[0]}: {found[0][1]}")
+        elif len({text for _, text, _ in found}) == 1:  # the same words: unprefixed, counted unless every run's once
+            every = len(found) == len(by_run) and set(labels) == set(by_run)
+            lines.append(found[0][1] + ("" if every else f" (×{len(found)} over the {what} models: {counts})"))
+        else:
+            label, text, _ = max(found, key=lambda item: _severity(item[2]))  # the first of the worst
+            lines.append(f"{what} {label}: {text} (×{len(found)} over the {what} models: {counts}; the worst "
+                         f"shown{kept})")
+    return lines

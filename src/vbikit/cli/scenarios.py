@@ -7,7 +7,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.execute import execute, shared_warnings
+from vbikit.cli.execute import execute, grouped_warnings
 from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option, out_file_option, warn
 from vbikit.cli.render import json_text, outputs, write_text
 
@@ -101,7 +101,7 @@ def compare_tires(
         t0 = time.perf_counter()
         run_ = execute(lambda spec=spec: spec, print_warnings=False, file=scenario)
         s = run_.summary
-        warnings[f"tire {label}"] = s["warnings"]
+        warnings[label] = (s["warnings"], s["flags"])
         responses[label] = run_.response
         table[label] = {
             "max_dynamic_displacement": s["max_dynamic_displacement"],
@@ -112,8 +112,9 @@ def compare_tires(
             "min_tire_force": min(s["min_wheel_force"].values()),
             "contact_lost": any(v["lost"] for v in s["contact_loss"].values()),
             "seconds": time.perf_counter() - t0,
+            "warnings": s["warnings"],  # every one, as its run gave it (stderr: one line per distinct warning)
         }
-    warn(shared_warnings(warnings))  # a warning every tire model shares (the road, the step) once
+    warn(grouped_warnings(warnings, "tire", kept=f", each in {out_dir / 'compare-tires.json'}"))
     fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
     guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
     if as_json:
