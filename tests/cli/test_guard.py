@@ -107,8 +107,9 @@ def test_user_errors_and_unreadable_inputs_exit_2_with_one_line(tmp_path, monkey
     res = runner.invoke(app, ["validate", str(tmp_path)])  # a folder, not a file
     assert res.exit_code == 2 and res.stderr.startswith("error:") and len(res.stderr.splitlines()) == 1
     monkeypatch.setattr("vbikit.scenario.preflight.preflight", refused)
-    res = runner.invoke(app, ["validate", str(_scenario(tmp_path))])
-    assert res.exit_code == 2 and res.stderr == "error: this run needs too much\n"
+    path = _scenario(tmp_path)
+    res = runner.invoke(app, ["validate", str(path)])  # a refusal of the file's run names the file
+    assert res.exit_code == 2 and res.stderr == f"error: {path}: this run needs too much\n"
 
 
 def test_option_values_are_user_errors(tmp_path):
