@@ -426,9 +426,12 @@ def parse_train_table(text: str, name: str, where: str = "train table") -> Train
 
 
 def read_train_table(path: str | Path, name: str | None = None) -> Train:
-    """A train from a CSV file (``parse_train_table``); its name defaults to the file's stem."""
+    """A train from a CSV file (``parse_train_table``); its name defaults to the file's stem.  Errors
+    name the file as given (``path``); the train's ``source`` is the file's name."""
+    import dataclasses
+
     from vbikit._files import read_text
 
     path = Path(path)
     text = read_text(path, TrainError, "train table")
-    return parse_train_table(text, name or path.stem, where=str(path))
+    return dataclasses.replace(parse_train_table(text, name or path.stem, where=str(path)), source=path.name)
