@@ -159,7 +159,7 @@ def test_a_warning_every_tire_model_shares_is_printed_once(tmp_path):
     assert len(lines) == 1 and lines[0].startswith("warning: ") and "tire " not in lines[0], res.stderr
     from vbikit.cli.execute import grouped_warnings
 
-    assert grouped_warnings({"a": (["w1", "w2"], []), "b": (["w2", "w3"], [])}) == ["tire a: w1", "w2", "tire b: w3"]
+    assert grouped_warnings({"a": (["w1", "w2"], []), "b": (["w2", "w3"], [])}) == ["w2", "tire a: w1", "tire b: w3"]
 
 
 BUMP = """
@@ -220,14 +220,14 @@ def test_grouped_warnings_by_flag_code_subject_and_text():
     small = [flag("small_static", f"Girder 1: share {v}", v, 0.2, subject="Girder 1") for v in (0.12, 0.10)]
     other = flag("small_static", "Girder 5: share 0.15", 0.15, 0.2, subject="Girder 5")
     loss = [flag("contact_loss", f"wheel {w} off for {t} s", t, wheel=w) for w, t in (("L", 0.01), ("R", 0.03))]
-    runs = {"a": (["road", small[0].get("message"), loss[0]["message"], loss[1]["message"], "same"],
-                  [small[0], *loss]),
-            "b": (["road", small[1]["message"], other["message"], "same"], [small[1], other]),
+    runs = {"a": ([small[0]["message"], loss[0]["message"], loss[1]["message"], "road", "some"], [small[0], *loss]),
+            "b": (["road", small[1]["message"], other["message"], "some", "twice", "twice"], [small[1], other]),
             "c": (["road"], [])}
     assert grouped_warnings(runs) == [
-        "road",  # every run once, the same words: once, unprefixed
+        "road",  # every run once in the same words: once, unprefixed, first
         "tire b: Girder 1: share 0.1 (×2 over the tire models: a 1, b 1; the worst shown)",  # smaller share worse
         "tire a: wheel R off for 0.03 s (×2 over the tire models: a 2; the worst shown)",  # wheels together
-        "same (×2 over the tire models: a 1, b 1)",  # the same words, not in every run
-        "tire b: Girder 5: share 0.15",  # another girder: another warning; one run: prefixed
+        "tire a, b: some",  # the same words from some runs: their labels
+        "tire b: Girder 5: share 0.15",  # another girder: another warning; one run: its label
+        "tire b: twice (×2)",  # the same words twice in one run
     ]

@@ -44,12 +44,13 @@ def _severity(flag: dict[str, Any]) -> float:
 def grouped_warnings(by_run: dict[str, tuple[list[str], list[dict[str, Any]]]], what: str = "tire",
                      kept: str = "") -> list[str]:
     """The warnings of several runs of one scenario (``label -> (summary["warnings"], summary["flags"])``),
-    one line per distinct warning, in the order they first occur.  Distinct: a flag's code and its
-    subject, wheels taken together (``contact_loss`` of every wheel is one warning), or a warning's
-    text when no flag gives it.  A warning every run gives once with the same text is printed once,
-    unprefixed; one of a single run keeps its prefix ``{what} {label}: ``; any other the worst of its
-    instances (``_severity``) with its prefix and a count, ``(×12 over the tire models: point 4,
-    rigid disk 8; the worst shown{kept})``, ``kept`` saying where every instance is."""
+    one line per distinct warning.  Distinct: a flag's code and its subject, wheels taken together
+    (``contact_loss`` of every wheel is one warning), or a warning's text when no flag gives it.  A
+    warning every run gives once in the same words is printed once, unprefixed, first; one in the
+    same words from some runs with their labels (``tire point, rigid disk: …``); any other the worst
+    of its instances (``_severity``) with its run's label and a count, ``tire rigid disk: … (×12 over
+    the tire models: point 4, rigid disk 8; the worst shown{kept})``, ``kept`` saying where every
+    instance is; in the order they first occur."""
     groups: dict[tuple[str, ...], list[tuple[str, str, dict[str, Any]]]] = {}
     for label, (warnings, flags) in by_run.items():
         by_message = {f["message"]: f for f in flags}
@@ -57,17 +58,19 @@ def grouped_warnings(by_run: dict[str, tuple[list[str], list[dict[str, Any]]]], 
             flag = by_message.get(text, {})
             key = ("flag", flag["code"], "" if flag.get("wheel") else str(flag.get("subject"))) if flag else ("text", text)
             groups.setdefault(key, []).append((label, text, flag))
-    lines = []
+    shared, lines = [], []
     for found in groups.values():
         labels = [label for label, _, _ in found]
-        counts = ", ".join(f"{name} {labels.count(name)}" for name in dict.fromkeys(labels))
-        if len(found) == 1:
-            lines.append(f"{what} {labels[0]}: {found[0][1]}")
-        elif len({text for _, text, _ in found}) == 1:  # the same words: unprefixed, counted unless every run's once
-            every = len(found) == len(by_run) and set(labels) == set(by_run)
-            lines.append(found[0][1] + ("" if every else f" (×{len(found)} over the {what} models: {counts})"))
+        names = list(dict.fromkeys(labels))
+        if len({text for _, text, _ in found}) == 1:  # the same words
+            if len(found) == len(by_run) and set(labels) == set(by_run):
+                shared.append(found[0][1])  # every run's, once
+            else:
+                lines.append(f"{what} {', '.join(names)}: {found[0][1]}" + ("" if len(found) == len(names) else
+                                                                          f" (×{len(found)})"))
         else:
             label, text, _ = max(found, key=lambda item: _severity(item[2]))  # the first of the worst
+            counts = ", ".join(f"{name} {labels.count(name)}" for name in names)
             lines.append(f"{what} {label}: {text} (×{len(found)} over the {what} models: {counts}; the worst "
                          f"shown{kept})")
-    return lines
+    return shared + lines
