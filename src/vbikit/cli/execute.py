@@ -20,8 +20,9 @@ def execute(load: Callable[[], Any], limits: Any = None, label: str = "", print_
     """Check (``load()`` returns a Scenario; every check of ``vbikit.scenario.preflight.preflight``),
     run and report it (``vbikit.scenario.pipeline.run_planned``); user errors exit with code 2,
     the summary's warnings go to stderr, each prefixed with ``label`` when one of several runs;
-    ``print_warnings=False``: the caller prints them (``compare-tires``: a warning every run shares
-    one line per distinct warning, ``grouped_warnings``); ``file``: the scenario file, named in a user error (``guard``)."""
+    ``print_warnings=False``: the caller prints them (``compare-tires``: one line per distinct
+    warning of its runs, ``grouped_warnings``); ``file``: the scenario file, named in a user error
+    (``guard``)."""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.preflight import preflight
 
