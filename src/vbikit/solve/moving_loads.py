@@ -42,6 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 from numba import njit
 
 from vbikit.bridge.base import ModalBridge
+from vbikit.analysis.impact import _parabola as _impact_parabola
 from vbikit.bridge.effects import LoadEffect
 from vbikit.solve.numba_cache import ensure_cache_location
 
@@ -57,21 +58,43 @@ class MovingLoadBudgetError(ValueError):
     """The sweep would take more filter steps than allowed (raise ``max_steps``)."""
 
 
+#: the parabola through three samples, as ``vbikit.analysis.impact.smooth_vertices`` takes it, compiled
+#: for the sweep's loop (one arithmetic: ``impact._parabola`` itself)
+_parabola = njit(cache=True)(_impact_parabola)
+
+
 @njit(cache=True, fastmath=False, error_model="numpy")
-def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega2, damp):  # pragma: no cover (compiled)
+def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega2, damp, kink_step,
+           group):  # pragma: no cover (compiled)
     """The recurrence ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1} (ξ̇ likewise) over ``n_total``
-    samples (p zero beyond its rows), tracking max |Σ φ ξ̈|, max |Σ φ ξ| at each point and
-    max |R_st + Σ r (ξ − p/ω²)| of each effect; ξ̈ = p − damp ξ̇ − ω² ξ (damp = 2ζω)."""
+    samples (p zero beyond its rows) and two more, tracking the peaks of the quantities q: |Σ φ ξ̈| at
+    each point, then |Σ φ ξ| at each point, then |R_st + Σ r (ξ − p/ω²)| of each effect (ξ̈ = p − damp ξ̇
+    − ω² ξ, damp = 2ζω).
+
+    Each sample c < ``n_total`` that is a local maximum of |y_q| (and the last, still rising) is a
+    candidate: the vertex of the parabola through it and its two neighbours when it turns that way and
+    no kink of the history lies on the two steps (``kink_step[group[q], j]``: an instant where the
+    history may jump or kink lies on the step from sample j to j + 1; steps beyond its columns:
+    none), else the sample itself.
+    Returns per quantity the largest candidate (``peak``), the largest sample (``sampled``), the
+    candidate's sample index, whether it is a vertex, and the five samples c − 2 … c + 2 about it
+    (the history is 0 before the first sample)."""
     n_m = a11.size
     n_p, n_e = phi.shape[0], r.shape[0]
+    n_q = 2 * n_p + n_e
     n_rows = p.shape[0]
-    acc = np.zeros(n_p)
-    disp = np.zeros(n_p)
-    eff = np.zeros(n_e)
+    n_steps = kink_step.shape[1]
     x = np.zeros(n_m)
     v = np.zeros(n_m)
     xa = np.zeros(n_m)
-    for n in range(n_total):
+    ring = np.zeros((5, n_q))  # the last five samples, sample n in row n % 5 (0 before the first)
+    peak = np.zeros(n_q)
+    cut = np.zeros(n_q)  # peak / 1.25
+    sampled = np.zeros(n_q)
+    centre = np.full(n_q, -1, np.int64)
+    vertex = np.zeros(n_q, np.bool_)
+    window = np.zeros((n_q, 5))
+    for n in range(n_total + 2):
         for i in range(n_m):
             p1 = p[n, i] if n < n_rows else 0.0
             if n > 0:
@@ -80,24 +103,63 @@ def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega
                 x[i] = a11[i] * x0 + a12[i] * v0 + b1[i] * p0 + c1[i] * p1
                 v[i] = a21[i] * x0 + a22[i] * v0 + b2[i] * p0 + c2[i] * p1
             xa[i] = p1 - damp[i] * v[i] - omega2[i] * x[i]
+        y = ring[n % 5]
         for k in range(n_p):
             sa = 0.0
             sd = 0.0
             for i in range(n_m):
                 sa += phi[k, i] * xa[i]
                 sd += phi[k, i] * x[i]
-            if abs(sa) > acc[k]:
-                acc[k] = abs(sa)
-            if abs(sd) > disp[k]:
-                disp[k] = abs(sd)
+            y[k] = sa
+            y[n_p + k] = sd
         for e in range(n_e):
             s = static[n, e] if n < n_rows else 0.0
             for i in range(n_m):
                 pi = p[n, i] if n < n_rows else 0.0
                 s += r[e, i] * (x[i] - pi / omega2[i])
-            if abs(s) > eff[e]:
-                eff[e] = abs(s)
-    return acc, disp, eff
+            y[2 * n_p + e] = s
+        c = n - 2  # the candidate: sample c, with c − 2 … c + 2 in the ring
+        if c < 1:
+            continue
+        r0, rm, rp = c % 5, (c + 4) % 5, (c + 1) % 5
+        last = c == n_total - 1
+        hits = 0
+        for q in range(n_q):  # (no branch: vectorised) a vertex exceeds its sample by at most a quarter of it
+            hits += abs(ring[r0, q]) >= cut[q]
+        if hits == 0:
+            continue
+        for q in range(n_q):
+            y0 = ring[r0, q]
+            m = abs(y0)
+            if m < cut[q]:  # (cut = peak / 1.25)
+                continue
+            ym, yp = ring[rm, q], ring[rp, q]
+            rising = m < abs(yp)
+            # a local maximum of |y| (or the run's last sample, still rising); the largest sample is one
+            # (``&``, not ``and``: one branch, rarely taken)
+            if not ((m >= abs(ym)) & ((not rising) | last) & (m > 0.0)):
+                continue
+            if m > sampled[q]:
+                sampled[q] = m
+            best = m
+            took = False
+            g = group[q]
+            kinked = (c - 1 < n_steps and kink_step[g, c - 1]) or (c < n_steps and kink_step[g, c])
+            if not (kinked or rising):
+                sg = 1.0 if y0 > 0.0 else -1.0
+                a, b, c0 = _parabola(-1.0, 1.0, sg * ym, m, sg * yp)
+                if a < 0.0:  # turning that way (not a flat top)
+                    u = -b / (2.0 * a)
+                    best = (a * u + b) * u + c0
+                    took = True
+            if best > peak[q]:
+                peak[q] = best
+                cut[q] = best / 1.25
+                centre[q] = c
+                vertex[q] = took
+                for j in range(5):
+                    window[q, j] = ring[(c + 3 + j) % 5, q]
+    return peak, sampled, centre, vertex, window
 
 
 def _filter_coefficients(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float):
@@ -211,6 +273,12 @@ class MovingLoadEnvelopes:
     static (full stiffness) [N m or N]; ``dx`` [m] the travel per step; ``unconverged_steps`` (n_v,)
     the steps whose contact forces did not converge at each speed (coupled car models,
     ``CrossingResult.unconverged_steps``; None: moving forces, nothing iterated).
+
+    The time sampling of each dynamic peak (``peak_between_samples``; moving forces): ``*_sampling_change``
+    (relative) what the largest time sample fell short of the peak taken between the samples, and
+    ``*_sampling_bound`` (relative) the estimated bound of the peak's remaining time-sampling error,
+    for the acceleration and displacement (n_v, n_p) and the effects (n_v, n_e); NaN: not estimated
+    (coupled cars: sampled peaks).
     """
 
     speeds: NDArray[np.float64]
@@ -222,6 +290,121 @@ class MovingLoadEnvelopes:
     static_effect: NDArray[np.float64]
     dx: float
     unconverged_steps: Optional[NDArray[np.float64]] = None
+    acceleration_sampling_change: Optional[NDArray[np.float64]] = None
+    acceleration_sampling_bound: Optional[NDArray[np.float64]] = None
+    displacement_sampling_change: Optional[NDArray[np.float64]] = None
+    displacement_sampling_bound: Optional[NDArray[np.float64]] = None
+    effect_sampling_change: Optional[NDArray[np.float64]] = None
+    effect_sampling_bound: Optional[NDArray[np.float64]] = None
+
+
+#: the envelopes' time-sampling fields (``MovingLoadEnvelopes``)
+SAMPLING_FIELDS = ("acceleration_sampling_change", "acceleration_sampling_bound", "displacement_sampling_change",
+                   "displacement_sampling_bound", "effect_sampling_change", "effect_sampling_bound")
+
+
+def unsampled(n_v: int, n_p: int, n_e: int) -> dict[str, NDArray[np.float64]]:
+    """The time-sampling fields of envelopes whose peaks are plain samples, not estimated (NaN)."""
+    return {name: np.full((n_v, n_e if name.startswith("effect") else n_p), np.nan) for name in SAMPLING_FIELDS}
+
+
+def kink_instants(positions: Sequence[NDArray[np.float64]], axle_positions: ArrayLike, dx: float
+                  ) -> list[NDArray[np.float64]]:
+    """Per group g, the instants, in samples, at which an axle stands on one of ``positions[g]`` (ξ [m]
+    along the span), sorted: sample j is the first axle at travel (j − 1) Δx whatever the speed, so
+    axle k (a_k behind the first) stands on ξ at u = (ξ + a_k)/Δx + 1."""
+    a = np.asarray(axle_positions, float)
+    return [np.sort((np.asarray(xs, float)[:, None] + a[None, :]).ravel() / dx + 1.0) for xs in positions]
+
+
+#: an instant within this many samples (relative, round-off) of a sample counts as on it
+INSTANT_TOLERANCE = 1e-9
+
+
+def kink_steps(instants: Sequence[NDArray[np.float64]], n_steps: int) -> NDArray[np.bool_]:
+    """(n_groups, n_steps): whether one of ``instants[g]`` (``kink_instants``) lies on the step from
+    sample j to j + 1, its ends included."""
+    out = np.zeros((len(instants), n_steps), bool)
+    for g, u in enumerate(instants):
+        tol = INSTANT_TOLERANCE * (1.0 + np.abs(u))
+        lo = np.maximum(np.ceil(u - 1.0 - tol), 0).astype(np.int64)
+        hi = np.minimum(np.floor(u + tol), n_steps - 1).astype(np.int64)
+        for j0, j1 in zip(lo, hi):
+            if j0 <= j1:
+                out[g, j0:j1 + 1] = True
+    return out
+
+
+def nearest_instant(instants: Sequence[NDArray[np.float64]], group: NDArray[np.int64],
+                    centre: NDArray[np.int64]) -> NDArray[np.float64]:
+    """u − c of the instant of ``instants[group]`` nearest to each sample ``centre`` c, when within one
+    step of it (NaN: none); ``group`` broadcasts against ``centre``."""
+    g = np.broadcast_to(group, centre.shape)
+    out = np.full(centre.shape, np.nan)
+    for k, u in enumerate(instants):
+        mine = g == k
+        if not u.size or not mine.any():
+            continue
+        c = centre[mine].astype(float)
+        i = np.searchsorted(u, c)
+        near = np.where(np.abs(u[np.clip(i - 1, 0, u.size - 1)] - c) <= np.abs(u[np.clip(i, 0, u.size - 1)] - c),
+                        u[np.clip(i - 1, 0, u.size - 1)], u[np.clip(i, 0, u.size - 1)]) - c
+        out[mine] = np.where(np.abs(near) <= 1.0 + INSTANT_TOLERANCE * (1.0 + np.abs(c)), near, np.nan)
+    return out
+
+
+#: a vertex's remaining error: the three-point Lagrange remainder max|y‴| h³ max|(s + 1) s (s − 1)| / 3!
+#: = max|y‴| h³ / (9√3), with h³ y‴ read off the third difference beside the peak
+LAGRANGE_FACTOR = 1.0 / (9.0 * math.sqrt(3.0))
+
+
+def sampling_error(peak: NDArray[np.float64], sampled: NDArray[np.float64], vertex: NDArray[np.bool_],
+                   window: NDArray[np.float64], kinked: NDArray[np.bool_], instant: NDArray[np.float64]
+                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(change, bound), relative to each peak: ``_peaks``' outputs (any leading shape), ``kinked``
+    (..., 4) whether the steps c − 2 … c + 1 about the peak's sample c hold a kink and ``instant``
+    the offset u − c of the kink nearest to c (``nearest_instant``; NaN: none within a step).
+
+    change = (peak − largest sample) / peak: what the time sampling alone missed.  bound: for a
+    vertex, ``LAGRANGE_FACTOR`` × the largest |third difference| of the five samples about it whose
+    steps hold no kink (both when both do).  For a sample that stands next to a kink, what the
+    history on either side of the kink, extrapolated linearly from its two samples nearest to the
+    kink instant (a step clear of kinks between them), reaches at that instant above the sample —
+    the one-sided limits of the jump or the corner, read to a step's second difference; where no side
+    has two such samples, the largest change over a kink-free step of the four (all four when none
+    is) — a history moves about that much over the part of a step between the sample and the kink.
+    A flat top's sample: the same rule without a kink (0)."""
+    w = window
+    sg = np.where(w[..., 2] >= 0, 1.0, -1.0)
+    d3 = np.abs(np.stack([w[..., 3] - 3 * w[..., 2] + 3 * w[..., 1] - w[..., 0],
+                          w[..., 4] - 3 * w[..., 3] + 3 * w[..., 2] - w[..., 1]], axis=-1))
+    clean3 = np.stack([~kinked[..., 0], ~kinked[..., 3]], axis=-1)  # (the middle steps are clean at a vertex)
+    third = np.where(clean3.any(axis=-1), np.max(np.where(clean3, d3, 0.0), axis=-1), d3.max(axis=-1))
+    steps = np.abs(np.diff(w, axis=-1))
+    clean = ~kinked
+    step = np.where(clean.any(axis=-1), np.max(np.where(clean, steps, 0.0), axis=-1), steps.max(axis=-1))
+    # the one-sided limits at the nearest kink u = c + d: the left side from the samples i0 < i1 < u, the
+    # right from u < i1 < i2 (window columns: sample c + m is column m + 2)
+    d = np.nan_to_num(instant, nan=9.0)
+    tol = INSTANT_TOLERANCE
+    left1 = np.floor(d - tol).astype(np.int64) + 2  # column of the last sample before u
+    right1 = np.ceil(d + tol).astype(np.int64) + 2  # first after
+    limits = np.full(w.shape[:-1], -np.inf)
+    for near, far, side, step_col in ((left1, left1 - 1, d - (left1 - 2), left1 - 1),
+                                      (right1, right1 + 1, (right1 - 2) - d, right1)):
+        ok = np.isfinite(instant) & (far >= 0) & (far <= 4) & (near >= 0) & (near <= 4)
+        col = np.clip(step_col, 0, 3)
+        ok &= ~np.take_along_axis(kinked, col[..., None], axis=-1)[..., 0]
+        yn = np.take_along_axis(w, np.clip(near, 0, 4)[..., None], axis=-1)[..., 0]
+        yf = np.take_along_axis(w, np.clip(far, 0, 4)[..., None], axis=-1)[..., 0]
+        limits = np.where(ok, np.maximum(limits, sg * (yn + (yn - yf) * side)), limits)
+    have = np.isfinite(limits)
+    kept = np.where(have, np.maximum(limits - sg * w[..., 2], 0.0), step)
+    absolute = np.where(vertex, LAGRANGE_FACTOR * third, kept)
+    safe = np.where(peak > 0, peak, 1.0)
+    change = np.where(peak > 0, (peak - sampled) / safe, 0.0)
+    bound = np.where(peak > 0, absolute / safe, 0.0)
+    return change, bound
 
 
 def filter_steps(bridge: ModalBridge, train_lengths: Sequence[float], speeds: ArrayLike, dx: float,
@@ -238,7 +421,8 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
                       free_vibration: float | None = None, y: float = 0.0,
                       max_steps: float = MAX_FILTER_STEPS) -> MovingLoadEnvelopes:
     """Envelopes of one train (axles a_k [m], loads P_k [N]) at every speed [m/s] (module docstring):
-    peak deck acceleration and displacement at ``points`` (x [m] on the line y), peak load effects."""
+    peak deck acceleration and displacement at ``points`` (x [m] on the line y), peak load effects,
+    each taken between the time samples with its sampling error (``peak_between_samples``)."""
     v = np.atleast_1d(np.asarray(speeds, float))
     if v.size == 0 or not np.all(np.isfinite(v) & (v > 0)):
         raise ValueError("speeds must be finite and > 0 m/s")
@@ -257,9 +441,12 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
     static_disp = np.max(np.abs(static_xi @ phi.T), axis=0)
     r = np.array([e.modal for e in effects]).reshape(len(effects), omega.size)  # (n_e, n_m)
     static_eff = np.max(np.abs(table.static_effects), axis=0) if effects else np.zeros(0)
-    acc = np.empty((v.size, xs.size))
-    disp = np.empty((v.size, xs.size))
-    eff = np.empty((v.size, len(effects)))
+    n_p, n_e = xs.size, len(effects)
+    n_q = 2 * n_p + n_e
+    out = {name: np.empty((v.size, n_q)) for name in ("peak", "sampled")}
+    centre = np.empty((v.size, n_q), np.int64)
+    vertex = np.empty((v.size, n_q), bool)
+    window = np.empty((v.size, n_q, 5))
     from vbikit.solve.modal_step import exact_step
 
     zeta = bridge.damping_ratios
@@ -267,10 +454,34 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
     p_tab = np.ascontiguousarray(table.modal_load)
     st_tab = np.ascontiguousarray(table.static_effects)
     phi_c, r_c = np.ascontiguousarray(phi), np.ascontiguousarray(r)
+    instants = kink_instants(_kink_positions(bridge, effects, y), a, dx)
+    kinks = kink_steps(instants, table.n_forced + 1)
+    group = np.concatenate([np.zeros(2 * n_p, np.int64), 1 + np.arange(n_e, dtype=np.int64)])
     for k, speed in enumerate(v):
         h = dx / float(speed)
         c = exact_step(omega, zeta, h)
         n_total = table.n_forced + int(math.ceil(fv / h))
-        acc[k], disp[k], eff[k] = _peaks(p_tab, st_tab, n_total, c.a11, c.a12, c.a21, c.a22, c.b1, c.b2, c.c1, c.c2,
-                                         phi_c, r_c, omega2, damp)
-    return MovingLoadEnvelopes(v, xs, acc, disp, static_disp, eff, static_eff, dx)
+        out["peak"][k], out["sampled"][k], centre[k], vertex[k], window[k] = _peaks(
+            p_tab, st_tab, n_total, c.a11, c.a12, c.a21, c.a22, c.b1, c.b2, c.c1, c.c2, phi_c, r_c, omega2, damp, kinks,
+            group)
+    j = centre[..., None] + np.arange(-2, 2)  # the steps c − 2 … c + 1 about each peak's sample
+    inside = (j >= 0) & (j < kinks.shape[1])
+    kinked = inside & kinks[group[None, :, None], np.clip(j, 0, kinks.shape[1] - 1)]
+    change, bound = sampling_error(out["peak"], out["sampled"], vertex, window, kinked,
+                                   nearest_instant(instants, group[None, :], centre))
+    peak = out["peak"]
+    acc, disp, eff = peak[:, :n_p], peak[:, n_p:2 * n_p], peak[:, 2 * n_p:]
+    sampling = {"acceleration_sampling_change": change[:, :n_p], "acceleration_sampling_bound": bound[:, :n_p],
+                "displacement_sampling_change": change[:, n_p:2 * n_p], "displacement_sampling_bound": bound[:, n_p:2 * n_p],
+                "effect_sampling_change": change[:, 2 * n_p:], "effect_sampling_bound": bound[:, 2 * n_p:]}
+    return MovingLoadEnvelopes(v, xs, acc, disp, static_disp, eff, static_eff, dx, **sampling)
+
+
+def _kink_positions(bridge: ModalBridge, effects: Sequence[LoadEffect], y: float) -> list[NDArray[np.float64]]:
+    """ξ [m] where an axle's passage may kink or jump the histories: the deck's (acceleration and
+    displacement) at the support lines (an axle entering or leaving: the modal loads kink there, or
+    jump on a support that moves), then each effect's (``vbikit.analysis.effects.kink_positions``:
+    its section, the support lines, a tabulated line's breaks)."""
+    from vbikit.analysis.effects import kink_positions
+
+    return [np.asarray(bridge.support_x, float)] + [np.asarray(kink_positions(bridge, e, y), float) for e in effects]
