@@ -52,7 +52,8 @@ Thresholds (documented in docs/scenario.md):
 * railway sweeps (``vbikit.rail``, docs/railway.md): an HSLM train outside its range of application
   (``hslm_range``), fewer modes than EN 1990 A2.4.4.2.1 requires (``too_few_modes``), and a governing
   peak still changing with the speed step after its refinement (``speed_grid_error``, tolerance
-  ``vbikit.rail.refine.PEAK_TOLERANCE``, 0.5 %).
+  ``vbikit.rail.refine.PEAK_TOLERANCE``, 0.5 %), and a governing peak that depends on the time step
+  (``time_sampling_error``, tolerance ``vbikit.rail.report.TIME_SAMPLING_TOLERANCE``, 0.5 %).
 
 A negative impact factor (the dynamic peak below the static one) is physical, not a warning: the
 reports print ``NEGATIVE_IM_NOTE`` beside it.
@@ -203,6 +204,11 @@ FLAG_CODES: dict[str, str] = {
                         "output: acceleration, moment, shear or deflection; value: the larger of its relative change "
                         "over the last halving and the bound of its remaining error, threshold: ``PEAK_TOLERANCE`` "
                         "(0.005)",
+    "time_sampling_error": "railway sweep: the governing peak of a check depends on the time step h = dx / v "
+                           "(``vbikit.solve.moving_loads``: peaks taken between the samples); output: acceleration, "
+                           "moment, shear or deflection; value: the larger of how far its largest time sample lies "
+                           "below the peak taken between the samples and the estimated bound of its remaining error "
+                           "(relative), threshold: ``TIME_SAMPLING_TOLERANCE`` (0.005)",
 }
 
 

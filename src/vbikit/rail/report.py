@@ -94,6 +94,8 @@ def check(ds) -> dict[str, Any]:
                                                    "moment_max_speed_m_s", "moment_max_over_midspan", "static_moment_max_Nm",
                                                    "static_moment_max_position_m", "static_moment_max_train",
                                                    "static_moment_max_over_midspan")}
+    for kind in GRID_CHECKS:  # the governing peaks' own: ``vbikit.rail.run.time_sampling_checks``
+        out[kind].update({"time_sampling_change": math.nan, "time_sampling_bound": math.nan} | sampling_extremes(ds, kind))
     out["passes"] = out["acceleration"]["passes"]
     names = [str(n) for n in ds.train.values if not str(n).endswith(" (coupled)")]
     add_flags(out, hslm_range_flags(float(a["span_m"]), names) + modes_flags(ds)
@@ -141,6 +143,82 @@ def speed_grid_flags(checks: dict[str, Any], kinds: tuple[str, ...], tolerance: 
                         "fine_step around it", output=kind, subject=str(c["train"]), value=max(change, bound),
                         threshold=tolerance))
     return out
+
+
+#: a governing peak whose time sampling changed it, or whose remaining time-sampling error may reach, this much
+#: (relative) is flagged ``time_sampling_error``
+TIME_SAMPLING_TOLERANCE = PEAK_TOLERANCE
+#: each check's peak outputs in the dataset (``vbikit.rail.run.time_sampling_variables``), for the largest over the sweep
+_SAMPLING_OUTPUTS = {"acceleration": ("deck_acceleration",), "moment": ("moment",), "shear": ("shear",),
+                     "deflection": ("deflection",)}
+
+
+def sampling_extremes(ds, kind: str) -> dict[str, float]:
+    """The largest time-sampling change and bound over every train, speed (and point) of check
+    ``kind``'s peak output (``largest_time_sampling_change``, ``largest_time_sampling_bound``; NaN
+    where none is estimated: coupled cars, or a dataset written before them)."""
+    out = {}
+    for what in ("change", "bound"):
+        values = [ds[f"{name}_sampling_{what}"].values for name in _SAMPLING_OUTPUTS[kind] if f"{name}_sampling_{what}" in ds]
+        flat = np.concatenate([v.ravel() for v in values]) if values else np.zeros(0)
+        flat = flat[np.isfinite(flat)]
+        out[f"largest_time_sampling_{what}"] = float(flat.max()) if flat.size else math.nan
+    return out
+
+
+def time_sampling_flags(checks: dict[str, Any], kinds: tuple[str, ...] = tuple(GRID_CHECKS),
+                        tolerance: float = TIME_SAMPLING_TOLERANCE) -> list[Flag]:
+    """A ``time_sampling_error`` flag for every check of ``kinds`` whose governing peak depends on the
+    time step: its largest time sample more than ``tolerance`` (relative) below the peak taken
+    between the samples (``time_sampling_change``), or the estimated bound of its remaining error
+    (``time_sampling_bound``) at or above it."""
+    out = []
+    for kind in kinds:
+        c = checks.get(kind, {})
+        change, bound = c.get("time_sampling_change", math.nan), c.get("time_sampling_bound", math.nan)
+        if not (math.isfinite(change) and math.isfinite(bound)) or max(change, bound) < tolerance:
+            continue
+        out.append(Flag("time_sampling_error", f"the governing {GRID_CHECKS[kind]} peak ({c['train']} at "
+                        f"{speed_words(c['speed'])}) depends on the time step: {sampling_words(change, bound)} "
+                        f"(tolerance {100 * tolerance:g} %); the stated value may be off by that much: raise "
+                        "run.steps_per_period", output=kind, subject=str(c["train"]),
+                        value=max(change, bound), threshold=tolerance))
+    return out
+
+
+def sampling_words(change: float, bound: float, digits: int = 2) -> str:
+    """A peak's time sampling in words: "its largest time sample is 0.12 % below the peak taken between
+    the samples, which may be off by up to 0.01 %", or, where the sample stands (an axle enters, leaves
+    or passes the section within a step of it: ``change`` 0), "its largest time sample stands (an axle's
+    passage within a step of it), the peak between the samples up to 0.53 % above it"."""
+    if change == 0.0:
+        return (f"its largest time sample stands (an axle enters, leaves or passes the section within a step of "
+                f"it), the peak between the samples up to {100 * bound:.{digits}f} % above it")
+    return (f"its largest time sample is {100 * change:.{digits}f} % below the peak taken between the samples, "
+            f"which may be off by up to {100 * bound:.{digits}f} %")
+
+
+def _time_sampling_line(checks: dict[str, Any], dx: float, tolerance: float) -> str:
+    """The report's one statement of the time sampling's error: for every check's governing peak how
+    far its largest time sample lies below the peak taken between the samples and the bound of the
+    remaining error, and over the sweep the largest of each (``!`` where ``time_sampling_error``
+    flags it)."""
+    parts = []
+    for kind, name in GRID_CHECKS.items():
+        c = checks.get(kind, {})
+        change, bound = c.get("time_sampling_change", math.nan), c.get("time_sampling_bound", math.nan)
+        if not (math.isfinite(change) and math.isfinite(bound)):
+            parts.append(f"{name}: not estimated (coupled cars govern it: sampled peaks)")
+            continue
+        mark = " !" if has_flag(checks, "time_sampling_error", output=kind) else ""
+        worst = ""
+        if math.isfinite(c.get("largest_time_sampling_bound", math.nan)):
+            worst = (f"; over the sweep the samples at most {100 * c['largest_time_sampling_change']:.3f} % low, the "
+                     f"remaining error up to {100 * c['largest_time_sampling_bound']:.3f} %")
+        parts.append(f"{name}: {sampling_words(change, bound, 3)}{worst}{mark}")
+    return (f"time sampling error of the governing peaks (each peak taken between the time samples, every "
+            f"{1e3 * dx:.1f} mm of travel, by a parabola through the largest samples, the sample kept where an axle "
+            f"enters, leaves or passes the section; flagged at {100 * tolerance:g} %): " + "; ".join(parts))
 
 
 def format_report(ds, checks: dict[str, Any]) -> str:
@@ -191,6 +269,9 @@ def format_report(ds, checks: dict[str, Any]) -> str:
     d = checks["deflection"]
     lines.append(f"deflection: largest phi'dyn {d['phi_dyn']:.3f} ({d['train']} at {speed_words(d['speed'])})")
     lines.append(_grid_error_line(checks, float(acc.get("tolerance", PEAK_TOLERANCE))))
+    if "time_sampling_change" in acc:
+        lines.append(_time_sampling_line(checks, float(a["dx_m"]),
+                                         float(a.get("time_sampling_tolerance", TIME_SAMPLING_TOLERANCE))))
     lines += ["", "resonance speeds v_i = n0 D / i [km/h] (i the order; D the coach length, HSLM-B's force spacing d or "
               "the dominant repeated axle spacing):"]
     lo, hi = float(ds.speed.values.min()), float(ds.speed.values.max())
@@ -353,19 +434,21 @@ def _refinement_words(c: dict[str, Any], grid_value: str = "", beyond: str = "")
     return f"after {int(n)} halvings {grid}, {last} {bound}"
 
 
+_SAMPLING_UNITS = {"time_sampling_change": "1", "time_sampling_bound": "1", "largest_time_sampling_change": "1",
+                   "largest_time_sampling_bound": "1"}
 #: the unit of every number of a check (``check``), written beside it in ``rail-summary.json``
 CHECK_UNITS: dict[str, dict[str, str]] = {
     "acceleration": {"peak": "m s-2", "limit": "m s-2", "speed": "m s-1", "ratio": "1", "grid_peak": "m s-2",
                      "grid_error": "1", "refinement_change": "1", "refinement_bound": "1", "largest_refinement_bound": "1",
-                     "tolerance": "1", "refinement_halvings": "1"},
+                     "tolerance": "1", "refinement_halvings": "1", **_SAMPLING_UNITS},
     "moment": {"dynamic_design": "N m", "lm71_design": "N m", "grid_design": "N m", "speed": "m s-1", "phi_dyn": "1",
                "phi_irregularity": "1", "ratio": "1", "grid_error": "1", "refinement_change": "1", "refinement_bound": "1",
-               "tolerance": "1", "refinement_halvings": "1"},
+               "tolerance": "1", "refinement_halvings": "1", **_SAMPLING_UNITS},
     "shear": {"dynamic_design": "N", "lm71_design": "N", "grid_design": "N", "speed": "m s-1", "phi_dyn": "1",
               "phi_irregularity": "1", "ratio": "1", "grid_error": "1", "refinement_change": "1", "refinement_bound": "1",
-              "tolerance": "1", "refinement_halvings": "1"},
+              "tolerance": "1", "refinement_halvings": "1", **_SAMPLING_UNITS},
     "deflection": {"phi_dyn": "1", "grid_phi_dyn": "1", "speed": "m s-1", "grid_error": "1", "refinement_change": "1",
-                   "refinement_bound": "1", "tolerance": "1", "refinement_halvings": "1"},
+                   "refinement_bound": "1", "tolerance": "1", "refinement_halvings": "1", **_SAMPLING_UNITS},
 }
 
 
@@ -410,5 +493,5 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
     acc = checks.get("acceleration", {})
     near = governing_resonance(ds, acc["train"], acc["speed"]) if "train" in acc else None
     return clean({"checks": checks, "warnings": warnings, "flags": flags, "trains": trains, "governing_resonance": near,
-                  "peak_refinement": ds.attrs.get("peak_refinement", ""),
+                  "peak_refinement": ds.attrs.get("peak_refinement", ""), "time_sampling": ds.attrs.get("time_sampling", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})

@@ -32,7 +32,8 @@ from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sect
 from vbikit.analysis.checks import add_flags
 from vbikit.outputs import OUTPUTS, cf_unit
 from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks, refinement_verdict
-from vbikit.rail.report import check, format_report, speed_grid_flags, summary
+from vbikit.rail.report import (TIME_SAMPLING_TOLERANCE, check, format_report, speed_grid_flags, summary,
+                               time_sampling_flags)
 from vbikit.rail.sweep import (KMH, SweepSetup, bogie_resonances, coupled_envelopes, excitation_wavelength, speed_grid,
                                sweep_moving_forces, train_resonances)
 from vbikit.vehicle.trains import Train, get_train, hslm_b, read_train_table
@@ -306,6 +307,8 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     checks = check(ds)
     refine_points(checks, setup, {t.name: t for t in trains})
     refine_design_checks(ds, checks, setup, {t.name: t for t in trains})
+    time_sampling_checks(checks, setup, {t.name: t for t in trains})
+    ds.attrs.update(dataset_flag_attrs_of(checks))
     report = format_report(ds, checks)
     result = RailResult(ds, checks, report, seconds=time.perf_counter() - t0)
     ds.attrs["run_seconds"] = result.seconds
@@ -350,6 +353,39 @@ class _Stored:
             self.work.rmdir()  # only when empty
         except OSError:
             pass
+
+
+#: how every dynamic peak of a moving-force sweep is taken between the time samples (dataset attribute)
+TIME_SAMPLING_METHOD = (
+    "every dynamic peak (deck acceleration and deflection, moment, shear) taken between the time samples h = dx / v: "
+    "the vertex of the parabola through each local maximum of the sampled history and its two neighbours, except "
+    "where an axle enters or leaves the deck or passes the effect's section or a support within those two steps "
+    "(the history kinks or jumps there: the sample stands); *_sampling_change: how far the largest sample fell "
+    "below the peak; *_sampling_bound: the estimated bound of the remaining error (a vertex: the three-point "
+    "interpolation's remainder h^3 max|y'''|/(9 sqrt 3), y''' from the third differences; a sample next to a kink: "
+    "how far the one-sided limits there, extrapolated from either side, lie above it); coupled cars: sampled "
+    "peaks, NaN")
+
+
+def time_sampling_variables(samp: dict[str, np.ndarray], mid: int, col: np.ndarray) -> dict[str, Any]:
+    """The dataset's time-sampling variables of every peak output (``TIME_SAMPLING_METHOD``) from the
+    envelopes' fields stacked over trains (``samp``: acceleration / displacement / effect × change / bound,
+    each (train, speed, n)); ``mid`` the midspan point, ``col`` the effect of each moment section."""
+    import xarray as xr
+
+    change_words = "relative amount by which the largest time sample falls below the peak {} taken between the samples"
+    bound_words = "estimated bound of the relative error the time sampling leaves in the peak {}"
+    outputs = {"deck_acceleration": (("train", "speed", "point"), "acceleration", slice(None), "deck acceleration at each point"),
+               "deflection": (("train", "speed"), "displacement", mid, "midspan deflection"),
+               "moment": (("train", "speed"), "effect", 0, "midspan bending moment"),
+               "shear": (("train", "speed"), "effect", 1, "shear at the entry support"),
+               "moment_along": (("train", "speed", "section"), "effect", col, "bending moment at each section")}
+    out = {}
+    for name, (dims, source, index, words) in outputs.items():
+        for kind, text in (("change", change_words), ("bound", bound_words)):
+            values = samp[f"{source}_{kind}"][:, :, index]
+            out[f"{name}_sampling_{kind}"] = xr.Variable(dims, values, {"units": "1", "long_name": text.format(words)})
+    return out
 
 
 def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,
@@ -398,6 +434,13 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
     st_along = np.stack(statics) if statics is not None and n_sec else np.zeros((len(names), n_sec))
     if n_sec and np.any(np.abs(sections - 0.5 * span) <= 1e-9 * span):
         st_eff[:, 0] = st_along[:, int(np.argmin(np.abs(sections - 0.5 * span)))]  # the exact static peak at midspan
+    def sampling(name: str, n: int) -> np.ndarray:  # (train, speed, n): NaN where not estimated (coupled cars)
+        return np.stack([np.full((speeds.size, n), np.nan) if getattr(e, name, None) is None
+                         else np.asarray(getattr(e, name), float) for e in envs])
+
+    samp = {f"{what}_{kind}": sampling(f"{what}_sampling_{kind}", n)
+            for what, n in (("acceleration", points.size), ("displacement", points.size), ("effect", dyn_eff.shape[2]))
+            for kind in ("change", "bound")}
     peaks = [r for r in (refined or []) if r is not None]
     n_pk = max([r.speed.size for r in peaks] + [0])
     pk = {key: np.full((len(names), n_pk), np.nan) for key in ("grid_speed", "grid_value", "speed", "value", "bound", "last_change", "step",
@@ -440,6 +483,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "static_moment_along": var(("train", "section"), st_along, "N m",
                                    "peak static bending moment at each section (exact on a piecewise-linear influence line: an "
                                    "axle on a breakpoint; a curved line also sampled every L/400 of travel)"),
+        **time_sampling_variables(samp, mid, col if n_sec else np.zeros(0, int)),
         "peak_acceleration_grid": var(("train", "peak"), pk["grid_value"], "m s-2", "acceleration peak on the sweep's speed grid"),
         "peak_speed_grid": var(("train", "peak"), pk["grid_speed"], "m s-1", "speed of the acceleration peak on the sweep's grid"),
         "peak_acceleration_refined": var(("train", "peak"), pk["value"], "m s-2",
@@ -487,7 +531,8 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "maintenance": b.maintenance, "classification_factor": alpha, "lm71_moment_static": lm_m,
         "lm71_shear_static": lm_v, "dx_m": float(envs[0].dx) if envs else math.nan,
         "method": "moving forces, exact modal stepping (vbikit.solve.moving_loads); load effects by mode acceleration",
-        "peak_tolerance": PEAK_TOLERANCE,
+        "peak_tolerance": PEAK_TOLERANCE, "time_sampling_tolerance": TIME_SAMPLING_TOLERANCE,
+        "time_sampling": TIME_SAMPLING_METHOD,
         "peak_refinement": (f"each acceleration peak (local maxima of at least half the train's largest, up to four per train) "
                             f"refined by halving the speed step around it until both the change over a halving and the "
                             f"bound of the remaining error (a quadratic peak between its samples) are below "
@@ -528,6 +573,8 @@ def refine_points(checks: dict[str, Any], setup: SweepSetup, trains: dict[str, T
     acc["points"] = {"n_read": int(setup.points.size), "n_dense": int(dense.size), "read": read, "dense": best,
                      "x_read": float(dense[k_read]), "x_dense": float(dense[k_dense]),
                      "error": (best - read) / best if best > 0 else 0.0}
+    acc["time_sampling_change"] = float(env.acceleration_sampling_change[0, k_dense])  # of the peak read (below)
+    acc["time_sampling_bound"] = float(env.acceleration_sampling_bound[0, k_dense])
     if best > acc["peak"]:
         acc["peak"] = best
         acc["passes"], acc["ratio"] = bool(best <= acc["limit"]), best / acc["limit"]
@@ -576,6 +623,13 @@ def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: 
 def _peak_evaluator(setup: SweepSetup, train: Train, kind: str, span: float) -> Callable:
     """speeds [m/s] → the train's peak of ``kind`` at each (the midspan moment or the shear at the
     entry support [N m, N]: the sweep's effects 0 and 1; the midspan deflection [m])."""
+    run = _peak_sweep(setup, train, kind, span)
+    return lambda v: run(v)[0]
+
+
+def _peak_sweep(setup: SweepSetup, train: Train, kind: str, span: float) -> Callable:
+    """speeds [m/s] → (peak, its time-sampling change, its time-sampling bound) of ``kind`` at each
+    (``_peak_evaluator``)."""
     from vbikit.solve.moving_loads import moving_load_sweep
 
     if kind == "deflection":
@@ -588,9 +642,40 @@ def _peak_evaluator(setup: SweepSetup, train: Train, kind: str, span: float) -> 
     def evaluate(v):
         env = moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, v, points, effects, dx=setup.dx,
                                 free_vibration=setup.free_vibration, y=setup.y, max_steps=setup.max_steps)
-        return env.max_displacement[:, 0] if kind == "deflection" else env.max_effect[:, 0]
+        if kind == "deflection":
+            return env.max_displacement[:, 0], env.displacement_sampling_change[:, 0], env.displacement_sampling_bound[:, 0]
+        return env.max_effect[:, 0], env.effect_sampling_change[:, 0], env.effect_sampling_bound[:, 0]
 
     return evaluate
+
+
+def time_sampling_checks(checks: dict[str, Any], setup: SweepSetup, trains: dict[str, Train]) -> None:
+    """Each check's governing peak with its time sampling (``TIME_SAMPLING_METHOD``): for the moment,
+    shear and deflection one crossing at the governing train and (refined) speed gives
+    ``time_sampling_change`` and ``time_sampling_bound`` (the acceleration's come from
+    ``refine_points``' reading), NaN where coupled cars govern; then a ``time_sampling_error`` flag
+    where either reaches the tolerance (``time_sampling_flags``)."""
+    span = float(setup.bridge.span)
+    for kind in ("moment", "shear", "deflection"):
+        c = checks[kind]
+        train = trains.get(c["train"])
+        if train is None:
+            continue
+        _, change, bound = _peak_sweep(setup, train, kind, span)(np.array([c["speed"]]))
+        c["time_sampling_change"], c["time_sampling_bound"] = float(change[0]), float(bound[0])
+    add_flags(checks, time_sampling_flags(checks))
+
+
+def dataset_flag_attrs_of(checks: dict[str, Any]) -> dict[str, str]:
+    """The dataset's ``warnings`` (every flag's message, "; "-joined) and ``flag_codes`` (comma-separated)
+    attributes from the checks' flag records, as every population dataset carries them
+    (``vbikit.analysis.checks.dataset_flag_attrs``); none when nothing is flagged."""
+    from vbikit.analysis.checks import join_codes
+
+    flags = checks.get("flags", [])
+    texts = list(checks.get("warnings", []))
+    return ({"warnings": "; ".join(texts)} if texts else {}) | (
+        {"flag_codes": join_codes(f["code"] for f in flags)} if flags else {})
 
 
 #: sections [per span] of the fine static envelope and of the dynamic one around the swept maximum

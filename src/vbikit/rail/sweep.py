@@ -108,7 +108,7 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
     (``rail_car``, point contact) — each car one ``VehicleMotion`` entering when its first axle
     reaches the bridge — over a smooth or irregular track; one ``simulate`` per speed."""
     from vbikit.solve.crossing import Crossing, VehicleMotion
-    from vbikit.solve.moving_loads import MovingLoadEnvelopes
+    from vbikit.solve.moving_loads import MovingLoadEnvelopes, unsampled
     from vbikit.solve.simulate import simulate
 
     cars = rail_cars(train, contact)
@@ -143,7 +143,8 @@ def coupled_envelopes(setup: SweepSetup, train: Train, speeds: NDArray[np.float6
         from vbikit.analysis.impact import static_modal_history
 
         static_disp = np.maximum(static_disp, np.max(np.abs(static_modal_history(result) @ phi.T), axis=0))
-    return MovingLoadEnvelopes(speeds, setup.points, acc, disp, static_disp, eff, static_eff, setup.dx, unconverged)
+    return MovingLoadEnvelopes(speeds, setup.points, acc, disp, static_disp, eff, static_eff, setup.dx, unconverged,
+                               **unsampled(n_v, n_p, n_e))  # (sampled peaks: their time sampling not estimated)
 
 
 def rail_cars(train: Train, contact: str | float = "hertz") -> list:
