@@ -119,6 +119,10 @@ def accuracy() -> dict:
         "wagons_dynamic_ratio_pct": round(100 * (wagons["moment_max_over_midspan"] - 1), 2),
         "wagons_dynamic_position_m": round(wagons["moment_max_position_m"], 3),
         "ice3_table_wavelength_m": round(dominant_wavelength(i3.axle_positions, i3.axle_loads), 6),
+        "acc_sampling_change_pct": round(100 * acc["time_sampling_change"], 4),
+        "acc_sampling_bound_pct": round(100 * acc["time_sampling_bound"], 4),
+        "acc_largest_sampling_change_pct": round(100 * acc["largest_time_sampling_change"], 3),
+        "acc_largest_sampling_bound_pct": round(100 * acc["largest_time_sampling_bound"], 3),
     }
 
 
@@ -138,6 +142,11 @@ def example() -> dict:
         "passes": a["passes"],
         "moment_ratio": round(c["moment"]["ratio"], 3), "shear_ratio": round(c["shear"]["ratio"], 3),
         "moment_governs": c["moment"]["governs"], "phi_dyn_deflection": round(c["deflection"]["phi_dyn"], 3),
+        "acc_sampling_change_pct": round(100 * a["time_sampling_change"], 4),
+        "acc_sampling_bound_pct": round(100 * a["time_sampling_bound"], 4),
+        "acc_largest_sampling_change_pct": round(100 * a["largest_time_sampling_change"], 3),
+        "acc_largest_sampling_bound_pct": round(100 * a["largest_time_sampling_bound"], 3),
+        "flags": sorted({f["code"] for f in c.get("flags", [])}),
     }
 
 

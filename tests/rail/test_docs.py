@@ -40,12 +40,18 @@ def quoted() -> list[str]:
             f"largest {a['wagons_dynamic_ratio_pct']:g} % above its midspan value, at {a['wagons_dynamic_position_m']:g} m",
             f"spacing is {a['ice3_table_wavelength_m']:g} m", f"moment is {a['moment_grid_kNm']:g} kN m",
             f"the refined one {a['moment_refined_kNm']:g} kN m with an error bound of {a['moment_bound_pct']:g} %",
-            f"the dense sweep's {a['moment_dense_kNm']:g} kN m"]
+            f"the dense sweep's {a['moment_dense_kNm']:g} kN m",
+            f"lies {a['acc_sampling_change_pct']:g} % above its largest time sample, with a remaining error bound of "
+            f"{a['acc_sampling_bound_pct']:g} %", f"by at most {a['acc_largest_sampling_change_pct']:g} % of the largest peak, "
+            f"with bounds up to {a['acc_largest_sampling_bound_pct']:g} % of it"]
     e = s["example"]
     out += [f"n0 = {e['n0_hz']:g} Hz, {e['n_modes']} modes, ζ = {e['damping_pct']:g} %", f"{e['speeds']} speeds",
             f"Peak deck acceleration {e['peak_acc']:g} m/s² ({e['peak_train']} at {e['peak_speed_kmh']:g} km/h",
             "the span fails" if not e["passes"] else "the span passes", f"φ'dyn of the deflection is {e['phi_dyn_deflection']:g}",
-            f"moment is {e['moment_ratio']:g} and the shear {e['shear_ratio']:g}", f"so {e['moment_governs'].replace('Phi x', 'Φ ×')} governs"]
+            f"moment is {e['moment_ratio']:g} and the shear {e['shear_ratio']:g}", f"so {e['moment_governs'].replace('Phi x', 'Φ ×')} governs",
+            f"{e['acc_sampling_change_pct']:g} % and {e['acc_sampling_bound_pct']:g} % for the governing peak, "
+            f"{e['acc_largest_sampling_change_pct']:g} % and {e['acc_largest_sampling_bound_pct']:g} % of the largest over the sweep",
+            "no flag" if not e["flags"] else f"flags: {', '.join(e['flags'])}"]
     return out
 
 

@@ -4,7 +4,8 @@ atomically to ``out_dir/rail.parts/<key>.npz`` as soon as the train is swept; a 
 same sweep reads them instead of sweeping again.  The key is the SHA-256 of everything the result
 depends on (the file's settings, the bridge's frequencies and mode shapes at the points, the
 train's axles, the speeds and the sweep setup), so a changed input never reuses an old result.
-A stored file that cannot be read is swept again (never trusted)."""
+A stored file that cannot be read, or lacks a field of the envelopes (one written before the
+peaks' time sampling, ``MovingLoadEnvelopes.*_sampling_*``), is swept again (never trusted)."""
 from __future__ import annotations
 
 import hashlib

@@ -148,41 +148,64 @@ def speed_grid_flags(checks: dict[str, Any], kinds: tuple[str, ...], tolerance: 
 #: a governing peak whose time sampling changed it, or whose remaining time-sampling error may reach, this much
 #: (relative) is flagged ``time_sampling_error``
 TIME_SAMPLING_TOLERANCE = PEAK_TOLERANCE
-#: each check's peak outputs in the dataset (``vbikit.rail.run.time_sampling_variables``), for the largest over the sweep
-_SAMPLING_OUTPUTS = {"acceleration": ("deck_acceleration",), "moment": ("moment",), "shear": ("shear",),
-                     "deflection": ("deflection",)}
+#: each check's peak output in the dataset (``vbikit.rail.run.time_sampling_variables``: its ``*_sampling_*``) and
+#: the peaks they qualify, for the largest over the sweep
+_SAMPLING_OUTPUTS = {"acceleration": ("deck_acceleration", "deck_acceleration_at_points"), "moment": ("moment", "max_moment"),
+                     "shear": ("shear", "max_shear"), "deflection": ("deflection", "max_deflection")}
 
 
 def sampling_extremes(ds, kind: str) -> dict[str, float]:
     """The largest time-sampling change and bound over every train, speed (and point) of check
-    ``kind``'s peak output (``largest_time_sampling_change``, ``largest_time_sampling_bound``; NaN
-    where none is estimated: coupled cars, or a dataset written before them)."""
-    out = {}
+    ``kind``'s peak output, each as a share of the sweep's largest peak of that output (change × peak /
+    largest peak: what it could move the check's value; a small peak's own relative bound can be
+    larger): ``largest_time_sampling_change``, ``largest_time_sampling_bound``; NaN where none is
+    estimated (coupled cars, a dataset written before them)."""
+    name, peaks = _SAMPLING_OUTPUTS[kind]
+    out: dict[str, Any] = {}
     for what in ("change", "bound"):
-        values = [ds[f"{name}_sampling_{what}"].values for name in _SAMPLING_OUTPUTS[kind] if f"{name}_sampling_{what}" in ds]
-        flat = np.concatenate([v.ravel() for v in values]) if values else np.zeros(0)
-        flat = flat[np.isfinite(flat)]
-        out[f"largest_time_sampling_{what}"] = float(flat.max()) if flat.size else math.nan
+        key = f"{name}_sampling_{what}"
+        value, where = math.nan, None
+        if key in ds:
+            peak = np.asarray(ds[peaks].values, float)
+            moved = np.asarray(ds[key].values, float) * peak
+            top = float(np.nanmax(peak)) if np.any(np.isfinite(peak)) else 0.0
+            if np.any(np.isfinite(moved)) and top > 0:
+                at = np.unravel_index(int(np.nanargmax(moved)), moved.shape)
+                value = float(moved[at]) / top
+                where = {"train": str(ds.train.values[at[0]]), "speed_m_s": float(ds.speed.values[at[1]])}
+        out[f"largest_time_sampling_{what}"] = value
+        if what == "bound":
+            out["largest_time_sampling_bound_at"] = where  # the train and speed of that peak
     return out
 
 
 def time_sampling_flags(checks: dict[str, Any], kinds: tuple[str, ...] = tuple(GRID_CHECKS),
                         tolerance: float = TIME_SAMPLING_TOLERANCE) -> list[Flag]:
-    """A ``time_sampling_error`` flag for every check of ``kinds`` whose governing peak depends on the
-    time step: its largest time sample more than ``tolerance`` (relative) below the peak taken
-    between the samples (``time_sampling_change``), or the estimated bound of its remaining error
-    (``time_sampling_bound``) at or above it."""
+    """A ``time_sampling_error`` flag for every check of ``kinds`` whose peaks depend on the time step:
+    its governing peak's largest time sample more than ``tolerance`` (relative) below the peak taken
+    between the samples (``time_sampling_change``) or the estimated bound of that peak's remaining
+    error (``time_sampling_bound``) at or above it, or else a peak of the sweep whose bound reaches
+    ``tolerance`` of the largest peak (``largest_time_sampling_bound``, ``sampling_extremes``: it may lie
+    that much higher and govern)."""
     out = []
     for kind in kinds:
         c = checks.get(kind, {})
         change, bound = c.get("time_sampling_change", math.nan), c.get("time_sampling_bound", math.nan)
-        if not (math.isfinite(change) and math.isfinite(bound)) or max(change, bound) < tolerance:
+        if math.isfinite(change) and math.isfinite(bound) and max(change, bound) >= tolerance:
+            out.append(Flag("time_sampling_error", f"the governing {GRID_CHECKS[kind]} peak ({c['train']} at "
+                            f"{speed_words(c['speed'])}) depends on the time step: {sampling_words(change, bound)} "
+                            f"(tolerance {100 * tolerance:g} %); the stated value may be off by that much: raise "
+                            "run.steps_per_period", output=kind, subject=str(c["train"]),
+                            value=max(change, bound), threshold=tolerance))
             continue
-        out.append(Flag("time_sampling_error", f"the governing {GRID_CHECKS[kind]} peak ({c['train']} at "
-                        f"{speed_words(c['speed'])}) depends on the time step: {sampling_words(change, bound)} "
-                        f"(tolerance {100 * tolerance:g} %); the stated value may be off by that much: raise "
-                        "run.steps_per_period", output=kind, subject=str(c["train"]),
-                        value=max(change, bound), threshold=tolerance))
+        worst, at = c.get("largest_time_sampling_bound", math.nan), c.get("largest_time_sampling_bound_at")
+        if math.isfinite(worst) and worst >= tolerance and at is not None:
+            out.append(Flag("time_sampling_error", f"a {GRID_CHECKS[kind]} peak of the sweep ({at['train']} at "
+                            f"{speed_words(at['speed_m_s'])}) depends on the time step: the peak between its samples may "
+                            f"lie up to {100 * worst:.2f} % of the largest {GRID_CHECKS[kind]} peak off its stated value "
+                            f"(tolerance {100 * tolerance:g} %), so the check may be low by that much: raise "
+                            "run.steps_per_period", output=kind, subject=at["train"], value=worst,
+                            threshold=tolerance))
     return out
 
 
@@ -201,24 +224,27 @@ def sampling_words(change: float, bound: float, digits: int = 2) -> str:
 def _time_sampling_line(checks: dict[str, Any], dx: float, tolerance: float) -> str:
     """The report's one statement of the time sampling's error: for every check's governing peak how
     far its largest time sample lies below the peak taken between the samples and the bound of the
-    remaining error, and over the sweep the largest of each (``!`` where ``time_sampling_error``
-    flags it)."""
+    remaining error (or, where the sample stands at an axle's passage, how far the peak may lie above
+    it), and over the sweep the largest of each as a share of the largest peak (``sampling_extremes``;
+    ``!`` where ``time_sampling_error`` flags it)."""
     parts = []
     for kind, name in GRID_CHECKS.items():
         c = checks.get(kind, {})
         change, bound = c.get("time_sampling_change", math.nan), c.get("time_sampling_bound", math.nan)
         if not (math.isfinite(change) and math.isfinite(bound)):
-            parts.append(f"{name}: not estimated (coupled cars govern it: sampled peaks)")
+            parts.append(f"{name} not estimated (coupled cars govern it: sampled peaks)")
             continue
         mark = " !" if has_flag(checks, "time_sampling_error", output=kind) else ""
+        own = (f"sample kept at an axle's passage, the peak up to {100 * bound:.3f} % above it" if change == 0.0 else
+               f"largest sample {100 * change:.3f} % low, remaining error up to {100 * bound:.3f} %")
         worst = ""
         if math.isfinite(c.get("largest_time_sampling_bound", math.nan)):
-            worst = (f"; over the sweep the samples at most {100 * c['largest_time_sampling_change']:.3f} % low, the "
-                     f"remaining error up to {100 * c['largest_time_sampling_bound']:.3f} %")
-        parts.append(f"{name}: {sampling_words(change, bound, 3)}{worst}{mark}")
-    return (f"time sampling error of the governing peaks (each peak taken between the time samples, every "
-            f"{1e3 * dx:.1f} mm of travel, by a parabola through the largest samples, the sample kept where an axle "
-            f"enters, leaves or passes the section; flagged at {100 * tolerance:g} %): " + "; ".join(parts))
+            worst = (f"; over the sweep up to {100 * c['largest_time_sampling_change']:.3f} % and "
+                     f"{100 * c['largest_time_sampling_bound']:.3f} % of the largest peak")
+        parts.append(f"{name} {own}{worst}{mark}")
+    return (f"time sampling error of the governing peaks (each taken between the samples, every {1e3 * dx:.1f} mm of "
+            f"travel, as the vertex of a parabola through the largest samples, the sample kept where an axle enters, "
+            f"leaves or passes the section; flagged at {100 * tolerance:g} %): " + "; ".join(parts))
 
 
 def format_report(ds, checks: dict[str, Any]) -> str:
