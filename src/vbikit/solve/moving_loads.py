@@ -346,9 +346,11 @@ def kink_steps(instants: Sequence[NDArray[np.float64]], n_steps: int) -> NDArray
         tol = INSTANT_TOLERANCE * (1.0 + np.abs(u))
         lo = np.maximum(np.ceil(u - 1.0 - tol), 0).astype(np.int64)
         hi = np.minimum(np.floor(u + tol), n_steps - 1).astype(np.int64)
-        for j0, j1 in zip(lo, hi):
-            if j0 <= j1:
-                out[g, j0:j1 + 1] = True
+        keep = lo <= hi
+        count = np.zeros(n_steps + 1, np.int64)  # +1 from each lo, −1 after each hi: the steps covered
+        np.add.at(count, lo[keep], 1)
+        np.add.at(count, hi[keep] + 1, -1)
+        out[g] = np.cumsum(count[:-1]) > 0
     return out
 
 
