@@ -58,8 +58,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from numba import njit
 
-from vbikit.bridge.base import ModalBridge
 from vbikit.analysis.impact import _parabola as _impact_parabola
+from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect
 from vbikit.solve.numba_cache import ensure_cache_location
 
