@@ -23,6 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
+from vbikit._vertex import parabola
 from vbikit.solve import system
 from vbikit.solve.result import CrossingResult
 
@@ -131,7 +132,7 @@ def smooth_vertices(time: NDArray[np.float64], dynamic: NDArray[np.float64], sta
                 if k.size and np.searchsorted(k, t[i - 1], "left") < np.searchsorted(k, t[i + 1], "right"):
                     continue  # a kink on the two steps: the limits there (``vbikit.analysis.effects``) hold the peak
                 s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
-                coef = [_parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
+                coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
                 a, b, _ = coef[which]
                 if not sign * a < 0.0:
                     continue  # not turning that way (a flat or inflected top): the sample stands
@@ -140,15 +141,6 @@ def smooth_vertices(time: NDArray[np.float64], dynamic: NDArray[np.float64], sta
     if not out:
         return np.zeros(0), np.zeros(0), np.zeros(0)
     return tuple(np.array(col) for col in zip(*out))  # type: ignore[return-value]
-
-
-def _parabola(s0: float, s2: float, y0: float, y1: float, y2: float) -> tuple[float, float, float]:
-    """(a, b, c) of y = a s² + b s + c through (s0, y0), (0, y1), (s2, y2), s0 < 0 < s2 (Newton's divided
-    differences)."""
-    d0 = (y1 - y0) / -s0
-    d2 = (y2 - y1) / s2
-    a = (d2 - d0) / (s2 - s0)
-    return a, d0 - a * s0, y1
 
 
 def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:

@@ -223,3 +223,60 @@ def influence_values(effects: Sequence[LoadEffect], x: NDArray[np.float64],
         for i in members:
             out[:, i] = effects[i].influence.apply(part, x, y)  # type: ignore[attr-defined]
     return out
+
+
+def jump_positions(bridge: Any, effect: LoadEffect) -> NDArray[np.float64]:
+    """ξ [m] (along the span, ``ModalBridge.span_coordinate``) where the influence line of ``effect``
+    may jump or kink on every wheel line, sorted, unique: the section of a moment (kink) or a shear
+    (jump), and for a shear or a reaction the support lines (``support_x``: the deck ends, where a
+    point leaves the deck and I drops to 0 — a reaction at an end support and a shear next to it
+    jump there — and the joints of a series of spans).  Not a moment's support lines: a moment's
+    influence vanishes at a deck end (a pinned or bearing-supported girder end carries none), so a
+    point entering there adds nothing at that instant, and the value computed at ξ = 0⁺ would be the
+    influence solution's round-off only (which, alone on the deck, would read as an extreme of the
+    other sign: ``opposite_static_peak``)."""
+    xs = set() if effect.kind == "moment" else {float(v) for v in np.asarray(bridge.support_x, float)}
+    if effect.kind != "reaction":
+        f = effect.influence
+        xs.add(float(f.section) if isinstance(f, TabulatedInfluence) and f.kink != "none" else float(effect.x))
+    return np.array(sorted(xs))
+
+
+def kink_positions(bridge: Any, effect: LoadEffect, y: float | None = None) -> NDArray[np.float64]:
+    """ξ [m] where the history of ``effect`` may jump or kink as a contact point on the wheel line
+    ``y`` [m] passes: its ``jump_positions``, every support line (``support_x``: a moment's influence
+    kinks where a point enters or leaves the deck, though it is 0 there) and, for an influence
+    tabulated along wheel lines, the stations where that line's cubics meet with a break of value or
+    slope (``station_kinks``: a grillage's line between two girders), sorted, unique."""
+    def make() -> tuple[Any, NDArray[np.float64]]:
+        out = np.union1d(jump_positions(bridge, effect), np.asarray(bridge.support_x, float))
+        if y is not None and isinstance(effect.influence, TabulatedInfluence):
+            out = np.union1d(out, station_kinks(effect.influence, float(y)))
+        out.setflags(write=False)
+        return effect, out  # (the effect kept with its identity: no other can take it while kept)
+
+    # kept by the bridge per effect and line: every event of a stream asks for the same few
+    return kept_for(bridge, "kink positions", KINK_POSITIONS_KEPT).get((id(effect), y), make)[1]
+
+
+#: the ``kink_positions`` a bridge keeps (per effect and wheel line)
+KINK_POSITIONS_KEPT = 256
+
+
+#: a tabulated line breaks at a station where its value or slope changes by more than this fraction
+#: of its largest value or slope (round-off of the tables' cubics: ≈ 1e-13, ``TabulatedInfluence``)
+STATION_BREAK = 1e-8
+def station_kinks(influence: TabulatedInfluence, y: float) -> NDArray[np.float64]:
+    """The interior stations ξ [m] of ``influence`` at which its cubics along the wheel line ``y`` [m]
+    (``line_tables``, without the section's own kink or step) meet with a break: the end value or
+    slope of one element against the start of the next, beyond ``STATION_BREAK`` of the line's
+    largest (``kink_positions`` keeps them per effect and line)."""
+    poly = np.asarray(influence.line_tables([y])[0], float)  # (4, n_elements), rows t⁰ … t³
+    h = np.diff(np.asarray(influence.stations, float))
+    start_value, end_value = poly[0], poly.sum(axis=0)
+    start_slope, end_slope = poly[1] / h, (poly[1] + 2.0 * poly[2] + 3.0 * poly[3]) / h
+    value_scale = max(float(np.abs(poly).sum(axis=0).max(initial=0.0)), 1e-300)
+    slope_scale = max(float(np.abs(np.r_[start_slope, end_slope]).max(initial=0.0)), 1e-300)
+    broken = (np.abs(end_value[:-1] - start_value[1:]) > STATION_BREAK * value_scale) | \
+        (np.abs(end_slope[:-1] - start_slope[1:]) > STATION_BREAK * slope_scale)
+    return np.asarray(influence.stations, float)[1:-1][broken]

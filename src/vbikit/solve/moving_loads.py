@@ -34,10 +34,10 @@ Peaks between the time samples (``moving_load_sweep``): a sampled extreme of a s
 up to 1 − cos(π f h) ≈ (π f h)²/2 of the amplitude of its component of frequency f (1.2 % at 20 samples
 a period), and h = Δx/v grows with the speed.  The compiled loop keeps the last five samples of every
 output; each local maximum of |y| is taken at the vertex of the parabola through it and its two
-neighbours (the arithmetic of ``vbikit.analysis.impact.smooth_vertices``, ``impact._parabola``
+neighbours (the arithmetic of ``vbikit.analysis.impact.smooth_vertices``, ``vbikit._vertex.parabola``
 compiled), unless an axle stands on a support line (entering or leaving: the modal loads kink, or
 jump on a support that moves) or, for a load effect, on its section or another of its kinks
-(``vbikit.analysis.effects.kink_positions``) within the two steps — then the sample stands.  The axles'
+(``vbikit.bridge.effects.kink_positions``) within the two steps — then the sample stands.  The axles'
 positions do not depend on the speed (sample j has the first axle at (j − 1) Δx), so those steps are
 found once per train (``kink_instants``, ``kink_steps``).  The peak is the largest candidate; with it
 the sweep states ``*_sampling_change`` = (peak − largest sample)/peak and ``*_sampling_bound``, the
@@ -58,9 +58,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from numba import njit
 
-from vbikit.analysis.impact import _parabola as _impact_parabola
+from vbikit._vertex import parabola as _three_point_parabola
 from vbikit.bridge.base import ModalBridge
-from vbikit.bridge.effects import LoadEffect
+from vbikit.bridge.effects import LoadEffect, kink_positions
 from vbikit.solve.numba_cache import ensure_cache_location
 
 ensure_cache_location()  # before the @njit(cache=True) below
@@ -76,8 +76,8 @@ class MovingLoadBudgetError(ValueError):
 
 
 #: the parabola through three samples, as ``vbikit.analysis.impact.smooth_vertices`` takes it, compiled
-#: for the sweep's loop (one arithmetic: ``impact._parabola`` itself)
-_parabola = njit(cache=True)(_impact_parabola)
+#: for the sweep's loop (one arithmetic: ``vbikit._vertex.parabola`` itself)
+_parabola = njit(cache=True)(_three_point_parabola)
 
 
 @njit(cache=True, fastmath=False, error_model="numpy")
@@ -499,8 +499,6 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
 def _kink_positions(bridge: ModalBridge, effects: Sequence[LoadEffect], y: float) -> list[NDArray[np.float64]]:
     """ξ [m] where an axle's passage may kink or jump the histories: the deck's (acceleration and
     displacement) at the support lines (an axle entering or leaving: the modal loads kink there, or
-    jump on a support that moves), then each effect's (``vbikit.analysis.effects.kink_positions``:
+    jump on a support that moves), then each effect's (``vbikit.bridge.effects.kink_positions``:
     its section, the support lines, a tabulated line's breaks)."""
-    from vbikit.analysis.effects import kink_positions
-
     return [np.asarray(bridge.support_x, float)] + [np.asarray(kink_positions(bridge, e, y), float) for e in effects]
