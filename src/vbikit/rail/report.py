@@ -247,6 +247,16 @@ def _time_sampling_line(checks: dict[str, Any], dx: float, tolerance: float) -> 
             f"leaves or passes the section; flagged at {100 * tolerance:g} %): " + "; ".join(parts))
 
 
+def damping_extra(attrs) -> str:
+    """The report's words on the additional damping Δζ (EN 1991-2 Eq. 6.13) in the damping shown."""
+    dz = float(attrs.get("additional_damping_ratio", 0.0))
+    if dz > 0:
+        return f", with additional damping Δζ = {100 * dz:.3f} % (EN 1991-2:2003 Eq. 6.13)"
+    if str(attrs.get("damping_source", "")).startswith("EN") and float(attrs.get("span_m", 0.0)) >= 30.0:
+        return ", no additional damping: EN 1991-2:2003 Eq. 6.13 adds Δζ below 30 m only"
+    return ""
+
+
 def format_report(ds, checks: dict[str, Any]) -> str:
     """The text report of a sweep."""
     a = ds.attrs
@@ -255,8 +265,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         "vbikit railway dynamic check (EN 1991-2:2003 + AC 6.4.6, EN 1990:2002/A1:2005 A2.4.4.2.1)",
         f"bridge: simply supported span {a['span_m']:g} m, n0 = {a['first_frequency_hz']:.3f} Hz, {a['n_modes']} modes "
         f"(up to {float(ds['frequency'].values[-1]):.1f} Hz; required max(30 Hz, 1.5 n0, n3) = {a['frequency_limit_hz']:.1f} Hz), "
-        f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}"
-        f"{', with additional damping' if a['additional_damping'] else ''})",
+        f"damping {100 * a['damping_ratio']:.3f} % ({a['damping_source']}, {a['deck']}{damping_extra(a)})",
         f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {kmh(ds.speed.values.min())} … "
         f"{speed_words(ds.speed.values.max())}",
     ]

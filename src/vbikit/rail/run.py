@@ -86,13 +86,9 @@ def build_bridge(spec: RailSpec, base_dir: Path = Path(".")):
 PROBE_MODES = 30
 
 
-def _scenario_bridge(spec: RailSpec, base_dir: Path):
-    """The [bridge] of a scenario file: one span, square supports; its damping_ratio and n_modes
-    unless given there (then Table 6.6 + Δζ and the frequency range decide them)."""
+def _scenario_table(spec: RailSpec, base_dir: Path) -> tuple[Path, dict[str, Any]]:
+    """The path and the [bridge] table of the scenario file of ``bridge.scenario``."""
     from vbikit._toml import read_toml
-    from vbikit.scenario.build import build_bridge as build_scenario_bridge
-    from vbikit.scenario.schema import parse_bridge
-    from vbikit.scenario.section import ScenarioError
 
     b = spec.bridge
     path = Path(b.scenario) if Path(b.scenario).is_absolute() else base_dir / b.scenario
@@ -100,6 +96,32 @@ def _scenario_bridge(spec: RailSpec, base_dir: Path):
     table = dict(data.get("bridge") or {})
     if not table:
         raise RailSpecError(f"bridge.scenario: {path.name} has no [bridge] table")
+    return path, table
+
+
+def damping_origin(spec: RailSpec, span: float, base_dir: Path = Path(".")) -> tuple[str, float]:
+    """Where the bridge's damping ratio comes from, in words, and the Δζ [-] of EN 1991-2 Eq. 6.13 it
+    includes: ``bridge.damping``, a scenario's own ``damping_ratio`` (neither adds Δζ), or Table 6.6
+    (+ Δζ with ``additional_damping``, 0 from a span of 30 m)."""
+    b = spec.bridge
+    if b.damping is not None:
+        return "given (bridge.damping)", 0.0
+    if b.scenario is not None:
+        path, table = _scenario_table(spec, base_dir)
+        if "damping_ratio" in table:
+            return f"given (damping_ratio of the [bridge] of {path.name})", 0.0
+    return "EN 1991-2:2003 Table 6.6", codes.additional_damping(span) if b.additional_damping else 0.0
+
+
+def _scenario_bridge(spec: RailSpec, base_dir: Path):
+    """The [bridge] of a scenario file: one span, square supports; its damping_ratio and n_modes
+    unless given there (then Table 6.6 + Δζ and the frequency range decide them)."""
+    from vbikit.scenario.build import build_bridge as build_scenario_bridge
+    from vbikit.scenario.schema import parse_bridge
+    from vbikit.scenario.section import ScenarioError
+
+    b = spec.bridge
+    path, table = _scenario_table(spec, base_dir)
     where = path.parent
 
     def make(overrides: dict[str, Any]):
@@ -177,6 +199,7 @@ class RailPlan:
     waves: dict
     sections: Any
     warnings: list = field(default_factory=list)  # the sweep's limits of the standard (codes.hslm_range_warnings)
+    damping: Optional[tuple] = None  # where the damping comes from, in words, and its Δζ (damping_origin)
 
 
 def bogie_resonance_speeds(trains: list, n0: float) -> np.ndarray:
@@ -241,7 +264,7 @@ def plan_rail(source: Any) -> RailPlan:
     y = float(bridge.default_lateral_offset)  # the track's axis; the deck is read on it
     setup = SweepSetup(bridge, points, effects, dx, fv, spec.run.budget, y)
     return RailPlan(spec, bridge, f_limit, required, originals, trains, res, speeds, points, effects, setup, coupled,
-                    waves, sections, warnings)
+                    waves, sections, warnings, damping_origin(spec, float(bridge.span), base_dir))
 
 
 def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
@@ -300,7 +323,8 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
                 refined.append(None)
                 statics.append(statics[originals.index(t)])
     ds = assemble(spec, bridge, names, speeds, points, envs, res, f_limit, waves=waves, refined=refined,
-                  sections=sections, statics=statics, bogies=bogies)
+                  sections=sections, statics=statics, bogies=bogies,
+                  damping=p.damping)
     ds.attrs.update(moment_envelope_summary(ds, setup, {t.name: t for t in trains}))
     ds.attrs["modes_required"] = required
     ds.attrs["code_warnings"] = "\n".join(p.warnings)  # one a line (check: checks["warnings"])
@@ -389,13 +413,14 @@ def time_sampling_variables(samp: dict[str, np.ndarray], mid: int, col: np.ndarr
 
 
 def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,
-             statics=None, bogies=None):
+             statics=None, bogies=None, damping=None):
     """The NetCDF dataset of a sweep (every variable with units and long_name): ``res`` the resonance
     speeds of every train by order, ``waves`` their (D [m], source), ``bogies`` their axle spacings
     within a bogie [m] (``Train.bogie_axle_spacings``; resonances n0 d / i), ``refined`` the ``RefinedPeaks``
     of every train (None: not refined), ``sections`` the sections x [m] of the moment envelope (the
     sweep's effects 2 … are its moments off midspan) and ``statics`` every train's exact static
-    moment envelope there."""
+    moment envelope there; ``damping`` (words, Δζ) where the damping comes from (``damping_origin``;
+    None: from ``spec`` alone, a scenario's own damping_ratio not seen)."""
     import xarray as xr
 
     b = spec.bridge
@@ -520,13 +545,16 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "wavelength_source": ("train", wave_src, {"long_name": "where the resonance wavelength D comes from"}),
     }
     ds = xr.Dataset(data, coords=coords)
+    if damping is None and b.scenario is None:
+        damping = damping_origin(spec, span)
+    damping_words, delta_zeta = damping if damping is not None else ("unknown (a scenario's [bridge])", math.nan)
     ds.attrs.update({
         "title": "vbikit railway speed sweep", "span_m": span,
         **({"EI_Nm2": b.EI, "mass_per_length_kg_m": b.mass_per_length} if b.scenario is None else {}),
         "bridge_model": type(bridge).__name__ + (f" from {b.scenario}" if b.scenario else ""),
         "damping_ratio": float(bridge.damping_ratios[0]), "deck": b.deck, "track": b.track,
-        "damping_source": "given (bridge.damping)" if b.damping is not None else "EN 1991-2:2003 Table 6.6",
-        "additional_damping": int(b.additional_damping and b.damping is None), "first_frequency_hz": n0,
+        "damping_source": damping_words, "additional_damping": int(bool(delta_zeta > 0)),
+        "additional_damping_ratio": delta_zeta, "first_frequency_hz": n0,
         "frequency_limit_hz": f_limit, "n_modes": int(bridge.omega.size), "dynamic_factor_Phi": phi_lm,
         "maintenance": b.maintenance, "classification_factor": alpha, "lm71_moment_static": lm_m,
         "lm71_shear_static": lm_v, "dx_m": float(envs[0].dx) if envs else math.nan,
