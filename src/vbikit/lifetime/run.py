@@ -153,6 +153,8 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
     if n_blocks < need:
         raise LifetimeError(f"days: {spec.n_days} day(s) give {n_blocks} {'daily' if spec.block == 'day' else 'weekly'} maxima; a {spec.distribution} "
                             f"fit needs at least {need} ({_block_advice(spec.block, spec.distribution, need)})")
+    if spec.block == "week" and spec.n_days % 7:
+        raise LifetimeError(_partial_week_message(spec))
     trucks = model.trucks_per_day * spec.n_days
     events = trucks  # at most one event a truck
     sampled = spec.fatigue.dynamic_sample * events
@@ -177,6 +179,21 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             "--max-memory (vbikit lifetime) or max_memory= (run_lifetime), or simulate fewer days")
     return Prepared(spec, base_dir, model, key, setup, tuple(details), hours,
                     {"n_records": len(records), "records": str(records_path.name)})
+
+
+def _partial_week_message(spec: LifetimeFile) -> str:
+    """Weekly blocks of a duration that is not whole weeks: the days left over would be simulated and
+    then left out of the block maxima (the fit takes whole weeks), silently, their largest event
+    too; refused with the whole-week durations either side."""
+    n, left = spec.n_days, spec.n_days % 7
+    lo, hi = n - left, n - left + 7
+    if spec.days is not None:
+        what = f"days: {n} days are {n // 7} whole weeks and {left} day(s)"
+    else:
+        what = (f"years: {spec.years:g} year(s) of days_per_year = {spec.days_per_year:g} are {n} days, {n // 7} whole "
+                f"weeks and {left} day(s)")
+    return (f"{what}; block = \"week\" fits the maxima of whole weeks, so the last {left} simulated day(s) would be "
+            f"left out of the block maxima, their largest events too: give days = {lo} or {hi}, or block = \"day\"")
 
 
 def _block_advice(block: str, distribution: str, need: int) -> str:
