@@ -8,8 +8,10 @@
 * headways by flow: two regimes split at ``CONGESTED_HEADWAY`` = 1.5 s (congested traffic has
   headways below about 1.5 s).  A fraction p_c of a lane's recorded headways is congested; the
   generator draws a congested headway (uniform between the smallest recorded headway h_min and
-  1.5 s) with probability p_c, else a free-flowing one: h_min + Exp(mean 3600/q_h − h_min), the
-  shifted exponential of Poisson arrivals at the hour's flow;
+  1.5 s) with probability p_c, else a free-flowing one: h_min + an exponential part of mean
+  m_h = (3600/q_h − p_c h̄_c)/(1 − p_c) − h_min (h̄_c the mean congested headway), so that the mean
+  headway is 3600/q_h, drawn at the flow of each hour it runs through (a Poisson process of
+  piecewise-constant rate: a gap drawn at a quiet hour does not run on through the busy ones);
 * the class mix: vehicles classed by their number of axles, each class's share;
 * per class, the gross vehicle weight (GVW) as a normal mixture of up to two components
   (empty / loaded), fitted by expectation–maximisation (Dempster, Laird & Rubin 1977; the
@@ -161,16 +163,39 @@ class TrafficModel:
         """Arrival times [s] of one lane over one day starting at t0 (hour by hour flows)."""
         out = []
         t = 0.0
+        h_min, p_c = lane.min_headway, lane.congested_fraction
+        h_c = 0.5 * (h_min + max(CONGESTED_HEADWAY, h_min))  # the mean congested headway
+
+        def free_excess(q: float) -> float:
+            """Mean of the exponential part of a free-flowing headway at flow q [1/h], such that the
+            mean headway of both regimes together is 3600/q (the recorded headways include the
+            congested ones)."""
+            return max((3600.0 / q - p_c * h_c) / (1.0 - p_c) - h_min, 1e-3)
+
         while t < SECONDS_PER_DAY:
             q = lane.hourly_flow[min(int(t // 3600), 23)]
             if q <= 0:
                 t = (int(t // 3600) + 1) * 3600.0
                 continue
-            if rng.random() < lane.congested_fraction:
-                h = rng.uniform(lane.min_headway, max(CONGESTED_HEADWAY, lane.min_headway))
+            if p_c >= 1.0 or rng.random() < p_c:
+                t += rng.uniform(h_min, max(CONGESTED_HEADWAY, h_min))
             else:
-                h = lane.min_headway + rng.exponential(max(3600.0 / q - lane.min_headway, 1e-3))
-            t += h
+                # the exponential part at the flow of each hour it runs through (a Poisson process
+                # of piecewise-constant rate): a gap drawn at a quiet hour's flow does not run on
+                # through the busy hours after it
+                e = rng.exponential(1.0)
+                t += h_min
+                while t < SECONDS_PER_DAY:
+                    hour = min(int(t // 3600), 23)
+                    q_h = lane.hourly_flow[hour]
+                    end = (hour + 1) * 3600.0
+                    if q_h > 0:
+                        m = free_excess(q_h)
+                        if e * m <= end - t:
+                            t += e * m
+                            break
+                        e -= (end - t) / m
+                    t = end
             if t < SECONDS_PER_DAY:
                 out.append(t)
         return t0 + np.asarray(out)
