@@ -96,3 +96,28 @@ def test_congested_headways_do_not_add_to_the_flow():
     n = sum(base.arrivals(lane, rng, 0.0).size for _ in range(10))
     expected = 300.0 * 24 * 10
     assert abs(n - expected) < 4 * np.sqrt(expected), n / expected
+
+
+def test_trucks_per_day_beyond_the_headways_is_refused():
+    """The example's records (smallest headways 2.129 s and 2.001 s, busiest hours 80 and 63
+    trucks/h) can carry at most 38,256 trucks a day: lane 1's busiest hour scaled to 3600/2.129 =
+    1,691/h.  Asked for more, the generator fell short without a word (audit, 2026-12-06: 65,411
+    generated for 100,000 asked, −35 %; 49,102 for 50,000); now refused, naming the key and the
+    largest; 38,000 is generated within 0.3 %."""
+    from vbikit.lifetime.run import prepare
+    from vbikit.lifetime.spec import LifetimeError
+
+    base = _wim_model()
+    top = base.max_scale() * base.trucks_per_day
+    lane1 = base.lanes[0]
+    assert top == pytest.approx(base.trucks_per_day * (3600.0 / lane1.min_headway) / max(lane1.hourly_flow), rel=1e-12)
+    assert top == pytest.approx(38256.1, abs=0.1)
+    spec = {"days": 5, "traffic": {"records": "examples/lifetime/wim.csv", "trucks_per_day": 50000.0},
+            "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "budget_hours": 10000,
+            "load_effects": [{"kind": "moment", "x": 4.0, "name": "M"}]}
+    with pytest.raises(LifetimeError, match=r"^traffic\.trucks_per_day: 50000 trucks a day .* at most 38,256 trucks a day$"):
+        prepare(spec, ".", max_memory=1e12)
+    model = base.scaled(38000.0 / base.trucks_per_day)
+    rng = np.random.default_rng(0)
+    n = sum(model.arrivals(lane, rng, 0.0).size for lane in model.lanes)
+    assert n == pytest.approx(38000, rel=3e-3)

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import logging
+import math
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -123,7 +124,15 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
     except ValueError as err:
         raise LifetimeError(f"traffic.records: {records_path.name}: {err}") from None
     if spec.traffic.trucks_per_day is not None:
-        model = model.scaled(spec.traffic.trucks_per_day / model.trucks_per_day)
+        factor = spec.traffic.trucks_per_day / model.trucks_per_day
+        top = model.max_scale()
+        if factor > top * (1 + 1e-9):
+            raise LifetimeError(
+                f"traffic.trucks_per_day: {spec.traffic.trucks_per_day:g} trucks a day would ask the busiest hour of "
+                f"{records_path.name}'s profile for more trucks than its lanes' smallest recorded headways allow "
+                f"(lane by lane, at most 3600/h_min an hour, with the congested share of the headways); the "
+                f"generator would fall short of it; at most {math.floor(model.trucks_per_day * top):,} trucks a day")
+        model = model.scaled(factor)
     if spec.traffic.speed_kmh is not None:
         model = model.with_speed(spec.traffic.speed_kmh / 3.6)
     base = base_sections(spec, base_dir)

@@ -127,6 +127,14 @@ class LaneModel:
         """Trucks a day."""
         return float(sum(self.hourly_flow))
 
+    @property
+    def max_flow(self) -> float:
+        """The largest flow [trucks/h] the headway model can generate: every free-flowing headway at
+        its least, h_min (the congested ones uniform on [h_min, 1.5 s])."""
+        h_c = 0.5 * (self.min_headway + max(CONGESTED_HEADWAY, self.min_headway))
+        p_c = min(max(self.congested_fraction, 0.0), 1.0)
+        return 3600.0 / (p_c * h_c + (1.0 - p_c) * self.min_headway)
+
 
 @dataclass(frozen=True)
 class TrafficModel:
@@ -151,6 +159,12 @@ class TrafficModel:
     def with_speed(self, speed: Optional[float]) -> "TrafficModel":
         """Every vehicle at ``speed`` [m/s] (None: the fitted or recorded speeds)."""
         return TrafficModel(self.lanes, self.classes, self.records, self.mode, speed)
+
+    def max_scale(self) -> float:
+        """The largest factor of ``scaled`` whose every hourly flow the headway model can generate
+        (``LaneModel.max_flow``); above it the generated flows fall short of those asked for."""
+        return float(min((ln.max_flow / max(ln.hourly_flow) for ln in self.lanes if max(ln.hourly_flow) > 0),
+                         default=math.inf))
 
     def scaled(self, factor: float) -> "TrafficModel":
         """The same traffic with every flow times ``factor`` (e.g. a target trucks a day)."""
