@@ -205,6 +205,8 @@ def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega
                             best = max(best, abs(se))
                         for i in range(n_m):
                             err += abs(r[e, i]) * ex[i]
+                    if best > sampled[q]:  # a value read at an instant, as a sample is
+                        sampled[q] = best
                     if best > peak[q]:
                         peak[q] = best
                         cut[q] = best / 1.25
