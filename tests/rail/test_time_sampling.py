@@ -175,6 +175,13 @@ def _shear_case(section: float, axles, v: float, dx: float, n_modes: int = 1):
     return env, exact, model
 
 
+def test_the_limits_are_read_as_the_coupled_runs_read_them():
+    """One offset δ for the one-sided limits, the sweep's and ``vbikit.analysis.instants``'."""
+    from vbikit.analysis import instants
+
+    assert moving_loads.KNOT_OFFSET == instants.KNOT_OFFSET
+
+
 def _without_limits(monkeypatch):
     """The sweep with no one-sided limits at the instants (the kink rule kept): the sample stands."""
     keep = moving_loads.instant_table

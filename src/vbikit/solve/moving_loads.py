@@ -383,7 +383,8 @@ class MovingLoadEnvelopes:
     ``CrossingResult.unconverged_steps``; None: moving forces, nothing iterated).
 
     The time sampling of each dynamic peak (``peak_between_samples``; moving forces): ``*_sampling_change``
-    (relative) what the largest time sample fell short of the peak taken between the samples, and
+    (relative) what the largest time sample, or one-sided limit at an axle's passage, fell short of the peak taken
+    between the samples (what a vertex added), and
     ``*_sampling_bound`` (relative) the estimated bound of the peak's remaining time-sampling error,
     for the acceleration and displacement (n_v, n_p) and the effects (n_v, n_e); NaN: not estimated
     (coupled cars: sampled peaks).
