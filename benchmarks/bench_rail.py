@@ -98,14 +98,15 @@ def main() -> None:
     for (k, v), peak in zip(pairs, peaks):
         j = int(np.argmin(np.abs(speeds - v)))
         e = envs[k - 1]
-        # simulate's peak is its largest sample: against the sweep's largest sample (its peak between the samples
-        # less what that moved it, ``acceleration_sampling_change``)
+        # simulate's peak is its largest sample: against the sweep's largest value read (its peak between the samples
+        # less what a vertex moved it, ``acceleration_sampling_change``: a sample, or a one-sided limit at an axle's
+        # passage, which may lie a little above simulate's samples)
         sampled = e.max_acceleration[j] * (1.0 - e.acceleration_sampling_change[j])
         worst = max(worst, abs(sampled.max() / peak - 1))
     print(f"largest relative difference of the sampled peak acceleration, fast vs simulate: {worst:.2e}")
     change = max(float(np.max(e.acceleration_sampling_change)) for e in envs)
     bound = max(float(np.max(e.acceleration_sampling_bound)) for e in envs)
-    print(f"peaks between the time samples: the largest samples up to {100 * change:.3f} % low, remaining error "
+    print(f"peaks between the time samples: the largest samples or limits up to {100 * change:.3f} % low, remaining error "
           f"bound up to {100 * bound:.3f} % (any train, speed and point)")
 
 

@@ -207,7 +207,7 @@ FLAG_CODES: dict[str, str] = {
     "time_sampling_error": "railway sweep: the peaks of a check depend on the time step h = dx / v "
                            "(``vbikit.solve.moving_loads``: peaks taken between the samples); output: acceleration, "
                            "moment, shear or deflection; value: the governing peak's larger of how far its largest time "
-                           "sample lies below the peak taken between the samples and the estimated bound of its "
+                           "sample or one-sided limit at an axle's passage lies below the peak taken between the samples and the estimated bound of its "
                            "remaining error (relative), or else the largest such bound of a peak of the sweep as a share "
                            "of the largest peak; threshold: ``TIME_SAMPLING_TOLERANCE`` (0.005)",
 }

@@ -182,8 +182,9 @@ def sampling_extremes(ds, kind: str) -> dict[str, float]:
 def time_sampling_flags(checks: dict[str, Any], kinds: tuple[str, ...] = tuple(GRID_CHECKS),
                         tolerance: float = TIME_SAMPLING_TOLERANCE) -> list[Flag]:
     """A ``time_sampling_error`` flag for every check of ``kinds`` whose peaks depend on the time step:
-    its governing peak's largest time sample more than ``tolerance`` (relative) below the peak taken
-    between the samples (``time_sampling_change``) or the estimated bound of that peak's remaining
+    its governing peak's largest value read at a time sample or at an axle's passage (the one-sided
+    limits there) more than ``tolerance`` (relative) below the peak taken between the samples
+    (``time_sampling_change``: what a vertex added) or the estimated bound of that peak's remaining
     error (``time_sampling_bound``) at or above it, or else a peak of the sweep whose bound reaches
     ``tolerance`` of the largest peak (``largest_time_sampling_bound``, ``sampling_extremes``: it may lie
     that much higher and govern)."""
@@ -211,12 +212,12 @@ def time_sampling_flags(checks: dict[str, Any], kinds: tuple[str, ...] = tuple(G
 
 def sampling_words(change: float, bound: float, digits: int = 2) -> str:
     """A peak's time sampling in words: "its largest time sample is 0.12 % below the peak taken between
-    the samples, which may be off by up to 0.01 %", or, where the sample stands (an axle enters, leaves
-    or passes the section within a step of it: ``change`` 0), "its largest time sample stands (an axle's
-    passage within a step of it), the peak between the samples up to 0.53 % above it"."""
+    the samples, which may be off by up to 0.01 %", or, where no vertex moved it (``change`` 0: a sample,
+    or the one-sided limit where an axle enters, leaves or passes the section), "it is read at a time
+    sample or at an axle's passage (the limit beside the jump or kink), off by up to 0.53 %"."""
     if change == 0.0:
-        return (f"its largest time sample stands (an axle enters, leaves or passes the section within a step of "
-                f"it), the peak between the samples up to {100 * bound:.{digits}f} % above it")
+        return (f"it is read at a time sample or at an axle's passage (the limit beside the jump or kink), off by up "
+                f"to {100 * bound:.{digits}f} %")
     return (f"its largest time sample is {100 * change:.{digits}f} % below the peak taken between the samples, "
             f"which may be off by up to {100 * bound:.{digits}f} %")
 
@@ -224,8 +225,7 @@ def sampling_words(change: float, bound: float, digits: int = 2) -> str:
 def _time_sampling_line(checks: dict[str, Any], dx: float, tolerance: float) -> str:
     """The report's one statement of the time sampling's error: for every check's governing peak how
     far its largest time sample lies below the peak taken between the samples and the bound of the
-    remaining error (or, where the sample stands at an axle's passage, how far the peak may lie above
-    it), and over the sweep the largest of each as a share of the largest peak (``sampling_extremes``;
+    remaining error (or, where it is read at a sample or at an axle's passage, that bound alone), and over the sweep the largest of each as a share of the largest peak (``sampling_extremes``;
     ``!`` where ``time_sampling_error`` flags it)."""
     parts = []
     for kind, name in GRID_CHECKS.items():
@@ -235,7 +235,7 @@ def _time_sampling_line(checks: dict[str, Any], dx: float, tolerance: float) -> 
             parts.append(f"{name} not estimated (coupled cars govern it: sampled peaks)")
             continue
         mark = " !" if has_flag(checks, "time_sampling_error", output=kind) else ""
-        own = (f"sample kept at an axle's passage, the peak up to {100 * bound:.3f} % above it" if change == 0.0 else
+        own = (f"read at a sample or an axle's passage, off by up to {100 * bound:.3f} %" if change == 0.0 else
                f"largest sample {100 * change:.3f} % low, remaining error up to {100 * bound:.3f} %")
         worst = ""
         if math.isfinite(c.get("largest_time_sampling_bound", math.nan)):
@@ -243,8 +243,8 @@ def _time_sampling_line(checks: dict[str, Any], dx: float, tolerance: float) -> 
                      f"{100 * c['largest_time_sampling_bound']:.3f} % of the largest peak")
         parts.append(f"{name} {own}{worst}{mark}")
     return (f"time sampling error of the governing peaks (each taken between the samples, every {1e3 * dx:.1f} mm of "
-            f"travel, as the vertex of a parabola through the largest samples, the sample kept where an axle enters, "
-            f"leaves or passes the section; flagged at {100 * tolerance:g} %): " + "; ".join(parts))
+            f"travel, as the vertex of a parabola through the largest samples, the one-sided limits read where an axle "
+            f"enters, leaves or passes the section; flagged at {100 * tolerance:g} %): " + "; ".join(parts))
 
 
 def damping_extra(attrs) -> str:

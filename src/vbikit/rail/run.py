@@ -384,9 +384,11 @@ TIME_SAMPLING_METHOD = (
     "every dynamic peak (deck acceleration and deflection, moment, shear) taken between the time samples h = dx / v: "
     "the vertex of the parabola through each local maximum of the sampled history and its two neighbours, except "
     "where an axle enters or leaves the deck or passes the effect's section or a support within those two steps "
-    "(the history kinks or jumps there: the sample stands); *_sampling_change: how far the largest sample fell "
-    "below the peak; *_sampling_bound: the estimated bound of the remaining error (a vertex: the three-point "
-    "interpolation's remainder h^3 max|y'''|/(9 sqrt 3), y''' from the third differences; a sample next to a kink: "
+    "(the history kinks or jumps there: the sample stands), and the one-sided limits at each such passage (the loads "
+    "and static effects exact, the modal state by cubic Hermite interpolation); *_sampling_change: how far the "
+    "largest sample or limit fell below the peak (what a vertex added); *_sampling_bound: the estimated bound of "
+    "the remaining error (a vertex: the three-point interpolation's remainder h^3 max|y'''|/(9 sqrt 3), y''' from "
+    "the third differences; a one-sided limit: the Hermite interpolation's remainder; a sample next to a kink: "
     "how far the one-sided limits there, extrapolated from either side, lie above it); coupled cars: sampled "
     "peaks, NaN")
 
@@ -397,7 +399,8 @@ def time_sampling_variables(samp: dict[str, np.ndarray], mid: int, col: np.ndarr
     each (train, speed, n)); ``mid`` the midspan point, ``col`` the effect of each moment section."""
     import xarray as xr
 
-    change_words = "relative amount by which the largest time sample falls below the peak {} taken between the samples"
+    change_words = ("relative amount by which the largest time sample or one-sided limit at an axle's passage falls "
+                    "below the peak {} taken between the samples")
     bound_words = "estimated bound of the relative error the time sampling leaves in the peak {}"
     outputs = {"deck_acceleration": (("train", "speed", "point"), "acceleration", slice(None), "deck acceleration at each point"),
                "deflection": (("train", "speed"), "displacement", mid, "midspan deflection"),

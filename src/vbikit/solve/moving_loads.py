@@ -37,15 +37,24 @@ output; each local maximum of |y| is taken at the vertex of the parabola through
 neighbours (the arithmetic of ``vbikit.analysis.impact.smooth_vertices``, ``vbikit._vertex.parabola``
 compiled), unless an axle stands on a support line (entering or leaving: the modal loads kink, or
 jump on a support that moves) or, for a load effect, on its section or another of its kinks
-(``vbikit.bridge.effects.kink_positions``) within the two steps — then the sample stands.  The axles'
-positions do not depend on the speed (sample j has the first axle at (j − 1) Δx), so those steps are
-found once per train (``kink_instants``, ``kink_steps``).  The peak is the largest candidate; with it
-the sweep states ``*_sampling_change`` = (peak − largest sample)/peak and ``*_sampling_bound``, the
-estimated bound of its remaining error (``sampling_error``): for a vertex the three-point Lagrange
-remainder h³ max|y‴|/(9√3) with h³ y‴ read off the third differences beside it (it covered a pure
-cosine's vertex error by a factor of at least 1.5 up to 4 samples a period), for a sample kept at a
-kink how far the one-sided limits there, extrapolated from either side, lie above it.  The first-order
-hold's own error (above) is not part of it.
+(``vbikit.bridge.effects.kink_positions``) within the two steps — then the sample stands, and the
+history's one-sided limits y(τ−), y(τ+) at each such instant τ are candidates too, as
+``vbikit.analysis.instants`` takes them for the coupled runs: everything but the modal state is known
+exactly at τ (the axles' positions), so the modal loads pᵢ(τ±) and each effect's static value R_st(τ±)
+at τ ∓ δ (δ = ``KNOT_OFFSET`` of a step) are tabulated once per train (``instant_table``), and inside
+the loop ξᵢ(τ), ξ̇ᵢ(τ) follow by cubic Hermite interpolation of (ξᵢ, ξ̇ᵢ) at the step's two samples (ξ
+is smooth, ξ̇ continuous): Σ φ ξ(τ), Σ φ ξ̈(τ±) with ξ̈ = p(τ±) − 2ζωξ̇ − ω²ξ, R_st(τ±) + Σ rᵢ (ξᵢ −
+pᵢ(τ±)/ωᵢ²).  (A jump's sample, a fraction of a step after it, missed up to a step's change: 0.5 … 0.6 %
+for the shear at an entry support on a 20 m span.)  The axles' positions do not depend on the speed
+(sample j has the first axle at (j − 1) Δx), so the instants and their steps are found once per train
+(``kink_instants``, ``kink_steps``).  The peak is the largest candidate; with it the sweep states
+``*_sampling_change`` = (peak − largest value read, at a sample or as a limit)/peak, what a vertex
+added, and ``*_sampling_bound``, the estimated bound of its remaining error (``sampling_error``): for
+a vertex the three-point Lagrange remainder h³ max|y‴|/(9√3) with h³ y‴ read off the third
+differences beside it (it covered a pure cosine's vertex error by a factor of at least 1.5 up to 4
+samples a period), for a limit the Hermite interpolation's remainder (``_peaks``), for a sample kept at
+a kink how far the one-sided limits there, extrapolated from either side, lie above it.  The
+first-order hold's own error (above) is not part of it.
 """
 from __future__ import annotations
 
@@ -82,7 +91,7 @@ _parabola = njit(cache=True)(_three_point_parabola)
 
 @njit(cache=True, fastmath=False, error_model="numpy")
 def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega2, damp, kink_step,
-           group):  # pragma: no cover (compiled)
+           group, h, e_step, e_w, e_group, e_load, e_static, g_ptr, g_q):  # pragma: no cover (compiled)
     """The recurrence ξ_{n+1} = a11 ξ_n + a12 ξ̇_n + b1 p_n + c1 p_{n+1} (ξ̇ likewise) over ``n_total``
     samples (p zero beyond its rows) and two more, tracking the peaks of the quantities q: |Σ φ ξ̈| at
     each point, then |Σ φ ξ| at each point, then |R_st + Σ r (ξ − p/ω²)| of each effect (ξ̈ = p − damp ξ̇
@@ -93,9 +102,20 @@ def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega
     no kink of the history lies on the two steps (``kink_step[group[q], j]``: an instant where the
     history may jump or kink lies on the step from sample j to j + 1; steps beyond its columns:
     none), else the sample itself.
+    The one-sided limits at the kink instants are candidates too (``InstantTable``, entries sorted by
+    step): entry k lies on the step ``e_step[k]`` → + 1 at the fraction ``e_w[k]`` (h [s] the step);
+    ξ, ξ̇ there by cubic Hermite interpolation of the two samples' (ξ, ξ̇), the modal loads
+    ``e_load[k, s]`` and the static effect ``e_static[k, s]`` (of group ``e_group[k]``'s effect) exact
+    on either side s (τ − δ, τ + δ), for the quantities ``g_q[g_ptr[g]:g_ptr[g + 1]]`` of that group:
+    Σ φ ξ(τ), Σ φ ξ̈(τ±) with ξ̈ = p(τ±) − damp ξ̇ − ω² ξ, R_st(τ±) + Σ r (ξ − p(τ±)/ω²).  Each carries
+    the bound of the interpolation's remainder (``hermite``, absolute): with e = ξ − H (H the Hermite
+    cubic) e = ė = 0 at both samples, so |e(w)| ≤ M h² min(w, 1 − w)²/2 and |ė| ≤ M h min(w, 1 − w),
+    M = max |ξ̈ − H''| read at the two samples and at τ± (ξ̈ is near linear on either side of τ).
     Returns per quantity the largest candidate (``peak``), the largest sample (``sampled``), the
-    candidate's sample index, whether it is a vertex, and the five samples c − 2 … c + 2 about it
-    (the history is 0 before the first sample)."""
+    candidate's sample index, whether it is a vertex, the five samples c − 2 … c + 2 about it
+    (the history is 0 before the first sample) and, where the candidate is a limit at an instant,
+    its Hermite bound (else NaN; the centre is then the step's first sample and the window holds
+    the samples c − 3 … c + 1)."""
     n_m = a11.size
     n_p, n_e = phi.shape[0], r.shape[0]
     n_q = 2 * n_p + n_e
@@ -111,9 +131,20 @@ def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega
     centre = np.full(n_q, -1, np.int64)
     vertex = np.zeros(n_q, np.bool_)
     window = np.zeros((n_q, 5))
+    hermite = np.full(n_q, np.nan)
+    n_ent = e_step.size
+    k_ent = 0
+    xp = np.zeros(n_m)  # the previous sample's ξ, ξ̇, ξ̈
+    vp = np.zeros(n_m)
+    ap = np.zeros(n_m)
+    xt = np.zeros(n_m)  # ξ, ξ̇ at an instant, the bounds of their interpolation
+    vt = np.zeros(n_m)
+    ex = np.zeros(n_m)
+    ev = np.zeros(n_m)
     for n in range(n_total + 2):
         for i in range(n_m):
             p1 = p[n, i] if n < n_rows else 0.0
+            xp[i], vp[i], ap[i] = x[i], v[i], xa[i]
             if n > 0:
                 p0 = p[n - 1, i] if n - 1 < n_rows else 0.0
                 x0, v0 = x[i], v[i]
@@ -135,6 +166,65 @@ def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega
                 pi = p[n, i] if n < n_rows else 0.0
                 s += r[e, i] * (x[i] - pi / omega2[i])
             y[2 * n_p + e] = s
+        while k_ent < n_ent and e_step[k_ent] < n:  # the instants on the step n − 1 → n
+            if e_step[k_ent] == n - 1:
+                w = e_w[k_ent]
+                g = e_group[k_ent]
+                w2, w3 = w * w, w * w * w
+                h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, 3 * w2 - 2 * w3, w3 - w2
+                d00, d10, d11 = 6 * w2 - 6 * w, 3 * w2 - 4 * w + 1, 3 * w2 - 2 * w
+                s00, s10, s11 = 12 * w - 6, 6 * w - 4, 6 * w - 2
+                near = min(w, 1.0 - w)
+                for i in range(n_m):
+                    xt[i] = h00 * xp[i] + h01 * x[i] + h * (h10 * vp[i] + h11 * v[i])
+                    vt[i] = d00 * (xp[i] - x[i]) / h + d10 * vp[i] + d11 * v[i]
+                    # H'' at the two samples and at w; ξ̈ there (samples) and at τ ± (the exact loads)
+                    hx = (xp[i] - x[i]) / (h * h)
+                    m = max(abs(ap[i] - (-6 * hx + (-4 * vp[i] - 2 * v[i]) / h)),
+                            abs(xa[i] - (6 * hx + (2 * vp[i] + 4 * v[i]) / h)))
+                    hw = s00 * hx + (s10 * vp[i] + s11 * v[i]) / h
+                    for side in range(2):
+                        m = max(m, abs(e_load[k_ent, side, i] - damp[i] * vt[i] - omega2[i] * xt[i] - hw))
+                    ex[i] = 0.5 * m * h * h * near * near
+                    ev[i] = m * h * near
+                for j in range(g_ptr[g], g_ptr[g + 1]):
+                    q = g_q[j]
+                    best = 0.0
+                    err = 0.0
+                    if q < n_p:  # acceleration at point q: both sides
+                        for side in range(2):
+                            sa = 0.0
+                            for i in range(n_m):
+                                sa += phi[q, i] * (e_load[k_ent, side, i] - damp[i] * vt[i] - omega2[i] * xt[i])
+                            best = max(best, abs(sa))
+                        for i in range(n_m):
+                            err += abs(phi[q, i]) * (omega2[i] * ex[i] + damp[i] * ev[i])
+                    elif q < 2 * n_p:  # deflection: continuous
+                        sd = 0.0
+                        for i in range(n_m):
+                            sd += phi[q - n_p, i] * xt[i]
+                            err += abs(phi[q - n_p, i]) * ex[i]
+                        best = abs(sd)
+                    else:
+                        e = q - 2 * n_p
+                        for side in range(2):
+                            se = e_static[k_ent, side]
+                            for i in range(n_m):
+                                se += r[e, i] * (xt[i] - e_load[k_ent, side, i] / omega2[i])
+                            best = max(best, abs(se))
+                        for i in range(n_m):
+                            err += abs(r[e, i]) * ex[i]
+                    if best > sampled[q]:  # a value read at an instant, as a sample is
+                        sampled[q] = best
+                    if best > peak[q]:
+                        peak[q] = best
+                        cut[q] = best / 1.25
+                        centre[q] = n - 1
+                        vertex[q] = False
+                        hermite[q] = err
+                        for jj in range(5):
+                            window[q, jj] = ring[(n + 1 + jj) % 5, q]  # samples n − 4 … n
+            k_ent += 1
         c = n - 2  # the candidate: sample c, with c − 2 … c + 2 in the ring
         if c < 1:
             continue
@@ -174,9 +264,10 @@ def _peaks(p, static, n_total, a11, a12, a21, a22, b1, b2, c1, c2, phi, r, omega
                 cut[q] = best / 1.25
                 centre[q] = c
                 vertex[q] = took
+                hermite[q] = np.nan
                 for j in range(5):
                     window[q, j] = ring[(c + 3 + j) % 5, q]
-    return peak, sampled, centre, vertex, window
+    return peak, sampled, centre, vertex, window, hermite
 
 
 def _filter_coefficients(omega: NDArray[np.float64], zeta: NDArray[np.float64], h: float):
@@ -292,7 +383,8 @@ class MovingLoadEnvelopes:
     ``CrossingResult.unconverged_steps``; None: moving forces, nothing iterated).
 
     The time sampling of each dynamic peak (``peak_between_samples``; moving forces): ``*_sampling_change``
-    (relative) what the largest time sample fell short of the peak taken between the samples, and
+    (relative) what the largest time sample, or one-sided limit at an axle's passage, fell short of the peak taken
+    between the samples (what a vertex added), and
     ``*_sampling_bound`` (relative) the estimated bound of the peak's remaining time-sampling error,
     for the acceleration and displacement (n_v, n_p) and the effects (n_v, n_e); NaN: not estimated
     (coupled cars: sampled peaks).
@@ -354,6 +446,58 @@ def kink_steps(instants: Sequence[NDArray[np.float64]], n_steps: int) -> NDArray
     return out
 
 
+#: the one-sided limits at an instant τ are read at τ ∓ this fraction of a step (as
+#: ``vbikit.analysis.instants.KNOT_OFFSET`` for the coupled runs)
+KNOT_OFFSET = 1e-6
+
+
+@dataclass(frozen=True)
+class InstantTable:
+    """A train's kink instants (``kink_instants``) with everything but the modal state known there,
+    shared by every speed: entry k (sorted by step) of group ``group[k]`` lies on the step from sample
+    ``step[k]`` to + 1 at the fraction ``w[k]``; ``modal_load[k, s]`` (n_m) the modal loads and
+    ``static[k, s]`` the static value of the group's effect (0 for the deck's group 0) at τ − δ (s = 0)
+    and τ + δ (s = 1), δ = ``KNOT_OFFSET`` steps, with the axles on the deck there."""
+
+    step: NDArray[np.int64]
+    w: NDArray[np.float64]
+    group: NDArray[np.int64]
+    modal_load: NDArray[np.float64]   # (n_k, 2, n_m)
+    static: NDArray[np.float64]       # (n_k, 2)
+
+
+def instant_table(bridge: ModalBridge, instants: Sequence[NDArray[np.float64]], axle_positions: ArrayLike,
+                  axle_loads: ArrayLike, dx: float, effects: Sequence[LoadEffect] = (), y: float = 0.0) -> InstantTable:
+    """The ``InstantTable`` of ``instants`` (per group: the deck's, then one per effect), each side's
+    modal loads −Σ_k φ_i(x_k) P_k and static effect −Σ_k I(x_k) P_k from the axles' exact positions
+    x_k = (u ∓ δ − 1) Δx − a_k (only those on the deck, 0 ≤ x_k ≤ L), as ``load_table`` at the samples."""
+    a = np.asarray(axle_positions, float)
+    pk = np.asarray(axle_loads, float)
+    u = np.concatenate([np.asarray(x, float) for x in instants]) if instants else np.zeros(0)
+    g = np.concatenate([np.full(len(x), k, np.int64) for k, x in enumerate(instants)]) if instants else np.zeros(0, np.int64)
+    tol = INSTANT_TOLERANCE * (1.0 + np.abs(u))
+    step = np.floor(u + tol).astype(np.int64)
+    w = np.clip(u - step, 0.0, 1.0)
+    order = np.lexsort((g, step))
+    u, g, step, w = u[order], g[order], step[order], w[order]
+    n_m = bridge.omega.size
+    load = np.zeros((u.size, 2, n_m))
+    static = np.zeros((u.size, 2))
+    for side, sign in enumerate((-1.0, 1.0)):
+        x = ((u + sign * KNOT_OFFSET - 1.0) * dx)[:, None] - a[None, :]
+        on = (x >= 0.0) & (x <= bridge.span)
+        rows, cols = np.nonzero(on)
+        if rows.size:
+            phi = bridge.mode_shapes(x[rows, cols], np.full(rows.size, y))
+            np.add.at(load[:, side], rows, -phi * pk[cols, None])
+        for e, effect in enumerate(effects):
+            mine = on & (g == e + 1)[:, None]
+            rr, cc = np.nonzero(mine)
+            if rr.size:
+                np.add.at(static[:, side], rr, -effect.influence(x[rr, cc], np.full(rr.size, y)) * pk[cc])
+    return InstantTable(step, w, g, load, static)
+
+
 def nearest_instant(instants: Sequence[NDArray[np.float64]], group: NDArray[np.int64],
                     centre: NDArray[np.int64]) -> NDArray[np.float64]:
     """u − c of the instant of ``instants[group]`` nearest to each sample ``centre`` c, when within one
@@ -378,8 +522,8 @@ LAGRANGE_FACTOR = 1.0 / (9.0 * math.sqrt(3.0))
 
 
 def sampling_error(peak: NDArray[np.float64], sampled: NDArray[np.float64], vertex: NDArray[np.bool_],
-                   window: NDArray[np.float64], kinked: NDArray[np.bool_], instant: NDArray[np.float64]
-                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+                   window: NDArray[np.float64], kinked: NDArray[np.bool_], instant: NDArray[np.float64],
+                   hermite: Optional[NDArray[np.float64]] = None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(change, bound), relative to each peak: ``_peaks``' outputs (any leading shape), ``kinked``
     (..., 4) whether the steps c − 2 … c + 1 about the peak's sample c hold a kink and ``instant``
     the offset u − c of the kink nearest to c (``nearest_instant``; NaN: none within a step).
@@ -392,7 +536,8 @@ def sampling_error(peak: NDArray[np.float64], sampled: NDArray[np.float64], vert
     the one-sided limits of the jump or the corner, read to a step's second difference; where no side
     has two such samples, the largest change over a kink-free step of the four (all four when none
     is) — a history moves about that much over the part of a step between the sample and the kink.
-    A flat top's sample: the same rule without a kink (0)."""
+    A flat top's sample: the same rule without a kink (0).  A one-sided limit at a kink instant
+    (``hermite`` finite: ``_peaks``' absolute bound of its cubic Hermite interpolation): that bound."""
     w = window
     sg = np.where(w[..., 2] >= 0, 1.0, -1.0)
     d3 = np.abs(np.stack([w[..., 3] - 3 * w[..., 2] + 3 * w[..., 1] - w[..., 0],
@@ -420,6 +565,8 @@ def sampling_error(peak: NDArray[np.float64], sampled: NDArray[np.float64], vert
     have = np.isfinite(limits)
     kept = np.where(have, np.maximum(limits - sg * w[..., 2], 0.0), step)
     absolute = np.where(vertex, LAGRANGE_FACTOR * third, kept)
+    if hermite is not None:
+        absolute = np.where(np.isfinite(hermite), hermite, absolute)
     safe = np.where(peak > 0, peak, 1.0)
     change = np.where(peak > 0, (peak - sampled) / safe, 0.0)
     bound = np.where(peak > 0, absolute / safe, 0.0)
@@ -476,18 +623,22 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
     instants = kink_instants(_kink_positions(bridge, effects, y), a, dx)
     kinks = kink_steps(instants, table.n_forced + 1)
     group = np.concatenate([np.zeros(2 * n_p, np.int64), 1 + np.arange(n_e, dtype=np.int64)])
+    at = instant_table(bridge, instants, a, axle_loads, dx, effects, y)
+    g_q = np.argsort(group, kind="stable").astype(np.int64)  # the quantities of each group, in order
+    g_ptr = np.searchsorted(group[g_q], np.arange(len(instants) + 1)).astype(np.int64)
+    hermite = np.empty((v.size, n_q))
     for k, speed in enumerate(v):
         h = dx / float(speed)
         c = exact_step(omega, zeta, h)
         n_total = table.n_forced + int(math.ceil(fv / h))
-        out["peak"][k], out["sampled"][k], centre[k], vertex[k], window[k] = _peaks(
+        out["peak"][k], out["sampled"][k], centre[k], vertex[k], window[k], hermite[k] = _peaks(
             p_tab, st_tab, n_total, c.a11, c.a12, c.a21, c.a22, c.b1, c.b2, c.c1, c.c2, phi_c, r_c, omega2, damp, kinks,
-            group)
+            group, h, at.step, at.w, at.group, at.modal_load, at.static, g_ptr, g_q)
     j = centre[..., None] + np.arange(-2, 2)  # the steps c − 2 … c + 1 about each peak's sample
     inside = (j >= 0) & (j < kinks.shape[1])
     kinked = inside & kinks[group[None, :, None], np.clip(j, 0, kinks.shape[1] - 1)]
     change, bound = sampling_error(out["peak"], out["sampled"], vertex, window, kinked,
-                                   nearest_instant(instants, group[None, :], centre))
+                                   nearest_instant(instants, group[None, :], centre), hermite)
     peak = out["peak"]
     acc, disp, eff = peak[:, :n_p], peak[:, n_p:2 * n_p], peak[:, 2 * n_p:]
     sampling = {"acceleration_sampling_change": change[:, :n_p], "acceleration_sampling_bound": bound[:, :n_p],
