@@ -316,3 +316,21 @@ def test_a_stored_train_without_the_time_sampling_is_swept_again(tmp_path):
     assert np.array_equal(back.acceleration_sampling_bound, env.acceleration_sampling_bound)
     save(tmp_path, "old", dataclasses.replace(env, **{f: None for f in SAMPLING_FIELDS}), None)
     assert load(tmp_path, "old") is None
+
+
+@pytest.mark.parametrize("section, dx", [(5.07, 0.3), (0.0, 0.37), (13.3, 0.25)])
+def test_the_static_shear_peak_is_its_jump_whatever_the_step(section, dx):
+    """The static shear of one axle P on a simply supported span L at x_s jumps to P (1 − x_s / L)
+    (the axle just right of the section; P at an entry support x_s = 0) and to P x_s / L just left of
+    it: the static peak is the larger, exactly (closed form), though the travel samples (every Δx)
+    fall beside the jump; the samples alone stand up to Δx / L of P low (the test's teeth: the
+    sampled table's own peak).  The limits are read δ = ``KNOT_OFFSET`` Δx beside the jump, where the
+    line has moved by (P / L) δ: 2e-8 of the peak here."""
+    span = 20.0
+    beam = EulerBernoulliBeam(span, 7.9e10, 25000.0, 0.013, n_modes=1)
+    effect = beam.load_effect("shear", section)
+    env = moving_load_sweep(beam, [0.0], [P], [30.0], [10.0], (effect,), dx=dx, free_vibration=0.2)
+    exact = P * max(1.0 - section / span, section / span)
+    assert float(env.static_effect[0]) == pytest.approx(exact, rel=5e-8)
+    sampled = float(np.max(np.abs(moving_loads.load_table(beam, [0.0], [P], dx, (effect,)).static_effects)))
+    assert sampled < exact * (1.0 - 1e-3)

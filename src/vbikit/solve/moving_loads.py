@@ -498,6 +498,19 @@ def instant_table(bridge: ModalBridge, instants: Sequence[NDArray[np.float64]], 
     return InstantTable(step, w, g, load, static)
 
 
+def static_effect_peaks(sampled: NDArray[np.float64], at: InstantTable, n_e: int) -> NDArray[np.float64]:
+    """max |R_st| of each effect (n_e,): over the travel samples (``LoadTable.static_effects``, (n_s, n_e))
+    and both one-sided limits at every instant an axle stands on one of its kinks (``instant_table``,
+    group e + 1): the static influence line's jumps and kinks, where its peak stands when the line is
+    straight between them (a simply supported span's moment, shear and reaction), exactly, whatever Δx."""
+    out = np.max(np.abs(sampled), axis=0) if n_e and sampled.size else np.zeros(n_e)
+    for e in range(n_e):
+        mine = at.group == e + 1
+        if mine.any():
+            out[e] = max(float(out[e]), float(np.max(np.abs(at.static[mine]))))
+    return out
+
+
 def nearest_instant(instants: Sequence[NDArray[np.float64]], group: NDArray[np.int64],
                     centre: NDArray[np.int64]) -> NDArray[np.float64]:
     """u − c of the instant of ``instants[group]`` nearest to each sample ``centre`` c, when within one
@@ -606,7 +619,6 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
     static_xi = table.modal_load / omega**2
     static_disp = np.max(np.abs(static_xi @ phi.T), axis=0)
     r = np.array([e.modal for e in effects]).reshape(len(effects), omega.size)  # (n_e, n_m)
-    static_eff = np.max(np.abs(table.static_effects), axis=0) if effects else np.zeros(0)
     n_p, n_e = xs.size, len(effects)
     n_q = 2 * n_p + n_e
     out = {name: np.empty((v.size, n_q)) for name in ("peak", "sampled")}
@@ -624,6 +636,7 @@ def moving_load_sweep(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads
     kinks = kink_steps(instants, table.n_forced + 1)
     group = np.concatenate([np.zeros(2 * n_p, np.int64), 1 + np.arange(n_e, dtype=np.int64)])
     at = instant_table(bridge, instants, a, axle_loads, dx, effects, y)
+    static_eff = static_effect_peaks(table.static_effects, at, n_e)
     g_q = np.argsort(group, kind="stable").astype(np.int64)  # the quantities of each group, in order
     g_ptr = np.searchsorted(group[g_q], np.arange(len(instants) + 1)).astype(np.int64)
     hermite = np.empty((v.size, n_q))
