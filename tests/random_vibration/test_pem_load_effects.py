@@ -139,6 +139,12 @@ def test_page_quotes_the_stored_effect_numbers():
             f"at {d['tractor_heave_acceleration']['inside_pct']:g} % for the tractor's heave acceleration",
             f"median {m['ratio'][0]:.4f} (5–95 %: {m['ratio'][1]:.4f}–{m['ratio'][2]:.4f})",
             f"{r['ratio'][0]:.4f} ({r['ratio'][1]:.4f}–{r['ratio'][2]:.4f}) for the reaction",
+            f"are {r['set_medians'][1]:.4f} and {r['set_medians'][2]:.4f} for the reaction, {m['set_medians'][1]:.4f} and "
+            f"{m['set_medians'][2]:.4f} for the moment",
+            f"give {r['pooled']['ratio'][0]:.4f} ({r['pooled']['ratio'][1]:.4f}–{r['pooled']['ratio'][2]:.4f}) for the "
+            f"reaction, with σ² inside the 99 % χ² interval at {r['pooled']['inside_pct']:g} % of the time points, and "
+            f"{m['pooled']['ratio'][0]:.4f} ({m['pooled']['ratio'][1]:.4f}–{m['pooled']['ratio'][2]:.4f}) for the moment, "
+            f"at {m['pooled']['inside_pct']:g} %",
             f"by PEM {d['moment_im_pem']['mean']:.3f} and " + q(f"{d['moment_im_pem'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
             f"by Monte Carlo {d['moment_im_mc']['mean']:.3f} and " + q(f"{d['moment_im_mc'][k]:.3f}" for k in ("0.5", "0.9", "0.95")),
             f"smooth-road IM {d['moment_im_smooth']['mode_superposition']:.4f} against "
