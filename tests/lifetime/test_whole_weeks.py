@@ -1,4 +1,5 @@
-"""Weekly block maxima take whole weeks: a duration that is not whole weeks is refused.
+"""Weekly block maxima take whole weeks: ``days`` that are not whole weeks are refused, ``years`` are
+the whole weeks in them.
 
 Found by an audit (2026-12-06): with block = "week" the fit took the maxima of the whole weeks
 only (``results._blocks``) and left the last days out without a word.  Forty days of bootstrap
@@ -24,10 +25,14 @@ def test_days_that_are_not_whole_weeks_are_refused():
                               'their largest events too: give days = 35 or 42, or block = "day"')
 
 
-def test_years_that_are_not_whole_weeks_are_refused():
-    with pytest.raises(LifetimeError, match=r"^years: 1 year\(s\) of days_per_year = 365 are 365 days, 52 whole weeks "
-                                            r"and 1 day\(s\);.*give days = 364 or 371, or block = \"day\"$"):
-        prepare({**BASE, "years": 1}, ".")
+def test_years_are_the_whole_weeks_in_them():
+    """``years`` with weekly blocks simulate the whole weeks in them: one year of 365 days is 52 weeks
+    (364 days), 100 years 5,214 weeks (36,498 days; 36,500 / 7 = 5,214.3); daily blocks keep every day."""
+    assert prepare({**BASE, "years": 1}, ".").n_days == 364
+    from vbikit.lifetime.spec import parse_lifetime
+
+    assert parse_lifetime({**BASE, "years": 100}).n_days == 36498
+    assert parse_lifetime({**BASE, "years": 1, "block": "day"}).n_days == 365
 
 
 def test_whole_weeks_and_daily_blocks_pass():

@@ -191,18 +191,15 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:
-    """Weekly blocks of a duration that is not whole weeks: the days left over would be simulated and
+    """Weekly blocks over ``days`` that are not whole weeks: the days left over would be simulated and
     then left out of the block maxima (the fit takes whole weeks), silently, their largest event
-    too; refused with the whole-week durations either side."""
+    too; refused with the whole-week durations either side (``years`` are taken as the whole weeks in
+    them, ``LifetimeFile.n_days``)."""
     n, left = spec.n_days, spec.n_days % 7
     lo, hi = n - left, n - left + 7
-    if spec.days is not None:
-        what = f"days: {n} days are {n // 7} whole weeks and {left} day(s)"
-    else:
-        what = (f"years: {spec.years:g} year(s) of days_per_year = {spec.days_per_year:g} are {n} days, {n // 7} whole "
-                f"weeks and {left} day(s)")
-    return (f"{what}; block = \"week\" fits the maxima of whole weeks, so the last {left} simulated day(s) would be "
-            f"left out of the block maxima, their largest events too: give days = {lo} or {hi}, or block = \"day\"")
+    return (f"days: {n} days are {n // 7} whole weeks and {left} day(s); block = \"week\" fits the maxima of whole "
+            f"weeks, so the last {left} simulated day(s) would be left out of the block maxima, their largest events "
+            f"too: give days = {lo} or {hi}, or block = \"day\"")
 
 
 def _block_advice(block: str, distribution: str, need: int) -> str:

@@ -192,7 +192,16 @@ class LifetimeFile(_Strict):
 
     @property
     def n_days(self) -> int:
-        return int(self.days) if self.days is not None else int(math.ceil(float(self.years) * self.days_per_year))
+        """The simulated days: ``days``, or ``years`` × ``days_per_year`` rounded up — with weekly blocks
+        the whole weeks in it (``years = 1`` of 365 days: 52 weeks, 364 days), since the weekly maxima
+        take whole weeks and the days after the last one would be left out of the fit (``days`` given
+        that are not whole weeks are refused, ``vbikit.lifetime.run.prepare``)."""
+        if self.days is not None:
+            return int(self.days)
+        days = float(self.years) * self.days_per_year
+        if self.block == "week":
+            return 7 * max(int(math.floor(days / 7.0 + 1e-9)), 1)
+        return int(math.ceil(days))
 
 
 def check_category(category: str) -> None:
