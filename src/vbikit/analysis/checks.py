@@ -798,6 +798,14 @@ def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[st
         _check_code(code)
         texts += [w for w in sentences if w not in texts]
         codes += [code] if sentences else []
+    return flag_attrs(texts, codes)
+
+
+def flag_attrs(texts: Sequence[str], codes: Iterable[str]) -> dict[str, str]:
+    """A dataset's ``warnings`` (the messages, "; "-joined) and ``flag_codes`` (``join_codes``)
+    attributes, neither when there is nothing to say: the one format (``dataset_flag_attrs``; the
+    railway sweep's from its checks' records)."""
+    codes = list(codes)
     return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": join_codes(codes)} if codes else {})
 
 

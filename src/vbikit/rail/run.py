@@ -701,12 +701,9 @@ def dataset_flag_attrs_of(checks: dict[str, Any]) -> dict[str, str]:
     """The dataset's ``warnings`` (every flag's message, "; "-joined) and ``flag_codes`` (comma-separated)
     attributes from the checks' flag records, as every population dataset carries them
     (``vbikit.analysis.checks.dataset_flag_attrs``); none when nothing is flagged."""
-    from vbikit.analysis.checks import join_codes
+    from vbikit.analysis.checks import flag_attrs
 
-    flags = checks.get("flags", [])
-    texts = list(checks.get("warnings", []))
-    return ({"warnings": "; ".join(texts)} if texts else {}) | (
-        {"flag_codes": join_codes(f["code"] for f in flags)} if flags else {})
+    return flag_attrs(list(checks.get("warnings", [])), (f["code"] for f in checks.get("flags", [])))
 
 
 #: sections [per span] of the fine static envelope and of the dynamic one around the swept maximum
