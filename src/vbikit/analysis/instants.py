@@ -45,8 +45,8 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-#: the one-sided limits at an instant τ are read at τ ∓ this fraction of the run's step
-KNOT_OFFSET = 1e-6
+from vbikit._vertex import KNOT_OFFSET  # (the one-sided limits' offset, shared with the railway sweep)
+
 
 
 def one_sided(tau: NDArray[np.float64], dt: float) -> NDArray[np.float64]:

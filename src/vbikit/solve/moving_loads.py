@@ -67,6 +67,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from numba import njit
 
+from vbikit._vertex import KNOT_OFFSET
 from vbikit._vertex import parabola as _three_point_parabola
 from vbikit.bridge.base import ModalBridge
 from vbikit.bridge.effects import LoadEffect, kink_positions
@@ -307,24 +308,33 @@ def load_table(bridge: ModalBridge, axle_positions: ArrayLike, axle_loads: Array
     """Modal loads p_i(s_j) = −Σ_k φ_i(s_j − a_k) P_k and static effects −Σ_k I(s_j − a_k) P_k at the
     travel samples of the first axle, from one step before entry until the last axle is off the deck."""
     a = np.asarray(axle_positions, float)
-    p = np.asarray(axle_loads, float)
     n_forced = int(math.ceil((bridge.span + a[-1]) / dx)) + 2
     s = (np.arange(n_forced) - 1) * dx
-    x = s[:, None] - a[None, :]
+    load, static = axle_loads_at(bridge, s, a, axle_loads, effects, y)
+    return LoadTable(dx, s, load, static, n_forced)
+
+
+def axle_loads_at(bridge: ModalBridge, travel: NDArray[np.float64], axle_positions: ArrayLike, axle_loads: ArrayLike,
+                  effects: Sequence[LoadEffect] = (), y: float = 0.0) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The modal loads −Σ_k φ_i(s − a_k) P_k (n_s, n_m) and the static effects −Σ_k I(s − a_k) P_k
+    (n_s, n_e) with the first axle at each travel s [m] (``travel``, (n_s,)), only the axles on the
+    deck (0 ≤ s − a_k ≤ L) counted: the samples' (``load_table``) and the instants' (``instant_table``)."""
+    a = np.asarray(axle_positions, float)
+    p = np.asarray(axle_loads, float)
+    x = np.asarray(travel, float)[:, None] - a[None, :]
     on = (x >= 0.0) & (x <= bridge.span)
-    n_m = bridge.omega.size
-    load = np.zeros((s.size, n_m))
+    load = np.zeros((x.shape[0], bridge.omega.size))
     rows, cols = np.nonzero(on)
     if rows.size:
         phi = bridge.mode_shapes(x[rows, cols], np.full(rows.size, y))
         np.add.at(load, rows, -phi * p[cols, None])
-    static = np.zeros((s.size, len(effects)))
+    static = np.zeros((x.shape[0], len(effects)))
     for e, effect in enumerate(effects):
         infl = np.zeros(x.shape)
         if rows.size:
             infl[rows, cols] = effect.influence(x[rows, cols], np.full(rows.size, y))
         static[:, e] = -(infl @ p)
-    return LoadTable(dx, s, load, static, n_forced)
+    return load, static
 
 
 @dataclass(frozen=True)
@@ -446,9 +456,6 @@ def kink_steps(instants: Sequence[NDArray[np.float64]], n_steps: int) -> NDArray
     return out
 
 
-#: the one-sided limits at an instant τ are read at τ ∓ this fraction of a step (as
-#: ``vbikit.analysis.instants.KNOT_OFFSET`` for the coupled runs)
-KNOT_OFFSET = 1e-6
 
 
 @dataclass(frozen=True)
@@ -470,9 +477,7 @@ def instant_table(bridge: ModalBridge, instants: Sequence[NDArray[np.float64]], 
                   axle_loads: ArrayLike, dx: float, effects: Sequence[LoadEffect] = (), y: float = 0.0) -> InstantTable:
     """The ``InstantTable`` of ``instants`` (per group: the deck's, then one per effect), each side's
     modal loads −Σ_k φ_i(x_k) P_k and static effect −Σ_k I(x_k) P_k from the axles' exact positions
-    x_k = (u ∓ δ − 1) Δx − a_k (only those on the deck, 0 ≤ x_k ≤ L), as ``load_table`` at the samples."""
-    a = np.asarray(axle_positions, float)
-    pk = np.asarray(axle_loads, float)
+    x_k = (u ∓ δ − 1) Δx − a_k (only those on the deck, 0 ≤ x_k ≤ L): ``axle_loads_at``, as ``load_table`` at the samples."""
     u = np.concatenate([np.asarray(x, float) for x in instants]) if instants else np.zeros(0)
     g = np.concatenate([np.full(len(x), k, np.int64) for k, x in enumerate(instants)]) if instants else np.zeros(0, np.int64)
     tol = INSTANT_TOLERANCE * (1.0 + np.abs(u))
@@ -480,21 +485,13 @@ def instant_table(bridge: ModalBridge, instants: Sequence[NDArray[np.float64]], 
     w = np.clip(u - step, 0.0, 1.0)
     order = np.lexsort((g, step))
     u, g, step, w = u[order], g[order], step[order], w[order]
-    n_m = bridge.omega.size
-    load = np.zeros((u.size, 2, n_m))
+    load = np.zeros((u.size, 2, bridge.omega.size))
     static = np.zeros((u.size, 2))
+    mine = g >= 1  # (an effect's instants: its own static value; the deck's group 0 has none)
     for side, sign in enumerate((-1.0, 1.0)):
-        x = ((u + sign * KNOT_OFFSET - 1.0) * dx)[:, None] - a[None, :]
-        on = (x >= 0.0) & (x <= bridge.span)
-        rows, cols = np.nonzero(on)
-        if rows.size:
-            phi = bridge.mode_shapes(x[rows, cols], np.full(rows.size, y))
-            np.add.at(load[:, side], rows, -phi * pk[cols, None])
-        for e, effect in enumerate(effects):
-            mine = on & (g == e + 1)[:, None]
-            rr, cc = np.nonzero(mine)
-            if rr.size:
-                np.add.at(static[:, side], rr, -effect.influence(x[rr, cc], np.full(rr.size, y)) * pk[cc])
+        load[:, side], st = axle_loads_at(bridge, (u + sign * KNOT_OFFSET - 1.0) * dx, axle_positions, axle_loads,
+                                          effects, y)
+        static[mine, side] = st[np.flatnonzero(mine), g[mine] - 1]
     return InstantTable(step, w, g, load, static)
 
 
