@@ -82,9 +82,7 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
 
     budget = limits(max_memory, max_steps)
     if announce:
-        dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
-        typer.echo(f"{label or study.name or 'study'}: {study.size} crossings ({dims}) in {study.n_batches} batches",
-                   err=True)
+        typer.echo(f"{label or study.name or 'study'}: {study_size(study)}", err=True)
     result = guard(lambda: check_study(study, budget, confirmed=yes), file=file)
     warn(result.warnings, most=MOST_WARNINGS)
     return result
@@ -147,9 +145,14 @@ def checked_summary(study: Any, result: Any) -> str:
     axis, batches, the set-ups checked, their largest step count and memory a batch."""
     from vbikit.solve.budget import human
 
-    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
-    return (f"{study.size} crossings ({dims}) in {study.n_batches} batches; {result.checked} set-ups checked, "
+    return (f"{study_size(study)}; {result.checked} set-ups checked, "
             f"up to {result.max_steps} steps and ≈ {human(result.max_memory)} a batch")
+
+
+def study_size(study: Any) -> str:
+    """A study's size: "N crossings (key (n) × …) in B batches" (the run's announcement, ``checked_summary``)."""
+    dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
+    return f"{study.size} crossings ({dims}) in {study.n_batches} batches"
 
 
 def _paper(*figs: str) -> Callable[..., None]:
