@@ -152,3 +152,33 @@ def test_road_spacing_is_that_of_its_own_stations():
     finer = dataclasses.replace(road, x=np.array([0.0, 0.5, 0.55, 2.0]))  # a wrong cache would keep 0.2
     assert finer.spacing == pytest.approx(0.05, rel=1e-12)
     assert dataclasses.replace(road, resolution=0.3).spacing == 0.3
+
+
+def test_passing_instants_position_tables_are_kept_per_wheel_lines(deck):
+    """The load effects' jump and kink instants (``effects._passing_instants``) read a table of their
+    positions kept per bridge, effects and wheel lines: a crossing in one lane after another lane's
+    crossing warmed the store equals the same crossing on an emptied store, bit for bit; and the table
+    of a wheel line on a girder (y = 0: its moment's line kinks at the section only) is not that of a
+    line between girders (which breaks at every station): a key without the lines would give the
+    second line the first's table."""
+    from vbikit.analysis.effects import _passing_instants, _position_table
+
+    effects = [deck.load_effect("moment", 9.0, girder=2), deck.load_effect("shear", 4.0, girder=3),
+               deck.load_effect("reaction", support=0, girder=1)]
+    runs = [simulate(Crossing(deck, vehicles=(VehicleMotion(hs20_44(), 20.0, lateral_offset=y),), dt=2e-3))
+            for y in (-1.3, 0.7)]
+    _fresh()
+    alone = _passing_instants(runs[1], effects, "jump", "kink")
+    _fresh()
+    _passing_instants(runs[0], effects, "kink", "jump")
+    first = _passing_instants(runs[0], effects, "jump", "kink")
+    warm = _passing_instants(runs[1], effects, "jump", "kink")
+    for a, b in zip(alone, warm):
+        for x, y in zip(a, b):
+            np.testing.assert_array_equal(x, y)
+    on_girder, between = _position_table(deck, tuple(effects), np.array([0.0]), ("kink",)), \
+        _position_table(deck, tuple(effects), np.array([0.7]), ("kink",))
+    _fresh()
+    fresh = _position_table(deck, tuple(effects), np.array([0.7]), ("kink",))
+    np.testing.assert_array_equal(between[0], fresh[0])
+    assert on_girder[1][0] < between[1][0]  # the moment's block: 3 positions on the girder, 14 between

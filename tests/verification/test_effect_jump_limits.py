@@ -249,3 +249,22 @@ def test_no_vertex_across_the_station_kinks_of_a_line_between_girders():
     fine_dynamic = np.abs(np.r_[f.dynamic, f.limits()[1]]).max()
     assert abs(r.impact.static_peak) <= exact_static * (1 + 1e-6)
     assert abs(abs(r.impact.dynamic_peak) - fine_dynamic) <= 5e-4 * fine_dynamic
+
+
+def test_compiled_limit_sums_equal_those_of_the_influence_values(traffic_runs, monkeypatch):
+    """The influence sums at the one-sided instants of tabulated lines are compiled (``line_sums``,
+    the sampled histories' pass); the same limits from ``influence_values`` at the on-deck points
+    (the path of untabulated lines) agree to round-off, on every effect (shears, reaction, moment)."""
+    import vbikit.analysis.effects as effects_module
+
+    effects, runs = traffic_runs
+    result = runs[1.0]
+    compiled = jump_limits(result, effects)
+    monkeypatch.setattr(effects_module, "tabulated_together", lambda effects: False)
+    plain = jump_limits(result, effects)
+    for k, (a, b) in enumerate(zip(compiled, plain)):
+        assert a[0].size >= 2
+        np.testing.assert_array_equal(a[0], b[0])
+        scale = np.abs(b[1]).max()
+        assert np.abs(a[1] - b[1]).max() <= 1e-12 * scale, k
+        assert np.abs(a[2] - b[2]).max() <= 1e-12 * scale, k

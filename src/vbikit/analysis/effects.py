@@ -74,6 +74,7 @@ from typing import Any, Callable, Literal, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import kept_for
 from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices, static_direction,
                                    static_modal_history)
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
@@ -361,37 +362,73 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
-                      positions: Callable[[ModalBridge, LoadEffect, float], NDArray[np.float64]]) -> list[NDArray[np.float64]]:
-    """Per effect, the instants in the run's span at which a contact point stands on one of the
-    ``positions(bridge, effect, y)`` ξ of its wheel line y (skew decks included), sorted, unique:
-    every effect's (point, position) pairs timed in one pass (``instants.crossing_instants``)."""
+                      *kinds: str) -> list[list[NDArray[np.float64]]]:
+    """Per kind of ``kinds`` (``PASSING_POSITIONS``: "jump", "kink") and per effect, the instants in the
+    run's span at which a contact point stands on one of the effect's positions ξ of that kind on its
+    wheel line y (skew decks included), sorted, unique: every kind's and effect's (point, position)
+    pairs timed in one pass (``instants.crossing_instants``), from the positions' table of the bridge,
+    effects and lines (``_position_table``, kept: the same for every event of a stream)."""
     from vbikit.analysis.instants import crossing_instants
 
     t = np.asarray(result.time, float)
     if t.size < 2 or not effects:
-        return [np.zeros(0) for _ in effects]
+        return [[np.zeros(0) for _ in effects] for _ in kinds]
     crossing = result.crossing
     bridge = crossing.bridge
     origin, sign, y = crossing.point_kinematics()
     lines, which = np.unique(y, return_inverse=True)
-    travels = []
-    for e in effects:
-        per_line = [positions(bridge, e, float(v)) for v in lines]
-        xi = np.full((lines.size, max(p.size for p in per_line)), np.nan)  # (NaN: none)
-        for k, p in enumerate(per_line):
-            xi[k, :p.size] = p
-        travels.append((xi[which] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None])
-    return crossing_instants(crossing, travels, float(t[0]), float(t[-1]))
+    table, widths = _position_table(bridge, tuple(effects), lines, kinds)
+    travel = (table[which.ravel()] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
+    bounds = np.cumsum((0,) + widths)
+    taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], float(t[0]),
+                             float(t[-1]))
+    n = len(effects)
+    return [taus[k * n:(k + 1) * n] for k in range(len(kinds))]
+
+
+#: the positions whose passing instants ``_passing_instants`` times, by kind: ξ [m] per bridge, effect and wheel line y
+PASSING_POSITIONS: dict[str, Callable[[ModalBridge, LoadEffect, float], NDArray[np.float64]]] = {
+    "jump": lambda bridge, effect, y: jump_positions(bridge, effect),
+    "kink": kink_positions,
+}
+#: the position tables (``_position_table``) a bridge keeps, per effects, wheel lines and kinds
+POSITION_TABLES_KEPT = 64
+
+
+def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines: NDArray[np.float64],
+                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[int, ...]]:
+    """The positions ξ [m] of every kind of ``kinds`` and effect (``PASSING_POSITIONS``) on every wheel
+    line of ``lines``: a (n_lines, Σ widths) table, one block of columns per (kind, effect) in that
+    order, NaN-padded to the block's width (NaN: none), and the widths; kept by the bridge per effects
+    (their identities: each entry holds them), lines and kinds — not to be written."""
+    key = (tuple(id(e) for e in effects), lines.tobytes(), kinds)
+
+    def make() -> tuple[Any, ...]:
+        blocks = []
+        for kind in kinds:
+            where = PASSING_POSITIONS[kind]
+            for e in effects:
+                per_line = [where(bridge, e, float(v)) for v in lines]
+                block = np.full((lines.size, max(p.size for p in per_line)), np.nan)
+                for k, p in enumerate(per_line):
+                    block[k, :p.size] = p
+                blocks.append(block)
+        table = np.concatenate(blocks, axis=1)
+        table.setflags(write=False)
+        return effects, table, tuple(b.shape[1] for b in blocks)
+
+    return kept_for(bridge, "passing positions", POSITION_TABLES_KEPT).get(key, make)[1:]
 
 
 def kink_instants(result: CrossingResult, effects: Sequence[LoadEffect]) -> list[NDArray[np.float64]]:
     """Per effect, the instants [s] at which its histories may jump or kink: a contact point on one of
     the ``kink_positions`` of its own wheel line (``LoadEffectResponse.kinks``)."""
-    return _passing_instants(result, effects, kink_positions)
+    return _passing_instants(result, effects, "kink")[0]
 
 
 def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
-                static_loads: NDArray[np.float64] | None = None) -> list[tuple[NDArray[np.float64], ...]]:
+                static_loads: NDArray[np.float64] | None = None,
+                instants: list[NDArray[np.float64]] | None = None) -> list[tuple[NDArray[np.float64], ...]]:
     """Per effect (mode acceleration), (time, dynamic, static) at both one-sided limits τ∓δ of every
     instant τ in the run's span at which a contact point stands on one of its ``jump_positions``
     (module docstring; ``vbikit.analysis.instants``): positions and influence values exact, wheel
@@ -399,7 +436,8 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     forces from the modal equation at those steps (``run_state``).  The run's state is evaluated once at the union of the
     effects' instants, element by element; each effect's values then over its own instants only (so
     they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
-    points' β_p P_w if already computed."""
+    points' β_p P_w if already computed; ``instants``: the effects' jump instants if already timed
+    (``_passing_instants``)."""
     from vbikit.analysis.instants import instant_rows, one_sided, run_state
 
     t = np.asarray(result.time, float)
@@ -408,55 +446,81 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
         return [empty for _ in effects]
     crossing = result.crossing
     bridge = crossing.bridge
-    _, _, y = crossing.point_kinematics()
-    lines = y * float(bridge.skew_tan)  # x − ξ of each point's line
-    taus = _passing_instants(result, effects, lambda bridge, e, y: jump_positions(bridge, e))
+    taus = _passing_instants(result, effects, "jump")[0] if instants is None else instants
     tau = np.unique(np.concatenate(taus))
     if tau.size == 0:
         return [empty for _ in effects]
     u = one_sided(tau, float(t[1] - t[0]))
     state = run_state(result, u)
-    x = state.x
-    xi = x - lines[None, :]  # ``span_coordinate``
-    on = (xi >= 0.0) & (xi <= bridge.span)  # on the deck (as ``contact_influence_table``)
-    infl = np.zeros((len(effects),) + x.shape)
-    if on.any():
-        infl[:, on] = influence_values(effects, x[on], y[np.nonzero(on)[1]]).T
     if static_loads is None:
         cp = crossing.contact
         static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
+    sums = _instant_sums(result, effects, state, static_loads)  # (n_effects, n_u) each: −Σ_p I β_p f_w, −Σ_p I β_p P_w
+    omega = np.asarray(bridge.omega, float)
     out = []
     for e, effect, mine in zip(range(len(effects)), effects, taus):
         if mine.size == 0:
             out.append(empty)
             continue
         rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
-        g = -infl[e, rows]  # the line's value per unit force: −I
-        out.append((u[rows], state.total(g, effect.modal, bridge.omega, rows), g @ static_loads))
+        r = np.asarray(effect.modal, float)
+        out.append((u[rows], sums[0][e, rows] + state.q[rows] @ (r / omega**2) + state.xi[rows] @ r, sums[1][e, rows]))
     return out
 
 
+def _instant_sums(result: CrossingResult, effects: Sequence[LoadEffect], state: Any,
+                  static_loads: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(−Σ_p I_e(x_p, y_p) β_p f_w, −Σ_p I_e(x_p, y_p) β_p P_w) of every effect at the instants of the run's
+    ``state`` (``instants.RunState``), each (n_effects, n_u): compiled in one pass over the (instant,
+    point) pairs when the effects are tabulated along the same stations (``line_sums``, as the sampled
+    histories), else from ``influence_values`` at the on-deck points (``contact_influence_table``'s test)."""
+    crossing = result.crossing
+    bridge, cp = crossing.bridge, crossing.contact
+    if tabulated_together(effects):
+        from vbikit.analysis.line_sums import tabulated_sums
+
+        origin, direction, y = crossing.point_kinematics()
+        static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, state.travel, cp.wheel,
+                                         cp.weight, static_loads, state.wheel_forces, [e.influence for e in effects],
+                                         bridge.span)
+        return -dynamic, -static
+    x, y = state.x, state.y
+    xi = x - (y * float(bridge.skew_tan))[None, :]  # ``span_coordinate``
+    on = (xi >= 0.0) & (xi <= bridge.span)  # on the deck (as ``contact_influence_table``)
+    g = np.zeros((len(effects),) + x.shape)  # the line's value per unit force: −I
+    if on.any():
+        g[:, on] = -influence_values(effects, x[on], y[np.nonzero(on)[1]]).T
+    return np.sum(g * state.f[None], axis=2), g @ static_loads
+
+
 class _SharedLimits:
-    """``jump_limits`` (and ``kink_instants``) of one run's effects, computed on the first call (any
-    effect's) and shared by their responses: ``self(k)`` (``self.kinks(k)``) is effect k's."""
+    """``jump_limits`` and ``kink_instants`` of one run's effects, computed on the first call of either
+    (any effect's; both kinds of instants timed in one pass) and shared by their responses: ``self(k)``
+    (``self.kinks(k)``) is effect k's."""
 
     def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...],
                  static_loads: NDArray[np.float64] | None) -> None:
         self.result, self.effects, self.static_loads = result, effects, static_loads
         self.values: list[tuple[NDArray[np.float64], ...]] | None = None
-
         self.kink_values: list[NDArray[np.float64]] | None = None
+
+    def _instants(self) -> None:
+        if self.static_loads is None:  # (mode superposition: no limits, the kinks only)
+            self.kink_values = _passing_instants(self.result, self.effects, "kink")[0]
+            return
+        jumps, self.kink_values = _passing_instants(self.result, self.effects, "jump", "kink")
+        self.values = jump_limits(self.result, self.effects, self.static_loads, jumps)
 
     def __call__(self, k: int) -> tuple[NDArray[np.float64], ...]:
         if self.values is None:
-            self.values = jump_limits(self.result, self.effects, self.static_loads)
-        return self.values[k]
+            self._instants()
+        return self.values[k]  # type: ignore[index]
 
     def kinks(self, k: int) -> NDArray[np.float64]:
         """``kink_instants`` of effect k (computed for all on the first call)."""
         if self.kink_values is None:
-            self.kink_values = kink_instants(self.result, self.effects)
-        return self.kink_values[k]
+            self._instants()
+        return self.kink_values[k]  # type: ignore[index]
 
 
 def tabulated_together(effects: Sequence[LoadEffect]) -> bool:

@@ -82,7 +82,8 @@ class RunState:
     """A run's state at the instants ``u`` (module docstring): contact points at ``x`` (n_u, n_cp) on
     the lines ``y`` (n_cp,), their forces β_p f_w ``f`` (n_u, n_cp, linear in time), the modal forces
     Q_i ``q`` (n_u, n_modes, from the steps) and displacements ξ_i ``xi`` (n_u, n_modes,
-    cubic Hermite)."""
+    cubic Hermite); the vehicles' travel ``travel`` (n_u, n_vehicles) and the wheel forces f_w
+    ``wheel_forces`` (n_u, n_wheels, linear in time) the points' come from."""
 
     u: NDArray[np.float64]
     x: NDArray[np.float64]
@@ -90,6 +91,8 @@ class RunState:
     f: NDArray[np.float64]
     q: NDArray[np.float64]
     xi: NDArray[np.float64]
+    travel: NDArray[np.float64]
+    wheel_forces: NDArray[np.float64]
 
     def total(self, g: NDArray[np.float64], modal: NDArray[np.float64], omega: NDArray[np.float64],
               rows: NDArray[np.int64] | None = None) -> NDArray[np.float64]:
@@ -116,21 +119,23 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
     t = np.asarray(result.time, float)
     crossing = result.crossing
     origin, sign, y = crossing.point_kinematics()
-    x = origin[None, :] + sign[None, :] * crossing.travel(u)[:, crossing.point_vehicle]
+    travel = crossing.travel(u)
+    x = origin[None, :] + sign[None, :] * travel[:, crossing.point_vehicle]
     k = np.searchsorted(t[1:-1], u) + 1  # the step ending at or after u, within 1 … n_t − 1
     km = k - 1
     h = t[k] - t[km]
     w = (u - t[km]) / h
     cp = crossing.contact
     forces = result.wheel_forces  # only the rows around the instants, not the whole history
-    f = (forces[km][:, cp.wheel] * (1.0 - w)[:, None] + forces[k][:, cp.wheel] * w[:, None]) * cp.weight[None, :]
+    wheel_forces = forces[km] * (1.0 - w)[:, None] + forces[k] * w[:, None]
+    f = wheel_forces[:, cp.wheel] * cp.weight[None, :]
     # cubic Hermite basis (the same arithmetic as 2w³ − 3w² + 1, w³ − 2w² + w, −2w³ + 3w², w³ − w²)
     w2, w3 = w**2, w**3
     h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
     xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
           + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
     q = _step_modal_forces(result, x, km, k, w, f)
-    return RunState(u, x, y, f, q, xi)
+    return RunState(u, x, y, f, q, xi, travel, wheel_forces)
 
 
 def _step_modal_forces(result, x: NDArray[np.float64], km: NDArray[np.int64], k: NDArray[np.int64],
