@@ -46,10 +46,12 @@ def traffic_cmd(
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""
+    lane_y = None if lanes is None else guard(lambda: _lanes(lanes))  # (an option's error at once, before the imports)
     from vbikit.traffic.records import MAX_RECORDS, read_records
+
+    recs = guard(lambda: read_records(records, max_vehicles or MAX_RECORDS), file=records)  # (before the model's imports)
     from vbikit.traffic.study import base_scenario, traffic_study
 
-    recs = guard(lambda: read_records(records, max_vehicles or MAX_RECORDS), file=records)
     base, base_dir = guard(lambda: base_scenario(bridge), file=bridge)
     if road is not None:
         from vbikit.scenario.schema import ROAD_CLASSES
@@ -62,7 +64,6 @@ def traffic_cmd(
     from vbikit.traffic.base import dropped_section_warnings, template_data
 
     warn(dropped_section_warnings(guard(lambda: parse_scenario(template_data(base), base_dir), file=bridge).response))
-    lane_y = None if lanes is None else guard(lambda: _lanes(lanes))
     names = None if outputs is None else [n.strip() for n in outputs.split(",") if n.strip()]
     job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
                                       source=records.name, outputs=names))
