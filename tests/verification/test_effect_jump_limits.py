@@ -268,3 +268,86 @@ def test_compiled_limit_sums_equal_those_of_the_influence_values(traffic_runs, m
         scale = np.abs(b[1]).max()
         assert np.abs(a[1] - b[1]).max() <= 1e-12 * scale, k
         assert np.abs(a[2] - b[2]).max() <= 1e-12 * scale, k
+
+
+def _state_by_arrays(result, u):
+    """``run_state``'s formulas (``vbikit.analysis.instants``, module docstring) restated with whole arrays
+    (the implementation before the compiled pass, kept here as the reference): travel, positions, wheel
+    forces linear, ξ cubic Hermite, Q from the modal equation at the two steps, linear, with the exact
+    shares of the points passing a support line within the step (φ from ``hermite_rows`` of the run's
+    tables, 0 off them)."""
+    from vbikit.solve import system
+    from vbikit.solve.tabulate import hermite_rows
+
+    t = np.asarray(result.time, float)
+    crossing = result.crossing
+    bridge, cp = crossing.bridge, crossing.contact
+    origin, sign, y = crossing.point_kinematics()
+    travel = crossing.travel(u)
+    x = origin[None, :] + sign[None, :] * travel[:, crossing.point_vehicle]
+    k = np.searchsorted(t[1:-1], u) + 1
+    km = k - 1
+    h = t[k] - t[km]
+    w = (u - t[km]) / h
+    forces = result.wheel_forces
+    wheel_forces = forces[km] * (1.0 - w)[:, None] + forces[k] * w[:, None]
+    f = wheel_forces[:, cp.wheel] * cp.weight[None, :]
+    h00, h10, h01, h11 = 2 * w**3 - 3 * w**2 + 1, w**3 - 2 * w**2 + w, -2 * w**3 + 3 * w**2, w**3 - w**2
+    xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
+          + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
+    omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
+
+    def at_steps(rows):
+        return -(result.xi_ddot[rows] + result.xi_dot[rows] * (2.0 * zeta * omega) + result.xi[rows] * omega**2)
+
+    q = (1.0 - w)[:, None] * at_steps(km) + w[:, None] * at_steps(k)
+    x_ends = np.stack([origin + sign * crossing.travel(t[r])[:, crossing.point_vehicle] for r in (km, k)])
+    xi_ends = bridge.span_coordinate(x_ends, np.broadcast_to(y, x_ends.shape))
+    passing = np.zeros(f.shape, bool)
+    for s in np.asarray(bridge.support_x, float):
+        passing |= (xi_ends[0] - s) * (xi_ends[1] - s) <= 0.0
+    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
+    modes = data.modes
+    for j, p in zip(*np.nonzero(passing)):
+        wheel, weight, track = cp.wheel[p], cp.weight[p], data.points.track[p]
+        for coef, xe, load in ((1.0, x[j, p], f[j, p]), (-(1.0 - w[j]), x_ends[0][j, p], forces[km[j], wheel] * weight),
+                               (-w[j], x_ends[1][j, p], forces[k[j], wheel] * weight)):
+            if modes.start[track] <= xe <= modes.end[track]:
+                phi = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, np.array([track]),
+                                   np.array([xe]), with_slopes=False)[0][0]
+                q[j] += coef * phi * load
+    return x, f, q, xi, travel, wheel_forces, passing.any(axis=1)
+
+
+@pytest.mark.parametrize("case", ["traffic deck", "demo multipoint"])
+def test_compiled_run_state_equals_the_array_formulas_between_the_steps(case, traffic_runs):
+    """``run_state`` (compiled, one pass) against the same formulas with whole arrays, at instants
+    spread between the steps (w ≠ 0, 1: the interpolations and the support-passing shares at work) and
+    at every jump instant's one-sided limits: equal to round-off, on a deck event (two girder lines,
+    point tires, 10 modes) and on the demo's beam (36 multi-point tire points, many passing the
+    supports within a step)."""
+    from pathlib import Path
+
+    from vbikit.analysis.instants import run_state
+    from vbikit.scenario import build, load_scenario
+
+    if case == "traffic deck":
+        result = traffic_runs[1][1.0]
+    else:
+        built = build(load_scenario(Path(__file__).resolve().parents[2] / "src" / "vbikit" / "scenario" / "demo.toml"))
+        result = simulate(built.crossing)
+    t = result.time
+    rng = np.random.default_rng(7)
+    between = t[:-1] + rng.uniform(0.05, 0.95, t.size - 1) * np.diff(t)
+    crossing = result.crossing
+    bridge = crossing.bridge
+    entries = [crossing.times_at(np.full(1, s), np.array([v]))[0] for v in range(len(crossing.vehicles))
+               for s in (0.0, bridge.span)]
+    u = np.sort(np.concatenate([between, [e for e in entries if t[0] < e < t[-1]]]))
+    state = run_state(result, u)
+    x, f, q, xi, travel, wheel_forces, passing = _state_by_arrays(result, u)
+    assert passing.sum() >= 3  # instants whose step has a point passing a support: the exact shares exercised
+    for name, a, b in (("x", state.x, x), ("f", state.f, f), ("q", state.q, q), ("xi", state.xi, xi),
+                       ("travel", state.travel, travel), ("wheel_forces", state.wheel_forces, wheel_forces)):
+        assert a.shape == b.shape, name
+        assert np.abs(a - b).max() <= 1e-12 * np.abs(b).max(), name

@@ -115,77 +115,29 @@ def instant_rows(tau: NDArray[np.float64], mine: NDArray[np.float64]) -> NDArray
 def run_state(result, u: NDArray[np.float64]) -> RunState:
     """The ``RunState`` of ``result`` (a ``CrossingResult`` of at least two steps) at the instants
     ``u`` [s] within its time span (module docstring); each instant's values are computed element by
-    element (the same whatever the other instants)."""
-    t = np.asarray(result.time, float)
-    crossing = result.crossing
-    origin, sign, y = crossing.point_kinematics()
-    travel = crossing.travel(u)
-    x = origin[None, :] + sign[None, :] * travel[:, crossing.point_vehicle]
-    k = np.searchsorted(t[1:-1], u) + 1  # the step ending at or after u, within 1 … n_t − 1
-    km = k - 1
-    h = t[k] - t[km]
-    w = (u - t[km]) / h
-    cp = crossing.contact
-    forces = result.wheel_forces  # only the rows around the instants, not the whole history
-    wheel_forces = forces[km] * (1.0 - w)[:, None] + forces[k] * w[:, None]
-    f = wheel_forces[:, cp.wheel] * cp.weight[None, :]
-    # cubic Hermite basis (the same arithmetic as 2w³ − 3w² + 1, w³ − 2w² + w, −2w³ + 3w², w³ − w²)
-    w2, w3 = w**2, w**3
-    h00, h10, h01, h11 = 2 * w3 - 3 * w2 + 1, w3 - 2 * w2 + w, -2 * w3 + 3 * w2, w3 - w2
-    xi = (h00[:, None] * result.xi[km] + (h10 * h)[:, None] * result.xi_dot[km]
-          + h01[:, None] * result.xi[k] + (h11 * h)[:, None] * result.xi_dot[k])
-    q = _step_modal_forces(result, x, km, k, w, f)
-    return RunState(u, x, y, f, q, xi, travel, wheel_forces)
-
-
-def _step_modal_forces(result, x: NDArray[np.float64], km: NDArray[np.int64], k: NDArray[np.int64],
-                       w: NDArray[np.float64], f: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Q_i (n_u, n_modes) at instants between the stored rows ``km`` and ``k`` (fraction ``w`` of the
-    step), the points at ``x`` with forces β_p f_w ``f`` there (n_u, n_cp) (module docstring)."""
-    crossing = result.crossing
-    bridge = crossing.bridge
-    omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
-
-    def at_steps(rows: NDArray[np.int64]) -> NDArray[np.float64]:  # the modal equation solved for Q_i
-        return -(result.xi_ddot[rows] + result.xi_dot[rows] * (2.0 * zeta * omega) + result.xi[rows] * omega**2)
-
-    q = (1.0 - w)[:, None] * at_steps(km) + w[:, None] * at_steps(k)
-    # the points that cross a support line within the step: their share exact, not linear
-    t = np.asarray(result.time, float)
-    origin, sign, y = crossing.point_kinematics()
-    ends = np.concatenate([t[km], t[k]])  # the step's start, then its end, of every instant
-    x_ends = (origin + sign * crossing.travel(ends)[:, crossing.point_vehicle]).reshape((2,) + f.shape)
-    xi_ends = bridge.span_coordinate(x_ends, np.broadcast_to(y, x_ends.shape))
-    passing = np.zeros(f.shape, bool)
-    for s in np.asarray(bridge.support_x, float):
-        passing |= (xi_ends[0] - s) * (xi_ends[1] - s) <= 0.0
-    rows, points = np.nonzero(passing)
-    if rows.size == 0:
-        return q
-    cp = crossing.contact
-    m = rows.size
-    wheel, weight = cp.wheel[points], cp.weight[points]
-    # their shares φ_i β_p f_w at the instant and at the step's two ends, in one table lookup
-    phi = _point_shapes(result, np.tile(points, 3), np.concatenate([x[rows, points], x_ends[0][rows, points],
-                                                                     x_ends[1][rows, points]]))
-    forces = np.concatenate([f[rows, points], result.wheel_forces[km[rows], wheel] * weight,
-                             result.wheel_forces[k[rows], wheel] * weight])
-    share = phi * forces[:, None]
-    wr = w[rows][:, None]
-    np.add.at(q, rows, share[:m] - ((1.0 - wr) * share[m:2 * m] + wr * share[2 * m:]))
-    return q
-
-def _point_shapes(result, points: NDArray[np.int64], x: NDArray[np.float64]) -> NDArray[np.float64]:
-    """φ_i (m, n_modes) of contact points ``points`` at ``x`` [m] from the run's mode tables, zero off
-    the deck (as the solver's contact rows)."""
+    element (the same whatever the other instants), in one compiled pass
+    (``vbikit.analysis.state_kernel.run_state_pass``)."""
+    from vbikit.analysis.state_kernel import run_state_pass
     from vbikit.solve import system
-    from vbikit.solve.tabulate import hermite_rows
 
-    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(result.crossing)
-    modes, track = data.modes, data.points.track[points]
-    on = (modes.start[track] <= x) & (x <= modes.end[track])
-    phi = np.zeros((x.size, modes.omega.size))
-    if on.any():
-        phi[on] = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, track[on], x[on],
-                               with_slopes=False)[0]
-    return phi
+    t = np.ascontiguousarray(result.time, float)
+    crossing = result.crossing
+    bridge, cp = crossing.bridge, crossing.contact
+    origin, sign, y = crossing.point_kinematics()
+    t_ref, s_ref, v_ref, acc, stop = crossing._motion_refs
+    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
+    modes = data.modes
+    omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
+    u = np.ascontiguousarray(u, float)
+    n_u, n_cp, n_m = u.size, origin.size, omega.size
+    forces = np.ascontiguousarray(result.wheel_forces, float)
+    travel, x, f = np.empty((n_u, t_ref.size)), np.empty((n_u, n_cp)), np.empty((n_u, n_cp))
+    wheel_forces, q, xi = np.empty((n_u, forces.shape[1])), np.empty((n_u, n_m)), np.empty((n_u, n_m))
+    run_state_pass(u, t, *(np.ascontiguousarray(a, float) for a in (t_ref, s_ref, v_ref, acc, stop, origin, sign, y)),
+                   np.ascontiguousarray(crossing.point_vehicle, np.int64), np.ascontiguousarray(cp.wheel, np.int64),
+                   np.ascontiguousarray(cp.weight, float), forces,
+                   *(np.ascontiguousarray(a, float) for a in (result.xi, result.xi_dot, result.xi_ddot)),
+                   2.0 * zeta * omega, omega**2, np.ascontiguousarray(bridge.support_x, float), float(bridge.skew_tan),
+                   modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes,
+                   np.ascontiguousarray(data.points.track, np.int64), travel, x, wheel_forces, f, q, xi)
+    return RunState(u, x, y, f, q, xi, travel, wheel_forces)
