@@ -189,8 +189,7 @@ def _with_vehicle_periods(vehicle, steps_per_period: float, others: float) -> fl
     Analysis, Thm 5.6.9), so T_min ≥ 2π / √‖M⁻¹K̂‖∞; when that bound's step is already ≥ ``others``
     the minimum is ``others`` — the same number as with the eigenvalues, at the cost of one solve."""
     if vehicle.n_dof and vehicle.__dict__.get("_natural_frequencies") is None:  # (frequencies not yet solved)
-        k_hat = vehicle.stiffness + vehicle.tire_stiffness_matrix()
-        bound = float(np.abs(np.linalg.solve(vehicle.mass, k_hat)).sum(axis=1).max()) * (1.0 + _BOUND_MARGIN)
+        bound = vehicle.stiffness_bound() * (1.0 + _BOUND_MARGIN)
         if bound == 0.0 or (np.isfinite(bound) and 2 * np.pi / np.sqrt(bound) / steps_per_period >= others):
             return float(others)
     f_veh = vehicle.natural_frequencies()
