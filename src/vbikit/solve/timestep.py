@@ -171,7 +171,7 @@ def implicit_time_step(crossing: Crossing) -> float:
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     for road in (crossing.road, crossing.road_right):
-        if road is not None and road.spacing > 0:
+        if road is not None and road.has_features:  # (spacing > 0; a generated road's step reads its origin only)
             candidates.append(exact_road_per_step(road, crossing.loss_of_contact) / v_max)
     return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, min(candidates))
 
