@@ -135,3 +135,49 @@ def test_event_road_seed_is_the_derived_seed_of_each_event():
     job = traffic_study(synthetic_stream([LaneTraffic(1, "+x", 900, 80, 5)], 6, seed=2), base, lanes=[0.0], seed=11)
     for e in (0, 0, 3, 1, 1, 3, 0):
         assert job.road_seed(e) == derive_seed(11, e)
+
+
+def _three_trucks_on_a_skew_deck():
+    from vbikit.bridge import SlabOnGirderBridge
+
+    deck = SlabOnGirderBridge(span=9.0, n_girders=3, n_modes=4, n_elements=6, skew=15.0, use_cache=False)
+    trucks = [axle_truck([50e3, 70e3, 70e3], [4.2, 1.3]), axle_truck([45e3, 90e3], [5.0]),
+              axle_truck([53e3, 75e3, 74e3, 76e3, 73e3], [5.5, 1.3, 9.5, 1.3])]
+    motions = (VehicleMotion(trucks[0], 22.0, direction="+x", lateral_offset=-0.9),
+               VehicleMotion(trucks[1], 19.0, acceleration=-1.5, direction="-x", entry_time=0.4, lateral_offset=0.8),
+               VehicleMotion(trucks[2], 24.0, acceleration=0.7, direction="+x", entry_time=-0.3, lateral_offset=-0.2))
+    return Crossing(deck, vehicles=motions, tire=MultiPointTire(3))
+
+
+def test_leaving_distances_in_one_pass_are_each_vehicles_own():
+    """``Crossing._leaving_distances`` (every vehicle's points at once) is ``leaving_distance`` of each
+    vehicle's own points and direction, bit for bit, on a skew deck with traffic both ways (each wheel
+    track's own far end); the exit time is the latest vehicle's time there."""
+    c = _three_trucks_on_a_skew_deck()
+    own = [c.leaving_distance(np.flatnonzero(c.point_vehicle == i), m.sign) for i, m in enumerate(c.vehicles)]
+    assert c._leaving_distances() == own
+    assert len(set(own)) == 3 and all(d > c.bridge.span for d in own)
+    assert c.exit_time() == max(m.time_at(d) for m, d in zip(c.vehicles, own))
+
+
+def test_travel_speed_of_every_vehicle_at_once_is_each_velocity():
+    """``Crossing.travel_speed`` (every vehicle in one pass) is each motion's ``velocity`` bit for bit,
+    braking (to rest after its stop time), accelerating and steady vehicles alike."""
+    c = _three_trucks_on_a_skew_deck()
+    t = np.linspace(c.start_time - 2.0, c.start_time + c.duration + 20.0, 997)
+    want = np.stack([m.velocity(t) for m in c.vehicles], axis=1)
+    got = c.travel_speed(t)
+    assert got.shape == want.shape and np.array_equal(got, want)
+    assert got[-1, 1] == 0.0 and got[-1, 2] > 24.0  # (the braking one has stopped by then)
+
+
+def test_combined_stiffness_bound_is_the_whole_systems():
+    """A combined vehicle's ‖M⁻¹K̂‖∞ (the step rule's bound on ω_max²) is its vehicles' largest, kept
+    with each: the whole block-diagonal system's to round-off, and above its largest eigenvalue."""
+    from scipy.linalg import eigh
+
+    v = _three_trucks_on_a_skew_deck().vehicle
+    whole = float(np.abs(np.linalg.solve(v.mass, v.stiffness + v.tire_stiffness_matrix())).sum(axis=1).max())
+    assert v.stiffness_bound() == pytest.approx(whole, rel=1e-12)
+    assert v.stiffness_bound() == max(p.stiffness_bound() for p in v.parts)
+    assert eigh(v.stiffness + v.tire_stiffness_matrix(), v.mass, eigvals_only=True).max() <= v.stiffness_bound()

@@ -239,3 +239,19 @@ def test_secant_rate_by_hand_on_a_kink_and_past_the_ends():
     assert road.secant_rate(0.0, 20.0, 0.01 / 20.0) == pytest.approx(20.0 * 0.01, abs=1e-13)
     assert road.secant_rate(2.0, 20.0, 0.01 / 20.0) == pytest.approx(20.0 * -0.03, abs=1e-13)
     np.testing.assert_allclose(road.secant_rate([0.5, 1.5], 20.0, 0.0), [20.0 * 0.01, 20.0 * -0.03], rtol=1e-13)
+
+
+@pytest.mark.parametrize("make", [
+    lambda: RoadProfile.flat(),
+    lambda: RoadProfile(np.array([0.0, 1.0, 3.0]), np.zeros(3)),
+    lambda: RoadProfile(np.array([0.0, 1.0, 3.0]), np.array([0.0, 1e-3, 0.0])),
+    lambda: RoadProfile(np.array([0.0, 1.0, 3.0]), np.array([0.0, 1e-3, 0.0]), resolution=0.25),
+    lambda: RoadProfile(np.array([0.0, 1.0, 3.0]), np.array([0.0, 1e-3, 0.0]), resolution=0.0),
+    lambda: random_profile(RoadPSD.iso("B"), 3, spacing=0.01, length=100.0, window=(-5.0, 20.0)),
+])
+def test_has_features_is_spacing_above_zero(make):
+    """``RoadProfile.has_features`` (the step rule's test, without the stations' differences) is
+    ``spacing > 0`` for flat, stepped, resolved and generated profiles, before and after ``spacing`` is known."""
+    road = make()
+    before = road.has_features
+    assert before == (road.spacing > 0) == road.has_features

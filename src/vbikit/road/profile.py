@@ -105,6 +105,18 @@ class RoadProfile:
         return known
 
     @property
+    def has_features(self) -> bool:
+        """``spacing`` > 0 (something for the time step to resolve), without the stations' differences
+        ``spacing`` takes when not yet known: a profile that is not flat has strictly increasing stations,
+        so its finest spacing is > 0, and a given ``resolution`` is its spacing."""
+        known = self.__dict__.get("_spacing")
+        if known is not None:
+            return known > 0
+        if not np.any(self.z):
+            return False
+        return self.resolution is None or float(self.resolution) > 0
+
+    @property
     def band_limited(self) -> bool:
         """True for a generated road without defects: smooth, or random from a spectrum
         (``RoadOrigin.shortest_wavelength`` set: no wavelength below 1/n_max, 25 cm for ISO 8608's

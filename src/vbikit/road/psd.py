@@ -211,9 +211,13 @@ def _amplitudes(psd: RoadPSD, spacing: float, length: float) -> NDArray[np.float
 #: factors (``_band_sum_factors``): the events of a stream, each with its own window, then share a
 #: few factor sets instead of computing one each (the extra stations are computed and dropped)
 WINDOW_QUANTUM = 512
+#: [substitute] factor sets kept (``_band_sum_factors``, one per rounded window length): benchmarks/bench_traffic.py's
+#: stream (Bridge 2, 3,816 events of 1–5 trucks) meets 38 lengths, 4096 … 27648 stations (23 MB of factors); with 16
+#: kept the rare long windows pushed out common ones, 169 sets made in all at ≈ 2 ms each (≈ 0.1 ms an event)
+BAND_FACTOR_SETS = 48
 
 
-@lru_cache(maxsize=16)
+@lru_cache(maxsize=BAND_FACTOR_SETS)
 def _band_sum_factors(k0: int, n_band: int, n_samples: int, m: int
                       ) -> tuple[NDArray[np.complex128], NDArray[np.complex128], NDArray[np.complex128], int]:
     """The factors of ``_window_sum`` that depend on the grid and the window's length only (not on the

@@ -414,7 +414,10 @@ class Crossing:
     def travel_speed(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """ds_v/dt [m/s] of every vehicle, shape (n_t, n_vehicles)."""
         t = np.atleast_1d(np.asarray(t, float))
-        return np.stack([m.velocity(t) for m in self.vehicles], axis=1)
+        if t.ndim != 1:
+            return np.stack([m.velocity(t) for m in self.vehicles], axis=1)
+        t_ref, _, v_ref, a, stop = self._motion_refs  # (every vehicle's ``velocity`` at once: the same arithmetic)
+        return v_ref + a * np.minimum(t[:, None] - t_ref, stop)
 
     def front_positions(self, t: NDArray[np.float64] | float) -> NDArray[np.float64]:
         """x [m] of every vehicle's front axle, shape (n_t, n_vehicles)."""
@@ -461,8 +464,7 @@ class Crossing:
 
     def _exit_time_of_points(self) -> float:
         last = -math.inf
-        for i, m in enumerate(self.vehicles):
-            distance = self.leaving_distance(np.flatnonzero(self.point_vehicle == i), m.sign)
+        for i, (m, distance) in enumerate(zip(self.vehicles, self._leaving_distances())):
             t = m.time_at(distance)
             if math.isnan(t) or (m.acceleration < 0 and t - m._ref[0] >= m.stop_time):
                 t_ref, s_ref, v_ref = m._ref
@@ -478,6 +480,21 @@ class Crossing:
                     "or a higher speed")
             last = max(last, t)
         return last
+
+    def _leaving_distances(self) -> list[float]:
+        """``leaving_distance`` of every vehicle (its own points and direction), all points in one pass (the
+        same numbers: each point's reach as there, the largest of each vehicle's)."""
+        veh = self.point_vehicle
+        counts = np.bincount(veh, minlength=len(self.vehicles))
+        if veh.size == 0 or not counts.all() or np.any(np.diff(veh) < 0):  # (a vehicle without points; unsorted)
+            return [self.leaving_distance(np.flatnonzero(veh == i), m.sign) for i, m in enumerate(self.vehicles)]
+        _, sign, y = self._kinematics
+        span = self.bridge.span
+        start = -self.bridge.span_coordinate(np.zeros(y.size), y)  # x of each track's entry support
+        near, far = self.bridge.deck_extent
+        reach = np.where(sign > 0, np.maximum(start + span, far), np.maximum(span - start, span - near))
+        first = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        return [float(d) for d in np.maximum.reduceat(reach + self.contact.setback, first)]
 
     def leaving_distance(self, points: NDArray[np.int64], sign: float) -> float:
         """Travel [m] from the entry support (x = 0 driving +x, x = span driving −x) until the contact

@@ -171,7 +171,7 @@ def implicit_time_step(crossing: Crossing) -> float:
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD]
     for road in (crossing.road, crossing.road_right):
-        if road is not None and road.spacing > 0:
+        if road is not None and road.has_features:  # (spacing > 0; a generated road's step reads its origin only)
             candidates.append(exact_road_per_step(road, crossing.loss_of_contact) / v_max)
     return _with_vehicle_periods(crossing.vehicle, EXACT_STEPS_PER_VEHICLE_PERIOD, min(candidates))
 
@@ -189,8 +189,7 @@ def _with_vehicle_periods(vehicle, steps_per_period: float, others: float) -> fl
     Analysis, Thm 5.6.9), so T_min ≥ 2π / √‖M⁻¹K̂‖∞; when that bound's step is already ≥ ``others``
     the minimum is ``others`` — the same number as with the eigenvalues, at the cost of one solve."""
     if vehicle.n_dof and vehicle.__dict__.get("_natural_frequencies") is None:  # (frequencies not yet solved)
-        k_hat = vehicle.stiffness + vehicle.tire_stiffness_matrix()
-        bound = float(np.abs(np.linalg.solve(vehicle.mass, k_hat)).sum(axis=1).max()) * (1.0 + _BOUND_MARGIN)
+        bound = vehicle.stiffness_bound() * (1.0 + _BOUND_MARGIN)
         if bound == 0.0 or (np.isfinite(bound) and 2 * np.pi / np.sqrt(bound) / steps_per_period >= others):
             return float(others)
     f_veh = vehicle.natural_frequencies()

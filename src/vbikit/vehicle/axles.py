@@ -48,11 +48,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import Optional, Sequence
 
 import numpy as np
 
-from vbikit.vehicle.builder import Body, VehicleBuilder
+from vbikit.vehicle.builder import Body, VehicleBuilder, assemble
 from vbikit.vehicle.model import GRAVITY, Vehicle
 
 #: axle-group kinds and their number of axles
@@ -131,7 +132,23 @@ def build_truck(name: str, bodies: Sequence[BodySpec], groups: Sequence[GroupSpe
     DOFs: heave, pitch, roll of the first body; pitch, roll of each hinged body (its heave
     follows the hinge); heave, pitch, roll of each bogie; bounce and roll of each independent
     axle.  Wheels are named ``axle<i>_left`` / ``axle<i>_right`` (i from 1, front to rear).
+
+    The trucks of one layout (bodies and hinges, groups and their axles: ``_TruckLayout``) share
+    their DOFs and which entry of which displacement row holds which difference of positions; the
+    layout is worked out once (``_truck_layout``) and each truck's rows are then filled in a few
+    array operations: the same numbers as ``VehicleBuilder`` (``_build_truck_with_builder``), bit for
+    bit (tests/unit/test_vehicle_assembly.py), at a fraction of its cost (a traffic stream builds
+    every truck of every event).
     """
+    key = _layout_key(bodies, groups)
+    if key is None:  # (a trailer hinged to a trailer: the builder's own bookkeeping)
+        return _build_truck_with_builder(name, bodies, groups, half_track, description, parameters)
+    return _truck_layout(key).build(name, bodies, groups, half_track, description, parameters)
+
+
+def _build_truck_with_builder(name: str, bodies: Sequence[BodySpec], groups: Sequence[GroupSpec], half_track: float,
+                              description: str, parameters: dict | None = None) -> Vehicle:
+    """``build_truck`` through ``VehicleBuilder`` (the reference of ``_TruckLayout``)."""
     b = half_track
     vb = VehicleBuilder(name)
     made: list[Body] = []
@@ -166,6 +183,167 @@ def build_truck(name: str, bodies: Sequence[BodySpec], groups: Sequence[GroupSpe
                 vb.wheel(f"axle{n}_{side}", bogie.point(ax.s, y), ax.s, y, ax.tire_stiffness, ax.tire_damping)
     return vb.build(description, parameters)
 
+
+
+def _layout_key(bodies: Sequence[BodySpec], groups: Sequence[GroupSpec]) -> tuple | None:
+    """The layout of a truck: per body whether it is hinged, per group its axles, body and whether it
+    is a bogie; None when a hinged body hangs from another hinged one (not laid out: ``_TruckLayout``)."""
+    hinged = tuple(body.hinge is not None for body in bodies)
+    if any(hinged[i] and (i == 0 or hinged[i - 1]) for i in range(len(hinged))):
+        return None
+    return hinged, tuple((len(g.axles), int(g.body), g.bogie is not None) for g in groups)
+
+
+#: kinds of the entries of a truck's displacement rows, in the parameters P (``_TruckLayout``):
+#: P[a]; P[a] − P[b]; −(P[a] − P[b]); −(P[a] − P[b]) + (P[a] − P[c])
+_VALUE, _DIFF, _NEG_DIFF, _HINGED = 0, 1, 2, 3
+
+
+class _TruckLayout:
+    """What the trucks of one layout (``_layout_key``) share: their DOF names, body and wheel names, and
+    the entries of their dense displacement rows (``vbikit.vehicle.builder.assemble``'s ``every``), each
+    one of the kinds above of the parameters P = (1, 0, b, −b, each body's s_cg, each body's hinge s,
+    each axle's s, each group's pivot s) — worked out by the same steps as ``VehicleBuilder`` on
+    symbols: a body point (s, y) moves by heave + (s_cg − s)·pitch + y·roll; a hinged body's heave is its
+    parent's point at the hinge less (s_cg − s_hinge)·pitch.  Filling them adds each entry to zero, as
+    ``VehicleBuilder``'s dense rows do, so the rows are the builder's bit for bit."""
+
+    def __init__(self, key: tuple) -> None:
+        hinged, groups = key
+        n_bodies, n_axles = len(hinged), sum(n for n, _, _ in groups)
+        one, zero, left, right = 0, 1, 2, 3
+        cg0, hinge0, axle0, pivot0 = 4, 4 + n_bodies, 4 + 2 * n_bodies, 4 + 2 * n_bodies + n_axles
+        self.n_parameters = pivot0 + len(groups)
+        dofs: list[str] = []
+
+        def dof(name: str) -> int:
+            dofs.append(name)
+            return len(dofs) - 1
+
+        # a symbolic row: {DOF: (kind, a, b, c)}; a body: (heave, pitch, roll rows, its s_cg parameter)
+        heaves, pitches, rolls = [], [], []
+
+        def body(label: str, cg: int, pitch: bool, heave: dict | None = None) -> list:
+            h = {dof(f"{label}_heave"): (_VALUE, one, 0, 0)} if heave is None else heave
+            p = {dof(f"{label}_pitch"): (_VALUE, one, 0, 0)} if pitch else {}
+            r = {dof(f"{label}_roll"): (_VALUE, one, 0, 0)}
+            made = [h, p, r, cg, None]
+            heaves.append(h)
+            pitches.append(p)
+            rolls.append(r)
+            return made
+
+        def point(b: list, s: int, y: int) -> dict:
+            h, p, r, cg, hinge = b
+            out = dict(h)
+            if hinge is not None:  # the hinged body's own pitch entry in its heave row, plus (s_cg − s)·pitch
+                (i,) = p
+                out[i] = (_HINGED, cg, hinge, s)
+            else:
+                out.update({i: (_DIFF, cg, s, 0) for i in p})
+            out.update({i: (_VALUE, y, 0, 0) for i in r})
+            return out
+
+        names = []
+        made: list[list] = []
+        for i, is_hinged in enumerate(hinged):
+            label = "body" if n_bodies == 1 else ("tractor" if i == 0 else f"trailer{i}" if n_bodies > 2 else "trailer")
+            names.append(label)
+            if not is_hinged:
+                made.append(body(label, cg0 + i, True))
+                continue
+            parent = made[-1]
+            b = body(label, cg0 + i, True, heave={})
+            (own,) = b[1]
+            b[0].update(point(parent, hinge0 + i, zero))  # the parent's point at the hinge (y = 0)
+            b[0][own] = (_NEG_DIFF, cg0 + i, hinge0 + i, 0)
+            b[4] = hinge0 + i
+            made.append(b)
+        springs_a, springs_b, wheels = [], [], []
+        wheel_names = []
+        n = 0
+        for g, (count, carrier_index, bogie) in enumerate(groups):
+            carrier = made[carrier_index]
+            if not bogie:
+                for _ in range(count):
+                    n += 1
+                    names.append(f"axle{n}")
+                    axle = body(f"axle{n}", axle0 + n - 1, False)
+                    for side, y in (("left", left), ("right", right)):
+                        springs_a.append(point(carrier, axle0 + n - 1, y))
+                        springs_b.append(point(axle, axle0 + n - 1, y))
+                        wheels.append(point(axle, axle0 + n - 1, y))
+                        wheel_names.append(f"axle{n}_{side}")
+                continue
+            names.append(f"bogie{g + 1}")
+            beam = body(f"bogie{g + 1}", pivot0 + g, True)
+            for side, y in (("left", left), ("right", right)):
+                springs_a.append(point(carrier, pivot0 + g, y))
+                springs_b.append(point(beam, pivot0 + g, y))
+            for _ in range(count):
+                n += 1
+                for side, y in (("left", left), ("right", right)):
+                    wheels.append(point(beam, axle0 + n - 1, y))
+                    wheel_names.append(f"axle{n}_{side}")
+        rows = heaves + pitches + rolls + springs_a + springs_b + wheels
+        self.dofs = tuple(dofs)
+        self.body_names = tuple(names)
+        self.wheel_names = tuple(wheel_names)
+        self.n_rows = len(rows)
+        width = len(dofs)
+        entries = [(k * width + i, *f) for k, row in enumerate(rows) for i, f in row.items()]
+        flat, kind, a, b_, c = (np.array(col, np.int64) for col in zip(*entries))
+        self.kinds = tuple((flat[kind == k], a[kind == k], b_[kind == k], c[kind == k]) for k in range(4))
+
+    def rows(self, parameters: np.ndarray) -> np.ndarray:
+        """The dense rows (``assemble``'s ``every``) for the parameters P (a fresh array)."""
+        every = np.zeros(self.n_rows * len(self.dofs))
+        (f0, a0, _, _), (f1, a1, b1, _), (f2, a2, b2, _), (f3, a3, b3, c3) = self.kinds
+        p = parameters
+        every[f0] = p[a0] + 0.0
+        every[f1] = (p[a1] - p[b1]) + 0.0
+        every[f2] = -(p[a2] - p[b2]) + 0.0
+        every[f3] = ((-(p[a3] - p[b3]) + 0.0) + (p[a3] - p[c3])) + 0.0
+        return every.reshape(self.n_rows, len(self.dofs))
+
+    def build(self, name: str, bodies: Sequence[BodySpec], groups: Sequence[GroupSpec], half_track: float,
+              description: str, parameters: dict | None) -> Vehicle:
+        """The truck of these specs (``build_truck``)."""
+        b = half_track
+        p = np.full(self.n_parameters, np.nan)
+        p[:4] = (1.0, 0.0, b, -b)
+        n_bodies = len(bodies)
+        p[4:4 + n_bodies] = [body.s_cg for body in bodies]
+        p[4 + n_bodies:4 + 2 * n_bodies] = [math.nan if body.hinge is None else body.hinge for body in bodies]
+        axles = [ax for group in groups for ax in group.axles]
+        p[4 + 2 * n_bodies:4 + 2 * n_bodies + len(axles)] = [ax.s for ax in axles]
+        p[4 + 2 * n_bodies + len(axles):] = [math.nan if g.bogie is None else g.bogie[0] for g in groups]
+        body_specs = [(label, body.mass, body.s_cg, body.pitch_inertia, body.roll_inertia)
+                      for label, body in zip(self.body_names, bodies)]
+        springs: list[tuple[float, float]] = []
+        wheel_specs = []
+        names = iter(self.body_names[n_bodies:])
+        wheel_names = iter(self.wheel_names)
+        for g, group in enumerate(groups):
+            if group.bogie is None:
+                for ax in group.axles:
+                    body_specs.append((next(names), ax.mass, ax.s, 0.0, ax.mass * b**2))
+                    springs += [(ax.suspension_stiffness, ax.suspension_damping)] * 2
+                    wheel_specs += [(next(wheel_names), ax.s, y, ax.tire_stiffness, ax.tire_damping, 0.0) for y in (b, -b)]
+                continue
+            pivot, pitch_inertia, k_s, c_s = group.bogie
+            mass = sum(ax.mass for ax in group.axles)
+            body_specs.append((next(names), mass, pivot, pitch_inertia, mass * b**2))
+            springs += [(k_s, c_s)] * 2
+            wheel_specs += [(next(wheel_names), ax.s, y, ax.tire_stiffness, ax.tire_damping, 0.0)
+                            for ax in group.axles for y in (b, -b)]
+        return assemble(name, self.dofs, self.rows(p), body_specs, springs, wheel_specs, description, parameters)
+
+
+@lru_cache(maxsize=256)
+def _truck_layout(key: tuple) -> _TruckLayout:
+    """The ``_TruckLayout`` of ``key`` (worked out once per layout in a process; shared, read only)."""
+    return _TruckLayout(key)
 
 def _box_inertias(mass: float, length: float) -> tuple[float, float]:
     return (mass * (length**2 + BODY_HEIGHT**2) / 12.0, mass * (BODY_WIDTH**2 + BODY_HEIGHT**2) / 12.0)
@@ -270,12 +448,15 @@ def axle_truck(
     s_axle = np.concatenate([[0.0], np.cumsum(spacings)])
 
     # tires and suspensions sized by the static deflections (per side: half the axle)
+    # (as Python floats: the same IEEE arithmetic as on numpy's scalars, without their overhead)
+    load_of, mass_of, sprung_of, s_of = loads.tolist(), masses.tolist(), sprung.tolist(), s_axle.tolist()
+
     def axle_spec(i: int, suspension: bool) -> AxleSpec:
-        k_t = 0.5 * loads[i] / tire_deflection
-        c_t = 2 * tire_damping_ratio * math.sqrt(k_t * 0.5 * masses[i])
-        k_s = 0.5 * sprung[i] / suspension_deflection if suspension else 0.0
-        c_s = 2 * suspension_damping_ratio * math.sqrt(k_s * 0.5 * sprung[i] / GRAVITY) if suspension else 0.0
-        return AxleSpec(float(s_axle[i]), float(masses[i]), k_s, c_s, k_t, c_t)
+        k_t = 0.5 * load_of[i] / tire_deflection
+        c_t = 2 * tire_damping_ratio * math.sqrt(k_t * 0.5 * mass_of[i])
+        k_s = 0.5 * sprung_of[i] / suspension_deflection if suspension else 0.0
+        c_s = 2 * suspension_damping_ratio * math.sqrt(k_s * 0.5 * sprung_of[i] / GRAVITY) if suspension else 0.0
+        return AxleSpec(s_of[i], mass_of[i], k_s, c_s, k_t, c_t)
 
     # groups, with their supports on the bodies: (s [m], load [N]) of each suspension
     first = np.cumsum([0] + [GROUP_KINDS[k] for k in kinds])[:-1]
@@ -286,7 +467,7 @@ def axle_truck(
         idx = list(range(first[g], first[g] + GROUP_KINDS[kind]))
         if kind != "walking-beam":
             group_specs.append(GroupSpec(tuple(axle_spec(i, True) for i in idx), body_of[g]))
-            supports[body_of[g]] += [(float(s_axle[i]), float(sprung[i])) for i in idx]
+            supports[body_of[g]] += [(s_of[i], sprung_of[i]) for i in idx]
             continue
         p = float(sprung[idx].sum())  # the bogie carries its axles' sprung loads at its pivot
         pivot = float((loads[idx] * s_axle[idx]).sum() / loads[idx].sum())  # tire-load centroid

@@ -142,27 +142,44 @@ class VehicleBuilder:
                     v[k * n + i] += c
             return np.array(v, float).reshape(len(rows), n)
 
-        def outer_sum(coef: np.ndarray, rows: np.ndarray) -> np.ndarray:
-            """Σ_k coef_k · row_k row_kᵀ (n × n)."""
-            return (coef[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0) if len(rows) \
-                else np.zeros((n, n))
-
         bodies, springs, wheel_specs = self.bodies, self.springs, self.wheels
-        nb, ns = len(bodies), len(springs)
         # every row once, in one array: heave, pitch, roll of the bodies, the springs' ends, the wheels
         every = dense([b.heave for b in bodies] + [b.pitch for b in bodies] + [b.roll for b in bodies]
                       + [a for a, _, _, _ in springs] + [b_ for _, b_, _, _ in springs] + [row for *_, row, _ in wheel_specs])
-        h, p, r = every[:nb], every[nb:2 * nb], every[2 * nb:3 * nb]
-        mass = np.array([b.mass for b in bodies], float)
-        m = (mass[:, None, None] * (h[:, :, None] * h[:, None, :])
-             + np.array([b.pitch_inertia for b in bodies], float)[:, None, None] * (p[:, :, None] * p[:, None, :])
-             + np.array([b.roll_inertia for b in bodies], float)[:, None, None] * (r[:, :, None] * r[:, None, :])
-             ).sum(axis=0) if bodies else np.zeros((n, n))
-        fg = -((GRAVITY * mass)[:, None] * h).sum(axis=0) if bodies else np.zeros(n)
-        d = every[3 * nb:3 * nb + ns] - every[3 * nb + ns:3 * nb + 2 * ns]
-        k = outer_sum(np.array([ks for _, _, ks, _ in springs], float), d)
-        c = outer_sum(np.array([cs for _, _, _, cs in springs], float), d)
-        rows = every[3 * nb + 2 * ns:]  # (each wheel's and body's rows: views of ``every``, which nothing else holds)
-        wheels = tuple(Wheel(nm, s, y, kt, ct, rows[w], fl) for w, (nm, s, y, kt, ct, _, fl) in enumerate(wheel_specs))
-        body_rows = {b.name: (b.s_cg, h[i], p[i], r[i]) for i, b in enumerate(bodies)}
-        return Vehicle(self.name, tuple(self.dofs), m, c, k, fg, wheels, description, dict(parameters or {}), bodies=body_rows)
+        return assemble(self.name, tuple(self.dofs), every,
+                        [(b.name, b.mass, b.s_cg, b.pitch_inertia, b.roll_inertia) for b in bodies],
+                        [(ks, cs) for _, _, ks, cs in springs], [(nm, s, y, kt, ct, fl) for nm, s, y, kt, ct, _, fl in wheel_specs],
+                        description, parameters)
+
+
+def assemble(name: str, dofs: tuple[str, ...], every: np.ndarray, bodies: list[tuple[str, float, float, float, float]],
+             springs: list[tuple[float, float]], wheel_specs: list[tuple[str, float, float, float, float, float]],
+             description: str = "", parameters: dict[str, float] | None = None) -> Vehicle:
+    """The [`Vehicle`][vbikit.vehicle.Vehicle] of ``VehicleBuilder.build`` from its dense rows ``every``
+    (heave, pitch, roll rows of the bodies, the springs' first and second ends, the wheels' rows, stacked
+    in that order), the bodies' (name, mass, s_cg, pitch and roll inertias), the springs' (k, c) and the
+    wheels' (name, s, y, k, c, fixed load): M = Σ_b (m h hᵀ + J_θ p pᵀ + J_φ r rᵀ), K (C) = Σ_s k (c) d dᵀ
+    with d = a − b, F_G = −g Σ_b m h, each sum one reduction in the bodies' or springs' order (the values
+    of adding the terms one by one).  ``every`` is the vehicle's own (its rows are views of it)."""
+    n = len(dofs)
+
+    def outer_sum(coef: np.ndarray, rows: np.ndarray) -> np.ndarray:
+        """Σ_k coef_k · row_k row_kᵀ (n × n)."""
+        return (coef[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0) if len(rows) \
+            else np.zeros((n, n))
+
+    nb, ns = len(bodies), len(springs)
+    h, p, r = every[:nb], every[nb:2 * nb], every[2 * nb:3 * nb]
+    mass = np.array([b[1] for b in bodies], float)
+    m = (mass[:, None, None] * (h[:, :, None] * h[:, None, :])
+         + np.array([b[3] for b in bodies], float)[:, None, None] * (p[:, :, None] * p[:, None, :])
+         + np.array([b[4] for b in bodies], float)[:, None, None] * (r[:, :, None] * r[:, None, :])
+         ).sum(axis=0) if bodies else np.zeros((n, n))
+    fg = -((GRAVITY * mass)[:, None] * h).sum(axis=0) if bodies else np.zeros(n)
+    d = every[3 * nb:3 * nb + ns] - every[3 * nb + ns:3 * nb + 2 * ns]
+    k = outer_sum(np.array([ks for ks, _ in springs], float), d)
+    c = outer_sum(np.array([cs for _, cs in springs], float), d)
+    rows = every[3 * nb + 2 * ns:]  # (each wheel's and body's rows: views of ``every``, which nothing else holds)
+    wheels = tuple(Wheel(nm, s, y, kt, ct, rows[w], fl) for w, (nm, s, y, kt, ct, fl) in enumerate(wheel_specs))
+    body_rows = {b[0]: (b[2], h[i], p[i], r[i]) for i, b in enumerate(bodies)}
+    return Vehicle(name, tuple(dofs), m, c, k, fg, wheels, description, dict(parameters or {}), bodies=body_rows)

@@ -130,6 +130,24 @@ class Vehicle:
             object.__setattr__(self, "_rows_and_stiffness", kept)
         return kept
 
+    def _grounded_stiffness(self) -> NDArray[np.float64]:
+        """K̂ = K + Σ k_w r_w r_wᵀ, the stiffness on rigid ground (kept: vehicles are immutable; not to be written)."""
+        kept = self.__dict__.get("_k_hat")
+        if kept is None:
+            kept = self.stiffness + self.tire_stiffness_matrix()
+            object.__setattr__(self, "_k_hat", kept)
+        return kept
+
+    def stiffness_bound(self) -> float:
+        """‖M⁻¹K̂‖∞ (K̂ = K + Σ k_w r_w r_wᵀ): a bound on ω_max² on rigid ground, no eigenvalue below any
+        induced norm (``vbikit.solve.timestep``; kept: vehicles are immutable)."""
+        kept = self.__dict__.get("_stiffness_bound")
+        if kept is None:
+            kept = float(np.abs(np.linalg.solve(self.mass, self._grounded_stiffness())).sum(axis=1).max()) \
+                if self.n_dof else 0.0
+            object.__setattr__(self, "_stiffness_bound", kept)
+        return kept
+
     def static_state(self, ground: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
         """Static displacement q_s [m, rad] with each wheel on rigid ground at elevation ``ground`` [m].
 
@@ -140,7 +158,7 @@ class Vehicle:
         g = np.zeros(len(self.wheels)) if ground is None else np.asarray(ground, float)
         rows, k_w = self._wheel_rows()
         rhs = self.gravity + ((k_w[:, None] * rows) * g[:, None]).sum(axis=0)  # Σ_w k_w r_w g_w, wheel by wheel
-        return np.linalg.solve(self.stiffness + self.tire_stiffness_matrix(), rhs)
+        return np.linalg.solve(self._grounded_stiffness(), rhs)
 
     def static_wheel_loads(self) -> NDArray[np.float64]:
         """Static wheel loads [N] (positive = pressing down) on flat rigid ground, from equilibrium
@@ -161,7 +179,7 @@ class Vehicle:
         if freqs is None:
             from scipy.linalg import eigh
 
-            lam = eigh(self.stiffness + self.tire_stiffness_matrix(), self.mass, eigvals_only=True)
+            lam = eigh(self._grounded_stiffness(), self.mass, eigvals_only=True)
             freqs = np.sqrt(np.clip(lam, 0.0, None)) / (2 * np.pi)
             object.__setattr__(self, "_natural_frequencies", freqs)
         return freqs.copy()
@@ -196,6 +214,13 @@ class CombinedVehicle(Vehicle):
             return np.concatenate([p.static_state(gi) for p, gi in zip(self.parts, g)]) if self.n_dof else np.zeros(0)
         except np.linalg.LinAlgError:  # a part singular on its own (a mechanism): the whole system as given
             return super().static_state(ground)
+
+    def stiffness_bound(self) -> float:
+        """``Vehicle.stiffness_bound``: the largest of the vehicles' own (kept with each: M and K̂ are
+        block-diagonal, so every row of M⁻¹K̂ is a row of one vehicle's own)."""
+        if not self._stacked or not self.parts:
+            return super().stiffness_bound()
+        return max(p.stiffness_bound() for p in self.parts)
 
     def static_wheel_loads(self) -> NDArray[np.float64]:
         """Each vehicle's own static wheel loads (kept per vehicle), stacked (a fresh array)."""
