@@ -488,28 +488,26 @@ class Crossing:
         counts = np.bincount(veh, minlength=len(self.vehicles))
         if veh.size == 0 or not counts.all() or np.any(np.diff(veh) < 0):  # (a vehicle without points; unsorted)
             return [self.leaving_distance(np.flatnonzero(veh == i), m.sign) for i, m in enumerate(self.vehicles)]
-        _, sign, y = self._kinematics
-        span = self.bridge.span
-        start = -self.bridge.span_coordinate(np.zeros(y.size), y)  # x of each track's entry support
-        near, far = self.bridge.deck_extent
-        reach = np.where(sign > 0, np.maximum(start + span, far), np.maximum(span - start, span - near))
         first = np.concatenate([[0], np.cumsum(counts)[:-1]])
-        return [float(d) for d in np.maximum.reduceat(reach + self.contact.setback, first)]
+        return [float(d) for d in np.maximum.reduceat(self._reaches(np.arange(veh.size), self._kinematics[1]), first)]
 
     def leaving_distance(self, points: NDArray[np.int64], sign: float) -> float:
         """Travel [m] from the entry support (x = 0 driving +x, x = span driving −x) until the contact
         points ``points`` of a vehicle have all left the deck: each its own track's far end (span +
         y tan θ driving +x, y tan θ driving −x, y its deck y), and at least the deck's far corner
         (``deck_extent``), plus its setback."""
+        return float(np.max(self._reaches(points, sign)))
+
+    def _reaches(self, points: NDArray[np.int64], sign: float | NDArray[np.float64]) -> NDArray[np.float64]:
+        """Each of the contact points ``points``' travel [m] until it has left the deck driving ``sign``
+        (one, or one per point): its own track's far end, at least the deck's far corner, plus its setback
+        (``leaving_distance``)."""
         _, _, y = self._kinematics
-        cp = self.contact
+        span = self.bridge.span
         start = -self.bridge.span_coordinate(np.zeros(len(points)), y[points])  # x of each track's entry support
         near, far = self.bridge.deck_extent
-        if sign > 0:
-            reach = np.maximum(start + self.bridge.span, far)
-        else:
-            reach = np.maximum(self.bridge.span - start, self.bridge.span - near)
-        return float(np.max(reach + cp.setback[points]))
+        reach = np.where(np.asarray(sign) > 0, np.maximum(start + span, far), np.maximum(span - start, span - near))
+        return reach + self.contact.setback[points]
 
     @property
     def duration(self) -> float:
