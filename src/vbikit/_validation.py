@@ -12,6 +12,17 @@ from pydantic import BaseModel, ValidationError
 
 #: the largest step budget an option or key may set (--max-steps, max_steps): 1e12 steps, weeks of computing
 MAX_STEPS_LIMIT = 1e12
+#: the most local worker processes a file may ask for (a railway file's run.workers); ``--workers`` takes
+#: up to ``workers_limit()``.  More processes than cores only wait for one (each holds its own copy of the
+#: models; 100,000 asked for forked until the machine ran out of memory); a Dask cluster (--scheduler) for more
+MAX_WORKERS = 64
+
+
+def workers_limit() -> int:
+    """The most local worker processes ``--workers`` takes: ``MAX_WORKERS``, or the machine's cores if more."""
+    import os
+
+    return max(MAX_WORKERS, os.cpu_count() or 1)
 
 #: a validator's message that names one of its section's keys first ("speed: must be …")
 _KEY_FIRST = re.compile(r"^([A-Za-z_]+): ")

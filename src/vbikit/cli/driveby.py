@@ -7,14 +7,14 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard, out_dir_option, steps_option
+from vbikit.cli.guard import guard, out_dir_option, scheduler_option, steps_option, workers_option
 
 
 def driveby_cmd(
     file: Path = typer.Argument(..., metavar="DRIVEBY.toml", help="Drive-by file (docs/driveby.md)."),
     out_dir: Path = out_dir_option("Folder for driveby.nc (and driveby.zarr), the figures and the report."),
-    workers: Optional[int] = typer.Option(1, "--workers", min=1, help="Local worker processes (1 = in this process)."),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
+    workers: Optional[int] = workers_option("Local worker processes (1 = in this process).", default=1),
+    scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
     max_steps: Optional[float] = typer.Option(None, "--max-steps", min=1, help="Budget: integration steps of the whole sweep "
                                               "(default the file's max_steps, 2e7)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),

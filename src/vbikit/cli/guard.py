@@ -129,6 +129,37 @@ def out_file_option(name: str, help: str, default: Any = None) -> Any:
     return typer.Option(default, name, help=help, callback=check_out_file)
 
 
+def check_scheduler_option(value: Optional[str]) -> Optional[str]:
+    """``--scheduler``: a Dask scheduler address of the form tcp://host:port, checked as the command line
+    is parsed (``vbikit.study.workers.check_scheduler``; exit 2 naming the option), before any
+    computation; nothing is connected yet.  None passes."""
+    if value is None:
+        return None
+    from vbikit.study.workers import check_scheduler
+
+    return guard(lambda: check_scheduler(value, OptionError))
+
+
+def scheduler_option(help: str) -> Any:
+    """The ``--scheduler`` option of every command that runs on a Dask cluster (``check_scheduler_option``)."""
+    return typer.Option(None, "--scheduler", help=help, callback=check_scheduler_option)
+
+
+def check_workers_option(value: Optional[int]) -> Optional[int]:
+    """``--workers``: an integer in [1, ``vbikit._validation.workers_limit()``] (exit 2 naming the option
+    and the range), checked as the command line is parsed: before any process is started.  None passes."""
+    if value is None:
+        return None
+    from vbikit._validation import number, workers_limit
+
+    return guard(lambda: int(number(value, "--workers", 1, workers_limit(), integer=True, error=OptionError)))
+
+
+def workers_option(help: str, default: Optional[int] = None) -> Any:
+    """The ``--workers`` option of every command with local worker processes (``check_workers_option``)."""
+    return typer.Option(default, "--workers", help=help, callback=check_workers_option)
+
+
 MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
                                                      "estimated before it starts, refused above.")
 MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")

@@ -8,7 +8,15 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import MAX_MEMORY, STATE, guard, memory_option, out_dir_option
+from vbikit.cli.guard import (
+    MAX_MEMORY,
+    STATE,
+    guard,
+    memory_option,
+    out_dir_option,
+    scheduler_option,
+    workers_option,
+)
 
 
 class _Bars:
@@ -46,8 +54,8 @@ class _Bars:
 def lifetime_cmd(
     spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
     out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt and the figures."),
-    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
+    workers: Optional[int] = workers_option("Local worker processes (default: all cores; 1 = in this process)."),
+    scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show progress bars."),
     max_memory: Optional[str] = MAX_MEMORY,

@@ -7,17 +7,17 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, out_dir_option
+from vbikit.cli.guard import STATE, guard, out_dir_option, scheduler_option, workers_option
 
 
 def rail_cmd(
     spec: Path = typer.Argument(..., metavar="RAIL.toml", help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
     out_dir: Path = out_dir_option("Folder for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
-    workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Worker processes (default: run.workers)."),
+    workers: Optional[int] = workers_option("Worker processes (default: run.workers)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Draw the acceleration-envelope figure."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar (trains swept)."),
-    scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask scheduler address (tcp://host:port): sweep "
-                                                                     "the trains on that cluster, one task a train."),
+    scheduler: Optional[str] = scheduler_option("Dask scheduler address (tcp://host:port): sweep the trains on that "
+                                                "cluster, one task a train."),
 ) -> None:
     """Sweep every train over every speed: envelopes of deck acceleration, deflection, moment and
     shear, phi'dyn, resonance speeds and the pass/fail report.  An interrupted sweep started again

@@ -8,7 +8,16 @@ from typing import Any, Callable, Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, limits, out_dir_option, out_file_option, warn
+from vbikit.cli.guard import (
+    STATE,
+    guard,
+    limits,
+    out_dir_option,
+    out_file_option,
+    scheduler_option,
+    warn,
+    workers_option,
+)
 
 app = typer.Typer(no_args_is_help=True, pretty_exceptions_enable=False, rich_markup_mode=None,
                   help="Parameter studies: run a study file, or the paper's studies (Figs. 5–8, 10, 11).")
@@ -88,8 +97,8 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
     return result
 
 
-_WORKERS = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process).")
-_SCHEDULER = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port) to run on.")
+_WORKERS = workers_option("Local worker processes (default: all cores; 1 = in this process).")
+_SCHEDULER = scheduler_option("Dask distributed scheduler address (tcp://host:port) to run on.")
 _PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progress bar.")
 
 

@@ -46,7 +46,7 @@ from typing import Any, Optional, Union
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator, model_validator
 
-from vbikit._validation import validation_message
+from vbikit._validation import MAX_WORKERS, validation_message
 from vbikit.errors import VbikitError
 from vbikit.rail.codes import CLASSIFICATION_FACTORS, DECK_DAMPING, DYNAMIC_FACTORS, ACCELERATION_LIMITS
 from vbikit.vehicle.trains import HSLM_B_N, HSLM_B_SPACING
@@ -211,7 +211,7 @@ class CoupledSection(_Section):
 
 
 class RunSection(_Section):
-    workers: int = Field(1, ge=1, le=64)
+    workers: int = Field(1, ge=1, le=MAX_WORKERS)
     steps_per_period: int = Field(20, ge=8, le=200)
     budget: float = Field(4e9, gt=0, le=1e13)
     points: int = Field(9, ge=1, le=99)

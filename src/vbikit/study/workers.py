@@ -117,14 +117,38 @@ def shutdown_workers(kill: bool = False) -> None:
 atexit.register(shutdown_workers)
 
 
-def dask_client(scheduler: str, error: type[Exception], connect_timeout: float) -> Any:
-    """A ``dask.distributed.Client`` of the scheduler at ``scheduler``; ``error`` (the caller's
-    error class, naming ``--scheduler``) when dask.distributed is not installed or the scheduler
-    cannot be reached within ``connect_timeout`` [s].  The caller closes it."""
+#: the Dask address schemes whose location is ``host:port``
+_HOST_PORT_SCHEMES = ("tcp", "tls", "ucx", "ws", "wss")
+
+
+def check_scheduler(scheduler: str, error: type[Exception]) -> str:
+    """``scheduler`` if it has the form of a Dask scheduler address (``tcp://host:port``, ``host:port``,
+    ``inproc://…``), else ``error`` naming ``--scheduler`` and the form allowed; nothing is connected
+    (the one check of the address, of ``dask_client`` and of every command's ``--scheduler`` before
+    it computes).  ``error`` too when dask.distributed is not installed."""
     try:
-        from dask.distributed import Client
+        from distributed.comm.addressing import parse_address, parse_host_port
     except ImportError:  # pragma: no cover - depends on the install
         raise error("--scheduler needs dask.distributed: pip install 'vbikit[dask]'") from None
+    allowed = "give the scheduler's address as tcp://host:port (e.g. tcp://10.0.0.5:8786)"
+    try:
+        scheme, location = parse_address(str(scheduler))
+        port = parse_host_port(location)[1] if scheme in _HOST_PORT_SCHEMES else 0
+    except (ValueError, TypeError) as err:
+        raise error(f"--scheduler {scheduler!r}: not a scheduler address ({err}); {allowed}") from None
+    if not 0 <= int(port) <= 65535:
+        raise error(f"--scheduler {scheduler!r}: port {port} is not in [0, 65535]; {allowed}")
+    return scheduler
+
+
+def dask_client(scheduler: str, error: type[Exception], connect_timeout: float) -> Any:
+    """A ``dask.distributed.Client`` of the scheduler at ``scheduler``; ``error`` (the caller's
+    error class, naming ``--scheduler``) when dask.distributed is not installed, the address is
+    malformed (``check_scheduler``) or the scheduler cannot be reached within ``connect_timeout``
+    [s].  The caller closes it."""
+    check_scheduler(scheduler, error)
+    from dask.distributed import Client
+
     try:
         return Client(scheduler, timeout=f"{connect_timeout}s")
     except OSError as err:
