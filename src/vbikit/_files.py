@@ -208,6 +208,22 @@ def output_file(path: str | Path, key: str) -> Path:
     return path
 
 
+def not_an_input(path: str | Path, key: str, inputs: list[Any]) -> Path:
+    """The output file ``path`` (of the option ``key``) unless it is one of the input files ``inputs``
+    (the same file, also under another name or through a link): then ``OutputError`` naming both,
+    checked before any computation — the output would replace the input (``vbikit run s.toml --out
+    s.toml`` wrote the histories over the scenario)."""
+    for given in inputs:
+        try:
+            same = os.path.samefile(path, given)
+        except OSError:  # either does not exist (yet): not the same file
+            same = False
+        if same:
+            raise OutputError(f"{key} {path}: is the input file {given}; writing it would replace the input: "
+                              "give another path for the output")
+    return Path(path)
+
+
 #: the largest input file read by default [MiB]; the environment variable ``MAX_INPUT_ENV`` sets another
 DEFAULT_MAX_INPUT_MB = 256
 MAX_INPUT_ENV = "VBIKIT_MAX_INPUT_MB"
@@ -294,7 +310,7 @@ def read_text(path: str | Path, error: type[Exception], what: str = "file", max_
     if nul >= 0:
         line = data.count(b"\n", 0, nul) + 1
         raise error(f"{path}:{line}: a NUL byte: not a text file (binary content); "
-                    f"expected a {what}")
+                    f"expected {'an' if what[:1] in 'aeiou' else 'a'} {what}")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as err:

@@ -85,3 +85,64 @@ def test_dask_client_refuses_a_malformed_address_with_the_callers_error():
 
     with pytest.raises(VbikitError, match="--scheduler 'garbage': not a scheduler address"):
         dask_client("garbage", VbikitError, 1.0)
+
+
+@pytest.mark.parametrize("n", ["0", "101", "100000000"])
+def test_compare_tires_n_points_outside_the_tire_models_range(tmp_path, n):
+    """Was: a pydantic traceback above 100 (the multi-point tire's own n_points range), after the
+    scenario was read; 0 gave click's usage text.  Now the tire model's range, named as the option."""
+    res = runner.invoke(app, ["compare-tires", str(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml"),
+                              "--n-points", n, "--out-dir", str(tmp_path / "out")])
+    _refused(res, f"--n-points: expected an integer in [1, 100], got {n}")
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ["traffic", "@rec.csv", "--bridge", "paper-bridge-2-beam", "--lanes", "-1.8,1.8", "--out", "@t.nc", "--no-progress"],
+    ["bridge", "paper-bridge-2"],
+    ["run", "@s.toml"],
+])
+def test_a_figure_format_matplotlib_cannot_write_is_refused_before_computing(tmp_path, argv):
+    """Was: ``vbikit traffic`` ran every event, and ``vbikit bridge`` solved the modes, before refusing
+    ``--plot x.xyz`` (``vbikit run`` checked it in its body; now one option checks it for all three)."""
+    (tmp_path / "rec.csv").write_text("\n".join(STREAM[:4]) + "\n")
+    (tmp_path / "s.toml").write_text((ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text())
+    argv = [a.replace("@", f"{tmp_path}/") for a in argv]
+    t0 = time.process_time()
+    res = runner.invoke(app, [*argv, "--plot", str(tmp_path / "x.xyz")])
+    _refused(res, f"--plot {tmp_path / 'x.xyz'}: figures are written as", "png", "not 'xyz'")
+    assert time.process_time() - t0 < 1.5  # (the paper-bridge-2 deck's modes alone take longer)
+    assert "events ->" not in res.output and "mode  1" not in res.output
+    assert not (tmp_path / "t.nc").exists()
+
+
+@pytest.mark.parametrize("option", ["--out", "--summary"])
+@pytest.mark.parametrize("spelling", ["same", "link", "dotted"])
+def test_run_never_writes_an_output_over_its_scenario(tmp_path, option, spelling):
+    """Was: ``vbikit run s.toml --out s.toml`` replaced the scenario by the time histories (exit 0)."""
+    scenario = tmp_path / "s.toml"
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    scenario.write_text(text)
+    target = {"same": scenario, "link": tmp_path / "l.toml", "dotted": tmp_path / "sub" / ".." / "s.toml"}[spelling]
+    (tmp_path / "sub").mkdir()
+    if spelling == "link":
+        target.symlink_to(scenario)
+    res = runner.invoke(app, ["run", str(scenario), option, str(target)])
+    _refused(res, f"{option} {target}: is the input file {scenario}", "give another path")
+    assert scenario.read_text() == text
+
+
+@pytest.mark.parametrize("make, words", [(lambda p: p.mkdir(), "is a folder, not a regular file; give the scenario file"),
+                                         (lambda p: None, "scenario file not found: ")])
+def test_run_random_names_a_folder_as_run_does(tmp_path, make, words):
+    """Was: ``vbikit run FOLDER --random`` said 'no such scenario file' (``scenario_of``'s own check);
+    now the one reader's words, as ``vbikit run FOLDER``."""
+    path = tmp_path / "d.toml"
+    make(path)
+    for extra in ([], ["--random"]):
+        _refused(runner.invoke(app, ["run", str(path), *extra]), str(path), words)
+
+
+def test_binary_input_message_is_grammatical(tmp_path):
+    (tmp_path / "b.toml").write_bytes(b"a\x00b")
+    _refused(runner.invoke(app, ["validate", str(tmp_path / "b.toml")]), "binary content); expected an input file")

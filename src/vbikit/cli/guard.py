@@ -160,6 +160,29 @@ def workers_option(help: str, default: Optional[int] = None) -> Any:
     return typer.Option(default, "--workers", help=help, callback=check_workers_option)
 
 
+def check_figure_file(param: typer.CallbackParam, path: Any) -> Any:
+    """A figure file option (``--plot``): ``check_out_file``, and a format matplotlib writes by the file's
+    suffix (``vbikit._files.figure_format``), checked as the command line is parsed, before any
+    computation (was: after the run, in ``vbikit traffic`` and ``vbikit bridge``).  None passes."""
+    path = check_out_file(param, path)
+    if path is not None:
+        from vbikit._files import figure_format
+
+        def check() -> None:
+            try:
+                figure_format(path)
+            except OptionError as err:
+                raise OptionError(f"{max(param.opts, key=len)} {err}") from None
+
+        guard(check)
+    return path
+
+
+def figure_file_option(help: str) -> Any:
+    """The ``--plot`` option of a command that draws one figure (``check_figure_file``; default None: none drawn)."""
+    return typer.Option(None, "--plot", help=help, callback=check_figure_file)
+
+
 MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
                                                      "estimated before it starts, refused above.")
 MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")

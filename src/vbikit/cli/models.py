@@ -6,7 +6,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard, out_dir_option, out_file_option
+from vbikit.cli.guard import figure_file_option, guard, out_dir_option
 
 
 def presets() -> None:
@@ -80,7 +80,7 @@ def bridge(
                                           help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),
     out_dir: Optional[Path] = out_dir_option("Where to write the figure NAME-modes.png (default vbikit-out; not used "
                                              "with --plot or --no-plot).", default=None),
-    plot: Optional[Path] = out_file_option("--plot", "Write the figure to this file instead."),
+    plot: Optional[Path] = figure_file_option("Write the figure to this file instead."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
 ) -> None:
     """Frequencies and mode descriptions of a bridge preset or of a scenario's bridge, and a figure of its

@@ -8,7 +8,16 @@ from typing import Optional
 import typer
 
 from vbikit.cli.execute import execute, grouped_warnings
-from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, out_dir_option, out_file_option, warn
+from vbikit.cli.guard import (
+    MAX_MEMORY,
+    MAX_STEPS,
+    figure_file_option,
+    guard,
+    limits,
+    out_dir_option,
+    out_file_option,
+    warn,
+)
 from vbikit.cli.render import json_text, outputs, write_text
 
 
@@ -16,7 +25,7 @@ def run(
     scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file."),
     as_json: bool = typer.Option(False, "--json", help="Print one JSON object (the summary) on stdout."),
     out: Optional[Path] = out_file_option("--out", "Write time histories to this CSV file."),
-    plot: Optional[Path] = out_file_option("--plot", "Write a figure (PNG/PDF/SVG) of the response."),
+    plot: Optional[Path] = figure_file_option("Write a figure (PNG/PDF/SVG) of the response."),
     summary_path: Optional[Path] = out_file_option("--summary", "Write the JSON summary to this file."),
     max_memory: Optional[str] = MAX_MEMORY,
     max_steps: Optional[float] = MAX_STEPS,
@@ -32,11 +41,12 @@ def run(
         stem = scenario.stem
         out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
                                    summary_path or out_dir / f"{stem}.json")
-    budget = limits(max_memory, max_steps)
-    if plot is not None:  # a figure format matplotlib cannot write is refused before the run
-        from vbikit._files import figure_format
+    from vbikit._files import not_an_input
 
-        guard(lambda: figure_format(plot))
+    for key, path in (("--out", out), ("--plot", plot), ("--summary", summary_path)):
+        if path is not None:
+            guard(lambda key=key, path=path: not_an_input(path, key, [scenario]))
+    budget = limits(max_memory, max_steps)
     if random_:
         from vbikit.cli.random_run import run_random
 
@@ -74,10 +84,27 @@ def demo(
     outputs(run_, as_json, None, out_dir / "demo.png", out_dir / "demo.json")
 
 
+def _n_points(n_points: int) -> int:
+    """``--n-points`` checked by the multi-point tire's own parameters (its ``tire.n_points`` range), as
+    the option's error (was a traceback above 100: the tire table is built from it after the scenario)."""
+    from pydantic import ValidationError
+
+    from vbikit._validation import bound_message
+    from vbikit.contact.registry import tire_model, tire_parameters
+    from vbikit.errors import OptionError
+
+    try:
+        tire_parameters("multipoint", {"n_points": n_points})
+    except ValidationError as err:
+        field = tire_model("multipoint").Parameters.model_fields["n_points"]
+        raise OptionError(f"--n-points: {bound_message(err.errors()[0], field) or err.errors()[0]['msg']}") from None
+    return n_points
+
+
 def compare_tires(
     scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file (its [tire] section is replaced by each model)."),
     out_dir: Path = out_dir_option("Where to write the figure and the table."),
-    n_points: int = typer.Option(6, "--n-points", min=1, help="Points of the multi-point tire."),
+    n_points: int = typer.Option(6, "--n-points", help="Points of the multi-point tire (its tire.n_points, 1 … 100)."),
     as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),
 ) -> None:
     """Run one crossing with each tire model (point, multipoint, disk, rigid disk); figure like the
@@ -87,6 +114,7 @@ def compare_tires(
     from vbikit.plot import plot_tire_comparison
     from vbikit.scenario import load_scenario
 
+    guard(lambda: _n_points(n_points))
     base = guard(lambda: load_scenario(scenario), file=scenario)
     models = {
         "point": {"model": "point"},

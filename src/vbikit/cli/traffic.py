@@ -8,7 +8,7 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard, out_file_option, scheduler_option, warn, workers_option
+from vbikit.cli.guard import figure_file_option, guard, out_file_option, scheduler_option, warn, workers_option
 from vbikit.cli.study import run_job, warn_dataset
 from vbikit.errors import OptionError
 
@@ -36,7 +36,7 @@ def traffic_cmd(
     batch_size: int = typer.Option(16, "--batch-size", min=1, help="Events per stored batch."),
     workers: Optional[int] = workers_option("Local worker processes (default: all cores; 1 = in this process)."),
     scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
-    plot: Optional[Path] = out_file_option("--plot", "Write a figure of the IM distribution and the peaks."),
+    plot: Optional[Path] = figure_file_option("Write a figure of the IM distribution and the peaks."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
     outputs: Optional[str] = typer.Option(None, "--outputs", help="The outputs to reduce and store, comma-separated "
                                           "(docs/results.md; default all; the stream statistics' impact_factor, "

@@ -60,9 +60,7 @@ def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> S
         return parse_scenario(dict(source), base_dir if base_dir is not None else ".")
     if isinstance(source, Path) or _names_a_file(source):
         path = Path(source)
-        if not path.is_file():
-            raise ScenarioError(f"{path}: no such scenario file")
-        scenario = load_scenario(path)
+        scenario = load_scenario(path)  # (the one reader's errors: not found, a folder or device, not text …)
         if base_dir is not None:
             scenario._base_dir = Path(base_dir)
         return scenario
