@@ -46,7 +46,7 @@ def test_every_output_file_option_is_the_one_checked_option():
     """Every option that takes a path (annotated ``Path``) or is called --out/--plot/--summary, other than
     --out-dir (checked by check_out_dir) and the listed input options, is checked by the one
     shared callback guard.check_out_file, and every such option is exercised below."""
-    from vbikit.cli.guard import check_out_file
+    from vbikit.cli.guard import check_figure_file, check_out_file
 
     found = {}
     for name, cmd in _commands(typer.main.get_command(app)):
@@ -58,7 +58,9 @@ def test_every_output_file_option_is_the_one_checked_option():
                 found[(name, max(param.opts, key=len))] = param.callback
     assert set(found) == set(OUT_FILE_OPTIONS) | INPUT_PATH_OPTIONS
     for key in OUT_FILE_OPTIONS:  # typer wraps the callback (functools.wraps)
-        assert getattr(found[key], "__wrapped__", None) is check_out_file, key
+        # (a figure, --plot: check_figure_file, which is check_out_file and the figure format)
+        expected = check_figure_file if key[1] == "--plot" else check_out_file
+        assert getattr(found[key], "__wrapped__", None) is expected, key
 
 
 def _invoke(command: str, option: str, value: str, tmp_path: Path):
@@ -112,7 +114,7 @@ def test_the_new_users_commands(tmp_path, monkeypatch):
 
 def test_output_file_passes_new_and_existing_files_and_creates_nothing(tmp_path):
     from vbikit._files import output_file
-    from vbikit.cli.guard import check_out_file
+    from vbikit.cli.guard import check_figure_file, check_out_file
 
     assert output_file(tmp_path / "new" / "deeper" / "x.csv", "--out") == tmp_path / "new" / "deeper" / "x.csv"
     assert not (tmp_path / "new").exists()  # checked, not created: the writers create it
