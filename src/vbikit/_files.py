@@ -35,6 +35,9 @@ from typing import Any, Callable
 class OutputError(OSError):
     """An output file that could not be written (full disk, no permission, …); names the file."""
 
+    def __str__(self) -> str:  # the message alone, without OSError's "[Errno 21] " before it
+        return self.strerror if self.strerror and len(self.args) == 2 and self.filename is None else super().__str__()
+
 
 def _describe(err: OSError) -> str:
     if err.errno == errno.ENOSPC:
@@ -184,6 +187,27 @@ def output_dir(path: str | Path, key: str = "--out-dir", create: bool = True) ->
     if not os.access(path, os.W_OK | os.X_OK):
         raise OutputError(f"{key} {path}: the folder is not writable")
     return path
+
+
+def output_names(out_dir: str | Path, files: tuple[str, ...] = (), folders: tuple[str, ...] = (),
+                 key: str = "--out-dir") -> Path:
+    """The output folder ``out_dir`` of a command that writes fixed ``files`` there and keeps its
+    finished work (resumed by the next run) in ``folders`` there, checked before any computation:
+    ``OutputError`` naming ``key`` and the path when one of ``files`` exists as a folder (or anything
+    but a file or link), or one of ``folders`` as a file (was: the whole run, then ``[Errno 21] cannot
+    write out/rail.nc: Is a directory``, or a bare ``[Errno 17] File exists``).  Nothing is created."""
+    out_dir = Path(out_dir)
+    for name in files:
+        path = out_dir / name
+        if os.path.lexists(path) and not os.path.isfile(path) and not os.path.islink(path):
+            raise OutputError(f"{key} {out_dir}: {path} exists and is not a file; the run writes its {name} there: "
+                              f"remove it or choose another {key}")
+    for name in folders:
+        path = out_dir / name
+        if os.path.lexists(path) and not os.path.isdir(path):
+            raise OutputError(f"{key} {out_dir}: {path} exists and is not a folder; the run keeps its finished work "
+                              f"in the folder {name} there: remove it or choose another {key}")
+    return out_dir
 
 
 _FILE_ALLOWED = "give the path of a file in a writable folder (missing folders are created)"

@@ -146,3 +146,31 @@ def test_run_random_names_a_folder_as_run_does(tmp_path, make, words):
 def test_binary_input_message_is_grammatical(tmp_path):
     (tmp_path / "b.toml").write_bytes(b"a\x00b")
     _refused(runner.invoke(app, ["validate", str(tmp_path / "b.toml")]), "binary content); expected an input file")
+
+
+@pytest.mark.parametrize("kind, damage, words", [
+    ("rail", {"rail.nc": "folder"}, "rail.nc exists and is not a file; the run writes its rail.nc there"),
+    ("rail", {"rail.parts": "file"}, "rail.parts exists and is not a folder; the run keeps its finished work"),
+    ("lifetime", {"work": "file"}, "work exists and is not a folder; the run keeps its finished work"),
+    ("lifetime", {"lifetime.nc": "folder"}, "lifetime.nc exists and is not a file"),
+    ("driveby", {"driveby.nc": "folder"}, "driveby.nc exists and is not a file"),
+])
+def test_an_output_name_taken_in_the_out_dir_is_refused_before_computing(tmp_path, kind, damage, words):
+    """Was: the whole sweep (rail, lifetime: every stage) ran, then ``[Errno 21] cannot write
+    out/rail.nc: Is a directory``; a file ``work`` or ``rail.parts``: ``[Errno 17] File exists``."""
+    out = tmp_path / "out"
+    out.mkdir()
+    for name, what in damage.items():
+        (out / name).mkdir() if what == "folder" else (out / name).write_text("x\n")
+    argv = _command(tmp_path, kind)
+    t0 = time.process_time()
+    err = _refused(runner.invoke(app, [*argv, *(["--workers", "1"] if kind != "rail" else [])]), f"--out-dir {out}: ",
+                   words, "remove it or choose another --out-dir")
+    assert time.process_time() - t0 < 3.0 and "Errno" not in err
+
+
+def test_a_resumed_stage_that_is_no_dataset_names_the_out_dir_option(tmp_path):
+    """``vbikit driveby`` has no --out: the message names --out-dir too."""
+    (tmp_path / "out").mkdir()
+    (tmp_path / "out" / "driveby.nc").write_text("not a dataset\n")
+    _refused(runner.invoke(app, [*_command(tmp_path, "driveby"), "--workers", "1"]), "choose another --out (or --out-dir)")

@@ -35,7 +35,9 @@ def driveby_cmd(
         spec = dataclasses.replace(spec, max_steps=float(max_steps))
     steps = guard(lambda: check_cases(spec), file=file)
     typer.echo(f"{file}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
-    guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
+    from vbikit._files import output_names
+
+    guard(lambda: output_names(out_dir, ("driveby.nc",)).mkdir(parents=True, exist_ok=True))
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
     warn_dataset(ds)
 

@@ -245,8 +245,10 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     if isinstance(spec, (str, Path)):
         spec, folder = read_lifetime(spec)
         base_dir = folder if base_dir is None else base_dir
+    from vbikit._files import output_names
+
+    out_dir = output_names(out_dir, ("lifetime.nc", "summary.json", "report.txt"), ("work",))  # (before any computation)
     prep = prepare(spec, base_dir if base_dir is not None else ".", workers, max_memory)
-    out_dir = Path(out_dir)
     work = out_dir / "work"
     work.mkdir(parents=True, exist_ok=True)
     try:

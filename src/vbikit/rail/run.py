@@ -276,6 +276,11 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     after every group of trains (as many as workers) swept; ``scheduler``: a Dask scheduler's
     address, the trains swept there (one task a train) instead of on local processes."""
     t0 = time.perf_counter()
+    if out_dir is not None:  # (before the sweep: not after it, when writing)
+        from vbikit._files import output_names
+        from vbikit.rail.checkpoint import WORK
+
+        output_names(out_dir, ("rail.nc", "rail-report.txt", "rail-summary.json", "rail-acceleration.png"), (str(WORK),))
     p = plan_rail(source)
     spec, bridge, f_limit, required, originals, trains, res, speeds, points, setup, coupled = (
         p.spec, p.bridge, p.f_limit, p.required, p.originals, p.trains, p.resonances, p.speeds, p.points, p.setup,
