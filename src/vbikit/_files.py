@@ -282,13 +282,10 @@ def _too_large(path: Path, what: str, limit: int, size: str) -> str:
             f"set the environment variable {MAX_INPUT_ENV} (in MiB) to read larger files")
 
 
-def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max_bytes: int | None = None) -> bytes:
-    """The bytes of the user file ``path``, refused with ``error`` naming the file (never its
-    content) when it is missing, not a regular file (a folder, FIFO, device or socket: checked
-    before opening it), or larger than ``max_bytes`` (default ``max_input_bytes()``; checked before
-    reading and while reading)."""
-    path = Path(path)
-    limit = max_input_bytes(error) if max_bytes is None else int(max_bytes)
+def input_file(path: str | Path, error: type[Exception], what: str = "file") -> os.stat_result:
+    """The ``os.stat`` of the user file ``path``, or ``error`` naming it when it is missing, cannot be
+    examined or is not a regular file (a folder, FIFO, device or socket): the checks ``read_bytes``
+    makes before opening a file, for a reader that only needs the file to exist."""
     try:
         st = os.stat(path)
     except FileNotFoundError:
@@ -298,6 +295,17 @@ def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max
     kind = next((name for test, name in _KINDS if test(st.st_mode)), None if stat.S_ISREG(st.st_mode) else "not a file")
     if kind is not None:
         raise error(f"{path} is {kind}, not a regular file; give the {what} as a file")
+    return st
+
+
+def read_bytes(path: str | Path, error: type[Exception], what: str = "file", max_bytes: int | None = None) -> bytes:
+    """The bytes of the user file ``path``, refused with ``error`` naming the file (never its
+    content) when it is missing, not a regular file (a folder, FIFO, device or socket: checked
+    before opening it), or larger than ``max_bytes`` (default ``max_input_bytes()``; checked before
+    reading and while reading)."""
+    path = Path(path)
+    limit = max_input_bytes(error) if max_bytes is None else int(max_bytes)
+    st = input_file(path, error, what)
     if st.st_size > limit:
         raise error(_too_large(path, what, limit, _size(st.st_size)))
     flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_CLOEXEC", 0)

@@ -174,3 +174,17 @@ def test_a_resumed_stage_that_is_no_dataset_names_the_out_dir_option(tmp_path):
     (tmp_path / "out").mkdir()
     (tmp_path / "out" / "driveby.nc").write_text("not a dataset\n")
     _refused(runner.invoke(app, [*_command(tmp_path, "driveby"), "--workers", "1"]), "choose another --out (or --out-dir)")
+
+
+@pytest.mark.parametrize("make, words", [(lambda p: p.mkdir(), "resp.csv is a folder, not a regular file; give the file as a file"),
+                                         (lambda p: None, "case[1].responses: file not found: ")])
+def test_a_field_response_file_that_is_a_folder_is_named_so(tmp_path, make, words):
+    """Was: 'file not found' for a folder (the field reader's own check, not the one reader's)."""
+    field = ROOT / "examples" / "field"
+    text = (field / "FIELD.toml").read_text().replace("case1_responses.csv", "resp.csv")
+    (tmp_path / "F.toml").write_text(text)
+    for name in ("case2_responses.csv", "profile_left.csv", "profile_right.csv"):
+        (tmp_path / name).write_text((field / name).read_text())
+    make(tmp_path / "resp.csv")
+    _refused(runner.invoke(app, ["field", str(tmp_path / "F.toml"), "--out-dir", str(tmp_path / "o")]),
+             f"{tmp_path / 'F.toml'}: case[1].responses: ", words)

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit._files import check_name, csv_rows, read_text
+from vbikit._files import check_name, csv_rows, input_file, read_text
 from vbikit._toml import read_toml
 from vbikit.errors import VbikitError
 from vbikit.scenario.schema import MAX_SPEED, MIN_SPEED
@@ -337,8 +337,10 @@ def _file(table: dict[str, Any], key: str, where: str, base: Path, path: Path, r
     if not isinstance(v, str):
         raise FieldFileError(f"{path}: {where}{key} must be a file name, got {v!r}")
     p = (base / v).resolve()
-    if not p.is_file():
-        raise FieldFileError(f"{path}: {where}{key}: file not found: {p}")
+    try:
+        input_file(p, FieldFileError)  # (the one reader's words: not found, a folder, a device …)
+    except FieldFileError as err:
+        raise FieldFileError(f"{path}: {where}{key}: {err}") from None
     return p
 
 
