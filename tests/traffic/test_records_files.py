@@ -177,24 +177,28 @@ def test_lane_centres_must_be_finite(tmp_path):
     for lanes in ("nan,0", "1e300,0", "inf"):
         res = subprocess.run([*CLI, "traffic", str(tmp_path / "one.csv"), "--bridge", "paper-bridge-2-beam", "--out",
                               str(tmp_path / "x.nc"), "--lanes", lanes], capture_output=True, text=True, timeout=120)
-        assert res.returncode == 2 and "--lanes: lane centres must be finite numbers within ±1000 m" in res.stderr, lanes
+        assert res.returncode == 2 and "--lanes: lane centres must be finite numbers within ±50 m" in res.stderr, lanes
 
 
 def test_records_whose_wheels_leave_the_deck_are_refused_before_the_run():
     """paper-bridge-2 is a 9.75 m wide deck (edges at ±4.875 m); an axle-record truck has its
     wheels at ±0.9 m (axles.HALF_TRACK): a centreline at 3.975 m puts the outer wheels on the edge
-    (accepted), at 3.98 m (either direction, mirrored) or at 1e300 m off it (refused, naming the
-    line); the same for a lane centre given with --lanes."""
+    (accepted), at 3.98 m (either direction, mirrored) off it (refused, naming the line; 1e300 m
+    the reader refuses, beyond any deck's ±50 m); the same for a lane centre given with --lanes."""
     from vbikit.study.spec import StudyError
     from vbikit.traffic.study import base_scenario, traffic_study
 
     base, _ = base_scenario("paper-bridge-2")
     head = "time [s],lateral_offset [m],direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n"
     assert traffic_study(parse_records(head + "0,3.975,+x,80,50 90,4.2\n0,-3.975,-x,80,50 90,4.2\n"), base).size == 1
-    for y, direction in (("3.98", "+x"), ("-3.98", "-x"), ("1e300", "+x")):
+    for y, direction in (("3.98", "+x"), ("-3.98", "-x")):
         with pytest.raises(StudyError, match=rf"records:3: lateral_offset at y = {re.escape(f'{float(y):g}')} m puts wheels at y = "
                                              rf"[0-9.e+]+ m from the centreline, off the 9\.75 m wide deck"):
             traffic_study(parse_records(head + "0,0,+x,80,50 90,4.2\n" + f"9,{y},{direction},80,50 90,4.2\n"), base)
+    from vbikit.traffic.records import RecordsError
+
+    with pytest.raises(RecordsError, match=r"3: column 2 \(lateral_offset \[m\]\): 1e\+300 m is beyond the allowed ±50 m"):
+        parse_records(head + "0,0,+x,80,50 90,4.2\n" + "9,1e300,+x,80,50 90,4.2\n")  # (the reader: any bridge)
     with pytest.raises(StudyError, match=r"records:2: lane 2 at y = 4 m puts wheels at y = 4\.9 m from the centreline"):
         traffic_study(parse_records(HEAD + "0.0,2,+x,80,53.4 75.6,5.5\n"), base, lanes=[0.0, 4.0])
 

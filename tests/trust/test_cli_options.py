@@ -188,3 +188,34 @@ def test_a_field_response_file_that_is_a_folder_is_named_so(tmp_path, make, word
     make(tmp_path / "resp.csv")
     _refused(runner.invoke(app, ["field", str(tmp_path / "F.toml"), "--out-dir", str(tmp_path / "o")]),
              f"{tmp_path / 'F.toml'}: case[1].responses: ", words)
+
+
+REC_HEAD = "time [s],{col},direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n"
+
+
+@pytest.mark.parametrize("col, row, words", [
+    ("lane", "30,1,+x,0.001,50 50,4", "rec.csv:3: column 4 (speed [km/h]): 0.001 km/h is below the smallest speed 0.0036 km/h"),
+    ("lateral_offset [m]", "30,1e5,+x,80,50 50,4", "rec.csv:3: column 2 (lateral_offset [m]): 100000 m is beyond the allowed ±50 m"),
+])
+def test_records_share_the_scenarios_speed_and_offset_limits(tmp_path, col, row, words):
+    """Was: a record at 0.001 km/h passed the reader, the events before it were simulated, then the
+    crossing's step budget refused it without naming the record (and advised ``--max-steps``, which
+    ``vbikit traffic`` does not have); a lateral offset of 100 km ran on a beam.  The records now take
+    the scenario's MIN_SPEED and MAX_LATERAL_OFFSET (vbikit._limits, one truth), as ``--lanes`` does."""
+    from vbikit._limits import MAX_LATERAL_OFFSET, MIN_SPEED
+    from vbikit.scenario import schema
+
+    assert (schema.MIN_SPEED, schema.MAX_LATERAL_OFFSET) == (MIN_SPEED, MAX_LATERAL_OFFSET) == (1e-3, 50.0)
+    first = "1,1,+x,80,50 50,4" if col == "lane" else "1,0,+x,80,50 50,4"
+    (tmp_path / "rec.csv").write_text(REC_HEAD.format(col=col) + first + "\n" + row + "\n")
+    t0 = time.process_time()
+    res = runner.invoke(app, ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam",
+                              "--out", str(tmp_path / "t.nc"), "--workers", "1", "--no-progress"])
+    _refused(res, words)
+    assert time.process_time() - t0 < 1.0 and not (tmp_path / "t.nc").exists()
+
+
+def test_lanes_take_the_same_bound_as_a_lateral_offset(tmp_path):
+    res = runner.invoke(app, ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out",
+                              str(tmp_path / "t.nc"), "--lanes", "-60,60"])
+    _refused(res, "--lanes: lane centres must be finite numbers within ±50 m")

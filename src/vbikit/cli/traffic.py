@@ -19,8 +19,10 @@ def _lanes(text: str) -> list[float]:
         lanes = [float(v) for v in text.split(",")]
     except ValueError:
         raise OptionError(f"--lanes: not a comma-separated list of numbers: {text!r}") from None
-    if not all(math.isfinite(y) and abs(y) <= 1e3 for y in lanes):
-        raise OptionError(f"--lanes: lane centres must be finite numbers within ±1000 m, got {text!r}")
+    from vbikit._limits import MAX_LATERAL_OFFSET  # (a vehicle centreline's bound, as a scenario's lateral_offset)
+
+    if not all(math.isfinite(y) and abs(y) <= MAX_LATERAL_OFFSET for y in lanes):
+        raise OptionError(f"--lanes: lane centres must be finite numbers within ±{MAX_LATERAL_OFFSET:g} m, got {text!r}")
     return lanes
 
 

@@ -24,6 +24,7 @@ from pydantic import (
     model_validator,
 )
 
+from vbikit._limits import MAX_LATERAL_OFFSET, MAX_SPEED, MIN_SPEED  # (the limits every input shares)
 from vbikit.analysis.plan import point_name
 from vbikit.scenario.bridge_spec import BridgeKind, BridgeSpec
 from vbikit.scenario.section import ScenarioError, Section
@@ -39,12 +40,6 @@ from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
 ROAD_CLASSES = ("none", *ISO_CLASSES, *PAPER_CLASSES, "psd")
-#: largest vehicle speed a scenario accepts [m/s] (1080 km/h; speeds above 150 km/h are warned about)
-MAX_SPEED = 300.0
-#: smallest speed [m/s] (3.6 m/h: below it a crossing lasts days, and the time arithmetic underflows)
-MIN_SPEED = 1e-3
-#: largest |lateral_offset| of a vehicle centreline [m] (decks of known width refuse wheels off the deck)
-MAX_LATERAL_OFFSET = 50.0
 #: latest entry time of a listed vehicle [s]
 MAX_ENTRY_TIME = 3600.0
 

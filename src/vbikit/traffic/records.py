@@ -37,6 +37,7 @@ from pathlib import Path
 from typing import Optional, Sequence
 
 from vbikit._files import csv_rows, read_text, write_text
+from vbikit._limits import MAX_LATERAL_OFFSET, MIN_SPEED
 from vbikit.errors import VbikitError
 
 log = logging.getLogger(__name__)
@@ -252,6 +253,9 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
     if direction not in DIRECTIONS:
         raise fail("direction", "must be +x or -x")
     speed = number("speed", 0.0, strict=True)
+    if speed < MIN_SPEED:  # (the scenario's smallest speed)
+        raise fail("speed", f"{speed * 3.6:.3g} km/h is below the smallest speed {MIN_SPEED * 3.6:g} km/h "
+                            f"({MIN_SPEED:g} m/s): such a crossing would last days")
     if speed > 70:
         raise fail("speed", f"{speed * 3.6:.0f} km/h is beyond the allowed 0 … 252 km/h")
     lane = lateral = None
@@ -264,6 +268,8 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
             raise fail("lane", "must be a lane number 1, 2, … (at most 1000)")
     if "lateral_offset" in cells and cells["lateral_offset"].strip():
         lateral = number("lateral_offset")
+        if abs(lateral) > MAX_LATERAL_OFFSET:  # (the scenario's bound of a vehicle centreline)
+            raise fail("lateral_offset", f"{lateral:g} m is beyond the allowed ±{MAX_LATERAL_OFFSET:g} m")
     if lane is None and lateral is None:
         raise RecordsError(f"{source}:{no}: give lane or lateral_offset")
     model = cells.get("model", "").strip() or "axles"
