@@ -219,3 +219,20 @@ def test_lanes_take_the_same_bound_as_a_lateral_offset(tmp_path):
     res = runner.invoke(app, ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out",
                               str(tmp_path / "t.nc"), "--lanes", "-60,60"])
     _refused(res, "--lanes: lane centres must be finite numbers within ±50 m")
+
+
+def test_a_traffic_event_above_the_step_budget_is_refused_before_any_event_runs(tmp_path, monkeypatch):
+    """Was: the events before it were simulated, then the step budget refused the slow one naming no
+    record, and advised ``--max-steps``, which ``vbikit traffic`` did not have.  The longest event is now
+    planned before any runs (0.01 km/h over Bridge 2's beam: (10 + 16.76 + 4) m / 2.78 mm/s ≈ 1.1e4 s at
+    its 1.37 ms step ≈ 8.1e6 steps, above the default 5e6), and ``--max-steps`` raises the budget."""
+    (tmp_path / "rec.csv").write_text(REC_HEAD.format(col="lane") + "1,1,+x,80,50 50,4\n30,1,+x,0.01,50 50,4\n")
+    monkeypatch.setattr("vbikit.traffic.study.TrafficStudy.run_event",
+                        lambda self, e: pytest.fail("an event was simulated before the budget was checked"))
+    argv = ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out", str(tmp_path / "t.nc"),
+            "--workers", "1", "--no-progress"]
+    _refused(runner.invoke(app, argv), "rec.csv:3: the stream's longest event", "needs 8.09e+06 time steps, above the limit 5e+06",
+             "raise --max-steps")
+    _refused(runner.invoke(app, [*argv, "--max-steps", "1e7", "--max-memory", "1MB"]), "rec.csv:3: ", "raise --max-memory")
+    _refused(runner.invoke(app, [*argv, "--max-steps", "0"]), "--max-steps: expected a number in [1, 1e+12], got 0")
+    assert not (tmp_path / "t.nc").exists()

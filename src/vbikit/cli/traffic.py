@@ -8,7 +8,15 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import figure_file_option, guard, out_file_option, scheduler_option, warn, workers_option
+from vbikit.cli.guard import (
+    figure_file_option,
+    guard,
+    limits,
+    out_file_option,
+    scheduler_option,
+    warn,
+    workers_option,
+)
 from vbikit.cli.study import run_job, warn_dataset
 from vbikit.errors import OptionError
 
@@ -45,10 +53,15 @@ def traffic_cmd(
                                           "max_dynamic_displacement, max_static_displacement and n_steps always)."),
     max_vehicles: Optional[int] = typer.Option(None, "--max-vehicles", min=1, help="The most vehicle records read "
                                                "(default 100000; a larger file is refused before it is parsed)."),
+    max_memory: Optional[str] = typer.Option(None, "--max-memory", help="Memory budget of one event's run (e.g. 8GiB; "
+                                             "default 4GiB): the longest event estimated before any runs."),
+    max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Time-step budget of one event's run (default "
+                                              "5e6): the longest event estimated before any runs."),
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""
     lane_y = None if lanes is None else guard(lambda: _lanes(lanes))  # (an option's error at once, before the imports)
+    budget = limits(max_memory, max_steps)
     from vbikit.traffic.records import MAX_RECORDS, read_records
 
     recs = guard(lambda: read_records(records, max_vehicles or MAX_RECORDS), file=records)  # (before the model's imports)
@@ -68,7 +81,7 @@ def traffic_cmd(
     warn(dropped_section_warnings(guard(lambda: parse_scenario(template_data(base), base_dir), file=bridge).response))
     names = None if outputs is None else [n.strip() for n in outputs.split(",") if n.strip()]
     job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
-                                      source=records.name, outputs=names))
+                                      source=records.name, outputs=names, limits=budget))
     n_mp = sum(len(e) > 1 for e in job.events)
     typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)

@@ -111,6 +111,9 @@ class TrafficStudy:
     source: str = ""
     _digest: str = field(default="", repr=False)
     outputs: Optional[tuple[str, ...]] = None
+    #: the budget of one event's run (``vbikit.solve.budget.Limits``; None: the defaults); not part of the
+    #: job's identity (``to_json``): a resumed stream may be given another
+    limits: Any = field(default=None, repr=False, compare=False)
 
     #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
     __reduce__ = reduce_once
@@ -223,6 +226,30 @@ class TrafficStudy:
                                          lateral_offset=y))
         return ctx.crossing(tuple(motions), self.road_seed(e))
 
+    def check_budget(self) -> None:
+        """The run of the stream's longest event (the latest exit of its vehicles: entry time, then the
+        approach, the span and the vehicle's axles at its speed) planned against ``limits`` before any
+        event is simulated; above them a ``StudyError`` naming the event's first record (was: the events
+        before it simulated, then the budget's refusal naming no record)."""
+        from vbikit.solve.budget import BudgetError
+        from vbikit.solve.plan import plan_run
+
+        template = self.context().template.crossing
+        reach = template.approach + template.bridge.span
+
+        def exit_time(e: int) -> float:
+            return max(self.records[i].time + (reach + sum(self.records[i].axle_spacings)) / self.records[i].speed
+                       for i in self.events[e]) - self.event_start[e]
+
+        e = max(range(self.size), key=exit_time)
+        try:
+            plan_run(self.crossing(e), self.limits)
+        except BudgetError as err:
+            r = self.records[self.events[e][0]]
+            where = f"{self.source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
+            raise StudyError(f"{where}: the stream's longest event ({len(self.events[e])} vehicle(s) from this record "
+                             f"on) is above the budget of one event: {err}") from None
+
     def road_seed(self, e: int) -> int:
         """Seed of event ``e``'s random road (−1 if the base road is not random; the last event's kept:
         ``run_event`` asks for it twice)."""
@@ -240,7 +267,7 @@ class TrafficStudy:
 
     def run_event(self, e: int) -> tuple[tuple[list[dict], dict], list[dict[str, float]]]:
         """Simulate event ``e``: its outputs (per response point, per event) and those of each of its vehicles."""
-        result = simulate(self.crossing(e))
+        result = simulate(self.crossing(e), limits=self.limits)
         points, row = reduce_crossing(result, self.context().plan, names=self.output_names)
         row["road_seed"] = float(self.road_seed(e))
         row["airborne_wheels"] = float(bool(airborne_wheels(result)))
@@ -450,11 +477,13 @@ _CONTEXTS: dict[str, EventContext] = {}
 
 def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = ".", lanes: Optional[Sequence[float]] = None,
                   seed: int = 0, batch_size: int = 16, name: str = "", source: str = "",
-                  outputs: Optional[Sequence[str]] = None) -> TrafficStudy:
+                  outputs: Optional[Sequence[str]] = None, limits: Any = None) -> TrafficStudy:
     """Validate the stream against the base scenario and cut it into events (see the module
     docstring).  ``outputs``: the catalogue's outputs to reduce and store ([`vbikit.outputs`][vbikit.outputs];
     ``STREAM_OUTPUTS`` are added; None: all) — the responses and load effects no asked output reads
-    are not computed.  Errors name the record's line."""
+    are not computed.  ``limits``: the budget of one event's run (``vbikit.solve.budget.Limits``; None: the
+    defaults), checked on the longest event before any is simulated (``TrafficStudy.check_budget``).
+    Errors name the record's line."""
     selected = None
     if outputs is not None:
         try:
@@ -494,6 +523,8 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
     events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span, reach)
     digest = hashlib.sha256(json.dumps([[r.id, r.time, r.lane, r.lateral_offset, r.direction, r.speed, r.model,
                                          list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
-    return TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
-                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest,
-                        outputs=selected)
+    job = TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
+                       tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest,
+                       outputs=selected, limits=limits)
+    job.check_budget()
+    return job
