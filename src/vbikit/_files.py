@@ -248,6 +248,19 @@ def not_an_input(path: str | Path, key: str, inputs: list[Any]) -> Path:
     return Path(path)
 
 
+def distinct_outputs(paths: dict[str, Any]) -> None:
+    """``paths`` (option -> output file, None: not written) name different files, else ``OutputError``
+    naming both options, before any computation: the second written would replace the first."""
+    seen: dict[str, str] = {}
+    for key, path in paths.items():
+        if path is None:
+            continue
+        real = os.path.realpath(path)
+        if real in seen:
+            raise OutputError(f"{key} {path}: is also {seen[real]}'s file; give each output its own path")
+        seen[real] = key
+
+
 #: the largest input file read by default [MiB]; the environment variable ``MAX_INPUT_ENV`` sets another
 DEFAULT_MAX_INPUT_MB = 256
 MAX_INPUT_ENV = "VBIKIT_MAX_INPUT_MB"

@@ -236,3 +236,12 @@ def test_a_traffic_event_above_the_step_budget_is_refused_before_any_event_runs(
     _refused(runner.invoke(app, [*argv, "--max-steps", "1e7", "--max-memory", "1MB"]), "rec.csv:3: ", "raise --max-memory")
     _refused(runner.invoke(app, [*argv, "--max-steps", "0"]), "--max-steps: expected a number in [1, 1e+12], got 0")
     assert not (tmp_path / "t.nc").exists()
+
+
+def test_run_refuses_two_outputs_to_one_file(tmp_path):
+    """Was: ``--out r.csv --summary r.csv`` wrote the histories, then the summary over them (exit 0)."""
+    scenario = ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml"
+    target = tmp_path / "r.csv"
+    _refused(runner.invoke(app, ["run", str(scenario), "--out", str(target), "--summary", str(target)]),
+             f"--summary {target}: is also --out's file; give each output its own path")
+    assert not target.exists()

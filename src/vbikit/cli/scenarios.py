@@ -41,11 +41,12 @@ def run(
         stem = scenario.stem
         out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
                                    summary_path or out_dir / f"{stem}.json")
-    from vbikit._files import not_an_input
+    from vbikit._files import distinct_outputs, not_an_input
 
     for key, path in (("--out", out), ("--plot", plot), ("--summary", summary_path)):
         if path is not None:
             guard(lambda key=key, path=path: not_an_input(path, key, [scenario]))
+    guard(lambda: distinct_outputs({"--out": out, "--plot": plot, "--summary": summary_path}))
     budget = limits(max_memory, max_steps)
     if random_:
         from vbikit.cli.random_run import run_random
