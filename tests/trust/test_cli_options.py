@@ -245,3 +245,13 @@ def test_run_refuses_two_outputs_to_one_file(tmp_path):
     _refused(runner.invoke(app, ["run", str(scenario), "--out", str(target), "--summary", str(target)]),
              f"--summary {target}: is also --out's file; give each output its own path")
     assert not target.exists()
+
+
+@pytest.mark.parametrize("value", ["0", "nan", "-1", "0.5"])
+@pytest.mark.parametrize("kind", ["run", "driveby", "study", "traffic"])
+def test_max_steps_has_one_check_and_one_wording(tmp_path, kind, value):
+    """``--max-steps 0``/``nan``/``-1`` gave click's usage text (for nan: 'greater than or equal to 1'),
+    ``inf`` the project's ``error:`` line; now every value goes through ``steps_option``."""
+    argv = (["run", str(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml")] if kind == "run"
+            else _command(tmp_path, kind))
+    _refused(runner.invoke(app, [*argv, "--max-steps", value]), "--max-steps: expected a number in [1, 1e+12], got ")

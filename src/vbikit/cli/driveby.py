@@ -15,7 +15,7 @@ def driveby_cmd(
     out_dir: Path = out_dir_option("Folder for driveby.nc (and driveby.zarr), the figures and the report."),
     workers: Optional[int] = workers_option("Local worker processes (1 = in this process).", default=1),
     scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
-    max_steps: Optional[float] = typer.Option(None, "--max-steps", min=1, help="Budget: integration steps of the whole sweep "
+    max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Budget: integration steps of the whole sweep "
                                               "(default the file's max_steps, 2e7)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),

@@ -185,4 +185,4 @@ def figure_file_option(help: str) -> Any:
 
 MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
                                                      "estimated before it starts, refused above.")
-MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of the run (default 5e6).")
+MAX_STEPS = typer.Option(None, "--max-steps", help="Time-step budget of the run (default 5e6).")

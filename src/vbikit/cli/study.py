@@ -75,7 +75,7 @@ _YES = typer.Option(False, "--yes", help="Run a study of more than 1e6 crossings
 _YES_VALIDATE = typer.Option(False, "--yes", help="Accept a study of more than 1e6 crossings, as `study run --yes` "
                              "would (without it, such a study fails the check).")
 _MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batch (e.g. 8GiB; default 4GiB).")
-_MAX_STEPS = typer.Option(None, "--max-steps", min=1, help="Time-step budget of one crossing (default 5e6).")
+_MAX_STEPS = typer.Option(None, "--max-steps", help="Time-step budget of one crossing (default 5e6).")
 
 
 #: a study check prints at most this many of its warnings (then "… and N more")
