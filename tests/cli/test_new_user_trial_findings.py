@@ -5,6 +5,12 @@ failing on the code before its fix:
    of what ± means (a standard deviation over the road's realisations, not a confidence interval)
    and closed with ``wavenumber lines: 254, grid check 0.69%; 2.5 s`` — a bare time and a check
    without its meaning.
+2. ``vbikit compare-tires examples/paper/fig9_tire_models.toml`` in a fresh install printed the disk
+   tire's ``time [s]`` as 63.96 against 0.08–2.66 for the others: numba's first compilation of the
+   full contact kernel, unsaid, read as the disk tire's cost.
+3. ``vbikit study paper-all --out-dir out`` after ``vbikit study paper-fig6 --out-dir out`` printed
+   ``1440 crossings -> out/paper-fig6.nc (0.0 s)``: the finished dataset read back, as if run in no
+   time (the study runner says so only in an INFO log).
 """
 from __future__ import annotations
 
@@ -42,3 +48,65 @@ def test_random_report_says_what_plus_minus_and_the_closing_numbers_are(tmp_path
     assert "mean ± standard deviation over the road's realisations" in text
     assert text.index("standard deviation") < text.index("peak displacement")  # said before the first ±
     assert "grid check 0.69% (σ on every second line against every line); run time 2.5 s" in text
+
+
+def test_compare_tires_marks_a_time_that_includes_a_first_compilation(tmp_path, monkeypatch):
+    """The run that compiles a kernel (faked: the disk tire's announces one) gets ``*`` after its time
+    and a footnote saying why; the kernel's name is kept in compare-tires.json."""
+    import json
+
+    import vbikit.cli.scenarios as scenarios
+    import vbikit.plot
+    from vbikit.solve import compile_notice
+
+    summary = {"warnings": [], "flags": [], "max_dynamic_displacement": -3.4e-3, "impact_factor": 0.21,
+               "max_dynamic_strain": 9e-5, "strain_impact_factor": 0.2, "max_abs_acceleration": 2.5,
+               "min_wheel_force": {"axle1_left": 1e3}, "contact_loss": {"axle1_left": {"lost": False}}}
+
+    def fake_execute(make, *args, **kwargs):
+        spec = make()
+        if spec.tire.model == "disk":
+            monkeypatch.setattr(compile_notice, "_ANNOUNCED", compile_notice._ANNOUNCED | {"fake_kernel"})
+        return SimpleNamespace(summary=summary, response=None)
+
+    monkeypatch.setattr(scenarios, "execute", fake_execute)
+    monkeypatch.setattr(vbikit.plot, "plot_tire_comparison", lambda responses, path, name: path)
+    monkeypatch.setattr(compile_notice, "_ANNOUNCED", set())
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(BEAM_SCENARIO, encoding="utf-8")
+    out = runner.invoke(app, ["compare-tires", str(scenario), "--out-dir", str(tmp_path / "out")])
+    assert out.exit_code == 0, out.output
+    rows = {line.split()[0]: line for line in out.stdout.splitlines() if line.startswith("  ") and "[" not in line}
+    assert rows["disk"].rstrip().endswith(" *") and not rows["point"].rstrip().endswith("*")
+    assert "includes numba's first compilation of a kernel" in out.stdout
+    table = json.loads((tmp_path / "out" / "compare-tires.json").read_text())
+    assert table["disk"]["compiled_kernels"] == ["fake_kernel"] and table["point"]["compiled_kernels"] == []
+
+
+BEAM_SCENARIO = """
+[bridge]
+model = "beam"
+span = 25.0
+EI = 8.323e9
+mass_per_length = 2303.0
+[vehicle]
+model = "moving-force"
+force = 1e5
+[crossing]
+speed_kmh = 60
+"""
+
+
+def test_a_study_already_finished_in_its_output_says_so(tmp_path, monkeypatch, capsys):
+    import vbikit.study.run
+    from vbikit.cli.study import run_job
+
+    monkeypatch.setattr(vbikit.study.run, "run_study", lambda study, out, **kwargs: "dataset")
+    study = SimpleNamespace(name="paper-fig6", size=1440)
+    fresh, finished = tmp_path / "fresh.nc", tmp_path / "finished.nc"
+    finished.write_bytes(b"")  # (what is in it is the runner's business: replaced here)
+    assert run_job(study, fresh, 1, None, False) == "dataset"
+    assert "1440 crossings -> " in capsys.readouterr().out
+    assert run_job(study, finished, 1, None, False) == "dataset"
+    text = capsys.readouterr().out
+    assert "already holds this finished run" in text and "nothing run" in text and " -> " not in text
