@@ -11,6 +11,9 @@ failing on the code before its fix:
 3. ``vbikit study paper-all --out-dir out`` after ``vbikit study paper-fig6 --out-dir out`` printed
    ``1440 crossings -> out/paper-fig6.nc (0.0 s)``: the finished dataset read back, as if run in no
    time (the study runner says so only in an INFO log).
+4. ``vbikit lifetime examples/lifetime/lifetime.toml`` opened with ``WARNING vbikit.lifetime.run: an
+   event's dynamic amplification 0.742 exceeds …`` — a Python logger's name and level where every
+   other warning of the CLI reads ``warning: …``.
 """
 from __future__ import annotations
 
@@ -110,3 +113,24 @@ def test_a_study_already_finished_in_its_output_says_so(tmp_path, monkeypatch, c
     assert run_job(study, finished, 1, None, False) == "dataset"
     text = capsys.readouterr().out
     assert "already holds this finished run" in text and "nothing run" in text and " -> " not in text
+
+
+def test_a_library_warning_reads_as_the_cli_s_own(tmp_path):
+    """At the default verbosity a logged warning prints as ``warning: …`` (the CLI's own form), without
+    the logger's name; ``-v`` keeps the name (for a developer); the compile notice (INFO) is unchanged."""
+    import logging
+
+    from vbikit.cli import _PlainWarnings
+
+    fmt = _PlainWarnings("%(levelname)s %(name)s: %(message)s")
+    record = logging.LogRecord("vbikit.lifetime.run", logging.WARNING, __file__, 1,
+                               "an event's dynamic amplification %.3f exceeds the screening bound", (0.742,), None)
+    assert fmt.format(record) == "warning: an event's dynamic amplification 0.742 exceeds the screening bound"
+    info = logging.LogRecord("vbikit.solve.compile", logging.INFO, __file__, 1, "compiling the kernel lean", (), None)
+    assert fmt.format(info) == "INFO vbikit.solve.compile: compiling the kernel lean"
+
+    # through the command line: the handler the CLI installs uses it at the default level, not with -v
+    runner.invoke(app, ["presets"])
+    assert all(isinstance(h.formatter, _PlainWarnings) for h in logging.getLogger().handlers)
+    runner.invoke(app, ["-v", "presets"])
+    assert not any(isinstance(h.formatter, _PlainWarnings) for h in logging.getLogger().handlers)
