@@ -14,6 +14,9 @@ failing on the code before its fix:
 4. ``vbikit lifetime examples/lifetime/lifetime.toml`` opened with ``WARNING vbikit.lifetime.run: an
    event's dynamic amplification 0.742 exceeds …`` — a Python logger's name and level where every
    other warning of the CLI reads ``warning: …``.
+5. ``vbikit lifetime`` and ``vbikit driveby`` write ``summary.json`` / ``driveby-summary.json``
+   (docs/lifetime.md, docs/driveby.md) which neither their ``--out-dir`` help nor docs/cli.md's
+   table named.
 """
 from __future__ import annotations
 
@@ -134,3 +137,27 @@ def test_a_library_warning_reads_as_the_cli_s_own(tmp_path):
     assert all(isinstance(h.formatter, _PlainWarnings) for h in logging.getLogger().handlers)
     runner.invoke(app, ["-v", "presets"])
     assert not any(isinstance(h.formatter, _PlainWarnings) for h in logging.getLogger().handlers)
+
+
+#: the files each batch command writes into --out-dir, as its page says (docs/lifetime.md,
+#: docs/driveby.md, docs/railway.md)
+WRITES = {"lifetime": ("lifetime.nc", "report.txt", "summary.json"),
+          "driveby": ("driveby.nc", "driveby-report.txt", "driveby-summary.json"),
+          "rail": ("rail.nc", "rail-report.txt", "rail-summary.json")}
+
+
+def test_out_dir_help_and_cli_page_name_every_file_written():
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "cli.md").read_text(encoding="utf-8")
+    for command, names in WRITES.items():
+        res = runner.invoke(app, [command, "--help"], env={"COLUMNS": "400"})
+        assert res.exit_code == 0, res.output
+        lines = res.output.splitlines()
+        start = next(i for i, line in enumerate(lines) if line.lstrip().startswith("--out-dir"))
+        end = next(i for i in range(start + 1, len(lines)) if lines[i].lstrip().startswith("--"))
+        help_line = " ".join(line.strip() for line in lines[start:end]).replace("- ", "-")  # (wrapped at hyphens)
+        (row,) = [line for line in page.splitlines() if line.startswith(f"| `vbikit {command} ")]
+        for name in names:
+            assert name in help_line, (command, name, help_line)
+            assert f"`{name}`" in row or f"`DIR/{name}`" in row, (command, name, row)

@@ -45,7 +45,7 @@ class _Bars:
 
 def lifetime_cmd(
     spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
-    out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt and the figures."),
+    out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt, summary.json and the figures (finished batches in work/)."),
     workers: Optional[int] = typer.Option(None, "--workers", min=1, help="Local worker processes (default: all cores; 1 = in this process)."),
     scheduler: Optional[str] = typer.Option(None, "--scheduler", help="Dask distributed scheduler address (tcp://host:port)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
