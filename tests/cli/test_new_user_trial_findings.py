@@ -17,6 +17,9 @@ failing on the code before its fix:
 5. ``vbikit lifetime`` and ``vbikit driveby`` write ``summary.json`` / ``driveby-summary.json``
    (docs/lifetime.md, docs/driveby.md) which neither their ``--out-dir`` help nor docs/cli.md's
    table named.
+6. ``vbikit run examples/verification/yang_yau_sprung_mass.toml`` printed ``max |acceleration|
+   0.4026 m/s²`` beside the example's own "sprung-mass peak acceleration ≈ 0.15 m/s²": the line is
+   the deck's acceleration at the response point (the sprung mass's peak is 0.156 m/s²), unsaid.
 """
 from __future__ import annotations
 
@@ -161,3 +164,12 @@ def test_out_dir_help_and_cli_page_name_every_file_written():
         for name in names:
             assert name in help_line, (command, name, help_line)
             assert f"`{name}`" in row or f"`DIR/{name}`" in row, (command, name, row)
+
+
+def test_the_report_says_whose_acceleration_it_prints(tmp_path):
+    scenario = tmp_path / "beam.toml"
+    scenario.write_text(BEAM_SCENARIO, encoding="utf-8")
+    out = runner.invoke(app, ["run", str(scenario)])
+    assert out.exit_code == 0, out.output
+    (line,) = [line for line in out.stdout.splitlines() if "max |acceleration|" in line]
+    assert line.rstrip().endswith("m/s² (the deck's, at the response point)"), line
