@@ -20,6 +20,9 @@ failing on the code before its fix:
 6. ``vbikit run examples/verification/yang_yau_sprung_mass.toml`` printed ``max |acceleration|
    0.4026 m/s²`` beside the example's own "sprung-mass peak acceleration ≈ 0.15 m/s²": the line is
    the deck's acceleration at the response point (the sprung mass's peak is 0.156 m/s²), unsaid.
+7. ``vbikit study paper-fig10`` while the shared machine ran out of memory: a worker was killed and
+   the command ended with a 50-line traceback (``BrokenProcessPool``), exit code 1 — which
+   docs/cli.md reserves for a bug in vbikit.
 """
 from __future__ import annotations
 
@@ -173,3 +176,30 @@ def test_the_report_says_whose_acceleration_it_prints(tmp_path):
     assert out.exit_code == 0, out.output
     (line,) = [line for line in out.stdout.splitlines() if "max |acceleration|" in line]
     assert line.rstrip().endswith("m/s² (the deck's, at the response point)"), line
+
+
+def test_a_worker_killed_by_the_system_is_an_error_line_not_a_traceback(capsys):
+    from concurrent.futures.process import BrokenProcessPool
+
+    import pytest
+    import typer
+
+    from vbikit.cli.guard import STATE, guard
+
+    def killed():
+        raise BrokenProcessPool("A process in the process pool was terminated abruptly")
+
+    with pytest.raises(typer.Exit) as exit_:
+        guard(killed)
+    assert exit_.value.exit_code == 2
+    err = capsys.readouterr().err
+    assert err.startswith("error: a worker process ended abruptly") and "out of memory" in err
+    assert "fewer --workers" in err and "resumes" in err and "Traceback" not in err
+    with pytest.raises(ValueError):  # any other exception stays a bug's traceback
+        guard(lambda: (_ for _ in ()).throw(ValueError("a bug")))
+    STATE["debug"] = True
+    try:
+        with pytest.raises(BrokenProcessPool):  # --debug: the traceback
+            guard(killed)
+    finally:
+        STATE["debug"] = False
