@@ -22,7 +22,9 @@ Workloads (each warmed up once, then ``--repeat`` timed rounds; the figure is th
   axle trucks), per event.
 
 Measured: thread CPU time (``time.thread_time``) of the whole call and, inside it, of the compiled
-step loop (``vbikit.solve.kernels.lean``, ``lean_lanes`` and ``implicit`` wrapped); "outside" = whole − kernel.  Every workload
+step loop (``vbikit.solve.kernels.lean``, ``lean_lanes`` and ``implicit`` wrapped); "outside" = whole − kernel;
+and "calls", the function calls per crossing of one more round under ``cProfile`` (Python functions, and C
+functions called from Python): the interpreter's part as a count, which does not swing with the machine's load.  Every workload
 runs in a child process per tree (with ``--compare`` the trees alternate round by round, so that both
 see the same machine load), with one BLAS thread: on a busy machine BLAS worker threads that wait
 for a core turn a 51 × 51 matrix product into milliseconds of spinning.  Writes nothing but numba's
@@ -200,7 +202,21 @@ def measure(name: str, repeat: int, stages: bool = False) -> dict:
         parts.append({key: v / n * 1e3 for key, v in clocks.items() if v > 0.0})
     k = min(range(repeat), key=whole.__getitem__)
     return {"workload": name, "whole_ms": whole[k], "kernel_ms": kernel[k], "outside_ms": whole[k] - kernel[k],
-            "stages_ms": parts[k]}
+            "stages_ms": parts[k], "calls": _calls(run) / n}
+
+
+def _calls(run) -> int:
+    """The function calls of one more round (cProfile's count: Python functions, and C functions called
+    from Python, numpy's among them): the interpreter's share of a crossing as a count, which the
+    machine's load does not change (the thread CPU times above swing with it)."""
+    import cProfile
+    import pstats
+
+    profile = cProfile.Profile()
+    profile.enable()
+    run()
+    profile.disable()
+    return sum(entry[1] for entry in pstats.Stats(profile).stats.values())
 
 
 def _child(src: str, name: str, repeat: int, stages: bool = False) -> dict:
@@ -225,7 +241,7 @@ def main() -> None:
         return
     here = str(ROOT / "src")
     trees = {"this": here} | ({"compare": args.compare} if args.compare else {})
-    print(f"{'workload':10s} {'tree':8s} {'whole ms':>9s} {'kernel ms':>10s} {'outside ms':>11s}")
+    print(f"{'workload':10s} {'tree':8s} {'whole ms':>9s} {'kernel ms':>10s} {'outside ms':>11s} {'calls':>7s}")
     for name in args.workloads:
         best: dict[str, dict] = {}
         for _ in range(args.rounds if args.compare else 1):
@@ -234,7 +250,8 @@ def main() -> None:
                 if label not in best or r["whole_ms"] < best[label]["whole_ms"]:
                     best[label] = r
         for label, r in best.items():
-            print(f"{name:10s} {label:8s} {r['whole_ms']:9.1f} {r['kernel_ms']:10.1f} {r['outside_ms']:11.1f}")
+            print(f"{name:10s} {label:8s} {r['whole_ms']:9.1f} {r['kernel_ms']:10.1f} {r['outside_ms']:11.1f} "
+                  f"{r['calls']:7.0f}")
             for stage, ms in r.get("stages_ms", {}).items():
                 print(f"{'':10s} {'':8s} {ms:9.2f}  {stage}")
         if args.compare:

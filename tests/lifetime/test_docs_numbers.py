@@ -23,6 +23,19 @@ def test_page_quotes_the_stored_numbers():
     page = script.PAGE.read_text()
     assert script.render(numbers) in page, HINT
     assert script.render_exact(numbers) in page, HINT
+    assert script.render_knot(numbers) in page, HINT
+
+
+def test_knot_example_states_what_the_limits_do():
+    """The page's knot example as stored: the run's static reference at its steps below the exact
+    static peak of the static pass (by the stored shortfall), and with the limits at the knots equal
+    to it (the breakpoint sweep's peak is one of the limits) — the claim the page makes in words; to
+    1e-6, since the limits are read δ = 1e-6 of a step either side of the knot (``vbikit._vertex.KNOT_OFFSET``:
+    a line's slope times δ's travel, measured 2.7e-9 of the peak)."""
+    k = json.loads(_script().NUMBERS.read_text())["knot_example"]
+    assert abs(k["steps_static"]) < abs(k["exact_static"])
+    assert k["shortfall"] == pytest.approx(1.0 - abs(k["steps_static"]) / abs(k["exact_static"]), rel=1e-12)
+    assert k["limits_static"] == pytest.approx(k["exact_static"], rel=1e-6), HINT
     for name in ("gumbel", "adr", "fatigue", "traffic"):
         assert (ROOT / "docs" / "figures" / f"lifetime-{name}.png").is_file()
 
@@ -47,3 +60,8 @@ def test_example_numbers_are_reproduced():
         assert exact[key] == stored["exact_peaks"][key], f"{key}: {HINT}"
     for key in ("reaction_day_max_sampled", "reaction_day_max_exact"):
         assert exact[key] == pytest.approx(stored["exact_peaks"][key], rel=1e-9), f"{key}: {HINT}"
+    knot = script.knot_example()
+    for key in ("day", "event", "trucks", "candidates"):
+        assert knot[key] == stored["knot_example"][key], f"{key}: {HINT}"
+    for key in ("dt_s", "exact_static", "steps_static", "shortfall", "limits_static", "limits_total"):
+        assert knot[key] == pytest.approx(stored["knot_example"][key], rel=1e-9), f"{key}: {HINT}"

@@ -268,9 +268,12 @@ def test_moving_force_on_one_mode_against_closed_form(integrator):
     assert err <= {"rk4": 5e-9, "newmark": 2e-4}.get(integrator, 2e-4)
 
 
-def test_static_start_falls_back_to_rest_when_a_tire_would_pull(caplog):
+def test_static_start_falls_back_to_rest_when_a_tire_would_pull(caplog, monkeypatch):
     """A profile with 5 m steps (millimetres read as metres): the dashpot forces c·v·r' at t = 0
     would pull, so no equilibrium at speed exists; the start is the one at rest, with a warning."""
+    from vbikit.solve import system
+
+    monkeypatch.setattr(system, "_START_LOGGED", set())  # (as in a fresh process)
     x = np.arange(-20.0, 20.0, 1.0)
     road = RoadProfile(x, 5.0 * ((x // 2) % 2), "steps")
     # at x = −3 m the road rises 5 m over 1 m: the dashpot (c = 500 N·s/m) would push with
@@ -282,6 +285,24 @@ def test_static_start_falls_back_to_rest_when_a_tire_would_pull(caplog):
     assert np.all(r.q_dot[0] == 0.0)
     on_rest = CAR.static_state(ground=[road.elevation(-3.0)])  # the rest equilibrium on the road there
     np.testing.assert_allclose(r.q[0], on_rest, rtol=1e-12, atol=1e-12)
+
+
+def test_the_rest_start_warning_names_the_speed_in_words_and_comes_once(caplog, monkeypatch):
+    """``vbikit study paper-all`` printed "no equilibrium with the tire dashpots' forces from the road
+    rate at t = 0 (a tire would pull); …" twelve times from its workers, no speed, no cause named.
+    The warning now says, in an engineer's words, at which speed the vehicle cannot start in
+    equilibrium and why it may happen, once a process for the same speed."""
+    from vbikit.solve import system
+
+    monkeypatch.setattr(system, "_START_LOGGED", set())
+    x = np.arange(-20.0, 20.0, 1.0)
+    road = RoadProfile(x, 5.0 * ((x // 2) % 2), "steps")
+    with caplog.at_level("WARNING", logger="vbikit.solve.system"):
+        for _ in range(2):
+            simulate(Crossing(SHORT, CAR, road=road, speed=10.0, approach=3.0, free_vibration=0.0))
+    (record,) = [r for r in caplog.records if r.name == "vbikit.solve.system"]
+    text = record.getMessage()
+    assert "cannot start at 36 km/h" in text and "tire dampers' forces" in text and "equilibrium at rest" in text
 
 
 @pytest.mark.parametrize("vx, cell", [(20.0, 1), (-20.0, 0), (0.0, 1)])

@@ -364,7 +364,9 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
                       *kinds: str) -> list[list[NDArray[np.float64]]]:
     """Per kind of ``kinds`` (``PASSING_POSITIONS``: "jump", "kink") and per effect, the instants in the
-    run's span at which a contact point stands on one of the effect's positions ξ of that kind on its
+    run's span (a jump's inside it; a kink's also at its first and last instant, within
+    ``BOUNDARY_INSTANT``, so that a point standing on a support as the run starts bars the vertex
+    through that step) at which a contact point stands on one of the effect's positions ξ of that kind on its
     wheel line y (skew decks included), sorted, unique: every kind's and effect's (point, position)
     pairs timed in one pass (``instants.crossing_instants``), from the positions' table of the bridge,
     effects and lines (``_position_table``, kept: the same for every event of a stream)."""
@@ -380,10 +382,22 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     table, widths = _position_table(bridge, tuple(effects), lines, kinds)
     travel = (table[which.ravel()] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
     bounds = np.cumsum((0,) + widths)
-    taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], float(t[0]),
-                             float(t[-1]))
+    t0, t1 = float(t[0]), float(t[-1])
+    edge = BOUNDARY_INSTANT * (t1 - t0)  # a point on a position at the run's first or last instant
+    taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge,
+                             t1 + edge)
     n = len(effects)
-    return [taus[k * n:(k + 1) * n] for k in range(len(kinds))]
+    out = []
+    for k, kind in enumerate(kinds):
+        if kind == "jump":  # one-sided limits inside the run's span only
+            out.append([tau[(tau > t0) & (tau < t1)] for tau in taus[k * n:(k + 1) * n]])
+        else:  # a kink at the first or last instant (a force starting on the entry support) still bars a vertex
+            out.append([np.unique(np.clip(tau, t0, t1)) for tau in taus[k * n:(k + 1) * n]])
+    return out
+
+
+#: an instant within this fraction of the run's span of its first or last instant is on it (``_passing_instants``)
+BOUNDARY_INSTANT = 1e-9
 
 
 #: the positions whose passing instants ``_passing_instants`` times, by kind: ξ [m] per bridge, effect and wheel line y

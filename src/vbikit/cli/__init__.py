@@ -59,6 +59,16 @@ def _version(value: bool) -> None:
         raise typer.Exit()
 
 
+class _PlainWarnings(logging.Formatter):
+    """Log records at WARNING and above as the CLI prints its own (``warning: …``, ``error: …``),
+    without the logger's name (``-v``, ``-vv`` and ``--debug`` keep it); others as ``fmt``."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        if record.levelno >= logging.WARNING:
+            return f"{'error' if record.levelno >= logging.ERROR else 'warning'}: {record.getMessage()}"
+        return super().format(record)
+
+
 @app.callback(invoke_without_command=True)
 def _main(
     ctx: typer.Context,
@@ -70,6 +80,9 @@ def _main(
     STATE["debug"], STATE["quiet"] = debug, quiet
     level = logging.DEBUG if debug or verbose > 1 else logging.INFO if verbose else logging.ERROR if quiet else logging.WARNING
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s", force=True)
+    if level >= logging.WARNING:  # the default: a logged warning reads as the CLI's own (`warning: …`)
+        for handler in logging.getLogger().handlers:
+            handler.setFormatter(_PlainWarnings("%(levelname)s %(name)s: %(message)s"))
     if not quiet:
         logging.getLogger("vbikit.solve.compile").setLevel(logging.INFO)  # "compiling kernels, first run only"
     if quiet:

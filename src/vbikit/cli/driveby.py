@@ -12,7 +12,7 @@ from vbikit.cli.guard import guard, out_dir_option, scheduler_option, steps_opti
 
 def driveby_cmd(
     file: Path = typer.Argument(..., metavar="DRIVEBY.toml", help="Drive-by file (docs/driveby.md)."),
-    out_dir: Path = out_dir_option("Folder for driveby.nc (and driveby.zarr), the figures and the report."),
+    out_dir: Path = out_dir_option("Folder for driveby.nc (and driveby.zarr), driveby-report.txt, driveby-summary.json and the figures."),
     workers: Optional[int] = workers_option("Local worker processes (1 = in this process).", default=1),
     scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
     max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Budget: integration steps of the whole sweep "

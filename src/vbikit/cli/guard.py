@@ -2,7 +2,8 @@
 
 A user error ([`VbikitError`][vbikit.errors.VbikitError]: bad input, a refused budget or time step),
 an ``OSError`` (an input that cannot be read, an output that cannot be written) and a
-``MemoryError`` exit with code 2 and one line ``error: …`` on stderr.  A command that reads an input
+``MemoryError`` exit with code 2 and one line ``error: …`` on stderr, as does a worker process of a
+pool stopped by the system (``BrokenProcessPool``: most often the machine out of memory).  A command that reads an input
 file passes it (``guard(action, file=path)``): a user error then names that file in its first line
 (``vbikit.errors.naming_file``: ``error: invalid scenario bad.toml:`` and the key lines), the one
 place every command's input-file errors get their file name.  Any other exception is a
@@ -48,6 +49,26 @@ def guard(action: Callable[[], T], file: Optional[Path] = None) -> T:
         for note in getattr(err, "__notes__", ()):
             typer.echo(f"note: {note}", err=True)
         raise typer.Exit(code=2) from None
+    except Exception as err:
+        if STATE["debug"] or not _worker_died(err):
+            raise
+        typer.echo(_WORKER_DIED, err=True)
+        raise typer.Exit(code=2) from None
+
+
+_WORKER_DIED = ("error: a worker process ended abruptly: the system stopped it, most often because the machine ran "
+                "out of memory; run again with fewer --workers (or when memory is free): the batches that finished "
+                "are kept and the same command resumes from them")
+
+
+def _worker_died(err: BaseException) -> bool:
+    """Whether ``err`` says a pool's worker process died (``concurrent.futures.BrokenExecutor``: killed by
+    the system, e.g. out of memory) — not a bug of vbikit.  (Read only if that module is loaded: the
+    CLI's start-up imports no more than it needs.)"""
+    import sys
+
+    futures = sys.modules.get("concurrent.futures")
+    return futures is not None and isinstance(err, futures.BrokenExecutor)
 
 
 def warn(warnings: list[str], most: Optional[int] = None) -> None:

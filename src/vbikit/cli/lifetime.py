@@ -53,7 +53,7 @@ class _Bars:
 
 def lifetime_cmd(
     spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
-    out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt and the figures."),
+    out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt, summary.json and the figures (finished batches in work/)."),
     workers: Optional[int] = workers_option("Local worker processes (default: all cores; 1 = in this process)."),
     scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
     figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),

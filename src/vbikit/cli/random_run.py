@@ -39,6 +39,7 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     if s.get("name"):
         typer.echo(s["name"])
     typer.echo(f"  method: {s['method']}")
+    typer.echo("  values: mean ± standard deviation over the road's realisations")
     from vbikit.outputs import report_unit
 
     (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
@@ -64,7 +65,8 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     if acc:
         typer.echo("  σ max vehicle acceleration [m/s², rad/s²]: " + ", ".join(f"{k} {v:.3g}" for k, v in acc.items()))
     typer.echo(f"  lift-off probability (largest at one instant): {s['lift_off_probability']:.3g}")
-    typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%}; {s['seconds']:.1f} s")
+    typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%} (σ on every second line "
+               f"against every line); run time {s['seconds']:.1f} s")
     typer.echo(f"  quality: {s['quality']}")
     from vbikit.cli.render import print_negative_note
 

@@ -73,7 +73,7 @@ def print_summary(run: Run) -> None:
     strain_mark = "!" if strain_off else ""  # the modes' strain peaks are off too, not only their IM
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
-    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²")
+    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s² (the deck's, at the response point)")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
     coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
     implausible = has_flag(s, "implausible_deflection")

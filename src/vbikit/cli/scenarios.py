@@ -114,6 +114,7 @@ def compare_tires(
 
     from vbikit.plot import plot_tire_comparison
     from vbikit.scenario import load_scenario
+    from vbikit.solve.compile_notice import announced_kernels
 
     guard(lambda: _n_points(n_points))
     base = guard(lambda: load_scenario(scenario), file=scenario)
@@ -127,7 +128,7 @@ def compare_tires(
     for label, tire in models.items():
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
-        t0 = time.perf_counter()
+        t0, compiled_before = time.perf_counter(), announced_kernels()
         run_ = execute(lambda spec=spec: spec, print_warnings=False, file=scenario)
         s = run_.summary
         warnings[label] = (s["warnings"], s["flags"])
@@ -141,6 +142,8 @@ def compare_tires(
             "min_tire_force": min(s["min_wheel_force"].values()),
             "contact_lost": any(v["lost"] for v in s["contact_loss"].values()),
             "seconds": time.perf_counter() - t0,
+            # the kernels numba compiled for the first time in this run (their compilation is in "seconds")
+            "compiled_kernels": sorted(announced_kernels() - compiled_before),
             "warnings": s["warnings"],  # every one, as its run gave it (stderr: one line per distinct warning)
         }
     warn(grouped_warnings(warnings, "tire", kept=f", each in {out_dir / 'compare-tires.json'}"))
@@ -159,7 +162,11 @@ def compare_tires(
     for label, row in table.items():
         typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * to_mm:10.4f} {row['impact_factor']:7.4f} "
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f} "
-                   f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] * to_kn:10.2f} {row['seconds']:8.2f}")
+                   f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] * to_kn:10.2f} {row['seconds']:8.2f}"
+                   + (" *" if row["compiled_kernels"] else ""))
+    if any(row["compiled_kernels"] for row in table.values()):
+        typer.echo("  * its time [s] (wall clock) includes numba's first compilation of a kernel, once a machine; "
+                   "later runs take a fraction of it (`vbikit compile` compiles every kernel in advance)")
     from vbikit.cli.render import print_negative_note
 
     print_negative_note(any(row[k] < 0 for row in table.values() for k in ("impact_factor", "strain_impact_factor")))

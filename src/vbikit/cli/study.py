@@ -50,7 +50,7 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
     from vbikit.study.run import run_study
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
-    t0 = time.perf_counter()
+    t0, finished_before = time.perf_counter(), Path(out).is_file()  # (a run on another study's file is refused)
     try:
         ds = guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
     except KeyboardInterrupt:
@@ -60,7 +60,11 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
         raise typer.Exit(code=130) from None
     bar.close()
     elapsed = time.perf_counter() - t0
-    typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
+    if finished_before:
+        typer.echo(f"{study.size} {unit}s: {out} already holds this finished run, read as it is (nothing run; "
+                   "delete it, or give another --out, to run again)")
+    else:
+        typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
     return ds
 
 

@@ -760,13 +760,24 @@ def healthy_reference(labels: dict[str, NDArray]) -> NDArray[np.int64]:
 
 
 def bridge_states(labels: dict[str, NDArray]) -> NDArray[np.int64]:
-    """For every case the index of its bridge (one per damage position, severity and scour class;
-    every healthy case of a class the same bridge): the passes over one bridge form its multi-pass
-    estimate (temperature, when drawn, varies within one bridge)."""
-    keys = [((0.0, 0.0) if s == 0 else (float(p), float(s)), int(c))
-            for p, s, c in zip(labels["damage_position"], labels["damage_severity"], labels["scour_class"])]
+    """For every case the index of its bridge (one per damage position, severity, scour class and
+    end rotational springs; every healthy case of a class with the same springs the same bridge):
+    the passes over one bridge form its multi-pass estimate (temperature, when drawn, varies within
+    one bridge; springs drawn per pass, ``variability.rotational_stiffness``, make each pass its own
+    bridge)."""
+    n = len(labels["damage_severity"])
+    nan = np.full(n, np.nan)
+    springs = zip(labels.get("rotational_stiffness_entry", nan), labels.get("rotational_stiffness_exit", nan))
+    keys = [((0.0, 0.0) if s == 0 else (float(p), float(s)), int(c), tuple(_label_value(v) for v in k))
+            for p, s, c, k in zip(labels["damage_position"], labels["damage_severity"], labels["scour_class"], springs)]
     first: dict = {}
     return np.array([first.setdefault(k, len(first)) for k in keys], np.int64)
+
+
+def _label_value(v) -> float | None:
+    """A label as a key: its value, None for NaN (none given: NaN equals no NaN)."""
+    v = float(v)
+    return None if np.isnan(v) else v
 
 
 #: multi-pass outputs per case (its bridge's): name -> (units, long name, MultiPass field)

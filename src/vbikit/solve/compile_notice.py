@@ -55,6 +55,12 @@ def kernels_cached(kernel) -> bool:
 _ANNOUNCED: set[str] = set()
 
 
+def announced_kernels() -> frozenset[str]:
+    """The kernels (by name) whose first compilation this process has announced so far (a caller
+    compares two calls to tell whether a run in between compiled one: ``vbikit compare-tires``)."""
+    return frozenset(_ANNOUNCED)
+
+
 def announced_elsewhere() -> None:
     """Say no more in this process: a study's worker processes, whose parent announced the
     compilation of every kernel their batches run for all of them (``vbikit.study.run``)."""

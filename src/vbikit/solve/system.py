@@ -27,6 +27,8 @@ from vbikit.solve.tabulate import TrackTable, hermite_rows, tabulate_tracks
 
 
 log = logging.getLogger(__name__)
+#: the start warnings (``static_state``) this process has logged
+_START_LOGGED: set[str] = set()
 
 @dataclass(frozen=True)
 class KernelData:
@@ -250,8 +252,13 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
             bool(np.any(np.asarray(speed) != 0.0))
         if not moving:
             raise
-    log.warning("no equilibrium with the tire dashpots' forces from the road rate at t = 0 (a tire would pull); "
-                "starting from the equilibrium at rest instead")
+    kmh = 3.6 * float(np.max(np.abs(np.asarray(speed, float)), initial=0.0))
+    text = (f"the vehicle cannot start at {kmh:.0f} km/h in equilibrium with its tire dampers' forces from the "
+            "road's slope under the tires (a tire would have to pull at t = 0; a very rough road, or a profile "
+            "in mm read as m): it starts from its equilibrium at rest instead")
+    if text not in _START_LOGGED:  # once a process and text: a study's worker runs many such crossings
+        _START_LOGGED.add(text)
+        log.warning(text)
     return _equilibrium(crossing, data, road, travel, None, 0.0, max_iterations)
 
 
