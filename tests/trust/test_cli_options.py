@@ -255,3 +255,14 @@ def test_max_steps_has_one_check_and_one_wording(tmp_path, kind, value):
     argv = (["run", str(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml")] if kind == "run"
             else _command(tmp_path, kind))
     _refused(runner.invoke(app, [*argv, "--max-steps", value]), "--max-steps: expected a number in [1, 1e+12], got ")
+
+
+def test_a_foreign_stage_file_is_not_announced_as_resumable_work(tmp_path):
+    """Was: ``out/work/static.nc`` that is no dataset of this run was refused, and a note then said the
+    finished simulations (stage static) were kept and the same command would resume from them — it
+    would only be refused again."""
+    argv = _command(tmp_path, "lifetime")
+    (tmp_path / "out" / "work").mkdir(parents=True)
+    (tmp_path / "out" / "work" / "static.nc").write_text("not a dataset\n")
+    err = _refused(runner.invoke(app, [*argv, "--workers", "1"]), "static.nc exists and is not this study's finished dataset")
+    assert "note:" not in err and "resume" not in err

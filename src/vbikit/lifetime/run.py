@@ -255,7 +255,9 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
         return _simulate_and_write(prep, out_dir, work, workers, scheduler, progress, figures)
     except Exception as err:  # a user error, a full disk, a bug: the finished work stands
         note = resume_note(work)
-        if note and "to resume" not in str(err):  # (a study's failed write says so itself)
+        # (a study's failed write says so itself; an error about the stored work — a stage file that is
+        # not this run's — would only recur on resuming from it)
+        if note and "to resume" not in str(err) and str(work) not in str(err):
             err.add_note(note)
         raise
 
