@@ -258,7 +258,7 @@ def test_max_steps_has_one_check_and_one_wording(tmp_path, kind, value):
 
 
 def test_a_foreign_stage_file_is_not_announced_as_resumable_work(tmp_path):
-    """Was: ``out/work/static.nc`` that is no dataset of this run was refused, and a note then said the
+    """Was: ``static.nc`` in the output folder's ``work`` folder that is no dataset of this run was refused, and a note then said the
     finished simulations (stage static) were kept and the same command would resume from them — it
     would only be refused again."""
     argv = _command(tmp_path, "lifetime")
