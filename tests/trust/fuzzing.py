@@ -543,3 +543,15 @@ def judge(result: Any, file_names: tuple[str, ...], outputs: tuple[Path, ...] = 
             return "clean"
         return "unclear"
     return f"exit {result.exit_code}"
+
+
+def cli_refused(res: Any, *parts: str) -> str:
+    """The stderr of a CliRunner result that is a clean refusal: exit 2, no exception but the exit, one
+    ``error:`` line, no traceback, every one of ``parts`` in it."""
+    assert res.exception is None or isinstance(res.exception, SystemExit), repr(res.exception)
+    assert res.exit_code == 2, res.output
+    errors = [line for line in res.stderr.splitlines() if line.startswith("error:")]
+    assert len(errors) == 1 and "Traceback" not in res.output, res.output
+    for part in parts:
+        assert part in res.stderr, res.stderr
+    return res.stderr

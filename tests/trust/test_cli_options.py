@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 from fuzz_commands import BASES, RECORDS, write_input
+from fuzzing import cli_refused
 from typer.testing import CliRunner
 
 from vbikit.cli import app
@@ -17,16 +18,6 @@ runner = CliRunner()
 ROOT = Path(__file__).resolve().parents[2]
 TRAIN = "position_m,load_kN\n0,170\n3,170\n14,170\n17,170\n"
 STREAM = (ROOT / "examples" / "traffic" / "stream.csv").read_text().splitlines()
-
-
-def _refused(res, *parts: str) -> str:
-    assert res.exception is None or isinstance(res.exception, SystemExit), repr(res.exception)
-    assert res.exit_code == 2, res.output
-    errors = [line for line in res.stderr.splitlines() if line.startswith("error:")]
-    assert len(errors) == 1 and "Traceback" not in res.output, res.output
-    for part in parts:
-        assert part in res.stderr, res.stderr
-    return res.stderr
 
 
 def _command(tmp_path: Path, kind: str) -> list[str]:
@@ -54,7 +45,7 @@ def test_a_malformed_scheduler_address_is_refused_before_computing(tmp_path, kin
     the study checked or (lifetime) the static pass prepared."""
     t0 = time.process_time()
     res = runner.invoke(app, [*_command(tmp_path, kind), "--scheduler", address])
-    err = _refused(res, f"--scheduler {address!r}", words, "tcp://host:port")
+    err = cli_refused(res, f"--scheduler {address!r}", words, "tcp://host:port")
     assert time.process_time() - t0 < 5.0, err
     assert not (tmp_path / "out").exists() and not (tmp_path / "t.nc").exists()
 
@@ -67,7 +58,7 @@ def test_workers_outside_the_range_are_refused_before_any_process_starts(tmp_pat
     from vbikit._validation import workers_limit
 
     res = runner.invoke(app, [*_command(tmp_path, kind), "--workers", workers])
-    _refused(res, "--workers: expected an integer in [1, ", f"{workers_limit()}], got {workers}")
+    cli_refused(res, "--workers: expected an integer in [1, ", f"{workers_limit()}], got {workers}")
 
 
 def test_the_workers_limit_is_the_railway_files_limit():
@@ -93,7 +84,7 @@ def test_compare_tires_n_points_outside_the_tire_models_range(tmp_path, n):
     scenario was read; 0 gave click's usage text.  Now the tire model's range, named as the option."""
     res = runner.invoke(app, ["compare-tires", str(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml"),
                               "--n-points", n, "--out-dir", str(tmp_path / "out")])
-    _refused(res, f"--n-points: expected an integer in [1, 100], got {n}")
+    cli_refused(res, f"--n-points: expected an integer in [1, 100], got {n}")
     assert not (tmp_path / "out").exists()
 
 
@@ -110,7 +101,7 @@ def test_a_figure_format_matplotlib_cannot_write_is_refused_before_computing(tmp
     argv = [a.replace("@", f"{tmp_path}/") for a in argv]
     t0 = time.process_time()
     res = runner.invoke(app, [*argv, "--plot", str(tmp_path / "x.xyz")])
-    _refused(res, f"--plot {tmp_path / 'x.xyz'}: figures are written as", "png", "not 'xyz'")
+    cli_refused(res, f"--plot {tmp_path / 'x.xyz'}: figures are written as", "png", "not 'xyz'")
     assert time.process_time() - t0 < 1.5  # (the paper-bridge-2 deck's modes alone take longer)
     assert "events ->" not in res.output and "mode  1" not in res.output
     assert not (tmp_path / "t.nc").exists()
@@ -128,7 +119,7 @@ def test_run_never_writes_an_output_over_its_scenario(tmp_path, option, spelling
     if spelling == "link":
         target.symlink_to(scenario)
     res = runner.invoke(app, ["run", str(scenario), option, str(target)])
-    _refused(res, f"{option} {target}: is the input file {scenario}", "give another path")
+    cli_refused(res, f"{option} {target}: is the input file {scenario}", "give another path")
     assert scenario.read_text() == text
 
 
@@ -140,12 +131,12 @@ def test_run_random_names_a_folder_as_run_does(tmp_path, make, words):
     path = tmp_path / "d.toml"
     make(path)
     for extra in ([], ["--random"]):
-        _refused(runner.invoke(app, ["run", str(path), *extra]), str(path), words)
+        cli_refused(runner.invoke(app, ["run", str(path), *extra]), str(path), words)
 
 
 def test_binary_input_message_is_grammatical(tmp_path):
     (tmp_path / "b.toml").write_bytes(b"a\x00b")
-    _refused(runner.invoke(app, ["validate", str(tmp_path / "b.toml")]), "binary content); expected an input file")
+    cli_refused(runner.invoke(app, ["validate", str(tmp_path / "b.toml")]), "binary content); expected an input file")
 
 
 @pytest.mark.parametrize("kind, damage, words", [
@@ -164,7 +155,7 @@ def test_an_output_name_taken_in_the_out_dir_is_refused_before_computing(tmp_pat
         (out / name).mkdir() if what == "folder" else (out / name).write_text("x\n")
     argv = _command(tmp_path, kind)
     t0 = time.process_time()
-    err = _refused(runner.invoke(app, [*argv, *(["--workers", "1"] if kind != "rail" else [])]), f"--out-dir {out}: ",
+    err = cli_refused(runner.invoke(app, [*argv, *(["--workers", "1"] if kind != "rail" else [])]), f"--out-dir {out}: ",
                    words, "remove it or choose another --out-dir")
     assert time.process_time() - t0 < 3.0 and "Errno" not in err
 
@@ -173,7 +164,7 @@ def test_a_resumed_stage_that_is_no_dataset_names_the_out_dir_option(tmp_path):
     """``vbikit driveby`` has no --out: the message names --out-dir too."""
     (tmp_path / "out").mkdir()
     (tmp_path / "out" / "driveby.nc").write_text("not a dataset\n")
-    _refused(runner.invoke(app, [*_command(tmp_path, "driveby"), "--workers", "1"]), "choose another --out (or --out-dir)")
+    cli_refused(runner.invoke(app, [*_command(tmp_path, "driveby"), "--workers", "1"]), "choose another --out (or --out-dir)")
 
 
 @pytest.mark.parametrize("make, words", [(lambda p: p.mkdir(), "resp.csv is a folder, not a regular file; give the file as a file"),
@@ -186,7 +177,7 @@ def test_a_field_response_file_that_is_a_folder_is_named_so(tmp_path, make, word
     for name in ("case2_responses.csv", "profile_left.csv", "profile_right.csv"):
         (tmp_path / name).write_text((field / name).read_text())
     make(tmp_path / "resp.csv")
-    _refused(runner.invoke(app, ["field", str(tmp_path / "F.toml"), "--out-dir", str(tmp_path / "o")]),
+    cli_refused(runner.invoke(app, ["field", str(tmp_path / "F.toml"), "--out-dir", str(tmp_path / "o")]),
              f"{tmp_path / 'F.toml'}: case[1].responses: ", words)
 
 
@@ -211,14 +202,14 @@ def test_records_share_the_scenarios_speed_and_offset_limits(tmp_path, col, row,
     t0 = time.process_time()
     res = runner.invoke(app, ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam",
                               "--out", str(tmp_path / "t.nc"), "--workers", "1", "--no-progress"])
-    _refused(res, words)
+    cli_refused(res, words)
     assert time.process_time() - t0 < 1.0 and not (tmp_path / "t.nc").exists()
 
 
 def test_lanes_take_the_same_bound_as_a_lateral_offset(tmp_path):
     res = runner.invoke(app, ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out",
                               str(tmp_path / "t.nc"), "--lanes", "-60,60"])
-    _refused(res, "--lanes: lane centres must be finite numbers within ±50 m")
+    cli_refused(res, "--lanes: lane centres must be finite numbers within ±50 m")
 
 
 def test_a_traffic_event_above_the_step_budget_is_refused_before_any_event_runs(tmp_path, monkeypatch):
@@ -231,10 +222,10 @@ def test_a_traffic_event_above_the_step_budget_is_refused_before_any_event_runs(
                         lambda self, e: pytest.fail("an event was simulated before the budget was checked"))
     argv = ["traffic", str(tmp_path / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out", str(tmp_path / "t.nc"),
             "--workers", "1", "--no-progress"]
-    _refused(runner.invoke(app, argv), "rec.csv:3: the stream's longest event", "needs 8.09e+06 time steps, above the limit 5e+06",
+    cli_refused(runner.invoke(app, argv), "rec.csv:3: the stream's longest event", "needs 8.09e+06 time steps, above the limit 5e+06",
              "raise --max-steps")
-    _refused(runner.invoke(app, [*argv, "--max-steps", "1e7", "--max-memory", "1MB"]), "rec.csv:3: ", "raise --max-memory")
-    _refused(runner.invoke(app, [*argv, "--max-steps", "0"]), "--max-steps: expected a number in [1, 1e+12], got 0")
+    cli_refused(runner.invoke(app, [*argv, "--max-steps", "1e7", "--max-memory", "1MB"]), "rec.csv:3: ", "raise --max-memory")
+    cli_refused(runner.invoke(app, [*argv, "--max-steps", "0"]), "--max-steps: expected a number in [1, 1e+12], got 0")
     assert not (tmp_path / "t.nc").exists()
 
 
@@ -242,7 +233,7 @@ def test_run_refuses_two_outputs_to_one_file(tmp_path):
     """Was: ``--out r.csv --summary r.csv`` wrote the histories, then the summary over them (exit 0)."""
     scenario = ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml"
     target = tmp_path / "r.csv"
-    _refused(runner.invoke(app, ["run", str(scenario), "--out", str(target), "--summary", str(target)]),
+    cli_refused(runner.invoke(app, ["run", str(scenario), "--out", str(target), "--summary", str(target)]),
              f"--summary {target}: is also --out's file; give each output its own path")
     assert not target.exists()
 
@@ -254,7 +245,7 @@ def test_max_steps_has_one_check_and_one_wording(tmp_path, kind, value):
     ``inf`` the project's ``error:`` line; now every value goes through ``steps_option``."""
     argv = (["run", str(ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml")] if kind == "run"
             else _command(tmp_path, kind))
-    _refused(runner.invoke(app, [*argv, "--max-steps", value]), "--max-steps: expected a number in [1, 1e+12], got ")
+    cli_refused(runner.invoke(app, [*argv, "--max-steps", value]), "--max-steps: expected a number in [1, 1e+12], got ")
 
 
 def test_a_foreign_stage_file_is_not_announced_as_resumable_work(tmp_path):
@@ -264,5 +255,5 @@ def test_a_foreign_stage_file_is_not_announced_as_resumable_work(tmp_path):
     argv = _command(tmp_path, "lifetime")
     (tmp_path / "out" / "work").mkdir(parents=True)
     (tmp_path / "out" / "work" / "static.nc").write_text("not a dataset\n")
-    err = _refused(runner.invoke(app, [*argv, "--workers", "1"]), "static.nc exists and is not this study's finished dataset")
+    err = cli_refused(runner.invoke(app, [*argv, "--workers", "1"]), "static.nc exists and is not this study's finished dataset")
     assert "note:" not in err and "resume" not in err

@@ -9,6 +9,7 @@ import copy
 
 import pytest
 from fuzz_commands import BASES, RECORDS, write_input
+from fuzzing import cli_refused
 from typer.testing import CliRunner
 
 from vbikit.cli import app
@@ -19,22 +20,13 @@ RAIL = ("[bridge]\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n[trains]
         "[speeds]\nmin = 100.0\nmax = 200.0\nstep = 10.0\n")
 
 
-def _refused(res, *parts: str) -> str:
-    assert res.exit_code == 2, res.output
-    errors = [line for line in res.stderr.splitlines() if line.startswith("error:")]
-    assert len(errors) == 1 and "Traceback" not in res.output, res.output
-    for part in parts:
-        assert part in res.stderr, res.stderr
-    return res.stderr
-
-
 @pytest.mark.parametrize("argv", [["validate", "junk.csv"], ["validate", "--kind", "train", "junk.csv"],
                                   ["validate", "RAIL.toml"], ["rail", "RAIL.toml", "--out-dir", "out"]])
 def test_a_csv_that_is_no_train_table_is_refused(tmp_path, monkeypatch, argv):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "junk.csv").write_text(JUNK)
     (tmp_path / "RAIL.toml").write_text(RAIL)
-    err = _refused(runner.invoke(app, argv), "junk.csv, line 1: not a train table",
+    err = cli_refused(runner.invoke(app, argv), "junk.csv, line 1: not a train table",
                    "'position [m], load [kN]'", *(["trains.tables[1]: "] if "RAIL.toml" in argv else []))
     assert "foo" not in err and "bar" not in err
     assert not (tmp_path / "out").exists()  # refused before the run made anything
@@ -56,7 +48,7 @@ def test_a_detail_category_en_1993_1_9_does_not_list_is_refused(tmp_path, comman
     data["fatigue"]["details"][0]["category"] = "EN 37"
     path = write_input(tmp_path, "lifetime", data, {"records.csv": "\n".join(RECORDS) + "\n"})
     argv = [command, str(path)] + (["--out-dir", str(tmp_path / "out")] if command == "lifetime" else [])
-    _refused(runner.invoke(app, argv), "fatigue.details[1].category: 'EN 37' is not a detail category",
+    cli_refused(runner.invoke(app, argv), "fatigue.details[1].category: 'EN 37' is not a detail category",
              "(the nearest EN category is 36)", "allowed: EN " + ", ".join(map(str, EN_CATEGORIES)))
     assert not (tmp_path / "out").exists()
 
@@ -66,5 +58,5 @@ def test_a_named_train_table_refused_does_not_say_it_was_guessed(tmp_path):
     axle load out of range, its message does not add the guessed-kind note."""
     (tmp_path / "heavy.csv").write_text("position [m], load [kN]\n0, 170\n3, 20000\n")
     res = runner.invoke(app, ["validate", str(tmp_path / "heavy.csv")])
-    err = _refused(res, "heavy.csv")
+    err = cli_refused(res, "heavy.csv")
     assert "read as a train table" not in err
