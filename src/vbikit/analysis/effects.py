@@ -387,13 +387,19 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge,
                              t1 + edge)
     n = len(effects)
-    out = []
-    for k, kind in enumerate(kinds):
-        if kind == "jump":  # one-sided limits inside the run's span only
-            out.append([tau[(tau > t0) & (tau < t1)] for tau in taus[k * n:(k + 1) * n]])
-        else:  # a kink at the first or last instant (a force starting on the entry support) still bars a vertex
-            out.append([np.unique(np.clip(tau, t0, t1)) for tau in taus[k * n:(k + 1) * n]])
-    return out
+    return [[_in_span(tau, t0, t1, kind == "jump") for tau in taus[k * n:(k + 1) * n]] for k, kind in enumerate(kinds)]
+
+
+def _in_span(tau: NDArray[np.float64], t0: float, t1: float, inside: bool) -> NDArray[np.float64]:
+    """The instants ``tau`` (sorted, unique, within the run's span widened by ``BOUNDARY_INSTANT``) of
+    one kind: with ``inside`` (jumps: one-sided limits inside the span only) those in (t0, t1); else
+    (kinks: one at the first or last instant, a force starting on the entry support, still bars a
+    vertex) clipped to [t0, t1], unique.  Most events have none near either end: ``tau`` as it is."""
+    if tau.size == 0 or (tau[0] > t0 and tau[-1] < t1):
+        return tau
+    if inside:
+        return tau[(tau > t0) & (tau < t1)]
+    return np.unique(np.clip(tau, t0, t1))
 
 
 #: an instant within this fraction of the run's span of its first or last instant is on it (``_passing_instants``)
