@@ -51,3 +51,26 @@ def test_bridge_figure_goes_to_the_output_folder(tmp_path: Path, monkeypatch):
     assert res.exit_code == 0, res.output
     assert (tmp_path / "vbikit-out" / "paper-bridge-1-beam-modes.png").is_file()
     assert not (tmp_path / "paper-bridge-1-beam-modes.png").exists()
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["traffic", "records.csv", "--seed", "-1"], ["vbikit traffic:", "'--seed'", "greater than or equal to 0"]),
+    (["run"], ["vbikit run:", "Missing argument 'SCENARIO.toml'"]),
+    (["run", "x.toml", "--bogus"], ["vbikit run:", "No such option: --bogus"]),
+    (["nosuchcommand"], ["vbikit:", "No such command 'nosuchcommand'"]),
+    (["study", "run"], ["vbikit study run:", "Missing argument 'STUDY.toml'"]),
+    (["traffic", "records.csv", "--batch-size", "0"], ["vbikit traffic:", "'--batch-size'"]),
+])
+def test_a_usage_error_is_one_error_line_like_every_other(argv, words):
+    """What the parser refuses before any command runs (a value out of an option's range, an unknown
+    option or command, a missing argument) ends as every error of the command line: exit 2 and one
+    line ``error: …`` naming the command and its --help — not click's usage text and ``Error: …``."""
+    res = runner.invoke(app, argv, prog_name="vbikit")
+    assert res.exit_code == 2, res.output
+    lines = [line for line in res.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: "), res.stderr
+    assert "Usage:" not in res.output and "Traceback" not in res.output
+    command = words[0].rstrip(":")
+    assert lines[0].endswith(f"see '{command} --help'"), lines[0]
+    for word in words:
+        assert word in lines[0], lines[0]

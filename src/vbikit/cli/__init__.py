@@ -40,6 +40,40 @@ class _Group(TyperGroup):
             args = moved + args[:first + 1] + [a for a in args[first + 1:end] if not _is_global_flag(a)] + args[end:]
         return super().parse_args(ctx, args)
 
+    def main(self, *args: Any, standalone_mode: bool = True, **kwargs: Any) -> Any:
+        """As click's, but a usage error — a bad option value, an unknown option, a missing argument, which
+        click parses before any command runs — ends like every other error of the command line: one line
+        ``error: …`` on stderr naming the command and its ``--help``, exit 2 (click prints its usage text
+        and ``Error: …`` instead)."""
+        if not standalone_mode:
+            return super().main(*args, standalone_mode=False, **kwargs)
+        import sys
+
+        try:
+            rv = super().main(*args, standalone_mode=False, **kwargs)
+        except _click_error("UsageError") as err:
+            typer.echo(usage_error_line(err), err=True)
+            sys.exit(err.exit_code)
+        except _click_error("ClickException") as err:  # (click's other errors, e.g. a file option it opens)
+            typer.echo(f"error: {err.format_message()}", err=True)
+            sys.exit(err.exit_code)
+        except typer.Abort:
+            typer.echo("Aborted!", err=True)
+            sys.exit(1)
+        sys.exit(rv if isinstance(rv, int) else 0)  # (typer.Exit's code; a command itself returns None)
+
+
+def _click_error(name: str) -> type:
+    """click's exception class ``name`` (``UsageError``, ``ClickException``) as typer raises it, found
+    among the bases of the public ``typer.BadParameter`` (typer vendors click in its own namespace)."""
+    return next(c for c in typer.BadParameter.__mro__ if c.__name__ == name)
+
+
+def usage_error_line(err: Any) -> str:
+    """The one line of a click usage error: ``error: vbikit CMD: <click's message>; see 'vbikit CMD --help'``."""
+    command = err.ctx.command_path if err.ctx is not None else "vbikit"
+    return f"error: {command}: {err.format_message().rstrip('.')}; see '{command} --help'"
+
 
 app = typer.Typer(
     cls=_Group,
