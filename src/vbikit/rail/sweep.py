@@ -90,12 +90,13 @@ def sweep_moving_forces(setup: SweepSetup, trains: Sequence[Train], speeds: NDAr
         return list(pool.map(_sweep_one, jobs))
 
 
-def _sweep_dask(jobs: list, scheduler: str, connect_timeout: float = 30.0) -> list:
-    """``_sweep_one`` of every job on the Dask cluster at ``scheduler`` (results in job order)."""
+def _sweep_dask(jobs: list, scheduler: str) -> list:
+    """``_sweep_one`` of every job on the Dask cluster at ``scheduler`` (results in job order; the
+    scheduler tried for ``study.workers.SCHEDULER_CONNECT_TIMEOUT``, as every command's)."""
     from vbikit.rail.spec import RailSpecError
     from vbikit.study.workers import dask_client
 
-    client = dask_client(scheduler, RailSpecError, connect_timeout)
+    client = dask_client(scheduler, RailSpecError)
     try:
         return client.gather(client.map(_sweep_one, jobs, pure=False))
     finally:

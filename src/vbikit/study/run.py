@@ -50,7 +50,7 @@ from vbikit.outputs import OUTPUTS, outputs
 from vbikit.study.compute import LONGEST_SPAN, point_names, run_batch
 from vbikit.study.spec import Study, StudyError, cf_key_unit as _cf_unit
 from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
-from vbikit.study.workers import dask_client, local_pool, shutdown_workers
+from vbikit.study.workers import SCHEDULER_CONNECT_TIMEOUT, dask_client, local_pool, shutdown_workers
 
 log = logging.getLogger(__name__)
 
@@ -195,7 +195,7 @@ def run_study(
     progress: Optional[Progress] = None,
     threads: int = 1,
     keep_parts: bool = False,
-    connect_timeout: float = 10.0,
+    connect_timeout: float = SCHEDULER_CONNECT_TIMEOUT,
 ):
     """Run (or resume) ``study`` and write its dataset to ``out`` (NetCDF); returns the Dataset.
 

@@ -141,7 +141,11 @@ def check_scheduler(scheduler: str, error: type[Exception]) -> str:
     return scheduler
 
 
-def dask_client(scheduler: str, error: type[Exception], connect_timeout: float) -> Any:
+#: how long [s] a run tries to reach its Dask scheduler before it gives up (every command's --scheduler)
+SCHEDULER_CONNECT_TIMEOUT = 10.0
+
+
+def dask_client(scheduler: str, error: type[Exception], connect_timeout: float = SCHEDULER_CONNECT_TIMEOUT) -> Any:
     """A ``dask.distributed.Client`` of the scheduler at ``scheduler``; ``error`` (the caller's
     error class, naming ``--scheduler``) when dask.distributed is not installed, the address is
     malformed (``check_scheduler``) or the scheduler cannot be reached within ``connect_timeout``
