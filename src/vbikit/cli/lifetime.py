@@ -65,7 +65,7 @@ def lifetime_cmd(
     day (and a random sample for fatigue), extreme-value fits and return levels, ADR, fatigue
     damage.  An interrupted run started again resumes (finished batches in OUT_DIR/work)."""
     from vbikit._words import counted
-    from vbikit.lifetime.run import run_lifetime
+    from vbikit.lifetime.run import DATASET_FILE, REPORT_FILE, WORK_FOLDER, run_lifetime
 
     memory = None if max_memory is None else memory_option(max_memory)
     bars = _Bars(progress and not STATE["quiet"])
@@ -75,11 +75,11 @@ def lifetime_cmd(
                                         figures=figures, max_memory=memory), file=spec)
     except KeyboardInterrupt:
         bars.close()
-        typer.echo(f"\ninterrupted: finished batches are kept in {out_dir / 'work'}; run the same command again "
+        typer.echo(f"\ninterrupted: finished batches are kept in {out_dir / WORK_FOLDER}; run the same command again "
                    "to resume", err=True)
         raise typer.Exit(code=130) from None
     bars.close()
     a = ds.attrs
-    typer.echo((out_dir / "report.txt").read_text())
+    typer.echo((out_dir / REPORT_FILE).read_text())
     typer.echo(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
-               f"-> {out_dir / 'lifetime.nc'} ({time.perf_counter() - t0:.1f} s)")
+               f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")

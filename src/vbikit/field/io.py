@@ -28,11 +28,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import check_name, csv_rows, input_file, read_text
+from vbikit._limits import MAX_SPEED, MIN_SPEED
 from vbikit._toml import read_toml
 from vbikit.errors import VbikitError
-from vbikit.scenario.schema import MAX_SPEED, MIN_SPEED
 
-#: the speeds [km/h] a field file accepts: a scenario's (``vbikit.scenario.schema``)
+#: the speeds [km/h] a field file accepts: a scenario's (``vbikit._limits``)
 SPEED_RANGE_KMH = (round(MIN_SPEED * 3.6, 12), MAX_SPEED * 3.6)
 _SPEED_RANGE_TEXT = f"{SPEED_RANGE_KMH[0]:g} … {SPEED_RANGE_KMH[1]:g}"
 

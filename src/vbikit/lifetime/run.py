@@ -229,6 +229,12 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
     return run_study(job, path, workers=workers, scheduler=scheduler, progress=report)
 
 
+#: the files a lifetime run writes in its output folder, and the folder of its finished work (resumed by the
+#: next run): checked before any computation (``_files.output_names``) and written under these names
+DATASET_FILE, SUMMARY_FILE, REPORT_FILE = "lifetime.nc", "summary.json", "report.txt"
+WORK_FOLDER = "work"
+
+
 def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, base_dir: str | Path | None = None,
                  workers: Optional[int] = None, scheduler: Optional[str] = None,
                  progress: Optional[Progress] = None, figures: bool = True, max_memory: Optional[float] = None):
@@ -247,9 +253,9 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
         base_dir = folder if base_dir is None else base_dir
     from vbikit._files import output_names
 
-    out_dir = output_names(out_dir, ("lifetime.nc", "summary.json", "report.txt"), ("work",))  # (before any computation)
+    out_dir = output_names(out_dir, (DATASET_FILE, SUMMARY_FILE, REPORT_FILE), (WORK_FOLDER,))  # (before any computation)
     prep = prepare(spec, base_dir if base_dir is not None else ".", workers, max_memory)
-    work = out_dir / "work"
+    work = out_dir / WORK_FOLDER
     work.mkdir(parents=True, exist_ok=True)
     try:
         return _simulate_and_write(prep, out_dir, work, workers, scheduler, progress, figures)
@@ -297,9 +303,9 @@ def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, sche
     ds["load_effect_flag_codes"] = ("load_effect", np.array(effect_flag_codes(facts), dtype=object),
                                     {"long_name": "the codes of each load effect's flags in summary.json, comma-separated "
                                                   "(vbikit.analysis.checks.FLAG_CODES)"})
-    atomic_write(out_dir / "lifetime.nc", lambda tmp: _to_netcdf(ds, tmp))
-    write_text(out_dir / "summary.json", json.dumps(facts, indent=1, allow_nan=False) + "\n")
-    write_text(out_dir / "report.txt", text_report(facts))
+    atomic_write(out_dir / DATASET_FILE, lambda tmp: _to_netcdf(ds, tmp))
+    write_text(out_dir / SUMMARY_FILE, json.dumps(facts, indent=1, allow_nan=False) + "\n")
+    write_text(out_dir / REPORT_FILE, text_report(facts))
     if figures:
         from vbikit.lifetime.figures import traffic_figure, write_figures
 

@@ -267,6 +267,12 @@ def plan_rail(source: Any) -> RailPlan:
                     waves, sections, warnings, damping_origin(spec, float(bridge.span), base_dir))
 
 
+#: the files a railway run writes in its output folder: checked before the sweep (``_files.output_names``)
+#: and written under these names (``write_outputs``)
+DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE = ("rail.nc", "rail-report.txt", "rail-summary.json",
+                                                        "rail-acceleration.png")
+
+
 def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
              figures: bool = True, progress: Optional[Callable[[int, int], None]] = None,
              scheduler: Optional[str] = None) -> RailResult:
@@ -280,7 +286,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
         from vbikit._files import output_names
         from vbikit.rail.checkpoint import WORK
 
-        output_names(out_dir, ("rail.nc", "rail-report.txt", "rail-summary.json", "rail-acceleration.png"), (str(WORK),))
+        output_names(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE), (str(WORK),))
     p = plan_rail(source)
     spec, bridge, f_limit, required, originals, trains, res, speeds, points, setup, coupled = (
         p.spec, p.bridge, p.f_limit, p.required, p.originals, p.trains, p.resonances, p.speeds, p.points, p.setup,
@@ -772,11 +778,11 @@ def write_outputs(result: RailResult, out_dir: Path, figures: bool = True) -> li
     ds = result.dataset.copy()
     ds["train"] = ds["train"].astype(str)
     ds["wavelength_source"] = ds["wavelength_source"].astype(str)
-    files = [atomic_write(out_dir / "rail.nc", lambda tmp: ds.to_netcdf(tmp, engine="netcdf4")),
-             write_text(out_dir / "rail-report.txt", result.report),
-             write_text(out_dir / "rail-summary.json", json.dumps(summary(result.dataset, result.checks), indent=1, ensure_ascii=False) + "\n")]
+    files = [atomic_write(out_dir / DATASET_FILE, lambda tmp: ds.to_netcdf(tmp, engine="netcdf4")),
+             write_text(out_dir / REPORT_FILE, result.report),
+             write_text(out_dir / SUMMARY_FILE, json.dumps(summary(result.dataset, result.checks), indent=1, ensure_ascii=False) + "\n")]
     if figures:
         from vbikit.rail.figures import plot_acceleration_envelopes
 
-        files.append(plot_acceleration_envelopes(result.dataset, out_dir / "rail-acceleration.png"))
+        files.append(plot_acceleration_envelopes(result.dataset, out_dir / FIGURE_FILE))
     return files
