@@ -152,7 +152,7 @@ def implicit(dt, motion, modes, vehicles, points, road, unilateral, step, vstep,
     cap = max(cap, 1)
     dp = np.zeros(n_m); dxi_l = np.zeros(n_m); dvi_l = np.zeros(n_m)
     bq_l = np.zeros((n_w, n_l)); bv_l = np.zeros((n_w, n_l)); t_l = np.zeros((n_w, n_l))
-    ksum = np.zeros(n_w); csum = np.zeros(n_w); veh = np.zeros((n_w, n_w))
+    ksum = np.zeros((n_w, 1)); csum = np.zeros((n_w, 1)); veh = np.zeros((n_w, n_w))  # (``woodbury``'s layout)
     veh_piv = np.zeros(n_w, dtype=np.int64)
     veh_held = np.zeros(2 * n_w + 1)  # the sums whose factors ``veh`` holds, and whether it holds any
     n_r = min(cap, n_m + n_w)  # the larger factorisation ever needed is min(na, r)

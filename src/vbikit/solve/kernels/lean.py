@@ -38,7 +38,7 @@ compiled once, with the argument types of both its callers (``lean`` and, from P
 ``lean`` returns at one place only and calls ``_law`` at one site (numba emits the end of every array's
 lifetime at each return, and each call site passes every array).  numba links each compiled helper into
 its callers' LLVM modules, where it is optimised and made into machine code again: small helpers with
-one caller are inlined by numba instead (the LU routines into ``_quasi``: ``newton.lu_factor_inline``),
+one caller are inlined by numba instead (the LU routines into ``_quasi``: ``dense.lu_factor_inline``),
 and numba's inlined helpers are called at one site each (the road cells of the secant rate's two readings
 and of the point by one ``road_cell``: ``contact.road_cells``).
 """
@@ -51,7 +51,8 @@ from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
 from vbikit.solve.kernels.hold import hold_correction
-from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, lu_factor_inline, lu_solve_inline
+from vbikit.solve.kernels.dense import lu_factor_inline, lu_solve_inline
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS
 
 
 @_flat  # called by ``lean`` and from Python by ``lean_law``: one compiled law for both
@@ -164,10 +165,14 @@ def _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wh
 
 @_flat_internal
 def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t):
-    """One quasi-Newton update through the vehicles (``newton._vehicle_newton``, one lane):
-    F_A = law_A + k bq_w + c bv_w, F = 0 off A, with (bq, bv) the change of (−z_w, −ż_w):
-    b = (wheel_q, wheel_v) F_w, (I + S_A U_A) t = S_A b, (bq, bv) = b − (wheel_q, wheel_v) t.  The
-    factors of V = I + S_A U_A (``veh``, ``piv``) are kept while the active sums (``held``) stay."""
+    """One quasi-Newton update through the vehicles, ``woodbury``'s arithmetic written for one lane on
+    flat (n_w,) arrays: F_A = law_A + k bq_w + c bv_w, F = 0 off A, with (bq, bv) the change of
+    (−z_w, −ż_w): b = (wheel_q, wheel_v) F_w, (I + S_A U_A) t = S_A b, (bq, bv) = b − (wheel_q, wheel_v) t.
+    The factors of V = I + S_A U_A (``veh``, ``piv``) are kept while the active sums (``held``) stay.
+    Not ``woodbury``'s functions themselves, which take (n_w, L) arrays and run the lanes innermost: on
+    (n_w, 1) arrays they made the default path's cold compile 0.6–1.1 s longer (``lean`` 6.2–7.4 s
+    against 5.2–5.9 s CPU, alternating fresh processes), and their products, summed through the arrays,
+    a traffic event's ``lean`` 25–30 % slower (benchmarks/README.md)."""
     n_w = fw.size
     for w in range(n_w):
         ksum[w] = 0.0

@@ -48,7 +48,9 @@ from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
 from vbikit.solve.kernels.hold import hold_correction_lanes, hold_jumps
 from vbikit.solve.kernels.lanes import MANY_LANES
-from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, _lu_factor, _solve_held
+from vbikit.solve.kernels.dense import solve_held
+from vbikit.solve.kernels.newton import LEAN_CORRECTIONS
+from vbikit.solve.kernels.woodbury import vehicle_back, vehicle_factors, vehicle_rhs
 
 
 @_internal
@@ -247,35 +249,14 @@ def _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi
 
 
 @_internal
-def _held_factors(a, pv, hl, ksum, csum, col, wheel_q, wheel_v):
-    """The LU factors (``a``, ``pv``) of V = I + S_A U_A for the active sums of lane ``col``
-    (``ksum``, ``csum`` (n_w, L)), refactorised only when those sums differ from the ones ``hl``
-    holds (its last entry ≠ 0 once filled; ``lean._quasi`` keeps one lane's the same way)."""
-    n_w = a.shape[0]
-    same = hl[2 * n_w] != 0.0
-    if same:
-        for w in range(n_w):
-            if ksum[w, col] != hl[w] or csum[w, col] != hl[n_w + w]:
-                same = False
-                break
-    if not same:
-        for w in range(n_w):
-            for w2 in range(n_w):
-                a[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w, col] * wheel_q[w, w2] + csum[w, col] * wheel_v[w, w2]
-            hl[w] = ksum[w, col]
-            hl[n_w + w] = csum[w, col]
-        hl[2 * n_w] = 1.0
-        _lu_factor(a, n_w, pv)
-
-
-@_internal
 def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv, t, work,
                  pts, n_pts):
-    """``lean._quasi`` for the lanes with ``work`` set: F_A = law_A + k bq_w + c bv_w, F = 0 off A,
-    (bq, bv) = b − (wheel_q, wheel_v) t, b = (wheel_q, wheel_v) F_w, (I + S_A U_A) t = S_A b.  Each
-    lane keeps the factors of its V = I + S_A U_A (``veh[lane]``, ``piv[lane]``) while its active
-    sums (``held[lane]``) stay; when every working lane has the same sums (all points active, the
-    common case) one set of factors (slot L) serves them all and the solve runs across the lanes.  Other lanes keep F and get bq = bv = 0.  Only the points
+    """``lean._quasi`` for the lanes with ``work`` set (``woodbury``: the wheels' part): F_A = law_A +
+    k bq_w + c bv_w, F = 0 off A, (bq, bv) = b − (wheel_q, wheel_v) t, b = (wheel_q, wheel_v) F_w,
+    (I + S_A U_A) t = S_A b.  Each lane keeps the factors of its V = I + S_A U_A (``veh[lane]``,
+    ``piv[lane]``) while its active sums (``held[lane]``) stay; when every working lane has the same
+    sums (all points active, the common case) one set of factors (slot L) serves them all and the
+    solve runs across the lanes.  Other lanes keep F and get bq = bv = 0.  Only the points
     ``pts[:n_pts]`` are visited (the others are inactive with F = 0 in every lane)."""
     n_w = fw.shape[0]
     n_l = fw.shape[1]
@@ -292,18 +273,7 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
             on = active[k, lane]
             ksum[wk, lane] += a if on else 0.0
             csum[wk, lane] += b if on else 0.0
-    for w in range(n_w):
-        for lane in range(n_l):
-            bq[w, lane] = 0.0
-            bv[w, lane] = 0.0
-        for w2 in range(n_w):
-            a = wheel_q[w, w2]
-            b = wheel_v[w, w2]
-            for lane in range(n_l):
-                bq[w, lane] += a * fw[w2, lane]
-                bv[w, lane] += b * fw[w2, lane]
-        for lane in range(n_l):
-            t[w, lane] = ksum[w, lane] * bq[w, lane] + csum[w, lane] * bv[w, lane]
+    vehicle_rhs(wheel_q, wheel_v, fw, ksum, csum, np.int64(-1), bq, bv, t, np.int64(0), n_l)
     for i in range(n_pts):
         k = pts[i]
         wk = wheel[k]
@@ -323,20 +293,15 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
         if not shared:
             break
     if shared and ref >= 0:  # one factorisation (slot n_l), the solve vectorised over the lanes
-        _held_factors(veh[n_l], piv[n_l], held[n_l], ksum, csum, ref, wheel_q, wheel_v)
-        _solve_held(veh[n_l], piv[n_l], t, np.int64(0), n_l)
+        vehicle_factors(veh[n_l], piv[n_l], held[n_l], ksum, csum, ref, wheel_q, wheel_v)
+        solve_held(veh[n_l], piv[n_l], t, np.int64(0), n_l)
     for lane in range(n_l):  # else each lane's own n_w-square solve (n_w is a few wheels)
         if shared or not work[lane]:
             continue
-        _held_factors(veh[lane], piv[lane], held[lane], ksum, csum, lane, wheel_q, wheel_v)
-        _solve_held(veh[lane], piv[lane], t, lane, lane + 1)
+        vehicle_factors(veh[lane], piv[lane], held[lane], ksum, csum, lane, wheel_q, wheel_v)
+        solve_held(veh[lane], piv[lane], t, lane, lane + 1)
+    vehicle_back(wheel_q, wheel_v, t, bq, bv, np.int64(0), n_l)
     for w in range(n_w):
-        for w2 in range(n_w):
-            a = wheel_q[w, w2]
-            b = wheel_v[w, w2]
-            for lane in range(n_l):
-                bq[w, lane] -= a * t[w2, lane]
-                bv[w, lane] -= b * t[w2, lane]
         for lane in range(n_l):
             if not work[lane]:
                 bq[w, lane] = 0.0

@@ -1,13 +1,14 @@
-"""The implicit step's contact solve: LU factors, the quasi-Newton update through the vehicles (one
-copy for one lane and many), the exact one-evaluation refinement, the full active-set Newton update
+"""The implicit step's contact solve: the quasi-Newton update through the vehicles for lanes sharing
+one active set (its wheels' part in ``woodbury``, shared with the lean kernels), the exact one-evaluation refinement, the full active-set Newton update
 and its touch rows. (``vbikit.solve.kernels``: the equations and conventions.)"""
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
 from vbikit.solve.kernels.bundles import _internal
 from vbikit.solve.kernels.contact import _gated, road_point, shape_point
+from vbikit.solve.kernels.dense import _lu_factor, _lu_solve, solve_held
+from vbikit.solve.kernels.woodbury import vehicle_back, vehicle_factors, vehicle_rhs
 
 
 #: quasi-Newton updates (the Jacobian through the vehicles only) before the full Newton updates: for
@@ -19,91 +20,6 @@ QUASI_ITERATIONS = 4
 
 #: Newton iterations after which the implicit kernel halves its updates (a contact set that would cycle)
 RELAX_AFTER = 8
-
-
-@_internal
-def _lu_factor(a, n, piv):
-    """In-place LU factorisation with partial pivoting of a[:n, :n] (row swaps in ``piv``)."""
-    for j in range(n):
-        best = j
-        big = abs(a[j, j])
-        for i in range(j + 1, n):
-            if abs(a[i, j]) > big:
-                big = abs(a[i, j])
-                best = i
-        piv[j] = best
-        if best != j:
-            for c in range(n):
-                t = a[j, c]
-                a[j, c] = a[best, c]
-                a[best, c] = t
-        d = a[j, j]
-        for i in range(j + 1, n):
-            lij = a[i, j] / d
-            a[i, j] = lij
-            if lij != 0.0:
-                for c in range(j + 1, n):
-                    a[i, c] -= lij * a[j, c]
-
-
-@_internal
-def _lu_solve(a, n, piv, b):
-    """Solve a x = b in place in b[:n] with the factors of ``_lu_factor``."""
-    for j in range(n):
-        k = piv[j]
-        if k != j:
-            t = b[j]
-            b[j] = b[k]
-            b[k] = t
-    for i in range(n):
-        acc = b[i]
-        for j in range(i):
-            acc -= a[i, j] * b[j]
-        b[i] = acc
-    for i in range(n - 1, -1, -1):
-        acc = b[i]
-        for j in range(i + 1, n):
-            acc -= a[i, j] * b[j]
-        b[i] = acc / a[i, i]
-
-
-#: the same two routines inlined by numba into their one caller, the lean kernel's quasi-Newton update
-#: (``lean._quasi``): not compiled on their own and then optimised again in each caller's LLVM module
-#: (numba links a compiled helper into every caller's module, where LLVM optimises it and makes its
-#: machine code again); ≈ −0.15 s of the default path's cold compile (benchmarks/README.md)
-#: (``getattr``: with NUMBA_DISABLE_JIT=1, as the kernel-coverage job runs, ``njit`` returns the Python
-#: function itself, without ``py_func``)
-lu_factor_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(
-    getattr(_lu_factor, "py_func", _lu_factor))
-lu_solve_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(
-    getattr(_lu_solve, "py_func", _lu_solve))
-
-
-@_internal
-def _solve_held(a, pv, t, lane0, lane1):
-    """t[:, lane] ← V⁻¹ t[:, lane] for lanes ``lane0`` … ``lane1`` − 1 with the LU factors ``a``,
-    ``pv`` of V (row swaps, then forward and back substitution, the lanes innermost)."""
-    n_w = a.shape[0]
-    for j in range(n_w):
-        kp = pv[j]
-        if kp != j:
-            for lane in range(lane0, lane1):
-                tmp = t[j, lane]
-                t[j, lane] = t[kp, lane]
-                t[kp, lane] = tmp
-    for i in range(n_w):
-        for j in range(i):
-            e = a[i, j]
-            for lane in range(lane0, lane1):
-                t[i, lane] -= e * t[j, lane]
-    for i in range(n_w - 1, -1, -1):
-        for j in range(i + 1, n_w):
-            e = a[i, j]
-            for lane in range(lane0, lane1):
-                t[i, lane] -= e * t[j, lane]
-        e = a[i, i]
-        for lane in range(lane0, lane1):
-            t[i, lane] = t[i, lane] / e
 
 
 @_internal
@@ -239,79 +155,36 @@ def _same_active_set(used, active):
 
 
 @_internal
-def _vehicle_factors(used, active, lane, points, vstep, ksum, csum, held, veh, veh_piv):
-    """Factorise V = I + S_A U_A (n_w × n_w, row w: δ_ww' + K_w wheel_q[w, w'] + C_w wheel_v[w, w'], with
-    K_w, C_w the sums of the active points' k and c on wheel w in lane ``lane``) into ``veh``,
-    ``veh_piv`` — unless the factors held are those of the same sums (``held``: K (n_w), C (n_w), a
-    valid flag).  V changes only with the active set, so its factors are kept across iterations and
-    steps (the step map ``vstep`` is that of the whole run)."""
-    n_w = veh.shape[0]
-    for w in range(n_w):
-        ksum[w] = 0.0
-        csum[w] = 0.0
-    for k in range(active.shape[0]):
-        if used[k] and active[k, lane]:
-            ksum[points.wheel[k]] += points.stiffness[k]
-            csum[points.wheel[k]] += points.damping[k]
-    if held[2 * n_w] != 0.0:
-        same = True
-        for w in range(n_w):
-            if ksum[w] != held[w] or csum[w] != held[n_w + w]:
-                same = False
-                break
-        if same:
-            return
-    wq, wv = vstep.wheel_q, vstep.wheel_v
-    for w in range(n_w):
-        for w2 in range(n_w):
-            veh[w, w2] = (1.0 if w == w2 else 0.0) + ksum[w] * wq[w, w2] + csum[w] * wv[w, w2]
-        held[w] = ksum[w]
-        held[n_w + w] = csum[w]
-    held[2 * n_w] = 1.0
-    _lu_factor(veh, n_w, veh_piv)
-
-
-@_internal
 def _vehicle_newton(f, force, used, active, lane0, lane1, lane_err, tol, points, vstep, fw, ksum, csum, held, veh,
                     veh_piv, bq, bv, t):
     """One quasi-Newton update of the point forces ``f[:, lane]`` of every unconverged lane
     (``lane_err`` > ``tol``) in ``lane0`` … ``lane1`` − 1, lanes that share the active set A of lane
-    ``lane0``, with the Jacobian through the vehicles only: (I + U_A S_A) F_A = law_A(F) + U_A S_A F,
-    F = 0 off A, with u_i = k_i wheel_q[w_i] + c_i wheel_v[w_i] (U: ∂F_i/∂F_w, S: sum per wheel).  By
-    Woodbury's identity it is the n_w-square system (I + S_A U_A) t = S_A b, whose matrix needs only
-    each wheel's sums of active k and c (``_vehicle_factors``, kept while they stay the same):
-    O(points + wheels²) per lane, the lanes innermost.  On return ``bq``, ``bv`` (n_w, L) hold each
-    wheel's change of −z_w and −ż_w by the update (the vehicles' part of the change of its points'
-    penetration and rate)."""
+    ``lane0``, with the Jacobian through the vehicles only (``woodbury``: the n_w-square system
+    (I + S_A U_A) t = S_A b, whose factors ``veh``, ``veh_piv`` are kept while each wheel's sums of active
+    k and c, ``ksum``, ``csum`` (n_w, 1), stay the same — across iterations and steps: the step map
+    ``vstep`` is that of the whole run): O(points + wheels²) per lane, the lanes innermost.  On return
+    ``bq``, ``bv`` (n_w, L) hold each wheel's change of −z_w and −ż_w by the update (the vehicles' part
+    of the change of its points' penetration and rate)."""
     n_cp = f.shape[0]
-    n_w = veh.shape[0]
     wq, wv = vstep.wheel_q, vstep.wheel_v
-    _vehicle_factors(used, active, lane0, points, vstep, ksum, csum, held, veh, veh_piv)
+    n_w, _ = ksum.shape
     for w in range(n_w):
-        for lane in range(lane0, lane1):
-            bq[w, lane] = 0.0
-            bv[w, lane] = 0.0
-        for w2 in range(n_w):
-            q = wq[w, w2]
-            v = wv[w, w2]
-            for lane in range(lane0, lane1):
-                bq[w, lane] += q * fw[w2, lane]
-                bv[w, lane] += v * fw[w2, lane]
-        for lane in range(lane0, lane1):  # S_A b = Σ_i∈A∩w (F_i + k_i bq + c_i bv)
-            t[w, lane] = ksum[w] * bq[w, lane] + csum[w] * bv[w, lane]
+        ksum[w, 0] = 0.0
+        csum[w, 0] = 0.0
     for k in range(n_cp):
+        if used[k] and active[k, lane0]:
+            ksum[points.wheel[k], 0] += points.stiffness[k]
+            csum[points.wheel[k], 0] += points.damping[k]
+    zero = np.int64(0)
+    vehicle_factors(veh, veh_piv, held, ksum, csum, zero, wq, wv)
+    vehicle_rhs(wq, wv, fw, ksum, csum, zero, bq, bv, t, lane0, lane1)
+    for k in range(n_cp):  # S_A b = Σ_i∈A∩w (F_i + k_i bq + c_i bv)
         if used[k] and active[k, lane0]:
             w = points.wheel[k]
             for lane in range(lane0, lane1):
                 t[w, lane] += force[k, lane]
-    _solve_held(veh, veh_piv, t, lane0, lane1)  # t ← V⁻¹ t, every lane at once
-    for w in range(n_w):  # bq, bv ← b's vehicle terms minus U t's, per wheel
-        for w2 in range(n_w):
-            q = wq[w, w2]
-            v = wv[w, w2]
-            for lane in range(lane0, lane1):
-                bq[w, lane] -= q * t[w2, lane]
-                bv[w, lane] -= v * t[w2, lane]
+    solve_held(veh, veh_piv, t, lane0, lane1)  # t ← V⁻¹ t, every lane at once
+    vehicle_back(wq, wv, t, bq, bv, lane0, lane1)
     for k in range(n_cp):
         on = used[k] and active[k, lane0]
         w = points.wheel[k]
