@@ -54,7 +54,7 @@ SELECTION = [
 #: touching point's width at a step's end; its vehicle accelerations without DOFs (the lean kernels
 #: take moving forces); the one-evaluation step's exits for a point leaving the lazy test (``lean``,
 #: ``_lean_refine``) and for corrections that do not settle (``_lean_refine``, ``lean_lanes``); the
-#: vehicle factors' row swaps (``_solve_held``: those matrices need no pivoting); a point left out by
+#: vehicle factors' row swaps (``dense.solve_held``: those matrices need no pivoting); a point left out by
 #: the lazy test in the full Newton; ``lean_lanes``' cell-slope road rate (a vehicle at rest: no
 #: secant span), its points that the lazy test keeps but no lane presses (watched by their bound) and
 #: its return when every lane is frozen.

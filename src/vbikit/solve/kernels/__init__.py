@@ -62,7 +62,8 @@ origin and direction.  Wheels of one vehicle must be contiguous in points (``whe
 
 Modules, by role: ``bundles`` (argument bundles and work spaces), ``lanes`` (lane-wise array
 helpers), ``contact`` (the contact law and the right-hand side), ``explicit`` (RK4), ``implicit_step``
-(the partitioned implicit step loop), ``newton`` (its contact solve), ``lean`` (the same step loop for
+(the partitioned implicit step loop), ``newton`` (its contact solve), ``woodbury`` (the quasi-Newton
+update's wheel part, shared by ``newton`` and ``lean_lanes``), ``dense`` (small LU systems), ``lean`` (the same step loop for
 one lane and the one-evaluation steps only, flat; it stops at any other step), ``lean_lanes`` (the same
 for many lanes, the lane index innermost; it freezes a lane at any other step), ``assembly`` (the
 static modal load history).  Everything is importable from this package, as when it was one module.
