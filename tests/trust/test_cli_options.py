@@ -257,3 +257,29 @@ def test_a_foreign_stage_file_is_not_announced_as_resumable_work(tmp_path):
     (tmp_path / "out" / "work" / "static.nc").write_text("not a dataset\n")
     err = cli_refused(runner.invoke(app, [*argv, "--workers", "1"]), "static.nc exists and is not this study's finished dataset")
     assert "note:" not in err and "resume" not in err
+
+
+@pytest.mark.parametrize("option", ["--out", "--summary", "--plot"])
+@pytest.mark.parametrize("read", ["profile", "modes"])
+def test_run_never_writes_an_output_over_a_file_its_scenario_reads(tmp_path, option, read):
+    """Was: ``vbikit run s.toml --out p.csv`` with ``road.profile_file = "p.csv"`` (or a bridge's
+    ``modes_file``) replaced the measured profile (the modes) by the run's output: only the scenario
+    itself was checked.  ``Scenario.input_files`` names them; the refusal comes before any computation."""
+    (tmp_path / "p.png").write_text("x,elevation\n0,0\n100,0\n")  # (a name every option may write)
+    (tmp_path / "m.png").write_text("not read: refused first\n")
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    text = text.replace('class = "none"', 'profile_file = "p.png"')
+    if read == "modes":
+        text = text.replace('model = "beam"\nspan = 25.0\nEI = 8.323e9            # E = 2.87e9 Pa × I = 2.9 m^4\n'
+                            'mass_per_length = 2303.0\ndamping_ratio = 0.0\nn_modes = 10\n',
+                            'model = "modes-file"\nmodes_file = "m.png"\n')
+        assert 'modes_file = "m.png"' in text
+    scenario = tmp_path / "s.toml"
+    scenario.write_text(text)
+    target = tmp_path / ("p.png" if read == "profile" else "sub/../m.png")
+    (tmp_path / "sub").mkdir()
+    before = target.read_text()
+    res = runner.invoke(app, ["run", str(scenario), option, str(target)])
+    cli_refused(res, f"{option} {target}: is the input file {tmp_path / ('p.png' if read == 'profile' else 'm.png')}",
+                "give another path")
+    assert target.read_text() == before

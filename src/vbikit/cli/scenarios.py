@@ -43,9 +43,12 @@ def run(
                                    summary_path or out_dir / f"{stem}.json")
     from vbikit._files import distinct_outputs, not_an_input
 
+    inputs = [scenario]  # and the files it reads (a road profile, a modes file): an output must replace none
+    if any(path is not None for path in (out, plot, summary_path)):
+        inputs += guard(lambda: load_scenario(scenario), file=scenario).input_files()
     for key, path in (("--out", out), ("--plot", plot), ("--summary", summary_path)):
         if path is not None:
-            guard(lambda key=key, path=path: not_an_input(path, key, [scenario]))
+            guard(lambda key=key, path=path: not_an_input(path, key, inputs))
     guard(lambda: distinct_outputs({"--out": out, "--plot": plot, "--summary": summary_path}))
     budget = limits(max_memory, max_steps)
     if random_:

@@ -439,6 +439,13 @@ class Scenario(Section):
     def base_dir(self) -> Path:
         return self._base_dir
 
+    def input_files(self) -> list[Path]:
+        """The files the scenario reads besides itself — the measured road profiles
+        (``road.profile_file``, ``road.profile_file_right``) and a bridge's ``modes_file`` — resolved
+        against its folder (as the builders read them), in that order."""
+        names = (self.road.profile_file, self.road.profile_file_right, getattr(self.bridge, "modes_file", None))
+        return [self.base_dir / name for name in names if name]
+
 
 def _tags(annotation: Any) -> dict[str, type[BaseModel]]:
     """tag → section model of a discriminated union of sections (empty for any other annotation)."""
