@@ -94,8 +94,8 @@ class TrafficStudy:
     ``records``: the stream; ``base``: the base scenario's sections (``BASE_SECTIONS``);
     ``base_dir``: where its relative paths point; ``lanes``: lane centres y [m] (lane n at
     ``lanes[n - 1]``); ``seed``: the road seeds' source; ``batch_size``: events per batch;
-    ``events``: the vehicles of each event (indices into ``records``), ``event_start`` [s] their
-    first entries; ``source``: the records' name (reports); ``outputs``: the catalogue's outputs to
+    ``events``: the vehicles of each event (indices into ``records``), ``event_start`` and
+    ``event_end`` [s] their first entry and last exit (``partition``'s); ``source``: the records' name (reports); ``outputs``: the catalogue's outputs to
     reduce and store (``STREAM_OUTPUTS`` always among them; None: all).
     """
 
@@ -111,6 +111,8 @@ class TrafficStudy:
     source: str = ""
     _digest: str = field(default="", repr=False)
     outputs: Optional[tuple[str, ...]] = None
+    #: each event's last exit [s] (``partition``'s ``Event.end``): the budget check's longest event
+    event_end: tuple[float, ...] = ()
     #: the budget of one event's run (``vbikit.solve.budget.Limits``; None: the defaults); not part of the
     #: job's identity (``to_json``): a resumed stream may be given another
     limits: Any = field(default=None, repr=False, compare=False)
@@ -227,21 +229,22 @@ class TrafficStudy:
         return ctx.crossing(tuple(motions), self.road_seed(e))
 
     def check_budget(self) -> None:
-        """The run of the stream's longest event (the latest exit of its vehicles: entry time, then the
-        approach, the span and the vehicle's axles at its speed) planned against ``limits`` before any
-        event is simulated; above them a ``StudyError`` naming the event's first record (was: the events
-        before it simulated, then the budget's refusal naming no record)."""
+        """The run of the stream's longest event planned against ``limits`` before any event is
+        simulated; above them a ``StudyError`` naming the event's first record (was: the events before it
+        simulated, then the budget's refusal naming no record).  The longest event: the most time from
+        its run's start (``Crossing.start_time``: the latest time every vehicle is ``approach`` before its
+        entry) to its last exit (``partition``'s end: each vehicle's built length and the deck's skew
+        reach)."""
         from vbikit.solve.budget import BudgetError
         from vbikit.solve.plan import plan_run
 
-        template = self.context().template.crossing
-        reach = template.approach + template.bridge.span
+        approach = self.context().template.crossing.approach
 
-        def exit_time(e: int) -> float:
-            return max(self.records[i].time + (reach + sum(self.records[i].axle_spacings)) / self.records[i].speed
-                       for i in self.events[e]) - self.event_start[e]
+        def run_length(e: int) -> float:
+            start = min(self.records[i].time - approach / self.records[i].speed for i in self.events[e])
+            return self.event_end[e] - start
 
-        e = max(range(self.size), key=exit_time)
+        e = max(range(self.size), key=run_length)
         try:
             plan_run(self.crossing(e), self.limits)
         except BudgetError as err:
@@ -525,6 +528,6 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
                                          list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
     job = TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest,
-                       outputs=selected, limits=limits)
+                       outputs=selected, event_end=tuple(e.end for e in events), limits=limits)
     job.check_budget()
     return job
