@@ -283,3 +283,13 @@ def test_run_never_writes_an_output_over_a_file_its_scenario_reads(tmp_path, opt
     cli_refused(res, f"{option} {target}: is the input file {tmp_path / ('p.png' if read == 'profile' else 'm.png')}",
                 "give another path")
     assert target.read_text() == before
+
+
+def test_traffic_names_the_records_file_as_given_in_every_error(tmp_path):
+    """Was: the reader's errors named the records file as given (``sub/rec.csv:3: …``), the stream's
+    checks by its bare name (``rec.csv:3: lane 3 has no centre``): docs/cli.md's rule is the path as given."""
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "rec.csv").write_text(REC_HEAD.format(col="lane") + "1,1,+x,80,50 50,4\n3,3,+x,80,50 50,4\n")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "sub" / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out",
+                              str(tmp_path / "t.nc"), "--workers", "1", "--no-progress"])
+    cli_refused(res, f"{tmp_path / 'sub' / 'rec.csv'}:3: lane 3 has no centre")

@@ -81,7 +81,7 @@ def traffic_cmd(
     warn(dropped_section_warnings(guard(lambda: parse_scenario(template_data(base), base_dir), file=bridge).response))
     names = None if outputs is None else [n.strip() for n in outputs.split(",") if n.strip()]
     job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
-                                      source=records.name, outputs=names, limits=budget))
+                                      source=str(records), outputs=names, limits=budget))
     n_mp = sum(len(e) > 1 for e in job.events)
     typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
