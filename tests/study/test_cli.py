@@ -39,6 +39,11 @@ def test_study_run_and_validate(tmp_path):
     assert "4 crossings" in res.output and "impact factor" in res.output
     ds = xr.open_dataset(tmp_path / "r.nc")
     assert ds.sizes == {"crossing_speed_kmh": 2, "sample": 2}
+    # each swept axis's mean over the road samples (the axis named by its key; not the samples' own line)
+    im = ds["impact_factor"].values  # (speed, sample)
+    assert ds["crossing_speed_kmh"].values.tolist() == [60, 90] and abs(im[0].mean() - im[1].mean()) > 1e-3
+    assert f"mean by crossing.speed_kmh: 60 {im[0].mean():.4f}, 90 {im[1].mean():.4f}" in res.output
+    assert "mean by road.seed" not in res.output and "mean by sample" not in res.output
     ds.close()
 
 
@@ -94,3 +99,28 @@ def test_paper_all_runs_every_figure(tmp_path):
         assert (tmp_path / f"paper-{f}-1samples.png").stat().st_size > 10_000
         with xr.open_dataset(tmp_path / f"paper-{f}-1samples.nc") as ds:
             assert ds.sizes["sample"] == 1 and ds["impact_factor"].notnull().all()
+
+
+def test_study_run_prints_twelve_values_of_a_long_axis_and_counts_the_rest(tmp_path):
+    speeds = list(range(40, 105, 5))  # 13 values
+    (tmp_path / "s.toml").write_text(STUDY.replace('"crossing.speed_kmh" = [60, 90]', f'"crossing.speed_kmh" = {speeds}')
+                                     .replace('"road.seed" = { samples = 2 }', '"road.seed" = { samples = 1 }'))
+    res = runner.invoke(app, ["study", "run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r.nc"),
+                              "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    line = next(x for x in res.output.splitlines() if "mean by crossing.speed_kmh:" in x)
+    assert line.count(",") == 12 and " 95 " in line and " 100 " not in line and line.endswith("… (1 more in the dataset)")
+
+
+def test_the_study_output_quoted_in_docs_is_the_example_study_s(tmp_path):
+    """docs/studies.md quotes `study run`'s closing lines for examples/studies/modes_sensitivity.toml."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    res = runner.invoke(app, ["study", "run", str(root / "examples" / "studies" / "modes_sensitivity.toml"), "--out",
+                              str(tmp_path / "r.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    start = res.output.index("impact factor over all crossings")
+    lines = res.output[start:].strip().splitlines()
+    assert len(lines) == 4 and lines[1].startswith("  mean by bridge.model: ")
+    assert "\n".join(lines) in (root / "docs" / "studies.md").read_text()

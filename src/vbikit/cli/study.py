@@ -2,6 +2,7 @@
 imported inside the commands (start-up stays fast)."""
 from __future__ import annotations
 
+import json
 import time
 from pathlib import Path
 from typing import Any, Callable, Optional
@@ -101,6 +102,9 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
     return result
 
 
+#: the values of a swept axis whose mean impact factor ``study run`` prints (the others: in the dataset)
+AXIS_VALUES_SHOWN = 12
+
 _WORKERS = workers_option("Local worker processes (default: all cores; 1 = in this process).")
 _SCHEDULER = scheduler_option("Dask distributed scheduler address (tcp://host:port) to run on.")
 _PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progress bar.")
@@ -130,10 +134,19 @@ def run_cmd(
     from vbikit.cli.render import print_negative_note
 
     im = ds["impact_factor"]
+    keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
     for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
                           else [("", im)]):
         typer.echo(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
                    f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
+        for dim in values.dims:  # each swept axis's values, the mean over the others (not over road samples)
+            if dim.startswith("sample") or values.sizes[dim] < 2:
+                continue
+            means = values.mean(dim=[d for d in values.dims if d != dim])
+            shown = ", ".join(f"{v} {float(m):.4f}" for v, m in zip(values[dim].values[:AXIS_VALUES_SHOWN],
+                                                                     means.values[:AXIS_VALUES_SHOWN]))
+            more = values.sizes[dim] - AXIS_VALUES_SHOWN
+            typer.echo(f"  mean by {keys.get(dim, dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
     print_negative_note(bool(float(im.min()) < 0))
 
 
