@@ -42,7 +42,9 @@ def test_study_run_and_validate(tmp_path):
     # each swept axis's mean over the road samples (the axis named by its key; not the samples' own line)
     im = ds["impact_factor"].values  # (speed, sample)
     assert ds["crossing_speed_kmh"].values.tolist() == [60, 90] and abs(im[0].mean() - im[1].mean()) > 1e-3
-    assert f"mean by crossing.speed_kmh: 60 {im[0].mean():.4f}, 90 {im[1].mean():.4f}" in res.output
+    se = im.std(axis=1, ddof=1) / 2**0.5  # over the 2 road samples
+    assert (f"mean by crossing.speed_kmh: 60 {im[0].mean():.4f} ± {se[0]:.4f}, 90 {im[1].mean():.4f} ± {se[1]:.4f}"
+            in res.output) and "(± the standard error over the road samples)" in res.output
     assert "mean by road.seed" not in res.output and "mean by sample" not in res.output
     ds.close()
 
@@ -122,5 +124,5 @@ def test_the_study_output_quoted_in_docs_is_the_example_study_s(tmp_path):
     assert res.exit_code == 0, res.output
     start = res.output.index("impact factor over all crossings")
     lines = res.output[start:].strip().splitlines()
-    assert len(lines) == 4 and lines[1].startswith("  mean by bridge.model: ")
+    assert len(lines) == 5 and lines[1].startswith("  mean by bridge.model: ")
     assert "\n".join(lines) in (root / "docs" / "studies.md").read_text()

@@ -3,6 +3,7 @@ imported inside the commands (start-up stays fast)."""
 from __future__ import annotations
 
 import json
+import math
 import time
 from pathlib import Path
 from typing import Any, Callable, Optional
@@ -132,6 +133,7 @@ def run_cmd(
         typer.echo(f"outputs stored: {', '.join(str(name) for name in ds.data_vars)}")
         return
     from vbikit.cli.render import print_negative_note
+    from vbikit.study.summary import axis_means
 
     im = ds["impact_factor"]
     keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
@@ -139,14 +141,14 @@ def run_cmd(
                           else [("", im)]):
         typer.echo(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
                    f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
-        for dim in values.dims:  # each swept axis's values, the mean over the others (not over road samples)
-            if dim.startswith("sample") or values.sizes[dim] < 2:
-                continue
-            means = values.mean(dim=[d for d in values.dims if d != dim])
-            shown = ", ".join(f"{v} {float(m):.4f}" for v, m in zip(values[dim].values[:AXIS_VALUES_SHOWN],
-                                                                     means.values[:AXIS_VALUES_SHOWN]))
-            more = values.sizes[dim] - AXIS_VALUES_SHOWN
-            typer.echo(f"  mean by {keys.get(dim, dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
+        axes = axis_means(values)  # each swept axis's values, the mean over the others and the road samples
+        for axis in axes:
+            shown = ", ".join(f"{v} {m:.4f}" + ("" if math.isnan(se) else f" ± {se:.4f}")
+                              for v, m, se in list(zip(axis.values, axis.means, axis.standard_error))[:AXIS_VALUES_SHOWN])
+            more = len(axis.values) - AXIS_VALUES_SHOWN
+            typer.echo(f"  mean by {keys.get(axis.dim, axis.dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
+        if any(not math.isnan(se) for axis in axes for se in axis.standard_error):
+            typer.echo("  (± the standard error over the road samples)")
     print_negative_note(bool(float(im.min()) < 0))
 
 

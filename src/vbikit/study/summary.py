@@ -1,0 +1,49 @@
+"""What a study's dataset says along each swept axis: the mean of an output by the axis's values, with
+its standard error over the road samples (numbers only; ``vbikit study run`` prints them)."""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class AxisMeans:
+    """An output's mean at each value of one swept axis (over the other axes and the road samples).
+
+    ``standard_error``: of each mean over the road samples — the standard deviation over the samples
+    of the mean over the other axes, divided by √(samples) (NaN without a sample axis of two or more:
+    a study without road samples has no sampling error to state)."""
+
+    dim: str
+    values: tuple
+    means: tuple[float, ...]
+    standard_error: tuple[float, ...]
+
+
+def is_sample_dim(dim: str) -> bool:
+    """A dimension of road (or other) realisations: ``{ samples = n }`` axes are named ``sample…``."""
+    return dim.startswith("sample")
+
+
+def axis_means(output) -> list[AxisMeans]:
+    """``AxisMeans`` of the xarray ``output`` for each of its swept dimensions of two or more values
+    (not the sample dimensions), in the dataset's order."""
+    samples = [d for d in output.dims if is_sample_dim(d)]
+    n_samples = math.prod(output.sizes[d] for d in samples)
+    out = []
+    for dim in output.dims:
+        if is_sample_dim(dim) or output.sizes[dim] < 2:
+            continue
+        others = [d for d in output.dims if d != dim and not is_sample_dim(d)]
+        per_sample = output.mean(dim=others) if others else output
+        means = per_sample.mean(dim=samples) if samples else per_sample
+        if n_samples >= 2:
+            flat = per_sample.transpose(dim, *samples).values.reshape(output.sizes[dim], n_samples)
+            se = np.std(flat, axis=1, ddof=1) / math.sqrt(n_samples)
+        else:
+            se = np.full(output.sizes[dim], np.nan)
+        out.append(AxisMeans(dim, tuple(output[dim].values.tolist()), tuple(float(m) for m in means.values),
+                             tuple(float(s) for s in se)))
+    return out
