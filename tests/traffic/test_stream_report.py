@@ -38,9 +38,11 @@ def test_loaded_events_statistics_are_printed_first(tmp_path):
     st = np.abs(ds["max_static_displacement"].values)
     assert 0.1 < st[1] / st[0] < 0.2  # (the setup: the van's share, as the docstring says)
     truck_im = float(ds["impact_factor"].values[0])
-    assert f"(1 of 2, static peak ≥ 20% of the stream's largest): mean {truck_im:.4f}," in lines[loaded]
+    # one loaded event: its mean has no interval, said so ("?"), not printed as nan
+    assert f"(1 of 2, static peak ≥ 20% of the stream's largest): mean {truck_im:.4f} (95 % CI ? – ?)," in lines[loaded]
     # no multiple presence in this stream: said in words, not printed as "several nan" (before 2026-12-05)
-    assert "(one vehicle " in lines[every] and "several: no such event)" in lines[every] and "nan" not in lines[every]
+    assert "mean of the events with one vehicle " in lines[every] and "several: no such event;" in lines[every]
+    assert "nan" not in lines[every] and "nan" not in lines[loaded]
     assert lines[every].endswith("the other event's IM rests on small static references (light vehicles, far lanes): "
                                  "not design values")
 
@@ -80,3 +82,30 @@ def test_the_figure_marks_the_small_static_events():
     fig = stream_figure(_stream([2.0, 1.5, 0.9], [0, 1, 0]))  # no small static reference: no such entry
     assert not any(t.get_text().startswith("IM not meaningful") for ax in fig.axes for t in ax.get_legend().get_texts())
     plt.close(fig)
+
+
+def test_the_stream_statistics_carry_the_intervals_of_their_means_and_quantiles():
+    """A stream's IM mean and 95 % quantile (all events, and those loading the point) come with their 95 %
+    confidence intervals: the t interval by hand, the quantile's from ``quantile_interval`` (whose
+    coverage tests/unit/test_sample_intervals.py checks by simulation)."""
+    from scipy import stats
+
+    from vbikit.analysis.sample_intervals import quantile_interval
+    from vbikit.traffic.study import stream_statistics
+
+    rng = np.random.default_rng(3)
+    n = 200
+    st = -rng.uniform(1.0, 10.0, n) * 1e-3
+    im = rng.gamma(3.0, 0.07, n)
+    ds = xr.Dataset({"impact_factor": ("event", im), "max_static_displacement": ("event", st),
+                     "max_dynamic_displacement": ("event", st * (1 + im)), "multiple_presence": ("event", np.zeros(n, int)),
+                     "airborne_wheels": ("event", np.zeros(n))}, coords={"vehicle": np.arange(n)})
+    s = stream_statistics(ds)
+    half = stats.t.ppf(0.975, n - 1) * im.std(ddof=1) / np.sqrt(n)
+    assert (s["im_mean_ci_lower"], s["im_mean_ci_upper"]) == pytest.approx((im.mean() - half, im.mean() + half), rel=1e-12)
+    q = quantile_interval(im, 0.95)
+    assert (s["im_q95_ci_lower"], s["im_q95_ci_upper"]) == (q.lower, q.upper)
+    assert s["im_q95_ci_lower"] < s["im_q95"] < s["im_q95_ci_upper"]
+    loaded = np.abs(st) >= 0.2 * np.abs(st).max()
+    assert 0 < (~loaded).sum() and s["im_mean_loaded_ci_lower"] < im[loaded].mean() < s["im_mean_loaded_ci_upper"]
+    assert s["im_q95_loaded_ci_lower"] < s["im_q95_loaded"] < s["im_q95_loaded_ci_upper"]

@@ -88,6 +88,7 @@ def traffic_cmd(
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     warn_dataset(ds)
     from vbikit.analysis.checks import dataset_has_flag
+    from vbikit.analysis.sample_intervals import Interval
 
     a = ds.attrs
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
@@ -96,14 +97,15 @@ def traffic_cmd(
     n_small = int(a["n_small_static_events"])
     small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
         " on small static references (light vehicles, far lanes): not design values"
+    ci = lambda name: Interval(float(a[name]), float(a[f"{name}_ci_lower"]), float(a[f"{name}_ci_upper"])).text()  # noqa: E731
     if n_small:  # the design values first: the events that load the point
         typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
-                   f"{a['im_mean_loaded']:.4f}{doubt}, 95 % {a['im_q95_loaded']:.4f}")
-    typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {a['im_mean']:.4f}{doubt} "
-               f"({_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}), "
-               f"95 % {a['im_q95']:.4f}, "
-               f"max {float(first['impact_factor'].max()):.4f}" + (f"; {small_words}" if n_small else ""))
+                   f"{ci('im_mean_loaded')}{doubt}, 95 % {ci('im_q95_loaded')}")
+    typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {ci('im_mean')}{doubt}, "
+               f"95 % {ci('im_q95')}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
+               f"{_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
+               + (f"; {small_words}" if n_small else ""))
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
                    "warning; no statistic of this stream is a result")

@@ -380,6 +380,11 @@ def _gross(record: VehicleRecord) -> float:
     return record.gross_weight if record.model == "axles" else float(_vehicle(record).total_weight)
 
 
+def _with_interval(name: str, interval) -> dict[str, float]:
+    """``name``'s confidence interval ends as the statistics' entries ``name_ci_lower``, ``name_ci_upper``."""
+    return {f"{name}_ci_lower": interval.lower, f"{name}_ci_upper": interval.upper}
+
+
 def stream_statistics(ds) -> dict[str, Any]:
     """The stream's statistics from its dataset: event counts, the IM distribution (mean,
     standard deviation, 5/50/95/99 % quantiles, histogram), and the dynamic amplification of the
@@ -390,8 +395,14 @@ def stream_statistics(ds) -> dict[str, Any]:
     An event whose static peak there is below ``SMALL_STATIC_FRACTION`` (20 %) of the stream's largest
     (a light vehicle, or one in a far lane of a deck) has an IM resting on a small static reference,
     not a design value (``vbikit.analysis.checks.small_static``): ``n_small_static_events`` counts
-    them, and ``im_mean_loaded`` / ``im_q95_loaded`` are the mean and 95 % quantile of the others."""
+    them, and ``im_mean_loaded`` / ``im_q95_loaded`` are the mean and 95 % quantile of the others.
+
+    The means and 95 % quantiles come with the ends of their 95 % confidence intervals over the stream's
+    events (``…_ci_lower``, ``…_ci_upper``; ``vbikit.analysis.sample_intervals``: Student's t for a mean,
+    order statistics for a quantile; NaN where the events cannot bound it): how well this many events
+    fix each, the roads and trucks being random."""
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
+    from vbikit.analysis.sample_intervals import mean_interval, quantile_interval
 
     if "point" in ds.dims:
         ds = ds.isel(point=0)
@@ -415,6 +426,9 @@ def stream_statistics(ds) -> dict[str, Any]:
         "small_static_fraction": SMALL_STATIC_FRACTION, "n_small_static_events": int((~loaded).sum()),
         "im_mean_loaded": float(im[loaded].mean()) if loaded.any() else math.nan,
         "im_q95_loaded": float(np.quantile(im[loaded], 0.95)) if loaded.any() else math.nan,
+        **_with_interval("im_mean", mean_interval(im)), **_with_interval("im_q95", quantile_interval(im, 0.95)),
+        **_with_interval("im_mean_loaded", mean_interval(im[loaded])),
+        **_with_interval("im_q95_loaded", quantile_interval(im[loaded], 0.95)),
         "governing_static_event": i_st,
         "governing_static_amplification": float(dyn[i_st] / st[i_st]),
         "governing_dynamic_event": i_dyn,
