@@ -1,6 +1,9 @@
 """ADR when the dynamics vanish, and the dataset contract."""
 import numpy as np
+import pytest
+from scipy import stats
 
+from vbikit.analysis.sample_intervals import quantile_interval
 from vbikit.lifetime.run import run_lifetime
 
 
@@ -92,4 +95,18 @@ def test_impact_factor_statistics_of_the_sample_by_hand(tmp_path):
         kept = im[~small]
         assert abs(ds["im_mean_loaded"].values[j] - kept.mean()) <= 1e-12 * max(1.0, abs(kept.mean()))
         assert abs(ds["im_q95_loaded"].values[j] - np.quantile(kept, 0.95)) <= 1e-12
+        # the 95 % intervals: Student's t by hand for the means, the order-statistic interval for the quantiles
+        for name, values in (("im_mean", im), ("im_mean_loaded", kept)):
+            half = stats.t.ppf(0.975, values.size - 1) * values.std(ddof=1) / np.sqrt(values.size)
+            ends = (ds[f"{name}_ci_lower"].values[j], ds[f"{name}_ci_upper"].values[j])
+            assert ends == pytest.approx((values.mean() - half, values.mean() + half), rel=1e-10)
+        for name, values in (("im_q95", im), ("im_q95_loaded", kept)):
+            q = quantile_interval(values, 0.95)
+            assert (ds[f"{name}_ci_lower"].values[j], ds[f"{name}_ci_upper"].values[j]) == (q.lower, q.upper)
+            assert q.lower <= ds[name].values[j] <= q.upper
     assert int(ds["n_small_static_sample"].sum()) > 0  # the case the loaded statistics are for occurs here
+    report = (tmp_path / "report.txt").read_text()
+    name = str(ds["load_effect"].values[0])
+    assert (f"  {name}: IM of the random sample ({int(sample.sum())} events): mean {ds['im_mean'].values[0]:.4f} "
+            f"(95 % CI {ds['im_mean_ci_lower'].values[0]:.4f} – {ds['im_mean_ci_upper'].values[0]:.4f}), 95 % "
+            f"{ds['im_q95'].values[0]:.4f} (95 % CI ") in report

@@ -48,3 +48,4 @@ def test_an_end_the_sample_cannot_bound_is_nan_and_printed_as_a_question_mark():
     assert ci.estimate == pytest.approx(8.55) and ci.lower <= 8.55 and math.isnan(ci.upper)
     assert ci.text(".2f").endswith("– ?)") and "95 % CI" in ci.text()
     assert math.isnan(mean_interval([1.0]).lower) and mean_interval([]).estimate != mean_interval([]).estimate
+    assert mean_interval([math.nan]).text() == "n/a"  # nothing to estimate: said so, never "nan"

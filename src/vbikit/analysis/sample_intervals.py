@@ -31,7 +31,10 @@ class Interval:
     confidence: float = CONFIDENCE
 
     def text(self, fmt: str = ".4f") -> str:
-        """``0.1612 (95 % CI 0.1502 – 0.1722)``; an end the sample does not bound as ``?``."""
+        """``0.1612 (95 % CI 0.1502 – 0.1722)``; an end the sample does not bound as ``?``; ``n/a`` without
+        an estimate (no value in the sample)."""
+        if math.isnan(self.estimate):
+            return "n/a"
         end = lambda v: "?" if math.isnan(v) else format(v, fmt)  # noqa: E731
         return f"{self.estimate:{fmt}} ({self.confidence * 100:g} % CI {end(self.lower)} – {end(self.upper)})"
 

@@ -18,6 +18,19 @@ from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_wor
 from vbikit.outputs import report_unit
 
 
+
+#: the confidence interval ends of the IM statistics (``vbikit.lifetime.results``), read into the facts when present
+IM_INTERVAL_ENDS = tuple(f"{name}_ci_{end}" for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")
+                         for end in ("lower", "upper"))
+
+
+def _interval_text(im: dict, name: str) -> str:
+    """``im[name]`` with its 95 % confidence interval (``Interval.text``; None, from JSON, as NaN)."""
+    from vbikit.analysis.sample_intervals import Interval
+
+    value = lambda key: math.nan if im.get(key) is None else float(im[key])  # noqa: E731
+    return Interval(value(name), value(f"{name}_ci_lower"), value(f"{name}_ci_upper")).text()
+
 def _num(x) -> float | None:
     """A finite float, else None (JSON has no NaN)."""
     x = float(x)
@@ -71,7 +84,7 @@ def _effect(ds, j: int) -> dict[str, Any]:
                 "indistinguishable_from_one": bool(ds["adr_indistinguishable_from_one"].values[j]),
                 "words": adr_words(adr, lo, hi, float(a["ci"]))},
         "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event",
-                                                  "im_mean_loaded", "im_q95_loaded") if k in ds},
+                                                  "im_mean_loaded", "im_q95_loaded", *IM_INTERVAL_ENDS) if k in ds},
         "n_small_static_sample": int(ds["n_small_static_sample"].values[j]) if "n_small_static_sample" in ds else 0,
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
         # the direction s reported, how it was chosen and the other direction's share of the line (older datasets lack them)
@@ -407,6 +420,10 @@ def text_report(facts: dict[str, Any]) -> str:
                      f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
+    for name, e in facts["load_effects"].items():  # how well the random sample fixes the IM statistics
+        if e["im"].get("im_mean_ci_lower", "absent") != "absent" and e["im"].get("im_mean") is not None:
+            lines.append(f"  {name}: IM of the random sample ({facts['run']['n_sample_events']} events): mean "
+                         f"{_interval_text(e['im'], 'im_mean')}, 95 % {_interval_text(e['im'], 'im_q95')}")
     for name, e in facts["load_effects"].items():
         if e["n_small_static_sample"]:
             n = e["n_small_static_sample"]

@@ -192,6 +192,15 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "im_q95_loaded": [stat(im_loaded[:, j], lambda a: np.quantile(a, 0.95)) for j in range(len(lines))],
         "n_small_static_sample": [int(small_sample[:, j].sum()) for j in range(len(lines))],
     }
+    # how well the random sample fixes the means and 95 % quantiles: their 95 % confidence intervals
+    from vbikit.analysis.sample_intervals import mean_interval, quantile_interval
+
+    for name, values, interval in (("im_mean", im_sample, mean_interval), ("im_mean_loaded", im_loaded, mean_interval),
+                                   ("im_q95", im_sample, lambda a: quantile_interval(a, 0.95)),
+                                   ("im_q95_loaded", im_loaded, lambda a: quantile_interval(a, 0.95))):
+        ends = [interval(values[:, j]) for j in range(len(lines))]
+        im[f"{name}_ci_lower"] = [c.lower for c in ends]
+        im[f"{name}_ci_upper"] = [c.upper for c in ends]
     im_gov = []
     for j in range(len(lines)):
         k = int(np.argmax(s_st[:, j]))
@@ -261,6 +270,10 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "im_max": ("load_effect", np.array(im["im_max"]), ev_attrs("1", "largest impact factor of any simulated event")),
         "im_mean_loaded": ("load_effect", np.array(im["im_mean_loaded"]), ev_attrs("1", "mean impact factor of the sampled events whose static peak is at least SMALL_STATIC_FRACTION (20 %) of the largest static peak (the events that load the effect)")),
         "im_q95_loaded": ("load_effect", np.array(im["im_q95_loaded"]), ev_attrs("1", "95 % quantile of the impact factor of those events")),
+        **{f"{name}_ci_{end}": ("load_effect", np.array(im[f"{name}_ci_{end}"]),
+                                ev_attrs("1", f"{end} end of the 95 % confidence interval of {name} over the random "
+                                              "sample (vbikit.analysis.sample_intervals; NaN: not bounded)"))
+           for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded") for end in ("lower", "upper")},
         "n_small_static_sample": ("load_effect", np.array(im["n_small_static_sample"], np.int64), ev_attrs("1", "sampled events whose static peak is below 20 % of the largest: their impact factors rest on a small static reference, not design values")),
         "im_governing_static_event": ("load_effect", np.array(im_gov), ev_attrs("1", "impact factor of the event with the largest static effect")),
         "code_allowance": (("load_effect", "code"), allow, ev_attrs("1", "design-code dynamic allowance (vbikit.analysis.codes)")),
