@@ -97,7 +97,12 @@ def traffic_cmd(
     n_small = int(a["n_small_static_events"])
     small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
         " on small static references (light vehicles, far lanes): not design values"
-    ci = lambda name: Interval(float(a[name]), float(a[f"{name}_ci_lower"]), float(a[f"{name}_ci_upper"])).text()  # noqa: E731
+
+    def ci(name: str) -> str:  # the statistic with its interval (a dataset written before the intervals: the number)
+        if f"{name}_ci_lower" not in a:
+            return f"{float(a[name]):.4f}"
+        return Interval(float(a[name]), float(a[f"{name}_ci_lower"]), float(a[f"{name}_ci_upper"])).text()
+
     if n_small:  # the design values first: the events that load the point
         typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
