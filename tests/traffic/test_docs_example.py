@@ -36,3 +36,15 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
     for text in quoted:
         assert text in page, text
     assert quoted[-1][1:].split("` over")[0] in res.output  # (the printed line itself)
+    # a dataset written before the intervals (the finished-run path reads it as it is): the statistics without them
+    with xr.open_dataset(tmp_path / "s.nc") as ds:
+        old = ds.load()
+    old.attrs = {k: v for k, v in old.attrs.items() if "_ci_" not in k}
+    old.to_netcdf(tmp_path / "old.nc")
+    (tmp_path / "old.nc").replace(tmp_path / "s.nc")
+    again = CliRunner().invoke(app, ["traffic", str(ROOT / "examples/traffic/stream.csv"), "--bridge",
+                                     str(ROOT / "examples/traffic/base/bridge2.toml"), "--seed", "1", "--out",
+                                     str(tmp_path / "s.nc"), "--workers", "1", "--no-progress"])
+    assert again.exit_code == 0, again.output
+    assert "already holds this finished run" in again.output and "CI" not in again.output
+    assert f"mean {a['im_mean_loaded']:.4f}, 95 % {a['im_q95_loaded']:.4f}" in again.output
