@@ -161,7 +161,8 @@ def test_the_wheel_part_solves_the_quasi_newton_update(fns, shared, seed, reques
     slot = n_l if shared else lane1 - 1
     kk = ksum[:, col if shared else lane1 - 1]
     cc = csum[:, col if shared else lane1 - 1]
-    assert held[slot, -1] == 1.0 and np.array_equal(held[slot, :n_w], kk) and np.array_equal(held[slot, n_w:2 * n_w], cc)
+    assert held[slot, -1] == 1.0
+    assert np.array_equal(held[slot, :n_w], kk) and np.array_equal(held[slot, n_w:2 * n_w], cc)
 
 
 @pytest.mark.parametrize("fns", [PY, JIT], ids=["python", "compiled"])
