@@ -285,6 +285,21 @@ def test_run_never_writes_an_output_over_a_file_its_scenario_reads(tmp_path, opt
     assert target.read_text() == before
 
 
+
+def test_run_names_out_dir_when_the_file_it_names_is_an_input(tmp_path):
+    """``--out-dir D`` writes D/SCENARIO.csv: with ``road.profile_file = "SCENARIO.csv"`` in D that is the
+    profile, refused (``Scenario.input_files``), naming the option given (was: ``--out``, not on the
+    command line).  An ``--out`` given beside ``--out-dir`` keeps its own name."""
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    (tmp_path / "s.toml").write_text(text.replace('class = "none"', 'profile_file = "s.csv"'))
+    (tmp_path / "s.csv").write_text("x,elevation\n0,0\n100,0\n")
+    res = runner.invoke(app, ["run", str(tmp_path / "s.toml"), "--out-dir", str(tmp_path)])
+    err = cli_refused(res, f"--out-dir {tmp_path / 's.csv'}: is the input file {tmp_path / 's.csv'}")
+    assert "--out " not in err and (tmp_path / "s.csv").read_text() == "x,elevation\n0,0\n100,0\n"
+    res = runner.invoke(app, ["run", str(tmp_path / "s.toml"), "--out-dir", str(tmp_path / "o"), "--out",
+                              str(tmp_path / "s.csv")])
+    cli_refused(res, f"--out {tmp_path / 's.csv'}: is the input file")
+
 def test_traffic_names_the_records_file_as_given_in_every_error(tmp_path):
     """Was: the reader's errors named the records file as given (``sub/rec.csv:3: …``), the stream's
     checks by its bare name (``rec.csv:3: lane 3 has no centre``): docs/cli.md's rule is the path as given."""

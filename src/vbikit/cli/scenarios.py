@@ -37,6 +37,9 @@ def run(
     """Simulate one crossing described by a scenario file (writes files only when asked)."""
     from vbikit.scenario import load_scenario
 
+    # the option each output comes from, named in its errors (``--out-dir`` for the ones it names)
+    option = {key: key if path is not None or out_dir is None else "--out-dir"
+              for key, path in (("--out", out), ("--plot", plot), ("--summary", summary_path))}
     if out_dir is not None:
         stem = scenario.stem
         out, plot, summary_path = (out or out_dir / f"{stem}.csv", plot or out_dir / f"{stem}.png",
@@ -48,7 +51,7 @@ def run(
         inputs += guard(lambda: load_scenario(scenario), file=scenario).input_files()
     for key, path in (("--out", out), ("--plot", plot), ("--summary", summary_path)):
         if path is not None:
-            guard(lambda key=key, path=path: not_an_input(path, key, inputs))
+            guard(lambda key=key, path=path: not_an_input(path, option[key], inputs))
     guard(lambda: distinct_outputs({"--out": out, "--plot": plot, "--summary": summary_path}))
     budget = limits(max_memory, max_steps)
     if random_:

@@ -58,10 +58,13 @@ def _lu_solve(a, n, piv, b):
 #: (numba links a compiled helper into every caller's module, where LLVM optimises it and makes its
 #: machine code again); ≈ −0.15 s of the default path's cold compile (benchmarks/README.md)
 #: (``getattr``: with NUMBA_DISABLE_JIT=1, as the kernel-coverage job runs, ``njit`` returns the Python
-#: function itself, without ``py_func``)
-lu_factor_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(
+#: function itself, without ``py_func``).  Not cached (``cache=False``): numba names a cache entry by the
+#: Python function's module, name and line, so these would share ``_lu_factor``'s and ``_lu_solve``'s and a
+#: call from Python would load the linked one, compiled without the wrapper that makes it callable
+#: from Python (a segmentation fault); inlined, they are compiled and cached within their callers.
+lu_factor_inline = njit(inline="always", cache=False, fastmath=True, error_model="numpy")(
     getattr(_lu_factor, "py_func", _lu_factor))
-lu_solve_inline = njit(inline="always", cache=True, fastmath=True, error_model="numpy")(
+lu_solve_inline = njit(inline="always", cache=False, fastmath=True, error_model="numpy")(
     getattr(_lu_solve, "py_func", _lu_solve))
 
 
