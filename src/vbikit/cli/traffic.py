@@ -54,9 +54,9 @@ def traffic_cmd(
     max_vehicles: Optional[int] = typer.Option(None, "--max-vehicles", min=1, help="The most vehicle records read "
                                                "(default 100000; a larger file is refused before it is parsed)."),
     max_memory: Optional[str] = typer.Option(None, "--max-memory", help="Memory budget of one event's run (e.g. 8GiB; "
-                                             "default 4GiB): the longest event estimated before any runs."),
+                                             "default 4GiB): the largest events estimated before any runs."),
     max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Time-step budget of one event's run (default "
-                                              "5e6): the longest event estimated before any runs."),
+                                              "5e6): the largest events estimated before any runs."),
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""

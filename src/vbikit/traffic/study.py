@@ -71,6 +71,10 @@ VEHICLE_OUTPUTS: dict[str, tuple[str, str]] = {
 }
 
 
+#: events planned by the budget check for each of its size measures (``TrafficStudy.check_budget``)
+BUDGET_CANDIDATES = 3
+
+
 def default_lanes(bridge) -> tuple[float, ...]:
     """Lane centres y [m] when the records give lane numbers: [substitute] two lanes at ∓ deck
     width / 4 (lane 1 at y < 0: on the right of +x traffic) on a deck; one line at y = 0 on a
@@ -111,8 +115,11 @@ class TrafficStudy:
     source: str = ""
     _digest: str = field(default="", repr=False)
     outputs: Optional[tuple[str, ...]] = None
-    #: each event's last exit [s] (``partition``'s ``Event.end``): the budget check's longest event
+    #: each event's last exit [s] (``partition``'s ``Event.end``) and each record's vehicle size in the
+    #: budget's memory terms (3 n_dof + 2 n_wheels, ``vbikit.solve.budget.estimate_run``): the budget
+    #: check's candidates
     event_end: tuple[float, ...] = ()
+    vehicle_size: tuple[int, ...] = ()
     #: the budget of one event's run (``vbikit.solve.budget.Limits``; None: the defaults); not part of the
     #: job's identity (``to_json``): a resumed stream may be given another
     limits: Any = field(default=None, repr=False, compare=False)
@@ -229,29 +236,34 @@ class TrafficStudy:
         return ctx.crossing(tuple(motions), self.road_seed(e))
 
     def check_budget(self) -> None:
-        """The run of the stream's longest event planned against ``limits`` before any event is
+        """The runs of the stream's largest events planned against ``limits`` before any event is
         simulated; above them a ``StudyError`` naming the event's first record (was: the events before it
-        simulated, then the budget's refusal naming no record).  The longest event: the most time from
-        its run's start (``Crossing.start_time``: the latest time every vehicle is ``approach`` before its
-        entry) to its last exit (``partition``'s end: each vehicle's built length and the deck's skew
-        reach)."""
+        simulated, then the budget's refusal naming no record).  A run's steps grow with its length (from
+        its start, ``Crossing.start_time``: the latest time every vehicle is ``approach`` before its entry,
+        to its last exit, ``partition``'s end) and, where the road sets the step, its top speed; its memory
+        with those and its vehicles' sizes: the events first by each of those products
+        (``BUDGET_CANDIDATES`` each, longest first) are planned, the others are smaller on every count."""
         from vbikit.solve.budget import BudgetError
         from vbikit.solve.plan import plan_run
 
+        if len(self.event_end) != self.size or len(self.vehicle_size) != len(self.records):
+            raise StudyError("a TrafficStudy's event ends and vehicle sizes come from traffic_study(): build it with that")
         approach = self.context().template.crossing.approach
-
-        def run_length(e: int) -> float:
-            start = min(self.records[i].time - approach / self.records[i].speed for i in self.events[e])
-            return self.event_end[e] - start
-
-        e = max(range(self.size), key=run_length)
-        try:
-            plan_run(self.crossing(e), self.limits)
-        except BudgetError as err:
-            r = self.records[self.events[e][0]]
-            where = f"{self.source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
-            raise StudyError(f"{where}: the stream's longest event ({len(self.events[e])} vehicle(s) from this record "
-                             f"on) is above the budget of one event: {err}") from None
+        length = np.array([self.event_end[e] - min(self.records[i].time - approach / self.records[i].speed
+                                                   for i in self.events[e]) for e in range(self.size)])
+        top_speed = np.array([max(self.records[i].speed for i in ev) for ev in self.events])
+        size = np.array([sum(self.vehicle_size[i] for i in ev) for ev in self.events])
+        ranked = []
+        for key in (length, length * top_speed, length * size, length * top_speed * size):
+            ranked += [int(e) for e in np.argsort(-key, kind="stable")[:BUDGET_CANDIDATES]]
+        for e in sorted(dict.fromkeys(ranked), key=lambda e: -length[e]):
+            try:
+                plan_run(self.crossing(e), self.limits)
+            except BudgetError as err:
+                r = self.records[self.events[e][0]]
+                where = f"{self.source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
+                raise StudyError(f"{where}: an event of the stream ({len(self.events[e])} vehicle(s) from this record "
+                                 f"on) is above the budget of one event: {err}") from None
 
     def road_seed(self, e: int) -> int:
         """Seed of event ``e``'s random road (−1 if the base road is not random; the last event's kept:
@@ -499,7 +511,7 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
     docstring).  ``outputs``: the catalogue's outputs to reduce and store ([`vbikit.outputs`][vbikit.outputs];
     ``STREAM_OUTPUTS`` are added; None: all) — the responses and load effects no asked output reads
     are not computed.  ``limits``: the budget of one event's run (``vbikit.solve.budget.Limits``; None: the
-    defaults), checked on the longest event before any is simulated (``TrafficStudy.check_budget``).
+    defaults), checked on the largest events before any is simulated (``TrafficStudy.check_budget``).
     Errors name the record's line."""
     selected = None
     if outputs is not None:
@@ -516,7 +528,7 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
     bridge = ctx.template.crossing.bridge
     lanes = tuple(float(y) for y in (lanes if lanes is not None else default_lanes(bridge)))
     width = bridge.deck_width if isinstance(bridge, GirderDeck) else None
-    lengths = []
+    lengths, sizes = [], []
     for r in records:
         where = f"{source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
         if r.lateral_offset is None and not 1 <= (r.lane or 0) <= len(lanes):
@@ -524,6 +536,7 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
                              "give --lanes or a lateral_offset column)")
         try:
             vehicle = _vehicle(r)
+            sizes.append(3 * vehicle.n_dof + 2 * len(vehicle.wheels))
         except ValueError as err:
             raise StudyError(f"{where}: {err}") from None
         lengths.append(vehicle.length)
@@ -542,6 +555,7 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
                                          list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
     job = TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest,
-                       outputs=selected, event_end=tuple(e.end for e in events), limits=limits)
+                       outputs=selected, event_end=tuple(e.end for e in events), vehicle_size=tuple(sizes),
+                       limits=limits)
     job.check_budget()
     return job
