@@ -18,7 +18,6 @@ from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_wor
 from vbikit.outputs import report_unit
 
 
-
 #: the confidence interval ends of the IM statistics (``vbikit.lifetime.results``), read into the facts when present
 IM_INTERVAL_ENDS = tuple(f"{name}_ci_{end}" for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")
                          for end in ("lower", "upper"))
@@ -30,6 +29,7 @@ def _interval_text(im: dict, name: str) -> str:
 
     value = lambda key: math.nan if im.get(key) is None else float(im[key])  # noqa: E731
     return Interval(value(name), value(f"{name}_ci_lower"), value(f"{name}_ci_upper")).text()
+
 
 def _num(x) -> float | None:
     """A finite float, else None (JSON has no NaN)."""
