@@ -15,12 +15,12 @@ from typing import Any
 from vbikit._words import counted
 from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
+from vbikit.lifetime.results import IM_WITH_INTERVALS
 from vbikit.outputs import report_unit
 
 
 #: the confidence interval ends of the IM statistics (``vbikit.lifetime.results``), read into the facts when present
-IM_INTERVAL_ENDS = tuple(f"{name}_ci_{end}" for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")
-                         for end in ("lower", "upper"))
+IM_INTERVAL_ENDS = tuple(f"{name}_ci_{end}" for name in IM_WITH_INTERVALS for end in ("lower", "upper"))
 
 
 def _interval_text(im: dict, name: str) -> str:

@@ -32,6 +32,10 @@ import numpy as np
 from vbikit.lifetime.screening import CHECK_FRACTION
 
 
+
+#: the IM statistics stored with the ends of their 95 % confidence intervals (``NAME_ci_lower``, ``NAME_ci_upper``)
+IM_WITH_INTERVALS = ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")
+
 def _blocks(values: np.ndarray, size: int) -> np.ndarray:
     n = values.shape[0] // size
     return values[: n * size].reshape(n, size, *values.shape[1:]).max(axis=1)
@@ -195,9 +199,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     # how well the random sample fixes the means and 95 % quantiles: their 95 % confidence intervals
     from vbikit.analysis.sample_intervals import mean_interval, quantile_interval
 
-    for name, values, interval in (("im_mean", im_sample, mean_interval), ("im_mean_loaded", im_loaded, mean_interval),
-                                   ("im_q95", im_sample, lambda a: quantile_interval(a, 0.95)),
-                                   ("im_q95_loaded", im_loaded, lambda a: quantile_interval(a, 0.95))):
+    for name in IM_WITH_INTERVALS:
+        values = im_loaded if name.endswith("_loaded") else im_sample
+        interval = mean_interval if name.startswith("im_mean") else (lambda a: quantile_interval(a, 0.95))
         ends = [interval(values[:, j]) for j in range(len(lines))]
         im[f"{name}_ci_lower"] = [c.lower for c in ends]
         im[f"{name}_ci_upper"] = [c.upper for c in ends]
@@ -273,7 +277,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         **{f"{name}_ci_{end}": ("load_effect", np.array(im[f"{name}_ci_{end}"]),
                                 ev_attrs("1", f"{end} end of the 95 % confidence interval of {name} over the random "
                                               "sample (vbikit.analysis.sample_intervals; NaN: not bounded)"))
-           for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded") for end in ("lower", "upper")},
+           for name in IM_WITH_INTERVALS for end in ("lower", "upper")},
         "n_small_static_sample": ("load_effect", np.array(im["n_small_static_sample"], np.int64), ev_attrs("1", "sampled events whose static peak is below 20 % of the largest: their impact factors rest on a small static reference, not design values")),
         "im_governing_static_event": ("load_effect", np.array(im_gov), ev_attrs("1", "impact factor of the event with the largest static effect")),
         "code_allowance": (("load_effect", "code"), allow, ev_attrs("1", "design-code dynamic allowance (vbikit.analysis.codes)")),
