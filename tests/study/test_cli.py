@@ -49,6 +49,21 @@ def test_study_run_and_validate(tmp_path):
     ds.close()
 
 
+def test_study_of_one_road_says_its_means_have_no_standard_error(tmp_path):
+    """`{ samples = 1 }`: the means by speed are one road's IMs; the output says there is no ± and how
+    to get one, instead of printing bare means that read as settled (before 2026-12-06: nothing said)."""
+    (tmp_path / "s.toml").write_text(STUDY.replace("{ samples = 2 }", "{ samples = 1 }"))
+    res = runner.invoke(app, ["study", "run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r.nc"),
+                              "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    with xr.open_dataset(tmp_path / "r.nc") as ds:
+        im = ds["impact_factor"].values.reshape(2)  # (speed,) over the one sample
+    assert f"mean by crossing.speed_kmh: 60 {im[0]:.4f}, 90 {im[1]:.4f}\n" in res.output  # no ± after a mean
+    assert "(± the standard error" not in res.output
+    assert ('(one road profile per value: no standard error; a "road.seed" = { samples = N } axis, N ≥ 2, '
+            "gives one)") in res.output
+
+
 def test_study_errors_name_the_key(tmp_path):
     (tmp_path / "s.toml").write_text(STUDY.replace('"crossing.speed_kmh" = [60, 90]', '"crossing.speed_kmh" = [60, -1]'))
     res = runner.invoke(app, ["study", "validate", str(tmp_path / "s.toml")])

@@ -149,6 +149,9 @@ def run_cmd(
             typer.echo(f"  mean by {keys.get(axis.dim, axis.dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
         if any(not math.isnan(se) for axis in axes for se in axis.standard_error):
             typer.echo("  (± the standard error over the road samples)")
+        elif axes:  # one road per cell: the means carry a sampling error the study cannot state
+            typer.echo("  (one road profile per value: no standard error; a \"road.seed\" = { samples = N } "
+                       "axis, N ≥ 2, gives one)")
     print_negative_note(bool(float(im.min()) < 0))
 
 
