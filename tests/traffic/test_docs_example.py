@@ -30,7 +30,7 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
         f"has a dynamic amplification of {a['governing_static_amplification']:.3f}",
         f"{a['governing_dynamic_amplification']:.2f} × the largest static effect",
         f"`mean {a['im_mean_loaded']:.4f} (95 % CI {a['im_mean_loaded_ci_lower']:.4f} – {a['im_mean_loaded_ci_upper']:.4f}), "
-        f"95 % {a['im_q95_loaded']:.4f} (95 % CI {a['im_q95_loaded_ci_lower']:.4f} – {a['im_q95_loaded_ci_upper']:.4f})` "
+        f"95th percentile {a['im_q95_loaded']:.4f} (95 % CI {a['im_q95_loaded_ci_lower']:.4f} – {a['im_q95_loaded_ci_upper']:.4f})` "
         f"over its {n_loaded} events",
     ]
     for text in quoted:
@@ -47,4 +47,4 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
                                      str(tmp_path / "s.nc"), "--workers", "1", "--no-progress"])
     assert again.exit_code == 0, again.output
     assert "already holds this finished run" in again.output and "CI" not in again.output
-    assert f"mean {a['im_mean_loaded']:.4f}, 95 % {a['im_q95_loaded']:.4f}" in again.output
+    assert f"mean {a['im_mean_loaded']:.4f}, 95th percentile {a['im_q95_loaded']:.4f}" in again.output

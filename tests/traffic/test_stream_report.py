@@ -40,6 +40,10 @@ def test_loaded_events_statistics_are_printed_first(tmp_path):
     truck_im = float(ds["impact_factor"].values[0])
     # one loaded event: its mean has no interval, said so ("?"), not printed as nan
     assert f"(1 of 2, static peak ≥ 20% of the stream's largest): mean {truck_im:.4f} (95 % CI ? – ?)," in lines[loaded]
+    # the quantile is named as one (not "95 %" beside "95 % CI"), and "?" is explained (before 2026-12-06: neither)
+    assert ", 95th percentile " in lines[loaded] and ", 95th percentile " in lines[every]
+    assert ", 95 % " not in lines[loaded] + lines[every]
+    assert "  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)" in lines
     # no multiple presence in this stream: said in words, not printed as "several nan" (before 2026-12-05)
     assert "mean of the events with one vehicle " in lines[every] and "several: no such event;" in lines[every]
     assert "nan" not in lines[every] and "nan" not in lines[loaded]

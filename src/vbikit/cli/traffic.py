@@ -106,11 +106,13 @@ def traffic_cmd(
     if n_small:  # the design values first: the events that load the point
         typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
-                   f"{ci('im_mean_loaded')}{doubt}, 95 % {ci('im_q95_loaded')}")
+                   f"{ci('im_mean_loaded')}{doubt}, 95th percentile {ci('im_q95_loaded')}")
     typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {ci('im_mean')}{doubt}, "
-               f"95 % {ci('im_q95')}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
+               f"95th percentile {ci('im_q95')}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
                f"{_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
                + (f"; {small_words}" if n_small else ""))
+    if any("?" in ci(n) for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
+        typer.echo("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
                    "warning; no statistic of this stream is a result")
