@@ -108,5 +108,13 @@ def test_impact_factor_statistics_of_the_sample_by_hand(tmp_path):
     report = (tmp_path / "report.txt").read_text()
     name = str(ds["load_effect"].values[0])
     assert (f"  {name}: IM of the random sample ({int(sample.sum())} events): mean {ds['im_mean'].values[0]:.4f} "
-            f"(95 % CI {ds['im_mean_ci_lower'].values[0]:.4f} – {ds['im_mean_ci_upper'].values[0]:.4f}), 95 % "
-            f"{ds['im_q95'].values[0]:.4f} (95 % CI ") in report
+            f"(95 % CI {ds['im_mean_ci_lower'].values[0]:.4f} – {ds['im_mean_ci_upper'].values[0]:.4f}), 95th "
+            f"percentile {ds['im_q95'].values[0]:.4f} (95 % CI ") in report
+    # the design values (the events that load the effect) with their intervals too, as the page says
+    # (before 2026-12-06 the report printed them bare, and the quantile as "95 %" beside "95 % CI")
+    j = int(np.argmax(ds["n_small_static_sample"].values))
+    v = {k: ds[k].values[j] for k in ds.data_vars if k.startswith("im_") and "loaded" in k}
+    assert (f"the others' IM mean {v['im_mean_loaded']:.4f} (95 % CI {v['im_mean_loaded_ci_lower']:.4f} – "
+            f"{v['im_mean_loaded_ci_upper']:.4f}), 95th percentile {v['im_q95_loaded']:.4f} (95 % CI "
+            f"{v['im_q95_loaded_ci_lower']:.4f} – {v['im_q95_loaded_ci_upper']:.4f})") in report
+    assert ", 95 % " not in report
