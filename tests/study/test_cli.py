@@ -141,3 +141,17 @@ def test_the_study_output_quoted_in_docs_is_the_example_study_s(tmp_path):
     lines = res.output[start:].strip().splitlines()
     assert len(lines) == 5 and lines[1].startswith("  mean by bridge.model: ")
     assert "\n".join(lines) in (root / "docs" / "studies.md").read_text()
+
+
+def test_out_equal_to_the_input_file_is_refused_as_such(tmp_path):
+    """`--out` naming the study (or records) file itself: refused as the input, not as "not this study's
+    finished dataset; delete it" (before 2026-12-06), which told the user to delete their input."""
+    study = tmp_path / "s.nc"  # a study file with a NetCDF name, given as its own --out
+    study.write_text(STUDY)
+    res = runner.invoke(app, ["study", "run", str(study), "--out", str(study), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 2 and f"{study} is the input file {study} itself; choose another --out" in res.output
+    assert "delete it" not in res.output and study.read_text() == STUDY
+    records = tmp_path / "r.nc"
+    records.write_text("x")  # (refused before it is read)
+    res = runner.invoke(app, ["traffic", str(records), "--bridge", "paper-bridge-2", "--out", str(records)])
+    assert res.exit_code == 2 and f"{records} is the input file {records} itself" in res.output
