@@ -149,9 +149,9 @@ def test_out_equal_to_the_input_file_is_refused_as_such(tmp_path):
     study = tmp_path / "s.nc"  # a study file with a NetCDF name, given as its own --out
     study.write_text(STUDY)
     res = runner.invoke(app, ["study", "run", str(study), "--out", str(study), "--workers", "1", "--no-progress"])
-    assert res.exit_code == 2 and f"{study} is the input file {study} itself; choose another --out" in res.output
+    assert res.exit_code == 2 and f"--out {study}: is the input file {study}; writing it would replace the input" in res.output
     assert "delete it" not in res.output and study.read_text() == STUDY
     records = tmp_path / "r.nc"
     records.write_text("x")  # (refused before it is read)
     res = runner.invoke(app, ["traffic", str(records), "--bridge", "paper-bridge-2", "--out", str(records)])
-    assert res.exit_code == 2 and f"{records} is the input file {records} itself" in res.output
+    assert res.exit_code == 2 and f"--out {records}: is the input file {records}" in res.output

@@ -103,17 +103,6 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
     return result
 
 
-def refuse_out_is_input(out: Path, *inputs: Path) -> None:
-    """An ``--out`` that is one of the command's input files is refused, named as such (it was refused as
-    "not this study's finished dataset; delete it", which would delete the input)."""
-    import os
-
-    for f in inputs:
-        if Path(f).is_file() and Path(out).is_file() and os.path.samefile(f, out):
-            raise typer.BadParameter(f"{out} is the input file {f} itself; choose another --out",
-                                     param_hint="'--out'")
-
-
 #: the values of a swept axis whose mean impact factor ``study run`` prints (the others: in the dataset)
 AXIS_VALUES_SHOWN = 12
 
@@ -134,8 +123,10 @@ def run_cmd(
     max_steps: Optional[float] = _MAX_STEPS,
 ) -> None:
     """Run (or resume) a study and write its dataset."""
-    refuse_out_is_input(out, study_file)
+    from vbikit._files import not_an_input
     from vbikit.study.spec import load_study
+
+    guard(lambda: not_an_input(out, "--out", [study_file]))  # (was refused as "not this study's dataset: delete it")
 
     study = guard(lambda: load_study(study_file), file=study_file)
     _check(study, yes, max_memory, max_steps, file=study_file)

@@ -60,9 +60,9 @@ def traffic_cmd(
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""
-    from vbikit.cli.study import refuse_out_is_input
+    from vbikit._files import not_an_input
 
-    refuse_out_is_input(out, records, Path(bridge))
+    guard(lambda: not_an_input(out, "--out", [records, Path(bridge)]))  # (a base scenario may be a preset's name)
     lane_y = None if lanes is None else guard(lambda: _lanes(lanes))  # (an option's error at once, before the imports)
     budget = limits(max_memory, max_steps)
     from vbikit.traffic.records import MAX_RECORDS, read_records
