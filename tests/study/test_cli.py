@@ -44,8 +44,10 @@ def test_study_run_and_validate(tmp_path):
     assert ds["crossing_speed_kmh"].values.tolist() == [60, 90] and abs(im[0].mean() - im[1].mean()) > 1e-3
     se = im.std(axis=1, ddof=1) / 2**0.5  # over the 2 road samples
     assert (f"mean by crossing.speed_kmh: 60 {im[0].mean():.4f} ± {se[0]:.4f}, 90 {im[1].mean():.4f} ± {se[1]:.4f}"
-            in res.output) and "(± the standard error over the road samples)" in res.output
+            in res.output) and "(± the standard error over the road samples; a difference's paired over the same roads)" in res.output
     assert "mean by road.seed" not in res.output and "mean by sample" not in res.output
+    paired = im[1] - im[0]  # 90 against 60 km/h on the same two roads
+    assert f"    difference from 60: 90 {paired.mean():+.4f} ± {paired.std(ddof=1) / 2**0.5:.4f}\n" in res.output
     ds.close()
 
 
@@ -139,7 +141,7 @@ def test_the_study_output_quoted_in_docs_is_the_example_study_s(tmp_path):
     assert res.exit_code == 0, res.output
     start = res.output.index("impact factor over all crossings")
     lines = res.output[start:].strip().splitlines()
-    assert len(lines) == 5 and lines[1].startswith("  mean by bridge.model: ")
+    assert len(lines) == 8 and lines[1].startswith("  mean by bridge.model: ")
     assert "\n".join(lines) in (root / "docs" / "studies.md").read_text()
 
 

@@ -24,6 +24,12 @@ def test_means_and_standard_errors_by_axis_against_numpy():
     # the standard error over the 4 samples of the mean over the other axis
     np.testing.assert_allclose(by["speed"].standard_error, arr.mean(axis=1).std(axis=1, ddof=1) / 2.0, rtol=1e-12)
     np.testing.assert_allclose(by["tire"].standard_error, arr.mean(axis=0).std(axis=1, ddof=1) / 2.0, rtol=1e-12)
+    # the differences from the first value, paired over the samples: the per-sample difference's scatter
+    per_sample = arr.mean(axis=1)  # (speed, sample)
+    paired = per_sample[1] - per_sample[0]
+    assert by["speed"].difference == pytest.approx((0.0, paired.mean()), abs=1e-14)
+    assert by["speed"].difference_error[1] == pytest.approx(paired.std(ddof=1) / 2.0, rel=1e-12)
+    assert by["speed"].difference_error[1] < by["speed"].standard_error[1]  # (the shared sample scatter cancels)
 
 
 def test_without_samples_there_is_no_standard_error_and_single_values_are_skipped():

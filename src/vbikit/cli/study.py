@@ -150,8 +150,12 @@ def run_cmd(
                               for v, m, se in list(zip(axis.values, axis.means, axis.standard_error))[:AXIS_VALUES_SHOWN])
             more = len(axis.values) - AXIS_VALUES_SHOWN
             typer.echo(f"  mean by {keys.get(axis.dim, axis.dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
+            if not math.isnan(axis.difference_error[-1]):  # the comparison the study makes: paired over the same roads
+                diffs = ", ".join(f"{v} {d:+.4f} ± {e:.4f}" for v, d, e in list(zip(
+                    axis.values, axis.difference, axis.difference_error))[1:AXIS_VALUES_SHOWN])
+                typer.echo(f"    difference from {axis.values[0]}: {diffs}")
         if any(not math.isnan(se) for axis in axes for se in axis.standard_error):
-            typer.echo("  (± the standard error over the road samples)")
+            typer.echo("  (± the standard error over the road samples; a difference's paired over the same roads)")
         elif axes:  # one road per cell: the means carry a sampling error the study cannot state
             typer.echo("  (one road profile per value: no standard error; a \"road.seed\" = { samples = N } "
                        "axis, N ≥ 2, gives one)")

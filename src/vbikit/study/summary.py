@@ -14,12 +14,19 @@ class AxisMeans:
 
     ``standard_error``: of each mean over the road samples — the standard deviation over the samples
     of the mean over the other axes, divided by √(samples) (NaN without a sample axis of two or more:
-    a study without road samples has no sampling error to state)."""
+    a study without road samples has no sampling error to state).
+
+    ``difference``, ``difference_error``: each value's mean minus the first value's, and the standard
+    error of that difference paired over the road samples (every value runs on the same roads, so the
+    roads' scatter, which both means share, cancels: the standard deviation over the samples of the
+    per-sample difference, / √(samples); NaN without samples; 0 for the first value)."""
 
     dim: str
     values: tuple
     means: tuple[float, ...]
     standard_error: tuple[float, ...]
+    difference: tuple[float, ...] = ()
+    difference_error: tuple[float, ...] = ()
 
 
 def is_sample_dim(dim: str) -> bool:
@@ -42,8 +49,12 @@ def axis_means(output) -> list[AxisMeans]:
         if n_samples >= 2:
             flat = per_sample.transpose(dim, *samples).values.reshape(output.sizes[dim], n_samples)
             se = np.std(flat, axis=1, ddof=1) / math.sqrt(n_samples)
+            paired = flat - flat[0]
+            d_se = np.std(paired, axis=1, ddof=1) / math.sqrt(n_samples)
         else:
-            se = np.full(output.sizes[dim], np.nan)
-        out.append(AxisMeans(dim, tuple(output[dim].values.tolist()), tuple(float(m) for m in means.values),
-                             tuple(float(s) for s in se)))
+            se = d_se = np.full(output.sizes[dim], np.nan)
+        m = np.asarray(means.values, float)
+        out.append(AxisMeans(dim, tuple(output[dim].values.tolist()), tuple(float(v) for v in m),
+                             tuple(float(v) for v in se), tuple(float(v) for v in m - m[0]),
+                             tuple(float(v) for v in d_se)))
     return out
