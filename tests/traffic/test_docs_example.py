@@ -35,6 +35,8 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
     ]
     for text in quoted:
         assert text in page, text
+    assert "deflection impact factors at girder 4, midspan of the first span (the stream's statistics are of this point)" \
+        in res.output  # (the base scenario's [response] girder = 4, x default)
     assert quoted[-1][1:].split("` over")[0] in res.output  # (the printed line itself)
     # a dataset written before the intervals (the finished-run path reads it as it is): the statistics without them
     with xr.open_dataset(tmp_path / "s.nc") as ds:

@@ -106,6 +106,8 @@ def traffic_cmd(
             return f"{float(a[name]):.4f}"
         return Interval(float(a[name]), float(a[f"{name}_ci_lower"]), float(a[f"{name}_ci_upper"])).text()
 
+    typer.echo(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
+               "statistics are of this point)")
     if n_small:  # the design values first: the events that load the point
         typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
@@ -142,6 +144,18 @@ def traffic_cmd(
 
         guard(lambda: plot_stream(ds, plot))
         typer.echo(f"figure {plot}")
+
+
+def _first_point_words(point) -> str:
+    """The base scenario's first response point as its file gives it: ``girder 4, midspan of the first span`` (x and y where
+    given; the defaults named)."""
+    where = [f"point {point.name}"] if point.name else []
+    if point.girder is not None:
+        where.append(f"girder {point.girder}")
+    elif point.y is not None:
+        where.append(f"y = {point.y:g} m")
+    where.append("midspan of the first span" if point.x is None else f"x = {point.x:g} m")
+    return ", ".join(where)
 
 
 def _group_mean(label: str, mean: float) -> str:
