@@ -34,7 +34,7 @@ def test_loaded_events_statistics_are_printed_first(tmp_path):
     loaded = next(i for i, x in enumerate(lines) if x.startswith("impact factor of the events loading the point"))
     every = next(i for i, x in enumerate(lines) if x.startswith("impact factor of all events"))
     assert loaded < every
-    assert "deflection impact factors at midspan of the first span (the stream's statistics are of this point)" in lines
+    assert "deflection impact factors at y = 0 m, midspan of the first span (the stream's statistics are of this point)" in lines
     ds = xr.open_dataset(tmp_path / "s.nc")
     st = np.abs(ds["max_static_displacement"].values)
     assert 0.1 < st[1] / st[0] < 0.2  # (the setup: the van's share, as the docstring says)
