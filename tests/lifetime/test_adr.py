@@ -106,6 +106,7 @@ def test_impact_factor_statistics_of_the_sample_by_hand(tmp_path):
             assert q.lower <= ds[name].values[j] <= q.upper
     assert int(ds["n_small_static_sample"].sum()) > 0  # the case the loaded statistics are for occurs here
     report = (tmp_path / "report.txt").read_text()
+    assert ds.attrs["distribution"] == "gumbel" and "BM ξ = 0 (Gumbel)" in report and "BM ξ = 0.000" not in report
     name = str(ds["load_effect"].values[0])
     assert (f"  {name}: IM of the random sample ({int(sample.sum())} events): mean {ds['im_mean'].values[0]:.4f} "
             f"(95 % CI {ds['im_mean_ci_lower'].values[0]:.4f} – {ds['im_mean_ci_upper'].values[0]:.4f}), 95th "

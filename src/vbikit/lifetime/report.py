@@ -442,7 +442,9 @@ def text_report(facts: dict[str, Any]) -> str:
             fw = e["fits"][w]
             pot = (f"POT threshold {_g(fw['pot_threshold'], scale=k)}, {counted(fw['pot_exceedances'], 'exceedance')}, ξ = "
                    f"{_g(fw['pot_shape'], '.3f')}")
-            lines.append(f"  {w}: BM ξ = {_g(fw['block_maxima_shape'], '.3f')}; {pot}"
+            gumbel = facts["fits"]["distribution"] == "gumbel"  # (its shape is fixed at 0, not fitted)
+            bm = "BM ξ = 0 (Gumbel)" if gumbel else f"BM ξ = {_g(fw['block_maxima_shape'], '.3f')}"
+            lines.append(f"  {w}: {bm}; {pot}"
                          + ("" if fw["pot_shape"] is not None else
                             f" (no POT value: {fw['pot_not_estimable'] or 'too few exceedances'})"))
         lines.append(f"  {'T [yr]':>8}  {'static BM':<38}{'static POT':<38}{'total BM':<38}total POT")
