@@ -157,3 +157,11 @@ def test_out_equal_to_the_input_file_is_refused_as_such(tmp_path):
     records.write_text("x")  # (refused before it is read)
     res = runner.invoke(app, ["traffic", str(records), "--bridge", "paper-bridge-2", "--out", str(records)])
     assert res.exit_code == 2 and f"--out {records}: is the input file {records}" in res.output
+
+
+def test_a_one_crossing_study_is_counted_in_the_singular(tmp_path):
+    (tmp_path / "s.toml").write_text(STUDY.replace('"crossing.speed_kmh" = [60, 90]', '"crossing.speed_kmh" = [60]')
+                                     .replace('"road.seed" = { samples = 2 }', '"road.seed" = { samples = 1 }'))
+    res = runner.invoke(app, ["study", "validate", str(tmp_path / "s.toml")])
+    assert res.exit_code == 0, res.output
+    assert "1 crossing (crossing.speed_kmh (1) × road.seed (1)) in 1 batch" in res.output and "1 crossings" not in res.output

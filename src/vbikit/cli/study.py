@@ -190,7 +190,9 @@ def checked_summary(study: Any, result: Any) -> str:
 def study_size(study: Any) -> str:
     """A study's size: "N crossings (key (n) × …) in B batches" (the run's announcement, ``checked_summary``)."""
     dims = " × ".join(f"{a.key} ({len(a.values)})" for a in study.axes) or "no axes"
-    return f"{study.size} crossings ({dims}) in {study.n_batches} batches"
+    from vbikit._words import counted
+
+    return f"{counted(study.size, 'crossing')} ({dims}) in {counted(study.n_batches, 'batch', 'batches')}"
 
 
 def _paper(*figs: str) -> Callable[..., None]:
