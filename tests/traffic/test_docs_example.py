@@ -20,6 +20,7 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
     page = " ".join((ROOT / "docs/traffic.md").read_text().split())
     with xr.open_dataset(tmp_path / "s.nc") as ds:
         a = dict(ds.attrs)
+        starts = ds["event_start"].values
     n_loaded = a["n_events"] - a["n_small_static_events"]
     quoted = [
         f"{a['n_events']} events, {a['n_multiple_presence_events']} of them with two or more trucks",
@@ -35,6 +36,8 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
     ]
     for text in quoted:
         assert text in page, text
+    g = int(a["governing_static_event"])  # named by its dataset index and when it starts in the stream
+    assert f"largest static effect: event {g} (starts at t = {starts[g]:.1f} s), dynamic amplification" in res.output
     assert "deflection impact factors at girder 4, midspan of the first span (the stream's statistics are of this point)" \
         in res.output  # (the base scenario's [response] girder = 4, x default)
     assert quoted[-1][1:].split("` over")[0] in res.output  # (the printed line itself)
