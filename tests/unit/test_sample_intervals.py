@@ -49,3 +49,12 @@ def test_an_end_the_sample_cannot_bound_is_nan_and_printed_as_a_question_mark():
     assert ci.text(".2f").endswith("– ?)") and "95 % CI" in ci.text()
     assert math.isnan(mean_interval([1.0]).lower) and mean_interval([]).estimate != mean_interval([]).estimate
     assert mean_interval([math.nan]).text() == "n/a"  # nothing to estimate: said so, never "nan"
+
+
+def test_a_stored_statistic_reads_with_its_interval_or_alone_when_written_before_the_intervals():
+    from vbikit.analysis.sample_intervals import stored_interval_text
+
+    stats = {"im_mean": 0.16123, "im_mean_ci_lower": 0.15, "im_mean_ci_upper": None, "im_q95": 0.31291}
+    assert stored_interval_text(stats, "im_mean") == "0.1612 (95 % CI 0.1500 – ?)"  # (None, from JSON: unbounded)
+    assert stored_interval_text(stats, "im_q95") == "0.3129"  # no ends stored: the number alone
+    assert stored_interval_text({"im_q95": None}, "im_q95") == "n/a"

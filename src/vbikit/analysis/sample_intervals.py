@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any, Mapping
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -69,3 +70,13 @@ def quantile_interval(sample: ArrayLike, p: float, confidence: float = CONFIDENC
     ci = stats.quantile_test(x, q=estimate, p=p).confidence_interval(confidence_level=confidence)
     finite = lambda v: float(v) if np.isfinite(v) else math.nan  # noqa: E731
     return Interval(estimate, finite(ci.low), finite(ci.high), confidence)
+
+
+def stored_interval_text(stats: Mapping[str, Any], name: str) -> str:
+    """``stats[name]`` with the ends of its interval stored beside it (``NAME_ci_lower``, ``NAME_ci_upper``:
+    a dataset's attributes, a summary's facts; None reads as NaN) as ``Interval.text``; statistics
+    written before the intervals (no ends stored): the number alone, "n/a" without one."""
+    value = lambda key: math.nan if stats.get(key) is None else float(stats[key])  # noqa: E731
+    if f"{name}_ci_lower" not in stats:
+        return "n/a" if math.isnan(value(name)) else f"{value(name):.4f}"
+    return Interval(value(name), value(f"{name}_ci_lower"), value(f"{name}_ci_upper")).text()

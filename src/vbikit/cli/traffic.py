@@ -91,7 +91,7 @@ def traffic_cmd(
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     warn_dataset(ds)
     from vbikit.analysis.checks import dataset_has_flag
-    from vbikit.analysis.sample_intervals import Interval
+    from vbikit.analysis.sample_intervals import stored_interval_text
 
     a = ds.attrs
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
@@ -100,23 +100,18 @@ def traffic_cmd(
     n_small = int(a["n_small_static_events"])
     small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
         " on small static references (light vehicles, far lanes): not design values"
-
-    def ci(name: str) -> str:  # the statistic with its interval (a dataset written before the intervals: the number)
-        if f"{name}_ci_lower" not in a:
-            return f"{float(a[name]):.4f}"
-        return Interval(float(a[name]), float(a[f"{name}_ci_lower"]), float(a[f"{name}_ci_upper"])).text()
-
+    ci = {name: stored_interval_text(a, name) for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")}
     typer.echo(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
                "statistics are of this point)")
     if n_small:  # the design values first: the events that load the point
         typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
-                   f"{ci('im_mean_loaded')}{doubt}, 95th percentile {ci('im_q95_loaded')}")
-    typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {ci('im_mean')}{doubt}, "
-               f"95th percentile {ci('im_q95')}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
+                   f"{ci['im_mean_loaded']}{doubt}, 95th percentile {ci['im_q95_loaded']}")
+    typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {ci['im_mean']}{doubt}, "
+               f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
                f"{_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
                + (f"; {small_words}" if n_small else ""))
-    if any("?" in ci(n) for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
+    if any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
         typer.echo("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
@@ -124,6 +119,7 @@ def traffic_cmd(
     if airborne:
         typer.echo(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
                    "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
+
     def event(name: str) -> str:  # the dataset's event index (from 0) and when the event starts in the stream
         e = int(a[f"governing_{name}_event"])
         return f"event {e} (starts at t = {float(ds['event_start'].values[e]):.1f} s)"

@@ -14,6 +14,7 @@ from typing import Any
 
 from vbikit._words import counted
 from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
+from vbikit.analysis.sample_intervals import stored_interval_text
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.lifetime.results import IM_WITH_INTERVALS
 from vbikit.outputs import report_unit
@@ -21,16 +22,6 @@ from vbikit.outputs import report_unit
 
 #: the confidence interval ends of the IM statistics (``vbikit.lifetime.results``), read into the facts when present
 IM_INTERVAL_ENDS = tuple(f"{name}_ci_{end}" for name in IM_WITH_INTERVALS for end in ("lower", "upper"))
-
-
-def _interval_text(im: dict, name: str) -> str:
-    """``im[name]`` with its 95 % confidence interval (``Interval.text``; None, from JSON, as NaN)."""
-    from vbikit.analysis.sample_intervals import Interval
-
-    value = lambda key: math.nan if im.get(key) is None else float(im[key])  # noqa: E731
-    if f"{name}_ci_lower" not in im:  # a summary written before the intervals: the number alone, not "? – ?"
-        return _g(im.get(name), ".4f")
-    return Interval(value(name), value(f"{name}_ci_lower"), value(f"{name}_ci_upper")).text()
 
 
 def _num(x) -> float | None:
@@ -425,15 +416,15 @@ def text_report(facts: dict[str, Any]) -> str:
     for name, e in facts["load_effects"].items():  # how well the random sample fixes the IM statistics
         if e["im"].get("im_mean_ci_lower", "absent") != "absent" and e["im"].get("im_mean") is not None:
             lines.append(f"  {name}: IM of the random sample ({facts['run']['n_sample_events']} events): mean "
-                         f"{_interval_text(e['im'], 'im_mean')}, 95th percentile {_interval_text(e['im'], 'im_q95')}")
+                         f"{stored_interval_text(e['im'], 'im_mean')}, 95th percentile {stored_interval_text(e['im'], 'im_q95')}")
     for name, e in facts["load_effects"].items():
         if e["n_small_static_sample"]:
             n = e["n_small_static_sample"]
             lines.append(f"  {name}: {counted(n, 'sampled event')} load{'s' if n == 1 else ''} it below "
                          f"{SMALL_STATIC_FRACTION * 100:g} % of the largest static "
                          f"effect (light vehicles, far lanes): their IMs rest on small static references, not design "
-                         f"values; the others' IM mean {_interval_text(e['im'], 'im_mean_loaded')}, "
-                         f"95th percentile {_interval_text(e['im'], 'im_q95_loaded')}")
+                         f"values; the others' IM mean {stored_interval_text(e['im'], 'im_mean_loaded')}, "
+                         f"95th percentile {stored_interval_text(e['im'], 'im_q95_loaded')}")
     for name, e in facts["load_effects"].items():
         unit, k = report_unit(e["units"])
         lines += ["", f"{name} [{unit}]: return levels, block maxima (BM) beside peaks over threshold (POT), "
