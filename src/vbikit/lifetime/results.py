@@ -31,10 +31,9 @@ import numpy as np
 
 from vbikit.lifetime.screening import CHECK_FRACTION
 
-
-
 #: the IM statistics stored with the ends of their 95 % confidence intervals (``NAME_ci_lower``, ``NAME_ci_upper``)
 IM_WITH_INTERVALS = ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")
+
 
 def _blocks(values: np.ndarray, size: int) -> np.ndarray:
     n = values.shape[0] // size
@@ -188,23 +187,21 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     small_sample = small_static_mask(st, axis=0)[sample] if sample.size else np.zeros((0, len(lines)), bool)
     im_loaded = np.where(small_sample, np.nan, im_sample)
     im = {
-        "im_mean": [stat(im_sample[:, j], np.mean) for j in range(len(lines))],
         "im_std": [stat(im_sample[:, j], np.std) for j in range(len(lines))],
-        "im_q95": [stat(im_sample[:, j], lambda a: np.quantile(a, 0.95)) for j in range(len(lines))],
         "im_max": [stat(im_all[simulated, j], np.max) for j in range(len(lines))],
-        "im_mean_loaded": [stat(im_loaded[:, j], np.mean) for j in range(len(lines))],
-        "im_q95_loaded": [stat(im_loaded[:, j], lambda a: np.quantile(a, 0.95)) for j in range(len(lines))],
         "n_small_static_sample": [int(small_sample[:, j].sum()) for j in range(len(lines))],
     }
-    # how well the random sample fixes the means and 95 % quantiles: their 95 % confidence intervals
+    # the means and 95 % quantiles of the finite values, with their 95 % confidence intervals: how well the
+    # random sample fixes them (``sample_intervals``: the same estimates as numpy's mean and quantile)
     from vbikit.analysis.sample_intervals import mean_interval, quantile_interval
 
     for name in IM_WITH_INTERVALS:
         values = im_loaded if name.endswith("_loaded") else im_sample
         interval = mean_interval if name.startswith("im_mean") else (lambda a: quantile_interval(a, 0.95))
-        ends = [interval(values[:, j]) for j in range(len(lines))]
-        im[f"{name}_ci_lower"] = [c.lower for c in ends]
-        im[f"{name}_ci_upper"] = [c.upper for c in ends]
+        found = [interval(values[:, j]) for j in range(len(lines))]
+        im[name] = [c.estimate for c in found]
+        im[f"{name}_ci_lower"] = [c.lower for c in found]
+        im[f"{name}_ci_upper"] = [c.upper for c in found]
     im_gov = []
     for j in range(len(lines)):
         k = int(np.argmax(s_st[:, j]))
