@@ -46,9 +46,10 @@ def run(
                                    summary_path or out_dir / f"{stem}.json")
     from vbikit._files import distinct_outputs, not_an_input
 
-    inputs = [scenario]  # and the files it reads (a road profile, a modes file): an output must replace none
+    inputs, spec = [scenario], None  # and the files it reads (a road profile, a modes file): an output must replace none
     if any(path is not None for path in (out, plot, summary_path)):
-        inputs += guard(lambda: load_scenario(scenario), file=scenario).input_files()
+        spec = guard(lambda: load_scenario(scenario), file=scenario)  # (read once: the run below takes it)
+        inputs += spec.input_files()
     for key, path in (("--out", out), ("--plot", plot), ("--summary", summary_path)):
         if path is not None:
             guard(lambda key=key, path=path: not_an_input(path, option[key], inputs))
@@ -58,7 +59,8 @@ def run(
         from vbikit.cli.random_run import run_random
 
         return run_random(scenario, budget, as_json, summary_path, plot, out)
-    outputs(execute(lambda: load_scenario(scenario), budget, file=scenario), as_json, out, plot, summary_path)
+    outputs(execute(lambda: spec if spec is not None else load_scenario(scenario), budget, file=scenario), as_json, out,
+            plot, summary_path)
 
 
 def cite(
