@@ -50,6 +50,25 @@ def test_loaded_events_statistics_are_printed_first(tmp_path):
     assert "nan" not in lines[every] and "nan" not in lines[loaded]
     assert lines[every].endswith("the other event's IM rests on small static references (light vehicles, far lanes): "
                                  "not design values")
+    # the van's event without an IM (NaN): the finished run's statistics say so and over how many events they are
+    from vbikit.traffic.study import stream_statistics
+
+    ds = ds.load()
+    ds.close()
+    ds["impact_factor"].values[1] = np.nan
+    ds.attrs.update(stream_statistics(ds))
+    ds.to_netcdf(tmp_path / "nan.nc")
+    (tmp_path / "nan.nc").replace(tmp_path / "s.nc")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"), "--out",
+                              str(tmp_path / "s.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0 and "already holds this finished run" in res.output, res.output
+    lines = res.stdout.splitlines()
+    assert f"impact factor of all events with one at the point (1 of 2) (each loads the point): mean {truck_im:.4f} " \
+           "(95 % CI ? – ?)" in res.stdout
+    assert "  (1 event without an impact factor at the point (NaN: no usable static reference) left out of these " \
+           "statistics)" in lines
+    assert not any(x.startswith("impact factor of the events loading the point") for x in lines)
+    assert "nan" not in res.stdout
 
 
 def _stream(static_mm, multiple):
@@ -114,3 +133,46 @@ def test_the_stream_statistics_carry_the_intervals_of_their_means_and_quantiles(
     loaded = np.abs(st) >= 0.2 * np.abs(st).max()
     assert 0 < (~loaded).sum() and s["im_mean_loaded_ci_lower"] < im[loaded].mean() < s["im_mean_loaded_ci_upper"]
     assert s["im_q95_loaded_ci_lower"] < s["im_q95_loaded"] < s["im_q95_loaded_ci_upper"]
+
+
+def _hand_stream(im, static_mm):
+    """A hand-made stream dataset with the variables ``stream_statistics`` reads (one vehicle an event)."""
+    im, st = np.asarray(im, float), -np.asarray(static_mm, float) * 1e-3
+    n = im.size
+    return xr.Dataset({"impact_factor": ("event", im), "max_static_displacement": ("event", st),
+                       "max_dynamic_displacement": ("event", st * (1 + np.nan_to_num(im))),
+                       "multiple_presence": ("event", np.zeros(n, int)), "airborne_wheels": ("event", np.zeros(n))},
+                      coords={"vehicle": np.arange(n)})
+
+
+def test_an_event_without_an_impact_factor_is_left_out_and_counted():
+    """Six events: IMs 0.1, 0.2, 0.3, 0.4 on static peaks 5, 6, 8, 7 mm, one of 0.9 on 1 mm (below 20 % of
+    8 mm: a small static reference), and one event without an IM (NaN, a static peak of 0 mm).  Every IM
+    statistic is over the five finite values and says how many events it left out; by hand: the mean
+    (0.1+0.2+0.3+0.4+0.9)/5 = 0.38, of the four loading the point 0.25, their 95th percentile (numpy's
+    linear rule, position 0.95·3 = 2.85) 0.3 + 0.85·0.1 = 0.385 and the t interval of their mean
+    0.25 ± t(0.975, 3) · s/√4 = 0.25 ± 3.182446 · 0.1290994 / 2 = 0.25 ± 0.2054260.  (Before 2026-12-06
+    the means and quantiles were plain numpy statistics of all six: NaN, beside intervals over the finite
+    values, and the left-out event was not counted.)"""
+    from vbikit.traffic.study import stream_statistics
+
+    s = stream_statistics(_hand_stream([0.1, 0.2, 0.3, 0.4, 0.9, np.nan], [5.0, 6.0, 8.0, 7.0, 1.0, 0.0]))
+    assert s["n_events"] == 6 and s["n_events_without_impact_factor"] == 1 and s["n_small_static_events"] == 1
+    assert s["im_mean"] == pytest.approx(0.38, abs=1e-12)
+    assert s["im_mean_loaded"] == pytest.approx(0.25, abs=1e-12)
+    assert s["im_q95_loaded"] == pytest.approx(0.385, abs=1e-12)
+    assert (s["im_mean_loaded_ci_lower"], s["im_mean_loaded_ci_upper"]) == pytest.approx((0.0445740, 0.4554260), abs=1e-6)
+    assert s["im_q95_ci_lower"] <= s["im_q95"] and s["im_mean_ci_lower"] < s["im_mean"] < s["im_mean_ci_upper"]
+    assert all(np.isfinite(s[k]) for k in ("im_std", "im_q05", "im_q50", "im_q99", "im_mean_single"))
+    assert sum(s["im_histogram_counts"]) == 5
+    assert s["governing_static_event"] == 2 and s["governing_static_amplification"] == pytest.approx(1.3)
+
+
+def test_an_event_without_a_static_peak_does_not_govern():
+    """An event whose static peak is NaN (not reduced) is not the largest static effect: the 8 mm one is
+    (numpy's argmax returns a NaN's index; before 2026-12-06 that event was reported as governing)."""
+    from vbikit.traffic.study import stream_statistics
+
+    s = stream_statistics(_hand_stream([0.1, np.nan, 0.3], [5.0, np.nan, 8.0]))
+    assert s["governing_static_event"] == 2 and s["governing_dynamic_event"] == 2
+    assert s["n_events_without_impact_factor"] == 1 and s["im_mean"] == pytest.approx(0.2, abs=1e-12)

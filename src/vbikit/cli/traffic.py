@@ -98,19 +98,25 @@ def traffic_cmd(
     implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
     doubt = "!" if implausible or airborne else ""
     n_small = int(a["n_small_static_events"])
+    n_without = int(a.get("n_events_without_impact_factor", 0))  # (0: a dataset written before it was counted)
     small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
         " on small static references (light vehicles, far lanes): not design values"
     ci = {name: stored_interval_text(a, name) for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")}
     typer.echo(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
                "statistics are of this point)")
     if n_small:  # the design values first: the events that load the point
-        typer.echo(f"impact factor of the events loading the point ({job.size - n_small} of {job.size}, static peak "
+        typer.echo(f"impact factor of the events loading the point ({job.size - n_without - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
                    f"{ci['im_mean_loaded']}{doubt}, 95th percentile {ci['im_q95_loaded']}")
-    typer.echo(f"impact factor of all events{'' if n_small else ' (every event loads the point)'}: mean {ci['im_mean']}{doubt}, "
+    every = f"all events with one at the point ({job.size - n_without} of {job.size})" if n_without else "all events"
+    loads = "" if n_small else " (each loads the point)" if n_without else " (every event loads the point)"
+    typer.echo(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
                f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
                f"{_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
                + (f"; {small_words}" if n_small else ""))
+    if n_without:
+        typer.echo(f"  ({n_without} event{'' if n_without == 1 else 's'} without an impact factor at the point (NaN: "
+                   "no usable static reference) left out of these statistics)")
     if any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
         typer.echo("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
     if implausible:

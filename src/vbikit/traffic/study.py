@@ -392,8 +392,9 @@ def _gross(record: VehicleRecord) -> float:
     return record.gross_weight if record.model == "axles" else float(_vehicle(record).total_weight)
 
 
-def _with_interval(name: str, interval) -> dict[str, float]:
-    """``name``'s confidence interval ends as the statistics' entries ``name_ci_lower``, ``name_ci_upper``."""
+def _interval_ends(name: str, interval) -> dict[str, float]:
+    """The ends of ``name``'s confidence interval as the statistics' entries ``name_ci_lower``, ``name_ci_upper``
+    (``name`` itself is the interval's estimate: the three from one sample)."""
     return {f"{name}_ci_lower": interval.lower, f"{name}_ci_upper": interval.upper}
 
 
@@ -404,43 +405,52 @@ def stream_statistics(ds) -> dict[str, Any]:
     (the largest R_dyn of the stream over the largest R_st of the stream: the ratio of the
     governing total to the governing static load effect); at the first response point.
 
-    An event whose static peak there is below ``SMALL_STATIC_FRACTION`` (20 %) of the stream's largest
-    (a light vehicle, or one in a far lane of a deck) has an IM resting on a small static reference,
-    not a design value (``vbikit.analysis.checks.small_static``): ``n_small_static_events`` counts
-    them, and ``im_mean_loaded`` / ``im_q95_loaded`` are the mean and 95 % quantile of the others.
+    An event without an impact factor there (NaN: no usable static reference) is left out of every IM
+    statistic and counted, ``n_events_without_impact_factor``.  An event whose static peak there is below
+    ``SMALL_STATIC_FRACTION`` (20 %) of the stream's largest (a light vehicle, or one in a far lane of a
+    deck) has an IM resting on a small static reference, not a design value
+    (``vbikit.analysis.checks.small_static``): ``n_small_static_events`` counts them (of the events with an
+    IM), and ``im_mean_loaded`` / ``im_q95_loaded`` are the mean and 95 % quantile of the others — the
+    ``n_events - n_events_without_impact_factor - n_small_static_events`` events that load the point.
 
-    The means and 95 % quantiles come with the ends of their 95 % confidence intervals over the stream's
-    events (``…_ci_lower``, ``…_ci_upper``; ``vbikit.analysis.sample_intervals``: Student's t for a mean,
-    order statistics for a quantile; NaN where the events cannot bound it): how well this many events
-    fix each, the roads and trucks being random."""
+    The means and 95 % quantiles are the estimates of their 95 % confidence intervals over those events
+    (``…_ci_lower``, ``…_ci_upper``; ``vbikit.analysis.sample_intervals``: Student's t for a mean,
+    order statistics for a quantile; NaN where the events cannot bound it), estimate and interval from
+    the same sample: how well this many events fix each, the roads and trucks being random."""
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION, small_static
     from vbikit.analysis.sample_intervals import mean_interval, quantile_interval
 
     if "point" in ds.dims:
         ds = ds.isel(point=0)
-    im = np.asarray(ds["impact_factor"].values, float)
+    im_events = np.asarray(ds["impact_factor"].values, float)
     dyn = np.abs(np.asarray(ds["max_dynamic_displacement"].values, float))
     st = np.abs(np.asarray(ds["max_static_displacement"].values, float))
-    mp = np.asarray(ds["multiple_presence"].values, bool)
-    i_st, i_dyn = int(np.argmax(st)), int(np.argmax(dyn))
-    edges = np.linspace(min(-0.1, float(np.floor(im.min() * 20) / 20)), max(1.0, float(np.ceil(im.max() * 20) / 20)), 23)
+    mp_events = np.asarray(ds["multiple_presence"].values, bool)
+    # the governing events among those with a static peak (argmax would take a NaN's index)
+    i_st = int(np.nanargmax(st)) if np.isfinite(st).any() else 0
+    i_dyn = int(np.nanargmax(dyn)) if np.isfinite(dyn).any() else 0
+    usable = np.isfinite(im_events)  # the events with an impact factor: the sample of every IM statistic
+    im, mp = im_events[usable], mp_events[usable]
+    loaded = ~np.array(small_static(st), bool)[usable]
+    low, high = (float(im.min()), float(im.max())) if im.size else (0.0, 0.0)
+    edges = np.linspace(min(-0.1, float(np.floor(low * 20) / 20)), max(1.0, float(np.ceil(high * 20) / 20)), 23)
     counts, _ = np.histogram(im, edges)
-    q = np.quantile(im, [0.05, 0.5, 0.95, 0.99])
-    loaded = ~np.array(small_static(st), bool)
+    q = np.quantile(im, [0.05, 0.5, 0.99]) if im.size else np.full(3, math.nan)
+    mean, q95 = mean_interval(im), quantile_interval(im, 0.95)
+    mean_loaded, q95_loaded = mean_interval(im[loaded]), quantile_interval(im[loaded], 0.95)
     return {
-        "n_events": int(im.size), "n_vehicles_total": int(ds.sizes["vehicle"]),
-        "n_multiple_presence_events": int(mp.sum()),
-        "im_mean": float(im.mean()), "im_std": float(im.std()),
-        "im_q05": float(q[0]), "im_q50": float(q[1]), "im_q95": float(q[2]), "im_q99": float(q[3]),
+        "n_events": int(im_events.size), "n_vehicles_total": int(ds.sizes["vehicle"]),
+        "n_multiple_presence_events": int(mp_events.sum()),
+        "n_events_without_impact_factor": int((~usable).sum()),
+        "im_mean": mean.estimate, "im_std": float(im.std()) if im.size else math.nan,
+        "im_q05": float(q[0]), "im_q50": float(q[1]), "im_q95": q95.estimate, "im_q99": float(q[2]),
         "im_mean_single": float(im[~mp].mean()) if (~mp).any() else math.nan,
         "im_mean_multiple": float(im[mp].mean()) if mp.any() else math.nan,
         "im_histogram_edges": [float(x) for x in edges], "im_histogram_counts": [int(c) for c in counts],
         "small_static_fraction": SMALL_STATIC_FRACTION, "n_small_static_events": int((~loaded).sum()),
-        "im_mean_loaded": float(im[loaded].mean()) if loaded.any() else math.nan,
-        "im_q95_loaded": float(np.quantile(im[loaded], 0.95)) if loaded.any() else math.nan,
-        **_with_interval("im_mean", mean_interval(im)), **_with_interval("im_q95", quantile_interval(im, 0.95)),
-        **_with_interval("im_mean_loaded", mean_interval(im[loaded])),
-        **_with_interval("im_q95_loaded", quantile_interval(im[loaded], 0.95)),
+        "im_mean_loaded": mean_loaded.estimate, "im_q95_loaded": q95_loaded.estimate,
+        **_interval_ends("im_mean", mean), **_interval_ends("im_q95", q95),
+        **_interval_ends("im_mean_loaded", mean_loaded), **_interval_ends("im_q95_loaded", q95_loaded),
         "governing_static_event": i_st,
         "governing_static_amplification": float(dyn[i_st] / st[i_st]),
         "governing_dynamic_event": i_dyn,
