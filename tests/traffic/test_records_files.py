@@ -150,6 +150,25 @@ def test_speeds_beyond_200_kmh_are_warned(caplog):
         "records: 1 record(s) with a speed above 200 km/h (line 3); check the values and their units"]
 
 
+def test_a_speed_out_of_range_is_refused_with_the_range_it_must_be_in():
+    """A record's speed is 0.0036 … 252 km/h (0.001 … 70 m/s: the scenario's smallest speed, a road
+    vehicle's largest).  Both refusals state that range; before 2026-12-06 a speed above it said "the allowed
+    0 … 252 km/h", though 0.001 km/h is refused too, and the smallest speed's own message gave no upper bound."""
+    allowed = "allowed 0.0036 … 252 km/h (0.001 … 70 m/s)"
+    with pytest.raises(RecordsError, match=re.escape(f"records:2: column 4 (speed [km/h]): 253 km/h is above the "
+                                                     f"largest speed 252 km/h; {allowed}")):
+        parse_records(HEAD + ROW.replace(",80,", ",253,"))
+    with pytest.raises(RecordsError, match=re.escape(f"records:2: column 4 (speed [km/h]): 0.001 km/h is below the "
+                                                     f"smallest speed 0.0036 km/h (such a crossing would last days); "
+                                                     f"{allowed}")):
+        parse_records(HEAD + ROW.replace(",80,", ",0.001,"))
+    with pytest.raises(RecordsError, match=re.escape("column 4 (speed [m/s]): 252.4 km/h is above the largest speed "
+                                                     f"252 km/h; {allowed}")):  # (70.1 m/s: given in m/s)
+        parse_records(HEAD.replace("speed [km/h]", "speed [m/s]") + ROW.replace(",80,", ",70.1,"))
+    for kmh in ("0.0036", "252"):  # the ends themselves are read
+        assert parse_records(HEAD + ROW.replace(",80,", f",{kmh},"))[0].speed == pytest.approx(float(kmh) / 3.6)
+
+
 def test_a_million_rows_are_refused_before_parsing(tmp_path):
     """1,000,001 rows (a 9-minute read and validation before): refused from the row count within
     seconds; the message names the count, the limit and how to raise it."""

@@ -128,6 +128,10 @@ AXLE_LOAD_WARNING = 30e3 * 9.80665
 AXLE_LOAD_MAX = 1e6 * 9.80665
 #: a speed above this is warned of as implausible for a road vehicle [m/s] (200 km/h)
 SPEED_WARNING = 200 / 3.6
+#: the largest speed of a record [m/s] (252 km/h; the smallest is a scenario's, ``MIN_SPEED``: 0.0036 km/h)
+MAX_RECORD_SPEED = 70.0
+#: the speeds a record may have, in words: from ``MIN_SPEED`` and ``MAX_RECORD_SPEED``, the bounds checked
+SPEED_RANGE_TEXT = f"{MIN_SPEED * 3.6:g} … {MAX_RECORD_SPEED * 3.6:g} km/h ({MIN_SPEED:g} … {MAX_RECORD_SPEED:g} m/s)"
 #: the latest time of a record [s]: ten years (365.25-day years) from the stream's start
 MAX_TIME = 10 * 365.25 * 86400.0
 
@@ -255,9 +259,10 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
     speed = number("speed", 0.0, strict=True)
     if speed < MIN_SPEED:  # (the scenario's smallest speed)
         raise fail("speed", f"{speed * 3.6:.3g} km/h is below the smallest speed {MIN_SPEED * 3.6:g} km/h "
-                            f"({MIN_SPEED:g} m/s): such a crossing would last days")
-    if speed > 70:
-        raise fail("speed", f"{speed * 3.6:.0f} km/h is beyond the allowed 0 … 252 km/h")
+                            f"(such a crossing would last days); allowed {SPEED_RANGE_TEXT}")
+    if speed > MAX_RECORD_SPEED:
+        raise fail("speed", f"{speed * 3.6:.4g} km/h is above the largest speed {MAX_RECORD_SPEED * 3.6:g} km/h; "
+                            f"allowed {SPEED_RANGE_TEXT}")
     lane = lateral = None
     if "lane" in cells and cells["lane"].strip():
         try:
