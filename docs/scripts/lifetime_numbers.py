@@ -259,8 +259,9 @@ def render(numbers: dict) -> str:
              f"{ex['n_dynamic']:,} simulated dynamically ({100 * ex['fraction_dynamic']:.2f} %, of which "
              f"{ex['n_sample']:,} the random sample); run time {ex['wall_s']:.0f} s; static pass "
              f"{ex['static_events_per_s']:,.0f} events/s; first frequency {ex['first_frequency_hz']:.2f} Hz.", "",
-             "| load effect | unit | characteristic static (1,000 yr) | characteristic total | ADR | mean event IM "
-             "| 95 % event IM | IM of the largest static event | AASHTO LRFD IM |",
+             "| load effect | unit | characteristic static (1,000 yr) | characteristic total | ADR | IM mean over the "
+             f"random sample ({ex['n_sample']:,} events, all lanes) | IM 95th percentile, same events "
+             "| IM of the largest static event | AASHTO LRFD IM |",
              "|---|---|---|---|---|---|---|---|---|"]
     from vbikit.outputs import report_unit  # the report's units: kN m, kN, mm
 

@@ -181,3 +181,38 @@ def test_a_one_signed_line_reports_nothing_the_other_way(facts):
         assert d["largest"] == pytest.approx(d["sign"] * np.max(d["sign"] * events), rel=1e-12)
         codes = [f["code"] for f in facts["load_effects"][name].get("flags", [])]
         assert "opposite_direction_unreported" not in codes
+
+
+def test_the_im_columns_say_what_population_they_are_over(facts):
+    """The table's IM mean and IM q95 are over the random sample (every lane and vehicle), not per lane nor
+    the governing event's: a note under the table says so with the sample's size, and each effect's sample
+    (``n_im_sample``) is its sampled events with a finite IM — counted here from lifetime.nc's events (before
+    2026-12-06 the columns said neither, and an event without an IM was not counted anywhere)."""
+    import copy
+
+    import numpy as np
+    import xarray as xr
+
+    from vbikit.lifetime.report import text_report
+
+    with xr.open_dataset(facts["out"] / "lifetime.nc") as ds:
+        sample = ds["event_in_sample"].values.astype(bool)
+        im = ds["event_total"].values[sample] / ds["event_static"].values[sample] - 1.0
+        names = [str(n) for n in ds["load_effect"].values]
+    n = int(sample.sum())
+    assert n == facts["run"]["n_sample_events"] and n >= 2
+    for j, name in enumerate(names):
+        assert facts["load_effects"][name]["n_im_sample"] == int(np.isfinite(im[:, j]).sum()) == n
+    lines = text_report(facts).splitlines()
+    note = (f"  (IM mean, IM q95: mean and 95th percentile of the impact factors R_dyn/R_st − 1 of the random sample's "
+            f"{n} events, all lanes and vehicles together — not per lane, nor the IM of the largest static event)")
+    assert note in lines
+    assert lines.index(note) == next(i for i, x in enumerate(lines) if x.startswith("M ")) + 1  # right under the table
+    assert f"  w: IM of the random sample ({n} events): mean " in "\n".join(lines)
+    # one sampled event without an IM for w (no usable static reference): the note and w's line say so
+    fewer = copy.deepcopy(facts)
+    fewer["load_effects"]["w"]["n_im_sample"] = n - 1
+    report = text_report(fewer)
+    assert note[:-1] + "; events without an IM left out: w 1)" in report.splitlines()
+    assert f"  w: IM of the random sample ({n - 1} of its {n} events with an IM): mean " in report
+    assert f"  M: IM of the random sample ({n} events): mean " in report

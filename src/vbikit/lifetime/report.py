@@ -79,6 +79,8 @@ def _effect(ds, j: int) -> dict[str, Any]:
         "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event",
                                                   "im_mean_loaded", "im_q95_loaded", *IM_INTERVAL_ENDS) if k in ds},
         "n_small_static_sample": int(ds["n_small_static_sample"].values[j]) if "n_small_static_sample" in ds else 0,
+        # the sample of the IM statistics: the random sample's events with an IM (None: a dataset before it was stored)
+        "n_im_sample": int(ds["n_im_sample"].values[j]) if "n_im_sample" in ds else None,
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
         # the direction s reported, how it was chosen and the other direction's share of the line (older datasets lack them)
         "direction": {"sign": float(ds["effect_sign"].values[j]),
@@ -413,9 +415,19 @@ def text_report(facts: dict[str, Any]) -> str:
                      f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
+    n_sample = r["n_sample_events"]
+    sizes = {name: n_sample if e.get("n_im_sample") is None else e["n_im_sample"]
+             for name, e in facts["load_effects"].items()}  # (older summaries: the whole sample)
+    left_out = [f"{name} {n_sample - n}" for name, n in sizes.items() if n < n_sample]
+    lines.append(f"  (IM mean, IM q95: mean and 95th percentile of the impact factors R_dyn/R_st − 1 of the random "
+                 f"sample's {counted(n_sample, 'event')}, all lanes and vehicles together — not per lane, nor the IM "
+                 "of the largest static event"
+                 + (f"; events without an IM left out: {', '.join(left_out)}" if left_out else "") + ")")
     for name, e in facts["load_effects"].items():  # how well the random sample fixes the IM statistics
         if e["im"].get("im_mean_ci_lower", "absent") != "absent" and e["im"].get("im_mean") is not None:
-            lines.append(f"  {name}: IM of the random sample ({facts['run']['n_sample_events']} events): mean "
+            size = f"{sizes[name]} events" if sizes[name] == n_sample else \
+                f"{sizes[name]} of its {n_sample} events with an IM"
+            lines.append(f"  {name}: IM of the random sample ({size}): mean "
                          f"{stored_interval_text(e['im'], 'im_mean')}, 95th percentile {stored_interval_text(e['im'], 'im_q95')}")
     for name, e in facts["load_effects"].items():
         if e["n_small_static_sample"]:

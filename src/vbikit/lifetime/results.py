@@ -190,6 +190,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "im_std": [stat(im_sample[:, j], np.std) for j in range(len(lines))],
         "im_max": [stat(im_all[simulated, j], np.max) for j in range(len(lines))],
         "n_small_static_sample": [int(small_sample[:, j].sum()) for j in range(len(lines))],
+        # the sample of im_mean, im_std, im_q95: the sampled events with a finite IM (all lanes and vehicles)
+        "n_im_sample": [int(np.isfinite(im_sample[:, j]).sum()) for j in range(len(lines))],
     }
     # the means and 95 % quantiles of the finite values, with their 95 % confidence intervals: how well the
     # random sample fixes them (``sample_intervals``: the same estimates as numpy's mean and quantile)
@@ -265,9 +267,10 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                                                   "part of sign s (0: one-signed); above 1 long or several vehicles "
                                                   "load the effect more in the direction not reported")),
         **_opposite_extreme(static["ev_static_opposite"].values if "ev_static_opposite" in static else None, signs),
-        "im_mean": ("load_effect", np.array(im["im_mean"]), ev_attrs("1", "mean impact factor R_dyn/R_st - 1 of the random sample of events")),
-        "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the impact factor (random sample)")),
-        "im_q95": ("load_effect", np.array(im["im_q95"]), ev_attrs("1", "95 % quantile of the impact factor (random sample)")),
+        "im_mean": ("load_effect", np.array(im["im_mean"]), ev_attrs("1", "mean per-event impact factor R_dyn/R_st - 1 over the random sample's events with one (n_im_sample; every lane and vehicle: not per lane, nor the governing event's)")),
+        "im_std": ("load_effect", np.array(im["im_std"]), ev_attrs("1", "standard deviation of the per-event impact factor over the same n_im_sample events")),
+        "im_q95": ("load_effect", np.array(im["im_q95"]), ev_attrs("1", "95 % quantile (95th percentile) of the per-event impact factor over the same n_im_sample events")),
+        "n_im_sample": ("load_effect", np.array(im["n_im_sample"], np.int64), ev_attrs("1", "events of the random sample with a finite impact factor for the effect: the sample of im_mean, im_std, im_q95 and their intervals (the others, without a usable static reference, are left out)")),
         "im_max": ("load_effect", np.array(im["im_max"]), ev_attrs("1", "largest impact factor of any simulated event")),
         "im_mean_loaded": ("load_effect", np.array(im["im_mean_loaded"]), ev_attrs("1", "mean impact factor of the sampled events whose static peak is at least SMALL_STATIC_FRACTION (20 %) of the largest static peak (the events that load the effect)")),
         "im_q95_loaded": ("load_effect", np.array(im["im_q95_loaded"]), ev_attrs("1", "95 % quantile of the impact factor of those events")),
