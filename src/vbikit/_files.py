@@ -140,6 +140,13 @@ def check_name(name: str, key: str) -> str:
     return name
 
 
+def shared_name(path: str | Path) -> str:
+    """An input file's name as a dataset records it for others: a relative path as the user gave it
+    (``sub/records.csv``), an absolute one by its name only (``/home/ann/wim/records.csv`` →
+    ``records.csv``): a dataset shared with others does not carry the folders of the machine it ran on."""
+    return Path(path).name if Path(path).is_absolute() else str(path)
+
+
 def inside(directory: str | Path, name: str) -> Path:
     """``directory / name``, refused (``ValueError``) if it would lie outside ``directory``
     (absolute names, ``..`` components, symbolic links pointing out)."""

@@ -216,3 +216,22 @@ def test_the_im_columns_say_what_population_they_are_over(facts):
     assert note[:-1] + "; events without an IM left out: w 1)" in report.splitlines()
     assert f"  w: IM of the random sample ({n - 1} of its {n} events with an IM): mean " in report
     assert f"  M: IM of the random sample ({n} events): mean " in report
+
+
+def test_the_dataset_names_the_records_file_without_the_users_folders():
+    """lifetime.nc's ``records`` attribute (``prepare``'s, the one the dataset stores): ``traffic.records`` as
+    the lifetime file gives it, an absolute path by its name only (``wim.csv``; a shared dataset does not
+    carry the user's folders) — the rule of the traffic stream's (before 2026-12-06 the name only, a
+    relative path too)."""
+    from pathlib import Path
+
+    from vbikit.lifetime.run import prepare
+
+    spec = {"name": "records name", "seed": 4, "days": 5, "amplification": 0.05,
+            "traffic": {"records": "examples/lifetime/wim.csv", "trucks_per_day": 16, "speed_kmh": 5.0},
+            "vehicle_model": "moving-forces", "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3},
+            "tire": {"model": "point"}, "road": {"class": "none"},
+            "load_effects": [{"kind": "deflection", "x": 4.58, "name": "w"}]}
+    assert prepare(spec, ".", workers=1).info["records"] == "examples/lifetime/wim.csv"
+    spec["traffic"]["records"] = str(Path("examples/lifetime/wim.csv").resolve())
+    assert prepare(spec, "/", workers=1).info["records"] == "wim.csv"

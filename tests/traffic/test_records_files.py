@@ -255,3 +255,25 @@ def test_any_row_is_read_or_refused_with_a_records_error():
         assert len(r.axle_loads) <= MAX_AXLES
 
     check()
+
+
+def test_the_dataset_names_the_records_file_without_the_users_folders(tmp_path, monkeypatch):
+    """The stream dataset's ``records`` attribute: a relative path as given on the command line
+    (``sub/one.csv``), an absolute one by its name only (``one.csv``; before 2026-12-06 the whole path,
+    the user's folders in a dataset shared with others)."""
+    import xarray as xr
+    from typer.testing import CliRunner
+
+    from vbikit.cli import app
+
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "sub" / "one.csv").write_text(HEAD + ROW)
+    monkeypatch.chdir(tmp_path)
+    for given, out, stored in ((str(tmp_path / "sub" / "one.csv"), "abs.nc", "one.csv"),
+                               ("sub/one.csv", "rel.nc", "sub/one.csv")):
+        res = CliRunner().invoke(app, ["traffic", given, "--bridge", "paper-bridge-2-beam", "--out", out,
+                                       "--workers", "1", "--no-progress"])
+        assert res.exit_code == 0, res.output
+        with xr.open_dataset(tmp_path / out) as ds:
+            assert ds.attrs["records"] == stored
+            assert str(tmp_path) not in ds.attrs["records"]

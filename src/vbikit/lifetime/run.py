@@ -27,6 +27,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
+from vbikit._files import shared_name
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
 from vbikit.lifetime.screening import (CHECK_FRACTION, block_dynamic_max, candidates, heavy_amplifications,
                                        rescreen_bound, top_events)
@@ -187,7 +188,7 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             f"{len(names)} load effect(s)), above the memory budget {human(limit)}; raise it with "
                             "--max-memory (vbikit lifetime) or max_memory= (run_lifetime), or simulate fewer days")
     return Prepared(spec, base_dir, model, key, setup, tuple(details), hours,
-                    {"n_records": len(records), "records": str(records_path.name)})
+                    {"n_records": len(records), "records": shared_name(spec.traffic.records)})  # (as the file gives it)
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:

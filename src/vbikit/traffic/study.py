@@ -31,6 +31,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._files import shared_name
 from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
@@ -99,7 +100,8 @@ class TrafficStudy:
     ``base_dir``: where its relative paths point; ``lanes``: lane centres y [m] (lane n at
     ``lanes[n - 1]``); ``seed``: the road seeds' source; ``batch_size``: events per batch;
     ``events``: the vehicles of each event (indices into ``records``), ``event_start`` and
-    ``event_end`` [s] their first entry and last exit (``partition``'s); ``source``: the records' name (reports); ``outputs``: the catalogue's outputs to
+    ``event_end`` [s] their first entry and last exit (``partition``'s); ``source``: the records' name (reports and errors; the dataset's ``records`` attribute: as given,
+    an absolute path by its name only, ``vbikit._files.shared_name``); ``outputs``: the catalogue's outputs to
     reduce and store (``STREAM_OUTPUTS`` always among them; None: all).
     """
 
@@ -346,7 +348,7 @@ class TrafficStudy:
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
-            "records": self.source,
+            "records": shared_name(self.source),  # (as given; an absolute path by its name only)
             "vbikit_version": __version__,
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
