@@ -31,6 +31,13 @@ machine), minimum of ``--repeat`` runs after a warm-up:
 and the ratios kernel / floor, whole / floor and lanes / floor, with the floor's midspan displacement against
 the library's (max difference / peak: the floor solves the same equations, one update a step).
 
+* **traffic lanes** (``--traffic-lanes N``, default 6; 0: skip): the first N one-truck events of
+  ``bench_traffic.py``'s stream, each event's truck on 32 roads (its road scaled by 0.5 … 1.5) as lanes of
+  one call (``BatchSolver.run_many``: ``kernels.lean_lanes``) against the event alone (``simulate``:
+  ``kernels.lean``), kernel time per crossing: what running a stream's events as lanes of one kernel
+  could gain at best — lanes that share the motion, shapes and steps, which events of a stream do not
+  (each has its own truck, speed and step).
+
 Then every workload of ``bench_per_crossing.py`` named by ``--workloads`` (default: demo via
 ``vbikit.run``, the 3D example, the Fig. 10 32-lane batches of each tire, a traffic event, a lifetime
 dynamic event; ``paper`` on request) against its own floor, per crossing or event: the workload's
@@ -314,7 +321,7 @@ def workload_floor(name: str, repeat: int) -> dict:
             floor_loop(*inputs, *outs)
             t.append(time.thread_time() - t0)
         floor += min(t) * a[9].shape[0]  # xi: (lanes, rows, modes)
-        points.append(inputs[26].size)
+        points.append(inputs[28].size)
     return {"workload": name, "whole_ms": min(whole) / n * 1e3, "floor_ms": floor / n * 1e3, "crossings": n,
             "calls": len(calls), "points": (min(points), max(points)) if points else (0, 0)}
 
@@ -326,6 +333,8 @@ def main() -> None:
     parser.add_argument("--workloads", nargs="*", default=list(WORKLOADS),
                         help="bench_per_crossing.py workloads to set against their floors after the demo's detail "
                              f"(default: {' '.join(WORKLOADS)}; none: only the demo)")
+    parser.add_argument("--traffic-lanes", type=int, default=6,
+                        help="one-truck traffic events run as 32 lanes against alone (default 6; 0: skip)")
     args = benchmark_args(__doc__, "timed runs after the warm-up (minimum reported)", parser)
     import datetime
     import os
@@ -402,7 +411,7 @@ def main() -> None:
     agree = float(np.max(np.abs(u_floor[1:] - u_lib[1:])) / np.max(np.abs(u_lib)))
     k, ln, w, wi, f = min(t_kernel), min(t_lean), min(t_whole), min(t_whole_implicit), min(t_floor)
     n = res.n_steps
-    print(f"bench_floor: the vbikit demo crossing ({n} steps, {res.xi.shape[1]} modes, {inputs[26].size} contact "
+    print(f"bench_floor: the vbikit demo crossing ({n} steps, {res.xi.shape[1]} modes, {inputs[28].size} contact "
           f"points), {datetime.date.today()}, {os.cpu_count()} CPUs, thread CPU time, min of {args.repeat}")
     print(f"  first calls (numba cache load or compile): crossing {warm:.2f} s, floor {floor_warm:.2f} s wall")
     print(f"  kernel (kernels.implicit)      {k * 1e3:7.2f} ms   {evaluations / n:.2f} contact-law evaluations a step, "
@@ -427,6 +436,68 @@ def main() -> None:
             print(f"  {name:10s} {r['whole_ms']:9.2f} {r['floor_ms']:9.2f} {r['whole_ms'] / r['floor_ms']:12.1f}  "
                   f"{r['points'][0]}–{r['points'][1]} points, {r['calls']} calls for {r['crossings']} crossings",
                   flush=True)
+    if args.traffic_lanes > 0:
+        print("traffic events, kernel time a crossing: the event alone (kernels.lean) against its truck on 32 roads as "
+              f"lanes of one call (kernels.lean_lanes), min of {args.repeat}:")
+        for r in traffic_lanes(args.traffic_lanes, args.repeat):
+            print(f"  event {r['event']:3d} ({r['points']:2d} contact points, {r['steps']} steps): alone {r['alone_ms']:.2f} ms, "
+                  f"as a lane {r['lane_ms']:.2f} ms -> {r['alone_ms'] / r['lane_ms']:.2f}x ({r['handed_over']} of 32 lanes handed "
+                  "to kernels.implicit)", flush=True)
+
+
+def traffic_lanes(n_events: int, repeat: int) -> list[dict]:
+    """For the first ``n_events`` one-truck events of ``bench_traffic.py``'s stream: the thread CPU time
+    of the event's step loop alone (``kernels.lean`` inside ``simulate``, min of ``repeat``) and per lane
+    of its truck on 32 roads (the event's road scaled by 0.5 … 1.5) as lanes of one call
+    (``kernels.lean_lanes`` inside ``BatchSolver.run_many``, min of ``repeat`` / 32), and how many lanes
+    ``lean_lanes`` handed to the full kernel (their time is not counted: 0 keeps the comparison fair)."""
+    from dataclasses import replace
+
+    import numpy as np
+    from bench_traffic import _base, _stream
+
+    from vbikit.solve import integrators, kernels, simulate
+    from vbikit.solve.batch import BatchSolver
+    from vbikit.traffic.study import traffic_study
+
+    job = traffic_study(_stream(40 * n_events, 600.0), _base(0.01), batch_size=16)
+    events = [e for e in range(job.size) if len(job.events[e]) == 1][:n_events]
+    spent: dict[str, list[float]] = {"lean": [], "lean_lanes": []}
+    originals = {name: getattr(kernels, name) for name in spent}
+
+    def timed(name):
+        def kernel(*a, **k):
+            t0 = time.thread_time()
+            out = originals[name](*a, **k)
+            spent[name].append(time.thread_time() - t0)
+            return out
+        return kernel
+
+    out = []
+    for name in spent:
+        setattr(kernels, name, timed(name))
+    try:
+        for e in events:
+            crossing = job.crossing(e)
+            roads = [replace(crossing.road, z=crossing.road.z * s) for s in np.linspace(0.5, 1.5, 32)]
+            alone, lanes = [], []
+            for _ in range(repeat + 1):
+                spent["lean"].clear()
+                res = simulate(crossing)
+                alone.append(sum(spent["lean"]))
+            solver = BatchSolver(crossing)
+            before = integrators.LEAN_COUNTS["lanes_fallback"]
+            for _ in range(repeat + 1):
+                spent["lean_lanes"].clear()
+                solver.run_many(roads)
+                lanes.append(sum(spent["lean_lanes"]) / len(roads))
+            out.append({"event": e, "points": int(crossing.point_vehicle.size), "steps": res.n_steps,
+                        "alone_ms": min(alone[1:]) * 1e3, "lane_ms": min(lanes[1:]) * 1e3,
+                        "handed_over": (integrators.LEAN_COUNTS["lanes_fallback"] - before) // (repeat + 1)})
+    finally:
+        for name, fn in originals.items():
+            setattr(kernels, name, fn)
+    return out
 
 
 def _lanes(crossing, repeat: int) -> tuple[float, float, int]:
