@@ -73,6 +73,8 @@ def check(ds) -> dict[str, Any]:
         "largest_refinement_bound": float(finite.max()) if finite.size else math.nan,
         # the governing peak at the sweep's highest speed: the response may still rise beyond it
         "at_top_speed": bool(speed >= float(ds.speed.values.max()) * (1 - 1e-12)),
+        # … or at its lowest: the response may still rise below it (a resonance just under the sweep)
+        "at_bottom_speed": bool(speed <= float(ds.speed.values.min()) * (1 + 1e-12)),
         **refinement_verdict(change, bound, tolerance)}}
     irr = ds["phi_irregularity"].values
     for kind in ("moment", "shear"):
@@ -275,7 +277,9 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {speed_words(acc['speed'])}) against "
         f"{acc['limit']:g} m/s² ({a['track']} track): {'PASS' if acc['passes'] else 'FAIL'} ({100 * acc['ratio']:.0f} % of the limit)"
         + ("; the peak is at the sweep's highest speed, where the response is still rising: it would be higher "
-           "just above the sweep (the nearest resonance below)" if acc.get("at_top_speed") else ""),
+           "just above the sweep (resonance speeds listed below)" if acc.get("at_top_speed") else "")
+        + ("; the peak is at the sweep's lowest speed, where the response is still rising towards lower speeds: it "
+           "would be higher just below the sweep (resonance speeds listed below)" if acc.get("at_bottom_speed") else ""),
     ]
     pts = acc.get("points")
     if pts:
