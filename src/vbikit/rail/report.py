@@ -14,7 +14,7 @@ from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 #: flag codes that make a sweep not the EN 1991-2 check as run (the report's result line says so)
 STANDARD_CODES = ("hslm_range", "too_few_modes")
 #: the checks whose governing peak is refined over speed and states its grid error, with their names in the report
-GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the entry support",
+GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the supports",
                "deflection": "midspan deflection"}
 
 
@@ -288,7 +288,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                      f"{100 * pts['error']:.2f} % lower)")
     for kind in ("moment", "shear"):
         c = checks[kind]
-        si, where = ("N m", "midspan") if kind == "moment" else ("N", "entry support")
+        si, where = ("N m", "midspan") if kind == "moment" else ("N", "supports")
         lines.append(f"{kind} at the {where}: (1 + phi'dyn + phi''/2) x train = {_effect_words(c['dynamic_design'], si)} "
                      f"({c['train']} at {speed_words(c['speed'])}, phi'dyn = {c['phi_dyn']:.3f}, phi'' = "
                      f"{c['phi_irregularity']:.3f}) vs Phi x alpha x LM71 = {_effect_words(c['lm71_design'], si)} (Phi = "
