@@ -247,3 +247,19 @@ def test_the_light_cart_is_not_flagged_for_its_mass(tmp_path):
     ds = run_driveby(parse_driveby(_example(sweep={"speed": [5.0]}), EXAMPLE.parent), tmp_path, figures=False)
     assert 0 < float(ds["interaction_shift_hz"][0]) < 0.05 * float(ds["resolution_hz"][0])
     assert bool(ds["identified_frequency_reliable"][0])
+
+
+def test_the_report_gives_the_noise_added_also_for_an_snr(tmp_path):
+    """A sensor with noise_snr_db = 20 (noise rms = rms(signal) / 10): the report's noise column gave the
+    label noise_rms, 0, as for a noise-free pass; it gives the noise added, noise_std, which the record
+    itself bounds: rms(record)² = rms(signal)² + σ² = σ² (1 + 10^(SNR/10))."""
+    data = _example(sweep={"speed": [5.0]})
+    data["sensors"][0]["noise_snr_db"] = 20.0
+    ds = run_driveby(parse_driveby(data, EXAMPLE.parent), tmp_path, figures=False)
+    sigma = float(ds["noise_std"].values[0, 0])
+    record = ds["sensor_history"].values[0, 0]
+    record = record[np.isfinite(record)]
+    assert sigma == pytest.approx(np.sqrt(np.mean(record**2) / (1 + 10 ** 2.0)), rel=0.05)
+    assert float(ds["noise_rms"][0]) == 0.0
+    row = next(x for x in (tmp_path / "driveby-report.txt").read_text().splitlines() if x.startswith("   0  "))
+    assert row.split()[5] == f"{sigma:.3g}"

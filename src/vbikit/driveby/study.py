@@ -754,7 +754,8 @@ LABEL_ATTRS = {
     "vehicle": ("", "the instrumented vehicle: index into the fleet coordinate (the [[fleet]] names; −1: one [vehicle])"),
     "draw_index": ("1", "the key of the pass's draw (SeedSequence(seed, spawn_key=(draw_index,))); the vehicles of one "
                         "pass of fleet = \"all\" share it"),
-    "noise_rms": ("sensor unit", "standard deviation of the sensors' added noise"),
+    "noise_rms": ("sensor unit", "noise_rms set for the sensors (the sweep's, else the first sensor's; 0 where a "
+                                  "sensor's noise is given as an SNR, noise_snr_db): the noise added is noise_std"),
 }
 
 
