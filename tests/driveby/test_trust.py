@@ -216,3 +216,50 @@ def test_the_report_says_the_curvature_change_does_not_locate_damage(tmp_path):
     assert f"(*) the largest curvature change's position is {CURVATURE_LOCATION_CAVEAT}" in text
     assert "not a damage location" in CURVATURE_LOCATION_CAVEAT
     assert CURVATURE_LOCATION_CAVEAT in ds["curvature_change_x"].attrs["long_name"]
+
+
+def test_a_heavy_cart_that_shifts_the_bridge_frequency_is_flagged(tmp_path):
+    """A 6 t cart (mass ratio 0.05) on the example's 25 m, 120 t span at 3 m/s: the pass measures the
+    bridge carrying the cart, +1.8 % above the bridge alone (the coupled simulation), reliable and,
+    over three passes, "confirmed" on main.  Independent bound: the sprung mass frozen at midspan
+    on the first mode (modal mass m L / 2, so μ = 2 m_v / (m L)) has the coupled frequency
+    ω² = ½ [ω_b² + (1 + μ) ω_v² + √((ω_b² + (1 + μ) ω_v²)² − 4 ω_b² ω_v²)], the largest shift along the
+    pass; the estimate (weighted along the pass) lies below it and within 15 % of the simulated
+    shift, above half a resolution: flagged."""
+    data = _example(sweep={"speed": [3.0]})
+    data["vehicle"].update(mass=6000.0)
+    ds = run_driveby(parse_driveby(data, EXAMPLE.parent), tmp_path, figures=False)
+    f_b, f_id = float(ds["bridge_frequency_hz"][0]), float(ds["identified_frequency_hz"][0])
+    simulated = f_id - f_b
+    assert simulated / f_b == pytest.approx(0.018, abs=0.002)
+    wb, wv, mu = 2 * math.pi * f_b, 2 * math.pi * 3.2, 2 * 6000.0 / (4800.0 * 25.0)
+    s = wb**2 + (1 + mu) * wv**2
+    upper = math.sqrt(0.5 * (s + math.sqrt(s * s - 4 * wb**2 * wv**2))) / (2 * math.pi) - f_b
+    estimate = float(ds["interaction_shift_hz"][0])
+    assert 0 < estimate < upper and estimate == pytest.approx(simulated, rel=0.15)
+    assert estimate > 0.5 * float(ds["resolution_hz"][0])
+    assert not bool(ds["identified_frequency_reliable"][0])
+    assert "the vehicle's mass shifts bridge mode 1" in str(ds["identified_frequency_reason"].values[0])
+
+
+def test_the_light_cart_is_not_flagged_for_its_mass(tmp_path):
+    # the example's 120 kg cart (mass ratio 1e-3): about +0.002 Hz, 0.01 resolutions at 5 m/s
+    ds = run_driveby(parse_driveby(_example(sweep={"speed": [5.0]}), EXAMPLE.parent), tmp_path, figures=False)
+    assert 0 < float(ds["interaction_shift_hz"][0]) < 0.05 * float(ds["resolution_hz"][0])
+    assert bool(ds["identified_frequency_reliable"][0])
+
+
+def test_the_report_gives_the_noise_added_also_for_an_snr(tmp_path):
+    """A sensor with noise_snr_db = 20 (noise rms = rms(signal) / 10): the report's noise column gave the
+    label noise_rms, 0, as for a noise-free pass; it gives the noise added, noise_std, which the record
+    itself bounds: rms(record)² = rms(signal)² + σ² = σ² (1 + 10^(SNR/10))."""
+    data = _example(sweep={"speed": [5.0]})
+    data["sensors"][0]["noise_snr_db"] = 20.0
+    ds = run_driveby(parse_driveby(data, EXAMPLE.parent), tmp_path, figures=False)
+    sigma = float(ds["noise_std"].values[0, 0])
+    record = ds["sensor_history"].values[0, 0]
+    record = record[np.isfinite(record)]
+    assert sigma == pytest.approx(np.sqrt(np.mean(record**2) / (1 + 10 ** 2.0)), rel=0.05)
+    assert float(ds["noise_rms"][0]) == 0.0
+    row = next(x for x in (tmp_path / "driveby-report.txt").read_text().splitlines() if x.startswith("   0  "))
+    assert row.split()[5] == f"{sigma:.3g}"

@@ -94,7 +94,7 @@ def test_the_grid_error_line_says_what_the_halvings_did_without_repeating_a_numb
     assert "50.000" not in line and line.count("50.00") == 1
     assert ("midspan moment after 2 halvings the sweep's grid 87.50 % low, the last halving changed it 75.000 % "
             "(error bound 21.875 %)") in line
-    assert "shear at the entry support not refined" in line
+    assert "shear at the supports not refined" in line
 
 
 def test_every_check_states_its_tolerance_and_whether_its_refinement_converged():

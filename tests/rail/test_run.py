@@ -244,6 +244,18 @@ def test_a_peak_at_the_top_of_the_sweep_is_said_to_be_still_rising():
     assert "still rising" not in across.report
 
 
+
+def test_a_peak_at_the_bottom_of_the_sweep_is_said_to_be_still_rising():
+    """HSLM-A1 on the 20 m span: n0 D / 2 = 226.1 km/h (n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz, D = 18 m).
+    Swept 230 … 270 km/h, just above that resonance, the largest deck acceleration is at the lowest
+    speed, climbing towards it: the report and rail-summary.json say so, as they do at the top speed
+    (on main neither said anything)."""
+    result = run_rail(spec(speeds={"min": 230.0, "max": 270.0, "step": 10.0}), figures=False)
+    acc = result.checks["acceleration"]
+    assert acc["at_bottom_speed"] and not acc["at_top_speed"] and 3.6 * acc["speed"] == pytest.approx(230.0)
+    assert "the peak is at the sweep's lowest speed, where the response is still rising towards lower speeds" in result.report
+
+
 def test_the_governing_acceleration_is_read_between_the_deck_points_too():
     """A 60 m span under HSLM-A1 at its first resonance n0 D (n0 = (π/(2 L²)) √(EI/m) = 3.98 Hz,
     258 km/h): the higher modes' antisymmetric parts give the acceleration envelope a corner at

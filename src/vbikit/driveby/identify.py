@@ -132,7 +132,8 @@ def default_band(speed: float, span: float, vehicle_hz: ArrayLike = (), f_max: f
 def identify_frequency(signal: ArrayLike, fs: float, speed: float, span: float, band: Optional[tuple[float, float]] = None,
                        method: str = "periodogram", window: str = "hann", nperseg: Optional[int] = None,
                        bridge_hz: ArrayLike = (), vehicle_hz: ArrayLike = (), exclude_vehicle: bool = False,
-                       vehicle_zeta: ArrayLike = (), envelope_offset: float = 0.0) -> Identification:
+                       vehicle_zeta: ArrayLike = (), envelope_offset: float = 0.0,
+                       interaction_hz: float = 0.0) -> Identification:
     """The highest spectral peak of ``signal`` (sampled at ``fs`` [Hz], a record of a pass at
     ``speed`` [m/s] over a span ``span`` [m]) inside ``band`` [Hz] (default ``default_band``),
     with the expected frequencies labelled (``frequency_labels``; the true bridge and vehicle
@@ -141,13 +142,15 @@ def identify_frequency(signal: ArrayLike, fs: float, speed: float, span: float, 
     them).  The peak's label and quality (``vbikit.driveby.quality.peak_quality``) use
     ``bridge_hz`` (the model's bridge frequencies, for the label only), ``vehicle_hz`` and the
     vehicle's damping ratios ``vehicle_zeta`` (default 0), and ``envelope_offset``, the first
-    mode's ``quality.mode_envelope_offset`` along the path [1/T] (several spans: above 0.5, unreliable)."""
+    mode's ``quality.mode_envelope_offset`` along the path [1/T] (several spans: above 0.5, unreliable),
+    and ``interaction_hz``, its shift by the vehicle's mass (``quality.interaction_shift``)."""
     spec = spectrum(signal, fs, method, window, nperseg)
     band = band or default_band(speed, span, vehicle_hz, 0.45 * fs)
     band = (float(band[0]), float(band[1]))
     f = peak(spec, band, vehicle_hz if exclude_vehicle else ())
     quality = peak_quality(spec.frequency, spec.psd, f, spec.resolution_hz, band, speed, span, window,
-                           bridge_hz, vehicle_hz, vehicle_zeta, envelope_offset=envelope_offset)
+                           bridge_hz, vehicle_hz, vehicle_zeta, envelope_offset=envelope_offset,
+                           interaction_hz=interaction_hz)
     return Identification(f, spec.resolution_hz, band, spec, frequency_labels(speed, span, bridge_hz, vehicle_hz), quality)
 
 

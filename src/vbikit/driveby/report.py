@@ -125,9 +125,15 @@ def report_text(ds) -> str:
              "", "case  speed[m/s] road seed severity noise   f_true[Hz] f_ident[Hz] error[%] resolution[Hz] "
                  "label      SNR[dB] reliable"]
     reliable = np.asarray(c["identified_frequency_reliable"], bool)
+    # the noise column: the standard deviation added to the identification sensor's record (noise_std), also
+    # where its noise is given as an SNR (noise_rms then 0)
+    sensors = [str(x) for x in ds["sensor"].values] if "sensor" in ds.coords else []
+    ident = str(ds.attrs.get("identification_sensor", ""))
+    noise = (np.asarray(c["noise_std"], float)[:, sensors.index(ident)] if "noise_std" in ds and ident in sensors
+             else np.asarray(c["noise_rms"], float))
     for i in range(ds.sizes["case"]):
         lines.append(f"{i:4d}  {float(c['speed'][i]):9.2f} {str(c['road_class'][i]):>4} {int(c['road_seed'][i]):4d} "
-                     f"{float(c['damage_severity'][i]):8.3f} {float(c['noise_rms'][i]):6.3g} "
+                     f"{float(c['damage_severity'][i]):8.3f} {float(noise[i]):6.3g} "
                      f"{float(c['bridge_frequency_hz'][i]):11.4f} {float(c['identified_frequency_hz'][i]):11.4f} "
                      f"{err[i]:8.2f} {float(c['resolution_hz'][i]):10.3f}     "
                      f"{str(c['identified_frequency_label'][i]):<10} {float(c['peak_snr_db'][i]):6.1f}  "

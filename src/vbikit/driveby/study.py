@@ -27,7 +27,7 @@ from vbikit.analysis.checks import dataset_flag_attrs
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequency, mode_shape_squares,
                                      residual_response, shape_change)
-from vbikit.driveby.quality import mode_envelope_offset, unconverged_pass_flags, vehicle_modes
+from vbikit.driveby.quality import interaction_shift, mode_envelope_offset, unconverged_pass_flags, vehicle_modes
 from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitude_spectrum, contact_truth, measure,
                                     sensor_row)
 from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError, check_dataset_format
@@ -68,6 +68,9 @@ CASE_OUTPUTS: dict[str, tuple[str, str]] = {
     "band_edge_limit": ("1", "flagged below: one main-lobe half-width of the window, in units of 1/T"),
     "speed_correction_hz": ("Hz", "correction applied to the peak for the speed: 0, the shifted pair f_b ± v/(2L) "
                                   "is 1/T apart and merges into one lobe centred on f_b"),
+    "interaction_shift_hz": ("Hz", "estimated shift of the bridge's first frequency by the vehicle's mass while it is on "
+                                   "the deck (the frozen mode-and-vehicle system along the pass, weighted by phi^2 and "
+                                   "the window; flagged above half a resolution 1/T)"),
     "sensors_identified": ("1", "other acceleration sensors of the vehicle whose own identification is reliable"),
     "sensors_agree": ("1", "of those, the sensors within the resolution 1/T of this identification (one that is not "
                            "makes it unreliable)"),
@@ -530,6 +533,9 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     band = spec.band or (4.0 * speed / bridge.span, min(BAND_MAX_HZ, 0.45 * spec.sampling.rate))
     f_v, zeta_v = vehicle_modes(vehicle)
     envelope_offset = first_mode_envelope_offset(bridge, crossing.vehicles[0].lateral_offset, spec.window)
+    lateral = crossing.vehicles[0].lateral_offset
+    interaction_hz = interaction_shift(bridge, vehicle, float(bridge.default_lateral_offset if lateral is None else lateral),
+                                       spec.window)
 
     def record(m, j: int) -> NDArray:
         signal = m.values[j]
@@ -543,7 +549,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
     def identify(signal: NDArray, use: NDArray):
         return identify_frequency(signal[use], spec.sampling.rate, speed, bridge.span, band, spec.spectrum, spec.window,
                                   bridge_hz=bridge.frequencies_hz, vehicle_hz=f_v, exclude_vehicle=spec.exclude_vehicle,
-                                  vehicle_zeta=zeta_v, envelope_offset=envelope_offset)
+                                  vehicle_zeta=zeta_v, envelope_offset=envelope_offset, interaction_hz=interaction_hz)
 
     def observe(res):
         m = measure(res, logged, spec.sampling, seed=derive_seed(spec.seed, index))
@@ -611,6 +617,7 @@ def run_case(spec: DriveBy, index: int) -> dict[str, Any]:
         "peak_rival_db": q.rival_db,
         "vehicle_distance": q.vehicle_distance, "vehicle_distance_limit": q.vehicle_limit,
         "band_edge_distance": q.edge_distance, "band_edge_limit": q.edge_limit, "speed_correction_hz": q.speed_correction_hz,
+        "interaction_shift_hz": q.interaction_hz,
         "band_low_hz": ident.band[0], "band_high_hz": ident.band[1],
         "sensors_identified": float(agreement[0]), "sensors_agree": float(agreement[1]),
         "identified_frequency_label": q.label, "identified_frequency_reason": "; ".join(r for r in (q.reason, agreement[2]) if r),
@@ -747,7 +754,8 @@ LABEL_ATTRS = {
     "vehicle": ("", "the instrumented vehicle: index into the fleet coordinate (the [[fleet]] names; −1: one [vehicle])"),
     "draw_index": ("1", "the key of the pass's draw (SeedSequence(seed, spawn_key=(draw_index,))); the vehicles of one "
                         "pass of fleet = \"all\" share it"),
-    "noise_rms": ("sensor unit", "standard deviation of the sensors' added noise"),
+    "noise_rms": ("sensor unit", "noise_rms set for the sensors (the sweep's, else the first sensor's; 0 where a "
+                                  "sensor's noise is given as an SNR, noise_snr_db): the noise added is noise_std"),
 }
 
 

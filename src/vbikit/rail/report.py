@@ -14,7 +14,7 @@ from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 #: flag codes that make a sweep not the EN 1991-2 check as run (the report's result line says so)
 STANDARD_CODES = ("hslm_range", "too_few_modes")
 #: the checks whose governing peak is refined over speed and states its grid error, with their names in the report
-GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the entry support",
+GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the supports",
                "deflection": "midspan deflection"}
 
 
@@ -73,6 +73,8 @@ def check(ds) -> dict[str, Any]:
         "largest_refinement_bound": float(finite.max()) if finite.size else math.nan,
         # the governing peak at the sweep's highest speed: the response may still rise beyond it
         "at_top_speed": bool(speed >= float(ds.speed.values.max()) * (1 - 1e-12)),
+        # … or at its lowest: the response may still rise below it (a resonance just under the sweep)
+        "at_bottom_speed": bool(speed <= float(ds.speed.values.min()) * (1 + 1e-12)),
         **refinement_verdict(change, bound, tolerance)}}
     irr = ds["phi_irregularity"].values
     for kind in ("moment", "shear"):
@@ -275,7 +277,9 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {speed_words(acc['speed'])}) against "
         f"{acc['limit']:g} m/s² ({a['track']} track): {'PASS' if acc['passes'] else 'FAIL'} ({100 * acc['ratio']:.0f} % of the limit)"
         + ("; the peak is at the sweep's highest speed, where the response is still rising: it would be higher "
-           "just above the sweep (the nearest resonance below)" if acc.get("at_top_speed") else ""),
+           "just above the sweep (resonance speeds listed below)" if acc.get("at_top_speed") else "")
+        + ("; the peak is at the sweep's lowest speed, where the response is still rising towards lower speeds: it "
+           "would be higher just below the sweep (resonance speeds listed below)" if acc.get("at_bottom_speed") else ""),
     ]
     pts = acc.get("points")
     if pts:
@@ -284,7 +288,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
                      f"{100 * pts['error']:.2f} % lower)")
     for kind in ("moment", "shear"):
         c = checks[kind]
-        si, where = ("N m", "midspan") if kind == "moment" else ("N", "entry support")
+        si, where = ("N m", "midspan") if kind == "moment" else ("N", "supports")
         lines.append(f"{kind} at the {where}: (1 + phi'dyn + phi''/2) x train = {_effect_words(c['dynamic_design'], si)} "
                      f"({c['train']} at {speed_words(c['speed'])}, phi'dyn = {c['phi_dyn']:.3f}, phi'' = "
                      f"{c['phi_irregularity']:.3f}) vs Phi x alpha x LM71 = {_effect_words(c['lm71_design'], si)} (Phi = "

@@ -7,7 +7,7 @@ Checks (``vbikit.rail.codes`` for the rules and their clauses):
   span read at ``run.points`` equally spaced points), against 3.5 m/s² (ballasted) or 5 m/s²
   (direct fastening);
 * φ'dyn = max|y_dyn| / max|y_stat| − 1 of midspan deflection, midspan moment and shear at the
-  entry support, per train and speed (static: the same train at crawl speed; deflection within the
+  supports (the larger of the entry's and the exit's), per train and speed (static: the same train at crawl speed; deflection within the
   retained modes, moment and shear with the full static influence line);
 * (1 + φ'dyn + φ''/2) × the train's static effect — the largest over trains and speeds — against
   Φ × α × LM71 (Φ2 or Φ3 with L_Φ = the span, EN 1991-2 Table 6.2 for a simply supported main
@@ -229,8 +229,11 @@ def plan_rail(source: Any) -> RailPlan:
         trains = [rail_distributed(t, spec.trains.sleeper_spacing) for t in originals]
     n0 = float(bridge.frequencies_hz[0])
     v_min, v_max = spec.speeds.min * KMH, spec.speeds.top * KMH
-    res = {t.name: train_resonances(t, n0, RESONANCE_ORDERS) for t in trains}
-    waves = {t.name: excitation_wavelength(t) for t in trains}
+    # the resonance wavelength D from the axles as given: the rail's distribution (P/4, P/2, P/4 at ±a) adds
+    # spacings D − a, D + a that also repeat, and the finite train's spectrum is larger at one of them
+    # (an ICE 3 table with a = 0.6 m: 24.175 m for the car length 24.775 m)
+    res = {t.name: train_resonances(o, n0, RESONANCE_ORDERS) for t, o in zip(trains, originals)}
+    waves = {t.name: excitation_wavelength(o) for t, o in zip(trains, originals)}
     all_res = np.concatenate([r[np.isfinite(r)] for r in res.values()] + [np.zeros(0)])
     fine = spec.speeds.fine_step * KMH if spec.speeds.fine_step else None
     speeds = speed_grid(v_min, v_max, spec.speeds.step * KMH, all_res, fine, spec.speeds.fine_width * KMH,
@@ -238,7 +241,10 @@ def plan_rail(source: Any) -> RailPlan:
     span = float(bridge.span)
     points = np.unique(np.append(np.linspace(0.0, span, spec.run.points + 2)[1:-1], 0.5 * span))  # midspan always
     sections = moment_sections(span, MOMENT_SECTIONS, np.asarray(bridge.support_x, float))
-    effects = (("moment", 0.5 * span), ("shear", 0.0), *(("moment", float(x)) for x in sections if abs(x - 0.5 * span) > 1e-9 * span))
+    # the shear at both supports: the exit's (the last effect) is the larger at a resonance (HSLM-A1 on the
+    # example's span at n0 D / 2: 815 kN against the entry's 750 kN), the check takes the larger of the two
+    effects = (("moment", 0.5 * span), ("shear", 0.0), *(("moment", float(x)) for x in sections if abs(x - 0.5 * span) > 1e-9 * span),
+               ("shear", span))
     dx = default_dx(bridge, float(speeds.min()), spec.run.steps_per_period)
     fv = 1.0 / n0
     refine = np.full(2 * MAX_HALVINGS * MAX_PEAKS, float(speeds.max()))  # the most peak-refinement speeds per train
@@ -416,7 +422,7 @@ def time_sampling_variables(samp: dict[str, np.ndarray], mid: int, col: np.ndarr
     outputs = {"deck_acceleration": (("train", "speed", "point"), "acceleration", slice(None), "deck acceleration at each point"),
                "deflection": (("train", "speed"), "displacement", mid, "midspan deflection"),
                "moment": (("train", "speed"), "effect", 0, "midspan bending moment"),
-               "shear": (("train", "speed"), "effect", 1, "shear at the entry support"),
+               "shear": (("train", "speed"), "effect", 1, "shear at the supports"),
                "moment_along": (("train", "speed", "section"), "effect", col, "bending moment at each section")}
     out = {}
     for name, (dims, source, index, words) in outputs.items():
@@ -424,6 +430,24 @@ def time_sampling_variables(samp: dict[str, np.ndarray], mid: int, col: np.ndarr
             values = samp[f"{source}_{kind}"][:, :, index]
             out[f"{name}_sampling_{kind}"] = xr.Variable(dims, values, {"units": "1", "long_name": text.format(words)})
     return out
+
+
+def support_shears(dyn_eff: np.ndarray, st_eff: np.ndarray, samp: dict[str, np.ndarray], sections,
+                   span: float) -> tuple[np.ndarray, np.ndarray]:
+    """The shear at the supports from the sweep's effects 1 (entry) and the last (exit, when swept: one
+    more than the midspan moment, the shear and the moments off midspan): column 1 of ``dyn_eff``,
+    ``st_eff`` and the effect's sampling fields in ``samp`` becomes the larger of the two (in place);
+    returns the exit's dynamic (train, speed) and static (train) peaks (NaN when not swept)."""
+    n_sec = 0 if sections is None else sum(abs(float(x) - 0.5 * span) > 1e-9 * span for x in sections)
+    if dyn_eff.shape[2] != 3 + n_sec:  # no exit shear swept
+        return np.full(dyn_eff.shape[:2], np.nan), np.full(st_eff.shape[0], np.nan)
+    exit_dyn, exit_st = dyn_eff[:, :, -1].copy(), st_eff[:, -1].copy()
+    wins = exit_dyn > dyn_eff[:, :, 1]
+    for key in ("effect_change", "effect_bound"):
+        samp[key][:, :, 1] = np.where(wins, samp[key][:, :, -1], samp[key][:, :, 1])
+    dyn_eff[:, :, 1] = np.maximum(dyn_eff[:, :, 1], exit_dyn)
+    st_eff[:, 1] = np.maximum(st_eff[:, 1], exit_st)
+    return exit_dyn, exit_st
 
 
 def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, waves=None, refined=None, sections=None,
@@ -480,6 +504,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
     samp = {f"{what}_{kind}": sampling(f"{what}_sampling_{kind}", n)
             for what, n in (("acceleration", points.size), ("displacement", points.size), ("effect", dyn_eff.shape[2]))
             for kind in ("change", "bound")}
+    shear_exit, static_shear_exit = support_shears(dyn_eff, st_eff, samp, sections, span)
     peaks = [r for r in (refined or []) if r is not None]
     n_pk = max([r.speed.size for r in peaks] + [0])
     pk = {key: np.full((len(names), n_pk), np.nan) for key in ("grid_speed", "grid_value", "speed", "value", "bound", "last_change", "step",
@@ -503,11 +528,14 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "static_deflection": var(("train",), st_disp, "m", "peak static midspan deflection (retained modes)"),
         "max_moment": var(("train", "speed"), dyn_eff[:, :, 0], "N m", "peak midspan bending moment (mode acceleration)"),
         "static_moment": var(("train",), st_eff[:, 0], "N m", "peak static midspan bending moment"),
-        "max_shear": var(("train", "speed"), dyn_eff[:, :, 1], "N", "peak shear at the entry support (mode acceleration)"),
-        "static_shear": var(("train",), st_eff[:, 1], "N", "peak static shear at the entry support"),
+        "max_shear": var(("train", "speed"), dyn_eff[:, :, 1], "N",
+                         "peak shear at the supports, the larger of the entry's and the exit's (mode acceleration)"),
+        "static_shear": var(("train",), st_eff[:, 1], "N", "peak static shear at the supports (the larger of the two)"),
+        "max_shear_exit": var(("train", "speed"), shear_exit, "N", "peak shear at the exit support (mode acceleration)"),
+        "static_shear_exit": var(("train",), static_shear_exit, "N", "peak static shear at the exit support"),
         "phi_dyn_deflection": var(("train", "speed"), disp_pts[:, :, mid] / st_disp[:, None] - 1, "1", "phi'dyn of midspan deflection"),
         "phi_dyn_moment": var(("train", "speed"), dyn_eff[:, :, 0] / st_eff[:, :1] - 1, "1", "phi'dyn of midspan moment"),
-        "phi_dyn_shear": var(("train", "speed"), dyn_eff[:, :, 1] / st_eff[:, 1:2] - 1, "1", "phi'dyn of shear at the entry support"),
+        "phi_dyn_shear": var(("train", "speed"), dyn_eff[:, :, 1] / st_eff[:, 1:2] - 1, "1", "phi'dyn of shear at the supports"),
         "phi_irregularity": var(("speed",), phi_irr, "1", "phi'' of EN 1991-2 Annex C"),
         "resonance_speed": var(("train", "order"), res_arr, "m s-1",
                                "resonance speed n0 D / i (every order i, inside the sweep or not: resonance_in_sweep)"),
@@ -538,7 +566,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         "peak_halvings": var(("train", "peak"), pk["halvings"], "1", "halvings of the speed step made around the refined peak (NaN: not refined)"),
         "acceleration_limit": var((), limit, "m s-2", f"EN 1990 A2.4.4.2.1 limit, {b.track} track"),
         "lm71_moment": var((), phi_lm * lm_m, "N m", "Phi x alpha x LM71 midspan moment"),
-        "lm71_shear": var((), phi_lm * lm_v, "N", "Phi x alpha x LM71 shear at the entry support"),
+        "lm71_shear": var((), phi_lm * lm_v, "N", "Phi x alpha x LM71 shear at a support"),
         "frequency": var(("mode",), bridge.frequencies_hz, "Hz", "natural frequency"),
         "unconverged_steps": var(("train", "speed"), np.stack([np.zeros(speeds.size) if e.unconverged_steps is None
                                                                else e.unconverged_steps for e in envs]),
@@ -664,7 +692,7 @@ def refine_design_checks(ds, checks: dict[str, Any], setup: SweepSetup, trains: 
 
 def _peak_evaluator(setup: SweepSetup, train: Train, kind: str, span: float) -> Callable:
     """speeds [m/s] → the train's peak of ``kind`` at each (the midspan moment or the shear at the
-    entry support [N m, N]: the sweep's effects 0 and 1; the midspan deflection [m])."""
+    supports [N m, N]: the sweep's effects 0, and 1 with the last; the midspan deflection [m])."""
     run = _peak_sweep(setup, train, kind, span)
     return lambda v: run(v)[0]
 
@@ -680,13 +708,17 @@ def _peak_sweep(setup: SweepSetup, train: Train, kind: str, span: float) -> Call
     else:
         e = ("moment", "shear").index(kind)
         points, effects = setup.points[:1], setup.effects[e:e + 1]
+        if kind == "shear" and setup.effect_specs[-1] == ("shear", span):  # the exit's too: the larger counts
+            effects = (*effects, setup.effects[-1])
 
     def evaluate(v):
         env = moving_load_sweep(setup.bridge, train.axle_positions, train.axle_loads, v, points, effects, dx=setup.dx,
                                 free_vibration=setup.free_vibration, y=setup.y, max_steps=setup.max_steps)
         if kind == "deflection":
             return env.max_displacement[:, 0], env.displacement_sampling_change[:, 0], env.displacement_sampling_bound[:, 0]
-        return env.max_effect[:, 0], env.effect_sampling_change[:, 0], env.effect_sampling_bound[:, 0]
+        k = np.argmax(env.max_effect, axis=1)  # the larger of the entry's and the exit's shear (one effect else)
+        rows = np.arange(k.size)
+        return env.max_effect[rows, k], env.effect_sampling_change[rows, k], env.effect_sampling_bound[rows, k]
 
     return evaluate
 
