@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from vbikit._files import shared_spec
 from vbikit.lifetime.screening import CHECK_FRACTION
 
 #: the IM statistics stored with the ends of their 95 % confidence intervals (``NAME_ci_lower``, ``NAME_ci_upper``)
@@ -327,7 +328,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "title": spec.name or "vbikit lifetime",
         "vbikit_version": __version__,
         "Conventions": "CF-1.8",
-        "lifetime": spec.model_dump_json(),
+        # the lifetime file as validated, an absolute path in it (traffic.records, base, a modes or profile
+        # file) by its file name only: a shared dataset does not carry the machine's folders
+        "lifetime": json.dumps(shared_spec(spec.model_dump(mode="json")), separators=(",", ":")),
         "records": prep.info.get("records", ""),
         "n_days": n_days,
         "days_per_year": spec.days_per_year,
