@@ -270,14 +270,39 @@ class Study:
     def size(self) -> int:
         return int(np.prod(self.shape, dtype=np.int64)) if self.axes else 1
 
+    def input_sha256(self) -> dict[str, str]:
+        """The SHA-256 of each file the study's scenarios read (``vbikit.scenario.schema.INPUT_FILE_KEYS``:
+        the base's, by key, and an axis's over such a key, by ``key[i]``); read once per study."""
+        kept = self.__dict__.get("_input_sha256")
+        if kept is None:
+            from vbikit._files import input_digests
+            from vbikit.scenario.schema import INPUT_FILE_KEYS, input_paths
+
+            files: dict[str, Any] = dict(input_paths(self.base, self.base_dir))
+            for a in self.axes:
+                if a.key in INPUT_FILE_KEYS:
+                    files |= {f"{a.key}[{i}]": self.base_dir / str(v) for i, v in enumerate(a.values)}
+            kept = input_digests(files)
+            object.__setattr__(self, "_input_sha256", kept)  # (the study is immutable: its files read once)
+        return kept
+
     def to_json(self) -> str:
         """Canonical JSON of the resolved study (stored in the dataset attributes and used to
-        recognise the same study on restart)."""
+        recognise the same study on restart).  No folder: a file the scenarios read is there by its
+        content (``input_sha256``; absent when they read none) and an absolute path by its file name
+        (``vbikit._files.shared_spec``), so a shared dataset names no folder of the machine it ran on and a
+        changed modes or profile file is not taken for the same study."""
+        from vbikit._files import shared_spec
+
         spec = {
             "name": self.name, "seed": self.seed, "batch_size": self.batch_size, "histories": self.histories,
-            "base": self.base,
-            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else list(a.values)) for a in self.axes},
+            "base": shared_spec(self.base),
+            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else shared_spec(list(a.values)))
+                     for a in self.axes},
         }
+        digests = self.input_sha256()
+        if digests:  # absent: no input file (studies and datasets written before the key)
+            spec["input_sha256"] = digests
         if self.outputs is not None:  # absent: the whole catalogue (studies and datasets written before the key)
             spec["outputs"] = list(self.outputs)
         if self.method != STUDY_METHODS[0]:  # absent: Monte Carlo (studies and datasets written before the key)
