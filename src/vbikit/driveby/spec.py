@@ -165,11 +165,20 @@ class DriveBy:
         folder — the files the scenario reads by their content (``input_sha256``; absent when it reads
         none), an absolute path in it by its file name (``vbikit._files.shared_spec``) — so a moved project
         folder resumes, a changed modes or profile file does not, and a shared dataset names no folder."""
+        return self._identity(earlier=False)
+
+    def earlier_json(self) -> tuple[str, ...]:
+        """The identity as a dataset written before 2026-12-06 holds it (the folder, ``base_dir``, in place
+        of the files' content): such a finished dataset is still recognised (``vbikit.study.run``)."""
+        return (self._identity(earlier=True),)
+
+    def _identity(self, earlier: bool) -> str:
         from vbikit._files import shared_spec
 
-        digests = self.input_sha256()
+        digests = {} if earlier else self.input_sha256()
         return json.dumps({"kind": "vbikit driveby", "name": self.name, "seed": self.seed, "batch_size": self.batch_size,
-                           "scenario": shared_spec(self.scenario), "vehicle": self.vehicle,
+                           "scenario": self.scenario if earlier else shared_spec(self.scenario), "vehicle": self.vehicle,
+                           **({"base_dir": self.base_dir} if earlier else {}),
                            **({"input_sha256": digests} if digests else {}),
                            "sampling": [self.sampling.rate, self.sampling.filter_order, self.sampling.cutoff],
                            "sensors": [s.__dict__ for s in self.sensors], "method": self.method, "sensor": self.sensor,

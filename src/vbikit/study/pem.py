@@ -94,6 +94,9 @@ class PemStudy:
     def to_json(self) -> str:
         return self.study.to_json()
 
+    def earlier_json(self) -> tuple[str, ...]:
+        return self.study.earlier_json()
+
     def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
         return self.study.scenario_dict(index)
 

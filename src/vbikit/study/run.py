@@ -419,9 +419,11 @@ def _to_netcdf(ds, path: Path) -> None:
 def _open_complete(out: Path, study: Study):
     import xarray as xr
 
+    # the job's identity, and those a finished dataset of an earlier version holds for it (``earlier_json``)
+    known = {study.to_json(), *getattr(study, "earlier_json", tuple)()}
     try:
         with xr.open_dataset(out, engine="netcdf4") as ds:
-            if ds.attrs.get("study") == study.to_json():
+            if ds.attrs.get("study") in known:
                 return ds.load()
     except (OSError, ValueError):
         return None

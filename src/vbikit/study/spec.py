@@ -292,15 +292,26 @@ class Study:
         content (``input_sha256``; absent when they read none) and an absolute path by its file name
         (``vbikit._files.shared_spec``), so a shared dataset names no folder of the machine it ran on and a
         changed modes or profile file is not taken for the same study."""
+        return self._identity(earlier=False)
+
+    def earlier_json(self) -> tuple[str, ...]:
+        """The identity as a dataset written before 2026-12-06 holds it (the paths as given, no file's
+        content) when it differs from ``to_json``'s: such a finished dataset is still recognised
+        (``vbikit.study.run``), as it was then."""
+        text = self._identity(earlier=True)
+        return () if text == self.to_json() else (text,)
+
+    def _identity(self, earlier: bool) -> str:
         from vbikit._files import shared_spec
 
+        shared = (lambda v: v) if earlier else shared_spec
         spec = {
             "name": self.name, "seed": self.seed, "batch_size": self.batch_size, "histories": self.histories,
-            "base": shared_spec(self.base),
-            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else shared_spec(list(a.values)))
+            "base": shared(self.base),
+            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else shared(list(a.values)))
                      for a in self.axes},
         }
-        digests = self.input_sha256()
+        digests = {} if earlier else self.input_sha256()
         if digests:  # absent: no input file (studies and datasets written before the key)
             spec["input_sha256"] = digests
         if self.outputs is not None:  # absent: the whole catalogue (studies and datasets written before the key)

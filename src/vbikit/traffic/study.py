@@ -155,8 +155,18 @@ class TrafficStudy:
         inputs are identified by their content, so a moved project folder still resumes and a changed
         modes or profile file does not; an absolute path in the base is stored by its file name
         (``vbikit._files.shared_spec``), so a shared dataset does not carry the machine's folders."""
-        return json.dumps({"kind": "vbikit traffic", "name": self.name, "base": shared_spec(self.base),
-                           **({"input_sha256": dict(self.input_sha256)} if self.input_sha256 else {}),
+        return self._identity(earlier=False)
+
+    def earlier_json(self) -> tuple[str, ...]:
+        """The job's identity as a dataset written before 2026-12-06 holds it (the base scenario's folder,
+        ``base_dir``, in place of its files' content): such a finished dataset is still recognised
+        (``vbikit.study.run``), as it was then."""
+        return (self._identity(earlier=True),)
+
+    def _identity(self, earlier: bool) -> str:
+        where = {"base": self.base, "base_dir": self.base_dir} if earlier else \
+            {"base": shared_spec(self.base), **({"input_sha256": dict(self.input_sha256)} if self.input_sha256 else {})}
+        return json.dumps({"kind": "vbikit traffic", "name": self.name, **where,
                            "lanes": list(self.lanes), "seed": self.seed, "batch_size": self.batch_size,
                            "records_sha256": self._digest, "n_records": len(self.records),
                            **({"outputs": list(self.output_names)} if self.outputs is not None else {})},
