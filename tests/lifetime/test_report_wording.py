@@ -259,3 +259,17 @@ def test_an_older_dataset_counts_its_im_sample_from_its_events(facts):
     report = text_report(older)
     assert f"  w: IM of the random sample ({n - 1} of its {n} events with an IM): mean " in report
     assert "; events without an IM left out: w 1)" in report
+
+
+def test_an_event_without_an_im_is_no_small_static_reference():
+    """Four sampled events, two effects: effect 0 has IMs 0.1, NaN (a static peak of 0: R_dyn / 0), 0.3, 0.2 and
+    small static references at events 1 and 3; effect 1 all finite, none small.  By hand: n_im_sample 3 and 4;
+    n_small_static_sample 1 (event 3; event 1 has no IM to rest on anything) and 0 (before 2026-12-06: 2 —
+    the event without an IM counted as a small static reference as well as left out of the IM sample)."""
+    import numpy as np
+
+    from vbikit.lifetime.results import im_sample_counts
+
+    im = np.array([[0.1, 0.05], [np.nan, 0.1], [0.3, 0.2], [0.2, 0.0]])
+    small = np.array([[False, False], [True, False], [False, False], [True, False]])
+    assert im_sample_counts(im, small) == {"n_im_sample": [3, 4], "n_small_static_sample": [1, 0]}
