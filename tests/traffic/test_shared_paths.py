@@ -74,3 +74,36 @@ def test_an_absolute_file_in_the_base_is_stored_by_its_name(tmp_path):
     with xr.open_dataset(tmp_path / "s.nc") as ds:
         assert not [t for t in _texts(ds) if str(tmp_path) in t]
         assert json.loads(ds.attrs["study"])["base"]["road"]["profile_file"] == "road.csv"
+
+
+def test_a_run_interrupted_under_the_earlier_identity_resumes(tmp_path):
+    """Parts written before 2026-12-06 (the marker and each part's checksum of the identity with ``base_dir``,
+    built here by hand as that version wrote it) are this stream's: the run resumes from them, none is moved
+    aside as another study's, and the marker holds the identity of now."""
+    import numpy as np
+
+    from vbikit.study.run import run_study
+    from vbikit.study.storage import parts_dir, save_part
+    from vbikit.traffic.records import parse_records
+    from vbikit.traffic.study import base_scenario, traffic_study
+
+    (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-2-beam"\nn_modes = 3\n[road]\nclass = "none"\n'
+                                        '[crossing]\napproach = 5.0\nfree_vibration = 0.1\n')
+    base, base_dir = base_scenario(str(tmp_path / "base.toml"))
+    records = parse_records(HEAD + ROW + ROW.replace("0.0,", "30.0,", 1))
+    job = traffic_study(records, base, base_dir, batch_size=1, name="r")
+    assert job.size == 2
+    old = json.loads(job.to_json())
+    old["base_dir"] = str(tmp_path)
+    old = json.dumps(old, sort_keys=True)
+    out = tmp_path / "s.nc"
+    parts = parts_dir(out)
+    parts.mkdir()
+    (parts / "study.json").write_text(old)
+    first = job.run_batch((0,))
+    first["impact_factor"] = first["impact_factor"] + 1.0  # (marked: the stored part is the one used)
+    save_part(parts, 0, first, hashlib.sha256(old.encode()).hexdigest())
+    ds = run_study(job, out, workers=1, keep_parts=True)
+    assert not (parts / "damaged").exists()
+    assert np.ravel(ds["impact_factor"].values)[0] == np.ravel(first["impact_factor"])[0]
+    assert (parts / "study.json").read_text() == job.to_json()
