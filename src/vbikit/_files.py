@@ -147,17 +147,29 @@ def shared_name(path: str | Path) -> str:
     return Path(path).name if Path(path).is_absolute() else str(path)
 
 
-def shared_spec(value: Any) -> Any:
+#: the keys of a specification whose string values name files besides those containing "file" or "path"
+#: (``shared_spec``): a lifetime file's ``traffic.records`` and ``base``, a rail ``bridge.scenario`` and
+#: ``trains.tables``
+FILE_KEYS = ("records", "base", "scenario", "tables")
+
+
+def names_file(key: str) -> bool:
+    """Whether a specification key names a file: ``modes_file``, ``profile_file``, ``*path*``, ``FILE_KEYS``."""
+    return "file" in key or "path" in key or key in FILE_KEYS
+
+
+def shared_spec(value: Any, key: str = "") -> Any:
     """A specification (parsed TOML or JSON: tables, arrays, strings, numbers) as a dataset or summary
-    records it for others: a copy in which every string that is an absolute path is reduced to its file
-    name (``shared_name``: ``records = "/home/ann/wim/r.csv"`` → ``"r.csv"``, ``modes_file``,
-    ``profile_file``, ``base``, a rail ``scenario`` alike), every other value as it is.  What a run
-    read from those files is identified by their content (``file_sha256``), not by where they were."""
+    records it for others: a copy in which a string under a key naming a file (``names_file``: a lifetime
+    file's ``traffic.records`` and ``base``, a ``modes_file``, a ``profile_file``, …; ``key``: that of
+    ``value`` itself) that is an absolute path is reduced to its file name (``shared_name``:
+    ``"/home/ann/wim/r.csv"`` → ``"r.csv"``), every other value as it is.  What a run read from those
+    files is identified by their content (``file_sha256``), not by where they were."""
     if isinstance(value, dict):
-        return {k: shared_spec(v) for k, v in value.items()}
+        return {k: shared_spec(v, str(k)) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [shared_spec(v) for v in value]
-    if isinstance(value, str) and "\n" not in value and Path(value).is_absolute():
+        return [shared_spec(v, key) for v in value]
+    if isinstance(value, str) and names_file(key):
         return shared_name(value)
     return value
 

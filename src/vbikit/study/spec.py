@@ -304,11 +304,11 @@ class Study:
     def _identity(self, earlier: bool) -> str:
         from vbikit._files import shared_spec
 
-        shared = (lambda v: v) if earlier else shared_spec
+        shared = (lambda v, key="": v) if earlier else shared_spec
         spec = {
             "name": self.name, "seed": self.seed, "batch_size": self.batch_size, "histories": self.histories,
             "base": shared(self.base),
-            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else shared(list(a.values)))
+            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else shared(list(a.values), a.key.split(".")[-1]))
                      for a in self.axes},
         }
         digests = {} if earlier else self.input_sha256()

@@ -39,3 +39,17 @@ def test_the_identity_holds_the_files_content_not_their_folder(tmp_path):
     plain = _study("x")
     plain["base"]["road"] = {"class": "none"}
     assert "input_sha256" not in json.loads(parse_study(plain).to_json())
+
+
+def test_shared_spec_reduces_absolute_file_paths_only():
+    """The one rule (``vbikit._files.shared_spec``): a string under a key naming a file, absolute, by its
+    name; relative as given; any other string (a name that happens to start with "/") as it is."""
+    from vbikit._files import shared_spec
+
+    spec = {"name": "/not/a/file", "traffic": {"records": "/home/ann/wim/r.csv", "mode": "fitted"},
+            "base": "sub/base.toml", "bridge": {"modes_file": "/data/m.txt", "span": 20.0},
+            "trains": {"tables": ["/t/a.csv", "b.csv"]}, "load_effects": [{"name": "/M"}]}
+    assert shared_spec(spec) == {"name": "/not/a/file", "traffic": {"records": "r.csv", "mode": "fitted"},
+                                 "base": "sub/base.toml", "bridge": {"modes_file": "m.txt", "span": 20.0},
+                                 "trains": {"tables": ["a.csv", "b.csv"]}, "load_effects": [{"name": "/M"}]}
+    assert spec["traffic"]["records"] == "/home/ann/wim/r.csv"  # (a copy)
