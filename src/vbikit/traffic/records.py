@@ -269,10 +269,12 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
     direction = cells["direction"].strip()
     if direction not in DIRECTIONS:
         raise fail("direction", "must be +x or -x")
-    speed = number("speed", 0.0, strict=True)
-    if speed < MIN_SPEED:  # (the scenario's smallest speed)
+    speed = number("speed")
+    if speed < MIN_SPEED:  # (the scenario's smallest speed; 0 and a negative speed too, with the range: not "> 0")
+        why = "a speed is positive: the direction column, +x or -x, gives the sense of travel" if speed <= 0 else \
+            "such a crossing would last days"
         raise fail("speed", f"{_past(speed * 3.6, f'{MIN_SPEED * 3.6:g}', -1)} km/h is below the smallest speed "
-                            f"{MIN_SPEED * 3.6:g} km/h (such a crossing would last days); allowed {SPEED_RANGE_TEXT}")
+                            f"{MIN_SPEED * 3.6:g} km/h ({why}); allowed {SPEED_RANGE_TEXT}")
     if speed > MAX_RECORD_SPEED:
         raise fail("speed", f"{_past(speed * 3.6, f'{MAX_RECORD_SPEED * 3.6:g}', 1)} km/h is above the largest speed "
                             f"{MAX_RECORD_SPEED * 3.6:g} km/h; allowed {SPEED_RANGE_TEXT}")
