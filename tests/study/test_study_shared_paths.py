@@ -53,3 +53,27 @@ def test_shared_spec_reduces_absolute_file_paths_only():
                                  "base": "sub/base.toml", "bridge": {"modes_file": "m.txt", "span": 20.0},
                                  "trains": {"tables": ["a.csv", "b.csv"]}, "load_effects": [{"name": "/M"}]}
     assert spec["traffic"]["records"] == "/home/ann/wim/r.csv"  # (a copy)
+
+
+def test_an_axis_over_road_files_names_no_folder(tmp_path):
+    """``axes."road.profile_file"`` over two absolute ``road.csv`` of two folders: the dataset's coordinate
+    tells them apart without the folders (``road.csv (1)``, ``road.csv (2)``; before 2026-12-06 the paths as
+    given), the identity holds each file's SHA-256, and no attribute or coordinate holds the folder."""
+    import xarray as xr
+
+    from vbikit.study.run import run_study
+
+    for k, bump in ((1, "0.001"), (2, "0.003")):
+        (tmp_path / f"site{k}").mkdir()
+        (tmp_path / f"site{k}" / "road.csv").write_text(ROAD.replace("0.001", bump))
+    data = _study(str(tmp_path / "site1" / "road.csv"))
+    data["axes"] = {"road.profile_file": [str(tmp_path / "site1" / "road.csv"), str(tmp_path / "site2" / "road.csv")]}
+    ds = run_study(parse_study(data, tmp_path), tmp_path / "s.nc", workers=1)
+    with xr.open_dataset(tmp_path / "s.nc") as stored:
+        assert [str(v) for v in stored["road_profile_file"].values] == ["road.csv (1)", "road.csv (2)"]
+        texts = [str(v) for v in stored.attrs.values()] + [str(v) for c in stored.coords.values() for v in c.values.ravel()]
+        identity = json.loads(stored.attrs["study"])
+    assert not [t for t in texts if str(tmp_path) in t]
+    assert set(identity["input_sha256"]) == {"road.profile_file", "road.profile_file[0]", "road.profile_file[1]"}
+    im = ds["impact_factor"].values
+    assert im[0] != im[1]  # (two roads: the axis ran)

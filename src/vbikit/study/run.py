@@ -521,7 +521,7 @@ def assemble(study: Study, parts: Path):
     if names is not None:
         coords["point"] = ("point", np.array(names, dtype=object), {"long_name": "response point ([[response.points]] name)"})
     for a in study.axes:
-        values = list(a.values)
+        values = a.coordinate_values
         text = isinstance(values[0], str)
         unit = "1" if a.is_samples else _cf_unit(key_unit(a.key), text)
         coords[a.name] = (a.name, np.array(values) if not text else np.array(values, dtype=object),

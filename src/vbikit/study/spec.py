@@ -225,6 +225,19 @@ class Axis:
     def scenario_value(self, i: int) -> Any:
         return self.seeds[i] if self.seeds is not None else self.values[i]
 
+    @property
+    def coordinate_values(self) -> list:
+        """The values as the dataset's coordinate holds them: as given, except an absolute path of an axis over
+        a file (``road.profile_file``, …) by its file name (``vbikit._files.shared_spec``: a shared dataset names
+        no folder; the files are told apart by their SHA-256 in the study's identity), two equal names
+        numbered (``road.csv (1)``, ``road.csv (2)``) so that the coordinate still tells the values apart."""
+        from vbikit._files import shared_spec
+
+        shared = shared_spec(list(self.values), self.key.split(".")[-1])
+        if len(set(map(str, shared))) == len(shared):
+            return shared
+        return [f"{v} ({i + 1})" if shared.count(v) > 1 else v for i, v in enumerate(shared)]
+
 
 def cf_key_unit(unit: str, text: bool) -> str:
     """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
