@@ -147,6 +147,57 @@ def shared_name(path: str | Path) -> str:
     return Path(path).name if Path(path).is_absolute() else str(path)
 
 
+#: the keys of a specification whose string values name files besides those containing "file" or "path"
+#: (``shared_spec``): a lifetime file's ``traffic.records`` and ``base``, a rail ``bridge.scenario`` and
+#: ``trains.tables``
+FILE_KEYS = ("records", "base", "scenario", "tables")
+
+
+def names_file(key: str) -> bool:
+    """Whether a specification key names a file: ``modes_file``, ``profile_file``, ``*path*``, ``FILE_KEYS``."""
+    return "file" in key or "path" in key or key in FILE_KEYS
+
+
+def shared_spec(value: Any, key: str = "") -> Any:
+    """A specification (parsed TOML or JSON: tables, arrays, strings, numbers) as a dataset or summary
+    records it for others: a copy in which a string under a key naming a file (``names_file``: a lifetime
+    file's ``traffic.records`` and ``base``, a ``modes_file``, a ``profile_file``, …; ``key``: that of
+    ``value`` itself) that is an absolute path is reduced to its file name (``shared_name``:
+    ``"/home/ann/wim/r.csv"`` → ``"r.csv"``), every other value as it is.  What a run read from those
+    files is identified by their content (``file_sha256``), not by where they were."""
+    if isinstance(value, dict):
+        return {k: shared_spec(v, str(k)) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [shared_spec(v, key) for v in value]
+    if isinstance(value, str) and names_file(key):
+        return shared_name(value)
+    return value
+
+
+def file_sha256(path: str | Path) -> str:
+    """The SHA-256 of the file ``path``'s bytes (read in blocks): an input file's identity in a resume
+    check, independent of the folder it is in."""
+    import hashlib
+
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(block)
+    return digest.hexdigest()
+
+
+def input_digests(files: dict[str, str | Path]) -> dict[str, str]:
+    """``file_sha256`` of each of ``files`` (key → path; e.g. ``{"bridge.modes_file": …}``), by the same
+    keys; a file that cannot be read is recorded as ``"unreadable"`` (the run that needs it says why)."""
+    out = {}
+    for key, path in files.items():
+        try:
+            out[key] = file_sha256(path)
+        except OSError:
+            out[key] = "unreadable"
+    return out
+
+
 def inside(directory: str | Path, name: str) -> Path:
     """``directory / name``, refused (``ValueError``) if it would lie outside ``directory``
     (absolute names, ``..`` components, symbolic links pointing out)."""

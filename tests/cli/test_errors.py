@@ -121,3 +121,17 @@ def test_presets_say_which_loads_are_per_wheel_and_which_per_axle():
         per = "axle" if name in TRAIN_PRESETS else "wheel"
         assert f"load per {per} [kN]: " in line and ("per wheel" in line) != ("per axle" in line), line
     assert any(x.split()[0] in TRAIN_PRESETS for x in lines) and any(x.split()[0] not in TRAIN_PRESETS for x in lines)
+
+
+def test_the_summary_names_a_road_file_without_its_folder(tmp_path):
+    """``road.profile_file`` given as an absolute path: ``vbikit run --json``'s inputs name ``road.csv``
+    (before 2026-12-06 the whole path, the user's folders in a summary shared with others), and no value
+    of the summary holds the folder."""
+    import json
+
+    (tmp_path / "road.csv").write_text("x,z\n-50,0\n0,0.001\n50,0\n")
+    res = run_text(tmp_path, GOOD.replace("[crossing]", f'[road]\nprofile_file = "{tmp_path / "road.csv"}"\n[crossing]'),
+                   "--json")
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.stdout)["inputs"]["road"] == {"profile_file": "road.csv"}
+    assert str(tmp_path) not in res.stdout

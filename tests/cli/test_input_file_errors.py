@@ -32,7 +32,8 @@ KINDS = {
     "driveby": ("driveby/DRIVEBY.toml", ("rate = 200.0 ", "rate = -200.0 "), "error: {f}: sampling.rate: expected"),
     "field": ("field/FIELD.toml", ("speed_kmh = 64.4", "speed_kmh = -5"), "error: {f}: crossing.speed_kmh must be"),
     "records": ("traffic/stream.csv", ("v000002,2.905,2,,-x,60.38", f"{MARKER},2.905,2,,-x,-60.38"),
-                "error: {f}:3: column 6 (speed [km/h]): must be > 0"),
+                "error: {f}:3: column 6 (speed [km/h]): -60.38 km/h is below the smallest speed 0.0036 km/h (a speed is "
+                "positive: the direction column, +x or -x, gives the sense of travel); allowed 0.0036 … 252 km/h"),
     "traffic-base": ("traffic/base/bridge2.toml", ("n_modes = 10", "n_modes = -10"), "error: invalid scenario {f}:"),
 }
 

@@ -20,6 +20,9 @@ def test_field_command_writes_figures_and_tables(tmp_path):
     for name in ("field-case1.png", "field-case2.png", "field-metrics.json", "field-metrics.csv"):
         assert (tmp_path / name).stat().st_size > 0
     table = json.loads((tmp_path / "field-metrics.json").read_text())
+    # the field file as given, an absolute path (EXAMPLE's) by its name only (before 2026-12-06 the whole path)
+    assert table["field_file"] == "FIELD.toml"
+    assert str(EXAMPLE.parent) not in (tmp_path / "field-metrics.json").read_text()
     case1 = table["cases"][0]
     assert case1["trigger_time_s"] == pytest.approx(1.237)  # the file's trigger, used as given
     assert set(case1["metrics"]) == {"point", "multipoint"}

@@ -235,3 +235,41 @@ def test_the_dataset_names_the_records_file_without_the_users_folders():
     assert prepare(spec, ".", workers=1).info["records"] == "examples/lifetime/wim.csv"
     spec["traffic"]["records"] = str(Path("examples/lifetime/wim.csv").resolve())
     assert prepare(spec, "/", workers=1).info["records"] == "wim.csv"
+
+
+def test_an_older_dataset_counts_its_im_sample_from_its_events(facts):
+    """lifetime.nc written before ``n_im_sample`` was stored (2026-12-06): the summary counts it from the
+    dataset's events (R_dyn / R_st − 1 of the sampled events, finite), so the report does not claim the whole
+    sample for an effect that had an event without an IM (it said "(237 events)" for every effect)."""
+    import numpy as np
+    import xarray as xr
+
+    from vbikit.lifetime.report import summary, text_report
+
+    with xr.open_dataset(facts["out"] / "lifetime.nc") as stored:
+        ds = stored.load().drop_vars("n_im_sample")
+    sample = np.flatnonzero(ds["event_in_sample"].values)
+    n = sample.size
+    j = [str(x) for x in ds["load_effect"].values].index("w")
+    static = ds["event_static"].values.copy()
+    static[sample[0], j] = 0.0  # that sampled event has no usable static reference for w: no IM
+    ds["event_static"] = (ds["event_static"].dims, static, ds["event_static"].attrs)
+    older = summary(ds)
+    assert older["load_effects"]["w"]["n_im_sample"] == n - 1 and older["load_effects"]["M"]["n_im_sample"] == n
+    report = text_report(older)
+    assert f"  w: IM of the random sample ({n - 1} of its {n} events with an IM): mean " in report
+    assert "; events without an IM left out: w 1)" in report
+
+
+def test_an_event_without_an_im_is_no_small_static_reference():
+    """Four sampled events, two effects: effect 0 has IMs 0.1, NaN (a static peak of 0: R_dyn / 0), 0.3, 0.2 and
+    small static references at events 1 and 3; effect 1 all finite, none small.  By hand: n_im_sample 3 and 4;
+    n_small_static_sample 1 (event 3; event 1 has no IM to rest on anything) and 0 (before 2026-12-06: 2 —
+    the event without an IM counted as a small static reference as well as left out of the IM sample)."""
+    import numpy as np
+
+    from vbikit.lifetime.results import im_sample_counts
+
+    im = np.array([[0.1, 0.05], [np.nan, 0.1], [0.3, 0.2], [0.2, 0.0]])
+    small = np.array([[False, False], [True, False], [False, False], [True, False]])
+    assert im_sample_counts(im, small) == {"n_im_sample": [3, 4], "n_small_static_sample": [1, 0]}

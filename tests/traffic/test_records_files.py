@@ -165,6 +165,20 @@ def test_a_speed_out_of_range_is_refused_with_the_range_it_must_be_in():
     with pytest.raises(RecordsError, match=re.escape("column 4 (speed [m/s]): 252.4 km/h is above the largest speed "
                                                      f"252 km/h; {allowed}")):  # (70.1 m/s: given in m/s)
         parse_records(HEAD.replace("speed [km/h]", "speed [m/s]") + ROW.replace(",80,", ",70.1,"))
+    # just past an end: the value printed with the digits that put it there (before 2026-12-06 "252 km/h is above
+    # the largest speed 252 km/h" for 252.01 km/h, "0.0036 km/h is below … 0.0036 km/h" for 0.0035999 km/h)
+    with pytest.raises(RecordsError, match=re.escape("252.01 km/h is above the largest speed 252 km/h;")):
+        parse_records(HEAD + ROW.replace(",80,", ",252.01,"))
+    with pytest.raises(RecordsError, match=re.escape("0.0035999 km/h is below the smallest speed 0.0036 km/h")):
+        parse_records(HEAD + ROW.replace(",80,", ",0.0035999,"))
+    # 0 or a negative speed: the same refusal with the range (before 2026-12-06 "must be > 0, got -60", as if
+    # 0.001 km/h would do, and not a word on the direction column that gives the sense of travel)
+    with pytest.raises(RecordsError, match=re.escape("-60 km/h is below the smallest speed 0.0036 km/h (a speed is "
+                                                     "positive: the direction column, +x or -x, gives the sense of "
+                                                     f"travel); {allowed}")):
+        parse_records(HEAD + ROW.replace(",80,", ",-60,"))
+    with pytest.raises(RecordsError, match=re.escape(f"0 km/h is below the smallest speed 0.0036 km/h (a speed is")):
+        parse_records(HEAD + ROW.replace(",80,", ",0,"))
     for kmh in ("0.0036", "252"):  # the ends themselves are read
         assert parse_records(HEAD + ROW.replace(",80,", f",{kmh},"))[0].speed == pytest.approx(float(kmh) / 3.6)
 

@@ -2,6 +2,8 @@
 come first, and the figure marks the events whose IM rests on a small static reference."""
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -69,6 +71,37 @@ def test_loaded_events_statistics_are_printed_first(tmp_path):
            "statistics)" in lines
     assert not any(x.startswith("impact factor of the events loading the point") for x in lines)
     assert "nan" not in res.stdout
+    # the same finished run as written before 2026-12-06: its identity held the base's folder (base_dir), it had no
+    # n_events_without_impact_factor and its IM mean was NaN; recognised, its statistics read again from its events
+    import json
+
+    old = json.loads(ds.attrs["study"])
+    old["base_dir"] = str(tmp_path)  # (base_scenario's folder of --bridge, as given)
+    for key in [k for k in ds.attrs if k.startswith("im_") or k.startswith("n_events_without")]:
+        ds.attrs[key] = math.nan if not key.startswith("n_") and "histogram" not in key else ds.attrs[key]
+    del ds.attrs["n_events_without_impact_factor"]
+    ds.attrs["study"] = json.dumps(old, sort_keys=True)
+    ds.to_netcdf(tmp_path / "old.nc")
+    (tmp_path / "old.nc").replace(tmp_path / "s.nc")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"), "--out",
+                              str(tmp_path / "s.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0 and "already holds this finished run" in res.output, res.output
+    assert f"impact factor of all events with one at the point (1 of 2) (each loads the point): mean {truck_im:.4f} " \
+           "(95 % CI ? – ?)" in res.stdout
+    assert "  (1 event without an impact factor at the point (NaN: no usable static reference) left out of these " \
+           "statistics)" in res.stdout.splitlines()
+    # no event with an IM: said in one line (was "all events with one at the point (0 of 2) (each loads the point):
+    # mean n/a …, max nan")
+    ds["impact_factor"].values[:] = np.nan
+    ds.attrs.update(stream_statistics(ds))
+    ds.to_netcdf(tmp_path / "none.nc")
+    (tmp_path / "none.nc").replace(tmp_path / "s.nc")
+    res = runner.invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"), "--out",
+                              str(tmp_path / "s.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    assert "impact factor: no event has one at the point (2 of 2 without a usable static reference): no IM statistics" \
+        in res.stdout.splitlines()
+    assert "nan" not in res.stdout and "impact factor of " not in res.stdout and "95 % CI" not in res.stdout
 
 
 def _stream(static_mm, multiple):

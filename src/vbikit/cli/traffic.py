@@ -93,12 +93,19 @@ def traffic_cmd(
     from vbikit.analysis.checks import dataset_has_flag
     from vbikit.analysis.sample_intervals import stored_interval_text
 
-    a = ds.attrs
+    a = dict(ds.attrs)
+    if "n_events_without_impact_factor" not in a:
+        # a dataset written before 2026-12-06: its IM statistics were NaN when an event had no IM, and its count of
+        # small static references took such events in; they are read again from its events as they are now
+        # computed (its governing events kept: its half-step check is of them)
+        from vbikit.traffic.study import stream_statistics
+
+        a |= {k: v for k, v in stream_statistics(ds).items() if not k.startswith("governing_")}
     first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
     implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
     doubt = "!" if implausible or airborne else ""
     n_small = int(a["n_small_static_events"])
-    n_without = int(a.get("n_events_without_impact_factor", 0))  # (0: a dataset written before it was counted)
+    n_without = int(a["n_events_without_impact_factor"])
     small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
         " on small static references (light vehicles, far lanes): not design values"
     ci = {name: stored_interval_text(a, name) for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")}
@@ -110,14 +117,18 @@ def traffic_cmd(
                    f"{ci['im_mean_loaded']}{doubt}, 95th percentile {ci['im_q95_loaded']}")
     every = f"all events with one at the point ({job.size - n_without} of {job.size})" if n_without else "all events"
     loads = "" if n_small else " (each loads the point)" if n_without else " (every event loads the point)"
-    typer.echo(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
-               f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events with "
-               f"{_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
-               + (f"; {small_words}" if n_small else ""))
-    if n_without:
+    if n_without < job.size:
+        typer.echo(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
+                   f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events "
+                   f"with {_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
+                   + (f"; {small_words}" if n_small else ""))
+    else:  # (not "mean n/a, max nan" of "all events with one at the point (0 of 2) (each loads the point)")
+        typer.echo(f"impact factor: no event has one at the point ({job.size} of {job.size} without a usable static "
+                   "reference): no IM statistics")
+    if 0 < n_without < job.size:
         typer.echo(f"  ({n_without} event{'' if n_without == 1 else 's'} without an impact factor at the point (NaN: "
                    "no usable static reference) left out of these statistics)")
-    if any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
+    if n_without < job.size and any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
         typer.echo("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
     if implausible:
         typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "

@@ -148,14 +148,43 @@ class DriveBy:
         """The vehicle table of fleet vehicle ``k`` (the file's [vehicle] without a fleet or ``k`` None)."""
         return self.vehicle if k is None or not self.fleet else self.fleet[k][1]
 
+    def input_sha256(self) -> dict[str, str]:
+        """The SHA-256 of each file the scenario reads (a bridge's ``modes_file``, a measured road:
+        ``vbikit.scenario.schema.INPUT_FILE_KEYS``), by key; read once per spec."""
+        kept = self.__dict__.get("_input_sha256")
+        if kept is None:
+            from vbikit._files import input_digests
+            from vbikit.scenario.schema import input_paths
+
+            kept = input_digests(input_paths(self.scenario, self.base_dir))
+            object.__setattr__(self, "_input_sha256", kept)  # (the spec is immutable: its files read once)
+        return kept
+
     def to_json(self) -> str:
+        """Canonical text of the drive-by run (the resume check and the dataset's ``study`` attribute): no
+        folder — the files the scenario reads by their content (``input_sha256``; absent when it reads
+        none), an absolute path in it by its file name (``vbikit._files.shared_spec``) — so a moved project
+        folder resumes, a changed modes or profile file does not, and a shared dataset names no folder."""
+        return self._identity(earlier=False)
+
+    def earlier_json(self) -> tuple[str, ...]:
+        """The identity as a dataset written before 2026-12-06 holds it (the folder, ``base_dir``, in place
+        of the files' content): such a finished dataset is still recognised (``vbikit.study.run``)."""
+        return (self._identity(earlier=True),)
+
+    def _identity(self, earlier: bool) -> str:
+        from vbikit._files import shared_spec
+
+        digests = {} if earlier else self.input_sha256()
         return json.dumps({"kind": "vbikit driveby", "name": self.name, "seed": self.seed, "batch_size": self.batch_size,
-                           "scenario": self.scenario, "vehicle": self.vehicle,
+                           "scenario": self.scenario if earlier else shared_spec(self.scenario), "vehicle": self.vehicle,
+                           **({"base_dir": self.base_dir} if earlier else {}),
+                           **({"input_sha256": digests} if digests else {}),
                            "sampling": [self.sampling.rate, self.sampling.filter_order, self.sampling.cutoff],
                            "sensors": [s.__dict__ for s in self.sensors], "method": self.method, "sensor": self.sensor,
                            "band": self.band, "spectrum": self.spectrum, "window": self.window, "gap": self.gap,
                            "exclude_vehicle": self.exclude_vehicle, "sweep": self.sweep,
-                           "damage_length": self.damage_length, "base_dir": self.base_dir,
+                           "damage_length": self.damage_length,
                            **({"coupling": self.coupling, "coupling_check_every": self.coupling_check_every,
                                "variability": self.variability.__dict__} if self.variability.active
                               or self.coupling != "coupled" else {}),

@@ -661,6 +661,9 @@ class DriveByStudy:
     def to_json(self) -> str:
         return self.spec.to_json()
 
+    def earlier_json(self) -> tuple[str, ...]:
+        return self.spec.earlier_json()
+
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         from vbikit._blas import single_thread_blas
 

@@ -8,7 +8,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
-from vbikit._files import atomic_write, inside, json_safe, json_text, save_figure, write_text
+from vbikit._files import atomic_write, inside, json_safe, json_text, save_figure, shared_name, write_text
 from vbikit.field.io import FieldSpec, load_field_toml
 from vbikit.field.workflow import Calibration, CaseComparison, calibrate, check_field, compare_case
 
@@ -84,7 +84,7 @@ def run_field(path: str | Path, out_dir: str | Path, tires: list[str], do_calibr
     out = Path(out_dir)
     cmps = [compare_case(spec, case, tires) for case in spec.cases]
     figures = [plot_case(c, inside(out, f"field-{c.case.name}.png"), spec.name) for c in cmps]
-    table: dict[str, Any] = {"name": spec.name, "field_file": str(spec.path), "bridge": spec.bridge, "truck": spec.truck,
+    table: dict[str, Any] = {"name": spec.name, "field_file": shared_name(spec.path), "bridge": spec.bridge, "truck": spec.truck,
                              "speed_m_s": spec.speed, "stiffness_factor": spec.stiffness_factor,
                              "damping_ratio": spec.damping_ratio, "tires": tires,
                              "cases": [c.table() for c in cmps]}

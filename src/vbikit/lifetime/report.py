@@ -79,8 +79,8 @@ def _effect(ds, j: int) -> dict[str, Any]:
         "im": {k: _num(ds[k].values[j]) for k in ("im_mean", "im_std", "im_q95", "im_max", "im_governing_static_event",
                                                   "im_mean_loaded", "im_q95_loaded", *IM_INTERVAL_ENDS) if k in ds},
         "n_small_static_sample": int(ds["n_small_static_sample"].values[j]) if "n_small_static_sample" in ds else 0,
-        # the sample of the IM statistics: the random sample's events with an IM (None: a dataset before it was stored)
-        "n_im_sample": int(ds["n_im_sample"].values[j]) if "n_im_sample" in ds else None,
+        # the sample of the IM statistics: the random sample's events with an IM
+        "n_im_sample": _im_sample_size(ds, j),
         "aashto_lrfd_im": _num(ds["code_allowance"].values[j, 0]),
         # the direction s reported, how it was chosen and the other direction's share of the line (older datasets lack them)
         "direction": {"sign": float(ds["effect_sign"].values[j]),
@@ -110,6 +110,22 @@ def _effect(ds, j: int) -> dict[str, Any]:
         out["governing"] = gov
     add_flags(out, _flags(effect, out, a))
     return out
+
+
+def _im_sample_size(ds, j: int) -> int | None:
+    """The random sample's events with a finite IM for effect ``j`` (``n_im_sample``): stored, or for a dataset
+    written before it was (2026-12-06) counted from its events as ``build_dataset`` counts it (R_dyn / R_st − 1 of
+    ``event_total`` and ``event_static`` in ``event_in_sample``); None when neither can say."""
+    import numpy as np
+
+    if "n_im_sample" in ds:
+        return int(ds["n_im_sample"].values[j])
+    if not all(k in ds for k in ("event_in_sample", "event_total", "event_static")):
+        return None
+    sample = np.asarray(ds["event_in_sample"].values).astype(bool)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        im = np.asarray(ds["event_total"].values, float)[sample, j] / np.asarray(ds["event_static"].values, float)[sample, j] - 1.0
+    return int(np.isfinite(im).sum())
 
 
 def _largest(daily: Any, sign: float) -> float | None:

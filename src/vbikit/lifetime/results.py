@@ -29,6 +29,7 @@ from typing import Any
 
 import numpy as np
 
+from vbikit._files import shared_spec
 from vbikit.lifetime.screening import CHECK_FRACTION
 
 #: the IM statistics stored with the ends of their 95 % confidence intervals (``NAME_ci_lower``, ``NAME_ci_upper``)
@@ -77,6 +78,19 @@ def _static_threshold(values: np.ndarray, n_days: int) -> float:
     if n < 20:
         return math.nan
     return float(np.quantile(values, max(0.0, 1.0 - 2.0 * n_days / n)))
+
+
+def im_sample_counts(im_sample: np.ndarray, small_sample: np.ndarray) -> dict[str, list[int]]:
+    """Per load effect (columns of the random sample's IMs ``im_sample`` and of its small static references
+    ``small_sample``): ``n_im_sample``, the sampled events with a finite IM (the sample of im_mean, im_std,
+    im_q95; all lanes and vehicles), and ``n_small_static_sample``, those of them whose IM rests on a small
+    static reference — an event without an IM (no usable static reference: a static peak of 0) is counted in
+    neither, as the traffic stream's ``n_small_static_events`` (before 2026-12-06 it was counted as a small
+    static reference too: left out of the IM statistics and, in the report, an IM "resting on" one)."""
+    finite = np.isfinite(im_sample)
+    small = np.asarray(small_sample, bool) & finite
+    return {"n_im_sample": [int(k) for k in finite.sum(axis=0)],
+            "n_small_static_sample": [int(k) for k in small.sum(axis=0)]}
 
 
 def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: dict):
@@ -189,9 +203,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
     im = {
         "im_std": [stat(im_sample[:, j], np.std) for j in range(len(lines))],
         "im_max": [stat(im_all[simulated, j], np.max) for j in range(len(lines))],
-        "n_small_static_sample": [int(small_sample[:, j].sum()) for j in range(len(lines))],
-        # the sample of im_mean, im_std, im_q95: the sampled events with a finite IM (all lanes and vehicles)
-        "n_im_sample": [int(np.isfinite(im_sample[:, j]).sum()) for j in range(len(lines))],
+        **im_sample_counts(im_sample, small_sample),
     }
     # the means and 95 % quantiles of the finite values, with their 95 % confidence intervals: how well the
     # random sample fixes them (``sample_intervals``: the same estimates as numpy's mean and quantile)
@@ -278,7 +290,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                                 ev_attrs("1", f"{end} end of the 95 % confidence interval of {name} over the random "
                                               "sample (vbikit.analysis.sample_intervals; NaN: not bounded)"))
            for name in IM_WITH_INTERVALS for end in ("lower", "upper")},
-        "n_small_static_sample": ("load_effect", np.array(im["n_small_static_sample"], np.int64), ev_attrs("1", "sampled events whose static peak is below 20 % of the largest: their impact factors rest on a small static reference, not design values")),
+        "n_small_static_sample": ("load_effect", np.array(im["n_small_static_sample"], np.int64), ev_attrs("1", "sampled events with an impact factor whose static peak is below 20 % of the largest: their impact factors rest on a small static reference, not design values (one without an impact factor is counted in neither this nor n_im_sample)")),
         "im_governing_static_event": ("load_effect", np.array(im_gov), ev_attrs("1", "impact factor of the event with the largest static effect")),
         "code_allowance": (("load_effect", "code"), allow, ev_attrs("1", "design-code dynamic allowance (vbikit.analysis.codes)")),
         "event_day": ("event", day, ev_attrs("1", "day of the event")),
@@ -327,7 +339,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "title": spec.name or "vbikit lifetime",
         "vbikit_version": __version__,
         "Conventions": "CF-1.8",
-        "lifetime": spec.model_dump_json(),
+        # the lifetime file as validated, an absolute path in it (traffic.records, base, a modes or profile
+        # file) by its file name only: a shared dataset does not carry the machine's folders
+        "lifetime": json.dumps(shared_spec(spec.model_dump(mode="json")), separators=(",", ":")),
         "records": prep.info.get("records", ""),
         "n_days": n_days,
         "days_per_year": spec.days_per_year,

@@ -25,6 +25,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
+from vbikit._files import shared_name
 from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
@@ -593,7 +594,8 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
     ds.attrs.update({
         "title": "vbikit railway speed sweep", "span_m": span,
         **({"EI_Nm2": b.EI, "mass_per_length_kg_m": b.mass_per_length} if b.scenario is None else {}),
-        "bridge_model": type(bridge).__name__ + (f" from {b.scenario}" if b.scenario else ""),
+        # (the scenario file as given, an absolute path by its name only: a shared dataset names no folder)
+        "bridge_model": type(bridge).__name__ + (f" from {shared_name(b.scenario)}" if b.scenario else ""),
         "damping_ratio": float(bridge.damping_ratios[0]), "deck": b.deck, "track": b.track,
         "damping_source": damping_words, "additional_damping": int(bool(delta_zeta > 0)),
         "additional_damping_ratio": delta_zeta, "first_frequency_hz": n0,

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from vbikit._files import shared_name
 from vbikit._kept import kept_for
 from vbikit.analysis.checks import Flag, input_flags, messages, point_flags
 from vbikit.bridge.base import GirderDeck
@@ -319,8 +320,9 @@ def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
 
     c, r = plan.built.crossing, scenario.road
     road: dict[str, Any] = {"class": r.road_class}
-    if r.profile_file:
-        road = {"profile_file": r.profile_file, **({"profile_file_right": r.profile_file_right} if r.profile_file_right else {})}
+    if r.profile_file:  # (as given, an absolute path by its name only: a shared summary names no folder)
+        road = {"profile_file": shared_name(r.profile_file),
+                **({"profile_file_right": shared_name(r.profile_file_right)} if r.profile_file_right else {})}
     elif r.road_class != "none":
         psd = {"phi0": r.phi0, "n0": r.n0, "exponent": r.exponent} if r.road_class == "psd" else {}
         if not psd:

@@ -442,9 +442,27 @@ class Scenario(Section):
     def input_files(self) -> list[Path]:
         """The files the scenario reads besides itself — the measured road profiles
         (``road.profile_file``, ``road.profile_file_right``) and a bridge's ``modes_file`` — resolved
-        against its folder (as the builders read them), in that order."""
+        against its folder (as the builders read them), in that order (``INPUT_FILE_KEYS``)."""
         names = (self.road.profile_file, self.road.profile_file_right, getattr(self.bridge, "modes_file", None))
         return [self.base_dir / name for name in names if name]
+
+
+#: the scenario keys naming a file the scenario reads besides itself, relative to its folder
+#: (``Scenario.input_files``, ``input_paths``)
+INPUT_FILE_KEYS = ("road.profile_file", "road.profile_file_right", "bridge.modes_file")
+
+
+def input_paths(data: dict[str, Any], base_dir: Path | str = ".") -> dict[str, Path]:
+    """Each ``INPUT_FILE_KEYS`` a scenario's tables ``data`` give (a dict, not validated), by key, resolved
+    against ``base_dir`` as the builders read them (an absolute path as it is)."""
+    out = {}
+    for key in INPUT_FILE_KEYS:
+        section, name = key.split(".")
+        table = data.get(section)
+        value = table.get(name) if isinstance(table, dict) else None
+        if isinstance(value, str) and value:
+            out[key] = Path(base_dir) / value
+    return out
 
 
 def _tags(annotation: Any) -> dict[str, type[BaseModel]]:

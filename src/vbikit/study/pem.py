@@ -94,6 +94,9 @@ class PemStudy:
     def to_json(self) -> str:
         return self.study.to_json()
 
+    def earlier_json(self) -> tuple[str, ...]:
+        return self.study.earlier_json()
+
     def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
         return self.study.scenario_dict(index)
 
@@ -170,7 +173,7 @@ class PemStudy:
             "units": "1", "long_name": "quantiles of the impact factor over the random road (PEM)"})
         coords: dict[str, Any] = {"quantile": ("quantile", np.array(self.quantiles), {"units": "1"})}
         for a in self.axes:
-            values = list(a.values)
+            values = a.coordinate_values
             text = isinstance(values[0], str)
             coords[a.name] = (a.name, np.array(values, dtype=object) if text else np.array(values),
                               {"scenario_key": a.key, "units": cf_key_unit(key_unit(a.key), text),

@@ -62,6 +62,13 @@ def spec_checksum(study: Study) -> str:
     return hashlib.sha256(study.to_json().encode()).hexdigest()
 
 
+def earlier_identities(job) -> tuple[str, ...]:
+    """The identities an earlier vbikit version gave this job (its ``earlier_json()``, when it has one: the
+    traffic stream's and drive-by's held the base scenario's folder before 2026-12-06): its finished dataset,
+    its parts folder and its parts written then are still this job's."""
+    return tuple(getattr(job, "earlier_json", tuple)())
+
+
 def _compute(job, batch: tuple, threads: int) -> dict:
     """One batch of ``job`` (run in a worker): a study's crossings, or the job's own ``run_batch``."""
     own = getattr(job, "run_batch", None)
@@ -84,7 +91,8 @@ def _part_problem(parts: Path, k: int, batch: tuple, checksum: str, job, sums: d
 def _content_problem(part: Any, k: int, batch: tuple, checksum: str, job) -> Optional[str]:
     if "batch_index" not in part or "spec_checksum" not in part:
         return "it carries no batch index or study checksum"
-    if str(part["spec_checksum"]) != checksum:
+    if str(part["spec_checksum"]) != checksum and str(part["spec_checksum"]) not in {
+            hashlib.sha256(text.encode()).hexdigest() for text in earlier_identities(job)}:
         return "it belongs to another study (checksum differs)"
     if int(part["batch_index"]) != k:
         return f"it holds batch {int(part['batch_index'])}, not batch {k}"
@@ -175,8 +183,10 @@ def _prepare_parts(study: Study, out: Path) -> Path:
                          "the link or choose another --out (or --out-dir)")
     if parts.exists():
         marker = parts / "study.json"
-        if not marker.is_file() or marker.read_text() != spec:
+        if not marker.is_file() or marker.read_text() not in (spec, *earlier_identities(study)):
             raise StudyError(f"{parts} holds partial results of a different study; delete it or choose another --out (or --out-dir)")
+        if marker.read_text() != spec:  # (an earlier version's identity of this study: this version's from now on)
+            write_text(marker, spec)
     else:
         parts.mkdir(parents=True)
         write_text(parts / "study.json", spec)
@@ -419,9 +429,11 @@ def _to_netcdf(ds, path: Path) -> None:
 def _open_complete(out: Path, study: Study):
     import xarray as xr
 
+    # the job's identity, and those a finished dataset of an earlier version holds for it (``earlier_json``)
+    known = {study.to_json(), *earlier_identities(study)}
     try:
         with xr.open_dataset(out, engine="netcdf4") as ds:
-            if ds.attrs.get("study") == study.to_json():
+            if ds.attrs.get("study") in known:
                 return ds.load()
     except (OSError, ValueError):
         return None
@@ -509,7 +521,7 @@ def assemble(study: Study, parts: Path):
     if names is not None:
         coords["point"] = ("point", np.array(names, dtype=object), {"long_name": "response point ([[response.points]] name)"})
     for a in study.axes:
-        values = list(a.values)
+        values = a.coordinate_values
         text = isinstance(values[0], str)
         unit = "1" if a.is_samples else _cf_unit(key_unit(a.key), text)
         coords[a.name] = (a.name, np.array(values) if not text else np.array(values, dtype=object),

@@ -225,6 +225,19 @@ class Axis:
     def scenario_value(self, i: int) -> Any:
         return self.seeds[i] if self.seeds is not None else self.values[i]
 
+    @property
+    def coordinate_values(self) -> list:
+        """The values as the dataset's coordinate holds them: as given, except an absolute path of an axis over
+        a file (``road.profile_file``, …) by its file name (``vbikit._files.shared_spec``: a shared dataset names
+        no folder; the files are told apart by their SHA-256 in the study's identity), two equal names
+        numbered (``road.csv (1)``, ``road.csv (2)``) so that the coordinate still tells the values apart."""
+        from vbikit._files import shared_spec
+
+        shared = shared_spec(list(self.values), self.key.split(".")[-1])
+        if len(set(map(str, shared))) == len(shared):
+            return shared
+        return [f"{v} ({i + 1})" if shared.count(v) > 1 else v for i, v in enumerate(shared)]
+
 
 def cf_key_unit(unit: str, text: bool) -> str:
     """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
@@ -270,14 +283,50 @@ class Study:
     def size(self) -> int:
         return int(np.prod(self.shape, dtype=np.int64)) if self.axes else 1
 
+    def input_sha256(self) -> dict[str, str]:
+        """The SHA-256 of each file the study's scenarios read (``vbikit.scenario.schema.INPUT_FILE_KEYS``:
+        the base's, by key, and an axis's over such a key, by ``key[i]``); read once per study."""
+        kept = self.__dict__.get("_input_sha256")
+        if kept is None:
+            from vbikit._files import input_digests
+            from vbikit.scenario.schema import INPUT_FILE_KEYS, input_paths
+
+            files: dict[str, Any] = dict(input_paths(self.base, self.base_dir))
+            for a in self.axes:
+                if a.key in INPUT_FILE_KEYS:
+                    files |= {f"{a.key}[{i}]": self.base_dir / str(v) for i, v in enumerate(a.values)}
+            kept = input_digests(files)
+            object.__setattr__(self, "_input_sha256", kept)  # (the study is immutable: its files read once)
+        return kept
+
     def to_json(self) -> str:
         """Canonical JSON of the resolved study (stored in the dataset attributes and used to
-        recognise the same study on restart)."""
+        recognise the same study on restart).  No folder: a file the scenarios read is there by its
+        content (``input_sha256``; absent when they read none) and an absolute path by its file name
+        (``vbikit._files.shared_spec``), so a shared dataset names no folder of the machine it ran on and a
+        changed modes or profile file is not taken for the same study."""
+        return self._identity(earlier=False)
+
+    def earlier_json(self) -> tuple[str, ...]:
+        """The identity as a dataset written before 2026-12-06 holds it (the paths as given, no file's
+        content) when it differs from ``to_json``'s: such a finished dataset is still recognised
+        (``vbikit.study.run``), as it was then."""
+        text = self._identity(earlier=True)
+        return () if text == self.to_json() else (text,)
+
+    def _identity(self, earlier: bool) -> str:
+        from vbikit._files import shared_spec
+
+        shared = (lambda v, key="": v) if earlier else shared_spec
         spec = {
             "name": self.name, "seed": self.seed, "batch_size": self.batch_size, "histories": self.histories,
-            "base": self.base,
-            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else list(a.values)) for a in self.axes},
+            "base": shared(self.base),
+            "axes": {a.key: ({"samples": len(a.values)} if a.is_samples else shared(list(a.values), a.key.split(".")[-1]))
+                     for a in self.axes},
         }
+        digests = {} if earlier else self.input_sha256()
+        if digests:  # absent: no input file (studies and datasets written before the key)
+            spec["input_sha256"] = digests
         if self.outputs is not None:  # absent: the whole catalogue (studies and datasets written before the key)
             spec["outputs"] = list(self.outputs)
         if self.method != STUDY_METHODS[0]:  # absent: Monte Carlo (studies and datasets written before the key)

@@ -132,6 +132,19 @@ SPEED_WARNING = 200 / 3.6
 MAX_RECORD_SPEED = 70.0
 #: the speeds a record may have, in words: from ``MIN_SPEED`` and ``MAX_RECORD_SPEED``, the bounds checked
 SPEED_RANGE_TEXT = f"{MIN_SPEED * 3.6:g} … {MAX_RECORD_SPEED * 3.6:g} km/h ({MIN_SPEED:g} … {MAX_RECORD_SPEED:g} m/s)"
+
+
+def _past(value: float, bound: str, side: int) -> str:
+    """``value`` printed with the fewest significant digits (four at least) that put it on its ``side`` of
+    the printed ``bound`` (+1 above, −1 below): 252.01 km/h is "252.01", not "252", beside "the largest
+    speed 252 km/h" (a refusal an engineer would read as wrong)."""
+    for digits in range(4, 18):
+        text = f"{value:.{digits}g}"
+        if (float(text) - float(bound)) * side > 0:
+            return text
+    return repr(value)
+
+
 #: the latest time of a record [s]: ten years (365.25-day years) from the stream's start
 MAX_TIME = 10 * 365.25 * 86400.0
 
@@ -256,13 +269,15 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
     direction = cells["direction"].strip()
     if direction not in DIRECTIONS:
         raise fail("direction", "must be +x or -x")
-    speed = number("speed", 0.0, strict=True)
-    if speed < MIN_SPEED:  # (the scenario's smallest speed)
-        raise fail("speed", f"{speed * 3.6:.3g} km/h is below the smallest speed {MIN_SPEED * 3.6:g} km/h "
-                            f"(such a crossing would last days); allowed {SPEED_RANGE_TEXT}")
+    speed = number("speed")
+    if speed < MIN_SPEED:  # (the scenario's smallest speed; 0 and a negative speed too, with the range: not "> 0")
+        why = "a speed is positive: the direction column, +x or -x, gives the sense of travel" if speed <= 0 else \
+            "such a crossing would last days"
+        raise fail("speed", f"{_past(speed * 3.6, f'{MIN_SPEED * 3.6:g}', -1)} km/h is below the smallest speed "
+                            f"{MIN_SPEED * 3.6:g} km/h ({why}); allowed {SPEED_RANGE_TEXT}")
     if speed > MAX_RECORD_SPEED:
-        raise fail("speed", f"{speed * 3.6:.4g} km/h is above the largest speed {MAX_RECORD_SPEED * 3.6:g} km/h; "
-                            f"allowed {SPEED_RANGE_TEXT}")
+        raise fail("speed", f"{_past(speed * 3.6, f'{MAX_RECORD_SPEED * 3.6:g}', 1)} km/h is above the largest speed "
+                            f"{MAX_RECORD_SPEED * 3.6:g} km/h; allowed {SPEED_RANGE_TEXT}")
     lane = lateral = None
     if "lane" in cells and cells["lane"].strip():
         try:

@@ -31,14 +31,14 @@ from typing import Any, Optional, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit._files import shared_name
+from vbikit._files import input_digests, shared_name, shared_spec
 from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
-from vbikit.scenario.schema import Scenario, ScenarioError, parse_scenario
+from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
@@ -97,7 +97,8 @@ class TrafficStudy:
     """A stream and what to run it on (build with ``traffic_study``).
 
     ``records``: the stream; ``base``: the base scenario's sections (``BASE_SECTIONS``);
-    ``base_dir``: where its relative paths point; ``lanes``: lane centres y [m] (lane n at
+    ``base_dir``: where its relative paths point (not part of the job's identity, ``to_json``: the files
+    it reads are, by their content, ``input_sha256``); ``lanes``: lane centres y [m] (lane n at
     ``lanes[n - 1]``); ``seed``: the road seeds' source; ``batch_size``: events per batch;
     ``events``: the vehicles of each event (indices into ``records``), ``event_start`` and
     ``event_end`` [s] their first entry and last exit (``partition``'s); ``source``: the records' name (reports and errors; the dataset's ``records`` attribute: as given,
@@ -125,6 +126,9 @@ class TrafficStudy:
     #: the budget of one event's run (``vbikit.solve.budget.Limits``; None: the defaults); not part of the
     #: job's identity (``to_json``): a resumed stream may be given another
     limits: Any = field(default=None, repr=False, compare=False)
+    #: the SHA-256 of each file the base scenario reads (``vbikit.scenario.schema.INPUT_FILE_KEYS``: a
+    #: bridge's modes_file, a measured road), by key: ``traffic_study``'s (key, digest) pairs
+    input_sha256: tuple[tuple[str, str], ...] = field(default=(), repr=False)
 
     #: sent to workers as bytes made once, rebuilt once per worker (``vbikit.study.shipping``)
     __reduce__ = reduce_once
@@ -145,9 +149,24 @@ class TrafficStudy:
         return None if self.outputs is None else tuple(o.name for o in outputs(names=self.outputs))
 
     def to_json(self) -> str:
-        """Canonical text of the job (the resume check): base scenario, lanes, seed, batch size, the
-        SHA-256 of the records and the outputs (when not all)."""
-        return json.dumps({"kind": "vbikit traffic", "name": self.name, "base": self.base, "base_dir": self.base_dir,
+        """Canonical text of the job (the resume check, and the dataset's ``study`` attribute): base
+        scenario, lanes, seed, batch size, the SHA-256 of the records and of every file the base scenario
+        reads (``input_sha256``; absent when it reads none) and the outputs (when not all).  No folder: the
+        inputs are identified by their content, so a moved project folder still resumes and a changed
+        modes or profile file does not; an absolute path in the base is stored by its file name
+        (``vbikit._files.shared_spec``), so a shared dataset does not carry the machine's folders."""
+        return self._identity(earlier=False)
+
+    def earlier_json(self) -> tuple[str, ...]:
+        """The job's identity as a dataset written before 2026-12-06 holds it (the base scenario's folder,
+        ``base_dir``, in place of its files' content): such a finished dataset is still recognised
+        (``vbikit.study.run``), as it was then."""
+        return (self._identity(earlier=True),)
+
+    def _identity(self, earlier: bool) -> str:
+        where = {"base": self.base, "base_dir": self.base_dir} if earlier else \
+            {"base": shared_spec(self.base), **({"input_sha256": dict(self.input_sha256)} if self.input_sha256 else {})}
+        return json.dumps({"kind": "vbikit traffic", "name": self.name, **where,
                            "lanes": list(self.lanes), "seed": self.seed, "batch_size": self.batch_size,
                            "records_sha256": self._digest, "n_records": len(self.records),
                            **({"outputs": list(self.output_names)} if self.outputs is not None else {})},
@@ -568,6 +587,6 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
     job = TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
                        tuple(e.vehicles for e in events), tuple(e.start for e in events), name, source, digest,
                        outputs=selected, event_end=tuple(e.end for e in events), vehicle_size=tuple(sizes),
-                       limits=limits)
+                       limits=limits, input_sha256=tuple(input_digests(input_paths(base, base_dir)).items()))
     job.check_budget()
     return job
