@@ -136,10 +136,10 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
         model = model.scaled(factor)
     if spec.traffic.speed_kmh is not None:
         model = model.with_speed(spec.traffic.speed_kmh / 3.6)
-    base = base_sections(spec, base_dir)
+    base, scenario_dir = base_sections(spec, base_dir)  # (a base file's paths point into its own folder)
     effects = [e.model_dump() for e in spec.load_effects]
     n_lanes = max(ln.lane for ln in model.lanes)
-    key = setup_key(base, str(base_dir), effects, spec.traffic.lanes, n_lanes, spec.dx)
+    key = setup_key(base, str(scenario_dir), effects, spec.traffic.lanes, n_lanes, spec.dx)
     try:
         setup = build_setup(key)
         check_lanes(setup, [ln.lane for ln in model.lanes])

@@ -233,11 +233,14 @@ def read_lifetime(path: str | Path) -> tuple[LifetimeFile, Path]:
     return parse_lifetime(read_toml(path, LifetimeError, "lifetime file")), path.parent
 
 
-def base_sections(spec: LifetimeFile, base_dir: Path) -> dict[str, Any]:
-    """The base scenario's sections (bridge, tire, road, crossing)."""
+def base_sections(spec: LifetimeFile, base_dir: Path) -> tuple[dict[str, Any], Path]:
+    """The base scenario's sections (bridge, tire, road, crossing) and the folder their relative paths
+    (a ``modes_file``, a ``profile_file``) point into: the ``base`` file's own folder, as for
+    ``vbikit traffic --bridge`` and ``vbikit run`` (``base_dir``, the lifetime file's folder, for
+    sections given in the lifetime file itself)."""
     if spec.base is not None:
         from vbikit.traffic.study import base_scenario
 
-        data, _ = base_scenario(str(base_dir / spec.base))
-        return {k: v for k, v in data.items() if k in BASE_SECTIONS}
-    return {k: getattr(spec, k) for k in BASE_SECTIONS if getattr(spec, k) is not None}
+        data, folder = base_scenario(str(base_dir / spec.base))
+        return {k: v for k, v in data.items() if k in BASE_SECTIONS}, Path(folder)
+    return {k: getattr(spec, k) for k in BASE_SECTIONS if getattr(spec, k) is not None}, base_dir
