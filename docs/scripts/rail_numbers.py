@@ -147,6 +147,10 @@ def example() -> dict:
         "acc_largest_sampling_change_pct": round(100 * a["largest_time_sampling_change"], 3),
         "acc_largest_sampling_bound_pct": round(100 * a["largest_time_sampling_bound"], 3),
         "flags": sorted({f["code"] for f in c.get("flags", [])}),
+        # the quasi-static histories over the sweep (train × speed): how far a vertex between the samples moved
+        # their peaks, and the share of the shear's peaks that are a sample or a one-sided limit (no vertex)
+        "deflection_moment_largest_sampling_change": float(f"{max(float(ds['deflection_sampling_change'].max()), float(ds['moment_sampling_change'].max())):.2g}"),
+        "shear_sample_or_limit_pct": round(100 * float((ds["shear_sampling_change"] == 0).mean()), 1),
     }
 
 

@@ -51,7 +51,9 @@ def quoted() -> list[str]:
             f"moment is {e['moment_ratio']:g} and the shear {e['shear_ratio']:g}", f"so {e['moment_governs'].replace('Phi x', 'Φ ×')} governs",
             f"{e['acc_sampling_change_pct']:g} % and {e['acc_sampling_bound_pct']:g} % for the governing peak, "
             f"{e['acc_largest_sampling_change_pct']:g} % and {e['acc_largest_sampling_bound_pct']:g} % of the largest over the sweep",
-            "no flag" if not e["flags"] else f"flags: {', '.join(e['flags'])}"]
+            "no flag" if not e["flags"] else f"flags: {', '.join(e['flags'])}",
+            f"moved by at most {e['deflection_moment_largest_sampling_change']:g} of their own value in the example; "
+            f"{e['shear_sample_or_limit_pct']:g} % of the shear's peaks"]
     return out
 
 
