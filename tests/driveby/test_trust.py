@@ -263,3 +263,16 @@ def test_the_report_gives_the_noise_added_also_for_an_snr(tmp_path):
     assert float(ds["noise_rms"][0]) == 0.0
     row = next(x for x in (tmp_path / "driveby-report.txt").read_text().splitlines() if x.startswith("   0  "))
     assert row.split()[5] == f"{sigma:.3g}"
+
+
+def test_a_healthy_case_is_not_called_its_own_healthy_case():
+    """The damage indicator's reason for an unreliable healthy case (its own reference, j = i) speaks of
+    this case; a damaged case whose healthy case is unreliable names that case."""
+    import numpy as np
+
+    from vbikit.driveby.study import reliable_shift
+
+    shift, why = reliable_shift(np.array([5.0, 4.9]), np.array([0, 0]), np.array([False, True]))
+    assert np.isnan(shift).all()
+    assert why == ["this case's identified frequency is unreliable",
+                   "the healthy case 0's identified frequency is unreliable"]

@@ -844,7 +844,8 @@ def reliable_shift(ident: NDArray, ref: NDArray, reliable: NDArray) -> tuple[NDA
         if j < 0:
             why.append("no healthy case of the same speed, road, seed and noise")
         elif not reliable[j]:
-            why.append(f"the healthy case {j}'s identified frequency is unreliable")
+            why.append("this case's identified frequency is unreliable" if j == i
+                       else f"the healthy case {j}'s identified frequency is unreliable")
         elif not reliable[i]:
             why.append("this case's identified frequency is unreliable")
         else:
