@@ -1,0 +1,99 @@
+"""How much a traffic event's impact factor depends on where its trucks start: the numbers of
+docs/traffic.md's "Start from rest and the approach", stored in docs/figures/approach-numbers.json.
+
+    python docs/scripts/approach_numbers.py          # about a minute on 2 cores
+
+Every run starts its vehicles at rest in static equilibrium ``crossing.approach`` before the bridge
+(docs/theory.md, "Start and end of a crossing"); a truck that has driven on a rough road for long
+carries a stationary vibration instead.  The start's transient decays with the truck's slowest
+modes (body bounce and pitch, ζ ω ≈ 0.5–1 s⁻¹), so it has not died out after a short approach.  Here
+the same one-truck events (the first ``N`` of ``benchmarks/bench_traffic.py``'s stream: Bridge 2,
+10 modes, point tires, 2 % damping, the stream's truck mix at 80 ± 8 and 75 ± 8 km/h), each on its
+own road of the given ISO class, are run with the default approach (10 m) and with long ones
+(100 m; 200 m for the convergence), the road being the same realisation (a longer approach reads
+further back on it).  Reported per class: the mean, standard deviation and 95th percentile of the
+deflection IM at Girder 4 midspan for each approach, the paired differences (mean with its
+standard error, root mean square), the runs' mean steps, and the share of the slowest vehicle mode's start transient left
+at the bridge entry, exp(−ζω · approach / v), averaged over the events (``start_transient_left``).
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[2]
+NUMBERS = ROOT / "docs" / "figures" / "approach-numbers.json"
+#: (road class, events, approaches [m]) of the study
+CASES = (("B", 300, (10.0, 100.0, 200.0)), ("C", 200, (10.0, 100.0)))
+
+
+def _base(road_class: str, approach: float) -> dict:
+    return {"bridge": {"model": "paper-bridge-2", "n_modes": 10}, "tire": {"model": "point"},
+            "road": {"class": road_class, "spacing": 0.01}, "crossing": {"approach": approach}}
+
+
+def _events(road_class: str, n: int, approach: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The deflection IMs of the stream's first ``n`` one-truck events, each truck's start transient
+    left at its entry (the slowest vehicle mode's exp(−ζω · approach / v)) and each run's steps."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_traffic import _stream
+
+    from vbikit.driveby.quality import vehicle_modes
+    from vbikit.traffic.study import _vehicle, traffic_study
+
+    job = traffic_study(_stream(3 * n, 600.0), _base(road_class, approach), batch_size=16)
+    events = [e for e in range(job.size) if len(job.events[e]) == 1][:n]
+    if len(events) < n:
+        raise SystemExit(f"the stream has only {len(events)} one-truck events")
+    im, left, steps = [], [], []
+    for e in events:
+        (points, row), _ = job.run_event(e)
+        im.append(points[0]["impact_factor"])
+        steps.append(row["n_steps"])
+        record = job.records[job.events[e][0]]
+        f, zeta = vehicle_modes(_vehicle(record))
+        decay = float(np.min(2 * math.pi * np.asarray(f) * np.asarray(zeta)))  # the slowest mode's ζω [1/s]
+        left.append(math.exp(-decay * approach / record.speed))
+    return np.array(im), np.array(left), np.array(steps, float)
+
+
+def _stats(im: np.ndarray) -> dict:
+    return {"mean": round(float(im.mean()), 4), "std": round(float(im.std(ddof=1)), 4),
+            "q95": round(float(np.quantile(im, 0.95)), 4)}
+
+
+def _paired(a: np.ndarray, b: np.ndarray) -> dict:
+    d = b - a
+    return {"mean": round(float(d.mean()), 4), "se": round(float(d.std(ddof=1) / math.sqrt(d.size)), 4),
+            "rms": round(float(np.sqrt(np.mean(d**2))), 4)}
+
+
+def compute() -> dict:
+    out = {}
+    for road_class, n, approaches in CASES:
+        runs = {a: _events(road_class, n, a) for a in approaches}
+        short, long_ = approaches[0], approaches[1]
+        case = {"events": n, "approaches_m": list(approaches),
+                "im": {f"{a:g}": _stats(runs[a][0]) for a in approaches},
+                "start_transient_left": {f"{a:g}": round(float(runs[a][1].mean()), 3) for a in approaches},
+                "mean_steps": {f"{a:g}": round(float(runs[a][2].mean())) for a in approaches},
+                f"{long_:g}_minus_{short:g}": _paired(runs[short][0], runs[long_][0])}
+        if len(approaches) > 2:
+            case[f"{approaches[2]:g}_minus_{long_:g}"] = _paired(runs[long_][0], runs[approaches[2]][0])
+        out[road_class] = case
+    return out
+
+
+def main() -> None:
+    numbers = compute()
+    NUMBERS.write_text(json.dumps(numbers, indent=1) + "\n")
+    print(json.dumps(numbers, indent=1))
+
+
+if __name__ == "__main__":
+    sys.path.insert(0, str(ROOT / "src"))
+    main()

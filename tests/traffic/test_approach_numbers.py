@@ -1,0 +1,66 @@
+"""docs/traffic.md's "Start from rest and the approach" quotes docs/figures/approach-numbers.json, which
+docs/scripts/approach_numbers.py computes (recomputed here in a slow test): the one-truck events' IM
+statistics with the default 10 m approach against 100 m (and 200 m, the convergence)."""
+from __future__ import annotations
+
+import importlib.util
+import json
+import re
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+STORED = json.loads((ROOT / "docs" / "figures" / "approach-numbers.json").read_text())
+PAGE = re.sub(r"\s+", " ", (ROOT / "docs" / "traffic.md").read_text())
+HINT = "run python docs/scripts/approach_numbers.py and update docs/traffic.md"
+
+
+def quoted() -> list[str]:
+    b, c = STORED["B"], STORED["C"]
+    d, conv, dc = b["100_minus_10"], b["200_minus_100"], c["100_minus_10"]
+    return [f"on the {b['events']} first one-truck events",
+            f"is {b['im']['10']['mean']:.4f} with the 10 m approach against {b['im']['100']['mean']:.4f} with 100 m",
+            f"difference {d['mean']:+.4f} ± {d['se']:.4f}, standard error; per event {d['rms']:.3f} root mean square",
+            f"the 95th percentile {b['im']['10']['q95']:.4f} against {b['im']['100']['q95']:.4f}",
+            f"with 200 m the mean is {b['im']['200']['mean']:.4f} (difference to 100 m {conv['mean']:+.4f} ± "
+            f"{conv['se']:.4f}, per event {conv['rms']:.4f} root mean square)",
+            f"On class C ({c['events']} events): mean {c['im']['10']['mean']:.4f} against {c['im']['100']['mean']:.4f} "
+            f"(difference {dc['mean']:+.4f} ± {dc['se']:.4f}), 95th percentile {c['im']['10']['q95']:.4f} against "
+            f"{c['im']['100']['q95']:.4f}",
+            f"the one-truck events above: {b['mean_steps']['100']:,} instead of {b['mean_steps']['10']:,} on average"]
+
+
+def test_the_page_quotes_the_stored_numbers():
+    missing = [q for q in quoted() if q not in PAGE]
+    assert not missing, f"{missing}: {HINT}"
+
+
+def test_the_stored_numbers_say_what_the_page_concludes():
+    """The 10 m approach's mean IM lies more than three standard errors below the 100 m one on class B,
+    and 100 m has converged (200 m within 0.001 on the mean): if a change of the start made either
+    false, the page's advice would be wrong."""
+    b = STORED["B"]
+    assert b["100_minus_10"]["mean"] > 3 * b["100_minus_10"]["se"]
+    assert abs(b["200_minus_100"]["mean"]) < 1e-3 and b["200_minus_100"]["rms"] < 0.1 * b["100_minus_10"]["rms"]
+
+
+@pytest.mark.slow
+def test_the_script_reproduces_the_stored_numbers():
+    spec = importlib.util.spec_from_file_location("approach_numbers", ROOT / "docs" / "scripts" / "approach_numbers.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    _close(module.compute(), STORED, "")
+
+
+def _close(now, stored, where: str) -> None:
+    """Equal, numbers to 2e-4 (the stored ones are rounded to four decimals: a last digit may round the
+    other way on another machine's floating point)."""
+    if isinstance(stored, dict):
+        assert set(now) == set(stored), f"{where}: {HINT}"
+        for k in stored:
+            _close(now[k], stored[k], f"{where}.{k}")
+    elif isinstance(stored, (int, float)) and not isinstance(stored, bool):
+        assert now == pytest.approx(stored, abs=2e-4, rel=1e-3), f"{where}: {HINT}"
+    else:
+        assert now == stored, f"{where}: {HINT}"
