@@ -35,5 +35,9 @@ def test_the_lifetime_files_name_no_folder(tmp_path):
                 texts += [str(x) for x in v.values.ravel()]
     assert stored["traffic"]["records"] == "wim.csv" and stored["base"] == "base.toml"
     assert stored["traffic"]["trucks_per_day"] == 16 and stored["load_effects"][0]["name"] == "w"  # the rest as given
+    # moving constant forces have no vibration to build up on the approach: no start_from_rest flag
+    with xr.open_dataset(out / "lifetime.nc") as ds:
+        assert ds.attrs["vehicle_model"] == "moving-forces" and ds.attrs["approach_m"] == 10.0
+        assert "start_from_rest" not in ds.attrs.get("flag_codes", "")
     texts += [(out / "summary.json").read_text(), (out / "report.txt").read_text()]
     assert not [t for t in texts if str(tmp_path) in t]

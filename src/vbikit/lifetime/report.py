@@ -13,7 +13,7 @@ import re
 from typing import Any
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
+from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, start_from_rest_flags, unconverged_runs_flag
 from vbikit.analysis.sample_intervals import stored_interval_text
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.lifetime.results import IM_WITH_INTERVALS
@@ -165,7 +165,18 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     out += _shortfall_flags(name, e, float(a["half_step_tolerance"]))
     out += _governing_flags(name, e, float(a["half_step_tolerance"]))
     out += _unconverged_flags(name, a)
+    out += _start_flags(name, a)
     return out
+
+
+def _start_flags(name: str, a: dict) -> list[Flag]:
+    """Dynamic events whose sprung trucks start at rest a short approach before the bridge
+    (``vbikit.analysis.checks.start_from_rest_flags``): their totals, so the total levels and the ADR,
+    come out low.  None for moving constant forces, which have no vibration to build up, and for a
+    dataset written before the approach was stored."""
+    if a.get("vehicle_model", "moving-forces") == "moving-forces" or "approach_m" not in a:
+        return []
+    return start_from_rest_flags(float(a["approach_m"]), output=flag_output("return_levels", "total"), subject=name)
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:

@@ -372,6 +372,10 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
             "can produce." for n, u, s, c, b, a_ in zip(names, units, signs, char_static, static_bound, above) if a_),
         "static_bound_vehicles_per_lane": json.dumps([] if upper is None else upper[1].tolist()),
         "first_frequency_hz": f1,
+        # where the dynamic events start their trucks, at rest (crossing.approach before the bridge), and how the
+        # trucks are modelled: sprung trucks enter calmer than settled ones after a short approach (start_from_rest)
+        "approach_m": float(prep.setup.context.template.crossing.approach),
+        "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
     }

@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import input_digests, shared_name, shared_spec
-from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
+from vbikit.analysis.checks import Flag, airborne_wheels, start_from_rest_flags, unconverged_dataset_flags
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
@@ -372,8 +372,10 @@ class TrafficStudy:
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
             **step_attrs,
+            "approach_m": float(self.context().template.crossing.approach),
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
-                              + unconverged_dataset_flags(ev["unconverged_steps"], "event")),
+                              + unconverged_dataset_flags(ev["unconverged_steps"], "event")
+                              + start_from_rest_flags(self.context().template.crossing.approach)),
         }
         return ds
 
