@@ -58,3 +58,13 @@ def test_a_lifetime_flags_its_totals_for_sprung_trucks_only():
     assert not _start_flags("M_mid", {"vehicle_model": "moving-forces", "approach_m": 10.0})
     assert not _start_flags("M_mid", {"vehicle_model": "axle-truck", "approach_m": 100.0})
     assert not _start_flags("M_mid", {"vehicle_model": "axle-truck"})  # (a dataset before approach_m: not judged)
+
+
+def test_a_stream_of_moving_forces_is_not_flagged(tmp_path):
+    """Moving constant forces have no vibration to build up on the approach."""
+    (tmp_path / "r.csv").write_text("time [s],lane,direction,speed [km/h],model\n0,1,+x,80,moving-force\n")
+    res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", "paper-bridge-1-beam",
+                                   "--out", str(tmp_path / "o.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        assert ds.attrs["approach_m"] == 10.0 and "start_from_rest" not in ds.attrs.get("flag_codes", "")

@@ -375,9 +375,18 @@ class TrafficStudy:
             "approach_m": float(self.context().template.crossing.approach),
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
                               + unconverged_dataset_flags(ev["unconverged_steps"], "event")
-                              + start_from_rest_flags(self.context().template.crossing.approach)),
+                              + (start_from_rest_flags(self.context().template.crossing.approach) if self.sprung else [])),
         }
         return ds
+
+    @property
+    def sprung(self) -> bool:
+        """Whether any vehicle of the stream has DOFs (a sprung truck, whose vibration builds up on the
+        approach: ``start_from_rest_flags``), not only moving forces; one vehicle built per record model."""
+        first = {}
+        for r in self.records:
+            first.setdefault(r.model, r)
+        return any(_vehicle(r).n_dof > 0 for r in first.values())
 
     def flag_attrs(self, static_peaks: NDArray, flags: Sequence[Flag] = ()) -> dict[str, str]:
         """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
