@@ -18,7 +18,7 @@ def test_the_rule_flags_approaches_below_the_settled_one_only():
     assert SETTLED_APPROACH == 100.0  # (docs/traffic.md: converged at 100 m, measured)
     (flag,) = start_from_rest_flags(10.0)
     assert flag.code == "start_from_rest" and flag.value == 10.0 and flag.threshold == 100.0
-    assert "10 m before the bridge" in flag.message and "crossing.approach = 100" in flag.message
+    assert "10 m before the bridge" in flag.message and "crossing.run_in = 90" in flag.message
     assert start_from_rest_flags(99.9) and not start_from_rest_flags(100.0) and not start_from_rest_flags(250.0)
 
 

@@ -790,16 +790,18 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
 def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, output: str = "impact_factor",
                           subject: str = "crossing.approach") -> list[Flag]:
     """A population's events (traffic streams, a lifetime's dynamic events) start their vehicles at rest in
-    static equilibrium ``approach`` [m] before the bridge: below ``settled`` they enter it before the start's
+    static equilibrium ``approach`` [m] before the bridge (``crossing.approach`` + ``crossing.run_in``, the
+    road they drive before it alone: ``vbikit.solve.run_in``): below ``settled`` they enter it before the start's
     transient has died out, calmer than trucks that have driven on the road for long, and the impact factors
     come out low (one flag about ``output``, ``subject``; none from ``settled`` on)."""
     if not approach < settled:
         return []
     return [Flag("start_from_rest",
-                 f"the events start their vehicles at rest {approach:g} m before the bridge (crossing.approach): they "
-                 "enter it before their body vibration has built up, so the impact factors and dynamic peaks come out "
-                 f"low (docs/traffic.md, \"Start from rest and the approach\"); for design values set "
-                 f"crossing.approach = {settled:g} in the base scenario (about three times the steps)",
+                 f"the events start their vehicles at rest {approach:g} m before the bridge (crossing.approach + "
+                 "crossing.run_in): they enter it before their body vibration has built up, so the impact factors and "
+                 "dynamic peaks come out low (docs/traffic.md, \"Start from rest and the approach\"); for design "
+                 f"values let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} in the base "
+                 "scenario (the run-in costs a fraction of the coupled steps a longer approach would)",
                  output=output, subject=subject, value=float(approach), threshold=float(settled))]
 
 

@@ -176,7 +176,8 @@ def _start_flags(name: str, a: dict) -> list[Flag]:
     dataset written before the approach was stored."""
     if a.get("vehicle_model", "moving-forces") == "moving-forces" or "approach_m" not in a:
         return []
-    return start_from_rest_flags(float(a["approach_m"]), output=flag_output("return_levels", "total"), subject=name)
+    return start_from_rest_flags(float(a["approach_m"]) + float(a.get("run_in_m", 0.0)),
+                                 output=flag_output("return_levels", "total"), subject=name)
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:

@@ -375,6 +375,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         # where the dynamic events start their trucks, at rest (crossing.approach before the bridge), and how the
         # trucks are modelled: sprung trucks enter calmer than settled ones after a short approach (start_from_rest)
         "approach_m": float(prep.setup.context.template.crossing.approach),
+        "run_in_m": float(prep.setup.context.template.crossing.run_in),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),

@@ -374,7 +374,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         c = scenario.crossing
         road = build_road(scenario.road, scenario)  # the whole period: as a Python script's random_profile
         common = dict(bridge=bridge, tire=build_tire(scenario.tire), road=road,
-                      road_right=build_right_road(scenario.road, scenario, road), approach=c.approach,
+                      road_right=build_right_road(scenario.road, scenario, road), approach=c.approach, run_in=c.run_in,
                       free_vibration=c.free_vibration, dt=c.dt,
                       integrator=c.integrator,
                       loss_of_contact=scenario.tire.loss_of_contact)

@@ -218,6 +218,11 @@ class Crossing:
         Several vehicles with their motion (instead of ``vehicle``); for one ``vehicle`` it
         becomes that vehicle's motion from ``speed``, ``acceleration``, ``approach``,
         ``lateral_offset`` and ``tire``.
+    run_in : float
+        Road [m] the vehicles drive alone before the run starts (``vbikit.solve.run_in``; ≥ 0, default
+        0: the run starts them at rest): they start from the state reached over it from rest, as if
+        the approach were that much longer, without the coupled steps over it (exact integrator,
+        no vehicle on the deck at the start).
     """
 
     bridge: ModalBridge
@@ -234,6 +239,7 @@ class Crossing:
     loss_of_contact: bool = True
     road_right: RoadProfile | None = None
     vehicles: tuple[VehicleMotion, ...] = ()
+    run_in: float = 0.0
 
     def __post_init__(self) -> None:
         if self.lateral_offset is None:
@@ -248,6 +254,8 @@ class Crossing:
             raise ValueError("crossing.acceleration must be finite")
         if not (math.isfinite(self.approach) and self.approach >= 0):
             raise ValueError(f"crossing.approach must be >= 0 m, got {self.approach!r}")
+        if not (math.isfinite(self.run_in) and self.run_in >= 0):
+            raise ValueError(f"crossing.run_in must be >= 0 m, got {self.run_in!r}")
         if self.free_vibration is not None and not (np.isfinite(self.free_vibration) and self.free_vibration >= 0):
             raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
         if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):
@@ -521,6 +529,10 @@ class Crossing:
             origin, sign, _ = self._kinematics
             ends = (self.start_time, self.start_time + self.duration)
             s = np.array([[m._travel_at(t) for m in self.vehicles] for t in ends])[:, self.point_vehicle]
+            if self.run_in > 0:  # the run-in's road behind the start: each vehicle at its start speed (run_in)
+                v0 = np.array([m._speed_at(ends[0]) for m in self.vehicles])
+                back = (self.run_in + 1.0) * v0 / v0.min()  # (the slowest drives run_in; a step's margin)
+                s = np.vstack([s, s[0] - back[self.point_vehicle]])
             x = origin + sign * s  # travel is monotone: the extremes are at the start and the end
             known = (float(x.min()), float(x.max()))
             object.__setattr__(self, "_road_extent", known)

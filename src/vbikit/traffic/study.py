@@ -373,9 +373,11 @@ class TrafficStudy:
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
             **step_attrs,
             "approach_m": float(self.context().template.crossing.approach),
+            "run_in_m": float(self.context().template.crossing.run_in),
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
                               + unconverged_dataset_flags(ev["unconverged_steps"], "event")
-                              + (start_from_rest_flags(self.context().template.crossing.approach) if self.sprung else [])),
+                              + (start_from_rest_flags(self.context().template.crossing.approach
+                                                       + self.context().template.crossing.run_in) if self.sprung else [])),
         }
         return ds
 
@@ -539,7 +541,8 @@ class _Template:
     def with_vehicles(self, motions: tuple[VehicleMotion, ...], road, road_right) -> Crossing:
         c = self.crossing
         return Crossing(c.bridge, vehicles=motions, tire=c.tire, road=road, road_right=road_right,
-                        speed=max(m.speed for m in motions), approach=c.approach, free_vibration=c.free_vibration,
+                        speed=max(m.speed for m in motions), approach=c.approach, run_in=c.run_in,
+                        free_vibration=c.free_vibration,
                         dt=c.dt, integrator=c.integrator, loss_of_contact=c.loss_of_contact)
 
 

@@ -1,0 +1,112 @@
+"""The vehicles' settled state at the start of a run: a run-in on the road behind them.
+
+A run starts its vehicles at rest in static equilibrium ``crossing.approach`` before the bridge
+(docs/theory.md, "Start and end of a crossing").  A truck that has driven on a rough road for long
+carries a vibration that a short approach does not build up (docs/traffic.md, "Start from rest and
+the approach").  With ``crossing.run_in`` = R > 0 [m] the vehicles are first driven alone over the
+R metres of road behind their start positions, from that static state, and the run starts from the
+state they reach — as if the approach were R longer, without the coupled steps over it.
+
+Off the deck each contact point's force is the tire law on the road alone, F_p = k_p (r_p − g_p − z_w)
++ c_p (ṙ_p − ż_w) + f0_p (every point in contact: the run-in is linear), so the vehicles' wheel loads
+of the exact step map (``modal_step.vehicle_step``: z_{n+1} = T z_n + L0 G_n + L1 G_{n+1} + b, the loads
+held linear over a step) are G_n = a_n + D z_n with a_w = Σ_p (k_p (r_p − g_p) + c_p ṙ_p + f0_p) over the
+wheel's points, known from the road, and D z = (k_w − Σ_p k_p) z_w + (c_w − Σ_p c_p) ż_w (zero where the
+nominal tire is the sum of its points').  Then z_{n+1} = A z_n + u_n, A = S (T + L0 D), S = (I − L1 D)⁻¹,
+u_n = S (L0 a_n + L1 a_{n+1} + b): a linear time-invariant recursion over the K run-in steps, summed in
+the eigenbasis of A (A = V Λ V⁻¹): z_K = V (Λ^K V⁻¹ z_0 + Σ_n Λ^{K−1−n} V⁻¹ u_n) — the same numbers as
+the step-by-step recursion (``settled_state_by_steps``, the tests' reference) to round-off.  The road
+under each point is read as the kernels read it (linear between stations; the rate the secant over
+±|v| dt/2), each vehicle at its speed at the start, held over the run-in.
+"""
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.solve.crossing import Crossing
+
+#: the eigenbasis sum is used while V's condition number stays below this; above, the steps one by one
+EIGEN_CONDITION_LIMIT = 1e8
+
+
+def run_in_inputs(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
+                  speed0: NDArray[np.float64], road: Any, n: int) -> tuple[NDArray[np.float64], ...]:
+    """The recursion z_{k+1} = A z_k + M0 a_k + M1 a_{k+1} + c over the ``n`` run-in steps of ``dt`` ending
+    at the start (module docstring): (A, M0, M1, c, a), a (n + 1, n_w) the wheels' road loads at the step
+    ends, for the vehicles at travel ``travel0`` [m] and speed ``speed0`` [m/s] (per vehicle) at the start
+    on the road bundle ``road`` (lane 0); ``step`` the vehicles' exact step map over ``dt``."""
+    pts, veh = data.points, data.vehicles
+    n_d, n_w = veh.gravity.size, veh.wheel_rows.shape[0]
+    t = dt * np.arange(-n, 1)  # the run-in's step ends, t = 0 the start (n + 1 of them)
+    x = pts.origin[None, :] + pts.direction[None, :] * (travel0[pts.vehicle][None, :] + speed0[pts.vehicle][None, :] * t[:, None])
+    vx = pts.direction * speed0[pts.vehicle]
+    half = np.abs(vx) * (0.5 * dt)  # the road rate: the secant over ±|v| dt/2, as the kernels read it
+    stations = road.stations
+    lines = np.minimum(pts.line, road.elevations.shape[0] - 1)
+    per_point = np.empty_like(x)
+    for k in range(x.shape[1]):
+        z = road.elevations[lines[k], :, 0]
+        r = np.interp(x[:, k], stations, z)
+        rate = (np.interp(x[:, k] + half[k], stations, z) - np.interp(x[:, k] - half[k], stations, z)) * \
+            (vx[k] / (2 * half[k]) if half[k] > 0 else 0.0)
+        per_point[:, k] = pts.stiffness[k] * (r - pts.gap[k]) + pts.damping[k] * rate + pts.fixed_load[k]
+    a = np.zeros((n + 1, n_w))
+    np.add.at(a, (slice(None), pts.wheel), per_point)
+    k_sum = np.bincount(pts.wheel, weights=pts.stiffness, minlength=n_w)
+    c_sum = np.bincount(pts.wheel, weights=pts.damping, minlength=n_w)
+    d = np.zeros((n_w, 2 * n_d))
+    d[:, :n_d] = (veh.wheel_stiffness - k_sum)[:, None] * veh.wheel_rows
+    d[:, n_d:] = (veh.wheel_damping - c_sum)[:, None] * veh.wheel_rows
+    settle = np.linalg.inv(np.eye(2 * n_d) - step.load1 @ d)
+    return (settle @ (step.transition + step.load0 @ d), settle @ step.load0, settle @ step.load1,
+            settle @ step.constant, a)
+
+
+def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, z0: NDArray[np.float64],
+                  travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
+    """The vehicles' state z = (q, q̇) at the start after ``crossing.run_in`` metres of road from the
+    state ``z0`` (module docstring); ``step`` the vehicles' exact step map over ``dt`` (linear hold).
+    In the eigenbasis of A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹ (M0 a_k + M1 a_{k+1})
+    + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c); the steps one by one when V is ill-conditioned."""
+    n = run_in_steps(crossing, dt, speed0)
+    if n == 0 or z0.size == 0:
+        return z0.copy()
+    a_mat, m0, m1, c, a = run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n)
+    lam, vec = np.linalg.eig(a_mat)
+    if np.linalg.cond(vec) > EIGEN_CONDITION_LIMIT or np.max(np.abs(lam)) >= 1.0:
+        return _by_steps(a_mat, m0, m1, c, a, z0)
+    vi = np.linalg.inv(vec)
+    powers = np.exp(np.log(lam.astype(complex))[:, None] * np.arange(n - 1, -1, -1)[None, :])  # λ^{K−1−k}, k = 0 … K−1
+    loads = np.sum((vi @ m0) * (powers @ a[:-1]), axis=1) + np.sum((vi @ m1) * (powers @ a[1:]), axis=1)
+    lam_k = lam * powers[:, 0]  # λ^K
+    z = vec @ (lam_k * (vi @ z0) + loads + (1.0 - lam_k) / (1.0 - lam) * (vi @ c))
+    return np.real(z)
+
+
+def settled_state_by_steps(crossing: "Crossing", data: Any, step: Any, dt: float, z0: NDArray[np.float64],
+                           travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
+    """``settled_state`` by the recursion z_{n+1} = A z_n + u_n step by step (the reference of the tests)."""
+    n = run_in_steps(crossing, dt, speed0)
+    if n == 0 or z0.size == 0:
+        return z0.copy()
+    return _by_steps(*run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n), z0)
+
+
+def _by_steps(a_mat, m0, m1, c, a, z0: NDArray[np.float64]) -> NDArray[np.float64]:
+    z = z0.copy()
+    for k in range(a.shape[0] - 1):
+        z = a_mat @ z + m0 @ a[k] + m1 @ a[k + 1] + c
+    return z
+
+
+def run_in_steps(crossing: "Crossing", dt: float, speed0: NDArray[np.float64]) -> int:
+    """Steps of ``dt`` the slowest vehicle needs to drive ``crossing.run_in`` metres (0: no run-in)."""
+    if not crossing.run_in > 0:
+        return 0
+    v = float(np.min(np.abs(speed0))) if speed0.size else 0.0
+    return int(math.ceil(crossing.run_in / (v * dt) - 1e-9)) if v > 0 else 0
