@@ -141,6 +141,7 @@ def _cases(files: dict[str, str]) -> dict[str, tuple[dict, object, object]]:
         "crossing.speed_kmh": (_merge(BASE, {"crossing": {"speed": None}}), 72.0, 80.0),
         "crossing.acceleration": (BASE, 0.0, 1.0),
         "crossing.approach": (BASE, 2.0, 3.0),
+        "crossing.run_in": (BASE, 0.0, 20.0),
         "crossing.free_vibration": (BASE, 0.1, 0.3),
         "crossing.dt": (BASE, 2e-4, 1e-4),
         "crossing.lateral_offset": (_merge(BASE, SLAB), 0.0, 1.0),
