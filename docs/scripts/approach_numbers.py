@@ -14,7 +14,9 @@ own road of the given ISO class, are run with the default approach (10 m) and wi
 further back on it).  Reported per class: the mean, standard deviation and 95th percentile of the
 deflection IM at Girder 4 midspan for each approach, the paired differences (mean with its
 standard error, root mean square), the runs' mean steps, and the share of the slowest vehicle mode's start transient left
-at the bridge entry, exp(−ζω · approach / v), averaged over the events (``start_transient_left``).
+at the bridge entry, exp(−ζω · approach / v), averaged over the events (``start_transient_left``); then
+(``run_in``) the same class B events started 10 m before the bridge after a 90 m run-in
+(``crossing.run_in``) against the 100 m approach run coupled all the way.
 """
 from __future__ import annotations
 
@@ -31,12 +33,12 @@ NUMBERS = ROOT / "docs" / "figures" / "approach-numbers.json"
 CASES = (("B", 300, (10.0, 100.0, 200.0)), ("C", 200, (10.0, 100.0)))
 
 
-def _base(road_class: str, approach: float) -> dict:
+def _base(road_class: str, approach: float, run_in: float = 0.0) -> dict:
     return {"bridge": {"model": "paper-bridge-2", "n_modes": 10}, "tire": {"model": "point"},
-            "road": {"class": road_class, "spacing": 0.01}, "crossing": {"approach": approach}}
+            "road": {"class": road_class, "spacing": 0.01}, "crossing": {"approach": approach, "run_in": run_in}}
 
 
-def _events(road_class: str, n: int, approach: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _events(road_class: str, n: int, approach: float, run_in: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The deflection IMs of the stream's first ``n`` one-truck events, each truck's start transient
     left at its entry (the slowest vehicle mode's exp(−ζω · approach / v)) and each run's steps."""
     sys.path.insert(0, str(ROOT / "benchmarks"))
@@ -45,7 +47,7 @@ def _events(road_class: str, n: int, approach: float) -> tuple[np.ndarray, np.nd
     from vbikit.driveby.quality import vehicle_modes
     from vbikit.traffic.study import _vehicle, traffic_study
 
-    job = traffic_study(_stream(3 * n, 600.0), _base(road_class, approach), batch_size=16)
+    job = traffic_study(_stream(3 * n, 600.0), _base(road_class, approach, run_in), batch_size=16)
     events = [e for e in range(job.size) if len(job.events[e]) == 1][:n]
     if len(events) < n:
         raise SystemExit(f"the stream has only {len(events)} one-truck events")
@@ -57,7 +59,7 @@ def _events(road_class: str, n: int, approach: float) -> tuple[np.ndarray, np.nd
         record = job.records[job.events[e][0]]
         f, zeta = vehicle_modes(_vehicle(record))
         decay = float(np.min(2 * math.pi * np.asarray(f) * np.asarray(zeta)))  # the slowest mode's ζω [1/s]
-        left.append(math.exp(-decay * approach / record.speed))
+        left.append(math.exp(-decay * (approach + run_in) / record.speed))
     return np.array(im), np.array(left), np.array(steps, float)
 
 
@@ -85,6 +87,13 @@ def compute() -> dict:
         if len(approaches) > 2:
             case[f"{approaches[2]:g}_minus_{long_:g}"] = _paired(runs[long_][0], runs[approaches[2]][0])
         out[road_class] = case
+    # the run-in (crossing.run_in, vbikit.solve.run_in): the default 10 m approach after 90 m driven alone, against
+    # the 100 m approach run coupled all the way (the same events and roads)
+    road_class, n, _ = CASES[0]
+    im, _, steps = _events(road_class, n, 10.0, 90.0)
+    reference = _events(road_class, n, 100.0)[0]
+    out["run_in"] = {"road_class": road_class, "events": n, "approach_m": 10.0, "run_in_m": 90.0, "im": _stats(im),
+                     "mean_steps": round(float(steps.mean())), "minus_100": _paired(reference, im)}
     return out
 
 

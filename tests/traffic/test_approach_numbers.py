@@ -1,6 +1,7 @@
 """docs/traffic.md's "Start from rest and the approach" quotes docs/figures/approach-numbers.json, which
 docs/scripts/approach_numbers.py computes (recomputed here in a slow test): the one-truck events' IM
-statistics with the default 10 m approach against 100 m (and 200 m, the convergence)."""
+statistics with the default 10 m approach against 100 m (and 200 m, the convergence), and the default approach
+after a 90 m run-in (crossing.run_in) against 100 m."""
 from __future__ import annotations
 
 import importlib.util
@@ -17,7 +18,7 @@ HINT = "run python docs/scripts/approach_numbers.py and update docs/traffic.md"
 
 
 def quoted() -> list[str]:
-    b, c = STORED["B"], STORED["C"]
+    b, c, r = STORED["B"], STORED["C"], STORED["run_in"]
     d, conv, dc = b["100_minus_10"], b["200_minus_100"], c["100_minus_10"]
     return [f"on the {b['events']} first one-truck events",
             f"is {b['im']['10']['mean']:.4f} with the 10 m approach against {b['im']['100']['mean']:.4f} with 100 m",
@@ -28,7 +29,11 @@ def quoted() -> list[str]:
             f"On class C ({c['events']} events): mean {c['im']['10']['mean']:.4f} against {c['im']['100']['mean']:.4f} "
             f"(difference {dc['mean']:+.4f} ± {dc['se']:.4f}), 95th percentile {c['im']['10']['q95']:.4f} against "
             f"{c['im']['100']['q95']:.4f}",
-            f"the one-truck events above: {b['mean_steps']['100']:,} instead of {b['mean_steps']['10']:,} on average"]
+            f"same {r['events']} class {r['road_class']} events the mean IM is then {r['im']['mean']:.4f} and the 95th "
+            f"percentile {r['im']['q95']:.4f}, against the 100 m approach run coupled all the way: difference "
+            f"{r['minus_100']['mean']:+.4f} ± {r['minus_100']['se']:.4f}, per event {r['minus_100']['rms']:.3f} root mean square",
+            f"the coupled run keeps the default's steps ({r['mean_steps']:,} on average)",
+            f"crossing.run_in = {r['run_in_m']:g}"]
 
 
 def test_the_page_quotes_the_stored_numbers():
@@ -43,6 +48,9 @@ def test_the_stored_numbers_say_what_the_page_concludes():
     b = STORED["B"]
     assert b["100_minus_10"]["mean"] > 3 * b["100_minus_10"]["se"]
     assert abs(b["200_minus_100"]["mean"]) < 1e-3 and b["200_minus_100"]["rms"] < 0.1 * b["100_minus_10"]["rms"]
+    r = STORED["run_in"]  # the run-in reaches the 100 m approach's IMs at the default's coupled steps
+    assert abs(r["minus_100"]["mean"]) < 1e-3 and r["minus_100"]["rms"] < 0.1 * b["100_minus_10"]["rms"]
+    assert r["mean_steps"] == b["mean_steps"]["10"]
 
 
 @pytest.mark.slow
