@@ -30,8 +30,8 @@ def quoted() -> list[str]:
             f"(difference {dc['mean']:+.4f} ± {dc['se']:.4f}), 95th percentile {c['im']['10']['q95']:.4f} against "
             f"{c['im']['100']['q95']:.4f}",
             f"same {r['events']} class {r['road_class']} events the mean IM is then {r['im']['mean']:.4f} and the 95th "
-            f"percentile {r['im']['q95']:.4f}, against the 100 m approach run coupled all the way: difference "
-            f"{r['minus_100']['mean']:+.4f} ± {r['minus_100']['se']:.4f}, per event {r['minus_100']['rms']:.3f} root mean square",
+            f"percentile {r['im']['q95']:.4f}, against the 100 m approach run coupled all the way: the IMs differ by "
+            f"{r['minus_100']['rms']:.1e} root mean square, {r['minus_100']['max']:.1e} at most",
             f"the coupled run keeps the default's steps ({r['mean_steps']:,} on average)",
             f"crossing.run_in = {r['run_in_m']:g}"]
 
@@ -49,7 +49,7 @@ def test_the_stored_numbers_say_what_the_page_concludes():
     assert b["100_minus_10"]["mean"] > 3 * b["100_minus_10"]["se"]
     assert abs(b["200_minus_100"]["mean"]) < 1e-3 and b["200_minus_100"]["rms"] < 0.1 * b["100_minus_10"]["rms"]
     r = STORED["run_in"]  # the run-in reaches the 100 m approach's IMs at the default's coupled steps
-    assert abs(r["minus_100"]["mean"]) < 1e-3 and r["minus_100"]["rms"] < 0.1 * b["100_minus_10"]["rms"]
+    assert r["minus_100"]["max"] < 1e-3 and r["minus_100"]["rms"] < 0.01 * b["100_minus_10"]["rms"]
     assert r["mean_steps"] == b["mean_steps"]["10"]
 
 

@@ -55,8 +55,7 @@ def run_in_inputs(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
         rate = (np.interp(x[:, k] + half[k], stations, z) - np.interp(x[:, k] - half[k], stations, z)) * \
             (vx[k] / (2 * half[k]) if half[k] > 0 else 0.0)
         per_point[:, k] = pts.stiffness[k] * (r - pts.gap[k]) + pts.damping[k] * rate + pts.fixed_load[k]
-    a = np.zeros((n + 1, n_w))
-    np.add.at(a, (slice(None), pts.wheel), per_point)
+    a = per_point @ (pts.wheel[:, None] == np.arange(n_w)[None, :])  # each wheel's points summed
     k_sum = np.bincount(pts.wheel, weights=pts.stiffness, minlength=n_w)
     c_sum = np.bincount(pts.wheel, weights=pts.damping, minlength=n_w)
     d = np.zeros((n_w, 2 * n_d))
@@ -67,34 +66,50 @@ def run_in_inputs(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
             settle @ step.constant, a)
 
 
-def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, z0: NDArray[np.float64],
-                  travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
-    """The vehicles' state z = (q, q̇) at the start after ``crossing.run_in`` metres of road from the
-    state ``z0`` (module docstring); ``step`` the vehicles' exact step map over ``dt`` (linear hold).
-    In the eigenbasis of A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹ (M0 a_k + M1 a_{k+1})
-    + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c); the steps one by one when V is ill-conditioned."""
+def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
+                  speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
+    """The vehicles' state z = (q, q̇) at the start after ``crossing.run_in`` metres of road, from rest in
+    static equilibrium where the run-in begins (module docstring: z0 = (I − A)⁻¹ ((M0 + M1) a_0 + c), the
+    recursion's fixed point under that place's road loads); ``step`` the vehicles' exact step map over
+    ``dt`` (linear hold).  In the eigenbasis of A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹
+    (M0 a_k + M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c); the steps one by one when V is ill-conditioned."""
     n = run_in_steps(crossing, dt, speed0)
-    if n == 0 or z0.size == 0:
-        return z0.copy()
     a_mat, m0, m1, c, a = run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n)
+    z0 = _rest(a_mat, m0, m1, c, a)
+    if n == 0 or z0.size == 0:
+        return z0
     lam, vec = np.linalg.eig(a_mat)
     if np.linalg.cond(vec) > EIGEN_CONDITION_LIMIT or np.max(np.abs(lam)) >= 1.0:
         return _by_steps(a_mat, m0, m1, c, a, z0)
     vi = np.linalg.inv(vec)
-    powers = np.exp(np.log(lam.astype(complex))[:, None] * np.arange(n - 1, -1, -1)[None, :])  # λ^{K−1−k}, k = 0 … K−1
+    powers = _powers(lam.astype(complex), n)[:, ::-1]  # λ^{K−1−k}, k = 0 … K−1
     loads = np.sum((vi @ m0) * (powers @ a[:-1]), axis=1) + np.sum((vi @ m1) * (powers @ a[1:]), axis=1)
     lam_k = lam * powers[:, 0]  # λ^K
     z = vec @ (lam_k * (vi @ z0) + loads + (1.0 - lam_k) / (1.0 - lam) * (vi @ c))
     return np.real(z)
 
 
-def settled_state_by_steps(crossing: "Crossing", data: Any, step: Any, dt: float, z0: NDArray[np.float64],
-                           travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
-    """``settled_state`` by the recursion z_{n+1} = A z_n + u_n step by step (the reference of the tests)."""
+def _powers(lam: NDArray[np.complex128], n: int, block: int = 64) -> NDArray[np.complex128]:
+    """λ^k for k = 0 … n − 1, (n_λ, n): λ^(k mod b) · λ^(b ⌊k/b⌋) — products of two short tables of powers
+    instead of an exponential each."""
+    log = np.log(lam)[:, None]
+    small = np.exp(log * np.arange(block)[None, :])  # λ^0 … λ^(b−1)
+    big = np.exp(log * (block * np.arange(-(-n // block)))[None, :])  # λ^0, λ^b, λ^2b, …
+    return (big[:, :, None] * small[:, None, :]).reshape(lam.size, -1)[:, :n]
+
+
+def settled_state_by_steps(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
+                           speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
+    """``settled_state`` by the recursion step by step (the reference of the tests)."""
     n = run_in_steps(crossing, dt, speed0)
-    if n == 0 or z0.size == 0:
-        return z0.copy()
-    return _by_steps(*run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n), z0)
+    inputs = run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n)
+    return _by_steps(*inputs, _rest(*inputs))
+
+
+def _rest(a_mat, m0, m1, c, a) -> NDArray[np.float64]:
+    """The recursion's fixed point under the road loads where the run-in begins, a_0 held: the vehicles at
+    rest in static equilibrium there, z = (I − A)⁻¹ ((M0 + M1) a_0 + c)."""
+    return np.linalg.solve(np.eye(a_mat.shape[0]) - a_mat, (m0 + m1) @ a[0] + c)
 
 
 def _by_steps(a_mat, m0, m1, c, a, z0: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -193,16 +193,10 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     return results
 
 
-#: [substitute] the run-in's step in steps of the run (``_run_in``): the vehicles alone on the road by the exact map,
-#: whose settled state the run's own approach then refines; 4 gave the same IMs as the 200 m approach
-#: (tests/verification/test_run_in.py)
-RUN_IN_STEP_FACTOR = 4
-
-
 def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q: NDArray[np.float64],
             dq: NDArray[np.float64], n_l: int) -> None:
-    """Row 0 of every lane's q, q̇: the vehicles' state after ``crossing.run_in`` metres of road from the
-    static start (``run_in.settled_state``; its road read as the lane's kernels read it).  Refused when a
+    """Row 0 of every lane's q, q̇: the vehicles' state after ``crossing.run_in`` metres of road from rest
+    where it begins (``run_in.settled_state``; its road read as the lane's kernels read it).  Refused when a
     contact point is on the deck at the start (the run-in drives the vehicles on the road alone)."""
     from vbikit.solve.modal_step import vehicle_step
     from vbikit.solve.run_in import run_in_steps, settled_state
@@ -214,7 +208,7 @@ def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q
         raise ValueError(f"crossing.run_in = {crossings[0].run_in:g} m: a contact point is on the deck when the run "
                          "starts; the run-in drives the vehicles on the road alone (give crossing.approach >= 0 so "
                          "that every vehicle starts before the bridge)")
-    h = RUN_IN_STEP_FACTOR * dt
+    h = dt  # (the run's step: a coarser one, 2 or 4 of them, moved an HS20-44's IM by 7e-4 and 2.5e-3)
     step = vehicle_step(data.vehicles, h)
     n_d = data.vehicles.gravity.size
     travel0, speed0 = np.asarray(mot.travel[0], float), np.asarray(mot.speed[0], float)
@@ -223,7 +217,7 @@ def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q
     lo, hi = float(min(x_back.min(), x0.min())), float(max(x_back.max(), x0.max()))
     for lane, crossing in enumerate(crossings):
         road = _road([crossing], lo, hi)
-        z = settled_state(crossing, data, step, h, np.concatenate([q[lane, 0], dq[lane, 0]]), travel0, speed0, road)
+        z = settled_state(crossing, data, step, h, travel0, speed0, road)
         q[lane, 0], dq[lane, 0] = z[:n_d], z[n_d:]
     q[len(crossings):, 0], dq[len(crossings):, 0] = q[len(crossings) - 1, 0], dq[len(crossings) - 1, 0]  # padding lanes
 
