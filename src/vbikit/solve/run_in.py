@@ -4,8 +4,9 @@ A run starts its vehicles at rest in static equilibrium ``crossing.approach`` be
 (docs/theory.md, "Start and end of a crossing").  A truck that has driven on a rough road for long
 carries a vibration that a short approach does not build up (docs/traffic.md, "Start from rest and
 the approach").  With ``crossing.run_in`` = R > 0 [m] the vehicles are first driven alone over the
-R metres of road behind their start positions, from that static state, and the run starts from the
-state they reach — as if the approach were R longer, without the coupled steps over it.
+R metres of road behind their start positions, from rest in static equilibrium where that road begins,
+and the run starts from the state they reach — as if the approach were R longer, without the coupled
+steps over it (the run's own step: tests/verification/test_run_in.py).
 
 Off the deck each contact point's force is the tire law on the road alone, F_p = k_p (r_p − g_p − z_w)
 + c_p (ṙ_p − ż_w) + f0_p (every point in contact: the run-in is linear), so the vehicles' wheel loads
