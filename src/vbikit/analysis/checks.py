@@ -801,7 +801,7 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
                  "crossing.run_in): they enter it before their body vibration has built up, so the impact factors and "
                  "dynamic peaks come out low (docs/traffic.md, \"Start from rest and the approach\"); for design "
                  f"values let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} in the base "
-                 "scenario (the run-in costs a fraction of the coupled steps a longer approach would)",
+                 "scenario (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)",
                  output=output, subject=subject, value=float(approach), threshold=float(settled))]
 
 
