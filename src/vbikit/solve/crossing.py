@@ -221,8 +221,8 @@ class Crossing:
     run_in : float
         Road [m] the vehicles drive alone before the run starts (``vbikit.solve.run_in``; ≥ 0, default
         0: the run starts them at rest): they start from the state reached over it from rest, as if
-        the approach were that much longer, without the coupled steps over it (exact integrator,
-        no vehicle on the deck at the start).
+        the approach were that much longer, without the coupled steps over it (any integrator; no
+        contact point may be on the deck at the start).
     """
 
     bridge: ModalBridge

@@ -35,8 +35,8 @@ if TYPE_CHECKING:  # pragma: no cover
 EIGEN_CONDITION_LIMIT = 1e8
 
 
-def run_in_inputs(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
-                  speed0: NDArray[np.float64], road: Any, n: int) -> tuple[NDArray[np.float64], ...]:
+def run_in_inputs(data: Any, step: Any, dt: float, travel0: NDArray[np.float64], speed0: NDArray[np.float64],
+                  road: Any, n: int) -> tuple[NDArray[np.float64], ...]:
     """The recursion z_{k+1} = A z_k + M0 a_k + M1 a_{k+1} + c over the ``n`` run-in steps of ``dt`` ending
     at the start (module docstring): (A, M0, M1, c, a), a (n + 1, n_w) the wheels' road loads at the step
     ends, for the vehicles at travel ``travel0`` [m] and speed ``speed0`` [m/s] (per vehicle) at the start
@@ -75,7 +75,7 @@ def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
     ``dt`` (linear hold).  In the eigenbasis of A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹
     (M0 a_k + M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c); the steps one by one when V is ill-conditioned."""
     n = run_in_steps(crossing, dt, speed0)
-    a_mat, m0, m1, c, a = run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n)
+    a_mat, m0, m1, c, a = run_in_inputs(data, step, dt, travel0, speed0, road, n)
     z0 = _rest(a_mat, m0, m1, c, a)
     if n == 0 or z0.size == 0:
         return z0
@@ -103,7 +103,7 @@ def settled_state_by_steps(crossing: "Crossing", data: Any, step: Any, dt: float
                            speed0: NDArray[np.float64], road: Any) -> NDArray[np.float64]:
     """``settled_state`` by the recursion step by step (the reference of the tests)."""
     n = run_in_steps(crossing, dt, speed0)
-    inputs = run_in_inputs(crossing, data, step, dt, travel0, speed0, road, n)
+    inputs = run_in_inputs(data, step, dt, travel0, speed0, road, n)
     return _by_steps(*inputs, _rest(*inputs))
 
 

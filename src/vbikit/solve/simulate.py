@@ -171,7 +171,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
         xi[:n_real, 0], q[:n_real, 0] = xi0, q0
         xi[n_real:, 0], q[n_real:, 0] = xi0[-1], q0[-1]  # padding: copies of the last real lane
     if first.run_in > 0 and n_d:  # the vehicles' state after their run-in on the road behind them (vbikit.solve.run_in)
-        _run_in(crossings[:n_real], data, mot, dt, q, dq, n_l)
+        _run_in(crossings[:n_real], data, mot, dt, q, dq)
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)
     outputs = (xi, dxi, q, dq, ddxi, ddq, wheel_force, wheel_len)
@@ -194,10 +194,11 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
 
 
 def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q: NDArray[np.float64],
-            dq: NDArray[np.float64], n_l: int) -> None:
+            dq: NDArray[np.float64]) -> None:
     """Row 0 of every lane's q, q̇: the vehicles' state after ``crossing.run_in`` metres of road from rest
     where it begins (``run_in.settled_state``; its road read as the lane's kernels read it).  Refused when a
-    contact point is on the deck at the start (the run-in drives the vehicles on the road alone)."""
+    contact point is on the deck at the start (the run-in drives the vehicles on the road alone).  The run-in
+    steps ``dt``, the run's own step: 2 or 4 of them a step moved an HS20-44's IM by 7e-4 and 2.5e-3."""
     from vbikit.solve.modal_step import vehicle_step
     from vbikit.solve.run_in import run_in_steps, settled_state
     from vbikit.solve.system import point_positions
@@ -208,16 +209,15 @@ def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q
         raise ValueError(f"crossing.run_in = {crossings[0].run_in:g} m: a contact point is on the deck when the run "
                          "starts; the run-in drives the vehicles on the road alone (give crossing.approach >= 0 so "
                          "that every vehicle starts before the bridge)")
-    h = dt  # (the run's step: a coarser one, 2 or 4 of them, moved an HS20-44's IM by 7e-4 and 2.5e-3)
-    step = vehicle_step(data.vehicles, h)
+    step = vehicle_step(data.vehicles, dt)
     n_d = data.vehicles.gravity.size
     travel0, speed0 = np.asarray(mot.travel[0], float), np.asarray(mot.speed[0], float)
-    n = run_in_steps(crossings[0], h, speed0)
-    x_back, _ = point_positions(data, travel0 - speed0 * (n + 1) * h, mot.speed[0])
+    n = run_in_steps(crossings[0], dt, speed0)
+    x_back, _ = point_positions(data, travel0 - speed0 * (n + 1) * dt, mot.speed[0])
     lo, hi = float(min(x_back.min(), x0.min())), float(max(x_back.max(), x0.max()))
     for lane, crossing in enumerate(crossings):
         road = _road([crossing], lo, hi)
-        z = settled_state(crossing, data, step, h, travel0, speed0, road)
+        z = settled_state(crossing, data, step, dt, travel0, speed0, road)
         q[lane, 0], dq[lane, 0] = z[:n_d], z[n_d:]
     q[len(crossings):, 0], dq[len(crossings):, 0] = q[len(crossings) - 1, 0], dq[len(crossings) - 1, 0]  # padding lanes
 

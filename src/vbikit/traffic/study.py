@@ -364,6 +364,7 @@ class TrafficStudy:
         first = ds.isel(point=0) if "point" in ds.dims else ds
         impact = {name: first[name].values for name in first.data_vars if str(name).endswith("impact_factor")}
         step_attrs, step_flags = governing_step_check(self, stats, impact)
+        start = self.context().template.crossing  # (where its events start their vehicles: approach, run_in)
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -372,12 +373,11 @@ class TrafficStudy:
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
             **step_attrs,
-            "approach_m": float(self.context().template.crossing.approach),
-            "run_in_m": float(self.context().template.crossing.run_in),
+            "approach_m": float(start.approach),
+            "run_in_m": float(start.run_in),
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
                               + unconverged_dataset_flags(ev["unconverged_steps"], "event")
-                              + (start_from_rest_flags(self.context().template.crossing.approach
-                                                       + self.context().template.crossing.run_in) if self.sprung else [])),
+                              + (start_from_rest_flags(start.approach + start.run_in) if self.sprung else [])),
         }
         return ds
 
