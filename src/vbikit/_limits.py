@@ -1,4 +1,4 @@
-"""Limits of a vehicle's motion that every input surface shares (one truth): the scenario schema
+"""Limits of a vehicle's motion that every input surface shares (one truth): ``vbikit.solve.Crossing``, the scenario schema
 (``vbikit.scenario.schema``), the vehicle records of ``vbikit traffic`` and ``vbikit lifetime``
 (``vbikit.traffic.records``) and ``--lanes``.  No imports: the records reader and the command line
 read them without loading the scenario schema (about 0.65 s of imports)."""
@@ -10,3 +10,6 @@ MAX_SPEED = 300.0
 MIN_SPEED = 1e-3
 #: largest |lateral_offset| of a vehicle centreline [m] (decks of known width refuse wheels off the deck)
 MAX_LATERAL_OFFSET = 50.0
+#: longest run-in of the vehicles before a run [m] (``crossing.run_in``): ten times the 100 m after which a
+#: truck's start has settled (docs/traffic.md, "Start from rest and the approach")
+MAX_RUN_IN = 1000.0

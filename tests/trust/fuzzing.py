@@ -116,7 +116,7 @@ SCENARIO_KEYS: dict[tuple[str, ...], Any] = {
         optional={"position": NUMBERS, "depth": NUMBERS, "height": NUMBERS, "length": NUMBERS, "ramp": NUMBERS,
                   "shape": st.sampled_from(["trapezoid", "cosine", "step", "zigzag"])}), max_size=2),
     ("crossing", "speed"): NUMBERS, ("crossing", "speed_kmh"): st.one_of(st.floats(0.001, 400), NUMBERS),
-    ("crossing", "acceleration"): NUMBERS, ("crossing", "approach"): NUMBERS,
+    ("crossing", "acceleration"): NUMBERS, ("crossing", "approach"): NUMBERS, ("crossing", "run_in"): NUMBERS,
     ("crossing", "free_vibration"): NUMBERS, ("crossing", "dt"): st.one_of(st.floats(1e-6, 0.1), NUMBERS),
     ("crossing", "integrator"): st.sampled_from(["rk4", "newmark", "euler"]), ("crossing", "lateral_offset"): NUMBERS,
     ("response", "x"): NUMBERS, ("response", "y"): NUMBERS, ("response", "girder"): st.integers(-1, 9),

@@ -73,7 +73,16 @@ def test_every_integrator_starts_from_the_run_in_as_from_the_longer_approach(int
         assert abs(ims[1] - ims[0]) < (2e-4 if integrator == "exact" else 5e-4), (seed, ims)
 
 
-def test_the_eigenbasis_sum_is_the_recursion_step_by_step():
+@pytest.mark.parametrize("chunk", [4096, 333])
+def test_the_eigenbasis_sum_is_the_recursion_step_by_step(chunk, monkeypatch):
+    """One sum over the run-in's ≈ 2,200 steps, and the same in chunks of 333 steps (``CHUNK_STEPS``)."""
+    from vbikit.solve import run_in
+
+    monkeypatch.setattr(run_in, "CHUNK_STEPS", chunk)
+    _eigenbasis_against_steps()
+
+
+def _eigenbasis_against_steps():
     from vbikit.solve.modal_step import vehicle_step
     from vbikit.solve.plan import plan_run
     from vbikit.solve.run_in import settled_state, settled_state_by_steps
@@ -100,8 +109,9 @@ def test_bad_run_ins_are_refused():
     from vbikit.vehicle import quarter_car
 
     beam = EulerBernoulliBeam(20.0, 2e9, 5000.0, n_modes=2)
-    with pytest.raises(ValueError, match="crossing.run_in must be >= 0"):
-        Crossing(beam, quarter_car(), run_in=-1.0)
+    for bad in (-1.0, 1000.5, float("nan")):  # (MAX_RUN_IN: 1000 m)
+        with pytest.raises(ValueError, match="crossing.run_in must be 0 … 1000 m"):
+            Crossing(beam, quarter_car(), run_in=bad)
     with pytest.raises(ValueError, match="a contact point is on the deck"):
         simulate(Crossing(beam, quarter_car(), approach=0.0, run_in=20.0))
 

@@ -24,7 +24,7 @@ from pydantic import (
     model_validator,
 )
 
-from vbikit._limits import MAX_LATERAL_OFFSET, MAX_SPEED, MIN_SPEED  # (the limits every input shares)
+from vbikit._limits import MAX_LATERAL_OFFSET, MAX_RUN_IN, MAX_SPEED, MIN_SPEED  # (the limits every input shares)
 from vbikit.analysis.plan import point_name
 from vbikit.scenario.bridge_spec import BridgeKind, BridgeSpec
 from vbikit.scenario.section import ScenarioError, Section
@@ -296,7 +296,7 @@ class CrossingSpec(Section):
     speed_kmh: Optional[float] = Field(None, ge=round(MIN_SPEED * 3.6, 12), le=MAX_SPEED * 3.6, description="speed at t = 0 [km/h]")
     acceleration: float = Field(0.0, ge=-10, le=10, description="constant acceleration, negative brakes [m/s^2]")
     approach: float = Field(10.0, ge=0, description="front-axle run-up before the bridge [m]")
-    run_in: float = Field(0.0, ge=0, le=1e4, description="road the vehicles drive alone before the run starts, from rest, "
+    run_in: float = Field(0.0, ge=0, le=MAX_RUN_IN, description="road the vehicles drive alone before the run starts, from rest, "
                           "so that they enter the approach settled (vbikit.solve.run_in) [m]; 0: they start at rest")
     free_vibration: Optional[float] = Field(None, ge=0, description="time simulated after the last axle leaves; default one first-mode period [s]")
     dt: Optional[float] = Field(None, gt=0, description="time step, default automatic; RK4 refuses a step above its stability limit [s]")

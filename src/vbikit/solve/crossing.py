@@ -32,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import Kept
+from vbikit._limits import MAX_RUN_IN
 from vbikit.bridge.base import ModalBridge
 from vbikit.contact.points import ContactPoints, contact_points, stack_contact_points
 from vbikit.contact.tires import PointTire, TireModel
@@ -254,8 +255,8 @@ class Crossing:
             raise ValueError("crossing.acceleration must be finite")
         if not (math.isfinite(self.approach) and self.approach >= 0):
             raise ValueError(f"crossing.approach must be >= 0 m, got {self.approach!r}")
-        if not (math.isfinite(self.run_in) and self.run_in >= 0):
-            raise ValueError(f"crossing.run_in must be >= 0 m, got {self.run_in!r}")
+        if not (math.isfinite(self.run_in) and 0 <= self.run_in <= MAX_RUN_IN):
+            raise ValueError(f"crossing.run_in must be 0 … {MAX_RUN_IN:g} m, got {self.run_in!r}")
         if self.free_vibration is not None and not (np.isfinite(self.free_vibration) and self.free_vibration >= 0):
             raise ValueError(f"crossing.free_vibration must be >= 0 s, got {self.free_vibration!r}")
         if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):

@@ -35,15 +35,39 @@ if TYPE_CHECKING:  # pragma: no cover
 EIGEN_CONDITION_LIMIT = 1e8
 
 
+#: run-in steps summed at a time (``settled_state``): its memory stays that of this many steps, however long
+#: the run-in or fine the step
+CHUNK_STEPS = 4096
+
+
 def run_in_inputs(data: Any, step: Any, dt: float, travel0: NDArray[np.float64], speed0: NDArray[np.float64],
                   road: Any, n: int) -> tuple[NDArray[np.float64], ...]:
     """The recursion z_{k+1} = A z_k + M0 a_k + M1 a_{k+1} + c over the ``n`` run-in steps of ``dt`` ending
     at the start (module docstring): (A, M0, M1, c, a), a (n + 1, n_w) the wheels' road loads at the step
-    ends, for the vehicles at travel ``travel0`` [m] and speed ``speed0`` [m/s] (per vehicle) at the start
-    on the road bundle ``road`` (lane 0); ``step`` the vehicles' exact step map over ``dt``."""
+    ends (``road_loads``), for the vehicles at travel ``travel0`` [m] and speed ``speed0`` [m/s] (per
+    vehicle) at the start on the road bundle ``road`` (lane 0); ``step`` the vehicles' exact step map over ``dt``."""
+    return (*recursion(data, step), road_loads(data, dt, travel0, speed0, road, n, 0, n))
+
+
+def recursion(data: Any, step: Any) -> tuple[NDArray[np.float64], ...]:
+    """(A, M0, M1, c) of the run-in's recursion (module docstring) for the vehicles' step map ``step``."""
     pts, veh = data.points, data.vehicles
     n_d, n_w = veh.gravity.size, veh.wheel_rows.shape[0]
-    t = dt * np.arange(-n, 1)  # the run-in's step ends, t = 0 the start (n + 1 of them)
+    k_sum = np.bincount(pts.wheel, weights=pts.stiffness, minlength=n_w)
+    c_sum = np.bincount(pts.wheel, weights=pts.damping, minlength=n_w)
+    d = np.zeros((n_w, 2 * n_d))
+    d[:, :n_d] = (veh.wheel_stiffness - k_sum)[:, None] * veh.wheel_rows
+    d[:, n_d:] = (veh.wheel_damping - c_sum)[:, None] * veh.wheel_rows
+    settle = np.linalg.inv(np.eye(2 * n_d) - step.load1 @ d)
+    return settle @ (step.transition + step.load0 @ d), settle @ step.load0, settle @ step.load1, settle @ step.constant
+
+
+def road_loads(data: Any, dt: float, travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any, n: int,
+               first: int, last: int) -> NDArray[np.float64]:
+    """The wheels' road loads a_k (module docstring) at the run-in's step ends k = ``first`` … ``last`` of ``n``
+    (t = (k − n) dt, t = 0 the start), (last − first + 1, n_w)."""
+    pts = data.points
+    t = dt * (np.arange(first, last + 1) - n)
     x = pts.origin[None, :] + pts.direction[None, :] * (travel0[pts.vehicle][None, :] + speed0[pts.vehicle][None, :] * t[:, None])
     vx = pts.direction * speed0[pts.vehicle]
     half = np.abs(vx) * (0.5 * dt)  # the road rate: the secant over ±|v| dt/2, as the kernels read it
@@ -56,15 +80,7 @@ def run_in_inputs(data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
         rate = (np.interp(x[:, k] + half[k], stations, z) - np.interp(x[:, k] - half[k], stations, z)) * \
             (vx[k] / (2 * half[k]) if half[k] > 0 else 0.0)
         per_point[:, k] = pts.stiffness[k] * (r - pts.gap[k]) + pts.damping[k] * rate + pts.fixed_load[k]
-    a = per_point @ (pts.wheel[:, None] == np.arange(n_w)[None, :])  # each wheel's points summed
-    k_sum = np.bincount(pts.wheel, weights=pts.stiffness, minlength=n_w)
-    c_sum = np.bincount(pts.wheel, weights=pts.damping, minlength=n_w)
-    d = np.zeros((n_w, 2 * n_d))
-    d[:, :n_d] = (veh.wheel_stiffness - k_sum)[:, None] * veh.wheel_rows
-    d[:, n_d:] = (veh.wheel_damping - c_sum)[:, None] * veh.wheel_rows
-    settle = np.linalg.inv(np.eye(2 * n_d) - step.load1 @ d)
-    return (settle @ (step.transition + step.load0 @ d), settle @ step.load0, settle @ step.load1,
-            settle @ step.constant, a)
+    return per_point @ (pts.wheel[:, None] == np.arange(data.vehicles.wheel_rows.shape[0])[None, :])  # per wheel
 
 
 def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
@@ -73,19 +89,26 @@ def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
     static equilibrium where the run-in begins (module docstring: z0 = (I − A)⁻¹ ((M0 + M1) a_0 + c), the
     recursion's fixed point under that place's road loads); ``step`` the vehicles' exact step map over
     ``dt`` (linear hold).  In the eigenbasis of A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹
-    (M0 a_k + M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c); the steps one by one when V is ill-conditioned."""
+    (M0 a_k + M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c), the sum over ``CHUNK_STEPS`` steps at a time; the
+    steps one by one when V is ill-conditioned."""
     n = run_in_steps(crossing, dt, speed0)
-    a_mat, m0, m1, c, a = run_in_inputs(data, step, dt, travel0, speed0, road, n)
-    z0 = _rest(a_mat, m0, m1, c, a)
+    a_mat, m0, m1, c = recursion(data, step)
+    z0 = _rest(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, 0))
     if n == 0 or z0.size == 0:
         return z0
     lam, vec = np.linalg.eig(a_mat)
     if np.linalg.cond(vec) > EIGEN_CONDITION_LIMIT or np.max(np.abs(lam)) >= 1.0:
-        return _by_steps(a_mat, m0, m1, c, a, z0)
+        return _by_steps(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, n), z0)
+    lam = lam.astype(complex)
     vi = np.linalg.inv(vec)
-    powers = _powers(lam.astype(complex), n)[:, ::-1]  # λ^{K−1−k}, k = 0 … K−1
-    loads = np.sum((vi @ m0) * (powers @ a[:-1]), axis=1) + np.sum((vi @ m1) * (powers @ a[1:]), axis=1)
-    lam_k = lam * powers[:, 0]  # λ^K
+    w0, w1 = vi @ m0, vi @ m1
+    loads = np.zeros(lam.size, complex)
+    for k0 in range(0, n, CHUNK_STEPS):  # steps k0 … k1 − 1: λ^{K−1−k} = λ^{K−k1} λ^{k1−1−k}
+        k1 = min(k0 + CHUNK_STEPS, n)
+        a = road_loads(data, dt, travel0, speed0, road, n, k0, k1)
+        powers = _powers(lam, k1 - k0)[:, ::-1] * np.exp(np.log(lam) * (n - k1))[:, None]
+        loads += np.sum(w0 * (powers @ a[:-1]), axis=1) + np.sum(w1 * (powers @ a[1:]), axis=1)
+    lam_k = np.exp(np.log(lam) * n)  # λ^K
     z = vec @ (lam_k * (vi @ z0) + loads + (1.0 - lam_k) / (1.0 - lam) * (vi @ c))
     return np.real(z)
 
