@@ -16,7 +16,7 @@ from vbikit.solve import Crossing, simulate
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _events(n: int, approach: float, run_in: float = 0.0):
+def _events(n: int, approach: float, run_in: float = 0.0, trucks: int = 1, coherence: float = 1.0):
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_traffic import _stream
 
@@ -24,11 +24,11 @@ def _events(n: int, approach: float, run_in: float = 0.0):
     from vbikit.traffic.study import traffic_study
 
     base = {"bridge": {"model": "paper-bridge-2", "n_modes": 10}, "tire": {"model": "point"},
-            "road": {"class": "B", "spacing": 0.01}, "crossing": {"approach": approach}}
-    job = traffic_study(_stream(4 * n, 600.0), base, batch_size=16)
+            "road": {"class": "B", "spacing": 0.01, "right_coherence": coherence}, "crossing": {"approach": approach}}
+    job = traffic_study(_stream(4 * n if trucks == 1 else 400, 600.0), base, batch_size=16)
     ctx = job.context()
     out = []
-    for e in [e for e in range(job.size) if len(job.events[e]) == 1][:n]:
+    for e in [e for e in range(job.size) if len(job.events[e]) == trucks][:n]:
         c = dataclasses.replace(job.crossing(e), run_in=run_in, road=None, road_right=None)
         out.append((with_scenario_road(c, ctx.scenario.road, ctx.scenario, job.road_seed(e)), ctx.plan))
     return out
@@ -82,26 +82,80 @@ def test_the_eigenbasis_sum_is_the_recursion_step_by_step(chunk, monkeypatch):
     _eigenbasis_against_steps()
 
 
-def _eigenbasis_against_steps():
+def _run_in_inputs(trucks: int = 1, every: int = 4, coherence: float = 1.0):
+    """The run-in of a ``trucks``-truck traffic event on Bridge 2 (10 m approach, 60 m run-in) at ``every``
+    times the run's step: its crossing, kernel data, step map, step, start travel and speeds, and road
+    (``coherence``: the right wheel line's, ``road.right_coherence``)."""
     from vbikit.solve.modal_step import vehicle_step
     from vbikit.solve.plan import plan_run
-    from vbikit.solve.run_in import settled_state, settled_state_by_steps
     from vbikit.solve.simulate import _road
     from vbikit.solve.system import point_positions
 
-    (crossing, _), = _events(1, 10.0, 60.0)
+    (crossing, _), = _events(1, 10.0, 60.0, trucks=trucks, coherence=coherence)
     plan = plan_run(crossing)
-    data, dt = plan.kernel_data, 4 * plan.dt
-    step = vehicle_step(data.vehicles, dt)
-    n_d = data.vehicles.gravity.size
+    data, dt = plan.kernel_data, every * plan.dt
     travel0, speed0 = np.asarray(plan.grid.travel[0], float), np.asarray(plan.grid.speed[0], float)
     x_back, _ = point_positions(data, travel0 - 60.5 * speed0 / speed0.min(), speed0)
     x0, _ = point_positions(data, travel0, speed0)
     road = _road([crossing], float(min(x_back.min(), x0.min())), float(max(x_back.max(), x0.max())))
-    fast = settled_state(crossing, data, step, dt, travel0, speed0, road)
-    slow = settled_state_by_steps(crossing, data, step, dt, travel0, speed0, road)
-    assert fast.shape == (2 * n_d,)
+    return crossing, data, vehicle_step(data.vehicles, dt), dt, travel0, speed0, road
+
+
+def _eigenbasis_against_steps(trucks: int = 1):
+    from vbikit.solve.run_in import settled_state, settled_state_by_steps
+
+    inputs = _run_in_inputs(trucks)
+    fast, slow = settled_state(*inputs), settled_state_by_steps(*inputs)
+    assert fast.shape == (2 * inputs[1].vehicles.gravity.size,)
     assert np.max(np.abs(fast - slow)) <= 1e-9 * np.max(np.abs(slow)) and np.max(np.abs(slow)) > 0
+
+
+def test_a_several_truck_event_is_summed_vehicle_by_vehicle():
+    """A three-truck event (both directions on Bridge 2): the recursion splits into one group per truck, each
+    with its own q and q̇ and wheels (``independent_blocks``), and the sum over the groups is the recursion
+    of the whole event step by step (``settled_state_by_steps``)."""
+    from vbikit.solve.run_in import independent_blocks, recursion
+
+    crossing, data, step, *_ = _run_in_inputs(trucks=3)
+    a_mat, m0, m1, _ = recursion(data, step)
+    groups = independent_blocks(a_mat, m0, m1)
+    sizes = [v.vehicle.n_dof for v in crossing.vehicles]
+    wheels = [len(v.vehicle.static_wheel_loads()) for v in crossing.vehicles]
+    assert [g[0].size for g in groups] == [2 * n for n in sizes]
+    assert [g[1].size for g in groups] == wheels
+    first = np.cumsum([0, *sizes[:-1]])
+    n_d = sum(sizes)
+    for (states, _), lo, n in zip(groups, first, sizes):
+        assert states.tolist() == [*range(lo, lo + n), *range(n_d + lo, n_d + lo + n)]
+    assert {v.direction for v in crossing.vehicles} == {"+x", "-x"}
+    _eigenbasis_against_steps(trucks=3)
+
+
+def test_the_road_loads_are_the_road_read_as_the_step_loops_read_it():
+    """The run-in's wheel loads (``kernels.run_in_loads``: one reading a half step, shared by two steps)
+    against the same loads by numpy's linear interpolation, point by point, the rate the secant over
+    ±|v| dt/2 (the step loops' reading, ``kernels.road_point``): a three-truck event in both directions on
+    both wheel lines of Bridge 2 (right_coherence 0.5: the lines differ), within 1e-9 of the largest load."""
+    from vbikit.solve.run_in import road_loads, run_in_steps
+
+    crossing, data, _, dt, travel0, speed0, road = _run_in_inputs(trucks=3, every=1, coherence=0.5)
+    n = run_in_steps(crossing, dt, speed0)
+    pts = data.points
+    t = dt * (np.arange(n + 1) - n)
+    x = pts.origin[None, :] + pts.direction[None, :] * (travel0[pts.vehicle][None, :] + speed0[pts.vehicle][None, :] * t[:, None])
+    vx = pts.direction * speed0[pts.vehicle]
+    half = np.abs(vx) * 0.5 * dt
+    lines = np.minimum(pts.line, road.elevations.shape[0] - 1)
+    assert set(lines.tolist()) == {0, 1}
+    expected = np.zeros((n + 1, data.vehicles.wheel_rows.shape[0]))
+    for p in range(x.shape[1]):
+        z = road.elevations[lines[p], :, 0]
+        r = np.interp(x[:, p], road.stations, z)
+        rate = (np.interp(x[:, p] + half[p], road.stations, z) - np.interp(x[:, p] - half[p], road.stations, z)) \
+            * vx[p] / (2 * half[p])
+        expected[:, pts.wheel[p]] += pts.stiffness[p] * (r - pts.gap[p]) + pts.damping[p] * rate + pts.fixed_load[p]
+    got = np.vstack([road_loads(data, dt, travel0, speed0, road, n, 0, 99), road_loads(data, dt, travel0, speed0, road, n, 100, n)])
+    assert np.max(np.abs(got - expected)) <= 1e-9 * np.max(np.abs(expected))
 
 
 def test_bad_run_ins_are_refused():

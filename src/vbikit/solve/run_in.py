@@ -23,6 +23,7 @@ under each point is read as the kernels read it (linear between stations; the ra
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -65,22 +66,19 @@ def recursion(data: Any, step: Any) -> tuple[NDArray[np.float64], ...]:
 def road_loads(data: Any, dt: float, travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any, n: int,
                first: int, last: int) -> NDArray[np.float64]:
     """The wheels' road loads a_k (module docstring) at the run-in's step ends k = ``first`` … ``last`` of ``n``
-    (t = (k − n) dt, t = 0 the start), (last − first + 1, n_w)."""
+    (t = (k − n) dt, t = 0 the start), (last − first + 1, n_w) (``kernels.run_in_loads``)."""
+    from vbikit.solve import kernels
+
     pts = data.points
-    t = dt * (np.arange(first, last + 1) - n)
-    x = pts.origin[None, :] + pts.direction[None, :] * (travel0[pts.vehicle][None, :] + speed0[pts.vehicle][None, :] * t[:, None])
-    vx = pts.direction * speed0[pts.vehicle]
-    half = np.abs(vx) * (0.5 * dt)  # the road rate: the secant over ±|v| dt/2, as the kernels read it
-    stations = road.stations
-    lines = np.minimum(pts.line, road.elevations.shape[0] - 1)
-    per_point = np.empty_like(x)
-    for k in range(x.shape[1]):
-        z = road.elevations[lines[k], :, 0]
-        r = np.interp(x[:, k], stations, z)
-        rate = (np.interp(x[:, k] + half[k], stations, z) - np.interp(x[:, k] - half[k], stations, z)) * \
-            (vx[k] / (2 * half[k]) if half[k] > 0 else 0.0)
-        per_point[:, k] = pts.stiffness[k] * (r - pts.gap[k]) + pts.damping[k] * rate + pts.fixed_load[k]
-    return per_point @ (pts.wheel[:, None] == np.arange(data.vehicles.wheel_rows.shape[0])[None, :])  # per wheel
+    vx = np.ascontiguousarray(pts.direction * speed0[pts.vehicle], float)
+    x0 = np.ascontiguousarray(pts.origin + pts.direction * travel0[pts.vehicle], float)
+    out = np.zeros((last - first + 1, data.vehicles.wheel_rows.shape[0]))
+    kernels.run_in_loads(x0, vx, float(dt), np.int64(first), np.int64(n),
+                         np.ascontiguousarray(np.minimum(pts.line, road.elevations.shape[0] - 1), np.int64),
+                         pts.stiffness, pts.damping, pts.fixed_load, pts.gap, np.ascontiguousarray(pts.wheel, np.int64),
+                         road.stations, np.ascontiguousarray(road.elevations[:, :, 0]),
+                         np.full(x0.size, -1, np.int64), out)
+    return out
 
 
 def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
@@ -88,38 +86,89 @@ def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
     """The vehicles' state z = (q, q̇) at the start after ``crossing.run_in`` metres of road, from rest in
     static equilibrium where the run-in begins (module docstring: z0 = (I − A)⁻¹ ((M0 + M1) a_0 + c), the
     recursion's fixed point under that place's road loads); ``step`` the vehicles' exact step map over
-    ``dt`` (linear hold).  In the eigenbasis of A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹
-    (M0 a_k + M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c), the sum over ``CHUNK_STEPS`` steps at a time; the
-    steps one by one when V is ill-conditioned."""
+    ``dt`` (linear hold).  Each group of states that nothing couples to another (``independent_blocks``: a
+    vehicle) in the eigenbasis of its A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹ (M0 a_k +
+    M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c), the sum by Horner's rule (``kernels.run_in_horner``) over
+    ``CHUNK_STEPS`` steps at a time (the road loads of a chunk read once for every group), over the eigenvalues
+    with Im λ ≥ 0 (``_Block``); the steps one by one when a V is ill-conditioned."""
+    from vbikit.solve import kernels
+
     n = run_in_steps(crossing, dt, speed0)
     a_mat, m0, m1, c = recursion(data, step)
     z0 = _rest(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, 0))
     if n == 0 or z0.size == 0:
         return z0
-    lam, vec = np.linalg.eig(a_mat)
-    if np.linalg.cond(vec) > EIGEN_CONDITION_LIMIT or np.max(np.abs(lam)) >= 1.0:
+    blocks = [_Block.of(states, wheels, a_mat, m0, m1) for states, wheels in independent_blocks(a_mat, m0, m1)]
+    if any(b is None for b in blocks):
         return _by_steps(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, n), z0)
-    lam = lam.astype(complex)
-    vi = np.linalg.inv(vec)
-    w0, w1 = vi @ m0, vi @ m1
-    loads = np.zeros(lam.size, complex)
-    for k0 in range(0, n, CHUNK_STEPS):  # steps k0 … k1 − 1: λ^{K−1−k} = λ^{K−k1} λ^{k1−1−k}
-        k1 = min(k0 + CHUNK_STEPS, n)
-        a = road_loads(data, dt, travel0, speed0, road, n, k0, k1)
-        powers = _powers(lam, k1 - k0)[:, ::-1] * np.exp(np.log(lam) * (n - k1))[:, None]
-        loads += np.sum(w0 * (powers @ a[:-1]), axis=1) + np.sum(w1 * (powers @ a[1:]), axis=1)
-    lam_k = np.exp(np.log(lam) * n)  # λ^K
-    z = vec @ (lam_k * (vi @ z0) + loads + (1.0 - lam_k) / (1.0 - lam) * (vi @ c))
-    return np.real(z)
+    sums = [np.zeros(b.lam.size, complex) for b in blocks]
+    for k0 in range(0, n, CHUNK_STEPS):  # steps k0 … k1 − 1, their loads read once for every group
+        a = road_loads(data, dt, travel0, speed0, road, n, k0, min(k0 + CHUNK_STEPS, n))
+        for b, total in zip(blocks, sums):
+            kernels.run_in_horner(b.lam, b.w0, b.w1, b.wheels, a, total)
+    z = np.zeros_like(z0)
+    for b, total in zip(blocks, sums):
+        lam_k = b.lam ** n  # λ^K
+        coef = lam_k * (b.vi @ z0[b.states]) + total + (1.0 - lam_k) / (1.0 - b.lam) * (b.vi @ c[b.states])
+        z[b.states] = np.real(b.vec @ (b.weight * coef))
+    return z
 
 
-def _powers(lam: NDArray[np.complex128], n: int, block: int = 64) -> NDArray[np.complex128]:
-    """λ^k for k = 0 … n − 1, (n_λ, n): λ^(k mod b) · λ^(b ⌊k/b⌋) — products of two short tables of powers
-    instead of an exponential each."""
-    log = np.log(lam)[:, None]
-    small = np.exp(log * np.arange(block)[None, :])  # λ^0 … λ^(b−1)
-    big = np.exp(log * (block * np.arange(-(-n // block)))[None, :])  # λ^0, λ^b, λ^2b, …
-    return (big[:, :, None] * small[:, None, :]).reshape(lam.size, -1)[:, :n]
+def independent_blocks(a_mat: NDArray[np.float64], m0: NDArray[np.float64],
+                       m1: NDArray[np.float64]) -> list[tuple[NDArray[np.int64], NDArray[np.int64]]]:
+    """The groups (states, wheels) of the recursion over z = (q, q̇) that no entry of A, M0 or M1 couples to
+    another group — each vehicle of an event, whose run-ins are independent — so that a group's sum costs
+    its own size, not the event's: the contiguous ranges of DOFs (a vehicle's are contiguous, stacked
+    block-diagonal) that no DOF couples across (through its q or q̇), each with its q and q̇ states and the
+    wheels whose loads reach them (a wheel without DOFs in none).  A coupling anywhere else merges ranges:
+    fewer, larger groups, the same sum."""
+    n_d = a_mat.shape[0] // 2
+    mag = np.abs(a_mat)
+    dofs = (mag[:n_d, :n_d] + mag[:n_d, n_d:] + mag[n_d:, :n_d] + mag[n_d:, n_d:]) != 0.0
+    dofs |= dofs.T
+    last = n_d - 1 - np.argmax(dofs[:, ::-1], axis=1)  # each DOF's last coupled DOF (its own at least)
+    ends = np.flatnonzero(np.maximum.accumulate(np.maximum(last, np.arange(n_d))) == np.arange(n_d)) + 1
+    reach = (np.abs(m0) + np.abs(m1)) != 0.0  # (states, wheels)
+    reach = reach[:n_d] | reach[n_d:]
+    wheel_dof = np.where(reach.any(axis=0), np.argmax(reach, axis=0), -1)
+    groups = []
+    for lo, hi in zip([0, *ends[:-1].tolist()], ends.tolist()):
+        states = np.r_[lo:hi, n_d + lo:n_d + hi]
+        groups.append((states, np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi))))
+    return groups
+
+
+@dataclass(frozen=True)
+class _Block:
+    """One group's eigenbasis (``settled_state``): its states and wheels, and of its eigenvalues λ with Im λ ≥ 0
+    (A is real: the others are their conjugates, whose terms are the conjugates of theirs) Λ, V, V⁻¹, V⁻¹ M0,
+    V⁻¹ M1 and the weight of each (2 for a complex λ: the term and its conjugate, 2 Re; 1 for a real λ)."""
+
+    states: NDArray[np.int64]
+    wheels: NDArray[np.int64]
+    lam: NDArray[np.complex128]
+    vec: NDArray[np.complex128]
+    vi: NDArray[np.complex128]
+    w0: NDArray[np.complex128]
+    w1: NDArray[np.complex128]
+    weight: NDArray[np.float64]
+
+    @classmethod
+    def of(cls, states, wheels, a_mat, m0, m1) -> "_Block | None":
+        """The group's eigenbasis; None when V is ill-conditioned (its 1-norm condition number above
+        ``EIGEN_CONDITION_LIMIT``) or a |λ| ≥ 1."""
+        lam, vec = np.linalg.eig(a_mat[np.ix_(states, states)])
+        if np.max(np.abs(lam)) >= 1.0:
+            return None
+        vec = vec.astype(complex)  # (complex also where every λ is real: one compiled sum)
+        vi = np.linalg.inv(vec)
+        if np.linalg.norm(vec, 1) * np.linalg.norm(vi, 1) > EIGEN_CONDITION_LIMIT:  # V's condition number (1-norm)
+            return None
+        keep = np.flatnonzero(np.imag(lam) >= 0.0)
+        c = np.ascontiguousarray
+        return cls(states, c(wheels, np.int64), c(lam[keep], complex), c(vec[:, keep], complex), c(vi[keep], complex),
+                   c(vi[keep] @ m0[np.ix_(states, wheels)]), c(vi[keep] @ m1[np.ix_(states, wheels)]),
+                   np.where(np.imag(lam[keep]) > 0.0, 2.0, 1.0))
 
 
 def settled_state_by_steps(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
