@@ -16,8 +16,9 @@ def _spec(days=5):
 
 
 def test_screening_gives_the_block_maxima_of_dynamics_on_every_event(tmp_path):
-    """One simulated day on the 9.16 m beam, class-B roads, A = 1 (event amplifications here reach
-    0.75): every event simulated vs screening + dynamics.  Each day's maximum total effect (M at 3.9 m, exit reaction) is identical, with a
+    """One simulated day on the 9.16 m beam, class-B roads, A = 1.25 (event amplifications here reach
+    1.11 with the trucks settled by the population's run-in; 0.75 when they started at rest): every event
+    simulated vs screening + dynamics.  Each day's maximum total effect (M at 3.9 m, exit reaction) is identical, with a
     fraction of the events simulated; and every event left out satisfies (1 + A)·R_st < D_b
     (the rule), with A bounding every event's amplification (checked on all of them)."""
 
@@ -31,16 +32,16 @@ def test_screening_gives_the_block_maxima_of_dynamics_on_every_event(tmp_path):
     every = np.stack([job.run_event(int(g))["dyn_peak"] for g in gid])  # dynamics on every event
     signs = np.array([ln.sign for ln in prep.setup.lines])
     amp = every / st - 1.0
-    assert np.nanmax(amp) <= 1.0  # the bound A holds for every event here, so the rule is exact
-    simulated, dyn, rounds, bound = screen(st, signs, day, 1, 1.0, lambda idx, r: every[idx])
-    assert bound == 1.0
+    assert np.nanmax(amp) <= 1.25  # the bound A holds for every event here, so the rule is exact
+    simulated, dyn, rounds, bound = screen(st, signs, day, 1, 1.25, lambda idx, r: every[idx])
+    assert bound == 1.25
     full_max = np.max(every * signs, axis=0)
     screened_max = np.nanmax(np.where(simulated[:, None], dyn * signs, np.nan), axis=0)
     assert np.array_equal(full_max, screened_max)
-    assert 0 < simulated.sum() < len(simulated)  # some events screened out (a day of 100 trucks: about a third)
+    assert 0 < simulated.sum() < len(simulated)  # some events screened out (a day of 100 trucks: 37 of 106)
     # events left out cannot reach the block maximum
     left = ~simulated
-    assert np.all((2.0 * st[left] * signs) < full_max[None, :])
+    assert np.all((2.25 * st[left] * signs) < full_max[None, :])
 
 
 def test_candidates_rule_by_hand():

@@ -1,7 +1,9 @@
-"""The start from rest (docs/traffic.md, "Start from rest and the approach"): a population whose events start
-their sprung vehicles less than SETTLED_APPROACH (100 m) before the bridge is flagged start_from_rest — in
-the traffic dataset (warnings, flag_codes, approach_m) and in a lifetime's per-effect flags — and one whose
-base scenario sets crossing.approach = 100 is not; moving constant forces never are."""
+"""The start from rest (docs/traffic.md, "Start from rest and the approach"): a population gives its sprung
+vehicles the rest of SETTLED_APPROACH (100 m) as a run-in unless its base scenario sets crossing.run_in
+(``population_run_in``), shortened on an event the road does not hold (``fit_run_in``); one whose events start
+them less than 100 m before the bridge in all (a base scenario's run_in = 0, a road too short) is flagged
+start_from_rest — in the traffic dataset (warnings, flag_codes, approach_m, run_in_m) and in a lifetime's
+per-effect flags; moving constant forces never are."""
 from __future__ import annotations
 
 import xarray as xr
@@ -22,11 +24,12 @@ def test_the_rule_flags_approaches_below_the_settled_one_only():
     assert start_from_rest_flags(99.9) and not start_from_rest_flags(100.0) and not start_from_rest_flags(250.0)
 
 
-def _stream(tmp_path, approach: float | None):
+def _stream(tmp_path, approach: float | None, run_in: float | None = None, road: str = ""):
     (tmp_path / "r.csv").write_text(RECORDS)
-    base = '[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[tire]\nmodel = "point"\n[road]\nclass = "B"\n'
-    if approach is not None:
-        base += f"[crossing]\napproach = {approach}\n"
+    base = f'[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[tire]\nmodel = "point"\n[road]\nclass = "B"\n{road}'
+    crossing = {"approach": approach, "run_in": run_in}
+    if any(v is not None for v in crossing.values()):
+        base += "[crossing]\n" + "".join(f"{k} = {v}\n" for k, v in crossing.items() if v is not None)
     (tmp_path / "base.toml").write_text(base)
     res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
                                    "--out", str(tmp_path / "o.nc"), "--workers", "1", "--no-progress"])
@@ -35,16 +38,37 @@ def _stream(tmp_path, approach: float | None):
         return dict(ds.attrs), res.output
 
 
-def test_a_stream_with_the_default_approach_is_flagged_and_says_how_to_settle(tmp_path):
-    attrs, output = _stream(tmp_path, None)
-    assert attrs["approach_m"] == 10.0
+def test_a_stream_started_at_rest_is_flagged_and_says_how_to_settle(tmp_path):
+    attrs, output = _stream(tmp_path, None, run_in=0)
+    assert attrs["approach_m"] == 10.0 and attrs["run_in_m"] == 0.0
     assert "start_from_rest" in attrs["flag_codes"].split(",")
-    assert "at rest 10 m before the bridge" in attrs["warnings"]
+    assert "at rest 10 m before the bridge" in attrs["warnings"] and "crossing.run_in = 90" in attrs["warnings"]
     assert "at rest 10 m before the bridge" in output  # (printed by vbikit traffic)
 
 
+def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_path):
+    """No run_in in the base scenario: the population's, 100 m less the 10 m approach, on every event."""
+    attrs, _ = _stream(tmp_path, None)
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        assert ds["run_in"].values.tolist() == [90.0]
+    assert attrs["approach_m"] == 10.0 and attrs["run_in_m"] == 90.0 and attrs["run_in_min_m"] == 90.0
+    assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
+
+
+def test_a_road_too_short_for_the_run_in_shortens_it_and_is_flagged_with_the_remedy(tmp_path):
+    """road.length = 100 m: the period is 163.84 m (2^14 samples of 1 cm), −81.92 … 81.91 m; the truck (4.5 m
+    wheelbase) starts 10 m before the 9.16 m beam, so its run-in road reaches back to about −(14.5 + run_in) m
+    and at most about 66 m of it fits (1 m margin)."""
+    attrs, _ = _stream(tmp_path, None, road="length = 100.0\n")
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        got = float(ds["run_in"].values[0])
+    assert 60.0 < got < 67.5 and attrs["run_in_min_m"] == got and attrs["run_in_m"] == 90.0
+    assert "start_from_rest" in attrs["flag_codes"].split(",")
+    assert "too short for the whole run-in on 1 event" in attrs["warnings"] and "road.length" in attrs["warnings"]
+
+
 def test_a_stream_started_100_m_before_the_bridge_is_not(tmp_path):
-    attrs, output = _stream(tmp_path, 100.0)
+    attrs, output = _stream(tmp_path, 100.0, run_in=0)
     assert attrs["approach_m"] == 100.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
     assert "at rest" not in output

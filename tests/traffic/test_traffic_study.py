@@ -53,7 +53,7 @@ def test_events_partition_the_records_in_the_dataset(stream, tmp_path):
 
 def test_stream_of_one_vehicle_equals_vbikit_run(tmp_path):
     """One record through `vbikit traffic` and the same truck through `vbikit run` (its road seed
-    derive_seed(seed, 0), entering at t = 0, in lane 1): the same numbers."""
+    derive_seed(seed, 0), entering at t = 0, in lane 1, the stream's run-in): the same numbers."""
     record = synthetic_stream([LaneTraffic(1, "-x", 600, 75)], 1, seed=9)
     write_records(record, tmp_path / "one.csv")
     (tmp_path / "base.toml").write_text(
@@ -64,7 +64,10 @@ def test_stream_of_one_vehicle_equals_vbikit_run(tmp_path):
     assert res.exit_code == 0, res.output
     ds = xr.open_dataset(tmp_path / "one.nc")
     r = record[0]
+    run_in = float(ds["run_in"][0])  # the population's run-in (none given in the base scenario), 100 m less the
+    assert run_in == 95.0  # approach, the road long enough for it
     scenario = (tmp_path / "base.toml").read_text().replace('class = "B"', f'class = "B"\nseed = {derive_seed(7, 0)}')
+    scenario = scenario.replace("approach = 5.0", f"approach = 5.0\nrun_in = {run_in!r}")
     scenario += (f'[[vehicles]]\nmodel = "axles"\naxle_loads = {list(r.axle_loads)}\naxle_spacings = {list(r.axle_spacings)}\n'
                  f'direction = "-x"\nspeed = {r.speed!r}\nlateral_offset = 0.0\n')
     (tmp_path / "run.toml").write_text(scenario)

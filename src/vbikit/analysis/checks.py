@@ -72,6 +72,7 @@ from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
 from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
+from vbikit.solve.run_in import SETTLED_APPROACH
 from vbikit.solve.timestep import choose_time_step
 from vbikit.outputs import report_unit
 
@@ -92,10 +93,6 @@ AIRBORNE_FRACTION = 0.05
 STRAIN_MODE_TOLERANCE = 0.01
 #: a static deflection peak above this fraction of the longest span is not plausible for a bridge (module docstring)
 IMPLAUSIBLE_DEFLECTION_FRACTION = 0.01
-#: [substitute] the shortest approach [m] from which a population's events start their vehicles settled: one-truck
-#: traffic events on Bridge 2 (class B) give a mean IM 0.0147 ± 0.0024 higher at 100 m than at the default 10 m, and
-#: within 1e-4 of 200 m's (docs/traffic.md, "Start from rest and the approach"; docs/scripts/approach_numbers.py)
-SETTLED_APPROACH = 100.0
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
 NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the deck's vibration (and a "
                     "sprung vehicle's bounce, the wheels unloading there) was out of phase with the load's arrival at "
@@ -192,10 +189,11 @@ FLAG_CODES: dict[str, str] = {
     "static_reference_short": "lifetime: the coupled runs' static reference misses the exact static peak (the daily "
                               "maxima of the total and the ADR biased low); output: \"ADR\"; value: the largest relative "
                               "shortfall (run_static_shortfall), threshold: half_step_tolerance (0.01)",
-    "start_from_rest": "traffic and lifetime: the events start their vehicles at rest crossing.approach before the "
-                       "bridge, shorter than ``SETTLED_APPROACH`` (100 m): they enter before their body vibration has "
-                       "built up, so the impact factors and dynamic peaks come out low (docs/traffic.md); output: "
-                       "impact_factor; value: the approach [m], threshold: ``SETTLED_APPROACH``",
+    "start_from_rest": "traffic and lifetime: the events start their vehicles at rest crossing.approach + crossing.run_in "
+                       "before the bridge (the shortest run-in of any event: a base scenario's run_in = 0, a road too "
+                       "short for the population's), less than ``SETTLED_APPROACH`` (100 m): they enter before their body "
+                       "vibration has built up, so the impact factors and dynamic peaks come out low (docs/traffic.md); "
+                       "output: impact_factor; value: approach + run-in [m], threshold: ``SETTLED_APPROACH``",
     "stream_step_sensitive": "traffic: a governing event's impact factors (deflection, strain, load effects) change at "
                              "half the time step; output: the one that moved most; subject: the event; value: its "
                              "IM_half − IM_run, threshold: ``STEP_TOLERANCE`` (5e-3, on its magnitude)",
@@ -788,20 +786,27 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
 
 
 def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, output: str = "impact_factor",
-                          subject: str = "crossing.approach") -> list[Flag]:
+                          subject: str = "crossing.approach", shortened: int = 0) -> list[Flag]:
     """A population's events (traffic streams, a lifetime's dynamic events) start their vehicles at rest in
     static equilibrium ``approach`` [m] before the bridge (``crossing.approach`` + ``crossing.run_in``, the
-    road they drive before it alone: ``vbikit.solve.run_in``): below ``settled`` they enter it before the start's
-    transient has died out, calmer than trucks that have driven on the road for long, and the impact factors
-    come out low (one flag about ``output``, ``subject``; none from ``settled`` on)."""
+    road they drive before it alone: ``vbikit.solve.run_in``; the shortest over the events): below
+    ``settled`` they enter it before the start's transient has died out, calmer than trucks that have driven
+    on the road for long, and the impact factors come out low (one flag about ``output``, ``subject``; none
+    from ``settled`` on).  ``shortened``: events whose run-in the road cut short (a population's run-in fitted
+    to a short road), named in the words with the remedy."""
     if not approach < settled:
         return []
+    if shortened:
+        remedy = (f"the road was too short for the whole run-in on {counted(shortened, 'event')}: give a longer "
+                  "road.length (a random road) or a measured profile reaching further before the bridge")
+    else:
+        remedy = (f"let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} in the base "
+                  "scenario (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)")
     return [Flag("start_from_rest",
                  f"the events start their vehicles at rest {approach:g} m before the bridge (crossing.approach + "
                  "crossing.run_in): they enter it before their body vibration has built up, so the impact factors and "
                  "dynamic peaks come out low (docs/traffic.md, \"Start from rest and the approach\"); for design "
-                 f"values let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} in the base "
-                 "scenario (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)",
+                 f"values {remedy}",
                  output=output, subject=subject, value=float(approach), threshold=float(settled))]
 
 

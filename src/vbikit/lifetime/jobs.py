@@ -412,6 +412,9 @@ class DynamicJob:
         out["damage_dynamic"] = np.array(d_dyn)
         out["damage_static"] = np.array(d_st)
         out["max_range_dynamic"] = np.array(top)  # largest stress range of the dynamic history [Pa]
+        # the road the event's trucks drove alone before the run (crossing.run_in: the population's, fitted to the
+        # road; NaN for moving forces, which have nothing to settle)
+        out["run_in"] = np.array(crossing.run_in if any(m.vehicle.n_dof for m in crossing.vehicles) else np.nan)
         out["n_steps"] = np.array(result.n_steps, float)
         out["unconverged_steps"] = np.array(result.unconverged_steps, float)  # (CrossingResult.unconverged_steps)
         return out
@@ -429,6 +432,8 @@ class DynamicJob:
                   "unconverged_steps"):
             if k not in part or part[k].shape[0] != len(batch) or not np.all(np.isfinite(part[k])):
                 return f"{k} is missing or not finite"
+        if "run_in" not in part or part["run_in"].shape[0] != len(batch):
+            return "it has no run_in (written by an earlier version)"
         return None
 
     def assemble(self, parts: Path):
@@ -443,4 +448,5 @@ class DynamicJob:
             "max_range_dynamic": (("event", "detail"), cat["max_range_dynamic"].reshape(len(cat["event_id"]), -1)),
             "n_steps": ("event", cat["n_steps"]),
             "unconverged_steps": ("event", cat["unconverged_steps"]),
+            "run_in": ("event", cat["run_in"]),
         }, coords={"event": cat["event_id"]}, attrs={"study": self.to_json()})

@@ -177,7 +177,8 @@ def _start_flags(name: str, a: dict) -> list[Flag]:
     if a.get("vehicle_model", "moving-forces") == "moving-forces" or "approach_m" not in a:
         return []
     return start_from_rest_flags(float(a["approach_m"]) + float(a.get("run_in_m", 0.0)),
-                                 output=flag_output("return_levels", "total"), subject=name)
+                                 output=flag_output("return_levels", "total"), subject=name,
+                                 shortened=int(a.get("run_in_shortened_events", 0)))
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:

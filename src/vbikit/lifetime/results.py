@@ -375,12 +375,22 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         # where the dynamic events start their trucks, at rest (crossing.approach before the bridge), and how the
         # trucks are modelled: sprung trucks enter calmer than settled ones after a short approach (start_from_rest)
         "approach_m": float(prep.setup.context.template.crossing.approach),
-        "run_in_m": float(prep.setup.context.template.crossing.run_in),
+        **_run_in_attrs(float(prep.setup.context.template.crossing.run_in), dyn["results"]),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
     }
     return ds
+
+
+def _run_in_attrs(run_in: float, results: dict) -> dict[str, Any]:
+    """The run-in of the dynamic events (``crossing.run_in``): the shortest one got (``run_in_m``: the
+    population's, less where the road was too short for it; its own when no event has sprung trucks) and how
+    many got less than ``run_in`` (``run_in_shortened_events``)."""
+    got = np.array([float(r["run_in"]) for r in results.values() if "run_in" in r], float)
+    got = got[np.isfinite(got)]
+    return {"run_in_m": float(got.min()) if got.size else run_in,
+            "run_in_shortened_events": int(np.sum(got < run_in - 1e-9))}
 
 
 def _unconverged_attrs(results: dict) -> dict[str, Any]:

@@ -182,6 +182,15 @@ def _stations(x0: float, spacing: float, n_samples: int) -> NDArray[np.float64]:
     return x
 
 
+def random_road_range(psd: RoadPSD, spacing: float = 0.01, length: float = 1000.0,
+                      x_start: float | None = None) -> tuple[float, float]:
+    """The stations x [m] of the first and last samples of ``random_profile``'s period for these settings
+    (a window of it reaches no further)."""
+    n_samples, period, _, _ = _wavenumber_grid(psd, spacing, length)
+    x0 = -period / 2 if x_start is None else float(x_start)
+    return x0, x0 + spacing * (n_samples - 1)
+
+
 def _window_samples(window: tuple[float, float], x0: float, spacing: float, n_samples: int) -> tuple[int, int]:
     """First and last sample index j (x_j = x0 + j·Δx) covering ``window`` with the margin, clipped to the period."""
     lo, hi = (float(v) for v in window)

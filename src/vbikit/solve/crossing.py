@@ -530,7 +530,8 @@ class Crossing:
             origin, sign, _ = self._kinematics
             ends = (self.start_time, self.start_time + self.duration)
             s = np.array([[m._travel_at(t) for m in self.vehicles] for t in ends])[:, self.point_vehicle]
-            if self.run_in > 0:  # the run-in's road behind the start: each vehicle at its start speed (run_in)
+            if self.run_in > 0 and any(m.vehicle.n_dof for m in self.vehicles):  # the run-in's road behind the
+                # start (moving forces have none to drive): each vehicle at its start speed (run_in)
                 v0 = np.array([m._speed_at(ends[0]) for m in self.vehicles])
                 back = (self.run_in + 1.0) * v0 / v0.min()  # (the slowest drives run_in; a step's margin)
                 s = np.vstack([s, s[0] - back[self.point_vehicle]])

@@ -20,6 +20,7 @@ force and contact loss; the stream's statistics as attributes (``stream_statisti
 """
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import logging
@@ -40,6 +41,7 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
+from vbikit.solve.run_in import population_run_in
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -60,6 +62,9 @@ EVENT_EXTRAS: dict[str, tuple[str, str]] = {
     "airborne_wheels": ("1", "1 if a wheel was airborne on the bridge for more than 5 % of its time there (the single "
                              "run's airborne_wheels rule): the event's impact factors are dominated by point-contact "
                              "impacts, not design values"),
+    "run_in": ("m", "road the event's sprung vehicles drove alone, from rest, before the run started "
+                    "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
+                    "for moving forces, which have no vibration to build up)"),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
@@ -307,6 +312,8 @@ class TrafficStudy:
         points, row = reduce_crossing(result, self.context().plan, names=self.output_names)
         row["road_seed"] = float(self.road_seed(e))
         row["airborne_wheels"] = float(bool(airborne_wheels(result)))
+        crossing = result.crossing
+        row["run_in"] = float(crossing.run_in) if any(m.vehicle.n_dof for m in crossing.vehicles) else math.nan
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
@@ -334,7 +341,8 @@ class TrafficStudy:
         names = self.point_names
         variables |= output_variables(ev, ["event"], names, self.output_names)
         for name, (units, desc) in EVENT_EXTRAS.items():
-            variables[name] = ("event", ev[name].astype(np.int64), {"units": units, "long_name": desc})
+            values = ev[name] if units == "m" else ev[name].astype(np.int64)
+            variables[name] = ("event", values, {"units": units, "long_name": desc})
         variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time; on a skew deck the earliest record time minus reach / speed, when a wheel can first touch the deck's oblique end)"})
         variables["n_vehicles"] = ("event", n_veh, {"units": "1", "long_name": "vehicles in the event"})
         variables["multiple_presence"] = ("event", (n_veh > 1).astype(np.int8), {"units": "1", "long_name": "1 if several vehicles were on the bridge together"})
@@ -375,20 +383,24 @@ class TrafficStudy:
             **step_attrs,
             "approach_m": float(start.approach),
             "run_in_m": float(start.run_in),
+            **({"run_in_min_m": float(np.nanmin(ev["run_in"]))} if np.any(np.isfinite(ev["run_in"])) else {}),
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
                               + unconverged_dataset_flags(ev["unconverged_steps"], "event")
-                              + (start_from_rest_flags(start.approach + start.run_in) if self.sprung else [])),
+                              + self.start_flags(ev["run_in"])),
         }
         return ds
 
-    @property
-    def sprung(self) -> bool:
-        """Whether any vehicle of the stream has DOFs (a sprung truck, whose vibration builds up on the
-        approach: ``start_from_rest_flags``), not only moving forces; one vehicle built per record model."""
-        first = {}
-        for r in self.records:
-            first.setdefault(r.model, r)
-        return any(_vehicle(r).n_dof > 0 for r in first.values())
+    def start_flags(self, run_in: NDArray) -> list[Flag]:
+        """``start_from_rest`` on the stream's sprung events (``run_in`` finite: the run-in each got) whose
+        approach and run-in fall short of ``SETTLED_APPROACH``, judged on the shortest, with how many got less
+        than the stream's run-in (the road too short for it); none for moving forces only."""
+        run_in = np.asarray(run_in, float)
+        got = run_in[np.isfinite(run_in)]
+        if not got.size:
+            return []
+        start = self.context().template.crossing
+        return start_from_rest_flags(start.approach + float(got.min()),
+                                     shortened=int(np.sum(got < start.run_in - 1e-9)))
 
     def flag_attrs(self, static_peaks: NDArray, flags: Sequence[Flag] = ()) -> dict[str, str]:
         """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
@@ -498,20 +510,42 @@ class EventContext:
     """What every event of a stream shares (built once per process): the base scenario's crossing
     to put vehicles on (``template``), the scenario, its response plan and its road (``road(seed)``:
     the event's random road, or the fixed one).  ``EventContext.of(base, base_dir)`` builds it from
-    a traffic base scenario; lifetime runs use it too."""
+    a traffic base scenario; lifetime runs use it too.  A base scenario without ``crossing.run_in`` gets the
+    population's (``settled``: ``vbikit.solve.run_in.population_run_in``, the trucks start as if they had
+    driven ``SETTLED_APPROACH`` of the road), shortened on an event that would reach beyond the road
+    (``road_range``, ``fit_run_in``); ``run_in = 0`` there starts them at rest, and a run-in given there is
+    the run-in of every event (an event it does not fit on is refused, naming the road)."""
 
     template: "_Template"
     scenario: Scenario
     plan: ResponsePlan
     random_road: bool
     _fixed_road: tuple = (None, None)
+    #: whether the run-in is the population's (fitted to the road per event), not the base scenario's
+    settled: bool = False
+    #: x [m] of the first and last road stations an event may read (None: a smooth road, no end)
+    road_range: Optional[tuple[float, float]] = None
 
     @classmethod
     def of(cls, base: dict, base_dir: str) -> "EventContext":
+        from vbikit.road.psd import random_road_range
+        from vbikit.scenario.build import road_psd
+
         scenario = parse_scenario(template_data(base), base_dir)
         built: BuiltScenario = build(scenario)
-        random_road = scenario.road.profile_file is None and scenario.road.road_class != "none"
-        ctx = cls(_Template(built.crossing), scenario, built.plan, random_road)
+        road = scenario.road
+        random_road = road.profile_file is None and road.road_class != "none"
+        crossing = built.crossing
+        settled = "run_in" not in base.get("crossing", {})
+        if settled:  # a population starts its trucks settled (population_run_in)
+            near, far = crossing.bridge.deck_extent
+            crossing = dataclasses.replace(crossing, run_in=population_run_in(
+                crossing.approach, max(-near, far - crossing.bridge.span)))
+        fixed = [p for p in (built.crossing.road, built.crossing.road_right) if p is not None]
+        road_range = (random_road_range(road_psd(road), road.spacing, road.length) if random_road else
+                      (max(p.x[0] for p in fixed), min(p.x[-1] for p in fixed)) if fixed and road.profile_file else None)
+        ctx = cls(_Template(dataclasses.replace(crossing, road=None, road_right=None)), scenario, built.plan,
+                  random_road, settled=settled, road_range=road_range)
         if not random_road:
             ctx._fixed_road = (built.crossing.road, built.crossing.road_right)
         return ctx
@@ -525,11 +559,41 @@ class EventContext:
 
     def crossing(self, motions: tuple[VehicleMotion, ...], seed: int) -> Crossing:
         """The vehicles ``motions`` on the template's bridge and the road of ``seed`` (a random road
-        only over the range their contact points touch: the same road there as ``road(seed)``)."""
+        only over the range their contact points touch: the same road there as ``road(seed)``), with the
+        population's run-in fitted to that road (``fit_run_in``)."""
+        bare = self.template.with_vehicles(motions, None, None)
+        if self.settled and bare.run_in > 0 and self.road_range is not None:
+            bare = fit_run_in(bare, self.road_range)
         if not self.random_road:
-            return self.template.with_vehicles(motions, *self._fixed_road)
-        return with_scenario_road(self.template.with_vehicles(motions, None, None), self.scenario.road, self.scenario,
-                                  seed)
+            return dataclasses.replace(bare, road=self._fixed_road[0], road_right=self._fixed_road[1])
+        return with_scenario_road(bare, self.scenario.road, self.scenario, seed)
+
+
+#: road [m] a fitted run-in leaves between the road it reads and the road's first or last station (the
+#: random road's window reaches a few steps beyond the points; ``fit_run_in``)
+RUN_IN_ROAD_MARGIN = 1.0
+
+
+def fit_run_in(crossing: Crossing, road_range: tuple[float, float]) -> Crossing:
+    """``crossing`` with the longest run-in, up to its own, whose road (``Crossing.road_extent``) lies within
+    ``road_range`` = (x_first, x_last) [m] less ``RUN_IN_ROAD_MARGIN`` (by bisection, to 0.01 m, on the
+    short side): a population's run-in on an event that would drive beyond a short road (``road.length``
+    of a random road, a measured profile's ends).  ``crossing`` itself when its run-in fits, or when the
+    road does not hold the event without one either (the road's refusal then names it)."""
+    lo, hi = road_range[0] + RUN_IN_ROAD_MARGIN, road_range[1] - RUN_IN_ROAD_MARGIN
+
+    def fits(run_in: float) -> bool:
+        shorter = crossing if run_in == crossing.run_in else dataclasses.replace(crossing, run_in=run_in)
+        first, last = shorter.road_extent()  # (the crossing's own is kept: the road's window reads it again)
+        return first >= lo and last <= hi
+
+    if fits(crossing.run_in) or not fits(0.0):
+        return crossing
+    short, long_ = 0.0, crossing.run_in
+    while long_ - short > 0.01:
+        mid = 0.5 * (short + long_)
+        short, long_ = (mid, long_) if fits(mid) else (short, mid)
+    return dataclasses.replace(crossing, run_in=short)
 
 
 @dataclass(frozen=True)
