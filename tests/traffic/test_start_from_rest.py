@@ -6,12 +6,15 @@ start_from_rest — in the traffic dataset (warnings, flag_codes, approach_m, ru
 per-effect flags; moving constant forces never are."""
 from __future__ import annotations
 
+from pathlib import Path
+
 import xarray as xr
 from typer.testing import CliRunner
 
 from vbikit.analysis.checks import SETTLED_APPROACH, start_from_rest_flags
 from vbikit.cli import app
 
+ROOT = Path(__file__).resolve().parents[2]
 RECORDS = ("time [s],lane,direction,speed [km/h],axle_loads [kN],axle_spacings [m]\n"
            "0,1,+x,80,50 120,4.5\n")
 
@@ -67,6 +70,29 @@ def test_a_road_too_short_for_the_run_in_shortens_it_and_is_flagged_with_the_rem
     assert "too short for the whole run-in on 1 event" in attrs["warnings"] and "road.length" in attrs["warnings"]
 
 
+def test_a_measured_road_too_short_for_the_run_in_shortens_it_to_what_it_holds(tmp_path):
+    """A measured profile from x = −40 m: the truck's rear axle starts at −14.5 m (10 m approach, 4.5 m
+    wheelbase), and the run-in's road reaches run_in + 1 m behind each point (``Crossing.road_extent``), so with
+    the 1 m kept from the road's end (``RUN_IN_ROAD_MARGIN``) the run-in is 40 − 1 − 14.5 − 1 = 23.5 m, found to
+    0.01 m on the short side; the profile's rough part (a 1 cm sine of 3 m wavelength) is then driven."""
+    import numpy as np
+
+    x = np.arange(-40.0, 60.0 + 1e-9, 0.01)
+    rows = "\n".join(f"{a:.2f},{0.01 * np.sin(2 * np.pi * a / 3.0):.6f}" for a in x)
+    (tmp_path / "road.csv").write_text("x [m],elevation [m]\n" + rows + "\n")
+    (tmp_path / "r.csv").write_text(RECORDS)
+    (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[tire]\nmodel = "point"\n'
+                                        '[road]\nprofile_file = "road.csv"\n')
+    res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
+                                   "--out", str(tmp_path / "o.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        got = float(ds["run_in"].values[0])
+        attrs = dict(ds.attrs)
+    assert 23.49 <= got <= 23.5
+    assert "start_from_rest" in attrs["flag_codes"].split(",") and "measured profile" in attrs["warnings"]
+
+
 def test_a_stream_started_100_m_before_the_bridge_is_not(tmp_path):
     attrs, output = _stream(tmp_path, 100.0, run_in=0)
     assert attrs["approach_m"] == 100.0
@@ -92,3 +118,32 @@ def test_a_stream_of_moving_forces_is_not_flagged(tmp_path):
     assert res.exit_code == 0, res.output
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         assert ds.attrs["approach_m"] == 10.0 and "start_from_rest" not in ds.attrs.get("flag_codes", "")
+
+
+def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest():
+    """The dynamic events get the population's run-in (approach 5 m: 95 m) and record it; lifetime.nc's
+    ``run_in_m`` is the shortest any event got and ``run_in_shortened_events`` counts those below the
+    population's (events of moving forces, NaN, not counted); the flag names the remedy for a short road."""
+    import math
+
+    import numpy as np
+
+    from vbikit.lifetime.jobs import EVENT_STRIDE
+    from vbikit.lifetime.report import _start_flags
+    from vbikit.lifetime.results import _run_in_attrs
+    from vbikit.lifetime.run import prepare
+
+    spec = {"seed": 5, "days": 5, "traffic": {"records": "examples/traffic/stream.csv", "trucks_per_day": 20},
+            "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"},
+            "road": {"class": "B"}, "crossing": {"approach": 5},
+            "load_effects": [{"kind": "moment", "x": 3.9, "name": "M"}], "block": "day", "distribution": "gumbel"}
+    prep = prepare(spec, str(ROOT))
+    static = prep.static_job().run_batch((0,))
+    g = int(static["ev_day"][0] * EVENT_STRIDE + static["ev_index"][0])
+    assert float(prep.dynamic_job(np.array([g])).run_event(g)["run_in"]) == 95.0
+    attrs = _run_in_attrs(95.0, {1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}, 4: {}})
+    assert attrs == {"run_in_m": 61.5, "run_in_shortened_events": 1}
+    assert _run_in_attrs(95.0, {3: {"run_in": math.nan}}) == {"run_in_m": 95.0, "run_in_shortened_events": 0}
+    (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, **attrs})
+    assert flag.value == 66.5 and "too short for the whole run-in on 1 event" in flag.message
+    assert not _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 95.0})
