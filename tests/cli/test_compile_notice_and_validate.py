@@ -68,6 +68,23 @@ def test_a_batch_of_one_crossing_runs_the_one_lane_kernel(after_demo, caplog):
     assert "kernel lean" not in caplog.text  # lean is cached (the demo compiled it)
 
 
+def test_a_stream_that_settles_its_trucks_announces_the_run_in_loops():
+    """A traffic stream's events drive their trucks the population's run-in first: its batches run the
+    run-in's two compiled loops beside the one-lane kernel; with ``run_in = 0`` in the base scenario, not."""
+    from vbikit.solve import kernels
+    from vbikit.study.run import batch_kernels
+    from vbikit.traffic import LaneTraffic, synthetic_stream
+    from vbikit.traffic.study import traffic_study
+
+    records = synthetic_stream([LaneTraffic(1, "+x", 600, 80, 5)], 3, seed=1)
+    base = {"bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"}, "road": {"class": "B"}}
+    settled = traffic_study(records, base)
+    assert settled.settles_vehicles
+    assert batch_kernels(settled, settled.batches()) == [kernels.lean, kernels.run_in_loads, kernels.run_in_horner]
+    at_rest = traffic_study(records, base | {"crossing": {"run_in": 0}})
+    assert not at_rest.settles_vehicles and batch_kernels(at_rest, at_rest.batches()) == [kernels.lean]
+
+
 def test_a_study_announces_the_full_kernel_only_where_wheels_may_leave_the_road():
     """``may_hand_over``: rigid-disk tires or roads of ISO 8608 class D and rougher, in the base or an axis."""
     from types import SimpleNamespace

@@ -346,6 +346,12 @@ class DynamicJob:
                            "n_items": self.size, **({"step_factor": self.step_factor} if self.step_factor != 1.0 else {})},
                           sort_keys=True)
 
+    @property
+    def settles_vehicles(self) -> bool:
+        """Whether the events drive their trucks a run-in first (sprung trucks, ``crossing.run_in`` > 0: the
+        compiled run-in loops, ``vbikit.study.run.batch_kernels``)."""
+        return self.vehicle_model == "axle-truck" and build_setup(self.setup_key).context.template.crossing.run_in > 0.0
+
     def crossing(self, g: int):
         """The coupled crossing of global event ``g`` and its day's records."""
         from vbikit.solve import VehicleMotion

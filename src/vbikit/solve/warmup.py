@@ -68,6 +68,14 @@ def _moving_loads() -> None:
     moving_load_sweep(_tiny_crossing(DEFAULT_INTEGRATOR).bridge, [0.0, 2.0], [1e5, 1e5], [20.0, 30.0], [2.5], dx=0.05)
 
 
+def _run_in() -> None:
+    """The run-in's loops (``vbikit.solve.run_in``: traffic streams' and lifetimes' settled start)."""
+    from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
+    from vbikit.solve.simulate import simulate
+
+    simulate(replace(_tiny_crossing(DEFAULT_INTEGRATOR), run_in=5.0))
+
+
 def compile_kernels() -> dict[str, float]:
     """Compile (or load from numba's cache) every kernel variant vbikit runs; returns the seconds
     each integrator took (one lane, then many lanes)."""
@@ -80,6 +88,10 @@ def compile_kernels() -> dict[str, float]:
             run()
         took[name] = time.perf_counter() - t0
         log.info("kernels of %s ready (%.1f s)", name, took[name])
+    t0 = time.perf_counter()
+    _run_in()
+    took["run-in"] = time.perf_counter() - t0
+    log.info("run-in loops ready (%.1f s)", took["run-in"])
     t0 = time.perf_counter()
     _moving_loads()
     took["moving-loads"] = time.perf_counter() - t0
@@ -100,8 +112,8 @@ def kernel_groups() -> dict[str, Callable[[], None]]:
     at the same time could each write that index without the other's variant (the helpers RK4 and
     the implicit kernel share, the contact law and the lane helpers, are still compiled by both
     groups: the test suite's workers lock each index write).  Each explicit integrator is one group
-    (its own kernel), the implicit ones share ``IMPLICIT_GROUPS``, and the moving-load sweep is one
-    more."""
+    (its own kernel), the implicit ones share ``IMPLICIT_GROUPS``, and the moving-load sweep and the
+    run-in's loops are one more each."""
     from vbikit.solve.integrators import get_integrator, integrator_names
 
     groups: dict[str, list[Callable[[], None]]] = {}
@@ -113,6 +125,7 @@ def kernel_groups() -> dict[str, Callable[[], None]]:
         for group, kinds in IMPLICIT_GROUPS.items():
             groups.setdefault(group, []).extend(variants[k] for k in kinds)
     groups["moving-loads"] = [_moving_loads]
+    groups["run-in"] = [_run_in]
     return {group: _run_all(runs) for group, runs in groups.items()}
 
 

@@ -295,7 +295,8 @@ def batch_kernels(study, batches, threads: int = 1) -> list:
     one, a batch no larger than ``threads`` or one whose crossings all have different steps runs only
     the one-lane kernel.  A job with its own ``run_batch`` (a traffic stream, a PEM study) runs its
     crossings one at a time (one-lane kernel).  The integrator is the first crossing's (``scenario_dict``;
-    traffic: the default)."""
+    traffic: the default).  Crossings with a run-in (the job's ``settles_vehicles``, else the first
+    crossing's ``crossing.run_in``) run its two loops too (``kernels.run_in_loads``, ``run_in_horner``)."""
     from vbikit.solve.batch import lane_chunks
     from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
 
@@ -316,6 +317,14 @@ def batch_kernels(study, batches, threads: int = 1) -> list:
     makers = ([integrator.kernel] if 1 in sizes else []) + \
         ([integrator.lanes_kernel or integrator.kernel] if 2 in sizes else [])
     kernels = [make() for make in makers if make is not None]
+    settles = getattr(study, "settles_vehicles", None)  # (a traffic stream, a lifetime's dynamics: their own rule)
+    if settles is None:
+        settles = first is not None and bool(batches) and \
+            float(first(batches[0][0]).get("crossing", {}).get("run_in") or 0.0) > 0.0
+    if settles:  # the vehicles' run-in (vbikit.solve.run_in): its two loops
+        from vbikit.solve import kernels as compiled
+
+        kernels += [compiled.run_in_loads, compiled.run_in_horner]
     return [k for i, k in enumerate(kernels) if all(k is not o for o in kernels[:i])]
 
 

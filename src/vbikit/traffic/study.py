@@ -390,6 +390,12 @@ class TrafficStudy:
         }
         return ds
 
+    @property
+    def settles_vehicles(self) -> bool:
+        """Whether the events drive their vehicles a run-in first (``crossing.run_in`` > 0: the compiled run-in
+        loops, ``vbikit.study.run.batch_kernels``)."""
+        return self.context().template.crossing.run_in > 0.0
+
     def start_flags(self, run_in: NDArray) -> list[Flag]:
         """``start_from_rest`` on the stream's sprung events (``run_in`` finite: the run-in each got) whose
         approach and run-in fall short of ``SETTLED_APPROACH``, judged on the shortest, with how many got less
