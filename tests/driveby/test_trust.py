@@ -276,3 +276,17 @@ def test_a_healthy_case_is_not_called_its_own_healthy_case():
     assert np.isnan(shift).all()
     assert why == ["this case's identified frequency is unreliable",
                    "the healthy case 0's identified frequency is unreliable"]
+
+
+def test_a_scenarios_run_in_reaches_every_pass_and_the_decoupled_solution_refuses_it():
+    """``crossing.run_in`` of a drive-by scenario is every pass's (it was dropped: the cart started at rest
+    whatever the key said); ``coupling = "decoupled"``, whose solution starts the vehicle at rest, refuses it
+    before anything runs, naming the key."""
+    from vbikit.driveby.study import case_crossing, check_cases
+
+    crossing = {"speed": 8.0, "approach": 5.0, "run_in": 30.0}
+    spec = parse_driveby(_example(crossing=crossing), EXAMPLE.parent)
+    assert {case_crossing(spec, c).run_in for c in spec.cases} == {30.0}
+    assert {case_crossing(parse_driveby(_example(), EXAMPLE.parent), c).run_in for c in spec.cases} == {0.0}
+    with pytest.raises(DriveByError, match=r"crossing.run_in = 30 m: coupling = \"decoupled\" starts the vehicle at rest"):
+        check_cases(parse_driveby(_example(crossing=crossing, coupling="decoupled"), EXAMPLE.parent))

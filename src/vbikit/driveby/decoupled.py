@@ -70,6 +70,9 @@ def _check(crossing) -> None:
     if crossing.road_right is not None:
         raise VbikitError("coupling = \"decoupled\": one road profile for every wheel line (road_right needs coupling "
                           "= \"coupled\")")
+    if crossing.run_in > 0:
+        raise VbikitError("coupling = \"decoupled\": the vehicle starts at rest (crossing.run_in needs coupling = "
+                          "\"coupled\")")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -256,8 +256,9 @@ def _scenario_crossing(data: dict, base_dir: str):
 
     c = scenario.crossing
     return types.SimpleNamespace(bridge=_BRIDGES[key], tire=build_tire(scenario.tire), roads=roads, speed=c.speed_ms,
-                                 acceleration=c.acceleration, approach=c.approach, free_vibration=c.free_vibration,
-                                 dt=c.dt, integrator=c.integrator, loss_of_contact=scenario.tire.loss_of_contact)
+                                 acceleration=c.acceleration, approach=c.approach, run_in=c.run_in,
+                                 free_vibration=c.free_vibration, dt=c.dt, integrator=c.integrator,
+                                 loss_of_contact=scenario.tire.loss_of_contact)
 
 
 def case_crossing(spec: DriveBy, case: dict):
@@ -280,7 +281,7 @@ def case_crossing(spec: DriveBy, case: dict):
         raise DriveByError(f"{err}".replace("invalid scenario:\n  ", "")) from None
     vehicle = _vehicle(spec, case)
     kwargs = dict(tire=c.tire, road=None, road_right=None, speed=c.speed, acceleration=c.acceleration,
-                  approach=c.approach, free_vibration=c.free_vibration, integrator=c.integrator,
+                  approach=c.approach, run_in=c.run_in, free_vibration=c.free_vibration, integrator=c.integrator,
                   loss_of_contact=c.loss_of_contact)
 
     others: tuple = ()
@@ -416,6 +417,9 @@ def check_cases(spec: DriveBy) -> float:
                                f"temperature_reference {var.temperature_reference:g} °C; narrow the range")
     check_dataset_format(spec)
     base = _crossing(spec, {})  # the file's own tables, before the sweep overrides any of their keys
+    if spec.coupling == "decoupled" and base.run_in > 0:
+        raise DriveByError(f"crossing.run_in = {base.run_in:g} m: coupling = \"decoupled\" starts the vehicle at rest "
+                           "(its solution has no run-in); use coupling = \"coupled\" or run_in = 0")
     check_drawn_bridge(spec, base.bridge)
     total = estimate_steps(spec)
     if total > spec.max_steps:
