@@ -15,7 +15,7 @@ by ``TrafficStudy.run_event`` as the workers run it, with three starts built fro
 Thread CPU time an event, the minimum over ``--repeat`` rounds (the three starts alternate in every
 round, so a change of the machine's speed hits them alike), each start's ratio to ``rest`` (the
 same-run baseline), and of ``settled`` the time inside the run-in (``simulate._run_in``) and inside its two
-compiled loops (``kernels.run_in_loads``, ``kernels.run_in_horner``: the arithmetic the run-in cannot
+compiled loops (``kernels.run_in_loads``, ``kernels.linear_recursion``: the arithmetic the run-in cannot
 avoid; the rest is its set-up, in numpy: the step map's recursion, each vehicle's eigenbasis, the road).
 Writes nothing but numba's cache.
 """
@@ -63,7 +63,7 @@ def main() -> None:
 
     clocked(simulate_module, "_run_in", "run_in")
     clocked(kernels, "run_in_loads", "loops")
-    clocked(kernels, "run_in_horner", "loops")
+    clocked(kernels, "linear_recursion", "loops")
 
     records = _stream(4 * args.events, 600.0)
     jobs = {start: traffic_study(records, _base(start), batch_size=16) for start in ("rest", "settled", "approach")}

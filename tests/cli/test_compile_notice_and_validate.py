@@ -80,7 +80,7 @@ def test_a_stream_that_settles_its_trucks_announces_the_run_in_loops():
     base = {"bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"}, "road": {"class": "B"}}
     settled = traffic_study(records, base)
     assert settled.settles_vehicles
-    assert batch_kernels(settled, settled.batches()) == [kernels.lean, kernels.run_in_loads, kernels.run_in_horner]
+    assert batch_kernels(settled, settled.batches()) == [kernels.lean, kernels.run_in_loads, kernels.linear_recursion]
     at_rest = traffic_study(records, base | {"crossing": {"run_in": 0}})
     assert not at_rest.settles_vehicles and batch_kernels(at_rest, at_rest.batches()) == [kernels.lean]
 

@@ -31,22 +31,3 @@ def diagonal_recursion(c: NDArray[np.float64], p: NDArray[np.float64], z: NDArra
             a, b = z[k, i], z[k, r + i]
             z[k + 1, i] = mr * a - mi * b + g_re
             z[k + 1, r + i] = mr * b + mi * a + g_im
-
-
-@njit(cache=True)
-def state_recursion(Ad: NDArray[np.float64], B0: NDArray[np.float64], B1: NDArray[np.float64], u: NDArray[np.float64],
-                    x0: NDArray[np.float64]) -> NDArray[np.float64]:
-    """x_{k+1} = A_d x_k + B₀ u_k + B₁ u_{k+1} from x_0 (n_t = len(u) rows): the first-order-hold
-    step of a linear system without its eigenbasis (``decoupled._state_recursion``)."""
-    n_t, n, m = u.shape[0], Ad.shape[0], u.shape[1]
-    x = np.empty((n_t, n))
-    x[0] = x0
-    for k in range(n_t - 1):
-        for i in range(n):
-            acc = 0.0
-            for j in range(n):
-                acc += Ad[i, j] * x[k, j]
-            for j in range(m):
-                acc += B0[i, j] * u[k, j] + B1[i, j] * u[k + 1, j]
-            x[k + 1, i] = acc
-    return x

@@ -257,7 +257,7 @@ def _state_recursion(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, 
     construction of ``scipy.signal.lsim``), stepped in a compiled loop."""
     from scipy.linalg import expm
 
-    from vbikit.driveby._decoupled_kernels import state_recursion
+    from vbikit.solve.kernels import linear_recursion
 
     n, m = A.shape[0], B.shape[1]
     big = np.zeros((n + 2 * m, n + 2 * m))
@@ -265,8 +265,10 @@ def _state_recursion(A: NDArray, B: NDArray, u: NDArray, h: float, x0: NDArray, 
     e = expm(big)
     Ad, B1 = e[:n, :n], e[:n, n + m:]
     B0 = e[:n, n:n + m] - B1
-    x = state_recursion(np.ascontiguousarray(Ad), np.ascontiguousarray(B0), np.ascontiguousarray(B1),
-                        np.ascontiguousarray(u, dtype=float), np.asarray(x0, float))
+    u = np.ascontiguousarray(u, dtype=float)
+    x = np.empty((u.shape[0], n))
+    linear_recursion(np.ascontiguousarray(Ad.T), np.ascontiguousarray(B0.T), np.ascontiguousarray(B1.T), np.zeros(n),
+                     u, np.array(x0, float), np.empty(n), x)  # (the matrices by columns)
     if not n_rate:
         return x
     return np.hstack([x, x @ A[n - n_rate:].T + u @ B[n - n_rate:].T])

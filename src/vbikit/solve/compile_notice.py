@@ -27,10 +27,10 @@ compile_log = logging.getLogger("vbikit.solve.compile")
 #: ``without_lean`` in a fresh process over an empty ``NUMBA_CACHE_DIR``, ``time.process_time``;
 #: 2026-12-06, the machine's slow state, in which the demo's cold compile is 8.0 s against 5.7 s) —
 #: ``implicit`` itself 15 s, ``contact_forces`` 9 s, the rest its 140 helpers.  ``run_in_loads`` and
-#: ``run_in_horner``, the run-in's loops (``vbikit.solve.run_in``): 1.7 s the two with ``lean`` already
+#: ``linear_recursion``, the run-in's loops (``vbikit.solve.run_in``): 1.7 s the two with ``lean`` already
 #: compiled (an HS20-44 with a 40 m run-in after one without, fresh ``NUMBA_CACHE_DIR``, ``time.process_time``;
 #: 2026-12-06, slow state), rounded up.  Any other kernel: ``lean``'s.
-COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "implicit": 60, "run_in_loads": 2, "run_in_horner": 1}
+COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "implicit": 60, "run_in_loads": 2, "linear_recursion": 1}
 
 
 def compile_seconds(kernel) -> int:

@@ -14,16 +14,16 @@ of the exact step map (``modal_step.vehicle_step``: z_{n+1} = T z_n + L0 G_n + L
 held linear over a step) are G_n = a_n + D z_n with a_w = Σ_p (k_p (r_p − g_p) + c_p ṙ_p + f0_p) over the
 wheel's points, known from the road, and D z = (k_w − Σ_p k_p) z_w + (c_w − Σ_p c_p) ż_w (zero where the
 nominal tire is the sum of its points').  Then z_{n+1} = A z_n + u_n, A = S (T + L0 D), S = (I − L1 D)⁻¹,
-u_n = S (L0 a_n + L1 a_{n+1} + b): a linear time-invariant recursion over the K run-in steps, summed in
-the eigenbasis of A (A = V Λ V⁻¹): z_K = V (Λ^K V⁻¹ z_0 + Σ_n Λ^{K−1−n} V⁻¹ u_n) — the same numbers as
-the step-by-step recursion (``settled_state_by_steps``, the tests' reference) to round-off.  The road
-under each point is read as the kernels read it (linear between stations; the rate the secant over
-±|v| dt/2), each vehicle at its speed at the start, held over the run-in.
+u_n = S (L0 a_n + L1 a_{n+1} + b): a linear time-invariant recursion over the K run-in steps, stepped
+vehicle by vehicle in a compiled loop (``kernels.linear_recursion``; the vehicles of an event do not
+interact off the deck, ``independent_blocks``) — the numbers of the recursion in numpy
+(``settled_state_by_steps``, the tests' reference) to round-off.  The road under each point is read as
+the kernels read it (linear between stations; the rate the secant over ±|v| dt/2,
+``kernels.run_in_loads``), each vehicle at its speed at the start, held over the run-in.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -41,12 +41,8 @@ SETTLED_APPROACH = 100.0
 #: needs every contact point off the deck at the start
 RUN_IN_CLEARANCE = 1.0
 
-#: the eigenbasis sum is used while V's condition number stays below this; above, the steps one by one
-EIGEN_CONDITION_LIMIT = 1e8
-
-
-#: run-in steps summed at a time (``settled_state``): its memory stays that of this many steps, however long
-#: the run-in or fine the step
+#: run-in steps whose road loads are read at a time (``settled_state``): its memory stays that of this many
+#: steps, however long the run-in or fine the step
 CHUNK_STEPS = 4096
 
 
@@ -107,31 +103,27 @@ def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
     """The vehicles' state z = (q, q̇) at the start after ``crossing.run_in`` metres of road, from rest in
     static equilibrium where the run-in begins (module docstring: z0 = (I − A)⁻¹ ((M0 + M1) a_0 + c), the
     recursion's fixed point under that place's road loads); ``step`` the vehicles' exact step map over
-    ``dt`` (linear hold).  Each group of states that nothing couples to another (``independent_blocks``: a
-    vehicle) in the eigenbasis of its A = V Λ V⁻¹: z_K = V (Λ^K V⁻¹ z0 + Σ_k Λ^{K−1−k} V⁻¹ (M0 a_k +
-    M1 a_{k+1}) + (I − Λ^K)(I − Λ)⁻¹ V⁻¹ c), the sum by Horner's rule (``kernels.run_in_horner``) over
-    ``CHUNK_STEPS`` steps at a time (the road loads of a chunk read once for every group), over the eigenvalues
-    with Im λ ≥ 0 (``_Block``); the steps one by one when a V is ill-conditioned."""
+    ``dt`` (linear hold).  The recursion z_{k+1} = A z_k + M0 a_k + M1 a_{k+1} + c stepped by each group of
+    states that nothing couples to another (``independent_blocks``: a vehicle) on its own
+    (``kernels.linear_recursion``), the road loads read ``CHUNK_STEPS`` steps at a time for every group."""
     from vbikit.solve import kernels
 
     n = run_in_steps(crossing, dt, speed0)
     a_mat, m0, m1, c = recursion(data, step)
-    z0 = _rest(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, 0))
-    if n == 0 or z0.size == 0:
-        return z0
-    blocks = [_Block.of(states, wheels, a_mat, m0, m1) for states, wheels in independent_blocks(a_mat, m0, m1)]
-    if any(b is None for b in blocks):
-        return _by_steps(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, n), z0)
-    sums = [np.zeros(b.lam.size, complex) for b in blocks]
+    z = _rest(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, 0))
+    if n == 0 or z.size == 0:
+        return z
+    c_ = np.ascontiguousarray
+    groups = [(states, c_(wheels), c_(a_mat[np.ix_(states, states)].T), c_(m0[np.ix_(states, wheels)].T),
+               c_(m1[np.ix_(states, wheels)].T), c_(c[states]), c_(z[states])) for states, wheels in
+              independent_blocks(a_mat, m0, m1)]  # (the matrices by columns: kernels.linear_recursion)
+    work, none = np.empty(z.size), np.empty((0, z.size))
     for k0 in range(0, n, CHUNK_STEPS):  # steps k0 … k1 − 1, their loads read once for every group
-        a = road_loads(data, dt, travel0, speed0, road, n, k0, min(k0 + CHUNK_STEPS, n))
-        for b, total in zip(blocks, sums):
-            kernels.run_in_horner(b.lam, b.w0, b.w1, b.wheels, a, total)
-    z = np.zeros_like(z0)
-    for b, total in zip(blocks, sums):
-        lam_k = b.lam ** n  # λ^K
-        coef = lam_k * (b.vi @ z0[b.states]) + total + (1.0 - lam_k) / (1.0 - b.lam) * (b.vi @ c[b.states])
-        z[b.states] = np.real(b.vec @ (b.weight * coef))
+        loads = road_loads(data, dt, travel0, speed0, road, n, k0, min(k0 + CHUNK_STEPS, n))
+        for _, wheels, a_g, m0_g, m1_g, c_g, z_g in groups:
+            kernels.linear_recursion(a_g, m0_g, m1_g, c_g, c_(loads[:, wheels]), z_g, work, none)
+    for states, *_, z_g in groups:
+        z[states] = z_g
     return z
 
 
@@ -157,39 +149,6 @@ def independent_blocks(a_mat: NDArray[np.float64], m0: NDArray[np.float64],
         states = np.r_[lo:hi, n_d + lo:n_d + hi]
         groups.append((states, np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi))))
     return groups
-
-
-@dataclass(frozen=True)
-class _Block:
-    """One group's eigenbasis (``settled_state``): its states and wheels, and of its eigenvalues λ with Im λ ≥ 0
-    (A is real: the others are their conjugates, whose terms are the conjugates of theirs) Λ, V, V⁻¹, V⁻¹ M0,
-    V⁻¹ M1 and the weight of each (2 for a complex λ: the term and its conjugate, 2 Re; 1 for a real λ)."""
-
-    states: NDArray[np.int64]
-    wheels: NDArray[np.int64]
-    lam: NDArray[np.complex128]
-    vec: NDArray[np.complex128]
-    vi: NDArray[np.complex128]
-    w0: NDArray[np.complex128]
-    w1: NDArray[np.complex128]
-    weight: NDArray[np.float64]
-
-    @classmethod
-    def of(cls, states, wheels, a_mat, m0, m1) -> "_Block | None":
-        """The group's eigenbasis; None when V is ill-conditioned (its 1-norm condition number above
-        ``EIGEN_CONDITION_LIMIT``) or a |λ| ≥ 1."""
-        lam, vec = np.linalg.eig(a_mat[np.ix_(states, states)])
-        if np.max(np.abs(lam)) >= 1.0:
-            return None
-        vec = vec.astype(complex)  # (complex also where every λ is real: one compiled sum)
-        vi = np.linalg.inv(vec)
-        if np.linalg.norm(vec, 1) * np.linalg.norm(vi, 1) > EIGEN_CONDITION_LIMIT:  # V's condition number (1-norm)
-            return None
-        keep = np.flatnonzero(np.imag(lam) >= 0.0)
-        c = np.ascontiguousarray
-        return cls(states, c(wheels, np.int64), c(lam[keep], complex), c(vec[:, keep], complex), c(vi[keep], complex),
-                   c(vi[keep] @ m0[np.ix_(states, wheels)]), c(vi[keep] @ m1[np.ix_(states, wheels)]),
-                   np.where(np.imag(lam[keep]) > 0.0, 2.0, 1.0))
 
 
 def settled_state_by_steps(crossing: "Crossing", data: Any, step: Any, dt: float, travel0: NDArray[np.float64],

@@ -173,7 +173,7 @@ def integrate(crossings: Sequence[Crossing], data: "KernelData", grid: TimeGrid,
     if first.run_in > 0 and n_d:  # the vehicles' state after their run-in on the road behind them (vbikit.solve.run_in)
         from vbikit.solve import kernels as compiled
 
-        announce_compile([compiled.run_in_loads, compiled.run_in_horner])
+        announce_compile([compiled.run_in_loads, compiled.linear_recursion])
         _run_in(crossings[:n_real], data, mot, dt, q, dq)
     log.info("%d crossing(s) as %d lanes: %d steps of %.3g s (%s), %d modes, %d vehicle DOFs, %d contact points",
              n_real, n_l, n_steps, dt, first.integrator, n_m, n_d, n_p)

@@ -296,7 +296,7 @@ def batch_kernels(study, batches, threads: int = 1) -> list:
     the one-lane kernel.  A job with its own ``run_batch`` (a traffic stream, a PEM study) runs its
     crossings one at a time (one-lane kernel).  The integrator is the first crossing's (``scenario_dict``;
     traffic: the default).  Crossings with a run-in (the job's ``settles_vehicles``, else the first
-    crossing's ``crossing.run_in``) run its two loops too (``kernels.run_in_loads``, ``run_in_horner``)."""
+    crossing's ``crossing.run_in``) run its two loops too (``kernels.run_in_loads``, ``linear_recursion``)."""
     from vbikit.solve.batch import lane_chunks
     from vbikit.solve.integrators import DEFAULT_INTEGRATOR, get_integrator
 
@@ -324,7 +324,7 @@ def batch_kernels(study, batches, threads: int = 1) -> list:
     if settles:  # the vehicles' run-in (vbikit.solve.run_in): its two loops
         from vbikit.solve import kernels as compiled
 
-        kernels += [compiled.run_in_loads, compiled.run_in_horner]
+        kernels += [compiled.run_in_loads, compiled.linear_recursion]
     return [k for i, k in enumerate(kernels) if all(k is not o for o in kernels[:i])]
 
 

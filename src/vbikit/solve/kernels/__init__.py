@@ -66,7 +66,7 @@ helpers), ``contact`` (the contact law and the right-hand side), ``explicit`` (R
 update's wheel part, shared by ``newton`` and ``lean_lanes``), ``dense`` (small LU systems), ``lean`` (the same step loop for
 one lane and the one-evaluation steps only, flat; it stops at any other step), ``lean_lanes`` (the same
 for many lanes, the lane index innermost; it freezes a lane at any other step), ``assembly`` (the
-static modal load history), ``run_in`` (the run-in's road loads and sum, ``vbikit.solve.run_in``).  Everything is importable from this package, as when it was one module.
+static modal load history), ``run_in`` (the run-in's road loads and a linear recursion, ``vbikit.solve.run_in``).  Everything is importable from this package, as when it was one module.
 
 Argument bundles (NamedTuples of arrays, built by ``vbikit.solve.system``):
   ``Modes``     the bridge's mode set and its tables along the wheel tracks
@@ -134,12 +134,12 @@ from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, QUASI_ITERATIONS, RELA
 from vbikit.solve.kernels.implicit_step import implicit
 from vbikit.solve.kernels.lean import lean, lean_law, lean_work
 from vbikit.solve.kernels.lean_lanes import lean_lanes
-from vbikit.solve.kernels.run_in import run_in_horner, run_in_loads
+from vbikit.solve.kernels.run_in import linear_recursion, run_in_loads
 
 __all__ = [
     "Cache", "ModalStep", "Modes", "Motion", "Points", "Road", "VehicleStep", "Vehicles", "Work", "new_cache",
     "new_work", "accelerations", "contact_forces", "point_kinematics", "point_law", "road_at", "road_point",
     "shape_point", "shapes_at", "rk4", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
-    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes", "run_in_horner", "run_in_loads", "MANY_LANES",
+    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes", "linear_recursion", "run_in_loads", "MANY_LANES",
     "ONE_LANE",
 ]

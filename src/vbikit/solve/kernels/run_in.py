@@ -1,5 +1,6 @@
 """The run-in's loops (``vbikit.solve.run_in``): the wheels' road loads step by step, read as the step
-loops read the road, and the recursion's sum in its eigenbasis by Horner's rule."""
+loops read the road, and a linear system's recursion step by step (the run-in's vehicles; the drive-by's
+first-order-hold responses)."""
 from __future__ import annotations
 
 from vbikit.solve.kernels.bundles import _flat
@@ -38,13 +39,33 @@ def run_in_loads(x0, vx, dt, first, n, line, stiffness, damping, fixed_load, gap
 
 
 @_flat
-def run_in_horner(lam, w0, w1, wheels, loads, total):
-    """total_j ← λ_j total_j + Σ_i (w0_ji a_k,i + w1_ji a_k+1,i) over the rows k of ``loads`` (rows, n_w) but the
-    last, a_k,i = ``loads``[k, ``wheels``_i]: after the K steps of a run-in from total = 0,
-    total_j = Σ_k λ_j^(K−1−k) (V⁻¹ (M0 a_k + M1 a_k+1))_j (``vbikit.solve.run_in.settled_state``)."""
-    for k in range(loads.shape[0] - 1):
-        for j in range(lam.size):
-            u = 0.0j
-            for i in range(wheels.size):
-                u += w0[j, i] * loads[k, wheels[i]] + w1[j, i] * loads[k + 1, wheels[i]]
-            total[j] = lam[j] * total[j] + u
+def linear_recursion(a_cols, b0_cols, b1_cols, c, u, x, work, history):
+    """x ← A x + B0 u_k + B1 u_k+1 + c for k = 0 … rows(u) − 2, the matrices given by columns (``a_cols`` = Aᵀ
+    (n, n), ``b0_cols`` = B0ᵀ, ``b1_cols`` = B1ᵀ (m, n), C-contiguous: every inner loop a contiguous
+    x ← x + a·column the compiler vectorises), ``c`` (n,), ``u`` (rows, m), in ``x`` (n,) in place (``work``
+    (n,) scratch): a linear time-invariant system with its inputs held linear over each step, step by step
+    (the run-in of ``vbikit.solve.run_in``; the drive-by's first-order-hold responses,
+    ``vbikit.driveby.decoupled``).  With ``history`` (rows(u), n), not empty, its row k the state after k
+    steps (row 0: x as given)."""
+    n = x.size
+    keep = history.shape[0] > 0
+    if keep:
+        for i in range(n):
+            history[0, i] = x[i]
+    for k in range(u.shape[0] - 1):
+        for i in range(n):
+            work[i] = c[i]
+        for j in range(n):
+            xj = x[j]
+            for i in range(n):
+                work[i] += a_cols[j, i] * xj
+        for j in range(u.shape[1]):
+            u0 = u[k, j]
+            u1 = u[k + 1, j]
+            for i in range(n):
+                work[i] += b0_cols[j, i] * u0 + b1_cols[j, i] * u1
+        for i in range(n):
+            x[i] = work[i]
+        if keep:
+            for i in range(n):
+                history[k + 1, i] = x[i]
