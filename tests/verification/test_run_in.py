@@ -1,7 +1,8 @@
 """The run-in (``vbikit.solve.run_in``, ``crossing.run_in``): the vehicles driven alone over the road behind
 their start, so that a run starts them settled.  Checked against the coupled kernel over the same distance
 (an approach that much longer: the reference, independent of the run-in's linear recursion and its
-eigenbasis sum) on traffic events of Bridge 2, and its sum against the recursion step by step."""
+compiled recursion) on traffic events of Bridge 2, and its compiled recursion, vehicle by vehicle, against the
+whole event's recursion step by step in numpy."""
 from __future__ import annotations
 
 import dataclasses
@@ -74,12 +75,12 @@ def test_every_integrator_starts_from_the_run_in_as_from_the_longer_approach(int
 
 
 @pytest.mark.parametrize("chunk", [4096, 333])
-def test_the_eigenbasis_sum_is_the_recursion_step_by_step(chunk, monkeypatch):
-    """One sum over the run-in's ≈ 2,200 steps, and the same in chunks of 333 steps (``CHUNK_STEPS``)."""
+def test_the_compiled_recursion_is_the_recursion_step_by_step(chunk, monkeypatch):
+    """The run-in's ≈ 2,200 steps in one chunk of road loads, and in chunks of 333 steps (``CHUNK_STEPS``)."""
     from vbikit.solve import run_in
 
     monkeypatch.setattr(run_in, "CHUNK_STEPS", chunk)
-    _eigenbasis_against_steps()
+    _compiled_against_numpy()
 
 
 def _run_in_inputs(trucks: int = 1, every: int = 4, coherence: float = 1.0):
@@ -101,7 +102,7 @@ def _run_in_inputs(trucks: int = 1, every: int = 4, coherence: float = 1.0):
     return crossing, data, vehicle_step(data.vehicles, dt), dt, travel0, speed0, road
 
 
-def _eigenbasis_against_steps(trucks: int = 1):
+def _compiled_against_numpy(trucks: int = 1):
     from vbikit.solve.run_in import settled_state, settled_state_by_steps
 
     inputs = _run_in_inputs(trucks)
@@ -110,9 +111,9 @@ def _eigenbasis_against_steps(trucks: int = 1):
     assert np.max(np.abs(fast - slow)) <= 1e-9 * np.max(np.abs(slow)) and np.max(np.abs(slow)) > 0
 
 
-def test_a_several_truck_event_is_summed_vehicle_by_vehicle():
+def test_a_several_truck_event_is_stepped_vehicle_by_vehicle():
     """A three-truck event (both directions on Bridge 2): the recursion splits into one group per truck, each
-    with its own q and q̇ and wheels (``independent_blocks``), and the sum over the groups is the recursion
+    with its own q and q̇ and wheels (``independent_blocks``), and the groups stepped apart give the recursion
     of the whole event step by step (``settled_state_by_steps``)."""
     from vbikit.solve.run_in import independent_blocks, recursion
 
@@ -128,7 +129,7 @@ def test_a_several_truck_event_is_summed_vehicle_by_vehicle():
     for (states, _), lo, n in zip(groups, first, sizes):
         assert states.tolist() == [*range(lo, lo + n), *range(n_d + lo, n_d + lo + n)]
     assert {v.direction for v in crossing.vehicles} == {"+x", "-x"}
-    _eigenbasis_against_steps(trucks=3)
+    _compiled_against_numpy(trucks=3)
 
 
 def test_the_road_loads_are_the_road_read_as_the_step_loops_read_it():
