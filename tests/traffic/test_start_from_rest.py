@@ -47,13 +47,15 @@ def test_a_stream_started_at_rest_is_flagged_and_says_how_to_settle(tmp_path):
     assert "start_from_rest" in attrs["flag_codes"].split(",")
     assert "at rest 10 m before the bridge" in attrs["warnings"] and "crossing.run_in = 90" in attrs["warnings"]
     assert "at rest 10 m before the bridge" in output  # (printed by vbikit traffic)
+    assert "sprung vehicles start at rest 10 m before the bridge (crossing.run_in = 0)" in output
 
 
 def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_path):
     """No run_in in the base scenario: the population's, 100 m less the 10 m approach, on every event."""
-    attrs, _ = _stream(tmp_path, None)
+    attrs, output = _stream(tmp_path, None)
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         assert ds["run_in"].values.tolist() == [90.0]
+    assert "sprung vehicles start settled: each first drives 90 m of the road alone (the population's" in output
     assert attrs["approach_m"] == 10.0 and attrs["run_in_m"] == 90.0 and attrs["run_in_min_m"] == 90.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
 
@@ -97,7 +99,8 @@ def test_a_stream_started_100_m_before_the_bridge_is_not(tmp_path):
     attrs, output = _stream(tmp_path, 100.0, run_in=0)
     assert attrs["approach_m"] == 100.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
-    assert "at rest" not in output
+    assert "before their body vibration has built up" not in output  # (no warning; the start is said as it is)
+    assert "sprung vehicles start at rest 100 m before the bridge" in output
 
 
 def test_a_lifetime_flags_its_totals_for_sprung_trucks_only():
@@ -147,3 +150,22 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
     (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, **attrs})
     assert flag.value == 66.5 and "too short for the whole run-in on 1 event" in flag.message
     assert not _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 95.0})
+
+
+def test_a_lifetime_dataset_holds_each_simulated_events_run_in(tmp_path):
+    """lifetime.nc: ``event_run_in`` 95 m (approach 5 m) on every simulated event, NaN on the others; the
+    attributes ``run_in_m`` 95 and ``run_in_shortened_events`` 0, and no start_from_rest flag."""
+    import numpy as np
+
+    from vbikit.lifetime.run import run_lifetime
+
+    spec = {"seed": 5, "days": 5, "traffic": {"records": "examples/traffic/stream.csv", "trucks_per_day": 20},
+            "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"},
+            "road": {"class": "B"}, "crossing": {"approach": 5},
+            "load_effects": [{"kind": "moment", "x": 3.9, "name": "M"}], "block": "day", "distribution": "gumbel"}
+    ds = run_lifetime(spec, tmp_path, base_dir=str(ROOT), workers=1, figures=False)
+    simulated = ds["event_simulated"].values.astype(bool)
+    assert simulated.any() and (~simulated).any()
+    assert np.all(ds["event_run_in"].values[simulated] == 95.0) and np.all(np.isnan(ds["event_run_in"].values[~simulated]))
+    assert ds.attrs["run_in_m"] == 95.0 and ds.attrs["run_in_shortened_events"] == 0
+    assert "start_from_rest" not in ds.attrs.get("flag_codes", "")

@@ -301,6 +301,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "event_total": (("event", "load_effect"), total, ev_attrs("", "dynamic (total) peak; NaN if not simulated")),
         "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (at its time steps and, for moments, shears and reactions, at the instants a wheel crosses a jump or kink of the line); NaN if not simulated")),
         "event_simulated": ("event", simulated.astype(np.int8), ev_attrs("1", "1 if simulated dynamically")),
+        "event_run_in": ("event", _event_run_in(dyn, simulated, gid), ev_attrs("m", "road the simulated event's trucks drove alone, from rest, before its coupled run (crossing.run_in: the population's, 100 m less the approach, or the part of it the road holds); NaN if not simulated or moving forces")),
         "event_in_sample": ("event", np.isin(np.arange(n_ev), dyn["sample"]).astype(np.int8), ev_attrs("1", "1 if in the random sample (fatigue, IM statistics)")),
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
         **fat["variables"],
@@ -381,6 +382,15 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
     }
     return ds
+
+
+def _event_run_in(dyn: dict, simulated: np.ndarray, gid: np.ndarray) -> np.ndarray:
+    """Each event's run-in [m] (its dynamic run's ``run_in``; NaN where not simulated, or a result written
+    before run-ins were stored)."""
+    out = np.full(gid.size, np.nan)
+    for k in np.flatnonzero(simulated):
+        out[k] = float(dyn["results"][int(gid[k])].get("run_in", np.nan))
+    return out
 
 
 def _run_in_attrs(run_in: float, results: dict) -> dict[str, Any]:

@@ -390,6 +390,17 @@ class TrafficStudy:
         }
         return ds
 
+    def start_words(self) -> str:
+        """How the events start their sprung vehicles, in words (``vbikit traffic`` prints it before the run)."""
+        ctx = self.context()
+        c = ctx.template.crossing
+        if c.run_in > 0:
+            source = ("the population's: 100 m less the approach, less where the road is too short" if ctx.settled
+                      else "the base scenario's crossing.run_in")
+            return (f"sprung vehicles start settled: each first drives {c.run_in:g} m of the road alone ({source}), "
+                    f"then starts {c.approach:g} m before the bridge")
+        return f"sprung vehicles start at rest {c.approach:g} m before the bridge (crossing.run_in = 0)"
+
     @property
     def settles_vehicles(self) -> bool:
         """Whether the events drive their vehicles a run-in first (``crossing.run_in`` > 0: the compiled run-in
