@@ -169,3 +169,5 @@ def test_a_lifetime_dataset_holds_each_simulated_events_run_in(tmp_path):
     assert np.all(ds["event_run_in"].values[simulated] == 95.0) and np.all(np.isnan(ds["event_run_in"].values[~simulated]))
     assert ds.attrs["run_in_m"] == 95.0 and ds.attrs["run_in_shortened_events"] == 0
     assert "start_from_rest" not in ds.attrs.get("flag_codes", "")
+    assert ("dynamic events: sprung trucks start settled, 5 m before the bridge after driving 95 m of the road alone "
+            "(crossing.run_in)") in (tmp_path / "report.txt").read_text()

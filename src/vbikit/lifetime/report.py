@@ -169,6 +169,21 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     return out
 
 
+def start_words(a: dict) -> str:
+    """How the dynamic events start their trucks, in words, from lifetime.nc's attributes (``approach_m``,
+    ``run_in_m``: the shortest run-in an event got, ``run_in_shortened_events``, ``vehicle_model``)."""
+    if a.get("vehicle_model", "axle-truck") == "moving-forces":
+        return "moving constant axle forces (nothing to settle)"
+    if "approach_m" not in a:
+        return "trucks start at rest crossing.approach before the bridge (a dataset written before the start was stored)"
+    approach, run_in = float(a["approach_m"]), float(a.get("run_in_m", 0.0))
+    if run_in <= 0.0:
+        return f"sprung trucks start at rest {approach:g} m before the bridge (crossing.run_in = 0)"
+    short = int(a.get("run_in_shortened_events", 0))
+    return (f"sprung trucks start settled, {approach:g} m before the bridge after driving {run_in:g} m of the road "
+            "alone (crossing.run_in" + (f"; the shortest: the road held less on {counted(short, 'event')})" if short else ")"))
+
+
 def _start_flags(name: str, a: dict) -> list[Flag]:
     """Dynamic events whose sprung trucks start at rest a short approach before the bridge
     (``vbikit.analysis.checks.start_from_rest_flags``): their totals, so the total levels and the ADR,
@@ -374,6 +389,9 @@ def summary(ds) -> dict[str, Any]:
                                                          "time_total_s": float(a["time_total_s"]),
                                                          "time_static_s": float(a["time_static_s"]),
                                                          "events_per_second_static": float(a["events_per_second_static"])},
+        "start": {"vehicle_model": str(a.get("vehicle_model", "axle-truck")), "approach_m": _num(a.get("approach_m", math.nan)),
+                  "run_in_m": _num(a.get("run_in_m", math.nan)),
+                  "run_in_shortened_events": int(a.get("run_in_shortened_events", 0)), "words": start_words(a)},
         "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
                  "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),
                  "xi_strongly_negative": float(a["xi_strongly_negative"])},
@@ -428,6 +446,7 @@ def text_report(facts: dict[str, Any]) -> str:
              f"{r['n_dynamic_events']:,} simulated dynamically "
              f"({100 * r['fraction_dynamic']:.2f} %, of which {r['n_sample_events']} the random sample)",
              "screening: " + facts["screening"]["words"],
+             "dynamic events: " + facts["start"]["words"],
              f"fits: {f['distribution']} of {'daily' if f['block'] == 'day' else 'weekly'} maxima (BM) and a GPD of "
              f"the peaks over a threshold (POT); characteristic period {f['characteristic_period']:g} years; "
              f"intervals {ci}",
