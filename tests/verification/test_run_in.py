@@ -177,3 +177,27 @@ def test_the_scenario_key_reaches_the_crossing():
     text = ('[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[vehicle]\nmodel = "quarter-car"\n'
             '[road]\nclass = "B"\n[crossing]\nspeed_kmh = 60\nrun_in = 90\n')
     assert build(scenario_from_toml(text, source="s.toml")).crossing.run_in == 90.0
+
+
+def test_groups_merge_where_anything_couples_them():
+    """``independent_blocks`` on hand-made patterns (2 DOFs a vehicle, z = (q, q̇)): three vehicles apart give
+    three groups with their own wheels; a wheel loading DOFs of two vehicles, or a stiffness between them,
+    merges them; a wheel without DOFs belongs to none."""
+    from vbikit.solve.run_in import independent_blocks
+
+    n_d, n_w = 6, 4
+    a_mat = np.zeros((2 * n_d, 2 * n_d))
+    for lo in (0, 2, 4):  # each vehicle's q and q̇ coupled among themselves
+        for r in (lo, lo + 1, n_d + lo, n_d + lo + 1):
+            for c in (lo, lo + 1, n_d + lo, n_d + lo + 1):
+                a_mat[r, c] = 0.1
+    m0 = np.zeros((2 * n_d, n_w))
+    m0[n_d + 0, 0] = m0[n_d + 3, 1] = m0[n_d + 5, 2] = 1.0  # wheel 3: no DOF
+    groups = independent_blocks(a_mat, m0, np.zeros_like(m0))
+    assert [g[0].tolist() for g in groups] == [[0, 1, 6, 7], [2, 3, 8, 9], [4, 5, 10, 11]]
+    assert [g[1].tolist() for g in groups] == [[0], [1], [2]]
+    m0[n_d + 2, 0] = 1.0  # wheel 0 now loads vehicles 0 and 1
+    assert [g[1].tolist() for g in independent_blocks(a_mat, m0, np.zeros_like(m0))] == [[0, 1], [2]]
+    m0[n_d + 2, 0] = 0.0
+    a_mat[n_d + 5, 2] = 0.1  # vehicle 2's q̇ reads vehicle 1's q
+    assert [g[0].size for g in independent_blocks(a_mat, m0, np.zeros_like(m0))] == [4, 8]

@@ -130,19 +130,20 @@ def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
 def independent_blocks(a_mat: NDArray[np.float64], m0: NDArray[np.float64],
                        m1: NDArray[np.float64]) -> list[tuple[NDArray[np.int64], NDArray[np.int64]]]:
     """The groups (states, wheels) of the recursion over z = (q, q̇) that no entry of A, M0 or M1 couples to
-    another group — each vehicle of an event, whose run-ins are independent — so that a group's sum costs
-    its own size, not the event's: the contiguous ranges of DOFs (a vehicle's are contiguous, stacked
-    block-diagonal) that no DOF couples across (through its q or q̇), each with its q and q̇ states and the
-    wheels whose loads reach them (a wheel without DOFs in none).  A coupling anywhere else merges ranges:
-    fewer, larger groups, the same sum."""
+    another group — each vehicle of an event, whose run-ins are independent — so that a group's recursion
+    costs its own size, not the event's: the contiguous ranges of DOFs (a vehicle's are contiguous, stacked
+    block-diagonal) that no DOF couples across (through its q or q̇, or a wheel whose load reaches both),
+    each with its q and q̇ states and the wheels whose loads reach them (a wheel without DOFs in none).  A
+    coupling anywhere else merges ranges: fewer, larger groups, the same recursion."""
     n_d = a_mat.shape[0] // 2
     mag = np.abs(a_mat)
-    dofs = (mag[:n_d, :n_d] + mag[:n_d, n_d:] + mag[n_d:, :n_d] + mag[n_d:, n_d:]) != 0.0
+    reach = (np.abs(m0) + np.abs(m1)) != 0.0  # (states, wheels)
+    reach = (reach[:n_d] | reach[n_d:]).astype(float)  # (DOFs, wheels)
+    dofs = (mag[:n_d, :n_d] + mag[:n_d, n_d:] + mag[n_d:, :n_d] + mag[n_d:, n_d:] + reach @ reach.T) != 0.0
     dofs |= dofs.T
     last = n_d - 1 - np.argmax(dofs[:, ::-1], axis=1)  # each DOF's last coupled DOF (its own at least)
     ends = np.flatnonzero(np.maximum.accumulate(np.maximum(last, np.arange(n_d))) == np.arange(n_d)) + 1
-    reach = (np.abs(m0) + np.abs(m1)) != 0.0  # (states, wheels)
-    reach = reach[:n_d] | reach[n_d:]
+    reach = reach != 0.0
     wheel_dof = np.where(reach.any(axis=0), np.argmax(reach, axis=0), -1)
     groups = []
     for lo, hi in zip([0, *ends[:-1].tolist()], ends.tolist()):
