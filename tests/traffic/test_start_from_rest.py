@@ -55,7 +55,7 @@ def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_pa
     attrs, output = _stream(tmp_path, None)
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         assert ds["run_in"].values.tolist() == [90.0]
-    assert "sprung vehicles start settled: each first drives 90 m of the road alone (the population's" in output
+    assert "sprung vehicles start settled: each first drives 90 m of the road alone (the population's: 100 m less the approach; less where" in output
     assert attrs["approach_m"] == 10.0 and attrs["run_in_m"] == 90.0 and attrs["run_in_min_m"] == 90.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
 
@@ -171,3 +171,25 @@ def test_a_lifetime_dataset_holds_each_simulated_events_run_in(tmp_path):
     assert "start_from_rest" not in ds.attrs.get("flag_codes", "")
     assert ("dynamic events: sprung trucks start settled, 5 m before the bridge after driving 95 m of the road alone "
             "(crossing.run_in)") in (tmp_path / "report.txt").read_text()
+
+
+def test_a_base_run_in_too_long_for_the_road_is_fitted_and_a_road_too_short_for_the_event_is_refused(tmp_path):
+    """run_in = 500 on a random road of period 327.68 m (road.length 200: −163.84 … 163.83 m) is fitted like the
+    population's (the truck's rear axle at −14.5 m: 163.84 − 1 − 14.5 − 1 = 147.34 m), not refused; the approach
+    an event's truck reaching beyond a measured profile (from −12 m: the base scenario's stand-in, one axle 10 m
+    before the bridge, fits; the truck's rear axle at −14.5 m does not) is refused before any event runs, naming the
+    record and the road, not with a traceback."""
+    attrs, output = _stream(tmp_path, None, run_in=500, road="length = 200.0\n")
+    with xr.open_dataset(tmp_path / "o.nc") as ds:
+        got = float(ds["run_in"].values[0])
+    assert 147.33 <= got <= 147.34 and attrs["run_in_m"] == 500.0 and attrs["run_in_min_m"] == got
+    assert "start_from_rest" not in attrs.get("flag_codes", "")  # (10 + 147 m: settled)
+    (tmp_path / "road.csv").write_text("x [m],elevation [m]\n-12,0\n40,0\n")  # (the base's stand-in: from −10 m)
+    (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n'
+                                        '[road]\nprofile_file = "road.csv"\n')
+    res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
+                                   "--out", str(tmp_path / "o2.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code != 0 and res.exception is None or isinstance(res.exception, SystemExit), res.output
+    assert "r.csv:2: an event of the stream (1 vehicle(s) from this record on) cannot run" in res.output
+    assert "covers x = -12.00 … 40.00 m" in res.output and "give a longer road" in res.output
+    assert "Traceback" not in res.output

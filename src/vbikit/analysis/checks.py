@@ -797,16 +797,15 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
     if not approach < settled:
         return []
     if shortened:
-        remedy = (f"the road was too short for the whole run-in on {counted(shortened, 'event')}: give a longer "
-                  "road.length (a random road) or a measured profile reaching further before the bridge")
+        remedy = (f"the road was too short for the whole run-in on {counted(shortened, 'event')}: for design values "
+                  "give a longer road.length (a random road) or a measured profile reaching further before the bridge")
     else:
-        remedy = (f"let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} in the base "
-                  "scenario (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)")
+        remedy = (f"for design values let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} "
+                  "in the base scenario (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)")
     return [Flag("start_from_rest",
                  f"the events start their vehicles at rest {approach:g} m before the bridge (crossing.approach + "
                  "crossing.run_in): they enter it before their body vibration has built up, so the impact factors and "
-                 "dynamic peaks come out low (docs/traffic.md, \"Start from rest and the approach\"); for design "
-                 f"values {remedy}",
+                 f"dynamic peaks come out low (docs/traffic.md, \"Start from rest and the approach\"); {remedy}",
                  output=output, subject=subject, value=float(approach), threshold=float(settled))]
 
 

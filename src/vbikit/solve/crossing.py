@@ -325,7 +325,8 @@ class Crossing:
             if not road.covers(lo, hi):
                 raise ValueError(
                     f"road profile '{road.label}' covers x = {road.x[0]:.2f} … {road.x[-1]:.2f} m "
-                    f"but this crossing needs x = {lo:.2f} … {hi:.2f} m (approach, vehicle length, span, free vibration)"
+                    f"but this crossing needs x = {lo:.2f} … {hi:.2f} m (approach, {'run-in, ' if self.run_in > 0 else ''}"
+                    "vehicle length, span, free vibration): give a longer road (road.length for a random one)"
                 )
 
     def with_road(self, road: RoadProfile | None, road_right: RoadProfile | None = None) -> "Crossing":

@@ -285,11 +285,12 @@ class TrafficStudy:
         for e in sorted(dict.fromkeys(ranked), key=lambda e: -length[e]):
             try:
                 plan_run(self.crossing(e), self.limits)
-            except BudgetError as err:
+            except (BudgetError, ValueError) as err:  # (above the budget; a road shorter than the event)
                 r = self.records[self.events[e][0]]
                 where = f"{self.source or 'records'}:{r.line}" if r.line else f"record {r.id or '?'}"
+                what = "is above the budget of one event" if isinstance(err, BudgetError) else "cannot run"
                 raise StudyError(f"{where}: an event of the stream ({len(self.events[e])} vehicle(s) from this record "
-                                 f"on) is above the budget of one event: {err}") from None
+                                 f"on) {what}: {err}") from None
 
     def road_seed(self, e: int) -> int:
         """Seed of event ``e``'s random road (−1 if the base road is not random; the last event's kept:
@@ -395,10 +396,10 @@ class TrafficStudy:
         ctx = self.context()
         c = ctx.template.crossing
         if c.run_in > 0:
-            source = ("the population's: 100 m less the approach, less where the road is too short" if ctx.settled
+            source = ("the population's: 100 m less the approach" if ctx.settled
                       else "the base scenario's crossing.run_in")
-            return (f"sprung vehicles start settled: each first drives {c.run_in:g} m of the road alone ({source}), "
-                    f"then starts {c.approach:g} m before the bridge")
+            return (f"sprung vehicles start settled: each first drives {c.run_in:g} m of the road alone ({source}; "
+                    f"less where the road is too short), then starts {c.approach:g} m before the bridge")
         return f"sprung vehicles start at rest {c.approach:g} m before the bridge (crossing.run_in = 0)"
 
     @property
@@ -530,8 +531,8 @@ class EventContext:
     a traffic base scenario; lifetime runs use it too.  A base scenario without ``crossing.run_in`` gets the
     population's (``settled``: ``vbikit.solve.run_in.population_run_in``, the trucks start as if they had
     driven ``SETTLED_APPROACH`` of the road), shortened on an event that would reach beyond the road
-    (``road_range``, ``fit_run_in``); ``run_in = 0`` there starts them at rest, and a run-in given there is
-    the run-in of every event (an event it does not fit on is refused, naming the road)."""
+    (``road_range``, ``fit_run_in``; a run-in the base scenario gives is fitted alike); ``run_in = 0`` there
+    starts them at rest."""
 
     template: "_Template"
     scenario: Scenario
@@ -577,9 +578,9 @@ class EventContext:
     def crossing(self, motions: tuple[VehicleMotion, ...], seed: int) -> Crossing:
         """The vehicles ``motions`` on the template's bridge and the road of ``seed`` (a random road
         only over the range their contact points touch: the same road there as ``road(seed)``), with the
-        population's run-in fitted to that road (``fit_run_in``)."""
+        run-in fitted to that road (``fit_run_in``)."""
         bare = self.template.with_vehicles(motions, None, None)
-        if self.settled and bare.run_in > 0 and self.road_range is not None:
+        if bare.run_in > 0 and self.road_range is not None:
             bare = fit_run_in(bare, self.road_range)
         if not self.random_road:
             return dataclasses.replace(bare, road=self._fixed_road[0], road_right=self._fixed_road[1])
@@ -595,8 +596,8 @@ def fit_run_in(crossing: Crossing, road_range: tuple[float, float]) -> Crossing:
     """``crossing`` with the longest run-in, up to its own, whose road (``Crossing.road_extent``) lies within
     ``road_range`` = (x_first, x_last) [m] less ``RUN_IN_ROAD_MARGIN`` (by bisection, to 0.01 m, on the
     short side): a population's run-in on an event that would drive beyond a short road (``road.length``
-    of a random road, a measured profile's ends).  ``crossing`` itself when its run-in fits, or when the
-    road does not hold the event without one either (the road's refusal then names it)."""
+    of a random road, a measured profile's ends).  ``crossing`` itself when its run-in fits; without a run-in
+    when the road does not hold the event without one either (the road's refusal then names it)."""
     lo, hi = road_range[0] + RUN_IN_ROAD_MARGIN, road_range[1] - RUN_IN_ROAD_MARGIN
 
     def fits(run_in: float) -> bool:
@@ -604,8 +605,10 @@ def fit_run_in(crossing: Crossing, road_range: tuple[float, float]) -> Crossing:
         first, last = shorter.road_extent()  # (the crossing's own is kept: the road's window reads it again)
         return first >= lo and last <= hi
 
-    if fits(crossing.run_in) or not fits(0.0):
+    if fits(crossing.run_in):
         return crossing
+    if not fits(0.0):
+        return dataclasses.replace(crossing, run_in=0.0)
     short, long_ = 0.0, crossing.run_in
     while long_ - short > 0.01:
         mid = 0.5 * (short + long_)
