@@ -39,7 +39,10 @@ engine's Monte Carlo then estimate σ of the same discrete system.  ``method="ne
 average-acceleration rule on the assembled equations, ``substeps`` steps per step of the engine's
 time grid (one inverse of the real effective matrix per step, all lines as right-hand sides).
 Both start from the static equilibrium K(t₀) ỹ₀ = F̃(t₀) (zero rates; the engine's own start,
-``vbikit.solve.system.static_state``).
+``vbikit.solve.system.static_state``); with ``crossing.run_in`` > 0 the exact path starts the vehicles
+from their state after the run-in on each line's pseudo-road, as the engine does on a sampled road
+(``_run_in_state``: the harmonic solution of the run-in's recursion in closed form; the Newmark path
+refuses a run-in).
 
 Assumptions (where it fails): contact everywhere (no lift-off: check the lift-off probability),
 linear tires (disk and rigid-disk tires are geometric nonlinear and are refused), a Gaussian
@@ -234,6 +237,9 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
     check_linear(crossing)
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
+    if crossing.run_in > 0 and method != "exact":
+        raise ValueError(f"crossing.run_in = {crossing.run_in:g} m: the pseudo-excitation's {method!r} path starts "
+                         "the vehicles at rest; the run-in needs method = \"exact\" (the default)")
     substeps = METHODS[method] if substeps is None else substeps
     data = kernel_data(crossing) if data is None else data
     lines = band_lines(road.psd.n_min, road.psd.n_max) if lines is None else lines
@@ -260,6 +266,7 @@ class _Run:
         self.fine = crossing.start_time + self.h * np.arange(substeps * (n_out - 1) + 1)
         self.travel, self.speed = crossing.travel(self.fine), crossing.travel_speed(self.fine)
         self.data = data
+        self.crossing = crossing
         n_m, n_d, n_p = data.n_modes, data.n_dof, data.n_points
         self.n_m, self.n_d, self.n_p, self.n = n_m, n_d, n_p, n_m + n_d
         pts = self.pts = data.points
@@ -423,6 +430,8 @@ def _exact_lines(run: _Run) -> None:
     inp = np.zeros((o_in_g + n_p, n_c))
     st[:n_m] = _fl(u0[:n_m])
     st[o_z:o_z + n_d] = _fl(u0[n_m:])
+    if run.crossing.run_in > 0 and n_d:  # the vehicles settled by their run-in (the engine's, vbikit.solve.run_in)
+        st[o_z:o_g] = _fl(_run_in_state(run, phase, vx0))
     g0 = _fl(run.road_load(phase, vx0))
     a_xi0 = k_p[:, None] * phi0 + (c_p * vx0)[:, None] * dphi0
     force = a_xi0 @ st[:n_m] + a_z @ st[o_z:o_g] + g0  # F₀ (rates zero)
@@ -451,6 +460,37 @@ def _exact_lines(run: _Run) -> None:
         size = run.var[name].shape[1]
         run.var[name][:], run.coarse[name][:] = var[:, r:r + size], coarse[:, r:r + size]
         r += size
+
+
+def _run_in_state(run: _Run, phase: NDArray[np.complex128], vx0: NDArray[np.float64]) -> NDArray[np.complex128]:
+    """Every line's pseudo vehicle state z = (q, q̇) (2 n_d, lines) at the start after ``crossing.run_in`` metres of
+    its pseudo-road, from the pseudo-static state where the run-in begins — the engine's run-in
+    (``vbikit.solve.run_in``: the recursion z_{j+1} = A z_j + M0 a_j + M1 a_{j+1} of the vehicles' exact step map
+    over K steps of the run's h) under the harmonic loads a_j = a_K λ^{j−K} of one line (a_K the wheels' pseudo
+    road loads at the start, λ = exp(i 2π n vx h) for a vehicle at x-rate vx), in closed form: the harmonic
+    solution ẑ λ^{j−K} with (λ I − A) ẑ = (M0 + λ M1) a_K plus the free response A^K (z_0 − ẑ λ^{−K}) from the
+    start at rest z_0 = (I − A)⁻¹ (M0 + M1) a_K λ^{−K}; each vehicle on its own (``independent_blocks``)."""
+    from vbikit.solve.modal_step import vehicle_step
+    from vbikit.solve.run_in import independent_blocks, recursion, run_in_steps
+
+    data, pts = run.data, run.pts
+    a_mat, m0, m1, _ = recursion(data, vehicle_step(data.vehicles, run.h))
+    k = run_in_steps(run.crossing, run.h, np.asarray(run.speed[0], float))
+    loads = run.wsum @ run.road_load(phase, vx0)  # (n_w, lines): a_K
+    z = np.zeros((a_mat.shape[0], loads.shape[1]), complex)
+    for states, wheels in independent_blocks(a_mat, m0, m1):
+        if not wheels.size:
+            continue
+        a, b0, b1 = a_mat[np.ix_(states, states)], m0[np.ix_(states, wheels)], m1[np.ix_(states, wheels)]
+        a_k = loads[wheels]
+        vx = float(vx0[np.flatnonzero(pts.wheel == wheels[0])[0]])  # (a vehicle's points share its x-rate)
+        lam = np.exp(1j * run.wave * vx * run.h)  # (lines,)
+        eye = np.eye(states.size)
+        steady = np.linalg.solve(lam[:, None, None] * eye - a, (b0 @ a_k + lam * (b1 @ a_k)).T[:, :, None])[:, :, 0].T
+        back = lam ** (-k)  # λ^{−K}
+        rest = np.linalg.solve(eye - a, (b0 + b1) @ (a_k * back))
+        z[states] = steady + np.linalg.matrix_power(a, k) @ (rest - steady * back)
+    return z
 
 
 def _newmark_lines(run: _Run) -> None:
