@@ -13,12 +13,13 @@ from vbikit.analysis.warmup import compile_history_kernels
 from vbikit.bridge import EulerBernoulliBeam
 from vbikit.bridge.presets import BRIDGE_PRESETS
 from vbikit.driveby import sensor_cart
-from vbikit.driveby._decoupled_kernels import diagonal_recursion, state_recursion
+from vbikit.driveby._decoupled_kernels import diagonal_recursion
 from vbikit.driveby.decoupled import simulate_decoupled
 from vbikit.driveby.warmup import compile_driveby_kernels
 from vbikit.lifetime.influence import HALF_TRACK, Tabulated, effect_line, event_static
 from vbikit.solve import Crossing, simulate
 from vbikit.solve.kernels.assembly import static_modal_history
+from vbikit.solve.kernels.run_in import linear_recursion
 from vbikit.traffic.records import VehicleRecord
 from vbikit.vehicle import hs20_44
 
@@ -40,9 +41,9 @@ def test_a_beam_run_and_a_lifetime_event_use_the_warmed_variants():
 
 def test_a_decoupled_pass_uses_the_warmed_variants():
     compile_driveby_kernels()
-    warmed = (set(diagonal_recursion.signatures), set(state_recursion.signatures))
+    warmed = (set(diagonal_recursion.signatures), set(linear_recursion.signatures))  # (the step-by-step fallback's)
     assert all(warmed)
     beam = EulerBernoulliBeam(span=25.0, EI=2.4e10, mass_per_length=4800.0, damping_ratio=0.02, n_modes=4)
     simulate_decoupled(Crossing(beam, sensor_cart(mass=500.0, frequency_hz=2.3, damping_ratio=0.1), speed=12.0,
                                 approach=2.0))
-    assert (set(diagonal_recursion.signatures), set(state_recursion.signatures)) == warmed
+    assert (set(diagonal_recursion.signatures), set(linear_recursion.signatures)) == warmed
