@@ -91,6 +91,9 @@ def test_one_line_after_a_run_in_is_the_engine_after_the_same_run_in(case, n0):
     with pytest.raises(ValueError, match="crossing.run_in = 40 m: the pseudo-excitation's 'newmark' path"):
         pseudo_excitation(dataclasses.replace(crossing, run_in=40.0), ROAD, probes, dt, method="newmark",
                           lines=Lines(np.array([n0]), np.array([width])))
+    with pytest.raises(ValueError, match="crossing.run_in = 40 m: a contact point is on the deck when the run starts"):
+        pseudo_excitation(dataclasses.replace(crossing, run_in=40.0, approach=0.0), ROAD, probes, dt,
+                          lines=Lines(np.array([n0]), np.array([width])))  # (the engine refuses it alike)
 
 
 def test_exact_and_newmark_paths_agree(case):

@@ -47,7 +47,7 @@ def test_a_stream_started_at_rest_is_flagged_and_says_how_to_settle(tmp_path):
     assert "start_from_rest" in attrs["flag_codes"].split(",")
     assert "at rest 10 m before the bridge" in attrs["warnings"] and "crossing.run_in = 90" in attrs["warnings"]
     assert "at rest 10 m before the bridge" in output  # (printed by vbikit traffic)
-    assert "sprung vehicles start at rest 10 m before the bridge (crossing.run_in = 0)" in output
+    assert "sprung vehicles started at rest 10 m before the bridge (crossing.run_in = 0)" in output
 
 
 def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_path):
@@ -55,7 +55,8 @@ def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_pa
     attrs, output = _stream(tmp_path, None)
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         assert ds["run_in"].values.tolist() == [90.0]
-    assert "sprung vehicles start settled: each first drives 90 m of the road alone (the population's: 100 m less the approach; less where" in output
+    assert ("sprung vehicles started settled: each first drove 90 m of the road alone (crossing.run_in), then started "
+            "10 m before the bridge") in output
     assert attrs["approach_m"] == 10.0 and attrs["run_in_m"] == 90.0 and attrs["run_in_min_m"] == 90.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
 
@@ -64,9 +65,10 @@ def test_a_road_too_short_for_the_run_in_shortens_it_and_is_flagged_with_the_rem
     """road.length = 100 m: the period is 163.84 m (2^14 samples of 1 cm), −81.92 … 81.91 m; the truck (4.5 m
     wheelbase) starts 10 m before the 9.16 m beam, so its run-in road reaches back to about −(14.5 + run_in) m
     and at most about 66 m of it fits (1 m margin)."""
-    attrs, _ = _stream(tmp_path, None, road="length = 100.0\n")
+    attrs, output = _stream(tmp_path, None, road="length = 100.0\n")
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         got = float(ds["run_in"].values[0])
+    assert f"(crossing.run_in; the shortest {got:g} m, where the road was too short)" in output
     assert 60.0 < got < 67.5 and attrs["run_in_min_m"] == got and attrs["run_in_m"] == 90.0
     assert "start_from_rest" in attrs["flag_codes"].split(",")
     assert "too short for the whole run-in on 1 event" in attrs["warnings"] and "road.length" in attrs["warnings"]
@@ -100,7 +102,7 @@ def test_a_stream_started_100_m_before_the_bridge_is_not(tmp_path):
     assert attrs["approach_m"] == 100.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
     assert "before their body vibration has built up" not in output  # (no warning; the start is said as it is)
-    assert "sprung vehicles start at rest 100 m before the bridge" in output
+    assert "sprung vehicles started at rest 100 m before the bridge" in output
 
 
 def test_a_lifetime_flags_its_totals_for_sprung_trucks_only():
@@ -144,8 +146,10 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
     static = prep.static_job().run_batch((0,))
     g = int(static["ev_day"][0] * EVENT_STRIDE + static["ev_index"][0])
     assert float(prep.dynamic_job(np.array([g])).run_event(g)["run_in"]) == 95.0
-    attrs = _run_in_attrs(95.0, {1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}, 4: {}})
+    attrs = _run_in_attrs(95.0, {1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}})
     assert attrs == {"run_in_m": 61.5, "run_in_shortened_events": 1}
+    # a result stored without a run-in (an earlier version's work): computed at rest, and judged so
+    assert _run_in_attrs(95.0, {1: {"run_in": 95.0}, 4: {}}) == {"run_in_m": 0.0, "run_in_shortened_events": 1}
     assert _run_in_attrs(95.0, {3: {"run_in": math.nan}}) == {"run_in_m": 95.0, "run_in_shortened_events": 0}
     (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, **attrs})
     assert flag.value == 66.5 and "too short for the whole run-in on 1 event" in flag.message
@@ -193,3 +197,20 @@ def test_a_base_run_in_too_long_for_the_road_is_fitted_and_a_road_too_short_for_
     assert "r.csv:2: an event of the stream (1 vehicle(s) from this record on) cannot run" in res.output
     assert "covers x = -12.00 … 40.00 m" in res.output and "give a longer road" in res.output
     assert "Traceback" not in res.output
+
+
+def test_an_explicit_run_in_needs_the_vehicles_off_the_deck_at_the_start(tmp_path):
+    """run_in = 50 with approach = 0.5 m (less than the 1 m the tire patches need): refused before any event runs,
+    naming the keys and the least approach; the population's default there is 0 (flagged, no refusal)."""
+    (tmp_path / "r.csv").write_text(RECORDS)
+    (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[road]\nclass = "B"\n'
+                                        "[crossing]\napproach = 0.5\nrun_in = 50\n")
+    res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
+                                   "--out", str(tmp_path / "o.nc"), "--workers", "1", "--no-progress"])
+    assert res.exit_code != 0 and "Traceback" not in res.output
+    assert "crossing.run_in = 50 m needs every contact point off the deck at the start: give crossing.approach >= 1 m" \
+        in res.output
+    from vbikit.solve.run_in import population_run_in
+
+    assert population_run_in(0.5, 0.0) == 0.0 and population_run_in(1.0, 0.0) == 99.0
+    assert population_run_in(3.0, 2.5) == 0.0 and population_run_in(3.5, 2.5) == 96.5  # (a skew deck's overhang)

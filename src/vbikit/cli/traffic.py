@@ -88,9 +88,11 @@ def traffic_cmd(
     n_mp = sum(len(e) > 1 for e in job.events)
     typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
-    typer.echo(job.start_words(), err=True)
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     warn_dataset(ds)
+    from vbikit.traffic.study import start_words
+
+    typer.echo(start_words(dict(ds.attrs)))
     from vbikit.analysis.checks import dataset_has_flag
     from vbikit.analysis.sample_intervals import stored_interval_text
 

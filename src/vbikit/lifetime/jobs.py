@@ -340,8 +340,12 @@ class DynamicJob:
         return out
 
     def to_json(self) -> str:
+        """The job's identity (the resume check); with the run-in its events start their trucks from (the
+        population's when the base scenario gives none: work written before it, at rest, is not taken for it)."""
+        run_in = float(build_setup(self.setup_key).context.template.crossing.run_in)
         return json.dumps({"kind": "vbikit lifetime dynamics", "setup": self.setup_key, "traffic": self._digest,
                            "seed": self.seed, "batch_size": self.batch_size, "vehicle_model": self.vehicle_model, "details": [d.__dict__ for d in self.details],
+                           "run_in": run_in,
                            "items_sha256": hashlib.sha256(np.asarray(self.items, np.int64).tobytes()).hexdigest(),
                            "n_items": self.size, **({"step_factor": self.step_factor} if self.step_factor != 1.0 else {})},
                           sort_keys=True)

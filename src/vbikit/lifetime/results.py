@@ -385,11 +385,11 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
 
 
 def _event_run_in(dyn: dict, simulated: np.ndarray, gid: np.ndarray) -> np.ndarray:
-    """Each event's run-in [m] (its dynamic run's ``run_in``; NaN where not simulated, or a result written
-    before run-ins were stored)."""
+    """Each event's run-in [m] (its dynamic run's ``run_in``; NaN where not simulated or of moving forces; 0 for a
+    result written before run-ins were stored, which started its trucks at rest)."""
     out = np.full(gid.size, np.nan)
     for k in np.flatnonzero(simulated):
-        out[k] = float(dyn["results"][int(gid[k])].get("run_in", np.nan))
+        out[k] = float(dyn["results"][int(gid[k])].get("run_in", 0.0))  # (a result without one: computed at rest)
     return out
 
 
@@ -397,7 +397,7 @@ def _run_in_attrs(run_in: float, results: dict) -> dict[str, Any]:
     """The run-in of the dynamic events (``crossing.run_in``): the shortest one got (``run_in_m``: the
     population's, less where the road was too short for it; its own when no event has sprung trucks) and how
     many got less than ``run_in`` (``run_in_shortened_events``)."""
-    got = np.array([float(r["run_in"]) for r in results.values() if "run_in" in r], float)
+    got = np.array([float(r.get("run_in", 0.0)) for r in results.values()], float)  # (none stored: at rest)
     got = got[np.isfinite(got)]
     return {"run_in_m": float(got.min()) if got.size else run_in,
             "run_in_shortened_events": int(np.sum(got < run_in - 1e-9))}

@@ -471,9 +471,10 @@ def _run_in_state(run: _Run, phase: NDArray[np.complex128], vx0: NDArray[np.floa
     solution ẑ λ^{j−K} with (λ I − A) ẑ = (M0 + λ M1) a_K plus the free response A^K (z_0 − ẑ λ^{−K}) from the
     start at rest z_0 = (I − A)⁻¹ (M0 + M1) a_K λ^{−K}; each vehicle on its own (``independent_blocks``)."""
     from vbikit.solve.modal_step import vehicle_step
-    from vbikit.solve.run_in import independent_blocks, recursion, run_in_steps
+    from vbikit.solve.run_in import check_off_deck, independent_blocks, recursion, run_in_steps
 
     data, pts = run.data, run.pts
+    check_off_deck(data, run.travel[0], run.speed[0], run.crossing.run_in)
     a_mat, m0, m1, _ = recursion(data, vehicle_step(data.vehicles, run.h))
     k = run_in_steps(run.crossing, run.h, np.asarray(run.speed[0], float))
     loads = run.wsum @ run.road_load(phase, vx0)  # (n_w, lines): a_K

@@ -203,20 +203,16 @@ def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q
     contact point is on the deck at the start (the run-in drives the vehicles on the road alone).  The run-in
     steps ``dt``, the run's own step: 2 or 4 of them a step moved an HS20-44's IM by 7e-4 and 2.5e-3."""
     from vbikit.solve.modal_step import vehicle_step
-    from vbikit.solve.run_in import run_in_steps, settled_state
+    from vbikit.solve.run_in import check_off_deck, run_in_steps, settled_state
     from vbikit.solve.system import point_positions
 
-    x0, _ = point_positions(data, mot.travel[0], mot.speed[0])
-    on = (x0 >= data.modes.start[data.points.track]) & (x0 <= data.modes.end[data.points.track])
-    if np.any(on):
-        raise ValueError(f"crossing.run_in = {crossings[0].run_in:g} m: a contact point is on the deck when the run "
-                         "starts; the run-in drives the vehicles on the road alone (give crossing.approach >= 0 so "
-                         "that every vehicle starts before the bridge)")
+    check_off_deck(data, mot.travel[0], mot.speed[0], crossings[0].run_in)
     step = vehicle_step(data.vehicles, dt)
     n_d = data.vehicles.gravity.size
     travel0, speed0 = np.asarray(mot.travel[0], float), np.asarray(mot.speed[0], float)
     n = run_in_steps(crossings[0], dt, speed0)
-    x_back, _ = point_positions(data, travel0 - speed0 * (n + 1) * dt, mot.speed[0])
+    x0, _ = point_positions(data, travel0, speed0)
+    x_back, _ = point_positions(data, travel0 - speed0 * (n + 1) * dt, speed0)
     lo, hi = float(min(x_back.min(), x0.min())), float(max(x_back.max(), x0.max()))
     for lane, crossing in enumerate(crossings):
         road = _road([crossing], lo, hi)

@@ -41,7 +41,7 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.solve.run_in import population_run_in
+from vbikit.solve.run_in import RUN_IN_CLEARANCE, population_run_in
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -171,7 +171,9 @@ class TrafficStudy:
     def _identity(self, earlier: bool) -> str:
         where = {"base": self.base, "base_dir": self.base_dir} if earlier else \
             {"base": shared_spec(self.base), **({"input_sha256": dict(self.input_sha256)} if self.input_sha256 else {})}
-        return json.dumps({"kind": "vbikit traffic", "name": self.name, **where,
+        ctx = self.context()  # (the population's run-in, which the base does not hold: a stream at rest is not this one)
+        settled = {} if earlier or not ctx.settled else {"population_run_in": float(ctx.template.crossing.run_in)}
+        return json.dumps({"kind": "vbikit traffic", "name": self.name, **where, **settled,
                            "lanes": list(self.lanes), "seed": self.seed, "batch_size": self.batch_size,
                            "records_sha256": self._digest, "n_records": len(self.records),
                            **({"outputs": list(self.output_names)} if self.outputs is not None else {})},
@@ -391,17 +393,6 @@ class TrafficStudy:
         }
         return ds
 
-    def start_words(self) -> str:
-        """How the events start their sprung vehicles, in words (``vbikit traffic`` prints it before the run)."""
-        ctx = self.context()
-        c = ctx.template.crossing
-        if c.run_in > 0:
-            source = ("the population's: 100 m less the approach" if ctx.settled
-                      else "the base scenario's crossing.run_in")
-            return (f"sprung vehicles start settled: each first drives {c.run_in:g} m of the road alone ({source}; "
-                    f"less where the road is too short), then starts {c.approach:g} m before the bridge")
-        return f"sprung vehicles start at rest {c.approach:g} m before the bridge (crossing.run_in = 0)"
-
     @property
     def settles_vehicles(self) -> bool:
         """Whether the events drive their vehicles a run-in first (``crossing.run_in`` > 0: the compiled run-in
@@ -432,6 +423,21 @@ class TrafficStudy:
         spans = np.full(static_peaks.shape[0], float(span))
         return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event")
                                   + list(flags))
+
+
+def start_words(attrs: dict) -> str:
+    """How a stream's events started their sprung vehicles, in words, from its dataset's attributes
+    (``approach_m``, ``run_in_m`` the stream's run-in, ``run_in_min_m`` the shortest an event got; ``vbikit
+    traffic`` prints it)."""
+    if "approach_m" not in attrs:
+        return "sprung vehicles started at rest crossing.approach before the bridge (a dataset written before the start was stored)"
+    approach, run_in = float(attrs["approach_m"]), float(attrs.get("run_in_m", 0.0))
+    shortest = float(attrs.get("run_in_min_m", run_in))
+    if run_in <= 0.0 or shortest <= 0.0:
+        return f"sprung vehicles started at rest {approach:g} m before the bridge (crossing.run_in = 0)"
+    less = f"; the shortest {shortest:g} m, where the road was too short" if shortest < run_in else ""
+    return (f"sprung vehicles started settled: each first drove {run_in:g} m of the road alone (crossing.run_in{less}), "
+            f"then started {approach:g} m before the bridge")
 
 
 def airborne_dataset_flags(airborne: NDArray) -> list[Flag]:
@@ -555,10 +561,15 @@ class EventContext:
         random_road = road.profile_file is None and road.road_class != "none"
         crossing = built.crossing
         settled = "run_in" not in base.get("crossing", {})
+        near, far = crossing.bridge.deck_extent
+        overhang = max(-near, far - crossing.bridge.span)
         if settled:  # a population starts its trucks settled (population_run_in)
-            near, far = crossing.bridge.deck_extent
-            crossing = dataclasses.replace(crossing, run_in=population_run_in(
-                crossing.approach, max(-near, far - crossing.bridge.span)))
+            crossing = dataclasses.replace(crossing, run_in=population_run_in(crossing.approach, overhang))
+        elif crossing.run_in > 0 and crossing.approach - overhang < RUN_IN_CLEARANCE:
+            raise ScenarioError(f"crossing.run_in = {crossing.run_in:g} m needs every contact point off the deck at the "
+                                f"start: give crossing.approach >= {overhang + RUN_IN_CLEARANCE:g} m (the deck reaches "
+                                f"{overhang:g} m beyond its supports; {RUN_IN_CLEARANCE:g} m for the tire patches), got "
+                                f"{crossing.approach:g} m")
         fixed = [p for p in (built.crossing.road, built.crossing.road_right) if p is not None]
         road_range = (random_road_range(road_psd(road), road.spacing, road.length) if random_road else
                       (max(p.x[0] for p in fixed), min(p.x[-1] for p in fixed)) if fixed and road.profile_file else None)
