@@ -214,3 +214,12 @@ def test_an_explicit_run_in_needs_the_vehicles_off_the_deck_at_the_start(tmp_pat
 
     assert population_run_in(0.5, 0.0) == 0.0 and population_run_in(1.0, 0.0) == 99.0
     assert population_run_in(3.0, 2.5) == 0.0 and population_run_in(3.5, 2.5) == 96.5  # (a skew deck's overhang)
+
+
+def test_an_approach_too_short_for_a_run_in_is_flagged_with_the_approach_to_give():
+    """The population's default is 0 when the approach leaves less than 1 m before the deck: the flag then asks for
+    a longer approach (a run_in would be refused), not for a run_in."""
+    (flag,) = start_from_rest_flags(0.5, least_approach=1.0)
+    assert "give crossing.approach >= 1 m" in flag.message and "crossing.run_in =" not in flag.message
+    (flag,) = start_from_rest_flags(10.0, least_approach=1.0)
+    assert "crossing.run_in = 90" in flag.message

@@ -786,17 +786,23 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
 
 
 def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, output: str = "impact_factor",
-                          subject: str = "crossing.approach", shortened: int = 0) -> list[Flag]:
+                          subject: str = "crossing.approach", shortened: int = 0,
+                          least_approach: float = 0.0) -> list[Flag]:
     """A population's events (traffic streams, a lifetime's dynamic events) start their vehicles at rest in
     static equilibrium ``approach`` [m] before the bridge (``crossing.approach`` + ``crossing.run_in``, the
     road they drive before it alone: ``vbikit.solve.run_in``; the shortest over the events): below
     ``settled`` they enter it before the start's transient has died out, calmer than trucks that have driven
     on the road for long, and the impact factors come out low (one flag about ``output``, ``subject``; none
     from ``settled`` on).  ``shortened``: events whose run-in the road cut short (a population's run-in fitted
-    to a short road), named in the words with the remedy."""
+    to a short road), named in the words with the remedy; ``least_approach`` [m]: the approach a run-in needs
+    (every contact point off the deck at the start, ``vbikit.solve.run_in.RUN_IN_CLEARANCE``) when the given
+    one is shorter — then the remedy is to lengthen it."""
     if not approach < settled:
         return []
-    if shortened:
+    if approach < least_approach:
+        remedy = (f"for design values give crossing.approach >= {least_approach:g} m (a run-in needs every contact "
+                  "point off the deck at the start), and a population's run-in then settles them")
+    elif shortened:
         remedy = (f"the road was too short for the whole run-in on {counted(shortened, 'event')}: for design values "
                   "give a longer road.length (a random road) or a measured profile reaching further before the bridge")
     else:

@@ -193,7 +193,8 @@ def _start_flags(name: str, a: dict) -> list[Flag]:
         return []
     return start_from_rest_flags(float(a["approach_m"]) + float(a.get("run_in_m", 0.0)),
                                  output=flag_output("return_levels", "total"), subject=name,
-                                 shortened=int(a.get("run_in_shortened_events", 0)))
+                                 shortened=int(a.get("run_in_shortened_events", 0)),
+                                 least_approach=float(a.get("run_in_least_approach_m", 0.0)))
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:

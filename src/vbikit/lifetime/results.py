@@ -377,6 +377,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         # trucks are modelled: sprung trucks enter calmer than settled ones after a short approach (start_from_rest)
         "approach_m": float(prep.setup.context.template.crossing.approach),
         **_run_in_attrs(float(prep.setup.context.template.crossing.run_in), dyn["results"]),
+        "run_in_least_approach_m": float(prep.setup.context.least_approach),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),

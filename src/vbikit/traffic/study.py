@@ -409,7 +409,8 @@ class TrafficStudy:
             return []
         start = self.context().template.crossing
         return start_from_rest_flags(start.approach + float(got.min()),
-                                     shortened=int(np.sum(got < start.run_in - 1e-9)))
+                                     shortened=int(np.sum(got < start.run_in - 1e-9)),
+                                     least_approach=self.context().least_approach)
 
     def flag_attrs(self, static_peaks: NDArray, flags: Sequence[Flag] = ()) -> dict[str, str]:
         """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
@@ -549,6 +550,9 @@ class EventContext:
     settled: bool = False
     #: x [m] of the first and last road stations an event may read (None: a smooth road, no end)
     road_range: Optional[tuple[float, float]] = None
+    #: the shortest approach [m] with which a run-in can start (every contact point off the deck:
+    #: ``RUN_IN_CLEARANCE`` beyond the deck's ends)
+    least_approach: float = 0.0
 
     @classmethod
     def of(cls, base: dict, base_dir: str) -> "EventContext":
@@ -574,7 +578,7 @@ class EventContext:
         road_range = (random_road_range(road_psd(road), road.spacing, road.length) if random_road else
                       (max(p.x[0] for p in fixed), min(p.x[-1] for p in fixed)) if fixed and road.profile_file else None)
         ctx = cls(_Template(dataclasses.replace(crossing, road=None, road_right=None)), scenario, built.plan,
-                  random_road, settled=settled, road_range=road_range)
+                  random_road, settled=settled, road_range=road_range, least_approach=overhang + RUN_IN_CLEARANCE)
         if not random_road:
             ctx._fixed_road = (built.crossing.road, built.crossing.road_right)
         return ctx
