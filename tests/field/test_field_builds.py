@@ -78,3 +78,24 @@ def test_scaled_bridge_scales_frequencies_by_the_root_of_the_factor():
             ScaledBridge(base, bad)
     with pytest.raises(ValueError, match="damping_ratio must be in"):
         ScaledBridge(base, 1.0, 1.0)
+
+
+def test_a_run_in_reaches_every_case_and_a_profile_too_short_for_it_is_refused_before_running(example):
+    """``crossing.run_in`` (0 by default: the example's synthetic records were simulated at rest) reaches each
+    case's crossing; beyond the measured profiles (from x = −45.52 m, the truck's rear axle at about −38 m with the
+    33.52 m approach) the check before any simulation refuses it, naming the case, the run-in and the remedy; out of
+    range it is refused naming the key."""
+    from vbikit.field.workflow import base_bridge, case_crossing
+
+    spec = load_field_toml(example / "FIELD.toml")
+    assert spec.run_in == 0.0
+    spec = load_field_toml(edit(example, "free_vibration = 8.0", "free_vibration = 8.0\nrun_in = 3.0"))
+    crossing = case_crossing(spec, spec.cases[0], field_tire("point"), base_bridge(spec))
+    assert crossing.run_in == 3.0
+    check_field(spec, ["point"])
+    spec = load_field_toml(edit(example, "run_in = 3.0", "run_in = 50.0"))
+    with pytest.raises(FieldFileError, match=r"case 'case1', point tire: road profile .* \(approach, run-in, vehicle "
+                                             r"length, span, free vibration\): give a longer road"):
+        check_field(spec, ["point"])
+    with pytest.raises(FieldFileError, match=r"crossing.run_in must be in 0 … 1000 m, got 2000"):
+        load_field_toml(edit(example, "run_in = 50.0", "run_in = 2000.0"))

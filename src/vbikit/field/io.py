@@ -28,7 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import check_name, csv_rows, input_file, read_text
-from vbikit._limits import MAX_SPEED, MIN_SPEED
+from vbikit._limits import MAX_SPEED, MIN_SPEED, MAX_RUN_IN
 from vbikit._toml import read_toml
 from vbikit.errors import VbikitError
 
@@ -202,6 +202,8 @@ class FieldSpec:
     cases: tuple[CaseSpec, ...]
     dt: float | None = None
     bridge_overrides: dict[str, Any] = field(default_factory=dict)
+    #: road [m] the truck drives alone before the approach (``crossing.run_in``; 0: it starts at rest)
+    run_in: float = 0.0
 
 
 #: Every key of a FIELD.toml: section → key → (type, range, default, unit, meaning).  The loader
@@ -226,6 +228,9 @@ FIELD_KEYS: dict[str, dict[str, tuple[str, str, Any, str, str]]] = {
         "speed_kmh": ("number", _SPEED_RANGE_TEXT, ..., "km/h", "truck speed (a case may set its own)"),
         "approach": ("number", "≥ 0", 33.52, "m", "distance driven before the span entry (two 16.76 m spans)"),
         "free_vibration": ("number", "≥ 0", 3.0, "s", "time simulated after the last axle leaves"),
+        "run_in": ("number", f"0 … {MAX_RUN_IN:g}", 0.0, "m", "road the truck drives alone before the approach, so that "
+                   "it arrives settled as a real truck does (vbikit.solve.run_in; the profiles must reach that far "
+                   "back); 0: it starts at rest"),
         "dt": ("number", "> 0", None, "s", "fixed time step; default automatic"),
     },
     "signal": {
@@ -447,6 +452,8 @@ def load_field_toml(path: str | Path) -> FieldSpec:
         speed=speed,
         approach=_num(crossing_t, "approach", "crossing.", path, _default("crossing", "approach"), nonneg=True),
         free_vibration=_num(crossing_t, "free_vibration", "crossing.", path, _default("crossing", "free_vibration"), nonneg=True),
+        run_in=_num(crossing_t, "run_in", "crossing.", path, _default("crossing", "run_in"), bounds=(0.0, MAX_RUN_IN),
+                    unit="m"),
         n_modes=_int(bridge_t, "n_modes", path, _default("bridge", "n_modes"), 1, 500, "bridge."),
         damping_ratio=_num(bridge_t, "damping_ratio", "bridge.", path, _default("bridge", "damping_ratio"), nonneg=True),
         stiffness_factor=_num(bridge_t, "stiffness_factor", "bridge.", path, _default("bridge", "stiffness_factor"), positive=True),

@@ -137,7 +137,7 @@ def _checked_profiles(spec: FieldSpec, case: CaseSpec) -> Profiles:
 def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: ModalBridge, dt: float | None = None,
                   profiles: Profiles | None = None) -> Crossing:
     """The simulated crossing of one loading case (vehicle enters in static equilibrium ``approach``
-    before the span); ``profiles``: the case's profiles as ``case_profiles`` reads them (read here
+    before the span, or settled by its ``run_in`` on the road behind); ``profiles``: the case's profiles as ``case_profiles`` reads them (read here
     when None; a caller simulating one case several times reads them once)."""
     _check_truck(spec)
     left, right = case_profiles(case) if profiles is None else profiles
@@ -149,7 +149,7 @@ def case_crossing(spec: FieldSpec, case: CaseSpec, tire: TireModel, bridge: Moda
         left, right = (None if p is None else RoadProfile(p.x + offset, p.z, p.label, p.resolution) for p in (left, right))
     return Crossing(bridge, VEHICLE_PRESETS[spec.truck].build(), tire, left, speed=case.speed or spec.speed,
                     approach=spec.approach - offset, free_vibration=spec.free_vibration, lateral_offset=case.lateral_offset,
-                    dt=dt if dt is not None else spec.dt, road_right=right)
+                    dt=dt if dt is not None else spec.dt, road_right=right, run_in=spec.run_in)
 
 
 def tested_span_offset(bridge: ModalBridge) -> float:
