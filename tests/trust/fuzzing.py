@@ -448,7 +448,7 @@ FIELD_KEYS: dict[tuple[str, ...], Any] = {
                                                                                "bogus": NUMBERS})),
     ("signal", "lowpass_hz"): NUMBERS, ("signal", "drift"): WEIRD, ("signal", "quiet_tail"): NUMBERS,
     ("signal", "bands_hz"): st.one_of(WEIRD, st.lists(st.lists(NUMBERS, min_size=2, max_size=2), max_size=2)),
-    ("unknown",): ANY_VALUE,
+    ("crossing", "run_in"): NUMBERS, ("unknown",): ANY_VALUE,
 }
 CASE_KEYS = {"name": WEIRD, "responses": WEIRD, "lateral_offset": NUMBERS, "sampling_rate": NUMBERS,
              "trigger_time": NUMBERS, "align": WEIRD, "speed_kmh": NUMBERS, "channel": st.just([])}
