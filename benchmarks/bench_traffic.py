@@ -29,7 +29,7 @@
 
 Base scenario: ``paper-bridge-2`` (10 modes, 2 % damping), point tires, ISO class B road with a
 new seed per event, ``--spacing`` m road samples (the scenario default is 0.01 m), response at
-Girder 4 midspan.  Writes only temporary datasets (deleted) and numba's cache.
+Girder 4 midspan; the trucks settled by the population's run-in (``--run-in 0``: at rest).  Writes only temporary datasets (deleted) and numba's cache.
 """
 from __future__ import annotations
 
@@ -46,9 +46,11 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _args import benchmark_args  # noqa: E402
 
 
-def _base(spacing: float) -> dict:
+def _base(spacing: float, run_in: float | None = None) -> dict:
+    """The stream's base scenario; ``run_in`` [m]: its ``crossing.run_in`` (None: none given, the population's
+    run-in, 100 m less the approach: the trucks start settled)."""
     return {"bridge": {"model": "paper-bridge-2", "n_modes": 10}, "tire": {"model": "point"},
-            "road": {"class": "B", "spacing": spacing}}
+            "road": {"class": "B", "spacing": spacing}, **({} if run_in is None else {"crossing": {"run_in": run_in}})}
 
 
 def _stream(n: int, flow: float, seed: int = 2026):
@@ -89,12 +91,15 @@ def main() -> None:
     p.add_argument("--spacing", type=float, default=0.01, help="road sample spacing [m] (default 0.01, the scenario default)")
     p.add_argument("--outputs", default=None, help="outputs to reduce, comma-separated (default: the whole catalogue)")
     p.add_argument("--by-size", type=int, default=300, help="events timed in this process by trucks per event (default 300; 0: skip)")
+    p.add_argument("--run-in", type=float, default=None,
+                   help="crossing.run_in of the base scenario [m] (default: none given, the population's: the trucks "
+                        "start settled; 0: at rest, as before 2026-12-06)")
     args = benchmark_args(__doc__, "unused (one timed run)", p)
 
     from vbikit.study.run import run_study, shutdown_workers
     from vbikit.traffic.study import traffic_study
 
-    base = _base(args.spacing)
+    base = _base(args.spacing, args.run_in)
     with tempfile.TemporaryDirectory() as tmp:
         t0 = time.perf_counter()
         warm = traffic_study(_stream(20, args.flow, seed=1), base, batch_size=4)
