@@ -16,7 +16,8 @@ deflection IM at Girder 4 midspan for each approach, the paired differences (mea
 standard error, root mean square), the runs' mean steps, and the share of the slowest vehicle mode's start transient left
 at the bridge entry, exp(−ζω · approach / v), averaged over the events (``start_transient_left``); then
 (``run_in``) the same class B events started 10 m before the bridge after a 90 m run-in
-(``crossing.run_in``) against the 100 m approach run coupled all the way.
+(``crossing.run_in``) against the 100 m approach run coupled all the way; then (``settling``) how far they
+must have driven: run-ins giving 25, 50, 100 and 200 m in all, each against 200 m (``SETTLED_APPROACH``).
 """
 from __future__ import annotations
 
@@ -31,6 +32,8 @@ ROOT = Path(__file__).resolve().parents[2]
 NUMBERS = ROOT / "docs" / "figures" / "approach-numbers.json"
 #: (road class, events, approaches [m]) of the study
 CASES = (("B", 300, (10.0, 100.0, 200.0)), ("C", 200, (10.0, 100.0)))
+#: the road [m] driven before the bridge in all (the 10 m approach plus a run-in) whose settling is compared
+SETTLING_TOTALS = (25.0, 50.0, 100.0, 200.0)
 
 
 def _base(road_class: str, approach: float, run_in: float = 0.0) -> dict:
@@ -102,6 +105,14 @@ def compute() -> dict:
     reference = _events(road_class, n, 100.0)[0]
     out["run_in"] = {"road_class": road_class, "events": n, "approach_m": 10.0, "run_in_m": 90.0, "im": _stats(im),
                      "mean_steps": round(float(steps.mean())), "minus_100": _small_differences(reference, im)}
+    # how far the trucks must have driven (approach + run-in, SETTLED_APPROACH): the 10 m approach after run-ins of
+    # 15, 40, 90 and 190 m (25 … 200 m in all), each against the 200 m one, on the same events and roads
+    settled = {total: _events(road_class, n, 10.0, total - 10.0)[0] for total in SETTLING_TOTALS}
+    longest = settled[SETTLING_TOTALS[-1]]
+    out["settling"] = {"road_class": road_class, "events": n, "approach_m": 10.0, "totals_m": list(SETTLING_TOTALS),
+                       "mean": {f"{t:g}": round(float(settled[t].mean()), 4) for t in SETTLING_TOTALS},
+                       f"minus_{SETTLING_TOTALS[-1]:g}": {f"{t:g}": _small_differences(longest, settled[t])
+                                                           for t in SETTLING_TOTALS[:-1]}}
     return out
 
 
