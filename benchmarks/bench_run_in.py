@@ -23,7 +23,6 @@ Writes nothing but numba's cache.
 from __future__ import annotations
 
 import argparse
-import importlib
 import sys
 import time
 from pathlib import Path
@@ -43,28 +42,14 @@ def main() -> None:
     p.add_argument("--events", type=int, default=100, help="one-truck events timed (default 100)")
     args = benchmark_args(__doc__, "alternating rounds (default 5)", p)
 
+    from bench_per_crossing import _stage_clocks
     from bench_traffic import _stream
 
-    from vbikit.solve import kernels
     from vbikit.traffic.study import traffic_study
 
-    simulate_module = importlib.import_module("vbikit.solve.simulate")
-    spent = {"run_in": 0.0, "loops": 0.0}
-
-    def clocked(module, name, key):
-        inner = getattr(module, name)
-
-        def wrapper(*a, **k):
-            t0 = time.thread_time()
-            try:
-                return inner(*a, **k)
-            finally:
-                spent[key] += time.thread_time() - t0
-        setattr(module, name, wrapper)
-
-    clocked(simulate_module, "_run_in", "run_in")
-    clocked(kernels, "run_in_loads", "loops")
-    clocked(kernels, "linear_recursion", "loops")
+    spent = _stage_clocks({"run_in": ("vbikit.solve.simulate", "_run_in"),
+                           "road loads": ("vbikit.solve.kernels", "run_in_loads"),
+                           "recursion": ("vbikit.solve.kernels", "linear_recursion")})
 
     records = _stream(4 * args.events, 600.0)
     jobs = {start: traffic_study(records, _base(start), batch_size=16) for start in ("rest", "settled", "approach")}
@@ -77,13 +62,14 @@ def main() -> None:
     for _ in range(max(args.repeat, 1)):
         for start, job in jobs.items():
             job.run_event(events[0])  # (a process keeps one base scenario's context: rebuilt here, untimed)
-            spent["run_in"] = spent["loops"] = 0.0
+            spent.update(dict.fromkeys(spent, 0.0))
             t0 = time.thread_time()
             for e in events:
                 job.run_event(e)
             best[start] = min(best[start], (time.thread_time() - t0) / len(events))
             if start == "settled":
-                inside = {k: min(inside[k], spent[k] / len(events)) for k in inside}
+                got = {"run_in": spent["run_in"], "loops": spent["road loads"] + spent["recursion"]}
+                inside = {k: min(inside[k], got[k] / len(events)) for k in inside}
     print(f"{len(events)} one-truck events of bench_traffic.py's stream (Bridge 2, class B, point tires), thread CPU "
           f"an event, minimum of {max(args.repeat, 1)} alternating rounds:")
     for start, words in (("rest", "at rest 10 m before the bridge (run_in = 0)"),
