@@ -104,6 +104,13 @@ class ModalBridge(abc.ABC):
         shifts = [e * t for e in self.lateral_edges]
         return min(min(shifts), 0.0), float(self.span) + max(max(shifts), 0.0)
 
+    @property
+    def deck_overhang(self) -> float:
+        """How far [m] the deck reaches beyond its supports along x (``deck_extent``): 0, or a skew deck's
+        oblique ends, where a wheel touches the deck before its axle reaches the support line."""
+        first, last = self.deck_extent
+        return max(-first, last - float(self.span), 0.0)
+
     def span_coordinate(self, x: ArrayLike, y: ArrayLike) -> NDArray[np.float64]:
         """ξ [m] of deck points (x, y): the distance along the span from the entry support line at
         the point's y — x itself; on a skew deck x − y·tan θ.  A point is on the deck while

@@ -116,8 +116,7 @@ def day_events(setup: Setup, records) -> list[tuple[int, ...]]:
 
     if not records:
         return []
-    first, last = setup.bridge.deck_extent
-    reach = max(-first, last - setup.bridge.span, 0.0) + setup.pattern.reach
+    reach = setup.bridge.deck_overhang + setup.pattern.reach
     lengths = [r.length for r in records]
     return [e.vehicles for e in partition([r.time for r in records], [r.speed for r in records], lengths,
                                           setup.span, reach)]

@@ -565,8 +565,7 @@ class EventContext:
         random_road = road.profile_file is None and road.road_class != "none"
         crossing = built.crossing
         settled = "run_in" not in base.get("crossing", {})
-        near, far = crossing.bridge.deck_extent
-        overhang = max(-near, far - crossing.bridge.span)
+        overhang = crossing.bridge.deck_overhang
         if settled:  # a population starts its trucks settled (population_run_in)
             crossing = dataclasses.replace(crossing, run_in=population_run_in(crossing.approach, overhang))
         elif crossing.run_in > 0 and crossing.approach - overhang < RUN_IN_CLEARANCE:
@@ -692,9 +691,8 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
                 source_of_y = "lateral_offset" if r.lateral_offset is not None else f"lane {r.lane}"
                 raise StudyError(f"{where}: {source_of_y} at y = {y:g} m puts wheels at y = {edge:.4g} m from the "
                                  f"centreline, off the {width:g} m wide deck")
-    first, last = bridge.deck_extent
-    reach = max(-first, last - bridge.span, 0.0)  # a skew deck's ends reach beyond its supports
-    events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span, reach)
+    events: list[Event] = partition([r.time for r in records], [r.speed for r in records], lengths, bridge.span,
+                                    bridge.deck_overhang)
     digest = hashlib.sha256(json.dumps([[r.id, r.time, r.lane, r.lateral_offset, r.direction, r.speed, r.model,
                                          list(r.axle_loads), list(r.axle_spacings)] for r in records]).encode()).hexdigest()
     job = TrafficStudy(tuple(records), dict(base), str(base_dir), lanes, int(seed), int(batch_size),
