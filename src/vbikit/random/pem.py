@@ -424,14 +424,14 @@ def _exact_lines(run: _Run) -> None:
         kernel.record(i, st, n_m, n_w, n_d, deck, v_acc, run.coarse_w, var, coarse, run.cov_dv, run.lam1, kept, keep,
                       np.empty((4 * n_pt, st.shape[1])), np.empty((n_d, st.shape[1])))
 
-    phase, u0, (_, vx0, phi0, dphi0, *_) = run.static_start()
+    phase, u0, (x0, vx0, phi0, dphi0, *_) = run.static_start()
     n_c = phase.shape[1] * 2  # float columns
     st = np.zeros((n_st, n_c))
     inp = np.zeros((o_in_g + n_p, n_c))
     st[:n_m] = _fl(u0[:n_m])
     st[o_z:o_z + n_d] = _fl(u0[n_m:])
     if run.crossing.run_in > 0 and n_d:  # the vehicles settled by their run-in (the engine's, vbikit.solve.run_in)
-        st[o_z:o_g] = _fl(_run_in_state(run, phase, vx0))
+        st[o_z:o_g] = _fl(_run_in_state(run, phase, x0, vx0))
     g0 = _fl(run.road_load(phase, vx0))
     a_xi0 = k_p[:, None] * phi0 + (c_p * vx0)[:, None] * dphi0
     force = a_xi0 @ st[:n_m] + a_z @ st[o_z:o_g] + g0  # F₀ (rates zero)
@@ -462,8 +462,10 @@ def _exact_lines(run: _Run) -> None:
         r += size
 
 
-def _run_in_state(run: _Run, phase: NDArray[np.complex128], vx0: NDArray[np.float64]) -> NDArray[np.complex128]:
-    """Every line's pseudo vehicle state z = (q, q̇) (2 n_d, lines) at the start after ``crossing.run_in`` metres of
+def _run_in_state(run: _Run, phase: NDArray[np.complex128], x0: NDArray[np.float64],
+                  vx0: NDArray[np.float64]) -> NDArray[np.complex128]:
+    """Every line's pseudo vehicle state z = (q, q̇) (2 n_d, lines) at the start (the points at ``x0`` [m] moving
+    at ``vx0`` [m/s]) after ``crossing.run_in`` metres of
     its pseudo-road, from the pseudo-static state where the run-in begins — the engine's run-in
     (``vbikit.solve.run_in``: the recursion z_{j+1} = A z_j + M0 a_j + M1 a_{j+1} of the vehicles' exact step map
     over K steps of the run's h) under the harmonic loads a_j = a_K λ^{j−K} of one line (a_K the wheels' pseudo
@@ -474,7 +476,7 @@ def _run_in_state(run: _Run, phase: NDArray[np.complex128], vx0: NDArray[np.floa
     from vbikit.solve.run_in import check_off_deck, independent_blocks, recursion, run_in_steps
 
     data, pts = run.data, run.pts
-    check_off_deck(data, run.travel[0], run.speed[0], run.crossing.run_in)
+    check_off_deck(data, x0, run.crossing.run_in)
     a_mat, m0, m1, _ = recursion(data, vehicle_step(data.vehicles, run.h))
     k = run_in_steps(run.crossing, run.h, np.asarray(run.speed[0], float))
     loads = run.wsum @ run.road_load(phase, vx0)  # (n_w, lines): a_K

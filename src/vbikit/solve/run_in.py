@@ -58,12 +58,9 @@ def population_run_in(approach: float, overhang: float) -> float:
     return max(SETTLED_APPROACH - approach, 0.0)
 
 
-def check_off_deck(data: Any, travel0: NDArray[np.float64], speed0: NDArray[np.float64], run_in: float) -> None:
-    """Refuse a run-in (``run_in`` [m] > 0) when a contact point is on the deck at the start (travel ``travel0``,
-    speeds ``speed0`` per vehicle): the run-in drives the vehicles on the road alone."""
-    from vbikit.solve.system import point_positions
-
-    x0, _ = point_positions(data, travel0, speed0)
+def check_off_deck(data: Any, x0: NDArray[np.float64], run_in: float) -> None:
+    """Refuse a run-in (``run_in`` [m] > 0) when a contact point is on the deck at the start (the points at
+    ``x0`` [m]): the run-in drives the vehicles on the road alone."""
     if np.any((x0 >= data.modes.start[data.points.track]) & (x0 <= data.modes.end[data.points.track])):
         raise ValueError(f"crossing.run_in = {run_in:g} m: a contact point is on the deck when the run starts; the "
                          "run-in drives the vehicles on the road alone (give a crossing.approach that starts every "

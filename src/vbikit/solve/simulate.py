@@ -206,12 +206,12 @@ def _run_in(crossings: Sequence[Crossing], data: "KernelData", mot, dt: float, q
     from vbikit.solve.run_in import check_off_deck, run_in_steps, settled_state
     from vbikit.solve.system import point_positions
 
-    check_off_deck(data, mot.travel[0], mot.speed[0], crossings[0].run_in)
+    travel0, speed0 = np.asarray(mot.travel[0], float), np.asarray(mot.speed[0], float)
+    x0, _ = point_positions(data, travel0, speed0)
+    check_off_deck(data, x0, crossings[0].run_in)
     step = vehicle_step(data.vehicles, dt)
     n_d = data.vehicles.gravity.size
-    travel0, speed0 = np.asarray(mot.travel[0], float), np.asarray(mot.speed[0], float)
     n = run_in_steps(crossings[0], dt, speed0)
-    x0, _ = point_positions(data, travel0, speed0)
     x_back, _ = point_positions(data, travel0 - speed0 * (n + 1) * dt, speed0)
     lo, hi = float(min(x_back.min(), x0.min())), float(max(x_back.max(), x0.max()))
     for lane, crossing in enumerate(crossings):
