@@ -6,7 +6,7 @@ docs/traffic.md's "Start from rest and the approach", stored in docs/figures/app
 Every run starts its vehicles at rest in static equilibrium ``crossing.approach`` before the bridge
 (docs/theory.md, "Start and end of a crossing"); a truck that has driven on a rough road for long
 carries a stationary vibration instead.  The start's transient decays with the truck's slowest
-modes (body bounce and pitch, ζ ω ≈ 0.5–1 s⁻¹), so it has not died out after a short approach.  Here
+modes (body bounce and pitch, ζ ω ≈ 0.3–0.6 s⁻¹ for the stream's trucks), so it has not died out after a short approach.  Here
 the same one-truck events (the first ``N`` of ``benchmarks/bench_traffic.py``'s stream: Bridge 2,
 10 modes, point tires, 2 % damping, the stream's truck mix at 80 ± 8 and 75 ± 8 km/h), each on its
 own road of the given ISO class, are run with the default approach (10 m) and with long ones
@@ -17,7 +17,10 @@ standard error, root mean square), the runs' mean steps, and the share of the sl
 at the bridge entry, exp(−ζω · approach / v), averaged over the events (``start_transient_left``); then
 (``run_in``) the same class B events started 10 m before the bridge after a 90 m run-in
 (``crossing.run_in``) against the 100 m approach run coupled all the way; then (``settling``) how far they
-must have driven: run-ins giving 25, 50, 100 and 200 m in all, each against 200 m (``SETTLED_APPROACH``).
+must have driven: run-ins giving 25, 50, 100 and 200 m in all, each against 200 m (``SETTLED_APPROACH``); and
+(``settling_spans``) whether that holds on other bridges: simply supported beams of 15, 40 and 60 m whose first
+frequencies (7, 1.6 and 1.2 Hz) lie above, on and below the trucks' body modes (1.3–2 Hz), on class B (and the 40 m
+beam on class C), 50, 100 and 200 m in all against 400 m.
 """
 from __future__ import annotations
 
@@ -34,6 +37,14 @@ NUMBERS = ROOT / "docs" / "figures" / "approach-numbers.json"
 CASES = (("B", 300, (10.0, 100.0, 200.0)), ("C", 200, (10.0, 100.0)))
 #: the road [m] driven before the bridge in all (the 10 m approach plus a run-in) whose settling is compared
 SETTLING_TOTALS = (25.0, 50.0, 100.0, 200.0)
+#: (span [m], first frequency [Hz], road class) of the beams of ``settling_spans``: 15 m above the trucks' body
+#: modes (1.3–2 Hz, their slowest decaying), 40 m on them, 60 m below; 15,000 kg/m, EI from f1 (Eq. of a simply
+#: supported beam, f1 = π/(2L²) √(EI/m)), 6 modes, 2 % damping
+SPAN_CASES = ((15.0, 7.0, "B"), (40.0, 1.6, "B"), (60.0, 1.2, "B"), (40.0, 1.6, "C"))
+#: the road [m] driven in all on the beams, the last the reference
+SPAN_TOTALS = (50.0, 100.0, 200.0, 400.0)
+#: one-truck events per beam case
+SPAN_EVENTS = 100
 
 
 def _base(road_class: str, approach: float, run_in: float = 0.0) -> dict:
@@ -41,16 +52,29 @@ def _base(road_class: str, approach: float, run_in: float = 0.0) -> dict:
             "road": {"class": road_class, "spacing": 0.01}, "crossing": {"approach": approach, "run_in": run_in}}
 
 
-def _events(road_class: str, n: int, approach: float, run_in: float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _beam(span: float, f1: float, road_class: str, total: float) -> dict:
+    """The base scenario of a ``SPAN_CASES`` beam, its trucks started 10 m before it after ``total`` − 10 m of run-in."""
+    mass = 15000.0
+    stiffness = (f1 * 2.0 * span**2 / math.pi) ** 2 * mass  # f1 = π/(2L²) √(EI/m)
+    return {"bridge": {"model": "beam", "span": span, "EI": stiffness, "mass_per_length": mass, "n_modes": 6},
+            "tire": {"model": "point"}, "road": {"class": road_class, "spacing": 0.01, "length": 3000.0},
+            "crossing": {"approach": 10.0, "run_in": total - 10.0}}  # (a long road: on the 60 m beam 15 trucks meet)
+
+
+def _events(road_class: str, n: int, approach: float, run_in: float = 0.0,
+            base: dict | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The deflection IMs of the stream's first ``n`` one-truck events, each truck's start transient
-    left at its entry (the slowest vehicle mode's exp(−ζω · approach / v)) and each run's steps."""
+    left at its entry (the slowest vehicle mode's exp(−ζω · approach / v)) and each run's steps;
+    ``base``: another base scenario (a beam: both lanes on its axis, more of the stream's trucks: more of them
+    meet on a long beam)."""
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_traffic import _stream
 
     from vbikit.driveby.quality import vehicle_modes
     from vbikit.traffic.study import _vehicle, traffic_study
 
-    job = traffic_study(_stream(3 * n, 600.0), _base(road_class, approach, run_in), batch_size=16)
+    job = traffic_study(_stream((3 if base is None else 8) * n, 600.0), base or _base(road_class, approach, run_in), batch_size=16,
+                        **({} if base is None else {"lanes": [0.0, 0.0]}))
     events = [e for e in range(job.size) if len(job.events[e]) == 1][:n]
     if len(events) < n:
         raise SystemExit(f"the stream has only {len(events)} one-truck events")
@@ -113,7 +137,32 @@ def compute() -> dict:
                        "mean": {f"{t:g}": round(float(settled[t].mean()), 4) for t in SETTLING_TOTALS},
                        f"minus_{SETTLING_TOTALS[-1]:g}": {f"{t:g}": _small_differences(longest, settled[t])
                                                            for t in SETTLING_TOTALS[:-1]}}
+    # the same on beams below, on and above the trucks' body modes: 50, 100, 200 m in all against 400 m
+    cases = []
+    for span, f1, cls in SPAN_CASES:
+        ims = {t: _events(cls, SPAN_EVENTS, 10.0, t - 10.0, _beam(span, f1, cls, t))[0] for t in SPAN_TOTALS}
+        ref = ims[SPAN_TOTALS[-1]]
+        cases.append({"span_m": span, "f1_hz": f1, "road_class": cls, "events": SPAN_EVENTS,
+                                      "mean": round(float(ref.mean()), 4),
+                                      f"minus_{SPAN_TOTALS[-1]:g}": {f"{t:g}": _small_differences(ref, ims[t])
+                                                                      for t in SPAN_TOTALS[:-1]}})
+    out["settling_spans"] = {"slowest_truck_mode_hz": _slowest_modes(), "cases": cases}
     return out
+
+
+def _slowest_modes() -> list[float]:
+    """The lowest and highest frequency [Hz] of the stream's trucks' slowest decaying mode (the smallest ζω,
+    ``vehicle_modes``: on rigid ground, classical damping) over its first 800 trucks."""
+    from bench_traffic import _stream
+
+    from vbikit.driveby.quality import vehicle_modes
+    from vbikit.traffic.study import _vehicle
+
+    slowest = []
+    for record in _stream(800, 600.0):
+        f, zeta = vehicle_modes(_vehicle(record))
+        slowest.append(float(f[np.argmin(np.asarray(f) * np.asarray(zeta))]))
+    return [round(min(slowest), 2), round(max(slowest), 2)]
 
 
 def main() -> None:

@@ -1,7 +1,8 @@
 """docs/traffic.md's "Start from rest and the approach" quotes docs/figures/approach-numbers.json, which
 docs/scripts/approach_numbers.py computes (recomputed here in a slow test): the one-truck events' IM
 statistics with the default 10 m approach against 100 m (and 200 m, the convergence), and the default approach
-after a 90 m run-in (crossing.run_in) against 100 m."""
+after a 90 m run-in (crossing.run_in) against 100 m, and how far the trucks must have driven (on Bridge 2 and on
+beams of 15, 40 and 60 m)."""
 from __future__ import annotations
 
 import importlib.util
@@ -34,7 +35,20 @@ def quoted() -> list[str]:
             f"{r['minus_100']['rms']:.1e} root mean square, {r['minus_100']['max']:.1e} at most",
             f"the coupled run keeps the default's steps ({r['mean_steps']:,} on average)",
             f"crossing.run_in = {r['run_in_m']:g}",
-            *_settling()]
+            *_settling(), _spans()]
+
+
+def _spans() -> str:
+    """The sentence on the beams of ``settling_spans`` (SETTLED_APPROACH on other bridges)."""
+    g = STORED["settling_spans"]
+    lo, hi = g["slowest_truck_mode_hz"]
+    cases = "; ".join(f"{c['span_m']:g} m at {c['f1_hz']:g} Hz, class {c['road_class']}: mean {c['minus_400']['100']['mean']:.2g} "
+                      f"± {c['minus_400']['100']['se']:.2g}, per event {c['minus_400']['100']['rms']:.2g} root mean square "
+                      f"({c['minus_400']['100']['max']:.2g} at most)" for c in g["cases"])
+    worst = max(c["minus_400"]["50"]["rms"] for c in g["cases"])
+    return (f"the trucks' slowest decaying modes ({lo:g}–{hi:g} Hz), {g['cases'][0]['events']} one-truck events each, "
+            f"100 m in all against 400 m: {cases}. With 50 m each event's IM still differs by up to {worst:.2g} root "
+            "mean square")
 
 
 def _settling() -> list[str]:
@@ -62,6 +76,9 @@ def test_the_stored_numbers_say_what_the_page_concludes():
     assert abs(b["200_minus_100"]["mean"]) < 1e-3 and b["200_minus_100"]["rms"] < 0.1 * b["100_minus_10"]["rms"]
     g = STORED["settling"]["minus_200"]  # SETTLED_APPROACH: each event's IM settled by 100 m, not by 50 m
     assert g["100"]["rms"] < 0.005 < g["50"]["rms"] and abs(g["100"]["mean"]) < 3 * g["100"]["se"] + 1e-4
+    for case in STORED["settling_spans"]["cases"]:  # and so on beams above, on and below the trucks' body modes
+        d = case["minus_400"]["100"]
+        assert d["rms"] < 0.005 and d["max"] < 0.02 and abs(d["mean"]) < 3 * d["se"] + 1e-4, case
     from vbikit.solve.run_in import SETTLED_APPROACH
 
     assert SETTLED_APPROACH == 100.0

@@ -34,7 +34,9 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: [substitute] the shortest approach [m] from which a population's events start their vehicles settled: one-truck
 #: traffic events on Bridge 2 (class B) give a mean IM 0.0147 ± 0.0024 higher at 100 m than at 10 m, and
-#: within 1e-4 of 200 m's (docs/traffic.md, "Start from rest and the approach"; docs/scripts/approach_numbers.py)
+#: within 1e-4 of 200 m's, each event's within 0.002 root mean square; beams of 15, 40 and 60 m (first frequency above,
+#: on and below the trucks' body modes) within 0.003 of 400 m's per event (docs/traffic.md, "Start from rest and the
+#: approach"; docs/scripts/approach_numbers.py)
 SETTLED_APPROACH = 100.0
 #: the least road [m] between the vehicles' front axle at the start and the deck's near end for which a
 #: population adds its run-in (``population_run_in``): a contact patch reaches ahead of its axle, and a run-in
