@@ -132,3 +132,47 @@ def test_accuracy_numbers_are_reproduced(tmp_path):
     now = rerun("driveby_accuracy", tmp_path)
     for key in set(ACCURACY) - {"measured"}:
         assert now[key] == ACCURACY[key], key
+
+
+START = json.loads((ROOT / "docs" / "figures" / "driveby-start-numbers.json").read_text(encoding="utf-8"))
+
+
+def start_quoted(n: dict) -> list[str]:
+    """The strings of docs/scripts/driveby_start_numbers.py's numbers that docs/driveby.md ("Where a pass
+    starts") must contain."""
+    c, car, pair = n["damped_cart"], n["two_axle_car"], n["damped_cart_pair"]
+    pc = lambda x, d=1: f"{100 * x:.{d}f} %"  # noqa: E731
+    return [f"{n['run_in_m']:g} m of run-in against none", f"moved in {c['moved']} of {c['passes']} passes",
+            f"in {car['moved']} of {car['passes']} of the two-axle car", f"in {pair['moved']} of {pair['passes']} of the roughness",
+            f"{pair['reliable_settled']} passes reliable either way",
+            f"by {pair['largest_move_hz']:g} Hz at most ({pair['largest_move_per_resolution']:g} of the pass's resolution 1/T)",
+            f"on the deck by {pc(c['record_difference_median'])} / {pc(car['record_difference_median'])} / "
+            f"{pc(pair['record_difference_median'])} root mean square",
+            f"up to {pc(c['record_difference_max'], 0)} / {pc(car['record_difference_max'], 0)} / "
+            f"{pc(pair['record_difference_max'], 0)}"]
+
+
+def test_start_section_quotes_the_stored_numbers():
+    page = _flat(PAGE)
+    missing = [s for s in start_quoted(START) if _flat(s) not in page]
+    assert not missing, f"docs/driveby.md does not quote {missing}: run python docs/scripts/driveby_start_numbers.py and update it"
+
+
+def test_start_claims_the_page_makes():
+    """"the start does not move identification" (every move below a tenth of the resolution, no flag changed,
+    some passes reliable to judge by), "but the records differ" (the run-in is applied: a record difference
+    of a percent at least in the median), and the run-in the page advises is the populations' settled start."""
+    from vbikit.solve.run_in import SETTLED_APPROACH
+
+    rows = [START[k] for k in ("damped_cart", "two_axle_car", "damped_cart_pair")]
+    assert all(r["largest_move_per_resolution"] < 0.1 and r["reliability_changed"] == 0 for r in rows)
+    assert START["damped_cart_pair"]["reliable_settled"] >= 5
+    assert all(r["record_difference_median"] > 0.01 for r in rows)
+    assert START["run_in_m"] + START["approach_m"] == SETTLED_APPROACH
+
+
+@pytest.mark.slow
+def test_start_numbers_are_reproduced(tmp_path):
+    now = rerun("driveby_start_numbers", tmp_path)
+    for key in set(START) - {"measured"}:
+        assert now[key] == START[key], key
