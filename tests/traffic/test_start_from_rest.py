@@ -47,7 +47,7 @@ def test_a_stream_started_at_rest_is_flagged_and_says_how_to_settle(tmp_path):
     assert "start_from_rest" in attrs["flag_codes"].split(",")
     assert "at rest 10 m before the bridge" in attrs["warnings"] and "crossing.run_in = 90" in attrs["warnings"]
     assert "at rest 10 m before the bridge" in output  # (printed by vbikit traffic)
-    assert "sprung vehicles started at rest 10 m before the bridge (crossing.run_in = 0)" in output
+    assert "sprung vehicles start at rest 10 m before the bridge (crossing.run_in = 0)" in output
 
 
 def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_path):
@@ -55,9 +55,10 @@ def test_a_stream_by_default_drives_its_trucks_settled_and_is_not_flagged(tmp_pa
     attrs, output = _stream(tmp_path, None)
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         assert ds["run_in"].values.tolist() == [90.0]
-    assert ("sprung vehicles started settled: each first drove 90 m of the road alone (crossing.run_in), then started "
-            "10 m before the bridge") in output
+    assert ("sprung vehicles start settled, 10 m before the bridge after driving 90 m of the road alone "
+            "(crossing.run_in)") in output
     assert attrs["approach_m"] == 10.0 and attrs["run_in_m"] == 90.0 and attrs["run_in_min_m"] == 90.0
+    assert attrs["run_in_shortened_events"] == 0 and attrs["run_in_least_approach_m"] == 1.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
 
 
@@ -68,8 +69,9 @@ def test_a_road_too_short_for_the_run_in_shortens_it_and_is_flagged_with_the_rem
     attrs, output = _stream(tmp_path, None, road="length = 100.0\n")
     with xr.open_dataset(tmp_path / "o.nc") as ds:
         got = float(ds["run_in"].values[0])
-    assert f"(crossing.run_in; the shortest {got:g} m, where the road was too short)" in output
+    assert f"(crossing.run_in; the road held less on 1 event, {got:g} m the shortest)" in output
     assert 60.0 < got < 67.5 and attrs["run_in_min_m"] == got and attrs["run_in_m"] == 90.0
+    assert attrs["run_in_shortened_events"] == 1
     assert "start_from_rest" in attrs["flag_codes"].split(",")
     assert "too short for the whole run-in on 1 event" in attrs["warnings"] and "road.length" in attrs["warnings"]
 
@@ -102,7 +104,7 @@ def test_a_stream_started_100_m_before_the_bridge_is_not(tmp_path):
     assert attrs["approach_m"] == 100.0
     assert "start_from_rest" not in attrs.get("flag_codes", "").split(",")
     assert "before their body vibration has built up" not in output  # (no warning; the start is said as it is)
-    assert "sprung vehicles started at rest 100 m before the bridge" in output
+    assert "sprung vehicles start at rest 100 m before the bridge" in output
 
 
 def test_a_lifetime_flags_its_totals_for_sprung_trucks_only():
@@ -127,7 +129,7 @@ def test_a_stream_of_moving_forces_is_not_flagged(tmp_path):
 
 def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest():
     """The dynamic events get the population's run-in (approach 5 m: 95 m) and record it; lifetime.nc's
-    ``run_in_m`` is the shortest any event got and ``run_in_shortened_events`` counts those below the
+    ``run_in_min_m`` is the shortest any event got and ``run_in_shortened_events`` counts those below the
     population's (events of moving forces, NaN, not counted); the flag names the remedy for a short road."""
     import math
 
@@ -135,7 +137,8 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
 
     from vbikit.lifetime.jobs import EVENT_STRIDE
     from vbikit.lifetime.report import _start_flags
-    from vbikit.lifetime.results import _run_in_attrs
+    from vbikit.analysis.population_start import start_attrs
+    from vbikit.lifetime.results import _runs_in
     from vbikit.lifetime.run import prepare
 
     spec = {"seed": 5, "days": 5, "traffic": {"records": "examples/traffic/stream.csv", "trucks_per_day": 20},
@@ -146,19 +149,27 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
     static = prep.static_job().run_batch((0,))
     g = int(static["ev_day"][0] * EVENT_STRIDE + static["ev_index"][0])
     assert float(prep.dynamic_job(np.array([g])).run_event(g)["run_in"]) == 95.0
-    attrs = _run_in_attrs(95.0, {1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}})
-    assert attrs == {"run_in_m": 61.5, "run_in_shortened_events": 1}
+    attrs = start_attrs(5.0, 95.0, _runs_in({1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}}), 1.0)
+    assert attrs == {"approach_m": 5.0, "run_in_m": 95.0, "run_in_min_m": 61.5, "run_in_shortened_events": 1,
+                     "run_in_least_approach_m": 1.0}
     # a result stored without a run-in (an earlier version's work): computed at rest, and judged so
-    assert _run_in_attrs(95.0, {1: {"run_in": 95.0}, 4: {}}) == {"run_in_m": 0.0, "run_in_shortened_events": 1}
-    assert _run_in_attrs(95.0, {3: {"run_in": math.nan}}) == {"run_in_m": 95.0, "run_in_shortened_events": 0}
-    (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, **attrs})
+    at_rest = start_attrs(5.0, 95.0, _runs_in({1: {"run_in": 95.0}, 4: {}}), 1.0)
+    assert at_rest["run_in_min_m"] == 0.0 and at_rest["run_in_shortened_events"] == 1
+    (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", **at_rest})
+    assert flag.value == 5.0
+    forces = start_attrs(5.0, 95.0, _runs_in({3: {"run_in": math.nan}}), 1.0)  # moving forces only: nothing to judge
+    assert "run_in_min_m" not in forces and forces["run_in_shortened_events"] == 0
+    assert not _start_flags("M", {"vehicle_model": "moving-forces", **forces})
+    (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", **attrs})
     assert flag.value == 66.5 and "too short for the whole run-in on 1 event" in flag.message
-    assert not _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 95.0})
+    assert not _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 95.0})  # (no shortest
+    # stored: judged on the population's run-in)
+    assert _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0})  # (nothing stored: at rest)
 
 
 def test_a_lifetime_dataset_holds_each_simulated_events_run_in(tmp_path):
     """lifetime.nc: ``event_run_in`` 95 m (approach 5 m) on every simulated event, NaN on the others; the
-    attributes ``run_in_m`` 95 and ``run_in_shortened_events`` 0, and no start_from_rest flag."""
+    attributes ``run_in_m`` and ``run_in_min_m`` 95 and ``run_in_shortened_events`` 0, and no start_from_rest flag."""
     import numpy as np
 
     from vbikit.lifetime.run import run_lifetime
@@ -171,7 +182,7 @@ def test_a_lifetime_dataset_holds_each_simulated_events_run_in(tmp_path):
     simulated = ds["event_simulated"].values.astype(bool)
     assert simulated.any() and (~simulated).any()
     assert np.all(ds["event_run_in"].values[simulated] == 95.0) and np.all(np.isnan(ds["event_run_in"].values[~simulated]))
-    assert ds.attrs["run_in_m"] == 95.0 and ds.attrs["run_in_shortened_events"] == 0
+    assert ds.attrs["run_in_m"] == 95.0 and ds.attrs["run_in_min_m"] == 95.0 and ds.attrs["run_in_shortened_events"] == 0
     assert "start_from_rest" not in ds.attrs.get("flag_codes", "")
     assert ("dynamic events: sprung trucks start settled, 5 m before the bridge after driving 95 m of the road alone "
             "(crossing.run_in)") in (tmp_path / "report.txt").read_text()

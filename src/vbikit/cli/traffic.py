@@ -90,7 +90,7 @@ def traffic_cmd(
                f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     warn_dataset(ds)
-    from vbikit.traffic.study import start_words
+    from vbikit.analysis.population_start import start_words
 
     typer.echo(start_words(dict(ds.attrs)))
     from vbikit.analysis.checks import dataset_has_flag

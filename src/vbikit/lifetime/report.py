@@ -13,7 +13,9 @@ import re
 from typing import Any
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, start_from_rest_flags, unconverged_runs_flag
+from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
+from vbikit.analysis.population_start import START_ATTRIBUTES, start_flags
+from vbikit.analysis.population_start import start_words as population_start_words
 from vbikit.analysis.sample_intervals import stored_interval_text
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
 from vbikit.lifetime.results import IM_WITH_INTERVALS
@@ -170,31 +172,20 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
 
 
 def start_words(a: dict) -> str:
-    """How the dynamic events start their trucks, in words, from lifetime.nc's attributes (``approach_m``,
-    ``run_in_m``: the shortest run-in an event got, ``run_in_shortened_events``, ``vehicle_model``)."""
+    """How the dynamic events start their trucks, in words, from lifetime.nc's attributes
+    (``vbikit.analysis.population_start``; moving constant axle forces have nothing to settle)."""
     if a.get("vehicle_model", "axle-truck") == "moving-forces":
         return "moving constant axle forces (nothing to settle)"
-    if "approach_m" not in a:
-        return "trucks start at rest crossing.approach before the bridge (a dataset written before the start was stored)"
-    approach, run_in = float(a["approach_m"]), float(a.get("run_in_m", 0.0))
-    if run_in <= 0.0:
-        return f"sprung trucks start at rest {approach:g} m before the bridge (crossing.run_in = 0)"
-    short = int(a.get("run_in_shortened_events", 0))
-    return (f"sprung trucks start settled, {approach:g} m before the bridge after driving {run_in:g} m of the road "
-            "alone (crossing.run_in" + (f"; the shortest: the road held less on {counted(short, 'event')})" if short else ")"))
+    return population_start_words(a, "sprung trucks")
 
 
 def _start_flags(name: str, a: dict) -> list[Flag]:
     """Dynamic events whose sprung trucks start at rest a short approach before the bridge
-    (``vbikit.analysis.checks.start_from_rest_flags``): their totals, so the total levels and the ADR,
+    (``vbikit.analysis.population_start.start_flags``): their totals, so the total levels and the ADR,
     come out low.  None for moving constant forces, which have no vibration to build up, and for a
     dataset written before the approach was stored."""
-    if a.get("vehicle_model", "moving-forces") == "moving-forces" or "approach_m" not in a:
-        return []
-    return start_from_rest_flags(float(a["approach_m"]) + float(a.get("run_in_m", 0.0)),
-                                 output=flag_output("return_levels", "total"), subject=name,
-                                 shortened=int(a.get("run_in_shortened_events", 0)),
-                                 least_approach=float(a.get("run_in_least_approach_m", 0.0)))
+    return start_flags(a, output=flag_output("return_levels", "total"), subject=name,
+                       sprung=a.get("vehicle_model", "moving-forces") != "moving-forces")
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:
@@ -390,8 +381,8 @@ def summary(ds) -> dict[str, Any]:
                                                          "time_total_s": float(a["time_total_s"]),
                                                          "time_static_s": float(a["time_static_s"]),
                                                          "events_per_second_static": float(a["events_per_second_static"])},
-        "start": {"vehicle_model": str(a.get("vehicle_model", "axle-truck")), "approach_m": _num(a.get("approach_m", math.nan)),
-                  "run_in_m": _num(a.get("run_in_m", math.nan)),
+        "start": {"vehicle_model": str(a.get("vehicle_model", "axle-truck")),
+                  **{k: _num(a.get(k, math.nan)) for k in START_ATTRIBUTES if k != "run_in_shortened_events"},
                   "run_in_shortened_events": int(a.get("run_in_shortened_events", 0)), "words": start_words(a)},
         "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
                  "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),

@@ -30,6 +30,7 @@ from typing import Any
 import numpy as np
 
 from vbikit._files import shared_spec
+from vbikit.analysis.population_start import start_attrs
 from vbikit.lifetime.screening import CHECK_FRACTION
 
 #: the IM statistics stored with the ends of their 95 % confidence intervals (``NAME_ci_lower``, ``NAME_ci_upper``)
@@ -375,9 +376,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "first_frequency_hz": f1,
         # where the dynamic events start their trucks, at rest (crossing.approach before the bridge), and how the
         # trucks are modelled: sprung trucks enter calmer than settled ones after a short approach (start_from_rest)
-        "approach_m": float(prep.setup.context.template.crossing.approach),
-        **_run_in_attrs(float(prep.setup.context.template.crossing.run_in), dyn["results"]),
-        "run_in_least_approach_m": float(prep.setup.context.least_approach),
+        **start_attrs(prep.setup.context.template.crossing.approach, prep.setup.context.template.crossing.run_in,
+                      _runs_in(dyn["results"]), prep.setup.context.least_approach),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
@@ -394,14 +394,10 @@ def _event_run_in(dyn: dict, simulated: np.ndarray, gid: np.ndarray) -> np.ndarr
     return out
 
 
-def _run_in_attrs(run_in: float, results: dict) -> dict[str, Any]:
-    """The run-in of the dynamic events (``crossing.run_in``): the shortest one got (``run_in_m``: the
-    population's, less where the road was too short for it; its own when no event has sprung trucks) and how
-    many got less than ``run_in`` (``run_in_shortened_events``)."""
-    got = np.array([float(r.get("run_in", 0.0)) for r in results.values()], float)  # (none stored: at rest)
-    got = got[np.isfinite(got)]
-    return {"run_in_m": float(got.min()) if got.size else run_in,
-            "run_in_shortened_events": int(np.sum(got < run_in - 1e-9))}
+def _runs_in(results: dict) -> np.ndarray:
+    """The run-in [m] each simulated dynamic event got (NaN: moving forces; 0 for a result written before
+    run-ins were stored, which started its trucks at rest)."""
+    return np.array([float(r.get("run_in", 0.0)) for r in results.values()], float)
 
 
 def _unconverged_attrs(results: dict) -> dict[str, Any]:

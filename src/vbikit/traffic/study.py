@@ -33,7 +33,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import input_digests, shared_name, shared_spec
-from vbikit.analysis.checks import Flag, airborne_wheels, start_from_rest_flags, unconverged_dataset_flags
+from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
+from vbikit.analysis.population_start import start_attrs, start_flags
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
@@ -376,6 +377,7 @@ class TrafficStudy:
         impact = {name: first[name].values for name in first.data_vars if str(name).endswith("impact_factor")}
         step_attrs, step_flags = governing_step_check(self, stats, impact)
         start = self.context().template.crossing  # (where its events start their vehicles: approach, run_in)
+        started = start_attrs(start.approach, start.run_in, ev["run_in"], self.context().least_approach)
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -384,12 +386,9 @@ class TrafficStudy:
             "Conventions": "CF-1.8",
             **{k: (json.dumps(v) if isinstance(v, (list, dict)) else v) for k, v in stats.items()},
             **step_attrs,
-            "approach_m": float(start.approach),
-            "run_in_m": float(start.run_in),
-            **({"run_in_min_m": float(np.nanmin(ev["run_in"]))} if np.any(np.isfinite(ev["run_in"])) else {}),
+            **started,
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
-                              + unconverged_dataset_flags(ev["unconverged_steps"], "event")
-                              + self.start_flags(ev["run_in"])),
+                              + unconverged_dataset_flags(ev["unconverged_steps"], "event") + start_flags(started)),
         }
         return ds
 
@@ -398,19 +397,6 @@ class TrafficStudy:
         """Whether the events drive their vehicles a run-in first (``crossing.run_in`` > 0: the compiled run-in
         loops, ``vbikit.study.run.batch_kernels``)."""
         return self.context().template.crossing.run_in > 0.0
-
-    def start_flags(self, run_in: NDArray) -> list[Flag]:
-        """``start_from_rest`` on the stream's sprung events (``run_in`` finite: the run-in each got) whose
-        approach and run-in fall short of ``SETTLED_APPROACH``, judged on the shortest, with how many got less
-        than the stream's run-in (the road too short for it); none for moving forces only."""
-        run_in = np.asarray(run_in, float)
-        got = run_in[np.isfinite(run_in)]
-        if not got.size:
-            return []
-        start = self.context().template.crossing
-        return start_from_rest_flags(start.approach + float(got.min()),
-                                     shortened=int(np.sum(got < start.run_in - 1e-9)),
-                                     least_approach=self.context().least_approach)
 
     def flag_attrs(self, static_peaks: NDArray, flags: Sequence[Flag] = ()) -> dict[str, str]:
         """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``)
@@ -424,21 +410,6 @@ class TrafficStudy:
         spans = np.full(static_peaks.shape[0], float(span))
         return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event")
                                   + list(flags))
-
-
-def start_words(attrs: dict) -> str:
-    """How a stream's events started their sprung vehicles, in words, from its dataset's attributes
-    (``approach_m``, ``run_in_m`` the stream's run-in, ``run_in_min_m`` the shortest an event got; ``vbikit
-    traffic`` prints it)."""
-    if "approach_m" not in attrs:
-        return "sprung vehicles started at rest crossing.approach before the bridge (a dataset written before the start was stored)"
-    approach, run_in = float(attrs["approach_m"]), float(attrs.get("run_in_m", 0.0))
-    shortest = float(attrs.get("run_in_min_m", run_in))
-    if run_in <= 0.0 or shortest <= 0.0:
-        return f"sprung vehicles started at rest {approach:g} m before the bridge (crossing.run_in = 0)"
-    less = f"; the shortest {shortest:g} m, where the road was too short" if shortest < run_in else ""
-    return (f"sprung vehicles started settled: each first drove {run_in:g} m of the road alone (crossing.run_in{less}), "
-            f"then started {approach:g} m before the bridge")
 
 
 def airborne_dataset_flags(airborne: NDArray) -> list[Flag]:
