@@ -57,15 +57,16 @@ from vbikit.vehicle.presets import VEHICLE_PRESETS
 log = logging.getLogger(__name__)
 
 
-#: per-event outputs beside the catalogue's (vbikit.outputs): name -> (units, description)
-EVENT_EXTRAS: dict[str, tuple[str, str]] = {
-    "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road"),
+#: per-event outputs beside the catalogue's (vbikit.outputs): name -> (units, description, stored dtype)
+EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
+    "road_seed": ("1", "seed of the event's random road (derive_seed(seed, event)); -1 for a measured or smooth road",
+                  np.int64),
     "airborne_wheels": ("1", "1 if a wheel was airborne on the bridge for more than 5 % of its time there (the single "
                              "run's airborne_wheels rule): the event's impact factors are dominated by point-contact "
-                             "impacts, not design values"),
+                             "impacts, not design values", np.int64),
     "run_in": ("m", "road the event's sprung vehicles drove alone, from rest, before the run started "
                     "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
-                    "for moving forces, which have no vibration to build up)"),
+                    "for moving forces, which have no vibration to build up)", np.float64),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
@@ -344,9 +345,8 @@ class TrafficStudy:
 
         names = self.point_names
         variables |= output_variables(ev, ["event"], names, self.output_names)
-        for name, (units, desc) in EVENT_EXTRAS.items():
-            values = ev[name] if units == "m" else ev[name].astype(np.int64)
-            variables[name] = ("event", values, {"units": units, "long_name": desc})
+        for name, (units, desc, dtype) in EVENT_EXTRAS.items():
+            variables[name] = ("event", ev[name].astype(dtype), {"units": units, "long_name": desc})
         variables["event_start"] = ("event", np.array(self.event_start), {"units": "s", "long_name": "first entry of the event's vehicles (record time; on a skew deck the earliest record time minus reach / speed, when a wheel can first touch the deck's oblique end)"})
         variables["n_vehicles"] = ("event", n_veh, {"units": "1", "long_name": "vehicles in the event"})
         variables["multiple_presence"] = ("event", (n_veh > 1).astype(np.int8), {"units": "1", "long_name": "1 if several vehicles were on the bridge together"})
