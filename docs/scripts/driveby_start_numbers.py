@@ -77,7 +77,7 @@ def compare(rest, settled) -> dict:
     for i in range(h1.shape[0]):
         for s in range(h1.shape[1]):
             on = slice(int(first[i]), int(last[i]))
-            ratios.append(float(np.std(h1[i, s, on] - h0[i, s, on]) / np.std(h1[i, s, on])))
+            ratios.append(float(_rms(h1[i, s, on] - h0[i, s, on]) / _rms(h1[i, s, on])))
     return {"passes": int(f0.size), "moved": int(np.sum(moved > 1e-9)),
             "largest_move_hz": round(float(moved.max()), 4),
             "largest_move_per_resolution": round(float(np.max(moved / settled["resolution_hz"].values)), 3),
@@ -85,6 +85,10 @@ def compare(rest, settled) -> dict:
             "reliable_settled": int(ok1.sum()),
             "record_difference_median": round(float(np.median(ratios)), 3),
             "record_difference_max": round(float(np.max(ratios)), 3)}
+
+
+def _rms(x: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(np.square(x))))
 
 
 def main() -> dict:

@@ -162,8 +162,11 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
     assert not _start_flags("M", {"vehicle_model": "moving-forces", **forces})
     (flag,) = _start_flags("M", {"vehicle_model": "axle-truck", **attrs})
     assert flag.value == 66.5 and "too short for the whole run-in on 1 event" in flag.message
-    assert not _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 95.0})  # (no shortest
-    # stored: judged on the population's run-in)
+    assert not _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 95.0})  # (nothing but
+    # the run-in stored: judged on it)
+    # moving constant forces have nothing to settle, whatever the attributes say
+    assert not _start_flags("M", {"vehicle_model": "moving-forces", "approach_m": 5.0, "run_in_m": 95.0,
+                                  "run_in_min_m": 0.0})
     assert _start_flags("M", {"vehicle_model": "axle-truck", "approach_m": 5.0})  # (nothing stored: at rest)
 
 
@@ -234,3 +237,27 @@ def test_an_approach_too_short_for_a_run_in_is_flagged_with_the_approach_to_give
     assert "give crossing.approach >= 1 m" in flag.message and "crossing.run_in =" not in flag.message
     (flag,) = start_from_rest_flags(10.0, least_approach=1.0)
     assert "crossing.run_in = 90" in flag.message
+
+
+def test_the_start_of_datasets_written_before_the_shared_attributes_is_read_as_they_meant_it():
+    """A lifetime.nc of the code before 2026-12-07 stored the shortest run-in as ``run_in_m`` (beside
+    ``run_in_shortened_events``): read as the shortest, the population's run-in unknown when some event got less;
+    a traffic dataset of that code had no ``run_in_shortened_events``: inferred from its shortest. The words never
+    say a population started at rest when its run-in was given, nor that a run-in was its shortest."""
+    from vbikit.analysis.population_start import start_words
+    from vbikit.lifetime.report import _start_flags
+    from vbikit.lifetime.report import start_words as lifetime_words
+
+    old_lifetime = {"vehicle_model": "axle-truck", "approach_m": 5.0, "run_in_m": 60.0, "run_in_shortened_events": 3}
+    assert lifetime_words(old_lifetime) == ("sprung trucks start settled, 5 m before the bridge after driving at least 60 m "
+                                            "of the road alone (crossing.run_in)")
+    (flag,) = _start_flags("M", old_lifetime)
+    assert flag.value == 65.0 and "too short for the whole run-in on 3 events" in flag.message
+    settled = dict(old_lifetime, run_in_m=95.0, run_in_shortened_events=0)
+    assert "after driving 95 m of the road alone (crossing.run_in)" in lifetime_words(settled)
+    assert not _start_flags("M", settled)
+    old_traffic = {"approach_m": 10.0, "run_in_m": 90.0, "run_in_min_m": 60.0}
+    assert start_words(old_traffic) == ("sprung vehicles start settled, 10 m before the bridge after driving 90 m of the "
+                                        "road alone (crossing.run_in; the road held less on 1 event, 60 m the shortest)")
+    none_held = {"approach_m": 10.0, "run_in_m": 90.0, "run_in_min_m": 0.0, "run_in_shortened_events": 2}
+    assert start_words(none_held).endswith("(crossing.run_in; the road held less on 2 events, 0 m the shortest)")

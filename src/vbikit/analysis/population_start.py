@@ -46,15 +46,20 @@ def start_attrs(approach: float, run_in: float, got: ArrayLike, least_approach: 
 
 def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> str:
     """How a population's ``vehicles`` started, in words, from its dataset's ``START_ATTRIBUTES`` (what
-    ``vbikit traffic`` prints and the lifetime report says)."""
+    ``vbikit traffic`` prints and the lifetime report says).  A ``run_in_m`` of NaN: the population's run-in
+    not known (a dataset that stored only the shortest), said as "at least" the shortest."""
     if "approach_m" not in attrs:
         return f"{vehicles} start at rest crossing.approach before the bridge (a dataset written before the start was stored)"
     approach, run_in = float(attrs["approach_m"]), float(attrs.get("run_in_m", 0.0))
     shortest = _shortest(attrs)
-    if run_in <= 0.0 or shortest <= 0.0:
+    if not math.isfinite(run_in):
+        return (f"{vehicles} start settled, {approach:g} m before the bridge after driving at least {shortest:g} m of the "
+                "road alone (crossing.run_in)") if shortest > 0.0 else \
+            f"{vehicles} start at rest {approach:g} m before the bridge on some events (the road held none of crossing.run_in)"
+    if run_in <= 0.0:
         return f"{vehicles} start at rest {approach:g} m before the bridge (crossing.run_in = 0)"
-    short = int(attrs.get("run_in_shortened_events", 0))
-    less = (f"; the road held less on {counted(short, 'event')}, {shortest:g} m the shortest" if short else "")
+    short = _shortened(attrs)
+    less = f"; the road held less on {counted(short, 'event')}, {shortest:g} m the shortest" if short else ""
     return (f"{vehicles} start settled, {approach:g} m before the bridge after driving {run_in:g} m of the road alone "
             f"(crossing.run_in{less})")
 
@@ -68,7 +73,7 @@ def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject
     if "approach_m" not in attrs or not ("run_in_min_m" in attrs or sprung):
         return []
     return start_from_rest_flags(float(attrs["approach_m"]) + _shortest(attrs), output=output, subject=subject,
-                                 shortened=int(attrs.get("run_in_shortened_events", 0)),
+                                 shortened=_shortened(attrs),
                                  least_approach=float(attrs.get("run_in_least_approach_m", 0.0)))
 
 
@@ -76,3 +81,12 @@ def _shortest(attrs: Mapping[str, Any]) -> float:
     """The shortest run-in an event got (the population's when none is stated)."""
     value = float(attrs.get("run_in_min_m", attrs.get("run_in_m", 0.0)))
     return value if math.isfinite(value) else 0.0
+
+
+def _shortened(attrs: Mapping[str, Any]) -> int:
+    """The events whose run-in the road cut short (a dataset that does not say: at least one when its
+    shortest is below the population's run-in)."""
+    if "run_in_shortened_events" in attrs:
+        return int(attrs["run_in_shortened_events"])
+    run_in = float(attrs.get("run_in_m", 0.0))
+    return int(math.isfinite(run_in) and _shortest(attrs) < run_in - 1e-9)

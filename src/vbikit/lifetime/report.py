@@ -171,12 +171,29 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     return out
 
 
+def _sprung(a: dict) -> bool:
+    """Whether lifetime.nc's dynamic events ran sprung trucks (``vehicle_model``; "axle-truck", the
+    default, when a dataset does not say)."""
+    return a.get("vehicle_model", "axle-truck") != "moving-forces"
+
+
+def _start(a: dict) -> dict:
+    """lifetime.nc's start attributes (``vbikit.analysis.population_start.START_ATTRIBUTES``); one written
+    before 2026-12-07 stored only the shortest run-in an event got, as ``run_in_m`` (beside
+    ``run_in_shortened_events``): read as ``run_in_min_m``, the population's run-in then not known (NaN)
+    unless no event was cut short."""
+    if "run_in_min_m" in a or "run_in_shortened_events" not in a or not _sprung(a):
+        return a
+    shortest = float(a.get("run_in_m", 0.0))
+    return {**a, "run_in_min_m": shortest, "run_in_m": shortest if int(a["run_in_shortened_events"]) == 0 else math.nan}
+
+
 def start_words(a: dict) -> str:
     """How the dynamic events start their trucks, in words, from lifetime.nc's attributes
     (``vbikit.analysis.population_start``; moving constant axle forces have nothing to settle)."""
-    if a.get("vehicle_model", "axle-truck") == "moving-forces":
+    if not _sprung(a):
         return "moving constant axle forces (nothing to settle)"
-    return population_start_words(a, "sprung trucks")
+    return population_start_words(_start(a), "sprung trucks")
 
 
 def _start_flags(name: str, a: dict) -> list[Flag]:
@@ -184,8 +201,9 @@ def _start_flags(name: str, a: dict) -> list[Flag]:
     (``vbikit.analysis.population_start.start_flags``): their totals, so the total levels and the ADR,
     come out low.  None for moving constant forces, which have no vibration to build up, and for a
     dataset written before the approach was stored."""
-    return start_flags(a, output=flag_output("return_levels", "total"), subject=name,
-                       sprung=a.get("vehicle_model", "moving-forces") != "moving-forces")
+    if not _sprung(a):
+        return []
+    return start_flags(_start(a), output=flag_output("return_levels", "total"), subject=name, sprung=True)
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:
@@ -382,7 +400,7 @@ def summary(ds) -> dict[str, Any]:
                                                          "time_static_s": float(a["time_static_s"]),
                                                          "events_per_second_static": float(a["events_per_second_static"])},
         "start": {"vehicle_model": str(a.get("vehicle_model", "axle-truck")),
-                  **{k: _num(a.get(k, math.nan)) for k in START_ATTRIBUTES if k != "run_in_shortened_events"},
+                  **{k: _num(_start(a).get(k, math.nan)) for k in START_ATTRIBUTES if k != "run_in_shortened_events"},
                   "run_in_shortened_events": int(a.get("run_in_shortened_events", 0)), "words": start_words(a)},
         "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
                  "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),

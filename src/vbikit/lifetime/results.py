@@ -374,8 +374,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
             "can produce." for n, u, s, c, b, a_ in zip(names, units, signs, char_static, static_bound, above) if a_),
         "static_bound_vehicles_per_lane": json.dumps([] if upper is None else upper[1].tolist()),
         "first_frequency_hz": f1,
-        # where the dynamic events start their trucks, at rest (crossing.approach before the bridge), and how the
-        # trucks are modelled: sprung trucks enter calmer than settled ones after a short approach (start_from_rest)
+        # where the dynamic events start their trucks (crossing.approach before the bridge, settled by the run-in each
+        # got: vbikit.analysis.population_start), and how the trucks are modelled: sprung trucks started at rest after
+        # a short approach enter calmer than settled ones (start_from_rest)
         **start_attrs(prep.setup.context.template.crossing.approach, prep.setup.context.template.crossing.run_in,
                       _runs_in(dyn["results"]), prep.setup.context.least_approach),
         "vehicle_model": spec.vehicle_model,
