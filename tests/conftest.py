@@ -261,6 +261,39 @@ def _stamp_the_warm_cache(folders: list[str] | None) -> None:
         log.info("no stamp of the warm kernel cache written: %s", err)
 
 
+#: the suite's longest tests (``--durations``, measured 2026-12-06 on the 2-core machine: 30–95 s each while other
+#: work ran, a third of that alone), started first: pytest-xdist hands tests out in collection order, so a long test
+#: collected late can leave one worker running it alone at the end of the run
+RUN_FIRST = (
+    "tests/study/test_cli.py::test_paper_all_runs_every_figure",
+    "tests/lifetime/test_cli.py::test_cli_cut_down_example_and_resume",
+    "tests/lifetime/test_adr.py::test_impact_factor_statistics_of_the_sample_by_hand",
+    "tests/lifetime/test_report_wording.py::test_a_missing_total_pot_value_says_the_screening_set_its_threshold",
+    "tests/random_vibration/test_random_warmup.py::test_second_process_loads_the_random_kernel_from_the_cache",
+    "tests/rail/test_run.py::test_example_cut_down_through_the_cli",
+    "tests/trust/test_fuzz.py::test_fuzz_scenarios",
+    "tests/random_vibration/test_pem_tire_filter.py::test_multipoint_tire_filter_matches_monte_carlo",
+    "tests/traffic/test_docs_example.py::test_the_example_stream_numbers_of_the_page",
+    "tests/verification/test_field_calibration.py::test_reported_sigma_matches_the_scatter_over_noise_seeds",
+)
+
+
+def pytest_collection_modifyitems(session, config, items) -> None:
+    """``RUN_FIRST`` to the front, in that order, the rest as collected (the same order in every worker, as
+    xdist requires).  A name of ``RUN_FIRST`` that a run of the whole suite does not collect (a renamed test)
+    is said in a warning."""
+    rank = {name: k for k, name in enumerate(RUN_FIRST)}
+    first = sorted((item for item in items if item.nodeid in rank), key=lambda item: rank[item.nodeid])
+    if not first:
+        return
+    found = {item.nodeid for item in first}
+    items[:] = first + [item for item in items if item.nodeid not in found]
+    missing = [name for name in RUN_FIRST if name not in found]
+    if missing and len(items) >= SHARED_COMPILE_MIN_TESTS:
+        config.issue_config_time_warning(pytest.PytestConfigWarning(
+            f"tests/conftest.py RUN_FIRST names tests the run did not collect: {', '.join(missing)}"), stacklevel=2)
+
+
 def pytest_collection_finish(session) -> None:
     """In an xdist worker of a distributed run of the whole suite (or most of it): share the kernel
     compilation out before the first test (``_share_the_kernel_compilation``)."""
