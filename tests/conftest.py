@@ -119,24 +119,34 @@ def _lock_numba_cache_writes() -> None:
 
 
 def _compile_groups() -> dict[str, Callable[[], object]]:
-    """What the workers share out, largest first (cold-compile CPU seconds of each, alone in a fresh
-    process, measured 2026-12-05 two at a time on a loaded machine: rk4 54, implicit-full 39,
-    implicit-lanes 25, implicit-lean 9, random 5, the rest about 1; measured 2026-12-06: driveby 3,
-    histories 2.5): ``kernel_groups`` and the pseudo-excitation, load-effect, static-history and
-    exact-peak, and drive-by kernels (kernels of their own, so that no kernel is compiled by two
-    groups)."""
+    """What the workers share out, in the order they take it (``_AFTER``: which wait for which): cold-compile
+    CPU seconds of each, alone in a fresh process (``static-starts`` before those that wait for it), measured
+    2026-12-06/07 on the 2-core machine: static-starts 14–18, implicit-full 37–49 (after static-starts;
+    47–64 without), implicit-lanes 33–36, rk4 (one lane) 22–31, rk4-lanes 9–12, implicit-lean with the
+    run-in's loops 11–13, random 5–8, effects 4–6, moving-loads 5–7, histories 3–5, driveby 2–3 (the range:
+    a quiet to a loaded machine): ``kernel_groups`` and the pseudo-excitation, load-effect, static-history
+    and exact-peak, and drive-by kernels (kernels of their own)."""
     from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
     from vbikit.driveby.warmup import compile_driveby_kernels
     from vbikit.random.warmup import compile_random_kernels
-    from vbikit.solve.warmup import kernel_groups
+    from vbikit.solve.warmup import SHARED_GROUP, kernel_groups
 
     groups: dict[str, Callable[[], object]] = dict(kernel_groups())
     groups["random"] = compile_random_kernels
     groups["effects"] = compile_effect_kernels
     groups["histories"] = compile_history_kernels
     groups["driveby"] = compile_driveby_kernels
-    first = ["rk4", "implicit-full", "implicit-lanes", "implicit-lean"]
+    first = [SHARED_GROUP, "implicit-full", "rk4", "implicit-lanes", "rk4-lanes", "implicit-lean"]
     return {k: groups[k] for k in sorted(groups, key=lambda k: first.index(k) if k in first else len(first))}
+
+
+#: the groups of ``_compile_groups`` a worker takes only once the group named is done: their kernels call
+#: kernels that ``static-starts`` (``vbikit.solve.warmup.SHARED_GROUP``) compiles (the contact law with
+#: many lanes, ≈ 10 s of CPU, which RK4's many-lane kernel and the full implicit kernel call; the road
+#: reading; the lean law), and after it they load those from numba's cache instead of each compiling them
+#: again (≈ 35 s of CPU in all, for ≈ 15 s of its own).  RK4's one-lane group shares only the lean law with
+#: it (≈ 2 s) and does not wait: it keeps the second core busy meanwhile, with the small groups
+_AFTER = {name: "static-starts" for name in ("implicit-full", "implicit-lanes", "implicit-lean", "rk4-lanes")}
 
 
 def _compile_in_subprocess(name: str) -> bool:
@@ -159,25 +169,50 @@ def _compile_in_subprocess(name: str) -> bool:
 
 
 def _share_the_kernel_compilation(folder: str) -> bool:
-    """Each worker takes the next group nobody has taken (a lock file per group in ``folder``, held
-    while the group compiles, and a marker once done), has it compiled in a child process
-    (``_compile_in_subprocess``: numba writes it to its disk cache), and at the end waits for the
-    groups the others are still compiling; the tests then load every kernel from the cache.  Returns
-    whether every group compiled (a group that failed leaves a ``.failed`` marker)."""
-    waiting = []
-    for name in _compile_groups():
-        lock, done = os.path.join(folder, name + ".lock"), os.path.join(folder, name + ".done")
-        with _flock(lock, blocking=False) as mine:
-            if not mine:
-                waiting.append(lock)
-            elif not os.path.exists(done):
+    """Each worker takes the first group of ``_compile_groups`` that nobody has taken and whose
+    prerequisite (``_AFTER``) is done (a lock file per group in ``folder``, held while the group compiles,
+    and a marker once done), has it compiled in a child process (``_compile_in_subprocess``: numba
+    writes it to its disk cache), and looks again from the top; when every group left waits for a
+    prerequisite still compiling, it waits for that, and at the end for the groups the others are still
+    compiling; the tests then load every kernel from the cache.  Returns whether every group compiled
+    (a group that failed leaves a ``.failed`` marker; the groups after it compile its kernels themselves)."""
+    names = list(_compile_groups())
+
+    def lock(name: str) -> str:
+        return os.path.join(folder, name + ".lock")
+
+    def done(name: str) -> bool:
+        return os.path.exists(os.path.join(folder, name + ".done"))
+
+    waiting: set[str] = set()
+    while True:
+        blocked = None
+        for name in names:
+            if done(name):
+                continue
+            before = _AFTER.get(name)
+            if before in names and not done(before):
+                blocked = blocked or before
+                continue
+            with _flock(lock(name), blocking=False) as mine:
+                if not mine:
+                    waiting.add(name)
+                    continue
+                if done(name):  # done by another worker since the check above
+                    continue
                 t0 = time.perf_counter()
                 if not _compile_in_subprocess(name):
                     open(os.path.join(folder, name + ".failed"), "w").close()
-                open(done, "w").close()
+                open(os.path.join(folder, name + ".done"), "w").close()
                 log.info("kernel group %s compiled or loaded (%.1f s)", name, time.perf_counter() - t0)
-    for lock in waiting:
-        with _flock(lock):
+            break  # look again from the top: a prerequisite may be done now
+        else:
+            if blocked is None:
+                break
+            with _flock(lock(blocked)):  # held by the worker compiling it (or free: taken next time round)
+                pass
+    for name in waiting:
+        with _flock(lock(name)):
             pass
     return not any(f.endswith(".failed") for f in os.listdir(folder))
 

@@ -1,7 +1,8 @@
 """``kernel_groups`` (the test run's workers share its groups out) does ``compile_kernels``' work:
 every variant of every integrator in exactly one group, so that nothing ``vbikit compile``
-compiles is left to the tests and no variant is run by two groups (checked on the variant kinds
-and on the calls made; nothing is compiled here)."""
+compiles is left to the tests and no variant is run by two groups, the run-in's crossing with the
+default integrator's one-lane variant (whose kernel it runs) and the static start's kernels in a group
+of their own, first (checked on the variant kinds and on the calls made; nothing is compiled here)."""
 from __future__ import annotations
 
 from collections import Counter
@@ -9,6 +10,7 @@ from collections import Counter
 import pytest
 
 from vbikit.solve import warmup
+from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
 from vbikit.solve.integrators import get_integrator, integrator_names
 
 
@@ -22,9 +24,20 @@ def test_every_variant_of_every_integrator_is_in_exactly_one_group(monkeypatch):
     expected = Counter((name, k) for name in integrator_names() for k in recording_variants(name))
     monkeypatch.setattr(warmup, "_variants", recording_variants)
     monkeypatch.setattr(warmup, "_moving_loads", lambda: calls.append(("moving-loads", "sweep")))
-    for run in warmup.kernel_groups().values():
+    monkeypatch.setattr(warmup, "_run_in", lambda: calls.append(("run-in", "loops")))
+    monkeypatch.setattr(warmup, "_static_starts", lambda: calls.append(("static-starts", "start")))
+    by_group = {}
+    for group, run in warmup.kernel_groups().items():
+        calls.clear()
         run()
-    assert Counter(calls) == expected + Counter({("moving-loads", "sweep"): 1})
+        by_group[group] = list(calls)
+    got = Counter(call for group_calls in by_group.values() for call in group_calls)
+    assert got == expected + Counter({("moving-loads", "sweep"): 1, ("run-in", "loops"): 1, ("static-starts", "start"): 1})
+    assert list(by_group)[0] == warmup.SHARED_GROUP and by_group[warmup.SHARED_GROUP] == [("static-starts", "start")]
+    # the run-in's crossing (the default integrator, one lane) runs in the group compiling that variant, after it
+    run_in_group = next(g for g, c in by_group.items() if ("run-in", "loops") in c)
+    assert by_group[run_in_group][-1] == ("run-in", "loops")
+    assert (DEFAULT_INTEGRATOR, "one-lane") in by_group[run_in_group]
 
 
 def test_the_variant_kinds_are_those_of_the_warm_up_crossings():
@@ -39,6 +52,7 @@ def test_the_variant_kinds_are_those_of_the_warm_up_crossings():
             assert sorted(grouped) == sorted(want)  # each implicit kind in one group
 
 
-@pytest.mark.parametrize("name", ["implicit-lean", "implicit-full", "implicit-lanes", "moving-loads"])
+@pytest.mark.parametrize("name", ["static-starts", "implicit-lean", "implicit-full", "implicit-lanes", "rk4", "rk4-lanes",
+                                  "moving-loads"])
 def test_the_groups_are_named(name):
     assert name in warmup.kernel_groups()

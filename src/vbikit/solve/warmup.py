@@ -10,8 +10,8 @@ batches, and the lean kernels' hand-overs, with a rigid-disk crossing for the ge
 the static start, the static reference and the moving-load sweep (``vbikit.solve.moving_loads``,
 railway speed sweeps).  ``compile_kernels`` runs a tiny crossing through each
 of them (a sprung mass on a 3-mode beam over a short rough road), which compiles — or loads from
-the cache — exactly those variants; ``kernel_groups`` hands the same work out as groups that share
-no kernel, for several processes compiling at once (the test suite's workers).
+the cache — exactly those variants; ``kernel_groups`` hands the same work out as groups, for several
+processes compiling at once (the test suite's workers).
 """
 from __future__ import annotations
 
@@ -68,6 +68,25 @@ def _moving_loads() -> None:
     moving_load_sweep(_tiny_crossing(DEFAULT_INTEGRATOR).bridge, [0.0, 2.0], [1e5, 1e5], [20.0, 30.0], [2.5], dx=0.05)
 
 
+def _static_starts() -> None:
+    """The static start's compiled helpers, which the integrators' kernels call too: a crossing's
+    start (``simulate._start``) on the flat law (``kernels.lean_law``: the lean kernels' ``_law``) and,
+    with rigid disks, on the general law (``kernels.road_at``, ``kernels.contact_forces`` with many
+    lanes: RK4's many-lane kernel and the full implicit kernel call them)."""
+    from vbikit.contact import RigidDiskTire
+    from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
+    from vbikit.solve.integrators import get_integrator
+    from vbikit.solve.kernels import Motion
+    from vbikit.solve.plan import plan_run
+    from vbikit.solve.simulate import _start
+
+    crossing = _tiny_crossing(DEFAULT_INTEGRATOR)
+    for c in (crossing, replace(crossing, tire=RigidDiskTire())):
+        plan = plan_run(c)
+        motion = Motion(plan.grid.travel, plan.grid.speed)
+        _start([c], plan.kernel_data, motion, 1, -get_integrator(c.integrator).road_rate_span(plan.grid.dt))
+
+
 def _run_in() -> None:
     """The run-in's loops (``vbikit.solve.run_in``: traffic streams' and lifetimes' settled start)."""
     from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
@@ -104,28 +123,39 @@ def compile_kernels() -> dict[str, float]:
 #: each: ``one-lane`` the lean kernel; ``rigid-disk`` the full kernel; ``lanes`` the many-lane lean kernel
 IMPLICIT_GROUPS = {"implicit-lean": ("one-lane",), "implicit-full": ("rigid-disk",), "implicit-lanes": ("lanes",)}
 
+#: the group of ``kernel_groups`` whose kernels the integrators' kernels call (``_static_starts``: the
+#: contact law with many lanes, the road reading, the lean law): a group compiled after it loads them from
+#: numba's cache instead of compiling them again (the test suite's workers run it first)
+SHARED_GROUP = "static-starts"
+
 
 def kernel_groups() -> dict[str, Callable[[], None]]:
-    """``compile_kernels``' work as named groups no two of which compile the same top-level kernel, for
-    compiling them in several processes at once (the test suite's workers share them out): numba
-    writes one cache index per kernel, and two processes adding different variants of one kernel
-    at the same time could each write that index without the other's variant (the helpers RK4 and
-    the implicit kernel share, the contact law and the lane helpers, are still compiled by both
-    groups: the test suite's workers lock each index write).  Each explicit integrator is one group
-    (its own kernel), the implicit ones share ``IMPLICIT_GROUPS``, and the moving-load sweep and the
-    run-in's loops are one more each."""
+    """``compile_kernels``' work as named groups, for compiling them in several processes at once (the
+    test suite's workers share them out).  Each explicit integrator is two groups (``name``: one lane,
+    ``name-lanes``: many lanes; two variants of its one kernel), the implicit ones share
+    ``IMPLICIT_GROUPS`` (the run-in's loops go with the default integrator's one-lane variant: the run-in's
+    crossing runs it), the moving-load sweep is one more, and ``SHARED_GROUP`` (first) compiles the static
+    start's kernels, which the integrators' kernels call too.  numba writes one cache index per kernel,
+    and two processes adding different variants of one kernel at the same time could each write that
+    index without the other's variant: the groups of one kernel (RK4's two; a helper that two groups
+    compile) need their index writes locked against each other (the test suite's workers lock them), or
+    to run one after the other (``SHARED_GROUP`` before the groups that call its kernels: they then load
+    them from the cache)."""
+    from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
     from vbikit.solve.integrators import get_integrator, integrator_names
 
-    groups: dict[str, list[Callable[[], None]]] = {}
+    groups: dict[str, list[Callable[[], None]]] = {SHARED_GROUP: [_static_starts]}
     for name in integrator_names():
         variants = _variants(name)
         if get_integrator(name).explicit:
-            groups[name] = list(variants.values())
+            groups[name] = [variants["one-lane"]]
+            groups[f"{name}-lanes"] = [variants["lanes"]]
             continue
         for group, kinds in IMPLICIT_GROUPS.items():
             groups.setdefault(group, []).extend(variants[k] for k in kinds)
+    # the run-in's crossing (``_run_in``) runs the default integrator's one-lane kernel: compiled by that group
+    groups[DEFAULT_INTEGRATOR if get_integrator(DEFAULT_INTEGRATOR).explicit else "implicit-lean"].append(_run_in)
     groups["moving-loads"] = [_moving_loads]
-    groups["run-in"] = [_run_in]
     return {group: _run_all(runs) for group, runs in groups.items()}
 
 
