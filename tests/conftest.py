@@ -5,7 +5,9 @@ In a distributed run (pytest-xdist, the default) the workers first share the ker
 out (``_share_the_kernel_compilation``): each has some of the groups of
 ``vbikit.solve.warmup.kernel_groups`` (and the pseudo-excitation, load-effect, static-history,
 exact-peak and drive-by kernels) compiled
-in a child process, and every test process then loads them from numba's disk cache, instead of
+in a child process — the static start's kernels first, which the integrators' kernels call and then
+load instead of each compiling them again (``_AFTER``) — and every test process then loads them from
+numba's disk cache, instead of
 every worker compiling each kernel its tests meet; numba's cache writes are serialised between the
 processes (``_lock_numba_cache_writes``).  When the cache already holds them as an earlier run of the
 suite left it (``_cache_is_warm``: a stamp of the sources and of the cache files, written once every
@@ -119,13 +121,15 @@ def _lock_numba_cache_writes() -> None:
 
 
 def _compile_groups() -> dict[str, Callable[[], object]]:
-    """What the workers share out, in the order they take it (``_AFTER``: which wait for which): cold-compile
-    CPU seconds of each, alone in a fresh process (``static-starts`` before those that wait for it), measured
-    2026-12-06/07 on the 2-core machine: static-starts 14–18, implicit-full 37–49 (after static-starts;
-    47–64 without), implicit-lanes 33–36, rk4 (one lane) 22–31, rk4-lanes 9–12, implicit-lean with the
-    run-in's loops 11–13, random 5–8, effects 4–6, moving-loads 5–7, histories 3–5, driveby 2–3 (the range:
-    a quiet to a loaded machine): ``kernel_groups`` and the pseudo-excitation, load-effect, static-history
-    and exact-peak, and drive-by kernels (kernels of their own)."""
+    """What the workers share out, in the order they take it (``_AFTER``: which wait for which), and the
+    CPU seconds of each child process (its ≈ 1.5 s start included) in the compile phase as the test run's
+    4 workers run it on the 2-core machine, two runs measured 2026-12-06/07: static-starts 15, implicit-full
+    38–39, rk4 31–33, implicit-lanes 31–32, implicit-lean with the run-in's loops 12–13,
+    effects-histories-driveby 9–10, random 7–8, moving-loads 7 (148–157 in all, against 181–186 for the
+    groups before, the run-in's crossing a group of its own, nothing waiting: implicit-full 53–54, rk4 38–39,
+    implicit-lanes 41–42, implicit-lean 16, run-in 5, the small ones 27–28): ``kernel_groups`` and the
+    pseudo-excitation, load-effect, static-history and exact-peak, and drive-by kernels (kernels of their
+    own)."""
     from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
     from vbikit.driveby.warmup import compile_driveby_kernels
     from vbikit.random.warmup import compile_random_kernels
@@ -133,10 +137,15 @@ def _compile_groups() -> dict[str, Callable[[], object]]:
 
     groups: dict[str, Callable[[], object]] = dict(kernel_groups())
     groups["random"] = compile_random_kernels
-    groups["effects"] = compile_effect_kernels
-    groups["histories"] = compile_history_kernels
-    groups["driveby"] = compile_driveby_kernels
-    first = [SHARED_GROUP, "implicit-full", "rk4", "implicit-lanes", "rk4-lanes", "implicit-lean"]
+
+
+    def effects_histories_driveby() -> None:  # one child process for three small groups (≈ 2 s of CPU each to start)
+        compile_effect_kernels()
+        compile_history_kernels()
+        compile_driveby_kernels()
+
+    groups["effects-histories-driveby"] = effects_histories_driveby
+    first = [SHARED_GROUP, "implicit-full", "rk4", "implicit-lanes", "implicit-lean"]
     return {k: groups[k] for k in sorted(groups, key=lambda k: first.index(k) if k in first else len(first))}
 
 
@@ -144,9 +153,8 @@ def _compile_groups() -> dict[str, Callable[[], object]]:
 #: kernels that ``static-starts`` (``vbikit.solve.warmup.SHARED_GROUP``) compiles (the contact law with
 #: many lanes, ≈ 10 s of CPU, which RK4's many-lane kernel and the full implicit kernel call; the road
 #: reading; the lean law), and after it they load those from numba's cache instead of each compiling them
-#: again (≈ 35 s of CPU in all, for ≈ 15 s of its own).  RK4's one-lane group shares only the lean law with
-#: it (≈ 2 s) and does not wait: it keeps the second core busy meanwhile, with the small groups
-_AFTER = {name: "static-starts" for name in ("implicit-full", "implicit-lanes", "implicit-lean", "rk4-lanes")}
+#: again (≈ 35 s of CPU in all, for ≈ 15 s of its own); the small groups keep the other core busy meanwhile
+_AFTER = {name: "static-starts" for name in ("implicit-full", "rk4", "implicit-lanes", "implicit-lean")}
 
 
 def _compile_in_subprocess(name: str) -> bool:

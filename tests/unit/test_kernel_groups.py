@@ -52,7 +52,6 @@ def test_the_variant_kinds_are_those_of_the_warm_up_crossings():
             assert sorted(grouped) == sorted(want)  # each implicit kind in one group
 
 
-@pytest.mark.parametrize("name", ["static-starts", "implicit-lean", "implicit-full", "implicit-lanes", "rk4", "rk4-lanes",
-                                  "moving-loads"])
+@pytest.mark.parametrize("name", ["static-starts", "implicit-lean", "implicit-full", "implicit-lanes", "rk4", "moving-loads"])
 def test_the_groups_are_named(name):
     assert name in warmup.kernel_groups()

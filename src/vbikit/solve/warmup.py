@@ -131,16 +131,16 @@ SHARED_GROUP = "static-starts"
 
 def kernel_groups() -> dict[str, Callable[[], None]]:
     """``compile_kernels``' work as named groups, for compiling them in several processes at once (the
-    test suite's workers share them out).  Each explicit integrator is two groups (``name``: one lane,
-    ``name-lanes``: many lanes; two variants of its one kernel), the implicit ones share
+    test suite's workers share them out).  Each explicit integrator is one group (its own kernel, one lane
+    and many lanes: apart, its two variants cost as much as together), the implicit ones share
     ``IMPLICIT_GROUPS`` (the run-in's loops go with the default integrator's one-lane variant: the run-in's
     crossing runs it), the moving-load sweep is one more, and ``SHARED_GROUP`` (first) compiles the static
     start's kernels, which the integrators' kernels call too.  numba writes one cache index per kernel,
     and two processes adding different variants of one kernel at the same time could each write that
-    index without the other's variant: the groups of one kernel (RK4's two; a helper that two groups
-    compile) need their index writes locked against each other (the test suite's workers lock them), or
-    to run one after the other (``SHARED_GROUP`` before the groups that call its kernels: they then load
-    them from the cache)."""
+    index without the other's variant: groups that compile one kernel (a helper two groups call) need
+    their index writes locked against each other (the test suite's workers lock them), or to run one
+    after the other (``SHARED_GROUP`` before the groups that call its kernels: they then load them from
+    the cache)."""
     from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR
     from vbikit.solve.integrators import get_integrator, integrator_names
 
@@ -148,8 +148,7 @@ def kernel_groups() -> dict[str, Callable[[], None]]:
     for name in integrator_names():
         variants = _variants(name)
         if get_integrator(name).explicit:
-            groups[name] = [variants["one-lane"]]
-            groups[f"{name}-lanes"] = [variants["lanes"]]
+            groups[name] = list(variants.values())
             continue
         for group, kinds in IMPLICIT_GROUPS.items():
             groups.setdefault(group, []).extend(variants[k] for k in kinds)
