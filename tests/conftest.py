@@ -125,7 +125,7 @@ def _compile_groups() -> dict[str, Callable[[], object]]:
     CPU seconds of each child process (its ≈ 1.5 s start included) in the compile phase as the test run's
     4 workers run it on the 2-core machine, four runs measured 2026-12-06/07: static-starts 15–17, implicit-full
     38–39, rk4 31–33, implicit-lanes 30–32, implicit-lean with the run-in's loops 12–13,
-    effects-histories-driveby 9–10, random 7–9, moving-loads 7–8 (148–157 in all, against 167–191 for the
+    effects-histories-driveby 9–10, random 7–9, moving-loads 7–8 (148–157 in all, against 167–187 for the
     groups before, the run-in's crossing a group of its own, nothing waiting: implicit-full 53–56, rk4 37–41,
     implicit-lanes 41–44, implicit-lean 16, run-in 5, the small ones 27–28): ``kernel_groups`` and the
     pseudo-excitation, load-effect, static-history and exact-peak, and drive-by kernels (kernels of their
