@@ -138,7 +138,6 @@ def _compile_groups() -> dict[str, Callable[[], object]]:
     groups: dict[str, Callable[[], object]] = dict(kernel_groups())
     groups["random"] = compile_random_kernels
 
-
     def effects_histories_driveby() -> None:  # one child process for three small groups (≈ 2 s of CPU each to start)
         compile_effect_kernels()
         compile_history_kernels()
