@@ -387,18 +387,22 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
 
 
 def _event_run_in(dyn: dict, simulated: np.ndarray, gid: np.ndarray) -> np.ndarray:
-    """Each event's run-in [m] (its dynamic run's ``run_in``; NaN where not simulated or of moving forces; 0 for a
-    result written before run-ins were stored, which started its trucks at rest)."""
+    """Each event's run-in [m] (``_result_run_in`` of its dynamic run; NaN where not simulated)."""
     out = np.full(gid.size, np.nan)
     for k in np.flatnonzero(simulated):
-        out[k] = float(dyn["results"][int(gid[k])].get("run_in", 0.0))  # (a result without one: computed at rest)
+        out[k] = _result_run_in(dyn["results"][int(gid[k])])
     return out
 
 
 def _runs_in(results: dict) -> np.ndarray:
-    """The run-in [m] each simulated dynamic event got (NaN: moving forces; 0 for a result written before
-    run-ins were stored, which started its trucks at rest)."""
-    return np.array([float(r.get("run_in", 0.0)) for r in results.values()], float)
+    """The run-in [m] each simulated dynamic event got (``_result_run_in``)."""
+    return np.array([_result_run_in(r) for r in results.values()], float)
+
+
+def _result_run_in(result: dict) -> float:
+    """The run-in [m] a dynamic run's trucks got (NaN: moving forces; 0 for a result written before run-ins
+    were stored, which started its trucks at rest)."""
+    return float(result.get("run_in", 0.0))
 
 
 def _unconverged_attrs(results: dict) -> dict[str, Any]:

@@ -55,9 +55,15 @@ def population_run_in(approach: float, overhang: float) -> float:
     and the approach"); 0 when the approach leaves less than ``RUN_IN_CLEARANCE`` before a deck whose ends
     reach ``overhang`` [m] beyond their supports (a skew deck's oblique ends; a run-in needs the vehicles off the
     deck at the start: the events then start at rest, and are flagged ``start_from_rest``)."""
-    if approach - max(overhang, 0.0) < RUN_IN_CLEARANCE:
+    if approach < least_run_in_approach(overhang):
         return 0.0
     return max(SETTLED_APPROACH - approach, 0.0)
+
+
+def least_run_in_approach(overhang: float) -> float:
+    """The shortest approach [m] from which a run-in can start before a deck whose ends reach ``overhang`` [m]
+    beyond their supports: every contact point off the deck, ``RUN_IN_CLEARANCE`` beyond its ends."""
+    return max(overhang, 0.0) + RUN_IN_CLEARANCE
 
 
 def check_off_deck(data: Any, x0: NDArray[np.float64], run_in: float) -> None:

@@ -42,7 +42,7 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.solve.run_in import RUN_IN_CLEARANCE, population_run_in
+from vbikit.solve.run_in import RUN_IN_CLEARANCE, least_run_in_approach, population_run_in
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -537,18 +537,19 @@ class EventContext:
         crossing = built.crossing
         settled = "run_in" not in base.get("crossing", {})
         overhang = crossing.bridge.deck_overhang
+        least_approach = least_run_in_approach(overhang)
         if settled:  # a population starts its trucks settled (population_run_in)
             crossing = dataclasses.replace(crossing, run_in=population_run_in(crossing.approach, overhang))
-        elif crossing.run_in > 0 and crossing.approach - overhang < RUN_IN_CLEARANCE:
+        elif crossing.run_in > 0 and crossing.approach < least_approach:
             raise ScenarioError(f"crossing.run_in = {crossing.run_in:g} m needs every contact point off the deck at the "
-                                f"start: give crossing.approach >= {overhang + RUN_IN_CLEARANCE:g} m (the deck reaches "
+                                f"start: give crossing.approach >= {least_approach:g} m (the deck reaches "
                                 f"{overhang:g} m beyond its supports; {RUN_IN_CLEARANCE:g} m for the tire patches), got "
                                 f"{crossing.approach:g} m")
         fixed = [p for p in (built.crossing.road, built.crossing.road_right) if p is not None]
         road_range = (random_road_range(road_psd(road), road.spacing, road.length) if random_road else
                       (max(p.x[0] for p in fixed), min(p.x[-1] for p in fixed)) if fixed and road.profile_file else None)
         ctx = cls(_Template(dataclasses.replace(crossing, road=None, road_right=None)), scenario, built.plan,
-                  random_road, settled=settled, road_range=road_range, least_approach=overhang + RUN_IN_CLEARANCE)
+                  random_road, settled=settled, road_range=road_range, least_approach=least_approach)
         if not random_road:
             ctx._fixed_road = (built.crossing.road, built.crossing.road_right)
         return ctx
