@@ -35,7 +35,25 @@ def quoted() -> list[str]:
             f"{r['minus_100']['rms']:.1e} root mean square, {r['minus_100']['max']:.1e} at most",
             f"the coupled run keeps the default's steps ({r['mean_steps']:,} on average)",
             f"crossing.run_in = {r['run_in_m']:g}",
-            *_settling(), _spans()]
+            *_settling(), _spans(), *_transients()]
+
+
+def _transients() -> list[str]:
+    """The sentences on the share of its start transient a truck keeps (``checked_transients``,
+    ``transient_effect``) and the limit the start_unsettled flag reads (``SETTLED_TRANSIENT_LEFT``)."""
+    from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
+
+    c, t = STORED["checked_transients"], STORED["transient_effect"]
+    lo, hi = c["slowest_decay_rate_per_s"]
+    kept = c["transient_left_at_100_m"]
+    bins = {tuple(b["left"]): b for b in t["bins"]}
+    shares = "; ".join(f"{b['left'][0]:g}–{b['left'][1]:g}: {b['rms']:.2g} ({b['max']:.2g} at most, {b['events']} runs)"
+                       for b in t["bins"] if b["events"] >= 30)
+    assert (0.0, 0.035) in bins and (0.035, 0.07) in bins  # (the page's reading at the limit)
+    return [f"The {c['events']} one-truck events above that drove 100 m in all", f"have σ_min {lo:g}–{hi:g} per second and keep "
+            f"{kept['mean']:g} of it on average, {kept['max']:g} at most",
+            f"its root mean square by the share kept is {shares}",
+            f"`SETTLED_TRANSIENT_LEFT` = {SETTLED_TRANSIENT_LEFT:g}"]
 
 
 def _spans() -> str:
@@ -46,7 +64,7 @@ def _spans() -> str:
                       f"± {c['minus_400']['100']['se']:.2g}, per event {c['minus_400']['100']['rms']:.2g} root mean square "
                       f"({c['minus_400']['100']['max']:.2g} at most)" for c in g["cases"])
     worst = max(c["minus_400"]["50"]["rms"] for c in g["cases"])
-    return (f"the trucks' slowest decaying modes ({lo:g}–{hi:g} Hz), {g['cases'][0]['events']} one-truck events each, "
+    return (f"the trucks' slowest modes the road excites ({lo:g}–{hi:g} Hz), {g['cases'][0]['events']} one-truck events each, "
             f"100 m in all against 400 m: {cases}. With 50 m each event's IM still differs by up to {worst:.2g} root "
             "mean square")
 

@@ -12,6 +12,7 @@ import xarray as xr
 from typer.testing import CliRunner
 
 from vbikit.analysis.checks import SETTLED_APPROACH, start_from_rest_flags
+from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
 from vbikit.cli import app
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -187,6 +188,12 @@ def test_a_lifetime_dataset_holds_each_simulated_events_run_in(tmp_path):
     assert np.all(ds["event_run_in"].values[simulated] == 95.0) and np.all(np.isnan(ds["event_run_in"].values[~simulated]))
     assert ds.attrs["run_in_m"] == 95.0 and ds.attrs["run_in_min_m"] == 95.0 and ds.attrs["run_in_shortened_events"] == 0
     assert "start_from_rest" not in ds.attrs.get("flag_codes", "")
+    # the share of its start transient each simulated event's trucks kept (vbikit.solve.run_in.start_transient_left):
+    # the example's trucks settle like the checked ones, so none is flagged start_unsettled
+    left = ds["event_start_transient_left"].values
+    assert np.all((left[simulated] > 0.0) & (left[simulated] <= SETTLED_TRANSIENT_LEFT)) and np.all(np.isnan(left[~simulated]))
+    assert ds.attrs["start_transient_left_max"] == np.nanmax(left) and ds.attrs["start_unsettled_events"] == 0
+    assert "start_unsettled" not in ds.attrs.get("flag_codes", "")
     assert ("dynamic events: sprung trucks start settled, 5 m before the bridge after driving 95 m of the road alone "
             "(crossing.run_in)") in (tmp_path / "report.txt").read_text()
 

@@ -72,7 +72,7 @@ from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
 from vbikit.road.profile import RoadProfile
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
-from vbikit.solve.run_in import SETTLED_APPROACH
+from vbikit.solve.run_in import SETTLED_APPROACH, SETTLED_TRANSIENT_LEFT
 from vbikit.solve.timestep import choose_time_step
 from vbikit.outputs import report_unit
 
@@ -194,6 +194,12 @@ FLAG_CODES: dict[str, str] = {
                        "short for the population's), less than ``SETTLED_APPROACH`` (100 m): they enter before their body "
                        "vibration has built up, so the impact factors and dynamic peaks come out low (docs/traffic.md); "
                        "output: impact_factor; value: approach + run-in [m], threshold: ``SETTLED_APPROACH``",
+    "start_unsettled": "traffic and lifetime: events with a sprung vehicle that keeps more than "
+                       "``SETTLED_TRANSIENT_LEFT`` (0.07) of its start transient when it reaches "
+                       "the bridge (exp(−σ_min D / v): a lighter damped vehicle than the trucks the settled start was "
+                       "checked with, or less road before the bridge), so their impact factors and dynamic peaks may "
+                       "come out low (docs/traffic.md); output: impact_factor; value: the largest share kept, threshold: "
+                       "``SETTLED_TRANSIENT_LEFT``",
     "stream_step_sensitive": "traffic: a governing event's impact factors (deflection, strain, load effects) change at "
                              "half the time step; output: the one that moved most; subject: the event; value: its "
                              "IM_half − IM_run, threshold: ``STEP_TOLERANCE`` (5e-3, on its magnitude)",
@@ -813,6 +819,32 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
                  "crossing.run_in): they enter it before their body vibration has built up, so the impact factors and "
                  f"dynamic peaks come out low (docs/traffic.md, \"Start from rest and the approach\"); {remedy}",
                  output=output, subject=subject, value=float(approach), threshold=float(settled))]
+
+
+def start_unsettled_flags(events: int, worst: float, driven: float, total: int, output: str = "impact_factor",
+                          subject: str = "crossing.run_in", limit: float = SETTLED_TRANSIENT_LEFT) -> list[Flag]:
+    """A population's ``events`` (of ``total``; 0: not said) with a sprung vehicle that keeps more than ``limit`` of
+    its start transient at the bridge (``vbikit.solve.run_in.start_transient_left``; ``worst`` the largest share
+    kept, ``driven`` [m] the least road an event's vehicles drove before it, ``crossing.approach`` + the shortest
+    run-in): outside the range the settled start was checked in, their impact factors may come out low (one flag
+    about ``output``, ``subject``; none when no event keeps more).  The remedy's distance scales ``driven`` by
+    ln(limit) / ln(worst) (the transient decays as exp(−σ D / v)): at least that much road in all, as a vehicle
+    behind the leading one has driven more than ``driven``."""
+    if events <= 0 or not worst > limit:
+        return []
+    if worst < 1.0 and driven > 0.0:
+        remedy = (f"drive them at least {math.ceil(driven * math.log(limit) / math.log(worst)):g} m before the bridge in "
+                  "all (crossing.approach + crossing.run_in in the base scenario)")
+    else:
+        remedy = "a vehicle with an undamped mode never settles: give its suspension or tires damping"
+    of = f" of {total}" if total > 0 else ""
+    return [Flag("start_unsettled",
+                 f"{counted(events, 'event')}{of} have a sprung vehicle that keeps {worst:.1%} of its start transient "
+                 "when it reaches the bridge (its slowest mode the road excites, exp(−σ_min D / v)), more than the "
+                 f"{limit:.1%} of the trucks the settled start was checked with (docs/traffic.md, \"Start from rest and "
+                 "the approach\": an event's IM error grows with the share kept): a lighter damped vehicle or less road "
+                 f"before the bridge, so those impact factors and dynamic peaks may come out low; {remedy}",
+                 output=output, subject=subject, value=float(worst), threshold=float(limit))]
 
 
 def join_codes(codes: Iterable[str]) -> str:

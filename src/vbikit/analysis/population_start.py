@@ -1,12 +1,15 @@
 """Where a population's events start their vehicles: the attributes a traffic stream's dataset and
-lifetime.nc state it with, their words, and the ``start_from_rest`` flag judged on them — one
-definition for both (docs/traffic.md, "Start from rest and the approach").
+lifetime.nc state it with, their words, and the ``start_from_rest`` and ``start_unsettled`` flags judged on
+them — one definition for both (docs/traffic.md, "Start from rest and the approach").
 
 Every event starts its vehicles ``crossing.approach`` before the bridge; with a run-in
 (``crossing.run_in``, ``vbikit.solve.run_in``) they first drive that much of the road alone and start
 settled.  A population's run-in is fitted to the road per event (a short road holds less of it), so an
 event records the run-in it got (NaN for one of moving forces, which has nothing to settle), and the
-dataset states the population's run-in, the shortest an event got and how many the road cut short.
+dataset states the population's run-in, the shortest an event got and how many the road cut short.  Each
+event also records the largest share of its start transient a sprung vehicle kept at the bridge
+(``vbikit.solve.run_in.start_transient_left``), and the dataset how many events kept more than the trucks the
+settled start was checked with (``SETTLED_TRANSIENT_LEFT``).
 """
 from __future__ import annotations
 
@@ -18,7 +21,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, start_from_rest_flags
+from vbikit.analysis.checks import Flag, start_from_rest_flags, start_unsettled_flags
+from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
 
 #: the attributes (name -> (units, meaning)) a population dataset states its start with (``start_attrs``)
 START_ATTRIBUTES: dict[str, tuple[str, str]] = {
@@ -29,19 +33,33 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                           "was too short for the whole of it); absent when no event has sprung vehicles"),
     "run_in_shortened_events": ("1", "events whose run-in the road cut short"),
     "run_in_least_approach_m": ("m", "the approach a run-in needs: every contact point off the deck at the start"),
+    "start_transient_left_max": ("1", "the largest share of its slowest mode's start transient a sprung vehicle kept "
+                                      "when it reached the bridge, exp(−σ_min D / v) (vbikit.solve.run_in."
+                                      "start_transient_left); absent when no event has sprung vehicles"),
+    "start_unsettled_events": ("1", "events with a sprung vehicle that kept more than SETTLED_TRANSIENT_LEFT of its "
+                                    "start transient (the start_unsettled flag)"),
 }
 
+#: the counts among ``START_ATTRIBUTES`` (integers; 0 when a dataset does not state them)
+START_COUNTS = ("run_in_shortened_events", "start_unsettled_events")
 
-def start_attrs(approach: float, run_in: float, got: ArrayLike, least_approach: float) -> dict[str, Any]:
+
+def start_attrs(approach: float, run_in: float, got: ArrayLike, least_approach: float,
+                left: ArrayLike = ()) -> dict[str, Any]:
     """``START_ATTRIBUTES`` of a population whose events start ``approach`` [m] before the bridge after the
     population's ``run_in`` [m]; ``got``: the run-in each event got (NaN for one of moving forces);
-    ``least_approach`` [m]: the approach a run-in needs."""
+    ``least_approach`` [m]: the approach a run-in needs; ``left``: the share of its start transient each event's
+    sprung vehicles kept at the bridge at most (``vbikit.solve.run_in.start_transient_left``; NaN for moving forces)."""
     got = np.asarray(got, float)
     got = got[np.isfinite(got)]
+    left = np.asarray(left, float)
+    left = left[np.isfinite(left)]
     return {"approach_m": float(approach), "run_in_m": float(run_in),
             **({"run_in_min_m": float(got.min())} if got.size else {}),
             "run_in_shortened_events": int(np.sum(got < run_in - 1e-9)),
-            "run_in_least_approach_m": float(least_approach)}
+            "run_in_least_approach_m": float(least_approach),
+            **({"start_transient_left_max": float(left.max()),
+                "start_unsettled_events": int(np.sum(left > SETTLED_TRANSIENT_LEFT))} if left.size else {})}
 
 
 def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> str:
@@ -65,16 +83,23 @@ def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> 
 
 
 def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject: str = "crossing.approach",
-                sprung: bool = False) -> list[Flag]:
+                sprung: bool = False, total: int = 0) -> list[Flag]:
     """``start_from_rest`` (``vbikit.analysis.checks.start_from_rest_flags``) judged on a dataset's
     ``START_ATTRIBUTES``: its approach plus the shortest run-in an event got; none when no event has sprung
     vehicles (no ``run_in_min_m``, unless ``sprung`` says the population's vehicles are: a dataset written before
-    the shortest was stored, judged on its ``run_in_m``, 0 when absent) or for one written before the start was."""
+    the shortest was stored, judged on its ``run_in_m``, 0 when absent) or for one written before the start was;
+    or else (the vehicles driven ``SETTLED_APPROACH`` in all) ``start_unsettled``
+    (``vbikit.analysis.checks.start_unsettled_flags``) on its ``start_unsettled_events`` of ``total`` events: a
+    vehicle lighter damped than the trucks that distance was checked with (none for a dataset written before
+    2026-12-07, which did not count them)."""
     if "approach_m" not in attrs or not ("run_in_min_m" in attrs or sprung):
         return []
-    return start_from_rest_flags(float(attrs["approach_m"]) + _shortest(attrs), output=output, subject=subject,
-                                 shortened=_shortened(attrs),
-                                 least_approach=float(attrs.get("run_in_least_approach_m", 0.0)))
+    driven = float(attrs["approach_m"]) + _shortest(attrs)
+    from_rest = start_from_rest_flags(driven, output=output, subject=subject, shortened=_shortened(attrs),
+                                      least_approach=float(attrs.get("run_in_least_approach_m", 0.0)))
+    return from_rest or start_unsettled_flags(int(attrs.get("start_unsettled_events", 0)),
+                                              float(attrs.get("start_transient_left_max", 0.0)), driven, total,
+                                              output=output, subject=subject)
 
 
 def _shortest(attrs: Mapping[str, Any]) -> float:

@@ -384,6 +384,7 @@ class DynamicJob:
         from vbikit.fatigue import miner_damage, rainflow, reversals
         from vbikit.lifetime.peaks import knot_limits
         from vbikit.solve import choose_time_step, simulate
+        from vbikit.solve.run_in import start_transient_left
 
         setup = build_setup(self.setup_key)
         crossing, _, _, _ = self.crossing(g)
@@ -425,6 +426,7 @@ class DynamicJob:
         # the road the event's trucks drove alone before the run (crossing.run_in: the population's, fitted to the
         # road; NaN for moving forces, which have nothing to settle)
         out["run_in"] = np.array(crossing.run_in if any(m.vehicle.n_dof for m in crossing.vehicles) else np.nan)
+        out["start_transient_left"] = np.array(start_transient_left(crossing))  # (NaN for moving forces)
         out["n_steps"] = np.array(result.n_steps, float)
         out["unconverged_steps"] = np.array(result.unconverged_steps, float)  # (CrossingResult.unconverged_steps)
         return out
@@ -442,8 +444,9 @@ class DynamicJob:
                   "unconverged_steps"):
             if k not in part or part[k].shape[0] != len(batch) or not np.all(np.isfinite(part[k])):
                 return f"{k} is missing or not finite"
-        if "run_in" not in part or part["run_in"].shape[0] != len(batch):
-            return "it has no run_in (written by an earlier version)"
+        for k in ("run_in", "start_transient_left"):
+            if k not in part or part[k].shape[0] != len(batch):
+                return f"it has no {k} (written by an earlier version)"
         return None
 
     def assemble(self, parts: Path):
@@ -459,4 +462,5 @@ class DynamicJob:
             "n_steps": ("event", cat["n_steps"]),
             "unconverged_steps": ("event", cat["unconverged_steps"]),
             "run_in": ("event", cat["run_in"]),
+            "start_transient_left": ("event", cat["start_transient_left"]),
         }, coords={"event": cat["event_id"]}, attrs={"study": self.to_json()})

@@ -14,7 +14,7 @@ from typing import Any
 
 from vbikit._words import counted
 from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
-from vbikit.analysis.population_start import START_ATTRIBUTES, start_flags
+from vbikit.analysis.population_start import START_ATTRIBUTES, START_COUNTS, start_flags
 from vbikit.analysis.population_start import start_words as population_start_words
 from vbikit.analysis.sample_intervals import stored_interval_text
 from vbikit.lifetime.accuracy import WIDE_INTERVAL, adr_words, amplification_words, too_wide
@@ -203,7 +203,8 @@ def _start_flags(name: str, a: dict) -> list[Flag]:
     dataset written before the approach was stored."""
     if not _sprung(a):
         return []
-    return start_flags(_start(a), output=flag_output("return_levels", "total"), subject=name, sprung=True)
+    return start_flags(_start(a), output=flag_output("return_levels", "total"), subject=name, sprung=True,
+                       total=int(a.get("n_dynamic_events", 0)))
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:
@@ -400,8 +401,8 @@ def summary(ds) -> dict[str, Any]:
                                                          "time_static_s": float(a["time_static_s"]),
                                                          "events_per_second_static": float(a["events_per_second_static"])},
         "start": {"vehicle_model": str(a.get("vehicle_model", "axle-truck")),
-                  **{k: _num(_start(a).get(k, math.nan)) for k in START_ATTRIBUTES if k != "run_in_shortened_events"},
-                  "run_in_shortened_events": int(a.get("run_in_shortened_events", 0)), "words": start_words(a)},
+                  **{k: _num(_start(a).get(k, math.nan)) for k in START_ATTRIBUTES if k not in START_COUNTS},
+                  **{k: int(a.get(k, 0)) for k in START_COUNTS}, "words": start_words(a)},
         "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
                  "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),
                  "xi_strongly_negative": float(a["xi_strongly_negative"])},

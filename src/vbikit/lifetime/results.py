@@ -303,6 +303,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (at its time steps and, for moments, shears and reactions, at the instants a wheel crosses a jump or kink of the line); NaN if not simulated")),
         "event_simulated": ("event", simulated.astype(np.int8), ev_attrs("1", "1 if simulated dynamically")),
         "event_run_in": ("event", _event_run_in(dyn, simulated, gid), ev_attrs("m", "road the simulated event's trucks drove alone, from rest, before its coupled run (crossing.run_in: the population's, 100 m less the approach, or the part of it the road holds); NaN if not simulated or moving forces")),
+        "event_start_transient_left": ("event", _event_result(dyn, simulated, gid, "start_transient_left"), ev_attrs("1", "the largest share of its slowest mode's start transient a truck of the simulated event kept when it reached the bridge, exp(−σ_min D / v) (vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged start_unsettled); NaN if not simulated or moving forces")),
         "event_in_sample": ("event", np.isin(np.arange(n_ev), dyn["sample"]).astype(np.int8), ev_attrs("1", "1 if in the random sample (fatigue, IM statistics)")),
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
         **fat["variables"],
@@ -378,7 +379,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         # got: vbikit.analysis.population_start), and how the trucks are modelled: sprung trucks started at rest after
         # a short approach enter calmer than settled ones (start_from_rest)
         **start_attrs(prep.setup.context.template.crossing.approach, prep.setup.context.template.crossing.run_in,
-                      _runs_in(dyn["results"]), prep.setup.context.least_approach),
+                      _runs_in(dyn["results"]), prep.setup.context.least_approach,
+                      [float(r.get("start_transient_left", np.nan)) for r in dyn["results"].values()]),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),
@@ -388,9 +390,19 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
 
 def _event_run_in(dyn: dict, simulated: np.ndarray, gid: np.ndarray) -> np.ndarray:
     """Each event's run-in [m] (``_result_run_in`` of its dynamic run; NaN where not simulated)."""
+    return _per_event(dyn, simulated, gid, _result_run_in)
+
+
+def _event_result(dyn: dict, simulated: np.ndarray, gid: np.ndarray, name: str) -> np.ndarray:
+    """Each event's ``name`` from its dynamic run (NaN where not simulated, or not stored)."""
+    return _per_event(dyn, simulated, gid, lambda result: float(result.get(name, np.nan)))
+
+
+def _per_event(dyn: dict, simulated: np.ndarray, gid: np.ndarray, read) -> np.ndarray:
+    """``read`` of each simulated event's dynamic run (its result's dict), NaN for the others."""
     out = np.full(gid.size, np.nan)
     for k in np.flatnonzero(simulated):
-        out[k] = _result_run_in(dyn["results"][int(gid[k])])
+        out[k] = read(dyn["results"][int(gid[k])])
     return out
 
 

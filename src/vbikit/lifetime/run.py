@@ -334,7 +334,7 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
         for k, g in enumerate(ds["event"].values):
             results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
                                                              "damage_static", "max_range_dynamic", "unconverged_steps",
-                                                             "run_in") if v in ds}
+                                                             "run_in", "start_transient_left") if v in ds}
         return np.stack([results[int(g)]["dyn_peak"] for g in gid[new]])
 
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)

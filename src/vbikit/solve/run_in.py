@@ -38,6 +38,14 @@ if TYPE_CHECKING:  # pragma: no cover
 #: on and below the trucks' body modes) within 0.003 of 400 m's per event (docs/traffic.md, "Start from rest and the
 #: approach"; docs/scripts/approach_numbers.py)
 SETTLED_APPROACH = 100.0
+#: [substitute] the largest share of its start transient, exp(−σ_min D / v), that a sprung vehicle may keep when it
+#: reaches the bridge for its event to count as started settled (``start_transient_left``; σ_min the slowest decay
+#: rate of the modes the road excites): the trucks ``SETTLED_APPROACH`` was checked with (1,000 one-truck events on
+#: Bridge 2 and four beams, σ_min 0.69–0.81 s⁻¹ at 15–28 m/s, D = 100 m) kept 0.029 on average and 0.0657 at most
+#: (rounded up here); an event's IM error against a 200 m start grows with the share kept, about 0.07 times it root
+#: mean square (docs/traffic.md, "Start from rest and the approach"; docs/scripts/approach_numbers.py,
+#: ``checked_transients`` and ``transient_effect``)
+SETTLED_TRANSIENT_LEFT = 0.07
 #: the least road [m] between the vehicles' front axle at the start and the deck's near end for which a
 #: population adds its run-in (``population_run_in``): a contact patch reaches ahead of its axle, and a run-in
 #: needs every contact point off the deck at the start
@@ -58,6 +66,41 @@ def population_run_in(approach: float, overhang: float) -> float:
     if approach < least_run_in_approach(overhang):
         return 0.0
     return max(SETTLED_APPROACH - approach, 0.0)
+
+
+def start_transient_left(crossing: "Crossing") -> float:
+    """The largest share of its start transient that a sprung vehicle of ``crossing`` keeps when its front axle
+    reaches its entry support: exp(−σ_min D / v), σ_min the slowest decay rate of the modes its road excites
+    (``Vehicle.slowest_decay_rate``, its wheels grouped by axle and road line: with no ``road_right`` both wheel
+    lines read one profile, and a roll mode has nothing to settle), v its speed at the start, D the road it has
+    driven since it was at rest — ``crossing.run_in`` plus its distance before its entry support when the run
+    starts (``crossing.approach`` for the leading vehicle, more for one behind it; a free vibration decays as
+    exp(−σ t), t = D / v).  1 for a vehicle with an undamped mode the road excites (it never settles); 0 on a
+    smooth road (nothing to settle: rest is the settled state); NaN when no vehicle has DOFs (moving forces)."""
+    t0 = crossing.start_time
+    worst = math.nan
+    for motion in crossing.vehicles:
+        vehicle = motion.vehicle
+        if not vehicle.n_dof:
+            continue
+        left = 0.0
+        if crossing.road is not None:
+            sigma = vehicle.slowest_decay_rate(road_groups(vehicle, crossing.road_right is not None))
+            speed = abs(motion._speed_at(t0))
+            driven = max(float(crossing.run_in), 0.0) + max(-motion._travel_at(t0), 0.0)
+            left = math.exp(-sigma * driven / speed) if speed > 0.0 else 1.0
+        worst = left if not worst >= left else worst
+    return worst
+
+
+def road_groups(vehicle: Any, two_lines: bool = False) -> NDArray[np.int64]:
+    """The wheels of ``vehicle`` that the road moves together (``Vehicle.slowest_decay_rate``'s groups): one group
+    per axle (the wheels at one offset see the road at the same time), split into its left and right wheels when
+    the two wheel lines read their own profiles (``two_lines``: a crossing's ``road_right``; the right line the
+    wheels at lateral < 0, as the contact points read it)."""
+    axles = np.unique(np.round([w.offset for w in vehicle.wheels], 9), return_inverse=True)[1]
+    lines = np.array([two_lines and w.lateral < 0.0 for w in vehicle.wheels], np.int64)
+    return np.asarray(axles, np.int64) * 2 + lines
 
 
 def least_run_in_approach(overhang: float) -> float:

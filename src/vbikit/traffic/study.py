@@ -42,7 +42,7 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.solve.run_in import RUN_IN_CLEARANCE, least_run_in_approach, population_run_in
+from vbikit.solve.run_in import RUN_IN_CLEARANCE, least_run_in_approach, population_run_in, start_transient_left
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -67,6 +67,10 @@ EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
     "run_in": ("m", "road the event's sprung vehicles drove alone, from rest, before the run started "
                     "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
                     "for moving forces, which have no vibration to build up)", np.float64),
+    "start_transient_left": ("1", "the largest share of its slowest mode's start transient a sprung vehicle of the event "
+                                  "kept when it reached the bridge, exp(−σ_min D / v) (vbikit.solve.run_in."
+                                  "start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged start_unsettled); NaN for "
+                                  "moving forces", np.float64),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
@@ -319,6 +323,7 @@ class TrafficStudy:
         row["airborne_wheels"] = float(bool(airborne_wheels(result)))
         crossing = result.crossing
         row["run_in"] = float(crossing.run_in) if any(m.vehicle.n_dof for m in crossing.vehicles) else math.nan
+        row["start_transient_left"] = start_transient_left(crossing)
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
@@ -377,7 +382,8 @@ class TrafficStudy:
         impact = {name: first[name].values for name in first.data_vars if str(name).endswith("impact_factor")}
         step_attrs, step_flags = governing_step_check(self, stats, impact)
         start = self.context().template.crossing  # (where its events start their vehicles: approach, run_in)
-        started = start_attrs(start.approach, start.run_in, ev["run_in"], self.context().least_approach)
+        started = start_attrs(start.approach, start.run_in, ev["run_in"], self.context().least_approach,
+                              ev["start_transient_left"])
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -388,7 +394,8 @@ class TrafficStudy:
             **step_attrs,
             **started,
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
-                              + unconverged_dataset_flags(ev["unconverged_steps"], "event") + start_flags(started)),
+                              + unconverged_dataset_flags(ev["unconverged_steps"], "event")
+                              + start_flags(started, total=self.size)),
         }
         return ds
 

@@ -184,6 +184,64 @@ class Vehicle:
             object.__setattr__(self, "_natural_frequencies", freqs)
         return freqs.copy()
 
+    def slowest_decay_rate(self, groups: NDArray[np.int64] | None = None) -> float:
+        """σ_min [1/s]: how fast the slowest free vibration that the road can excite dies out, the vehicle on
+        rigid, flat ground — the smallest −Re λ over the eigenvalues λ of its first-order form ż = A z,
+        z = (q, q̇), A = [[0, I], [−M⁻¹K̂, −M⁻¹Ĉ]] with the tires as springs and dashpots to the ground
+        (K̂ = K + Σ k_w r_w r_wᵀ, Ĉ = C + Σ c_w r_w r_wᵀ); exact for any damping, classical or not (e.g. Inman,
+        *Engineering Vibration*, 4th ed., §4.10).  A mode of damping ratio ζ and frequency ω decays as exp(−ζω t):
+        σ = ζω.
+
+        Only the modes the road reaches count: ``groups`` (one per wheel) numbers the wheels the road moves
+        together — the wheels of one axle on one road line see the same profile at the same time (``None``: each
+        wheel on its own).  A mode that no group's input reaches, through its tires' springs or dashpots
+        (|ψⱼᴴ b| ≤ 1e-9 ‖ψⱼ‖ ‖b‖ for every input b = (0, M⁻¹ Σ_w∈g k_w r_w) and (0, M⁻¹ Σ_w∈g c_w r_w), ψⱼ its
+        left eigenvector), is at rest on a rough road as on a flat one (a body's roll when both wheel lines read
+        the same profile): it has no start transient.  0 for an undamped mode the road reaches and for a
+        vehicle without DOFs (a moving force, which has no vibration).  Kept per ``groups``: vehicles are
+        immutable."""
+        return max(-self.slowest_mode(groups).real, 0.0)
+
+    def slowest_mode(self, groups: NDArray[np.int64] | None = None) -> complex:
+        """λ, the eigenvalue of the slowest decaying mode the road excites (``slowest_decay_rate`` is −Re λ;
+        |λ| / 2π its undamped natural frequency [Hz] for an underdamped mode); 0 when there is none (no DOFs,
+        or no mode the road reaches).  ``groups`` as for ``slowest_decay_rate``; kept per ``groups``."""
+        n_w = len(self.wheels)
+        groups = np.arange(n_w) if groups is None else np.asarray(groups, np.int64)
+        if groups.shape != (n_w,):
+            raise ValueError(f"groups: one group number per wheel ({n_w}), got shape {groups.shape}")
+        store = self.__dict__.setdefault("_slowest_modes", {})  # (the instance's own dict: frozen)
+        key = groups.tobytes()
+        if key not in store:
+            store[key] = self._slowest_mode(groups) if self.n_dof else 0j
+        return store[key]
+
+    def _slowest_mode(self, groups: NDArray[np.int64]) -> complex:
+        """``slowest_mode`` computed (a vehicle with DOFs)."""
+        rows, k_w = self._wheel_rows()
+        c_w = np.array([w.damping for w in self.wheels], float)
+        c_hat = self.damping + (c_w[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0)
+        n = self.n_dof
+        a = np.zeros((2 * n, 2 * n))
+        a[:n, n:] = np.eye(n)
+        a[n:, :n] = -np.linalg.solve(self.mass, self._grounded_stiffness())
+        a[n:, n:] = -np.linalg.solve(self.mass, c_hat)
+        lam, right = np.linalg.eig(a)
+        left = np.linalg.inv(right)  # rows: the left eigenvectors ψⱼᴴ (A = V Λ V⁻¹)
+        inputs = []
+        for g in np.unique(groups):
+            member = groups == g
+            for coef in (k_w, c_w):
+                force = (coef[member, None] * rows[member]).sum(axis=0)
+                if np.any(force):
+                    inputs.append(np.concatenate([np.zeros(n), np.linalg.solve(self.mass, force)]))
+        if not inputs:
+            return 0j
+        b = np.array(inputs).T
+        reach = np.abs(left @ b) / (np.linalg.norm(left, axis=1)[:, None] * np.linalg.norm(b, axis=0)[None, :])
+        excited = np.flatnonzero(reach.max(axis=1) > 1e-9)
+        return complex(lam[excited[np.argmax(lam.real[excited])]]) if excited.size else 0j
+
 
 @dataclass(frozen=True)
 class CombinedVehicle(Vehicle):
