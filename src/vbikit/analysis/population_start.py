@@ -33,9 +33,10 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                           "was too short for the whole of it); absent when no event has sprung vehicles"),
     "run_in_shortened_events": ("1", "events whose run-in the road cut short"),
     "run_in_least_approach_m": ("m", "the approach a run-in needs: every contact point off the deck at the start"),
-    "start_transient_left_max": ("1", "the largest share of its slowest mode's start transient a sprung vehicle kept "
-                                      "when it reached the bridge, exp(−σ_min D / v) (vbikit.solve.run_in."
-                                      "start_transient_left); absent when no event has sprung vehicles"),
+    "start_transient_left_max": ("1", "the largest share of its start transient (its slowest mode the road excites) "
+                                      "a sprung vehicle kept when it reached the bridge, exp(−σ_min D / v) "
+                                      "(vbikit.solve.run_in.start_transient_left); absent when no event has sprung "
+                                      "vehicles"),
     "start_unsettled_events": ("1", "events with a sprung vehicle that kept more than SETTLED_TRANSIENT_LEFT of its "
                                     "start transient (the start_unsettled flag)"),
 }

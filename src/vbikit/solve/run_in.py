@@ -34,16 +34,16 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: [substitute] the shortest approach [m] from which a population's events start their vehicles settled: one-truck
 #: traffic events on Bridge 2 (class B) give a mean IM 0.0147 ± 0.0024 higher at 100 m than at 10 m, and
-#: within 1e-4 of 200 m's, each event's within 0.002 root mean square; beams of 15, 40 and 60 m (first frequency above,
-#: on and below the trucks' body modes) within 0.003 of 400 m's per event (docs/traffic.md, "Start from rest and the
-#: approach"; docs/scripts/approach_numbers.py)
+#: within 1e-4 of 200 m's, each event's within 0.002 root mean square; beams of 15, 30, 40 and 60 m (first frequency
+#: above, on and below the trucks' slowest modes the road excites) within 0.004 of 400 m's per event (docs/traffic.md,
+#: "Start from rest and the approach"; docs/scripts/approach_numbers.py)
 SETTLED_APPROACH = 100.0
 #: [substitute] the largest share of its start transient, exp(−σ_min D / v), that a sprung vehicle may keep when it
 #: reaches the bridge for its event to count as started settled (``start_transient_left``; σ_min the slowest decay
 #: rate of the modes the road excites): the trucks ``SETTLED_APPROACH`` was checked with (1,000 one-truck events on
 #: Bridge 2 and four beams, σ_min 0.69–0.81 s⁻¹ at 15–28 m/s, D = 100 m) kept 0.029 on average and 0.0657 at most
-#: (rounded up here); an event's IM error against a 200 m start grows with the share kept, about 0.07 times it root
-#: mean square (docs/traffic.md, "Start from rest and the approach"; docs/scripts/approach_numbers.py,
+#: (rounded up here); an event's IM error against a 200 m start grows with the share kept, about 0.06–0.07 times it
+#: root mean square (docs/traffic.md, "Start from rest and the approach"; docs/scripts/approach_numbers.py,
 #: ``checked_transients`` and ``transient_effect``)
 SETTLED_TRANSIENT_LEFT = 0.07
 #: the least road [m] between the vehicles' front axle at the start and the deck's near end for which a

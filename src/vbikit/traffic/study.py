@@ -67,10 +67,10 @@ EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
     "run_in": ("m", "road the event's sprung vehicles drove alone, from rest, before the run started "
                     "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
                     "for moving forces, which have no vibration to build up)", np.float64),
-    "start_transient_left": ("1", "the largest share of its slowest mode's start transient a sprung vehicle of the event "
-                                  "kept when it reached the bridge, exp(−σ_min D / v) (vbikit.solve.run_in."
-                                  "start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged start_unsettled); NaN for "
-                                  "moving forces", np.float64),
+    "start_transient_left": ("1", "the largest share of its start transient (its slowest mode the road excites) a "
+                                  "sprung vehicle of the event kept when it reached the bridge, exp(−σ_min D / v) "
+                                  "(vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged "
+                                  "start_unsettled); NaN for moving forces", np.float64),
 }
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
