@@ -218,27 +218,25 @@ class Vehicle:
 
     def _slowest_mode(self, groups: NDArray[np.int64]) -> complex:
         """``slowest_mode`` computed (a vehicle with DOFs)."""
+        from scipy.linalg import eig
+
         rows, k_w = self._wheel_rows()
         c_w = np.array([w.damping for w in self.wheels], float)
         c_hat = self.damping + (c_w[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0)
         n = self.n_dof
+        member = (groups[:, None] == np.unique(groups)[None, :]).astype(float)  # (wheels, groups)
+        forces = rows.T @ np.hstack([k_w[:, None] * member, c_w[:, None] * member])  # Σ_w∈g k_w r_w, Σ_w∈g c_w r_w
+        forces = forces[:, np.any(forces != 0.0, axis=0)]
+        if not forces.shape[1]:
+            return 0j
+        m_inv = np.linalg.solve(self.mass, np.hstack([self._grounded_stiffness(), c_hat, forces]))
         a = np.zeros((2 * n, 2 * n))
         a[:n, n:] = np.eye(n)
-        a[n:, :n] = -np.linalg.solve(self.mass, self._grounded_stiffness())
-        a[n:, n:] = -np.linalg.solve(self.mass, c_hat)
-        lam, right = np.linalg.eig(a)
-        left = np.linalg.inv(right)  # rows: the left eigenvectors ψⱼᴴ (A = V Λ V⁻¹)
-        inputs = []
-        for g in np.unique(groups):
-            member = groups == g
-            for coef in (k_w, c_w):
-                force = (coef[member, None] * rows[member]).sum(axis=0)
-                if np.any(force):
-                    inputs.append(np.concatenate([np.zeros(n), np.linalg.solve(self.mass, force)]))
-        if not inputs:
-            return 0j
-        b = np.array(inputs).T
-        reach = np.abs(left @ b) / (np.linalg.norm(left, axis=1)[:, None] * np.linalg.norm(b, axis=0)[None, :])
+        a[n:, :n] = -m_inv[:, :n]
+        a[n:, n:] = -m_inv[:, n:2 * n]
+        b = np.vstack([np.zeros((n, forces.shape[1])), m_inv[:, 2 * n:]])  # the inputs (0, M⁻¹ f)
+        lam, left = eig(a, left=True, right=False)  # columns ψⱼ: ψⱼᴴ A = λⱼ ψⱼᴴ
+        reach = np.abs(left.conj().T @ b) / (np.linalg.norm(left, axis=0)[:, None] * np.linalg.norm(b, axis=0)[None, :])
         excited = np.flatnonzero(reach.max(axis=1) > 1e-9)
         return complex(lam[excited[np.argmax(lam.real[excited])]]) if excited.size else 0j
 
