@@ -2,7 +2,7 @@
 docs/traffic.md's "Start from rest and the approach", stored in docs/figures/approach-numbers.json.
 
     python docs/scripts/approach_numbers.py                # about a minute on 2 cores
-    python docs/scripts/approach_numbers.py --transients   # only the checked trucks' start transients (seconds)
+    python docs/scripts/approach_numbers.py --transients   # only the start transients and the lighter damped vehicle
 
 Every run starts its vehicles at rest in static equilibrium ``crossing.approach`` before the bridge
 (docs/theory.md, "Start and end of a crossing"); a truck that has driven on a rough road for long
@@ -151,7 +151,40 @@ def compute() -> dict:
                                                                       for t in SPAN_TOTALS[:-1]}})
     out["settling_spans"] = {"slowest_truck_mode_hz": _slowest_modes(), "cases": cases}
     out["checked_transients"] = checked_transients()
+    out["lighter_damped"] = lighter_damped()
     return out
+
+
+#: the preset of ``lighter_damped``: its slowest road-excited mode decays slower than every checked truck's
+LIGHTER_PRESET = "two-axle"
+
+
+def lighter_damped(n: int = 100) -> dict:
+    """A vehicle outside the checked range (``LIGHTER_PRESET`` in place of each record's truck, the stream's times,
+    lanes and speeds; Bridge 2, class B, a 3 km road): the first ``n`` one-vehicle events after 100 m in all (the 10
+    m approach after the population's 90 m run-in) against 400 m — the share of its start transient each keeps
+    at 100 m and the IM error, to set beside ``transient_effect``'s bins for the same share."""
+    import dataclasses
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_traffic import _stream
+
+    from vbikit.solve.run_in import start_transient_left
+    from vbikit.traffic.study import traffic_study
+
+    records = [dataclasses.replace(r, model=LIGHTER_PRESET, axle_loads=(), axle_spacings=()) for r in _stream(3 * n, 600.0)]
+    runs = {}
+    for total in (100.0, 400.0):
+        base = {**_base("B", 10.0, total - 10.0), "road": {"class": "B", "spacing": 0.01, "length": 3000.0}}
+        job = traffic_study(records, base, batch_size=16)
+        events = [e for e in range(job.size) if len(job.events[e]) == 1][:n]
+        runs[total] = (np.array([job.run_event(e)[0][0][0]["impact_factor"] for e in events]),
+                       np.array([start_transient_left(job.crossing(e)) for e in events]))
+    left = runs[100.0][1]
+    return {"preset": LIGHTER_PRESET, "events": n, "left_at_100_m": {"mean": round(float(left.mean()), 3),
+                                                                      "min": round(float(left.min()), 3),
+                                                                      "max": round(float(left.max()), 3)},
+            "minus_400": _small_differences(runs[400.0][0], runs[100.0][0])}
 
 
 #: the bins of the share of its start transient a truck keeps at the bridge (``transient_effect``)
@@ -217,8 +250,9 @@ def _slowest_modes() -> list[float]:
 
 
 def main() -> None:
-    if "--transients" in sys.argv[1:]:  # only the checked trucks' start transients (seconds: no simulation)
-        numbers = json.loads(NUMBERS.read_text()) | {"checked_transients": checked_transients()}
+    if "--transients" in sys.argv[1:]:  # only the start transients and the lighter damped vehicle (seconds)
+        numbers = json.loads(NUMBERS.read_text()) | {"checked_transients": checked_transients(),
+                                                     "lighter_damped": lighter_damped()}
     else:
         numbers = compute()
     NUMBERS.write_text(json.dumps(numbers, indent=1) + "\n")

@@ -38,6 +38,25 @@ def quoted() -> list[str]:
             *_settling(), _spans(), *_transients()]
 
 
+def _lighter() -> str:
+    """The sentence on ``lighter_damped``: a vehicle outside the checked range."""
+    ld = STORED["lighter_damped"]
+    kept, d = ld["left_at_100_m"], ld["minus_400"]
+    return (f"the {ld['preset']} preset in place of every truck (`lighter_damped`) keeps {kept['min']:g}–{kept['max']:g} of "
+            f"its transient after 100 m ({kept['mean']:g} on average), and its {ld['events']} first one-vehicle events' IMs "
+            f"differ from a 400 m start by {d['rms']:.2g} root mean square ({d['max']:.2g} at most)")
+
+
+def test_a_vehicle_the_flag_names_does_err():
+    """The lighter damped preset keeps more than SETTLED_TRANSIENT_LEFT after 100 m on every event, and its IMs err
+    by more than the checked trucks' do at any share they kept up to 0.5: the flag marks real errors."""
+    from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
+
+    ld = STORED["lighter_damped"]
+    assert ld["left_at_100_m"]["min"] > SETTLED_TRANSIENT_LEFT
+    assert ld["minus_400"]["rms"] > max(b["rms"] for b in STORED["transient_effect"]["bins"] if b["left"][1] <= 0.5)
+
+
 def _transients() -> list[str]:
     """The sentences on the share of its start transient a truck keeps (``checked_transients``,
     ``transient_effect``) and the limit the start_unsettled flag reads (``SETTLED_TRANSIENT_LEFT``)."""
@@ -50,9 +69,10 @@ def _transients() -> list[str]:
     shares = "; ".join(f"{b['left'][0]:g}–{b['left'][1]:g}: {b['rms']:.2g} ({b['max']:.2g} at most, {b['events']} runs)"
                        for b in t["bins"] if b["events"] >= 30)
     assert (0.0, 0.035) in bins and (0.035, 0.07) in bins  # (the page's reading at the limit)
-    return [f"The {c['events']} one-truck events above that drove 100 m in all", f"have σ_min {lo:g}–{hi:g} per second and keep "
+    return [f"The {c['events']:,} one-truck events above that drove 100 m in all", f"have σ_min {lo:g}–{hi:g} per second and keep "
             f"{kept['mean']:g} of it on average, {kept['max']:g} at most",
             f"its root mean square by the share kept is {shares}",
+            _lighter(),
             f"`SETTLED_TRANSIENT_LEFT` = {SETTLED_TRANSIENT_LEFT:g}"]
 
 

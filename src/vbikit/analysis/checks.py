@@ -196,7 +196,7 @@ FLAG_CODES: dict[str, str] = {
                        "output: impact_factor; value: approach + run-in [m], threshold: ``SETTLED_APPROACH``",
     "start_unsettled": "traffic and lifetime: events with a sprung vehicle that keeps more than "
                        "``SETTLED_TRANSIENT_LEFT`` (0.07) of its start transient when it reaches "
-                       "the bridge (exp(−σ_min D / v): a lighter damped vehicle than the trucks the settled start was "
+                       "the bridge (exp(−σ_min t): a lighter damped vehicle than the trucks the settled start was "
                        "checked with, or less road before the bridge), so their impact factors and dynamic peaks may "
                        "come out low (docs/traffic.md); output: impact_factor; value: the largest share kept, threshold: "
                        "``SETTLED_TRANSIENT_LEFT``",
@@ -822,28 +822,29 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
 
 
 def start_unsettled_flags(events: int, worst: float, driven: float, total: int, output: str = "impact_factor",
-                          subject: str = "crossing.run_in", limit: float = SETTLED_TRANSIENT_LEFT) -> list[Flag]:
+                          subject: str = "crossing.approach", limit: float = SETTLED_TRANSIENT_LEFT) -> list[Flag]:
     """A population's ``events`` (of ``total``; 0: not said) with a sprung vehicle that keeps more than ``limit`` of
     its start transient at the bridge (``vbikit.solve.run_in.start_transient_left``; ``worst`` the largest share
     kept, ``driven`` [m] the least road an event's vehicles drove before it, ``crossing.approach`` + the shortest
     run-in): outside the range the settled start was checked in, their impact factors may come out low (one flag
     about ``output``, ``subject``; none when no event keeps more).  The remedy's distance scales ``driven`` by
-    ln(limit) / ln(worst) (the transient decays as exp(−σ D / v)): at least that much road in all, as a vehicle
-    behind the leading one has driven more than ``driven``."""
+    ln(limit) / ln(worst) (the transient decays as exp(−σ D / v)): a lower bound on the road needed in all, as a
+    vehicle behind the leading one has driven more than ``driven`` and may need more still."""
     if events <= 0 or not worst > limit:
         return []
-    if worst < 1.0 and driven > 0.0:
-        remedy = (f"drive them at least {math.ceil(driven * math.log(limit) / math.log(worst)):g} m before the bridge in "
-                  "all (crossing.approach + crossing.run_in in the base scenario)")
+    if worst < 1.0 - 1e-9 and driven > 0.0:
+        remedy = (f"drive them further before the bridge: at least {math.ceil(driven * math.log(limit) / math.log(worst)):g} "
+                  "m in all (crossing.approach + crossing.run_in in the base scenario; more where a vehicle behind the "
+                  "first keeps the most), until the flag clears")
     else:
-        remedy = "a vehicle with an undamped mode never settles: give its suspension or tires damping"
+        remedy = "a vehicle with an undamped mode the road excites never settles: give its suspension or tires damping"
     of = f" of {total}" if total > 0 else ""
     return [Flag("start_unsettled",
-                 f"{counted(events, 'event')}{of} have a sprung vehicle that keeps {worst:.1%} of its start transient "
-                 "when it reaches the bridge (its slowest mode the road excites, exp(−σ_min D / v)), more than the "
-                 f"{limit:.1%} of the trucks the settled start was checked with (docs/traffic.md, \"Start from rest and "
-                 "the approach\": an event's IM error grows with the share kept): a lighter damped vehicle or less road "
-                 f"before the bridge, so those impact factors and dynamic peaks may come out low; {remedy}",
+                 f"{counted(events, 'event')}{of} {'has' if events == 1 else 'have'} a sprung vehicle that keeps "
+                 f"{worst:.1%} of its start transient when it reaches the bridge (its slowest mode the road excites, "
+                 f"exp(−σ_min t)), more than the {limit:.1%} the trucks the settled start was checked with kept at most "
+                 "(docs/traffic.md, \"Start from rest and the approach\"): a lighter damped vehicle, or less road before "
+                 f"the bridge, so those impact factors and dynamic peaks may come out low; {remedy}",
                  output=output, subject=subject, value=float(worst), threshold=float(limit))]
 
 

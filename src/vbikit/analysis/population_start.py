@@ -34,7 +34,7 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
     "run_in_shortened_events": ("1", "events whose run-in the road cut short"),
     "run_in_least_approach_m": ("m", "the approach a run-in needs: every contact point off the deck at the start"),
     "start_transient_left_max": ("1", "the largest share of its start transient (its slowest mode the road excites) "
-                                      "a sprung vehicle kept when it reached the bridge, exp(−σ_min D / v) "
+                                      "a sprung vehicle kept when it reached the bridge, exp(−σ_min t) "
                                       "(vbikit.solve.run_in.start_transient_left); absent when no event has sprung "
                                       "vehicles"),
     "start_unsettled_events": ("1", "events with a sprung vehicle that kept more than SETTLED_TRANSIENT_LEFT of its "
@@ -79,8 +79,10 @@ def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> 
         return f"{vehicles} start at rest {approach:g} m before the bridge (crossing.run_in = 0)"
     short = _shortened(attrs)
     less = f"; the road held less on {counted(short, 'event')}, {shortest:g} m the shortest" if short else ""
+    unsettled = int(attrs.get("start_unsettled_events", 0))
+    still = (f"; on {counted(unsettled, 'event')} a vehicle had not settled (start_unsettled)") if unsettled else ""
     return (f"{vehicles} start settled, {approach:g} m before the bridge after driving {run_in:g} m of the road alone "
-            f"(crossing.run_in{less})")
+            f"(crossing.run_in{less}){still}")
 
 
 def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject: str = "crossing.approach",

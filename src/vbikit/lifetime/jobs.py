@@ -431,6 +431,13 @@ class DynamicJob:
         out["unconverged_steps"] = np.array(result.unconverged_steps, float)  # (CrossingResult.unconverged_steps)
         return out
 
+    def start_transient_left(self, events) -> NDArray:
+        """``vbikit.solve.run_in.start_transient_left`` of each global event of ``events`` (its crossing only: no
+        simulation), for events whose runs were stored before it was."""
+        from vbikit.solve.run_in import start_transient_left
+
+        return np.array([start_transient_left(self.crossing(int(g))[0]) for g in events], float)
+
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         rows = [self.run_event(g) for g in batch]
         out = {k: np.stack([r[k] for r in rows]) for k in rows[0]}
@@ -444,15 +451,16 @@ class DynamicJob:
                   "unconverged_steps"):
             if k not in part or part[k].shape[0] != len(batch) or not np.all(np.isfinite(part[k])):
                 return f"{k} is missing or not finite"
-        for k in ("run_in", "start_transient_left"):
-            if k not in part or part[k].shape[0] != len(batch):
-                return f"it has no {k} (written by an earlier version)"
+        if "run_in" not in part or part["run_in"].shape[0] != len(batch):
+            return "it has no run_in (written by an earlier version)"
         return None
 
     def assemble(self, parts: Path):
         import xarray as xr
 
         cat = _joined_parts(parts, len(self.batches()))
+        if "start_transient_left" not in cat:  # (parts written before it was stored: no simulation needed)
+            cat["start_transient_left"] = self.start_transient_left(cat["event_id"])
         return xr.Dataset({
             "dyn_peak": (("event", "line"), cat["dyn_peak"]),
             "run_static_peak": (("event", "line"), cat["run_static_peak"]),

@@ -402,7 +402,8 @@ def summary(ds) -> dict[str, Any]:
                                                          "events_per_second_static": float(a["events_per_second_static"])},
         "start": {"vehicle_model": str(a.get("vehicle_model", "axle-truck")),
                   **{k: _num(_start(a).get(k, math.nan)) for k in START_ATTRIBUTES if k not in START_COUNTS},
-                  **{k: int(a.get(k, 0)) for k in START_COUNTS}, "words": start_words(a)},
+                  **{k: int(a[k]) if k in a else None for k in START_COUNTS},  # (None: not stated by the dataset)
+                  "words": start_words(a)},
         "fits": {"distribution": str(a["distribution"]), "block": str(a["block"]),
                  "characteristic_period": float(a["characteristic_period"]), "ci": float(a["ci"]),
                  "xi_strongly_negative": float(a["xi_strongly_negative"])},

@@ -328,13 +328,18 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
     done = [0]
 
     def simulate(new: np.ndarray, r: int) -> np.ndarray:
-        ds = _run(prep.dynamic_job(gid[new], stored), work / f"dynamic-{r}.nc", workers, scheduler, progress,
+        job = prep.dynamic_job(gid[new], stored)
+        ds = _run(job, work / f"dynamic-{r}.nc", workers, scheduler, progress,
                   f"dynamics round {r}", {"events": int(gid.size), "dynamic": done[0]})
         done[0] += int(new.size)
+        # (a round finished before start_transient_left was stored: computed from the events' crossings)
+        left = ds["start_transient_left"].values if "start_transient_left" in ds else \
+            job.start_transient_left(ds["event"].values)
         for k, g in enumerate(ds["event"].values):
             results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
                                                              "damage_static", "max_range_dynamic", "unconverged_steps",
-                                                             "run_in", "start_transient_left") if v in ds}
+                                                             "run_in") if v in ds}
+            results[int(g)]["start_transient_left"] = float(left[k])
         return np.stack([results[int(g)]["dyn_peak"] for g in gid[new]])
 
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)

@@ -38,7 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover
 #: above, on and below the trucks' slowest modes the road excites) within 0.004 of 400 m's per event (docs/traffic.md,
 #: "Start from rest and the approach"; docs/scripts/approach_numbers.py)
 SETTLED_APPROACH = 100.0
-#: [substitute] the largest share of its start transient, exp(−σ_min D / v), that a sprung vehicle may keep when it
+#: [substitute] the largest share of its start transient, exp(−σ_min t), that a sprung vehicle may keep when it
 #: reaches the bridge for its event to count as started settled (``start_transient_left``; σ_min the slowest decay
 #: rate of the modes the road excites): the trucks ``SETTLED_APPROACH`` was checked with (1,000 one-truck events on
 #: Bridge 2 and four beams, σ_min 0.69–0.81 s⁻¹ at 15–28 m/s, D = 100 m) kept 0.029 on average and 0.0657 at most
@@ -70,26 +70,30 @@ def population_run_in(approach: float, overhang: float) -> float:
 
 def start_transient_left(crossing: "Crossing") -> float:
     """The largest share of its start transient that a sprung vehicle of ``crossing`` keeps when its front axle
-    reaches its entry support: exp(−σ_min D / v), σ_min the slowest decay rate of the modes its road excites
-    (``Vehicle.slowest_decay_rate``, its wheels grouped by axle and road line: with no ``road_right`` both wheel
-    lines read one profile, and a roll mode has nothing to settle), v its speed at the start, D the road it has
-    driven since it was at rest — ``crossing.run_in`` plus its distance before its entry support when the run
-    starts (``crossing.approach`` for the leading vehicle, more for one behind it; a free vibration decays as
-    exp(−σ t), t = D / v).  1 for a vehicle with an undamped mode the road excites (it never settles); 0 on a
-    smooth road (nothing to settle: rest is the settled state); NaN when no vehicle has DOFs (moving forces)."""
+    reaches its entry support: exp(−σ_min t), σ_min the slowest decay rate of the modes its road excites
+    (``Vehicle.slowest_decay_rate``, its wheels grouped by axle and road line, ``road_groups``: with no
+    ``road_right`` both wheel lines read one profile, and a roll mode has nothing to settle) and t the time it has
+    driven since it was at rest — the run-in's, ``crossing.run_in`` at the slowest vehicle's speed at the start
+    (``run_in_steps``: every vehicle drives for that long), and its own from the run's start to its entry
+    (``crossing.approach`` at its speed for the leading vehicle, longer for one behind it): a free vibration decays
+    as exp(−σ t); at a constant speed v over D metres in all, exp(−σ_min D / v).  1 for a vehicle with an undamped
+    mode the road excites (it never settles); 0 on a smooth road (nothing to settle: rest is the settled state); NaN
+    when no vehicle has DOFs (moving forces)."""
     t0 = crossing.start_time
-    worst = math.nan
-    for motion in crossing.vehicles:
-        vehicle = motion.vehicle
-        if not vehicle.n_dof:
-            continue
-        left = 0.0
-        if crossing.road is not None:
-            sigma = vehicle.slowest_decay_rate(road_groups(vehicle, crossing.road_right is not None))
-            speed = abs(motion._speed_at(t0))
-            driven = max(float(crossing.run_in), 0.0) + max(-motion._travel_at(t0), 0.0)
-            left = math.exp(-sigma * driven / speed) if speed > 0.0 else 1.0
-        worst = left if not worst >= left else worst
+    sprung = [m for m in crossing.vehicles if m.vehicle.n_dof]
+    if not sprung:
+        return math.nan
+    if crossing.road is None:
+        return 0.0
+    slowest = min(abs(m._speed_at(t0)) for m in crossing.vehicles)
+    run_in = max(float(crossing.run_in), 0.0)
+    worst = 0.0
+    for motion in sprung:
+        sigma = motion.vehicle.slowest_decay_rate(road_groups(motion.vehicle, crossing.road_right is not None))
+        before = run_in / slowest if run_in > 0.0 and slowest > 0.0 else 0.0  # (run_in_steps: none at rest)
+        entry = motion.time_at(0.0)
+        driving = before + (entry - t0 if math.isfinite(entry) else math.inf)
+        worst = max(worst, math.exp(-sigma * driving) if sigma > 0.0 else 1.0)
     return worst
 
 

@@ -68,10 +68,13 @@ EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
                     "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
                     "for moving forces, which have no vibration to build up)", np.float64),
     "start_transient_left": ("1", "the largest share of its start transient (its slowest mode the road excites) a "
-                                  "sprung vehicle of the event kept when it reached the bridge, exp(−σ_min D / v) "
+                                  "sprung vehicle of the event kept when it reached the bridge, exp(−σ_min t) "
                                   "(vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged "
                                   "start_unsettled); NaN for moving forces", np.float64),
 }
+#: per-event extras that need no simulation (a function of the event's crossing, ``start_transient_left``): a part
+#: written before they were stored is still used, and they are computed for its events when the dataset is assembled
+COMPUTED_EXTRAS = ("start_transient_left",)
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
 #: flags read the events' quality (``vbikit.outputs.QUALITY_OUTPUTS``)
@@ -215,6 +218,8 @@ class TrafficStudy:
             return problem
         for name in EVENT_EXTRAS:
             if name not in part:
+                if name in COMPUTED_EXTRAS:
+                    continue  # (computed when the dataset is assembled)
                 return f"it has no {name} (written by an earlier version)"
             if part[name].shape != (len(batch),):
                 return f"{name} has the wrong shape"
@@ -240,6 +245,9 @@ class TrafficStudy:
         for k in range(len(self.batches())):
             part = load_part(parts, k, sums)
             for name in ev:
+                if name in COMPUTED_EXTRAS and name not in part:  # (a part written before it was stored)
+                    ev[name][part["event"]] = [start_transient_left(self.crossing(int(e))) for e in part["event"]]
+                    continue
                 ev[name][part["event"]] = part_output(part, name, n_points) if name in OUTPUTS else part[name]
             for name in VEHICLE_OUTPUTS:
                 veh[name][part["vehicle"]] = part[name]

@@ -197,10 +197,11 @@ class Vehicle:
         wheel on its own).  A mode that no group's input reaches, through its tires' springs or dashpots
         (|ψⱼᴴ b| ≤ 1e-9 ‖ψⱼ‖ ‖b‖ for every input b = (0, M⁻¹ Σ_w∈g k_w r_w) and (0, M⁻¹ Σ_w∈g c_w r_w), ψⱼ its
         left eigenvector), is at rest on a rough road as on a flat one (a body's roll when both wheel lines read
-        the same profile): it has no start transient.  0 for an undamped mode the road reaches and for a
-        vehicle without DOFs (a moving force, which has no vibration).  Kept per ``groups``: vehicles are
+        the same profile): it has no start transient.  0 for an undamped mode the road reaches (|Re λ| ≤ 1e-9 |λ|,
+        round-off) and for a vehicle without DOFs (a moving force, which has no vibration).  Kept per ``groups``: vehicles are
         immutable."""
-        return max(-self.slowest_mode(groups).real, 0.0)
+        lam = self.slowest_mode(groups)
+        return -lam.real if -lam.real > 1e-9 * abs(lam) else 0.0  # (an undamped mode: Re λ at round-off, either sign)
 
     def slowest_mode(self, groups: NDArray[np.int64] | None = None) -> complex:
         """λ, the eigenvalue of the slowest decaying mode the road excites (``slowest_decay_rate`` is −Re λ;
