@@ -81,8 +81,8 @@ def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> 
     less = f"; the road held less on {counted(short, 'event')}, {shortest:g} m the shortest" if short else ""
     unsettled = int(attrs.get("start_unsettled_events", 0))
     still = (f"; on {counted(unsettled, 'event')} a vehicle had not settled (start_unsettled)") if unsettled else ""
-    return (f"{vehicles} start settled, {approach:g} m before the bridge after driving {run_in:g} m of the road alone "
-            f"(crossing.run_in{less}){still}")
+    return (f"{vehicles} start{'' if unsettled else ' settled,'} {approach:g} m before the bridge after driving "
+            f"{run_in:g} m of the road alone (crossing.run_in{less}){still}")
 
 
 def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject: str = "crossing.approach",
