@@ -153,7 +153,8 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
     assert float(event["run_in"]) == 95.0
     # the share of its start transient the event's trucks kept: what a run stores is what a dataset of runs stored
     # before it was (a resumed lifetime) gets from the event's crossing alone
-    assert prep.dynamic_job(np.array([g])).start_transient_left([g])[0] == float(event["start_transient_left"])
+    left, needed = prep.dynamic_job(np.array([g])).start_settling([g])
+    assert left[0] == float(event["start_transient_left"]) and needed[0] == float(event["start_settling_run_in"])
     attrs = start_attrs(5.0, 95.0, _runs_in({1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}}), 1.0)
     assert attrs == {"approach_m": 5.0, "run_in_m": 95.0, "run_in_min_m": 61.5, "run_in_shortened_events": 1,
                      "run_in_least_approach_m": 1.0}

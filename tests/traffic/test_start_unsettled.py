@@ -18,7 +18,7 @@ from vbikit.bridge import EulerBernoulliBeam
 from vbikit.cli import app
 from vbikit.road import RoadProfile
 from vbikit.solve.crossing import Crossing, VehicleMotion
-from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT, start_transient_left
+from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT, start_settling, start_transient_left
 from vbikit.vehicle import quarter_car
 from vbikit.vehicle.presets import VEHICLE_PRESETS
 
@@ -34,6 +34,23 @@ def test_one_vehicle_keeps_exp_of_minus_sigma_times_road_driven_over_speed():
     crossing = Crossing(BEAM, vehicles=(VehicleMotion(car, 17.0),), road=ROAD, approach=12.0, run_in=30.0)
     sigma = car.slowest_decay_rate(np.array([0]))
     assert start_transient_left(crossing) == pytest.approx(math.exp(-sigma * 42.0 / 17.0), rel=1e-12)
+
+
+def test_the_run_in_that_settles_leaves_exactly_the_limit():
+    """start_settling's run-in, given back as crossing.run_in, leaves the vehicle SETTLED_TRANSIENT_LEFT of its
+    transient (the round trip of t* = ln(1 / limit) / σ_min); for two vehicles the slower-decaying one sets it, with
+    the run-in driven at the slowest speed: 15 (t* − 2.6 s) for the second vehicle of the next test."""
+    car = quarter_car()
+    sigma = car.slowest_decay_rate(np.array([0]))
+    needed = start_settling(Crossing(BEAM, vehicles=(VehicleMotion(car, 17.0),), road=ROAD, approach=12.0))[1]
+    assert needed == pytest.approx(17.0 * math.log(1.0 / SETTLED_TRANSIENT_LEFT) / sigma - 12.0, rel=1e-12)
+    settled = Crossing(BEAM, vehicles=(VehicleMotion(car, 17.0),), road=ROAD, approach=12.0, run_in=needed)
+    assert start_transient_left(settled) == pytest.approx(SETTLED_TRANSIENT_LEFT, rel=1e-9)
+    stiff = VEHICLE_PRESETS["dump-truck"].build()
+    pair = Crossing(BEAM, vehicles=(VehicleMotion(stiff, 20.0), VehicleMotion(car, 15.0, entry_time=2.0)),
+                    road=ROAD, approach=12.0, run_in=30.0)
+    assert start_settling(pair)[1] == pytest.approx(15.0 * (math.log(1.0 / SETTLED_TRANSIENT_LEFT) / sigma - 2.6),
+                                                    rel=1e-9)
 
 
 def test_a_vehicle_behind_the_first_has_driven_further():
@@ -105,17 +122,18 @@ def test_the_error_grows_with_the_share_kept():
     assert all(b["rms"] < 0.005 for b in bins if b["left"][1] <= SETTLED_TRANSIENT_LEFT + 0.03)
 
 
-def test_the_flag_counts_the_events_says_how_far_and_stays_behind_start_from_rest():
-    attrs = start_attrs(10.0, 90.0, [90.0, 90.0, 90.0], 1.0, [0.02, 0.4, math.nan])
+def test_the_flag_counts_the_events_names_the_run_in_and_stays_behind_start_from_rest():
+    attrs = start_attrs(10.0, 90.0, [90.0, 90.0, 90.0], 1.0, [0.02, 0.4, math.nan], [40.0, 162.3, math.nan])
     assert attrs["start_transient_left_max"] == 0.4 and attrs["start_unsettled_events"] == 1
+    assert attrs["start_settling_run_in_m"] == 162.3
     (flag,) = start_flags(attrs, total=3)
     assert flag.code == "start_unsettled" and flag.value == 0.4 and flag.threshold == SETTLED_TRANSIENT_LEFT
-    needed = math.ceil(100.0 * math.log(SETTLED_TRANSIENT_LEFT) / math.log(0.4))  # exp(−σ D / v) = limit
     assert "1 event of 3 has a sprung vehicle that keeps 40.0%" in flag.message
-    assert f"at least {needed:g} m in all" in flag.message
-    undamped = start_flags(start_attrs(10.0, 90.0, [90.0], 1.0, [1.0]), total=1)
-    assert "never settles" in undamped[0].message
-    assert not start_flags(start_attrs(10.0, 90.0, [90.0], 1.0, [SETTLED_TRANSIENT_LEFT]), total=1)
+    assert "give crossing.run_in = 163 m in the base scenario" in flag.message
+    undamped = start_flags(start_attrs(10.0, 90.0, [90.0], 1.0, [1.0], [math.inf]), total=1)
+    assert "never settles" in undamped[0].message and "start_settling_run_in_m" not in start_attrs(
+        10.0, 90.0, [90.0], 1.0, [1.0], [math.inf])
+    assert not start_flags(start_attrs(10.0, 90.0, [90.0], 1.0, [SETTLED_TRANSIENT_LEFT], [90.0]), total=1)
     at_rest = start_attrs(10.0, 0.0, [0.0], 1.0, [0.6])  # too short a road before the bridge: the distance flag
     assert [f.code for f in start_flags(at_rest, total=1)] == ["start_from_rest"]
     earlier = {k: v for k, v in attrs.items() if not k.startswith("start_")}  # (a dataset before 2026-12-07)
@@ -145,6 +163,9 @@ def test_a_stream_of_a_lightly_damped_preset_is_flagged_and_a_settled_one_is_not
     assert "start_unsettled" in ds.attrs["flag_codes"].split(",")
     assert "2 events of 2 have a sprung vehicle that keeps" in ds.attrs["warnings"] and "keeps" in output
     assert "on 2 events a vehicle had not settled (start_unsettled)" in output  # (the start's words say so too)
+    needed = ds["start_settling_run_in"].values
+    assert np.all(needed > 90.0) and ds.attrs["start_settling_run_in_m"] == float(needed.max())
+    assert f"give crossing.run_in = {math.ceil(needed.max()):g} m" in ds.attrs["warnings"]
     ds, _ = _stream(tmp_path, "dump-truck")
     assert np.all(ds["start_transient_left"].values < 0.02) and ds.attrs["start_unsettled_events"] == 0
     assert "start_unsettled" not in ds.attrs.get("flag_codes", "").split(",")
@@ -165,12 +186,14 @@ def test_a_part_written_before_the_share_was_stored_is_used_and_the_share_comput
     job = traffic_study(read_records(tmp_path / "r.csv"), base, batch_size=1)
     whole = run_study(job, tmp_path / "a.nc", workers=1, keep_parts=True)
     parts = parts_dir(tmp_path / "a.nc")
-    old = {k: v for k, v in load_part(parts, 0).items() if k not in ("start_transient_left", "batch_index", "spec_checksum")}
+    old = {k: v for k, v in load_part(parts, 0).items()
+           if k not in ("start_transient_left", "start_settling_run_in", "batch_index", "spec_checksum")}
     part_path(parts, 0).unlink()
     sums = parts / CHECKSUMS  # (its line dropped: the part is written again as an earlier version wrote it)
     sums.write_text("".join(line + "\n" for line in sums.read_text().splitlines()
                             if not line.endswith(part_path(parts, 0).name)))
     save_part(parts, 0, old, spec_checksum(job))
     again = job.assemble(parts)
-    assert np.array_equal(again["start_transient_left"].values, whole["start_transient_left"].values)
+    for name in ("start_transient_left", "start_settling_run_in"):
+        assert np.array_equal(again[name].values, whole[name].values)
     assert job.part_problem(load_part(parts, 0), job.batches()[0]) is None

@@ -821,23 +821,22 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
                  output=output, subject=subject, value=float(approach), threshold=float(settled))]
 
 
-def start_unsettled_flags(events: int, worst: float, driven: float, total: int, output: str = "impact_factor",
+def start_unsettled_flags(events: int, worst: float, settling: float, total: int, output: str = "impact_factor",
                           subject: str = "crossing.approach", limit: float = SETTLED_TRANSIENT_LEFT) -> list[Flag]:
     """A population's ``events`` (of ``total``; 0: not said) with a sprung vehicle that keeps more than ``limit`` of
-    its start transient at the bridge (``vbikit.solve.run_in.start_transient_left``; ``worst`` the largest share
-    kept, ``driven`` [m] the least road an event's vehicles drove before it, ``crossing.approach`` + the shortest
-    run-in): outside the range the settled start was checked in, their impact factors may come out low (one flag
-    about ``output``, ``subject``; none when no event keeps more).  The remedy's distance scales ``driven`` by
-    ln(limit) / ln(worst) (the transient decays as exp(−σ D / v)): a lower bound on the road needed in all, as a
-    vehicle behind the leading one has driven more than ``driven`` and may need more still."""
+    its start transient at the bridge (``vbikit.solve.run_in.start_settling``; ``worst`` the largest share kept,
+    ``settling`` [m] the run-in with which every vehicle would keep at most ``limit``, NaN when not known): outside
+    the range the settled start was checked in, their impact factors may come out low (one flag about ``output``,
+    ``subject``, naming that run-in; none when no event keeps more)."""
     if events <= 0 or not worst > limit:
         return []
-    if worst < 1.0 - 1e-9 and driven > 0.0:
-        remedy = (f"drive them further before the bridge: at least {math.ceil(driven * math.log(limit) / math.log(worst)):g} "
-                  "m in all (crossing.approach + crossing.run_in in the base scenario; more where a vehicle behind the "
-                  "first keeps the most), until the flag clears")
-    else:
+    if worst >= 1.0 - 1e-9:
         remedy = "a vehicle with an undamped mode the road excites never settles: give its suspension or tires damping"
+    elif math.isfinite(settling):
+        remedy = (f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as it is; "
+                  "the road must hold it: road.length), which settles every vehicle of the population to the limit")
+    else:
+        remedy = "drive them further before the bridge (crossing.run_in in the base scenario)"
     of = f" of {total}" if total > 0 else ""
     return [Flag("start_unsettled",
                  f"{counted(events, 'event')}{of} {'has' if events == 1 else 'have'} a sprung vehicle that keeps "

@@ -39,6 +39,10 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                                       "vehicles"),
     "start_unsettled_events": ("1", "events with a sprung vehicle that kept more than SETTLED_TRANSIENT_LEFT of its "
                                     "start transient (the start_unsettled flag)"),
+    "start_settling_run_in_m": ("m", "the crossing.run_in with which every sprung vehicle of every event would keep at "
+                                     "most SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is "
+                                     "(vbikit.solve.run_in.start_settling; vehicles with an undamped mode left out); "
+                                     "absent when no event has sprung vehicles"),
 }
 
 #: the counts among ``START_ATTRIBUTES`` (integers; 0 when a dataset does not state them)
@@ -46,21 +50,25 @@ START_COUNTS = ("run_in_shortened_events", "start_unsettled_events")
 
 
 def start_attrs(approach: float, run_in: float, got: ArrayLike, least_approach: float,
-                left: ArrayLike = ()) -> dict[str, Any]:
+                left: ArrayLike = (), settling: ArrayLike = ()) -> dict[str, Any]:
     """``START_ATTRIBUTES`` of a population whose events start ``approach`` [m] before the bridge after the
     population's ``run_in`` [m]; ``got``: the run-in each event got (NaN for one of moving forces);
-    ``least_approach`` [m]: the approach a run-in needs; ``left``: the share of its start transient each event's
-    sprung vehicles kept at the bridge at most (``vbikit.solve.run_in.start_transient_left``; NaN for moving forces)."""
+    ``least_approach`` [m]: the approach a run-in needs; ``left``, ``settling``: the share of its start transient
+    each event's sprung vehicles kept at the bridge at most and the run-in that would settle them
+    (``vbikit.solve.run_in.start_settling``; NaN for moving forces, inf for an undamped mode)."""
     got = np.asarray(got, float)
     got = got[np.isfinite(got)]
     left = np.asarray(left, float)
     left = left[np.isfinite(left)]
+    settling = np.asarray(settling, float)
+    settling = settling[np.isfinite(settling)]
     return {"approach_m": float(approach), "run_in_m": float(run_in),
             **({"run_in_min_m": float(got.min())} if got.size else {}),
             "run_in_shortened_events": int(np.sum(got < run_in - 1e-9)),
             "run_in_least_approach_m": float(least_approach),
             **({"start_transient_left_max": float(left.max()),
-                "start_unsettled_events": int(np.sum(left > SETTLED_TRANSIENT_LEFT))} if left.size else {})}
+                "start_unsettled_events": int(np.sum(left > SETTLED_TRANSIENT_LEFT))} if left.size else {}),
+            **({"start_settling_run_in_m": float(settling.max())} if settling.size else {})}
 
 
 def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> str:
@@ -101,7 +109,8 @@ def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject
     from_rest = start_from_rest_flags(driven, output=output, subject=subject, shortened=_shortened(attrs),
                                       least_approach=float(attrs.get("run_in_least_approach_m", 0.0)))
     return from_rest or start_unsettled_flags(int(attrs.get("start_unsettled_events", 0)),
-                                              float(attrs.get("start_transient_left_max", 0.0)), driven, total,
+                                              float(attrs.get("start_transient_left_max", 0.0)),
+                                              float(attrs.get("start_settling_run_in_m", math.nan)), total,
                                               output=output, subject=subject)
 
 

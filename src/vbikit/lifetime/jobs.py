@@ -384,7 +384,7 @@ class DynamicJob:
         from vbikit.fatigue import miner_damage, rainflow, reversals
         from vbikit.lifetime.peaks import knot_limits
         from vbikit.solve import choose_time_step, simulate
-        from vbikit.solve.run_in import start_transient_left
+        from vbikit.solve.run_in import start_settling
 
         setup = build_setup(self.setup_key)
         crossing, _, _, _ = self.crossing(g)
@@ -426,17 +426,19 @@ class DynamicJob:
         # the road the event's trucks drove alone before the run (crossing.run_in: the population's, fitted to the
         # road; NaN for moving forces, which have nothing to settle)
         out["run_in"] = np.array(crossing.run_in if any(m.vehicle.n_dof for m in crossing.vehicles) else np.nan)
-        out["start_transient_left"] = np.array(start_transient_left(crossing))  # (NaN for moving forces)
+        left, needed = start_settling(crossing)  # (NaN for moving forces)
+        out["start_transient_left"], out["start_settling_run_in"] = np.array(left), np.array(needed)
         out["n_steps"] = np.array(result.n_steps, float)
         out["unconverged_steps"] = np.array(result.unconverged_steps, float)  # (CrossingResult.unconverged_steps)
         return out
 
-    def start_transient_left(self, events) -> NDArray:
-        """``vbikit.solve.run_in.start_transient_left`` of each global event of ``events`` (its crossing only: no
-        simulation), for events whose runs were stored before it was."""
-        from vbikit.solve.run_in import start_transient_left
+    def start_settling(self, events) -> tuple[NDArray, NDArray]:
+        """``vbikit.solve.run_in.start_settling`` of each global event of ``events`` (its crossing only: no
+        simulation), for events whose runs were stored before it was: (shares kept, run-ins needed [m])."""
+        from vbikit.solve.run_in import start_settling
 
-        return np.array([start_transient_left(self.crossing(int(g))[0]) for g in events], float)
+        both = np.array([start_settling(self.crossing(int(g))[0]) for g in events], float).reshape(-1, 2)
+        return both[:, 0], both[:, 1]
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         rows = [self.run_event(g) for g in batch]
@@ -459,8 +461,8 @@ class DynamicJob:
         import xarray as xr
 
         cat = _joined_parts(parts, len(self.batches()))
-        if "start_transient_left" not in cat:  # (parts written before it was stored: no simulation needed)
-            cat["start_transient_left"] = self.start_transient_left(cat["event_id"])
+        if "start_settling_run_in" not in cat:  # (parts written before it was stored: no simulation needed)
+            cat["start_transient_left"], cat["start_settling_run_in"] = self.start_settling(cat["event_id"])
         return xr.Dataset({
             "dyn_peak": (("event", "line"), cat["dyn_peak"]),
             "run_static_peak": (("event", "line"), cat["run_static_peak"]),
@@ -471,4 +473,5 @@ class DynamicJob:
             "unconverged_steps": ("event", cat["unconverged_steps"]),
             "run_in": ("event", cat["run_in"]),
             "start_transient_left": ("event", cat["start_transient_left"]),
+            "start_settling_run_in": ("event", cat["start_settling_run_in"]),
         }, coords={"event": cat["event_id"]}, attrs={"study": self.to_json()})

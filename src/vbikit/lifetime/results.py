@@ -380,7 +380,8 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         # a short approach enter calmer than settled ones (start_from_rest)
         **start_attrs(prep.setup.context.template.crossing.approach, prep.setup.context.template.crossing.run_in,
                       _runs_in(dyn["results"]), prep.setup.context.least_approach,
-                      [float(r.get("start_transient_left", np.nan)) for r in dyn["results"].values()]),
+                      [float(r.get("start_transient_left", np.nan)) for r in dyn["results"].values()],
+                      [float(r.get("start_settling_run_in", np.nan)) for r in dyn["results"].values()]),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),

@@ -332,14 +332,15 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
         ds = _run(job, work / f"dynamic-{r}.nc", workers, scheduler, progress,
                   f"dynamics round {r}", {"events": int(gid.size), "dynamic": done[0]})
         done[0] += int(new.size)
-        # (a round finished before start_transient_left was stored: computed from the events' crossings)
-        left = ds["start_transient_left"].values if "start_transient_left" in ds else \
-            job.start_transient_left(ds["event"].values)
+        # (a round finished before the start's settling was stored: computed from the events' crossings)
+        left, needed = (ds["start_transient_left"].values, ds["start_settling_run_in"].values) \
+            if "start_settling_run_in" in ds else job.start_settling(ds["event"].values)
         for k, g in enumerate(ds["event"].values):
             results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
                                                              "damage_static", "max_range_dynamic", "unconverged_steps",
                                                              "run_in") if v in ds}
             results[int(g)]["start_transient_left"] = float(left[k])
+            results[int(g)]["start_settling_run_in"] = float(needed[k])
         return np.stack([results[int(g)]["dyn_peak"] for g in gid[new]])
 
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)

@@ -78,23 +78,38 @@ def start_transient_left(crossing: "Crossing") -> float:
     (``crossing.approach`` at its speed for the leading vehicle, longer for one behind it): a free vibration decays
     as exp(−σ t); at a constant speed v over D metres in all, exp(−σ_min D / v).  1 for a vehicle with an undamped
     mode the road excites (it never settles); 0 on a smooth road (nothing to settle: rest is the settled state); NaN
-    when no vehicle has DOFs (moving forces)."""
+    when no vehicle has DOFs (moving forces).  (``start_settling``'s first value.)"""
+    return start_settling(crossing)[0]
+
+
+def start_settling(crossing: "Crossing", limit: float | None = None) -> tuple[float, float]:
+    """(``start_transient_left``, the run-in [m] with which every sprung vehicle of ``crossing`` would keep at most
+    ``limit`` of its start transient (default ``SETTLED_TRANSIENT_LEFT``), the approach as it is): a vehicle needs
+    t* = ln(1 / limit) / σ_min since rest, of which its own time from the run's start to its entry, τ, is given,
+    and the run-in drives for run-in / v_slowest, so run-in = v_slowest (t* − τ), the largest over the vehicles, 0
+    at least.  Infinite for a vehicle with an undamped mode the road excites, or with every vehicle at rest; 0 on a
+    smooth road; NaN (both) when no vehicle has DOFs."""
+    limit = SETTLED_TRANSIENT_LEFT if limit is None else float(limit)
     t0 = crossing.start_time
     sprung = [m for m in crossing.vehicles if m.vehicle.n_dof]
     if not sprung:
-        return math.nan
+        return math.nan, math.nan
     if crossing.road is None:
-        return 0.0
+        return 0.0, 0.0
     slowest = min(abs(m._speed_at(t0)) for m in crossing.vehicles)
     run_in = max(float(crossing.run_in), 0.0)
-    worst = 0.0
+    before = run_in / slowest if run_in > 0.0 and slowest > 0.0 else 0.0  # (run_in_steps: none at rest)
+    worst, needed = 0.0, 0.0
     for motion in sprung:
         sigma = motion.vehicle.slowest_decay_rate(road_groups(motion.vehicle, crossing.road_right is not None))
-        before = run_in / slowest if run_in > 0.0 and slowest > 0.0 else 0.0  # (run_in_steps: none at rest)
         entry = motion.time_at(0.0)
-        driving = before + (entry - t0 if math.isfinite(entry) else math.inf)
-        worst = max(worst, math.exp(-sigma * driving) if sigma > 0.0 else 1.0)
-    return worst
+        own = entry - t0 if math.isfinite(entry) else math.inf  # (a vehicle that never enters: nothing to judge)
+        worst = max(worst, math.exp(-sigma * (before + own)) if sigma > 0.0 else 1.0)
+        if sigma > 0.0 and slowest > 0.0:
+            needed = max(needed, slowest * (math.log(1.0 / limit) / sigma - own))
+        elif math.isfinite(own):
+            needed = math.inf
+    return worst, needed
 
 
 def road_groups(vehicle: Any, two_lines: bool = False) -> NDArray[np.int64]:

@@ -42,7 +42,7 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.solve.run_in import RUN_IN_CLEARANCE, least_run_in_approach, population_run_in, start_transient_left
+from vbikit.solve.run_in import RUN_IN_CLEARANCE, least_run_in_approach, population_run_in, start_settling
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -71,10 +71,14 @@ EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
                                   "sprung vehicle of the event kept when it reached the bridge, exp(−σ_min t) "
                                   "(vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged "
                                   "start_unsettled); NaN for moving forces", np.float64),
+    "start_settling_run_in": ("m", "the crossing.run_in with which every sprung vehicle of the event would keep at most "
+                                   "SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is "
+                                   "(vbikit.solve.run_in.start_settling; inf: an undamped mode the road excites); NaN "
+                                   "for moving forces", np.float64),
 }
 #: per-event extras that need no simulation (a function of the event's crossing, ``start_transient_left``): a part
 #: written before they were stored is still used, and they are computed for its events when the dataset is assembled
-COMPUTED_EXTRAS = ("start_transient_left",)
+COMPUTED_EXTRAS = ("start_transient_left", "start_settling_run_in")
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
 #: flags read the events' quality (``vbikit.outputs.QUALITY_OUTPUTS``)
@@ -244,10 +248,10 @@ class TrafficStudy:
         sums = part_checksums(parts)
         for k in range(len(self.batches())):
             part = load_part(parts, k, sums)
+            if any(name not in part for name in COMPUTED_EXTRAS):  # (a part written before they were stored)
+                computed = np.array([start_settling(self.crossing(int(e))) for e in part["event"]], float)
+                part = {**part, **dict(zip(COMPUTED_EXTRAS, computed.reshape(-1, 2).T))}
             for name in ev:
-                if name in COMPUTED_EXTRAS and name not in part:  # (a part written before it was stored)
-                    ev[name][part["event"]] = [start_transient_left(self.crossing(int(e))) for e in part["event"]]
-                    continue
                 ev[name][part["event"]] = part_output(part, name, n_points) if name in OUTPUTS else part[name]
             for name in VEHICLE_OUTPUTS:
                 veh[name][part["vehicle"]] = part[name]
@@ -331,7 +335,7 @@ class TrafficStudy:
         row["airborne_wheels"] = float(bool(airborne_wheels(result)))
         crossing = result.crossing
         row["run_in"] = float(crossing.run_in) if any(m.vehicle.n_dof for m in crossing.vehicles) else math.nan
-        row["start_transient_left"] = start_transient_left(crossing)
+        row["start_transient_left"], row["start_settling_run_in"] = start_settling(crossing)
         forces = result.wheel_forces
         offsets = result.crossing.vehicle.wheel_offsets
         per_vehicle = []
@@ -391,7 +395,7 @@ class TrafficStudy:
         step_attrs, step_flags = governing_step_check(self, stats, impact)
         start = self.context().template.crossing  # (where its events start their vehicles: approach, run_in)
         started = start_attrs(start.approach, start.run_in, ev["run_in"], self.context().least_approach,
-                              ev["start_transient_left"])
+                              ev["start_transient_left"], ev["start_settling_run_in"])
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
