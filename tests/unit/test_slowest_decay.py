@@ -80,7 +80,9 @@ def test_a_mode_the_road_does_not_reach_does_not_count():
 def test_groups_must_name_every_wheel_and_a_moving_force_has_nothing_to_settle():
     with pytest.raises(ValueError, match="one group number per wheel"):
         _rolling_body().slowest_decay_rate(np.array([0]))
-    assert VEHICLE_PRESETS["moving-force"].build().slowest_decay_rate() == 0.0
+    assert VEHICLE_PRESETS["moving-force"].build().slowest_decay_rate() == math.inf  # (nothing to settle)
+    loose = _vehicle([[100.0]], [[0.0]], [[1.0e4]], [Wheel("w", 0.0, 0.0, 0.0, 0.0, np.array([1.0]))])
+    assert loose.slowest_decay_rate() == math.inf  # (a tire without spring or dashpot: the road reaches no mode)
 
 
 def test_presets_with_an_undamped_mode_the_road_excites_never_settle():

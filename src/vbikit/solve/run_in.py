@@ -104,7 +104,7 @@ def start_settling(crossing: "Crossing", limit: float | None = None) -> tuple[fl
         sigma = motion.vehicle.slowest_decay_rate(road_groups(motion.vehicle, crossing.road_right is not None))
         entry = motion.time_at(0.0)
         own = entry - t0 if math.isfinite(entry) else math.inf  # (a vehicle that never enters: nothing to judge)
-        worst = max(worst, math.exp(-sigma * (before + own)) if sigma > 0.0 else 1.0)
+        worst = max(worst, math.exp(-sigma * (before + own)) if sigma > 0.0 else 1.0)  # (σ = inf: nothing to settle)
         if sigma > 0.0 and slowest > 0.0:
             needed = max(needed, slowest * (math.log(1.0 / limit) / sigma - own))
         elif math.isfinite(own):

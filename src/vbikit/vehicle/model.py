@@ -14,6 +14,7 @@ Conventions
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -198,14 +199,16 @@ class Vehicle:
         (|ψⱼᴴ b| ≤ 1e-9 ‖ψⱼ‖ ‖b‖ for every input b = (0, M⁻¹ Σ_w∈g k_w r_w) and (0, M⁻¹ Σ_w∈g c_w r_w), ψⱼ its
         left eigenvector), is at rest on a rough road as on a flat one (a body's roll when both wheel lines read
         the same profile): it has no start transient.  0 for an undamped mode the road reaches (|Re λ| ≤ 1e-9 |λ|,
-        round-off) and for a vehicle without DOFs (a moving force, which has no vibration).  Kept per ``groups``: vehicles are
-        immutable."""
+        round-off); infinite when the road reaches no mode (a vehicle without DOFs, a moving force; tires without
+        stiffness or damping): nothing to settle.  Kept per ``groups``: vehicles are immutable."""
         lam = self.slowest_mode(groups)
+        if lam is None:
+            return math.inf
         return -lam.real if -lam.real > 1e-9 * abs(lam) else 0.0  # (an undamped mode: Re λ at round-off, either sign)
 
-    def slowest_mode(self, groups: NDArray[np.int64] | None = None) -> complex:
+    def slowest_mode(self, groups: NDArray[np.int64] | None = None) -> complex | None:
         """λ, the eigenvalue of the slowest decaying mode the road excites (``slowest_decay_rate`` is −Re λ;
-        |λ| / 2π its undamped natural frequency [Hz] for an underdamped mode); 0 when there is none (no DOFs,
+        |λ| / 2π its undamped natural frequency [Hz] for an underdamped mode); None when there is none (no DOFs,
         or no mode the road reaches).  ``groups`` as for ``slowest_decay_rate``; kept per ``groups``."""
         n_w = len(self.wheels)
         groups = np.arange(n_w) if groups is None else np.asarray(groups, np.int64)
@@ -214,10 +217,10 @@ class Vehicle:
         store = self.__dict__.setdefault("_slowest_modes", {})  # (the instance's own dict: frozen)
         key = groups.tobytes()
         if key not in store:
-            store[key] = self._slowest_mode(groups) if self.n_dof else 0j
+            store[key] = self._slowest_mode(groups) if self.n_dof else None
         return store[key]
 
-    def _slowest_mode(self, groups: NDArray[np.int64]) -> complex:
+    def _slowest_mode(self, groups: NDArray[np.int64]) -> complex | None:
         """``slowest_mode`` computed (a vehicle with DOFs)."""
         from scipy.linalg import eig
 
@@ -229,7 +232,7 @@ class Vehicle:
         forces = rows.T @ np.hstack([k_w[:, None] * member, c_w[:, None] * member])  # Σ_w∈g k_w r_w, Σ_w∈g c_w r_w
         forces = forces[:, np.any(forces != 0.0, axis=0)]
         if not forces.shape[1]:
-            return 0j
+            return None
         m_inv = np.linalg.solve(self.mass, np.hstack([self._grounded_stiffness(), c_hat, forces]))
         a = np.zeros((2 * n, 2 * n))
         a[:n, n:] = np.eye(n)
@@ -239,7 +242,7 @@ class Vehicle:
         lam, left = eig(a, left=True, right=False)  # columns ψⱼ: ψⱼᴴ A = λⱼ ψⱼᴴ
         reach = np.abs(left.conj().T @ b) / (np.linalg.norm(left, axis=0)[:, None] * np.linalg.norm(b, axis=0)[None, :])
         excited = np.flatnonzero(reach.max(axis=1) > 1e-9)
-        return complex(lam[excited[np.argmax(lam.real[excited])]]) if excited.size else 0j
+        return complex(lam[excited[np.argmax(lam.real[excited])]]) if excited.size else None
 
 
 @dataclass(frozen=True)
