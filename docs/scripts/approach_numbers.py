@@ -245,7 +245,9 @@ def _slowest_modes() -> list[float]:
     slowest = []
     for record in _stream(800, 600.0):
         truck = _vehicle(record)
-        slowest.append(abs(truck.slowest_mode(road_groups(truck))) / (2 * math.pi))
+        mode = truck.slowest_mode(road_groups(truck))
+        if mode is not None:  # (a truck whose modes the road does not reach has none)
+            slowest.append(abs(mode) / (2 * math.pi))
     return [round(min(slowest), 2), round(max(slowest), 2)]
 
 

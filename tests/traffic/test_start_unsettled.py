@@ -51,6 +51,9 @@ def test_the_run_in_that_settles_leaves_exactly_the_limit():
                     road=ROAD, approach=12.0, run_in=30.0)
     assert start_settling(pair)[1] == pytest.approx(15.0 * (math.log(1.0 / SETTLED_TRANSIENT_LEFT) / sigma - 2.6),
                                                     rel=1e-9)
+    # the round trip with several vehicles: the slowest speed sets the run-in's time for all of them
+    settled_pair = Crossing(BEAM, vehicles=pair.vehicles, road=ROAD, approach=12.0, run_in=start_settling(pair)[1])
+    assert start_transient_left(settled_pair) == pytest.approx(SETTLED_TRANSIENT_LEFT, rel=1e-9)
 
 
 def test_a_vehicle_behind_the_first_has_driven_further():
@@ -134,10 +137,25 @@ def test_the_flag_counts_the_events_names_the_run_in_and_stays_behind_start_from
     assert "never settles" in undamped[0].message and "start_settling_run_in_m" not in start_attrs(
         10.0, 90.0, [90.0], 1.0, [1.0], [math.inf])
     assert not start_flags(start_attrs(10.0, 90.0, [90.0], 1.0, [SETTLED_TRANSIENT_LEFT], [90.0]), total=1)
+    both = start_flags(start_attrs(10.0, 90.0, [90.0, 90.0], 1.0, [1.0, 0.3], [math.inf, 140.0]), total=2)
+    assert "never settles" in both[0].message and "crossing.run_in = 140 m" in both[0].message  # (both remedies)
+    cut = start_attrs(10.0, 300.0, [300.0, 60.0], 1.0, [0.01, 0.3], [40.0, 140.0])  # the road cut one run-in short
+    (short,) = start_unsettled_flags_of(cut)
+    assert "road.length" in short.message and "crossing.run_in =" not in short.message
     at_rest = start_attrs(10.0, 0.0, [0.0], 1.0, [0.6])  # too short a road before the bridge: the distance flag
     assert [f.code for f in start_flags(at_rest, total=1)] == ["start_from_rest"]
     earlier = {k: v for k, v in attrs.items() if not k.startswith("start_")}  # (a dataset before 2026-12-07)
     assert not start_flags(earlier, total=3)
+
+
+def start_unsettled_flags_of(attrs: dict) -> list:
+    """The start_unsettled flags of a population's start attributes judged as start_flags judges them, the distance
+    flag set aside (a population driven 100 m in all whose road cut one event's run-in short)."""
+    from vbikit.analysis.checks import start_unsettled_flags
+
+    return start_unsettled_flags(attrs["start_unsettled_events"], attrs["start_transient_left_max"],
+                                 attrs["start_settling_run_in_m"], 2, run_in=attrs["run_in_m"],
+                                 shortened=attrs["run_in_shortened_events"])
 
 
 def _stream(tmp_path, model: str) -> tuple[xr.Dataset, str]:

@@ -822,21 +822,35 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
 
 
 def start_unsettled_flags(events: int, worst: float, settling: float, total: int, output: str = "impact_factor",
-                          subject: str = "crossing.approach", limit: float = SETTLED_TRANSIENT_LEFT) -> list[Flag]:
+                          subject: str = "crossing.approach", limit: float = SETTLED_TRANSIENT_LEFT,
+                          run_in: float = math.nan, shortened: int = 0) -> list[Flag]:
     """A population's ``events`` (of ``total``; 0: not said) with a sprung vehicle that keeps more than ``limit`` of
     its start transient at the bridge (``vbikit.solve.run_in.start_settling``; ``worst`` the largest share kept,
-    ``settling`` [m] the run-in with which every vehicle would keep at most ``limit``, NaN when not known): outside
-    the range the settled start was checked in, their impact factors may come out low (one flag about ``output``,
-    ``subject``, naming that run-in; none when no event keeps more)."""
+    ``settling`` [m] the run-in with which every vehicle would keep at most ``limit``, the events with an undamped
+    vehicle left out, NaN when not known; ``run_in`` [m] the population's run-in, ``shortened`` the events whose
+    run-in the road cut short): outside the range the settled start was checked in, their impact factors may come
+    out low (one flag about ``output``, ``subject``, naming that run-in — or the road, when the population's run-in
+    is already as long and the road cut events short; none when no event keeps more)."""
     if events <= 0 or not worst > limit:
         return []
+    remedies = []
     if worst >= 1.0 - 1e-9:
-        remedy = "a vehicle with an undamped mode the road excites never settles: give its suspension or tires damping"
-    elif math.isfinite(settling):
-        remedy = (f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as it is; "
-                  "the road must hold it: road.length), which settles every vehicle of the population to the limit")
-    else:
-        remedy = "drive them further before the bridge (crossing.run_in in the base scenario)"
+        remedies.append("a vehicle with an undamped mode the road excites never settles: give its suspension or tires "
+                        "damping")
+    if math.isfinite(settling) and not math.ceil(settling) <= run_in:
+        remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as "
+                        "it is; the road must hold it: road.length), which settles the population's other vehicles to "
+                        "the limit" if remedies else
+                        f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as "
+                        "it is; the road must hold it: road.length), which settles every vehicle of the population to "
+                        "the limit")
+    elif math.isfinite(settling) and shortened:
+        remedies.append(f"crossing.run_in is long enough ({math.ceil(settling):g} m would do), but the road cut it "
+                        f"short on {counted(shortened, 'event')}: give a longer road.length (a random road) or a "
+                        "measured profile reaching further before the bridge")
+    if not remedies:
+        remedies.append("drive them further before the bridge (crossing.run_in in the base scenario)")
+    remedy = "; ".join(remedies)
     of = f" of {total}" if total > 0 else ""
     return [Flag("start_unsettled",
                  f"{counted(events, 'event')}{of} {'has' if events == 1 else 'have'} a sprung vehicle that keeps "

@@ -41,8 +41,9 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                                     "start transient (the start_unsettled flag)"),
     "start_settling_run_in_m": ("m", "the crossing.run_in with which every sprung vehicle of every event would keep at "
                                      "most SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is "
-                                     "(vbikit.solve.run_in.start_settling; vehicles with an undamped mode left out); "
-                                     "absent when no event has sprung vehicles"),
+                                     "(vbikit.solve.run_in.start_settling; events with a vehicle with an undamped mode "
+                                     "left out); absent when no event has sprung vehicles, or every event has such a "
+                                     "vehicle"),
 }
 
 #: the counts among ``START_ATTRIBUTES`` (integers; 0 when a dataset does not state them)
@@ -111,7 +112,8 @@ def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject
     return from_rest or start_unsettled_flags(int(attrs.get("start_unsettled_events", 0)),
                                               float(attrs.get("start_transient_left_max", 0.0)),
                                               float(attrs.get("start_settling_run_in_m", math.nan)), total,
-                                              output=output, subject=subject)
+                                              output=output, subject=subject,
+                                              run_in=float(attrs.get("run_in_m", math.nan)), shortened=_shortened(attrs))
 
 
 def _shortest(attrs: Mapping[str, Any]) -> float:

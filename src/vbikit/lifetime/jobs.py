@@ -79,15 +79,18 @@ MIN_DYNAMIC_BATCHES = 16
 EVENT_STRIDE = 2**20
 
 
-def _joined_parts(parts: Path, n_batches: int) -> dict[str, NDArray]:
+def _joined_parts(parts: Path, n_batches: int, complete=None) -> dict[str, NDArray]:
     """Every array of the finished parts (checked against their checksums), the batches' joined
-    along their first axis in batch order (the runner's bookkeeping left out)."""
+    along their first axis in batch order (the runner's bookkeeping left out); ``complete``: called
+    with each part's arrays first, to add what a part written by an earlier version lacks."""
     from vbikit.study.storage import load_part, part_checksums
 
     sums = part_checksums(parts)
     data: dict[str, list] = {}
     for k in range(n_batches):
         part = load_part(parts, k, sums)
+        if complete is not None:
+            part = complete(part)
         for name in part:
             if name not in ("batch_index", "spec_checksum"):
                 data.setdefault(name, []).append(np.asarray(part[name]))
@@ -432,6 +435,14 @@ class DynamicJob:
         out["unconverged_steps"] = np.array(result.unconverged_steps, float)  # (CrossingResult.unconverged_steps)
         return out
 
+    def _with_start_settling(self, part: dict) -> dict:
+        """A part's arrays with the start's settling of its events (``start_settling``) where it was written before
+        they were stored: no simulation needed."""
+        if "start_settling_run_in" in part:
+            return part
+        left, needed = self.start_settling(part["event_id"])
+        return {**part, "start_transient_left": left, "start_settling_run_in": needed}
+
     def start_settling(self, events) -> tuple[NDArray, NDArray]:
         """``vbikit.solve.run_in.start_settling`` of each global event of ``events`` (its crossing only: no
         simulation), for events whose runs were stored before it was: (shares kept, run-ins needed [m])."""
@@ -460,9 +471,7 @@ class DynamicJob:
     def assemble(self, parts: Path):
         import xarray as xr
 
-        cat = _joined_parts(parts, len(self.batches()))
-        if "start_settling_run_in" not in cat:  # (parts written before it was stored: no simulation needed)
-            cat["start_transient_left"], cat["start_settling_run_in"] = self.start_settling(cat["event_id"])
+        cat = _joined_parts(parts, len(self.batches()), self._with_start_settling)
         return xr.Dataset({
             "dyn_peak": (("event", "line"), cat["dyn_peak"]),
             "run_static_peak": (("event", "line"), cat["run_static_peak"]),

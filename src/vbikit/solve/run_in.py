@@ -87,8 +87,9 @@ def start_settling(crossing: "Crossing", limit: float | None = None) -> tuple[fl
     ``limit`` of its start transient (default ``SETTLED_TRANSIENT_LEFT``), the approach as it is): a vehicle needs
     t* = ln(1 / limit) / σ_min since rest, of which its own time from the run's start to its entry, τ, is given,
     and the run-in drives for run-in / v_slowest, so run-in = v_slowest (t* − τ), the largest over the vehicles, 0
-    at least.  Infinite for a vehicle with an undamped mode the road excites, or with every vehicle at rest; 0 on a
-    smooth road; NaN (both) when no vehicle has DOFs."""
+    at least.  Infinite for a vehicle with an undamped mode the road excites, or when any vehicle is at rest at the
+    start (no run-in then, ``run_in_steps``); 0 on a smooth road; NaN (both) when no vehicle has DOFs.  A vehicle
+    that never reaches the bridge, or whose modes the road does not reach, is not judged."""
     limit = SETTLED_TRANSIENT_LEFT if limit is None else float(limit)
     t0 = crossing.start_time
     sprung = [m for m in crossing.vehicles if m.vehicle.n_dof]
@@ -103,12 +104,12 @@ def start_settling(crossing: "Crossing", limit: float | None = None) -> tuple[fl
     for motion in sprung:
         sigma = motion.vehicle.slowest_decay_rate(road_groups(motion.vehicle, crossing.road_right is not None))
         entry = motion.time_at(0.0)
-        own = entry - t0 if math.isfinite(entry) else math.inf  # (a vehicle that never enters: nothing to judge)
-        worst = max(worst, math.exp(-sigma * (before + own)) if sigma > 0.0 else 1.0)  # (σ = inf: nothing to settle)
-        if sigma > 0.0 and slowest > 0.0:
-            needed = max(needed, slowest * (math.log(1.0 / limit) / sigma - own))
-        elif math.isfinite(own):
-            needed = math.inf
+        if not math.isfinite(entry) or sigma == math.inf:
+            continue  # (a vehicle that never enters, or whose modes the road does not reach: nothing to judge)
+        own = entry - t0
+        worst = max(worst, math.exp(-sigma * (before + own)) if sigma > 0.0 else 1.0)
+        needed = max(needed, slowest * (math.log(1.0 / limit) / sigma - own)) if sigma > 0.0 and slowest > 0.0 \
+            else math.inf
     return worst, needed
 
 
