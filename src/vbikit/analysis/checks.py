@@ -838,12 +838,9 @@ def start_unsettled_flags(events: int, worst: float, settling: float, total: int
         remedies.append("a vehicle with an undamped mode the road excites never settles: give its suspension or tires "
                         "damping")
     if math.isfinite(settling) and not math.ceil(settling) <= run_in:
+        whom = "the population's other vehicles" if remedies else "every vehicle of the population"
         remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as "
-                        "it is; the road must hold it: road.length), which settles the population's other vehicles to "
-                        "the limit" if remedies else
-                        f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as "
-                        "it is; the road must hold it: road.length), which settles every vehicle of the population to "
-                        "the limit")
+                        f"it is; the road must hold it: road.length), which settles {whom} to the limit")
     elif math.isfinite(settling) and shortened:
         remedies.append(f"crossing.run_in is long enough ({math.ceil(settling):g} m would do), but the road cut it "
                         f"short on {counted(shortened, 'event')}: give a longer road.length (a random road) or a "

@@ -46,7 +46,7 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                                      "vehicle"),
 }
 
-#: the counts among ``START_ATTRIBUTES`` (integers; 0 when a dataset does not state them)
+#: the counts among ``START_ATTRIBUTES`` (integers; a lifetime summary gives None for one its dataset does not state)
 START_COUNTS = ("run_in_shortened_events", "start_unsettled_events")
 
 

@@ -134,9 +134,7 @@ def vehicle_modes(vehicle) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
 
     if vehicle.n_dof == 0:
         return np.zeros(0), np.zeros(0)
-    c = np.array(vehicle.damping, float)
-    for w in vehicle.wheels:
-        c = c + w.damping * np.outer(w.row, w.row)
+    c = vehicle.damping + vehicle.tire_damping_matrix()
     lam, phi = eigh(vehicle.stiffness + vehicle.tire_stiffness_matrix(), vehicle.mass)
     omega = np.sqrt(np.clip(lam, 0.0, None))
     zeta = np.array([float(phi[:, k] @ c @ phi[:, k]) / (2 * omega[k]) if omega[k] > 0 else 0.0

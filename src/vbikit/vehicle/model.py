@@ -122,6 +122,14 @@ class Vehicle:
             return np.zeros((self.n_dof, self.n_dof))
         return (k_w[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0)  # added wheel by wheel
 
+    def tire_damping_matrix(self) -> NDArray[np.float64]:
+        """Σ_w c_w r_w r_wᵀ: the tires as dashpots to a rigid, flat ground."""
+        rows, _ = self._wheel_rows()
+        if not len(rows):
+            return np.zeros((self.n_dof, self.n_dof))
+        c_w = np.array([w.damping for w in self.wheels], float)
+        return (c_w[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0)  # added wheel by wheel
+
     def _wheel_rows(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The wheels' rows r_w stacked (n_wheels, n_dof) and their tire stiffnesses k_w (kept: vehicles are immutable)."""
         kept = self.__dict__.get("_rows_and_stiffness")
@@ -226,7 +234,7 @@ class Vehicle:
 
         rows, k_w = self._wheel_rows()
         c_w = np.array([w.damping for w in self.wheels], float)
-        c_hat = self.damping + (c_w[:, None, None] * (rows[:, :, None] * rows[:, None, :])).sum(axis=0)
+        c_hat = self.damping + self.tire_damping_matrix()
         n = self.n_dof
         member = (groups[:, None] == np.unique(groups)[None, :]).astype(float)  # (wheels, groups)
         forces = rows.T @ np.hstack([k_w[:, None] * member, c_w[:, None] * member])  # Σ_w∈g k_w r_w, Σ_w∈g c_w r_w
