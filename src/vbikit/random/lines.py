@@ -47,7 +47,23 @@ class Lines:
         return w
 
 
-def band_lines(n_min: float, n_max: float, ratio: float = 0.1, max_width: float = 0.01, tail: float = 0.01) -> Lines:
+#: the default grid's cell rule (``band_lines``' ratio, max_width [cycle/m] and tail)
+DEFAULT_GRID = (0.1, 0.01, 0.01)
+
+
+def default_lines(n_min: float, n_max: float, refinement: int = 0) -> Lines:
+    """The default grid (``DEFAULT_GRID``) over the band ``n_min`` … ``n_max`` [cycle/m], each cell's
+    width halved ``refinement`` times (about 2^refinement times the lines: 254, 506, 1,009 over ISO 8608's
+    band), as a random run refines it while its own grid check is above the limit
+    (``vbikit.random.response.GRID_REFINEMENTS``)."""
+    if int(refinement) != refinement or refinement < 0:
+        raise ValueError(f"refinement must be an integer >= 0, got {refinement!r}")
+    ratio, max_width, tail = (v / 2 ** int(refinement) for v in DEFAULT_GRID)
+    return band_lines(n_min, n_max, ratio, max_width, tail)
+
+
+def band_lines(n_min: float, n_max: float, ratio: float = DEFAULT_GRID[0], max_width: float = DEFAULT_GRID[1],
+               tail: float = DEFAULT_GRID[2]) -> Lines:
     """Cells tiling the band ``n_min`` … ``n_max`` [cycle/m]: widths min(``ratio``·a, max(``max_width``,
     ``tail``·a)) [cycle/m], a the cell's lower edge (geometric, capped, geometric again above
     max_width/tail; ``tail`` = 0: uniform up to n_max), the last cell cut at n_max.

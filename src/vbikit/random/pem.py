@@ -58,7 +58,7 @@ from numpy.typing import NDArray
 
 from vbikit._blas import single_thread_blas
 from vbikit.random import kernel
-from vbikit.random.lines import Lines, band_lines
+from vbikit.random.lines import Lines, default_lines
 from vbikit.road.psd import RoadPSD
 from vbikit.solve import kernels
 from vbikit.solve.crossing import Crossing
@@ -217,7 +217,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
     dt : float
         Time step [s] (the engine's for the same crossing on a sampled road).
     lines : Lines, optional
-        Wavenumber lines (default ``band_lines`` over the PSD's band).
+        Wavenumber lines (default ``default_lines`` over the PSD's band).
     data : KernelData, optional
         The crossing's kernel data if already built.
     substeps : int, optional
@@ -242,7 +242,7 @@ def pseudo_excitation(crossing: Crossing, road: PseudoRoad, probes: Probes, dt: 
                          "the vehicles at rest; the run-in needs method = \"exact\" (the default)")
     substeps = METHODS[method] if substeps is None else substeps
     data = kernel_data(crossing) if data is None else data
-    lines = band_lines(road.psd.n_min, road.psd.n_max) if lines is None else lines
+    lines = default_lines(road.psd.n_min, road.psd.n_max) if lines is None else lines
     if not dt > 0:
         raise ValueError(f"dt must be > 0 s, got {dt!r}")
     if int(substeps) != substeps or substeps < 1:
