@@ -16,6 +16,7 @@ from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import QUANTITIES, Reduction, effect_kinds, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
+from vbikit.solve.run_in import START_OUTPUTS, start_settling
 
 
 @dataclass(frozen=True)
@@ -338,6 +339,7 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "integrator": crossing.integrator,
         "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
+        **{k: v for k, v in zip(START_OUTPUTS, start_settling(crossing)) if not math.isnan(v)},  # (NaN: moving forces)
         **crossing_outputs,
         **flag_fields(run_flags(result, response.x, response.y) + strain_warnings(result, response) + static_reference_warnings(
             girders or [], points if points is not None else [{"name": point_name(1), "x": response.x, "y": response.y}
@@ -557,6 +559,7 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
     "integrator": ("-", "time integrator"),
     "speed": ("m/s", "vehicle speed at t = 0"),
     "n_contact_points_per_wheel": ("-", "contact points per wheel"),
+    **START_OUTPUTS,
     "response_girder": ("-", "girder of the response point (slab-on-girder bridges)"),
     "lateral_offset": ("m", "vehicle centreline from the deck centreline"),
     "girder_y": ("m", "girder lines from the deck centreline"),

@@ -65,6 +65,9 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     if acc:
         typer.echo("  σ max vehicle acceleration [m/s², rad/s²]: " + ", ".join(f"{k} {v:.3g}" for k, v in acc.items()))
     typer.echo(f"  lift-off probability (largest at one instant): {s['lift_off_probability']:.3g}")
+    from vbikit.cli.render import start_line
+
+    start_line(s)
     refined = s.get("grid_refinements", 0)
     typer.echo(f"  wavenumber lines: {s['n_lines']}, grid check {s['grid_change']:.2%} (σ on every second line "
                f"against every line)" + (f", the default grid's cells halved {refined} time(s) for it" if refined else "")

@@ -2,6 +2,8 @@
 files ``--out``, ``--plot`` and ``--summary`` ask for."""
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Optional
 
@@ -75,6 +77,7 @@ def print_summary(run: Run) -> None:
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s² (the deck's, at the response point)")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
+    start_line(s)
     coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
     implausible = has_flag(s, "implausible_deflection")
     doubt = airborne or coarse or implausible
@@ -154,6 +157,27 @@ def print_negative_note(negative: bool) -> None:
         from vbikit.analysis.checks import NEGATIVE_IM_NOTE
 
         typer.echo(f"  note: {NEGATIVE_IM_NOTE}")
+
+
+def start_line(s: dict) -> None:
+    """The start check's line (``vbikit.solve.run_in.start_settling``): what share of the vehicles' start
+    transient is left when they reach the bridge, and the run-in that settles it; nothing on a smooth road
+    (the vehicles start in their static equilibrium on it) or for moving forces."""
+    from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
+
+    left, needed = s.get("start_transient_left"), s.get("start_settling_run_in")
+    if left is None or not math.isfinite(left) or left <= 0.0:
+        return
+    run_in = float(s["inputs"]["run_in"] if "inputs" in s else s.get("run_in", 0.0))  # (a random run's summary: run_in)
+    start = f"run-in {run_in:g} m" if run_in > 0 else "at rest (crossing.run_in = 0, the paper's start)"
+    if left <= SETTLED_TRANSIENT_LEFT:
+        typer.echo(f"  start                {start}: {left:.1%} of the start transient left at the bridge (settled)")
+        return
+    remedy = (f"crossing.run_in = {math.ceil(needed):g} m leaves {SETTLED_TRANSIENT_LEFT:.0%}" if math.isfinite(needed)
+              else "an undamped vehicle mode the road excites never settles")
+    whose = "the vehicles'" if s.get("vehicles") else "the vehicle's"
+    typer.echo(f"  start                {start}: {left:.0%} of {whose} start transient is left at the bridge, "
+               f"part of this IM; {remedy}")
 
 
 def _im(value: float) -> str:

@@ -32,6 +32,7 @@ import numpy as np
 from vbikit._files import shared_spec
 from vbikit.analysis.population_start import start_attrs
 from vbikit.lifetime.screening import CHECK_FRACTION
+from vbikit.solve.run_in import START_OUTPUTS
 
 #: the IM statistics stored with the ends of their 95 % confidence intervals (``NAME_ci_lower``, ``NAME_ci_upper``)
 IM_WITH_INTERVALS = ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")
@@ -303,8 +304,9 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (at its time steps and, for moments, shears and reactions, at the instants a wheel crosses a jump or kink of the line); NaN if not simulated")),
         "event_simulated": ("event", simulated.astype(np.int8), ev_attrs("1", "1 if simulated dynamically")),
         "event_run_in": ("event", _event_run_in(dyn, simulated, gid), ev_attrs("m", "road the simulated event's trucks drove alone, from rest, before its coupled run (crossing.run_in: the population's, 100 m less the approach, or the part of it the road holds); NaN if not simulated or moving forces")),
-        "event_start_transient_left": ("event", _event_result(dyn, simulated, gid, "start_transient_left"), ev_attrs("1", "the largest share of its start transient (its slowest mode the road excites) a truck of the simulated event kept when it reached the bridge, exp(−σ_min t) (vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged start_unsettled); NaN if not simulated or moving forces")),
-        "event_start_settling_run_in": ("event", _event_result(dyn, simulated, gid, "start_settling_run_in"), ev_attrs("m", "the crossing.run_in with which every truck of the simulated event would keep at most SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is (vbikit.solve.run_in.start_settling; inf: an undamped mode the road excites); NaN if not simulated or moving forces")),
+        **{f"event_{name}": ("event", _event_result(dyn, simulated, gid, name),
+                             ev_attrs(unit, f"{meaning}; NaN if the event was not simulated"))
+           for name, (unit, meaning) in START_OUTPUTS.items()},
         "event_in_sample": ("event", np.isin(np.arange(n_ev), dyn["sample"]).astype(np.int8), ev_attrs("1", "1 if in the random sample (fatigue, IM statistics)")),
         "day_trucks": ("day", static["day_trucks"].values, ev_attrs("1", "trucks of the day")),
         **fat["variables"],

@@ -44,6 +44,7 @@ from vbikit.random.pem import PEMResult, Probes, PseudoRoad, pseudo_excitation
 PEM_METHOD = "exact"
 from vbikit.solve.crossing import Crossing
 from vbikit.solve.result import CrossingResult
+from vbikit.solve.run_in import START_OUTPUTS, start_settling
 from vbikit.solve.simulate import simulate
 
 log = logging.getLogger(__name__)
@@ -327,6 +328,8 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
            if k in head},
         "lift_off_probability": p_lift,
         "lift_off_probability_by_wheel": lift,
+        "run_in": float(crossing.run_in),
+        **{k: v for k, v in zip(START_OUTPUTS, start_settling(crossing)) if not np.isnan(v)},  # (NaN: moving forces)
         "wheel_force_std_max": {w.name: float(wheel_std[:, k].max()) for k, w in enumerate(vehicle.wheels)},
         "vehicle_acceleration_std_max": dict(zip(vehicle.dof_names,
                                                  map(float, pem.std("vehicle_acceleration")[:n].max(axis=0)))),

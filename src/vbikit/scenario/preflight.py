@@ -343,6 +343,7 @@ def scenario_inputs(scenario: Scenario, plan: Plan) -> dict[str, Any]:
         "tire": scenario.tire.model,
         "road": road,
         "integrator": c.integrator,
+        "run_in": float(c.run_in),
         "dt": plan.dt,
         "dt_given": scenario.crossing.dt is not None,
         "n_steps": plan.estimate.n_steps,

@@ -46,6 +46,19 @@ SETTLED_APPROACH = 100.0
 #: root mean square (docs/traffic.md, "Start from rest and the approach"; docs/scripts/approach_numbers.py,
 #: ``checked_transients`` and ``transient_effect``)
 SETTLED_TRANSIENT_LEFT = 0.07
+#: the start check's two numbers (``start_settling``), each (unit, meaning), as a single run's summary, a traffic
+#: stream's events and a lifetime's dynamic events store them
+START_OUTPUTS: dict[str, tuple[str, str]] = {
+    "start_transient_left": ("1", "the largest share of its start transient (its slowest mode the road excites) a "
+                                  "sprung vehicle kept when it reached the bridge, exp(−σ_min t) "
+                                  "(vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT = 0.07 the "
+                                  "start is not settled: flagged start_unsettled in a population); 0 on a smooth road; "
+                                  "NaN for moving forces (a single run's summary leaves it out)"),
+    "start_settling_run_in": ("m", "the crossing.run_in with which every sprung vehicle would keep at most "
+                                   "SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is "
+                                   "(vbikit.solve.run_in.start_settling; inf: an undamped mode the road excites); NaN "
+                                   "for moving forces (left out, as above)"),
+}
 #: the least road [m] between the vehicles' front axle at the start and the deck's near end for which a
 #: population adds its run-in (``population_run_in``): a contact patch reaches ahead of its axle, and a run-in
 #: needs every contact point off the deck at the start

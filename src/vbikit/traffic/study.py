@@ -42,7 +42,8 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.solve.run_in import RUN_IN_CLEARANCE, least_run_in_approach, population_run_in, start_settling
+from vbikit.solve.run_in import (RUN_IN_CLEARANCE, START_OUTPUTS, least_run_in_approach, population_run_in,
+                                 start_settling)
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -67,18 +68,11 @@ EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
     "run_in": ("m", "road the event's sprung vehicles drove alone, from rest, before the run started "
                     "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
                     "for moving forces, which have no vibration to build up)", np.float64),
-    "start_transient_left": ("1", "the largest share of its start transient (its slowest mode the road excites) a "
-                                  "sprung vehicle of the event kept when it reached the bridge, exp(−σ_min t) "
-                                  "(vbikit.solve.run_in.start_transient_left; above SETTLED_TRANSIENT_LEFT: flagged "
-                                  "start_unsettled); NaN for moving forces", np.float64),
-    "start_settling_run_in": ("m", "the crossing.run_in with which every sprung vehicle of the event would keep at most "
-                                   "SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is "
-                                   "(vbikit.solve.run_in.start_settling; inf: an undamped mode the road excites); NaN "
-                                   "for moving forces", np.float64),
+    **{name: (unit, meaning, np.float64) for name, (unit, meaning) in START_OUTPUTS.items()},
 }
 #: per-event extras that need no simulation (a function of the event's crossing, ``start_transient_left``): a part
 #: written before they were stored is still used, and they are computed for its events when the dataset is assembled
-COMPUTED_EXTRAS = ("start_transient_left", "start_settling_run_in")
+COMPUTED_EXTRAS = tuple(START_OUTPUTS)
 #: the catalogue's outputs every stream reduces, whatever it asks for: its statistics
 #: (``stream_statistics``) and figure read them, the resume check reads the step counts, the dataset's
 #: flags read the events' quality (``vbikit.outputs.QUALITY_OUTPUTS``)
