@@ -94,7 +94,7 @@ def validation_message(err: ValidationError, title: str, unknown_key: Optional[s
                 msg += f"; allowed: {', '.join(keys)}"
         elif e["type"] == "missing":
             msg = "missing required key"
-        elif e["type"] in _BOUND_ERRORS:
+        elif e["type"] in _BOUND_ERRORS + _INTEGER_ERRORS + _NUMBER_ERRORS:
             msg = bound_message(e, _field_at(model, tuple(e["loc"])))
         elif "input" in e and e["type"] != "value_error":
             msg = f"{msg} (got {e['input']!r})"
@@ -132,13 +132,13 @@ def number(value: Any, key: str, lo: Optional[float] = None, hi: Optional[float]
 
 
 def expected(lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open: bool = False, hi_open: bool = False,
-             integer: bool = False, unit: str = "") -> str:
+             integer: bool = False, unit: str = "", finite: bool = False) -> str:
     """``expected a number in [lo, hi] [unit]`` (or ``>= lo``, ``< hi`` …; ``lo_open``/``hi_open``:
     the bound excluded): the one wording of an allowed range, of ``number`` and of the bound errors
     of the input files' pydantic validations (``bound_message``)."""
     low = "" if lo is None else f"{'(' if lo_open else '['}{lo:g}"
     high = "" if hi is None else f"{hi:g}{')' if hi_open else ']'}"
-    what = "an integer" if integer else "a number"
+    what = "an integer" if integer else "a finite number" if finite else "a number"
     rng = (f" in {low}, {high}" if lo is not None and hi is not None else
            f" {'>' if lo_open else '>='} {lo:g}" if lo is not None else
            f" {'<' if hi_open else '<='} {hi:g}" if hi is not None else "")
@@ -149,6 +149,8 @@ def expected(lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open:
 _BOUND_ERRORS = ("greater_than", "greater_than_equal", "less_than", "less_than_equal")
 #: pydantic's error types of a value that is not an integer where one is expected (20.5, "20")
 _INTEGER_ERRORS = ("int_from_float", "int_parsing", "int_type")
+#: pydantic's error types of a value that is not a finite number where one is expected ("30", true, inf)
+_NUMBER_ERRORS = ("float_type", "float_parsing", "finite_number")
 #: the unit at the end of a field's description: "speed at t = 0 [km/h]" -> km/h ("[-]": none)
 _UNIT = re.compile(r"\[([A-Za-z0-9²³µ°/^·. -]{1,12})\]\s*$")
 
@@ -171,7 +173,7 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
     of a value that is not an integer where one is expected (``Input should be a valid integer``), as
     ``expected`` words it, with both bounds of ``field`` (its pydantic ``FieldInfo``; None: the
     violated bound only) and the unit its description ends with; None for another error."""
-    if error.get("type") not in _BOUND_ERRORS + _INTEGER_ERRORS:
+    if error.get("type") not in _BOUND_ERRORS + _INTEGER_ERRORS + _NUMBER_ERRORS:
         return None
     bounds: dict[str, Any] = {"ge": None, "gt": None, "le": None, "lt": None}
     for item in _constraints(field):
@@ -187,8 +189,13 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
     unit = _UNIT.search(getattr(field, "description", None) or "")
     text = expected(None if lo is None else float(lo), None if hi is None else float(hi), lo_open=lo_open,
                     hi_open=hi_open, integer=(int in kinds and float not in kinds) or error["type"] in _INTEGER_ERRORS,
-                    unit=unit.group(1) if unit and unit.group(1).strip() != "-" else "")
-    return f"{text}, got {_short(error['input'])}" if "input" in error else text
+                    unit=unit.group(1) if unit and unit.group(1).strip() != "-" else "",
+                    finite=error["type"] == "finite_number")
+    if "input" not in error:
+        return text
+    value = error["input"]
+    quoted = " (a number is written without quotes)" if isinstance(value, str) else ""
+    return f"{text}, got {_short(value)}{quoted}"
 
 
 def _short(value: Any) -> str:

@@ -49,8 +49,8 @@ def test_ten_million_crossings_refused_quickly_without_yes(tmp_path, study_toml)
 @pytest.mark.parametrize("axis,values,words", [
     ("tire.n_points", [1, 3, 1], "repeats a value"),
     ("crossing.speed_kmh", [60, 60.0], "repeats a value"),
-    ("crossing.speed_kmh", ["60", 70], "valid number"),
-    ("crossing.speed_kmh", [True, 70], "valid number"),
+    ("crossing.speed_kmh", ["60", 70], "expected a number"),
+    ("crossing.speed_kmh", [True, 70], "expected a number"),
 ])
 def test_bad_axis_values(axis, values, words):
     d = copy.deepcopy(SMALL)

@@ -58,8 +58,6 @@ def _with(table: str, line: str) -> str:
     (MODES, "span", "span = 10.0", 'model = "beam"'),
     (MODES, "support_stiffness", "support_stiffness = 1e9", 'model = "continuous-beam"'),
     ('model = "paper-bridge-2"\n', "modes_file", 'modes_file = "m.vbikit-modes"', 'model = "modes-file"'),
-    ('model = "paper-bridge-2"\n', "span", "span = 10.0", 'model = "beam"'),
-    ('model = "paper-bridge-2"\n', "spans", "spans = [5.0, 5.0]", 'model = "continuous-beam"'),
     ('model = "paper-bridge-2-beam"\n', "neutral_axis_depth", "neutral_axis_depth = 0.5", 'model = "beam"'),
     ('model = "paper-bridge-2-beam"\n', "EI", "EI = 5e9", 'model = "beam"'),
 ])
@@ -69,6 +67,15 @@ def test_a_kind_refuses_a_key_of_another_kind(table, key, line, other):
     allowed = msg.split("allowed keys: ")[1].split(" (")[0].split(", ")
     assert key not in allowed and "model" in allowed and "n_modes" in allowed, msg
     assert f"{key} is a key of {other}" in msg and "model = \"preset\"" not in msg, msg
+
+
+@pytest.mark.parametrize("key, line", [("span", "span = 10.0"), ("spans", "spans = [5.0, 5.0]")])
+def test_a_deck_key_on_a_slab_on_girder_preset_names_its_deck_table(key, line):
+    """A slab-on-girder preset takes its deck's geometry in [bridge.deck]: the refusal says so (a new user
+    wrote span = 30 beside model = "paper-bridge-2" and was sent to model = "beam")."""
+    msg = refusal(_with('model = "paper-bridge-2"\n', line))
+    assert f"bridge.{key}: unknown key" in msg and f"[bridge.deck] table (bridge.deck.{key})" in msg, msg
+    assert "is a key of" not in msg, msg
 
 
 def test_a_modes_file_key_on_another_kind_says_which_kind_takes_it():

@@ -143,7 +143,7 @@ def test_a_parameter_of_another_tire_is_refused_naming_the_key(model, key):
 def test_parameter_ranges_name_the_key():
     with pytest.raises(ScenarioError, match=r"tire\.n_points: expected an integer in \[1, 100\], got 0"):
         _tire('[tire]\nmodel = "multipoint"\nn_points = 0\n')
-    with pytest.raises(ScenarioError, match=r"tire\.radius: Input should be a valid number"):
+    with pytest.raises(ScenarioError, match=r"tire\.radius: expected a number in \(0\.05, 2\] \[m\], got 'big' \(a number is written without quotes\)"):
         _tire('[tire]\nmodel = "disk"\nradius = "big"\n')
     with pytest.raises(ValueError, match=r"tire model 'multipoint': n_points: expected an integer in \[1, 100\], got 0"):
         tire_from_parameters("multipoint", n_points=0)

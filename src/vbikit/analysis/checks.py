@@ -791,9 +791,14 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
                  value=float(per_crossing[k]), threshold=fraction)]
 
 
+#: where a population's remedies put their crossing keys (a traffic stream's base scenario; a lifetime file
+#: passes its own [crossing] table)
+BASE_SCENARIO = "the base scenario"
+
+
 def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, output: str = "impact_factor",
                           subject: str = "crossing.approach", shortened: int = 0,
-                          least_approach: float = 0.0) -> list[Flag]:
+                          least_approach: float = 0.0, where: str = BASE_SCENARIO) -> list[Flag]:
     """A population's events (traffic streams, a lifetime's dynamic events) start their vehicles at rest in
     static equilibrium ``approach`` [m] before the bridge (``crossing.approach`` + ``crossing.run_in``, the
     road they drive before it alone: ``vbikit.solve.run_in``; the shortest over the events): below
@@ -802,7 +807,7 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
     from ``settled`` on).  ``shortened``: events whose run-in the road cut short (a population's run-in fitted
     to a short road), named in the words with the remedy; ``least_approach`` [m]: the approach a run-in needs
     (every contact point off the deck at the start, ``vbikit.solve.run_in.RUN_IN_CLEARANCE``) when the given
-    one is shorter — then the remedy is to lengthen it."""
+    one is shorter — then the remedy is to lengthen it; ``where``: the table the remedy's keys are in."""
     if not approach < settled:
         return []
     if approach < least_approach:
@@ -813,7 +818,7 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
                   "give a longer road.length (a random road) or a measured profile reaching further before the bridge")
     else:
         remedy = (f"for design values let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} "
-                  "in the base scenario (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)")
+                  f"in {where} (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)")
     return [Flag("start_from_rest",
                  f"the events start their vehicles at rest {approach:g} m before the bridge (crossing.approach + "
                  "crossing.run_in): they enter it before their body vibration has built up, so the impact factors and "
@@ -823,14 +828,15 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
 
 def start_unsettled_flags(events: int, worst: float, settling: float, total: int, output: str = "impact_factor",
                           subject: str = "crossing.approach", limit: float = SETTLED_TRANSIENT_LEFT,
-                          run_in: float = math.nan, shortened: int = 0) -> list[Flag]:
+                          run_in: float = math.nan, shortened: int = 0, where: str = BASE_SCENARIO) -> list[Flag]:
     """A population's ``events`` (of ``total``; 0: not said) with a sprung vehicle that keeps more than ``limit`` of
     its start transient at the bridge (``vbikit.solve.run_in.start_settling``; ``worst`` the largest share kept,
     ``settling`` [m] the run-in with which every vehicle would keep at most ``limit``, the events with an undamped
     vehicle left out, NaN when not known; ``run_in`` [m] the population's run-in, ``shortened`` the events whose
     run-in the road cut short): outside the range the settled start was checked in, their impact factors may come
     out low (one flag about ``output``, ``subject``, naming that run-in — or the road, when the population's run-in
-    is already as long and the road cut events short; none when no event keeps more)."""
+    is already as long and the road cut events short; none when no event keeps more); ``where``: the table the
+    remedy's keys are in (``BASE_SCENARIO``, or a lifetime file's)."""
     if events <= 0 or not worst > limit:
         return []
     remedies = []
@@ -839,14 +845,14 @@ def start_unsettled_flags(events: int, worst: float, settling: float, total: int
                         "damping")
     if math.isfinite(settling) and not math.ceil(settling) <= run_in:
         whom = "the population's other vehicles" if remedies else "every vehicle of the population"
-        remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in the base scenario (crossing.approach as "
+        remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in {where} (crossing.approach as "
                         f"it is; the road must hold it: road.length), which settles {whom} to the limit")
     elif math.isfinite(settling) and shortened:
         remedies.append(f"crossing.run_in is long enough ({math.ceil(settling):g} m would do), but the road cut it "
                         f"short on {counted(shortened, 'event')}: give a longer road.length (a random road) or a "
                         "measured profile reaching further before the bridge")
     if not remedies:
-        remedies.append("drive them further before the bridge (crossing.run_in in the base scenario)")
+        remedies.append(f"drive them further before the bridge (crossing.run_in in {where})")
     remedy = "; ".join(remedies)
     of = f" of {total}" if total > 0 else ""
     return [Flag("start_unsettled",

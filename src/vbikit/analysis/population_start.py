@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, start_from_rest_flags, start_unsettled_flags
+from vbikit.analysis.checks import BASE_SCENARIO, Flag, start_from_rest_flags, start_unsettled_flags
 from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
 
 #: the attributes (name -> (units, meaning)) a population dataset states its start with (``start_attrs``)
@@ -95,7 +95,7 @@ def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> 
 
 
 def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject: str = "crossing.approach",
-                sprung: bool = False, total: int = 0) -> list[Flag]:
+                sprung: bool = False, total: int = 0, where: str = BASE_SCENARIO) -> list[Flag]:
     """``start_from_rest`` (``vbikit.analysis.checks.start_from_rest_flags``) judged on a dataset's
     ``START_ATTRIBUTES``: its approach plus the shortest run-in an event got; none when no event has sprung
     vehicles (no ``run_in_min_m``, unless ``sprung`` says the population's vehicles are: a dataset written before
@@ -108,12 +108,13 @@ def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject
         return []
     driven = float(attrs["approach_m"]) + _shortest(attrs)
     from_rest = start_from_rest_flags(driven, output=output, subject=subject, shortened=_shortened(attrs),
-                                      least_approach=float(attrs.get("run_in_least_approach_m", 0.0)))
+                                      least_approach=float(attrs.get("run_in_least_approach_m", 0.0)), where=where)
     return from_rest or start_unsettled_flags(int(attrs.get("start_unsettled_events", 0)),
                                               float(attrs.get("start_transient_left_max", 0.0)),
                                               float(attrs.get("start_settling_run_in_m", math.nan)), total,
                                               output=output, subject=subject,
-                                              run_in=float(attrs.get("run_in_m", math.nan)), shortened=_shortened(attrs))
+                                              run_in=float(attrs.get("run_in_m", math.nan)), shortened=_shortened(attrs),
+                                              where=where)
 
 
 def _shortest(attrs: Mapping[str, Any]) -> float:

@@ -64,7 +64,8 @@ def presets() -> None:
 
     for kind, (amp, length, ramp, shape) in DEFECT_DEFAULTS.items():
         size = "depth" if amp < 0 else "height"
-        typer.echo(f"  {kind:<14} {size} {abs(amp):g} m, length {length:g} m, ramp {ramp:g} m, shape {shape}")
+        ramps = f"ramp {ramp:g} m" if ramp > 0 else "no ramp (ramp is for trapezoid and step shapes)"
+        typer.echo(f"  {kind:<14} {size} {abs(amp):g} m, length {length:g} m, {ramps}, shape {shape}")
     typer.echo("Roads ([road] class = ...):")
     classes = ", ".join(f"{c} {v:.4g}" for c, v in ISO_CLASSES.items())
     typer.echo(f"  ISO 8608 Gd(n0 = 0.1 cycle/m) [m³/cycle]: {classes}")

@@ -46,7 +46,7 @@ def print_summary(run: Run) -> None:
                      f"measured {road['profile_file']}" if "profile_file" in road else "smooth")
         if road.get("defects"):
             road_text += f"; defects: {', '.join(road['defects'])}"
-        deck = "".join(f", {k} {v}" for k, v in inp.get("bridge_deck", {}).items())
+        deck = "".join(f", {k} {v}" for k, v in inp.get("bridge_deck", {}).items() if k != "span")  # (span: below)
         several_spans = len(inp.get("bridge_deck", {}).get("spans", [])) > 1
         length = f"length {inp['span']:g} m" if several_spans else f"span {inp['span']:g} m"  # (the deck's whole length)
         typer.echo(f"  bridge               {inp['bridge']} ({length}, {inp['n_modes']} modes, "

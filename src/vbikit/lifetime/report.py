@@ -204,7 +204,8 @@ def _start_flags(name: str, a: dict) -> list[Flag]:
     if not _sprung(a):
         return []
     return start_flags(_start(a), output=flag_output("return_levels", "total"), subject=name, sprung=True,
-                       total=int(a.get("n_dynamic_events", 0)))
+                       total=int(a.get("n_dynamic_events", 0)),
+                       where="the lifetime file's [crossing] table (or its base scenario's)")
 
 
 def _direction_flags(name: str, e: dict) -> list[Flag]:
@@ -525,7 +526,7 @@ def text_report(facts: dict[str, Any]) -> str:
             above = has_flag(e, "governing_step_sensitive", output=flag_output("governing", w))
             check = ("n/a" if change is None else f"{100 * change:+.3f} % "
                      + ("ABOVE" if above else "within") + f" the {100 * facts['half_step_tolerance']:g} % tolerance")
-            lines.append(f"  governing {w} maximum: day {g['day']} at "
+            lines.append(f"  governing {w} maximum: day {g['day']} (the dataset's day index, from 0) at "
                          f"{_clock(g['time_of_day_s'])}, {g['vehicles']}; static {_g(g['static'], scale=k)}, total "
                          f"{_g(g['total'], scale=k)}; total at half the time step "
                          f"{_g(g['total_half_step'], scale=k)} ({check})")

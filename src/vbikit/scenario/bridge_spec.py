@@ -35,7 +35,7 @@ MAX_EI = 1e16
 #: below it the modes' frequencies underflow against any vehicle's (1e-300 overflowed the load-effect step estimate)
 MIN_EI = 1.0
 MAX_MASS_PER_LENGTH = 1e6
-#: span lengths of a continuous beam [m] (the longest bridge spans are about 2 km; shorter than 0.5 m the mesh
+#: span lengths [m] of a continuous beam (and the longest of a beam: the longest bridge spans are about 2 km); shorter than 0.5 m the mesh
 #: of ``elements_per_span`` elements degenerates)
 MIN_SPAN = 0.5
 MAX_SPAN = 5000.0
@@ -115,7 +115,7 @@ class BeamSpec(BridgeKind):
     """[bridge] model = "beam": a simply supported Euler–Bernoulli beam (vbikit.bridge.EulerBernoulliBeam)."""
 
     model: Literal["beam"] = Field("beam", description="Euler–Bernoulli beam")
-    span: Optional[float] = Field(None, gt=0, description="span length [m]")
+    span: Optional[float] = Field(None, gt=0, le=MAX_SPAN, description="span length [m]")
     EI: Optional[float] = Field(None, ge=MIN_EI, le=MAX_EI, description="bending stiffness [N m^2]")
     mass_per_length: Optional[float] = Field(None, gt=0, le=MAX_MASS_PER_LENGTH, description="mass per length [kg/m]")
     damping_ratio: _DAMPING_RATIO = DEFAULT_DAMPING_RATIO
@@ -287,7 +287,13 @@ class PresetBridgeSpec(BridgeKind):
 
     @classmethod
     def unknown_key_note(cls, key: str, table: dict[str, Any]) -> str:
+        from vbikit.scenario.deck import SCENARIO_PARAMETERS
+
         note = super().unknown_key_note(key, table)
+        model = table.get("model")
+        if isinstance(model, str) and model in BRIDGE_PRESETS and _deck_preset(model) and key in SCENARIO_PARAMETERS:
+            return (f"a preset fixes its properties; this slab-on-girder preset takes a change of {key} in its "
+                    f"[bridge.deck] table (bridge.deck.{key})")
         return f"a preset fixes its properties{'; ' + note if note else ''}"
 
     def build(self, base_dir: Path | str = ".") -> ModalBridge:

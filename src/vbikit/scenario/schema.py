@@ -316,6 +316,8 @@ class CrossingSpec(Section):
     @field_validator("integrator")
     @classmethod
     def _known_integrator(cls, v: str) -> str:
+        same = [name for name in integrator_names() if name.lower() == v.lower()]
+        v = v if v in integrator_names() or len(same) != 1 else same[0]  # (any letter case, as road.class)
         try:
             get_integrator(v)
         except ValueError:
@@ -397,6 +399,10 @@ class ResponseSpec(Section):
                                                   _fields_set={k for k in ("x", "y", "girder") if k in self.model_fields_set})]
 
 
+#: a scenario without [vehicle] or [[vehicles]] (``Scenario``, and ``_format`` with the other errors)
+VEHICLE_MISSING = "vehicle: missing required key (a [vehicle] table, or [[vehicles]] tables for several vehicles)"
+
+
 class Scenario(Section):
     """A whole scenario file."""
 
@@ -415,7 +421,7 @@ class Scenario(Section):
     @model_validator(mode="after")
     def _vehicle_or_vehicles(self) -> "Scenario":
         if self.vehicle is None and self.vehicles is None:
-            raise ValueError("vehicle: missing required key (a [vehicle] table, or [[vehicles]] tables for several vehicles)")
+            raise ValueError(VEHICLE_MISSING)
         if self.vehicle is not None and self.vehicles is not None:
             raise ValueError("give one [vehicle] table or an array of [[vehicles]] tables, not both")
         c = self.crossing
@@ -621,6 +627,10 @@ def _format(err: ValidationError, data: dict[str, Any], prefix: tuple[Any, ...] 
         if key:  # a section's validator named one of its keys: "loc.key: …"
             loc, msg = f"{loc}.{key.group(1)}", msg[key.end():]
         lines.append(f"{loc}: {msg}" if loc else msg)
+    if not prefix and isinstance(data, dict) and "vehicle" not in data and "vehicles" not in data \
+            and not any(line.startswith("vehicle") for line in lines):
+        # (the scenario's own check of its vehicles runs only once its tables are valid: say it with the others)
+        lines.append(VEHICLE_MISSING)
     return "invalid scenario:\n  " + "\n  ".join(lines)
 
 
