@@ -159,8 +159,8 @@ def test_a_lifetime_records_each_dynamic_events_run_in_and_judges_the_shortest()
     old_part = prep.dynamic_job(np.array([g]))._with_start_settling({"event_id": np.array([g])})
     assert old_part["start_transient_left"].tolist() == [left[0]] and old_part["start_settling_run_in"].tolist() == [needed[0]]
     attrs = start_attrs(5.0, 95.0, _runs_in({1: {"run_in": 95.0}, 2: {"run_in": 61.5}, 3: {"run_in": math.nan}}), 1.0)
-    assert attrs == {"approach_m": 5.0, "run_in_m": 95.0, "run_in_min_m": 61.5, "run_in_shortened_events": 1,
-                     "run_in_least_approach_m": 1.0}
+    assert attrs == {"approach_m": 5.0, "run_in_m": 95.0, "run_in_min_m": 61.5, "run_in_max_m": 95.0,
+                     "run_in_adaptive": 0, "run_in_shortened_events": 1, "run_in_least_approach_m": 1.0}
     # a result stored without a run-in (an earlier version's work): computed at rest, and judged so
     at_rest = start_attrs(5.0, 95.0, _runs_in({1: {"run_in": 95.0}, 4: {}}), 1.0)
     assert at_rest["run_in_min_m"] == 0.0 and at_rest["run_in_shortened_events"] == 1

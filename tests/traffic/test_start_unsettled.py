@@ -158,35 +158,56 @@ def start_unsettled_flags_of(attrs: dict) -> list:
                                  shortened=attrs["run_in_shortened_events"])
 
 
-def _stream(tmp_path, model: str) -> tuple[xr.Dataset, str]:
+def _stream(tmp_path, model: str, road: str = "", crossing: str = "") -> tuple[xr.Dataset, str]:
     tmp_path = tmp_path / model
-    tmp_path.mkdir()
+    tmp_path.mkdir(parents=True)
     (tmp_path / "r.csv").write_text("time [s],lane,direction,speed [km/h],model\n0,1,+x,80,%s\n30,1,+x,70,%s\n"
                                     % (model, model))
     (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[tire]\n'
-                                        'model = "point"\n[road]\nclass = "B"\n')
+                                        f'model = "point"\n[road]\nclass = "B"\n{road}\n{crossing}')
     res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
                                    "--out", str(tmp_path / "o.nc"), "--workers", "1", "--no-progress"])
     assert res.exit_code == 0, res.output
     return xr.load_dataset(tmp_path / "o.nc"), res.output
 
 
-def test_a_stream_of_a_lightly_damped_preset_is_flagged_and_a_settled_one_is_not(tmp_path):
-    """The two-axle preset decays at 0.25 s⁻¹ (slower than every checked truck): after 100 m at 70–80 km/h it keeps
-    about a third of its transient, flagged in the dataset and printed; the dump truck (0.95 s⁻¹) keeps under 2 %."""
+def test_a_population_lengthens_the_run_in_of_a_lightly_damped_vehicle_to_settle_it(tmp_path):
+    """The two-axle preset decays at 0.25 s⁻¹ (slower than every checked truck): after the population's 100 m at
+    70–80 km/h it would keep about a third of its transient. The population gives each of its events the run-in its
+    vehicle needs instead (``EventContext.settled_run_in``: the settling run-in rounded up to the metre), so each
+    keeps at most SETTLED_TRANSIENT_LEFT, a little less for the rounding, and nothing is flagged; the dump truck
+    (0.95 s⁻¹) keeps under 2 % after the population's own 90 m."""
     ds, output = _stream(tmp_path, "two-axle")
-    left = ds["start_transient_left"].values
-    assert left.shape == (2,) and np.all(left > 0.25) and np.all(left < 0.45)
-    assert ds.attrs["start_unsettled_events"] == 2 and ds.attrs["start_transient_left_max"] == float(left.max())
-    assert "start_unsettled" in ds.attrs["flag_codes"].split(",")
-    assert "2 events of 2 have a sprung vehicle that keeps" in ds.attrs["warnings"] and "keeps" in output
-    assert "on 2 events a vehicle had not settled (start_unsettled)" in output  # (the start's words say so too)
-    needed = ds["start_settling_run_in"].values
-    assert np.all(needed > 90.0) and ds.attrs["start_settling_run_in_m"] == float(needed.max())
-    assert f"give crossing.run_in = {math.ceil(needed.max()):g} m" in ds.attrs["warnings"]
+    left, needed, run_in = (ds[k].values for k in ("start_transient_left", "start_settling_run_in", "run_in"))
+    assert left.shape == (2,) and np.all(needed > 150.0)  # (what 100 m left: about a third)
+    assert np.array_equal(run_in, np.ceil(needed))  # each event its own run-in, from its vehicle's decay
+    assert np.all(left <= SETTLED_TRANSIENT_LEFT) and np.all(left > 0.9 * SETTLED_TRANSIENT_LEFT)
+    assert ds.attrs["run_in_m"] == 90.0 and ds.attrs["run_in_adaptive"] == 1
+    assert ds.attrs["run_in_max_m"] == float(run_in.max()) and ds.attrs["run_in_shortened_events"] == 0
+    assert ds.attrs["start_unsettled_events"] == 0 and "start_unsettled" not in ds.attrs.get("flag_codes", "").split(",")
+    assert f"longer where the vehicles needed more to settle, up to {run_in.max():g} m" in output
+    assert run_in.tolist() == [229.0, 199.0]  # (docs/traffic.md, "Which vehicles 100 m settles", quotes them)
     ds, _ = _stream(tmp_path, "dump-truck")
     assert np.all(ds["start_transient_left"].values < 0.02) and ds.attrs["start_unsettled_events"] == 0
+    assert np.all(ds["run_in"].values == 90.0)  # (settled by the population's own run-in: not lengthened)
     assert "start_unsettled" not in ds.attrs.get("flag_codes", "").split(",")
+
+
+def test_a_short_road_or_a_given_run_in_leaves_the_vehicle_unsettled_and_flagged(tmp_path):
+    """Where the population cannot settle the vehicle the flag stays, naming what to do: a random road too short for
+    the run-in it needs (``road.length``: the run-in cut short), or a run-in the base scenario gives (not lengthened:
+    the user's; its remedy the run-in that settles it)."""
+    ds, output = _stream(tmp_path, "two-axle", road='length = 200')
+    assert ds.attrs["run_in_shortened_events"] == 2 and ds.attrs["start_unsettled_events"] == 2
+    assert np.all(ds["run_in"].values < ds["start_settling_run_in"].values)
+    assert "road cut it short on 2 events: give a longer road.length" in ds.attrs["warnings"]
+    assert "give crossing.run_in =" not in ds.attrs["warnings"]
+    given, output = _stream(tmp_path / "given", "two-axle", crossing="[crossing]\nrun_in = 90\n")
+    left, needed = given["start_transient_left"].values, given["start_settling_run_in"].values
+    assert np.all(given["run_in"].values == 90.0) and given.attrs["run_in_adaptive"] == 0
+    assert np.all(left > 0.25) and np.all(left < 0.45) and given.attrs["start_unsettled_events"] == 2
+    assert f"give crossing.run_in = {math.ceil(needed.max()):g} m" in given.attrs["warnings"]
+    assert "on 2 events a vehicle had not settled (start_unsettled)" in output  # (the start's words say so too)
 
 
 def test_a_part_written_before_the_share_was_stored_is_used_and_the_share_computed(tmp_path):

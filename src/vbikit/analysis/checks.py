@@ -67,6 +67,7 @@ from typing import Any, Callable, Iterable, Mapping, Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from vbikit._limits import MAX_RUN_IN
 from vbikit._words import counted
 from vbikit.bridge.girder_deck import OBLIQUE_MESH_ADVISED_SKEW
 from vbikit.road.profile import RoadProfile
@@ -828,7 +829,8 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
 
 def start_unsettled_flags(events: int, worst: float, settling: float, total: int, output: str = "impact_factor",
                           subject: str = "crossing.approach", limit: float = SETTLED_TRANSIENT_LEFT,
-                          run_in: float = math.nan, shortened: int = 0, where: str = BASE_SCENARIO) -> list[Flag]:
+                          run_in: float = math.nan, shortened: int = 0, where: str = BASE_SCENARIO,
+                          adaptive: bool = False) -> list[Flag]:
     """A population's ``events`` (of ``total``; 0: not said) with a sprung vehicle that keeps more than ``limit`` of
     its start transient at the bridge (``vbikit.solve.run_in.start_settling``; ``worst`` the largest share kept,
     ``settling`` [m] the run-in with which every vehicle would keep at most ``limit``, the events with an undamped
@@ -836,14 +838,24 @@ def start_unsettled_flags(events: int, worst: float, settling: float, total: int
     run-in the road cut short): outside the range the settled start was checked in, their impact factors may come
     out low (one flag about ``output``, ``subject``, naming that run-in — or the road, when the population's run-in
     is already as long and the road cut events short; none when no event keeps more); ``where``: the table the
-    remedy's keys are in (``BASE_SCENARIO``, or a lifetime file's)."""
+    remedy's keys are in (``BASE_SCENARIO``, or a lifetime file's); ``adaptive``: the population already gave each
+    event the run-in its vehicles need (``run_in_adaptive``), so what is left is the road that cut it short, a run-in
+    beyond the longest allowed, or an undamped vehicle."""
     if events <= 0 or not worst > limit:
         return []
     remedies = []
     if worst >= 1.0 - 1e-9:
         remedies.append("a vehicle with an undamped mode the road excites never settles: give its suspension or tires "
                         "damping")
-    if math.isfinite(settling) and not math.ceil(settling) <= run_in:
+    if adaptive and math.isfinite(settling):
+        if shortened:
+            remedies.append(f"the population lengthens each event's run-in to what its vehicles need, but the road cut "
+                            f"it short on {counted(shortened, 'event')}: give a longer road.length (a random road) or "
+                            "a measured profile reaching further before the bridge")
+        elif math.ceil(settling) > MAX_RUN_IN:
+            remedies.append(f"their vehicles need a run-in of {math.ceil(settling):g} m, more than the longest "
+                            f"allowed ({MAX_RUN_IN:g} m): give them more damping, or read their impact factors as low")
+    elif math.isfinite(settling) and not math.ceil(settling) <= run_in:
         whom = "the population's other vehicles" if remedies else "every vehicle of the population"
         remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in {where} (crossing.approach as "
                         f"it is; the road must hold it: road.length), which settles {whom} to the limit")

@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from vbikit._limits import MAX_RUN_IN
 from vbikit._words import counted
 from vbikit.analysis.checks import BASE_SCENARIO, Flag, start_from_rest_flags, start_unsettled_flags
 from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
@@ -31,7 +32,13 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                       "(vbikit.solve.run_in; 0: they start at rest)"),
     "run_in_min_m": ("m", "the shortest run-in an event with sprung vehicles got (less than run_in_m where the road "
                           "was too short for the whole of it); absent when no event has sprung vehicles"),
-    "run_in_shortened_events": ("1", "events whose run-in the road cut short"),
+    "run_in_max_m": ("m", "the longest run-in an event with sprung vehicles got (more than run_in_m where its "
+                          "vehicles needed more to settle: run_in_adaptive); absent when no event has sprung vehicles"),
+    "run_in_adaptive": ("1", "1 if the population lengthened an event's run-in to what its vehicles need to keep at "
+                             "most SETTLED_TRANSIENT_LEFT of their start transient (its own run-in, on a rough road: "
+                             "vbikit.traffic.study.EventContext.settled_run_in); 0 for a run-in the base scenario "
+                             "gives (absent: a dataset written before 2026-12-07, 0)"),
+    "run_in_shortened_events": ("1", "events whose run-in the road cut short (of what the population gives them)"),
     "run_in_least_approach_m": ("m", "the approach a run-in needs: every contact point off the deck at the start"),
     "start_transient_left_max": ("1", "the largest share of its start transient (its slowest mode the road excites) "
                                       "a sprung vehicle kept when it reached the bridge, exp(−σ_min t) "
@@ -46,26 +53,35 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
                                      "vehicle"),
 }
 
-#: the counts among ``START_ATTRIBUTES`` (integers; a lifetime summary gives None for one its dataset does not state)
-START_COUNTS = ("run_in_shortened_events", "start_unsettled_events")
+#: the integers among ``START_ATTRIBUTES``, counts and the one yes/no (a lifetime summary gives None for one its
+#: dataset does not state)
+START_COUNTS = ("run_in_adaptive", "run_in_shortened_events", "start_unsettled_events")
 
 
 def start_attrs(approach: float, run_in: float, got: ArrayLike, least_approach: float,
-                left: ArrayLike = (), settling: ArrayLike = ()) -> dict[str, Any]:
+                left: ArrayLike = (), settling: ArrayLike = (), adaptive: bool = False) -> dict[str, Any]:
     """``START_ATTRIBUTES`` of a population whose events start ``approach`` [m] before the bridge after the
     population's ``run_in`` [m]; ``got``: the run-in each event got (NaN for one of moving forces);
     ``least_approach`` [m]: the approach a run-in needs; ``left``, ``settling``: the share of its start transient
     each event's sprung vehicles kept at the bridge at most and the run-in that would settle them
-    (``vbikit.solve.run_in.start_settling``; NaN for moving forces, inf for an undamped mode)."""
+    (``vbikit.solve.run_in.start_settling``; NaN for moving forces, inf for an undamped mode; per event, as ``got``);
+    ``adaptive``: the population lengthened each event's run-in to its vehicles' settling run-in (rounded up to the
+    metre, at most ``MAX_RUN_IN``), which is then what an event was given and may have been cut short of."""
     got = np.asarray(got, float)
-    got = got[np.isfinite(got)]
+    need = np.asarray(settling, float)
+    given = np.full(got.shape, float(run_in))
+    if adaptive and need.shape == got.shape:
+        lengthen = np.isfinite(need) & (need > run_in)
+        given[lengthen] = np.minimum(np.ceil(need[lengthen]), MAX_RUN_IN)
+    sprung = np.isfinite(got)
+    got, given = got[sprung], given[sprung]
     left = np.asarray(left, float)
     left = left[np.isfinite(left)]
-    settling = np.asarray(settling, float)
-    settling = settling[np.isfinite(settling)]
+    settling = need[np.isfinite(need)]
     return {"approach_m": float(approach), "run_in_m": float(run_in),
-            **({"run_in_min_m": float(got.min())} if got.size else {}),
-            "run_in_shortened_events": int(np.sum(got < run_in - 1e-9)),
+            **({"run_in_min_m": float(got.min()), "run_in_max_m": float(got.max())} if got.size else {}),
+            "run_in_adaptive": int(bool(adaptive)),
+            "run_in_shortened_events": int(np.sum(got < given - 1e-9)),
             "run_in_least_approach_m": float(least_approach),
             **({"start_transient_left_max": float(left.max()),
                 "start_unsettled_events": int(np.sum(left > SETTLED_TRANSIENT_LEFT))} if left.size else {}),
@@ -90,8 +106,11 @@ def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> 
     less = f"; the road held less on {counted(short, 'event')}, {shortest:g} m the shortest" if short else ""
     unsettled = int(attrs.get("start_unsettled_events", 0))
     still = (f"; on {counted(unsettled, 'event')} a vehicle had not settled (start_unsettled)") if unsettled else ""
+    longest = float(attrs.get("run_in_max_m", run_in))
+    longer = (f", longer where the vehicles needed more to settle, up to {longest:g} m"
+              if int(attrs.get("run_in_adaptive", 0)) and longest > run_in + 1e-9 else "")
     return (f"{vehicles} start{'' if unsettled else ' settled,'} {approach:g} m before the bridge after driving "
-            f"{run_in:g} m of the road alone (crossing.run_in{less}){still}")
+            f"{run_in:g} m of the road alone (crossing.run_in{longer}{less}){still}")
 
 
 def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject: str = "crossing.approach",
@@ -114,7 +133,7 @@ def start_flags(attrs: Mapping[str, Any], output: str = "impact_factor", subject
                                               float(attrs.get("start_settling_run_in_m", math.nan)), total,
                                               output=output, subject=subject,
                                               run_in=float(attrs.get("run_in_m", math.nan)), shortened=_shortened(attrs),
-                                              where=where)
+                                              where=where, adaptive=bool(int(attrs.get("run_in_adaptive", 0))))
 
 
 def _shortest(attrs: Mapping[str, Any]) -> float:

@@ -103,19 +103,26 @@ def start_settling(crossing: "Crossing", limit: float | None = None) -> tuple[fl
     at least.  Infinite for a vehicle with an undamped mode the road excites, or when any vehicle is at rest at the
     start (no run-in then, ``run_in_steps``); 0 on a smooth road; NaN (both) when no vehicle has DOFs.  A vehicle
     that never reaches the bridge, or whose modes the road does not reach, is not judged."""
+    if crossing.road is None and any(m.vehicle.n_dof for m in crossing.vehicles):
+        return 0.0, 0.0
+    return settling(crossing, crossing.road_right is not None, limit)
+
+
+def settling(crossing: "Crossing", two_lines: bool, limit: float | None = None) -> tuple[float, float]:
+    """``start_settling`` of ``crossing``'s vehicles on a rough road, whether or not the crossing holds it yet
+    (``two_lines``: the wheel lines read their own profiles, ``road_groups``): what a population decides its
+    run-in with before it makes an event's road (``vbikit.traffic.study.EventContext.crossing``)."""
     limit = SETTLED_TRANSIENT_LEFT if limit is None else float(limit)
     t0 = crossing.start_time
     sprung = [m for m in crossing.vehicles if m.vehicle.n_dof]
     if not sprung:
         return math.nan, math.nan
-    if crossing.road is None:
-        return 0.0, 0.0
     slowest = min(abs(m._speed_at(t0)) for m in crossing.vehicles)
     run_in = max(float(crossing.run_in), 0.0)
     before = run_in / slowest if run_in > 0.0 and slowest > 0.0 else 0.0  # (run_in_steps: none at rest)
     worst, needed = 0.0, 0.0
     for motion in sprung:
-        sigma = motion.vehicle.slowest_decay_rate(road_groups(motion.vehicle, crossing.road_right is not None))
+        sigma = motion.vehicle.slowest_decay_rate(road_groups(motion.vehicle, two_lines))
         entry = motion.time_at(0.0)
         if not math.isfinite(entry) or sigma == math.inf:
             continue  # (a vehicle that never enters, or whose modes the road does not reach: nothing to judge)

@@ -33,6 +33,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import input_digests, shared_name, shared_spec
+from vbikit._limits import MAX_RUN_IN
 from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
 from vbikit.analysis.population_start import start_attrs, start_flags
 from vbikit.analysis.plan import ResponsePlan
@@ -43,7 +44,7 @@ from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
 from vbikit.solve.run_in import (RUN_IN_CLEARANCE, START_OUTPUTS, least_run_in_approach, population_run_in,
-                                 start_settling)
+                                 settling, start_settling)
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -389,7 +390,7 @@ class TrafficStudy:
         step_attrs, step_flags = governing_step_check(self, stats, impact)
         start = self.context().template.crossing  # (where its events start their vehicles: approach, run_in)
         started = start_attrs(start.approach, start.run_in, ev["run_in"], self.context().least_approach,
-                              ev["start_transient_left"], ev["start_settling_run_in"])
+                              ev["start_transient_left"], ev["start_settling_run_in"], adaptive=self.context().settled)
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -521,9 +522,10 @@ class EventContext:
     the event's random road, or the fixed one).  ``EventContext.of(base, base_dir)`` builds it from
     a traffic base scenario; lifetime runs use it too.  A base scenario without ``crossing.run_in`` gets the
     population's (``settled``: ``vbikit.solve.run_in.population_run_in``, the trucks start as if they had
-    driven ``SETTLED_APPROACH`` of the road), shortened on an event that would reach beyond the road
-    (``road_range``, ``fit_run_in``; a run-in the base scenario gives is fitted alike); ``run_in = 0`` there
-    starts them at rest."""
+    driven ``SETTLED_APPROACH`` of the road) or, on a rough road, longer for an event whose vehicles need more to
+    keep at most ``SETTLED_TRANSIENT_LEFT`` of their start transient (``settling``: a lighter damped vehicle), shortened
+    on an event that would reach beyond the road (``road_range``, ``fit_run_in``; a run-in the base scenario gives
+    is fitted alike, and not lengthened); ``run_in = 0`` there starts them at rest."""
 
     template: "_Template"
     scenario: Scenario
@@ -537,6 +539,8 @@ class EventContext:
     #: the shortest approach [m] with which a run-in can start (every contact point off the deck:
     #: ``RUN_IN_CLEARANCE`` beyond the deck's ends)
     least_approach: float = 0.0
+    #: whether the two wheel lines read their own profiles (the road's ``road_right``: ``road_groups``)
+    two_lines: bool = False
 
     @classmethod
     def of(cls, base: dict, base_dir: str) -> "EventContext":
@@ -562,7 +566,8 @@ class EventContext:
         road_range = (random_road_range(road_psd(road), road.spacing, road.length) if random_road else
                       (max(p.x[0] for p in fixed), min(p.x[-1] for p in fixed)) if fixed and road.profile_file else None)
         ctx = cls(_Template(dataclasses.replace(crossing, road=None, road_right=None)), scenario, built.plan,
-                  random_road, settled=settled, road_range=road_range, least_approach=least_approach)
+                  random_road, settled=settled, road_range=road_range, least_approach=least_approach,
+                  two_lines=built.crossing.road_right is not None)
         if not random_road:
             ctx._fixed_road = (built.crossing.road, built.crossing.road_right)
         return ctx
@@ -577,13 +582,31 @@ class EventContext:
     def crossing(self, motions: tuple[VehicleMotion, ...], seed: int) -> Crossing:
         """The vehicles ``motions`` on the template's bridge and the road of ``seed`` (a random road
         only over the range their contact points touch: the same road there as ``road(seed)``), with the
-        run-in fitted to that road (``fit_run_in``)."""
-        bare = self.template.with_vehicles(motions, None, None)
+        run-in fitted to that road (``fit_run_in``): the population's, or longer for vehicles that need more
+        (``settled_run_in``)."""
+        bare = self.settled_run_in(self.template.with_vehicles(motions, None, None))
         if bare.run_in > 0 and self.road_range is not None:
             bare = fit_run_in(bare, self.road_range)
         if not self.random_road:
             return dataclasses.replace(bare, road=self._fixed_road[0], road_right=self._fixed_road[1])
         return with_scenario_road(bare, self.scenario.road, self.scenario, seed)
+
+
+    def settled_run_in(self, bare: Crossing) -> Crossing:
+        """``bare`` (an event's vehicles, no road yet) with the population's run-in lengthened, on a rough road, to
+        the one with which each of its sprung vehicles keeps at most ``SETTLED_TRANSIENT_LEFT`` of its start transient
+        at the bridge (``vbikit.solve.run_in.settling``, rounded up to the metre, at most ``MAX_RUN_IN``): the
+        population's ``SETTLED_APPROACH`` was checked with stock trucks, and a lighter damped vehicle needs more.
+        ``bare`` itself for a run-in the base scenario gives, none (an approach too short for one), a smooth road,
+        moving forces, or vehicles that need no more; a vehicle with an undamped mode the road excites never settles
+        (no run-in is enough: ``start_unsettled`` names it)."""
+        rough = self.random_road or self._fixed_road[0] is not None
+        if not (self.settled and rough and bare.run_in > 0.0):
+            return bare
+        needed = settling(bare, self.two_lines)[1]
+        if not (math.isfinite(needed) and needed > bare.run_in):
+            return bare
+        return dataclasses.replace(bare, run_in=min(float(math.ceil(needed)), MAX_RUN_IN))
 
 
 #: road [m] a fitted run-in leaves between the road it reads and the road's first or last station (the
