@@ -199,5 +199,7 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
 
 
 def _short(value: Any) -> str:
+    if isinstance(value, bool):  # (as the file writes it: TOML's true, false)
+        return "true" if value else "false"
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."

@@ -4,6 +4,8 @@ start) and the ``start_unsettled`` flag of a population whose vehicles keep more
 was checked with (``SETTLED_TRANSIENT_LEFT``; docs/traffic.md, "Start from rest and the approach")."""
 from __future__ import annotations
 
+import dataclasses
+
 import json
 import math
 from pathlib import Path
@@ -158,11 +160,11 @@ def start_unsettled_flags_of(attrs: dict) -> list:
                                  shortened=attrs["run_in_shortened_events"])
 
 
-def _stream(tmp_path, model: str, road: str = "", crossing: str = "") -> tuple[xr.Dataset, str]:
+def _stream(tmp_path, model: str, road: str = "", crossing: str = "", records: str = "") -> tuple[xr.Dataset, str]:
     tmp_path = tmp_path / model
     tmp_path.mkdir(parents=True)
-    (tmp_path / "r.csv").write_text("time [s],lane,direction,speed [km/h],model\n0,1,+x,80,%s\n30,1,+x,70,%s\n"
-                                    % (model, model))
+    (tmp_path / "r.csv").write_text("time [s],lane,direction,speed [km/h],model\n"
+                                    + (records or "0,1,+x,80,%s\n30,1,+x,70,%s\n" % (model, model)))
     (tmp_path / "base.toml").write_text('[bridge]\nmodel = "paper-bridge-1-beam"\nn_modes = 3\n[tire]\n'
                                         f'model = "point"\n[road]\nclass = "B"\n{road}\n{crossing}')
     res = CliRunner().invoke(app, ["traffic", str(tmp_path / "r.csv"), "--bridge", str(tmp_path / "base.toml"),
@@ -208,6 +210,68 @@ def test_a_short_road_or_a_given_run_in_leaves_the_vehicle_unsettled_and_flagged
     assert np.all(left > 0.25) and np.all(left < 0.45) and given.attrs["start_unsettled_events"] == 2
     assert f"give crossing.run_in = {math.ceil(needed.max()):g} m" in given.attrs["warnings"]
     assert "on 2 events a vehicle had not settled (start_unsettled)" in output  # (the start's words say so too)
+
+
+def test_an_approach_of_100_m_or_more_is_lengthened_too_and_one_too_short_is_not(tmp_path):
+    """With crossing.approach = 120 m the population's own run-in is 0 (100 m driven already), yet the two-axle
+    preset needs more: it gets it, as any event does; with an approach too short for any run-in (0.5 m: the
+    vehicles would stand on the deck) nothing is lengthened nor counted as cut short, and the start from rest is
+    flagged with its own remedy (a longer approach)."""
+    ds, output = _stream(tmp_path, "two-axle", crossing="[crossing]\napproach = 120\n")
+    run_in, needed = ds["run_in"].values, ds["start_settling_run_in"].values
+    assert ds.attrs["run_in_m"] == 0.0 and ds.attrs["run_in_adaptive"] == 1
+    assert np.all(run_in > 0.0) and np.array_equal(run_in, np.ceil(needed))
+    assert ds.attrs["run_in_shortened_events"] == 0 and ds.attrs["start_unsettled_events"] == 0
+    assert "start at rest" not in output and f"up to {run_in.max():g} m" in output
+    short, _ = _stream(tmp_path / "short", "two-axle", crossing="[crossing]\napproach = 0.5\n")
+    assert np.all(short["run_in"].values == 0.0) and short.attrs["run_in_adaptive"] == 0
+    assert short.attrs["run_in_shortened_events"] == 0
+    assert "start_from_rest" in short.attrs["flag_codes"].split(",") and "crossing.approach >=" in short.attrs["warnings"]
+
+
+def test_an_undamped_vehicle_does_not_keep_its_events_other_vehicles_unsettled(tmp_path):
+    """The 3S2 (its tandem bogie pitches undamped: it never settles) and the two-axle preset in one event: the
+    event's run-in is the two-axle's need (the undamped vehicle left out of it), and the flag names the 3S2."""
+    from vbikit.vehicle.presets import VEHICLE_PRESETS
+
+    ds, _ = _stream(tmp_path, "mixed", records="0,1,+x,80,two-axle\n0.5,1,+x,80,3s2\n")
+    assert ds.sizes["event"] == 1 and float(ds["run_in"].values[0]) > 150.0  # (the two-axle's: about 230 m)
+    assert float(ds["start_transient_left"].values[0]) == 1.0
+    assert "never settles" in ds.attrs["warnings"]
+    assert VEHICLE_PRESETS["3s2"].build().slowest_decay_rate() == 0.0
+
+
+def test_a_part_that_ran_with_another_run_in_is_run_again_and_an_old_share_is_judged_with_its_own(tmp_path):
+    """A part of a stream written by the version before (its two-axle events ran with the population's 90 m) is
+    not used (``part_problem``: the run-in each event got differs from what this version gives it), so a resumed
+    stream holds one rule; and a part written before the share was stored gets the share for the run-in its
+    events ran with, not the one this version would give them."""
+    from vbikit.solve.run_in import start_settling
+    from vbikit.study.run import run_study
+    from vbikit.study.storage import CHECKSUMS, load_part, part_path, parts_dir, save_part
+    from vbikit.study.run import spec_checksum
+    from vbikit.traffic.records import read_records
+    from vbikit.traffic.study import traffic_study
+
+    (tmp_path / "r.csv").write_text("time [s],lane,direction,speed [km/h],model\n0,1,+x,80,two-axle\n")
+    base = {"bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"}, "road": {"class": "B"}}
+    job = traffic_study(read_records(tmp_path / "r.csv"), base, batch_size=1)
+    run_study(job, tmp_path / "a.nc", workers=1, keep_parts=True)
+    parts = parts_dir(tmp_path / "a.nc")
+    part = load_part(parts, 0)
+    assert job.part_problem(part, (0,)) is None and float(part["run_in"][0]) > 150.0
+    earlier = {**part, "run_in": np.array([90.0])}
+    assert "ran with another run-in" in job.part_problem(earlier, (0,))
+    old = {k: v for k, v in earlier.items()
+           if k not in ("start_transient_left", "start_settling_run_in", "batch_index", "spec_checksum")}
+    part_path(parts, 0).unlink()
+    sums = parts / CHECKSUMS
+    sums.write_text("".join(line + "\n" for line in sums.read_text().splitlines()
+                            if not line.endswith(part_path(parts, 0).name)))
+    save_part(parts, 0, old, spec_checksum(job))
+    left = float(job.assemble(parts)["start_transient_left"].values[0])
+    at_90 = start_settling(dataclasses.replace(job.crossing(0), run_in=90.0))[0]
+    assert left == at_90 > 0.25  # (what 90 m leaves the two-axle preset: about a third)
 
 
 def test_a_part_written_before_the_share_was_stored_is_used_and_the_share_computed(tmp_path):

@@ -44,7 +44,7 @@ CASES = [
     ("lifetime", {"load_effects.0.x": 5e-324}, "load_effects[1].x: a section 5e-324 m from the entry support"),
     ("lifetime", {"fatigue.details.0.section_modulus": 1e-300}, "section_modulus: expected a number in [1e-07, 100], got 1e-300"),
     ("lifetime", {"traffic.trucks_per_day": 1e-9}, "traffic.trucks_per_day: expected a number in [1, 200000]"),
-    ("lifetime", {"days": True}, "days: expected an integer in [1, 73000], got True"),
+    ("lifetime", {"days": True}, "days: expected an integer in [1, 73000], got true"),
     ("lifetime", {"amplification": True}, "amplification: expected a number"),
     ("lifetime", {"traffic.lanes": [1.8, 1.8]}, "traffic.lanes: each lane needs its own centre y"),
     ("lifetime", {"load_effects.0.x": 100.0}, "section x must be within 0 … 9.16 m"),
@@ -59,7 +59,7 @@ CASES = [
     # drive-by: wrong types, positions off the vehicle, sweep keys in the user's words, noise
     ("driveby", {"sampling.rate": "fast"}, "sampling.rate: expected a number in [1, 100000] [Hz], got str 'fast'"),
     ("driveby", {"sensors.0.position": 99.0}, "sensors.acc.position: 99 m is off the vehicle"),
-    ("driveby", {"sensors.0.lateral": True}, "sensors.acc.lateral: expected a number in [-2, 2] [m], got bool True"),
+    ("driveby", {"sensors.0.lateral": True}, "sensors.acc.lateral: expected a number in [-2, 2] [m], got bool true"),
     ("driveby", {"sweep.speed": [0]}, "sweep.speed: expected a number in [0.001, 300] [m/s], got 0"),
     ("driveby", {"sweep.damage_position": [24.0]}, "sweep.damage_position = 24.0 (damage_length = 2.5 m): the region"),
     ("driveby", {"sweep.noise_rms": [1e300]}, "sweep.noise_rms: expected a number in [0, 1000]"),

@@ -854,7 +854,8 @@ def start_unsettled_flags(events: int, worst: float, settling: float, total: int
                             "a measured profile reaching further before the bridge")
         elif math.ceil(settling) > MAX_RUN_IN:
             remedies.append(f"their vehicles need a run-in of {math.ceil(settling):g} m, more than the longest "
-                            f"allowed ({MAX_RUN_IN:g} m): give them more damping, or read their impact factors as low")
+                            f"allowed ({MAX_RUN_IN:g} m): give them more damping or a longer crossing.approach, or read their impact "
+                            "factors as low")
     elif math.isfinite(settling) and not math.ceil(settling) <= run_in:
         whom = "the population's other vehicles" if remedies else "every vehicle of the population"
         remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in {where} (crossing.approach as "

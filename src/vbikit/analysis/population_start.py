@@ -20,10 +20,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from vbikit._limits import MAX_RUN_IN
 from vbikit._words import counted
 from vbikit.analysis.checks import BASE_SCENARIO, Flag, start_from_rest_flags, start_unsettled_flags
-from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT
+from vbikit.solve.run_in import SETTLED_TRANSIENT_LEFT, lengthened_run_in
 
 #: the attributes (name -> (units, meaning)) a population dataset states its start with (``start_attrs``)
 START_ATTRIBUTES: dict[str, tuple[str, str]] = {
@@ -31,7 +30,8 @@ START_ATTRIBUTES: dict[str, tuple[str, str]] = {
     "run_in_m": ("m", "crossing.run_in of the population: the road each event's vehicles first drive alone "
                       "(vbikit.solve.run_in; 0: they start at rest)"),
     "run_in_min_m": ("m", "the shortest run-in an event with sprung vehicles got (less than run_in_m where the road "
-                          "was too short for the whole of it); absent when no event has sprung vehicles"),
+                          "was too short for the whole of it, more where every event's vehicles needed more: "
+                          "run_in_adaptive); absent when no event has sprung vehicles"),
     "run_in_max_m": ("m", "the longest run-in an event with sprung vehicles got (more than run_in_m where its "
                           "vehicles needed more to settle: run_in_adaptive); absent when no event has sprung vehicles"),
     "run_in_adaptive": ("1", "1 if the population lengthened an event's run-in to what its vehicles need to keep at "
@@ -65,14 +65,14 @@ def start_attrs(approach: float, run_in: float, got: ArrayLike, least_approach: 
     ``least_approach`` [m]: the approach a run-in needs; ``left``, ``settling``: the share of its start transient
     each event's sprung vehicles kept at the bridge at most and the run-in that would settle them
     (``vbikit.solve.run_in.start_settling``; NaN for moving forces, inf for an undamped mode; per event, as ``got``);
-    ``adaptive``: the population lengthened each event's run-in to its vehicles' settling run-in (rounded up to the
-    metre, at most ``MAX_RUN_IN``), which is then what an event was given and may have been cut short of."""
+    ``adaptive``: the population lengthened each event's run-in to its vehicles' settling run-in
+    (``vbikit.traffic.study.EventContext.lengthens``; ``lengthened_run_in``), which is then what an event was given and
+    may have been cut short of."""
     got = np.asarray(got, float)
     need = np.asarray(settling, float)
     given = np.full(got.shape, float(run_in))
-    if adaptive and need.shape == got.shape:
-        lengthen = np.isfinite(need) & (need > run_in)
-        given[lengthen] = np.minimum(np.ceil(need[lengthen]), MAX_RUN_IN)
+    if adaptive and need.shape == got.shape:  # (the population's rule: vbikit.solve.run_in.lengthened_run_in)
+        given = np.array([lengthened_run_in(run_in, n) for n in need], float).reshape(got.shape)
     sprung = np.isfinite(got)
     got, given = got[sprung], given[sprung]
     left = np.asarray(left, float)
@@ -100,10 +100,13 @@ def start_words(attrs: Mapping[str, Any], vehicles: str = "sprung vehicles") -> 
         return (f"{vehicles} start settled, {approach:g} m before the bridge after driving at least {shortest:g} m of the "
                 "road alone (crossing.run_in)") if shortest > 0.0 else \
             f"{vehicles} start at rest {approach:g} m before the bridge on some events (the road held none of crossing.run_in)"
-    if run_in <= 0.0:
+    lengthened = int(attrs.get("run_in_adaptive", 0)) and float(attrs.get("run_in_max_m", 0.0)) > 0.0
+    if run_in <= 0.0 and not lengthened:
         return f"{vehicles} start at rest {approach:g} m before the bridge (crossing.run_in = 0)"
     short = _shortened(attrs)
-    less = f"; the road held less on {counted(short, 'event')}, {shortest:g} m the shortest" if short else ""
+    less = ("" if not short else f"; the road held less than their vehicles needed on {counted(short, 'event')}"
+            if int(attrs.get("run_in_adaptive", 0)) else f"; the road held less on {counted(short, 'event')}, "
+            f"{shortest:g} m the shortest")
     unsettled = int(attrs.get("start_unsettled_events", 0))
     still = (f"; on {counted(unsettled, 'event')} a vehicle had not settled (start_unsettled)") if unsettled else ""
     longest = float(attrs.get("run_in_max_m", run_in))

@@ -359,8 +359,9 @@ class DynamicJob:
         compiled run-in loops, ``vbikit.study.run.batch_kernels``)."""
         return self.vehicle_model == "axle-truck" and build_setup(self.setup_key).context.template.crossing.run_in > 0.0
 
-    def crossing(self, g: int):
-        """The coupled crossing of global event ``g`` and its day's records."""
+    def crossing(self, g: int, road: bool = True):
+        """The coupled crossing of global event ``g`` and its day's records (without ``road``: the crossing before
+        its road is made, ``EventContext.bare_crossing``)."""
         from vbikit.solve import VehicleMotion
         from vbikit.study.spec import derive_seed
         setup = build_setup(self.setup_key)
@@ -379,7 +380,9 @@ class DynamicJob:
             y = r.lateral_offset if r.lateral_offset is not None else setup.lanes[r.lane - 1]
             motions.append(VehicleMotion(VEHICLE_MODELS[self.vehicle_model](r.axle_loads, r.axle_spacings), speed=r.speed, direction=r.direction,
                                          entry_time=r.time - t0, lateral_offset=y))
-        return ctx.crossing(tuple(motions), derive_seed(self.seed, int(g))), records, members, t0
+        crossing = ctx.crossing(tuple(motions), derive_seed(self.seed, int(g))) if road else \
+            ctx.bare_crossing(tuple(motions))
+        return crossing, records, members, t0
 
     def run_event(self, g: int) -> dict[str, NDArray]:
         from vbikit.analysis.effects import load_effect_responses
@@ -440,16 +443,24 @@ class DynamicJob:
         they were stored: no simulation needed."""
         if "start_settling_run_in" in part:
             return part
-        left, needed = self.start_settling(part["event_id"])
+        left, needed = self.start_settling(part["event_id"], part["run_in"])
         return {**part, "start_transient_left": left, "start_settling_run_in": needed}
 
-    def start_settling(self, events) -> tuple[NDArray, NDArray]:
+    def start_settling(self, events, run_ins) -> tuple[NDArray, NDArray]:
         """``vbikit.solve.run_in.start_settling`` of each global event of ``events`` (its crossing only: no
-        simulation), for events whose runs were stored before it was: (shares kept, run-ins needed [m])."""
-        from vbikit.solve.run_in import start_settling
-
-        both = np.array([start_settling(self.crossing(int(g))[0]) for g in events], float).reshape(-1, 2)
+        simulation), for events whose runs were stored before it was, judged with the run-in each ran with
+        (``run_ins`` [m]; ``EventContext.start_settling``): (shares kept, run-ins needed [m])."""
+        ctx = build_setup(self.setup_key).context
+        both = np.array([ctx.start_settling(self.crossing(int(g), road=False)[0], float(r))
+                         for g, r in zip(events, run_ins)], float).reshape(-1, 2)
         return both[:, 0], both[:, 1]
+
+    def run_in_problem(self, events, run_ins) -> Optional[str]:
+        """Whether stored runs of ``events`` ran with another run-in (``run_ins`` [m]) than this version gives them
+        (``vbikit.solve.run_in.run_in_problem``): they are then run again."""
+        from vbikit.solve.run_in import run_in_problem
+
+        return run_in_problem(run_ins, [self.crossing(int(g), road=False)[0].run_in for g in events])
 
     def run_batch(self, batch: tuple[int, ...], threads: int = 1) -> dict[str, NDArray]:
         rows = [self.run_event(g) for g in batch]
@@ -466,7 +477,7 @@ class DynamicJob:
                 return f"{k} is missing or not finite"
         if "run_in" not in part or part["run_in"].shape[0] != len(batch):
             return "it has no run_in (written by an earlier version)"
-        return None
+        return self.run_in_problem(batch, part["run_in"])
 
     def assemble(self, parts: Path):
         import xarray as xr

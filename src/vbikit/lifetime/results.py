@@ -303,7 +303,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         "event_total": (("event", "load_effect"), total, ev_attrs("", "dynamic (total) peak; NaN if not simulated")),
         "event_run_static": (("event", "load_effect"), run_static, ev_attrs("", "static peak of the coupled run's static reference (at its time steps and, for moments, shears and reactions, at the instants a wheel crosses a jump or kink of the line); NaN if not simulated")),
         "event_simulated": ("event", simulated.astype(np.int8), ev_attrs("1", "1 if simulated dynamically")),
-        "event_run_in": ("event", _event_run_in(dyn, simulated, gid), ev_attrs("m", "road the simulated event's trucks drove alone, from rest, before its coupled run (crossing.run_in: the population's, 100 m less the approach, or the part of it the road holds); NaN if not simulated or moving forces")),
+        "event_run_in": ("event", _event_run_in(dyn, simulated, gid), ev_attrs("m", "road the simulated event's trucks drove alone, from rest, before its coupled run (crossing.run_in: the population's, 100 m less the approach, longer where its trucks needed more to settle (run_in_adaptive), or the part of it the road holds); NaN if not simulated or moving forces")),
         **{f"event_{name}": ("event", _event_result(dyn, simulated, gid, name),
                              ev_attrs(unit, f"{meaning}; NaN if the event was not simulated"))
            for name, (unit, meaning) in START_OUTPUTS.items()},
@@ -385,7 +385,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
                       _runs_in(dyn["results"]), prep.setup.context.least_approach,
                       [float(r.get("start_transient_left", np.nan)) for r in dyn["results"].values()],
                       [float(r.get("start_settling_run_in", np.nan)) for r in dyn["results"].values()],
-                      adaptive=prep.setup.context.settled),
+                      adaptive=prep.setup.context.lengthens),
         "vehicle_model": spec.vehicle_model,
         **{k: float(v) for k, v in timing.items()},
         "events_per_second_static": float(n_ev / max(timing.get("time_static_s", 0.0), 1e-9)),

@@ -329,12 +329,20 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
 
     def simulate(new: np.ndarray, r: int) -> np.ndarray:
         job = prep.dynamic_job(gid[new], stored)
-        ds = _run(job, work / f"dynamic-{r}.nc", workers, scheduler, progress,
-                  f"dynamics round {r}", {"events": int(gid.size), "dynamic": done[0]})
+        path = work / f"dynamic-{r}.nc"
+        ds = _run(job, path, workers, scheduler, progress, f"dynamics round {r}",
+                  {"events": int(gid.size), "dynamic": done[0]})
+        again = job.run_in_problem(ds["event"].values, ds["run_in"].values) if "run_in" in ds else None
+        if again:  # (a round finished by an earlier version that gave its events other run-ins: run again)
+            log.info("dynamics round %d: %s; running it again", r, again)
+            path.unlink()
+            ds = _run(job, path, workers, scheduler, progress, f"dynamics round {r}",
+                      {"events": int(gid.size), "dynamic": done[0]})
         done[0] += int(new.size)
         # (a round finished before the start's settling was stored: computed from the events' crossings)
         left, needed = (ds["start_transient_left"].values, ds["start_settling_run_in"].values) \
-            if "start_settling_run_in" in ds else job.start_settling(ds["event"].values)
+            if "start_settling_run_in" in ds else job.start_settling(
+                ds["event"].values, ds["run_in"].values if "run_in" in ds else np.zeros(ds["event"].size))  # (at rest)
         for k, g in enumerate(ds["event"].values):
             results[int(g)] = {v: ds[v].values[k] for v in ("dyn_peak", "run_static_peak", "damage_dynamic",
                                                              "damage_static", "max_range_dynamic", "unconverged_steps",

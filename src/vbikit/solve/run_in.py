@@ -29,6 +29,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._limits import MAX_RUN_IN
+
 if TYPE_CHECKING:  # pragma: no cover
     from vbikit.solve.crossing import Crossing
 
@@ -56,8 +58,8 @@ START_OUTPUTS: dict[str, tuple[str, str]] = {
                                   "NaN for moving forces (a single run's summary leaves it out)"),
     "start_settling_run_in": ("m", "the crossing.run_in with which every sprung vehicle would keep at most "
                                    "SETTLED_TRANSIENT_LEFT of its start transient, the approach as it is "
-                                   "(vbikit.solve.run_in.start_settling; inf: an undamped mode the road excites); NaN "
-                                   "for moving forces (left out, as above)"),
+                                   "(vbikit.solve.run_in.start_settling; inf, null in JSON: an undamped mode the road "
+                                   "excites); NaN for moving forces (left out, as above)"),
 }
 #: the least road [m] between the vehicles' front axle at the start and the deck's near end for which a
 #: population adds its run-in (``population_run_in``): a contact patch reaches ahead of its axle, and a run-in
@@ -108,10 +110,13 @@ def start_settling(crossing: "Crossing", limit: float | None = None) -> tuple[fl
     return settling(crossing, crossing.road_right is not None, limit)
 
 
-def settling(crossing: "Crossing", two_lines: bool, limit: float | None = None) -> tuple[float, float]:
+def settling(crossing: "Crossing", two_lines: bool, limit: float | None = None,
+             settleable: bool = False) -> tuple[float, float]:
     """``start_settling`` of ``crossing``'s vehicles on a rough road, whether or not the crossing holds it yet
     (``two_lines``: the wheel lines read their own profiles, ``road_groups``): what a population decides its
-    run-in with before it makes an event's road (``vbikit.traffic.study.EventContext.crossing``)."""
+    run-in with before it makes an event's road (``vbikit.traffic.study.EventContext.settled_run_in``; there with
+    ``settleable``: the run-in is that of the vehicles that can settle, a vehicle with an undamped mode left out of
+    it, not infinite)."""
     limit = SETTLED_TRANSIENT_LEFT if limit is None else float(limit)
     t0 = crossing.start_time
     sprung = [m for m in crossing.vehicles if m.vehicle.n_dof]
@@ -128,9 +133,32 @@ def settling(crossing: "Crossing", two_lines: bool, limit: float | None = None) 
             continue  # (a vehicle that never enters, or whose modes the road does not reach: nothing to judge)
         own = entry - t0
         worst = max(worst, math.exp(-sigma * (before + own)) if sigma > 0.0 else 1.0)
-        needed = max(needed, slowest * (math.log(1.0 / limit) / sigma - own)) if sigma > 0.0 and slowest > 0.0 \
-            else math.inf
+        if sigma > 0.0 and slowest > 0.0:
+            needed = max(needed, slowest * (math.log(1.0 / limit) / sigma - own))
+        elif not settleable:
+            needed = math.inf
     return worst, needed
+
+
+def lengthened_run_in(run_in: float, needed: float) -> float:
+    """The run-in [m] a population gives an event whose vehicles need ``needed`` [m] to settle (``settling``) when its
+    own is ``run_in`` [m]: the longer of the two, ``needed`` rounded up to the metre and at most ``MAX_RUN_IN``
+    (``vbikit.traffic.study.EventContext.settled_run_in``; what ``vbikit.analysis.population_start.start_attrs``
+    counts an event's run-in against)."""
+    if not (math.isfinite(needed) and needed > run_in):
+        return float(run_in)
+    return max(float(run_in), min(float(math.ceil(needed)), MAX_RUN_IN))
+
+
+def run_in_problem(stored: Any, given: Any) -> str | None:
+    """Why a stored part of a population's runs cannot be used (None if it can): an event of it ran with another
+    run-in [m] than this version gives it (``stored`` against ``given``, per event; NaN for moving forces), e.g. one
+    written before the population lengthened a run-in for vehicles that need more."""
+    stored, given = np.asarray(stored, float), np.asarray(given, float)
+    sprung = np.isfinite(stored)
+    if np.any(np.abs(stored[sprung] - given[sprung]) > 1e-6):
+        return "its events ran with another run-in than this version gives them (written by an earlier version)"
+    return None
 
 
 def road_groups(vehicle: Any, two_lines: bool = False) -> NDArray[np.int64]:

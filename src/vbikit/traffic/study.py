@@ -33,7 +33,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import input_digests, shared_name, shared_spec
-from vbikit._limits import MAX_RUN_IN
 from vbikit.analysis.checks import Flag, airborne_wheels, unconverged_dataset_flags
 from vbikit.analysis.population_start import start_attrs, start_flags
 from vbikit.analysis.plan import ResponsePlan
@@ -43,8 +42,8 @@ from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
-from vbikit.solve.run_in import (RUN_IN_CLEARANCE, START_OUTPUTS, least_run_in_approach, population_run_in,
-                                 settling, start_settling)
+from vbikit.solve.run_in import (RUN_IN_CLEARANCE, START_OUTPUTS, lengthened_run_in, least_run_in_approach,
+                                 population_run_in, run_in_problem, settling, start_settling)
 from vbikit.study.compute import point_names, stack_outputs
 from vbikit.study.shipping import reduce_once
 from vbikit.study.spec import StudyError, derive_seed
@@ -67,8 +66,9 @@ EVENT_EXTRAS: dict[str, tuple[str, str, type]] = {
                              "run's airborne_wheels rule): the event's impact factors are dominated by point-contact "
                              "impacts, not design values", np.int64),
     "run_in": ("m", "road the event's sprung vehicles drove alone, from rest, before the run started "
-                    "(crossing.run_in: vbikit.solve.run_in; the stream's own, or the part of it the road holds; NaN "
-                    "for moving forces, which have no vibration to build up)", np.float64),
+                    "(crossing.run_in: vbikit.solve.run_in; the stream's own, longer where its vehicles needed more to "
+                    "settle (run_in_adaptive), or the part of it the road holds; NaN for moving forces, which have "
+                    "no vibration to build up)", np.float64),
     **{name: (unit, meaning, np.float64) for name, (unit, meaning) in START_OUTPUTS.items()},
 }
 #: per-event extras that need no simulation (a function of the event's crossing, ``start_transient_left``): a part
@@ -227,7 +227,7 @@ class TrafficStudy:
                 return f"{name} has the wrong shape"
         if not np.all(np.isfinite(part["n_steps"])) or np.any(part["n_steps"] < 1):
             return "its step counts are not valid"
-        return None
+        return run_in_problem(part["run_in"], [self.crossing(int(e), road=False).run_in for e in batch])
 
     def assemble(self, parts: Path):
         """The stream's Dataset from the finished parts."""
@@ -244,7 +244,9 @@ class TrafficStudy:
         for k in range(len(self.batches())):
             part = load_part(parts, k, sums)
             if any(name not in part for name in COMPUTED_EXTRAS):  # (a part written before they were stored)
-                computed = np.array([start_settling(self.crossing(int(e))) for e in part["event"]], float)
+                ctx = self.context()  # (judged with the run-in each event ran with)
+                computed = np.array([ctx.start_settling(self.crossing(int(e), road=False), float(r))
+                                     for e, r in zip(part["event"], part["run_in"])], float)
                 part = {**part, **dict(zip(COMPUTED_EXTRAS, computed.reshape(-1, 2).T))}
             for name in ev:
                 ev[name][part["event"]] = part_output(part, name, n_points) if name in OUTPUTS else part[name]
@@ -264,8 +266,9 @@ class TrafficStudy:
             _CONTEXTS[key] = EventContext.of(self.base, self.base_dir)
         return _CONTEXTS[key]
 
-    def crossing(self, e: int) -> Crossing:
-        """The several-vehicle crossing of event ``e``."""
+    def crossing(self, e: int, road: bool = True) -> Crossing:
+        """The several-vehicle crossing of event ``e`` (without ``road``: before its road is made,
+        ``EventContext.bare_crossing``)."""
         ctx = self.context()
         motions = []
         t0 = self.event_start[e]
@@ -274,7 +277,7 @@ class TrafficStudy:
             y = r.lateral_offset if r.lateral_offset is not None else self.lanes[r.lane - 1]
             motions.append(VehicleMotion(_vehicle(r), speed=r.speed, direction=r.direction, entry_time=r.time - t0,
                                          lateral_offset=y))
-        return ctx.crossing(tuple(motions), self.road_seed(e))
+        return ctx.crossing(tuple(motions), self.road_seed(e)) if road else ctx.bare_crossing(tuple(motions))
 
     def check_budget(self) -> None:
         """The runs of the stream's largest events planned against ``limits`` before any event is
@@ -390,7 +393,7 @@ class TrafficStudy:
         step_attrs, step_flags = governing_step_check(self, stats, impact)
         start = self.context().template.crossing  # (where its events start their vehicles: approach, run_in)
         started = start_attrs(start.approach, start.run_in, ev["run_in"], self.context().least_approach,
-                              ev["start_transient_left"], ev["start_settling_run_in"], adaptive=self.context().settled)
+                              ev["start_transient_left"], ev["start_settling_run_in"], adaptive=self.context().lengthens)
         ds.attrs = {
             "title": self.name or "vbikit traffic stream",
             "study": self.to_json(),
@@ -584,29 +587,52 @@ class EventContext:
         only over the range their contact points touch: the same road there as ``road(seed)``), with the
         run-in fitted to that road (``fit_run_in``): the population's, or longer for vehicles that need more
         (``settled_run_in``)."""
-        bare = self.settled_run_in(self.template.with_vehicles(motions, None, None))
-        if bare.run_in > 0 and self.road_range is not None:
-            bare = fit_run_in(bare, self.road_range)
+        bare = self.bare_crossing(motions)
         if not self.random_road:
             return dataclasses.replace(bare, road=self._fixed_road[0], road_right=self._fixed_road[1])
         return with_scenario_road(bare, self.scenario.road, self.scenario, seed)
 
+
+    def bare_crossing(self, motions: tuple[VehicleMotion, ...]) -> Crossing:
+        """The vehicles ``motions`` on the template's bridge with their run-in as ``crossing`` gives it (the
+        population's or longer, ``settled_run_in``, fitted to the road, ``fit_run_in``), before any road is made."""
+        bare = self.settled_run_in(self.template.with_vehicles(motions, None, None))
+        if bare.run_in > 0 and self.road_range is not None:
+            bare = fit_run_in(bare, self.road_range)
+        return bare
+
+    @property
+    def rough(self) -> bool:
+        """Whether the events' road is rough (random, or a measured profile): their vehicles have a start to settle."""
+        return self.random_road or self._fixed_road[0] is not None
+
+    @property
+    def lengthens(self) -> bool:
+        """Whether an event's run-in is lengthened for vehicles that need more (``settled_run_in``): the population's
+        own run-in (not the base scenario's), a rough road, and an approach a run-in can start from."""
+        return self.settled and self.rough and self.template.crossing.approach >= self.least_approach
+
+    def start_settling(self, bare: Crossing, run_in: float = math.nan) -> tuple[float, float]:
+        """``vbikit.solve.run_in.start_settling`` of an event's vehicles ``bare`` (no road needed: the events'
+        own, ``rough``, ``two_lines``), judged with the run-in ``run_in`` [m] it ran with when given (a part
+        written before the check was stored)."""
+        crossing = dataclasses.replace(bare, run_in=float(run_in)) if math.isfinite(run_in) else bare
+        return settling(crossing, self.two_lines) if self.rough else start_settling(crossing)
 
     def settled_run_in(self, bare: Crossing) -> Crossing:
         """``bare`` (an event's vehicles, no road yet) with the population's run-in lengthened, on a rough road, to
         the one with which each of its sprung vehicles keeps at most ``SETTLED_TRANSIENT_LEFT`` of its start transient
         at the bridge (``vbikit.solve.run_in.settling``, rounded up to the metre, at most ``MAX_RUN_IN``): the
         population's ``SETTLED_APPROACH`` was checked with stock trucks, and a lighter damped vehicle needs more.
-        ``bare`` itself for a run-in the base scenario gives, none (an approach too short for one), a smooth road,
-        moving forces, or vehicles that need no more; a vehicle with an undamped mode the road excites never settles
-        (no run-in is enough: ``start_unsettled`` names it)."""
-        rough = self.random_road or self._fixed_road[0] is not None
-        if not (self.settled and rough and bare.run_in > 0.0):
+        ``bare`` itself for a run-in the base scenario gives, an approach too short for one, a smooth road, moving
+        forces, or vehicles that need no more (``lengthens``, ``vbikit.solve.run_in.lengthened_run_in``); a vehicle
+        with an undamped mode the road excites never settles (left out of the run-in its event's other vehicles get:
+        ``start_unsettled`` names it).  An approach of 100 m or more, for which the population's own run-in is 0, is
+        lengthened alike."""
+        if not self.lengthens:
             return bare
-        needed = settling(bare, self.two_lines)[1]
-        if not (math.isfinite(needed) and needed > bare.run_in):
-            return bare
-        return dataclasses.replace(bare, run_in=min(float(math.ceil(needed)), MAX_RUN_IN))
+        run_in = lengthened_run_in(bare.run_in, settling(bare, self.two_lines, settleable=True)[1])
+        return bare if run_in == bare.run_in else dataclasses.replace(bare, run_in=run_in)
 
 
 #: road [m] a fitted run-in leaves between the road it reads and the road's first or last station (the
