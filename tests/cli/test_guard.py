@@ -126,3 +126,28 @@ def test_a_bridge_models_own_check_is_a_user_error(tmp_path):
     res = runner.invoke(app, ["bridge", str(_scenario(tmp_path, text)), "--no-plot"])
     assert res.exit_code == 2, res.output
     assert res.stderr.startswith("error:") and "beyond" in res.stderr and "Traceback" not in res.output
+
+
+def test_a_ctrl_c_inside_a_compiled_kernel_is_an_interrupt():
+    """numba turns a KeyboardInterrupt raised while a compiled kernel runs into "SystemError: CPUDispatcher(…)
+    returned a result with an exception set" (the interrupt as its context): `vbikit rail --workers 1` printed that
+    traceback and exited 1. guard raises it as the KeyboardInterrupt it is, which each command turns into its
+    "interrupted: … kept …" line and exit 130; any other error is left as it is."""
+    import pytest
+
+    from vbikit.cli.guard import guard
+
+    def wrapped():
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt:
+            raise SystemError("CPUDispatcher(<function _peaks>) returned a result with an exception set")
+
+    with pytest.raises(KeyboardInterrupt):
+        guard(wrapped)
+
+    def plain():
+        raise SystemError("not an interrupt")
+
+    with pytest.raises(SystemError):
+        guard(plain)

@@ -50,10 +50,25 @@ def guard(action: Callable[[], T], file: Optional[Path] = None) -> T:
             typer.echo(f"note: {note}", err=True)
         raise typer.Exit(code=2) from None
     except Exception as err:
+        if _interrupted(err):  # Ctrl-C inside a compiled kernel: numba wraps it (SystemError); the caller's
+            raise KeyboardInterrupt from None  # `except KeyboardInterrupt` then says what is kept
         if STATE["debug"] or not _worker_died(err):
             raise
         typer.echo(_WORKER_DIED, err=True)
         raise typer.Exit(code=2) from None
+
+
+def _interrupted(err: BaseException) -> bool:
+    """Whether ``err`` was raised by a Ctrl-C: a ``KeyboardInterrupt`` in its chain of causes and contexts (numba
+    turns one raised inside a compiled function into "SystemError: … returned a result with an exception set")."""
+    seen = set()
+    cause: BaseException | None = err
+    while cause is not None and id(cause) not in seen:
+        if isinstance(cause, KeyboardInterrupt):
+            return True
+        seen.add(id(cause))
+        cause = cause.__cause__ or cause.__context__
+    return False
 
 
 _WORKER_DIED = ("error: a worker process ended abruptly: the system stopped it, most often because the machine ran "
