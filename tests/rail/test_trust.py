@@ -335,3 +335,20 @@ def test_shear_check_takes_the_exit_support_where_it_is_larger():
     assert shear == pytest.approx(rb, rel=3e-3)
     assert float(ds["max_shear_exit"].sel(train="HSLM-A1").isel(speed=0)) == shear
     assert result.checks["shear"]["dynamic_design"] >= shear
+
+
+def test_a_subset_of_hslm_a_is_flagged_as_not_the_standards_check():
+    """EN 1991-2:2003 6.4.6.1.1 and Annex E check a span of 7 m or more with HSLM-A1 … A10 together: a sweep
+    of two of them that passes (3.35 m/s² for HSLM-A1 and A5 on the example's 20 m span, where HSLM-A3 gives
+    3.84 m/s², a FAIL) said "result: PASS" with no word. Now flagged ``hslm_incomplete`` (one of the codes
+    that make the verdict "not the EN 1991-2 check as run")."""
+    from vbikit.rail.codes import hslm_range_flags
+    from vbikit.rail.report import STANDARD_CODES
+
+    (flag,) = hslm_range_flags(20.0, ["HSLM-A1", "HSLM-A5"])
+    assert flag.code == "hslm_incomplete" and flag.value == 2.0 and flag.threshold == 10.0
+    assert "HSLM-A1, HSLM-A5" in flag.message and "trains.presets" in flag.message
+    assert "hslm_incomplete" in STANDARD_CODES
+    assert not hslm_range_flags(20.0, [f"HSLM-A{k}" for k in range(1, 11)] + ["ICE3"])  # (all ten, and a real train)
+    assert not hslm_range_flags(20.0, ["ICE3"])  # (no HSLM train: a real train's own check)
+    assert [f.code for f in hslm_range_flags(5.0, ["HSLM-A1"])] == ["hslm_range"]  # (below 7 m: HSLM-B's span)

@@ -210,6 +210,9 @@ FLAG_CODES: dict[str, str] = {
     "hslm_range": "railway sweep: an HSLM train outside its range of application (EN 1991-2:2003 6.4.6.1.1(5), Annex "
                   "E: HSLM-B on simply supported spans below 7 m, HSLM-A otherwise), so its check is not the EN 1991-2 "
                   "one; subject: the trains; value: the span [m], threshold: ``HSLM_B_MAX_SPAN`` (7 m)",
+    "hslm_incomplete": "railway sweep: some of the ten HSLM-A trains, not all, on a span of 7 m or more: EN 1991-2:2003 "
+                       "6.4.6.1.1 and Annex E check a span with HSLM-A1 … A10 together, so a PASS covers only the "
+                       "trains run; subject: the HSLM-A trains run; value: how many, threshold: 10",
     "too_few_modes": "railway sweep: fewer modes retained than EN 1990 A2.4.4.2.1 requires (every mode up to max(30 Hz, "
                      "1.5 n0, n3)); value: the modes retained, threshold: the modes required",
     "speed_grid_error": "railway sweep: the governing peak of a check still changes with the speed step after its "

@@ -47,13 +47,18 @@ from vbikit.analysis.codes import phi2, phi3
 HSLM_B_MAX_SPAN = 7.0
 
 
+#: the trains of the HSLM-A family (EN 1991-2:2003 Annex E, Table E.1: HSLM-A1 … A10)
+HSLM_A_COUNT = 10
+
+
 def hslm_range_flags(span: float, names: list[str]) -> list:
     """The ``hslm_range`` flags (``vbikit.analysis.checks.Flag``) of a sweep whose HSLM trains
     (``names``: the trains' names) lie outside their range of application (EN 1991-2:2003
     6.4.6.1.1(5), Annex E): HSLM-B on a simply supported span ``span`` [m] of 7 m or more (its check
     is then not the standard's one: HSLM-A is), HSLM-A on a span below 7 m (HSLM-B is); value: the
-    span [m], threshold: ``HSLM_B_MAX_SPAN`` [m].  Flags, not errors: a user may run either outside
-    its range on purpose (research, comparison)."""
+    span [m], threshold: ``HSLM_B_MAX_SPAN`` [m]; and ``hslm_incomplete`` when HSLM-A runs on such a span with
+    fewer than its ten trains (value: how many, threshold: ``HSLM_A_COUNT``).  Flags, not errors: a user may run
+    either outside its range, or a few trains, on purpose (research, comparison)."""
     from vbikit.analysis.checks import Flag
     from vbikit.vehicle.trains import HSLM_B_NAME
 
@@ -66,6 +71,12 @@ def hslm_range_flags(span: float, names: list[str]) -> list:
                         f"so the check of {', '.join(b_trains)} is not the EN 1991-2 one; use HSLM-A (trains.presets = "
                         f"[\"hslm-a\"])" + ("" if a_trains else ", which this sweep does not run"),
                         subject=", ".join(b_trains), value=float(span), threshold=HSLM_B_MAX_SPAN))
+    if a_trains and span >= HSLM_B_MAX_SPAN and len(set(a_trains)) < HSLM_A_COUNT:
+        out.append(Flag("hslm_incomplete", f"HSLM-A incomplete: the sweep runs {', '.join(a_trains)}, "
+                        f"{len(set(a_trains))} of the {HSLM_A_COUNT} trains HSLM-A1 … A{HSLM_A_COUNT} with which EN 1991-2:2003 "
+                        "6.4.6.1.1 and Annex E check a span of 7 m or more: a PASS covers only these trains, not the "
+                        "standard's check; run all ten (trains.presets = [\"hslm-a\"])",
+                        subject=", ".join(a_trains), value=float(len(set(a_trains))), threshold=float(HSLM_A_COUNT)))
     if a_trains and span < HSLM_B_MAX_SPAN:
         out.append(Flag("hslm_range", f"HSLM-A outside its range of application: span {span:g} m < {HSLM_B_MAX_SPAN:g} m, "
                         "for which EN 1991-2:2003 6.4.6.1.1(5) uses HSLM-B (trains.hslm_b, N and d from the standard's "

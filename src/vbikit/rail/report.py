@@ -12,7 +12,7 @@ from vbikit.outputs import report_unit
 from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 
 #: flag codes that make a sweep not the EN 1991-2 check as run (the report's result line says so)
-STANDARD_CODES = ("hslm_range", "too_few_modes")
+STANDARD_CODES = ("hslm_range", "hslm_incomplete", "too_few_modes")
 #: the checks whose governing peak is refined over speed and states its grid error, with their names in the report
 GRID_CHECKS = {"acceleration": "deck acceleration", "moment": "midspan moment", "shear": "shear at the supports",
                "deflection": "midspan deflection"}
