@@ -273,3 +273,39 @@ def test_an_event_without_an_im_is_no_small_static_reference():
     im = np.array([[0.1, 0.05], [np.nan, 0.1], [0.3, 0.2], [0.2, 0.0]])
     small = np.array([[False, False], [True, False], [False, False], [True, False]])
     assert im_sample_counts(im, small) == {"n_im_sample": [3, 4], "n_small_static_sample": [1, 0]}
+
+
+def test_a_gumbel_fits_shape_is_not_quoted_in_the_negative_shape_flag():
+    """A Gumbel fit's block-maxima shape is 0 by definition: the flag quoted "block maxima ξ = 0.00" beside the POT
+    shape that raised it (a new user's trial, 2026-12-07); it now names the fitted shapes only."""
+    from vbikit.lifetime.report import _fit_flags
+
+    e = {"fits": {"static": {"shape_strongly_negative": True, "block_maxima_shape": 0.0, "pot_shape": -1.54}},
+         "return_levels": []}
+    (gumbel,) = _fit_flags("M", e, "static", -0.3, gumbel=True)
+    assert "POT ξ = -1.54" in gumbel.message and "block maxima ξ" not in gumbel.message
+    (gev,) = _fit_flags("M", {**e, "fits": {"static": {**e["fits"]["static"], "block_maxima_shape": -0.45}}},
+                        "static", -0.3)
+    assert "block maxima ξ = -0.45" in gev.message and gev.value == -1.54
+
+
+def test_another_runs_work_names_the_output_folder(tmp_path, monkeypatch):
+    """Another lifetime file's run in the same --out-dir was refused with "out5/work/static.nc exists and is not this
+    study's finished dataset; delete it or choose another --out (or --out-dir)": an internal file, "study", and an
+    option vbikit lifetime does not have. It now names the output folder and says what to do."""
+    import pytest
+
+    import vbikit.study.run as study_run
+    from vbikit.lifetime.run import _run
+    from vbikit.lifetime.spec import LifetimeError
+    from vbikit.study.spec import StudyError
+
+    def refuse(*args, **kwargs):
+        raise StudyError(f"{tmp_path / 'work' / 'static.nc'} exists and is not this study's finished dataset; delete it "
+                         "or write to another path")
+
+    monkeypatch.setattr(study_run, "run_study", refuse)
+    with pytest.raises(LifetimeError) as err:
+        _run(None, tmp_path / "work" / "static.nc", 1, None, None, "static pass")
+    assert str(err.value).startswith(f"{tmp_path} holds the work of another lifetime run")
+    assert "--out" not in str(err.value) and "study" not in str(err.value)

@@ -33,7 +33,7 @@ def test_a_dangling_lock_link_is_refused_and_nothing_is_created_outside(tmp_path
     out.parent.mkdir()
     os.symlink(target, str(out) + ".lock")
     with pytest.raises(StudyError, match=r"r\.nc\.lock is a symbolic link; a study's lock file must be a regular file "
-                                         r"in the output folder: remove it or choose another --out \(or --out-dir\)"):
+                                         r"in the output folder: remove it or write to another path"):
         run_study(study, out, workers=1)
     assert not target.exists() and list(outside.iterdir()) == []
     assert not parts_dir(out).exists() and not out.exists()  # refused before anything ran

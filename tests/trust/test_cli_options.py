@@ -160,11 +160,12 @@ def test_an_output_name_taken_in_the_out_dir_is_refused_before_computing(tmp_pat
     assert time.process_time() - t0 < 3.0 and "Errno" not in err
 
 
-def test_a_resumed_stage_that_is_no_dataset_names_the_out_dir_option(tmp_path):
-    """``vbikit driveby`` has no --out: the message names --out-dir too."""
+def test_a_resumed_stage_that_is_no_dataset_names_no_option_the_command_lacks(tmp_path):
+    """``vbikit driveby`` has no --out: the message names no option (the library's words: "write to another
+    path"), not an --out the command does not take."""
     (tmp_path / "out").mkdir()
     (tmp_path / "out" / "driveby.nc").write_text("not a dataset\n")
-    cli_refused(runner.invoke(app, [*_command(tmp_path, "driveby"), "--workers", "1"]), "choose another --out (or --out-dir)")
+    cli_refused(runner.invoke(app, [*_command(tmp_path, "driveby"), "--workers", "1"]), "write to another path")
 
 
 @pytest.mark.parametrize("make, words", [(lambda p: p.mkdir(), "resp.csv is a folder, not a regular file; give the file as a file"),

@@ -38,7 +38,8 @@ def driveby_cmd(
     from vbikit._files import output_names
 
     guard(lambda: output_names(out_dir, ("driveby.nc",)).mkdir(parents=True, exist_ok=True))
-    ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case")
+    ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case",
+                 option="--out-dir")
     warn_dataset(ds)
 
     def finish() -> None:

@@ -47,7 +47,7 @@ class _Bar:
 
 
 def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool,
-            unit: str = "crossing") -> Any:
+            unit: str = "crossing", option: str = "--out") -> Any:
     """Run (or resume) ``study`` (or another job of [`run_study`][vbikit.study.run_study]) with a progress bar."""
     from vbikit.study.run import run_study
 
@@ -64,7 +64,7 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
     elapsed = time.perf_counter() - t0
     if finished_before:
         typer.echo(f"{study.size} {unit}s: {out} already holds this finished run, read as it is (nothing run; "
-                   "delete it, or give another --out, to run again)")
+                   f"delete it, or give another {option}, to run again)")
     else:
         typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
     return ds

@@ -162,7 +162,7 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     out += _not_estimable_flags(name, e)
     out += _static_bound_flags(name, e)
     for w in ("static", "total"):
-        out += _fit_flags(name, e, w, float(a["xi_strongly_negative"]))
+        out += _fit_flags(name, e, w, float(a["xi_strongly_negative"]), gumbel=a.get("distribution") == "gumbel")
     out += _adr_flags(name, e)
     out += _shortfall_flags(name, e, float(a["half_step_tolerance"]))
     out += _governing_flags(name, e, float(a["half_step_tolerance"]))
@@ -269,14 +269,16 @@ def _static_bound_flags(name: str, e: dict) -> list[Flag]:
                  output=flag_output("characteristic", "static"), subject=name, value=char, threshold=bound)]
 
 
-def _fit_flags(name: str, e: dict, w: str, xi: float) -> list[Flag]:
-    """The ``w`` ("static", "total") return levels' findings: a strongly negative shape (below ``xi``),
+def _fit_flags(name: str, e: dict, w: str, xi: float, gumbel: bool = False) -> list[Flag]:
+    """The ``w`` ("static", "total") return levels' findings: a strongly negative shape (below ``xi``; a Gumbel
+    fit's block-maxima shape, 0 by definition, is not quoted),
     intervals wider than their level (``too_wide``), BM and POT disagreeing (the dataset's
     ``methods_disagree_<w>``)."""
     out = []
     f = e["fits"][w]
     if f["shape_strongly_negative"]:
-        shapes = [(n, f[k]) for n, k in (("block maxima", "block_maxima_shape"), ("POT", "pot_shape")) if f[k] is not None]
+        shapes = [(n, f[k]) for n, k in (("block maxima", "block_maxima_shape"), ("POT", "pot_shape"))
+                  if f[k] is not None and not (gumbel and k == "block_maxima_shape")]
         out.append(Flag("negative_shape", f"{w}: strongly negative shape ("
                         + ", ".join(f"{n} ξ = {x:.2f}" for n, x in shapes)
                         + f" < {xi:g}): a bounded tail fitted from little data; "

@@ -218,7 +218,7 @@ def _block_advice(block: str, distribution: str, need: int) -> str:
 
 
 def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stage: str, info: Optional[dict] = None):
-    from vbikit.study.run import run_study
+    from vbikit.study.run import StudyError, run_study
 
     def report(done: int, total: int) -> None:
         if progress:
@@ -227,7 +227,14 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
                 extra["dynamic"] += done
             progress(stage, done, total, extra)
 
-    return run_study(job, path, workers=workers, scheduler=scheduler, progress=report)
+    try:
+        return run_study(job, path, workers=workers, scheduler=scheduler, progress=report)
+    except StudyError as err:
+        if "is not this study's finished dataset" not in str(err):
+            raise
+        work = path.parent  # (a work file of another lifetime run: name the output folder, not the file)
+        raise LifetimeError(f"{work.parent} holds the work of another lifetime run ({path} is not this run's): "
+                            "delete that folder or write to another output folder") from None
 
 
 #: the files a lifetime run writes in its output folder, and the folder of its finished work (resumed by the

@@ -180,11 +180,11 @@ def _prepare_parts(study: Study, out: Path) -> Path:
     spec = study.to_json()
     if parts.is_symlink():
         raise StudyError(f"{parts} is a symbolic link; the parts of a study are kept in a folder beside --out: remove "
-                         "the link or choose another --out (or --out-dir)")
+                         "the link or write to another path")
     if parts.exists():
         marker = parts / "study.json"
         if not marker.is_file() or marker.read_text() not in (spec, *earlier_identities(study)):
-            raise StudyError(f"{parts} holds partial results of a different study; delete it or choose another --out (or --out-dir)")
+            raise StudyError(f"{parts} holds partial results of a different study; delete it or write to another path")
         if marker.read_text() != spec:  # (an earlier version's identity of this study: this version's from now on)
             write_text(marker, spec)
     else:
@@ -240,7 +240,7 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             if progress:
                 progress(study.size, study.size)
             return ds
-        raise StudyError(f"{out} exists and is not this study's finished dataset; delete it or choose another --out (or --out-dir)")
+        raise StudyError(f"{out} exists and is not this study's finished dataset; delete it or write to another path")
     parts = _prepare_parts(study, out)
     batches = study.batches()
     checksum = spec_checksum(study)

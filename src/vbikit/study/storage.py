@@ -134,7 +134,7 @@ def lock_output(out: Path) -> Iterator[None]:
 
     path = Path(str(out) + ".lock")
     refuse = (f"{path} is {{}}; a study's lock file must be a regular file in the output folder: remove it "
-              "or choose another --out (or --out-dir)")
+              "or write to another path")
     try:
         kind = _not_a_file(path, os.lstat(path))
     except FileNotFoundError:
@@ -161,7 +161,7 @@ def lock_output(out: Path) -> Iterator[None]:
         lock.acquire(timeout=0)
     except Timeout:
         raise StudyError(f"another vbikit study is writing to {out} (lock {path}); wait for it to "
-                         "finish or choose another --out (or --out-dir)") from None
+                         "finish or write to another path") from None
     try:
         if os.path.islink(path):  # replaced by a link between the check and the lock
             raise StudyError(refuse.format("a symbolic link"))
