@@ -151,3 +151,32 @@ def test_a_ctrl_c_inside_a_compiled_kernel_is_an_interrupt():
 
     with pytest.raises(SystemError):
         guard(plain)
+
+
+def test_a_resumed_run_says_so_in_one_line(tmp_path, capsys):
+    """No command said it had resumed (a new user's trial, 2026-12-07): traffic's bar just started at 23 %, a lifetime
+    round's bars jumped ahead, and the closing time covered the resumed part only. Each command now counts what it
+    found finished before it started and, once the run is done (its parts then known to be this run's), says so
+    in one line on standard error; ``-q`` not."""
+    from vbikit.cli.guard import STATE, finished_before, say_resumed
+
+    parts = tmp_path / "o.nc.parts"
+    assert finished_before(parts, ("batch-*.npz", "batch", "batches")) == ""  # (no folder: a fresh run)
+    parts.mkdir()
+    assert finished_before(parts, ("batch-*.npz", "batch", "batches")) == ""  # (an empty one)
+    say_resumed("", parts)
+    assert capsys.readouterr().err == ""
+    for k in range(3):
+        (parts / f"batch-{k:06d}.npz").write_bytes(b"")
+    (parts / "sub").mkdir()
+    (parts / "sub" / "a.nc").write_bytes(b"")
+    before = finished_before(parts, ("*.nc", "stage", "stages"), ("batch-*.npz", "batch", "batches"))
+    assert before == "1 stage and 3 batches"
+    say_resumed(before, parts)
+    assert capsys.readouterr().err.startswith(f"resumed: 1 stage and 3 batches finished before were kept from {parts}")
+    STATE["quiet"] = True
+    try:
+        say_resumed(before, parts)
+    finally:
+        STATE["quiet"] = False
+    assert capsys.readouterr().err == ""

@@ -70,6 +70,9 @@ def lifetime_cmd(
     memory = None if max_memory is None else memory_option(max_memory)
     bars = _Bars(progress and not STATE["quiet"])
     t0 = time.perf_counter()
+    from vbikit.cli.guard import finished_before, say_resumed
+
+    before = finished_before(out_dir / WORK_FOLDER, ("*.nc", "stage", "stages"), ("batch-*.npz", "batch", "batches"))
     try:
         ds = guard(lambda: run_lifetime(spec, out_dir, workers=workers, scheduler=scheduler, progress=bars,
                                         figures=figures, max_memory=memory), file=spec)
@@ -83,3 +86,4 @@ def lifetime_cmd(
     typer.echo((out_dir / REPORT_FILE).read_text())
     typer.echo(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
                f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
+    say_resumed(before, out_dir / WORK_FOLDER)

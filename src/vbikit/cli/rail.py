@@ -35,6 +35,9 @@ def rail_cmd(
             bar = tqdm(total=total, desc="rail sweep", unit="train", dynamic_ncols=True)
         bar.update(done - bar.n)
 
+    from vbikit.cli.guard import finished_before, say_resumed
+
+    before = finished_before(out_dir / "rail.parts", ("*.npz", "train", "trains"))
     try:
         result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
                                         progress=report if progress and not STATE["quiet"] else None,
@@ -50,3 +53,4 @@ def rail_cmd(
     for f in result.files:  # results, on stdout as every command's (its progress bar and warnings: stderr)
         typer.echo(f"wrote {f}")
     typer.echo(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s")
+    say_resumed(before, out_dir / "rail.parts")

@@ -53,6 +53,10 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
     t0, finished_before = time.perf_counter(), Path(out).is_file()  # (a run on another study's file is refused)
+    from vbikit.cli.guard import finished_before as found, say_resumed
+    from vbikit.study.storage import parts_dir
+
+    before = "" if finished_before else found(parts_dir(Path(out)), ("batch-*.npz", "batch", "batches"))
     try:
         ds = guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
     except KeyboardInterrupt:
@@ -67,6 +71,7 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
                    f"delete it, or give another {option}, to run again)")
     else:
         typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
+        say_resumed(before, parts_dir(Path(out)))
     return ds
 
 

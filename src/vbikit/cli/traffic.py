@@ -9,6 +9,7 @@ from typing import Optional
 import typer
 
 from vbikit.cli.guard import (
+    STATE,
     figure_file_option,
     guard,
     limits,
@@ -86,8 +87,9 @@ def traffic_cmd(
     job = guard(lambda: traffic_study(recs, base, base_dir, lane_y, seed, batch_size, name=records.stem,
                                       source=str(records), outputs=names, limits=budget))
     n_mp = sum(len(e) > 1 for e in job.events)
-    typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
-               f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
+    if not STATE["quiet"]:  # (-q: errors only)
+        typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
+                   f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
     ds = run_job(job, out, workers, scheduler, progress, unit="event")
     warn_dataset(ds)
     from vbikit.analysis.population_start import start_words

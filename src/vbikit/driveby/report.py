@@ -48,11 +48,26 @@ def multipass_lines(ds) -> list[str]:
                    f"NOT confirmed: fewer than {MIN_PASSES} reliable passes agree")
         shift = float(c["multipass_frequency_shift"][i])
         lines.append(f"  {name}: {med:.4f} Hz (IQR {float(c['multipass_q25_hz'][i]):.4f}–{float(c['multipass_q75_hz'][i]):.4f} Hz, "
-                     f"mean {float(c['multipass_mean_hz'][i]):.4f} ± {float(c['multipass_std_hz'][i]):.4f} Hz), "
+                     f"mean {float(c['multipass_mean_hz'][i]):.4f} ± {_spread(float(c['multipass_std_hz'][i]))}), "
                      f"{n_rel} of {n} passes pass the single-pass checks, {n_agree} of them agree: {verdict}"
                      + (f"; shift against the healthy bridge {100 * shift:+.2f} % (true {100 * float(c['bridge_frequency_shift'][i]):+.2f} %)"
                         if key[0] > 0 and np.isfinite(shift) else ""))
     return lines
+
+
+def _sensor_unit(ds) -> str:
+    """", unit" of the identification sensor's record (the dataset's ``sensor_units`` coordinate); "" for a dataset
+    without it."""
+    ident = str(ds.attrs.get("identification_sensor", ""))
+    if "sensor_units" not in ds.coords or "sensor" not in ds.coords:
+        return ""
+    units = dict(zip((str(s) for s in ds["sensor"].values), (str(u) for u in ds["sensor_units"].values)))
+    return f", {units[ident]}" if units.get(ident) else ""
+
+
+def _spread(std: float) -> str:
+    """The passes' standard deviation [Hz] in words: "n/a (one pass)" when one reliable pass gives none."""
+    return f"{std:.4f} Hz" if np.isfinite(std) else "n/a (one reliable pass)"
 
 
 def summary(ds) -> dict:
@@ -123,7 +138,9 @@ def report_text(ds) -> str:
              *fleet_lines(ds),
              *([f"WARNING: {ds.attrs['warnings']}"] if ds.attrs.get("warnings") else []),
              "", "case  speed[m/s] road seed severity noise   f_true[Hz] f_ident[Hz] error[%] resolution[Hz] "
-                 "label      SNR[dB] reliable"]
+                 "label      SNR[dB] reliable",
+             f"      (noise: the standard deviation added to the {ds.attrs['identification_sensor']} sensor's record, "
+             f"in its unit{_sensor_unit(ds)})"]
     reliable = np.asarray(c["identified_frequency_reliable"], bool)
     # the noise column: the standard deviation added to the identification sensor's record (noise_std), also
     # where its noise is given as an SNR (noise_rms then 0)
