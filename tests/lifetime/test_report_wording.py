@@ -290,9 +290,10 @@ def test_a_gumbel_fits_shape_is_not_quoted_in_the_negative_shape_flag():
 
 
 def test_another_runs_work_names_the_output_folder(tmp_path, monkeypatch):
-    """Another lifetime file's run in the same --out-dir was refused with "out5/work/static.nc exists and is not this
-    study's finished dataset; delete it or choose another --out (or --out-dir)": an internal file, "study", and an
-    option vbikit lifetime does not have. It now names the output folder and says what to do."""
+    """Another lifetime file's run in the same --out-dir was refused with "static.nc (in the output folder's work
+    folder) exists and is not this study's finished dataset; delete it or choose another --out (or --out-dir)": an
+    internal file, "study", and an option vbikit lifetime does not have. It now names the output folder and says
+    what to do."""
     import pytest
 
     import vbikit.study.run as study_run
