@@ -592,7 +592,6 @@ class EventContext:
             return dataclasses.replace(bare, road=self._fixed_road[0], road_right=self._fixed_road[1])
         return with_scenario_road(bare, self.scenario.road, self.scenario, seed)
 
-
     def bare_crossing(self, motions: tuple[VehicleMotion, ...]) -> Crossing:
         """The vehicles ``motions`` on the template's bridge with their run-in as ``crossing`` gives it (the
         population's or longer, ``settled_run_in``, fitted to the road, ``fit_run_in``), before any road is made."""
