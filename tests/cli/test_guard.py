@@ -155,28 +155,29 @@ def test_a_ctrl_c_inside_a_compiled_kernel_is_an_interrupt():
 
 def test_a_resumed_run_says_so_in_one_line(tmp_path, capsys):
     """No command said it had resumed (a new user's trial, 2026-12-07): traffic's bar just started at 23 %, a lifetime
-    round's bars jumped ahead, and the closing time covered the resumed part only. Each command now counts what it
-    found finished before it started and, once the run is done (its parts then known to be this run's), says so
-    in one line on standard error; ``-q`` not."""
-    from vbikit.cli.guard import STATE, finished_before, say_resumed
+    round's bars jumped ahead, and the closing time covered the resumed part only. Each command now takes what the run
+    itself reported finished before it started (after its checks: a part moved aside or run again is not counted)
+    and, once the run is done, says so in one line on standard error; ``-q`` not."""
+    from vbikit.cli.guard import STATE, say_resumed
+    from vbikit.cli.lifetime import _Bars
+    from vbikit.cli.study import _Bar
 
-    parts = tmp_path / "o.nc.parts"
-    assert finished_before(parts, ("batch-*.npz", "batch", "batches")) == ""  # (no folder: a fresh run)
-    parts.mkdir()
-    assert finished_before(parts, ("batch-*.npz", "batch", "batches")) == ""  # (an empty one)
-    say_resumed("", parts)
+    bar = _Bar("s", enabled=False, unit="event")
+    for done in (3, 5, 9):
+        bar(done, 9)
+    assert bar.first == (3, 9)  # (the first report: what the run found done)
+    bars = _Bars(enabled=False)
+    for stage, done, total in (("static pass", 5, 5), ("dynamics round 1", 40, 40), ("dynamics round 2", 7, 20),
+                               ("dynamics round 2", 20, 20), ("dynamics round 1", 0, 40), ("dynamics round 1", 40, 40)):
+        bars(stage, done, total, {})
+    assert bars.resumed() == "1 stage, part of 1 stage"  # (round 1 run again from the start: not counted)
+    say_resumed("", tmp_path)
     assert capsys.readouterr().err == ""
-    for k in range(3):
-        (parts / f"batch-{k:06d}.npz").write_bytes(b"")
-    (parts / "sub").mkdir()
-    (parts / "sub" / "a.nc").write_bytes(b"")
-    before = finished_before(parts, ("*.nc", "stage", "stages"), ("batch-*.npz", "batch", "batches"))
-    assert before == "1 stage and 3 batches"
-    say_resumed(before, parts)
-    assert capsys.readouterr().err.startswith(f"resumed: 1 stage and 3 batches finished before were kept from {parts}")
+    say_resumed("3 of 9 events", tmp_path)
+    assert capsys.readouterr().err.startswith(f"resumed: 3 of 9 events finished before were kept from {tmp_path}")
     STATE["quiet"] = True
     try:
-        say_resumed(before, parts)
+        say_resumed("3 of 9 events", tmp_path)
     finally:
         STATE["quiet"] = False
     assert capsys.readouterr().err == ""

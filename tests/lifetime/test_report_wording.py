@@ -308,5 +308,5 @@ def test_another_runs_work_names_the_output_folder(tmp_path, monkeypatch):
     monkeypatch.setattr(study_run, "run_study", refuse)
     with pytest.raises(LifetimeError) as err:
         _run(None, tmp_path / "work" / "static.nc", 1, None, None, "static pass")
-    assert str(err.value).startswith(f"{tmp_path} holds the work of another lifetime run")
+    assert str(err.value).startswith(f"{tmp_path} holds work this run cannot use")
     assert "--out" not in str(err.value) and "study" not in str(err.value)

@@ -281,3 +281,45 @@ def test_the_start_of_datasets_written_before_the_shared_attributes_is_read_as_t
                                         "road alone (crossing.run_in; the road held less on 1 event, 60 m the shortest)")
     none_held = {"approach_m": 10.0, "run_in_m": 90.0, "run_in_min_m": 0.0, "run_in_shortened_events": 2}
     assert start_words(none_held).endswith("(crossing.run_in; the road held less on 2 events, 0 m the shortest)")
+
+
+def test_a_lifetime_round_that_ran_with_other_run_ins_is_run_again_with_the_rounds_after_it(tmp_path):
+    """A lifetime resumed from rounds an earlier version ran with other run-ins runs the first such round again — and
+    the rounds and the half-step check after it, whose events follow from its peaks: they were refused as "another
+    run's work" when only the round was run again. Emulated: round 1 with its peaks scaled and the later stages made
+    from those (an earlier version's state), then its run-in set to 60 m where this version gives 90 m."""
+    import shutil
+
+    import xarray as xr
+
+    from vbikit.lifetime.run import run_lifetime
+
+    spec = {"seed": 5, "days": 5, "traffic": {"records": str(ROOT / "examples/traffic/stream.csv"), "trucks_per_day": 20},
+            "bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"},
+            "road": {"class": "B"}, "load_effects": [{"kind": "moment", "x": 3.9, "name": "M"}], "block": "day",
+            "distribution": "gumbel"}
+    out = tmp_path / "out"
+    work = out / "work"
+    first = run_lifetime(spec, out, workers=1, figures=False)
+    one = work / "dynamic-1.nc"
+
+    def rewrite(change, drop_later: bool) -> None:
+        with xr.open_dataset(one) as ds:
+            stage = ds.load()
+        assert set(stage["run_in"].values.tolist()) == {90.0}  # (this version's: the population's 90 m)
+        change(stage)
+        stage.to_netcdf(one.with_suffix(".tmp"))
+        one.with_suffix(".tmp").replace(one)
+        (out / "lifetime.nc").unlink()
+        for later in [*work.glob("dynamic-*"), *work.glob("half-step*")] if drop_later else []:
+            if later.name != one.name:
+                shutil.rmtree(later) if later.is_dir() else later.unlink()
+
+    rewrite(lambda stage: stage.__setitem__("dyn_peak", stage["dyn_peak"] * 1.6), True)  # (an earlier version's peaks)
+    run_lifetime(spec, out, workers=1, figures=False)  # (the later stages made from them)
+    assert len(list(work.glob("dynamic-*.nc"))) > 1  # (rounds after the first: what round 1's peaks decide)
+    rewrite(lambda stage: stage.__setitem__("run_in", stage["run_in"] * 0 + 60.0), False)  # (and its other run-in)
+    again = run_lifetime(spec, out, workers=1, figures=False)
+    with xr.open_dataset(one) as ds:
+        assert set(ds["run_in"].values.tolist()) == {90.0}  # (run again with this version's run-in)
+    assert float(again["characteristic_total"].values[0]) == float(first["characteristic_total"].values[0])

@@ -256,7 +256,7 @@ def test_a_foreign_stage_file_is_not_announced_as_resumable_work(tmp_path):
     argv = _command(tmp_path, "lifetime")
     (tmp_path / "out" / "work").mkdir(parents=True)
     (tmp_path / "out" / "work" / "static.nc").write_text("not a dataset\n")
-    err = cli_refused(runner.invoke(app, [*argv, "--workers", "1"]), "holds the work of another lifetime run")
+    err = cli_refused(runner.invoke(app, [*argv, "--workers", "1"]), "holds work this run cannot use")
     assert "note:" not in err and "resume" not in err
 
 

@@ -224,21 +224,10 @@ MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (
 MAX_STEPS = typer.Option(None, "--max-steps", help="Time-step budget of the run (default 5e6).")
 
 
-def finished_before(folder: Path, *kinds: tuple[str, str, str]) -> str:
-    """What a run found finished in ``folder`` before it started, in words ("" for nothing): per kind (glob pattern
-    in the folder and its sub-folders, singular, plural) the files found — "14 batches" — for the line a command
-    prints once the run is done (``say_resumed``; known only then to be this run's: a foreign part is refused)."""
-    from vbikit._words import counted
-
-    if not Path(folder).is_dir():
-        return ""
-    found = [(sum(1 for _ in Path(folder).rglob(pattern)), one, many) for pattern, one, many in kinds]
-    return " and ".join(counted(n, one, many) for n, one, many in found if n)
-
-
-def say_resumed(before: str, folder: Path) -> None:
-    """After a finished run: one line on standard error (not with ``-q``) that it resumed from work ``before``
-    (``finished_before``) kept in ``folder``, not computed again — the run's time covers the rest only."""
-    if before and not STATE["quiet"]:
-        typer.echo(f"resumed: {before} finished before were kept from {folder}, not run again (the time above is "
+def say_resumed(words: str, folder: Path) -> None:
+    """After a finished run: one line on standard error (not with ``-q``) that it resumed from the work ``words``
+    says ("3 of 95 batches", "2 of 12 trains": what the run itself found finished and used, after its checks) kept
+    in ``folder``, not computed again — the run's time covers the rest only.  Nothing for ``words`` = ""."""
+    if words and not STATE["quiet"]:
+        typer.echo(f"resumed: {words} finished before were kept from {folder}, not run again (the time above is "
                    "this run's)", err=True)

@@ -25,8 +25,24 @@ class _Bars:
 
     def __init__(self, enabled: bool) -> None:
         self.enabled, self.bar, self.stage = enabled, None, None
+        #: per stage, (done, total) of its first report: what the run found finished and usable of it (a stage run
+        #: again from the start reports less than before, and starts its record afresh)
+        self.first: dict[str, tuple[int, int]] = {}
+        self._last: dict[str, int] = {}
+
+    def resumed(self) -> str:
+        """The stages the run found finished (or partly) before it started, in words ("" for none)."""
+        from vbikit._words import counted
+
+        whole = sum(1 for d, t in self.first.values() if t and d >= t)
+        part = sum(1 for d, t in self.first.values() if 0 < d < t)
+        return ", ".join(filter(None, [counted(whole, "stage") if whole else "",
+                                       f"part of {counted(part, 'stage')}" if part else ""]))
 
     def __call__(self, stage: str, done: int, total: int, info: dict) -> None:
+        if stage not in self.first or done < self._last.get(stage, 0):
+            self.first[stage] = (done, total)
+        self._last[stage] = done
         if not self.enabled:
             return
         if stage != self.stage:
@@ -70,9 +86,8 @@ def lifetime_cmd(
     memory = None if max_memory is None else memory_option(max_memory)
     bars = _Bars(progress and not STATE["quiet"])
     t0 = time.perf_counter()
-    from vbikit.cli.guard import finished_before, say_resumed
+    from vbikit.cli.guard import say_resumed
 
-    before = finished_before(out_dir / WORK_FOLDER, ("*.nc", "stage", "stages"), ("batch-*.npz", "batch", "batches"))
     try:
         ds = guard(lambda: run_lifetime(spec, out_dir, workers=workers, scheduler=scheduler, progress=bars,
                                         figures=figures, max_memory=memory), file=spec)
@@ -86,4 +101,4 @@ def lifetime_cmd(
     typer.echo((out_dir / REPORT_FILE).read_text())
     typer.echo(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
                f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
-    say_resumed(before, out_dir / WORK_FOLDER)
+    say_resumed(bars.resumed(), out_dir / WORK_FOLDER)

@@ -29,18 +29,22 @@ def rail_cmd(
 
     def report(done: int, total: int) -> None:
         nonlocal bar
+        if not first:
+            first.append((done, total))
+        if not (progress and not STATE["quiet"]):
+            return
         if bar is None:
             from tqdm import tqdm
 
             bar = tqdm(total=total, desc="rail sweep", unit="train", dynamic_ncols=True)
         bar.update(done - bar.n)
 
-    from vbikit.cli.guard import finished_before, say_resumed
+    from vbikit.cli.guard import say_resumed
 
-    before = finished_before(out_dir / "rail.parts", ("*.npz", "train", "trains"))
+    first: list[tuple[int, int]] = []  # (the run's first report: the trains it read, finished before)
     try:
         result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
-                                        progress=report if progress and not STATE["quiet"] else None,
+                                        progress=report,
                                         scheduler=scheduler), file=spec)
     except KeyboardInterrupt:
         typer.echo(f"\ninterrupted: finished trains are kept in {out_dir / 'rail.parts'}; run the same command "
@@ -53,4 +57,5 @@ def rail_cmd(
     for f in result.files:  # results, on stdout as every command's (its progress bar and warnings: stderr)
         typer.echo(f"wrote {f}")
     typer.echo(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s")
-    say_resumed(before, out_dir / "rail.parts")
+    done, total = first[0] if first else (0, 0)
+    say_resumed(f"{done} of {total} trains" if done else "", out_dir / "rail.parts")

@@ -30,8 +30,12 @@ class _Bar:
 
     def __init__(self, label: str, enabled: bool = True, unit: str = "crossing") -> None:
         self.label, self.enabled, self.bar, self.unit = label, enabled, None, unit
+        #: (done, total) of the run's first report: what it found finished and usable before it started
+        self.first: Optional[tuple[int, int]] = None
 
     def __call__(self, done: int, total: int) -> None:
+        if self.first is None:
+            self.first = (done, total)
         if not self.enabled:
             return
         if self.bar is None:
@@ -53,10 +57,9 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
     t0, finished_before = time.perf_counter(), Path(out).is_file()  # (a run on another study's file is refused)
-    from vbikit.cli.guard import finished_before as found, say_resumed
+    from vbikit.cli.guard import say_resumed
     from vbikit.study.storage import parts_dir
 
-    before = "" if finished_before else found(parts_dir(Path(out)), ("batch-*.npz", "batch", "batches"))
     try:
         ds = guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
     except KeyboardInterrupt:
@@ -71,7 +74,8 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
                    f"delete it, or give another {option}, to run again)")
     else:
         typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
-        say_resumed(before, parts_dir(Path(out)))
+        done, total = bar.first or (0, 0)
+        say_resumed(f"{done:,} of {total:,} {unit}s" if 0 < done else "", parts_dir(Path(out)))
     return ds
 
 

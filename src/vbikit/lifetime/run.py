@@ -233,8 +233,8 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
         if "is not this study's finished dataset" not in str(err):
             raise
         work = path.parent  # (a work file of another lifetime run: name the output folder, not the file)
-        raise LifetimeError(f"{work.parent} holds the work of another lifetime run ({path} is not this run's): "
-                            "delete that folder or write to another output folder") from None
+        raise LifetimeError(f"{work.parent} holds work this run cannot use ({path}: another lifetime run's, or an "
+                            "earlier version's): delete that folder or write to another output folder") from None
 
 
 #: the files a lifetime run writes in its output folder, and the folder of its finished work (resumed by the
@@ -274,6 +274,28 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
         if note and "to resume" not in str(err) and str(work) not in str(err):
             err.add_note(note)
         raise
+
+
+def _stages_after(work: Path, r: int) -> list[Path]:
+    """The stored stages that follow dynamics round ``r`` (later rounds and the half-step check), files or parts."""
+    later = [p for p in work.glob("dynamic-*.nc*") if _round_of(p) > r]
+    return later + list(work.glob("half-step.nc*"))
+
+
+def _round_of(path: Path) -> int:
+    """The round number of a stage file or parts folder ``dynamic-<r>.nc[.parts]`` (-1 for another name)."""
+    digits = path.name.removeprefix("dynamic-").split(".", 1)[0]
+    return int(digits) if digits.isdigit() else -1
+
+
+def _remove_stage(path: Path) -> None:
+    """A stored stage's file or parts folder removed."""
+    import shutil
+
+    if path.is_dir():
+        shutil.rmtree(path)
+    elif path.exists():
+        path.unlink()
 
 
 def resume_note(work: Path) -> str:
@@ -341,7 +363,9 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
                   {"events": int(gid.size), "dynamic": done[0]})
         again = job.run_in_problem(ds["event"].values, ds["run_in"].values) if "run_in" in ds else None
         if again:  # (a round finished by an earlier version that gave its events other run-ins: run again)
-            log.info("dynamics round %d: %s; running it again", r, again)
+            log.info("dynamics round %d: %s; running it again, and the stages after it", r, again)
+            for later in _stages_after(work, r):  # (the next rounds' events and the half-step check follow from
+                _remove_stage(later)             # this round's peaks: theirs would no longer be this run's)
             path.unlink()
             ds = _run(job, path, workers, scheduler, progress, f"dynamics round {r}",
                       {"events": int(gid.size), "dynamic": done[0]})

@@ -313,6 +313,8 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     todo = [i for i, s in enumerate(swept) if s is None]
     if len(todo) < len(trains):
         log.info("resuming: %d of %d trains read from %s", len(trains) - len(todo), len(trains), stored.work)
+    if progress is not None:  # (what was finished before, read: the first report)
+        progress(len(trains) - len(todo), len(trains))
     group = max(1, n_workers) if (progress is not None or stored.work is not None) else max(1, len(todo))
     for start in range(0, len(todo), group):
         idx = todo[start:start + group]

@@ -150,13 +150,18 @@ def lengthened_run_in(run_in: float, needed: float) -> float:
     return max(float(run_in), min(float(math.ceil(needed)), MAX_RUN_IN))
 
 
+#: run-ins [m] that differ by at most this are the same (``run_in_problem``): a lengthened run-in is rounded up to the
+#: metre from an eigenvalue, which another machine's linear algebra may put a rounding error to the other side of
+RUN_IN_SAME = 1.0 + 1e-6
+
+
 def run_in_problem(stored: Any, given: Any) -> str | None:
     """Why a stored part of a population's runs cannot be used (None if it can): an event of it ran with another
     run-in [m] than this version gives it (``stored`` against ``given``, per event; NaN for moving forces), e.g. one
     written before the population lengthened a run-in for vehicles that need more."""
     stored, given = np.asarray(stored, float), np.asarray(given, float)
     sprung = np.isfinite(stored)
-    if np.any(np.abs(stored[sprung] - given[sprung]) > 1e-6):
+    if np.any(np.abs(stored[sprung] - given[sprung]) > RUN_IN_SAME):
         return "its events ran with another run-in than this version gives them (written by an earlier version)"
     return None
 
