@@ -50,7 +50,7 @@ def guard(action: Callable[[], T], file: Optional[Path] = None) -> T:
             typer.echo(f"note: {note}", err=True)
         raise typer.Exit(code=2) from None
     except Exception as err:
-        if _interrupted(err):  # Ctrl-C inside a compiled kernel: numba wraps it (SystemError); the caller's
+        if _interrupted(err) and not STATE["debug"]:  # Ctrl-C inside a compiled kernel: numba wraps it; the caller's
             raise KeyboardInterrupt from None  # `except KeyboardInterrupt` then says what is kept
         if STATE["debug"] or not _worker_died(err):
             raise
