@@ -798,6 +798,8 @@ def implausible_deflection_dataset_flags(static_peaks: ArrayLike, spans: ArrayLi
 #: where a population's remedies put their crossing keys (a traffic stream's base scenario; a lifetime file
 #: passes its own [crossing] table)
 BASE_SCENARIO = "the base scenario"
+#: the remedy for a run-in the road cut short (``start_from_rest_flags``, ``start_unsettled_flags``)
+LONGER_ROAD = "give a longer road.length (a random road) or a measured profile reaching further before the bridge"
 
 
 def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, output: str = "impact_factor",
@@ -819,7 +821,7 @@ def start_from_rest_flags(approach: float, settled: float = SETTLED_APPROACH, ou
                   "point off the deck at the start), and a population's run-in then settles them")
     elif shortened:
         remedy = (f"the road was too short for the whole run-in on {counted(shortened, 'event')}: for design values "
-                  "give a longer road.length (a random road) or a measured profile reaching further before the bridge")
+                  f"{LONGER_ROAD}")
     else:
         remedy = (f"for design values let them drive {settled:g} m: crossing.run_in = {max(settled - approach, 0.0):g} "
                   f"in {where} (the vehicles alone on the road, no coupled steps: cheaper than a longer approach)")
@@ -853,20 +855,18 @@ def start_unsettled_flags(events: int, worst: float, settling: float, total: int
     if adaptive and math.isfinite(settling):
         if shortened:
             remedies.append(f"the population lengthens each event's run-in to what its vehicles need, but the road cut "
-                            f"it short on {counted(shortened, 'event')}: give a longer road.length (a random road) or "
-                            "a measured profile reaching further before the bridge")
+                            f"it short on {counted(shortened, 'event')}: {LONGER_ROAD}")
         elif math.ceil(settling) > MAX_RUN_IN:
             remedies.append(f"their vehicles need a run-in of {math.ceil(settling):g} m, more than the longest "
-                            f"allowed ({MAX_RUN_IN:g} m): give them more damping or a longer crossing.approach, or read their impact "
-                            "factors as low")
+                            f"allowed ({MAX_RUN_IN:g} m): give them more damping or a longer crossing.approach, or "
+                            "read their impact factors as low")
     elif math.isfinite(settling) and not math.ceil(settling) <= run_in:
         whom = "the population's other vehicles" if remedies else "every vehicle of the population"
         remedies.append(f"give crossing.run_in = {math.ceil(settling):g} m in {where} (crossing.approach as "
                         f"it is; the road must hold it: road.length), which settles {whom} to the limit")
     elif math.isfinite(settling) and shortened:
         remedies.append(f"crossing.run_in is long enough ({math.ceil(settling):g} m would do), but the road cut it "
-                        f"short on {counted(shortened, 'event')}: give a longer road.length (a random road) or a "
-                        "measured profile reaching further before the bridge")
+                        f"short on {counted(shortened, 'event')}: {LONGER_ROAD}")
     if not remedies:
         remedies.append(f"drive them further before the bridge (crossing.run_in in {where})")
     remedy = "; ".join(remedies)
