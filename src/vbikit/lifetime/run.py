@@ -359,9 +359,10 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
     def simulate(new: np.ndarray, r: int) -> np.ndarray:
         job = prep.dynamic_job(gid[new], stored)
         path = work / f"dynamic-{r}.nc"
+        finished = path.is_file()  # (a round read back, not run now: its run-ins are those of the version that ran it)
         ds = _run(job, path, workers, scheduler, progress, f"dynamics round {r}",
                   {"events": int(gid.size), "dynamic": done[0]})
-        again = job.run_in_problem(ds["event"].values, ds["run_in"].values) if "run_in" in ds else None
+        again = job.run_in_problem(ds["event"].values, ds["run_in"].values) if finished and "run_in" in ds else None
         if again:  # (a round finished by an earlier version that gave its events other run-ins: run again)
             log.info("dynamics round %d: %s; running it again, and the stages after it", r, again)
             for later in _stages_after(work, r):  # (the next rounds' events and the half-step check follow from
