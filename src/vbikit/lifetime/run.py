@@ -29,19 +29,22 @@ import numpy as np
 
 from vbikit._files import shared_name
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
-from vbikit.lifetime.screening import (CHECK_FRACTION, block_dynamic_max, candidates, heavy_amplifications,
-                                       rescreen_bound, top_events)
+from vbikit.lifetime.screening import (CHECK_FRACTION, block_dynamic_max, candidates, expected_dynamic_events,
+                                       heavy_amplifications, rescreen_bound, top_events)
 from vbikit.lifetime.spec import LifetimeError, LifetimeFile, base_sections, parse_lifetime, read_lifetime
 
 log = logging.getLogger(__name__)
 
-#: [substitute] planning costs of the budget estimate on one core: static pass per truck [s], one
-#: dynamic event [s] (a several-second crossing of a 4–10-mode bridge); measured 2026-12-02 on
-#: the example bridge with margin (docs/lifetime.md)
-STATIC_SECONDS_PER_TRUCK = 1e-4
-DYNAMIC_SECONDS_PER_EVENT = 0.3
-#: events per day and effect the screening is expected to keep (for the estimate; measured about 18 with
-#: 4,000 trucks a day, A = 0.6, class-B roads)
+#: [substitute] planning costs of the run-time estimate on one core: the static pass per truck and load effect [s],
+#: one dynamic event [s] (with its share of the rounds' work); measured 2026-12-07 on one worker over a week of
+#: 4,000 trucks a day with point tires (``benchmarks/bench_lifetime.py``): 3.5e-5 and 0.021 s on the 4-mode beam of
+#: ``paper-bridge-2-beam``, 1.5e-4 and 0.024 s on the 10-mode deck of ``paper-bridge-2``; taken about 1.3× above
+#: the larger (docs/lifetime.md, "Run time and memory")
+STATIC_SECONDS_PER_TRUCK = 2e-4
+DYNAMIC_SECONDS_PER_EVENT = 0.03
+#: events per day and effect the screening is expected to keep, for the estimate before the static pass (measured:
+#: 19 on the 4-mode beam, 111 on the 10-mode deck, 4,000 trucks a day, A = 0.6, class B); once the static pass is
+#: done its peaks give the count (``vbikit.lifetime.screening.expected_dynamic_events``)
 SCREENED_PER_DAY = 20
 #: screening: events per block and effect taken in one round (``vbikit.lifetime.screening``)
 PER_ROUND = 3
@@ -75,6 +78,8 @@ class Prepared:
     details: tuple[Detail, ...]
     estimate_hours: float
     info: dict = field(default_factory=dict)
+    #: the workers the run-time estimates divide by (``prepare``'s ``workers``, 1 when not given)
+    cores: int = 1
 
     @property
     def n_days(self) -> int:
@@ -188,7 +193,34 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             f"{len(names)} load effect(s)), above the memory budget {human(limit)}; raise it with "
                             "--max-memory (vbikit lifetime) or max_memory= (run_lifetime), or simulate fewer days")
     return Prepared(spec, base_dir, model, key, setup, tuple(details), hours,
-                    {"n_records": len(records), "records": shared_name(spec.traffic.records)})  # (as the file gives it)
+                    {"n_records": len(records), "records": shared_name(spec.traffic.records)},  # (as the file gives it)
+                    cores)
+
+
+def dynamics_estimate(prep: Prepared, static) -> tuple[float, int]:
+    """(hours, events) the dynamics are estimated at once the static pass ``static`` is done: the events the
+    screening is expected to simulate (``expected_dynamic_events``, from the static peaks) at
+    ``DYNAMIC_SECONDS_PER_EVENT`` on ``prep.cores`` workers."""
+    signs = np.array([ln.sign for ln in prep.setup.lines])
+    sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
+    events = expected_dynamic_events(static["ev_static"].values, signs, static["ev_day"].values, prep.n_days,
+                                     prep.spec.amplification, sample)
+    return events * DYNAMIC_SECONDS_PER_EVENT / prep.cores / 3600, events
+
+
+def check_dynamics_budget(prep: Prepared, static) -> None:
+    """Refuse the dynamics when, estimated from the static pass (``dynamics_estimate``), they would take longer than
+    ``budget_hours``: the estimate before the run (``prepare``) cannot know how many events the screening keeps
+    (19 a day and effect on the example's beam, 111 on its deck); the static pass it ran is kept, and the same
+    command resumes from it."""
+    hours, events = dynamics_estimate(prep, static)
+    log.info("dynamics estimated at %.3g h on %d worker(s) (about %d events the screening keeps)", hours, prep.cores,
+             events)
+    if hours > prep.spec.budget_hours:
+        raise LifetimeError(f"budget_hours: after the static pass the dynamics are estimated at {hours:.2f} h on "
+                            f"{prep.cores} worker(s) (about {events:,} events the screening keeps, from the static "
+                            f"peaks), above budget_hours = {prep.spec.budget_hours:g} h; raise budget_hours (up to "
+                            "10000), or lower amplification or the duration, to run them")
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:
@@ -321,6 +353,7 @@ def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, sche
     static = _run(prep.static_job(), work / "static.nc", workers, scheduler, progress, "static pass",
                   {"trucks_per_day": prep.model.trucks_per_day})
     t_static = time.perf_counter() - t0
+    check_dynamics_budget(prep, static)
     dyn, rounds, bound = _dynamics(prep, static, work, workers, scheduler, progress)
     _governing(prep, static, dyn, work, workers, scheduler, progress)
     t_total = time.perf_counter() - t0

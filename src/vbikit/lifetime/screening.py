@@ -80,6 +80,30 @@ def candidates(static: NDArray[np.float64], signs: NDArray[np.float64], block: N
     return np.unique(np.concatenate(picks)) if picks else np.zeros(0, np.int64)
 
 
+#: [substitute] the dynamic amplification of a block's largest static event that ``expected_dynamic_events`` takes
+#: for the block's D_b: with the blocks' top events and the random sample the estimate is then, on a week of 4,000
+#: trucks a day over the 4-mode beam and the 10-mode deck of Bridge 2 (A = 0.6, class B), 418 and 3,304 events where
+#: the runs simulated 396 and 1,552 (``benchmarks/bench_lifetime.py``, with ``--deck``; 2026-12-07)
+EXPECTED_TOP_AMPLIFICATION = 0.1
+
+
+def expected_dynamic_events(static: NDArray[np.float64], signs: NDArray[np.float64], block: NDArray[np.int64],
+                            n_blocks: int, amplification: float, extra: NDArray[np.int64] | None = None) -> int:
+    """How many events the screening (module docstring) is expected to simulate, from the static peaks alone:
+    those the rule keeps with D_b = (1 + ``EXPECTED_TOP_AMPLIFICATION``) times the block's largest s·R_st of
+    each effect (the dynamic peak of that event, which round 1 simulates, at a typical amplification), the
+    blocks' largest events and ``extra`` (the random sample) — a run-time estimate made once the static pass
+    is done (``vbikit.lifetime.run``); a bound A raised by the amplification check adds more."""
+    s = np.asarray(static) * np.asarray(signs)[None, :]
+    top = np.full((n_blocks, s.shape[1]), -np.inf)
+    for j in range(s.shape[1]):
+        np.maximum.at(top[:, j], block, s[:, j])
+    threshold = np.where(top > 0, (1.0 + EXPECTED_TOP_AMPLIFICATION) * top, top)
+    kept = candidates(static, signs, block, threshold, amplification)
+    extra = np.zeros(0, np.int64) if extra is None else np.asarray(extra, np.int64)
+    return int(np.union1d(np.union1d(kept, top_events(static, signs, block)), extra).size)
+
+
 def amplifications(dyn: NDArray[np.float64], static: NDArray[np.float64]) -> NDArray[np.float64]:
     """a = R_dyn / R_st − 1 (same sign convention; NaN where R_st = 0)."""
     with np.errstate(divide="ignore", invalid="ignore"):
