@@ -1,0 +1,89 @@
+"""What the exact integrator's first-period rule (100 steps per period of the first bridge mode,
+``vbikit.solve.timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``) costs the paper programme, and what it buys.
+
+    python benchmarks/bench_period_rule.py              # seven cells of the programme, ≈ 1 min
+    python benchmarks/bench_period_rule.py --per 100 50 25 12.5
+
+The paper programme (``bench_studies.py``) is bound by its step count: its lanes run at or below the
+floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set by the first bridge period
+(0.399 ms, against 2.4 ms of 3 cm of road at 45 km/h); on Bridge 2 (7.3 Hz) the speeds up to 75 km/h on
+classes B and C, and up to 53 km/h on class D and with Fig. 11's depression (2 cm of road a step).  For
+seven cells of the programme (the paper's 3D bridges at Girder 4, first road profile of the cell), each
+crossing is run at the automatic step the rule gives with ``--per`` steps a first period, and at an eighth
+of the step of 100 (the reference); printed per cell and rule: the step, the number of steps, the thread
+CPU time of ``simulate`` and the displacement IM's difference from the reference.  The programme's
+accuracy criterion is 1e-3 per crossing against converged RK4 (docs/verification.md, "The paper
+programme against RK4"); the automatic step's own bound in the convergence table is 5e-4.
+
+Writes nothing but numba's cache.
+"""
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import itertools
+import time
+
+#: (figure, (tire model, multipoint n, speed [km/h], road class)) of the cells measured
+CELLS = (("fig5", ("multipoint", 1, 45, "C")), ("fig5", ("multipoint", 6, 45, "B")),
+         ("fig5", ("multipoint", 1, 45, "D")), ("fig6", ("multipoint", 6, 45, "C")),
+         ("fig10", ("disk", None, 15, "C")), ("fig10", ("multipoint", None, 30, "B")),
+         ("fig11", ("point", None, 15, "B")))
+
+
+def _scenario(fig: str, key: tuple):
+    from vbikit.scenario import build, parse_scenario
+    from vbikit.study.paper import paper_study
+
+    study = paper_study(fig, 1)
+    for idx in itertools.product(*(range(n) for n in study.shape)):
+        d = study.scenario_dict(idx)
+        have = (d["tire"].get("model"), d["tire"].get("n_points"), d["crossing"]["speed_kmh"], d["road"]["class"])
+        if all(want is None or want == got for want, got in zip(key, have)):
+            return build(parse_scenario(d))
+    raise SystemExit(f"no cell {key} in {fig}")
+
+
+def _run(built, dt: float) -> tuple[float, int, float]:
+    """(displacement IM, steps, thread CPU s of ``simulate``) of ``built``'s crossing at step ``dt``."""
+    from vbikit.analysis import point_response
+    from vbikit.solve import simulate
+
+    t0 = time.thread_time()
+    result = simulate(dataclasses.replace(built.crossing, dt=dt))
+    spent = time.thread_time() - t0
+    im = point_response(result, built.response_x, built.response_y).displacement_impact.impact_factor
+    return im, int(result.n_steps), spent
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--per", type=float, nargs="+", default=[100.0, 50.0, 25.0],
+                   help="steps per first bridge period to compare (default 100 50 25; 100 is the library's)")
+    args = p.parse_args()
+
+    import logging
+
+    import vbikit.solve.timestep as ts
+
+    logging.disable(logging.WARNING)  # (the rough roads' start-at-rest notes)
+    default = ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD
+    for fig, key in CELLS:
+        built = _scenario(fig, key)
+        steps = {}
+        for per in args.per:
+            ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = per
+            steps[per] = ts.implicit_time_step(built.crossing)
+        ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = default
+        _run(built, steps[args.per[0]])  # warm-up (kernels, the cell's tables)
+        ref = _run(built, ts.implicit_time_step(built.crossing) / 8)[0]
+        cells = []
+        for per, dt in steps.items():
+            im, n, spent = _run(built, dt)
+            cells.append(f"{per:g}/period: dt {dt * 1e3:.3g} ms, {n} steps, {spent * 1e3:.1f} ms, ΔIM {im - ref:+.1e}")
+        tire = key[0] + (f" n = {key[1]}" if key[1] else "")
+        print(f"{fig} {tire}, {key[2]} km/h, class {key[3]}: " + "; ".join(cells), flush=True)
+
+
+if __name__ == "__main__":
+    main()
