@@ -3,6 +3,7 @@
 
     python benchmarks/bench_period_rule.py              # seven cells of the programme, ≈ 1 min
     python benchmarks/bench_period_rule.py --per 100 50 25 12.5
+    python benchmarks/bench_period_rule.py --hold quadratic --vehicle-steps 10   # the trial of the next factor
 
 The paper programme (``bench_studies.py``) is bound by its step count: its lanes run at or below the
 floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set by the first bridge period
@@ -14,6 +15,11 @@ of the step of 100 (the reference); printed per cell and rule: the step, the num
 CPU time of ``simulate`` and the displacement IM's difference from the reference.  The programme's
 accuracy criterion is 1e-3 per crossing against converged RK4 (docs/verification.md, "The paper
 programme against RK4"); the automatic step's own bound in the convergence table is 5e-4.
+
+``--hold quadratic`` runs the exact integrator with the vehicles' wheel loads held quadratic over a step
+(``vbikit.solve.modal_step.vehicle_step``'s ``QUADRATIC``, which the kernels already take: the deck's loads
+are held so), reference included; ``--vehicle-steps`` changes the vehicle term of the step rule.  Neither is
+the library's: a trial of what a more accurate coupling would buy (benchmarks/README.md).
 
 Writes nothing but numba's cache.
 """
@@ -60,6 +66,10 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--per", type=float, nargs="+", default=[100.0, 50.0, 25.0],
                    help="steps per first bridge period to compare (default 100 50 25; 100 is the library's)")
+    p.add_argument("--hold", choices=("linear", "quadratic"), default="linear",
+                   help="the vehicles' wheel loads over a step (the library's: linear; quadratic: the trial below)")
+    p.add_argument("--vehicle-steps", type=float, default=None,
+                   help="steps per period of the highest vehicle mode (the library's: 20)")
     args = p.parse_args()
 
     import logging
@@ -68,8 +78,16 @@ def main() -> None:
 
     logging.disable(logging.WARNING)  # (the rough roads' start-at-rest notes)
     default = ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD
+    if args.vehicle_steps is not None:
+        ts.EXACT_STEPS_PER_VEHICLE_PERIOD = args.vehicle_steps
+    if args.hold == "quadratic":  # the exact integrator's vehicle map with G quadratic (modal_step.QUADRATIC)
+        import vbikit.solve.modal_step as modal_step
+
+        linear_map = modal_step.vehicle_step
+        modal_step.vehicle_step = lambda vehicles, h, hold=modal_step.LINEAR: linear_map(vehicles, h, modal_step.QUADRATIC)
     for fig, key in CELLS:
         built = _scenario(fig, key)
+        assert built.crossing.run_in == 0  # (a run-in's recursion reads the linear map only: --hold would not reach it)
         steps = {}
         for per in args.per:
             ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = per
