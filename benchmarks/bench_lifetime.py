@@ -66,17 +66,15 @@ def main() -> None:
     p.add_argument("--json", type=Path, default=None, help="also write the numbers to this JSON file")
     args = benchmark_args(__doc__, "unused (one run)", p)
 
-    from vbikit.lifetime.run import prepare, run_lifetime
+    import xarray as xr
 
-    from vbikit.lifetime.run import dynamics_estimate
+    from vbikit.lifetime.run import dynamics_estimate, prepare, run_lifetime
 
     s = spec(args.days, args.trucks_per_day, args.sample, args.deck)
     with tempfile.TemporaryDirectory(prefix="vbikit-bench-lifetime-") as tmp:
         t0, p0 = time.perf_counter(), time.process_time()
         ds = run_lifetime(s, Path(tmp) / "out", workers=args.workers, figures=False)
         wall, cpu_self = time.perf_counter() - t0, time.process_time() - p0
-        import xarray as xr
-
         estimate = prepare(s, ".", workers=args.workers)
         with xr.open_dataset(Path(tmp) / "out" / "work" / "static.nc") as static:
             after_hours, after_events = dynamics_estimate(estimate, static.load())

@@ -123,7 +123,7 @@ def _lifetime(path: Path, budget: Any) -> str:
     from vbikit.lifetime.spec import read_lifetime
 
     spec, folder = read_lifetime(path)
-    prep = prepare(spec, folder, max_memory=budget.max_memory)
+    prep = prepare(spec, folder, workers=1, max_memory=budget.max_memory)
     return (f"{spec.n_days:,} days, {prep.model.trucks_per_day:,.0f} trucks a day, {len(prep.setup.lines)} load "
             f"effect(s), {len(prep.details)} fatigue detail(s); estimated {prep.estimate_hours:.2f} h on one worker")
 

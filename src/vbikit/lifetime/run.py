@@ -20,14 +20,17 @@ from __future__ import annotations
 import json
 import logging
 import math
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Callable, Optional
 
 import numpy as np
+from numpy.typing import NDArray
 
 from vbikit._files import shared_name
+from vbikit._words import counted
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
 from vbikit.lifetime.screening import (CHECK_FRACTION, block_dynamic_max, candidates, expected_dynamic_events,
                                        heavy_amplifications, rescreen_bound, top_events)
@@ -37,9 +40,10 @@ log = logging.getLogger(__name__)
 
 #: [substitute] planning costs of the run-time estimate on one core: the static pass per truck and load effect [s],
 #: one dynamic event [s] (with its share of the rounds' work); measured 2026-12-07 on one worker over a week of
-#: 4,000 trucks a day with point tires (``benchmarks/bench_lifetime.py``): 3.5e-5 and 0.021 s on the 4-mode beam of
-#: ``paper-bridge-2-beam``, 1.5e-4 and 0.024 s on the 10-mode deck of ``paper-bridge-2``; taken about 1.3× above
-#: the larger (docs/lifetime.md, "Run time and memory")
+#: 4,000 trucks a day with point tires (``benchmarks/bench_lifetime.py``, and ``--deck``): 4.0e-5 s and 0.021–0.030 s
+#: on the 4-mode beam of ``paper-bridge-2-beam``, 1.45e-4 s and 0.024–0.025 s on the 10-mode deck of
+#: ``paper-bridge-2``; the static cost 1.4× the deck's, the event's the upper end (docs/lifetime.md, "Run time and
+#: memory")
 STATIC_SECONDS_PER_TRUCK = 2e-4
 DYNAMIC_SECONDS_PER_EVENT = 0.03
 #: events per day and effect the screening is expected to keep, for the estimate before the static pass (measured:
@@ -178,7 +182,7 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             f"{sampled:.3g} event(s); the fatigue damage ratio and its standard error need at least "
                             f"{MIN_SAMPLE_EVENTS} (raise dynamic_sample or the duration)")
     dyn = spec.n_days * len(names) * (1 + SCREENED_PER_DAY) + spec.fatigue.dynamic_sample * events * (1 if details else 0)
-    cores = max(1, workers or 1)
+    cores = workers or os.cpu_count() or 1  # (as vbikit.study.run_study: None, every core)
     hours = (trucks * STATIC_SECONDS_PER_TRUCK * max(1, len(names)) + dyn * DYNAMIC_SECONDS_PER_EVENT) / cores / 3600
     if hours > spec.budget_hours:
         raise LifetimeError(f"budget_hours: the run is estimated at {hours:.2f} h on {cores} worker(s) "
@@ -197,30 +201,47 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                     cores)
 
 
-def dynamics_estimate(prep: Prepared, static) -> tuple[float, int]:
-    """(hours, events) the dynamics are estimated at once the static pass ``static`` is done: the events the
-    screening is expected to simulate (``expected_dynamic_events``, from the static peaks) at
-    ``DYNAMIC_SECONDS_PER_EVENT`` on ``prep.cores`` workers."""
+def dynamics_estimate(prep: Prepared, static, done: NDArray[np.int64] | None = None) -> tuple[float, int]:
+    """(hours, events) the dynamics still to run are estimated at once the static pass ``static`` is done: the events
+    the screening is expected to simulate (``expected_dynamic_events``, from the static peaks), less those of
+    ``done`` (global ids of events whose dynamics a finished round holds), at ``DYNAMIC_SECONDS_PER_EVENT`` on
+    ``prep.cores`` workers."""
     signs = np.array([ln.sign for ln in prep.setup.lines])
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
-    events = expected_dynamic_events(static["ev_static"].values, signs, static["ev_day"].values, prep.n_days,
-                                     prep.spec.amplification, sample)
-    return events * DYNAMIC_SECONDS_PER_EVENT / prep.cores / 3600, events
+    day = static["ev_day"].values
+    expected = expected_dynamic_events(static["ev_static"].values, signs, day, prep.n_days, prep.spec.amplification,
+                                       sample)
+    if done is not None and len(done):
+        gid = day * EVENT_STRIDE + static["ev_index"].values
+        expected = expected[~np.isin(gid[expected], np.asarray(done, np.int64))]
+    return expected.size * DYNAMIC_SECONDS_PER_EVENT / prep.cores / 3600, int(expected.size)
 
 
-def check_dynamics_budget(prep: Prepared, static) -> None:
-    """Refuse the dynamics when, estimated from the static pass (``dynamics_estimate``), they would take longer than
-    ``budget_hours``: the estimate before the run (``prepare``) cannot know how many events the screening keeps
-    (19 a day and effect on the example's beam, 111 on its deck); the static pass it ran is kept, and the same
-    command resumes from it."""
-    hours, events = dynamics_estimate(prep, static)
+def finished_dynamics(work: Path) -> NDArray[np.int64]:
+    """The global ids of the events whose dynamics the finished rounds under ``work`` hold (``dynamic-<r>.nc``)."""
+    import xarray as xr
+
+    ids = [np.zeros(0, np.int64)]
+    for path in sorted(work.glob("dynamic-*.nc")):
+        if path.is_file() and _round_of(path) > 0:
+            with xr.open_dataset(path) as ds:
+                ids.append(np.asarray(ds["event"].values, np.int64))
+    return np.unique(np.concatenate(ids))
+
+
+def check_dynamics_budget(prep: Prepared, static, work: Path) -> None:
+    """Refuse the dynamics when, estimated from the static pass (``dynamics_estimate``; the events of the finished
+    rounds under ``work`` left out), they would take longer than ``budget_hours``: the estimate before the run
+    (``prepare``) cannot know how many events the screening keeps (19 a day and effect on the example's beam, 111 on
+    its deck); the static pass it ran is kept, and the same command resumes from it."""
+    hours, events = dynamics_estimate(prep, static, finished_dynamics(work))
     log.info("dynamics estimated at %.3g h on %d worker(s) (about %d events the screening keeps)", hours, prep.cores,
              events)
     if hours > prep.spec.budget_hours:
         raise LifetimeError(f"budget_hours: after the static pass the dynamics are estimated at {hours:.2f} h on "
-                            f"{prep.cores} worker(s) (about {events:,} events the screening keeps, from the static "
-                            f"peaks), above budget_hours = {prep.spec.budget_hours:g} h; raise budget_hours (up to "
-                            "10000), or lower amplification or the duration, to run them")
+                            f"{prep.cores} worker(s) (about {counted(events, 'event', thousands=True)} the screening keeps, "
+                            f"from the static peaks), above budget_hours = {prep.spec.budget_hours:g} h; raise budget_hours (up to "
+                            "10000) or run on more workers to run them")
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:
@@ -353,7 +374,7 @@ def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, sche
     static = _run(prep.static_job(), work / "static.nc", workers, scheduler, progress, "static pass",
                   {"trucks_per_day": prep.model.trucks_per_day})
     t_static = time.perf_counter() - t0
-    check_dynamics_budget(prep, static)
+    check_dynamics_budget(prep, static, work)
     dyn, rounds, bound = _dynamics(prep, static, work, workers, scheduler, progress)
     _governing(prep, static, dyn, work, workers, scheduler, progress)
     t_total = time.perf_counter() - t0

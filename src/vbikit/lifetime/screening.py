@@ -88,20 +88,23 @@ EXPECTED_TOP_AMPLIFICATION = 0.1
 
 
 def expected_dynamic_events(static: NDArray[np.float64], signs: NDArray[np.float64], block: NDArray[np.int64],
-                            n_blocks: int, amplification: float, extra: NDArray[np.int64] | None = None) -> int:
-    """How many events the screening (module docstring) is expected to simulate, from the static peaks alone:
-    those the rule keeps with D_b = (1 + ``EXPECTED_TOP_AMPLIFICATION``) times the block's largest s·R_st of
-    each effect (the dynamic peak of that event, which round 1 simulates, at a typical amplification), the
-    blocks' largest events and ``extra`` (the random sample) — a run-time estimate made once the static pass
-    is done (``vbikit.lifetime.run``); a bound A raised by the amplification check adds more."""
+                            n_blocks: int, amplification: float,
+                            extra: NDArray[np.int64] | None = None) -> NDArray[np.int64]:
+    """The events (sorted indices) the screening (module docstring) is expected to simulate, from the static peaks
+    alone: those the rule keeps with D_b = (1 + ``EXPECTED_TOP_AMPLIFICATION``) times the block's largest s·R_st of
+    each effect (the dynamic peak of that event, which round 1 simulates, at a typical amplification), the blocks'
+    largest events and ``extra`` (the random sample); where a block's largest s·R_st of an effect is not positive
+    (an effect the block's traffic does not load its way), only that block's largest event of it.  A run-time
+    estimate made once the static pass is done (``vbikit.lifetime.run.dynamics_estimate``); the re-screening after
+    an amplification above A, and the governing events' half-step runs, add a few more."""
     s = np.asarray(static) * np.asarray(signs)[None, :]
     top = np.full((n_blocks, s.shape[1]), -np.inf)
     for j in range(s.shape[1]):
         np.maximum.at(top[:, j], block, s[:, j])
-    threshold = np.where(top > 0, (1.0 + EXPECTED_TOP_AMPLIFICATION) * top, top)
+    threshold = np.where(top > 0, (1.0 + EXPECTED_TOP_AMPLIFICATION) * top, np.inf)
     kept = candidates(static, signs, block, threshold, amplification)
     extra = np.zeros(0, np.int64) if extra is None else np.asarray(extra, np.int64)
-    return int(np.union1d(np.union1d(kept, top_events(static, signs, block)), extra).size)
+    return np.union1d(np.union1d(kept, top_events(static, signs, block)), extra).astype(np.int64)
 
 
 def amplifications(dyn: NDArray[np.float64], static: NDArray[np.float64]) -> NDArray[np.float64]:
