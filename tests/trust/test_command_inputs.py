@@ -107,7 +107,7 @@ def test_a_driveby_sweep_of_86400_cases_is_estimated_and_refused(tmp_path):
     res = _validate(tmp_path, "driveby", {"sweep.speed": [5.0 + 0.5 * i for i in range(20)],
                                           "sweep.road_seed": list(range(1080)), "sweep.damage_severity": [0.0, 0.3],
                                           "sweep.noise_rms": [0.0, 0.01]})
-    assert res.exit_code == 2 and "(86,400 cases), above the budget 2e+07; raise max_steps (or --max-steps)" in res.stderr
+    assert res.exit_code == 2 and "(86,400 cases), above the budget 2e+07; raise max_steps in the input file or --max-steps on the command line" in res.stderr
     assert time.perf_counter() - t0 < 10
 
 

@@ -10,10 +10,12 @@ import typer
 
 from vbikit.cli.guard import (
     STATE,
+    budget_option,
     figure_file_option,
     guard,
     limits,
     out_file_option,
+    progress_option,
     scheduler_option,
     warn,
     workers_option,
@@ -45,19 +47,17 @@ def traffic_cmd(
     road: Optional[str] = typer.Option(None, "--road", help="Road class (A…H, good/average/poor, none) instead of the scenario's."),
     seed: int = typer.Option(0, "--seed", min=0, help="Seed of the events' random roads."),
     batch_size: int = typer.Option(16, "--batch-size", min=1, help="Events per stored batch."),
-    workers: Optional[int] = workers_option("Local worker processes (default: all cores; 1 = in this process)."),
-    scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
+    workers: Optional[int] = workers_option(),
+    scheduler: Optional[str] = scheduler_option(),
     plot: Optional[Path] = figure_file_option("Write a figure of the IM distribution and the peaks."),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+    progress: bool = progress_option(),
     outputs: Optional[str] = typer.Option(None, "--outputs", help="The outputs to reduce and store, comma-separated "
                                           "(docs/results.md; default all; the stream statistics' impact_factor, "
                                           "max_dynamic_displacement, max_static_displacement and n_steps always)."),
     max_vehicles: Optional[int] = typer.Option(None, "--max-vehicles", min=1, help="The most vehicle records read "
                                                "(default 100000; a larger file is refused before it is parsed)."),
-    max_memory: Optional[str] = typer.Option(None, "--max-memory", help="Memory budget of one event's run (e.g. 8GiB; "
-                                             "default 4GiB): the largest events estimated before any runs."),
-    max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Time-step budget of one event's run (default "
-                                              "5e6): the largest events estimated before any runs."),
+    max_memory: Optional[str] = budget_option("--max-memory", "memory of each event's run", "4GiB"),
+    max_steps: Optional[float] = budget_option("--max-steps", "time steps of each event's run", "5e6"),
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study."""
