@@ -26,8 +26,8 @@ runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 #: the population commands: they run many crossings on local worker processes or a Dask cluster
 POPULATION = ("traffic", "lifetime", "driveby", "rail", "study run")
-#: those that write a folder (--out-dir) with figures
-WITH_FIGURES = ("lifetime", "driveby", "rail")
+#: those that write a folder (--out-dir: the dataset, a report, a summary JSON and figures)
+WITH_FIGURES = ("traffic", "lifetime", "driveby", "rail")
 #: a budget option's help (``guard.budget_help``): what it counts, the file's key, the default
 BUDGET_HELP = re.compile(r"Budget: the most (?P<counts>.+) \((?:e\.g\. 8GiB; )?(?:overrides the file's (?P<key>\S+); )?"
                          r"default (?P<default>\S+)\); estimated before anything is computed, refused above\.")
@@ -60,6 +60,8 @@ def test_progress_and_figures_are_one_definition():
     assert len(progress) == 1 and "-q" in progress.pop()
     figures = {_options(c)["--figures"].help for c in WITH_FIGURES}
     assert len(figures) == 1
+    for command in WITH_FIGURES:  # the one checked --out-dir option (guard.out_dir_option)
+        assert _options(command)["--out-dir"].callback is not None
 
 
 @pytest.mark.parametrize("command", POPULATION)
