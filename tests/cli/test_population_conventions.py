@@ -190,3 +190,12 @@ def test_driveby_lists_the_errors_of_every_table():
     keys = [line.strip().split(":")[0] for line in lines[1:]]
     assert keys == ["colour", "batch_size", "sensors.cart_acc.quantity", "sensors[2].name", "identification.spectrum",
                     "sweep.speed", "sweep.road_seed"], str(err.value)
+
+
+@pytest.mark.parametrize("command", POPULATION)
+def test_the_input_file_argument_is_one_definition(command):
+    """``guard.input_file_argument``: the kind of file, its format and its page, in one form."""
+    cmd = dict(_commands(typer.main.get_command(app)))[command]
+    (argument,) = [p for p in cmd.params if not p.opts[0].startswith("-")]
+    assert re.fullmatch(r"[A-Z][\w -]+ \((TOML|CSV), docs/\w+\.md\)\.", argument.help), argument.help
+    assert argument.metavar.rsplit(".", 1)[-1].upper() in argument.help

@@ -11,6 +11,7 @@ from vbikit.cli.guard import (
     budget_option,
     figures_option,
     guard,
+    input_file_argument,
     out_dir_option,
     progress_option,
     scheduler_option,
@@ -20,7 +21,7 @@ from vbikit.cli.guard import (
 
 
 def driveby_cmd(
-    file: Path = typer.Argument(..., metavar="DRIVEBY.toml", help="Drive-by file (docs/driveby.md)."),
+    file: Path = input_file_argument("DRIVEBY.toml", "Drive-by file", "driveby.md"),
     out_dir: Path = out_dir_option("Folder for driveby.nc (and driveby.zarr), driveby-report.txt, driveby-summary.json and the figures."),
     workers: Optional[int] = workers_option(),
     scheduler: Optional[str] = scheduler_option(),

@@ -23,7 +23,7 @@ T = TypeVar("T")
 #: the global options of this invocation (set by the root command before a subcommand runs)
 STATE = {"debug": False, "quiet": False}
 
-_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, lifetime) to be "
+_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, traffic, lifetime) to be "
                   "refused before starting, or reduce the inputs named in the budget message of `vbikit validate`")
 
 
@@ -258,6 +258,12 @@ def budget_option(name: str, counts: str, default: str, key: Optional[str] = Non
 #: ``--max-memory`` and ``--max-steps`` of one run (``vbikit run``, ``vbikit validate``)
 MAX_MEMORY = budget_option("--max-memory", "memory of the run", "4GiB")
 MAX_STEPS = budget_option("--max-steps", "time steps of the run", "5e6")
+
+
+def input_file_argument(metavar: str, kind: str, page: str) -> Any:
+    """The input file of a population command (its one positional argument): ``metavar`` as the pages write it
+    (``LIFETIME.toml``), the help "``kind`` (TOML, docs/``page``)." with the format from the metavar's suffix."""
+    return typer.Argument(..., metavar=metavar, help=f"{kind} ({metavar.rsplit('.', 1)[-1].upper()}, docs/{page}).")
 
 
 def progress_option() -> Any:

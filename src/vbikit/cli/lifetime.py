@@ -14,6 +14,7 @@ from vbikit.cli.guard import (
     budget_value,
     figures_option,
     guard,
+    input_file_argument,
     memory_option,
     out_dir_option,
     progress_option,
@@ -71,7 +72,7 @@ class _Bars:
 
 
 def lifetime_cmd(
-    spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
+    spec: Path = input_file_argument("LIFETIME.toml", "Lifetime file", "lifetime.md"),
     out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt, summary.json and the figures (finished batches in work/)."),
     workers: Optional[int] = workers_option(),
     scheduler: Optional[str] = scheduler_option(),

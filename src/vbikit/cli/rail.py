@@ -13,6 +13,7 @@ from vbikit.cli.guard import (
     budget_value,
     figures_option,
     guard,
+    input_file_argument,
     out_dir_option,
     progress_option,
     scheduler_option,
@@ -21,7 +22,7 @@ from vbikit.cli.guard import (
 
 
 def rail_cmd(
-    spec: Path = typer.Argument(..., metavar="RAIL.toml", help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
+    spec: Path = input_file_argument("RAIL.toml", "Railway file", "railway.md"),
     out_dir: Path = out_dir_option("Folder for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
     workers: Optional[int] = workers_option(),
     scheduler: Optional[str] = scheduler_option(),

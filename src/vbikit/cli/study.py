@@ -14,6 +14,7 @@ from vbikit.cli.guard import (
     STATE,
     budget_option,
     guard,
+    input_file_argument,
     limits,
     out_dir_option,
     out_file_option,
@@ -124,7 +125,7 @@ _PROGRESS = progress_option()
 
 @app.command("run")
 def run_cmd(
-    study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
+    study_file: Path = input_file_argument("STUDY.toml", "Study file", "studies.md"),
     out: Path = out_file_option("--out", "Result dataset (NetCDF, .nc).", ...),
     workers: Optional[int] = _WORKERS,
     scheduler: Optional[str] = _SCHEDULER,
@@ -175,7 +176,7 @@ def run_cmd(
 
 @app.command("validate")
 def validate_cmd(
-    study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
+    study_file: Path = input_file_argument("STUDY.toml", "Study file", "studies.md"),
     yes: bool = _YES_VALIDATE,
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,

@@ -14,6 +14,7 @@ from vbikit.cli.guard import (
     figures_option,
     figure_file_option,
     guard,
+    input_file_argument,
     limits,
     out_dir_option,
     out_file_option,
@@ -40,7 +41,7 @@ def _lanes(text: str) -> list[float]:
 
 
 def traffic_cmd(
-    records: Path = typer.Argument(..., metavar="RECORDS.csv", help="Vehicle records CSV (docs/traffic.md)."),
+    records: Path = input_file_argument("RECORDS.csv", "Vehicle records", "traffic.md"),
     bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
     out: Optional[Path] = out_file_option("--out", "The dataset only (NetCDF, .nc); or give --out-dir."),
     out_dir: Optional[Path] = out_dir_option("Folder for traffic.nc, traffic-report.txt, traffic-summary.json and "
