@@ -24,6 +24,14 @@ def workers_limit() -> int:
 
     return max(MAX_WORKERS, os.cpu_count() or 1)
 
+
+def default_workers() -> int:
+    """The local worker processes of a run whose command line (``--workers``) and input file leave them open: all
+    cores — the one default of every command with local workers (``vbikit.cli.guard.WORKERS_HELP``)."""
+    import os
+
+    return os.cpu_count() or 1
+
 #: a validator's message that names one of its section's keys first ("speed: must be …")
 _KEY_FIRST = re.compile(r"^([A-Za-z_]+): ")
 

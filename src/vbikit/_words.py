@@ -5,6 +5,12 @@ import re
 from typing import Optional
 
 
+def raise_budget(key: str, option: str, most: float) -> str:
+    """The one advice of a refused budget that the input file and the command line both set (``vbikit driveby``,
+    ``rail``, ``lifetime``): "raise KEY in the input file or OPTION on the command line (at most MOST)"."""
+    return f"raise {key} in the input file or {option} on the command line (at most {most:g})"
+
+
 def counted(n: int, noun: str, plural: Optional[str] = None, thousands: bool = False) -> str:
     """``n`` and ``noun``, singular for exactly one: ``counted(1, "exceedance")`` → "1 exceedance",
     ``counted(3, "exceedance")`` → "3 exceedances"; ``plural`` where adding "s" is wrong;

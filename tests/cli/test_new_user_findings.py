@@ -39,6 +39,7 @@ OUT_DIR_COMMANDS = {
     "driveby": [str(EXAMPLES / "driveby" / "DRIVEBY.toml")],
     "lifetime": [str(EXAMPLES / "lifetime" / "lifetime.toml")],
     "rail": [str(EXAMPLES / "railway" / "hslm_20m.toml")],
+    "traffic": [str(EXAMPLES / "traffic" / "stream.csv"), "--bridge", str(EXAMPLES / "traffic" / "base" / "bridge2.toml")],
     **{f"study paper-{fig}": [] for fig in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11", "all")},
 }
 

@@ -111,7 +111,8 @@ def test_an_interrupt_after_two_trains_keeps_them_and_the_rerun_sweeps_only_the_
     import vbikit.rail.run as rr
 
     data = {"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0},
-            "trains": {"presets": ["hslm-a1", "hslm-a2", "hslm-a3", "hslm-a4"]}, "speeds": {"min": 200.0, "max": 260.0, "step": 20.0}}
+            "trains": {"presets": ["hslm-a1", "hslm-a2", "hslm-a3", "hslm-a4"]}, "speeds": {"min": 200.0, "max": 260.0, "step": 20.0},
+            "run": {"workers": 1}}  # (one train a group; the default, all cores, sweeps as many at once as there are cores)
     out = tmp_path / "out"
     real, calls = rr.sweep_moving_forces, []
 

@@ -7,18 +7,28 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard, out_dir_option, scheduler_option, steps_option, workers_option
+from vbikit.cli.guard import (
+    budget_option,
+    figures_option,
+    guard,
+    input_file_argument,
+    out_dir_option,
+    progress_option,
+    scheduler_option,
+    steps_option,
+    workers_option,
+)
 
 
 def driveby_cmd(
-    file: Path = typer.Argument(..., metavar="DRIVEBY.toml", help="Drive-by file (docs/driveby.md)."),
+    file: Path = input_file_argument("DRIVEBY.toml", "Drive-by file", "driveby.md"),
     out_dir: Path = out_dir_option("Folder for driveby.nc (and driveby.zarr), driveby-report.txt, driveby-summary.json and the figures."),
-    workers: Optional[int] = workers_option("Local worker processes (1 = in this process).", default=1),
-    scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
-    max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Budget: integration steps of the whole sweep "
-                                              "(default the file's max_steps, 2e7)."),
-    figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+    workers: Optional[int] = workers_option(),
+    scheduler: Optional[str] = scheduler_option(),
+    max_steps: Optional[float] = budget_option("--max-steps", "integration steps of the whole sweep", "2e7",
+                                               "max_steps"),
+    figures: bool = figures_option(),
+    progress: bool = progress_option(),
 ) -> None:
     """Simulate an instrumented vehicle over the sweep's bridges, identify the bridge frequency and
     damage indicators, and write a labelled dataset (resumable, processes or Dask)."""

@@ -23,7 +23,7 @@ T = TypeVar("T")
 #: the global options of this invocation (set by the root command before a subcommand runs)
 STATE = {"debug": False, "quiet": False}
 
-_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, lifetime) to be "
+_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, traffic, lifetime) to be "
                   "refused before starting, or reduce the inputs named in the budget message of `vbikit validate`")
 
 
@@ -127,6 +127,14 @@ def steps_option(value: float, name: str = "--max-steps") -> float:
     return guard(lambda: number(value, name, 1, MAX_STEPS_LIMIT, error=OptionError))
 
 
+def budget_value(value: float, name: str, most: float) -> float:
+    """A budget option's value (``--budget-hours``, ``vbikit rail --max-steps`` …): a finite number > 0 and at most
+    ``most``, the largest its input-file key takes (exit 2 naming the option and the range)."""
+    from vbikit._validation import number
+
+    return guard(lambda: number(value, name, 0, most, lo_open=True, error=OptionError))
+
+
 def memory_option(text: str) -> float:
     """``--max-memory``: a size such as 8GiB, finite and > 0 [bytes] (exit 2 naming the option)."""
     from vbikit.solve.budget import parse_size
@@ -176,9 +184,14 @@ def check_scheduler_option(value: Optional[str]) -> Optional[str]:
     return guard(lambda: check_scheduler(value, OptionError))
 
 
-def scheduler_option(help: str) -> Any:
-    """The ``--scheduler`` option of every command that runs on a Dask cluster (``check_scheduler_option``)."""
-    return typer.Option(None, "--scheduler", help=help, callback=check_scheduler_option)
+#: the one help text of ``--scheduler`` (every command that runs on a Dask cluster)
+SCHEDULER_HELP = "Dask distributed scheduler address (tcp://host:port): run on that cluster instead of local processes."
+
+
+def scheduler_option() -> Any:
+    """The ``--scheduler`` option of every command that runs on a Dask cluster (``check_scheduler_option``;
+    help ``SCHEDULER_HELP``)."""
+    return typer.Option(None, "--scheduler", help=SCHEDULER_HELP, callback=check_scheduler_option)
 
 
 def check_workers_option(value: Optional[int]) -> Optional[int]:
@@ -191,9 +204,16 @@ def check_workers_option(value: Optional[int]) -> Optional[int]:
     return guard(lambda: int(number(value, "--workers", 1, workers_limit(), integer=True, error=OptionError)))
 
 
-def workers_option(help: str, default: Optional[int] = None) -> Any:
-    """The ``--workers`` option of every command with local worker processes (``check_workers_option``)."""
-    return typer.Option(default, "--workers", help=help, callback=check_workers_option)
+#: the one help text of ``--workers``: the one default of every command with local worker processes (None on the
+#: command line: the input file's own setting where it has one, else ``vbikit._validation.default_workers()``)
+WORKERS_HELP = ("Local worker processes (1 = in this process); default: the input file's own setting where it has "
+                "one (a railway file's run.workers), else all cores.")
+
+
+def workers_option() -> Any:
+    """The ``--workers`` option of every command with local worker processes (``check_workers_option``; help
+    ``WORKERS_HELP``; default None: the input file's setting, else all cores)."""
+    return typer.Option(None, "--workers", help=WORKERS_HELP, callback=check_workers_option)
 
 
 def check_figure_file(param: typer.CallbackParam, path: Any) -> Any:
@@ -219,9 +239,41 @@ def figure_file_option(help: str) -> Any:
     return typer.Option(None, "--plot", help=help, callback=check_figure_file)
 
 
-MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of the run (e.g. 8GiB; default 4GiB): "
-                                                     "estimated before it starts, refused above.")
-MAX_STEPS = typer.Option(None, "--max-steps", help="Time-step budget of the run (default 5e6).")
+def budget_help(counts: str, default: str, key: Optional[str] = None) -> str:
+    """The one wording of a budget option's help: what it counts and over what (``counts``: "time steps of each
+    event's run", "integration steps of the whole sweep"), the input file's key it overrides (``key``; None: the
+    file has none) and the default; estimated before anything is computed, refused above.  A memory budget's
+    help shows the form of a size."""
+    size = "e.g. 8GiB; " if counts.startswith("memory") else ""
+    where = f"{size}overrides the file's {key}; default {default}" if key else f"{size}default {default}"
+    return f"Budget: the most {counts} ({where}); estimated before anything is computed, refused above."
+
+
+def budget_option(name: str, counts: str, default: str, key: Optional[str] = None) -> Any:
+    """A budget option ``name`` (``--max-steps``, ``--max-memory`` …) with the help of ``budget_help``
+    (default None: the file's key, else the library's default)."""
+    return typer.Option(None, name, help=budget_help(counts, default, key))
+
+
+#: ``--max-memory`` and ``--max-steps`` of one run (``vbikit run``, ``vbikit validate``)
+MAX_MEMORY = budget_option("--max-memory", "memory of the run", "4GiB")
+MAX_STEPS = budget_option("--max-steps", "time steps of the run", "5e6")
+
+
+def input_file_argument(metavar: str, kind: str, page: str) -> Any:
+    """The input file of a population command (its one positional argument): ``metavar`` as the pages write it
+    (``LIFETIME.toml``), the help "``kind`` (TOML, docs/``page``)." with the format from the metavar's suffix."""
+    return typer.Argument(..., metavar=metavar, help=f"{kind} ({metavar.rsplit('.', 1)[-1].upper()}, docs/{page}).")
+
+
+def progress_option() -> Any:
+    """The ``--progress/--no-progress`` option of every command that shows progress bars (none with ``-q``)."""
+    return typer.Option(True, "--progress/--no-progress", help="Show progress bars on stderr (never with -q).")
+
+
+def figures_option() -> Any:
+    """The ``--figures/--no-figures`` option of every command that draws its figures into ``--out-dir``."""
+    return typer.Option(True, "--figures/--no-figures", help="Write the figures into --out-dir.")
 
 
 def say_resumed(words: str, folder: Path) -> None:

@@ -9,11 +9,15 @@ from typing import Optional
 import typer
 
 from vbikit.cli.guard import (
-    MAX_MEMORY,
     STATE,
+    budget_option,
+    budget_value,
+    figures_option,
     guard,
+    input_file_argument,
     memory_option,
     out_dir_option,
+    progress_option,
     scheduler_option,
     workers_option,
 )
@@ -68,13 +72,15 @@ class _Bars:
 
 
 def lifetime_cmd(
-    spec: Path = typer.Argument(..., metavar="LIFETIME.toml", help="Lifetime file (TOML, docs/lifetime.md)."),
+    spec: Path = input_file_argument("LIFETIME.toml", "Lifetime file", "lifetime.md"),
     out_dir: Path = out_dir_option("Folder for lifetime.nc, report.txt, summary.json and the figures (finished batches in work/)."),
-    workers: Optional[int] = workers_option("Local worker processes (default: all cores; 1 = in this process)."),
-    scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
-    figures: bool = typer.Option(True, "--figures/--no-figures", help="Write the figures."),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show progress bars."),
-    max_memory: Optional[str] = MAX_MEMORY,
+    workers: Optional[int] = workers_option(),
+    scheduler: Optional[str] = scheduler_option(),
+    figures: bool = figures_option(),
+    progress: bool = progress_option(),
+    max_memory: Optional[str] = budget_option("--max-memory", "memory of the whole run", "4GiB"),
+    budget_hours: Optional[float] = budget_option("--budget-hours", "estimated hours of the whole run", "2",
+                                                  "budget_hours"),
 ) -> None:
     """Lifetime load effects with dynamics: traffic for days or years from a records file, every
     event's static peak by influence lines, coupled dynamics for the events that can govern each
@@ -84,13 +90,18 @@ def lifetime_cmd(
     from vbikit.lifetime.run import DATASET_FILE, REPORT_FILE, WORK_FOLDER, run_lifetime
 
     memory = None if max_memory is None else memory_option(max_memory)
+    if budget_hours is not None:
+        from vbikit.lifetime.spec import MAX_BUDGET_HOURS
+
+        budget_hours = budget_value(budget_hours, "--budget-hours", MAX_BUDGET_HOURS)
     bars = _Bars(progress and not STATE["quiet"])
     t0 = time.perf_counter()
     from vbikit.cli.guard import say_resumed
 
     try:
         ds = guard(lambda: run_lifetime(spec, out_dir, workers=workers, scheduler=scheduler, progress=bars,
-                                        figures=figures, max_memory=memory), file=spec)
+                                        figures=figures, max_memory=memory,
+                                        budget_hours=budget_hours), file=spec)
     except KeyboardInterrupt:
         bars.close()
         typer.echo(f"\ninterrupted: finished batches are kept in {out_dir / WORK_FOLDER}; run the same command again "

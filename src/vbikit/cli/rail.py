@@ -7,23 +7,42 @@ from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import STATE, guard, out_dir_option, scheduler_option, workers_option
+from vbikit.cli.guard import (
+    STATE,
+    budget_option,
+    budget_value,
+    figures_option,
+    guard,
+    input_file_argument,
+    out_dir_option,
+    progress_option,
+    scheduler_option,
+    workers_option,
+)
 
 
 def rail_cmd(
-    spec: Path = typer.Argument(..., metavar="RAIL.toml", help="Railway file: [bridge], [trains], [speeds] (docs/railway.md)."),
+    spec: Path = input_file_argument("RAIL.toml", "Railway file", "railway.md"),
     out_dir: Path = out_dir_option("Folder for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
-    workers: Optional[int] = workers_option("Worker processes (default: run.workers)."),
-    figures: bool = typer.Option(True, "--figures/--no-figures", help="Draw the acceleration-envelope figure."),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar (trains swept)."),
-    scheduler: Optional[str] = scheduler_option("Dask scheduler address (tcp://host:port): sweep the trains on that "
-                                                "cluster, one task a train."),
+    workers: Optional[int] = workers_option(),
+    scheduler: Optional[str] = scheduler_option(),
+    figures: bool = figures_option(),
+    progress: bool = progress_option(),
+    max_steps: Optional[float] = budget_option("--max-steps", "filter steps of the whole moving-force sweep", "4e9",
+                                               "run.budget"),
+    max_coupled_steps: Optional[float] = budget_option("--max-coupled-steps", "time steps of the coupled cars over "
+                                                       "the whole sweep", "2e6", "coupled.max_steps"),
 ) -> None:
     """Sweep every train over every speed: envelopes of deck acceleration, deflection, moment and
     shear, phi'dyn, resonance speeds and the pass/fail report.  An interrupted sweep started again
     resumes (finished trains in OUT_DIR/rail.parts).  The trains are swept on local processes
     (--workers) or on a Dask cluster (--scheduler)."""
     from vbikit.rail.run import run_rail
+    from vbikit.rail.spec import MAX_BUDGET, MAX_COUPLED_STEPS
+
+    budget = None if max_steps is None else budget_value(max_steps, "--max-steps", MAX_BUDGET)
+    coupled_steps = (None if max_coupled_steps is None
+                     else budget_value(max_coupled_steps, "--max-coupled-steps", MAX_COUPLED_STEPS))
 
     bar = None
 
@@ -45,7 +64,8 @@ def rail_cmd(
     try:
         result = guard(lambda: run_rail(spec, out_dir, workers=workers, figures=figures,
                                         progress=report,
-                                        scheduler=scheduler), file=spec)
+                                        scheduler=scheduler, budget=budget, coupled_max_steps=coupled_steps),
+                       file=spec)
     except KeyboardInterrupt:
         typer.echo(f"\ninterrupted: finished trains are kept in {out_dir / 'rail.parts'}; run the same command "
                    "again to resume", err=True)

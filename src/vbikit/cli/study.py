@@ -12,10 +12,13 @@ import typer
 
 from vbikit.cli.guard import (
     STATE,
+    budget_option,
     guard,
+    input_file_argument,
     limits,
     out_dir_option,
     out_file_option,
+    progress_option,
     scheduler_option,
     warn,
     workers_option,
@@ -89,8 +92,8 @@ def warn_dataset(ds: Any) -> None:
 _YES = typer.Option(False, "--yes", help="Run a study of more than 1e6 crossings (refused without it).")
 _YES_VALIDATE = typer.Option(False, "--yes", help="Accept a study of more than 1e6 crossings, as `study run --yes` "
                              "would (without it, such a study fails the check).")
-_MAX_MEMORY = typer.Option(None, "--max-memory", help="Memory budget of one batch (e.g. 8GiB; default 4GiB).")
-_MAX_STEPS = typer.Option(None, "--max-steps", help="Time-step budget of one crossing (default 5e6).")
+_MAX_MEMORY = budget_option("--max-memory", "memory of each batch", "4GiB")
+_MAX_STEPS = budget_option("--max-steps", "time steps of each crossing", "5e6")
 
 
 #: a study check prints at most this many of its warnings (then "… and N more")
@@ -115,14 +118,14 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
 #: the values of a swept axis whose mean impact factor ``study run`` prints (the others: in the dataset)
 AXIS_VALUES_SHOWN = 12
 
-_WORKERS = workers_option("Local worker processes (default: all cores; 1 = in this process).")
-_SCHEDULER = scheduler_option("Dask distributed scheduler address (tcp://host:port) to run on.")
-_PROGRESS = typer.Option(True, "--progress/--no-progress", help="Show the progress bar.")
+_WORKERS = workers_option()
+_SCHEDULER = scheduler_option()
+_PROGRESS = progress_option()
 
 
 @app.command("run")
 def run_cmd(
-    study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
+    study_file: Path = input_file_argument("STUDY.toml", "Study file", "studies.md"),
     out: Path = out_file_option("--out", "Result dataset (NetCDF, .nc).", ...),
     workers: Optional[int] = _WORKERS,
     scheduler: Optional[str] = _SCHEDULER,
@@ -173,7 +176,7 @@ def run_cmd(
 
 @app.command("validate")
 def validate_cmd(
-    study_file: Path = typer.Argument(..., metavar="STUDY.toml", help="TOML study file."),
+    study_file: Path = input_file_argument("STUDY.toml", "Study file", "studies.md"),
     yes: bool = _YES_VALIDATE,
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,

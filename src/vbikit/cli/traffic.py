@@ -10,10 +10,15 @@ import typer
 
 from vbikit.cli.guard import (
     STATE,
+    budget_option,
+    figures_option,
     figure_file_option,
     guard,
+    input_file_argument,
     limits,
+    out_dir_option,
     out_file_option,
+    progress_option,
     scheduler_option,
     warn,
     workers_option,
@@ -36,34 +41,44 @@ def _lanes(text: str) -> list[float]:
 
 
 def traffic_cmd(
-    records: Path = typer.Argument(..., metavar="RECORDS.csv", help="Vehicle records CSV (docs/traffic.md)."),
+    records: Path = input_file_argument("RECORDS.csv", "Vehicle records", "traffic.md"),
     bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
-    out: Path = out_file_option("--out", "Result dataset (NetCDF, .nc).", ...),
+    out: Optional[Path] = out_file_option("--out", "The dataset only (NetCDF, .nc); or give --out-dir."),
+    out_dir: Optional[Path] = out_dir_option("Folder for traffic.nc, traffic-report.txt, traffic-summary.json and "
+                                             "traffic-im.png (finished batches in traffic.nc.parts); instead of --out.",
+                                             default=None),
     lanes: Optional[str] = typer.Option(None, "--lanes", help="Lane centres y [m], comma-separated (lane 1 first); "
                                         "default: two lanes at ∓ deck width/4 on a deck, one lane at y = 0 on a beam "
                                         "(records with lane 2 on a beam need --lanes)."),
     road: Optional[str] = typer.Option(None, "--road", help="Road class (A…H, good/average/poor, none) instead of the scenario's."),
     seed: int = typer.Option(0, "--seed", min=0, help="Seed of the events' random roads."),
     batch_size: int = typer.Option(16, "--batch-size", min=1, help="Events per stored batch."),
-    workers: Optional[int] = workers_option("Local worker processes (default: all cores; 1 = in this process)."),
-    scheduler: Optional[str] = scheduler_option("Dask distributed scheduler address (tcp://host:port)."),
+    workers: Optional[int] = workers_option(),
+    scheduler: Optional[str] = scheduler_option(),
     plot: Optional[Path] = figure_file_option("Write a figure of the IM distribution and the peaks."),
-    progress: bool = typer.Option(True, "--progress/--no-progress", help="Show the progress bar."),
+    progress: bool = progress_option(),
+    figures: bool = figures_option(),
     outputs: Optional[str] = typer.Option(None, "--outputs", help="The outputs to reduce and store, comma-separated "
                                           "(docs/results.md; default all; the stream statistics' impact_factor, "
                                           "max_dynamic_displacement, max_static_displacement and n_steps always)."),
     max_vehicles: Optional[int] = typer.Option(None, "--max-vehicles", min=1, help="The most vehicle records read "
                                                "(default 100000; a larger file is refused before it is parsed)."),
-    max_memory: Optional[str] = typer.Option(None, "--max-memory", help="Memory budget of one event's run (e.g. 8GiB; "
-                                             "default 4GiB): the largest events estimated before any runs."),
-    max_steps: Optional[float] = typer.Option(None, "--max-steps", help="Time-step budget of one event's run (default "
-                                              "5e6): the largest events estimated before any runs."),
+    max_memory: Optional[str] = budget_option("--max-memory", "memory of each event's run", "4GiB"),
+    max_steps: Optional[float] = budget_option("--max-steps", "time steps of each event's run", "5e6"),
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
-    resumable and parallel like a study."""
-    from vbikit._files import not_an_input
+    resumable and parallel like a study.  --out-dir DIR writes the dataset, the report, the summary and the
+    figure into DIR, as lifetime, driveby and rail do; --out FILE.nc the dataset only."""
+    from vbikit._files import not_an_input, output_names
+    from vbikit.traffic.summary import DATASET_FILE, FIGURE_FILE, REPORT_FILE, SUMMARY_FILE, WORK_FOLDER
 
-    guard(lambda: not_an_input(out, "--out", [records, Path(bridge)]))  # (a base scenario may be a preset's name)
+    if (out is None) == (out_dir is None):
+        guard(lambda: _one_output(both=out is not None))
+    if out_dir is not None:
+        guard(lambda: output_names(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE), (WORK_FOLDER,)))
+    dataset = out if out is not None else out_dir / DATASET_FILE
+    option = "--out" if out is not None else "--out-dir"
+    guard(lambda: not_an_input(dataset, option, [records, Path(bridge)]))  # (a base scenario may be a preset's name)
     lane_y = None if lanes is None else guard(lambda: _lanes(lanes))  # (an option's error at once, before the imports)
     budget = limits(max_memory, max_steps)
     from vbikit.traffic.records import MAX_RECORDS, read_records
@@ -90,11 +105,19 @@ def traffic_cmd(
     if not STATE["quiet"]:  # (-q: errors only)
         typer.echo(f"{records.name}: {len(recs)} vehicles in {job.size} events ({n_mp} with several vehicles), "
                    f"lanes at y = {', '.join(f'{y:g}' for y in job.lanes)} m", err=True)
-    ds = run_job(job, out, workers, scheduler, progress, unit="event")
+    if out_dir is not None:
+        guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
+    ds = run_job(job, dataset, workers, scheduler, progress, unit="event", option=option)
+    report: list[str] = []  # the lines below, on stdout and (--out-dir) in traffic-report.txt
+
+    def say(line: str) -> None:
+        typer.echo(line)
+        report.append(line)
+
     warn_dataset(ds)
     from vbikit.analysis.population_start import start_words
 
-    typer.echo(start_words(dict(ds.attrs)))
+    say(start_words(dict(ds.attrs)))
     from vbikit.analysis.checks import dataset_has_flag
     from vbikit.analysis.sample_intervals import stored_interval_text
 
@@ -114,45 +137,45 @@ def traffic_cmd(
     small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
         " on small static references (light vehicles, far lanes): not design values"
     ci = {name: stored_interval_text(a, name) for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")}
-    typer.echo(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
+    say(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
                "statistics are of this point)")
     if n_small:  # the design values first: the events that load the point
-        typer.echo(f"impact factor of the events loading the point ({job.size - n_without - n_small} of {job.size}, static peak "
+        say(f"impact factor of the events loading the point ({job.size - n_without - n_small} of {job.size}, static peak "
                    f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
                    f"{ci['im_mean_loaded']}{doubt}, 95th percentile {ci['im_q95_loaded']}")
     every = f"all events with one at the point ({job.size - n_without} of {job.size})" if n_without else "all events"
     loads = "" if n_small else " (each loads the point)" if n_without else " (every event loads the point)"
     if n_without < job.size:
-        typer.echo(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
+        say(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
                    f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events "
                    f"with {_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
                    + (f"; {small_words}" if n_small else ""))
     else:  # (not "mean n/a, max nan" of "all events with one at the point (0 of 2) (each loads the point)")
-        typer.echo(f"impact factor: no event has one at the point ({job.size} of {job.size} without a usable static "
+        say(f"impact factor: no event has one at the point ({job.size} of {job.size} without a usable static "
                    "reference): no IM statistics")
     if 0 < n_without < job.size:
-        typer.echo(f"  ({n_without} event{'' if n_without == 1 else 's'} without an impact factor at the point (NaN: "
+        say(f"  ({n_without} event{'' if n_without == 1 else 's'} without an impact factor at the point (NaN: "
                    "no usable static reference) left out of these statistics)")
     if n_without < job.size and any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
-        typer.echo("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
+        say("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
     if implausible:
-        typer.echo("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
+        say("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
                    "warning; no statistic of this stream is a result")
     if airborne:
-        typer.echo(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
+        say(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
                    "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
 
     def event(name: str) -> str:  # the dataset's event index (from 0) and when the event starts in the stream
         e = int(a[f"governing_{name}_event"])
         return f"event {e} (starts at t = {float(ds['event_start'].values[e]):.1f} s)"
 
-    typer.echo(f"largest static effect: {event('static')}, dynamic amplification "
+    say(f"largest static effect: {event('static')}, dynamic amplification "
                f"{a['governing_static_amplification']:.4f}; largest dynamic effect: {event('dynamic')}, "
                f"{a['governing_dynamic_amplification']:.4f} × the largest static effect (events: the dataset's "
                "index, from 0)")
     step = dataset_has_flag(a, "stream_step_sensitive")
     changes = {int(a[f"governing_{w}_event"]): float(a[f"governing_{w}_half_step_im_change"]) for w in ("static", "dynamic")}
-    typer.echo(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
+    say(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
                + ", ".join(f"{c:+.1e} (event {e})" if math.isfinite(c) else f"not checked (event {e}: above the budget)"
                            for e, c in changes.items())
                + f" (absolute, the deflection IM at the first point; flagged above {float(a['half_step_tolerance']):g})")
@@ -161,12 +184,35 @@ def traffic_cmd(
               if name != "impact_factor" and math.isfinite(c)]
     if others:
         _, name, event, change = max(others)
-        typer.echo(f"{'!' if step else ''}  their other impact factors: the largest change {change:+.1e} ({name}, event {event})")
+        say(f"{'!' if step else ''}  their other impact factors: the largest change {change:+.1e} ({name}, event {event})")
     if plot is not None:
         from vbikit.plot.traffic import plot_stream
 
         guard(lambda: plot_stream(ds, plot))
         typer.echo(f"figure {plot}")
+    if out_dir is not None:
+        guard(lambda: _write_folder(ds, out_dir, report, figures))
+
+
+def _one_output(both: bool) -> None:
+    """--out and --out-dir are the two forms of the stream's outputs: exactly one is given."""
+    raise OptionError(f"--out or --out-dir: give one, not {'both' if both else 'neither'} (--out FILE.nc: the dataset "
+                      "only; --out-dir DIR: the dataset, report, summary and figure)")
+
+
+def _write_folder(ds, out_dir: Path, report: list[str], figures: bool) -> None:
+    """--out-dir: the report, the summary and (``figures``) the figure next to the dataset; says what it wrote."""
+    from vbikit._files import json_text, write_text
+    from vbikit.traffic.summary import FIGURE_FILE, REPORT_FILE, SUMMARY_FILE, summary
+
+    files = [write_text(out_dir / REPORT_FILE, "\n".join(report) + "\n"),
+             write_text(out_dir / SUMMARY_FILE, json_text(summary(ds), indent=1) + "\n")]
+    if figures:
+        from vbikit.plot.traffic import plot_stream
+
+        files.append(plot_stream(ds, out_dir / FIGURE_FILE))
+    for path in files:
+        typer.echo(f"wrote {path}")
 
 
 def _first_point_words(point) -> str:

@@ -52,12 +52,13 @@ import copy
 import itertools
 import json
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
 
 from vbikit._validation import MAX_STEPS_LIMIT, number
-from vbikit.driveby.sensors import MAX_NOISE_RMS, Sampling, Sensor, SensorError
+from vbikit.driveby.sensors import MAX_NOISE_RMS, Sampling, Sensor
 from vbikit.driveby.variability import (COUPLING_CHECK_EVERY, DAMAGE_KEYS, Variability, expand_cases, parse_coupling,
                                         parse_variability)
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES
@@ -217,107 +218,179 @@ def _table(data: dict, key: str) -> dict:
     return value
 
 
+class _Errors:
+    """The input errors of one drive-by file, gathered: every key's check runs (``check``), its error kept, so that
+    the file's errors are reported together (``raise_all``), as a study, lifetime or railway file's are (pydantic:
+    ``vbikit._validation.validation_message``)."""
+
+    def __init__(self) -> None:
+        self.messages: list[str] = []
+
+    def check(self, work: Any, default: Any = None) -> Any:
+        """``work()``, or ``default`` after keeping its error's message (a ``VbikitError``: it names the key)."""
+        try:
+            return work()
+        except VbikitError as err:
+            text = str(err)
+            heading = _HEADED.match(text)  # (a part's own list of errors: its lines, under this file's heading)
+            self.messages.extend(line.strip() for line in text[heading.end():].splitlines() if line.strip()) \
+                if heading else self.messages.append(text)
+            return default
+
+    def add(self, message: str) -> None:
+        self.messages.append(message)
+
+    def raise_all(self) -> None:
+        """``DriveByError``: ``invalid drive-by file:`` and one line a key, when any check failed."""
+        if self.messages:
+            raise DriveByError("invalid drive-by file:\n  " + "\n  ".join(dict.fromkeys(self.messages)))
+
+
+#: a message that is already a list of key lines under a heading (``invalid …:``)
+_HEADED = re.compile(r"^invalid [^\n:]+:\n")
+
+
 def parse_driveby(data: dict[str, Any], base_dir: str | Path = ".") -> DriveBy:
-    """Validate a drive-by file's tables (raises ``DriveByError`` naming the key); every case of
-    its sweep is validated as a scenario, and the budget checked, by ``vbikit.driveby.study.check_cases``
-    (which ``run_driveby`` and the command line call before anything runs)."""
-    unknown = [k for k in data if k not in TOP_KEYS]
-    if unknown:
-        raise DriveByError(f"{unknown[0]}: unknown key of a drive-by file; allowed: {', '.join(TOP_KEYS)}")
+    """Validate a drive-by file's tables (raises ``DriveByError`` naming every bad key, one a line under
+    ``invalid drive-by file:``: all of the file's errors at once); every case of its sweep is validated as a
+    scenario, and the budget checked, by ``vbikit.driveby.study.check_cases`` (which ``run_driveby`` and the command
+    line call before anything runs)."""
+    errors = _Errors()
+    for key in (k for k in data if k not in TOP_KEYS):
+        errors.add(f"{key}: unknown key of a drive-by file; allowed: {', '.join(TOP_KEYS)}")
     if "bridge" not in data:
-        raise DriveByError("bridge: a drive-by file needs a [bridge] table (scenario keys)")
+        errors.add("bridge: a drive-by file needs a [bridge] table (scenario keys)")
     name = data.get("name", "")
     if not isinstance(name, str) or len(name) > 200:
-        raise DriveByError("name: expected a text of at most 200 characters")
-    seed = number(data.get("seed", 0), "seed", 0, 2**63 - 1, integer=True, error=DriveByError)
-    batch = number(data.get("batch_size", 4), "batch_size", 1, 1000, integer=True, error=DriveByError)
-    max_steps = number(data.get("max_steps", MAX_STEPS), "max_steps", 1, MAX_STEPS_LIMIT, error=DriveByError)
-    fleet = _fleet(data)
-    vehicle = fleet[0][1] if fleet else _vehicle_table(dict(_table(data, "vehicle")) or {"model": "test-cart"}, "vehicle")
-    output = _dataset_table(_table(data, "dataset"))
-    sampling_t = _table(data, "sampling")
-    bad = [k for k in sampling_t if k not in ("rate", "filter_order", "cutoff")]
-    if bad:
-        raise DriveByError(f"sampling.{bad[0]}: unknown key; allowed: rate, filter_order, cutoff")
-    sampling = Sampling(**{k: sampling_t[k] for k in sampling_t})
-    sensors_t = data.get("sensors", [])
-    if not isinstance(sensors_t, list) or not sensors_t:
-        raise DriveByError("sensors: give at least one [[sensors]] table (name, body or axle, quantity, ...)")
-    allowed = ("name", "body", "axle", "position", "lateral", "quantity", "noise_rms", "noise_snr_db", "vehicle")
-    sensors = []
-    for i, t in enumerate(sensors_t):
-        if not isinstance(t, dict) or "name" not in t:
-            raise DriveByError(f"sensors[{i + 1}].name: every [[sensors]] table needs a name")
-        extra = [k for k in t if k not in allowed]
-        if extra:
-            raise DriveByError(f"sensors.{t['name']}.{extra[0]}: unknown key; allowed: {', '.join(allowed)}")
-        sensors.append(Sensor(**t))
-    names = [s.name for s in sensors]
-    if len(set(names)) != len(names):
-        raise DriveByError(f"sensors.name: each sensor needs its own name, got {names}")
-    ident = _table(data, "identification")
-    ident_keys = ("method", "sensor", "band", "spectrum", "window", "gap", "exclude_vehicle")
-    extra = [k for k in ident if k not in ident_keys]
-    if extra:
-        raise DriveByError(f"identification.{extra[0]}: unknown key; allowed: {', '.join(ident_keys)}")
-    gap = number(ident.get("gap", 4.0), "identification.gap", MIN_GAP, 1000.0, unit="m", error=DriveByError)
-    exclude_vehicle = ident.get("exclude_vehicle", True)
-    if not isinstance(exclude_vehicle, bool):
-        raise DriveByError(f"identification.exclude_vehicle: expected true or false, got {exclude_vehicle!r}")
-    method = ident.get("method", "contact")
-    if not isinstance(method, str) or method not in METHODS:
-        raise DriveByError(f"identification.method: {method!r}; allowed: {', '.join(METHODS)}")
-    sensor = ident.get("sensor", names[0])
-    if not isinstance(sensor, str) or sensor not in names:
-        raise DriveByError(f"identification.sensor: {sensor!r} is not a sensor; sensors: {', '.join(names)}")
-    band = ident.get("band")
-    if band is not None:
-        if not (isinstance(band, list) and len(band) == 2
-                and all(isinstance(b, (int, float)) and not isinstance(b, bool) for b in band)
-                and 0 < band[0] < band[1] < 0.5 * sampling.rate):
-            raise DriveByError(f"identification.band: expected [f_lo, f_hi] with 0 < f_lo < f_hi < rate / 2 = "
-                               f"{0.5 * sampling.rate:g} Hz, got {band!r}")
-        band = (float(band[0]), float(band[1]))
-    spectrum = ident.get("spectrum", "periodogram")
-    if not isinstance(spectrum, str) or spectrum not in ("periodogram", "welch"):
-        raise DriveByError(f"identification.spectrum: {spectrum!r}; allowed: periodogram, welch")
-    window = ident.get("window", "hann")
-    if not isinstance(window, str) or len(window) > 40:
-        raise DriveByError("identification.window: expected a scipy window name (hann, hamming, boxcar, ...)")
-    try:
-        from scipy.signal import get_window
-
-        get_window(window, 16)
-    except (ValueError, TypeError):
-        raise DriveByError(f"identification.window: {window!r} is not a scipy window (hann, hamming, boxcar, ...)") from None
-    sweep_t = dict(_table(data, "sweep"))
-    damage_length = number(sweep_t.pop("damage_length", 0.1 * 25.0), "sweep.damage_length", 1e-3, 1000.0, unit="m",
-                           error=DriveByError)
-    sweep = {}
+        errors.add("name: expected a text of at most 200 characters")
+    seed = errors.check(lambda: number(data.get("seed", 0), "seed", 0, 2**63 - 1, integer=True, error=DriveByError), 0)
+    batch = errors.check(lambda: number(data.get("batch_size", 4), "batch_size", 1, 1000, integer=True,
+                                        error=DriveByError), 4)
+    max_steps = errors.check(lambda: number(data.get("max_steps", MAX_STEPS), "max_steps", 1, MAX_STEPS_LIMIT,
+                                            error=DriveByError), MAX_STEPS)
+    fleet = errors.check(lambda: _fleet(data), ())
+    vehicle = fleet[0][1] if fleet else errors.check(
+        lambda: _vehicle_table(dict(_table(data, "vehicle")) or {"model": "test-cart"}, "vehicle"), {})
+    output = errors.check(lambda: _dataset_table(_table(data, "dataset")), {})
+    sampling = errors.check(lambda: _sampling(_table(data, "sampling")))
+    sensors = errors.check(lambda: _sensors(data.get("sensors", [])))
+    names = [s.name for s in sensors] if sensors else None
+    ident = errors.check(lambda: _identification(_table(data, "identification"), names, sampling))
+    sweep_t = errors.check(lambda: dict(_table(data, "sweep")), {})
+    damage_length = errors.check(lambda: number(sweep_t.pop("damage_length", 0.1 * 25.0), "sweep.damage_length", 1e-3,
+                                                1000.0, unit="m", error=DriveByError), 2.5)
+    sweep: dict[str, list] = {}
     for key, value in sweep_t.items():
         if key not in SWEEP_KEYS:
-            raise DriveByError(f"sweep.{key}: unknown key; allowed: {', '.join(SWEEP_KEYS)}, damage_length")
-        sweep[key] = _numbers(key, value, SWEEP_KEYS[key][0])
-    for v in sweep.get("road_class", []):
-        if len(v) > 40:
-            raise DriveByError("sweep.road_class: expected road class names (e.g. none, A … H)")
+            errors.add(f"sweep.{key}: unknown key; allowed: {', '.join(SWEEP_KEYS)}, damage_length")
+            continue
+        values = errors.check(lambda: _numbers(key, value, SWEEP_KEYS[key][0]))
+        if values is not None:
+            sweep[key] = values
+    if any(not isinstance(v, str) or len(v) > 40 for v in sweep.get("road_class", [])):
+        errors.add("sweep.road_class: expected road class names (e.g. none, A … H)")
     n_cases = math.prod(len(v) for v in sweep.values()) if sweep else 1
     if n_cases > MAX_CASES:
-        raise DriveByError(f"sweep: {n_cases:,} cases, more than the {MAX_CASES:,} a sweep may hold; sweep fewer values")
-    if "damage_severity" in sweep and "damage_position" not in sweep:
-        raise DriveByError("sweep.damage_position: damage_severity needs damage_position (start of the damaged region [m])")
+        errors.add(f"sweep: {n_cases:,} cases, more than the {MAX_CASES:,} a sweep may hold; sweep fewer values")
+    if "damage_severity" in sweep_t and "damage_position" not in sweep_t:
+        errors.add("sweep.damage_position: damage_severity needs damage_position (start of the damaged region [m])")
+    coupling_every = errors.check(lambda: parse_coupling(data))
+    variability = errors.check(lambda: parse_variability(data.get("variability")))
+    if variability is not None and any(k in DAMAGE_KEYS for k, _ in variability.drawn) and "damage_position" in sweep_t:
+        errors.add("variability.damage_position: the damage is drawn per pass or swept (sweep.damage_position), not both")
+    errors.raise_all()  # (the file's every error, before the cases are built from it)
+    method, sensor, band, spectrum, window, gap, exclude_vehicle = ident
+    coupling, check_every = coupling_every
     scenario = {k: copy.deepcopy(data[k]) for k in ("bridge", "tire", "road", "crossing") if k in data}
     keys = list(sweep)
     cases = tuple(dict(zip(keys, combo)) for combo in itertools.product(*(sweep[k] for k in keys)))
-    coupling, check_every = parse_coupling(data)
-    variability = parse_variability(data.get("variability"))
-    if any(k in DAMAGE_KEYS for k, _ in variability.drawn) and "damage_position" in sweep:
-        raise DriveByError("variability.damage_position: the damage is drawn per pass or swept (sweep.damage_position), "
-                           "not both")
     cases = expand_cases(cases, variability, len(fleet))
     return DriveBy(name, seed, batch, float(max_steps), scenario, vehicle, sampling, tuple(sensors), method, sensor, band,
                    spectrum, window, float(gap), exclude_vehicle, sweep, float(damage_length), str(base_dir), cases,
                    coupling, check_every, variability, fleet, output)
+
+
+def _sampling(table: dict) -> Sampling:
+    """The [sampling] table as a ``Sampling`` (an error naming the key)."""
+    bad = [k for k in table if k not in ("rate", "filter_order", "cutoff")]
+    if bad:
+        raise DriveByError(f"sampling.{bad[0]}: unknown key; allowed: rate, filter_order, cutoff")
+    return Sampling(**{k: table[k] for k in table})
+
+
+#: the keys of a [[sensors]] table
+SENSOR_KEYS = ("name", "body", "axle", "position", "lateral", "quantity", "noise_rms", "noise_snr_db", "vehicle")
+
+
+def _sensors(tables: Any) -> list[Sensor]:
+    """The [[sensors]] tables as ``Sensor``s (every sensor's error, one a line)."""
+    if not isinstance(tables, list) or not tables:
+        raise DriveByError("sensors: give at least one [[sensors]] table (name, body or axle, quantity, ...)")
+    errors, sensors = _Errors(), []
+    for i, t in enumerate(tables):
+        if not isinstance(t, dict) or "name" not in t:
+            errors.add(f"sensors[{i + 1}].name: every [[sensors]] table needs a name")
+            continue
+        extra = [k for k in t if k not in SENSOR_KEYS]
+        if extra:
+            errors.add(f"sensors.{t['name']}.{extra[0]}: unknown key; allowed: {', '.join(SENSOR_KEYS)}")
+            continue
+        sensor = errors.check(lambda: Sensor(**t))
+        if sensor is not None:
+            sensors.append(sensor)
+    names = [s.name for s in sensors]
+    if len(set(names)) != len(names):
+        errors.add(f"sensors.name: each sensor needs its own name, got {names}")
+    errors.raise_all()
+    return sensors
+
+
+#: the keys of the [identification] table
+IDENTIFICATION_KEYS = ("method", "sensor", "band", "spectrum", "window", "gap", "exclude_vehicle")
+
+
+def _identification(ident: dict, names: Optional[list[str]], sampling: Optional[Sampling]) -> tuple:
+    """(method, sensor, band, spectrum, window, gap, exclude_vehicle) of the [identification] table; the sensor
+    checked against ``names`` and the band against ``sampling`` (not when those failed: their errors are reported)."""
+    errors = _Errors()
+    extra = [k for k in ident if k not in IDENTIFICATION_KEYS]
+    if extra:
+        errors.add(f"identification.{extra[0]}: unknown key; allowed: {', '.join(IDENTIFICATION_KEYS)}")
+    gap = errors.check(lambda: number(ident.get("gap", 4.0), "identification.gap", MIN_GAP, 1000.0, unit="m",
+                                      error=DriveByError))
+    exclude_vehicle = ident.get("exclude_vehicle", True)
+    if not isinstance(exclude_vehicle, bool):
+        errors.add(f"identification.exclude_vehicle: expected true or false, got {exclude_vehicle!r}")
+    method = ident.get("method", "contact")
+    if not isinstance(method, str) or method not in METHODS:
+        errors.add(f"identification.method: {method!r}; allowed: {', '.join(METHODS)}")
+    sensor = ident.get("sensor", names[0] if names else None)
+    if names is not None and (not isinstance(sensor, str) or sensor not in names):
+        errors.add(f"identification.sensor: {sensor!r} is not a sensor; sensors: {', '.join(names)}")
+    band = ident.get("band")
+    if band is not None and sampling is not None:
+        if not (isinstance(band, list) and len(band) == 2
+                and all(isinstance(b, (int, float)) and not isinstance(b, bool) for b in band)
+                and 0 < band[0] < band[1] < 0.5 * sampling.rate):
+            errors.add(f"identification.band: expected [f_lo, f_hi] with 0 < f_lo < f_hi < rate / 2 = "
+                       f"{0.5 * sampling.rate:g} Hz, got {band!r}")
+        else:
+            band = (float(band[0]), float(band[1]))
+    spectrum = ident.get("spectrum", "periodogram")
+    if not isinstance(spectrum, str) or spectrum not in ("periodogram", "welch"):
+        errors.add(f"identification.spectrum: {spectrum!r}; allowed: periodogram, welch")
+    window = ident.get("window", "hann")
+    if not isinstance(window, str) or len(window) > 40:
+        errors.add("identification.window: expected a scipy window name (hann, hamming, boxcar, ...)")
+    else:
+        try:
+            from scipy.signal import get_window
+
+            get_window(window, 16)
+        except (ValueError, TypeError):
+            errors.add(f"identification.window: {window!r} is not a scipy window (hann, hamming, boxcar, ...)")
+    errors.raise_all()
+    return method, sensor, band, spectrum, window, gap, exclude_vehicle
 
 
 def _vehicle_table(vehicle: dict, where: str) -> dict:
@@ -394,7 +467,4 @@ def load_driveby(path: str | Path) -> DriveBy:
 
     path = Path(path)
     data = read_toml(path, DriveByError, "drive-by file")
-    try:
-        return parse_driveby(data, path.parent)
-    except SensorError as err:
-        raise DriveByError(f"{path}: {err}") from None
+    return parse_driveby(data, path.parent)

@@ -22,7 +22,8 @@ from typing import Any, Optional
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit._words import counted
+from vbikit._validation import MAX_STEPS_LIMIT
+from vbikit._words import counted, raise_budget
 from vbikit.analysis.checks import dataset_flag_attrs
 from vbikit.driveby.contact import SingleAxle, contact_acceleration_from_measured, on_bridge
 from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequency, mode_shape_squares,
@@ -424,7 +425,8 @@ def check_cases(spec: DriveBy) -> float:
     total = estimate_steps(spec)
     if total > spec.max_steps:
         raise DriveByError(f"max_steps: the sweep needs about {total:.3g} integration steps ({len(spec.cases):,} cases), "
-                           f"above the budget {spec.max_steps:.3g}; raise max_steps (or --max-steps) or sweep fewer cases")
+                           f"above the budget {spec.max_steps:.3g}; {raise_budget('max_steps', '--max-steps', MAX_STEPS_LIMIT)}, "
+                           "or sweep fewer cases")
     seen: set = set()
     fleet_cases = [{"vehicle": k} for k in range(len(spec.fleet))]  # every vehicle of the fleet, whatever it draws
     for i, case in enumerate([*(spec.cases or [{}]), *fleet_cases]):
@@ -1027,11 +1029,11 @@ def write_zarr(ds, path: Path) -> None:
     out.to_zarr(path, mode="w")
 
 
-def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = 1,
+def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit-out", workers: Optional[int] = None,
                 scheduler: Optional[str] = None, progress=None, figures: bool = True):
     """Run a drive-by sweep (a ``DriveBy``, a file path or its parsed dict) on the study runner and
     write ``out_dir``/driveby.nc, the figures (``driveby-*.png``), ``driveby-report.txt`` and
-    ``driveby-summary.json``;
+    ``driveby-summary.json`` (``workers``: local worker processes, default all cores; 1 runs in this process);
     returns the Dataset.  Resumable: run it again after an interruption."""
     from vbikit.driveby.spec import load_driveby, parse_driveby
     from vbikit.study.run import run_study

@@ -20,7 +20,6 @@ from __future__ import annotations
 import json
 import logging
 import math
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -109,10 +108,11 @@ def memory_estimate(n_events: float, n_effects: int) -> float:
 
 
 def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Optional[int] = None,
-            max_memory: Optional[float] = None) -> Prepared:
+            max_memory: Optional[float] = None, budget_hours: Optional[float] = None) -> Prepared:
     """Validate a lifetime run (module docstring, step 1); LifetimeError naming the key.  The run's
     memory (``memory_estimate``, at most one event a truck) is refused above ``max_memory`` [bytes]
-    (default ``vbikit.solve.budget.DEFAULT_MAX_MEMORY``; ``vbikit lifetime --max-memory``)."""
+    (default ``vbikit.solve.budget.DEFAULT_MAX_MEMORY``; ``vbikit lifetime --max-memory``), its estimated hours above
+    ``budget_hours`` (default the file's ``budget_hours``; ``vbikit lifetime --budget-hours``)."""
     from vbikit.extremes import MIN_SAMPLE
     from vbikit.lifetime.setup import build_setup, check_lanes, setup_key
     from vbikit.lifetime.traffic import fit_traffic
@@ -120,6 +120,8 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
 
     if isinstance(spec, dict):
         spec = parse_lifetime(spec)
+    if budget_hours is not None:
+        spec = spec.model_copy(update={"budget_hours": float(budget_hours)})
     base_dir = Path(base_dir)
     records_path = base_dir / spec.traffic.records
     try:
@@ -182,12 +184,17 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                             f"{sampled:.3g} event(s); the fatigue damage ratio and its standard error need at least "
                             f"{MIN_SAMPLE_EVENTS} (raise dynamic_sample or the duration)")
     dyn = spec.n_days * len(names) * (1 + SCREENED_PER_DAY) + spec.fatigue.dynamic_sample * events * (1 if details else 0)
-    cores = workers or os.cpu_count() or 1  # (as vbikit.study.run_study: None, every core)
+    from vbikit._validation import default_workers
+    from vbikit._words import raise_budget
+    from vbikit.lifetime.spec import MAX_BUDGET_HOURS
+
+    cores = max(1, workers or default_workers())  # (as the run: ``run_study``'s default, all cores)
     hours = (trucks * STATIC_SECONDS_PER_TRUCK * max(1, len(names)) + dyn * DYNAMIC_SECONDS_PER_EVENT) / cores / 3600
     if hours > spec.budget_hours:
         raise LifetimeError(f"budget_hours: the run is estimated at {hours:.2f} h on {cores} worker(s) "
                             f"({trucks:,.0f} trucks, about {dyn:,.0f} dynamic events), above budget_hours = "
-                            f"{spec.budget_hours:g} h; raise budget_hours (up to 10000) to run it")
+                            f"{spec.budget_hours:g} h; "
+                            f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)} to run it")
     from vbikit.solve.budget import DEFAULT_MAX_MEMORY, human
 
     limit = DEFAULT_MAX_MEMORY if max_memory is None else float(max_memory)
@@ -234,14 +241,18 @@ def check_dynamics_budget(prep: Prepared, static, work: Path) -> None:
     rounds under ``work`` left out), they would take longer than ``budget_hours``: the estimate before the run
     (``prepare``) cannot know how many events the screening keeps (19 a day and effect on the example's beam, 111 on
     its deck); the static pass it ran is kept, and the same command resumes from it."""
+    from vbikit._words import raise_budget
+    from vbikit.lifetime.spec import MAX_BUDGET_HOURS
+
     hours, events = dynamics_estimate(prep, static, finished_dynamics(work))
     log.info("dynamics estimated at %.3g h on %d worker(s) (about %d events the screening keeps)", hours, prep.cores,
              events)
     if hours > prep.spec.budget_hours:
         raise LifetimeError(f"budget_hours: after the static pass the dynamics are estimated at {hours:.2f} h on "
                             f"{prep.cores} worker(s) (about {counted(events, 'event', thousands=True)} the screening keeps, "
-                            f"from the static peaks), above budget_hours = {prep.spec.budget_hours:g} h; raise budget_hours (up to "
-                            "10000) or run on more workers to run them")
+                            f"from the static peaks), above budget_hours = {prep.spec.budget_hours:g} h; "
+                            f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}, or run on more "
+                            "workers, to run them")
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:
@@ -298,14 +309,15 @@ WORK_FOLDER = "work"
 
 def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, base_dir: str | Path | None = None,
                  workers: Optional[int] = None, scheduler: Optional[str] = None,
-                 progress: Optional[Progress] = None, figures: bool = True, max_memory: Optional[float] = None):
+                 progress: Optional[Progress] = None, figures: bool = True, max_memory: Optional[float] = None,
+                 budget_hours: Optional[float] = None):
     """Run (or resume) a lifetime analysis and write ``out_dir/lifetime.nc`` (+ figures, report.txt,
     summary.json).
 
     ``spec``: a lifetime TOML path, a parsed dict or a ``LifetimeFile``; ``base_dir``: where its
     relative paths point (default: the file's folder, else "."); ``workers`` / ``scheduler``: as
     ``vbikit.study.run_study``; ``progress(stage, done, total)`` after every finished batch;
-    ``max_memory``: the memory budget [bytes] (``prepare``).
+    ``max_memory``: the memory budget [bytes], ``budget_hours``: the time budget instead of the file's (``prepare``).
     A failure after finished simulations says in a note (``resume_note``; the CLI prints it) that they are kept
     under ``out_dir/work`` and that the same call resumes.
     Returns the dataset."""
@@ -315,7 +327,7 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     from vbikit._files import output_names
 
     out_dir = output_names(out_dir, (DATASET_FILE, SUMMARY_FILE, REPORT_FILE), (WORK_FOLDER,))  # (before any computation)
-    prep = prepare(spec, base_dir if base_dir is not None else ".", workers, max_memory)
+    prep = prepare(spec, base_dir if base_dir is not None else ".", workers, max_memory, budget_hours)
     work = out_dir / WORK_FOLDER
     work.mkdir(parents=True, exist_ok=True)
     try:

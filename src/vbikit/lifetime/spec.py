@@ -50,6 +50,8 @@ from vbikit.errors import VbikitError
 BASE_SECTIONS = ("bridge", "tire", "road", "crossing")
 #: a run whose estimate exceeds this [h] is refused unless budget_hours is raised
 DEFAULT_BUDGET_HOURS = 2.0
+#: the largest budget_hours (and ``vbikit lifetime --budget-hours``)
+MAX_BUDGET_HOURS = 1e4
 MAX_DAYS = 365 * 200
 #: the closest section to the entry support other than x = 0 [m]
 MIN_SECTION = 1e-3
@@ -153,7 +155,7 @@ class LifetimeFile(_Strict):
     block: Literal["day", "week"] = "day"
     distribution: Literal["gev", "gumbel"] = "gumbel"
     ci: float = Field(0.95, gt=0, lt=1)
-    budget_hours: float = Field(DEFAULT_BUDGET_HOURS, gt=0, le=1e4)
+    budget_hours: float = Field(DEFAULT_BUDGET_HOURS, gt=0, le=MAX_BUDGET_HOURS)
     ds: float = Field(0.1, ge=1e-3, le=2, description="no longer used (the static peaks are exact extremes, not samples); accepted so that older lifetime files still read [m] (1 mm … 2 m)")
     dx: float = Field(0.02, ge=1e-3, le=1, description="grid of the tabulated influence lines [m] (1 mm … 1 m)")
     batch_size: int = Field(32, ge=1, le=1000, description="dynamic events per batch (of one day)")

@@ -214,13 +214,16 @@ def bogie_resonance_speeds(trains: list, n0: float) -> np.ndarray:
     return np.unique(np.array([v for t in trains for _, _, v in bogie_resonances(t, n0, RESONANCE_ORDERS)], float))
 
 
-def plan_rail(source: Any) -> RailPlan:
+def plan_rail(source: Any, budget: Optional[float] = None, coupled_max_steps: Optional[float] = None) -> RailPlan:
     """Every check of a railway sweep before it runs (the spec, the bridge, the train tables, the
-    work budgets ``run.budget`` and ``coupled.max_steps``): what ``run_rail`` and ``vbikit validate``
-    do first."""
+    work budgets ``run.budget`` and ``coupled.max_steps``, or ``budget`` / ``coupled_max_steps`` given instead:
+    ``vbikit rail --max-steps`` / ``--max-coupled-steps``): what ``run_rail`` and ``vbikit validate`` do first."""
+    from vbikit._words import raise_budget
+    from vbikit.rail.spec import MAX_BUDGET, MAX_COUPLED_STEPS, with_budgets
     from vbikit.solve.moving_loads import default_dx, filter_steps
 
     spec, base_dir = _spec(source)
+    spec = with_budgets(spec, budget, coupled_max_steps)
     bridge, f_limit, required = build_bridge(spec, base_dir)
     originals = load_trains(spec, base_dir)  # with their cars, for coupled models
     trains = originals
@@ -253,8 +256,9 @@ def plan_rail(source: Any) -> RailPlan:
     if work > spec.run.budget:
         raise RailBudgetError(f"run.budget: the sweep needs up to {work:.3g} filter steps ({len(trains)} trains × {speeds.size} "
                               f"speeds and up to {refine.size} refinement speeds × {bridge.omega.size} modes), above the "
-                              f"budget {spec.run.budget:.3g}; raise "
-                              "run.budget or use fewer trains, speeds or a coarser step")
+                              f"budget {spec.run.budget:.3g}; "
+                              f"{raise_budget('run.budget', '--max-steps', MAX_BUDGET)}, or use fewer trains, speeds or "
+                              "a coarser step")
     coupled = [t for t in originals if t.cars] if spec.coupled.enabled else []
     if spec.coupled.enabled and not coupled:
         raise RailSpecError("coupled.enabled: none of the trains has car data (masses and suspensions): use a preset "
@@ -263,8 +267,9 @@ def plan_rail(source: Any) -> RailPlan:
                         for t in coupled) if coupled else 0.0
     if coupled_steps > spec.coupled.max_steps:
         raise RailBudgetError(f"coupled.max_steps: the coupled cars need {coupled_steps:.3g} time steps ({len(coupled)} "
-                              f"trains × {speeds.size} speeds), above {spec.coupled.max_steps:.3g}; raise coupled.max_steps "
-                              "or use fewer speeds")
+                              f"trains × {speeds.size} speeds), above the budget {spec.coupled.max_steps:.3g}; "
+                              f"{raise_budget('coupled.max_steps', '--max-coupled-steps', MAX_COUPLED_STEPS)}, or use "
+                              "fewer speeds")
     warnings = codes.hslm_range_warnings(span, [t.name for t in trains])  # as swept (check() names them so)
     for w in warnings:
         log.warning("%s", w)
@@ -282,19 +287,21 @@ DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE = ("rail.nc", "rail-report.
 
 def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[int] = None,
              figures: bool = True, progress: Optional[Callable[[int, int], None]] = None,
-             scheduler: Optional[str] = None) -> RailResult:
+             scheduler: Optional[str] = None, budget: Optional[float] = None,
+             coupled_max_steps: Optional[float] = None) -> RailResult:
     """Run a railway sweep (module docstring).  ``source``: a RAIL.toml path, its dict or a
     ``RailSpec``; ``out_dir``: where ``rail.nc``, ``rail-report.txt`` and ``rail-acceleration.png``
-    go, with ``rail-summary.json`` (None: nothing written); ``workers`` overrides ``run.workers``; ``progress(done, total)``
+    go, with ``rail-summary.json`` (None: nothing written); ``workers`` overrides ``run.workers`` (default: all cores); ``progress(done, total)``
     after every group of trains (as many as workers) swept; ``scheduler``: a Dask scheduler's
-    address, the trains swept there (one task a train) instead of on local processes."""
+    address, the trains swept there (one task a train) instead of on local processes; ``budget`` /
+    ``coupled_max_steps``: the work budgets instead of the file's ``run.budget`` / ``coupled.max_steps`` (``plan_rail``)."""
     t0 = time.perf_counter()
     if out_dir is not None:  # (before the sweep: not after it, when writing)
         from vbikit._files import output_names
         from vbikit.rail.checkpoint import WORK
 
         output_names(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE), (str(WORK),))
-    p = plan_rail(source)
+    p = plan_rail(source, budget, coupled_max_steps)
     spec, bridge, f_limit, required, originals, trains, res, speeds, points, setup, coupled = (
         p.spec, p.bridge, p.f_limit, p.required, p.originals, p.trains, p.resonances, p.speeds, p.points, p.setup,
         p.coupled)
@@ -306,7 +313,9 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     from vbikit.solve.moving_loads import _peaks
     from vbikit.solve.compile_notice import announce_compile
 
-    n_workers = workers or spec.run.workers
+    from vbikit._validation import default_workers
+
+    n_workers = workers or spec.run.workers or default_workers()
     announce_compile(_peaks, "each worker process" if n_workers > 1 and len(trains) > 1 else "")
     stored = _Stored(spec, setup, speeds, out_dir)
     swept = [stored.load(t) for t in trains]

@@ -35,7 +35,7 @@
     max_steps = 2e6                  # the most coupled time steps (all speeds and trains together)
 
     [run]
-    workers = 1
+    workers = 2                      # local worker processes (default: all cores)
     steps_per_period = 20            # samples per period of the highest mode at the lowest speed
     budget = 4e9                     # the most filter steps
 """
@@ -55,6 +55,11 @@ from vbikit.vehicle.trains import HSLM_B_N, HSLM_B_SPACING
 #: the range of a wheel-rail contact stiffness per wheelset [N/m]: the linearised Hertzian stiffness of a
 #: wheelset is about 1e9 N/m (two wheels, 1-2e9 N/m each); a track pad under the rail brings it down to ~1e7
 MIN_CONTACT, MAX_CONTACT = 1e6, 1e12
+
+
+#: the largest work budgets a railway file's keys (and ``vbikit rail --max-steps`` / ``--max-coupled-steps``) may set:
+#: run.budget [filter steps of the whole sweep], coupled.max_steps [coupled time steps of the whole sweep]
+MAX_BUDGET, MAX_COUPLED_STEPS = 1e13, 1e10
 
 
 class RailSpecError(VbikitError):
@@ -185,7 +190,7 @@ class CoupledSection(_Section):
     enabled: bool = False
     irregularity: Optional[str] = None
     seed: int = Field(0, ge=0)
-    max_steps: float = Field(2e6, ge=1, le=1e10)
+    max_steps: float = Field(2e6, ge=1, le=MAX_COUPLED_STEPS)
     contact: Union[str, float] = "hertz"  # "hertz", "rigid" or a stiffness [N/m] per wheelset (MIN_CONTACT … MAX_CONTACT)
 
     @field_validator("contact")
@@ -211,9 +216,9 @@ class CoupledSection(_Section):
 
 
 class RunSection(_Section):
-    workers: int = Field(1, ge=1, le=MAX_WORKERS)
+    workers: Optional[int] = Field(None, ge=1, le=MAX_WORKERS, description="local worker processes (default: all cores)")
     steps_per_period: int = Field(20, ge=8, le=200)
-    budget: float = Field(4e9, gt=0, le=1e13)
+    budget: float = Field(4e9, gt=0, le=MAX_BUDGET)
     points: int = Field(9, ge=1, le=99)
 
 
@@ -233,6 +238,15 @@ def parse_rail_spec(data: dict[str, Any]) -> RailSpec:
         return RailSpec.model_validate(data)
     except ValidationError as err:
         raise RailSpecError(validation_message(err, "invalid rail file", model=RailSpec)) from None
+
+
+def with_budgets(spec: RailSpec, budget: Optional[float] = None, coupled_max_steps: Optional[float] = None) -> RailSpec:
+    """``spec`` with its work budgets set from the command line (``vbikit rail --max-steps`` / ``--max-coupled-steps``;
+    None: the file's): ``run.budget`` and ``coupled.max_steps``, the same spec as a file giving those values."""
+    run = spec.run if budget is None else spec.run.model_copy(update={"budget": float(budget)})
+    coupled = spec.coupled if coupled_max_steps is None else spec.coupled.model_copy(
+        update={"max_steps": float(coupled_max_steps)})
+    return spec.model_copy(update={"run": run, "coupled": coupled})
 
 
 def load_rail_spec(path: str | Path) -> RailSpec:

@@ -50,6 +50,7 @@ from vbikit.outputs import OUTPUTS, outputs
 from vbikit.study.compute import LONGEST_SPAN, point_names, run_batch
 from vbikit.study.spec import Study, StudyError, cf_key_unit as _cf_unit
 from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
+from vbikit._validation import default_workers
 from vbikit.study.workers import SCHEDULER_CONNECT_TIMEOUT, dask_client, local_pool, shutdown_workers
 
 log = logging.getLogger(__name__)
@@ -268,11 +269,11 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
         _announce_compile(study, [batches[k] for k in todo], scheduler, workers, threads)
         if scheduler is not None:
             _run_dask(study, batches, todo, scheduler, threads, finished, connect_timeout)
-        elif (workers or os.cpu_count() or 1) <= 1:
+        elif (workers or default_workers()) <= 1:
             for k in todo:
                 finished(k, _compute(study, batches[k], threads))
         else:
-            _run_local(study, batches, todo, workers or os.cpu_count() or 1, threads, finished)
+            _run_local(study, batches, todo, workers or default_workers(), threads, finished)
     log.info("study %r: ran %d batches in %.1f s", study.name, len(todo), time.perf_counter() - t0)
     ds = study.assemble(parts) if hasattr(study, "assemble") else assemble(study, parts)
     try:
@@ -359,10 +360,10 @@ def _announce_compile(study, batches, scheduler, workers, threads: int = 1) -> N
         return
     if scheduler is not None:
         who = f"every Dask worker of {scheduler} whose machine has not compiled them"
-    elif (workers or os.cpu_count() or 1) <= 1:
+    elif (workers or default_workers()) <= 1:
         who = "this process"
     else:
-        who = f"each of the {workers or os.cpu_count()} worker processes, on its first batch"
+        who = f"each of the {workers or default_workers()} worker processes, on its first batch"
     announce_compile(kernels, who)
     if may_hand_over(study):
         from vbikit.solve import kernels as compiled

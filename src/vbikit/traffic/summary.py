@@ -1,0 +1,35 @@
+"""The folder form of a traffic stream's outputs (``vbikit traffic --out-dir DIR``), as a lifetime, drive-by or
+railway run writes its folder: the dataset ``traffic.nc``, the report ``traffic-report.txt`` (what the command
+prints), ``traffic-summary.json`` (``summary``) and the figure ``traffic-im.png`` (``vbikit.plot.traffic.plot_stream``).
+``vbikit traffic --out FILE.nc`` writes the dataset only."""
+from __future__ import annotations
+
+from typing import Any
+
+#: the files ``vbikit traffic --out-dir`` writes (checked before the run, ``vbikit._files.output_names``), and the
+#: folder of its finished batches (``vbikit.study.storage.parts_dir`` of the dataset)
+DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE = ("traffic.nc", "traffic-report.txt", "traffic-summary.json",
+                                                        "traffic-im.png")
+WORK_FOLDER = DATASET_FILE + ".parts"
+
+#: the half-step check of the governing events kept in the summary (the dataset's attributes of that name)
+_HALF_STEP = ("governing_static_half_step_im_change", "governing_dynamic_half_step_im_change", "half_step_tolerance")
+
+
+def summary(ds: Any) -> dict[str, Any]:
+    """The stream's results as plain data for ``traffic-summary.json``: the statistics at the first response point
+    (``vbikit.traffic.study.stream_statistics``: event counts, the impact-factor distribution with the 95 %
+    confidence intervals, the governing events and their dynamic amplification), their half-step check, where
+    the stream starts (``start_words``), the flag codes and the warnings (the dataset's, "; "-joined).  NaN stays NaN here; the writer gives
+    null (``vbikit._files.json_text``)."""
+    from vbikit.analysis.population_start import start_words
+    from vbikit.traffic.study import stream_statistics
+
+    attrs = dict(ds.attrs)
+    stats = stream_statistics(ds)
+    # the governing events the run stored (its half-step check is of them)
+    stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs}
+    codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
+    return {"dataset": DATASET_FILE, **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
+            "start": start_words(attrs), "flag_codes": codes,
+            "warnings": str(attrs.get("warnings", ""))}

@@ -1,0 +1,79 @@
+"""``vbikit traffic --out-dir DIR`` writes its folder as lifetime, driveby and rail do (the dataset, the report,
+the summary JSON and the figure); ``--out FILE.nc`` stays the dataset-only form; exactly one of them."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from vbikit.cli import app
+
+runner = CliRunner()
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+BASE = str(EXAMPLES / "traffic" / "base" / "bridge2.toml")
+
+
+def _stream(tmp_path: Path, n: int = 8) -> str:
+    """The example stream's first ``n`` records."""
+    lines = (EXAMPLES / "traffic" / "stream.csv").read_text().splitlines()
+    path = tmp_path / "short.csv"
+    path.write_text("\n".join(lines[:n + 1]) + "\n")
+    return str(path)
+
+
+def test_out_dir_writes_the_dataset_report_summary_and_figure(tmp_path):
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["traffic", _stream(tmp_path), "--bridge", BASE, "--out-dir", str(out), "--no-progress",
+                              "--workers", "1"])
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name for p in out.iterdir()) == ["traffic-im.png", "traffic-report.txt", "traffic-summary.json",
+                                                      "traffic.nc"]
+    report = (out / "traffic-report.txt").read_text()
+    assert report.splitlines()[0].startswith("sprung vehicles start") and report in res.stdout  # what it printed
+    summary = json.loads((out / "traffic-summary.json").read_text())
+    with xr.open_dataset(out / "traffic.nc") as ds:
+        assert summary["n_events"] == ds.sizes["event"]
+        assert summary["im_mean"] == pytest.approx(float(ds.attrs["im_mean"]))
+        assert summary["governing_static_event"] == int(ds.attrs["governing_static_event"])
+    assert summary["dataset"] == "traffic.nc" and summary["start"].startswith("sprung vehicles start")
+    for name in ("traffic-report.txt", "traffic-summary.json", "traffic-im.png"):
+        assert f"wrote {out / name}" in res.stdout
+    again = runner.invoke(app, ["traffic", _stream(tmp_path), "--bridge", BASE, "--out-dir", str(out), "--no-progress",
+                                "--no-figures", "--workers", "1"])  # the finished run, read as it is
+    assert again.exit_code == 0 and "already holds this finished run" in again.stdout
+    assert "give another --out-dir" in again.stdout and "wrote" in again.stdout
+
+
+def test_out_dir_without_figures_writes_no_figure(tmp_path):
+    out = tmp_path / "out"
+    res = runner.invoke(app, ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out-dir", str(out), "--no-progress",
+                              "--no-figures", "--workers", "1"])
+    assert res.exit_code == 0, res.output
+    assert not (out / "traffic-im.png").exists() and (out / "traffic-summary.json").is_file()
+
+
+def test_out_still_writes_the_dataset_only(tmp_path):
+    res = runner.invoke(app, ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out", str(tmp_path / "s.nc"),
+                              "--no-progress", "--workers", "1"])
+    assert res.exit_code == 0, res.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["s.nc", "short.csv"]
+
+
+@pytest.mark.parametrize("given, word", [([], "neither"), (["--out", "x.nc", "--out-dir", "d"], "both")])
+def test_exactly_one_of_out_and_out_dir(tmp_path, monkeypatch, given, word):
+    monkeypatch.chdir(tmp_path)
+    res = runner.invoke(app, ["traffic", "missing.csv", "--bridge", BASE, *given])  # refused before the records are read
+    assert res.exit_code == 2
+    assert res.stderr.startswith(f"error: --out or --out-dir: give one, not {word} (--out FILE.nc: the dataset only; ")
+    assert not (tmp_path / "d").exists()
+
+
+def test_out_dir_holding_a_folder_where_a_file_goes_is_refused_before_the_run(tmp_path):
+    out = tmp_path / "out"
+    (out / "traffic-summary.json").mkdir(parents=True)
+    res = runner.invoke(app, ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out-dir", str(out)])
+    assert res.exit_code == 2 and "traffic-summary.json exists and is not a file" in res.stderr
+    assert not (out / "traffic.nc").exists()
