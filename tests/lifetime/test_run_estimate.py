@@ -128,3 +128,33 @@ def test_the_estimate_from_the_static_pass_counts_the_events_the_run_simulates(t
         hours, events = lifetime_run.dynamics_estimate(prep, static.load())
     simulated = ds.attrs["n_dynamic_events"]
     assert 0.5 * simulated <= events <= 2.5 * simulated, (events, simulated)
+
+
+def test_a_raised_screening_bound_is_checked_against_the_budget(tmp_path, monkeypatch):
+    """The cut-down example's traffic amplifies an event above its A = 0.6, so the run raises A and screens again;
+    when the events the raised bound keeps are estimated above budget_hours the run stops there, naming the
+    amplification, both bounds and the estimate, with the rounds run so far kept (the resume note), and the same
+    call without that estimate goes on from them to the end."""
+    spec = _cut_down(tmp_path)
+    out = tmp_path / "out"
+    seen = []
+    real = lifetime_run.check_rescreen_budget
+
+    def costly(prep, static, bound, given, amplified, simulated):
+        seen.append((bound, given, amplified, int(simulated.sum())))
+        monkeypatch.setattr(lifetime_run, "DYNAMIC_SECONDS_PER_EVENT", 3600.0 * 1e6)
+        return real(prep, static, bound, given, amplified, simulated)
+
+    monkeypatch.setattr(lifetime_run, "check_rescreen_budget", costly)
+    with pytest.raises(LifetimeError, match=r"budget_hours: an event's dynamic amplification 0\.\d+ exceeded the "
+                                            r"screening bound A = 0\.600, and with A raised to \d\.\d+ the dynamics left "
+                                            r"are estimated at") as err:
+        lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
+    bound, given, amplified, simulated = seen[0]
+    assert given == pytest.approx(0.6) and amplified > given and bound == pytest.approx(1.25 * amplified)
+    assert "run the same command again to resume" in "\n".join(getattr(err.value, "__notes__", []))
+    rounds = sorted((out / "work").glob("dynamic-*.nc"))
+    assert rounds and simulated > 0
+    monkeypatch.undo()
+    ds = lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
+    assert ds.attrs["n_dynamic_events"] > simulated

@@ -2,6 +2,7 @@
 effects, the assessment dynamic ratio and fatigue damage (``vbikit.lifetime``)."""
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 from typing import Optional
@@ -21,6 +22,11 @@ from vbikit.cli.guard import (
     scheduler_option,
     workers_option,
 )
+
+
+def _hours(hours: float) -> str:
+    """A run-time estimate [h] in words: seconds, minutes or hours."""
+    return f"{hours * 3600:.0f} s" if hours < 1 / 60 else f"{hours * 60:.0f} min" if hours < 2 else f"{hours:.1f} h"
 
 
 class _Bars:
@@ -62,8 +68,10 @@ class _Bars:
         if "trucks_per_day" in info and rate:
             self.bar.set_postfix_str(f"{rate * info['trucks_per_day']:,.0f} trucks/s", refresh=False)
         if info.get("events"):
+            hours = info.get("estimate_hours", math.nan)
+            estimate = f"; estimated {_hours(hours)}" if math.isfinite(hours) else ""
             self.bar.set_postfix_str(f"dynamic {100 * info['dynamic'] / info['events']:.2f} % of "
-                                     f"{info['events']:,} events", refresh=False)
+                                     f"{info['events']:,} events{estimate}", refresh=False)
 
     def close(self) -> None:
         if self.bar is not None:

@@ -208,16 +208,17 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                     cores)
 
 
-def dynamics_estimate(prep: Prepared, static, done: NDArray[np.int64] | None = None) -> tuple[float, int]:
+def dynamics_estimate(prep: Prepared, static, done: NDArray[np.int64] | None = None,
+                      amplification: float | None = None) -> tuple[float, int]:
     """(hours, events) the dynamics still to run are estimated at once the static pass ``static`` is done: the events
-    the screening is expected to simulate (``expected_dynamic_events``, from the static peaks), less those of
-    ``done`` (global ids of events whose dynamics a finished round holds), at ``DYNAMIC_SECONDS_PER_EVENT`` on
-    ``prep.cores`` workers."""
+    the screening is expected to simulate (``expected_dynamic_events``, from the static peaks, with the bound
+    ``amplification``, default the file's A), less those of ``done`` (global ids of events whose dynamics are
+    done), at ``DYNAMIC_SECONDS_PER_EVENT`` on ``prep.cores`` workers."""
     signs = np.array([ln.sign for ln in prep.setup.lines])
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
     day = static["ev_day"].values
-    expected = expected_dynamic_events(static["ev_static"].values, signs, day, prep.n_days, prep.spec.amplification,
-                                       sample)
+    bound = prep.spec.amplification if amplification is None else float(amplification)
+    expected = expected_dynamic_events(static["ev_static"].values, signs, day, prep.n_days, bound, sample)
     if done is not None and len(done):
         gid = day * EVENT_STRIDE + static["ev_index"].values
         expected = expected[~np.isin(gid[expected], np.asarray(done, np.int64))]
@@ -236,7 +237,7 @@ def finished_dynamics(work: Path) -> NDArray[np.int64]:
     return np.unique(np.concatenate(ids))
 
 
-def check_dynamics_budget(prep: Prepared, static, work: Path) -> None:
+def check_dynamics_budget(prep: Prepared, static, work: Path) -> float:
     """Refuse the dynamics when, estimated from the static pass (``dynamics_estimate``; the events of the finished
     rounds under ``work`` left out), they would take longer than ``budget_hours``: the estimate before the run
     (``prepare``) cannot know how many events the screening keeps (19 a day and effect on the example's beam, 111 on
@@ -253,6 +254,31 @@ def check_dynamics_budget(prep: Prepared, static, work: Path) -> None:
                             f"from the static peaks), above budget_hours = {prep.spec.budget_hours:g} h; "
                             f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}, or run on more "
                             "workers, to run them")
+    return hours
+
+
+def check_rescreen_budget(prep: Prepared, static, bound: float, given: float, amplified: float,
+                          simulated: NDArray[np.bool_]) -> float:
+    """Refuse the dynamics left when the amplification check raised the screening bound (``given`` → ``bound``, an
+    event amplified by ``amplified``) and the events the new bound keeps (``dynamics_estimate`` with A = ``bound``,
+    those ``simulated`` left out) would take longer than ``budget_hours``: a raised A can keep many times the events
+    the first estimate counted (the example's week: 20 % of its events instead of 2 %).  The rounds run so far are
+    kept, and the same command resumes from them.  Returns the estimate [h]."""
+    from vbikit._words import raise_budget
+    from vbikit.lifetime.spec import MAX_BUDGET_HOURS
+
+    gid = static["ev_day"].values * EVENT_STRIDE + static["ev_index"].values
+    hours, events = dynamics_estimate(prep, static, gid[simulated], bound)
+    log.info("screening bound raised to A = %.3f: the dynamics left estimated at %.3g h on %d worker(s) (about %d "
+             "events)", bound, hours, prep.cores, events)
+    if hours > prep.spec.budget_hours:
+        raise LifetimeError(f"budget_hours: an event's dynamic amplification {amplified:.3f} exceeded the screening "
+                            f"bound A = {given:.3f}, and with A raised to {bound:.3f} the dynamics left are estimated "
+                            f"at {hours:.2f} h on {prep.cores} worker(s) (about {counted(events, 'event', thousands=True)}"
+                            f" more the screening keeps), above budget_hours = {prep.spec.budget_hours:g} h; "
+                            f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}, or run on more "
+                            "workers, to run them")
+    return hours
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:
@@ -386,8 +412,8 @@ def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, sche
     static = _run(prep.static_job(), work / "static.nc", workers, scheduler, progress, "static pass",
                   {"trucks_per_day": prep.model.trucks_per_day})
     t_static = time.perf_counter() - t0
-    check_dynamics_budget(prep, static, work)
-    dyn, rounds, bound = _dynamics(prep, static, work, workers, scheduler, progress)
+    estimate = check_dynamics_budget(prep, static, work)
+    dyn, rounds, bound = _dynamics(prep, static, work, workers, scheduler, progress, estimate)
     _governing(prep, static, dyn, work, workers, scheduler, progress)
     t_total = time.perf_counter() - t0
     ds = build_dataset(prep, static, dyn, rounds, bound, {"time_static_s": t_static, "time_total_s": t_total})
@@ -410,9 +436,11 @@ def _simulate_and_write(prep: Prepared, out_dir: Path, work: Path, workers, sche
     return ds
 
 
-def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
+def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress, estimate: float = math.nan):
     """Rounds of dynamics (module docstring); returns the per-event dynamic results (dict by
-    global id), the rounds' log and the final amplification bound."""
+    global id), the rounds' log and the final amplification bound.  ``estimate``: the hours the dynamics were
+    estimated at (``check_dynamics_budget``; the progress reports carry it, and a raised screening bound's
+    ``check_rescreen_budget``)."""
     spec = prep.spec
     day = static["ev_day"].values
     gid = day * EVENT_STRIDE + static["ev_index"].values
@@ -421,13 +449,14 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
     stored = stored_records(static)
 
     done = [0]
+    estimated = [estimate]
 
     def simulate(new: np.ndarray, r: int) -> np.ndarray:
         job = prep.dynamic_job(gid[new], stored)
         path = work / f"dynamic-{r}.nc"
         finished = path.is_file()  # (a round read back, not run now: its run-ins are those of the version that ran it)
         ds = _run(job, path, workers, scheduler, progress, f"dynamics round {r}",
-                  {"events": int(gid.size), "dynamic": done[0]})
+                  {"events": int(gid.size), "dynamic": done[0], "estimate_hours": estimated[0]})
         again = job.run_in_problem(ds["event"].values, ds["run_in"].values) if finished and "run_in" in ds else None
         if again:  # (a round finished by an earlier version that gave its events other run-ins: run again)
             log.info("dynamics round %d: %s; running it again, and the stages after it", r, again)
@@ -435,7 +464,7 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
                 _remove_stage(later)             # this round's peaks: theirs would no longer be this run's)
             path.unlink()
             ds = _run(job, path, workers, scheduler, progress, f"dynamics round {r}",
-                      {"events": int(gid.size), "dynamic": done[0]})
+                      {"events": int(gid.size), "dynamic": done[0], "estimate_hours": estimated[0]})
         done[0] += int(new.size)
         # (a round finished before the start's settling was stored: computed from the events' crossings)
         left, needed = (ds["start_transient_left"].values, ds["start_settling_run_in"].values) \
@@ -451,8 +480,11 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress):
 
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
     signs = np.array([ln.sign for ln in prep.setup.lines])
+    def rescreened(bound: float, given: float, amplified: float, simulated: np.ndarray) -> None:
+        estimated[0] = check_rescreen_budget(prep, static, bound, given, amplified, simulated)
+
     simulated, _, rounds, bound = screen(static["ev_static"].values, signs, day, prep.n_days, spec.amplification,
-                                         simulate, sample)
+                                         simulate, sample, on_rescreen=rescreened)
     return {"gid": gid, "simulated": simulated, "results": results, "sample": sample, "records": stored}, rounds, bound
 
 
@@ -476,14 +508,17 @@ def _governing(prep: Prepared, static, dyn: dict, work: Path, workers, scheduler
 
 def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: int, amplification: float,
            simulate: Callable[[np.ndarray, int], np.ndarray], extra: np.ndarray = np.zeros(0, np.int64),
-           per_round: int = PER_ROUND) -> tuple[np.ndarray, np.ndarray, list, float]:
+           per_round: int = PER_ROUND,
+           on_rescreen: Optional[Callable[[float, float, float, np.ndarray], None]] = None
+           ) -> tuple[np.ndarray, np.ndarray, list, float]:
     """The screening of ``vbikit.lifetime.screening`` around a simulator: ``simulate(indices,
     round)`` returns the dynamic peaks (n, n_effects) of those events.  Round 1: the largest static
     event of every block and effect, and ``extra`` (the random sample); then rounds of
     per_round · 2^(k−1) events per block and effect (round k + 1) kept by the rule, until none is left; then the
     amplification check on the simulated events whose static peak is at least ``CHECK_FRACTION``
     of their block's largest (re-screening with A = 1.25 × the largest amplification seen there,
-    at most ``MAX_RESCREENS`` times).
+    at most ``MAX_RESCREENS`` times); before each re-screening ``on_rescreen(new bound, bound, largest
+    amplification, simulated mask)`` when given (it may raise: the run's budget, ``check_rescreen_budget``).
     Returns (simulated mask, dynamic peaks (NaN where not simulated), rounds, the bound used)."""
     n, m = static.shape
     dyn = np.full((n, m), np.nan)
@@ -514,6 +549,8 @@ def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: i
             break
         log.warning("an event's dynamic amplification %.3f exceeds the screening bound A = %.3f: screening again "
                     "with A = %.3f", np.nanmax(amp), bound, new_bound)
+        if on_rescreen is not None:  # (e.g. the run's budget for the events the new bound keeps: it may refuse)
+            on_rescreen(new_bound, bound, float(np.nanmax(amp)), simulated.copy())
         rounds[-1]["rescreen_to"] = new_bound
         bound, rescreens = new_bound, rescreens + 1
     return simulated, dyn, rounds, bound
