@@ -111,3 +111,26 @@ def test_the_governing_girder_im_of_a_soft_deck_is_marked(tmp_path):
     assert codes[0] == "implausible_deflection"
     assert not {"airborne_wheels", "coarse_step", "unresolved_modes"} & set(codes)  # nothing else marks the line
     assert soft_line.rstrip().endswith("!)") and not ok_line.rstrip().endswith("!)")
+
+
+def test_validate_flags_the_unit_mistake_before_the_run_and_the_run_states_its_own(tmp_path):
+    """``vbikit validate`` (a new user's trial: it said "ok" where the run then flagged L/0.0113) estimates the static
+    deflection from the modes, the vehicle's weight as one force at the response point — for the sprung mass at
+    midspan P L³ / (48 EI) within the retained modes (the first gives 96/π⁴ = 98.6 % of it, the example's 10 all but
+    2e-4) — and warns with
+    the same words; the run's summary holds one implausible_deflection flag, its own (from the static peaks)."""
+    text = (ROOT / "examples" / "verification" / "yang_yau_sprung_mass.toml").read_text()
+    good, bad = tmp_path / "good.toml", tmp_path / "bad.toml"
+    good.write_text(text)
+    bad.write_text(text.replace("EI = 8.323e9", "EI = 8.323e6"))
+    ok = runner.invoke(app, ["validate", str(good)])
+    assert ok.exit_code == 0 and "not plausible" not in ok.output
+    res = runner.invoke(app, ["validate", str(bad)])
+    assert res.exit_code == 0, res.output
+    line = next(x for x in res.output.splitlines() if "not plausible" in x)
+    assert "before the run" in line and "EI in N m²" in line
+    closed = P * L**3 / (48 * 8.323e6)
+    assert f"static deflection {closed:.3g} m" in line, line  # (10 modes: within 0.02 % of the closed form)
+    summary = _run(bad.read_text(), tmp_path)
+    (flag,) = [f for f in summary["flags"] if f["code"] == "implausible_deflection"]
+    assert flag["point"] == "p1" and "before the run" not in flag["message"]

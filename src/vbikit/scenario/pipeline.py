@@ -202,7 +202,9 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
                           check_step=asks_for_load_effects(scenario) or train, train=train)
     s = report.summary
-    add_flags(s, plan.flags)
+    from vbikit.scenario.preflight import ESTIMATE_LABEL  # (the run's own implausible_deflection replaces the estimate's)
+
+    add_flags(s, [f for f in plan.flags if not (f.code == "implausible_deflection" and ESTIMATE_LABEL in f.message)])
     s["inputs"] = scenario_inputs(scenario, plan)
     nonfinite = json_safe(s)[1]  # JSON outputs write these as null, the text report as nan
     add_flags(s, [Flag("non_finite", f"{key} is not a finite number (written as null)", output=key) for key in nonfinite])

@@ -254,6 +254,36 @@ def check_vehicle_overlap(crossing: Crossing) -> None:
                                 "values a lane apart or entry_time values far enough apart")
 
 
+#: what the preflight's implausible-deflection estimate is called in its flag (``deflection_estimate_flags``): a run
+#: replaces it by its own, from the peaks it computed (``vbikit.scenario.pipeline.run_planned``)
+ESTIMATE_LABEL = "before the run"
+
+
+def deflection_estimate_flags(crossing: Crossing, x: float | None, y: float | None) -> list[Flag]:
+    """``implausible_deflection`` before any run (what ``vbikit validate`` can say of a unit mistake in the bridge's
+    stiffness or mass, which a run flags from its static peaks): the static deflection at the response point (x, y;
+    None: the bridge's default)
+    under the vehicles' whole static weight W as one force there, W Σᵢ φᵢ(x, y)² / ωᵢ² (the retained modes' static
+    flexibility with mass-normalised shapes; the spread axles give less, about half at most on the paper's spans, so
+    the factor 10³–10⁶ of a unit mistake shows at once), judged as a run's (``implausible_deflection_flags``, the
+    longest span).  None for vehicles without a static weight on the road."""
+    from vbikit.analysis.checks import implausible_deflection_flags
+
+    try:
+        weight = float(np.sum(crossing.vehicle.static_wheel_loads()))
+    except (AttributeError, ValueError, np.linalg.LinAlgError):  # (a vehicle whose static state is not defined)
+        return []
+    bridge = crossing.bridge
+    x = bridge.default_response_x if x is None else float(x)
+    y = bridge.default_response_y if y is None else float(y)
+    phi = bridge.mode_shapes(np.array([x]), np.array([y]))[0]
+    peak = weight * float(np.sum(phi * phi / bridge.omega**2))
+    if not (np.isfinite(peak) and weight > 0.0):
+        return []
+    label = f"response point x = {float(x):g} m, y = {float(y):g} m ({ESTIMATE_LABEL}: the vehicles' weight there as one force)"
+    return implausible_deflection_flags(max(bridge.span_lengths), [(label, -peak, None, None)])
+
+
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:
     """The run plan of ``crossing`` ([`vbikit.solve.plan.plan_run`][vbikit.solve.plan_run]: its time step [s] and
     estimate), checked as every run is: a given step makes at least ``MIN_STEPS`` steps while the
@@ -295,7 +325,8 @@ def _preflight(scenario: Scenario, limits: Limits | None) -> Plan:
     check_response_points(built)
     check_load_effects(scenario, built)
     flags = input_flags(crossing, run.dt, built.response_x, built.response_y) + defect_flags(scenario, built) \
-        + axle_load_flags(scenario) + ignored_input_flags(scenario, built)
+        + axle_load_flags(scenario) + ignored_input_flags(scenario, built) \
+        + deflection_estimate_flags(crossing, built.response_x, built.response_y)
     for name, p in zip(built.plan.point_names[1:], built.plan.points[1:]):  # the other points' own notes (near a support)
         flags += point_flags(crossing, p.x, p.y, name)
     return Plan(scenario, built, run.dt, run.estimate, flags, run)
