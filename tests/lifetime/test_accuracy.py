@@ -301,7 +301,7 @@ def test_report_shows_moments_in_kn_m_and_forces_in_kn(quasi_static):
         e = facts["load_effects"][name]
         row = next(x for x in report.splitlines() if x.startswith(f"{name} "))
         assert row[22:28].strip() == unit
-        assert float(row[28:42]) == pytest.approx(e["characteristic_static"] / 1e3, rel=1e-4)
+        assert float(row[28:42].rstrip("!")) == pytest.approx(e["characteristic_static"] / 1e3, rel=1e-4)  # (! a flag)
         assert f"\n{name} [{unit}]: return levels" in report
         bm = e["return_levels"][0]["static"]["block_maxima"]
         assert f"{bm['value'] / 1e3:.4g} ({bm['lower'] / 1e3:.4g} … {bm['upper'] / 1e3:.4g})" in report

@@ -447,6 +447,19 @@ def _iv(d: dict, scale: float = 1.0) -> str:
     return f"{d['value'] * scale:.4g} ({lo:.4g} … {hi:.4g})"
 
 
+#: the flag outputs (``flag_output``) that put each value of the report's headline table in doubt (``_in_doubt``)
+_TABLE_DOUBTS = {"static": (flag_output("characteristic", "static"), flag_output("return_levels", "static")),
+                 "total": (flag_output("characteristic", "total"), flag_output("return_levels", "total"),
+                           flag_output("governing", "total")),
+                 "adr": (flag_output("adr"),)}
+
+
+def _in_doubt(e: dict[str, Any], what: str) -> bool:
+    """Whether a flag of load effect ``e`` (its summary) puts its headline value ``what`` ("static": the
+    characteristic static value, "total", "adr") in doubt: a flag whose ``output`` is one of ``_TABLE_DOUBTS``."""
+    return any(f.get("output") in _TABLE_DOUBTS[what] for f in e.get("flags", ()))
+
+
 def text_report(facts: dict[str, Any]) -> str:
     """The run's plain-text report (rendered from ``summary``; its marks, ``*`` under a table and ABOVE
     at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m,
@@ -469,12 +482,16 @@ def text_report(facts: dict[str, Any]) -> str:
              f"{r['events_per_second_static']:,.0f} events/s)", "",
              f"{'load effect':<22}{'unit':<6}{'char. static':>14}{'char. total':>14}{'ADR':>8}{'ADR ' + ci + ' interval':>20}"
              f"{'IM mean':>9}{'IM q95':>8}{'AASHTO':>8}"]
+    marked = False
     for name, e in facts["load_effects"].items():
         ad = e["adr"]
         unit, k = report_unit(e["units"])
         span = "n/a" if ad["lower"] is None else f"{ad['lower']:.3f} … {ad['upper']:.3f}"
-        lines.append(f"{name:<22}{unit:<6}{_g(e['characteristic_static'], '>14.5g', k)}"
-                     f"{_g(e['characteristic_total'], '>14.5g', k)}{_g(ad['value'], '>8.4f')}{span:>20}"
+        doubt = {w: _in_doubt(e, w) for w in ("static", "total", "adr")}
+        marked |= any(doubt.values())
+        lines.append(f"{name:<22}{unit:<6}{_g(e['characteristic_static'], '>13.5g', k)}{'!' if doubt['static'] else ' '}"
+                     f"{_g(e['characteristic_total'], '>13.5g', k)}{'!' if doubt['total'] else ' '}"
+                     f"{_g(ad['value'], '>7.4f')}{'!' if doubt['adr'] else ' '}{span:>20}"
                      f"{_g(e['im']['im_mean'], '>9.4f')}{_g(e['im']['im_q95'], '>8.4f')}{_g(e['aashto_lrfd_im'], '>8.2f')}")
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
 
@@ -486,6 +503,8 @@ def text_report(facts: dict[str, Any]) -> str:
                  f"sample's {counted(n_sample, 'event')}, all lanes and vehicles together — not per lane, nor the IM "
                  "of the largest static event"
                  + (f"; events without an IM left out: {', '.join(left_out)}" if left_out else "") + ")")
+    if marked:
+        lines.append("  (! beside a value: a FLAG line below puts it in doubt; read it before using the value)")
     for name, e in facts["load_effects"].items():  # how well the random sample fixes the IM statistics
         if e["im"].get("im_mean_ci_lower", "absent") != "absent" and e["im"].get("im_mean") is not None:
             size = f"{sizes[name]} events" if sizes[name] == n_sample else \
