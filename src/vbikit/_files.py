@@ -360,7 +360,8 @@ def input_file(path: str | Path, error: type[Exception], what: str = "file") -> 
     try:
         st = os.stat(path)
     except FileNotFoundError:
-        raise error(f"{what} not found: {path}") from None
+        where = "" if os.path.isabs(path) else f" (looked for {os.path.abspath(path)})"  # (a relative path: from where)
+        raise error(f"{what} not found: {path}{where}") from None
     except OSError as err:
         raise error(f"{path}: cannot read {what}: {err.strerror}") from None
     kind = next((name for test, name in _KINDS if test(st.st_mode)), None if stat.S_ISREG(st.st_mode) else "not a file")

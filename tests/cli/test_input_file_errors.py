@@ -106,3 +106,19 @@ def test_validate_commands_print_warnings_on_stderr_and_not_with_quiet(tmp_path,
     assert warnings and all(w.startswith("warning: ") for w in warnings), res.stderr
     quiet = runner.invoke(app, [*command.split(), str(path), "-q"])
     assert quiet.exit_code == 0 and quiet.stderr == "" and quiet.stdout == res.stdout
+
+
+def test_a_missing_file_given_relative_says_where_it_was_looked_for(tmp_path, monkeypatch):
+    """A relative path that is not there (a lifetime file's records copied without them, a new user's trial) is
+    named as given and with the absolute path it was looked for at; an absolute one as given only."""
+    import os
+
+    from vbikit._files import input_file
+
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError) as err:
+        input_file("wim.csv", ValueError, "records file (CSV)")
+    assert str(err.value) == f"records file (CSV) not found: wim.csv (looked for {os.path.join(str(tmp_path), 'wim.csv')})"
+    with pytest.raises(ValueError) as err:
+        input_file(tmp_path / "wim.csv", ValueError, "records file (CSV)")
+    assert str(err.value) == f"records file (CSV) not found: {tmp_path / 'wim.csv'}"
