@@ -77,6 +77,7 @@ def print_summary(run: Run) -> None:
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s² (the deck's, at the response point)")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
+    step_line(s)
     start_line(s)
     coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
     implausible = has_flag(s, "implausible_deflection")
@@ -157,6 +158,20 @@ def print_negative_note(negative: bool) -> None:
         from vbikit.analysis.checks import NEGATIVE_IM_NOTE
 
         typer.echo(f"  note: {NEGATIVE_IM_NOTE}")
+
+
+def step_line(s: dict) -> None:
+    """The half-step check's line (``vbikit.scenario.step_check.half_step_check``): how much the impact factors
+    change at half the automatic step; nothing without it (a given crossing.dt, or the load effects' halving)."""
+    check = s.get("step_check")
+    if not check:
+        return
+    if check.get("largest_change") is None:
+        typer.echo(f"  step check           {check.get('note', 'not run')}")
+        return
+    which = f" ({check['output']})" if check.get("output") else ""
+    typer.echo(f"  step check           at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by "
+               f"at most {check['largest_change']:.1e}{which}")
 
 
 def start_line(s: dict) -> None:

@@ -200,7 +200,7 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
 
     train = is_train(scenario)
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
-                          check_step=asks_for_load_effects(scenario) or train, train=train)
+                          check_step=asks_for_load_effects(scenario) or train, train=train, half_step=True)
     s = report.summary
     from vbikit.scenario.preflight import ESTIMATE_LABEL  # (the run's own implausible_deflection replaces the estimate's)
 
@@ -219,15 +219,18 @@ def _references(scenario: Scenario) -> list[dict[str, str]]:
 
 
 def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | None = None, name: str = "",
-                 run_plan: RunPlan | None = None, check_step: bool | None = None, train: bool = False) -> Report:
+                 run_plan: RunPlan | None = None, check_step: bool | None = None, train: bool = False,
+                 half_step: bool = False) -> Report:
     """Simulate ``crossing`` (with its checked [`RunPlan`][vbikit.solve.plan.RunPlan] if the
     preflight made one: step, budgets and tables are not computed again) and reduce it by ``plan``
     (``report_crossing``).  With ``check_step`` (default: the plan reads load effects) at an
     automatic step, the step is halved until the impact factors converge
     (``vbikit.scenario.step_check``); a scenario checks it when its [response] asks for moments,
     shears or reactions (not for the ones reported by default) or runs a train (``train``: its peak
-    accelerations are checked too)."""
-    from vbikit.scenario.step_check import converge_step, load_effect_plan
+    accelerations are checked too); otherwise, with ``half_step`` (a scenario's single run), the run at an automatic
+    step is run once more at half of it and the summary's ``step_check`` says how much its impact factors change
+    (``vbikit.scenario.step_check.half_step_check``)."""
+    from vbikit.scenario.step_check import converge_step, half_step_check, load_effect_plan
     from vbikit.solve import simulate
 
     if check_step is None:
@@ -236,9 +239,11 @@ def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | Non
         run_plan = load_effect_plan(crossing, plan.load_effects, run_plan, limits)
     report = report_crossing(simulate(crossing if run_plan is None else run_plan.crossing, limits, plan=run_plan),
                              plan, name)
+    rerun = lambda finer: report_crossing(simulate(finer.crossing, limits, plan=finer), plan, name)  # noqa: E731
     if check_step and crossing.dt is None:  # moments, shears, reactions: confirm the step by halving
-        report = converge_step(report, crossing, lambda finer: report_crossing(
-            simulate(finer.crossing, limits, plan=finer), plan, name), limits, train=train)
+        report = converge_step(report, crossing, rerun, limits, train=train)
+    elif half_step and crossing.dt is None:  # say how good the automatic step is
+        report.summary["step_check"] = half_step_check(report, crossing, rerun, limits)
     return report
 
 

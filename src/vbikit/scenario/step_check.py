@@ -157,6 +157,42 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], An
     return report
 
 
+def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], Any],
+                    limits: Limits | None = None) -> dict[str, Any]:
+    """How good a single run's automatic step is: the same run once more at half the step (``rerun(run_plan)``, as
+    ``converge_step``'s), and the largest change of a deflection or strain impact factor of its report (every point
+    and girder; the load effects have their own step rule and warning, ``vbikit.analysis.effect_step``; Richardson's step-doubling estimate of the run's own error, about that change times 1 / (1 − 2⁻ᵖ), p ≈ 2
+    of the exact integrator).  The report stays the run at the automatic step; above ``STEP_TOLERANCE`` its summary
+    gets ``step_not_converged``.  Returns the summary's ``step_check``: ``dt`` [s] the half step, ``largest_change``
+    [-] and ``output`` (None, with ``note``, when the half-step run is above the step budget)."""
+    from vbikit.solve.plan import plan_run
+
+    dt = float(report.result.integration_dt or report.result.dt)
+    try:
+        run_plan = plan_run(replace(crossing, dt=dt / 2), limits)
+    except BudgetError:
+        return {"dt": dt / 2, "largest_change": None, "output": None,
+                "note": "not run: the run at half the step is above the step budget (--max-steps)"}
+    finer = rerun(run_plan).summary
+    change, worst = _largest_change(_deflections(report.summary), _deflections(finer))
+    log.info("half-step check: dt %.3g s -> %.3g s, largest change %.2g (%s)", dt, dt / 2, change, worst)
+    if change > STEP_TOLERANCE:
+        add_flags(report.summary, [Flag("step_not_converged", _advice([change], worst, dt / 2), output=worst or None,
+                                        value=change, threshold=STEP_TOLERANCE)])
+    return {"dt": dt / 2, "largest_change": change, "output": worst or None}
+
+
+#: the summary's load-effect blocks and their headline keys (``moment_impact_factor`` …): the half-step check leaves
+#: them to their own step rule (``vbikit.analysis.effect_step``: a warning naming the step they need) and halving
+_LOAD_EFFECT_KEYS = ("moment", "shear", "reaction")
+
+
+def _deflections(summary: Mapping[str, Any]) -> dict[str, Any]:
+    """``summary`` without its load effects (``_LOAD_EFFECT_KEYS``): the deflection and strain impact factors of
+    every point and girder, which the half-step check compares."""
+    return {k: v for k, v in summary.items() if not k.startswith(_LOAD_EFFECT_KEYS)}
+
+
 def _advice(changes: list[float], worst: str, dt: float) -> str:
     text = (f"{worst} is not converged in the time step: it changed by {changes[-1]:.3g} when the step was halved to "
             f"{dt:.3g} s (tolerance {STEP_TOLERANCE:g})")
