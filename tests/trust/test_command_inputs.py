@@ -36,13 +36,13 @@ def _validate(tmp_path: Path, kind: str, change: dict, records: str | None = Non
 
 CASES = [
     # lifetime: tiny positives, booleans, positions, categories, damage, lanes
-    ("lifetime", {"ds": 5e-324}, "ds: expected a number in [0.001, 2], got 5e-324"),
-    ("lifetime", {"dx": 5e-324}, "dx: expected a number in [0.001, 1], got 5e-324"),
+    ("lifetime", {"ds": 5e-324}, "ds: expected a number in [0.001, 2] [m], got 5e-324"),
+    ("lifetime", {"dx": 5e-324}, "dx: expected a number in [0.001, 1] [m], got 5e-324"),
     ("lifetime", {"fatigue.histogram_bin": 5e-324}, "fatigue.histogram_bin: expected a number in [1000, 1e+08]"),
-    ("lifetime", {"fatigue.histogram_bin": float("inf")}, "fatigue.histogram_bin: expected a finite number in [1000, 1e+08], got inf"),
+    ("lifetime", {"fatigue.histogram_bin": float("inf")}, "fatigue.histogram_bin: expected a finite number in [1000, 1e+08] [Pa], got inf"),
     ("lifetime", {"traffic.speed_kmh": 5e-324}, "traffic.speed_kmh: expected a number in [5, 250]"),
     ("lifetime", {"load_effects.0.x": 5e-324}, "load_effects[1].x: a section 5e-324 m from the entry support"),
-    ("lifetime", {"fatigue.details.0.section_modulus": 1e-300}, "section_modulus: expected a number in [1e-07, 100], got 1e-300"),
+    ("lifetime", {"fatigue.details.0.section_modulus": 1e-300}, "section_modulus: expected a number in [1e-07, 100] [m³], got 1e-300"),
     ("lifetime", {"traffic.trucks_per_day": 1e-9}, "traffic.trucks_per_day: expected a number in [1, 200000]"),
     ("lifetime", {"days": True}, "days: expected an integer in [1, 73000], got true"),
     ("lifetime", {"amplification": True}, "amplification: expected a number"),
