@@ -310,3 +310,28 @@ def test_another_runs_work_names_the_output_folder(tmp_path, monkeypatch):
         _run(None, tmp_path / "work" / "static.nc", 1, None, None, "static pass")
     assert str(err.value).startswith(f"{tmp_path} holds work this run cannot use")
     assert "--out" not in str(err.value) and "study" not in str(err.value)
+
+
+def test_a_headline_value_a_flag_puts_in_doubt_is_marked(tmp_path):
+    """The cut-down example's report: a ``!`` follows a characteristic static value exactly when a flag of that load
+    effect is about the characteristic static value or the static return levels, an ADR exactly when one is about
+    the ADR (the flags' ``output`` words, written out here), and the legend is printed when any value is marked."""
+    from vbikit.lifetime.report import summary, text_report
+    from vbikit.lifetime.run import run_lifetime
+
+    from .test_cli import _cut_down
+
+    ds = run_lifetime(_cut_down(tmp_path), tmp_path / "out", workers=1, figures=False)
+    facts = summary(ds)
+    report = text_report(facts).splitlines()
+    header = next(i for i, line in enumerate(report) if line.startswith("load effect"))
+    any_mark = False
+    for name, e in facts["load_effects"].items():
+        row = next(line for line in report[header:] if line.startswith(name + " "))
+        outputs = {f.get("output") for f in e.get("flags", ())}
+        static = bool(outputs & {"characteristic static value", "static return levels"})
+        adr = "ADR" in outputs
+        assert (row[41] == "!") == static, (row, outputs)  # (name 22, unit 6, the value 13, its mark)
+        assert (row[63] == "!") == adr, (row, outputs)  # (the total 13 and its mark, the ADR 7, its mark)
+        any_mark |= static or adr or row[55] == "!"
+    assert any(line.startswith("  (! beside a value:") for line in report) == any_mark

@@ -158,3 +158,28 @@ def test_a_raised_screening_bound_is_checked_against_the_budget(tmp_path, monkey
     monkeypatch.undo()
     ds = lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
     assert ds.attrs["n_dynamic_events"] > simulated
+
+
+def test_a_resumed_run_is_not_refused_at_the_raised_bound_for_rounds_it_has_finished(tmp_path, monkeypatch):
+    """Resumed on its finished work, with every event its rounds hold expected and the cost of one raised a
+    millionfold once the bound is raised: the raised bound's check leaves out the rounds after it, which a resumed
+    run reads back (a review found it refused 65 events already on disk)."""
+    spec = _cut_down(tmp_path)
+    out = tmp_path / "out"
+    lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
+    with xr.open_dataset(out / "work" / "static.nc") as static:
+        gid = static["ev_day"].values * EVENT_STRIDE + static["ev_index"].values
+    ran = np.flatnonzero(np.isin(gid, lifetime_run.finished_dynamics(out / "work")))
+    real = lifetime_run.check_rescreen_budget
+    raised = []
+
+    def costly(*args):
+        raised.append(args[2])
+        monkeypatch.setattr(lifetime_run, "DYNAMIC_SECONDS_PER_EVENT", 3600.0 * 1e6)
+        return real(*args)
+
+    monkeypatch.setattr(lifetime_run, "expected_dynamic_events", lambda *a, **k: ran)
+    monkeypatch.setattr(lifetime_run, "check_rescreen_budget", costly)
+    (out / "lifetime.nc").unlink()
+    lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
+    assert raised  # (the cut-down example raises its bound: the check ran)

@@ -299,9 +299,10 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
         ratio, ratio_se = math.nan, math.nan
         ratio_words = (f"static damage 0 (every static stress range is below the fatigue limit {limit}): the "
                        "dynamic / static damage ratio is undefined")
-        ratio_words += ("; the dynamic ranges above the limit make every range of the loading count (no damage only "
-                        "when all of them are below it, EN 1993-1-9 1.3.3.3), the static-sized ranges below the limit "
-                        "included, on the S-N curve's branch below it" if damage > 0 else "; the total damage is 0 too")
+        ratio_words += ("; the dynamic ranges above the limit make the loading's ranges below it count too (no damage "
+                        "only when every range is below the limit), the static-sized ones included, on the S-N curve "
+                        "below the limit down to its cut-off where it has one" if damage > 0 else
+                        "; the total damage is 0 too")
     return {"damage_design_life": life, "damage_design_life_upper": upper, "remaining_life": remaining,
             "ratio": ratio, "ratio_se": ratio_se, "verdict": words, "ratio_words": ratio_words}
 

@@ -261,7 +261,7 @@ def check_rescreen_budget(prep: Prepared, static, bound: float, given: float, am
                           simulated: NDArray[np.bool_]) -> float:
     """Refuse the dynamics left when the amplification check raised the screening bound (``given`` → ``bound``, an
     event amplified by ``amplified``) and the events the new bound keeps (``dynamics_estimate`` with A = ``bound``,
-    those ``simulated`` left out) would take longer than ``budget_hours``: a raised A can keep many times the events
+    those ``simulated`` left out: simulated so far, or held by a finished round of a resumed run) would take longer than ``budget_hours``: a raised A can keep many times the events
     the first estimate counted (the example's week: 20 % of its events instead of 2 %).  The rounds run so far are
     kept, and the same command resumes from them.  Returns the estimate [h]."""
     from vbikit._words import raise_budget
@@ -481,7 +481,8 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress, 
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
     signs = np.array([ln.sign for ln in prep.setup.lines])
     def rescreened(bound: float, given: float, amplified: float, simulated: np.ndarray) -> None:
-        estimated[0] = check_rescreen_budget(prep, static, bound, given, amplified, simulated)
+        done = np.isin(gid, finished_dynamics(work)) | simulated  # (a resumed run's later rounds are done already)
+        estimated[0] = check_rescreen_budget(prep, static, bound, given, amplified, done)
 
     simulated, _, rounds, bound = screen(static["ev_static"].values, signs, day, prep.n_days, spec.amplification,
                                          simulate, sample, on_rescreen=rescreened)

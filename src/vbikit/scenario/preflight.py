@@ -261,27 +261,41 @@ ESTIMATE_LABEL = "before the run"
 
 def deflection_estimate_flags(crossing: Crossing, x: float | None, y: float | None) -> list[Flag]:
     """``implausible_deflection`` before any run (what ``vbikit validate`` can say of a unit mistake in the bridge's
-    stiffness or mass, which a run flags from its static peaks): the static deflection at the response point (x, y;
-    None: the bridge's default)
-    under the vehicles' whole static weight W as one force there, W Σᵢ φᵢ(x, y)² / ωᵢ² (the retained modes' static
-    flexibility with mass-normalised shapes; the spread axles give less, about half at most on the paper's spans, so
-    the factor 10³–10⁶ of a unit mistake shows at once), judged as a run's (``implausible_deflection_flags``, the
-    longest span).  None for vehicles without a static weight on the road."""
+    stiffness, which a run flags from its static peaks): the static deflection at the response point (x, y; None: the
+    bridge's default) under W as one force there, W Σᵢ φᵢ(x, y)² / ωᵢ² (the retained modes' static flexibility; with
+    mass-normalised shapes it is proportional to 1/EI and does not depend on the mass), W the heaviest group of one
+    vehicle's axles that fits on the longest span (``heaviest_on_span``: a train's whole weight would be 15–20 times
+    too much).  A group spread along the span deflects less than the same weight at one point, about half at most
+    on the paper's spans; the factor 10³–10⁶ of a unit mistake shows at once.  Judged as a run's
+    (``implausible_deflection_flags``, the longest span).  None for vehicles without a static weight on the road."""
     from vbikit.analysis.checks import implausible_deflection_flags
 
+    bridge = crossing.bridge
+    span = max(bridge.span_lengths)
     try:
-        weight = float(np.sum(crossing.vehicle.static_wheel_loads()))
+        weight = max(heaviest_on_span(m.vehicle, span) for m in crossing.vehicles)
     except (AttributeError, ValueError, np.linalg.LinAlgError):  # (a vehicle whose static state is not defined)
         return []
-    bridge = crossing.bridge
     x = bridge.default_response_x if x is None else float(x)
     y = bridge.default_response_y if y is None else float(y)
     phi = bridge.mode_shapes(np.array([x]), np.array([y]))[0]
     peak = weight * float(np.sum(phi * phi / bridge.omega**2))
     if not (np.isfinite(peak) and weight > 0.0):
         return []
-    label = f"response point x = {float(x):g} m, y = {float(y):g} m ({ESTIMATE_LABEL}: the vehicles' weight there as one force)"
-    return implausible_deflection_flags(max(bridge.span_lengths), [(label, -peak, None, None)])
+    label = f"response point x = {x:g} m, y = {y:g} m ({ESTIMATE_LABEL}: a vehicle's axles on the span as one force there)"
+    return implausible_deflection_flags(span, [(label, -peak, None, None)])
+
+
+def heaviest_on_span(vehicle: Any, span: float) -> float:
+    """The largest static load [N] of ``vehicle``'s wheels whose longitudinal offsets lie within any ``span`` [m]
+    (a sliding window over the wheels sorted by offset): what one vehicle puts on one span at most."""
+    loads = np.asarray(vehicle.static_wheel_loads(), float)
+    offsets = np.array([w.offset for w in vehicle.wheels], float)
+    order = np.argsort(offsets)
+    loads, offsets = loads[order], offsets[order]
+    total = np.concatenate([[0.0], np.cumsum(loads)])
+    last = np.searchsorted(offsets, offsets + span, side="right")  # (each window starts at a wheel)
+    return float(np.max(total[last] - total[np.arange(offsets.size)])) if offsets.size else 0.0
 
 
 def check_steps(crossing: Crossing, limits: Limits | None = None) -> RunPlan:

@@ -170,9 +170,9 @@ def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], 
     dt = float(report.result.integration_dt or report.result.dt)
     try:
         run_plan = plan_run(replace(crossing, dt=dt / 2), limits)
-    except BudgetError:
+    except BudgetError as err:
         return {"dt": dt / 2, "largest_change": None, "output": None,
-                "note": "not run: the run at half the step is above the step budget (--max-steps)"}
+                "note": f"not run: the run at half the step is above the run's budget ({err})"}
     finer = rerun(run_plan).summary
     change, worst = _largest_change(_deflections(report.summary), _deflections(finer))
     log.info("half-step check: dt %.3g s -> %.3g s, largest change %.2g (%s)", dt, dt / 2, change, worst)
