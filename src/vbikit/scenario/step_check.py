@@ -161,8 +161,9 @@ def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], 
                     limits: Limits | None = None) -> dict[str, Any]:
     """How good a single run's automatic step is: the same run once more at half the step (``rerun(run_plan)``, as
     ``converge_step``'s), and the largest change of a deflection or strain impact factor of its report (every point
-    and girder; the load effects have their own step rule and warning, ``vbikit.analysis.effect_step``; Richardson's step-doubling estimate of the run's own error, about that change times 1 / (1 − 2⁻ᵖ), p ≈ 2
-    of the exact integrator).  The report stays the run at the automatic step; above ``STEP_TOLERANCE`` its summary
+    and girder; the load effects have their own step rule and warning, ``vbikit.analysis.effect_step``).  By
+    Richardson's step doubling the run's own error is about that change times 1 / (1 − 2⁻ᵖ), p ≈ 2 for the exact
+    integrator (4/3 of it).  The report stays the run at the automatic step; above ``STEP_TOLERANCE`` its summary
     gets ``step_not_converged``.  Returns the summary's ``step_check``: ``dt`` [s] the half step, ``largest_change``
     [-] and ``output`` (None, with ``note``, when the half-step run is above the step budget)."""
     from vbikit.solve.plan import plan_run
