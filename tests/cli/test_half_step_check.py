@@ -51,3 +51,12 @@ def test_a_change_above_the_tolerance_is_flagged_and_a_given_step_is_not_checked
     given = tmp_path / "given.toml"
     given.write_text(DEMO.read_text().replace("approach = 10", "approach = 10\ndt = 0.001"))
     assert "step_check" not in vbikit.run(given).summary
+
+
+def test_step_check_false_leaves_it_out_and_a_crossing_gets_it_too():
+    """``vbikit.run(..., step_check=False)`` runs the crossing once (no ``step_check``); a built Crossing run through
+    ``vbikit.run`` states the same check as its scenario."""
+    assert "step_check" not in vbikit.run(DEMO, step_check=False).summary
+    built = build(load_scenario(DEMO))
+    from_crossing = vbikit.run(built.crossing).summary["step_check"]
+    assert from_crossing["largest_change"] > 0 and from_crossing["dt"] == pytest.approx(vbikit.run(DEMO).summary["dt"] / 2)

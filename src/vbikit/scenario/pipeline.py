@@ -68,7 +68,7 @@ def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> S
 
 
 def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None, *, limits: Limits | None = None,
-        base_dir: str | Path | None = None, name: str = "") -> Report:
+        base_dir: str | Path | None = None, name: str = "", step_check: bool = True) -> Report:
     """Run one crossing and return its [`Report`][vbikit.scenario.Report].
 
     Parameters
@@ -86,6 +86,11 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
         Folder relative file names in the scenario resolve against.
     name
         Label of a Crossing's report (a scenario's is its ``name``).
+    step_check
+        At an automatic step, run the crossing once more at half the step and state in the summary's ``step_check``
+        how much its deflection and strain impact factors change (``vbikit.scenario.step_check.half_step_check``;
+        about 1.6 times the run's cost).  False leaves it out (a loop over many runs whose step is checked
+        otherwise); the load effects' own halving, when a scenario asks for them, runs either way.
 
     Raises
     ------
@@ -93,10 +98,10 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
         Bad input, found before any computation.
     """
     if isinstance(source, Crossing):
-        return run_crossing(source, response or ResponsePlan(), limits=limits, name=name)
+        return run_crossing(source, response or ResponsePlan(), limits=limits, name=name, half_step=step_check)
     if response is not None:
         raise ScenarioError("a scenario carries its own response plan ([response]); pass response= only with a Crossing")
-    return run_planned(preflight(scenario_of(source, base_dir), limits), limits)
+    return run_planned(preflight(scenario_of(source, base_dir), limits), limits, step_check=step_check)
 
 
 def check_random_road(scenario: Scenario) -> None:
@@ -190,7 +195,7 @@ def _random_runs(plans: list[Plan], scenarios: list[Scenario], roads: list, quan
     return out
 
 
-def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
+def run_planned(plan: Plan, limits: Limits | None = None, step_check: bool = True) -> Report:
     """Integrate a checked scenario (``preflight``) and report it,
     with the scenario's inputs, warnings, units and references in the summary."""
     from vbikit._files import json_safe
@@ -200,7 +205,7 @@ def run_planned(plan: Plan, limits: Limits | None = None) -> Report:
 
     train = is_train(scenario)
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
-                          check_step=asks_for_load_effects(scenario) or train, train=train, half_step=True)
+                          check_step=asks_for_load_effects(scenario) or train, train=train, half_step=step_check)
     s = report.summary
     from vbikit.scenario.preflight import ESTIMATE_LABEL  # (the run's own implausible_deflection replaces the estimate's)
 
