@@ -195,15 +195,16 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
     annotation = getattr(field, "annotation", None)
     kinds = {annotation, *typing.get_args(annotation)}
     description = getattr(field, "description", None) or ""
-    unit = _UNIT.search(description)
-    if unit is None:  # (a unit in brackets inside the description: "stress = effect / section_modulus [m³] (…)")
+    found = _UNIT.search(description)
+    if found is not None:
+        unit = found.group(1) if found.group(1).strip() != "-" else ""
+    else:  # (a unit in brackets inside the description: "stress = effect / section_modulus [m³] (…)")
         from vbikit._words import split_unit
 
-        inner = split_unit(description)[1]
-        unit = re.match(r"(.+)", inner) if inner else None
+        unit = split_unit(description)[1]
     text = expected(None if lo is None else float(lo), None if hi is None else float(hi), lo_open=lo_open,
                     hi_open=hi_open, integer=(int in kinds and float not in kinds) or error["type"] in _INTEGER_ERRORS,
-                    unit=unit.group(1) if unit and unit.group(1).strip() != "-" else "",
+                    unit=unit,
                     finite=error["type"] == "finite_number")
     if "input" not in error:
         return text

@@ -57,8 +57,8 @@ def test_expected_events_are_those_counted_by_hand(seed):
 
 
 def test_hours_are_the_events_left_at_the_cost_of_one_on_the_workers():
-    """``dynamics_estimate`` on a static pass made by hand, 2 workers: the events counted by hand, less those a
-    finished round holds (by global id: day · EVENT_STRIDE + index), × 0.03 s / 2 workers."""
+    """``dynamics_estimate`` on a static pass made by hand, 2 workers: the events counted by hand, less those marked
+    done, × 0.03 s / 2 workers."""
     static, signs, block, extra = _events(5)
     sample = np.zeros(len(block), np.int8)
     sample[extra] = 1
@@ -71,7 +71,7 @@ def test_hours_are_the_events_left_at_the_cost_of_one_on_the_workers():
     hours, events = lifetime_run.dynamics_estimate(prep, ds)
     assert events == len(expected)
     assert hours * 3600 == pytest.approx(len(expected) * lifetime_run.DYNAMIC_SECONDS_PER_EVENT / 2, rel=1e-12)
-    done = block[expected[:7]] * EVENT_STRIDE + index[expected[:7]]
+    done = np.isin(np.arange(len(block)), expected[:7])
     assert lifetime_run.dynamics_estimate(prep, ds, done)[1] == len(expected) - 7
 
 

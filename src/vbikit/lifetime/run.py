@@ -81,7 +81,7 @@ class Prepared:
     details: tuple[Detail, ...]
     estimate_hours: float
     info: dict = field(default_factory=dict)
-    #: the workers the run-time estimates divide by (``prepare``'s ``workers``, 1 when not given)
+    #: the workers the run-time estimates divide by (``prepare``'s ``workers``; not given: all cores, as the run)
     cores: int = 1
 
     @property
@@ -208,20 +208,24 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
                     cores)
 
 
-def dynamics_estimate(prep: Prepared, static, done: NDArray[np.int64] | None = None,
+def global_ids(static) -> NDArray[np.int64]:
+    """Every event's global id (day · ``EVENT_STRIDE`` + its index that day) of the static pass ``static``."""
+    return static["ev_day"].values * EVENT_STRIDE + static["ev_index"].values
+
+
+def dynamics_estimate(prep: Prepared, static, done: NDArray[np.bool_] | None = None,
                       amplification: float | None = None) -> tuple[float, int]:
     """(hours, events) the dynamics still to run are estimated at once the static pass ``static`` is done: the events
     the screening is expected to simulate (``expected_dynamic_events``, from the static peaks, with the bound
-    ``amplification``, default the file's A), less those of ``done`` (global ids of events whose dynamics are
-    done), at ``DYNAMIC_SECONDS_PER_EVENT`` on ``prep.cores`` workers."""
+    ``amplification``, default the file's A), less those ``done`` marks (a mask over the static pass's events: their
+    dynamics are done), at ``DYNAMIC_SECONDS_PER_EVENT`` on ``prep.cores`` workers."""
     signs = np.array([ln.sign for ln in prep.setup.lines])
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
-    day = static["ev_day"].values
     bound = prep.spec.amplification if amplification is None else float(amplification)
-    expected = expected_dynamic_events(static["ev_static"].values, signs, day, prep.n_days, bound, sample)
-    if done is not None and len(done):
-        gid = day * EVENT_STRIDE + static["ev_index"].values
-        expected = expected[~np.isin(gid[expected], np.asarray(done, np.int64))]
+    expected = expected_dynamic_events(static["ev_static"].values, signs, static["ev_day"].values, prep.n_days, bound,
+                                       sample)
+    if done is not None and np.any(done):
+        expected = expected[~np.asarray(done, bool)[expected]]
     return expected.size * DYNAMIC_SECONDS_PER_EVENT / prep.cores / 3600, int(expected.size)
 
 
@@ -241,44 +245,44 @@ def check_dynamics_budget(prep: Prepared, static, work: Path) -> float:
     """Refuse the dynamics when, estimated from the static pass (``dynamics_estimate``; the events of the finished
     rounds under ``work`` left out), they would take longer than ``budget_hours``: the estimate before the run
     (``prepare``) cannot know how many events the screening keeps (19 a day and effect on the example's beam, 111 on
-    its deck); the static pass it ran is kept, and the same command resumes from it."""
-    from vbikit._words import raise_budget
-    from vbikit.lifetime.spec import MAX_BUDGET_HOURS
-
-    hours, events = dynamics_estimate(prep, static, finished_dynamics(work))
+    its deck); the static pass it ran is kept, and the same command resumes from it.  Returns the estimate [h]."""
+    hours, events = dynamics_estimate(prep, static, np.isin(global_ids(static), finished_dynamics(work)))
     log.info("dynamics estimated at %.3g h on %d worker(s) (about %d events the screening keeps)", hours, prep.cores,
              events)
-    if hours > prep.spec.budget_hours:
-        raise LifetimeError(f"budget_hours: after the static pass the dynamics are estimated at {hours:.2f} h on "
-                            f"{prep.cores} worker(s) (about {counted(events, 'event', thousands=True)} the screening keeps, "
-                            f"from the static peaks), above budget_hours = {prep.spec.budget_hours:g} h; "
-                            f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}, or run on more "
-                            "workers, to run them")
+    _refuse_above_budget(prep, hours, events, "after the static pass the dynamics are estimated at",
+                         "the screening keeps, from the static peaks")
     return hours
 
 
 def check_rescreen_budget(prep: Prepared, static, bound: float, given: float, amplified: float,
-                          simulated: NDArray[np.bool_]) -> float:
+                          done: NDArray[np.bool_]) -> float:
     """Refuse the dynamics left when the amplification check raised the screening bound (``given`` → ``bound``, an
     event amplified by ``amplified``) and the events the new bound keeps (``dynamics_estimate`` with A = ``bound``,
-    those ``simulated`` left out: simulated so far, or held by a finished round of a resumed run) would take longer than ``budget_hours``: a raised A can keep many times the events
-    the first estimate counted (the example's week: 20 % of its events instead of 2 %).  The rounds run so far are
-    kept, and the same command resumes from them.  Returns the estimate [h]."""
+    those ``done`` marks left out: simulated so far, or held by a finished round of a resumed run) would take longer
+    than ``budget_hours``: a raised A can keep many times the events the first estimate counted (the example's week:
+    20 % of its events instead of 2 %).  The rounds run so far are kept, and the same command resumes from them.
+    Returns the estimate [h]."""
+    hours, events = dynamics_estimate(prep, static, done, bound)
+    log.info("screening bound raised to A = %.3f: the dynamics left estimated at %.3g h on %d worker(s) (about %d "
+             "events)", bound, hours, prep.cores, events)
+    _refuse_above_budget(prep, hours, events, f"an event's dynamic amplification {amplified:.3f} exceeded the "
+                         f"screening bound A = {given:.3f}, and with A raised to {bound:.3f} the dynamics left are "
+                         "estimated at", "more the screening keeps")
+    return hours
+
+
+def _refuse_above_budget(prep: Prepared, hours: float, events: int, what: str, whose: str) -> None:
+    """The one refusal of dynamics estimated at ``hours`` (``events`` of them) above ``budget_hours``: "budget_hours:
+    ``what`` H h on N worker(s) (about E events ``whose``), above budget_hours = B h; raise …"."""
+    if hours <= prep.spec.budget_hours:
+        return
     from vbikit._words import raise_budget
     from vbikit.lifetime.spec import MAX_BUDGET_HOURS
 
-    gid = static["ev_day"].values * EVENT_STRIDE + static["ev_index"].values
-    hours, events = dynamics_estimate(prep, static, gid[simulated], bound)
-    log.info("screening bound raised to A = %.3f: the dynamics left estimated at %.3g h on %d worker(s) (about %d "
-             "events)", bound, hours, prep.cores, events)
-    if hours > prep.spec.budget_hours:
-        raise LifetimeError(f"budget_hours: an event's dynamic amplification {amplified:.3f} exceeded the screening "
-                            f"bound A = {given:.3f}, and with A raised to {bound:.3f} the dynamics left are estimated "
-                            f"at {hours:.2f} h on {prep.cores} worker(s) (about {counted(events, 'event', thousands=True)}"
-                            f" more the screening keeps), above budget_hours = {prep.spec.budget_hours:g} h; "
-                            f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}, or run on more "
-                            "workers, to run them")
-    return hours
+    raise LifetimeError(f"budget_hours: {what} {hours:.2f} h on {prep.cores} worker(s) (about "
+                        f"{counted(events, 'event', thousands=True)} {whose}), above budget_hours = "
+                        f"{prep.spec.budget_hours:g} h; {raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}"
+                        ", or run on more workers, to run them")
 
 
 def _partial_week_message(spec: LifetimeFile) -> str:
@@ -443,7 +447,7 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress, 
     ``check_rescreen_budget``)."""
     spec = prep.spec
     day = static["ev_day"].values
-    gid = day * EVENT_STRIDE + static["ev_index"].values
+    gid = global_ids(static)
     results: dict[int, dict[str, np.ndarray]] = {}
 
     stored = stored_records(static)
@@ -480,6 +484,7 @@ def _dynamics(prep: Prepared, static, work: Path, workers, scheduler, progress, 
 
     sample = np.flatnonzero(static["ev_sample"].values).astype(np.int64)
     signs = np.array([ln.sign for ln in prep.setup.lines])
+
     def rescreened(bound: float, given: float, amplified: float, simulated: np.ndarray) -> None:
         done = np.isin(gid, finished_dynamics(work)) | simulated  # (a resumed run's later rounds are done already)
         estimated[0] = check_rescreen_budget(prep, static, bound, given, amplified, done)

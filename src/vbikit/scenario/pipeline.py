@@ -207,9 +207,8 @@ def run_planned(plan: Plan, limits: Limits | None = None, step_check: bool = Tru
     report = run_crossing(plan.built.crossing, plan.built.plan, limits=limits, name=scenario.name, run_plan=plan.run,
                           check_step=asks_for_load_effects(scenario) or train, train=train, half_step=step_check)
     s = report.summary
-    from vbikit.scenario.preflight import ESTIMATE_LABEL  # (the run's own implausible_deflection replaces the estimate's)
-
-    add_flags(s, [f for f in plan.flags if not (f.code == "implausible_deflection" and ESTIMATE_LABEL in f.message)])
+    # (the preflight's implausible_deflection is its estimate before the run: the run's own, from its peaks, replaces it)
+    add_flags(s, [f for f in plan.flags if f.code != "implausible_deflection"])
     s["inputs"] = scenario_inputs(scenario, plan)
     nonfinite = json_safe(s)[1]  # JSON outputs write these as null, the text report as nan
     add_flags(s, [Flag("non_finite", f"{key} is not a finite number (written as null)", output=key) for key in nonfinite])

@@ -254,11 +254,6 @@ def check_vehicle_overlap(crossing: Crossing) -> None:
                                 "values a lane apart or entry_time values far enough apart")
 
 
-#: what the preflight's implausible-deflection estimate is called in its flag (``deflection_estimate_flags``): a run
-#: replaces it by its own, from the peaks it computed (``vbikit.scenario.pipeline.run_planned``)
-ESTIMATE_LABEL = "before the run"
-
-
 def deflection_estimate_flags(crossing: Crossing, x: float | None, y: float | None) -> list[Flag]:
     """``implausible_deflection`` before any run (what ``vbikit validate`` can say of a unit mistake in the bridge's
     stiffness, which a run flags from its static peaks): the static deflection at the response point (x, y; None: the
@@ -267,7 +262,8 @@ def deflection_estimate_flags(crossing: Crossing, x: float | None, y: float | No
     vehicle's axles that fits on the longest span (``heaviest_on_span``: a train's whole weight would be 15–20 times
     too much).  A group spread along the span deflects less than the same weight at one point, about half at most
     on the paper's spans; the factor 10³–10⁶ of a unit mistake shows at once.  Judged as a run's
-    (``implausible_deflection_flags``, the longest span).  None for vehicles without a static weight on the road."""
+    (``implausible_deflection_flags``, the longest span); a run replaces it by its own, from the peaks it computed
+    (``vbikit.scenario.pipeline.run_planned``).  None for vehicles without a static weight on the road."""
     from vbikit.analysis.checks import implausible_deflection_flags
 
     bridge = crossing.bridge
@@ -282,7 +278,7 @@ def deflection_estimate_flags(crossing: Crossing, x: float | None, y: float | No
     peak = weight * float(np.sum(phi * phi / bridge.omega**2))
     if not (np.isfinite(peak) and weight > 0.0):
         return []
-    label = f"response point x = {x:g} m, y = {y:g} m ({ESTIMATE_LABEL}: a vehicle's axles on the span as one force there)"
+    label = f"response point x = {x:g} m, y = {y:g} m (before the run: a vehicle's axles on the span as one force there)"
     return implausible_deflection_flags(span, [(label, -peak, None, None)])
 
 
