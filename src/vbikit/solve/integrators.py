@@ -140,7 +140,8 @@ def without_lean() -> Iterator[None]:
         USE_LEAN = before
 
 
-def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep") -> None:
+def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep",
+                 event_step: "VehicleStep | None" = None) -> None:
     """Run ``call`` through the partitioned implicit kernel (``vbikit.solve.kernels.implicit``)
     with the step maps ``modal_step`` (every bridge mode over ``call.dt``) and ``vehicle_step``
     (the vehicles over ``call.dt``), iterating the end-of-step contact forces to
@@ -160,11 +161,13 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     from vbikit.solve import kernels
 
     data, name = call.data, call.crossing.integrator
+    event_step = vehicle_step if event_step is None else event_step
     loads = np.abs(call.crossing.vehicle.static_wheel_loads())
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
     if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
         LEAN_COUNTS["implicit"] += 1
-        _full(call, modal_step, vehicle_step, tol, call.motion, call.road, call.outputs, 0,
+        whole = event_step if np.any(data.vehicles.wheel_envelope) else vehicle_step
+        _full(call, modal_step, whole, tol, call.motion, call.road, call.outputs, 0,
               _no_past(call, call.outputs[0].shape[0]))
         return
     if len(call.lanes) == 1:
@@ -178,18 +181,24 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                       evaluations / max(call.n_steps, 1))
         else:
             LEAN_COUNTS["fallback"] += 1
-            _finish_lane(call, modal_step, vehicle_step, tol, 0, int(stop), (past_p, past_g, int(stop) >= call.stride))
+            _finish_lane(call, modal_step, vehicle_step, event_step, tol, 0, int(stop),
+                         (past_p, past_g, int(stop) >= call.stride))
     else:
-        _run_lanes(call, modal_step, vehicle_step, tol)
+        _run_lanes(call, modal_step, vehicle_step, event_step, tol)
     call.deferred.add("q_ddot")
 
 
-def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float) -> None:
+def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", event_step: "VehicleStep",
+               tol: float) -> None:
     """Many lanes through ``kernels.lean_lanes``, ``LANES_CHUNK`` steps a call: a lane it stops at a
-    step goes on alone (its road) from its last stored row to the end of the chunk, with ``implicit``
-    for the contact event's ``LEAN_WINDOW`` steps and the one-lane lean kernel after it (``_finish_lane``),
-    and joins the next call afresh (the law at that state, the forces
-    extrapolated from it alone); the other lanes go on exactly (``lean_lanes``' carried state)."""
+    step goes on alone (its road) from its last stored row (``_finish_lane``: ``implicit`` for the contact
+    event's ``LEAN_WINDOW`` steps, the one-lane lean kernel after it) to the end of the chunk, or of the
+    first chunk after the event's window where that window crosses the chunk's end (the lane sits out
+    the calls in between: ``SKIP_LANE``), so that its windows are those of the lane run alone.  It
+    rejoins the lanes where the one-lane lean kernel left it (its forces at the last two steps, modal and
+    wheel loads: exactly as a lane that did not stop), or afresh when a window ended there (the law at
+    that state, the forces extrapolated from it alone: as the lane alone restarts after a window); the
+    other lanes go on exactly (``lean_lanes``' carried state)."""
     from vbikit.solve import kernels
     from vbikit.solve.compile_notice import announce_compile
 
@@ -206,17 +215,30 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     carry_pm, carry_gm = np.zeros_like(carry_p), np.zeros_like(carry_g)
     evaluations = handed = 0
     ever = np.zeros(n_l, np.bool_)
+    away: dict[int, tuple] = {}  # lanes run alone: (the step they rejoin at, their end state or None, hold loads)
     for first in range(0, n_steps, chunk):
         last = min(n_steps, first + chunk)
+        for lane, (rejoin, end_state, pm, gm) in list(away.items()):
+            if rejoin > first:
+                stops[lane] = SKIP_LANE
+                continue
+            del away[lane]
+            stops[lane] = -1
+            carry_pm[:, lane], carry_gm[:, lane] = pm, gm
+            fresh[lane] = end_state is None
+            if end_state is not None:
+                carry_f[0, :, lane], carry_f[1, :, lane], carry_p[:, lane], carry_g[:, lane] = end_state
+        if np.all(stops == SKIP_LANE):
+            continue
         evaluations += kernels.lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g,
                                           carry_pm, carry_gm, _positions_before(call, first))
         frozen = np.flatnonzero(stops >= 0)
         fresh[:] = False
-        for lane in frozen:  # (the hold's loads before its last stored row in, those before ``last`` out)
+        for lane in frozen:  # (the hold's loads before its last stored row in, those before its rejoin out)
             past = (carry_pm[:, lane:lane + 1].copy(), carry_gm[:, lane:lane + 1].copy(), int(stops[lane]) >= stride)
-            _finish_lane(call, modal_step, vehicle_step, tol, int(lane), int(stops[lane]), past, last)
-            carry_pm[:, lane], carry_gm[:, lane] = past[0][:, 0], past[1][:, 0]
-        fresh[frozen] = True
+            end_state, reached = _finish_lane(call, modal_step, vehicle_step, event_step, tol, int(lane),
+                                              int(stops[lane]), past, last, chunk)
+            away[int(lane)] = (reached, end_state, past[0][:, 0].copy(), past[1][:, 0].copy())
         ever[frozen] = True
         handed += frozen.size
     LEAN_COUNTS["lanes"] += int(n_l - ever.sum())
@@ -252,19 +274,28 @@ LEAN_RESUMES = 40
 #: steps per ``kernels.lean_lanes`` call: a lane it stops at a step runs alone to the end of the chunk
 #: (``_finish_lane``) and rejoins the lanes at the next call (``_run_lanes``)
 LANES_CHUNK = 128
+#: ``lean_lanes``' ``stop`` entry of a lane that sits a call out (run alone past the call's first step)
+SKIP_LANE = -2
 
 
-def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", tol: float, lane: int,
-                 stop: int, past: tuple, last: int | None = None) -> None:
+def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", event_step: "VehicleStep",
+                 tol: float, lane: int, stop: int, past: tuple, last: int | None = None,
+                 chunk: int | None = None) -> tuple[tuple | None, int]:
     """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop`` to step
-    ``last`` (None: the run's end): on that lane's road, ``implicit`` (that lane alone) for
-    ``LEAN_WINDOW`` steps, then the one-lane lean kernel, alternating while the lean kernel stops
-    (``LEAN_RESUMES``; after that ``implicit`` to ``last``); ``past`` (modal (n_m, 1), wheel (n_w, 1),
-    resume) the hold's loads before the row it starts from, which each kernel call reads and leaves at
-    those before its last stored row for the next.  Each hand-over restarts from a stored state (the
-    law there, the forces extrapolated from it alone): the histories differ from an uninterrupted run
+    ``last`` (None: the run's end): on that lane's road, ``implicit`` (that lane alone, with the map
+    ``event_step``) for ``LEAN_WINDOW`` steps, then the one-lane lean kernel, alternating while the lean
+    kernel stops (``LEAN_RESUMES``; after that ``implicit`` to ``last``); ``past`` (modal (n_m, 1), wheel
+    (n_w, 1), resume) the hold's loads before the row it starts from, which each kernel call reads and
+    leaves at those before its last stored row for the next.  Each hand-over restarts from a stored state
+    (the law there, the forces extrapolated from it alone): the histories differ from an uninterrupted run
     by the order of the tolerance.  A lane of ``lean_lanes`` stopped within a chunk goes on so to the
-    chunk's end (``_run_lanes``): the full kernel only for the contact event's window, not the chunk."""
+    chunk's end ``last`` (``_run_lanes``), or with ``chunk`` given, where a window crosses ``last``, to
+    the end of the first chunk after the window (the windows then fall where the lane alone has them):
+    the full kernel only for the contact event's windows.
+
+    Returns (the state the one-lane lean kernel ended with when it ran to the end, else None; the step
+    reached): the state is its point forces at the last two steps, modal load and wheel loads
+    (``lean_lanes``' carried state)."""
     from vbikit.solve import kernels
 
     road = _lane_road(call.road, lane)
@@ -274,24 +305,30 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     row = stop // stride
     for resume in range(LEAN_RESUMES + 1):
         first = row * stride
-        end = n_steps if resume == LEAN_RESUMES else min(n_steps, first + max(LEAN_WINDOW // stride, 1) * stride)
+        window = max(LEAN_WINDOW // stride, 1) * stride
+        if chunk is not None and first + window > n_steps:  # (the chunk boundary after the window)
+            n_steps = min(call.n_steps, -(-(first + window) // chunk) * chunk)
+        end = n_steps if resume == LEAN_RESUMES else min(n_steps, first + window)
         log.debug("%s: the lean kernel stops lane %d at step %d of %d (a contact opens or closes within the step); "
                   "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
                   first)
-        _full(call, modal_step, vehicle_step, tol, _steps(call.motion, first, end), road,
+        _full(call, modal_step, event_step, tol, _steps(call.motion, first, end), road,
               tuple(a[:, row:end // stride + 1] for a in one.outputs), first, past, lane)
         past = (past[0], past[1], True)
         if end >= n_steps or end % stride:
-            return
+            return None, end
         row = end // stride
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:n_steps // stride + 1] for a in one.outputs))
+        work = _lean_work(part)
         stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
-                               past[1][:, 0], True, _positions_before(call, end), tol, stride, *_lean_work(part))
-        if stop < 0:
-            return
+                               past[1][:, 0], True, _positions_before(call, end), tol, stride, *work)
+        if stop < 0:  # (``lean_work``'s rows: the forces F_{n+1}, F_n; the modal load; the wheel loads)
+            modal, wheels, points = work[0], work[2], work[6]
+            return (points[0].copy(), points[1].copy(), modal[4].copy(), wheels[0].copy()), n_steps
         stop += end
         row = stop // stride
+    return None, n_steps
 
 
 def _steps(motion: "Motion", first: int, end: int) -> "Motion":

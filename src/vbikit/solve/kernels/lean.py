@@ -26,7 +26,10 @@ they follow from the stored states and wheel forces when a result's ``q_ddot`` i
    through the wheels' increments, so z += (P L1) ΔF_w once, ΔF_w the corrections' whole change).
 
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
-activity changes, or a point the lazy test left out may touch), or the corrections not settling.
+activity changes, or a point the lazy test left out may touch), the corrections not settling, or,
+with the wheel loads held quadratic (Lp ≠ 0), a wheel that lands or lifts off within the step (its
+load has a kink there, which the parabola through G_{n−1}, G_n, G_{n+1} does not follow: the caller
+holds the loads of the contact event's window linear, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``).
 ``lean`` then returns that step, and the caller goes on with ``implicit`` from the last state
 stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
 handled at all (the caller does not call ``lean`` for them).  The outputs are those of
@@ -273,6 +276,11 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
         z1[n_d + j] = dq[0, j]
     evaluations = 0
     stop = -1
+    quadratic = False  # a vehicle map with the wheel loads held quadratic (Lp ≠ 0): a landing or lift-off hands over
+    for i in range(2 * n_d):
+        for w in range(n_w):
+            if free_past[i, w] != 0.0:
+                quadratic = True
     for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
         row = 2 * n + 2
         for k in range(n_cp):
@@ -399,6 +407,12 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                     for w in range(n_w):
                         a += response[i, w] * dfw[w]
                     z1[i] = a
+        if quadratic and n >= 0:  # a wheel lands or lifts off within the step: its load has a kink the
+            for w in range(n_w):  # parabola through G_{n−1}, G_n, G_{n+1} does not follow (``hand_over``)
+                if (fw[w] > 0.0) != (contact[w] != 0.0):
+                    stop = n
+            if stop >= 0:
+                break
         stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
         r_out = (n + 1) // stride
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows

@@ -23,11 +23,13 @@ of I + S_A U_A shared by the lanes of the same active sums, the solve running ac
 A lane whose step needs more than that (a gated point's activity changes in the updates, a point
 left out by the lazy test may touch, the corrections do not settle) is *frozen* at that step: its
 ``stop`` entry is set to the step, its later rows are not written, and it takes no part in the
-shared decisions after (which points the lazy test keeps).  The caller runs the steps in chunks
-(``integrators._run_lanes``): a frozen lane goes on alone from its last stored row to the end of
-the chunk (``implicit`` for the contact event's window, then the one-lane ``lean``,
-``integrators._finish_lane``) and rejoins the next call afresh, while the other lanes go on from the
-state the call leaves (``carry_f``, ``carry_p``, ``carry_g``), exactly as without the chunks.
+shared decisions after (which points the lazy test keeps).  With the wheel loads held quadratic
+(Lp ≠ 0) a lane is frozen too at a step in which a wheel lands or lifts off (``lean``).  The caller
+runs the steps in chunks (``integrators._run_lanes``): a frozen lane goes on alone from its last
+stored row (``implicit`` for the contact event's window, then the one-lane ``lean``,
+``integrators._finish_lane``) and rejoins a later call with the state the one-lane kernel left, or
+afresh after a window; a lane whose ``stop`` entry is −2 sits the call out.  The other lanes go on
+from the state the call leaves (``carry_f``, ``carry_p``, ``carry_g``), exactly as without the chunks.
 
 The lazy test is shared and reads the road under each point (interpolated for all lanes, the
 cheap part): a gated point's deck terms are evaluated for every lane when any live lane's bound
@@ -357,8 +359,14 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l))
     zb = np.empty((2 * n_d, n_l))
     r_first = first // stride
+    live = np.ones(n_l, np.bool_)  # lanes not frozen (a lane with ``stop`` −2 sits the call out)
+    n_live = n_l
     for lane in range(n_l):
-        stop[lane] = -1
+        if stop[lane] == -2:
+            live[lane] = False
+            n_live -= 1
+        else:
+            stop[lane] = -1
         for m in range(n_m):
             x0[m, lane] = xi[lane, r_first, m]
             v0[m, lane] = dxi[lane, r_first, m]
@@ -385,7 +393,6 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     for k in range(n_cp):
         idx[k] = -1  # no station pointer yet
     phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
-    live = np.ones(n_l, np.bool_)  # lanes not frozen
     work = np.zeros(n_l, np.bool_)  # lanes taking the current update
     flip = np.zeros(n_l, np.bool_)
     err = np.zeros(n_l); bmax = np.zeros(n_l); zw = np.zeros(n_l); dzw = np.zeros(n_l); s_l = np.zeros(n_l)
@@ -394,8 +401,12 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
     # the step's points that matter: ``nz`` those whose first guess is nonzero in some lane, ``rel``
     # those and the used ones (every other point has F = 0 = law in every lane), ``use`` the used ones
     nz = np.zeros(n_cp, np.bool_); rel = np.zeros(n_cp, np.int64); use = np.zeros(n_cp, np.int64)
-    n_live = n_l
     evaluations = 0
+    quadratic = False  # a vehicle map with the wheel loads held quadratic (Lp ≠ 0): a landing or lift-off hands over
+    for i in range(2 * n_d):
+        for w in range(n_w):
+            if free_past[i, w] != 0.0:
+                quadratic = True
     for n in range(first - 1, n_steps):  # n = first − 1: the start state (forces, loads and accelerations)
         row = 2 * n + 2
         for k in range(n_cp):
@@ -610,6 +621,17 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     fw[w, lane] += dfw[w, lane]
                     wf[w, lane] = fw[w, lane]
+            if quadratic:  # a wheel lands or lifts off within the step: the lane hands over (``lean``)
+                for lane in range(n_l):
+                    if live[lane]:
+                        for w in range(n_w):
+                            if (wf[w, lane] > 0.0) != contact[w, lane]:
+                                live[lane] = False
+                                stop[lane] = n
+                                n_live -= 1
+                                break
+                if n_live == 0:
+                    return evaluations
         # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
         for w in range(n_w):
             kw = wheel_k[w]

@@ -1,0 +1,130 @@
+"""The exact integrator's wheel loads: held quadratic on the lean kernels' steps, linear on the full
+kernel's (``builtin_integrators.QUADRATIC_WHEEL_LOADS``).
+
+The parabola through G_{n−1}, G_n, G_{n+1} (``modal_step.vehicle_step``'s ``QUADRATIC``) is third order
+for loads smooth over the three step ends (tests/verification/test_integrators_convergence.py), but a
+wheel that lands or lifts off puts a kink into its load, which the parabola does not follow.  The lean
+kernels therefore hand such a step over (``lean``, ``lean_lanes``: a wheel's contact state changes
+within the step) to the full kernel, which holds the loads linear over the contact event's window
+(``integrators._finish_lane``).  What is checked here, each against an independent path:
+
+* the maps each kernel is given: the lean kernels a map with the loads' past term Lp ≠ 0, the full
+  kernel Lp = 0 (a swapped pair would pass every smooth-road test);
+* a landing hands over where the linear hold on every step does not need to;
+* lanes handed over at landings equal the same roads run alone to round-off, also where a window
+  crosses the end of a chunk of lanes (the lane then sits out the lanes' calls until the chunk after
+  its window, ``integrators._run_lanes``): before, a lane rejoined afresh at the chunk's end and its
+  history differed from the road run alone by 3e-6 of its peak on a class C road;
+* against a run at an eighth of the step, the hybrid is closer than the linear hold on every step
+  where the wheels keep contact, and as close where they hop (the landings set the error).
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from vbikit.scenario import parse_scenario
+from vbikit.scenario.preflight import preflight
+from vbikit.solve import integrators, simulate
+from vbikit.solve.batch import BatchSolver
+
+HISTORIES = ("xi", "xi_dot", "q", "q_dot", "wheel_forces")
+
+
+def _crossing(spec: dict):
+    return preflight(parse_scenario(spec)).built.crossing
+
+
+def _hop(road_class: str, seed: int, tire: str = "point", speed: float = 100.0) -> dict:
+    """HS20-44 on paper Bridge 1 (beam) over a rough road: wheels leave the road and land again."""
+    return {"bridge": {"model": "paper-bridge-1-beam"}, "vehicle": {"model": "hs20-44"}, "tire": {"model": tire},
+            "road": {"class": road_class, "seed": seed}, "crossing": {"speed_kmh": speed}}
+
+
+def _worst(a, b) -> float:
+    return max(float(np.max(np.abs(getattr(a, h) - getattr(b, h)))) / max(float(np.max(np.abs(getattr(b, h)))), 1e-300)
+               for h in HISTORIES)
+
+
+def test_the_lean_kernel_gets_the_quadratic_map_and_the_full_kernel_the_linear_one(monkeypatch):
+    from vbikit.solve import kernels
+
+    seen: dict[str, list[float]] = {"lean": [], "implicit": []}
+    lean, implicit = kernels.lean, kernels.implicit
+
+    def lean_spy(*args):
+        seen["lean"].append(float(np.abs(args[23]).max()))  # ``free_past`` = P Lp
+        return lean(*args)
+
+    def implicit_spy(dt, motion, modes, vehicles, points, road, unilateral, modal_step, vehicle_step, *rest):
+        seen["implicit"].append(float(np.abs(vehicle_step.load_past).max()))
+        return implicit(dt, motion, modes, vehicles, points, road, unilateral, modal_step, vehicle_step, *rest)
+
+    monkeypatch.setattr(kernels, "lean", lean_spy)
+    monkeypatch.setattr(kernels, "implicit", implicit_spy)
+    result = simulate(_crossing(_hop("F", 1)))
+    assert result.unconverged_steps == 0
+    assert seen["lean"] and min(seen["lean"]) > 0.0  # every lean call: G_{n−1} enters
+    assert seen["implicit"] and max(seen["implicit"]) == 0.0  # every window: the linear hold
+
+
+def test_a_landing_hands_over_only_with_the_quadratic_hold(monkeypatch):
+    """Point tires on a class F road: with the loads held linear the lean kernel takes the whole
+    crossing (tests/unit/test_lean_kernel.py), with the default it hands each landing over."""
+    crossing = _crossing(_hop("F", 1))
+    counts = []
+    for quadratic in (True, False):
+        monkeypatch.setattr("vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS", quadratic)
+        before = dict(integrators.LEAN_COUNTS)
+        result = simulate(crossing)
+        counts.append({k: integrators.LEAN_COUNTS[k] - before[k] for k in before})
+        assert int(np.sum(result.wheel_forces[1:] == 0.0)) > 1000  # wheels off the road in > 1000 samples
+    assert counts[0]["fallback"] == 1 and counts[0]["lean"] == 0
+    assert counts[1]["lean"] == 1 and counts[1]["fallback"] == 0
+
+
+@pytest.mark.parametrize("chunk", [16, 128])
+def test_lanes_handed_over_at_landings_equal_the_roads_run_alone(monkeypatch, chunk):
+    """Five class D roads as lanes against each alone (``simulate``: the one-lane kernel, whose windows
+    fall where its landings are).  With 16 steps a chunk, as many as a window, most windows cross a
+    chunk's end."""
+    monkeypatch.setattr(integrators, "LANES_CHUNK", chunk)
+    spec = _hop("D", 1)
+    roads = [_crossing({**spec, "road": {"class": "D", "seed": s}}).road for s in range(1, 6)]
+    crossing = _crossing(spec)
+    before = integrators.LEAN_COUNTS["lanes_fallback"]
+    lanes = BatchSolver(crossing).run_many(roads)
+    assert integrators.LEAN_COUNTS["lanes_fallback"] - before >= 3  # lanes were handed over
+    for lane, road in zip(lanes, roads):
+        alone = simulate(replace(crossing, road=road))
+        assert lane.unconverged_steps == alone.unconverged_steps == 0
+        assert _worst(lane, alone) <= 1e-12
+
+
+@pytest.mark.parametrize("road_class, bound", [("B", 0.6), ("D", 1.2)])
+def test_against_an_eighth_of_the_step_the_hybrid_is_closer_where_wheels_keep_contact(monkeypatch, road_class,
+                                                                                    bound):
+    """Paper Bridge 1, HS20-44 on point tires at 100 km/h (seed 1), the midspan displacement at the
+    automatic step against the same hold at an eighth of it, the wheel loads linear on every step and
+    the default.  Class B, no wheel leaves the road: the hybrid's error is 0.44 of the linear hold's
+    (measured 2.65e-5 against 6.07e-5 of the peak), asserted < 0.6.  Class D, the wheels hop (more
+    than 500 wheel samples off the road, 598): the landings, held linear either way, set the error (1.25e-3
+    against 1.24e-3), asserted < 1.2.  The two references agree to a tenth of the smaller error."""
+    crossing = _crossing(_hop(road_class, 1))
+    dt = simulate(crossing).integration_dt
+    errors, references = {}, {}
+    for quadratic in (True, False):
+        monkeypatch.setattr("vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS", quadratic)
+        coarse, fine = simulate(replace(crossing, dt=dt)), simulate(replace(crossing, dt=dt / 8))
+        u, ref = coarse.displacement(), fine.displacement()[::8]
+        n = min(u.size, ref.size)
+        errors[quadratic] = float(np.abs(u[:n] - ref[:n]).max() / np.abs(ref).max())
+        references[quadratic] = ref
+        hops = int(np.sum(coarse.wheel_forces[1:] == 0.0))
+        assert (hops > 500) if road_class == "D" else hops == 0
+    n = min(r.size for r in references.values())
+    agree = np.abs(references[True][:n] - references[False][:n]).max() / np.abs(references[False]).max()
+    assert agree < 0.1 * min(errors.values())
+    assert errors[True] < bound * errors[False]
