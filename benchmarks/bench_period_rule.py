@@ -3,7 +3,7 @@
 
     python benchmarks/bench_period_rule.py              # seven cells of the programme, ≈ 1 min
     python benchmarks/bench_period_rule.py --per 100 50 25 12.5
-    python benchmarks/bench_period_rule.py --hold quadratic --vehicle-steps 10   # the trial of the next factor
+    python benchmarks/bench_period_rule.py --hold linear     # the wheel loads linear on every step (before 2026-12-07)
 
 The paper programme (``bench_studies.py``) is bound by its step count: its lanes run at or below the
 floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set by the first bridge period
@@ -16,10 +16,12 @@ CPU time of ``simulate`` and the displacement IM's difference from the reference
 accuracy criterion is 1e-3 per crossing against converged RK4 (docs/verification.md, "The paper
 programme against RK4"); the automatic step's own bound in the convergence table is 5e-4.
 
-``--hold quadratic`` runs the exact integrator with the vehicles' wheel loads held quadratic over a step
-(``vbikit.solve.modal_step.vehicle_step``'s ``QUADRATIC``, which the kernels already take: the deck's loads
-are held so), reference included; ``--vehicle-steps`` changes the vehicle term of the step rule.  Neither is
-the library's: a trial of what a more accurate coupling would buy (benchmarks/README.md).
+``--hold`` sets how the exact integrator holds the vehicles' wheel loads over a step, reference included:
+``hybrid`` (the library's: quadratic on the lean kernels' steps, linear over a landing's window in the full
+kernel, ``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``), ``linear`` on every step (the library's
+before 2026-12-07) or ``quadratic`` on every step (``modal_step.vehicle_step``'s ``QUADRATIC`` for both
+kernels, landings included: a trial); ``--vehicle-steps`` changes the vehicle term of the step rule
+(benchmarks/README.md).
 
 Writes nothing but numba's cache.
 """
@@ -66,8 +68,8 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--per", type=float, nargs="+", default=[100.0, 50.0, 25.0],
                    help="steps per first bridge period to compare (default 100 50 25; 100 is the library's)")
-    p.add_argument("--hold", choices=("linear", "quadratic"), default="linear",
-                   help="the vehicles' wheel loads over a step (the library's: linear; quadratic: the trial below)")
+    p.add_argument("--hold", choices=("hybrid", "linear", "quadratic"), default="hybrid",
+                   help="the vehicles' wheel loads over a step (the library's: hybrid; see the docstring)")
     p.add_argument("--vehicle-steps", type=float, default=None,
                    help="steps per period of the highest vehicle mode (the library's: 20)")
     args = p.parse_args()
@@ -80,11 +82,15 @@ def main() -> None:
     default = ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD
     if args.vehicle_steps is not None:
         ts.EXACT_STEPS_PER_VEHICLE_PERIOD = args.vehicle_steps
-    if args.hold == "quadratic":  # the exact integrator's vehicle map with G quadratic (modal_step.QUADRATIC)
+    if args.hold == "linear":
+        import vbikit.solve.builtin_integrators as builtin
+
+        builtin.QUADRATIC_WHEEL_LOADS = False
+    if args.hold == "quadratic":  # the exact integrator's vehicle maps with G quadratic (modal_step.QUADRATIC)
         import vbikit.solve.modal_step as modal_step
 
-        linear_map = modal_step.vehicle_step
-        modal_step.vehicle_step = lambda vehicles, h, hold=modal_step.LINEAR: linear_map(vehicles, h, modal_step.QUADRATIC)
+        any_map = modal_step.vehicle_step
+        modal_step.vehicle_step = lambda vehicles, h, hold=modal_step.LINEAR: any_map(vehicles, h, modal_step.QUADRATIC)
     for fig, key in CELLS:
         built = _scenario(fig, key)
         assert built.crossing.run_in == 0  # (a run-in's recursion reads the linear map only: --hold would not reach it)
