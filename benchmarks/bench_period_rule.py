@@ -3,7 +3,7 @@
 
     python benchmarks/bench_period_rule.py              # seven cells of the programme, ≈ 1 min
     python benchmarks/bench_period_rule.py --per 100 50 25 12.5
-    python benchmarks/bench_period_rule.py --hold linear     # the wheel loads linear on every step (before 2026-12-07)
+    python benchmarks/bench_period_rule.py --hold hybrid     # the wheel loads quadratic on the lean steps
 
 The paper programme (``bench_studies.py``) is bound by its step count: its lanes run at or below the
 floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set by the first bridge period
@@ -17,11 +17,10 @@ accuracy criterion is 1e-3 per crossing against converged RK4 (docs/verification
 programme against RK4"); the automatic step's own bound in the convergence table is 5e-4.
 
 ``--hold`` sets how the exact integrator holds the vehicles' wheel loads over a step, reference included:
-``hybrid`` (the library's: quadratic on the lean kernels' steps, linear over a landing's window in the full
-kernel, ``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``), ``linear`` on every step (the library's
-before 2026-12-07) or ``quadratic`` on every step (``modal_step.vehicle_step``'s ``QUADRATIC`` for both
-kernels, landings included: a trial); ``--vehicle-steps`` changes the vehicle term of the step rule
-(benchmarks/README.md).
+``linear`` on every step (the library's default), ``hybrid`` (quadratic on the lean kernels' steps, linear
+over a landing's window in the full kernel: ``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``) or
+``quadratic`` on every step (``modal_step.vehicle_step``'s ``QUADRATIC`` for both kernels, landings
+included: a trial); ``--vehicle-steps`` changes the vehicle term of the step rule (benchmarks/README.md).
 
 Writes nothing but numba's cache.
 """
@@ -68,8 +67,8 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--per", type=float, nargs="+", default=[100.0, 50.0, 25.0],
                    help="steps per first bridge period to compare (default 100 50 25; 100 is the library's)")
-    p.add_argument("--hold", choices=("hybrid", "linear", "quadratic"), default="hybrid",
-                   help="the vehicles' wheel loads over a step (the library's: hybrid; see the docstring)")
+    p.add_argument("--hold", choices=("linear", "hybrid", "quadratic"), default="linear",
+                   help="the vehicles' wheel loads over a step (the library's: linear; see the docstring)")
     p.add_argument("--vehicle-steps", type=float, default=None,
                    help="steps per period of the highest vehicle mode (the library's: 20)")
     args = p.parse_args()
@@ -82,10 +81,10 @@ def main() -> None:
     default = ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD
     if args.vehicle_steps is not None:
         ts.EXACT_STEPS_PER_VEHICLE_PERIOD = args.vehicle_steps
-    if args.hold == "linear":
+    if args.hold == "hybrid":
         import vbikit.solve.builtin_integrators as builtin
 
-        builtin.QUADRATIC_WHEEL_LOADS = False
+        builtin.QUADRATIC_WHEEL_LOADS = True
     if args.hold == "quadratic":  # the exact integrator's vehicle maps with G quadratic (modal_step.QUADRATIC)
         import vbikit.solve.modal_step as modal_step
 

@@ -77,15 +77,6 @@ def study_toml():
     return _study_toml
 
 
-@pytest.fixture
-def linear_wheel_loads(monkeypatch):
-    """The exact integrator with its wheel loads held linear on every step, the lean kernels' included
-    (``builtin_integrators.QUADRATIC_WHEEL_LOADS``): one vehicle map for the lean and the full kernel, so
-    that a test of their shared arithmetic and hand-overs compares like with like (by default the full
-    kernel's contact-event windows hold them linear and the lean steps quadratic)."""
-    monkeypatch.setattr("vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS", False)
-
-
 #: a distributed run of fewer tests than this compiles only what its tests use (on first use), as
 #: a run of a few test files should; the whole suite (about 2,400 tests) shares the compilation out
 SHARED_COMPILE_MIN_TESTS = 500

@@ -70,7 +70,6 @@ def test_point_tire_runs_lean_and_equals_implicit():
     assert _worst(lean, full) <= 1e-10
 
 
-@pytest.mark.usefixtures("linear_wheel_loads")
 def test_two_vehicles_asymmetric_run_lean_and_equal_implicit():
     """A traffic-like event: a 3S2 driving +x off the centreline and an HS20-44 driving −x,
     entering later, at other speeds, on a class B road (stacked vehicles, two directions)."""
@@ -98,7 +97,6 @@ def _hop(tire: str, road: str, seed: int = 1):
                       "tire": {"model": tire}, "road": {"class": road, "seed": seed}, "crossing": {"speed_kmh": 100.0}})
 
 
-@pytest.mark.usefixtures("linear_wheel_loads")
 def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
     """Point tires on a class F road: the wheels leave the road and land again thousands of times;
     where the one evaluation already gives the step's contact set (as in ``implicit``'s own
@@ -109,7 +107,6 @@ def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
     assert _worst(lean, full) <= 1e-10
 
 
-@pytest.mark.usefixtures("linear_wheel_loads")
 @pytest.mark.parametrize("every", [1, 3])
 def test_lift_off_that_needs_iterating_hands_over_to_implicit(caplog, every):
     """Disk tires on a class F road (seed 12; with the deck's loads held quadratic over the step,
@@ -197,7 +194,6 @@ def test_the_default_path_compiles_each_flat_kernel_once():
     assert FLAT_OPTIONS.get("_nrt") is False and FLAT_OPTIONS.get("no_rewrites") is True
 
 
-@pytest.mark.usefixtures("linear_wheel_loads")
 def test_two_trucks_on_the_3d_deck_run_lean_and_equal_implicit():
     """examples/traffic/two_trucks.toml: a 3-S2 and a three-axle truck in opposite lanes of
     paper-bridge-2, one coupled run (the vehicles stacked block-diagonally,

@@ -99,11 +99,10 @@ def test_every_landing_step_settles_and_agrees_with_fine_rk4(name):
     result = simulate(crossing)
     assert result.unconverged_steps == 0
     xi_err, imp_err = _against_fine_rk4(crossing, result, dt)
-    # measured (multipoint-cosine / point-plateau): mode 1 0.9 % / 1.7 % of its peak, mode 2 4.2 % / 3.0 %,
-    # impulses 1.5 % / 3.5 %; with the wheel loads held linear on every step 0.6 % / 1.1 %, 4.0 % / 3.5 %,
-    # 1.5 % / 2.6 % (the step's own error at impacts inside a step, where the light wheels' fast tyre modes
-    # (overdamped, 975 /s) leave the lean steps between landings little to gain from the quadratic hold;
-    # the old code's last iterates were as close: the count is the check)
+    # measured (multipoint-cosine / point-plateau): mode 1 0.6 % / 1.1 % of its peak, mode 2 4.0 % / 3.5 %,
+    # impulses 1.5 % / 2.6 % (the step's own error at impacts inside a step; the old code's last iterates were
+    # as close: the count is the check); with the wheel loads held quadratic on the lean steps
+    # (``builtin_integrators.QUADRATIC_WHEEL_LOADS``) 0.9 % / 1.7 %, 4.2 % / 3.0 %, 1.5 % / 3.5 %
     assert xi_err[0] < 0.02 and xi_err[1] < 0.05
     assert imp_err < 0.05
 
@@ -142,7 +141,6 @@ def test_coarse_steps_over_sharp_bumps_settle(tire, mass, damping, shape, height
     assert result.unconverged_steps == 0
 
 
-@pytest.mark.usefixtures("linear_wheel_loads")
 def test_a_run_left_unconverged_is_run_again_at_half_its_step(caplog):
     """A 20 kg wheel on a disk tyre (c = 2e4 N s/m) over 5 cm plateaus at 30 m/s and 2 ms: at that step
     two landings leave their contact iteration unsettled (one of the five such cases of the scan in
@@ -172,7 +170,6 @@ def test_a_run_left_unconverged_is_run_again_at_half_its_step(caplog):
     assert refused.unconverged_steps == first.unconverged_steps and refused.integration_dt == pytest.approx(2e-3)
 
 
-@pytest.mark.usefixtures("linear_wheel_loads")
 def test_a_batch_lane_left_unconverged_is_run_again_alone(monkeypatch):
     """The same crossing as a batch of two lanes, the 5 cm plateaus and a smooth road, at 2 ms: the
     plateau lane leaves steps unsettled and is run again alone, settling at 1 ms (``simulate``); the

@@ -1,5 +1,5 @@
-"""The exact integrator's wheel loads: held quadratic on the lean kernels' steps, linear on the full
-kernel's (``builtin_integrators.QUADRATIC_WHEEL_LOADS``).
+"""The exact integrator's wheel loads held quadratic on the lean kernels' steps, linear on the full
+kernel's (``builtin_integrators.QUADRATIC_WHEEL_LOADS`` = True; off by default, switched on here).
 
 The parabola through G_{n−1}, G_n, G_{n+1} (``modal_step.vehicle_step``'s ``QUADRATIC``) is third order
 for loads smooth over the three step ends (tests/verification/test_integrators_convergence.py), but a
@@ -31,6 +31,11 @@ from vbikit.solve import integrators, simulate
 from vbikit.solve.batch import BatchSolver
 
 HISTORIES = ("xi", "xi_dot", "q", "q_dot", "wheel_forces")
+
+
+@pytest.fixture(autouse=True)
+def quadratic_wheel_loads(monkeypatch):
+    monkeypatch.setattr("vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS", True)
 
 
 def _crossing(spec: dict):
@@ -72,7 +77,7 @@ def test_the_lean_kernel_gets_the_quadratic_map_and_the_full_kernel_the_linear_o
 
 def test_a_landing_hands_over_only_with_the_quadratic_hold(monkeypatch):
     """Point tires on a class F road: with the loads held linear the lean kernel takes the whole
-    crossing (tests/unit/test_lean_kernel.py), with the default it hands each landing over."""
+    crossing (tests/unit/test_lean_kernel.py), with them quadratic it hands each landing over."""
     crossing = _crossing(_hop("F", 1))
     counts = []
     for quadratic in (True, False):
@@ -107,8 +112,8 @@ def test_lanes_handed_over_at_landings_equal_the_roads_run_alone(monkeypatch, ch
 def test_against_an_eighth_of_the_step_the_hybrid_is_closer_where_wheels_keep_contact(monkeypatch, road_class,
                                                                                     bound):
     """Paper Bridge 1, HS20-44 on point tires at 100 km/h (seed 1), the midspan displacement at the
-    automatic step against the same hold at an eighth of it, the wheel loads linear on every step and
-    the default.  Class B, no wheel leaves the road: the hybrid's error is 0.44 of the linear hold's
+    automatic step against the same hold at an eighth of it, the wheel loads linear on every step (the
+    default) and the hybrid.  Class B, no wheel leaves the road: the hybrid's error is 0.44 of the linear hold's
     (measured 2.65e-5 against 6.07e-5 of the peak), asserted < 0.6.  Class D, the wheels hop (more
     than 500 wheel samples off the road, 598): the landings, held linear either way, set the error (1.25e-3
     against 1.24e-3), asserted < 1.2.  The two references agree to a tenth of the smaller error."""

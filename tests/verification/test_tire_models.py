@@ -316,20 +316,10 @@ def test_spread_tires_converge_to_point_tire_at_low_speed(tire):
     spreading = 3.0 / beam.span * mean_abs * w_total * beam.span**3 / (48 * beam.EI)
     alpha = V_SLOW / (2 * beam.frequencies_hz[0] * beam.span)
     assert np.abs(u - u0).max() <= spreading + 2 * alpha * peak
-
-
-@pytest.mark.usefixtures("linear_wheel_loads")
-def test_rigid_disk_on_a_smooth_deck_is_the_point_tire():
-    """On a smooth deck the envelope's highest point is the centre as long as the deck slope
-    |θ| < Δξ/(2R) = 0.01 (θ ≈ 4e-4 here): the rigid disk then IS the point tire.  Both with the wheel
-    loads held linear on every step (the full kernel, which rigid disks run, holds them so; the lean
-    kernel of the point tire by default quadratic: a difference of the hold, not of the tire)."""
-    beam = paper_beam(16.76, "II", n_modes=5)
-    runs = [point_response(simulate(Crossing(beam, HS20, tire=tire, speed=V_SLOW, approach=1.0, free_vibration=0.0,
-                                             dt=1e-3))) for tire in (PointTire(), RigidDiskTire())]
-    u0, u = runs[0].displacement, runs[1].displacement
-    n = min(u0.size, u.size)
-    np.testing.assert_allclose(u[:n], u0[:n], rtol=0, atol=1e-12 * np.abs(u0).max())
+    if isinstance(tire, RigidDiskTire):
+        # on a smooth deck the envelope's highest point is the centre as long as the deck slope
+        # |θ| < Δξ/(2R) = 0.01 (θ ≈ 4e-4 here): the rigid disk then IS the point tire
+        np.testing.assert_allclose(u, u0, rtol=0, atol=1e-12 * peak)
 
 
 # ============================================================== loss of contact

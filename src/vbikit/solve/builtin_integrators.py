@@ -18,12 +18,14 @@ from vbikit.solve.integrators import (
 from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
 
 
-#: the exact integrator holds the wheel loads quadratic over the lean kernels' steps (``modal_step.QUADRATIC``,
-#: third order, as the deck's modal loads) and linear over the full kernel's (``modal_step.LINEAR``: the steps
-#: around a wheel's landing or lift-off, whose kink the parabola through G_{n−1}, G_n, G_{n+1} does not
-#: follow, and rigid-disk runs); False: linear on every step (one map for both kernels, whose shared
-#: arithmetic the kernel tests compare)
-QUADRATIC_WHEEL_LOADS = True
+#: True: the exact integrator holds the wheel loads quadratic over the lean kernels' steps
+#: (``modal_step.QUADRATIC``, third order, as the deck's modal loads) and linear over the full kernel's
+#: (``modal_step.LINEAR``: the window after a wheel's landing or lift-off, whose kink the parabola through
+#: G_{n−1}, G_n, G_{n+1} does not follow, and rigid-disk runs).  False (the default): linear on every step.
+#: Off by default: where wheels keep the road it halves the step's error (tests/unit/test_wheel_load_hold.py),
+#: but each landing is handed to the full kernel, which made the paper programme 1.5× slower at the same
+#: step (benchmarks/README.md, ``bench_period_rule.py``); it pays only with a coarser step rule
+QUADRATIC_WHEEL_LOADS = False
 
 
 def _run_exact(call: KernelCall) -> None:
