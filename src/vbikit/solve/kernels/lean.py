@@ -408,7 +408,7 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         a += response[i, w] * dfw[w]
                     z1[i] = a
         if quadratic and n >= 0:  # a wheel lands or lifts off within the step: its load has a kink the
-            for w in range(n_w):  # parabola through G_{n−1}, G_n, G_{n+1} does not follow (``hand_over``)
+            for w in range(n_w):  # parabola through G_{n−1}, G_n, G_{n+1} does not follow (module docstring)
                 if (fw[w] > 0.0) != (contact[w] != 0.0):
                     stop = n
             if stop >= 0:
