@@ -19,8 +19,9 @@ programme against RK4"); the automatic step's own bound in the convergence table
 ``--hold`` sets how the exact integrator holds the vehicles' wheel loads over a step, reference included:
 ``linear`` on every step (the library's default), ``hybrid`` (quadratic on the lean kernels' steps, linear
 over a landing's window in the full kernel: ``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``) or
-``quadratic`` on every step (``modal_step.vehicle_step``'s ``QUADRATIC`` for both kernels, landings
-included: a trial); ``--vehicle-steps`` changes the vehicle term of the step rule (benchmarks/README.md).
+``quadratic`` on every step (``modal_step.vehicle_step``'s ``QUADRATIC`` for both kernels: the lean
+kernels hand the landings over as with ``hybrid``, and the windows hold them quadratic too: a trial);
+``--vehicle-steps`` changes the vehicle term of the step rule (benchmarks/README.md).
 
 Writes nothing but numba's cache.
 """

@@ -13,9 +13,10 @@ Lanes that ``lean_lanes`` completes take the same arithmetic as both (the same f
 quasi-Newton updates and exact increments, to the same tolerance): measured ≤ 3.8e-13 of each
 history's peak (fastmath reorders the sums; ``lean_lanes`` forms P Φ and P L0 once), asserted ≤ 1e-10, as for one lane
 (tests/unit/test_lean_kernel.py).  A frozen lane restarts from a stored state (the law there, the
-forces extrapolated from it alone) and so differs from an uninterrupted run by the tolerance's
-order (IMPLICIT_TOLERANCE = 1e-10 of the largest wheel load; accelerations amplify it): measured
-≤ 4e-10 of the peak, asserted ≤ 1e-9 as for one lane.
+forces extrapolated from it alone) and so differs from an uninterrupted ``implicit`` run by the
+tolerance's order (IMPLICIT_TOLERANCE = 1e-10 of the largest wheel load; accelerations amplify it):
+measured ≤ 4e-10 of the peak, asserted ≤ 1e-9 as for one lane; from its road run alone, which hands
+over at the same steps, by round-off (it rejoins the lanes with the state its one-lane run leaves).
 """
 from __future__ import annotations
 

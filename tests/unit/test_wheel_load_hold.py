@@ -133,3 +133,28 @@ def test_against_an_eighth_of_the_step_the_hybrid_is_closer_where_wheels_keep_co
     agree = np.abs(references[True][:n] - references[False][:n]).max() / np.abs(references[False]).max()
     assert agree < 0.1 * min(errors.values())
     assert errors[True] < bound * errors[False]
+
+
+def test_lanes_equal_the_roads_run_alone_past_the_resume_limit(monkeypatch):
+    """Point tires on class F roads hand over at more landings than ``LEAN_RESUMES`` (40) allows: then
+    ``implicit`` takes the rest of the run, for a batch lane as for its road alone (the limit counts a
+    lane's windows over the whole run, not per chunk of lanes: per chunk, the lanes differed from their
+    roads alone by up to 3.1e-4 of the peak)."""
+    from vbikit.solve import kernels
+
+    full_kernel, to_the_end = kernels.implicit, []
+
+    def full_spy(dt, motion, *args):  # the calls that run more than a window: the rest of a run
+        steps = (motion.travel.shape[0] - 1) // 2
+        if steps > integrators.LEAN_WINDOW:
+            to_the_end.append(steps)
+        return full_kernel(dt, motion, *args)
+
+    monkeypatch.setattr(kernels, "implicit", full_spy)
+    spec = _hop("F", 1)
+    roads = [_crossing({**spec, "road": {"class": "F", "seed": s}}).road for s in (1, 2, 3)]
+    crossing = _crossing(spec)
+    lanes = BatchSolver(crossing).run_many(roads)
+    assert to_the_end  # a lane ran out of resumes
+    for lane, road in zip(lanes, roads):
+        assert _worst(lane, simulate(replace(crossing, road=road))) <= 1e-12

@@ -216,13 +216,14 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     evaluations = handed = 0
     ever = np.zeros(n_l, np.bool_)
     away: dict[int, tuple] = {}  # lanes run alone: (the step they rejoin at, their end state or None, hold loads)
+    resumes = np.full(n_l, LEAN_RESUMES, np.int64)  # each lane's windows left before ``implicit`` takes the rest
     for first in range(0, n_steps, chunk):
         last = min(n_steps, first + chunk)
         for lane, (rejoin, end_state, pm, gm) in list(away.items()):
             if rejoin > first:
                 stops[lane] = SKIP_LANE
                 continue
-            del away[lane]
+            del away[lane]  # (the calls it sat out wrote their carried state over its own: put back here)
             stops[lane] = -1
             carry_pm[:, lane], carry_gm[:, lane] = pm, gm
             fresh[lane] = end_state is None
@@ -236,8 +237,8 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
         fresh[:] = False
         for lane in frozen:  # (the hold's loads before its last stored row in, those before its rejoin out)
             past = (carry_pm[:, lane:lane + 1].copy(), carry_gm[:, lane:lane + 1].copy(), int(stops[lane]) >= stride)
-            end_state, reached = _finish_lane(call, modal_step, vehicle_step, event_step, tol, int(lane),
-                                              int(stops[lane]), past, last, chunk)
+            end_state, reached, resumes[lane] = _finish_lane(call, modal_step, vehicle_step, event_step, tol, int(lane),
+                                                             int(stops[lane]), past, last, chunk, int(resumes[lane]))
             away[int(lane)] = (reached, end_state, past[0][:, 0].copy(), past[1][:, 0].copy())
         ever[frozen] = True
         handed += frozen.size
@@ -267,12 +268,13 @@ def _lane_road(road: "Road", lane: int) -> "Road":
 
 #: a crossing the one-lane lean kernel stops at a step goes on with ``implicit`` for this many steps
 #: (the contact event), then with the lean kernel again from the last row stored, at most
-#: ``LEAN_RESUMES`` times; after that ``implicit`` takes the rest of the run
+#: ``LEAN_RESUMES`` times in a run (a batch lane's counted over the run too); after that ``implicit`` takes
+#: the rest of the run
 LEAN_WINDOW = 16
 LEAN_RESUMES = 40
 
-#: steps per ``kernels.lean_lanes`` call: a lane it stops at a step runs alone to the end of the chunk
-#: (``_finish_lane``) and rejoins the lanes at the next call (``_run_lanes``)
+#: steps per ``kernels.lean_lanes`` call: a lane it stops at a step runs alone to the end of the chunk, or
+#: of the chunk after its window (``_finish_lane``), and rejoins the lanes at the next call (``_run_lanes``)
 LANES_CHUNK = 128
 #: ``lean_lanes``' ``stop`` entry of a lane that sits a call out (run alone past the call's first step)
 SKIP_LANE = -2
@@ -280,11 +282,11 @@ SKIP_LANE = -2
 
 def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "VehicleStep", event_step: "VehicleStep",
                  tol: float, lane: int, stop: int, past: tuple, last: int | None = None,
-                 chunk: int | None = None) -> tuple[tuple | None, int]:
+                 chunk: int | None = None, resumes: int = LEAN_RESUMES) -> tuple[tuple | None, int, int]:
     """Lane ``lane`` of ``call`` from the last row a lean kernel stored before step ``stop`` to step
     ``last`` (None: the run's end): on that lane's road, ``implicit`` (that lane alone, with the map
     ``event_step``) for ``LEAN_WINDOW`` steps, then the one-lane lean kernel, alternating while the lean
-    kernel stops (``LEAN_RESUMES``; after that ``implicit`` to ``last``); ``past`` (modal (n_m, 1), wheel
+    kernel stops, at most ``resumes`` more times (after that ``implicit`` to the run's end); ``past`` (modal (n_m, 1), wheel
     (n_w, 1), resume) the hold's loads before the row it starts from, which each kernel call reads and
     leaves at those before its last stored row for the next.  Each hand-over restarts from a stored state
     (the law there, the forces extrapolated from it alone): the histories differ from an uninterrupted run
@@ -294,8 +296,8 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     the full kernel only for the contact event's windows.
 
     Returns (the state the one-lane lean kernel ended with when it ran to the end, else None; the step
-    reached): the state is its point forces at the last two steps, modal load and wheel loads
-    (``lean_lanes``' carried state)."""
+    reached; the resumes left): the state is its point forces at the last two steps, modal load and
+    wheel loads (``lean_lanes``' carried state)."""
     from vbikit.solve import kernels
 
     road = _lane_road(call.road, lane)
@@ -303,12 +305,14 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     stride = call.stride
     n_steps = call.n_steps if last is None else last
     row = stop // stride
-    for resume in range(LEAN_RESUMES + 1):
+    for resume in range(resumes + 1):
         first = row * stride
         window = max(LEAN_WINDOW // stride, 1) * stride
-        if chunk is not None and first + window > n_steps:  # (the chunk boundary after the window)
+        if resume == resumes:  # (no resume left: ``implicit`` to the run's end)
+            n_steps = call.n_steps
+        elif chunk is not None and first + window > n_steps:  # (the chunk boundary after the window)
             n_steps = min(call.n_steps, -(-(first + window) // chunk) * chunk)
-        end = n_steps if resume == LEAN_RESUMES else min(n_steps, first + window)
+        end = n_steps if resume == resumes else min(n_steps, first + window)
         log.debug("%s: the lean kernel stops lane %d at step %d of %d (a contact opens or closes within the step); "
                   "the full implicit kernel goes on from step %d", call.crossing.integrator, lane, stop + 1, n_steps,
                   first)
@@ -316,7 +320,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
               tuple(a[:, row:end // stride + 1] for a in one.outputs), first, past, lane)
         past = (past[0], past[1], True)
         if end >= n_steps or end % stride:
-            return None, end
+            return None, end, max(resumes - resume - 1, 0)  # (this window used one)
         row = end // stride
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:n_steps // stride + 1] for a in one.outputs))
@@ -325,10 +329,11 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
                                past[1][:, 0], True, _positions_before(call, end), tol, stride, *work)
         if stop < 0:  # (``lean_work``'s rows: the forces F_{n+1}, F_n; the modal load; the wheel loads)
             modal, wheels, points = work[0], work[2], work[6]
-            return (points[0].copy(), points[1].copy(), modal[4].copy(), wheels[0].copy()), n_steps
+            end_state = points[0].copy(), points[1].copy(), modal[4].copy(), wheels[0].copy()
+            return end_state, n_steps, resumes - resume - 1
         stop += end
         row = stop // stride
-    return None, n_steps
+    return None, n_steps, 0  # (not reached: the last pass runs to the end)
 
 
 def _steps(motion: "Motion", first: int, end: int) -> "Motion":
