@@ -17,10 +17,10 @@ accuracy criterion is 1e-3 per crossing against converged RK4 (docs/verification
 programme against RK4"); the automatic step's own bound in the convergence table is 5e-4.
 
 ``--hold`` sets how the exact integrator holds the vehicles' wheel loads over a step, reference included:
-``linear`` on every step (the library's default), ``hybrid`` (quadratic on the lean kernels' steps, linear
-over a landing's window in the full kernel: ``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``) or
-``quadratic`` on every step (``modal_step.vehicle_step``'s ``QUADRATIC`` for both kernels: the lean
-kernels hand the landings over as with ``hybrid``, and the windows hold them quadratic too: a trial);
+``linear`` on every step (the library's default), ``hybrid`` (quadratic on the lean kernels' steps, a
+landing's step taken again with the linear hold's loads, linear in the full kernel:
+``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``) or ``quadratic`` in both kernels (``modal_step.vehicle_step``'s
+``QUADRATIC`` for the full kernel's map too: a trial);
 ``--vehicle-steps`` changes the vehicle term of the step rule (benchmarks/README.md).
 
 Writes nothing but numba's cache.

@@ -19,13 +19,12 @@ from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_st
 
 
 #: True: the exact integrator holds the wheel loads quadratic over the lean kernels' steps
-#: (``modal_step.QUADRATIC``, third order, as the deck's modal loads) and linear over the full kernel's
-#: (``modal_step.LINEAR``: the window after a wheel's landing or lift-off, whose kink the parabola through
-#: G_{n−1}, G_n, G_{n+1} does not follow, the rest of a run after ``integrators.LEAN_RESUMES`` windows, and
-#: rigid-disk runs).  False (the default): linear on every step.
-#: Off by default: where wheels keep the road it halves the step's error (tests/unit/test_wheel_load_hold.py),
-#: but each landing is handed to the full kernel, which made the paper programme 1.5× slower at the same
-#: step (benchmarks/README.md, ``bench_period_rule.py``); it pays only with a coarser step rule
+#: (``modal_step.QUADRATIC``, third order, as the deck's modal loads), a step in which a wheel lands or lifts
+#: off taken a second time with the linear hold's loads (``kernels.lean``), and linear over the full kernel's
+#: (``modal_step.LINEAR``: the contact events the lean kernels hand over, the rest of a run after
+#: ``integrators.LEAN_RESUMES`` of them, rigid-disk runs).  False (the default): linear on every step.
+#: Where wheels keep the road it halves the step's error at 4 % more time in the paper programme
+#: (tests/unit/test_wheel_load_hold.py, benchmarks/README.md); off until the step rule it would let coarsen
 QUADRATIC_WHEEL_LOADS = False
 
 

@@ -25,11 +25,14 @@ they follow from the stored states and wheel forces when a result's ``q_ddot`` i
    state follows by the same increments (ξ += Δξ, ξ̇ += Δξ̇; the iterates read the vehicles only
    through the wheels' increments, so z += (P L1) ΔF_w once, ΔF_w the corrections' whole change).
 
+With the wheel loads held quadratic (Lp ≠ 0, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``) a step in
+which a wheel lands or lifts off is solved a second time from its start: the wheel's load has a kink
+there, which the parabola through G_{n−1}, G_n, G_{n+1} does not follow, so the second pass takes
+G_{n−1} = 2G_n − G_{n+1} of the first pass's end, the linear hold's loads over that step (exactly, up to
+the change of G_{n+1} between the passes).
+
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
-activity changes, or a point the lazy test left out may touch), the corrections not settling, or,
-with the wheel loads held quadratic (Lp ≠ 0), a wheel that lands or lifts off within the step (its
-load has a kink there, which the parabola through G_{n−1}, G_n, G_{n+1} does not follow: the caller
-holds the loads of the contact event's window linear, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``).
+activity changes, or a point the lazy test left out may touch), or the corrections not settling.
 ``lean`` then returns that step, and the caller goes on with ``implicit`` from the last state
 stored (which handles lift-off, landing, touching points and full Newton).  Rigid-disk envelopes are not
 handled at all (the caller does not call ``lean`` for them).  The outputs are those of
@@ -257,9 +260,11 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
     # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
     x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
     dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
-    z1 = state[0]; zb = state[1]
+    xs = modal[12]; vs = modal[13]; ps = modal[14]; pms = modal[15]  # a step's start (the second pass)
+    z1 = state[0]; zb = state[1]; zs = state[2]
     g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
     t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]; contact = wheels[12]
+    gr = wheels[13]
     f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
     law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]; x_start = points[11]
     x_before = points[12]  # the positions at t_n and t_{n−1} (the hold at the deck's ends)
@@ -294,125 +299,157 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
             fp[k] = fo[k]  # the forces of the last two steps' ends
             fo[k] = f[k]
             f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
-        if n >= 0:
-            share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
-            ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
-                                   sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
-            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                past = pm[m] + corr[m] if ends else pm[m]
-                xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past
-                vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m] + d2[m] * past
-                pm[m] = p[m]  # (the next step's p_{n−1})
-            for i in range(2 * n_d):  # z_b = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g
-                a = free_constant[i]
-                for j in range(2 * n_d):
-                    a += free[i, j] * z1[j]
+        for attempt in range(2):  # (a second pass: the step again with the wheels' loads held linear)
+            if attempt == 1:  # the step's start again, G_{n−1} the linear hold's 2G_n − G_{n+1}
+                for m in range(n_m):
+                    x1[m] = xs[m]
+                    v1[m] = vs[m]
+                    p[m] = ps[m]
+                    pm[m] = pms[m]
+                for i in range(2 * n_d):
+                    z1[i] = zs[i]
+                for k in range(n_cp):
+                    f[k] = 2.0 * fo[k] - fp[k]
                 for w in range(n_w):
-                    a += free_load[i, w] * g0[w] + free_past[i, w] * gm[w]
-                zb[i] = a
-            for w in range(n_w):
-                gm[w] = g0[w]
-            _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
-                   zb, p, fw, x1, v1, z1)
-            evaluations += 1
-        read = span if n < 0 else abs(span)  # (the start state: the road ahead only when span < 0)
-        _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-             wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
-             elevations, r_max, read, force, active, used, pen, law, wf, wl)
-        updated = False  # by quasi-Newton updates
-        if n < 0:
-            for k in range(n_cp):  # (p, like every work space, comes zeroed)
-                fk = force[k] if used[k] else 0.0
-                f[k] = fk
-                fo[k] = fk
-                if used[k] and onb[k]:
-                    for m in range(n_m):
-                        p[m] -= phi[k, m] * fk
-            for m in range(n_m):  # the modal loads before the start (for the hold)
-                pm[m] = past_p[m] if resume else p[m]
-        else:
-            err = 0.0
-            for k in range(n_cp):
-                err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
-                f_old[k] = f[k]  # the iterate before each update
-            updated = err > tol
-            if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
-                settled = False
-                for r in range(LEAN_CORRECTIONS):
+                    gm[w] = gr[w]
+            elif quadratic and n >= 0:  # (the start kept for a second pass)
+                for m in range(n_m):
+                    xs[m] = x1[m]
+                    vs[m] = v1[m]
+                    ps[m] = p[m]
+                    pms[m] = pm[m]
+                for i in range(2 * n_d):
+                    zs[i] = z1[i]
+            if n >= 0:
+                share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
+                ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
+                                       sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
+                for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                    past = pm[m] + corr[m] if ends else pm[m]
+                    xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past
+                    vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m] + d2[m] * past
+                    pm[m] = p[m]  # (the next step's p_{n−1})
+                for i in range(2 * n_d):  # z_b = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g
+                    a = free_constant[i]
+                    for j in range(2 * n_d):
+                        a += free[i, j] * z1[j]
                     for w in range(n_w):
-                        if r > 0:
-                            fw[w] += dfw[w]
-                        else:
-                            fw0[w] = fw[w]  # the guess's wheel forces
-                        dfw[w] = -fw[w]  # (+ the new wheel forces, below)
-                    _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
-                           t)
-                    for k in range(n_cp):  # (dp is zero: zeroed, and after each use below)
-                        dfw[wheel[k]] += f[k]
-                        d = f[k] - f_old[k]
-                        if d != 0.0 and onb[k]:
-                            for m in range(n_m):
-                                dp[m] -= phi[k, m] * d
-                    b = 0.0
-                    for m in range(n_m):  # the deck's change, and the state of the new iterate
-                        dx[m] = c1[m] * dp[m]
-                        dv[m] = c2[m] * dp[m]
-                        b += amp[m] * abs(dx[m])
-                        p[m] += dp[m]
-                        x1[m] += dx[m]
-                        v1[m] += dv[m]
-                        dp[m] = 0.0
-                    err = 0.0
-                    changed = False
-                    for k in range(n_cp):
-                        f_old[k] = f[k]
-                        w = wheel[k]
-                        if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
-                            pen[k] += bq[w] + (b if onb[k] else 0.0)
-                            if pen[k] > 0.0:
-                                changed = True
+                        a += free_load[i, w] * g0[w] + free_past[i, w] * gm[w]
+                    zb[i] = a
+                for w in range(n_w):
+                    gm[w] = g0[w]
+                _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
+                       zb, p, fw, x1, v1, z1)
+                evaluations += 1
+            read = span if n < 0 else abs(span)  # (the start state: the road ahead only when span < 0)
+            _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+                 wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
+                 elevations, r_max, read, force, active, used, pen, law, wf, wl)
+            updated = False  # by quasi-Newton updates
+            if n < 0:
+                for k in range(n_cp):  # (p, like every work space, comes zeroed)
+                    fk = force[k] if used[k] else 0.0
+                    f[k] = fk
+                    fo[k] = fk
+                    if used[k] and onb[k]:
+                        for m in range(n_m):
+                            p[m] -= phi[k, m] * fk
+                for m in range(n_m):  # the modal loads before the start (for the hold)
+                    pm[m] = past_p[m] if resume else p[m]
+            else:
+                err = 0.0
+                for k in range(n_cp):
+                    err = max(err, abs(force[k] - f[k]))  # force = 0 where not used
+                    f_old[k] = f[k]  # the iterate before each update
+                updated = err > tol
+                if updated:  # quasi-Newton updates, the law at each iterate by the exact increments
+                    settled = False
+                    for r in range(LEAN_CORRECTIONS):
+                        for w in range(n_w):
+                            if r > 0:
+                                fw[w] += dfw[w]
+                            else:
+                                fw0[w] = fw[w]  # the guess's wheel forces
+                            dfw[w] = -fw[w]  # (+ the new wheel forces, below)
+                        _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
+                               t)
+                        for k in range(n_cp):  # (dp is zero: zeroed, and after each use below)
+                            dfw[wheel[k]] += f[k]
+                            d = f[k] - f_old[k]
+                            if d != 0.0 and onb[k]:
+                                for m in range(n_m):
+                                    dp[m] -= phi[k, m] * d
+                        b = 0.0
+                        for m in range(n_m):  # the deck's change, and the state of the new iterate
+                            dx[m] = c1[m] * dp[m]
+                            dv[m] = c2[m] * dp[m]
+                            b += amp[m] * abs(dx[m])
+                            p[m] += dp[m]
+                            x1[m] += dx[m]
+                            v1[m] += dv[m]
+                            dp[m] = 0.0
+                        err = 0.0
+                        changed = False
+                        for k in range(n_cp):
+                            f_old[k] = f[k]
+                            w = wheel[k]
+                            if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
+                                pen[k] += bq[w] + (b if onb[k] else 0.0)
+                                if pen[k] > 0.0:
+                                    changed = True
+                                    break
+                                continue
+                            ds = 0.0
+                            dr = 0.0
+                            dsd = 0.0
+                            if onb[k]:
+                                for m in range(n_m):
+                                    ds += phi[k, m] * dx[m]
+                                    dr += phi[k, m] * dv[m]
+                                    dsd += dphi[k, m] * dx[m]
+                            dpen = ds + bq[w]
+                            pen[k] += dpen
+                            law[k] += kk[k] * dpen + cc[k] * (dr + vxp[k] * dsd + bv[w])
+                            fl = law[k]
+                            fk = fl if not gated[k] or (pen[k] > 0.0 and fl > 0.0) else 0.0
+                            if (not gated[k] or fk > 0.0) != active[k]:
+                                changed = True  # a contact opens or closes
                                 break
-                            continue
-                        ds = 0.0
-                        dr = 0.0
-                        dsd = 0.0
-                        if onb[k]:
-                            for m in range(n_m):
-                                ds += phi[k, m] * dx[m]
-                                dr += phi[k, m] * dv[m]
-                                dsd += dphi[k, m] * dx[m]
-                        dpen = ds + bq[w]
-                        pen[k] += dpen
-                        law[k] += kk[k] * dpen + cc[k] * (dr + vxp[k] * dsd + bv[w])
-                        fl = law[k]
-                        fk = fl if not gated[k] or (pen[k] > 0.0 and fl > 0.0) else 0.0
-                        if (not gated[k] or fk > 0.0) != active[k]:
-                            changed = True  # a contact opens or closes
+                            force[k] = fk
+                            err = max(err, abs(fk - f[k]))
+                        if changed:
                             break
-                        force[k] = fk
-                        err = max(err, abs(fk - f[k]))
-                    if changed:
+                        if err <= tol:
+                            settled = True
+                            break
+                    if not settled:
+                        stop = n
                         break
-                    if err <= tol:
-                        settled = True
-                        break
-                if not settled:
-                    stop = n
-                    break
-                for w in range(n_w):  # the corrections' whole change of the wheel forces
-                    fw[w] += dfw[w]
-                    dfw[w] = fw[w] - fw0[w]
-                for i in range(2 * n_d):  # z = z_b + (P L1) F_w, once for all the corrections (the iterates
-                    a = z1[i]  # read only the wheels' increments bq, bv)
-                    for w in range(n_w):
-                        a += response[i, w] * dfw[w]
-                    z1[i] = a
-        if quadratic and n >= 0:  # a wheel lands or lifts off within the step: its load has a kink the
-            for w in range(n_w):  # parabola through G_{n−1}, G_n, G_{n+1} does not follow (module docstring)
-                if (fw[w] > 0.0) != (contact[w] != 0.0):
-                    stop = n
-            if stop >= 0:
+                    for w in range(n_w):  # the corrections' whole change of the wheel forces
+                        fw[w] += dfw[w]
+                        dfw[w] = fw[w] - fw0[w]
+                    for i in range(2 * n_d):  # z = z_b + (P L1) F_w, once for all the corrections (the iterates
+                        a = z1[i]  # read only the wheels' increments bq, bv)
+                        for w in range(n_w):
+                            a += response[i, w] * dfw[w]
+                        z1[i] = a
+            jump = False
+            if quadratic and n >= 0 and attempt == 0:  # a wheel lands or lifts off within the step: its
+                for w in range(n_w):  # load has a kink the parabola through G_{n−1}, G_n, G_{n+1} does not
+                    if (fw[w] > 0.0) != (contact[w] != 0.0):  # follow (module docstring)
+                        jump = True
+            if stop >= 0 or not jump:
                 break
+            for w in range(n_w):  # G_{n+1} of the first pass: the second pass's G_{n−1} = 2G_n − G_{n+1}
+                a = fw[w]
+                for e in range(n_e):
+                    h = wheel_h[w, e]
+                    if h != 0.0:
+                        j = wheel_dof[w, e]
+                        a += h * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
+                gr[w] = 2.0 * g0[w] - a
+        if stop >= 0:
+            break
         stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
         r_out = (n + 1) // stride
         # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
@@ -464,7 +501,7 @@ def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((12, n_m)), np.zeros((2, 2 * n_d)), np.zeros((13, n_w)),
+    return (np.zeros((16, n_m)), np.zeros((3, 2 * n_d)), np.zeros((14, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((13, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 

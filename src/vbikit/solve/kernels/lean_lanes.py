@@ -24,7 +24,8 @@ A lane whose step needs more than that (a gated point's activity changes in the 
 left out by the lazy test may touch, the corrections do not settle) is *frozen* at that step: its
 ``stop`` entry is set to the step, its later rows are not written, and it takes no part in the
 shared decisions after (which points the lazy test keeps).  With the wheel loads held quadratic
-(Lp ≠ 0) a lane is frozen too at a step in which a wheel lands or lifts off (``lean``).  The caller
+(Lp ≠ 0) a step in which a wheel of some lane lands or lifts off is taken a second time, that lane with
+G_{n−1} = 2G_n − G_{n+1} of the first pass (``lean``), the others as before (the same numbers).  The caller
 runs the steps in chunks (``integrators._run_lanes``): a frozen lane goes on alone from its last
 stored row (``implicit`` for the contact event's window, then the one-lane ``lean``,
 ``integrators._finish_lane``) and rejoins a later call with the state the one-lane kernel left, or
@@ -375,6 +376,7 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
             z0[n_d + j, lane] = dq[lane, r_first, j]
     p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
     pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
+    pms = np.zeros((n_m, n_l)); gr = np.zeros((n_w, n_l))  # those of a step's start, for its second pass
     corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
     x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
     contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``hold_jumps``)
@@ -444,194 +446,217 @@ def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, ze
                 for lane in range(n_l):
                     z1[i, lane] = z0[i, lane]
         else:
-            for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
-                nonzero = False  # reads it too)
-                for lane in range(n_l):
-                    fk = 2.0 * fo[k, lane] - fp[k, lane]
-                    f[k, lane] = fk
-                    nonzero = nonzero or fk != 0.0
-                nz[k] = nonzero
-            share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
-            ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
-                                         sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
-            if ends:
-                for m in range(n_m):
-                    for lane in range(n_l):
-                        corr[m, lane] += pm[m, lane]
-            past = corr if ends else pm
-            for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
-                h2 = d2[m]
-                for lane in range(n_l):
-                    xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
-                    vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
-                    pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
-            # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
-            _affine_lanes(free_constant, free, free_load, z0, g0, zb)
-            _add_product_lanes(free_past, gm, zb)
-            for w in range(n_w):
-                for lane in range(n_l):
-                    gm[w, lane] = g0[w, lane]
-            _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
-                         xf, vf, zb, p, fw, x1, v1, z1)
-            evaluations += 1
-            read = abs(span)
-            _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                       slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                       gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
-                       bmax, zw, dzw, s_l, sd_l, dr_l)
-            n_rel = np.int64(0)  # not a bare 0 (a literal-typed variant of _quasi_lanes)
-            n_use = 0
-            for k in range(n_cp):
-                if used[k]:
-                    dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
-                    for lane in range(n_l):
-                        dormant = dormant and pen[k, lane] <= 0.0
-                    if not dormant:
-                        use[n_use] = k
-                        n_use += 1
-                    elif onb[k]:
+            redo = False  # (a second pass: the step again with the jumped lanes' wheel loads held linear)
+            for attempt in range(2):
+                if attempt == 1:  # the step's start again (x0, v0, z0, p0 are kept by the step)
+                    for m in range(n_m):
                         for lane in range(n_l):
-                            lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
-                    else:
+                            pm[m, lane] = pms[m, lane]
+                    for w in range(n_w):
                         for lane in range(n_l):
-                            lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
-                if used[k] or nz[k]:
-                    rel[n_rel] = k
-                    n_rel += 1
-            for lane in range(n_l):
-                err[lane] = 0.0
-            for i in range(n_rel):
-                k = rel[i]
-                for lane in range(n_l):
-                    err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
-            n_work = 0
-            for lane in range(n_l):
-                work[lane] = live[lane] and err[lane] > tol
-                n_work += 1 if work[lane] else 0
-            for w in range(n_w):
-                for lane in range(n_l):
-                    dfw[w, lane] = 0.0
-            r = 0
-            while n_work > 0:  # quasi-Newton updates, the law at each iterate by the exact increments
-                if r == LEAN_CORRECTIONS:
-                    for lane in range(n_l):  # not settled by the corrections
-                        if work[lane]:
-                            live[lane] = False
-                            stop[lane] = n
-                            n_live -= 1
-                    break
-                r += 1
-                for w in range(n_w):  # F_w of the current forces
+                            gm[w, lane] = gr[w, lane]
+                elif quadratic:
+                    for m in range(n_m):
+                        for lane in range(n_l):
+                            pms[m, lane] = pm[m, lane]
+                    for w in range(n_w):
+                        for lane in range(n_l):
+                            gr[w, lane] = gm[w, lane]
+                for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
+                    nonzero = False  # reads it too)
                     for lane in range(n_l):
-                        fw[w, lane] += dfw[w, lane]
-                for i in range(n_rel):
-                    k = rel[i]
+                        fk = 2.0 * fo[k, lane] - fp[k, lane]
+                        f[k, lane] = fk
+                        nonzero = nonzero or fk != 0.0
+                    nz[k] = nonzero
+                share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
+                ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
+                                             sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
+                if ends:
+                    for m in range(n_m):
+                        for lane in range(n_l):
+                            corr[m, lane] += pm[m, lane]
+                past = corr if ends else pm
+                for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                    e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
+                    h2 = d2[m]
                     for lane in range(n_l):
-                        f_old[k, lane] = f[k, lane]
-                _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
-                             t, work, rel, n_rel)
-                for m in range(n_m):
-                    for lane in range(n_l):
-                        dp[m, lane] = 0.0
+                        xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
+                        vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
+                        pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
+                # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
+                _affine_lanes(free_constant, free, free_load, z0, g0, zb)
+                _add_product_lanes(free_past, gm, zb)
                 for w in range(n_w):
                     for lane in range(n_l):
-                        dfw[w, lane] = -fw[w, lane]
-                for i in range(n_rel):
-                    k = rel[i]
-                    wk = wheel[k]
-                    for lane in range(n_l):
-                        dfw[wk, lane] += f[k, lane]
-                    if onb[k]:
-                        changed = False
+                        gm[w, lane] = g0[w, lane]
+                _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
+                             xf, vf, zb, p, fw, x1, v1, z1)
+                evaluations += 1
+                read = abs(span)
+                _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
+                           slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                           gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                           bmax, zw, dzw, s_l, sd_l, dr_l)
+                n_rel = np.int64(0)  # not a bare 0 (a literal-typed variant of _quasi_lanes)
+                n_use = 0
+                for k in range(n_cp):
+                    if used[k]:
+                        dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
                         for lane in range(n_l):
-                            changed = changed or f[k, lane] != f_old[k, lane]
-                        if changed:
-                            for m in range(n_m):
-                                ph = phi[k, m]
-                                for lane in range(n_l):
-                                    dp[m, lane] -= ph * (f[k, lane] - f_old[k, lane])
-                for lane in range(n_l):
-                    b[lane] = 0.0
-                    if not work[lane]:
-                        for w in range(n_w):
-                            dfw[w, lane] = 0.0
-                for m in range(n_m):  # the deck's change, and the state of the new iterate
-                    e1 = c1[m]
-                    e2 = c2[m]
-                    am = amp[m]
-                    for lane in range(n_l):
-                        dx[m, lane] = e1 * dp[m, lane]
-                        dv[m, lane] = e2 * dp[m, lane]
-                        b[lane] += am * abs(dx[m, lane])
-                        p[m, lane] += dp[m, lane]
-                        x1[m, lane] += dx[m, lane]
-                        v1[m, lane] += dv[m, lane]
-                _add_product_lanes(response, dfw, z1)  # z = z_b + (P L1) F_w
+                            dormant = dormant and pen[k, lane] <= 0.0
+                        if not dormant:
+                            use[n_use] = k
+                            n_use += 1
+                        elif onb[k]:
+                            for lane in range(n_l):
+                                lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
+                        else:
+                            for lane in range(n_l):
+                                lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
+                    if used[k] or nz[k]:
+                        rel[n_rel] = k
+                        n_rel += 1
                 for lane in range(n_l):
                     err[lane] = 0.0
-                    flip[lane] = False  # the lane needs more than this step (set in loops the compiler vectorises)
-                for w in range(n_w):  # points left out by the lazy test or off the road in every lane: δ must
-                    # stay ≤ 0, watched through each wheel's largest δ (or bound on it) plus the increments' bound
+                for i in range(n_rel):
+                    k = rel[i]
                     for lane in range(n_l):
-                        lo_on[w, lane] += bq[w, lane] + b[lane]
-                        lo_off[w, lane] += bq[w, lane]
-                        flip[lane] = flip[lane] or lo_on[w, lane] > 0.0 or lo_off[w, lane] > 0.0
-                for i in range(n_use):  # the law of the other used points by the exact increments
-                    k = use[i]
-                    w = wheel[k]
-                    for lane in range(n_l):
-                        s_l[lane] = 0.0
-                        dr_l[lane] = 0.0
-                        sd_l[lane] = 0.0
-                    if onb[k]:
-                        for m in range(n_m):
-                            ph = phi[k, m]
-                            dph = dphi[k, m]
-                            for lane in range(n_l):
-                                s_l[lane] += ph * dx[m, lane]
-                                dr_l[lane] += ph * dv[m, lane]
-                                sd_l[lane] += dph * dx[m, lane]
-                    kc = kk[k]
-                    ck = cc[k]
-                    vx = vxp[k]
-                    gk = gated[k]
-                    for lane in range(n_l):
-                        dpen = s_l[lane] + bq[w, lane]
-                        pen[k, lane] += dpen
-                        law[k, lane] += kc * dpen + ck * (dr_l[lane] + vx * sd_l[lane] + bv[w, lane])
-                        fl = law[k, lane]
-                        on = not gk or (pen[k, lane] > 0.0 and fl > 0.0)
-                        fk = fl if on else 0.0
-                        flip[lane] = flip[lane] or on != active[k, lane]  # a contact opens or closes
-                        force[k, lane] = fk
-                        err[lane] = max(err[lane], abs(fk - f[k, lane]))
+                        err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
                 n_work = 0
                 for lane in range(n_l):
-                    if work[lane] and flip[lane]:  # frozen at this step
-                        work[lane] = False
-                        live[lane] = False
-                        stop[lane] = n
-                        n_live -= 1
-                    work[lane] = work[lane] and err[lane] > tol
+                    work[lane] = live[lane] and err[lane] > tol
                     n_work += 1 if work[lane] else 0
-            if n_live == 0:
-                return evaluations
-            for w in range(n_w):
-                for lane in range(n_l):
-                    fw[w, lane] += dfw[w, lane]
-                    wf[w, lane] = fw[w, lane]
-            if quadratic:  # a wheel lands or lifts off within the step: the lane hands over (``lean``)
-                for lane in range(n_l):
-                    if live[lane]:
-                        for w in range(n_w):
-                            if (wf[w, lane] > 0.0) != contact[w, lane]:
+                for w in range(n_w):
+                    for lane in range(n_l):
+                        dfw[w, lane] = 0.0
+                r = 0
+                while n_work > 0:  # quasi-Newton updates, the law at each iterate by the exact increments
+                    if r == LEAN_CORRECTIONS:
+                        for lane in range(n_l):  # not settled by the corrections
+                            if work[lane]:
                                 live[lane] = False
                                 stop[lane] = n
                                 n_live -= 1
-                                break
+                        break
+                    r += 1
+                    for w in range(n_w):  # F_w of the current forces
+                        for lane in range(n_l):
+                            fw[w, lane] += dfw[w, lane]
+                    for i in range(n_rel):
+                        k = rel[i]
+                        for lane in range(n_l):
+                            f_old[k, lane] = f[k, lane]
+                    _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
+                                 t, work, rel, n_rel)
+                    for m in range(n_m):
+                        for lane in range(n_l):
+                            dp[m, lane] = 0.0
+                    for w in range(n_w):
+                        for lane in range(n_l):
+                            dfw[w, lane] = -fw[w, lane]
+                    for i in range(n_rel):
+                        k = rel[i]
+                        wk = wheel[k]
+                        for lane in range(n_l):
+                            dfw[wk, lane] += f[k, lane]
+                        if onb[k]:
+                            changed = False
+                            for lane in range(n_l):
+                                changed = changed or f[k, lane] != f_old[k, lane]
+                            if changed:
+                                for m in range(n_m):
+                                    ph = phi[k, m]
+                                    for lane in range(n_l):
+                                        dp[m, lane] -= ph * (f[k, lane] - f_old[k, lane])
+                    for lane in range(n_l):
+                        b[lane] = 0.0
+                        if not work[lane]:
+                            for w in range(n_w):
+                                dfw[w, lane] = 0.0
+                    for m in range(n_m):  # the deck's change, and the state of the new iterate
+                        e1 = c1[m]
+                        e2 = c2[m]
+                        am = amp[m]
+                        for lane in range(n_l):
+                            dx[m, lane] = e1 * dp[m, lane]
+                            dv[m, lane] = e2 * dp[m, lane]
+                            b[lane] += am * abs(dx[m, lane])
+                            p[m, lane] += dp[m, lane]
+                            x1[m, lane] += dx[m, lane]
+                            v1[m, lane] += dv[m, lane]
+                    _add_product_lanes(response, dfw, z1)  # z = z_b + (P L1) F_w
+                    for lane in range(n_l):
+                        err[lane] = 0.0
+                        flip[lane] = False  # the lane needs more than this step (set in loops the compiler vectorises)
+                    for w in range(n_w):  # points left out by the lazy test or off the road in every lane: δ must
+                        # stay ≤ 0, watched through each wheel's largest δ (or bound on it) plus the increments' bound
+                        for lane in range(n_l):
+                            lo_on[w, lane] += bq[w, lane] + b[lane]
+                            lo_off[w, lane] += bq[w, lane]
+                            flip[lane] = flip[lane] or lo_on[w, lane] > 0.0 or lo_off[w, lane] > 0.0
+                    for i in range(n_use):  # the law of the other used points by the exact increments
+                        k = use[i]
+                        w = wheel[k]
+                        for lane in range(n_l):
+                            s_l[lane] = 0.0
+                            dr_l[lane] = 0.0
+                            sd_l[lane] = 0.0
+                        if onb[k]:
+                            for m in range(n_m):
+                                ph = phi[k, m]
+                                dph = dphi[k, m]
+                                for lane in range(n_l):
+                                    s_l[lane] += ph * dx[m, lane]
+                                    dr_l[lane] += ph * dv[m, lane]
+                                    sd_l[lane] += dph * dx[m, lane]
+                        kc = kk[k]
+                        ck = cc[k]
+                        vx = vxp[k]
+                        gk = gated[k]
+                        for lane in range(n_l):
+                            dpen = s_l[lane] + bq[w, lane]
+                            pen[k, lane] += dpen
+                            law[k, lane] += kc * dpen + ck * (dr_l[lane] + vx * sd_l[lane] + bv[w, lane])
+                            fl = law[k, lane]
+                            on = not gk or (pen[k, lane] > 0.0 and fl > 0.0)
+                            fk = fl if on else 0.0
+                            flip[lane] = flip[lane] or on != active[k, lane]  # a contact opens or closes
+                            force[k, lane] = fk
+                            err[lane] = max(err[lane], abs(fk - f[k, lane]))
+                    n_work = 0
+                    for lane in range(n_l):
+                        if work[lane] and flip[lane]:  # frozen at this step
+                            work[lane] = False
+                            live[lane] = False
+                            stop[lane] = n
+                            n_live -= 1
+                        work[lane] = work[lane] and err[lane] > tol
+                        n_work += 1 if work[lane] else 0
                 if n_live == 0:
                     return evaluations
+                for w in range(n_w):
+                    for lane in range(n_l):
+                        fw[w, lane] += dfw[w, lane]
+                        wf[w, lane] = fw[w, lane]
+                if not quadratic or attempt == 1:
+                    break
+                for lane in range(n_l):  # a wheel lands or lifts off within the step (``lean``): that lane
+                    if live[lane]:  # again with G_{n−1} = 2G_n − G_{n+1} of this pass (the others alike)
+                        for w in range(n_w):
+                            if (wf[w, lane] > 0.0) != contact[w, lane]:
+                                redo = True
+                                for w2 in range(n_w):
+                                    a = wf[w2, lane]
+                                    for e in range(wheel_dof.shape[1]):
+                                        h = wheel_h[w2, e]
+                                        if h != 0.0:
+                                            j = wheel_dof[w2, e]
+                                            a += h * (wheel_k[w2] * z1[j, lane] + wheel_c[w2] * z1[n_d + j, lane])
+                                    gr[w2, lane] = 2.0 * g0[w2, lane] - a
+                                break
+                if not redo:
+                    break
         # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
         for w in range(n_w):
             kw = wheel_k[w]
