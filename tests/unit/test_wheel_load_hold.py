@@ -60,7 +60,7 @@ def test_the_lean_kernel_gets_the_quadratic_map_and_the_full_kernel_the_linear_o
     from vbikit.solve import kernels
 
     seen: dict[str, list[float]] = {"lean": [], "implicit": []}
-    lean, implicit = kernels.lean, kernels.implicit
+    lean, implicit = kernels.lean_quadratic, kernels.implicit  # (the lean kernel's variant for Lp ≠ 0)
 
     def lean_spy(*args):
         seen["lean"].append(float(np.abs(args[23]).max()))  # ``free_past`` = P Lp
@@ -70,7 +70,7 @@ def test_the_lean_kernel_gets_the_quadratic_map_and_the_full_kernel_the_linear_o
         seen["implicit"].append(float(np.abs(vehicle_step.load_past).max()))
         return implicit(dt, motion, modes, vehicles, points, road, unilateral, modal_step, vehicle_step, *rest)
 
-    monkeypatch.setattr(kernels, "lean", lean_spy)
+    monkeypatch.setattr(kernels, "lean_quadratic", lean_spy)
     monkeypatch.setattr(kernels, "implicit", implicit_spy)
     for tire in ("point", "rigid-disk"):
         assert simulate(_crossing(_hop("F", 1, tire))).unconverged_steps == 0

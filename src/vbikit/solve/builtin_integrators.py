@@ -23,8 +23,9 @@ from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_st
 #: off taken a second time with the linear hold's loads (``kernels.lean``), and linear over the full kernel's
 #: (``modal_step.LINEAR``: the contact events the lean kernels hand over, the rest of a run after
 #: ``integrators.LEAN_RESUMES`` of them, rigid-disk runs).  False (the default): linear on every step.
-#: Where wheels keep the road it halves the step's error at 4 % more time in the paper programme
-#: (tests/unit/test_wheel_load_hold.py, benchmarks/README.md); off until the step rule it would let coarsen
+#: Where wheels keep the road it halves the step's error at 4–5 % more time in the paper programme (the lean
+#: kernels' variants ``lean_quadratic``, ``lean_lanes_quadratic``: tests/unit/test_wheel_load_hold.py,
+#: benchmarks/README.md); off until the step rule it would let coarsen is made
 QUADRATIC_WHEEL_LOADS = False
 
 

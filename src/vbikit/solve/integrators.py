@@ -172,7 +172,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         return
     if len(call.lanes) == 1:
         past_p, past_g, _ = _no_past(call)
-        stop, evaluations = kernels.lean(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
+        stop, evaluations = _lean(vehicle_step)(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
                                          past_g[:, 0], False, _positions_before(call, 0), tol, call.stride,
                                          *_lean_work(call))
         if stop < 0:
@@ -202,7 +202,8 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     from vbikit.solve import kernels
     from vbikit.solve.compile_notice import announce_compile
 
-    announce_compile(kernels.lean_lanes)  # its own compiled kernel: a batch's first run may compile it
+    lean_lanes = _lean(vehicle_step, lanes=True)
+    announce_compile(lean_lanes)  # its own compiled kernel: a batch's first run may compile it
     args = _lean_arguments(call, modal_step, vehicle_step, lanes=True, start=True)
     n_l, n_cp = call.outputs[0].shape[0], call.data.n_points
     stride, n_steps = call.stride, call.n_steps
@@ -231,7 +232,7 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
                 carry_f[0, :, lane], carry_f[1, :, lane], carry_p[:, lane], carry_g[:, lane] = end_state
         if np.all(stops == SKIP_LANE):
             continue
-        evaluations += kernels.lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g,
+        evaluations += lean_lanes(*args, tol, stride, stops, first, last, fresh, carry_f, carry_p, carry_g,
                                           carry_pm, carry_gm, _positions_before(call, first))
         frozen = np.flatnonzero(stops >= 0)
         fresh[:] = False
@@ -246,6 +247,19 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     LEAN_COUNTS["lanes_fallback"] += int(ever.sum())
     log.debug("%s (lean kernel, %d lanes): %.2f contact-law evaluations per step; %d lane(s) handed to the full kernel "
               "%d time(s)", call.crossing.integrator, n_l, evaluations / max(n_steps, 1), int(ever.sum()), handed)
+
+
+def _lean(vehicle_step: "VehicleStep", lanes: bool = False) -> Any:
+    """The lean kernel for the vehicles' map ``vehicle_step``: its variant with the wheel loads held
+    quadratic when the map has the past loads' term (Lp ≠ 0), else the linear one (the default path)."""
+    from vbikit.solve import kernels
+    from vbikit.solve.compile_notice import announce_compile
+
+    if not np.any(vehicle_step.load_past):
+        return kernels.lean_lanes if lanes else kernels.lean
+    kernel = kernels.lean_lanes_quadratic if lanes else kernels.lean_quadratic
+    announce_compile(kernel, "this process (the wheel loads held quadratic: QUADRATIC_WHEEL_LOADS)")
+    return kernel
 
 
 def _lean_work(call: KernelCall) -> tuple:
@@ -325,7 +339,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:n_steps // stride + 1] for a in one.outputs))
         work = _lean_work(part)
-        stop, _ = kernels.lean(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
+        stop, _ = _lean(vehicle_step)(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
                                past[1][:, 0], True, _positions_before(call, end), tol, stride, *work)
         if stop < 0:  # (``lean_work``'s rows: the forces F_{n+1}, F_n; the modal load; the wheel loads)
             modal, wheels, points = work[0], work[2], work[6]

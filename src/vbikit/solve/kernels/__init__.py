@@ -132,14 +132,14 @@ from vbikit.solve.kernels.lanes import MANY_LANES, ONE_LANE
 from vbikit.solve.kernels.assembly import static_modal_history
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS, QUASI_ITERATIONS, RELAX_AFTER, TOUCH_STIFFNESS
 from vbikit.solve.kernels.implicit_step import implicit
-from vbikit.solve.kernels.lean import lean, lean_law, lean_work
-from vbikit.solve.kernels.lean_lanes import lean_lanes
+from vbikit.solve.kernels.lean import lean, lean_law, lean_quadratic, lean_work
+from vbikit.solve.kernels.lean_lanes import lean_lanes, lean_lanes_quadratic
 from vbikit.solve.kernels.run_in import linear_recursion, run_in_loads
 
 __all__ = [
     "Cache", "ModalStep", "Modes", "Motion", "Points", "Road", "VehicleStep", "Vehicles", "Work", "new_cache",
     "new_work", "accelerations", "contact_forces", "point_kinematics", "point_law", "road_at", "road_point",
     "shape_point", "shapes_at", "rk4", "static_modal_history", "LEAN_CORRECTIONS", "QUASI_ITERATIONS",
-    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes", "linear_recursion", "run_in_loads", "MANY_LANES",
+    "RELAX_AFTER", "TOUCH_STIFFNESS", "implicit", "lean", "lean_law", "lean_work", "lean_lanes", "lean_quadratic", "lean_lanes_quadratic", "linear_recursion", "run_in_loads", "MANY_LANES",
     "ONE_LANE",
 ]

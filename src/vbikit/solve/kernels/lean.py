@@ -227,99 +227,122 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
         f[k] = force[k] + kk[k] * bq[w] + cc[k] * bv[w] if active[k] else 0.0
 
 
-@njit(nogil=True, **FLAT_OPTIONS)
-def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2, d1,
-         d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
-         wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
-         stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, past_p, past_g, resume,
-         x_past, tol, stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
-    """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
-    (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
-    ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
-    (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
-    stations and elevations of its one lane (n_lines, n_s) and r_max, the road rate's ``span`` [s]
-    (``road_point``: dt/2 for the secant rate, 0 for the cell's slope; negative when the call starts
-    at the run's start: the start state's law then reads the road ahead only, the steps |span|), the outputs of ``implicit`` for
-    one lane but q̈ (each (n_stored, ·), row 0 the static start), the loads of the step before the start
-    for the hold (``ModalStep``, ``VehicleStep``): modal ``past_p`` (n_m,) and wheel ``past_g`` (n_w,),
-    read when ``resume`` (a call that goes on from a stored state); else the start's own (the run's
-    start: the loads held constant before t_0, the static start); on return they hold the loads of
-    the step before the last row stored (where a call going on from that row starts), ``x_past``
-    (n_cp,) the points' positions [m] a step before the start (for the hold at the deck's ends,
-    ``vbikit.solve.kernels.hold``), ``tol`` [N] and ``stride``, then the work spaces of ``lean_work``
-    (zeroed).
+@_flat_internal
+def _copy_start(x1, v1, p, pm, z1, xs, vs, ps, pms, zs):
+    """A step's start (ξ, ξ̇, p_n, p_{n−1}; z) from the first five arrays into the last five (kept for a
+    second pass of the step, and put back for it)."""
+    for m in range(x1.size):
+        xs[m] = x1[m]
+        vs[m] = v1[m]
+        ps[m] = p[m]
+        pms[m] = pm[m]
+    for i in range(z1.size):
+        zs[i] = z1[i]
 
-    Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
-    (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
-    filled); evaluations counts the contact-law evaluations."""
-    n_steps = (len(travel) - 1) // 2
-    n_m = omega.size
-    n_d = len(free) // 2
-    n_cp = origin.size
-    n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
-    # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
-    x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
-    dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
-    xs = modal[12]; vs = modal[13]; ps = modal[14]; pms = modal[15]  # a step's start (the second pass)
-    z1 = state[0]; zb = state[1]; zs = state[2]
-    g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
-    t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]; contact = wheels[12]
-    gr = wheels[13]
-    f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
-    law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]; x_start = points[11]
-    x_before = points[12]  # the positions at t_n and t_{n−1} (the hold at the deck's ends)
-    active = flags[0]; used = flags[1]; onb = flags[2]
-    have = index[0]; idx = index[1]
-    phi = shapes[0]; dphi = shapes[1]
-    # the state (ξ, ξ̇) = (x1, v1), z = (q, q̇) = z1 and the modal load p: the start state, then each step's end
-    # state, which is the next step's start
-    for m in range(n_m):
-        x1[m] = xi[0, m]
-        v1[m] = dxi[0, m]
-    for j in range(n_d):
-        z1[j] = q[0, j]
-        z1[n_d + j] = dq[0, j]
-    evaluations = 0
-    stop = -1
-    quadratic = False  # a vehicle map with the wheel loads held quadratic (Lp ≠ 0): a landing or lift-off hands over
-    for i in range(2 * n_d):
-        for w in range(n_w):
-            if free_past[i, w] != 0.0:
-                quadratic = True
-    for n in range(-1, n_steps):  # n = −1: the start state t_0 (forces, loads and accelerations)
-        row = 2 * n + 2
-        for k in range(n_cp):
-            vh = vehicle[k]
-            x_before[k] = x_start[k]  # (at n = 0: ``x_past``, below)
-            x_start[k] = xp[k] if n >= 0 else x_past[k]
-            xp[k] = origin[k] + direction[k] * travel[row, vh]
-            vxp[k] = direction[k] * speed[row, vh]
-            onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
-            have[k] = 0
-            fp[k] = fo[k]  # the forces of the last two steps' ends
-            fo[k] = f[k]
-            f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
-        for attempt in range(2):  # (a second pass: the step again with the wheels' loads held linear)
-            if attempt == 1:  # the step's start again, G_{n−1} the linear hold's 2G_n − G_{n+1}
-                for m in range(n_m):
-                    x1[m] = xs[m]
-                    v1[m] = vs[m]
-                    p[m] = ps[m]
-                    pm[m] = pms[m]
-                for i in range(2 * n_d):
-                    z1[i] = zs[i]
+
+@_flat_internal
+def _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, past):
+    """Whether a wheel lands or lifts off within the step (its force sum ``fw`` > 0 at the end against
+    ``contact`` at the start); if so ``past`` = 2G_n − G_{n+1}, G_n = ``g0`` and G_{n+1} = F_w + k_w z_w +
+    c_w ż_w of the end state ``z1``: the G_{n−1} with which the quadratic hold's map is the linear hold's."""
+    landed = False
+    for w in range(fw.size):
+        if (fw[w] > 0.0) != (contact[w] != 0.0):
+            landed = True
+    if landed:
+        for w in range(fw.size):
+            a = fw[w]
+            for e in range(wheel_dof.shape[1]):
+                h = wheel_h[w, e]
+                if h != 0.0:
+                    j = wheel_dof[w, e]
+                    a += h * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
+            past[w] = 2.0 * g0[w] - a
+    return landed
+
+
+def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the variant)
+    """``lean`` compiled for the vehicles' maps with the wheel loads held linear (``QUADRATIC`` False: Lp = 0)
+    or quadratic (True: a step in which a wheel lands or lifts off is taken a second time, module docstring).  Two variants, each compiled on its first use, so that the
+    default path compiles none of the quadratic hold's code (numba prunes the branches on the closure's
+    constant ``QUADRATIC`` before it types them: every test of the hold starts with it)."""
+
+    @njit(nogil=True, **FLAT_OPTIONS)
+    def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2, d1,
+             d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
+             wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
+             stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, past_p, past_g, resume,
+             x_past, tol, stride, modal, state, wheels, held, veh, piv, points, flags, index, shapes):
+        """The lean step loop (module docstring) of one crossing.  Arguments: the fields of ``Motion``
+        (contiguous), ``Modes``, ``ModalStep``, ``VehicleStep`` and its ``FusedVehicleStep`` (as
+        ``integrators._lean_arguments`` passes them), ``Vehicles`` and ``Points`` one by one
+        (``line`` clamped to the road lines present; ``gated`` includes the unilateral gate), the road's
+        stations and elevations of its one lane (n_lines, n_s) and r_max, the road rate's ``span`` [s]
+        (``road_point``: dt/2 for the secant rate, 0 for the cell's slope; negative when the call starts
+        at the run's start: the start state's law then reads the road ahead only, the steps |span|), the outputs of ``implicit`` for
+        one lane but q̈ (each (n_stored, ·), row 0 the static start), the loads of the step before the start
+        for the hold (``ModalStep``, ``VehicleStep``): modal ``past_p`` (n_m,) and wheel ``past_g`` (n_w,),
+        read when ``resume`` (a call that goes on from a stored state); else the start's own (the run's
+        start: the loads held constant before t_0, the static start); on return they hold the loads of
+        the step before the last row stored (where a call going on from that row starts), ``x_past``
+        (n_cp,) the points' positions [m] a step before the start (for the hold at the deck's ends,
+        ``vbikit.solve.kernels.hold``), ``tol`` [N] and ``stride``, then the work spaces of ``lean_work``
+        (zeroed).
+
+        Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
+        (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
+        filled); evaluations counts the contact-law evaluations."""
+        n_steps = (len(travel) - 1) // 2
+        n_m = omega.size
+        n_d = len(free) // 2
+        n_cp = origin.size
+        n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
+        # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
+        x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
+        dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
+        z1 = state[0]; zb = state[1]
+        g0 = wheels[0]; dfw = wheels[1]; fw = wheels[2]; wf = wheels[3]; wl = wheels[4]; bq = wheels[5]; bv = wheels[6]
+        t = wheels[7]; ksum = wheels[8]; csum = wheels[9]; fw0 = wheels[10]; gm = wheels[11]; contact = wheels[12]
+        f = points[0]; fo = points[1]; fp = points[2]; f_old = points[3]; force = points[4]; pen = points[5]
+        law = points[6]; xp = points[7]; vxp = points[8]; rv = points[9]; rr = points[10]; x_start = points[11]
+        x_before = points[12]  # the positions at t_n and t_{n−1} (the hold at the deck's ends)
+        active = flags[0]; used = flags[1]; onb = flags[2]
+        have = index[0]; idx = index[1]
+        phi = shapes[0]; dphi = shapes[1]
+        # the state (ξ, ξ̇) = (x1, v1), z = (q, q̇) = z1 and the modal load p: the start state, then each step's end
+        # state, which is the next step's start
+        for m in range(n_m):
+            x1[m] = xi[0, m]
+            v1[m] = dxi[0, m]
+        for j in range(n_d):
+            z1[j] = q[0, j]
+            z1[n_d + j] = dq[0, j]
+        evaluations = 0
+        stop = -1
+        n = -1  # the step t_n → t_{n+1}; n = −1: the start state t_0 (forces, loads and accelerations)
+        again = False  # the step taken a second time (a landing or lift-off with the loads held quadratic)
+        while n < n_steps:
+            row = 2 * n + 2
+            if QUADRATIC and again:  # the step's start again, G_{n−1} the linear hold's 2G_n − G_{n+1}
+                _copy_start(modal[12], modal[13], modal[14], modal[15], state[2], x1, v1, p, pm, z1)  # (rows kept for it)
                 for k in range(n_cp):
                     f[k] = 2.0 * fo[k] - fp[k]
                 for w in range(n_w):
-                    gm[w] = gr[w]
-            elif quadratic and n >= 0:  # (the start kept for a second pass)
-                for m in range(n_m):
-                    xs[m] = x1[m]
-                    vs[m] = v1[m]
-                    ps[m] = p[m]
-                    pms[m] = pm[m]
-                for i in range(2 * n_d):
-                    zs[i] = z1[i]
+                    gm[w] = wheels[13, w]
+            else:
+                for k in range(n_cp):
+                    vh = vehicle[k]
+                    x_before[k] = x_start[k]  # (at n = 0: ``x_past``, below)
+                    x_start[k] = xp[k] if n >= 0 else x_past[k]
+                    xp[k] = origin[k] + direction[k] * travel[row, vh]
+                    vxp[k] = direction[k] * speed[row, vh]
+                    onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
+                    have[k] = 0
+                    fp[k] = fo[k]  # the forces of the last two steps' ends
+                    fo[k] = f[k]
+                    f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
+                if QUADRATIC and n >= 0:  # (the start kept for a second pass)
+                    _copy_start(x1, v1, p, pm, z1, modal[12], modal[13], modal[14], modal[15], state[2])
             if n >= 0:
                 share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
                 ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
@@ -433,63 +456,59 @@ def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a1
                         for w in range(n_w):
                             a += response[i, w] * dfw[w]
                         z1[i] = a
-            jump = False
-            if quadratic and n >= 0 and attempt == 0:  # a wheel lands or lifts off within the step: its
-                for w in range(n_w):  # load has a kink the parabola through G_{n−1}, G_n, G_{n+1} does not
-                    if (fw[w] > 0.0) != (contact[w] != 0.0):  # follow (module docstring)
-                        jump = True
-            if stop >= 0 or not jump:
-                break
-            for w in range(n_w):  # G_{n+1} of the first pass: the second pass's G_{n−1} = 2G_n − G_{n+1}
-                a = fw[w]
+            if QUADRATIC and n >= 0 and not again:  # a wheel lands or lifts off within the step: its load has
+                again = _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, wheels[13])  # a kink
+                if again:  # the parabola through G_{n−1}, G_n, G_{n+1} does not follow (module docstring)
+                    continue
+            again = False
+            stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
+            r_out = (n + 1) // stride
+            # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
+            jumped = False
+            for w in range(n_w):
+                if n >= 0:
+                    wf[w] = fw[w]  # (at n = −1 the law's sums)
+                a = wf[w]
+                kw = wheel_k[w]
+                cw = wheel_c[w]
                 for e in range(n_e):
                     h = wheel_h[w, e]
                     if h != 0.0:
                         j = wheel_dof[w, e]
-                        a += h * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
-                gr[w] = 2.0 * g0[w] - a
-        if stop >= 0:
-            break
-        stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
-        r_out = (n + 1) // stride
-        # loads of the end state: G = F_w + k_w z_w + c_w ż_w (the next step's, and q̈); the wheels' stored rows
-        jumped = False
-        for w in range(n_w):
-            if n >= 0:
-                wf[w] = fw[w]  # (at n = −1 the law's sums)
-            a = wf[w]
-            kw = wheel_k[w]
-            cw = wheel_c[w]
-            for e in range(n_e):
-                h = wheel_h[w, e]
-                if h != 0.0:
-                    j = wheel_dof[w, e]
-                    a += h * (kw * z1[j] + cw * z1[n_d + j])
-            g0[w] = a
-            if n < 0:  # the loads before the start (for the hold)
-                gm[w] = past_g[w] if resume else a
-            touching = wf[w] > 0.0  # a wheel that lands or lifts off: the next step holds from here on
-            if n >= 0 and touching != (contact[w] != 0.0):  # (``hold``: a jump or kink in G and p)
-                gm[w] = a
-                jumped = True
-            contact[w] = 1.0 if touching else 0.0
+                        a += h * (kw * z1[j] + cw * z1[n_d + j])
+                g0[w] = a
+                if n < 0:  # the loads before the start (for the hold)
+                    gm[w] = past_g[w] if resume else a
+                touching = wf[w] > 0.0  # a wheel that lands or lifts off: the next step holds from here on
+                if n >= 0 and touching != (contact[w] != 0.0):  # (``hold``: a jump or kink in G and p)
+                    gm[w] = a
+                    jumped = True
+                contact[w] = 1.0 if touching else 0.0
+                if stored:
+                    past_g[w] = gm[w]
+                    wheel_force[r_out, w] = wf[w]
+                    wheel_len[r_out, w] = wl[w]
+            if jumped:
+                for m in range(n_m):
+                    pm[m] = p[m]
             if stored:
-                past_g[w] = gm[w]
-                wheel_force[r_out, w] = wf[w]
-                wheel_len[r_out, w] = wl[w]
-        if jumped:
-            for m in range(n_m):
-                pm[m] = p[m]
-        if stored:
-            for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ; the hold's p of the step before the row
-                past_p[m] = pm[m]
-                xi[r_out, m] = x1[m]
-                dxi[r_out, m] = v1[m]
-                ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
-            for i in range(n_d):
-                q[r_out, i] = z1[i]
-                dq[r_out, i] = z1[n_d + i]
-    return stop, evaluations
+                for m in range(n_m):  # ξ̈ = p − 2ζω ξ̇ − ω² ξ; the hold's p of the step before the row
+                    past_p[m] = pm[m]
+                    xi[r_out, m] = x1[m]
+                    dxi[r_out, m] = v1[m]
+                    ddxi[r_out, m] = p[m] - 2.0 * zeta[m] * omega[m] * v1[m] - omega[m] * omega[m] * x1[m]
+                for i in range(n_d):
+                    q[r_out, i] = z1[i]
+                    dq[r_out, i] = z1[n_d + i]
+            n += 1
+        return stop, evaluations
+
+    return lean
+
+
+#: the variants of ``lean``: the wheel loads held linear (the default) and quadratic
+lean = _make_lean(False)
+lean_quadratic = _make_lean(True)
 
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:

@@ -319,433 +319,441 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
                 f[k, lane] = force[k, lane] + a * bq[wk, lane] + b * bv[wk, lane] if active[k, lane] else 0.0
 
 
-@njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
-def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
-               d1, d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k,
-               wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel,
-               width, stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop,
-               first, last, fresh, carry_f, carry_p, carry_g, carry_pm, carry_gm, x_past):
-    """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
-    ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
-    ``implicit`` but q̈ for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
-    the lazy test reads the road under each point) and ``stop`` (L,),
-    int64, filled: −1 for a lane whose every step was taken, else the first step n (0-based,
-    t_n → t_{n+1}) that lane needs more than the lean path for (its rows from n + 1 on are not
-    filled).
+def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the variant)
+    """``lean_lanes`` compiled for the vehicles' maps with the wheel loads held linear (``QUADRATIC`` False:
+    Lp = 0) or quadratic (True: a step in which a lane's wheel lands or lifts off is taken a second time,
+    module docstring).  Two variants, each compiled on its first use (``lean._make_lean``)."""
 
-    ``span`` as ``lean``'s: negative, the start state of a call with ``first`` = 0 (the run's start)
-    reads the road ahead only (``road_point``); every other evaluation the secant over |span|.
+    @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
+    def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
+                   d1, d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k,
+                   wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel,
+                   width, stations, elevations, r_max, span, xi, dxi, q, dq, ddxi, wheel_force, wheel_len, tol, stride, stop,
+                   first, last, fresh, carry_f, carry_p, carry_g, carry_pm, carry_gm, x_past):
+        """The lean step loop of L lanes (module docstring).  Arguments as ``lean``'s, but the road's
+        ``elevations`` of every lane (n_lines, n_s, L), ``r_max`` the highest of all, the outputs of
+        ``implicit`` but q̈ for L lanes (each (L, n_stored, ·), row 0 the static start; ``r_max`` is not read:
+        the lazy test reads the road under each point) and ``stop`` (L,),
+        int64, filled: −1 for a lane whose every step was taken, else the first step n (0-based,
+        t_n → t_{n+1}) that lane needs more than the lean path for (its rows from n + 1 on are not
+        filled).
 
-    The call takes steps ``first`` … ``last`` − 1 (``first`` a multiple of ``stride``), starting
-    from the stored row first / stride.  A lane with ``fresh`` set starts there as at t = 0 (the law
-    at that state, the forces extrapolated from it alone, row ``first`` / ``stride``'s loads and
-    accelerations written); any other lane goes on from the previous call's end, exactly as if
-    the loop had not stopped: its forces at the last two steps (``carry_f`` (2, n_cp, L)), modal
-    load (``carry_p`` (n_m, L)) and wheel loads (``carry_g`` (n_w, L)), which the call leaves
-    there for the next one when it returns with a live lane.  The hold's loads of the step before
-    (``carry_pm`` (n_m, L), ``carry_gm`` (n_w, L)) are carried the same way and read for every lane
-    but at the run's start (``first`` = 0: the start's own, the loads held constant before t_0); a
-    lane's are written at each row it stores, so that a frozen lane's are those before its last
-    stored row, where ``implicit`` goes on from, and a fresh lane comes with them filled.  Returns
-    the number of contact-law evaluations after the start (one a step, for all lanes at once).
-    ``x_past`` (n_cp,): the points' positions [m] a step before ``first`` (``lean``'s)."""
-    n_steps = last
-    n_l = xi.shape[0]
-    n_m = omega.size
-    n_d = free.shape[0] // 2
-    n_cp = origin.size
-    n_w = wheel_dof.shape[0]
-    x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
-    xf = np.empty((n_m, n_l)); vf = np.empty((n_m, n_l))
-    z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l))
-    zb = np.empty((2 * n_d, n_l))
-    r_first = first // stride
-    live = np.ones(n_l, np.bool_)  # lanes not frozen (a lane with ``stop`` −2 sits the call out)
-    n_live = n_l
-    for lane in range(n_l):
-        if stop[lane] == -2:
-            live[lane] = False
-            n_live -= 1
-        else:
-            stop[lane] = -1
-        for m in range(n_m):
-            x0[m, lane] = xi[lane, r_first, m]
-            v0[m, lane] = dxi[lane, r_first, m]
-        for j in range(n_d):
-            z0[j, lane] = q[lane, r_first, j]
-            z0[n_d + j, lane] = dq[lane, r_first, j]
-    p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
-    pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
-    pms = np.zeros((n_m, n_l)); gr = np.zeros((n_w, n_l))  # those of a step's start, for its second pass
-    corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
-    x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
-    contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``hold_jumps``)
-    dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
-    g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
-    wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
-    ksum = np.zeros((n_w, n_l)); csum = np.zeros((n_w, n_l))
-    veh = np.zeros((n_l + 1, n_w, n_w)); piv = np.zeros((n_l + 1, n_w), np.int64)
-    held = np.zeros((n_l + 1, 2 * n_w + 1))  # per lane, and (slot n_l) shared by lanes of the same sums
-    f = np.zeros((n_cp, n_l)); fo = np.zeros((n_cp, n_l)); fp = np.zeros((n_cp, n_l)); f_old = np.zeros((n_cp, n_l))
-    force = np.zeros((n_cp, n_l)); pen = np.zeros((n_cp, n_l)); law = np.zeros((n_cp, n_l))
-    active = np.zeros((n_cp, n_l), np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
-    xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros((n_cp, n_l)); rr = np.zeros((n_cp, n_l))
-    have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
-    idx = np.empty(n_cp, np.int64)
-    for k in range(n_cp):
-        idx[k] = -1  # no station pointer yet
-    phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
-    work = np.zeros(n_l, np.bool_)  # lanes taking the current update
-    flip = np.zeros(n_l, np.bool_)
-    err = np.zeros(n_l); bmax = np.zeros(n_l); zw = np.zeros(n_l); dzw = np.zeros(n_l); s_l = np.zeros(n_l)
-    sd_l = np.zeros(n_l); dr_l = np.zeros(n_l); b = np.zeros(n_l)
-    lo_on = np.zeros((n_w, n_l)); lo_off = np.zeros((n_w, n_l))
-    # the step's points that matter: ``nz`` those whose first guess is nonzero in some lane, ``rel``
-    # those and the used ones (every other point has F = 0 = law in every lane), ``use`` the used ones
-    nz = np.zeros(n_cp, np.bool_); rel = np.zeros(n_cp, np.int64); use = np.zeros(n_cp, np.int64)
-    evaluations = 0
-    quadratic = False  # a vehicle map with the wheel loads held quadratic (Lp ≠ 0): a landing or lift-off hands over
-    for i in range(2 * n_d):
-        for w in range(n_w):
-            if free_past[i, w] != 0.0:
-                quadratic = True
-    for n in range(first - 1, n_steps):  # n = first − 1: the start state (forces, loads and accelerations)
-        row = 2 * n + 2
+        ``span`` as ``lean``'s: negative, the start state of a call with ``first`` = 0 (the run's start)
+        reads the road ahead only (``road_point``); every other evaluation the secant over |span|.
+
+        The call takes steps ``first`` … ``last`` − 1 (``first`` a multiple of ``stride``), starting
+        from the stored row first / stride.  A lane with ``fresh`` set starts there as at t = 0 (the law
+        at that state, the forces extrapolated from it alone, row ``first`` / ``stride``'s loads and
+        accelerations written); any other lane goes on from the previous call's end, exactly as if
+        the loop had not stopped: its forces at the last two steps (``carry_f`` (2, n_cp, L)), modal
+        load (``carry_p`` (n_m, L)) and wheel loads (``carry_g`` (n_w, L)), which the call leaves
+        there for the next one when it returns with a live lane.  The hold's loads of the step before
+        (``carry_pm`` (n_m, L), ``carry_gm`` (n_w, L)) are carried the same way and read for every lane
+        but at the run's start (``first`` = 0: the start's own, the loads held constant before t_0); a
+        lane's are written at each row it stores, so that a frozen lane's are those before its last
+        stored row, where ``implicit`` goes on from, and a fresh lane comes with them filled.  Returns
+        the number of contact-law evaluations after the start (one a step, for all lanes at once).
+        ``x_past`` (n_cp,): the points' positions [m] a step before ``first`` (``lean``'s)."""
+        n_steps = last
+        n_l = xi.shape[0]
+        n_m = omega.size
+        n_d = free.shape[0] // 2
+        n_cp = origin.size
+        n_w = wheel_dof.shape[0]
+        x0 = np.empty((n_m, n_l)); v0 = np.empty((n_m, n_l)); x1 = np.empty((n_m, n_l)); v1 = np.empty((n_m, n_l))
+        xf = np.empty((n_m, n_l)); vf = np.empty((n_m, n_l))
+        z0 = np.empty((2 * n_d, n_l)); z1 = np.empty((2 * n_d, n_l))
+        zb = np.empty((2 * n_d, n_l))
+        r_first = first // stride
+        live = np.ones(n_l, np.bool_)  # lanes not frozen (a lane with ``stop`` −2 sits the call out)
+        n_live = n_l
+        for lane in range(n_l):
+            if stop[lane] == -2:
+                live[lane] = False
+                n_live -= 1
+            else:
+                stop[lane] = -1
+            for m in range(n_m):
+                x0[m, lane] = xi[lane, r_first, m]
+                v0[m, lane] = dxi[lane, r_first, m]
+            for j in range(n_d):
+                z0[j, lane] = q[lane, r_first, j]
+                z0[n_d + j, lane] = dq[lane, r_first, j]
+        p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
+        pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
+        pms = np.zeros((n_m, n_l)); gr = np.zeros((n_w, n_l))  # those of a step's start, for its second pass
+        corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
+        x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
+        contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``hold_jumps``)
+        dx = np.zeros((n_m, n_l)); dv = np.zeros((n_m, n_l))
+        g0 = np.zeros((n_w, n_l)); dfw = np.zeros((n_w, n_l)); fw = np.zeros((n_w, n_l)); wf = np.zeros((n_w, n_l))
+        wl = np.zeros((n_w, n_l)); bq = np.zeros((n_w, n_l)); bv = np.zeros((n_w, n_l)); t = np.zeros((n_w, n_l))
+        ksum = np.zeros((n_w, n_l)); csum = np.zeros((n_w, n_l))
+        veh = np.zeros((n_l + 1, n_w, n_w)); piv = np.zeros((n_l + 1, n_w), np.int64)
+        held = np.zeros((n_l + 1, 2 * n_w + 1))  # per lane, and (slot n_l) shared by lanes of the same sums
+        f = np.zeros((n_cp, n_l)); fo = np.zeros((n_cp, n_l)); fp = np.zeros((n_cp, n_l)); f_old = np.zeros((n_cp, n_l))
+        force = np.zeros((n_cp, n_l)); pen = np.zeros((n_cp, n_l)); law = np.zeros((n_cp, n_l))
+        active = np.zeros((n_cp, n_l), np.bool_); used = np.zeros(n_cp, np.bool_); onb = np.zeros(n_cp, np.bool_)
+        xp = np.empty(n_cp); vxp = np.empty(n_cp); rv = np.zeros((n_cp, n_l)); rr = np.zeros((n_cp, n_l))
+        have = np.zeros(n_cp, np.int64)  # + 1: mode shapes of this step's positions in phi, dphi; + 2: road
+        idx = np.empty(n_cp, np.int64)
         for k in range(n_cp):
-            vh = vehicle[k]
-            x_before[k] = x_start[k]  # (at n = first: ``x_past``, below)
-            x_start[k] = xp[k] if n >= first else x_past[k]
-            xp[k] = origin[k] + direction[k] * travel[row, vh]
-            vxp[k] = direction[k] * speed[row, vh]
-            onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
-            have[k] = 0
-        if n < first:
-            read = span if first == 0 else abs(span)  # (the run's start: the road ahead only when span < 0)
-            _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                       slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                       gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
-                       bmax, zw, dzw, s_l, sd_l, dr_l)
-            for m in range(n_m):
-                for lane in range(n_l):
-                    p[m, lane] = 0.0
+            idx[k] = -1  # no station pointer yet
+        phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m))
+        work = np.zeros(n_l, np.bool_)  # lanes taking the current update
+        flip = np.zeros(n_l, np.bool_)
+        err = np.zeros(n_l); bmax = np.zeros(n_l); zw = np.zeros(n_l); dzw = np.zeros(n_l); s_l = np.zeros(n_l)
+        sd_l = np.zeros(n_l); dr_l = np.zeros(n_l); b = np.zeros(n_l)
+        lo_on = np.zeros((n_w, n_l)); lo_off = np.zeros((n_w, n_l))
+        # the step's points that matter: ``nz`` those whose first guess is nonzero in some lane, ``rel``
+        # those and the used ones (every other point has F = 0 = law in every lane), ``use`` the used ones
+        nz = np.zeros(n_cp, np.bool_); rel = np.zeros(n_cp, np.int64); use = np.zeros(n_cp, np.int64)
+        evaluations = 0
+        passes = 2 if QUADRATIC else 1  # (the passes a step may take: a second one after a landing or lift-off)
+        for n in range(first - 1, n_steps):  # n = first − 1: the start state (forces, loads and accelerations)
+            row = 2 * n + 2
             for k in range(n_cp):
-                for lane in range(n_l):
-                    fk = force[k, lane] if used[k] else 0.0
-                    f[k, lane] = fk
-                    fo[k, lane] = fk
-                if used[k] and onb[k]:
-                    for m in range(n_m):
-                        ph = phi[k, m]
-                        for lane in range(n_l):
-                            p[m, lane] -= ph * f[k, lane]
-            for m in range(n_m):
-                for lane in range(n_l):
-                    x1[m, lane] = x0[m, lane]
-                    v1[m, lane] = v0[m, lane]
-            for i in range(2 * n_d):
-                for lane in range(n_l):
-                    z1[i, lane] = z0[i, lane]
-        else:
-            redo = False  # (a second pass: the step again with the jumped lanes' wheel loads held linear)
-            for attempt in range(2):
-                if attempt == 1:  # the step's start again (x0, v0, z0, p0 are kept by the step)
-                    for m in range(n_m):
-                        for lane in range(n_l):
-                            pm[m, lane] = pms[m, lane]
-                    for w in range(n_w):
-                        for lane in range(n_l):
-                            gm[w, lane] = gr[w, lane]
-                elif quadratic:
-                    for m in range(n_m):
-                        for lane in range(n_l):
-                            pms[m, lane] = pm[m, lane]
-                    for w in range(n_w):
-                        for lane in range(n_l):
-                            gr[w, lane] = gm[w, lane]
-                for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
-                    nonzero = False  # reads it too)
-                    for lane in range(n_l):
-                        fk = 2.0 * fo[k, lane] - fp[k, lane]
-                        f[k, lane] = fk
-                        nonzero = nonzero or fk != 0.0
-                    nz[k] = nonzero
-                share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
-                ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
-                                             sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
-                if ends:
-                    for m in range(n_m):
-                        for lane in range(n_l):
-                            corr[m, lane] += pm[m, lane]
-                past = corr if ends else pm
-                for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                    e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
-                    h2 = d2[m]
-                    for lane in range(n_l):
-                        xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
-                        vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
-                        pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
-                # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
-                _affine_lanes(free_constant, free, free_load, z0, g0, zb)
-                _add_product_lanes(free_past, gm, zb)
-                for w in range(n_w):
-                    for lane in range(n_l):
-                        gm[w, lane] = g0[w, lane]
-                _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
-                             xf, vf, zb, p, fw, x1, v1, z1)
-                evaluations += 1
-                read = abs(span)
-                _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
+                vh = vehicle[k]
+                x_before[k] = x_start[k]  # (at n = first: ``x_past``, below)
+                x_start[k] = xp[k] if n >= first else x_past[k]
+                xp[k] = origin[k] + direction[k] * travel[row, vh]
+                vxp[k] = direction[k] * speed[row, vh]
+                onb[k] = start[track[k]] <= xp[k] <= end[track[k]]
+                have[k] = 0
+            if n < first:
+                read = span if first == 0 else abs(span)  # (the run's start: the road ahead only when span < 0)
+                _law_lanes(x0, v0, z0, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
                            slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
                            gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
                            bmax, zw, dzw, s_l, sd_l, dr_l)
-                n_rel = np.int64(0)  # not a bare 0 (a literal-typed variant of _quasi_lanes)
-                n_use = 0
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        p[m, lane] = 0.0
                 for k in range(n_cp):
-                    if used[k]:
-                        dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
+                    for lane in range(n_l):
+                        fk = force[k, lane] if used[k] else 0.0
+                        f[k, lane] = fk
+                        fo[k, lane] = fk
+                    if used[k] and onb[k]:
+                        for m in range(n_m):
+                            ph = phi[k, m]
+                            for lane in range(n_l):
+                                p[m, lane] -= ph * f[k, lane]
+                for m in range(n_m):
+                    for lane in range(n_l):
+                        x1[m, lane] = x0[m, lane]
+                        v1[m, lane] = v0[m, lane]
+                for i in range(2 * n_d):
+                    for lane in range(n_l):
+                        z1[i, lane] = z0[i, lane]
+            else:
+                redo = False  # (a second pass: the step again with the jumped lanes' wheel loads held linear)
+                for attempt in range(passes):
+                    if QUADRATIC and attempt == 1:  # the step's start again (x0, v0, z0, p0 are kept by the step)
+                        for m in range(n_m):
+                            for lane in range(n_l):
+                                pm[m, lane] = pms[m, lane]
+                        for w in range(n_w):
+                            for lane in range(n_l):
+                                gm[w, lane] = gr[w, lane]
+                    elif QUADRATIC:
+                        for m in range(n_m):
+                            for lane in range(n_l):
+                                pms[m, lane] = pm[m, lane]
+                        for w in range(n_w):
+                            for lane in range(n_l):
+                                gr[w, lane] = gm[w, lane]
+                    for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
+                        nonzero = False  # reads it too)
                         for lane in range(n_l):
-                            dormant = dormant and pen[k, lane] <= 0.0
-                        if not dormant:
-                            use[n_use] = k
-                            n_use += 1
-                        elif onb[k]:
+                            fk = 2.0 * fo[k, lane] - fp[k, lane]
+                            f[k, lane] = fk
+                            nonzero = nonzero or fk != 0.0
+                        nz[k] = nonzero
+                    share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
+                    ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
+                                                 sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
+                    if ends:
+                        for m in range(n_m):
                             for lane in range(n_l):
-                                lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
-                        else:
+                                corr[m, lane] += pm[m, lane]
+                    past = corr if ends else pm
+                    for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                        e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
+                        h2 = d2[m]
+                        for lane in range(n_l):
+                            xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
+                            vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
+                            pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
+                    # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
+                    _affine_lanes(free_constant, free, free_load, z0, g0, zb)
+                    _add_product_lanes(free_past, gm, zb)
+                    for w in range(n_w):
+                        for lane in range(n_l):
+                            gm[w, lane] = g0[w, lane]
+                    _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
+                                 xf, vf, zb, p, fw, x1, v1, z1)
+                    evaluations += 1
+                    read = abs(span)
+                    _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
+                               slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                               gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                               bmax, zw, dzw, s_l, sd_l, dr_l)
+                    n_rel = np.int64(0)  # not a bare 0 (a literal-typed variant of _quasi_lanes)
+                    n_use = 0
+                    for k in range(n_cp):
+                        if used[k]:
+                            dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
                             for lane in range(n_l):
-                                lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
-                    if used[k] or nz[k]:
-                        rel[n_rel] = k
-                        n_rel += 1
-                for lane in range(n_l):
-                    err[lane] = 0.0
-                for i in range(n_rel):
-                    k = rel[i]
+                                dormant = dormant and pen[k, lane] <= 0.0
+                            if not dormant:
+                                use[n_use] = k
+                                n_use += 1
+                            elif onb[k]:
+                                for lane in range(n_l):
+                                    lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
+                            else:
+                                for lane in range(n_l):
+                                    lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
+                        if used[k] or nz[k]:
+                            rel[n_rel] = k
+                            n_rel += 1
                     for lane in range(n_l):
-                        err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
-                n_work = 0
-                for lane in range(n_l):
-                    work[lane] = live[lane] and err[lane] > tol
-                    n_work += 1 if work[lane] else 0
-                for w in range(n_w):
+                        err[lane] = 0.0
+                    for i in range(n_rel):
+                        k = rel[i]
+                        for lane in range(n_l):
+                            err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
+                    n_work = 0
                     for lane in range(n_l):
-                        dfw[w, lane] = 0.0
-                r = 0
-                while n_work > 0:  # quasi-Newton updates, the law at each iterate by the exact increments
-                    if r == LEAN_CORRECTIONS:
-                        for lane in range(n_l):  # not settled by the corrections
-                            if work[lane]:
+                        work[lane] = live[lane] and err[lane] > tol
+                        n_work += 1 if work[lane] else 0
+                    for w in range(n_w):
+                        for lane in range(n_l):
+                            dfw[w, lane] = 0.0
+                    r = 0
+                    while n_work > 0:  # quasi-Newton updates, the law at each iterate by the exact increments
+                        if r == LEAN_CORRECTIONS:
+                            for lane in range(n_l):  # not settled by the corrections
+                                if work[lane]:
+                                    live[lane] = False
+                                    stop[lane] = n
+                                    n_live -= 1
+                            break
+                        r += 1
+                        for w in range(n_w):  # F_w of the current forces
+                            for lane in range(n_l):
+                                fw[w, lane] += dfw[w, lane]
+                        for i in range(n_rel):
+                            k = rel[i]
+                            for lane in range(n_l):
+                                f_old[k, lane] = f[k, lane]
+                        _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
+                                     t, work, rel, n_rel)
+                        for m in range(n_m):
+                            for lane in range(n_l):
+                                dp[m, lane] = 0.0
+                        for w in range(n_w):
+                            for lane in range(n_l):
+                                dfw[w, lane] = -fw[w, lane]
+                        for i in range(n_rel):
+                            k = rel[i]
+                            wk = wheel[k]
+                            for lane in range(n_l):
+                                dfw[wk, lane] += f[k, lane]
+                            if onb[k]:
+                                changed = False
+                                for lane in range(n_l):
+                                    changed = changed or f[k, lane] != f_old[k, lane]
+                                if changed:
+                                    for m in range(n_m):
+                                        ph = phi[k, m]
+                                        for lane in range(n_l):
+                                            dp[m, lane] -= ph * (f[k, lane] - f_old[k, lane])
+                        for lane in range(n_l):
+                            b[lane] = 0.0
+                            if not work[lane]:
+                                for w in range(n_w):
+                                    dfw[w, lane] = 0.0
+                        for m in range(n_m):  # the deck's change, and the state of the new iterate
+                            e1 = c1[m]
+                            e2 = c2[m]
+                            am = amp[m]
+                            for lane in range(n_l):
+                                dx[m, lane] = e1 * dp[m, lane]
+                                dv[m, lane] = e2 * dp[m, lane]
+                                b[lane] += am * abs(dx[m, lane])
+                                p[m, lane] += dp[m, lane]
+                                x1[m, lane] += dx[m, lane]
+                                v1[m, lane] += dv[m, lane]
+                        _add_product_lanes(response, dfw, z1)  # z = z_b + (P L1) F_w
+                        for lane in range(n_l):
+                            err[lane] = 0.0
+                            flip[lane] = False  # the lane needs more than this step (set in loops the compiler vectorises)
+                        for w in range(n_w):  # points left out by the lazy test or off the road in every lane: δ must
+                            # stay ≤ 0, watched through each wheel's largest δ (or bound on it) plus the increments' bound
+                            for lane in range(n_l):
+                                lo_on[w, lane] += bq[w, lane] + b[lane]
+                                lo_off[w, lane] += bq[w, lane]
+                                flip[lane] = flip[lane] or lo_on[w, lane] > 0.0 or lo_off[w, lane] > 0.0
+                        for i in range(n_use):  # the law of the other used points by the exact increments
+                            k = use[i]
+                            w = wheel[k]
+                            for lane in range(n_l):
+                                s_l[lane] = 0.0
+                                dr_l[lane] = 0.0
+                                sd_l[lane] = 0.0
+                            if onb[k]:
+                                for m in range(n_m):
+                                    ph = phi[k, m]
+                                    dph = dphi[k, m]
+                                    for lane in range(n_l):
+                                        s_l[lane] += ph * dx[m, lane]
+                                        dr_l[lane] += ph * dv[m, lane]
+                                        sd_l[lane] += dph * dx[m, lane]
+                            kc = kk[k]
+                            ck = cc[k]
+                            vx = vxp[k]
+                            gk = gated[k]
+                            for lane in range(n_l):
+                                dpen = s_l[lane] + bq[w, lane]
+                                pen[k, lane] += dpen
+                                law[k, lane] += kc * dpen + ck * (dr_l[lane] + vx * sd_l[lane] + bv[w, lane])
+                                fl = law[k, lane]
+                                on = not gk or (pen[k, lane] > 0.0 and fl > 0.0)
+                                fk = fl if on else 0.0
+                                flip[lane] = flip[lane] or on != active[k, lane]  # a contact opens or closes
+                                force[k, lane] = fk
+                                err[lane] = max(err[lane], abs(fk - f[k, lane]))
+                        n_work = 0
+                        for lane in range(n_l):
+                            if work[lane] and flip[lane]:  # frozen at this step
+                                work[lane] = False
                                 live[lane] = False
                                 stop[lane] = n
                                 n_live -= 1
-                        break
-                    r += 1
-                    for w in range(n_w):  # F_w of the current forces
+                            work[lane] = work[lane] and err[lane] > tol
+                            n_work += 1 if work[lane] else 0
+                    if n_live == 0:
+                        return evaluations
+                    for w in range(n_w):
                         for lane in range(n_l):
                             fw[w, lane] += dfw[w, lane]
-                    for i in range(n_rel):
-                        k = rel[i]
-                        for lane in range(n_l):
-                            f_old[k, lane] = f[k, lane]
-                    _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, held, veh, piv, bq, bv,
-                                 t, work, rel, n_rel)
-                    for m in range(n_m):
-                        for lane in range(n_l):
-                            dp[m, lane] = 0.0
-                    for w in range(n_w):
-                        for lane in range(n_l):
-                            dfw[w, lane] = -fw[w, lane]
-                    for i in range(n_rel):
-                        k = rel[i]
-                        wk = wheel[k]
-                        for lane in range(n_l):
-                            dfw[wk, lane] += f[k, lane]
-                        if onb[k]:
-                            changed = False
-                            for lane in range(n_l):
-                                changed = changed or f[k, lane] != f_old[k, lane]
-                            if changed:
-                                for m in range(n_m):
-                                    ph = phi[k, m]
-                                    for lane in range(n_l):
-                                        dp[m, lane] -= ph * (f[k, lane] - f_old[k, lane])
-                    for lane in range(n_l):
-                        b[lane] = 0.0
-                        if not work[lane]:
+                            wf[w, lane] = fw[w, lane]
+                    if not QUADRATIC or attempt == 1:
+                        break
+                    for lane in range(n_l):  # a wheel lands or lifts off within the step (``lean``): that lane
+                        if live[lane]:  # again with G_{n−1} = 2G_n − G_{n+1} of this pass (the others alike)
                             for w in range(n_w):
-                                dfw[w, lane] = 0.0
-                    for m in range(n_m):  # the deck's change, and the state of the new iterate
-                        e1 = c1[m]
-                        e2 = c2[m]
-                        am = amp[m]
-                        for lane in range(n_l):
-                            dx[m, lane] = e1 * dp[m, lane]
-                            dv[m, lane] = e2 * dp[m, lane]
-                            b[lane] += am * abs(dx[m, lane])
-                            p[m, lane] += dp[m, lane]
-                            x1[m, lane] += dx[m, lane]
-                            v1[m, lane] += dv[m, lane]
-                    _add_product_lanes(response, dfw, z1)  # z = z_b + (P L1) F_w
-                    for lane in range(n_l):
-                        err[lane] = 0.0
-                        flip[lane] = False  # the lane needs more than this step (set in loops the compiler vectorises)
-                    for w in range(n_w):  # points left out by the lazy test or off the road in every lane: δ must
-                        # stay ≤ 0, watched through each wheel's largest δ (or bound on it) plus the increments' bound
-                        for lane in range(n_l):
-                            lo_on[w, lane] += bq[w, lane] + b[lane]
-                            lo_off[w, lane] += bq[w, lane]
-                            flip[lane] = flip[lane] or lo_on[w, lane] > 0.0 or lo_off[w, lane] > 0.0
-                    for i in range(n_use):  # the law of the other used points by the exact increments
-                        k = use[i]
-                        w = wheel[k]
-                        for lane in range(n_l):
-                            s_l[lane] = 0.0
-                            dr_l[lane] = 0.0
-                            sd_l[lane] = 0.0
-                        if onb[k]:
-                            for m in range(n_m):
-                                ph = phi[k, m]
-                                dph = dphi[k, m]
-                                for lane in range(n_l):
-                                    s_l[lane] += ph * dx[m, lane]
-                                    dr_l[lane] += ph * dv[m, lane]
-                                    sd_l[lane] += dph * dx[m, lane]
-                        kc = kk[k]
-                        ck = cc[k]
-                        vx = vxp[k]
-                        gk = gated[k]
-                        for lane in range(n_l):
-                            dpen = s_l[lane] + bq[w, lane]
-                            pen[k, lane] += dpen
-                            law[k, lane] += kc * dpen + ck * (dr_l[lane] + vx * sd_l[lane] + bv[w, lane])
-                            fl = law[k, lane]
-                            on = not gk or (pen[k, lane] > 0.0 and fl > 0.0)
-                            fk = fl if on else 0.0
-                            flip[lane] = flip[lane] or on != active[k, lane]  # a contact opens or closes
-                            force[k, lane] = fk
-                            err[lane] = max(err[lane], abs(fk - f[k, lane]))
-                    n_work = 0
-                    for lane in range(n_l):
-                        if work[lane] and flip[lane]:  # frozen at this step
-                            work[lane] = False
-                            live[lane] = False
-                            stop[lane] = n
-                            n_live -= 1
-                        work[lane] = work[lane] and err[lane] > tol
-                        n_work += 1 if work[lane] else 0
-                if n_live == 0:
-                    return evaluations
-                for w in range(n_w):
-                    for lane in range(n_l):
-                        fw[w, lane] += dfw[w, lane]
-                        wf[w, lane] = fw[w, lane]
-                if not quadratic or attempt == 1:
-                    break
-                for lane in range(n_l):  # a wheel lands or lifts off within the step (``lean``): that lane
-                    if live[lane]:  # again with G_{n−1} = 2G_n − G_{n+1} of this pass (the others alike)
-                        for w in range(n_w):
-                            if (wf[w, lane] > 0.0) != contact[w, lane]:
-                                redo = True
-                                for w2 in range(n_w):
-                                    a = wf[w2, lane]
-                                    for e in range(wheel_dof.shape[1]):
-                                        h = wheel_h[w2, e]
-                                        if h != 0.0:
-                                            j = wheel_dof[w2, e]
-                                            a += h * (wheel_k[w2] * z1[j, lane] + wheel_c[w2] * z1[n_d + j, lane])
-                                    gr[w2, lane] = 2.0 * g0[w2, lane] - a
-                                break
-                if not redo:
-                    break
-        # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
-        for w in range(n_w):
-            kw = wheel_k[w]
-            cw = wheel_c[w]
-            for lane in range(n_l):
-                g0[w, lane] = wf[w, lane]
-            for e in range(wheel_dof.shape[1]):
-                h = wheel_h[w, e]
-                if h != 0.0:
-                    j = wheel_dof[w, e]
-                    for lane in range(n_l):
-                        g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
-        if n >= first:  # a wheel that lands or lifts off: the next step holds from here on
-            # MANY_LANES as int64s, not the global's literal 0s: hold_jumps keeps the one signature implicit
-            # gives it (a literal-typed tuple compiled it a second time)
-            hold_jumps(wf, contact, g0, p, pm, gm, jumped, (np.int64(MANY_LANES[0]), np.int64(MANY_LANES[1])))
-        else:  # (the wheels in contact at the start)
+                                if (wf[w, lane] > 0.0) != contact[w, lane]:
+                                    redo = True
+                                    for w2 in range(n_w):
+                                        a = wf[w2, lane]
+                                        for e in range(wheel_dof.shape[1]):
+                                            h = wheel_h[w2, e]
+                                            if h != 0.0:
+                                                j = wheel_dof[w2, e]
+                                                a += h * (wheel_k[w2] * z1[j, lane] + wheel_c[w2] * z1[n_d + j, lane])
+                                        gr[w2, lane] = 2.0 * g0[w2, lane] - a
+                                    break
+                    if not redo:
+                        break
+            # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
             for w in range(n_w):
+                kw = wheel_k[w]
+                cw = wheel_c[w]
                 for lane in range(n_l):
-                    contact[w, lane] = wf[w, lane] > 0.0
-        for m in range(n_m):
-            e1 = 2.0 * zeta[m] * omega[m]
-            e2 = omega[m] * omega[m]
-            for lane in range(n_l):
-                acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
-        if (n + 1) % stride == 0:
-            r_out = (n + 1) // stride
-            for lane in range(n_l):
-                if not live[lane] or (n < first and not fresh[lane]):
-                    continue
-                for m in range(n_m):
-                    if n >= first:
-                        xi[lane, r_out, m] = x1[m, lane]
-                        dxi[lane, r_out, m] = v1[m, lane]
-                    ddxi[lane, r_out, m] = acc[m, lane]
-                if n >= first:
-                    for j in range(n_d):
-                        q[lane, r_out, j] = z1[j, lane]
-                        dq[lane, r_out, j] = z1[n_d + j, lane]
+                    g0[w, lane] = wf[w, lane]
+                for e in range(wheel_dof.shape[1]):
+                    h = wheel_h[w, e]
+                    if h != 0.0:
+                        j = wheel_dof[w, e]
+                        for lane in range(n_l):
+                            g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
+            if n >= first:  # a wheel that lands or lifts off: the next step holds from here on
+                # MANY_LANES as int64s, not the global's literal 0s: hold_jumps keeps the one signature implicit
+                # gives it (a literal-typed tuple compiled it a second time)
+                hold_jumps(wf, contact, g0, p, pm, gm, jumped, (np.int64(MANY_LANES[0]), np.int64(MANY_LANES[1])))
+            else:  # (the wheels in contact at the start)
                 for w in range(n_w):
-                    wheel_force[lane, r_out, w] = wf[w, lane]
-                    wheel_len[lane, r_out, w] = wl[w, lane]
-                if n >= first:  # the hold's loads of the step before the row (the start's: below)
+                    for lane in range(n_l):
+                        contact[w, lane] = wf[w, lane] > 0.0
+            for m in range(n_m):
+                e1 = 2.0 * zeta[m] * omega[m]
+                e2 = omega[m] * omega[m]
+                for lane in range(n_l):
+                    acc[m, lane] = p[m, lane] - e1 * v1[m, lane] - e2 * x1[m, lane]
+            if (n + 1) % stride == 0:
+                r_out = (n + 1) // stride
+                for lane in range(n_l):
+                    if not live[lane] or (n < first and not fresh[lane]):
+                        continue
                     for m in range(n_m):
+                        if n >= first:
+                            xi[lane, r_out, m] = x1[m, lane]
+                            dxi[lane, r_out, m] = v1[m, lane]
+                        ddxi[lane, r_out, m] = acc[m, lane]
+                    if n >= first:
+                        for j in range(n_d):
+                            q[lane, r_out, j] = z1[j, lane]
+                            dq[lane, r_out, j] = z1[n_d + j, lane]
+                    for w in range(n_w):
+                        wheel_force[lane, r_out, w] = wf[w, lane]
+                        wheel_len[lane, r_out, w] = wl[w, lane]
+                    if n >= first:  # the hold's loads of the step before the row (the start's: below)
+                        for m in range(n_m):
+                            carry_pm[m, lane] = pm[m, lane]
+                        for w in range(n_w):
+                            carry_gm[w, lane] = gm[w, lane]
+            if n >= first:
+                for k in range(n_cp):
+                    for lane in range(n_l):
+                        fp[k, lane] = fo[k, lane]
+                        fo[k, lane] = f[k, lane]
+                x0, x1 = x1, x0
+                v0, v1 = v1, v0
+                z0, z1 = z1, z0
+            else:
+                for k in range(n_cp):
+                    for lane in range(n_l):
+                        fp[k, lane] = fo[k, lane]
+                for lane in range(n_l):  # lanes going on: the state the previous call ended with
+                    if not fresh[lane]:
+                        for k in range(n_cp):
+                            fo[k, lane] = carry_f[0, k, lane]
+                            fp[k, lane] = carry_f[1, k, lane]
+                        for m in range(n_m):
+                            p[m, lane] = carry_p[m, lane]
+                        for w in range(n_w):
+                            g0[w, lane] = carry_g[w, lane]
+                    for m in range(n_m):  # the hold's loads before the start: held constant at the run's start
+                        pm[m, lane] = p[m, lane] if first == 0 else carry_pm[m, lane]
                         carry_pm[m, lane] = pm[m, lane]
                     for w in range(n_w):
+                        gm[w, lane] = g0[w, lane] if first == 0 else carry_gm[w, lane]
                         carry_gm[w, lane] = gm[w, lane]
-        if n >= first:
-            for k in range(n_cp):
-                for lane in range(n_l):
-                    fp[k, lane] = fo[k, lane]
-                    fo[k, lane] = f[k, lane]
-            x0, x1 = x1, x0
-            v0, v1 = v1, v0
-            z0, z1 = z1, z0
-        else:
-            for k in range(n_cp):
-                for lane in range(n_l):
-                    fp[k, lane] = fo[k, lane]
-            for lane in range(n_l):  # lanes going on: the state the previous call ended with
-                if not fresh[lane]:
-                    for k in range(n_cp):
-                        fo[k, lane] = carry_f[0, k, lane]
-                        fp[k, lane] = carry_f[1, k, lane]
-                    for m in range(n_m):
-                        p[m, lane] = carry_p[m, lane]
-                    for w in range(n_w):
-                        g0[w, lane] = carry_g[w, lane]
-                for m in range(n_m):  # the hold's loads before the start: held constant at the run's start
-                    pm[m, lane] = p[m, lane] if first == 0 else carry_pm[m, lane]
-                    carry_pm[m, lane] = pm[m, lane]
-                for w in range(n_w):
-                    gm[w, lane] = g0[w, lane] if first == 0 else carry_gm[w, lane]
+            p0, p = p, p0
+        for k in range(n_cp):  # the state the next call goes on from
+            for lane in range(n_l):
+                carry_f[0, k, lane] = fo[k, lane]
+                carry_f[1, k, lane] = fp[k, lane]
+        for m in range(n_m):
+            for lane in range(n_l):
+                carry_p[m, lane] = p0[m, lane]
+        for w in range(n_w):
+            for lane in range(n_l):
+                carry_g[w, lane] = g0[w, lane]
+                if live[lane]:
                     carry_gm[w, lane] = gm[w, lane]
-        p0, p = p, p0
-    for k in range(n_cp):  # the state the next call goes on from
-        for lane in range(n_l):
-            carry_f[0, k, lane] = fo[k, lane]
-            carry_f[1, k, lane] = fp[k, lane]
-    for m in range(n_m):
-        for lane in range(n_l):
-            carry_p[m, lane] = p0[m, lane]
-    for w in range(n_w):
-        for lane in range(n_l):
-            carry_g[w, lane] = g0[w, lane]
-            if live[lane]:
-                carry_gm[w, lane] = gm[w, lane]
-    for m in range(n_m):
-        for lane in range(n_l):
-            if live[lane]:
-                carry_pm[m, lane] = pm[m, lane]
-    return evaluations
+        for m in range(n_m):
+            for lane in range(n_l):
+                if live[lane]:
+                    carry_pm[m, lane] = pm[m, lane]
+        return evaluations
+
+    return lean_lanes
+
+
+#: the variants of ``lean_lanes``: the wheel loads held linear (the default) and quadratic
+lean_lanes = _make_lean_lanes(False)
+lean_lanes_quadratic = _make_lean_lanes(True)
