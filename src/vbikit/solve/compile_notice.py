@@ -30,7 +30,7 @@ compile_log = logging.getLogger("vbikit.solve.compile")
 #: ``linear_recursion``, the run-in's loops (``vbikit.solve.run_in``): 1.7 s the two with ``lean`` already
 #: compiled (an HS20-44 with a 40 m run-in after one without, fresh ``NUMBA_CACHE_DIR``, ``time.process_time``;
 #: 2026-12-06, slow state), rounded up.  Any other kernel: ``lean``'s.
-COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "implicit": 60, "run_in_loads": 2, "linear_recursion": 1}
+COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "lean_quadratic": 7, "lean_lanes_quadratic": 22, "implicit": 60, "run_in_loads": 2, "linear_recursion": 1}
 
 
 def compile_seconds(kernel) -> int:

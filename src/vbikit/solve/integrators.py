@@ -164,10 +164,10 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     event_step = vehicle_step if event_step is None else event_step
     loads = np.abs(call.crossing.vehicle.static_wheel_loads())
     tol = IMPLICIT_TOLERANCE * max(float(loads.max(initial=0.0)), 1.0)
-    if not USE_LEAN or np.any(data.vehicles.wheel_envelope):
+    envelopes = bool(np.any(data.vehicles.wheel_envelope))  # (rigid disks: the full kernel, linear hold)
+    if not USE_LEAN or envelopes:
         LEAN_COUNTS["implicit"] += 1
-        whole = event_step if np.any(data.vehicles.wheel_envelope) else vehicle_step
-        _full(call, modal_step, whole, tol, call.motion, call.road, call.outputs, 0,
+        _full(call, modal_step, event_step if envelopes else vehicle_step, tol, call.motion, call.road, call.outputs, 0,
               _no_past(call, call.outputs[0].shape[0]))
         return
     if len(call.lanes) == 1:

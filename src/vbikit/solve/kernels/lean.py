@@ -267,7 +267,6 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
     default path compiles none of the quadratic hold's code (numba prunes the branches on the closure's
     constant ``QUADRATIC`` before it types them: every test of the hold starts with it)."""
 
-    @njit(nogil=True, **FLAT_OPTIONS)
     def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2, d1,
              d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
              wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, width,
@@ -503,7 +502,8 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
             n += 1
         return stop, evaluations
 
-    return lean
+    lean.__name__ = lean.__qualname__ = "lean_quadratic" if QUADRATIC else "lean"  # (each its own notice and cache)
+    return njit(nogil=True, **FLAT_OPTIONS)(lean)
 
 
 #: the variants of ``lean``: the wheel loads held linear (the default) and quadratic
@@ -513,7 +513,8 @@ lean_quadratic = _make_lean(True)
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (12, n_m), per vehicle state (2, 2 n_d), per wheel (13, n_w), the held active
+    (16, n_m), per vehicle state (3, 2 n_d), per wheel (14, n_w) (the last rows of each: a step's start and
+    G_{n−1} kept for its second pass, ``lean_quadratic``), the held active
     sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (13, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation

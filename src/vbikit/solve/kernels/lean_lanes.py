@@ -324,7 +324,6 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
     Lp = 0) or quadratic (True: a step in which a lane's wheel lands or lifts off is taken a second time,
     module docstring).  Two variants, each compiled on its first use (``lean._make_lean``)."""
 
-    @njit(cache=True, fastmath=True, error_model="numpy", nogil=True)
     def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
                    d1, d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k,
                    wheel_c, wheel_first, wheel_count, origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel,
@@ -751,7 +750,8 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
                     carry_pm[m, lane] = pm[m, lane]
         return evaluations
 
-    return lean_lanes
+    lean_lanes.__name__ = lean_lanes.__qualname__ = "lean_lanes_quadratic" if QUADRATIC else "lean_lanes"
+    return njit(cache=True, fastmath=True, error_model="numpy", nogil=True)(lean_lanes)
 
 
 #: the variants of ``lean_lanes``: the wheel loads held linear (the default) and quadratic
