@@ -153,13 +153,14 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
     updates), ``implicit`` goes on with that lane alone from the last state stored (``LEAN_COUNTS``).
     Its start there evaluates the law at that state and extrapolates from it alone, so the rest of
     the run differs from an ``implicit`` run from t = 0 by the order of the tolerance
-    (``IMPLICIT_TOLERANCE`` of the largest wheel load).
+    (``IMPLICIT_TOLERANCE`` of the largest wheel load).  ``event_step`` (None: ``vehicle_step``) is the
+    vehicles' map of the full kernel's steps, those handed over and rigid-disk runs (the exact integrator's
+    linear hold where its lean kernels hold the loads quadratic, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``);
+    the lean kernels take the variant for ``vehicle_step`` (``_lean``).
 
     The lean kernels leave the vehicles' accelerations q̈ out of the step loop: when they ran,
     ``"q_ddot"`` is added to ``call.deferred`` (the results compute q̈ when read,
     ``vbikit.solve.result.DeferredAccelerations``); ``implicit`` alone fills every output."""
-    from vbikit.solve import kernels
-
     data, name = call.data, call.crossing.integrator
     event_step = vehicle_step if event_step is None else event_step
     loads = np.abs(call.crossing.vehicle.static_wheel_loads())
@@ -199,7 +200,6 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     wheel loads: exactly as a lane that did not stop), or afresh when a window ended there (the law at
     that state, the forces extrapolated from it alone: as the lane alone restarts after a window); the
     other lanes go on exactly (``lean_lanes``' carried state)."""
-    from vbikit.solve import kernels
     from vbikit.solve.compile_notice import announce_compile
 
     lean_lanes = _lean(vehicle_step, lanes=True)
