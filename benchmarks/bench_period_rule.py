@@ -1,9 +1,10 @@
-"""What the exact integrator's first-period rule (100 steps per period of the first bridge mode,
-``vbikit.solve.timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``) costs the paper programme, and what it buys.
+"""What the exact integrator's first-period rule (steps per period of the first bridge mode,
+``vbikit.solve.timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``: 100 for every result, 50 for runs that resolve
+deflections only, as the paper programme's) costs the paper programme, and what it buys.
 
     python benchmarks/bench_period_rule.py              # seven cells of the programme, ≈ 1 min
     python benchmarks/bench_period_rule.py --per 100 50 25 12.5
-    python benchmarks/bench_period_rule.py --hold hybrid     # the wheel loads quadratic on the lean steps
+    python benchmarks/bench_period_rule.py --hold linear     # the wheel loads linear on every step
 
 The paper programme (``bench_studies.py``) is bound by its step count: its lanes run at or below the
 floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set by the first bridge period
@@ -11,13 +12,13 @@ floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set b
 classes B and C, and up to 53 km/h on class D and with Fig. 11's depression (2 cm of road a step).  For
 seven cells of the programme (the paper's 3D bridges at Girder 4, first road profile of the cell), each
 crossing is run at the automatic step the rule gives with ``--per`` steps a first period, and at an eighth
-of the step of 100 (the reference); printed per cell and rule: the step, the number of steps, the thread
+of the step of 100 (the reference, the same for every rule and hold); printed per cell and rule: the step, the number of steps, the thread
 CPU time of ``simulate`` and the displacement IM's difference from the reference.  The programme's
 accuracy criterion is 1e-3 per crossing against converged RK4 (docs/verification.md, "The paper
 programme against RK4"); the automatic step's own bound in the convergence table is 5e-4.
 
 ``--hold`` sets how the exact integrator holds the vehicles' wheel loads over a step, reference included:
-``linear`` on every step (the library's default), ``hybrid`` (quadratic on the lean kernels' steps, a
+``linear`` on every step, ``hybrid`` (the library's default: quadratic on the lean kernels' steps, a
 landing's step taken again with the linear hold's loads, linear in the full kernel:
 ``vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS``) or ``quadratic`` in both kernels (``modal_step.vehicle_step``'s
 ``QUADRATIC`` for the full kernel's map too: a trial);
@@ -67,9 +68,10 @@ def _run(built, dt: float) -> tuple[float, int, float]:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--per", type=float, nargs="+", default=[100.0, 50.0, 25.0],
-                   help="steps per first bridge period to compare (default 100 50 25; 100 is the library's)")
-    p.add_argument("--hold", choices=("linear", "hybrid", "quadratic"), default="linear",
-                   help="the vehicles' wheel loads over a step (the library's: linear; see the docstring)")
+                   help="steps per first bridge period to compare (default 100 50 25; the library's: 100, 50 for "
+                        "deflections only)")
+    p.add_argument("--hold", choices=("linear", "hybrid", "quadratic"), default="hybrid",
+                   help="the vehicles' wheel loads over a step (the library's: hybrid; see the docstring)")
     p.add_argument("--vehicle-steps", type=float, default=None,
                    help="steps per period of the highest vehicle mode (the library's: 20)")
     args = p.parse_args()
@@ -82,10 +84,9 @@ def main() -> None:
     default = ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD
     if args.vehicle_steps is not None:
         ts.EXACT_STEPS_PER_VEHICLE_PERIOD = args.vehicle_steps
-    if args.hold == "hybrid":
-        import vbikit.solve.builtin_integrators as builtin
+    import vbikit.solve.builtin_integrators as builtin
 
-        builtin.QUADRATIC_WHEEL_LOADS = True
+    builtin.QUADRATIC_WHEEL_LOADS = args.hold != "linear"
     if args.hold == "quadratic":  # the exact integrator's vehicle maps with G quadratic (modal_step.QUADRATIC)
         import vbikit.solve.modal_step as modal_step
 
@@ -96,11 +97,11 @@ def main() -> None:
         assert built.crossing.run_in == 0  # (a run-in's recursion reads the linear map only: --hold would not reach it)
         steps = {}
         for per in args.per:
-            ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = per
+            ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = dict.fromkeys(default, per)
             steps[per] = ts.implicit_time_step(built.crossing)
         ts.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD = default
         _run(built, steps[args.per[0]])  # warm-up (kernels, the cell's tables)
-        ref = _run(built, ts.implicit_time_step(built.crossing) / 8)[0]
+        ref = _run(built, ts.implicit_time_step(dataclasses.replace(built.crossing, resolve="effects")) / 8)[0]
         cells = []
         for per, dt in steps.items():
             im, n, spent = _run(built, dt)

@@ -72,6 +72,15 @@ def _study_toml(d: dict) -> str:
 
 
 @pytest.fixture
+def linear_wheel_loads(monkeypatch):
+    """The exact integrator's wheel loads held linear on every step (``builtin_integrators.QUADRATIC_WHEEL_LOADS``
+    = False), for tests of the kernels' machinery that compare a lean run with the full kernel, which holds them
+    linear: with the default quadratic hold on the lean steps the two differ by the hold's own error, not by
+    round-off.  (tests/unit/test_wheel_load_hold.py checks the quadratic hold against both.)"""
+    monkeypatch.setattr("vbikit.solve.builtin_integrators.QUADRATIC_WHEEL_LOADS", False)
+
+
+@pytest.fixture
 def study_toml():
     """The function writing a study dict as study-file text (shared by the study and trust tests)."""
     return _study_toml

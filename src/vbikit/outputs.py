@@ -115,6 +115,11 @@ class Output:
         The load-effect kind (``"moment"``, ``"shear"``, ``"reaction"``) the reducer reads from
         ``Reduction.effects``; a run that asks for none of these outputs does not compute that
         kind's histories (``effect_kinds``).
+    resolve : str
+        The coarsest ``Crossing.resolve`` whose automatic step keeps this output within the step's accuracy
+        bound (``vbikit.solve.crossing.RESOLVES``): "deflections" (the deck's deflections, tire forces, step
+        counts) or "effects" (the default: accelerations, velocities, strains, moments, shears, reactions).
+        A run that asks only for "deflections" outputs may take the coarser step (``outputs_resolve``).
     """
 
     name: str
@@ -123,6 +128,7 @@ class Output:
     scope: Scope
     reduce: Callable[[Reduction], Optional[float]]
     effect: Optional[str] = None
+    resolve: str = "effects"
 
     @property
     def cf_unit(self) -> str:
@@ -201,6 +207,12 @@ def effect_kinds(names: Optional[Sequence[str]] = None) -> set[str]:
     return {o.effect for o in outputs(names=names) if o.effect is not None}
 
 
+def outputs_resolve(names: Optional[Sequence[str]] = None) -> str:
+    """What a run reducing the outputs ``names`` (None: all) must resolve (``Crossing.resolve``):
+    "deflections" when every one of them is resolved at that step (``Output.resolve``), else "effects"."""
+    return "deflections" if all(o.resolve == "deflections" for o in outputs(names=names)) else "effects"
+
+
 def reduce_outputs(reduction: Reduction, scope: Scope,
                    names: Optional[Sequence[str]] = None) -> dict[str, Optional[float]]:
     """Every output of ``scope`` (only those in ``names`` when given) for ``reduction``: name →
@@ -231,6 +243,10 @@ for _name, _unit, _long, _fn in (
      lambda r: r.point.displacement_impact.static_peak),
     ("time_of_max_dynamic_displacement", "s", "time of the dynamic peak displacement",
      lambda r: r.point.displacement_impact.time_dynamic_peak),
+):
+    register_output(Output(_name, _unit, _long, "point", _fn, resolve="deflections"))
+
+for _name, _unit, _long, _fn in (
     ("strain_impact_factor", "-", "bottom-fibre strain impact factor at the response point",
      lambda r: r.point.strain_impact.impact_factor),
     ("max_dynamic_strain", "-", "dynamic peak bottom-fibre strain (tension positive)",
@@ -252,7 +268,7 @@ def _min_tire_force(r: Reduction) -> Optional[float]:
 
 
 register_output(Output("min_tire_force", "N", "smallest tire force over the crossing (0: a tire lost contact)",
-                       "crossing", _min_tire_force))
+                       "crossing", _min_tire_force, resolve="deflections"))
 
 
 def _effect(kind: str, attribute: str) -> Callable[[Reduction], Optional[float]]:
@@ -272,12 +288,14 @@ for _kind, _what, _unit in (("moment", "sagging positive", "N m"), ("shear", "dM
                                f"(default the bridge's first); absent (NaN) if the bridge has none",
                                "crossing", _effect(_kind, _attr), effect=_kind))
 
-register_output(Output("dt", "s", "time step of the stored histories", "crossing", lambda r: r.result.dt))
-register_output(Output("n_steps", "-", "number of time steps", "crossing", lambda r: r.result.n_steps))
+register_output(Output("dt", "s", "time step of the stored histories", "crossing", lambda r: r.result.dt,
+                       resolve="deflections"))
+register_output(Output("n_steps", "-", "number of time steps", "crossing", lambda r: r.result.n_steps,
+                       resolve="deflections"))
 register_output(Output("unconverged_steps", "-", "integration steps whose contact forces did not converge within the "
                        "implicit integrator's iteration limit, after the run at half and a quarter of its step "
                        "(0 for a sound run; flag contact_not_converged)",
-                       "crossing", lambda r: float(r.result.unconverged_steps)))
+                       "crossing", lambda r: float(r.result.unconverged_steps), resolve="deflections"))
 
 #: the outputs every population of crossings (a study's grid, a traffic stream's events) reduces and
 #: stores whatever it asks for: what each crossing's numbers are worth (its dataset flags read them)

@@ -26,12 +26,13 @@ BASE = EXAMPLES / "traffic" / "base" / "bridge2.toml"
 
 @pytest.fixture
 def after_demo(monkeypatch):
-    """The state after ``vbikit demo``: the one-lane kernel ``lean`` in numba's cache, nothing else;
+    """The state after ``vbikit demo``: the one-lane kernel ``lean_quadratic`` (the default "exact" holds the
+    wheel loads quadratic) in numba's cache, nothing else;
     nothing announced yet in this process."""
     from vbikit.solve import compile_notice, kernels
 
     monkeypatch.setattr(compile_notice, "_ANNOUNCED", set())
-    monkeypatch.setattr(compile_notice, "kernels_cached", lambda k: k is kernels.lean)
+    monkeypatch.setattr(compile_notice, "kernels_cached", lambda k: k is kernels.lean_quadratic)
 
 
 def test_study_announces_the_many_lane_kernel_its_batches_run(after_demo, caplog):
@@ -43,12 +44,12 @@ def test_study_announces_the_many_lane_kernel_its_batches_run(after_demo, caplog
     study = paper_study("fig6", 20, False, method="monte-carlo")
     batches = study.batches()
     assert len(batches[0]) > 1  # the batches run their crossings as lanes of one call
-    assert batch_kernels(study, batches) == [kernels.lean_lanes]
+    assert batch_kernels(study, batches) == [kernels.lean_lanes_quadratic]
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         _announce_compile(study, batches, None, 2)
         _announce_compile(study, batches, None, 2)  # once a process and kernel
-    assert caplog.text.count("compiling the kernel lean_lanes") == 1
-    assert f"about {COMPILE_SECONDS['lean_lanes']} s of CPU" in caplog.text
+    assert caplog.text.count("compiling the kernel lean_lanes_quadratic") == 1
+    assert f"about {COMPILE_SECONDS['lean_lanes_quadratic']} s of CPU" in caplog.text
     assert "each of the 2 worker processes" in caplog.text
     # its class D roads make wheels hop: the full kernel too, once (``may_hand_over``)
     assert caplog.text.count("compiling the kernel implicit") == 1 and "wheel leaves or lands" in caplog.text
@@ -61,8 +62,8 @@ def test_a_batch_of_one_crossing_runs_the_one_lane_kernel(after_demo, caplog):
 
     study = paper_study("fig6", 20, False, method="monte-carlo")
     one = [(study.batches()[0][0],)]
-    assert batch_kernels(study, one) == [kernels.lean]
-    assert batch_kernels(study, [*one, study.batches()[0]]) == [kernels.lean, kernels.lean_lanes]
+    assert batch_kernels(study, one) == [kernels.lean_quadratic]
+    assert batch_kernels(study, [*one, study.batches()[0]]) == [kernels.lean_quadratic, kernels.lean_lanes_quadratic]
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         _announce_compile(study, one, None, 1)
     assert "kernel lean" not in caplog.text  # lean is cached (the demo compiled it)
@@ -80,9 +81,9 @@ def test_a_stream_that_settles_its_trucks_announces_the_run_in_loops():
     base = {"bridge": {"model": "paper-bridge-1-beam", "n_modes": 3}, "tire": {"model": "point"}, "road": {"class": "B"}}
     settled = traffic_study(records, base)
     assert settled.settles_vehicles
-    assert batch_kernels(settled, settled.batches()) == [kernels.lean, kernels.run_in_loads, kernels.linear_recursion]
+    assert batch_kernels(settled, settled.batches()) == [kernels.lean_quadratic, kernels.run_in_loads, kernels.linear_recursion]
     at_rest = traffic_study(records, base | {"crossing": {"run_in": 0}})
-    assert not at_rest.settles_vehicles and batch_kernels(at_rest, at_rest.batches()) == [kernels.lean]
+    assert not at_rest.settles_vehicles and batch_kernels(at_rest, at_rest.batches()) == [kernels.lean_quadratic]
 
 
 def test_a_study_announces_the_full_kernel_only_where_wheels_may_leave_the_road():
@@ -170,8 +171,8 @@ def test_the_notice_names_the_one_lane_kernel_when_the_batch_is_split(after_demo
 
     study = paper_study("fig6", 20, False, method="monte-carlo")
     batches = study.batches()
-    assert batch_kernels(study, batches) == [kernels.lean_lanes]
-    assert batch_kernels(study, batches, threads=len(batches[0])) == [kernels.lean]
+    assert batch_kernels(study, batches) == [kernels.lean_lanes_quadratic]
+    assert batch_kernels(study, batches, threads=len(batches[0])) == [kernels.lean_quadratic]
     with caplog.at_level(logging.INFO, logger="vbikit.solve.compile"):
         _announce_compile(study, batches, None, 2, threads=len(batches[0]))
     assert "kernel lean" not in caplog.text  # (its class D roads announce the full kernel: ``may_hand_over``)
@@ -187,7 +188,7 @@ def test_the_notice_names_the_one_lane_kernel_when_the_batch_is_split(after_demo
     solver = BatchSolver(build(scenarios[0]).crossing)  # as run_batch: the first crossing, the others' roads
     assert steps == [solver.time_step(solver.crossing(*_road(sc, sd))) for sc, sd in zip(scenarios, dicts)]
     assert steps[0] != steps[1]
-    assert batch_kernels(mixed, [batch]) == [kernels.lean]
+    assert batch_kernels(mixed, [batch]) == [kernels.lean_quadratic]
 
 
 def test_the_full_kernel_announces_its_compilation(after_demo, caplog):

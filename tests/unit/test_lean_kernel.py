@@ -70,6 +70,7 @@ def test_point_tire_runs_lean_and_equals_implicit():
     assert _worst(lean, full) <= 1e-10
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_two_vehicles_asymmetric_run_lean_and_equal_implicit():
     """A traffic-like event: a 3S2 driving +x off the centreline and an HS20-44 driving −x,
     entering later, at other speeds, on a class B road (stacked vehicles, two directions)."""
@@ -97,6 +98,7 @@ def _hop(tire: str, road: str, seed: int = 1):
                       "tire": {"model": tire}, "road": {"class": road, "seed": seed}, "crossing": {"speed_kmh": 100.0}})
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
     """Point tires on a class F road: the wheels leave the road and land again thousands of times;
     where the one evaluation already gives the step's contact set (as in ``implicit``'s own
@@ -107,6 +109,7 @@ def test_lift_off_settled_by_one_evaluation_stays_lean_and_equals_implicit():
     assert _worst(lean, full) <= 1e-10
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 @pytest.mark.parametrize("every", [1, 3])
 def test_lift_off_that_needs_iterating_hands_over_to_implicit(caplog, every):
     """Disk tires on a class F road (seed 12; with the deck's loads held quadratic over the step,
@@ -180,7 +183,7 @@ def test_the_default_path_compiles_each_flat_kernel_once():
     reference counting and rewrite passes (``FLAT_OPTIONS``; should a numba not know those options they
     are dropped, and the cold compile takes ≈ 0.6 s longer)."""
     from vbikit.analysis import static_modal_history
-    from vbikit.solve import kernels
+    from vbikit.solve import builtin_integrators, kernels
     from vbikit.solve.kernels.bundles import FLAT_OPTIONS
     from vbikit.solve.kernels.lean import _law, _quasi, _state
 
@@ -188,12 +191,15 @@ def test_the_default_path_compiles_each_flat_kernel_once():
     before = {name: len(k.signatures) for name, k in shared.items()}
     static_modal_history(simulate(_scenario(scenario_from_toml(demo_scenario_text(), source="demo.toml"))))
     # (the helpers of ``lean`` have none when ``lean`` came from numba's cache: its code holds theirs)
-    assert (len(_law.signatures), len(kernels.lean.signatures)) == (1, 1)
+    # (the default's variant of ``lean``: the wheel loads held quadratic, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``)
+    lean = kernels.lean_quadratic if builtin_integrators.QUADRATIC_WHEEL_LOADS else kernels.lean
+    assert (len(_law.signatures), len(lean.signatures)) == (1, 1)
     assert len(_state.signatures) <= 1 and len(_quasi.signatures) <= 1
     assert all(len(k.signatures) - before[name] <= 1 for name, k in shared.items())
     assert FLAT_OPTIONS.get("_nrt") is False and FLAT_OPTIONS.get("no_rewrites") is True
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_two_trucks_on_the_3d_deck_run_lean_and_equal_implicit():
     """examples/traffic/two_trucks.toml: a 3-S2 and a three-axle truck in opposite lanes of
     paper-bridge-2, one coupled run (the vehicles stacked block-diagonally,

@@ -70,6 +70,7 @@ def _paper(tire: str, speed: float = 75.0, model: str = "paper-bridge-1-beam") -
             "road": {"class": "C", "seed": 1}, "crossing": {"speed_kmh": speed}}
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_demo_crossing_on_roads_b_to_d_equals_implicit_and_single_runs():
     """`vbikit demo` (HS20-44, multipoint n = 6: 36 gated points, 75 km/h) on 6 roads of classes
     B–D: every lane completed by ``lean_lanes``; the class D roads take their own step (2 cm of road,
@@ -86,6 +87,7 @@ def test_demo_crossing_on_roads_b_to_d_equals_implicit_and_single_runs():
     assert _worst(lanes[1], lanes[3]) > 1e-3 and _worst(lanes[4], lanes[5]) > 1e-3  # the lanes differ (another road each)
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_point_tires_equal_implicit_and_single_runs():
     spec = _paper("point", 60.0)
     roads = _roads(spec, [("B", 3), ("C", 7), ("D", 8)])
@@ -96,6 +98,7 @@ def test_point_tires_equal_implicit_and_single_runs():
         assert _worst(lane, single) <= 1e-10
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_lift_off_freezes_some_lanes_only_and_the_full_kernel_finishes_them():
     """Disk tires at 100 km/h: on some class E roads (seeds 3 and 7; not 1 or 6; with the start's road
     rate read ahead, 2026-12-05 — before, 6 and 7) a landing closes a
@@ -134,6 +137,7 @@ def test_lift_off_freezes_some_lanes_only_and_the_full_kernel_finishes_them():
     assert any(int(np.sum(r.wheel_forces[1:] == 0.0)) > 10 for r in full)  # a wheel does leave the road
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_a_frozen_lane_runs_the_full_kernel_for_the_contact_events_window_only(monkeypatch):
     """The lift-off batch in one chunk (``LANES_CHUNK`` above the run's steps): a frozen lane goes on
     with ``implicit`` for the event's ``LEAN_WINDOW`` steps a call, then with the one-lane ``lean``
@@ -163,6 +167,7 @@ def test_a_frozen_lane_runs_the_full_kernel_for_the_contact_events_window_only(m
         assert _worst(lane, single) <= 1e-9
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_asymmetric_vehicles_equal_implicit_and_single_runs():
     """A 3S2 driving +x 1.2 m off the centreline and an HS20-44 driving −x, entering later, at other
     speeds (stacked vehicles, two directions) over 3 roads."""
@@ -215,6 +220,7 @@ def test_chunks_carry_the_lanes_exactly(monkeypatch):
                 np.testing.assert_array_equal(getattr(a, h), getattr(b, h))
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_lift_off_with_thinned_histories_equals_implicit():
     """The lift-off batch stored every 7th step (``integrate``'s ``stride``: chunks of 126 steps, a
     frozen lane restarting from the last stored row): measured ≤ 8.8e-11 of the peak on the lanes
@@ -249,6 +255,7 @@ def _bumped(road, start: float, height: float, width: float):
     return RoadProfile(road.x, road.z + bump, road.label + " + bump", road.resolution)
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_disk_points_on_bumps_are_not_left_out():
     """The shared lazy test leaves a disk point out only when it cannot touch in any lane (bound
     r_p − g_p − z_w + Σ amp |ξ| ≤ 0 with the road r_p under the point).  A narrow bump (6 cm high,

@@ -190,7 +190,7 @@ def test_automatic_steps_equal_the_eigenvalue_rule_whether_or_not_the_vehicle_bi
         k_w = np.array([w.stiffness for w in vehicle.wheels])
         f_max = np.sqrt(eigh(vehicle.stiffness + rows.T @ (k_w[:, None] * rows), vehicle.mass, eigvals_only=True).max()) / (2 * np.pi)
         v = c.max_speed
-        exact = [beam.span / (EXACT_STEPS_PER_SPAN * v), 2 * np.pi / beam.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD,
+        exact = [beam.span / (EXACT_STEPS_PER_SPAN * v), 2 * np.pi / beam.omega.min() / EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD["effects"],
                  min(EXACT_ROAD_LENGTH_PER_STEP, EXACT_ROAD_FEATURES_PER_STEP * road.spacing) / v]
         accurate = [2 * np.pi / beam.omega.max() / 5.0, beam.span / (100.0 * v), road.spacing / v]
         fresh = Crossing(beam, vehicle.__class__(**{f: getattr(vehicle, f) for f in vehicle.__dataclass_fields__}),

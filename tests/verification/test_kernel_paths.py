@@ -86,6 +86,7 @@ def test_loss_of_contact_every_tire_and_integrator(bump_runs, integrator, tire):
     assert force.max() == pytest.approx(ref.wheel_forces[:, 0].max(), rel=0.1)
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 def test_a_landing_the_lean_kernel_hands_over_equals_the_full_kernel():
     """The multipoint tire over the 80 mm bump at a 1 ms step (10 mm of road a step): at the landing a
     contact closes within the step's updates, so the lean kernel stops and ``implicit`` (its full
@@ -169,6 +170,7 @@ def _worst(a, b) -> float:
                for h in ("xi", "q", "wheel_forces"))
 
 
+@pytest.mark.usefixtures("linear_wheel_loads")
 @pytest.mark.parametrize("tire", [DiskTire(spacing=0.02), RigidDiskTire(spacing=0.02)], ids=lambda t: t.name)
 def test_batch_lanes_that_lift_off_equal_the_full_kernel_and_single_runs(tire):
     """Lanes of one batch over bumps of 0 (flat), 2, 80 and 5 mm: the 80 mm bump launches the wheel

@@ -112,6 +112,10 @@ FLAG_CODES: dict[str, str] = {
                           "the span, threshold: ``SUPPORT_MARGIN`` (0.02)",
     "coarse_step": "a given crossing.dt coarser than the integrator's automatic step; value: dt [s], threshold: the "
                    "automatic step [s]",
+    "deflection_step": 'a run at the automatic step for deflections only (crossing.resolve = "deflections"), coarser '
+                       "than the step for every result: its accelerations, strains, moments, shears and reactions are "
+                       "not within the step's accuracy bound; value: the step [s], threshold: the step for every "
+                       "result [s]",
     "unresolved_modes": "bridge modes the given step does not resolve (fewer than 5 steps a period) but the automatic "
                         "step does (the message counts and lists every mode the step does not resolve); value: the "
                         "highest frequency of those the automatic step resolves [Hz], threshold: 1 / (5 dt) [Hz]",
@@ -439,6 +443,20 @@ def step_flags(crossing: Crossing, dt: float) -> list[Flag]:
                         output="impact_factor", subject="crossing.dt", value=float(f[lost].max()),
                         threshold=1 / (STEPS_PER_PERIOD * dt)))
     return out
+
+
+def resolve_flags(crossing: Crossing, dt: float) -> list[Flag]:
+    """A run whose automatic step ``dt`` [s] resolves deflections only (``Crossing.resolve`` =
+    "deflections") and is coarser than the step for every result: its other results are flagged."""
+    if crossing.resolve == "effects" or crossing.dt is not None:
+        return []
+    full = choose_time_step(replace(crossing, resolve="effects"))
+    if dt <= full * (1 + 1e-9):
+        return []
+    return [Flag("deflection_step", f'crossing.resolve = "{crossing.resolve}": the automatic step {dt:.3g} s resolves the '
+                 "deck's deflections, the tire forces and the vehicles' motion; its accelerations, strains, moments, "
+                 f"shears and reactions are not within the step's accuracy bound (the step for them: {full:.3g} s) — "
+                 "leave crossing.resolve out for them", subject="crossing.resolve", value=float(dt), threshold=float(full))]
 
 
 def _modes(index: NDArray[np.intp], f: NDArray[np.float64]) -> str:
@@ -1029,6 +1047,7 @@ def run_flags(result: CrossingResult, response_x: float | None = None, response_
     """Every flag about a finished crossing: its inputs, its contact losses, wheels airborne long
     enough to dominate the impact factors, steps whose contact forces did not converge
     (``convergence_flags``) and a random road's one realisation (``realisation_flags``)."""
-    return (input_flags(result.crossing, result.dt, response_x, response_y) + contact_flags(result)
+    return (input_flags(result.crossing, result.dt, response_x, response_y)
+            + resolve_flags(result.crossing, float(result.integration_dt or result.dt)) + contact_flags(result)
             + airborne_flags(result) + wheel_force_step_flags(result) + convergence_flags(result)
             + realisation_flags(result.crossing))

@@ -376,7 +376,7 @@ def _build(scenario: Scenario, limits: Limits | None) -> BuiltScenario:
         common = dict(bridge=bridge, tire=build_tire(scenario.tire), road=road,
                       road_right=build_right_road(scenario.road, scenario, road), approach=c.approach, run_in=c.run_in,
                       free_vibration=c.free_vibration, dt=c.dt,
-                      integrator=c.integrator,
+                      integrator=c.integrator, resolve=c.resolve,
                       loss_of_contact=scenario.tire.loss_of_contact)
         if scenario.vehicles is None:
             vehicle: Vehicle = build_vehicle(scenario.vehicle.model, scenario.vehicle.parameters)

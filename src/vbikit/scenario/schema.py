@@ -35,6 +35,7 @@ from vbikit._validation import bound_message, key_name
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
 from vbikit.solve.budget import MAX_AXLES
+from vbikit.solve.crossing import RESOLVES
 from vbikit.solve.integrators import DEFAULT_INTEGRATOR, INTEGRATORS, get_integrator, integrator_names
 from vbikit.road.psd import ISO_CLASSES, PAPER_CLASSES
 from vbikit.vehicle.presets import VEHICLE_PRESETS
@@ -306,6 +307,11 @@ class CrossingSpec(Section):
         json_schema_extra=lambda schema: schema.update(enum=list(integrator_names())))
     lateral_offset: Optional[float] = Field(
         None, ge=-MAX_LATERAL_OFFSET, le=MAX_LATERAL_OFFSET, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
+    resolve: Literal[RESOLVES] = Field(  # type: ignore[valid-type]
+        "effects", description='what the automatic step must resolve: "effects" (every result: deflections, '
+        'accelerations, strains, moments, shears, reactions) or "deflections" (deflections, tire forces and the vehicles\' '
+        'motion only: the exact integrator takes 50 steps per first bridge period instead of 100, and the report flags '
+        'the other results); a study whose outputs are all deflections sets it')
 
     @classmethod
     def missing_note(cls) -> str:

@@ -18,15 +18,16 @@ from vbikit.solve.integrators import (
 from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
 
 
-#: True: the exact integrator holds the wheel loads quadratic over the lean kernels' steps
+#: True (the default): the exact integrator holds the wheel loads quadratic over the lean kernels' steps
 #: (``modal_step.QUADRATIC``, third order, as the deck's modal loads), a step in which a wheel lands or lifts
 #: off taken a second time with the linear hold's loads (``kernels.lean``), and linear over the full kernel's
 #: (``modal_step.LINEAR``: the contact events the lean kernels hand over, the rest of a run after
-#: ``integrators.LEAN_RESUMES`` of them, rigid-disk runs).  False (the default): linear on every step.
-#: Where wheels keep the road it halves the step's error at 4–5 % more time in the paper programme (the lean
-#: kernels' variants ``lean_quadratic``, ``lean_lanes_quadratic``: tests/unit/test_wheel_load_hold.py,
-#: benchmarks/README.md); off until the step rule it would let coarsen is made
-QUADRATIC_WHEEL_LOADS = False
+#: ``integrators.LEAN_RESUMES`` of them, rigid-disk runs).  False: linear on every step (second order).
+#: Where wheels keep the road it halves the step's error (tests/unit/test_wheel_load_hold.py); it keeps class D
+#: within the automatic step's 5e-4 at the coarser first-period rule of deflection runs
+#: (``timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``; the lean kernels' variants ``lean_quadratic``,
+#: ``lean_lanes_quadratic``; benchmarks/README.md, ``bench_period_rule.py``)
+QUADRATIC_WHEEL_LOADS = True
 
 
 def _run_exact(call: KernelCall) -> None:
@@ -36,6 +37,14 @@ def _run_exact(call: KernelCall) -> None:
     lean = vehicle_step(data.vehicles, call.dt, QUADRATIC if QUADRATIC_WHEEL_LOADS else LINEAR)
     run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt, QUADRATIC), lean,
                  vehicle_step(data.vehicles, call.dt, LINEAR))
+
+
+def _exact_kernel() -> Any:
+    return implicit_kernel(QUADRATIC_WHEEL_LOADS)
+
+
+def _exact_lanes_kernel() -> Any:
+    return implicit_lanes_kernel(QUADRATIC_WHEEL_LOADS)
 
 
 def _run_newmark(call: KernelCall) -> None:
@@ -67,8 +76,8 @@ EXACT = register_integrator(Integrator(
     references=("NigamJennings1969", "Chopra2017"),
     time_step=implicit_time_step,
     run=_run_exact,
-    kernel=implicit_kernel,
-    lanes_kernel=implicit_lanes_kernel,
+    kernel=_exact_kernel,
+    lanes_kernel=_exact_lanes_kernel,
     secant_road_rate=True,
 ))
 RK4 = register_integrator(Integrator(

@@ -41,6 +41,10 @@ from vbikit.solve.integrator_registry import DEFAULT_INTEGRATOR, get_integrator
 from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
+#: what a crossing's automatic step must resolve (``Crossing.resolve``): "effects" (every result) or "deflections"
+#: (deflections, tire forces and step counts only: the exact integrator's coarser first-period term,
+#: ``vbikit.solve.timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``)
+RESOLVES: tuple[str, ...] = ("effects", "deflections")
 T = TypeVar("T")
 
 #: values a crossing keeps of its own (``Crossing.kept``): at most this many
@@ -224,6 +228,13 @@ class Crossing:
         0: the run starts them at rest): they start from the state reached over it from rest, as if
         the approach were that much longer, without the coupled steps over it (any integrator; no
         contact point may be on the deck at the start).
+    resolve : str
+        What the automatic step must resolve (``RESOLVES``; a given ``dt`` is taken as it is): "effects"
+        (default) every result — deflections, velocities, accelerations, strains, moments, shears,
+        reactions — within the automatic step's accuracy bound; "deflections" only the deck's deflections,
+        tire forces and the vehicles' motion: the exact integrator then takes 50 steps per first bridge
+        period instead of 100 (its other terms unchanged; ``vbikit.solve.timestep.implicit_time_step``).  A
+        study whose outputs are all deflections sets it (``vbikit.outputs.outputs_resolve``).
     """
 
     bridge: ModalBridge
@@ -241,6 +252,7 @@ class Crossing:
     road_right: RoadProfile | None = None
     vehicles: tuple[VehicleMotion, ...] = ()
     run_in: float = 0.0
+    resolve: str = "effects"
 
     def __post_init__(self) -> None:
         if self.lateral_offset is None:
@@ -262,6 +274,8 @@ class Crossing:
         if self.dt is not None and not (np.isfinite(self.dt) and self.dt > 0):
             raise ValueError(f"crossing.dt must be > 0 s, got {self.dt!r}")
         get_integrator(self.integrator)  # ValueError listing the registered names
+        if self.resolve not in RESOLVES:
+            raise ValueError(f"crossing.resolve must be one of {', '.join(map(repr, RESOLVES))}, got {self.resolve!r}")
         if self.vehicle is not None and not isinstance(self.vehicle, CombinedVehicle):
             self._init_single()
         else:

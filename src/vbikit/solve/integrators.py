@@ -200,10 +200,8 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     wheel loads: exactly as a lane that did not stop), or afresh when a window ended there (the law at
     that state, the forces extrapolated from it alone: as the lane alone restarts after a window); the
     other lanes go on exactly (``lean_lanes``' carried state)."""
-    from vbikit.solve.compile_notice import announce_compile
 
-    lean_lanes = _lean(vehicle_step, lanes=True)
-    announce_compile(lean_lanes)  # its own compiled kernel: a batch's first run may compile it
+    lean_lanes = _lean(vehicle_step, lanes=True)  # (announces its first compilation: a batch's first run may compile it)
     args = _lean_arguments(call, modal_step, vehicle_step, lanes=True, start=True)
     n_l, n_cp = call.outputs[0].shape[0], call.data.n_points
     stride, n_steps = call.stride, call.n_steps
@@ -251,14 +249,12 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
 
 def _lean(vehicle_step: "VehicleStep", lanes: bool = False) -> Any:
     """The lean kernel for the vehicles' map ``vehicle_step``: its variant with the wheel loads held
-    quadratic when the map has the past loads' term (Lp ≠ 0), else the linear one (the default path)."""
-    from vbikit.solve import kernels
+    quadratic when the map has the past loads' term (Lp ≠ 0: the default, "exact"), else the linear one."""
     from vbikit.solve.compile_notice import announce_compile
 
-    if not np.any(vehicle_step.load_past):
-        return kernels.lean_lanes if lanes else kernels.lean
-    kernel = kernels.lean_lanes_quadratic if lanes else kernels.lean_quadratic
-    announce_compile(kernel, "this process (the wheel loads held quadratic: QUADRATIC_WHEEL_LOADS)")
+    quadratic = bool(np.any(vehicle_step.load_past))
+    kernel = implicit_lanes_kernel(quadratic) if lanes else implicit_kernel(quadratic)
+    announce_compile(kernel)  # (announced by the integrator's ``kernel`` already, unless a user's map chose the other)
     return kernel
 
 
@@ -443,17 +439,19 @@ def _span(call: KernelCall, start: bool) -> float:
     return -span if start else span
 
 
-def implicit_kernel() -> Any:
+def implicit_kernel(quadratic: bool = False) -> Any:
     """The compiled kernel a single implicit crossing runs first (for ``Integrator.kernel``, which
-    announces the first compilation): the lean kernel (``run_implicit``)."""
+    announces the first compilation): the lean kernel (``run_implicit``), its variant with the wheel
+    loads held quadratic with ``quadratic`` (a map with Lp ≠ 0, ``_lean``)."""
     from vbikit.solve import kernels
 
-    return kernels.lean
+    return kernels.lean_quadratic if quadratic else kernels.lean
 
 
-def implicit_lanes_kernel() -> Any:
+def implicit_lanes_kernel(quadratic: bool = False) -> Any:
     """The compiled kernel a many-lane implicit call (a study's batch) runs first (for
-    ``Integrator.lanes_kernel``): the many-lane lean kernel (``_run_lanes``)."""
+    ``Integrator.lanes_kernel``): the many-lane lean kernel (``_run_lanes``), its variant with the
+    wheel loads held quadratic with ``quadratic``."""
     from vbikit.solve import kernels
 
-    return kernels.lean_lanes
+    return kernels.lean_lanes_quadratic if quadratic else kernels.lean_lanes

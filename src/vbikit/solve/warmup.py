@@ -119,7 +119,8 @@ def compile_kernels() -> dict[str, float]:
 
 
 #: the variants of ``_variants`` that compile the same kernels for every implicit integrator (the
-#: implicit integrators differ in their step maps, which are arguments, not compiled code), one group
+#: implicit integrators differ in their step maps, which are arguments, not compiled code, and in the lean
+#: kernels' variant the maps choose: "exact" holds the wheel loads quadratic, ``lean_quadratic``), one group
 #: each: ``one-lane`` the lean kernel; ``rigid-disk`` the full kernel; ``lanes`` the many-lane lean kernel
 IMPLICIT_GROUPS = {"implicit-lean": ("one-lane",), "implicit-full": ("rigid-disk",), "implicit-lanes": ("lanes",)}
 

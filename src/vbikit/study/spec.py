@@ -48,7 +48,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from vbikit._toml import parse_toml, read_toml
 from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
-from vbikit.outputs import QUALITY_OUTPUTS, outputs as catalogue_outputs, select_outputs
+from vbikit.outputs import QUALITY_OUTPUTS, outputs as catalogue_outputs, outputs_resolve, select_outputs
 from vbikit.contact.registry import TIRE_MODELS
 from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario, section_keys
 
@@ -337,8 +337,12 @@ class Study:
         """The scenario (dict) of the crossing at grid ``index``.  An axis over ``tire.model`` keeps
         the base tire's keys the swept model takes and drops the others (as ``vbikit compare-tires``
         does: a multi-point base's ``n_points`` is not a key of the point tire); keys set by other
-        axes stay."""
+        axes stay.  Its ``crossing.resolve`` is what the study's outputs need (``vbikit.outputs.outputs_resolve``:
+        "deflections" when they all are), unless the base gives it."""
         data = copy.deepcopy(self.base)
+        crossing = data.setdefault("crossing", {})
+        if isinstance(crossing, dict) and "resolve" not in crossing:  # (the base's own resolve is kept)
+            crossing["resolve"] = outputs_resolve(self.output_names)
         for axis, i in zip(self.axes, index):
             set_dotted(data, axis.key, axis.scenario_value(i))
             if axis.key == "tire.model" and isinstance(data.get("tire"), dict):
