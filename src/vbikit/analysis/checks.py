@@ -112,8 +112,8 @@ FLAG_CODES: dict[str, str] = {
                           "the span, threshold: ``SUPPORT_MARGIN`` (0.02)",
     "coarse_step": "a given crossing.dt coarser than the integrator's automatic step; value: dt [s], threshold: the "
                    "automatic step [s]",
-    "deflection_step": 'a run at the automatic step for deflections only (crossing.resolve = "deflections"), coarser '
-                       "than the step for every result: its accelerations, strains, moments, shears and reactions are "
+    "deflection_step": 'a run for deflections only (crossing.resolve = "deflections") at a step coarser than the '
+                       "automatic step for every result: its accelerations, strains, moments, shears and reactions are "
                        "not within the step's accuracy bound; value: the step [s], threshold: the step for every "
                        "result [s]",
     "unresolved_modes": "bridge modes the given step does not resolve (fewer than 5 steps a period) but the automatic "
@@ -446,15 +446,16 @@ def step_flags(crossing: Crossing, dt: float) -> list[Flag]:
 
 
 def resolve_flags(crossing: Crossing, dt: float) -> list[Flag]:
-    """A run whose automatic step ``dt`` [s] resolves deflections only (``Crossing.resolve`` =
-    "deflections") and is coarser than the step for every result: its other results are flagged."""
-    if crossing.resolve == "effects" or crossing.dt is not None:
+    """A run for deflections only (``Crossing.resolve`` = "deflections") at a step ``dt`` [s] (automatic or
+    given) coarser than the automatic step for every result: its other results are flagged."""
+    if crossing.resolve == "effects":
         return []
-    full = choose_time_step(replace(crossing, resolve="effects"))
+    full = choose_time_step(replace(crossing, resolve="effects", dt=None))
     if dt <= full * (1 + 1e-9):
         return []
-    return [Flag("deflection_step", f'crossing.resolve = "{crossing.resolve}": the automatic step {dt:.3g} s resolves the '
-                 "deck's deflections, the tire forces and the vehicles' motion; its accelerations, strains, moments, "
+    which = "automatic step" if crossing.dt is None else "step"
+    return [Flag("deflection_step", f'crossing.resolve = "{crossing.resolve}": the {which} {dt:.3g} s resolves the '
+                 "deck's deflections and the tire forces; its accelerations (the vehicles' too), strains, moments, "
                  f"shears and reactions are not within the step's accuracy bound (the step for them: {full:.3g} s) — "
                  "leave crossing.resolve out for them", subject="crossing.resolve", value=float(dt), threshold=float(full))]
 

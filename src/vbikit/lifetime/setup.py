@@ -78,6 +78,9 @@ def build_setup(key: str) -> Setup:
     d = json.loads(key)
     base = {k: v for k, v in d["base"].items()}
     ctx = EventContext.of(base, d["base_dir"])
+    if ctx.template.crossing.resolve != "effects":
+        raise ValueError(f'crossing.resolve = "{ctx.template.crossing.resolve}": a lifetime\'s load effects need the step '
+                         "for every result; leave crossing.resolve out of the base scenario")
     bridge = ctx.template.crossing.bridge
     lines = []
     for i, e in enumerate(d["effects"]):

@@ -35,7 +35,9 @@ Integration (``method``): by default the engine's own integrator, exact modal st
 ``vehicle_step``), which is linear for linear tires: per step one matrix maps every line's free
 state and pseudo road load to its end-of-step modal loads and wheel forces (``_exact_lines``), all
 lines as columns of one product, in the compiled loop of ``vbikit.random.kernel``; PEM and the
-engine's Monte Carlo then estimate σ of the same discrete system.  ``method="newmark"``: Newmark's
+engine's Monte Carlo then estimate σ of the same system, discretised alike but for the holds of the
+loads (the engine holds the deck's loads and the wheel loads quadratic over a step, PEM linear: a
+difference of the step's own order, within the engine's step accuracy).  ``method="newmark"``: Newmark's
 average-acceleration rule on the assembled equations, ``substeps`` steps per step of the engine's
 time grid (one inverse of the real effective matrix per step, all lines as right-hand sides).
 Both start from the static equilibrium K(t₀) ỹ₀ = F̃(t₀) (zero rates; the engine's own start,

@@ -106,7 +106,8 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
 
 def check_random_road(scenario: Scenario) -> None:
     """Refuse (ScenarioError naming the key) a road a random-vibration run cannot take: not a random
-    class, or with defects (the road must be a Gaussian process given by its PSD)."""
+    class, or with defects (the road must be a Gaussian process given by its PSD); and a step for
+    deflections only (``crossing.resolve``)."""
     road = scenario.road
     if road.road_class == "none" or road.profile_file:
         raise ScenarioError("road.class: a random-vibration run needs a random road (class A…H, good/average/poor or "
@@ -114,6 +115,9 @@ def check_random_road(scenario: Scenario) -> None:
     if road.defects:
         raise ScenarioError("road.defects: a random-vibration run takes the road as a Gaussian process only; remove "
                             "the defects (or run them with Monte Carlo: several road.seed values)")
+    if scenario.crossing.resolve != "effects":  # (pseudo-excitation holds the loads linear: the step for every result)
+        raise ScenarioError(f'crossing.resolve = "{scenario.crossing.resolve}": a random-vibration run takes the step '
+                            "for every result (its loads are held linear); leave crossing.resolve out")
 
 
 def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir: str | Path | None = None,

@@ -309,9 +309,9 @@ class CrossingSpec(Section):
         None, ge=-MAX_LATERAL_OFFSET, le=MAX_LATERAL_OFFSET, description="vehicle centreline from the deck centreline, positive left; default the bridge's (0 for a beam; paper bridges 1.95 / 1.4 / 0.45, cypress-bayou 2.0) [m]")
     resolve: Literal[RESOLVES] = Field(  # type: ignore[valid-type]
         "effects", description='what the automatic step must resolve: "effects" (every result: deflections, '
-        'accelerations, strains, moments, shears, reactions) or "deflections" (deflections, tire forces and the vehicles\' '
-        'motion only: the exact integrator takes 50 steps per first bridge period instead of 100, and the report flags '
-        'the other results); a study whose outputs are all deflections sets it')
+        'accelerations, strains, moments, shears, reactions) or "deflections" (deflections and tire forces only: the exact '
+        'integrator takes 50 steps per first bridge period instead of 100 with the wheel loads held quadratic, and the '
+        'report flags the other results); a study whose outputs are all deflections sets it')
 
     @classmethod
     def missing_note(cls) -> str:

@@ -3,7 +3,9 @@
 end of this file."""
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from vbikit.solve.integrators import (
     DEFAULT_INTEGRATOR,
@@ -16,6 +18,9 @@ from vbikit.solve.integrators import (
     run_implicit,
 )
 from vbikit.solve.timestep import accuracy_time_step, implicit_time_step, rk4_stability_limit
+
+if TYPE_CHECKING:  # pragma: no cover
+    from vbikit.solve.crossing import Crossing
 
 
 #: True (the default): the exact integrator holds the wheel loads quadratic over the lean kernels' steps
@@ -37,6 +42,13 @@ def _run_exact(call: KernelCall) -> None:
     lean = vehicle_step(data.vehicles, call.dt, QUADRATIC if QUADRATIC_WHEEL_LOADS else LINEAR)
     run_implicit(call, exact_step(data.modes.omega, data.modes.zeta, call.dt, QUADRATIC), lean,
                  vehicle_step(data.vehicles, call.dt, LINEAR))
+
+
+def _exact_time_step(crossing: Crossing) -> float:
+    """``implicit_time_step`` with the hold this integrator runs ``crossing`` with: the wheel loads quadratic on the
+    lean kernels' steps (``QUADRATIC_WHEEL_LOADS``), linear for rigid disks (the full kernel, ``run_implicit``)."""
+    rigid = bool(np.any(crossing.contact.wheel_envelope))
+    return implicit_time_step(crossing, quadratic_wheel_loads=QUADRATIC_WHEEL_LOADS and not rigid)
 
 
 def _exact_kernel() -> Any:
@@ -74,7 +86,7 @@ EXACT = register_integrator(Integrator(
     description="exact modal stepping (default; the step is not limited by the highest mode)",
     explicit=False,
     references=("NigamJennings1969", "Chopra2017"),
-    time_step=implicit_time_step,
+    time_step=_exact_time_step,
     run=_run_exact,
     kernel=_exact_kernel,
     lanes_kernel=_exact_lanes_kernel,

@@ -42,7 +42,7 @@ from vbikit.vehicle.model import CombinedVehicle, Vehicle, combine_vehicles
 
 DIRECTIONS: tuple[str, ...] = ("+x", "-x")
 #: what a crossing's automatic step must resolve (``Crossing.resolve``): "effects" (every result) or "deflections"
-#: (deflections, tire forces and step counts only: the exact integrator's coarser first-period term,
+#: (deflections and tire forces only: the exact integrator's coarser first-period term,
 #: ``vbikit.solve.timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``)
 RESOLVES: tuple[str, ...] = ("effects", "deflections")
 T = TypeVar("T")
@@ -231,10 +231,11 @@ class Crossing:
     resolve : str
         What the automatic step must resolve (``RESOLVES``; a given ``dt`` is taken as it is): "effects"
         (default) every result — deflections, velocities, accelerations, strains, moments, shears,
-        reactions — within the automatic step's accuracy bound; "deflections" only the deck's deflections,
-        tire forces and the vehicles' motion: the exact integrator then takes 50 steps per first bridge
-        period instead of 100 (its other terms unchanged; ``vbikit.solve.timestep.implicit_time_step``).  A
-        study whose outputs are all deflections sets it (``vbikit.outputs.outputs_resolve``).
+        reactions — within the automatic step's accuracy bound; "deflections" only the deck's deflections
+        and the tire forces (not accelerations, the vehicles' included): the exact integrator then takes 50
+        steps per first bridge period instead of 100 where it holds the wheel loads quadratic (its other
+        terms unchanged; ``vbikit.solve.timestep.implicit_time_step``).  A study whose outputs are all
+        deflections sets it (``vbikit.outputs.outputs_resolve``); a random-vibration run refuses it.
     """
 
     bridge: ModalBridge

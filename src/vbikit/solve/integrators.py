@@ -173,7 +173,7 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         return
     if len(call.lanes) == 1:
         past_p, past_g, _ = _no_past(call)
-        stop, evaluations = _lean(vehicle_step)(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
+        stop, evaluations = _lean(vehicle_step, event_step)(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
                                          past_g[:, 0], False, _positions_before(call, 0), tol, call.stride,
                                          *_lean_work(call))
         if stop < 0:
@@ -201,7 +201,7 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
     that state, the forces extrapolated from it alone: as the lane alone restarts after a window); the
     other lanes go on exactly (``lean_lanes``' carried state)."""
 
-    lean_lanes = _lean(vehicle_step, lanes=True)  # (announces its first compilation: a batch's first run may compile it)
+    lean_lanes = _lean(vehicle_step, event_step, lanes=True)  # (announces its first compilation: a batch's first run may compile it)
     args = _lean_arguments(call, modal_step, vehicle_step, lanes=True, start=True)
     n_l, n_cp = call.outputs[0].shape[0], call.data.n_points
     stride, n_steps = call.stride, call.n_steps
@@ -247,12 +247,16 @@ def _run_lanes(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehicle
               "%d time(s)", call.crossing.integrator, n_l, evaluations / max(n_steps, 1), int(ever.sum()), handed)
 
 
-def _lean(vehicle_step: "VehicleStep", lanes: bool = False) -> Any:
+def _lean(vehicle_step: "VehicleStep", event_step: "VehicleStep", lanes: bool = False) -> Any:
     """The lean kernel for the vehicles' map ``vehicle_step``: its variant with the wheel loads held
-    quadratic when the map has the past loads' term (Lp ≠ 0: the default, "exact"), else the linear one."""
+    quadratic when the map has the past loads' term (Lp ≠ 0: the default, "exact"), else the linear one.
+    Vehicles without wheels (moving forces, trains of axle loads) have no such term: they take the variant
+    of the integrator's maps, the quadratic one when its contact events' map ``event_step`` is another
+    (as "exact"'s, whose compile notice names it, ``Integrator.kernel``; both variants compute the same)."""
     from vbikit.solve.compile_notice import announce_compile
 
-    quadratic = bool(np.any(vehicle_step.load_past))
+    past = vehicle_step.load_past
+    quadratic = bool(np.any(past)) or (past.size == 0 and event_step is not vehicle_step)
     kernel = implicit_lanes_kernel(quadratic) if lanes else implicit_kernel(quadratic)
     announce_compile(kernel)  # (announced by the integrator's ``kernel`` already, unless a user's map chose the other)
     return kernel
@@ -335,7 +339,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:n_steps // stride + 1] for a in one.outputs))
         work = _lean_work(part)
-        stop, _ = _lean(vehicle_step)(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
+        stop, _ = _lean(vehicle_step, event_step)(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
                                past[1][:, 0], True, _positions_before(call, end), tol, stride, *work)
         if stop < 0:  # (``lean_work``'s rows: the forces F_{n+1}, F_n; the modal load; the wheel loads)
             modal, wheels, points = work[0], work[2], work[6]

@@ -171,11 +171,13 @@ def road_step_key(road: RoadProfile | None) -> tuple | None:
     return (road.spacing, None if origin is None else (origin.roughness, origin.shortest_wavelength))
 
 
-def implicit_time_step(crossing: Crossing) -> float:
+def implicit_time_step(crossing: Crossing, quadratic_wheel_loads: bool = True) -> float:
     """The automatic step [s] of the exact modal integrator (no bridge-mode term; the first bridge
-    period's term by what the crossing must resolve, ``EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``)."""
+    period's term by what the crossing must resolve, ``EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``, where the run
+    holds the wheel loads quadratic, ``quadratic_wheel_loads``: the coarser step for deflections is that
+    hold's; held linear every crossing takes the step for every result)."""
     v_max = crossing.max_speed
-    per_period = EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD[crossing.resolve]
+    per_period = EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD[crossing.resolve if quadratic_wheel_loads else "effects"]
     candidates = [crossing.bridge.span / (EXACT_STEPS_PER_SPAN * v_max),
                   2 * np.pi / crossing.bridge.omega.min() / per_period]
     for road in (crossing.road, crossing.road_right):

@@ -439,8 +439,9 @@ def _to_netcdf(ds, path: Path) -> None:
 def _open_complete(out: Path, study: Study):
     import xarray as xr
 
-    # the job's identity, and those a finished dataset of an earlier version holds for it (``earlier_json``)
-    known = {study.to_json(), *earlier_identities(study)}
+    # the job's identity, and those a finished dataset of an earlier version holds for it (``earlier_json``;
+    # a study's ``finished_json``: also before its step rule was part of it)
+    known = {study.to_json(), *earlier_identities(study), *getattr(study, "finished_json", tuple)()}
     try:
         with xr.open_dataset(out, engine="netcdf4") as ds:
             if ds.attrs.get("study") in known:

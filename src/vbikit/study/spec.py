@@ -314,7 +314,23 @@ class Study:
         text = self._identity(earlier=True)
         return () if text == self.to_json() else (text,)
 
-    def _identity(self, earlier: bool) -> str:
+    def finished_json(self) -> tuple[str, ...]:
+        """The identities a *finished* dataset of this study may hold besides ``to_json``'s: the earlier
+        versions' (``earlier_json``) and, for a study that takes the step for deflections (``resolve``), its
+        identity without that key, as a dataset written before 2026-12-07 holds it (then every study took the
+        step for every result): such a finished result is still recognised; its parts are not resumed (a
+        study's parts are of one step rule)."""
+        without = self._identity(earlier=False, resolve=False)
+        return tuple(dict.fromkeys(t for t in (*self.earlier_json(), without) if t != self.to_json()))
+
+    @property
+    def resolve(self) -> str:
+        """What its crossings' automatic step resolves (``Crossing.resolve``): the base's ``crossing.resolve``,
+        else what its outputs need (``vbikit.outputs.outputs_resolve``)."""
+        given = self.base.get("crossing", {}).get("resolve") if isinstance(self.base.get("crossing"), dict) else None
+        return str(given) if given is not None else outputs_resolve(self.output_names)
+
+    def _identity(self, earlier: bool, resolve: bool = True) -> str:
         from vbikit._files import shared_spec
 
         shared = (lambda v, key="": v) if earlier else shared_spec
@@ -331,6 +347,8 @@ class Study:
             spec["outputs"] = list(self.outputs)
         if self.method != STUDY_METHODS[0]:  # absent: Monte Carlo (studies and datasets written before the key)
             spec["method"] = self.method
+        if resolve and not earlier and self.resolve != "effects":  # absent: the step for every result (before the key)
+            spec["resolve"] = self.resolve
         return json.dumps(spec, sort_keys=True)
 
     def scenario_dict(self, index: tuple[int, ...]) -> dict[str, Any]:
@@ -341,8 +359,8 @@ class Study:
         "deflections" when they all are), unless the base gives it."""
         data = copy.deepcopy(self.base)
         crossing = data.setdefault("crossing", {})
-        if isinstance(crossing, dict) and "resolve" not in crossing:  # (the base's own resolve is kept)
-            crossing["resolve"] = outputs_resolve(self.output_names)
+        if isinstance(crossing, dict):  # (the base's own resolve is kept)
+            crossing["resolve"] = self.resolve
         for axis, i in zip(self.axes, index):
             set_dotted(data, axis.key, axis.scenario_value(i))
             if axis.key == "tire.model" and isinstance(data.get("tire"), dict):

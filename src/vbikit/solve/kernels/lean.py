@@ -263,9 +263,10 @@ def _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c,
 
 def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the variant)
     """``lean`` compiled for the vehicles' maps with the wheel loads held linear (``QUADRATIC`` False: Lp = 0)
-    or quadratic (True: a step in which a wheel lands or lifts off is taken a second time, module docstring).  Two variants, each compiled on its first use, so that the
-    default path compiles none of the quadratic hold's code (numba prunes the branches on the closure's
-    constant ``QUADRATIC`` before it types them: every test of the hold starts with it)."""
+    or quadratic (True, the default's: a step in which a wheel lands or lifts off is taken a second time, module
+    docstring).  Two variants, each compiled on its first use, so that the linear one (Newmark's, and "exact"'s
+    with ``QUADRATIC_WHEEL_LOADS`` off) compiles none of the quadratic hold's code (numba prunes the branches
+    on the closure's constant ``QUADRATIC`` before it types them: every test of the hold starts with it)."""
 
     def lean(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2, d1,
              d2, free, free_load, free_constant, free_past, response, wheel_q, wheel_v, wheel_dof, wheel_h, wheel_k, wheel_c,
@@ -506,7 +507,7 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
     return njit(nogil=True, **FLAT_OPTIONS)(lean)
 
 
-#: the variants of ``lean``: the wheel loads held linear (the default) and quadratic
+#: the variants of ``lean``: the wheel loads held linear and quadratic (the default integrator's)
 lean = _make_lean(False)
 lean_quadratic = _make_lean(True)
 

@@ -754,6 +754,6 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
     return njit(cache=True, fastmath=True, error_model="numpy", nogil=True)(lean_lanes)
 
 
-#: the variants of ``lean_lanes``: the wheel loads held linear (the default) and quadratic
+#: the variants of ``lean_lanes``: the wheel loads held linear and quadratic (the default integrator's)
 lean_lanes = _make_lean_lanes(False)
 lean_lanes_quadratic = _make_lean_lanes(True)
