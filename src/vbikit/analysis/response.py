@@ -337,6 +337,7 @@ def summary(result: CrossingResult, response: PointResponse, girders: list[Point
         "dt": result.dt,
         "duration": float(result.time[-1]),
         "integrator": crossing.integrator,
+        "resolve": crossing.resolve,
         "speed": crossing.speed if crossing.single else crossing.max_speed,
         "n_contact_points_per_wheel": crossing.tire.point_count,
         **{k: v for k, v in zip(START_OUTPUTS, start_settling(crossing)) if not math.isnan(v)},  # (NaN: moving forces)
@@ -557,6 +558,8 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
     "tire_model": ("-", "tire model name"),
     "duration": ("s", "simulated time"),
     "integrator": ("-", "time integrator"),
+    "resolve": ("-", 'what the automatic step resolves (crossing.resolve): "effects", every result, or "deflections", '
+                "deflections and tire forces only (flag deflection_step)"),
     "speed": ("m/s", "vehicle speed at t = 0"),
     "n_contact_points_per_wheel": ("-", "contact points per wheel"),
     **START_OUTPUTS,
