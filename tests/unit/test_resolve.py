@@ -209,3 +209,17 @@ def test_vehicles_without_wheels_run_the_variant_the_integrator_names():
     quad, lin = vehicle_step(vehicles, 1e-3, QUADRATIC), vehicle_step(vehicles, 1e-3, LINEAR)
     assert quad.load_past.size == 0  # no wheels
     assert integrators._lean(quad, lin) is kernels.lean_quadratic and integrators._lean(lin, lin) is kernels.lean
+
+
+def test_a_lifetime_and_a_drive_by_pass_refuse_a_base_for_deflections_only():
+    """Their outputs (load effects; the vehicle's accelerations) need the step for every result."""
+    from vbikit.driveby.study import _scenario_crossing
+    from vbikit.lifetime.setup import build_setup, setup_key
+    from vbikit.scenario.schema import ScenarioError
+
+    base = {"bridge": {"model": "paper-bridge-2-beam", "n_modes": 3}, "tire": {"model": "point"},
+            "road": {"class": "none"}, "crossing": {"resolve": "deflections"}}
+    with pytest.raises(ValueError, match='crossing.resolve = "deflections": a lifetime\'s load effects'):
+        build_setup(setup_key(base, ".", [{"kind": "moment", "x": 8.0}], None, 2, 0.01))
+    with pytest.raises(ScenarioError, match='crossing.resolve = "deflections": a pass reads the vehicle'):
+        _scenario_crossing({**_spec(resolve="deflections"), "vehicle": {"model": "quarter-car"}}, ".")
