@@ -29,8 +29,13 @@ compile_log = logging.getLogger("vbikit.solve.compile")
 #: ``implicit`` itself 15 s, ``contact_forces`` 9 s, the rest its 140 helpers.  ``run_in_loads`` and
 #: ``linear_recursion``, the run-in's loops (``vbikit.solve.run_in``): 1.7 s the two with ``lean`` already
 #: compiled (an HS20-44 with a 40 m run-in after one without, fresh ``NUMBA_CACHE_DIR``, ``time.process_time``;
-#: 2026-12-06, slow state), rounded up.  Any other kernel: ``lean``'s.
-COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "lean_quadratic": 7, "lean_lanes_quadratic": 22, "implicit": 60, "run_in_loads": 2, "linear_recursion": 1}
+#: 2026-12-06, slow state), rounded up.  The variants with the wheel loads held quadratic (the default
+#: integrator's since 2026-12-07), measured alternating with the linear ones the same way, slow state:
+#: ``lean_quadratic`` 6.3 / 6.6 s against ``lean`` 6.1 / 5.8 s (bench_compile.py, the demo),
+#: ``lean_lanes_quadratic`` 24.4 s against ``lean_lanes`` 21.0 s (the 2-lane batch above).  Any other
+#: kernel: ``lean``'s.
+COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "lean_quadratic": 7, "lean_lanes_quadratic": 26,
+                                   "implicit": 60, "run_in_loads": 2, "linear_recursion": 1}
 
 
 def compile_seconds(kernel) -> int:
