@@ -5,6 +5,7 @@ deflections only, as the paper programme's) costs the paper programme, and what 
     python benchmarks/bench_period_rule.py              # seven cells of the programme, ≈ 1 min
     python benchmarks/bench_period_rule.py --per 100 50 25 12.5
     python benchmarks/bench_period_rule.py --hold linear     # the wheel loads linear on every step
+    python benchmarks/bench_period_rule.py --programme-steps # the programme's step count at the library's rules
 
 The paper programme (``bench_studies.py``) is bound by its step count: its lanes run at or below the
 floor (README, targets).  On Bridge 1 (f₁ = 25 Hz) every speed's step is set by the first bridge period
@@ -65,6 +66,32 @@ def _run(built, dt: float) -> tuple[float, int, float]:
     return im, int(result.n_steps), spent
 
 
+def _programme_steps() -> None:
+    """The paper programme's step count, one road profile a cell (the library's automatic steps, each cell's
+    duration over its step: ``Crossing.exit_time`` plus its free vibration), by figure and in all."""
+    import logging
+
+    import numpy as np
+
+    from vbikit.scenario import build, parse_scenario
+    from vbikit.study.paper import paper_study
+    from vbikit.study.run import batch_steps
+
+    logging.disable(logging.WARNING)
+    total = 0.0
+    for fig in ("fig5", "fig6", "fig7", "fig8", "fig10", "fig11"):
+        study = paper_study(fig, 1)
+        cells = list(itertools.product(*(range(n) for n in study.shape)))
+        steps = 0.0
+        for idx, dt in zip(cells, batch_steps(study, cells)):
+            c = build(parse_scenario(study.scenario_dict(idx))).crossing
+            free = c.free_vibration if c.free_vibration is not None else 2 * np.pi / c.bridge.omega.min()
+            steps += (c.exit_time() + free) / dt
+        total += steps
+        print(f"{fig}: {steps:,.0f} steps", flush=True)
+    print(f"programme, one profile a cell: {total:,.0f} steps")
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--per", type=float, nargs="+", default=[100.0, 50.0, 25.0],
@@ -74,7 +101,12 @@ def main() -> None:
                    help="the vehicles' wheel loads over a step (the library's: hybrid; see the docstring)")
     p.add_argument("--vehicle-steps", type=float, default=None,
                    help="steps per period of the highest vehicle mode (the library's: 20)")
+    p.add_argument("--programme-steps", action="store_true",
+                   help="only count the programme's steps (one profile a cell) at the library's rules, by figure")
     args = p.parse_args()
+    if args.programme_steps:
+        _programme_steps()
+        return
 
     import logging
 
