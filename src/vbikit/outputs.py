@@ -213,6 +213,25 @@ def outputs_resolve(names: Optional[Sequence[str]] = None) -> str:
     return "deflections" if all(o.resolve == "deflections" for o in outputs(names=names)) else "effects"
 
 
+def base_resolve(given: Optional[str], names: Optional[Sequence[str]] = None) -> str:
+    """What a population's crossings resolve (``Crossing.resolve``) when they reduce the outputs ``names``
+    (None: all): the base scenario's ``crossing.resolve`` when ``given``, else ``outputs_resolve(names)``.
+
+    Raises
+    ------
+    ValueError
+        A base for deflections only whose outputs need the step for every result.
+    """
+    needs = outputs_resolve(names)
+    if given is None:
+        return needs
+    if given != "effects" and needs == "effects":
+        raise ValueError(f'crossing.resolve = "{given}" in the base scenario: the outputs (every output, or outputs '
+                         "beyond the deflections, tire forces and step counts) need the step for every result; leave "
+                         "crossing.resolve out, or ask only for those outputs")
+    return given
+
+
 def reduce_outputs(reduction: Reduction, scope: Scope,
                    names: Optional[Sequence[str]] = None) -> dict[str, Optional[float]]:
     """Every output of ``scope`` (only those in ``names`` when given) for ``reduction``: name →

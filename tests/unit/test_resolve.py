@@ -75,6 +75,18 @@ def test_a_study_sets_resolve_from_its_outputs_and_keeps_the_base_s_own():
     assert own.scenario_dict(first)["crossing"]["resolve"] == "effects"
 
 
+def test_a_study_for_deflections_only_with_other_outputs_is_refused(tmp_path):
+    """As a traffic stream's base (below): the study's moments would be reduced at the step for deflections."""
+    from vbikit.study.spec import StudyError, parse_study
+
+    d = {"name": "r", "seed": 1, "batch_size": 2, "base": _spec(resolve="deflections"),
+         "axes": {"crossing.speed_kmh": [40, 60]}}
+    with pytest.raises(StudyError, match='crossing.resolve = "deflections" in the base scenario: the outputs'):
+        parse_study(d, tmp_path)
+    d["outputs"] = ["impact_factor", "min_tire_force"]
+    assert parse_study(d, tmp_path).resolve == "deflections"
+
+
 def test_a_scenario_run_for_deflections_flags_its_other_results():
     """``vbikit run`` of a scenario with resolve = "deflections" reports every result, and flags that the
     accelerations, strains and load effects are not within the step's bound (code deflection_step, value the

@@ -48,7 +48,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from vbikit._toml import parse_toml, read_toml
 from vbikit._validation import validation_message
 from vbikit.errors import VbikitError
-from vbikit.outputs import QUALITY_OUTPUTS, outputs as catalogue_outputs, outputs_resolve, select_outputs
+from vbikit.outputs import QUALITY_OUTPUTS, base_resolve, outputs as catalogue_outputs, select_outputs
 from vbikit.contact.registry import TIRE_MODELS
 from vbikit.scenario.schema import Scenario, ScenarioError, TireSpec, parse_scenario, section_keys
 
@@ -326,9 +326,10 @@ class Study:
     @property
     def resolve(self) -> str:
         """What its crossings' automatic step resolves (``Crossing.resolve``): the base's ``crossing.resolve``,
-        else what its outputs need (``vbikit.outputs.outputs_resolve``)."""
+        else what its outputs need (``vbikit.outputs.base_resolve``; ValueError for a base for deflections
+        only with outputs that need more, which ``parse_study`` reports)."""
         given = self.base.get("crossing", {}).get("resolve") if isinstance(self.base.get("crossing"), dict) else None
-        return str(given) if given is not None else outputs_resolve(self.output_names)
+        return base_resolve(given, self.output_names)
 
     def _identity(self, earlier: bool, resolve: bool = True) -> str:
         from vbikit._files import shared_spec
@@ -427,6 +428,10 @@ def parse_study(data: dict[str, Any], base_dir: Path | str = ".") -> Study:
         _check_pem(raw, axes)
     study = Study(raw.name, raw.seed, raw.batch_size, raw.histories, base, tuple(axes), base_dir,
                   None if raw.outputs is None else tuple(raw.outputs), raw.method)
+    try:
+        study.resolve
+    except ValueError as err:
+        raise StudyError(str(err)) from None
     # validate the base alone (clear message for base errors) and every combination of the
     # non-sample axes (sample axes only change the seed, which is always valid)
     try:

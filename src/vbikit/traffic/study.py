@@ -38,7 +38,7 @@ from vbikit.analysis.population_start import start_attrs, start_flags
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import reduce_crossing
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, outputs, outputs_resolve, select_outputs
+from vbikit.outputs import OUTPUTS, QUALITY_OUTPUTS, base_resolve, outputs, select_outputs
 from vbikit.scenario.build import BuiltScenario, build, build_right_road, build_road, with_scenario_road
 from vbikit.scenario.schema import Scenario, ScenarioError, input_paths, parse_scenario
 from vbikit.solve import Crossing, VehicleMotion, simulate
@@ -700,15 +700,14 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
         raise StudyError(f"{source or 'records'}: the stream holds no vehicles")
     if batch_size < 1:
         raise StudyError(f"batch_size must be >= 1, got {batch_size}")
-    needs = outputs_resolve(selected)
     crossing_table = base.get("crossing") if isinstance(base.get("crossing"), dict) else {}
-    if needs == "deflections" and "resolve" not in crossing_table:  # only deflections asked: their step (as a study's)
-        base = {**base, "crossing": {**crossing_table, "resolve": needs}}
+    try:
+        resolve = base_resolve(crossing_table.get("resolve"), selected)
+    except ValueError as err:
+        raise StudyError(str(err)) from None
+    if "resolve" not in crossing_table and resolve != "effects":  # only deflections asked: their step (as a study's)
+        base = {**base, "crossing": {**crossing_table, "resolve": resolve}}
     ctx = EventContext.of(base, base_dir)
-    if ctx.template.crossing.resolve != "effects" and needs == "effects":  # a base for deflections only
-        raise StudyError(f'crossing.resolve = "{ctx.template.crossing.resolve}" in the base scenario: the stream\'s '
-                         "outputs (every output, or --outputs beyond the deflections, tire forces and step counts) need "
-                         "the step for every result; leave crossing.resolve out, or ask only for those outputs")
     bridge = ctx.template.crossing.bridge
     lanes = tuple(float(y) for y in (lanes if lanes is not None else default_lanes(bridge)))
     width = bridge.deck_width if isinstance(bridge, GirderDeck) else None
