@@ -25,7 +25,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: True (the default): the exact integrator holds the wheel loads quadratic over the lean kernels' steps
 #: (``modal_step.QUADRATIC``, third order, as the deck's modal loads), a step in which a wheel lands or lifts
-#: off taken a second time with the linear hold's loads (``kernels.lean``), and linear over the full kernel's
+#: off solved a second time with the linear hold's loads (``kernels.lean``), and linear over the full kernel's
 #: (``modal_step.LINEAR``: the contact events the lean kernels hand over, the rest of a run after
 #: ``integrators.LEAN_RESUMES`` of them, rigid-disk runs).  False: linear on every step (second order).
 #: Where wheels keep the road it halves the step's error (tests/unit/test_wheel_load_hold.py); it keeps class D

@@ -173,13 +173,13 @@ def run_implicit(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         return
     if len(call.lanes) == 1:
         past_p, past_g, _ = _no_past(call)
-        stop, evaluations = _lean(vehicle_step, event_step)(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
+        stop, evaluations, landings = _lean(vehicle_step, event_step)(*_lean_arguments(call, modal_step, vehicle_step, start=True), past_p[:, 0],
                                          past_g[:, 0], False, _positions_before(call, 0), tol, call.stride,
                                          *_lean_work(call))
         if stop < 0:
             LEAN_COUNTS["lean"] += 1
-            log.debug("%s (lean kernel): %.2f contact-law evaluations per step", name,
-                      evaluations / max(call.n_steps, 1))
+            log.debug("%s (lean kernel): %.2f contact-law evaluations per step; %d step(s) in which a wheel landed or "
+                      "lifted off solved a second time", name, evaluations / max(call.n_steps, 1), landings)
         else:
             LEAN_COUNTS["fallback"] += 1
             _finish_lane(call, modal_step, vehicle_step, event_step, tol, 0, int(stop),
@@ -339,7 +339,7 @@ def _finish_lane(call: KernelCall, modal_step: "ModalStep", vehicle_step: "Vehic
         part = replace(one, motion=_steps(call.motion, end, n_steps), n_steps=n_steps - end,
                        outputs=tuple(a[:, row:n_steps // stride + 1] for a in one.outputs))
         work = _lean_work(part)
-        stop, _ = _lean(vehicle_step, event_step)(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
+        stop, _, _ = _lean(vehicle_step, event_step)(*_lean_arguments(part, modal_step, vehicle_step, start=False), past[0][:, 0],
                                past[1][:, 0], True, _positions_before(call, end), tol, stride, *work)
         if stop < 0:  # (``lean_work``'s rows: the forces F_{n+1}, F_n; the modal load; the wheel loads)
             modal, wheels, points = work[0], work[2], work[6]

@@ -26,10 +26,14 @@ they follow from the stored states and wheel forces when a result's ``q_ddot`` i
    through the wheels' increments, so z += (P L1) ΔF_w once, ΔF_w the corrections' whole change).
 
 With the wheel loads held quadratic (Lp ≠ 0, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``) a step in
-which a wheel lands or lifts off is solved a second time from its start: the wheel's load has a kink
-there, which the parabola through G_{n−1}, G_n, G_{n+1} does not follow, so the second pass takes
-G_{n−1} = 2G_n − G_{n+1} of the first pass's end, the linear hold's loads over that step (exactly, up to
-the change of G_{n+1} between the passes).
+which a wheel lands or lifts off is solved a second time: the wheel's load has a kink there, which the
+parabola through G_{n−1}, G_n, G_{n+1} does not follow, so the second solution takes G_{n−1} = 2G_n − G_{n+1}
+of the first one's end, the linear hold's loads over that step (exactly, up to the change of G_{n+1} between
+the two).  Only the vehicles' free response z_b depends on G_{n−1} (by P Lp), so the second solution starts
+from the first one's forces and end state: z shifted by P Lp ΔG_{n−1}, the law there by its exact increments
+(a contact may open or close with the shift, as at an evaluation), then the same quasi-Newton updates to the
+same ``tol`` (``_shift_vehicles``; no second evaluation of the law, mode shapes or road).  A point left out
+by the lazy test that the shift may bring into contact stops the loop there, as in the updates.
 
 Anything else stops the loop: a contact that opens or closes within the step (a gated point's
 activity changes, or a point the lazy test left out may touch), or the corrections not settling.
@@ -228,23 +232,35 @@ def _quasi(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, csum, he
 
 
 @_flat_internal
-def _copy_start(x1, v1, p, pm, z1, xs, vs, ps, pms, zs):
-    """A step's start (ξ, ξ̇, p_n, p_{n−1}; z) from the first five arrays into the last five (kept for a
-    second pass of the step, and put back for it)."""
-    for m in range(x1.size):
-        xs[m] = x1[m]
-        vs[m] = v1[m]
-        ps[m] = p[m]
-        pms[m] = pm[m]
-    for i in range(z1.size):
-        zs[i] = z1[i]
+def _shift_vehicles(free_past, dg, dz, z1, n_d, wheel_dof, wheel_h, bq, bv):
+    """The vehicles' end state of a step whose wheel loads before it change by ``dg`` (n_w,): z_b and hence z
+    change by P Lp ΔG_{n−1} (``VehicleStep``; ``dz`` (2n_d,) receives it), and each wheel's −z_w, −ż_w by
+    ``bq``, ``bv`` (n_w,; the quasi-Newton updates' wheel increments, same signs)."""
+    for i in range(dz.size):
+        a = 0.0
+        for w in range(dg.size):
+            a += free_past[i, w] * dg[w]
+        dz[i] = a
+        z1[i] += a
+    for w in range(dg.size):
+        aq = 0.0
+        av = 0.0
+        for e in range(wheel_dof.shape[1]):
+            h = wheel_h[w, e]
+            if h != 0.0:
+                j = wheel_dof[w, e]
+                aq -= h * dz[j]
+                av -= h * dz[n_d + j]
+        bq[w] = aq
+        bv[w] = av
 
 
 @_flat_internal
 def _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, past):
     """Whether a wheel lands or lifts off within the step (its force sum ``fw`` > 0 at the end against
-    ``contact`` at the start); if so ``past`` = 2G_n − G_{n+1}, G_n = ``g0`` and G_{n+1} = F_w + k_w z_w +
-    c_w ż_w of the end state ``z1``: the G_{n−1} with which the quadratic hold's map is the linear hold's."""
+    ``contact`` at the start); if so ``past``, given G_{n−1} of the step, becomes its change to 2G_n − G_{n+1},
+    G_n = ``g0`` and G_{n+1} = F_w + k_w z_w + c_w ż_w of the end state ``z1``: the G_{n−1} with which the
+    quadratic hold's map is the linear hold's."""
     landed = False
     for w in range(fw.size):
         if (fw[w] > 0.0) != (contact[w] != 0.0):
@@ -257,13 +273,13 @@ def _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c,
                 if h != 0.0:
                     j = wheel_dof[w, e]
                     a += h * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
-            past[w] = 2.0 * g0[w] - a
+            past[w] = 2.0 * g0[w] - a - past[w]
     return landed
 
 
 def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the variant)
     """``lean`` compiled for the vehicles' maps with the wheel loads held linear (``QUADRATIC`` False: Lp = 0)
-    or quadratic (True, the default's: a step in which a wheel lands or lifts off is taken a second time, module
+    or quadratic (True, the default's: a step in which a wheel lands or lifts off is solved a second time, module
     docstring).  Two variants, each compiled on its first use, so that the linear one (Newmark's, and "exact"'s
     with ``QUADRATIC_WHEEL_LOADS`` off) compiles none of the quadratic hold's code (numba prunes the branches
     on the closure's constant ``QUADRATIC`` before it types them: every test of the hold starts with it)."""
@@ -289,9 +305,10 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
         ``vbikit.solve.kernels.hold``), ``tol`` [N] and ``stride``, then the work spaces of ``lean_work``
         (zeroed).
 
-        Returns (``stop``, evaluations): ``stop`` = −1 when every step was taken, else the first step n
+        Returns (``stop``, evaluations, landings): ``stop`` = −1 when every step was taken, else the first step n
         (0-based, t_n → t_{n+1}) that needs more than the lean path (its outputs from row n + 1 on are not
-        filled); evaluations counts the contact-law evaluations."""
+        filled); evaluations counts the contact-law evaluations, landings the steps in which a wheel landed or
+        lifted off, solved a second time (``lean_quadratic``; 0 for ``lean``)."""
         n_steps = (len(travel) - 1) // 2
         n_m = omega.size
         n_d = len(free) // 2
@@ -318,17 +335,32 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
             z1[j] = q[0, j]
             z1[n_d + j] = dq[0, j]
         evaluations = 0
+        landings = 0
         stop = -1
         n = -1  # the step t_n → t_{n+1}; n = −1: the start state t_0 (forces, loads and accelerations)
-        again = False  # the step taken a second time (a landing or lift-off with the loads held quadratic)
+        again = False  # the step solved a second time (a landing or lift-off with the loads held quadratic)
         while n < n_steps:
             row = 2 * n + 2
-            if QUADRATIC and again:  # the step's start again, G_{n−1} the linear hold's 2G_n − G_{n+1}
-                _copy_start(modal[12], modal[13], modal[14], modal[15], state[2], x1, v1, p, pm, z1)  # (rows kept for it)
+            if QUADRATIC and again:  # the step corrected, G_{n−1} the linear hold's 2G_n − G_{n+1} (module docstring):
+                # only z_b changes, by P Lp ΔG_{n−1} (``wheels[13]``); the law follows by the exact increments
+                _shift_vehicles(free_past, wheels[13], zb, z1, n_d, wheel_dof, wheel_h, bq, bv)
+                touch = False
                 for k in range(n_cp):
-                    f[k] = 2.0 * fo[k] - fp[k]
-                for w in range(n_w):
-                    gm[w] = wheels[13, w]
+                    w = wheel[k]
+                    pen[k] += bq[w]
+                    if not used[k]:  # left out by the lazy test: its bound on δ must stay ≤ 0
+                        touch = touch or pen[k] > 0.0
+                        continue
+                    law[k] += kk[k] * bq[w] + cc[k] * bv[w]
+                    fl = law[k]
+                    on = not gated[k] or (pen[k] > 0.0 and fl > 0.0)  # (a contact may open or close here, as at
+                    if on != active[k]:  # an evaluation of the law)
+                        wl[w] += width[k] if on else -width[k]
+                    active[k] = on
+                    force[k] = fl if on else 0.0
+                if touch:
+                    stop = n
+                    break
             else:
                 for k in range(n_cp):
                     vh = vehicle[k]
@@ -341,33 +373,33 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
                     fp[k] = fo[k]  # the forces of the last two steps' ends
                     fo[k] = f[k]
                     f[k] = 2.0 * fo[k] - fp[k]  # the first guess: linear extrapolation of the forces (n ≥ 0)
-                if QUADRATIC and n >= 0:  # (the start kept for a second pass)
-                    _copy_start(x1, v1, p, pm, z1, modal[12], modal[13], modal[14], modal[15], state[2])
-            if n >= 0:
-                share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
-                ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
-                                       sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
-                for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                    past = pm[m] + corr[m] if ends else pm[m]
-                    xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past
-                    vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m] + d2[m] * past
-                    pm[m] = p[m]  # (the next step's p_{n−1})
-                for i in range(2 * n_d):  # z_b = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g
-                    a = free_constant[i]
-                    for j in range(2 * n_d):
-                        a += free[i, j] * z1[j]
+                if n >= 0:
+                    share = x_start if n == 0 and not resume else x_before  # (where p_{n−1} took each share)
+                    ends = hold_correction(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo, sphi,
+                                           sdphi, corr)  # (points crossing a deck end: their share of p_{n−1})
+                    for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                        past = pm[m] + corr[m] if ends else pm[m]
+                        xf[m] = a11[m] * x1[m] + a12[m] * v1[m] + b1[m] * p[m] + d1[m] * past
+                        vf[m] = a21[m] * x1[m] + a22[m] * v1[m] + b2[m] * p[m] + d2[m] * past
+                        pm[m] = p[m]  # (the next step's p_{n−1})
+                    for i in range(2 * n_d):  # z_b = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g
+                        a = free_constant[i]
+                        for j in range(2 * n_d):
+                            a += free[i, j] * z1[j]
+                        for w in range(n_w):
+                            a += free_load[i, w] * g0[w] + free_past[i, w] * gm[w]
+                        zb[i] = a
                     for w in range(n_w):
-                        a += free_load[i, w] * g0[w] + free_past[i, w] * gm[w]
-                    zb[i] = a
-                for w in range(n_w):
-                    gm[w] = g0[w]
-                _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
-                       zb, p, fw, x1, v1, z1)
-                evaluations += 1
-            read = span if n < 0 else abs(span)  # (the start state: the road ahead only when span < 0)
-            _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
-                 wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
-                 elevations, r_max, read, force, active, used, pen, law, wf, wl)
+                        if QUADRATIC:
+                            wheels[13, w] = gm[w]  # (G_{n−1} of the step: a landing's change of it, ``_linear_past``)
+                        gm[w] = g0[w]
+                    _state(f, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
+                           zb, p, fw, x1, v1, z1)
+                    evaluations += 1
+                read = span if n < 0 else abs(span)  # (the start state: the road ahead only when span < 0)
+                _law(x1, v1, z1, n_d, xp, vxp, onb, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
+                     wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
+                     elevations, r_max, read, force, active, used, pen, law, wf, wl)
             updated = False  # by quasi-Newton updates
             if n < 0:
                 for k in range(n_cp):  # (p, like every work space, comes zeroed)
@@ -459,6 +491,7 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
             if QUADRATIC and n >= 0 and not again:  # a wheel lands or lifts off within the step: its load has
                 again = _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, wheels[13])  # a kink
                 if again:  # the parabola through G_{n−1}, G_n, G_{n+1} does not follow (module docstring)
+                    landings += 1
                     continue
             again = False
             stored = (n + 1) % stride == 0  # (row 0: the start state, as given, and its accelerations)
@@ -501,7 +534,7 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
                     q[r_out, i] = z1[i]
                     dq[r_out, i] = z1[n_d + i]
             n += 1
-        return stop, evaluations
+        return stop, evaluations, landings
 
     lean.__name__ = lean.__qualname__ = "lean_quadratic" if QUADRATIC else "lean"  # (each its own notice and cache)
     return njit(nogil=True, **FLAT_OPTIONS)(lean)
@@ -514,15 +547,15 @@ lean_quadratic = _make_lean(True)
 
 def lean_work(n_m: int, n_d: int, n_cp: int, n_w: int) -> tuple[np.ndarray, ...]:
     """The work spaces of ``lean`` (its trailing arguments; ``lean`` relies on their being zeroed): per mode
-    (16, n_m), per vehicle state (3, 2 n_d), per wheel (14, n_w) (the last rows of each: a step's start and
-    G_{n−1} kept for its second pass, ``lean_quadratic``), the held active
+    (12, n_m), per vehicle state (2, 2 n_d), per wheel (14, n_w) (the last row: a step's G_{n−1} and its change
+    for a second solution, ``lean_quadratic``), the held active
     sums (2 n_w + 1,), the vehicles' factorised matrix (n_w, n_w) and pivots (n_w,), per point (13, n_cp),
     per point flags (3, n_cp) and indices (2, n_cp; the station pointers −1: none yet), and the mode-shape
     rows φ, φ' (2, n_cp, n_m).  Allocated by numpy rather than in the kernel: numba compiles no allocation
     routines for them."""
     index = np.zeros((2, n_cp), np.int64)
     index[1] = -1
-    return (np.zeros((16, n_m)), np.zeros((3, 2 * n_d)), np.zeros((14, n_w)),
+    return (np.zeros((12, n_m)), np.zeros((2, 2 * n_d)), np.zeros((14, n_w)),
             np.zeros(2 * n_w + 1), np.zeros((n_w, n_w)), np.zeros(n_w, np.int64), np.zeros((13, n_cp)),
             np.zeros((3, n_cp), np.bool_), index, np.zeros((2, n_cp, n_m)))
 

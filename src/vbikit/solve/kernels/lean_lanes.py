@@ -24,8 +24,11 @@ A lane whose step needs more than that (a gated point's activity changes in the 
 left out by the lazy test may touch, the corrections do not settle) is *frozen* at that step: its
 ``stop`` entry is set to the step, its later rows are not written, and it takes no part in the
 shared decisions after (which points the lazy test keeps).  With the wheel loads held quadratic
-(Lp ≠ 0) a step in which a wheel of some lane lands or lifts off is taken a second time, that lane with
-G_{n−1} = 2G_n − G_{n+1} of the first pass (``lean``), the others as before (the same numbers).  The caller
+(Lp ≠ 0) a step in which a wheel of some lane lands or lifts off is solved a second time in that lane, with
+G_{n−1} = 2G_n − G_{n+1} of the first solution, as ``lean`` does it: from the first solution's forces and end
+state, z shifted by P Lp ΔG_{n−1} and the law by its exact increments (``_shift_vehicles_lanes``), then the
+quasi-Newton updates for those lanes only; the other lanes' shift is zero and their numbers stay as they are
+(before 2026-12-07 every lane took the whole step again).  The caller
 runs the steps in chunks (``integrators._run_lanes``): a frozen lane goes on alone from its last
 stored row (``implicit`` for the contact event's window, then the one-lane ``lean``,
 ``integrators._finish_lane``) and rejoins a later call with the state the one-lane kernel left, or
@@ -208,6 +211,32 @@ def _affine_lanes(constant, matrix, load, z, g, out):
 
 
 @_internal
+def _shift_vehicles_lanes(free_past, dg, dz, z1, n_d, wheel_dof, wheel_h, bq, bv):
+    """The vehicles' end state of a step whose wheel loads before it change by ``dg`` (n_w, L): z_b and hence
+    z change by P Lp ΔG_{n−1} (``VehicleStep``; ``dz`` (2n_d, L) receives it), and each wheel's −z_w, −ż_w by
+    ``bq``, ``bv`` (n_w, L; the quasi-Newton updates' wheel increments, same signs)."""
+    n_z, n_l = dz.shape
+    for i in range(n_z):
+        for lane in range(n_l):
+            dz[i, lane] = 0.0
+    _add_product_lanes(free_past, dg, dz)
+    for i in range(n_z):
+        for lane in range(n_l):
+            z1[i, lane] += dz[i, lane]
+    for w in range(wheel_dof.shape[0]):
+        for lane in range(n_l):
+            bq[w, lane] = 0.0
+            bv[w, lane] = 0.0
+        for e in range(wheel_dof.shape[1]):
+            h = wheel_h[w, e]
+            if h != 0.0:
+                j = wheel_dof[w, e]
+                for lane in range(n_l):
+                    bq[w, lane] -= h * dz[j, lane]
+                    bv[w, lane] -= h * dz[n_d + j, lane]
+
+
+@_internal
 def _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response, xf, vf,
                  zb, p, fw, x1, v1, z1):
     """``lean._state`` for every lane: p = −Σ_{p on the deck} φ_p F_p, F_w = Σ_{p∈w} F_p,
@@ -321,7 +350,7 @@ def _quasi_lanes(f, force, active, kk, cc, wheel, wheel_q, wheel_v, fw, ksum, cs
 
 def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the variant)
     """``lean_lanes`` compiled for the vehicles' maps with the wheel loads held linear (``QUADRATIC`` False:
-    Lp = 0) or quadratic (True: a step in which a lane's wheel lands or lifts off is taken a second time,
+    Lp = 0) or quadratic (True: a step in which a lane's wheel lands or lifts off is solved a second time,
     module docstring).  Two variants, each compiled on its first use (``lean._make_lean``)."""
 
     def lean_lanes(travel, speed, start, end, grid_h, values, slopes, amp, omega, zeta, a11, a12, a21, a22, b1, b2, c1, c2,
@@ -380,7 +409,8 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
                 z0[n_d + j, lane] = dq[lane, r_first, j]
         p0 = np.zeros((n_m, n_l)); p = np.zeros((n_m, n_l)); acc = np.empty((n_m, n_l)); dp = np.zeros((n_m, n_l))
         pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
-        pms = np.zeros((n_m, n_l)); gr = np.zeros((n_w, n_l))  # those of a step's start, for its second pass
+        gr = np.zeros((n_w, n_l))  # G_{n−1} of a step's start; a landing lane's change of it (``again``)
+        again = np.zeros(n_l, np.bool_); dz = np.zeros((2 * n_d, n_l))  # the lanes corrected for a landing
         corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
         x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
         contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``hold_jumps``)
@@ -446,87 +476,118 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
                     for lane in range(n_l):
                         z1[i, lane] = z0[i, lane]
             else:
-                redo = False  # (a second pass: the step again with the jumped lanes' wheel loads held linear)
+                redo = False  # (a lane's wheel landed or lifted off: that lane's step corrected, its wheel loads held linear)
+                n_rel = np.int64(0)  # (the step's points, set by the first pass: not a bare 0, a literal-typed variant of _quasi_lanes)
+                n_use = 0
                 for attempt in range(passes):
-                    if QUADRATIC and attempt == 1:  # the step's start again (x0, v0, z0, p0 are kept by the step)
-                        for m in range(n_m):
+                    if QUADRATIC and attempt == 1:  # ``again``'s lanes with G_{n−1} = 2G_n − G_{n+1} (``gr``: its change)
+                        _shift_vehicles_lanes(free_past, gr, dz, z1, n_d, wheel_dof, wheel_h, bq, bv)
+                        for lane in range(n_l):
+                            flip[lane] = False
+                        for w in range(n_w):  # the left-out and dormant points' bounds move with −z_w
                             for lane in range(n_l):
-                                pm[m, lane] = pms[m, lane]
+                                lo_on[w, lane] += bq[w, lane]
+                                lo_off[w, lane] += bq[w, lane]
+                                flip[lane] = flip[lane] or lo_on[w, lane] > 0.0 or lo_off[w, lane] > 0.0
+                        for i in range(n_use):  # the used points' law by the exact increments; a contact may open or
+                            k = use[i]  # close here, as at a new evaluation of the law
+                            w = wheel[k]
+                            kc = kk[k]
+                            ck = cc[k]
+                            gk = gated[k]
+                            wd = width[k]
+                            for lane in range(n_l):
+                                pen[k, lane] += bq[w, lane]
+                                law[k, lane] += kc * bq[w, lane] + ck * bv[w, lane]
+                                fl = law[k, lane]
+                                on = not gk or (pen[k, lane] > 0.0 and fl > 0.0)
+                                wl[w, lane] += 0.0 if on == active[k, lane] else (wd if on else -wd)
+                                active[k, lane] = on
+                                force[k, lane] = fl if on else 0.0
+                        for lane in range(n_l):
+                            err[lane] = 0.0
+                        for i in range(n_rel):
+                            k = rel[i]
+                            for lane in range(n_l):
+                                err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))
+                        n_work = 0
+                        for lane in range(n_l):
+                            if again[lane] and flip[lane] and live[lane]:  # frozen at this step
+                                live[lane] = False
+                                stop[lane] = n
+                                n_live -= 1
+                            work[lane] = live[lane] and again[lane] and err[lane] > tol
+                            n_work += 1 if work[lane] else 0
+                    else:
+                        if QUADRATIC:  # G_{n−1} of the step's start (a landing lane's change of it: below)
+                            for w in range(n_w):
+                                for lane in range(n_l):
+                                    gr[w, lane] = gm[w, lane]
+                        for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
+                            nonzero = False  # reads it too)
+                            for lane in range(n_l):
+                                fk = 2.0 * fo[k, lane] - fp[k, lane]
+                                f[k, lane] = fk
+                                nonzero = nonzero or fk != 0.0
+                            nz[k] = nonzero
+                        share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
+                        ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
+                                                     sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
+                        if ends:
+                            for m in range(n_m):
+                                for lane in range(n_l):
+                                    corr[m, lane] += pm[m, lane]
+                        past = corr if ends else pm
+                        for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
+                            e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
+                            h2 = d2[m]
+                            for lane in range(n_l):
+                                xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
+                                vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
+                                pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
+                        # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
+                        _affine_lanes(free_constant, free, free_load, z0, g0, zb)
+                        _add_product_lanes(free_past, gm, zb)
                         for w in range(n_w):
                             for lane in range(n_l):
-                                gm[w, lane] = gr[w, lane]
-                    elif QUADRATIC:
-                        for m in range(n_m):
-                            for lane in range(n_l):
-                                pms[m, lane] = pm[m, lane]
-                        for w in range(n_w):
-                            for lane in range(n_l):
-                                gr[w, lane] = gm[w, lane]
-                    for k in range(n_cp):  # first guess: linear extrapolation of the forces (the hold at the deck's ends
-                        nonzero = False  # reads it too)
-                        for lane in range(n_l):
-                            fk = 2.0 * fo[k, lane] - fp[k, lane]
-                            f[k, lane] = fk
-                            nonzero = nonzero or fk != 0.0
-                        nz[k] = nonzero
-                    share = x_start if n == 0 else x_before  # (where p_{n−1} took each share: the run's start holds p_0)
-                    ends = hold_correction_lanes(x_before, share, x_start, xp, track, start, end, grid_h, values, slopes, fo,
-                                                 sphi, sdphi, corr)  # points crossing a deck end: their share of p_{n−1}
-                    if ends:
-                        for m in range(n_m):
-                            for lane in range(n_l):
-                                corr[m, lane] += pm[m, lane]
-                    past = corr if ends else pm
-                    for m in range(n_m):  # free responses: deck with p_{n+1} = 0, vehicles with F_{n+1} = 0
-                        e11 = a11[m]; e12 = a12[m]; e21 = a21[m]; e22 = a22[m]; f1 = b1[m]; f2 = b2[m]; h1 = d1[m]
-                        h2 = d2[m]
-                        for lane in range(n_l):
-                            xf[m, lane] = e11 * x0[m, lane] + e12 * v0[m, lane] + f1 * p0[m, lane] + h1 * past[m, lane]
-                            vf[m, lane] = e21 * x0[m, lane] + e22 * v0[m, lane] + f2 * p0[m, lane] + h2 * past[m, lane]
-                            pm[m, lane] = p0[m, lane]  # (the next step's p_{n−1})
-                    # z_b = P (Φ z_n + Lp G_{n−1} + L0 G_n + g) = P Φ z_n + P Lp G_{n−1} + P L0 G_n + P g (``VehicleStep``)
-                    _affine_lanes(free_constant, free, free_load, z0, g0, zb)
-                    _add_product_lanes(free_past, gm, zb)
-                    for w in range(n_w):
-                        for lane in range(n_l):
-                            gm[w, lane] = g0[w, lane]
-                    _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
-                                 xf, vf, zb, p, fw, x1, v1, z1)
-                    evaluations += 1
-                    read = abs(span)
-                    _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
-                               slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
-                               gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
-                               bmax, zw, dzw, s_l, sd_l, dr_l)
-                    n_rel = np.int64(0)  # not a bare 0 (a literal-typed variant of _quasi_lanes)
-                    n_use = 0
-                    for k in range(n_cp):
-                        if used[k]:
-                            dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
-                            for lane in range(n_l):
-                                dormant = dormant and pen[k, lane] <= 0.0
-                            if not dormant:
-                                use[n_use] = k
-                                n_use += 1
-                            elif onb[k]:
+                                gm[w, lane] = g0[w, lane]
+                        _state_lanes(f, nz, onb, xp, have, start, grid_h, values, slopes, track, phi, dphi, wheel, c1, c2, response,
+                                     xf, vf, zb, p, fw, x1, v1, z1)
+                        evaluations += 1
+                        read = abs(span)
+                        _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values,
+                                   slopes, amp, wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap,
+                                   gated, width, stations, elevations, r_max, read, force, active, used, pen, law, wf, wl, lo_on, lo_off,
+                                   bmax, zw, dzw, s_l, sd_l, dr_l)
+                        n_rel = np.int64(0)
+                        n_use = 0
+                        for k in range(n_cp):
+                            if used[k]:
+                                dormant = gated[k]  # a gated point off the road (δ ≤ 0) in every lane: watched by its bound
                                 for lane in range(n_l):
-                                    lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
-                            else:
-                                for lane in range(n_l):
-                                    lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
-                        if used[k] or nz[k]:
-                            rel[n_rel] = k
-                            n_rel += 1
-                    for lane in range(n_l):
-                        err[lane] = 0.0
-                    for i in range(n_rel):
-                        k = rel[i]
+                                    dormant = dormant and pen[k, lane] <= 0.0
+                                if not dormant:
+                                    use[n_use] = k
+                                    n_use += 1
+                                elif onb[k]:
+                                    for lane in range(n_l):
+                                        lo_on[wheel[k], lane] = max(lo_on[wheel[k], lane], pen[k, lane])
+                                else:
+                                    for lane in range(n_l):
+                                        lo_off[wheel[k], lane] = max(lo_off[wheel[k], lane], pen[k, lane])
+                            if used[k] or nz[k]:
+                                rel[n_rel] = k
+                                n_rel += 1
                         for lane in range(n_l):
-                            err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
-                    n_work = 0
-                    for lane in range(n_l):
-                        work[lane] = live[lane] and err[lane] > tol
-                        n_work += 1 if work[lane] else 0
+                            err[lane] = 0.0
+                        for i in range(n_rel):
+                            k = rel[i]
+                            for lane in range(n_l):
+                                err[lane] = max(err[lane], abs(force[k, lane] - f[k, lane]))  # force = 0 where not used
+                        n_work = 0
+                        for lane in range(n_l):
+                            work[lane] = live[lane] and err[lane] > tol
+                            n_work += 1 if work[lane] else 0
                     for w in range(n_w):
                         for lane in range(n_l):
                             dfw[w, lane] = 0.0
@@ -641,20 +702,26 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
                             wf[w, lane] = fw[w, lane]
                     if not QUADRATIC or attempt == 1:
                         break
-                    for lane in range(n_l):  # a wheel lands or lifts off within the step (``lean``): that lane
-                        if live[lane]:  # again with G_{n−1} = 2G_n − G_{n+1} of this pass (the others alike)
+                    for lane in range(n_l):  # a wheel lands or lifts off within the step (``lean``): that lane's
+                        jump = False  # G_{n−1} becomes 2G_n − G_{n+1} of this pass, ``gr`` its change (0 in the others)
+                        if live[lane]:
                             for w in range(n_w):
                                 if (wf[w, lane] > 0.0) != contact[w, lane]:
-                                    redo = True
-                                    for w2 in range(n_w):
-                                        a = wf[w2, lane]
-                                        for e in range(wheel_dof.shape[1]):
-                                            h = wheel_h[w2, e]
-                                            if h != 0.0:
-                                                j = wheel_dof[w2, e]
-                                                a += h * (wheel_k[w2] * z1[j, lane] + wheel_c[w2] * z1[n_d + j, lane])
-                                        gr[w2, lane] = 2.0 * g0[w2, lane] - a
+                                    jump = True
                                     break
+                        again[lane] = jump
+                        for w2 in range(n_w):
+                            d = 0.0
+                            if jump:
+                                a = wf[w2, lane]
+                                for e in range(wheel_dof.shape[1]):
+                                    h = wheel_h[w2, e]
+                                    if h != 0.0:
+                                        j = wheel_dof[w2, e]
+                                        a += h * (wheel_k[w2] * z1[j, lane] + wheel_c[w2] * z1[n_d + j, lane])
+                                d = 2.0 * g0[w2, lane] - a - gr[w2, lane]
+                            gr[w2, lane] = d
+                        redo = redo or jump
                     if not redo:
                         break
             # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
