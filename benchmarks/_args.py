@@ -23,3 +23,14 @@ def benchmark_args(doc: str, repeat_help: str, parser: argparse.ArgumentParser |
         _COLD_CACHE = tempfile.TemporaryDirectory(prefix="vbikit-numba-cache-")  # removed at exit
         os.environ["NUMBA_CACHE_DIR"] = _COLD_CACHE.name
     return args
+
+
+def default_step_loops() -> tuple[str, str]:
+    """The names in ``vbikit.solve.kernels`` of the step loops the default integrator runs, one lane and many
+    (its ``Integrator.kernel`` and ``lanes_kernel``: ``lean_quadratic`` and ``lean_lanes_quadratic`` while the
+    wheel loads are held quadratic, ``builtin_integrators.QUADRATIC_WHEEL_LOADS``), so that a benchmark times
+    the kernels that run rather than a variant by name."""
+    from vbikit.solve.crossing import DEFAULT_INTEGRATOR, get_integrator
+
+    integrator = get_integrator(DEFAULT_INTEGRATOR)
+    return integrator.kernel().__name__, integrator.lanes_kernel().__name__

@@ -83,9 +83,11 @@ def time_runs(crossing: Crossing, repeat: int):
 
 def _integration_time(crossing: Crossing, repeat: int) -> float:
     """Median time [s] of the step loop alone over ``repeat`` runs of ``crossing``: the kernel calls
-    of each run summed (``kernels.lean``, the default path, and ``kernels.implicit`` where a crossing
+    of each run summed (``kernels.lean`` and ``lean_quadratic``, the default path, and ``kernels.implicit`` where a crossing
     needs it or RK4's kernel; the rest of a ``simulate`` is the fixed per-crossing work)."""
-    names = ("lean", "implicit", "rk4")
+    from _args import default_step_loops
+
+    names = ("lean", default_step_loops()[0], "implicit", "rk4")
     originals = {name: getattr(kernels, name) for name in names if hasattr(kernels, name)}
     current: list[float] = []
 

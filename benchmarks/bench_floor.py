@@ -18,14 +18,15 @@ machine), minimum of ``--repeat`` runs after a warm-up:
 
 * **kernel**: the library's full step loop (``kernels.implicit``, generic over lanes) inside
   ``simulate`` (``integrators.USE_LEAN`` off);
-* **lean**: the one-lane step loop ``simulate`` runs by default (``kernels.lean``; it hands a
+* **lean**: the one-lane step loop ``simulate`` runs by default (``kernels.lean_quadratic``, the variant
+  the default integrator names, ``_args.default_step_loops``; it hands a
   crossing to ``kernels.implicit`` only at a step it does not take — none here);
 * **whole**: what ``vbikit run`` does for the crossing — ``simulate`` (default: lean) and the
   response point's history with its static reference and impact factor;
 * **floor**: ``floor_loop`` on the same inputs;
 * **lanes**: the crossing on 32 roads (the demo road scaled by 0.5 … 1.5) as lanes of one call
   (``BatchSolver.run_many``, the batched studies' runner): the many-lane lean kernel
-  (``kernels.lean_lanes``, default) and the many-lane ``kernels.implicit`` (``USE_LEAN`` off), each
+  (``kernels.lean_lanes_quadratic``, default) and the many-lane ``kernels.implicit`` (``USE_LEAN`` off), each
   per crossing (the call's time / 32);
 
 and the ratios kernel / floor, whole / floor and lanes / floor, with the floor's midspan displacement against
@@ -33,8 +34,8 @@ the library's (max difference / peak: the floor solves the same equations, one u
 
 * **traffic lanes** (``--traffic-lanes N``, default 6; 0: skip): the first N one-truck events of
   ``bench_traffic.py``'s stream, each event's truck on 32 roads (its road scaled by 0.5 … 1.5) as lanes of
-  one call (``BatchSolver.run_many``: ``kernels.lean_lanes``) against the event alone (``simulate``:
-  ``kernels.lean``), kernel time per crossing: what running a stream's events as lanes of one kernel
+  one call (``BatchSolver.run_many``: ``kernels.lean_lanes_quadratic``) against the event alone (``simulate``:
+  ``kernels.lean_quadratic``), kernel time per crossing: what running a stream's events as lanes of one kernel
   could gain at best — lanes that share the motion, shapes and steps, which events of a stream do not
   (each has its own truck, speed and step).
 
@@ -71,7 +72,7 @@ def _floor_loop():
 
     @njit(cache=True, fastmath=True, error_model="numpy")
     def floor_loop(travel, speed, modes_start, modes_end, grid_h, values, slopes, a11, a12, a21, a22, b1, b2, c1, c2,
-                   d1, d2, transition, load0, constant, settle, response, wheel_q, wheel_v, wheel_rows, wheel_k, wheel_c, v_inv,
+                   d1, d2, transition, load0, load_past, constant, settle, response, wheel_q, wheel_v, wheel_rows, wheel_k, wheel_c, v_inv,
                    origin, direction, vehicle, track, line, kk, cc, f0, gap, gated, wheel, stations, elevations, span,
                    x0, v0, z0, fstart, xi_out, q_out, wf_out):
         n_steps = xi_out.shape[0] - 1
@@ -85,7 +86,7 @@ def _floor_loop():
         p0 = np.zeros(n_m); p = np.zeros(n_m); pm = np.zeros(n_m)  # (pm: the deck's load a step before, the hold)
         xf = np.zeros(n_m); vf = np.zeros(n_m); x1 = np.zeros(n_m); v1 = np.zeros(n_m)
         zf = np.zeros(2 * n_d); zb = np.zeros(2 * n_d); z1 = np.zeros(2 * n_d)
-        g0 = np.zeros(n_w); fw = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w)
+        g0 = np.zeros(n_w); gm = np.zeros(n_w); fw = np.zeros(n_w); bq = np.zeros(n_w); bv = np.zeros(n_w); t = np.zeros(n_w)
         f = fstart.copy(); fo = fstart.copy(); fp = fstart.copy(); law = np.zeros(n_cp)
         phi = np.zeros((n_cp, n_m)); dphi = np.zeros((n_cp, n_m)); onb = np.zeros(n_cp, np.bool_)
         xp = np.zeros(n_cp); vxp = np.zeros(n_cp); idx = np.zeros(n_cp, np.int64)
@@ -94,6 +95,7 @@ def _floor_loop():
         for w in range(n_w):
             for j in range(n_d):
                 g0[w] += wheel_rows[w, j] * (wheel_k[w] * z[j] + wheel_c[w] * z[n_d + j])
+            gm[w] = g0[w]  # (the wheel loads before the start: held at the start's, as the library's hold)
         for n in range(n_steps):
             row = 2 * n + 2
             for k in range(n_cp):  # positions and mode shapes (cubic Hermite)
@@ -129,8 +131,8 @@ def _floor_loop():
                 a = constant[i]
                 for j in range(2 * n_d):
                     a += transition[i, j] * z[j]
-                for w in range(n_w):
-                    a += load0[i, w] * g0[w]
+                for w in range(n_w):  # (+ the wheel loads a step before: the library's quadratic hold, Lp ≠ 0)
+                    a += load0[i, w] * g0[w] + load_past[i, w] * gm[w]
                 zf[i] = a
             for i in range(2 * n_d):
                 a = 0.0
@@ -225,6 +227,7 @@ def _floor_loop():
                     on = law[k] != 0.0 or not gated[k]
                     f[k] = law[k] + kk[k] * bq[wheel[k]] + cc[k] * bv[wheel[k]] if on else 0.0
             for w in range(n_w):  # end of step: wheel loads, outputs, shift
+                gm[w] = g0[w]
                 g0[w] = fw[w]
                 for j in range(n_d):
                     g0[w] += wheel_rows[w, j] * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
@@ -268,7 +271,7 @@ def floor_inputs(args: tuple):
         fstart[k] = wheel_force[0, 0, w] * points.stiffness[k] / ksum[w] if ksum[w] > 0 else 0.0
     inputs = (c(motion.travel), c(motion.speed), modes.start, modes.end, modes.grid_h, modes.values, modes.slopes,
               step.a11, step.a12, step.a21, step.a22, step.b1, step.b2, step.c1, step.c2, step.d1, step.d2, vstep.transition,
-              vstep.load0, vstep.constant, vstep.settle, vstep.response, vstep.wheel_q, vstep.wheel_v,
+              vstep.load0, np.ascontiguousarray(vstep.load_past), vstep.constant, vstep.settle, vstep.response, vstep.wheel_q, vstep.wheel_v,
               vehicles.wheel_rows, vehicles.wheel_stiffness, vehicles.wheel_damping, v_inv, points.origin,
               points.direction, points.vehicle, points.track, np.minimum(points.line, road.elevations.shape[0] - 1),
               points.stiffness, points.damping,
@@ -321,7 +324,7 @@ def workload_floor(name: str, repeat: int) -> dict:
             floor_loop(*inputs, *outs)
             t.append(time.thread_time() - t0)
         floor += min(t) * a[9].shape[0]  # xi: (lanes, rows, modes)
-        points.append(inputs[28].size)
+        points.append(inputs[29].size)
     return {"workload": name, "whole_ms": min(whole) / n * 1e3, "floor_ms": floor / n * 1e3, "crossings": n,
             "calls": len(calls), "points": (min(points), max(points)) if points else (0, 0)}
 
@@ -346,8 +349,11 @@ def main() -> None:
     from vbikit.scenario.preflight import preflight
     from vbikit.solve import integrators, kernels, simulate
 
+    from _args import default_step_loops
+
     built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
-    originals = {name: getattr(kernels, name) for name in ("implicit", "lean")}
+    one_lane = default_step_loops()[0]  # (the lean kernel's variant the default integrator runs)
+    originals = {name: getattr(kernels, name) for name in ("implicit", one_lane)}
     spent: dict[str, list[float]] = {name: [] for name in originals}
     captured: dict[str, tuple] = {}
 
@@ -383,7 +389,7 @@ def main() -> None:
         setattr(kernels, name, timed(name))
     try:
         t_whole, warm = timed_runs(True)
-        t_lean = list(spent["lean"])
+        t_lean = list(spent[one_lane])
         t_whole_implicit, _ = timed_runs(False)
         t_kernel = list(spent["implicit"])
         res, resp = whole()
@@ -394,7 +400,7 @@ def main() -> None:
     if not t_lean or integrators.LEAN_COUNTS["fallback"]:
         raise SystemExit("bench_floor: the demo crossing did not run through the lean kernel")
     call, (unsettled, evaluations) = captured["implicit"]
-    _, (_, lean_evaluations) = captured["lean"]
+    lean_evaluations = captured[one_lane][1][1]
     floor_loop = _floor_loop()
     inputs, outs = floor_inputs(call)
     t0 = time.perf_counter()
@@ -411,12 +417,12 @@ def main() -> None:
     agree = float(np.max(np.abs(u_floor[1:] - u_lib[1:])) / np.max(np.abs(u_lib)))
     k, ln, w, wi, f = min(t_kernel), min(t_lean), min(t_whole), min(t_whole_implicit), min(t_floor)
     n = res.n_steps
-    print(f"bench_floor: the vbikit demo crossing ({n} steps, {res.xi.shape[1]} modes, {inputs[28].size} contact "
+    print(f"bench_floor: the vbikit demo crossing ({n} steps, {res.xi.shape[1]} modes, {inputs[29].size} contact "
           f"points), {datetime.date.today()}, {os.cpu_count()} CPUs, thread CPU time, min of {args.repeat}")
     print(f"  first calls (numba cache load or compile): crossing {warm:.2f} s, floor {floor_warm:.2f} s wall")
     print(f"  kernel (kernels.implicit)      {k * 1e3:7.2f} ms   {evaluations / n:.2f} contact-law evaluations a step, "
           f"{unsettled} unconverged steps")
-    print(f"  lean (kernels.lean, default)   {ln * 1e3:7.2f} ms   {lean_evaluations / n:.2f} contact-law evaluations a "
+    print(f"  lean (kernels.{one_lane}, default) {ln * 1e3:7.2f} ms   {lean_evaluations / n:.2f} contact-law evaluations a "
           f"step, no fallback")
     print(f"  whole crossing (simulate + IM) {w * 1e3:7.2f} ms   IM = {resp.displacement_impact.impact_factor:.4f} "
           f"(with kernels.implicit: {wi * 1e3:.2f} ms)")
@@ -437,8 +443,8 @@ def main() -> None:
                   f"{r['points'][0]}–{r['points'][1]} points, {r['calls']} calls for {r['crossings']} crossings",
                   flush=True)
     if args.traffic_lanes > 0:
-        print("traffic events, kernel time a crossing: the event alone (kernels.lean) against its truck on 32 roads as "
-              f"lanes of one call (kernels.lean_lanes), min of {args.repeat}:")
+        print("traffic events, kernel time a crossing: the event alone (the lean kernel) against its truck on 32 roads as "
+              f"lanes of one call (the many-lane lean kernel), min of {args.repeat}:")
         for r in traffic_lanes(args.traffic_lanes, args.repeat):
             print(f"  event {r['event']:3d} ({r['points']:2d} contact points, {r['steps']} steps): alone {r['alone_ms']:.2f} ms, "
                   f"as a lane {r['lane_ms']:.2f} ms -> {r['alone_ms'] / r['lane_ms']:.2f}x ({r['handed_over']} of 32 lanes handed "
@@ -447,9 +453,9 @@ def main() -> None:
 
 def traffic_lanes(n_events: int, repeat: int) -> list[dict]:
     """For the first ``n_events`` one-truck events of ``bench_traffic.py``'s stream: the thread CPU time
-    of the event's step loop alone (``kernels.lean`` inside ``simulate``, min of ``repeat``) and per lane
+    of the event's step loop alone (the default's lean kernel inside ``simulate``, min of ``repeat``) and per lane
     of its truck on 32 roads (the event's road scaled by 0.5 … 1.5) as lanes of one call
-    (``kernels.lean_lanes`` inside ``BatchSolver.run_many``, min of ``repeat`` / 32), and how many lanes
+    (the default's many-lane lean kernel inside ``BatchSolver.run_many``, min of ``repeat`` / 32), and how many lanes
     ``lean_lanes`` handed to the full kernel (their time is not counted: 0 keeps the comparison fair)."""
     from dataclasses import replace
 
@@ -460,9 +466,12 @@ def traffic_lanes(n_events: int, repeat: int) -> list[dict]:
     from vbikit.solve.batch import BatchSolver
     from vbikit.traffic.study import traffic_study
 
+    from _args import default_step_loops
+
     job = traffic_study(_stream(40 * n_events, 600.0), _base(0.01), batch_size=16)
     events = [e for e in range(job.size) if len(job.events[e]) == 1][:n_events]
-    spent: dict[str, list[float]] = {"lean": [], "lean_lanes": []}
+    one_lane, many = default_step_loops()  # (the lean kernels' variants the default integrator runs)
+    spent: dict[str, list[float]] = {one_lane: [], many: []}
     originals = {name: getattr(kernels, name) for name in spent}
 
     def timed(name):
@@ -482,15 +491,15 @@ def traffic_lanes(n_events: int, repeat: int) -> list[dict]:
             roads = [replace(crossing.road, z=crossing.road.z * s) for s in np.linspace(0.5, 1.5, 32)]
             alone, lanes = [], []
             for _ in range(repeat + 1):
-                spent["lean"].clear()
+                spent[one_lane].clear()
                 res = simulate(crossing)
-                alone.append(sum(spent["lean"]))
+                alone.append(sum(spent[one_lane]))
             solver = BatchSolver(crossing)
             before = integrators.LEAN_COUNTS["lanes_fallback"]
             for _ in range(repeat + 1):
-                spent["lean_lanes"].clear()
+                spent[many].clear()
                 solver.run_many(roads)
-                lanes.append(sum(spent["lean_lanes"]) / len(roads))
+                lanes.append(sum(spent[many]) / len(roads))
             out.append({"event": e, "points": int(crossing.point_vehicle.size), "steps": res.n_steps,
                         "alone_ms": min(alone[1:]) * 1e3, "lane_ms": min(lanes[1:]) * 1e3,
                         "handed_over": (integrators.LEAN_COUNTS["lanes_fallback"] - before) // (repeat + 1)})
@@ -514,7 +523,9 @@ def _lanes(crossing, repeat: int) -> tuple[float, float, int]:
     roads = [replace(crossing.road, z=crossing.road.z * s) for s in np.linspace(0.5, 1.5, 32)]
     solver = BatchSolver(crossing)
     out = []
-    for name, use_lean in (("lean_lanes", True), ("implicit", False)):
+    from _args import default_step_loops
+
+    for name, use_lean in ((default_step_loops()[1], True), ("implicit", False)):
         original = getattr(kernels, name)
         spent: list[float] = []
 

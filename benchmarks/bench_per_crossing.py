@@ -45,9 +45,12 @@ WORKLOADS = ("demo", "3d", "fig10", "fig10-32", "paper", "traffic", "lifetime")
 
 
 def _kernel_clock():
-    """Wrap the compiled step loops (``kernels.lean``, the default for one lane, ``kernels.lean_lanes``,
-    for many, and ``kernels.implicit``, rigid disks and the lean kernels' hand-overs) so that their
-    thread CPU time adds up in ``spent[0]``."""
+    """Wrap the compiled step loops (the lean kernels, both variants: ``lean`` and ``lean_quadratic`` for one
+    lane, ``lean_lanes`` and ``lean_lanes_quadratic`` for many, ``_args.default_step_loops`` naming the default's;
+    and ``kernels.implicit``, rigid disks and the lean kernels' hand-overs) so that their thread CPU time adds
+    up in ``spent[0]``."""
+    from _args import default_step_loops
+
     from vbikit.solve import kernels
 
     spent = [0.0]
@@ -61,7 +64,7 @@ def _kernel_clock():
                 spent[0] += time.thread_time() - t0
         return timed
 
-    for name in ("implicit", "lean", "lean_lanes"):
+    for name in {"implicit", "lean", "lean_lanes", *default_step_loops()}:
         if hasattr(kernels, name):
             setattr(kernels, name, wrap(getattr(kernels, name)))
     return spent
