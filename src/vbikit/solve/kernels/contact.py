@@ -227,6 +227,21 @@ def _gated(f, pen, gate):
 
 
 @njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def deck_increments(phi, dphi, k, dx, dv):
+    """The deck's part of point ``k``'s change of position, velocity and slope, (φ_k·Δξ, φ_k·Δξ̇, φ'_k·Δξ),
+    for the modal increments ``dx``, ``dv`` (n_m,): the law's exact increments in the lean kernel's updates
+    (``lean``) and the full kernel's one-evaluation refinement (``newton._lean_refine``)."""
+    ds = 0.0
+    dr = 0.0
+    dsd = 0.0
+    for m in range(dx.size):
+        ds += phi[k, m] * dx[m]
+        dr += phi[k, m] * dv[m]
+        dsd += dphi[k, m] * dx[m]
+    return ds, dr, dsd
+
+
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
 def _deck(phi, dphi, p, vx, xi, dxi, s, dr, sd, lanes):
     """Add the deck's displacement φ_p·ξ to ``s``, its velocity φ_p·ξ̇ to ``dr`` and the convective
     rate vx φ'_p·ξ to ``sd`` (rows (1, L)) of point ``p``, per lane."""

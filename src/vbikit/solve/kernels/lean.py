@@ -59,7 +59,7 @@ from numba import njit
 
 from vbikit._kept import Kept
 from vbikit.solve.kernels.bundles import FLAT_OPTIONS, _flat, _flat_internal
-from vbikit.solve.kernels.contact import hermite_shape, road_cells, secant_ends
+from vbikit.solve.kernels.contact import deck_increments, hermite_shape, road_cells, secant_ends
 from vbikit.solve.kernels.hold import hold_correction
 from vbikit.solve.kernels.dense import lu_factor_inline, lu_solve_inline
 from vbikit.solve.kernels.newton import LEAN_CORRECTIONS
@@ -454,14 +454,7 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
                                     changed = True
                                     break
                                 continue
-                            ds = 0.0
-                            dr = 0.0
-                            dsd = 0.0
-                            if onb[k]:
-                                for m in range(n_m):
-                                    ds += phi[k, m] * dx[m]
-                                    dr += phi[k, m] * dv[m]
-                                    dsd += dphi[k, m] * dx[m]
+                            ds, dr, dsd = deck_increments(phi, dphi, k, dx, dv) if onb[k] else (0.0, 0.0, 0.0)
                             dpen = ds + bq[w]
                             pen[k] += dpen
                             law[k] += kk[k] * dpen + cc[k] * (dr + vxp[k] * dsd + bv[w])

@@ -60,6 +60,22 @@ from vbikit.solve.kernels.woodbury import vehicle_back, vehicle_factors, vehicle
 
 
 @_internal
+def _deck_lanes(phi, dphi, k, rate, x, v, s, dr, sd):
+    """Add the deck's part of point ``k``'s position φ_k·x to ``s``, velocity φ_k·v to ``dr`` and slope
+    ``rate`` φ'_k·x to ``sd`` in every lane (x, v (n_m, L); s, dr, sd (L,)): of the state in the law
+    (``_law_lanes``, ``rate`` the point's x-rate: the convective rate), of its increments in the updates
+    (``rate`` 1)."""
+    n_m, n_l = x.shape  # (unpacked: numba types an indexed shape through a compiled overload)
+    for m in range(n_m):
+        ph = phi[k, m]
+        dph = rate * dphi[k, m]
+        for lane in range(n_l):
+            s[lane] += ph * x[m, lane]
+            dr[lane] += ph * v[m, lane]
+            sd[lane] += dph * x[m, lane]
+
+
+@_internal
 def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx, start, grid_h, values, slopes, amp,
                wheel_dof, wheel_h, wheel_first, wheel_count, track, line, kk, cc, f0, gap, gated, width, stations,
                elevations, r_max, span, force, active, used, pen, law, wf, wl, lo_on, lo_off, bmax, zw, dzw, s_l, sd_l,
@@ -155,14 +171,7 @@ def _law_lanes(x1, v1, z1, n_d, xp, vxp, onb, live, phi, dphi, have, rv, rr, idx
                 sd_l[lane] = rr[p, lane]
                 dr_l[lane] = 0.0
             if onb[p]:
-                vx = vxp[p]
-                for m in range(n_m):
-                    ph = phi[p, m]
-                    dph = vx * dphi[p, m]
-                    for lane in range(n_l):
-                        s_l[lane] += ph * x1[m, lane]
-                        dr_l[lane] += ph * v1[m, lane]
-                        sd_l[lane] += dph * x1[m, lane]
+                _deck_lanes(phi, dphi, p, vxp[p], x1, v1, s_l, dr_l, sd_l)
             g = gap[p]
             k = kk[p]
             c = cc[p]
@@ -664,13 +673,7 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
                                 dr_l[lane] = 0.0
                                 sd_l[lane] = 0.0
                             if onb[k]:
-                                for m in range(n_m):
-                                    ph = phi[k, m]
-                                    dph = dphi[k, m]
-                                    for lane in range(n_l):
-                                        s_l[lane] += ph * dx[m, lane]
-                                        dr_l[lane] += ph * dv[m, lane]
-                                        sd_l[lane] += dph * dx[m, lane]
+                                _deck_lanes(phi, dphi, k, 1.0, dx, dv, s_l, dr_l, sd_l)
                             kc = kk[k]
                             ck = cc[k]
                             vx = vxp[k]

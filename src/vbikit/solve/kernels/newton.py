@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from vbikit.solve.kernels.bundles import _internal
-from vbikit.solve.kernels.contact import _gated, road_point, shape_point
+from vbikit.solve.kernels.contact import _gated, deck_increments, road_point, shape_point
 from vbikit.solve.kernels.dense import _lu_factor, _lu_solve, solve_held
 from vbikit.solve.kernels.woodbury import vehicle_back, vehicle_factors, vehicle_rhs
 
@@ -243,14 +243,7 @@ def _lean_refine(f, f_old, force, work, lane, tol, gated, points, cache, onb, st
                 if pen[k, lane] > 0.0:
                     return r
                 continue
-            ds = 0.0
-            dr = 0.0
-            dsd = 0.0
-            if onb[k]:
-                for m in range(n_m):
-                    ds += phi[k, m] * dxi[m]
-                    dr += phi[k, m] * dvi[m]
-                    dsd += dphi[k, m] * dxi[m]
+            ds, dr, dsd = deck_increments(phi, dphi, k, dxi, dvi) if onb[k] else (0.0, 0.0, 0.0)
             dpen = ds + bq[w, lane]
             pen[k, lane] += dpen
             law[k, lane] += points.stiffness[k] * dpen + points.damping[k] * (dr + cache.vx[k] * dsd + bv[w, lane])
