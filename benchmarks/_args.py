@@ -33,4 +33,6 @@ def default_step_loops() -> tuple[str, str]:
     from vbikit.solve.crossing import DEFAULT_INTEGRATOR, get_integrator
 
     integrator = get_integrator(DEFAULT_INTEGRATOR)
-    return integrator.kernel().__name__, integrator.lanes_kernel().__name__
+    one = getattr(integrator, "kernel", None)  # (``bench_per_crossing.py --compare`` may load a tree older than
+    many = getattr(integrator, "lanes_kernel", None)  # ``Integrator.lanes_kernel``, 2026-12-05: its kernels' names)
+    return (one().__name__ if one else "lean"), (many().__name__ if many else "lean_lanes")

@@ -229,7 +229,8 @@ STAGES = (("vbikit.solve.simulate", "plan_run"), ("vbikit.solve.plan", "choose_t
           ("vbikit.solve.system", "kernel_data"), ("vbikit.solve.tabulate", "_tabulate"),
           ("vbikit.solve.simulate", "integrate"), ("vbikit.solve.system", "static_state"),
           ("vbikit.solve.modal_step", "exact_step"), ("vbikit.solve.modal_step", "vehicle_step"),
-          ("vbikit.solve.kernels", "lean"), ("vbikit.solve.simulate", "check_finite"))
+          ("vbikit.solve.kernels", "lean"), ("vbikit.solve.kernels", "lean_quadratic"),  # (the default's: the wheel
+          ("vbikit.solve.simulate", "check_finite"))  # loads held quadratic)
 
 
 def stage_times(runs: dict, repeat: int) -> None:

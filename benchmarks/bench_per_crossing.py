@@ -22,7 +22,7 @@ Workloads (each warmed up once, then ``--repeat`` timed rounds; the figure is th
   axle trucks), per event.
 
 Measured: thread CPU time (``time.thread_time``) of the whole call and, inside it, of the compiled
-step loop (``vbikit.solve.kernels.lean``, ``lean_lanes`` and ``implicit`` wrapped); "outside" = whole − kernel;
+step loop (``vbikit.solve.kernels.lean``, ``lean_lanes``, their ``_quadratic`` variants and ``implicit`` wrapped); "outside" = whole − kernel;
 and "calls", the function calls per crossing of one more round under ``cProfile`` (Python functions, and C
 functions called from Python): the interpreter's part as a count, which does not swing with the machine's load.  Every workload
 runs in a child process per tree (with ``--compare`` the trees alternate round by round, so that both

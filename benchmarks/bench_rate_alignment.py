@@ -25,8 +25,8 @@ first five with two) and the ``vbikit demo`` crossing (HS20-44, multipoint tire 
    from the road the point actually crosses.
 
 ``LEAN_COUNTS['fallback']`` is reported (runs the full kernel finished).  ``--time N``: N crossings of
-each case at dt through ``simulate``, thread CPU time of the one-lane lean kernel (``kernels.lean``)
-per crossing, min and median (run in separate processes per code version to compare versions).
+each case at dt through ``simulate``, thread CPU time of the one-lane lean kernel (the variant the default
+integrator runs, ``_args.default_step_loops``) per crossing, min and median (run in separate processes per code version to compare versions).
 Prints one table; writes nothing.
 """
 from __future__ import annotations
@@ -182,9 +182,12 @@ def scan(name, crossing, point, ks, spread: bool, drift: bool, band: bool = Fals
 
 def lean_time(crossing, rounds: int) -> list[float]:
     """Thread CPU time [s] of the one-lane lean kernel per crossing of ``crossing`` at its step."""
+    from _args import default_step_loops
+
     from vbikit.solve import kernels, simulate
 
-    inner = kernels.lean
+    name = default_step_loops()[0]
+    inner = getattr(kernels, name)
     spent = []
 
     def timed(*args):
@@ -193,14 +196,14 @@ def lean_time(crossing, rounds: int) -> list[float]:
         spent.append(time.thread_time() - t0)
         return out
 
-    kernels.lean = timed
+    setattr(kernels, name, timed)
     try:
         simulate(crossing)  # compiled / cache loaded
         spent.clear()
         for _ in range(rounds):
             simulate(crossing)
     finally:
-        kernels.lean = inner
+        setattr(kernels, name, inner)
     return spent
 
 

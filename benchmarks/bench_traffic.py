@@ -21,7 +21,7 @@
    of processes: trucks/s, and the time the whole stream would take that way;
 5. by event size (``--by-size N``, default 300; 0: skip): the stream's first N events in this
    process, each run once as the workers run it (``TrafficStudy.run_event``), thread CPU time of
-   the whole event and of its step loop (``kernels.lean``, and ``kernels.implicit`` where the lean
+   the whole event and of its step loop (the default's lean kernel, and ``kernels.implicit`` where the lean
    kernel hands over), grouped by the number of trucks on the bridge together: how much of the
    stream's cost the several-truck events are; and the share of their runs a truck spends between
    ``crossing.approach`` before its entry and its exit (weighted by its DOFs): the part of a

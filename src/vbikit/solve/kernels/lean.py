@@ -343,7 +343,8 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
             row = 2 * n + 2
             if QUADRATIC and again:  # the step corrected, G_{n−1} the linear hold's 2G_n − G_{n+1} (module docstring):
                 # only z_b changes, by P Lp ΔG_{n−1} (``wheels[13]``); the law follows by the exact increments
-                _shift_vehicles(free_past, wheels[13], zb, z1, n_d, wheel_dof, wheel_h, bq, bv)
+                _shift_vehicles(free_past, wheels[13], zb, z1, n_d, wheel_dof, wheel_h, bq, bv)  # (zb: scratch, the
+                # next step's first solution forms it again)
                 touch = False
                 for k in range(n_cp):
                     w = wheel[k]
