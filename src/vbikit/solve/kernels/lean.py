@@ -255,6 +255,20 @@ def _shift_vehicles(free_past, dg, dz, z1, n_d, wheel_dof, wheel_h, bq, bv):
         bv[w] = av
 
 
+@njit(cache=True, fastmath=True, error_model="numpy", inline="always")
+def _wheel_load(force, w, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c):
+    """G_w = F_w + k_w z_w + c_w ż_w (``VehicleStep``'s wheel loads): wheel ``w``'s load from its contact force
+    sum ``force`` [N] and the vehicles' state ``z1`` (q, q̇), its row h_w read through ``wheel_entries``."""
+    a = force
+    _, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
+    for e in range(n_e):
+        h = wheel_h[w, e]
+        if h != 0.0:
+            j = wheel_dof[w, e]
+            a += h * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
+    return a
+
+
 @_flat_internal
 def _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, past):
     """Whether a wheel lands or lifts off within the step (its force sum ``fw`` > 0 at the end against
@@ -267,13 +281,7 @@ def _linear_past(fw, contact, g0, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c,
             landed = True
     if landed:
         for w in range(fw.size):
-            a = fw[w]
-            for e in range(wheel_dof.shape[1]):
-                h = wheel_h[w, e]
-                if h != 0.0:
-                    j = wheel_dof[w, e]
-                    a += h * (wheel_k[w] * z1[j] + wheel_c[w] * z1[n_d + j])
-            past[w] = 2.0 * g0[w] - a - past[w]
+            past[w] = 2.0 * g0[w] - _wheel_load(fw[w], w, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c) - past[w]
     return landed
 
 
@@ -313,7 +321,7 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
         n_m = omega.size
         n_d = len(free) // 2
         n_cp = origin.size
-        n_w, n_e = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
+        n_w, _ = wheel_dof.shape  # (unpacked: numba types an indexed shape through a compiled overload)
         # the rows of the work spaces (``lean_work``; indexed, not unpacked, so that each row stays a contiguous array)
         x1 = modal[0]; v1 = modal[1]; xf = modal[2]; vf = modal[3]; p = modal[4]; dp = modal[5]; dx = modal[6]
         dv = modal[7]; pm = modal[8]; corr = modal[9]; sphi = modal[10]; sdphi = modal[11]
@@ -495,14 +503,7 @@ def _make_lean(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of the v
             for w in range(n_w):
                 if n >= 0:
                     wf[w] = fw[w]  # (at n = −1 the law's sums)
-                a = wf[w]
-                kw = wheel_k[w]
-                cw = wheel_c[w]
-                for e in range(n_e):
-                    h = wheel_h[w, e]
-                    if h != 0.0:
-                        j = wheel_dof[w, e]
-                        a += h * (kw * z1[j] + cw * z1[n_d + j])
+                a = _wheel_load(wf[w], w, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c)
                 g0[w] = a
                 if n < 0:  # the loads before the start (for the hold)
                     gm[w] = past_g[w] if resume else a

@@ -220,6 +220,24 @@ def _affine_lanes(constant, matrix, load, z, g, out):
 
 
 @_internal
+def _wheel_loads_lanes(wf, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, out):
+    """The wheel loads G_w = F_w + k_w z_w + c_w ż_w (``VehicleStep``) of every lane into ``out`` (n_w, L), from
+    the wheels' contact force sums ``wf`` (n_w, L) and the vehicles' state ``z1`` (q, q̇) (2n_d, L)."""
+    n_w, n_l = out.shape
+    for w in range(n_w):
+        kw = wheel_k[w]
+        cw = wheel_c[w]
+        for lane in range(n_l):
+            out[w, lane] = wf[w, lane]
+        for e in range(wheel_dof.shape[1]):
+            h = wheel_h[w, e]
+            if h != 0.0:
+                j = wheel_dof[w, e]
+                for lane in range(n_l):
+                    out[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
+
+
+@_internal
 def _shift_vehicles_lanes(free_past, dg, dz, z1, n_d, wheel_dof, wheel_h, bq, bv):
     """The vehicles' end state of a step whose wheel loads before it change by ``dg`` (n_w, L): z_b and hence
     z change by P Lp ΔG_{n−1} (``VehicleStep``; ``dz`` (2n_d, L) receives it), and each wheel's −z_w, −ż_w by
@@ -420,6 +438,7 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
         pm = np.zeros((n_m, n_l)); gm = np.zeros((n_w, n_l))  # the hold's loads of the step before
         gr = np.zeros((n_w, n_l))  # G_{n−1} of a step's start; a landing lane's change of it (``again``)
         again = np.zeros(n_l, np.bool_); dz = np.zeros((2 * n_d, n_l))  # the lanes corrected for a landing
+        gn = np.zeros((n_w, n_l))  # (their G_{n+1} of the first solution)
         corr = np.zeros((n_m, n_l)); sphi = np.zeros(n_m); sdphi = np.zeros(n_m)  # the hold at the deck's ends
         x_start = np.empty(n_cp); x_before = np.empty(n_cp)  # the positions at t_n, t_{n−1}
         contact = np.zeros((n_w, n_l), np.bool_); jumped = np.zeros(n_l, np.bool_)  # wheels in contact (``hold_jumps``)
@@ -713,32 +732,15 @@ def _make_lean_lanes(QUADRATIC: bool):  # noqa: N803 (a compile-time constant of
                                     jump = True
                                     break
                         again[lane] = jump
-                        for w2 in range(n_w):
-                            d = 0.0
-                            if jump:
-                                a = wf[w2, lane]
-                                for e in range(wheel_dof.shape[1]):
-                                    h = wheel_h[w2, e]
-                                    if h != 0.0:
-                                        j = wheel_dof[w2, e]
-                                        a += h * (wheel_k[w2] * z1[j, lane] + wheel_c[w2] * z1[n_d + j, lane])
-                                d = 2.0 * g0[w2, lane] - a - gr[w2, lane]
-                            gr[w2, lane] = d
                         redo = redo or jump
                     if not redo:
                         break
-            # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
-            for w in range(n_w):
-                kw = wheel_k[w]
-                cw = wheel_c[w]
-                for lane in range(n_l):
-                    g0[w, lane] = wf[w, lane]
-                for e in range(wheel_dof.shape[1]):
-                    h = wheel_h[w, e]
-                    if h != 0.0:
-                        j = wheel_dof[w, e]
+                    _wheel_loads_lanes(wf, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, gn)  # G_{n+1} of this solution
+                    for w in range(n_w):
                         for lane in range(n_l):
-                            g0[w, lane] += h * (kw * z1[j, lane] + cw * z1[n_d + j, lane])
+                            gr[w, lane] = 2.0 * g0[w, lane] - gn[w, lane] - gr[w, lane] if again[lane] else 0.0
+            # loads and accelerations of the end state: G = F_w + k_w z_w + c_w ż_w, ξ̈
+            _wheel_loads_lanes(wf, z1, n_d, wheel_dof, wheel_h, wheel_k, wheel_c, g0)
             if n >= first:  # a wheel that lands or lifts off: the next step holds from here on
                 # MANY_LANES as int64s, not the global's literal 0s: hold_jumps keeps the one signature implicit
                 # gives it (a literal-typed tuple compiled it a second time)
