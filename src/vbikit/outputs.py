@@ -213,15 +213,18 @@ def outputs_resolve(names: Optional[Sequence[str]] = None) -> str:
     return "deflections" if all(o.resolve == "deflections" for o in outputs(names=names)) else "effects"
 
 
-def base_resolve(given: Optional[str], names: Optional[Sequence[str]] = None) -> str:
+def base_resolve(base: Mapping[str, Any], names: Optional[Sequence[str]] = None) -> str:
     """What a population's crossings resolve (``Crossing.resolve``) when they reduce the outputs ``names``
-    (None: all): the base scenario's ``crossing.resolve`` when ``given``, else ``outputs_resolve(names)``.
+    (None: all): the base scenario's (``base``, a scenario table) ``crossing.resolve`` when it gives one, else
+    ``outputs_resolve(names)``.
 
     Raises
     ------
     ValueError
         A base for deflections only whose outputs need the step for every result.
     """
+    crossing = base.get("crossing")
+    given = crossing.get("resolve") if isinstance(crossing, Mapping) else None
     needs = outputs_resolve(names)
     if given is None:
         return needs

@@ -244,11 +244,11 @@ def _scenario_crossing(data: dict, base_dir: str):
     from vbikit.scenario.build import build_right_road, build_road, build_tire, check_road_budget
 
     scenario = parse_scenario(data, base_dir)
-    if scenario.crossing.resolve != "effects":
-        from vbikit.scenario.schema import ScenarioError
+    from vbikit.scenario.schema import ScenarioError
+    from vbikit.solve.crossing import require_every_result
 
-        raise ScenarioError(f'crossing.resolve = "{scenario.crossing.resolve}": a pass reads the vehicle\'s accelerations, '
-                            "which need the step for every result; leave crossing.resolve out")
+    require_every_result(scenario.crossing.resolve, "a pass reads the vehicle's accelerations, which need the step for "
+                         "every result", ScenarioError)
     key = json.dumps([data["bridge"], str(base_dir)], sort_keys=True)
     if key not in _BRIDGES:
         if len(_BRIDGES) > 16:

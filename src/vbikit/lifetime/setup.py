@@ -73,14 +73,14 @@ def build_setup(key: str) -> Setup:
     if key in _SETUPS:
         return _SETUPS[key]
     from vbikit.bridge.base import HasLoadEffects
+    from vbikit.solve.crossing import require_every_result
     from vbikit.traffic.study import EventContext
 
     d = json.loads(key)
     base = {k: v for k, v in d["base"].items()}
     ctx = EventContext.of(base, d["base_dir"])
-    if ctx.template.crossing.resolve != "effects":
-        raise ValueError(f'crossing.resolve = "{ctx.template.crossing.resolve}": a lifetime\'s load effects need the step '
-                         "for every result; leave crossing.resolve out of the base scenario")
+    require_every_result(ctx.template.crossing.resolve, "a lifetime's load effects need the step for every result",
+                         where=" of the base scenario")
     bridge = ctx.template.crossing.bridge
     lines = []
     for i, e in enumerate(d["effects"]):

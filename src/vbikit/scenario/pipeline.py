@@ -28,7 +28,7 @@ from vbikit.scenario.preflight import Plan, preflight, scenario_inputs
 from vbikit.scenario.report import Report
 from vbikit.scenario.schema import Scenario, ScenarioError, load_scenario, parse_scenario, scenario_from_toml
 from vbikit.solve.budget import Limits
-from vbikit.solve.crossing import Crossing
+from vbikit.solve.crossing import Crossing, require_every_result
 from vbikit.solve.plan import RunPlan
 from vbikit.solve.result import CrossingResult
 
@@ -115,9 +115,8 @@ def check_random_road(scenario: Scenario) -> None:
     if road.defects:
         raise ScenarioError("road.defects: a random-vibration run takes the road as a Gaussian process only; remove "
                             "the defects (or run them with Monte Carlo: several road.seed values)")
-    if scenario.crossing.resolve != "effects":  # (pseudo-excitation holds the loads linear: the step for every result)
-        raise ScenarioError(f'crossing.resolve = "{scenario.crossing.resolve}": a random-vibration run takes the step '
-                            "for every result (its loads are held linear); leave crossing.resolve out")
+    require_every_result(scenario.crossing.resolve, "a random-vibration run takes the step for every result (its loads "
+                         "are held linear)", ScenarioError)
 
 
 def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir: str | Path | None = None,

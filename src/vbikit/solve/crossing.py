@@ -45,6 +45,14 @@ DIRECTIONS: tuple[str, ...] = ("+x", "-x")
 #: (deflections and tire forces only: the exact integrator's coarser first-period term,
 #: ``vbikit.solve.timestep.EXACT_STEPS_PER_FIRST_BRIDGE_PERIOD``)
 RESOLVES: tuple[str, ...] = ("effects", "deflections")
+
+
+def require_every_result(resolve: str, why: str, error: type[ValueError] = ValueError, where: str = "") -> None:
+    """Refuse a step for deflections only (``resolve`` ≠ "effects", ``Crossing.resolve``) where a run needs
+    the step for every result, ``why`` saying what needs it: ``error`` (a ValueError) naming the key, its value
+    and what to do (leave the key out, ``where``: of which file or table)."""
+    if resolve != "effects":
+        raise error(f'crossing.resolve = "{resolve}": {why}; leave crossing.resolve out{where}')
 T = TypeVar("T")
 
 #: values a crossing keeps of its own (``Crossing.kept``): at most this many

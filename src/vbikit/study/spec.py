@@ -328,8 +328,7 @@ class Study:
         """What its crossings' automatic step resolves (``Crossing.resolve``): the base's ``crossing.resolve``,
         else what its outputs need (``vbikit.outputs.base_resolve``; ValueError for a base for deflections
         only with outputs that need more, which ``parse_study`` reports)."""
-        given = self.base.get("crossing", {}).get("resolve") if isinstance(self.base.get("crossing"), dict) else None
-        return base_resolve(given, self.output_names)
+        return base_resolve(self.base, self.output_names)
 
     def _identity(self, earlier: bool, resolve: bool = True) -> str:
         from vbikit._files import shared_spec

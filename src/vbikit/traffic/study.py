@@ -700,11 +700,11 @@ def traffic_study(records: Sequence[VehicleRecord], base: dict, base_dir: str = 
         raise StudyError(f"{source or 'records'}: the stream holds no vehicles")
     if batch_size < 1:
         raise StudyError(f"batch_size must be >= 1, got {batch_size}")
-    crossing_table = base.get("crossing") if isinstance(base.get("crossing"), dict) else {}
     try:
-        resolve = base_resolve(crossing_table.get("resolve"), selected)
+        resolve = base_resolve(base, selected)
     except ValueError as err:
         raise StudyError(str(err)) from None
+    crossing_table = base.get("crossing") if isinstance(base.get("crossing"), dict) else {}
     if "resolve" not in crossing_table and resolve != "effects":  # only deflections asked: their step (as a study's)
         base = {**base, "crossing": {**crossing_table, "resolve": resolve}}
     ctx = EventContext.of(base, base_dir)
