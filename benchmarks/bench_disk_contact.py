@@ -7,7 +7,7 @@ touch: is the disk's share of the programme waste of the lanes' shared lazy test
 One batch of the study (the disk tire, the given road class and speed: its roads as lanes of one
 ``BatchSolver.run_many`` call, as ``bench_studies.py`` runs them) is simulated; then, from the lanes' own
 results (travel, modal and vehicle histories) and the kernels' own inputs (``vbikit.solve.system.kernel_data``:
-the Hermite mode tables, ``Modes.amp``, the points' gaps, wheels and tracks), each step's gated points are
+the Hermite mode tables read by ``tabulate.hermite_rows``, ``Modes.amp``, the points' gaps, wheels and tracks), each step's gated points are
 counted, averaged over the steps:
 
 * **loose**: those the many-lane kernel's shared lazy test evaluates, a lane's bound r_p − g_p − z_w + B
@@ -29,18 +29,6 @@ import logging
 import numpy as np
 
 
-def _hermite(modes, x, track):
-    """Mode shapes of the Hermite tables at ``x`` on ``track`` (the kernels' cubic Hermite)."""
-    u = (x - modes.start[track]) / modes.grid_h
-    i = np.clip(np.floor(u).astype(int), 0, modes.values.shape[1] - 2)
-    t = u - i
-    t2, t3 = t * t, t * t * t
-    h00, h10 = 2 * t3 - 3 * t2 + 1, (t3 - 2 * t2 + t) * modes.grid_h
-    h01, h11 = -2 * t3 + 3 * t2, (t3 - t2) * modes.grid_h
-    v, s = modes.values[track], modes.slopes[track]
-    return h00[..., None] * v[i] + h10[..., None] * s[i] + h01[..., None] * v[i + 1] + h11[..., None] * s[i + 1]
-
-
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--figure", default="fig10", choices=("fig10", "fig11"))
@@ -53,6 +41,7 @@ def main() -> None:
     from vbikit.scenario.build import build
     from vbikit.solve.batch import BatchSolver
     from vbikit.solve.system import kernel_data
+    from vbikit.solve.tabulate import hermite_rows
     from vbikit.study.compute import _road
     from vbikit.study.paper import paper_study
 
@@ -69,10 +58,10 @@ def main() -> None:
 
     xp = pts.origin[None, :] + pts.direction[None, :] * results[0].travel[:, pts.vehicle]  # (n_t, n_cp)
     on = (xp >= modes.start[pts.track][None, :]) & (xp <= modes.end[pts.track][None, :])
-    phi = np.zeros(xp.shape + (modes.values.shape[2],))
-    for tr in np.unique(pts.track):
-        sel = pts.track == tr
-        phi[:, sel] = _hermite(modes, np.clip(xp[:, sel], modes.start[tr], modes.end[tr]), tr)
+    tracks = np.broadcast_to(pts.track, xp.shape).ravel()
+    on_track = np.clip(xp.ravel(), modes.start[tracks], modes.end[tracks])  # (the points off the deck: zeroed below)
+    phi = hermite_rows(modes.start, modes.grid_h, modes.values, modes.slopes, tracks, on_track,
+                       with_slopes=False)[0].reshape(xp.shape + (-1,))
     phi[~on] = 0.0
     slope = 1.5 * np.abs(modes.slopes).max(axis=(0, 1))
     middle = np.zeros(pts.origin.size, int)
