@@ -138,8 +138,9 @@ FLAG_CODES: dict[str, str] = {
     "heavy_axle": "an axle load far beyond legal limits; value: the axle load [N], threshold [N]",
     "effect_step": "the step does not resolve a load effect (``vbikit.analysis.effect_step``); output: moment / "
                    "shear / reaction; value: the run's step [s], threshold: the step that resolves it [s]",
-    "step_not_converged": "impact factors still changing when the step was last halved (the step check); output: "
-                          "the quantity that changed most; value: its change, threshold: the tolerance",
+    "step_not_converged": "impact factors or peak deck accelerations still changing when the step was last halved "
+                          "(the step check); output: the quantity that changed most; value: its change (of a peak "
+                          "acceleration relative to its value), threshold: the tolerance",
     "non_finite": "an output that is not a finite number (written as null); output: its key",
     "contact_not_converged": "implicit integrators: steps whose end-of-step contact forces did not settle to their "
                              "tolerance within the iteration limit (the run went on with the last iterate); output: "

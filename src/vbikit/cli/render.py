@@ -161,8 +161,9 @@ def print_negative_note(negative: bool) -> None:
 
 
 def step_line(s: dict) -> None:
-    """The half-step check's line (``vbikit.scenario.step_check.half_step_check``): how much the impact factors
-    change at half the automatic step; nothing without it (a given crossing.dt, or the load effects' halving)."""
+    """The half-step check's lines (``vbikit.scenario.step_check.half_step_check``): how much the impact factors and
+    the peak deck accelerations change at half the automatic step; nothing without it (a given crossing.dt, or the
+    load effects' halving)."""
     check = s.get("step_check")
     if not check:
         return
@@ -172,6 +173,10 @@ def step_line(s: dict) -> None:
     which = f" ({check['output']})" if check.get("output") else ""
     typer.echo(f"  step check           at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by "
                f"at most {check['largest_change']:.1e}{which}")
+    if check.get("acceleration_change") is not None:  # (a summary written before the accelerations were checked: none)
+        where = f" ({check['acceleration_output']})" if check.get("acceleration_output") else ""
+        typer.echo(f"                       the peak deck accelerations by at most {check['acceleration_change']:.2%} "
+                   f"of their values{where}")
 
 
 def start_line(s: dict) -> None:

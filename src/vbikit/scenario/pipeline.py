@@ -88,7 +88,8 @@ def run(source: ScenarioSource | Crossing, response: ResponsePlan | None = None,
         Label of a Crossing's report (a scenario's is its ``name``).
     step_check
         At an automatic step, run the crossing once more at half the step and state in the summary's ``step_check``
-        how much its deflection and strain impact factors change (``vbikit.scenario.step_check.half_step_check``;
+        how much its deflection and strain impact factors and its peak deck accelerations change
+        (``vbikit.scenario.step_check.half_step_check``;
         about 1.6 times the run's cost).  False leaves it out (a loop over many runs whose step is checked
         otherwise); the load effects' own halving, when a scenario asks for them, runs either way.
 
@@ -235,7 +236,8 @@ def run_crossing(crossing: Crossing, plan: ResponsePlan, *, limits: Limits | Non
     (``vbikit.scenario.step_check``); a scenario checks it when its [response] asks for moments,
     shears or reactions (not for the ones reported by default) or runs a train (``train``: its peak
     accelerations are checked too); otherwise, with ``half_step`` (a scenario's single run), the run at an automatic
-    step is run once more at half of it and the summary's ``step_check`` says how much its impact factors change
+    step is run once more at half of it and the summary's ``step_check`` says how much its impact factors and peak
+    deck accelerations change
     (``vbikit.scenario.step_check.half_step_check``)."""
     from vbikit.scenario.step_check import converge_step, half_step_check, load_effect_plan
     from vbikit.solve import simulate
