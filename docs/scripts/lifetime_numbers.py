@@ -73,7 +73,8 @@ def example() -> dict:
         details[str(name)] = {k: float(ds[k].values[j]) for k in (
             "fatigue_damage", "fatigue_damage_static", "fatigue_damage_se", "dynamic_damage_ratio",
             "fatigue_damage_per_year", "remaining_life", "fatigue_damage_design_life",
-            "fatigue_damage_design_life_upper")} | {"verdict": str(ds["fatigue_verdict"].values[j]),
+            "fatigue_damage_design_life_upper", "max_stress_range_static", "max_stress_range_design_life",
+            "max_stress_range_design_life_bound")} | {"verdict": str(ds["fatigue_verdict"].values[j]),
                                                      "ratio_words": str(ds["dynamic_damage_ratio_note"].values[j])}
     return {"date": time.strftime("%Y-%m-%d"), "wall_s": wall, "n_days": int(a["n_days"]), "n_trucks": int(a["n_trucks"]),
             "n_events": int(a["n_events"]), "n_dynamic": int(a["n_dynamic_events"]),

@@ -39,27 +39,43 @@ def test_adr_is_one_without_dynamics(tmp_path):
 
 
 def test_fatigue_limit_judges_the_whole_period(tmp_path):
-    """EN 1993-1-9 1.3.3.3: no damage when every stress range of the loading is below Δσ_D, and
-    every cycle above Δσ_L counts otherwise.  Quasi-static traffic (as above): the largest stress
-    range of the period is the largest static midspan-moment peak over the section modulus (the
-    stress returns to 0 between events; the moment at x = 3.3 m is ≥ 0 under downward loads).  A
-    detail whose largest range sits 20 % below Δσ_D does no damage though its days' cycles above
-    Δσ_L add up (damage_per_day_static > 0); one whose largest range sits 20 % above Δσ_D does,
-    more than its cycles above Δσ_D alone would (the m = 5 cycles count)."""
+    """EN 1993-1-9 1.3.3.3: no damage when every stress range of the loading — the design life's — is below
+    Δσ_D, and every cycle above Δσ_L counts otherwise.  Quasi-static traffic (as above): the largest stress
+    range of a day is its largest static midspan-moment peak over the section modulus (the stress returns to
+    0 between events; the moment at x = 3.3 m is ≥ 0 under downward loads), and the design life's largest is
+    their Gumbel return level for 100 years of 365 days — by hand with scipy's maximum-likelihood fit
+    (``scipy.stats.gumbel_r``) of the daily maxima of the run without details.  A detail whose largest range
+    of the five days sits 60 % below Δσ_D does no damage; one 20 % below it in the days but not over the
+    design life does: its days' cycles above Δσ_L count (the rule is not applied, said in words); one whose
+    largest range sits 20 % above Δσ_D does, more than its cycles above Δσ_D alone would (the m = 5 cycles
+    count)."""
     from vbikit.fatigue import sn_curve
 
     first = run_lifetime(_spec(days=5), tmp_path / "a", base_dir=".", workers=1, figures=False)
     m_max = float(first["event_static"].sel(load_effect="M").max())
     d_d = sn_curve("EN 36").threshold  # Δσ_D of category 36 [Pa]
-    details = [{"name": "below", "effect": "M", "section_modulus": m_max / (0.8 * d_d), "category": "EN 36"},
+    details = [{"name": "below", "effect": "M", "section_modulus": m_max / (0.4 * d_d), "category": "EN 36"},
+               {"name": "days_only", "effect": "M", "section_modulus": m_max / (0.8 * d_d), "category": "EN 36"},
                {"name": "above", "effect": "M", "section_modulus": m_max / (1.2 * d_d), "category": "EN 36"}]
     ds = run_lifetime(_spec(days=5, fatigue={"details": details, "histogram_bin": 1e5}), tmp_path / "b", base_dir=".",
                       workers=1, figures=False)
-    below, above = ds.sel(detail="below"), ds.sel(detail="above")
+    below, days_only, above = ds.sel(detail="below"), ds.sel(detail="days_only"), ds.sel(detail="above")
+    daily = first["daily_max_static"].sel(load_effect="M").values
+    loc, scale = stats.gumbel_r.fit(daily / m_max)  # in units of the largest peak: each detail's ranges scale by 1/W
+    level = stats.gumbel_r.ppf(1.0 - 1.0 / (100 * 365), loc, scale)
+    for detail, share in ((below, 0.4), (days_only, 0.8)):
+        assert float(detail["max_stress_range_static"]) == pytest.approx(share * d_d, rel=1e-9)
+        assert float(detail["max_stress_range_design_life"]) == pytest.approx(level * share * d_d, rel=1e-3)
+    assert 0.4 * level < 1.0 < 0.8 * level  # the 100-year largest: below Δσ_D for the first, above for the second
     assert int(below["below_fatigue_limit"]) == 1 and float(below["fatigue_damage"]) == 0.0
-    assert float(below["damage_per_day_static"].sum()) > 0.0
+    assert int(days_only["below_fatigue_limit"]) == 0
+    # its days' cycles above Δσ_L (on the m = 5 slope) now count: the damage is theirs, not 0
+    assert float(days_only["fatigue_damage_static"]) == pytest.approx(float(days_only["damage_per_day_static"].sum()),
+                                                                     rel=0.05)
+    assert float(days_only["fatigue_damage_static"]) > 0.0
+    assert "the limit rule does not hold over the design life" in str(days_only["fatigue_verdict"].values)
     assert int(above["below_fatigue_limit"]) == 0 and float(above["fatigue_damage_static"]) > 0.0
-    # the cycles of the 'below' detail, scaled by 1.2 / 0.8, are those of 'above' on the m = 5 slope and
+    # the cycles of the 'below' detail, scaled by 1.2 / 0.4, are those of 'above' on the m = 5 slope and
     # beyond: its damage exceeds what the ranges above Δσ_D alone (on m = 3) would do
     hist = above["stress_range_histogram"].values
     edges = ds["stress_range_bin"].values

@@ -26,6 +26,17 @@ def test_page_quotes_the_stored_numbers():
     assert script.render_knot(numbers) in page, HINT
 
 
+def test_page_quotes_the_design_life_range_of_the_example_detail():
+    """The prose on the fatigue limit over the design life quotes the example week's AASHTO E flange as stored:
+    its largest simulated range below (ΔF)_TH = 31.03 MPa, its estimated 100-year largest above, and the bound."""
+    script = _script()
+    d = json.loads(script.NUMBERS.read_text())["example"]["details"]["flange_AASHTO_E"]
+    page = script.PAGE.read_text()
+    assert d["max_stress_range_static"] < 31.03e6 < d["max_stress_range_design_life"], HINT
+    assert (f"reaches an estimated {d['max_stress_range_design_life'] / 1e6:.1f} MPa in 100 years (upper\n"
+            f"  bound {d['max_stress_range_design_life_bound'] / 1e6:.1f} MPa with the dynamics)") in page, HINT
+
+
 def test_knot_example_states_what_the_limits_do():
     """The page's knot example as stored: the run's static reference at its steps below the exact
     static peak of the static pass (by the stored shortfall), and with the limits at the knots equal

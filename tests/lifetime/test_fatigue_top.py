@@ -40,7 +40,8 @@ def test_one_range_above_the_fatigue_limit_counts_by_hand():
         "hist_bin": ("hist", np.array([20], np.int64)),
         "hist_count": ("hist", np.array([10.0])),
     })
-    prep = SimpleNamespace(spec=SimpleNamespace(days_per_year=365, fatigue=SimpleNamespace(damage_so_far=0.0, design_life=100.0)),
+    prep = SimpleNamespace(spec=SimpleNamespace(days_per_year=365, ci=0.95,
+                                                fatigue=SimpleNamespace(damage_so_far=0.0, design_life=100.0)),
                            details=(Detail("d", 0, 1.0, "EN 36", 1.0, 1.0 * MPA),), n_days=2)
     got = fatigue_results(prep, static, {"sample": np.zeros(0, np.int64), "gid": np.zeros(0), "results": {}})
     v = got["variables"]
@@ -52,42 +53,84 @@ def test_one_range_above_the_fatigue_limit_counts_by_hand():
     assert v["max_stress_range_static"][1][0] == 28.0 * MPA
 
 
-def test_below_the_fatigue_limit_the_damage_has_no_sampling_error():
-    """AASHTO category E ((ΔF)_TH = 31 MPa): a static history of 10 cycles of 20 MPa and two sampled
-    events whose dynamic histories (largest range 25 MPa) do differently small damages below the
-    threshold.  Every range of the loading is below (ΔF)_TH, so by the limit rule the damage is
-    exactly 0 (AASHTO LRFD 6.6.1.2.5), whatever the sample: its standard error and the upper bound
-    of the design-life damage are 0 too (on main the sample's spread of sub-threshold damages gave a
-    standard error and an upper bound above 0 beside the verdict "no fatigue damage")."""
+def _days(maxima_mpa: list[float], dynamic_mpa: float, category: str):
+    """``fatigue_results``' inputs for days whose static histories each close 10 cycles of their largest range
+    (``maxima_mpa``), and two sampled events whose dynamic histories (largest range ``dynamic_mpa``) do differently
+    small damages; a 100-year design life of 365-day years."""
     import xarray as xr
+
+    n = len(maxima_mpa)
+    static = xr.Dataset({
+        "day_damage_closed": (("day", "detail"), np.full((n, 1), 1e-7)),
+        "day_damage_alone": (("day", "detail"), np.full((n, 1), 1e-7)),
+        "day_max_range": (("day", "detail"), np.array(maxima_mpa)[:, None] * MPA),
+        "res_day": ("res", np.arange(n, dtype=np.int64)),
+        "res_detail": ("res", np.zeros(n, np.int64)),
+        "res_value": ("res", np.zeros(n)),
+        "hist_day": ("hist", np.arange(n, dtype=np.int64)),
+        "hist_detail": ("hist", np.zeros(n, np.int64)),
+        "hist_bin": ("hist", np.array([int(m) for m in maxima_mpa], np.int64)),
+        "hist_count": ("hist", np.full(n, 10.0)),
+    })
+    results = {0: {"damage_dynamic": [3e-8], "damage_static": [1e-8], "max_range_dynamic": [dynamic_mpa * MPA]},
+               1: {"damage_dynamic": [9e-8], "damage_static": [1e-8], "max_range_dynamic": [dynamic_mpa * MPA]}}
+    spec = SimpleNamespace(days_per_year=365, ci=0.95,
+                           fatigue=SimpleNamespace(damage_so_far=0.0, design_life=100.0))
+    prep = SimpleNamespace(spec=spec, details=(Detail("d", 0, 1.0, category, 1.0, 1.0 * MPA),), n_days=n)
+    got = fatigue_results(prep, static, {"sample": np.array([0, 1], np.int64), "gid": np.array([0, 1]),
+                                         "results": results})
+    return prep, got
+
+
+def test_below_the_fatigue_limit_the_damage_has_no_sampling_error():
+    """AASHTO category E ((ΔF)_TH = 31 MPa): five days whose largest static ranges are 10.0 … 10.4 MPa and two
+    sampled events whose dynamic histories (largest range 12 MPa) do differently small damages below the
+    threshold.  Every range of the loading is below (ΔF)_TH, and so is the design life's largest (its Gumbel
+    estimate, upper bound and the dynamics' 12 / 10.4 included), so by the limit rule the damage is exactly 0
+    (AASHTO LRFD 6.6.1.2.5), whatever the sample: its standard error and the upper bound of the design-life
+    damage are 0 too (before, the sample's spread of sub-threshold damages gave a standard error and an upper
+    bound above 0 beside the verdict "no fatigue damage")."""
+    from vbikit.lifetime.results import _verdict_variables
+
+    prep, got = _days([10.0, 10.2, 10.4, 10.1, 10.3], 12.0, "AASHTO E")
+    v = got["variables"]
+    assert v["below_fatigue_limit"][1][0] == 1
+    assert v["max_stress_range_design_life_bound"][1][0] < 31.0 * MPA
+    assert v["fatigue_damage"][1][0] == 0.0
+    assert v["fatigue_damage_se"][1][0] == 0.0
+    verdict = _verdict_variables(prep, v, got["ranges"])
+    assert verdict["fatigue_damage_design_life_upper"][1][0] == 0.0
+    assert verdict["fatigue_verdict"][1][0].startswith("no fatigue damage")
+
+
+def test_days_below_the_limit_do_not_make_a_design_life_below_it():
+    """EN 1993-1-9 1.3.3.3's limit rule judges the design life's loading, not the days simulated: five days
+    whose largest ranges are 17 … 21 MPa, all below Δσ_D = 26.53 MPa (detail 36), extrapolate to a 100-year
+    largest above it.  The independent number: scipy's Gumbel maximum-likelihood fit of the same five maxima
+    (``scipy.stats.gumbel_r.fit``), its level exceeded once in 100 × 365 days.  The rule is then not applied:
+    every cycle above Δσ_L counts (here the days' closed damage, 5 × 1e-7), and the verdict says why; with
+    fewer than 5 days no estimate is possible and the rule is not applied either."""
+    from scipy import stats
 
     from vbikit.lifetime.results import _verdict_variables
 
-    static = xr.Dataset({
-        "day_damage_closed": (("day", "detail"), np.array([[1e-7]])),
-        "day_damage_alone": (("day", "detail"), np.array([[1e-7]])),
-        "day_max_range": (("day", "detail"), np.array([[20.0 * MPA]])),
-        "res_day": ("res", np.array([0], np.int64)),
-        "res_detail": ("res", np.array([0], np.int64)),
-        "res_value": ("res", np.array([0.0])),
-        "hist_day": ("hist", np.array([0], np.int64)),
-        "hist_detail": ("hist", np.array([0], np.int64)),
-        "hist_bin": ("hist", np.array([20], np.int64)),
-        "hist_count": ("hist", np.array([10.0])),
-    })
-    results = {0: {"damage_dynamic": [3e-8], "damage_static": [1e-8], "max_range_dynamic": [25.0 * MPA]},
-               1: {"damage_dynamic": [9e-8], "damage_static": [1e-8], "max_range_dynamic": [25.0 * MPA]}}
-    spec = SimpleNamespace(days_per_year=365, ci=0.95,
-                           fatigue=SimpleNamespace(damage_so_far=0.0, design_life=100.0))
-    prep = SimpleNamespace(spec=spec, details=(Detail("d", 0, 1.0, "AASHTO E", 1.0, 1.0 * MPA),), n_days=1)
-    v = fatigue_results(prep, static, {"sample": np.array([0, 1], np.int64), "gid": np.array([0, 1]),
-                                       "results": results})["variables"]
-    assert v["below_fatigue_limit"][1][0] == 1
-    assert v["fatigue_damage"][1][0] == 0.0
-    assert v["fatigue_damage_se"][1][0] == 0.0
-    verdict = _verdict_variables(prep, v)
-    assert verdict["fatigue_damage_design_life_upper"][1][0] == 0.0
-    assert verdict["fatigue_verdict"][1][0].startswith("no fatigue damage")
+    maxima = [17.0, 18.0, 19.0, 20.0, 21.0]
+    prep, got = _days(maxima, 21.0, "EN 36")
+    v = got["variables"]
+    loc, scale = stats.gumbel_r.fit(np.array(maxima) * MPA)
+    level = stats.gumbel_r.ppf(1.0 - 1.0 / (100 * 365), loc, scale)
+    assert level > (2 / 5) ** (1 / 3) * 36.0 * MPA  # above Δσ_D: the case is what it claims
+    assert v["max_stress_range_design_life"][1][0] == pytest.approx(level, rel=1e-4)
+    assert v["max_stress_range_static"][1][0] == 21.0 * MPA
+    assert v["below_fatigue_limit"][1][0] == 0
+    assert v["fatigue_damage_static"][1][0] == pytest.approx(5e-7, rel=1e-12)
+    verdict = _verdict_variables(prep, v, got["ranges"])["fatigue_verdict"][1][0]
+    assert verdict.startswith("OK") and "the limit rule does not hold over the design life" in verdict
+    assert f"{level / MPA:.2f} MPa" in verdict
+    prep, got = _days(maxima[:4], 21.0, "EN 36")
+    assert got["variables"]["below_fatigue_limit"][1][0] == 0
+    words = _verdict_variables(prep, got["variables"], got["ranges"])["fatigue_verdict"][1][0]
+    assert "4 simulated days with a stress range, fewer than 5" in words
 
 
 def test_size_factor_reduces_the_en_category():

@@ -61,6 +61,17 @@ D_so_far + (D + z·se)·T_life/years (se the standard error of the period's dama
 dynamic sample, z = z_{(1+ci)/2}); the remaining life (1 − D_so_far)/d; the dynamic-to-static
 damage ratio D/D_static with its standard error se/D_static (the static damage has no sampling
 error), or in words why it has no value.
+
+**The fatigue limit over the design life.** EN 1993-1-9 1.3.3.3 (and AASHTO's (ΔF)_TH) give no damage
+when every stress range of the loading is below the constant-amplitude limit; the loading meant is the
+design life's, and its largest range is larger than a few simulated days'.  So the limit rule applies
+only when the simulated period's ranges are below the limit *and* so is the design life's largest
+static range, estimated from the simulated days' largest ranges: the Gumbel return level for a return
+period of the design life (daily blocks, ``days_per_year`` a year; Coles 2001 eq. 3.4 with ξ = 0),
+the upper bound of its ``ci`` interval (delta method) times the simulated dynamics' largest-range
+amplification (the simulated events' largest total range over the largest static one, at least 1).
+Fewer than ``MIN_DAYS_FOR_RANGE`` days with a range, or no spread among them: no estimate, and the
+rule is not applied (every range above the cut-off counts: D > 0, said in words).
 """
 from __future__ import annotations
 
@@ -256,13 +267,68 @@ def adr_words(adr: float, lower: float, upper: float, ci: float) -> str:
 #: a dynamic-to-static damage ratio above this is explained in words (``fatigue_verdict``): a few tens of
 #: percent of dynamic amplification of the ranges cannot give it on one slope m = 3 … 5 alone ((1.15)^5 = 2.0)
 LARGE_DAMAGE_RATIO = 2.0
+#: fewest simulated days with a stress range from which the design life's largest range is estimated (the
+#: Gumbel fit's minimum sample, ``vbikit.extremes.fit_block_maxima``)
+MIN_DAYS_FOR_RANGE = 5
+
+
+@dataclass(frozen=True)
+class DesignLifeRange:
+    """The design life's largest static stress range [Pa] estimated from the simulated days' largest ranges
+    (module docstring): ``level`` the Gumbel return level for the design life, ``upper`` the upper bound of its
+    interval, ``bound`` the number the limit rule compares (``upper`` × the dynamic amplification of the largest
+    range); NaN, with ``why``, when the days allow no estimate."""
+
+    level: float
+    upper: float
+    bound: float
+    why: str = ""
+
+
+def design_life_range(daily_max: np.ndarray, days_per_year: float, design_life: float, ci: float,
+                      amplification: float = 1.0) -> DesignLifeRange:
+    """``DesignLifeRange`` from ``daily_max`` [Pa] (each simulated day's largest static stress range; days without
+    one, ≤ 0, left out) for a ``design_life`` [years] of ``days_per_year`` daily blocks, the interval at ``ci``,
+    ``amplification`` ≥ 1 the simulated dynamics' (largest total range / largest static range)."""
+    from vbikit.extremes import fit_block_maxima, return_levels
+    from vbikit.extremes.errors import ExtremesError
+
+    days = np.asarray(daily_max, float)
+    days = days[np.isfinite(days) & (days > 0.0)]
+    if days.size < MIN_DAYS_FOR_RANGE or np.ptp(days) <= 1e-12 * days.max():
+        why = (f"{counted(days.size, 'simulated day')} with a stress range, fewer than {MIN_DAYS_FOR_RANGE}"
+               if days.size < MIN_DAYS_FOR_RANGE else "the simulated days' largest ranges are all equal")
+        return DesignLifeRange(math.nan, math.nan, math.nan, why)
+    try:
+        fit = fit_block_maxima(days, "gumbel", blocks_per_year=float(days_per_year))
+        level, _, upper = (float(v[0]) for v in return_levels(fit, [float(design_life)], ci=ci))
+    except ExtremesError as err:
+        return DesignLifeRange(math.nan, math.nan, math.nan, f"the Gumbel fit of the daily ranges failed ({err})")
+    if not math.isfinite(upper):
+        return DesignLifeRange(level, upper, math.nan, "the Gumbel fit of the daily ranges has no interval")
+    return DesignLifeRange(level, upper, upper * max(float(amplification), 1.0))
+
+
+def design_life_range_words(estimate: DesignLifeRange, design_life: float, ci: float, limit: str) -> str:
+    """Why the limit rule was not applied although the simulated period's ranges are all below ``limit`` (its name
+    and value in words)."""
+    if not math.isfinite(estimate.bound):
+        return (f"every simulated stress range is below the fatigue limit {limit}, but the {design_life:g}-year design "
+                f"life's largest range cannot be estimated ({estimate.why}): the limit rule is not applied, every "
+                "range above the cut-off counts")
+    return (f"every simulated stress range is below the fatigue limit {limit}, but the {design_life:g}-year design "
+            f"life's largest is estimated at {estimate.level / 1e6:.2f} MPa (Gumbel fit of the daily largest ranges, "
+            f"upper {ci:.0%} bound {estimate.upper / 1e6:.2f} MPa, {estimate.bound / 1e6:.2f} MPa with the simulated "
+            "dynamics): the limit rule does not hold over the design life, every range above the cut-off counts")
 
 
 def fatigue_verdict(damage: float, se: float, damage_static: float, years: float, design_life: float,
                     damage_so_far: float, below_limit: bool, limit_pa: float, ci: float,
-                    limit_name: str = "Δσ_D") -> dict:
+                    limit_name: str = "Δσ_D", life_range: DesignLifeRange | None = None, limit_note: str = "") -> dict:
     """The verdict of one detail (module docstring): numbers and words; ``limit_pa`` the curve's
-    constant-amplitude fatigue limit (EN Δσ_D, AASHTO (ΔF)_TH), named ``limit_name``."""
+    constant-amplitude fatigue limit (EN Δσ_D, AASHTO (ΔF)_TH), named ``limit_name``; ``life_range`` the design
+    life's largest range (``design_life_range``) when the limit rule applied; ``limit_note`` why it did not although
+    the simulated ranges are below the limit (``design_life_range_words``), added to the words."""
     from scipy import stats
 
     z = float(stats.norm.ppf(0.5 + ci / 2))
@@ -273,8 +339,11 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
     remaining = (1.0 - damage_so_far) / per_year if per_year > 0 else math.inf
     limit = f"{limit_name} = {limit_pa / 1e6:.2f} MPa"
     if below_limit:
+        estimate = (f"; the {design_life:g}-year design life's largest is estimated at {life_range.level / 1e6:.2f} "
+                    f"MPa (upper {ci:.0%} bound with the simulated dynamics {life_range.bound / 1e6:.2f} MPa)"
+                    if life_range is not None and math.isfinite(life_range.bound) else "")
         words = (f"no fatigue damage: every stress range (static, and of every simulated event) is below the "
-                 f"fatigue limit {limit}; life unlimited")
+                 f"fatigue limit {limit}{estimate}; life unlimited")
     elif life >= 1.0:
         words = (f"NOT OK: damage over the {design_life:g}-year design life {life:.3g} ≥ 1; the Miner sum reaches 1 "
                  f"in {remaining:.4g} years")
@@ -285,6 +354,8 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
         bound = f" (upper {ci:.0%} bound {upper:.3g})" if se_ok else " (no standard error: dynamic sample too small)"
         words = (f"OK: damage over the {design_life:g}-year design life {life:.3g}{bound} < 1; remaining life "
                  f"{remaining:.4g} years")
+    if limit_note and not below_limit:
+        words += f" ({limit_note})"
     if damage_static > 0:
         ratio = damage / damage_static
         ratio_se = se / damage_static if se_ok else math.nan

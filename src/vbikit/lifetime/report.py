@@ -384,7 +384,8 @@ def _detail(ds, j: int) -> dict[str, Any]:
             **{k: _num(ds[k].values[j]) for k in (
                 "fatigue_damage", "fatigue_damage_se", "fatigue_damage_static", "dynamic_damage_ratio",
                 "dynamic_damage_ratio_se", "fatigue_damage_per_year", "equivalent_stress_range", "remaining_life",
-                "equivalent_stress_range_design_life",
+                "equivalent_stress_range_design_life", "max_stress_range_static", "max_stress_range_design_life",
+                "max_stress_range_design_life_bound",
                 "fatigue_damage_design_life", "fatigue_damage_design_life_upper") if k in ds},
             "below_fatigue_limit": bool(ds["below_fatigue_limit"].values[j]),
             "verdict": str(ds["fatigue_verdict"].values[j]),

@@ -331,7 +331,7 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         if k.endswith(("shape", "exceedances")):
             variables[f"fit_{k}"][2]["units"] = "1"
     if fat["variables"]:
-        variables.update(_verdict_variables(prep, fat["variables"]))
+        variables.update(_verdict_variables(prep, fat["variables"], fat["ranges"]))
     coords["governs"] = np.array(["static", "total"], dtype=object)
     ds = xr.Dataset(variables, coords=coords)
     # per-effect units: one unit per variable is what CF allows; effects of one kind share it
@@ -549,18 +549,20 @@ def _governing_variables(dyn, st, total, run_static, day, start) -> dict[str, An
     }
 
 
-def _verdict_variables(prep, fat_vars: dict) -> dict[str, Any]:
+def _verdict_variables(prep, fat_vars: dict, ranges: list) -> dict[str, Any]:
     """Per detail the fatigue verdict of ``vbikit.lifetime.accuracy.fatigue_verdict``."""
     from vbikit.lifetime.accuracy import fatigue_verdict
 
     spec = prep.spec
     years = prep.n_days / spec.days_per_year
-    rows = [fatigue_verdict(float(fat_vars["fatigue_damage"][1][j]), float(fat_vars["fatigue_damage_se"][1][j]),
-                            float(fat_vars["fatigue_damage_static"][1][j]), years, spec.fatigue.design_life,
-                            spec.fatigue.damage_so_far, bool(fat_vars["below_fatigue_limit"][1][j]),
-                            float(det.sn().threshold), spec.ci,
-                            "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH")
-            for j, det in enumerate(prep.details)]
+    rows = []
+    for j, det in enumerate(prep.details):
+        limit_name = "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH"
+        rows.append(fatigue_verdict(
+            float(fat_vars["fatigue_damage"][1][j]), float(fat_vars["fatigue_damage_se"][1][j]),
+            float(fat_vars["fatigue_damage_static"][1][j]), years, spec.fatigue.design_life,
+            spec.fatigue.damage_so_far, bool(fat_vars["below_fatigue_limit"][1][j]), float(det.sn().threshold),
+            spec.ci, limit_name, ranges[j], str(fat_vars["fatigue_limit_note"][1][j])))
     a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
     life = spec.fatigue.design_life
     return {
@@ -575,12 +577,13 @@ def _verdict_variables(prep, fat_vars: dict) -> dict[str, Any]:
 def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     """Fatigue variables (module docstring)."""
     from vbikit.fatigue import RainflowState, finish, join, miner_damage, remaining_life
+    from vbikit.lifetime.accuracy import design_life_range, design_life_range_words
 
     spec = prep.spec
     details = prep.details
     n_days = prep.n_days
     if not details:
-        return {"variables": {}, "coords": {"detail": np.array([], dtype=object)}}
+        return {"variables": {}, "coords": {"detail": np.array([], dtype=object)}, "ranges": []}
     years = n_days / spec.days_per_year
     closed = static["day_damage_closed"].values
     alone = static["day_damage_alone"].values
@@ -591,7 +594,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
     gid = dyn["gid"]
     n_ev = gid.size
     out = {k: np.full(len(details), np.nan) for k in ("static", "total", "se", "ratio", "per_year", "eq", "eq_life",
-                                                       "life", "below_limit", "top")}
+                                                       "life", "below_limit", "top", "life_top", "life_bound")}
+    ranges, notes = [], []  # per detail: the design life's largest range (DesignLifeRange), why the rule did not apply
     empty = np.zeros(0)
     joined = []  # per detail: the cycles that close across days (the residuals joined) and the last residual
     for j in range(len(details)):
@@ -622,20 +626,37 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         else:
             d_total, se = d_static, math.nan
         d_total = max(d_total, 0.0)
-        # the constant-amplitude limit rule (EN 1993-1-9 1.3.3.3, AASHTO (ΔF)_TH) on the whole
-        # period's loading: no damage when every range is below the limit.  The static spectrum's
-        # largest range is exact (each day's largest closed range and the cycles joined across
-        # days); the total loading's is that and every dynamically simulated event's largest
-        # range (all simulated events, the governing ones included)
-        static_below = static_top < curve.threshold
+        # the constant-amplitude limit rule (EN 1993-1-9 1.3.3.3, AASHTO (ΔF)_TH) on the design
+        # life's loading (vbikit.lifetime.accuracy, "The fatigue limit over the design life"): no
+        # damage when every range of the period is below the limit and so is the design life's
+        # largest, estimated from the days' largest.  The static spectrum's largest range is exact
+        # (each day's largest closed range and the cycles joined across days); the total loading's
+        # is that and every dynamically simulated event's largest range (all simulated events, the
+        # governing ones included)
         out["top"][j] = static_top
         dyn_top = max((float(r["max_range_dynamic"][j]) for r in dyn["results"].values()), default=0.0)
-        if static_below:
+        simulated_below = static_top < curve.threshold and dyn_top < curve.threshold
+        # each day's largest range counted alone: its largest closed cycle or its residual's max − min (the day's
+        # largest peak and deepest valley are in its residual, closed only when the days are joined)
+        day_range = np.array([max(float(day_top[d, j]) if day_top.size else 0.0,
+                                  float(np.ptp(r)) if (r := res_val[(res_day == d) & (res_det == j)]).size else 0.0)
+                              for d in range(n_days)])
+        life = design_life_range(day_range, spec.days_per_year,
+                                 spec.fatigue.design_life, spec.ci,
+                                 dyn_top / static_top if static_top > 0 else 1.0)
+        life_below = math.isfinite(life.bound) and life.bound < curve.threshold
+        out["life_top"][j], out["life_bound"][j] = life.level, life.bound
+        if static_top < curve.threshold and life.upper < curve.threshold:  # (NaN: False)
             d_static = 0.0
-        if static_below and dyn_top < curve.threshold:
+        if simulated_below and life_below:
             # no damage by the limit rule, whatever the sample: no sampling error either
             d_total, se = 0.0, 0.0
-        out["below_limit"][j] = float(static_below and dyn_top < curve.threshold)
+        out["below_limit"][j] = float(simulated_below and life_below)
+        limit_name = "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH"
+        notes.append(design_life_range_words(life, spec.fatigue.design_life, spec.ci,
+                                             f"{limit_name} = {curve.threshold / 1e6:.2f} MPa")
+                     if simulated_below and not life_below else "")
+        ranges.append(life)
         per_year = d_total / years
         out["static"][j], out["total"][j], out["se"][j] = d_static, d_total, se
         out["ratio"][j] = d_total / d_static if d_static > 0 else math.nan
@@ -654,7 +675,10 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         "equivalent_stress_range": ("detail", out["eq"], a("Pa", "damage-equivalent stress range at 2e6 cycles a year")),
         "equivalent_stress_range_design_life": ("detail", out["eq_life"], a("Pa", f"damage-equivalent stress range of the {spec.fatigue.design_life:g}-year design life's traffic at 2e6 cycles (EN 1993-1-9 Δσ_E,2: below Δσ_C exactly when that damage is below 1)")),
         "remaining_life": ("detail", out["life"], a("year", "years until the Miner sum reaches 1 at fatigue_damage_per_year")),
-        "below_fatigue_limit": ("detail", out["below_limit"].astype(np.int8), a("1", "1 if every stress range of the period (static, and of every dynamically simulated event) is below the constant-amplitude fatigue limit: no damage (EN 1993-1-9 1.3.3.3, AASHTO (dF)_TH)")),
+        "below_fatigue_limit": ("detail", out["below_limit"].astype(np.int8), a("1", "1 if every stress range of the period (static, and of every dynamically simulated event) is below the constant-amplitude fatigue limit and so is the design life's largest, max_stress_range_design_life_bound: no damage (EN 1993-1-9 1.3.3.3, AASHTO (dF)_TH)")),
+        "max_stress_range_design_life": ("detail", out["life_top"], a("Pa", f"the {spec.fatigue.design_life:g}-year design life's largest static stress range, estimated: the Gumbel return level of the daily largest ranges for that period (NaN: too few days)")),
+        "max_stress_range_design_life_bound": ("detail", out["life_bound"], a("Pa", f"upper {spec.ci:.0%} bound of max_stress_range_design_life times the simulated dynamics' amplification of the largest range: the limit rule's test over the design life")),
+        "fatigue_limit_note": ("detail", np.array(notes, dtype=object), a("", "why the limit rule was not applied although every simulated stress range is below the limit (empty otherwise)")),
         "damage_per_day_static": (("day", "detail"), alone, a("1", "Miner damage of each day's static history counted alone")),
         "stress_range_histogram": (("detail", "stress_range_bin"), hist, a("1", "static stress-range cycles (half cycles 0.5) per bin; the bins reach the largest range (none folded)")),
         "max_stress_range_static": ("detail", out["top"], a("Pa", "largest stress range of the period's static history (exact, not binned): the limit rule's test")),
@@ -665,4 +689,4 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
               "detail_category": ("detail", np.array([d.label for d in details], dtype=object)),
               "detail_size_factor": ("detail", np.array([d.size_factor for d in details], float),
                                      {"units": "1", "long_name": "EN 1993-1-9 size-effect reduction k_s of the category"})}
-    return {"variables": variables, "coords": coords}
+    return {"variables": variables, "coords": coords, "ranges": ranges}
