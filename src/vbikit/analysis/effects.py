@@ -575,7 +575,7 @@ def _step_check(result: CrossingResult, effect: LoadEffect, log_it: bool = True)
 def _entry(resp: LoadEffectResponse, allowances: dict[str, Any] | None) -> dict[str, Any]:
     e, im = resp.effect, resp.impact
     entry: dict[str, Any] = {
-        "x": e.x, "girder": e.girder, "support": e.support, "units": e.units,
+        "label": e.label, "x": e.x, "girder": e.girder, "support": e.support, "units": e.units,
         "static_peak": im.static_peak, "dynamic_peak": im.dynamic_peak, "impact_factor": im.impact_factor,
         "time_static_peak": im.time_static_peak, "time_dynamic_peak": im.time_dynamic_peak,
         "loaded_length": e.loaded_length, "hogging_region": e.hogging_region,

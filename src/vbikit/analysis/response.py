@@ -584,7 +584,8 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                       "largest static magnitude, sense: sagging or hogging), opposite_sense, opposite_static_peak "
                       "[N m], opposite_share [-], two_signed, governing (the sense of the larger dynamic peak) and, "
                       "when two_signed, opposite_dynamic_peak, opposite_impact_factor and their times; position x "
-                      "[m] of the first requested section, every section under sections, with the code allowances"),
+                      "[m] of the first requested section, every section under sections (each with its label, as the "
+                      "flags' subject names it), with the code allowances"),
     "shear": ("N", "shear forces (just right of x), as moment (senses: positive, negative)"),
     "reaction": ("N", "support reactions, as moment"),
     "step_check": ("-", "a single run at an automatic step that no load-effect step halving checked: the same run at "

@@ -75,11 +75,16 @@ def print_summary(run: Run) -> None:
     strain_mark = "!" if strain_off else ""  # the modes' strain peaks are off too, not only their IM
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
-    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s² (the deck's, at the response point)")
+    from vbikit.scenario.step_check import is_acceleration
+
+    acc_off = coarse_step(s) or any(f["code"] == "step_not_converged" and is_acceleration(f.get("output"))
+                                    for f in s.get("flags", []))
+    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²{'!' if acc_off else ''} (the deck's, at the "
+               "response point)")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
     step_line(s)
     start_line(s)
-    coarse = has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
+    coarse = coarse_step(s)
     implausible = has_flag(s, "implausible_deflection")
     doubt = airborne or coarse or implausible
     typer.echo(f"  IMPACT FACTOR        IM = {_im(s['impact_factor'])}{'!' if doubt else ''}  "
@@ -137,6 +142,13 @@ def print_summary(run: Run) -> None:
     print_negative_note(negative_impact(s))
 
 
+def coarse_step(s: dict[str, Any]) -> bool:
+    """Whether the run's given step is flagged too coarse for it (``coarse_step``, ``unresolved_modes``)."""
+    from vbikit.analysis.checks import has_flag
+
+    return has_flag(s, "coarse_step") or has_flag(s, "unresolved_modes")
+
+
 def _moment_at(s: dict[str, Any], x: float) -> dict[str, Any] | None:
     """The run's moment section at ``x`` [m] (within 1 mm), if it reports one."""
     sections = [e for e in s.get("moment", {}).get("sections", []) if abs(float(e["x"]) - x) <= 1e-3]
@@ -166,6 +178,8 @@ def step_line(s: dict) -> None:
     load effects' halving)."""
     check = s.get("step_check")
     if not check:
+        if "inputs" in s and s["inputs"].get("dt") is not None:  # (a scenario's run at its own crossing.dt)
+            typer.echo("  step check           not run: crossing.dt is given (the run at the automatic step checks it)")
         return
     if check.get("largest_change") is None:
         typer.echo(f"  step check           {check.get('note', 'not run')}")
@@ -236,18 +250,34 @@ def print_load_effects(s: dict[str, Any]) -> None:
 
     (moment_unit, _), (force_unit, _) = report_unit("N m"), report_unit("N")
     typer.echo(f"  load effects ({method}; {moment_unit} / {force_unit}; IM beside {beside})")
+    # the marks come from the flags (their subject is the effect's label), never from the warnings' words
+    unresolved = {f.get("subject") for f in s.get("flags", []) if f["code"] == "effect_step"} - {None}
+    hogging_jtg = False
     for kind, e in rows:
         unit = report_unit("N m" if kind == "moment" else "N")[1]
         where = f"support {e['support']}" if kind == "reaction" else f"x = {e['x']:.2f} m"
         if e.get("girder"):
             where += f", girder {e['girder']}"
         c = e.get("code_allowances", {})
+        mark = "!" if e.get("label") in unresolved or coarse_step(s) else " "
+        jtg = kind == "moment" and e.get("hogging_region") and "jtg_d60_2015" in keys
+        hogging_jtg |= bool(jtg)
+        codes = " / ".join(f"{c.get(k, float('nan')):.3f}{'?' if jtg and k == 'jtg_d60_2015' else ''}" for k in keys)
         typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
-                   f"  IM {e['impact_factor']:7.4f}   codes " + " / ".join(f"{c.get(k, float('nan')):.3f}" for k in keys))
+                   f"  IM {e['impact_factor']:7.4f}{mark}  codes " + codes)
         if e.get("opposite_impact_factor") is not None:  # both signs (vbikit.analysis.effects): the other extreme
             typer.echo(f"    {'':<8} {'and ' + e['opposite_sense']:<24} "
                        f"static {e['opposite_static_peak'] * unit:+10.2f}  dynamic {e['opposite_dynamic_peak'] * unit:+10.2f}"
                        f"  IM {e['opposite_impact_factor']:7.4f}   (the {e['governing']} dynamic peak governs)")
+    if any(e.get("label") in unresolved for _, e in rows):
+        typer.echo(f"    {'':<8} ! the step does not resolve this load effect: its IM may be off — see the warning")
+    if hogging_jtg:
+        from vbikit.analysis.codes import jtg_d60_2015
+
+        f2 = s["frequencies_hz"][1] if len(s.get("frequencies_hz", [])) > 1 else None
+        other = f": μ(f2 = {f2:.2f} Hz) = {jtg_d60_2015(f2):.3f}" if f2 else ""
+        typer.echo(f"    {'':<8} ? JTG D60 by f1 beside a hogging moment: the clause's commentary is said to take the "
+                   f"second frequency f2 for hogging moments of continuous beams (unconfirmed; docs/bridges.md){other}")
 
 
 def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:
