@@ -163,7 +163,7 @@ def _flags(name: str, e: dict, a: dict) -> list[Flag]:
     out += _static_bound_flags(name, e)
     for w in ("static", "total"):
         out += _fit_flags(name, e, w, float(a["xi_strongly_negative"]), gumbel=a.get("distribution") == "gumbel")
-    out += _adr_flags(name, e)
+    out += _adr_flags(name, e, a)
     out += _shortfall_flags(name, e, float(a["half_step_tolerance"]))
     out += _governing_flags(name, e, float(a["half_step_tolerance"]))
     out += _unconverged_flags(name, a)
@@ -322,14 +322,35 @@ def _interval_gap(a: dict, b: dict) -> float:
     return max(b_lo - a_hi, a_lo - b_hi)
 
 
-def _adr_flags(name: str, e: dict) -> list[Flag]:
-    """An ADR whose interval contains 1; value: the interval's bound on the far side of 1."""
-    adr = e["adr"]
-    if not adr["indistinguishable_from_one"]:
-        return []
-    bound = adr["lower"] if adr["value"] is None or adr["value"] >= 1.0 else adr["upper"]
-    return [Flag("adr_indistinguishable_from_one", "ADR: the interval contains 1 — the data cannot tell the ADR from 1",
-                 output=flag_output("adr"), subject=name, value=bound, threshold=1.0)]
+def _adr_flags(name: str, e: dict, a: dict) -> list[Flag]:
+    """An ADR whose interval contains 1 (value: the interval's bound on the far side of 1), and an ADR above
+    the bound the events set (``adr_event_bound``)."""
+    adr, out = e["adr"], []
+    if adr["indistinguishable_from_one"]:
+        bound = adr["lower"] if adr["value"] is None or adr["value"] >= 1.0 else adr["upper"]
+        out.append(Flag("adr_indistinguishable_from_one", "ADR: the interval contains 1 — the data cannot tell the ADR from 1",
+                        output=flag_output("adr"), subject=name, value=bound, threshold=1.0))
+    limit = adr_event_bound(a)
+    if adr["value"] is not None and math.isfinite(limit) and adr["value"] > limit:
+        out.append(Flag("adr_above_event_bound",
+                        f"ADR {adr['value']:.3f} is above {limit:.3f}, the most any day's total maximum can exceed its "
+                        f"static one (1 + the screening bound A used or a simulated event's larger R_dyn/R_st − 1): the "
+                        f"fits of the daily total and static maxima extrapolate apart beyond what the events allow — the "
+                        f"ADR and the characteristic total are not supported by the {int(a['n_days'])} simulated days "
+                        "(simulate more days; the ADR is at most this bound)",
+                        output=flag_output("characteristic", "total"), subject=name, value=adr["value"],
+                        threshold=limit))
+    return out
+
+
+def adr_event_bound(a: dict) -> float:
+    """1 + max(the screening bound A used, the largest R_dyn/R_st − 1 of a simulated event), from lifetime.nc's
+    attributes: no day's largest total exceeds its largest static by more (an event left out has
+    s·R_dyn ≤ (1 + A)·s·R_st, a simulated one its own ratio), so neither does any quantile of the daily total
+    maxima that of the static ones, nor the characteristic total the characteristic static (NaN: not known)."""
+    values = [float(a.get(k, math.nan)) for k in ("amplification_bound_used", "amplification_max_observed")]
+    values = [v for v in values if math.isfinite(v)]
+    return 1.0 + max(values) if values else math.nan
 
 
 def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
@@ -458,7 +479,8 @@ _TABLE_DOUBTS = {"static": (flag_output("characteristic", "static"), flag_output
 def _in_doubt(e: dict[str, Any], what: str) -> bool:
     """Whether a flag of load effect ``e`` (its summary) puts its headline value ``what`` ("static": the
     characteristic static value, "total", "adr") in doubt: a flag whose ``output`` is one of ``_TABLE_DOUBTS``."""
-    return any(f.get("output") in _TABLE_DOUBTS[what] for f in e.get("flags", ()))
+    return any(f.get("output") in _TABLE_DOUBTS[what] or (what == "adr" and f["code"] == "adr_above_event_bound")
+               for f in e.get("flags", ()))
 
 
 def text_report(facts: dict[str, Any]) -> str:
