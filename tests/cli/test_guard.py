@@ -170,7 +170,11 @@ def test_a_resumed_run_says_so_in_one_line(tmp_path, capsys):
     for stage, done, total in (("static pass", 5, 5), ("dynamics round 1", 40, 40), ("dynamics round 2", 7, 20),
                                ("dynamics round 2", 20, 20), ("dynamics round 1", 0, 40), ("dynamics round 1", 40, 40)):
         bars(stage, done, total, {})
-    assert bars.resumed() == "1 stage, part of 1 stage"  # (round 1 run again from the start: not counted)
+    assert bars.resumed() == "1 stage and part of 1 more"  # (round 1 run again from the start: not counted)
+    only_part = _Bars(enabled=False)
+    for stage, done, total in (("dynamics round 1", 7, 20), ("dynamics round 2", 3, 20)):
+        only_part(stage, done, total, {})
+    assert only_part.resumed() == "parts of 2 stages"
     say_resumed("", tmp_path)
     assert capsys.readouterr().err == ""
     say_resumed("3 of 9 events", tmp_path)

@@ -8,6 +8,7 @@ from typing import Optional
 import typer
 
 from vbikit.cli.guard import (
+    STATE,
     budget_option,
     figures_option,
     guard,
@@ -44,7 +45,8 @@ def driveby_cmd(
     if max_steps is not None:
         spec = dataclasses.replace(spec, max_steps=float(max_steps))
     steps = guard(lambda: check_cases(spec), file=file)
-    typer.echo(f"{file}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
+    if not STATE["quiet"]:  # (-q: errors only)
+        typer.echo(f"{file}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
     from vbikit._files import output_names
 
     guard(lambda: output_names(out_dir, ("driveby.nc",)).mkdir(parents=True, exist_ok=True))

@@ -46,8 +46,10 @@ class _Bars:
 
         whole = sum(1 for d, t in self.first.values() if t and d >= t)
         part = sum(1 for d, t in self.first.values() if 0 < d < t)
-        return ", ".join(filter(None, [counted(whole, "stage") if whole else "",
-                                       f"part of {counted(part, 'stage')}" if part else ""]))
+        parts = f"{'part' if part == 1 else 'parts'} of {counted(part, 'more' if whole else 'stage')}" if part else ""
+        if part and whole and part == 1:
+            parts = "part of 1 more"
+        return " and ".join(filter(None, [counted(whole, "stage") if whole else "", parts]))
 
     def __call__(self, stage: str, done: int, total: int, info: dict) -> None:
         if stage not in self.first or done < self._last.get(stage, 0):

@@ -166,9 +166,11 @@ def report_text(ds) -> str:
         if key not in ds:
             continue
         values = c[key]
-        groups = sorted(set(values.tolist()), key=str)
+        groups = sorted(set(values.tolist()), key=lambda g: (isinstance(g, str), g if not isinstance(g, str) else 0, str(g)))
+        unit = str(ds[key].attrs.get("units", "")) if key in ds else ""
+        unit = f" [{unit}]" if unit not in ("", "1", "-") else ""
         if 1 < len(groups) <= MAX_GROUPS:  # drawn values (one per pass) form no groups
-            lines.append(f"  all cases by {key}: " + ", ".join(
+            lines.append(f"  all cases by {key}{unit} (mean |e|): " + ", ".join(
                 f"{g}: {np.mean(np.abs(err[values == g])):.2f} %" for g in groups))
     lines += ["", *multipass_lines(ds)]
     shift = np.asarray(c["identified_frequency_shift"], float)

@@ -302,7 +302,9 @@ def _record(cells: dict[str, str], columns: dict[str, tuple[float, str, int]], s
         loads = numbers("axle_loads")
         spacings = numbers("axle_spacings")
         if not loads or not all(v > 0 for v in loads):
-            raise fail("axle_loads", "needs one or more loads > 0")
+            bad = next((v for v in loads if not v > 0), None)
+            raise fail("axle_loads", "every axle load must be > 0" + (f" (got {bad / 1e3:g} kN)" if bad is not None
+                                                                     else " (none given)"))
         if max(loads) > AXLE_LOAD_MAX:
             raise fail("axle_loads", f"an axle load of {max(loads) / 9.80665e3:.3g} t is impossible for a road "
                                      f"vehicle (at most {AXLE_LOAD_MAX / 9.80665e3:.0f} t are read; check the unit)")
