@@ -62,13 +62,21 @@ def test_out_still_writes_the_dataset_only(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.nc", "short.csv"]
 
 
-@pytest.mark.parametrize("given, word", [([], "neither"), (["--out", "x.nc", "--out-dir", "d"], "both")])
-def test_exactly_one_of_out_and_out_dir(tmp_path, monkeypatch, given, word):
+def test_at_most_one_of_out_and_out_dir(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    res = runner.invoke(app, ["traffic", "missing.csv", "--bridge", BASE, *given])  # refused before the records are read
-    assert res.exit_code == 2
-    assert res.stderr.startswith(f"error: --out or --out-dir: give one, not {word} (--out FILE.nc: the dataset only; ")
+    res = runner.invoke(app, ["traffic", "missing.csv", "--bridge", BASE, "--out", "x.nc", "--out-dir", "d"])
+    assert res.exit_code == 2  # refused before the records are read
+    assert res.stderr.startswith("error: --out or --out-dir: give one, not both (--out FILE.nc: the dataset only; ")
     assert not (tmp_path / "d").exists()
+
+
+def test_neither_writes_into_vbikit_out_as_every_command(tmp_path, monkeypatch):
+    """docs/cli.md: a command that writes several files writes them into --out-dir, default vbikit-out/."""
+    monkeypatch.chdir(tmp_path)
+    res = runner.invoke(app, ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--no-progress", "--workers", "1",
+                              "--no-figures"])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "vbikit-out" / "traffic.nc").is_file() and (tmp_path / "vbikit-out" / "traffic-summary.json").is_file()
 
 
 def test_out_dir_holding_a_folder_where_a_file_goes_is_refused_before_the_run(tmp_path):

@@ -150,7 +150,11 @@ def check_out_dir(path: Any) -> Any:
     return None if path is None else guard(lambda: output_dir(path, create=False))
 
 
-def out_dir_option(help: str, default: Any = Path("vbikit-out")) -> Any:
+#: the output folder of every command that writes several files, when none is given
+DEFAULT_OUT_DIR = Path("vbikit-out")
+
+
+def out_dir_option(help: str, default: Any = DEFAULT_OUT_DIR) -> Any:
     """The ``--out-dir`` option of every command that writes into a folder (default ``vbikit-out``;
     None: the command writes files only when asked): ``check_out_dir`` runs as the command line is
     parsed, so a bad folder is refused before the command computes anything."""

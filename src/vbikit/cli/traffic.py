@@ -9,8 +9,10 @@ from typing import Optional
 import typer
 
 from vbikit.cli.guard import (
+    DEFAULT_OUT_DIR,
     STATE,
     budget_option,
+    check_out_dir,
     figures_option,
     figure_file_option,
     guard,
@@ -45,8 +47,8 @@ def traffic_cmd(
     bridge: str = typer.Option(..., "--bridge", help="A bridge preset, or a scenario file (bridge, tire, road, crossing, response)."),
     out: Optional[Path] = out_file_option("--out", "The dataset only (NetCDF, .nc); or give --out-dir."),
     out_dir: Optional[Path] = out_dir_option("Folder for traffic.nc, traffic-report.txt, traffic-summary.json and "
-                                             "traffic-im.png (finished batches in traffic.nc.parts); instead of --out.",
-                                             default=None),
+                                             "traffic-im.png (finished batches in traffic.nc.parts); instead of --out; "
+                                             "default vbikit-out when --out is not given.", default=None),
     lanes: Optional[str] = typer.Option(None, "--lanes", help="Lane centres y [m], comma-separated (lane 1 first); "
                                         "default: two lanes at ∓ deck width/4 on a deck, one lane at y = 0 on a beam "
                                         "(records with lane 2 on a beam need --lanes)."),
@@ -72,8 +74,10 @@ def traffic_cmd(
     from vbikit._files import not_an_input, output_names
     from vbikit.traffic.summary import DATASET_FILE, FIGURE_FILE, REPORT_FILE, SUMMARY_FILE, WORK_FOLDER
 
-    if (out is None) == (out_dir is None):
-        guard(lambda: _one_output(both=out is not None))
+    if out is not None and out_dir is not None:
+        guard(lambda: _one_output())
+    if out is None and out_dir is None:  # the folder every command writes into by default
+        out_dir = check_out_dir(DEFAULT_OUT_DIR)
     if out_dir is not None:
         guard(lambda: output_names(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, FIGURE_FILE), (WORK_FOLDER,)))
     dataset = out if out is not None else out_dir / DATASET_FILE
@@ -194,10 +198,10 @@ def traffic_cmd(
         guard(lambda: _write_folder(ds, out_dir, report, figures))
 
 
-def _one_output(both: bool) -> None:
-    """--out and --out-dir are the two forms of the stream's outputs: exactly one is given."""
-    raise OptionError(f"--out or --out-dir: give one, not {'both' if both else 'neither'} (--out FILE.nc: the dataset "
-                      "only; --out-dir DIR: the dataset, report, summary and figure)")
+def _one_output() -> None:
+    """--out and --out-dir are the two forms of the stream's outputs: at most one is given."""
+    raise OptionError("--out or --out-dir: give one, not both (--out FILE.nc: the dataset only; --out-dir DIR: the "
+                      "dataset, report, summary and figure; neither: --out-dir vbikit-out)")
 
 
 def _write_folder(ds, out_dir: Path, report: list[str], figures: bool) -> None:
