@@ -77,6 +77,20 @@ def test_neither_writes_into_vbikit_out_as_every_command(tmp_path, monkeypatch):
                               "--no-figures"])
     assert res.exit_code == 0, res.output
     assert (tmp_path / "vbikit-out" / "traffic.nc").is_file() and (tmp_path / "vbikit-out" / "traffic-summary.json").is_file()
+    # the summary gives the governing events' deflections and every number's unit
+    import json
+
+    import numpy as np
+    import xarray as xr
+
+    summary = json.loads((tmp_path / "vbikit-out" / "traffic-summary.json").read_text(encoding="utf-8"))
+    with xr.open_dataset(tmp_path / "vbikit-out" / "traffic.nc") as ds:
+        first = ds.isel(point=0) if "point" in ds.dims else ds
+        static = np.abs(first["max_static_displacement"].values)
+    assert summary["governing_static_deflection"] == float(static.max())
+    assert summary["units"]["governing_static_deflection"] == "m" and summary["units"]["im_mean"] == "1"
+    assert summary["units"]["governing_static_event"] == "index" and summary["units"]["n_events"] == "count"
+    assert "start" not in summary["units"] and "warnings" not in summary["units"]
 
 
 def test_out_dir_holding_a_folder_where_a_file_goes_is_refused_before_the_run(tmp_path):

@@ -169,14 +169,19 @@ def traffic_cmd(
         say(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
                    "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
 
-    def event(name: str) -> str:  # the dataset's event index (from 0) and when the event starts in the stream
-        e = int(a[f"governing_{name}_event"])
-        return f"event {e} (starts at t = {float(ds['event_start'].values[e]):.1f} s)"
+    from vbikit.outputs import report_unit
 
-    say(f"largest static effect: {event('static')}, dynamic amplification "
-               f"{a['governing_static_amplification']:.4f}; largest dynamic effect: {event('dynamic')}, "
-               f"{a['governing_dynamic_amplification']:.4f} × the largest static effect (events: the dataset's "
-               "index, from 0)")
+    unit, to_unit = report_unit("m")
+
+    def event(name: str, peak: str) -> str:  # the dataset's event index (from 0), its peak and when it starts
+        e = int(a[f"governing_{name}_event"])
+        return (f"{abs(float(first[peak].values[e])) * to_unit:.3f} {unit}, event {e} (starts at "
+                f"t = {float(ds['event_start'].values[e]):.1f} s)")
+
+    say(f"largest static deflection: {event('static', 'max_static_displacement')}, dynamic amplification "
+        f"{a['governing_static_amplification']:.4f}; largest dynamic deflection: "
+        f"{event('dynamic', 'max_dynamic_displacement')}, {a['governing_dynamic_amplification']:.4f} × the largest "
+        "static one (at the first point; events: the dataset's index, from 0)")
     step = dataset_has_flag(a, "stream_step_sensitive")
     changes = {int(a[f"governing_{w}_event"]): float(a[f"governing_{w}_half_step_im_change"]) for w in ("static", "dynamic")}
     say(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "

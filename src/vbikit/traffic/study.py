@@ -511,8 +511,10 @@ def stream_statistics(ds) -> dict[str, Any]:
         **_interval_ends("im_mean", mean), **_interval_ends("im_q95", q95),
         **_interval_ends("im_mean_loaded", mean_loaded), **_interval_ends("im_q95_loaded", q95_loaded),
         "governing_static_event": i_st,
+        "governing_static_deflection": float(st[i_st]),
         "governing_static_amplification": float(dyn[i_st] / st[i_st]),
         "governing_dynamic_event": i_dyn,
+        "governing_dynamic_deflection": float(dyn[i_dyn]),
         "governing_dynamic_amplification": float(dyn[i_dyn] / st[i_st]),
         "n_airborne_events": int(np.sum(np.asarray(ds["airborne_wheels"].values) > 0)) if "airborne_wheels" in ds else 0,
     }

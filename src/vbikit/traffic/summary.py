@@ -19,8 +19,9 @@ _HALF_STEP = ("governing_static_half_step_im_change", "governing_dynamic_half_st
 def summary(ds: Any) -> dict[str, Any]:
     """The stream's results as plain data for ``traffic-summary.json``: the statistics at the first response point
     (``vbikit.traffic.study.stream_statistics``: event counts, the impact-factor distribution with the 95 %
-    confidence intervals, the governing events and their dynamic amplification), their half-step check, where
-    the stream starts (``start_words``), the flag codes and the warnings (the dataset's, "; "-joined).  NaN stays NaN here; the writer gives
+    confidence intervals, the governing events with their deflections and dynamic amplification), their half-step
+    check, where the stream starts (``start_words``), the flag codes and the warnings (the dataset's, "; "-joined),
+    and ``units``: each number's unit (``summary_unit``).  NaN stays NaN here; the writer gives
     null (``vbikit._files.json_text``)."""
     from vbikit.analysis.population_start import start_words
     from vbikit.traffic.study import stream_statistics
@@ -30,6 +31,20 @@ def summary(ds: Any) -> dict[str, Any]:
     # the governing events the run stored (its half-step check is of them)
     stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs}
     codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
-    return {"dataset": DATASET_FILE, **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
-            "start": start_words(attrs), "flag_codes": codes,
-            "warnings": str(attrs.get("warnings", ""))}
+    out = {"dataset": DATASET_FILE, **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
+           "start": start_words(attrs), "flag_codes": codes,
+           "warnings": str(attrs.get("warnings", ""))}
+    return out | {"units": {k: unit for k in out if (unit := summary_unit(k))}}
+
+
+def summary_unit(key: str) -> str:
+    """The unit of a number of ``summary`` (SI, as the dataset; "" for words and lists of words)."""
+    if key.endswith("_deflection"):
+        return "m"
+    if key.endswith("_event"):
+        return "index"  # (the dataset's event index, from 0)
+    if key.startswith("n_") or key.endswith("_counts"):
+        return "count"
+    if key.startswith(("im_", "governing_")) or key.endswith(("_fraction", "_tolerance", "_change")):
+        return "1"
+    return ""
