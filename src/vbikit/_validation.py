@@ -139,6 +139,10 @@ def number(value: Any, key: str, lo: Optional[float] = None, hi: Optional[float]
     return int(value) if integer else v
 
 
+#: units that say "no unit" (a dimensionless number): not printed after a range
+DIMENSIONLESS = ("1", "-")
+
+
 def expected(lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open: bool = False, hi_open: bool = False,
              integer: bool = False, unit: str = "", finite: bool = False) -> str:
     """``expected a number in [lo, hi] [unit]`` (or ``>= lo``, ``< hi`` …; ``lo_open``/``hi_open``:
@@ -150,7 +154,7 @@ def expected(lo: Optional[float] = None, hi: Optional[float] = None, *, lo_open:
     rng = (f" in {low}, {high}" if lo is not None and hi is not None else
            f" {'>' if lo_open else '>='} {lo:g}" if lo is not None else
            f" {'<' if hi_open else '<='} {hi:g}" if hi is not None else "")
-    return f"expected {what}{rng}{f' [{unit}]' if unit else ''}"
+    return f"expected {what}{rng}{f' [{unit}]' if unit and unit not in DIMENSIONLESS else ''}"
 
 
 #: pydantic's error types of a violated bound (``Field(ge=, gt=, le=, lt=)``)

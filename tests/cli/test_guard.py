@@ -175,6 +175,8 @@ def test_a_resumed_run_says_so_in_one_line(tmp_path, capsys):
     for stage, done, total in (("dynamics round 1", 7, 20), ("dynamics round 2", 3, 20)):
         only_part(stage, done, total, {})
     assert only_part.resumed() == "parts of 2 stages"
+    only_part("static pass", 5, 5, {})
+    assert only_part.resumed() == "1 stage and parts of 2 more"
     say_resumed("", tmp_path)
     assert capsys.readouterr().err == ""
     say_resumed("3 of 9 events", tmp_path)

@@ -128,7 +128,8 @@ def test_fatigue_verdict_against_hand_computed_miner_damage():
     und = acc.fatigue_verdict(d9, 0.2 * years / 100 / 1.959964, d9, years, 100.0, 0.0, False, curve.threshold, 0.95)
     assert und["verdict"].startswith("UNDECIDED") and und["damage_design_life_upper"] == pytest.approx(1.1)
     zero = acc.fatigue_verdict(2.7e-5, 4.7e-6, 0.0, years, 100.0, 0.0, False, 26.53e6, 0.95)
-    assert math.isnan(zero["ratio"]) and "undefined" in zero["ratio_words"] and "dynamic ranges" in zero["ratio_words"]
+    assert math.isnan(zero["ratio"]) and "undefined" in zero["ratio_words"]
+    assert "do not all stay below the limit (a simulated dynamic range" in zero["ratio_words"]
     none = acc.fatigue_verdict(0.0, 1e-7, 0.0, years, 100.0, 0.0, True, 26.53e6, 0.95)
     assert none["verdict"].startswith("no fatigue damage") and none["remaining_life"] == math.inf
 

@@ -107,7 +107,8 @@ def test_days_below_the_limit_do_not_make_a_design_life_below_it():
     """EN 1993-1-9 1.3.3.3's limit rule judges the design life's loading, not the days simulated: five days
     whose largest ranges are 17 … 21 MPa, all below Δσ_D = 26.53 MPa (detail 36), extrapolate to a 100-year
     largest above it.  The independent number: scipy's Gumbel maximum-likelihood fit of the same five maxima
-    (``scipy.stats.gumbel_r.fit``), its level exceeded once in 100 × 365 days.  The rule is then not applied:
+    (``scipy.stats.gumbel_r.fit``), the level the largest of 100 × 365 days stays below with probability 0.95
+    (F(x)^36500 = 0.95).  The rule is then not applied:
     every cycle above Δσ_L counts (here the days' closed damage, 5 × 1e-7), and the verdict says why; with
     fewer than 5 days no estimate is possible and the rule is not applied either."""
     from scipy import stats
@@ -118,7 +119,7 @@ def test_days_below_the_limit_do_not_make_a_design_life_below_it():
     prep, got = _days(maxima, 21.0, "EN 36")
     v = got["variables"]
     loc, scale = stats.gumbel_r.fit(np.array(maxima) * MPA)
-    level = stats.gumbel_r.ppf(1.0 - 1.0 / (100 * 365), loc, scale)
+    level = stats.gumbel_r.ppf(0.95 ** (1.0 / (100 * 365)), loc, scale)  # P(largest of 36,500 days <= level) = 0.95
     assert level > (2 / 5) ** (1 / 3) * 36.0 * MPA  # above Δσ_D: the case is what it claims
     assert v["max_stress_range_design_life"][1][0] == pytest.approx(level, rel=1e-4)
     assert v["max_stress_range_static"][1][0] == 21.0 * MPA
@@ -167,3 +168,19 @@ def test_a_large_damage_ratio_is_explained_in_words():
     assert "26.50 MPa" in big["ratio_words"]
     small = fatigue_verdict(1.3e-5, 1e-6, 1e-5, 0.0192, 100.0, 0.0, False, 26.5e6, 0.95)
     assert small["ratio"] == pytest.approx(1.3) and "power m" not in small["ratio_words"]
+
+
+def test_the_design_life_range_of_degenerate_days():
+    """Days whose largest ranges are all equal: the design life's largest is that range (no spread), times the
+    dynamics' amplification in the bound; days without any range: 0 (the limit rule holds: nothing to count);
+    fewer than 5 days with a range: no estimate, said why."""
+    import math
+
+    from vbikit.lifetime.accuracy import design_life_range
+
+    same = design_life_range(np.full(7, 12.0 * MPA), 365, 100.0, 0.95, amplification=1.25)
+    assert (same.level, same.upper, same.bound) == (12.0 * MPA, 12.0 * MPA, 15.0 * MPA)
+    none = design_life_range(np.zeros(7), 365, 100.0, 0.95, amplification=1.25)
+    assert (none.level, none.upper, none.bound) == (0.0, 0.0, 0.0)
+    few = design_life_range(np.array([0.0, 0.0, 0.0, 9.0, 10.0, 11.0, 12.0]) * MPA, 365, 100.0, 0.95)
+    assert math.isnan(few.bound) and few.why == "4 simulated days with a stress range, fewer than 5"

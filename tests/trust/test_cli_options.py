@@ -309,3 +309,13 @@ def test_traffic_names_the_records_file_as_given_in_every_error(tmp_path):
     res = runner.invoke(app, ["traffic", str(tmp_path / "sub" / "rec.csv"), "--bridge", "paper-bridge-2-beam", "--out",
                               str(tmp_path / "t.nc"), "--workers", "1", "--no-progress"])
     cli_refused(res, f"{tmp_path / 'sub' / 'rec.csv'}:3: lane 3 has no centre")
+
+
+def test_a_dimensionless_range_is_not_followed_by_a_unit():
+    """A range of a number without unit reads "expected a number in [0, 1)", not "… [0, 1) [1]" (a new user's trial,
+    drive-by noise keys); a unit is given after a range with one."""
+    from vbikit._validation import expected
+
+    assert expected(0.0, 1.0, hi_open=True, unit="1") == "expected a number in [0, 1)"
+    assert expected(0.0, 1.0, hi_open=True, unit="-") == "expected a number in [0, 1)"
+    assert expected(0.0, 1.0, unit="m") == "expected a number in [0, 1] [m]"

@@ -46,9 +46,8 @@ class _Bars:
 
         whole = sum(1 for d, t in self.first.values() if t and d >= t)
         part = sum(1 for d, t in self.first.values() if 0 < d < t)
-        parts = f"{'part' if part == 1 else 'parts'} of {counted(part, 'more' if whole else 'stage')}" if part else ""
-        if part and whole and part == 1:
-            parts = "part of 1 more"
+        of = f"{part} more" if whole else counted(part, "stage")
+        parts = f"{'part' if part == 1 else 'parts'} of {of}" if part else ""
         return " and ".join(filter(None, [counted(whole, "stage") if whole else "", parts]))
 
     def __call__(self, stage: str, done: int, total: int, info: dict) -> None:

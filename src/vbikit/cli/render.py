@@ -75,9 +75,8 @@ def print_summary(run: Run) -> None:
     strain_mark = "!" if strain_off else ""  # the modes' strain peaks are off too, not only their IM
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
-    from vbikit.scenario.step_check import is_acceleration
-
-    acc_off = coarse_step(s) or any(f["code"] == "step_not_converged" and is_acceleration(f.get("output"))
+    own = ("max_abs_acceleration", f"points[{s['points'][0]['name']}].max_abs_acceleration" if s.get("points") else "")
+    acc_off = coarse_step(s) or any(f["code"] == "step_not_converged" and f.get("output") in own
                                     for f in s.get("flags", []))
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²{'!' if acc_off else ''} (the deck's, at the "
                "response point)")
@@ -178,7 +177,7 @@ def step_line(s: dict) -> None:
     load effects' halving)."""
     check = s.get("step_check")
     if not check:
-        if "inputs" in s and s["inputs"].get("dt") is not None:  # (a scenario's run at its own crossing.dt)
+        if s.get("inputs", {}).get("dt_given"):  # (a scenario's run at its own crossing.dt)
             typer.echo("  step check           not run: crossing.dt is given (the run at the automatic step checks it)")
         return
     if check.get("largest_change") is None:
@@ -275,7 +274,7 @@ def print_load_effects(s: dict[str, Any]) -> None:
         from vbikit.analysis.codes import jtg_d60_2015
 
         f2 = s["frequencies_hz"][1] if len(s.get("frequencies_hz", [])) > 1 else None
-        other = f": μ(f2 = {f2:.2f} Hz) = {jtg_d60_2015(f2):.3f}" if f2 else ""
+        other = f": μ(f2 = {f2:.2f} Hz) = {jtg_d60_2015(f2):.3f}" if f2 is not None and math.isfinite(f2) and f2 > 0 else ""
         typer.echo(f"    {'':<8} ? JTG D60 by f1 beside a hogging moment: the clause's commentary is said to take the "
                    f"second frequency f2 for hogging moments of continuous beams (unconfirmed; docs/bridges.md){other}")
 

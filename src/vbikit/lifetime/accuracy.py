@@ -66,12 +66,19 @@ error), or in words why it has no value.
 when every stress range of the loading is below the constant-amplitude limit; the loading meant is the
 design life's, and its largest range is larger than a few simulated days'.  So the limit rule applies
 only when the simulated period's ranges are below the limit *and* so is the design life's largest
-static range, estimated from the simulated days' largest ranges: the Gumbel return level for a return
-period of the design life (daily blocks, ``days_per_year`` a year; Coles 2001 eq. 3.4 with ξ = 0),
-the upper bound of its ``ci`` interval (delta method) times the simulated dynamics' largest-range
-amplification (the simulated events' largest total range over the largest static one, at least 1).
-Fewer than ``MIN_DAYS_FOR_RANGE`` days with a range, or no spread among them: no estimate, and the
-rule is not applied (every range above the cut-off counts: D > 0, said in words).
+static range, estimated from the simulated days' largest ranges (each day counted alone; days without
+a range left out, which errs high): with F the Gumbel fit of those daily maxima (Coles 2001 eq. 3.3),
+the design life's N = T_life·``days_per_year`` days have a largest range below x with probability
+F(x)^N, so the level the design life's largest stays below with the run's confidence ``ci`` is
+F(x) = ci^(1/N): the return level for T_life / (−ln ci) years (≈ 19.5 T_life at 95 %; the
+return level for T_life itself is exceeded in the life with probability 1 − (1 − 1/N)^N ≈ 63 %).
+The rule compares the upper bound of that level's ``ci`` interval (delta method: the fit's own
+uncertainty) — for the static damage alone as it is, for the total damage times the simulated
+dynamics' amplification of the largest range (the simulated events' largest total range over the
+period's largest static one, at least 1; an approximation: the two ranges need not be of one event).
+Fewer than ``MIN_DAYS_FOR_RANGE`` days with a range: no estimate, and the rule is not applied
+(every range above the cut-off counts: D > 0, said in words); days whose largest ranges are all
+equal give that range (no spread: the design life's largest is the same); no range at all gives 0.
 """
 from __future__ import annotations
 
@@ -288,25 +295,33 @@ class DesignLifeRange:
 def design_life_range(daily_max: np.ndarray, days_per_year: float, design_life: float, ci: float,
                       amplification: float = 1.0) -> DesignLifeRange:
     """``DesignLifeRange`` from ``daily_max`` [Pa] (each simulated day's largest static stress range; days without
-    one, ≤ 0, left out) for a ``design_life`` [years] of ``days_per_year`` daily blocks, the interval at ``ci``,
-    ``amplification`` ≥ 1 the simulated dynamics' (largest total range / largest static range)."""
+    one, ≤ 0, left out) for a ``design_life`` [years] of ``days_per_year`` daily blocks: the level the design
+    life's largest range stays below with probability ``ci`` (module docstring: the return level for
+    ``design_life`` / (−ln ``ci``) years) and the upper bound of its ``ci`` interval; ``amplification`` the
+    simulated dynamics' (largest total range / largest static range, taken ≥ 1)."""
     from vbikit.extremes import fit_block_maxima, return_levels
     from vbikit.extremes.errors import ExtremesError
 
     days = np.asarray(daily_max, float)
     days = days[np.isfinite(days) & (days > 0.0)]
-    if days.size < MIN_DAYS_FOR_RANGE or np.ptp(days) <= 1e-12 * days.max():
-        why = (f"{counted(days.size, 'simulated day')} with a stress range, fewer than {MIN_DAYS_FOR_RANGE}"
-               if days.size < MIN_DAYS_FOR_RANGE else "the simulated days' largest ranges are all equal")
-        return DesignLifeRange(math.nan, math.nan, math.nan, why)
+    factor = max(float(amplification), 1.0) if math.isfinite(amplification) else math.inf
+    if not np.isfinite(np.asarray(daily_max, float)).any() or not days.size:
+        return DesignLifeRange(0.0, 0.0, 0.0, "no stress range in the simulated days")
+    if days.size < MIN_DAYS_FOR_RANGE:
+        return DesignLifeRange(math.nan, math.nan, math.nan, f"{counted(days.size, 'simulated day')} with a stress "
+                                                             f"range, fewer than {MIN_DAYS_FOR_RANGE}")
+    if np.ptp(days) <= 1e-12 * days.max():  # no spread: every day's largest is the same, so is the design life's
+        top = float(days.max())
+        return DesignLifeRange(top, top, top * factor)
     try:
         fit = fit_block_maxima(days, "gumbel", blocks_per_year=float(days_per_year))
-        level, _, upper = (float(v[0]) for v in return_levels(fit, [float(design_life)], ci=ci))
+        period = float(design_life) / -math.log(ci)  # F(x)^N = ci: the return period T_life / (−ln ci)
+        level, _, upper = (float(v[0]) for v in return_levels(fit, [period], ci=ci))
     except ExtremesError as err:
         return DesignLifeRange(math.nan, math.nan, math.nan, f"the Gumbel fit of the daily ranges failed ({err})")
     if not math.isfinite(upper):
         return DesignLifeRange(level, upper, math.nan, "the Gumbel fit of the daily ranges has no interval")
-    return DesignLifeRange(level, upper, upper * max(float(amplification), 1.0))
+    return DesignLifeRange(level, upper, upper * factor)
 
 
 def design_life_range_words(estimate: DesignLifeRange, design_life: float, ci: float, limit: str) -> str:
@@ -317,9 +332,10 @@ def design_life_range_words(estimate: DesignLifeRange, design_life: float, ci: f
                 f"life's largest range cannot be estimated ({estimate.why}): the limit rule is not applied, every "
                 "range above the cut-off counts")
     return (f"every simulated stress range is below the fatigue limit {limit}, but the {design_life:g}-year design "
-            f"life's largest is estimated at {estimate.level / 1e6:.2f} MPa (Gumbel fit of the daily largest ranges, "
-            f"upper {ci:.0%} bound {estimate.upper / 1e6:.2f} MPa, {estimate.bound / 1e6:.2f} MPa with the simulated "
-            "dynamics): the limit rule does not hold over the design life, every range above the cut-off counts")
+            f"life's largest stays below {estimate.level / 1e6:.2f} MPa only with {ci:.0%} confidence (Gumbel fit of "
+            f"the daily largest ranges; the upper {ci:.0%} bound of that level {estimate.upper / 1e6:.2f} MPa, "
+            f"{estimate.bound / 1e6:.2f} MPa with the simulated dynamics): the limit rule does not hold over the "
+            "design life, every range above the cut-off counts")
 
 
 def fatigue_verdict(damage: float, se: float, damage_static: float, years: float, design_life: float,
@@ -339,8 +355,8 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
     remaining = (1.0 - damage_so_far) / per_year if per_year > 0 else math.inf
     limit = f"{limit_name} = {limit_pa / 1e6:.2f} MPa"
     if below_limit:
-        estimate = (f"; the {design_life:g}-year design life's largest is estimated at {life_range.level / 1e6:.2f} "
-                    f"MPa (upper {ci:.0%} bound with the simulated dynamics {life_range.bound / 1e6:.2f} MPa)"
+        estimate = (f"; the {design_life:g}-year design life's largest stays below {life_range.level / 1e6:.2f} MPa "
+                    f"with {ci:.0%} confidence (upper bound with the simulated dynamics {life_range.bound / 1e6:.2f} MPa)"
                     if life_range is not None and math.isfinite(life_range.bound) else "")
         words = (f"no fatigue damage: every stress range (static, and of every simulated event) is below the "
                  f"fatigue limit {limit}{estimate}; life unlimited")
@@ -370,10 +386,11 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
         ratio, ratio_se = math.nan, math.nan
         ratio_words = (f"static damage 0 (every static stress range is below the fatigue limit {limit}): the "
                        "dynamic / static damage ratio is undefined")
-        ratio_words += ("; the dynamic ranges above the limit make the loading's ranges below it count too (no damage "
-                        "only when every range is below the limit), the static-sized ones included, on the S-N curve "
-                        "below the limit down to its cut-off where it has one" if damage > 0 else
-                        "; the total damage is 0 too")
+        ratio_words += ("; the total loading's ranges do not all stay below the limit (a simulated dynamic range, or "
+                        "the design life's largest with the dynamics: see the verdict), so its ranges below the limit "
+                        "count too (no damage only when every range is below the limit), the static-sized ones "
+                        "included, on the S-N curve below the limit down to its cut-off where it has one"
+                        if damage > 0 else "; the total damage is 0 too")
     return {"damage_design_life": life, "damage_design_life_upper": upper, "remaining_life": remaining,
             "ratio": ratio, "ratio_se": ratio_se, "verdict": words, "ratio_words": ratio_words}
 

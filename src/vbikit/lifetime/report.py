@@ -349,7 +349,7 @@ def adr_event_bound(a: dict) -> float:
     s·R_dyn ≤ (1 + A)·s·R_st, a simulated one its own ratio), so neither does any quantile of the daily total
     maxima that of the static ones, nor the characteristic total the characteristic static (NaN: not known)."""
     values = [float(a.get(k, math.nan)) for k in ("amplification_bound_used", "amplification_max_observed")]
-    values = [v for v in values if math.isfinite(v)]
+    values = [v for v in values if not math.isnan(v)]  # (an infinite ratio, a zero static peak: no bound)
     return 1.0 + max(values) if values else math.nan
 
 

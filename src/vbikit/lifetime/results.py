@@ -638,9 +638,12 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         simulated_below = static_top < curve.threshold and dyn_top < curve.threshold
         # each day's largest range counted alone: its largest closed cycle or its residual's max − min (the day's
         # largest peak and deepest valley are in its residual, closed only when the days are joined)
-        day_range = np.array([max(float(day_top[d, j]) if day_top.size else 0.0,
-                                  float(np.ptp(r)) if (r := res_val[(res_day == d) & (res_det == j)]).size else 0.0)
-                              for d in range(n_days)])
+        mine = res_det == j
+        res_hi, res_lo = np.full(n_days, -np.inf), np.full(n_days, np.inf)
+        np.maximum.at(res_hi, res_day[mine], res_val[mine])
+        np.minimum.at(res_lo, res_day[mine], res_val[mine])
+        day_range = np.maximum(day_top[:, j] if day_top.size else np.zeros(n_days),
+                               np.where(res_hi >= res_lo, res_hi - res_lo, 0.0))
         life = design_life_range(day_range, spec.days_per_year,
                                  spec.fatigue.design_life, spec.ci,
                                  dyn_top / static_top if static_top > 0 else 1.0)
@@ -676,8 +679,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
         "equivalent_stress_range_design_life": ("detail", out["eq_life"], a("Pa", f"damage-equivalent stress range of the {spec.fatigue.design_life:g}-year design life's traffic at 2e6 cycles (EN 1993-1-9 Δσ_E,2: below Δσ_C exactly when that damage is below 1)")),
         "remaining_life": ("detail", out["life"], a("year", "years until the Miner sum reaches 1 at fatigue_damage_per_year")),
         "below_fatigue_limit": ("detail", out["below_limit"].astype(np.int8), a("1", "1 if every stress range of the period (static, and of every dynamically simulated event) is below the constant-amplitude fatigue limit and so is the design life's largest, max_stress_range_design_life_bound: no damage (EN 1993-1-9 1.3.3.3, AASHTO (dF)_TH)")),
-        "max_stress_range_design_life": ("detail", out["life_top"], a("Pa", f"the {spec.fatigue.design_life:g}-year design life's largest static stress range, estimated: the Gumbel return level of the daily largest ranges for that period (NaN: too few days)")),
-        "max_stress_range_design_life_bound": ("detail", out["life_bound"], a("Pa", f"upper {spec.ci:.0%} bound of max_stress_range_design_life times the simulated dynamics' amplification of the largest range: the limit rule's test over the design life")),
+        "max_stress_range_design_life": ("detail", out["life_top"], a("Pa", f"the level the {spec.fatigue.design_life:g}-year design life's largest static stress range stays below with probability {spec.ci:g}: the Gumbel fit of the daily largest ranges at the return period design_life / (-ln {spec.ci:g}) (NaN: no estimate; fatigue_limit_note says why)")),
+        "max_stress_range_design_life_bound": ("detail", out["life_bound"], a("Pa", f"upper {spec.ci:.0%} bound of max_stress_range_design_life times the simulated dynamics' amplification of the largest range: the limit rule's test over the design life (the static damage's: the bound alone)")),
         "fatigue_limit_note": ("detail", np.array(notes, dtype=object), a("", "why the limit rule was not applied although every simulated stress range is below the limit (empty otherwise)")),
         "damage_per_day_static": (("day", "detail"), alone, a("1", "Miner damage of each day's static history counted alone")),
         "stress_range_histogram": (("detail", "stress_range_bin"), hist, a("1", "static stress-range cycles (half cycles 0.5) per bin; the bins reach the largest range (none folded)")),

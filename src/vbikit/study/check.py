@@ -71,7 +71,7 @@ def _step_advice(study: Study, limits: Limits | None) -> list[str]:
     through the run pipeline's step check (``vbikit.scenario.step_check``); if its impact factors
     settle only at a finer step, say which (the study's crossings keep the automatic step)."""
     from vbikit.scenario.pipeline import run_planned
-    from vbikit.scenario.step_check import asks_for_load_effects, is_acceleration
+    from vbikit.scenario.step_check import asks_for_load_effects, is_acceleration, is_train
 
     scenario = parse_scenario(study.scenario_dict(tuple(0 for _ in study.axes)), study.base_dir)
     if not asks_for_load_effects(scenario) or scenario.crossing.dt is not None:
@@ -81,9 +81,11 @@ def _step_advice(study: Study, limits: Limits | None) -> list[str]:
     checked = float(report.result.integration_dt or report.result.dt)
     if checked >= plan.dt * (1 - 1e-9):
         return []
-    # the impact factors' flags (a peak acceleration's is not what the halving is for)
+    # what the halving is for: the impact factors, and a train's peak accelerations (another run's peak acceleration
+    # flag is not about the step the study's load effects need)
+    train = is_train(scenario)
     unsettled = [f["message"] for f in report.summary["flags"]
-                 if f["code"] == "step_not_converged" and not is_acceleration(f.get("output"))]
+                 if f["code"] == "step_not_converged" and (train or not is_acceleration(f.get("output")))]
     if unsettled:  # not even the finest checked step settles them
         return [f"base (the study's crossings run at the automatic step {plan.dt:.3g} s): {w}" for w in unsettled]
     return [f"base: the load effects' impact factors settle only at dt = {checked:.3g} s (step check of the base "
