@@ -90,6 +90,10 @@ def test_a_peak_acceleration_changes_relative_to_itself_above_a_floor_and_girder
     change, worst = _largest_change(coarse, fine, accelerations, only_relative=True)
     assert worst == "max_abs_acceleration" and change == pytest.approx(0.002)  # not the support's 200 %
     assert _largest_change(coarse, fine)[1] == "impact_factor"  # the impact factors alone by default
+    # every girder's deflection IM is an impact factor too (a list in the summary)
+    girders = {"impact_factor": 0.3, "girder_impact_factors": [0.30, 0.20]}
+    assert _largest_change(girders, {"impact_factor": 0.301, "girder_impact_factors": [0.30, 0.23]}) \
+        == (pytest.approx(0.03), "girder_impact_factors[1]")
     # the flag: the peak accelerations' change alone (the IM's 0.6 is larger), the half step in its message
     from vbikit.scenario.step_check import acceleration_flags, is_acceleration
 

@@ -78,8 +78,9 @@ def is_acceleration(output: str | None) -> bool:
 def checked_values(summary: Mapping[str, Any], relative: tuple[str, ...] = (), prefix: str = "") \
         -> Iterator[tuple[str, float, bool]]:
     """Every finite ``*impact_factor`` number in a run's summary (top level, ``points``, load effect
-    blocks), with a path-like name, and the peaks named in ``relative`` (flagged True: compared by
-    their relative change; a list of numbers, as the girders' peaks, by its entries)."""
+    blocks) and every entry of an ``*impact_factors`` list (the girders'), with a path-like name, and the
+    peaks named in ``relative`` (flagged True: compared by their relative change; a list of numbers, as
+    the girders' peaks, by its entries)."""
     for key, value in summary.items():
         name = f"{prefix}{key}"
         if isinstance(value, Mapping):
@@ -88,8 +89,8 @@ def checked_values(summary: Mapping[str, Any], relative: tuple[str, ...] = (), p
             for i, item in enumerate(value):
                 if isinstance(item, Mapping):
                     yield from checked_values(item, relative, f"{name}[{item.get('name', i)}].")
-                elif key in relative and _finite(item):
-                    yield f"{name}[{i}]", float(item), True
+                elif _finite(item) and (key in relative or key.endswith("impact_factors")):
+                    yield f"{name}[{i}]", float(item), key in relative
         elif _finite(value):
             if key.endswith("impact_factor"):
                 yield name, float(value), False
