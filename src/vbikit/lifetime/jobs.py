@@ -121,6 +121,11 @@ class Detail:
         category = float(curve_name(self.curve).split()[1])
         return f"{self.curve} × k_s {self.size_factor:g} = {category * self.size_factor:.4g} MPa"
 
+    @property
+    def limit_name(self) -> str:
+        """The name of the curve's constant-amplitude fatigue limit: EN 1993-1-9's Δσ_D, AASHTO's (ΔF)_TH."""
+        return "Δσ_D" if self.curve.upper().startswith("EN") else "(ΔF)_TH"
+
     def sn(self):
         from vbikit.fatigue import curve_name, en1993_curve, sn_curve
 

@@ -557,12 +557,11 @@ def _verdict_variables(prep, fat_vars: dict, ranges: list) -> dict[str, Any]:
     years = prep.n_days / spec.days_per_year
     rows = []
     for j, det in enumerate(prep.details):
-        limit_name = "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH"
         rows.append(fatigue_verdict(
             float(fat_vars["fatigue_damage"][1][j]), float(fat_vars["fatigue_damage_se"][1][j]),
             float(fat_vars["fatigue_damage_static"][1][j]), years, spec.fatigue.design_life,
             spec.fatigue.damage_so_far, bool(fat_vars["below_fatigue_limit"][1][j]), float(det.sn().threshold),
-            spec.ci, limit_name, ranges[j], str(fat_vars["fatigue_limit_note"][1][j])))
+            spec.ci, det.limit_name, ranges[j], str(fat_vars["fatigue_limit_note"][1][j])))
     a = lambda u, d: {"units": u, "long_name": d}  # noqa: E731
     life = spec.fatigue.design_life
     return {
@@ -655,9 +654,8 @@ def fatigue_results(prep, static, dyn) -> dict[str, Any]:
             # no damage by the limit rule, whatever the sample: no sampling error either
             d_total, se = 0.0, 0.0
         out["below_limit"][j] = float(simulated_below and life_below)
-        limit_name = "Δσ_D" if det.curve.upper().startswith("EN") else "(ΔF)_TH"
         notes.append(design_life_range_words(life, spec.fatigue.design_life, spec.ci,
-                                             f"{limit_name} = {curve.threshold / 1e6:.2f} MPa")
+                                             f"{det.limit_name} = {curve.threshold / 1e6:.2f} MPa")
                      if simulated_below and not life_below else "")
         ranges.append(life)
         per_year = d_total / years
