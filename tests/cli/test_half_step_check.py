@@ -98,7 +98,8 @@ def test_a_peak_acceleration_changes_relative_to_itself_above_a_floor_and_girder
     from vbikit.scenario.step_check import acceleration_flags, is_acceleration
 
     fine["girder_max_abs_acceleration"][1] = 2.03
-    (change, worst), (flag,) = acceleration_flags(coarse, fine, 5e-4)
+    (change, worst), (flag,), above = acceleration_flags(coarse, fine, 5e-4)
+    assert above == ["girder_max_abs_acceleration[1]"]  # the others within the tolerance
     assert (worst, flag.output, flag.value) == ("girder_max_abs_acceleration[1]", worst, change)
     assert "changed by 1.50% of its value when the step was halved to 0.0005 s" in flag.message
     assert is_acceleration(worst) and is_acceleration("points[mid].max_abs_acceleration")

@@ -62,3 +62,25 @@ def test_a_given_step_says_that_no_step_was_checked(tmp_path):
     halved = tmp_path / "halved.toml"
     halved.write_text(fryba.replace("x = 12.5", "x = 12.5\nmoment = [12.5]"), encoding="utf-8")
     assert "step check" not in _run(halved)
+
+
+def test_the_points_table_marks_every_unconverged_peak_acceleration(tmp_path):
+    """Frýba's moving force read at midspan and at a quarter: both peak accelerations change by more than the
+    tolerance at half the step (0.77 % and 4.0 %); the flag names the larger and counts the other, the step check
+    lists both, and the points table marks both |a|max, as the headline line its own."""
+    import json
+
+    text = (ROOT / "examples" / "verification" / "fryba_moving_force.toml").read_text(encoding="utf-8")
+    text = text.replace("[response]\nx = 12.5", "[[response.points]]\nname = \"mid\"\nx = 12.5\n"
+                                              "[[response.points]]\nname = \"quarter\"\nx = 6.25")
+    scenario = tmp_path / "two.toml"
+    scenario.write_text(text, encoding="utf-8")
+    summary = json.loads(_run(scenario, "--json"))
+    (flag,) = [f for f in summary["flags"] if f["code"] == "step_not_converged"]
+    assert flag["output"] == "points[quarter].max_abs_acceleration" and "(1 more peak acceleration above" in flag["message"]
+    assert set(summary["step_check"]["accelerations_not_converged"]) >= {"points[mid].max_abs_acceleration",
+                                                                          "points[quarter].max_abs_acceleration"}
+    out = _run(scenario)
+    rows = {m.group(1): m.group(2) for m in re.finditer(r"^  (mid|quarter) +.* [\d.]+(!?)$", out, re.M)}
+    assert rows == {"mid": "!", "quarter": "!"}, rows
+    assert re.search(r"max \|acceleration\| +[\d.]+ m/s²! ", out)

@@ -592,7 +592,8 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                         "half the step, dt [s], and the largest change of a deflection or strain impact factor (every point "
                         "and girder; the load effects have their own step rule), largest_change [-], and which, output; the "
                         "largest relative change of a peak deck acceleration (every point and girder), acceleration_change [-], "
-                        "and which, acceleration_output (vbikit.scenario.step_check.half_step_check; either above 0.005 flagged "
+                        "and which, acceleration_output, and every peak acceleration above 0.005, accelerations_not_converged "
+                        "(vbikit.scenario.step_check.half_step_check; either above 0.005 flagged "
                         "step_not_converged); absent for a given crossing.dt"),
     "warnings": ("-", "messages about the inputs or the run (also printed on standard error): the flags' messages"),
     "flags": ("-", "the checks' findings as records: code (the flag codes' table), message, output, subject, girder, "

@@ -76,8 +76,7 @@ def print_summary(run: Run) -> None:
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
     own = ("max_abs_acceleration", f"points[{s['points'][0]['name']}].max_abs_acceleration" if s.get("points") else "")
-    acc_off = coarse_step(s) or any(f["code"] == "step_not_converged" and f.get("output") in own
-                                    for f in s.get("flags", []))
+    acc_off = coarse_step(s) or bool(set(own) & unsettled_outputs(s))
     typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²{'!' if acc_off else ''} (the deck's, at the "
                "response point)")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
@@ -117,7 +116,10 @@ def print_summary(run: Run) -> None:
                      for g in range(1, len(s.get("girder_max_static_displacement", [])) + 1)]
     small_points = [has_flag(s, "small_static", output="impact_factor", point=p["name"]) for p in s["points"]]
     if len(s["points"]) > 1:
-        print_points(s["points"], small_points)
+        unsettled = unsettled_outputs(s)
+        acc_marks = [coarse_step(s) or f"points[{p['name']}].max_abs_acceleration" in unsettled
+                     or (i == 0 and "max_abs_acceleration" in unsettled) for i, p in enumerate(s["points"])]
+        print_points(s["points"], small_points, acc_marks)
     for i, v in enumerate(s.get("vehicles", []), start=1):
         loads = " / ".join(f"{f * to_force:.1f}" for f in v["static_wheel_loads"].values())
         typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
@@ -139,6 +141,13 @@ def print_summary(run: Run) -> None:
     print_codes(s["design_code_allowances"], "deflection IM beside", several=bool(s.get("vehicles")))
     print_load_effects(s)
     print_negative_note(negative_impact(s))
+
+
+def unsettled_outputs(s: dict[str, Any]) -> set[str]:
+    """The outputs the step checks found unconverged: the ``step_not_converged`` flags' and every peak
+    acceleration of the half-step check above its tolerance (``step_check.accelerations_not_converged``)."""
+    named = {f.get("output") for f in s.get("flags", []) if f["code"] == "step_not_converged"}
+    return (named | set((s.get("step_check") or {}).get("accelerations_not_converged", []))) - {None}
 
 
 def coarse_step(s: dict[str, Any]) -> bool:
@@ -279,20 +288,22 @@ def print_load_effects(s: dict[str, Any]) -> None:
                    f"second frequency f2 for hogging moments of continuous beams (unconfirmed; docs/bridges.md){other}")
 
 
-def print_points(points: list[dict[str, Any]], small: list[bool]) -> None:
+def print_points(points: list[dict[str, Any]], small: list[bool], acceleration: list[bool] | None = None) -> None:
     """One line per response point ([[response.points]]): where, static and dynamic peaks, IMs; "!"
     marks an IM on a small static reference (``small``: per point, whether the run flags it
-    ``small_static``, ``vbikit.analysis.checks``)."""
+    ``small_static``, ``vbikit.analysis.checks``) and a peak acceleration the step check flags
+    (``acceleration``: per point)."""
     from vbikit.analysis.checks import SMALL_STATIC_FRACTION
     from vbikit.outputs import report_unit
 
     unit, k = report_unit("m")  # deflections in mm (the positions x, y are geometry: m)
     typer.echo(f"  {'points':<20} {'x [m]':>8} {'y [m]':>8} {f'static [{unit}]':>12} {f'dynamic [{unit}]':>13} {'IM':>8} "
                f"{'strain IM':>9} {'|a|max [m/s²]':>14}")
-    for p, flag in zip(points, small):
-        typer.echo(f"  {p['name']:<20} {p['x']:8.3f} {p['y']:8.3f} {p['max_static_displacement'] * k:+12.4f} "
-                   f"{p['max_dynamic_displacement'] * k:+13.4f} {p['impact_factor']:8.4f} "
-                   f"{p['strain_impact_factor']:9.4f} {p['max_abs_acceleration']:14.4f}{'  !' if flag else ''}")
+    for p, flag, acc in zip(points, small, acceleration or [False] * len(points)):
+        typer.echo((f"  {p['name']:<20} {p['x']:8.3f} {p['y']:8.3f} {p['max_static_displacement'] * k:+12.4f} "
+                    f"{p['max_dynamic_displacement'] * k:+13.4f} {p['impact_factor']:8.4f} "
+                    f"{p['strain_impact_factor']:9.4f} {p['max_abs_acceleration']:14.4f}{'!' if acc else ' '}"
+                    f"{' !' if flag else ''}").rstrip())
     if any(small):
         typer.echo(f"  {'':<20} ! unreliable IM: static deflection under {SMALL_STATIC_FRACTION:.0%} of the largest "
                    "on the bridge; not a design value — see the warning")

@@ -102,22 +102,27 @@ def _finite(value: Any) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
-def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any], relative: tuple[str, ...] = (),
-                    only_relative: bool = False) -> tuple[float, str]:
-    """The largest change from summary ``a`` to summary ``b`` and its name: of an impact factor absolute, of a peak
-    named in ``relative`` relative to its value in ``a`` (at least ``ACCELERATION_FLOOR`` of the largest such peak
-    of ``a``); with ``only_relative`` of those peaks alone."""
+def _changes(a: Mapping[str, Any], b: Mapping[str, Any], relative: tuple[str, ...] = (),
+             only_relative: bool = False) -> dict[str, float]:
+    """Every change from summary ``a`` to summary ``b`` by name: of an impact factor absolute, of a peak named in
+    ``relative`` relative to its value in ``a`` (at least ``ACCELERATION_FLOOR`` of the largest such peak of ``a``);
+    with ``only_relative`` of those peaks alone."""
     old = {name: (value, rel) for name, value, rel in checked_values(a, relative) if rel or not only_relative}
     floor = ACCELERATION_FLOOR * max((abs(v) for v, rel in old.values() if rel), default=0.0)
-    change, worst = 0.0, ""
+    out = {}
     for name, value, rel in checked_values(b, relative):
-        if name not in old:
-            continue
-        scale = max(abs(old[name][0]), floor) if rel else 1.0
-        step = abs(value - old[name][0]) / scale if scale > 0.0 else 0.0
-        if step > change:
-            change, worst = step, name
-    return change, worst
+        if name in old:
+            scale = max(abs(old[name][0]), floor) if rel else 1.0
+            out[name] = abs(value - old[name][0]) / scale if scale > 0.0 else 0.0
+    return out
+
+
+def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any], relative: tuple[str, ...] = (),
+                    only_relative: bool = False) -> tuple[float, str]:
+    """The largest of ``_changes`` and its name (0 and "" for none)."""
+    changes = _changes(a, b, relative, only_relative)
+    worst = max(changes, key=changes.__getitem__, default="")  # (the first of equal ones)
+    return (changes[worst], worst) if worst and changes[worst] > 0.0 else (0.0, "")
 
 
 def load_effect_plan(crossing: Crossing, effects: Sequence[Any], run_plan: RunPlan | None = None,
@@ -195,14 +200,20 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], An
 
 
 def acceleration_flags(coarse: Mapping[str, Any], fine: Mapping[str, Any],
-                       dt: float) -> tuple[tuple[float, str], list[Flag]]:
+                       dt: float) -> tuple[tuple[float, str], list[Flag], list[str]]:
     """The largest relative change of a peak deck acceleration (``PEAK_ACCELERATIONS``) from the summary ``coarse``
-    to ``fine`` (run at half of its step, ``dt`` [s]) and its name, and the ``step_not_converged`` flag when it is
-    above ``STEP_TOLERANCE``."""
+    to ``fine`` (run at half of its step, ``dt`` [s]) and its name, the ``step_not_converged`` flag when it is
+    above ``STEP_TOLERANCE`` (naming it, and how many more are), and every peak above it by name."""
+    changes = _changes(coarse, fine, PEAK_ACCELERATIONS, only_relative=True)
     change, worst = _largest_change(coarse, fine, PEAK_ACCELERATIONS, only_relative=True)
-    flags = [Flag("step_not_converged", _advice([change], worst, dt, relative=True, halved_for_it=False), output=worst,
-                  value=change, threshold=STEP_TOLERANCE)] if change > STEP_TOLERANCE else []
-    return (change, worst), flags
+    above = [name for name, c in changes.items() if c > STEP_TOLERANCE]
+    # the top-level peak is the first point's (``points``), counted once
+    distinct = len(above) - ("max_abs_acceleration" in above and any(n.startswith("points[") for n in above))
+    more = f" ({distinct - 1} more peak acceleration{'s' if distinct > 2 else ''} above the tolerance)" \
+        if distinct > 1 else ""
+    flags = [Flag("step_not_converged", _advice([change], worst, dt, relative=True, halved_for_it=False) + more,
+                  output=worst, value=change, threshold=STEP_TOLERANCE)] if above else []
+    return (change, worst), flags, above
 
 
 def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], Any],
@@ -217,7 +228,8 @@ def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], 
     report stays the run at the automatic step; above ``STEP_TOLERANCE`` its summary gets ``step_not_converged``
     (one flag for the impact factors, one for the accelerations).  Returns the summary's ``step_check``: ``dt`` [s]
     the half step, ``largest_change`` [-] and ``output``, ``acceleration_change`` [-] and ``acceleration_output``
-    (None, with ``note``, when the half-step run is above the step budget)."""
+    (None, with ``note``, when the half-step run is above the step budget), and ``accelerations_not_converged``: every
+    peak acceleration above the tolerance, by name."""
     from vbikit.solve.plan import plan_run
 
     dt = float(report.result.integration_dt or report.result.dt)
@@ -225,11 +237,11 @@ def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], 
         run_plan = plan_run(replace(crossing, dt=dt / 2), limits)
     except BudgetError as err:
         return {"dt": dt / 2, "largest_change": None, "output": None, "acceleration_change": None,
-                "acceleration_output": None,
+                "acceleration_output": None, "accelerations_not_converged": [],
                 "note": f"not run: the run at half the step is above the run's budget ({err})"}
     finer = rerun(run_plan).summary
     change, worst = _largest_change(_deflections(report.summary), _deflections(finer))
-    (acc_change, acc_worst), acc_flags = acceleration_flags(report.summary, finer, dt / 2)
+    (acc_change, acc_worst), acc_flags, acc_above = acceleration_flags(report.summary, finer, dt / 2)
     log.info("half-step check: dt %.3g s -> %.3g s, largest change %.2g (%s), of a peak acceleration %.2g (%s)",
              dt, dt / 2, change, worst, acc_change, acc_worst)
     if change > STEP_TOLERANCE:
@@ -237,7 +249,8 @@ def half_step_check(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], 
                                         value=change, threshold=STEP_TOLERANCE)])
     add_flags(report.summary, acc_flags)
     return {"dt": dt / 2, "largest_change": change, "output": worst or None,
-            "acceleration_change": acc_change, "acceleration_output": acc_worst or None}
+            "acceleration_change": acc_change, "acceleration_output": acc_worst or None,
+            "accelerations_not_converged": acc_above}
 
 
 #: the summary's load-effect blocks and their headline keys (``moment_impact_factor`` …): the half-step check leaves
