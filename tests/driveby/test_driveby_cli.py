@@ -51,6 +51,11 @@ def test_cli_writes_the_dataset_contract(tmp_path):
         assert ds["sensor_history"].attrs["units"] and ds["identified_frequency_hz"].attrs["units"] == "Hz"
     for name in ("driveby-report.txt", "driveby-summary.json", "driveby-spectrogram.png", "driveby-frequency-vs-speed.png", "driveby-damage.png"):
         assert (out / name).is_file(), name
+    # it says what it wrote, one line a file, as every command that writes a folder
+    wrote = sorted(line.removeprefix("wrote ") for line in proc.stdout.splitlines() if line.startswith("wrote "))
+    assert wrote == sorted(str(out / n) for n in ("driveby.nc", "driveby-report.txt", "driveby-summary.json",
+                                                  "driveby-spectrogram.png", "driveby-frequency-vs-speed.png",
+                                                  "driveby-damage.png"))
 
 
 def test_python_entry_point_resumes_an_interrupted_sweep(tmp_path):

@@ -46,6 +46,10 @@ def test_cli_cut_down_example_and_resume(tmp_path):
     assert 0 < ds.attrs["fraction_dynamic"] < 1
     for fig in ("lifetime-gumbel.png", "lifetime-adr.png", "lifetime-fatigue.png", "lifetime-traffic.png", "report.txt"):
         assert (out / fig).is_file(), fig
+    # it says what it wrote, one line a file, as every command that writes a folder
+    wrote = sorted(line.removeprefix("wrote ") for line in first.stdout.splitlines() if line.startswith("wrote "))
+    assert wrote == sorted(str(out / n) for n in ("lifetime.nc", "report.txt", "summary.json", "lifetime-gumbel.png",
+                                                  "lifetime-adr.png", "lifetime-fatigue.png", "lifetime-traffic.png"))
     (out / "lifetime.nc").unlink()
     again = run_lifetime(spec, out, workers=1, figures=False)
     for name in ("characteristic_static", "characteristic_total", "fatigue_damage", "event_total"):

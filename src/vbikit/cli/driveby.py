@@ -2,6 +2,7 @@
 labelled dataset (docs/driveby.md)."""
 from __future__ import annotations
 
+import time
 from pathlib import Path
 from typing import Optional
 
@@ -50,13 +51,17 @@ def driveby_cmd(
     from vbikit._files import output_names
 
     guard(lambda: output_names(out_dir, ("driveby.nc",)).mkdir(parents=True, exist_ok=True))
+    started = time.time()
     ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case",
                  option="--out-dir")
     warn_dataset(ds)
 
     def finish() -> None:
+        from vbikit.cli.guard import say_written
         from vbikit.driveby.study import write_outputs
 
         typer.echo(write_outputs(spec, ds, out_dir, figures))
+        say_written(out_dir, ("driveby.nc", "driveby.zarr", "driveby-report.txt", "driveby-summary.json",
+                              "driveby-*.png"), started)
 
     guard(finish)

@@ -280,6 +280,15 @@ def figures_option() -> Any:
     return typer.Option(True, "--figures/--no-figures", help="Write the figures into --out-dir.")
 
 
+def say_written(folder: Path, names: tuple[str, ...], since: float) -> None:
+    """One line ``wrote PATH`` on standard output for each file or folder of ``folder`` that ``names`` (names or
+    glob patterns) match and that the run wrote (modified at or after ``since``, a ``time.time()``), as every command
+    that writes a folder says what it wrote."""
+    found = sorted({p for name in names for p in Path(folder).glob(name) if p.stat().st_mtime >= since - 1.0})
+    for path in found:
+        typer.echo(f"wrote {path}")
+
+
 def say_resumed(words: str, folder: Path) -> None:
     """After a finished run: one line on standard error (not with ``-q``) that it resumed from the work ``words``
     says ("3 of 95 batches", "2 of 12 trains": what the run itself found finished and used, after its checks) kept

@@ -96,7 +96,7 @@ def lifetime_cmd(
     day (and a random sample for fatigue), extreme-value fits and return levels, ADR, fatigue
     damage.  An interrupted run started again resumes (finished batches in OUT_DIR/work)."""
     from vbikit._words import counted
-    from vbikit.lifetime.run import DATASET_FILE, REPORT_FILE, WORK_FOLDER, run_lifetime
+    from vbikit.lifetime.run import DATASET_FILE, REPORT_FILE, SUMMARY_FILE, WORK_FOLDER, run_lifetime
 
     memory = None if max_memory is None else memory_option(max_memory)
     if budget_hours is not None:
@@ -104,7 +104,7 @@ def lifetime_cmd(
 
         budget_hours = budget_value(budget_hours, "--budget-hours", MAX_BUDGET_HOURS)
     bars = _Bars(progress and not STATE["quiet"])
-    t0 = time.perf_counter()
+    t0, started = time.perf_counter(), time.time()
     from vbikit.cli.guard import say_resumed
 
     try:
@@ -119,6 +119,9 @@ def lifetime_cmd(
     bars.close()
     a = ds.attrs
     typer.echo((out_dir / REPORT_FILE).read_text())
+    from vbikit.cli.guard import say_written
+
+    say_written(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, "lifetime-*.png"), started)
     typer.echo(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
                f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
     say_resumed(bars.resumed(), out_dir / WORK_FOLDER)
