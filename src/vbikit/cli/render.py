@@ -75,10 +75,8 @@ def print_summary(run: Run) -> None:
     strain_mark = "!" if strain_off else ""  # the modes' strain peaks are off too, not only their IM
     typer.echo(f"  max strain           dynamic {s['max_dynamic_strain'] * 1e6:+.3f} µε{strain_mark}, static "
                f"{s['max_static_strain'] * 1e6:+.3f} µε{strain_mark}")
-    own = ("max_abs_acceleration", f"points[{s['points'][0]['name']}].max_abs_acceleration" if s.get("points") else "")
-    acc_off = coarse_step(s) or bool(set(own) & unsettled_outputs(s))
-    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²{'!' if acc_off else ''} (the deck's, at the "
-               "response point)")
+    typer.echo(f"  max |acceleration|   {s['max_abs_acceleration']:.4f} m/s²{'!' if acceleration_in_doubt(s, 0) else ''} "
+               "(the deck's, at the response point)")
     typer.echo(f"  time steps           {s['n_steps']} × {s['dt']:.3e} s ({s['integrator']})")
     step_line(s)
     start_line(s)
@@ -116,10 +114,7 @@ def print_summary(run: Run) -> None:
                      for g in range(1, len(s.get("girder_max_static_displacement", [])) + 1)]
     small_points = [has_flag(s, "small_static", output="impact_factor", point=p["name"]) for p in s["points"]]
     if len(s["points"]) > 1:
-        unsettled = unsettled_outputs(s)
-        acc_marks = [coarse_step(s) or f"points[{p['name']}].max_abs_acceleration" in unsettled
-                     or (i == 0 and "max_abs_acceleration" in unsettled) for i, p in enumerate(s["points"])]
-        print_points(s["points"], small_points, acc_marks)
+        print_points(s["points"], small_points, [acceleration_in_doubt(s, i) for i in range(len(s["points"]))])
     for i, v in enumerate(s.get("vehicles", []), start=1):
         loads = " / ".join(f"{f * to_force:.1f}" for f in v["static_wheel_loads"].values())
         typer.echo(f"  vehicle {i:<12} {v['model']}, {v['direction']} at {v['speed'] * 3.6:.1f} km/h, enters at "
@@ -148,6 +143,13 @@ def unsettled_outputs(s: dict[str, Any]) -> set[str]:
     acceleration of the half-step check above its tolerance (``step_check.accelerations_not_converged``)."""
     named = {f.get("output") for f in s.get("flags", []) if f["code"] == "step_not_converged"}
     return (named | set((s.get("step_check") or {}).get("accelerations_not_converged", []))) - {None}
+
+
+def acceleration_in_doubt(s: dict[str, Any], i: int) -> bool:
+    """Whether the peak acceleration of response point ``i`` (0: the headline one, also the summary's top-level
+    ``max_abs_acceleration``) is in doubt: a given step flagged too coarse, or the step checks found it unconverged."""
+    names = {f"points[{s['points'][i]['name']}].max_abs_acceleration"} | ({"max_abs_acceleration"} if i == 0 else set())
+    return coarse_step(s) or bool(names & unsettled_outputs(s))
 
 
 def coarse_step(s: dict[str, Any]) -> bool:

@@ -282,8 +282,9 @@ MIN_DAYS_FOR_RANGE = 5
 @dataclass(frozen=True)
 class DesignLifeRange:
     """The design life's largest static stress range [Pa] estimated from the simulated days' largest ranges
-    (module docstring): ``level`` the Gumbel return level for the design life, ``upper`` the upper bound of its
-    interval, ``bound`` the number the limit rule compares (``upper`` × the dynamic amplification of the largest
+    (module docstring): ``level`` the level the design life's largest stays below with the run's confidence (the
+    Gumbel return level for T_life / (−ln ci) years), ``upper`` the upper bound of its interval, ``bound`` the
+    number the limit rule compares for the total damage (``upper`` × the dynamic amplification of the largest
     range); NaN, with ``why``, when the days allow no estimate."""
 
     level: float
@@ -305,7 +306,7 @@ def design_life_range(daily_max: np.ndarray, days_per_year: float, design_life: 
     days = np.asarray(daily_max, float)
     days = days[np.isfinite(days) & (days > 0.0)]
     factor = max(float(amplification), 1.0) if math.isfinite(amplification) else math.inf
-    if not np.isfinite(np.asarray(daily_max, float)).any() or not days.size:
+    if not days.size:
         return DesignLifeRange(0.0, 0.0, 0.0, "no stress range in the simulated days")
     if days.size < MIN_DAYS_FOR_RANGE:
         return DesignLifeRange(math.nan, math.nan, math.nan, f"{counted(days.size, 'simulated day')} with a stress "

@@ -120,7 +120,11 @@ def _changes(a: Mapping[str, Any], b: Mapping[str, Any], relative: tuple[str, ..
 def _largest_change(a: Mapping[str, Any], b: Mapping[str, Any], relative: tuple[str, ...] = (),
                     only_relative: bool = False) -> tuple[float, str]:
     """The largest of ``_changes`` and its name (0 and "" for none)."""
-    changes = _changes(a, b, relative, only_relative)
+    return _largest(_changes(a, b, relative, only_relative))
+
+
+def _largest(changes: dict[str, float]) -> tuple[float, str]:
+    """The largest of ``changes`` (by name) and its name (0 and "" for none)."""
     worst = max(changes, key=changes.__getitem__, default="")  # (the first of equal ones)
     return (changes[worst], worst) if worst and changes[worst] > 0.0 else (0.0, "")
 
@@ -205,7 +209,7 @@ def acceleration_flags(coarse: Mapping[str, Any], fine: Mapping[str, Any],
     to ``fine`` (run at half of its step, ``dt`` [s]) and its name, the ``step_not_converged`` flag when it is
     above ``STEP_TOLERANCE`` (naming it, and how many more are), and every peak above it by name."""
     changes = _changes(coarse, fine, PEAK_ACCELERATIONS, only_relative=True)
-    change, worst = _largest_change(coarse, fine, PEAK_ACCELERATIONS, only_relative=True)
+    change, worst = _largest(changes)
     above = [name for name, c in changes.items() if c > STEP_TOLERANCE]
     # the top-level peak is the first point's (``points``), counted once
     distinct = len(above) - ("max_abs_acceleration" in above and any(n.startswith("points[") for n in above))
