@@ -81,6 +81,26 @@ def linear_wheel_loads(monkeypatch):
 
 
 @pytest.fixture
+def summary_on_stdout():
+    """The check of a folder command's ``--json`` (traffic, lifetime, driveby, rail; docs/cli.md): the command
+    ``args`` run again in this process with ``--json`` prints one JSON object on standard output and nothing else,
+    the object of ``summary_file`` as that run wrote it, while its report and ``wrote`` lines go to standard
+    error.  Returns the run's result (``stdout``, ``stderr``)."""
+    def check(args: list[str], summary_file):
+        from typer.testing import CliRunner
+
+        from vbikit.cli import app
+
+        res = CliRunner().invoke(app, [*args, "--json"])
+        assert res.exit_code == 0, res.output
+        assert json.loads(res.stdout) == json.loads(summary_file.read_text(encoding="utf-8"))
+        assert res.stdout.lstrip().startswith("{") and res.stdout.rstrip().endswith("}")
+        assert f"wrote {summary_file}" in res.stderr.splitlines()
+        return res
+    return check
+
+
+@pytest.fixture
 def study_toml():
     """The function writing a study dict as study-file text (shared by the study and trust tests)."""
     return _study_toml

@@ -11,6 +11,11 @@ def raise_budget(key: str, option: str, most: float) -> str:
     return f"raise {key} in the input file or {option} on the command line (at most {most:g})"
 
 
+def duration_words(hours: float) -> str:
+    """A run-time estimate [h] in words: seconds, minutes or hours ("40 s", "12 min", "3.5 h")."""
+    return f"{hours * 3600:.0f} s" if hours < 1 / 60 else f"{hours * 60:.0f} min" if hours < 2 else f"{hours:.1f} h"
+
+
 def counted(n: int, noun: str, plural: Optional[str] = None, thousands: bool = False) -> str:
     """``n`` and ``noun``, singular for exactly one: ``counted(1, "exceedance")`` → "1 exceedance",
     ``counted(3, "exceedance")`` → "3 exceedances"; ``plural`` where adding "s" is wrong;

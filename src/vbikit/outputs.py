@@ -33,7 +33,8 @@ import numpy as np
 Scope = Literal["point", "crossing"]
 
 #: CSV / JSON spelling of a unit → its CF (UDUNITS) spelling in NetCDF datasets
-CF_UNITS: dict[str, str] = {"m/s": "m s-1", "m/s^2": "m s-2", "-": "1", "rad/s^2": "rad s-2"}
+CF_UNITS: dict[str, str] = {"m/s": "m s-1", "m/s^2": "m s-2", "-": "1", "rad/s^2": "rad s-2", "km/h": "km h-1",
+                            "cycle/m": "m-1", "m^3/cycle": "m3", "N m^2": "N m2"}
 
 
 def cf_unit(unit: str) -> str:

@@ -60,7 +60,8 @@ def test_csv_and_plot_outputs(tmp_path: Path):
     sampled, refined = -data[:, header.index("displacement [m]")].min(), -s["max_dynamic_displacement"]
     assert 0.0 <= refined - sampled <= 2.2e-3 * refined
     # every summary key has a unit; the references name the models' sources
-    assert s["units"]["max_dynamic_displacement"] == "m" and s["units"]["impact_factor"] == "-"
+    assert s["units"]["max_dynamic_displacement"] == "m" and s["units"]["impact_factor"] == "1"
+    assert s["units"]["max_abs_acceleration"] == "m s-2"  # (the CF spelling of every JSON summary and dataset)
     assert set(s["units"]) == set(s) - {"units", "references"}
     keys = [r["key"] for r in s["references"]]
     assert keys[:3] == ["MultiPointTire", "Fryba1999", "YangYau1997"]   # paper, beam, sprung mass

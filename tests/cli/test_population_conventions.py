@@ -1,8 +1,9 @@
 """One convention across the population commands (``vbikit traffic``, ``lifetime``, ``driveby``, ``rail`` and
 ``study run``): each test loops over all of them and asserts the same behaviour.
 
-* ``--workers``: one option (``guard.workers_option``), one help (``guard.WORKERS_HELP``), one default (None: the
-  input file's own setting where it has one, else all cores: ``vbikit._validation.default_workers``);
+* ``--workers``: one option (``guard.workers_option``), one help (``guard.WORKERS_HELP``, naming the input file's
+  key only where the file has one), one default (None: the input file's own setting where it has one, else all cores:
+  ``vbikit._validation.default_workers``); ``--json`` one definition on the commands that write a folder;
   ``--scheduler``, ``--progress/--no-progress`` and ``--figures/--no-figures`` one definition each;
 * budgets: every budget option's help is ``guard.budget_help``'s (what it counts, per event or the whole run, the
   file's key it overrides, its default — the library's default); every heavy command refuses a run above its
@@ -20,7 +21,7 @@ from typer.testing import CliRunner
 
 from cli_walk import commands as _commands
 from vbikit.cli import app
-from vbikit.cli.guard import SCHEDULER_HELP, WORKERS_HELP, budget_help
+from vbikit.cli.guard import JSON_HELP, SCHEDULER_HELP, WORKERS_HELP, budget_help
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -47,12 +48,21 @@ def _options(command: str) -> dict:
     return {max(p.opts, key=len): p for p in cmd.params if p.opts and p.opts[0].startswith("--")}
 
 
+#: command -> the input file's key of its worker processes (the others' files have none)
+WORKERS_KEY = {"rail": "run.workers"}
+
+
 @pytest.mark.parametrize("command", POPULATION)
 def test_workers_and_scheduler_are_one_definition(command):
     opts = _options(command)
-    assert opts["--workers"].help == WORKERS_HELP and opts["--workers"].default is None
-    assert "all cores" in WORKERS_HELP and "input file" in WORKERS_HELP
+    key = WORKERS_KEY.get(command)
+    default = "" if key is None else f"the input file's {key}, else "
+    assert opts["--workers"].help == WORKERS_HELP.format(default=default) and opts["--workers"].default is None
+    # the help names a file's key only where the command's file has one (not a railway key in every command)
+    assert ("input file" in opts["--workers"].help) == (key is not None) and "all cores" in opts["--workers"].help
     assert opts["--scheduler"].help == SCHEDULER_HELP
+    if command in WITH_FIGURES:
+        assert opts["--json"].help == JSON_HELP and opts["--json"].default is False
 
 
 def test_progress_and_figures_are_one_definition():

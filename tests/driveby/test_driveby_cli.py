@@ -26,7 +26,7 @@ def _cut_down(tmp_path: Path) -> Path:
     return path
 
 
-def test_cli_writes_the_dataset_contract(tmp_path):
+def test_cli_writes_the_dataset_contract(tmp_path, summary_on_stdout):
     path = _cut_down(tmp_path)
     out = tmp_path / "out"
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
@@ -56,6 +56,9 @@ def test_cli_writes_the_dataset_contract(tmp_path):
     assert wrote == sorted(str(out / n) for n in ("driveby.nc", "driveby-report.txt", "driveby-summary.json",
                                                   "driveby-spectrogram.png", "driveby-frequency-vs-speed.png",
                                                   "driveby-damage.png"))
+    # --json (the finished cases read back): the summary's object alone on standard output, the report on stderr
+    summary_on_stdout(["driveby", str(path), "--out-dir", str(out), "--no-progress", "--no-figures"],
+                      out / "driveby-summary.json")
 
 
 def test_python_entry_point_resumes_an_interrupted_sweep(tmp_path):

@@ -1,4 +1,5 @@
 """``vbikit lifetime`` on a cut-down of the example, resuming, errors before any computation."""
+import json
 import shutil
 import subprocess
 import sys
@@ -25,7 +26,7 @@ def _cut_down(tmp_path: Path) -> Path:
     return path
 
 
-def test_cli_cut_down_example_and_resume(tmp_path):
+def test_cli_cut_down_example_and_resume(tmp_path, summary_on_stdout):
     """The example's file (5 days, 60 trucks a day) through the CLI: lifetime.nc holds the
     contract's variables with units, fatigue_damage by detail, the figures and report are
     written; a second run reuses the stored stages and gives the same dataset."""
@@ -50,6 +51,10 @@ def test_cli_cut_down_example_and_resume(tmp_path):
     wrote = sorted(line.removeprefix("wrote ") for line in first.stdout.splitlines() if line.startswith("wrote "))
     assert wrote == sorted(str(out / n) for n in ("lifetime.nc", "report.txt", "summary.json", "lifetime-gumbel.png",
                                                   "lifetime-adr.png", "lifetime-fatigue.png", "lifetime-traffic.png"))
+    # --json: standard output is the summary's object alone, the report goes to standard error
+    js = summary_on_stdout(["lifetime", str(spec), "--out-dir", str(out), "--workers", "1", "--no-progress",
+                            "--no-figures"], out / "summary.json")
+    assert "ADR" in js.stderr and json.loads(js.stdout)["load_effects"]["M_mid"]["units"] == "N m"
     (out / "lifetime.nc").unlink()
     again = run_lifetime(spec, out, workers=1, figures=False)
     for name in ("characteristic_static", "characteristic_total", "fatigue_damage", "event_total"):

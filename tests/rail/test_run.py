@@ -83,7 +83,7 @@ def test_dataset_contract_and_a_one_axle_train_against_closed_forms(tmp_path):
     assert (tmp_path / "out" / "rail.nc").exists() and "result:" in result.report
 
 
-def test_example_cut_down_through_the_cli(tmp_path):
+def test_example_cut_down_through_the_cli(tmp_path, summary_on_stdout):
     for name in ("hslm_20m.toml", "talgo_like.csv"):
         shutil.copy(EXAMPLE / name, tmp_path / name)
     text = (tmp_path / "hslm_20m.toml").read_text()
@@ -106,6 +106,13 @@ def test_example_cut_down_through_the_cli(tmp_path):
         assert np.all(np.isfinite(ds["max_deck_acceleration"].values))
         assert float(ds["acceleration_limit"]) == 3.5
     assert (out / "rail-acceleration.png").stat().st_size > 10_000
+    # --json (the finished trains read back): the summary's object alone on standard output, units in CF spelling
+    js = summary_on_stdout(["rail", str(tmp_path / "hslm_20m.toml"), "--out-dir", str(out), "--no-figures"],
+                           out / "rail-summary.json")
+    assert "deck acceleration: peak" in js.stderr
+    import json
+
+    assert json.loads(js.stdout)["checks"]["acceleration"]["units"]["peak"] == "m s-2"
 
 
 def test_coupled_cars_on_an_irregular_track_join_the_sweep():

@@ -24,7 +24,7 @@ def _stream(tmp_path: Path, n: int = 8) -> str:
     return str(path)
 
 
-def test_out_dir_writes_the_dataset_report_summary_and_figure(tmp_path):
+def test_out_dir_writes_the_dataset_report_summary_and_figure(tmp_path, summary_on_stdout):
     out = tmp_path / "out"
     res = runner.invoke(app, ["traffic", _stream(tmp_path), "--bridge", BASE, "--out-dir", str(out), "--no-progress",
                               "--workers", "1"])
@@ -45,6 +45,10 @@ def test_out_dir_writes_the_dataset_report_summary_and_figure(tmp_path):
                                 "--no-figures", "--workers", "1"])  # the finished run, read as it is
     assert again.exit_code == 0 and "already holds this finished run" in again.stdout
     assert "give another --out-dir" in again.stdout and "wrote" in again.stdout
+    # --json: the summary's object alone on standard output, the report on standard error
+    js = summary_on_stdout(["traffic", _stream(tmp_path), "--bridge", BASE, "--out-dir", str(out), "--no-progress",
+                            "--no-figures", "--workers", "1"], out / "traffic-summary.json")
+    assert report in js.stderr
 
 
 def test_out_dir_without_figures_writes_no_figure(tmp_path):
@@ -60,6 +64,14 @@ def test_out_still_writes_the_dataset_only(tmp_path):
                               "--no-progress", "--workers", "1"])
     assert res.exit_code == 0, res.output
     assert sorted(p.name for p in tmp_path.iterdir()) == ["s.nc", "short.csv"]
+    # --json with --out: the summary's object on standard output all the same, no summary file written
+    js = runner.invoke(app, ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out", str(tmp_path / "s.nc"),
+                             "--no-progress", "--workers", "1", "--json"])
+    assert js.exit_code == 0, js.output
+    summary = json.loads(js.stdout)
+    with xr.open_dataset(tmp_path / "s.nc") as ds:
+        assert summary["n_events"] == ds.sizes["event"] == 3
+    assert "impact factor" in js.stderr and sorted(p.name for p in tmp_path.iterdir()) == ["s.nc", "short.csv"]
 
 
 def test_at_most_one_of_out_and_out_dir(tmp_path, monkeypatch):

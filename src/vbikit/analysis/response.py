@@ -14,7 +14,7 @@ from vbikit.analysis.checks import Flag, flag_fields, run_flags, small_static_fl
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
-from vbikit.outputs import QUANTITIES, Reduction, effect_kinds, outputs, reduce_outputs
+from vbikit.outputs import QUANTITIES, Reduction, cf_unit, effect_kinds, outputs, reduce_outputs
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.run_in import START_OUTPUTS, start_settling
 
@@ -614,6 +614,7 @@ def summary_keys() -> dict[str, tuple[str, str]]:
 
 
 def summary_units(summary_: dict[str, object]) -> dict[str, str]:
-    """The ``units`` map of a summary: unit of every key present ("-" for dimensionless)."""
+    """The ``units`` map of a summary: unit of every key present, in the CF / UDUNITS spelling of every JSON
+    summary and dataset (``vbikit.outputs.cf_unit``: "m s-2", "1" for dimensionless)."""
     keys = summary_keys()
-    return {k: keys[k][0] for k in summary_ if k in keys}
+    return {k: cf_unit(keys[k][0]) for k in summary_ if k in keys}

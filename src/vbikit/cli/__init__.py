@@ -111,7 +111,7 @@ def _main(
     debug: bool = typer.Option(False, "--debug", help="Show full tracebacks and debug logs."),
     version: bool = typer.Option(False, "--version", callback=_version, is_eager=True, help="Print the version and exit."),
 ) -> None:
-    STATE["debug"], STATE["quiet"] = debug, quiet
+    STATE["debug"], STATE["quiet"], STATE["json"] = debug, quiet, False
     level = logging.DEBUG if debug or verbose > 1 else logging.INFO if verbose else logging.ERROR if quiet else logging.WARNING
     logging.basicConfig(level=level, format="%(levelname)s %(name)s: %(message)s", force=True)
     if level >= logging.WARNING:  # the default: a logged warning reads as the CLI's own (`warning: …`)

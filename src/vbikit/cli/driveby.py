@@ -14,10 +14,14 @@ from vbikit.cli.guard import (
     figures_option,
     guard,
     input_file_argument,
+    json_option,
     out_dir_option,
     progress_option,
+    say,
+    say_json,
     scheduler_option,
     steps_option,
+    use_json,
     workers_option,
 )
 
@@ -31,15 +35,17 @@ def driveby_cmd(
                                                "max_steps"),
     figures: bool = figures_option(),
     progress: bool = progress_option(),
+    as_json: bool = json_option(),
 ) -> None:
     """Simulate an instrumented vehicle over the sweep's bridges, identify the bridge frequency and
     damage indicators, and write a labelled dataset (resumable, processes or Dask)."""
     import dataclasses
 
     from vbikit.cli.study import run_job, warn_dataset
-    from vbikit.driveby.spec import load_driveby
+    from vbikit.driveby.spec import DATASET_FILE, REPORT_FILE, SUMMARY_FILE, ZARR_FILE, load_driveby
     from vbikit.driveby.study import DriveByStudy, check_cases
 
+    use_json(as_json)
     if max_steps is not None:
         max_steps = steps_option(max_steps)
     spec = guard(lambda: load_driveby(file), file=file)
@@ -50,9 +56,9 @@ def driveby_cmd(
         typer.echo(f"{file}: {max(1, len(spec.cases))} cases, about {steps:.3g} integration steps", err=True)
     from vbikit._files import output_names
 
-    guard(lambda: output_names(out_dir, ("driveby.nc",)).mkdir(parents=True, exist_ok=True))
+    guard(lambda: output_names(out_dir, (DATASET_FILE,)).mkdir(parents=True, exist_ok=True))
     started = time.time()
-    ds = run_job(DriveByStudy(spec), out_dir / "driveby.nc", workers, scheduler, progress, unit="case",
+    ds = run_job(DriveByStudy(spec), out_dir / DATASET_FILE, workers, scheduler, progress, unit="case",
                  option="--out-dir")
     warn_dataset(ds)
 
@@ -60,8 +66,8 @@ def driveby_cmd(
         from vbikit.cli.guard import say_written
         from vbikit.driveby.study import write_outputs
 
-        typer.echo(write_outputs(spec, ds, out_dir, figures))
-        say_written(out_dir, ("driveby.nc", "driveby.zarr", "driveby-report.txt", "driveby-summary.json",
-                              "driveby-*.png"), started)
+        say(write_outputs(spec, ds, out_dir, figures))
+        say_written(out_dir, (DATASET_FILE, ZARR_FILE, REPORT_FILE, SUMMARY_FILE, "driveby-*.png"), started)
+        say_json((out_dir / SUMMARY_FILE).read_text(encoding="utf-8"))
 
     guard(finish)

@@ -20,8 +20,9 @@ from vbikit.errors import OptionError, VbikitError, naming_file
 
 T = TypeVar("T")
 
-#: the global options of this invocation (set by the root command before a subcommand runs)
-STATE = {"debug": False, "quiet": False}
+#: the global options of this invocation (set by the root command before a subcommand runs; ``json``: the
+#: command's ``--json``, which gives standard output to the summary JSON alone, ``say``)
+STATE = {"debug": False, "quiet": False, "json": False}
 
 _OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, traffic, lifetime) to be "
                   "refused before starting, or reduce the inputs named in the budget message of `vbikit validate`")
@@ -210,14 +211,49 @@ def check_workers_option(value: Optional[int]) -> Optional[int]:
 
 #: the one help text of ``--workers``: the one default of every command with local worker processes (None on the
 #: command line: the input file's own setting where it has one, else ``vbikit._validation.default_workers()``)
-WORKERS_HELP = ("Local worker processes (1 = in this process); default: the input file's own setting where it has "
-                "one (a railway file's run.workers), else all cores.")
+WORKERS_HELP = "Local worker processes (1 = in this process); default: {default}all cores."
 
 
-def workers_option() -> Any:
+def workers_option(file_key: Optional[str] = None) -> Any:
     """The ``--workers`` option of every command with local worker processes (``check_workers_option``; help
-    ``WORKERS_HELP``; default None: the input file's setting, else all cores)."""
-    return typer.Option(None, "--workers", help=WORKERS_HELP, callback=check_workers_option)
+    ``WORKERS_HELP``; default None: the input file's setting ``file_key`` where the command's file has one, else
+    all cores)."""
+    default = "" if file_key is None else f"the input file's {file_key}, else "
+    return typer.Option(None, "--workers", help=WORKERS_HELP.format(default=default), callback=check_workers_option)
+
+
+#: the one help text of ``--json`` of the commands that write a folder (traffic, lifetime, driveby, rail)
+JSON_HELP = ("Print the summary JSON on standard output (the object of the folder's summary file); the report and "
+             "every other line go to standard error.")
+
+
+def json_option() -> Any:
+    """The ``--json`` option of the commands that write a folder (``JSON_HELP``): ``use_json`` sets it for ``say``."""
+    return typer.Option(False, "--json", help=JSON_HELP)
+
+
+def use_json(as_json: bool) -> None:
+    """The command's ``--json``: when given, standard output carries the summary JSON alone (``say_json``) and
+    ``say`` sends every other result line to standard error."""
+    STATE["json"] = bool(as_json)
+
+
+def say(text: str, nl: bool = True) -> None:
+    """A line of a command's results: on standard output, or on standard error when ``--json`` gives standard
+    output to the summary JSON (``use_json``)."""
+    typer.echo(text, nl=nl, err=STATE["json"])
+
+
+def say_json(summary: Any) -> None:
+    """With ``--json`` (``use_json``): the summary, a dict or the text of a summary file, on standard output as one
+    JSON object; nothing otherwise."""
+    if not STATE["json"]:
+        return
+    if not isinstance(summary, str):
+        from vbikit._files import json_text
+
+        summary = json_text(summary, indent=1)
+    typer.echo(summary.rstrip("\n"))
 
 
 def check_figure_file(param: typer.CallbackParam, path: Any) -> Any:
@@ -286,7 +322,7 @@ def say_written(folder: Path, names: tuple[str, ...], since: float) -> None:
     that writes a folder says what it wrote."""
     found = sorted({p for name in names for p in Path(folder).glob(name) if p.stat().st_mtime >= since - 1.0})
     for path in found:
-        typer.echo(f"wrote {path}")
+        say(f"wrote {path}")
 
 
 def say_resumed(words: str, folder: Path) -> None:

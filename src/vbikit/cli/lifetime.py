@@ -9,6 +9,7 @@ from typing import Optional
 
 import typer
 
+from vbikit._words import duration_words
 from vbikit.cli.guard import (
     STATE,
     budget_option,
@@ -16,17 +17,18 @@ from vbikit.cli.guard import (
     figures_option,
     guard,
     input_file_argument,
+    json_option,
     memory_option,
     out_dir_option,
     progress_option,
+    say,
+    say_json,
     scheduler_option,
+    use_json,
     workers_option,
 )
 
 
-def _hours(hours: float) -> str:
-    """A run-time estimate [h] in words: seconds, minutes or hours."""
-    return f"{hours * 3600:.0f} s" if hours < 1 / 60 else f"{hours * 60:.0f} min" if hours < 2 else f"{hours:.1f} h"
 
 
 class _Bars:
@@ -70,7 +72,7 @@ class _Bars:
             self.bar.set_postfix_str(f"{rate * info['trucks_per_day']:,.0f} trucks/s", refresh=False)
         if info.get("events"):
             hours = info.get("estimate_hours", math.nan)
-            estimate = f"; estimated {_hours(hours)}" if math.isfinite(hours) else ""
+            estimate = f"; estimated {duration_words(hours)}" if math.isfinite(hours) else ""
             self.bar.set_postfix_str(f"dynamic {100 * info['dynamic'] / info['events']:.2f} % of "
                                      f"{info['events']:,} events{estimate}", refresh=False)
 
@@ -87,6 +89,7 @@ def lifetime_cmd(
     scheduler: Optional[str] = scheduler_option(),
     figures: bool = figures_option(),
     progress: bool = progress_option(),
+    as_json: bool = json_option(),
     max_memory: Optional[str] = budget_option("--max-memory", "memory of the whole run", "4GiB"),
     budget_hours: Optional[float] = budget_option("--budget-hours", "estimated hours of the whole run", "2",
                                                   "budget_hours"),
@@ -98,6 +101,7 @@ def lifetime_cmd(
     from vbikit._words import counted
     from vbikit.lifetime.run import DATASET_FILE, REPORT_FILE, SUMMARY_FILE, WORK_FOLDER, run_lifetime
 
+    use_json(as_json)
     memory = None if max_memory is None else memory_option(max_memory)
     if budget_hours is not None:
         from vbikit.lifetime.spec import MAX_BUDGET_HOURS
@@ -118,10 +122,11 @@ def lifetime_cmd(
         raise typer.Exit(code=130) from None
     bars.close()
     a = ds.attrs
-    typer.echo((out_dir / REPORT_FILE).read_text())
+    say((out_dir / REPORT_FILE).read_text())
     from vbikit.cli.guard import say_written
 
     say_written(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, "lifetime-*.png"), started)
-    typer.echo(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
+    say(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
                f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
     say_resumed(bars.resumed(), out_dir / WORK_FOLDER)
+    say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))

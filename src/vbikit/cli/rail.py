@@ -14,9 +14,13 @@ from vbikit.cli.guard import (
     figures_option,
     guard,
     input_file_argument,
+    json_option,
     out_dir_option,
     progress_option,
     scheduler_option,
+    say,
+    say_json,
+    use_json,
     workers_option,
 )
 
@@ -24,10 +28,11 @@ from vbikit.cli.guard import (
 def rail_cmd(
     spec: Path = input_file_argument("RAIL.toml", "Railway file", "railway.md"),
     out_dir: Path = out_dir_option("Folder for rail.nc, rail-report.txt, rail-summary.json and rail-acceleration.png."),
-    workers: Optional[int] = workers_option(),
+    workers: Optional[int] = workers_option("run.workers"),
     scheduler: Optional[str] = scheduler_option(),
     figures: bool = figures_option(),
     progress: bool = progress_option(),
+    as_json: bool = json_option(),
     max_steps: Optional[float] = budget_option("--max-steps", "filter steps of the whole moving-force sweep", "4e9",
                                                "run.budget"),
     max_coupled_steps: Optional[float] = budget_option("--max-coupled-steps", "time steps of the coupled cars over "
@@ -37,9 +42,10 @@ def rail_cmd(
     shear, phi'dyn, resonance speeds and the pass/fail report.  An interrupted sweep started again
     resumes (finished trains in OUT_DIR/rail.parts).  The trains are swept on local processes
     (--workers) or on a Dask cluster (--scheduler)."""
-    from vbikit.rail.run import run_rail
+    from vbikit.rail.run import SUMMARY_FILE, run_rail
     from vbikit.rail.spec import MAX_BUDGET, MAX_COUPLED_STEPS
 
+    use_json(as_json)
     budget = None if max_steps is None else budget_value(max_steps, "--max-steps", MAX_BUDGET)
     coupled_steps = (None if max_coupled_steps is None
                      else budget_value(max_coupled_steps, "--max-coupled-steps", MAX_COUPLED_STEPS))
@@ -73,9 +79,10 @@ def rail_cmd(
     finally:
         if bar is not None:
             bar.close()
-    typer.echo(result.report, nl=False)
+    say(result.report, nl=False)
     for f in result.files:  # results, on stdout as every command's (its progress bar and warnings: stderr)
-        typer.echo(f"wrote {f}")
-    typer.echo(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s")
+        say(f"wrote {f}")
+    say(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s")
+    say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))
     done, total = first[0] if first else (0, 0)
     say_resumed(f"{done} of {total} trains" if done else "", out_dir / "rail.parts")

@@ -60,7 +60,7 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
     t0, finished_before = time.perf_counter(), Path(out).is_file()  # (a run on another study's file is refused)
-    from vbikit.cli.guard import say_resumed
+    from vbikit.cli.guard import say, say_resumed
     from vbikit.study.storage import parts_dir
 
     try:
@@ -73,10 +73,10 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
     bar.close()
     elapsed = time.perf_counter() - t0
     if finished_before:
-        typer.echo(f"{study.size} {unit}s: {out} already holds this finished run, read as it is (nothing run; "
-                   f"delete it, or give another {option}, to run again)")
+        say(f"{study.size} {unit}s: {out} already holds this finished run, read as it is (nothing run; "
+            f"delete it, or give another {option}, to run again)")
     else:
-        typer.echo(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
+        say(f"{study.size} {unit}s -> {out} ({elapsed:.1f} s)")
         done, total = bar.first or (0, 0)
         say_resumed(f"{done:,} of {total:,} {unit}s" if 0 < done else "", parts_dir(Path(out)))
     return ds

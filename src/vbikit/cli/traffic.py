@@ -17,14 +17,18 @@ from vbikit.cli.guard import (
     figure_file_option,
     guard,
     input_file_argument,
+    json_option,
     limits,
     out_dir_option,
     out_file_option,
     progress_option,
+    say_json,
     scheduler_option,
+    use_json,
     warn,
     workers_option,
 )
+from vbikit.cli.guard import say as say_line
 from vbikit.cli.study import run_job, warn_dataset
 from vbikit.errors import OptionError
 
@@ -67,6 +71,7 @@ def traffic_cmd(
                                                "(default 100000; a larger file is refused before it is parsed)."),
     max_memory: Optional[str] = budget_option("--max-memory", "memory of each event's run", "4GiB"),
     max_steps: Optional[float] = budget_option("--max-steps", "time steps of each event's run", "5e6"),
+    as_json: bool = json_option(),
 ) -> None:
     """Simulate a traffic stream: every event (vehicles on the bridge together) as one coupled run;
     resumable and parallel like a study.  --out-dir DIR writes the dataset, the report, the summary and the
@@ -74,6 +79,7 @@ def traffic_cmd(
     from vbikit._files import not_an_input, output_names
     from vbikit.traffic.summary import DATASET_FILE, FIGURE_FILE, REPORT_FILE, SUMMARY_FILE, WORK_FOLDER
 
+    use_json(as_json)
     if out is not None and out_dir is not None:
         guard(lambda: _one_output())
     if out is None and out_dir is None:  # the folder every command writes into by default
@@ -115,7 +121,7 @@ def traffic_cmd(
     report: list[str] = []  # the lines below, on stdout and (--out-dir) in traffic-report.txt
 
     def say(line: str) -> None:
-        typer.echo(line)
+        say_line(line)
         report.append(line)
 
     warn_dataset(ds)
@@ -198,9 +204,14 @@ def traffic_cmd(
         from vbikit.plot.traffic import plot_stream
 
         guard(lambda: plot_stream(ds, plot))
-        typer.echo(f"figure {plot}")
+        say_line(f"figure {plot}")
     if out_dir is not None:
         guard(lambda: _write_folder(ds, out_dir, report, figures))
+        say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))
+    else:  # (--out: the dataset only; the summary's object all the same)
+        from vbikit.traffic.summary import summary
+
+        say_json(guard(lambda: summary(ds)))
 
 
 def _one_output() -> None:
@@ -221,7 +232,7 @@ def _write_folder(ds, out_dir: Path, report: list[str], figures: bool) -> None:
 
         files.append(plot_stream(ds, out_dir / FIGURE_FILE))
     for path in files:
-        typer.echo(f"wrote {path}")
+        say_line(f"wrote {path}")
 
 
 def _first_point_words(point) -> str:

@@ -119,14 +119,14 @@ def _study(path: Path, budget: Any) -> str:
 
 
 def _lifetime(path: Path, budget: Any) -> str:
-    from vbikit.cli.lifetime import _hours
+    from vbikit._words import duration_words
     from vbikit.lifetime.run import prepare
     from vbikit.lifetime.spec import read_lifetime
 
     spec, folder = read_lifetime(path)
     prep = prepare(spec, folder, workers=1, max_memory=budget.max_memory)
     return (f"{spec.n_days:,} days, {prep.model.trucks_per_day:,.0f} trucks a day, {len(prep.setup.lines)} load "
-            f"effect(s), {len(prep.details)} fatigue detail(s); estimated {_hours(prep.estimate_hours)} on one worker")
+            f"effect(s), {len(prep.details)} fatigue detail(s); estimated {duration_words(prep.estimate_hours)} on one worker")
 
 
 def _driveby(path: Path, budget: Any) -> str:

@@ -205,8 +205,9 @@ def write_report(ds, out_dir) -> str:
     from pathlib import Path
 
     from vbikit._files import json_text, write_text
+    from vbikit.driveby.spec import REPORT_FILE, SUMMARY_FILE
 
     text = report_text(ds)
-    write_text(Path(out_dir) / "driveby-report.txt", text)
-    write_text(Path(out_dir) / "driveby-summary.json", json_text(summary(ds), indent=1) + "\n")
+    write_text(Path(out_dir) / REPORT_FILE, text)
+    write_text(Path(out_dir) / SUMMARY_FILE, json_text(summary(ds), indent=1) + "\n")
     return text

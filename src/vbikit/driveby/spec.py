@@ -88,6 +88,9 @@ METHODS = {"contact": "spectrum of the contact-point acceleration back-calculate
            "sensor": "spectrum of the sensor's own record"}
 #: default budget: integration steps of the whole sweep
 MAX_STEPS = 2e7
+#: the files ``vbikit driveby`` (``run_driveby``) writes into its folder
+DATASET_FILE, ZARR_FILE, REPORT_FILE, SUMMARY_FILE = ("driveby.nc", "driveby.zarr", "driveby-report.txt",
+                                                      "driveby-summary.json")
 #: the shortest identification.gap [m]: the follower of method "residual" half a metre behind the vehicle
 MIN_GAP = 0.5
 #: the most cases of one sweep (each is estimated, one by one, before anything runs)

@@ -31,7 +31,8 @@ from vbikit.driveby.identify import (CURVATURE_LOCATION_CAVEAT, identify_frequen
 from vbikit.driveby.quality import interaction_shift, mode_envelope_offset, unconverged_pass_flags, vehicle_modes
 from vbikit.driveby.sensors import (CONTACT_TRUTH, Sensor, SensorError, amplitude_spectrum, contact_truth, measure,
                                     sensor_row)
-from vbikit.driveby.spec import BAND_MAX_HZ, DriveBy, DriveByError, check_dataset_format
+from vbikit.driveby.spec import (BAND_MAX_HZ, DATASET_FILE, ZARR_FILE, DriveBy, DriveByError,
+                                 check_dataset_format)
 from vbikit.driveby.variability import SPLIT_NAMES, draw, perturbed_vehicle, split_of, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
 from vbikit.outputs import OUTPUTS, cf_unit
@@ -1050,7 +1051,7 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
     check_cases(spec)
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    ds = run_study(DriveByStudy(spec), out_dir / "driveby.nc", workers=workers, scheduler=scheduler, progress=progress)
+    ds = run_study(DriveByStudy(spec), out_dir / DATASET_FILE, workers=workers, scheduler=scheduler, progress=progress)
     write_outputs(spec, ds, out_dir, figures)
     return ds
 
@@ -1062,7 +1063,7 @@ def write_outputs(spec: DriveBy, ds, out_dir: Path, figures: bool = True) -> str
 
     text = write_report(ds, out_dir)
     if spec.output["format"] == "zarr":
-        write_zarr(ds, Path(out_dir) / "driveby.zarr")
+        write_zarr(ds, Path(out_dir) / ZARR_FILE)
     if figures:
         from vbikit.driveby.figures import write_figures
 

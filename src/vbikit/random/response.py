@@ -151,7 +151,7 @@ class RandomResponse:
             data[f"{q}_std"] = (("time", "point"), self.pem.std(q)[:n, :pts.size], {"units": unit,
                                                                          "long_name": f"standard deviation of the deck {q} (pseudo-excitation)"})
         for k, e in enumerate(self.effects):
-            unit = e.effect.units.replace(" ", "*")
+            unit = e.effect.units
             data[f"{e.name}_mean"] = ("time", e.dynamic[:n], {"units": unit, "long_name": f"mean {e.effect.label} "
                                                                                          f"(smooth road, {e.method})"})
             data[f"{e.name}_std"] = ("time", self.effect_std(k)[:n], {"units": unit, "long_name": f"standard deviation of "

@@ -242,10 +242,11 @@ class Axis:
 def cf_key_unit(unit: str, text: bool) -> str:
     """A scenario key's unit in the dataset's CF/UDUNITS spelling ("km/h" → "km h-1", "-" → "1");
     "" for text-valued coordinates (categories have no unit)."""
+    from vbikit.outputs import cf_unit
+
     if text:
         return ""
-    return {"": "1", "-": "1", "m/s": "m s-1", "m/s^2": "m s-2", "km/h": "km h-1", "cycle/m": "m-1",
-            "m^3/cycle": "m3", "N m^2": "N m2"}.get(unit, unit)
+    return "1" if unit == "" else cf_unit(unit)
 
 
 def dim_name(key: str) -> str:
