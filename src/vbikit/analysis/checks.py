@@ -193,8 +193,8 @@ FLAG_CODES: dict[str, str] = {
                                       "interval's bound on the far side of 1 (the lower bound for an ADR ≥ 1, else "
                                       "the upper), threshold: 1",
     "adr_above_event_bound": "lifetime: the ADR is above 1 + the largest amplification any day's total maximum can "
-                             "have over its static one (the screening bound A used, or a simulated event's larger "
-                             "R_dyn/R_st − 1): the two fits extrapolate apart beyond what the events allow; output: "
+                             "have over its static one (the screening bound A used, or the effect's simulated events' "
+                             "larger R_dyn/R_st − 1): the two fits extrapolate apart beyond what the events allow; output: "
                              "\"characteristic total value\" (the report marks it and the ADR); value: the ADR, "
                              "threshold: that bound",
     "static_reference_short": "lifetime: the coupled runs' static reference misses the exact static peak (the daily "

@@ -73,6 +73,9 @@ def _effect(ds, j: int) -> dict[str, Any]:
            for w in ("static", "total")},
         # the largest static effect the traffic model can produce (None: no bound, fitted traffic; older datasets)
         "static_upper_bound": _num(ds["static_upper_bound"].values[j]) if "static_upper_bound" in ds else None,
+        # the most the ADR can be: 1 + max(A used, this effect's largest simulated R_dyn/R_st − 1) (``adr_event_bound``;
+        # None: no bound, a zero static peak or nothing known)
+        "adr_event_bound": _num(adr_event_bound(a, _largest_amplification(ds, j))),
         "return_levels": levels, "fits": fits,
         "adr": {"value": _num(adr), "lower": _num(lo), "upper": _num(hi),
                 "standard_error": _num(ds["assessment_dynamic_ratio_se"].values[j]),
@@ -330,11 +333,13 @@ def _adr_flags(name: str, e: dict, a: dict) -> list[Flag]:
         bound = adr["lower"] if adr["value"] is None or adr["value"] >= 1.0 else adr["upper"]
         out.append(Flag("adr_indistinguishable_from_one", "ADR: the interval contains 1 — the data cannot tell the ADR from 1",
                         output=flag_output("adr"), subject=name, value=bound, threshold=1.0))
-    limit = adr_event_bound(a)
+    limit = e["adr_event_bound"] if "adr_event_bound" in e else adr_event_bound(a)
+    limit = math.nan if limit is None else limit
     if adr["value"] is not None and math.isfinite(limit) and adr["value"] > limit:
         out.append(Flag("adr_above_event_bound",
                         f"ADR {adr['value']:.3f} is above {limit:.3f}, the most any day's total maximum can exceed its "
-                        f"static one (1 + the screening bound A used or a simulated event's larger R_dyn/R_st − 1): the "
+                        f"static one (1 + the screening bound A used or this effect's simulated events' larger R_dyn/R_st − 1): "
+                        f"the "
                         f"fits of the daily total and static maxima extrapolate apart beyond what the events allow — the "
                         f"ADR and the characteristic total are not supported by the {int(a['n_days'])} simulated days "
                         "(simulate more days; the ADR is at most this bound)",
@@ -343,14 +348,30 @@ def _adr_flags(name: str, e: dict, a: dict) -> list[Flag]:
     return out
 
 
-def adr_event_bound(a: dict) -> float:
-    """1 + max(the screening bound A used, the largest R_dyn/R_st − 1 of a simulated event), from lifetime.nc's
-    attributes: no day's largest total exceeds its largest static by more (an event left out has
-    s·R_dyn ≤ (1 + A)·s·R_st, a simulated one its own ratio), so neither does any quantile of the daily total
-    maxima that of the static ones, nor the characteristic total the characteristic static (NaN: not known)."""
-    values = [float(a.get(k, math.nan)) for k in ("amplification_bound_used", "amplification_max_observed")]
-    values = [v for v in values if not math.isnan(v)]  # (an infinite ratio, a zero static peak: no bound)
+def adr_event_bound(a: dict, largest: float | None = None) -> float:
+    """1 + max(the screening bound A used, the largest R_dyn/R_st − 1 of a simulated event) of one load effect:
+    no day's largest total exceeds its largest static by more (an event left out has s·R_dyn ≤ (1 + A)·s·R_st, a
+    simulated one its own ratio), so neither does any quantile of the daily total maxima that of the static ones,
+    nor the characteristic total the characteristic static (NaN: not known; inf: no bound, a zero static peak).
+    A from lifetime.nc's attributes ``a``; the ratio the effect's own (``largest``, ``_largest_amplification``),
+    else the largest over every effect (the attribute ``amplification_max_observed``: a looser bound)."""
+    ratio = float(a.get("amplification_max_observed", math.nan)) if largest is None else float(largest)
+    values = [v for v in (float(a.get("amplification_bound_used", math.nan)), ratio) if not math.isnan(v)]
     return 1.0 + max(values) if values else math.nan
+
+
+def _largest_amplification(ds, j: int) -> float:
+    """Load effect ``j``'s largest R_dyn/R_st − 1 over the simulated events of lifetime.nc ``ds`` (the dataset's
+    attribute ``amplification_max_observed`` is the largest over every effect; inf for a zero static peak; NaN:
+    no event simulated)."""
+    import numpy as np
+
+    simulated = ds["event_simulated"].values.astype(bool)
+    if not simulated.any():
+        return math.nan
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = ds["event_total"].values[simulated, j] / ds["event_static"].values[simulated, j] - 1.0
+    return math.nan if np.isnan(ratio).all() else float(np.nanmax(ratio))
 
 
 def _shortfall_flags(name: str, e: dict, tolerance: float) -> list[Flag]:
