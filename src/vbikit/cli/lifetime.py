@@ -29,8 +29,6 @@ from vbikit.cli.guard import (
 )
 
 
-
-
 class _Bars:
     """One tqdm bar per stage: the static pass in days (with trucks/s), each dynamic round in events
     (events/s) with the fraction of the run's events simulated dynamically so far."""
@@ -127,6 +125,6 @@ def lifetime_cmd(
 
     say_written(out_dir, (DATASET_FILE, REPORT_FILE, SUMMARY_FILE, "lifetime-*.png"), started)
     say(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
-               f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
+        f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
     say_resumed(bars.resumed(), out_dir / WORK_FOLDER)
     say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))
