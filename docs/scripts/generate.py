@@ -357,10 +357,9 @@ def references_bib() -> str:
 # ------------------------------------------------------------------------------ result keys
 def summary_keys() -> str:
     from vbikit.analysis import summary_keys
-    from vbikit.outputs import cf_unit
 
-    rows = ["| key | unit | meaning |", "|---|---|---|"]  # (the units as the summary's `units` member spells them)
-    rows += [f"| `{k}` | {cf_unit(u)} | {d} |" for k, (u, d) in summary_keys().items()]
+    rows = ["| key | unit | meaning |", "|---|---|---|"]
+    rows += [f"| `{k}` | {u} | {d} |" for k, (u, d) in summary_keys().items()]
     return "\n".join(rows) + "\n"
 
 

@@ -62,6 +62,8 @@ def test_csv_and_plot_outputs(tmp_path: Path):
     # every summary key has a unit; the references name the models' sources
     assert s["units"]["max_dynamic_displacement"] == "m" and s["units"]["impact_factor"] == "1"
     assert s["units"]["max_abs_acceleration"] == "m s-2"  # (the CF spelling of every JSON summary and dataset)
+    # words and records have no unit ("" — not "1", which is a dimensionless number's)
+    assert s["units"]["tire_model"] == s["units"]["points"] == s["units"]["warnings"] == s["units"]["flags"] == ""
     assert set(s["units"]) == set(s) - {"units", "references"}
     keys = [r["key"] for r in s["references"]]
     assert keys[:3] == ["MultiPointTire", "Fryba1999", "YangYau1997"]   # paper, beam, sprung mass

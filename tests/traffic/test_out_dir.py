@@ -71,6 +71,7 @@ def test_out_still_writes_the_dataset_only(tmp_path):
     summary = json.loads(js.stdout)
     with xr.open_dataset(tmp_path / "s.nc") as ds:
         assert summary["n_events"] == ds.sizes["event"] == 3
+    assert summary["dataset"] == "s.nc"  # (the file --out named, not the folder's traffic.nc)
     assert "impact factor" in js.stderr and sorted(p.name for p in tmp_path.iterdir()) == ["s.nc", "short.csv"]
 
 

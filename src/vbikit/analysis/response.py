@@ -615,6 +615,15 @@ def summary_keys() -> dict[str, tuple[str, str]]:
 
 def summary_units(summary_: dict[str, object]) -> dict[str, str]:
     """The ``units`` map of a summary: unit of every key present, in the CF / UDUNITS spelling of every JSON
-    summary and dataset (``vbikit.outputs.cf_unit``: "m s-2", "1" for dimensionless)."""
+    summary and dataset (``vbikit.outputs.cf_unit``: "m s-2", "1" for a dimensionless number), "" for a key whose
+    value is not a number or a list of numbers (words, records, maps of flags) and whose table unit is "-"."""
     keys = summary_keys()
-    return {k: cf_unit(keys[k][0]) for k in summary_ if k in keys}
+    return {k: cf_unit(keys[k][0]) if keys[k][0] != "-" or _numeric(summary_[k]) else ""
+            for k in summary_ if k in keys}
+
+
+def _numeric(value: object) -> bool:
+    """Whether a summary value is a number (None: a NaN number, as JSON writes it) or a non-empty list of them."""
+    if isinstance(value, (list, tuple)):
+        return bool(value) and all(_numeric(v) for v in value)
+    return value is None or (isinstance(value, (int, float)) and not isinstance(value, bool))

@@ -211,7 +211,7 @@ def traffic_cmd(
     else:  # (--out: the dataset only; the summary's object all the same)
         from vbikit.traffic.summary import summary
 
-        say_json(guard(lambda: summary(ds)))
+        say_json(guard(lambda: summary(ds, dataset.name)))
 
 
 def _one_output() -> None:

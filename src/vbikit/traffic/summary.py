@@ -16,8 +16,9 @@ WORK_FOLDER = DATASET_FILE + ".parts"
 _HALF_STEP = ("governing_static_half_step_im_change", "governing_dynamic_half_step_im_change", "half_step_tolerance")
 
 
-def summary(ds: Any) -> dict[str, Any]:
-    """The stream's results as plain data for ``traffic-summary.json``: the statistics at the first response point
+def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
+    """The stream's results as plain data for ``traffic-summary.json`` (``dataset``: the name of the dataset file it
+    summarises, ``traffic.nc`` in a folder, ``--out``'s name otherwise): the statistics at the first response point
     (``vbikit.traffic.study.stream_statistics``: event counts, the impact-factor distribution with the 95 %
     confidence intervals, the governing events with their deflections and dynamic amplification), their half-step
     check, where the stream starts (``start_words``), the flag codes and the warnings (the dataset's, "; "-joined),
@@ -31,7 +32,7 @@ def summary(ds: Any) -> dict[str, Any]:
     # the governing events the run stored (its half-step check is of them)
     stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs}
     codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
-    out = {"dataset": DATASET_FILE, **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
+    out = {"dataset": dataset, **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
            "start": start_words(attrs), "flag_codes": codes,
            "warnings": str(attrs.get("warnings", ""))}
     return out | {"units": {k: unit for k in out if (unit := summary_unit(k))}}
