@@ -91,7 +91,7 @@ def validation_message(err: ValidationError, title: str, unknown_key: Optional[s
     lines = []
     for e in err.errors():
         loc = key_name(tuple(e["loc"]))
-        msg = e["msg"].removeprefix("Value error, ")
+        msg = short_quotes(e["msg"].removeprefix("Value error, "))
         key = _KEY_FIRST.match(msg)
         if key and e["type"] == "value_error":
             loc, msg = f"{loc}.{key.group(1)}" if loc else key.group(1), msg[key.end():]
@@ -105,7 +105,7 @@ def validation_message(err: ValidationError, title: str, unknown_key: Optional[s
         elif e["type"] in _BOUND_ERRORS + _INTEGER_ERRORS + _NUMBER_ERRORS:
             msg = bound_message(e, _field_at(model, tuple(e["loc"])))
         elif "input" in e and e["type"] != "value_error":
-            msg = f"{msg} (got {e['input']!r})"
+            msg = f"{msg} (got {_short(e['input'])})"
         lines.append(f"{loc}: {msg}" if loc else msg)
     return f"{title}:\n  " + "\n  ".join(lines) if title else "\n  ".join(lines)
 
@@ -217,8 +217,29 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
     return f"{text}, got {_short(value)}{quoted}"
 
 
+#: the most characters of an input value a message quotes (``_short``, ``short_quotes``): a message names the key
+#: and the allowed values, and shows a value only as far as it tells which one was given, never a file's content
+QUOTED_CHARACTERS = 40
+
+
 def _short(value: Any) -> str:
     if isinstance(value, bool):  # (as the file writes it: TOML's true, false)
         return "true" if value else "false"
     text = repr(value)
-    return text if len(text) <= 40 else text[:37] + "..."
+    return text if len(text) <= QUOTED_CHARACTERS else text[:QUOTED_CHARACTERS - 3] + "..."
+
+
+#: a quoted value as ``repr`` writes one: its opening quote after no letter or quote (not the prime of AASHTO's "C'"),
+#: its first character no space (not the text between two quoted values), then ``QUOTED_CHARACTERS`` − 2 more
+_LONG_QUOTE = re.compile(r"(?<![\w'\"])'[^'\s][^'\n]{%d,}'|(?<![\w'\"])\"[^\"\s][^\"\n]{%d,}\""
+                         % (QUOTED_CHARACTERS - 2, QUOTED_CHARACTERS - 2))
+
+
+def short_quotes(message: str) -> str:
+    """``message`` with every quoted value longer than ``QUOTED_CHARACTERS`` cut as ``_short`` cuts it
+    (``unknown bridge model 'XXXX…'`` of a 5,000-character value: its first 37 characters and "..."): what a
+    validator's own message quotes of the input (``{value!r}``) as the formatters here pass it on."""
+    def cut(m: re.Match) -> str:
+        return m.group(0)[:QUOTED_CHARACTERS - 3] + "..."
+
+    return _LONG_QUOTE.sub(cut, message)

@@ -42,6 +42,15 @@ def cf_unit(unit: str) -> str:
     return CF_UNITS.get(unit, unit)
 
 
+def csv_unit(unit: str) -> str:
+    """The CSV / JSON spelling of a CF/UDUNITS ``unit`` (``cf_unit``'s inverse: ``"m s-2"`` → ``"m/s^2"``, ``"1"``
+    → ``"-"``; a unit both write alike as it is)."""
+    return _CSV_UNITS.get(unit, unit)
+
+
+_CSV_UNITS = {cf: csv for csv, cf in CF_UNITS.items()}
+
+
 #: SI unit of a result → (unit, factor) of the plain-text reports (``vbikit run``, ``vbikit lifetime``,
 #: ``vbikit rail``, ``vbikit presets``): moments in kN m, forces in kN, deflections (results in m) in
 #: mm; JSON, CSV and NetCDF stay SI.  Geometry (spans, positions, offsets) is input, not a result,

@@ -42,7 +42,9 @@ def test_cli_json_equals_python_entry(tmp_path, monkeypatch):
     assert cli["impact_factor_std"] > 0
     assert (tmp_path / "s.png").stat().st_size > 10_000
     csv = (tmp_path / "s.csv").read_text().splitlines()
-    assert csv[0].split(",")[:2] == ["time", "point"] and "displacement_std" in csv[0]
+    # every column headed with its unit, as vbikit run's CSV
+    assert csv[0].split(",")[:2] == ["time [s]", "point"] and "displacement_std [m]" in csv[0]
+    assert "acceleration_std [m/s^2]" in csv[0] and "strain_mean [-]" in csv[0]
     assert json.loads((tmp_path / "s.json").read_text())["impact_factor_std"] == cli["impact_factor_std"]
     rr = vbikit.run_random(path)
     for key in ("impact_factor_mean", "impact_factor_std", "lift_off_probability"):
@@ -54,6 +56,18 @@ def test_cli_json_equals_python_entry(tmp_path, monkeypatch):
     text = runner.invoke(app, ["run", str(path), "--random"])
     assert text.exit_code == 0 and "impact factor" in text.output and "quantiles" in text.output
     assert f"{rr.summary['impact_factor_mean']:9.4f}" in text.output
+    # the sampling error the quality line promises, printed beside the statistics
+    assert f"the mean's sampling error ±{rr.summary['points'][0]['impact_factor_sampling_error']:.4f}" in text.output
+    assert "!" not in text.stdout  # (class B at 75 km/h: nothing in doubt)
+    # a flag that puts every IM statistic in doubt (a tire lifting off) marks them "!" and says so
+    from vbikit.analysis.checks import Flag, flag_fields
+
+    flagged = dict(rr.summary, **flag_fields([Flag("lift_off", "a tire lifts off", value=0.005, threshold=0.001)]))
+    monkeypatch.setattr(pipeline, "run_random", lambda *a, **k: type(rr)(rr.mean, rr.points, rr.pem, flagged, rr.effects))
+    text = runner.invoke(app, ["run", str(path), "--random"])
+    line = next(x for x in text.stdout.splitlines() if x.strip().startswith("impact factor"))
+    assert f"{rr.summary['impact_factor_mean']:9.4f}!" in line and line.count("!") == 4, line  # the mean, 3 quantiles
+    assert "not design values" in text.stdout
 
 
 def test_smooth_road_and_disk_tires_are_refused(tmp_path):

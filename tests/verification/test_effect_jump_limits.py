@@ -88,6 +88,24 @@ def test_reaction_of_the_entry_support_is_the_force_as_it_enters(direction, supp
     assert other.impact.static_peak == pytest.approx(P, rel=1e-6)  # leaving over the other: P at 0⁺ too
 
 
+@pytest.mark.parametrize("dt", [0.0031, 0.0037])
+def test_shear_at_the_entry_support_as_the_force_starts_on_it(dt):
+    """A force that starts on the entry support (approach 0: the run's first instant is the jump's): the shear
+    just right of x = 0 is P (1 − ξ/L) → P as the force moves on (closed form), the reaction of that support P
+    (a new user's trial found the shear 1 % low, +99.00 against the reaction's +100.00 kN on
+    examples/verification/fryba_moving_force.toml: the jump at the first instant was left out, and the steps
+    read it a step later, at ξ = v dt)."""
+    motion = VehicleMotion(moving_forces((P,), ()), speed=SPEED, direction="+x")
+    result = simulate(Crossing(BEAM, vehicles=(motion,), dt=dt, approach=0.0))
+    assert result.time[0] == pytest.approx(result.crossing.vehicles[0].entry_time, abs=1e-12)  # on the support at t0
+    shear, reaction = BEAM.load_effect("shear", 0.0), BEAM.load_effect("reaction", support=0)
+    r_shear, r_reaction = load_effect_responses(result, [shear, reaction])
+    assert np.max(np.abs(r_shear.static)) < P * (1 - SPEED * dt / L / 2)  # the steps: a step in, at most
+    assert r_shear.impact.static_peak == pytest.approx(P, rel=1e-6)
+    assert r_shear.impact.dynamic_peak == pytest.approx(P, rel=1e-6)  # (the bridge at rest at that instant)
+    assert r_reaction.impact.static_peak == pytest.approx(P, rel=1e-6)
+
+
 # ---------------------------------------------------------------- a traffic event on paper Bridge 2
 #: the spread bound: 2π f A dt · n I / R_st ≈ 1e-2 sampled (f = 15 Hz, A = 3 kN per wheel, dt = 1.4 ms,
 #: n = 2 wheels of influence I ≈ 0.6 on a 45 kN static shear) against (π f dt)²/2 · A n I / R_st ≈ 2e-4

@@ -387,18 +387,17 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge,
                              t1 + edge)
     n = len(effects)
-    return [[_in_span(tau, t0, t1, kind == "jump") for tau in taus[k * n:(k + 1) * n]] for k, kind in enumerate(kinds)]
+    return [[_in_span(tau, t0, t1) for tau in taus[k * n:(k + 1) * n]] for k in range(len(kinds))]
 
 
-def _in_span(tau: NDArray[np.float64], t0: float, t1: float, inside: bool) -> NDArray[np.float64]:
+def _in_span(tau: NDArray[np.float64], t0: float, t1: float) -> NDArray[np.float64]:
     """The instants ``tau`` (sorted, unique, within the run's span widened by ``BOUNDARY_INSTANT``) of
-    one kind: with ``inside`` (jumps: one-sided limits inside the span only) those in (t0, t1); else
-    (kinks: one at the first or last instant, a force starting on the entry support, still bars a
-    vertex) clipped to [t0, t1], unique.  Most events have none near either end: ``tau`` as it is."""
+    one kind clipped to [t0, t1], unique: one at the first or last instant — a force starting on the entry
+    support — still bars a kink's vertex, and a jump's one-sided limit inside the run (``jump_limits``) is
+    still read there (the shear just right of the entry support as the force starts on it: its largest
+    value).  Most events have none near either end: ``tau`` as it is."""
     if tau.size == 0 or (tau[0] > t0 and tau[-1] < t1):
         return tau
-    if inside:
-        return tau[(tau > t0) & (tau < t1)]
     return np.unique(np.clip(tau, t0, t1))
 
 
@@ -470,7 +469,8 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     tau = np.unique(np.concatenate(taus))
     if tau.size == 0:
         return [empty for _ in effects]
-    u = one_sided(tau, float(t[1] - t[0]))
+    # (an instant at the run's first or last one: its limit outside the run is read at that instant itself)
+    u = np.clip(one_sided(tau, float(t[1] - t[0])), t[0], t[-1])
     state = run_state(result, u)
     if static_loads is None:
         cp = crossing.contact

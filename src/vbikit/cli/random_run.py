@@ -26,9 +26,15 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
         guard(lambda: plot_random(rr, plot, title=s.get("name", "")))
     if out is not None:
         def table() -> None:
+            from vbikit.outputs import csv_unit
+
             ds = rr.dataset()
             deck = ds[[v for v in ds.data_vars if "point" in ds[v].dims]].drop_vars(["x", "y"])
-            write_text(out, deck.to_dataframe().to_csv())
+            frame = deck.to_dataframe()
+            # every column headed "name [unit]", as vbikit run's CSV (its unit spelling)
+            frame.columns = [f"{c} [{csv_unit(str(ds[c].attrs.get('units', '-')))}]" for c in frame.columns]
+            frame.index = frame.index.set_names([f"time [{csv_unit(str(ds['time'].attrs.get('units', 's')))}]", "point"])
+            write_text(out, frame.to_csv())
 
         guard(table)
     if summary_path is not None:
@@ -43,21 +49,23 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     from vbikit.outputs import report_unit
 
     (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
+    codes = {f["code"] for f in s.get("flags", [])}
+    every = "!" if codes & DOUBT_EVERY_IM else ""  # (lift-off, a coarse grid: every IM statistic in doubt)
+    small = {f.get("subject") for f in s.get("flags", []) if f["code"] == "small_static_reference"}
     for p in s["points"]:
-        q = ", ".join(f"{float(k):.0%}: {v:.4f}" for k, v in p["impact_factor_quantiles"].items())
+        mark = every or ("!" if f"point x = {p['x']:.3f} m, y = {p['y']:.3f} m" in small else "")
         typer.echo(f"  point x = {p['x']:.3f} m, y = {p['y']:.3f} m")
         typer.echo(f"    peak displacement  {p['displacement_peak_mean'] * to_mm:9.4f} ± "
                    f"{p['displacement_peak_std'] * to_mm:.4f} {mm}  (static {p['static_peak'] * to_mm:.4f} {mm})")
-        typer.echo(f"    impact factor      {p['impact_factor_mean']:9.4f} ± {p['impact_factor_std']:.4f}   quantiles {q}")
+        _impact_lines(p, mark)
         typer.echo(f"    σ max: displacement {p['displacement_std_max'] * to_mm:.4f} {mm}, acceleration "
                    f"{p['acceleration_std_max']:.4f} m/s², strain {p['strain_std_max'] * 1e6:.3f} µε")
     for e in s.get("effects", []):
-        q = ", ".join(f"{float(k):.0%}: {v:.4f}" for k, v in e["impact_factor_quantiles"].items())
         u, k = report_unit(e["units"])  # kN m, kN
         typer.echo(f"  {e['kind']} {e['name']} ({e['method']})")
         typer.echo(f"    peak {e['peak_mean'] * k:12.5g} ± {e['peak_std'] * k:.4g} {u}  (static {e['static_peak'] * k:.5g} {u}), "
                    f"σ max {e['std_max'] * k:.4g} {u}")
-        typer.echo(f"    impact factor      {e['impact_factor_mean']:9.4f} ± {e['impact_factor_std']:.4f}   quantiles {q}")
+        _impact_lines(e, every)
     forces = s.get("wheel_force_std_max", {})
     if forces:
         typer.echo(f"  σ max wheel force [{kn}]: " + ", ".join(f"{w} {v * to_kn:.2f}" for w, v in forces.items()))
@@ -78,3 +86,20 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     print_negative_note(any(v < 0 for e in [*s["points"], *s.get("effects", [])]
                             for v in (e["impact_factor_mean"], *e["impact_factor_quantiles"].values())))
     warn(s["warnings"])
+    if every:
+        typer.echo("  ! the impact-factor statistics are not design values here — see the warning")
+
+
+#: the flag codes of a random run (``vbikit.random.response.QUALITY_RULES``) that put every impact-factor statistic in
+#: doubt: the linear theory fails where a tire lifts off; a coarse wavenumber grid's σ is off
+DOUBT_EVERY_IM = frozenset({"lift_off", "coarse_grid"})
+
+
+def _impact_lines(e: dict, mark: str) -> None:
+    """A point's or load effect's impact-factor statistics: mean ± standard deviation with the mean's sampling error
+    (over the Gaussian histories drawn) and the quantiles, ``mark`` ("!": in doubt) beside the numbers."""
+    q = ", ".join(f"{float(k):.0%}: {v:.4f}{mark}" for k, v in e["impact_factor_quantiles"].items())
+    typer.echo(f"    impact factor      {e['impact_factor_mean']:9.4f}{mark} ± {e['impact_factor_std']:.4f}   quantiles {q}")
+    if "impact_factor_sampling_error" in e:
+        typer.echo(f"    {'':<18} (the mean's sampling error ±{e['impact_factor_sampling_error']:.4f}, "
+                   f"{e['impact_factor_samples']:,} Gaussian histories)")

@@ -274,11 +274,11 @@ def print_load_effects(s: dict[str, Any]) -> None:
         hogging_jtg |= bool(jtg)
         codes = " / ".join(f"{c.get(k, float('nan')):.3f}{'?' if jtg and k == 'jtg_d60_2015' else ''}" for k in keys)
         typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
-                   f"  IM {e['impact_factor']:7.4f}{mark}  codes " + codes)
+                   f"  IM {_im(e['impact_factor']):>7}{mark}  codes " + codes)
         if e.get("opposite_impact_factor") is not None:  # both signs (vbikit.analysis.effects): the other extreme
             typer.echo(f"    {'':<8} {'and ' + e['opposite_sense']:<24} "
                        f"static {e['opposite_static_peak'] * unit:+10.2f}  dynamic {e['opposite_dynamic_peak'] * unit:+10.2f}"
-                       f"  IM {e['opposite_impact_factor']:7.4f}   (the {e['governing']} dynamic peak governs)")
+                       f"  IM {_im(e['opposite_impact_factor']):>7}   (the {e['governing']} dynamic peak governs)")
     if any(e.get("label") in unresolved for _, e in rows):
         typer.echo(f"    {'':<8} ! the step does not resolve this load effect: its IM may be off — see the warning")
     if hogging_jtg:

@@ -57,7 +57,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Optional
 
-from vbikit._validation import MAX_STEPS_LIMIT, number
+from vbikit._validation import MAX_STEPS_LIMIT, number, short_quotes
 from vbikit.driveby.sensors import MAX_NOISE_RMS, Sampling, Sensor
 from vbikit.driveby.variability import (COUPLING_CHECK_EVERY, DAMAGE_KEYS, Variability, expand_cases, parse_coupling,
                                         parse_variability)
@@ -234,14 +234,14 @@ class _Errors:
         try:
             return work()
         except VbikitError as err:
-            text = str(err)
+            text = short_quotes(str(err))
             heading = _HEADED.match(text)  # (a part's own list of errors: its lines, under this file's heading)
             self.messages.extend(line.strip() for line in text[heading.end():].splitlines() if line.strip()) \
                 if heading else self.messages.append(text)
             return default
 
     def add(self, message: str) -> None:
-        self.messages.append(message)
+        self.messages.append(short_quotes(message))
 
     def raise_all(self) -> None:
         """``DriveByError``: ``invalid drive-by file:`` and one line a key, when any check failed."""

@@ -36,6 +36,7 @@ from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
 from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
 from vbikit.analysis.response import PointResponse, plan_responses
+from vbikit.outputs import QUANTITIES, cf_unit
 from vbikit.random.lines import Lines, default_lines
 from vbikit.random.peaks import exceedance_probability, peak_distribution
 from vbikit.random.pem import PEMResult, Probes, PseudoRoad, pseudo_excitation
@@ -145,7 +146,8 @@ class RandomResponse:
         n = min(t.size, self.mean.time.size)
         pts = np.arange(len(self.points))
         data: dict[str, Any] = {}
-        for q, unit in (("displacement", "m"), ("velocity", "m/s"), ("acceleration", "m/s2"), ("strain", "1")):
+        for q in ("displacement", "velocity", "acceleration", "strain"):
+            unit = cf_unit(QUANTITIES[q].unit)  # (the catalogue's unit, in the datasets' CF spelling)
             data[f"{q}_mean"] = (("time", "point"), np.stack([getattr(p, q)[:n] for p in self.points], axis=1),
                                  {"units": unit, "long_name": f"mean deck {q} (smooth-road crossing)"})
             data[f"{q}_std"] = (("time", "point"), self.pem.std(q)[:n, :pts.size], {"units": unit,
