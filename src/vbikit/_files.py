@@ -236,6 +236,8 @@ def output_dir(path: str | Path, key: str = "--out-dir", create: bool = True) ->
         if not os.path.isdir(ancestor):
             raise OutputError(f"{key} {path}: {ancestor} is not a folder; give a folder for the output files")
         if not os.access(ancestor, os.W_OK | os.X_OK):
+            if ancestor == Path(os.path.abspath(path)):  # (the folder exists: writing into it is refused)
+                raise OutputError(f"{key} {path}: the folder is not writable")
             raise OutputError(f"{key} {path}: cannot create the folder in {ancestor} (not writable)")
         return path
     try:

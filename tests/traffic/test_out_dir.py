@@ -39,7 +39,7 @@ def test_out_dir_writes_the_dataset_report_summary_and_figure(tmp_path, summary_
         assert summary["im_mean"] == pytest.approx(float(ds.attrs["im_mean"]))
         assert summary["governing_static_event"] == int(ds.attrs["governing_static_event"])
     assert summary["dataset"] == "traffic.nc" and summary["start"].startswith("sprung vehicles start")
-    for name in ("traffic-report.txt", "traffic-summary.json", "traffic-im.png"):
+    for name in ("traffic.nc", "traffic-report.txt", "traffic-summary.json", "traffic-im.png"):
         assert f"wrote {out / name}" in res.stdout
     again = runner.invoke(app, ["traffic", _stream(tmp_path), "--bridge", BASE, "--out-dir", str(out), "--no-progress",
                                 "--no-figures", "--workers", "1"])  # the finished run, read as it is

@@ -223,9 +223,10 @@ def _one_output() -> None:
 def _write_folder(ds, out_dir: Path, report: list[str], figures: bool) -> None:
     """--out-dir: the report, the summary and (``figures``) the figure next to the dataset; says what it wrote."""
     from vbikit._files import json_text, write_text
-    from vbikit.traffic.summary import FIGURE_FILE, REPORT_FILE, SUMMARY_FILE, summary
+    from vbikit.traffic.summary import DATASET_FILE, FIGURE_FILE, REPORT_FILE, SUMMARY_FILE, summary
 
-    files = [write_text(out_dir / REPORT_FILE, "\n".join(report) + "\n"),
+    files = [out_dir / DATASET_FILE,  # (written by the run: said with the others, as every folder command says them)
+             write_text(out_dir / REPORT_FILE, "\n".join(report) + "\n"),
              write_text(out_dir / SUMMARY_FILE, json_text(summary(ds), indent=1) + "\n")]
     if figures:
         from vbikit.plot.traffic import plot_stream

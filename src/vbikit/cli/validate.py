@@ -169,7 +169,10 @@ def _file(module: str, reader: str, summary: Callable[[Any], str]) -> Callable[[
 CHECKS: dict[str, Callable[[Path, Any], str]] = {
     "scenario": _scenario, "traffic-base": _traffic_base, "study": _study, "lifetime": _lifetime, "driveby": _driveby, "rail": _rail,
     "field": _field,
-    "records": _file("vbikit.traffic.records", "read_records", lambda r: f"{len(r):,} vehicle records"),
+    "records": _file("vbikit.traffic.records", "read_records",
+                     lambda r: f"{len(r):,} vehicle records in lane(s) {', '.join(map(str, sorted({v.lane for v in r})))} "
+                               "(each lane needs a centre on the bridge, --lanes or vbikit traffic's default ones: "
+                               "checked when it runs)"),
     "train": _file("vbikit.vehicle.trains", "read_train_table",
                    lambda t: f"{t.axle_positions.size} axles over {t.length:g} m"),
     "modes": _file("vbikit.bridge.modefile", "modes_from_file", lambda b: f"{b.omega.size} modes, span {b.span:g} m"),

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._files import shared_name
-from vbikit._words import counted
+from vbikit._words import counted, duration_words
 from vbikit.lifetime.jobs import EVENT_STRIDE, Detail, DynamicJob, StaticJob, _digest
 from vbikit.lifetime.screening import (CHECK_FRACTION, block_dynamic_max, candidates, expected_dynamic_events,
                                        heavy_amplifications, rescreen_bound, top_events)
@@ -191,7 +191,7 @@ def prepare(spec: LifetimeFile | dict, base_dir: str | Path = ".", workers: Opti
     cores = max(1, workers or default_workers())  # (as the run: ``run_study``'s default, all cores)
     hours = (trucks * STATIC_SECONDS_PER_TRUCK * max(1, len(names)) + dyn * DYNAMIC_SECONDS_PER_EVENT) / cores / 3600
     if hours > spec.budget_hours:
-        raise LifetimeError(f"budget_hours: the run is estimated at {hours:.2f} h on {cores} worker(s) "
+        raise LifetimeError(f"budget_hours: the run is estimated at {_estimate(hours)} on {cores} worker(s) "
                             f"({trucks:,.0f} trucks, about {dyn:,.0f} dynamic events), above budget_hours = "
                             f"{spec.budget_hours:g} h; "
                             f"{raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)} to run it")
@@ -271,6 +271,12 @@ def check_rescreen_budget(prep: Prepared, static, bound: float, given: float, am
     return hours
 
 
+def _estimate(hours: float) -> str:
+    """A run-time estimate in words and in budget_hours' unit: "40 s (0.011 h)", "3.5 h"."""
+    words = duration_words(hours)
+    return words if words.endswith(" h") else f"{words} ({hours:.2g} h)"
+
+
 def _refuse_above_budget(prep: Prepared, hours: float, events: int, what: str, whose: str) -> None:
     """The one refusal of dynamics estimated at ``hours`` (``events`` of them) above ``budget_hours``: "budget_hours:
     ``what`` H h on N worker(s) (about E events ``whose``), above budget_hours = B h; raise …"."""
@@ -279,7 +285,7 @@ def _refuse_above_budget(prep: Prepared, hours: float, events: int, what: str, w
     from vbikit._words import raise_budget
     from vbikit.lifetime.spec import MAX_BUDGET_HOURS
 
-    raise LifetimeError(f"budget_hours: {what} {hours:.2f} h on {prep.cores} worker(s) (about "
+    raise LifetimeError(f"budget_hours: {what} {_estimate(hours)} on {prep.cores} worker(s) (about "
                         f"{counted(events, 'event', thousands=True)} {whose}), above budget_hours = "
                         f"{prep.spec.budget_hours:g} h; {raise_budget('budget_hours', '--budget-hours', MAX_BUDGET_HOURS)}"
                         ", or run on more workers, to run them")
