@@ -4,6 +4,8 @@ scenario keys response.girder / crossing.lateral_offset / model = "modes-file" b
 from __future__ import annotations
 
 import json
+import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -166,3 +168,20 @@ def test_bridge_command_shows_a_scenarios_deck(tmp_path):
     assert listed == pytest.approx(expected, abs=5e-4)  # printed with 3 decimals
     res = runner.invoke(app, ["bridge", str(tmp_path / "missing.toml")])
     assert res.exit_code == 2 and "not found" in res.output
+
+    # the [bridge] alone is read: a file without a vehicle (a traffic base, a bridge only) is shown alike (a new
+    # user's trial: such files were refused, "vehicle: missing required key", though traffic and rail read them);
+    # a simply supported beam's first frequency is the closed form (π/L)² √(EI/m) / 2π
+    only = tmp_path / "beam.toml"
+    only.write_text('[bridge]\nmodel = "beam"\nspan = 20.0\nEI = 7.9e10\nmass_per_length = 25000.0\n'
+                    'damping_ratio = 0.01\nn_modes = 3\n')
+    res = runner.invoke(app, ["bridge", str(only), "--no-plot"])
+    assert res.exit_code == 0, res.output
+    listed = [float(line.split()[2]) for line in res.output.splitlines() if line.strip().startswith("mode ")]
+    assert listed[0] == pytest.approx((math.pi / 20.0) ** 2 * math.sqrt(7.9e10 / 25000.0) / (2 * math.pi), abs=5e-4)
+    base = Path(__file__).resolve().parents[2] / "examples" / "traffic" / "base" / "bridge2.toml"
+    assert runner.invoke(app, ["bridge", str(base), "--no-plot"]).exit_code == 0
+    none = tmp_path / "none.toml"
+    none.write_text('name = "no bridge"\n')
+    res = runner.invoke(app, ["bridge", str(none), "--no-plot"])
+    assert res.exit_code == 2 and "missing required table [bridge]" in res.stderr

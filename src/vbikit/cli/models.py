@@ -75,8 +75,9 @@ def presets() -> None:
 
 def bridge(
     name: str = typer.Argument(..., metavar="PRESET|SCENARIO.toml",
-                               help="Bridge preset (see `vbikit presets`), or a scenario file (.toml) whose [bridge] "
-                               "is shown (its [bridge.deck] overrides and n_modes included, unless --modes is given)."),
+                               help="Bridge preset (see `vbikit presets`), or a file (.toml) whose [bridge] is shown "
+                               "(a scenario, a traffic base or a [bridge] alone; its [bridge.deck] overrides and "
+                               "n_modes included, unless --modes is given)."),
     n_modes: Optional[int] = typer.Option(None, "--modes", min=1, max=500,
                                           help="Number of modes to solve and list (1 … 500; default 10, or the scenario's n_modes)."),
     out_dir: Optional[Path] = out_dir_option("Where to write the figure NAME-modes.png (default vbikit-out; not used "
@@ -96,20 +97,28 @@ def bridge(
     from vbikit.bridge import BRIDGE_PRESETS, DescribesModes, GirderDeck
 
     if name.endswith(".toml"):
+        from vbikit._toml import read_toml
         from vbikit.errors import VbikitError
-        from vbikit.scenario import ScenarioError, load_scenario
+        from vbikit.scenario import ScenarioError
         from vbikit.scenario.build import build_bridge
+        from vbikit.scenario.schema import parse_bridge
 
         def scenario_bridge():
-            scenario = load_scenario(name)
-            spec = scenario.bridge if n_modes is None else scenario.bridge.model_copy(update={"n_modes": n_modes})
+            # the file's [bridge] alone: a scenario, a traffic stream's base (no vehicle) or a bridge-only file alike,
+            # as vbikit traffic --bridge and a railway file's bridge.scenario read it
+            data = read_toml(name, ScenarioError, "scenario file")
+            table = data.get("bridge")
+            if not isinstance(table, dict) or not table:
+                raise ScenarioError(f"{name}: missing required table [bridge] (the bridge this command shows)")
+            spec = parse_bridge(table if n_modes is None else {**table, "n_modes": n_modes})
             try:
-                bridge_ = build_bridge(spec, scenario.base_dir)
+                bridge_ = build_bridge(spec, Path(name).resolve().parent)
             except VbikitError:
                 raise
             except ValueError as err:  # the bridge model's own check of the [bridge] inputs (as in scenario.build)
                 raise ScenarioError(str(err)) from None
-            return bridge_, scenario.bridge.model, scenario.name or Path(name).stem
+            title = data.get("name")
+            return bridge_, spec.model, title if isinstance(title, str) and title else Path(name).stem
 
         b, model, label = guard(scenario_bridge, file=Path(name))
         skew = float(b.skew)
