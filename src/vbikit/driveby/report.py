@@ -38,7 +38,7 @@ def multipass_lines(ds) -> list[str]:
         if key in seen:
             continue
         seen.add(key)
-        name = "healthy" if key[0] == 0 else f"severity {key[0]:.2f} at x = {key[1]:g} m"
+        name = "healthy" if key[0] == 0 else f"severity {key[0]:.2f} from x = {key[1]:g} m"
         n, n_rel, n_agree = (int(c[k][i]) for k in ("multipass_n_passes", "multipass_n_reliable", "multipass_n_agree"))
         med = float(c["multipass_frequency_hz"][i])
         if not np.isfinite(med):
@@ -98,7 +98,7 @@ def summary(ds) -> dict:
     bridges = {}
     for i in range(ds.sizes["case"]):
         sev = float(c["damage_severity"][i])
-        key = "healthy" if sev == 0 else f"severity {sev:g} at x = {float(c['damage_position'][i]):g} m"
+        key = "healthy" if sev == 0 else f"severity {sev:g} from x = {float(c['damage_position'][i]):g} m"
         if key in bridges:
             continue
         n_agree = int(c["multipass_n_agree"][i])
@@ -180,7 +180,7 @@ def report_text(ds) -> str:
     if damaged.any():
         lines += ["", "damage indicator (frequency shift against the healthy case of the same speed, road and noise):"]
         for i in np.flatnonzero(damaged):
-            head = f"  case {i}: severity {float(c['damage_severity'][i]):.2f} at x = {float(c['damage_position'][i]):g} m: "
+            head = f"  case {i}: severity {float(c['damage_severity'][i]):.2f} from x = {float(c['damage_position'][i]):g} m: "
             if not np.isfinite(shift[i]):
                 truth = f"true {100 * true[i]:+.2f} %" if np.isfinite(true[i]) else "true shift not known (no healthy case)"
                 lines.append(head + f"not given ({c['frequency_shift_reason'][i]}); {truth}")
