@@ -105,7 +105,7 @@ def validation_message(err: ValidationError, title: str, unknown_key: Optional[s
         elif e["type"] in _BOUND_ERRORS + _INTEGER_ERRORS + _NUMBER_ERRORS:
             msg = bound_message(e, _field_at(model, tuple(e["loc"])))
         elif "input" in e and e["type"] != "value_error":
-            msg = f"{msg} (got {_short(e['input'])})"
+            msg = f"{msg} (got {short_value(e['input'])})"
         lines.append(f"{loc}: {msg}" if loc else msg)
     return f"{title}:\n  " + "\n  ".join(lines) if title else "\n  ".join(lines)
 
@@ -128,14 +128,14 @@ def number(value: Any, key: str, lo: Optional[float] = None, hi: Optional[float]
     expect = f"{key}: {expected(lo, hi, lo_open=lo_open, hi_open=hi_open, integer=integer, unit=unit)}"
     ok_type = isinstance(value, int) if integer else isinstance(value, (int, float))
     if isinstance(value, bool) or not ok_type:
-        raise error(f"{expect}, got {type(value).__name__} {_short(value)}")
+        raise error(f"{expect}, got {type(value).__name__} {short_value(value)}")
     try:
         v = value if integer else float(value)
     except OverflowError:
-        raise error(f"{expect}, got {_short(value)}") from None
+        raise error(f"{expect}, got {short_value(value)}") from None
     if (not integer and not math.isfinite(v)) or (lo is not None and (v <= lo if lo_open else v < lo)) or \
             (hi is not None and (v >= hi if hi_open else v > hi)):
-        raise error(f"{expect}, got {_short(value)}")
+        raise error(f"{expect}, got {short_value(value)}")
     return int(value) if integer else v
 
 
@@ -214,15 +214,17 @@ def bound_message(error: dict, field: Any = None) -> Optional[str]:
         return text
     value = error["input"]
     quoted = " (a number is written without quotes)" if isinstance(value, str) else ""
-    return f"{text}, got {_short(value)}{quoted}"
+    return f"{text}, got {short_value(value)}{quoted}"
 
 
-#: the most characters of an input value a message quotes (``_short``, ``short_quotes``): a message names the key
+#: the most characters of an input value a message quotes (``short_value``, ``short_quotes``): a message names the key
 #: and the allowed values, and shows a value only as far as it tells which one was given, never a file's content
 QUOTED_CHARACTERS = 40
 
 
-def _short(value: Any) -> str:
+def short_value(value: Any) -> str:
+    """An input value as a message quotes it: its repr (TOML's true, false for a bool), cut to ``QUOTED_CHARACTERS``
+    with "..."."""
     if isinstance(value, bool):  # (as the file writes it: TOML's true, false)
         return "true" if value else "false"
     text = repr(value)
@@ -236,10 +238,36 @@ _LONG_QUOTE = re.compile(r"(?<![\w'\"])'[^'\s][^'\n]{%d,}'|(?<![\w'\"])\"[^\"\s]
 
 
 def short_quotes(message: str) -> str:
-    """``message`` with every quoted value longer than ``QUOTED_CHARACTERS`` cut as ``_short`` cuts it
+    """``message`` with every quoted value longer than ``QUOTED_CHARACTERS`` cut as ``short_value`` cuts it
     (``unknown bridge model 'XXXX…'`` of a 5,000-character value: its first 37 characters and "..."): what a
     validator's own message quotes of the input (``{value!r}``) as the formatters here pass it on."""
     def cut(m: re.Match) -> str:
         return m.group(0)[:QUOTED_CHARACTERS - 3] + "..."
 
-    return _LONG_QUOTE.sub(cut, message)
+    return _cut_brackets(_LONG_QUOTE.sub(cut, message))
+
+
+_OPENING = {"[": "]", "{": "}", "(": ")"}
+
+
+def _cut_brackets(message: str) -> str:
+    """``message`` with every list, table or tuple quoted after "got " (``got [0.1, 0.2, …]``, a validator's
+    ``{value!r}``) longer than ``QUOTED_CHARACTERS`` cut as ``short_value`` cuts it (to its matching bracket)."""
+    out, at = [], 0
+    while (start := message.find("got ", at)) >= 0:
+        begin = start + 4
+        if begin >= len(message) or message[begin] not in _OPENING:
+            out.append(message[at:begin])
+            at = begin
+            continue
+        depth, end = 0, begin
+        for end in range(begin, len(message)):
+            depth += message[end] in _OPENING
+            depth -= message[end] in _OPENING.values()
+            if depth == 0:
+                break
+        value = message[begin:end + 1]
+        out.append(message[at:begin] + (value if len(value) <= QUOTED_CHARACTERS
+                                        else value[:QUOTED_CHARACTERS - 3] + "..."))
+        at = end + 1
+    return "".join(out) + message[at:]

@@ -189,11 +189,18 @@ def test_the_bound_holds_where_the_grid_is_uneven_beside_the_peak():
     200 … 300 km/h every 5 km/h, 1 km/h near the resonance) had the coarse 250.0 km/h 0.31 km/h below the fine
     grid's peak at 250.31 and the next fine speed 1 km/h above it, the true peak at 250.5: the bracket leaned to
     one side and the stated bound, 0.074 %, fell short of the 0.09 % error (a finer sweep gave it).  The same
-    grid on a resonance curve of that width (a Lorentzian, peak 1 at 250.5, half-width 1.5 km/h): the first
-    bracket is made symmetric and the bound holds after every number of halvings."""
+    grid on a resonance curve of that width (a Lorentzian, peak 1 at 250.5, half-width 1.5 km/h): the bound of an
+    uneven bracket (``_bound``) holds after every number of halvings, and an even bracket's is (f* − min f±)/4."""
     import numpy as np
 
-    from vbikit.rail.refine import refine_peaks
+    from vbikit.rail.refine import _bound, refine_peaks
+
+    assert _bound(2.0, 1.0, 0.5, 0.5) == 0.125 and _bound(2.0, 1.0, 0.0, 0.5) == 0.125  # even; one end at v*
+    # a parabola through (−A, 0, B) peaking at B/2 (the worst case): its rise is half the bound
+    a_, b_ = 0.3, 1.0
+    q = lambda x: 1.0 - (x - b_ / 2) ** 2  # noqa: E731
+    rise = 1.0 - q(0.0)
+    assert math.isclose(_bound(q(0.0), min(q(-a_), q(b_)), a_, b_) * q(0.0), 2 * rise)
 
     def peak(v):
         return 1.0 / (1.0 + ((np.asarray(v, float) - 250.5) / 1.5) ** 2)

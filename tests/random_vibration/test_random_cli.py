@@ -68,6 +68,16 @@ def test_cli_json_equals_python_entry(tmp_path, monkeypatch):
     line = next(x for x in text.stdout.splitlines() if x.strip().startswith("impact factor"))
     assert f"{rr.summary['impact_factor_mean']:9.4f}!" in line and line.count("!") == 4, line  # the mean, 3 quantiles
     assert "not design values" in text.stdout
+    # a small static reference at a point marks that point's statistics only (the flag's subject names it)
+    from vbikit.random.response import point_label
+
+    small = dict(rr.summary, **flag_fields([Flag("small_static", "small", output="impact_factor_mean",
+                                                 subject=point_label(rr.summary["points"][0]), value=0.1, threshold=0.2)]))
+    monkeypatch.setattr(pipeline, "run_random", lambda *a, **k: type(rr)(rr.mean, rr.points, rr.pem, small, rr.effects))
+    text = runner.invoke(app, ["run", str(path), "--random"]).stdout
+    lines = [x for x in text.splitlines() if x.strip().startswith("impact factor")]
+    assert lines[0].count("!") == 4 and all("!" not in x for x in lines[1:]), lines  # (the load effects: not marked)
+    assert "not design values" not in text
 
 
 def test_smooth_road_and_disk_tires_are_refused(tmp_path):

@@ -73,6 +73,10 @@ def test_out_still_writes_the_dataset_only(tmp_path):
         assert summary["n_events"] == ds.sizes["event"] == 3
     assert summary["dataset"] == "s.nc"  # (the file --out named, not the folder's traffic.nc)
     assert "impact factor" in js.stderr and sorted(p.name for p in tmp_path.iterdir()) == ["s.nc", "short.csv"]
+    # -q (errors only): the JSON alone, nothing on standard error
+    quiet = runner.invoke(app, ["-q", "traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out", str(tmp_path / "s.nc"),
+                                "--no-progress", "--workers", "1", "--json"])
+    assert quiet.exit_code == 0 and json.loads(quiet.stdout) == summary and quiet.stderr == "", quiet.stderr
 
 
 def test_at_most_one_of_out_and_out_dir(tmp_path, monkeypatch):
@@ -102,7 +106,7 @@ def test_neither_writes_into_vbikit_out_as_every_command(tmp_path, monkeypatch):
         static = np.abs(first["max_static_displacement"].values)
     assert summary["governing_static_deflection"] == float(static.max())
     assert summary["units"]["governing_static_deflection"] == "m" and summary["units"]["im_mean"] == "1"
-    assert summary["units"]["governing_static_event"] == "index" and summary["units"]["n_events"] == "count"
+    assert summary["units"]["governing_static_event"] == "1" and summary["units"]["n_events"] == "1"  # (CF)
     assert "start" not in summary["units"] and "warnings" not in summary["units"]
 
 

@@ -63,3 +63,11 @@ def test_short_quotes_keeps_short_values_and_cuts_long_ones():
     # as ``_short`` cuts a repr: 40 characters with the quotes kept, 41 cut to 37 and "..."
     assert short_quotes(f'got "{"z" * 38}"') == f'got "{"z" * 38}"'
     assert short_quotes(f'got "{"z" * 39}"') == 'got "' + "z" * 36 + "..."
+
+
+def test_a_long_list_after_got_is_cut_to_its_bracket():
+    """A validator quoting a list or table it was given (``got [1.0, 1.0, …]``): 3,000 numbers of a drive-by
+    file's ``variability.temperature`` made a 15,000-character message (the review of 2026-12-07)."""
+    text = short_quotes("temperature: expected two numbers, got [" + ", ".join(["1.0"] * 3000) + "] (x)")
+    assert text.endswith("...  (x)".replace("  ", " ")) and len(text) < 120, text
+    assert short_quotes("got [1, 2]; got (a)") == "got [1, 2]; got (a)"

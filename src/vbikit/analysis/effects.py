@@ -364,9 +364,9 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
                       *kinds: str) -> list[list[NDArray[np.float64]]]:
     """Per kind of ``kinds`` (``PASSING_POSITIONS``: "jump", "kink") and per effect, the instants in the
-    run's span (a jump's inside it; a kink's also at its first and last instant, within
-    ``BOUNDARY_INSTANT``, so that a point standing on a support as the run starts bars the vertex
-    through that step) at which a contact point stands on one of the effect's positions ξ of that kind on its
+    run's span (also at its first and last instant, within ``BOUNDARY_INSTANT``: a point standing on a
+    support as the run starts bars a kink's vertex through that step, and a jump's limit inside the run is
+    read there, ``_in_span``) at which a contact point stands on one of the effect's positions ξ of that kind on its
     wheel line y (skew decks included), sorted, unique: every kind's and effect's (point, position)
     pairs timed in one pass (``instants.crossing_instants``), from the positions' table of the bridge,
     effects and lines (``_position_table``, kept: the same for every event of a stream)."""

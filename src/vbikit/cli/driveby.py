@@ -18,7 +18,7 @@ from vbikit.cli.guard import (
     out_dir_option,
     progress_option,
     say,
-    say_json,
+    say_summary_file,
     scheduler_option,
     steps_option,
     use_json,
@@ -68,6 +68,6 @@ def driveby_cmd(
 
         say(write_outputs(spec, ds, out_dir, figures))
         say_written(out_dir, (DATASET_FILE, ZARR_FILE, REPORT_FILE, SUMMARY_FILE, "driveby-*.png"), started)
-        say_json((out_dir / SUMMARY_FILE).read_text(encoding="utf-8"))
+        say_summary_file(out_dir / SUMMARY_FILE)
 
     guard(finish)

@@ -240,8 +240,16 @@ def use_json(as_json: bool) -> None:
 
 def say(text: str, nl: bool = True) -> None:
     """A line of a command's results: on standard output, or on standard error when ``--json`` gives standard
-    output to the summary JSON (``use_json``)."""
+    output to the summary JSON (``use_json``) — not at all with ``-q`` then (errors only: the JSON is the result)."""
+    if STATE["json"] and STATE["quiet"]:
+        return
     typer.echo(text, nl=nl, err=STATE["json"])
+
+
+def say_summary_file(path: Path) -> None:
+    """With ``--json``: the summary file ``path`` the command wrote (its folder's), on standard output (``say_json``)."""
+    if STATE["json"]:
+        say_json(guard(lambda: Path(path).read_text(encoding="utf-8")))
 
 
 def say_json(summary: Any) -> None:
@@ -317,7 +325,7 @@ def figures_option() -> Any:
 
 
 def say_written(folder: Path, names: tuple[str, ...], since: float) -> None:
-    """One line ``wrote PATH`` on standard output for each file or folder of ``folder`` that ``names`` (names or
+    """One line ``wrote PATH`` (``say``: on standard output, standard error with ``--json``) for each file or folder of ``folder`` that ``names`` (names or
     glob patterns) match and that the run wrote (modified at or after ``since``, a ``time.time()``), as every command
     that writes a folder says what it wrote."""
     found = sorted({p for name in names for p in Path(folder).glob(name) if p.stat().st_mtime >= since - 1.0})

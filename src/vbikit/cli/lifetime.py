@@ -22,7 +22,7 @@ from vbikit.cli.guard import (
     out_dir_option,
     progress_option,
     say,
-    say_json,
+    say_summary_file,
     scheduler_option,
     use_json,
     workers_option,
@@ -127,4 +127,4 @@ def lifetime_cmd(
     say(f"{counted(int(a['n_events']), 'event', thousands=True)}, {a['n_dynamic_events']:,} dynamic ({100 * a['fraction_dynamic']:.2f} %) "
         f"-> {out_dir / DATASET_FILE} ({time.perf_counter() - t0:.1f} s)")
     say_resumed(bars.resumed(), out_dir / WORK_FOLDER)
-    say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))
+    say_summary_file(out_dir / SUMMARY_FILE)

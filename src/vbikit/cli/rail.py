@@ -19,7 +19,7 @@ from vbikit.cli.guard import (
     progress_option,
     scheduler_option,
     say,
-    say_json,
+    say_summary_file,
     use_json,
     workers_option,
 )
@@ -80,9 +80,9 @@ def rail_cmd(
         if bar is not None:
             bar.close()
     say(result.report, nl=False)
-    for f in result.files:  # results, on stdout as every command's (its progress bar and warnings: stderr)
+    for f in result.files:  # results, on stdout as every command's (stderr with --json; progress and warnings: stderr)
         say(f"wrote {f}")
     say(f"{result.dataset.train.size} trains × {result.dataset.speed.size} speeds in {result.seconds:.1f} s")
-    say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))
+    say_summary_file(out_dir / SUMMARY_FILE)
     done, total = first[0] if first else (0, 0)
     say_resumed(f"{done} of {total} trains" if done else "", out_dir / "rail.parts")

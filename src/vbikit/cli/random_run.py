@@ -49,12 +49,13 @@ def run_random(scenario: Path, budget, as_json: bool, summary_path: Optional[Pat
     from vbikit.outputs import report_unit
 
     (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
-    codes = {f["code"] for f in s.get("flags", [])}
-    every = "!" if codes & DOUBT_EVERY_IM else ""  # (lift-off, a coarse grid: every IM statistic in doubt)
-    small = {f.get("subject") for f in s.get("flags", []) if f["code"] == "small_static_reference"}
-    for p in s["points"]:
-        mark = every or ("!" if f"point x = {p['x']:.3f} m, y = {p['y']:.3f} m" in small else "")
-        typer.echo(f"  point x = {p['x']:.3f} m, y = {p['y']:.3f} m")
+    from vbikit.analysis.checks import has_flag
+    from vbikit.random.response import point_label
+
+    every = "!" if any(has_flag(s, code) for code in DOUBT_EVERY_IM) else ""  # (every IM statistic in doubt)
+    for p in s["points"]:  # (a point's IM on a small static reference: that point's)
+        mark = every or ("!" if has_flag(s, "small_static", subject=point_label(p)) else "")
+        typer.echo(f"  {point_label(p)}")
         typer.echo(f"    peak displacement  {p['displacement_peak_mean'] * to_mm:9.4f} ± "
                    f"{p['displacement_peak_std'] * to_mm:.4f} {mm}  (static {p['static_peak'] * to_mm:.4f} {mm})")
         _impact_lines(p, mark)
@@ -98,8 +99,10 @@ DOUBT_EVERY_IM = frozenset({"lift_off", "coarse_grid"})
 def _impact_lines(e: dict, mark: str) -> None:
     """A point's or load effect's impact-factor statistics: mean ± standard deviation with the mean's sampling error
     (over the Gaussian histories drawn) and the quantiles, ``mark`` ("!": in doubt) beside the numbers."""
-    q = ", ".join(f"{float(k):.0%}: {v:.4f}{mark}" for k, v in e["impact_factor_quantiles"].items())
-    typer.echo(f"    impact factor      {e['impact_factor_mean']:9.4f}{mark} ± {e['impact_factor_std']:.4f}   quantiles {q}")
+    from vbikit.cli.render import _im
+
+    q = ", ".join(f"{float(k):.0%}: {_im(v)}{mark}" for k, v in e["impact_factor_quantiles"].items())
+    typer.echo(f"    impact factor      {_im(e['impact_factor_mean']):>9}{mark} ± {e['impact_factor_std']:.4f}   quantiles {q}")
     if "impact_factor_sampling_error" in e:
         typer.echo(f"    {'':<18} (the mean's sampling error ±{e['impact_factor_sampling_error']:.4f}, "
                    f"{e['impact_factor_samples']:,} Gaussian histories)")

@@ -23,6 +23,7 @@ from vbikit.cli.guard import (
     out_file_option,
     progress_option,
     say_json,
+    say_summary_file,
     scheduler_option,
     use_json,
     warn,
@@ -118,7 +119,7 @@ def traffic_cmd(
     if out_dir is not None:
         guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
     ds = run_job(job, dataset, workers, scheduler, progress, unit="event", option=option)
-    report: list[str] = []  # the lines below, on stdout and (--out-dir) in traffic-report.txt
+    report: list[str] = []  # the lines below, on stdout (stderr with --json) and (--out-dir) in traffic-report.txt
 
     def say(line: str) -> None:
         say_line(line)
@@ -207,7 +208,7 @@ def traffic_cmd(
         say_line(f"figure {plot}")
     if out_dir is not None:
         guard(lambda: _write_folder(ds, out_dir, report, figures))
-        say_json(guard(lambda: (out_dir / SUMMARY_FILE).read_text(encoding="utf-8")))
+        say_summary_file(out_dir / SUMMARY_FILE)
     else:  # (--out: the dataset only; the summary's object all the same)
         from vbikit.traffic.summary import summary
 

@@ -339,7 +339,7 @@ def _adr_flags(name: str, e: dict, a: dict) -> list[Flag]:
         out.append(Flag("adr_above_event_bound",
                         f"ADR {adr['value']:.3f} is above {limit:.3f}, the most any day's total maximum can exceed its "
                         f"static one (1 + the screening bound A used or this effect's simulated events' larger R_dyn/R_st − 1): "
-                        f"the "
+                        "the "
                         f"fits of the daily total and static maxima extrapolate apart beyond what the events allow — the "
                         f"ADR and the characteristic total are not supported by the {int(a['n_days'])} simulated days "
                         "(simulate more days; the ADR is at most this bound)",

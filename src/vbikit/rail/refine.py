@@ -49,12 +49,13 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
                  max_halvings: int = MAX_HALVINGS) -> RefinedPeaks:
     """Refine each peak of ``values`` over ``speeds`` (``_peak_indices``) by halving the step around it.
 
-    The best speed v* lies midway in its bracket [v* − h, v* + h]; the midpoints v* ± h/2 are
+    The best speed v* lies in its bracket [v* − a, v* + b]; the midpoints v* − a/2 and v* + b/2 are
     evaluated (``evaluate(speeds) -> values``, every peak's new speeds in one call) and the bracket
     halves around the best of the three.  With f* the best value and f_± those at the bracket's
-    ends, a peak that is quadratic within the bracket exceeds f* by at most (f* − min f_±)/4 (the
-    parabola's vertex lies within h/2 of v*, where it rises c x0² ≤ c h²/4 while the ends fall at
-    least c h² below f*): that is the bound of the remaining grid error.  Refinement stops when
+    ends, the bound of the remaining grid error is ``_bound``'s: (f* − min f_±)/4 where the bracket
+    is even (a = b = h: a peak quadratic within it has its vertex within h/2 of v*, where it rises
+    c x0² ≤ c h²/4 while the ends fall at least c h² below f*; twice what a parabola can reach), and
+    larger where the sweep's grid left it uneven (a speed of the coarse grid beside the fine one).  Refinement stops when
     the bound and the change over the last halving are both below ``tolerance`` (relative), or
     after ``max_halvings`` (default ``MAX_HALVINGS``).  ``indices``: the grid indices of the peaks
     to refine (default ``_peak_indices``).
@@ -68,7 +69,6 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
     f_lo = np.array([values[max(j - 1, 0)] for j in idx], float)
     f_hi = np.array([values[min(j + 1, speeds.size - 1)] for j in idx], float)
     grid_v, grid_a = best_v.copy(), best_a.copy()
-    _symmetric_brackets(evaluate, best_v, best_a, lo, hi, f_lo, f_hi)
     change = np.full(k, np.inf)
     bound = np.full(k, np.inf)
     done = np.zeros(k, bool)
@@ -88,7 +88,7 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
                 lo[i], hi[i], f_lo[i], f_hi[i] = m1[q], m2[q], a1[q], a2[q]
             top = best_a[i]
             change[i] = (top - old_a) / top if top > 0 else 0.0
-            bound[i] = (top - min(f_lo[i], f_hi[i])) / (4.0 * top) if top > 0 else 0.0
+            bound[i] = _bound(top, min(f_lo[i], f_hi[i]), best_v[i] - lo[i], hi[i] - best_v[i])
             rounds[i] += 1
             if (bound[i] < tolerance and change[i] < tolerance) or rounds[i] >= max_halvings:
                 done[i] = True
@@ -96,29 +96,21 @@ def refine_peaks(evaluate, speeds: NDArray[np.float64], values: NDArray[np.float
                         (bound < tolerance) & (change < tolerance), rounds)
 
 
-def _symmetric_brackets(evaluate, best_v, best_a, lo, hi, f_lo, f_hi) -> None:
-    """Make each peak's first bracket symmetric, [v* − h, v* + h] with h the larger of its grid neighbours' distances
-    (in place): the bound's premise (``refine_peaks``).  A sweep's grid is uneven where the coarse and the fine steps
-    meet (a coarse speed 0.31 km/h below the fine peak, the next fine one 1 km/h above it): the bracket then leaned
-    to one side, the vertex could lie beyond h/2 of v*, and the stated bound fell short of the error (0.074 %
-    stated against 0.09 % off, a new user's trial, 2026-12-07).  The nearer neighbour is replaced by the speed at
-    the farther one's distance (evaluated); a peak at the sweep's end (one neighbour), or one whose new speed is
-    above the peak (another peak within h), keeps its bracket."""
-    dl, dr = best_v - lo, hi - best_v
-    fix = np.flatnonzero((dl > 0) & (dr > 0) & ~np.isclose(dl, dr, rtol=1e-9, atol=0.0))
-    if fix.size == 0:
-        return
-    h = np.maximum(dl, dr)[fix]
-    left = dl[fix] < dr[fix]  # the nearer neighbour on the left: the bracket goes out to v* − h there
-    targets = np.where(left, best_v[fix] - h, best_v[fix] + h)
-    values = evaluate(targets)
-    for q, i in enumerate(fix):
-        if values[q] > best_a[i]:
-            continue
-        if left[q]:
-            lo[i], f_lo[i] = targets[q], values[q]
-        else:
-            hi[i], f_hi[i] = targets[q], values[q]
+def _bound(top: float, lowest: float, a: float, b: float) -> float:
+    """The bound of a refined peak's remaining grid error (relative): ``top`` = f* at v*, ``lowest`` = the lower
+    of the values at its bracket's ends v* − a and v* + b.  A parabola through the three points that peaks within
+    the bracket rises above f* by at most D · B² / (4 A (A + B)) with D = f* − min f_± (A = min(a, b),
+    B = max(a, b): its vertex at B/2 on the far side, the near end D below f*); the bound is twice that,
+    D B² / (2 A (A + B)), as the even bracket's (f* − min f_±)/4 is twice a parabola's D/8.  An uneven
+    bracket (a sweep's coarse speed 0.31 km/h below the fine grid's peak, the next fine one 1 km/h above it)
+    bounded as an even one fell short: 0.074 % stated, 0.09 % off (a new user's trial, 2026-12-07).  A bracket
+    with one end at v* (a peak at the sweep's end) keeps the even form."""
+    if top <= 0:
+        return 0.0
+    near, far = min(a, b), max(a, b)
+    if near <= 0.0 or far <= 0.0:
+        return (top - lowest) / (4.0 * top)
+    return (top - lowest) * far**2 / (2.0 * near * (near + far)) / top
 
 
 def grid_error(peaks: RefinedPeaks, k: int = 0) -> dict[str, float]:

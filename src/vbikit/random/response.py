@@ -86,6 +86,12 @@ QUALITY_RULES = (
 )
 
 
+def point_label(entry: dict[str, Any]) -> str:
+    """A response point of a random run's summary in words, "point x = 8.380 m, y = 2.130 m": its flags' subject
+    and its report line (``vbikit run --random``)."""
+    return f"point x = {entry['x']:.3f} m, y = {entry['y']:.3f} m"
+
+
 def quality_flags(values: dict[str, float]) -> list[Flag]:
     """The ``QUALITY_RULES`` flags of one run from its ``values`` (by the rules' keys)."""
     out = []
@@ -314,7 +320,7 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
     flags = quality_flags({"lift_off_probability": p_lift, "grid_change": grid})
     if len(entries) > 1 and all("static_peak" in e for e in entries):  # a point's mean IM on a small static
         # reference (vbikit.analysis.checks); peaks="study" has no statistics of the further points
-        flags += small_static_flags([f"point x = {e['x']:.3f} m, y = {e['y']:.3f} m" for e in entries],
+        flags += small_static_flags([point_label(e) for e in entries],
                                     [e["static_peak"] for e in entries],
                                     [e["impact_factor_mean"] for e in entries], output="impact_factor_mean")
     head = entries[0]

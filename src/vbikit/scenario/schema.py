@@ -31,7 +31,7 @@ from vbikit.scenario.section import ScenarioError, Section
 from vbikit._files import read_text
 from vbikit._kept import Kept
 from vbikit._toml import parse_toml
-from vbikit._validation import _short, bound_message, key_name, short_quotes
+from vbikit._validation import bound_message, key_name, short_quotes, short_value
 from vbikit.contact.registry import TIRE_MODELS, tire_model, tire_parameters
 from vbikit.contact.tires import TireParameters
 from vbikit.solve.budget import MAX_AXLES
@@ -628,7 +628,7 @@ def _format(err: ValidationError, data: dict[str, Any], prefix: tuple[Any, ...] 
         elif bound_message(e) is not None:  # the range with both bounds and the unit
             msg = bound_message(e, _key_field(prefix + tuple(e["loc"]), data))
         elif "input" in e and e["type"] not in ("value_error",):
-            msg = f"{msg} (got {_short(e['input'])})"
+            msg = f"{msg} (got {short_value(e['input'])})"
         key = re.match(r"^([a-z_]+): ", msg) if loc and e["type"] == "value_error" else None
         if key:  # a section's validator named one of its keys: "loc.key: …"
             loc, msg = f"{loc}.{key.group(1)}", msg[key.end():]

@@ -42,10 +42,8 @@ def summary_unit(key: str) -> str:
     """The unit of a number of ``summary`` (SI, as the dataset; "" for words and lists of words)."""
     if key.endswith("_deflection"):
         return "m"
-    if key.endswith("_event"):
-        return "index"  # (the dataset's event index, from 0)
-    if key.startswith("n_") or key.endswith("_counts"):
-        return "count"
+    if key.endswith("_event") or key.startswith("n_") or key.endswith("_counts"):
+        return "1"  # (an event index, from 0, or a count: dimensionless in CF, as the dataset's counts)
     if key.startswith(("im_", "governing_")) or key.endswith(("_fraction", "_tolerance", "_change")):
         return "1"
     return ""
