@@ -116,3 +116,24 @@ def test_out_dir_holding_a_folder_where_a_file_goes_is_refused_before_the_run(tm
     res = runner.invoke(app, ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out-dir", str(out)])
     assert res.exit_code == 2 and "traffic-summary.json exists and is not a file" in res.stderr
     assert not (out / "traffic.nc").exists()
+
+
+def test_a_ctrl_c_while_writing_the_outputs_says_the_dataset_is_complete(tmp_path, monkeypatch):
+    """A Ctrl-C after the run, while the report, summary or figure are written: exit 130 and a line saying the
+    dataset is complete and the same command writes the rest (a trial's exited 130 without a word); the same
+    command then writes them, simulating nothing again."""
+    import vbikit.plot.traffic as plot_traffic
+
+    out = tmp_path / "out"
+    args = ["traffic", _stream(tmp_path, 3), "--bridge", BASE, "--out-dir", str(out), "--no-progress", "--workers", "1"]
+
+    def interrupted(*a, **k):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(plot_traffic, "plot_stream", interrupted)
+    res = runner.invoke(app, args)
+    assert res.exit_code == 130 and f"{out / 'traffic.nc'} is complete" in res.stderr, res.output
+    monkeypatch.undo()
+    again = runner.invoke(app, args)
+    assert again.exit_code == 0 and "already holds this finished run" in again.stdout
+    assert (out / "traffic-im.png").is_file() and (out / "traffic-summary.json").is_file()

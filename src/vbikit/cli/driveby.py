@@ -12,6 +12,7 @@ from vbikit.cli.guard import (
     STATE,
     budget_option,
     figures_option,
+    finishing,
     guard,
     input_file_argument,
     json_option,
@@ -70,4 +71,5 @@ def driveby_cmd(
         say_written(out_dir, (DATASET_FILE, ZARR_FILE, REPORT_FILE, SUMMARY_FILE, "driveby-*.png"), started)
         say_summary_file(out_dir / SUMMARY_FILE)
 
-    guard(finish)
+    with finishing(out_dir / DATASET_FILE):  # (a Ctrl-C from here on: the dataset is complete, said so)
+        guard(finish)

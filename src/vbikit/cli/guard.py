@@ -11,6 +11,8 @@ programming error and shows its traceback, as does every error with ``--debug``.
 """
 from __future__ import annotations
 
+import contextlib
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, Callable, Optional, TypeVar
 
@@ -244,6 +246,19 @@ def say(text: str, nl: bool = True) -> None:
     if STATE["json"] and STATE["quiet"]:
         return
     typer.echo(text, nl=nl, err=STATE["json"])
+
+
+@contextlib.contextmanager
+def finishing(dataset: Path) -> Iterator[None]:
+    """The outputs written after a finished run (report, summary, figures): a Ctrl-C there exits with code 130 and
+    says that the run's dataset ``dataset`` is complete and that the same command writes the rest from it (a
+    trial's Ctrl-C at the end of ``vbikit traffic`` exited 130 without a word, a figure missing)."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        typer.echo(f"\ninterrupted while writing the outputs: {dataset} is complete; run the same command again to "
+                   "write the report, summary and figures from it (nothing is simulated again)", err=True)
+        raise typer.Exit(code=130) from None
 
 
 def say_summary_file(path: Path) -> None:

@@ -14,6 +14,7 @@ from vbikit.cli.guard import (
     budget_option,
     check_out_dir,
     figures_option,
+    finishing,
     figure_file_option,
     guard,
     input_file_argument,
@@ -119,100 +120,101 @@ def traffic_cmd(
     if out_dir is not None:
         guard(lambda: out_dir.mkdir(parents=True, exist_ok=True))
     ds = run_job(job, dataset, workers, scheduler, progress, unit="event", option=option)
-    report: list[str] = []  # the lines below, on stdout (stderr with --json) and (--out-dir) in traffic-report.txt
+    with finishing(dataset):  # (a Ctrl-C from here on: the dataset is complete, said so)
+        report: list[str] = []  # the lines below, on stdout (stderr with --json) and (--out-dir) in traffic-report.txt
 
-    def say(line: str) -> None:
-        say_line(line)
-        report.append(line)
+        def say(line: str) -> None:
+            say_line(line)
+            report.append(line)
 
-    warn_dataset(ds)
-    from vbikit.analysis.population_start import start_words
+        warn_dataset(ds)
+        from vbikit.analysis.population_start import start_words
 
-    say(start_words(dict(ds.attrs)))
-    from vbikit.analysis.checks import dataset_has_flag
-    from vbikit.analysis.sample_intervals import stored_interval_text
+        say(start_words(dict(ds.attrs)))
+        from vbikit.analysis.checks import dataset_has_flag
+        from vbikit.analysis.sample_intervals import stored_interval_text
 
-    a = dict(ds.attrs)
-    if "n_events_without_impact_factor" not in a:
-        # a dataset written before 2026-12-06: its IM statistics were NaN when an event had no IM, and its count of
-        # small static references took such events in; they are read again from its events as they are now
-        # computed (its governing events kept: its half-step check is of them)
-        from vbikit.traffic.study import stream_statistics
+        a = dict(ds.attrs)
+        if "n_events_without_impact_factor" not in a:
+            # a dataset written before 2026-12-06: its IM statistics were NaN when an event had no IM, and its count of
+            # small static references took such events in; they are read again from its events as they are now
+            # computed (its governing events kept: its half-step check is of them)
+            from vbikit.traffic.study import stream_statistics
 
-        a |= {k: v for k, v in stream_statistics(ds).items() if not k.startswith("governing_")}
-    first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
-    implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
-    doubt = "!" if implausible or airborne else ""
-    n_small = int(a["n_small_static_events"])
-    n_without = int(a["n_events_without_impact_factor"])
-    small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
-        " on small static references (light vehicles, far lanes): not design values"
-    ci = {name: stored_interval_text(a, name) for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")}
-    say(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
-               "statistics are of this point)")
-    if n_small:  # the design values first: the events that load the point
-        say(f"impact factor of the events loading the point ({job.size - n_without - n_small} of {job.size}, static peak "
-                   f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
-                   f"{ci['im_mean_loaded']}{doubt}, 95th percentile {ci['im_q95_loaded']}")
-    every = f"all events with one at the point ({job.size - n_without} of {job.size})" if n_without else "all events"
-    loads = "" if n_small else " (each loads the point)" if n_without else " (every event loads the point)"
-    if n_without < job.size:
-        say(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
-                   f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events "
-                   f"with {_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
-                   + (f"; {small_words}" if n_small else ""))
-    else:  # (not "mean n/a, max nan" of "all events with one at the point (0 of 2) (each loads the point)")
-        say(f"impact factor: no event has one at the point ({job.size} of {job.size} without a usable static "
-                   "reference): no IM statistics")
-    if 0 < n_without < job.size:
-        say(f"  ({n_without} event{'' if n_without == 1 else 's'} without an impact factor at the point (NaN: "
-                   "no usable static reference) left out of these statistics)")
-    if n_without < job.size and any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
-        say("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
-    if implausible:
-        say("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
-                   "warning; no statistic of this stream is a result")
-    if airborne:
-        say(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
-                   "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
+            a |= {k: v for k, v in stream_statistics(ds).items() if not k.startswith("governing_")}
+        first = ds.isel(point=0) if "point" in ds.dims else ds  # the statistics are of the first response point
+        implausible, airborne = dataset_has_flag(a, "implausible_deflection"), dataset_has_flag(a, "airborne_wheels")
+        doubt = "!" if implausible or airborne else ""
+        n_small = int(a["n_small_static_events"])
+        n_without = int(a["n_events_without_impact_factor"])
+        small_words = ("the other event's IM rests" if n_small == 1 else f"the other {n_small} events' IMs rest") + \
+            " on small static references (light vehicles, far lanes): not design values"
+        ci = {name: stored_interval_text(a, name) for name in ("im_mean", "im_q95", "im_mean_loaded", "im_q95_loaded")}
+        say(f"deflection impact factors at {_first_point_words(job.context().plan.points[0])} (the stream's "
+                   "statistics are of this point)")
+        if n_small:  # the design values first: the events that load the point
+            say(f"impact factor of the events loading the point ({job.size - n_without - n_small} of {job.size}, static peak "
+                       f"≥ {float(a['small_static_fraction']):.0%} of the stream's largest): mean "
+                       f"{ci['im_mean_loaded']}{doubt}, 95th percentile {ci['im_q95_loaded']}")
+        every = f"all events with one at the point ({job.size - n_without} of {job.size})" if n_without else "all events"
+        loads = "" if n_small else " (each loads the point)" if n_without else " (every event loads the point)"
+        if n_without < job.size:
+            say(f"impact factor of {every}{loads}: mean {ci['im_mean']}{doubt}, "
+                       f"95th percentile {ci['im_q95']}, max {float(first['impact_factor'].max()):.4f}; mean of the events "
+                       f"with {_group_mean('one vehicle', a['im_mean_single'])}, {_group_mean('several', a['im_mean_multiple'])}"
+                       + (f"; {small_words}" if n_small else ""))
+        else:  # (not "mean n/a, max nan" of "all events with one at the point (0 of 2) (each loads the point)")
+            say(f"impact factor: no event has one at the point ({job.size} of {job.size} without a usable static "
+                       "reference): no IM statistics")
+        if 0 < n_without < job.size:
+            say(f"  ({n_without} event{'' if n_without == 1 else 's'} without an impact factor at the point (NaN: "
+                       "no usable static reference) left out of these statistics)")
+        if n_without < job.size and any("?" in ci[n] for n in ("im_mean", "im_q95") + (("im_mean_loaded", "im_q95_loaded") if n_small else ())):
+            say("  (95 % CI: of the statistic over this stream's events; ?: too few events to bound that end)")
+        if implausible:
+            say("! not meaningful: implausible static deflections (a likely unit mistake in the bridge) — see the "
+                       "warning; no statistic of this stream is a result")
+        if airborne:
+            say(f"! not design values: {int(a['n_airborne_events'])} of {job.size} events had wheels airborne on the "
+                       "bridge (event variable airborne_wheels) — see the warning; the road is beyond the model's range")
 
-    from vbikit.outputs import report_unit
+        from vbikit.outputs import report_unit
 
-    unit, to_unit = report_unit("m")
+        unit, to_unit = report_unit("m")
 
-    def event(name: str, peak: str) -> str:  # the dataset's event index (from 0), its peak and when it starts
-        e = int(a[f"governing_{name}_event"])
-        return (f"{abs(float(first[peak].values[e])) * to_unit:.3f} {unit}, event {e} (starts at "
-                f"t = {float(ds['event_start'].values[e]):.1f} s)")
+        def event(name: str, peak: str) -> str:  # the dataset's event index (from 0), its peak and when it starts
+            e = int(a[f"governing_{name}_event"])
+            return (f"{abs(float(first[peak].values[e])) * to_unit:.3f} {unit}, event {e} (starts at "
+                    f"t = {float(ds['event_start'].values[e]):.1f} s)")
 
-    say(f"largest static deflection: {event('static', 'max_static_displacement')}, dynamic amplification "
-        f"{a['governing_static_amplification']:.4f}; largest dynamic deflection: "
-        f"{event('dynamic', 'max_dynamic_displacement')}, {a['governing_dynamic_amplification']:.4f} × the largest "
-        "static one (at the first point; events: the dataset's index, from 0)")
-    step = dataset_has_flag(a, "stream_step_sensitive")
-    changes = {int(a[f"governing_{w}_event"]): float(a[f"governing_{w}_half_step_im_change"]) for w in ("static", "dynamic")}
-    say(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
-               + ", ".join(f"{c:+.1e} (event {e})" if math.isfinite(c) else f"not checked (event {e}: above the budget)"
-                           for e, c in changes.items())
-               + f" (absolute, the deflection IM at the first point; flagged above {float(a['half_step_tolerance']):g})")
-    others = [(abs(c), name, int(a[f"governing_{w}_event"]), c) for w in ("static", "dynamic")
-              for name, c in json.loads(a[f"governing_{w}_half_step_changes"]).items()
-              if name != "impact_factor" and math.isfinite(c)]
-    if others:
-        _, name, event, change = max(others)
-        say(f"{'!' if step else ''}  their other impact factors: the largest change {change:+.1e} ({name}, event {event})")
-    if plot is not None:
-        from vbikit.plot.traffic import plot_stream
+        say(f"largest static deflection: {event('static', 'max_static_displacement')}, dynamic amplification "
+            f"{a['governing_static_amplification']:.4f}; largest dynamic deflection: "
+            f"{event('dynamic', 'max_dynamic_displacement')}, {a['governing_dynamic_amplification']:.4f} × the largest "
+            "static one (at the first point; events: the dataset's index, from 0)")
+        step = dataset_has_flag(a, "stream_step_sensitive")
+        changes = {int(a[f"governing_{w}_event"]): float(a[f"governing_{w}_half_step_im_change"]) for w in ("static", "dynamic")}
+        say(f"{'!' if step else ''}the governing event{'s' if len(changes) > 1 else ''} at half the time step: IM changes by "
+                   + ", ".join(f"{c:+.1e} (event {e})" if math.isfinite(c) else f"not checked (event {e}: above the budget)"
+                               for e, c in changes.items())
+                   + f" (absolute, the deflection IM at the first point; flagged above {float(a['half_step_tolerance']):g})")
+        others = [(abs(c), name, int(a[f"governing_{w}_event"]), c) for w in ("static", "dynamic")
+                  for name, c in json.loads(a[f"governing_{w}_half_step_changes"]).items()
+                  if name != "impact_factor" and math.isfinite(c)]
+        if others:
+            _, name, event, change = max(others)
+            say(f"{'!' if step else ''}  their other impact factors: the largest change {change:+.1e} ({name}, event {event})")
+        if plot is not None:
+            from vbikit.plot.traffic import plot_stream
 
-        guard(lambda: plot_stream(ds, plot))
-        say_line(f"figure {plot}")
-    if out_dir is not None:
-        guard(lambda: _write_folder(ds, out_dir, report, figures))
-        say_summary_file(out_dir / SUMMARY_FILE)
-    else:  # (--out: the dataset only; the summary's object all the same)
-        from vbikit.traffic.summary import summary
+            guard(lambda: plot_stream(ds, plot))
+            say_line(f"figure {plot}")
+        if out_dir is not None:
+            guard(lambda: _write_folder(ds, out_dir, report, figures))
+            say_summary_file(out_dir / SUMMARY_FILE)
+        else:  # (--out: the dataset only; the summary's object all the same)
+            from vbikit.traffic.summary import summary
 
-        say_json(guard(lambda: summary(ds, dataset.name)))
+            say_json(guard(lambda: summary(ds, dataset.name)))
 
 
 def _one_output() -> None:
