@@ -72,10 +72,25 @@ def test_compare_tires_writes_figure_and_table(tmp_path, with_defects):
         # minus the 3-mode truncation (< 0.3 %): at α = v/(2 f1 L) = 20/(2 × 22.2 × 10) = 0.045 the
         # moving-force amplification is ≈ 1.04 > 1 (Frýba; model data §5)
         assert -row["max_dynamic_displacement"] > 0.997 * 5750 * 9.81 * 10.0**3 / (48 * 1e10)
+        # scripts read units and flag codes as from vbikit run's JSON (CF spelling; the codes, never the words)
+        assert row["units"]["max_abs_acceleration"] == "m s-2" and row["units"]["impact_factor"] == "1"
+        assert row["units"]["min_tire_force"] == "N" and row["response_x"] == 5.0
+        assert [f["message"] for f in row["flags"]] == [w for w in row["warnings"] if w in {f["message"] for f in row["flags"]}]
     if not with_defects:
         # smooth road: the rigid disk acts through its centre point like the point tire
         assert table["rigid disk"]["max_dynamic_displacement"] == pytest.approx(table["point"]["max_dynamic_displacement"],
                                                                                 rel=1e-9)
+
+
+def test_the_multipoint_tire_takes_the_scenario_s_n_points(tmp_path):
+    """Without --n-points the multi-point tire is the scenario's own (a trial's file with n_points = 3 was compared
+    with 6 points, silently); --n-points overrides it."""
+    path = write(tmp_path, SMALL + '[tire]\nmodel = "multipoint"\nn_points = 3\n')
+    table = json.loads(runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path), "--json"]).stdout)
+    assert "multipoint (n = 3)" in table
+    table = json.loads(runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path), "--json",
+                                           "--n-points", "5"]).stdout)
+    assert "multipoint (n = 5)" in table
 
 
 def test_compare_tires_text_output(tmp_path):

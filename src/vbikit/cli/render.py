@@ -82,9 +82,9 @@ def print_summary(run: Run) -> None:
     start_line(s)
     coarse = coarse_step(s)
     implausible = has_flag(s, "implausible_deflection")
-    doubt = airborne or coarse or implausible
+    doubt, strain_doubt = impact_doubts(s)
     typer.echo(f"  IMPACT FACTOR        IM = {_im(s['impact_factor'])}{'!' if doubt else ''}  "
-               f"(strain IM = {_im(s['strain_impact_factor'])}{'!' if doubt or strain_off else ''})")
+               f"(strain IM = {_im(s['strain_impact_factor'])}{'!' if strain_doubt else ''})")
     if implausible:
         typer.echo(f"  {'':<20} ! implausible: the static deflection is far beyond any bridge's under this load — "
                    "check the units of the bridge's stiffness and mass (see the first warning); no result of this "
@@ -150,6 +150,16 @@ def acceleration_in_doubt(s: dict[str, Any], i: int) -> bool:
     ``max_abs_acceleration``) is in doubt: a given step flagged too coarse, or the step checks found it unconverged."""
     names = {f"points[{s['points'][i]['name']}].max_abs_acceleration"} | ({"max_abs_acceleration"} if i == 0 else set())
     return coarse_step(s) or bool(names & unsettled_outputs(s))
+
+
+def impact_doubts(s: dict[str, Any]) -> tuple[bool, bool]:
+    """Whether the headline deflection IM and strain IM of a run's summary are in doubt (the report's "!"): wheels
+    airborne on the bridge, a given step flagged too coarse, an implausible static deflection; the strain IM also
+    when the modes' strain is not converged."""
+    from vbikit.analysis.checks import has_flag
+
+    doubt = has_flag(s, "airborne_wheels") or coarse_step(s) or has_flag(s, "implausible_deflection")
+    return doubt, doubt or has_flag(s, "strain_not_converged")
 
 
 def coarse_step(s: dict[str, Any]) -> bool:

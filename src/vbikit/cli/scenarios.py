@@ -113,26 +113,34 @@ def _n_points(n_points: int) -> int:
 def compare_tires(
     scenario: Path = typer.Argument(..., metavar="SCENARIO.toml", help="TOML scenario file (its [tire] section is replaced by each model)."),
     out_dir: Path = out_dir_option("Where to write the figure and the table."),
-    n_points: int = typer.Option(6, "--n-points", help="Points of the multi-point tire (its tire.n_points, 1 … 100)."),
+    n_points: Optional[int] = typer.Option(None, "--n-points", help="Points of the multi-point tire (tire.n_points, "
+                                           "1 … 100); default: the scenario's tire.n_points where its tire is "
+                                           "multipoint, else 6."),
     as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),
 ) -> None:
     """Run one crossing with each tire model (point, multipoint, disk, rigid disk); figure like the
     paper's Fig. 9 and a table of peaks and impact factors."""
     import time
 
+    from vbikit.analysis.response import summary_units
     from vbikit.plot import plot_tire_comparison
     from vbikit.scenario import load_scenario
     from vbikit.solve.compile_notice import announced_kernels
 
-    guard(lambda: _n_points(n_points))
+    if n_points is not None:
+        guard(lambda: _n_points(n_points))
     base = guard(lambda: load_scenario(scenario), file=scenario)
+    if n_points is None:  # (the file's own multi-point tire, as every other key of the file is its own)
+        n_points = int(getattr(base.tire, "n_points", None) or 6) if base.tire.model == "multipoint" else 6
     models = {
         "point": {"model": "point"},
         f"multipoint (n = {n_points})": {"model": "multipoint", "n_points": n_points},
         "disk": {"model": "disk"},
         "rigid disk": {"model": "rigid-disk"},
     }
-    responses, table, warnings = {}, {}, {}
+    from vbikit.cli.render import acceleration_in_doubt, impact_doubts
+
+    responses, table, warnings, marks = {}, {}, {}, {}
     for label, tire in models.items():
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
@@ -140,6 +148,7 @@ def compare_tires(
         run_ = execute(lambda spec=spec: spec, print_warnings=False, file=scenario)
         s = run_.summary
         warnings[label] = (s["warnings"], s["flags"])
+        marks[label] = (*impact_doubts(s), acceleration_in_doubt(s, 0))
         responses[label] = run_.response
         table[label] = {
             "max_dynamic_displacement": s["max_dynamic_displacement"],
@@ -153,7 +162,12 @@ def compare_tires(
             # the kernels numba compiled for the first time in this run (their compilation is in "seconds")
             "compiled_kernels": sorted(announced_kernels() - compiled_before),
             "warnings": s["warnings"],  # every one, as its run gave it (stderr: one line per distinct warning)
+            "flags": s["flags"],  # (the codes scripts read, vbikit.analysis.checks)
+            "response_x": s["response_x"], "response_y": s["response_y"],
         }
+        # every number's unit, as vbikit run's JSON spells it (the two keys of this table only: theirs)
+        table[label]["units"] = {k: v for k, v in summary_units(table[label]).items() if v} | {"min_tire_force": "N",
+                                                                                               "seconds": "s"}
     warn(grouped_warnings(warnings, "tire", kept=f", each in {out_dir / 'compare-tires.json'}"))
     fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
     guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
@@ -168,10 +182,13 @@ def compare_tires(
     typer.echo(f"  {'tire model':<20} {f'u_max [{mm}]':>10} {'IM [-]':>7} {'ε_max [µε]':>11} {'IM_ε [-]':>8} "
                f"{'|a|max [m/s²]':>13} {f'F_min [{kn}]':>10} {'time [s]':>8}")
     for label, row in table.items():
-        typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * to_mm:10.4f} {row['impact_factor']:7.4f} "
-                   f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f} "
-                   f"{row['max_abs_acceleration']:13.4f} {row['min_tire_force'] * to_kn:10.2f} {row['seconds']:8.2f}"
-                   + (" *" if row["compiled_kernels"] else ""))
+        im, strain, acceleration = ("!" if m else " " for m in marks[label])  # (as vbikit run marks them)
+        typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * to_mm:10.4f} {row['impact_factor']:7.4f}{im}"
+                   f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f}{strain}"
+                   f"{row['max_abs_acceleration']:13.4f}{acceleration}"
+                   f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:8.2f}" + (" *" if row["compiled_kernels"] else ""))
+    if any(any(m) for m in marks.values()):
+        typer.echo("  ! a flag of that model's run puts the value in doubt, as vbikit run marks it: see its warning above")
     if any(row["compiled_kernels"] for row in table.values()):
         typer.echo("  * its time [s] (wall clock) includes numba's first compilation of a kernel, once a machine; "
                    "later runs take a fraction of it (`vbikit compile` compiles every kernel in advance)")

@@ -216,7 +216,9 @@ def _paper(*figs: str) -> Callable[..., None]:
         workers: Optional[int] = _WORKERS,
         scheduler: Optional[str] = _SCHEDULER,
         progress: bool = _PROGRESS,
-        dump: bool = typer.Option(False, "--print-spec", help="Print the study as TOML-equivalent JSON and exit."),
+        dump: bool = typer.Option(False, "--print-spec", help="Print the study as its dataset's `study` attribute "
+                                  "holds it (JSON; resolve, when present, is derived from its outputs, not a key of a "
+                                  "study file) and exit."),
         beam: bool = typer.Option(False, "--beam", help="Use the beam stand-ins (whole section) instead of the 3D "
                                                         "bridges at Girder 4."),
         method: str = typer.Option("monte-carlo", "--method", help="monte-carlo (the paper's: --samples roads a "
