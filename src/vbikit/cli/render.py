@@ -272,6 +272,8 @@ def print_load_effects(s: dict[str, Any]) -> None:
     typer.echo(f"  load effects ({method}; {moment_unit} / {force_unit}; IM beside {beside})")
     # the marks come from the flags (their subject is the effect's label), never from the warnings' words
     unresolved = {f.get("subject") for f in s.get("flags", []) if f["code"] == "effect_step"} - {None}
+    # a given step too coarse, wheels airborne or an implausible deflection: every IM of the run in doubt (as the headline's)
+    every_doubted = impact_doubts(s)[0]
     hogging_jtg = False
     for kind, e in rows:
         unit = report_unit("N m" if kind == "moment" else "N")[1]
@@ -279,7 +281,7 @@ def print_load_effects(s: dict[str, Any]) -> None:
         if e.get("girder"):
             where += f", girder {e['girder']}"
         c = e.get("code_allowances", {})
-        mark = "!" if e.get("label") in unresolved or coarse_step(s) else " "
+        mark = "!" if e.get("label") in unresolved or every_doubted else " "
         jtg = kind == "moment" and e.get("hogging_region") and "jtg_d60_2015" in keys
         hogging_jtg |= bool(jtg)
         codes = " / ".join(f"{c.get(k, float('nan')):.3f}{'?' if jtg and k == 'jtg_d60_2015' else ''}" for k in keys)
