@@ -52,11 +52,13 @@ def test_a_study_on_a_beam_with_ei_in_kilonewtons_says_so(tmp_path):
     ok = _study(GOOD_EI, tmp_path, "ok")
     assert -ok["max_static_displacement"].values == pytest.approx(_four_modes(GOOD_EI), rel=1e-4)
     assert _closed_form(GOOD_EI) < IMPLAUSIBLE_DEFLECTION_FRACTION * L
-    assert "warnings" not in ok.attrs and "flag_codes" not in ok.attrs
+    # (its four modes' strain is flagged, as vbikit run flags it: strain_not_converged; not an implausible deflection)
+    assert "implausible_deflection" not in ok.attrs.get("flag_codes", "")
+    assert "implausible" not in ok.attrs.get("warnings", "")
     bad = _study(BAD_EI, tmp_path, "bad")
     assert -bad["max_static_displacement"].values == pytest.approx(_four_modes(BAD_EI), rel=1e-4)
     assert _closed_form(BAD_EI) > IMPLAUSIBLE_DEFLECTION_FRACTION * L
-    assert bad.attrs["flag_codes"] == "implausible_deflection"
+    assert bad.attrs["flag_codes"].split(",")[0] == "implausible_deflection"  # (first: the likely cause of the rest)
     text = bad.attrs["warnings"]
     assert "in 3 of 3 crossings" in text and IMPLAUSIBLE_DEFLECTION_ADVICE in text
     assert f"L/{L / _four_modes(BAD_EI):.3g}" in text  # the largest as a fraction of the span: L/6.39

@@ -1018,6 +1018,31 @@ def convergence_flags(result: CrossingResult) -> list[Flag]:
                  output="unconverged_steps", value=float(n), threshold=0.0)]
 
 
+def strain_mode_dataset_flags(errors: ArrayLike, names: Sequence[str] | None = None,
+                              describe: Callable[[tuple[int, ...]], str] | None = None) -> list[Flag]:
+    """``strain_convergence_flags``' rule over a study's crossings: ``errors`` (..., points) each crossing's relative
+    error of the modes' static strain peak against the exact one per response point (NaN: not known;
+    ``names``: the points' names, None for the one [response] point); one ``strain_not_converged`` flag when any is
+    beyond ``STRAIN_MODE_TOLERANCE``: how many crossings, the worst, its point and crossing (``describe``)."""
+    e = np.asarray(errors, float)
+    bad = np.abs(np.nan_to_num(e, nan=0.0)) > STRAIN_MODE_TOLERANCE
+    if not bad.any():
+        return []
+    k = int(np.argmax(np.abs(np.nan_to_num(e, nan=0.0))))
+    index = tuple(int(i) for i in np.unravel_index(k, e.shape))
+    point = None if names is None else str(names[index[-1]])
+    crossing = describe(index[:-1]) if describe else f"crossing {k // e.shape[-1]}"
+    n_bad, n = int(bad.any(axis=-1).sum()), int(np.prod(e.shape[:-1], dtype=np.int64))
+    where = f" at point {point}" if point else ""
+    return [Flag("strain_not_converged",
+                 f"strain not converged in the modes in {n_bad} of {counted(n, 'crossing', thousands=True)}: the static "
+                 f"strain peak of the modes is up to {float(e.reshape(-1)[k]):+.1%} off the exact one{where} "
+                 f"({crossing}; flagged beyond {STRAIN_MODE_TOLERANCE:.0%}): those crossings' strain and strain IM "
+                 "are not reliable; use more modes (bridge.n_modes) or the moment's IM (vbikit run of such a crossing "
+                 "says more)", output="strain_impact_factor", point=point, value=float(e.reshape(-1)[k]),
+                 threshold=STRAIN_MODE_TOLERANCE)]
+
+
 def unconverged_dataset_flags(counts: ArrayLike, unit: str = "crossing",
                               describe: Callable[[tuple[int, ...]], str] | None = None,
                               plural: str | None = None) -> list[Flag]:

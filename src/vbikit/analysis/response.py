@@ -422,6 +422,19 @@ def _deck_static_strain_peak(result: CrossingResult, response: PointResponse) ->
     return float(static[np.argmax(np.abs(static))])
 
 
+def strain_mode_errors(result: CrossingResult, plan: ResponsePlan,
+                       xi_static: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+    """Per point of ``plan`` (its order): the relative error of the modes' static strain peak against the exact one,
+    (modal − exact) / |exact| (``exact_static_strain_peak``; NaN where the bridge offers none) — what
+    ``strain_convergence_flags`` judges for a single run.  The static reference does not read the road: a study
+    computes it once a batch (``vbikit.study.compute.run_batch``)."""
+    out = []
+    for r in plan_responses(result, plan, xi_static):
+        exact = exact_static_strain_peak(result, r)
+        out.append(math.nan if not exact else (float(r.strain_impact.static_peak) - exact) / abs(exact))
+    return np.array(out, float)
+
+
 def strain_warnings(result: CrossingResult, response: PointResponse) -> list[Flag]:
     """The strain-convergence flag (``vbikit.analysis.checks.strain_convergence_flags``) of the
     headline point (``point_name(1)``): its static strain peak from the modes against ``exact_static_strain_peak``."""

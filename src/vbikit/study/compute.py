@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 from vbikit._kept import Kept
 from vbikit.analysis.effects import ContactInfluences, contact_influence_table, load_effect_responses
 from vbikit.analysis.plan import point_name
-from vbikit.analysis.response import reduce_crossing
+from vbikit.analysis.response import reduce_crossing, strain_mode_errors
 from vbikit.outputs import as_number, effect_kinds, outputs
 from vbikit.road.profile import RoadProfile
 from vbikit.scenario.build import build, build_right_road, build_road
@@ -23,6 +23,10 @@ from vbikit.study.spec import Study
 #: a part's array of each crossing's longest span [m] (not an output: the dataset's implausible-deflection
 #: check, ``vbikit.analysis.checks.implausible_deflection_dataset_flags``, reads it)
 LONGEST_SPAN = "longest_span"
+#: a part's array of each crossing's strain-mode error per response point (``vbikit.analysis.response.strain_mode_errors``,
+#: once a batch: the static reference does not read the road), where the study stores strain; not an output: the
+#: dataset's strain-convergence check (``study_flag_attrs``) reads it; a part of an earlier version lacks it
+STRAIN_MODE_ERROR = "strain_mode_error"
 
 
 def point_names(base: dict) -> list[str] | None:
@@ -77,7 +81,8 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     default the whole catalogue [`vbikit.outputs`][vbikit.outputs]; only these are reduced, and load
     effects only of the kinds they read), an array of length
     len(batch) (per-crossing outputs) or (len(batch), n_points) (per-point outputs, the base
-    scenario's response points in order); ``index`` (len(batch), n_axes), ``LONGEST_SPAN`` (len(batch),) [m]
+    scenario's response points in order); ``index`` (len(batch), n_axes), ``LONGEST_SPAN`` (len(batch),) [m],
+    ``STRAIN_MODE_ERROR`` (len(batch), n_points) where the study stores the strain IM
     (the batch's bridge's longest span, the same for every crossing of a batch) and, if the study
     stores histories, ``displacement_history`` (len(batch), n_t) [m] at the first point (rows
     padded with NaN to the longest)."""
@@ -103,10 +108,15 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
         return dict(zip(kinds, load_effect_responses(result, effects, plan.load_effect_method,
                                                      influence=influence.get(result.dt), check_step=False)))
 
+    strain = "strain_impact_factor" in {o.name for o in outputs("point", names)}
+    strain_errors: list[NDArray] = []  # the batch's strain-mode errors (one static reference a batch)
+
     def reduce(result):
         check_finite(result)
         if result.dt not in static:
             static[result.dt] = solver.static_modal(result.dt)
+        if strain and not strain_errors:
+            strain_errors.append(strain_mode_errors(result, plan, static[result.dt]))
         points, row = reduce_crossing(result, plan, static[result.dt], effect_responses(result), names)
         return points, row, (result.xi @ phi_first if study.histories else None)
 
@@ -114,6 +124,8 @@ def run_batch(study: Study, batch: tuple[tuple[int, ...], ...], threads: int = 1
     out = stack_outputs(rows, names)
     out["index"] = np.array(batch, np.int64).reshape(len(batch), len(study.axes))
     out[LONGEST_SPAN] = np.full(len(batch), max(built.crossing.bridge.span_lengths))  # one bridge a batch
+    if strain_errors:
+        out[STRAIN_MODE_ERROR] = np.tile(strain_errors[0], (len(batch), 1))
     if study.histories:
         n_t = max(r[2].size for r in rows)
         hist = np.full((len(rows), n_t), np.nan)

@@ -47,7 +47,7 @@ from numpy.typing import NDArray
 from vbikit._files import OutputError, atomic_write, write_text
 from vbikit.scenario.schema import key_unit
 from vbikit.outputs import OUTPUTS, outputs
-from vbikit.study.compute import LONGEST_SPAN, point_names, run_batch
+from vbikit.study.compute import LONGEST_SPAN, STRAIN_MODE_ERROR, point_names, run_batch
 from vbikit.study.spec import Study, StudyError, cf_key_unit as _cf_unit
 from vbikit.study.storage import load_part, lock_output, part_bytes, part_checksums, part_path, parts_dir, save_part
 from vbikit._validation import default_workers
@@ -452,22 +452,26 @@ def _open_complete(out: Path, study: Study):
 
 
 def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[str, NDArray],
-                     spans: NDArray) -> dict[str, str]:
+                     spans: NDArray, strain_errors: Optional[NDArray] = None) -> dict[str, str]:
     """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``):
     an implausible static deflection in any crossing (``implausible_deflection_dataset_flags``: its
     peak ``max_static_displacement`` against the crossing's longest span ``spans`` [m]), the response
     points whose impact factor rests on a small static reference (``small_static_dataset_warnings``)
-    and crossings whose contact forces did not converge in some steps (``unconverged_dataset_flags``);
-    each needs its output among the study's outputs (``max_static_displacement``; for the second
-    ``impact_factor`` and several points too; ``unconverged_steps``)."""
+    crossings whose contact forces did not converge in some steps (``unconverged_dataset_flags``) and crossings
+    whose strain is not converged in the modes (``strain_errors``, per crossing and point: ``strain_mode_errors``;
+    ``strain_mode_dataset_flags``); each needs its output among the study's outputs (``max_static_displacement``;
+    for the second ``impact_factor`` and several points too; ``unconverged_steps``; ``strain_impact_factor``)."""
     from vbikit.analysis.checks import (dataset_flag_attrs, implausible_deflection_dataset_flags,
-                                        small_static_dataset_warnings, unconverged_dataset_flags)
+                                        small_static_dataset_warnings, strain_mode_dataset_flags,
+                                        unconverged_dataset_flags)
 
-    def describe(index: tuple[int, ...]) -> str:
-        return "the crossing at " + ", ".join(f"{a.key} = {a.scenario_value(i)}" for a, i in zip(study.axes, index)) \
-            if study.axes else "the crossing"
+    def describe(index: tuple[int, ...]) -> str:  # (a file by its name, as the coordinate: no folder in a dataset)
+        return "the crossing at " + ", ".join(
+            f"{a.key} = {a.scenario_value(i) if a.seeds is not None else a.coordinate_values[i]}"
+            for a, i in zip(study.axes, index)) if study.axes else "the crossing"
 
-    if "max_static_displacement" not in data and "unconverged_steps" not in data:
+    strain = strain_errors is not None and "strain_impact_factor" in data and bool(np.isfinite(strain_errors).any())
+    if "max_static_displacement" not in data and "unconverged_steps" not in data and not strain:
         return {}
     flags = []
     small: list = []
@@ -478,6 +482,8 @@ def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[st
                  if names is not None and len(names) > 1 and "impact_factor" in data else [])
     if "unconverged_steps" in data:
         flags += unconverged_dataset_flags(data["unconverged_steps"], describe=describe)
+    if strain:
+        flags += strain_mode_dataset_flags(strain_errors, names, describe=describe)
     return dataset_flag_attrs(flags, {"small_static": small})
 
 
@@ -497,6 +503,7 @@ def assemble(study: Study, parts: Path):
             for o in outputs(names=selected)}
     hist_parts = []
     spans = np.full(shape, np.nan)  # each crossing's longest span [m]
+    strain_errors = np.full(shape + (n_points,), np.nan)  # each crossing's strain-mode error per point (NaN: none)
     sums = part_checksums(parts)
     for k in range(len(batches)):
         path = part_path(parts, k)
@@ -515,6 +522,12 @@ def assemble(study: Study, parts: Path):
             spans[idx] = part[LONGEST_SPAN]
         else:
             spans[()] = part[LONGEST_SPAN][0]
+        if STRAIN_MODE_ERROR in part:  # (a part of an earlier version has none: not judged)
+            errors = np.asarray(part[STRAIN_MODE_ERROR]).reshape(-1, n_points)
+            if shape:
+                strain_errors[idx] = errors
+            else:
+                strain_errors[()] = errors[0]
         if study.histories:
             hist_parts.append((idx, part["displacement_history"]))
     variables = output_variables(data, dims, names, selected)
@@ -549,5 +562,5 @@ def assemble(study: Study, parts: Path):
         "axes": json.dumps({a.name: a.key for a in study.axes}),
         "Conventions": "CF-1.8",
     }
-    attrs |= study_flag_attrs(study, names, data, spans)
+    attrs |= study_flag_attrs(study, names, data, spans, strain_errors)
     return xr.Dataset(variables, coords=coords, attrs=attrs)
