@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 
 from vbikit.analysis.checks import NEGATIVE_IM_NOTE
 from vbikit.cli import app
-from vbikit.cli.render import _im
+from vbikit.cli.render import im_text as _im
 
 ROOT = Path(__file__).resolve().parents[2]
 runner = CliRunner()

@@ -675,6 +675,15 @@ DECK_STRAIN_ADVICE = ("on a girder deck the modes' strain converges slowly and n
                       "serviceability checks")
 
 
+def strain_mode_error(modal_static_peak: float, exact_static_peak: float | None) -> float:
+    """The relative error of the modes' static strain peak against the exact one, (modal − exact) / |exact|
+    (NaN where the exact peak is not known or zero): what ``strain_convergence_flags`` and
+    ``strain_mode_dataset_flags`` judge against ``STRAIN_MODE_TOLERANCE``."""
+    if exact_static_peak is None or not exact_static_peak:
+        return math.nan
+    return (float(modal_static_peak) - float(exact_static_peak)) / abs(float(exact_static_peak))
+
+
 def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float | None, n_modes: int,
                              where: str = "", point: str | None = None, deck: bool = False) -> list[Flag]:
     """A flag when the static strain peak of the modes ``modal_static_peak`` differs from the exact
@@ -684,10 +693,8 @@ def strain_convergence_flags(modal_static_peak: float, exact_static_peak: float 
     of the full stiffness's static solution and whose modes converge to it slowly and not
     monotonically (``vbikit.analysis.response.exact_static_strain_peak``): the advice names that, and
     which substitute to sign with (``DECK_STRAIN_ADVICE``)."""
-    if exact_static_peak is None or not exact_static_peak:
-        return []
-    err = (float(modal_static_peak) - float(exact_static_peak)) / abs(float(exact_static_peak))
-    if abs(err) <= STRAIN_MODE_TOLERANCE:
+    err = strain_mode_error(modal_static_peak, exact_static_peak)
+    if math.isnan(err) or abs(err) <= STRAIN_MODE_TOLERANCE:
         return []
     reference, advice = (
         ("the strain of the grid's full-stiffness static solution", DECK_STRAIN_ADVICE) if deck else

@@ -10,7 +10,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.checks import Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags
+from vbikit.analysis.checks import (Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags,
+                                    strain_mode_error)
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
@@ -428,11 +429,8 @@ def strain_mode_errors(result: CrossingResult, plan: ResponsePlan,
     (modal − exact) / |exact| (``exact_static_strain_peak``; NaN where the bridge offers none) — what
     ``strain_convergence_flags`` judges for a single run.  The static reference does not read the road: a study
     computes it once a batch (``vbikit.study.compute.run_batch``)."""
-    out = []
-    for r in plan_responses(result, plan, xi_static):
-        exact = exact_static_strain_peak(result, r)
-        out.append(math.nan if not exact else (float(r.strain_impact.static_peak) - exact) / abs(exact))
-    return np.array(out, float)
+    return np.array([strain_mode_error(r.strain_impact.static_peak, exact_static_strain_peak(result, r))
+                     for r in plan_responses(result, plan, xi_static)], float)
 
 
 def strain_warnings(result: CrossingResult, response: PointResponse) -> list[Flag]:

@@ -99,10 +99,10 @@ DOUBT_EVERY_IM = frozenset({"lift_off", "coarse_grid"})
 def _impact_lines(e: dict, mark: str) -> None:
     """A point's or load effect's impact-factor statistics: mean ± standard deviation with the mean's sampling error
     (over the Gaussian histories drawn) and the quantiles, ``mark`` ("!": in doubt) beside the numbers."""
-    from vbikit.cli.render import _im
+    from vbikit.cli.render import im_text
 
-    q = ", ".join(f"{float(k):.0%}: {_im(v)}{mark}" for k, v in e["impact_factor_quantiles"].items())
-    typer.echo(f"    impact factor      {_im(e['impact_factor_mean']):>9}{mark} ± {e['impact_factor_std']:.4f}   quantiles {q}")
+    q = ", ".join(f"{float(k):.0%}: {im_text(v)}{mark}" for k, v in e["impact_factor_quantiles"].items())
+    typer.echo(f"    impact factor      {im_text(e['impact_factor_mean']):>9}{mark} ± {e['impact_factor_std']:.4f}   quantiles {q}")
     if "impact_factor_sampling_error" in e:
         typer.echo(f"    {'':<18} (the mean's sampling error ±{e['impact_factor_sampling_error']:.4f}, "
                    f"{e['impact_factor_samples']:,} Gaussian histories)")

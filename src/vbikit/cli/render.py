@@ -83,8 +83,8 @@ def print_summary(run: Run) -> None:
     coarse = coarse_step(s)
     implausible = has_flag(s, "implausible_deflection")
     doubt, strain_doubt = impact_doubts(s)
-    typer.echo(f"  IMPACT FACTOR        IM = {_im(s['impact_factor'])}{'!' if doubt else ''}  "
-               f"(strain IM = {_im(s['strain_impact_factor'])}{'!' if strain_doubt else ''})")
+    typer.echo(f"  IMPACT FACTOR        IM = {im_text(s['impact_factor'])}{'!' if doubt else ''}  "
+               f"(strain IM = {im_text(s['strain_impact_factor'])}{'!' if strain_doubt else ''})")
     if implausible:
         typer.echo(f"  {'':<20} ! implausible: the static deflection is far beyond any bridge's under this load — "
                    "check the units of the bridge's stiffness and mass (see the first warning); no result of this "
@@ -101,7 +101,7 @@ def print_summary(run: Run) -> None:
         moment = _moment_at(s, s["response_x"])
         if "governing_girder" in s and moment is not None:
             girder = f", girder {moment['girder']}" if moment.get("girder") else ""
-            typer.echo(f"  {'':<20}   the moment IM at x = {moment['x']:.2f} m{girder}: {_im(moment['impact_factor'])}")
+            typer.echo(f"  {'':<20}   the moment IM at x = {moment['x']:.2f} m{girder}: {im_text(moment['impact_factor'])}")
     realisation = find_flag(s, "one_realisation")
     if realisation is not None:
         seed = "" if realisation.get("value") is None else f" (seed {realisation['value']:.0f})"
@@ -234,7 +234,7 @@ def start_line(s: dict) -> None:
                f"part of this IM; {remedy}")
 
 
-def _im(value: float) -> str:
+def im_text(value: float) -> str:
     """An impact factor to 4 decimals, a value that rounds to zero printed as 0.0000 (not −0.0000)."""
     return f"{0.0 if abs(value) < 5e-5 else value:.4f}"
 
@@ -286,11 +286,11 @@ def print_load_effects(s: dict[str, Any]) -> None:
         hogging_jtg |= bool(jtg)
         codes = " / ".join(f"{c.get(k, float('nan')):.3f}{'?' if jtg and k == 'jtg_d60_2015' else ''}" for k in keys)
         typer.echo(f"    {kind:<8} {where:<24} static {e['static_peak'] * unit:+10.2f}  dynamic {e['dynamic_peak'] * unit:+10.2f}"
-                   f"  IM {_im(e['impact_factor']):>7}{mark}  codes " + codes)
+                   f"  IM {im_text(e['impact_factor']):>7}{mark}  codes " + codes)
         if e.get("opposite_impact_factor") is not None:  # both signs (vbikit.analysis.effects): the other extreme
             typer.echo(f"    {'':<8} {'and ' + e['opposite_sense']:<24} "
                        f"static {e['opposite_static_peak'] * unit:+10.2f}  dynamic {e['opposite_dynamic_peak'] * unit:+10.2f}"
-                       f"  IM {_im(e['opposite_impact_factor']):>7}   (the {e['governing']} dynamic peak governs)")
+                       f"  IM {im_text(e['opposite_impact_factor']):>7}   (the {e['governing']} dynamic peak governs)")
     if any(e.get("label") in unresolved for _, e in rows):
         typer.echo(f"    {'':<8} ! the step does not resolve this load effect: its IM may be off — see the warning")
     if hogging_jtg:

@@ -338,9 +338,8 @@ def _adr_flags(name: str, e: dict, a: dict) -> list[Flag]:
     if adr["value"] is not None and math.isfinite(limit) and adr["value"] > limit:
         out.append(Flag("adr_above_event_bound",
                         f"ADR {adr['value']:.3f} is above {limit:.3f}, the most any day's total maximum can exceed its "
-                        f"static one (1 + the screening bound A used or this effect's simulated events' larger R_dyn/R_st − 1): "
-                        "the "
-                        f"fits of the daily total and static maxima extrapolate apart beyond what the events allow — the "
+                        "static one (1 + the screening bound A used or this effect's simulated events' larger R_dyn/R_st − 1): "
+                        "the fits of the daily total and static maxima extrapolate apart beyond what the events allow — the "
                         f"ADR and the characteristic total are not supported by the {int(a['n_days'])} simulated days "
                         "(simulate more days; the ADR is at most this bound)",
                         output=flag_output("characteristic", "total"), subject=name, value=adr["value"],

@@ -42,8 +42,8 @@ def summary_unit(key: str) -> str:
     """The unit of a number of ``summary`` (SI, as the dataset; "" for words and lists of words)."""
     if key.endswith("_deflection"):
         return "m"
-    if key.endswith("_event") or key.startswith("n_") or key.endswith("_counts"):
-        return "1"  # (an event index, from 0, or a count: dimensionless in CF, as the dataset's counts)
-    if key.startswith(("im_", "governing_")) or key.endswith(("_fraction", "_tolerance", "_change")):
+    # (an event index, from 0, and a count are dimensionless in CF too, as the dataset's counts)
+    if key.startswith(("n_", "im_", "governing_")) or key.endswith(("_event", "_counts", "_fraction", "_tolerance",
+                                                                    "_change")):
         return "1"
     return ""
