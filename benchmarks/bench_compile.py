@@ -1,12 +1,16 @@
-"""Cold compile of the default path: numba's first compilation of the kernels, per kernel.
+"""Cold start of the default path: a fresh install's first run, with the kernels shipped compiled
+(``vbikit.solve.prebuilt``) and, with ``--compile``, numba's own first compilation of them, per kernel.
 
-Each case runs in a fresh process with an empty ``NUMBA_CACHE_DIR`` (a temporary directory):
+Each case runs in a fresh process with an empty ``NUMBA_CACHE_DIR`` (a temporary directory), into which
+vbikit puts the kernels it ships compiled (``--compile``: ``VBIKIT_HOST_KERNELS=1``, none put there, numba
+compiles every kernel for this machine's CPU):
 the first run of the crossing as ``vbikit run`` does it (``simulate`` and the response point's
 impact factor; compiles every kernel they need), then ``--repeat`` warm runs of the same; a second fresh process with the same cache directory then
 runs the crossing once more and must load every kernel from the cache (no compilation).
 
     python benchmarks/bench_compile.py                 # the demo crossing and the 3D deck, ≈ 1 min
     python benchmarks/bench_compile.py --case demo     # one case
+    python benchmarks/bench_compile.py --compile       # without the shipped kernels: numba compiles them
 
 Reported per case: the compile time in CPU seconds (``time.process_time`` over numba's
 "numba:compile" events, robust to other load on the machine) per top-level kernel (inclusive
@@ -86,8 +90,13 @@ def child(case: str, repeat: int) -> dict:
             "per_kernel": dict(listener.top), "compilations": listener.count, "warm": statistics.median(runs)}
 
 
-def run_child(case: str, repeat: int, cache: str) -> dict:
+def run_child(case: str, repeat: int, cache: str, compile_: bool = False) -> dict:
     env = dict(os.environ, NUMBA_CACHE_DIR=cache)
+    env.pop("NUMBA_CPU_NAME", None)
+    if compile_:
+        env["VBIKIT_HOST_KERNELS"] = "1"
+    else:
+        env.pop("VBIKIT_HOST_KERNELS", None)
     res = subprocess.run([sys.executable, __file__, "--child", case, "--repeat", str(repeat)], env=env,
                          capture_output=True, text=True, check=True)
     return json.loads(res.stdout.strip().splitlines()[-1])
@@ -97,6 +106,8 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--case", choices=sorted(CASES), action="append", help="case(s) to run (default: all)")
     p.add_argument("--repeat", type=int, default=5, help="warm calls after the first (median reported)")
+    p.add_argument("--compile", action="store_true",
+                   help="without the kernels shipped compiled (VBIKIT_HOST_KERNELS=1): numba compiles them")
     p.add_argument("--child", choices=sorted(CASES), help=argparse.SUPPRESS)
     args = p.parse_args()
     if args.child:
@@ -104,11 +115,13 @@ def main() -> None:
         return
     import numba
 
-    print(f"vbikit cold compile (numba {numba.__version__}, python {sys.version.split()[0]}, {os.cpu_count()} CPUs)")
+    print(f"vbikit cold start (numba {numba.__version__}, python {sys.version.split()[0]}, {os.cpu_count()} CPUs), "
+          + ("without the kernels shipped compiled: numba compiles them" if args.compile else
+             "a fresh install: the kernels shipped compiled put in an empty cache"))
     for case in args.case or list(CASES):
         with tempfile.TemporaryDirectory(prefix="vbikit-numba-cache-") as cache:
-            cold = run_child(case, args.repeat, cache)
-            again = run_child(case, 1, cache)
+            cold = run_child(case, args.repeat, cache, args.compile)
+            again = run_child(case, 1, cache, args.compile)
         kernels = ", ".join(f"{k} {v:.1f}" for k, v in sorted(cold["per_kernel"].items(), key=lambda kv: -kv[1]))
         print(f"{case}: first call {cold['first_wall']:.1f} s wall, {cold['first_cpu']:.1f} s CPU; "
               f"compile {cold['compile_cpu']:.1f} s CPU ({cold['compilations']} compilations)")

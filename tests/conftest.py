@@ -27,6 +27,12 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
+from vbikit.solve.prebuilt import portable_codegen  # noqa: E402
+
+# numba's code generator as vbikit's processes make it (for the portable CPU model, vbikit.solve.prebuilt), before
+# any test module defines a numba function: the test processes and the workers they start compile alike
+portable_codegen()
+
 _CACHE = tempfile.mkdtemp(prefix="vbikit-test-cache-")
 os.environ["VBIKIT_CACHE_DIR"] = _CACHE
 atexit.register(shutil.rmtree, _CACHE, ignore_errors=True)

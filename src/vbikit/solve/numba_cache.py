@@ -48,7 +48,19 @@ def ensure_cache_location() -> str | None:
     (``__pycache__``) or, when the package directory is read-only, in the user's cache directory
     (``~/.cache/numba``); when neither is writable (and ``NUMBA_CACHE_DIR`` is not set) numba
     would refuse to define the kernels.  Then the cache goes to a per-user directory in the
-    system's temporary directory (logged).  Returns the directory chosen, or None."""
+    system's temporary directory (logged).  Before that, numba is set to compile for the portable CPU model
+    (``vbikit.solve.prebuilt.portable_codegen``); after it, the kernels shipped compiled are put in the
+    cache (``vbikit.solve.prebuilt.seed``, once per process).  Returns the directory chosen, or None."""
+    from vbikit.solve.prebuilt import portable_codegen, seed
+
+    portable_codegen()
+    path = _cache_directory()
+    seed()
+    return path
+
+
+def _cache_directory() -> str | None:
+    """``ensure_cache_location``'s choice of numba's cache folder (None: numba's own)."""
     from numba.core.caching import FunctionCache
 
     try:

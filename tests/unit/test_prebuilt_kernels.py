@@ -1,0 +1,137 @@
+"""The kernels shipped compiled (``vbikit.solve.prebuilt``): built from the present sources, loaded by a
+fresh install without compiling, never used where a source differs, and the codegen choice they need.
+
+A fresh process with an empty ``NUMBA_CACHE_DIR`` stands for a fresh install: numba's compile events are
+counted over the demo crossing as ``vbikit run`` computes it (``simulate`` and the impact factor), and over
+a crossing of every integrator and tire path that ``vbikit compile`` compiles (``warmup.compile_kernels``'s
+tiny crossings).
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from vbikit.solve import prebuilt
+
+REBUILD = "run `python tools/build_prebuilt_kernels.py` (about 2 minutes) and commit src/vbikit/solve/prebuilt/"
+
+COUNT_COMPILES = """
+import json, sys
+from numba.core import event
+count = []
+class Compiles(event.Listener):
+    def on_start(self, ev): pass
+    def on_end(self, ev): count.append(getattr(ev.data.get("dispatcher"), "py_func", None).__name__)
+event.register("numba:compile", Compiles())
+from vbikit.analysis import point_response
+from vbikit.scenario import demo_scenario_text, scenario_from_toml
+from vbikit.scenario.preflight import preflight
+from vbikit.solve import simulate
+built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
+im = point_response(simulate(built.crossing), built.response_x, built.response_y).displacement_impact.impact_factor
+if sys.argv[1] == "all":
+    from vbikit.solve.warmup import compile_kernels
+    compile_kernels()
+from vbikit.solve.prebuilt import target
+print(json.dumps({"compiled": count, "im": im, "target": target()}))
+"""
+
+
+def _fresh_process(tmp_path, *args: str, **env_changes: str | None) -> dict:
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CPU_NAME", prebuilt.HOST_KERNELS_VARIABLE)}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "numba-cache")
+    for k, v in env_changes.items():
+        if v is None:
+            env.pop(k, None)
+        else:
+            env[k] = v
+    res = subprocess.run([sys.executable, "-c", COUNT_COMPILES, *args], env=env, capture_output=True, text=True,
+                         timeout=600, cwd=tmp_path)
+    assert res.returncode == 0, res.stderr[-3000:]
+    return json.loads(res.stdout.strip().splitlines()[-1])
+
+
+def _usable() -> None:
+    shipped = prebuilt.manifest()
+    assert shipped is not None, f"no kernels shipped compiled: {REBUILD}"
+    why = prebuilt.mismatch(shipped)
+    if why is not None:  # (the environment, not the code: another numba, Python or architecture)
+        pytest.skip(f"the kernels shipped compiled do not serve this environment: {why}")
+
+
+def test_the_shipped_kernels_are_built_from_the_present_sources():
+    shipped = prebuilt.manifest()
+    assert shipped is not None, f"no kernels shipped compiled: {REBUILD}"
+    stale = prebuilt.stale_sources(shipped)
+    assert not stale, f"the kernels shipped compiled are older than {', '.join(stale)}: {REBUILD}"
+    assert set(shipped["sources"]) == set(prebuilt.kernel_sources())
+    kernels = [rel for rel, entry in shipped["sources"].items() if entry["indexes"]]
+    assert "solve/kernels/lean.py" in kernels and "solve/kernels/assembly.py" in kernels  # (njit and bundles._flat)
+
+
+def test_a_fresh_install_runs_the_demo_and_every_integrator_without_compiling(tmp_path):
+    _usable()
+    out = _fresh_process(tmp_path, "all")
+    assert out["target"][1:] == [prebuilt.PORTABLE_CPU, ""]
+    assert out["compiled"] == [], f"compiled on a fresh install: {sorted(set(out['compiled']))}: {REBUILD}"
+    assert out["im"] == pytest.approx(0.2451, abs=5e-5)  # (the demo's IM, README "Quick start")
+
+
+def test_without_the_shipped_kernels_numba_compiles_for_this_machine_and_gets_the_same_result(tmp_path):
+    """``VBIKIT_HOST_KERNELS=1``: numba's target is the host CPU, the shipped kernels are not put in the cache,
+    and the demo's impact factor is the same to round-off (the generic and the host code differ in
+    instruction selection only: fused multiply-adds, vector width)."""
+    _usable()
+    host = _fresh_process(tmp_path, "demo", VBIKIT_HOST_KERNELS="1")
+    assert host["target"][1] != prebuilt.PORTABLE_CPU
+    assert "lean_quadratic" in host["compiled"]
+    (tmp_path / "other").mkdir()
+    shipped = _fresh_process(tmp_path / "other", "demo")
+    assert shipped["compiled"] == []
+    assert host["im"] == pytest.approx(shipped["im"], rel=1e-9)
+
+
+def test_a_user_cpu_name_is_kept(tmp_path):
+    """``NUMBA_CPU_NAME`` set by the user: vbikit does not change it, and the shipped kernels (compiled for
+    the generic model) are not used."""
+    _usable()
+    out = _fresh_process(tmp_path, "demo", NUMBA_CPU_NAME="x86-64" if prebuilt.target()[0].startswith("x86_64") else "native")
+    assert out["target"][1] != prebuilt.PORTABLE_CPU
+    assert out["compiled"]
+
+
+def test_a_changed_kernel_source_seeds_nothing(tmp_path, monkeypatch):
+    """One kernel file differing from the one the archive was built from: no kernel of the archive is put in
+    the cache (a kernel's machine code holds the functions it calls and the constants it reads, from other
+    files too), and the file is named."""
+    shipped = prebuilt.manifest()
+    assert shipped is not None, REBUILD
+    changed = json.loads(json.dumps(shipped))
+    changed["sources"]["solve/kernels/newton.py"]["sha256"] = "0" * 64
+    assert prebuilt.stale_sources(changed) == ["solve/kernels/newton.py"]
+    written = []
+    monkeypatch.setattr(prebuilt, "_write", lambda path, data: written.append(path))
+    assert prebuilt._seed(changed) == 0
+    assert written == []
+
+
+def test_an_unlisted_kernel_module_makes_the_archive_stale():
+    shipped = prebuilt.manifest()
+    assert shipped is not None, REBUILD
+    fewer = json.loads(json.dumps(shipped))
+    del fewer["sources"]["solve/kernels/assembly.py"]
+    assert prebuilt.stale_sources(fewer) == ["solve/kernels/assembly.py"]
+
+
+def test_shipped_data_files_never_take_a_name_numba_gives_its_own():
+    """numba numbers its data files ``<base>.<n>.nbc``; a shipped one written over such a file while another
+    process reads the index that names it would hand that process another kernel's code."""
+    shipped = prebuilt.manifest()
+    assert shipped is not None, REBUILD
+    names = [name for entry in shipped["sources"].values() for files in entry["data"].values() for name in files]
+    assert names and all(".vbikit" in name for name in names)
+    assert prebuilt.shipped_data_name("lean._law-68.py311.nbi", 3) == "lean._law-68.py311.vbikit3.nbc"
