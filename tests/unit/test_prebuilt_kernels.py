@@ -58,8 +58,8 @@ def _fresh_process(tmp_path, *args: str, **env_changes: str | None) -> dict:
 def _usable() -> None:
     shipped = prebuilt.manifest()
     assert shipped is not None, f"no kernels shipped compiled: {REBUILD}"
-    why = prebuilt.mismatch(shipped)
-    if why is not None:  # (the environment, not the code: another numba, Python or architecture)
+    why = prebuilt.usable(shipped)
+    if why is not None:  # (the environment, not the code: another numba, Python, numpy or CPU)
         pytest.skip(f"the kernels shipped compiled do not serve this environment: {why}")
 
 
@@ -76,7 +76,7 @@ def test_the_shipped_kernels_are_built_from_the_present_sources():
 def test_a_fresh_install_runs_the_demo_and_every_integrator_without_compiling(tmp_path):
     _usable()
     out = _fresh_process(tmp_path, "all")
-    assert out["target"][1:] == [prebuilt.PORTABLE_CPU, ""]
+    assert out["target"][1:] == [prebuilt.PORTABLE_CPU, prebuilt.PORTABLE_FEATURES]
     assert out["compiled"] == [], f"compiled on a fresh install: {sorted(set(out['compiled']))}: {REBUILD}"
     assert out["im"] == pytest.approx(0.2451, abs=5e-5)  # (the demo's IM, README "Quick start")
 
@@ -99,39 +99,69 @@ def test_a_user_cpu_name_is_kept(tmp_path):
     """``NUMBA_CPU_NAME`` set by the user: vbikit does not change it, and the shipped kernels (compiled for
     the generic model) are not used."""
     _usable()
-    out = _fresh_process(tmp_path, "demo", NUMBA_CPU_NAME="x86-64" if prebuilt.target()[0].startswith("x86_64") else "native")
+    out = _fresh_process(tmp_path, "demo", NUMBA_CPU_NAME="x86-64")
     assert out["target"][1] != prebuilt.PORTABLE_CPU
     assert out["compiled"]
 
 
-def test_a_changed_kernel_source_seeds_nothing(tmp_path, monkeypatch):
-    """One kernel file differing from the one the archive was built from: no kernel of the archive is put in
-    the cache (a kernel's machine code holds the functions it calls and the constants it reads, from other
-    files too), and the file is named."""
+def _changed(rel: str) -> dict:
     shipped = prebuilt.manifest()
     assert shipped is not None, REBUILD
     changed = json.loads(json.dumps(shipped))
-    changed["sources"]["solve/kernels/newton.py"]["sha256"] = "0" * 64
+    changed["sources"][rel]["sha256"] = "0" * 64
+    return changed
+
+
+def test_a_changed_kernel_source_seeds_nothing_and_withdraws_what_was_seeded(monkeypatch):
+    """One kernel file differing from the one the archive was built from: no kernel of the archive is put in
+    the cache, and the shipped indexes seeded before are withdrawn (a kernel's machine code holds the functions
+    it calls and the constants it reads, from other files too: numba checks only the kernel's own file)."""
+    changed = _changed("solve/kernels/newton.py")
     assert prebuilt.stale_sources(changed) == ["solve/kernels/newton.py"]
-    written = []
+    written, withdrawn = [], []
+    monkeypatch.setattr(prebuilt, "_state", {"portable": True, "manifest": changed})
     monkeypatch.setattr(prebuilt, "_write", lambda path, data: written.append(path))
-    assert prebuilt._seed(changed) == 0
-    assert written == []
+    monkeypatch.setattr(prebuilt, "withdraw", lambda shipped: withdrawn.append(shipped))
+    assert prebuilt.seed() == 0
+    assert written == [] and withdrawn == [changed]
 
 
-def test_an_unlisted_kernel_module_makes_the_archive_stale():
+def test_withdraw_removes_the_seeded_indexes_only(tmp_path, monkeypatch):
     shipped = prebuilt.manifest()
     assert shipped is not None, REBUILD
-    fewer = json.loads(json.dumps(shipped))
-    del fewer["sources"]["solve/kernels/assembly.py"]
-    assert prebuilt.stale_sources(fewer) == ["solve/kernels/assembly.py"]
+    rel, entry = next((rel, e) for rel, e in shipped["sources"].items() if len(e["indexes"]) >= 2)
+    seeded, own = entry["indexes"][:2]
+    (tmp_path / seeded).write_bytes(b"index naming " + prebuilt.shipped_data_name(seeded, "b", 1).encode())
+    (tmp_path / own).write_bytes(b"index naming " + own.replace(".nbi", ".1.nbc").encode())
+    stem = rel.rsplit("/", 1)[-1].removesuffix(".py")
+    (tmp_path / f"{prebuilt.MARKER_PREFIX}b-{stem}").write_bytes(b"")
+    monkeypatch.setattr(prebuilt, "cache_folder", lambda source: tmp_path)
+    prebuilt.withdraw({"sources": {rel: entry}})
+    assert sorted(p.name for p in tmp_path.iterdir()) == [own]
+
+
+def test_the_codegen_choice_leaves_numba_s_other_settings_and_the_environment_alone(tmp_path):
+    """numba's settings made at run time before vbikit's first kernel stay (numba reads them all again from the
+    environment when a variable of its own changes there); no variable is exported to child processes."""
+    code = ("import os, numba; numba.config.BOUNDSCHECK = 1; numba.config.CACHE_DIR = os.getcwd(); "
+            "import vbikit.solve.kernels; from vbikit.solve.prebuilt import target; "
+            "print(numba.config.BOUNDSCHECK, numba.config.CACHE_DIR == os.getcwd(), "
+            "os.environ.get('NUMBA_CPU_NAME'), target()[1])")
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CPU_NAME", "NUMBA_CACHE_DIR")}
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300,
+                         cwd=tmp_path)
+    assert res.returncode == 0, res.stderr[-2000:]
+    bounds, cache_kept, exported, cpu = res.stdout.split()
+    assert (bounds, cache_kept, exported) == ("1", "True", "None")
+    assert cpu == (prebuilt.PORTABLE_CPU if prebuilt.usable(prebuilt.manifest()) is None else cpu)
 
 
 def test_shipped_data_files_never_take_a_name_numba_gives_its_own():
-    """numba numbers its data files ``<base>.<n>.nbc``; a shipped one written over such a file while another
-    process reads the index that names it would hand that process another kernel's code."""
+    """numba numbers its data files ``<base>.<n>.nbc``; a shipped one written over such a file (or over another
+    archive's) while another process reads the index that names it would hand that process another kernel's
+    code."""
     shipped = prebuilt.manifest()
     assert shipped is not None, REBUILD
     names = [name for entry in shipped["sources"].values() for files in entry["data"].values() for name in files]
-    assert names and all(".vbikit" in name for name in names)
-    assert prebuilt.shipped_data_name("lean._law-68.py311.nbi", 3) == "lean._law-68.py311.vbikit3.nbc"
+    assert names and all(f"{prebuilt.SHIPPED_MARK}{shipped['build']}-" in name for name in names)
+    assert prebuilt.shipped_data_name("lean._law-68.py311.nbi", "ab12", 3) == "lean._law-68.py311.vbikit-ab12-3.nbc"

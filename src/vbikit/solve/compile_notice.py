@@ -1,4 +1,5 @@
-"""The first-run notice: numba compiles the kernels once per machine, and says so beforehand.
+"""The first-run notice: numba compiles a kernel once per machine, and says so beforehand (a kernel shipped
+compiled and put into numba's cache, ``vbikit.solve.prebuilt``, is in the cache already: no notice).
 
 ``announce_compile`` logs (logger ``vbikit.solve.compile``, which the CLI shows) that a compiled
 kernel is about to be compiled when it is neither compiled in this process nor in numba's on-disk

@@ -54,18 +54,19 @@ def ensure_cache_location() -> str | None:
     from vbikit.solve.prebuilt import portable_codegen, seed
 
     portable_codegen()
-    path = _cache_directory()
-    seed()
+    path, throwaway = _cache_directory()
+    seed(throwaway)
     return path
 
 
-def _cache_directory() -> str | None:
-    """``ensure_cache_location``'s choice of numba's cache folder (None: numba's own)."""
+def _cache_directory() -> tuple[str | None, bool]:
+    """``ensure_cache_location``'s choice of numba's cache folder (None: numba's own), and whether it is this
+    process's own (a fresh temporary folder no later process reads)."""
     from numba.core.caching import FunctionCache
 
     try:
         FunctionCache(_cache_probe)
-        return None
+        return None, False
     except RuntimeError:
         pass
     try:
@@ -74,14 +75,16 @@ def _cache_directory() -> str | None:
         user = None
     path = _private_dir(os.path.join(tempfile.gettempdir(), f"vbikit-numba-cache-{user}")) if user else tempfile.mkdtemp(
         prefix="vbikit-numba-cache-")
+    throwaway = user is None
     numba.config.CACHE_DIR = path
     try:
         FunctionCache(_cache_probe)
     except RuntimeError:
         numba.config.CACHE_DIR = path = tempfile.mkdtemp(prefix="vbikit-numba-cache-")
+        throwaway = True
     log.warning("numba cannot write its cache beside vbikit or in the user's cache directory: compiled kernels "
                 "go to %s (set NUMBA_CACHE_DIR to choose a directory)", path)
-    return path
+    return path, throwaway
 
 
 def cache_location() -> str:
