@@ -96,12 +96,17 @@ def test_without_the_shipped_kernels_numba_compiles_for_this_machine_and_gets_th
 
 
 def test_a_user_cpu_name_is_kept(tmp_path):
-    """``NUMBA_CPU_NAME`` set by the user: vbikit does not change it, and the shipped kernels (compiled for
-    the generic model) are not used."""
+    """``NUMBA_CPU_NAME`` set by the user: vbikit does not change it, and puts none of the shipped kernels
+    (compiled for another model) into the cache."""
     _usable()
-    out = _fresh_process(tmp_path, "demo", NUMBA_CPU_NAME="x86-64")
-    assert out["target"][1] != prebuilt.PORTABLE_CPU
-    assert out["compiled"]
+    code = ("import vbikit.solve.kernels; from vbikit.solve import prebuilt; "
+            "print(prebuilt.target()[1], prebuilt._state['seeded'], len(list(__import__('pathlib').Path('c').rglob('*.nbi'))))")
+    env = {k: v for k, v in os.environ.items() if k != prebuilt.HOST_KERNELS_VARIABLE}
+    env.update(NUMBA_CPU_NAME="x86-64", NUMBA_CACHE_DIR=str(tmp_path / "c"))
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300,
+                         cwd=tmp_path)
+    assert res.returncode == 0, res.stderr[-2000:]
+    assert res.stdout.split() == ["x86-64", "0", "0"]
 
 
 def _changed(rel: str) -> dict:
