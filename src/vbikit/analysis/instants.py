@@ -119,6 +119,7 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
     (``vbikit.analysis.state_kernel.run_state_pass``)."""
     from vbikit.analysis.state_kernel import run_state_pass
     from vbikit.solve import system
+    from vbikit.solve.compile_notice import announce_compile
 
     t = np.ascontiguousarray(result.time, float)
     crossing = result.crossing
@@ -133,6 +134,7 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
     forces = np.ascontiguousarray(result.wheel_forces, float)
     travel, x, f = np.empty((n_u, t_ref.size)), np.empty((n_u, n_cp)), np.empty((n_u, n_cp))
     wheel_forces, q, xi = np.empty((n_u, forces.shape[1])), np.empty((n_u, n_m)), np.empty((n_u, n_m))
+    announce_compile(run_state_pass)
     run_state_pass(u, t, *(np.ascontiguousarray(a, float) for a in (t_ref, s_ref, v_ref, acc, stop, origin, sign, y)),
                    np.ascontiguousarray(crossing.point_vehicle, np.int64), np.ascontiguousarray(cp.wheel, np.int64),
                    np.ascontiguousarray(cp.weight, float), forces,

@@ -86,6 +86,9 @@ def tabulated_sums(origin: NDArray[np.float64], direction: NDArray[np.float64], 
     n_t = travel.shape[0]
     static = np.zeros((len(influences), n_t))
     dynamic = np.zeros((len(influences), n_t))
+    from vbikit.solve.compile_notice import announce_compile  # (not a kernel's source: the shipped kernels' list)
+
+    announce_compile(line_sums)
     line_sums(travel, np.ascontiguousarray(origin, float), np.ascontiguousarray(direction, float),
               y, np.ascontiguousarray(vehicle, np.int64), line, np.ascontiguousarray(wheel, np.int64),
               np.ascontiguousarray(share, float), np.ascontiguousarray(static_load, float),

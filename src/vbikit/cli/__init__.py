@@ -154,17 +154,22 @@ def compile_() -> None:
         from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
         from vbikit.driveby.warmup import compile_driveby_kernels
         from vbikit.random.warmup import compile_random_kernels
+        import numba
+
         from vbikit.solve.numba_cache import cache_location
         from vbikit.solve.warmup import compile_kernels
 
-        typer.echo("compiling the kernels of every integrator (one lane and many lanes)...", err=True)
+        typer.echo("compiling the kernels of every integrator (one lane and many lanes), or loading those numba's "
+                   "cache holds (the kernels vbikit ships compiled, docs/getting-started.md)...", err=True)
         for name, seconds in compile_kernels().items():
             typer.echo(f"  {name:<8} ready in {seconds:.1f} s")
         typer.echo(f"  {'random':<8} ready in {compile_random_kernels():.1f} s (pseudo-excitation)")
         typer.echo(f"  {'effects':<8} ready in {compile_effect_kernels():.1f} s (load effects on beams and grillage decks)")
         typer.echo(f"  {'history':<8} ready in {compile_history_kernels():.1f} s (static modal histories, exact static peaks)")
         typer.echo(f"  {'driveby':<8} ready in {compile_driveby_kernels():.1f} s (decoupled drive-by passes)")
-        typer.echo(f"numba cache: {cache_location()}")
+        where = cache_location()
+        typer.echo(f"numba cache: {where}" + ("" if numba.config.CACHE_DIR else
+                                               " and the __pycache__ folders beside vbikit's other kernel sources"))
 
     guard(work)
 

@@ -35,8 +35,12 @@ compile_log = logging.getLogger("vbikit.solve.compile")
 #: ``lean_quadratic`` 6.3 / 6.6 s against ``lean`` 6.1 / 5.8 s (bench_compile.py, the demo),
 #: ``lean_lanes_quadratic`` 24.4 s against ``lean_lanes`` 21.0 s (the 2-lane batch above).  Any other
 #: kernel: ``lean``'s.
+#: ``run_state_pass`` and ``line_sums``, the load effects' compiled passes (``vbikit.analysis.instants``,
+#: ``vbikit.analysis.line_sums``): 2.3 and 0.6 s in the first ``vbikit demo`` of a fresh cache compiling for the host
+#: (``VBIKIT_HOST_KERNELS=1``; numba's compile events; 2026-12-07 on the 2-core machine), rounded up.
 COMPILE_SECONDS: dict[str, int] = {"lean": 7, "lean_lanes": 22, "lean_quadratic": 7, "lean_lanes_quadratic": 26,
-                                   "implicit": 60, "run_in_loads": 2, "linear_recursion": 1}
+                                   "implicit": 60, "run_in_loads": 2, "linear_recursion": 1, "run_state_pass": 3,
+                                   "line_sums": 1}
 
 
 def compile_seconds(kernel) -> int:
