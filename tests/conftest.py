@@ -27,7 +27,7 @@ from collections.abc import Callable, Iterator
 
 import pytest
 
-from vbikit.solve.prebuilt import portable_codegen  # noqa: E402
+from vbikit.solve.prebuilt import portable_codegen
 
 # numba's code generator as vbikit's processes make it (for the portable CPU model, vbikit.solve.prebuilt), before
 # any test module defines a numba function: the test processes and the workers they start compile alike

@@ -83,11 +83,11 @@ def main() -> None:
         members: list[tuple[str, bytes]] = []
         if {rel: prebuilt.file_sha256(prebuilt.PACKAGE / rel) for rel in prebuilt.kernel_sources()} != sources_before:
             raise SystemExit("a kernel source changed while the kernels compiled: run the build again")
-        for rel in sources_before:
+        for rel, sha in sources_before.items():
             path = prebuilt.PACKAGE / rel
             folder = Path(cache) / _CacheLocator.get_suitable_cache_subpath(str(path))
             entries = _index_entries(folder, path.stem, build) if folder.is_dir() else {}
-            sources[rel] = {"sha256": sources_before[rel], "indexes": sorted(entries),
+            sources[rel] = {"sha256": sha, "indexes": sorted(entries),
                             "data": {index: sorted(data) for index, (_, data) in entries.items()}}
             member_dir = Path(rel).parent.as_posix()
             for index, (index_bytes, data) in entries.items():

@@ -50,7 +50,7 @@ def _fresh_process(tmp_path, *args: str, **env_changes: str | None) -> dict:
         else:
             env[k] = v
     res = subprocess.run([sys.executable, "-c", COUNT_COMPILES, *args], env=env, capture_output=True, text=True,
-                         timeout=600, cwd=tmp_path)
+                         timeout=600, cwd=tmp_path, check=False)
     assert res.returncode == 0, res.stderr[-3000:]
     return json.loads(res.stdout.strip().splitlines()[-1])
 
@@ -103,7 +103,7 @@ def test_a_user_cpu_name_is_kept(tmp_path):
             "print(prebuilt.target()[1], prebuilt._state['seeded'], len(list(__import__('pathlib').Path('c').rglob('*.nbi'))))")
     env = {k: v for k, v in os.environ.items() if k != prebuilt.HOST_KERNELS_VARIABLE}
     env.update(NUMBA_CPU_NAME="x86-64", NUMBA_CACHE_DIR=str(tmp_path / "c"))
-    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300,
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300, check=False,
                          cwd=tmp_path)
     assert res.returncode == 0, res.stderr[-2000:]
     assert res.stdout.split() == ["x86-64", "0", "0"]
@@ -153,7 +153,7 @@ def test_the_codegen_choice_leaves_numba_s_other_settings_and_the_environment_al
             "print(numba.config.BOUNDSCHECK, numba.config.CACHE_DIR == os.getcwd(), "
             "os.environ.get('NUMBA_CPU_NAME'), target()[1])")
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CPU_NAME", "NUMBA_CACHE_DIR")}
-    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300,
+    res = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300, check=False,
                          cwd=tmp_path)
     assert res.returncode == 0, res.stderr[-2000:]
     bounds, cache_kept, exported, cpu = res.stdout.split()

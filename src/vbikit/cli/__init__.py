@@ -151,11 +151,11 @@ def compile_() -> None:
     from vbikit.cli.guard import guard
 
     def work() -> None:
+        import numba
+
         from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
         from vbikit.driveby.warmup import compile_driveby_kernels
         from vbikit.random.warmup import compile_random_kernels
-        import numba
-
         from vbikit.solve.numba_cache import cache_location
         from vbikit.solve.warmup import compile_kernels
 
@@ -167,9 +167,8 @@ def compile_() -> None:
         typer.echo(f"  {'effects':<8} ready in {compile_effect_kernels():.1f} s (load effects on beams and grillage decks)")
         typer.echo(f"  {'history':<8} ready in {compile_history_kernels():.1f} s (static modal histories, exact static peaks)")
         typer.echo(f"  {'driveby':<8} ready in {compile_driveby_kernels():.1f} s (decoupled drive-by passes)")
-        where = cache_location()
-        typer.echo(f"numba cache: {where}" + ("" if numba.config.CACHE_DIR else
-                                               " and the __pycache__ folders beside vbikit's other kernel sources"))
+        typer.echo(f"numba cache: {cache_location()}" + ("" if numba.config.CACHE_DIR else
+                                                          " and the __pycache__ folders beside vbikit's other kernel sources"))
 
     guard(work)
 
