@@ -11,7 +11,8 @@ numba's disk cache, instead of
 every worker compiling each kernel its tests meet; numba's cache writes are serialised between the
 processes (``_lock_numba_cache_writes``).  When the cache already holds them as an earlier run of the
 suite left it (``_cache_is_warm``: a stamp of the sources and of the cache files, written once every
-group is in the cache), there is nothing to share out and the tests start at once."""
+group is in the cache), or holds the kernels vbikit ships compiled (``vbikit.solve.prebuilt.in_cache``: a fresh
+clone on a machine they serve), there is nothing to share out and the tests start at once."""
 from __future__ import annotations
 
 import atexit
@@ -381,6 +382,10 @@ def pytest_collection_finish(session) -> None:
     folder = os.path.join(RUN_DIR, "kernels")
     os.makedirs(folder, exist_ok=True)
     cache = _cache_folders()
+    from vbikit.solve.prebuilt import in_cache
+
+    if in_cache():  # the kernels vbikit ships compiled are in the cache: every group's kernels (nothing to share out)
+        return
     with _flock(os.path.join(folder, "stamp.lock")):  # one worker reads the stamp while none writes it
         warm = _cache_is_warm(cache)
     if warm:  # every kernel is in the cache already (about 14 s of child processes loading them saved)

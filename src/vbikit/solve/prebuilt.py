@@ -219,9 +219,16 @@ def seed(throwaway: bool = False) -> int:
                     "on first use", type(err).__name__, err)
         return 0
     _state["seeded"] = added
+    _state["in_cache"] = True
     if added:
         log.info("%d compiled kernel variants shipped with vbikit put in numba's cache", added)
     return added
+
+
+def in_cache() -> bool:
+    """Whether every shipped kernel is in numba's cache for this process (``seed`` put them there, now or in an
+    earlier process): nothing ``vbikit compile`` compiles is left to compile."""
+    return bool(_state.get("in_cache"))
 
 
 def _seed(shipped: dict) -> int:
