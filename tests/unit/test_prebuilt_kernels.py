@@ -3,8 +3,8 @@ fresh install without compiling, never used where a source differs, and the code
 
 A fresh process with an empty ``NUMBA_CACHE_DIR`` stands for a fresh install: numba's compile events are
 counted over the demo crossing as ``vbikit run`` computes it (``simulate`` and the impact factor), and over
-a crossing of every integrator and tire path that ``vbikit compile`` compiles (``warmup.compile_kernels``'s
-tiny crossings).
+everything ``vbikit compile`` compiles (``warmup.compile_kernels``' tiny crossing of every integrator and
+tire path, and the random, load-effect, static-history and drive-by kernels).
 """
 from __future__ import annotations
 
@@ -33,9 +33,13 @@ from vbikit.scenario.preflight import preflight
 from vbikit.solve import simulate
 built = preflight(scenario_from_toml(demo_scenario_text(), source="demo.toml")).built
 im = point_response(simulate(built.crossing), built.response_x, built.response_y).displacement_impact.impact_factor
-if sys.argv[1] == "all":
+if sys.argv[1] == "all":  # (everything `vbikit compile` compiles, which the test workers then need not share out)
+    from vbikit.analysis.warmup import compile_effect_kernels, compile_history_kernels
+    from vbikit.driveby.warmup import compile_driveby_kernels
+    from vbikit.random.warmup import compile_random_kernels
     from vbikit.solve.warmup import compile_kernels
-    compile_kernels()
+    compile_kernels(); compile_random_kernels(); compile_effect_kernels(); compile_history_kernels()
+    compile_driveby_kernels()
 from vbikit.solve.prebuilt import target
 print(json.dumps({"compiled": count, "im": im, "target": target()}))
 """
