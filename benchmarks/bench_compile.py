@@ -91,12 +91,14 @@ def child(case: str, repeat: int) -> dict:
 
 
 def run_child(case: str, repeat: int, cache: str, compile_: bool = False) -> dict:
+    from vbikit.solve.prebuilt import HOST_KERNELS_VARIABLE
+
     env = dict(os.environ, NUMBA_CACHE_DIR=cache)
     env.pop("NUMBA_CPU_NAME", None)
     if compile_:
-        env["VBIKIT_HOST_KERNELS"] = "1"
+        env[HOST_KERNELS_VARIABLE] = "1"
     else:
-        env.pop("VBIKIT_HOST_KERNELS", None)
+        env.pop(HOST_KERNELS_VARIABLE, None)
     res = subprocess.run([sys.executable, __file__, "--child", case, "--repeat", str(repeat)], env=env,
                          capture_output=True, text=True, check=True)
     return json.loads(res.stdout.strip().splitlines()[-1])

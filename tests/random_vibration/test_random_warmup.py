@@ -9,6 +9,8 @@ import os
 import subprocess
 import sys
 
+from vbikit.solve.prebuilt import HOST_KERNELS_VARIABLE
+
 SCRIPT = """
 import numba.core.event as ev
 from vbikit.random.warmup import compile_random_kernels
@@ -26,7 +28,7 @@ print("RANDOM", sum(m == "vbikit.random.kernel" for m in compiled))
 
 
 def test_second_process_loads_the_random_kernel_from_the_cache(tmp_path):
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), VBIKIT_HOST_KERNELS="1")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), **{HOST_KERNELS_VARIABLE: "1"})
     env.pop("NUMBA_CPU_NAME", None)
     first = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, check=True)
     second = subprocess.run([sys.executable, "-c", SCRIPT], env=env, capture_output=True, text=True, check=True)

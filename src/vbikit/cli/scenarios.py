@@ -123,6 +123,7 @@ def compare_tires(
     import time
 
     from vbikit.analysis.response import summary_units
+    from vbikit.outputs import OUTPUTS, cf_unit
     from vbikit.plot import plot_tire_comparison
     from vbikit.scenario import load_scenario
     from vbikit.solve.compile_notice import announced_kernels
@@ -166,8 +167,8 @@ def compare_tires(
             "response_x": s["response_x"], "response_y": s["response_y"],
         }
         # every number's unit, as vbikit run's JSON spells it (the two keys of this table only: theirs)
-        table[label]["units"] = {k: v for k, v in summary_units(table[label]).items() if v} | {"min_tire_force": "N",
-                                                                                               "seconds": "s"}
+        table[label]["units"] = {k: v for k, v in summary_units(table[label]).items() if v} | {
+            "min_tire_force": cf_unit(OUTPUTS["min_tire_force"].unit), "seconds": "s"}
     warn(grouped_warnings(warnings, "tire", kept=f", each in {out_dir / 'compare-tires.json'}"))
     fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
     guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
