@@ -187,3 +187,16 @@ def test_a_resumed_run_says_so_in_one_line(tmp_path, capsys):
     finally:
         STATE["quiet"] = False
     assert capsys.readouterr().err == ""
+
+
+def test_quiet_study_run_prints_no_size_announcement(tmp_path):
+    """``-q`` prints errors only: ``study run``'s size line (progress, on stderr) is left out, as the population
+    commands leave out theirs (a trial saw it printed under ``-q``).  The run is refused by its step budget after
+    the announcement, so the test simulates nothing; the error itself is still printed."""
+    study = Path(__file__).resolve().parents[2] / "examples" / "studies" / "modes_sensitivity.toml"
+    argv = ["study", "run", str(study), "--out", str(tmp_path / "s.nc"), "--max-steps", "10", "--workers", "1"]
+    loud = runner.invoke(app, argv)
+    quiet = runner.invoke(app, ["-q", *argv])
+    assert loud.exit_code == quiet.exit_code == 2, (loud.output, quiet.output)
+    assert "crossings" in loud.stderr.splitlines()[0]  # (the announcement: "<name>: N crossings … in M batches")
+    assert quiet.stderr.startswith("error:") and "crossings (" not in quiet.stderr

@@ -67,8 +67,8 @@ def test_compare_tires_marks_a_time_that_includes_a_first_compilation(tmp_path, 
     and a footnote saying why; the kernel's name is kept in compare-tires.json."""
     import json
 
-    import vbikit.cli.scenarios as scenarios
     import vbikit.plot
+    import vbikit.scenario.pipeline
     from vbikit.solve import compile_notice
 
     summary = {"warnings": [], "flags": [], "max_dynamic_displacement": -3.4e-3, "impact_factor": 0.21,
@@ -76,13 +76,12 @@ def test_compare_tires_marks_a_time_that_includes_a_first_compilation(tmp_path, 
                "min_wheel_force": {"axle1_left": 1e3}, "contact_loss": {"axle1_left": {"lost": False}},
                "response_x": 5.0, "response_y": 0.0, "points": [{"name": "p1"}]}
 
-    def fake_execute(make, *args, **kwargs):
-        spec = make()
-        if spec.tire.model == "disk":
+    def fake_run(plan, *args, **kwargs):  # (the runs are checked for real, then "run")
+        if plan.scenario.tire.model == "disk":
             monkeypatch.setattr(compile_notice, "_ANNOUNCED", compile_notice._ANNOUNCED | {"fake_kernel"})
         return SimpleNamespace(summary=summary, response=None)
 
-    monkeypatch.setattr(scenarios, "execute", fake_execute)
+    monkeypatch.setattr(vbikit.scenario.pipeline, "run_planned", fake_run)
     monkeypatch.setattr(vbikit.plot, "plot_tire_comparison", lambda responses, path, name: path)
     monkeypatch.setattr(compile_notice, "_ANNOUNCED", set())
     scenario = tmp_path / "s.toml"
@@ -134,8 +133,8 @@ def test_a_library_warning_reads_as_the_cli_s_own(tmp_path):
 
     fmt = _PlainWarnings("%(levelname)s %(name)s: %(message)s")
     record = logging.LogRecord("vbikit.lifetime.run", logging.WARNING, __file__, 1,
-                               "an event's dynamic amplification %.3f exceeds the screening bound", (0.742,), None)
-    assert fmt.format(record) == "warning: an event's dynamic amplification 0.742 exceeds the screening bound"
+                               "an event's dynamic increment (IM) %.3f exceeds the screening bound", (0.742,), None)
+    assert fmt.format(record) == "warning: an event's dynamic increment (IM) 0.742 exceeds the screening bound"
     info = logging.LogRecord("vbikit.solve.compile", logging.INFO, __file__, 1, "compiling the kernel lean", (), None)
     assert fmt.format(info) == "INFO vbikit.solve.compile: compiling the kernel lean"
 

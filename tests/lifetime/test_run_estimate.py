@@ -146,7 +146,7 @@ def test_a_raised_screening_bound_is_checked_against_the_budget(tmp_path, monkey
         return real(prep, static, bound, given, amplified, simulated)
 
     monkeypatch.setattr(lifetime_run, "check_rescreen_budget", costly)
-    with pytest.raises(LifetimeError, match=r"budget_hours: an event's dynamic amplification 0\.\d+ exceeded the "
+    with pytest.raises(LifetimeError, match=r"budget_hours: an event's dynamic increment \(IM\) 0\.\d+ exceeded the "
                                             r"screening bound A = 0\.600, and with A raised to \d\.\d+ the dynamics left "
                                             r"are estimated at") as err:
         lifetime_run.run_lifetime(spec, out, workers=1, figures=False)

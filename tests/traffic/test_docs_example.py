@@ -22,8 +22,9 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
     with xr.open_dataset(tmp_path / "s.nc") as ds:
         a = dict(ds.attrs)
         starts = ds["event_start"].values
-        static_mm = 1e3 * abs(ds.isel(point=0)["max_static_displacement"].values if "point" in ds.dims
-                              else ds["max_static_displacement"].values)
+        signed_mm = 1e3 * (ds.isel(point=0)["max_static_displacement"].values if "point" in ds.dims
+                           else ds["max_static_displacement"].values)
+        static_mm = abs(signed_mm)
     n_loaded = a["n_events"] - a["n_small_static_events"]
     quoted = [
         f"{a['n_events']} events, {a['n_multiple_presence_events']} of them with two or more trucks",
@@ -40,9 +41,11 @@ def test_the_example_stream_numbers_of_the_page(tmp_path):
     for text in quoted:
         assert text in page, text
     g = int(a["governing_static_event"])  # named by its dataset index and when it starts in the stream
-    assert (f"largest static deflection: {static_mm[g]:.3f} mm, event {g} (starts at t = {starts[g]:.1f} s), dynamic "
+    # the governing event is the largest magnitude; its deflection keeps the dataset's sign (z up: downward < 0)
+    assert signed_mm[g] < 0.0
+    assert (f"largest static deflection: {signed_mm[g]:.3f} mm, event {g} (starts at t = {starts[g]:.1f} s), dynamic "
             "amplification") in res.output
-    assert static_mm[g] == static_mm.max() and a["governing_static_deflection"] == pytest.approx(static_mm[g] / 1e3, rel=1e-12)
+    assert static_mm[g] == static_mm.max() and a["governing_static_deflection"] == pytest.approx(signed_mm[g] / 1e3, rel=1e-12)
     assert "deflection impact factors at girder 4, midspan of the first span (the stream's statistics are of this point)" \
         in res.output  # (the base scenario's [response] girder = 4, x default)
     assert quoted[-1][1:].split("` over")[0] in res.output  # (the printed line itself)

@@ -15,20 +15,17 @@ if TYPE_CHECKING:  # pragma: no cover
     from vbikit.scenario.report import Report
 
 
-def execute(load: Callable[[], Any], limits: Any = None, label: str = "", print_warnings: bool = True,
-            file: Any = None) -> "Report":
+def execute(load: Callable[[], Any], limits: Any = None, label: str = "", file: Any = None) -> "Report":
     """Check (``load()`` returns a Scenario; every check of ``vbikit.scenario.preflight.preflight``),
     run and report it (``vbikit.scenario.pipeline.run_planned``); user errors exit with code 2,
     the summary's warnings go to stderr, each prefixed with ``label`` when one of several runs;
-    ``print_warnings=False``: the caller prints them (``compare-tires``: one line per distinct
-    warning of its runs, ``grouped_warnings``); ``file``: the scenario file, named in a user error
-    (``guard``)."""
+    ``file``: the scenario file, named in a user error (``guard``).  (``compare-tires`` checks its four
+    runs before any of them and prints one line per distinct warning, ``grouped_warnings``.)"""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.preflight import preflight
 
     report = guard(lambda: run_planned(preflight(load(), limits), limits), file=file)
-    if print_warnings:
-        warn([f"{label}: {w}" if label else w for w in report.summary["warnings"]])
+    warn([f"{label}: {w}" if label else w for w in report.summary["warnings"]])
     return report
 
 

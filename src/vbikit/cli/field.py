@@ -2,10 +2,12 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Optional
 
 import typer
 
-from vbikit.cli.guard import guard, option, out_dir_option
+from vbikit.cli.guard import MAX_MEMORY, MAX_STEPS, guard, limits, option, out_dir_option
+
 
 def _shown(unit: str) -> tuple[float, str]:
     """How the metrics table shows a channel's SI unit: (factor, unit) — a strain ("-") in µε, an
@@ -26,6 +28,8 @@ def field_(
     out_dir: Path = out_dir_option("Where to write the figures and the metrics tables."),
     tires: str = typer.Option("point,multipoint", "--tires", help="Comma-separated tire models: point, multipoint, disk, rigid-disk."),
     calibrate: bool = typer.Option(False, "--calibrate", help="Fit a stiffness factor and damping ratio (least squares)."),
+    max_memory: Optional[str] = MAX_MEMORY,
+    max_steps: Optional[float] = MAX_STEPS,
 ) -> None:
     """Compare measured bridge responses with the simulated crossing per tire model; optionally calibrate."""
     from vbikit.field.report import run_field
@@ -33,7 +37,8 @@ def field_(
     from vbikit.outputs import QUANTITIES
 
     names = guard(lambda: option(parse_tires, tires))
-    run_ = guard(lambda: run_field(field_file, out_dir, names, calibrate), file=field_file)
+    budget = limits(max_memory, max_steps)
+    run_ = guard(lambda: run_field(field_file, out_dir, names, calibrate, limits=budget), file=field_file)
     typer.echo(run_.spec.name)
     for label, cmps in (("nominal model", run_.comparisons), ("calibrated model", run_.calibrated or [])):
         for c in cmps:

@@ -318,7 +318,8 @@ def budget_option(name: str, counts: str, default: str, key: Optional[str] = Non
     return typer.Option(None, name, help=budget_help(counts, default, key))
 
 
-#: ``--max-memory`` and ``--max-steps`` of one run (``vbikit run``, ``vbikit validate``)
+#: ``--max-memory`` and ``--max-steps`` of one run (``vbikit run``, ``vbikit validate``; each run of ``compare-tires``
+#: and ``field``)
 MAX_MEMORY = budget_option("--max-memory", "memory of the run", "4GiB")
 MAX_STEPS = budget_option("--max-steps", "time steps of the run", "5e6")
 

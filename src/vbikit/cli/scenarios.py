@@ -117,6 +117,8 @@ def compare_tires(
                                            "1 … 100); default: the scenario's tire.n_points where its tire is "
                                            "multipoint, else 6."),
     as_json: bool = typer.Option(False, "--json", help="Print the table as JSON."),
+    max_memory: Optional[str] = MAX_MEMORY,
+    max_steps: Optional[float] = MAX_STEPS,
 ) -> None:
     """Run one crossing with each tire model (point, multipoint, disk, rigid disk); figure like the
     paper's Fig. 9 and a table of peaks and impact factors."""
@@ -130,6 +132,7 @@ def compare_tires(
 
     if n_points is not None:
         guard(lambda: _n_points(n_points))
+    budget = limits(max_memory, max_steps)
     base = guard(lambda: load_scenario(scenario), file=scenario)
     if n_points is None:  # (the file's own multi-point tire, as every other key of the file is its own)
         n_points = int(getattr(base.tire, "n_points", None) or 6) if base.tire.model == "multipoint" else 6
@@ -141,12 +144,18 @@ def compare_tires(
     }
     from vbikit.cli.render import acceleration_in_doubt, impact_doubts
 
-    responses, table, warnings, marks = {}, {}, {}, {}
-    for label, tire in models.items():
+    from vbikit.scenario.pipeline import run_planned
+    from vbikit.scenario.preflight import preflight
+
+    plans = {}
+    for label, tire in models.items():  # every model checked (budgets, steps) before any of them runs
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
+        plans[label] = guard(lambda spec=spec: preflight(spec, budget), file=scenario)
+    responses, table, warnings, marks = {}, {}, {}, {}
+    for label, plan in plans.items():
         t0, compiled_before = time.perf_counter(), announced_kernels()
-        run_ = execute(lambda spec=spec: spec, print_warnings=False, file=scenario)
+        run_ = guard(lambda plan=plan: run_planned(plan, budget), file=scenario)
         s = run_.summary
         warnings[label] = (s["warnings"], s["flags"])
         marks[label] = (*impact_doubts(s), acceleration_in_doubt(s, 0))

@@ -108,7 +108,7 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
     from vbikit.study.check import check_study
 
     budget = limits(max_memory, max_steps)
-    if announce:
+    if announce and not STATE["quiet"]:  # (progress, as the bars: -q prints errors only)
         typer.echo(f"{label or study.name or 'study'}: {study_size(study)}", err=True)
     result = guard(lambda: check_study(study, budget, confirmed=yes), file=file)
     warn(result.warnings, most=MOST_WARNINGS)

@@ -182,9 +182,9 @@ def traffic_cmd(
 
         unit, to_unit = report_unit("m")
 
-        def event(name: str, peak: str) -> str:  # the dataset's event index (from 0), its peak and when it starts
+        def event(name: str, peak: str) -> str:  # the dataset's event index (from 0), its signed peak and when it starts
             e = int(a[f"governing_{name}_event"])
-            return (f"{abs(float(first[peak].values[e])) * to_unit:.3f} {unit}, event {e} (starts at "
+            return (f"{float(first[peak].values[e]) * to_unit:.3f} {unit}, event {e} (starts at "
                     f"t = {float(ds['event_start'].values[e]):.1f} s)")
 
         say(f"largest static deflection: {event('static', 'max_static_displacement')}, dynamic amplification "

@@ -11,6 +11,7 @@ from typing import Any
 from vbikit._files import atomic_write, inside, json_safe, json_text, save_figure, shared_name, write_text
 from vbikit.field.io import FieldSpec, load_field_toml
 from vbikit.field.workflow import Calibration, CaseComparison, calibrate, check_field, compare_case
+from vbikit.solve.budget import Limits
 
 log = logging.getLogger(__name__)
 
@@ -77,12 +78,13 @@ class FieldRun:
 
 
 def run_field(path: str | Path, out_dir: str | Path, tires: list[str], do_calibrate: bool = False,
-              calibration_tire: str | None = None) -> FieldRun:
-    """Load FIELD.toml, compare every case with every tire model, optionally calibrate, write outputs."""
+              calibration_tire: str | None = None, limits: Limits | None = None) -> FieldRun:
+    """Load FIELD.toml, compare every case with every tire model, optionally calibrate, write outputs; every
+    run checked against ``limits`` (the memory and step budgets; None: the defaults) before any runs."""
     spec = load_field_toml(path)
-    check_field(spec, tires)
+    check_field(spec, tires, limits)
     out = Path(out_dir)
-    cmps = [compare_case(spec, case, tires) for case in spec.cases]
+    cmps = [compare_case(spec, case, tires, limits=limits) for case in spec.cases]
     figures = [plot_case(c, inside(out, f"field-{c.case.name}.png"), spec.name) for c in cmps]
     table: dict[str, Any] = {"name": spec.name, "field_file": shared_name(spec.path), "bridge": spec.bridge, "truck": spec.truck,
                              "speed_m_s": spec.speed, "stiffness_factor": spec.stiffness_factor,
@@ -92,9 +94,9 @@ def run_field(path: str | Path, out_dir: str | Path, tires: list[str], do_calibr
     cal = calibrated = None
     if do_calibrate:
         tire = calibration_tire or tires[-1]
-        cal = calibrate(spec, [replace(c) for c in cmps], tire=tire)
+        cal = calibrate(spec, [replace(c) for c in cmps], tire=tire, limits=limits)
         table["calibration"] = cal.as_dict()
-        calibrated = [compare_case(spec, case, tires, cal.stiffness_factor, cal.damping_ratio) for case in spec.cases]
+        calibrated = [compare_case(spec, case, tires, cal.stiffness_factor, cal.damping_ratio, limits) for case in spec.cases]
         figures += [plot_case(c, inside(out, f"field-{c.case.name}-calibrated.png"),
                               f"{spec.name}, calibrated f = {cal.stiffness_factor:.4f}, ζ = {cal.damping_ratio:.4f}")
                     for c in calibrated]

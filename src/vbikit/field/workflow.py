@@ -251,8 +251,9 @@ def check_field(spec: FieldSpec, tires: list[str], limits: Limits | None = None)
 
 
 def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_factor: float | None = None,
-                 damping_ratio: float | None = None) -> CaseComparison:
-    """Run the whole pipeline of the module docstring for one loading case."""
+                 damping_ratio: float | None = None, limits: Limits | None = None) -> CaseComparison:
+    """Run the whole pipeline of the module docstring for one loading case (each run within ``limits``, the
+    memory and step budgets; None: the defaults)."""
     t0 = _time.perf_counter()
     record = read_response_csv(case.responses)
     check_case_record(case, record, spec.path, spec.lowpass_hz)
@@ -266,7 +267,7 @@ def compare_case(spec: FieldSpec, case: CaseSpec, tires: list[str], stiffness_fa
     for name in tires:
         tire = field_tire(name)
         profiles = _checked_profiles(spec, case) if profiles is None else profiles
-        res = simulate(case_crossing(spec, case, tire, bridge, dt, profiles))
+        res = simulate(case_crossing(spec, case, tire, bridge, dt, profiles), limits=limits)
         dt = res.dt  # every tire model on the same time step …
         t_sim = res.time if t_sim.size == 0 or res.time.size < t_sim.size else t_sim
         sims[name] = simulated_channels(res, case, where)
@@ -330,12 +331,13 @@ class Calibration:
 
 
 def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "multipoint",
-              x0: tuple[float, float] | None = None, max_nfev: int = 30) -> Calibration:
+              x0: tuple[float, float] | None = None, max_nfev: int = 30, limits: Limits | None = None) -> Calibration:
     """Least-squares fit of (stiffness factor, damping ratio) to the aligned, cleaned records.
 
     Uses the time shift, drift fits and low-pass of each [`CaseComparison`][vbikit.field.CaseComparison] (made with the
     starting model) and the same simulation time step.  Each residual evaluation simulates every
-    case once.  See the module docstring for the residual weighting and the covariance.
+    case once (within ``limits``, the memory and step budgets; None: the defaults).  See the module docstring
+    for the residual weighting and the covariance.
     """
     t0 = _time.perf_counter()
     base = base_bridge(spec)
@@ -360,7 +362,7 @@ def calibrate(spec: FieldSpec, comparisons: list[CaseComparison], tire: str = "m
         bridge = ScaledBridge(base, float(p[0]), float(p[1]))
         out = []
         for cmp, t_meas, chans, profiles in prepared:
-            res = simulate(case_crossing(spec, cmp.case, field_tire(tire), bridge, cmp.dt, profiles))
+            res = simulate(case_crossing(spec, cmp.case, field_tire(tire), bridge, cmp.dt, profiles), limits=limits)
             sim = simulated_channels(res, cmp.case, str(spec.path))
             ok = (t_meas >= res.time[0]) & (t_meas <= res.time[-1])
             for ch in cmp.case.channels:

@@ -398,7 +398,7 @@ def fatigue_verdict(damage: float, se: float, damage_static: float, years: float
 
 def amplification_words(heavy_max: float, all_max: float, given: float, used: float, check_fraction: float) -> str:
     """The screening bound check in words: what each quantity is and what the run did."""
-    what = (f"dynamic amplification R_dyn/R_st − 1 of single events: largest among the simulated heavy events "
+    what = (f"dynamic increment (IM) R_dyn/R_st − 1 of single events: largest among the simulated heavy events "
             f"(static peak ≥ {check_fraction:.0%} of their day's largest) {heavy_max:.3f}, among all simulated events "
             f"{all_max:.3f}")
     if not math.isfinite(heavy_max):

@@ -265,7 +265,7 @@ def check_rescreen_budget(prep: Prepared, static, bound: float, given: float, am
     hours, events = dynamics_estimate(prep, static, done, bound)
     log.info("screening bound raised to A = %.3f: the dynamics left estimated at %.3g h on %d worker(s) (about %d "
              "events)", bound, hours, prep.cores, events)
-    _refuse_above_budget(prep, hours, events, f"an event's dynamic amplification {amplified:.3f} exceeded the "
+    _refuse_above_budget(prep, hours, events, f"an event's dynamic increment (IM) {amplified:.3f} exceeded the "
                          f"screening bound A = {given:.3f}, and with A raised to {bound:.3f} the dynamics left are "
                          "estimated at", "more the screening keeps")
     return hours
@@ -559,7 +559,7 @@ def screen(static: np.ndarray, signs: np.ndarray, block: np.ndarray, n_blocks: i
         new_bound = rescreen_bound(amp.ravel(), bound)
         if new_bound <= bound or rescreens >= MAX_RESCREENS:
             break
-        log.warning("an event's dynamic amplification %.3f exceeds the screening bound A = %.3f: screening again "
+        log.warning("an event's dynamic increment (IM) %.3f exceeds the screening bound A = %.3f: screening again "
                     "with A = %.3f", np.nanmax(amp), bound, new_bound)
         if on_rescreen is not None:  # (e.g. the run's budget for the events the new bound keeps: it may refuse)
             on_rescreen(new_bound, bound, float(np.nanmax(amp)), simulated.copy())

@@ -149,7 +149,7 @@ class LifetimeFile(_Strict):
     days: Optional[int] = Field(None, ge=1, le=MAX_DAYS, description="simulated days")
     years: Optional[float] = Field(None, gt=0, le=200, description="simulated years (× days_per_year)")
     days_per_year: int = Field(365, ge=1, le=366, description="simulated days in a year (daily blocks per year)")
-    amplification: float = Field(0.5, ge=0.01, le=5, description="A, upper bound of the dynamic amplification R_dyn/R_st − 1 of any event (screening), 1 % … 500 %")
+    amplification: float = Field(0.5, ge=0.01, le=5, description="A, upper bound of the dynamic increment (IM) R_dyn/R_st − 1 of any event (screening), 1 % … 500 %")
     return_periods: list[Annotated[float, Field(gt=0, le=1e6)]] = Field(default_factory=lambda: [75.0, 100.0, 1000.0], min_length=1, max_length=20, description="return periods [years], each longer than one block")
     characteristic_period: float = Field(1000.0, gt=0, le=1e6, description="return period [years] of the characteristic values")
     block: Literal["day", "week"] = "day"

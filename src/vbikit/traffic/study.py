@@ -462,7 +462,10 @@ def stream_statistics(ds) -> dict[str, Any]:
     standard deviation, 5/50/95/99 % quantiles, histogram), and the dynamic amplification of the
     event with the largest static effect (its R_dyn / R_st) and of the largest dynamic effect
     (the largest R_dyn of the stream over the largest R_st of the stream: the ratio of the
-    governing total to the governing static load effect); at the first response point.
+    governing total to the governing static load effect); at the first response point.  The governing
+    events are those of the largest magnitudes; their deflections (``governing_static_deflection``,
+    ``governing_dynamic_deflection`` [m]) keep the dataset's sign (z up: a downward deflection is negative,
+    as every output of vbikit).
 
     An event without an impact factor there (NaN: no usable static reference) is left out of every IM
     statistic and counted, ``n_events_without_impact_factor``.  An event whose static peak there is below
@@ -482,8 +485,9 @@ def stream_statistics(ds) -> dict[str, Any]:
     if "point" in ds.dims:
         ds = ds.isel(point=0)
     im_events = np.asarray(ds["impact_factor"].values, float)
-    dyn = np.abs(np.asarray(ds["max_dynamic_displacement"].values, float))
-    st = np.abs(np.asarray(ds["max_static_displacement"].values, float))
+    dyn_signed = np.asarray(ds["max_dynamic_displacement"].values, float)
+    st_signed = np.asarray(ds["max_static_displacement"].values, float)
+    dyn, st = np.abs(dyn_signed), np.abs(st_signed)
     mp_events = np.asarray(ds["multiple_presence"].values, bool)
     # the governing events among those with a static peak (argmax would take a NaN's index)
     i_st = int(np.nanargmax(st)) if np.isfinite(st).any() else 0
@@ -511,10 +515,10 @@ def stream_statistics(ds) -> dict[str, Any]:
         **_interval_ends("im_mean", mean), **_interval_ends("im_q95", q95),
         **_interval_ends("im_mean_loaded", mean_loaded), **_interval_ends("im_q95_loaded", q95_loaded),
         "governing_static_event": i_st,
-        "governing_static_deflection": float(st[i_st]),
+        "governing_static_deflection": float(st_signed[i_st]),
         "governing_static_amplification": float(dyn[i_st] / st[i_st]),
         "governing_dynamic_event": i_dyn,
-        "governing_dynamic_deflection": float(dyn[i_dyn]),
+        "governing_dynamic_deflection": float(dyn_signed[i_dyn]),
         "governing_dynamic_amplification": float(dyn[i_dyn] / st[i_st]),
         "n_airborne_events": int(np.sum(np.asarray(ds["airborne_wheels"].values) > 0)) if "airborne_wheels" in ds else 0,
     }
