@@ -268,8 +268,9 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, 
     else:
         kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0, kernels.MANY_LANES,
                         span)
-    states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0])
-              for lane, crossing in enumerate(crossings[:n_real])]
+    run_in = bool(data.vehicles.gravity.size) and crossings[0].run_in > 0  # (the run-in sets the vehicles' start state)
+    states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0],
+                           replaced=run_in) for lane, crossing in enumerate(crossings[:n_real])]
     if n_l == 1:
         return road, states[0][0], states[0][1], reach
     return road, np.array([s[0] for s in states]), np.array([s[1] for s in states]), reach

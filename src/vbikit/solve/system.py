@@ -232,7 +232,8 @@ def _stiffness_load(modes: Modes, vehicles: Vehicles, points: Points, vx: NDArra
 
 def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.float64], travel=None,
                  road_rate: NDArray[np.float64] | None = None, speed: float | NDArray[np.float64] = 0.0,
-                 max_iterations: int = 100) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+                 max_iterations: int = 100, replaced: bool = False
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
     """The state (ξ, q) at t = 0 with zero velocities and zero accelerations, and the active
     contact points: the equilibrium of Eq. 9 on the road elevations ``road`` [m] under the points,
     with the tire dashpots' forces c_p·ṙ_p from the road rates ``road_rate`` [m/s] = dir·v·r'(x_p)
@@ -243,7 +244,9 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
 
     When the dashpot forces are so large that no such state exists (a tire would have to pull:
     the vehicle is not supported, e.g. a profile in mm read as m), the start falls back to the
-    equilibrium at rest (no rates), with a warning."""
+    equilibrium at rest (no rates), with a warning — none when the vehicles' start state is ``replaced``
+    (a run-in follows, ``vbikit.solve.run_in``: it starts every contact point off the deck, so the bridge
+    starts at rest either way, and it sets the vehicles' state itself; the fallback changes nothing)."""
     travel = crossing.travel(crossing.start_time)[0] if travel is None else travel
     try:
         return _equilibrium(crossing, data, road, travel, road_rate, speed, max_iterations)
@@ -256,7 +259,7 @@ def static_state(crossing: Crossing | None, data: KernelData, road: NDArray[np.f
     text = (f"the vehicle cannot start at {kmh:.0f} km/h in equilibrium with its tire dampers' forces from the "
             "road's slope under the tires (a tire would have to pull at t = 0; a very rough road, or a profile "
             "in mm read as m): it starts from its equilibrium at rest instead")
-    if text not in _START_LOGGED:  # once a process and text: a study's worker runs many such crossings
+    if not replaced and text not in _START_LOGGED:  # once a process and text: a study's worker runs many such crossings
         _START_LOGGED.add(text)
         log.warning(text)
     return _equilibrium(crossing, data, road, travel, None, 0.0, max_iterations)
