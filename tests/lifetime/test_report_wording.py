@@ -309,6 +309,7 @@ def test_another_runs_work_names_the_output_folder(tmp_path, monkeypatch):
     with pytest.raises(LifetimeError) as err:
         _run(None, tmp_path / "work" / "static.nc", 1, None, None, "static pass")
     assert str(err.value).startswith(f"{tmp_path} holds work this run cannot use")
+    assert f"delete {tmp_path / 'work'} or write to another output folder" in str(err.value)  # (the folder to delete)
     assert "--out" not in str(err.value) and "study" not in str(err.value)
 
 

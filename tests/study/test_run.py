@@ -76,7 +76,7 @@ def test_parallel_equals_serial_and_resume_skips_finished(tmp_path, small_study_
         run_study(other, out, workers=1)
     (tmp_path / "d.nc.parts").mkdir()
     (tmp_path / "d.nc.parts" / "study.json").write_text("{}")
-    with pytest.raises(StudyError, match="partial results of a different study"):
+    with pytest.raises(StudyError, match=r"partial results of a different run \(other inputs, options or version\)"):
         run_study(study, tmp_path / "d.nc", workers=1)
 
 

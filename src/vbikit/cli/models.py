@@ -120,6 +120,10 @@ def bridge(
             title = data.get("name")
             return bridge_, spec.model, title if isinstance(title, str) and title else Path(name).stem
 
+        from vbikit.cli.validate import check_kind
+
+        # (the files whose [bridge] is a scenario's: a railway file's is its own, a field file's names a preset)
+        check_kind(Path(name), "bridge", ("scenario", "traffic-base", "driveby", "lifetime"))
         b, model, label = guard(scenario_bridge, file=Path(name))
         skew = float(b.skew)
         description = f"[bridge] of {name} (model {model!r}{f', skew {skew:g}°' if skew else ''})"

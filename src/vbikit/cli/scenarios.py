@@ -72,6 +72,9 @@ def cite(
     from vbikit.scenario import load_scenario
     from vbikit.scenario.cite import scenario_models, scenario_references
 
+    from vbikit.cli.validate import check_kind
+
+    check_kind(scenario, "cite", ("scenario",))
     spec = guard(lambda: load_scenario(scenario), file=scenario)
     refs = scenario_references(spec)
     if bibtex:

@@ -75,6 +75,29 @@ def detect(path: Path) -> str:
     return "scenario"
 
 
+def check_kind(path: Path, command: str, accepted: tuple[str, ...]) -> None:
+    """Refuse (exit 2) an input file of another kind than ``accepted`` (``detect``), naming its kind and the
+    command that reads it: ``vbikit cite`` and ``bridge`` on a railway or lifetime file listed its keys as
+    unknown to a scenario, as if the file were bad.  A file that cannot be read or parsed is left to the
+    command's own reader, whose error names the problem."""
+    from vbikit.errors import OptionError, VbikitError
+
+    try:
+        kind = detect(path)
+    except (VbikitError, OSError):
+        return
+    if kind in accepted:
+        return
+
+    def refuse() -> None:
+        names = [KINDS[k].split(" (")[0] for k in accepted]
+        takes = names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+        raise OptionError(f"{path}: vbikit {command} takes {takes}; this file is {KINDS[kind]} "
+                          f"(`vbikit validate {path}` checks it)")
+
+    guard(refuse)
+
+
 def _scenario(path: Path, budget: Any) -> str:
     from vbikit.scenario import load_scenario
     from vbikit.scenario.preflight import preflight

@@ -334,7 +334,7 @@ def _run(job, path: Path, workers, scheduler, progress: Optional[Progress], stag
             raise
         work = path.parent  # (a work file of another lifetime run: name the output folder, not the file)
         raise LifetimeError(f"{work.parent} holds work this run cannot use ({path}: another lifetime run's, or an "
-                            "earlier version's): delete that folder or write to another output folder") from None
+                            f"earlier version's): delete {work} or write to another output folder") from None
 
 
 #: the files a lifetime run writes in its output folder, and the folder of its finished work (resumed by the

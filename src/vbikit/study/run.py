@@ -185,7 +185,8 @@ def _prepare_parts(study: Study, out: Path) -> Path:
     if parts.exists():
         marker = parts / "study.json"
         if not marker.is_file() or marker.read_text() not in (spec, *earlier_identities(study)):
-            raise StudyError(f"{parts} holds partial results of a different study; delete it or write to another path")
+            raise StudyError(f"{parts} holds partial results of a different run (other inputs, options or version); "
+                             "delete it or write to another path")
         if marker.read_text() != spec:  # (an earlier version's identity of this study: this version's from now on)
             write_text(marker, spec)
     else:
