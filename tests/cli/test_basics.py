@@ -74,3 +74,22 @@ def test_a_usage_error_is_one_error_line_like_every_other(argv, words):
     assert lines[0].endswith(f"see '{command} --help'"), lines[0]
     for word in words:
         assert word in lines[0], lines[0]
+
+
+def test_a_closed_output_pipe_exits_141_without_a_traceback():
+    """``vbikit presets | head -1``: the reader closes the pipe; the run ends as a program SIGPIPE ends (141),
+    not with 1, the code of a bug in vbikit (click's own), and prints nothing on stderr.  The read end is closed
+    before vbikit writes, so every write meets the closed pipe."""
+    import os
+    import subprocess
+    import sys
+
+    from vbikit.cli import EXIT_BROKEN_PIPE
+
+    read, write = os.pipe()
+    proc = subprocess.Popen([sys.executable, "-c", "from vbikit.cli import main; main()", "presets"], stdout=write, stderr=subprocess.PIPE)
+    os.close(write)
+    os.close(read)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == EXIT_BROKEN_PIPE == 141, err.decode()
+    assert err.decode().strip() == ""

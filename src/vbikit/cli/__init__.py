@@ -51,6 +51,10 @@ class _Group(TyperGroup):
 
         try:
             rv = super().main(*args, standalone_mode=False, **kwargs)
+        except SystemExit as end:  # click ends a run whose output pipe closed (`vbikit presets | head -1`) with 1,
+            if end.code == 1 and type(sys.stdout).__name__ == "PacifyFlushWrapper":  # our code of a bug: say 141
+                sys.exit(EXIT_BROKEN_PIPE)  # (what a program the signal ends gives, as `yes | head -1`)
+            raise
         except _click_error("UsageError") as err:
             typer.echo(usage_error_line(err), err=True)
             sys.exit(err.exit_code)
@@ -61,6 +65,11 @@ class _Group(TyperGroup):
             typer.echo("Aborted!", err=True)
             sys.exit(1)
         sys.exit(rv if isinstance(rv, int) else 0)  # (typer.Exit's code; a command itself returns None)
+
+
+#: the exit code of a run whose standard output was closed by its reader (128 + SIGPIPE, as the shells give a
+#: program that signal ends): not a bug (1), not a user error (2)
+EXIT_BROKEN_PIPE = 141
 
 
 def _click_error(name: str) -> type:
