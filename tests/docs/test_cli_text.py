@@ -97,7 +97,7 @@ def test_compare_tires_names_the_tire_model_of_each_own_warning_and_the_units_of
     assert [line for line in shared if "one road realisation" in line] == shared and len(shared) == 1, warnings
     assert len(warnings) > 1 and all(line.startswith("warning: tire ") for line in warnings[1:]), warnings
     header = next(line for line in res.stdout.splitlines() if "tire model" in line)  # (stderr's counts say "tire models")
-    for column in ("u_max [mm]", "IM [-]", "ε_max [µε]", "IM_ε [-]", "|a|max [m/s²]", "F_min [kN]", "time [s]"):
+    for column in ("u_max [mm]", "IM [-]", "ε_max [µε]", "IM_ε [-]", "|a|max [m/s²]", "F_min [kN]", "run time [s]"):
         assert column in header
 
 

@@ -55,6 +55,10 @@ def test_cli_cut_down_example_and_resume(tmp_path, summary_on_stdout):
     js = summary_on_stdout(["lifetime", str(spec), "--out-dir", str(out), "--workers", "1", "--no-progress",
                             "--no-figures"], out / "summary.json")
     assert "ADR" in js.stderr and json.loads(js.stdout)["load_effects"]["M_mid"]["units"] == "N m"
+    # every fatigue number with its unit, as the dataset writes it (a trial's summary gave a stress range in Pa, unsaid)
+    detail = json.loads(js.stdout)["fatigue"]["flange_EN36"]
+    assert detail["units"]["equivalent_stress_range"] == "Pa" and detail["units"]["remaining_life"] == "year"
+    assert detail["units"]["fatigue_damage"] == "1" and set(detail["units"]) <= set(detail)
     (out / "lifetime.nc").unlink()
     again = run_lifetime(spec, out, workers=1, figures=False)
     for name in ("characteristic_static", "characteristic_total", "fatigue_damage", "event_total"):

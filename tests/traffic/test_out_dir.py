@@ -108,6 +108,9 @@ def test_neither_writes_into_vbikit_out_as_every_command(tmp_path, monkeypatch):
     # the governing events are the largest magnitudes; their deflections keep the dataset's sign (z up)
     assert summary["governing_static_deflection"] == float(static[np.argmax(np.abs(static))]) < 0.0
     assert summary["governing_dynamic_deflection"] == float(dynamic[np.argmax(np.abs(dynamic))]) < 0.0
+    # the histogram's edges as written: 0.05, not 0.05000000000000002 (a trial's JSON)
+    edges = summary["im_histogram_edges"]
+    assert all(e == round(e, 12) for e in edges) and len(edges) == 23
     assert summary["units"]["governing_static_deflection"] == "m" and summary["units"]["im_mean"] == "1"
     assert summary["units"]["governing_static_event"] == "1" and summary["units"]["n_events"] == "1"  # (CF)
     assert "start" not in summary["units"] and "warnings" not in summary["units"]

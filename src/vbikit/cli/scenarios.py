@@ -193,17 +193,17 @@ def compare_tires(
 
     (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
     typer.echo(f"  {'tire model':<20} {f'u_max [{mm}]':>10} {'IM [-]':>7} {'ε_max [µε]':>11} {'IM_ε [-]':>8} "
-               f"{'|a|max [m/s²]':>13} {f'F_min [{kn}]':>10} {'time [s]':>8}")
+               f"{'|a|max [m/s²]':>13} {f'F_min [{kn}]':>10} {'run time [s]':>12}")
     for label, row in table.items():
         im, strain, acceleration = ("!" if m else " " for m in marks[label])  # (as vbikit run marks them)
         typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * to_mm:10.4f} {row['impact_factor']:7.4f}{im}"
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f}{strain}"
                    f"{row['max_abs_acceleration']:13.4f}{acceleration}"
-                   f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:8.2f}" + (" *" if row["compiled_kernels"] else ""))
+                   f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:12.2f}" + (" *" if row["compiled_kernels"] else ""))
     if any(any(m) for m in marks.values()):
         typer.echo("  ! a flag of that model's run puts the value in doubt, as vbikit run marks it: see its warning above")
     if any(row["compiled_kernels"] for row in table.values()):
-        typer.echo("  * its time [s] (wall clock) includes numba's first compilation of a kernel, once a machine; "
+        typer.echo("  * its run time [s] (wall clock) includes numba's first compilation of a kernel, once a machine; "
                    "later runs take a fraction of it (`vbikit compile` compiles every kernel in advance)")
     from vbikit.cli.render import print_negative_note
 

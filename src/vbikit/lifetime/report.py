@@ -420,17 +420,23 @@ def effect_flag_codes(facts: dict[str, Any]) -> list[str]:
     return [join_codes(f["code"] for f in e["flags"]) for e in facts["load_effects"].values()]
 
 
+#: a fatigue detail's numbers in ``summary.json`` (``_detail``), each with its unit from the dataset's variable
+DETAIL_NUMBERS = ("fatigue_damage", "fatigue_damage_se", "fatigue_damage_static", "dynamic_damage_ratio",
+                  "dynamic_damage_ratio_se", "fatigue_damage_per_year", "equivalent_stress_range", "remaining_life",
+                  "equivalent_stress_range_design_life", "max_stress_range_static", "max_stress_range_design_life",
+                  "max_stress_range_design_life_bound", "fatigue_damage_design_life", "fatigue_damage_design_life_upper")
+
+
 def _detail(ds, j: int) -> dict[str, Any]:
+    """A fatigue detail's facts, with ``units``: each number's unit as the dataset writes it (stress ranges in Pa,
+    the remaining life in years, damages 1; a trial's summary gave 8479595.97 with no unit)."""
+    numbers = [k for k in DETAIL_NUMBERS if k in ds]
     return {"category": str(ds["detail_category"].values[j]),
-            **{k: _num(ds[k].values[j]) for k in (
-                "fatigue_damage", "fatigue_damage_se", "fatigue_damage_static", "dynamic_damage_ratio",
-                "dynamic_damage_ratio_se", "fatigue_damage_per_year", "equivalent_stress_range", "remaining_life",
-                "equivalent_stress_range_design_life", "max_stress_range_static", "max_stress_range_design_life",
-                "max_stress_range_design_life_bound",
-                "fatigue_damage_design_life", "fatigue_damage_design_life_upper") if k in ds},
+            **{k: _num(ds[k].values[j]) for k in numbers},
             "below_fatigue_limit": bool(ds["below_fatigue_limit"].values[j]),
             "verdict": str(ds["fatigue_verdict"].values[j]),
-            "dynamic_damage_ratio_words": str(ds["dynamic_damage_ratio_note"].values[j])}
+            "dynamic_damage_ratio_words": str(ds["dynamic_damage_ratio_note"].values[j]),
+            "units": {k: str(ds[k].attrs["units"]) for k in numbers if ds[k].attrs.get("units")}}
 
 
 def summary(ds) -> dict[str, Any]:

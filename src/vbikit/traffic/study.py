@@ -496,7 +496,8 @@ def stream_statistics(ds) -> dict[str, Any]:
     im, mp = im_events[usable], mp_events[usable]
     loaded = ~np.array(small_static(st), bool)[usable]
     low, high = (float(im.min()), float(im.max())) if im.size else (0.0, 0.0)
-    edges = np.linspace(min(-0.1, float(np.floor(low * 20) / 20)), max(1.0, float(np.ceil(high * 20) / 20)), 23)
+    # bins of 0.05 (or wider), their edges rounded to the 12th decimal: 0.05, not linspace's 0.05000000000000002
+    edges = np.round(np.linspace(min(-0.1, float(np.floor(low * 20) / 20)), max(1.0, float(np.ceil(high * 20) / 20)), 23), 12)
     counts, _ = np.histogram(im, edges)
     q = np.quantile(im, [0.05, 0.5, 0.99]) if im.size else np.full(3, math.nan)
     mean, q95 = mean_interval(im), quantile_interval(im, 0.95)
