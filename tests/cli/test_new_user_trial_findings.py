@@ -93,6 +93,12 @@ def test_compare_tires_marks_a_time_that_includes_a_first_compilation(tmp_path, 
     assert "includes numba's first compilation of a kernel" in out.stdout
     table = json.loads((tmp_path / "out" / "compare-tires.json").read_text())
     assert table["disk"]["compiled_kernels"] == ["fake_kernel"] and table["point"]["compiled_kernels"] == []
+    # it says what it wrote, one `wrote PATH` line a file, as every command that writes files (standard error with --json)
+    wrote = [line for line in out.stdout.splitlines() if line.startswith("wrote ")]
+    assert wrote == [f"wrote {tmp_path / 'out' / 'compare-tires.png'}", f"wrote {tmp_path / 'out' / 'compare-tires.json'}"]
+    js = runner.invoke(app, ["compare-tires", str(scenario), "--out-dir", str(tmp_path / "out"), "--json"])
+    assert js.exit_code == 0 and json.loads(js.stdout)["point"]["impact_factor"] == 0.21
+    assert [line for line in js.stderr.splitlines() if line.startswith("wrote ")] == wrote
 
 
 BEAM_SCENARIO = """

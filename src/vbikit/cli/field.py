@@ -62,4 +62,5 @@ def field_(
         typer.echo(f"  calibration ({cal.tire} tire, {cal.evaluations} runs, {cal.seconds:.1f} s): stiffness factor "
                    f"{cal.stiffness_factor:.5f} ± {cal.stiffness_factor_std:.2g}, damping ratio {cal.damping_ratio:.5f} "
                    f"± {cal.damping_ratio_std:.2g} (1σ, correlation {cal.correlation:+.2f})")
-    typer.echo(f"  figures {', '.join(str(f) for f in run_.figures)}; tables {run_.json_path}, {run_.csv_path}")
+    for path in (*run_.figures, run_.json_path, run_.csv_path):  # one line a file, as every command that writes files
+        typer.echo(f"wrote {path}")

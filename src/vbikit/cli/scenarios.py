@@ -16,6 +16,8 @@ from vbikit.cli.guard import (
     limits,
     out_dir_option,
     out_file_option,
+    say,
+    use_json,
     warn,
 )
 from vbikit.cli.render import json_text, outputs, write_text
@@ -184,7 +186,11 @@ def compare_tires(
     warn(grouped_warnings(warnings, "tire", kept=f", each in {out_dir / 'compare-tires.json'}"))
     fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
     guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
-    if as_json:
+    written = (fig, out_dir / "compare-tires.json")
+    if as_json:  # (the files said on standard error, as every command with --json says them)
+        use_json(True)
+        for path in written:
+            say(f"wrote {path}")
         typer.echo(json_text(table))
         return
     if base.name:
@@ -208,4 +214,5 @@ def compare_tires(
     from vbikit.cli.render import print_negative_note
 
     print_negative_note(any(row[k] < 0 for row in table.values() for k in ("impact_factor", "strain_impact_factor")))
-    typer.echo(f"  figure {fig}; table {out_dir / 'compare-tires.json'}")
+    for path in written:  # one line a file, as every command that writes files says them
+        say(f"wrote {path}")

@@ -241,7 +241,7 @@ def _paper(*figs: str) -> Callable[..., None]:
             ds = run_job(study, out, workers, scheduler, progress)
             warn_dataset(ds)
             png = guard(lambda: plot_paper_figure(ds, fig, out.with_suffix(".png")))
-            typer.echo(f"figure {png}")
+            typer.echo(f"wrote {png}")  # (its dataset: run_job's line "N crossings -> PATH")
 
     from vbikit.study.paper import FIGURES
 
