@@ -92,7 +92,7 @@ def summary_on_stdout():
     """The check of a folder command's ``--json`` (traffic, lifetime, driveby, rail; docs/cli.md): the command
     ``args`` run again in this process with ``--json`` prints one JSON object on standard output and nothing else,
     the object of ``summary_file`` as that run wrote it, while its report and ``wrote`` lines go to standard
-    error.  Returns the run's result (``stdout``, ``stderr``)."""
+    error, and names the vbikit version that wrote it.  Returns the run's result (``stdout``, ``stderr``)."""
     def check(args: list[str], summary_file):
         from typer.testing import CliRunner
 
@@ -103,6 +103,9 @@ def summary_on_stdout():
         assert json.loads(res.stdout) == json.loads(summary_file.read_text(encoding="utf-8"))
         assert res.stdout.lstrip().startswith("{") and res.stdout.rstrip().endswith("}")
         assert f"wrote {summary_file}" in res.stderr.splitlines()
+        from vbikit import __version__
+
+        assert json.loads(res.stdout)["vbikit_version"] == __version__  # (which version wrote it, as `run`'s inputs say)
         return res
     return check
 

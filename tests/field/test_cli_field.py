@@ -28,6 +28,10 @@ def test_field_command_writes_figures_and_tables(tmp_path):
     assert set(case1["metrics"]) == {"point", "multipoint"}
     assert case1["lowpass_hz"] == 40.0
     assert case1["drift"]["G5_acc"]["offset"] == pytest.approx(0.03, abs=1e-3)  # truth of make_synthetic.py
+    # each channel's SI unit (its peaks, RMS error and offset), as every JSON spells units (a trial found none)
+    assert case1["channel_units"] == {"G5_disp": "m", "G5_acc": "m s-2", "G5_strain": "1"}
+    # and what it wrote, one line a file
+    assert f"wrote {tmp_path / 'field-metrics.json'}" in res.stdout.splitlines()
     rows = (tmp_path / "field-metrics.csv").read_text().splitlines()
     assert len(rows) == 1 + 2 * 2 * 3  # header + cases × tires × channels
 

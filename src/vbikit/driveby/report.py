@@ -112,7 +112,8 @@ def summary(ds) -> dict:
     out: dict = {}
     if "unconverged_steps" in ds:  # the dataset's flags as records, at the top as in every summary of vbikit
         add_flags(out, unconverged_pass_flags(ds["unconverged_steps"].values))
-    return out | {"title": ds.attrs.get("title", "drive-by"), "cases": cases, "bridges": bridges,
+    return out | {"title": ds.attrs.get("title", "drive-by"), "vbikit_version": str(ds.attrs.get("vbikit_version", "")),
+                  "cases": cases, "bridges": bridges,
             "note": "a reliable pass is accurate to about its resolution 1/T on a rough road, far better on a smooth "
                     "one; unreliable passes are left out of the damage indicators and the multi-pass estimates "
                     "(docs/driveby.md, How accurate is this)"}

@@ -195,7 +195,11 @@ class CaseComparison:
     timings: dict[str, float] = field(default_factory=dict)
 
     def table(self) -> dict[str, Any]:
-        """JSON-ready summary: alignment, drift fits, cut-off, metrics per tire and channel."""
+        """JSON-ready summary: alignment, drift fits, cut-off, metrics per tire and channel, and each channel's SI
+        unit in CF spelling (``channel_units``: the unit of its peaks, ``rms_error`` and drift ``offset``; the drift
+        per second of that unit per s; ``peak_error``, ``normalised_rms_error`` and ``correlation`` are fractions)."""
+        from vbikit.outputs import QUANTITIES, cf_unit
+
         return {
             "case": self.case.name,
             "align": self.case.align,
@@ -207,6 +211,8 @@ class CaseComparison:
             "drift": {k: {"offset": d.offset, "drift_per_s": d.drift, "t_ref_s": d.t_ref, "method": d.method,
                           "samples": d.samples} for k, d in self.drift.items()},
             "metrics": self.metrics,
+            "channel_units": {ch.name: cf_unit(QUANTITIES[ch.quantity].unit) for ch in self.case.channels
+                              if ch.quantity in QUANTITIES},
             "seconds": self.timings,
         }
 

@@ -445,7 +445,7 @@ def summary(ds) -> dict[str, Any]:
 
     a = ds.attrs
     out: dict[str, Any] = {
-        "title": str(a["title"]),
+        "title": str(a["title"]), "vbikit_version": str(a.get("vbikit_version", "")),
         "run": {k: int(a[k]) for k in ("n_days", "days_per_year", "n_trucks", "n_events", "n_dynamic_events",
                                   "n_sample_events")} | {"fraction_dynamic": float(a["fraction_dynamic"]),
                                                          "time_total_s": float(a["time_total_s"]),

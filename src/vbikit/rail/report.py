@@ -533,6 +533,6 @@ def summary(ds, checks: dict[str, Any]) -> dict[str, Any]:
               for k, v in checks.items() if k not in ("warnings", "flags")}
     acc = checks.get("acceleration", {})
     near = governing_resonance(ds, acc["train"], acc["speed"]) if "train" in acc else None
-    return clean({"checks": checks, "warnings": warnings, "flags": flags, "trains": trains, "governing_resonance": near,
+    return clean({"vbikit_version": str(ds.attrs.get("vbikit_version", "")), "checks": checks, "warnings": warnings, "flags": flags, "trains": trains, "governing_resonance": near,
                   "peak_refinement": ds.attrs.get("peak_refinement", ""), "time_sampling": ds.attrs.get("time_sampling", ""),
                   "moment_envelope_method": ds.attrs.get("moment_envelope_method", "")})

@@ -25,6 +25,7 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
+from vbikit import __version__
 from vbikit._files import shared_name
 from vbikit.errors import VbikitError
 from vbikit.rail import codes
@@ -603,7 +604,7 @@ def assemble(spec: RailSpec, bridge, names, speeds, points, envs, res, f_limit, 
         damping = damping_origin(spec, span)
     damping_words, delta_zeta = damping if damping is not None else ("unknown (a scenario's [bridge])", math.nan)
     ds.attrs.update({
-        "title": "vbikit railway speed sweep", "span_m": span,
+        "title": "vbikit railway speed sweep", "vbikit_version": __version__, "span_m": span,
         **({"EI_Nm2": b.EI, "mass_per_length_kg_m": b.mass_per_length} if b.scenario is None else {}),
         # (the scenario file as given, an absolute path by its name only: a shared dataset names no folder)
         "bridge_model": type(bridge).__name__ + (f" from {shared_name(b.scenario)}" if b.scenario else ""),

@@ -32,7 +32,7 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     # the governing events the run stored (its half-step check is of them)
     stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs}
     codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
-    out = {"dataset": dataset, **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
+    out = {"dataset": dataset, "vbikit_version": str(attrs.get("vbikit_version", "")), **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
            "start": start_words(attrs), "flag_codes": codes,
            "warnings": str(attrs.get("warnings", ""))}
     return out | {"units": {k: unit for k in out if (unit := summary_unit(k))}}
