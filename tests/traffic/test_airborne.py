@@ -30,6 +30,13 @@ def test_airborne_events_on_a_rough_road_are_counted_and_flagged(tmp_path):
     assert ds.attrs["n_airborne_events"] == sum(expected)
     assert dataset_has_flag(ds.attrs, "airborne_wheels")
     assert f"{sum(expected)} of {job.size} events had a wheel airborne" in ds.attrs["warnings"]
+    # the summary gives them as every summary does: the messages a list, the flags records (a trial found one string)
+    from vbikit.traffic.summary import summary
+
+    s = summary(ds)
+    assert [f["code"] for f in s["flags"]] == s["flag_codes"] and "airborne_wheels" in s["flag_codes"]
+    assert s["warnings"] == [f["message"] for f in s["flags"]] and len(s["warnings"]) == len(s["flag_codes"])
+    assert any(w.startswith(f"{sum(expected)} of {job.size} events had a wheel airborne") for w in s["warnings"])
 
 
 def test_no_airborne_flag_on_a_smooth_road(tmp_path):

@@ -4,6 +4,7 @@ prints), ``traffic-summary.json`` (``summary``) and the figure ``traffic-im.png`
 ``vbikit traffic --out FILE.nc`` writes the dataset only."""
 from __future__ import annotations
 
+import json
 from typing import Any
 
 #: the files ``vbikit traffic --out-dir`` writes (checked before the run, ``vbikit._files.output_names``), and the
@@ -21,8 +22,8 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     summarises, ``traffic.nc`` in a folder, ``--out``'s name otherwise): the statistics at the first response point
     (``vbikit.traffic.study.stream_statistics``: event counts, the impact-factor distribution with the 95 %
     confidence intervals, the governing events with their deflections and dynamic amplification), their half-step
-    check, where the stream starts (``start_words``), the flag codes and the warnings (the dataset's, "; "-joined),
-    and ``units``: each number's unit (``summary_unit``).  NaN stays NaN here; the writer gives
+    check, where the stream starts (``start_words``), the flag codes, the ``warnings`` (a list of messages) and
+    ``flags`` (their records: code, message, output, subject, value, threshold), as every summary gives them, and ``units``: each number's unit (``summary_unit``).  NaN stays NaN here; the writer gives
     null (``vbikit._files.json_text``)."""
     from vbikit.analysis.population_start import start_words
     from vbikit.traffic.study import stream_statistics
@@ -32,9 +33,12 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     # the governing events the run stored (its half-step check is of them)
     stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs}
     codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
+    # the flags as records and their messages as a list, as every summary gives them (a dataset written before the
+    # records were stored: its "; "-joined messages as one)
+    records = json.loads(attrs["flags"]) if "flags" in attrs else []
+    warnings = [r["message"] for r in records] if records else [str(attrs["warnings"])] if attrs.get("warnings") else []
     out = {"dataset": dataset, "vbikit_version": str(attrs.get("vbikit_version", "")), **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
-           "start": start_words(attrs), "flag_codes": codes,
-           "warnings": str(attrs.get("warnings", ""))}
+           "start": start_words(attrs), "flag_codes": codes, "warnings": warnings, "flags": records}
     return out | {"units": {k: unit for k in out if (unit := summary_unit(k))}}
 
 
