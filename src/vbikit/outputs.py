@@ -42,6 +42,16 @@ def cf_unit(unit: str) -> str:
     return CF_UNITS.get(unit, unit)
 
 
+def member_units(units: Sequence[str], dim: str, coordinate: str) -> dict[str, str]:
+    """The unit attributes of a dataset variable whose values along ``dim`` have the CF units ``units`` (one a member,
+    held by the coordinate ``coordinate``): ``{"units": u}`` when they share one; otherwise ``{"units_by_<dim>":
+    coordinate}`` and no ``units`` — CF allows one parseable unit per variable, and a packed "N m; m; N" is one no
+    parser reads (cf_units and pint refuse the whole dataset) — the one convention of the lifetime load effects and
+    the drive-by sensors."""
+    kinds = list(dict.fromkeys(str(u) for u in units))
+    return {"units": kinds[0]} if len(kinds) == 1 else {f"units_by_{dim}": coordinate}
+
+
 def csv_unit(unit: str) -> str:
     """The CSV / JSON spelling of a CF/UDUNITS ``unit`` (``cf_unit``'s inverse: ``"m s-2"`` → ``"m/s^2"``, ``"1"``
     → ``"-"``; a unit both write alike as it is)."""

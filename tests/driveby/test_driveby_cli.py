@@ -48,7 +48,11 @@ def test_cli_writes_the_dataset_contract(tmp_path, summary_on_stdout):
         assert np.nanmax(ds["mode_shape_squared"].values) == pytest.approx(1.0, abs=0.05)
         assert ds["mode_shape_mac"].values[0] == pytest.approx(1.0)  # the healthy case against itself
         assert 0.9 < ds["mode_shape_mac"].values[1] <= 1.0
-        assert ds["sensor_history"].attrs["units"] and ds["identified_frequency_hz"].attrs["units"] == "Hz"
+        assert ds["identified_frequency_hz"].attrs["units"] == "Hz"
+        # one acceleration sensor: its records and noise in its unit, CF spelled (a trial found "see sensor_units" and
+        # "sensor unit", which no unit parser reads)
+        assert ds["sensor_units"].values.tolist() == ["m s-2"]
+        assert ds["sensor_history"].attrs["units"] == ds["noise_std"].attrs["units"] == ds["noise_rms"].attrs["units"] == "m s-2"
     for name in ("driveby-report.txt", "driveby-summary.json", "driveby-spectrogram.png", "driveby-frequency-vs-speed.png", "driveby-damage.png"):
         assert (out / name).is_file(), name
     # it says what it wrote, one line a file, as every command that writes a folder

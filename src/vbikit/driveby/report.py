@@ -61,7 +61,10 @@ def _sensor_unit(ds) -> str:
     ident = str(ds.attrs.get("identification_sensor", ""))
     if "sensor_units" not in ds.coords or "sensor" not in ds.coords:
         return ""
-    units = dict(zip((str(s) for s in ds["sensor"].values), (str(u) for u in ds["sensor_units"].values)))
+    from vbikit.outputs import csv_unit
+
+    # (the coordinate's CF spelling, as the report writes units: m/s^2)
+    units = dict(zip((str(s) for s in ds["sensor"].values), (csv_unit(str(u)) for u in ds["sensor_units"].values)))
     return f", {units[ident]}" if units.get(ident) else ""
 
 

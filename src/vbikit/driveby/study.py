@@ -35,7 +35,7 @@ from vbikit.driveby.spec import (BAND_MAX_HZ, DATASET_FILE, ZARR_FILE, DriveBy, 
                                  check_dataset_format)
 from vbikit.driveby.variability import SPLIT_NAMES, draw, perturbed_vehicle, split_of, temperature_factor
 from vbikit.driveby.vehicles import DRIVEBY_VEHICLES, driveby_vehicle
-from vbikit.outputs import OUTPUTS, cf_unit
+from vbikit.outputs import OUTPUTS, cf_unit, member_units
 from vbikit.vehicle.model import GRAVITY
 
 log = logging.getLogger(__name__)
@@ -751,6 +751,8 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
     }
 
 
+#: a label's unit that is each sensor's own (the dataset writes ``member_units`` of the sensors' units for it)
+IN_SENSOR_UNITS = "in each sensor's unit"
 LABEL_ATTRS = {
     "speed": ("m s-1", "vehicle speed (drawn per pass with variability.speed)"),
     "scour_class": ("1", "support stiffness class k: support springs = variability.support_stiffness × "
@@ -769,7 +771,7 @@ LABEL_ATTRS = {
     "vehicle": ("", "the instrumented vehicle: index into the fleet coordinate (the [[fleet]] names; −1: one [vehicle])"),
     "draw_index": ("1", "the key of the pass's draw (SeedSequence(seed, spawn_key=(draw_index,))); the vehicles of one "
                         "pass of fleet = \"all\" share it"),
-    "noise_rms": ("sensor unit", "noise_rms set for the sensors (the sweep's, else the first sensor's; 0 where a "
+    "noise_rms": (IN_SENSOR_UNITS, "noise_rms set for the sensors (the sweep's, else the first sensor's; 0 where a "
                                   "sensor's noise is given as an SNR, noise_snr_db): the noise added is noise_std"),
 }
 
@@ -882,6 +884,8 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
         hist[row:row + h.shape[0], :, :h.shape[2]] = h
         row += h.shape[0]
     hist, truth = hist[order, :n_sensors], hist[order, n_sensors:]
+    # the unit of a value in each sensor's own unit: theirs if they share one, else the coordinate of each's
+    sensor_units = member_units([cf_unit(s.unit) for s in spec.sensors], "sensor", "sensor_units")
     variables: dict[str, Any] = {}
     for name, (units, long_name) in CASE_OUTPUTS.items():
         values = out[name][order]
@@ -889,7 +893,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
                            {"units": units, "long_name": long_name})
     labels = _labels(spec)
     for name, (units, long_name) in LABEL_ATTRS.items():
-        attrs = {"long_name": long_name} | ({"units": units} if units else {})
+        attrs = {"long_name": long_name} | (sensor_units if units == IN_SENSOR_UNITS else {"units": units} if units else {})
         variables[name] = ("case", labels[name], attrs)
     for j, (name, (units, long_name)) in enumerate(CONTACT_TRUTH.items()):
         variables[name] = (("case", "sample"), truth[:, j], {"units": units, "long_name": long_name +
@@ -897,7 +901,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     if spec.output["spectra"]:
         spectra = out["spectrum"][order]
         variables["sensor_spectrum"] = (("case", "sensor", "frequency"), spectra[:, :n_sensors], {
-            "units": "see sensor_units", "long_name": "single-sided amplitude spectrum of each sensor record while the "
+            **sensor_units, "long_name": "single-sided amplitude spectrum of each sensor record while the "
             "front wheel is on the deck (samples on_bridge_start_sample … on_bridge_end_sample), rectangular window, "
             "zero-padded: 2 |DFT| / N (vbikit.driveby.sensors.amplitude_spectrum)"})
         variables["contact_spectrum"] = (("case", "frequency"), spectra[:, n_sensors], {
@@ -959,19 +963,20 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     for k, (units, long_name) in indicators.items():
         variables[k] = ("case", values[k], {"units": units, "long_name": long_name})
     variables["sensor_history"] = (("case", "sensor", "sample"), hist, {
-        "units": "see sensor_units", "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
+        **sensor_units, "long_name": "sensor record at t = time_start + sample / sampling_rate (NaN after its end)"})
     variables["split"] = ("case", np.array([split_of(spec.seed, int(i)) for i in labels["draw_index"]], np.int8), {
         "long_name": "documented train / validation / test split by the file's seed (vbikit.driveby.variability."
                      "split_of: 70 / 15 / 15 %, fixed per draw_index: the vehicles of one pass in the same part)",
         "flag_values": np.array([0, 1, 2], np.int8), "flag_meanings": " ".join(SPLIT_NAMES)})
     variables["noise_std"] = (("case", "sensor"), out["noise_std"][order], {
-        "units": "see sensor_units", "long_name": "standard deviation of the noise added to each sensor's record"})
+        **sensor_units, "long_name": "standard deviation of the noise added to each sensor's record"})
     variables["time_start"] = ("case", out["time0"][order], {"units": "s", "long_name": "time of the first sample"})
     coords = {
         "case": ("case", np.arange(n_cases)),
         "position": ("position", grid, {"units": "m", "long_name": "distance along the deck from the entry support"}),
         "sensor": ("sensor", np.array([s.name for s in spec.sensors], dtype=object)),
-        "sensor_units": ("sensor", np.array([s.unit for s in spec.sensors], dtype=object)),
+        "sensor_units": ("sensor", np.array([cf_unit(s.unit) for s in spec.sensors], dtype=object),
+                         {"long_name": "unit of each sensor's record (CF spelling)"}),
         "sensor_quantity": ("sensor", np.array([s.quantity for s in spec.sensors], dtype=object)),
         "fleet": ("fleet", np.array([n for n, _ in spec.fleet] or [spec.vehicle["model"]], dtype=object),
                   {"long_name": "the instrumented vehicles ([[fleet]] names; the [vehicle] model without a fleet)"}),

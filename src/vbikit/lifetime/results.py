@@ -334,12 +334,13 @@ def build_dataset(prep, static, dyn: dict, rounds: list, bound: float, timing: d
         variables.update(_verdict_variables(prep, fat["variables"], fat["ranges"]))
     coords["governs"] = np.array(["static", "total"], dtype=object)
     ds = xr.Dataset(variables, coords=coords)
-    # per-effect units: one unit per variable is what CF allows; effects of one kind share it
+    # per-effect units: one parseable unit per variable (CF), else the coordinate of each effect's (member_units)
+    from vbikit.outputs import member_units
+
     for name, v in ds.data_vars.items():
         if v.attrs.get("units") == "see load_effect_units":
-            v.attrs["units"] = units[0] if len(set(units)) == 1 else "; ".join(units)
-            if len(set(units)) > 1:
-                v.attrs["units_by_load_effect"] = "units in load_effect order (coordinate load_effect_units)"
+            del v.attrs["units"]
+            v.attrs.update(member_units(units, "load_effect", "load_effect_units"))
     n_sim = int(simulated.sum())
     ds.attrs = {
         "title": spec.name or "vbikit lifetime",
