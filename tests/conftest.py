@@ -399,6 +399,26 @@ def pytest_collection_finish(session) -> None:
 
 
 @pytest.fixture(scope="session")
+def built_once() -> Callable[[str, Callable[[], dict]], dict]:
+    """``get(name, build)``: the JSON object ``build()`` returns, built once for the whole run under ``name`` — by the
+    first process that asks (under a lock in ``RUN_DIR``; the others wait and read the same object), as
+    ``strict_site`` does for the docs site.  For expensive results that several tests only read, which may run in
+    different workers.  A ``build`` that raises leaves nothing: the next process to ask builds it again (and fails
+    alike)."""
+    def get(name: str, build: Callable[[], dict]) -> dict:
+        result = os.path.join(RUN_DIR, f"built-{name}.json")
+        with _flock(result + ".lock"):
+            if not os.path.exists(result):
+                value = build()
+                with open(result + ".tmp", "w", encoding="utf-8") as f:
+                    json.dump(value, f)
+                os.replace(result + ".tmp", result)
+            with open(result, encoding="utf-8") as f:
+                return json.load(f)
+    return get
+
+
+@pytest.fixture(scope="session")
 def strict_site() -> dict:
     """The documentation site built once for the whole run with ``mkdocs build --strict`` (from this
     tree's ``src``), by the first worker that asks, under a lock; the others wait and read the same

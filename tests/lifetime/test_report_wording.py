@@ -313,17 +313,14 @@ def test_another_runs_work_names_the_output_folder(tmp_path, monkeypatch):
     assert "--out" not in str(err.value) and "study" not in str(err.value)
 
 
-def test_a_headline_value_a_flag_puts_in_doubt_is_marked(tmp_path):
-    """The cut-down example's report: a ``!`` follows a characteristic static value exactly when a flag of that load
-    effect is about the characteristic static value or the static return levels, an ADR exactly when one is about
-    the ADR (the flags' ``output`` words, written out here), and the legend is printed when any value is marked."""
+def test_a_headline_value_a_flag_puts_in_doubt_is_marked(finished_cut_down):
+    """The cut-down example's report (its finished run, ``finished_cut_down``): a ``!`` follows a characteristic
+    static value exactly when a flag of that load effect is about the characteristic static value or the static
+    return levels, an ADR exactly when one is about the ADR (the flags' ``output`` words, written out here), and the
+    legend is printed when any value is marked."""
     from vbikit.lifetime.report import summary, text_report
-    from vbikit.lifetime.run import run_lifetime
 
-    from .test_cli import _cut_down
-
-    ds = run_lifetime(_cut_down(tmp_path), tmp_path / "out", workers=1, figures=False)
-    facts = summary(ds)
+    facts = summary(finished_cut_down.ds)
     report = text_report(facts).splitlines()
     header = next(i for i, line in enumerate(report) if line.startswith("load effect"))
     any_mark = False

@@ -95,13 +95,12 @@ def test_a_run_over_budget_after_the_static_pass_stops_there_and_resumes(tmp_pat
     assert ds.attrs["n_dynamic_events"] > 0
 
 
-def test_a_finished_run_is_not_refused_for_dynamics_it_has_done(tmp_path, monkeypatch):
-    """The check after the static pass on a finished run's work, every event it simulated expected and the cost of one
-    raised a millionfold: not refused, its rounds hold them; with one event more expected it is, for that one."""
-    spec = _cut_down(tmp_path)
-    out = tmp_path / "out"
-    ds = lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
-    prep = lifetime_run.prepare(lifetime_run.read_lifetime(spec)[0], tmp_path, workers=1)
+def test_a_finished_run_is_not_refused_for_dynamics_it_has_done(finished_cut_down, monkeypatch):
+    """The check after the static pass on a finished run's work (the cut-down example's, ``finished_cut_down``),
+    every event it simulated expected and the cost of one raised a millionfold: not refused, its rounds hold them;
+    with one event more expected it is, for that one."""
+    spec, out, ds = finished_cut_down.spec, finished_cut_down.out, finished_cut_down.ds
+    prep = lifetime_run.prepare(lifetime_run.read_lifetime(spec)[0], finished_cut_down.folder, workers=1)
     with xr.open_dataset(out / "work" / "static.nc") as static:
         static = static.load()
     gid = static["ev_day"].values * EVENT_STRIDE + static["ev_index"].values
@@ -116,15 +115,14 @@ def test_a_finished_run_is_not_refused_for_dynamics_it_has_done(tmp_path, monkey
         lifetime_run.check_dynamics_budget(prep, static, out / "work")
 
 
-def test_the_estimate_from_the_static_pass_counts_the_events_the_run_simulates(tmp_path):
-    """On the cut-down example (a beam) the estimate's events are of the order of those the run simulated: at least
-    half and at most 2.5 times as many (the week-long benchmark runs of docs/lifetime.md: 1.06× on the beam, 2.1× on
-    the deck, where the rule's D_b of 1.1 times the top static peak is low)."""
-    spec = _cut_down(tmp_path)
-    out = tmp_path / "out"
-    ds = lifetime_run.run_lifetime(spec, out, workers=1, figures=False)
+def test_the_estimate_from_the_static_pass_counts_the_events_the_run_simulates(finished_cut_down):
+    """On the cut-down example (a beam; its finished run, ``finished_cut_down``) the estimate's events are of the
+    order of those the run simulated: at least half and at most 2.5 times as many (the week-long benchmark runs of
+    docs/lifetime.md: 1.06× on the beam, 2.1× on the deck, where the rule's D_b of 1.1 times the top static peak is
+    low)."""
+    spec, out, ds = finished_cut_down.spec, finished_cut_down.out, finished_cut_down.ds
     with xr.open_dataset(out / "work" / "static.nc") as static:
-        prep = lifetime_run.prepare(lifetime_run.read_lifetime(spec)[0], tmp_path, workers=1)
+        prep = lifetime_run.prepare(lifetime_run.read_lifetime(spec)[0], finished_cut_down.folder, workers=1)
         hours, events = lifetime_run.dynamics_estimate(prep, static.load())
     simulated = ds.attrs["n_dynamic_events"]
     assert 0.5 * simulated <= events <= 2.5 * simulated, (events, simulated)

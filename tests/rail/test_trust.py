@@ -10,6 +10,17 @@ import pytest
 from vbikit.rail.run import run_rail
 
 
+@pytest.fixture(scope="module")
+def hslm_a4(tmp_path_factory):
+    """HSLM-A4 over the example's 20 m span at 230 and 250 km/h, written to a folder (``rail-summary.json``,
+    ``rail.nc``): ``(result, folder)``.  Three tests read this one run (each ran it itself before, the same
+    call); none changes it."""
+    out = tmp_path_factory.mktemp("hslm-a4")
+    result = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
+                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, out, figures=False)
+    return result, out
+
+
 def n0_beam(span, EI, mass):
     """First frequency [Hz] of a simply supported Euler–Bernoulli beam: (π / (2 L²)) √(EI / m)."""
     return math.pi / (2 * span**2) * math.sqrt(EI / mass)
@@ -185,11 +196,10 @@ def test_refined_acceleration_peak_against_a_dense_sweep():
     assert f"midspan moment after {mom['refinement_halvings']} halving" in result.report
 
 
-def test_report_states_units_of_moment_and_shear_and_the_json_the_grid_bound(tmp_path):
+def test_report_states_units_of_moment_and_shear_and_the_json_the_grid_bound(hslm_a4):
     import json
 
-    result = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
-                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, tmp_path, figures=False)
+    result, tmp_path = hslm_a4
     summary = json.loads((tmp_path / "rail-summary.json").read_text())
     acc = summary["checks"]["acceleration"]
     assert acc["peak"] == result.checks["acceleration"]["peak"] and 0 <= acc["refinement_bound"] < acc["tolerance"] == 0.005
@@ -214,13 +224,12 @@ def test_presets_call_a_trains_loads_axle_loads():
     assert any("load per wheel [kN]" in x for x in out)  # road vehicles keep their wheel loads
 
 
-def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value():
+def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value(hslm_a4):
     """The envelope line gives the dynamic peak (1 + phi'dyn) x train, without phi''/2 — not the design value
     of the midspan line above it — and the midspan value it is compared with, so the two lines cannot be
     read as one quantity (on main: "largest 5828 kN m … +0.46 % against the largest at midspan" under a
     midspan design moment of 5987 kN m for the example)."""
-    result = run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
-                       "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, figures=False)
+    result = hslm_a4[0]
     ds = result.dataset
     line = next(x for x in result.report.splitlines() if x.startswith("moment along the span"))
     assert "dynamic peaks (1 + phi'dyn) x train, without phi''/2" in line
@@ -232,14 +241,13 @@ def test_report_moment_along_the_span_names_its_quantity_and_the_midspan_value()
     assert pct == pytest.approx(100 * (env / mid_dyn - 1), abs=0.01 + 100 * 5e-4)
 
 
-def test_json_checks_state_the_unit_of_every_number(tmp_path):
+def test_json_checks_state_the_unit_of_every_number(hslm_a4):
     """rail-summary.json: each check carries the unit of each of its numbers (on main the checks' peak,
     limit, speed [m/s, where the trains' block says km/h], design moments [N m] and shears [N] had none);
     the units agree with the dataset's variables they come from."""
     import json
 
-    run_rail({"bridge": {"span": 20.0, "EI": 7.9e10, "mass_per_length": 25000.0}, "trains": {"presets": ["hslm-a4"]},
-              "speeds": {"min": 230.0, "max": 250.0, "step": 20.0}}, tmp_path, figures=False)
+    tmp_path = hslm_a4[1]
     checks = json.loads((tmp_path / "rail-summary.json").read_text())["checks"]
     import xarray as xr
 

@@ -77,24 +77,33 @@ def test_the_shipped_kernels_are_built_from_the_present_sources():
     assert "solve/kernels/lean.py" in kernels and "solve/kernels/assembly.py" in kernels  # (njit and bundles._flat)
 
 
-def test_a_fresh_install_runs_the_demo_and_every_integrator_without_compiling(tmp_path):
+@pytest.fixture(scope="module")
+def fresh_install(built_once, tmp_path_factory) -> dict:
+    """A fresh install with the shipped kernels (``_fresh_process(…, "all")``): the demo's impact factor, then
+    everything ``vbikit compile`` compiles, with every compile event counted.  Made once for the run
+    (``built_once``): two tests read it, the one below and the host-kernel comparison (which ran the demo alone in
+    a fresh process of its own before: the same demo, the same count of compile events over it and more)."""
     _usable()
-    out = _fresh_process(tmp_path, "all")
+    return built_once("prebuilt-fresh-install", lambda: _fresh_process(tmp_path_factory.mktemp("fresh-install"), "all"))
+
+
+def test_a_fresh_install_runs_the_demo_and_every_integrator_without_compiling(fresh_install):
+    out = fresh_install
     assert out["target"][1:] == [prebuilt.PORTABLE_CPU, prebuilt.PORTABLE_FEATURES]
     assert out["compiled"] == [], f"compiled on a fresh install: {sorted(set(out['compiled']))}: {REBUILD}"
     assert out["im"] == pytest.approx(0.2451, abs=5e-5)  # (the demo's IM, README "Quick start")
 
 
-def test_without_the_shipped_kernels_numba_compiles_for_this_machine_and_gets_the_same_result(tmp_path):
+def test_without_the_shipped_kernels_numba_compiles_for_this_machine_and_gets_the_same_result(tmp_path, fresh_install):
     """``VBIKIT_HOST_KERNELS=1``: numba's target is the host CPU, the shipped kernels are not put in the cache,
-    and the demo's impact factor is the same to round-off (the generic and the host code differ in
+    and the demo's impact factor is the same to round-off as a fresh install's with the shipped kernels
+    (``fresh_install``, which compiled nothing) (the generic and the host code differ in
     instruction selection only: fused multiply-adds, vector width)."""
     _usable()
     host = _fresh_process(tmp_path, "demo", VBIKIT_HOST_KERNELS="1")
     assert host["target"][1] != prebuilt.PORTABLE_CPU
     assert "lean_quadratic" in host["compiled"]
-    (tmp_path / "other").mkdir()
-    shipped = _fresh_process(tmp_path / "other", "demo")
+    shipped = fresh_install
     assert shipped["compiled"] == []
     assert host["im"] == pytest.approx(shipped["im"], rel=1e-9)
 
