@@ -97,5 +97,5 @@ def test_a_run_in_reaches_every_case_and_a_profile_too_short_for_it_is_refused_b
     with pytest.raises(FieldFileError, match=r"case 'case1', point tire: road profile .* \(approach, run-in, vehicle "
                                              r"length, span, free vibration\): give a longer road"):
         check_field(spec, ["point"])
-    with pytest.raises(FieldFileError, match=r"crossing.run_in must be in 0 … 1000 m, got 2000"):
+    with pytest.raises(FieldFileError, match=r"crossing.run_in: expected a number in \[0, 1000\] \[m\], got 2000"):
         load_field_toml(edit(example, "run_in = 50.0", "run_in = 2000.0"))

@@ -30,6 +30,7 @@ from numpy.typing import NDArray
 from vbikit._files import check_name, csv_rows, input_file, read_text
 from vbikit._limits import MAX_SPEED, MIN_SPEED, MAX_RUN_IN
 from vbikit._toml import read_toml
+from vbikit._validation import number
 from vbikit.errors import VbikitError
 
 #: the speeds [km/h] a field file accepts: a scenario's (``vbikit._limits``)
@@ -291,7 +292,8 @@ def _keys(table: dict[str, Any], section: str, where: str, path: Path) -> None:
     allowed = set(FIELD_KEYS[section]) | ({"bridge", "vehicle", "crossing", "signal", "case"} if section == "" else set())
     extra = sorted(set(table) - allowed)
     if extra:
-        raise FieldFileError(f"{path}: unknown key '{where}{extra[0]}'; allowed: {', '.join(sorted(allowed))}")
+        # (the wording of every input file's: "key: unknown key; allowed: …")
+        raise FieldFileError(f"{path}: {where}{extra[0]}: unknown key; allowed: {', '.join(sorted(allowed))}")
 
 
 def _default(section: str, key: str) -> Any:
@@ -313,24 +315,14 @@ def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any =
         if default is ...:
             raise FieldFileError(f"{path}: missing key {where}{key}")
         return default
-    v = table[key]
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v):
-        raise FieldFileError(f"{path}: {where}{key} must be a finite number, got {v!r}")
-    if positive and not v > 0:
-        raise FieldFileError(f"{path}: {where}{key} must be > 0, got {v!r}")
-    if nonneg and not v >= 0:
-        raise FieldFileError(f"{path}: {where}{key} must be >= 0, got {v!r}")
-    if bounds is not None and not bounds[0] <= v <= bounds[1]:
-        raise FieldFileError(f"{path}: {where}{key} must be in {bounds[0]:g} … {bounds[1]:g}{' ' + unit if unit else ''}, "
-                             f"got {v!r}")
-    return float(v)
+    # (the one check and wording of a number read from an input file: "key: expected a number in [lo, hi] [unit], got …")
+    lo, hi = bounds if bounds is not None else (0.0 if positive or nonneg else None, None)
+    return number(table[key], f"{path}: {where}{key}", lo, hi, lo_open=positive and bounds is None, unit=unit,
+                  error=FieldFileError)
 
 
 def _int(table: dict[str, Any], key: str, path: Path, default: int, lo: int, hi: int, where: str = "") -> int:
-    v = table.get(key, default)
-    if isinstance(v, bool) or not isinstance(v, int) or not lo <= v <= hi:
-        raise FieldFileError(f"{path}: {where}{key} must be an integer {lo} … {hi}, got {v!r}")
-    return v
+    return int(number(table.get(key, default), f"{path}: {where}{key}", lo, hi, integer=True, error=FieldFileError))
 
 
 def _file(table: dict[str, Any], key: str, where: str, base: Path, path: Path, required: bool) -> Path | None:
