@@ -43,7 +43,10 @@ position = 5.0
 height = 0.02
 """
 
-MODELS = ("point", "multipoint (n = 6)", "disk", "rigid disk")
+#: the JSON's keys: the tire models by the names a [tire] table and `vbikit field --tires` take (each row's
+#: "label" is the text's, figure's and warnings' name of it)
+MODELS = ("point", "multipoint", "disk", "rigid-disk")
+LABELS = ("point", "multipoint (n = 6)", "disk", "rigid disk")
 
 
 def write(tmp_path: Path, text: str) -> Path:
@@ -59,7 +62,8 @@ def test_compare_tires_writes_figure_and_table(tmp_path, with_defects):
     res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(out), "--json"])
     assert res.exit_code == 0, res.output
     table = json.loads(res.stdout)
-    assert tuple(table) == MODELS
+    assert tuple(table) == MODELS and tuple(row["label"] for row in table.values()) == LABELS
+    assert [row["tire"]["model"] for row in table.values()] == list(MODELS)
     assert json.loads((out / "compare-tires.json").read_text()) == table
     assert (out / "compare-tires.png").stat().st_size > 10_000
     for label, row in table.items():
@@ -75,10 +79,13 @@ def test_compare_tires_writes_figure_and_table(tmp_path, with_defects):
         # scripts read units and flag codes as from vbikit run's JSON (CF spelling; the codes, never the words)
         assert row["units"]["max_abs_acceleration"] == "m s-2" and row["units"]["impact_factor"] == "1"
         assert row["units"]["min_tire_force"] == "N" and row["response_x"] == 5.0
+        # how good each run is, as vbikit run states it: its step and its half-step check
+        assert row["dt"] > 0 and row["units"]["dt"] == "s" and row["max_static_displacement"] < 0
+        assert row["step_check"]["dt"] == pytest.approx(row["dt"] / 2) and row["step_check"]["largest_change"] >= 0
         assert [f["message"] for f in row["flags"]] == [w for w in row["warnings"] if w in {f["message"] for f in row["flags"]}]
     if not with_defects:
         # smooth road: the rigid disk acts through its centre point like the point tire
-        assert table["rigid disk"]["max_dynamic_displacement"] == pytest.approx(table["point"]["max_dynamic_displacement"],
+        assert table["rigid-disk"]["max_dynamic_displacement"] == pytest.approx(table["point"]["max_dynamic_displacement"],
                                                                                 rel=1e-9)
 
 
@@ -87,10 +94,10 @@ def test_the_multipoint_tire_takes_the_scenario_s_n_points(tmp_path):
     with 6 points, silently); --n-points overrides it."""
     path = write(tmp_path, SMALL + '[tire]\nmodel = "multipoint"\nn_points = 3\n')
     table = json.loads(runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path), "--json"]).stdout)
-    assert "multipoint (n = 3)" in table
+    assert table["multipoint"]["tire"]["n_points"] == 3 and table["multipoint"]["label"] == "multipoint (n = 3)"
     table = json.loads(runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path), "--json",
                                            "--n-points", "5"]).stdout)
-    assert "multipoint (n = 5)" in table
+    assert table["multipoint"]["tire"]["n_points"] == 5 and table["multipoint"]["label"] == "multipoint (n = 5)"
 
 
 def test_compare_tires_text_output(tmp_path):
@@ -100,6 +107,9 @@ def test_compare_tires_text_output(tmp_path):
     assert "small tire comparison" in res.stdout
     for label in ("point", "multipoint (n = 4)", "disk", "rigid disk", "compare-tires.png"):
         assert label in res.stdout
+    # each model's half-step check, as vbikit run gives it
+    check = next(line for line in res.stdout.splitlines() if "step check:" in line)
+    assert all(label in check for label in ("point", "multipoint (n = 4)", "disk", "rigid disk"))
 
 
 @pytest.mark.parametrize("model,points", [("disk", 61), ("rigid-disk", 61)])
@@ -208,7 +218,7 @@ def test_per_wheel_warnings_of_every_tire_model_are_one_line_with_a_count(tmp_pa
     res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(out)])
     assert res.exit_code == 0, res.output
     table = json.loads((out / "compare-tires.json").read_text())
-    every = [(label, w) for label, row in table.items() for w in row["warnings"]]
+    every = [(row["label"], w) for row in table.values() for w in row["warnings"]]
     losses = [(label, w) for label, w in every if " lost contact with the road on the bridge" in w]
     assert len(losses) >= 12  # (20 today: six wheels for three models, two for the disk)
     lines = res.stderr.splitlines()

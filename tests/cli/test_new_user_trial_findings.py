@@ -74,7 +74,8 @@ def test_compare_tires_marks_a_time_that_includes_a_first_compilation(tmp_path, 
     summary = {"warnings": [], "flags": [], "max_dynamic_displacement": -3.4e-3, "impact_factor": 0.21,
                "max_dynamic_strain": 9e-5, "strain_impact_factor": 0.2, "max_abs_acceleration": 2.5,
                "min_wheel_force": {"axle1_left": 1e3}, "contact_loss": {"axle1_left": {"lost": False}},
-               "response_x": 5.0, "response_y": 0.0, "points": [{"name": "p1"}]}
+               "response_x": 5.0, "response_y": 0.0, "points": [{"name": "p1"}], "max_static_displacement": -2.8e-3,
+               "dt": 1e-3, "step_check": {"dt": 5e-4, "largest_change": 1e-5, "acceleration_change": 1e-3}}
 
     def fake_run(plan, *args, **kwargs):  # (the runs are checked for real, then "run")
         if plan.scenario.tire.model == "disk":

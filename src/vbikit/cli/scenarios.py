@@ -141,11 +141,12 @@ def compare_tires(
     base = guard(lambda: load_scenario(scenario), file=scenario)
     if n_points is None:  # (the file's own multi-point tire, as every other key of the file is its own)
         n_points = int(getattr(base.tire, "n_points", None) or 6) if base.tire.model == "multipoint" else 6
+    # model name (the [tire] model, the JSON's key, --tires' word) -> its label in the text, figure and warnings
     models = {
-        "point": {"model": "point"},
-        f"multipoint (n = {n_points})": {"model": "multipoint", "n_points": n_points},
-        "disk": {"model": "disk"},
-        "rigid disk": {"model": "rigid-disk"},
+        "point": ("point", {"model": "point"}),
+        "multipoint": (f"multipoint (n = {n_points})", {"model": "multipoint", "n_points": n_points}),
+        "disk": ("disk", {"model": "disk"}),
+        "rigid-disk": ("rigid disk", {"model": "rigid-disk"}),
     }
     from vbikit.cli.render import acceleration_in_doubt, impact_doubts
 
@@ -153,20 +154,23 @@ def compare_tires(
     from vbikit.scenario.preflight import preflight
 
     plans = {}
-    for label, tire in models.items():  # every model checked (budgets, steps) before any of them runs
+    for name, (_, tire) in models.items():  # every model checked (budgets, steps) before any of them runs
         spec = base.model_copy(update={"tire": base.tire.model_copy(update=tire)})
         spec._base_dir = base.base_dir
-        plans[label] = guard(lambda spec=spec: preflight(spec, budget), file=scenario)
+        plans[name] = guard(lambda spec=spec: preflight(spec, budget), file=scenario)
     responses, table, warnings, marks = {}, {}, {}, {}
-    for label, plan in plans.items():
+    for name, plan in plans.items():
+        label, tire = models[name]
         t0, compiled_before = time.perf_counter(), announced_kernels()
         run_ = guard(lambda plan=plan: run_planned(plan, budget), file=scenario)
         s = run_.summary
         warnings[label] = (s["warnings"], s["flags"])
         marks[label] = (*impact_doubts(s), acceleration_in_doubt(s, 0))
         responses[label] = run_.response
-        table[label] = {
+        table[name] = {
+            "label": label, "tire": tire,
             "max_dynamic_displacement": s["max_dynamic_displacement"],
+            "max_static_displacement": s["max_static_displacement"],
             "impact_factor": s["impact_factor"],
             "max_dynamic_strain": s["max_dynamic_strain"],
             "strain_impact_factor": s["strain_impact_factor"],
@@ -179,9 +183,11 @@ def compare_tires(
             "warnings": s["warnings"],  # every one, as its run gave it (stderr: one line per distinct warning)
             "flags": s["flags"],  # (the codes scripts read, vbikit.analysis.checks)
             "response_x": s["response_x"], "response_y": s["response_y"],
+            # how good the run's numbers are: its step, and its half-step check (None: not run, a given crossing.dt)
+            "dt": s["dt"], "step_check": s.get("step_check"),
         }
         # every number's unit, as vbikit run's JSON spells it (the two keys of this table only: theirs)
-        table[label]["units"] = {k: v for k, v in summary_units(table[label]).items() if v} | {
+        table[name]["units"] = {k: v for k, v in summary_units(table[name]).items() if v} | {
             "min_tire_force": cf_unit(OUTPUTS["min_tire_force"].unit), "seconds": "s"}
     warn(grouped_warnings(warnings, "tire", kept=f", each in {out_dir / 'compare-tires.json'}"))
     fig = guard(lambda: plot_tire_comparison(responses, out_dir / "compare-tires.png", base.name))
@@ -200,12 +206,19 @@ def compare_tires(
     (mm, to_mm), (kn, to_kn) = report_unit("m"), report_unit("N")
     typer.echo(f"  {'tire model':<20} {f'u_max [{mm}]':>10} {'IM [-]':>7} {'ε_max [µε]':>11} {'IM_ε [-]':>8} "
                f"{'|a|max [m/s²]':>13} {f'F_min [{kn}]':>10} {'run time [s]':>12}")
-    for label, row in table.items():
+    for row in table.values():
+        label = row["label"]
         im, strain, acceleration = ("!" if m else " " for m in marks[label])  # (as vbikit run marks them)
         typer.echo(f"  {label:<20} {row['max_dynamic_displacement'] * to_mm:10.4f} {row['impact_factor']:7.4f}{im}"
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f}{strain}"
                    f"{row['max_abs_acceleration']:13.4f}{acceleration}"
                    f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:12.2f}" + (" *" if row["compiled_kernels"] else ""))
+    checks = [(row["label"], row["step_check"]) for row in table.values()]  # each run's half-step check, as vbikit run's
+    typer.echo("  step check: at half the step the deflection and strain IMs change by at most "
+               + ", ".join(f"{label} {c['largest_change']:.1e}" if c else f"{label} not run (crossing.dt given)"
+                           for label, c in checks)
+               + " (the peak accelerations: " + ", ".join(f"{100 * c['acceleration_change']:.2f} %" if c else "—"
+                                                          for _, c in checks) + ")")
     if any(any(m) for m in marks.values()):
         typer.echo("  ! a flag of that model's run puts the value in doubt, as vbikit run marks it: see its warning above")
     if any(row["compiled_kernels"] for row in table.values()):
