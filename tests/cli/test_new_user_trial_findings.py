@@ -118,8 +118,10 @@ speed_kmh = 60
 
 def test_a_study_already_finished_in_its_output_says_so(tmp_path, monkeypatch, capsys):
     import vbikit.study.run
+    from vbikit.cli.guard import STATE
     from vbikit.cli.study import run_job
 
+    monkeypatch.setitem(STATE, "json", False)  # (no --json: as a command's own start sets it; a test before may have run one)
     monkeypatch.setattr(vbikit.study.run, "run_study", lambda study, out, **kwargs: "dataset")
     study = SimpleNamespace(name="paper-fig6", size=1440)
     fresh, finished = tmp_path / "fresh.nc", tmp_path / "finished.nc"

@@ -153,8 +153,9 @@ def test_out_of_memory_message_names_options_that_exist():
 
     with_option = [name for name, cmd in commands(typer.main.get_command(app))
                    if any("--max-memory" in getattr(p, "opts", ()) for p in cmd.params)]
-    assert sorted(with_option) == sorted(["run", "validate", "study run", "study validate", "traffic", "lifetime"])
-    assert "vbikit run, validate, study run, traffic, lifetime" in _OUT_OF_MEMORY  # (study validate runs nothing)
+    assert sorted(with_option) == sorted(["run", "validate", "compare-tires", "field", "study run", "study validate",
+                                          "traffic", "lifetime"])
+    assert "vbikit run, validate, compare-tires, field, study run, traffic, lifetime" in _OUT_OF_MEMORY  # (study validate runs nothing)
 
 
 def test_rail_has_progress_and_the_same_out_dir_default():

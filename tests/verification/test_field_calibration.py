@@ -43,7 +43,7 @@ def shared_simulations():
     runs: dict = {}
     profiles: dict = {}
 
-    def simulate_once(crossing):
+    def simulate_once(crossing, **kwargs):  # (kwargs: the run's limits, the same for every call here)
         bridge = crossing.bridge
         key = (type(bridge), getattr(bridge, "stiffness_factor", None), getattr(bridge, "_zeta", None), repr(crossing.tire),
                id(crossing.road), id(crossing.road_right), crossing.speed, crossing.approach, crossing.free_vibration,

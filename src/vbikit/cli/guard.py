@@ -26,7 +26,8 @@ T = TypeVar("T")
 #: command's ``--json``, which gives standard output to the summary JSON alone, ``say``)
 STATE = {"debug": False, "quiet": False, "json": False}
 
-_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, study run, traffic, lifetime) to be "
+_OUT_OF_MEMORY = ("error: out of memory; give a lower --max-memory (vbikit run, validate, compare-tires, field, study run, "
+                  "traffic, lifetime) to be "
                   "refused before starting, or reduce the inputs named in the budget message of `vbikit validate`")
 
 

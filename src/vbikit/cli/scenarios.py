@@ -135,6 +135,7 @@ def compare_tires(
     from vbikit.scenario import load_scenario
     from vbikit.solve.compile_notice import announced_kernels
 
+    use_json(as_json)
     if n_points is not None:
         guard(lambda: _n_points(n_points))
     budget = limits(max_memory, max_steps)
@@ -194,7 +195,6 @@ def compare_tires(
     guard(lambda: write_text(out_dir / "compare-tires.json", json_text(table, indent=2) + "\n"))
     written = (fig, out_dir / "compare-tires.json")
     if as_json:  # (the files said on standard error, as every command with --json says them)
-        use_json(True)
         for path in written:
             say(f"wrote {path}")
         typer.echo(json_text(table))

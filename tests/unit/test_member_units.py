@@ -1,5 +1,5 @@
-
-
+"""The one unit rule of a dataset variable whose members (load effects, sensors) have several units
+(``vbikit.outputs.member_units``)."""
 def test_member_units_give_one_parseable_unit_or_the_coordinate_of_each():
     """A variable over load effects or sensors of one unit has it; of several, no ``units`` (CF allows one parseable
     unit a variable; a packed "N m; m; N" none reads) and ``units_by_<dim>`` naming the coordinate of each's."""
