@@ -32,7 +32,7 @@ KINDS = {
     "lifetime": ("lifetime/lifetime.toml", ("days = 7", "days = -7"), "error: invalid lifetime file {f}:"),
     "rail": ("railway/hslm_20m.toml", ("span = 20.0 ", "span = -20.0 "), "error: invalid rail file {f}:"),
     "driveby": ("driveby/DRIVEBY.toml", ("rate = 200.0 ", "rate = -200.0 "), "error: invalid drive-by file {f}:"),
-    "field": ("field/FIELD.toml", ("speed_kmh = 64.4", "speed_kmh = -5"), "error: {f}: crossing.speed_kmh must be"),
+    "field": ("field/FIELD.toml", ("speed_kmh = 64.4", "speed_kmh = -5"), "error: {f}: crossing.speed_kmh: expected a number in [0.0036, 1080] [km/h]"),
     "records": ("traffic/stream.csv", ("v000002,2.905,2,,-x,60.38", f"{MARKER},2.905,2,,-x,-60.38"),
                 "error: {f}:3: column 6 (speed [km/h]): -60.38 km/h is below the smallest speed 0.0036 km/h (a speed is "
                 "positive: the direction column, +x or -x, gives the sense of travel); allowed 0.0036 … 252 km/h"),

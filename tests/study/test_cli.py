@@ -49,6 +49,22 @@ def test_study_run_and_validate(tmp_path):
     paired = im[1] - im[0]  # 90 against 60 km/h on the same two roads
     assert f"    difference from 60: 90 {paired.mean():+.4f} ± {paired.std(ddof=1) / 2**0.5:.4f}\n" in res.output
     ds.close()
+    # how good its step is: the base crossing's half-step check, as `vbikit run` of that crossing states it
+    from vbikit.scenario import run as run_scenario
+    from vbikit.study.spec import load_study
+
+    study = load_study(tmp_path / "s.toml")
+    base = run_scenario(study.scenario_dict((0, 0)), base_dir=tmp_path).summary["step_check"]
+    assert (f"step check of the base crossing (the other cells are not checked): at half the step the deflection and "
+            f"strain IMs change by at most {base['largest_change']:.1e}") in res.output
+
+
+def test_a_study_at_a_given_step_says_its_step_check_is_not_run(tmp_path):
+    (tmp_path / "s.toml").write_text(STUDY.replace("speed_kmh = 90\n[axes]", "speed_kmh = 90\ndt = 0.002\n[axes]"))
+    res = runner.invoke(app, ["study", "run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r.nc"),
+                              "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    assert "step check: not run (the base gives crossing.dt)" in res.output
 
 
 def test_study_of_one_road_says_its_means_have_no_standard_error(tmp_path):
@@ -141,7 +157,7 @@ def test_the_study_output_quoted_in_docs_is_the_example_study_s(tmp_path):
     assert res.exit_code == 0, res.output
     start = res.output.index("impact factor over all crossings")
     lines = res.output[start:].strip().splitlines()
-    assert len(lines) == 8 and lines[1].startswith("  mean by bridge.model: ")
+    assert len(lines) == 9 and lines[1].startswith("  mean by bridge.model: ") and lines[-1].startswith("step check")
     assert "\n".join(lines) in (root / "docs" / "studies.md").read_text()
 
 

@@ -141,7 +141,7 @@ def run_cmd(
     guard(lambda: not_an_input(out, "--out", [study_file]))  # (was refused as "not this study's dataset: delete it")
 
     study = guard(lambda: load_study(study_file), file=study_file)
-    _check(study, yes, max_memory, max_steps, file=study_file)
+    checked = _check(study, yes, max_memory, max_steps, file=study_file)
     ds = run_job(study, out, workers, scheduler, progress)
     warn_dataset(ds)
     if "impact_factor" not in ds:  # the study's outputs key left it out, or a PEM study's
@@ -171,7 +171,24 @@ def run_cmd(
         elif axes:  # one road per cell: the means carry a sampling error the study cannot state
             typer.echo("  (one road profile per value: no standard error; a \"road.seed\" = { samples = N } "
                        "axis, N ≥ 2, gives one)")
+    say_step_check(checked.step_check)
     print_negative_note(bool(float(im.min()) < 0))
+
+
+def say_step_check(check: Optional[dict]) -> None:
+    """How good the study's time step is, in a line: the base crossing's half-step check (``StudyCheck.step_check``),
+    the one crossing the study checks (a trial found a study's impact factors printed with no word of it)."""
+    if check is None:
+        typer.echo("step check: not run (the base gives crossing.dt)")
+        return
+    line = (f"step check of the base crossing (the other cells are not checked): at half the step the deflection and "
+            f"strain IMs change by at most {check['largest_change']:.1e}")
+    if check.get("acceleration_change") is not None:
+        line += f", its peak accelerations by {100 * check['acceleration_change']:.2g} %"
+    if check["dt"] * 2 < check["study_dt"] * (1 - 1e-9):  # the base's run halved its step for its load effects
+        line += (f" — at {2 * check['dt']:.3g} s, finer than the {check['study_dt']:.3g} s the study runs at "
+                 "(see the warning)")
+    typer.echo(line)
 
 
 @app.command("validate")

@@ -33,6 +33,9 @@ class StudyCheck:
     max_steps: int
     max_memory: float
     warnings: list[str] = field(default_factory=list)
+    #: the base crossing's half-step check (``vbikit.scenario.step_check``: ``largest_change`` of its deflection and
+    #: strain IMs, ``acceleration_change`` of its peak accelerations, at ``dt``); None when the base gives crossing.dt
+    step_check: dict | None = None
 
 
 def check_size(study: Study, confirmed: bool) -> None:
@@ -66,30 +69,34 @@ def _combinations(study: Study) -> list[tuple[int, ...]]:
     return out
 
 
-def _step_advice(study: Study, limits: Limits | None) -> list[str]:
-    """A study that asks for moments, shears or reactions at the automatic step: the base crossing
-    through the run pipeline's step check (``vbikit.scenario.step_check``); if its impact factors
-    settle only at a finer step, say which (the study's crossings keep the automatic step)."""
+def _base_step_check(study: Study, limits: Limits | None) -> tuple[list[str], dict | None]:
+    """The base crossing (every axis at its first value) through the run pipeline and its half-step check
+    (``vbikit.scenario.step_check``): the check's record, what a study states of its time step (the other cells are
+    not checked); None, and no run, when the base gives crossing.dt.  And, for a study that asks for moments, shears
+    or reactions at the automatic step: advice if their impact factors settle only at a finer step (the study's
+    crossings keep the automatic step)."""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.step_check import asks_for_load_effects, is_acceleration, is_train
 
     scenario = parse_scenario(study.scenario_dict(tuple(0 for _ in study.axes)), study.base_dir)
-    if not asks_for_load_effects(scenario) or scenario.crossing.dt is not None:
-        return []
+    if scenario.crossing.dt is not None:
+        return [], None
     plan = preflight(scenario, limits)
     report = run_planned(plan, limits)
     checked = float(report.result.integration_dt or report.result.dt)
-    if checked >= plan.dt * (1 - 1e-9):
-        return []
+    # (``study_dt``: the step the study's crossings run at, coarser than the one checked where the run halved it)
+    check = report.summary.get("step_check") and {**report.summary["step_check"], "study_dt": plan.dt}
+    if not asks_for_load_effects(scenario) or checked >= plan.dt * (1 - 1e-9):
+        return [], check
     # what the halving is for: the impact factors, and a train's peak accelerations (another run's peak acceleration
     # flag is not about the step the study's load effects need)
     train = is_train(scenario)
     unsettled = [f["message"] for f in report.summary["flags"]
                  if f["code"] == "step_not_converged" and (train or not is_acceleration(f.get("output")))]
     if unsettled:  # not even the finest checked step settles them
-        return [f"base (the study's crossings run at the automatic step {plan.dt:.3g} s): {w}" for w in unsettled]
+        return [f"base (the study's crossings run at the automatic step {plan.dt:.3g} s): {w}" for w in unsettled], check
     return [f"base: the load effects' impact factors settle only at dt = {checked:.3g} s (step check of the base "
-            f"crossing; the automatic step is {plan.dt:.3g} s): set crossing.dt = {checked:.3g} in the base"]
+            f"crossing; the automatic step is {plan.dt:.3g} s): set crossing.dt = {checked:.3g} in the base"], check
 
 
 def check_study(study: Study, limits: Limits | None = None, confirmed: bool = False) -> StudyCheck:
@@ -109,7 +116,8 @@ def check_study(study: Study, limits: Limits | None = None, confirmed: bool = Fa
             raise StudyError(f"base + axes ({where}): {err}") from None
         max_steps, max_memory = max(max_steps, est.n_steps), max(max_memory, est.memory)
         warnings += [f"{where}: {w}" for w in plan.warnings]
-    warnings += _step_advice(study, limits)
+    advice, step_check = _base_step_check(study, limits)
+    warnings += advice
     if study.histories:  # the dataset holds one deflection history per crossing
         need = 8.0 * study.size * (max_steps + 1)
         limit = (limits or Limits()).max_memory
@@ -117,4 +125,4 @@ def check_study(study: Study, limits: Limits | None = None, confirmed: bool = Fa
             raise StudyError(f"histories = true: {study.size} crossings × up to {max_steps + 1} time points need "
                              f"≈ {human(need)} in the dataset, above the memory limit {human(limit)}; raise "
                              "--max-memory, or store no histories")
-    return StudyCheck(len(combos), max_steps, max_memory, warnings)
+    return StudyCheck(len(combos), max_steps, max_memory, warnings, step_check)
