@@ -181,3 +181,31 @@ def test_a_one_crossing_study_is_counted_in_the_singular(tmp_path):
     res = runner.invoke(app, ["study", "validate", str(tmp_path / "s.toml")])
     assert res.exit_code == 0, res.output
     assert "1 crossing (crossing.speed_kmh (1) × road.seed (1)) in 1 batch" in res.output and "1 crossings" not in res.output
+
+
+def test_study_run_json_is_the_summary_alone_on_standard_output(tmp_path):
+    """``study run --json``: one JSON object on standard output — the impact factors by axis value with their
+    standard errors, as the text gives them, the base crossing's step check and the flags — and every other line
+    (the run's count, the text) on standard error, as every command with --json."""
+    import json
+
+    import numpy as np
+
+    (tmp_path / "s.toml").write_text(STUDY)
+    argv = ["study", "run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r.nc"), "--workers", "1", "--no-progress"]
+    text = runner.invoke(app, argv)
+    res = runner.invoke(app, [*argv, "--json"])  # (the finished dataset read back)
+    assert res.exit_code == 0, res.output
+    summary = json.loads(res.stdout)
+    assert "impact factor over all crossings" in res.stderr and "step check of the base crossing" in res.stderr
+    with xr.open_dataset(tmp_path / "r.nc") as ds:
+        im = ds["impact_factor"].values  # (speed, sample)
+        assert summary["vbikit_version"] == ds.attrs["vbikit_version"] and summary["outputs"] == list(ds.data_vars)
+    (row,) = summary["impact_factor"]
+    assert row["mean"] == float(im.mean()) and row["max"] == float(im.max())
+    (axis,) = row["axes"]
+    assert axis["key"] == "crossing.speed_kmh" and axis["values"] == [60, 90]
+    np.testing.assert_allclose(axis["means"], im.mean(axis=1), rtol=1e-12)
+    np.testing.assert_allclose(axis["standard_error"], im.std(axis=1, ddof=1) / 2**0.5, rtol=1e-12)
+    assert summary["step_check"]["largest_change"] >= 0 and summary["units"]["impact_factor"] == "1"
+    assert f"{summary['step_check']['largest_change']:.1e}" in text.stdout

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any, Optional
 
 import typer
 
-from vbikit.cli.guard import guard
+from vbikit.cli.guard import guard, say
 
 if TYPE_CHECKING:  # pragma: no cover
     from vbikit.scenario.report import Report as Run
@@ -185,11 +185,11 @@ def negative_impact(s: dict[str, Any]) -> bool:
 
 def print_negative_note(negative: bool) -> None:
     """The one-line note on negative impact factors (``vbikit.analysis.checks.NEGATIVE_IM_NOTE``),
-    when the report has one."""
+    when the report has one (``say``: standard error under ``--json``)."""
     if negative:
         from vbikit.analysis.checks import NEGATIVE_IM_NOTE
 
-        typer.echo(f"  note: {NEGATIVE_IM_NOTE}")
+        say(f"  note: {NEGATIVE_IM_NOTE}")
 
 
 def step_line(s: dict) -> None:

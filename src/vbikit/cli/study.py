@@ -19,7 +19,10 @@ from vbikit.cli.guard import (
     out_dir_option,
     out_file_option,
     progress_option,
+    say,
+    say_json,
     scheduler_option,
+    use_json,
     warn,
     workers_option,
 )
@@ -60,7 +63,7 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
     t0, finished_before = time.perf_counter(), Path(out).is_file()  # (a run on another study's file is refused)
-    from vbikit.cli.guard import say, say_resumed
+    from vbikit.cli.guard import say_resumed
     from vbikit.study.storage import parts_dir
 
     try:
@@ -115,6 +118,12 @@ def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional
     return result
 
 
+#: ``study run --json``'s help: the summary is not a file's (the study writes its dataset only)
+STUDY_JSON_HELP = ("Print the study's summary as JSON on standard output (the impact factors by axis value with "
+                   "their standard errors, the base crossing's step check, the flags); every other line goes to "
+                   "standard error.")
+
+
 #: the values of a swept axis whose mean impact factor ``study run`` prints (the others: in the dataset)
 AXIS_VALUES_SHOWN = 12
 
@@ -133,19 +142,28 @@ def run_cmd(
     yes: bool = _YES,
     max_memory: Optional[str] = _MAX_MEMORY,
     max_steps: Optional[float] = _MAX_STEPS,
+    as_json: bool = typer.Option(False, "--json", help=STUDY_JSON_HELP),
 ) -> None:
     """Run (or resume) a study and write its dataset."""
     from vbikit._files import not_an_input
     from vbikit.study.spec import load_study
+    from vbikit.study.summary import study_summary
 
+    use_json(as_json)
     guard(lambda: not_an_input(out, "--out", [study_file]))  # (was refused as "not this study's dataset: delete it")
 
     study = guard(lambda: load_study(study_file), file=study_file)
     checked = _check(study, yes, max_memory, max_steps, file=study_file)
     ds = run_job(study, out, workers, scheduler, progress)
     warn_dataset(ds)
+    _say_results(ds, checked.step_check)
+    say_json(study_summary(ds, checked.step_check))
+
+
+def _say_results(ds: Any, step_check: Optional[dict]) -> None:
+    """The study's impact factors by axis value and its step check, in lines (``say``: standard error under --json)."""
     if "impact_factor" not in ds:  # the study's outputs key left it out, or a PEM study's
-        typer.echo(f"outputs stored: {', '.join(str(name) for name in ds.data_vars)}")
+        say(f"outputs stored: {', '.join(str(name) for name in ds.data_vars)}")
         return
     from vbikit.cli.render import print_negative_note
     from vbikit.study.summary import axis_means
@@ -154,24 +172,24 @@ def run_cmd(
     keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
     for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
                           else [("", im)]):
-        typer.echo(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
-                   f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
+        say(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
+            f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
         axes = axis_means(values)  # each swept axis's values, the mean over the others and the road samples
         for axis in axes:
             shown = ", ".join(f"{v} {m:.4f}" + ("" if math.isnan(se) else f" ± {se:.4f}")
                               for v, m, se in list(zip(axis.values, axis.means, axis.standard_error))[:AXIS_VALUES_SHOWN])
             more = len(axis.values) - AXIS_VALUES_SHOWN
-            typer.echo(f"  mean by {keys.get(axis.dim, axis.dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
+            say(f"  mean by {keys.get(axis.dim, axis.dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
             if not math.isnan(axis.difference_error[-1]):  # the comparison the study makes: paired over the same roads
                 diffs = ", ".join(f"{v} {d:+.4f} ± {e:.4f}" for v, d, e in list(zip(
                     axis.values, axis.difference, axis.difference_error))[1:AXIS_VALUES_SHOWN])
-                typer.echo(f"    difference from {axis.values[0]}: {diffs}")
+                say(f"    difference from {axis.values[0]}: {diffs}")
         if any(not math.isnan(se) for axis in axes for se in axis.standard_error):
-            typer.echo("  (± the standard error over the road samples; a difference's paired over the same roads)")
+            say("  (± the standard error over the road samples; a difference's paired over the same roads)")
         elif axes:  # one road per cell: the means carry a sampling error the study cannot state
-            typer.echo("  (one road profile per value: no standard error; a \"road.seed\" = { samples = N } "
-                       "axis, N ≥ 2, gives one)")
-    say_step_check(checked.step_check)
+            say("  (one road profile per value: no standard error; a \"road.seed\" = { samples = N } "
+                "axis, N ≥ 2, gives one)")
+    say_step_check(step_check)
     print_negative_note(bool(float(im.min()) < 0))
 
 
@@ -179,7 +197,7 @@ def say_step_check(check: Optional[dict]) -> None:
     """How good the study's time step is, in a line: the base crossing's half-step check (``StudyCheck.step_check``),
     the one crossing the study checks (a trial found a study's impact factors printed with no word of it)."""
     if check is None:
-        typer.echo("step check: not run (the base gives crossing.dt)")
+        say("step check: not run (the base gives crossing.dt)")
         return
     line = (f"step check of the base crossing (the other cells are not checked): at half the step the deflection and "
             f"strain IMs change by at most {check['largest_change']:.1e}")
@@ -188,7 +206,7 @@ def say_step_check(check: Optional[dict]) -> None:
     if check["dt"] * 2 < check["study_dt"] * (1 - 1e-9):  # the base's run halved its step for its load effects
         line += (f" — at {2 * check['dt']:.3g} s, finer than the {check['study_dt']:.3g} s the study runs at "
                  "(see the warning)")
-    typer.echo(line)
+    say(line)
 
 
 @app.command("validate")

@@ -58,3 +58,34 @@ def axis_means(output) -> list[AxisMeans]:
                              tuple(float(v) for v in se), tuple(float(v) for v in m - m[0]),
                              tuple(float(v) for v in d_se)))
     return out
+
+
+def study_summary(ds, step_check: dict | None = None) -> dict:
+    """A study's results as plain data (``vbikit study run --json``): the impact factor over all crossings (per response
+    point where there are several: ``point``; mean, min, max) with each swept axis's means by value
+    (``axis_means``: ``key`` the study's axis key, ``values``, ``means``, ``standard_error``, ``difference``,
+    ``difference_error``; NaN where there is no road sample to state one), how good the step is (``step_check``: the
+    base crossing's half-step check, ``vbikit.study.check.StudyCheck``; None where the base gives crossing.dt), the
+    dataset's ``flag_codes`` and ``warnings`` (its messages, "; "-joined as the dataset stores them), its ``outputs``,
+    the vbikit version that wrote the dataset, and ``units``.  NaN stays NaN here; the writer gives null."""
+    import json
+
+    keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
+    codes = [c for c in str(ds.attrs.get("flag_codes", "")).split(",") if c]
+    out = {"title": str(ds.attrs.get("title", "")), "vbikit_version": str(ds.attrs.get("vbikit_version", "")),
+           "outputs": [str(name) for name in ds.data_vars], "impact_factor": [], "step_check": step_check,
+           "flag_codes": codes, "warnings": [str(ds.attrs["warnings"])] if ds.attrs.get("warnings") else [],
+           "units": {"impact_factor": "1", "step_check": {"dt": "s", "study_dt": "s", "largest_change": "1",
+                                                          "acceleration_change": "1"}}}
+    if "impact_factor" not in ds:  # (the study's outputs key left it out, or a PEM study's)
+        return out
+    im = ds["impact_factor"]
+    per_point = [(str(p), im.sel(point=p)) for p in im["point"].values] if "point" in im.dims else [(None, im)]
+    rows = []
+    for point, values in per_point:
+        axes = [{"key": keys.get(a.dim, a.dim), "values": list(a.values), "means": list(a.means),
+                 "standard_error": list(a.standard_error), "difference": list(a.difference),
+                 "difference_error": list(a.difference_error)} for a in axis_means(values)]
+        rows.append({**({"point": point} if point is not None else {}), "mean": float(values.mean()),
+                     "min": float(values.min()), "max": float(values.max()), "axes": axes})
+    return out | {"impact_factor": rows}
