@@ -108,8 +108,10 @@ def test_compare_tires_text_output(tmp_path):
     for label in ("point", "multipoint (n = 4)", "disk", "rigid disk", "compare-tires.png"):
         assert label in res.stdout
     # each model's half-step check, as vbikit run gives it
-    check = next(line for line in res.stdout.splitlines() if "step check:" in line)
-    assert all(label in check for label in ("point", "multipoint (n = 4)", "disk", "rigid disk"))
+    checks = [line for line in res.stdout.splitlines() if line.startswith("  step check, ")]
+    assert [line.split(":")[0] for line in checks] == [f"  step check, {label}" for label in
+                                                       ("point", "multipoint (n = 4)", "disk", "rigid disk")]
+    assert all("at half the step (" in line for line in checks)
 
 
 @pytest.mark.parametrize("model,points", [("disk", 61), ("rigid-disk", 61)])

@@ -36,3 +36,15 @@ def test_the_files_with_a_scenario_bridge_are_shown_and_a_scenario_is_cited():
     assert res.exit_code == 0 and "models bridge:paper-bridge-2" in res.stdout
     res = runner.invoke(app, ["cite", "no-such-file.toml"])
     assert res.exit_code == 2 and "not found" in res.stderr
+
+
+def test_a_scenario_by_another_name_is_still_cited(tmp_path):
+    """A scenario whose file name does not end in .toml is read as before (the kind is told only of .toml files; a
+    review found `cite scen.txt` crashing on the CSV guess)."""
+    scen = tmp_path / "scen.txt"
+    scen.write_text((EXAMPLES / "paper/bridge2_hs20_girder4.toml").read_text())
+    res = runner.invoke(app, ["cite", str(scen)])
+    assert res.exit_code == 0 and "models bridge:paper-bridge-2" in res.stdout, res.output
+    (tmp_path / "x.csv").write_text("a,b\n1,2\n")
+    res = runner.invoke(app, ["cite", str(tmp_path / "x.csv")])
+    assert res.exit_code == 2 and res.stderr.startswith("error:"), res.output  # (the reader's own error, no crash)

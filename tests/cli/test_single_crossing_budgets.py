@@ -29,27 +29,42 @@ def test_the_single_crossing_commands_take_the_budgets_their_refusals_name(comma
 
 
 def test_compare_tires_refuses_above_the_step_budget_before_any_run(tmp_path, monkeypatch):
-    """The four tire models' runs are checked first: a budget below the run's steps stops the command with
-    exit 2, naming the option, and nothing is simulated or written."""
+    """A budget below the run's steps stops the command with exit 2, naming the option, and nothing is simulated or
+    written; and the four tire models' runs are all checked first: a refusal of the last model (faked: its check
+    refuses) stops the command before the first model runs."""
     import vbikit.scenario.pipeline
+    import vbikit.scenario.preflight
+    from vbikit.solve.budget import BudgetError
 
     def no_run(*args, **kwargs):
-        raise AssertionError("a run started although its check refused it")
+        raise AssertionError("a run started although a check refused one of the runs")
 
     monkeypatch.setattr(vbikit.scenario.pipeline, "run_planned", no_run)
-    res = runner.invoke(app, ["compare-tires", str(EXAMPLES / "paper" / "bridge2_hs20_girder4.toml"), "--out-dir",
-                              str(tmp_path / "out"), "--max-steps", "500"])
+    scenario = str(EXAMPLES / "paper" / "bridge2_hs20_girder4.toml")
+    res = runner.invoke(app, ["compare-tires", scenario, "--out-dir", str(tmp_path / "out"), "--max-steps", "500"])
     assert res.exit_code == 2, res.output
     assert "above the limit 500" in res.stderr and "raise --max-steps" in res.stderr
     assert not (tmp_path / "out").exists()
+    real = vbikit.scenario.preflight.preflight
+
+    def refuse_the_rigid_disk(spec, limits=None):
+        if spec.tire.model == "rigid-disk":
+            raise BudgetError("the rigid disk's run is above the budget (faked)")
+        return real(spec, limits)
+
+    monkeypatch.setattr(vbikit.scenario.preflight, "preflight", refuse_the_rigid_disk)
+    res = runner.invoke(app, ["compare-tires", scenario, "--out-dir", str(tmp_path / "out")])
+    assert res.exit_code == 2 and "the rigid disk's run is above the budget (faked)" in res.stderr, res.output
 
 
 def test_field_refuses_above_the_step_budget_before_any_run(tmp_path, monkeypatch):
-    """``vbikit field --max-steps``: the field file's first case is refused before it is simulated."""
+    """``vbikit field --max-steps``: every case is checked before any is simulated — the second case refused (its
+    check faked to refuse) stops the command before the first case runs; a real budget below the steps is named."""
     import vbikit.field.workflow
+    from vbikit.solve.budget import BudgetError
 
     def no_run(*args, **kwargs):
-        raise AssertionError("a crossing was simulated although its check refused it")
+        raise AssertionError("a crossing was simulated although a check refused one of them")
 
     monkeypatch.setattr(vbikit.field.workflow, "simulate", no_run)
     res = runner.invoke(app, ["field", str(EXAMPLES / "field" / "FIELD.toml"), "--out-dir", str(tmp_path / "out"),
@@ -57,6 +72,19 @@ def test_field_refuses_above_the_step_budget_before_any_run(tmp_path, monkeypatc
     assert res.exit_code == 2, res.output
     assert "case 'case1'" in res.stderr and "above the limit 100" in res.stderr and "--max-steps" in res.stderr
     assert not (tmp_path / "out").exists()
+    real = vbikit.field.workflow.check_steps
+    checked = []
+
+    def refuse_the_second_case(crossing, limits=None):  # (one tire: one check a case, in the file's order)
+        checked.append(crossing)
+        if len(checked) == 2:
+            raise BudgetError("case 2 is above the budget (faked)")
+        return real(crossing, limits)
+
+    monkeypatch.setattr(vbikit.field.workflow, "check_steps", refuse_the_second_case)
+    res = runner.invoke(app, ["field", str(EXAMPLES / "field" / "FIELD.toml"), "--out-dir", str(tmp_path / "out"),
+                              "--tires", "point"])
+    assert res.exit_code == 2 and "case 2 is above the budget (faked)" in res.stderr, res.output
 
 
 def test_field_passes_its_budget_to_every_run(monkeypatch, tmp_path):
@@ -78,3 +106,16 @@ def test_field_passes_its_budget_to_every_run(monkeypatch, tmp_path):
     budget = Limits(max_steps=int(3e6))
     run_field(EXAMPLES / "field" / "FIELD.toml", tmp_path / "out", ["point"], limits=budget)
     assert seen and all(limits is budget for limits in seen)
+
+
+def test_compare_tires_says_each_step_check_was_refused_by_the_budget(tmp_path):
+    """A budget that admits the runs but not their half-step checks: each model's line says its check was not run and
+    why (a review found a crash formatting the missing change)."""
+    from test_compare_tires import SMALL  # (a 10 m beam: about 1,450 steps a run, 2,900 at half the step)
+
+    path = tmp_path / "small.toml"
+    path.write_text(SMALL)
+    res = runner.invoke(app, ["compare-tires", str(path), "--out-dir", str(tmp_path / "out"), "--max-steps", "2000"])
+    assert res.exit_code == 0, res.output
+    lines = [line for line in res.stdout.splitlines() if line.startswith("  step check, ")]
+    assert len(lines) == 4 and all("not run: the run at half the step is above the run's budget" in line for line in lines)

@@ -97,7 +97,7 @@ def test_sampling_rate_mismatch(example):
         ("speed_kmh = 64.4", "speed_kmh = 64.4\nspeed = 3", r"crossing\.speed: unknown key; allowed: "),
         ('quantity = "strain"', 'quantity = "stress"', r"case\[1\]\.channel\[3\]\.quantity must be one of"),
         ('unit = "microstrain"', 'unit = "mm"', r"case\[1\]\.channel\[3\]\.unit \[mm\] is not a strain unit"),
-        ("girder = 5", "girder = 0", r"case\[1\]\.channel\[1\]\.girder must be an integer >= 1"),
+        ("girder = 5", "girder = 0", r"case\[1\]\.channel\[1\]\.girder: expected an integer >= 1, got 0"),
         ("trigger_time = 1.237\n", "", r"case\[1\]\.trigger_time is required with align = 'trigger'"),
         ('responses = "case1_responses.csv"', 'responses = "nope.csv"', r"case\[1\]\.responses: file not found"),
         ('drift = "quiet"', 'drift = "magic"', r"signal\.drift must be"),

@@ -55,8 +55,8 @@ def test_study_run_and_validate(tmp_path):
 
     study = load_study(tmp_path / "s.toml")
     base = run_scenario(study.scenario_dict((0, 0)), base_dir=tmp_path).summary["step_check"]
-    assert (f"step check of the base crossing (the other cells are not checked): at half the step the deflection and "
-            f"strain IMs change by at most {base['largest_change']:.1e}") in res.output
+    assert (f"step check of the base crossing (the other cells are not checked): at half the step ({base['dt']:.3e} s) "
+            f"the deflection and strain IMs change by at most {base['largest_change']:.1e}") in res.output
 
 
 def test_a_study_at_a_given_step_says_its_step_check_is_not_run(tmp_path):
@@ -209,3 +209,30 @@ def test_study_run_json_is_the_summary_alone_on_standard_output(tmp_path):
     np.testing.assert_allclose(axis["standard_error"], im.std(axis=1, ddof=1) / 2**0.5, rtol=1e-12)
     assert summary["step_check"]["largest_change"] >= 0 and summary["units"]["impact_factor"] == "1"
     assert f"{summary['step_check']['largest_change']:.1e}" in text.stdout
+
+
+def test_a_load_effect_study_states_its_halving_and_validate_simulates_nothing_more(tmp_path, monkeypatch):
+    """A study asking for moments runs its base through the load effects' halving (``converge_step``); the step check
+    says so, as `vbikit run` of that crossing records it (a review found "not run (the base gives crossing.dt)" for
+    a study that gave none).  ``study validate`` of a study without load effects runs no crossing."""
+    from vbikit.scenario import run as run_scenario
+    from vbikit.study.spec import load_study
+
+    (tmp_path / "m.toml").write_text(STUDY.replace("[axes]", "[base.response]\nmoment = [8.0]\n[axes]"))
+    res = runner.invoke(app, ["study", "run", str(tmp_path / "m.toml"), "--out", str(tmp_path / "m.nc"),
+                              "--workers", "1", "--no-progress"])
+    assert res.exit_code == 0, res.output
+    base = run_scenario(load_study(tmp_path / "m.toml").scenario_dict((0, 0)), base_dir=tmp_path).summary["step_check"]
+    assert base["halvings"] >= 1 and base["for"] == "load effects"
+    assert (f"step check of the base crossing (the other cells are not checked): halved {base['halvings']}× to "
+            f"{base['dt']:.3e} s for its load effects: the last halving changed the impact factors by at most "
+            f"{base['largest_change']:.1e}") in res.output
+    import vbikit.scenario.pipeline
+
+    def no_run(*args, **kwargs):
+        raise AssertionError("study validate ran a crossing")
+
+    monkeypatch.setattr(vbikit.scenario.pipeline, "run_planned", no_run)
+    (tmp_path / "s.toml").write_text(STUDY)
+    res = runner.invoke(app, ["study", "validate", str(tmp_path / "s.toml")])
+    assert res.exit_code == 0, res.output

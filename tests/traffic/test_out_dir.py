@@ -108,6 +108,12 @@ def test_neither_writes_into_vbikit_out_as_every_command(tmp_path, monkeypatch):
     # the governing events are the largest magnitudes; their deflections keep the dataset's sign (z up)
     assert summary["governing_static_deflection"] == float(static[np.argmax(np.abs(static))]) < 0.0
     assert summary["governing_dynamic_deflection"] == float(dynamic[np.argmax(np.abs(dynamic))]) < 0.0
+    # a dataset written when the attribute held the magnitude: the summary reads the signed peak from the variable
+    from vbikit.traffic.summary import summary as traffic_summary
+
+    with xr.open_dataset(tmp_path / "vbikit-out" / "traffic.nc") as ds:
+        ds.attrs["governing_static_deflection"] = abs(ds.attrs["governing_static_deflection"])
+        assert traffic_summary(ds)["governing_static_deflection"] == summary["governing_static_deflection"] < 0.0
     # the histogram's edges as written: 0.05, not 0.05000000000000002 (a trial's JSON)
     edges = summary["im_histogram_edges"]
     assert all(e == round(e, 12) for e in edges) and len(edges) == 23

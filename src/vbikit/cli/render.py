@@ -193,24 +193,34 @@ def print_negative_note(negative: bool) -> None:
 
 
 def step_line(s: dict) -> None:
-    """The half-step check's lines (``vbikit.scenario.step_check.half_step_check``): how much the impact factors and
-    the peak deck accelerations change at half the automatic step; nothing without it (a given crossing.dt, or the
-    load effects' halving)."""
+    """The step check's lines (``vbikit.scenario.step_check.half_step_check``, or ``converge_step``'s halving for load
+    effects or a train: ``step_check_words``): how much the impact factors and the peak deck accelerations change;
+    "not run" at a given crossing.dt."""
     check = s.get("step_check")
     if not check:
         if s.get("inputs", {}).get("dt_given"):  # (a scenario's run at its own crossing.dt)
             typer.echo("  step check           not run: crossing.dt is given (the run at the automatic step checks it)")
         return
-    if check.get("largest_change") is None:
-        typer.echo(f"  step check           {check.get('note', 'not run')}")
-        return
-    which = f" ({check['output']})" if check.get("output") else ""
-    typer.echo(f"  step check           at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by "
-               f"at most {check['largest_change']:.1e}{which}")
+    typer.echo(f"  step check           {step_check_words(check)}")
     if check.get("acceleration_change") is not None:  # (a summary written before the accelerations were checked: none)
         where = f" ({check['acceleration_output']})" if check.get("acceleration_output") else ""
         typer.echo(f"                       the peak deck accelerations by at most {check['acceleration_change']:.2%} "
                    f"of their values{where}")
+
+
+def step_check_words(check: dict) -> str:
+    """A step check's record in words (the one wording of ``vbikit run``, ``compare-tires`` and ``study run``):
+    ``half_step_check``'s (a single run: "at half the step …") or ``converge_step``'s (the load effects' or a train's
+    halving, ``halvings``: "halved to … s: the last halving changed …"), or its ``note`` when it was not run."""
+    if check.get("largest_change") is None:
+        return str(check.get("note", "not run"))
+    which = f" ({check['output']})" if check.get("output") else ""
+    if "halvings" in check:  # (the step the load effects needed: the record is of the last halving)
+        state = "" if check.get("converged") else ", not converged"
+        return (f"halved {check['halvings']}× to {check['dt']:.3e} s for its {check.get('for', 'load effects')}: the "
+                f"last halving changed the impact factors by at most {check['largest_change']:.1e}{which}{state}")
+    return (f"at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by at most "
+            f"{check['largest_change']:.1e}{which}")
 
 
 def start_line(s: dict) -> None:

@@ -213,12 +213,14 @@ def compare_tires(
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f}{strain}"
                    f"{row['max_abs_acceleration']:13.4f}{acceleration}"
                    f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:12.2f}" + (" *" if row["compiled_kernels"] else ""))
-    checks = [(row["label"], row["step_check"]) for row in table.values()]  # each run's half-step check, as vbikit run's
-    typer.echo("  step check: at half the step the deflection and strain IMs change by at most "
-               + ", ".join(f"{label} {c['largest_change']:.1e}" if c else f"{label} not run (crossing.dt given)"
-                           for label, c in checks)
-               + " (the peak accelerations: " + ", ".join(f"{100 * c['acceleration_change']:.2f} %" if c else "—"
-                                                          for _, c in checks) + ")")
+    from vbikit.cli.render import step_check_words
+
+    for row in table.values():  # each run's step check, in vbikit run's words
+        c = row["step_check"]
+        words = step_check_words(c) if c else "not run (crossing.dt given)"
+        if c and c.get("acceleration_change") is not None:
+            words += f"; the peak accelerations by at most {c['acceleration_change']:.2%}"
+        typer.echo(f"  step check, {row['label']}: {words}")
     if any(any(m) for m in marks.values()):
         typer.echo("  ! a flag of that model's run puts the value in doubt, as vbikit run marks it: see its warning above")
     if any(row["compiled_kernels"] for row in table.values()):

@@ -104,16 +104,16 @@ MOST_WARNINGS = 10
 
 
 def _check(study: Any, yes: bool, max_memory: Optional[str], max_steps: Optional[float], label: str = "",
-           file: Optional[Path] = None, announce: bool = True) -> Any:
+           file: Optional[Path] = None, announce: bool = True, step_check: bool = False) -> Any:
     """Every check the run makes before it starts (vbikit.study.check); prints the warnings on stderr,
     and with ``announce`` (a run: before it starts, as progress) the size first, on stderr too; a
-    user error names ``file``, the study file."""
+    user error names ``file``, the study file; ``step_check``: the base crossing's too (``study run`` states it)."""
     from vbikit.study.check import check_study
 
     budget = limits(max_memory, max_steps)
     if announce and not STATE["quiet"]:  # (progress, as the bars: -q prints errors only)
         typer.echo(f"{label or study.name or 'study'}: {study_size(study)}", err=True)
-    result = guard(lambda: check_study(study, budget, confirmed=yes), file=file)
+    result = guard(lambda: check_study(study, budget, confirmed=yes, step_check=step_check), file=file)
     warn(result.warnings, most=MOST_WARNINGS)
     return result
 
@@ -153,7 +153,7 @@ def run_cmd(
     guard(lambda: not_an_input(out, "--out", [study_file]))  # (was refused as "not this study's dataset: delete it")
 
     study = guard(lambda: load_study(study_file), file=study_file)
-    checked = _check(study, yes, max_memory, max_steps, file=study_file)
+    checked = _check(study, yes, max_memory, max_steps, file=study_file, step_check=True)
     ds = run_job(study, out, workers, scheduler, progress)
     warn_dataset(ds)
     _say_results(ds, checked.step_check)
@@ -196,16 +196,17 @@ def _say_results(ds: Any, step_check: Optional[dict]) -> None:
 def say_step_check(check: Optional[dict]) -> None:
     """How good the study's time step is, in a line: the base crossing's half-step check (``StudyCheck.step_check``),
     the one crossing the study checks (a trial found a study's impact factors printed with no word of it)."""
+    from vbikit.cli.render import step_check_words
+
     if check is None:
         say("step check: not run (the base gives crossing.dt)")
         return
-    line = (f"step check of the base crossing (the other cells are not checked): at half the step the deflection and "
-            f"strain IMs change by at most {check['largest_change']:.1e}")
+    line = f"step check of the base crossing (the other cells are not checked): {step_check_words(check)}"
     if check.get("acceleration_change") is not None:
-        line += f", its peak accelerations by {100 * check['acceleration_change']:.2g} %"
-    if check["dt"] * 2 < check["study_dt"] * (1 - 1e-9):  # the base's run halved its step for its load effects
-        line += (f" — at {2 * check['dt']:.3g} s, finer than the {check['study_dt']:.3g} s the study runs at "
-                 "(see the warning)")
+        line += f"; its peak accelerations by at most {check['acceleration_change']:.2%}"
+    if check["largest_change"] is not None and check["dt"] * 2 < check["study_dt"] * (1 - 1e-9):
+        line += (f" — of a step finer than the {check['study_dt']:.3g} s the study's crossings run at (see the "
+                 "warning)")  # (the base's run halved its step more than once for its load effects)
     say(line)
 
 

@@ -82,11 +82,13 @@ def check_kind(path: Path, command: str, accepted: tuple[str, ...]) -> None:
     command's own reader, whose error names the problem."""
     from vbikit.errors import OptionError, VbikitError
 
+    if Path(path).suffix.lower() != ".toml":  # (a scenario by another name, or a CSV: left to the reader, as before)
+        return
     try:
         kind = detect(path)
     except (VbikitError, OSError):
         return
-    if kind in accepted:
+    if kind in accepted or kind not in KINDS:
         return
 
     def refuse() -> None:

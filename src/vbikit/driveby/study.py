@@ -751,7 +751,8 @@ def _labels(spec: DriveBy) -> dict[str, NDArray]:
     }
 
 
-#: a label's unit that is each sensor's own (the dataset writes ``member_units`` of the sensors' units for it)
+#: the unit of ``noise_rms``: the sweep's value applies to every sensor in its own unit (the dataset writes
+#: ``member_units`` of the sensors' units), else it is the first sensor's (its unit)
 IN_SENSOR_UNITS = "in each sensor's unit"
 LABEL_ATTRS = {
     "speed": ("m s-1", "vehicle speed (drawn per pass with variability.speed)"),
@@ -886,6 +887,8 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
     hist, truth = hist[order, :n_sensors], hist[order, n_sensors:]
     # the unit of a value in each sensor's own unit: theirs if they share one, else the coordinate of each's
     sensor_units = member_units([cf_unit(s.unit) for s in spec.sensors], "sensor", "sensor_units")
+    # noise_rms: the sweep's value applies to every sensor, each in its own unit; else it is the first sensor's
+    noise_units = sensor_units if "noise_rms" in spec.sweep else {"units": cf_unit(spec.sensors[0].unit)}
     variables: dict[str, Any] = {}
     for name, (units, long_name) in CASE_OUTPUTS.items():
         values = out[name][order]
@@ -893,7 +896,7 @@ def dataset(spec: DriveBy, out: dict[str, NDArray], histories: list[NDArray]):
                            {"units": units, "long_name": long_name})
     labels = _labels(spec)
     for name, (units, long_name) in LABEL_ATTRS.items():
-        attrs = {"long_name": long_name} | (sensor_units if units == IN_SENSOR_UNITS else {"units": units} if units else {})
+        attrs = {"long_name": long_name} | (noise_units if units == IN_SENSOR_UNITS else {"units": units} if units else {})
         variables[name] = ("case", labels[name], attrs)
     for j, (name, (units, long_name)) in enumerate(CONTACT_TRUTH.items()):
         variables[name] = (("case", "sample"), truth[:, j], {"units": units, "long_name": long_name +

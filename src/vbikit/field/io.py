@@ -316,8 +316,10 @@ def _num(table: dict[str, Any], key: str, where: str, path: Path, default: Any =
             raise FieldFileError(f"{path}: missing key {where}{key}")
         return default
     # (the one check and wording of a number read from an input file: "key: expected a number in [lo, hi] [unit], got …")
-    lo, hi = bounds if bounds is not None else (0.0 if positive or nonneg else None, None)
-    return number(table[key], f"{path}: {where}{key}", lo, hi, lo_open=positive and bounds is None, unit=unit,
+    lo, hi = bounds if bounds is not None else (None, None)
+    if positive or nonneg:  # (> 0 or >= 0 as well as within bounds, as the flags always meant)
+        lo = 0.0 if lo is None else max(lo, 0.0)
+    return number(table[key], f"{path}: {where}{key}", lo, hi, lo_open=positive and lo <= 0.0, unit=unit,
                   error=FieldFileError)
 
 
@@ -400,9 +402,7 @@ def load_field_toml(path: str | Path) -> FieldSpec:
             if ch["unit"] not in UNITS or UNITS[ch["unit"]][0] != ch["quantity"]:
                 ok = [u for u, (q, _) in UNITS.items() if q == ch["quantity"]]
                 raise FieldFileError(f"{path}: {w2}unit [{ch['unit']}] is not a {ch['quantity']} unit; allowed: {', '.join(ok)}")
-            g = ch.get("girder")
-            if isinstance(g, bool) or not isinstance(g, int) or g < 1:
-                raise FieldFileError(f"{path}: {w2}girder must be an integer >= 1, got {g!r}")
+            g = int(number(ch.get("girder"), f"{path}: {w2}girder", 1, integer=True, error=FieldFileError))
             chans.append(ChannelSpec(ch["name"], ch["quantity"], g, _num(ch, "x", w2, path, nonneg=True), ch["unit"]))
         align = c.get("align", _default("case", "align"))
         if align not in ("trigger", "xcorr"):

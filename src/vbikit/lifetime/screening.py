@@ -1,7 +1,7 @@
 """Which events to simulate dynamically: the screening rule.
 
 Let R_st,e be event e's static peak of a load effect (largest s·R, s the effect's governing
-sign; ``vbikit.lifetime.influence``) and A an upper bound of the dynamic amplification of any
+sign; ``vbikit.lifetime.influence``) and A an upper bound of the dynamic increment (the IM, R_dyn/R_st − 1) of any
 event, s·R_dyn,e ≤ (1 + A)·s·R_st,e.  In each block b (a day) the block maximum of the total
 effect is M_b = max_e s·R_dyn,e.  Simulate first, in every block and for every effect, the
 event with the largest static peak (round 1); its dynamic peak D_b ≤ M_b.  Every event with

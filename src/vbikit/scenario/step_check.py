@@ -174,18 +174,25 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], An
     relative change (a train's axle loads ring the higher modes, which the automatic step does not
     resolve: HSLM-A1 on a 20 m span, 1.4 … 4.7 % low at 150 … 300 km/h).  Without ``train`` the peak deck
     accelerations' change over the last halving is compared, not halved for: flagged above the tolerance
-    (``acceleration_flags``; nothing when the budget refuses the first halving)."""
+    (``acceleration_flags``; nothing when the budget refuses the first halving).  The returned summary's
+    ``step_check`` says what the halving found, as ``half_step_check``'s does for a single run: ``dt`` [s] the
+    returned run's step (the finer of the last pair compared), ``largest_change`` [-] of an impact factor (load
+    effects included) over the last halving and its ``output``, ``halvings``, ``converged``, the peak accelerations'
+    ``acceleration_change`` and ``acceleration_output``; None, with ``note``, when the budget refused the first
+    halving."""
     from vbikit.solve.plan import plan_run
 
     dt = float(report.result.integration_dt or report.result.dt)
     changes: list[float] = []
     worst = ""
     previous, converged = None, False
+    refused = ""
     for _ in range(MAX_HALVINGS):
         finer = replace(crossing, dt=dt / 2)
         try:
             run_plan = plan_run(finer, limits)
-        except BudgetError:
+        except BudgetError as err:
+            refused = str(err)
             break
         new = rerun(run_plan)
         change, worst = _largest_change(report.summary, new.summary, PEAK_ACCELERATIONS if train else ())
@@ -198,8 +205,16 @@ def converge_step(report: Any, crossing: Crossing, rerun: Callable[[RunPlan], An
     if changes and not converged:
         add_flags(report.summary, [Flag("step_not_converged", _advice(changes, worst, dt, is_acceleration(worst)),
                                         output=worst or None, value=changes[-1], threshold=STEP_TOLERANCE)])
+    (acc_change, acc_worst), acc_above = (None, ""), []
     if previous is not None and not train:
-        add_flags(report.summary, acceleration_flags(previous.summary, report.summary, dt)[1])
+        (acc_change, acc_worst), acc_flags, acc_above = acceleration_flags(previous.summary, report.summary, dt)
+        add_flags(report.summary, acc_flags)
+    report.summary["step_check"] = {
+        "dt": dt, "largest_change": changes[-1] if changes else None, "output": worst or None,
+        "halvings": len(changes), "converged": converged, "for": "peak accelerations" if train else "load effects",
+        "acceleration_change": acc_change,
+        "acceleration_output": acc_worst or None, "accelerations_not_converged": acc_above,
+        **({} if changes else {"note": f"not run: the run at half the step is above the run's budget ({refused})"})}
     return report
 
 

@@ -33,8 +33,9 @@ class StudyCheck:
     max_steps: int
     max_memory: float
     warnings: list[str] = field(default_factory=list)
-    #: the base crossing's half-step check (``vbikit.scenario.step_check``: ``largest_change`` of its deflection and
-    #: strain IMs, ``acceleration_change`` of its peak accelerations, at ``dt``); None when the base gives crossing.dt
+    #: the base crossing's step check (``vbikit.scenario.step_check``: its half-step check, or its load effects'
+    #: halving; ``study_dt``: the step the study's crossings run at); None when the base gives crossing.dt, or when
+    #: ``check_study`` was not asked for it (``step_check=False``: a validation simulates only for load-effect advice)
     step_check: dict | None = None
 
 
@@ -69,17 +70,17 @@ def _combinations(study: Study) -> list[tuple[int, ...]]:
     return out
 
 
-def _base_step_check(study: Study, limits: Limits | None) -> tuple[list[str], dict | None]:
+def _base_step_check(study: Study, limits: Limits | None, wanted: bool) -> tuple[list[str], dict | None]:
     """The base crossing (every axis at its first value) through the run pipeline and its half-step check
     (``vbikit.scenario.step_check``): the check's record, what a study states of its time step (the other cells are
     not checked); None, and no run, when the base gives crossing.dt.  And, for a study that asks for moments, shears
     or reactions at the automatic step: advice if their impact factors settle only at a finer step (the study's
-    crossings keep the automatic step)."""
+    crossings keep the automatic step).  Without ``wanted`` (a validation) the base runs only for that advice."""
     from vbikit.scenario.pipeline import run_planned
     from vbikit.scenario.step_check import asks_for_load_effects, is_acceleration, is_train
 
     scenario = parse_scenario(study.scenario_dict(tuple(0 for _ in study.axes)), study.base_dir)
-    if scenario.crossing.dt is not None:
+    if scenario.crossing.dt is not None or not (wanted or asks_for_load_effects(scenario)):
         return [], None
     plan = preflight(scenario, limits)
     report = run_planned(plan, limits)
@@ -99,9 +100,11 @@ def _base_step_check(study: Study, limits: Limits | None) -> tuple[list[str], di
             f"crossing; the automatic step is {plan.dt:.3g} s): set crossing.dt = {checked:.3g} in the base"], check
 
 
-def check_study(study: Study, limits: Limits | None = None, confirmed: bool = False) -> StudyCheck:
+def check_study(study: Study, limits: Limits | None = None, confirmed: bool = False,
+                step_check: bool = False) -> StudyCheck:
     """Size, then the preflight of the study's distinct set-ups (module docstring); raises
-    StudyError naming the axis values of the first failing crossing."""
+    StudyError naming the axis values of the first failing crossing.  ``step_check``: run the base crossing's step
+    check too (``StudyCheck.step_check``: what ``vbikit study run`` states of its step; a validation leaves it out)."""
     check_size(study, confirmed)
     lanes = min(study.batch_size, MAX_LANES)
     warnings: list[str] = []
@@ -116,7 +119,7 @@ def check_study(study: Study, limits: Limits | None = None, confirmed: bool = Fa
             raise StudyError(f"base + axes ({where}): {err}") from None
         max_steps, max_memory = max(max_steps, est.n_steps), max(max_memory, est.memory)
         warnings += [f"{where}: {w}" for w in plan.warnings]
-    advice, step_check = _base_step_check(study, limits)
+    advice, check = _base_step_check(study, limits, step_check)
     warnings += advice
     if study.histories:  # the dataset holds one deflection history per crossing
         need = 8.0 * study.size * (max_steps + 1)
@@ -125,4 +128,4 @@ def check_study(study: Study, limits: Limits | None = None, confirmed: bool = Fa
             raise StudyError(f"histories = true: {study.size} crossings × up to {max_steps + 1} time points need "
                              f"≈ {human(need)} in the dataset, above the memory limit {human(limit)}; raise "
                              "--max-memory, or store no histories")
-    return StudyCheck(len(combos), max_steps, max_memory, warnings, step_check)
+    return StudyCheck(len(combos), max_steps, max_memory, warnings, check)
