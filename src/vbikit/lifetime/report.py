@@ -516,7 +516,7 @@ def text_report(facts: dict[str, Any]) -> str:
     the summary and the dataset stay SI, and so do the flags' messages printed as FLAG lines.  The
     fatigue table's damage is that of the simulated days, its header says so."""
     r, f = facts["run"], facts["fits"]
-    ci = f"{f['ci']:.0%}"
+    ci = f"{100 * f['ci']:g} %"  # ("95 %", as every interval of vbikit is written: "95 % CI")
     lines = [f"vbikit lifetime: {facts['title']}",
              f"{counted(r['n_days'], 'day')} ({r['n_days'] / r['days_per_year']:.3g} years), "
              f"{counted(r['n_trucks'], 'truck', thousands=True)}, {counted(r['n_events'], 'event', thousands=True)}; "
