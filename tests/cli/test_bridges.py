@@ -185,3 +185,21 @@ def test_bridge_command_shows_a_scenarios_deck(tmp_path):
     none.write_text('name = "no bridge"\n')
     res = runner.invoke(app, ["bridge", str(none), "--no-plot"])
     assert res.exit_code == 2 and "missing required table [bridge]" in res.stderr
+
+
+def test_a_grillage_states_its_mesh_check_and_a_beam_none(tmp_path):
+    """`vbikit bridge` on a grillage states how good its listed frequencies are: the deck solved with twice the
+    elements along the span, the largest relative change (a trial found a 34-element grillage's frequencies printed
+    with no word of the mesh); a beam's modes are closed-form, so none."""
+    import dataclasses
+
+    res = CliRunner().invoke(app, ["bridge", "paper-bridge-2", "--no-plot"])
+    assert res.exit_code == 0, res.output
+    deck = BRIDGE_PRESETS["paper-bridge-2"].build(n_modes=10)
+    finer = dataclasses.replace(deck, n_elements=68)  # (the default 34 elements, doubled)
+    change = float(np.max(np.abs(finer.frequencies_hz - deck.frequencies_hz) / deck.frequencies_hz))
+    assert 1e-6 < change < 1e-3  # (docs/bridges.md: the default mesh within 5e-5 on the first five modes)
+    assert (f"mesh check           with twice the elements (68) the listed frequencies change by at most {change:.1e} "
+            "(relative)") in res.stdout
+    beam = CliRunner().invoke(app, ["bridge", "paper-bridge-2-beam", "--no-plot"])
+    assert beam.exit_code == 0 and "mesh check" not in beam.stdout
