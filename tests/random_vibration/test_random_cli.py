@@ -88,3 +88,23 @@ def test_smooth_road_and_disk_tires_are_refused(tmp_path):
     path.write_text(SCENARIO.replace('model = "point"', 'model = "disk"'))
     res = runner.invoke(app, ["run", str(path), "--random"])
     assert res.exit_code != 0 and "tire.model" in res.output and "Monte Carlo" in res.output
+
+
+def test_a_random_runs_json_gives_its_step_and_every_numbers_unit():
+    """`run --random --json`, as `run --json`: the step it ran at and each top-level number's unit in CF spelling (a
+    trial found none)."""
+    import json
+
+    from typer.testing import CliRunner
+
+    from vbikit.cli import app
+
+    from pathlib import Path
+
+    example = Path(__file__).resolve().parents[2] / "examples" / "paper" / "bridge2_hs20_girder4.toml"
+    res = CliRunner().invoke(app, ["run", str(example), "--random", "--json"])
+    assert res.exit_code == 0, res.output
+    s = json.loads(res.stdout)
+    assert s["dt"] > 0 and s["units"]["dt"] == "s" and s["units"]["static_peak"] == "m" and s["static_peak"] < 0
+    assert s["units"]["impact_factor_mean"] == "1" and s["units"]["wheel_force_std_max"] == "N"
+    assert set(s["units"]) <= set(s)

@@ -349,9 +349,22 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
         "points": entries,
         "effects": effect_entries,
         **flag_fields(flags),
+        "dt": float(pem.time[1] - pem.time[0]) if pem.time.size > 1 else float("nan"),
         "seconds": _time.perf_counter() - started,
     }
+    # every top-level number's unit, in the CF spelling of every JSON summary (as vbikit run's ``units``)
+    summary["units"] = {k: u for k, u in SUMMARY_UNITS.items() if k in summary}
     return summary
+
+
+#: the units of a random run's top-level numbers (``units`` of its summary; the points' and load effects' entries
+#: carry those of their own kind: a displacement in m, a load effect in its ``units``)
+SUMMARY_UNITS = {"impact_factor_mean": "1", "impact_factor_std": "1", "impact_factor_quantiles": "1",
+                 "impact_factor_sampling_error": "1", "impact_factor_quantiles_crossings": "1",
+                 "displacement_peak_mean": "m", "displacement_peak_std": "m", "static_peak": "m", "std_at_peak": "m",
+                 "lift_off_probability": "1", "lift_off_probability_by_wheel": "1", "run_in": "m",
+                 **{k: unit for k, (unit, _) in START_OUTPUTS.items()}, "wheel_force_std_max": "N",
+                 "grid_change": "1", "grid_refinements": "1", "n_lines": "1", "dt": "s", "seconds": "s"}
 
 
 def _acceleration_rows(crossing: Crossing, effects: list[LoadEffectResponse]) -> NDArray[np.float64]:
