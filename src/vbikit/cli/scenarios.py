@@ -217,10 +217,7 @@ def compare_tires(
 
     for row in table.values():  # each run's step check, in vbikit run's words
         c = row["step_check"]
-        words = step_check_words(c) if c else "not run (crossing.dt given)"
-        if c and c.get("acceleration_change") is not None:
-            words += f"; the peak accelerations by at most {c['acceleration_change']:.2%}"
-        typer.echo(f"  step check, {row['label']}: {words}")
+        typer.echo(f"  step check, {row['label']}: {step_check_words(c, True) if c else 'not run (crossing.dt given)'}")
     if any(any(m) for m in marks.values()):
         typer.echo("  ! a flag of that model's run puts the value in doubt, as vbikit run marks it: see its warning above")
     if any(row["compiled_kernels"] for row in table.values()):

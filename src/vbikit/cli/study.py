@@ -201,9 +201,7 @@ def say_step_check(check: Optional[dict]) -> None:
     if check is None:
         say("step check: not run (the base gives crossing.dt)")
         return
-    line = f"step check of the base crossing (the other cells are not checked): {step_check_words(check)}"
-    if check.get("acceleration_change") is not None:
-        line += f"; its peak accelerations by at most {check['acceleration_change']:.2%}"
+    line = f"step check of the base crossing (the other cells are not checked): {step_check_words(check, True)}"
     if check["largest_change"] is not None and check["dt"] * 2 < check["study_dt"] * (1 - 1e-9):
         line += (f" — of a step finer than the {check['study_dt']:.3g} s the study's crossings run at (see the "
                  "warning)")  # (the base's run halved its step more than once for its load effects)
