@@ -203,3 +203,16 @@ def test_a_grillage_states_its_mesh_check_and_a_beam_none(tmp_path):
             "(relative)") in res.stdout
     beam = CliRunner().invoke(app, ["bridge", "paper-bridge-2-beam", "--no-plot"])
     assert beam.exit_code == 0 and "mesh check" not in beam.stdout
+
+
+def test_bridge_json_gives_the_frequencies_and_the_mesh_check():
+    """`vbikit bridge --json`: one JSON object on standard output (the frequencies, mode descriptions, girders and
+    mesh check the text lists), the text on standard error."""
+    res = CliRunner().invoke(app, ["bridge", "paper-bridge-2", "--no-plot", "--json"])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    deck = BRIDGE_PRESETS["paper-bridge-2"].build(n_modes=10)
+    np.testing.assert_allclose(data["frequencies_hz"], deck.frequencies_hz, rtol=1e-12)
+    assert len(data["modes"]) == 10 and data["elements"] == 34 and data["units"]["frequencies_hz"] == "Hz"
+    assert data["mesh_check"]["elements_doubled"] == 68 and f"{data['mesh_check']['largest_change']:.1e}" in res.stderr
+    assert "mode  1" in res.stderr

@@ -2,7 +2,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import Any, Optional
 
 import typer
 
@@ -84,12 +84,16 @@ def bridge(
                                              "with --plot or --no-plot).", default=None),
     plot: Optional[Path] = figure_file_option("Write the figure to this file instead."),
     no_plot: bool = typer.Option(False, "--no-plot", help="Do not write the figure."),
+    as_json: bool = typer.Option(False, "--json", help="Print the frequencies, mode descriptions and mesh check as JSON "
+                                 "on standard output (every other line on standard error)."),
 ) -> None:
     """Frequencies and mode descriptions of a bridge preset or of a scenario's bridge, and a figure of its
     first mode shapes."""
     import time
 
-    from vbikit.cli.guard import check_out_dir
+    from vbikit.cli.guard import check_out_dir, say, say_json, use_json
+
+    use_json(as_json)
 
     if out_dir is None and plot is None and not no_plot:  # the default folder, checked only when it is written to
         out_dir = check_out_dir(Path("vbikit-out"))
@@ -139,25 +143,32 @@ def bridge(
     freqs = b.frequencies_hz
     elapsed = time.perf_counter() - t0
     labels = b.mode_descriptions() if isinstance(b, DescribesModes) else [f"bending, {k + 1} half-wave{'s' if k else ''} along the span" for k in range(freqs.size)]
-    typer.echo(f"{name}: {description}")
+    say(f"{name}: {description}")
+    girders = {}
     if isinstance(b, GirderDeck):
         ys = ", ".join(f"{y:+.3f}" for y in b.girder_y)
         elements = getattr(b, "element_count", None)  # grillage models: their mesh
-        typer.echo(f"  girders (1 … {b.n_girders}) at y = {ys} m" + (f"; {elements} elements along the span" if elements else ""))
-    typer.echo(f"  modes solved (or read from cache) in {elapsed:.3f} s")
+        say(f"  girders (1 … {b.n_girders}) at y = {ys} m" + (f"; {elements} elements along the span" if elements else ""))
+        girders = {"girder_y": [float(y) for y in b.girder_y], **({"elements": int(elements)} if elements else {})}
+    say(f"  modes solved (or read from cache) in {elapsed:.3f} s")
     for k, (f, label) in enumerate(zip(freqs, labels), start=1):
-        typer.echo(f"  mode {k:>2}  {f:9.3f} Hz  {label}")
+        say(f"  mode {k:>2}  {f:9.3f} Hz  {label}")
     check = mesh_check(b)
     if check is not None:  # how good the listed frequencies are: a grillage's mesh (a beam's modes are exact)
         finer, change = check
-        typer.echo(f"  mesh check           with twice the elements ({finer}) the listed frequencies change by at most "
-                   f"{change:.1e} (relative); the mesh's own error is about 4/3 of that (O(h²) convergence, "
-                   "docs/bridges.md)")
+        say(f"  mesh check           with twice the elements ({finer}) the listed frequencies change by at most "
+            f"{change:.1e} (relative); the mesh's own error is about 4/3 of that (O(h²) convergence, docs/bridges.md)")
+    path = None
     if not no_plot:
         from vbikit.plot.bridge import plot_mode_shapes
 
         path = guard(lambda: plot_mode_shapes(b, plot or Path(out_dir) / f"{name}-modes.png", title=name))
-        typer.echo(f"  figure              {path}")
+        say(f"  figure              {path}")
+    say_json({"bridge": name, "description": description, **girders,
+              "frequencies_hz": [float(f) for f in freqs], "modes": list(labels),
+              "mesh_check": None if check is None else {"elements_doubled": check[0], "largest_change": check[1]},
+              **({"figure": str(path)} if path is not None else {}),
+              "units": {"frequencies_hz": "Hz", "girder_y": "m", "largest_change": "1"}})
 
 
 def mesh_check(bridge: Any) -> Optional[tuple[int, float]]:
