@@ -91,9 +91,10 @@ def point_shapes(bridge: object, x: float, y: float,
 
 
 def _on_deck_shapes(bridge: Any, x: float, y: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """``point_shapes`` of a point on the deck, else ValueError naming the allowed range."""
-    if not (math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
-        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
+    """``point_shapes`` of a point on the deck, else ValueError naming the allowed range (``check_on_deck``)."""
+    from vbikit.solve.result import check_on_deck
+
+    check_on_deck(bridge, float(x), float(y))
     return point_shapes(bridge, x, y)
 
 

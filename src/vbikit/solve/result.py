@@ -180,6 +180,14 @@ class _Deferred:
         obj.__dict__[self.key] = value
 
 
+def check_on_deck(bridge: Any, x: float, y: float) -> None:
+    """ValueError unless (x, y) [m] is a point of the deck: both finite and x within the span along its line (a skew
+    deck's span coordinate) — the one check of every reader of a point's response (``CrossingResult.point``,
+    ``vbikit.analysis.point_response``): off the span the mode shapes are zero, and a response there read as zeros."""
+    if not (math.isfinite(x) and math.isfinite(y) and 0.0 <= float(bridge.span_coordinate(x, y)) <= bridge.span):
+        raise ValueError(f"response.x must be within the span 0 … {bridge.span} m and response.y finite, got ({x}, {y})")
+
+
 @dataclass(frozen=True)
 class CrossingResult:
     """Histories at the n_t = n_steps + 1 time points ``time`` [s].
@@ -274,6 +282,7 @@ class CrossingResult:
         y = float(b.default_response_y) if y is None else float(y)
         if x is None:  # a skew deck's default section depends on the line (oblique supports)
             x = b.default_x_at(y)
+        check_on_deck(b, float(x), y)  # (a point off the span read zeros: its mode shapes are 0 there)
         return float(x), y
 
     def girder_sections(self, x: float | None = None, y: float | None = None) -> list[float]:
@@ -354,7 +363,7 @@ class CrossingResult:
 
         bridge = self.crossing.bridge
         vehicle = self.crossing.vehicle
-        pts = [self.point()] if points is None else [(float(x), float(y)) for x, y in points]
+        pts = [self.point()] if points is None else [self.point(float(x), float(y)) for x, y in points]  # (checked)
         labels = [f"p{i}" for i in range(1, len(pts) + 1)] if names is None else [str(n) for n in names]
         if len(labels) != len(pts):
             raise ValueError(f"names: {len(labels)} names for {len(pts)} points")
