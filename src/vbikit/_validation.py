@@ -25,6 +25,14 @@ def workers_limit() -> int:
     return max(MAX_WORKERS, os.cpu_count() or 1)
 
 
+def checked_workers(value: Any, key: str = "workers", error: type[Exception] = ValueError) -> Optional[int]:
+    """Local worker processes as given: None (the default: the input file's setting, else ``default_workers``) or an
+    integer in [1, ``workers_limit()``], else ``error`` naming ``key`` and the range — the one check of the command
+    line's ``--workers`` and of the Python entry points' ``workers`` (``run_study``, ``run_lifetime``, ``run_driveby``,
+    ``run_rail``: a trial's ``run_study(…, workers=0)`` ran, ``workers=-3`` too, where the CLI refused 0)."""
+    return None if value is None else int(number(value, key, 1, workers_limit(), integer=True, error=error))
+
+
 def default_workers() -> int:
     """The local worker processes of a run whose command line (``--workers``) and input file leave them open: all
     cores — the one default of every command with local workers (``vbikit.cli.guard.WORKERS_HELP``)."""

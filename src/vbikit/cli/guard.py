@@ -205,11 +205,9 @@ def scheduler_option() -> Any:
 def check_workers_option(value: Optional[int]) -> Optional[int]:
     """``--workers``: an integer in [1, ``vbikit._validation.workers_limit()``] (exit 2 naming the option
     and the range), checked as the command line is parsed: before any process is started.  None passes."""
-    if value is None:
-        return None
-    from vbikit._validation import number, workers_limit
+    from vbikit._validation import checked_workers
 
-    return guard(lambda: int(number(value, "--workers", 1, workers_limit(), integer=True, error=OptionError)))
+    return guard(lambda: checked_workers(value, "--workers", OptionError))
 
 
 #: the one help text of ``--workers``: the one default of every command with local worker processes (None on the

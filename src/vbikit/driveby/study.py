@@ -1049,9 +1049,11 @@ def run_driveby(spec: DriveBy | str | Path | dict, out_dir: str | Path = "vbikit
     write ``out_dir``/driveby.nc, the figures (``driveby-*.png``), ``driveby-report.txt`` and
     ``driveby-summary.json`` (``workers``: local worker processes, default all cores; 1 runs in this process);
     returns the Dataset.  Resumable: run it again after an interruption."""
-    from vbikit.driveby.spec import load_driveby, parse_driveby
+    from vbikit._validation import checked_workers
+    from vbikit.driveby.spec import DriveByError, load_driveby, parse_driveby
     from vbikit.study.run import run_study
 
+    workers = checked_workers(workers, error=DriveByError)
     if isinstance(spec, dict):
         spec = parse_driveby(spec)
     elif not isinstance(spec, DriveBy):

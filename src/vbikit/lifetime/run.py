@@ -357,6 +357,9 @@ def run_lifetime(spec: LifetimeFile | dict | str | Path, out_dir: str | Path, ba
     A failure after finished simulations says in a note (``resume_note``; the CLI prints it) that they are kept
     under ``out_dir/work`` and that the same call resumes.
     Returns the dataset."""
+    from vbikit._validation import checked_workers
+
+    workers = checked_workers(workers, error=LifetimeError)
     if isinstance(spec, (str, Path)):
         spec, folder = read_lifetime(spec)
         base_dir = folder if base_dir is None else base_dir

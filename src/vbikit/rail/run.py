@@ -296,6 +296,9 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     after every group of trains (as many as workers) swept; ``scheduler``: a Dask scheduler's
     address, the trains swept there (one task a train) instead of on local processes; ``budget`` /
     ``coupled_max_steps``: the work budgets instead of the file's ``run.budget`` / ``coupled.max_steps`` (``plan_rail``)."""
+    from vbikit._validation import checked_workers
+
+    workers = checked_workers(workers, error=RailSpecError)  # (0 read as "the file's": refused, as --workers 0 is)
     t0 = time.perf_counter()
     if out_dir is not None:  # (before the sweep: not after it, when writing)
         from vbikit._files import output_names

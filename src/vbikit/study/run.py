@@ -219,6 +219,9 @@ def run_study(
     ``connect_timeout`` [s]: how long to try to reach the scheduler.  A study with ``method =
     "pem"`` runs one pseudo-excitation analysis per cell instead (``vbikit.study.pem.PemStudy``).
     """
+    from vbikit._validation import checked_workers
+
+    workers = checked_workers(workers, error=StudyError)  # (before anything is written or started)
     out = Path(out)
     if getattr(study, "method", None) == "pem":  # one pseudo-excitation analysis per cell (vbikit.study.pem)
         from vbikit.study.pem import PemStudy
