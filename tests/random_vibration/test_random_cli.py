@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from typer.testing import CliRunner
 
 import vbikit
@@ -108,3 +110,21 @@ def test_a_random_runs_json_gives_its_step_and_every_numbers_unit():
     assert s["dt"] > 0 and s["units"]["dt"] == "s" and s["units"]["static_peak"] == "m" and s["static_peak"] < 0
     assert s["units"]["impact_factor_mean"] == "1" and s["units"]["wheel_force_std_max"] == "N"
     assert set(s["units"]) <= set(s)
+
+
+@pytest.mark.parametrize("quantiles", [(1.5,), (0.0,), (0.5, 1.0), ("0.9",), ()])
+def test_bad_quantiles_are_refused_before_any_computation(quantiles, monkeypatch):
+    """``run_random(…, quantiles=(1.5,))`` ran the whole analysis, then failed in numpy's words (a trial); the
+    quantiles are checked first, naming the key and the range."""
+    from pathlib import Path
+
+    import vbikit.scenario.pipeline as pipeline
+    from vbikit.scenario import ScenarioError
+
+    def no_run(*args, **kwargs):
+        raise AssertionError("the analysis ran before the quantiles were checked")
+
+    monkeypatch.setattr(pipeline, "preflight", no_run)
+    example = Path(__file__).resolve().parents[2] / "examples" / "paper" / "bridge2_hs20_girder4.toml"
+    with pytest.raises(ScenarioError, match=r"quantiles: "):
+        vbikit.run_random(example, quantiles=quantiles)

@@ -133,9 +133,24 @@ def run_random(source: ScenarioSource, *, limits: Limits | None = None, base_dir
     ScenarioError
         A road that is not a random class (A…H or psd), a road with defects, or disk tires.
     """
+    quantiles = checked_quantiles(quantiles)  # (before any computation)
     scenario = scenario_of(source, base_dir)
     check_random_road(scenario)
     return _random_runs([preflight(scenario, limits)], [scenario], [_pseudo_road(scenario)], quantiles, peaks)[0]
+
+
+def checked_quantiles(quantiles: Any) -> tuple[float, ...] | None:
+    """The impact factor's quantiles of a random run as given: None (``vbikit.random.response.QUANTILES``) or
+    probabilities in (0, 1), else ScenarioError naming ``quantiles`` and the range, before any computation (a
+    trial's ``quantiles=(1.5,)`` failed after the run, in numpy's words)."""
+    from vbikit._validation import number
+
+    if quantiles is None:
+        return None
+    values = list(quantiles) if isinstance(quantiles, (list, tuple)) else [quantiles]
+    if not values:
+        raise ScenarioError("quantiles: give at least one probability in (0, 1), or None for the default")
+    return tuple(number(q, "quantiles", 0.0, 1.0, lo_open=True, hi_open=True, error=ScenarioError) for q in values)
 
 
 def run_random_levels(sources: list[ScenarioSource], *, limits: Limits | None = None,
@@ -147,6 +162,7 @@ def run_random_levels(sources: list[ScenarioSource], *, limits: Limits | None = 
     otherwise one by one.  A PEM study's cells over ``road.class`` run so."""
     from vbikit.random.response import level_factor
 
+    quantiles = checked_quantiles(quantiles)
     scenarios = [scenario_of(src, base_dir) for src in sources]
     for scenario in scenarios:
         check_random_road(scenario)
