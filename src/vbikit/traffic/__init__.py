@@ -7,12 +7,14 @@ if TYPE_CHECKING:  # imported on first use (vbikit._lazy); listed here for type 
     from vbikit.traffic.events import Event, on_bridge_intervals, partition
     from vbikit.traffic.records import RecordsError, VehicleRecord, format_records, parse_records, read_records, write_records
     from vbikit.traffic.stream import TRUCK_MIX, LaneTraffic, TruckClass, synthetic_stream
+    from vbikit.traffic.study import TrafficStudy, stream_statistics, traffic_study
 
 __all__ = [
     "Event",
     "LaneTraffic",
     "RecordsError",
     "TRUCK_MIX",
+    "TrafficStudy",
     "TruckClass",
     "VehicleRecord",
     "format_records",
@@ -20,7 +22,9 @@ __all__ = [
     "parse_records",
     "partition",
     "read_records",
+    "stream_statistics",
     "synthetic_stream",
+    "traffic_study",
     "write_records",
 ]
 
@@ -28,4 +32,5 @@ __getattr__, __dir__ = lazy_exports(globals(), {
     "vbikit.traffic.events": ["Event", "on_bridge_intervals", "partition"],
     "vbikit.traffic.records": ["RecordsError", "VehicleRecord", "format_records", "parse_records", "read_records", "write_records"],
     "vbikit.traffic.stream": ["TRUCK_MIX", "LaneTraffic", "TruckClass", "synthetic_stream"],
+    "vbikit.traffic.study": ["TrafficStudy", "stream_statistics", "traffic_study"],
 })
