@@ -29,7 +29,10 @@ from vbikit.bridge.effects import EFFECT_KINDS, LoadEffect, UniformLineInfluence
 
 
 def _positive(name: str, value: float) -> None:
-    if not np.isfinite(value) or value <= 0:
+    """ValueError unless ``value`` is a positive finite number (not a string or a boolean: a trial's ``span="25"``
+    failed in numpy's words)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) or not np.isfinite(value) \
+            or value <= 0:
         raise ValueError(f"{name} must be a positive finite number, got {value!r}")
 
 

@@ -38,6 +38,8 @@ def paper_beam(span: float, girder_type: str, n_modes: int = 10, damping_ratio: 
     [paper] roadway 9.75 m, deck 0.20 m, five girders; [substitute] AASHTO ``girder_type``,
     E = 33 GPa, ρ = 2400 kg/m³.
     """
+    if girder_type not in AASHTO_GIRDERS:
+        raise ValueError(f"girder_type: unknown {girder_type!r}; allowed: {', '.join(AASHTO_GIRDERS)}")
     props = composite_beam_properties(
         AASHTO_GIRDERS[girder_type],
         n_girders=5,

@@ -58,6 +58,9 @@ def scenario_of(source: ScenarioSource, base_dir: str | Path | None = None) -> S
         return source
     if isinstance(source, Mapping):
         return parse_scenario(dict(source), base_dir if base_dir is not None else ".")
+    if not isinstance(source, (str, Path)):  # (a trial's vbikit.run(42) failed inside with a TypeError)
+        raise ScenarioError(f"a scenario is a file path, TOML text, a dict of its tables or a Scenario (or, for "
+                            f"vbikit.run, a Crossing), got {type(source).__name__}")
     if isinstance(source, Path) or _names_a_file(source):
         path = Path(source)
         scenario = load_scenario(path)  # (the one reader's errors: not found, a folder or device, not text …)
