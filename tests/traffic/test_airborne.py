@@ -34,8 +34,8 @@ def test_airborne_events_on_a_rough_road_are_counted_and_flagged(tmp_path):
     from vbikit.traffic.summary import summary
 
     s = summary(ds)
-    assert [f["code"] for f in s["flags"]] == s["flag_codes"] and "airborne_wheels" in s["flag_codes"]
-    assert s["warnings"] == [f["message"] for f in s["flags"]] and len(s["warnings"]) == len(s["flag_codes"])
+    assert set(f["code"] for f in s["flags"]) == set(s["flag_codes"]) and "airborne_wheels" in s["flag_codes"]
+    assert s["warnings"] == [f["message"] for f in s["flags"]]
     assert any(w.startswith(f"{sum(expected)} of {job.size} events had a wheel airborne") for w in s["warnings"])
 
 

@@ -210,3 +210,25 @@ def test_an_event_without_a_static_peak_does_not_govern():
     s = stream_statistics(_hand_stream([0.1, np.nan, 0.3], [5.0, np.nan, 8.0]))
     assert s["governing_static_event"] == 2 and s["governing_dynamic_event"] == 2
     assert s["n_events_without_impact_factor"] == 1 and s["im_mean"] == pytest.approx(0.2, abs=1e-12)
+
+
+def test_an_interval_end_the_events_cannot_bound_is_flagged_in_words():
+    """A short stream's 95 % quantile has no upper interval end (NaN): the dataset flags it, ``interval_not_bounded``,
+    with the events it rests on and the events that end needs — the order-statistic bound, n ≥ ln(0.025) / ln(0.95)
+    = 71.9, so 72 (by hand) — where only the CLI's "?" said so; a stream long enough for every end gives none."""
+    import math
+
+    from vbikit.traffic.study import open_interval_flags
+
+    stats = {"n_events": 12, "n_events_without_impact_factor": 0, "n_small_static_events": 1,
+             "im_mean": 0.2, "im_mean_ci_lower": 0.1, "im_mean_ci_upper": 0.3,
+             "im_q95": 0.45, "im_q95_ci_lower": 0.3, "im_q95_ci_upper": math.nan,
+             "im_mean_loaded": 0.2, "im_mean_loaded_ci_lower": 0.1, "im_mean_loaded_ci_upper": 0.3,
+             "im_q95_loaded": 0.4, "im_q95_loaded_ci_lower": 0.3, "im_q95_loaded_ci_upper": math.nan}
+    flags = open_interval_flags(stats)
+    assert [(f.code, f.output, f.value, f.threshold) for f in flags] == [
+        ("interval_not_bounded", "im_q95", 12.0, 72.0), ("interval_not_bounded", "im_q95_loaded", 11.0, 72.0)]
+    assert flags[0].message.startswith("im_q95: its 12 events cannot bound the upper end of its 95 % confidence interval")
+    assert math.ceil(math.log(0.025) / math.log(0.95)) == 72
+    bounded = {k: (0.5 if isinstance(v, float) and math.isnan(v) else v) for k, v in stats.items()}
+    assert open_interval_flags(bounded) == []

@@ -214,6 +214,11 @@ FLAG_CODES: dict[str, str] = {
     "stream_step_sensitive": "traffic: a governing event's impact factors (deflection, strain, load effects) change at "
                              "half the time step; output: the one that moved most; subject: the event; value: its "
                              "IM_half − IM_run, threshold: ``STEP_TOLERANCE`` (5e-3, on its magnitude)",
+    "interval_not_bounded": "traffic: an end of a statistic's 95 % confidence interval that the stream's events cannot "
+                            "bound (an order-statistic interval of a quantile needs enough values beyond it; a mean's "
+                            "Student-t interval two values): the statistic is an estimate without a stated accuracy at "
+                            "that end; output: the statistic; value: the values it rests on, threshold: the values that "
+                            "end needs",
     "governing_step_sensitive": "lifetime: a governing event's total peak changes at half the time step; output: "
                                 "\"governing static event\" or \"governing total event\"; value: the relative change R_half / R_run − 1, "
                                 "threshold: half_step_tolerance (0.01, on its magnitude)",

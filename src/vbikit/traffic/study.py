@@ -404,6 +404,7 @@ class TrafficStudy:
             **step_attrs,
             **started,
             **self.flag_attrs(ev["max_static_displacement"], airborne_dataset_flags(ev["airborne_wheels"]) + step_flags
+                              + open_interval_flags(stats)
                               + unconverged_dataset_flags(ev["unconverged_steps"], "event")
                               + start_flags(started, total=self.size)),
         }
@@ -431,6 +432,34 @@ class TrafficStudy:
         records: dict[str, Any] = {}
         add_flags(records, every)
         return dataset_flag_attrs(every) | ({"flags": json.dumps(records["flags"])} if every else {})
+
+
+def open_interval_flags(stats: dict[str, Any], confidence: float = 0.95) -> list[Flag]:
+    """``interval_not_bounded`` for each IM statistic of ``stream_statistics`` with an end of its confidence interval
+    that its events cannot bound (NaN, the estimate finite): said in words in the dataset, the summary and the report
+    (a trial's 12-event stream gave im_q95_ci_upper NaN with no word outside the CLI's "?").  The values an end needs:
+    a mean's Student-t interval 2; the order-statistic interval of the p quantile at ``confidence`` needs an order
+    statistic beyond it with the binomial tail ≥ (1 + confidence) / 2, n ≥ ln((1 − c)/2) / ln p (upper end) or
+    / ln(1 − p) (lower end): 72 for the 95 % quantile's upper end."""
+    counts = {"im_mean": stats["n_events"] - stats["n_events_without_impact_factor"],
+              "im_q95": stats["n_events"] - stats["n_events_without_impact_factor"]}
+    counts |= {f"{k}_loaded": n - stats["n_small_static_events"] for k, n in counts.items()}
+    tail = math.log((1.0 - confidence) / 2.0)
+    flags = []
+    for name, n in counts.items():
+        if not math.isfinite(float(stats.get(name, math.nan))):
+            continue
+        for end in ("lower", "upper"):
+            if math.isfinite(float(stats.get(f"{name}_ci_{end}", math.nan))):
+                continue
+            p = 0.95 if "q95" in name else None
+            need = 2 if p is None else math.ceil(tail / math.log(p if end == "upper" else 1.0 - p))
+            flags.append(Flag("interval_not_bounded",
+                              f"{name}: its {n} events cannot bound the {end} end of its {100 * confidence:g} % confidence "
+                              f"interval (about {need} are needed): {name} = {float(stats[name]):.4f} is an estimate "
+                              "without a stated accuracy at that end; run a longer stream",
+                              output=name, value=float(n), threshold=float(need)))
+    return flags
 
 
 def airborne_dataset_flags(airborne: NDArray) -> list[Flag]:
