@@ -66,6 +66,11 @@ def test_cli_cut_down_example_and_resume(tmp_path, summary_on_stdout):
     detail = json.loads(js.stdout)["fatigue"]["flange_EN36"]
     assert detail["units"]["equivalent_stress_range"] == "Pa" and detail["units"]["remaining_life"] == "year"
     assert detail["units"]["fatigue_damage"] == "1" and set(detail["units"]) <= set(detail)
+    # every load effect's flags at the top too, as every summary gives them, each naming its effect
+    whole = json.loads(js.stdout)
+    expected = [(name, f["code"], f["message"]) for name, e in whole["load_effects"].items() for f in e["flags"]]
+    assert [(f["load_effect"], f["code"], f["message"]) for f in whole["flags"]] == expected
+    assert whole["warnings"] == [f"{name}: {message}" for name, _, message in expected]
     (out / "lifetime.nc").unlink()
     again = run_lifetime(spec, out, workers=1, figures=False)
     for name in ("characteristic_static", "characteristic_total", "fatigue_damage", "event_total"):

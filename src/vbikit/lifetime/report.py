@@ -472,6 +472,10 @@ def summary(ds) -> dict[str, Any]:
     if "fatigue_damage" in ds and ds.sizes.get("detail", 0):
         out["design_life"] = float(a["design_life"])
         out["fatigue"] = {str(n): _detail(ds, j) for j, n in enumerate(ds["detail"].values)}
+    # every load effect's flags at the top as well, as every summary of vbikit gives them (each record naming its
+    # effect in ``load_effect``; the effects' own lists stay where they are)
+    out["flags"] = [{**f, "load_effect": name} for name, e in out["load_effects"].items() for f in e["flags"]]
+    out["warnings"] = [f"{f['load_effect']}: {f['message']}" for f in out["flags"]]
     return out
 
 
