@@ -98,3 +98,21 @@ def test_a_keys_unit_is_read_from_its_description(description, unit):
     from vbikit._words import split_unit
 
     assert split_unit(description)[1] == unit
+
+
+def test_a_run_summary_s_units_name_every_key_but_their_own():
+    """``units`` maps every key of a run's summary to its unit ("" for words): the references too (a trial found
+    them left out), and docs/results.md's table lists every key."""
+    import json
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from vbikit.cli import app
+
+    root = Path(__file__).resolve().parents[2]
+    res = CliRunner().invoke(app, ["run", str(root / "examples" / "verification" / "yang_yau_sprung_mass.toml"), "--json"])
+    s = json.loads(res.stdout)
+    assert set(s) - set(s["units"]) == {"units"} and s["units"]["references"] == ""
+    table = (root / "docs" / "results.md").read_text(encoding="utf-8")
+    assert all(f"| `{key}` |" in table for key in s if key not in ("units",)) and "| `units` |" in table

@@ -600,17 +600,21 @@ _SUMMARY_KEYS: dict[str, tuple[str, str]] = {
                       "flags' subject names it), with the code allowances"),
     "shear": ("N", "shear forces (just right of x), as moment (senses: positive, negative)"),
     "reaction": ("N", "support reactions, as moment"),
-    "step_check": ("-", "a single run at an automatic step that no load-effect step halving checked: the same run at "
-                        "half the step, dt [s], and the largest change of a deflection or strain impact factor (every point "
-                        "and girder; the load effects have their own step rule), largest_change [-], and which, output; the "
-                        "largest relative change of a peak deck acceleration (every point and girder), acceleration_change [-], "
-                        "and which, acceleration_output, and every peak acceleration above 0.005, accelerations_not_converged "
-                        "(vbikit.scenario.step_check.half_step_check; either above 0.005 flagged "
-                        "step_not_converged); absent for a given crossing.dt"),
+    "step_check": ("-", "a single run at an automatic step: the same run at half the step, dt [s], and the largest "
+                        "change of a deflection or strain impact factor (every point and girder), largest_change [-], and "
+                        "which, output; the largest relative change of a peak deck acceleration (every point and girder), "
+                        "acceleration_change [-], and which, acceleration_output, and every peak acceleration above "
+                        "0.005, accelerations_not_converged (vbikit.scenario.step_check.half_step_check; either above "
+                        "0.005 flagged step_not_converged); a run whose load effects (or a train) set its step by halving: "
+                        "what the halving found, halvings, converged, dt the run's step, largest_change over the last "
+                        "halving (load effects included) and output (vbikit.scenario.step_check.converge_step); absent "
+                        "for a given crossing.dt"),
     "warnings": ("-", "messages about the inputs or the run (also printed on standard error): the flags' messages"),
     "flags": ("-", "the checks' findings as records: code (the flag codes' table), message, output, subject, girder, "
                    "point, wheel, value, threshold"),
     "inputs": ("-", "the inputs as run, every default filled in (units as in the scenario reference)"),
+    "references": ("-", "the publications behind the run's models (vbikit cite)"),
+    "units": ("-", "every key's unit in the CF spelling (\"\" for words)"),
 }
 
 

@@ -235,7 +235,8 @@ def run_planned(plan: Plan, limits: Limits | None = None, step_check: bool = Tru
     s["inputs"] = scenario_inputs(scenario, plan)
     nonfinite = json_safe(s)[1]  # JSON outputs write these as null, the text report as nan
     add_flags(s, [Flag("non_finite", f"{key} is not a finite number (written as null)", output=key) for key in nonfinite])
-    s |= {"units": summary_units(s), "references": _references(scenario)}
+    s["references"] = _references(scenario)
+    s["units"] = summary_units(s)  # (every key's, the references' too: "" for words)
     return report
 
 
