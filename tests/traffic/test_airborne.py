@@ -3,8 +3,6 @@ against the rule on an independent ``simulate`` of the same event, the dataset f
 and none on a smooth road."""
 from __future__ import annotations
 
-import numpy as np
-import pytest
 
 from vbikit.analysis.checks import airborne_wheels, dataset_has_flag
 from vbikit.solve import simulate

@@ -114,7 +114,7 @@ def option(parse: Callable[[str], T], text: str) -> T:
 
 def limits(max_memory: Optional[str], max_steps: Optional[float]) -> Any:
     """The ``Limits`` of ``--max-memory`` and ``--max-steps``."""
-    from vbikit.solve.budget import Limits, parse_size
+    from vbikit.solve.budget import Limits
 
     kw: dict[str, Any] = {}
     if max_memory is not None:

@@ -162,7 +162,7 @@ def report_text(ds) -> str:
     lines += ["", "unreliable identifications (excluded from the damage indicators and the multi-pass estimates):"]
     lines += [f"  case {i}: {float(c['identified_frequency_hz'][i]):.4g} Hz: {c['identified_frequency_reason'][i]}"
               for i in np.flatnonzero(~reliable)] or ["  none"]
-    lines += ["", f"identification error of the reliable cases: " + (
+    lines += ["", "identification error of the reliable cases: " + (
         f"mean |e| {np.mean(np.abs(err[reliable])):.2f} %, max |e| {np.max(np.abs(err[reliable])):.2f} %"
         if reliable.any() else "no reliable case"),
         f"identification error of all cases: mean |e| {np.mean(np.abs(err)):.2f} %, max |e| {np.max(np.abs(err)):.2f} %"]
