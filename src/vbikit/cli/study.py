@@ -2,7 +2,6 @@
 imported inside the commands (start-up stays fast)."""
 from __future__ import annotations
 
-import json
 import math
 import time
 from pathlib import Path
@@ -156,41 +155,39 @@ def run_cmd(
     checked = _check(study, yes, max_memory, max_steps, file=study_file, step_check=True)
     ds = run_job(study, out, workers, scheduler, progress)
     warn_dataset(ds)
-    _say_results(ds, checked.step_check)
-    say_json(study_summary(ds, checked.step_check))
+    summary = study_summary(ds, checked.step_check)  # (the text and --json read the same numbers, computed once)
+    _say_results(summary)
+    say_json(summary)
 
 
-def _say_results(ds: Any, step_check: Optional[dict]) -> None:
-    """The study's impact factors by axis value and its step check, in lines (``say``: standard error under --json)."""
-    if "impact_factor" not in ds:  # the study's outputs key left it out, or a PEM study's
-        say(f"outputs stored: {', '.join(str(name) for name in ds.data_vars)}")
+def _say_results(summary: dict) -> None:
+    """The study's impact factors by axis value and its step check (``study_summary``'s), in lines (``say``: standard
+    error under --json)."""
+    if not summary["impact_factor"]:  # the study's outputs key left it out, or a PEM study's
+        say(f"outputs stored: {', '.join(summary['outputs'])}")
         return
     from vbikit.cli.render import print_negative_note
-    from vbikit.study.summary import axis_means
 
-    im = ds["impact_factor"]
-    keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
-    for label, values in ([(f" at {p}", im.sel(point=p)) for p in im["point"].values] if "point" in im.dims
-                          else [("", im)]):
-        say(f"impact factor over all crossings{label}: mean {float(values.mean()):.4f}, "
-            f"min {float(values.min()):.4f}, max {float(values.max()):.4f}")
-        axes = axis_means(values)  # each swept axis's values, the mean over the others and the road samples
+    for row in summary["impact_factor"]:  # (per response point where there are several)
+        label = f" at {row['point']}" if "point" in row else ""
+        say(f"impact factor over all crossings{label}: mean {row['mean']:.4f}, min {row['min']:.4f}, max {row['max']:.4f}")
+        axes = row["axes"]  # each swept axis's values, the mean over the others and the road samples
         for axis in axes:
-            shown = ", ".join(f"{v} {m:.4f}" + ("" if math.isnan(se) else f" ± {se:.4f}")
-                              for v, m, se in list(zip(axis.values, axis.means, axis.standard_error))[:AXIS_VALUES_SHOWN])
-            more = len(axis.values) - AXIS_VALUES_SHOWN
-            say(f"  mean by {keys.get(axis.dim, axis.dim)}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
-            if not math.isnan(axis.difference_error[-1]):  # the comparison the study makes: paired over the same roads
+            shown = ", ".join(f"{v} {m:.4f}" + ("" if math.isnan(se) else f" ± {se:.4f}") for v, m, se in
+                              list(zip(axis["values"], axis["means"], axis["standard_error"]))[:AXIS_VALUES_SHOWN])
+            more = len(axis["values"]) - AXIS_VALUES_SHOWN
+            say(f"  mean by {axis['key']}: {shown}" + (f", … ({more} more in the dataset)" if more > 0 else ""))
+            if not math.isnan(axis["difference_error"][-1]):  # the comparison the study makes: paired over the same roads
                 diffs = ", ".join(f"{v} {d:+.4f} ± {e:.4f}" for v, d, e in list(zip(
-                    axis.values, axis.difference, axis.difference_error))[1:AXIS_VALUES_SHOWN])
-                say(f"    difference from {axis.values[0]}: {diffs}")
-        if any(not math.isnan(se) for axis in axes for se in axis.standard_error):
+                    axis["values"], axis["difference"], axis["difference_error"]))[1:AXIS_VALUES_SHOWN])
+                say(f"    difference from {axis['values'][0]}: {diffs}")
+        if any(not math.isnan(se) for axis in axes for se in axis["standard_error"]):
             say("  (± the standard error over the road samples; a difference's paired over the same roads)")
         elif axes:  # one road per cell: the means carry a sampling error the study cannot state
             say("  (one road profile per value: no standard error; a \"road.seed\" = { samples = N } "
                 "axis, N ≥ 2, gives one)")
-    say_step_check(step_check)
-    print_negative_note(bool(float(im.min()) < 0))
+    say_step_check(summary["step_check"])
+    print_negative_note(min(row["min"] for row in summary["impact_factor"]) < 0)
 
 
 def say_step_check(check: Optional[dict]) -> None:

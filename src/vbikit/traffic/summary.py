@@ -31,12 +31,9 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     attrs = dict(ds.attrs)
     stats = stream_statistics(ds)
     # the governing events the run stored (its half-step check is of them)
-    # (their deflections read from the variables at those events: signed, z up, also for a dataset written when the
-    # attribute held the magnitude)
+    # (not their deflections: stream_statistics reads those from the variables at the same events, signed, z up, also
+    # for a dataset written when the attribute held the magnitude)
     stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs and not k.endswith("_deflection")}
-    first = ds.isel(point=0) if "point" in ds.dims else ds
-    for which in ("static", "dynamic"):
-        stats[f"governing_{which}_deflection"] = float(first[f"max_{which}_displacement"].values[int(stats[f"governing_{which}_event"])])
     codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
     # the flags as records and their messages as a list, as every summary gives them (a dataset written before the
     # records were stored: its "; "-joined messages as one)
