@@ -57,6 +57,12 @@ def test_study_run_and_validate(tmp_path):
     base = run_scenario(study.scenario_dict((0, 0)), base_dir=tmp_path).summary["step_check"]
     assert (f"step check of the base crossing (the other cells are not checked): at half the step ({base['dt']:.3e} s) "
             f"the deflection and strain IMs change by at most {base['largest_change']:.1e}") in res.output
+    # and the dataset carries the check it printed (a dataset read later says how good its step is)
+    from vbikit.study.check import stored_step_check
+
+    with xr.open_dataset(tmp_path / "r.nc") as ds:
+        stored = stored_step_check(ds.attrs)
+    assert stored["largest_change"] == base["largest_change"] and stored["dt"] == base["dt"]
 
 
 def test_a_study_at_a_given_step_says_its_step_check_is_not_run(tmp_path):

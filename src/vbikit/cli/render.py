@@ -196,6 +196,8 @@ def step_line(s: dict) -> None:
     """The step check's lines (``vbikit.scenario.step_check.half_step_check``, or ``converge_step``'s halving for load
     effects or a train: ``step_check_words``): how much the impact factors and the peak deck accelerations change;
     "not run" at a given crossing.dt."""
+    from vbikit.scenario.step_check import step_check_words
+
     check = s.get("step_check")
     if not check:
         if s.get("inputs", {}).get("dt_given"):  # (a scenario's run at its own crossing.dt)
@@ -206,26 +208,6 @@ def step_line(s: dict) -> None:
         where = f" ({check['acceleration_output']})" if check.get("acceleration_output") else ""
         typer.echo(f"                       the peak deck accelerations by at most {check['acceleration_change']:.2%} "
                    f"of their values{where}")
-
-
-def step_check_words(check: dict, accelerations: bool = False) -> str:
-    """A step check's record in words (the one wording of ``vbikit run``, ``compare-tires`` and ``study run``):
-    ``half_step_check``'s (a single run: "at half the step …") or ``converge_step``'s (the load effects' or a train's
-    halving, ``halvings``: "halved to … s: the last halving changed …"), or its ``note`` when it was not run;
-    with ``accelerations`` the peak accelerations' change after a semicolon (``vbikit run`` gives it a line)."""
-    if check.get("largest_change") is None:
-        return str(check.get("note", "not run"))
-    which = f" ({check['output']})" if check.get("output") else ""
-    if "halvings" in check:  # (the step the load effects needed: the record is of the last halving)
-        state = "" if check.get("converged") else ", not converged"
-        words = (f"halved {check['halvings']}× to {check['dt']:.3e} s for its {check.get('for', 'load effects')}: the "
-                 f"last halving changed the impact factors by at most {check['largest_change']:.1e}{which}{state}")
-    else:
-        words = (f"at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by at most "
-                 f"{check['largest_change']:.1e}{which}")
-    if accelerations and check.get("acceleration_change") is not None:
-        words += f"; the peak accelerations by at most {check['acceleration_change']:.2%}"
-    return words
 
 
 def start_line(s: dict) -> None:

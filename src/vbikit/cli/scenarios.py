@@ -213,7 +213,7 @@ def compare_tires(
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f}{strain}"
                    f"{row['max_abs_acceleration']:13.4f}{acceleration}"
                    f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:12.2f}" + (" *" if row["compiled_kernels"] else ""))
-    from vbikit.cli.render import step_check_words
+    from vbikit.scenario.step_check import step_check_words
 
     for row in table.values():  # each run's step check, in vbikit run's words
         c = row["step_check"]

@@ -56,8 +56,9 @@ class _Bar:
 
 
 def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[str], progress: bool,
-            unit: str = "crossing", option: str = "--out") -> Any:
-    """Run (or resume) ``study`` (or another job of [`run_study`][vbikit.study.run_study]) with a progress bar."""
+            unit: str = "crossing", option: str = "--out", step_check: Optional[dict] = None) -> Any:
+    """Run (or resume) ``study`` (or another job of [`run_study`][vbikit.study.run_study]) with a progress bar;
+    ``step_check``: the base crossing's, stored with a study's dataset (``run_study``'s)."""
     from vbikit.study.run import run_study
 
     bar = _Bar(study.name or out.stem, progress and not STATE["quiet"], unit)  # `vbikit -q study …`: no bar
@@ -66,7 +67,7 @@ def run_job(study: Any, out: Path, workers: Optional[int], scheduler: Optional[s
     from vbikit.study.storage import parts_dir
 
     try:
-        ds = guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar))
+        ds = guard(lambda: run_study(study, out, workers=workers, scheduler=scheduler, progress=bar, step_check=step_check))
     except KeyboardInterrupt:
         bar.close()
         typer.echo(f"\ninterrupted: finished batches are kept in {out}.parts; run the same command again to resume",
@@ -153,7 +154,7 @@ def run_cmd(
 
     study = guard(lambda: load_study(study_file), file=study_file)
     checked = _check(study, yes, max_memory, max_steps, file=study_file, step_check=True)
-    ds = run_job(study, out, workers, scheduler, progress)
+    ds = run_job(study, out, workers, scheduler, progress, step_check=checked.step_check)
     warn_dataset(ds)
     summary = study_summary(ds, checked.step_check)  # (the text and --json read the same numbers, computed once)
     _say_results(summary)
@@ -193,7 +194,7 @@ def _say_results(summary: dict) -> None:
 def say_step_check(check: Optional[dict]) -> None:
     """How good the study's time step is, in a line: the base crossing's half-step check (``StudyCheck.step_check``),
     the one crossing the study checks (a trial found a study's impact factors printed with no word of it)."""
-    from vbikit.cli.render import step_check_words
+    from vbikit.scenario.step_check import step_check_words
 
     if check is None:
         say("step check: not run (the base gives crossing.dt)")

@@ -297,3 +297,24 @@ def _advice(changes: list[float], worst: str, dt: float, relative: bool = False,
         text += ("; set a smaller crossing.dt, or raise the step budget (--max-steps)" if halved_for_it else
                  "; set a smaller crossing.dt (the run does not halve its step for it)")
     return text
+
+
+def step_check_words(check: dict, accelerations: bool = False) -> str:
+    """A step check's record in words (the one wording of ``vbikit run``, ``compare-tires``, ``study run`` and a study's
+    dataset flag, ``study_step_flags``):
+    ``half_step_check``'s (a single run: "at half the step …") or ``converge_step``'s (the load effects' or a train's
+    halving, ``halvings``: "halved to … s: the last halving changed …"), or its ``note`` when it was not run;
+    with ``accelerations`` the peak accelerations' change after a semicolon (``vbikit run`` gives it a line)."""
+    if check.get("largest_change") is None:
+        return str(check.get("note", "not run"))
+    which = f" ({check['output']})" if check.get("output") else ""
+    if "halvings" in check:  # (the step the load effects needed: the record is of the last halving)
+        state = "" if check.get("converged") else ", not converged"
+        words = (f"halved {check['halvings']}× to {check['dt']:.3e} s for its {check.get('for', 'load effects')}: the "
+                 f"last halving changed the impact factors by at most {check['largest_change']:.1e}{which}{state}")
+    else:
+        words = (f"at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by at most "
+                 f"{check['largest_change']:.1e}{which}")
+    if accelerations and check.get("acceleration_change") is not None:
+        words += f"; the peak accelerations by at most {check['acceleration_change']:.2%}"
+    return words

@@ -12,10 +12,15 @@ are among those).  Budgets count the lanes one kernel call runs at once.
 from __future__ import annotations
 
 import itertools
+import json
 from dataclasses import dataclass, field
+
+from vbikit.analysis.checks import Flag, flag_attrs
+from vbikit.analysis.effect_step import STEP_TOLERANCE
 
 from vbikit.scenario.preflight import preflight
 from vbikit.scenario.schema import ScenarioError, parse_scenario
+from vbikit.scenario.step_check import step_check_words
 from vbikit.solve.budget import BudgetError, Limits, check_run, human
 from vbikit.solve.simulate import MAX_LANES
 from vbikit.study.spec import MAX_CROSSINGS_UNCONFIRMED, ROAD_ONLY_KEYS, Study, StudyError
@@ -37,6 +42,54 @@ class StudyCheck:
     #: halving; ``study_dt``: the step the study's crossings run at); None when the base gives crossing.dt, or when
     #: ``check_study`` was not asked for it (``step_check=False``: a validation simulates only for load-effect advice)
     step_check: dict | None = None
+
+
+#: the study dataset's attribute holding its step check (``StudyCheck.step_check`` as JSON, ``store_step_check``)
+STEP_CHECK_ATTR = "step_check"
+
+
+def study_step_flags(check: dict | None) -> list[Flag]:
+    """The base crossing's step check (``StudyCheck.step_check``) as flags of the study: ``step_not_converged`` when
+    its deflection or strain impact factors changed by more than ``STEP_TOLERANCE`` at half the step, when its halving
+    (load effects, a train) did not converge, or when they settled only at a step finer than the one the study's
+    crossings run at (``study_dt``; ``check_study``'s advice names the step to set).  None where the check passed, was
+    not run (the budget refused it, the base gives crossing.dt) or is None."""
+    if not check or check.get("largest_change") is None:
+        return []
+    study_dt, dt = check.get("study_dt"), float(check["dt"])
+    if "halvings" in check:
+        finer = study_dt is not None and dt < float(study_dt) * (1 - 1e-9)
+        if check.get("converged") and not finer:
+            return []
+        remedy = (f"the study's crossings ran at {float(study_dt):.3g} s: set crossing.dt = {dt:.3g} in the base"
+                  if check.get("converged") else "set a smaller crossing.dt in the base, or raise --max-steps")
+    elif check["largest_change"] > STEP_TOLERANCE:
+        remedy = f"above the tolerance {STEP_TOLERANCE:g}: set a smaller crossing.dt in the base"
+    else:
+        return []
+    return [Flag("step_not_converged", f"the study's time step is not converged: the base crossing's step check "
+                 f"{step_check_words(check)}; {remedy} (the other cells are not checked)", output=check.get("output"),
+                 subject="base crossing", value=float(check["largest_change"]), threshold=STEP_TOLERANCE)]
+
+
+def store_step_check(attrs: dict, check: dict | None) -> dict:
+    """A study dataset's attributes ``attrs`` with its step check: ``STEP_CHECK_ATTR`` (the record as JSON) and its
+    flags (``study_step_flags``) added to ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.flag_attrs``);
+    ``attrs`` as given for None."""
+    if check is None:
+        return dict(attrs)
+    flags = study_step_flags(check)
+    texts = [str(attrs["warnings"])] if attrs.get("warnings") else []
+    codes = [c for c in str(attrs.get("flag_codes", "")).split(",") if c]
+    out = {**attrs, STEP_CHECK_ATTR: json.dumps(check, sort_keys=True)}
+    return out | flag_attrs(texts + [f.message for f in flags], codes + [f.code for f in flags])
+
+
+def stored_step_check(attrs) -> dict | None:
+    """The step check a study dataset's attributes carry (``store_step_check``), None where it has none (a dataset
+    written by ``run_study`` without one, or by an earlier version)."""
+    text = attrs.get(STEP_CHECK_ATTR)
+    return json.loads(text) if text else None
 
 
 def check_size(study: Study, confirmed: bool) -> None:

@@ -208,6 +208,7 @@ def run_study(
     threads: int = 1,
     keep_parts: bool = False,
     connect_timeout: float = SCHEDULER_CONNECT_TIMEOUT,
+    step_check: dict | None = None,
 ):
     """Run (or resume) ``study`` and write its dataset to ``out`` (NetCDF); returns the Dataset.
 
@@ -216,7 +217,11 @@ def run_study(
     ``scheduler``: address of a Dask distributed scheduler (``tcp://host:port``) — then the
     batches run on that cluster instead; ``progress(done, total)`` is called after every
     finished batch (crossings); ``threads``: crossings run at once inside one worker;
-    ``connect_timeout`` [s]: how long to try to reach the scheduler.  A study with ``method =
+    ``connect_timeout`` [s]: how long to try to reach the scheduler; ``step_check``: the base crossing's step
+    check (``check_study(…, step_check=True).step_check``, what ``vbikit study run`` passes), stored with the
+    dataset (attribute ``step_check``, JSON; ``vbikit.study.check.stored_step_check``) and flagged
+    ``step_not_converged`` in its ``warnings`` where it finds the study's step not converged
+    (``vbikit.study.check.study_step_flags``).  A study with ``method =
     "pem"`` runs one pseudo-excitation analysis per cell instead (``vbikit.study.pem.PemStudy``).
     """
     from vbikit._validation import checked_workers
@@ -234,10 +239,10 @@ def run_study(
     except OSError as err:
         raise OutputError(err.errno, f"--out {out}: cannot create the folder {out.parent}: {err.strerror}") from None
     with lock_output(out):
-        return _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout)
+        return _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout, step_check)
 
 
-def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout):
+def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, connect_timeout, step_check=None):
     if out.exists():
         ds = _open_complete(out, study)
         if ds is not None:
@@ -280,6 +285,10 @@ def _run_locked(study, out, workers, scheduler, progress, threads, keep_parts, c
             _run_local(study, batches, todo, workers or default_workers(), threads, finished)
     log.info("study %r: ran %d batches in %.1f s", study.name, len(todo), time.perf_counter() - t0)
     ds = study.assemble(parts) if hasattr(study, "assemble") else assemble(study, parts)
+    if step_check is not None:
+        from vbikit.study.check import store_step_check
+
+        ds.attrs = store_step_check(ds.attrs, step_check)
     try:
         atomic_write(out, lambda tmp: _to_netcdf(ds, tmp))
     except OutputError as err:

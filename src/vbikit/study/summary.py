@@ -65,11 +65,16 @@ def study_summary(ds, step_check: dict | None = None) -> dict:
     point where there are several: ``point``; mean, min, max) with each swept axis's means by value
     (``axis_means``: ``key`` the study's axis key, ``values``, ``means``, ``standard_error``, ``difference``,
     ``difference_error``; NaN where there is no road sample to state one), how good the step is (``step_check``: the
-    base crossing's half-step check, ``vbikit.study.check.StudyCheck``; None where the base gives crossing.dt), the
+    base crossing's half-step check the dataset stores, ``vbikit.study.check.stored_step_check``, else the one given,
+    ``vbikit.study.check.StudyCheck``; None where the base gives crossing.dt), the
     dataset's ``flag_codes`` and ``warnings`` (its messages, "; "-joined as the dataset stores them), its ``outputs``,
     the vbikit version that wrote the dataset, and ``units``.  NaN stays NaN here; the writer gives null."""
     import json
 
+    from vbikit.study.check import stored_step_check
+
+    stored = stored_step_check(ds.attrs)  # (the dataset's own; a dataset written without one: the check given)
+    step_check = stored if stored is not None else step_check
     keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
     codes = [c for c in str(ds.attrs.get("flag_codes", "")).split(",") if c]
     out = {"title": str(ds.attrs.get("title", "")), "vbikit_version": str(ds.attrs.get("vbikit_version", "")),
