@@ -78,7 +78,7 @@ def test_a_folder_a_file_as_folder_and_dev_are_refused_before_computing(tmp_path
     afile.write_text("x")
     cases = ((str(adir), "is a folder, not a file; give the path of a file in a writable folder"),
              (f"{afile}/x.png", f"its folder {afile}: exists and is not a folder"),
-             (f"{afile}/sub/x.png", f"is not a folder"),
+             (f"{afile}/sub/x.png", "is not a folder"),
              ("/dev/null", "lies in /dev, a system folder"),
              ("/dev/x.nc", "lies in /dev, a system folder"))
     for value, message in cases:
@@ -114,7 +114,7 @@ def test_the_new_users_commands(tmp_path, monkeypatch):
 
 def test_output_file_passes_new_and_existing_files_and_creates_nothing(tmp_path):
     from vbikit._files import output_file
-    from vbikit.cli.guard import check_figure_file, check_out_file
+    from vbikit.cli.guard import check_out_file
 
     assert output_file(tmp_path / "new" / "deeper" / "x.csv", "--out") == tmp_path / "new" / "deeper" / "x.csv"
     assert not (tmp_path / "new").exists()  # checked, not created: the writers create it

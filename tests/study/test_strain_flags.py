@@ -4,8 +4,6 @@ said its strain IM was 2.3 % off, 2026-12-07).  The static reference does not re
 computed once a batch and is the same for every road of it."""
 from __future__ import annotations
 
-import numpy as np
-import pytest
 
 import vbikit
 from vbikit.analysis.checks import STRAIN_MODE_TOLERANCE, find_flag

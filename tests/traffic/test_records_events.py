@@ -9,7 +9,6 @@ import pytest
 from vbikit.traffic import (
     LaneTraffic,
     RecordsError,
-    format_records,
     parse_records,
     partition,
     read_records,

@@ -177,7 +177,7 @@ def test_a_speed_out_of_range_is_refused_with_the_range_it_must_be_in():
                                                      "positive: the direction column, +x or -x, gives the sense of "
                                                      f"travel); {allowed}")):
         parse_records(HEAD + ROW.replace(",80,", ",-60,"))
-    with pytest.raises(RecordsError, match=re.escape(f"0 km/h is below the smallest speed 0.0036 km/h (a speed is")):
+    with pytest.raises(RecordsError, match=re.escape("0 km/h is below the smallest speed 0.0036 km/h (a speed is")):
         parse_records(HEAD + ROW.replace(",80,", ",0,"))
     for kmh in ("0.0036", "252"):  # the ends themselves are read
         assert parse_records(HEAD + ROW.replace(",80,", f",{kmh},"))[0].speed == pytest.approx(float(kmh) / 3.6)

@@ -13,7 +13,6 @@ from typer.testing import CliRunner
 
 import vbikit.traffic.accuracy as accuracy
 from vbikit.analysis import point_response
-from vbikit.analysis.checks import dataset_has_flag
 from vbikit.analysis.effect_step import STEP_TOLERANCE
 from vbikit.cli import app
 from vbikit.solve import simulate

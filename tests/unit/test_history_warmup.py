@@ -5,7 +5,6 @@ of real runs, so a real run afterwards adds no second compiled variant of any of
 (a float passed as an int, or a non-contiguous array, would add one)."""
 from __future__ import annotations
 
-import numpy as np
 
 from vbikit.analysis.breakpoints import _sweep
 from vbikit.analysis import impact

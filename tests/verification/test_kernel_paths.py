@@ -94,7 +94,6 @@ def test_a_landing_the_lean_kernel_hands_over_equals_the_full_kernel():
     ``implicit`` alone within the tolerance's order.  (The kernel-coverage job reaches the full kernel's
     contact solve through this crossing: with the secant road rate the other small crossings here
     settle every landing in one evaluation.)"""
-    from vbikit.solve import integrators
 
     crossing = Crossing(SHORT, CAR, tire=MultiPointTire(4), road=BUMP_ROAD, speed=10.0, approach=2.0,
                         free_vibration=0.0, dt=1e-3)
