@@ -52,7 +52,7 @@ def test_a_rigid_disk_sweep_at_one_iteration_is_flagged_everywhere(tmp_path, mon
     worst = int(np.argmax(counts))
     assert f"the most: {int(counts[worst])} steps in case {worst})" in ds.attrs["warnings"]
     report = (tmp_path / "driveby-report.txt").read_text()
-    assert "WARNING: the contact forces did not converge" in report
+    assert "! the contact forces did not converge" in report
     summary = json.loads((tmp_path / "driveby-summary.json").read_text())
     assert summary["warnings"] == [ds.attrs["warnings"]]  # a list of messages, each a flag record's
     assert [f["code"] for f in summary["flags"]] == ["contact_not_converged"]

@@ -224,12 +224,12 @@ def test_report_flags_a_coarse_step_and_a_disagreement(quasi_static):
     assert "disagree beyond their intervals at 1000 years —" in find_flag(m, "bm_pot_disagree", output="static return levels")["message"]
     assert not has_flag(r, "bm_pot_disagree")
     report = text_report(facts)
-    assert "FLAG governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report
+    assert "! governing total event" in report and "+2.000 % ABOVE the 1 % tolerance" in report
 
 
 def test_report_marks_come_from_the_flag_codes(quasi_static):
     """The report's ABOVE at a governing event and its note under a table with a '*' follow the flag
-    records' codes, not their words: reworded messages keep both marks (and print as FLAG lines);
+    records' codes, not their words: reworded messages keep both marks (and print as "!" lines);
     without the two records the marks go although the summary's booleans still say so."""
     from vbikit.lifetime.report import summary, text_report
 
@@ -244,7 +244,7 @@ def test_report_marks_come_from_the_flag_codes(quasi_static):
         f["message"] = f"reworded {f['code']}"
     report = text_report(facts)
     assert "ABOVE the 1 % tolerance" in report and note in report
-    assert "FLAG reworded governing_step_sensitive" in report and "FLAG reworded bm_pot_disagree" in report
+    assert "! reworded governing_step_sensitive" in report and "! reworded bm_pot_disagree" in report
     m["flags"] = [f for f in m["flags"] if f["code"] not in ("governing_step_sensitive", "bm_pot_disagree")]
     report = text_report(facts)
     assert m["governing"]["total"]["half_step_flag"] and "+2.000 % within the 1 % tolerance" in report
@@ -373,7 +373,7 @@ def test_report_flags_runs_that_miss_the_exact_static_peak(quasi_static):
     assert short["value"] == pytest.approx(0.05, abs=1e-12) and short["threshold"] == acc.HALF_STEP_TOLERANCE
     assert "misses the exact static peak by up to 5.00 %" in short["message"]
     assert not has_flag(facts["load_effects"]["M"], "static_reference_short")
-    assert "FLAG the coupled runs' static reference misses the exact static peak" in text_report(facts)
+    assert "! the coupled runs' static reference misses the exact static peak" in text_report(facts)
 
 
 def test_too_wide_intervals_by_hand():

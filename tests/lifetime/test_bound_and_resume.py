@@ -59,7 +59,7 @@ def test_characteristic_above_the_traffic_maximum_is_flagged(tmp_path):
     for words in ("largest static effect any event of the traffic model", "exceeds what the traffic model can produce",
                   "unbounded tail", "bounded tail", "block maxima at 1000 years"):
         assert words in flag["message"]
-    assert "FLAG " + flag["message"] in (out / "report.txt").read_text()
+    assert "! " + flag["message"] in (out / "report.txt").read_text()
     assert dataset_has_flag(ds.attrs, "characteristic_above_static_bound")
     assert "characteristic_above_static_bound" in str(ds["load_effect_flag_codes"].values[0]).split(",")
 

@@ -66,7 +66,7 @@ def test_identical_trucks_write_every_result(tmp_path):
     assert flag["message"] == f"characteristic static {why}" and flag["message"] in m["warnings"]
     assert flag["value"] is None and flag["subject"] == "M"
     report = (out / "report.txt").read_text()
-    assert "FLAG characteristic static not estimable: all 5 daily maxima are equal (250000 N m" in report
+    assert "! characteristic static not estimable: all 5 daily maxima are equal (250000 N m" in report
     assert "np.float64" not in report and re.search(r"\bM\s+kN m\s+n/a!?\s+n/a!?\s+n/a!?", report)  # (the report in kN m)
     with xr.open_dataset(out / "lifetime.nc") as back:
         assert str(back["characteristic_static_not_estimable"].values[0]) == why

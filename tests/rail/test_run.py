@@ -155,7 +155,7 @@ def test_rail_distribution_over_three_sleepers(tmp_path):
 def test_report_warns_when_the_modes_miss_the_required_range():
     result = run_rail(spec(bridge={"n_modes": 1, "damping": 0.015}), figures=False)
     # n0 = (π/(2 L²)) √(EI/m) = 6.98 Hz; n3 = 9 n0 = 62.8 Hz is the required range: modes 1, 2, 3 (n_k = k² n0)
-    assert "WARNING: 1 modes retained, but the 3 modes up to 62.8 Hz are required" in result.report
+    assert "! 1 modes retained, but the 3 modes up to 62.8 Hz are required" in result.report
     assert "damping 1.500 % (given (bridge.damping)" in result.report
 
 
@@ -196,7 +196,7 @@ def test_hslm_b_outside_its_range_is_flagged(tmp_path):
     assert w.startswith("HSLM-B outside its range of application") and "is not the EN 1991-2 one" in w
     assert "use HSLM-A" in w and "this span is 20 m" in w and "which this sweep does not run" in w
     report = (tmp_path / "out" / "rail-report.txt").read_text()
-    assert f"WARNING: {w}" in report
+    assert f"! {w}" in report
     assert "1 WARNING(s) above: not the EN 1991-2 check as run" in report.splitlines()[-1]
     assert "HSLM-B (N = 10, d = 3.5 m) (D = 3.500 m, force spacing d)" in report and "coach length)" not in report
     saved = json.loads((tmp_path / "out" / "rail-summary.json").read_text())

@@ -295,7 +295,7 @@ def test_a_coarse_time_step_is_flagged():
     assert flag["value"] == pytest.approx(max(result.checks["acceleration"]["time_sampling_change"],
                                               result.checks["acceleration"]["time_sampling_bound"]))
     assert dataset_has_flag(result.dataset.attrs, "time_sampling_error")
-    assert f"WARNING: {flag['message']}" in result.report and "raise run.steps_per_period" in flag["message"]
+    assert f"! {flag['message']}" in result.report and "raise run.steps_per_period" in flag["message"]
     line = next(x for x in result.report.splitlines() if x.startswith("time sampling error of the governing peaks"))
     assert "deck acceleration read at a sample or an axle's passage, off by up to 0.964 %" in line
     assert line.count(" !") == 1  # the acceleration (the shear's jumps are read at their limits)

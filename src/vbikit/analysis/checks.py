@@ -95,6 +95,17 @@ STRAIN_MODE_TOLERANCE = 0.01
 #: a static deflection peak above this fraction of the longest span is not plausible for a bridge (module docstring)
 IMPLAUSIBLE_DEFLECTION_FRACTION = 0.01
 #: what a negative impact factor means, in words (the reports print it once where one occurs)
+#: the one mark of a doubt in every report and printed result: right after a value a flag puts in doubt, and at the
+#: start of a line that states a flag's message (``flag_line``); ``vbikit run``, ``traffic``, ``lifetime``, ``rail``
+#: and ``driveby`` alike (before 2026-12-08 the railway and drive-by reports wrote "WARNING:", the lifetime's "FLAG")
+FLAG_MARK = "!"
+
+
+def flag_line(message: str) -> str:
+    """A report's line stating a flag's ``message``: ``FLAG_MARK``, a space, the message."""
+    return f"{FLAG_MARK} {message}"
+
+
 NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the deck's vibration (and a "
                     "sprung vehicle's bounce, the wheels unloading there) was out of phase with the load's arrival at "
                     "the section; physical, not an error")

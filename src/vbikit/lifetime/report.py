@@ -4,8 +4,8 @@ read from ``lifetime.nc``'s dataset: every number with its interval, flag and ve
 
 Each load effect's findings are [`Flag`][vbikit.analysis.checks.Flag] records (codes in
 ``vbikit.analysis.checks.FLAG_CODES``; subject: the effect's name): the summary's ``flags`` of the
-effect, their messages its ``warnings`` (``add_flags``); the report prints each message as a FLAG
-line and sets its marks from the codes (``has_flag``)."""
+effect, their messages its ``warnings`` (``add_flags``); the report prints each message as a
+``flag_line`` ("! …") and sets its marks from the codes (``has_flag``)."""
 from __future__ import annotations
 
 import math
@@ -13,7 +13,7 @@ import re
 from typing import Any
 
 from vbikit._words import counted
-from vbikit.analysis.checks import Flag, add_flags, has_flag, join_codes, unconverged_runs_flag
+from vbikit.analysis.checks import FLAG_MARK, Flag, add_flags, flag_line, has_flag, join_codes, unconverged_runs_flag
 from vbikit.analysis.population_start import START_ATTRIBUTES, START_COUNTS, start_flags
 from vbikit.analysis.population_start import start_words as population_start_words
 from vbikit.analysis.sample_intervals import stored_interval_text
@@ -517,7 +517,7 @@ def text_report(facts: dict[str, Any]) -> str:
     """The run's plain-text report (rendered from ``summary``; its marks, ``*`` under a table and ABOVE
     at a governing event, from the flags' codes, never from their words).  Moments are shown in kN m,
     forces in kN and deflections in mm like ``vbikit run``'s report (``vbikit.outputs.report_unit``);
-    the summary and the dataset stay SI, and so do the flags' messages printed as FLAG lines.  The
+    the summary and the dataset stay SI, and so do the flags' messages printed as ``flag_line``s ("! …").  The
     fatigue table's damage is that of the simulated days, its header says so."""
     r, f = facts["run"], facts["fits"]
     ci = f"{100 * f['ci']:g} %"  # ("95 %", as every interval of vbikit is written: "95 % CI")
@@ -557,7 +557,8 @@ def text_report(facts: dict[str, Any]) -> str:
                  "of the largest static event"
                  + (f"; events without an IM left out: {', '.join(left_out)}" if left_out else "") + ")")
     if marked:
-        lines.append("  (! beside a value: a FLAG line below puts it in doubt; read it before using the value)")
+        lines.append(f"  ({FLAG_MARK} beside a value: a line below starting with {FLAG_MARK} puts it in doubt; read it "
+                     "before using the value)")
     for name, e in facts["load_effects"].items():  # how well the random sample fixes the IM statistics
         if e["im"].get("im_mean_ci_lower", "absent") != "absent" and e["im"].get("im_mean") is not None:
             size = f"{sizes[name]} events" if sizes[name] == n_sample else \
@@ -605,7 +606,7 @@ def text_report(facts: dict[str, Any]) -> str:
                          f"{_g(g['total'], scale=k)}; total at half the time step "
                          f"{_g(g['total_half_step'], scale=k)} ({check})")
         for flag in e["flags"]:
-            lines.append("  FLAG " + flag["message"])
+            lines.append("  " + flag_line(flag["message"]))
     if "fatigue" in facts:
         wide = max([12] + [len(d["category"]) + 2 for d in facts["fatigue"].values()])  # (a reduced category is long)
         days = counted(r["n_days"], "simulated day")

@@ -7,7 +7,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from vbikit.analysis.checks import Flag, add_flags, has_flag, unconverged_dataset_flags
+from vbikit.analysis.checks import Flag, add_flags, flag_line, has_flag, unconverged_dataset_flags
 from vbikit.outputs import report_unit
 from vbikit.rail.refine import PEAK_TOLERANCE, refinement_verdict
 
@@ -273,7 +273,7 @@ def format_report(ds, checks: dict[str, Any]) -> str:
         f"trains: {', '.join(map(str, ds.train.values))}; {ds.speed.size} speeds {kmh(ds.speed.values.min())} … "
         f"{speed_words(ds.speed.values.max())}",
     ]
-    lines += [f"WARNING: {w}" for w in checks.get("warnings", [])]
+    lines += [flag_line(w) for w in checks.get("warnings", [])]
     lines += [
         "",
         f"deck acceleration: peak {acc['peak']:.3f} m/s² ({acc['train']} at {speed_words(acc['speed'])}) against "
