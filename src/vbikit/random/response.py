@@ -137,6 +137,8 @@ class RandomResponse:
     pem: PEMResult
     summary: dict[str, Any]
     effects: list[LoadEffectResponse] = dataclasses.field(default_factory=list)
+    #: the points' names (the plan's, ``ResponsePlan.point_names``; None: ``p1``, ``p2``, … as ``point_name`` gives)
+    point_names: list[str] | None = None
 
     def effect_std(self, k: int) -> NDArray[np.float64]:
         """σ(t) of load effect ``k`` (its unit: N m or N)."""
@@ -146,12 +148,18 @@ class RandomResponse:
         """xarray Dataset: ``mean`` and ``std`` of the deck displacement, velocity, acceleration and
         bottom-fibre strain over (time, point), of every load effect (``<name>_mean``, ``<name>_std``,
         ``<name>_static`` over time, e.g. ``moment_x8.38``), of the vehicle DOFs' accelerations over
-        (time, dof) and of the wheel forces over (time, wheel)."""
+        (time, dof) and of the contact forces over (time, wheel) — named as ``CrossingResult.to_xarray``
+        names them (points ``p1``, ``p2``, … or the plan's names; ``contact_force``; the DOFs' units by
+        ``vehicle_dof_units``), with ``_mean`` and ``_std``."""
         import xarray as xr
+
+        from vbikit.analysis.plan import point_name
+        from vbikit.solve.result import vehicle_dof_coords, vehicle_dof_units
 
         t = self.pem.time
         n = min(t.size, self.mean.time.size)
         pts = np.arange(len(self.points))
+        names = self.point_names or [point_name(i) for i in range(1, len(self.points) + 1)]
         data: dict[str, Any] = {}
         for q in ("displacement", "velocity", "acceleration", "strain"):
             unit = cf_unit(QUANTITIES[q].unit)  # (the catalogue's unit, in the datasets' CF spelling)
@@ -167,16 +175,20 @@ class RandomResponse:
                                                                                               f"the {e.effect.label}"})
             data[f"{e.name}_static"] = ("time", e.static[:n], {"units": unit})
         vehicle = self.mean.crossing.vehicle
-        data["vehicle_acceleration_mean"] = (("time", "dof"), self.mean.q_ddot[:n], {"units": "m s-2 or rad s-2"})
+        dof_units = vehicle_dof_units(vehicle.dof_names, acceleration=True)
+        data["vehicle_acceleration_mean"] = (("time", "dof"), self.mean.q_ddot[:n],
+                                             {**dof_units, "long_name": "mean vehicle DOF acceleration (smooth-road crossing)"})
         data["vehicle_acceleration_std"] = (("time", "dof"), self.pem.std("vehicle_acceleration")[:n],
-                                            {"units": "m s-2 or rad s-2"})
+                                            {**dof_units, "long_name": "standard deviation of the vehicle DOF acceleration"})
         wheels = [w.name for w in vehicle.wheels]
-        data["wheel_force_mean"] = (("time", "wheel"), self.mean.wheel_forces[:n], {"units": "N"})
-        data["wheel_force_std"] = (("time", "wheel"), self.pem.std("wheel_force")[:n], {"units": "N"})
+        data["contact_force_mean"] = (("time", "wheel"), self.mean.wheel_forces[:n],
+                                      {"units": "N", "long_name": "mean tire force, compression positive (smooth-road crossing)"})
+        data["contact_force_std"] = (("time", "wheel"), self.pem.std("wheel_force")[:n],
+                                     {"units": "N", "long_name": "standard deviation of the tire force"})
         s = self.summary
         attrs = {"method": s["method"], "grid_change": s["grid_change"], "n_lines": s["n_lines"],
                  "lift_off_probability": s["lift_off_probability"], "warnings": "; ".join(s["warnings"])}
-        return xr.Dataset(data, coords={"time": t[:n], "point": pts, "wheel": wheels, "dof": list(vehicle.dof_names),
+        return xr.Dataset(data, coords={"time": t[:n], "point": names, "wheel": wheels, **vehicle_dof_coords(vehicle.dof_names),
                                         "x": ("point", [p.x for p in self.points]),
                                         "y": ("point", [p.y for p in self.points])}, attrs=attrs)
 
@@ -280,7 +292,7 @@ def random_responses(crossing: Crossing, plan: ResponsePlan, roads: list[PseudoR
         pem = base if f == 1.0 else base.scaled(f)
         out.append(RandomResponse(smooth, points, pem, _reduce(
             crossing, plan, road, smooth, points, effects, pem, n, mean, rate, static, chosen, sampled, quantiles,
-            crossings, samples, started, grid, refinement), effects))
+            crossings, samples, started, grid, refinement), effects, plan.point_names))
     return out
 
 

@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 from vbikit._kept import Kept
 from vbikit.bridge.base import GirderDeck
 from vbikit.errors import VbikitError
-from vbikit.outputs import CF_UNITS, QUANTITIES, cf_unit
+from vbikit.outputs import CF_UNITS, QUANTITIES, cf_unit, member_units
 from vbikit.solve.crossing import Crossing
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -351,8 +351,9 @@ class CrossingResult:
             deck ``displacement`` [m], ``velocity`` [m/s], ``acceleration`` [m/s^2], ``strain``
             [-] (tension positive) per point and, with girders, ``girder_*`` per girder;
             ``contact_force`` [N] and ``contact_length`` [m] per wheel; ``vehicle_displacement``
-            and ``vehicle_acceleration`` per vehicle DOF (units per DOF in the ``dof_units``
-            coordinate: m for heave, rad for pitch and roll); ``modal_displacement`` per mode;
+            and ``vehicle_acceleration`` per vehicle DOF (m for heave, rad for pitch and roll: their one
+            ``units``, or, where they mix, ``units_by_dof`` naming the coordinate of each DOF's unit,
+            ``dof_units`` or ``dof_acceleration_units``; ``vehicle_dof_units``); ``modal_displacement`` per mode;
             ``front_axle_x`` [m] and ``speed`` [m/s]; ``<effect>`` and ``<effect>_static`` of every
             load effect in ``effects``.  Names and units are those of the CSV (``vbikit.outputs``).
             Sign conventions in the dataset's attributes.
@@ -390,8 +391,7 @@ class CrossingResult:
             "x": ("point", np.array(xs), {"units": "m", "long_name": "response point from the entry support"}),
             "y": ("point", np.array(ys), {"units": "m", "long_name": "response point from the deck centreline"}),
             "wheel": ("wheel", [w.name for w in vehicle.wheels]),
-            "dof": ("dof", list(vehicle.dof_names)),
-            "dof_units": ("dof", [dof_unit(n) for n in vehicle.dof_names]),
+            **vehicle_dof_coords(vehicle.dof_names),
             "mode": ("mode", np.arange(1, bridge.frequencies_hz.size + 1)),
             "frequency": ("mode", np.asarray(bridge.frequencies_hz), {"units": "Hz", "long_name": "natural frequency"}),
         }
@@ -411,8 +411,10 @@ class CrossingResult:
         data["speed"] = (motion, speed, {"units": "m s-1", "long_name": "vehicle speed"})
         data["contact_force"] = (("time", "wheel"), self.wheel_forces, {"units": "N", "long_name": "tire force, compression positive"})
         data["contact_length"] = (("time", "wheel"), self.contact_lengths, {"units": "m", "long_name": "length of the tire patch in contact"})
-        data["vehicle_displacement"] = (("time", "dof"), self.q, {"units": "m or rad (dof_units)", "long_name": "vehicle DOF, absolute, z up"})
-        data["vehicle_acceleration"] = (("time", "dof"), self.q_ddot, {"units": "m s-2 or rad s-2 (dof_units)", "long_name": "vehicle DOF acceleration"})
+        data["vehicle_displacement"] = (("time", "dof"), self.q, {**vehicle_dof_units(vehicle.dof_names),
+                                                                  "long_name": "vehicle DOF, absolute, z up"})
+        data["vehicle_acceleration"] = (("time", "dof"), self.q_ddot, {**vehicle_dof_units(vehicle.dof_names, True),
+                                                                        "long_name": "vehicle DOF acceleration"})
         data["modal_displacement"] = (("time", "mode"), self.xi, {"units": "kg^0.5 m", "long_name": "bridge modal coordinate (mass-normalised modes)"})
         for e in effects:  # duck-typed LoadEffectResponse (the solver does not import analysis)
             what = f"{e.effect.kind} at x = {e.effect.x:g} m" if hasattr(e.effect, "x") else e.name
@@ -445,7 +447,7 @@ class CrossingResult:
         plain = {cf: unit for unit, cf in CF_UNITS.items()}
         cols: dict[str, NDArray[np.float64]] = {}
         for name, var in ds.data_vars.items():
-            units = plain.get(var.attrs["units"], var.attrs["units"])
+            units = plain.get(var.attrs.get("units", ""), var.attrs.get("units", ""))  # (none: per member, below)
             if var.dims == ("time",):
                 cols[f"{name} [{units}]"] = var.values
                 continue
@@ -457,7 +459,8 @@ class CrossingResult:
                 elif dim == "girder":
                     col, unit = name.replace("girder_", f"girder{label}_"), units
                 elif dim == "dof":
-                    unit = ds["dof_units"].values[i] + ("/s^2" if name == "vehicle_acceleration" else "")
+                    member = ds["dof_acceleration_units" if name == "vehicle_acceleration" else "dof_units"].values[i]
+                    unit = plain.get(str(member), str(member))
                     col = f"{label}" if name == "vehicle_displacement" else f"{label}_acceleration"
                 elif dim == "mode":
                     col, unit = f"mode{label}", units
@@ -475,3 +478,26 @@ class CrossingResult:
 def dof_unit(name: str) -> str:
     """Unit of a vehicle DOF by its name: rotations (``*_pitch``, ``*_roll``) in rad, else m."""
     return "rad" if name.endswith(("_pitch", "_roll")) else "m"
+
+
+def dof_acceleration_unit(name: str) -> str:
+    """CF unit of a vehicle DOF's acceleration by its name (``dof_unit`` per s²): ``rad s-2`` or ``m s-2``."""
+    return f"{dof_unit(name)} s-2"
+
+
+def vehicle_dof_coords(dof_names: Sequence[str]) -> dict[str, Any]:
+    """A dataset's vehicle-DOF coordinates: ``dof`` (the names), ``dof_units`` and ``dof_acceleration_units`` (each
+    DOF's unit and its acceleration's, CF spelled) — what ``vehicle_dof_units`` points a variable at."""
+    names = list(dof_names)
+    return {"dof": ("dof", names), "dof_units": ("dof", [dof_unit(n) for n in names]),
+            "dof_acceleration_units": ("dof", [dof_acceleration_unit(n) for n in names])}
+
+
+def vehicle_dof_units(dof_names: Sequence[str], acceleration: bool = False) -> dict[str, str]:
+    """The unit attributes of a variable over the vehicle DOFs (``vbikit.outputs.member_units``): the DOFs' one
+    unit, or ``units_by_dof`` naming the coordinate of each DOF's (``dof_units``, or ``dof_acceleration_units`` for
+    an ``acceleration``) where translations and rotations mix — one parseable unit per variable, as CF allows (it
+    wrote "m or rad (dof_units)", which no unit parser reads)."""
+    unit = dof_acceleration_unit if acceleration else dof_unit
+    units = [unit(n) for n in dof_names] or [unit("")]  # (moving forces, no DOFs: an empty variable in m)
+    return member_units(units, "dof", "dof_acceleration_units" if acceleration else "dof_units")
