@@ -4,8 +4,11 @@ says how good its time step is; before 2026-12-08 only the printed line and ``--
 crossing changed by 2 % at half the step wrote a dataset with no word of it."""
 from __future__ import annotations
 
+import json
+
 import xarray as xr
 
+from vbikit.analysis.checks import dataset_flags
 from vbikit.analysis.effect_step import STEP_TOLERANCE
 from vbikit.scenario.step_check import step_check_words
 from vbikit.study.check import check_study, store_step_check, stored_step_check, study_step_flags
@@ -47,6 +50,10 @@ def test_the_check_is_stored_after_the_datasets_own_flags():
     assert out["warnings"] == f"first; second; {flag.message}"
     assert out["flag_codes"] == "small_static,step_not_converged" and out["title"] == "t"
     assert stored_step_check(out) == record
+    # its record too (a dataset written with records keeps them, the new one after)
+    records = [{"code": "small_static", "message": "first; second"}]
+    (old, new), _ = dataset_flags(store_step_check(attrs | {"flags": json.dumps(records)}, record))
+    assert old == records[0] and new["code"] == "step_not_converged" and new["value"] == 0.02
     passed = store_step_check(attrs, HALF)
     assert {k: v for k, v in passed.items() if k != "step_check"} == attrs and stored_step_check(passed) == HALF
     assert store_step_check(attrs, None) == attrs and stored_step_check(attrs) is None
@@ -69,7 +76,8 @@ def test_a_study_whose_load_effects_settle_only_at_a_finer_step_writes_the_flag(
         assert "step_not_converged" in ds.attrs["flag_codes"].split(",")
         summary = study_summary(ds)  # (no check given: the dataset's own)
     assert summary["step_check"] == check and "step_not_converged" in summary["flag_codes"]
-    assert any(f"set crossing.dt = {check['dt']:.3g} in the base" in w for w in summary["warnings"])
+    (flag,) = [f for f in summary["flags"] if f["code"] == "step_not_converged"]
+    assert f"set crossing.dt = {check['dt']:.3g} in the base" in flag["message"] and flag["message"] in summary["warnings"]
     run_study(study, tmp_path / "plain.nc", workers=1)  # the Python path without a check: none stored, none said
     with xr.open_dataset(tmp_path / "plain.nc") as ds:
         assert "step_check" not in ds.attrs and study_summary(ds)["step_check"] is None

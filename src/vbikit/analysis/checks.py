@@ -60,6 +60,7 @@ reports print ``NEGATIVE_IM_NOTE`` beside it.
 """
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import asdict, dataclass, replace
 from typing import Any, Callable, Iterable, Mapping, Sequence
@@ -937,25 +938,58 @@ def join_codes(codes: Iterable[str]) -> str:
 
 def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[str]] | None = None) -> dict[str, str]:
     """A population dataset's attributes from its ``flags`` and its ``warnings`` without a record
-    (flag code -> sentences, e.g. ``small_static_dataset_warnings``'s): ``warnings``, every message
-    joined by "; " (a flag of ``LEADING_CODES`` first, as ``add_flags`` orders a summary), and
-    ``flag_codes``, the codes, comma-separated, each once; neither when there is nothing to say."""
+    (flag code -> sentences, e.g. ``small_static_dataset_warnings``'s; each stored as a record of its code
+    and message): ``warnings``, every message joined by "; " (a flag of ``LEADING_CODES`` first, as
+    ``add_flags`` orders a summary), ``flag_codes``, the codes, comma-separated, each once, and ``flags``, the
+    records as JSON (``flag_attrs``); none when there is nothing to say."""
     summary: dict[str, Any] = {}
     add_flags(summary, flags)
-    texts, codes = list(summary.get("warnings", [])), [f.code for f in flags]
+    texts, codes, records = list(summary.get("warnings", [])), [f.code for f in flags], list(summary.get("flags", []))
     for code, sentences in (warnings or {}).items():
         _check_code(code)
-        texts += [w for w in sentences if w not in texts]
+        new = [w for w in sentences if w not in texts]
+        texts += new
+        records += [{"code": code, "message": w} for w in new]
         codes += [code] if sentences else []
-    return flag_attrs(texts, codes)
+    return flag_attrs(texts, codes, records)
 
 
-def flag_attrs(texts: Sequence[str], codes: Iterable[str]) -> dict[str, str]:
-    """A dataset's ``warnings`` (the messages, "; "-joined) and ``flag_codes`` (``join_codes``)
-    attributes, neither when there is nothing to say: the one format (``dataset_flag_attrs``; the
-    railway sweep's from its checks' records)."""
+def flag_attrs(texts: Sequence[str], codes: Iterable[str], records: Sequence[Mapping[str, Any]] = ()) -> dict[str, str]:
+    """A dataset's ``warnings`` (the messages, "; "-joined), ``flag_codes`` (``join_codes``) and ``flags`` (the
+    ``records``, ``Flag.as_dict``'s, as JSON: what the summaries give, ``dataset_flags``) attributes, none when there
+    is nothing to say: the one format of every population dataset (``dataset_flag_attrs``; the railway sweep's from
+    its checks' records)."""
     codes = list(codes)
-    return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": join_codes(codes)} if codes else {})
+    return ({"warnings": "; ".join(texts)} if texts else {}) | ({"flag_codes": join_codes(codes)} if codes else {}) | \
+        ({"flags": json.dumps(list(records), default=_plain)} if records else {})
+
+
+def _plain(value: Any) -> Any:
+    """A numpy scalar in a flag record as the Python number JSON writes (``json.dumps``' ``default``)."""
+    if hasattr(value, "item"):
+        return value.item()
+    raise TypeError(f"a flag record holds a {type(value).__name__}, which JSON does not write")
+
+
+def add_dataset_flags(attrs: Mapping[str, Any], flags: Sequence[Flag]) -> dict[str, Any]:
+    """A dataset's attributes ``attrs`` with ``flags`` added after the ones it carries (``flag_attrs``'s three
+    attributes; a message it holds already is not repeated)."""
+    records, texts = dataset_flags(attrs)
+    codes = [c for c in str(attrs.get("flag_codes", "")).split(",") if c]
+    new = [f for f in flags if f.message not in texts]
+    joined = [str(attrs["warnings"])] if attrs.get("warnings") else []  # (as stored: messages may hold "; ")
+    return {**attrs, **flag_attrs(joined + [f.message for f in new], codes + [f.code for f in new],
+                                  records + [f.as_dict() for f in new])}
+
+
+def dataset_flags(attrs: Mapping[str, Any]) -> tuple[list[dict[str, Any]], list[str]]:
+    """The flag records a population dataset's attributes carry (``flag_attrs``' ``flags``) and their messages, as
+    every summary gives them (``flags``, ``warnings``); for a dataset written before the records were stored, none
+    and its "; "-joined ``warnings`` as one message."""
+    records = json.loads(attrs["flags"]) if attrs.get("flags") else []
+    if records:
+        return records, [str(r["message"]) for r in records]
+    return [], [str(attrs["warnings"])] if attrs.get("warnings") else []
 
 
 def dataset_has_flag(attrs: Mapping[str, Any], code: str) -> bool:

@@ -758,12 +758,13 @@ def time_sampling_checks(checks: dict[str, Any], setup: SweepSetup, trains: dict
 
 
 def dataset_flag_attrs_of(checks: dict[str, Any]) -> dict[str, str]:
-    """The dataset's ``warnings`` (every flag's message, "; "-joined) and ``flag_codes`` (comma-separated)
-    attributes from the checks' flag records, as every population dataset carries them
+    """The dataset's ``warnings`` (every flag's message, "; "-joined), ``flag_codes`` (comma-separated) and
+    ``flags`` (the records, JSON) attributes from the checks' flag records, as every population dataset carries them
     (``vbikit.analysis.checks.dataset_flag_attrs``); none when nothing is flagged."""
     from vbikit.analysis.checks import flag_attrs
 
-    return flag_attrs(list(checks.get("warnings", [])), (f["code"] for f in checks.get("flags", [])))
+    return flag_attrs(list(checks.get("warnings", [])), (f["code"] for f in checks.get("flags", [])),
+                      checks.get("flags", []))
 
 
 #: sections [per span] of the fine static envelope and of the dynamic one around the swept maximum

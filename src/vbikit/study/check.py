@@ -15,7 +15,7 @@ import itertools
 import json
 from dataclasses import dataclass, field
 
-from vbikit.analysis.checks import Flag, flag_attrs
+from vbikit.analysis.checks import Flag, add_dataset_flags
 from vbikit.analysis.effect_step import STEP_TOLERANCE
 
 from vbikit.scenario.preflight import preflight
@@ -74,15 +74,11 @@ def study_step_flags(check: dict | None) -> list[Flag]:
 
 def store_step_check(attrs: dict, check: dict | None) -> dict:
     """A study dataset's attributes ``attrs`` with its step check: ``STEP_CHECK_ATTR`` (the record as JSON) and its
-    flags (``study_step_flags``) added to ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.flag_attrs``);
-    ``attrs`` as given for None."""
+    flags (``study_step_flags``) added to ``warnings``, ``flag_codes`` and ``flags``
+    (``vbikit.analysis.checks.add_dataset_flags``); ``attrs`` as given for None."""
     if check is None:
         return dict(attrs)
-    flags = study_step_flags(check)
-    texts = [str(attrs["warnings"])] if attrs.get("warnings") else []
-    codes = [c for c in str(attrs.get("flag_codes", "")).split(",") if c]
-    out = {**attrs, STEP_CHECK_ATTR: json.dumps(check, sort_keys=True)}
-    return out | flag_attrs(texts + [f.message for f in flags], codes + [f.code for f in flags])
+    return add_dataset_flags({**attrs, STEP_CHECK_ATTR: json.dumps(check, sort_keys=True)}, study_step_flags(check))
 
 
 def stored_step_check(attrs) -> dict | None:

@@ -67,7 +67,8 @@ def study_summary(ds, step_check: dict | None = None) -> dict:
     ``difference_error``; NaN where there is no road sample to state one), how good the step is (``step_check``: the
     base crossing's half-step check the dataset stores, ``vbikit.study.check.stored_step_check``, else the one given,
     ``vbikit.study.check.StudyCheck``; None where the base gives crossing.dt), the
-    dataset's ``flag_codes`` and ``warnings`` (its messages, "; "-joined as the dataset stores them), its ``outputs``,
+    dataset's ``flag_codes``, ``flags`` (the records, ``vbikit.analysis.checks.dataset_flags``) and ``warnings`` (their
+    messages; a dataset written before the records were stored: its "; "-joined messages as one), its ``outputs``,
     the vbikit version that wrote the dataset, and ``units``.  NaN stays NaN here; the writer gives null."""
     import json
 
@@ -76,10 +77,13 @@ def study_summary(ds, step_check: dict | None = None) -> dict:
     stored = stored_step_check(ds.attrs)  # (the dataset's own; a dataset written without one: the check given)
     step_check = stored if stored is not None else step_check
     keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
+    from vbikit.analysis.checks import dataset_flags
+
     codes = [c for c in str(ds.attrs.get("flag_codes", "")).split(",") if c]
+    records, warnings = dataset_flags(ds.attrs)  # (every message its own, with its record)
     out = {"title": str(ds.attrs.get("title", "")), "vbikit_version": str(ds.attrs.get("vbikit_version", "")),
            "outputs": [str(name) for name in ds.data_vars], "impact_factor": [], "step_check": step_check,
-           "flag_codes": codes, "warnings": [str(ds.attrs["warnings"])] if ds.attrs.get("warnings") else [],
+           "flag_codes": codes, "warnings": warnings, "flags": records,
            "units": {"impact_factor": "1", "step_check": {"dt": "s", "study_dt": "s", "largest_change": "1",
                                                           "acceleration_change": "1"}}}
     if "impact_factor" not in ds:  # (the study's outputs key left it out, or a PEM study's)

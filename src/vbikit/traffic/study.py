@@ -424,14 +424,12 @@ class TrafficStudy:
         longest span (``implausible_deflection_dataset_flags``), and ``flags``: their records as JSON
         (``vbikit.analysis.checks.add_flags``: code, message, output, subject, value, threshold), which
         ``traffic-summary.json`` gives as every summary does; none when there is nothing to say."""
-        from vbikit.analysis.checks import add_flags, dataset_flag_attrs, implausible_deflection_dataset_flags
+        from vbikit.analysis.checks import dataset_flag_attrs, implausible_deflection_dataset_flags
 
         span = max(self.context().template.crossing.bridge.span_lengths)
         spans = np.full(static_peaks.shape[0], float(span))
-        every = implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event") + list(flags)
-        records: dict[str, Any] = {}
-        add_flags(records, every)
-        return dataset_flag_attrs(every) | ({"flags": json.dumps(records["flags"])} if every else {})
+        return dataset_flag_attrs(implausible_deflection_dataset_flags(static_peaks, spans, self.point_names, "event")
+                                  + list(flags))
 
 
 def open_interval_flags(stats: dict[str, Any], confidence: float = 0.95) -> list[Flag]:

@@ -4,7 +4,6 @@ prints), ``traffic-summary.json`` (``summary``) and the figure ``traffic-im.png`
 ``vbikit traffic --out FILE.nc`` writes the dataset only."""
 from __future__ import annotations
 
-import json
 from typing import Any
 
 #: the files ``vbikit traffic --out-dir`` writes (checked before the run, ``vbikit._files.output_names``), and the
@@ -37,8 +36,9 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
     # the flags as records and their messages as a list, as every summary gives them (a dataset written before the
     # records were stored: its "; "-joined messages as one)
-    records = json.loads(attrs["flags"]) if "flags" in attrs else []
-    warnings = [r["message"] for r in records] if records else [str(attrs["warnings"])] if attrs.get("warnings") else []
+    from vbikit.analysis.checks import dataset_flags
+
+    records, warnings = dataset_flags(attrs)
     out = {"dataset": dataset, "vbikit_version": str(attrs.get("vbikit_version", "")), **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
            "start": start_words(attrs), "flag_codes": codes, "warnings": warnings, "flags": records}
     return out | {"units": {k: unit for k in out if (unit := summary_unit(k))}}
