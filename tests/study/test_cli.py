@@ -70,7 +70,10 @@ def test_a_study_at_a_given_step_says_its_step_check_is_not_run(tmp_path):
     res = runner.invoke(app, ["study", "run", str(tmp_path / "s.toml"), "--out", str(tmp_path / "r.nc"),
                               "--workers", "1", "--no-progress"])
     assert res.exit_code == 0, res.output
-    assert "step check: not run (the base gives crossing.dt)" in res.output
+    from vbikit.scenario.step_check import DT_GIVEN_WORDS
+
+    assert f"step check of the base crossing: {DT_GIVEN_WORDS}" in res.output
+    assert "not run: crossing.dt is given" in DT_GIVEN_WORDS  # (the words vbikit run and compare-tires print too)
 
 
 def test_study_of_one_road_says_its_means_have_no_standard_error(tmp_path):

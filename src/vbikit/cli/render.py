@@ -196,12 +196,12 @@ def step_line(s: dict) -> None:
     """The step check's lines (``vbikit.scenario.step_check.half_step_check``, or ``converge_step``'s halving for load
     effects or a train: ``step_check_words``): how much the impact factors and the peak deck accelerations change;
     "not run" at a given crossing.dt."""
-    from vbikit.scenario.step_check import step_check_words
+    from vbikit.scenario.step_check import DT_GIVEN_WORDS, step_check_words
 
     check = s.get("step_check")
     if not check:
         if s.get("inputs", {}).get("dt_given"):  # (a scenario's run at its own crossing.dt)
-            typer.echo("  step check           not run: crossing.dt is given (the run at the automatic step checks it)")
+            typer.echo(f"  step check           {DT_GIVEN_WORDS}")
         return
     typer.echo(f"  step check           {step_check_words(check)}")
     if check.get("acceleration_change") is not None:  # (a summary written before the accelerations were checked: none)

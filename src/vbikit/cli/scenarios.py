@@ -213,11 +213,11 @@ def compare_tires(
                    f"{row['max_dynamic_strain'] * 1e6:11.3f} {row['strain_impact_factor']:8.4f}{strain}"
                    f"{row['max_abs_acceleration']:13.4f}{acceleration}"
                    f"{row['min_tire_force'] * to_kn:10.2f} {row['seconds']:12.2f}" + (" *" if row["compiled_kernels"] else ""))
-    from vbikit.scenario.step_check import step_check_words
+    from vbikit.scenario.step_check import DT_GIVEN_WORDS, step_check_words
 
     for row in table.values():  # each run's step check, in vbikit run's words
         c = row["step_check"]
-        typer.echo(f"  step check, {row['label']}: {step_check_words(c, True) if c else 'not run (crossing.dt given)'}")
+        typer.echo(f"  step check, {row['label']}: {step_check_words(c, True) if c else DT_GIVEN_WORDS}")
     if any(any(m) for m in marks.values()):
         typer.echo("  ! a flag of that model's run puts the value in doubt, as vbikit run marks it: see its warning above")
     if any(row["compiled_kernels"] for row in table.values()):

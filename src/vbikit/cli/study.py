@@ -194,10 +194,10 @@ def _say_results(summary: dict) -> None:
 def say_step_check(check: Optional[dict]) -> None:
     """How good the study's time step is, in a line: the base crossing's half-step check (``StudyCheck.step_check``),
     the one crossing the study checks (a trial found a study's impact factors printed with no word of it)."""
-    from vbikit.scenario.step_check import step_check_words
+    from vbikit.scenario.step_check import DT_GIVEN_WORDS, step_check_words
 
     if check is None:
-        say("step check: not run (the base gives crossing.dt)")
+        say(f"step check of the base crossing: {DT_GIVEN_WORDS}")
         return
     line = f"step check of the base crossing (the other cells are not checked): {step_check_words(check, True)}"
     if check["largest_change"] is not None and check["dt"] * 2 < check["study_dt"] * (1 - 1e-9):

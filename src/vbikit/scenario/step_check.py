@@ -299,6 +299,11 @@ def _advice(changes: list[float], worst: str, dt: float, relative: bool = False,
     return text
 
 
+#: what every command says of the step check of a run at a given ``crossing.dt`` (``vbikit run``, ``compare-tires``,
+#: ``study run``: one wording)
+DT_GIVEN_WORDS = "not run: crossing.dt is given (a run at the automatic step checks its step)"
+
+
 def step_check_words(check: dict, accelerations: bool = False) -> str:
     """A step check's record in words (the one wording of ``vbikit run``, ``compare-tires``, ``study run`` and a study's
     dataset flag, ``study_step_flags``):
