@@ -41,6 +41,10 @@ _MAPS: "Kept[tuple, VehicleStep]" = Kept(256)
 #: events each have vehicles of their own, so their maps come and go and would push out the bridge's
 #: maps of the steps that recur (a study's crossings, events at a speed met before)
 _MODAL_MAPS: "Kept[tuple, ModalStep]" = Kept(512)
+#: what the step maps of one set of vehicles share whatever the step and the hold (``_vehicle_terms``), by the exact
+#: bytes of the vehicles' inputs: a run of the exact integrator asks for both holds' maps of its vehicles (its run-in,
+#: ``vbikit.solve.run_in``, for the linear one), and a traffic stream's events each have vehicles of their own
+_TERMS: "Kept[tuple, _VehicleTerms]" = Kept(16)
 #: the lean kernels' fused maps of the step maps in ``_MAPS`` (``fused_step``), by the step map's
 #: identity; each entry holds its step map, so no other object can have that identity while it is kept
 _FUSED: "Kept[int, tuple[VehicleStep, FusedVehicleStep]]" = Kept(256)
@@ -48,8 +52,12 @@ _FUSED: "Kept[int, tuple[VehicleStep, FusedVehicleStep]]" = Kept(256)
 
 def _input_key(kind: str, h: float, arrays) -> tuple:
     """The key of a step map: its kind, h and every input array's shape, dtype and bytes."""
-    return (kind, float(h)) + tuple((a.shape, a.dtype.str, a.tobytes()) for a in
-                                    (np.ascontiguousarray(x) for x in arrays))
+    return (kind, float(h)) + _arrays_key(arrays)
+
+
+def _arrays_key(arrays) -> tuple:
+    """Every array's shape, dtype and bytes (``_input_key``'s part that the arrays give)."""
+    return tuple((a.shape, a.dtype.str, a.tobytes()) for a in (np.ascontiguousarray(x) for x in arrays))
 
 
 def expm(a: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -304,7 +312,8 @@ def _nominal(vehicles: Vehicles) -> tuple[NDArray[np.float64], NDArray[np.float6
 
 def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDArray[np.float64],
                  load1: NDArray[np.float64], constant: NDArray[np.float64], c_hat: NDArray[np.float64],
-                 k_hat: NDArray[np.float64], load_past: NDArray[np.float64] | None = None) -> VehicleStep:
+                 k_hat: NDArray[np.float64], load_past: NDArray[np.float64] | None = None,
+                 k_z: NDArray[np.float64] | None = None) -> VehicleStep:
     """The ``VehicleStep`` of a step map z_{n+1} = T z_n + Lp G_{n−1} + L0 G_n + L1 G_{n+1} + b (``load_past``
     Lp: None, zero), with the maps the coupled solve needs: the end wheel loads are G = F + K_z z_{n+1}
     (the point forces F summed per wheel, S F, plus the nominal tire's k_w h_w·q + c_w h_w·q̇), so
@@ -312,12 +321,10 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
         z_{n+1} = P (T z_n + Lp G_{n−1} + L0 G_n + b) + P L1 S F,     P = (I − L1 K_z)⁻¹,
 
     and the wheels' displacement and velocity h_w·q, h_w·q̇ respond to the wheel forces through
-    ``wheel_q`` = H (P L1)[:n_d] and ``wheel_v`` = H (P L1)[n_d:] (n_w, n_w)."""
+    ``wheel_q`` = H (P L1)[:n_d] and ``wheel_v`` = H (P L1)[n_d:] (n_w, n_w) (``k_z``: K_z if made already,
+    ``_feedback``)."""
     n_d, rows = vehicles.gravity.size, vehicles.wheel_rows
-    n_w = rows.shape[0]
-    k_z = np.zeros((n_w, 2 * n_d))
-    k_z[:, :n_d] = vehicles.wheel_stiffness[:, None] * rows
-    k_z[:, n_d:] = vehicles.wheel_damping[:, None] * rows
+    k_z = _feedback(vehicles) if k_z is None else k_z
     settle = np.linalg.inv(np.eye(2 * n_d) - load1 @ k_z) if n_d else np.zeros((0, 0))
     response = settle @ load1
     contiguous = np.ascontiguousarray
@@ -325,6 +332,15 @@ def _vehicle_map(vehicles: Vehicles, transition: NDArray[np.float64], load0: NDA
     return VehicleStep(contiguous(transition), contiguous(load0), contiguous(load1), contiguous(constant), c_hat, k_hat,
                        contiguous(settle), contiguous(response), contiguous(rows @ response[:n_d]),
                        contiguous(rows @ response[n_d:]), past)
+
+
+def _feedback(vehicles: Vehicles) -> NDArray[np.float64]:
+    """K_z (n_w, 2 n_d) of ``_vehicle_map``: each wheel's nominal tire k_w h_w, c_w h_w on the state z = (q, q̇)."""
+    n_d, rows = vehicles.gravity.size, vehicles.wheel_rows
+    k_z = np.zeros((rows.shape[0], 2 * n_d))
+    k_z[:, :n_d] = vehicles.wheel_stiffness[:, None] * rows
+    k_z[:, n_d:] = vehicles.wheel_damping[:, None] * rows
+    return k_z
 
 
 def fused_step(vehicles: Vehicles, step: VehicleStep) -> FusedVehicleStep:
@@ -354,7 +370,39 @@ def vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleSte
         raise ValueError(f"hold must be one of {HOLDS} (the load polynomial's degree), got {hold!r}")
     inputs = (vehicles.mass_inv, vehicles.damping, vehicles.stiffness, vehicles.wheel_rows, vehicles.wheel_damping,
               vehicles.wheel_stiffness, vehicles.gravity)
-    return _MAPS.get(_input_key(f"vehicle{hold}", h, inputs), lambda: _vehicle_step(vehicles, h, hold))
+    arrays = _arrays_key(inputs)
+    return _MAPS.get((f"vehicle{hold}", float(h)) + arrays,
+                     lambda: _vehicle_step(vehicles, h, hold, _TERMS.get(arrays, lambda: _vehicle_terms(vehicles))))
+
+
+class _VehicleTerms(NamedTuple):
+    """The terms of the vehicles' step maps (``_vehicle_step``) that depend on neither the step nor the hold: Ĉ, K̂
+    (``_nominal``), the DOF blocks [lo, hi) that nothing couples (``_blocks``), each block's wheels (None: one block,
+    every wheel) and products (``_products``), and the wheel loads' feedback K_z (``_vehicle_map``)."""
+
+    c_hat: NDArray[np.float64]
+    k_hat: NDArray[np.float64]
+    blocks: list[tuple[int, int]]
+    wheels: list[NDArray[np.int64]] | None
+    products: list[tuple[NDArray[np.float64], ...]]
+    k_z: NDArray[np.float64]
+
+
+def _vehicle_terms(vehicles: Vehicles) -> _VehicleTerms:
+    """``_VehicleTerms`` of ``vehicles`` (made once per vehicles in a process and shared: not to be written to)."""
+    c_hat, k_hat = _nominal(vehicles)
+    k_z = _feedback(vehicles)
+    if vehicles.gravity.size == 0:
+        return _VehicleTerms(c_hat, k_hat, [], None, [], k_z)
+    m_inv, rows, gravity = vehicles.mass_inv, vehicles.wheel_rows, vehicles.gravity
+    blocks = _blocks(vehicles, c_hat, k_hat)
+    if len(blocks) == 1:
+        return _VehicleTerms(c_hat, k_hat, blocks, None, [_products(m_inv, c_hat, k_hat, rows, gravity)], k_z)
+    wheel_dof = np.where(np.any(rows != 0.0, axis=1), np.argmax(rows != 0.0, axis=1), -1)  # -1: a wheel without DOFs
+    wheels = [np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi)) for lo, hi in blocks]
+    products = [_products(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi])
+                for (lo, hi), w in zip(blocks, wheels)]
+    return _VehicleTerms(c_hat, k_hat, blocks, wheels, products, k_z)
 
 
 def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.float64]) -> list[tuple[int, int]]:
@@ -373,9 +421,14 @@ def _blocks(vehicles: Vehicles, c_hat: NDArray[np.float64], k_hat: NDArray[np.fl
 
 def _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int):
     """The exponential of one block's augmented system (``_augmented``) over the step: (Φ, Lp, L0, L1, b)."""
-    a = _augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold)
-    d = _balancing(a, gravity.size, rows.shape[0], hold)
-    return _block_maps(_unbalanced(expm(_balanced(a, d)), d), gravity.size, rows.shape[0], hold)
+    return _exponential_maps(_augmented(m_inv, c_hat, k_hat, rows, gravity, h, hold), gravity.size, rows.shape[0], hold)
+
+
+def _exponential_maps(a: NDArray[np.float64], n_d: int, n_w: int, hold: int) -> tuple[NDArray[np.float64], ...]:
+    """(Φ, Lp, L0, L1, b) of a block of ``n_d`` DOFs and ``n_w`` wheels from its augmented matrix ``a``
+    (``_augmented``): its exponential, balanced (``_balancing``)."""
+    d = _balancing(a, n_d, n_w, hold)
+    return _block_maps(_unbalanced(expm(_balanced(a, d)), d), n_d, n_w, hold)
 
 
 def _balancing(a: NDArray[np.float64], n_d: int, n_w: int, hold: int) -> NDArray[np.float64]:
@@ -409,17 +462,30 @@ def _augmented(m_inv, c_hat, k_hat, rows, gravity, h: float, hold: int) -> NDArr
     """One block's augmented system matrix B of (q, q̇, G, G', …, G⁽ʰᵒˡᵈ⁾, 1) in s = (t − t_n)/h over the
     step (``vehicle_step``): q' = h q̇, q̇' = h M⁻¹(F_G + Hᵀ G − Ĉ q̇ − K̂ q), G⁽ᵏ⁾' = G⁽ᵏ⁺¹⁾, so that
     exp(B) is the map over s = 0 … 1."""
-    n_d, n_w = gravity.size, rows.shape[0]
+    return _augmented_of(_products(m_inv, c_hat, k_hat, rows, gravity), rows.shape[0], h, hold)
+
+
+def _products(m_inv, c_hat, k_hat, rows, gravity) -> tuple[NDArray[np.float64], ...]:
+    """A block's M⁻¹K̂, M⁻¹Ĉ, M⁻¹Hᵀ and M⁻¹F_G (``_augmented``'s terms that depend on neither h nor the hold)."""
+    return m_inv @ k_hat, m_inv @ c_hat, m_inv @ rows.T, m_inv @ gravity
+
+
+def _augmented_of(products: tuple[NDArray[np.float64], ...], n_w: int, h: float, hold: int) -> NDArray[np.float64]:
+    """``_augmented`` from a block's ``_products`` and its ``n_w`` wheels (the identities' unit entries set one by one:
+    the numbers h I and I would put there)."""
+    stiffness, damping, loads, gravity = products
+    n_d = gravity.size
     n = 2 * n_d + (hold + 1) * n_w + 1
     a = np.zeros((n, n))
-    a[:n_d, n_d:2 * n_d] = h * np.eye(n_d)
-    a[n_d:2 * n_d, :n_d] = -h * (m_inv @ k_hat)
-    a[n_d:2 * n_d, n_d:2 * n_d] = -h * (m_inv @ c_hat)
-    a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = h * (m_inv @ rows.T)
-    a[n_d:2 * n_d, -1] = h * (m_inv @ gravity)
+    dofs, wheels = np.arange(n_d), np.arange(n_w)
+    a[dofs, n_d + dofs] = h
+    a[n_d:2 * n_d, :n_d] = -h * stiffness
+    a[n_d:2 * n_d, n_d:2 * n_d] = -h * damping
+    a[n_d:2 * n_d, 2 * n_d:2 * n_d + n_w] = h * loads
+    a[n_d:2 * n_d, -1] = h * gravity
     for k in range(hold):  # the load's chain of s-derivatives
         lo = 2 * n_d + k * n_w
-        a[lo:lo + n_w, lo + n_w:lo + 2 * n_w] = np.eye(n_w)
+        a[lo + wheels, lo + n_w + wheels] = 1.0
     return a
 
 
@@ -435,28 +501,26 @@ def _block_maps(e: NDArray[np.float64], n_d: int, n_w: int, hold: int) -> tuple[
     return e[z, z], cols[2] - 0.5 * cols[1], cols[0] - 2.0 * cols[2], 0.5 * cols[1] + cols[2], e[z, -1]
 
 
-def _vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleStep:
-    """``vehicle_step`` made afresh.  The augmented matrix of several vehicles (or any DOF blocks
-    that nothing couples, ``_blocks``) is block-diagonal up to the constant column, so its
-    exponential is that of each block with its own wheels and gravity column (exact: the blocks of
-    exp(A) of a block-diagonal A are the blocks' exponentials, and the constant state 1 has no
+def _vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR, terms: _VehicleTerms | None = None) -> VehicleStep:
+    """``vehicle_step`` made afresh (``terms``: the vehicles' ``_vehicle_terms`` if made already).  The augmented
+    matrix of several vehicles (or any DOF blocks that nothing couples, ``_blocks``) is block-diagonal up to the
+    constant column, so its exponential is that of each block with its own wheels and gravity column (exact: the
+    blocks of exp(A) of a block-diagonal A are the blocks' exponentials, and the constant state 1 has no
     dynamics); blocks cost Σ n_b³ instead of (Σ n_b)³."""
     n_d, n_w = vehicles.gravity.size, vehicles.wheel_rows.shape[0]
-    c_hat, k_hat = _nominal(vehicles)
+    terms = _vehicle_terms(vehicles) if terms is None else terms
+    c_hat, k_hat, blocks = terms.c_hat, terms.k_hat, terms.blocks
     if n_d == 0:
-        return _vehicle_map(vehicles, np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat)
-    m_inv, rows, gravity = vehicles.mass_inv, vehicles.wheel_rows, vehicles.gravity
-    blocks = _blocks(vehicles, c_hat, k_hat)
-    if len(blocks) == 1:
-        phi, past, l0, l1, const = _block_exponential(m_inv, c_hat, k_hat, rows, gravity, h, hold)
-        return _vehicle_map(vehicles, phi, l0, l1, const, c_hat, k_hat, past)
+        return _vehicle_map(vehicles, np.zeros((0, 0)), np.zeros((0, n_w)), np.zeros((0, n_w)), np.zeros(0), c_hat, k_hat,
+                            k_z=terms.k_z)
+    if terms.wheels is None:  # one block
+        phi, past, l0, l1, const = _exponential_maps(_augmented_of(terms.products[0], n_w, h, hold), n_d, n_w, hold)
+        return _vehicle_map(vehicles, phi, l0, l1, const, c_hat, k_hat, past, terms.k_z)
     transition, load0, load1 = np.zeros((2 * n_d, 2 * n_d)), np.zeros((2 * n_d, n_w)), np.zeros((2 * n_d, n_w))
     load_past = np.zeros((2 * n_d, n_w))
     constant = np.zeros(2 * n_d)
-    wheel_dof = np.where(np.any(rows != 0.0, axis=1), np.argmax(rows != 0.0, axis=1), -1)  # -1: a wheel without DOFs
-    wheels = [np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi)) for lo, hi in blocks]
-    augmented = [_augmented(m_inv[lo:hi, lo:hi], c_hat[lo:hi, lo:hi], k_hat[lo:hi, lo:hi], rows[w, lo:hi], gravity[lo:hi],
-                            h, hold) for (lo, hi), w in zip(blocks, wheels)]
+    wheels = terms.wheels
+    augmented = [_augmented_of(products, w.size, h, hold) for products, w in zip(terms.products, wheels)]
     scales = [_balancing(a, hi - lo, w.size, hold) for a, (lo, hi), w in zip(augmented, blocks, wheels)]
     balanced = [_balanced(a, d) for a, d in zip(augmented, scales)]
     exponentials: list = [None] * len(blocks)
@@ -473,7 +537,7 @@ def _vehicle_step(vehicles: Vehicles, h: float, hold: int = LINEAR) -> VehicleSt
             transition[rows_i, b], transition[rows_i, n_d + lo:n_d + hi] = phi[part, :m], phi[part, m:]
             load0[rows_i, w], load1[rows_i, w], constant[rows_i] = l0[part], l1[part], const[part]
             load_past[rows_i, w] = past[part]
-    return _vehicle_map(vehicles, transition, load0, load1, constant, c_hat, k_hat, load_past)
+    return _vehicle_map(vehicles, transition, load0, load1, constant, c_hat, k_hat, load_past, terms.k_z)
 
 
 def newmark_vehicle_step(vehicles: Vehicles, h: float) -> VehicleStep:

@@ -201,16 +201,30 @@ def run_in_inputs(data: Any, step: Any, dt: float, travel0: NDArray[np.float64],
 
 
 def recursion(data: Any, step: Any) -> tuple[NDArray[np.float64], ...]:
-    """(A, M0, M1, c) of the run-in's recursion (module docstring) for the vehicles' step map ``step``."""
+    """(A, M0, M1, c) of the run-in's recursion (module docstring) for the vehicles' step map ``step``.  Where
+    every wheel's nominal tire is the sum of its points' (D = 0: point tires, the usual case) S = I, and A, M0,
+    M1, c are the step map's own T, L0, L1, b — the numbers the products with S = (I − 0)⁻¹ = I give, exactly
+    (shared with the step map: not to be written to)."""
+    d = load_feedback(data)
+    if d is None:
+        return step.transition, step.load0, step.load1, step.constant
+    settle = np.linalg.inv(np.eye(d.shape[1]) - step.load1 @ d)
+    return settle @ (step.transition + step.load0 @ d), settle @ step.load0, settle @ step.load1, settle @ step.constant
+
+
+def load_feedback(data: Any) -> NDArray[np.float64] | None:
+    """D (n_w, 2 n_d) of the run-in's wheel loads G_n = a_n + D z_n (module docstring): each wheel's nominal tire
+    less the sum of its points' tires, on the wheel's rows; None where that is zero for every wheel."""
     pts, veh = data.points, data.vehicles
     n_d, n_w = veh.gravity.size, veh.wheel_rows.shape[0]
-    k_sum = np.bincount(pts.wheel, weights=pts.stiffness, minlength=n_w)
-    c_sum = np.bincount(pts.wheel, weights=pts.damping, minlength=n_w)
+    stiffness = veh.wheel_stiffness - np.bincount(pts.wheel, weights=pts.stiffness, minlength=n_w)
+    damping = veh.wheel_damping - np.bincount(pts.wheel, weights=pts.damping, minlength=n_w)
+    if not (stiffness.any() or damping.any()):
+        return None
     d = np.zeros((n_w, 2 * n_d))
-    d[:, :n_d] = (veh.wheel_stiffness - k_sum)[:, None] * veh.wheel_rows
-    d[:, n_d:] = (veh.wheel_damping - c_sum)[:, None] * veh.wheel_rows
-    settle = np.linalg.inv(np.eye(2 * n_d) - step.load1 @ d)
-    return settle @ (step.transition + step.load0 @ d), settle @ step.load0, settle @ step.load1, settle @ step.constant
+    d[:, :n_d] = stiffness[:, None] * veh.wheel_rows
+    d[:, n_d:] = damping[:, None] * veh.wheel_rows
+    return d
 
 
 def road_loads(data: Any, dt: float, travel0: NDArray[np.float64], speed0: NDArray[np.float64], road: Any, n: int,
@@ -243,21 +257,35 @@ def settled_state(crossing: "Crossing", data: Any, step: Any, dt: float, travel0
 
     n = run_in_steps(crossing, dt, speed0)
     a_mat, m0, m1, c = recursion(data, step)
-    z = _rest(a_mat, m0, m1, c, road_loads(data, dt, travel0, speed0, road, n, 0, 0))
+    loads = road_loads(data, dt, travel0, speed0, road, n, 0, min(CHUNK_STEPS, n))  # (the first chunk's: a_0 first)
+    z = _rest(a_mat, m0, m1, c, loads)
     if n == 0 or z.size == 0:
         return z
-    c_ = np.ascontiguousarray
-    groups = [(states, c_(wheels), c_(a_mat[np.ix_(states, states)].T), c_(m0[np.ix_(states, wheels)].T),
-               c_(m1[np.ix_(states, wheels)].T), c_(c[states]), c_(z[states])) for states, wheels in
-              independent_blocks(a_mat, m0, m1)]  # (the matrices by columns: kernels.linear_recursion)
+    groups = [(states, wheels, *_by_columns(a_mat, m0, m1, c, z, states, wheels))
+              for states, wheels in independent_blocks(a_mat, m0, m1)]
     work, none = np.empty(z.size), np.empty((0, z.size))
     for k0 in range(0, n, CHUNK_STEPS):  # steps k0 … k1 − 1, their loads read once for every group
-        loads = road_loads(data, dt, travel0, speed0, road, n, k0, min(k0 + CHUNK_STEPS, n))
+        if k0:
+            loads = road_loads(data, dt, travel0, speed0, road, n, k0, min(k0 + CHUNK_STEPS, n))
         for _, wheels, a_g, m0_g, m1_g, c_g, z_g in groups:
-            kernels.linear_recursion(a_g, m0_g, m1_g, c_g, c_(loads[:, wheels]), z_g, work, none)
+            every = wheels.size == loads.shape[1]  # (a group's wheels ascend: all of them are the loads as they are)
+            kernels.linear_recursion(a_g, m0_g, m1_g, c_g, loads if every else np.ascontiguousarray(loads[:, wheels]),
+                                     z_g, work, none)
     for states, *_, z_g in groups:
         z[states] = z_g
     return z
+
+
+def _by_columns(a_mat: NDArray[np.float64], m0: NDArray[np.float64], m1: NDArray[np.float64], c: NDArray[np.float64],
+                z: NDArray[np.float64], states: NDArray[np.int64], wheels: NDArray[np.int64]) -> tuple:
+    """A group's recursion (``states``, ``wheels``: ``independent_blocks``) as ``kernels.linear_recursion`` takes it:
+    its Aᵀ, M0ᵀ, M1ᵀ (the matrices by columns), c and state z, fresh C-contiguous arrays (the whole recursion's
+    own, transposed, when the group is all of it)."""
+    c_ = np.ascontiguousarray
+    if states.size == z.size and wheels.size == m0.shape[1]:  # (indices ascending: the whole recursion)
+        return c_(a_mat.T), c_(m0.T), c_(m1.T), c.copy(), z.copy()
+    return (c_(a_mat[np.ix_(states, states)].T), c_(m0[np.ix_(states, wheels)].T), c_(m1[np.ix_(states, wheels)].T),
+            c_(c[states]), c_(z[states]))
 
 
 def independent_blocks(a_mat: NDArray[np.float64], m0: NDArray[np.float64],
@@ -269,18 +297,17 @@ def independent_blocks(a_mat: NDArray[np.float64], m0: NDArray[np.float64],
     each with its q and q̇ states and the wheels whose loads reach them (a wheel without DOFs in none).  A
     coupling anywhere else merges ranges: fewer, larger groups, the same recursion."""
     n_d = a_mat.shape[0] // 2
-    mag = np.abs(a_mat)
-    reach = (np.abs(m0) + np.abs(m1)) != 0.0  # (states, wheels)
-    reach = (reach[:n_d] | reach[n_d:]).astype(float)  # (DOFs, wheels)
-    dofs = (mag[:n_d, :n_d] + mag[:n_d, n_d:] + mag[n_d:, :n_d] + mag[n_d:, n_d:] + reach @ reach.T) != 0.0
+    reach = ((m0 != 0.0) | (m1 != 0.0)).reshape(2, n_d, m0.shape[1]).any(axis=0)  # (DOFs, wheels): reaching q or q̇
+    shared = reach.astype(float)
+    dofs = (a_mat != 0.0).reshape(2, n_d, 2, n_d).any(axis=(0, 2)) | ((shared @ shared.T) != 0.0)  # (q, q̇ blocks of A)
     dofs |= dofs.T
+    index = np.arange(n_d)
     last = n_d - 1 - np.argmax(dofs[:, ::-1], axis=1)  # each DOF's last coupled DOF (its own at least)
-    ends = np.flatnonzero(np.maximum.accumulate(np.maximum(last, np.arange(n_d))) == np.arange(n_d)) + 1
-    reach = reach != 0.0
+    ends = (np.flatnonzero(np.maximum.accumulate(np.maximum(last, index)) == index) + 1).tolist()
     wheel_dof = np.where(reach.any(axis=0), np.argmax(reach, axis=0), -1)
     groups = []
-    for lo, hi in zip([0, *ends[:-1].tolist()], ends.tolist()):
-        states = np.r_[lo:hi, n_d + lo:n_d + hi]
+    for lo, hi in zip([0, *ends[:-1]], ends):
+        states = np.concatenate((index[lo:hi], index[lo:hi] + n_d))
         groups.append((states, np.flatnonzero((wheel_dof >= lo) & (wheel_dof < hi))))
     return groups
 

@@ -253,7 +253,8 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, 
     the range of x the points cover, the static start (ξ, q) of every real lane, (n_real, ·) (one
     lane: (n_modes,), (n_dof,)), and that range (x_min, x_max) [m].  The tire dashpots' road rate at
     the start as the kernels read it (``span`` [s]: minus ``Integrator.road_rate_span``: the road
-    ahead of each point only, ``kernels.road_point``)."""
+    ahead of each point only, ``kernels.road_point``).  A run-in's start (``_run_in_start``) is the
+    bridge at rest and the vehicles' state left for the run-in to set."""
     from vbikit.solve import kernels
     from vbikit.solve.system import flat_road, point_positions, static_state
 
@@ -262,15 +263,28 @@ def _start(crossings: Sequence[Crossing], data: "KernelData", mot, n_real: int, 
     x_last, _ = point_positions(data, mot.travel[-1])  # travel is monotone: extremes at the ends
     reach = float(min(x0.min(), x_last.min())), float(max(x0.max(), x_last.max()))
     road = _road(crossings, *reach)
+    run_in = bool(data.vehicles.gravity.size) and crossings[0].run_in > 0  # (the run-in sets the vehicles' start state)
+    if run_in and _run_in_start(data, x0):
+        xi0, q0 = np.zeros(data.n_modes), np.zeros(data.n_dof)
+        return (road, xi0, q0, reach) if n_l == 1 else (road, np.zeros((n_real, xi0.size)),
+                                                        np.zeros((n_real, q0.size)), reach)
     road0, rate0 = np.zeros((n_p, n_l)), np.zeros((n_p, n_l))
     if n_l == 1 and not np.any(data.vehicles.wheel_envelope):  # the lean kernel's flat law reads the road
         road0[:, 0], rate0[:, 0] = flat_road(data, road, x0, vx0, span)
     else:
         kernels.road_at(x0, vx0, data.points, road, np.full(n_p, -1, np.int64), road0, rate0, kernels.MANY_LANES,
                         span)
-    run_in = bool(data.vehicles.gravity.size) and crossings[0].run_in > 0  # (the run-in sets the vehicles' start state)
     states = [static_state(crossing, data, road0[:, lane], mot.travel[0], road_rate=rate0[:, lane], speed=mot.speed[0],
                            replaced=run_in) for lane, crossing in enumerate(crossings[:n_real])]
     if n_l == 1:
         return road, states[0][0], states[0][1], reach
     return road, np.array([s[0] for s in states]), np.array([s[1] for s in states]), reach
+
+
+def _run_in_start(data: "KernelData", x0: NDArray[np.float64]) -> bool:
+    """Whether a run that begins with a run-in (``_run_in``, the vehicles' state its own) with the contact points at
+    ``x0`` [m] starts with the bridge at rest: no point on the deck (a run-in refuses any other), so the static
+    start's equilibrium (``system.static_state``) has no load on the bridge: ξ = 0, which it need not solve for
+    (its vehicles' q, the rest of its solution, the run-in replaces)."""
+    modes, track = data.modes, data.points.track
+    return not np.any((x0 >= modes.start[track]) & (x0 <= modes.end[track]))
