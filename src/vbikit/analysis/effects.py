@@ -334,28 +334,31 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     infl = contact_influence_table(result, effects) if influence is None and not tabulated else influence
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    omega, zeta = bridge.omega, bridge.damping_ratios
-    rates = result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)
-    # one matrix-vector product per effect: an effect's history does not depend on which others are reduced with it
-    correction = np.stack([rates @ (e.modal / omega**2) for e in effects], axis=1)  # (n_t, n_effects)
+    omega = bridge.omega
+    rates = result.xi_dot * (2.0 * bridge.damping_ratios * omega)
+    np.add(result.xi_ddot, rates, out=rates)  # ξ̈ + 2ζω ξ̇, in the one array
     if tabulated:  # compiled, one pass over the (time, point) pairs (vbikit.analysis.line_sums)
         from vbikit.analysis.line_sums import tabulated_sums
 
-        origin, direction, y = crossing.point_kinematics()
-        static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.travel, cp.wheel, share,
-                                         static_loads, result.wheel_forces, [e.influence for e in effects], bridge.span)
-        static, dynamic = -static, -dynamic
-        dynamic -= correction.T
+        origin, direction, y = crossing._kinematics
+        static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.shared_travel(), cp.wheel,
+                                         share, static_loads, result.wheel_forces, [e.influence for e in effects],
+                                         bridge.span)
+        np.negative(static, out=static)
+        np.negative(dynamic, out=dynamic)
     elif isinstance(infl, ContactInfluences):  # the on-deck pairs only
         rows, pts = infl.rows, infl.points
         static, dynamic = -infl.sums(np.stack([static_loads[pts], result.wheel_forces[rows, cp.wheel[pts]] * share[pts]],
                                               axis=1))
-        dynamic -= correction.T
     else:
         infl = np.asarray(infl)
         dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
         static = -(infl @ static_loads)
-        dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
+        dynamic = -np.einsum("etp,tp->et", infl, dyn_forces)
+    # the modal correction, one matrix-vector product per effect: an effect's history does not depend on which
+    # others are reduced with it
+    for k, e in enumerate(effects):
+        dynamic[k] -= rates @ (e.modal / omega**2)
     limits = _SharedLimits(result, tuple(effects), static_loads)
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
                                partial(limits, k), partial(limits.kinks, k)) for k, e in enumerate(effects)]
@@ -379,15 +382,15 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     bridge = crossing.bridge
     origin, sign, y = crossing.point_kinematics()
     lines, which = np.unique(y, return_inverse=True)
-    table, widths = _position_table(bridge, tuple(effects), lines, kinds)
+    table, widths, block = _position_table(bridge, tuple(effects), lines, kinds)
     travel = (table[which.ravel()] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
     bounds = np.cumsum((0,) + widths)
     t0, t1 = float(t[0]), float(t[-1])
     edge = BOUNDARY_INSTANT * (t1 - t0)  # a point on a position at the run's first or last instant
-    taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge,
-                             t1 + edge)
+    taus = [_in_span(tau, t0, t1) for tau in crossing_instants(
+        crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge, t1 + edge)]
     n = len(effects)
-    return [[_in_span(tau, t0, t1) for tau in taus[k * n:(k + 1) * n]] for k in range(len(kinds))]
+    return [[taus[block[k * n + e]] for e in range(n)] for k in range(len(kinds))]
 
 
 def _in_span(tau: NDArray[np.float64], t0: float, t1: float) -> NDArray[np.float64]:
@@ -415,15 +418,19 @@ POSITION_TABLES_KEPT = 64
 
 
 def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines: NDArray[np.float64],
-                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[int, ...]]:
+                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[int, ...], tuple[int, ...]]:
     """The positions ξ [m] of every kind of ``kinds`` and effect (``PASSING_POSITIONS``) on every wheel
-    line of ``lines``: a (n_lines, Σ widths) table, one block of columns per (kind, effect) in that
-    order, NaN-padded to the block's width (NaN: none), and the widths; kept by the bridge per effects
-    (their identities: each entry holds them), lines and kinds — not to be written."""
+    line of ``lines``: a (n_lines, Σ widths) table of the distinct blocks of positions, one block of
+    columns per (kind, effect) but for those equal to an earlier one (a deck's effects share the support
+    lines and stations they kink at, shears and reactions the deck ends they jump at: timed once), each
+    NaN-padded to its width (NaN: none), their widths, and per (kind, effect) in that order its block;
+    kept by the bridge per effects (their identities: each entry holds them), lines and kinds — not to be
+    written."""
     key = (tuple(id(e) for e in effects), lines.tobytes(), kinds)
 
     def make() -> tuple[Any, ...]:
-        blocks = []
+        blocks: list[NDArray[np.float64]] = []
+        which = []
         for kind in kinds:
             where = PASSING_POSITIONS[kind]
             for e in effects:
@@ -431,10 +438,13 @@ def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines:
                 block = np.full((lines.size, max(p.size for p in per_line)), np.nan)
                 for k, p in enumerate(per_line):
                     block[k, :p.size] = p
-                blocks.append(block)
+                same = [j for j, b in enumerate(blocks) if np.array_equal(b, block, equal_nan=True)]
+                which.append(same[0] if same else len(blocks))
+                if not same:
+                    blocks.append(block)
         table = np.concatenate(blocks, axis=1)
         table.setflags(write=False)
-        return effects, table, tuple(b.shape[1] for b in blocks)
+        return effects, table, tuple(b.shape[1] for b in blocks), tuple(which)
 
     return kept_for(bridge, "passing positions", POSITION_TABLES_KEPT).get(key, make)[1:]
 

@@ -123,21 +123,22 @@ def smooth_vertices(time: NDArray[np.float64], dynamic: NDArray[np.float64], sta
     n = t.size
     if n >= 3:
         histories = (np.asarray(dynamic, float), np.asarray(static, float))
+        # per history and sense its extreme sample (argmin: the first largest of −h, as argmax(−h)), interior only
+        extremes = [(which, sign, int(i)) for which, h in enumerate(histories)
+                    for sign, i in ((1.0, h.argmax()), (-1.0, h.argmin())) if 0 < i < n - 1]
         k = np.sort(np.asarray(kinks, float))
-        for which in (0, 1):
-            for sign in (1.0, -1.0):
-                i = int(np.argmax(sign * histories[which]))
-                if not 0 < i < n - 1:
-                    continue
-                if k.size and np.searchsorted(k, t[i - 1], "left") < np.searchsorted(k, t[i + 1], "right"):
-                    continue  # a kink on the two steps: the limits there (``vbikit.analysis.effects``) hold the peak
-                s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
-                coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
-                a, b, _ = coef[which]
-                if not sign * a < 0.0:
-                    continue  # not turning that way (a flat or inflected top): the sample stands
-                s = -b / (2.0 * a)
-                out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
+        if k.size and extremes:  # a kink on the two steps: the limits there (``vbikit.analysis.effects``) hold the peak
+            i = np.array([e[2] for e in extremes])
+            clear = k.searchsorted(t[i - 1], "left") >= k.searchsorted(t[i + 1], "right")
+            extremes = [e for e, c in zip(extremes, clear) if c]
+        for which, sign, i in extremes:
+            s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
+            coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
+            a, b, _ = coef[which]
+            if not sign * a < 0.0:
+                continue  # not turning that way (a flat or inflected top): the sample stands
+            s = -b / (2.0 * a)
+            out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
     if not out:
         return np.zeros(0), np.zeros(0), np.zeros(0)
     return tuple(np.array(col) for col in zip(*out))  # type: ignore[return-value]
@@ -159,7 +160,8 @@ def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
 def static_direction(static: NDArray[np.float64]) -> float:
     """s = ±1, the sign of the static history's largest-magnitude value (+1 where it is 0): the
     direction in which the peaks of an impact factor are taken (module docstring)."""
-    return _sign_at(static, int(np.argmax(np.abs(static))))
+    static = np.asarray(static)
+    return _sign_at(static, largest_magnitude(static))
 
 
 def _sign_at(static: NDArray[np.float64], i: int) -> float:
@@ -167,11 +169,31 @@ def _sign_at(static: NDArray[np.float64], i: int) -> float:
     return float(np.sign(static[i]) or 1.0)
 
 
+def largest_magnitude(values: NDArray[np.float64]) -> int:
+    """``argmax(abs(values))`` — the first index of the largest magnitude (the first NaN, if any) — from
+    the largest and the smallest value, without the array of magnitudes: the first of the two when
+    they are as large (an impact factor's peaks read several histories an event)."""
+    hi, lo = int(values.argmax()), int(values.argmin())
+    top, bottom = values[hi], -values[lo]
+    return hi if top > bottom else lo if bottom > top else min(hi, lo)
+
+
+def first_largest(values: NDArray[np.float64], sign: float) -> int:
+    """``argmax(sign * values)`` (the first index) for ``sign`` ±1, without the product: the first
+    largest value (+1) or the first smallest (−1: the first largest of −values)."""
+    if sign > 0.0:
+        return int(values.argmax())
+    if sign < 0.0:
+        return int(values.argmin())
+    return int(np.argmax(sign * values))
+
+
 def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
                   dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
     """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction;
     with ``dynamic_rate`` (dR/dt) the dynamic peak is refined between samples (module docstring)."""
-    i_st = int(np.argmax(np.abs(static)))
+    static = np.asarray(static)
+    i_st = largest_magnitude(static)
     if static[i_st] == 0.0:
         raise ValueError("the static response is zero everywhere: no impact factor at this response point")
     return _peaks(time, dynamic, static, _sign_at(static, i_st), i_st, dynamic_rate)
@@ -196,12 +218,12 @@ def _peaks(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDAr
            i_st: int, dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
     """The ``ImpactFactor`` in the direction ``sign`` with the static peak at sample ``i_st``: the
     dynamic peak max_t(sign·R(t)), refined between samples with ``dynamic_rate`` (dR/dt)."""
-    signed = sign * dynamic
-    i_dyn = int(np.argmax(signed))
+    dynamic = np.asarray(dynamic)
+    i_dyn = first_largest(dynamic, sign)
     r_dyn, t_dyn = float(dynamic[i_dyn]), float(time[i_dyn])
     if dynamic_rate is not None:  # (the Hermite steps either side of the peak read those three samples only)
         lo, hi = max(i_dyn - 1, 0), i_dyn + 2
-        peak, t_dyn = hermite_peak(time[lo:hi], signed[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
+        peak, t_dyn = hermite_peak(time[lo:hi], sign * dynamic[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
         r_dyn = sign * peak
     r_st = float(static[i_st])
     return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))

@@ -223,7 +223,7 @@ def static_point_histories(result: CrossingResult,
     values, slopes = _static_point_tables(bridge, modes, points)
     cp = crossing.contact
     loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    travel = np.asarray(result.travel, float)
+    travel = np.asarray(result.shared_travel(), float)  # (read only)
     travel = np.ascontiguousarray(travel.reshape(-1, 1) if travel.ndim == 1 else travel)
     n_h = values.shape[2]
     out = np.zeros((travel.shape[0], n_h))
