@@ -380,15 +380,14 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
         return [[np.zeros(0) for _ in effects] for _ in kinds]
     crossing = result.crossing
     bridge = crossing.bridge
-    origin, sign, y = crossing.point_kinematics()
-    lines, which = np.unique(y, return_inverse=True)
-    table, widths, block = _position_table(bridge, tuple(effects), lines, kinds)
-    travel = (table[which.ravel()] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
-    bounds = np.cumsum((0,) + widths)
+    origin, sign, y = crossing._kinematics  # (read only)
+    lines = np.unique(y)
+    table, bounds, block = _position_table(bridge, tuple(effects), lines, kinds)
+    travel = (table[lines.searchsorted(y)] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
     t0, t1 = float(t[0]), float(t[-1])
     edge = BOUNDARY_INSTANT * (t1 - t0)  # a point on a position at the run's first or last instant
     taus = [_in_span(tau, t0, t1) for tau in crossing_instants(
-        crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge, t1 + edge)]
+        crossing, [travel[:, a:b] for a, b in bounds], t0 - edge, t1 + edge)]
     n = len(effects)
     return [[taus[block[k * n + e]] for e in range(n)] for k in range(len(kinds))]
 
@@ -418,12 +417,13 @@ POSITION_TABLES_KEPT = 64
 
 
 def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines: NDArray[np.float64],
-                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[int, ...], tuple[int, ...]]:
+                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[tuple[int, int], ...], tuple[int, ...]]:
     """The positions ξ [m] of every kind of ``kinds`` and effect (``PASSING_POSITIONS``) on every wheel
     line of ``lines``: a (n_lines, Σ widths) table of the distinct blocks of positions, one block of
     columns per (kind, effect) but for those equal to an earlier one (a deck's effects share the support
     lines and stations they kink at, shears and reactions the deck ends they jump at: timed once), each
-    NaN-padded to its width (NaN: none), their widths, and per (kind, effect) in that order its block;
+    NaN-padded to its width (NaN: none), their (first, end) columns, and per (kind, effect) in that order
+    its block;
     kept by the bridge per effects (their identities: each entry holds them), lines and kinds — not to be
     written."""
     key = (tuple(id(e) for e in effects), lines.tobytes(), kinds)
@@ -444,7 +444,8 @@ def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines:
                     blocks.append(block)
         table = np.concatenate(blocks, axis=1)
         table.setflags(write=False)
-        return effects, table, tuple(b.shape[1] for b in blocks), tuple(which)
+        ends = np.cumsum([b.shape[1] for b in blocks]).tolist()
+        return effects, table, tuple(zip([0] + ends[:-1], ends)), tuple(which)
 
     return kept_for(bridge, "passing positions", POSITION_TABLES_KEPT).get(key, make)[1:]
 
@@ -476,11 +477,12 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     crossing = result.crossing
     bridge = crossing.bridge
     taus = _passing_instants(result, effects, "jump")[0] if instants is None else instants
-    tau = np.unique(np.concatenate(taus))
+    distinct = list({id(mine): mine for mine in taus}.values())  # (effects sharing their instants share the array)
+    tau = np.unique(np.concatenate(distinct))
     if tau.size == 0:
         return [empty for _ in effects]
     # (an instant at the run's first or last one: its limit outside the run is read at that instant itself)
-    u = np.clip(one_sided(tau, float(t[1] - t[0])), t[0], t[-1])
+    u = one_sided(tau, float(t[1] - t[0])).clip(t[0], t[-1])
     state = run_state(result, u)
     if static_loads is None:
         cp = crossing.contact
@@ -488,13 +490,18 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     sums = _instant_sums(result, effects, state, static_loads)  # (n_effects, n_u) each: −Σ_p I β_p f_w, −Σ_p I β_p P_w
     omega = np.asarray(bridge.omega, float)
     out = []
+    rows_of: dict[int, tuple[NDArray[np.int64], ...]] = {}  # per instants' array: its rows, their u, Q_i and ξ_i
     for e, effect, mine in zip(range(len(effects)), effects, taus):
         if mine.size == 0:
             out.append(empty)
             continue
-        rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
+        at = rows_of.get(id(mine))
+        if at is None:
+            rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
+            at = rows_of[id(mine)] = (rows, u[rows], state.q[rows], state.xi[rows])
+        rows, u_rows, q_rows, xi_rows = at
         r = np.asarray(effect.modal, float)
-        out.append((u[rows], sums[0][e, rows] + state.q[rows] @ (r / omega**2) + state.xi[rows] @ r, sums[1][e, rows]))
+        out.append((u_rows, sums[0][e, rows] + q_rows @ (r / omega**2) + xi_rows @ r, sums[1][e, rows]))
     return out
 
 
@@ -509,7 +516,7 @@ def _instant_sums(result: CrossingResult, effects: Sequence[LoadEffect], state: 
     if tabulated_together(effects):
         from vbikit.analysis.line_sums import tabulated_sums
 
-        origin, direction, y = crossing.point_kinematics()
+        origin, direction, y = crossing._kinematics  # (read only)
         static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, state.travel, cp.wheel,
                                          cp.weight, static_loads, state.wheel_forces, [e.influence for e in effects],
                                          bridge.span)

@@ -107,7 +107,8 @@ def point_response(result: CrossingResult, x: float | None = None, y: float | No
     ``static``: the point's static displacement and strain histories if already computed
     (``static_point_histories``; then ``xi_static`` is not read)."""
     bridge = result.crossing.bridge
-    x, y = result.point(x, y)
+    # (a point given in full is checked with its shapes, once per bridge and point: ``point_shapes``)
+    x, y = (float(x), float(y)) if x is not None and y is not None else result.point(x, y)
     phi, eps = point_shapes(bridge, x, y, checked=True)
     if static is None:
         xi_st = static_modal_history(result) if xi_static is None else xi_static
