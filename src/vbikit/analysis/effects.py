@@ -75,8 +75,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices, static_direction,
-                                   static_modal_history)
+from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices,
+                                   smooth_vertices_rows, static_direction, static_modal_history)
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import (KINK_POSITIONS_KEPT, STATION_BREAK, LoadEffect, TabulatedInfluence,  # noqa: F401
                                    influence_values, jump_positions, kink_positions, station_kinks)
@@ -113,6 +113,12 @@ class LoadEffectResponse:
     #: not known, the samples and limits only
     kinks: NDArray[np.float64] | Callable[[], NDArray[np.float64]] | None = field(
         default=None, repr=False, compare=False)
+    #: the extremes between the samples away from the ``kinks`` (``impact.smooth_vertices``: (time, dynamic,
+    #: static)) if already made, or a function making them on first use (the effects of one run at once,
+    #: ``_SharedLimits.vertices``); None: from ``kinks``
+    vertices: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | \
+        Callable[[], tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]] | None = field(
+        default=None, repr=False, compare=False)
 
     def _step(self) -> tuple[str | None, float]:
         if callable(self.step_check):
@@ -138,11 +144,12 @@ class LoadEffectResponse:
         limits = self.limits() if callable(self.limits) else self.limits
         if limits is not None and limits[0].size:
             parts.append(limits)
-        if self.kinks is not None:
+        vertices = self.vertices() if callable(self.vertices) else self.vertices
+        if vertices is None and self.kinks is not None:
             kinks = self.kinks() if callable(self.kinks) else self.kinks
             vertices = smooth_vertices(self.time, self.dynamic, self.static, kinks)
-            if vertices[0].size:
-                parts.append(vertices)
+        if vertices is not None and vertices[0].size:
+            parts.append(vertices)
         if len(parts) == 1:
             return self.time, self.dynamic, self.static
         return tuple(np.concatenate(cols) for cols in zip(*parts))  # type: ignore[return-value]
@@ -359,9 +366,10 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     # others are reduced with it
     for k, e in enumerate(effects):
         dynamic[k] -= rates @ (e.modal / omega**2)
-    limits = _SharedLimits(result, tuple(effects), static_loads)
+    limits = _SharedLimits(result, tuple(effects), static_loads, (dynamic, static))
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
-                               partial(limits, k), partial(limits.kinks, k)) for k, e in enumerate(effects)]
+                               partial(limits, k), partial(limits.kinks, k), partial(limits.vertices, k))
+            for k, e in enumerate(effects)]
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
@@ -381,7 +389,7 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     crossing = result.crossing
     bridge = crossing.bridge
     origin, sign, y = crossing._kinematics  # (read only)
-    lines = np.unique(y)
+    lines = distinct_sorted(y)
     table, bounds, block = _position_table(bridge, tuple(effects), lines, kinds)
     travel = (table[lines.searchsorted(y)] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
     t0, t1 = float(t[0]), float(t[-1])
@@ -390,6 +398,18 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
         crossing, [travel[:, a:b] for a, b in bounds], t0 - edge, t1 + edge)]
     n = len(effects)
     return [[taus[block[k * n + e]] for e in range(n)] for k in range(len(kinds))]
+
+
+def distinct_sorted(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``np.unique`` of a 1-D array without NaN (wheel lines, instants) — a sorted copy without repeats — in
+    its two array passes, without np.unique's checks and options (a few of these an event)."""
+    out = np.sort(values)
+    if out.size < 2:
+        return out
+    keep = np.empty(out.size, bool)
+    keep[0] = True
+    np.not_equal(out[1:], out[:-1], out=keep[1:])
+    return out[keep]
 
 
 def _in_span(tau: NDArray[np.float64], t0: float, t1: float) -> NDArray[np.float64]:
@@ -478,7 +498,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     bridge = crossing.bridge
     taus = _passing_instants(result, effects, "jump")[0] if instants is None else instants
     distinct = list({id(mine): mine for mine in taus}.values())  # (effects sharing their instants share the array)
-    tau = np.unique(np.concatenate(distinct))
+    tau = distinct_sorted(np.concatenate(distinct))
     if tau.size == 0:
         return [empty for _ in effects]
     # (an instant at the run's first or last one: its limit outside the run is read at that instant itself)
@@ -488,7 +508,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
         cp = crossing.contact
         static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     sums = _instant_sums(result, effects, state, static_loads)  # (n_effects, n_u) each: −Σ_p I β_p f_w, −Σ_p I β_p P_w
-    omega = np.asarray(bridge.omega, float)
+    omega2 = np.asarray(bridge.omega, float)**2
     out = []
     rows_of: dict[int, tuple[NDArray[np.int64], ...]] = {}  # per instants' array: its rows, their u, Q_i and ξ_i
     for e, effect, mine in zip(range(len(effects)), effects, taus):
@@ -501,7 +521,7 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
             at = rows_of[id(mine)] = (rows, u[rows], state.q[rows], state.xi[rows])
         rows, u_rows, q_rows, xi_rows = at
         r = np.asarray(effect.modal, float)
-        out.append((u_rows, sums[0][e, rows] + q_rows @ (r / omega**2) + xi_rows @ r, sums[1][e, rows]))
+        out.append((u_rows, sums[0][e, rows] + q_rows @ (r / omega2) + xi_rows @ r, sums[1][e, rows]))
     return out
 
 
@@ -533,13 +553,16 @@ def _instant_sums(result: CrossingResult, effects: Sequence[LoadEffect], state: 
 class _SharedLimits:
     """``jump_limits`` and ``kink_instants`` of one run's effects, computed on the first call of either
     (any effect's; both kinds of instants timed in one pass) and shared by their responses: ``self(k)``
-    (``self.kinks(k)``) is effect k's."""
+    (``self.kinks(k)``) is effect k's; with the effects' ``histories`` (dynamic, static: (n_effects, n_t)
+    each) also their extremes between the samples, all at once (``vertices``)."""
 
     def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...],
-                 static_loads: NDArray[np.float64] | None) -> None:
-        self.result, self.effects, self.static_loads = result, effects, static_loads
+                 static_loads: NDArray[np.float64] | None,
+                 histories: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None) -> None:
+        self.result, self.effects, self.static_loads, self.histories = result, effects, static_loads, histories
         self.values: list[tuple[NDArray[np.float64], ...]] | None = None
         self.kink_values: list[NDArray[np.float64]] | None = None
+        self.vertex_values: list[tuple[NDArray[np.float64], ...]] | None = None
 
     def _instants(self) -> None:
         if self.static_loads is None:  # (mode superposition: no limits, the kinks only)
@@ -558,6 +581,16 @@ class _SharedLimits:
         if self.kink_values is None:
             self._instants()
         return self.kink_values[k]  # type: ignore[index]
+
+    def vertices(self, k: int) -> tuple[NDArray[np.float64], ...]:
+        """Effect k's extremes between the samples away from its kinks (``impact.smooth_vertices``), made
+        for every effect on the first call (``impact.smooth_vertices_rows``)."""
+        if self.vertex_values is None:
+            if self.kink_values is None:
+                self._instants()
+            dynamic, static = self.histories  # type: ignore[misc]
+            self.vertex_values = smooth_vertices_rows(self.result.time, dynamic, static, self.kink_values)
+        return self.vertex_values[k]
 
 
 def tabulated_together(effects: Sequence[LoadEffect]) -> bool:

@@ -18,6 +18,7 @@ depend on the output step (a sampled peak misses up to 1 − cos(ω₁Δt/2) of 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -119,29 +120,64 @@ def smooth_vertices(time: NDArray[np.float64], dynamic: NDArray[np.float64], sta
     interpolation's remainder, at most h³ max|y‴|/(9√3) on three samples h apart: A (2π f h)³/(9√3)).
     Where a kink lies on the two steps the sample stands (and misses up to a step's change)."""
     t = np.asarray(time, float)
-    out: list[tuple[float, float, float]] = []
-    n = t.size
-    if n >= 3:
-        histories = (np.asarray(dynamic, float), np.asarray(static, float))
-        # per history and sense its extreme sample (argmin: the first largest of −h, as argmax(−h)), interior only
-        extremes = [(which, sign, int(i)) for which, h in enumerate(histories)
-                    for sign, i in ((1.0, h.argmax()), (-1.0, h.argmin())) if 0 < i < n - 1]
-        k = np.sort(np.asarray(kinks, float))
-        if k.size and extremes:  # a kink on the two steps: the limits there (``vbikit.analysis.effects``) hold the peak
-            i = np.array([e[2] for e in extremes])
-            clear = k.searchsorted(t[i - 1], "left") >= k.searchsorted(t[i + 1], "right")
-            extremes = [e for e, c in zip(extremes, clear) if c]
-        for which, sign, i in extremes:
-            s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
-            coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
-            a, b, _ = coef[which]
-            if not sign * a < 0.0:
-                continue  # not turning that way (a flat or inflected top): the sample stands
-            s = -b / (2.0 * a)
-            out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
+    histories = (np.asarray(dynamic, float), np.asarray(static, float))
+    if t.size < 3:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    # per history and sense its extreme sample (argmin: the first largest of −h, as argmax(−h))
+    extremes = [int(i) for h in histories for i in (h.argmax(), h.argmin())]
+    return _vertices(t, histories, extremes, _clear_of(t, np.sort(np.asarray(kinks, float)), np.array(extremes)))
+
+
+def smooth_vertices_rows(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
+                         kinks: Sequence[NDArray[np.float64]]) -> list[tuple[NDArray[np.float64], ...]]:
+    """``smooth_vertices(time, dynamic[k], static[k], kinks[k])`` of every row k of the (n_rows, n_t)
+    histories ``dynamic`` and ``static`` (several load effects of one run), the same values: the extreme
+    samples found for all rows in one pass per history and sense, the kink test of the rows that share one
+    array of kinks (the same object: a deck's effects kink at the same stations) in one pass."""
+    t = np.asarray(time, float)
+    dynamic, static = np.asarray(dynamic, float), np.asarray(static, float)
+    if t.size < 3:
+        return [(np.zeros(0), np.zeros(0), np.zeros(0)) for _ in range(dynamic.shape[0])]
+    extremes = np.stack([dynamic.argmax(axis=1), dynamic.argmin(axis=1), static.argmax(axis=1),
+                         static.argmin(axis=1)], axis=1)  # (n_rows, 4): the order of ``smooth_vertices``
+    clear = np.empty(extremes.shape, bool)
+    shared: dict[int, list[int]] = {}
+    for k, mine in enumerate(kinks):
+        shared.setdefault(id(mine), []).append(k)
+    for rows in shared.values():
+        clear[rows] = _clear_of(t, np.sort(np.asarray(kinks[rows[0]], float)), extremes[rows]).reshape(len(rows), 4)
+    return [_vertices(t, (dynamic[k], static[k]), extremes[k].tolist(), clear[k]) for k in range(dynamic.shape[0])]
+
+
+def _clear_of(t: NDArray[np.float64], kinks: NDArray[np.float64], extremes: NDArray[np.int64]) -> NDArray[np.bool_]:
+    """Per extreme sample i (any shape) whether it is interior and no instant of the sorted ``kinks`` lies on the
+    two steps t[i − 1] … t[i + 1], ends included (a kink there: the limits (``vbikit.analysis.effects``) hold the
+    peak)."""
+    inner = (extremes > 0) & (extremes < t.size - 1)
+    if not kinks.size:
+        return inner
+    i = np.where(inner, extremes, 1)
+    return inner & (kinks.searchsorted(t[i - 1], "left") >= kinks.searchsorted(t[i + 1], "right"))
+
+
+def _vertices(t: NDArray[np.float64], histories: tuple[NDArray[np.float64], NDArray[np.float64]],
+              extremes: Sequence[int], clear: Sequence[bool]) -> tuple[NDArray[np.float64], ...]:
+    """``smooth_vertices``' entries of the extreme samples ``extremes`` (largest and smallest of the dynamic
+    history, then of the static) that are ``clear`` (``_clear_of``)."""
+    out: list[tuple[float, ...]] = []
+    for (which, sign), i, ok in zip(((0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)), extremes, clear):
+        if not ok:
+            continue
+        s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
+        coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
+        a, b, _ = coef[which]
+        if not sign * a < 0.0:
+            continue  # not turning that way (a flat or inflected top): the sample stands
+        s = -b / (2.0 * a)
+        out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
     if not out:
         return np.zeros(0), np.zeros(0), np.zeros(0)
-    return tuple(np.array(col) for col in zip(*out))  # type: ignore[return-value]
+    return tuple(np.array(col) for col in zip(*out))
 
 
 def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
