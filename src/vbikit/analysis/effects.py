@@ -77,6 +77,8 @@ from numpy.typing import NDArray
 from vbikit._kept import kept_for
 from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices,
                                    smooth_vertices_rows, static_direction, static_modal_history)
+from vbikit.analysis.instants import crossing_instants, instant_rows, one_sided, run_state
+from vbikit.analysis.line_sums import tabulated_sums
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import (KINK_POSITIONS_KEPT, STATION_BREAK, LoadEffect, TabulatedInfluence,  # noqa: F401
                                    influence_values, jump_positions, kink_positions, station_kinks)
@@ -345,8 +347,6 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     rates = result.xi_dot * (2.0 * bridge.damping_ratios * omega)
     np.add(result.xi_ddot, rates, out=rates)  # ξ̈ + 2ζω ξ̇, in the one array
     if tabulated:  # compiled, one pass over the (time, point) pairs (vbikit.analysis.line_sums)
-        from vbikit.analysis.line_sums import tabulated_sums
-
         origin, direction, y = crossing._kinematics
         static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.shared_travel(), cp.wheel,
                                          share, static_loads, result.wheel_forces, [e.influence for e in effects],
@@ -381,8 +381,6 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     wheel line y (skew decks included), sorted, unique: every kind's and effect's (point, position)
     pairs timed in one pass (``instants.crossing_instants``), from the positions' table of the bridge,
     effects and lines (``_position_table``, kept: the same for every event of a stream)."""
-    from vbikit.analysis.instants import crossing_instants
-
     t = np.asarray(result.time, float)
     if t.size < 2 or not effects:
         return [[np.zeros(0) for _ in effects] for _ in kinds]
@@ -488,8 +486,6 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
     points' β_p P_w if already computed; ``instants``: the effects' jump instants if already timed
     (``_passing_instants``)."""
-    from vbikit.analysis.instants import instant_rows, one_sided, run_state
-
     t = np.asarray(result.time, float)
     empty = (np.zeros(0), np.zeros(0), np.zeros(0))
     if t.size < 2 or not effects:
@@ -534,8 +530,6 @@ def _instant_sums(result: CrossingResult, effects: Sequence[LoadEffect], state: 
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
     if tabulated_together(effects):
-        from vbikit.analysis.line_sums import tabulated_sums
-
         origin, direction, y = crossing._kinematics  # (read only)
         static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, state.travel, cp.wheel,
                                          cp.weight, static_loads, state.wheel_forces, [e.influence for e in effects],

@@ -131,7 +131,6 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
     element (the same whatever the other instants), in one compiled pass
     (``vbikit.analysis.state_kernel.run_state_pass``)."""
     from vbikit.analysis.state_kernel import run_state_pass
-    from vbikit.solve import system
     from vbikit.solve.compile_notice import announce_compile
 
     t = np.ascontiguousarray(result.time, float)
@@ -140,7 +139,11 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
     origin, sign, y = crossing._kinematics  # (read only: the state gets a copy of y)
     y = y.copy()
     t_ref, s_ref, v_ref, acc, stop = crossing._motion_refs
-    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
+    data = result.kernel_data
+    if data is None:
+        from vbikit.solve import system
+
+        data = system.kernel_data(crossing)
     modes = data.modes
     damping, stiffness, support_x, skew_tan = modal_terms(bridge)
     u = np.ascontiguousarray(u, float)

@@ -12,10 +12,12 @@ from numpy.typing import NDArray
 from vbikit._kept import kept_for
 from vbikit.analysis.checks import (Flag, flag_fields, run_flags, small_static_flags, strain_convergence_flags,
                                     strain_mode_error)
+from vbikit.analysis.effects import load_effect_responses
 from vbikit.analysis.impact import ImpactFactor, impact_factor, static_modal_history
 from vbikit.analysis.plan import ResponsePlan, ResponsePoint, point_name
 from vbikit.bridge.base import GirderDeck
 from vbikit.outputs import QUANTITIES, Reduction, cf_unit, effect_kinds, outputs, reduce_outputs
+from vbikit.solve import kernels, system
 from vbikit.solve.result import CrossingResult
 from vbikit.solve.run_in import START_OUTPUTS, start_settling
 
@@ -215,8 +217,6 @@ def static_point_histories(result: CrossingResult,
     weighted tables per point instead of one table per mode (made once per mode tables and points,
     ``_static_point_tables``).  Equal to ξ_st·φ up to round-off (the sums over modes taken before
     the sum over points instead of after)."""
-    from vbikit.solve import kernels, system
-
     crossing = result.crossing
     bridge = crossing.bridge
     data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
@@ -263,8 +263,6 @@ def reduce_crossing(result: CrossingResult, plan: ResponsePlan, xi_static: NDArr
     static modal history if already computed (the points' static references its projections;
     default: ``static_point_histories``, without it); ``effects``: the load-effect responses by kind
     if already computed (default: those of ``plan.first_effects`` the outputs read)."""
-    from vbikit.analysis.effects import load_effect_responses
-
     if effects is None:
         kinds = effect_kinds(names)
         first = {k: e for k, e in plan.first_effects.items() if k in kinds}
