@@ -77,7 +77,7 @@ from numpy.typing import NDArray
 from vbikit._kept import kept_for
 from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices,
                                    smooth_vertices_rows, static_direction, static_modal_history)
-from vbikit.analysis.instants import crossing_instants, instant_rows, one_sided, run_state
+from vbikit.analysis.instants import crossing_instants, instant_rows, modal_terms, one_sided, run_state
 from vbikit.analysis.line_sums import tabulated_sums
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import (KINK_POSITIONS_KEPT, STATION_BREAK, LoadEffect, TabulatedInfluence,  # noqa: F401
@@ -344,8 +344,7 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
     omega = bridge.omega
-    rates = result.xi_dot * (2.0 * bridge.damping_ratios * omega)
-    np.add(result.xi_ddot, rates, out=rates)  # ξ̈ + 2ζω ξ̇, in the one array
+    rates = modal_rates(result)
     if tabulated:  # compiled, one pass over the (time, point) pairs (vbikit.analysis.line_sums)
         origin, direction, y = crossing._kinematics
         static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.shared_travel(), cp.wheel,
@@ -370,6 +369,23 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
                                partial(limits, k), partial(limits.kinks, k), partial(limits.vertices, k))
             for k, e in enumerate(effects)]
+
+
+def modal_rates(result: CrossingResult) -> NDArray[np.float64]:
+    """ξ̈_i + 2 ζ_i ω_i ξ̇_i of every mode at every time, (n_t, n_modes): mode acceleration's modal term
+    (``load_effect_responses``), elementwise ``xi_ddot + xi_dot * (2 ζ ω)`` — the row 2 ζ ω repeated down the
+    rows (kept per bridge, ``modal_terms``, in lengths of powers of two), so that the product and the sum are
+    one flat pass each rather than one short pass per row (the same products and sums)."""
+    xi_dot, xi_ddot = result.xi_dot, result.xi_ddot
+    damping = modal_terms(result.crossing.bridge)[0]
+    if not (xi_dot.flags.c_contiguous and xi_ddot.flags.c_contiguous and xi_dot.shape == xi_ddot.shape
+            and xi_dot.ndim == 2 and xi_dot.shape[1] == damping.size and xi_dot.dtype == xi_ddot.dtype == float):
+        return xi_ddot + xi_dot * damping
+    rows = 1 << max(int(xi_dot.shape[0]) - 1, 0).bit_length()  # (at least the rows)
+    tiled = kept_for(result.crossing.bridge, "damping rows", 4).get(rows, lambda: np.tile(damping, rows))
+    flat = np.multiply(xi_dot.reshape(-1), tiled[:xi_dot.size])
+    np.add(xi_ddot.reshape(-1), flat, out=flat)
+    return flat.reshape(xi_dot.shape)
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
