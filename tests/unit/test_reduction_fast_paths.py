@@ -9,8 +9,9 @@
   (``effects._position_table``), against each effect timed alone;
 * ``effects.modal_rates`` (the damping row kept per bridge) against ξ̈ + ξ̇ · 2ζω written out, on two bridges
   of other damping one after the other (a store keyed without the bridge would hand the second the first's);
-* ``instants.modal_terms`` kept per bridge, ``effects.distinct_sorted`` against ``np.unique``, and
-  ``CrossingResult.shared_travel`` against ``travel``."""
+* ``instants.modal_terms`` kept per bridge, ``effects.distinct_sorted`` against ``np.unique``,
+  ``CrossingResult.shared_travel`` against ``travel``, and ``impact.hermite_peak`` (its samples read as Python
+  floats, its roots by ``math``) against the same written with numpy's scalars."""
 from __future__ import annotations
 
 import dataclasses
@@ -134,3 +135,53 @@ def test_shared_travel_is_the_travel(deck_run):
     assert deck_run.shared_travel() is deck_run.shared_travel()  # (the kept array, no copy)
     fresh = dataclasses.replace(deck_run)  # nothing kept yet: computed and kept on first read
     np.testing.assert_array_equal(fresh.shared_travel(), deck_run.travel)
+
+
+def _hermite_peak_as_it_was(time, values, rates, i):
+    """``impact.hermite_peak`` as written before it read its samples as Python floats and took its roots with
+    ``math`` (numpy's scalars throughout): the reference its values must equal bit for bit."""
+    best, t_best = float(values[i]), float(time[i])
+    for j in (i - 1, i):
+        if j < 0 or j + 1 >= values.size:
+            continue
+        h = float(time[j + 1] - time[j])
+        y0, y1, d0, d1 = float(values[j]), float(values[j + 1]), h * float(rates[j]), h * float(rates[j + 1])
+        a = 6 * y0 + 3 * d0 - 6 * y1 + 3 * d1
+        b = -6 * y0 - 4 * d0 + 6 * y1 - 2 * d1
+        c = d0
+        if a == 0.0:
+            roots = (-c / b,) if b != 0.0 else ()
+        else:
+            disc = b * b - 4.0 * a * c
+            if disc < 0.0:
+                roots = (-b / (2.0 * a),) if np.sqrt(-disc) / (2.0 * abs(a)) <= 1e-12 else ()
+            else:
+                q = -0.5 * (b + np.copysign(np.sqrt(disc), b))
+                roots = (q / a, c / q) if q != 0.0 else (0.0,)
+        for s in roots:
+            if not 0.0 < s < 1.0:
+                continue
+            y = (y0 * (2 * s**3 - 3 * s**2 + 1) + d0 * (s**3 - 2 * s**2 + s) + y1 * (-2 * s**3 + 3 * s**2)
+                 + d1 * (s**3 - s**2))
+            if y > best:
+                best, t_best = float(y), float(time[j] + s * h)
+    return best, t_best
+
+
+def test_hermite_peak_is_the_numpy_scalar_reference():
+    from vbikit.analysis.impact import hermite_peak
+
+    rng = np.random.default_rng(5)
+    found = 0
+    for _ in range(3000):
+        n = int(rng.integers(1, 4))
+        t = np.cumsum(rng.uniform(1e-4, 2e-3, n)) + rng.uniform(0, 5)
+        values = rng.normal(size=n)
+        rates = rng.normal(scale=rng.choice([1e-3, 1.0, 1e3]), size=n)
+        if rng.random() < 0.1:
+            rates[:] = 0.0  # (a = 0 and a double root)
+        i = int(np.argmax(values))
+        new, old = hermite_peak(t, values, rates, i), _hermite_peak_as_it_was(t, values, rates, i)
+        assert new == old and all(type(v) is float for v in new)
+        found += new[0] > values[i]
+    assert found > 300  # peaks between the samples found, not only the samples

@@ -522,7 +522,8 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     sums = _instant_sums(result, effects, state, static_loads)  # (n_effects, n_u) each: −Σ_p I β_p f_w, −Σ_p I β_p P_w
     omega2 = np.asarray(bridge.omega, float)**2
     out = []
-    rows_of: dict[int, tuple[NDArray[np.int64], ...]] = {}  # per instants' array: its rows, their u, Q_i and ξ_i
+    # per instants' array (effects sharing theirs share it): its rows, their u, Q_i, ξ_i and every effect's sums
+    rows_of: dict[int, tuple[NDArray[np.float64], ...]] = {}
     for e, effect, mine in zip(range(len(effects)), effects, taus):
         if mine.size == 0:
             out.append(empty)
@@ -530,10 +531,10 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
         at = rows_of.get(id(mine))
         if at is None:
             rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
-            at = rows_of[id(mine)] = (rows, u[rows], state.q[rows], state.xi[rows])
-        rows, u_rows, q_rows, xi_rows = at
+            at = rows_of[id(mine)] = (u[rows], state.q[rows], state.xi[rows], sums[0][:, rows], sums[1][:, rows])
+        u_rows, q_rows, xi_rows, dynamic, static = at
         r = np.asarray(effect.modal, float)
-        out.append((u_rows, sums[0][e, rows] + q_rows @ (r / omega2) + xi_rows @ r, sums[1][e, rows]))
+        out.append((u_rows, dynamic[e] + q_rows @ (r / omega2) + xi_rows @ r, static[e]))
     return out
 
 

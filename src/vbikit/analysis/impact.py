@@ -17,6 +17,7 @@ depend on the output step (a sampled peak misses up to 1 − cos(ω₁Δt/2) of 
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Sequence
 
@@ -85,12 +86,14 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
     """Largest value (and its time) of the cubic Hermite interpolant of ``values`` with
     derivatives ``rates`` on the steps either side of sample ``i`` (which must be the largest
     sample)."""
-    best, t_best = float(values[i]), float(time[i])
-    for j in (i - 1, i):
-        if j < 0 or j + 1 >= values.size:
+    lo = max(i - 1, 0)  # (the samples it reads, as Python floats: the same values, the same arithmetic)
+    tl, vl, rl = (np.asarray(a)[lo:i + 2].tolist() for a in (time, values, rates))
+    best, t_best = vl[i - lo], tl[i - lo]
+    for j in (i - 1 - lo, i - lo):
+        if j < 0 or j + 1 >= len(vl):
             continue
-        h = float(time[j + 1] - time[j])
-        y0, y1, d0, d1 = float(values[j]), float(values[j + 1]), h * float(rates[j]), h * float(rates[j + 1])
+        h = tl[j + 1] - tl[j]
+        y0, y1, d0, d1 = vl[j], vl[j + 1], h * rl[j], h * rl[j + 1]
         # y(s) = y0 h00 + d0 h10 + y1 h01 + d1 h11; y'(s) = A s² + B s + C
         a = 6 * y0 + 3 * d0 - 6 * y1 + 3 * d1
         b = -6 * y0 - 4 * d0 + 6 * y1 - 2 * d1
@@ -101,7 +104,7 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
             y = (y0 * (2 * s**3 - 3 * s**2 + 1) + d0 * (s**3 - 2 * s**2 + s) + y1 * (-2 * s**3 + 3 * s**2)
                  + d1 * (s**3 - s**2))
             if y > best:
-                best, t_best = float(y), float(time[j] + s * h)
+                best, t_best = float(y), float(tl[j] + s * h)
     return best, t_best
 
 
@@ -188,8 +191,8 @@ def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
         return (-c / b,) if b != 0.0 else ()
     disc = b * b - 4.0 * a * c
     if disc < 0.0:  # a complex pair −b/2a ± i √(−disc)/2|a|
-        return (-b / (2.0 * a),) if np.sqrt(-disc) / (2.0 * abs(a)) <= 1e-12 else ()
-    q = -0.5 * (b + np.copysign(np.sqrt(disc), b))
+        return (-b / (2.0 * a),) if math.sqrt(-disc) / (2.0 * abs(a)) <= 1e-12 else ()
+    q = -0.5 * (b + math.copysign(math.sqrt(disc), b))  # (math's: the same correctly rounded root, on floats)
     return (q / a, c / q) if q != 0.0 else (0.0,)
 
 
