@@ -181,4 +181,4 @@ def test_passing_instants_position_tables_are_kept_per_wheel_lines(deck):
     _fresh()
     fresh = _position_table(deck, tuple(effects), np.array([0.7]), ("kink",))
     np.testing.assert_array_equal(between[0], fresh[0])
-    assert on_girder[1][0] < between[1][0]  # the moment's block: 3 positions on the girder, 14 between
+    assert on_girder[1][0][1] < between[1][0][1]  # the moment's block: 3 positions on the girder, 14 between

@@ -75,8 +75,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from vbikit._kept import kept_for
-from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices, static_direction,
-                                   static_modal_history)
+from vbikit.analysis.impact import (ImpactFactor, impact_factor, impact_factor_toward, smooth_vertices,
+                                   smooth_vertices_rows, static_direction, static_modal_history)
+from vbikit.analysis.instants import crossing_instants, instant_rows, modal_terms, one_sided, run_state
+from vbikit.analysis.line_sums import tabulated_sums
 from vbikit.bridge.base import HasLoadEffects, ModalBridge
 from vbikit.bridge.effects import (KINK_POSITIONS_KEPT, STATION_BREAK, LoadEffect, TabulatedInfluence,  # noqa: F401
                                    influence_values, jump_positions, kink_positions, station_kinks)
@@ -113,6 +115,12 @@ class LoadEffectResponse:
     #: not known, the samples and limits only
     kinks: NDArray[np.float64] | Callable[[], NDArray[np.float64]] | None = field(
         default=None, repr=False, compare=False)
+    #: the extremes between the samples away from the ``kinks`` (``impact.smooth_vertices``: (time, dynamic,
+    #: static)) if already made, or a function making them on first use (the effects of one run at once,
+    #: ``_SharedLimits.vertices``); None: from ``kinks``
+    vertices: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]] | \
+        Callable[[], tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]] | None = field(
+        default=None, repr=False, compare=False)
 
     def _step(self) -> tuple[str | None, float]:
         if callable(self.step_check):
@@ -138,11 +146,12 @@ class LoadEffectResponse:
         limits = self.limits() if callable(self.limits) else self.limits
         if limits is not None and limits[0].size:
             parts.append(limits)
-        if self.kinks is not None:
+        vertices = self.vertices() if callable(self.vertices) else self.vertices
+        if vertices is None and self.kinks is not None:
             kinks = self.kinks() if callable(self.kinks) else self.kinks
             vertices = smooth_vertices(self.time, self.dynamic, self.static, kinks)
-            if vertices[0].size:
-                parts.append(vertices)
+        if vertices is not None and vertices[0].size:
+            parts.append(vertices)
         if len(parts) == 1:
             return self.time, self.dynamic, self.static
         return tuple(np.concatenate(cols) for cols in zip(*parts))  # type: ignore[return-value]
@@ -334,31 +343,49 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
     infl = contact_influence_table(result, effects) if influence is None and not tabulated else influence
     share = cp.weight
     static_loads = share * crossing.vehicle.static_wheel_loads()[cp.wheel]
-    omega, zeta = bridge.omega, bridge.damping_ratios
-    rates = result.xi_ddot + result.xi_dot * (2.0 * zeta * omega)
-    # one matrix-vector product per effect: an effect's history does not depend on which others are reduced with it
-    correction = np.stack([rates @ (e.modal / omega**2) for e in effects], axis=1)  # (n_t, n_effects)
+    omega = bridge.omega
+    rates = modal_rates(result)
     if tabulated:  # compiled, one pass over the (time, point) pairs (vbikit.analysis.line_sums)
-        from vbikit.analysis.line_sums import tabulated_sums
-
-        origin, direction, y = crossing.point_kinematics()
-        static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.travel, cp.wheel, share,
-                                         static_loads, result.wheel_forces, [e.influence for e in effects], bridge.span)
-        static, dynamic = -static, -dynamic
-        dynamic -= correction.T
+        origin, direction, y = crossing._kinematics
+        static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, result.shared_travel(), cp.wheel,
+                                         share, static_loads, result.wheel_forces, [e.influence for e in effects],
+                                         bridge.span)
+        np.negative(static, out=static)
+        np.negative(dynamic, out=dynamic)
     elif isinstance(infl, ContactInfluences):  # the on-deck pairs only
         rows, pts = infl.rows, infl.points
         static, dynamic = -infl.sums(np.stack([static_loads[pts], result.wheel_forces[rows, cp.wheel[pts]] * share[pts]],
                                               axis=1))
-        dynamic -= correction.T
     else:
         infl = np.asarray(infl)
         dyn_forces = result.wheel_forces[:, cp.wheel] * share[None, :]
         static = -(infl @ static_loads)
-        dynamic = -np.einsum("etp,tp->et", infl, dyn_forces) - correction.T
-    limits = _SharedLimits(result, tuple(effects), static_loads)
+        dynamic = -np.einsum("etp,tp->et", infl, dyn_forces)
+    # the modal correction, one matrix-vector product per effect: an effect's history does not depend on which
+    # others are reduced with it
+    for k, e in enumerate(effects):
+        dynamic[k] -= rates @ (e.modal / omega**2)
+    limits = _SharedLimits(result, tuple(effects), static_loads, (dynamic, static))
     return [LoadEffectResponse(e, method, t, dynamic[k], static[k], _checked(result, e, check_step, log_step),
-                               partial(limits, k), partial(limits.kinks, k)) for k, e in enumerate(effects)]
+                               partial(limits, k), partial(limits.kinks, k), partial(limits.vertices, k))
+            for k, e in enumerate(effects)]
+
+
+def modal_rates(result: CrossingResult) -> NDArray[np.float64]:
+    """ξ̈_i + 2 ζ_i ω_i ξ̇_i of every mode at every time, (n_t, n_modes): mode acceleration's modal term
+    (``load_effect_responses``), elementwise ``xi_ddot + xi_dot * (2 ζ ω)`` — the row 2 ζ ω repeated down the
+    rows (kept per bridge, ``modal_terms``, in lengths of powers of two), so that the product and the sum are
+    one flat pass each rather than one short pass per row (the same products and sums)."""
+    xi_dot, xi_ddot = result.xi_dot, result.xi_ddot
+    damping = modal_terms(result.crossing.bridge)[0]
+    if not (xi_dot.flags.c_contiguous and xi_ddot.flags.c_contiguous and xi_dot.shape == xi_ddot.shape
+            and xi_dot.ndim == 2 and xi_dot.shape[1] == damping.size and xi_dot.dtype == xi_ddot.dtype == float):
+        return xi_ddot + xi_dot * damping
+    rows = 1 << max(int(xi_dot.shape[0]) - 1, 0).bit_length()  # (at least the rows)
+    tiled = kept_for(result.crossing.bridge, "damping rows", 4).get(rows, lambda: np.tile(damping, rows))
+    flat = np.multiply(xi_dot.reshape(-1), tiled[:xi_dot.size])
+    np.add(xi_ddot.reshape(-1), flat, out=flat)
+    return flat.reshape(xi_dot.shape)
 
 
 def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
@@ -370,24 +397,33 @@ def _passing_instants(result: CrossingResult, effects: Sequence[LoadEffect],
     wheel line y (skew decks included), sorted, unique: every kind's and effect's (point, position)
     pairs timed in one pass (``instants.crossing_instants``), from the positions' table of the bridge,
     effects and lines (``_position_table``, kept: the same for every event of a stream)."""
-    from vbikit.analysis.instants import crossing_instants
-
     t = np.asarray(result.time, float)
     if t.size < 2 or not effects:
         return [[np.zeros(0) for _ in effects] for _ in kinds]
     crossing = result.crossing
     bridge = crossing.bridge
-    origin, sign, y = crossing.point_kinematics()
-    lines, which = np.unique(y, return_inverse=True)
-    table, widths = _position_table(bridge, tuple(effects), lines, kinds)
-    travel = (table[which.ravel()] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
-    bounds = np.cumsum((0,) + widths)
+    origin, sign, y = crossing._kinematics  # (read only)
+    lines = distinct_sorted(y)
+    table, bounds, block = _position_table(bridge, tuple(effects), lines, kinds)
+    travel = (table[lines.searchsorted(y)] + (y * float(bridge.skew_tan))[:, None] - origin[:, None]) * sign[:, None]
     t0, t1 = float(t[0]), float(t[-1])
     edge = BOUNDARY_INSTANT * (t1 - t0)  # a point on a position at the run's first or last instant
-    taus = crossing_instants(crossing, [travel[:, a:b] for a, b in zip(bounds[:-1], bounds[1:])], t0 - edge,
-                             t1 + edge)
+    taus = [_in_span(tau, t0, t1) for tau in crossing_instants(
+        crossing, [travel[:, a:b] for a, b in bounds], t0 - edge, t1 + edge)]
     n = len(effects)
-    return [[_in_span(tau, t0, t1) for tau in taus[k * n:(k + 1) * n]] for k in range(len(kinds))]
+    return [[taus[block[k * n + e]] for e in range(n)] for k in range(len(kinds))]
+
+
+def distinct_sorted(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``np.unique`` of a 1-D array without NaN (wheel lines, instants) — a sorted copy without repeats — in
+    its two array passes, without np.unique's checks and options (a few of these an event)."""
+    out = np.sort(values)
+    if out.size < 2:
+        return out
+    keep = np.empty(out.size, bool)
+    keep[0] = True
+    np.not_equal(out[1:], out[:-1], out=keep[1:])
+    return out[keep]
 
 
 def _in_span(tau: NDArray[np.float64], t0: float, t1: float) -> NDArray[np.float64]:
@@ -415,15 +451,20 @@ POSITION_TABLES_KEPT = 64
 
 
 def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines: NDArray[np.float64],
-                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[int, ...]]:
+                    kinds: tuple[str, ...]) -> tuple[NDArray[np.float64], tuple[tuple[int, int], ...], tuple[int, ...]]:
     """The positions ξ [m] of every kind of ``kinds`` and effect (``PASSING_POSITIONS``) on every wheel
-    line of ``lines``: a (n_lines, Σ widths) table, one block of columns per (kind, effect) in that
-    order, NaN-padded to the block's width (NaN: none), and the widths; kept by the bridge per effects
-    (their identities: each entry holds them), lines and kinds — not to be written."""
+    line of ``lines``: a (n_lines, Σ widths) table of the distinct blocks of positions, one block of
+    columns per (kind, effect) but for those equal to an earlier one (a deck's effects share the support
+    lines and stations they kink at, shears and reactions the deck ends they jump at: timed once), each
+    NaN-padded to its width (NaN: none), their (first, end) columns, and per (kind, effect) in that order
+    its block;
+    kept by the bridge per effects (their identities: each entry holds them), lines and kinds — not to be
+    written."""
     key = (tuple(id(e) for e in effects), lines.tobytes(), kinds)
 
     def make() -> tuple[Any, ...]:
-        blocks = []
+        blocks: list[NDArray[np.float64]] = []
+        which = []
         for kind in kinds:
             where = PASSING_POSITIONS[kind]
             for e in effects:
@@ -431,10 +472,14 @@ def _position_table(bridge: ModalBridge, effects: tuple[LoadEffect, ...], lines:
                 block = np.full((lines.size, max(p.size for p in per_line)), np.nan)
                 for k, p in enumerate(per_line):
                     block[k, :p.size] = p
-                blocks.append(block)
+                same = [j for j, b in enumerate(blocks) if np.array_equal(b, block, equal_nan=True)]
+                which.append(same[0] if same else len(blocks))
+                if not same:
+                    blocks.append(block)
         table = np.concatenate(blocks, axis=1)
         table.setflags(write=False)
-        return effects, table, tuple(b.shape[1] for b in blocks)
+        ends = np.cumsum([b.shape[1] for b in blocks]).tolist()
+        return effects, table, tuple(zip([0] + ends[:-1], ends)), tuple(which)
 
     return kept_for(bridge, "passing positions", POSITION_TABLES_KEPT).get(key, make)[1:]
 
@@ -457,8 +502,6 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     they do not depend on which other effects are reduced with it).  ``static_loads``: the contact
     points' β_p P_w if already computed; ``instants``: the effects' jump instants if already timed
     (``_passing_instants``)."""
-    from vbikit.analysis.instants import instant_rows, one_sided, run_state
-
     t = np.asarray(result.time, float)
     empty = (np.zeros(0), np.zeros(0), np.zeros(0))
     if t.size < 2 or not effects:
@@ -466,25 +509,32 @@ def jump_limits(result: CrossingResult, effects: Sequence[LoadEffect],
     crossing = result.crossing
     bridge = crossing.bridge
     taus = _passing_instants(result, effects, "jump")[0] if instants is None else instants
-    tau = np.unique(np.concatenate(taus))
+    distinct = list({id(mine): mine for mine in taus}.values())  # (effects sharing their instants share the array)
+    tau = distinct_sorted(np.concatenate(distinct))
     if tau.size == 0:
         return [empty for _ in effects]
     # (an instant at the run's first or last one: its limit outside the run is read at that instant itself)
-    u = np.clip(one_sided(tau, float(t[1] - t[0])), t[0], t[-1])
+    u = one_sided(tau, float(t[1] - t[0])).clip(t[0], t[-1])
     state = run_state(result, u)
     if static_loads is None:
         cp = crossing.contact
         static_loads = cp.weight * crossing.vehicle.static_wheel_loads()[cp.wheel]
     sums = _instant_sums(result, effects, state, static_loads)  # (n_effects, n_u) each: −Σ_p I β_p f_w, −Σ_p I β_p P_w
-    omega = np.asarray(bridge.omega, float)
+    omega2 = np.asarray(bridge.omega, float)**2
     out = []
+    # per instants' array (effects sharing theirs share it): its rows, their u, Q_i, ξ_i and every effect's sums
+    rows_of: dict[int, tuple[NDArray[np.float64], ...]] = {}
     for e, effect, mine in zip(range(len(effects)), effects, taus):
         if mine.size == 0:
             out.append(empty)
             continue
-        rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
+        at = rows_of.get(id(mine))
+        if at is None:
+            rows = instant_rows(tau, mine)  # τ⁻ and τ⁺ of each of its instants
+            at = rows_of[id(mine)] = (u[rows], state.q[rows], state.xi[rows], sums[0][:, rows], sums[1][:, rows])
+        u_rows, q_rows, xi_rows, dynamic, static = at
         r = np.asarray(effect.modal, float)
-        out.append((u[rows], sums[0][e, rows] + state.q[rows] @ (r / omega**2) + state.xi[rows] @ r, sums[1][e, rows]))
+        out.append((u_rows, dynamic[e] + q_rows @ (r / omega2) + xi_rows @ r, static[e]))
     return out
 
 
@@ -497,9 +547,7 @@ def _instant_sums(result: CrossingResult, effects: Sequence[LoadEffect], state: 
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
     if tabulated_together(effects):
-        from vbikit.analysis.line_sums import tabulated_sums
-
-        origin, direction, y = crossing.point_kinematics()
+        origin, direction, y = crossing._kinematics  # (read only)
         static, dynamic = tabulated_sums(origin, direction, y, crossing.point_vehicle, state.travel, cp.wheel,
                                          cp.weight, static_loads, state.wheel_forces, [e.influence for e in effects],
                                          bridge.span)
@@ -516,13 +564,16 @@ def _instant_sums(result: CrossingResult, effects: Sequence[LoadEffect], state: 
 class _SharedLimits:
     """``jump_limits`` and ``kink_instants`` of one run's effects, computed on the first call of either
     (any effect's; both kinds of instants timed in one pass) and shared by their responses: ``self(k)``
-    (``self.kinks(k)``) is effect k's."""
+    (``self.kinks(k)``) is effect k's; with the effects' ``histories`` (dynamic, static: (n_effects, n_t)
+    each) also their extremes between the samples, all at once (``vertices``)."""
 
     def __init__(self, result: CrossingResult, effects: tuple[LoadEffect, ...],
-                 static_loads: NDArray[np.float64] | None) -> None:
-        self.result, self.effects, self.static_loads = result, effects, static_loads
+                 static_loads: NDArray[np.float64] | None,
+                 histories: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None) -> None:
+        self.result, self.effects, self.static_loads, self.histories = result, effects, static_loads, histories
         self.values: list[tuple[NDArray[np.float64], ...]] | None = None
         self.kink_values: list[NDArray[np.float64]] | None = None
+        self.vertex_values: list[tuple[NDArray[np.float64], ...]] | None = None
 
     def _instants(self) -> None:
         if self.static_loads is None:  # (mode superposition: no limits, the kinks only)
@@ -541,6 +592,16 @@ class _SharedLimits:
         if self.kink_values is None:
             self._instants()
         return self.kink_values[k]  # type: ignore[index]
+
+    def vertices(self, k: int) -> tuple[NDArray[np.float64], ...]:
+        """Effect k's extremes between the samples away from its kinks (``impact.smooth_vertices``), made
+        for every effect on the first call (``impact.smooth_vertices_rows``)."""
+        if self.vertex_values is None:
+            if self.kink_values is None:
+                self._instants()
+            dynamic, static = self.histories  # type: ignore[misc]
+            self.vertex_values = smooth_vertices_rows(self.result.time, dynamic, static, self.kink_values)
+        return self.vertex_values[k]
 
 
 def tabulated_together(effects: Sequence[LoadEffect]) -> bool:

@@ -17,7 +17,9 @@ depend on the output step (a sampled peak misses up to 1 − cos(ω₁Δt/2) of 
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from typing import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
@@ -84,12 +86,14 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
     """Largest value (and its time) of the cubic Hermite interpolant of ``values`` with
     derivatives ``rates`` on the steps either side of sample ``i`` (which must be the largest
     sample)."""
-    best, t_best = float(values[i]), float(time[i])
-    for j in (i - 1, i):
-        if j < 0 or j + 1 >= values.size:
+    lo = max(i - 1, 0)  # (the samples it reads, as Python floats: the same values, the same arithmetic)
+    tl, vl, rl = (np.asarray(a)[lo:i + 2].tolist() for a in (time, values, rates))
+    best, t_best = vl[i - lo], tl[i - lo]
+    for j in (i - 1 - lo, i - lo):
+        if j < 0 or j + 1 >= len(vl):
             continue
-        h = float(time[j + 1] - time[j])
-        y0, y1, d0, d1 = float(values[j]), float(values[j + 1]), h * float(rates[j]), h * float(rates[j + 1])
+        h = tl[j + 1] - tl[j]
+        y0, y1, d0, d1 = vl[j], vl[j + 1], h * rl[j], h * rl[j + 1]
         # y(s) = y0 h00 + d0 h10 + y1 h01 + d1 h11; y'(s) = A s² + B s + C
         a = 6 * y0 + 3 * d0 - 6 * y1 + 3 * d1
         b = -6 * y0 - 4 * d0 + 6 * y1 - 2 * d1
@@ -100,7 +104,7 @@ def hermite_peak(time: NDArray[np.float64], values: NDArray[np.float64], rates: 
             y = (y0 * (2 * s**3 - 3 * s**2 + 1) + d0 * (s**3 - 2 * s**2 + s) + y1 * (-2 * s**3 + 3 * s**2)
                  + d1 * (s**3 - s**2))
             if y > best:
-                best, t_best = float(y), float(time[j] + s * h)
+                best, t_best = float(y), float(tl[j] + s * h)
     return best, t_best
 
 
@@ -119,28 +123,64 @@ def smooth_vertices(time: NDArray[np.float64], dynamic: NDArray[np.float64], sta
     interpolation's remainder, at most h³ max|y‴|/(9√3) on three samples h apart: A (2π f h)³/(9√3)).
     Where a kink lies on the two steps the sample stands (and misses up to a step's change)."""
     t = np.asarray(time, float)
-    out: list[tuple[float, float, float]] = []
-    n = t.size
-    if n >= 3:
-        histories = (np.asarray(dynamic, float), np.asarray(static, float))
-        k = np.sort(np.asarray(kinks, float))
-        for which in (0, 1):
-            for sign in (1.0, -1.0):
-                i = int(np.argmax(sign * histories[which]))
-                if not 0 < i < n - 1:
-                    continue
-                if k.size and np.searchsorted(k, t[i - 1], "left") < np.searchsorted(k, t[i + 1], "right"):
-                    continue  # a kink on the two steps: the limits there (``vbikit.analysis.effects``) hold the peak
-                s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
-                coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
-                a, b, _ = coef[which]
-                if not sign * a < 0.0:
-                    continue  # not turning that way (a flat or inflected top): the sample stands
-                s = -b / (2.0 * a)
-                out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
+    histories = (np.asarray(dynamic, float), np.asarray(static, float))
+    if t.size < 3:
+        return np.zeros(0), np.zeros(0), np.zeros(0)
+    # per history and sense its extreme sample (argmin: the first largest of −h, as argmax(−h))
+    extremes = [int(i) for h in histories for i in (h.argmax(), h.argmin())]
+    return _vertices(t, histories, extremes, _clear_of(t, np.sort(np.asarray(kinks, float)), np.array(extremes)))
+
+
+def smooth_vertices_rows(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
+                         kinks: Sequence[NDArray[np.float64]]) -> list[tuple[NDArray[np.float64], ...]]:
+    """``smooth_vertices(time, dynamic[k], static[k], kinks[k])`` of every row k of the (n_rows, n_t)
+    histories ``dynamic`` and ``static`` (several load effects of one run), the same values: the extreme
+    samples found for all rows in one pass per history and sense, the kink test of the rows that share one
+    array of kinks (the same object: a deck's effects kink at the same stations) in one pass."""
+    t = np.asarray(time, float)
+    dynamic, static = np.asarray(dynamic, float), np.asarray(static, float)
+    if t.size < 3:
+        return [(np.zeros(0), np.zeros(0), np.zeros(0)) for _ in range(dynamic.shape[0])]
+    extremes = np.stack([dynamic.argmax(axis=1), dynamic.argmin(axis=1), static.argmax(axis=1),
+                         static.argmin(axis=1)], axis=1)  # (n_rows, 4): the order of ``smooth_vertices``
+    clear = np.empty(extremes.shape, bool)
+    shared: dict[int, list[int]] = {}
+    for k, mine in enumerate(kinks):
+        shared.setdefault(id(mine), []).append(k)
+    for rows in shared.values():
+        clear[rows] = _clear_of(t, np.sort(np.asarray(kinks[rows[0]], float)), extremes[rows]).reshape(len(rows), 4)
+    return [_vertices(t, (dynamic[k], static[k]), extremes[k].tolist(), clear[k]) for k in range(dynamic.shape[0])]
+
+
+def _clear_of(t: NDArray[np.float64], kinks: NDArray[np.float64], extremes: NDArray[np.int64]) -> NDArray[np.bool_]:
+    """Per extreme sample i (any shape) whether it is interior and no instant of the sorted ``kinks`` lies on the
+    two steps t[i − 1] … t[i + 1], ends included (a kink there: the limits (``vbikit.analysis.effects``) hold the
+    peak)."""
+    inner = (extremes > 0) & (extremes < t.size - 1)
+    if not kinks.size:
+        return inner
+    i = np.where(inner, extremes, 1)
+    return inner & (kinks.searchsorted(t[i - 1], "left") >= kinks.searchsorted(t[i + 1], "right"))
+
+
+def _vertices(t: NDArray[np.float64], histories: tuple[NDArray[np.float64], NDArray[np.float64]],
+              extremes: Sequence[int], clear: Sequence[bool]) -> tuple[NDArray[np.float64], ...]:
+    """``smooth_vertices``' entries of the extreme samples ``extremes`` (largest and smallest of the dynamic
+    history, then of the static) that are ``clear`` (``_clear_of``)."""
+    out: list[tuple[float, ...]] = []
+    for (which, sign), i, ok in zip(((0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)), extremes, clear):
+        if not ok:
+            continue
+        s0, s2 = float(t[i - 1] - t[i]), float(t[i + 1] - t[i])  # (times about the middle sample)
+        coef = [parabola(s0, s2, float(h[i - 1]), float(h[i]), float(h[i + 1])) for h in histories]
+        a, b, _ = coef[which]
+        if not sign * a < 0.0:
+            continue  # not turning that way (a flat or inflected top): the sample stands
+        s = -b / (2.0 * a)
+        out.append((float(t[i] + s),) + tuple(c2 * s * s + c1 * s + c0 for c2, c1, c0 in coef))
     if not out:
         return np.zeros(0), np.zeros(0), np.zeros(0)
-    return tuple(np.array(col) for col in zip(*out))  # type: ignore[return-value]
+    return tuple(np.array(col) for col in zip(*out))
 
 
 def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
@@ -151,15 +191,16 @@ def _real_roots(a: float, b: float, c: float) -> tuple[float, ...]:
         return (-c / b,) if b != 0.0 else ()
     disc = b * b - 4.0 * a * c
     if disc < 0.0:  # a complex pair −b/2a ± i √(−disc)/2|a|
-        return (-b / (2.0 * a),) if np.sqrt(-disc) / (2.0 * abs(a)) <= 1e-12 else ()
-    q = -0.5 * (b + np.copysign(np.sqrt(disc), b))
+        return (-b / (2.0 * a),) if math.sqrt(-disc) / (2.0 * abs(a)) <= 1e-12 else ()
+    q = -0.5 * (b + math.copysign(math.sqrt(disc), b))  # (math's: the same correctly rounded root, on floats)
     return (q / a, c / q) if q != 0.0 else (0.0,)
 
 
 def static_direction(static: NDArray[np.float64]) -> float:
     """s = ±1, the sign of the static history's largest-magnitude value (+1 where it is 0): the
     direction in which the peaks of an impact factor are taken (module docstring)."""
-    return _sign_at(static, int(np.argmax(np.abs(static))))
+    static = np.asarray(static)
+    return _sign_at(static, largest_magnitude(static))
 
 
 def _sign_at(static: NDArray[np.float64], i: int) -> float:
@@ -167,11 +208,31 @@ def _sign_at(static: NDArray[np.float64], i: int) -> float:
     return float(np.sign(static[i]) or 1.0)
 
 
+def largest_magnitude(values: NDArray[np.float64]) -> int:
+    """``argmax(abs(values))`` — the first index of the largest magnitude (the first NaN, if any) — from
+    the largest and the smallest value, without the array of magnitudes: the first of the two when
+    they are as large (an impact factor's peaks read several histories an event)."""
+    hi, lo = int(values.argmax()), int(values.argmin())
+    top, bottom = values[hi], -values[lo]
+    return hi if top > bottom else lo if bottom > top else min(hi, lo)
+
+
+def first_largest(values: NDArray[np.float64], sign: float) -> int:
+    """``argmax(sign * values)`` (the first index) for ``sign`` ±1, without the product: the first
+    largest value (+1) or the first smallest (−1: the first largest of −values)."""
+    if sign > 0.0:
+        return int(values.argmax())
+    if sign < 0.0:
+        return int(values.argmin())
+    return int(np.argmax(sign * values))
+
+
 def impact_factor(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDArray[np.float64],
                   dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
     """IM = (R_dyn,max − R_st,max)/R_st,max with peaks taken in the static peak's direction;
     with ``dynamic_rate`` (dR/dt) the dynamic peak is refined between samples (module docstring)."""
-    i_st = int(np.argmax(np.abs(static)))
+    static = np.asarray(static)
+    i_st = largest_magnitude(static)
     if static[i_st] == 0.0:
         raise ValueError("the static response is zero everywhere: no impact factor at this response point")
     return _peaks(time, dynamic, static, _sign_at(static, i_st), i_st, dynamic_rate)
@@ -196,12 +257,12 @@ def _peaks(time: NDArray[np.float64], dynamic: NDArray[np.float64], static: NDAr
            i_st: int, dynamic_rate: NDArray[np.float64] | None = None) -> ImpactFactor:
     """The ``ImpactFactor`` in the direction ``sign`` with the static peak at sample ``i_st``: the
     dynamic peak max_t(sign·R(t)), refined between samples with ``dynamic_rate`` (dR/dt)."""
-    signed = sign * dynamic
-    i_dyn = int(np.argmax(signed))
+    dynamic = np.asarray(dynamic)
+    i_dyn = first_largest(dynamic, sign)
     r_dyn, t_dyn = float(dynamic[i_dyn]), float(time[i_dyn])
     if dynamic_rate is not None:  # (the Hermite steps either side of the peak read those three samples only)
         lo, hi = max(i_dyn - 1, 0), i_dyn + 2
-        peak, t_dyn = hermite_peak(time[lo:hi], signed[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
+        peak, t_dyn = hermite_peak(time[lo:hi], sign * dynamic[lo:hi], sign * dynamic_rate[lo:hi], i_dyn - lo)
         r_dyn = sign * peak
     r_st = float(static[i_st])
     return ImpactFactor(r_dyn, r_st, (sign * r_dyn - sign * r_st) / (sign * r_st), t_dyn, float(time[i_st]))

@@ -45,6 +45,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
+from vbikit._kept import kept_for
 from vbikit._vertex import KNOT_OFFSET  # (the one-sided limits' offset, shared with the railway sweep)
 
 
@@ -112,25 +113,41 @@ def instant_rows(tau: NDArray[np.float64], mine: NDArray[np.float64]) -> NDArray
     return rows
 
 
+def modal_terms(bridge) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float]:
+    """2 ζ_i ω_i and ω_i² of every mode, the support lines' ξ [m] (contiguous) and tan θ of the immutable
+    ``bridge``: what ``run_state`` hands its compiled pass, kept by the bridge (``kept_for``; a traffic
+    stream's events ask for them once each, a deck builds its damping ratios and supports anew on every
+    read) — shared: not to be written."""
+    def make() -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float]:
+        omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
+        return 2.0 * zeta * omega, omega**2, np.ascontiguousarray(bridge.support_x, float), float(bridge.skew_tan)
+
+    return kept_for(bridge, "modal terms", 1).get(None, make)
+
+
 def run_state(result, u: NDArray[np.float64]) -> RunState:
     """The ``RunState`` of ``result`` (a ``CrossingResult`` of at least two steps) at the instants
     ``u`` [s] within its time span (module docstring); each instant's values are computed element by
     element (the same whatever the other instants), in one compiled pass
     (``vbikit.analysis.state_kernel.run_state_pass``)."""
     from vbikit.analysis.state_kernel import run_state_pass
-    from vbikit.solve import system
     from vbikit.solve.compile_notice import announce_compile
 
     t = np.ascontiguousarray(result.time, float)
     crossing = result.crossing
     bridge, cp = crossing.bridge, crossing.contact
-    origin, sign, y = crossing.point_kinematics()
+    origin, sign, y = crossing._kinematics  # (read only: the state gets a copy of y)
+    y = y.copy()
     t_ref, s_ref, v_ref, acc, stop = crossing._motion_refs
-    data = result.kernel_data if result.kernel_data is not None else system.kernel_data(crossing)
+    data = result.kernel_data
+    if data is None:
+        from vbikit.solve import system
+
+        data = system.kernel_data(crossing)
     modes = data.modes
-    omega, zeta = np.asarray(bridge.omega, float), np.asarray(bridge.damping_ratios, float)
+    damping, stiffness, support_x, skew_tan = modal_terms(bridge)
     u = np.ascontiguousarray(u, float)
-    n_u, n_cp, n_m = u.size, origin.size, omega.size
+    n_u, n_cp, n_m = u.size, origin.size, stiffness.size
     forces = np.ascontiguousarray(result.wheel_forces, float)
     travel, x, f = np.empty((n_u, t_ref.size)), np.empty((n_u, n_cp)), np.empty((n_u, n_cp))
     wheel_forces, q, xi = np.empty((n_u, forces.shape[1])), np.empty((n_u, n_m)), np.empty((n_u, n_m))
@@ -139,7 +156,7 @@ def run_state(result, u: NDArray[np.float64]) -> RunState:
                    np.ascontiguousarray(crossing.point_vehicle, np.int64), np.ascontiguousarray(cp.wheel, np.int64),
                    np.ascontiguousarray(cp.weight, float), forces,
                    *(np.ascontiguousarray(a, float) for a in (result.xi, result.xi_dot, result.xi_ddot)),
-                   2.0 * zeta * omega, omega**2, np.ascontiguousarray(bridge.support_x, float), float(bridge.skew_tan),
+                   damping, stiffness, support_x, skew_tan,
                    modes.start, modes.end, float(modes.grid_h), modes.values, modes.slopes,
                    np.ascontiguousarray(data.points.track, np.int64), travel, x, wheel_forces, f, q, xi)
     return RunState(u, x, y, f, q, xi, travel, wheel_forces)

@@ -256,6 +256,15 @@ class CrossingResult:
             object.__setattr__(self, "_travel", known)
         return known.copy()
 
+    def shared_travel(self) -> NDArray[np.float64]:
+        """``travel`` without its copy: the result's own array, for the reductions that only read it (a
+        traffic event reads it three times) — not to be written."""
+        known = self.__dict__.get("_travel")
+        if known is None:
+            self.travel  # noqa: B018 - computes and keeps it
+            known = self.__dict__["_travel"]
+        return known
+
     def keep_travel(self, travel: NDArray[np.float64]) -> None:
         """Keep ``travel``, the crossing's ``Crossing.travel`` at ``time`` that the run has already (its time
         grid's rows: the same numbers, ``travel`` is elementwise in t), as the result's ``travel``
