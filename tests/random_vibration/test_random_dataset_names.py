@@ -48,3 +48,29 @@ def test_the_random_dataset_uses_the_ordinary_datasets_names_and_units():
         assert [str(u) for u in data["dof_units"].values] == ["rad" if r else "m" for r in rotation]
         assert not [v for v in data.data_vars if " or " in str(data[v].attrs.get("units", ""))]
     assert ordinary["vehicle_displacement"].attrs["units_by_dof"] == "dof_units"
+
+
+def test_the_random_summary_names_its_points_and_gives_every_numbers_unit_and_the_dataset_its_flags():
+    """A trial found the random summary's points without names (the dataset named them), no unit for
+    ``vehicle_acceleration_std_max``, the dataset's time and x, y without units and its flags as one string."""
+    import json
+
+    from vbikit.solve.result import dof_acceleration_unit
+
+    plan = _plan(2, {"model": "point"})
+    span = plan.built.crossing.bridge.span
+    response_plan = dataclasses.replace(plan.built.plan, points=(ResponsePoint(x=span / 2, name="mid"),
+                                                                 ResponsePoint(x=0.05 * span)))
+    rr = random_response(plan.built.crossing, response_plan, PseudoRoad(RoadPSD.iso("C")), plan.run.dt,
+                         data=plan.run.kernel_data, samples=200)
+    s = rr.summary
+    assert [p["name"] for p in s["points"]] == ["mid", "p2"]
+    dofs = rr.mean.crossing.vehicle.dof_names
+    assert s["units"]["vehicle_acceleration_std_max"] == {d: dof_acceleration_unit(d) for d in dofs}
+    assert set(s["vehicle_acceleration_std_max"]) == set(dofs)
+    ds = rr.dataset()
+    assert ds["time"].attrs["units"] == "s" and ds["x"].attrs["units"] == "m" and ds["y"].attrs["units"] == "m"
+    assert s["flags"], "the near-support point rests on a small static reference: flagged"
+    assert json.loads(ds.attrs["flags"]) == s["flags"]
+    assert ds.attrs["flag_codes"].split(",") == list(dict.fromkeys(f["code"] for f in s["flags"]))
+    assert ds.attrs["warnings"] == "; ".join(s["warnings"])

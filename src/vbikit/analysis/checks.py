@@ -938,7 +938,7 @@ def join_codes(codes: Iterable[str]) -> str:
 
 def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[str]] | None = None) -> dict[str, str]:
     """A population dataset's attributes from its ``flags`` and its ``warnings`` without a record
-    (flag code -> sentences, e.g. ``small_static_dataset_warnings``'s; each stored as a record of its code
+    (flag code -> sentences; each stored as a record of its code
     and message): ``warnings``, every message joined by "; " (a flag of ``LEADING_CODES`` first, as
     ``add_flags`` orders a summary), ``flag_codes``, the codes, comma-separated, each once, and ``flags``, the
     records as JSON (``flag_attrs``); none when there is nothing to say."""
@@ -949,7 +949,7 @@ def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[st
         _check_code(code)
         new = [w for w in sentences if w not in texts]
         texts += new
-        records += [{"code": code, "message": w} for w in new]
+        records += [Flag(code, w).as_dict() for w in new]  # (every field, null where it does not apply)
         codes += [code] if sentences else []
     return flag_attrs(texts, codes, records)
 
@@ -1022,18 +1022,22 @@ def effect_static_flags(effects: Sequence[tuple[str, str, str, float, float]]) -
     return out
 
 
-def small_static_dataset_warnings(names: Sequence[str], static_peaks: np.ndarray) -> list[str]:
-    """Warnings for a dataset of many crossings (its ``warnings`` attribute, not a summary):
-    ``static_peaks`` (..., n_points) the static peak
-    deflections of the points ``names`` in every crossing; one sentence per point whose impact
-    factor rests on a small static reference (``small_static`` across the points of a crossing)
-    in some of the crossings, with how many."""
-    st = np.asarray(static_peaks, float)
-    flags = small_static_mask(st.reshape(-1, st.shape[-1]), axis=1)
-    return [f"point {name}: its impact_factor rests on a static deflection under {SMALL_STATIC_FRACTION:.0%} of "
-            f"the largest of the points in {int(k)} of {flags.shape[0]} crossings (a lightly loaded section); "
-            "unreliable there as a design value"
-            for name, k in zip(names, flags.sum(axis=0)) if k]
+def small_static_dataset_flags(names: Sequence[str], static_peaks: np.ndarray) -> list[Flag]:
+    """The flags of a dataset of many crossings (its attributes, not a summary): ``static_peaks`` (..., n_points)
+    the static peak deflections of the points ``names`` in every crossing; one ``small_static`` flag per point
+    whose impact factor rests on a small static reference (``small_static`` across the points of a crossing) in
+    some of the crossings, with how many (``point`` its name, ``value`` the smallest share of the largest static
+    peak it had, ``threshold`` ``SMALL_STATIC_FRACTION``)."""
+    st = np.asarray(static_peaks, float).reshape(-1, np.shape(static_peaks)[-1])
+    flags = small_static_mask(st, axis=1)
+    largest = np.abs(st).max(axis=1, keepdims=True)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        share = np.where(flags, np.abs(st) / largest, np.inf)
+    return [Flag("small_static", f"point {name}: its impact_factor rests on a static deflection under "
+                 f"{SMALL_STATIC_FRACTION:.0%} of the largest of the points in {int(k)} of {flags.shape[0]} crossings "
+                 "(a lightly loaded section); unreliable there as a design value", output="impact_factor",
+                 point=str(name), value=float(np.min(share[:, j])), threshold=SMALL_STATIC_FRACTION)
+            for j, (name, k) in enumerate(zip(names, flags.sum(axis=0))) if k]
 
 
 def realisation_flags(crossing: Crossing) -> list[Flag]:

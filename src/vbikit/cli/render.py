@@ -196,7 +196,7 @@ def step_line(s: dict) -> None:
     """The step check's lines (``vbikit.scenario.step_check.half_step_check``, or ``converge_step``'s halving for load
     effects or a train: ``step_check_words``): how much the impact factors and the peak deck accelerations change;
     "not run" at a given crossing.dt."""
-    from vbikit.scenario.step_check import DT_GIVEN_WORDS, step_check_words
+    from vbikit.scenario.step_check import DT_GIVEN_WORDS, percent_words, step_check_words
 
     check = s.get("step_check")
     if not check:
@@ -206,7 +206,7 @@ def step_line(s: dict) -> None:
     typer.echo(f"  step check           {step_check_words(check)}")
     if check.get("acceleration_change") is not None:  # (a summary written before the accelerations were checked: none)
         where = f" ({check['acceleration_output']})" if check.get("acceleration_output") else ""
-        typer.echo(f"                       the peak deck accelerations by at most {check['acceleration_change']:.2%} "
+        typer.echo(f"                       the peak deck accelerations by at most {percent_words(check['acceleration_change'])} "
                    f"of their values{where}")
 
 

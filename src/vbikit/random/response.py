@@ -31,7 +31,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.checks import Flag, flag_fields, small_static_flags
+from vbikit.analysis.checks import Flag, flag_attrs, flag_fields, small_static_flags
 from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
 from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -187,10 +187,15 @@ class RandomResponse:
                                      {"units": "N", "long_name": "standard deviation of the tire force"})
         s = self.summary
         attrs = {"method": s["method"], "grid_change": s["grid_change"], "n_lines": s["n_lines"],
-                 "lift_off_probability": s["lift_off_probability"], "warnings": "; ".join(s["warnings"])}
-        return xr.Dataset(data, coords={"time": t[:n], "point": names, "wheel": wheels, **vehicle_dof_coords(vehicle.dof_names),
-                                        "x": ("point", [p.x for p in self.points]),
-                                        "y": ("point", [p.y for p in self.points])}, attrs=attrs)
+                 "lift_off_probability": s["lift_off_probability"],
+                 **flag_attrs(s.get("warnings", []), [f["code"] for f in s.get("flags", [])], s.get("flags", []))}
+        return xr.Dataset(data, coords={"time": ("time", t[:n], {"units": "s", "long_name": "time"}), "point": names,
+                                        "wheel": wheels, **vehicle_dof_coords(vehicle.dof_names),
+                                        "x": ("point", [p.x for p in self.points],
+                                              {"units": "m", "long_name": "response point from the entry support"}),
+                                        "y": ("point", [p.y for p in self.points],
+                                              {"units": "m", "long_name": "response point from the deck centreline"})},
+                          attrs=attrs)
 
 
 def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt: float, *,
@@ -310,11 +315,12 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
         return _peak_entry(pem, j, n, mean[:, j], static[:, j], rate[:, j], quantiles, sampled[:, col[j]], crossings)
 
     entries = []
-    for j, p in enumerate(points):
+    for j, (p, name) in enumerate(zip(points, plan.point_names)):  # (named as the dataset's ``point`` and vbikit run)
         if j not in col:  # a further point of a study: σ only
-            entries.append({"x": p.x, "y": p.y, "displacement_std_max": float(pem.std("displacement")[:n, j].max())})
+            entries.append({"name": name, "x": p.x, "y": p.y,
+                            "displacement_std_max": float(pem.std("displacement")[:n, j].max())})
             continue
-        entry = {"x": p.x, "y": p.y, **stats(j)}
+        entry = {"name": name, "x": p.x, "y": p.y, **stats(j)}
         entry["displacement_peak_mean"] = entry.pop("peak_mean")
         entry["displacement_peak_std"] = entry.pop("peak_std")
         entries.append(entry | {"displacement_std_max": float(pem.std("displacement")[:n, j].max()),
@@ -366,6 +372,9 @@ def _reduce(crossing, plan, road, smooth, points, effects, pem, n, mean, rate, s
     }
     # every top-level number's unit, in the CF spelling of every JSON summary (as vbikit run's ``units``)
     summary["units"] = {k: u for k, u in SUMMARY_UNITS.items() if k in summary}
+    from vbikit.solve.result import dof_acceleration_unit
+
+    summary["units"]["vehicle_acceleration_std_max"] = {d: dof_acceleration_unit(d) for d in vehicle.dof_names}
     return summary
 
 

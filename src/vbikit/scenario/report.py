@@ -88,9 +88,16 @@ class Report:
     def to_xarray(self, static: bool = True) -> "xr.Dataset":
         """The crossing as a labelled dataset ([`CrossingResult.to_xarray`][vbikit.solve.CrossingResult.to_xarray]) at the report's
         response points (coordinate ``point``: their names, as in the CSV) and girder sections, with the
-        load-effect histories (``<name>``, ``<name>_static``): the CSV's names and units."""
-        return self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static,
-                                     names=self.plan.point_names, effects=self.effects)
+        load-effect histories (``<name>``, ``<name>_static``): the CSV's names and units; the run's flags in its
+        attributes ``flags`` (records, JSON), ``warnings`` and ``flag_codes``, as every dataset carries them
+        (``vbikit.analysis.checks.flag_attrs``), so the dataset alone says which values are in doubt."""
+        from vbikit.analysis.checks import flag_attrs
+
+        ds = self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static,
+                                   names=self.plan.point_names, effects=self.effects)
+        flags = self.summary.get("flags", [])
+        ds.attrs.update(flag_attrs(self.summary.get("warnings", []), [f["code"] for f in flags], flags))
+        return ds
 
     def to_dataframe(self, static: bool = True) -> "pd.DataFrame":
         """The histories as a wide pandas DataFrame ([`CrossingResult.to_dataframe`][vbikit.solve.CrossingResult.to_dataframe]):

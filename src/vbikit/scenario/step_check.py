@@ -299,6 +299,12 @@ def _advice(changes: list[float], worst: str, dt: float, relative: bool = False,
     return text
 
 
+def percent_words(change: float) -> str:
+    """A relative change in per cent to two significant figures, as the step checks print it ("0.77 %", "0.0023 %":
+    a change of 2.3e-5 printed "0.00%" read as none)."""
+    return f"{100 * change:.2g} %"
+
+
 #: what every command says of the step check of a run at a given ``crossing.dt`` (``vbikit run``, ``compare-tires``,
 #: ``study run``: one wording)
 DT_GIVEN_WORDS = "not run: crossing.dt is given (a run at the automatic step checks its step)"
@@ -321,5 +327,5 @@ def step_check_words(check: dict, accelerations: bool = False) -> str:
         words = (f"at half the step ({check['dt']:.3e} s) the deflection and strain IMs change by at most "
                  f"{check['largest_change']:.1e}{which}")
     if accelerations and check.get("acceleration_change") is not None:
-        words += f"; the peak accelerations by at most {check['acceleration_change']:.2%}"
+        words += f"; the peak accelerations by at most {percent_words(check['acceleration_change'])}"
     return words

@@ -469,13 +469,13 @@ def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[st
     """The dataset's ``warnings`` and ``flag_codes`` (``vbikit.analysis.checks.dataset_flag_attrs``):
     an implausible static deflection in any crossing (``implausible_deflection_dataset_flags``: its
     peak ``max_static_displacement`` against the crossing's longest span ``spans`` [m]), the response
-    points whose impact factor rests on a small static reference (``small_static_dataset_warnings``)
+    points whose impact factor rests on a small static reference (``small_static_dataset_flags``)
     crossings whose contact forces did not converge in some steps (``unconverged_dataset_flags``) and crossings
     whose strain is not converged in the modes (``strain_errors``, per crossing and point: ``strain_mode_errors``;
     ``strain_mode_dataset_flags``); each needs its output among the study's outputs (``max_static_displacement``;
     for the second ``impact_factor`` and several points too; ``unconverged_steps``; ``strain_impact_factor``)."""
     from vbikit.analysis.checks import (dataset_flag_attrs, implausible_deflection_dataset_flags,
-                                        small_static_dataset_warnings, strain_mode_dataset_flags,
+                                        small_static_dataset_flags, strain_mode_dataset_flags,
                                         unconverged_dataset_flags)
 
     def describe(index: tuple[int, ...]) -> str:  # (a file by its name, as the coordinate: no folder in a dataset)
@@ -491,13 +491,13 @@ def study_flag_attrs(study: Study, names: Optional[Sequence[str]], data: dict[st
     if "max_static_displacement" in data:
         static = data["max_static_displacement"]
         flags += implausible_deflection_dataset_flags(static, spans, names, describe=describe)
-        small = (small_static_dataset_warnings(names, static)
+        small = (small_static_dataset_flags(names, static)
                  if names is not None and len(names) > 1 and "impact_factor" in data else [])
     if "unconverged_steps" in data:
         flags += unconverged_dataset_flags(data["unconverged_steps"], describe=describe)
     if strain:
         flags += strain_mode_dataset_flags(strain_errors, names, describe=describe)
-    return dataset_flag_attrs(flags, {"small_static": small})
+    return dataset_flag_attrs(flags + small)
 
 
 def assemble(study: Study, parts: Path):
