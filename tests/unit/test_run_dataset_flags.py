@@ -1,4 +1,4 @@
-"""A single run's dataset (``Report.to_xarray``, what ``vbikit run --out *.nc`` writes) carries the run's flags, as
+"""A single run's dataset (``Report.to_xarray``) carries the run's flags, as
 every population dataset does: a trial read Girder 1's IM of 1.36 from the dataset of the Bridge 2 example with no
 word that the run flags it (``small_static``) or that the road is one realisation (``one_realisation``)."""
 from __future__ import annotations
