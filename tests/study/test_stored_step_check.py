@@ -49,6 +49,7 @@ def test_the_check_is_stored_after_the_datasets_own_flags():
     (flag,) = study_step_flags(record)
     assert out["warnings"] == f"first; second; {flag.message}"
     assert out["flag_codes"] == "small_static,step_not_converged" and out["title"] == "t"
+    assert dataset_flags(out)[1] == ["first; second", flag.message]  # (the older messages kept, as one)
     assert stored_step_check(out) == record
     # its record too (a dataset written with records keeps them, the new one after)
     records = [{"code": "small_static", "message": "first; second"}]

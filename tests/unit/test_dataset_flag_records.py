@@ -35,3 +35,20 @@ def test_flags_added_later_go_after_and_a_message_is_not_repeated():
 def test_a_dataset_written_before_the_records_gives_its_joined_warnings_as_one_message():
     assert dataset_flags({"warnings": "a; b", "flag_codes": "small_static"}) == ([], ["a; b"])
     assert dataset_flags({}) == ([], [])
+
+
+def test_flags_added_to_a_dataset_written_before_the_records_keep_its_messages():
+    """A review found them dropped: the new records alone were then read back as every message."""
+    old = {"warnings": f"a msg; {A.message}", "flag_codes": "small_static"}
+    out = add_dataset_flags(old, [A, B])  # (A is among the old messages: not repeated)
+    records, warnings = dataset_flags(out)
+    assert warnings == [f"a msg; {A.message}", B.message] and records[0]["code"] is None
+    assert out["flag_codes"] == "small_static,contact_not_converged"
+
+
+def test_a_small_static_share_ignores_a_nan_peak_elsewhere_in_the_crossing():
+    from vbikit.analysis.checks import small_static_dataset_flags
+
+    (flag,) = small_static_dataset_flags(["p1", "p2", "p3"], np.array([[1.0, 0.1, np.nan], [1.0, 0.15, 0.5]]))
+    assert flag.point == "p2" and flag.value == 0.1
+

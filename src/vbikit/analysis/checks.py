@@ -95,7 +95,6 @@ AIRBORNE_FRACTION = 0.05
 STRAIN_MODE_TOLERANCE = 0.01
 #: a static deflection peak above this fraction of the longest span is not plausible for a bridge (module docstring)
 IMPLAUSIBLE_DEFLECTION_FRACTION = 0.01
-#: what a negative impact factor means, in words (the reports print it once where one occurs)
 #: the one mark of a doubt in every report and printed result: right after a value a flag puts in doubt, and at the
 #: start of a line that states a flag's message (``flag_line``); ``vbikit run``, ``traffic``, ``lifetime``, ``rail``
 #: and ``driveby`` alike (before 2026-12-08 the railway and drive-by reports wrote "WARNING:", the lifetime's "FLAG")
@@ -107,6 +106,7 @@ def flag_line(message: str) -> str:
     return f"{FLAG_MARK} {message}"
 
 
+#: what a negative impact factor means, in words (the reports print it once where one occurs)
 NEGATIVE_IM_NOTE = ("an IM below 0 means the dynamic peak stayed below the static one: the deck's vibration (and a "
                     "sprung vehicle's bounce, the wheels unloading there) was out of phase with the load's arrival at "
                     "the section; physical, not an error")
@@ -976,7 +976,16 @@ def add_dataset_flags(attrs: Mapping[str, Any], flags: Sequence[Flag]) -> dict[s
     attributes; a message it holds already is not repeated)."""
     records, texts = dataset_flags(attrs)
     codes = [c for c in str(attrs.get("flag_codes", "")).split(",") if c]
-    new = [f for f in flags if f.message not in texts]
+    legacy = f"; {texts[0]}; " if texts and not records else None  # (a dataset written before the records)
+
+    def known(message: str) -> bool:  # (one of the joined messages of a dataset without records)
+        return message in texts or (legacy is not None and f"; {message}; " in legacy)
+
+    new = [f for f in flags if not known(f.message)]
+    if not new:
+        return dict(attrs)
+    if legacy is not None:  # its joined messages kept as one record
+        records = [{"code": None, "message": texts[0]}]
     joined = [str(attrs["warnings"])] if attrs.get("warnings") else []  # (as stored: messages may hold "; ")
     return {**attrs, **flag_attrs(joined + [f.message for f in new], codes + [f.code for f in new],
                                   records + [f.as_dict() for f in new])}
@@ -1030,9 +1039,9 @@ def small_static_dataset_flags(names: Sequence[str], static_peaks: np.ndarray) -
     peak it had, ``threshold`` ``SMALL_STATIC_FRACTION``)."""
     st = np.asarray(static_peaks, float).reshape(-1, np.shape(static_peaks)[-1])
     flags = small_static_mask(st, axis=1)
-    largest = np.abs(st).max(axis=1, keepdims=True)
+    largest = np.nanmax(np.abs(st), axis=1, keepdims=True, initial=0.0)
     with np.errstate(invalid="ignore", divide="ignore"):
-        share = np.where(flags, np.abs(st) / largest, np.inf)
+        share = np.where(flags, np.abs(st) / largest, np.inf)  # (a NaN peak elsewhere in the crossing: not the largest)
     return [Flag("small_static", f"point {name}: its impact_factor rests on a static deflection under "
                  f"{SMALL_STATIC_FRACTION:.0%} of the largest of the points in {int(k)} of {flags.shape[0]} crossings "
                  "(a lightly loaded section); unreliable there as a design value", output="impact_factor",

@@ -371,6 +371,11 @@ def load_effect_responses(result: CrossingResult, effects: Sequence[LoadEffect],
             for k, e in enumerate(effects)]
 
 
+#: values of the tiled damping row ``modal_rates`` keeps per bridge at most (8 MB; a run with more takes the
+#: row-wise product, the same numbers)
+DAMPING_ROWS_KEPT = 1 << 20
+
+
 def modal_rates(result: CrossingResult) -> NDArray[np.float64]:
     """ξ̈_i + 2 ζ_i ω_i ξ̇_i of every mode at every time, (n_t, n_modes): mode acceleration's modal term
     (``load_effect_responses``), elementwise ``xi_ddot + xi_dot * (2 ζ ω)`` — the row 2 ζ ω repeated down the
@@ -382,6 +387,8 @@ def modal_rates(result: CrossingResult) -> NDArray[np.float64]:
             and xi_dot.ndim == 2 and xi_dot.shape[1] == damping.size and xi_dot.dtype == xi_ddot.dtype == float):
         return xi_ddot + xi_dot * damping
     rows = 1 << max(int(xi_dot.shape[0]) - 1, 0).bit_length()  # (at least the rows)
+    if rows * damping.size > DAMPING_ROWS_KEPT:  # (a long run: not kept, so a worker holds no large tile per bridge)
+        return xi_ddot + xi_dot * damping
     tiled = kept_for(result.crossing.bridge, "damping rows", 4).get(rows, lambda: np.tile(damping, rows))
     flat = np.multiply(xi_dot.reshape(-1), tiled[:xi_dot.size])
     np.add(xi_ddot.reshape(-1), flat, out=flat)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from vbikit.analysis.checks import add_flags, flag_line
+from vbikit.analysis.checks import add_flags, dataset_flags, flag_line
 from vbikit.driveby.identify import CURVATURE_LOCATION_CAVEAT
 from vbikit.driveby.quality import MIN_PASSES, unconverged_pass_flags
 
@@ -140,7 +140,7 @@ def report_text(ds) -> str:
              f"anti-alias filter: {ds.attrs['sampling_filter']}",
              f"identification: method {ds.attrs['identification_method']}, sensor {ds.attrs['identification_sensor']}",
              *fleet_lines(ds),
-             *([flag_line(str(ds.attrs['warnings']))] if ds.attrs.get("warnings") else []),
+             *[flag_line(w) for w in dataset_flags(ds.attrs)[1]],  # (one line a message, from the records)
              "", "case  speed[m/s] road seed severity noise   f_true[Hz] f_ident[Hz] error[%] resolution[Hz] "
                  "label      SNR[dB] reliable",
              f"      (noise: the standard deviation added to the {ds.attrs['identification_sensor']} sensor's record, "
