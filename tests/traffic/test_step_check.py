@@ -124,3 +124,19 @@ def test_vbikit_traffic_prints_the_half_step_changes(tmp_path):
     assert res.exit_code == 0, res.output
     line = next(s for s in res.output.splitlines() if "at half the time step" in s)
     assert "IM changes by" in line and "flagged above 0.005" in line and np.isfinite(float(line.split("by ")[1].split()[0]))
+
+
+def test_the_summary_gives_every_impact_factors_change_the_dataset_stores(stream_dataset):
+    """``traffic-summary.json`` gives ``governing_<which>_half_step_changes`` as docs/traffic.md lists them (a trial
+    found them in the dataset and the printed report only)."""
+    import json
+
+    from vbikit.traffic.summary import summary
+
+    _, ds = stream_dataset
+    out = summary(ds)
+    for which in ("static", "dynamic"):
+        key = f"governing_{which}_half_step_changes"
+        stored = json.loads(ds.attrs[key])
+        assert stored and out[key] == stored and out["units"][key] == "1"
+        assert max(abs(v) for v in stored.values() if v == v) >= abs(out[f"governing_{which}_half_step_im_change"])

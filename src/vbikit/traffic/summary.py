@@ -4,6 +4,7 @@ prints), ``traffic-summary.json`` (``summary``) and the figure ``traffic-im.png`
 ``vbikit traffic --out FILE.nc`` writes the dataset only."""
 from __future__ import annotations
 
+import json
 from typing import Any
 
 #: the files ``vbikit traffic --out-dir`` writes (checked before the run, ``vbikit._files.output_names``), and the
@@ -14,6 +15,8 @@ WORK_FOLDER = DATASET_FILE + ".parts"
 
 #: the half-step check of the governing events kept in the summary (the dataset's attributes of that name)
 _HALF_STEP = ("governing_static_half_step_im_change", "governing_dynamic_half_step_im_change", "half_step_tolerance")
+#: and every stored impact factor's change there (the dataset's JSON attributes; the report prints the largest)
+_HALF_STEP_CHANGES = ("governing_static_half_step_changes", "governing_dynamic_half_step_changes")
 
 
 def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
@@ -39,7 +42,9 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     from vbikit.analysis.checks import dataset_flags
 
     records, warnings = dataset_flags(attrs)
-    out = {"dataset": dataset, "vbikit_version": str(attrs.get("vbikit_version", "")), **stats, **{k: attrs[k] for k in _HALF_STEP if k in attrs},
+    changes = {k: json.loads(attrs[k]) for k in _HALF_STEP_CHANGES if attrs.get(k)}  # (every stored IM's change)
+    out = {"dataset": dataset, "vbikit_version": str(attrs.get("vbikit_version", "")), **stats,
+           **{k: attrs[k] for k in _HALF_STEP if k in attrs}, **changes,
            "start": start_words(attrs), "flag_codes": codes, "warnings": warnings, "flags": records}
     return out | {"units": {k: unit for k in out if (unit := summary_unit(k))}}
 
