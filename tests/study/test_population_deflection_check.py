@@ -101,7 +101,7 @@ def test_the_dataset_rule_is_the_single_run_rule():
     """Span/100 exactly as ``implausible_deflection_flags`` judges it (0.21 m on 20 m flagged, on 22 m
     not), per crossing against its own span; a crossing without a span (NaN) is not judged; the
     largest share names its point."""
-    from vbikit.analysis.checks import (dataset_flag_attrs, dataset_has_flag, implausible_deflection_dataset_flags,
+    from vbikit.analysis.checks import (Flag, dataset_flag_attrs, dataset_has_flag, implausible_deflection_dataset_flags,
                                         implausible_deflection_flags)
 
     peaks = np.array([[-0.05, -0.21], [-0.21, -0.01], [-0.9, -0.9]])  # (crossings, points) [m]
@@ -111,12 +111,13 @@ def test_the_dataset_rule_is_the_single_run_rule():
     assert flag.value == pytest.approx(0.21 / 20.0)
     assert flag.value == implausible_deflection_flags(20.0, [("point b", -0.21, None, "b")])[0].value
     assert implausible_deflection_dataset_flags(peaks[1:2], spans[1:2], ["a", "b"]) == []  # L/105
-    attrs = dataset_flag_attrs([flag], {"small_static": ["point a: small"]})
+    small = Flag("small_static", "point a: small")
+    attrs = dataset_flag_attrs([flag, small])
     assert attrs["flag_codes"] == "implausible_deflection,small_static"
     assert attrs["warnings"].startswith("implausible static deflection") and attrs["warnings"].endswith("point a: small")
-    assert dataset_flag_attrs([], {"small_static": []}) == {}
+    assert dataset_flag_attrs([]) == {}
     assert dataset_has_flag(attrs, "small_static") and dataset_has_flag(attrs, "implausible_deflection")
-    only_small = dataset_flag_attrs([], {"small_static": ["point a: small"]})
+    only_small = dataset_flag_attrs([small])
     assert not dataset_has_flag(only_small, "implausible_deflection") and not dataset_has_flag({}, "small_static")
     with pytest.raises(ValueError, match="not one of"):
         dataset_has_flag(attrs, "no_such_code")

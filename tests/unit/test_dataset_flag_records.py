@@ -14,7 +14,7 @@ B = Flag("contact_not_converged", "3 crossings: contact forces not converged", v
 
 
 def test_records_round_trip_with_numpy_numbers_and_messages_holding_semicolons():
-    attrs = dataset_flag_attrs([A, B], {"strain_not_converged": ["strain off at p1"]})
+    attrs = dataset_flag_attrs([A, B, Flag("strain_not_converged", "strain off at p1")])
     assert attrs["warnings"] == f"{A.message}; {B.message}; strain off at p1"
     assert attrs["flag_codes"] == "small_static,contact_not_converged,strain_not_converged"
     records, warnings = dataset_flags(attrs)

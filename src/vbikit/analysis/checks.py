@@ -936,22 +936,20 @@ def join_codes(codes: Iterable[str]) -> str:
     return ",".join(dict.fromkeys(codes))
 
 
-def dataset_flag_attrs(flags: Sequence[Flag], warnings: Mapping[str, Sequence[str]] | None = None) -> dict[str, str]:
-    """A population dataset's attributes from its ``flags`` and its ``warnings`` without a record
-    (flag code -> sentences; each stored as a record of its code
-    and message): ``warnings``, every message joined by "; " (a flag of ``LEADING_CODES`` first, as
-    ``add_flags`` orders a summary), ``flag_codes``, the codes, comma-separated, each once, and ``flags``, the
-    records as JSON (``flag_attrs``); none when there is nothing to say."""
+def dataset_flag_attrs(flags: Sequence[Flag]) -> dict[str, str]:
+    """A population dataset's attributes from its ``flags`` (``summary_flag_attrs`` of the summary ``add_flags``
+    makes of them: a flag of ``LEADING_CODES`` first): ``warnings``, every message joined by "; ", ``flag_codes``,
+    the codes, comma-separated, each once, and ``flags``, the records as JSON; none when there is nothing to say."""
     summary: dict[str, Any] = {}
     add_flags(summary, flags)
-    texts, codes, records = list(summary.get("warnings", [])), [f.code for f in flags], list(summary.get("flags", []))
-    for code, sentences in (warnings or {}).items():
-        _check_code(code)
-        new = [w for w in sentences if w not in texts]
-        texts += new
-        records += [Flag(code, w).as_dict() for w in new]  # (every field, null where it does not apply)
-        codes += [code] if sentences else []
-    return flag_attrs(texts, codes, records)
+    return summary_flag_attrs(summary)
+
+
+def summary_flag_attrs(summary: Mapping[str, Any]) -> dict[str, str]:
+    """The dataset attributes of a summary's flags (its ``flags`` records and ``warnings``, ``add_flags``'s):
+    ``flag_attrs`` of them — what a run's, a random run's, a railway sweep's and every population dataset carry."""
+    records = summary.get("flags", [])
+    return flag_attrs(summary.get("warnings", []), [f["code"] for f in records], records)
 
 
 def flag_attrs(texts: Sequence[str], codes: Iterable[str], records: Sequence[Mapping[str, Any]] = ()) -> dict[str, str]:
@@ -975,7 +973,7 @@ def add_dataset_flags(attrs: Mapping[str, Any], flags: Sequence[Flag]) -> dict[s
     """A dataset's attributes ``attrs`` with ``flags`` added after the ones it carries (``flag_attrs``'s three
     attributes; a message it holds already is not repeated)."""
     records, texts = dataset_flags(attrs)
-    codes = [c for c in str(attrs.get("flag_codes", "")).split(",") if c]
+    codes = dataset_flag_codes(attrs)
     legacy = f"; {texts[0]}; " if texts and not records else None  # (a dataset written before the records)
 
     def known(message: str) -> bool:  # (one of the joined messages of a dataset without records)
@@ -1001,11 +999,16 @@ def dataset_flags(attrs: Mapping[str, Any]) -> tuple[list[dict[str, Any]], list[
     return [], [str(attrs["warnings"])] if attrs.get("warnings") else []
 
 
+def dataset_flag_codes(attrs: Mapping[str, Any]) -> list[str]:
+    """The flag codes a dataset's attributes carry (``flag_codes``, ``join_codes``' format), in their order."""
+    return [c for c in str(attrs.get("flag_codes", "")).split(",") if c]
+
+
 def dataset_has_flag(attrs: Mapping[str, Any], code: str) -> bool:
     """Whether a population dataset's attributes (``dataset_flag_attrs``: ``flag_codes``,
     comma-separated, ``join_codes``; a lifetime dataset's alike) carry ``code``."""
     _check_code(code)
-    return code in str(attrs.get("flag_codes", "")).split(",")
+    return code in dataset_flag_codes(attrs)
 
 
 def effect_static_flags(effects: Sequence[tuple[str, str, str, float, float]]) -> list[Flag]:

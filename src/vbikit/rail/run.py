@@ -31,7 +31,7 @@ from vbikit.errors import VbikitError
 from vbikit.rail import codes
 from vbikit.rail.spec import RailSpec, RailSpecError, load_rail_spec, parse_rail_spec
 from vbikit.rail.envelope import TRAVEL_STEPS, moment_envelope_near, moment_sections, static_envelope, stations_words
-from vbikit.analysis.checks import add_flags
+from vbikit.analysis.checks import add_flags, summary_flag_attrs
 from vbikit.outputs import OUTPUTS, cf_unit
 from vbikit.rail.refine import MAX_HALVINGS, MAX_PEAKS, PEAK_TOLERANCE, grid_error, refine_peaks, refinement_verdict
 from vbikit.rail.report import (TIME_SAMPLING_TOLERANCE, check, format_report, speed_grid_flags, summary,
@@ -365,7 +365,7 @@ def run_rail(source: Any, out_dir: str | Path | None = None, workers: Optional[i
     refine_points(checks, setup, {t.name: t for t in trains})
     refine_design_checks(ds, checks, setup, {t.name: t for t in trains})
     time_sampling_checks(checks, setup, {t.name: t for t in trains})
-    ds.attrs.update(dataset_flag_attrs_of(checks))
+    ds.attrs.update(summary_flag_attrs(checks))  # (the checks' flag records and warnings, as every dataset's)
     report = format_report(ds, checks)
     result = RailResult(ds, checks, report, seconds=time.perf_counter() - t0)
     ds.attrs["run_seconds"] = result.seconds
@@ -755,16 +755,6 @@ def time_sampling_checks(checks: dict[str, Any], setup: SweepSetup, trains: dict
         _, change, bound = _peak_sweep(setup, train, kind, span)(np.array([c["speed"]]))
         c["time_sampling_change"], c["time_sampling_bound"] = float(change[0]), float(bound[0])
     add_flags(checks, time_sampling_flags(checks))
-
-
-def dataset_flag_attrs_of(checks: dict[str, Any]) -> dict[str, str]:
-    """The dataset's ``warnings`` (every flag's message, "; "-joined), ``flag_codes`` (comma-separated) and
-    ``flags`` (the records, JSON) attributes from the checks' flag records, as every population dataset carries them
-    (``vbikit.analysis.checks.dataset_flag_attrs``); none when nothing is flagged."""
-    from vbikit.analysis.checks import flag_attrs
-
-    return flag_attrs(list(checks.get("warnings", [])), (f["code"] for f in checks.get("flags", [])),
-                      checks.get("flags", []))
 
 
 #: sections [per span] of the fine static envelope and of the dynamic one around the swept maximum

@@ -31,7 +31,7 @@ from typing import Any, Callable
 import numpy as np
 from numpy.typing import NDArray
 
-from vbikit.analysis.checks import Flag, flag_attrs, flag_fields, small_static_flags
+from vbikit.analysis.checks import Flag, flag_fields, small_static_flags, summary_flag_attrs
 from vbikit.analysis.effects import LoadEffectResponse, load_effect_responses
 from vbikit.analysis.impact import static_direction, static_modal_history
 from vbikit.analysis.plan import ResponsePlan
@@ -188,7 +188,7 @@ class RandomResponse:
         s = self.summary
         attrs = {"method": s["method"], "grid_change": s["grid_change"], "n_lines": s["n_lines"],
                  "lift_off_probability": s["lift_off_probability"],
-                 **flag_attrs(s.get("warnings", []), [f["code"] for f in s.get("flags", [])], s.get("flags", []))}
+                 **summary_flag_attrs(s)}
         return xr.Dataset(data, coords={"time": ("time", t[:n], {"units": "s", "long_name": "time"}), "point": names,
                                         "wheel": wheels, **vehicle_dof_coords(vehicle.dof_names),
                                         "x": ("point", [p.x for p in self.points],

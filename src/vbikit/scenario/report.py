@@ -90,13 +90,12 @@ class Report:
         response points (coordinate ``point``: their names, as in the CSV) and girder sections, with the
         load-effect histories (``<name>``, ``<name>_static``): the CSV's names and units; the run's flags in its
         attributes ``flags`` (records, JSON), ``warnings`` and ``flag_codes``, as every dataset carries them
-        (``vbikit.analysis.checks.flag_attrs``), so the dataset alone says which values are in doubt."""
-        from vbikit.analysis.checks import flag_attrs
+        (``vbikit.analysis.checks.summary_flag_attrs``), so the dataset alone says which values are in doubt."""
+        from vbikit.analysis.checks import summary_flag_attrs
 
         ds = self.result.to_xarray([(p.x, p.y) for p in self.points], girder_x=self.plan.first.x, static=static,
                                    names=self.plan.point_names, effects=self.effects)
-        flags = self.summary.get("flags", [])
-        ds.attrs.update(flag_attrs(self.summary.get("warnings", []), [f["code"] for f in flags], flags))
+        ds.attrs.update(summary_flag_attrs(self.summary))
         return ds
 
     def to_dataframe(self, static: bool = True) -> "pd.DataFrame":

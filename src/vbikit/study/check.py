@@ -17,7 +17,6 @@ from dataclasses import dataclass, field
 
 from vbikit.analysis.checks import Flag, add_dataset_flags
 from vbikit.analysis.effect_step import STEP_TOLERANCE
-
 from vbikit.scenario.preflight import preflight
 from vbikit.scenario.schema import ScenarioError, parse_scenario
 from vbikit.scenario.step_check import step_check_words

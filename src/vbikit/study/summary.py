@@ -72,14 +72,13 @@ def study_summary(ds, step_check: dict | None = None) -> dict:
     the vbikit version that wrote the dataset, and ``units``.  NaN stays NaN here; the writer gives null."""
     import json
 
+    from vbikit.analysis.checks import dataset_flag_codes, dataset_flags
     from vbikit.study.check import stored_step_check
 
     stored = stored_step_check(ds.attrs)  # (the dataset's own; a dataset written without one: the check given)
     step_check = stored if stored is not None else step_check
     keys = json.loads(ds.attrs.get("axes", "{}"))  # dimension -> the study's axis key (``bridge.model``)
-    from vbikit.analysis.checks import dataset_flags
-
-    codes = [c for c in str(ds.attrs.get("flag_codes", "")).split(",") if c]
+    codes = dataset_flag_codes(ds.attrs)
     records, warnings = dataset_flags(ds.attrs)  # (every message its own, with its record)
     out = {"title": str(ds.attrs.get("title", "")), "vbikit_version": str(ds.attrs.get("vbikit_version", "")),
            "outputs": [str(name) for name in ds.data_vars], "impact_factor": [], "step_check": step_check,

@@ -36,11 +36,11 @@ def summary(ds: Any, dataset: str = DATASET_FILE) -> dict[str, Any]:
     # (not their deflections: stream_statistics reads those from the variables at the same events, signed, z up, also
     # for a dataset written when the attribute held the magnitude)
     stats |= {k: attrs[k] for k in stats if k.startswith("governing_") and k in attrs and not k.endswith("_deflection")}
-    codes = [c.strip() for c in str(attrs.get("flag_codes", "")).split(",") if c.strip()]
     # the flags as records and their messages as a list, as every summary gives them (a dataset written before the
     # records were stored: its "; "-joined messages as one)
-    from vbikit.analysis.checks import dataset_flags
+    from vbikit.analysis.checks import dataset_flag_codes, dataset_flags
 
+    codes = dataset_flag_codes(attrs)
     records, warnings = dataset_flags(attrs)
     changes = {k: json.loads(attrs[k]) for k in _HALF_STEP_CHANGES if attrs.get(k)}  # (every stored IM's change)
     out = {"dataset": dataset, "vbikit_version": str(attrs.get("vbikit_version", "")), **stats,
