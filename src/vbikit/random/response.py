@@ -137,8 +137,6 @@ class RandomResponse:
     pem: PEMResult
     summary: dict[str, Any]
     effects: list[LoadEffectResponse] = dataclasses.field(default_factory=list)
-    #: the points' names (the plan's, ``ResponsePlan.point_names``; None: ``p1``, ``p2``, … as ``point_name`` gives)
-    point_names: list[str] | None = None
 
     def effect_std(self, k: int) -> NDArray[np.float64]:
         """σ(t) of load effect ``k`` (its unit: N m or N)."""
@@ -149,17 +147,15 @@ class RandomResponse:
         bottom-fibre strain over (time, point), of every load effect (``<name>_mean``, ``<name>_std``,
         ``<name>_static`` over time, e.g. ``moment_x8.38``), of the vehicle DOFs' accelerations over
         (time, dof) and of the contact forces over (time, wheel) — named as ``CrossingResult.to_xarray``
-        names them (points ``p1``, ``p2``, … or the plan's names; ``contact_force``; the DOFs' units by
-        ``vehicle_dof_units``), with ``_mean`` and ``_std``."""
+        names them (points by the summary's names, the plan's: ``p1``, ``p2``, … or their own; ``contact_force``;
+        the DOFs' units by ``vehicle_dof_units``), with ``_mean`` and ``_std``."""
         import xarray as xr
 
-        from vbikit.analysis.plan import point_name
-        from vbikit.solve.result import vehicle_dof_coords, vehicle_dof_units
+        from vbikit.solve.result import deck_point_coords, vehicle_dof_coords, vehicle_dof_units
 
         t = self.pem.time
         n = min(t.size, self.mean.time.size)
         pts = np.arange(len(self.points))
-        names = self.point_names or [point_name(i) for i in range(1, len(self.points) + 1)]
         data: dict[str, Any] = {}
         for q in ("displacement", "velocity", "acceleration", "strain"):
             unit = cf_unit(QUANTITIES[q].unit)  # (the catalogue's unit, in the datasets' CF spelling)
@@ -189,13 +185,9 @@ class RandomResponse:
         attrs = {"method": s["method"], "grid_change": s["grid_change"], "n_lines": s["n_lines"],
                  "lift_off_probability": s["lift_off_probability"],
                  **summary_flag_attrs(s)}
-        return xr.Dataset(data, coords={"time": ("time", t[:n], {"units": "s", "long_name": "time"}), "point": names,
-                                        "wheel": wheels, **vehicle_dof_coords(vehicle.dof_names),
-                                        "x": ("point", [p.x for p in self.points],
-                                              {"units": "m", "long_name": "response point from the entry support"}),
-                                        "y": ("point", [p.y for p in self.points],
-                                              {"units": "m", "long_name": "response point from the deck centreline"})},
-                          attrs=attrs)
+        names = [str(p["name"]) for p in s["points"]]  # (the summary's: one entry a point, in order)
+        coords = deck_point_coords(t[:n], names, [p.x for p in self.points], [p.y for p in self.points])
+        return xr.Dataset(data, coords={**coords, "wheel": wheels, **vehicle_dof_coords(vehicle.dof_names)}, attrs=attrs)
 
 
 def random_response(crossing: Crossing, plan: ResponsePlan, road: PseudoRoad, dt: float, *,
@@ -297,7 +289,7 @@ def random_responses(crossing: Crossing, plan: ResponsePlan, roads: list[PseudoR
         pem = base if f == 1.0 else base.scaled(f)
         out.append(RandomResponse(smooth, points, pem, _reduce(
             crossing, plan, road, smooth, points, effects, pem, n, mean, rate, static, chosen, sampled, quantiles,
-            crossings, samples, started, grid, refinement), effects, plan.point_names))
+            crossings, samples, started, grid, refinement), effects))
     return out
 
 

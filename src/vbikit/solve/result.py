@@ -395,10 +395,7 @@ class CrossingResult:
         deck("", "point", xs, ys, "")
         girder_y = bridge.girder_y if isinstance(bridge, GirderDeck) else None
         coords: dict[str, Any] = {
-            "time": ("time", self.time, {"units": "s", "long_name": "time"}),
-            "point": ("point", labels),
-            "x": ("point", np.array(xs), {"units": "m", "long_name": "response point from the entry support"}),
-            "y": ("point", np.array(ys), {"units": "m", "long_name": "response point from the deck centreline"}),
+            **deck_point_coords(self.time, labels, xs, ys),
             "wheel": ("wheel", [w.name for w in vehicle.wheels]),
             **vehicle_dof_coords(vehicle.dof_names),
             "mode": ("mode", np.arange(1, bridge.frequencies_hz.size + 1)),
@@ -492,6 +489,15 @@ def dof_unit(name: str) -> str:
 def dof_acceleration_unit(name: str) -> str:
     """CF unit of a vehicle DOF's acceleration by its name (``dof_unit`` per s²): ``rad s-2`` or ``m s-2``."""
     return f"{dof_unit(name)} s-2"
+
+
+def deck_point_coords(time: NDArray[np.float64], names: Sequence[str], xs: Sequence[float],
+                      ys: Sequence[float]) -> dict[str, Any]:
+    """A dataset's ``time`` [s] and response-point coordinates: ``point`` (the names), ``x`` and ``y`` [m] (from the
+    entry support, from the deck centreline) — the ordinary run's and the random run's."""
+    return {"time": ("time", time, {"units": "s", "long_name": "time"}), "point": ("point", list(names)),
+            "x": ("point", np.array(xs, float), {"units": "m", "long_name": "response point from the entry support"}),
+            "y": ("point", np.array(ys, float), {"units": "m", "long_name": "response point from the deck centreline"})}
 
 
 def vehicle_dof_coords(dof_names: Sequence[str]) -> dict[str, Any]:
